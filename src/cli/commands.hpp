@@ -1,0 +1,16 @@
+// Sub-commands of the `hipair` command-line tool. Each registers itself on the app and
+// stores the action to run; main() runs it and turns hipair::Error into one line + exit code.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace hipair::cli {
+
+using Action = std::function<int()>;
+
+void register_validate(CLI::App& app, Action& action);
+void register_show(CLI::App& app, Action& action);
+
+}  // namespace hipair::cli

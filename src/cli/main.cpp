@@ -1,0 +1,38 @@
+#include "cli/commands.hpp"
+
+#include <hipair/error.hpp>
+
+#include <exception>
+#include <iostream>
+#include <new>
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "HIPAIR: exact contact analysis of planar mechanisms from configuration spaces.\n"
+      "Models are JSON files (see docs/model-format.md)."};
+  app.set_version_flag("--version", "hipair 0.1.0");
+  app.require_subcommand(1);
+  hipair::cli::Action action;
+  hipair::cli::register_validate(app, action);
+  hipair::cli::register_show(app, action);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    return action ? action() : 0;
+  } catch (const hipair::ModelError& e) {
+    std::cerr << "hipair: error: " << e.what() << "\n";
+    return 2;
+  } catch (const hipair::Error& e) {
+    std::cerr << "hipair: error: " << e.what() << "\n";
+    return 3;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "hipair: error: out of memory\n";
+    return 4;
+  } catch (const std::exception& e) {
+    std::cerr << "hipair: internal error: " << e.what() << "\n";
+    return 5;
+  }
+}

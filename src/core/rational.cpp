@@ -1,0 +1,124 @@
+#include <hipair/error.hpp>
+#include <hipair/rational.hpp>
+
+#include <mpfr.h>
+
+#include <cctype>
+#include <cmath>
+#include <sstream>
+
+namespace hipair {
+namespace {
+
+bool all_digits(std::string_view s) {
+  if (s.empty()) return false;
+  for (char c : s)
+    if (!std::isdigit(static_cast<unsigned char>(c))) return false;
+  return true;
+}
+
+mpz_class power_of_ten(unsigned long exponent) {
+  mpz_class result;
+  mpz_ui_pow_ui(result.get_mpz_t(), 10, exponent);
+  return result;
+}
+
+// Exact value of an unsigned decimal "123", "1.25", "1.25e-7", ".5", "5.".
+Rational parse_unsigned_decimal(std::string_view text, std::string_view whole) {
+  auto fail = [&] { throw NumericError("'" + std::string(whole) + "' is not a number"); };
+  std::string_view mantissa = text;
+  long long exponent = 0;
+  if (auto e = text.find_first_of("eE"); e != std::string_view::npos) {
+    mantissa = text.substr(0, e);
+    std::string_view exp_text = text.substr(e + 1);
+    bool negative = false;
+    if (!exp_text.empty() && (exp_text[0] == '+' || exp_text[0] == '-')) {
+      negative = exp_text[0] == '-';
+      exp_text.remove_prefix(1);
+    }
+    if (!all_digits(exp_text) || exp_text.size() > 6) fail();
+    exponent = std::stoll(std::string(exp_text));
+    if (negative) exponent = -exponent;
+  }
+  std::string_view int_part = mantissa, frac_part;
+  if (auto dot = mantissa.find('.'); dot != std::string_view::npos) {
+    int_part = mantissa.substr(0, dot);
+    frac_part = mantissa.substr(dot + 1);
+  }
+  if (int_part.empty() && frac_part.empty()) fail();
+  if ((!int_part.empty() && !all_digits(int_part)) || (!frac_part.empty() && !all_digits(frac_part)))
+    fail();
+  std::string digits = std::string(int_part) + std::string(frac_part);
+  exponent -= static_cast<long long>(frac_part.size());
+  if (exponent > 100000 || exponent < -100000) fail();
+  mpz_class numerator(digits.empty() ? std::string("0") : digits, 10);
+  Rational value;
+  if (exponent >= 0) {
+    value = Rational(numerator * power_of_ten(static_cast<unsigned long>(exponent)));
+  } else {
+    value = Rational(numerator, power_of_ten(static_cast<unsigned long>(-exponent)));
+    value.canonicalize();
+  }
+  return value;
+}
+
+}  // namespace
+
+Rational parse_rational(std::string_view text) {
+  std::string_view whole = text;
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
+  if (text.empty()) throw NumericError("empty number");
+  bool negative = false;
+  if (text[0] == '+' || text[0] == '-') {
+    negative = text[0] == '-';
+    text.remove_prefix(1);
+  }
+  Rational value;
+  if (auto slash = text.find('/'); slash != std::string_view::npos) {
+    Rational numerator = parse_unsigned_decimal(text.substr(0, slash), whole);
+    Rational denominator = parse_unsigned_decimal(text.substr(slash + 1), whole);
+    if (denominator == 0) throw NumericError("'" + std::string(whole) + "' divides by zero");
+    value = numerator / denominator;
+  } else {
+    value = parse_unsigned_decimal(text, whole);
+  }
+  return negative ? Rational(-value) : value;
+}
+
+std::string to_exact_string(const Rational& value) {
+  Rational canonical = value;
+  canonical.canonicalize();
+  return canonical.get_str(10);
+}
+
+std::string to_decimal_string(const Rational& value, int digits) {
+  mpf_class f(value, 256);
+  mp_exp_t exponent = 0;
+  std::string mantissa = f.get_str(exponent, 10, static_cast<size_t>(digits));
+  if (mantissa.empty()) return "0";
+  bool negative = mantissa[0] == '-';
+  if (negative) mantissa.erase(0, 1);
+  std::string out;
+  if (exponent <= 0) {
+    out = "0." + std::string(static_cast<size_t>(-exponent), '0') + mantissa;
+  } else if (static_cast<size_t>(exponent) >= mantissa.size()) {
+    out = mantissa + std::string(static_cast<size_t>(exponent) - mantissa.size(), '0');
+  } else {
+    out = mantissa.substr(0, static_cast<size_t>(exponent)) + "." +
+          mantissa.substr(static_cast<size_t>(exponent));
+  }
+  return negative ? "-" + out : out;
+}
+
+double to_double(const Rational& value) {
+  // mpq_get_d truncates; MPFR at 53 bits rounds the exact quotient to nearest.
+  mpfr_t rounded;
+  mpfr_init2(rounded, 53);
+  mpfr_set_q(rounded, value.get_mpq_t(), MPFR_RNDN);
+  double result = mpfr_get_d(rounded, MPFR_RNDN);
+  mpfr_clear(rounded);
+  return result;
+}
+
+}  // namespace hipair

@@ -1,0 +1,56 @@
+#include "io/atomic_file.hpp"
+
+#include <hipair/error.hpp>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+
+namespace hipair::io {
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
+  namespace fs = std::filesystem;
+  fs::path target = path;
+  fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(directory, ec))
+    throw IoError("cannot write '" + path.string() + "': directory '" + directory.string() +
+                  "' does not exist");
+  std::random_device seed;
+  fs::path temporary =
+      directory / ("." + target.filename().string() + ".tmp" + std::to_string(seed()));
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out)
+      throw IoError("cannot write '" + path.string() + "': " + std::strerror(errno));
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+    out.flush();
+    if (!out) {
+      out.close();
+      fs::remove(temporary, ec);
+      throw IoError("cannot write '" + path.string() + "': write failed");
+    }
+  }
+  fs::rename(temporary, target, ec);
+  if (ec) {
+    std::error_code ignore;
+    fs::remove(temporary, ignore);
+    throw IoError("cannot write '" + path.string() + "': " + ec.message());
+  }
+}
+
+std::string read_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw IoError("cannot read '" + path.string() + "': it is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError("cannot read '" + path.string() + "': " + std::strerror(errno));
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+}  // namespace hipair::io
