@@ -1,0 +1,98 @@
+// Contract between the contact kernels (kernels/, src/cspace/contact_curves.cpp) and the
+// C-space builder (src/cspace/builder*.cpp). Internal: not part of the public API.
+//
+// Configuration space of a fixed-axis pair: one axis per moving part (x: first part of the
+// pair, y: second part). A fixed part contributes no axis (the space is then 1-D).
+//
+// Chart coordinates. A rotation angle theta is carried by t = tan((theta - c)/2) with chart
+// centre c = 0 (half_turn == false, covers |theta| <= pi/2 for t in [-1, 1]) or c = pi
+// (half_turn == true). Then cos(theta - c) = (1-t^2)/(1+t^2), sin(theta - c) = 2t/(1+t^2)
+// exactly, and rotating by pi negates both. A translation offset s (mm) is its own chart
+// coordinate. Contact polynomials are cleared of the positive denominators (1+t^2), so
+// their zero sets are the contact curves of the chart.
+#pragma once
+
+#include <hipair/model.hpp>
+#include <hipair/rational.hpp>
+
+#include <gmpxx.h>
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace hipair::cspace {
+
+/// Dense bivariate polynomial with integer coefficients: sum c[i][j] x^i y^j.
+/// For a 1-D space only the x variable occurs (c[i][0]).
+struct IntegerPolynomial2 {
+  std::vector<std::vector<mpz_class>> coefficients;  ///< coefficients[i][j] of x^i y^j
+  int degree_x() const noexcept;
+  int degree_y() const noexcept;
+  bool is_zero() const;
+};
+
+/// One chart axis of a pair's C-space.
+struct ChartAxis {
+  enum class Kind { rotation, translation };
+  Kind kind = Kind::rotation;
+  bool half_turn = false;   ///< rotation: chart centred at theta = pi instead of 0
+  Rational lo;              ///< chart box in chart coordinates (t or s)
+  Rational hi;
+};
+
+/// The charts covering a pair's C-space and how they glue (seams) — produced by
+/// chart_layout(); a rotation without limits gets two charts t in [-1,1] around 0 and pi.
+struct ChartLayout {
+  std::vector<ChartAxis> x_charts;   ///< first moving part
+  std::vector<ChartAxis> y_charts;   ///< second moving part (empty for a 1-D space)
+};
+
+/// A boundary feature of a part, in the model's loops.
+struct FeatureRef {
+  enum class Kind { vertex, segment, arc };
+  std::size_t part = 0;
+  std::size_t loop = 0;
+  std::size_t edge = 0;   ///< for a vertex: the vertex is the source of this edge
+  Kind kind = Kind::segment;
+  friend bool operator==(const FeatureRef&, const FeatureRef&) = default;
+};
+
+/// How two features touch along a curve.
+enum class ContactType {
+  vertex_segment,   ///< vertex of the first part on a segment of the second
+  segment_vertex,
+  vertex_arc,
+  arc_vertex,
+  arc_arc,          ///< circles tangent (outside or inside)
+  arc_segment,      ///< circle tangent to a line
+  segment_arc
+};
+
+/// A contact curve of a pair in one chart: the zero set of `polynomial` restricted to the
+/// chart box contains every configuration where `first` touches `second` (a superset: the
+/// validity range — contact point within both features — is an extra restriction that the
+/// builder may use to clip; correctness of free/blocked never depends on it).
+struct ContactCurve {
+  FeatureRef first;
+  FeatureRef second;
+  ContactType type = ContactType::vertex_segment;
+  IntegerPolynomial2 polynomial;
+  std::string label;  ///< "driver pin / wheel slot 2 wall" for people
+};
+
+/// A configuration of the pair in chart coordinates of a given chart.
+struct ChartPoint {
+  Rational x;
+  Rational y;   ///< ignored for a 1-D space
+};
+
+/// Exact relation of two posed parts.
+enum class Overlap {
+  apart,       ///< closed parts disjoint
+  touching,    ///< boundaries meet, interiors disjoint
+  overlapping  ///< interiors intersect
+};
+
+}  // namespace hipair::cspace
