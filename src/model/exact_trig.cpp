@@ -1,0 +1,120 @@
+#include "model/exact_trig.hpp"
+
+#include <mpfr.h>
+
+namespace hipair::model_detail {
+namespace {
+
+constexpr mpfr_prec_t working_bits = 256;
+
+mpz_class grid_denominator() {
+  mpz_class d;
+  mpz_ui_pow_ui(d.get_mpz_t(), 10, rounding_decimals);
+  return d;
+}
+
+// Nearest multiple of 10^-12 of an MPFR value (ties away from zero; the value is never a tie
+// in practice since the inputs are irrational).
+Rational round_mpfr_to_grid(const mpfr_t value) {
+  mpfr_t scaled;
+  mpfr_init2(scaled, working_bits);
+  mpz_class denominator = grid_denominator();
+  mpfr_mul_z(scaled, value, denominator.get_mpz_t(), MPFR_RNDN);
+  mpfr_round(scaled, scaled);
+  mpz_class numerator;
+  mpfr_get_z(numerator.get_mpz_t(), scaled, MPFR_RNDN);
+  mpfr_clear(scaled);
+  Rational result(numerator, denominator);
+  result.canonicalize();
+  return result;
+}
+
+Rational grid_half_step() { return Rational(1, grid_denominator() * 2); }
+
+// Unit vector of angle a (|a| <= pi/2 + small) via rounded t = tan(a/2).
+Point unit_small_angle(const mpfr_t angle, const std::string& pointer, const std::string& expression,
+                       std::vector<Rounding>& roundings) {
+  mpfr_t half;
+  mpfr_init2(half, working_bits);
+  mpfr_div_ui(half, angle, 2, MPFR_RNDN);
+  mpfr_tan(half, half, MPFR_RNDN);
+  Rational t = round_mpfr_to_grid(half);
+  mpfr_clear(half);
+  // |d theta / d t| = 2 / (1 + t^2) <= 2, so the angle error is at most twice the t error;
+  // add 10^-60 for the 256-bit evaluation.
+  // The record holds the half-angle tangent used and the bound on the angle it implies.
+  roundings.push_back(Rounding{pointer, "direction of " + expression + " (half-angle tangent)", t,
+                               Rational(2 * grid_half_step())});
+  return unit_from_half_tangent(t);
+}
+
+Point direction_from_mpfr(mpfr_t angle, const std::string& pointer, const std::string& expression,
+                          std::vector<Rounding>& roundings) {
+  // Reduce to (-pi, pi].
+  mpfr_t pi, reduced;
+  mpfr_inits2(working_bits, pi, reduced, static_cast<mpfr_ptr>(nullptr));
+  mpfr_const_pi(pi, MPFR_RNDN);
+  mpfr_remainder(reduced, angle, pi, MPFR_RNDN);  // now in [-pi/2, pi/2], angle = reduced + k pi
+  mpfr_t k;
+  mpfr_init2(k, working_bits);
+  mpfr_sub(k, angle, reduced, MPFR_RNDN);
+  mpfr_div(k, k, pi, MPFR_RNDN);
+  mpfr_round(k, k);
+  long turns = mpfr_get_si(k, MPFR_RNDN);
+  Point unit = unit_small_angle(reduced, pointer, expression, roundings);
+  mpfr_clears(pi, reduced, k, static_cast<mpfr_ptr>(nullptr));
+  if (turns % 2 != 0) {
+    unit.x = -unit.x;
+    unit.y = -unit.y;
+  }
+  return unit;
+}
+
+}  // namespace
+
+Rational round_to_grid(const Rational& value) {
+  mpfr_t v;
+  mpfr_init2(v, working_bits);
+  mpfr_set_q(v, value.get_mpq_t(), MPFR_RNDN);
+  Rational r = round_mpfr_to_grid(v);
+  mpfr_clear(v);
+  return r;
+}
+
+Point exact_unit_vector(const Rational& angle, const std::string& pointer,
+                        const std::string& expression, std::vector<Rounding>& roundings) {
+  if (angle == 0) return Point{Rational(1), Rational(0)};
+  mpfr_t a;
+  mpfr_init2(a, working_bits);
+  mpfr_set_q(a, angle.get_mpq_t(), MPFR_RNDN);
+  Point unit = direction_from_mpfr(a, pointer, expression, roundings);
+  mpfr_clear(a);
+  return unit;
+}
+
+Point exact_unit_vector_pi(const Rational& multiple_of_pi, const std::string& pointer,
+                           const std::string& expression, std::vector<Rounding>& roundings) {
+  // Exact for multiples of pi/2.
+  Rational twice = 2 * multiple_of_pi;
+  twice.canonicalize();
+  if (twice.get_den() == 1) {
+    mpz_class quarter = twice.get_num() % 4;
+    if (quarter < 0) quarter += 4;
+    switch (quarter.get_si()) {
+      case 0: return Point{Rational(1), Rational(0)};
+      case 1: return Point{Rational(0), Rational(1)};
+      case 2: return Point{Rational(-1), Rational(0)};
+      default: return Point{Rational(0), Rational(-1)};
+    }
+  }
+  mpfr_t a, pi;
+  mpfr_inits2(working_bits, a, pi, static_cast<mpfr_ptr>(nullptr));
+  mpfr_const_pi(pi, MPFR_RNDN);
+  mpfr_set_q(a, multiple_of_pi.get_mpq_t(), MPFR_RNDN);
+  mpfr_mul(a, a, pi, MPFR_RNDN);
+  Point unit = direction_from_mpfr(a, pointer, expression, roundings);
+  mpfr_clears(a, pi, static_cast<mpfr_ptr>(nullptr));
+  return unit;
+}
+
+}  // namespace hipair::model_detail
