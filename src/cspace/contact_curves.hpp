@@ -95,4 +95,45 @@ enum class Overlap {
   overlapping  ///< interiors intersect
 };
 
+/// Counts reported by --stats.
+struct CurveStatistics {
+  std::size_t feature_pairs_considered = 0;
+  std::size_t feature_pairs_culled = 0;   ///< swept annuli/strips disjoint: can never touch
+  std::size_t curves = 0;                 ///< non-trivial contact polynomials emitted
+};
+
+/// The moving parts of a pair in axis order: `x_part` moves along x, `y_part` along y (or
+/// nullopt for a 1-D space). Parts with more than one degree of freedom are rejected with a
+/// GeometryError (planar and pin_slot pairs are not fixed-axis pairs).
+struct PairAxes {
+  std::size_t first = 0;               ///< model part index of the pair's first part
+  std::size_t second = 0;
+  bool first_moves = false;            ///< first part has the x axis (else it is fixed)
+  bool second_moves = false;           ///< second part has the next axis
+  int dimension() const noexcept { return int(first_moves) + int(second_moves); }
+};
+
+PairAxes pair_axes(const Model& model, std::size_t first, std::size_t second);
+
+/// Charts covering the pair's C-space: rotations without limits get two charts
+/// (t in [-1,1] around 0 and around pi); rotations with limits get the charts their range
+/// needs, clipped; translations get one chart [lo, hi] from the limits, or, without limits,
+/// the offsets outside of which the parts can never touch (widened by a margin, so that the
+/// chart edge lies in free space).
+ChartLayout chart_layout(const Model& model, const PairAxes& axes);
+
+/// All contact curves of the pair in the chart (x, y) (y ignored for a 1-D space).
+/// Feature pairs that can never touch are culled before any exact work.
+std::vector<ContactCurve> generate_contact_curves(const Model& model, const PairAxes& axes,
+                                                  const ChartAxis& x, const ChartAxis& y,
+                                                  CurveStatistics* statistics = nullptr);
+
+/// Exact relation of the two parts posed at chart point `q` of chart (x, y): the oracle.
+Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x,
+                         const ChartAxis& y, const ChartPoint& q);
+
+/// Converts a chart coordinate to the part coordinate (angle in rad / offset in mm), in
+/// double, for drawing and reports: theta = c + 2 atan(t).
+double chart_to_coordinate(const ChartAxis& axis, double chart_value);
+
 }  // namespace hipair::cspace
