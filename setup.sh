@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# HIPAIR set-up: installs what is missing (Debian 12 packages), builds, and then either runs
+# the main job on the bundled Geneva example (`./setup.sh demo`) or the whole test suite
+# (`./setup.sh test`). Idempotent; run as root (or with sudo available).
+set -euo pipefail
+cd "$(dirname "$0")"
+
+PACKAGES=(
+  build-essential cmake ccache git clang libclang-rt-14-dev
+  libcgal-dev libgmp-dev libmpfr-dev libmpfi-dev libeigen3-dev libboost-dev libtbb-dev
+  nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libbox2d-dev
+  librsvg2-bin
+)
+BUILD_DIR=${HIPAIR_BUILD_DIR:-build}
+JOBS=${HIPAIR_JOBS:-$(nproc)}
+
+install_missing() {
+  local missing=() package
+  for package in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" \
+      || missing+=("$package")
+  done
+  if ((${#missing[@]})); then
+    echo "setup: installing ${missing[*]}"
+    local sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo=sudo
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  fi
+}
+
+build() {
+  cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$BUILD_DIR" -j "$JOBS"
+}
+
+demo() {
+  local out=${HIPAIR_OUT:-out/geneva}
+  mkdir -p "$out"
+  "$BUILD_DIR"/hipair validate examples/models/geneva.json
+  "$BUILD_DIR"/hipair show examples/models/geneva.json --svg "$out/geneva.svg" --labels
+  echo
+  echo "setup: outputs are in $(cd "$out" && pwd):"
+  ls -1 "$out" | sed 's/^/  /'
+}
+
+run_tests() {
+  ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS"
+}
+
+case "${1:-}" in
+  demo) install_missing; build; demo ;;
+  test) install_missing; build; run_tests ;;
+  *) echo "usage: $0 demo|test" >&2; exit 64 ;;
+esac
