@@ -1,0 +1,78 @@
+// Exact numbers and atomic output files: the primitives everything else relies on.
+#include <hipair/error.hpp>
+#include <hipair/rational.hpp>
+
+#include "io/atomic_file.hpp"
+#include "model/exact_trig.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace {
+
+using hipair::Rational;
+
+TEST(ExactDecimal, ValuesADoubleCannotHold) {
+  // 2^53 + 1 is the first integer a double cannot represent.
+  EXPECT_EQ(hipair::parse_rational("9007199254740993"), Rational("9007199254740993"));
+  EXPECT_NE(hipair::parse_rational("9007199254740993"), Rational(9007199254740992.0));
+  EXPECT_EQ(hipair::parse_rational("0.1"), Rational(1, 10));
+  EXPECT_EQ(hipair::parse_rational("46.683"), Rational(46683, 1000));
+  EXPECT_EQ(hipair::parse_rational("-2.4708"), Rational(-24708, 10000));
+  EXPECT_EQ(hipair::parse_rational("1e-30"), Rational(mpz_class(1), mpz_class("1" + std::string(30, '0'))));
+  EXPECT_EQ(hipair::parse_rational("1/3") * 3, Rational(1));
+  EXPECT_EQ(hipair::parse_rational("2.5E+2"), Rational(250));
+}
+
+TEST(ExactDecimal, RejectsNonNumbers) {
+  for (const char* text : {"", "abc", "1/0", "nan", "inf", "1e", "--1", "1..2", "0x10"})
+    EXPECT_THROW(hipair::parse_rational(text), hipair::NumericError) << text;
+}
+
+TEST(ExactDecimal, RoundTripsThroughExactText) {
+  Rational value = hipair::parse_rational("46.683");
+  EXPECT_EQ(hipair::to_exact_string(value), "46683/1000");
+  EXPECT_EQ(hipair::parse_rational(hipair::to_exact_string(value)), value);
+  EXPECT_EQ(hipair::to_decimal_string(value, 5), "46.683");
+}
+
+TEST(ExactDecimal, ToDoubleRoundsToNearest) {
+  // 1/3 rounds down, 2/3 rounds up in binary: both must match the correctly rounded literal.
+  EXPECT_EQ(hipair::to_double(Rational(1, 3)), 1.0 / 3.0);
+  EXPECT_EQ(hipair::to_double(Rational(2, 3)), 2.0 / 3.0);
+  EXPECT_EQ(hipair::to_double(hipair::parse_rational("0.1")), 0.1);
+}
+
+TEST(ExactTrig, UnitVectorsLieExactlyOnTheCircle) {
+  std::vector<hipair::Rounding> roundings;
+  for (int k = -12; k <= 12; ++k) {
+    Rational multiple(k, 7);
+    hipair::Point u = hipair::model_detail::exact_unit_vector_pi(multiple, "/x", "k pi/7", roundings);
+    EXPECT_EQ(u.x * u.x + u.y * u.y, Rational(1)) << k;
+    double angle = k * M_PI / 7;
+    EXPECT_NEAR(hipair::to_double(u.x), std::cos(angle), 4e-12) << k;
+    EXPECT_NEAR(hipair::to_double(u.y), std::sin(angle), 4e-12) << k;
+  }
+  // Multiples of pi/2 are exact and need no rounding.
+  roundings.clear();
+  hipair::Point up = hipair::model_detail::exact_unit_vector_pi(Rational(1, 2), "/y", "pi/2", roundings);
+  EXPECT_EQ(up, (hipair::Point{Rational(0), Rational(1)}));
+  EXPECT_TRUE(roundings.empty());
+}
+
+TEST(AtomicFile, FailureLeavesNoFileAndKeepsTheOldOne) {
+  namespace fs = std::filesystem;
+  fs::path dir = fs::temp_directory_path() / "hipair_atomic_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  hipair::io::write_file_atomically(dir / "a.txt", "first");
+  EXPECT_EQ(hipair::io::read_file(dir / "a.txt"), "first");
+  hipair::io::write_file_atomically(dir / "a.txt", "second");
+  EXPECT_EQ(hipair::io::read_file(dir / "a.txt"), "second");
+  EXPECT_THROW(hipair::io::write_file_atomically(dir / "missing" / "b.txt", "x"), hipair::IoError);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+  fs::remove_all(dir);
+}
+
+}  // namespace
