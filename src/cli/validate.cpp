@@ -1,0 +1,123 @@
+// `hipair validate MODEL`: reads a model exactly, reports every error as one line (via main)
+// and, when valid, prints a summary including every value that had to be rounded.
+#include "cli/commands.hpp"
+
+#include <hipair/model.hpp>
+
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace hipair::cli {
+namespace {
+
+std::string number(const Rational& value) { return to_decimal_string(value, 12); }
+
+std::string point(const Point& p) { return "(" + number(p.x) + ", " + number(p.y) + ")"; }
+
+std::string bound(const Rational& value) {
+  std::ostringstream out;
+  out.precision(3);
+  out << to_double(value);
+  return out.str();
+}
+
+std::string plural(std::size_t count, const std::string& word) {
+  return std::to_string(count) + " " + word + (count == 1 ? "" : "s");
+}
+
+std::string interval(const RationalInterval& range) {
+  return "[" + number(range.lo) + ", " + number(range.hi) + "]";
+}
+
+std::string describe_motion(const Motion& motion) {
+  switch (motion.kind) {
+    case Motion::Kind::fixed: return "fixed";
+    case Motion::Kind::rotation: {
+      std::string text = "rotation about " + point(motion.pivot);
+      if (motion.angle_limits) text += ", angle limits " + interval(*motion.angle_limits) + " rad";
+      return text;
+    }
+    case Motion::Kind::translation: {
+      std::string text = "translation along " + point(motion.direction);
+      if (motion.translation_limits) text += ", limits " + interval(*motion.translation_limits) + " mm";
+      return text;
+    }
+    case Motion::Kind::planar: return "planar, rotations about " + point(motion.pivot);
+    case Motion::Kind::pin_slot: {
+      std::string text = "pin-slot: rotation about " + point(motion.pivot) + ", sliding along " +
+                         point(motion.direction);
+      if (motion.angle_limits) text += ", angle limits " + interval(*motion.angle_limits) + " rad";
+      if (motion.translation_limits) text += ", limits " + interval(*motion.translation_limits) + " mm";
+      return text;
+    }
+  }
+  return "?";
+}
+
+void print_summary(const Model& model, std::ostream& out) {
+  out << "model: " << model.name << "  (" << model.source << ")\n";
+  out << "sha256: " << model.content_hash << "\n";
+  out << "angle unit in file: " << model.angle_unit << " (stored in rad)\n";
+  std::size_t toleranced = 0;
+  for (const Parameter& parameter : model.parameters)
+    if (parameter.range.lo != parameter.range.hi) ++toleranced;
+  out << "parameters: " << model.parameters.size() << " (" << toleranced << " toleranced)\n";
+  for (const Parameter& parameter : model.parameters) {
+    out << "  " << parameter.name << " = " << number(parameter.nominal) << (parameter.is_angle ? " rad" : "");
+    if (parameter.range.lo != parameter.range.hi) out << "  range " << interval(parameter.range);
+    if (parameter.distribution == Parameter::Distribution::uniform) out << "  uniform";
+    if (parameter.distribution == Parameter::Distribution::normal)
+      out << "  normal sigma " << number(*parameter.sigma);
+    out << "\n";
+  }
+  out << "parts: " << model.parts.size() << "\n";
+  for (const Part& part : model.parts) {
+    std::size_t segments = 0, arcs = 0, holes = 0;
+    for (const Loop& loop : part.loops) {
+      if (loop.is_hole) ++holes;
+      for (const Edge& edge : loop.edges) (edge.is_arc() ? arcs : segments)++;
+    }
+    out << "  " << part.name << ": " << describe_motion(part.motion) << "\n";
+    out << "    " << plural(part.loops.size(), "loop") << " (" << plural(holes, "hole") << "), "
+        << plural(segments + arcs, "edge") << ": " << plural(segments, "segment") << ", " << plural(arcs, "arc");
+    if (!part.features.empty()) {
+      out << "; features:";
+      for (const std::string& feature : part.features) out << " " << feature;
+    }
+    out << "\n";
+  }
+  out << "pairs: " << model.pairs.size() << (model.pairs_explicit ? " (listed)" : " (every pair of parts except fixed-fixed)")
+      << "\n";
+  for (const PairSpec& pair : model.pairs) {
+    out << "  " << model.parts[pair.first].name << " - " << model.parts[pair.second].name;
+    if (pair.friction) out << "  friction " << number(*pair.friction);
+    if (pair.restitution) out << "  restitution " << number(*pair.restitution);
+    out << "\n";
+  }
+  out << "roundings: " << model.roundings.size() << (model.roundings.empty() ? " (every value is exact)" : " (|exact - used| <= bound)")
+      << "\n";
+  for (const Rounding& rounding : model.roundings)
+    out << "  " << rounding.pointer << "  \"" << rounding.expression << "\"  -> " << number(rounding.value)
+        << "  bound " << bound(rounding.bound) << "\n";
+  out << "valid\n";
+}
+
+}  // namespace
+
+void register_validate(CLI::App& app, Action& action) {
+  auto path = std::make_shared<std::string>();
+  CLI::App* command = app.add_subcommand("validate", "Read a model exactly, check it, and summarise it");
+  command->add_option("model", *path, "model file (JSON, see docs/model-format.md)")->required();
+  command->callback([&action, path] {
+    action = [path] {
+      Model model = read_model_file(*path);
+      std::ostringstream summary;
+      print_summary(model, summary);
+      std::cout << summary.str();
+      return 0;
+    };
+  });
+}
+
+}  // namespace hipair::cli

@@ -1,0 +1,620 @@
+#include "model/expression.hpp"
+
+#include "model/exact_trig.hpp"
+
+#include <hipair/error.hpp>
+
+#include <cctype>
+#include <mpfi.h>
+
+namespace hipair::model_detail {
+namespace {
+
+constexpr std::size_t max_nesting = 100;
+constexpr long max_exponent = 1024;
+
+std::string quoted_expression(std::string_view text) {
+  std::string shown;
+  for (char c : text.substr(0, 120)) shown += (static_cast<unsigned char>(c) < 0x20) ? ' ' : c;
+  if (text.size() > 120) shown += "...";
+  return "'" + shown + "'";
+}
+
+bool is_name_start(char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; }
+bool is_name_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
+}
+bool is_digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
+
+std::string lower_case(std::string_view text) {
+  std::string out;
+  for (char c : text) out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+struct Token {
+  enum class Kind { number, name, symbol, end };
+  Kind kind = Kind::end;
+  std::string text;
+  std::size_t position = 0;
+};
+
+// sin(p pi) when it is rational (Niven: only 0, +-1/2, +-1).
+std::optional<Rational> exact_sin_of_pi_multiple(const Rational& multiple) {
+  Rational six = multiple * 6;
+  six.canonicalize();
+  if (six.get_den() != 1) return std::nullopt;
+  mpz_class k = six.get_num() % 12;
+  if (k < 0) k += 12;
+  switch (k.get_si()) {
+    case 0: case 6: return Rational(0);
+    case 1: case 5: return Rational(1, 2);
+    case 3: return Rational(1);
+    case 7: case 11: return Rational(-1, 2);
+    case 9: return Rational(-1);
+    default: return std::nullopt;
+  }
+}
+
+class Evaluator {
+ public:
+  Evaluator(std::string_view text, const ExpressionContext& context)
+      : text_(text), context_(context) {
+    tokenize();
+  }
+
+  Quantity run() {
+    Quantity value = expression();
+    if (current().kind != Token::Kind::end) fail("unexpected '" + current().text + "'", current());
+    return value;
+  }
+
+ private:
+  // ------------------------------------------------------------------ errors
+  [[noreturn]] void fail(const std::string& reason) const {
+    throw ModelError(context_.pointer, reason + " in expression " + quoted_expression(text_));
+  }
+  [[noreturn]] void fail(const std::string& reason, const Token& at) const {
+    fail(reason + " at character " + std::to_string(at.position + 1));
+  }
+
+  // ------------------------------------------------------------------ tokens
+  void tokenize() {
+    std::size_t i = 0;
+    while (i < text_.size()) {
+      char c = text_[i];
+      if (std::isspace(static_cast<unsigned char>(c))) {
+        ++i;
+        continue;
+      }
+      Token token;
+      token.position = i;
+      if (is_digit(c) || (c == '.' && i + 1 < text_.size() && is_digit(text_[i + 1]))) {
+        std::size_t j = i;
+        while (j < text_.size() && is_digit(text_[j])) ++j;
+        if (j < text_.size() && text_[j] == '.') {
+          ++j;
+          while (j < text_.size() && is_digit(text_[j])) ++j;
+        }
+        if (j < text_.size() && (text_[j] == 'e' || text_[j] == 'E')) {
+          std::size_t k = j + 1;
+          if (k < text_.size() && (text_[k] == '+' || text_[k] == '-')) ++k;
+          if (k < text_.size() && is_digit(text_[k])) {
+            while (k < text_.size() && is_digit(text_[k])) ++k;
+            j = k;
+          }
+        }
+        token.kind = Token::Kind::number;
+        token.text = std::string(text_.substr(i, j - i));
+        i = j;
+      } else if (is_name_start(c)) {
+        std::size_t j = i + 1;
+        while (j < text_.size()) {
+          if (is_name_char(text_[j])) {
+            ++j;
+          } else if (text_[j] == '-' && j + 1 < text_.size() && is_name_char(text_[j + 1])) {
+            j += 2;  // a '-' inside a name binds to the name
+          } else {
+            break;
+          }
+        }
+        token.kind = Token::Kind::name;
+        token.text = std::string(text_.substr(i, j - i));
+        i = j;
+      } else if (std::string_view("+-*/^(),").find(c) != std::string_view::npos) {
+        token.kind = Token::Kind::symbol;
+        token.text = std::string(1, c);
+        ++i;
+      } else {
+        std::string shown = static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f
+                                ? "byte " + std::to_string(static_cast<unsigned char>(c))
+                                : "'" + std::string(1, c) + "'";
+        fail("unexpected character " + shown + " at character " + std::to_string(i + 1));
+      }
+      tokens_.push_back(std::move(token));
+    }
+    Token end;
+    end.kind = Token::Kind::end;
+    end.text = "end of expression";
+    end.position = text_.size();
+    tokens_.push_back(end);
+    if (tokens_.size() == 1) fail("empty expression");
+  }
+
+  const Token& current() const { return tokens_[next_]; }
+  bool at_symbol(char symbol) const {
+    return current().kind == Token::Kind::symbol && current().text[0] == symbol;
+  }
+  void expect_symbol(char symbol) {
+    if (!at_symbol(symbol)) {
+      const Token& t = current();
+      fail("expected '" + std::string(1, symbol) + "' but found " +
+               (t.kind == Token::Kind::end ? t.text : "'" + t.text + "'"),
+           t);
+    }
+    ++next_;
+  }
+
+  struct DepthGuard {
+    explicit DepthGuard(Evaluator& evaluator) : evaluator_(evaluator) {
+      if (++evaluator_.depth_ > max_nesting) evaluator_.fail("nested too deeply");
+    }
+    ~DepthGuard() { --evaluator_.depth_; }
+    Evaluator& evaluator_;
+  };
+
+  // ------------------------------------------------------------------ grammar
+  // expression := term (('+' | '-') term)*
+  Quantity expression() {
+    DepthGuard guard(*this);
+    Quantity value = term();
+    while (at_symbol('+') || at_symbol('-')) {
+      bool subtract = at_symbol('-');
+      ++next_;
+      Quantity right = term();
+      value = add(value, subtract ? negate(right) : right);
+    }
+    return value;
+  }
+
+  // term := unary (('*' | '/') unary)*
+  Quantity term() {
+    Quantity value = unary();
+    while (at_symbol('*') || at_symbol('/')) {
+      bool divide_by = at_symbol('/');
+      ++next_;
+      Quantity right = unary();
+      value = divide_by ? divide(value, right) : multiply(value, right);
+    }
+    return value;
+  }
+
+  // unary := ('-' | '+') unary | postfix
+  Quantity unary() {
+    DepthGuard guard(*this);
+    if (at_symbol('-')) {
+      ++next_;
+      return negate(unary());
+    }
+    if (at_symbol('+')) {
+      ++next_;
+      return unary();
+    }
+    return postfix();
+  }
+
+  // postfix := power ('deg' | 'rad')?
+  Quantity postfix() {
+    Quantity value = power();
+    if (current().kind == Token::Kind::name && (current().text == "deg" || current().text == "rad")) {
+      bool degrees = current().text == "deg";
+      if (value.is_angle) fail("'" + current().text + "' applied to a value that already is an angle", current());
+      ++next_;
+      if (degrees) return as_angle(value, true);
+      value.is_angle = true;
+      return value;
+    }
+    return value;
+  }
+
+  // power := primary ('^' unary)?   (right associative through unary -> postfix -> power)
+  Quantity power() {
+    Quantity base = primary();
+    if (!at_symbol('^')) return base;
+    const Token& caret = current();
+    ++next_;
+    Quantity exponent = unary();
+    if (!exponent.is_rational() || exponent.rational.get_den() != 1)
+      fail("the exponent after '^' must be an integer", caret);
+    if (abs(exponent.rational) > max_exponent)
+      fail("the exponent after '^' is larger than " + std::to_string(max_exponent), caret);
+    return raise(base, exponent.rational.get_num().get_si());
+  }
+
+  // primary := number | name | name '(' arguments ')' | '(' expression ')'
+  Quantity primary() {
+    const Token token = current();
+    switch (token.kind) {
+      case Token::Kind::number: {
+        ++next_;
+        Rational value;
+        try {
+          value = parse_rational(token.text);
+        } catch (const NumericError& error) {
+          fail(error.what(), token);
+        }
+        check_size(value);
+        return Quantity::of(value);
+      }
+      case Token::Kind::name: {
+        ++next_;
+        if (at_symbol('(')) return call(token);
+        return named_value(token);
+      }
+      case Token::Kind::symbol:
+        if (token.text == "(") {
+          ++next_;
+          Quantity value = expression();
+          expect_symbol(')');
+          return value;
+        }
+        fail("unexpected '" + token.text + "'", token);
+      case Token::Kind::end:
+        fail("unexpected end of expression", token);
+    }
+    fail("unexpected token", token);
+  }
+
+  Quantity named_value(const Token& token) {
+    const std::string& name = token.text;
+    std::string lower = lower_case(name);
+    if (lower == "nan" || lower == "inf" || lower == "infinity")
+      fail("'" + name + "' is not a number: NaN and infinity are not allowed");
+    if (name == "pi") return Quantity::of_pi(1);
+    if (name == "deg" || name == "rad") fail("unit '" + name + "' without a value before it", token);
+    if (name == "sqrt" || name == "sin" || name == "cos" || name == "tan" || name == "atan2" ||
+        name == "min" || name == "max" || name == "abs")
+      fail("function '" + name + "' needs arguments in parentheses", token);
+    if (!context_.parameter) fail("unknown parameter '" + name + "'");
+    return context_.parameter(name);
+  }
+
+  Quantity call(const Token& function) {
+    ++next_;  // '('
+    std::vector<Quantity> arguments;
+    if (!at_symbol(')')) {
+      arguments.push_back(expression());
+      while (at_symbol(',')) {
+        ++next_;
+        arguments.push_back(expression());
+      }
+    }
+    expect_symbol(')');
+    const std::string& name = function.text;
+    auto arity = [&](std::size_t count) {
+      if (arguments.size() != count)
+        fail("function '" + name + "' takes " + std::to_string(count) + " argument" +
+                 (count == 1 ? "" : "s") + ", not " + std::to_string(arguments.size()),
+             function);
+    };
+    if (name == "sqrt") {
+      arity(1);
+      return square_root(arguments[0]);
+    }
+    if (name == "sin" || name == "cos" || name == "tan") {
+      arity(1);
+      return trigonometric(name, arguments[0]);
+    }
+    if (name == "atan2") {
+      arity(2);
+      return arc_tangent(arguments[0], arguments[1]);
+    }
+    if (name == "abs") {
+      arity(1);
+      return sign(arguments[0], "abs") < 0 ? negate(arguments[0]) : arguments[0];
+    }
+    if (name == "min" || name == "max") {
+      if (arguments.size() < 2) fail("function '" + name + "' takes at least 2 arguments", function);
+      Quantity best = arguments[0];
+      for (std::size_t i = 1; i < arguments.size(); ++i) {
+        unify(best, arguments[i]);
+        int s = sign(add(arguments[i], negate(best)), name);
+        if ((name == "min" && s < 0) || (name == "max" && s > 0)) best = arguments[i];
+      }
+      return best;
+    }
+    fail("unknown function '" + name + "' (known: sqrt sin cos tan atan2 min max abs)", function);
+  }
+
+  // ------------------------------------------------------------------ arithmetic
+  void check_size(const Rational& value) const {
+    if (mpz_sizeinbase(value.get_num_mpz_t(), 2) > max_rational_bits ||
+        mpz_sizeinbase(value.get_den_mpz_t(), 2) > max_rational_bits)
+      fail("number too large (more than " + std::to_string(max_rational_bits) + " bits)");
+  }
+  Quantity checked(Quantity value) const {
+    if (value.exact) {
+      value.rational.canonicalize();
+      value.pi_multiple.canonicalize();
+      check_size(value.rational);
+      check_size(value.pi_multiple);
+    } else if (!value.enclosure->is_bounded()) {
+      fail("the value is not finite");
+    }
+    return value;
+  }
+
+  // Makes both operands angles when one is (a plain number next to an angle is in file units).
+  void unify(Quantity& a, Quantity& b) const {
+    if (a.is_angle && !b.is_angle) b = as_angle(b, context_.degrees);
+    if (b.is_angle && !a.is_angle) a = as_angle(a, context_.degrees);
+  }
+
+  Quantity add(Quantity a, Quantity b) const {
+    unify(a, b);
+    if (a.exact && b.exact) {
+      Quantity sum = Quantity::of(a.rational + b.rational, a.is_angle);
+      sum.pi_multiple = a.pi_multiple + b.pi_multiple;
+      return checked(sum);
+    }
+    return checked(Quantity::approximate(a.to_interval() + b.to_interval(), a.is_angle));
+  }
+
+  Quantity negate(Quantity a) const {
+    if (a.exact) {
+      a.rational = -a.rational;
+      a.pi_multiple = -a.pi_multiple;
+    } else {
+      a.enclosure = -*a.enclosure;
+    }
+    return a;
+  }
+
+  Quantity multiply(const Quantity& a, const Quantity& b) const {
+    bool angle = a.is_angle != b.is_angle;
+    if (a.exact && b.exact) {
+      if (a.pi_multiple == 0) {
+        Quantity product = Quantity::of(a.rational * b.rational, angle);
+        product.pi_multiple = a.rational * b.pi_multiple;
+        return checked(product);
+      }
+      if (b.pi_multiple == 0) {
+        Quantity product = Quantity::of(b.rational * a.rational, angle);
+        product.pi_multiple = b.rational * a.pi_multiple;
+        return checked(product);
+      }
+    }
+    return checked(Quantity::approximate(a.to_interval() * b.to_interval(), angle));
+  }
+
+  Quantity divide(const Quantity& a, const Quantity& b) const {
+    bool angle = a.is_angle && !b.is_angle;
+    if (b.exact && b.pi_multiple == 0) {
+      if (b.rational == 0) fail("division by zero");
+      if (a.exact) {
+        Quantity quotient = Quantity::of(a.rational / b.rational, angle);
+        quotient.pi_multiple = a.pi_multiple / b.rational;
+        return checked(quotient);
+      }
+    }
+    if (a.exact && b.exact && a.rational == 0 && b.rational == 0)  // (p pi) / (q pi), q != 0
+      return checked(Quantity::of(a.pi_multiple / b.pi_multiple, angle));
+    Interval denominator = b.to_interval();
+    if (denominator.sign() == 0) fail("division by zero (or by a value too close to zero to decide)");
+    return checked(Quantity::approximate(a.to_interval() / denominator, angle));
+  }
+
+  Quantity raise(const Quantity& base, long exponent) const {
+    if (exponent == 0) return Quantity::of(1);
+    if (exponent == 1) return base;
+    if (base.is_rational()) {
+      if (base.rational == 0 && exponent < 0) fail("division by zero (0 to a negative power)");
+      unsigned long magnitude = static_cast<unsigned long>(exponent < 0 ? -exponent : exponent);
+      // Bound the size before computing it.
+      std::size_t bits = std::max(mpz_sizeinbase(base.rational.get_num_mpz_t(), 2),
+                                  mpz_sizeinbase(base.rational.get_den_mpz_t(), 2));
+      if (bits > 1 && (bits - 1) * magnitude > max_rational_bits)
+        fail("number too large (more than " + std::to_string(max_rational_bits) + " bits)");
+      mpz_class numerator, denominator;
+      mpz_pow_ui(numerator.get_mpz_t(), base.rational.get_num_mpz_t(), magnitude);
+      mpz_pow_ui(denominator.get_mpz_t(), base.rational.get_den_mpz_t(), magnitude);
+      Rational result = exponent > 0 ? Rational(numerator, denominator) : Rational(denominator, numerator);
+      return checked(Quantity::of(result));
+    }
+    Interval value = base.to_interval();
+    unsigned long magnitude = static_cast<unsigned long>(exponent < 0 ? -exponent : exponent);
+    Interval result(Rational(1));
+    Interval factor = value;
+    while (magnitude > 0) {
+      if (magnitude & 1) result = result * factor;
+      magnitude >>= 1;
+      if (magnitude > 0) factor = factor * factor;
+    }
+    if (exponent < 0) {
+      if (result.sign() == 0) fail("division by zero (or by a value too close to zero to decide)");
+      result = Interval(Rational(1)) / result;
+    }
+    return checked(Quantity::approximate(result));
+  }
+
+  int sign(const Quantity& value, const std::string& what) const {
+    if (value.exact) {
+      int rational_sign = sgn(value.rational), pi_sign = sgn(value.pi_multiple);
+      if (pi_sign == 0) return rational_sign;
+      if (rational_sign == 0 || rational_sign == pi_sign) return pi_sign;
+    }
+    int s = value.to_interval().sign();
+    if (s == 0) fail("cannot decide the sign of a value too close to zero (in " + what + ")");
+    return s;
+  }
+
+  Quantity square_root(const Quantity& value) const {
+    if (value.is_rational()) {
+      if (value.rational < 0) fail("square root of a negative number");
+      if (mpz_perfect_square_p(value.rational.get_num_mpz_t()) &&
+          mpz_perfect_square_p(value.rational.get_den_mpz_t())) {
+        mpz_class numerator, denominator;
+        mpz_sqrt(numerator.get_mpz_t(), value.rational.get_num_mpz_t());
+        mpz_sqrt(denominator.get_mpz_t(), value.rational.get_den_mpz_t());
+        return checked(Quantity::of(Rational(numerator, denominator)));
+      }
+    } else if (sign(value, "sqrt") < 0) {
+      fail("square root of a negative number");
+    }
+    Interval argument = value.to_interval();
+    if (argument.sign() < 0) fail("square root of a negative number");
+    Interval result;
+    mpfi_sqrt(result.get(), argument.get());
+    return checked(Quantity::approximate(result));
+  }
+
+  Quantity trigonometric(const std::string& name, const Quantity& argument) const {
+    Quantity angle = as_angle(argument, context_.degrees);
+    if (angle.is_rational() && angle.rational == 0)
+      return Quantity::of(name == "cos" ? Rational(1) : Rational(0));
+    if (angle.is_pi_multiple()) {
+      const Rational& p = angle.pi_multiple;
+      if (name == "sin") {
+        if (auto exact = exact_sin_of_pi_multiple(p)) return Quantity::of(*exact);
+      } else if (name == "cos") {
+        if (auto exact = exact_sin_of_pi_multiple(p + Rational(1, 2))) return Quantity::of(*exact);
+      } else {
+        Rational twice = 2 * p;
+        twice.canonicalize();
+        if (twice.get_den() == 1 && twice.get_num() % 2 != 0)
+          fail("tan is undefined at an odd multiple of 90 degrees");
+        Rational four = 4 * p;
+        four.canonicalize();
+        if (four.get_den() == 1) {
+          mpz_class k = four.get_num() % 4;
+          if (k < 0) k += 4;
+          return Quantity::of(k == 0 ? Rational(0) : k == 1 ? Rational(1) : Rational(-1));
+        }
+      }
+    }
+    Interval x = angle.to_interval();
+    Interval result;
+    if (name == "sin")
+      mpfi_sin(result.get(), x.get());
+    else if (name == "cos")
+      mpfi_cos(result.get(), x.get());
+    else
+      mpfi_tan(result.get(), x.get());
+    if (!result.is_bounded()) fail("tan is undefined at an odd multiple of 90 degrees");
+    return checked(Quantity::approximate(result));
+  }
+
+  Quantity arc_tangent(const Quantity& y, const Quantity& x) const {
+    if (y.is_rational() && x.is_rational()) {
+      int sy = sgn(y.rational), sx = sgn(x.rational);
+      if (sy == 0 && sx == 0) fail("atan2(0, 0) is undefined");
+      if (sy == 0) return Quantity::of_pi(sx > 0 ? 0 : 1);
+      if (sx == 0) return Quantity::of_pi(Rational(sy, 2));
+      if (abs(y.rational) == abs(x.rational)) return Quantity::of_pi(Rational(sy * (sx > 0 ? 1 : 3), 4));
+    }
+    if (y.is_rational() && y.rational == 0) return Quantity::of_pi(sign(x, "atan2") > 0 ? 0 : 1);
+    if (x.is_rational() && x.rational == 0) return Quantity::of_pi(Rational(sign(y, "atan2"), 2));
+    Interval result;
+    mpfi_atan2(result.get(), y.to_interval().get(), x.to_interval().get());
+    return checked(Quantity::approximate(result, true));
+  }
+
+  std::string_view text_;
+  const ExpressionContext& context_;
+  std::vector<Token> tokens_;
+  std::size_t next_ = 0;
+  std::size_t depth_ = 0;
+};
+
+}  // namespace
+
+Quantity Quantity::of(const Rational& value, bool is_angle) {
+  Quantity q;
+  q.rational = value;
+  q.is_angle = is_angle;
+  return q;
+}
+
+Quantity Quantity::of_pi(const Rational& multiple, bool is_angle) {
+  Quantity q;
+  q.pi_multiple = multiple;
+  q.is_angle = is_angle;
+  return q;
+}
+
+Quantity Quantity::approximate(Interval enclosure, bool is_angle) {
+  Quantity q;
+  q.exact = false;
+  q.enclosure = std::move(enclosure);
+  q.is_angle = is_angle;
+  return q;
+}
+
+Interval Quantity::to_interval() const {
+  if (!exact) return *enclosure;
+  Interval value(rational);
+  if (pi_multiple != 0) value = value + Interval::pi() * Interval(pi_multiple);
+  return value;
+}
+
+Quantity evaluate_expression(std::string_view text, const ExpressionContext& context) {
+  return Evaluator(text, context).run();
+}
+
+Quantity as_angle(const Quantity& value, bool degrees) {
+  if (value.is_angle) return value;
+  Quantity angle = value;
+  angle.is_angle = true;
+  if (!degrees) return angle;
+  if (value.is_rational()) return Quantity::of_pi(value.rational / 180);
+  return Quantity::approximate(value.to_interval() * Interval::pi() / Interval(Rational(180)), true);
+}
+
+void check_rational_size(const Rational& value, const std::string& pointer) {
+  if (mpz_sizeinbase(value.get_num_mpz_t(), 2) > max_rational_bits ||
+      mpz_sizeinbase(value.get_den_mpz_t(), 2) > max_rational_bits)
+    throw ModelError(pointer, "number too large (more than " + std::to_string(max_rational_bits) + " bits)");
+}
+
+int sign_of(const Quantity& value, const std::string& pointer, std::string_view expression) {
+  if (value.exact) {
+    int rational_sign = sgn(value.rational), pi_sign = sgn(value.pi_multiple);
+    if (pi_sign == 0) return rational_sign;
+    if (rational_sign == 0 || rational_sign == pi_sign) return pi_sign;
+  }
+  int s = value.to_interval().sign();
+  if (s == 0)
+    throw ModelError(pointer, "cannot decide the sign of " + quoted_expression(expression) +
+                                  ": too close to zero");
+  return s;
+}
+
+Rational to_rational(const Quantity& value, const std::string& pointer,
+                     const std::string& expression, std::vector<Rounding>& roundings) {
+  if (value.is_rational()) return value.rational;
+  Interval enclosure = value.to_interval();
+  if (!enclosure.is_bounded())
+    throw ModelError(pointer, "the value of " + quoted_expression(expression) + " is not finite");
+  Rational lower = enclosure.lower(), upper = enclosure.upper();
+  Rational rounded = round_to_grid((lower + upper) / 2);
+  Rational bound(1, 1);
+  mpz_class scale;
+  mpz_ui_pow_ui(scale.get_mpz_t(), 10, rounding_decimals);
+  bound /= Rational(scale);
+  if (abs(Rational(rounded - lower)) > bound || abs(Rational(upper - rounded)) > bound)
+    throw ModelError(pointer, "cannot evaluate " + quoted_expression(expression) +
+                                  " to within 1e-12 (the value is too large for 256-bit precision)");
+  roundings.push_back(Rounding{pointer, expression, rounded, bound});
+  return rounded;
+}
+
+Point unit_vector(const Quantity& angle, const std::string& pointer, const std::string& expression,
+                  std::vector<Rounding>& roundings) {
+  if (angle.is_rational()) return exact_unit_vector(angle.rational, pointer, expression, roundings);
+  if (angle.is_pi_multiple())
+    return exact_unit_vector_pi(angle.pi_multiple, pointer, expression, roundings);
+  Rational rounded = to_rational(angle, pointer, expression, roundings);
+  return exact_unit_vector(rounded, pointer, expression, roundings);
+}
+
+}  // namespace hipair::model_detail

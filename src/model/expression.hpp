@@ -1,0 +1,78 @@
+// Exact evaluation of the number expressions of a model file (docs/model-format.md, "Numbers").
+//
+// A value is kept exact as long as possible, in the form  rational + rational * pi  (so
+// "360 deg / slots" stays an exact multiple of pi); anything else (sqrt(2), sin(1), pi^2) is
+// carried as a certified 256-bit MPFI enclosure and rounded to the nearest multiple of 10^-12
+// only when a number must be produced; the rounding is then recorded.
+#pragma once
+
+#include "model/interval.hpp"
+
+#include <hipair/geometry.hpp>
+#include <hipair/model.hpp>
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hipair::model_detail {
+
+/// The value of an expression.
+struct Quantity {
+  bool exact = true;
+  Rational rational;                 ///< exact: value = rational + pi_multiple * pi
+  Rational pi_multiple;
+  std::optional<Interval> enclosure; ///< !exact: certified enclosure of the value
+  /// Carries an angle unit (a `deg`/`rad` postfix, pi, atan2, an angle parameter): the value
+  /// is in radians. A plain number used as an angle is in the file's angle unit.
+  bool is_angle = false;
+
+  static Quantity of(const Rational& value, bool is_angle = false);
+  static Quantity of_pi(const Rational& multiple, bool is_angle = true);
+  static Quantity approximate(Interval enclosure, bool is_angle = false);
+
+  bool is_rational() const { return exact && pi_multiple == 0; }
+  bool is_pi_multiple() const { return exact && rational == 0; }
+  /// A certified enclosure of the value (exact values are enclosed too).
+  Interval to_interval() const;
+};
+
+/// What an expression may refer to.
+struct ExpressionContext {
+  bool degrees = false;  ///< the file's angle unit is deg
+  std::string pointer;   ///< JSON pointer reported in errors
+  /// Value of a parameter; throws ModelError for unknown names or reference cycles.
+  std::function<Quantity(const std::string& name)> parameter;
+};
+
+/// Largest size (bits of numerator or denominator) of an exact value.
+inline constexpr unsigned long max_rational_bits = 4096;
+
+/// Evaluates `text` (grammar in docs/model-format.md). \throws ModelError(context.pointer, ...)
+/// for syntax errors, unknown parameters, division by zero, sqrt of a negative number, ...
+Quantity evaluate_expression(std::string_view text, const ExpressionContext& context);
+
+/// The value used as an angle in radians: a plain number is converted from the file's unit.
+Quantity as_angle(const Quantity& value, bool degrees);
+
+/// \throws ModelError(pointer, ...) when `value` has more than max_rational_bits bits.
+void check_rational_size(const Rational& value, const std::string& pointer);
+
+/// Sign of `value`, decided exactly or on its certified enclosure.
+/// \throws ModelError(pointer, ...) when the enclosure contains 0 and the value is not exact.
+int sign_of(const Quantity& value, const std::string& pointer, std::string_view expression);
+
+/// The rational value: exact when the value is rational, else the nearest multiple of 10^-12
+/// (a Rounding {pointer, expression, value, 10^-12} is appended).
+/// \throws ModelError(pointer, ...) when the enclosure is too wide to round within 10^-12.
+Rational to_rational(const Quantity& value, const std::string& pointer,
+                     const std::string& expression, std::vector<Rounding>& roundings);
+
+/// Exact rational unit vector (cos a, sin a) for an angle value (radians; use as_angle first):
+/// exact for 0 and multiples of pi/2, else through the rounded half-angle tangent (recorded).
+Point unit_vector(const Quantity& angle, const std::string& pointer, const std::string& expression,
+                  std::vector<Rounding>& roundings);
+
+}  // namespace hipair::model_detail

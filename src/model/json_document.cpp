@@ -1,0 +1,199 @@
+#include "model/json_document.hpp"
+
+#include <hipair/error.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <unordered_set>
+
+namespace hipair::model_detail {
+namespace {
+
+// Keeps messages on one line and printable.
+std::string sanitize(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f)
+      out += ' ';
+    else
+      out += c;
+  }
+  return out;
+}
+
+// The reason part of an nlohmann exception message.
+std::string reason_of(const std::string& what) {
+  std::string reason = what;
+  if (!reason.empty() && reason[0] == '[') {
+    if (auto close = reason.find("] "); close != std::string::npos) reason.erase(0, close + 2);
+  }
+  if (reason.rfind("parse error", 0) == 0) {
+    if (auto colon = reason.find(": "); colon != std::string::npos) reason.erase(0, colon + 2);
+  }
+  return sanitize(reason);
+}
+
+class DocumentBuilder final : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  explicit DocumentBuilder(std::string_view text) : text_(text) {}
+
+  JsonValue take_root() { return std::move(root_); }
+
+  bool null() override {
+    add(JsonValue::Type::null);
+    return true;
+  }
+  bool boolean(bool value) override {
+    add(JsonValue::Type::boolean).boolean = value;
+    return true;
+  }
+  bool number_integer(number_integer_t value) override {
+    add(JsonValue::Type::number).text = std::to_string(value);
+    return true;
+  }
+  bool number_unsigned(number_unsigned_t value) override {
+    add(JsonValue::Type::number).text = std::to_string(value);
+    return true;
+  }
+  // Integers beyond 64 bits arrive here too, with their full text.
+  bool number_float(number_float_t, const string_t& text) override {
+    add(JsonValue::Type::number).text = text;
+    return true;
+  }
+  bool string(string_t& value) override {
+    add(JsonValue::Type::string).text = std::move(value);
+    return true;
+  }
+  bool binary(binary_t&) override {
+    throw ModelError("", "malformed JSON: binary values are not JSON");
+  }
+  bool start_object(std::size_t) override {
+    open(add(JsonValue::Type::object));
+    return true;
+  }
+  bool key(string_t& key) override {
+    if (!keys_.back().insert(key).second)
+      throw ModelError(open_.back()->pointer + "/" + escape_pointer_token(key),
+                       "duplicate key '" + sanitize(key) + "'");
+    pending_key_ = std::move(key);
+    return true;
+  }
+  bool end_object() override {
+    close();
+    return true;
+  }
+  bool start_array(std::size_t) override {
+    open(add(JsonValue::Type::array));
+    return true;
+  }
+  bool end_array() override {
+    close();
+    return true;
+  }
+  bool parse_error(std::size_t position, const std::string&,
+                   const nlohmann::detail::exception& error) override {
+    // `position` counts the bytes read, including the offending one.
+    std::size_t offset = position > 0 ? position - 1 : 0;
+    if (offset > text_.size()) offset = text_.size();
+    std::size_t line = 1, column = 1;
+    for (std::size_t i = 0; i < offset; ++i) {
+      if (text_[i] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+    std::string reason = reason_of(error.what());
+    if (offset >= text_.size() && !text_.empty()) reason = "unexpected end of file (truncated?): " + reason;
+    throw ModelError("", "malformed JSON at line " + std::to_string(line) + ", column " +
+                             std::to_string(column) + " (byte " + std::to_string(offset) +
+                             "): " + reason);
+  }
+
+ private:
+  JsonValue& add(JsonValue::Type type) {
+    JsonValue* value = nullptr;
+    if (open_.empty()) {
+      if (have_root_) throw ModelError("", "malformed JSON: more than one value");
+      have_root_ = true;
+      value = &root_;
+      value->pointer = "";
+    } else if (open_.back()->is_array()) {
+      JsonValue& parent = *open_.back();
+      parent.items.emplace_back();
+      value = &parent.items.back();
+      value->pointer = parent.pointer + "/" + std::to_string(parent.items.size() - 1);
+    } else {
+      JsonValue& parent = *open_.back();
+      parent.members.push_back(JsonMember{pending_key_, JsonValue{}});
+      value = &parent.members.back().value;
+      value->pointer = parent.pointer + "/" + escape_pointer_token(pending_key_);
+    }
+    value->type = type;
+    return *value;
+  }
+  void open(JsonValue& container) {
+    if (open_.size() >= json_max_depth)
+      throw ModelError(container.pointer, "nested too deeply (more than " +
+                                              std::to_string(json_max_depth) + " levels)");
+    open_.push_back(&container);
+    keys_.emplace_back();
+  }
+  void close() {
+    open_.pop_back();
+    keys_.pop_back();
+  }
+
+  std::string_view text_;
+  JsonValue root_;
+  bool have_root_ = false;
+  std::vector<JsonValue*> open_;
+  std::vector<std::unordered_set<std::string>> keys_;
+  std::string pending_key_;
+};
+
+}  // namespace
+
+const JsonValue* JsonValue::find(std::string_view key) const {
+  for (const JsonMember& member : members)
+    if (member.key == key) return &member.value;
+  return nullptr;
+}
+
+JsonValue parse_json(std::string_view text) {
+  DocumentBuilder builder(text);
+  bool ok = nlohmann::json::sax_parse(text.begin(), text.end(), &builder,
+                                      nlohmann::json::input_format_t::json, true);
+  if (!ok) throw ModelError("", "malformed JSON");
+  return builder.take_root();
+}
+
+std::string escape_pointer_token(std::string_view key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
+  }
+  return sanitize(out);
+}
+
+const char* describe_type(JsonValue::Type type) {
+  switch (type) {
+    case JsonValue::Type::null: return "null";
+    case JsonValue::Type::boolean: return "a boolean";
+    case JsonValue::Type::number: return "a number";
+    case JsonValue::Type::string: return "a string";
+    case JsonValue::Type::array: return "an array";
+    case JsonValue::Type::object: return "an object";
+  }
+  return "a value";
+}
+
+}  // namespace hipair::model_detail

@@ -1,0 +1,496 @@
+// Exact validation of loops (closure, arcs, self- and mutual intersections) and their
+// orientation. Intersections of segments and circles are decided exactly: their coordinates
+// lie in Q(sqrt(D)) for a rational D and every test is an exact sign test there. Orientation
+// and nesting are integer- or sign-valued quantities computed on certified MPFI enclosures.
+#include "model/validate_geometry.hpp"
+
+#include "model/interval.hpp"
+
+#include <hipair/error.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <sstream>
+
+namespace hipair::model_detail {
+namespace {
+
+// ------------------------------------------------------------------ exact numbers a + b sqrt(D)
+struct Surd {
+  Rational a;  // rational part
+  Rational b;  // coefficient of sqrt(D)
+};
+
+Surd operator-(const Surd& u, const Surd& v) { return {u.a - v.a, u.b - v.b}; }
+Surd operator-(const Surd& u, const Rational& r) { return {u.a - r, u.b}; }
+Surd operator*(const Rational& r, const Surd& u) { return {r * u.a, r * u.b}; }
+
+// Sign of a + b sqrt(D), D >= 0 not a perfect square unless b == 0.
+int sign(const Surd& u, const Rational& D) {
+  int sa = sgn(u.a), sb = D == 0 ? 0 : sgn(u.b);
+  if (sb == 0) return sa;
+  if (sa == 0 || sa == sb) return sb;
+  int c = cmp(u.a * u.a, u.b * u.b * D);
+  return c > 0 ? sa : c < 0 ? sb : 0;
+}
+
+struct SurdPoint {
+  Surd x;
+  Surd y;
+};
+
+Rational cross(const Point& u, const Point& v) { return u.x * v.y - u.y * v.x; }
+Rational dot(const Point& u, const Point& v) { return u.x * v.x + u.y * v.y; }
+Point operator-(const Point& u, const Point& v) { return {u.x - v.x, u.y - v.y}; }
+Point operator+(const Point& u, const Point& v) { return {u.x + v.x, u.y + v.y}; }
+Rational squared_length(const Point& u) { return dot(u, u); }
+
+// cross(u, v) for a rational u and a point in Q(sqrt D)^2.
+Surd cross(const Point& u, const SurdPoint& v) { return u.x * v.y - u.y * v.x; }
+Surd cross(const SurdPoint& u, const Point& v) { return v.y * u.x - v.x * u.y; }
+
+SurdPoint rational_point(const Point& p) { return {{p.x, 0}, {p.y, 0}}; }
+
+bool equals(const SurdPoint& p, const Point& q) {
+  return p.x.b == 0 && p.y.b == 0 && p.x.a == q.x && p.y.a == q.y;
+}
+
+std::optional<Rational> rational_sqrt(const Rational& value) {
+  if (value < 0) return std::nullopt;
+  if (!mpz_perfect_square_p(value.get_num_mpz_t()) || !mpz_perfect_square_p(value.get_den_mpz_t()))
+    return std::nullopt;
+  mpz_class numerator, denominator;
+  mpz_sqrt(numerator.get_mpz_t(), value.get_num_mpz_t());
+  mpz_sqrt(denominator.get_mpz_t(), value.get_den_mpz_t());
+  return Rational(numerator, denominator);
+}
+
+// ------------------------------------------------------------------ messages
+std::string decimal(const Rational& v) { return to_decimal_string(v, 10); }
+std::string show(const Point& p) { return "(" + decimal(p.x) + ", " + decimal(p.y) + ")"; }
+std::string show(const SurdPoint& p, const Rational& D) {
+  double root = std::sqrt(to_double(D));
+  std::ostringstream out;
+  out.precision(10);
+  out << "(" << to_double(p.x.a) + to_double(p.x.b) * root << ", "
+      << to_double(p.y.a) + to_double(p.y.b) * root << ")";
+  return out.str();
+}
+
+std::string describe(const Edge& edge) {
+  std::string text = edge.pointer.empty() ? std::string("an edge") : edge.pointer;
+  if (!edge.label.empty()) text += " ('" + edge.label + "')";
+  return text;
+}
+
+// ------------------------------------------------------------------ arcs as ccw arcs
+struct ArcView {
+  Point center;
+  Rational radius_squared;
+  Point start;  // counter-clockwise from start to end
+  Point end;
+  bool full = false;
+};
+
+ArcView view_of(const Edge& edge) {
+  ArcView arc;
+  arc.center = edge.center;
+  arc.radius_squared = edge.radius_squared;
+  arc.start = edge.ccw ? edge.source : edge.target;
+  arc.end = edge.ccw ? edge.target : edge.source;
+  arc.full = edge.source == edge.target;
+  return arc;
+}
+
+// Whether the direction v (from the centre; exact in Q(sqrt D)) lies on the closed arc.
+bool direction_on_arc(const ArcView& arc, const Surd& cross_start_v, const Surd& cross_v_end,
+                      const Rational& D) {
+  if (arc.full) return true;
+  Point a = arc.start - arc.center, b = arc.end - arc.center;
+  int turn = sgn(cross(a, b));
+  int sa = sign(cross_start_v, D), sb = sign(cross_v_end, D);
+  if (turn > 0) return sa >= 0 && sb >= 0;
+  if (turn < 0) return sa >= 0 || sb >= 0;
+  return sa >= 0;  // half circle
+}
+
+bool on_arc(const ArcView& arc, const SurdPoint& x, const Rational& D) {
+  SurdPoint v{x.x - arc.center.x, x.y - arc.center.y};
+  Point a = arc.start - arc.center, b = arc.end - arc.center;
+  return direction_on_arc(arc, cross(a, v), cross(v, b), D);
+}
+
+bool on_arc(const ArcView& arc, const Point& direction) {
+  return on_arc(arc, rational_point(arc.center + direction), Rational(0));
+}
+
+bool strictly_inside_arc(const ArcView& arc, const Point& p) {
+  return on_arc(arc, rational_point(p), Rational(0)) && (arc.full || (p != arc.start && p != arc.end));
+}
+
+// ------------------------------------------------------------------ intersections
+struct Intersection {
+  bool overlap = false;             // infinitely many common points
+  Rational D;                       // the points' coordinates lie in Q(sqrt D)
+  std::vector<SurdPoint> points;
+};
+
+Intersection intersect_segments(const Edge& e, const Edge& f) {
+  Intersection result;
+  Point d1 = e.target - e.source, d2 = f.target - f.source, r = f.source - e.source;
+  Rational denominator = cross(d1, d2);
+  if (denominator != 0) {
+    Rational t = cross(r, d2) / denominator, u = cross(r, d1) / denominator;
+    if (t >= 0 && t <= 1 && u >= 0 && u <= 1)
+      result.points.push_back(rational_point({e.source.x + t * d1.x, e.source.y + t * d1.y}));
+    return result;
+  }
+  if (cross(r, d1) != 0) return result;  // parallel, distinct lines
+  Rational length = squared_length(d1);
+  Rational t0 = dot(f.source - e.source, d1) / length, t1 = dot(f.target - e.source, d1) / length;
+  Rational lo = std::max(Rational(std::min(t0, t1)), Rational(0));
+  Rational hi = std::min(Rational(std::max(t0, t1)), Rational(1));
+  if (lo < hi) {
+    result.overlap = true;
+  } else if (lo == hi) {
+    result.points.push_back(rational_point({e.source.x + lo * d1.x, e.source.y + lo * d1.y}));
+  }
+  return result;
+}
+
+Intersection intersect_segment_arc(const Edge& segment, const Edge& arc_edge) {
+  Intersection result;
+  ArcView arc = view_of(arc_edge);
+  Point d = segment.target - segment.source, p = segment.source - arc.center;
+  Rational A = squared_length(d), B = 2 * dot(d, p), C = squared_length(p) - arc.radius_squared;
+  Rational discriminant = B * B - 4 * A * C;
+  if (discriminant < 0) return result;
+  // u = (-B +- sqrt(disc)) / (2A) = u0 +- u1 sqrt(disc)
+  Rational u0 = -B / (2 * A);
+  std::vector<Surd> roots;
+  if (auto root = rational_sqrt(discriminant)) {
+    Rational delta = *root / (2 * A);
+    roots.push_back({u0 + delta, 0});
+    if (delta != 0) roots.push_back({u0 - delta, 0});
+    result.D = 0;
+  } else {
+    Rational u1 = Rational(1) / (2 * A);
+    roots.push_back({u0, u1});
+    roots.push_back({u0, -u1});
+    result.D = discriminant;
+  }
+  for (const Surd& u : roots) {
+    if (sign(u, result.D) < 0 || sign(u - Rational(1), result.D) > 0) continue;
+    SurdPoint x{Surd{segment.source.x + d.x * u.a, d.x * u.b},
+                Surd{segment.source.y + d.y * u.a, d.y * u.b}};
+    if (on_arc(arc, x, result.D)) result.points.push_back(x);
+  }
+  return result;
+}
+
+Intersection intersect_arcs(const Edge& e, const Edge& f) {
+  Intersection result;
+  ArcView first = view_of(e), second = view_of(f);
+  if (first.center == second.center) {
+    if (first.radius_squared != second.radius_squared) return result;
+    // The same circle: overlap unless they share at most endpoints.
+    if (first.full || second.full || first.start == second.start ||
+        strictly_inside_arc(second, first.start) || strictly_inside_arc(first, second.start)) {
+      result.overlap = true;
+      return result;
+    }
+    for (const Point& p : {first.start, first.end})
+      if (on_arc(second, rational_point(p), Rational(0))) result.points.push_back(rational_point(p));
+    for (const Point& p : {second.start, second.end})
+      if (on_arc(first, rational_point(p), Rational(0)) && p != first.start && p != first.end)
+        result.points.push_back(rational_point(p));
+    return result;
+  }
+  Point d = second.center - first.center;
+  Rational L = squared_length(d);
+  Rational a = (first.radius_squared - second.radius_squared + L) / 2;
+  Rational discriminant = first.radius_squared * L - a * a;
+  if (discriminant < 0) return result;
+  // x = c1 + (a/L) d +- (sqrt(disc)/L) perp(d), perp(d) = (-d.y, d.x)
+  Point foot{first.center.x + a / L * d.x, first.center.y + a / L * d.y};
+  std::vector<SurdPoint> candidates;
+  if (auto root = rational_sqrt(discriminant)) {
+    Rational k = *root / L;
+    candidates.push_back(rational_point({foot.x - k * d.y, foot.y + k * d.x}));
+    if (k != 0) candidates.push_back(rational_point({foot.x + k * d.y, foot.y - k * d.x}));
+    result.D = 0;
+  } else {
+    Rational k = Rational(1) / L;
+    candidates.push_back({{foot.x, -k * d.y}, {foot.y, k * d.x}});
+    candidates.push_back({{foot.x, k * d.y}, {foot.y, -k * d.x}});
+    result.D = discriminant;
+  }
+  for (const SurdPoint& x : candidates)
+    if (on_arc(first, x, result.D) && on_arc(second, x, result.D)) result.points.push_back(x);
+  return result;
+}
+
+Intersection intersect(const Edge& e, const Edge& f) {
+  if (!e.is_arc() && !f.is_arc()) return intersect_segments(e, f);
+  if (!e.is_arc()) return intersect_segment_arc(e, f);
+  if (!f.is_arc()) return intersect_segment_arc(f, e);
+  return intersect_arcs(e, f);
+}
+
+// ------------------------------------------------------------------ bounding boxes (filter only)
+struct Box {
+  double x_lo, x_hi, y_lo, y_hi;
+};
+
+// Outward-widened double bounds of a rational: conservative for the filter.
+void widen(double value, double& lo, double& hi) {
+  if (!std::isfinite(value)) {
+    lo = -std::numeric_limits<double>::infinity();
+    hi = std::numeric_limits<double>::infinity();
+    return;
+  }
+  double margin = std::fabs(value) * 1e-9 + 1e-300;
+  lo = value - margin;
+  hi = value + margin;
+}
+
+void include(Box& box, double x, double y) {
+  double lo, hi;
+  widen(x, lo, hi);
+  box.x_lo = std::min(box.x_lo, lo);
+  box.x_hi = std::max(box.x_hi, hi);
+  widen(y, lo, hi);
+  box.y_lo = std::min(box.y_lo, lo);
+  box.y_hi = std::max(box.y_hi, hi);
+}
+
+Box box_of(const Edge& edge) {
+  constexpr double infinity = std::numeric_limits<double>::infinity();
+  Box box{infinity, -infinity, infinity, -infinity};
+  include(box, to_double(edge.source.x), to_double(edge.source.y));
+  include(box, to_double(edge.target.x), to_double(edge.target.y));
+  if (edge.is_arc()) {
+    ArcView arc = view_of(edge);
+    double cx = to_double(arc.center.x), cy = to_double(arc.center.y);
+    double r = std::sqrt(to_double(arc.radius_squared)) * (1 + 1e-9);
+    const Point directions[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+    for (const Point& direction : directions)
+      if (on_arc(arc, direction))
+        include(box, cx + r * to_double(direction.x), cy + r * to_double(direction.y));
+  }
+  if (std::isnan(box.x_lo) || std::isnan(box.x_hi) || std::isnan(box.y_lo) || std::isnan(box.y_hi))
+    box = Box{-infinity, infinity, -infinity, infinity};
+  return box;
+}
+
+// ------------------------------------------------------------------ certified angles
+Interval exact_interval(const Rational& value) { return Interval(value); }
+
+// atan2(y, x) in (-pi, pi] for exact y, x not both 0; exact branch decisions.
+Interval angle_of(const Rational& y, const Rational& x) {
+  if (y == 0) return x > 0 ? Interval(Rational(0)) : Interval::pi();
+  Interval result;
+  mpfi_atan2(result.get(), exact_interval(y).get(), exact_interval(x).get());
+  return result;
+}
+
+// Counter-clockwise angle from u to v in [0, 2 pi).
+Interval ccw_angle(const Point& u, const Point& v) {
+  Rational c = cross(u, v), d = dot(u, v);
+  Interval angle = angle_of(c, d);
+  if (c < 0) angle = angle + Interval::pi() * Interval(Rational(2));
+  return angle;
+}
+
+// Signed angle from u to v in (-pi, pi].
+Interval signed_angle(const Point& u, const Point& v) { return angle_of(cross(u, v), dot(u, v)); }
+
+// Twice the signed area enclosed by the loop.
+Interval twice_area(const Loop& loop) {
+  Rational polygonal = 0;
+  Interval curved(Rational(0));
+  bool has_arc = false;
+  for (const Edge& edge : loop.edges) {
+    if (!edge.is_arc()) {
+      polygonal += cross(edge.source, edge.target);
+      continue;
+    }
+    has_arc = true;
+    polygonal += cross(edge.center, edge.target - edge.source);
+    Point a = edge.source - edge.center, b = edge.target - edge.center;
+    Interval sweep = edge.source == edge.target ? Interval::pi() * Interval(Rational(2))
+                     : edge.ccw                 ? ccw_angle(a, b)
+                                                : -ccw_angle(b, a);
+    curved = curved + Interval(edge.radius_squared) * sweep;
+  }
+  if (!has_arc) return Interval(polygonal);
+  return Interval(polygonal) + curved;
+}
+
+// Winding number of the loop around p (p not on the loop).
+std::optional<long> winding_number(const Loop& loop, const Point& p) {
+  Interval total(Rational(0));
+  for (const Edge& edge : loop.edges) {
+    Point a = edge.source - p, b = edge.target - p;
+    if (!edge.is_arc() || squared_length(p - edge.center) >= edge.radius_squared) {
+      if (edge.is_arc() && edge.source == edge.target) continue;  // full circle, p outside
+      total = total + signed_angle(a, b);
+      continue;
+    }
+    Interval sweep = edge.source == edge.target ? Interval::pi() * Interval(Rational(2))
+                     : edge.ccw                 ? ccw_angle(a, b)
+                                                : -ccw_angle(b, a);
+    total = total + sweep;
+  }
+  Interval turns = total / (Interval::pi() * Interval(Rational(2)));
+  if (!turns.is_bounded()) return std::nullopt;
+  Rational lo = turns.lower(), hi = turns.upper();
+  mpz_class nearest;
+  Rational shifted = lo + Rational(1, 2);
+  mpz_fdiv_q(nearest.get_mpz_t(), shifted.get_num_mpz_t(), shifted.get_den_mpz_t());
+  if (hi - Rational(nearest) >= Rational(1, 2) || Rational(nearest) - lo >= Rational(1, 2)) return std::nullopt;
+  return nearest.get_si();
+}
+
+// ------------------------------------------------------------------ checks
+void check_loop_edges(const Loop& loop) {
+  if (loop.edges.empty()) throw ModelError(loop.pointer, "a loop needs at least one edge");
+  for (std::size_t i = 0; i < loop.edges.size(); ++i) {
+    const Edge& edge = loop.edges[i];
+    if (i > 0 && !(edge.source == loop.edges[i - 1].target))
+      throw ModelError(edge.pointer, "edge " + describe(edge) + " does not start where the previous edge ends " +
+                                         show(loop.edges[i - 1].target));
+    if (!edge.is_arc()) {
+      if (edge.source == edge.target)
+        throw ModelError(edge.pointer, "zero-length segment: it starts and ends at " + show(edge.source));
+      continue;
+    }
+    Rational start_distance = squared_length(edge.source - edge.center);
+    Rational end_distance = squared_length(edge.target - edge.center);
+    if (edge.radius_squared < 0)
+      throw ModelError(edge.pointer, "negative radius");
+    if (edge.radius_squared == 0 || start_distance == 0)
+      throw ModelError(edge.pointer, "zero radius: the arc starts at its centre " + show(edge.center));
+    if (start_distance != edge.radius_squared)
+      throw ModelError(edge.pointer, "inconsistent arc: its start is not on its circle");
+    if (end_distance != start_distance)
+      throw ModelError(edge.pointer, "inconsistent arc: the end " + show(edge.target) + " is at distance " +
+                                         decimal(end_distance) + "^(1/2) from the centre " + show(edge.center) +
+                                         " but the start " + show(edge.source) + " at distance " +
+                                         decimal(start_distance) + "^(1/2) (squared distances must be equal exactly)");
+    if (edge.is_full_circle() && loop.edges.size() > 1)
+      throw ModelError(edge.pointer, "a full circle (arc ending at its start) must be a loop of its own");
+  }
+  if (!(loop.edges.back().target == loop.edges.front().source))
+    throw ModelError(loop.pointer, "open loop: the last edge ends at " + show(loop.edges.back().target) +
+                                       ", not at the start " + show(loop.edges.front().source));
+}
+
+struct EdgeRef {
+  std::size_t loop;
+  std::size_t index;
+  Box box;
+};
+
+void check_intersections(const Part& part) {
+  std::vector<EdgeRef> edges;
+  for (std::size_t l = 0; l < part.loops.size(); ++l)
+    for (std::size_t i = 0; i < part.loops[l].edges.size(); ++i)
+      edges.push_back(EdgeRef{l, i, box_of(part.loops[l].edges[i])});
+  std::sort(edges.begin(), edges.end(), [&](const EdgeRef& a, const EdgeRef& b) {
+    if (a.box.x_lo != b.box.x_lo) return a.box.x_lo < b.box.x_lo;
+    return std::tie(a.loop, a.index) < std::tie(b.loop, b.index);
+  });
+  for (std::size_t m = 0; m < edges.size(); ++m) {
+    for (std::size_t n = m + 1; n < edges.size() && edges[n].box.x_lo <= edges[m].box.x_hi; ++n) {
+      const EdgeRef* first = &edges[m];
+      const EdgeRef* second = &edges[n];
+      if (first->box.y_hi < second->box.y_lo || second->box.y_hi < first->box.y_lo) continue;
+      if (std::tie(first->loop, first->index) > std::tie(second->loop, second->index)) std::swap(first, second);
+      const Loop& loop = part.loops[first->loop];
+      const Edge& e = loop.edges[first->index];
+      const Edge& f = part.loops[second->loop].edges[second->index];
+      std::vector<Point> allowed;
+      bool same_loop = first->loop == second->loop;
+      bool consecutive = false;
+      if (same_loop) {
+        std::size_t size = loop.edges.size();
+        if ((first->index + 1) % size == second->index) {
+          allowed.push_back(e.target);
+          consecutive = true;
+        }
+        if ((second->index + 1) % size == first->index) {
+          allowed.push_back(e.source);
+          consecutive = true;
+        }
+      }
+      Intersection common = intersect(e, f);
+      if (common.overlap) {
+        if (consecutive)
+          throw ModelError(f.pointer, "edge " + describe(f) + " runs back along " + describe(e) +
+                                          " (a zero-area spike: the boundary overlaps itself)");
+        throw ModelError(f.pointer, "edge " + describe(f) + " overlaps " + describe(e) +
+                                        (same_loop ? " (the loop overlaps itself)"
+                                                   : " (loops " + loop.pointer + " and " +
+                                                         part.loops[second->loop].pointer + " of part '" +
+                                                         part.name + "' overlap)"));
+      }
+      for (const SurdPoint& x : common.points) {
+        bool is_allowed = false;
+        for (const Point& p : allowed) is_allowed = is_allowed || equals(x, p);
+        if (is_allowed) continue;
+        if (same_loop)
+          throw ModelError(f.pointer, "the loop intersects itself: edge " + describe(f) + " crosses or touches " +
+                                          describe(e) + " at " + show(x, common.D));
+        throw ModelError(f.pointer, "loops " + loop.pointer + " and " + part.loops[second->loop].pointer +
+                                        " of part '" + part.name + "' cross or touch: edge " + describe(f) +
+                                        " meets " + describe(e) + " at " + show(x, common.D));
+      }
+    }
+  }
+}
+
+void reverse(Loop& loop) {
+  std::reverse(loop.edges.begin(), loop.edges.end());
+  for (Edge& edge : loop.edges) {
+    std::swap(edge.source, edge.target);
+    edge.ccw = !edge.ccw;
+  }
+}
+
+void orient(Part& part) {
+  std::vector<int> orientation(part.loops.size());
+  for (std::size_t l = 0; l < part.loops.size(); ++l) {
+    int s = twice_area(part.loops[l]).sign();
+    if (s == 0) throw ModelError(part.loops[l].pointer, "cannot decide the loop's orientation (it encloses no area)");
+    orientation[l] = s;
+  }
+  for (std::size_t l = 0; l < part.loops.size(); ++l) {
+    std::size_t depth = 0;
+    const Point& probe = part.loops[l].edges.front().source;
+    for (std::size_t other = 0; other < part.loops.size(); ++other) {
+      if (other == l) continue;
+      std::optional<long> winding = winding_number(part.loops[other], probe);
+      if (!winding)
+        throw ModelError(part.loops[l].pointer, "cannot decide whether this loop lies inside " +
+                                                    part.loops[other].pointer);
+      if (*winding != 0) ++depth;
+    }
+    Loop& loop = part.loops[l];
+    loop.is_hole = depth % 2 == 1;
+    int wanted = loop.is_hole ? -1 : 1;
+    if (orientation[l] != wanted) reverse(loop);
+  }
+}
+
+}  // namespace
+
+void validate_part_geometry(Part& part) {
+  for (const Loop& loop : part.loops) check_loop_edges(loop);
+  check_intersections(part);
+  orient(part);
+}
+
+}  // namespace hipair::model_detail
