@@ -1,0 +1,256 @@
+#include "io/svg.hpp"
+
+#include <hipair/error.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace hipair::io {
+
+std::string escape_xml(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string format_number(double value) {
+  if (!std::isfinite(value)) value = 0;
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.4f", value);
+  std::string s = buffer;
+  if (s.find('.') != std::string::npos) {
+    while (!s.empty() && s.back() == '0') s.pop_back();
+    if (!s.empty() && s.back() == '.') s.pop_back();
+  }
+  if (s == "-0") s = "0";
+  return s;
+}
+
+namespace {
+
+std::string pair(double x, double y) { return format_number(x) + "," + format_number(-y); }
+
+void add_extent_of_arc(std::vector<std::pair<double, double>>& extent, double cx, double cy,
+                       double radius, double start, double span) {
+  // Extremes of the arc: its end points plus every axis direction it passes.
+  for (int quarter = -8; quarter <= 8; ++quarter) {
+    double angle = quarter * M_PI / 2;
+    double relative = angle - start;
+    relative = std::fmod(relative, 2 * M_PI);
+    if (relative < 0) relative += 2 * M_PI;
+    if (relative <= span)
+      extent.emplace_back(cx + radius * std::cos(angle), cy + radius * std::sin(angle));
+  }
+}
+
+}  // namespace
+
+void SvgPath::move_to(double x, double y) {
+  data_ += (data_.empty() ? "M" : " M") + pair(x, y);
+  x_ = x;
+  y_ = y;
+  extent_.emplace_back(x, y);
+}
+
+void SvgPath::line_to(double x, double y) {
+  data_ += " L" + pair(x, y);
+  x_ = x;
+  y_ = y;
+  extent_.emplace_back(x, y);
+}
+
+void SvgPath::arc_to(double x, double y, double cx, double cy, bool ccw) {
+  double radius = std::hypot(x_ - cx, y_ - cy);
+  double start = std::atan2(y_ - cy, x_ - cx);
+  double end = std::atan2(y - cy, x - cx);
+  bool full = x == x_ && y == y_;
+  double span = full ? 2 * M_PI : (ccw ? end - start : start - end);
+  if (!full) {
+    span = std::fmod(span, 2 * M_PI);
+    if (span <= 0) span += 2 * M_PI;
+  }
+  // Extent: for a clockwise arc, the same set of points as the ccw arc from end to start.
+  add_extent_of_arc(extent_, cx, cy, radius, ccw ? start : (full ? start : end), span);
+  // SVG's y axis points down, so a world counter-clockwise arc is sweep-flag 0.
+  std::string sweep = ccw ? "0" : "1";
+  std::string r = format_number(radius);
+  if (full) {
+    double ox = 2 * cx - x_, oy = 2 * cy - y_;  // the opposite point
+    data_ += " A" + r + "," + r + " 0 0," + sweep + " " + pair(ox, oy);
+    data_ += " A" + r + "," + r + " 0 0," + sweep + " " + pair(x, y);
+  } else {
+    std::string large = span > M_PI ? "1" : "0";
+    data_ += " A" + r + "," + r + " 0 " + large + "," + sweep + " " + pair(x, y);
+  }
+  x_ = x;
+  y_ = y;
+  extent_.emplace_back(x, y);
+}
+
+void SvgPath::close() { data_ += " Z"; }
+
+SvgWriter::SvgWriter(const SvgBox& box, double pixel_width)
+    : box_(box), pixel_width_(pixel_width) {
+  double size = std::max(box.width(), box.height());
+  default_stroke_ = size > 0 ? size / 600 : 0.1;
+}
+
+void SvgWriter::add_definition(const std::string& markup) { definitions_ += markup + "\n"; }
+
+void SvgWriter::define_hatch(const std::string& id, const std::string& color, double spacing) {
+  std::string s = format_number(spacing);
+  add_definition("<pattern id=\"" + escape_xml(id) +
+                 "\" patternUnits=\"userSpaceOnUse\" width=\"" + s + "\" height=\"" + s +
+                 "\" patternTransform=\"rotate(45)\"><rect width=\"" + s + "\" height=\"" + s +
+                 "\" fill=\"#e8e8e8\"/><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"" + s +
+                 "\" stroke=\"" + escape_xml(color) + "\" stroke-width=\"" +
+                 format_number(spacing / 4) + "\"/></pattern>");
+}
+
+void SvgWriter::define_arrow(const std::string& id, const std::string& color) {
+  add_definition("<marker id=\"" + escape_xml(id) +
+                 "\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" markerWidth=\"6\" "
+                 "markerHeight=\"6\" orient=\"auto-start-reverse\"><path d=\"M0,0 L10,5 L0,10 "
+                 "z\" fill=\"" +
+                 escape_xml(color) + "\"/></marker>");
+}
+
+void SvgWriter::begin_group(const std::string& id, const std::string& css_class,
+                            const std::string& title) {
+  body_ += "<g";
+  if (!id.empty()) body_ += " id=\"" + escape_xml(id) + "\"";
+  if (!css_class.empty()) body_ += " class=\"" + escape_xml(css_class) + "\"";
+  body_ += ">\n";
+  if (!title.empty()) body_ += "<title>" + escape_xml(title) + "</title>\n";
+  ++open_groups_;
+}
+
+void SvgWriter::end_group() {
+  if (open_groups_ == 0) throw Error("SVG writer: end_group without begin_group");
+  body_ += "</g>\n";
+  --open_groups_;
+}
+
+std::string SvgWriter::style_attributes(const SvgStyle& style) const {
+  std::string out = " fill=\"" + escape_xml(style.fill.empty() ? "none" : style.fill) + "\"";
+  if (!style.stroke.empty()) {
+    out += " stroke=\"" + escape_xml(style.stroke) + "\"";
+    double width = style.stroke_width > 0 ? style.stroke_width : default_stroke_;
+    out += " stroke-width=\"" + format_number(width) + "\"";
+    out += " stroke-linejoin=\"round\"";
+  }
+  if (!style.fill_rule.empty()) out += " fill-rule=\"" + escape_xml(style.fill_rule) + "\"";
+  if (!style.dash.empty()) out += " stroke-dasharray=\"" + escape_xml(style.dash) + "\"";
+  if (style.opacity < 1) out += " fill-opacity=\"" + format_number(style.opacity) + "\"";
+  if (!style.marker_end.empty()) out += " marker-end=\"" + escape_xml(style.marker_end) + "\"";
+  return out;
+}
+
+void SvgWriter::path(const SvgPath& path, const SvgStyle& style, const std::string& title) {
+  if (path.empty()) return;
+  body_ += "<path d=\"" + path.data() + "\"" + style_attributes(style);
+  if (title.empty()) {
+    body_ += "/>\n";
+  } else {
+    body_ += "><title>" + escape_xml(title) + "</title></path>\n";
+  }
+}
+
+void SvgWriter::line(double x1, double y1, double x2, double y2, const SvgStyle& style) {
+  body_ += "<line x1=\"" + format_number(x1) + "\" y1=\"" + format_number(-y1) + "\" x2=\"" +
+           format_number(x2) + "\" y2=\"" + format_number(-y2) + "\"" + style_attributes(style) +
+           "/>\n";
+}
+
+void SvgWriter::circle(double cx, double cy, double r, const SvgStyle& style) {
+  body_ += "<circle cx=\"" + format_number(cx) + "\" cy=\"" + format_number(-cy) + "\" r=\"" +
+           format_number(r) + "\"" + style_attributes(style) + "/>\n";
+}
+
+void SvgWriter::rectangle(double x, double y, double width, double height,
+                          const SvgStyle& style) {
+  // (x, y) is the lower-left corner in world coordinates.
+  body_ += "<rect x=\"" + format_number(x) + "\" y=\"" + format_number(-(y + height)) +
+           "\" width=\"" + format_number(width) + "\" height=\"" + format_number(height) + "\"" +
+           style_attributes(style) + "/>\n";
+}
+
+void SvgWriter::text(double x, double y, const std::string& content, double size,
+                     const std::string& anchor, const std::string& fill,
+                     const std::string& weight) {
+  body_ += "<text x=\"" + format_number(x) + "\" y=\"" + format_number(-y) + "\" font-size=\"" +
+           format_number(size) + "\" font-family=\"DejaVu Sans, Arial, sans-serif\"" +
+           " text-anchor=\"" + escape_xml(anchor) + "\" fill=\"" + escape_xml(fill) + "\"";
+  if (weight != "normal") body_ += " font-weight=\"" + escape_xml(weight) + "\"";
+  body_ += ">" + escape_xml(content) + "</text>\n";
+}
+
+void SvgWriter::legend(double x, double y, const std::vector<LegendEntry>& entries,
+                       double size) {
+  double row = size * 1.5;
+  double longest = 0;
+  for (const LegendEntry& entry : entries)
+    longest = std::max(longest, static_cast<double>(entry.label.size()));
+  double width = size * (2.2 + 0.62 * longest);
+  double height = row * static_cast<double>(entries.size()) + size * 0.6;
+  SvgStyle frame;
+  frame.fill = "white";
+  frame.stroke = "#999999";
+  frame.opacity = 0.85;
+  begin_group("", "legend");
+  rectangle(x, y - height, width, height, frame);
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    double top = y - size * 0.3 - row * static_cast<double>(i);
+    rectangle(x + size * 0.4, top - size * 1.1, size, size, entries[i].swatch);
+    text(x + size * 1.8, top - size * 0.95, entries[i].label, size, "start");
+  }
+  end_group();
+}
+
+void SvgWriter::scale_bar(double x, double y, double length, const std::string& label,
+                          double size) {
+  SvgStyle bar;
+  bar.stroke = "black";
+  bar.stroke_width = size / 6;
+  begin_group("", "scale-bar");
+  line(x, y, x + length, y, bar);
+  line(x, y - size * 0.3, x, y + size * 0.3, bar);
+  line(x + length, y - size * 0.3, x + length, y + size * 0.3, bar);
+  text(x + length / 2, y + size * 0.5, label, size, "middle");
+  end_group();
+}
+
+std::string SvgWriter::str() const {
+  std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  double aspect = box_.width() > 0 ? box_.height() / box_.width() : 1;
+  out += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + format_number(pixel_width_) +
+         "\" height=\"" + format_number(std::round(pixel_width_ * aspect)) + "\" viewBox=\"" +
+         format_number(box_.min_x) + " " + format_number(-box_.max_y) + " " +
+         format_number(box_.width()) + " " + format_number(box_.height()) + "\">\n";
+  if (!definitions_.empty()) out += "<defs>\n" + definitions_ + "</defs>\n";
+  out += body_;
+  for (int i = 0; i < open_groups_; ++i) out += "</g>\n";
+  out += "</svg>\n";
+  return out;
+}
+
+double nice_length(double approximate) {
+  if (!(approximate > 0)) return 1;
+  double power = std::pow(10.0, std::floor(std::log10(approximate)));
+  double mantissa = approximate / power;
+  double nice = mantissa < 1.5 ? 1 : mantissa < 3.5 ? 2 : mantissa < 7.5 ? 5 : 10;
+  return nice * power;
+}
+
+}  // namespace hipair::io

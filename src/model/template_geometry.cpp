@@ -1,0 +1,142 @@
+#include "model/template_geometry.hpp"
+
+#include "model/exact_trig.hpp"
+
+#include <hipair/error.hpp>
+
+namespace hipair::model_detail::template_geometry {
+namespace {
+
+mpz_class power_of_ten(unsigned exponent) {
+  mpz_class result;
+  mpz_ui_pow_ui(result.get_mpz_t(), 10, exponent);
+  return result;
+}
+
+// floor(sqrt(q * 10^(2 digits))) as an integer.
+mpz_class scaled_integer_sqrt(const Rational& q, unsigned digits) {
+  mpz_class scale = power_of_ten(2 * digits);
+  mpz_class numerator = q.get_num() * scale;
+  mpz_class floor_value;
+  mpz_fdiv_q(floor_value.get_mpz_t(), numerator.get_mpz_t(), q.get_den_mpz_t());
+  mpz_class root;
+  mpz_sqrt(root.get_mpz_t(), floor_value.get_mpz_t());
+  return root;
+}
+
+}  // namespace
+
+Point add(const Point& a, const Point& b) { return Point{a.x + b.x, a.y + b.y}; }
+Point subtract(const Point& a, const Point& b) { return Point{a.x - b.x, a.y - b.y}; }
+Point scale(const Rational& k, const Point& a) { return Point{k * a.x, k * a.y}; }
+Point rotate(const Point& p, const Point& unit) {
+  return Point{p.x * unit.x - p.y * unit.y, p.x * unit.y + p.y * unit.x};
+}
+Point mirror(const Point& p) { return Point{p.x, -p.y}; }
+Point perpendicular(const Point& p) { return Point{-p.y, p.x}; }
+Rational squared_norm(const Point& a) { return a.x * a.x + a.y * a.y; }
+Rational squared_distance(const Point& a, const Point& b) { return squared_norm(subtract(a, b)); }
+
+Rational approximate_sqrt(const Rational& q) {
+  if (q <= 0) return Rational(0);
+  Rational result(scaled_integer_sqrt(q, 30), power_of_ten(30));
+  result.canonicalize();
+  return result;
+}
+
+Rational upper_sqrt(const Rational& q) {
+  if (q <= 0) return Rational(0);
+  Rational result(scaled_integer_sqrt(q, 15) + 1, power_of_ten(15));
+  result.canonicalize();
+  return result;
+}
+
+double approximate(const Rational& q) { return q.get_d(); }
+
+Point point_on_circle_near(const Point& center, const Rational& radius, const Point& near,
+                           const std::string& pointer, const std::string& what,
+                           std::vector<Rounding>& roundings) {
+  Point relative = subtract(near, center);
+  // Half-angle tangent of the polar angle: y / (r + x) away from the angle pi, and the
+  // tangent of half the angle minus pi, -y / (r - x), near it (then the unit vector flips).
+  bool flipped = relative.x < 0;
+  Rational tangent = flipped ? Rational(-relative.y / (radius - relative.x))
+                             : Rational(relative.y / (radius + relative.x));
+  Rational rounded = round_to_grid(tangent);
+  Point unit = unit_from_half_tangent(rounded);
+  if (flipped) unit = Point{-unit.x, -unit.y};
+  roundings.push_back(Rounding{pointer, what + " (exact point on its circle, half-angle tangent)",
+                               rounded, Rational(radius * Rational(2, power_of_ten(12)))});
+  return point_on_circle(center, radius, unit);
+}
+
+bool circle_intersections(const Rational& r0, const Point& c1, const Rational& r1, Point& first,
+                          Point& second) {
+  Rational d2 = squared_norm(c1);
+  if (d2 == 0) return false;
+  Rational d = approximate_sqrt(d2);
+  Rational along = (r0 * r0 - r1 * r1 + d2) / (2 * d);
+  Rational h2 = r0 * r0 - along * along;
+  if (h2 < 0) return false;
+  Rational h = approximate_sqrt(h2);
+  Point axis = scale(Rational(1 / d), c1);
+  Point base = scale(along, axis);
+  Point offset = scale(h, perpendicular(axis));
+  first = add(base, offset);
+  second = subtract(base, offset);
+  return true;
+}
+
+LoopBuilder::LoopBuilder(const Point& start, std::string pointer)
+    : start_(start), current_(start), pointer_(std::move(pointer)) {
+  loop_.pointer = pointer_;
+}
+
+void LoopBuilder::line_to(const Point& target, const std::string& label) {
+  if (target == current_)
+    throw GeometryError("internal error in template " + pointer_ + ": zero-length edge '" +
+                        label + "'");
+  Edge edge;
+  edge.kind = Edge::Kind::segment;
+  edge.source = current_;
+  edge.target = target;
+  edge.pointer = pointer_;
+  edge.label = label;
+  loop_.edges.push_back(std::move(edge));
+  current_ = target;
+}
+
+void LoopBuilder::arc_to(const Point& target, const Point& center, bool ccw,
+                         const std::string& label) {
+  Rational r2 = squared_distance(current_, center);
+  if (r2 == 0 || squared_distance(target, center) != r2)
+    throw GeometryError("internal error in template " + pointer_ + ": arc '" + label +
+                        "' endpoints are not on one circle");
+  Edge edge;
+  edge.kind = Edge::Kind::arc;
+  edge.source = current_;
+  edge.target = target;
+  edge.center = center;
+  edge.ccw = ccw;
+  edge.radius_squared = r2;
+  edge.pointer = pointer_;
+  edge.label = label;
+  loop_.edges.push_back(std::move(edge));
+  current_ = target;
+}
+
+Loop LoopBuilder::circle(const Point& center, const Rational& radius, const std::string& label,
+                         const std::string& pointer) {
+  Point start{center.x + radius, center.y};
+  LoopBuilder builder(start, pointer);
+  builder.arc_to(start, center, true, label);
+  return builder.finish();
+}
+
+Loop LoopBuilder::finish() {
+  if (!(current_ == start_) || loop_.edges.empty())
+    throw GeometryError("internal error in template " + pointer_ + ": loop does not close");
+  return std::move(loop_);
+}
+
+}  // namespace hipair::model_detail::template_geometry

@@ -1,0 +1,79 @@
+// Exact construction helpers shared by the feature templates: rational rotations, exact
+// points on circles near irrational intersections, and a loop builder that checks every arc
+// endpoint exactly. Internal to src/model/templates*.cpp.
+#pragma once
+
+#include <hipair/geometry.hpp>
+#include <hipair/model.hpp>
+#include <hipair/rational.hpp>
+
+#include <string>
+#include <vector>
+
+namespace hipair::model_detail::template_geometry {
+
+/// a + b.
+Point add(const Point& a, const Point& b);
+/// a - b.
+Point subtract(const Point& a, const Point& b);
+/// k * a.
+Point scale(const Rational& k, const Point& a);
+/// Rotates `p` about the origin by the exact rational unit vector `unit` (complex product).
+Point rotate(const Point& p, const Point& unit);
+/// Mirror image in the x axis: (x, -y).
+Point mirror(const Point& p);
+/// Rotation by +90 degrees: (-y, x).
+Point perpendicular(const Point& p);
+/// |a - b|^2, exact.
+Rational squared_distance(const Point& a, const Point& b);
+/// |a|^2, exact.
+Rational squared_norm(const Point& a);
+
+/// 10^-12, the rounding grid step.
+inline Rational grid_step() { return Rational("1/1000000000000"); }
+
+/// sqrt(q) for q >= 0 to within 10^-30 (truncated), as a rational. For constructions whose
+/// results are rounded to the 10^-12 grid afterwards; never for decisions.
+Rational approximate_sqrt(const Rational& q);
+/// A rational >= sqrt(q), within 10^-15 of it: for error bounds.
+Rational upper_sqrt(const Rational& q);
+/// Nearest double, as a plain number for coarse validity messages.
+double approximate(const Rational& q);
+
+/// An exact rational point on the circle of radius `radius` about `center` whose polar angle
+/// is within 10^-12 rad of the polar angle of `near` (a point on or very near that circle,
+/// typically an irrational intersection computed to ~10^-30). Built from the half-angle
+/// tangent rounded to the 10^-12 grid; records a Rounding (pointer, `what`) with the bound
+/// 2*10^-12 * radius (mm) on the displacement from the ideal point.
+Point point_on_circle_near(const Point& center, const Rational& radius, const Point& near,
+                           const std::string& pointer, const std::string& what,
+                           std::vector<Rounding>& roundings);
+
+/// Intersections of the circle (origin, r0) with the circle (c1, r1), approximately
+/// (to ~10^-25), or false when they do not meet. `first` is on the left of the line from the
+/// origin to c1, `second` on the right.
+bool circle_intersections(const Rational& r0, const Point& c1, const Rational& r1, Point& first,
+                          Point& second);
+
+/// Builds one loop edge by edge; each arc's endpoints are checked to be exactly equidistant
+/// from its centre (an internal error otherwise: the template code is wrong).
+class LoopBuilder {
+ public:
+  LoopBuilder(const Point& start, std::string pointer);
+  void line_to(const Point& target, const std::string& label);
+  void arc_to(const Point& target, const Point& center, bool ccw, const std::string& label);
+  /// Full circle loop.
+  static Loop circle(const Point& center, const Rational& radius, const std::string& label,
+                     const std::string& pointer);
+  /// The loop; its last edge must end at the start. \throws GeometryError otherwise.
+  Loop finish();
+  const Point& current() const { return current_; }
+
+ private:
+  Loop loop_;
+  Point start_;
+  Point current_;
+  std::string pointer_;
+};
+
+}  // namespace hipair::model_detail::template_geometry

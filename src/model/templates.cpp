@@ -1,0 +1,307 @@
+#include "model/templates.hpp"
+
+#include "model/exact_trig.hpp"
+#include "model/template_arguments.hpp"
+#include "model/template_geometry.hpp"
+
+#include <hipair/error.hpp>
+
+#include <cmath>
+
+namespace hipair::model_detail {
+
+using template_detail::Arguments;
+namespace tg = template_geometry;
+
+const std::vector<TemplateSpec>& template_specs() {
+  using K = ArgumentKind;
+  static const std::vector<TemplateSpec> specs = {
+      {"circle", {{"center", K::point, true}, {"radius", K::length, true}}},
+      {"pin", {{"center", K::point, true}, {"radius", K::length, true}}},
+      {"geneva_wheel",
+       {{"center", K::point, true},
+        {"slots", K::count, true},
+        {"slot_width", K::length, true},
+        {"slot_inner_radius", K::length, true},
+        {"slot_outer_radius", K::length, true},
+        {"lock_center_radius", K::length, true},
+        {"lock_radius", K::length, true},
+        {"lock_span", K::angle, true},
+        {"phase", K::angle, false}}},
+      {"geneva_driver",
+       {{"center", K::point, true},
+        {"pin_radius", K::length, true},
+        {"pin_center_radius", K::length, true},
+        {"lock_outer_radius", K::length, true},
+        {"lock_inner_radius", K::length, true},
+        {"lock_span", K::angle, true},
+        {"lock_offset", K::angle, false},
+        {"phase", K::angle, false}}},
+      {"spur_gear",
+       {{"center", K::point, true},
+        {"teeth", K::count, true},
+        {"pitch_radius", K::length, true},
+        {"addendum", K::length, true},
+        {"dedendum", K::length, true},
+        {"tooth_thickness", K::length, true},
+        {"flank_radius", K::length, false},
+        {"pressure_angle", K::angle, false},
+        {"phase", K::angle, false}}},
+      {"ratchet_wheel",
+       {{"center", K::point, true},
+        {"teeth", K::count, true},
+        {"tip_radius", K::length, true},
+        {"root_radius", K::length, true},
+        {"phase", K::angle, false},
+        {"dir", K::direction_word, false}}},
+      {"escape_wheel",
+       {{"center", K::point, true},
+        {"teeth", K::count, true},
+        {"tip_radius", K::length, true},
+        {"root_radius", K::length, true},
+        {"phase", K::angle, false},
+        {"dir", K::direction_word, false},
+        {"tip_angle", K::angle, false},
+        {"face_angle", K::angle, false}}},
+      {"anchor",
+       {{"center", K::point, true},
+        {"wheel_center", K::point, true},
+        {"wheel_radius", K::length, true},
+        {"pallet_width", K::length, true},
+        {"lift", K::angle, true},
+        {"lock", K::angle, true},
+        {"pallet_extent", K::angle, false},
+        {"fork_length", K::length, true},
+        {"fork_width", K::length, true},
+        {"fork_slot_width", K::length, true},
+        {"fork_slot_depth", K::length, true}}},
+      {"balance",
+       {{"center", K::point, true},
+        {"radius", K::length, true},
+        {"pin_radius", K::length, true},
+        {"pin_center_radius", K::length, true},
+        {"phase", K::angle, false}}},
+  };
+  return specs;
+}
+
+std::vector<Loop> expand_template(const std::string& name,
+                                  const std::map<std::string, TemplateValue>& arguments,
+                                  const std::string& pointer, std::vector<Rounding>& roundings) {
+  const TemplateSpec* spec = nullptr;
+  for (const TemplateSpec& candidate : template_specs())
+    if (candidate.name == name) spec = &candidate;
+  if (!spec) throw ModelError(pointer, "unknown feature template '" + name + "'");
+  for (const auto& [key, value] : arguments) {
+    bool known = false;
+    for (const ArgumentSpec& argument : spec->arguments) known = known || argument.key == key;
+    if (!known)
+      throw ModelError(pointer + "/" + key,
+                       "unknown argument '" + key + "' of template '" + name + "'");
+  }
+  Arguments typed(arguments, pointer);
+  for (const ArgumentSpec& argument : spec->arguments)
+    if (argument.required && !typed.has(argument.key))
+      throw ModelError(pointer + "/" + argument.key,
+                       "template '" + name + "' needs the argument '" + argument.key + "'");
+  if (name == "circle") return template_detail::expand_circle(typed, "circle");
+  if (name == "pin") return template_detail::expand_circle(typed, "pin");
+  if (name == "geneva_wheel") return template_detail::expand_geneva_wheel(typed, roundings);
+  if (name == "geneva_driver") return template_detail::expand_geneva_driver(typed, roundings);
+  if (name == "spur_gear") return template_detail::expand_spur_gear(typed, roundings);
+  if (name == "ratchet_wheel") return template_detail::expand_ratchet_wheel(typed, roundings);
+  if (name == "escape_wheel") return template_detail::expand_escape_wheel(typed, roundings);
+  if (name == "anchor") return template_detail::expand_anchor(typed, roundings);
+  return template_detail::expand_balance(typed, roundings);
+}
+
+namespace template_detail {
+
+Point direction(const Rational& phase, const Rational& multiple_of_pi, const std::string& pointer,
+                const std::string& what, std::vector<Rounding>& roundings) {
+  Point turn = exact_unit_vector_pi(multiple_of_pi, pointer, what, roundings);
+  if (phase == 0) return turn;
+  Point base = exact_unit_vector(phase, pointer, "phase of " + what, roundings);
+  return tg::rotate(turn, base);
+}
+
+std::vector<Loop> expand_circle(const Arguments& arguments, const std::string& label) {
+  Point center = arguments.point("center");
+  Rational radius = arguments.positive_length("radius");
+  return {tg::LoopBuilder::circle(center, radius, label, arguments.pointer())};
+}
+
+namespace {
+
+std::string numbered(const std::string& what, long index) {
+  return what + " " + std::to_string(index + 1);
+}
+
+// Places a point of a canonical frame (centre at origin) by the exact rotation `unit`, then
+// translates it to `center`.
+Point place(const Point& center, const Point& unit, const Point& local) {
+  return tg::add(center, tg::rotate(local, unit));
+}
+
+}  // namespace
+
+std::vector<Loop> expand_geneva_wheel(const Arguments& arguments,
+                                      std::vector<Rounding>& roundings) {
+  const std::string& pointer = arguments.pointer();
+  Point center = arguments.point("center");
+  long slots = arguments.count("slots", 3, 360);
+  Rational width = arguments.positive_length("slot_width");
+  Rational inner = arguments.positive_length("slot_inner_radius");
+  Rational outer = arguments.positive_length("slot_outer_radius");
+  Rational lock_distance = arguments.positive_length("lock_center_radius");
+  Rational lock_radius = arguments.positive_length("lock_radius");
+  Rational span = arguments.angle("lock_span");
+  Rational phase = arguments.angle("phase");
+  Rational half = width / 2;
+
+  if (inner <= half)
+    throw ModelError(arguments.at("slot_inner_radius"),
+                     "the slot bottom (a half circle of radius slot_width/2 centred at "
+                     "slot_inner_radius) would reach the wheel centre");
+  Rational wall_end_squared = outer * outer - half * half;
+  if (wall_end_squared <= inner * inner)
+    throw ModelError(arguments.at("slot_outer_radius"),
+                     "the slot walls must reach beyond the slot bottom: slot_outer_radius^2 must "
+                     "exceed slot_inner_radius^2 + (slot_width/2)^2");
+  if (span <= 0 || tg::approximate(span) >= M_PI - 1e-9)
+    throw ModelError(arguments.at("lock_span"), "must lie strictly between 0 and 180 degrees");
+  if (lock_radius >= lock_distance)
+    throw ModelError(arguments.at("lock_radius"),
+                     "must be less than lock_center_radius (the locking arc would enclose the "
+                     "wheel centre)");
+
+  // Slot frame: slot axis along +x. Walls at y = +-w/2 from the bottom to radius r_out.
+  Point wall_end_left = tg::point_on_circle_near(
+      Point{0, 0}, outer, Point{tg::approximate_sqrt(wall_end_squared), half}, pointer,
+      "slot wall end on slot_outer_radius", roundings);
+  Point wall_end_right = tg::mirror(wall_end_left);
+  Point bottom_center{inner, Rational(0)};
+  Point bottom_left{inner, half};
+  Point bottom_right{inner, -half};
+
+  // Lock frame: locking arc centre on +x at lock_center_radius; the arc faces the wheel centre.
+  Point half_span = exact_unit_vector(Rational(span / 2), arguments.at("lock_span"),
+                                      "lock_span/2", roundings);
+  Point lock_center{lock_distance, Rational(0)};
+  Point lock_start{lock_distance - lock_radius * half_span.x, -lock_radius * half_span.y};
+  Point lock_end{lock_distance - lock_radius * half_span.x, lock_radius * half_span.y};
+
+  // Coarse fit checks for clear messages; the reader's exact loop checks back them up.
+  double sector = M_PI / static_cast<double>(slots);
+  double wall_angle = std::asin(tg::approximate(half) / tg::approximate(outer));
+  double lock_end_angle =
+      std::atan2(tg::approximate(lock_end.y), tg::approximate(lock_end.x));
+  if (lock_start.x <= 0)
+    throw ModelError(arguments.at("lock_span"),
+                     "the locking arc ends behind the wheel centre: lock_span is too large");
+  if (wall_angle >= sector - 1e-9)
+    throw ModelError(arguments.at("slot_width"), "the slots are too wide for " +
+                                                     std::to_string(slots) +
+                                                     " slots at slot_outer_radius");
+  if (lock_end_angle >= sector - wall_angle - 1e-9)
+    throw ModelError(arguments.at("lock_span"),
+                     "the locking arcs run into the slots: reduce lock_span or slot_width");
+  {
+    // The next slot's right wall end, seen in the lock frame, must lie outside the lock circle.
+    double wx = tg::approximate(wall_end_right.x), wy = tg::approximate(wall_end_right.y);
+    double x = wx * std::cos(sector) - wy * std::sin(sector);
+    double y = wx * std::sin(sector) + wy * std::cos(sector);
+    double distance = std::hypot(x - tg::approximate(lock_distance), y);
+    if (distance <= tg::approximate(lock_radius) + 1e-9)
+      throw ModelError(arguments.at("lock_radius"),
+                       "the locking arcs cut into the slot walls: reduce lock_radius or "
+                       "slot_outer_radius");
+  }
+
+  std::vector<Point> lock_turn(slots), slot_turn(slots);
+  for (long k = 0; k < slots; ++k) {
+    lock_turn[k] = direction(phase, Rational(2 * k, slots), pointer,
+                             "locking arc " + std::to_string(k + 1) + " direction", roundings);
+    slot_turn[k] = direction(phase, Rational(2 * k + 1, slots), pointer,
+                             "slot " + std::to_string(k + 1) + " axis direction", roundings);
+  }
+  tg::LoopBuilder loop(place(center, lock_turn[0], lock_start), pointer);
+  for (long k = 0; k < slots; ++k) {
+    const Point& lock = lock_turn[k];
+    const Point& slot = slot_turn[k];
+    loop.arc_to(place(center, lock, lock_end), place(center, lock, lock_center), false,
+                numbered("lock arc", k));
+    loop.line_to(place(center, slot, wall_end_right), numbered("slot", k) + " mouth R");
+    loop.line_to(place(center, slot, bottom_right), numbered("slot", k) + " wall R");
+    loop.arc_to(place(center, slot, bottom_left), place(center, slot, bottom_center), false,
+                numbered("slot", k) + " bottom");
+    loop.line_to(place(center, slot, wall_end_left), numbered("slot", k) + " wall L");
+    loop.line_to(place(center, lock_turn[(k + 1) % slots], lock_start),
+                 numbered("slot", k) + " mouth L");
+  }
+  return {loop.finish()};
+}
+
+std::vector<Loop> expand_geneva_driver(const Arguments& arguments,
+                                       std::vector<Rounding>& roundings) {
+  const std::string& pointer = arguments.pointer();
+  Point center = arguments.point("center");
+  Rational pin_radius = arguments.positive_length("pin_radius");
+  Rational pin_distance = arguments.positive_length("pin_center_radius");
+  Rational outer = arguments.positive_length("lock_outer_radius");
+  Rational inner = arguments.number("lock_inner_radius");
+  Rational span = arguments.angle("lock_span");
+  Rational default_offset = -span / 2;
+  Rational offset = arguments.angle("lock_offset", default_offset);
+  Rational phase = arguments.angle("phase");
+  if (inner < 0) throw ModelError(arguments.at("lock_inner_radius"), "must not be negative");
+  if (inner >= outer)
+    throw ModelError(arguments.at("lock_inner_radius"), "must be less than lock_outer_radius");
+  if (span <= 0 || tg::approximate(span) >= 2 * M_PI - 1e-9)
+    throw ModelError(arguments.at("lock_span"), "must lie strictly between 0 and 360 degrees");
+
+  Point pin_direction = exact_unit_vector(phase, arguments.at("phase"), "phase", roundings);
+  Point pin_center = tg::add(center, tg::scale(pin_distance, pin_direction));
+
+  // The crescent is centred on the side opposite the pin: angles phase + pi + offset .. + span.
+  Point start = exact_unit_vector(Rational(phase + offset), arguments.at("lock_offset"),
+                                  "phase + lock_offset", roundings);
+  Point end = exact_unit_vector(Rational(phase + offset + span), arguments.at("lock_span"),
+                                "phase + lock_offset + lock_span", roundings);
+  start = Point{-start.x, -start.y};
+  end = Point{-end.x, -end.y};
+
+  // Coarse check that the pin does not sit in or on the crescent (the reader checks exactly).
+  {
+    double dx = tg::approximate(pin_direction.x), dy = tg::approximate(pin_direction.y);
+    double pin_angle = std::atan2(dy, dx);
+    double start_angle = std::atan2(tg::approximate(start.y), tg::approximate(start.x));
+    double relative = std::remainder(pin_angle - start_angle, 2 * M_PI);
+    if (relative < 0) relative += 2 * M_PI;
+    double distance = tg::approximate(pin_distance);
+    double rp = tg::approximate(pin_radius);
+    bool within_span = relative <= tg::approximate(span);
+    if (within_span && distance + rp > tg::approximate(inner) &&
+        distance - rp < tg::approximate(outer))
+      throw ModelError(arguments.at("pin_center_radius"),
+                       "the pin overlaps the locking crescent (check phase and lock_offset)");
+  }
+
+  std::vector<Loop> loops;
+  loops.push_back(tg::LoopBuilder::circle(pin_center, pin_radius, "pin", pointer));
+  tg::LoopBuilder crescent(tg::add(center, tg::scale(outer, start)), pointer);
+  crescent.arc_to(tg::add(center, tg::scale(outer, end)), center, true, "lock arc outer");
+  if (inner > 0) {
+    crescent.line_to(tg::add(center, tg::scale(inner, end)), "lock end 2");
+    crescent.arc_to(tg::add(center, tg::scale(inner, start)), center, false, "lock arc inner");
+    crescent.line_to(tg::add(center, tg::scale(outer, start)), "lock end 1");
+  } else {
+    crescent.line_to(center, "lock end 2");
+    crescent.line_to(tg::add(center, tg::scale(outer, start)), "lock end 1");
+  }
+  loops.push_back(crescent.finish());
+  return loops;
+}
+
+}  // namespace template_detail
+}  // namespace hipair::model_detail

@@ -1,0 +1,255 @@
+// Feature templates of an escapement-type balance governor: escape wheel, anchor (pallet fork),
+// balance (roller disc with impulse pin).
+#include "model/exact_trig.hpp"
+#include "model/template_arguments.hpp"
+#include "model/template_geometry.hpp"
+
+#include <hipair/error.hpp>
+
+#include <cmath>
+
+namespace hipair::model_detail::template_detail {
+namespace tg = template_geometry;
+
+namespace {
+
+std::string tooth(long index) { return "tooth " + std::to_string(index + 1); }
+
+// Exact unit vector near the direction of `v` (exact when |v| is rational).
+Point unit_toward(const Point& v, const std::string& pointer, const std::string& what,
+                  std::vector<Rounding>& roundings) {
+  Rational squared = tg::squared_norm(v);
+  mpz_class num_root, den_root;
+  mpz_sqrt(num_root.get_mpz_t(), squared.get_num_mpz_t());
+  mpz_sqrt(den_root.get_mpz_t(), squared.get_den_mpz_t());
+  if (num_root * num_root == squared.get_num() && den_root * den_root == squared.get_den()) {
+    Rational length(num_root, den_root);
+    length.canonicalize();
+    return tg::scale(Rational(1 / length), v);
+  }
+  Rational length = tg::approximate_sqrt(squared);
+  return tg::point_on_circle_near(Point{0, 0}, Rational(1),
+                                  tg::scale(Rational(1 / length), v), pointer, what, roundings);
+}
+
+}  // namespace
+
+// Ratchet-like teeth built for a wheel driven counter-clockwise, mirrored for "cw": the tip's
+// leading corner at 2 pi k / z, an optional flat top (club) of angular width tip_angle behind
+// it, a locking face from the leading corner to the root circle, raked back by face_angle, and
+// a straight back from the previous root point to the trailing top corner.
+std::vector<Loop> expand_escape_wheel(const Arguments& arguments,
+                                      std::vector<Rounding>& roundings) {
+  const std::string& pointer = arguments.pointer();
+  Point center = arguments.point("center");
+  long teeth = arguments.count("teeth", 3, 2000);
+  Rational tip_radius = arguments.positive_length("tip_radius");
+  Rational root_radius = arguments.positive_length("root_radius");
+  Rational phase = arguments.angle("phase");
+  bool driven_ccw = arguments.counter_clockwise("dir", false);
+  Rational tip_angle = arguments.angle("tip_angle");
+  Rational face_angle = arguments.angle("face_angle");
+  if (root_radius >= tip_radius)
+    throw ModelError(arguments.at("root_radius"), "must be less than tip_radius");
+  if (tip_angle < 0) throw ModelError(arguments.at("tip_angle"), "must not be negative");
+  if (face_angle < 0) throw ModelError(arguments.at("face_angle"), "must not be negative");
+  double pitch = 2 * M_PI / static_cast<double>(teeth);
+  if (tg::approximate(tip_angle) + tg::approximate(face_angle) >= pitch * 0.75)
+    throw ModelError(arguments.at("face_angle"),
+                     "tip_angle + face_angle must stay below 3/4 of the tooth pitch");
+
+  Point trailing = tip_angle == 0
+                       ? Point{Rational(1), Rational(0)}
+                       : exact_unit_vector(Rational(-tip_angle), arguments.at("tip_angle"),
+                                           "-tip_angle", roundings);
+  Point rake = face_angle == 0
+                   ? Point{Rational(1), Rational(0)}
+                   : exact_unit_vector(Rational(-face_angle), arguments.at("face_angle"),
+                                       "-face_angle", roundings);
+  Point leading_corner{tip_radius, Rational(0)};
+  Point trailing_corner = tg::scale(tip_radius, trailing);
+  Point root_point = tg::scale(root_radius, rake);
+
+  Point phase_unit = exact_unit_vector(phase, arguments.at("phase"), "phase", roundings);
+  std::vector<Point> turn(teeth);
+  for (long k = 0; k < teeth; ++k)
+    turn[k] = exact_unit_vector_pi(Rational(2 * k, teeth), pointer, tooth(k) + " direction",
+                                   roundings);
+  // Canonical (counter-clockwise driven) frame, then mirrored for clockwise, then placed.
+  auto at = [&](long k, const Point& local) {
+    Point p = tg::rotate(local, turn[k % teeth]);
+    if (!driven_ccw) p = tg::mirror(p);
+    return tg::add(center, tg::rotate(p, phase_unit));
+  };
+  tg::LoopBuilder loop(at(teeth - 1, root_point), pointer);
+  for (long k = 0; k < teeth; ++k) {
+    if (tip_angle != 0) {
+      loop.line_to(at(k, trailing_corner), tooth(k) + " back");
+      loop.line_to(at(k, leading_corner), tooth(k) + " top");
+    } else {
+      loop.line_to(at(k, leading_corner), tooth(k) + " back");
+    }
+    loop.line_to(at(k, root_point), tooth(k) + " face");
+  }
+  return {loop.finish()};
+}
+
+// A dead-beat (Graham-type) anchor. Canonical frame: pivot A at the origin, escape wheel
+// centre W at (0, -D) (D = |A - W|), fork pointing away from the wheel (+y). The tangents from A
+// touch the wheel's tip circle at distance L = sqrt(D^2 - R^2) from A. Both pallets span the
+// radii L -+ pallet_width/2 about A. The entry pallet (left) locks on its outer face, the exit
+// pallet (right) on its inner face: both are arcs about A (no recoil). Their impulse faces are
+// straight and each spans `lift` of anchor rotation; the impulse intervals of the two pallets
+// overlap by `lock`, which is the locking depth when the wheel drops onto a pallet.
+std::vector<Loop> expand_anchor(const Arguments& arguments, std::vector<Rounding>& roundings) {
+  const std::string& pointer = arguments.pointer();
+  Point pivot = arguments.point("center");
+  Point wheel = arguments.point("wheel_center");
+  Rational wheel_radius = arguments.positive_length("wheel_radius");
+  Rational width = arguments.positive_length("pallet_width");
+  Rational lift = arguments.angle("lift");
+  Rational lock = arguments.angle("lock");
+  Rational default_extent = Rational(349066, 1000000);  // about 20 degrees
+  Rational extent = arguments.angle("pallet_extent", default_extent);
+  Rational fork_length = arguments.positive_length("fork_length");
+  Rational fork_width = arguments.positive_length("fork_width");
+  Rational slot_width = arguments.positive_length("fork_slot_width");
+  Rational slot_depth = arguments.positive_length("fork_slot_depth");
+  if (lift <= 0) throw ModelError(arguments.at("lift"), "must be positive");
+  if (lock < 0) throw ModelError(arguments.at("lock"), "must not be negative");
+  if (extent <= 0) throw ModelError(arguments.at("pallet_extent"), "must be positive");
+  if (tg::approximate(lift + lock + extent) >= 1.2)
+    throw ModelError(arguments.at("lift"), "lift + lock + pallet_extent must stay below 1.2 rad");
+
+  Point axis = tg::subtract(pivot, wheel);  // from the wheel centre to the pivot
+  Rational distance_squared = tg::squared_norm(axis);
+  if (distance_squared <= wheel_radius * wheel_radius)
+    throw ModelError(arguments.at("center"), "the anchor pivot must lie outside the escape wheel");
+  double D = std::sqrt(tg::approximate(distance_squared));
+  double R = tg::approximate(wheel_radius);
+  Rational tangent = round_to_grid(tg::approximate_sqrt(distance_squared - wheel_radius * wheel_radius));
+  roundings.push_back(Rounding{pointer, "anchor tangent length sqrt(|center - wheel_center|^2 - "
+                                        "wheel_radius^2)",
+                               tangent, tg::grid_step()});
+  Rational inner = tangent - width / 2;
+  Rational outer = tangent + width / 2;
+  if (inner <= 0)
+    throw ModelError(arguments.at("pallet_width"),
+                     "is wider than twice the pallet radius (the tangent length from the pivot "
+                     "to the wheel)");
+  Rational half_fork = fork_width / 2;
+  Rational half_slot = slot_width / 2;
+  if (half_fork >= outer)
+    throw ModelError(arguments.at("fork_width"), "is wider than the anchor's pallet circle");
+  if (slot_width >= fork_width)
+    throw ModelError(arguments.at("fork_slot_width"), "must be less than fork_width");
+  if (slot_depth >= fork_length ||
+      tg::approximate(fork_length - slot_depth) <= tg::approximate(outer))
+    throw ModelError(arguments.at("fork_slot_depth"),
+                     "the fork slot must end outside the pallet circle (fork_length - "
+                     "fork_slot_depth > tangent length + pallet_width/2)");
+
+  auto path_angle = [&](double rho) {
+    // Angle at A between A->W and A->P for P on the wheel's tip circle at distance rho from A.
+    double c = (D * D + rho * rho - R * R) / (2 * D * rho);
+    return std::acos(std::max(-1.0, std::min(1.0, c)));
+  };
+  double down = 1.5 * M_PI;
+  double rho_in = tg::approximate(inner), rho_out = tg::approximate(outer);
+  double lift_d = tg::approximate(lift), lock_d = tg::approximate(lock);
+  double extent_d = tg::approximate(extent);
+  double entry_corner = down - path_angle(rho_out) - lift_d / 2 + lock_d / 2;
+  double exit_corner = down + path_angle(rho_in) + lift_d / 2 - lock_d / 2;
+  if (entry_corner + lift_d >= down || exit_corner - lift_d <= down)
+    throw ModelError(arguments.at("lift"), "the pallets would meet under the pivot: reduce lift "
+                                           "or pallet_width");
+
+  auto polar = [&](const Rational& radius, double angle, const std::string& what) {
+    double r = tg::approximate(radius);
+    Point near{Rational(r * std::cos(angle)), Rational(r * std::sin(angle))};
+    return tg::point_on_circle_near(Point{0, 0}, radius, near, pointer, what, roundings);
+  };
+  Point entry_lock_corner = polar(outer, entry_corner, "entry pallet locking corner");
+  Point entry_discharge = polar(inner, entry_corner + lift_d, "entry pallet discharge corner");
+  Point entry_outer_end = polar(outer, entry_corner - extent_d, "entry pallet outer end");
+  Point entry_inner_end = polar(inner, entry_corner - extent_d, "entry pallet inner end");
+  Point exit_lock_corner = polar(inner, exit_corner, "exit pallet locking corner");
+  Point exit_discharge = polar(outer, exit_corner - lift_d, "exit pallet discharge corner");
+  Point exit_outer_end = polar(outer, exit_corner + extent_d, "exit pallet outer end");
+  Point exit_inner_end = polar(inner, exit_corner + extent_d, "exit pallet inner end");
+  Rational fork_base_y =
+      tg::approximate_sqrt(Rational(outer * outer - half_fork * half_fork));
+  Point fork_base_right =
+      tg::point_on_circle_near(Point{0, 0}, outer, Point{half_fork, fork_base_y}, pointer,
+                               "fork base on the pallet circle", roundings);
+  Point fork_base_left{-fork_base_right.x, fork_base_right.y};
+  Rational notch_depth = round_to_grid(Rational((D - R) / 2));
+  Point notch{Rational(0), Rational(-notch_depth)};
+
+  // Canonical +y is the direction from the wheel to the pivot.
+  Point up = unit_toward(axis, pointer, "anchor axis direction (wheel centre to pivot)",
+                         roundings);
+  Point frame{up.y, -up.x};  // rotates (0, 1) onto `up`
+  auto at = [&](const Point& local) { return tg::add(pivot, tg::rotate(local, frame)); };
+  Point origin = at(Point{0, 0});
+
+  tg::LoopBuilder loop(at(exit_discharge), pointer);
+  loop.arc_to(at(exit_outer_end), origin, true, "exit pallet back");
+  loop.arc_to(at(fork_base_right), origin, true, "arm R");
+  loop.line_to(at(Point{half_fork, fork_length}), "fork R outer");
+  loop.line_to(at(Point{half_slot, fork_length}), "fork R tip");
+  loop.line_to(at(Point{half_slot, Rational(fork_length - slot_depth)}), "fork slot wall R");
+  loop.line_to(at(Point{-half_slot, Rational(fork_length - slot_depth)}), "fork slot bottom");
+  loop.line_to(at(Point{-half_slot, fork_length}), "fork slot wall L");
+  loop.line_to(at(Point{-half_fork, fork_length}), "fork L tip");
+  loop.line_to(at(fork_base_left), "fork L outer");
+  loop.arc_to(at(entry_outer_end), origin, true, "arm L");
+  loop.arc_to(at(entry_lock_corner), origin, true, "entry locking face");
+  loop.line_to(at(entry_discharge), "entry impulse face");
+  loop.arc_to(at(entry_inner_end), origin, false, "entry pallet back");
+  loop.line_to(at(notch), "notch L");
+  loop.line_to(at(exit_inner_end), "notch R");
+  loop.arc_to(at(exit_lock_corner), origin, false, "exit locking face");
+  loop.line_to(at(exit_discharge), "exit impulse face");
+  return {loop.finish()};
+}
+
+// A roller disc with an impulse pin: the disc circle (radius) and the pin circle (pin_radius
+// at pin_center_radius, direction phase) merged into one outline. The two circles meet at
+// irrational points; exact points on the disc circle next to them are used and the pin circle
+// passes through both (its radius changes by at most the recorded bound).
+std::vector<Loop> expand_balance(const Arguments& arguments, std::vector<Rounding>& roundings) {
+  const std::string& pointer = arguments.pointer();
+  Point center = arguments.point("center");
+  Rational radius = arguments.positive_length("radius");
+  Rational pin_radius = arguments.positive_length("pin_radius");
+  Rational pin_distance = arguments.positive_length("pin_center_radius");
+  Rational phase = arguments.angle("phase");
+  if (pin_distance + pin_radius <= radius)
+    throw ModelError(arguments.at("pin_center_radius"),
+                     "the pin lies inside the disc: it must stick out (pin_center_radius + "
+                     "pin_radius > radius)");
+  if (pin_distance - pin_radius >= radius)
+    throw ModelError(arguments.at("pin_center_radius"),
+                     "the pin is detached from the disc (pin_center_radius - pin_radius must be "
+                     "less than radius)");
+  if (pin_radius >= radius + pin_distance)
+    throw ModelError(arguments.at("pin_radius"), "the pin would swallow the disc");
+  Rational along =
+      (pin_distance * pin_distance + radius * radius - pin_radius * pin_radius) / (2 * pin_distance);
+  Rational across = tg::approximate_sqrt(Rational(radius * radius - along * along));
+  Point meet = tg::point_on_circle_near(Point{0, 0}, radius, Point{along, across}, pointer,
+                                        "impulse pin meets the disc (the pin circle passes "
+                                        "through this point)",
+                                        roundings);
+  Point meet_below = tg::mirror(meet);
+  Point pin_center{pin_distance, Rational(0)};
+  Point unit = exact_unit_vector(phase, arguments.at("phase"), "phase", roundings);
+  auto at = [&](const Point& local) { return tg::add(center, tg::rotate(local, unit)); };
+  tg::LoopBuilder loop(at(meet), pointer);
+  loop.arc_to(at(meet_below), center, true, "rim");
+  loop.arc_to(at(meet), at(pin_center), true, "impulse pin");
+  return {loop.finish()};
+}
+
+}  // namespace hipair::model_detail::template_detail
