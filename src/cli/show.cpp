@@ -1,0 +1,157 @@
+// `hipair show MODEL --svg OUT [--config part=value,...] [--labels]`: draws the mechanism at
+// its initial configuration (or the one given) as an SVG picture.
+#include "cli/commands.hpp"
+
+#include "io/atomic_file.hpp"
+#include "render/mechanism_svg.hpp"
+
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace hipair::cli {
+namespace {
+
+struct ShowOptions {
+  std::string model;
+  std::string svg;
+  std::vector<std::string> configuration;
+  bool labels = false;
+  double width = 900;
+};
+
+std::string trim(const std::string& text) {
+  std::size_t first = text.find_first_not_of(" \t");
+  if (first == std::string::npos) return "";
+  std::size_t last = text.find_last_not_of(" \t");
+  return text.substr(first, last - first + 1);
+}
+
+// An angle in the model's angle unit, or with an explicit "deg"/"rad" suffix, to rad.
+Rational angle_value(const std::string& text, const std::string& unit, const std::string& item) {
+  std::string body = trim(text);
+  std::string suffix = unit;
+  for (const char* word : {"deg", "rad"}) {
+    std::string w = word;
+    if (body.size() > w.size() && body.compare(body.size() - w.size(), w.size(), w) == 0) {
+      suffix = w;
+      body = trim(body.substr(0, body.size() - w.size()));
+    }
+  }
+  Rational value;
+  try {
+    value = parse_rational(body);
+  } catch (const Error&) {
+    throw ModelError("", "--config " + item + ": '" + text + "' is not a number");
+  }
+  if (suffix != "deg") return value;
+  // Degrees to radians: a picture, so a double conversion is enough.
+  return Rational(value.get_d() * M_PI / 180);
+}
+
+Rational length_value(const std::string& text, const std::string& item) {
+  try {
+    return parse_rational(trim(text));
+  } catch (const Error&) {
+    throw ModelError("", "--config " + item + ": '" + text + "' is not a number");
+  }
+}
+
+// Applies "part=value" or "part.coordinate=value" items (comma separated lists allowed).
+void apply_configuration(const Model& model, const std::vector<std::string>& items,
+                         std::vector<PartConfiguration>& configurations) {
+  for (const std::string& list : items) {
+    std::stringstream stream(list);
+    std::string item;
+    while (std::getline(stream, item, ',')) {
+      item = trim(item);
+      if (item.empty()) continue;
+      std::size_t equals = item.find('=');
+      if (equals == std::string::npos)
+        throw ModelError("", "--config expects part=value, got '" + item + "'");
+      std::string name = trim(item.substr(0, equals));
+      std::string value = item.substr(equals + 1);
+      std::string coordinate;
+      std::size_t dot = name.rfind('.');
+      if (dot != std::string::npos && !model.find_part(name)) {
+        coordinate = name.substr(dot + 1);
+        name = name.substr(0, dot);
+      }
+      std::optional<std::size_t> index = model.find_part(name);
+      if (!index) throw ModelError("", "--config: no part named '" + name + "'");
+      const Motion& motion = model.parts[*index].motion;
+      PartConfiguration& c = configurations[*index];
+      if (coordinate.empty()) {
+        switch (motion.kind) {
+          case Motion::Kind::rotation:
+          case Motion::Kind::pin_slot: coordinate = "angle"; break;
+          case Motion::Kind::translation: coordinate = "offset"; break;
+          case Motion::Kind::planar:
+            throw ModelError("", "--config: part '" + name +
+                                     "' moves in the plane: give part.x=, part.y=, part.angle=");
+          case Motion::Kind::fixed:
+            throw ModelError("", "--config: part '" + name + "' is fixed");
+        }
+      }
+      bool has_angle = motion.kind == Motion::Kind::rotation ||
+                       motion.kind == Motion::Kind::planar ||
+                       motion.kind == Motion::Kind::pin_slot;
+      bool has_offset =
+          motion.kind == Motion::Kind::translation || motion.kind == Motion::Kind::pin_slot;
+      bool planar = motion.kind == Motion::Kind::planar;
+      if (coordinate == "angle" && has_angle) {
+        c.angle = angle_value(value, model.angle_unit, item);
+      } else if (coordinate == "offset" && has_offset) {
+        c.offset = length_value(value, item);
+      } else if (coordinate == "x" && planar) {
+        c.x = length_value(value, item);
+      } else if (coordinate == "y" && planar) {
+        c.y = length_value(value, item);
+      } else {
+        throw ModelError("", "--config: part '" + name + "' has no coordinate '" + coordinate +
+                                 "'");
+      }
+    }
+  }
+}
+
+int run_show(const ShowOptions& options) {
+  Model model = read_model_file(options.model);
+  std::vector<PartConfiguration> configurations;
+  for (const Part& part : model.parts) configurations.push_back(part.initial);
+  apply_configuration(model, options.configuration, configurations);
+  render::MechanismSvgOptions drawing;
+  drawing.labels = options.labels;
+  drawing.pixel_width = options.width;
+  std::string svg = render::mechanism_svg(model, configurations, drawing);
+  io::write_file_atomically(options.svg, svg);
+  std::cout << "wrote " << options.svg << " (" << model.parts.size() << " parts of '"
+            << model.name << "')\n";
+  return 0;
+}
+
+}  // namespace
+
+void register_show(CLI::App& app, Action& action) {
+  auto options = std::make_shared<ShowOptions>();
+  CLI::App* command =
+      app.add_subcommand("show", "Draw a mechanism at its initial (or a given) configuration");
+  command->add_option("model", options->model, "model file (JSON, see docs/model-format.md)")
+      ->required();
+  command->add_option("--svg", options->svg, "output SVG file (written atomically)")->required();
+  command->add_option("--config", options->configuration,
+                      "part configuration: part=value (angle in the model's angle unit, or with "
+                      "a deg/rad suffix; offset in mm), part.x=, part.y=, part.angle=; comma "
+                      "separated")
+      ->delimiter(',');
+  command->add_flag("--labels", options->labels, "write the feature label of every edge");
+  command->add_option("--width", options->width, "picture width in pixels (default 900)")
+      ->check(CLI::Range(100.0, 20000.0));
+  command->callback([&action, options] { action = [options] { return run_show(*options); }; });
+}
+
+}  // namespace hipair::cli
