@@ -28,7 +28,7 @@ namespace hipair::cspace {
 /// For a 1-D space only the x variable occurs (c[i][0]).
 struct IntegerPolynomial2 {
   std::vector<std::vector<mpz_class>> coefficients;  ///< coefficients[i][j] of x^i y^j
-  int degree_x() const noexcept;
+  int degree_x() const noexcept;  ///< -1 for the zero polynomial (also degree_y)
   int degree_y() const noexcept;
   bool is_zero() const;
 };
@@ -74,12 +74,32 @@ enum class ContactType {
 /// chart box contains every configuration where `first` touches `second` (a superset: the
 /// validity range — contact point within both features — is an extra restriction that the
 /// builder may use to clip; correctness of free/blocked never depends on it).
+///
+/// Degenerate case: when the two features touch at every configuration of the chart (e.g. a
+/// shaft in a fixed bearing of the same radius, concentric with the pivot), `polynomial` is
+/// identically zero (is_zero()); such a curve bounds no region and the builder may skip it.
+struct ContactCurve;
+
+/// One clause of a contact's validity: atoms[0] >= 0, or, with two atoms,
+/// atoms[0] >= 0 || atoms[1] >= 0 (chart coordinates, same variables as the curve).
+struct ValidityClause {
+  std::vector<IntegerPolynomial2> atoms;
+};
+
+/// See the comment above the forward declaration.
 struct ContactCurve {
   FeatureRef first;
   FeatureRef second;
   ContactType type = ContactType::vertex_segment;
   IntegerPolynomial2 polynomial;
   std::string label;  ///< "driver pin / wheel slot 2 wall" for people
+  /// Added by the kernels: sign of `polynomial` on the locally blocked (penetrating) side near
+  /// valid contact points: -1; 0 when unknown (squared forms, used when a product of radii or
+  /// a radius times a segment length is irrational: they also vanish on a spurious branch).
+  int blocked_sign = -1;
+  /// Added by the kernels: the contact point lies within both features iff every clause
+  /// holds (optional for the builder: clipping only; see ValidityClause).
+  std::vector<ValidityClause> validity;
 };
 
 /// A configuration of the pair in chart coordinates of a given chart.
@@ -100,6 +120,8 @@ struct CurveStatistics {
   std::size_t feature_pairs_considered = 0;
   std::size_t feature_pairs_culled = 0;   ///< swept annuli/strips disjoint: can never touch
   std::size_t curves = 0;                 ///< non-trivial contact polynomials emitted
+  std::size_t identically_zero = 0;       ///< added: degenerate curves emitted (contact everywhere)
+  std::size_t reflex_vertices_skipped = 0;  ///< added: strictly reflex vertices never touch alone
 };
 
 /// The moving parts of a pair in axis order: `x_part` moves along x, `y_part` along y (or

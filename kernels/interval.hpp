@@ -1,0 +1,99 @@
+// HIPAIR contact kernels — a certified floating-point interval.
+//
+// Each operation is computed in round-to-nearest and then widened outward by one unit in the
+// last place on each side. A round-to-nearest result is within half an ulp of the exact
+// value, so the widened interval always contains the exact result of the operation applied
+// to any points of the operands. No rounding-mode switches: the compiler cannot break it.
+#pragma once
+
+#include <gmpxx.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace hipair::kernels {
+
+/// Closed interval [lo, hi] of doubles that encloses an exact real value.
+struct Interval {
+  double lo = 0.0;
+  double hi = 0.0;
+
+  Interval() = default;
+  /// Exact point interval of an integer (|value| <= 2^53 is exact in double).
+  Interval(int value) : lo(value), hi(value) {}  // NOLINT(google-explicit-constructor)
+  Interval(double low, double high) : lo(low), hi(high) {}
+
+  /// Point enclosure of an exact double.
+  static Interval point(double value) { return Interval(value, value); }
+
+  /// Enclosure of an exact rational.
+  static Interval enclose(const mpq_class& value) {
+    // mpq_get_d truncates toward zero: the exact value lies between it and the next double
+    // away from zero.
+    double truncated = value.get_d();
+    int sign = sgn(value);
+    if (sign == 0) return Interval(0.0, 0.0);
+    double away = std::nextafter(truncated, sign > 0 ? std::numeric_limits<double>::infinity()
+                                                     : -std::numeric_limits<double>::infinity());
+    return sign > 0 ? Interval(truncated, away) : Interval(away, truncated);
+  }
+
+  bool contains(double value) const { return lo <= value && value <= hi; }
+  /// True when the exact rational `value` lies in the interval.
+  bool contains(const mpq_class& value) const {
+    return !(mpq_class(lo) > value) && !(mpq_class(hi) < value);
+  }
+  double width() const { return hi - lo; }
+  double middle() const { return 0.5 * (lo + hi); }
+  /// -1, 0, +1 when certain, 2 when the interval contains 0 but is not {0}.
+  int sign() const {
+    if (lo > 0.0) return 1;
+    if (hi < 0.0) return -1;
+    if (lo == 0.0 && hi == 0.0) return 0;
+    return 2;
+  }
+};
+
+namespace interval_detail {
+inline double down(double value) {
+  return std::nextafter(value, -std::numeric_limits<double>::infinity());
+}
+inline double up(double value) {
+  return std::nextafter(value, std::numeric_limits<double>::infinity());
+}
+}  // namespace interval_detail
+
+inline Interval operator+(const Interval& a, const Interval& b) {
+  return Interval(interval_detail::down(a.lo + b.lo), interval_detail::up(a.hi + b.hi));
+}
+
+inline Interval operator-(const Interval& a, const Interval& b) {
+  return Interval(interval_detail::down(a.lo - b.hi), interval_detail::up(a.hi - b.lo));
+}
+
+inline Interval operator-(const Interval& a) { return Interval(-a.hi, -a.lo); }
+
+inline Interval operator*(const Interval& a, const Interval& b) {
+  double p1 = a.lo * b.lo;
+  double p2 = a.lo * b.hi;
+  double p3 = a.hi * b.lo;
+  double p4 = a.hi * b.hi;
+  double low = std::min(std::min(p1, p2), std::min(p3, p4));
+  double high = std::max(std::max(p1, p2), std::max(p3, p4));
+  return Interval(interval_detail::down(low), interval_detail::up(high));
+}
+
+/// Enclosure of the square root of the non-negative part of `a`.
+inline Interval sqrt(const Interval& a) {
+  double low = a.lo <= 0.0 ? 0.0 : interval_detail::down(std::sqrt(a.lo));
+  double high = a.hi <= 0.0 ? 0.0 : interval_detail::up(std::sqrt(a.hi));
+  return Interval(std::max(0.0, low), high);
+}
+
+/// Union hull.
+inline Interval hull(const Interval& a, const Interval& b) {
+  return Interval(std::min(a.lo, b.lo), std::max(a.hi, b.hi));
+}
+
+}  // namespace hipair::kernels

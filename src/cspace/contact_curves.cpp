@@ -1,0 +1,704 @@
+// Pair axes, chart layout and contact-curve generation for fixed-axis pairs.
+#include "cspace/contact_curves.hpp"
+
+#include "cspace/polynomial.hpp"
+#include "cspace/pose.hpp"
+#include "kernels/contact.hpp"
+#include "kernels/interval.hpp"
+
+#include <hipair/error.hpp>
+
+#include <mpfr.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace hipair::cspace {
+
+// ============================================================================ pair axes
+
+PairAxes pair_axes(const Model& model, std::size_t first, std::size_t second) {
+  if (first >= model.parts.size() || second >= model.parts.size())
+    throw GeometryError("pair refers to a part that does not exist");
+  if (first == second) throw GeometryError("a part cannot be paired with itself");
+  const Part& a = model.parts[first];
+  const Part& b = model.parts[second];
+  for (const Part* part : {&a, &b}) {
+    if (motion_degrees_of_freedom(part->motion) > 1)
+      throw GeometryError("part '" + part->name +
+                          "' moves with more than one degree of freedom; its pair is not a "
+                          "fixed-axis pair");
+  }
+  PairAxes axes;
+  axes.first = first;
+  axes.second = second;
+  axes.first_moves = motion_degrees_of_freedom(a.motion) == 1;
+  axes.second_moves = motion_degrees_of_freedom(b.motion) == 1;
+  if (!axes.first_moves && !axes.second_moves)
+    throw GeometryError("parts '" + a.name + "' and '" + b.name +
+                        "' are both fixed: their pair has no configuration space");
+  return axes;
+}
+
+double chart_to_coordinate(const ChartAxis& axis, double chart_value) {
+  if (axis.kind == ChartAxis::Kind::translation) return chart_value;
+  return (axis.half_turn ? std::numbers::pi : 0.0) + 2.0 * std::atan(chart_value);
+}
+
+namespace {
+
+using kernels::Interval;
+
+// ============================================================================ certified ranges
+
+Interval root_of(const Rational& value) { return kernels::sqrt(Interval::enclose(value)); }
+
+Rational squared_length(const Point& v) { return dot(v, v); }
+
+// Certified [lo, hi] of the distances from `center` to the points of a feature.
+Interval radial_range(const BodyFeature& feature, const Point& center) {
+  const Edge& edge = *feature.edge;
+  if (feature.ref.kind == FeatureRef::Kind::vertex)
+    return root_of(squared_length(difference(feature.point, center)));
+  Interval source = root_of(squared_length(difference(edge.source, center)));
+  Interval target = root_of(squared_length(difference(edge.target, center)));
+  if (feature.ref.kind == FeatureRef::Kind::segment) {
+    Point d = difference(edge.target, edge.source);
+    Point from_source = difference(center, edge.source);
+    Rational along = dot(from_source, d);
+    Rational length2 = squared_length(d);
+    Interval near = source.lo <= target.lo ? source : target;
+    if (sgn(along) > 0 && along < length2) {
+      Rational c = cross(d, from_source);
+      near = root_of(Rational(c * c / length2));
+    }
+    return Interval(near.lo, std::max(source.hi, target.hi));
+  }
+  // Arc: extreme distances are at the points on the line through centre and arc centre when
+  // they lie on the arc, else at the endpoints.
+  kernels::ArcSector<Rational> sector = arc_sector(edge);
+  Interval radius = root_of(edge.radius_squared);
+  Point away = difference(edge.center, center);
+  Rational distance2 = squared_length(away);
+  if (sgn(distance2) == 0) return radius;
+  Interval distance = root_of(distance2);
+  double far = std::max(source.hi, target.hi);
+  if (sector_contains(sector, away)) far = (distance + radius).hi;
+  double near = std::min(source.lo, target.lo);
+  if (sector_contains(sector, Point{Rational(-away.x), Rational(-away.y)})) {
+    Interval gap = distance - radius;
+    near = std::max({0.0, gap.lo, (-gap).lo});
+  }
+  return Interval(near, far);
+}
+
+// Certified [lo, hi] of u . p over the feature's points, u an exact unit vector.
+Interval projection_range(const BodyFeature& feature, const Point& unit) {
+  const Edge& edge = *feature.edge;
+  if (feature.ref.kind == FeatureRef::Kind::vertex)
+    return Interval::enclose(dot(unit, feature.point));
+  Interval range = kernels::hull(Interval::enclose(dot(unit, edge.source)),
+                                 Interval::enclose(dot(unit, edge.target)));
+  if (feature.ref.kind == FeatureRef::Kind::segment) return range;
+  kernels::ArcSector<Rational> sector = arc_sector(edge);
+  Interval centre = Interval::enclose(dot(unit, edge.center));
+  Interval radius = root_of(edge.radius_squared);
+  if (sector_contains(sector, unit)) range.hi = std::max(range.hi, (centre + radius).hi);
+  if (sector_contains(sector, Point{Rational(-unit.x), Rational(-unit.y)}))
+    range.lo = std::min(range.lo, (centre - radius).lo);
+  return range;
+}
+
+bool disjoint(const Interval& a, const Interval& b) { return a.hi < b.lo || b.hi < a.lo; }
+
+// Lower bound of the distance from point o to the box [bx] x [by].
+double distance_to_box_lower(const Point& o, const Interval& bx, const Interval& by) {
+  Interval ox = Interval::enclose(o.x);
+  Interval oy = Interval::enclose(o.y);
+  double gx = std::max({0.0, (Interval(bx.lo, bx.lo) - ox).lo, (ox - Interval(bx.hi, bx.hi)).lo});
+  double gy = std::max({0.0, (Interval(by.lo, by.lo) - oy).lo, (oy - Interval(by.hi, by.hi)).lo});
+  Interval g2 = Interval(gx, gx) * Interval(gx, gx) + Interval(gy, gy) * Interval(gy, gy);
+  return kernels::sqrt(g2).lo;
+}
+
+// Upper bound of the largest distance from o to a point of the box.
+double distance_to_box_upper(const Point& o, const Interval& bx, const Interval& by) {
+  Interval ox = Interval::enclose(o.x);
+  Interval oy = Interval::enclose(o.y);
+  double gx = std::max((ox - Interval(bx.lo, bx.lo)).hi, (Interval(bx.hi, bx.hi) - ox).hi);
+  double gy = std::max((oy - Interval(by.lo, by.lo)).hi, (Interval(by.hi, by.hi) - oy).hi);
+  Interval g2 = Interval(gx, gx) * Interval(gx, gx) + Interval(gy, gy) * Interval(gy, gy);
+  return kernels::sqrt(g2).hi;
+}
+
+// ============================================================================ culling
+
+// Where a feature can be: the quantities the swept-region tests need.
+struct SweptFeature {
+  Interval radial[2];   // distances from the first / second part's pivot (when it rotates)
+  Interval normal[2];   // projection on the first / second part's translation normal
+  Interval box_x;       // swept bounding box (static one for parts that do not translate)
+  Interval box_y;
+};
+
+enum class MotionKind { fixed, rotation, translation };
+
+struct PartMotion {
+  MotionKind kind = MotionKind::fixed;
+  Point pivot;
+  Point direction;
+  Point normal;
+  Rational lo;   // chart box of a translation
+  Rational hi;
+};
+
+PartMotion part_motion(const Part& part, bool moves, const ChartAxis& axis) {
+  PartMotion motion;
+  if (!moves) return motion;
+  if (part.motion.kind == Motion::Kind::rotation) {
+    motion.kind = MotionKind::rotation;
+    motion.pivot = part.motion.pivot;
+  } else {
+    motion.kind = MotionKind::translation;
+    motion.direction = part.motion.direction;
+    motion.normal = Point{Rational(-motion.direction.y), motion.direction.x};
+    motion.lo = axis.lo;
+    motion.hi = axis.hi;
+  }
+  return motion;
+}
+
+class Culler {
+ public:
+  Culler(const PartMotion& first, const PartMotion& second) : motion_{first, second} {
+    if (first.kind == MotionKind::rotation && second.kind == MotionKind::rotation) {
+      Rational d2 = squared_length(difference(first.pivot, second.pivot));
+      same_pivot_ = sgn(d2) == 0;
+      pivot_distance_ = root_of(d2);
+    }
+    if (first.kind == MotionKind::translation && second.kind == MotionKind::translation)
+      parallel_ = sgn(cross(first.direction, second.direction)) == 0;
+  }
+
+  SweptFeature describe(const BodyFeature& feature, int side) const {
+    SweptFeature swept;
+    for (int k = 0; k < 2; ++k) {
+      if (motion_[k].kind == MotionKind::rotation)
+        swept.radial[k] = radial_range(feature, motion_[k].pivot);
+      if (motion_[k].kind == MotionKind::translation)
+        swept.normal[k] = projection_range(feature, motion_[k].normal);
+    }
+    swept.box_x = projection_range(feature, Point{Rational(1), Rational(0)});
+    swept.box_y = projection_range(feature, Point{Rational(0), Rational(1)});
+    const PartMotion& own = motion_[side];
+    if (own.kind == MotionKind::translation) {
+      Rational x1 = own.lo * own.direction.x;
+      Rational x2 = own.hi * own.direction.x;
+      Rational y1 = own.lo * own.direction.y;
+      Rational y2 = own.hi * own.direction.y;
+      swept.box_x = swept.box_x + kernels::hull(Interval::enclose(x1), Interval::enclose(x2));
+      swept.box_y = swept.box_y + kernels::hull(Interval::enclose(y1), Interval::enclose(y2));
+    }
+    return swept;
+  }
+
+  /// True when the two features can never touch (certified).
+  bool never_touch(const SweptFeature& a, const SweptFeature& b) const {
+    MotionKind ka = motion_[0].kind;
+    MotionKind kb = motion_[1].kind;
+    using M = MotionKind;
+    if (ka == M::rotation && kb == M::rotation) return annuli_disjoint(a.radial[0], b.radial[1]);
+    if (ka == M::rotation && kb == M::fixed) return disjoint(a.radial[0], b.radial[0]);
+    if (ka == M::fixed && kb == M::rotation) return disjoint(a.radial[1], b.radial[1]);
+    if (ka == M::rotation && kb == M::translation) return disk_misses_strip(a, 0, b, 1);
+    if (ka == M::translation && kb == M::rotation) return disk_misses_strip(b, 1, a, 0);
+    bool boxes = disjoint(a.box_x, b.box_x) || disjoint(a.box_y, b.box_y);
+    if (ka == M::translation && kb == M::translation)
+      return boxes || (parallel_ && disjoint(a.normal[0], b.normal[0]));
+    if (ka == M::translation) return boxes || disjoint(a.normal[0], b.normal[0]);
+    if (kb == M::translation) return boxes || disjoint(a.normal[1], b.normal[1]);
+    return false;
+  }
+
+ private:
+  bool annuli_disjoint(const Interval& a, const Interval& b) const {
+    if (same_pivot_) return disjoint(a, b);
+    if ((Interval(a.hi, a.hi) + Interval(b.hi, b.hi)).hi < pivot_distance_.lo) return true;
+    if ((Interval(a.lo, a.lo) - Interval(b.hi, b.hi)).lo > pivot_distance_.hi) return true;
+    if ((Interval(b.lo, b.lo) - Interval(a.hi, a.hi)).lo > pivot_distance_.hi) return true;
+    return false;
+  }
+
+  // Rotating feature `r` (annulus about its pivot) against translating feature `t`.
+  bool disk_misses_strip(const SweptFeature& r, int rotating, const SweptFeature& t,
+                         int translating) const {
+    const Point& pivot = motion_[rotating].pivot;
+    double reach = r.radial[rotating].hi;
+    Interval centre = Interval::enclose(dot(motion_[translating].normal, pivot));
+    Interval disk = centre + Interval(-reach, reach);
+    if (disjoint(disk, t.normal[translating])) return true;
+    if (distance_to_box_lower(pivot, t.box_x, t.box_y) > reach) return true;
+    if (distance_to_box_upper(pivot, t.box_x, t.box_y) < r.radial[rotating].lo) return true;
+    return false;
+  }
+
+  PartMotion motion_[2];
+  bool same_pivot_ = false;
+  bool parallel_ = false;
+  Interval pivot_distance_;
+};
+
+// ============================================================================ exact kernels
+
+using Polynomial = RationalPolynomial2;
+using PolyVector = kernels::Vector<Polynomial>;
+
+PolyVector poly(const Point& p) { return PolyVector{Polynomial(p.x), Polynomial(p.y)}; }
+
+kernels::ArcSector<Polynomial> poly_sector(const Edge& edge) {
+  kernels::ArcSector<Rational> exact = arc_sector(edge);
+  kernels::ArcSector<Polynomial> sector;
+  sector.start = PolyVector{Polynomial(exact.start.x), Polynomial(exact.start.y)};
+  sector.end = PolyVector{Polynomial(exact.end.x), Polynomial(exact.end.y)};
+  sector.large = exact.large;
+  sector.full = exact.full;
+  return sector;
+}
+
+struct KernelResult {
+  bool exists = false;
+  ContactType type = ContactType::vertex_segment;
+  Polynomial value;
+  kernels::Validity<Polynomial> validity;
+  int blocked_sign = -1;
+};
+
+// The contact function and validity of a feature pair, or exists == false when the pair has
+// no contact of its own (vertex–vertex, segment–segment, concave arcs).
+KernelResult contact_of(const BodyFeature& fa, const BodyFeature& fb,
+                        const kernels::Pose<Polynomial>& a, const kernels::Pose<Polynomial>& b) {
+  using Kind = FeatureRef::Kind;
+  KernelResult result;
+  const Edge& ea = *fa.edge;
+  const Edge& eb = *fb.edge;
+  Kind ka = fa.ref.kind;
+  Kind kb = fb.ref.kind;
+  if (ka == Kind::vertex && kb == Kind::segment) {
+    result.type = ContactType::vertex_segment;
+    result.value = kernels::vertex_segment(a, poly(fa.point), b, poly(eb.source), poly(eb.target));
+    result.validity = kernels::vertex_segment_validity(a, poly(fa.point), b, poly(eb.source),
+                                                       poly(eb.target));
+  } else if (ka == Kind::segment && kb == Kind::vertex) {
+    result.type = ContactType::segment_vertex;
+    result.value = kernels::segment_vertex(a, poly(ea.source), poly(ea.target), b, poly(fb.point));
+    result.validity = kernels::segment_vertex_validity(a, poly(ea.source), poly(ea.target), b,
+                                                       poly(fb.point));
+  } else if (ka == Kind::vertex && kb == Kind::arc) {
+    result.type = ContactType::vertex_arc;
+    result.value = kernels::vertex_arc(a, poly(fa.point), b, poly(eb.center),
+                                       Polynomial(eb.radius_squared), eb.ccw);
+    result.validity =
+        kernels::vertex_arc_validity(a, poly(fa.point), b, poly(eb.center), poly_sector(eb));
+  } else if (ka == Kind::arc && kb == Kind::vertex) {
+    result.type = ContactType::arc_vertex;
+    result.value = kernels::arc_vertex(a, poly(ea.center), Polynomial(ea.radius_squared), ea.ccw,
+                                       b, poly(fb.point));
+    result.validity =
+        kernels::arc_vertex_validity(a, poly(ea.center), poly_sector(ea), b, poly(fb.point));
+  } else if (ka == Kind::arc && kb == Kind::arc) {
+    const Rational& ra2 = ea.radius_squared;
+    const Rational& rb2 = eb.radius_squared;
+    kernels::Tangency tangency;
+    if (ea.ccw && eb.ccw) {
+      tangency = kernels::Tangency::external;
+    } else if (ea.ccw && !eb.ccw && rb2 >= ra2) {
+      tangency = kernels::Tangency::first_inside_second;
+    } else if (!ea.ccw && eb.ccw && ra2 >= rb2) {
+      tangency = kernels::Tangency::second_inside_first;
+    } else {
+      return result;  // concave–concave, or the larger circle inside the smaller: never tangent
+    }
+    result.type = ContactType::arc_arc;
+    std::optional<Rational> product = exact_square_root(Rational(ra2 * rb2));
+    if (product) {
+      Rational sum = ra2 + rb2;
+      Rational distance2 = tangency == kernels::Tangency::external ? Rational(sum + 2 * *product)
+                                                                   : Rational(sum - 2 * *product);
+      result.value = kernels::arc_arc(a, poly(ea.center), b, poly(eb.center),
+                                      Polynomial(distance2), tangency);
+    } else {
+      result.value = kernels::arc_arc_squared(a, poly(ea.center), Polynomial(ra2), b,
+                                              poly(eb.center), Polynomial(rb2));
+      result.blocked_sign = 0;
+    }
+    result.validity = kernels::arc_arc_validity(a, poly(ea.center), poly_sector(ea), b,
+                                                poly(eb.center), poly_sector(eb), tangency);
+  } else if (ka == Kind::arc && kb == Kind::segment) {
+    if (!ea.ccw) return result;  // a concave arc is never tangent to a line without overlap
+    result.type = ContactType::arc_segment;
+    Rational product2 = ea.radius_squared * squared_length(difference(eb.target, eb.source));
+    std::optional<Rational> product = exact_square_root(product2);
+    if (product) {
+      result.value = kernels::arc_segment(a, poly(ea.center), Polynomial(*product), b,
+                                          poly(eb.source), poly(eb.target));
+    } else {
+      result.value = kernels::arc_segment_squared(a, poly(ea.center), Polynomial(product2), b,
+                                                  poly(eb.source), poly(eb.target));
+      result.blocked_sign = 0;
+    }
+    result.validity = kernels::arc_segment_validity(a, poly(ea.center), poly_sector(ea), b,
+                                                    poly(eb.source), poly(eb.target));
+  } else if (ka == Kind::segment && kb == Kind::arc) {
+    if (!eb.ccw) return result;
+    result.type = ContactType::segment_arc;
+    Rational product2 = eb.radius_squared * squared_length(difference(ea.target, ea.source));
+    std::optional<Rational> product = exact_square_root(product2);
+    if (product) {
+      result.value = kernels::segment_arc(a, poly(ea.source), poly(ea.target), b,
+                                          poly(eb.center), Polynomial(*product));
+    } else {
+      result.value = kernels::segment_arc_squared(a, poly(ea.source), poly(ea.target), b,
+                                                  poly(eb.center), Polynomial(product2));
+      result.blocked_sign = 0;
+    }
+    result.validity = kernels::segment_arc_validity(a, poly(ea.source), poly(ea.target), b,
+                                                    poly(eb.center), poly_sector(eb));
+  } else {
+    return result;  // vertex–vertex and segment–segment are covered by vertex contacts
+  }
+  result.exists = true;
+  return result;
+}
+
+// Whether a feature pair has a contact of its own (without computing it).
+bool has_contact(const BodyFeature& fa, const BodyFeature& fb) {
+  using Kind = FeatureRef::Kind;
+  Kind ka = fa.ref.kind;
+  Kind kb = fb.ref.kind;
+  if (ka == kb && ka != Kind::arc) return false;
+  if (ka == Kind::arc && kb == Kind::arc) {
+    const Edge& ea = *fa.edge;
+    const Edge& eb = *fb.edge;
+    if (ea.ccw && eb.ccw) return true;
+    if (ea.ccw && !eb.ccw) return eb.radius_squared >= ea.radius_squared;
+    if (!ea.ccw && eb.ccw) return ea.radius_squared >= eb.radius_squared;
+    return false;
+  }
+  if (ka == Kind::arc && kb == Kind::segment) return fa.edge->ccw;
+  if (ka == Kind::segment && kb == Kind::arc) return fb.edge->ccw;
+  return true;
+}
+
+// Validity clauses as integer polynomials; returns false when some clause can never hold.
+bool convert_validity(const kernels::Validity<Polynomial>& validity,
+                      std::vector<ValidityClause>& clauses) {
+  for (const auto& clause : validity.clauses) {
+    ValidityClause converted;
+    bool always = false;
+    bool possible = false;
+    for (int i = 0; i < clause.count; ++i) {
+      IntegerPolynomial2 atom =
+          normalized_integer_polynomial(clause.atoms[static_cast<std::size_t>(i)]);
+      if (atom.degree_x() <= 0 && atom.degree_y() <= 0) {
+        // constant atom: zero or positive holds everywhere, negative never
+        bool holds = atom.is_zero() || sgn(atom.coefficients[0][0]) > 0;
+        if (holds) always = true;
+        continue;
+      }
+      possible = true;
+      converted.atoms.push_back(std::move(atom));
+    }
+    if (always) continue;
+    if (!possible) return false;
+    clauses.push_back(std::move(converted));
+  }
+  return true;
+}
+
+const char* contact_word(ContactType type) {
+  switch (type) {
+    case ContactType::vertex_segment: return "vertex on segment";
+    case ContactType::segment_vertex: return "segment on vertex";
+    case ContactType::vertex_arc: return "vertex on arc";
+    case ContactType::arc_vertex: return "arc on vertex";
+    case ContactType::arc_arc: return "arc tangent to arc";
+    case ContactType::arc_segment: return "arc tangent to segment";
+    case ContactType::segment_arc: return "segment tangent to arc";
+  }
+  return "";
+}
+
+}  // namespace
+
+// ============================================================================ curves
+
+std::vector<ContactCurve> generate_contact_curves(const Model& model, const PairAxes& axes,
+                                                  const ChartAxis& x, const ChartAxis& y,
+                                                  CurveStatistics* statistics) {
+  CurveStatistics local;
+  CurveStatistics& stats = statistics ? *statistics : local;
+  const Part& part_a = model.parts.at(axes.first);
+  const Part& part_b = model.parts.at(axes.second);
+  std::vector<BodyFeature> features_a = part_features(model, axes.first, &stats.reflex_vertices_skipped);
+  std::vector<BodyFeature> features_b = part_features(model, axes.second, &stats.reflex_vertices_skipped);
+
+  const ChartAxis& second_axis = axes.first_moves ? y : x;
+  Culler culler(part_motion(part_a, axes.first_moves, x),
+                part_motion(part_b, axes.second_moves, second_axis));
+  std::vector<SweptFeature> swept_a;
+  std::vector<SweptFeature> swept_b;
+  swept_a.reserve(features_a.size());
+  swept_b.reserve(features_b.size());
+  for (const BodyFeature& f : features_a) swept_a.push_back(culler.describe(f, 0));
+  for (const BodyFeature& f : features_b) swept_b.push_back(culler.describe(f, 1));
+
+  auto constant = [](const Rational& value) { return Polynomial(value); };
+  PairPoses<Polynomial> poses = pair_poses(model, axes, x, y, Polynomial::variable(0),
+                                           Polynomial::variable(1), constant);
+
+  std::vector<ContactCurve> curves;
+  for (std::size_t i = 0; i < features_a.size(); ++i) {
+    for (std::size_t j = 0; j < features_b.size(); ++j) {
+      const BodyFeature& fa = features_a[i];
+      const BodyFeature& fb = features_b[j];
+      if (!has_contact(fa, fb)) continue;
+      ++stats.feature_pairs_considered;
+      if (culler.never_touch(swept_a[i], swept_b[j])) {
+        ++stats.feature_pairs_culled;
+        continue;
+      }
+      KernelResult kernel = contact_of(fa, fb, poses.first, poses.second);
+      if (!kernel.exists) continue;
+      ContactCurve curve;
+      curve.first = fa.ref;
+      curve.second = fb.ref;
+      curve.type = kernel.type;
+      curve.polynomial = normalized_integer_polynomial(kernel.value);
+      curve.blocked_sign = kernel.blocked_sign;
+      bool zero = curve.polynomial.is_zero();
+      if (!zero && curve.polynomial.degree_x() == 0 && curve.polynomial.degree_y() == 0)
+        continue;  // a non-zero constant: these features never touch
+      if (!convert_validity(kernel.validity, curve.validity)) continue;  // never within both
+      curve.label = part_a.name + " " + fa.label + " / " + part_b.name + " " + fb.label + " (" +
+                    contact_word(kernel.type) + ")";
+      if (zero) {
+        ++stats.identically_zero;
+      } else {
+        ++stats.curves;
+      }
+      curves.push_back(std::move(curve));
+    }
+  }
+  return curves;
+}
+
+// ============================================================================ chart layout
+
+namespace {
+
+constexpr mpfr_prec_t chart_bits = 256;
+
+// Rational on the 10^-12 grid below (down) or above (up) an MPFR value, one extra step out.
+Rational grid_round(const mpfr_t value, bool up) {
+  mpfr_t scaled;
+  mpfr_init2(scaled, chart_bits);
+  mpz_class denominator;
+  mpz_ui_pow_ui(denominator.get_mpz_t(), 10, 12);
+  mpfr_mul_z(scaled, value, denominator.get_mpz_t(), MPFR_RNDN);
+  if (up) {
+    mpfr_ceil(scaled, scaled);
+  } else {
+    mpfr_floor(scaled, scaled);
+  }
+  mpz_class numerator;
+  mpfr_get_z(numerator.get_mpz_t(), scaled, MPFR_RNDN);
+  mpfr_clear(scaled);
+  numerator += up ? 1 : -1;
+  Rational result(numerator, denominator);
+  result.canonicalize();
+  return result;
+}
+
+// Chart intervals for a rotation with limits [lo, hi] (rad). Returns false when the range
+// covers a full turn (then the caller uses the two full charts). Chart edges inside the range
+// are rounded outward to the 10^-12 grid of t.
+bool limited_rotation_charts(const RationalInterval& limits, std::vector<ChartAxis>& charts) {
+  mpfr_t pi, half_pi, two_pi, lo, hi, tmp, offset, start, end, tangent;
+  mpfr_inits2(chart_bits, pi, half_pi, two_pi, lo, hi, tmp, offset, start, end, tangent,
+              static_cast<mpfr_ptr>(nullptr));
+  mpfr_const_pi(pi, MPFR_RNDN);
+  mpfr_div_ui(half_pi, pi, 2, MPFR_RNDN);
+  mpfr_mul_ui(two_pi, pi, 2, MPFR_RNDN);
+  mpfr_set_q(lo, limits.lo.get_mpq_t(), MPFR_RNDN);
+  mpfr_set_q(hi, limits.hi.get_mpq_t(), MPFR_RNDN);
+  mpfr_sub(tmp, hi, lo, MPFR_RNDN);
+  bool limited = mpfr_cmp(tmp, two_pi) < 0;
+  for (int centre = 0; limited && centre < 2; ++centre) {
+    // The chart around c = centre * pi covers theta in [c - pi/2, c + pi/2] + 2 pi k.
+    mpfr_mul_ui(tmp, pi, static_cast<unsigned long>(centre), MPFR_RNDN);
+    mpfr_sub(tmp, lo, tmp, MPFR_RNDN);
+    mpfr_div(tmp, tmp, two_pi, MPFR_RNDN);
+    long first = mpfr_get_si(tmp, MPFR_RNDD) - 1;
+    long last = first + 3;
+    for (long k = first; k <= last; ++k) {
+      mpfr_mul_si(offset, two_pi, k, MPFR_RNDN);
+      mpfr_mul_ui(tmp, pi, static_cast<unsigned long>(centre), MPFR_RNDN);
+      mpfr_add(offset, offset, tmp, MPFR_RNDN);
+      mpfr_sub(start, lo, offset, MPFR_RNDN);  // local angles theta - c - 2 pi k
+      mpfr_sub(end, hi, offset, MPFR_RNDN);
+      mpfr_neg(tmp, half_pi, MPFR_RNDN);
+      if (mpfr_cmp(end, tmp) < 0 || mpfr_cmp(start, half_pi) > 0) continue;
+      ChartAxis axis;
+      axis.kind = ChartAxis::Kind::rotation;
+      axis.half_turn = centre == 1;
+      if (mpfr_cmp(start, tmp) <= 0) {
+        axis.lo = -1;
+      } else {
+        mpfr_div_ui(tangent, start, 2, MPFR_RNDN);
+        mpfr_tan(tangent, tangent, MPFR_RNDN);
+        axis.lo = std::max(Rational(-1), grid_round(tangent, false));
+      }
+      if (mpfr_cmp(end, half_pi) >= 0) {
+        axis.hi = 1;
+      } else {
+        mpfr_div_ui(tangent, end, 2, MPFR_RNDN);
+        mpfr_tan(tangent, tangent, MPFR_RNDN);
+        axis.hi = std::min(Rational(1), grid_round(tangent, true));
+      }
+      if (axis.lo <= axis.hi) charts.push_back(axis);
+    }
+  }
+  mpfr_clears(pi, half_pi, two_pi, lo, hi, tmp, offset, start, end, tangent,
+              static_cast<mpfr_ptr>(nullptr));
+  return limited;
+}
+
+std::vector<ChartAxis> rotation_charts(const Motion& motion) {
+  std::vector<ChartAxis> charts;
+  if (motion.angle_limits && limited_rotation_charts(*motion.angle_limits, charts)) return charts;
+  charts.clear();
+  for (int centre = 0; centre < 2; ++centre) {
+    ChartAxis axis;
+    axis.kind = ChartAxis::Kind::rotation;
+    axis.half_turn = centre == 1;
+    axis.lo = -1;
+    axis.hi = 1;
+    charts.push_back(axis);
+  }
+  return charts;
+}
+
+// Certified extent of a whole part along the exact unit vector u.
+Interval part_extent(const Model& model, std::size_t part_index, const Point& unit) {
+  std::vector<BodyFeature> features = part_features(model, part_index);
+  Interval extent(0.0, 0.0);
+  bool first = true;
+  for (const BodyFeature& feature : features) {
+    if (feature.ref.kind == FeatureRef::Kind::vertex) continue;
+    Interval range = projection_range(feature, unit);
+    extent = first ? range : kernels::hull(extent, range);
+    first = false;
+  }
+  return extent;
+}
+
+// Certified largest distance of a part from a point.
+double part_reach(const Model& model, std::size_t part_index, const Point& centre) {
+  double reach = 0.0;
+  for (const BodyFeature& feature : part_features(model, part_index)) {
+    if (feature.ref.kind == FeatureRef::Kind::vertex) continue;
+    reach = std::max(reach, radial_range(feature, centre).hi);
+  }
+  return reach;
+}
+
+// Rational bounds around a certified range, widened by a margin so that the chart edges lie
+// in free space: integers outside the range, then max(1, 10% of the length) more.
+std::pair<Rational, Rational> widened(double lo, double hi) {
+  double low = std::floor(lo);
+  double high = std::ceil(hi);
+  double margin = std::max(1.0, std::ceil((high - low) / 10.0));
+  return {Rational(low - margin), Rational(high + margin)};
+}
+
+// Offsets s of translating part `mover` (along d) outside of which it never touches `other`.
+ChartAxis translation_chart(const Model& model, std::size_t mover, std::size_t other,
+                            bool other_moves) {
+  const Part& part = model.parts[mover];
+  const Part& partner = model.parts[other];
+  ChartAxis axis;
+  axis.kind = ChartAxis::Kind::translation;
+  if (part.motion.translation_limits) {
+    axis.lo = part.motion.translation_limits->lo;
+    axis.hi = part.motion.translation_limits->hi;
+    return axis;
+  }
+  const Point& d = part.motion.direction;
+  Interval own = part_extent(model, mover, d);
+  Interval target;  // where the other part can be, projected on d
+  if (!other_moves) {
+    target = part_extent(model, other, d);
+  } else if (partner.motion.kind == Motion::Kind::rotation) {
+    double reach = part_reach(model, other, partner.motion.pivot);
+    target = Interval::enclose(dot(d, partner.motion.pivot)) + Interval(-reach, reach);
+  } else {
+    const Point& e = partner.motion.direction;
+    if (partner.motion.translation_limits) {
+      Interval base = part_extent(model, other, d);
+      Rational along = dot(e, d);
+      Interval shift = kernels::hull(
+          Interval::enclose(Rational(partner.motion.translation_limits->lo * along)),
+          Interval::enclose(Rational(partner.motion.translation_limits->hi * along)));
+      target = base + shift;
+    } else {
+      Point normal{Rational(-e.y), e.x};
+      Rational rate = dot(d, normal);
+      if (sgn(rate) == 0)
+        throw GeometryError("parts '" + part.name + "' and '" + partner.name +
+                            "' translate along parallel directions without limits: give "
+                            "translation limits to bound their configuration space");
+      // (own + s d) . n meets other . n:  s * rate in [theirs.lo - mine.hi, theirs.hi - mine.lo].
+      // Double rounding here is far below the >= 1 mm margin widened() adds.
+      Interval mine = part_extent(model, mover, normal);
+      Interval theirs = part_extent(model, other, normal);
+      double rate_value = rate.get_d();
+      double first = (theirs.lo - mine.hi) / rate_value;
+      double second = (theirs.hi - mine.lo) / rate_value;
+      auto [a, b] = widened(std::min(first, second), std::max(first, second));
+      axis.lo = a;
+      axis.hi = b;
+      return axis;
+    }
+  }
+  // own + s in [target]: s in [target.lo - own.hi, target.hi - own.lo]
+  double lo = (Interval(target.lo, target.lo) - Interval(own.hi, own.hi)).lo;
+  double hi = (Interval(target.hi, target.hi) - Interval(own.lo, own.lo)).hi;
+  auto [a, b] = widened(lo, hi);
+  axis.lo = a;
+  axis.hi = b;
+  return axis;
+}
+
+std::vector<ChartAxis> charts_of(const Model& model, std::size_t mover, std::size_t other,
+                                 bool other_moves) {
+  const Part& part = model.parts[mover];
+  if (part.motion.kind == Motion::Kind::rotation) return rotation_charts(part.motion);
+  return {translation_chart(model, mover, other, other_moves)};
+}
+
+}  // namespace
+
+ChartLayout chart_layout(const Model& model, const PairAxes& axes) {
+  ChartLayout layout;
+  if (axes.first_moves) {
+    layout.x_charts = charts_of(model, axes.first, axes.second, axes.second_moves);
+    if (axes.second_moves)
+      layout.y_charts = charts_of(model, axes.second, axes.first, axes.first_moves);
+  } else if (axes.second_moves) {
+    layout.x_charts = charts_of(model, axes.second, axes.first, axes.first_moves);
+  }
+  return layout;
+}
+
+}  // namespace hipair::cspace

@@ -1,0 +1,256 @@
+#include "cspace/polynomial.hpp"
+
+#include <algorithm>
+
+namespace hipair::cspace {
+
+// ---------------------------------------------------------------- IntegerPolynomial2
+
+int IntegerPolynomial2::degree_x() const noexcept {
+  for (int i = static_cast<int>(coefficients.size()) - 1; i >= 0; --i)
+    for (const mpz_class& c : coefficients[static_cast<std::size_t>(i)])
+      if (sgn(c) != 0) return i;
+  return -1;
+}
+
+int IntegerPolynomial2::degree_y() const noexcept {
+  int degree = -1;
+  for (const auto& row : coefficients)
+    for (int j = static_cast<int>(row.size()) - 1; j > degree; --j)
+      if (sgn(row[static_cast<std::size_t>(j)]) != 0) {
+        degree = j;
+        break;
+      }
+  return degree;
+}
+
+bool IntegerPolynomial2::is_zero() const { return degree_x() < 0; }
+
+Rational evaluate(const IntegerPolynomial2& polynomial, const Rational& x, const Rational& y) {
+  Rational total = 0;
+  for (std::size_t i = polynomial.coefficients.size(); i-- > 0;) {
+    const auto& row = polynomial.coefficients[i];
+    Rational row_value = 0;
+    for (std::size_t j = row.size(); j-- > 0;) row_value = row_value * y + Rational(row[j]);
+    total = total * x + row_value;
+  }
+  return total;
+}
+
+bool depends_only_on_x(const IntegerPolynomial2& polynomial) { return polynomial.degree_y() <= 0; }
+bool depends_only_on_y(const IntegerPolynomial2& polynomial) { return polynomial.degree_x() <= 0; }
+
+namespace {
+
+// Divides every column polynomial (in x) by x^2 + 1 when all divide exactly.
+bool divide_by_one_plus_x_squared(std::vector<std::vector<mpz_class>>& c) {
+  std::size_t n = c.size();
+  if (n < 3) return false;
+  std::size_t columns = 0;
+  for (const auto& row : c) columns = std::max(columns, row.size());
+  std::vector<std::vector<mpz_class>> quotient(n - 2, std::vector<mpz_class>(columns));
+  auto at = [&](std::size_t i, std::size_t j) -> mpz_class {
+    return j < c[i].size() ? c[i][j] : mpz_class(0);
+  };
+  for (std::size_t j = 0; j < columns; ++j) {
+    // a(x) = q(x) (x^2 + 1) + r: q_k = a_{k+2} - q_{k+2}, from the top.
+    for (std::size_t k = n - 2; k-- > 0;) {
+      mpz_class value = at(k + 2, j);
+      if (k + 2 < n - 2) value -= quotient[k + 2][j];
+      quotient[k][j] = value;
+    }
+    mpz_class r1 = at(1, j) - (n - 2 > 1 ? quotient[1][j] : mpz_class(0));
+    mpz_class r0 = at(0, j) - quotient[0][j];
+    if (sgn(r1) != 0 || sgn(r0) != 0) return false;
+  }
+  c = std::move(quotient);
+  return true;
+}
+
+std::vector<std::vector<mpz_class>> transposed(const std::vector<std::vector<mpz_class>>& c) {
+  std::size_t columns = 0;
+  for (const auto& row : c) columns = std::max(columns, row.size());
+  std::vector<std::vector<mpz_class>> t(columns, std::vector<mpz_class>(c.size()));
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (std::size_t j = 0; j < c[i].size(); ++j) t[j][i] = c[i][j];
+  return t;
+}
+
+void trim(std::vector<std::vector<mpz_class>>& c) {
+  for (auto& row : c)
+    while (!row.empty() && sgn(row.back()) == 0) row.pop_back();
+  while (!c.empty() && c.back().empty()) c.pop_back();
+}
+
+}  // namespace
+
+void normalize(IntegerPolynomial2& polynomial) {
+  auto& c = polynomial.coefficients;
+  trim(c);
+  if (c.empty()) return;
+  mpz_class content = 0;
+  for (const auto& row : c)
+    for (const mpz_class& v : row) mpz_gcd(content.get_mpz_t(), content.get_mpz_t(), v.get_mpz_t());
+  if (content > 1)
+    for (auto& row : c)
+      for (mpz_class& v : row) mpz_divexact(v.get_mpz_t(), v.get_mpz_t(), content.get_mpz_t());
+  // Pad rows to a rectangle for the divisions, then trim again.
+  while (divide_by_one_plus_x_squared(c)) trim(c);
+  auto t = transposed(c);
+  bool divided = false;
+  while (divide_by_one_plus_x_squared(t)) {
+    trim(t);
+    divided = true;
+  }
+  if (divided) c = transposed(t);
+  trim(c);
+}
+
+// ---------------------------------------------------------------- RationalPolynomial2
+
+RationalPolynomial2::RationalPolynomial2(int constant) : RationalPolynomial2(Rational(constant)) {}
+
+RationalPolynomial2::RationalPolynomial2(const Rational& constant) {
+  if (sgn(constant) != 0) {
+    resize(1, 1);
+    coefficients_[0] = constant;
+  }
+}
+
+RationalPolynomial2 RationalPolynomial2::variable(int which) {
+  RationalPolynomial2 p;
+  if (which == 0) {
+    p.resize(2, 1);
+    p.coefficients_[1] = 1;
+  } else {
+    p.resize(1, 2);
+    p.coefficients_[1] = 1;
+  }
+  return p;
+}
+
+const Rational& RationalPolynomial2::coefficient(int i, int j) const {
+  static const Rational zero = 0;
+  if (i < 0 || j < 0 || i >= rows_ || j >= columns_) return zero;
+  return coefficients_[static_cast<std::size_t>(i * columns_ + j)];
+}
+
+void RationalPolynomial2::set_coefficient(int i, int j, const Rational& value) {
+  if (i >= rows_ || j >= columns_) resize(std::max(rows_, i + 1), std::max(columns_, j + 1));
+  coefficients_[static_cast<std::size_t>(i * columns_ + j)] = value;
+  trim();
+}
+
+void RationalPolynomial2::resize(int rows, int columns) {
+  if (rows == rows_ && columns == columns_) return;
+  std::vector<Rational> next(static_cast<std::size_t>(rows * columns));
+  for (int i = 0; i < std::min(rows, rows_); ++i)
+    for (int j = 0; j < std::min(columns, columns_); ++j)
+      next[static_cast<std::size_t>(i * columns + j)] =
+          coefficients_[static_cast<std::size_t>(i * columns_ + j)];
+  coefficients_ = std::move(next);
+  rows_ = rows;
+  columns_ = columns;
+}
+
+void RationalPolynomial2::trim() {
+  int rows = 0;
+  int columns = 0;
+  for (int i = 0; i < rows_; ++i)
+    for (int j = 0; j < columns_; ++j)
+      if (sgn(coefficients_[static_cast<std::size_t>(i * columns_ + j)]) != 0) {
+        rows = std::max(rows, i + 1);
+        columns = std::max(columns, j + 1);
+      }
+  resize(rows, columns);
+}
+
+bool RationalPolynomial2::is_zero() const { return rows_ == 0; }
+
+Rational RationalPolynomial2::evaluate(const Rational& x, const Rational& y) const {
+  Rational total = 0;
+  for (int i = rows_; i-- > 0;) {
+    Rational row_value = 0;
+    for (int j = columns_; j-- > 0;) row_value = row_value * y + coefficient(i, j);
+    total = total * x + row_value;
+  }
+  return total;
+}
+
+RationalPolynomial2 operator+(const RationalPolynomial2& a, const RationalPolynomial2& b) {
+  if (a.is_zero()) return b;
+  if (b.is_zero()) return a;
+  RationalPolynomial2 r;
+  r.resize(std::max(a.rows_, b.rows_), std::max(a.columns_, b.columns_));
+  for (int i = 0; i < a.rows_; ++i)
+    for (int j = 0; j < a.columns_; ++j)
+      r.coefficients_[static_cast<std::size_t>(i * r.columns_ + j)] = a.coefficient(i, j);
+  for (int i = 0; i < b.rows_; ++i)
+    for (int j = 0; j < b.columns_; ++j)
+      r.coefficients_[static_cast<std::size_t>(i * r.columns_ + j)] += b.coefficient(i, j);
+  r.trim();
+  return r;
+}
+
+RationalPolynomial2 operator-(const RationalPolynomial2& a) {
+  RationalPolynomial2 r = a;
+  for (Rational& c : r.coefficients_) c = -c;
+  return r;
+}
+
+RationalPolynomial2 operator-(const RationalPolynomial2& a, const RationalPolynomial2& b) {
+  return a + (-b);
+}
+
+RationalPolynomial2 operator*(const RationalPolynomial2& a, const RationalPolynomial2& b) {
+  RationalPolynomial2 r;
+  if (a.is_zero() || b.is_zero()) return r;
+  r.resize(a.rows_ + b.rows_ - 1, a.columns_ + b.columns_ - 1);
+  Rational product;
+  for (int i = 0; i < a.rows_; ++i)
+    for (int j = 0; j < a.columns_; ++j) {
+      const Rational& ac = a.coefficients_[static_cast<std::size_t>(i * a.columns_ + j)];
+      if (sgn(ac) == 0) continue;
+      for (int k = 0; k < b.rows_; ++k)
+        for (int l = 0; l < b.columns_; ++l) {
+          const Rational& bc = b.coefficients_[static_cast<std::size_t>(k * b.columns_ + l)];
+          if (sgn(bc) == 0) continue;
+          mpq_mul(product.get_mpq_t(), ac.get_mpq_t(), bc.get_mpq_t());
+          Rational& target = r.coefficients_[static_cast<std::size_t>((i + k) * r.columns_ + j + l)];
+          mpq_add(target.get_mpq_t(), target.get_mpq_t(), product.get_mpq_t());
+        }
+    }
+  r.trim();
+  return r;
+}
+
+bool operator==(const RationalPolynomial2& a, const RationalPolynomial2& b) {
+  if (a.rows_ != b.rows_ || a.columns_ != b.columns_) return false;
+  return a.coefficients_ == b.coefficients_;
+}
+
+IntegerPolynomial2 normalized_integer_polynomial(const RationalPolynomial2& polynomial) {
+  IntegerPolynomial2 result;
+  if (polynomial.is_zero()) return result;
+  mpz_class denominator = 1;
+  for (int i = 0; i < polynomial.rows(); ++i)
+    for (int j = 0; j < polynomial.columns(); ++j) {
+      const Rational& c = polynomial.coefficient(i, j);
+      if (sgn(c) != 0)
+        mpz_lcm(denominator.get_mpz_t(), denominator.get_mpz_t(), c.get_den_mpz_t());
+    }
+  result.coefficients.assign(static_cast<std::size_t>(polynomial.rows()),
+                             std::vector<mpz_class>(static_cast<std::size_t>(polynomial.columns())));
+  for (int i = 0; i < polynomial.rows(); ++i)
+    for (int j = 0; j < polynomial.columns(); ++j) {
+      const Rational& c = polynomial.coefficient(i, j);
+      if (sgn(c) == 0) continue;
+      mpz_class value = denominator / c.get_den();
+      value *= c.get_num();
+      result.coefficients[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = value;
+    }
+  normalize(result);
+  return result;
+}
+
+}  // namespace hipair::cspace

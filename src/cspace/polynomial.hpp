@@ -1,0 +1,64 @@
+// Small exact bivariate polynomials for the contact kernels: a Rational-coefficient type the
+// templated kernels compute with, and its conversion to the builder's IntegerPolynomial2.
+#pragma once
+
+#include "cspace/contact_curves.hpp"
+
+#include <hipair/rational.hpp>
+
+#include <vector>
+
+namespace hipair::cspace {
+
+/// Dense polynomial sum c(i, j) x^i y^j with exact rational coefficients. Behaves as a
+/// number type for kernels/ (construction from int, +, -, unary -, *).
+class RationalPolynomial2 {
+ public:
+  RationalPolynomial2() = default;
+  RationalPolynomial2(int constant);              // NOLINT(google-explicit-constructor)
+  RationalPolynomial2(const Rational& constant);  // NOLINT(google-explicit-constructor)
+
+  /// The polynomial x (variable 0) or y (variable 1).
+  static RationalPolynomial2 variable(int which);
+
+  /// Number of stored rows / columns (degree + 1 bounds; 0 for the zero polynomial).
+  int rows() const noexcept { return rows_; }
+  int columns() const noexcept { return columns_; }
+  const Rational& coefficient(int i, int j) const;
+  void set_coefficient(int i, int j, const Rational& value);
+
+  bool is_zero() const;
+  /// Exact value at (x, y).
+  Rational evaluate(const Rational& x, const Rational& y) const;
+
+  friend RationalPolynomial2 operator+(const RationalPolynomial2& a, const RationalPolynomial2& b);
+  friend RationalPolynomial2 operator-(const RationalPolynomial2& a, const RationalPolynomial2& b);
+  friend RationalPolynomial2 operator-(const RationalPolynomial2& a);
+  friend RationalPolynomial2 operator*(const RationalPolynomial2& a, const RationalPolynomial2& b);
+  friend bool operator==(const RationalPolynomial2& a, const RationalPolynomial2& b);
+
+ private:
+  void resize(int rows, int columns);
+  void trim();
+  int rows_ = 0;
+  int columns_ = 0;
+  std::vector<Rational> coefficients_;  // row-major, index i * columns_ + j
+};
+
+/// Exact value of an integer polynomial at a rational point.
+Rational evaluate(const IntegerPolynomial2& polynomial, const Rational& x, const Rational& y);
+
+/// Integer polynomial with the same zero set and the same sign as `polynomial`, normalised:
+/// denominators cleared, divided by the (positive) content of its coefficients, and every
+/// factor (1 + x^2) and (1 + y^2) divided out (they have no real zeros and are positive, so
+/// zero set and sign are unchanged). Trailing zero rows/columns are trimmed.
+IntegerPolynomial2 normalized_integer_polynomial(const RationalPolynomial2& polynomial);
+
+/// Normalises an integer polynomial in place as normalized_integer_polynomial does.
+void normalize(IntegerPolynomial2& polynomial);
+
+/// True when the polynomial does not involve y (resp. x).
+bool depends_only_on_x(const IntegerPolynomial2& polynomial);
+bool depends_only_on_y(const IntegerPolynomial2& polynomial);
+
+}  // namespace hipair::cspace

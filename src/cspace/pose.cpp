@@ -1,0 +1,160 @@
+#include "cspace/pose.hpp"
+
+namespace hipair::cspace {
+
+int motion_degrees_of_freedom(const Motion& motion) noexcept {
+  switch (motion.kind) {
+    case Motion::Kind::fixed: return 0;
+    case Motion::Kind::rotation:
+    case Motion::Kind::translation: return 1;
+    case Motion::Kind::pin_slot: return 2;
+    case Motion::Kind::planar: return 3;
+  }
+  return 0;
+}
+
+RigidMap world_map(const Part& part, bool moves, const ChartAxis& axis, const Rational& value) {
+  RigidMap map;
+  if (!moves) return map;
+  if (part.motion.kind == Motion::Kind::rotation) {
+    Rational t2 = value * value;
+    Rational w = 1 + t2;
+    map.c = (1 - t2) / w;
+    map.s = 2 * value / w;
+    if (axis.half_turn) {
+      map.c = -map.c;
+      map.s = -map.s;
+    }
+    // world(p) = o + R (p - o) = R p + (o - R o)
+    Point rotated_pivot = map.rotate(part.motion.pivot);
+    map.offset = Point{Rational(part.motion.pivot.x - rotated_pivot.x),
+                       Rational(part.motion.pivot.y - rotated_pivot.y)};
+    return map;
+  }
+  if (part.motion.kind == Motion::Kind::translation) {
+    map.offset = Point{Rational(value * part.motion.direction.x),
+                       Rational(value * part.motion.direction.y)};
+    return map;
+  }
+  throw GeometryError("part '" + part.name + "' is not a fixed-axis part");
+}
+
+RigidMap relative_map(const Model& model, const PairAxes& axes, const ChartAxis& x,
+                      const ChartAxis& y, const ChartPoint& q) {
+  const ChartAxis& second_axis = axes.first_moves ? y : x;
+  const Rational& second_value = axes.first_moves ? q.y : q.x;
+  RigidMap a = world_map(model.parts.at(axes.first), axes.first_moves, x, q.x);
+  RigidMap b = world_map(model.parts.at(axes.second), axes.second_moves, second_axis,
+                         second_value);
+  // b^-1(y) = R_b^T (y - offset_b); b^-1 a (p) = R_b^T R_a p + R_b^T (offset_a - offset_b).
+  RigidMap result;
+  result.c = b.c * a.c + b.s * a.s;
+  result.s = b.c * a.s - b.s * a.c;
+  Rational dx = a.offset.x - b.offset.x;
+  Rational dy = a.offset.y - b.offset.y;
+  result.offset = Point{Rational(b.c * dx + b.s * dy), Rational(-b.s * dx + b.c * dy)};
+  return result;
+}
+
+}  // namespace hipair::cspace
+
+namespace hipair::cspace {
+
+std::optional<Rational> exact_square_root(const Rational& value) {
+  if (sgn(value) < 0) return std::nullopt;
+  if (sgn(value) == 0) return Rational(0);
+  if (!mpz_perfect_square_p(value.get_num_mpz_t()) || !mpz_perfect_square_p(value.get_den_mpz_t()))
+    return std::nullopt;
+  mpz_class numerator;
+  mpz_class denominator;
+  mpz_sqrt(numerator.get_mpz_t(), value.get_num_mpz_t());
+  mpz_sqrt(denominator.get_mpz_t(), value.get_den_mpz_t());
+  Rational root(numerator, denominator);
+  root.canonicalize();
+  return root;
+}
+
+Point edge_tangent(const Edge& edge, const Point& at) {
+  if (!edge.is_arc()) return difference(edge.target, edge.source);
+  Point radial = difference(at, edge.center);
+  Point left{Rational(-radial.y), radial.x};
+  if (edge.ccw) return left;
+  return Point{Rational(-left.x), Rational(-left.y)};
+}
+
+kernels::ArcSector<Rational> arc_sector(const Edge& edge) {
+  kernels::ArcSector<Rational> sector;
+  Point from_source = difference(edge.source, edge.center);
+  Point from_target = difference(edge.target, edge.center);
+  if (edge.is_full_circle()) {
+    sector.full = true;
+    sector.start = to_kernel(from_source);
+    sector.end = to_kernel(from_source);
+    return sector;
+  }
+  Point start = edge.ccw ? from_source : from_target;
+  Point end = edge.ccw ? from_target : from_source;
+  sector.start = to_kernel(start);
+  sector.end = to_kernel(end);
+  sector.large = sgn(cross(start, end)) < 0;
+  return sector;
+}
+
+bool sector_contains(const kernels::ArcSector<Rational>& sector, const Point& v) {
+  if (sector.full) return true;
+  Point start{sector.start.x, sector.start.y};
+  Point end{sector.end.x, sector.end.y};
+  bool after_start = sgn(cross(start, v)) >= 0;
+  bool before_end = sgn(cross(v, end)) >= 0;
+  return sector.large ? (after_start || before_end) : (after_start && before_end);
+}
+
+namespace {
+
+std::string edge_name(const Edge& edge, std::size_t loop, std::size_t index) {
+  if (!edge.label.empty()) return edge.label;
+  return "loop " + std::to_string(loop) + " edge " + std::to_string(index);
+}
+
+}  // namespace
+
+std::vector<BodyFeature> part_features(const Model& model, std::size_t part_index,
+                                       std::size_t* reflex_skipped) {
+  const Part& part = model.parts.at(part_index);
+  std::vector<BodyFeature> features;
+  for (std::size_t l = 0; l < part.loops.size(); ++l) {
+    const Loop& loop = part.loops[l];
+    std::size_t n = loop.edges.size();
+    for (std::size_t e = 0; e < n; ++e) {
+      const Edge& edge = loop.edges[e];
+      std::string name = edge_name(edge, l, e);
+      if (!edge.is_full_circle()) {
+        const Edge& previous = loop.edges[(e + n - 1) % n];
+        Point incoming = edge_tangent(previous, edge.source);
+        Point outgoing = edge_tangent(edge, edge.source);
+        if (sgn(cross(incoming, outgoing)) < 0) {
+          if (reflex_skipped) ++*reflex_skipped;
+        } else {
+          std::string previous_name = edge_name(previous, l, (e + n - 1) % n);
+          BodyFeature vertex;
+          vertex.ref = FeatureRef{part_index, l, e, FeatureRef::Kind::vertex};
+          vertex.edge = &edge;
+          vertex.point = edge.source;
+          vertex.label = previous_name == name ? "corner of " + name
+                                               : "corner of " + previous_name + " and " + name;
+          features.push_back(std::move(vertex));
+        }
+      }
+      BodyFeature curve;
+      curve.ref = FeatureRef{part_index, l, e,
+                             edge.is_arc() ? FeatureRef::Kind::arc : FeatureRef::Kind::segment};
+      curve.edge = &edge;
+      curve.point = edge.source;
+      curve.label = name;
+      features.push_back(std::move(curve));
+    }
+  }
+  return features;
+}
+
+}  // namespace hipair::cspace
