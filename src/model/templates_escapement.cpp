@@ -34,10 +34,12 @@ Point unit_toward(const Point& v, const std::string& pointer, const std::string&
 
 }  // namespace
 
-// Ratchet-like teeth built for a wheel driven counter-clockwise, mirrored for "cw": the tip's
-// leading corner at 2 pi k / z, an optional flat top (club) of angular width tip_angle behind
-// it, a locking face from the leading corner to the root circle, raked back by face_angle, and
-// a straight back from the previous root point to the trailing top corner.
+// Teeth built for a wheel driven counter-clockwise, mirrored for "cw": tooth k's leading tip
+// corner at 2 pi k / z on the tip circle, an optional flat top (club) of angular width tip_angle
+// behind it, a locking face from the leading corner to the root circle whose root lags by
+// face_angle (rake), and a straight back from the root circle at back_angle behind the leading
+// corner up to the trailing top corner. Between a face root and the next back root runs an arc
+// of the root circle (none when back_angle = pitch + face_angle, the default: ratchet teeth).
 std::vector<Loop> expand_escape_wheel(const Arguments& arguments,
                                       std::vector<Rounding>& roundings) {
   const std::string& pointer = arguments.pointer();
@@ -53,10 +55,23 @@ std::vector<Loop> expand_escape_wheel(const Arguments& arguments,
     throw ModelError(arguments.at("root_radius"), "must be less than tip_radius");
   if (tip_angle < 0) throw ModelError(arguments.at("tip_angle"), "must not be negative");
   if (face_angle < 0) throw ModelError(arguments.at("face_angle"), "must not be negative");
+  Rational pitch_turns(2, teeth);  // the pitch as a multiple of pi
   double pitch = 2 * M_PI / static_cast<double>(teeth);
+  bool has_root_arc = arguments.has("back_angle");
+  Rational back_angle = has_root_arc ? arguments.angle("back_angle") : Rational(0);
+  double back = has_root_arc ? tg::approximate(back_angle) : pitch + tg::approximate(face_angle);
   if (tg::approximate(tip_angle) + tg::approximate(face_angle) >= pitch * 0.75)
     throw ModelError(arguments.at("face_angle"),
                      "tip_angle + face_angle must stay below 3/4 of the tooth pitch");
+  if (has_root_arc) {
+    if (back <= tg::approximate(face_angle) + 1e-9 || back <= tg::approximate(tip_angle) + 1e-9)
+      throw ModelError(arguments.at("back_angle"),
+                       "must exceed face_angle and tip_angle (the tooth needs a base)");
+    if (back >= pitch + tg::approximate(face_angle) - 1e-9)
+      throw ModelError(arguments.at("back_angle"),
+                       "must be less than the tooth pitch + face_angle (omit it for ratchet "
+                       "teeth without a root arc)");
+  }
 
   Point trailing = tip_angle == 0
                        ? Point{Rational(1), Rational(0)}
@@ -68,28 +83,36 @@ std::vector<Loop> expand_escape_wheel(const Arguments& arguments,
                                        "-face_angle", roundings);
   Point leading_corner{tip_radius, Rational(0)};
   Point trailing_corner = tg::scale(tip_radius, trailing);
-  Point root_point = tg::scale(root_radius, rake);
+  Point face_root = tg::scale(root_radius, rake);
+  Point back_root = face_root;  // of the previous tooth, rotated: no root arc
+  if (has_root_arc)
+    back_root = tg::scale(root_radius, exact_unit_vector(Rational(-back_angle),
+                                                         arguments.at("back_angle"),
+                                                         "-back_angle", roundings));
 
   Point phase_unit = exact_unit_vector(phase, arguments.at("phase"), "phase", roundings);
   std::vector<Point> turn(teeth);
   for (long k = 0; k < teeth; ++k)
-    turn[k] = exact_unit_vector_pi(Rational(2 * k, teeth), pointer, tooth(k) + " direction",
+    turn[k] = exact_unit_vector_pi(Rational(pitch_turns * k), pointer, tooth(k) + " direction",
                                    roundings);
   // Canonical (counter-clockwise driven) frame, then mirrored for clockwise, then placed.
   auto at = [&](long k, const Point& local) {
-    Point p = tg::rotate(local, turn[k % teeth]);
+    Point p = tg::rotate(local, turn[((k % teeth) + teeth) % teeth]);
     if (!driven_ccw) p = tg::mirror(p);
     return tg::add(center, tg::rotate(p, phase_unit));
   };
-  tg::LoopBuilder loop(at(teeth - 1, root_point), pointer);
+  Point wheel_center = center;
+  tg::LoopBuilder loop(at(teeth - 1, face_root), pointer);
   for (long k = 0; k < teeth; ++k) {
+    if (has_root_arc)
+      loop.arc_to(at(k, back_root), wheel_center, driven_ccw, "root " + std::to_string(k + 1));
     if (tip_angle != 0) {
       loop.line_to(at(k, trailing_corner), tooth(k) + " back");
       loop.line_to(at(k, leading_corner), tooth(k) + " top");
     } else {
       loop.line_to(at(k, leading_corner), tooth(k) + " back");
     }
-    loop.line_to(at(k, root_point), tooth(k) + " face");
+    loop.line_to(at(k, face_root), tooth(k) + " face");
   }
   return {loop.finish()};
 }
