@@ -237,14 +237,7 @@ class Evaluator {
     switch (token.kind) {
       case Token::Kind::number: {
         ++next_;
-        Rational value;
-        try {
-          value = parse_rational(token.text);
-        } catch (const NumericError& error) {
-          fail(error.what(), token);
-        }
-        check_size(value);
-        return Quantity::of(value);
+        return Quantity::of(parse_literal(token.text, context_.pointer));
       }
       case Token::Kind::name: {
         ++next_;
@@ -568,6 +561,30 @@ Quantity as_angle(const Quantity& value, bool degrees) {
   if (!degrees) return angle;
   if (value.is_rational()) return Quantity::of_pi(value.rational / 180);
   return Quantity::approximate(value.to_interval() * Interval::pi() / Interval(Rational(180)), true);
+}
+
+Rational parse_literal(std::string_view text, const std::string& pointer) {
+  std::string lower = lower_case(text);
+  if (lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos)
+    throw ModelError(pointer, "'" + std::string(text) + "' is not a number: NaN and infinity are not allowed");
+  if (auto e = lower.find('e'); e != std::string::npos) {
+    std::string_view exponent = text.substr(e + 1);
+    if (!exponent.empty() && (exponent[0] == '+' || exponent[0] == '-')) exponent.remove_prefix(1);
+    while (exponent.size() > 1 && exponent[0] == '0') exponent.remove_prefix(1);
+    bool digits = !exponent.empty();
+    for (char c : exponent) digits = digits && is_digit(c);
+    if (digits && (exponent.size() > 4 || std::stol(std::string(exponent)) > max_literal_exponent))
+      throw ModelError(pointer, "number '" + std::string(text) + "' out of range: the decimal exponent is limited to " +
+                                    std::to_string(max_literal_exponent));
+  }
+  Rational value;
+  try {
+    value = parse_rational(text);
+  } catch (const NumericError& error) {
+    throw ModelError(pointer, error.what());
+  }
+  check_rational_size(value, pointer);
+  return value;
 }
 
 void check_rational_size(const Rational& value, const std::string& pointer) {

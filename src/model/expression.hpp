@@ -57,6 +57,14 @@ Quantity evaluate_expression(std::string_view text, const ExpressionContext& con
 /// The value used as an angle in radians: a plain number is converted from the file's unit.
 Quantity as_angle(const Quantity& value, bool degrees);
 
+/// Largest decimal exponent accepted in a literal ("1e1000").
+inline constexpr long max_literal_exponent = 1000;
+
+/// The exact value of a number literal ("46.683", "-2.5e-3", "1/3").
+/// \throws ModelError(pointer, ...) when it is not a literal, its exponent exceeds
+///         max_literal_exponent or its value exceeds max_rational_bits.
+Rational parse_literal(std::string_view text, const std::string& pointer);
+
 /// \throws ModelError(pointer, ...) when `value` has more than max_rational_bits bits.
 void check_rational_size(const Rational& value, const std::string& pointer);
 

@@ -32,7 +32,10 @@ std::string reason_of(const std::string& what) {
   if (reason.rfind("parse error", 0) == 0) {
     if (auto colon = reason.find(": "); colon != std::string::npos) reason.erase(0, colon + 2);
   }
-  return sanitize(reason);
+  std::string printable = sanitize(reason);
+  for (char& c : printable)
+    if (static_cast<unsigned char>(c) >= 0x80) c = '?';  // the offending bytes may not be UTF-8
+  return printable;
 }
 
 class DocumentBuilder final : public nlohmann::json_sax<nlohmann::json> {

@@ -144,14 +144,7 @@ class Reader {
   /// The value of a number slot: a JSON number (exact from its text) or an expression string.
   Quantity evaluate(const JsonValue& value) {
     if (value.is_number()) {
-      Rational exact;
-      try {
-        exact = parse_rational(value.text);
-      } catch (const NumericError& error) {
-        throw ModelError(value.pointer, error.what());
-      }
-      check_rational_size(exact, value.pointer);
-      return Quantity::of(exact);
+      return Quantity::of(parse_literal(value.text, value.pointer));
     }
     if (value.is_string()) return evaluate_expression(value.text, context_at(value.pointer));
     throw ModelError(value.pointer, std::string("expected a number or an expression string, found ") +

@@ -242,6 +242,18 @@ Intersection intersect(const Edge& e, const Edge& f) {
 // ------------------------------------------------------------------ bounding boxes (filter only)
 struct Box {
   double x_lo, x_hi, y_lo, y_hi;
+  void include(const Box& other) {
+    x_lo = std::min(x_lo, other.x_lo);
+    x_hi = std::max(x_hi, other.x_hi);
+    y_lo = std::min(y_lo, other.y_lo);
+    y_hi = std::max(y_hi, other.y_hi);
+  }
+  // Conservative: false only when p is certainly outside.
+  bool contains(const Point& p) const {
+    double x = to_double(p.x), y = to_double(p.y);
+    if (!std::isfinite(x) || !std::isfinite(y)) return true;
+    return x >= x_lo && x <= x_hi && y >= y_lo && y <= y_hi;
+  }
 };
 
 // Outward-widened double bounds of a rational: conservative for the filter.
@@ -304,8 +316,6 @@ Interval ccw_angle(const Point& u, const Point& v) {
   return angle;
 }
 
-// Signed angle from u to v in (-pi, pi].
-Interval signed_angle(const Point& u, const Point& v) { return angle_of(cross(u, v), dot(u, v)); }
 
 // Twice the signed area enclosed by the loop.
 Interval twice_area(const Loop& loop) {
@@ -329,29 +339,41 @@ Interval twice_area(const Loop& loop) {
   return Interval(polygonal) + curved;
 }
 
-// Winding number of the loop around p (p not on the loop).
-std::optional<long> winding_number(const Loop& loop, const Point& p) {
-  Interval total(Rational(0));
+// 0 for directions with angle in [0, pi), 1 for [pi, 2 pi).
+int half_plane(const Point& w) { return (w.y > 0 || (w.y == 0 && w.x > 0)) ? 0 : 1; }
+
+// Whether the polar angle of v (in [0, 2 pi)) is less than that of u.
+bool angle_less(const Point& v, const Point& u) {
+  int hv = half_plane(v), hu = half_plane(u);
+  if (hv != hu) return hv < hu;
+  return cross(v, u) > 0;
+}
+
+// Winding number of the loop around p (p not on the loop), exactly, by counting quarter
+// decisions instead of summing angles. Each edge turns the direction from p by an angle
+// a = alpha - 2 pi k, where alpha in [0, 2 pi) is the counter-clockwise angle from the
+// edge's start direction u to its end direction v, and k in {0, 1} follows from the edge:
+// a segment (or an arc of a circle p is not inside) turns by the principal angle, so
+// k = [cross(u, v) < 0]; an arc around p turns by alpha (ccw) or alpha - 2 pi (cw).
+// Summed over the closed loop, the alphas add up to 2 pi times the number of times the
+// direction passes the +x axis, which is [angle(v) < angle(u)] per edge.
+long winding_number(const Loop& loop, const Point& p) {
+  long winding = 0;
   for (const Edge& edge : loop.edges) {
-    Point a = edge.source - p, b = edge.target - p;
-    if (!edge.is_arc() || squared_length(p - edge.center) >= edge.radius_squared) {
-      if (edge.is_arc() && edge.source == edge.target) continue;  // full circle, p outside
-      total = total + signed_angle(a, b);
+    Point u = edge.source - p, v = edge.target - p;
+    bool around = edge.is_arc() && squared_length(p - edge.center) < edge.radius_squared;
+    if (edge.is_arc() && edge.source == edge.target) {
+      if (around) winding += edge.ccw ? 1 : -1;
       continue;
     }
-    Interval sweep = edge.source == edge.target ? Interval::pi() * Interval(Rational(2))
-                     : edge.ccw                 ? ccw_angle(a, b)
-                                                : -ccw_angle(b, a);
-    total = total + sweep;
+    if (angle_less(v, u)) ++winding;
+    if (!around) {
+      if (cross(u, v) < 0) --winding;
+    } else if (!edge.ccw) {
+      --winding;
+    }
   }
-  Interval turns = total / (Interval::pi() * Interval(Rational(2)));
-  if (!turns.is_bounded()) return std::nullopt;
-  Rational lo = turns.lower(), hi = turns.upper();
-  mpz_class nearest;
-  Rational shifted = lo + Rational(1, 2);
-  mpz_fdiv_q(nearest.get_mpz_t(), shifted.get_num_mpz_t(), shifted.get_den_mpz_t());
-  if (hi - Rational(nearest) >= Rational(1, 2) || Rational(nearest) - lo >= Rational(1, 2)) return std::nullopt;
-  return nearest.get_si();
+  return winding;
 }
 
 // ------------------------------------------------------------------ checks
@@ -394,7 +416,21 @@ struct EdgeRef {
   Box box;
 };
 
+// Consecutive edges that overlap: the boundary runs back along itself.
+void check_spikes(const Loop& loop) {
+  std::size_t size = loop.edges.size();
+  if (size < 2) return;
+  for (std::size_t i = 0; i < size; ++i) {
+    const Edge& e = loop.edges[i];
+    const Edge& f = loop.edges[(i + 1) % size];
+    if (intersect(e, f).overlap)
+      throw ModelError(f.pointer, "edge " + describe(f) + " runs back along " + describe(e) +
+                                      " (a zero-area spike: the boundary overlaps itself)");
+  }
+}
+
 void check_intersections(const Part& part) {
+  for (const Loop& loop : part.loops) check_spikes(loop);
   std::vector<EdgeRef> edges;
   for (std::size_t l = 0; l < part.loops.size(); ++l)
     for (std::size_t i = 0; i < part.loops[l].edges.size(); ++i)
@@ -461,6 +497,12 @@ void reverse(Loop& loop) {
 }
 
 void orient(Part& part) {
+  std::vector<Box> boxes;
+  for (const Loop& loop : part.loops) {
+    Box box = box_of(loop.edges.front());
+    for (const Edge& edge : loop.edges) box.include(box_of(edge));
+    boxes.push_back(box);
+  }
   std::vector<int> orientation(part.loops.size());
   for (std::size_t l = 0; l < part.loops.size(); ++l) {
     int s = twice_area(part.loops[l]).sign();
@@ -472,11 +514,8 @@ void orient(Part& part) {
     const Point& probe = part.loops[l].edges.front().source;
     for (std::size_t other = 0; other < part.loops.size(); ++other) {
       if (other == l) continue;
-      std::optional<long> winding = winding_number(part.loops[other], probe);
-      if (!winding)
-        throw ModelError(part.loops[l].pointer, "cannot decide whether this loop lies inside " +
-                                                    part.loops[other].pointer);
-      if (*winding != 0) ++depth;
+      if (!boxes[other].contains(probe)) continue;
+      if (winding_number(part.loops[other], probe) != 0) ++depth;
     }
     Loop& loop = part.loops[l];
     loop.is_hole = depth % 2 == 1;
