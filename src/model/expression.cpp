@@ -12,6 +12,7 @@ namespace {
 
 constexpr std::size_t max_nesting = 100;
 constexpr long max_exponent = 1024;
+constexpr long max_angle = 1000000;  // rad: larger angles orienting geometry are mistakes
 
 std::string quoted_expression(std::string_view text) {
   std::string shown;
@@ -627,11 +628,20 @@ Rational to_rational(const Quantity& value, const std::string& pointer,
 
 Point unit_vector(const Quantity& angle, const std::string& pointer, const std::string& expression,
                   std::vector<Rounding>& roundings) {
-  if (angle.is_rational()) return exact_unit_vector(angle.rational, pointer, expression, roundings);
-  if (angle.is_pi_multiple())
-    return exact_unit_vector_pi(angle.pi_multiple, pointer, expression, roundings);
-  Rational rounded = to_rational(angle, pointer, expression, roundings);
-  return exact_unit_vector(rounded, pointer, expression, roundings);
+  if (angle.is_pi_multiple()) {
+    // Exact reduction to (-1, 1] turns of pi keeps the 256-bit evaluation accurate.
+    Rational half = angle.pi_multiple / 2;
+    mpz_class turns;
+    Rational shifted = half + Rational(1, 2);
+    mpz_fdiv_q(turns.get_mpz_t(), shifted.get_num_mpz_t(), shifted.get_den_mpz_t());
+    Rational reduced = angle.pi_multiple - 2 * Rational(turns);
+    return exact_unit_vector_pi(reduced, pointer, expression, roundings);
+  }
+  Rational value = angle.is_rational() ? angle.rational : to_rational(angle, pointer, expression, roundings);
+  if (abs(value) > max_angle)
+    throw ModelError(pointer, "the angle " + quoted_expression(expression) + " is larger than " +
+                                  std::to_string(max_angle) + " rad in magnitude");
+  return exact_unit_vector(value, pointer, expression, roundings);
 }
 
 }  // namespace hipair::model_detail

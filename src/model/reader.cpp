@@ -24,6 +24,7 @@ namespace model_detail {
 namespace {
 
 constexpr std::size_t max_feature_count = 10000;
+constexpr std::size_t max_reference_depth = 200;
 
 std::string join(std::initializer_list<std::string_view> words) {
   std::string out;
@@ -289,6 +290,9 @@ class Reader {
       }
       throw ModelError(state.definition->pointer, "circular parameter references: " + cycle + name);
     }
+    if (evaluation_stack_.size() >= max_reference_depth)
+      throw ModelError(state.definition->pointer, "parameters refer to each other more than " +
+                                                      std::to_string(max_reference_depth) + " levels deep");
     state.status = ParameterState::Status::evaluating;
     evaluation_stack_.push_back(name);
     resolved_[state.index] = read_parameter(name, *state.definition, state.value);

@@ -175,7 +175,16 @@ TEST(Expression, UnitVectorsOfAnglesAreExactlyUnit) {
   roundings.clear();
   hipair::Point up = hipair::model_detail::unit_vector(evaluate("90 deg"), "/d", "90 deg", roundings);
   EXPECT_EQ(up, (hipair::Point{Rational(0), Rational(1)}));
+  // Multiples of pi are reduced exactly first, however large.
+  hipair::Point left = hipair::model_detail::unit_vector(evaluate("1000001 * pi"), "/d", "1000001 pi", roundings);
+  EXPECT_EQ(left, (hipair::Point{Rational(-1), Rational(0)}));
+  hipair::Point down = hipair::model_detail::unit_vector(evaluate("-(10^30 + 1/2) * pi"), "/d", "big", roundings);
+  EXPECT_EQ(down, (hipair::Point{Rational(0), Rational(-1)}));
   EXPECT_TRUE(roundings.empty());
+  hipair::Point tilted = hipair::model_detail::unit_vector(evaluate("(10^30 + 1/3) * pi"), "/d", "big", roundings);
+  EXPECT_NEAR(hipair::to_double(tilted.x), 0.5, 1e-11);
+  EXPECT_NEAR(hipair::to_double(tilted.y), std::sqrt(3.0) / 2, 1e-11);
+  EXPECT_THROW(hipair::model_detail::unit_vector(evaluate("10^7"), "/d", "10^7", roundings), hipair::ModelError);
 }
 
 }  // namespace

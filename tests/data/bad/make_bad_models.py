@@ -170,6 +170,10 @@ m = base(); m["parts"][0]["features"] = [{"circle": {"center": [50, 50], "radius
 add("unknown_template_argument", m, "/parts/0/features/0/circle/colour", "unknown argument 'colour'", "template argument misspelt")
 m = base(); m["parts"][0]["features"] = [{"circle": {"center": [50, 50]}}]
 add("missing_template_argument", m, "/parts/0/features/0/circle", "needs argument 'radius'", "a circle without radius")
+m = base(); m["parameters"] = {"p%d" % i: {"nominal": "p%d + 1" % (i + 1)} for i in range(250)}; m["parameters"]["p250"] = {"nominal": 1}
+add("parameter_chain_too_deep", m, "/parameters/p200", "more than 200 levels deep", "250 parameters each defined by the next")
+m = base(); m["parts"][0]["loops"] = [{"circle": {"center": {"polar": {"center": [0, 0], "radius": 1, "angle": "1e7"}}, "radius": 1}}]
+add("angle_too_large", m, "/parts/0/loops/0/circle/center/polar/angle", "larger than 1000000 rad", "a polar angle of 10^7 rad")
 nested = 0
 for _ in range(80): nested = [nested]
 m = base(); m["description"] = "deep"; 
