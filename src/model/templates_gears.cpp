@@ -22,13 +22,41 @@ Rational dot(const Point& a, const Point& b) { return a.x * b.x + a.y * b.y; }
 
 }  // namespace
 
-// Canonical tooth: axis along +x. The right flank (y < 0) is a circular arc of radius
-// flank_radius through the pitch point at angle -beta (beta = half the tooth's angular
-// thickness), with its centre on the line of action (pressure angle alpha), i.e. at
-// P + rf * u(pi/2 + alpha - beta): the centre of curvature of the involute at the pitch point
-// when rf = rp sin(alpha). The flank meets the tip and root circles at irrational points; we
-// take exact rational points on those circles next to them and move the flank's centre onto
-// their perpendicular bisector (the flank radius changes by less than the recorded bound).
+// One flank of the canonical tooth (axis along +x, the right flank y < 0), from the root
+// circle to the tip circle: a list of arcs (end point, centre, ccw) after `start`.
+struct Flank {
+  Point start;                      // on the root circle
+  std::vector<Point> ends;          // piece end points; the last is on the tip circle
+  std::vector<Point> centres;       // arcs only
+  std::vector<bool> counter_clockwise;
+  std::vector<bool> is_arc;         // false: a segment
+  std::vector<std::string> names;   // "", "radial", "lower", "upper"
+};
+
+// The centre of the circle through `a` and `b` whose centre lies on the line a + t * normal:
+// exact (t = |b - a|^2 / (2 (b - a).normal)).
+Point centre_on_normal(const Point& a, const Point& b, const Point& normal) {
+  Point d = tg::subtract(b, a);
+  Rational t = dot(d, d) / (2 * dot(d, normal));
+  return tg::add(a, tg::scale(t, normal));
+}
+
+bool arc_is_ccw(const Point& from, const Point& to, const Point& centre) {
+  Point a = tg::subtract(from, centre), b = tg::subtract(to, centre);
+  return a.x * b.y - a.y * b.x > 0;  // the short way round
+}
+
+// Canonical tooth: axis along +x; beta = half the tooth's angular thickness at the pitch
+// circle, P = rp u(-beta) the right flank's pitch point, n = u(pi/2 + alpha - beta) the flank
+// normal at P (towards the involute's centre of curvature on the base circle).
+// Default: each flank is two circular arcs tangent at P, with centres on the normal: the upper
+// one through the involute's point on the tip circle, the lower one through its point on the
+// base circle (or on the root circle when that is larger), continued down to the root circle.
+// With flank_radius: one arc of that radius centred at P + rf n (rf = rp sin(alpha) is the
+// involute's curvature at P). The left flank is the mirror image. Vertices on the tip and
+// root circles are exact rational points next to the ideal ones; the arcs' centres are then
+// placed exactly (on the normal through P, or on the bisector of the arc's end points), and
+// the displacement is recorded as a rounding.
 std::vector<Loop> expand_spur_gear(const Arguments& arguments, std::vector<Rounding>& roundings) {
   const std::string& pointer = arguments.pointer();
   Point center = arguments.point("center");
@@ -58,17 +86,6 @@ std::vector<Loop> expand_spur_gear(const Arguments& arguments, std::vector<Round
     pressure = exact_unit_vector_pi(Rational(1, 9), pointer, "default pressure_angle 20 deg",
                                     roundings);
   }
-  Rational flank_radius;
-  if (arguments.has("flank_radius")) {
-    flank_radius = arguments.positive_length("flank_radius");
-  } else {
-    // rp * sin(alpha) from the exact unit vector (already rounded, exact from here on).
-    flank_radius = round_to_grid(Rational(pitch * pressure.y));
-    roundings.push_back(Rounding{pointer + "/flank_radius",
-                                 "default flank_radius = pitch_radius * sin(pressure_angle)",
-                                 flank_radius, tg::grid_step()});
-  }
-
   Rational half_angle = thickness / (2 * pitch);  // beta, exact
   if (tg::approximate(half_angle) >= M_PI / static_cast<double>(teeth))
     throw ModelError(arguments.at("tooth_thickness"),
@@ -76,68 +93,143 @@ std::vector<Loop> expand_spur_gear(const Arguments& arguments, std::vector<Round
   Point half_unit = exact_unit_vector(Rational(-half_angle), arguments.at("tooth_thickness"),
                                       "tooth_thickness / (2 pitch_radius)", roundings);
   Point pitch_point = tg::scale(pitch, half_unit);
-  Point toward_centre = tg::perpendicular(tg::rotate(pressure, half_unit));  // u(pi/2+a-b)
-  Point ideal_centre = tg::add(pitch_point, tg::scale(flank_radius, toward_centre));
+  Point normal = tg::perpendicular(tg::rotate(pressure, half_unit));  // u(pi/2 + alpha - beta)
 
-  auto nearest_crossing = [&](const Rational& radius, const std::string& key,
-                              const std::string& what) {
+  auto crossing = [&](const Point& centre, const Rational& radius, const Rational& circle,
+                      const std::string& key, const std::string& what) {
     Point first, second;
-    if (!tg::circle_intersections(radius, ideal_centre, flank_radius, first, second))
-      throw ModelError(arguments.at(key), "the flank arc (flank_radius " +
-                                              to_decimal_string(flank_radius, 6) +
-                                              ") does not reach the " + what + " circle");
+    if (!tg::circle_intersections(circle, centre, radius, first, second))
+      throw ModelError(arguments.at(key), "the tooth flank does not reach the " + what +
+                                              " circle (check addendum, dedendum, "
+                                              "pressure_angle, flank_radius)");
     return tg::squared_distance(first, pitch_point) < tg::squared_distance(second, pitch_point)
                ? first
                : second;
   };
-  Point tip_ideal = nearest_crossing(tip_radius, "addendum", "tip");
-  Point root_ideal = nearest_crossing(root_radius, "dedendum", "root");
-  Point tip = tg::point_on_circle_near(Point{0, 0}, tip_radius, tip_ideal, pointer,
-                                       "tooth flank end on the tip circle", roundings);
-  Point root = tg::point_on_circle_near(Point{0, 0}, root_radius, root_ideal, pointer,
-                                        "tooth flank end on the root circle", roundings);
+  auto exact_on = [&](const Rational& circle, const Point& near, const std::string& what) {
+    return tg::point_on_circle_near(Point{0, 0}, circle, near, pointer, what, roundings);
+  };
+  auto record_centre = [&](const Point& used, const Point& ideal, const std::string& what) {
+    roundings.push_back(Rounding{pointer, what + " centre placed exactly through its rounded "
+                                                 "end points (bound: centre displacement, mm)",
+                                 used.x,
+                                 Rational(tg::upper_sqrt(tg::squared_distance(used, ideal)) +
+                                          tip_radius * Rational(2 * tg::grid_step()))});
+  };
+
+  Flank flank;
+  if (arguments.has("flank_radius")) {
+    Rational radius = arguments.positive_length("flank_radius");
+    Point ideal_centre = tg::add(pitch_point, tg::scale(radius, normal));
+    Point tip = exact_on(tip_radius, crossing(ideal_centre, radius, tip_radius, "addendum", "tip"),
+                         "tooth flank end on the tip circle");
+    Point root =
+        exact_on(root_radius, crossing(ideal_centre, radius, root_radius, "dedendum", "root"),
+                 "tooth flank end on the root circle");
+    // The exact centre: on the bisector of root-tip, nearest the ideal one.
+    Point middle = tg::scale(Rational(1, 2), tg::add(tip, root));
+    Point across = tg::perpendicular(tg::subtract(tip, root));
+    Rational along = dot(tg::subtract(ideal_centre, middle), across) / dot(across, across);
+    Point centre = tg::add(middle, tg::scale(along, across));
+    record_centre(centre, ideal_centre, "tooth flank");
+    flank.start = root;
+    flank.ends = {tip};
+    flank.centres = {centre};
+    flank.counter_clockwise = {arc_is_ccw(root, tip, centre)};
+    flank.is_arc = {true};
+    flank.names = {""};
+  } else {
+    double rp = tg::approximate(pitch), beta = tg::approximate(half_angle);
+    double base = rp * std::cos(alpha);
+    double low = std::max(base, tg::approximate(root_radius));
+    auto involute_function = [](double angle) { return std::tan(angle) - angle; };
+    auto involute_point = [&](double r) {
+      double pressure_at_r = std::acos(std::min(1.0, base / r));
+      double angle = -beta + involute_function(pressure_at_r) - involute_function(alpha);
+      return Point{Rational(r * std::cos(angle)), Rational(r * std::sin(angle))};
+    };
+    if (tg::approximate(tip_radius) <= base)
+      throw ModelError(arguments.at("addendum"),
+                       "the tip circle lies inside the base circle: no involute to follow");
+    Point tip = exact_on(tip_radius, involute_point(tg::approximate(tip_radius)),
+                         "tooth flank end on the tip circle (involute point)");
+    Point upper_centre = centre_on_normal(pitch_point, tip, normal);
+    if (low > tg::approximate(root_radius)) {
+      // Below the base circle the involute does not exist: a radial segment down to the root
+      // circle; the lower arc runs from the involute's start on the base circle to P.
+      Point base_point = involute_point(low);
+      base_point = Point{round_to_grid(base_point.x), round_to_grid(base_point.y)};
+      Point lower_centre = centre_on_normal(pitch_point, base_point, normal);
+      Rational scale_to_root = tg::approximate(root_radius) / low;
+      Point root = exact_on(root_radius, tg::scale(scale_to_root, base_point),
+                            "tooth flank end on the root circle (radial below the base circle)");
+      flank.start = root;
+      flank.ends = {base_point, pitch_point, tip};
+      flank.centres = {Point{}, lower_centre, upper_centre};
+      flank.counter_clockwise = {false, arc_is_ccw(base_point, pitch_point, lower_centre),
+                                 arc_is_ccw(pitch_point, tip, upper_centre)};
+      flank.is_arc = {false, true, true};
+      flank.names = {"radial", "lower", "upper"};
+    } else {
+      Point root = exact_on(root_radius, involute_point(low),
+                            "tooth flank end on the root circle (involute point)");
+      Point lower_centre = centre_on_normal(pitch_point, root, normal);
+      flank.start = root;
+      flank.ends = {pitch_point, tip};
+      flank.centres = {lower_centre, upper_centre};
+      flank.counter_clockwise = {arc_is_ccw(root, pitch_point, lower_centre),
+                                 arc_is_ccw(pitch_point, tip, upper_centre)};
+      flank.is_arc = {true, true};
+      flank.names = {"lower", "upper"};
+    }
+  }
+
+  const Point& tip = flank.ends.back();
+  const Point& root = flank.start;
   if (tip.y >= 0)
     throw ModelError(arguments.at("addendum"),
                      "the teeth are pointed: the flanks cross before the tip circle (reduce the "
-                     "addendum or increase tooth_thickness or flank_radius)");
+                     "addendum or increase tooth_thickness)");
   double root_angle = std::atan2(tg::approximate(root.y), tg::approximate(root.x));
   if (root.y >= 0 || root_angle <= -M_PI / static_cast<double>(teeth))
     throw ModelError(arguments.at("dedendum"),
                      "the flanks of neighbouring teeth meet above the root circle (reduce the "
                      "dedendum or tooth_thickness)");
 
-  // Flank centre: the point of the perpendicular bisector of root-tip nearest the ideal one.
-  Point middle = tg::scale(Rational(1, 2), tg::add(tip, root));
-  Point normal = tg::perpendicular(tg::subtract(tip, root));
-  Rational along = dot(tg::subtract(ideal_centre, middle), normal) / dot(normal, normal);
-  Point flank_centre = tg::add(middle, tg::scale(along, normal));
-  Rational moved = tg::squared_distance(flank_centre, ideal_centre);
-  roundings.push_back(Rounding{pointer, "tooth flank centre moved onto the bisector of its exact "
-                                        "end points (bound: centre displacement, mm)",
-                               flank_centre.x,
-                               Rational(tg::upper_sqrt(moved) +
-                                        tip_radius * Rational(2 * tg::grid_step()))});
-  Point arm_root = tg::subtract(root, flank_centre);
-  Point arm_tip = tg::subtract(tip, flank_centre);
-  bool flank_ccw = arm_root.x * arm_tip.y - arm_root.y * arm_tip.x > 0;
-
-  Point tip_left = tg::mirror(tip);
-  Point root_left = tg::mirror(root);
-  Point centre_left = tg::mirror(flank_centre);
-
   std::vector<Point> turn(teeth);
   for (long k = 0; k < teeth; ++k)
-    turn[k] = direction(phase, Rational(2 * k, teeth), pointer,
-                        tooth(k) + " axis direction", roundings);
+    turn[k] = direction(phase, Rational(2 * k, teeth), pointer, tooth(k) + " axis direction",
+                        roundings);
   Point origin{0, 0};
+  std::size_t pieces = flank.ends.size();
+  auto piece_label = [&](long k, const std::string& side, std::size_t i) {
+    std::string label = tooth(k) + " flank " + side;
+    if (!flank.names[i].empty()) label += " " + flank.names[i];
+    return label;
+  };
+  auto add_piece = [&](tg::LoopBuilder& loop, const Point& u, std::size_t i, const Point& end,
+                       bool mirrored, const std::string& label) {
+    Point target = place(center, u, mirrored ? tg::mirror(end) : end);
+    if (!flank.is_arc[i]) {
+      loop.line_to(target, label);
+      return;
+    }
+    const Point& centre = flank.centres[i];
+    loop.arc_to(target, place(center, u, mirrored ? tg::mirror(centre) : centre),
+                flank.counter_clockwise[i], label);
+  };
   tg::LoopBuilder loop(place(center, turn[0], root), pointer);
   for (long k = 0; k < teeth; ++k) {
     const Point& u = turn[k];
-    loop.arc_to(place(center, u, tip), place(center, u, flank_centre), flank_ccw,
-                tooth(k) + " flank R");
-    loop.arc_to(place(center, u, tip_left), place(center, u, origin), true, tooth(k) + " tip");
-    loop.arc_to(place(center, u, root_left), place(center, u, centre_left), flank_ccw,
-                tooth(k) + " flank L");
+    for (std::size_t i = 0; i < pieces; ++i)
+      add_piece(loop, u, i, flank.ends[i], false, piece_label(k, "R", i));
+    loop.arc_to(place(center, u, tg::mirror(tip)), place(center, u, origin), true,
+                tooth(k) + " tip");
+    // Left flank: the mirror image, run from the tip down (mirroring and reversing keep the
+    // turning sense of each arc).
+    for (std::size_t i = pieces; i-- > 0;)
+      add_piece(loop, u, i, i == 0 ? flank.start : flank.ends[i - 1], true,
+                piece_label(k, "L", i));
     loop.arc_to(place(center, turn[(k + 1) % teeth], root), center, true, tooth(k) + " root");
   }
   return {loop.finish()};

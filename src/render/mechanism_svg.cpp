@@ -250,13 +250,58 @@ std::string mechanism_svg(const Model& model, const std::vector<PartConfiguratio
     }
   }
 
-  // Names, and feature labels on request.
+  // Names: beside each part where they cover the fewest other parts and names.
+  std::vector<Box> placed;
   for (std::size_t i = 0; i < model.parts.size(); ++i) {
     const Part& part = model.parts[i];
     if (!part_boxes[i].valid()) continue;
     const Box& b = part_boxes[i];
-    svg.text((b.min_x + b.max_x) / 2, b.max_y + text_size * 0.5, part.name, text_size, "middle",
-             "#111111", "bold");
+    double width = text_size * 0.62 * static_cast<double>(part.name.size());
+    double gap = text_size * 0.4;
+    double mid_x = (b.min_x + b.max_x) / 2, mid_y = (b.min_y + b.max_y) / 2;
+    // Candidate baselines (x is the text's centre): above, below, right, left, inside top.
+    const double candidates[][2] = {{mid_x, b.max_y + gap},
+                                    {mid_x, b.min_y - gap - text_size},
+                                    {b.max_x + gap + width / 2, mid_y - text_size / 2},
+                                    {b.min_x - gap - width / 2, mid_y - text_size / 2},
+                                    {mid_x, b.max_y - gap - text_size}};
+    double best_cost = std::numeric_limits<double>::infinity();
+    Box best_box;
+    double best_x = mid_x, best_y = b.max_y + gap;
+    for (const auto& candidate : candidates) {
+      Box label;
+      label.add(candidate[0] - width / 2, candidate[1] - text_size * 0.25);
+      label.add(candidate[0] + width / 2, candidate[1] + text_size * 0.9);
+      auto overlap = [&](const Box& other) {
+        double w = std::min(label.max_x, other.max_x) - std::max(label.min_x, other.min_x);
+        double h = std::min(label.max_y, other.max_y) - std::max(label.min_y, other.min_y);
+        return w > 0 && h > 0 ? w * h : 0.0;
+      };
+      double cost = 0;
+      for (std::size_t j = 0; j < part_boxes.size(); ++j)
+        if (j != i && part_boxes[j].valid()) cost += overlap(part_boxes[j]);
+      for (const Box& other : placed) cost += 4 * overlap(other);
+      double outside = (label.max_x - label.min_x) * (label.max_y - label.min_y);
+      Box frame;
+      frame.add(box.min_x, box.min_y);
+      frame.add(extent.max_x + margin, box.max_y - text_size * 2.5);
+      outside -= overlap(frame);
+      cost += 10 * outside;
+      if (cost < best_cost - 1e-12) {
+        best_cost = cost;
+        best_box = label;
+        best_x = candidate[0];
+        best_y = candidate[1];
+      }
+    }
+    placed.push_back(best_box);
+    svg.text(best_x, best_y, part.name, text_size, "middle", "#111111", "bold");
+  }
+
+  // Feature labels on request.
+  for (std::size_t i = 0; i < model.parts.size(); ++i) {
+    const Part& part = model.parts[i];
+    if (!part_boxes[i].valid()) continue;
     if (!options.labels) continue;
     svg.begin_group("labels-" + part.name, "labels");
     for (const Loop& loop : part.loops)
