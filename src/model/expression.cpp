@@ -178,19 +178,34 @@ class Evaluator {
     return value;
   }
 
-  // term := unary (('*' | '/') unary)*
+  // term := unary (('*' | '/') unary | unit)*     unit := 'deg' | 'rad'
+  // A unit applies to the product or quotient accumulated so far: "pi/4 rad" is (pi/4) rad,
+  // "360 deg / slots" is (360 deg) / slots.
   Quantity term() {
     Quantity value = unary();
-    while (at_symbol('*') || at_symbol('/')) {
-      bool divide_by = at_symbol('/');
-      ++next_;
-      Quantity right = unary();
-      value = divide_by ? divide(value, right) : multiply(value, right);
+    while (true) {
+      if (at_symbol('*') || at_symbol('/')) {
+        bool divide_by = at_symbol('/');
+        ++next_;
+        Quantity right = unary();
+        value = divide_by ? divide(value, right) : multiply(value, right);
+      } else if (current().kind == Token::Kind::name && (current().text == "deg" || current().text == "rad")) {
+        if (value.is_angle) fail("'" + current().text + "' applied to a value that already is an angle", current());
+        bool degrees = current().text == "deg";
+        ++next_;
+        if (degrees) {
+          value = degrees_to_radians(value);
+        } else {
+          value.is_angle = true;
+          value.mentions_pi = false;
+        }
+      } else {
+        return value;
+      }
     }
-    return value;
   }
 
-  // unary := ('-' | '+') unary | postfix
+  // unary := ('-' | '+') unary | power
   Quantity unary() {
     DepthGuard guard(*this);
     if (at_symbol('-')) {
@@ -201,24 +216,10 @@ class Evaluator {
       ++next_;
       return unary();
     }
-    return postfix();
+    return power();
   }
 
-  // postfix := power ('deg' | 'rad')?
-  Quantity postfix() {
-    Quantity value = power();
-    if (current().kind == Token::Kind::name && (current().text == "deg" || current().text == "rad")) {
-      bool degrees = current().text == "deg";
-      if (value.is_angle) fail("'" + current().text + "' applied to a value that already is an angle", current());
-      ++next_;
-      if (degrees) return as_angle(value, true);
-      value.is_angle = true;
-      return value;
-    }
-    return value;
-  }
-
-  // power := primary ('^' unary)?   (right associative through unary -> postfix -> power)
+  // power := primary ('^' unary)?   (right associative through unary -> power)
   Quantity power() {
     Quantity base = primary();
     if (!at_symbol('^')) return base;
@@ -264,7 +265,11 @@ class Evaluator {
     std::string lower = lower_case(name);
     if (lower == "nan" || lower == "inf" || lower == "infinity")
       fail("'" + name + "' is not a number: NaN and infinity are not allowed");
-    if (name == "pi") return Quantity::of_pi(1);
+    if (name == "pi") {
+      Quantity pi = Quantity::of_pi(1, false);
+      pi.mentions_pi = true;
+      return pi;
+    }
     if (name == "deg" || name == "rad") fail("unit '" + name + "' without a value before it", token);
     if (name == "sqrt" || name == "sin" || name == "cos" || name == "tan" || name == "atan2" ||
         name == "min" || name == "max" || name == "abs")
@@ -293,7 +298,7 @@ class Evaluator {
     };
     if (name == "sqrt") {
       arity(1);
-      return square_root(arguments[0]);
+      return with_pi(square_root(arguments[0]), arguments[0], arguments[0]);
     }
     if (name == "sin" || name == "cos" || name == "tan") {
       arity(1);
@@ -310,11 +315,14 @@ class Evaluator {
     if (name == "min" || name == "max") {
       if (arguments.size() < 2) fail("function '" + name + "' takes at least 2 arguments", function);
       Quantity best = arguments[0];
+      bool any_pi = best.mentions_pi;
       for (std::size_t i = 1; i < arguments.size(); ++i) {
         unify(best, arguments[i]);
+        any_pi = any_pi || arguments[i].mentions_pi;
         int s = sign(add(arguments[i], negate(best)), name);
         if ((name == "min" && s < 0) || (name == "max" && s > 0)) best = arguments[i];
       }
+      best.mentions_pi = any_pi && !best.is_angle;
       return best;
     }
     fail("unknown function '" + name + "' (known: sqrt sin cos tan atan2 min max abs)", function);
@@ -340,18 +348,33 @@ class Evaluator {
 
   // Makes both operands angles when one is (a plain number next to an angle is in file units).
   void unify(Quantity& a, Quantity& b) const {
-    if (a.is_angle && !b.is_angle) b = as_angle(b, context_.degrees);
-    if (b.is_angle && !a.is_angle) a = as_angle(a, context_.degrees);
+    if (a.is_angle && !b.is_angle) b = as_angle(b, context_.degrees, context_.pointer, text_);
+    if (b.is_angle && !a.is_angle) a = as_angle(a, context_.degrees, context_.pointer, text_);
   }
 
   Quantity add(Quantity a, Quantity b) const {
     unify(a, b);
+    return with_pi(add_values(a, b), a, b);
+  }
+
+  Quantity add_values(const Quantity& a, const Quantity& b) const {
     if (a.exact && b.exact) {
       Quantity sum = Quantity::of(a.rational + b.rational, a.is_angle);
       sum.pi_multiple = a.pi_multiple + b.pi_multiple;
       return checked(sum);
     }
     return checked(Quantity::approximate(a.to_interval() + b.to_interval(), a.is_angle));
+  }
+
+  static Quantity with_pi(Quantity result, const Quantity& a, const Quantity& b) {
+    result.mentions_pi = !result.is_angle && (a.mentions_pi || b.mentions_pi);
+    return result;
+  }
+
+  Quantity degrees_to_radians(const Quantity& value) const {
+    Quantity plain = value;
+    plain.mentions_pi = false;
+    return as_angle(plain, true, context_.pointer, text_);
   }
 
   Quantity negate(Quantity a) const {
@@ -365,6 +388,10 @@ class Evaluator {
   }
 
   Quantity multiply(const Quantity& a, const Quantity& b) const {
+    return with_pi(multiply_values(a, b), a, b);
+  }
+
+  Quantity multiply_values(const Quantity& a, const Quantity& b) const {
     bool angle = a.is_angle != b.is_angle;
     if (a.exact && b.exact) {
       if (a.pi_multiple == 0) {
@@ -382,6 +409,10 @@ class Evaluator {
   }
 
   Quantity divide(const Quantity& a, const Quantity& b) const {
+    return with_pi(divide_values(a, b), a, b);
+  }
+
+  Quantity divide_values(const Quantity& a, const Quantity& b) const {
     bool angle = a.is_angle && !b.is_angle;
     if (b.exact && b.pi_multiple == 0) {
       if (b.rational == 0) fail("division by zero");
@@ -399,6 +430,10 @@ class Evaluator {
   }
 
   Quantity raise(const Quantity& base, long exponent) const {
+    return with_pi(raise_value(base, exponent), base, base);
+  }
+
+  Quantity raise_value(const Quantity& base, long exponent) const {
     if (exponent == 0) return Quantity::of(1);
     if (exponent == 1) return base;
     if (base.is_rational()) {
@@ -463,7 +498,7 @@ class Evaluator {
   }
 
   Quantity trigonometric(const std::string& name, const Quantity& argument) const {
-    Quantity angle = as_angle(argument, context_.degrees);
+    Quantity angle = as_angle(argument, context_.degrees, context_.pointer, text_);
     if (angle.is_rational() && angle.rational == 0)
       return Quantity::of(name == "cos" ? Rational(1) : Rational(0));
     if (angle.is_pi_multiple()) {
@@ -555,10 +590,16 @@ Quantity evaluate_expression(std::string_view text, const ExpressionContext& con
   return Evaluator(text, context).run();
 }
 
-Quantity as_angle(const Quantity& value, bool degrees) {
+Quantity as_angle(const Quantity& value, bool degrees, const std::string& pointer,
+                  std::string_view expression) {
   if (value.is_angle) return value;
+  if (degrees && value.mentions_pi)
+    throw ModelError(pointer, "ambiguous angle " + quoted_expression(expression) +
+                                  ": the file's angle unit is deg but the value is computed with pi; "
+                                  "write the unit ('pi/4 rad') or the angle in degrees");
   Quantity angle = value;
   angle.is_angle = true;
+  angle.mentions_pi = false;
   if (!degrees) return angle;
   if (value.is_rational()) return Quantity::of_pi(value.rational / 180);
   return Quantity::approximate(value.to_interval() * Interval::pi() / Interval(Rational(180)), true);

@@ -25,9 +25,12 @@ struct Quantity {
   Rational rational;                 ///< exact: value = rational + pi_multiple * pi
   Rational pi_multiple;
   std::optional<Interval> enclosure; ///< !exact: certified enclosure of the value
-  /// Carries an angle unit (a `deg`/`rad` postfix, pi, atan2, an angle parameter): the value
-  /// is in radians. A plain number used as an angle is in the file's angle unit.
+  /// Carries an angle unit (a `deg`/`rad` postfix, atan2, an angle parameter): the value is in
+  /// radians. A plain number used as an angle is in the file's angle unit.
   bool is_angle = false;
+  /// A plain value computed with pi: ambiguous as an angle in a degree file (is "pi/4" meant in
+  /// radians?), so using it as one there is an error.
+  bool mentions_pi = false;
 
   static Quantity of(const Rational& value, bool is_angle = false);
   static Quantity of_pi(const Rational& multiple, bool is_angle = true);
@@ -55,7 +58,9 @@ inline constexpr unsigned long max_rational_bits = 4096;
 Quantity evaluate_expression(std::string_view text, const ExpressionContext& context);
 
 /// The value used as an angle in radians: a plain number is converted from the file's unit.
-Quantity as_angle(const Quantity& value, bool degrees);
+/// \throws ModelError(pointer, ...) for a plain value computed with pi in a degree file.
+Quantity as_angle(const Quantity& value, bool degrees, const std::string& pointer,
+                  std::string_view expression);
 
 /// Largest decimal exponent accepted in a literal ("1e1000").
 inline constexpr long max_literal_exponent = 1000;

@@ -157,7 +157,7 @@ class Reader {
   }
 
   Rational angle(const JsonValue& value) {
-    return to_rational(as_angle(evaluate(value), degrees_), value.pointer, text_of(value),
+    return to_rational(as_angle(evaluate(value), degrees_, value.pointer, text_of(value)), value.pointer, text_of(value),
                        model_.roundings);
   }
 
@@ -188,7 +188,8 @@ class Reader {
       const JsonValue& radius_value = require(polar, "radius");
       Rational radius = non_negative(radius_value, "the radius");
       const JsonValue& angle_value = require(polar, "angle");
-      Point unit = unit_vector(as_angle(evaluate(angle_value), degrees_), angle_value.pointer,
+      Point unit = unit_vector(as_angle(evaluate(angle_value), degrees_, angle_value.pointer, text_of(angle_value)),
+                               angle_value.pointer,
                                text_of(angle_value), model_.roundings);
       return point_on_circle(center, radius, unit);
     }
@@ -310,13 +311,13 @@ class Reader {
     const JsonValue& nominal_value = require(definition, "nominal");
     Quantity nominal = evaluate(nominal_value);
     if (parameter.is_angle || nominal.is_angle) {
-      nominal = as_angle(nominal, degrees_);
+      nominal = as_angle(nominal, degrees_, nominal_value.pointer, text_of(nominal_value));
       parameter.is_angle = true;
     }
     parameter.nominal = to_rational(nominal, nominal_value.pointer, text_of(nominal_value), model_.roundings);
     auto deviation = [&](const JsonValue& v) {
       Quantity q = evaluate(v);
-      if (parameter.is_angle) q = as_angle(q, degrees_);
+      if (parameter.is_angle) q = as_angle(q, degrees_, v.pointer, text_of(v));
       return to_rational(q, v.pointer, text_of(v), model_.roundings);
     };
     const JsonValue* tolerance = definition.find("tolerance");
@@ -366,7 +367,7 @@ class Reader {
         check_keys(normal, {"sigma"});
         const JsonValue& sigma = require(normal, "sigma");
         Quantity s = evaluate(sigma);
-        if (parameter.is_angle) s = as_angle(s, degrees_);
+        if (parameter.is_angle) s = as_angle(s, degrees_, sigma.pointer, text_of(sigma));
         parameter.sigma = to_rational(s, sigma.pointer, text_of(sigma), model_.roundings);
         if (*parameter.sigma <= 0) throw ModelError(sigma.pointer, "sigma must be positive");
         parameter.distribution = Parameter::Distribution::normal;
@@ -625,7 +626,7 @@ class Reader {
   /// An exact rational unit vector from [dx, dy] or from an angle.
   Point direction(const JsonValue& value) {
     if (!value.is_array()) {
-      Quantity a = as_angle(evaluate(value), degrees_);
+      Quantity a = as_angle(evaluate(value), degrees_, value.pointer, text_of(value));
       return unit_vector(a, value.pointer, text_of(value), model_.roundings);
     }
     if (value.items.size() != 2)

@@ -83,7 +83,23 @@ TEST(Expression, DegreesStayExactMultiplesOfPi) {
   EXPECT_EQ(pi_multiple("30 deg + 15 deg"), Rational(1, 4));
   EXPECT_EQ(exact("(90 deg) / (30 deg)"), Rational(3));  // a ratio of angles is a plain number
   // In a degree file, a plain number next to an angle is in degrees.
-  EXPECT_EQ(pi_multiple("pi/4 + 45", true), Rational(1, 2));
+  EXPECT_EQ(pi_multiple("pi/4 rad + 45", true), Rational(1, 2));
+  EXPECT_EQ(pi_multiple("30 deg + 15", true), Rational(1, 4));
+  // pi is a plain number: lengths computed with pi stay lengths in a degree file...
+  Quantity thickness = evaluate("pi * 2 / 2 - 0.1 / 2", true);
+  EXPECT_FALSE(thickness.is_angle);
+  EXPECT_EQ(thickness.rational, Rational(-1, 20));
+  EXPECT_EQ(thickness.pi_multiple, Rational(1));
+  // ...and as an angle there it is ambiguous.
+  EXPECT_NE(error_of("sin(pi/6)", true).find("ambiguous angle"), std::string::npos);
+  EXPECT_NE(error_of("pi/4 + 45 deg", true).find("ambiguous angle"), std::string::npos);
+  EXPECT_EQ(exact("sin(pi/6 rad)", true), Rational(1, 2));
+  EXPECT_EQ(exact("sin(pi/6)"), Rational(1, 2));  // in a radian file pi/6 is an angle in rad
+  // A unit applies to the product or quotient before it.
+  EXPECT_EQ(pi_multiple("pi/4 rad", true), Rational(1, 4));
+  EXPECT_TRUE(evaluate("pi/4 rad", true).is_angle);
+  EXPECT_EQ(pi_multiple("-90 deg / 3"), Rational(-1, 6));
+  EXPECT_EQ(pi_multiple("2 * 45 deg"), Rational(1, 2));
   EXPECT_TRUE(evaluate("30 deg").is_angle);
   EXPECT_TRUE(evaluate("atan2(1, 1)").is_angle);
   EXPECT_FALSE(evaluate("30").is_angle);
@@ -157,7 +173,8 @@ TEST(Expression, ErrorsNameTheProblem) {
   EXPECT_NE(error_of("1e99999").find("out of range"), std::string::npos);
   EXPECT_NE(error_of("log(2)").find("unknown function"), std::string::npos);
   EXPECT_NE(error_of("sin(1, 2)").find("takes 1 argument"), std::string::npos);
-  EXPECT_NE(error_of("30 deg deg").find("unexpected"), std::string::npos);
+  EXPECT_NE(error_of("30 deg deg").find("already is an angle"), std::string::npos);
+  EXPECT_NE(error_of("30 deg )").find("unexpected ')'"), std::string::npos);
   EXPECT_NE(error_of("(30 deg) rad").find("already is an angle"), std::string::npos);
   EXPECT_NE(error_of("width").find("unknown parameter 'width'"), std::string::npos);
   EXPECT_NE(error_of(std::string(500, '(') + "1" + std::string(500, ')')).find("nested too deeply"),
@@ -168,7 +185,7 @@ TEST(Expression, ErrorsNameTheProblem) {
 TEST(Expression, UnitVectorsOfAnglesAreExactlyUnit) {
   std::vector<hipair::Rounding> roundings;
   for (const char* text : {"30 deg", "pi/3", "1", "sqrt(2)", "-170 deg", "atan2(3, 4)"}) {
-    Quantity angle = hipair::model_detail::as_angle(evaluate(text), false);
+    Quantity angle = hipair::model_detail::as_angle(evaluate(text), false, "/d", text);
     hipair::Point unit = hipair::model_detail::unit_vector(angle, "/d", text, roundings);
     EXPECT_EQ(unit.x * unit.x + unit.y * unit.y, Rational(1)) << text;
   }

@@ -174,6 +174,8 @@ m = base(); m["parameters"] = {"p%d" % i: {"nominal": "p%d + 1" % (i + 1)} for i
 add("parameter_chain_too_deep", m, "/parameters/p200", "more than 200 levels deep", "250 parameters each defined by the next")
 m = base(); m["parts"][0]["loops"] = [{"circle": {"center": {"polar": {"center": [0, 0], "radius": 1, "angle": "1e7"}}, "radius": 1}}]
 add("angle_too_large", m, "/parts/0/loops/0/circle/center/polar/angle", "larger than 1000000 rad", "a polar angle of 10^7 rad")
+m = base(); m["units"] = {"angle": "deg"}; m["parts"][0]["motion"] = {"rotation": {"pivot": [0, 0], "limits": ["-pi/4", "pi/4"]}}
+add("ambiguous_pi_angle", m, "/parts/0/motion/rotation/limits/0", "ambiguous angle", "pi/4 in a degree file: 45 degrees or pi/4 degrees?")
 nested = 0
 for _ in range(80): nested = [nested]
 m = base(); m["description"] = "deep"; 
