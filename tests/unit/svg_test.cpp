@@ -1,0 +1,250 @@
+// SVG writer and mechanism drawings: well-formed documents, y-up coordinates, arc flags,
+// atomic output.
+#include "io/atomic_file.hpp"
+#include "io/svg.hpp"
+#include "render/mechanism_svg.hpp"
+
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <regex>
+#include <vector>
+
+namespace hipair {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Checks that every element is closed in order (a small XML well-formedness check: tags,
+// self-closing tags, the declaration, and no stray '<' or '&' in text).
+::testing::AssertionResult well_formed(const std::string& xml) {
+  std::vector<std::string> open;
+  std::size_t i = 0;
+  if (xml.rfind("<?xml", 0) != 0) return ::testing::AssertionFailure() << "no XML declaration";
+  while ((i = xml.find('<', i)) != std::string::npos) {
+    std::size_t end = xml.find('>', i);
+    if (end == std::string::npos) return ::testing::AssertionFailure() << "unclosed tag at " << i;
+    std::string tag = xml.substr(i + 1, end - i - 1);
+    if (tag.find('<') != std::string::npos)
+      return ::testing::AssertionFailure() << "'<' inside a tag at " << i;
+    if (tag[0] == '?') {
+    } else if (tag[0] == '/') {
+      std::string name = tag.substr(1);
+      if (open.empty() || open.back() != name)
+        return ::testing::AssertionFailure() << "mismatched </" << name << "> at " << i;
+      open.pop_back();
+    } else if (tag.back() != '/') {
+      open.push_back(tag.substr(0, tag.find_first_of(" \n")));
+    }
+    std::size_t next = xml.find('<', end);
+    std::string text = xml.substr(end + 1, (next == std::string::npos ? xml.size() : next) - end - 1);
+    std::size_t amp = 0;
+    while ((amp = text.find('&', amp)) != std::string::npos) {
+      if (!std::regex_search(text.substr(amp), std::regex("^&(amp|lt|gt|quot|apos);")))
+        return ::testing::AssertionFailure() << "bare '&' in text";
+      ++amp;
+    }
+    i = end + 1;
+  }
+  if (!open.empty()) return ::testing::AssertionFailure() << "<" << open.back() << "> not closed";
+  if (xml.find("nan") != std::string::npos || xml.find("inf") != std::string::npos)
+    return ::testing::AssertionFailure() << "non-finite number";
+  return ::testing::AssertionSuccess();
+}
+
+TEST(Svg, EscapesText) {
+  EXPECT_EQ(io::escape_xml("a<b & \"c\" 'd'>"), "a&lt;b &amp; &quot;c&quot; &apos;d&apos;&gt;");
+}
+
+TEST(Svg, FormatsNumbersCompactly) {
+  EXPECT_EQ(io::format_number(1.5), "1.5");
+  EXPECT_EQ(io::format_number(2.0), "2");
+  EXPECT_EQ(io::format_number(-0.00001), "0");
+  EXPECT_EQ(io::format_number(-3.25), "-3.25");
+}
+
+TEST(Svg, FlipsTheYAxis) {
+  io::SvgWriter svg(io::SvgBox{-10, -5, 10, 20});
+  svg.circle(1, 5, 2, io::SvgStyle{});
+  std::string out = svg.str();
+  EXPECT_NE(out.find("cx=\"1\" cy=\"-5\" r=\"2\""), std::string::npos) << out;
+  // viewBox: min x, -max y, width, height.
+  EXPECT_NE(out.find("viewBox=\"-10 -20 20 25\""), std::string::npos) << out;
+  EXPECT_TRUE(well_formed(out));
+}
+
+TEST(Svg, ArcFlagsFollowSpanAndDirection) {
+  // Counter-clockwise from angle 0 to 270 degrees: 270 > 180, so large-arc = 1; a world
+  // counter-clockwise arc is sweep 0 once y is flipped.
+  io::SvgPath big;
+  big.move_to(1, 0);
+  big.arc_to(0, -1, 0, 0, true);
+  EXPECT_NE(big.data().find("A1,1 0 1,0 0,1"), std::string::npos) << big.data();
+  // Clockwise between the same points: 90 degrees, large-arc = 0, sweep 1.
+  io::SvgPath small;
+  small.move_to(1, 0);
+  small.arc_to(0, -1, 0, 0, false);
+  EXPECT_NE(small.data().find("A1,1 0 0,1 0,1"), std::string::npos) << small.data();
+  // Just over a half turn counter-clockwise: large.
+  io::SvgPath over;
+  over.move_to(1, 0);
+  over.arc_to(std::cos(3.2), std::sin(3.2), 0, 0, true);
+  EXPECT_NE(over.data().find(" 0 1,0 "), std::string::npos) << over.data();
+  // Just under a half turn: not large.
+  io::SvgPath under;
+  under.move_to(1, 0);
+  under.arc_to(std::cos(3.1), std::sin(3.1), 0, 0, true);
+  EXPECT_NE(under.data().find(" 0 0,0 "), std::string::npos) << under.data();
+}
+
+TEST(Svg, FullCircleIsTwoHalfArcs) {
+  io::SvgPath circle;
+  circle.move_to(3, 0);
+  circle.arc_to(3, 0, 0, 0, true);
+  const std::string& d = circle.data();
+  std::size_t first = d.find(" A");
+  ASSERT_NE(first, std::string::npos);
+  EXPECT_NE(d.find(" A", first + 1), std::string::npos) << d;
+  EXPECT_NE(d.find("-3,0"), std::string::npos) << d;  // through the opposite point
+  // Its extent covers the whole circle.
+  double min_y = 0, max_y = 0;
+  for (const auto& [x, y] : circle.extent_points()) {
+    min_y = std::min(min_y, y);
+    max_y = std::max(max_y, y);
+  }
+  EXPECT_DOUBLE_EQ(min_y, -3);
+  EXPECT_DOUBLE_EQ(max_y, 3);
+}
+
+TEST(Svg, ArcExtentIncludesItsExtremes) {
+  // A quarter arc through the top of the circle: extent reaches y = 2 although neither end
+  // point does.
+  io::SvgPath arc;
+  arc.move_to(std::sqrt(2.0), std::sqrt(2.0));
+  arc.arc_to(-std::sqrt(2.0), std::sqrt(2.0), 0, 0, true);
+  double max_y = -1;
+  for (const auto& [x, y] : arc.extent_points()) max_y = std::max(max_y, y);
+  EXPECT_DOUBLE_EQ(max_y, 2);
+}
+
+TEST(Svg, DocumentWithGroupsLegendAndScaleBarIsWellFormed) {
+  io::SvgWriter svg(io::SvgBox{0, 0, 100, 50}, 400);
+  svg.define_hatch("hatch", "#888", 2);
+  svg.define_arrow("arrow", "#333");
+  svg.begin_group("part-a&b", "part", "a <b>");
+  io::SvgPath path;
+  path.move_to(0, 0);
+  path.line_to(10, 0);
+  path.arc_to(0, 10, 0, 0, true);
+  path.close();
+  svg.path(path, io::SvgStyle{"url(#hatch)", "black", 0.2, "evenodd", "", 0.8, ""}, "a & b");
+  svg.end_group();
+  svg.text(5, 5, "x < y & z", 2);
+  svg.legend(60, 45, {{io::SvgStyle{}, "one"}, {io::SvgStyle{}, "two \"2\""}}, 2);
+  svg.scale_bar(5, 2, io::nice_length(23), "20 mm", 2);
+  std::string out = svg.str();
+  EXPECT_TRUE(well_formed(out)) << out;
+  EXPECT_NE(out.find("width=\"400\" height=\"200\""), std::string::npos);
+  EXPECT_THROW(svg.end_group(), Error);
+}
+
+TEST(Svg, NiceLengths) {
+  EXPECT_DOUBLE_EQ(io::nice_length(23), 20);
+  EXPECT_DOUBLE_EQ(io::nice_length(0.04), 0.05);
+  EXPECT_DOUBLE_EQ(io::nice_length(8), 10);
+  EXPECT_DOUBLE_EQ(io::nice_length(1), 1);
+}
+
+TEST(MechanismSvg, PosesRotationsAndTranslations) {
+  Motion rotation;
+  rotation.kind = Motion::Kind::rotation;
+  rotation.pivot = Point{Rational(1), Rational(0)};
+  PartConfiguration quarter;
+  quarter.angle = Rational(M_PI / 2);
+  render::PosedPoint p = render::pose_point(rotation, quarter, 2, 0);
+  EXPECT_NEAR(p.x, 1, 1e-12);
+  EXPECT_NEAR(p.y, 1, 1e-12);
+  Motion translation;
+  translation.kind = Motion::Kind::translation;
+  translation.direction = Point{Rational(3, 5), Rational(4, 5)};
+  PartConfiguration moved;
+  moved.offset = Rational(10);
+  p = render::pose_point(translation, moved, 1, 1);
+  EXPECT_DOUBLE_EQ(p.x, 7);
+  EXPECT_DOUBLE_EQ(p.y, 9);
+}
+
+Model example(const std::string& name) {
+  return read_model_file(fs::path(HIPAIR_EXAMPLES) / name);
+}
+
+std::vector<PartConfiguration> initial(const Model& model) {
+  std::vector<PartConfiguration> configurations;
+  for (const Part& part : model.parts) configurations.push_back(part.initial);
+  return configurations;
+}
+
+TEST(MechanismSvg, DrawsEveryExample) {
+  for (const char* name : {"geneva.json", "geneva-template.json", "cam-follower.json",
+                           "scotch-yoke.json", "ratchet.json", "spur-gears.json",
+                           "escapement.json"}) {
+    SCOPED_TRACE(name);
+    Model model = example(name);
+    render::MechanismSvgOptions options;
+    options.labels = true;
+    std::string svg = render::mechanism_svg(model, initial(model), options);
+    EXPECT_TRUE(well_formed(svg));
+    for (const Part& part : model.parts) {
+      EXPECT_NE(svg.find("id=\"part-" + part.name + "\""), std::string::npos) << part.name;
+      EXPECT_NE(svg.find(">" + part.name + "</text>"), std::string::npos) << part.name;
+    }
+    EXPECT_NE(svg.find(" mm</text>"), std::string::npos);  // scale bar
+  }
+}
+
+TEST(MechanismSvg, FixedPartsAreHatchedAndHolesCut) {
+  Model model = example("scotch-yoke.json");
+  std::string svg = render::mechanism_svg(model, initial(model));
+  EXPECT_NE(svg.find("<pattern id=\"hatch\""), std::string::npos);
+  EXPECT_NE(svg.find("fill=\"url(#hatch)\""), std::string::npos);
+  EXPECT_NE(svg.find("fill-rule=\"evenodd\""), std::string::npos);
+  EXPECT_NE(svg.find("marker-end=\"url(#arrow)\""), std::string::npos);  // translation axis
+}
+
+TEST(MechanismSvg, ConfigurationMovesTheDrawing) {
+  Model model = example("geneva-template.json");
+  std::vector<PartConfiguration> turned = initial(model);
+  turned[1].angle = Rational(1, 2);
+  EXPECT_NE(render::mechanism_svg(model, initial(model)), render::mechanism_svg(model, turned));
+  turned.pop_back();
+  EXPECT_THROW(render::mechanism_svg(model, turned), Error);
+}
+
+TEST(MechanismSvg, WritesAtomically) {
+  fs::path directory = fs::temp_directory_path() / ("hipair_svg_test_" + std::to_string(::getpid()));
+  fs::remove_all(directory);
+  fs::create_directories(directory);
+  Model model = example("ratchet.json");
+  std::string svg = render::mechanism_svg(model, initial(model));
+  fs::path target = directory / "ratchet.svg";
+  io::write_file_atomically(target, svg);
+  EXPECT_EQ(io::read_file(target), svg);
+  // Only the target is left behind: no temporary files.
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(directory)) {
+    (void)entry;
+    ++files;
+  }
+  EXPECT_EQ(files, 1u);
+  // A missing directory is an IoError and creates nothing.
+  EXPECT_THROW(io::write_file_atomically(directory / "missing" / "x.svg", svg), IoError);
+  EXPECT_FALSE(fs::exists(directory / "missing"));
+  fs::remove_all(directory);
+}
+
+}  // namespace
+}  // namespace hipair

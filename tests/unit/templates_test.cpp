@@ -1,0 +1,371 @@
+// Feature templates: exact geometry (every arc endpoint exactly on its circle, loops closed),
+// simple loops (checked exactly by the model reader), edge counts, and errors with pointers.
+#include "model/templates.hpp"
+
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+namespace hipair::model_detail {
+namespace {
+
+using Arguments = std::map<std::string, TemplateValue>;
+
+Rational q(const std::string& text) { return parse_rational(text); }
+Point at(const std::string& x, const std::string& y) { return Point{q(x), q(y)}; }
+Rational squared_distance(const Point& a, const Point& b) {
+  return (a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y);
+}
+// A decimal approximation as an exact rational (for test arguments computed in double).
+Rational decimal(double value) {
+  std::ostringstream out;
+  out.precision(6);
+  out << std::fixed << value;
+  return q(out.str());
+}
+
+// Every loop closes, every arc endpoint lies exactly on its circle, every edge is labelled.
+void expect_exact_loops(const std::vector<Loop>& loops) {
+  ASSERT_FALSE(loops.empty());
+  for (const Loop& loop : loops) {
+    ASSERT_FALSE(loop.edges.empty());
+    for (std::size_t i = 0; i < loop.edges.size(); ++i) {
+      const Edge& edge = loop.edges[i];
+      const Edge& next = loop.edges[(i + 1) % loop.edges.size()];
+      EXPECT_EQ(edge.target, next.source) << "edge " << i << " (" << edge.label << ")";
+      EXPECT_FALSE(edge.label.empty()) << "edge " << i;
+      if (edge.is_arc()) {
+        EXPECT_GT(edge.radius_squared, 0);
+        EXPECT_EQ(squared_distance(edge.source, edge.center), edge.radius_squared)
+            << edge.label;
+        EXPECT_EQ(squared_distance(edge.target, edge.center), edge.radius_squared)
+            << edge.label;
+      } else {
+        EXPECT_FALSE(edge.source == edge.target) << edge.label;
+      }
+    }
+  }
+}
+
+std::size_t edge_count(const std::vector<Loop>& loops) {
+  std::size_t count = 0;
+  for (const Loop& loop : loops) count += loop.edges.size();
+  return count;
+}
+
+Arguments geneva_wheel_arguments(int slots) {
+  // A workable wheel for `slots` slots at centre distance 80 (see docs/examples.md).
+  double d = 80, half = M_PI / slots;
+  double crank = d * std::sin(half), wheel = d * std::cos(half);
+  double lock = crank - 6;
+  double cosine = (d * d + lock * lock - wheel * wheel) / (2 * d * lock);
+  double span = 2 * std::acos(cosine) * 0.95;
+  return Arguments{{"center", at("0", "0")},
+                   {"slots", Rational(slots)},
+                   {"slot_width", q("6")},
+                   {"slot_inner_radius", decimal(d - crank - 2)},
+                   {"slot_outer_radius", decimal(wheel + 2)},
+                   {"lock_center_radius", q("80")},
+                   {"lock_radius", decimal(lock)},
+                   {"lock_span", decimal(span)}};
+}
+
+Arguments spur_gear_arguments(int teeth) {
+  return Arguments{{"center", at("0", "0")},
+                   {"teeth", Rational(teeth)},
+                   {"pitch_radius", Rational(teeth)},  // module 2
+                   {"addendum", q("2")},
+                   {"dedendum", q("2.5")},
+                   {"tooth_thickness", q("3.09")}};
+}
+
+// JSON of a one-part model whose only feature is `feature` (a JSON object text).
+std::string model_with_feature(const std::string& feature) {
+  return R"({"hipair": 1, "name": "t", "parts": [{"name": "p", "motion": "fixed",
+             "features": [)" + feature + "]}]}";
+}
+
+TEST(Templates, SpecsListEveryTemplateOnce) {
+  std::set<std::string> names;
+  for (const TemplateSpec& spec : template_specs()) {
+    EXPECT_TRUE(names.insert(spec.name).second) << spec.name;
+    EXPECT_FALSE(spec.arguments.empty()) << spec.name;
+  }
+  for (const char* name : {"circle", "pin", "geneva_wheel", "geneva_driver", "spur_gear",
+                           "ratchet_wheel", "escape_wheel", "anchor", "balance"})
+    EXPECT_TRUE(names.count(name)) << name;
+}
+
+TEST(Templates, CircleAndPinAreFullCircles) {
+  std::vector<Rounding> roundings;
+  auto loops = expand_template("pin", {{"center", at("3", "-1/3")}, {"radius", q("4.5")}},
+                               "/f", roundings);
+  ASSERT_EQ(loops.size(), 1u);
+  ASSERT_EQ(loops[0].edges.size(), 1u);
+  EXPECT_TRUE(loops[0].edges[0].is_full_circle());
+  EXPECT_EQ(loops[0].edges[0].label, "pin");
+  EXPECT_EQ(loops[0].edges[0].radius_squared, q("4.5") * q("4.5"));
+  EXPECT_TRUE(roundings.empty());
+}
+
+TEST(Templates, GenevaWheelIsExactForThreeToEightSlots) {
+  for (int slots = 3; slots <= 8; ++slots) {
+    SCOPED_TRACE(slots);
+    std::vector<Rounding> roundings;
+    auto loops = expand_template("geneva_wheel", geneva_wheel_arguments(slots), "/f", roundings);
+    expect_exact_loops(loops);
+    EXPECT_EQ(edge_count(loops), static_cast<std::size_t>(6 * slots));
+    for (const Rounding& rounding : roundings) EXPECT_GT(rounding.bound, 0);
+    // The locking arc centres lie exactly at distance 80 from the wheel centre.
+    for (const Edge& edge : loops[0].edges)
+      if (edge.label.rfind("lock arc", 0) == 0)
+        EXPECT_EQ(squared_distance(edge.center, Point{0, 0}), Rational(6400));
+  }
+}
+
+TEST(Templates, GenevaWheelLoopsAreSimpleForThreeToEightSlots) {
+  // The reader checks exactly that no loop crosses itself.
+  for (int slots = 3; slots <= 8; ++slots) {
+    SCOPED_TRACE(slots);
+    Arguments a = geneva_wheel_arguments(slots);
+    auto text = [&](const std::string& key) { return to_exact_string(std::get<Rational>(a[key])); };
+    std::string feature = R"({"geneva_wheel": {"center": [0, 0], "slots": )" +
+                          std::to_string(slots) + R"(, "slot_width": 6, "slot_inner_radius": ")" +
+                          text("slot_inner_radius") + R"(", "slot_outer_radius": ")" +
+                          text("slot_outer_radius") + R"(", "lock_center_radius": 80,
+                          "lock_radius": ")" + text("lock_radius") + R"(", "lock_span": ")" +
+                          text("lock_span") + R"("}})";
+    Model model;
+    ASSERT_NO_THROW(model = read_model(model_with_feature(feature))) << feature;
+    ASSERT_EQ(model.parts[0].loops.size(), 1u);
+  }
+}
+
+TEST(Templates, GenevaWheelQuarterTurnsAreExact) {
+  // With phase 0 and 4 slots the locking arcs sit at multiples of pi/2: no rounding there.
+  std::vector<Rounding> roundings;
+  auto loops = expand_template("geneva_wheel", geneva_wheel_arguments(4), "/f", roundings);
+  std::set<std::pair<std::string, std::string>> centres;
+  for (const Edge& edge : loops[0].edges)
+    if (edge.label.rfind("lock arc", 0) == 0)
+      centres.insert({to_exact_string(edge.center.x), to_exact_string(edge.center.y)});
+  std::set<std::pair<std::string, std::string>> expected = {
+      {"80", "0"}, {"0", "80"}, {"-80", "0"}, {"0", "-80"}};
+  EXPECT_EQ(centres, expected);
+}
+
+TEST(Templates, GenevaDriverHasPinAndCrescent) {
+  std::vector<Rounding> roundings;
+  Arguments a{{"center", at("80", "0")},         {"pin_radius", q("4.5")},
+              {"pin_center_radius", q("56.5")},  {"lock_outer_radius", q("46")},
+              {"lock_inner_radius", q("36")},    {"lock_span", q("4.9416")}};
+  auto loops = expand_template("geneva_driver", a, "/f", roundings);
+  expect_exact_loops(loops);
+  ASSERT_EQ(loops.size(), 2u);
+  EXPECT_EQ(loops[0].edges[0].label, "pin");
+  EXPECT_EQ(loops[0].edges[0].center, at("136.5", "0"));
+  EXPECT_EQ(loops[1].edges.size(), 4u);
+  // Default offset -span/2: the crescent is symmetric about the direction away from the pin.
+  const Edge& outer = loops[1].edges[0];
+  EXPECT_EQ(outer.source.x, outer.target.x);
+  EXPECT_EQ(outer.source.y, -outer.target.y);
+}
+
+TEST(Templates, SpurGearEdgeCounts) {
+  std::vector<Rounding> roundings;
+  // z = 18, module 2: the root circle (15.5) lies inside the base circle (16.9): each flank
+  // is a radial segment and two arcs -> 8 edges per tooth.
+  auto small = expand_template("spur_gear", spur_gear_arguments(18), "/f", roundings);
+  expect_exact_loops(small);
+  EXPECT_EQ(edge_count(small), 8u * 18);
+  // z = 60: the root circle (57.5) lies outside the base circle (56.4): two arcs per flank.
+  auto large = expand_template("spur_gear", spur_gear_arguments(60), "/f", roundings);
+  expect_exact_loops(large);
+  EXPECT_EQ(edge_count(large), 6u * 60);
+  // With an explicit flank radius: one arc per flank -> 4 edges per tooth.
+  Arguments single = spur_gear_arguments(25);
+  single["flank_radius"] = q("8.5");
+  auto one_arc = expand_template("spur_gear", single, "/f", roundings);
+  expect_exact_loops(one_arc);
+  EXPECT_EQ(edge_count(one_arc), 4u * 25);
+}
+
+TEST(Templates, SpurGearVerticesLieExactlyOnTipAndRootCircles) {
+  std::vector<Rounding> roundings;
+  auto loops = expand_template("spur_gear", spur_gear_arguments(18), "/f", roundings);
+  std::size_t tips = 0;
+  for (const Edge& edge : loops[0].edges) {
+    if (edge.label.find(" tip") != std::string::npos) {
+      ++tips;
+      EXPECT_EQ(edge.radius_squared, Rational(400));
+      EXPECT_EQ(edge.center, at("0", "0"));
+    }
+    if (edge.label.find(" root") != std::string::npos)
+      EXPECT_EQ(squared_distance(edge.source, Point{0, 0}), q("15.5") * q("15.5"));
+  }
+  EXPECT_EQ(tips, 18u);
+}
+
+TEST(Templates, SpurGearFlanksAreSymmetricAndTangentAtThePitchPoint) {
+  std::vector<Rounding> roundings;
+  auto loops = expand_template("spur_gear", spur_gear_arguments(18), "/f", roundings);
+  const auto& edges = loops[0].edges;
+  // Tooth 1 (axis along +x): R lower, R upper arcs meet at the pitch point, their centres and
+  // that point are collinear (a common tangent), exactly.
+  const Edge* lower = nullptr;
+  const Edge* upper = nullptr;
+  for (const Edge& edge : edges) {
+    if (edge.label == "tooth 1 flank R lower") lower = &edge;
+    if (edge.label == "tooth 1 flank R upper") upper = &edge;
+  }
+  ASSERT_TRUE(lower && upper);
+  EXPECT_EQ(lower->target, upper->source);
+  EXPECT_EQ(squared_distance(upper->source, Point{0, 0}), Rational(18 * 18));
+  Point p = upper->source;
+  Rational cross = (lower->center.x - p.x) * (upper->center.y - p.y) -
+                   (lower->center.y - p.y) * (upper->center.x - p.x);
+  EXPECT_EQ(cross, 0);
+}
+
+TEST(Templates, RatchetAndEscapeWheelsAreExact) {
+  std::vector<Rounding> roundings;
+  auto ratchet = expand_template("ratchet_wheel",
+                                 {{"center", at("1", "2")},
+                                  {"teeth", Rational(12)},
+                                  {"tip_radius", q("30")},
+                                  {"root_radius", q("24")},
+                                  {"dir", std::string("cw")}},
+                                 "/f", roundings);
+  expect_exact_loops(ratchet);
+  EXPECT_EQ(edge_count(ratchet), 24u);
+  for (const Edge& edge : ratchet[0].edges) {
+    Rational r2 = squared_distance(edge.source, at("1", "2"));
+    EXPECT_TRUE(r2 == 900 || r2 == 576) << edge.label;
+  }
+  auto escape = expand_template("escape_wheel",
+                                {{"center", at("0", "0")},
+                                 {"teeth", Rational(15)},
+                                 {"tip_radius", q("20")},
+                                 {"root_radius", q("15")},
+                                 {"face_angle", q("0.07")},
+                                 {"back_angle", q("0.17")},
+                                 {"tip_angle", q("0.02")}},
+                                "/f", roundings);
+  expect_exact_loops(escape);
+  EXPECT_EQ(edge_count(escape), 4u * 15);  // root arc, back, top, face
+}
+
+TEST(Templates, AnchorAndBalanceAreExactAndSimple) {
+  std::vector<Rounding> roundings;
+  Arguments anchor{{"center", at("0", "23.094")},  {"wheel_center", at("0", "0")},
+                   {"wheel_radius", q("20")},      {"pallet_width", q("3.6")},
+                   {"lift", q("0.1047")},          {"lock", q("0.0349")},
+                   {"fork_length", q("21.7")},     {"fork_width", q("5")},
+                   {"fork_slot_width", q("2.7")},  {"fork_slot_depth", q("2.4")}};
+  auto loops = expand_template("anchor", anchor, "/f", roundings);
+  expect_exact_loops(loops);
+  EXPECT_EQ(edge_count(loops), 17u);
+  auto balance = expand_template("balance",
+                                 {{"center", at("0", "48")},
+                                  {"radius", q("3")},
+                                  {"pin_radius", q("1.2")},
+                                  {"pin_center_radius", q("4")}},
+                                 "/f", roundings);
+  expect_exact_loops(balance);
+  EXPECT_EQ(edge_count(balance), 2u);
+  // Both outlines pass the reader's exact simplicity checks.
+  EXPECT_NO_THROW(read_model(model_with_feature(
+      R"({"anchor": {"center": [0, 23.094], "wheel_center": [0, 0], "wheel_radius": 20,
+          "pallet_width": 3.6, "lift": 0.1047, "lock": 0.0349, "fork_length": 21.7,
+          "fork_width": 5, "fork_slot_width": 2.7, "fork_slot_depth": 2.4}},
+         {"balance": {"center": [0, 48], "radius": 3, "pin_radius": 1.2,
+          "pin_center_radius": 4}})")));
+}
+
+// Expects expand_template to throw a ModelError at `pointer`.
+void expect_error_at(const std::string& name, const Arguments& arguments,
+                     const std::string& pointer) {
+  std::vector<Rounding> roundings;
+  try {
+    expand_template(name, arguments, "/parts/0/features/0/" + name, roundings);
+    ADD_FAILURE() << "no error for " << name << ", expected one at " << pointer;
+  } catch (const ModelError& error) {
+    EXPECT_EQ(error.pointer(), "/parts/0/features/0/" + name + pointer) << error.what();
+    EXPECT_FALSE(error.reason().empty());
+  }
+}
+
+TEST(Templates, BadValuesThrowModelErrorsWithPointers) {
+  expect_error_at("circle", {{"center", at("0", "0")}, {"radius", q("-1")}}, "/radius");
+  expect_error_at("circle", {{"center", at("0", "0")}}, "/radius");  // missing
+  Arguments wide = geneva_wheel_arguments(6);
+  wide["slot_width"] = q("72");  // wider than a 60-degree sector at slot_outer_radius
+  expect_error_at("geneva_wheel", wide, "/slot_width");
+  Arguments three = geneva_wheel_arguments(4);
+  three["slots"] = Rational(2);
+  expect_error_at("geneva_wheel", three, "/slots");
+  Arguments shallow = geneva_wheel_arguments(4);
+  shallow["slot_inner_radius"] = q("2");
+  expect_error_at("geneva_wheel", shallow, "/slot_inner_radius");
+  Arguments pointed = spur_gear_arguments(18);
+  pointed["addendum"] = q("6");
+  expect_error_at("spur_gear", pointed, "/addendum");
+  Arguments thick = spur_gear_arguments(18);
+  thick["tooth_thickness"] = q("7");
+  expect_error_at("spur_gear", thick, "/tooth_thickness");
+  expect_error_at("ratchet_wheel",
+                  {{"center", at("0", "0")},
+                   {"teeth", Rational(12)},
+                   {"tip_radius", q("20")},
+                   {"root_radius", q("20")}},
+                  "/root_radius");
+  expect_error_at("ratchet_wheel",
+                  {{"center", at("0", "0")},
+                   {"teeth", Rational(12)},
+                   {"tip_radius", q("20")},
+                   {"root_radius", q("10")},
+                   {"dir", std::string("up")}},
+                  "/dir");
+  expect_error_at("balance",
+                  {{"center", at("0", "0")},
+                   {"radius", q("3")},
+                   {"pin_radius", q("1")},
+                   {"pin_center_radius", q("5")}},
+                  "/pin_center_radius");
+  expect_error_at("geneva_driver",
+                  {{"center", at("0", "0")},
+                   {"pin_radius", q("4")},
+                   {"pin_center_radius", q("40")},
+                   {"lock_outer_radius", q("46")},
+                   {"lock_inner_radius", q("36")},
+                   {"lock_span", q("4")},
+                   {"lock_offset", q("1.5")}},  // the crescent covers the pin's direction
+                  "/pin_center_radius");
+  std::vector<Rounding> roundings;
+  try {
+    expand_template("sprocket", {}, "/parts/0/features/3/sprocket", roundings);
+    ADD_FAILURE() << "unknown template accepted";
+  } catch (const ModelError& error) {
+    EXPECT_EQ(error.pointer(), "/parts/0/features/3/sprocket");
+  }
+}
+
+TEST(Templates, RoundingsCarryPointersAndBounds) {
+  std::vector<Rounding> roundings;
+  expand_template("spur_gear", spur_gear_arguments(18), "/parts/1/features/0/spur_gear",
+                  roundings);
+  ASSERT_FALSE(roundings.empty());
+  for (const Rounding& rounding : roundings) {
+    EXPECT_EQ(rounding.pointer.rfind("/parts/1/features/0/spur_gear", 0), 0u) << rounding.pointer;
+    EXPECT_GT(rounding.bound, 0);
+    EXPECT_LT(rounding.bound, q("1/1000000"));
+  }
+}
+
+}  // namespace
+}  // namespace hipair::model_detail
