@@ -2,6 +2,7 @@
 // and, when valid, prints a summary including every value that had to be rounded.
 #include "cli/commands.hpp"
 
+#include <hipair/error.hpp>
 #include <hipair/model.hpp>
 
 #include <iostream>
@@ -55,9 +56,11 @@ std::string describe_motion(const Motion& motion) {
   return "?";
 }
 
-void print_summary(const Model& model, std::ostream& out) {
+void print_summary(const Model& model, const ReadOptions& options, std::ostream& out) {
   out << "model: " << model.name << "  (" << model.source << ")\n";
   out << "sha256: " << model.content_hash << "\n";
+  for (const auto& [name, value] : options.parameter_values)
+    out << "override: " << name << " = " << number(value) << "\n";
   out << "angle unit in file: " << model.angle_unit << " (stored in rad)\n";
   std::size_t toleranced = 0;
   for (const Parameter& parameter : model.parameters)
@@ -103,17 +106,44 @@ void print_summary(const Model& model, std::ostream& out) {
   out << "valid\n";
 }
 
+struct ValidateArguments {
+  std::string path;
+  std::vector<std::string> overrides;
+  bool allow_out_of_tolerance = false;
+};
+
+ReadOptions read_options(const ValidateArguments& arguments) {
+  ReadOptions options;
+  options.allow_out_of_tolerance = arguments.allow_out_of_tolerance;
+  for (const std::string& assignment : arguments.overrides) {
+    auto equals = assignment.find('=');
+    if (equals == std::string::npos || equals == 0)
+      throw ModelError("", "--set expects NAME=VALUE, got '" + assignment + "'");
+    try {
+      options.parameter_values[assignment.substr(0, equals)] = parse_rational(assignment.substr(equals + 1));
+    } catch (const NumericError& error) {
+      throw ModelError("", "--set " + assignment + ": " + error.what() + " (values are exact literals in mm or rad)");
+    }
+  }
+  return options;
+}
+
 }  // namespace
 
 void register_validate(CLI::App& app, Action& action) {
-  auto path = std::make_shared<std::string>();
+  auto arguments = std::make_shared<ValidateArguments>();
   CLI::App* command = app.add_subcommand("validate", "Read a model exactly, check it, and summarise it");
-  command->add_option("model", *path, "model file (JSON, see docs/model-format.md)")->required();
-  command->callback([&action, path] {
-    action = [path] {
-      Model model = read_model_file(*path);
+  command->add_option("model", arguments->path, "model file (JSON, see docs/model-format.md)")->required();
+  command->add_option("--set", arguments->overrides,
+                      "override a parameter: NAME=VALUE (exact literal in mm or rad; repeatable)");
+  command->add_flag("--allow-out-of-tolerance", arguments->allow_out_of_tolerance,
+                    "accept --set values outside the parameter's tolerance range");
+  command->callback([&action, arguments] {
+    action = [arguments] {
+      ReadOptions options = read_options(*arguments);
+      Model model = read_model_file(arguments->path, options);
       std::ostringstream summary;
-      print_summary(model, summary);
+      print_summary(model, options, summary);
       std::cout << summary.str();
       return 0;
     };
