@@ -16,6 +16,8 @@
 
 #include "kernels/interval.hpp"
 
+#include <mpfr.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -42,6 +44,35 @@ int sign_with_root(const Rational& u, const Rational& v, const Rational& w) {
 }
 
 Point minus(const Point& a, const Point& b) { return difference(a, b); }
+
+// Witness construction works at this precision: sites and directions are rational
+// approximations with relative error about 2^-witness_bits.
+constexpr mpfr_prec_t witness_bits = 640;
+
+Rational to_rational(const mpfr_t value) {
+  Rational result;
+  mpfr_get_q(result.get_mpq_t(), value);
+  return result;
+}
+
+// Rational approximation of sqrt(value), value >= 0.
+Rational approximate_sqrt(const Rational& value) {
+  mpfr_t root;
+  mpfr_init2(root, witness_bits);
+  mpfr_set_q(root, value.get_mpq_t(), MPFR_RNDN);
+  mpfr_sqrt(root, root, MPFR_RNDN);
+  Rational result = to_rational(root);
+  mpfr_clear(root);
+  return result;
+}
+
+// Rational approximation of v / |v|.
+Point approximate_unit(const Point& v) {
+  Rational length2 = dot(v, v);
+  if (sgn(length2) == 0) return v;
+  Rational length = approximate_sqrt(length2);
+  return Point{Rational(v.x / length), Rational(v.y / length)};
+}
 Point left_perpendicular(const Point& v) { return Point{Rational(-v.y), v.x}; }
 
 // ============================================================================ placed edges
@@ -302,36 +333,19 @@ class OverlapAnalysis {
     return true;
   }
 
-  // Inward unit normal (double) of an edge's material near point (x, y).
-  static std::pair<double, double> inward_normal(const PlacedEdge& e, double x, double y) {
-    double nx, ny;
-    if (!e.arc) {
-      double dx = Rational(e.target.x - e.source.x).get_d();
-      double dy = Rational(e.target.y - e.source.y).get_d();
-      nx = -dy;
-      ny = dx;
-    } else {
-      nx = e.center.x.get_d() - x;
-      ny = e.center.y.get_d() - y;
-      if (!e.ccw) {
-        nx = -nx;
-        ny = -ny;
-      }
-    }
-    double length = std::hypot(nx, ny);
-    if (length == 0) return {0.0, 0.0};
-    return {nx / length, ny / length};
+  // Inward normal (exact, not unit) of an edge's material near point p.
+  static Point inward_normal(const PlacedEdge& e, const Point& p) {
+    if (!e.arc) return left_perpendicular(minus(e.target, e.source));
+    Point to_centre = minus(e.center, p);
+    return e.ccw ? to_centre : Point{Rational(-to_centre.x), Rational(-to_centre.y)};
   }
 
   // Overlap found at a transversal crossing of ea and eb near p: the sum of the inward
   // normals points into both materials.
   bool crossing_at(const Point& p, const PlacedEdge& ea, const PlacedEdge& eb) {
-    double x = p.x.get_d();
-    double y = p.y.get_d();
-    auto [ax, ay] = inward_normal(ea, x, y);
-    auto [bx, by] = inward_normal(eb, x, y);
-    hints_.push_back(Point{Rational(ax + bx), Rational(ay + by)});
-    return overlap_at(p);
+    site_ = Site{p, true};
+    crossing_edges_ = {&ea, &eb};
+    return true;
   }
 
   // A rational common point of ea and eb, known to lie on both underlying curves.
@@ -374,8 +388,7 @@ class OverlapAnalysis {
         if (sgn(dot(da, db)) > 0) {
           Rational middle = (low + high) / (2 * length);
           Point p{Rational(ea.source.x + middle * da.x), Rational(ea.source.y + middle * da.y)};
-          auto [nx, ny] = inward_normal(ea, p.x.get_d(), p.y.get_d());
-          hints_.push_back(Point{Rational(nx), Rational(ny)});
+          hints_.push_back(inward_normal(ea, p));
           return overlap_at(p);
         }
         shared_ = true;
@@ -428,9 +441,9 @@ class OverlapAnalysis {
             bool inside = arc.sector.large ? (after > 0 || before > 0) : (after > 0 && before > 0);
             if (!inside) continue;
           }
-          double l = (-b.get_d() + sign.get_d() * std::sqrt(disc.get_d())) / a.get_d();
-          return crossing_at(Point{Rational(segment.source.x + Rational(l) * d.x),
-                                   Rational(segment.source.y + Rational(l) * d.y)},
+          Rational lambda = (-b + sign * approximate_sqrt(disc)) / a;
+          return crossing_at(Point{Rational(segment.source.x + lambda * d.x),
+                                   Rational(segment.source.y + lambda * d.y)},
                              ea, eb);
         }
       }
@@ -447,8 +460,7 @@ class OverlapAnalysis {
         if (ea.ccw == eb.ccw) {
           // same side of a common arc: overlap near any common point
           const Point& p = in_sector(eb, minus(ea.source, eb.center)) ? ea.source : eb.source;
-          auto [nx, ny] = inward_normal(ea, p.x.get_d(), p.y.get_d());
-          hints_.push_back(Point{Rational(nx), Rational(ny)});
+          hints_.push_back(inward_normal(ea, p));
           return overlap_at(p);
         }
         shared_ = true;
@@ -478,12 +490,10 @@ class OverlapAnalysis {
           // 2 D2 (x - ka) = m d + sign sqrt(h) perp ; 2 D2 (x - kb) = (m - 2 D2) d + sign sqrt(h) perp
           if (!strictly_in_arc(ea, d, perpendicular, m, sign, h)) continue;
           if (!strictly_in_arc(eb, d, perpendicular, Rational(m - scale), sign, h)) continue;
-          double beta = sign.get_d() * std::sqrt(h.get_d()) / scale.get_d();
-          double alpha = Rational(m / scale).get_d();
-          return crossing_at(Point{Rational(ea.center.x + Rational(alpha) * d.x +
-                                            Rational(beta) * perpendicular.x),
-                                   Rational(ea.center.y + Rational(alpha) * d.y +
-                                            Rational(beta) * perpendicular.y)},
+          Rational beta = sign * approximate_sqrt(h) / scale;
+          Rational alpha = m / scale;
+          return crossing_at(Point{Rational(ea.center.x + alpha * d.x + beta * perpendicular.x),
+                                   Rational(ea.center.y + alpha * d.y + beta * perpendicular.y)},
                              ea, eb);
         }
       }
@@ -656,29 +666,41 @@ class OverlapAnalysis {
 
  public:
   /// A rational point strictly inside both parts near the overlap site, or nullopt.
+  /// Candidates site + delta * u are tried for hint directions u (into both materials) at
+  /// scales delta = size * 2^-k down to the precision of the site, and for 16 fixed
+  /// directions at coarse scales; each candidate is verified exactly.
   std::optional<Point> find_witness() {
     if (!site_.known) return std::nullopt;
-    std::vector<std::pair<double, double>> directions;
-    for (const Point& h : hints_) {
-      double x = h.x.get_d(), y = h.y.get_d();
-      double n = std::hypot(x, y);
-      if (n > 0) directions.push_back({x / n, y / n});
+    std::vector<Point> hints;
+    if (crossing_edges_[0]) {
+      // Sum of the unit inward normals of two crossing edges points into both materials.
+      Point na = approximate_unit(inward_normal(*crossing_edges_[0], site_.point));
+      Point nb = approximate_unit(inward_normal(*crossing_edges_[1], site_.point));
+      hints.push_back(Point{Rational(na.x + nb.x), Rational(na.y + nb.y)});
     }
+    for (const Point& h : hints_) hints.push_back(approximate_unit(h));
+    std::vector<Point> directions;
     for (int k = 0; k < 16; ++k)
-      directions.push_back({std::cos(k * M_PI / 8 + 0.1), std::sin(k * M_PI / 8 + 0.1)});
+      directions.push_back(Point{Rational(std::cos(k * M_PI / 8 + 0.1)),
+                                 Rational(std::sin(k * M_PI / 8 + 0.1))});
     const Box& total = parts_[1]->total();
     double size = std::max({total.xhi - total.xlo, total.yhi - total.ylo, 1e-6});
-    int budget = 400;
-    for (int level = 2; level < 60 && budget > 0; ++level) {
-      Rational step = Rational(size) / Rational(mpz_class(1) << level);
-      for (const auto& [dx, dy] : directions) {
-        if (--budget < 0) break;
-        Point candidate{Rational(site_.point.x + step * Rational(dx)),
-                        Rational(site_.point.y + step * Rational(dy))};
-        if (locate(*parts_[0], candidate) == PointLocation::inside &&
-            locate(*parts_[1], candidate) == PointLocation::inside)
-          return candidate;
-      }
+    Rational step = Rational(size) / 4;
+    auto inside_both = [&](const Point& direction) {
+      Point candidate{Rational(site_.point.x + step * direction.x),
+                      Rational(site_.point.y + step * direction.y)};
+      if (locate(*parts_[0], candidate) == PointLocation::inside &&
+          locate(*parts_[1], candidate) == PointLocation::inside)
+        return std::optional<Point>(candidate);
+      return std::optional<Point>();
+    };
+    for (int level = 2; level < static_cast<int>(witness_bits) - 40; ++level) {
+      for (const Point& h : hints)
+        if (auto found = inside_both(h)) return found;
+      if (level < 40)
+        for (const Point& d : directions)
+          if (auto found = inside_both(d)) return found;
+      step /= 2;
     }
     return std::nullopt;
   }
@@ -763,6 +785,7 @@ class OverlapAnalysis {
   bool shared_ = false;
   Site site_;
   std::vector<Point> hints_;
+  std::array<const PlacedEdge*, 2> crossing_edges_{nullptr, nullptr};
 };
 
 RigidMap inverse(const RigidMap& map) {
