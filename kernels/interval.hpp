@@ -9,10 +9,24 @@
 #include <gmpxx.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace hipair::kernels {
+
+namespace interval_detail {
+// The next double above `value` (std::nextafter without the library call).
+inline double up(double value) {
+  if (!(value < std::numeric_limits<double>::infinity())) return value;  // +inf, nan
+  if (value == 0.0) return std::numeric_limits<double>::denorm_min();
+  auto bits = std::bit_cast<std::uint64_t>(value);
+  bits = value > 0.0 ? bits + 1 : bits - 1;
+  return std::bit_cast<double>(bits);
+}
+inline double down(double value) { return -up(-value); }
+}  // namespace interval_detail
 
 /// Closed interval [lo, hi] of doubles that encloses an exact real value.
 struct Interval {
@@ -34,8 +48,7 @@ struct Interval {
     double truncated = value.get_d();
     int sign = sgn(value);
     if (sign == 0) return Interval(0.0, 0.0);
-    double away = std::nextafter(truncated, sign > 0 ? std::numeric_limits<double>::infinity()
-                                                     : -std::numeric_limits<double>::infinity());
+    double away = sign > 0 ? interval_detail::up(truncated) : interval_detail::down(truncated);
     return sign > 0 ? Interval(truncated, away) : Interval(away, truncated);
   }
 
@@ -55,14 +68,7 @@ struct Interval {
   }
 };
 
-namespace interval_detail {
-inline double down(double value) {
-  return std::nextafter(value, -std::numeric_limits<double>::infinity());
-}
-inline double up(double value) {
-  return std::nextafter(value, std::numeric_limits<double>::infinity());
-}
-}  // namespace interval_detail
+
 
 inline Interval operator+(const Interval& a, const Interval& b) {
   return Interval(interval_detail::down(a.lo + b.lo), interval_detail::up(a.hi + b.hi));
@@ -81,6 +87,20 @@ inline Interval operator*(const Interval& a, const Interval& b) {
   double p4 = a.hi * b.hi;
   double low = std::min(std::min(p1, p2), std::min(p3, p4));
   double high = std::max(std::max(p1, p2), std::max(p3, p4));
+  return Interval(interval_detail::down(low), interval_detail::up(high));
+}
+
+/// Quotient; `b` must not contain 0 (the result is then the whole line, returned as
+/// [-inf, inf]).
+inline Interval operator/(const Interval& a, const Interval& b) {
+  if (b.lo <= 0.0 && b.hi >= 0.0)
+    return Interval(-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity());
+  double q1 = a.lo / b.lo;
+  double q2 = a.lo / b.hi;
+  double q3 = a.hi / b.lo;
+  double q4 = a.hi / b.hi;
+  double low = std::min(std::min(q1, q2), std::min(q3, q4));
+  double high = std::max(std::max(q1, q2), std::max(q3, q4));
   return Interval(interval_detail::down(low), interval_detail::up(high));
 }
 

@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 
 namespace hipair::cspace {
 
@@ -124,44 +125,59 @@ bool is_endpoint(const PlacedEdge& edge, const Point& p) {
   return p == edge.source || p == edge.target;
 }
 
-// A part placed in the common frame by an exact rigid map, with double boxes and lazily
-// computed exact edges.
+using kernels::Interval;
+
+// Certified enclosure of a rigid map p -> (c x - s y + ox, s x + c y + oy).
+struct IntervalMap {
+  Interval c{1};
+  Interval s{0};
+  Interval ox{0};
+  Interval oy{0};
+  void apply(const Interval& x, const Interval& y, Interval& u, Interval& v) const {
+    u = c * x - s * y + ox;
+    v = s * x + c * y + oy;
+  }
+  static IntervalMap enclose(const RigidMap& map) {
+    return IntervalMap{Interval::enclose(map.c), Interval::enclose(map.s),
+                       Interval::enclose(map.offset.x), Interval::enclose(map.offset.y)};
+  }
+};
+
+// An edge's posed geometry as certified intervals (the filter stage).
+struct IntervalEdge {
+  bool arc = false;
+  bool full = false;
+  bool ccw = true;
+  int large = 0;  // arc sector wider than a half turn: 0 no, 1 yes, 2 unknown
+  Interval sx, sy, tx, ty, cx, cy, radius_squared;
+  Interval start_x, start_y, end_x, end_y;  // sector: counter-clockwise from start to end
+};
+
+// A part placed in the common frame by a rigid map: certified interval geometry and boxes
+// for every edge, exact geometry computed lazily (the exact map itself is computed only
+// when first needed).
 class PlacedPart {
  public:
-  PlacedPart(const Part& part, const RigidMap& map, bool identity)
-      : part_(part), map_(map), identity_(identity) {
-    c_ = map.c.get_d();
-    s_ = map.s.get_d();
-    ox_ = map.offset.x.get_d();
-    oy_ = map.offset.y.get_d();
+  PlacedPart(const Part& part, const IntervalMap& map, std::function<RigidMap()> exact_map,
+             bool identity)
+      : part_(part), exact_source_(std::move(exact_map)), identity_(identity) {
     for (std::size_t l = 0; l < part.loops.size(); ++l) {
       loop_begin_.push_back(refs_.size());
       for (std::size_t e = 0; e < part.loops[l].edges.size(); ++e) refs_.push_back({l, e});
     }
     loop_begin_.push_back(refs_.size());
+    intervals_.resize(refs_.size());
     boxes_.resize(refs_.size());
     exact_.resize(refs_.size());
-    double scale = 1.0;
-    for (std::size_t i = 0; i < refs_.size(); ++i) {
-      boxes_[i] = double_box(original(i));
-      scale = std::max({scale, std::fabs(boxes_[i].xlo), std::fabs(boxes_[i].xhi),
-                        std::fabs(boxes_[i].ylo), std::fabs(boxes_[i].yhi)});
-    }
-    // Each double coordinate comes from at most ~10 operations on numbers bounded by the
-    // scale: its error is below 1e-14 * scale. A margin of 1e-9 * scale is certain.
-    margin_ = 1e-9 * scale;
     total_ = Box{1e300, -1e300, 1e300, -1e300};
     loop_boxes_.assign(part.loops.size(), Box{1e300, -1e300, 1e300, -1e300});
     for (std::size_t i = 0; i < refs_.size(); ++i) {
-      Box& b = boxes_[i];
-      b.xlo -= margin_;
-      b.ylo -= margin_;
-      b.xhi += margin_;
-      b.yhi += margin_;
-      total_.add(b.xlo, b.ylo);
-      total_.add(b.xhi, b.yhi);
-      loop_boxes_[refs_[i].first].add(b.xlo, b.ylo);
-      loop_boxes_[refs_[i].first].add(b.xhi, b.yhi);
+      intervals_[i] = interval_edge(original(i), map);
+      boxes_[i] = box_of(intervals_[i]);
+      total_.add(boxes_[i].xlo, boxes_[i].ylo);
+      total_.add(boxes_[i].xhi, boxes_[i].yhi);
+      loop_boxes_[refs_[i].first].add(boxes_[i].xlo, boxes_[i].ylo);
+      loop_boxes_[refs_[i].first].add(boxes_[i].xhi, boxes_[i].yhi);
     }
   }
 
@@ -170,15 +186,16 @@ class PlacedPart {
   std::size_t loop_begin(std::size_t loop) const { return loop_begin_[loop]; }
   std::size_t loop_end(std::size_t loop) const { return loop_begin_[loop + 1]; }
   const Box& box(std::size_t i) const { return boxes_[i]; }
+  const IntervalEdge& interval(std::size_t i) const { return intervals_[i]; }
   const Box& total() const { return total_; }
   const Box& loop_box(std::size_t loop) const { return loop_boxes_[loop]; }
-  double margin() const { return margin_; }
   const Edge& original(std::size_t i) const {
     return part_.loops[refs_[i].first].edges[refs_[i].second];
   }
 
   const PlacedEdge& edge(std::size_t i) {
     if (!exact_[i]) {
+      if (!identity_ && !exact_map_) exact_map_ = exact_source_();
       const Edge& source = original(i);
       PlacedEdge placed;
       placed.arc = source.is_arc();
@@ -190,11 +207,11 @@ class PlacedPart {
         placed.source = source.source;
         placed.target = source.target;
       } else {
-        placed.source = map_.apply(source.source);
-        placed.target = map_.apply(source.target);
+        placed.source = exact_map_->apply(source.source);
+        placed.target = exact_map_->apply(source.target);
       }
       if (placed.arc) {
-        placed.center = identity_ ? source.center : map_.apply(source.center);
+        placed.center = identity_ ? source.center : exact_map_->apply(source.center);
         placed.radius_squared = source.radius_squared;
         Edge moved;
         moved.kind = Edge::Kind::arc;
@@ -210,52 +227,227 @@ class PlacedPart {
   }
 
  private:
-  void apply_double(double x, double y, double& u, double& v) const {
-    u = c_ * x - s_ * y + ox_;
-    v = s_ * x + c_ * y + oy_;
-  }
-
-  Box double_box(const Edge& edge) const {
-    double sx, sy, tx, ty;
-    apply_double(edge.source.x.get_d(), edge.source.y.get_d(), sx, sy);
-    apply_double(edge.target.x.get_d(), edge.target.y.get_d(), tx, ty);
-    Box box{std::min(sx, tx), std::max(sx, tx), std::min(sy, ty), std::max(sy, ty)};
-    if (!edge.is_arc()) return box;
-    double cx, cy;
-    apply_double(edge.center.x.get_d(), edge.center.y.get_d(), cx, cy);
-    double r = std::sqrt(edge.radius_squared.get_d());
-    if (edge.is_full_circle()) return Box{cx - r, cx + r, cy - r, cy + r};
-    // Extreme points in the axis directions, included when possibly on the arc.
-    double ax = sx - cx, ay = sy - cy, bx = tx - cx, by = ty - cy;
-    if (!edge.ccw) {
+  static IntervalEdge interval_edge(const Edge& edge, const IntervalMap& map) {
+    IntervalEdge e;
+    e.arc = edge.is_arc();
+    e.full = edge.is_full_circle();
+    e.ccw = edge.ccw;
+    map.apply(Interval::enclose(edge.source.x), Interval::enclose(edge.source.y), e.sx, e.sy);
+    if (e.full) {
+      e.tx = e.sx;
+      e.ty = e.sy;
+    } else {
+      map.apply(Interval::enclose(edge.target.x), Interval::enclose(edge.target.y), e.tx, e.ty);
+    }
+    if (!e.arc) return e;
+    map.apply(Interval::enclose(edge.center.x), Interval::enclose(edge.center.y), e.cx, e.cy);
+    e.radius_squared = Interval::enclose(edge.radius_squared);
+    Interval ax = e.sx - e.cx, ay = e.sy - e.cy, bx = e.tx - e.cx, by = e.ty - e.cy;
+    if (!e.ccw) {
       std::swap(ax, bx);
       std::swap(ay, by);
     }
-    double tolerance = 1e-7 * r * r;
-    bool large = ax * by - ay * bx < tolerance;  // possibly more than a half turn
-    const double directions[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
-    for (const auto& u : directions) {
-      double after = ax * u[1] - ay * u[0];
-      double before = u[0] * by - u[1] * bx;
-      bool possibly = large ? (after > -tolerance || before > -tolerance)
-                            : (after > -tolerance && before > -tolerance);
-      if (possibly) box.add(cx + r * u[0], cy + r * u[1]);
+    e.start_x = ax;
+    e.start_y = ay;
+    e.end_x = bx;
+    e.end_y = by;
+    if (!e.full) {
+      int turn = (ax * by - ay * bx).sign();
+      if (turn == 2) {
+        // decide exactly from the body geometry (rotation does not change it)
+        Point start = difference(edge.ccw ? edge.source : edge.target, edge.center);
+        Point end = difference(edge.ccw ? edge.target : edge.source, edge.center);
+        turn = sgn(cross(start, end));
+      }
+      e.large = turn < 0 ? 1 : 0;
     }
+    return e;
+  }
+
+  // Possibly-in-sector test for the direction u (exact unit axis vector).
+  static bool possibly_in_sector(const IntervalEdge& e, double ux, double uy) {
+    if (e.full) return true;
+    Interval after = e.start_x * Interval(uy, uy) - e.start_y * Interval(ux, ux);
+    Interval before = Interval(ux, ux) * e.end_y - Interval(uy, uy) * e.end_x;
+    bool a = after.hi >= 0;
+    bool b = before.hi >= 0;
+    return e.large ? (a || b) : (a && b);
+  }
+
+  static Box box_of(const IntervalEdge& e) {
+    Box box{std::min(e.sx.lo, e.tx.lo), std::max(e.sx.hi, e.tx.hi), std::min(e.sy.lo, e.ty.lo),
+            std::max(e.sy.hi, e.ty.hi)};
+    if (!e.arc) return box;
+    Interval r = kernels::sqrt(e.radius_squared);
+    if (possibly_in_sector(e, 1, 0)) box.xhi = std::max(box.xhi, (e.cx + r).hi);
+    if (possibly_in_sector(e, -1, 0)) box.xlo = std::min(box.xlo, (e.cx - r).lo);
+    if (possibly_in_sector(e, 0, 1)) box.yhi = std::max(box.yhi, (e.cy + r).hi);
+    if (possibly_in_sector(e, 0, -1)) box.ylo = std::min(box.ylo, (e.cy - r).lo);
     return box;
   }
 
   const Part& part_;
-  RigidMap map_;
+  std::function<RigidMap()> exact_source_;
+  std::optional<RigidMap> exact_map_;
   bool identity_;
-  double c_, s_, ox_, oy_;
   std::vector<std::pair<std::size_t, std::size_t>> refs_;
   std::vector<std::size_t> loop_begin_;
+  std::vector<IntervalEdge> intervals_;
   std::vector<Box> boxes_;
   std::vector<Box> loop_boxes_;
   std::vector<std::optional<PlacedEdge>> exact_;
   Box total_;
-  double margin_ = 0;
 };
+
+// ============================================================================ interval filter
+
+// Certified decisions on an edge pair from interval geometry.
+enum class Filter { disjoint, overlapping, unknown };
+
+Interval icross(const Interval& ax, const Interval& ay, const Interval& bx, const Interval& by) {
+  return ax * by - ay * bx;
+}
+Interval idot(const Interval& ax, const Interval& ay, const Interval& bx, const Interval& by) {
+  return ax * bx + ay * by;
+}
+
+// Sign of a value known to be of interest: -1, 0 (impossible here: treated as unknown), +1,
+// or 2 when unknown.
+int strict_sign(const Interval& value) {
+  int s = value.sign();
+  return s == 0 ? 2 : s;
+}
+
+Filter filter_segment_segment(const IntervalEdge& a, const IntervalEdge& b) {
+  Interval dax = a.tx - a.sx, day = a.ty - a.sy, dbx = b.tx - b.sx, dby = b.ty - b.sy;
+  int o1 = strict_sign(icross(dbx, dby, a.sx - b.sx, a.sy - b.sy));
+  int o2 = strict_sign(icross(dbx, dby, a.tx - b.sx, a.ty - b.sy));
+  int o3 = strict_sign(icross(dax, day, b.sx - a.sx, b.sy - a.sy));
+  int o4 = strict_sign(icross(dax, day, b.tx - a.sx, b.ty - a.sy));
+  if ((o1 != 2 && o1 == o2) || (o3 != 2 && o3 == o4)) return Filter::disjoint;
+  if (o1 != 2 && o2 != 2 && o3 != 2 && o4 != 2 && o1 != o2 && o3 != o4)
+    return Filter::overlapping;  // proper crossing, interior to both
+  return Filter::unknown;
+}
+
+// Whether the point (vx, vy) relative to an arc's centre is certainly strictly inside its
+// sector (1), certainly outside its closed sector (0), or unknown (2).
+int in_sector_certainly(const IntervalEdge& arc, const Interval& vx, const Interval& vy) {
+  if (arc.full) return 1;
+  if (arc.large == 2) return 2;
+  int after = strict_sign(icross(arc.start_x, arc.start_y, vx, vy));
+  int before = strict_sign(icross(vx, vy, arc.end_x, arc.end_y));
+  if (after == 2 || before == 2) return 2;
+  bool a = after > 0, b = before > 0;
+  return (arc.large ? (a || b) : (a && b)) ? 1 : 0;
+}
+
+Filter filter_segment_arc(const IntervalEdge& segment, const IntervalEdge& arc) {
+  Interval dx = segment.tx - segment.sx, dy = segment.ty - segment.sy;
+  Interval fx = segment.sx - arc.cx, fy = segment.sy - arc.cy;
+  Interval a = idot(dx, dy, dx, dy);
+  Interval b = idot(dx, dy, fx, fy);
+  Interval c = idot(fx, fy, fx, fy) - arc.radius_squared;
+  Interval disc = b * b - a * c;
+  int sd = strict_sign(disc);
+  if (sd < 0) return Filter::disjoint;
+  if (sd == 2 || a.lo <= 0) return Filter::unknown;
+  Interval root = kernels::sqrt(disc);
+  bool all_disjoint = true;
+  for (int k = 0; k < 2; ++k) {
+    Interval lambda = (-b + (k == 0 ? root : -root)) / a;
+    int in_segment;
+    if (lambda.lo > 0 && lambda.hi < 1) {
+      in_segment = 1;
+    } else if (lambda.hi < 0 || lambda.lo > 1) {
+      in_segment = 0;
+    } else {
+      in_segment = 2;
+    }
+    if (in_segment == 0) continue;
+    int in_arc = in_sector_certainly(arc, fx + lambda * dx, fy + lambda * dy);
+    if (in_arc == 0) continue;
+    if (in_segment == 1 && in_arc == 1) return Filter::overlapping;
+    all_disjoint = false;
+  }
+  return all_disjoint ? Filter::disjoint : Filter::unknown;
+}
+
+Filter filter_arc_arc(const IntervalEdge& ea, const IntervalEdge& eb) {
+  Interval dx = eb.cx - ea.cx, dy = eb.cy - ea.cy;
+  Interval distance2 = idot(dx, dy, dx, dy);
+  if (distance2.lo <= 0) return Filter::unknown;  // possibly concentric: exact
+  Interval m = distance2 + ea.radius_squared - eb.radius_squared;
+  Interval h = Interval(4) * distance2 * ea.radius_squared - m * m;
+  int sh = strict_sign(h);
+  if (sh < 0) return Filter::disjoint;
+  if (sh == 2) return Filter::unknown;
+  Interval root = kernels::sqrt(h);
+  Interval scale = Interval(2) * distance2;
+  bool all_disjoint = true;
+  for (int k = 0; k < 2; ++k) {
+    Interval beta = k == 0 ? root : -root;
+    // scale * (x - ka) = m d + beta perp(d); scale * (x - kb) = (m - scale) d + beta perp(d)
+    Interval ax = m * dx - beta * dy, ay = m * dy + beta * dx;
+    Interval bx = (m - scale) * dx - beta * dy, by = (m - scale) * dy + beta * dx;
+    int in_a = in_sector_certainly(ea, ax, ay);
+    if (in_a == 0) continue;
+    int in_b = in_sector_certainly(eb, bx, by);
+    if (in_b == 0) continue;
+    if (in_a == 1 && in_b == 1) return Filter::overlapping;
+    all_disjoint = false;
+  }
+  return all_disjoint ? Filter::disjoint : Filter::unknown;
+}
+
+Filter filter_pair(const IntervalEdge& a, const IntervalEdge& b) {
+  if (!a.arc && !b.arc) return filter_segment_segment(a, b);
+  if (!a.arc) return filter_segment_arc(a, b);
+  if (!b.arc) return filter_segment_arc(b, a);
+  return filter_arc_arc(a, b);
+}
+
+// Ray-casting location of an interval point; nullopt when some decision is uncertain.
+std::optional<bool> inside_by_intervals(const PlacedPart& part, const Interval& px,
+                                        const Interval& py) {
+  bool inside = false;
+  for (std::size_t i = 0; i < part.size(); ++i) {
+    const Box& box = part.box(i);
+    if (box.xhi < px.lo || box.yhi < py.lo || box.ylo > py.hi) continue;  // misses the ray
+    const IntervalEdge& e = part.interval(i);
+    auto crosses_chord = [&](bool& result) {
+      int a_above = strict_sign(e.sy - py);
+      int b_above = strict_sign(e.ty - py);
+      if (a_above == 2 || b_above == 2) return false;
+      if (a_above == b_above) {
+        result = false;
+        return true;
+      }
+      int o = strict_sign(icross(e.tx - e.sx, e.ty - e.sy, px - e.sx, py - e.sy));
+      if (o == 2) return false;
+      result = b_above > 0 ? o > 0 : o < 0;
+      return true;
+    };
+    if (!e.arc || !e.full) {
+      bool crossing = false;
+      if (!crosses_chord(crossing)) return std::nullopt;
+      if (crossing) inside = !inside;
+      if (!e.arc) continue;
+    }
+    Interval vx = px - e.cx, vy = py - e.cy;
+    int in_disk = strict_sign(e.radius_squared - idot(vx, vy, vx, vy));
+    if (in_disk == 2) return std::nullopt;
+    if (in_disk < 0) continue;
+    if (e.full) {
+      inside = !inside;
+      continue;
+    }
+    int side = strict_sign(icross(e.tx - e.sx, e.ty - e.sy, px - e.sx, py - e.sy));
+    if (side == 2) return std::nullopt;
+    if (e.ccw ? side < 0 : side > 0) inside = !inside;
+  }
+  return inside;
+}
 
 // ============================================================================ the analysis
 
@@ -279,6 +471,9 @@ class OverlapAnalysis {
       if (!a.box(i).meets(b.total())) continue;
       for (std::size_t j = 0; j < b.size(); ++j) {
         if (!a.box(i).meets(b.box(j))) continue;
+        Filter filter = filter_pair(a.interval(i), b.interval(j));
+        if (filter == Filter::disjoint) continue;
+        if (filter == Filter::overlapping && !need_site_) return Overlap::overlapping;
         if (intersect(i, j)) return Overlap::overlapping;
       }
     }
@@ -288,6 +483,9 @@ class OverlapAnalysis {
       if (loop_inside_other(side)) return Overlap::overlapping;
     return touch_points_.empty() && !shared_ ? Overlap::apart : Overlap::touching;
   }
+
+  /// Exact overlap sites are needed (for a witness): no shortcut on certified crossings.
+  void need_site() { need_site_ = true; }
 
   const std::vector<Point>& touch_points() const { return touch_points_; }
   const Site& site() const { return site_; }
@@ -654,6 +852,11 @@ class OverlapAnalysis {
       if (!part.loop_box(l).meets(other.total())) continue;
       std::size_t first = part.loop_begin(l);
       if (first == part.loop_end(l)) continue;
+      // The probe (a vertex of the loop) is not on the other boundary: the loop is untouched.
+      const IntervalEdge& probe_interval = part.interval(first);
+      std::optional<bool> quick = inside_by_intervals(other, probe_interval.sx, probe_interval.sy);
+      if (quick && !*quick) continue;
+      if (quick && *quick && !need_site_) return true;
       const Point& probe = part.edge(first).source;
       if (locate(other, probe) == PointLocation::inside) {
         site_ = Site{probe, true};
@@ -783,6 +986,7 @@ class OverlapAnalysis {
   std::array<std::vector<bool>, 2> touched_;
   std::vector<Point> touch_points_;
   bool shared_ = false;
+  bool need_site_ = false;
   Site site_;
   std::vector<Point> hints_;
   std::array<const PlacedEdge*, 2> crossing_edges_{nullptr, nullptr};
@@ -809,18 +1013,25 @@ RigidMap compose(const RigidMap& outer, const RigidMap& inner) {
 
 }  // namespace
 
-OverlapReport analyse_overlap(const Part& first, const RigidMap& first_map, const Part& second,
-                              const RigidMap& second_map, const OverlapOptions& options) {
-  RigidMap relative = compose(inverse(second_map), first_map);
-  PlacedPart a(first, relative, false);
-  PlacedPart b(second, RigidMap{}, true);
+namespace {
+
+// The analysis in the second part's body frame: the first part placed by `relative`
+// (interval enclosure now, exact map on demand); `second_world` maps results to the world.
+OverlapReport analyse(const Part& first, const Part& second, const IntervalMap& relative,
+                      std::function<RigidMap()> exact_relative,
+                      const std::function<RigidMap()>& second_world,
+                      const OverlapOptions& options) {
+  PlacedPart a(first, relative, std::move(exact_relative), false);
+  PlacedPart b(second, IntervalMap{}, {}, true);
   OverlapAnalysis analysis(a, b);
+  if (options.want_witness) analysis.need_site();
   OverlapReport report;
   report.relation = analysis.run();
   if (options.want_touches && report.relation == Overlap::touching) {
+    RigidMap world = second_world();
     for (const Point& p : analysis.touch_points()) {
       TouchPoint touch;
-      touch.point = second_map.apply(p);
+      touch.point = world.apply(p);
       touch.first_edges = analysis.edges_through(0, p);
       touch.second_edges = analysis.edges_through(1, p);
       report.touches.push_back(std::move(touch));
@@ -828,30 +1039,74 @@ OverlapReport analyse_overlap(const Part& first, const RigidMap& first_map, cons
   }
   if (options.want_witness && report.relation == Overlap::overlapping) {
     std::optional<Point> witness = analysis.find_witness();
-    if (witness) report.witness = second_map.apply(*witness);
+    if (witness) report.witness = second_world().apply(*witness);
   }
   return report;
 }
 
-namespace {
+// Certified interval enclosure of a part's world map at a chart value.
+IntervalMap interval_world_map(const Part& part, bool moves, const ChartAxis& axis,
+                               const Rational& value) {
+  IntervalMap map;
+  if (!moves) return map;
+  Interval v = Interval::enclose(value);
+  if (part.motion.kind == Motion::Kind::rotation) {
+    Interval t2 = v * v;
+    Interval w = Interval(1) + t2;
+    map.c = (Interval(1) - t2) / w;
+    map.s = (Interval(2) * v) / w;
+    if (axis.half_turn) {
+      map.c = -map.c;
+      map.s = -map.s;
+    }
+    Interval px = Interval::enclose(part.motion.pivot.x);
+    Interval py = Interval::enclose(part.motion.pivot.y);
+    map.ox = px - (map.c * px - map.s * py);
+    map.oy = py - (map.s * px + map.c * py);
+    return map;
+  }
+  map.ox = v * Interval::enclose(part.motion.direction.x);
+  map.oy = v * Interval::enclose(part.motion.direction.y);
+  return map;
+}
 
-std::pair<RigidMap, RigidMap> world_maps(const Model& model, const PairAxes& axes,
-                                         const ChartAxis& x, const ChartAxis& y,
-                                         const ChartPoint& q) {
-  const ChartAxis& second_axis = axes.first_moves ? y : x;
-  const Rational& second_value = axes.first_moves ? q.y : q.x;
-  return {world_map(model.parts.at(axes.first), axes.first_moves, x, q.x),
-          world_map(model.parts.at(axes.second), axes.second_moves, second_axis, second_value)};
+// second^-1 o first, in intervals.
+IntervalMap interval_relative(const IntervalMap& a, const IntervalMap& b) {
+  IntervalMap r;
+  r.c = b.c * a.c + b.s * a.s;
+  r.s = b.c * a.s - b.s * a.c;
+  Interval dx = a.ox - b.ox;
+  Interval dy = a.oy - b.oy;
+  r.ox = b.c * dx + b.s * dy;
+  r.oy = -(b.s * dx) + b.c * dy;
+  return r;
 }
 
 }  // namespace
 
+OverlapReport analyse_overlap(const Part& first, const RigidMap& first_map, const Part& second,
+                              const RigidMap& second_map, const OverlapOptions& options) {
+  RigidMap relative = compose(inverse(second_map), first_map);
+  return analyse(first, second, IntervalMap::enclose(relative), [relative] { return relative; },
+                 [&second_map] { return second_map; }, options);
+}
+
 OverlapReport analyse_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x,
                               const ChartAxis& y, const ChartPoint& q,
                               const OverlapOptions& options) {
-  auto [first_map, second_map] = world_maps(model, axes, x, y, q);
-  return analyse_overlap(model.parts.at(axes.first), first_map, model.parts.at(axes.second),
-                         second_map, options);
+  const Part& first = model.parts.at(axes.first);
+  const Part& second = model.parts.at(axes.second);
+  const ChartAxis& second_axis = axes.first_moves ? y : x;
+  const Rational& second_value = axes.first_moves ? q.y : q.x;
+  IntervalMap relative =
+      interval_relative(interval_world_map(first, axes.first_moves, x, q.x),
+                        interval_world_map(second, axes.second_moves, second_axis, second_value));
+  auto exact_relative = [&] {
+    return compose(inverse(world_map(second, axes.second_moves, second_axis, second_value)),
+                   world_map(first, axes.first_moves, x, q.x));
+  };
+  auto second_world = [&] { return world_map(second, axes.second_moves, second_axis, second_value); };
+  return analyse(first, second, relative, exact_relative, second_world, options);
 }
 
 Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x,
@@ -870,7 +1125,7 @@ std::optional<Point> interior_witness(const Model& model, const PairAxes& axes,
 PointLocation locate_point(const Part& part, const RigidMap& map, const Point& p) {
   // Locate in the part's body frame.
   RigidMap back = inverse(map);
-  PlacedPart placed(part, RigidMap{}, true);
+  PlacedPart placed(part, IntervalMap{}, {}, true);
   return OverlapAnalysis::locate(placed, back.apply(p));
 }
 
