@@ -471,7 +471,7 @@ class OverlapAnalysis {
       if (!a.box(i).meets(b.total())) continue;
       for (std::size_t j = 0; j < b.size(); ++j) {
         if (!a.box(i).meets(b.box(j))) continue;
-        Filter filter = filter_pair(a.interval(i), b.interval(j));
+        Filter filter = exact_only_ ? Filter::unknown : filter_pair(a.interval(i), b.interval(j));
         if (filter == Filter::disjoint) continue;
         if (filter == Filter::overlapping && !need_site_) return Overlap::overlapping;
         if (intersect(i, j)) return Overlap::overlapping;
@@ -486,6 +486,7 @@ class OverlapAnalysis {
 
   /// Exact overlap sites are needed (for a witness): no shortcut on certified crossings.
   void need_site() { need_site_ = true; }
+  void exact_only() { exact_only_ = true; }
 
   const std::vector<Point>& touch_points() const { return touch_points_; }
   const Site& site() const { return site_; }
@@ -854,7 +855,8 @@ class OverlapAnalysis {
       if (first == part.loop_end(l)) continue;
       // The probe (a vertex of the loop) is not on the other boundary: the loop is untouched.
       const IntervalEdge& probe_interval = part.interval(first);
-      std::optional<bool> quick = inside_by_intervals(other, probe_interval.sx, probe_interval.sy);
+      std::optional<bool> quick;
+      if (!exact_only_) quick = inside_by_intervals(other, probe_interval.sx, probe_interval.sy);
       if (quick && !*quick) continue;
       if (quick && *quick && !need_site_) return true;
       const Point& probe = part.edge(first).source;
@@ -987,6 +989,7 @@ class OverlapAnalysis {
   std::vector<Point> touch_points_;
   bool shared_ = false;
   bool need_site_ = false;
+  bool exact_only_ = false;
   Site site_;
   std::vector<Point> hints_;
   std::array<const PlacedEdge*, 2> crossing_edges_{nullptr, nullptr};
@@ -1025,6 +1028,7 @@ OverlapReport analyse(const Part& first, const Part& second, const IntervalMap& 
   PlacedPart b(second, IntervalMap{}, {}, true);
   OverlapAnalysis analysis(a, b);
   if (options.want_witness) analysis.need_site();
+  if (options.exact_only) analysis.exact_only();
   OverlapReport report;
   report.relation = analysis.run();
   if (options.want_touches && report.relation == Overlap::touching) {

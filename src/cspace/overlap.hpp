@@ -49,6 +49,8 @@ struct OverlapReport {
 struct OverlapOptions {
   bool want_touches = false;
   bool want_witness = false;
+  /// Skip the certified interval filter (tests compare both paths).
+  bool exact_only = false;
 };
 
 /// Exact relation of the pair posed at chart point `q`, with details on request.

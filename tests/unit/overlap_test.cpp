@@ -316,3 +316,32 @@ TEST(Overlap, RandomTrianglesConsistentWithProbes) {
 
 }  // namespace
 }  // namespace hipair::cspace
+
+namespace hipair::cspace {
+namespace {
+
+// The certified interval filter never changes an answer: compare with the exact-only path on
+// the Geneva pair at random chart points and on points of its contact curves' neighbourhood.
+TEST(Overlap, IntervalFilterAgreesWithExactPath) {
+  Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/geneva.json");
+  PairAxes axes = pair_axes(model, 0, 1);
+  ChartLayout layout = chart_layout(model, axes);
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> coordinate(-1000, 1000);
+  OverlapOptions exact;
+  exact.exact_only = true;
+  int counts[3] = {0, 0, 0};
+  for (const ChartAxis& x : layout.x_charts)
+    for (const ChartAxis& y : layout.y_charts)
+      for (int trial = 0; trial < 150; ++trial) {
+        ChartPoint q{frac(coordinate(rng), 1000), frac(coordinate(rng), 1000)};
+        Overlap fast = classify_overlap(model, axes, x, y, q);
+        EXPECT_EQ(fast, analyse_overlap(model, axes, x, y, q, exact).relation);
+        ++counts[static_cast<int>(fast)];
+      }
+  EXPECT_GT(counts[0], 0);
+  EXPECT_GT(counts[2], 0);
+}
+
+}  // namespace
+}  // namespace hipair::cspace
