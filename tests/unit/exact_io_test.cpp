@@ -20,7 +20,7 @@ TEST(ExactDecimal, ValuesADoubleCannotHold) {
   EXPECT_NE(hipair::parse_rational("9007199254740993"), Rational(9007199254740992.0));
   EXPECT_EQ(hipair::parse_rational("0.1"), Rational(1, 10));
   EXPECT_EQ(hipair::parse_rational("46.683"), Rational(46683, 1000));
-  EXPECT_EQ(hipair::parse_rational("-2.4708"), Rational(-24708, 10000));
+  EXPECT_EQ(hipair::parse_rational("-2.4708"), Rational(-6177, 2500));  // canonical form of -24708/10000
   EXPECT_EQ(hipair::parse_rational("1e-30"), Rational(mpz_class(1), mpz_class("1" + std::string(30, '0'))));
   EXPECT_EQ(hipair::parse_rational("1/3") * 3, Rational(1));
   EXPECT_EQ(hipair::parse_rational("2.5E+2"), Rational(250));
