@@ -13,6 +13,7 @@
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 
+#include <cctype>
 #include <fstream>
 #include <initializer_list>
 #include <map>

@@ -317,18 +317,22 @@ Interval ccw_angle(const Point& u, const Point& v) {
 }
 
 
-// Twice the signed area enclosed by the loop.
+// Twice the signed area enclosed by the loop: the polygon of its vertices (exact) plus, per
+// arc, r^2 times its signed sweep (an enclosure). Coordinates are taken relative to the first
+// vertex so that a small loop far from the origin loses no precision.
 Interval twice_area(const Loop& loop) {
+  const Point origin = loop.edges.front().source;
   Rational polygonal = 0;
   Interval curved(Rational(0));
   bool has_arc = false;
   for (const Edge& edge : loop.edges) {
+    Point source = edge.source - origin, target = edge.target - origin;
     if (!edge.is_arc()) {
-      polygonal += cross(edge.source, edge.target);
+      polygonal += cross(source, target);
       continue;
     }
     has_arc = true;
-    polygonal += cross(edge.center, edge.target - edge.source);
+    polygonal += cross(edge.center - origin, target - source);
     Point a = edge.source - edge.center, b = edge.target - edge.center;
     Interval sweep = edge.source == edge.target ? Interval::pi() * Interval(Rational(2))
                      : edge.ccw                 ? ccw_angle(a, b)
