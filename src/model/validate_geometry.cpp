@@ -405,7 +405,8 @@ void check_loop_edges(const Loop& loop) {
       throw ModelError(edge.pointer, "inconsistent arc: the end " + show(edge.target) + " is at distance " +
                                          decimal(end_distance) + "^(1/2) from the centre " + show(edge.center) +
                                          " but the start " + show(edge.source) + " at distance " +
-                                         decimal(start_distance) + "^(1/2) (squared distances must be equal exactly)");
+                                         decimal(start_distance) +
+                                         "^(1/2) (they must be equal exactly: place the end with a polar point on the arc's circle)");
     if (edge.is_full_circle() && loop.edges.size() > 1)
       throw ModelError(edge.pointer, "a full circle (arc ending at its start) must be a loop of its own");
   }

@@ -1,0 +1,115 @@
+// The model reader's internal state and steps (docs/model-format.md). One Reader reads one
+// document: reader.cpp (top level, units, pairs, public entry points), reader_values.cpp
+// (JSON structure, numbers, points, directions), reader_parameters.cpp, reader_parts.cpp
+// (parts, loops, features, motions, dynamics). Internal: not part of the public API.
+#pragma once
+
+#include "model/expression.hpp"
+#include "model/json_document.hpp"
+#include "model/templates.hpp"
+
+#include <hipair/model.hpp>
+
+#include <initializer_list>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hipair::model_detail {
+
+/// "a, b, c".
+inline std::string join(std::initializer_list<std::string_view> words) {
+  std::string out;
+  for (std::string_view word : words) {
+    if (!out.empty()) out += ", ";
+    out += word;
+  }
+  return out;
+}
+
+/// A value for messages, 12 significant digits.
+inline std::string decimal(const Rational& value) { return to_decimal_string(value, 12); }
+
+inline Rational squared_distance(const Point& a, const Point& b) {
+  Rational dx = a.x - b.x, dy = a.y - b.y;
+  return dx * dx + dy * dy;
+}
+
+/// Reads one model document into an exact, validated Model; every error is a ModelError
+/// naming the JSON pointer of the offending value.
+class Reader {
+ public:
+  Reader(std::string_view text, std::string_view source, const ReadOptions& options)
+      : text_(text), options_(options) {
+    model_.source = std::string(source);
+  }
+
+  /// Parses, evaluates and validates the whole document.
+  Model read();
+
+ private:
+  struct ParameterState {
+    const JsonValue* definition = nullptr;
+    std::size_t index = 0;  ///< position in the file
+    enum class Status { pending, evaluating, done } status = Status::pending;
+    Quantity value;         ///< exact or enclosed value used by expressions (override applied)
+  };
+
+  std::string text_of(const JsonValue& value) { return value.text; }
+
+  // JSON structure
+  const JsonValue& require(const JsonValue& object, std::string_view key);
+  void check_keys(const JsonValue& object, std::initializer_list<std::string_view> allowed);
+  void expect(const JsonValue& value, JsonValue::Type type, const std::string& what);
+  const JsonValue& expect_object(const JsonValue& value, const std::string& what = "an object");
+  const JsonValue& expect_array(const JsonValue& value, const std::string& what = "an array");
+  std::string read_string(const JsonValue& value, bool allow_empty);
+  bool read_boolean(const JsonValue& value);
+
+  // numbers, points, directions (reader_values.cpp)
+  ExpressionContext context_at(const std::string& pointer);
+  /// The value of a number slot: a JSON number (exact from its text) or an expression string.
+  Quantity evaluate(const JsonValue& value);
+  Rational number(const JsonValue& value);
+  Rational angle(const JsonValue& value);
+  Rational non_negative(const JsonValue& value, const std::string& what);
+  Rational positive(const JsonValue& value, const std::string& what);
+  Point point(const JsonValue& value);
+  RationalInterval limits(const JsonValue& value, bool angles);
+  /// An exact rational unit vector from [dx, dy] or from an angle.
+  Point direction(const JsonValue& value);
+
+  // top level (reader.cpp)
+  void read_version(const JsonValue& value);
+  void read_units(const JsonValue* units);
+  void read_pairs(const JsonValue* pairs);
+
+  // parameters (reader_parameters.cpp)
+  void read_parameters(const JsonValue* parameters);
+  Quantity parameter_value(const std::string& name, const std::string& used_at);
+  Parameter read_parameter(const std::string& name, const JsonValue& definition, Quantity& value);
+
+  // parts (reader_parts.cpp)
+  void read_parts(const JsonValue& parts);
+  Part read_part(const JsonValue& value);
+  Loop read_loop(const JsonValue& value);
+  Edge read_circle(const JsonValue& value, const std::string& label);
+  Edge read_edge(const JsonValue& value, const Point& from);
+  void read_features(const JsonValue& features, Part& part);
+  TemplateValue template_argument(const JsonValue& value, ArgumentKind kind);
+  Motion read_motion(const JsonValue& value);
+  PartConfiguration read_initial(const JsonValue& value, const Motion& motion);
+  Dynamics read_dynamics(const JsonValue& value);
+  Spring read_spring(const JsonValue& value, bool torsional);
+
+  std::string_view text_;
+  const ReadOptions& options_;
+  Model model_;
+  bool degrees_ = false;                              ///< the file's angle unit is deg
+  std::map<std::string, ParameterState> parameters_;
+  std::vector<Parameter> resolved_;                   ///< in file order
+  std::vector<std::string> evaluation_stack_;         ///< parameters being evaluated (cycles)
+};
+
+}  // namespace hipair::model_detail

@@ -1,0 +1,166 @@
+// Reader steps for JSON structure (keys, types) and values: numbers and expressions, points,
+// limits, unit directions.
+#include "model/reader.hpp"
+
+#include "model/exact_trig.hpp"
+
+#include <hipair/error.hpp>
+
+namespace hipair::model_detail {
+
+const JsonValue& Reader::require(const JsonValue& object, std::string_view key) {
+  if (const JsonValue* value = object.find(key)) return *value;
+  throw ModelError(object.pointer, "missing required key '" + std::string(key) + "'");
+}
+
+void Reader::check_keys(const JsonValue& object, std::initializer_list<std::string_view> allowed) {
+  for (const JsonMember& member : object.members) {
+    bool known = false;
+    for (std::string_view key : allowed) known = known || member.key == key;
+    if (!known)
+      throw ModelError(member.value.pointer, "unknown key '" + escape_pointer_token(member.key) +
+                                                 "' (allowed here: " + join(allowed) + ")");
+  }
+}
+
+void Reader::expect(const JsonValue& value, JsonValue::Type type, const std::string& what) {
+  if (value.type != type)
+    throw ModelError(value.pointer, "expected " + what + ", found " + describe_type(value.type));
+}
+
+const JsonValue& Reader::expect_object(const JsonValue& value, const std::string& what) {
+  expect(value, JsonValue::Type::object, what);
+  return value;
+}
+
+const JsonValue& Reader::expect_array(const JsonValue& value, const std::string& what) {
+  expect(value, JsonValue::Type::array, what);
+  return value;
+}
+
+std::string Reader::read_string(const JsonValue& value, bool allow_empty) {
+  expect(value, JsonValue::Type::string, "a string");
+  if (!allow_empty && value.text.empty()) throw ModelError(value.pointer, "must not be empty");
+  return value.text;
+}
+
+bool Reader::read_boolean(const JsonValue& value) {
+  expect(value, JsonValue::Type::boolean, "true or false");
+  return value.boolean;
+}
+
+ExpressionContext Reader::context_at(const std::string& pointer) {
+  ExpressionContext context;
+  context.degrees = degrees_;
+  context.pointer = pointer;
+  context.parameter = [this, pointer](const std::string& name) {
+    return parameter_value(name, pointer);
+  };
+  return context;
+}
+
+/// The value of a number slot: a JSON number (exact from its text) or an expression string.
+Quantity Reader::evaluate(const JsonValue& value) {
+  if (value.is_number()) {
+    return Quantity::of(parse_literal(value.text, value.pointer));
+  }
+  if (value.is_string()) return evaluate_expression(value.text, context_at(value.pointer));
+  throw ModelError(value.pointer, std::string("expected a number or an expression string, found ") +
+                                      describe_type(value.type));
+}
+
+Rational Reader::number(const JsonValue& value) {
+  return to_rational(evaluate(value), value.pointer, text_of(value), model_.roundings);
+}
+
+Rational Reader::angle(const JsonValue& value) {
+  return to_rational(as_angle(evaluate(value), degrees_, value.pointer, text_of(value)), value.pointer, text_of(value),
+                     model_.roundings);
+}
+
+Rational Reader::non_negative(const JsonValue& value, const std::string& what) {
+  Rational result = number(value);
+  if (result < 0) throw ModelError(value.pointer, what + " must not be negative (got " + decimal(result) + ")");
+  return result;
+}
+
+Rational Reader::positive(const JsonValue& value, const std::string& what) {
+  Rational result = number(value);
+  if (result <= 0) throw ModelError(value.pointer, what + " must be positive (got " + decimal(result) + ")");
+  return result;
+}
+
+Point Reader::point(const JsonValue& value) {
+  if (value.is_array()) {
+    if (value.items.size() != 2)
+      throw ModelError(value.pointer, "a point is [x, y]: expected 2 numbers, found " +
+                                          std::to_string(value.items.size()));
+    return Point{number(value.items[0]), number(value.items[1])};
+  }
+  if (value.is_object() && value.find("polar")) {
+    check_keys(value, {"polar"});
+    const JsonValue& polar = expect_object(*value.find("polar"));
+    check_keys(polar, {"center", "radius", "angle"});
+    Point center = point(require(polar, "center"));
+    const JsonValue& radius_value = require(polar, "radius");
+    Rational radius = non_negative(radius_value, "the radius");
+    const JsonValue& angle_value = require(polar, "angle");
+    Point unit = unit_vector(as_angle(evaluate(angle_value), degrees_, angle_value.pointer, text_of(angle_value)),
+                             angle_value.pointer,
+                             text_of(angle_value), model_.roundings);
+    return point_on_circle(center, radius, unit);
+  }
+  throw ModelError(value.pointer, std::string("expected a point [x, y] or {\"polar\": ...}, found ") +
+                                      describe_type(value.type));
+}
+
+RationalInterval Reader::limits(const JsonValue& value, bool angles) {
+  expect_array(value, "limits [lo, hi]");
+  if (value.items.size() != 2)
+    throw ModelError(value.pointer, "limits are [lo, hi]: expected 2 values, found " +
+                                        std::to_string(value.items.size()));
+  Rational lo = angles ? angle(value.items[0]) : number(value.items[0]);
+  Rational hi = angles ? angle(value.items[1]) : number(value.items[1]);
+  if (!(lo < hi))
+    throw ModelError(value.pointer, "the lower limit " + decimal(lo) +
+                                        " must be less than the upper limit " + decimal(hi));
+  return RationalInterval{lo, hi};
+}
+
+/// An exact rational unit vector from [dx, dy] or from an angle.
+Point Reader::direction(const JsonValue& value) {
+  if (!value.is_array()) {
+    Quantity a = as_angle(evaluate(value), degrees_, value.pointer, text_of(value));
+    return unit_vector(a, value.pointer, text_of(value), model_.roundings);
+  }
+  if (value.items.size() != 2)
+    throw ModelError(value.pointer, "a direction is [dx, dy] or an angle: expected 2 numbers, found " +
+                                        std::to_string(value.items.size()));
+  Rational dx = number(value.items[0]), dy = number(value.items[1]);
+  Rational length_squared = dx * dx + dy * dy;
+  if (length_squared == 0) throw ModelError(value.pointer, "zero direction vector: the axis has no direction");
+  if (mpz_perfect_square_p(length_squared.get_num_mpz_t()) &&
+      mpz_perfect_square_p(length_squared.get_den_mpz_t())) {
+    mpz_class numerator, denominator;
+    mpz_sqrt(numerator.get_mpz_t(), length_squared.get_num_mpz_t());
+    mpz_sqrt(denominator.get_mpz_t(), length_squared.get_den_mpz_t());
+    Rational length(numerator, denominator);
+    return Point{Rational(dx / length), Rational(dy / length)};
+  }
+  // Half-angle tangent t = dy / (|d| + dx) of the direction (or of its opposite when dx < 0,
+  // which keeps |t| <= 1), rounded to the 10^-12 grid: the vector is then exactly unit.
+  bool flip = dx < 0;
+  Rational x = flip ? Rational(-dx) : dx, y = flip ? Rational(-dy) : dy;
+  Interval length;
+  Interval squared(length_squared);
+  mpfi_sqrt(length.get(), squared.get());
+  Interval t = Interval(y) / (length + Interval(x));
+  std::string expression = "direction [" + text_of(value.items[0]) + ", " + text_of(value.items[1]) +
+                           "] (half-angle tangent)";
+  Rational rounded = to_rational(Quantity::approximate(t), value.pointer, expression, model_.roundings);
+  Point unit = unit_from_half_tangent(rounded);
+  if (flip) unit = Point{Rational(-unit.x), Rational(-unit.y)};
+  return unit;
+}
+
+}  // namespace hipair::model_detail
