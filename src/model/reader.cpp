@@ -28,7 +28,14 @@ Model Reader::read() {
 }
 
 void Reader::read_version(const JsonValue& value) {
-  if (!value.is_number() || value.text != "1")
+  bool one = false;
+  if (value.is_number()) {
+    try {
+      one = parse_rational(value.text) == 1;
+    } catch (const NumericError&) {
+    }
+  }
+  if (!one)
     throw ModelError(value.pointer, "unsupported format version " +
                                         (value.is_number() || value.is_string() ? "'" + value.text + "'"
                                                                                 : std::string(describe_type(value.type))) +
