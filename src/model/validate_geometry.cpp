@@ -44,7 +44,6 @@ struct SurdPoint {
 Rational cross(const Point& u, const Point& v) { return u.x * v.y - u.y * v.x; }
 Rational dot(const Point& u, const Point& v) { return u.x * v.x + u.y * v.y; }
 Point operator-(const Point& u, const Point& v) { return {u.x - v.x, u.y - v.y}; }
-Point operator+(const Point& u, const Point& v) { return {u.x + v.x, u.y + v.y}; }
 Rational squared_length(const Point& u) { return dot(u, u); }
 
 // cross(u, v) for a rational u and a point in Q(sqrt D)^2.
@@ -122,8 +121,18 @@ bool on_arc(const ArcView& arc, const SurdPoint& x, const Rational& D) {
   return direction_on_arc(arc, cross(a, v), cross(v, b), D);
 }
 
-bool on_arc(const ArcView& arc, const Point& direction) {
-  return on_arc(arc, rational_point(arc.center + direction), Rational(0));
+// Whether the axis direction (dx, dy) in {(1,0), (0,1), (-1,0), (0,-1)} points from the centre
+// into the closed arc: the sign tests of direction_on_arc on the coordinates alone.
+bool axis_on_arc(const ArcView& arc, int dx, int dy) {
+  if (arc.full) return true;
+  Point a = arc.start - arc.center, b = arc.end - arc.center;
+  int turn = sgn(cross(a, b));
+  // cross(a, d) = a.x dy - a.y dx, cross(d, b) = dx b.y - dy b.x
+  int sa = dy != 0 ? dy * sgn(a.x) : -dx * sgn(a.y);
+  int sb = dx != 0 ? dx * sgn(b.y) : -dy * sgn(b.x);
+  if (turn > 0) return sa >= 0 && sb >= 0;
+  if (turn < 0) return sa >= 0 || sb >= 0;
+  return sa >= 0;
 }
 
 bool strictly_inside_arc(const ArcView& arc, const Point& p) {
@@ -287,10 +296,9 @@ Box box_of(const Edge& edge) {
     ArcView arc = view_of(edge);
     double cx = to_double(arc.center.x), cy = to_double(arc.center.y);
     double r = std::sqrt(to_double(arc.radius_squared)) * (1 + 1e-9);
-    const Point directions[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
-    for (const Point& direction : directions)
-      if (on_arc(arc, direction))
-        include(box, cx + r * to_double(direction.x), cy + r * to_double(direction.y));
+    const int directions[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+    for (const auto& direction : directions)
+      if (axis_on_arc(arc, direction[0], direction[1])) include(box, cx + r * direction[0], cy + r * direction[1]);
   }
   if (std::isnan(box.x_lo) || std::isnan(box.x_hi) || std::isnan(box.y_lo) || std::isnan(box.y_hi))
     box = Box{-infinity, infinity, -infinity, infinity};
@@ -421,21 +429,57 @@ struct EdgeRef {
   Box box;
 };
 
-// Consecutive edges that overlap: the boundary runs back along itself.
-void check_spikes(const Loop& loop) {
+bool consecutive(const Loop& loop, std::size_t first, std::size_t second) {
   std::size_t size = loop.edges.size();
-  if (size < 2) return;
-  for (std::size_t i = 0; i < size; ++i) {
-    const Edge& e = loop.edges[i];
-    const Edge& f = loop.edges[(i + 1) % size];
-    if (intersect(e, f).overlap)
+  return (first + 1) % size == second || (second + 1) % size == first;
+}
+
+// Checks that edges (l1, i1) and (l2, i2), (l1, i1) < (l2, i2), share no point except the
+// vertex joining them when they are consecutive in a loop.
+void check_pair(const Part& part, std::size_t l1, std::size_t i1, std::size_t l2, std::size_t i2) {
+  const Loop& loop = part.loops[l1];
+  const Edge& e = loop.edges[i1];
+  const Edge& f = part.loops[l2].edges[i2];
+  std::vector<Point> allowed;
+  bool same_loop = l1 == l2;
+  bool joined = same_loop && consecutive(loop, i1, i2);
+  if (same_loop) {
+    std::size_t size = loop.edges.size();
+    if ((i1 + 1) % size == i2) allowed.push_back(e.target);
+    if ((i2 + 1) % size == i1) allowed.push_back(e.source);
+  }
+  Intersection common = intersect(e, f);
+  if (common.overlap) {
+    if (joined)
       throw ModelError(f.pointer, "edge " + describe(f) + " runs back along " + describe(e) +
                                       " (a zero-area spike: the boundary overlaps itself)");
+    throw ModelError(f.pointer, "edge " + describe(f) + " overlaps " + describe(e) +
+                                    (same_loop ? " (the loop overlaps itself)"
+                                               : " (loops " + loop.pointer + " and " + part.loops[l2].pointer +
+                                                     " of part '" + part.name + "' overlap)"));
+  }
+  for (const SurdPoint& x : common.points) {
+    bool is_allowed = false;
+    for (const Point& p : allowed) is_allowed = is_allowed || equals(x, p);
+    if (is_allowed) continue;
+    if (same_loop)
+      throw ModelError(f.pointer, "the loop intersects itself: edge " + describe(f) + " crosses or touches " +
+                                      describe(e) + " at " + show(x, common.D));
+    throw ModelError(f.pointer, "loops " + loop.pointer + " and " + part.loops[l2].pointer + " of part '" +
+                                    part.name + "' cross or touch: edge " + describe(f) + " meets " + describe(e) +
+                                    " at " + show(x, common.D));
   }
 }
 
 void check_intersections(const Part& part) {
-  for (const Loop& loop : part.loops) check_spikes(loop);
+  // Consecutive edges first (a spike is reported as such), then every other pair whose
+  // bounding boxes overlap, found by a sweep in x.
+  for (std::size_t l = 0; l < part.loops.size(); ++l) {
+    std::size_t size = part.loops[l].edges.size();
+    if (size < 2) continue;
+    for (std::size_t i = 0; i + 1 < size; ++i) check_pair(part, l, i, l, i + 1);
+    if (size > 2) check_pair(part, l, 0, l, size - 1);
+  }
   std::vector<EdgeRef> edges;
   for (std::size_t l = 0; l < part.loops.size(); ++l)
     for (std::size_t i = 0; i < part.loops[l].edges.size(); ++i)
@@ -450,45 +494,8 @@ void check_intersections(const Part& part) {
       const EdgeRef* second = &edges[n];
       if (first->box.y_hi < second->box.y_lo || second->box.y_hi < first->box.y_lo) continue;
       if (std::tie(first->loop, first->index) > std::tie(second->loop, second->index)) std::swap(first, second);
-      const Loop& loop = part.loops[first->loop];
-      const Edge& e = loop.edges[first->index];
-      const Edge& f = part.loops[second->loop].edges[second->index];
-      std::vector<Point> allowed;
-      bool same_loop = first->loop == second->loop;
-      bool consecutive = false;
-      if (same_loop) {
-        std::size_t size = loop.edges.size();
-        if ((first->index + 1) % size == second->index) {
-          allowed.push_back(e.target);
-          consecutive = true;
-        }
-        if ((second->index + 1) % size == first->index) {
-          allowed.push_back(e.source);
-          consecutive = true;
-        }
-      }
-      Intersection common = intersect(e, f);
-      if (common.overlap) {
-        if (consecutive)
-          throw ModelError(f.pointer, "edge " + describe(f) + " runs back along " + describe(e) +
-                                          " (a zero-area spike: the boundary overlaps itself)");
-        throw ModelError(f.pointer, "edge " + describe(f) + " overlaps " + describe(e) +
-                                        (same_loop ? " (the loop overlaps itself)"
-                                                   : " (loops " + loop.pointer + " and " +
-                                                         part.loops[second->loop].pointer + " of part '" +
-                                                         part.name + "' overlap)"));
-      }
-      for (const SurdPoint& x : common.points) {
-        bool is_allowed = false;
-        for (const Point& p : allowed) is_allowed = is_allowed || equals(x, p);
-        if (is_allowed) continue;
-        if (same_loop)
-          throw ModelError(f.pointer, "the loop intersects itself: edge " + describe(f) + " crosses or touches " +
-                                          describe(e) + " at " + show(x, common.D));
-        throw ModelError(f.pointer, "loops " + loop.pointer + " and " + part.loops[second->loop].pointer +
-                                        " of part '" + part.name + "' cross or touch: edge " + describe(f) +
-                                        " meets " + describe(e) + " at " + show(x, common.D));
-      }
+      if (first->loop == second->loop && consecutive(part.loops[first->loop], first->index, second->index)) continue;
+      check_pair(part, first->loop, first->index, second->loop, second->index);
     }
   }
 }
