@@ -310,7 +310,13 @@ class Evaluator {
     }
     if (name == "abs") {
       arity(1);
-      return sign(arguments[0], "abs") < 0 ? negate(arguments[0]) : arguments[0];
+      const Quantity& x = arguments[0];
+      if (x.exact || x.enclosure->sign() != 0) return sign(x, "abs") < 0 ? negate(x) : x;
+      Interval magnitude;  // |x| needs no sign decision: enclose it directly
+      mpfi_abs(magnitude.get(), x.enclosure->get());
+      Quantity result = Quantity::approximate(magnitude, x.is_angle);
+      result.mentions_pi = x.mentions_pi;
+      return result;
     }
     if (name == "min" || name == "max") {
       if (arguments.size() < 2) fail("function '" + name + "' takes at least 2 arguments", function);
@@ -319,13 +325,40 @@ class Evaluator {
       for (std::size_t i = 1; i < arguments.size(); ++i) {
         unify(best, arguments[i]);
         any_pi = any_pi || arguments[i].mentions_pi;
-        int s = sign(add(arguments[i], negate(best)), name);
+        Quantity difference = add(arguments[i], negate(best));
+        if (!difference.exact && difference.enclosure->sign() == 0) {
+          best = enclose_extremum(best, arguments[i], name == "min");  // too close to choose
+          continue;
+        }
+        int s = sign(difference, name);
         if ((name == "min" && s < 0) || (name == "max" && s > 0)) best = arguments[i];
       }
       best.mentions_pi = any_pi && !best.is_angle;
       return best;
     }
     fail("unknown function '" + name + "' (known: sqrt sin cos tan atan2 min max abs)", function);
+  }
+
+  // An enclosure of min(a, b) or max(a, b) without deciding which is smaller.
+  static Quantity enclose_extremum(const Quantity& a, const Quantity& b, bool minimum) {
+    Interval x = a.to_interval(), y = b.to_interval();
+    mpfr_t lo_x, hi_x, lo_y, hi_y;
+    mpfr_inits2(interval_bits, lo_x, hi_x, lo_y, hi_y, static_cast<mpfr_ptr>(nullptr));
+    mpfi_get_left(lo_x, x.get());
+    mpfi_get_right(hi_x, x.get());
+    mpfi_get_left(lo_y, y.get());
+    mpfi_get_right(hi_y, y.get());
+    if (minimum) {
+      mpfr_min(lo_x, lo_x, lo_y, MPFR_RNDD);
+      mpfr_min(hi_x, hi_x, hi_y, MPFR_RNDU);
+    } else {
+      mpfr_max(lo_x, lo_x, lo_y, MPFR_RNDD);
+      mpfr_max(hi_x, hi_x, hi_y, MPFR_RNDU);
+    }
+    Interval result;
+    mpfi_interv_fr(result.get(), lo_x, hi_x);
+    mpfr_clears(lo_x, hi_x, lo_y, hi_y, static_cast<mpfr_ptr>(nullptr));
+    return Quantity::approximate(result, a.is_angle);
   }
 
   // ------------------------------------------------------------------ arithmetic
@@ -487,11 +520,11 @@ class Evaluator {
         mpz_sqrt(denominator.get_mpz_t(), value.rational.get_den_mpz_t());
         return checked(Quantity::of(Rational(numerator, denominator)));
       }
-    } else if (sign(value, "sqrt") < 0) {
-      fail("square root of a negative number");
     }
     Interval argument = value.to_interval();
     if (argument.sign() < 0) fail("square root of a negative number");
+    if (!argument.is_bounded() || argument.lower() < 0)
+      fail("cannot decide whether the argument of sqrt is negative: it is too close to zero");
     Interval result;
     mpfi_sqrt(result.get(), argument.get());
     return checked(Quantity::approximate(result));

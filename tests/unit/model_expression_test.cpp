@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <map>
+#include <random>
 
 namespace {
 
@@ -202,6 +203,54 @@ TEST(Expression, UnitVectorsOfAnglesAreExactlyUnit) {
   EXPECT_NEAR(hipair::to_double(tilted.x), 0.5, 1e-11);
   EXPECT_NEAR(hipair::to_double(tilted.y), std::sqrt(3.0) / 2, 1e-11);
   EXPECT_THROW(hipair::model_detail::unit_vector(evaluate("10^7"), "/d", "10^7", roundings), hipair::ModelError);
+}
+
+// Random expressions built together with their double value: the exact evaluator agrees to
+// within the double's own error, so precedence, associativity and functions are right.
+struct RandomExpression {
+  std::string text;
+  double value;
+};
+
+RandomExpression random_expression(std::mt19937& engine, int depth) {
+  auto pick = [&](int n) { return std::uniform_int_distribution<int>(0, n - 1)(engine); };
+  if (depth == 0 || pick(4) == 0) {
+    int n = pick(9) + 1;
+    return {std::to_string(n), double(n)};
+  }
+  RandomExpression a = random_expression(engine, depth - 1), b = random_expression(engine, depth - 1);
+  switch (pick(9)) {
+    case 0: return {a.text + " + " + b.text, a.value + b.value};
+    case 1: return {a.text + " - (" + b.text + ")", a.value - b.value};
+    case 2: return {"(" + a.text + ") * (" + b.text + ")", a.value * b.value};
+    case 3: return {"(" + a.text + ") / (" + b.text + ")", b.value == 0 ? a.value : a.value / b.value};
+    case 4: return {"sqrt(abs(" + a.text + "))", std::sqrt(std::fabs(a.value))};
+    case 5: return {"sin(" + a.text + ")", std::sin(a.value)};
+    case 6: return {"atan2(" + a.text + ", " + b.text + ")", std::atan2(a.value, b.value)};
+    case 7: return {"max(" + a.text + ", " + b.text + ") - min(" + a.text + ", 2)", std::max(a.value, b.value) - std::min(a.value, 2.0)};
+    default: return {"-(" + a.text + ")^2", -a.value * a.value};
+  }
+}
+
+TEST(Expression, RandomExpressionsAgreeWithDoubleEvaluation) {
+  std::mt19937 engine(7);
+  int evaluated = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    RandomExpression expression = random_expression(engine, 4);
+    if (!std::isfinite(expression.value) || std::fabs(expression.value) > 1e6) continue;
+    std::vector<hipair::Rounding> roundings;
+    Rational value;
+    try {
+      value = hipair::model_detail::to_rational(evaluate(expression.text), "/e", expression.text, roundings);
+    } catch (const hipair::ModelError& error) {
+      // Division by an exact zero is the only expected failure (the double path skipped it).
+      EXPECT_NE(std::string(error.what()).find("division by zero"), std::string::npos) << expression.text;
+      continue;
+    }
+    ++evaluated;
+    EXPECT_NEAR(hipair::to_double(value), expression.value, 1e-9 * (1 + std::fabs(expression.value))) << expression.text;
+  }
+  EXPECT_GT(evaluated, 200);
 }
 
 }  // namespace
