@@ -1,0 +1,676 @@
+// hipair::analyze_kinematics: drives the chain over the requested range on a grid, locates
+// every contact change between grid points by bisection on exact slices, and collects the
+// pieces, events, samples, play, contact usage, paths and reversal checks.
+#include "kinematics/engine.hpp"
+
+#include <hipair/error.hpp>
+#include <hipair/kinematics.hpp>
+
+#include <mpfr.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace hipair {
+
+using namespace kinematics_detail;
+
+std::map<std::string, FollowerLoad> model_loads(const Model& model) {
+  std::map<std::string, FollowerLoad> loads;
+  for (const Part& part : model.parts) {
+    if (!part.dynamics) continue;
+    const Dynamics& dynamics = *part.dynamics;
+    FollowerLoad load;
+    if (part.motion.kind == Motion::Kind::rotation) {
+      if (dynamics.torsional_spring) {
+        load.kind = FollowerLoad::Kind::spring;
+        load.rest = dynamics.torsional_spring->rest.get_d();
+        char text[64];
+        std::snprintf(text, sizeof text, "%.4g", load.rest * 180 / std::numbers::pi);
+        load.source = std::string("torsional spring of the model (rest angle ") + text + " deg)";
+      } else if (dynamics.torque && sgn(*dynamics.torque) != 0) {
+        load.kind = sgn(*dynamics.torque) > 0 ? FollowerLoad::Kind::positive : FollowerLoad::Kind::negative;
+        load.source = std::string("constant ") + (sgn(*dynamics.torque) > 0 ? "counter-clockwise" : "clockwise") +
+                      " torque of the model";
+      }
+    } else if (part.motion.kind == Motion::Kind::translation) {
+      if (dynamics.linear_spring) {
+        load.kind = FollowerLoad::Kind::spring;
+        load.rest = dynamics.linear_spring->rest.get_d();
+        load.source = "linear spring of the model (rest offset " + to_decimal_string(dynamics.linear_spring->rest, 6) + " mm)";
+      } else if (dynamics.force) {
+        Rational along = dynamics.force->x * part.motion.direction.x + dynamics.force->y * part.motion.direction.y;
+        if (sgn(along) != 0) {
+          load.kind = sgn(along) > 0 ? FollowerLoad::Kind::positive : FollowerLoad::Kind::negative;
+          load.source = "constant force of the model";
+        }
+      }
+    }
+    if (load.kind != FollowerLoad::Kind::none) loads[part.name] = load;
+  }
+  return loads;
+}
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// A stretch of the driver's travel inside one chart: t runs from `from` to `to`.
+struct Segment {
+  std::size_t piece = 0;
+  Rational from, to;
+  long base_pi = 0;          // rotation: coordinate = base_pi * pi + 2 atan(t)
+  double base = 0;
+};
+
+double segment_coordinate(const AxisLine& line, const Segment& segment, const Rational& t) {
+  return line.rotation ? segment.base + 2 * std::atan(t.get_d()) : t.get_d();
+}
+
+// Certified enclosure of base_pi * pi + 2 atan(t) over t in [a, b] (rotation) or [a, b].
+CertifiedRange certified_coordinate(const AxisLine& line, const Segment& segment, Rational a, Rational b) {
+  if (b < a) std::swap(a, b);
+  if (!line.rotation) return CertifiedRange{cspace::algebra::lower_double(a), cspace::algebra::upper_double(b)};
+  mpfr_t x, p;
+  mpfr_inits2(128, x, p, static_cast<mpfr_ptr>(nullptr));
+  auto bound = [&](const Rational& t, mpfr_rnd_t rounding) {
+    mpfr_set_q(x, t.get_mpq_t(), rounding);
+    mpfr_atan(x, x, rounding);
+    mpfr_mul_ui(x, x, 2, rounding);
+    mpfr_const_pi(p, segment.base_pi >= 0 ? rounding : (rounding == MPFR_RNDD ? MPFR_RNDU : MPFR_RNDD));
+    mpfr_mul_si(p, p, segment.base_pi, rounding);
+    mpfr_add(x, x, p, rounding);
+    return mpfr_get_d(x, rounding);
+  };
+  CertifiedRange range{bound(a, MPFR_RNDD), bound(b, MPFR_RNDU)};
+  mpfr_clears(x, p, static_cast<mpfr_ptr>(nullptr));
+  return range;
+}
+
+// Builds the driver's segments from `start` over `travel` (signed, rad or mm).
+std::vector<Segment> plan_segments(const AxisLine& line, const Rational& start, double travel, const Rational* exact_end,
+                                   std::vector<std::string>& warnings) {
+  std::vector<Segment> segments;
+  int direction = travel >= 0 ? 1 : -1;
+  AxisPosition position = position_of_coordinate(line, start);
+  if (!position.value.exact) throw NumericError("driver start is not rational");
+  std::size_t piece = position.piece;
+  Rational t = position.value.lower;
+  long base_pi = 0;
+  if (line.rotation) {
+    // choose the turn so that the coordinate of (piece, t) is the start
+    double offset = line.offsets[piece];
+    double local = offset + 2 * std::atan(t.get_d());
+    long turns = std::lround((start.get_d() - local) / (2 * pi));
+    base_pi = std::lround(offset / pi) + 2 * turns;
+  }
+  auto base_of = [&](long multiple) { return multiple * pi; };
+  // end position (exact when given, else rounded)
+  double end_coordinate = start.get_d() + travel;
+  AxisPosition end_position = exact_end ? position_of_coordinate(line, *exact_end)
+                                        : position_of_coordinate(line, Rational(end_coordinate));
+  Rational end_t = end_position.value.lower;
+  double travelled = 0, total = std::abs(travel);
+  for (int guard = 0; guard < 100000; ++guard) {
+    const ChartAxis& chart = line.pieces[piece];
+    Segment segment{piece, t, direction > 0 ? chart.hi : chart.lo, base_pi, line.rotation ? base_of(base_pi) : 0.0};
+    double here = segment_coordinate(line, segment, t);
+    double chart_end = segment_coordinate(line, segment, segment.to);
+    if (end_position.piece == piece) {
+      double to_end = (segment_coordinate(line, segment, end_t) - here) * direction;
+      if (to_end >= -1e-9 && travelled + to_end >= total - 1e-6) {
+        segment.to = end_t;
+        if (segment.to != segment.from) segments.push_back(segment);
+        return segments;
+      }
+    }
+    double length = std::abs(chart_end - here);
+    if (segment.to != segment.from) segments.push_back(segment);
+    travelled += length;
+    bool last = direction > 0 ? piece + 1 >= line.pieces.size() : piece == 0;
+    if (!line.cyclic && (last || !line.seam_after(direction > 0 ? piece : piece - 1))) {
+      warnings.push_back("the driver reaches the end of its travel (motion limit) before the end of the range");
+      return segments;
+    }
+    if (direction > 0) {
+      std::size_t next = line.next(piece);
+      base_pi += line.rotation ? (line.cyclic ? 1 : std::lround((line.offsets[next] - line.offsets[piece]) / pi)) : 0;
+      piece = next;
+      t = line.pieces[piece].lo;
+    } else {
+      std::size_t previous = piece == 0 ? line.pieces.size() - 1 : piece - 1;
+      base_pi -= line.rotation ? (line.cyclic ? 1 : std::lround((line.offsets[piece] - line.offsets[previous]) / pi)) : 0;
+      piece = previous;
+      t = line.pieces[piece].hi;
+    }
+  }
+  throw NumericError("driver range too long");
+}
+
+// Rational chart values of the grid inside a segment (excluding `from`, including `to`).
+std::vector<Rational> grid_of(const AxisLine& line, const Segment& segment, double spacing) {
+  double a = segment_coordinate(line, segment, segment.from), b = segment_coordinate(line, segment, segment.to);
+  long steps = std::max<long>(1, std::lround(std::ceil(std::abs(b - a) / spacing - 1e-9)));
+  std::vector<Rational> values;
+  mpz_class scale = mpz_class(1) << 32;
+  for (long i = 1; i < steps; ++i) {
+    double c = a + (b - a) * double(i) / double(steps);
+    double t = line.rotation ? std::tan((c - segment.base) / 2) : c;
+    Rational value(mpz_class(static_cast<long>(std::llround(t * 4294967296.0))), scale);
+    value.canonicalize();
+    bool ascending = segment.to > segment.from;
+    const Rational& last = values.empty() ? segment.from : values.back();
+    if (ascending ? (value <= last || value >= segment.to) : (value >= last || value <= segment.to)) continue;
+    values.push_back(value);
+  }
+  values.push_back(segment.to);
+  return values;
+}
+
+struct OpenPiece {
+  bool open = false;
+  DriverLocation start;
+  double start_position = 0;
+  PartState state;
+};
+
+std::string chart_variable_note(const AxisLine& line) {
+  return line.rotation ? "tan of half the angle from the chart centre" : "offset in mm";
+}
+
+struct Sweep {
+  const Chain& chain;
+  const KinematicsOptions& options;
+  KinematicsResult& result;
+  std::vector<Segment> segments;
+  Rational epsilon;
+  // grid states for reversal checks
+  struct GridPoint {
+    std::size_t segment = 0;
+    Rational t;
+    ChainState state;
+  };
+  std::vector<GridPoint> grid;
+  std::vector<OpenPiece> open;
+  double total_travel = 1;
+
+  Sweep(const Chain& c, const KinematicsOptions& o, KinematicsResult& r) : chain(c), options(o), result(r) {}
+
+  const AxisLine& driver_line() const { return chain.parts[0].line; }
+
+  DriverLocation locate(std::size_t segment, const Rational& a, const Rational& b) const {
+    DriverLocation location;
+    location.chart = segments[segment].piece;
+    location.chart_lower = std::min(a, b);
+    location.chart_upper = std::max(a, b);
+    location.coordinate = certified_coordinate(driver_line(), segments[segment], a, b);
+    result.event_resolution = std::max(result.event_resolution, location.coordinate.upper - location.coordinate.lower);
+    return location;
+  }
+
+  double unwrapped(std::size_t segment, const Rational& t) const {
+    return segment_coordinate(driver_line(), segments[segment], t);
+  }
+
+  ChainState step_to(const ChainState& from, std::size_t segment, const Rational& t) const {
+    return step(chain, from, segments[segment].piece, t, unwrapped(segment, t));
+  }
+
+  static bool jumped(const ChainState& a, const ChainState& b) {
+    double driver = std::abs(b.driver_unwrapped - a.driver_unwrapped);
+    for (std::size_t k = 1; k < a.parts.size() && k < b.parts.size(); ++k)
+      if (std::abs(b.parts[k].unwrapped - a.parts[k].unwrapped) > 1e3 * driver + 1e-12) return true;
+    return false;
+  }
+
+  bool differs(const ChainState& a, const ChainState& b) const { return !same_contacts(a, b) || jumped(a, b); }
+
+  std::vector<ContactLabel> labels(const PartState& state, std::size_t k) const {
+    std::vector<ContactLabel> out;
+    for (const SliceContact& contact : state.contacts) out.push_back(label_of(chain, contact, chain.parts[k].part));
+    return out;
+  }
+
+  void close_piece(std::size_t k, const DriverLocation& end, const PartState& last) {
+    OpenPiece& piece = open[k];
+    if (!piece.open) return;
+    KinematicPiece out;
+    out.part = chain.model->parts[chain.parts[k].part].name;
+    out.start = piece.start;
+    out.end = end;
+    out.side = piece.state.side;
+    out.mode = piece.state.side != 0 ? KinematicPiece::Mode::contact
+               : piece.state.kind == SliceKind::touching ? KinematicPiece::Mode::touching
+                                                         : KinematicPiece::Mode::free;
+    out.contacts = labels(piece.state, k);
+    out.start_position = piece.start_position;
+    out.end_position = last.unwrapped;
+    out.moving = std::abs(out.end_position - out.start_position) > 1e-9;
+    for (const SliceContact& contact : piece.state.contacts) {
+      if (contact.limit) continue;
+      const PairSlicer& slicer = *chain.slicers[contact.slicer];
+      if (!slicer.other_moves()) continue;
+      out.equation = "contact polynomial of '" + slicer.features()[contact.feature].label +
+                     "' vanishes: variables are the " + chart_variable_note(chain.parts[chain.chain_index[slicer.other()]].line) +
+                     " of " + chain.model->parts[slicer.other()].name + " and of " + out.part;
+      break;
+    }
+    result.pieces.push_back(std::move(out));
+    piece.open = false;
+  }
+
+  void open_piece(std::size_t k, const DriverLocation& start, const PartState& state) {
+    open[k] = OpenPiece{true, start, state.unwrapped, state};
+  }
+
+  void record_event(std::size_t segment, const Rational& ta, const Rational& tb, const ChainState& a, const ChainState& b) {
+    DriverLocation at = locate(segment, ta, tb);
+    for (std::size_t k = 0; k < chain.parts.size(); ++k) {
+      const PartState& before = a.parts[k];
+      const PartState& after = b.parts[k];
+      bool changed = before.side != after.side || before.contacts != after.contacts;
+      bool jump = k > 0 && std::abs(after.unwrapped - before.unwrapped) > 1e-7;
+      if (!changed && !jump) continue;
+      KinematicEvent event;
+      event.part = chain.model->parts[chain.parts[k].part].name;
+      event.at = at;
+      event.before = labels(before, k);
+      event.after = labels(after, k);
+      event.position = after.unwrapped;
+      if (jump) {
+        event.kind = KinematicEvent::Kind::drop;
+        event.description = event.part + " snaps through free space under its load";
+      } else if (before.contacts.empty()) {
+        event.kind = KinematicEvent::Kind::contact_start;
+        event.description = "contact starts";
+      } else if (after.contacts.empty()) {
+        event.kind = KinematicEvent::Kind::contact_end;
+        event.description = "contact ends";
+      } else {
+        event.kind = KinematicEvent::Kind::contact_change;
+        event.description = "contact changes";
+      }
+      result.events.push_back(event);
+      if (k > 0) {
+        close_piece(k, at, before);
+        open_piece(k, at, after);
+      }
+    }
+  }
+
+  void record_jam(std::size_t segment, const Rational& ta, const Rational& tb, const ChainState& a, const ChainState& b,
+                  std::size_t part, const std::string& reason, const std::vector<SliceContact>& contacts) {
+    KinematicEvent event;
+    event.kind = KinematicEvent::Kind::jam;
+    event.at = locate(segment, ta, tb);
+    std::size_t k = part == none ? 0 : part;
+    event.part = chain.model->parts[chain.parts[k].part].name;
+    for (const SliceContact& contact : contacts) {
+      ContactLabel label = label_of(chain, contact, chain.parts[k].part);
+      if (std::find(event.before.begin(), event.before.end(), label) == event.before.end()) event.before.push_back(label);
+    }
+    event.position = a.parts[k].unwrapped;
+    event.description = (k == 0 ? "the driver cannot proceed: " : "the driver cannot proceed: " + event.part + " ") + reason;
+    result.events.push_back(event);
+    result.jam = event;
+    for (std::size_t j = 1; j < chain.parts.size(); ++j) close_piece(j, event.at, a.parts[j]);
+  }
+
+  // Advances from `left` (at t_left) to t_right, locating every contact change on the way.
+  // Returns false when the driver is blocked.
+  bool advance(ChainState& left, std::size_t segment, Rational t_left, const Rational& t_right) {
+    ChainState right = step_to(left, segment, t_right);
+    // A step longer than the follower's play may lose track of its free range, which then
+    // looks closed: halve such steps before looking for a real blocking point.
+    if ((right.jammed || jumped(left, right)) && abs(t_right - t_left) > Rational(1, 1 << 20)) {
+      Rational middle = (t_left + t_right) / 2;
+      if (!advance(left, segment, t_left, middle)) return false;
+      return advance(left, segment, middle, t_right);
+    }
+    for (int guard = 0; guard < 10000; ++guard) {
+      if (!differs(left, right)) {
+        left = std::move(right);
+        return true;
+      }
+      ChainState a = left, b = right;
+      Rational ta = t_left, tb = t_right;
+      while (abs(tb - ta) > epsilon) {
+        Rational tm = (ta + tb) / 2;
+        ChainState m = step_to(a, segment, tm);
+        if (!differs(a, m)) {
+          a = std::move(m);
+          ta = tm;
+        } else {
+          b = std::move(m);
+          tb = tm;
+        }
+      }
+      // the state right of the event, reached from the left one by the smallest step (a state
+      // reached by a longer step may show a change that a finer step does not)
+      b = step_to(a, segment, tb);
+      if (!differs(a, b)) {
+        left = std::move(b);
+        t_left = tb;
+        if (t_left == t_right) return true;
+        right = step_to(left, segment, t_right);
+        continue;
+      }
+      // a discontinuous push is a jam: the follower would have to jump through blocked space
+      std::size_t jumping = none;
+      for (std::size_t k = 1; k < chain.parts.size() && !b.jammed; ++k)
+        if (b.parts[k].pushed && std::abs(b.parts[k].unwrapped - a.parts[k].unwrapped) > 1e-7) jumping = k;
+      if (b.jammed || jumping != none) {
+        std::size_t part = b.jammed ? b.jam_part : jumping;
+        std::string reason = b.jammed ? b.jam_reason
+                                      : "would have to jump: the contact pushes it at right angles to its motion (dead point or locking face)";
+        std::vector<SliceContact> contacts = b.jammed ? b.jam_contacts : a.parts[jumping].contacts;
+        if (!b.jammed) contacts.insert(contacts.end(), b.parts[jumping].contacts.begin(), b.parts[jumping].contacts.end());
+        record_jam(segment, ta, tb, a, b, part, reason, contacts);
+        left = std::move(a);
+        return false;
+      }
+      if (!same_contacts(a, b) || jumped(a, b)) record_event(segment, ta, tb, a, b);
+      left = std::move(b);
+      t_left = tb;
+      if (t_left == t_right) return true;
+      right = step_to(left, segment, t_right);
+    }
+    throw NumericError("too many contact changes between two grid points");
+  }
+
+  void sample(const ChainState& state) {
+    KinematicSample s;
+    s.driver = state.driver_unwrapped;
+    std::vector<Rates> r = rates(chain, state);
+    for (std::size_t k = 1; k < chain.parts.size(); ++k) {
+      const PartState& part = state.parts[k];
+      const AxisLine& line = chain.parts[k].line;
+      s.positions.push_back(part.unwrapped);
+      s.velocity_ratios.push_back(r[k].ratio);
+      if (options.accelerations) s.accelerations.push_back(r[k].acceleration);
+      double width = std::numeric_limits<double>::infinity();
+      if (part.lower.exists && part.upper.exists)
+        width = distance_down(line, part.position, part.lower.at) + distance_up(line, part.position, part.upper.at);
+      s.play.push_back(width);
+      s.contacts.push_back(labels(part, k));
+    }
+    result.samples.push_back(std::move(s));
+    // paths of the 2-D pairs
+    for (std::size_t p = 0; p < chain.slicers.size(); ++p) {
+      const PairSlicer& slicer = *chain.slicers[p];
+      if (!slicer.other_moves()) continue;
+      PairPath& path = result.paths[p];
+      const Model& model = *chain.model;
+      auto wrapped = [&](std::size_t part_index) {
+        std::size_t k = chain.chain_index[part_index];
+        double value = state.parts[k].unwrapped;
+        if (chain.parts[k].line.rotation) value = std::remainder(value, 2 * pi);
+        return value;
+      };
+      std::size_t x_part = *model.find_part(path.x_part), y_part = *model.find_part(path.y_part);
+      PathPoint point{wrapped(x_part), wrapped(y_part), false};
+      const PartState& follower = state.parts[chain.chain_index[slicer.follower()]];
+      for (const SliceContact& contact : follower.contacts)
+        if (!contact.limit && contact.slicer == p) point.contact = true;
+      path.points.push_back(point);
+    }
+  }
+};
+
+}  // namespace
+
+KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions& options, const std::vector<CSpace>& spaces) {
+  auto clock_start = std::chrono::steady_clock::now();
+  KinematicsResult result;
+  result.model_name = model.name;
+  // the driver
+  std::size_t driver = none;
+  if (!options.driver.empty()) {
+    auto found = model.find_part(options.driver);
+    if (!found) throw ModelError("/parts", "no part called '" + options.driver + "' to drive");
+    driver = *found;
+  } else {
+    for (const PairSpec& pair : model.pairs) {
+      for (std::size_t candidate : {pair.first, pair.second})
+        if (model.parts[candidate].motion.kind == Motion::Kind::rotation ||
+            model.parts[candidate].motion.kind == Motion::Kind::translation) {
+          driver = candidate;
+          break;
+        }
+      if (driver != none) break;
+    }
+    if (driver == none) throw ModelError("/pairs", "no pair with a rotating or translating part to drive");
+  }
+  const Part& driver_part = model.parts[driver];
+  result.driver = driver_part.name;
+  result.driver_rotates = driver_part.motion.kind == Motion::Kind::rotation;
+
+  Chain chain = build_chain(model, driver, spaces, options.method, options.loads);
+  if (!options.model_loads)
+    for (std::size_t k = 1; k < chain.parts.size(); ++k)
+      if (!options.loads.count(model.parts[chain.parts[k].part].name)) chain.parts[k].load = FollowerLoad{};
+  result.unconnected = chain.unconnected;
+  result.warnings = chain.warnings;
+  for (std::size_t k = 1; k < chain.parts.size(); ++k) {
+    result.followers.push_back(model.parts[chain.parts[k].part].name);
+    result.follower_rotates.push_back(chain.parts[k].line.rotation);
+    result.loads.push_back(chain.parts[k].load);
+  }
+  for (std::size_t p = 0; p < chain.slicers.size(); ++p) {
+    const PairSlicer& slicer = *chain.slicers[p];
+    result.slice_methods.push_back(slicer.name() + ": " + chain.slicer_methods[p]);
+    PairPath path;
+    path.pair = slicer.name();
+    if (slicer.other_moves()) {
+      std::size_t colon = slicer.name().find(':');
+      path.x_part = slicer.name().substr(0, colon);
+      path.y_part = slicer.name().substr(colon + 1);
+    } else {
+      path.x_part = model.parts[slicer.follower()].name;
+    }
+    result.paths.push_back(path);
+  }
+  if (chain.parts.size() < 2) throw ModelError("/pairs", "part '" + driver_part.name + "' drives no other part");
+
+  // the driver's travel
+  const AxisLine& line = chain.parts[0].line;
+  Rational start = result.driver_rotates ? driver_part.initial.angle : driver_part.initial.offset;
+  double travel = 0;
+  std::optional<Rational> exact_end;
+  int direction = options.direction >= 0 ? 1 : -1;
+  if (options.range) {
+    start = options.range->first;
+    travel = Rational(options.range->second - options.range->first).get_d();
+    exact_end = options.range->second;
+    if (travel < 0) direction = -1;
+    else if (travel > 0) direction = 1;
+    travel = std::abs(travel) * direction;
+  } else if (result.driver_rotates && line.cyclic) {
+    travel = direction * 2 * pi * options.cycles.get_d();
+    if (options.cycles.get_den() == 1) exact_end = start;   // whole turns end where they start
+  } else {
+    // to the end of the travel in the direction
+    Rational limit = direction > 0 ? line.pieces.back().hi : line.pieces.front().lo;
+    double end = result.driver_rotates ? line.coordinate(direction > 0 ? line.pieces.size() - 1 : 0, limit.get_d()) : limit.get_d();
+    travel = end - start.get_d();
+    if (!result.driver_rotates) exact_end = limit;
+  }
+  if (travel == 0) throw NumericError("the driver range is empty");
+  result.direction = direction;
+  result.start = start.get_d();
+  result.end = start.get_d() + travel;
+
+  Sweep sweep(chain, options, result);
+  sweep.segments = plan_segments(line, start, travel, exact_end ? &*exact_end : nullptr, result.warnings);
+  if (sweep.segments.empty()) throw NumericError("the driver range is empty");
+  sweep.epsilon = Rational(1, mpz_class(1) << std::clamp(options.event_bits, 8, 200));
+  sweep.open.resize(chain.parts.size());
+  sweep.total_travel = std::abs(travel);
+  double spacing = result.driver_rotates ? 2 * pi / std::max(8u, options.steps_per_cycle)
+                                         : std::abs(travel) / std::max(8u, options.steps_per_cycle);
+
+  ChainState state = initial_state(chain, sweep.segments[0].piece, sweep.segments[0].from,
+                                   sweep.unwrapped(0, sweep.segments[0].from), result.initial_interference);
+  DriverLocation origin = sweep.locate(0, sweep.segments[0].from, sweep.segments[0].from);
+  result.event_resolution = 0;
+  if (state.jammed) {
+    sweep.record_jam(0, sweep.segments[0].from, sweep.segments[0].from, state, state, state.jam_part, state.jam_reason,
+                     state.jam_contacts);
+  } else {
+    for (std::size_t k = 1; k < chain.parts.size(); ++k) sweep.open_piece(k, origin, state.parts[k]);
+    sweep.sample(state);
+    sweep.grid.push_back({0, sweep.segments[0].from, state});
+  }
+  bool blocked = state.jammed;
+  for (std::size_t s = 0; s < sweep.segments.size() && !blocked; ++s) {
+    const Segment& segment = sweep.segments[s];
+    if (s > 0) state = sweep.step_to(state, s, segment.from);   // same configuration in the next chart
+    Rational t = segment.from;
+    for (const Rational& next : grid_of(line, segment, spacing)) {
+      if (!sweep.advance(state, s, t, next)) {
+        blocked = true;
+        break;
+      }
+      t = next;
+      sweep.sample(state);
+      sweep.grid.push_back({s, t, state});
+      if (options.progress)
+        options.progress(std::min(1.0, std::abs(state.driver_unwrapped - result.start) / sweep.total_travel));
+    }
+  }
+  result.reached = state.driver_unwrapped;
+  if (!blocked) {
+    const Segment& last = sweep.segments.back();
+    DriverLocation end = sweep.locate(sweep.segments.size() - 1, last.to, last.to);
+    for (std::size_t k = 1; k < chain.parts.size(); ++k) sweep.close_piece(k, end, state.parts[k]);
+  }
+
+  // reversal: lost motion before each follower moves when the driver turns back
+  if (options.reversal && !sweep.grid.empty()) {
+    std::vector<std::pair<std::size_t, std::size_t>> checks;   // (follower chain index, grid index)
+    for (const KinematicPiece& piece : result.pieces) {
+      if (!piece.moving || piece.mode != KinematicPiece::Mode::contact) continue;
+      if (checks.size() >= options.reversal_points) break;
+      std::size_t k = chain.chain_index[*model.find_part(piece.part)];
+      double middle = 0.5 * (piece.start.value() + piece.end.value());
+      std::size_t best = 0;
+      for (std::size_t g = 0; g < sweep.grid.size(); ++g)
+        if (std::abs(sweep.grid[g].state.driver_unwrapped - middle) <
+            std::abs(sweep.grid[best].state.driver_unwrapped - middle))
+          best = g;
+      if (best == 0) continue;
+      checks.emplace_back(k, best);
+    }
+    for (auto [k, g] : checks) {
+      ReversalCheck check;
+      check.part = model.parts[chain.parts[k].part].name;
+      check.driver = sweep.grid[g].state.driver_unwrapped;
+      const ChainState& origin_state = sweep.grid[g].state;
+      ChainState current = origin_state;
+      // walk the grid backwards
+      for (std::size_t j = g; j-- > 0;) {
+        const auto& point = sweep.grid[j];
+        const auto& later = sweep.grid[j + 1];
+        ChainState next = sweep.step_to(current, point.segment, point.t);
+        bool moved = next.jammed || compare(next.parts[k].position, origin_state.parts[k].position) != 0;
+        if (moved) {
+          // bisect inside the chart of `point`
+          Rational ta = later.segment == point.segment ? later.t : sweep.segments[later.segment].from;
+          if (later.segment != point.segment) {
+            ta = sweep.segments[point.segment].to;
+          }
+          Rational tb = point.t;
+          ChainState a = current;
+          if (later.segment != point.segment) a = sweep.step_to(current, point.segment, ta);
+          while (abs(tb - ta) > sweep.epsilon) {
+            Rational tm = (ta + tb) / 2;
+            ChainState m = sweep.step_to(a, point.segment, tm);
+            if (!m.jammed && compare(m.parts[k].position, origin_state.parts[k].position) == 0) {
+              a = std::move(m);
+              ta = tm;
+            } else {
+              tb = tm;
+            }
+          }
+          check.follower_moved = true;
+          check.lost_motion = std::abs(sweep.unwrapped(point.segment, ta) - check.driver);
+          break;
+        }
+        current = std::move(next);
+        if (std::abs(current.driver_unwrapped - check.driver) > (result.driver_rotates ? 2 * pi : sweep.total_travel)) break;
+      }
+      if (!check.follower_moved) check.lost_motion = std::abs(current.driver_unwrapped - check.driver);
+      result.reversals.push_back(check);
+    }
+  }
+
+  // contact usage and play
+  for (const KinematicPiece& piece : result.pieces) {
+    for (const ContactLabel& contact : piece.contacts) {
+      auto found = std::find_if(result.contacts.begin(), result.contacts.end(), [&](const ContactUse& use) {
+        return use.part == piece.part && use.contact == contact;
+      });
+      if (found == result.contacts.end()) {
+        ContactUse use;
+        use.part = piece.part;
+        use.contact = contact;
+        result.contacts.push_back(use);
+        found = result.contacts.end() - 1;
+      }
+      found->intervals.emplace_back(piece.start.value(), piece.end.value());
+    }
+  }
+  for (ContactUse& use : result.contacts) {
+    if (use.contact.limit) continue;
+    std::string lower = use.contact.label;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (!options.expected_contacts.empty()) {
+      bool expected = std::any_of(options.expected_contacts.begin(), options.expected_contacts.end(),
+                                  [&](const std::string& pattern) { return use.contact.label.find(pattern) != std::string::npos; });
+      if (!expected) {
+        use.unintended = true;
+        use.reason = "not among the expected contacts";
+      }
+      continue;
+    }
+    bool corner = use.contact.kind == ContactKind::vertex_segment || use.contact.kind == ContactKind::segment_vertex ||
+                  use.contact.kind == ContactKind::vertex_arc || use.contact.kind == ContactKind::arc_vertex;
+    if (lower.find("tip") != std::string::npos && lower.find("root") != std::string::npos) {
+      use.unintended = true;
+      use.reason = "a tooth tip touches a root: interference";
+    } else if (corner) {
+      use.unintended = true;
+      use.reason = "a corner carries the contact: check for edge loading, under-cutting or interference";
+    }
+  }
+  for (std::size_t f = 0; f < result.followers.size(); ++f) {
+    PlaySummary play;
+    play.part = result.followers[f];
+    bool first = true;
+    for (const KinematicSample& sample : result.samples) {
+      double width = sample.play[f];
+      if (!std::isfinite(width)) {
+        play.unbounded = true;
+        continue;
+      }
+      if (first || width < play.minimum) {
+        play.minimum = width;
+        play.at_minimum = sample.driver;
+      }
+      if (first || width > play.maximum) {
+        play.maximum = width;
+        play.at_maximum = sample.driver;
+      }
+      first = false;
+    }
+    result.play.push_back(play);
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return result;
+}
+
+}  // namespace hipair

@@ -1,0 +1,354 @@
+// Axes of moving parts, exact positions on them, and slices along them.
+#include "kinematics/axis.hpp"
+
+#include <hipair/error.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace hipair::kinematics_detail {
+
+namespace algebra = cspace::algebra;
+
+namespace {
+constexpr double pi = std::numbers::pi;
+
+bool same_chart(const ChartAxis& a, const ChartAxis& b) {
+  return a.kind == b.kind && a.half_turn == b.half_turn && a.lo == b.lo && a.hi == b.hi;
+}
+}  // namespace
+
+double AxisLine::coordinate(std::size_t piece, double t) const {
+  return rotation ? offsets[piece] + 2 * std::atan(t) : t;
+}
+
+std::optional<std::size_t> AxisLine::piece_of(const ChartAxis& chart) const {
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    if (!rotation) {
+      if (chart.lo >= pieces[p].lo && chart.hi <= pieces[p].hi) return p;
+    } else if (same_chart(pieces[p], chart)) {
+      return p;
+    }
+  }
+  return std::nullopt;
+}
+
+bool AxisLine::seam_after(std::size_t piece) const {
+  if (!rotation) return false;
+  if (piece + 1 >= pieces.size() && !cyclic) return false;
+  const ChartAxis& a = pieces[piece];
+  const ChartAxis& b = pieces[next(piece)];
+  return a.hi == 1 && b.lo == -1 && a.half_turn != b.half_turn;
+}
+
+double AxisLine::period() const { return cyclic ? 2 * pi : 0.0; }
+
+AxisLine make_axis(const Model& model, std::size_t part, const std::vector<ChartAxis>& charts) {
+  const Motion& motion = model.parts.at(part).motion;
+  AxisLine line;
+  if (charts.empty()) throw GeometryError("part '" + model.parts[part].name + "' has no chart");
+  if (motion.kind == Motion::Kind::translation) {
+    line.rotation = false;
+    ChartAxis piece = charts[0];
+    for (const ChartAxis& chart : charts) {
+      piece.lo = std::min(piece.lo, chart.lo);
+      piece.hi = std::max(piece.hi, chart.hi);
+    }
+    line.pieces = {piece};
+    line.offsets = {0.0};
+    line.limited = motion.translation_limits.has_value();
+    return line;
+  }
+  line.rotation = true;
+  std::vector<ChartAxis> unique;
+  for (const ChartAxis& chart : charts)
+    if (std::none_of(unique.begin(), unique.end(), [&](const ChartAxis& u) { return same_chart(u, chart); }))
+      unique.push_back(chart);
+  bool full = unique.size() == 2 && unique[0].lo == -1 && unique[0].hi == 1 && unique[1].lo == -1 &&
+              unique[1].hi == 1 && unique[0].half_turn != unique[1].half_turn;
+  if (full && !(motion.angle_limits && motion.angle_limits->hi - motion.angle_limits->lo < 6)) {
+    line.cyclic = true;
+    line.pieces = unique;
+    if (line.pieces[0].half_turn) std::swap(line.pieces[0], line.pieces[1]);
+    line.offsets = {0.0, pi};
+    return line;
+  }
+  line.limited = true;
+  double limit_lo = motion.angle_limits ? motion.angle_limits->lo.get_d() : -pi;
+  std::vector<std::pair<double, ChartAxis>> placed;
+  for (const ChartAxis& chart : unique) {
+    double centre = chart.half_turn ? pi : 0.0;
+    double lo = centre + 2 * std::atan(chart.lo.get_d());
+    double shift = 2 * pi * std::ceil((limit_lo - 1e-6 - lo) / (2 * pi));
+    placed.emplace_back(centre + shift, chart);
+  }
+  std::sort(placed.begin(), placed.end(), [](const auto& a, const auto& b) {
+    return a.first + 2 * std::atan(a.second.lo.get_d()) < b.first + 2 * std::atan(b.second.lo.get_d());
+  });
+  for (auto& [offset, chart] : placed) {
+    line.offsets.push_back(offset);
+    line.pieces.push_back(chart);
+  }
+  return line;
+}
+
+AxisPosition canonical(const AxisLine& line, AxisPosition position) {
+  const ChartAxis& piece = line.pieces[position.piece];
+  if (line.seam_after(position.piece) && position.value.compare(piece.hi) == 0) {
+    std::size_t next = line.next(position.piece);
+    return AxisPosition{next, Real::from_rational(line.pieces[next].lo)};
+  }
+  return position;
+}
+
+int compare(const AxisPosition& a, const AxisPosition& b) {
+  if (a.piece != b.piece) return a.piece < b.piece ? -1 : 1;
+  return algebra::compare(a.value, b.value);
+}
+
+double coordinate(const AxisLine& line, const AxisPosition& position) {
+  return line.coordinate(position.piece, position.value.approximate());
+}
+
+Rational rational_near(const Real& value, int bits) {
+  if (value.exact) return value.lower;
+  Real copy = value;
+  copy.refine_to(Rational(1, mpz_class(1) << bits));
+  if (copy.exact) return copy.lower;
+  Rational middle = (copy.lower + copy.upper) / 2;
+  return middle;
+}
+
+namespace {
+
+struct Item {
+  AxisPosition at;
+  std::vector<SliceContact> contacts;
+  SliceKind after = SliceKind::empty;
+};
+
+void add_contacts(std::vector<SliceContact>& into, const std::vector<SliceContact>& from) {
+  for (const SliceContact& contact : from)
+    if (std::find(into.begin(), into.end(), contact) == into.end()) into.push_back(contact);
+}
+
+// Merges items at equal positions (the last non-empty class wins).
+std::vector<Item> merge_equal(std::vector<Item> items) {
+  std::vector<Item> merged;
+  for (Item& item : items) {
+    if (!merged.empty() && compare(merged.back().at, item.at) == 0) {
+      add_contacts(merged.back().contacts, item.contacts);
+      if (item.after != SliceKind::empty) merged.back().after = item.after;
+      continue;
+    }
+    merged.push_back(std::move(item));
+  }
+  return merged;
+}
+
+// Builds an axis slice from items in axis order. The first item is at the axis start; on a
+// cyclic axis the items at the end of the last piece canonicalise to the start and come last.
+AxisSlice compress(const AxisLine& line, std::vector<Item> items) {
+  AxisSlice slice;
+  if (items.empty()) return slice;
+  auto at_origin = [&](const Item& item) {
+    return item.at.piece == 0 && item.at.value.compare(line.pieces[0].lo) == 0;
+  };
+  std::vector<SliceContact> tail_contacts;
+  while (items.size() > 1 && at_origin(items.back())) {
+    add_contacts(tail_contacts, items.back().contacts);
+    items.pop_back();
+  }
+  items = merge_equal(std::move(items));
+  add_contacts(items.front().contacts, tail_contacts);
+  std::size_t first = 0;
+  while (first < items.size() && items[first].after == SliceKind::empty) ++first;
+  SliceKind start = first < items.size() ? items[first].after : SliceKind::free;
+  slice.start_kind = start;
+  SliceKind current = start;
+  for (std::size_t i = 1; i < items.size(); ++i) {
+    const Item& item = items[i];
+    if (item.after == SliceKind::empty || item.after == current) continue;
+    slice.points.push_back(Breakpoint{item.at, item.contacts, item.after});
+    current = item.after;
+  }
+  if (line.cyclic && current != start)   // the class changes at the start itself
+    slice.points.insert(slice.points.begin(), Breakpoint{items.front().at, items.front().contacts, start});
+  return slice;
+}
+
+}  // namespace
+
+AxisSlice slice_on_axis(const AxisLine& line, const PairSlicer& slicer, std::size_t slicer_index,
+                        std::size_t other_chart, const Rational& value) {
+  std::vector<Item> items;
+  auto emit = [&](std::size_t piece, Real at, std::vector<SliceContact> contacts, SliceKind after) {
+    items.push_back(Item{canonical(line, AxisPosition{piece, std::move(at)}), std::move(contacts), after});
+  };
+  for (std::size_t p = 0; p < line.pieces.size(); ++p) {
+    const ChartAxis& piece = line.pieces[p];
+    std::optional<std::size_t> chart_index;
+    for (std::size_t c = 0; c < slicer.follower_charts().size(); ++c) {
+      const ChartAxis& chart = slicer.follower_charts()[c];
+      if (line.rotation ? same_chart(chart, piece) : (chart.lo >= piece.lo && chart.hi <= piece.hi)) {
+        chart_index = c;
+        break;
+      }
+    }
+    if (!chart_index) {
+      emit(p, Real::from_rational(piece.lo), {}, SliceKind::free);
+      continue;
+    }
+    const ChartAxis& chart = slicer.follower_charts()[*chart_index];
+    ChartSlice chart_slice = slicer.slice(other_chart, value, *chart_index);
+    if (chart.lo > piece.lo) emit(p, Real::from_rational(piece.lo), {}, SliceKind::free);
+    emit(p, Real::from_rational(chart.lo), {}, chart_slice.kinds.front());
+    for (std::size_t i = 0; i < chart_slice.points.size(); ++i) {
+      std::vector<SliceContact> contacts;
+      for (std::size_t feature : chart_slice.points[i].features) contacts.push_back(SliceContact{slicer_index, feature, false});
+      emit(p, chart_slice.points[i].value, std::move(contacts), chart_slice.kinds[i + 1]);
+    }
+    if (chart.hi < piece.hi) emit(p, Real::from_rational(chart.hi), {}, SliceKind::free);
+  }
+  return compress(line, std::move(items));
+}
+
+namespace {
+SliceKind combine(SliceKind a, SliceKind b) {
+  if (a == SliceKind::blocked || b == SliceKind::blocked) return SliceKind::blocked;
+  if (a == SliceKind::touching || b == SliceKind::touching) return SliceKind::touching;
+  return SliceKind::free;
+}
+SliceKind last_kind(const AxisSlice& slice) { return slice.points.empty() ? slice.start_kind : slice.points.back().after; }
+}  // namespace
+
+AxisSlice intersect(const AxisLine& line, const AxisSlice& a, const AxisSlice& b) {
+  AxisSlice result;
+  SliceKind ka = line.cyclic ? last_kind(a) : a.start_kind;
+  SliceKind kb = line.cyclic ? last_kind(b) : b.start_kind;
+  SliceKind current = combine(ka, kb);
+  result.start_kind = combine(a.start_kind, b.start_kind);
+  std::size_t i = 0, j = 0;
+  bool first = true;
+  while (i < a.points.size() || j < b.points.size()) {
+    int order = i == a.points.size() ? 1 : j == b.points.size() ? -1 : compare(a.points[i].at, b.points[j].at);
+    Breakpoint point;
+    if (order <= 0) {
+      point.at = a.points[i].at;
+      add_contacts(point.contacts, a.points[i].contacts);
+      ka = a.points[i].after;
+      ++i;
+    }
+    if (order >= 0) {
+      if (order > 0) point.at = b.points[j].at;
+      add_contacts(point.contacts, b.points[j].contacts);
+      kb = b.points[j].after;
+      ++j;
+    }
+    SliceKind kind = combine(ka, kb);
+    bool at_origin = point.at.piece == 0 && point.at.value.compare(line.pieces[0].lo) == 0;
+    if (!line.cyclic && first && at_origin) {
+      result.start_kind = kind;
+      current = kind;
+      first = false;
+      continue;
+    }
+    first = false;
+    if (kind == current) continue;
+    point.after = kind;
+    current = kind;
+    result.points.push_back(std::move(point));
+  }
+  return result;
+}
+
+Placement place(const AxisLine& line, const AxisSlice& slice, const AxisPosition& position) {
+  const auto& points = slice.points;
+  std::size_t lo = 0, hi = points.size();   // first point with at > position
+  while (lo < hi) {
+    std::size_t mid = (lo + hi) / 2;
+    if (compare(points[mid].at, position) <= 0) lo = mid + 1;
+    else hi = mid;
+  }
+  Placement placement;
+  if (lo > 0 && compare(points[lo - 1].at, position) == 0) {
+    placement.on_point = true;
+    placement.point = lo - 1;
+    return placement;
+  }
+  placement.interval = lo;
+  if (line.cyclic && placement.interval == 0 && !points.empty()) placement.interval = points.size();
+  return placement;
+}
+
+Bound lower_end(const AxisLine& line, const AxisSlice& slice, std::size_t interval) {
+  Bound bound;
+  const auto& points = slice.points;
+  if (interval >= 1) {
+    bound.exists = true;
+    bound.at = points[interval - 1].at;
+    bound.contacts = points[interval - 1].contacts;
+    return bound;
+  }
+  if (line.cyclic) return bound;   // whole circle
+  if (!line.limited) return bound;
+  bound.exists = true;
+  bound.limit = true;
+  bound.at = AxisPosition{0, Real::from_rational(line.pieces.front().lo)};
+  bound.contacts = {SliceContact{0, 0, true}};
+  return bound;
+}
+
+Bound upper_end(const AxisLine& line, const AxisSlice& slice, std::size_t interval) {
+  Bound bound;
+  const auto& points = slice.points;
+  if (interval < points.size()) {
+    bound.exists = true;
+    bound.at = points[interval].at;
+    bound.contacts = points[interval].contacts;
+    return bound;
+  }
+  if (line.cyclic) {
+    if (points.empty()) return bound;
+    bound.exists = true;
+    bound.at = points.front().at;
+    bound.contacts = points.front().contacts;
+    return bound;
+  }
+  if (!line.limited) return bound;
+  bound.exists = true;
+  bound.limit = true;
+  bound.at = AxisPosition{line.pieces.size() - 1, Real::from_rational(line.pieces.back().hi)};
+  bound.contacts = {SliceContact{0, 0, true}};
+  return bound;
+}
+
+std::size_t interval_after(const AxisSlice& slice, std::size_t point) { return point + 1; }
+
+std::size_t interval_before(const AxisLine& line, const AxisSlice& slice, std::size_t point) {
+  if (line.cyclic && point == 0) return slice.points.size();
+  return point;
+}
+
+double distance_down(const AxisLine& line, const AxisPosition& from, const AxisPosition& to) {
+  double d = coordinate(line, from) - coordinate(line, to);
+  if (line.cyclic) {
+    if (compare(from, to) == 0) return 0;
+    d = std::fmod(d, 2 * pi);
+    if (d < 0) d += 2 * pi;
+  }
+  return d;
+}
+
+double distance_up(const AxisLine& line, const AxisPosition& from, const AxisPosition& to) {
+  double d = coordinate(line, to) - coordinate(line, from);
+  if (line.cyclic) {
+    if (compare(from, to) == 0) return 0;
+    d = std::fmod(d, 2 * pi);
+    if (d < 0) d += 2 * pi;
+  }
+  return d;
+}
+
+}  // namespace hipair::kinematics_detail

@@ -1,0 +1,114 @@
+// The axis of one moving part as a sequence of C-space charts, exact positions on it, and
+// slices along it (free / blocked intervals bounded by labelled contact points). Internal.
+#pragma once
+
+#include "kinematics/slice.hpp"
+
+#include <hipair/model.hpp>
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+namespace hipair::kinematics_detail {
+
+/// A part's axis: its charts in ascending coordinate order. A full rotation is cyclic (two
+/// charts, t in [-1, 1] around 0 and around pi); a limited rotation or a translation is a line.
+struct AxisLine {
+  bool rotation = true;
+  bool cyclic = false;
+  bool limited = false;              ///< line ends are motion limits (else: beyond every contact)
+  std::vector<ChartAxis> pieces;
+  std::vector<double> offsets;       ///< coordinate = offsets[p] + 2 atan(t) (rotation) or t
+
+  /// Part coordinate (rad or mm) of chart value `t` of piece `piece`, in double.
+  double coordinate(std::size_t piece, double t) const;
+  /// Index of the piece equal to `chart`, or nullopt. For a translation, the single piece
+  /// whenever the chart lies inside it.
+  std::optional<std::size_t> piece_of(const ChartAxis& chart) const;
+  /// Piece `piece`'s upper end is glued to the next piece's lower end (the next is the first
+  /// piece for the last one of a cyclic axis).
+  bool seam_after(std::size_t piece) const;
+  std::size_t next(std::size_t piece) const { return piece + 1 < pieces.size() ? piece + 1 : 0; }
+  /// Period of the coordinate (2 pi) for a cyclic axis, 0 otherwise.
+  double period() const;
+};
+
+/// The axis of part `part` from the charts the slicers use for it.
+AxisLine make_axis(const Model& model, std::size_t part, const std::vector<ChartAxis>& charts);
+
+/// An exact position on an axis: a chart value of one piece. Canonical: a position on a seam
+/// is the start of the next piece.
+struct AxisPosition {
+  std::size_t piece = 0;
+  Real value;
+};
+
+AxisPosition canonical(const AxisLine& line, AxisPosition position);
+/// Exact order along the axis (for a cyclic axis: from the start of piece 0).
+int compare(const AxisPosition& a, const AxisPosition& b);
+/// Double part coordinate.
+double coordinate(const AxisLine& line, const AxisPosition& position);
+/// A rational inside the isolating interval of the position's value, within 2^-bits.
+Rational rational_near(const Real& value, int bits = 64);
+
+/// A contact (slicer, feature) or a motion limit on an axis slice.
+struct SliceContact {
+  std::size_t slicer = 0;
+  std::size_t feature = 0;
+  bool limit = false;
+  friend bool operator==(const SliceContact&, const SliceContact&) = default;
+};
+
+/// A point of an axis slice where the class changes.
+struct Breakpoint {
+  AxisPosition at;
+  std::vector<SliceContact> contacts;
+  SliceKind after = SliceKind::free;
+};
+
+/// The 1-D C-space of a part along its whole axis: classes change at the breakpoints.
+/// Intervals are numbered 0..n (n breakpoints): interval i lies between breakpoint i-1 and i
+/// (interval 0 starts at the axis start; interval n ends at the axis end). On a cyclic axis
+/// interval n continues into interval 0 across the start.
+struct AxisSlice {
+  SliceKind start_kind = SliceKind::free;   ///< class just after the axis start
+  std::vector<Breakpoint> points;
+  SliceKind kind(std::size_t interval) const { return interval == 0 ? start_kind : points[interval - 1].after; }
+};
+
+/// One pair's contribution: the follower chart slices of `slicer` (index `slicer_index`) with
+/// the other part at (other_chart, value), placed on the follower's axis.
+AxisSlice slice_on_axis(const AxisLine& line, const PairSlicer& slicer, std::size_t slicer_index,
+                        std::size_t other_chart, const Rational& value);
+/// Intersection of free space: blocked where any is blocked, free where all are free.
+AxisSlice intersect(const AxisLine& line, const AxisSlice& a, const AxisSlice& b);
+
+/// An end of a free range.
+struct Bound {
+  bool exists = false;       ///< false: no contact on that side (axis end without limit, or the whole circle)
+  bool limit = false;        ///< the axis end at a motion limit
+  AxisPosition at;
+  std::vector<SliceContact> contacts;
+};
+
+/// Where a position lies in an axis slice.
+struct Placement {
+  bool on_point = false;     ///< exactly on breakpoint `point`
+  std::size_t point = 0;
+  std::size_t interval = 0;  ///< otherwise inside interval `interval`
+};
+
+Placement place(const AxisLine& line, const AxisSlice& slice, const AxisPosition& position);
+/// Lower and upper ends of interval `interval` (normalised for cyclic axes).
+Bound lower_end(const AxisLine& line, const AxisSlice& slice, std::size_t interval);
+Bound upper_end(const AxisLine& line, const AxisSlice& slice, std::size_t interval);
+/// The interval just after breakpoint `point`, and just before it.
+std::size_t interval_after(const AxisSlice& slice, std::size_t point);
+std::size_t interval_before(const AxisLine& line, const AxisSlice& slice, std::size_t point);
+
+/// Distance in coordinate (rad or mm) from `from` going down to `to` (cyclic: modulo period).
+double distance_down(const AxisLine& line, const AxisPosition& from, const AxisPosition& to);
+double distance_up(const AxisLine& line, const AxisPosition& from, const AxisPosition& to);
+
+}  // namespace hipair::kinematics_detail

@@ -1,0 +1,622 @@
+// Quasi-static motion of a chain of fixed-axis parts on exact C-space slices.
+//
+// Rule for a follower when the driver moves from u to u' (both exact rational chart values):
+// its free range at u' is the intersection of the slices of all its pairs with parts placed
+// before it. If its old position is still free it stays there (no load), or moves to the end
+// of the free range its load pushes it to (or to the spring's rest, if that comes first). If
+// its old position became blocked, a contact has pushed it: it moves to the end of the
+// neighbouring free range that overlaps its old range (the free range moved continuously). If
+// no such range exists the follower is squeezed and the driver is blocked.
+#include "kinematics/engine.hpp"
+
+#include <hipair/error.hpp>
+
+#include <mpfr.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <numbers>
+
+namespace hipair::kinematics_detail {
+
+namespace algebra = cspace::algebra;
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+constexpr double infinity = std::numeric_limits<double>::infinity();
+
+bool same_chart(const ChartAxis& a, const ChartAxis& b) {
+  return a.kind == b.kind && a.half_turn == b.half_turn && a.lo == b.lo && a.hi == b.hi;
+}
+
+int motion_dof(const Motion& motion) { return motion.degrees_of_freedom(); }
+
+bool fixed_axis(const Motion& motion) {
+  return motion.kind == Motion::Kind::fixed || motion.kind == Motion::Kind::rotation ||
+         motion.kind == Motion::Kind::translation;
+}
+
+// Rounds a rational to the grid 2^-bits (nearest).
+Rational round_to_bits(const Rational& value, int bits) {
+  mpz_class scale = mpz_class(1) << bits;
+  Rational scaled = value * scale + Rational(1, 2);
+  mpz_class floor_value;
+  mpz_fdiv_q(floor_value.get_mpz_t(), scaled.get_num_mpz_t(), scaled.get_den_mpz_t());
+  Rational result(floor_value, scale);
+  result.canonicalize();
+  return result;
+}
+
+// tan((theta - multiple_of_pi * pi) / 2), rounded to the grid 2^-60.
+Rational half_tangent(const Rational& theta, long multiple_of_pi) {
+  if (multiple_of_pi == 0 && theta == 0) return Rational(0);
+  mpfr_t x, p, q;
+  mpfr_inits2(200, x, p, q, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_q(x, theta.get_mpq_t(), MPFR_RNDN);
+  mpfr_const_pi(p, MPFR_RNDN);
+  mpfr_mul_si(p, p, multiple_of_pi, MPFR_RNDN);
+  mpfr_sub(x, x, p, MPFR_RNDN);
+  mpfr_div_ui(x, x, 2, MPFR_RNDN);
+  mpfr_tan(x, x, MPFR_RNDN);
+  mpq_t exact;
+  mpq_init(exact);
+  mpfr_get_q(exact, x);
+  Rational value(exact);
+  mpq_clear(exact);
+  mpfr_clears(x, p, q, static_cast<mpfr_ptr>(nullptr));
+  return round_to_bits(value, 60);
+}
+
+// Exact partial derivatives of P(u, v) (coefficients c[i][j] of u^i v^j) at rationals.
+struct Partials {
+  Rational u, v, uu, uv, vv;
+};
+
+Partials partials(const IntegerPolynomial2& polynomial, const Rational& u, const Rational& v) {
+  Partials result;
+  const auto& c = polynomial.coefficients;
+  std::vector<Rational> up, vp;   // powers
+  std::size_t max_i = c.size(), max_j = 0;
+  for (const auto& row : c) max_j = std::max(max_j, row.size());
+  up.assign(max_i + 1, Rational(1));
+  vp.assign(max_j + 1, Rational(1));
+  for (std::size_t i = 1; i <= max_i; ++i) up[i] = up[i - 1] * u;
+  for (std::size_t j = 1; j <= max_j; ++j) vp[j] = vp[j - 1] * v;
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (std::size_t j = 0; j < c[i].size(); ++j) {
+      if (c[i][j] == 0) continue;
+      Rational coefficient(c[i][j]);
+      if (i >= 1) result.u += coefficient * int(i) * up[i - 1] * vp[j];
+      if (j >= 1) result.v += coefficient * int(j) * up[i] * vp[j - 1];
+      if (i >= 2) result.uu += coefficient * int(i * (i - 1)) * up[i - 2] * vp[j];
+      if (i >= 1 && j >= 1) result.uv += coefficient * int(i * j) * up[i - 1] * vp[j - 1];
+      if (j >= 2) result.vv += coefficient * int(j * (j - 1)) * up[i] * vp[j - 2];
+    }
+  return result;
+}
+
+void sort_contacts(std::vector<SliceContact>& contacts) {
+  std::sort(contacts.begin(), contacts.end(), [](const SliceContact& a, const SliceContact& b) {
+    return std::tie(a.limit, a.slicer, a.feature) < std::tie(b.limit, b.slicer, b.feature);
+  });
+  contacts.erase(std::unique(contacts.begin(), contacts.end()), contacts.end());
+}
+
+}  // namespace
+
+AxisPosition position_of_coordinate(const AxisLine& line, const Rational& coordinate_value) {
+  if (!line.rotation) {
+    Rational value = coordinate_value;
+    value = std::clamp(value, line.pieces.front().lo, line.pieces.front().hi);
+    return AxisPosition{0, Real::from_rational(value)};
+  }
+  double theta = coordinate_value.get_d();
+  if (line.cyclic) {
+    long turns = static_cast<long>(std::floor((theta + pi / 2) / (2 * pi)));
+    double local = theta - 2 * pi * turns;
+    std::size_t piece = local < pi / 2 ? 0 : 1;
+    long multiple = 2 * turns + (piece == 1 ? 1 : 0);
+    Rational t = half_tangent(coordinate_value, multiple);
+    t = std::clamp(t, Rational(-1), Rational(1));
+    return canonical(line, AxisPosition{piece, Real::from_rational(t)});
+  }
+  std::size_t best = 0;
+  double best_distance = infinity;
+  for (std::size_t p = 0; p < line.pieces.size(); ++p) {
+    double lo = line.coordinate(p, line.pieces[p].lo.get_d()), hi = line.coordinate(p, line.pieces[p].hi.get_d());
+    double distance = theta < lo ? lo - theta : theta > hi ? theta - hi : 0;
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = p;
+    }
+  }
+  long multiple = std::lround(line.offsets[best] / pi);
+  Rational t = half_tangent(coordinate_value, multiple);
+  t = std::clamp(t, line.pieces[best].lo, line.pieces[best].hi);
+  return canonical(line, AxisPosition{best, Real::from_rational(t)});
+}
+
+// ------------------------------------------------------------------------------ chain
+
+Chain build_chain(const Model& model, std::size_t driver, const std::vector<CSpace>& spaces,
+                  SliceMethod method, const std::map<std::string, FollowerLoad>& loads) {
+  Chain chain;
+  chain.model = &model;
+  const Part& driver_part = model.parts.at(driver);
+  if (driver_part.motion.kind != Motion::Kind::rotation && driver_part.motion.kind != Motion::Kind::translation)
+    throw GeometryError("the driver '" + driver_part.name + "' must rotate or translate about a fixed axis");
+  std::vector<bool> usable(model.pairs.size(), true);
+  for (std::size_t p = 0; p < model.pairs.size(); ++p) {
+    const PairSpec& spec = model.pairs[p];
+    const Part& a = model.parts[spec.first];
+    const Part& b = model.parts[spec.second];
+    if (!fixed_axis(a.motion) || !fixed_axis(b.motion)) {
+      usable[p] = false;
+      chain.warnings.push_back("pair " + a.name + ":" + b.name +
+                               " is skipped: kinematic analysis handles parts that rotate or translate about fixed axes");
+    }
+    if (motion_dof(a.motion) == 0 && motion_dof(b.motion) == 0) usable[p] = false;
+  }
+  // breadth-first order from the driver
+  chain.chain_index.assign(model.parts.size(), none);
+  std::vector<std::size_t> order{driver};
+  chain.chain_index[driver] = 0;
+  for (std::size_t head = 0; head < order.size(); ++head) {
+    std::size_t current = order[head];
+    for (std::size_t p = 0; p < model.pairs.size(); ++p) {
+      if (!usable[p]) continue;
+      const PairSpec& spec = model.pairs[p];
+      std::size_t other = spec.first == current ? spec.second : spec.second == current ? spec.first : none;
+      if (other == none || motion_dof(model.parts[other].motion) == 0 || chain.chain_index[other] != none) continue;
+      chain.chain_index[other] = order.size();
+      order.push_back(other);
+    }
+  }
+  for (std::size_t i = 0; i < model.parts.size(); ++i)
+    if (chain.chain_index[i] == none && motion_dof(model.parts[i].motion) > 0) chain.unconnected.push_back(model.parts[i].name);
+  chain.parts.resize(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) chain.parts[k].part = order[k];
+
+  for (std::size_t p = 0; p < model.pairs.size(); ++p) {
+    if (!usable[p]) continue;
+    const PairSpec& spec = model.pairs[p];
+    std::size_t ia = chain.chain_index[spec.first], ib = chain.chain_index[spec.second];
+    bool fixed_a = motion_dof(model.parts[spec.first].motion) == 0;
+    bool fixed_b = motion_dof(model.parts[spec.second].motion) == 0;
+    std::size_t follower = none;
+    if (fixed_a) follower = ib == none ? none : spec.second;
+    else if (fixed_b) follower = ia == none ? none : spec.first;
+    else if (ia != none && ib != none) follower = ia > ib ? spec.first : spec.second;
+    if (follower == none) continue;
+    std::unique_ptr<PairSlicer> slicer;
+    std::string used = "kernels";
+    if (method != SliceMethod::kernels) {
+      const CSpace* space = nullptr;
+      for (const CSpace& candidate : spaces)
+        if (candidate.first_part() == model.parts[spec.first].name && candidate.second_part() == model.parts[spec.second].name)
+          space = &candidate;
+      if (space) {
+        try {
+          slicer = make_cspace_slicer(model, *space, p, follower);
+          used = "cspace";
+        } catch (const GeometryError& error) {
+          if (method == SliceMethod::cspace) throw;
+          chain.warnings.push_back("pair " + model.parts[spec.first].name + ":" + model.parts[spec.second].name +
+                                   ": C-space slices unavailable (" + error.what() + "), using the contact kernels");
+        }
+      } else if (method == SliceMethod::cspace) {
+        throw GeometryError("no C-space was built for pair " + model.parts[spec.first].name + ":" +
+                            model.parts[spec.second].name);
+      }
+    }
+    if (!slicer) slicer = make_kernel_slicer(model, p, follower);
+    chain.parts[chain.chain_index[follower]].constraints.push_back(chain.slicers.size());
+    chain.slicers.push_back(std::move(slicer));
+    chain.slicer_methods.push_back(used);
+  }
+  // axes
+  for (std::size_t k = 0; k < chain.parts.size(); ++k) {
+    std::vector<ChartAxis> charts;
+    for (const auto& slicer : chain.slicers) {
+      if (slicer->follower() == chain.parts[k].part)
+        charts.insert(charts.end(), slicer->follower_charts().begin(), slicer->follower_charts().end());
+      if (slicer->other_moves() && slicer->other() == chain.parts[k].part)
+        charts.insert(charts.end(), slicer->other_charts().begin(), slicer->other_charts().end());
+    }
+    if (charts.empty())
+      throw GeometryError("part '" + model.parts[chain.parts[k].part].name + "' is in no pair that can be analysed");
+    chain.parts[k].line = make_axis(model, chain.parts[k].part, charts);
+  }
+  chain.other_chart_of_piece.resize(chain.slicers.size());
+  for (std::size_t s = 0; s < chain.slicers.size(); ++s) {
+    const PairSlicer& slicer = *chain.slicers[s];
+    if (!slicer.other_moves()) continue;
+    const AxisLine& line = chain.parts[chain.chain_index[slicer.other()]].line;
+    for (const ChartAxis& piece : line.pieces) {
+      std::size_t found = none;
+      for (std::size_t c = 0; c < slicer.other_charts().size(); ++c)
+        if (!line.rotation || same_chart(slicer.other_charts()[c], piece)) {
+          found = c;
+          break;
+        }
+      chain.other_chart_of_piece[s].push_back(found);
+    }
+  }
+  // loads
+  std::map<std::string, FollowerLoad> from_model = hipair::model_loads(model);
+  for (std::size_t k = 1; k < chain.parts.size(); ++k) {
+    const std::string& name = model.parts[chain.parts[k].part].name;
+    if (auto found = loads.find(name); found != loads.end()) chain.parts[k].load = found->second;
+    else if (auto modelled = from_model.find(name); modelled != from_model.end()) chain.parts[k].load = modelled->second;
+  }
+  return chain;
+}
+
+// ------------------------------------------------------------------------------ step
+
+namespace {
+
+AxisSlice constraint_slice(const Chain& chain, const ChainState& state, std::size_t k) {
+  const AxisLine& line = chain.parts[k].line;
+  AxisSlice result;
+  bool first = true;
+  for (std::size_t s : chain.parts[k].constraints) {
+    const PairSlicer& slicer = *chain.slicers[s];
+    std::size_t other_chart = 0;
+    Rational value;
+    if (slicer.other_moves()) {
+      const PartState& other = state.parts[chain.chain_index[slicer.other()]];
+      other_chart = chain.other_chart_of_piece[s][other.position.piece];
+      if (other_chart == none) continue;
+      value = rational_near(other.position.value);
+      const ChartAxis& chart = slicer.other_charts()[other_chart];
+      if (value < chart.lo || value > chart.hi) continue;   // beyond any contact of this pair
+    }
+    AxisSlice slice = slice_on_axis(line, slicer, s, other_chart, value);
+    result = first ? std::move(slice) : intersect(line, result, slice);
+    first = false;
+  }
+  return result;
+}
+
+void jam(ChainState& state, std::size_t part, std::string reason, std::vector<SliceContact> contacts) {
+  state.jammed = true;
+  state.jam_part = part;
+  state.jam_reason = std::move(reason);
+  sort_contacts(contacts);
+  state.jam_contacts = std::move(contacts);
+}
+
+bool non_blocked(const AxisSlice& slice, std::size_t interval) { return slice.kind(interval) != SliceKind::blocked; }
+
+// Moves part k of `next` given its old state and its free space `slice`. False when jammed.
+bool update_part(const Chain& chain, std::size_t k, const PartState& old, const AxisSlice& slice, ChainState& next,
+                 bool initial) {
+  const AxisLine& line = chain.parts[k].line;
+  const AxisPosition& y = old.position;
+  PartState& out = next.parts[k];
+  Placement placement = place(line, slice, y);
+  std::size_t n = slice.points.size();
+  std::size_t interval = 0;
+  AxisPosition start = y;   // where the follower is after being pushed
+  double moved = 0;         // signed coordinate change so far
+  bool pushed = false;
+  auto old_down = [&]() { return old.lower.exists && !initial ? distance_down(line, y, old.lower.at) : infinity; };
+  auto old_up = [&]() { return old.upper.exists && !initial ? distance_up(line, y, old.upper.at) : infinity; };
+  if (placement.on_point) {
+    std::size_t before = interval_before(line, slice, placement.point);
+    std::size_t after = interval_after(slice, placement.point);
+    bool free_before = non_blocked(slice, before), free_after = after <= n && non_blocked(slice, after);
+    if (!free_before && !free_after) {
+      jam(next, k, "squeezed between two contacts", slice.points[placement.point].contacts);
+      return false;
+    }
+    if (free_before && free_after) interval = old_up() >= old_down() ? after : before;
+    else interval = free_before ? before : after;
+  } else if (non_blocked(slice, placement.interval)) {
+    interval = placement.interval;
+  } else {
+    std::size_t i = placement.interval;
+    Bound blocked_low = lower_end(line, slice, i), blocked_high = upper_end(line, slice, i);
+    bool can_below = blocked_low.exists && !blocked_low.limit;
+    bool can_above = blocked_high.exists && !blocked_high.limit;
+    std::size_t below = 0, above = 0;
+    if (can_below) {
+      below = i - 1;
+      if (line.cyclic && below == 0) below = n;
+      can_below = non_blocked(slice, below);
+    }
+    if (can_above) {
+      above = (line.cyclic && i == n) ? 1 : i + 1;
+      can_above = above <= n && non_blocked(slice, above);
+    }
+    double down = can_below ? distance_down(line, y, blocked_low.at) : infinity;
+    double up = can_above ? distance_up(line, y, blocked_high.at) : infinity;
+    // the free range moved continuously: the new one overlaps the old one
+    if (can_below && !(down < old_down())) can_below = false;
+    if (can_above && !(up < old_up())) can_above = false;
+    if (!can_below && !can_above) {
+      std::vector<SliceContact> contacts = old.contacts;
+      contacts.insert(contacts.end(), blocked_low.contacts.begin(), blocked_low.contacts.end());
+      contacts.insert(contacts.end(), blocked_high.contacts.begin(), blocked_high.contacts.end());
+      jam(next, k, "its free range closed: it cannot move out of the way", std::move(contacts));
+      return false;
+    }
+    bool go_down = can_below && (!can_above || down <= up);
+    if (go_down) {
+      interval = below;
+      start = blocked_low.at;
+      moved = -down;
+    } else {
+      interval = above;
+      start = blocked_high.at;
+      moved = up;
+    }
+    pushed = true;
+    out.push_distance = std::abs(moved);
+  }
+  Bound low = lower_end(line, slice, interval), high = upper_end(line, slice, interval);
+  AxisPosition target = start;
+  const FollowerLoad& load = chain.parts[k].load;
+  switch (load.kind) {
+    case FollowerLoad::Kind::none: break;
+    case FollowerLoad::Kind::negative:
+      if (low.exists) {
+        moved -= distance_down(line, start, low.at);
+        target = low.at;
+      }
+      break;
+    case FollowerLoad::Kind::positive:
+      if (high.exists) {
+        moved += distance_up(line, start, high.at);
+        target = high.at;
+      }
+      break;
+    case FollowerLoad::Kind::spring: {
+      double here = old.unwrapped + moved;
+      double delta = load.rest - here;
+      const double tiny = 1e-12;
+      if (delta < -tiny) {
+        double reach = low.exists ? distance_down(line, start, low.at) : infinity;
+        if (reach <= -delta) {
+          moved -= reach;
+          target = low.at;
+        } else {
+          AxisPosition rest = position_of_coordinate(line, Rational(load.rest));
+          moved += delta;
+          target = rest;
+        }
+      } else if (delta > tiny) {
+        double reach = high.exists ? distance_up(line, start, high.at) : infinity;
+        if (reach <= delta) {
+          moved += reach;
+          target = high.at;
+        } else {
+          AxisPosition rest = position_of_coordinate(line, Rational(load.rest));
+          moved += delta;
+          target = rest;
+        }
+      }
+      break;
+    }
+  }
+  out.position = target;
+  out.unwrapped = old.unwrapped + moved;
+  out.lower = low;
+  out.upper = high;
+  out.kind = slice.kind(interval);
+  out.pushed = pushed;
+  out.side = 0;
+  out.contacts.clear();
+  if (low.exists && compare(target, low.at) == 0) {
+    out.side = -1;
+    out.contacts = low.contacts;
+  } else if (high.exists && compare(target, high.at) == 0) {
+    out.side = 1;
+    out.contacts = high.contacts;
+  } else if (placement.on_point && compare(target, y) == 0) {
+    out.contacts = slice.points[placement.point].contacts;   // grazing touch
+  }
+  sort_contacts(out.contacts);
+  return true;
+}
+
+}  // namespace
+
+ChainState step(const Chain& chain, const ChainState& state, std::size_t piece, const Rational& value,
+                double unwrapped) {
+  ChainState next;
+  next.driver_piece = piece;
+  next.driver_value = value;
+  next.driver_unwrapped = unwrapped;
+  next.parts.resize(chain.parts.size());
+  PartState& driver = next.parts[0];
+  driver.position = canonical(chain.parts[0].line, AxisPosition{piece, Real::from_rational(value)});
+  driver.unwrapped = unwrapped;
+  if (!chain.parts[0].constraints.empty()) {
+    AxisSlice slice = constraint_slice(chain, next, 0);
+    Placement placement = place(chain.parts[0].line, slice, driver.position);
+    if (placement.on_point) {
+      driver.contacts = slice.points[placement.point].contacts;
+      sort_contacts(driver.contacts);
+    } else if (!non_blocked(slice, placement.interval)) {
+      std::vector<SliceContact> contacts = state.parts[0].contacts;
+      Bound low = lower_end(chain.parts[0].line, slice, placement.interval);
+      Bound high = upper_end(chain.parts[0].line, slice, placement.interval);
+      contacts.insert(contacts.end(), low.contacts.begin(), low.contacts.end());
+      contacts.insert(contacts.end(), high.contacts.begin(), high.contacts.end());
+      jam(next, 0, "the driver runs into a fixed part", contacts);
+      return next;
+    }
+  }
+  double driver_motion = unwrapped - state.driver_unwrapped;
+  std::vector<Rates> known{rate_of(chain, next, 0, {})};
+  for (std::size_t k = 1; k < chain.parts.size(); ++k) {
+    AxisSlice slice = constraint_slice(chain, next, k);
+    if (!update_part(chain, k, state.parts[k], slice, next, false)) return next;
+    known.push_back(rate_of(chain, next, k, known));
+    // Without a load, a contact holds only while it pushes: a boundary moving away from the
+    // follower (past a turning point) leaves it behind.
+    PartState& part = next.parts[k];
+    if (chain.parts[k].load.kind == FollowerLoad::Kind::none && part.side != 0 && driver_motion != 0 &&
+        std::isfinite(known[k].ratio)) {
+      double velocity = known[k].ratio * driver_motion;
+      if (velocity * -part.side <= 0) {
+        part.side = 0;
+        part.contacts.clear();
+        known[k] = Rates{};
+      }
+    }
+  }
+  return next;
+}
+
+ChainState initial_state(const Chain& chain, std::size_t piece, const Rational& value, double unwrapped,
+                         std::vector<Interference>& interference) {
+  const Model& model = *chain.model;
+  ChainState start;
+  start.parts.resize(chain.parts.size());
+  for (std::size_t k = 1; k < chain.parts.size(); ++k) {
+    const Part& part = model.parts[chain.parts[k].part];
+    Rational coordinate_value = part.motion.kind == Motion::Kind::rotation ? part.initial.angle : part.initial.offset;
+    start.parts[k].position = position_of_coordinate(chain.parts[k].line, coordinate_value);
+    start.parts[k].unwrapped = coordinate_value.get_d();
+  }
+  ChainState next;
+  next.driver_piece = piece;
+  next.driver_value = value;
+  next.driver_unwrapped = unwrapped;
+  next.parts.resize(chain.parts.size());
+  next.parts[0].position = canonical(chain.parts[0].line, AxisPosition{piece, Real::from_rational(value)});
+  next.parts[0].unwrapped = unwrapped;
+  for (std::size_t k = 1; k < chain.parts.size(); ++k) {
+    const AxisLine& line = chain.parts[k].line;
+    // interference of each pair at the initial configuration
+    for (std::size_t s : chain.parts[k].constraints) {
+      ChainState probe = next;
+      probe.parts[k] = start.parts[k];
+      const PairSlicer& slicer = *chain.slicers[s];
+      std::size_t other_chart = 0;
+      Rational other_value;
+      if (slicer.other_moves()) {
+        const PartState& other = next.parts[chain.chain_index[slicer.other()]];
+        other_chart = chain.other_chart_of_piece[s][other.position.piece];
+        if (other_chart == none) continue;
+        other_value = rational_near(other.position.value);
+        const ChartAxis& chart = slicer.other_charts()[other_chart];
+        if (other_value < chart.lo || other_value > chart.hi) continue;
+      }
+      AxisSlice slice = slice_on_axis(line, slicer, s, other_chart, other_value);
+      Placement placement = place(line, slice, start.parts[k].position);
+      if (!placement.on_point && slice.kind(placement.interval) == SliceKind::blocked) {
+        Bound low = lower_end(line, slice, placement.interval), high = upper_end(line, slice, placement.interval);
+        std::string description = "the parts overlap at the initial configuration";
+        std::vector<std::string> labels;
+        for (const Bound* bound : {&low, &high})
+          for (const SliceContact& contact : bound->contacts)
+            if (!contact.limit) labels.push_back(slicer.features()[contact.feature].label);
+        if (!labels.empty()) {
+          description += " (the overlap is bounded by: ";
+          for (std::size_t i = 0; i < labels.size(); ++i) description += (i ? "; " : "") + labels[i];
+          description += ")";
+        }
+        interference.push_back(Interference{slicer.name(), description});
+      }
+    }
+    AxisSlice slice = constraint_slice(chain, next, k);
+    if (!update_part(chain, k, start.parts[k], slice, next, true)) return next;
+  }
+  return next;
+}
+
+bool same_contacts(const ChainState& a, const ChainState& b) {
+  if (a.jammed != b.jammed) return false;
+  if (a.parts.size() != b.parts.size()) return false;
+  for (std::size_t k = 0; k < a.parts.size(); ++k) {
+    if (a.parts[k].side != b.parts[k].side) return false;
+    if (a.parts[k].contacts != b.parts[k].contacts) return false;
+  }
+  return true;
+}
+
+Rates rate_of(const Chain& chain, const ChainState& state, std::size_t k, const std::vector<Rates>& known) {
+  Rates result;
+  if (k == 0) {
+    result.ratio = 1;
+    return result;
+  }
+  const PartState& part = state.parts[k];
+  if (part.side == 0) return result;
+  const SliceContact* contact = nullptr;
+  for (const SliceContact& c : part.contacts)
+    if (!c.limit) {
+      contact = &c;
+      break;
+    }
+  if (!contact) return result;
+  const PairSlicer& slicer = *chain.slicers[contact->slicer];
+  if (!slicer.other_moves()) return result;
+  std::size_t q = chain.chain_index[slicer.other()];
+  if (q >= known.size()) return result;
+  const PartState& other = state.parts[q];
+  std::size_t other_chart = chain.other_chart_of_piece[contact->slicer][other.position.piece];
+  const AxisLine& line = chain.parts[k].line;
+  std::size_t follower_chart = none;
+  for (std::size_t c = 0; c < slicer.follower_charts().size(); ++c)
+    if (!line.rotation || same_chart(slicer.follower_charts()[c], line.pieces[part.position.piece])) {
+      follower_chart = c;
+      break;
+    }
+  if (other_chart == none || follower_chart == none) return result;
+  const IntegerPolynomial2* polynomial = slicer.polynomial(other_chart, follower_chart, contact->feature);
+  if (!polynomial) return result;
+  Rational u = rational_near(other.position.value, 60), v = rational_near(part.position.value, 60);
+  Partials d = partials(*polynomial, u, v);
+  if (d.v == 0) {
+    result.ratio = std::numeric_limits<double>::quiet_NaN();
+    return result;
+  }
+  double pu = d.u.get_d(), pv = d.v.get_d(), puu = d.uu.get_d(), puv = d.uv.get_d(), pvv = d.vv.get_d();
+  double scale = std::max({std::abs(pu), std::abs(pv), 1e-300});
+  pu /= scale, pv /= scale, puu /= scale, puv /= scale, pvv /= scale;
+  double first = -pu / pv;                                              // dv/du
+  double second = -(puu + 2 * puv * first + pvv * first * first) / pv;  // d2v/du2
+  double ud = u.get_d(), vd = v.get_d();
+  const AxisLine& other_line = chain.parts[q].line;
+  double g1 = line.rotation ? 2 / (1 + vd * vd) : 1.0;                       // d theta_f / dv
+  double g2 = line.rotation ? -4 * vd / ((1 + vd * vd) * (1 + vd * vd)) : 0.0;
+  double h1 = other_line.rotation ? (1 + ud * ud) / 2 : 1.0;                // du / d theta_q
+  double h2 = other_line.rotation ? ud * (1 + ud * ud) / 2 : 0.0;
+  double derivative = g1 * first * h1;
+  double curvature = g2 * (first * h1) * (first * h1) + g1 * (second * h1 * h1 + first * h2);
+  result.ratio = derivative * known[q].ratio;
+  result.acceleration = curvature * known[q].ratio * known[q].ratio + derivative * known[q].acceleration;
+  return result;
+}
+
+std::vector<Rates> rates(const Chain& chain, const ChainState& state) {
+  std::vector<Rates> result;
+  for (std::size_t k = 0; k < chain.parts.size(); ++k) result.push_back(rate_of(chain, state, k, result));
+  return result;
+}
+
+ContactLabel label_of(const Chain& chain, const SliceContact& contact, std::size_t part) {
+  ContactLabel label;
+  const Model& model = *chain.model;
+  if (contact.limit) {
+    label.pair = model.parts[part].name;
+    label.label = "motion limit of " + model.parts[part].name;
+    label.limit = true;
+    return label;
+  }
+  const PairSlicer& slicer = *chain.slicers[contact.slicer];
+  label.pair = slicer.name();
+  label.label = slicer.features()[contact.feature].label;
+  label.kind = slicer.features()[contact.feature].kind;
+  return label;
+}
+
+}  // namespace hipair::kinematics_detail

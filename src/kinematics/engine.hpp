@@ -1,0 +1,96 @@
+// Quasi-static motion of a chain of fixed-axis parts driven by one of them, on exact slices of
+// the pairs' C-spaces (internal; the public entry point is hipair::analyze_kinematics).
+#pragma once
+
+#include "kinematics/axis.hpp"
+#include "kinematics/slice.hpp"
+
+#include <hipair/kinematics.hpp>
+#include <hipair/model.hpp>
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace hipair::kinematics_detail {
+
+inline constexpr std::size_t none = static_cast<std::size_t>(-1);
+
+/// A part of the chain: the driver (index 0) or a follower.
+struct ChainPart {
+  std::size_t part = 0;                  ///< model index
+  AxisLine line;
+  std::vector<std::size_t> constraints;  ///< slicers whose follower is this part
+  FollowerLoad load;
+};
+
+/// The parts reached from the driver through pairs, in order, and one slicer per pair.
+struct Chain {
+  const Model* model = nullptr;
+  std::vector<std::unique_ptr<PairSlicer>> slicers;
+  std::vector<std::string> slicer_methods;
+  std::vector<ChainPart> parts;                      ///< [0] is the driver
+  std::vector<std::size_t> chain_index;              ///< model part -> chain index or none
+  /// slicer -> (other part's axis piece -> slicer's other chart), for 2-D slicers
+  std::vector<std::vector<std::size_t>> other_chart_of_piece;
+  std::vector<std::string> unconnected;
+  std::vector<std::string> warnings;
+};
+
+/// Builds the chain of `driver` (model part index).
+Chain build_chain(const Model& model, std::size_t driver, const std::vector<CSpace>& spaces,
+                  SliceMethod method, const std::map<std::string, FollowerLoad>& loads);
+
+/// State of one part at a driver position.
+struct PartState {
+  AxisPosition position;
+  double unwrapped = 0;                   ///< coordinate including whole turns
+  int side = 0;                           ///< in contact with the lower (-1) / upper (+1) end of its play
+  std::vector<SliceContact> contacts;     ///< active contacts (sorted)
+  Bound lower, upper;                     ///< ends of its free range
+  SliceKind kind = SliceKind::free;
+  bool pushed = false;                    ///< the previous position became blocked: it was pushed
+  double push_distance = 0;
+};
+
+/// State of the whole chain.
+struct ChainState {
+  std::size_t driver_piece = 0;
+  Rational driver_value;
+  double driver_unwrapped = 0;
+  std::vector<PartState> parts;           ///< chain order; parts[0] is the driver
+  bool jammed = false;
+  std::size_t jam_part = none;
+  std::string jam_reason;
+  std::vector<SliceContact> jam_contacts;
+};
+
+/// Moves the chain from `state` to the driver at (piece, value, unwrapped).
+ChainState step(const Chain& chain, const ChainState& state, std::size_t piece, const Rational& value,
+                double unwrapped);
+
+/// The initial state: every part at its initial configuration (rounded to rational chart
+/// values), pushed out of blocked space if needed. `interference` receives the overlaps found.
+ChainState initial_state(const Chain& chain, std::size_t piece, const Rational& value, double unwrapped,
+                         std::vector<Interference>& interference);
+
+/// True when the contact situation of every part is the same.
+bool same_contacts(const ChainState& a, const ChainState& b);
+
+/// Velocity ratio and acceleration of chain part `k` with respect to the driver (double).
+struct Rates {
+  double ratio = 0;
+  double acceleration = 0;
+};
+std::vector<Rates> rates(const Chain& chain, const ChainState& state);
+/// The same for chain part `k` when the parts before it are known.
+Rates rate_of(const Chain& chain, const ChainState& state, std::size_t k, const std::vector<Rates>& known);
+
+/// Labels of contacts for reports.
+ContactLabel label_of(const Chain& chain, const SliceContact& contact, std::size_t part);
+
+/// Chain part `k`'s position as an AxisPosition from a coordinate (rad or mm), rounded.
+AxisPosition position_of_coordinate(const AxisLine& line, const Rational& coordinate);
+
+}  // namespace hipair::kinematics_detail

@@ -1,0 +1,304 @@
+// Kernel slicer: exact 1-D slices of a pair's C-space from its contact polynomials and the
+// exact overlap oracle, without building the arrangement.
+//
+// At a rational value v of the other part, every contact polynomial P(v, y) is a univariate
+// integer polynomial; its real roots in the follower chart are the only places where the
+// class of the slice can change. Each interval between consecutive roots gets a rational
+// sample point classified by the overlap oracle (exact). Roots where the class does not change
+// are kept (the engine ignores them); roots shared by several curves carry all their features.
+#include "kinematics/slice.hpp"
+
+#include <hipair/error.hpp>
+
+#include <algorithm>
+#include <map>
+#include <mutex>
+#include <tuple>
+
+namespace hipair::kinematics_detail {
+
+namespace algebra = cspace::algebra;
+using cspace::ContactCurve;
+using cspace::FeatureRef;
+
+IntegerPolynomial2 transposed(const IntegerPolynomial2& polynomial) {
+  IntegerPolynomial2 result;
+  const auto& c = polynomial.coefficients;
+  std::size_t rows = 0;
+  for (const auto& row : c) rows = std::max(rows, row.size());
+  result.coefficients.assign(rows, std::vector<mpz_class>(c.size()));
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (std::size_t j = 0; j < c[i].size(); ++j) result.coefficients[j][i] = c[i][j];
+  return result;
+}
+
+namespace {
+
+constexpr int cull_cells = 64;       // sub-intervals of the other axis for curve culling
+constexpr int follower_cells = 32;   // sub-intervals of the follower axis
+
+ContactKind public_kind(cspace::ContactType type) { return static_cast<ContactKind>(static_cast<int>(type)); }
+
+using FeatureKey = std::tuple<std::size_t, std::size_t, std::size_t, int, std::size_t, std::size_t, std::size_t, int, int>;
+
+FeatureKey key_of(const ContactCurve& curve) {
+  return {curve.first.part,  curve.first.loop,  curve.first.edge,  static_cast<int>(curve.first.kind),
+          curve.second.part, curve.second.loop, curve.second.edge, static_cast<int>(curve.second.kind),
+          static_cast<int>(curve.type)};
+}
+
+// One clause of a validity condition, oriented (other, follower): some atom >= 0.
+struct OrientedClause {
+  std::vector<algebra::IntervalPolynomial2> atoms;
+};
+
+// One curve of a chart pair, oriented (other, follower).
+struct OrientedCurve {
+  std::size_t feature = 0;
+  IntegerPolynomial2 polynomial;
+  algebra::IntervalPolynomial2 interval;
+  std::vector<OrientedClause> validity;
+  // cells[i]: follower cells where the curve may vanish when the other part is in cell i
+  std::vector<std::uint32_t> cells;
+};
+
+struct ChartPair {
+  ChartAxis x_axis, y_axis;   // in the pair's own axis order (for the oracle)
+  std::vector<OrientedCurve> curves;
+  std::vector<const IntegerPolynomial2*> by_feature;   // feature -> polynomial or nullptr
+};
+
+class KernelSlicer final : public PairSlicer {
+ public:
+  KernelSlicer(const Model& model, std::size_t pair, std::size_t follower) : model_(model) {
+    if (pair >= model.pairs.size()) throw GeometryError("no pair " + std::to_string(pair));
+    const PairSpec& spec = model.pairs[pair];
+    if (follower != spec.first && follower != spec.second)
+      throw GeometryError("part is not in the pair");
+    axes_ = cspace::pair_axes(model, spec.first, spec.second);
+    name_ = model.parts[spec.first].name + ":" + model.parts[spec.second].name;
+    follower_ = follower;
+    other_ = follower == spec.first ? spec.second : spec.first;
+    cspace::ChartLayout layout = cspace::chart_layout(model, axes_);
+    std::size_t x_part = axes_.first_moves ? axes_.first : axes_.second;
+    if (axes_.dimension() == 2) {
+      follower_is_x_ = follower == x_part;
+      other_moves_ = true;
+      follower_charts_ = follower_is_x_ ? layout.x_charts : layout.y_charts;
+      other_charts_ = follower_is_x_ ? layout.y_charts : layout.x_charts;
+    } else {
+      if (follower != x_part) throw GeometryError("the follower of a 1-D pair must be its moving part");
+      follower_is_x_ = true;
+      other_moves_ = false;
+      follower_charts_ = layout.x_charts;
+    }
+    std::size_t other_count = std::max<std::size_t>(1, other_charts_.size());
+    pairs_.resize(other_count * follower_charts_.size());
+    std::map<FeatureKey, std::size_t> feature_index;
+    ChartAxis dummy{ChartAxis::Kind::translation, false, Rational(0), Rational(0)};
+    for (std::size_t o = 0; o < other_count; ++o)
+      for (std::size_t f = 0; f < follower_charts_.size(); ++f) {
+        ChartPair& chart = pairs_[o * follower_charts_.size() + f];
+        const ChartAxis& other_axis = other_moves_ ? other_charts_[o] : dummy;
+        chart.x_axis = follower_is_x_ ? follower_charts_[f] : other_axis;
+        chart.y_axis = follower_is_x_ ? other_axis : follower_charts_[f];
+        std::vector<ContactCurve> curves =
+            cspace::generate_contact_curves(model, axes_, chart.x_axis, chart.y_axis);
+        for (ContactCurve& curve : curves) {
+          if (curve.polynomial.is_zero()) continue;
+          auto [it, added] = feature_index.try_emplace(key_of(curve), features_.size());
+          if (added) features_.push_back(ContactFeature{curve.label, public_kind(curve.type)});
+          OrientedCurve oriented;
+          oriented.feature = it->second;
+          oriented.polynomial = follower_is_x_ ? transposed(curve.polynomial) : std::move(curve.polynomial);
+          oriented.interval = algebra::IntervalPolynomial2(oriented.polynomial);
+          for (const cspace::ValidityClause& clause : curve.validity) {
+            OrientedClause oriented_clause;
+            for (const IntegerPolynomial2& atom : clause.atoms)
+              oriented_clause.atoms.emplace_back(follower_is_x_ ? transposed(atom) : atom);
+            oriented.validity.push_back(std::move(oriented_clause));
+          }
+          chart.curves.push_back(std::move(oriented));
+        }
+        cull(chart, other_moves_ ? other_charts_[o] : dummy, follower_charts_[f], other_moves_);
+      }
+    for (ChartPair& chart : pairs_) {
+      chart.by_feature.assign(features_.size(), nullptr);
+      for (const OrientedCurve& curve : chart.curves) chart.by_feature[curve.feature] = &curve.polynomial;
+    }
+  }
+
+  ChartSlice slice(std::size_t other_chart, const Rational& value, std::size_t follower_chart) const override {
+    if (!other_moves_) {
+      std::lock_guard<std::mutex> lock(cache_mutex_);
+      auto found = fixed_cache_.find(follower_chart);
+      if (found != fixed_cache_.end()) return found->second;
+    }
+    std::size_t o = other_moves_ ? other_chart : 0;
+    if (o >= std::max<std::size_t>(1, other_charts_.size()) || follower_chart >= follower_charts_.size())
+      throw GeometryError("slice outside the charts of pair " + name_);
+    const ChartPair& chart = pairs_[o * follower_charts_.size() + follower_chart];
+    const ChartAxis& axis = follower_charts_[follower_chart];
+    std::size_t cell_lo = 0, cell_hi = 0;   // other-axis cells holding the value
+    if (other_moves_) {
+      const ChartAxis& other_axis = other_charts_[o];
+      Rational position = (value - other_axis.lo) * cull_cells / (other_axis.hi - other_axis.lo);
+      long cell = std::clamp<long>(static_cast<long>(position.get_d()), 0, cull_cells - 1);
+      cell_lo = cell_hi = static_cast<std::size_t>(cell);
+      // a value on a cell border belongs to both cells
+      if (cell + 1 < cull_cells && position >= cell + 1) cell_hi = static_cast<std::size_t>(cell + 1);
+      if (cell > 0 && position <= cell) cell_lo = static_cast<std::size_t>(cell - 1);
+    }
+    algebra::Interval value_box = algebra::enclose(value);
+    std::vector<SlicePoint> points;
+    for (const OrientedCurve& curve : chart.curves) {
+      std::uint32_t mask = 0;
+      for (std::size_t c = cell_lo; c <= cell_hi; ++c) mask |= curve.cells[c];
+      if (!mask) continue;
+      algebra::Polynomial p;
+      bool substituted = false;
+      // maximal runs of follower cells where the curve may vanish
+      for (int first = 0; first < follower_cells;) {
+        if (!(mask & (std::uint32_t(1) << first))) {
+          ++first;
+          continue;
+        }
+        int last = first;
+        while (last + 1 < follower_cells && (mask & (std::uint32_t(1) << (last + 1)))) ++last;
+        Rational lo = axis.lo + (axis.hi - axis.lo) * first / follower_cells;
+        Rational hi = axis.lo + (axis.hi - axis.lo) * (last + 1) / follower_cells;
+        first = last + 1;
+        if (!curve.interval.evaluate(value_box, algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)})
+                 .contains_zero())
+          continue;
+        if (!substituted) {
+          p = algebra::substitute_x(curve.polynomial, value);
+          algebra::trim(p);
+          substituted = true;
+          if (algebra::degree(p) <= 0) break;   // no root, or the whole line (a degenerate slice)
+          p = algebra::square_free_part(p);
+        }
+        for (Real& root : algebra::real_roots(p, lo, hi)) {
+          if (!valid(curve, value_box, root)) continue;
+          points.push_back(SlicePoint{std::move(root), {curve.feature}});
+        }
+      }
+    }
+    std::sort(points.begin(), points.end(),
+              [](const SlicePoint& a, const SlicePoint& b) { return algebra::compare(a.value, b.value) < 0; });
+    ChartSlice result;
+    for (SlicePoint& point : points) {
+      if (!result.points.empty() && algebra::compare(result.points.back().value, point.value) == 0) {
+        auto& features = result.points.back().features;
+        if (std::find(features.begin(), features.end(), point.features[0]) == features.end())
+          features.push_back(point.features[0]);
+        continue;
+      }
+      result.points.push_back(std::move(point));
+    }
+    // classes of the intervals between the points, within the chart box
+    Real low = Real::from_rational(axis.lo), high = Real::from_rational(axis.hi);
+    for (std::size_t i = 0; i <= result.points.size(); ++i) {
+      const Real& a = i == 0 ? low : result.points[i - 1].value;
+      const Real& b = i == result.points.size() ? high : result.points[i].value;
+      if (algebra::compare(a, b) >= 0) {
+        result.kinds.push_back(SliceKind::empty);
+        continue;
+      }
+      Rational sample = algebra::rational_between(a, b);
+      cspace::ChartPoint q;
+      if (follower_is_x_) {
+        q.x = sample;
+        q.y = other_moves_ ? value : Rational(0);
+      } else {
+        q.x = value;
+        q.y = sample;
+      }
+      cspace::Overlap relation = cspace::classify_overlap(model_, axes_, chart.x_axis, chart.y_axis, q);
+      result.kinds.push_back(relation == cspace::Overlap::apart       ? SliceKind::free
+                             : relation == cspace::Overlap::overlapping ? SliceKind::blocked
+                                                                        : SliceKind::touching);
+    }
+    if (!other_moves_) {
+      std::lock_guard<std::mutex> lock(cache_mutex_);
+      fixed_cache_[follower_chart] = result;
+    }
+    return result;
+  }
+
+  const IntegerPolynomial2* polynomial(std::size_t other_chart, std::size_t follower_chart,
+                                       std::size_t feature) const override {
+    std::size_t o = other_moves_ ? other_chart : 0;
+    const ChartPair& chart = pairs_.at(o * follower_charts_.size() + follower_chart);
+    return feature < chart.by_feature.size() ? chart.by_feature[feature] : nullptr;
+  }
+
+ private:
+  // Marks, for every cell of the other axis, the follower cells where each curve may vanish.
+  static void cull(ChartPair& chart, const ChartAxis& other_axis, const ChartAxis& follower_axis, bool other_moves) {
+    std::vector<algebra::Interval> follower_boxes(follower_cells);
+    for (int cell = 0; cell < follower_cells; ++cell) {
+      Rational lo = follower_axis.lo + (follower_axis.hi - follower_axis.lo) * cell / follower_cells;
+      Rational hi = follower_axis.lo + (follower_axis.hi - follower_axis.lo) * (cell + 1) / follower_cells;
+      follower_boxes[cell] = algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)};
+    }
+    int other_count = other_moves ? cull_cells : 1;
+    for (OrientedCurve& curve : chart.curves) {
+      curve.cells.assign(cull_cells, 0);
+      for (int cell = 0; cell < other_count; ++cell) {
+        algebra::Interval box{0, 0};
+        if (other_moves) {
+          Rational lo = other_axis.lo + (other_axis.hi - other_axis.lo) * cell / cull_cells;
+          Rational hi = other_axis.lo + (other_axis.hi - other_axis.lo) * (cell + 1) / cull_cells;
+          box = algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)};
+        }
+        std::uint32_t mask = 0;
+        for (int f = 0; f < follower_cells; ++f)
+          if (curve.interval.evaluate(box, follower_boxes[f]).contains_zero()) mask |= std::uint32_t(1) << f;
+        curve.cells[cell] = mask;
+      }
+      if (!other_moves)
+        for (int cell = 1; cell < cull_cells; ++cell) curve.cells[cell] = curve.cells[0];
+    }
+  }
+
+  // False when the contact point of `curve` at (value, root) certainly lies outside one of its
+  // features (a root of the supporting polynomial that is no contact of these features).
+  static bool valid(const OrientedCurve& curve, const algebra::Interval& value_box, const Real& root) {
+    if (curve.validity.empty()) return true;
+    Real refined = root;
+    for (int bits : {24, 48}) {
+      refined.refine_to(Rational(1, mpz_class(1) << bits));
+      algebra::Interval root_box{refined.lower_bound(), refined.upper_bound()};
+      bool undecided = false;
+      for (const OrientedClause& clause : curve.validity) {
+        bool holds = false, unknown = false;
+        for (const auto& atom : clause.atoms) {
+          algebra::Interval sign = atom.evaluate(value_box, root_box);
+          if (sign.lo >= 0) holds = true;
+          else if (sign.hi >= 0) unknown = true;
+        }
+        if (holds) continue;
+        if (!unknown) return false;   // every atom certainly negative
+        undecided = true;
+      }
+      if (!undecided) return true;
+    }
+    return true;   // undecided at the finest precision: keep it (classification decides)
+  }
+
+  const Model& model_;
+  cspace::PairAxes axes_;
+  bool follower_is_x_ = true;
+  std::vector<ChartPair> pairs_;
+  mutable std::mutex cache_mutex_;
+  mutable std::map<std::size_t, ChartSlice> fixed_cache_;
+};
+
+}  // namespace
+
+std::unique_ptr<PairSlicer> make_kernel_slicer(const Model& model, std::size_t pair, std::size_t follower) {
+  return std::make_unique<KernelSlicer>(model, pair, follower);
+}
+
+}  // namespace hipair::kinematics_detail

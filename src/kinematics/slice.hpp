@@ -1,0 +1,101 @@
+// Slices of a pair's C-space for kinematic analysis (internal).
+//
+// A slice fixes one part of a pair (the "other" part, e.g. the driver) at an exact rational
+// chart value and returns the 1-D C-space of the remaining part (the "follower"): the exact
+// contact points along the follower's axis (real algebraic numbers, with the feature pairs that
+// touch there) and the class of every interval between them (free / blocked / touching).
+//
+// Two slicers implement the same interface:
+// - the C-space slicer reads the built hipair::CSpace (its contact edges and cells);
+// - the kernel slicer substitutes the driver value into the pair's contact polynomials and
+//   classifies the intervals with the exact overlap oracle. It needs no arrangement, so it is
+//   fast and is also the cross-check of the C-space slicer.
+#pragma once
+
+#include "cspace/builder_algebra.hpp"
+#include "cspace/contact_curves.hpp"
+
+#include <hipair/cspace.hpp>
+#include <hipair/model.hpp>
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace hipair::kinematics_detail {
+
+using cspace::ChartAxis;
+using cspace::IntegerPolynomial2;
+using cspace::algebra::Real;
+
+/// A feature pair that can touch, identified across the charts of a pair.
+struct ContactFeature {
+  std::string label;             ///< "driver pin / wheel slot 2 wall"
+  ContactKind kind = ContactKind::vertex_segment;
+};
+
+/// Interval classes of a slice.
+enum class SliceKind : int { empty = -1, free = 0, blocked = 1, touching = 2 };
+
+/// A contact point of a slice in one follower chart.
+struct SlicePoint {
+  Real value;                          ///< follower chart coordinate (t or mm), exact
+  std::vector<std::size_t> features;   ///< indices into PairSlicer::features()
+};
+
+/// The slice of one follower chart: points ascending, and the classes of the intervals
+/// between them (kinds[i] is the interval before points[i], kinds.back() after the last).
+struct ChartSlice {
+  std::vector<SlicePoint> points;
+  std::vector<SliceKind> kinds;
+};
+
+/// The 1-D C-spaces of one part of a pair, sliced at positions of the other part.
+class PairSlicer {
+ public:
+  virtual ~PairSlicer() = default;
+
+  /// "first:second" as the pair is declared in the model.
+  const std::string& name() const { return name_; }
+  std::size_t follower() const { return follower_; }   ///< model part index
+  std::size_t other() const { return other_; }         ///< model part index
+  bool other_moves() const { return other_moves_; }
+  /// Charts of the follower axis and of the other part's axis (empty when it is fixed).
+  const std::vector<ChartAxis>& follower_charts() const { return follower_charts_; }
+  const std::vector<ChartAxis>& other_charts() const { return other_charts_; }
+  const std::vector<ContactFeature>& features() const { return features_; }
+
+  /// The slice of follower chart `follower_chart` with the other part at chart value `value`
+  /// of its chart `other_chart` (both ignored when the other part is fixed).
+  virtual ChartSlice slice(std::size_t other_chart, const Rational& value,
+                           std::size_t follower_chart) const = 0;
+
+  /// The polynomial of `feature` in the chart pair, with variables ordered (other, follower):
+  /// c[i][j] of other^i follower^j; nullptr when the feature has no curve in that chart pair.
+  virtual const IntegerPolynomial2* polynomial(std::size_t other_chart, std::size_t follower_chart,
+                                               std::size_t feature) const = 0;
+
+ protected:
+  std::string name_;
+  std::size_t follower_ = 0, other_ = 0;
+  bool other_moves_ = false;
+  std::vector<ChartAxis> follower_charts_, other_charts_;
+  std::vector<ContactFeature> features_;
+};
+
+/// Slicer on the pair's contact kernels and the exact overlap oracle.
+/// `pair` indexes model.pairs; `follower` is one of its parts (it must move).
+/// \throws GeometryError for pairs that are not fixed-axis pairs.
+std::unique_ptr<PairSlicer> make_kernel_slicer(const Model& model, std::size_t pair,
+                                               std::size_t follower);
+
+/// Slicer on a built C-space of the same pair (src/cspace/slice.cpp). Falls back to nothing:
+/// \throws GeometryError when the C-space cannot be sliced along the requested axis.
+std::unique_ptr<PairSlicer> make_cspace_slicer(const Model& model, const CSpace& space,
+                                               std::size_t pair, std::size_t follower);
+
+/// Transposes a bivariate polynomial (swaps x and y).
+IntegerPolynomial2 transposed(const IntegerPolynomial2& polynomial);
+
+}  // namespace hipair::kinematics_detail
