@@ -1,6 +1,7 @@
 // Pair axes, chart layout and contact-curve generation for fixed-axis pairs.
 #include "cspace/contact_curves.hpp"
 
+#include "cspace/overlap.hpp"
 #include "cspace/polynomial.hpp"
 #include "cspace/pose.hpp"
 #include "kernels/contact.hpp"
@@ -12,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 
 namespace hipair::cspace {
@@ -249,6 +251,326 @@ class Culler {
   Interval pivot_distance_;
 };
 
+// ============================================================================ blocked space
+
+// A disk inside a part's material (body frame): centre enclosure and a certified lower bound
+// of its radius. Two such disks overlapping proves the parts overlap.
+struct Core {
+  Interval x;
+  Interval y;
+  double radius = 0;
+};
+
+// Certified lower bound of the distance from point (cx, cy) to an edge.
+double distance_lower_bound(const Edge& edge, const Interval& cx, const Interval& cy) {
+  auto length = [](const Interval& dx, const Interval& dy) { return kernels::sqrt(dx * dx + dy * dy); };
+  Interval sx = Interval::enclose(edge.source.x), sy = Interval::enclose(edge.source.y);
+  Interval tx = Interval::enclose(edge.target.x), ty = Interval::enclose(edge.target.y);
+  double to_source = length(cx - sx, cy - sy).lo;
+  double to_target = length(cx - tx, cy - ty).lo;
+  double endpoints = std::min(to_source, to_target);
+  if (!edge.is_arc()) {
+    Interval dx = tx - sx, dy = ty - sy;
+    Interval fx = cx - sx, fy = cy - sy;
+    Interval length2 = dx * dx + dy * dy;
+    Interval line = kernels::sqrt((fx * dy - fy * dx) * (fx * dy - fy * dx)) / kernels::sqrt(length2);
+    return std::max(0.0, std::min(endpoints, line.lo));  // the line distance bounds the foot case
+  }
+  Interval kx = Interval::enclose(edge.center.x), ky = Interval::enclose(edge.center.y);
+  Interval radius = kernels::sqrt(Interval::enclose(edge.radius_squared));
+  Interval d = length(cx - kx, cy - ky);
+  Interval gap = d - radius;
+  double circle = std::max({0.0, gap.lo, (-gap).lo});
+  return std::max(0.0, std::min(endpoints, circle));  // circle distance bounds the in-sector case
+}
+
+// Inscribed disks of a part: for each edge, points pushed inward from its middle by a few
+// scales, kept when strictly inside; radius = certified distance to the whole boundary.
+std::vector<Core> inscribed_disks(const Part& part) {
+  std::vector<const Edge*> edges;
+  for (const Loop& loop : part.loops)
+    for (const Edge& edge : loop.edges) edges.push_back(&edge);
+  std::vector<Core> cores;
+  for (const Edge* edge : edges) {
+    double sx = edge->source.x.get_d(), sy = edge->source.y.get_d();
+    double tx = edge->target.x.get_d(), ty = edge->target.y.get_d();
+    for (double fraction : {0.25, 0.5, 0.75}) {
+      double mx, my, nx, ny, scale;
+      if (!edge->is_arc()) {
+        mx = sx + fraction * (tx - sx);
+        my = sy + fraction * (ty - sy);
+        scale = std::hypot(tx - sx, ty - sy);
+        nx = -(ty - sy) / scale;
+        ny = (tx - sx) / scale;
+      } else {
+        double kx = edge->center.x.get_d(), ky = edge->center.y.get_d();
+        double r = std::sqrt(edge->radius_squared.get_d());
+        double a0 = std::atan2(sy - ky, sx - kx), a1 = std::atan2(ty - ky, tx - kx);
+        if (!edge->ccw) std::swap(a0, a1);
+        double span = a1 - a0;
+        while (span <= 0) span += 2 * std::numbers::pi;
+        double angle = a0 + span * fraction;
+        mx = kx + r * std::cos(angle);
+        my = ky + r * std::sin(angle);
+        nx = edge->ccw ? -std::cos(angle) : std::cos(angle);
+        ny = edge->ccw ? -std::sin(angle) : std::sin(angle);
+        scale = std::min(2 * r, r * span);
+      }
+      Core best;
+      for (int k = 1; k <= 6; ++k) {
+        double step = scale / double(1 << k);
+        Rational px(mx + step * nx), py(my + step * ny);
+        Point candidate{px, py};
+        if (locate_point(part, RigidMap{}, candidate) != PointLocation::inside) continue;
+        Interval cx = Interval::enclose(px), cy = Interval::enclose(py);
+        double radius = 1e300;
+        for (const Edge* other : edges) radius = std::min(radius, distance_lower_bound(*other, cx, cy));
+        if (radius > best.radius) best = Core{cx, cy, radius};
+      }
+      if (best.radius > 0) cores.push_back(best);
+    }
+  }
+  // Drop disks contained in larger ones (only weakens nothing: a contained disk proves less).
+  std::sort(cores.begin(), cores.end(), [](const Core& a, const Core& b) { return a.radius > b.radius; });
+  std::vector<Core> kept;
+  for (const Core& core : cores) {
+    bool contained = false;
+    for (const Core& big : kept) {
+      double d = std::hypot(core.x.middle() - big.x.middle(), core.y.middle() - big.y.middle());
+      if (d + core.radius <= big.radius) {
+        contained = true;
+        break;
+      }
+    }
+    if (!contained) kept.push_back(core);
+  }
+  return kept;
+}
+
+// Certified enclosure of a part's pose over an interval of its chart coordinate.
+struct PoseBox {
+  Interval c{1};
+  Interval s{0};
+  Interval pivot_x{0};
+  Interval pivot_y{0};
+  Interval shift_x{0};
+  Interval shift_y{0};
+  void apply(const Interval& x, const Interval& y, Interval& u, Interval& v) const {
+    Interval dx = x - pivot_x, dy = y - pivot_y;
+    u = pivot_x + shift_x + c * dx - s * dy;
+    v = pivot_y + shift_y + s * dx + c * dy;
+  }
+};
+
+PoseBox pose_over(const PartMotion& motion, bool half_turn, const Interval& t) {
+  PoseBox box;
+  if (motion.kind == MotionKind::fixed) return box;
+  if (motion.kind == MotionKind::translation) {
+    box.shift_x = t * Interval::enclose(motion.direction.x);
+    box.shift_y = t * Interval::enclose(motion.direction.y);
+    return box;
+  }
+  box.pivot_x = Interval::enclose(motion.pivot.x);
+  box.pivot_y = Interval::enclose(motion.pivot.y);
+  auto cosine = [](double u) {  // (1 - t^2) / (1 + t^2) from u = t^2, certified
+    return (Interval(1) - Interval(u, u)) / (Interval(1) + Interval(u, u));
+  };
+  auto sine = [](double v) { return (Interval(2) * Interval(v, v)) / (Interval(1) + Interval(v, v) * Interval(v, v)); };
+  if (t.lo >= -1 && t.hi <= 1) {
+    // (1 - u)/(1 + u) decreases in u = t^2; 2t/(1 + t^2) increases on [-1, 1].
+    double u_lo = (t.lo <= 0 && t.hi >= 0) ? 0.0 : std::min((Interval(t.lo, t.lo) * Interval(t.lo, t.lo)).lo,
+                                                          (Interval(t.hi, t.hi) * Interval(t.hi, t.hi)).lo);
+    double u_hi = std::max((Interval(t.lo, t.lo) * Interval(t.lo, t.lo)).hi,
+                           (Interval(t.hi, t.hi) * Interval(t.hi, t.hi)).hi);
+    box.c = Interval(cosine(u_hi).lo, cosine(u_lo).hi);
+    box.s = Interval(sine(t.lo).lo, sine(t.hi).hi);
+  } else {
+    Interval t2 = t * t;
+    box.c = (Interval(1) - t2) / (Interval(1) + t2);
+    box.s = (Interval(2) * t) / (Interval(1) + t2);
+  }
+  if (half_turn) {
+    box.c = -box.c;
+    box.s = -box.s;
+  }
+  return box;
+}
+
+struct WorldBox {
+  double xlo, xhi, ylo, yhi;
+  bool meets(const WorldBox& o) const {
+    return xlo <= o.xhi && o.xlo <= xhi && ylo <= o.yhi && o.ylo <= yhi;
+  }
+};
+
+// A feature's body bounding disk: centre enclosure and radius upper bound.
+struct BodyDisk {
+  Interval x;
+  Interval y;
+  double radius = 0;
+};
+
+BodyDisk body_disk(const BodyFeature& feature) {
+  Interval bx = projection_range(feature, Point{Rational(1), Rational(0)});
+  Interval by = projection_range(feature, Point{Rational(0), Rational(1)});
+  double cx = bx.middle(), cy = by.middle();
+  double half_x = std::max(bx.hi - cx, cx - bx.lo), half_y = std::max(by.hi - cy, cy - by.lo);
+  Interval r = kernels::sqrt(Interval(half_x, half_x) * Interval(half_x, half_x) +
+                             Interval(half_y, half_y) * Interval(half_y, half_y));
+  return BodyDisk{Interval(cx, cx), Interval(cy, cy), r.hi};
+}
+
+WorldBox world_box(const PoseBox& pose, const Interval& x, const Interval& y, double radius) {
+  Interval u, v;
+  pose.apply(x, y, u, v);
+  return WorldBox{(u - Interval(radius, radius)).lo, (u + Interval(radius, radius)).hi,
+                  (v - Interval(radius, radius)).lo, (v + Interval(radius, radius)).hi};
+}
+
+// Quadtree over the chart: a cell is dropped when two inscribed disks certainly overlap in
+// all of it (every configuration there is blocked) or when no candidate pair can meet in
+// it; feature pairs still candidates in the smallest cells are kept.
+class BlockedSpaceCuller {
+ public:
+  BlockedSpaceCuller(const PartMotion& first, const PartMotion& second, const ChartAxis& x,
+                     const ChartAxis& y, int dimension, std::vector<BodyDisk> disks_a,
+                     std::vector<BodyDisk> disks_b, std::vector<Core> cores_a,
+                     std::vector<Core> cores_b)
+      : motion_{first, second}, x_(x), y_(y), dimension_(dimension),
+        disks_{std::move(disks_a), std::move(disks_b)}, cores_{std::move(cores_a), std::move(cores_b)} {}
+
+  // needed[k] set for the candidate pairs that survive.
+  void run(const std::vector<std::pair<int, int>>& pairs, std::vector<char>& needed) {
+    std::vector<std::pair<int, int>> core_pairs;
+    for (int i = 0; i < static_cast<int>(cores_[0].size()); ++i)
+      for (int j = 0; j < static_cast<int>(cores_[1].size()); ++j) core_pairs.emplace_back(i, j);
+    std::vector<int> indices(pairs.size());
+    for (std::size_t k = 0; k < pairs.size(); ++k) indices[k] = static_cast<int>(k);
+    Interval cx(x_.lo.get_d(), x_.hi.get_d());
+    cx = Interval(Interval::enclose(x_.lo).lo, Interval::enclose(x_.hi).hi);
+    Interval cy = dimension_ == 2 ? Interval(Interval::enclose(y_.lo).lo, Interval::enclose(y_.hi).hi)
+                                  : Interval(0);
+    pairs_ = &pairs;
+    needed_ = &needed;
+    visit(cx, cy, 0, indices, core_pairs);
+  }
+
+  std::size_t cells_visited() const { return cells_; }
+
+ private:
+  // Poses of the pair's parts over the cell: the x axis belongs to the first moving part.
+  std::pair<PoseBox, PoseBox> poses(const Interval& cx, const Interval& cy) const {
+    bool first_moves = motion_[0].kind != MotionKind::fixed;
+    PoseBox a = pose_over(motion_[0], x_.half_turn, cx);
+    PoseBox b = first_moves ? pose_over(motion_[1], y_.half_turn, cy)
+                            : pose_over(motion_[1], x_.half_turn, cx);
+    return {a, b};
+  }
+
+  // World boxes of one part's features and core centres over one interval of its axis,
+  // computed once per interval and shared by all cells using it.
+  struct AxisCache {
+    std::vector<WorldBox> boxes;
+    std::vector<char> box_done;
+    std::vector<Interval> core_x, core_y;
+    std::vector<char> core_done;
+  };
+
+  AxisCache& cache_for(int side, const Interval& interval) {
+    auto& caches = caches_[side];
+    auto [it, inserted] = caches.try_emplace({interval.lo, interval.hi});
+    if (inserted) {
+      it->second.boxes.resize(disks_[side].size());
+      it->second.box_done.assign(disks_[side].size(), 0);
+      it->second.core_x.resize(cores_[side].size());
+      it->second.core_y.resize(cores_[side].size());
+      it->second.core_done.assign(cores_[side].size(), 0);
+    }
+    return it->second;
+  }
+
+  void visit(const Interval& cx, const Interval& cy, int depth, const std::vector<int>& candidates,
+             const std::vector<std::pair<int, int>>& core_pairs) {
+    ++cells_;
+    // Pairs already kept need no further exploration.
+    std::vector<int> open;
+    for (int k : candidates)
+      if (!(*needed_)[static_cast<std::size_t>(k)]) open.push_back(k);
+    if (open.empty()) return;
+    auto [pa, pb] = poses(cx, cy);
+    bool first_moves = motion_[0].kind != MotionKind::fixed;
+    // the interval each part's pose depends on (a fixed part: a constant key)
+    Interval key_a = first_moves ? cx : Interval(0);
+    Interval key_b = motion_[1].kind == MotionKind::fixed ? Interval(0) : (first_moves ? cy : cx);
+    AxisCache& cache_a = cache_for(0, key_a);
+    AxisCache& cache_b = cache_for(1, key_b);
+    // Blocked: some pair of inscribed disks certainly overlaps everywhere in the cell.
+    std::vector<std::pair<int, int>> near_cores;
+    for (const auto& [i, j] : core_pairs) {
+      auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+      if (!cache_a.core_done[ui]) {
+        pa.apply(cores_[0][ui].x, cores_[0][ui].y, cache_a.core_x[ui], cache_a.core_y[ui]);
+        cache_a.core_done[ui] = 1;
+      }
+      if (!cache_b.core_done[uj]) {
+        pb.apply(cores_[1][uj].x, cores_[1][uj].y, cache_b.core_x[uj], cache_b.core_y[uj]);
+        cache_b.core_done[uj] = 1;
+      }
+      Interval dx = cache_a.core_x[ui] - cache_b.core_x[uj];
+      Interval dy = cache_a.core_y[ui] - cache_b.core_y[uj];
+      Interval distance2 = dx * dx + dy * dy;
+      double ra = cores_[0][ui].radius, rb = cores_[1][uj].radius;
+      Interval reach = Interval(ra, ra) + Interval(rb, rb);
+      Interval reach2 = reach * reach;
+      if (distance2.hi < reach2.lo) return;  // blocked everywhere in the cell
+      if (distance2.lo < reach2.hi) near_cores.emplace_back(i, j);
+    }
+    // Candidate pairs whose features can meet in the cell.
+    std::vector<int> meeting;
+    for (int k : open) {
+      auto [i, j] = (*pairs_)[static_cast<std::size_t>(k)];
+      auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+      if (!cache_a.box_done[ui]) {
+        cache_a.boxes[ui] = world_box(pa, disks_[0][ui].x, disks_[0][ui].y, disks_[0][ui].radius);
+        cache_a.box_done[ui] = 1;
+      }
+      if (!cache_b.box_done[uj]) {
+        cache_b.boxes[uj] = world_box(pb, disks_[1][uj].x, disks_[1][uj].y, disks_[1][uj].radius);
+        cache_b.box_done[uj] = 1;
+      }
+      if (cache_a.boxes[ui].meets(cache_b.boxes[uj])) meeting.push_back(k);
+    }
+    if (meeting.empty()) return;
+    if (depth >= max_depth) {
+      for (int k : meeting) (*needed_)[static_cast<std::size_t>(k)] = 1;
+      return;
+    }
+    // Split every axis at its middle.
+    double mx = 0.5 * (cx.lo + cx.hi);
+    std::array<Interval, 2> xs{Interval(cx.lo, mx), Interval(mx, cx.hi)};
+    if (dimension_ == 2) {
+      double my = 0.5 * (cy.lo + cy.hi);
+      std::array<Interval, 2> ys{Interval(cy.lo, my), Interval(my, cy.hi)};
+      for (const Interval& sx : xs)
+        for (const Interval& sy : ys) visit(sx, sy, depth + 1, meeting, near_cores);
+    } else {
+      for (const Interval& sx : xs) visit(sx, cy, depth + 1, meeting, near_cores);
+    }
+  }
+
+  static constexpr int max_depth = 10;
+  PartMotion motion_[2];
+  ChartAxis x_;
+  ChartAxis y_;
+  int dimension_;
+  std::vector<BodyDisk> disks_[2];
+  std::vector<Core> cores_[2];
+  const std::vector<std::pair<int, int>>* pairs_ = nullptr;
+  std::vector<char>* needed_ = nullptr;
+  std::size_t cells_ = 0;
+  std::map<std::pair<double, double>, AxisCache> caches_[2];
+};
+
 // ============================================================================ exact kernels
 
 using Polynomial = RationalPolynomial2;
@@ -436,6 +758,13 @@ const char* contact_word(ContactType type) {
 std::vector<ContactCurve> generate_contact_curves(const Model& model, const PairAxes& axes,
                                                   const ChartAxis& x, const ChartAxis& y,
                                                   CurveStatistics* statistics) {
+  return generate_contact_curves(model, axes, x, y, statistics, CurveOptions{});
+}
+
+std::vector<ContactCurve> generate_contact_curves(const Model& model, const PairAxes& axes,
+                                                  const ChartAxis& x, const ChartAxis& y,
+                                                  CurveStatistics* statistics,
+                                                  const CurveOptions& options) {
   CurveStatistics local;
   CurveStatistics& stats = statistics ? *statistics : local;
   const Part& part_a = model.parts.at(axes.first);
@@ -457,38 +786,59 @@ std::vector<ContactCurve> generate_contact_curves(const Model& model, const Pair
   PairPoses<Polynomial> poses = pair_poses(model, axes, x, y, Polynomial::variable(0),
                                            Polynomial::variable(1), constant);
 
-  std::vector<ContactCurve> curves;
+  // Swept-region culling, then blocked-space culling over the chart.
+  std::vector<std::pair<int, int>> pairs;
   for (std::size_t i = 0; i < features_a.size(); ++i) {
     for (std::size_t j = 0; j < features_b.size(); ++j) {
-      const BodyFeature& fa = features_a[i];
-      const BodyFeature& fb = features_b[j];
-      if (!has_contact(fa, fb)) continue;
+      if (!has_contact(features_a[i], features_b[j])) continue;
       ++stats.feature_pairs_considered;
       if (culler.never_touch(swept_a[i], swept_b[j])) {
         ++stats.feature_pairs_culled;
         continue;
       }
-      KernelResult kernel = contact_of(fa, fb, poses.first, poses.second);
-      if (!kernel.exists) continue;
-      ContactCurve curve;
-      curve.first = fa.ref;
-      curve.second = fb.ref;
-      curve.type = kernel.type;
-      curve.polynomial = normalized_integer_polynomial(kernel.value);
-      curve.blocked_sign = kernel.blocked_sign;
-      bool zero = curve.polynomial.is_zero();
-      if (!zero && curve.polynomial.degree_x() == 0 && curve.polynomial.degree_y() == 0)
-        continue;  // a non-zero constant: these features never touch
-      if (!convert_validity(kernel.validity, curve.validity)) continue;  // never within both
-      curve.label = part_a.name + " " + fa.label + " / " + part_b.name + " " + fb.label + " (" +
-                    contact_word(kernel.type) + ")";
-      if (zero) {
-        ++stats.identically_zero;
-      } else {
-        ++stats.curves;
-      }
-      curves.push_back(std::move(curve));
+      pairs.emplace_back(static_cast<int>(i), static_cast<int>(j));
     }
+  }
+  std::vector<char> needed(pairs.size(), options.cull_blocked_space ? 0 : 1);
+  if (options.cull_blocked_space) {
+    std::vector<BodyDisk> disks_a, disks_b;
+    for (const BodyFeature& f : features_a) disks_a.push_back(body_disk(f));
+    for (const BodyFeature& f : features_b) disks_b.push_back(body_disk(f));
+    BlockedSpaceCuller blocked(part_motion(part_a, axes.first_moves, x),
+                               part_motion(part_b, axes.second_moves, second_axis), x, y,
+                               axes.dimension(), std::move(disks_a), std::move(disks_b),
+                               inscribed_disks(part_a), inscribed_disks(part_b));
+    blocked.run(pairs, needed);
+  }
+
+  std::vector<ContactCurve> curves;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    if (!needed[k]) {
+      ++stats.feature_pairs_in_blocked_space;
+      continue;
+    }
+    const BodyFeature& fa = features_a[static_cast<std::size_t>(pairs[k].first)];
+    const BodyFeature& fb = features_b[static_cast<std::size_t>(pairs[k].second)];
+    KernelResult kernel = contact_of(fa, fb, poses.first, poses.second);
+    if (!kernel.exists) continue;
+    ContactCurve curve;
+    curve.first = fa.ref;
+    curve.second = fb.ref;
+    curve.type = kernel.type;
+    curve.polynomial = normalized_integer_polynomial(kernel.value);
+    curve.blocked_sign = kernel.blocked_sign;
+    bool zero = curve.polynomial.is_zero();
+    if (!zero && curve.polynomial.degree_x() == 0 && curve.polynomial.degree_y() == 0)
+      continue;  // a non-zero constant: these features never touch
+    if (!convert_validity(kernel.validity, curve.validity)) continue;  // never within both
+    curve.label = part_a.name + " " + fa.label + " / " + part_b.name + " " + fb.label + " (" +
+                  contact_word(kernel.type) + ")";
+    if (zero) {
+      ++stats.identically_zero;
+    } else {
+      ++stats.curves;
+    }
+    curves.push_back(std::move(curve));
   }
   return curves;
 }

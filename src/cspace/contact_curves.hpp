@@ -122,6 +122,10 @@ struct CurveStatistics {
   std::size_t curves = 0;                 ///< non-trivial contact polynomials emitted
   std::size_t identically_zero = 0;       ///< added: degenerate curves emitted (contact everywhere)
   std::size_t reflex_vertices_skipped = 0;  ///< added: strictly reflex vertices never touch alone
+  /// added: pairs whose every possible contact configuration in the chart is certified
+  /// blocked (two inscribed disks of the parts overlap there); their curves would lie inside
+  /// blocked space and bound no free region
+  std::size_t feature_pairs_in_blocked_space = 0;
 };
 
 /// The moving parts of a pair in axis order: `x_part` moves along x, `y_part` along y (or
@@ -145,10 +149,23 @@ PairAxes pair_axes(const Model& model, std::size_t first, std::size_t second);
 ChartLayout chart_layout(const Model& model, const PairAxes& axes);
 
 /// All contact curves of the pair in the chart (x, y) (y ignored for a 1-D space).
-/// Feature pairs that can never touch are culled before any exact work.
+/// Feature pairs that can never touch are culled before any exact work, and so are pairs that
+/// can touch only at configurations certified blocked (inside the C-obstacle): every
+/// configuration where the parts touch without overlapping lies on an emitted curve.
 std::vector<ContactCurve> generate_contact_curves(const Model& model, const PairAxes& axes,
                                                   const ChartAxis& x, const ChartAxis& y,
                                                   CurveStatistics* statistics = nullptr);
+
+/// Added by the kernels: options of curve generation (tests switch the blocked-space cull off).
+struct CurveOptions {
+  bool cull_blocked_space = true;
+};
+
+/// generate_contact_curves with options.
+std::vector<ContactCurve> generate_contact_curves(const Model& model, const PairAxes& axes,
+                                                  const ChartAxis& x, const ChartAxis& y,
+                                                  CurveStatistics* statistics,
+                                                  const CurveOptions& options);
 
 /// Exact relation of the two parts posed at chart point `q` of chart (x, y): the oracle.
 Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x,

@@ -1127,10 +1127,16 @@ std::optional<Point> interior_witness(const Model& model, const PairAxes& axes,
 }
 
 PointLocation locate_point(const Part& part, const RigidMap& map, const Point& p) {
-  // Locate in the part's body frame.
+  // Locate in the part's body frame: certified intervals first, exact when uncertain.
   RigidMap back = inverse(map);
   PlacedPart placed(part, IntervalMap{}, {}, true);
-  return OverlapAnalysis::locate(placed, back.apply(p));
+  Point body = back.apply(p);
+  std::optional<bool> quick =
+      inside_by_intervals(placed, Interval::enclose(body.x), Interval::enclose(body.y));
+  // A certain interval answer implies the point is on no edge: an edge through it would give
+  // an orientation or circle test whose interval contains 0.
+  if (quick) return *quick ? PointLocation::inside : PointLocation::outside;
+  return OverlapAnalysis::locate(placed, body);
 }
 
 }  // namespace hipair::cspace

@@ -113,7 +113,8 @@ RationalPolynomial2::RationalPolynomial2(int constant) : RationalPolynomial2(Rat
 RationalPolynomial2::RationalPolynomial2(const Rational& constant) {
   if (sgn(constant) != 0) {
     resize(1, 1);
-    coefficients_[0] = constant;
+    numerators_[0] = constant.get_num();
+    denominator_ = constant.get_den();
   }
 }
 
@@ -121,34 +122,47 @@ RationalPolynomial2 RationalPolynomial2::variable(int which) {
   RationalPolynomial2 p;
   if (which == 0) {
     p.resize(2, 1);
-    p.coefficients_[1] = 1;
   } else {
     p.resize(1, 2);
-    p.coefficients_[1] = 1;
   }
+  p.numerators_[1] = 1;
   return p;
 }
 
-const Rational& RationalPolynomial2::coefficient(int i, int j) const {
-  static const Rational zero = 0;
+const mpz_class& RationalPolynomial2::numerator(int i, int j) const {
+  static const mpz_class zero = 0;
   if (i < 0 || j < 0 || i >= rows_ || j >= columns_) return zero;
-  return coefficients_[static_cast<std::size_t>(i * columns_ + j)];
+  return numerators_[static_cast<std::size_t>(i * columns_ + j)];
+}
+
+Rational RationalPolynomial2::coefficient(int i, int j) const {
+  Rational value(numerator(i, j), denominator_);
+  value.canonicalize();
+  return value;
 }
 
 void RationalPolynomial2::set_coefficient(int i, int j, const Rational& value) {
   if (i >= rows_ || j >= columns_) resize(std::max(rows_, i + 1), std::max(columns_, j + 1));
-  coefficients_[static_cast<std::size_t>(i * columns_ + j)] = value;
+  // bring everything over lcm(denominator, value's denominator)
+  mpz_class common;
+  mpz_lcm(common.get_mpz_t(), denominator_.get_mpz_t(), value.get_den_mpz_t());
+  if (common != denominator_) {
+    mpz_class factor = common / denominator_;
+    for (mpz_class& n : numerators_) n *= factor;
+    denominator_ = common;
+  }
+  numerators_[static_cast<std::size_t>(i * columns_ + j)] = value.get_num() * (common / value.get_den());
   trim();
 }
 
 void RationalPolynomial2::resize(int rows, int columns) {
   if (rows == rows_ && columns == columns_) return;
-  std::vector<Rational> next(static_cast<std::size_t>(rows * columns));
+  std::vector<mpz_class> next(static_cast<std::size_t>(rows * columns));
   for (int i = 0; i < std::min(rows, rows_); ++i)
     for (int j = 0; j < std::min(columns, columns_); ++j)
       next[static_cast<std::size_t>(i * columns + j)] =
-          coefficients_[static_cast<std::size_t>(i * columns_ + j)];
-  coefficients_ = std::move(next);
+          std::move(numerators_[static_cast<std::size_t>(i * columns_ + j)]);
+  numerators_ = std::move(next);
   rows_ = rows;
   columns_ = columns;
 }
@@ -158,11 +172,12 @@ void RationalPolynomial2::trim() {
   int columns = 0;
   for (int i = 0; i < rows_; ++i)
     for (int j = 0; j < columns_; ++j)
-      if (sgn(coefficients_[static_cast<std::size_t>(i * columns_ + j)]) != 0) {
+      if (sgn(numerators_[static_cast<std::size_t>(i * columns_ + j)]) != 0) {
         rows = std::max(rows, i + 1);
         columns = std::max(columns, j + 1);
       }
   resize(rows, columns);
+  if (rows == 0) denominator_ = 1;
 }
 
 bool RationalPolynomial2::is_zero() const { return rows_ == 0; }
@@ -171,9 +186,10 @@ Rational RationalPolynomial2::evaluate(const Rational& x, const Rational& y) con
   Rational total = 0;
   for (int i = rows_; i-- > 0;) {
     Rational row_value = 0;
-    for (int j = columns_; j-- > 0;) row_value = row_value * y + coefficient(i, j);
+    for (int j = columns_; j-- > 0;) row_value = row_value * y + Rational(numerator(i, j));
     total = total * x + row_value;
   }
+  total /= Rational(denominator_);
   return total;
 }
 
@@ -182,19 +198,33 @@ RationalPolynomial2 operator+(const RationalPolynomial2& a, const RationalPolyno
   if (b.is_zero()) return a;
   RationalPolynomial2 r;
   r.resize(std::max(a.rows_, b.rows_), std::max(a.columns_, b.columns_));
+  mpz_class scale_a = 1, scale_b = 1;
+  if (a.denominator_ == b.denominator_) {
+    r.denominator_ = a.denominator_;
+  } else {
+    mpz_lcm(r.denominator_.get_mpz_t(), a.denominator_.get_mpz_t(), b.denominator_.get_mpz_t());
+    mpz_divexact(scale_a.get_mpz_t(), r.denominator_.get_mpz_t(), a.denominator_.get_mpz_t());
+    mpz_divexact(scale_b.get_mpz_t(), r.denominator_.get_mpz_t(), b.denominator_.get_mpz_t());
+  }
   for (int i = 0; i < a.rows_; ++i)
-    for (int j = 0; j < a.columns_; ++j)
-      r.coefficients_[static_cast<std::size_t>(i * r.columns_ + j)] = a.coefficient(i, j);
+    for (int j = 0; j < a.columns_; ++j) {
+      mpz_class& target = r.numerators_[static_cast<std::size_t>(i * r.columns_ + j)];
+      mpz_mul(target.get_mpz_t(), a.numerators_[static_cast<std::size_t>(i * a.columns_ + j)].get_mpz_t(),
+              scale_a.get_mpz_t());
+    }
   for (int i = 0; i < b.rows_; ++i)
-    for (int j = 0; j < b.columns_; ++j)
-      r.coefficients_[static_cast<std::size_t>(i * r.columns_ + j)] += b.coefficient(i, j);
+    for (int j = 0; j < b.columns_; ++j) {
+      mpz_class& target = r.numerators_[static_cast<std::size_t>(i * r.columns_ + j)];
+      mpz_addmul(target.get_mpz_t(), b.numerators_[static_cast<std::size_t>(i * b.columns_ + j)].get_mpz_t(),
+                 scale_b.get_mpz_t());
+    }
   r.trim();
   return r;
 }
 
 RationalPolynomial2 operator-(const RationalPolynomial2& a) {
   RationalPolynomial2 r = a;
-  for (Rational& c : r.coefficients_) c = -c;
+  for (mpz_class& c : r.numerators_) mpz_neg(c.get_mpz_t(), c.get_mpz_t());
   return r;
 }
 
@@ -206,18 +236,17 @@ RationalPolynomial2 operator*(const RationalPolynomial2& a, const RationalPolyno
   RationalPolynomial2 r;
   if (a.is_zero() || b.is_zero()) return r;
   r.resize(a.rows_ + b.rows_ - 1, a.columns_ + b.columns_ - 1);
-  Rational product;
+  mpz_mul(r.denominator_.get_mpz_t(), a.denominator_.get_mpz_t(), b.denominator_.get_mpz_t());
   for (int i = 0; i < a.rows_; ++i)
     for (int j = 0; j < a.columns_; ++j) {
-      const Rational& ac = a.coefficients_[static_cast<std::size_t>(i * a.columns_ + j)];
+      const mpz_class& ac = a.numerators_[static_cast<std::size_t>(i * a.columns_ + j)];
       if (sgn(ac) == 0) continue;
       for (int k = 0; k < b.rows_; ++k)
         for (int l = 0; l < b.columns_; ++l) {
-          const Rational& bc = b.coefficients_[static_cast<std::size_t>(k * b.columns_ + l)];
+          const mpz_class& bc = b.numerators_[static_cast<std::size_t>(k * b.columns_ + l)];
           if (sgn(bc) == 0) continue;
-          mpq_mul(product.get_mpq_t(), ac.get_mpq_t(), bc.get_mpq_t());
-          Rational& target = r.coefficients_[static_cast<std::size_t>((i + k) * r.columns_ + j + l)];
-          mpq_add(target.get_mpq_t(), target.get_mpq_t(), product.get_mpq_t());
+          mpz_class& target = r.numerators_[static_cast<std::size_t>((i + k) * r.columns_ + j + l)];
+          mpz_addmul(target.get_mpz_t(), ac.get_mpz_t(), bc.get_mpz_t());
         }
     }
   r.trim();
@@ -226,29 +255,22 @@ RationalPolynomial2 operator*(const RationalPolynomial2& a, const RationalPolyno
 
 bool operator==(const RationalPolynomial2& a, const RationalPolynomial2& b) {
   if (a.rows_ != b.rows_ || a.columns_ != b.columns_) return false;
-  return a.coefficients_ == b.coefficients_;
+  for (int i = 0; i < a.rows_; ++i)
+    for (int j = 0; j < a.columns_; ++j)
+      if (a.coefficient(i, j) != b.coefficient(i, j)) return false;
+  return true;
 }
 
 IntegerPolynomial2 normalized_integer_polynomial(const RationalPolynomial2& polynomial) {
+  // The denominator is positive: the numerators alone have the same zero set and sign.
   IntegerPolynomial2 result;
   if (polynomial.is_zero()) return result;
-  mpz_class denominator = 1;
-  for (int i = 0; i < polynomial.rows(); ++i)
-    for (int j = 0; j < polynomial.columns(); ++j) {
-      const Rational& c = polynomial.coefficient(i, j);
-      if (sgn(c) != 0)
-        mpz_lcm(denominator.get_mpz_t(), denominator.get_mpz_t(), c.get_den_mpz_t());
-    }
   result.coefficients.assign(static_cast<std::size_t>(polynomial.rows()),
                              std::vector<mpz_class>(static_cast<std::size_t>(polynomial.columns())));
   for (int i = 0; i < polynomial.rows(); ++i)
-    for (int j = 0; j < polynomial.columns(); ++j) {
-      const Rational& c = polynomial.coefficient(i, j);
-      if (sgn(c) == 0) continue;
-      mpz_class value = denominator / c.get_den();
-      value *= c.get_num();
-      result.coefficients[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = value;
-    }
+    for (int j = 0; j < polynomial.columns(); ++j)
+      result.coefficients[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] =
+          polynomial.numerator(i, j);
   normalize(result);
   return result;
 }

@@ -12,6 +12,8 @@ namespace hipair::cspace {
 
 /// Dense polynomial sum c(i, j) x^i y^j with exact rational coefficients. Behaves as a
 /// number type for kernels/ (construction from int, +, -, unary -, *).
+/// Stored as integer numerators over one positive common denominator, so that arithmetic
+/// never computes coefficient gcds (the zero set only needs the numerators).
 class RationalPolynomial2 {
  public:
   RationalPolynomial2() = default;
@@ -24,8 +26,11 @@ class RationalPolynomial2 {
   /// Number of stored rows / columns (degree + 1 bounds; 0 for the zero polynomial).
   int rows() const noexcept { return rows_; }
   int columns() const noexcept { return columns_; }
-  const Rational& coefficient(int i, int j) const;
+  Rational coefficient(int i, int j) const;
   void set_coefficient(int i, int j, const Rational& value);
+  /// Integer numerator of coefficient (i, j) over denominator().
+  const mpz_class& numerator(int i, int j) const;
+  const mpz_class& denominator() const noexcept { return denominator_; }
 
   bool is_zero() const;
   /// Exact value at (x, y).
@@ -42,7 +47,8 @@ class RationalPolynomial2 {
   void trim();
   int rows_ = 0;
   int columns_ = 0;
-  std::vector<Rational> coefficients_;  // row-major, index i * columns_ + j
+  std::vector<mpz_class> numerators_;  // row-major, index i * columns_ + j
+  mpz_class denominator_ = 1;          // > 0
 };
 
 /// Exact value of an integer polynomial at a rational point.

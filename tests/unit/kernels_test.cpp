@@ -967,3 +967,72 @@ TEST(Kernels, ChartLayoutForLimitedRotation) {
 
 }  // namespace
 }  // namespace hipair::cspace
+
+namespace hipair::cspace {
+namespace {
+
+// Every curve the blocked-space cull drops lies in blocked space: where the dropped curve is
+// crossed with its contact valid, the oracle says "overlapping" on both sides.
+void check_dropped_curves_are_blocked(const std::string& file, int lines) {
+  Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/" + file);
+  int checked = 0;
+  for (const PairSpec& spec : model.pairs) {
+    PairAxes axes = pair_axes(model, spec.first, spec.second);
+    if (axes.dimension() != 2) continue;
+    ChartLayout layout = chart_layout(model, axes);
+    for (const ChartAxis& x : layout.x_charts)
+      for (const ChartAxis& y : layout.y_charts) {
+        CurveOptions all;
+        all.cull_blocked_space = false;
+        std::vector<ContactCurve> full = generate_contact_curves(model, axes, x, y, nullptr, all);
+        std::vector<ContactCurve> culled = generate_contact_curves(model, axes, x, y);
+        PairSetup setup{model, axes, x, y, {}};
+        for (const ContactCurve& curve : full) {
+          if (find_curve(culled, curve.first, curve.second)) continue;  // kept
+          // Squared forms also vanish on a spurious branch where the features do not touch
+          // even when the (physical-branch) validity holds: only exact-branch curves here.
+          if (curve.blocked_sign == 0) continue;
+          for (int line = 0; line < lines; ++line) {
+            Rational ty = y.lo + (y.hi - y.lo) * frac(2 * line + 1, 2 * lines);
+            int previous = 0;
+            Rational previous_x;
+            for (int step = 0; step <= 64; ++step) {
+              Rational tx = x.lo + (x.hi - x.lo) * frac(step, 64);
+              int sign = sgn(evaluate(curve.polynomial, tx, ty));
+              if (sign != 0 && previous != 0 && sign != previous) {
+                Rational lo = previous_x, hi = tx;
+                for (int k = 0; k < 30; ++k) {
+                  Rational mid = (lo + hi) / 2;
+                  int m = sgn(evaluate(curve.polynomial, mid, ty));
+                  if (m == 0) { lo = hi = mid; break; }
+                  if (m == previous) lo = mid; else hi = mid;
+                }
+                ChartPoint a{lo, ty}, b{hi, ty};
+                if (validity_holds(curve, setup, a) && validity_holds(curve, setup, b)) {
+                  EXPECT_EQ(classify_overlap(model, axes, x, y, a), Overlap::overlapping) << curve.label;
+                  EXPECT_EQ(classify_overlap(model, axes, x, y, b), Overlap::overlapping) << curve.label;
+                  ++checked;
+                }
+              }
+              if (sign != 0) {
+                previous = sign;
+                previous_x = tx;
+              }
+            }
+          }
+        }
+      }
+  }
+  EXPECT_GT(checked, 0) << file;
+}
+
+TEST(Kernels, BlockedSpaceCullDropsOnlyBlockedCurvesGeneva) {
+  check_dropped_curves_are_blocked("geneva.json", 6);
+}
+
+TEST(Kernels, BlockedSpaceCullDropsOnlyBlockedCurvesEscapement) {
+  check_dropped_curves_are_blocked("escapement.json", 3);
+}
+
+}  // namespace
+}  // namespace hipair::cspace
