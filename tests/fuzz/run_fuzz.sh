@@ -97,7 +97,7 @@ cat >"$work/model.dict" <<'DICT'
 DICT
 
 cd "$work" || exit 1
-"$work/model_reader_fuzzer" -max_total_time="$seconds" -max_len=16384 -timeout=20 -rss_limit_mb=2560 \
+"$work/model_reader_fuzzer" -max_total_time="$seconds" -max_len=16384 -timeout=120 -rss_limit_mb=2560 \
   -dict="$work/model.dict" -artifact_prefix="$work/" -print_final_stats=1 "$work/corpus" >"$work/fuzz.log" 2>&1
 status=$?
 tail -n 25 "$work/fuzz.log"
