@@ -12,5 +12,6 @@ using Action = std::function<int()>;
 
 void register_validate(CLI::App& app, Action& action);
 void register_show(CLI::App& app, Action& action);
+void register_certify(CLI::App& app, Action& action);
 
 }  // namespace hipair::cli

@@ -1,0 +1,341 @@
+// The certificate format (docs/certify.md): JSON with exact rationals as strings. Shared by the
+// producer (compiled into the hipair library) and the verifier (compiled into hipair-verify).
+// Reading is strict: unknown keys, missing keys and wrong types are errors with a JSON pointer.
+#include <hipair/certificate.hpp>
+#include <hipair/error.hpp>
+
+#include "model/json_document.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+namespace hipair {
+
+using model_detail::JsonValue;
+
+std::string to_string(ClaimKind kind) {
+  switch (kind) {
+    case ClaimKind::interference: return "interference";
+    case ClaimKind::clearance: return "clearance";
+    case ClaimKind::jam: return "jam";
+    case ClaimKind::free_passage: return "free_passage";
+  }
+  return "?";
+}
+
+// ============================================================================ writing
+namespace {
+
+std::string quoted(const std::string& text) {
+  std::string out = "\"";
+  for (unsigned char ch : text) {
+    if (ch == '"' || ch == '\\') {
+      out += '\\';
+      out += char(ch);
+    } else if (ch < 0x20) {
+      char escape[8];
+      std::snprintf(escape, sizeof escape, "\\u%04x", ch);
+      out += escape;
+    } else {
+      out += char(ch);
+    }
+  }
+  return out + "\"";
+}
+std::string number(const Rational& value) { return quoted(to_exact_string(value)); }
+std::string interval(const RationalInterval& range) {
+  return "[" + number(range.lo) + ", " + number(range.hi) + "]";
+}
+std::string edge_reference(const EdgeReference& edge) {
+  return "{\"part\": " + quoted(edge.part) + ", \"loop\": " + std::to_string(edge.loop) +
+         ", \"edge\": " + std::to_string(edge.edge) + ", \"label\": " + quoted(edge.label) + "}";
+}
+std::string crossing(const CrossingWitness& witness) {
+  std::string out = "{\"edge\": " + edge_reference(witness.edge);
+  if (witness.along) out += ", \"along\": " + interval(*witness.along);
+  return out + ", \"across\": " + edge_reference(witness.across) + "}";
+}
+std::string pieces(const std::vector<BlockedPiece>& list, bool with_range, const std::string& indent) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    out += (i ? ",\n" : "\n") + indent + "  {";
+    if (with_range) out += "\"range\": " + interval(list[i].range) + ", ";
+    out += "\"crossing\": " + crossing(list[i].crossing) + "}";
+  }
+  return out + (list.empty() ? "]" : "\n" + indent + "]");
+}
+std::string configuration(const std::map<std::string, ExactPosition>& positions) {
+  std::string out = "{";
+  bool first = true;
+  for (const auto& [part, position] : positions) {
+    out += (first ? "\n      " : ",\n      ") + quoted(part) + ": {";
+    first = false;
+    out += (position.is_offset ? "\"offset\": " : "\"tangent\": ") + number(position.value);
+    if (position.half_turn) out += ", \"centre\": \"pi\"";
+    if (position.angle) out += ", \"angle\": " + number(*position.angle);
+    if (position.angle_error) out += ", \"angle_error\": " + number(*position.angle_error);
+    out += "}";
+  }
+  return out + (first ? "}" : "\n    }");
+}
+
+}  // namespace
+
+std::string write_certificate(const Certificate& c) {
+  std::ostringstream out;
+  out << "{\n  \"hipair_certificate\": 1,\n  \"claim\": " << quoted(to_string(c.claim)) << ",\n";
+  out << "  \"statement\": " << quoted(c.statement) << ",\n";
+  out << "  \"model\": {\n    \"name\": " << quoted(c.model_name) << ",\n    \"file\": " << quoted(c.model_file)
+      << ",\n    \"content_hash\": " << quoted(c.content_hash) << ",\n    \"parameters\": {";
+  for (std::size_t i = 0; i < c.parameters.size(); ++i)
+    out << (i ? ",\n      " : "\n      ") << quoted(c.parameters[i].name) << ": {\"value\": "
+        << number(c.parameters[i].value) << ", \"overridden\": " << (c.parameters[i].overridden ? "true" : "false")
+        << "}";
+  out << (c.parameters.empty() ? "},\n" : "\n    },\n") << "    \"roundings\": [";
+  for (std::size_t i = 0; i < c.roundings.size(); ++i)
+    out << (i ? ",\n      " : "\n      ") << "{\"pointer\": " << quoted(c.roundings[i].pointer)
+        << ", \"expression\": " << quoted(c.roundings[i].expression) << ", \"value\": " << number(c.roundings[i].value)
+        << ", \"bound\": " << number(c.roundings[i].bound) << "}";
+  out << (c.roundings.empty() ? "]\n  },\n" : "\n    ]\n  },\n");
+  out << "  \"pair\": [" << quoted(c.first) << ", " << quoted(c.second) << "],\n";
+  out << "  " << quoted(to_string(c.claim)) << ": {\n";
+  switch (c.claim) {
+    case ClaimKind::interference:
+      out << "    \"configuration\": " << configuration(c.configuration);
+      if (c.witness_point)
+        out << ",\n    \"point\": [" << number(c.witness_point->x) << ", " << number(c.witness_point->y) << "]";
+      if (c.witness_crossing) out << ",\n    \"crossing\": " << crossing(*c.witness_crossing);
+      break;
+    case ClaimKind::clearance:
+      out << "    \"configuration\": " << configuration(c.configuration) << ",\n    \"distance\": "
+          << number(c.distance);
+      break;
+    case ClaimKind::free_passage: {
+      out << "    \"driver\": " << quoted(c.driver) << ",\n    \"follower\": " << quoted(c.follower)
+          << ",\n    \"distance\": " << number(c.distance) << ",\n    \"range\": " << interval(c.range)
+          << ",\n    \"path\": [";
+      for (std::size_t i = 0; i < c.path.size(); ++i)
+        out << (i ? ", " : "") << "[" << number(c.path[i].first) << ", " << number(c.path[i].second) << "]";
+      out << "],\n    \"boxes\": [";
+      for (std::size_t i = 0; i < c.boxes.size(); ++i) {
+        out << (i ? ",\n      " : "\n      ") << "{\"driver\": " << interval(c.boxes[i].driver);
+        if (c.boxes[i].follower) out << ", \"follower\": " << interval(*c.boxes[i].follower);
+        out << "}";
+      }
+      out << (c.boxes.empty() ? "]" : "\n    ]");
+      break;
+    }
+    case ClaimKind::jam:
+      out << "    \"driver\": " << quoted(c.driver) << ",\n    \"follower\": " << quoted(c.follower)
+          << ",\n    \"direction\": " << c.direction << ",\n    \"trap\": {\"driver\": " << interval(c.trap.driver);
+      if (c.trap.follower) out << ", \"follower\": " << interval(*c.trap.follower);
+      out << "},\n    \"cut\": " << pieces(c.cut, bool(c.trap.follower), "    ");
+      if (c.trap.follower)
+        out << ",\n    \"lower_wall\": " << pieces(c.lower_wall, true, "    ") << ",\n    \"upper_wall\": "
+            << pieces(c.upper_wall, true, "    ");
+      break;
+  }
+  out << "\n  }\n}\n";
+  return out.str();
+}
+
+// ============================================================================ reading
+namespace {
+
+[[noreturn]] void fail(const JsonValue& at, const std::string& reason) { throw ModelError(at.pointer, reason); }
+
+void check_keys(const JsonValue& object, std::initializer_list<const char*> allowed) {
+  if (!object.is_object()) fail(object, "expected an object");
+  for (const auto& member : object.members) {
+    bool known = false;
+    for (const char* key : allowed) known = known || member.key == key;
+    if (!known) fail(member.value, "unknown key '" + member.key + "'");
+  }
+}
+const JsonValue& require(const JsonValue& object, const char* key) {
+  const JsonValue* value = object.find(key);
+  if (!value) fail(object, std::string("missing key '") + key + "'");
+  return *value;
+}
+std::string text(const JsonValue& value) {
+  if (!value.is_string()) fail(value, "expected a string");
+  return value.text;
+}
+Rational rational(const JsonValue& value) {
+  if (!value.is_string()) fail(value, "expected an exact rational as a string (\"3/7\")");
+  try {
+    return parse_rational(value.text);
+  } catch (const Error& error) {
+    fail(value, std::string("not an exact rational: ") + error.what());
+  }
+}
+std::size_t index(const JsonValue& value) {
+  if (!value.is_number() || value.text.empty() || value.text.size() > 9 ||
+      value.text.find_first_not_of("0123456789") != std::string::npos)
+    fail(value, "expected a non-negative integer");
+  return std::stoul(value.text);
+}
+const JsonValue& array(const JsonValue& value, std::size_t size = 0) {
+  if (!value.is_array()) fail(value, "expected an array");
+  if (size && value.items.size() != size) fail(value, "expected " + std::to_string(size) + " elements");
+  return value;
+}
+RationalInterval interval_of(const JsonValue& value) {
+  array(value, 2);
+  RationalInterval range{rational(value.items[0]), rational(value.items[1])};
+  if (range.lo > range.hi) fail(value, "interval with lower end above upper end");
+  return range;
+}
+EdgeReference edge_of(const JsonValue& value) {
+  check_keys(value, {"part", "loop", "edge", "label"});
+  return EdgeReference{text(require(value, "part")), index(require(value, "loop")), index(require(value, "edge")),
+                       text(require(value, "label"))};
+}
+CrossingWitness crossing_of(const JsonValue& value) {
+  check_keys(value, {"edge", "along", "across"});
+  CrossingWitness witness{edge_of(require(value, "edge")), edge_of(require(value, "across")), std::nullopt};
+  if (const JsonValue* along = value.find("along")) witness.along = interval_of(*along);
+  return witness;
+}
+std::vector<BlockedPiece> pieces_of(const JsonValue& value, bool with_range) {
+  std::vector<BlockedPiece> list;
+  for (const JsonValue& item : array(value).items) {
+    check_keys(item, {"range", "crossing"});
+    BlockedPiece piece{{Rational(0), Rational(0)}, crossing_of(require(item, "crossing"))};
+    if (with_range) piece.range = interval_of(require(item, "range"));
+    else if (item.find("range")) fail(item, "a 1-D cut piece has no range");
+    list.push_back(std::move(piece));
+  }
+  return list;
+}
+std::map<std::string, ExactPosition> configuration_of(const JsonValue& value) {
+  if (!value.is_object()) fail(value, "expected an object: part -> position");
+  std::map<std::string, ExactPosition> positions;
+  for (const auto& member : value.members) {
+    const JsonValue& entry = member.value;
+    check_keys(entry, {"tangent", "offset", "centre", "angle", "angle_error"});
+    ExactPosition position;
+    position.is_offset = entry.find("offset") != nullptr;
+    if (position.is_offset == (entry.find("tangent") != nullptr))
+      fail(entry, "give exactly one of 'tangent' (rotation) and 'offset' (translation)");
+    position.value = rational(require(entry, position.is_offset ? "offset" : "tangent"));
+    if (position.is_offset && (entry.find("centre") || entry.find("angle")))
+      fail(entry, "an offset has no centre or angle");
+    if (const JsonValue* centre = entry.find("centre")) {
+      std::string c = text(*centre);
+      if (c != "pi" && c != "0") fail(*centre, "centre is \"0\" or \"pi\"");
+      position.half_turn = c == "pi";
+    }
+    if (const JsonValue* angle = entry.find("angle")) position.angle = rational(*angle);
+    if (const JsonValue* error = entry.find("angle_error")) position.angle_error = rational(*error);
+    if (bool(position.angle) != bool(position.angle_error))
+      fail(entry, "angle and angle_error go together");
+    positions[member.key] = position;
+  }
+  return positions;
+}
+ConfigurationBox box_of(const JsonValue& value, bool follower_required) {
+  check_keys(value, {"driver", "follower"});
+  ConfigurationBox box{interval_of(require(value, "driver")), std::nullopt};
+  if (const JsonValue* follower = value.find("follower")) box.follower = interval_of(*follower);
+  if (follower_required != bool(box.follower))
+    fail(value, follower_required ? "missing key 'follower'" : "no follower in a pair with a fixed part");
+  return box;
+}
+
+}  // namespace
+
+Certificate read_certificate(std::string_view json_text) {
+  JsonValue root = model_detail::parse_json(json_text);
+  Certificate c;
+  check_keys(root, {"hipair_certificate", "claim", "statement", "model", "pair", "interference", "clearance", "jam",
+                    "free_passage"});
+  const JsonValue& version = require(root, "hipair_certificate");
+  if (!version.is_number() || version.text != "1") fail(version, "unsupported certificate version (expected 1)");
+  std::string claim = text(require(root, "claim"));
+  if (claim == "interference") c.claim = ClaimKind::interference;
+  else if (claim == "clearance") c.claim = ClaimKind::clearance;
+  else if (claim == "jam") c.claim = ClaimKind::jam;
+  else if (claim == "free_passage") c.claim = ClaimKind::free_passage;
+  else fail(require(root, "claim"), "unknown claim '" + claim + "'");
+  if (const JsonValue* statement = root.find("statement")) c.statement = text(*statement);
+
+  const JsonValue& model = require(root, "model");
+  check_keys(model, {"name", "file", "content_hash", "parameters", "roundings"});
+  c.model_name = text(require(model, "name"));
+  if (const JsonValue* file = model.find("file")) c.model_file = text(*file);
+  c.content_hash = text(require(model, "content_hash"));
+  const JsonValue& parameters = require(model, "parameters");
+  if (!parameters.is_object()) fail(parameters, "expected an object: name -> {value, overridden}");
+  for (const auto& member : parameters.members) {
+    check_keys(member.value, {"value", "overridden"});
+    const JsonValue& overridden = require(member.value, "overridden");
+    if (!overridden.is_boolean()) fail(overridden, "expected true or false");
+    c.parameters.push_back({member.key, rational(require(member.value, "value")), overridden.boolean});
+  }
+  for (const JsonValue& item : array(require(model, "roundings")).items) {
+    check_keys(item, {"pointer", "expression", "value", "bound"});
+    c.roundings.push_back(Rounding{text(require(item, "pointer")), text(require(item, "expression")),
+                                   rational(require(item, "value")), rational(require(item, "bound"))});
+  }
+  const JsonValue& pair = array(require(root, "pair"), 2);
+  c.first = text(pair.items[0]);
+  c.second = text(pair.items[1]);
+
+  for (const char* other : {"interference", "clearance", "jam", "free_passage"})
+    if (other != claim && root.find(other)) fail(*root.find(other), "section '" + std::string(other) + "' does not belong to a " + claim + " claim");
+  const JsonValue& body = require(root, claim.c_str());
+  switch (c.claim) {
+    case ClaimKind::interference: {
+      check_keys(body, {"configuration", "point", "crossing"});
+      c.configuration = configuration_of(require(body, "configuration"));
+      if (const JsonValue* point = body.find("point")) {
+        array(*point, 2);
+        c.witness_point = Point{rational(point->items[0]), rational(point->items[1])};
+      }
+      if (const JsonValue* cross = body.find("crossing")) c.witness_crossing = crossing_of(*cross);
+      if (bool(c.witness_point) == bool(c.witness_crossing)) fail(body, "give exactly one witness: 'point' or 'crossing'");
+      break;
+    }
+    case ClaimKind::clearance:
+      check_keys(body, {"configuration", "distance"});
+      c.configuration = configuration_of(require(body, "configuration"));
+      c.distance = rational(require(body, "distance"));
+      break;
+    case ClaimKind::free_passage: {
+      check_keys(body, {"driver", "follower", "distance", "range", "path", "boxes"});
+      c.driver = text(require(body, "driver"));
+      c.follower = text(require(body, "follower"));
+      c.distance = rational(require(body, "distance"));
+      c.range = interval_of(require(body, "range"));
+      for (const JsonValue& vertex : array(require(body, "path")).items) {
+        array(vertex, 2);
+        c.path.emplace_back(rational(vertex.items[0]), rational(vertex.items[1]));
+      }
+      for (const JsonValue& box : array(require(body, "boxes")).items) c.boxes.push_back(box_of(box, !c.follower.empty()));
+      break;
+    }
+    case ClaimKind::jam: {
+      check_keys(body, {"driver", "follower", "direction", "trap", "cut", "lower_wall", "upper_wall"});
+      c.driver = text(require(body, "driver"));
+      c.follower = text(require(body, "follower"));
+      const JsonValue& direction = require(body, "direction");
+      if (!direction.is_number() || (direction.text != "1" && direction.text != "-1"))
+        fail(direction, "direction is 1 or -1");
+      c.direction = direction.text == "1" ? 1 : -1;
+      bool two = !c.follower.empty();
+      c.trap = box_of(require(body, "trap"), two);
+      c.cut = pieces_of(require(body, "cut"), two);
+      if (two) {
+        c.lower_wall = pieces_of(require(body, "lower_wall"), true);
+        c.upper_wall = pieces_of(require(body, "upper_wall"), true);
+      } else if (body.find("lower_wall") || body.find("upper_wall")) {
+        fail(body, "a jam against a fixed part has no walls");
+      }
+      break;
+    }
+  }
+  return c;
+}
+
+}  // namespace hipair

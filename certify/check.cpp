@@ -1,0 +1,442 @@
+// The verifier's claim checks (docs/certify.md, "How each claim is checked"). Every failed
+// check throws a Rejection with the exact reason.
+#include <hipair/certificate.hpp>
+#include <hipair/error.hpp>
+
+#include "certify/exact_geometry.hpp"
+#include "certify/interval_geometry.hpp"
+#include "core/sha256.hpp"
+#include "io/atomic_file.hpp"
+
+#include <cmath>
+
+namespace hipair::verify {
+namespace {
+
+[[noreturn]] void reject(const std::string& reason) { throw Rejection{reason}; }
+std::string show(const Rational& value) { return to_decimal_string(value, 10); }
+std::string show(const RationalInterval& range) { return "[" + show(range.lo) + ", " + show(range.hi) + "]"; }
+Interval hull(const Rational& lo, const Rational& hi) {
+  Interval result(lo);
+  mpfi_put_q(result.get(), const_cast<mpq_ptr>(hi.get_mpq_t()));
+  return result;
+}
+Interval two_pi() { return Interval::pi() * Interval(Rational(2)); }
+
+// ----------------------------------------------------------------------------- model and pair
+void check_model(const Certificate& c, const Model& model) {
+  if (c.model_name != model.name) reject("the model is named '" + model.name + "', the certificate names '" + c.model_name + "'");
+  for (const ParameterValue& value : c.parameters)
+    if (!model.find_parameter(value.name)) reject("the model has no parameter '" + value.name + "'");
+  for (const Parameter& parameter : model.parameters) {
+    const ParameterValue* value = nullptr;
+    for (const ParameterValue& candidate : c.parameters)
+      if (candidate.name == parameter.name) value = &candidate;
+    if (!value) reject("the certificate gives no value for parameter '" + parameter.name + "'");
+    if (!value->overridden && value->value != parameter.nominal)
+      reject("parameter '" + parameter.name + "': the certificate's value " + show(value->value) +
+             " is not the model's nominal " + show(parameter.nominal));
+    if (value->value < parameter.range.lo || value->value > parameter.range.hi)
+      reject("parameter outside its tolerance: '" + parameter.name + "' = " + show(value->value) + " is not in " +
+             show(parameter.range));
+  }
+  if (c.roundings.size() != model.roundings.size())
+    reject("the model reader made " + std::to_string(model.roundings.size()) + " roundings, the certificate lists " +
+           std::to_string(c.roundings.size()));
+  for (std::size_t i = 0; i < c.roundings.size(); ++i) {
+    const Rounding &a = c.roundings[i], &b = model.roundings[i];
+    if (a.pointer != b.pointer || a.expression != b.expression || a.value != b.value || a.bound != b.bound)
+      reject("rounding " + std::to_string(i) + " differs: the model reader rounded '" + b.expression + "' at " + b.pointer +
+             " to " + to_exact_string(b.value));
+  }
+}
+
+const Part& part_named(const Model& model, const std::string& name) {
+  auto index = model.find_part(name);
+  if (!index) reject("the model has no part '" + name + "'");
+  const Part& part = model.parts[*index];
+  Motion::Kind kind = part.motion.kind;
+  if (kind != Motion::Kind::fixed && kind != Motion::Kind::rotation && kind != Motion::Kind::translation)
+    reject("part '" + name + "' is not a fixed-axis part (certificates cover fixed, rotating and translating parts)");
+  return part;
+}
+bool moves(const Part& part) { return part.motion.kind != Motion::Kind::fixed; }
+bool rotates(const Part& part) { return part.motion.kind == Motion::Kind::rotation; }
+
+// Is every angle of `theta` (or offset) within the part's motion limits (up to whole turns)?
+bool within_limits(const Part& part, const Interval& value) {
+  const auto& limits = rotates(part) ? part.motion.angle_limits : part.motion.translation_limits;
+  if (!limits) return true;
+  for (int turns = rotates(part) ? -3 : 0; turns <= (rotates(part) ? 3 : 0); ++turns) {
+    Interval shifted = value + two_pi() * Interval(Rational(turns));
+    if (mpfi_is_nonneg((shifted - Interval(limits->lo)).get()) > 0 && mpfi_is_nonneg((Interval(limits->hi) - shifted).get()) > 0)
+      return true;
+  }
+  return false;
+}
+
+const Edge& edge_of(const Model& model, const EdgeReference& reference) {
+  const Part& part = part_named(model, reference.part);
+  if (reference.loop >= part.loops.size() || reference.edge >= part.loops[reference.loop].edges.size())
+    reject("part '" + part.name + "' has no loop " + std::to_string(reference.loop) + " edge " + std::to_string(reference.edge));
+  const Edge& edge = part.loops[reference.loop].edges[reference.edge];
+  if (edge.label != reference.label)
+    reject("loop " + std::to_string(reference.loop) + " edge " + std::to_string(reference.edge) + " of '" + part.name +
+           "' is labelled '" + edge.label + "' in the model, not '" + reference.label + "'");
+  return edge;
+}
+std::string describe(const EdgeReference& e) {
+  return "'" + e.part + "' " + (e.label.empty() ? "loop " + std::to_string(e.loop) + " edge " + std::to_string(e.edge) : e.label);
+}
+void check_crossing_parts(const Certificate& c, const CrossingWitness& w) {
+  bool ok = (w.edge.part == c.first && w.across.part == c.second) || (w.edge.part == c.second && w.across.part == c.first);
+  if (!ok) reject("a crossing must name one edge of each part of the pair ('" + c.first + "', '" + c.second + "')");
+}
+
+// ----------------------------------------------------------------------------- single configurations
+ExactMap exact_map(const Part& part, const std::map<std::string, ExactPosition>& configuration) {
+  auto found = configuration.find(part.name);
+  ExactMap map;
+  if (!moves(part)) {
+    if (found != configuration.end()) reject("part '" + part.name + "' is fixed and has no position");
+    return map;
+  }
+  if (found == configuration.end()) reject("the configuration gives no position for moving part '" + part.name + "'");
+  const ExactPosition& position = found->second;
+  if (position.is_offset == rotates(part))
+    reject("part '" + part.name + "' " + (rotates(part) ? "rotates: give its half-angle 'tangent'" : "translates: give its 'offset'"));
+  if (!rotates(part)) {
+    map.shift = Point{Rational(position.value * part.motion.direction.x), Rational(position.value * part.motion.direction.y)};
+    if (!within_limits(part, Interval(position.value))) reject("the offset of '" + part.name + "' is outside its limits");
+    return map;
+  }
+  const Rational& t = position.value;
+  Rational w = 1 + t * t;
+  map.c = (1 - t * t) / w * (position.half_turn ? -1 : 1);
+  map.s = 2 * t / w * (position.half_turn ? -1 : 1);
+  map.pivot = part.motion.pivot;
+  Interval theta;
+  mpfi_atan(theta.get(), Interval(t).get());
+  theta = theta * Interval(Rational(2)) + (position.half_turn ? Interval::pi() : Interval(Rational(0)));
+  if (position.angle) {
+    Interval difference = theta - Interval(*position.angle);
+    double turns = std::round(mpfi_get_d(difference.get()) / (2 * M_PI));
+    Interval error = difference - two_pi() * Interval(Rational(turns));
+    Interval size;
+    mpfi_abs(size.get(), error.get());
+    if (size.upper() > *position.angle_error)
+      reject("the tangent of '" + part.name + "' is not within " + show(*position.angle_error) + " rad of the angle " +
+             show(*position.angle));
+  }
+  if (!within_limits(part, theta)) reject("the angle of '" + part.name + "' is not certainly within its limits");
+  return map;
+}
+
+void check_nesting(const PlacedPart& a, const PlacedPart& b, const std::string& where) {
+  for (int side = 0; side < 2; ++side) {
+    const PlacedPart& inner = side ? b : a;
+    const PlacedPart& outer = side ? a : b;
+    for (std::size_t i = 0; i < inner.loops.size(); ++i)
+      if (!inner.loops[i].empty() && locate(outer, inner.loops[i][0].source) >= 0)
+        reject(where + ": loop " + std::to_string(i) + " of '" + inner.name + "' lies inside '" + outer.name +
+               "' (the parts overlap)");
+  }
+}
+
+std::string configuration_text(const Certificate& c) {
+  std::string text;
+  for (const auto& [part, position] : c.configuration)
+    text += (text.empty() ? "" : ", ") + part + (position.is_offset ? " s=" : position.half_turn ? " t(pi)=" : " t=") +
+            show(position.value);
+  return text.empty() ? "(both fixed)" : text;
+}
+
+std::string check_interference(const Certificate& c, const Model& model) {
+  const Part &a = part_named(model, c.first), &b = part_named(model, c.second);
+  PlacedPart placed_a = place(a, exact_map(a, c.configuration)), placed_b = place(b, exact_map(b, c.configuration));
+  if (c.witness_point) {
+    for (const PlacedPart* part : {&placed_a, &placed_b}) {
+      int where = locate(*part, *c.witness_point);
+      if (where <= 0)
+        reject("the witness point (" + show(c.witness_point->x) + ", " + show(c.witness_point->y) +
+               ") is not strictly inside part '" + part->name + "' (it lies " + (where == 0 ? "on its boundary" : "outside") + ")");
+    }
+    return "parts '" + c.first + "' and '" + c.second + "' overlap at " + configuration_text(c) +
+           " (a witness point lies strictly inside both)";
+  }
+  const CrossingWitness& w = *c.witness_crossing;
+  check_crossing_parts(c, w);
+  edge_of(model, w.edge);
+  edge_of(model, w.across);
+  const PlacedPart& first = w.edge.part == c.first ? placed_a : placed_b;
+  const PlacedPart& second = w.edge.part == c.first ? placed_b : placed_a;
+  if (!edges_cross(first.loops[w.edge.loop][w.edge.edge], second.loops[w.across.loop][w.across.edge]))
+    reject("the edges " + describe(w.edge) + " and " + describe(w.across) + " do not cross transversally at " +
+           configuration_text(c));
+  return "parts '" + c.first + "' and '" + c.second + "' overlap at " + configuration_text(c) + " (edges " +
+         describe(w.edge) + " and " + describe(w.across) + " cross)";
+}
+
+std::string check_clearance(const Certificate& c, const Model& model) {
+  if (sgn(c.distance) <= 0) reject("the claimed clearance must be positive");
+  const Part &a = part_named(model, c.first), &b = part_named(model, c.second);
+  ExactMap map_a = exact_map(a, c.configuration), map_b = exact_map(b, c.configuration);
+  std::string closest;
+  Rational bound = boundary_distance_lower_bound(place_over(a, to_interval_map(map_a)), place_over(b, to_interval_map(map_b)),
+                                                 c.distance, &closest);
+  if (bound < c.distance)
+    reject("at " + configuration_text(c) + " the certified distance lower bound of " + closest + " is " + show(bound) +
+           ", less than the claimed " + show(c.distance));
+  check_nesting(place(a, map_a), place(b, map_b), "at " + configuration_text(c));
+  return "parts '" + c.first + "' and '" + c.second + "' are at least " + show(c.distance) + " mm apart at " +
+         configuration_text(c);
+}
+
+// ----------------------------------------------------------------------------- interval claims
+struct Roles {
+  const Part* driver;
+  const Part* other;   // the follower, or the fixed part
+  bool has_follower;
+};
+
+Roles roles(const Certificate& c, const Model& model) {
+  const Part &a = part_named(model, c.first), &b = part_named(model, c.second);
+  if (c.driver != a.name && c.driver != b.name) reject("the driver '" + c.driver + "' is not a part of the pair");
+  const Part& driver = c.driver == a.name ? a : b;
+  const Part& other = c.driver == a.name ? b : a;
+  if (!moves(driver)) reject("the driver '" + driver.name + "' is fixed");
+  if (moves(other) != !c.follower.empty() || (!c.follower.empty() && c.follower != other.name))
+    reject(moves(other) ? "the follower must be '" + other.name + "'" : "part '" + other.name + "' is fixed: no follower");
+  if (&a == &b) reject("a pair needs two different parts");
+  return Roles{&driver, &other, moves(other)};
+}
+
+IntervalMap map_over(const Part& part, const RationalInterval& range) {
+  if (!moves(part)) return IntervalMap{};
+  return rotates(part) ? rotation_over(part.motion.pivot, range) : translation_over(part.motion.direction, range);
+}
+
+// Is every configuration of `box` blocked because of `piece`'s crossing?
+void check_blocked(const Certificate& c, const Model& model, const Roles& r, const RationalInterval& driver,
+                   const std::optional<RationalInterval>& follower, const CrossingWitness& w, const std::string& where) {
+  check_crossing_parts(c, w);
+  if (!w.along) reject(where + ": the crossing needs the piece 'along' of its edge");
+  auto single = [&](const EdgeReference& reference) {
+    Part part;
+    part.name = reference.part;
+    part.loops.push_back(Loop{{edge_of(model, reference)}, false, ""});
+    const Part& owner = reference.part == r.driver->name ? *r.driver : *r.other;
+    IntervalMap map = &owner == r.driver ? map_over(owner, driver) : (follower ? map_over(owner, *follower) : IntervalMap{});
+    return place_over(part, map).loops[0][0];
+  };
+  std::string why;
+  if (!crossing_certain(single(w.edge), *w.along, single(w.across), &why))
+    reject(where + ": the feature pair " + describe(w.edge) + " / " + describe(w.across) + " does not block: " + why);
+}
+
+// Pieces must cover [lo, hi] in order without gaps.
+void check_cover(const std::vector<BlockedPiece>& pieces, const RationalInterval& range, const std::string& what) {
+  if (pieces.empty()) reject(what + " has no pieces");
+  if (pieces.front().range.lo > range.lo) reject("gap in the cover of " + what + " before " + show(pieces.front().range.lo));
+  for (std::size_t i = 1; i < pieces.size(); ++i)
+    if (pieces[i].range.lo > pieces[i - 1].range.hi || pieces[i].range.lo < pieces[i - 1].range.lo)
+      reject("gap in the cover of " + what + " between " + show(pieces[i - 1].range.hi) + " and " + show(pieces[i].range.lo));
+  if (pieces.back().range.hi < range.hi) reject("gap in the cover of " + what + " after " + show(pieces.back().range.hi));
+}
+
+std::string check_jam(const Certificate& c, const Model& model) {
+  Roles r = roles(c, model);
+  const RationalInterval& span = c.trap.driver;
+  if (span.lo >= span.hi) reject("the trap's driver range must have lo < hi");
+  if (!within_limits(*r.driver, hull(span.lo, span.hi))) reject("the trap's driver range is outside the driver's limits");
+  Rational far = c.direction > 0 ? span.hi : span.lo;
+  RationalInterval cut_at{far, far};
+  if (!r.has_follower) {
+    if (c.cut.size() != 1) reject("a jam against a fixed part has exactly one cut piece");
+    check_blocked(c, model, r, cut_at, std::nullopt, c.cut[0].crossing, "the cut");
+  } else {
+    const RationalInterval& band = *c.trap.follower;
+    if (band.lo >= band.hi) reject("the trap's follower range must have lo < hi");
+    if (rotates(*r.other) && band.hi - band.lo >= Rational(314159, 50000)) reject("the trap's follower range spans a whole turn");
+    check_cover(c.cut, band, "the cut");
+    for (std::size_t i = 0; i < c.cut.size(); ++i)
+      check_blocked(c, model, r, cut_at, c.cut[i].range, c.cut[i].crossing, "cut piece " + std::to_string(i));
+    const auto& limits = rotates(*r.other) ? r.other->motion.angle_limits : r.other->motion.translation_limits;
+    for (int upper = 0; upper < 2; ++upper) {
+      const Rational& at = upper ? band.hi : band.lo;
+      if (limits && (upper ? at >= limits->hi : at <= limits->lo)) continue;   // closed by the motion limit
+      const auto& wall = upper ? c.upper_wall : c.lower_wall;
+      std::string name = upper ? "the upper wall" : "the lower wall";
+      check_cover(wall, span, name);
+      for (std::size_t i = 0; i < wall.size(); ++i)
+        check_blocked(c, model, r, wall[i].range, RationalInterval{at, at}, wall[i].crossing, name + " piece " + std::to_string(i));
+    }
+  }
+  std::string unit = rotates(*r.driver) ? " rad" : " mm";
+  return "driving '" + r.driver->name + "' " + (c.direction > 0 ? "forward" : "backward") + " from within " + show(span) + unit +
+         (r.has_follower ? " with '" + r.other->name + "' within " + show(*c.trap.follower) : "") + ", it cannot pass " +
+         show(far) + unit + " (" + std::to_string(c.cut.size() + c.lower_wall.size() + c.upper_wall.size()) +
+         " blocked pieces)";
+}
+
+Rational path_at(const std::vector<std::pair<Rational, Rational>>& path, const Rational& x) {
+  for (std::size_t i = 1; i < path.size(); ++i)
+    if (x <= path[i].first) {
+      const auto &p = path[i - 1], &q = path[i];
+      return p.second + (q.second - p.second) * (x - p.first) / (q.first - p.first);
+    }
+  return path.back().second;
+}
+
+// Exact position near angle or offset `value`, and a bound on how far it is.
+std::pair<ExactPosition, Rational> near_position(const Part& part, const Rational& value) {
+  ExactPosition position;
+  if (!rotates(part)) return {ExactPosition{value, true, false, {}, {}}, Rational(0)};
+  double turns = std::round(to_double(value) / (2 * M_PI));
+  Interval reduced = Interval(value) - two_pi() * Interval(Rational(turns));
+  double approximate = mpfi_get_d(reduced.get());
+  position.half_turn = std::fabs(approximate) > M_PI / 2;
+  Interval half = (reduced - (position.half_turn ? Interval::pi() * Interval(Rational(approximate > 0 ? 1 : -1)) : Interval(Rational(0)))) /
+                  Interval(Rational(2));
+  Interval tangent;
+  mpfi_tan(tangent.get(), half.get());
+  position.value = tangent.middle();
+  Interval back;
+  mpfi_atan(back.get(), Interval(position.value).get());
+  Interval error = back - half, size;
+  mpfi_abs(size.get(), error.get());
+  return {position, Rational(2 * size.upper())};
+}
+
+std::string check_free_passage(const Certificate& c, const Model& model) {
+  Roles r = roles(c, model);
+  if (sgn(c.distance) <= 0) reject("the claimed clearance must be positive");
+  if (c.range.lo >= c.range.hi) reject("the driver range must have lo < hi");
+  if (!within_limits(*r.driver, hull(c.range.lo, c.range.hi))) reject("the driver range is outside the driver's limits");
+  if (r.has_follower) {
+    if (c.path.size() < 2 || c.path.front().first != c.range.lo || c.path.back().first != c.range.hi)
+      reject("the path must run from the start to the end of the driver range");
+    for (std::size_t i = 1; i < c.path.size(); ++i)
+      if (c.path[i].first <= c.path[i - 1].first) reject("the path's driver values must increase");
+  } else if (!c.path.empty()) {
+    reject("a pair with a fixed part has no path");
+  }
+  if (c.boxes.empty() || c.boxes.front().driver.lo > c.range.lo)
+    reject("gap in the boxes' cover of the driver range at its start " + show(c.range.lo));
+  for (std::size_t i = 1; i < c.boxes.size(); ++i)
+    if (c.boxes[i].driver.lo > c.boxes[i - 1].driver.hi || c.boxes[i].driver.lo < c.boxes[i - 1].driver.lo)
+      reject("gap in the boxes' cover of the driver range between " + show(c.boxes[i - 1].driver.hi) + " and " +
+             show(c.boxes[i].driver.lo));
+  if (c.boxes.back().driver.hi < c.range.hi) reject("gap in the boxes' cover of the driver range at its end " + show(c.range.hi));
+  Rational reach_driver = rotates(*r.driver) ? reach(*r.driver, r.driver->motion.pivot) : Rational(1);
+  Rational reach_other = rotates(*r.other) ? reach(*r.other, r.other->motion.pivot) : Rational(1);
+  for (std::size_t i = 0; i < c.boxes.size(); ++i) {
+    const ConfigurationBox& box = c.boxes[i];
+    std::string name = "box " + std::to_string(i) + " (driver " + show(box.driver) + ")";
+    Rational driver_mid = (box.driver.lo + box.driver.hi) / 2, driver_half = (box.driver.hi - box.driver.lo) / 2;
+    Rational other_mid = 0, other_half = 0;
+    if (r.has_follower) {
+      Rational lo = std::max(box.driver.lo, c.range.lo), hi = std::min(box.driver.hi, c.range.hi);
+      std::vector<Rational> values{path_at(c.path, lo), path_at(c.path, hi)};
+      for (const auto& vertex : c.path)
+        if (vertex.first > lo && vertex.first < hi) values.push_back(vertex.second);
+      for (const Rational& value : values)
+        if (value < box.follower->lo || value > box.follower->hi) reject(name + " does not contain the path");
+      other_mid = (box.follower->lo + box.follower->hi) / 2;
+      other_half = (box.follower->hi - box.follower->lo) / 2;
+    }
+    std::map<std::string, ExactPosition> nest;
+    if (i == 0) {   // the nesting check at an exact configuration next to the first box's centre
+      auto [position, error] = near_position(*r.driver, driver_mid);
+      nest[r.driver->name] = position;
+      driver_half += error;
+      if (r.has_follower) {
+        auto [other_position, other_error] = near_position(*r.other, other_mid);
+        nest[r.other->name] = other_position;
+        other_half += other_error;
+      }
+    }
+    Rational needed = c.distance + reach_driver * driver_half + reach_other * other_half;
+    std::string closest;
+    Rational bound = boundary_distance_lower_bound(
+        place_over(*r.driver, map_over(*r.driver, {driver_mid, driver_mid})),
+        place_over(*r.other, r.has_follower ? map_over(*r.other, {other_mid, other_mid}) : IntervalMap{}), needed, &closest);
+    if (bound < needed)
+      reject(name + ": the certified distance lower bound at its centre, " + show(bound) + " (" + closest +
+             "), is less than the claimed clearance plus the motion within the box, " + show(needed));
+    if (i == 0) {
+      ExactMap exact_driver = exact_map(*r.driver, nest), exact_other = exact_map(*r.other, nest);
+      check_nesting(place(*r.driver, exact_driver), place(*r.other, exact_other), "at the start of the path");
+    }
+  }
+  std::string unit = rotates(*r.driver) ? " rad" : " mm";
+  return "moving '" + r.driver->name + "' over " + show(c.range) + unit +
+         (r.has_follower ? " with '" + r.other->name + "' on the given path" : "") + ", the parts stay at least " +
+         show(c.distance) + " mm apart (" + std::to_string(c.boxes.size()) + " boxes)";
+}
+
+}  // namespace
+}  // namespace hipair::verify
+
+namespace hipair {
+
+VerificationResult check_certificate(const Certificate& certificate, const Model& model) {
+  using namespace verify;
+  VerificationResult result;
+  try {
+    check_model(certificate, model);
+    if (certificate.first == certificate.second) reject("a pair needs two different parts");
+    switch (certificate.claim) {
+      case ClaimKind::interference: result.summary = check_interference(certificate, model); break;
+      case ClaimKind::clearance: result.summary = check_clearance(certificate, model); break;
+      case ClaimKind::jam: result.summary = check_jam(certificate, model); break;
+      case ClaimKind::free_passage: result.summary = check_free_passage(certificate, model); break;
+    }
+    result.summary = to_string(certificate.claim) + ": " + result.summary;
+    result.valid = true;
+  } catch (const Rejection& rejection) {
+    result.reason = rejection.reason;
+  } catch (const Error& error) {
+    result.reason = error.what();
+  }
+  return result;
+}
+
+VerificationResult verify_certificate_file(const std::filesystem::path& certificate_path,
+                                           const std::filesystem::path& model_path) {
+  VerificationResult result;
+  Certificate certificate;
+  try {
+    certificate = read_certificate(io::read_file(certificate_path));
+  } catch (const Error& error) {
+    result.reason = "malformed certificate: " + std::string(error.what());
+    return result;
+  }
+  std::string text;
+  try {
+    text = io::read_file(model_path);
+  } catch (const Error& error) {
+    result.reason = error.what();
+    return result;
+  }
+  std::string hash = detail::sha256_hex(text);
+  if (hash != certificate.content_hash) {
+    result.reason = "model hash mismatch: the certificate is for sha256 " + certificate.content_hash + ", the file has " + hash;
+    return result;
+  }
+  ReadOptions options;
+  for (const ParameterValue& value : certificate.parameters)
+    if (value.overridden) options.parameter_values[value.name] = value.value;
+  Model model;
+  try {
+    model = read_model(text, model_path.filename().string(), options);
+  } catch (const Error& error) {
+    std::string message = error.what();
+    bool tolerance = message.find("outside its tolerance") != std::string::npos;
+    result.reason = (tolerance ? "parameter outside its tolerance: " : "the model does not read: ") + message;
+    return result;
+  }
+  return check_certificate(certificate, model);
+}
+
+}  // namespace hipair

@@ -1,0 +1,190 @@
+// Exact geometry of the verifier (see exact_geometry.hpp).
+#include "certify/exact_geometry.hpp"
+
+namespace hipair::verify {
+namespace {
+
+Point minus(const Point& a, const Point& b) { return Point{Rational(a.x - b.x), Rational(a.y - b.y)}; }
+Point plus(const Point& a, const Point& b) { return Point{Rational(a.x + b.x), Rational(a.y + b.y)}; }
+Point times(const Rational& k, const Point& a) { return Point{Rational(k * a.x), Rational(k * a.y)}; }
+Rational cross(const Point& a, const Point& b) { return a.x * b.y - a.y * b.x; }
+Rational dot(const Point& a, const Point& b) { return a.x * b.x + a.y * b.y; }
+
+// The intersections of the line p + lambda v with a circle of centre c: lambda = l0 +- l1 sqrt(D).
+// `base` = p - c + l0 v, so a root's point relative to the centre is base +- l1 sqrt(D) v.
+struct LineCircle {
+  Rational discriminant, l0, l1;
+  Point base, v;
+  // Sign of cross(f, w + shift) where w is root `sigma`'s point relative to the centre.
+  int cross_sign(int sigma, const Point& f, const Point& shift = {0, 0}) const {
+    return sign_with_root(cross(f, plus(base, shift)), sigma * l1 * cross(f, v), discriminant);
+  }
+  int lambda_sign(int sigma, const Rational& minus_value = 0) const {
+    return sign_with_root(l0 - minus_value, sigma * l1, discriminant);
+  }
+};
+
+LineCircle line_circle(const Point& p, const Point& v, const Point& c, const Rational& r2) {
+  Point w = minus(p, c);
+  Rational a = dot(v, v), b = dot(v, w), cc = dot(w, w) - r2;
+  LineCircle result{b * b - a * cc, -b / a, 1 / a, {0, 0}, v};
+  result.base = plus(w, times(result.l0, v));
+  return result;
+}
+
+// Is root `sigma` (point relative to the arc's centre: base + shift + ...) in the arc's sector?
+bool root_in_sector(const LineCircle& line, int sigma, const PlacedEdge& arc, bool open, const Point& shift = {0, 0}) {
+  int s1 = line.cross_sign(sigma, arc.from, shift);
+  int s2 = -line.cross_sign(sigma, arc.to, shift);
+  return in_sector(arc, s1, s2, open);
+}
+
+// Crossings of the ray p + lambda v (lambda > 0) with edge e; nullopt when the ray passes
+// through an end point of e or touches it (then another direction is tried).
+std::optional<int> ray_crossings(const PlacedEdge& e, const Point& p, const Point& v) {
+  if (!e.arc) {
+    Point d = minus(e.target, e.source), w = minus(e.source, p);
+    Rational denominator = cross(v, d);
+    if (sgn(denominator) == 0) return sgn(cross(v, w)) == 0 ? std::nullopt : std::optional<int>(0);
+    Rational lambda = cross(w, d) / denominator, mu = cross(w, v) / denominator;
+    if (sgn(lambda) <= 0) return 0;
+    if (sgn(mu) == 0 || mu == 1) return std::nullopt;
+    return (sgn(mu) > 0 && mu < 1) ? 1 : 0;
+  }
+  LineCircle line = line_circle(p, v, e.center, e.radius_squared);
+  int d = sgn(line.discriminant);
+  if (d < 0) return 0;
+  if (d == 0) return (line.lambda_sign(1) > 0 && root_in_sector(line, 1, e, false)) ? std::nullopt : std::optional<int>(0);
+  int count = 0;
+  for (int sigma : {-1, 1}) {
+    if (line.lambda_sign(sigma) <= 0) continue;
+    int s1 = line.cross_sign(sigma, e.from), s2 = -line.cross_sign(sigma, e.to);
+    if (!e.full_circle && (s1 == 0 || s2 == 0)) return std::nullopt;
+    count += in_sector(e, s1, s2, true) ? 1 : 0;
+  }
+  return count;
+}
+
+bool on_edge(const PlacedEdge& e, const Point& p) {
+  if (!e.arc) {
+    Point d = minus(e.target, e.source);
+    return sgn(cross(d, minus(p, e.source))) == 0 && sgn(dot(minus(p, e.source), d)) >= 0 &&
+           sgn(dot(minus(p, e.target), d)) <= 0;
+  }
+  Point w = minus(p, e.center);
+  return dot(w, w) == e.radius_squared && in_sector(e, sgn(cross(e.from, w)), sgn(cross(w, e.to)), false);
+}
+
+}  // namespace
+
+Point ExactMap::rotate(const Point& v) const { return Point{Rational(c * v.x - s * v.y), Rational(s * v.x + c * v.y)}; }
+Point ExactMap::apply(const Point& p) const { return plus(plus(pivot, rotate(minus(p, pivot))), shift); }
+
+PlacedPart place(const Part& part, const ExactMap& map) {
+  PlacedPart placed{part.name, {}};
+  for (const Loop& loop : part.loops) {
+    std::vector<PlacedEdge>& edges = placed.loops.emplace_back();
+    for (const Edge& edge : loop.edges) {
+      PlacedEdge e;
+      e.arc = edge.is_arc();
+      e.full_circle = edge.is_full_circle();
+      e.source = map.apply(edge.source);
+      e.target = map.apply(edge.target);
+      if (e.arc) {
+        e.center = map.apply(edge.center);
+        e.radius_squared = edge.radius_squared;
+        e.from = minus(edge.ccw ? e.source : e.target, e.center);
+        e.to = minus(edge.ccw ? e.target : e.source, e.center);
+        e.reflex = sgn(cross(e.from, e.to)) < 0;
+      }
+      edges.push_back(std::move(e));
+    }
+  }
+  return placed;
+}
+
+int sign_with_root(const Rational& a, const Rational& b, const Rational& d) {
+  int sa = sgn(a), sb = sgn(b);
+  if (sb == 0 || sgn(d) == 0) return sa;
+  if (sa == 0 || sa == sb) return sb;
+  int c = cmp(Rational(a * a), Rational(b * b * d));   // |a| vs |b| sqrt(d)
+  return c > 0 ? sa : (c < 0 ? sb : 0);
+}
+
+bool in_sector(const PlacedEdge& arc, int s1, int s2, bool open) {
+  if (arc.full_circle) return true;
+  bool first = open ? s1 > 0 : s1 >= 0, second = open ? s2 > 0 : s2 >= 0;
+  return arc.reflex ? (first || second) : (first && second);
+}
+
+int locate(const PlacedPart& part, const Point& p) {
+  for (const auto& loop : part.loops)
+    for (const PlacedEdge& e : loop)
+      if (on_edge(e, p)) return 0;
+  // Ray casting: the parity of the crossings of a ray with the boundary is 1 inside the
+  // material (loops nest as outer / hole / island ...). Directions hitting a vertex or a
+  // tangency are skipped.
+  for (int k = 0; k < 64; ++k) {
+    Point v{Rational(7), Rational(2 * k - 63)};   // 64 distinct directions
+    int count = 0;
+    bool degenerate = false;
+    for (const auto& loop : part.loops)
+      for (const PlacedEdge& e : loop) {
+        std::optional<int> crossings = degenerate ? std::optional<int>(0) : ray_crossings(e, p, v);
+        if (!crossings) degenerate = true;
+        else count += *crossings;
+      }
+    if (!degenerate) return count % 2 ? 1 : -1;
+  }
+  throw Rejection{"point location failed: every ray tried passes through a vertex of part '" + part.name + "'"};
+}
+
+bool edges_cross(const PlacedEdge& e, const PlacedEdge& g) {
+  if (!e.arc && !g.arc) {
+    auto orient = [](const Point& a, const Point& b, const Point& c) { return sgn(cross(minus(b, a), minus(c, a))); };
+    return orient(e.source, e.target, g.source) * orient(e.source, e.target, g.target) < 0 &&
+           orient(g.source, g.target, e.source) * orient(g.source, g.target, e.target) < 0;
+  }
+  if (!e.arc || !g.arc) {
+    const PlacedEdge& segment = e.arc ? g : e;
+    const PlacedEdge& arc = e.arc ? e : g;
+    LineCircle line = line_circle(segment.source, minus(segment.target, segment.source), arc.center, arc.radius_squared);
+    if (sgn(line.discriminant) <= 0) return false;   // no crossing, or a tangency (not transversal)
+    for (int sigma : {-1, 1})
+      if (line.lambda_sign(sigma) > 0 && line.lambda_sign(sigma, 1) < 0 && root_in_sector(line, sigma, arc, true))
+        return true;
+    return false;
+  }
+  Point axis = minus(g.center, e.center);
+  Rational length2 = dot(axis, axis);
+  if (sgn(length2) == 0) return false;   // concentric circles never cross transversally
+  // The common points lie on the radical line c1 + k axis + lambda perp(axis).
+  Rational k = (1 + (e.radius_squared - g.radius_squared) / length2) / 2;
+  LineCircle line = line_circle(plus(e.center, times(k, axis)), Point{Rational(-axis.y), axis.x}, e.center,
+                                e.radius_squared);
+  if (sgn(line.discriminant) <= 0) return false;
+  Point shift = minus(e.center, g.center);   // from e's centre to g's centre frame
+  for (int sigma : {-1, 1})
+    if (root_in_sector(line, sigma, e, true) && root_in_sector(line, sigma, g, true, shift)) return true;
+  return false;
+}
+
+std::string overlap_evidence(const PlacedPart& a, const PlacedPart& b) {
+  for (std::size_t i = 0; i < a.loops.size(); ++i)
+    for (std::size_t j = 0; j < a.loops[i].size(); ++j)
+      for (std::size_t k = 0; k < b.loops.size(); ++k)
+        for (std::size_t l = 0; l < b.loops[k].size(); ++l)
+          if (edges_cross(a.loops[i][j], b.loops[k][l]))
+            return "loop " + std::to_string(i) + " edge " + std::to_string(j) + " of '" + a.name + "' crosses loop " +
+                   std::to_string(k) + " edge " + std::to_string(l) + " of '" + b.name + "'";
+  for (int side = 0; side < 2; ++side) {
+    const PlacedPart& inner = side ? b : a;
+    const PlacedPart& outer = side ? a : b;
+    for (std::size_t i = 0; i < inner.loops.size(); ++i)
+      if (!inner.loops[i].empty() && locate(outer, inner.loops[i][0].source) > 0)
+        return "a vertex of loop " + std::to_string(i) + " of '" + inner.name + "' lies inside '" + outer.name + "'";
+  }
+  return "";
+}
+
+}  // namespace hipair::verify

@@ -1,0 +1,314 @@
+// Certified numeric geometry of the verifier (see interval_geometry.hpp). Every quantity is an
+// MPFI enclosure; a decision is taken only when the enclosure makes it certain, otherwise the
+// conservative answer is used (distance candidates kept, "may intersect" => distance 0).
+#include "certify/interval_geometry.hpp"
+
+#include <algorithm>
+
+namespace hipair::verify {
+namespace {
+
+using P = IntervalPoint;
+
+Interval unary(int (*operation)(mpfi_ptr, mpfi_srcptr), const Interval& a) {
+  Interval result;
+  operation(result.get(), a.get());
+  return result;
+}
+Interval sqr(const Interval& a) { return unary(mpfi_sqr, a); }
+Interval absolute(const Interval& a) { return unary(mpfi_abs, a); }
+Interval root(const Interval& a) {   // sqrt of the non-negative part of a
+  if (mpfi_is_nonneg(a.get()) > 0) return unary(mpfi_sqrt, a);
+  mpfr_t right;
+  mpfr_init2(right, model_detail::interval_bits);
+  mpfi_get_right(right, a.get());
+  Interval clipped(Rational(0));
+  if (mpfr_sgn(right) > 0) mpfi_put_fr(clipped.get(), right);
+  mpfr_clear(right);
+  return unary(mpfi_sqrt, clipped);
+}
+Interval hull(const Interval& a, const Interval& b) {
+  Interval result(a);
+  mpfi_put(result.get(), b.get());
+  return result;
+}
+bool certainly_positive(const Interval& a) { return a.sign() > 0; }
+bool possibly_nonnegative(const Interval& a) { return a.sign() >= 0; }
+
+P operator-(const P& a, const P& b) { return P{a.x - b.x, a.y - b.y}; }
+P operator+(const P& a, const P& b) { return P{a.x + b.x, a.y + b.y}; }
+P scale(const Interval& k, const P& a) { return P{k * a.x, k * a.y}; }
+Interval cross(const P& a, const P& b) { return a.x * b.y - a.y * b.x; }
+Interval dot(const P& a, const P& b) { return a.x * b.x + a.y * b.y; }
+Interval norm(const P& a) { return root(sqr(a.x) + sqr(a.y)); }
+P exact(const Point& p) { return P{Interval(p.x), Interval(p.y)}; }
+
+P apply(const IntervalMap& map, const Point& p) {
+  Interval dx(Rational(p.x - map.pivot.x)), dy(Rational(p.y - map.pivot.y));
+  return P{Interval(map.pivot.x) + map.c * dx - map.s * dy + map.shift.x,
+           Interval(map.pivot.y) + map.s * dx + map.c * dy + map.shift.y};
+}
+P rotate(const IntervalMap& map, const Point& v) {
+  Interval x(v.x), y(v.y);
+  return P{map.c * x - map.s * y, map.s * x + map.c * y};
+}
+
+// Direction w (from an arc's centre) in the arc's sector: possibly (closed) or certainly (open).
+bool possibly_in_sector(const IntervalEdge& arc, const P& w) {
+  if (arc.full_circle) return true;
+  bool first = possibly_nonnegative(cross(arc.from, w)), second = possibly_nonnegative(cross(w, arc.to));
+  return arc.reflex ? (first || second) : (first && second);
+}
+bool certainly_in_open_sector(const IntervalEdge& arc, const P& w) {
+  if (arc.full_circle) return true;
+  bool first = certainly_positive(cross(arc.from, w)), second = certainly_positive(cross(w, arc.to));
+  return arc.reflex ? (first || second) : (first && second);
+}
+
+// Lower bound of the distance from point p to edge e.
+Rational point_to_edge(const P& p, const IntervalEdge& e) {
+  Rational best = e.full_circle ? Rational(-1) : norm(p - e.source).lower();
+  if (!e.full_circle) best = std::min(best, norm(p - e.target).lower());
+  if (!e.arc) {
+    P d = e.target - e.source;
+    Interval u = dot(p - e.source, d) / dot(d, d);
+    if (possibly_nonnegative(u) && possibly_nonnegative(Interval(Rational(1)) - u))
+      best = std::min(best, (absolute(cross(d, p - e.source)) / norm(d)).lower());
+  } else if (possibly_in_sector(e, p - e.center)) {
+    Rational interior = absolute(norm(p - e.center) - e.radius).lower();
+    best = e.full_circle ? interior : std::min(best, interior);
+  }
+  return best;
+}
+
+// May the segment s and arc a have a common point?
+bool segment_arc_may_meet(const IntervalEdge& s, const IntervalEdge& a) {
+  P v = s.target - s.source, w = s.source - a.center;
+  Interval qa = dot(v, v), qb = dot(v, w), discriminant = sqr(qb) - qa * (dot(w, w) - a.radius_squared);
+  if (discriminant.sign() < 0) return false;
+  Interval r = root(discriminant);
+  for (const Interval& lambda : {(-qb - r) / qa, (-qb + r) / qa}) {
+    bool on_segment = possibly_nonnegative(lambda) && possibly_nonnegative(Interval(Rational(1)) - lambda);
+    if (on_segment && possibly_in_sector(a, w + scale(lambda, v))) return true;
+  }
+  return false;
+}
+
+bool arcs_may_meet(const IntervalEdge& e, const IntervalEdge& g) {
+  P axis = g.center - e.center;
+  Interval length2 = dot(axis, axis), length = root(length2);
+  if (certainly_positive(length - e.radius - g.radius)) return false;          // apart
+  if (certainly_positive(absolute(e.radius - g.radius) - length)) return false;  // nested
+  if (!certainly_positive(length2)) return true;                                  // (nearly) concentric
+  Interval k = (Interval(Rational(1)) + (e.radius_squared - g.radius_squared) / length2) / Interval(Rational(2));
+  Interval offset = root(e.radius_squared - sqr(k) * length2) / length;
+  P perpendicular{-axis.y, axis.x};
+  for (const Interval& sign : {Interval(Rational(-1)), Interval(Rational(1))}) {
+    P w = scale(k, axis) + scale(sign * offset, perpendicular);   // relative to e's centre
+    if (possibly_in_sector(e, w) && possibly_in_sector(g, w - axis)) return true;
+  }
+  return false;
+}
+
+bool edges_may_meet(const IntervalEdge& e, const IntervalEdge& g) {
+  if (!e.arc && !g.arc) {
+    auto side = [](const IntervalEdge& line, const P& p) { return cross(line.target - line.source, p - line.source).sign(); };
+    auto separates = [&](const IntervalEdge& line, const IntervalEdge& other) {
+      int a = side(line, other.source), b = side(line, other.target);
+      return a != 0 && a == b;
+    };
+    return !separates(e, g) && !separates(g, e);
+  }
+  if (!e.arc) return segment_arc_may_meet(e, g);
+  if (!g.arc) return segment_arc_may_meet(g, e);
+  return arcs_may_meet(e, g);
+}
+
+// Lower bound of the distance between edges e and g (0 when they may meet).
+Rational edge_distance(const IntervalEdge& e, const IntervalEdge& g) {
+  if (edges_may_meet(e, g)) return 0;
+  Rational best(-1);
+  auto consider = [&](const Rational& value) { best = (sgn(best) < 0) ? value : std::min(best, value); };
+  if (!e.full_circle) consider(std::min(point_to_edge(e.source, g), point_to_edge(e.target, g)));
+  if (!g.full_circle) consider(std::min(point_to_edge(g.source, e), point_to_edge(g.target, e)));
+  // Interior points of both at a common normal.
+  if (e.arc != g.arc) {
+    const IntervalEdge& s = e.arc ? g : e;
+    const IntervalEdge& a = e.arc ? e : g;
+    P d = s.target - s.source, w = a.center - s.source;
+    Interval u = dot(w, d) / dot(d, d);
+    P normal{-d.y, d.x};
+    if (possibly_nonnegative(u) && possibly_nonnegative(Interval(Rational(1)) - u) &&
+        (possibly_in_sector(a, normal) || possibly_in_sector(a, scale(Interval(Rational(-1)), normal))))
+      consider(absolute(absolute(cross(d, w)) / norm(d) - a.radius).lower());
+  } else if (e.arc && g.arc) {
+    P axis = g.center - e.center;
+    Interval length = norm(axis);
+    if (!certainly_positive(length)) {
+      consider(absolute(e.radius - g.radius).lower());
+    } else {
+      for (int sign_e : {-1, 1})
+        for (int sign_g : {-1, 1}) {
+          Interval se{Rational(sign_e)}, sg{Rational(sign_g)};
+          if (possibly_in_sector(e, scale(se, axis)) && possibly_in_sector(g, scale(sg, axis)))
+            consider(absolute(length + sg * g.radius - se * e.radius).lower());
+        }
+    }
+  }
+  return best;
+}
+
+Rational disc_gap(const P& c1, const Interval& r1, const P& c2, const Interval& r2) {
+  return (norm(c1 - c2) - r1 - r2).lower();
+}
+
+}  // namespace
+
+IntervalMap to_interval_map(const ExactMap& map) {
+  return IntervalMap{Interval(map.c), Interval(map.s), map.pivot, exact(map.shift)};
+}
+
+IntervalMap rotation_over(const Point& pivot, const RationalInterval& angle) {
+  Interval theta(angle.lo);
+  mpfi_put_q(theta.get(), const_cast<mpq_ptr>(angle.hi.get_mpq_t()));
+  IntervalMap map;
+  mpfi_cos(map.c.get(), theta.get());
+  mpfi_sin(map.s.get(), theta.get());
+  map.pivot = pivot;
+  return map;
+}
+
+IntervalMap translation_over(const Point& direction, const RationalInterval& offset) {
+  Interval s(offset.lo);
+  mpfi_put_q(s.get(), const_cast<mpq_ptr>(offset.hi.get_mpq_t()));
+  IntervalMap map;
+  map.shift = scale(s, exact(direction));
+  return map;
+}
+
+IntervalPart place_over(const Part& part, const IntervalMap& map) {
+  IntervalPart placed{part.name, {}, {}};
+  constexpr std::size_t group_size = 8;
+  for (std::size_t l = 0; l < part.loops.size(); ++l) {
+    std::vector<IntervalEdge>& edges = placed.loops.emplace_back();
+    for (const Edge& edge : part.loops[l].edges) {
+      IntervalEdge e;
+      e.arc = edge.is_arc();
+      e.full_circle = edge.is_full_circle();
+      e.ccw = edge.ccw;
+      e.source = apply(map, edge.source);
+      e.target = apply(map, edge.target);
+      Point chord_middle{Rational((edge.source.x + edge.target.x) / 2), Rational((edge.source.y + edge.target.y) / 2)};
+      Interval half_chord = norm(exact(edge.target) - exact(edge.source)) / Interval(Rational(2));
+      e.disc_center = apply(map, chord_middle);
+      e.disc_radius = half_chord;
+      if (e.arc) {
+        Point from = edge.ccw ? edge.source : edge.target, to = edge.ccw ? edge.target : edge.source;
+        Point body_from{Rational(from.x - edge.center.x), Rational(from.y - edge.center.y)};
+        Point body_to{Rational(to.x - edge.center.x), Rational(to.y - edge.center.y)};
+        e.center = apply(map, edge.center);
+        e.radius_squared = Interval(edge.radius_squared);
+        e.radius = root(e.radius_squared);
+        e.from = rotate(map, body_from);
+        e.to = rotate(map, body_to);
+        Rational turn = body_from.x * body_to.y - body_from.y * body_to.x;
+        e.reflex = sgn(turn) < 0;
+        Interval angle;
+        mpfi_atan2(angle.get(), Interval(turn).get(), Interval(Rational(body_from.x * body_to.x + body_from.y * body_to.y)).get());
+        Interval turn_twice = Interval::pi() * Interval(Rational(2));
+        e.sweep = e.full_circle ? turn_twice : (e.reflex ? angle + turn_twice : angle);
+        if (e.full_circle || e.reflex) {   // else the arc lies in the disc on its chord
+          e.disc_center = e.center;
+          e.disc_radius = e.radius;
+        }
+      }
+      edges.push_back(std::move(e));
+    }
+    for (std::size_t first = 0; first < edges.size(); first += group_size) {
+      std::size_t last = std::min(edges.size(), first + group_size);
+      P sum{Interval(Rational(0)), Interval(Rational(0))};
+      for (std::size_t i = first; i < last; ++i) sum = sum + edges[i].disc_center;
+      P center = scale(Interval(Rational(1, long(last - first))), sum);
+      Interval radius(Rational(0));
+      for (std::size_t i = first; i < last; ++i)
+        radius = hull(radius, norm(edges[i].disc_center - center) + edges[i].disc_radius);
+      Interval upper(radius.upper());
+      placed.groups.push_back({l, first, last, center, upper});
+    }
+  }
+  return placed;
+}
+
+Rational boundary_distance_lower_bound(const IntervalPart& a, const IntervalPart& b, const Rational& enough,
+                                       std::string* closest) {
+  Rational best = enough;
+  for (const auto& ga : a.groups)
+    for (const auto& gb : b.groups) {
+      if (disc_gap(ga.center, ga.radius, gb.center, gb.radius) >= best) continue;
+      for (std::size_t i = ga.first; i < ga.last; ++i)
+        for (std::size_t j = gb.first; j < gb.last; ++j) {
+          const IntervalEdge& e = a.loops[ga.loop][i];
+          const IntervalEdge& g = b.loops[gb.loop][j];
+          if (disc_gap(e.disc_center, e.disc_radius, g.disc_center, g.disc_radius) >= best) continue;
+          Rational distance = edge_distance(e, g);
+          if (distance < best) {
+            best = distance;
+            if (closest)
+              *closest = "loop " + std::to_string(ga.loop) + " edge " + std::to_string(i) + " of '" + a.name +
+                         "' and loop " + std::to_string(gb.loop) + " edge " + std::to_string(j) + " of '" + b.name + "'";
+          }
+          if (sgn(best) <= 0) return best;
+        }
+    }
+  return best;
+}
+
+Rational reach(const Part& part, const Point& pivot) {
+  Rational best(0);
+  for (const Loop& loop : part.loops)
+    for (const Edge& edge : loop.edges) {
+      Interval distance = norm(exact(edge.source) - exact(pivot));
+      if (edge.is_arc()) distance = norm(exact(edge.center) - exact(pivot)) + root(Interval(edge.radius_squared));
+      best = std::max(best, distance.upper());
+    }
+  return best;
+}
+
+IntervalPoint point_on(const IntervalEdge& e, const Interval& u) {
+  if (!e.arc) return e.source + scale(u, e.target - e.source);
+  Interval c, s;
+  mpfi_cos(c.get(), u.get());
+  mpfi_sin(s.get(), u.get());
+  if (!e.ccw) s = -s;
+  P w = e.source - e.center;
+  return e.center + P{c * w.x - s * w.y, s * w.x + c * w.y};
+}
+
+Interval side_of(const IntervalEdge& g, const IntervalPoint& p) {
+  if (!g.arc) return cross(g.target - g.source, p - g.source);
+  return dot(p - g.center, p - g.center) - g.radius_squared;
+}
+
+bool crossing_certain(const IntervalEdge& e, const RationalInterval& along, const IntervalEdge& g, std::string* why) {
+  auto no = [&](const std::string& reason) {
+    if (why) *why = reason;
+    return false;
+  };
+  if (sgn(along.lo) < 0 || along.lo >= along.hi) return no("the piece 'along' must satisfy 0 <= lo < hi");
+  if (!e.arc && along.hi > 1) return no("a segment piece 'along' must lie in [0, 1]");
+  if (e.arc && (e.sweep - Interval(along.hi)).sign() <= 0)
+    return no("the arc piece 'along' is not certainly within the arc's angle");
+  int start = side_of(g, point_on(e, Interval(along.lo))).sign(), end = side_of(g, point_on(e, Interval(along.hi))).sign();
+  if (start == 0 || end == 0 || start == end)
+    return no("the ends of the piece are not certainly on opposite sides of the other edge's " +
+              std::string(g.arc ? "circle" : "line"));
+  Interval piece(along.lo);
+  mpfi_put_q(piece.get(), const_cast<mpq_ptr>(along.hi.get_mpq_t()));
+  P q = point_on(e, piece);
+  bool within = g.arc ? certainly_in_open_sector(g, q - g.center)
+                      : certainly_positive(dot(q - g.source, g.target - g.source)) &&
+                            certainly_positive(dot(q - g.target, g.source - g.target));
+  return within ? true : no("the piece does not certainly stay within the other edge's extent");
+}
+
+}  // namespace hipair::verify

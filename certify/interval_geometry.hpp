@@ -1,0 +1,81 @@
+// The verifier's certified numeric geometry (MPFI, 256 bits): parts posed over sets of poses
+// (an angle or offset interval), lower bounds of the distance between two posed boundaries, and
+// crossings of two edges that hold for every pose of a set.
+#pragma once
+
+#include "certify/exact_geometry.hpp"
+#include "model/interval.hpp"
+
+#include <hipair/model.hpp>
+
+#include <string>
+#include <vector>
+
+namespace hipair::verify {
+
+using model_detail::Interval;
+
+struct IntervalPoint {
+  Interval x, y;
+};
+
+/// A set of rigid maps p -> pivot + R (p - pivot) + shift with R = [c -s; s c], c and s and
+/// shift ranging over intervals.
+struct IntervalMap {
+  Interval c{Rational(1)}, s{Rational(0)};
+  Point pivot{Rational(0), Rational(0)};
+  IntervalPoint shift{Interval(Rational(0)), Interval(Rational(0))};
+};
+
+IntervalMap to_interval_map(const ExactMap& map);
+/// All rotations about `pivot` by angles in `angle` (rad).
+IntervalMap rotation_over(const Point& pivot, const RationalInterval& angle);
+/// All translations by offsets in `offset` along the unit vector `direction`.
+IntervalMap translation_over(const Point& direction, const RationalInterval& offset);
+
+/// An edge posed by an IntervalMap (arcs: ccw sector from `from` to `to`, see PlacedEdge), with
+/// a bounding disc (`disc_center`, `disc_radius`) used to skip far pairs.
+struct IntervalEdge {
+  bool arc = false, full_circle = false, reflex = false, ccw = true;
+  IntervalPoint source, target, center, from, to, disc_center;
+  Interval radius_squared, radius, sweep, disc_radius;
+};
+
+/// A posed part; `groups` bound runs of consecutive edges of a loop (culling).
+struct IntervalPart {
+  std::string name;
+  std::vector<std::vector<IntervalEdge>> loops;
+  struct Group {
+    std::size_t loop, first, last;
+    IntervalPoint center;
+    Interval radius;
+  };
+  std::vector<Group> groups;
+};
+
+IntervalPart place_over(const Part& part, const IntervalMap& map);
+
+/// A certified lower bound of the distance between the boundaries of the two posed parts,
+/// for every pose of their maps, capped at `enough` (pairs farther than `enough` are skipped).
+/// `closest` (optional) names the edge pair that gave the bound.
+Rational boundary_distance_lower_bound(const IntervalPart& a, const IntervalPart& b, const Rational& enough,
+                                       std::string* closest = nullptr);
+
+/// An upper bound of the distance of every point of `part` from `pivot` (its unposed geometry).
+Rational reach(const Part& part, const Point& pivot);
+
+/// The point of edge e at parameter u (segment fraction, or arc angle from the source in the
+/// arc's direction), for every pose and every u in the interval.
+IntervalPoint point_on(const IntervalEdge& e, const Interval& u);
+
+/// The side function of edge g's line (cross product with its direction) or circle
+/// (power of the point), whose sign tells on which side of g's support p lies.
+Interval side_of(const IntervalEdge& g, const IntervalPoint& p);
+
+/// True when, for every pose, the piece `along` of edge e (segment fraction, or arc angles from
+/// the source in the arc's direction) crosses edge g: its ends lie strictly on opposite sides
+/// of g's line or circle and the whole piece lies strictly within g's extent. Then a point of
+/// e's part lies strictly inside g's part. `why` receives the first condition that failed.
+bool crossing_certain(const IntervalEdge& e, const RationalInterval& along, const IntervalEdge& g, std::string* why);
+
+}  // namespace hipair::verify

@@ -1,0 +1,249 @@
+// HIPAIR — certificates: claims about a model (interference, clearance, jamming, free passage)
+// with witnesses that anyone can re-check with the small independent verifier `hipair-verify`
+// (certify/), without trusting HIPAIR's C-space, kernels or analysis code.
+//
+// A certificate names the model by the SHA-256 of its file bytes, lists the exact parameter
+// values used and every rounding the model reader performed, states one claim about a pair of
+// parts and carries the witnesses of that claim. The JSON format is described in
+// docs/certify.md; certify/certificate_format.hpp reads and writes it.
+//
+// Coordinates. A rotating part's angle theta (rad, counter-clockwise, 0 = as drawn in the
+// model) is given in single-configuration claims by the half-angle tangent
+// t = tan((theta - c)/2) with c = 0 or c = pi, so that cos and sin are rational and the posed
+// geometry is exact; interval claims (jam, free passage) use angle intervals in rad with
+// rational ends. A translating part's coordinate is its offset s (mm) along its direction.
+#pragma once
+
+#include <hipair/model.hpp>
+#include <hipair/rational.hpp>
+
+#include <cstddef>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace hipair {
+
+/// The kinds of claims a certificate can carry.
+enum class ClaimKind {
+  interference,  ///< the pair overlaps at one exact configuration
+  clearance,     ///< at one exact configuration the pair is at least `distance` apart
+  jam,           ///< driving the driver monotonically cannot pass a driver position
+  free_passage   ///< along a motion path over a driver range the pair stays `distance` apart
+};
+
+/// "interference", "clearance", "jam", "free_passage".
+std::string to_string(ClaimKind kind);
+
+/// The exact position of one moving part in a single-configuration claim.
+struct ExactPosition {
+  /// Rotation: t = tan((theta - c)/2), c = pi when `half_turn`, else 0. Translation: s (mm).
+  Rational value;
+  bool is_offset = false;   ///< a translation offset (JSON "offset") rather than a tangent ("tangent")
+  bool half_turn = false;
+  /// Optional (rotations): the angle (rad) the position stands for and a bound on
+  /// |theta - angle| (an irrational tangent is rounded). Checked by the verifier.
+  std::optional<Rational> angle;
+  std::optional<Rational> angle_error;
+};
+
+/// One boundary edge of a part, by index; `label` must equal the model edge's label.
+struct EdgeReference {
+  std::string part;
+  std::size_t loop = 0;
+  std::size_t edge = 0;
+  std::string label;
+};
+
+/// Two edges of different parts whose boundaries cross. A crossing proves that the parts
+/// overlap (a point of `edge` lies strictly inside the other part).
+struct CrossingWitness {
+  EdgeReference edge;
+  EdgeReference across;
+  /// Interval claims: the piece of `edge` that crosses `across` for every configuration of the
+  /// piece: a fraction [u1, u2] of a segment (0 = source, 1 = target), or angles [a1, a2]
+  /// (rad) from an arc's source in the arc's direction. Unused for single configurations
+  /// (the verifier then computes the crossing exactly).
+  std::optional<RationalInterval> along;
+};
+
+/// A piece of a jam wall: every configuration of the wall with its running coordinate in
+/// `range` is blocked because `crossing` crosses there.
+struct BlockedPiece {
+  RationalInterval range;
+  CrossingWitness crossing;
+};
+
+/// A box of configurations: driver coordinate in `driver`, follower coordinate in `follower`
+/// (absent when the other part of the pair is fixed). Angles in rad, offsets in mm.
+struct ConfigurationBox {
+  RationalInterval driver;
+  std::optional<RationalInterval> follower;
+};
+
+/// The value of one model parameter used for the claim.
+struct ParameterValue {
+  std::string name;
+  Rational value;           ///< the rational used (the model's nominal when not overridden)
+  bool overridden = false;  ///< given through ReadOptions::parameter_values
+};
+
+/// A certificate: model identity, one claim about a pair of parts, its witnesses.
+struct Certificate {
+  ClaimKind claim = ClaimKind::interference;
+  std::string statement;   ///< the claim in words (not checked)
+
+  std::string model_name;
+  std::string model_file;  ///< file name as certified (not checked: the hash identifies it)
+  std::string content_hash;
+  std::vector<ParameterValue> parameters;   ///< every parameter of the model, in model order
+  std::vector<Rounding> roundings;          ///< every rounding of the model reader
+
+  std::string first;       ///< the pair's parts, by name
+  std::string second;
+
+  /// interference, clearance: the position of every moving part of the pair.
+  std::map<std::string, ExactPosition> configuration;
+  /// interference: a point strictly inside both parts (world, mm), or a crossing.
+  std::optional<Point> witness_point;
+  std::optional<CrossingWitness> witness_crossing;
+
+  /// clearance, free_passage: certified lower bound of the distance between the parts (mm).
+  Rational distance;
+
+  /// jam, free_passage: the driven part and the other moving part of the pair ("" if fixed).
+  std::string driver;
+  std::string follower;
+
+  /// free_passage: the driver range, the nominal path (driver, follower) as a polyline with
+  /// rational vertices (empty when the follower is absent), and boxes covering the path.
+  RationalInterval range;
+  std::vector<std::pair<Rational, Rational>> path;
+  std::vector<ConfigurationBox> boxes;
+
+  /// jam: the driver moves in `direction` (+1 increasing, -1 decreasing) inside `trap`; the
+  /// cut is the side of the trap at the far driver end, the walls its follower ends.
+  /// A wall is empty when the follower's motion limit closes that side.
+  int direction = +1;
+  ConfigurationBox trap;
+  std::vector<BlockedPiece> cut;          ///< range: follower (one piece, any range, for 1-D pairs)
+  std::vector<BlockedPiece> lower_wall;   ///< range: driver; follower = trap.follower->lo
+  std::vector<BlockedPiece> upper_wall;   ///< range: driver; follower = trap.follower->hi
+};
+
+/// What the producer needs besides the model.
+struct CertifyContext {
+  /// The parameter overrides the model was read with (ReadOptions::parameter_values).
+  std::map<std::string, Rational> parameter_values;
+};
+
+/// Positions of the pair's moving parts for single-configuration claims: the angle of a
+/// rotating part (rad, rounded to an exact half-angle tangent within 1e-15 rad and recorded)
+/// or the offset of a translating part (mm).
+using PartValues = std::map<std::string, Rational>;
+
+/// An exact position from an angle (rad): the half-angle tangent rounded to a rational (the
+/// chart centred at pi when |angle| > pi/2), with `angle` and its error bound recorded.
+ExactPosition exact_position_from_angle(const Rational& angle);
+
+/// Certifies that parts `first` and `second` overlap at `positions` (every moving part of the
+/// pair; rotations by ExactPosition). Witness: a rational point strictly inside both (from the
+/// exact overlap predicate), else a transversal crossing of two boundary edges. The result is
+/// re-checked with the verifier's own code before it is returned.
+/// \returns nullopt when the parts do not overlap there (apart or only touching).
+/// \throws ModelError for unknown parts, GeometryError for parts that are not fixed-axis parts.
+std::optional<Certificate> certify_interference(const Model& model, const std::string& first,
+                                                const std::string& second,
+                                                const std::map<std::string, ExactPosition>& positions,
+                                                const CertifyContext& context = {});
+
+/// Certifies that the pair is at least `distance` apart at `positions`; when `distance` is
+/// absent, the largest certified lower bound found (rounded down to 6 significant digits).
+/// \returns nullopt when the parts touch or overlap there, or the bound cannot be certified.
+std::optional<Certificate> certify_clearance(const Model& model, const std::string& first,
+                                             const std::string& second,
+                                             const std::map<std::string, ExactPosition>& positions,
+                                             std::optional<Rational> distance = std::nullopt,
+                                             const CertifyContext& context = {});
+
+/// A motion path for free passage: the follower coordinate as a polyline of the driver
+/// coordinate (rational vertices, rad or mm). Empty for a pair with a fixed part.
+struct PassagePath {
+  std::string driver;
+  std::string follower;    ///< "" when the pair's other part is fixed
+  RationalInterval range;  ///< driver range
+  std::vector<std::pair<Rational, Rational>> polyline;
+};
+
+/// Options of the interval searches (free passage, jam).
+struct IntervalSearchOptions {
+  std::size_t max_boxes = 200000;   ///< give up beyond this many boxes / pieces
+};
+
+/// Certifies that along `path` the pair never overlaps and stays at least `distance` apart
+/// (absent: half the smallest clearance sampled along the path, rounded down). The driver
+/// range is covered by boxes, each certified with interval arithmetic and a Lipschitz bound.
+/// \returns nullopt when the parts come closer than the distance (or touch) on the path.
+std::optional<Certificate> certify_free_passage(const Model& model, const std::string& first,
+                                                const std::string& second, const PassagePath& path,
+                                                std::optional<Rational> distance = std::nullopt,
+                                                const CertifyContext& context = {},
+                                                const IntervalSearchOptions& options = {});
+
+/// A jam to certify: the driver moving in `direction` cannot leave the trap box except by
+/// passing the cut at its far driver end, and every configuration of the cut and of the
+/// follower walls is blocked.
+struct JamQuery {
+  std::string driver;
+  std::string follower;    ///< "" when the pair's other part is fixed
+  int direction = +1;
+  ConfigurationBox trap;
+};
+
+/// Certifies the jam described by `query` by covering the cut and the walls with pieces, each
+/// blocked by a crossing feature pair (interval arithmetic). A wall at or beyond the follower's
+/// motion limit needs no pieces. \returns nullopt when some part of the cut or walls is not
+/// certainly blocked.
+std::optional<Certificate> certify_jam(const Model& model, const std::string& first,
+                                       const std::string& second, const JamQuery& query,
+                                       const CertifyContext& context = {},
+                                       const IntervalSearchOptions& options = {});
+
+/// Looks for the trap of a jam: starting from the driver at `start` with the follower at
+/// `follower_start` (both rad or mm; the follower ignored for a pair with a fixed part), the
+/// driver is moved in `direction` by steps of `step` up to `travel`; the follower's free
+/// interval around its position is tracked with the exact overlap predicate. When it closes,
+/// returns the trap box around the closing (for certify_jam); nullopt when it never closes.
+std::optional<JamQuery> find_jam(const Model& model, const std::string& first,
+                                 const std::string& second, const std::string& driver,
+                                 const Rational& start, const Rational& follower_start,
+                                 int direction, const Rational& step, const Rational& travel);
+
+/// The certificate as JSON text (docs/certify.md).
+std::string write_certificate(const Certificate& certificate);
+
+/// Reads a certificate from JSON text. \throws ModelError (pointer into the certificate).
+Certificate read_certificate(std::string_view json_text);
+
+/// The outcome of checking a certificate.
+struct VerificationResult {
+  bool valid = false;
+  std::string summary;   ///< valid: one line describing what was certified
+  std::string reason;    ///< invalid: the exact reason
+};
+
+/// Checks `certificate` against `model` with the verifier's own code (the code `hipair-verify`
+/// runs): the model must have been read with the certificate's parameter values.
+/// Does not check the content hash (the model text is not at hand; see verify_certificate_file).
+VerificationResult check_certificate(const Certificate& certificate, const Model& model);
+
+/// Everything `hipair-verify CERTIFICATE MODEL` does: reads the certificate, checks the model
+/// file's SHA-256 against it, reads the model with the certificate's parameter values (which
+/// must lie within their tolerances) and checks the claim. I/O failures are reported as
+/// invalid with the reason.
+VerificationResult verify_certificate_file(const std::filesystem::path& certificate,
+                                           const std::filesystem::path& model);
+
+}  // namespace hipair

@@ -1,0 +1,331 @@
+// Certificates over intervals of configurations: free passage (boxes along a path, each with a
+// certified clearance) and jamming (a trap whose cut and walls are covered by blocked pieces),
+// and a simple search for the trap of a jam.
+#include "certify/producer.hpp"
+
+#include "cspace/overlap.hpp"
+
+#include <hipair/error.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+namespace hipair {
+namespace {
+
+using namespace certify_detail;
+using verify::Interval;
+using verify::IntervalEdge;
+using verify::IntervalPart;
+
+struct PairRoles {
+  const Part* driver;
+  const Part* other;
+  bool has_follower;
+};
+
+PairRoles pair_roles(const Model& model, const std::string& first, const std::string& second, const std::string& driver,
+                     const std::string& follower) {
+  if (driver != first && driver != second) throw ModelError("/pairs", "the driver '" + driver + "' is not a part of the pair");
+  const Part& d = part_of(model, driver);
+  const Part& o = part_of(model, driver == first ? second : first);
+  if (d.motion.kind == Motion::Kind::fixed) throw ModelError(d.pointer, "the driver '" + driver + "' is fixed");
+  bool moves = o.motion.kind != Motion::Kind::fixed;
+  if (moves && !follower.empty() && follower != o.name) throw ModelError(o.pointer, "the follower must be '" + o.name + "'");
+  if (!moves && !follower.empty()) throw ModelError(o.pointer, "part '" + o.name + "' is fixed: no follower");
+  return PairRoles{&d, &o, moves};
+}
+
+double mid(const Interval& value) { return mpfi_get_d(value.get()); }
+Rational middle(const RationalInterval& range) { return (range.lo + range.hi) / 2; }
+Rational reach_of(const Part& part) {
+  return part.motion.kind == Motion::Kind::rotation ? verify::reach(part, part.motion.pivot) : Rational(1);
+}
+
+// Lower bound of the clearance with the driver at x and the other part at y (ignored if fixed).
+Rational clearance_at(const PairRoles& r, const Rational& x, const Rational& y, const Rational& enough) {
+  IntervalPart driver = verify::place_over(*r.driver, interval_map(*r.driver, {x, x}));
+  IntervalPart other = verify::place_over(*r.other, r.has_follower ? interval_map(*r.other, {y, y}) : verify::IntervalMap{});
+  return verify::boundary_distance_lower_bound(driver, other, enough);
+}
+
+Rational path_value(const std::vector<std::pair<Rational, Rational>>& path, const Rational& x) {
+  if (path.empty()) return 0;
+  for (std::size_t i = 1; i < path.size(); ++i)
+    if (x <= path[i].first) {
+      const auto &p = path[i - 1], &q = path[i];
+      return p.second + (q.second - p.second) * (x - p.first) / (q.first - p.first);
+    }
+  return path.back().second;
+}
+
+RationalInterval path_image(const std::vector<std::pair<Rational, Rational>>& path, const Rational& lo, const Rational& hi) {
+  Rational a = path_value(path, lo), b = path_value(path, hi);
+  RationalInterval image{std::min(a, b), std::max(a, b)};
+  for (const auto& vertex : path)
+    if (vertex.first > lo && vertex.first < hi) {
+      image.lo = std::min(image.lo, vertex.second);
+      image.hi = std::max(image.hi, vertex.second);
+    }
+  return image;
+}
+
+// ------------------------------------------------------------------------------ crossings
+struct Placed {
+  IntervalPart over;     // posed over the whole box
+  IntervalPart centre;   // posed at the box centre
+};
+
+Placed place_box(const Part& part, const std::optional<RationalInterval>& range) {
+  if (!range) return Placed{verify::place_over(part, {}), verify::place_over(part, {})};
+  Rational c = middle(*range);
+  return Placed{verify::place_over(part, interval_map(part, *range)), verify::place_over(part, interval_map(part, {c, c}))};
+}
+
+// A piece of edge e (posed at the centre: ec, over the box: eo) crossing g, for every pose.
+std::optional<RationalInterval> crossing_piece(const IntervalEdge& ec, const IntervalEdge& eo, const IntervalEdge& gc,
+                                               const IntervalEdge& go) {
+  double end = ec.arc ? mid(ec.sweep) : 1.0;
+  auto side = [&](double u) { return mid(verify::side_of(gc, verify::point_on(ec, Interval(approximate(u))))); };
+  constexpr int samples = 32;
+  double previous = side(0);
+  for (int i = 1; i <= samples; ++i) {
+    double u0 = end * (i - 1) / samples, u1 = end * i / samples, value = side(u1);
+    if ((previous < 0) == (value < 0) || previous == 0 || value == 0) {
+      previous = value;
+      continue;
+    }
+    double lo = u0, hi = u1, lo_value = previous;
+    for (int k = 0; k < 50; ++k) {
+      double m = 0.5 * (lo + hi), v = side(m);
+      if ((v < 0) == (lo_value < 0)) lo = m, lo_value = v;
+      else hi = m;
+    }
+    double root = 0.5 * (lo + hi);
+    for (double delta : {1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 1e-5, 1e-6, 1e-7}) {
+      double a = std::max(0.0, root - delta * end), b = std::min(end * (1 - 1e-9), root + delta * end);
+      if (!(a < b)) continue;
+      RationalInterval along{approximate(a), approximate(b)};
+      if (verify::crossing_certain(eo, along, go, nullptr)) return along;
+    }
+    previous = value;
+  }
+  return std::nullopt;
+}
+
+// A crossing blocking every configuration of the box (driver range x other range).
+std::optional<CrossingWitness> blocking_crossing(const PairRoles& r, const RationalInterval& driver_range,
+                                                 const std::optional<RationalInterval>& other_range) {
+  Placed driver = place_box(*r.driver, driver_range), other = place_box(*r.other, other_range);
+  for (int order = 0; order < 2; ++order) {
+    const Placed& e_part = order ? other : driver;
+    const Placed& g_part = order ? driver : other;
+    const Part& e_model = order ? *r.other : *r.driver;
+    const Part& g_model = order ? *r.driver : *r.other;
+    for (std::size_t i = 0; i < e_part.centre.loops.size(); ++i)
+      for (std::size_t j = 0; j < e_part.centre.loops[i].size(); ++j)
+        for (std::size_t k = 0; k < g_part.centre.loops.size(); ++k)
+          for (std::size_t l = 0; l < g_part.centre.loops[k].size(); ++l) {
+            const IntervalEdge &ec = e_part.centre.loops[i][j], &gc = g_part.centre.loops[k][l];
+            double dx = mid(ec.disc_center.x) - mid(gc.disc_center.x), dy = mid(ec.disc_center.y) - mid(gc.disc_center.y);
+            if (std::hypot(dx, dy) > mid(ec.disc_radius) + mid(gc.disc_radius) + 1e-6) continue;
+            auto along = crossing_piece(ec, e_part.over.loops[i][j], gc, g_part.over.loops[k][l]);
+            if (along)
+              return CrossingWitness{{e_model.name, i, j, e_model.loops[i].edges[j].label},
+                                     {g_model.name, k, l, g_model.loops[k].edges[l].label}, along};
+          }
+  }
+  return std::nullopt;
+}
+
+// Covers `range` left to right with pieces blocked over make_box(piece range).
+bool cover(const RationalInterval& range, std::vector<BlockedPiece>& pieces, std::size_t max_pieces,
+           const std::function<std::optional<CrossingWitness>(const RationalInterval&)>& blocked) {
+  std::vector<RationalInterval> stack{range};
+  while (!stack.empty()) {
+    RationalInterval piece = stack.back();
+    stack.pop_back();
+    if (auto crossing = blocked(piece)) {
+      pieces.push_back({piece, *crossing});
+      continue;
+    }
+    if (pieces.size() + stack.size() >= max_pieces || piece.hi - piece.lo < Rational(1, 1000000000000)) return false;
+    Rational m = middle(piece);
+    stack.push_back({m, piece.hi});
+    stack.push_back({piece.lo, m});
+  }
+  return true;
+}
+
+bool overlapping_at(const PairRoles& r, const Rational& x, const Rational& y) {
+  auto exact_of = [](const Part& part, const Rational& value) {
+    ExactPosition position = part.motion.kind == Motion::Kind::rotation ? exact_position_from_angle(value) : ExactPosition{value, true, false, {}, {}};
+    return exact_map(part, &position);
+  };
+  auto rigid = [](const verify::ExactMap& map) {
+    cspace::RigidMap result;
+    result.c = map.c;
+    result.s = map.s;
+    Point rotated = map.rotate(map.pivot);
+    result.offset = Point{Rational(map.pivot.x - rotated.x + map.shift.x), Rational(map.pivot.y - rotated.y + map.shift.y)};
+    return result;
+  };
+  verify::ExactMap other = r.has_follower ? exact_of(*r.other, y) : verify::ExactMap{};
+  return cspace::analyse_overlap(*r.driver, rigid(exact_of(*r.driver, x)), *r.other, rigid(other)).relation ==
+         cspace::Overlap::overlapping;
+}
+
+}  // namespace
+
+std::optional<Certificate> certify_free_passage(const Model& model, const std::string& first, const std::string& second,
+                                                const PassagePath& path, std::optional<Rational> distance,
+                                                const CertifyContext& context, const IntervalSearchOptions& options) {
+  Certificate c = start_certificate(model, context, ClaimKind::free_passage, first, second);
+  PairRoles r = pair_roles(model, first, second, path.driver, path.follower);
+  if (path.range.lo >= path.range.hi) throw NumericError("the driver range must have start < end");
+  c.driver = r.driver->name;
+  c.follower = r.has_follower ? r.other->name : "";
+  c.range = path.range;
+  if (r.has_follower) {
+    c.path = path.polyline;
+    if (c.path.size() < 2 || c.path.front().first != c.range.lo || c.path.back().first != c.range.hi)
+      throw NumericError("the follower path must run from the start to the end of the driver range");
+  }
+  Rational reach_driver = reach_of(*r.driver), reach_other = reach_of(*r.other);
+  Rational far(1000000000);
+  if (!distance) {
+    Rational smallest = far;
+    for (int i = 0; i <= 256; ++i) {
+      Rational x = c.range.lo + (c.range.hi - c.range.lo) * i / 256;
+      smallest = std::min(smallest, clearance_at(r, x, path_value(c.path, x), far));
+    }
+    if (sgn(smallest) <= 0) return std::nullopt;
+    distance = round_down(smallest / 2, 3);
+  }
+  c.distance = *distance;
+  std::vector<RationalInterval> stack{c.range};
+  while (!stack.empty()) {
+    RationalInterval piece = stack.back();
+    stack.pop_back();
+    RationalInterval image = r.has_follower ? path_image(c.path, piece.lo, piece.hi) : RationalInterval{0, 0};
+    Rational half_driver = (piece.hi - piece.lo) / 2, half_other = (image.hi - image.lo) / 2;
+    Rational needed = c.distance + reach_driver * half_driver + reach_other * half_other;
+    needed += c.boxes.empty() ? Rational(1, 1000000000000) : Rational(0);   // the verifier's nesting slack on box 0
+    Rational bound = clearance_at(r, middle(piece), middle(image), far);
+    if (bound >= needed) {
+      c.boxes.push_back({piece, r.has_follower ? std::optional<RationalInterval>(image) : std::nullopt});
+      continue;
+    }
+    if (bound <= c.distance || c.boxes.size() + stack.size() >= options.max_boxes) return std::nullopt;
+    // Split into enough pieces for the margin bound - distance to absorb the motion.
+    double slope = half_driver > 0 ? to_double(half_other / half_driver) : 0;
+    double allowed = to_double(bound - c.distance) / (to_double(reach_driver) + to_double(reach_other) * slope) * 0.8;
+    long parts = std::clamp(long(std::ceil(to_double(half_driver) / allowed)), 2L, 1024L);
+    for (long i = parts; i-- > 0;)
+      stack.push_back({piece.lo + (piece.hi - piece.lo) * i / parts, piece.lo + (piece.hi - piece.lo) * (i + 1) / parts});
+  }
+  std::string unit = r.driver->motion.kind == Motion::Kind::rotation ? " rad" : " mm";
+  c.statement = "Moving '" + c.driver + "' from " + to_decimal_string(c.range.lo) + " to " + to_decimal_string(c.range.hi) + unit +
+                (r.has_follower ? " with '" + c.follower + "' on the given path" : "") + ", parts '" + first + "' and '" +
+                second + "' never overlap and stay at least " + to_decimal_string(c.distance) + " mm apart.";
+  self_check(c, model);
+  return c;
+}
+
+std::optional<Certificate> certify_jam(const Model& model, const std::string& first, const std::string& second,
+                                       const JamQuery& query, const CertifyContext& context,
+                                       const IntervalSearchOptions& options) {
+  Certificate c = start_certificate(model, context, ClaimKind::jam, first, second);
+  PairRoles r = pair_roles(model, first, second, query.driver, query.follower);
+  if (r.has_follower != bool(query.trap.follower)) throw NumericError("the trap needs a follower range exactly when the follower moves");
+  c.driver = r.driver->name;
+  c.follower = r.has_follower ? r.other->name : "";
+  c.direction = query.direction >= 0 ? 1 : -1;
+  c.trap = query.trap;
+  Rational far = c.direction > 0 ? c.trap.driver.hi : c.trap.driver.lo;
+  RationalInterval cut_at{far, far};
+  if (!r.has_follower) {
+    auto crossing = blocking_crossing(r, cut_at, std::nullopt);
+    if (!crossing) return std::nullopt;
+    c.cut.push_back({{0, 0}, *crossing});
+  } else {
+    const RationalInterval& band = *c.trap.follower;
+    if (!cover(band, c.cut, options.max_boxes,
+               [&](const RationalInterval& piece) { return blocking_crossing(r, cut_at, piece); }))
+      return std::nullopt;
+    const auto& limits = r.other->motion.kind == Motion::Kind::rotation ? r.other->motion.angle_limits
+                                                                         : r.other->motion.translation_limits;
+    for (int upper = 0; upper < 2; ++upper) {
+      Rational at = upper ? band.hi : band.lo;
+      if (limits && (upper ? at >= limits->hi : at <= limits->lo)) continue;
+      RationalInterval wall_at{at, at};
+      if (!cover(c.trap.driver, upper ? c.upper_wall : c.lower_wall, options.max_boxes,
+                 [&](const RationalInterval& piece) { return blocking_crossing(r, piece, wall_at); }))
+        return std::nullopt;
+    }
+  }
+  std::string unit = r.driver->motion.kind == Motion::Kind::rotation ? " rad" : " mm";
+  c.statement = "Driving '" + c.driver + "' " + (c.direction > 0 ? "forward" : "backward") + " from within [" +
+                to_decimal_string(c.trap.driver.lo) + ", " + to_decimal_string(c.trap.driver.hi) + "]" + unit +
+                (r.has_follower ? ", '" + c.follower + "' stays trapped and" : ",") + " the motion cannot pass " +
+                to_decimal_string(far) + unit + ".";
+  self_check(c, model);
+  return c;
+}
+
+std::optional<JamQuery> find_jam(const Model& model, const std::string& first, const std::string& second,
+                                 const std::string& driver, const Rational& start, const Rational& follower_start,
+                                 int direction, const Rational& step, const Rational& travel) {
+  const Part& d = part_of(model, driver);
+  const Part& o = part_of(model, driver == first ? second : first);
+  PairRoles r = pair_roles(model, first, second, driver, o.motion.kind == Motion::Kind::fixed ? "" : o.name);
+  direction = direction >= 0 ? 1 : -1;
+  if (sgn(step) <= 0) throw NumericError("the step must be positive");
+  JamQuery query{d.name, r.has_follower ? o.name : "", direction, {}};
+  Rational x = start, f = follower_start;
+  if (overlapping_at(r, x, f)) throw GeometryError("the parts overlap at the start");
+  const auto& limits = o.motion.kind == Motion::Kind::rotation ? o.motion.angle_limits : o.motion.translation_limits;
+  Rational follower_step = step / 4, follower_span = o.motion.kind == Motion::Kind::rotation ? Rational(1) : Rational(10);
+  // The free run of follower positions around y at driver x, on the grid of follower_step.
+  auto channel = [&](const Rational& at, const Rational& y) {
+    RationalInterval run{y, y};
+    for (int side = -1; side <= 1; side += 2) {
+      Rational& end = side < 0 ? run.lo : run.hi;
+      while (true) {
+        Rational next = end + side * follower_step;
+        if (limits && (next < limits->lo || next > limits->hi)) { end = side < 0 ? limits->lo : limits->hi; break; }
+        if (abs(next - y) > follower_span) break;
+        end = next;
+        if (overlapping_at(r, at, next)) break;
+      }
+    }
+    return run;   // its ends are blocked (or at a limit, or follower_span away)
+  };
+  for (Rational moved = 0; moved < travel; moved += step) {
+    Rational next = x + direction * step;
+    if (!r.has_follower) {
+      if (overlapping_at(r, next, 0)) {
+        query.trap.driver = direction > 0 ? RationalInterval{x, next} : RationalInterval{next, x};
+        return query;
+      }
+    } else if (overlapping_at(r, next, f)) {
+      RationalInterval band = channel(x, f);
+      bool moved_on = false;
+      for (Rational y = band.lo; y <= band.hi && !moved_on; y += follower_step / 2)
+        if (!overlapping_at(r, next, y)) {
+          f = y;
+          moved_on = true;
+        }
+      if (!moved_on) {
+        query.trap.driver = direction > 0 ? RationalInterval{x, next} : RationalInterval{next, x};
+        query.trap.follower = band;
+        return query;
+      }
+    }
+    x = next;
+  }
+  return std::nullopt;
+}
+
+}  // namespace hipair

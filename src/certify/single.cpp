@@ -1,0 +1,219 @@
+// Certificates for single configurations: interference and clearance, and the helpers shared by
+// every producer (model identity, exact maps, self-check).
+#include "certify/producer.hpp"
+
+#include "cspace/overlap.hpp"
+#include "model/interval.hpp"
+
+#include <hipair/error.hpp>
+
+#include <cmath>
+#include <filesystem>
+
+namespace hipair {
+namespace certify_detail {
+
+const Part& part_of(const Model& model, const std::string& name) {
+  auto index = model.find_part(name);
+  if (!index) throw ModelError("/parts", "no part called '" + name + "'");
+  return model.parts[*index];
+}
+
+Certificate start_certificate(const Model& model, const CertifyContext& context, ClaimKind claim,
+                              const std::string& first, const std::string& second) {
+  part_of(model, first);
+  part_of(model, second);
+  if (first == second) throw ModelError("/pairs", "a pair needs two different parts");
+  Certificate c;
+  c.claim = claim;
+  c.model_name = model.name;
+  c.model_file = std::filesystem::path(model.source).filename().string();
+  c.content_hash = model.content_hash;
+  for (const Parameter& parameter : model.parameters) {
+    auto found = context.parameter_values.find(parameter.name);
+    bool overridden = found != context.parameter_values.end();
+    c.parameters.push_back({parameter.name, overridden ? found->second : parameter.nominal, overridden});
+  }
+  c.roundings = model.roundings;
+  c.first = first;
+  c.second = second;
+  return c;
+}
+
+void self_check(const Certificate& certificate, const Model& model) {
+  VerificationResult result = check_certificate(certificate, model);
+  if (!result.valid) throw NumericError("the certificate produced does not pass its own check: " + result.reason);
+}
+
+verify::ExactMap exact_map(const Part& part, const ExactPosition* position) {
+  verify::ExactMap map;
+  switch (part.motion.kind) {
+    case Motion::Kind::fixed: return map;
+    case Motion::Kind::rotation: {
+      if (!position) throw ModelError(part.pointer, "no position given for rotating part '" + part.name + "'");
+      const Rational& t = position->value;
+      Rational w = 1 + t * t;
+      int sign = position->half_turn ? -1 : 1;
+      map.c = sign * (1 - t * t) / w;
+      map.s = sign * 2 * t / w;
+      map.pivot = part.motion.pivot;
+      return map;
+    }
+    case Motion::Kind::translation:
+      if (!position) throw ModelError(part.pointer, "no position given for translating part '" + part.name + "'");
+      map.shift = Point{Rational(position->value * part.motion.direction.x), Rational(position->value * part.motion.direction.y)};
+      return map;
+    default:
+      throw GeometryError("part '" + part.name + "' is not a fixed-axis part: certificates cover fixed, rotating and translating parts");
+  }
+}
+
+verify::IntervalMap interval_map(const Part& part, const RationalInterval& range) {
+  switch (part.motion.kind) {
+    case Motion::Kind::fixed: return verify::IntervalMap{};
+    case Motion::Kind::rotation: return verify::rotation_over(part.motion.pivot, range);
+    case Motion::Kind::translation: return verify::translation_over(part.motion.direction, range);
+    default: throw GeometryError("part '" + part.name + "' is not a fixed-axis part");
+  }
+}
+
+Rational round_down(const Rational& value, int digits) {
+  if (sgn(value) == 0) return value;
+  int exponent = int(std::floor(std::log10(std::fabs(to_double(value))))) - digits + 1;
+  mpz_class scale;
+  mpz_ui_pow_ui(scale.get_mpz_t(), 10, unsigned(std::abs(exponent)));
+  Rational unit = exponent >= 0 ? Rational(scale) : Rational(1, 1) / Rational(scale);
+  Rational steps = value / unit;
+  mpz_class whole;
+  mpz_tdiv_q(whole.get_mpz_t(), steps.get_num_mpz_t(), steps.get_den_mpz_t());
+  return Rational(whole) * unit;
+}
+
+Rational approximate(double value) {
+  Rational result(value);   // exact binary value of the double
+  return result;
+}
+
+namespace {
+
+cspace::RigidMap to_rigid(const verify::ExactMap& map) {
+  cspace::RigidMap rigid;
+  rigid.c = map.c;
+  rigid.s = map.s;
+  Point rotated = map.rotate(map.pivot);
+  rigid.offset = Point{Rational(map.pivot.x - rotated.x + map.shift.x), Rational(map.pivot.y - rotated.y + map.shift.y)};
+  return rigid;
+}
+
+const ExactPosition* position_of(const std::map<std::string, ExactPosition>& positions, const Part& part) {
+  auto found = positions.find(part.name);
+  return found == positions.end() ? nullptr : &found->second;
+}
+
+// Only the moving parts of the pair keep a position.
+std::map<std::string, ExactPosition> pair_positions(const std::map<std::string, ExactPosition>& positions,
+                                                    const Part& a, const Part& b) {
+  std::map<std::string, ExactPosition> result;
+  for (const Part* part : {&a, &b})
+    if (part->motion.kind != Motion::Kind::fixed) {
+      const ExactPosition* position = position_of(positions, *part);
+      if (!position) throw ModelError(part->pointer, "no position given for moving part '" + part->name + "'");
+      ExactPosition copy = *position;
+      copy.is_offset = part->motion.kind == Motion::Kind::translation;
+      result[part->name] = copy;
+    }
+  return result;
+}
+
+std::string where(const Certificate& c) {
+  std::string text;
+  for (const auto& [part, position] : c.configuration)
+    text += (text.empty() ? "" : ", ") + part + " at " +
+            (position.is_offset ? to_decimal_string(position.value) + " mm"
+                                : (position.angle ? to_decimal_string(*position.angle) : "2 atan(" + to_exact_string(position.value) + ")") + " rad");
+  return text.empty() ? "their fixed positions" : text;
+}
+
+}  // namespace
+}  // namespace certify_detail
+
+using namespace certify_detail;
+
+ExactPosition exact_position_from_angle(const Rational& angle) {
+  using model_detail::Interval;
+  ExactPosition position;
+  position.angle = angle;
+  if (sgn(angle) == 0) {
+    position.angle_error = Rational(0);
+    return position;
+  }
+  double turns = std::round(to_double(angle) / (2 * M_PI));
+  Interval two_pi = Interval::pi() * Interval(Rational(2));
+  Interval reduced = Interval(angle) - two_pi * Interval(Rational(turns));
+  double approximate_angle = mpfi_get_d(reduced.get());
+  position.half_turn = std::fabs(approximate_angle) > M_PI / 2;
+  Interval shift = position.half_turn ? Interval::pi() * Interval(Rational(approximate_angle > 0 ? 1 : -1)) : Interval(Rational(0));
+  Interval half = (reduced - shift) / Interval(Rational(2)), tangent;
+  mpfi_tan(tangent.get(), half.get());
+  // Round t to a multiple of 10^-18: the angle moves by at most 2 * 10^-18 rad.
+  Rational grid(1, 1000000000000000000ul);
+  Rational steps = tangent.middle() / grid;
+  mpz_class whole;
+  mpz_fdiv_q(whole.get_mpz_t(), steps.get_num_mpz_t(), steps.get_den_mpz_t());
+  position.value = Rational(whole) * grid;
+  Interval back;
+  mpfi_atan(back.get(), Interval(position.value).get());
+  Interval error = (back - half) * Interval(Rational(2)), size;
+  mpfi_abs(size.get(), error.get());
+  position.angle_error = round_down(size.upper(), 2) * 2 + Rational(1, 1000000000000000000ul);
+  return position;
+}
+
+std::optional<Certificate> certify_interference(const Model& model, const std::string& first, const std::string& second,
+                                                const std::map<std::string, ExactPosition>& positions,
+                                                const CertifyContext& context) {
+  Certificate c = start_certificate(model, context, ClaimKind::interference, first, second);
+  const Part &a = part_of(model, first), &b = part_of(model, second);
+  c.configuration = pair_positions(positions, a, b);
+  verify::ExactMap map_a = exact_map(a, position_of(c.configuration, a)), map_b = exact_map(b, position_of(c.configuration, b));
+  cspace::OverlapOptions options;
+  options.want_witness = true;
+  cspace::OverlapReport report = cspace::analyse_overlap(a, to_rigid(map_a), b, to_rigid(map_b), options);
+  if (report.relation != cspace::Overlap::overlapping) return std::nullopt;
+  if (report.witness) {
+    c.witness_point = report.witness;
+  } else {   // a transversal crossing of two edges, found with the verifier's own predicate
+    verify::PlacedPart placed_a = verify::place(a, map_a), placed_b = verify::place(b, map_b);
+    for (std::size_t i = 0; i < a.loops.size() && !c.witness_crossing; ++i)
+      for (std::size_t j = 0; j < a.loops[i].edges.size() && !c.witness_crossing; ++j)
+        for (std::size_t k = 0; k < b.loops.size() && !c.witness_crossing; ++k)
+          for (std::size_t l = 0; l < b.loops[k].edges.size() && !c.witness_crossing; ++l)
+            if (verify::edges_cross(placed_a.loops[i][j], placed_b.loops[k][l]))
+              c.witness_crossing = CrossingWitness{{first, i, j, a.loops[i].edges[j].label},
+                                                   {second, k, l, b.loops[k].edges[l].label}, std::nullopt};
+    if (!c.witness_crossing) return std::nullopt;
+  }
+  c.statement = "Parts '" + first + "' and '" + second + "' overlap with " + where(c) + ".";
+  self_check(c, model);
+  return c;
+}
+
+std::optional<Certificate> certify_clearance(const Model& model, const std::string& first, const std::string& second,
+                                             const std::map<std::string, ExactPosition>& positions,
+                                             std::optional<Rational> distance, const CertifyContext& context) {
+  Certificate c = start_certificate(model, context, ClaimKind::clearance, first, second);
+  const Part &a = part_of(model, first), &b = part_of(model, second);
+  c.configuration = pair_positions(positions, a, b);
+  verify::ExactMap map_a = exact_map(a, position_of(c.configuration, a)), map_b = exact_map(b, position_of(c.configuration, b));
+  if (cspace::analyse_overlap(a, to_rigid(map_a), b, to_rigid(map_b)).relation != cspace::Overlap::apart) return std::nullopt;
+  Rational bound = verify::boundary_distance_lower_bound(verify::place_over(a, verify::to_interval_map(map_a)),
+                                                         verify::place_over(b, verify::to_interval_map(map_b)), Rational(1000000000));
+  if (sgn(bound) <= 0 || (distance && bound < *distance)) return std::nullopt;
+  c.distance = distance ? *distance : round_down(bound, 6);
+  c.statement = "Parts '" + first + "' and '" + second + "' are at least " + to_decimal_string(c.distance) + " mm apart with " +
+                where(c) + ".";
+  self_check(c, model);
+  return c;
+}
+
+}  // namespace hipair

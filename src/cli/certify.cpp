@@ -1,0 +1,190 @@
+// `hipair certify MODEL --claim interference|clearance|jam|free --out CERT`: produces a
+// certificate that hipair-verify re-checks independently (docs/certify.md).
+#include "cli/commands.hpp"
+#include "io/atomic_file.hpp"
+#include "model/interval.hpp"
+
+#include <hipair/certificate.hpp>
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+
+namespace hipair::cli {
+namespace {
+
+struct CertifyArguments {
+  std::string path, claim, out, pair, driver, trap;
+  std::vector<std::string> overrides, at;
+  std::string distance, from, to, follower_at, ratio, start, follower_start, step, travel;
+  int direction = 1;
+};
+
+// An exact literal; angles may end in "deg" (then converted to rad, rounded to 1e-18).
+Rational value_of(const std::string& text, bool angle, const std::string& option) {
+  try {
+    if (angle && text.size() > 3 && text.compare(text.size() - 3, 3, "deg") == 0) {
+      using model_detail::Interval;
+      Interval radians = Interval(parse_rational(text.substr(0, text.size() - 3))) * Interval::pi() / Interval(Rational(180));
+      Rational grid(1, 1000000000000000000ul), steps = radians.middle() / grid;
+      mpz_class whole;
+      mpz_fdiv_q(whole.get_mpz_t(), steps.get_num_mpz_t(), steps.get_den_mpz_t());
+      return Rational(whole) * grid;
+    }
+    return parse_rational(text);
+  } catch (const NumericError& error) {
+    throw ModelError("", option + " " + text + ": " + error.what() + " (exact literal; angles in rad or with 'deg')");
+  }
+}
+
+bool rotates(const Part& part) { return part.motion.kind == Motion::Kind::rotation; }
+Rational coordinate(const Part& part) { return rotates(part) ? part.initial.angle : part.initial.offset; }
+
+std::pair<std::string, std::string> pair_of(const Model& model, const std::string& text) {
+  if (text.empty()) {
+    if (model.pairs.empty()) throw ModelError("/pairs", "the model has no pairs: give --pair A:B");
+    return {model.parts[model.pairs[0].first].name, model.parts[model.pairs[0].second].name};
+  }
+  auto colon = text.find(':');
+  if (colon == std::string::npos) throw ModelError("", "--pair expects A:B, got '" + text + "'");
+  return {text.substr(0, colon), text.substr(colon + 1)};
+}
+
+const Part& part_named(const Model& model, const std::string& name) {
+  auto index = model.find_part(name);
+  if (!index) throw ModelError("/parts", "no part called '" + name + "'");
+  return model.parts[*index];
+}
+
+RationalInterval range_of(const std::string& text, bool angle, const std::string& option) {
+  auto colon = text.find(':');
+  if (colon == std::string::npos) throw ModelError("", option + " expects LO:HI, got '" + text + "'");
+  return {value_of(text.substr(0, colon), angle, option), value_of(text.substr(colon + 1), angle, option)};
+}
+
+int run(const CertifyArguments& arguments) {
+  ReadOptions options;
+  for (const std::string& assignment : arguments.overrides) {
+    auto equals = assignment.find('=');
+    if (equals == std::string::npos || equals == 0) throw ModelError("", "--set expects NAME=VALUE, got '" + assignment + "'");
+    options.parameter_values[assignment.substr(0, equals)] = value_of(assignment.substr(equals + 1), false, "--set");
+  }
+  Model model = read_model_file(arguments.path, options);
+  CertifyContext context{options.parameter_values};
+  auto [first, second] = pair_of(model, arguments.pair);
+  const Part &a = part_named(model, first), &b = part_named(model, second);
+  std::optional<Rational> distance;
+  if (!arguments.distance.empty()) distance = value_of(arguments.distance, false, "--distance");
+  std::optional<Certificate> certificate;
+  std::string failure;
+  if (arguments.claim == "interference" || arguments.claim == "clearance") {
+    std::map<std::string, Rational> values;
+    for (const Part* part : {&a, &b}) values[part->name] = coordinate(*part);
+    for (const std::string& assignment : arguments.at) {
+      auto equals = assignment.find('=');
+      if (equals == std::string::npos) throw ModelError("", "--at expects PART=VALUE, got '" + assignment + "'");
+      const Part& part = part_named(model, assignment.substr(0, equals));
+      values[part.name] = value_of(assignment.substr(equals + 1), rotates(part), "--at");
+    }
+    std::map<std::string, ExactPosition> positions;
+    for (const Part* part : {&a, &b})
+      if (part->motion.kind != Motion::Kind::fixed)
+        positions[part->name] = rotates(*part) ? exact_position_from_angle(values[part->name])
+                                               : ExactPosition{values[part->name], true, false, {}, {}};
+    if (arguments.claim == "interference") {
+      certificate = certify_interference(model, first, second, positions, context);
+      failure = "the parts do not overlap there";
+    } else {
+      certificate = certify_clearance(model, first, second, positions, distance, context);
+      failure = "the parts touch or overlap there, or are closer than the distance";
+    }
+  } else if (arguments.claim == "free" || arguments.claim == "jam") {
+    std::string driver_name = arguments.driver;
+    if (driver_name.empty()) driver_name = a.motion.kind != Motion::Kind::fixed ? a.name : b.name;
+    const Part& driver = part_named(model, driver_name);
+    const Part& other = driver.name == a.name ? b : a;
+    bool follows = other.motion.kind != Motion::Kind::fixed;
+    if (arguments.claim == "free") {
+      PassagePath path{driver.name, follows ? other.name : "", {}, {}};
+      path.range.lo = arguments.from.empty() ? coordinate(driver) : value_of(arguments.from, rotates(driver), "--from");
+      if (!arguments.to.empty()) path.range.hi = value_of(arguments.to, rotates(driver), "--to");
+      else if (rotates(driver)) path.range.hi = path.range.lo + Rational(6283185307179586, 1000000000000000);
+      else throw ModelError("", "give --to for a translating driver");
+      if (follows) {
+        Rational at = arguments.follower_at.empty() ? coordinate(other) : value_of(arguments.follower_at, rotates(other), "--follower-at");
+        Rational ratio = arguments.ratio.empty() ? Rational(0) : value_of(arguments.ratio, false, "--ratio");
+        path.polyline = {{path.range.lo, at}, {path.range.hi, at + ratio * (path.range.hi - path.range.lo)}};
+      }
+      certificate = certify_free_passage(model, first, second, path, distance, context);
+      failure = "the parts come closer than the distance (or touch) along the path";
+    } else {
+      std::optional<JamQuery> query;
+      if (!arguments.trap.empty()) {
+        auto comma = arguments.trap.find(',');
+        query = JamQuery{driver.name, follows ? other.name : "", arguments.direction,
+                         {range_of(arguments.trap.substr(0, comma), rotates(driver), "--trap"), std::nullopt}};
+        if (follows) {
+          if (comma == std::string::npos) throw ModelError("", "--trap needs DRIVER_LO:HI,FOLLOWER_LO:HI for a moving follower");
+          query->trap.follower = range_of(arguments.trap.substr(comma + 1), rotates(other), "--trap");
+        }
+      } else {
+        Rational start = arguments.start.empty() ? coordinate(driver) : value_of(arguments.start, rotates(driver), "--start");
+        Rational follower = arguments.follower_start.empty() ? coordinate(other)
+                                                             : value_of(arguments.follower_start, rotates(other), "--follower-start");
+        Rational step = arguments.step.empty() ? Rational(rotates(driver) ? Rational(1, 500) : Rational(1, 100))
+                                               : value_of(arguments.step, rotates(driver), "--step");
+        Rational travel = arguments.travel.empty() ? Rational(rotates(driver) ? Rational(6283, 1000) : Rational(100))
+                                                   : value_of(arguments.travel, rotates(driver), "--travel");
+        query = find_jam(model, first, second, driver.name, start, follower, arguments.direction, step, travel);
+        if (!query) {
+          std::cerr << "hipair: cannot certify: no jam found: the motion was not blocked within the travel\n";
+          return 1;
+        }
+      }
+      certificate = certify_jam(model, first, second, *query, context);
+      failure = "some configuration of the trap's cut or walls is not certainly blocked";
+    }
+  } else {
+    throw ModelError("", "--claim must be interference, clearance, jam or free");
+  }
+  if (!certificate) {
+    std::cerr << "hipair: cannot certify: " << failure << "\n";
+    return 1;
+  }
+  io::write_file_atomically(arguments.out, write_certificate(*certificate));
+  std::cout << "certified " << to_string(certificate->claim) << ": " << certificate->statement << "\n"
+            << "written to " << arguments.out << " (check it with: hipair-verify " << arguments.out << " " << arguments.path
+            << ")\n";
+  return 0;
+}
+
+}  // namespace
+
+void register_certify(CLI::App& app, Action& action) {
+  auto arguments = std::make_shared<CertifyArguments>();
+  CLI::App* command = app.add_subcommand("certify", "Produce a certificate of interference, clearance, jam or free passage");
+  command->add_option("model", arguments->path, "model file")->required();
+  command->add_option("--claim", arguments->claim, "interference | clearance | jam | free")->required();
+  command->add_option("--out", arguments->out, "certificate file to write (JSON)")->required();
+  command->add_option("--pair", arguments->pair, "A:B (default: the model's first pair)");
+  command->add_option("--set", arguments->overrides, "override a parameter: NAME=VALUE (repeatable)");
+  command->add_option("--at", arguments->at, "interference/clearance: PART=VALUE, angle in rad (or NNdeg) or offset in mm "
+                                             "(default: the initial configuration)");
+  command->add_option("--distance", arguments->distance, "clearance/free: the clearance to certify (mm; default: found)");
+  command->add_option("--driver", arguments->driver, "jam/free: the driven part (default: the pair's first moving part)");
+  command->add_option("--from", arguments->from, "free: start of the driver range (default: its initial position)");
+  command->add_option("--to", arguments->to, "free: end of the driver range (default: one turn)");
+  command->add_option("--follower-at", arguments->follower_at, "free: follower position at the start (default: initial)");
+  command->add_option("--ratio", arguments->ratio, "free: follower moves by RATIO x driver motion (default 0: it stays)");
+  command->add_option("--direction", arguments->direction, "jam: +1 (driver coordinate increases) or -1");
+  command->add_option("--trap", arguments->trap, "jam: the trap DLO:DHI[,FLO:FHI] (default: searched)");
+  command->add_option("--start", arguments->start, "jam search: driver start (default: initial)");
+  command->add_option("--follower-start", arguments->follower_start, "jam search: follower start (default: initial)");
+  command->add_option("--step", arguments->step, "jam search: driver step (default 0.002 rad / 0.01 mm)");
+  command->add_option("--travel", arguments->travel, "jam search: how far to drive (default one turn / 100 mm)");
+  command->callback([&action, arguments] { action = [arguments] { return run(*arguments); }; });
+}
+
+}  // namespace hipair::cli
