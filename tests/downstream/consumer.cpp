@@ -1,4 +1,5 @@
 // A downstream program: reads a model through the installed HIPAIR package.
+#include <hipair/error.hpp>
 #include <hipair/model.hpp>
 
 #include <iostream>
