@@ -8,8 +8,8 @@
 //   squared forms), so it is a polynomial in the chart coordinates.
 // - Blocked side: every contact function is NEGATIVE where the two features locally
 //   penetrate and positive where they separate, near configurations where the contact is
-//   valid. Squared forms (used when a radius product is irrational) keep this only near the
-//   physical branch; they also vanish on a spurious branch.
+//   valid. Squared forms (used when a radius product is irrational) also vanish on a spurious
+//   branch; their validity includes a clause that excludes it.
 // - Validity: a conjunction of clauses, each "atom >= 0" or "atom >= 0 or atom >= 0"; it
 //   holds exactly when the contact point lies within both features (closed).
 #pragma once
@@ -190,17 +190,22 @@ T arc_arc_squared(const Pose<T>& a, const Vector<T>& ka, const T& ra2, const Pos
   return T(shifted * shifted - T(4) * ra2 * rb2 * weight * weight);
 }
 
-/// Validity of an arc–arc tangency: the tangent point lies in both arcs' ranges.
+/// Validity of an arc–arc tangency: the tangent point lies in both arcs' ranges, and the
+/// centres are on the tangency's branch: W |Ka - Kb|^2 >= W (ra^2 + rb^2) for an external
+/// tangency, <= for an internal one (this separates the two zero branches of
+/// arc_arc_squared; on the zero set of arc_arc it always holds).
 template <class T>
 Validity<T> arc_arc_validity(const Pose<T>& a, const Vector<T>& ka, const ArcSector<T>& arc_a,
-                             const Pose<T>& b, const Vector<T>& kb, const ArcSector<T>& arc_b,
-                             Tangency tangency) {
+                             const T& ra2, const Pose<T>& b, const Vector<T>& kb,
+                             const ArcSector<T>& arc_b, const T& rb2, Tangency tangency) {
   PairVector<T> v = point_difference(a, ka, b, kb);  // from Kb to Ka
   PairVector<T> minus_v = detail::negated(v);
   // Direction of the tangent point from each centre.
   const PairVector<T>& from_a = tangency == Tangency::first_inside_second ? v : minus_v;
   const PairVector<T>& from_b = tangency == Tangency::second_inside_first ? minus_v : v;
   Validity<T> validity;
+  T branch = T(dot_homogeneous(v, v, a, b) - (ra2 + rb2) * pair_weight(a, b));
+  validity.require(tangency == Tangency::external ? branch : T(-branch));
   detail::require_in_sector(validity, arc_a, from_a, a, b,
                             [](const Vector<T>& d) { return first_direction(d); });
   detail::require_in_sector(validity, arc_b, from_b, a, b,
@@ -231,14 +236,18 @@ T arc_segment_squared(const Pose<T>& a, const Vector<T>& k,
   return T(side * side - radius_times_length_squared * weight * weight);
 }
 
-/// Validity of arc_segment: the foot of K lies within the segment and the tangent point
+/// Validity of arc_segment: the centre is on the free (right) side of the segment's line
+/// (this separates the two zero branches of arc_segment_squared; on the zero set of
+/// arc_segment it always holds), its foot lies within the segment, and the tangent point
 /// (direction of the segment's left normal, seen from K) lies in the arc's range.
 template <class T>
 Validity<T> arc_segment_validity(const Pose<T>& a, const Vector<T>& k, const ArcSector<T>& arc,
                                  const Pose<T>& b, const Vector<T>& q1, const Vector<T>& q2) {
   Vector<T> d = q2 - q1;
-  T along = dot_homogeneous(point_difference(a, k, b, q1), second_direction(d), a, b);
+  PairVector<T> from_start = point_difference(a, k, b, q1);
+  T along = dot_homogeneous(from_start, second_direction(d), a, b);
   Validity<T> validity;
+  validity.require(cross_homogeneous(from_start, second_direction(d), a, b));
   validity.require(along);
   validity.require(T(dot(d, d) * pair_weight(a, b) - along));
   detail::require_in_sector(validity, arc, second_direction(left_normal(d)), a, b,

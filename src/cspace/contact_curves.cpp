@@ -652,10 +652,10 @@ KernelResult contact_of(const BodyFeature& fa, const BodyFeature& fb,
     } else {
       result.value = kernels::arc_arc_squared(a, poly(ea.center), Polynomial(ra2), b,
                                               poly(eb.center), Polynomial(rb2));
-      result.blocked_sign = 0;
     }
-    result.validity = kernels::arc_arc_validity(a, poly(ea.center), poly_sector(ea), b,
-                                                poly(eb.center), poly_sector(eb), tangency);
+    result.validity =
+        kernels::arc_arc_validity(a, poly(ea.center), poly_sector(ea), Polynomial(ra2), b,
+                                  poly(eb.center), poly_sector(eb), Polynomial(rb2), tangency);
   } else if (ka == Kind::arc && kb == Kind::segment) {
     if (!ea.ccw) return result;  // a concave arc is never tangent to a line without overlap
     result.type = ContactType::arc_segment;
@@ -667,7 +667,6 @@ KernelResult contact_of(const BodyFeature& fa, const BodyFeature& fb,
     } else {
       result.value = kernels::arc_segment_squared(a, poly(ea.center), Polynomial(product2), b,
                                                   poly(eb.source), poly(eb.target));
-      result.blocked_sign = 0;
     }
     result.validity = kernels::arc_segment_validity(a, poly(ea.center), poly_sector(ea), b,
                                                     poly(eb.source), poly(eb.target));
@@ -682,7 +681,6 @@ KernelResult contact_of(const BodyFeature& fa, const BodyFeature& fb,
     } else {
       result.value = kernels::segment_arc_squared(a, poly(ea.source), poly(ea.target), b,
                                                   poly(eb.center), Polynomial(product2));
-      result.blocked_sign = 0;
     }
     result.validity = kernels::segment_arc_validity(a, poly(ea.source), poly(ea.target), b,
                                                     poly(eb.center), poly_sector(eb));

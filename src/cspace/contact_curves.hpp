@@ -94,8 +94,9 @@ struct ContactCurve {
   IntegerPolynomial2 polynomial;
   std::string label;  ///< "driver pin / wheel slot 2 wall" for people
   /// Added by the kernels: sign of `polynomial` on the locally blocked (penetrating) side near
-  /// valid contact points: -1; 0 when unknown (squared forms, used when a product of radii or
-  /// a radius times a segment length is irrational: they also vanish on a spurious branch).
+  /// valid contact points: always -1 (0 is reserved for "unknown"). Squared forms, used when a
+  /// product of radii or a radius times a segment length is irrational, also vanish on a
+  /// spurious branch; their `validity` has a clause that excludes it.
   int blocked_sign = -1;
   /// Added by the kernels: the contact point lies within both features iff every clause
   /// holds (optional for the builder: clipping only; see ValidityClause).

@@ -135,10 +135,10 @@ T evaluate_scenario(const Scenario& s, const T& ta, const T& tb, Convert&& conve
     case 8: return kernels::segment_arc(a, p[0], p[1], b, p[2], k[0]);
     case 9: return kernels::vertex_segment_validity(a, p[0], b, p[1], p[2]).clauses[1].atoms[0];
     case 10: return kernels::vertex_arc_validity(a, p[0], b, p[1], sector).clauses[0].atoms[0];
-    case 11: return kernels::arc_segment_validity(a, p[0], sector, b, p[1], p[2]).clauses[2].atoms[0];
-    default: return kernels::arc_arc_validity(a, p[0], sector, b, p[1], sector,
+    case 11: return kernels::arc_segment_validity(a, p[0], sector, b, p[1], p[2]).clauses[3].atoms[0];
+    default: return kernels::arc_arc_validity(a, p[0], sector, k[0], b, p[1], sector, k[1],
                                               kernels::Tangency::first_inside_second)
-                 .clauses[1].atoms[0];
+                 .clauses[0].atoms[0];
   }
 }
 
@@ -593,7 +593,8 @@ TEST(Kernels, ConstructedContactsForEveryFeatureAndMotionPair) {
                       ContactType::segment_arc, "segment_arc");
       }
       // a segment of irrational length against a disk of rational radius: r |d| is
-      // irrational, the squared form is used (degree 4 per rotation, blocked side unknown)
+      // irrational, the squared form is used (degree 4 per rotation; its validity excludes
+      // the spurious branch)
       {
         Point v1 = w1;
         Point v2 = add(w1, pt(1, 1));
@@ -605,7 +606,8 @@ TEST(Kernels, ConstructedContactsForEveryFeatureAndMotionPair) {
         std::vector<ContactCurve> curves = generate_contact_curves(s.model, s.axes, s.x, s.y);
         const ContactCurve* squared = find_curve(curves, arc_ref(0, 0, 0), segment_ref(1, 0, 0));
         ASSERT_NE(squared, nullptr);
-        EXPECT_EQ(squared->blocked_sign, 0);
+        EXPECT_EQ(squared->blocked_sign, -1);
+        EXPECT_EQ(squared->validity.size(), 3u);  // branch side, foot within the segment
         EXPECT_EQ(squared->type, ContactType::arc_segment);
       }
     }
@@ -993,9 +995,6 @@ int check_dropped_curves_are_blocked(const std::string& file, int lines) {
         PairSetup setup{model, axes, x, y, {}};
         for (const ContactCurve& curve : full) {
           if (find_curve(culled, curve.first, curve.second)) continue;  // kept
-          // Squared forms also vanish on a spurious branch where the features do not touch
-          // even when the (physical-branch) validity holds: only exact-branch curves here.
-          if (curve.blocked_sign == 0) continue;
           int line_count = axes.dimension() == 2 ? lines : 1;
           for (int line = 0; line < line_count; ++line) {
             Rational ty = y.lo + (y.hi - y.lo) * frac(2 * line + 1, 2 * line_count);
