@@ -21,6 +21,12 @@ Interval hull(const Rational& lo, const Rational& hi) {
   mpfi_put_q(result.get(), const_cast<mpq_ptr>(hi.get_mpq_t()));
   return result;
 }
+// The model reader may hand over non-canonical rationals (mpq equality needs canonical form).
+bool same(Rational a, Rational b) {
+  a.canonicalize();
+  b.canonicalize();
+  return a == b;
+}
 Interval two_pi() { return Interval::pi() * Interval(Rational(2)); }
 
 // ----------------------------------------------------------------------------- model and pair
@@ -33,7 +39,7 @@ void check_model(const Certificate& c, const Model& model) {
     for (const ParameterValue& candidate : c.parameters)
       if (candidate.name == parameter.name) value = &candidate;
     if (!value) reject("the certificate gives no value for parameter '" + parameter.name + "'");
-    if (!value->overridden && value->value != parameter.nominal)
+    if (!value->overridden && !same(value->value, parameter.nominal))
       reject("parameter '" + parameter.name + "': the certificate's value " + show(value->value) +
              " is not the model's nominal " + show(parameter.nominal));
     if (value->value < parameter.range.lo || value->value > parameter.range.hi)
@@ -45,7 +51,7 @@ void check_model(const Certificate& c, const Model& model) {
            std::to_string(c.roundings.size()));
   for (std::size_t i = 0; i < c.roundings.size(); ++i) {
     const Rounding &a = c.roundings[i], &b = model.roundings[i];
-    if (a.pointer != b.pointer || a.expression != b.expression || a.value != b.value || a.bound != b.bound)
+    if (a.pointer != b.pointer || a.expression != b.expression || !same(a.value, b.value) || !same(a.bound, b.bound))
       reject("rounding " + std::to_string(i) + " differs: the model reader rounded '" + b.expression + "' at " + b.pointer +
              " to " + to_exact_string(b.value));
   }
@@ -213,7 +219,7 @@ Roles roles(const Certificate& c, const Model& model) {
 
 IntervalMap map_over(const Part& part, const RationalInterval& range) {
   if (!moves(part)) return IntervalMap{};
-  return rotates(part) ? rotation_over(part.motion.pivot, range) : translation_over(part.motion.direction, range);
+  return rotates(part) ? rotation_over(range) : translation_over(part.motion.direction, range);
 }
 
 // Is every configuration of `box` blocked because of `piece`'s crossing?
@@ -328,8 +334,9 @@ std::string check_free_passage(const Certificate& c, const Model& model) {
       reject("gap in the boxes' cover of the driver range between " + show(c.boxes[i - 1].driver.hi) + " and " +
              show(c.boxes[i].driver.lo));
   if (c.boxes.back().driver.hi < c.range.hi) reject("gap in the boxes' cover of the driver range at its end " + show(c.range.hi));
-  Rational reach_driver = rotates(*r.driver) ? reach(*r.driver, r.driver->motion.pivot) : Rational(1);
-  Rational reach_other = rotates(*r.other) ? reach(*r.other, r.other->motion.pivot) : Rational(1);
+  IntervalPart shape_driver = shape_of(*r.driver), shape_other = shape_of(*r.other);
+  Rational reach_driver = rotates(*r.driver) ? reach(shape_driver) : Rational(1);
+  Rational reach_other = rotates(*r.other) ? reach(shape_other) : Rational(1);
   for (std::size_t i = 0; i < c.boxes.size(); ++i) {
     const ConfigurationBox& box = c.boxes[i];
     std::string name = "box " + std::to_string(i) + " (driver " + show(box.driver) + ")";
@@ -359,8 +366,8 @@ std::string check_free_passage(const Certificate& c, const Model& model) {
     Rational needed = c.distance + reach_driver * driver_half + reach_other * other_half;
     std::string closest;
     Rational bound = boundary_distance_lower_bound(
-        place_over(*r.driver, map_over(*r.driver, {driver_mid, driver_mid})),
-        place_over(*r.other, r.has_follower ? map_over(*r.other, {other_mid, other_mid}) : IntervalMap{}), needed, &closest);
+        place_over(shape_driver, map_over(*r.driver, {driver_mid, driver_mid})),
+        place_over(shape_other, r.has_follower ? map_over(*r.other, {other_mid, other_mid}) : IntervalMap{}), needed, &closest);
     if (bound < needed)
       reject(name + ": the certified distance lower bound at its centre, " + show(bound) + " (" + closest +
              "), is less than the claimed clearance plus the motion within the box, " + show(needed));

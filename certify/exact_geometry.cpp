@@ -48,7 +48,7 @@ std::optional<int> ray_crossings(const PlacedEdge& e, const Point& p, const Poin
     if (sgn(denominator) == 0) return sgn(cross(v, w)) == 0 ? std::nullopt : std::optional<int>(0);
     Rational lambda = cross(w, d) / denominator, mu = cross(w, v) / denominator;
     if (sgn(lambda) <= 0) return 0;
-    if (sgn(mu) == 0 || mu == 1) return std::nullopt;
+    if (sgn(mu) == 0 || cmp(mu, Rational(1)) == 0) return std::nullopt;   // cmp: safe for non-canonical input
     return (sgn(mu) > 0 && mu < 1) ? 1 : 0;
   }
   LineCircle line = line_circle(p, v, e.center, e.radius_squared);
@@ -72,7 +72,7 @@ bool on_edge(const PlacedEdge& e, const Point& p) {
            sgn(dot(minus(p, e.target), d)) <= 0;
   }
   Point w = minus(p, e.center);
-  return dot(w, w) == e.radius_squared && in_sector(e, sgn(cross(e.from, w)), sgn(cross(w, e.to)), false);
+  return cmp(dot(w, w), e.radius_squared) == 0 && in_sector(e, sgn(cross(e.from, w)), sgn(cross(w, e.to)), false);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include "certify/interval_geometry.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace hipair::verify {
 namespace {
@@ -33,6 +34,11 @@ Interval hull(const Interval& a, const Interval& b) {
   return result;
 }
 bool certainly_positive(const Interval& a) { return a.sign() > 0; }
+// The lower end rounded down to a double (-infinity for NaN): lower bounds stay lower bounds.
+double lower(const Interval& a) {
+  double value = mpfr_get_d(&a.get()->left, MPFR_RNDD);
+  return std::isnan(value) ? -HUGE_VAL : value;
+}
 bool possibly_nonnegative(const Interval& a) { return a.sign() >= 0; }
 
 P operator-(const P& a, const P& b) { return P{a.x - b.x, a.y - b.y}; }
@@ -43,15 +49,10 @@ Interval dot(const P& a, const P& b) { return a.x * b.x + a.y * b.y; }
 Interval norm(const P& a) { return root(sqr(a.x) + sqr(a.y)); }
 P exact(const Point& p) { return P{Interval(p.x), Interval(p.y)}; }
 
-P apply(const IntervalMap& map, const Point& p) {
-  Interval dx(Rational(p.x - map.pivot.x)), dy(Rational(p.y - map.pivot.y));
-  return P{Interval(map.pivot.x) + map.c * dx - map.s * dy + map.shift.x,
-           Interval(map.pivot.y) + map.s * dx + map.c * dy + map.shift.y};
+P apply(const IntervalMap& map, const P& pivot, const P& p) {   // p relative to the pivot
+  return P{pivot.x + map.c * p.x - map.s * p.y + map.shift.x, pivot.y + map.s * p.x + map.c * p.y + map.shift.y};
 }
-P rotate(const IntervalMap& map, const Point& v) {
-  Interval x(v.x), y(v.y);
-  return P{map.c * x - map.s * y, map.s * x + map.c * y};
-}
+P rotate(const IntervalMap& map, const P& v) { return P{map.c * v.x - map.s * v.y, map.s * v.x + map.c * v.y}; }
 
 // Direction w (from an arc's centre) in the arc's sector: possibly (closed) or certainly (open).
 bool possibly_in_sector(const IntervalEdge& arc, const P& w) {
@@ -66,17 +67,15 @@ bool certainly_in_open_sector(const IntervalEdge& arc, const P& w) {
 }
 
 // Lower bound of the distance from point p to edge e.
-Rational point_to_edge(const P& p, const IntervalEdge& e) {
-  Rational best = e.full_circle ? Rational(-1) : norm(p - e.source).lower();
-  if (!e.full_circle) best = std::min(best, norm(p - e.target).lower());
+double point_to_edge(const P& p, const IntervalEdge& e) {
+  double best = e.full_circle ? HUGE_VAL : std::min(lower(norm(p - e.source)), lower(norm(p - e.target)));
   if (!e.arc) {
     P d = e.target - e.source;
     Interval u = dot(p - e.source, d) / dot(d, d);
     if (possibly_nonnegative(u) && possibly_nonnegative(Interval(Rational(1)) - u))
-      best = std::min(best, (absolute(cross(d, p - e.source)) / norm(d)).lower());
+      best = std::min(best, lower(absolute(cross(d, p - e.source)) / norm(d)));
   } else if (possibly_in_sector(e, p - e.center)) {
-    Rational interior = absolute(norm(p - e.center) - e.radius).lower();
-    best = e.full_circle ? interior : std::min(best, interior);
+    best = std::min(best, lower(absolute(norm(p - e.center) - e.radius)));
   }
   return best;
 }
@@ -125,12 +124,11 @@ bool edges_may_meet(const IntervalEdge& e, const IntervalEdge& g) {
 }
 
 // Lower bound of the distance between edges e and g (0 when they may meet).
-Rational edge_distance(const IntervalEdge& e, const IntervalEdge& g) {
+double edge_distance(const IntervalEdge& e, const IntervalEdge& g) {
   if (edges_may_meet(e, g)) return 0;
-  Rational best(-1);
-  auto consider = [&](const Rational& value) { best = (sgn(best) < 0) ? value : std::min(best, value); };
-  if (!e.full_circle) consider(std::min(point_to_edge(e.source, g), point_to_edge(e.target, g)));
-  if (!g.full_circle) consider(std::min(point_to_edge(g.source, e), point_to_edge(g.target, e)));
+  double best = HUGE_VAL;
+  if (!e.full_circle) best = std::min({best, point_to_edge(e.source, g), point_to_edge(e.target, g)});
+  if (!g.full_circle) best = std::min({best, point_to_edge(g.source, e), point_to_edge(g.target, e)});
   // Interior points of both at a common normal.
   if (e.arc != g.arc) {
     const IntervalEdge& s = e.arc ? g : e;
@@ -140,41 +138,36 @@ Rational edge_distance(const IntervalEdge& e, const IntervalEdge& g) {
     P normal{-d.y, d.x};
     if (possibly_nonnegative(u) && possibly_nonnegative(Interval(Rational(1)) - u) &&
         (possibly_in_sector(a, normal) || possibly_in_sector(a, scale(Interval(Rational(-1)), normal))))
-      consider(absolute(absolute(cross(d, w)) / norm(d) - a.radius).lower());
+      best = std::min(best, lower(absolute(absolute(cross(d, w)) / norm(d) - a.radius)));
   } else if (e.arc && g.arc) {
     P axis = g.center - e.center;
     Interval length = norm(axis);
     if (!certainly_positive(length)) {
-      consider(absolute(e.radius - g.radius).lower());
+      best = std::min(best, lower(absolute(e.radius - g.radius)));
     } else {
       for (int sign_e : {-1, 1})
         for (int sign_g : {-1, 1}) {
           Interval se{Rational(sign_e)}, sg{Rational(sign_g)};
           if (possibly_in_sector(e, scale(se, axis)) && possibly_in_sector(g, scale(sg, axis)))
-            consider(absolute(length + sg * g.radius - se * e.radius).lower());
+            best = std::min(best, lower(absolute(length + sg * g.radius - se * e.radius)));
         }
     }
   }
   return best;
 }
 
-Rational disc_gap(const P& c1, const Interval& r1, const P& c2, const Interval& r2) {
-  return (norm(c1 - c2) - r1 - r2).lower();
-}
+double disc_gap(const P& c1, const Interval& r1, const P& c2, const Interval& r2) { return lower(norm(c1 - c2) - r1 - r2); }
 
 }  // namespace
 
-IntervalMap to_interval_map(const ExactMap& map) {
-  return IntervalMap{Interval(map.c), Interval(map.s), map.pivot, exact(map.shift)};
-}
+IntervalMap to_interval_map(const ExactMap& map) { return IntervalMap{Interval(map.c), Interval(map.s), exact(map.shift)}; }
 
-IntervalMap rotation_over(const Point& pivot, const RationalInterval& angle) {
+IntervalMap rotation_over(const RationalInterval& angle) {
   Interval theta(angle.lo);
   mpfi_put_q(theta.get(), const_cast<mpq_ptr>(angle.hi.get_mpq_t()));
   IntervalMap map;
   mpfi_cos(map.c.get(), theta.get());
   mpfi_sin(map.s.get(), theta.get());
-  map.pivot = pivot;
   return map;
 }
 
@@ -186,31 +179,35 @@ IntervalMap translation_over(const Point& direction, const RationalInterval& off
   return map;
 }
 
-IntervalPart place_over(const Part& part, const IntervalMap& map) {
-  IntervalPart placed{part.name, {}, {}};
+Point pose_pivot(const Part& part) {
+  return part.motion.kind == Motion::Kind::rotation ? part.motion.pivot : Point{Rational(0), Rational(0)};
+}
+
+IntervalPart shape_of(const Part& part) {
+  Point pivot = pose_pivot(part);
+  auto relative = [&](const Point& p) { return P{Interval(Rational(p.x - pivot.x)), Interval(Rational(p.y - pivot.y))}; };
+  IntervalPart shape{part.name, exact(pivot), {}, {}};
   constexpr std::size_t group_size = 8;
   for (std::size_t l = 0; l < part.loops.size(); ++l) {
-    std::vector<IntervalEdge>& edges = placed.loops.emplace_back();
+    std::vector<IntervalEdge>& edges = shape.loops.emplace_back();
     for (const Edge& edge : part.loops[l].edges) {
       IntervalEdge e;
       e.arc = edge.is_arc();
       e.full_circle = edge.is_full_circle();
       e.ccw = edge.ccw;
-      e.source = apply(map, edge.source);
-      e.target = apply(map, edge.target);
-      Point chord_middle{Rational((edge.source.x + edge.target.x) / 2), Rational((edge.source.y + edge.target.y) / 2)};
-      Interval half_chord = norm(exact(edge.target) - exact(edge.source)) / Interval(Rational(2));
-      e.disc_center = apply(map, chord_middle);
-      e.disc_radius = half_chord;
+      e.source = relative(edge.source);
+      e.target = relative(edge.target);
+      e.disc_center = scale(Interval(Rational(1, 2)), e.source + e.target);
+      e.disc_radius = norm(e.target - e.source) / Interval(Rational(2));
       if (e.arc) {
         Point from = edge.ccw ? edge.source : edge.target, to = edge.ccw ? edge.target : edge.source;
         Point body_from{Rational(from.x - edge.center.x), Rational(from.y - edge.center.y)};
         Point body_to{Rational(to.x - edge.center.x), Rational(to.y - edge.center.y)};
-        e.center = apply(map, edge.center);
+        e.center = relative(edge.center);
         e.radius_squared = Interval(edge.radius_squared);
         e.radius = root(e.radius_squared);
-        e.from = rotate(map, body_from);
-        e.to = rotate(map, body_to);
+        e.from = exact(body_from);
+        e.to = exact(body_to);
         Rational turn = body_from.x * body_to.y - body_from.y * body_to.x;
         e.reflex = sgn(turn) < 0;
         Interval angle;
@@ -232,16 +229,33 @@ IntervalPart place_over(const Part& part, const IntervalMap& map) {
       Interval radius(Rational(0));
       for (std::size_t i = first; i < last; ++i)
         radius = hull(radius, norm(edges[i].disc_center - center) + edges[i].disc_radius);
-      Interval upper(radius.upper());
-      placed.groups.push_back({l, first, last, center, upper});
+      shape.groups.push_back({l, first, last, center, Interval(radius.upper())});
     }
   }
+  return shape;
+}
+
+IntervalPart place_over(const IntervalPart& shape, const IntervalMap& map) {
+  IntervalPart placed = shape;
+  for (auto& loop : placed.loops)
+    for (IntervalEdge& e : loop) {
+      e.source = apply(map, shape.pivot, e.source);
+      e.target = apply(map, shape.pivot, e.target);
+      e.disc_center = apply(map, shape.pivot, e.disc_center);
+      if (e.arc) {
+        e.center = apply(map, shape.pivot, e.center);
+        e.from = rotate(map, e.from);
+        e.to = rotate(map, e.to);
+      }
+    }
+  for (auto& group : placed.groups) group.center = apply(map, shape.pivot, group.center);
   return placed;
 }
 
 Rational boundary_distance_lower_bound(const IntervalPart& a, const IntervalPart& b, const Rational& enough,
                                        std::string* closest) {
-  Rational best = enough;
+  // Doubles: every bound is rounded down; the cap is rounded up (mpq_get_d truncates).
+  double cap = std::nextafter(mpq_get_d(enough.get_mpq_t()), HUGE_VAL), best = cap;
   for (const auto& ga : a.groups)
     for (const auto& gb : b.groups) {
       if (disc_gap(ga.center, ga.radius, gb.center, gb.radius) >= best) continue;
@@ -250,27 +264,24 @@ Rational boundary_distance_lower_bound(const IntervalPart& a, const IntervalPart
           const IntervalEdge& e = a.loops[ga.loop][i];
           const IntervalEdge& g = b.loops[gb.loop][j];
           if (disc_gap(e.disc_center, e.disc_radius, g.disc_center, g.disc_radius) >= best) continue;
-          Rational distance = edge_distance(e, g);
+          double distance = edge_distance(e, g);
           if (distance < best) {
             best = distance;
             if (closest)
               *closest = "loop " + std::to_string(ga.loop) + " edge " + std::to_string(i) + " of '" + a.name +
                          "' and loop " + std::to_string(gb.loop) + " edge " + std::to_string(j) + " of '" + b.name + "'";
           }
-          if (sgn(best) <= 0) return best;
+          if (best <= 0) return Rational(0);
         }
     }
-  return best;
+  return best >= cap ? enough : Rational(best);
 }
 
-Rational reach(const Part& part, const Point& pivot) {
+Rational reach(const IntervalPart& shape) {
   Rational best(0);
-  for (const Loop& loop : part.loops)
-    for (const Edge& edge : loop.edges) {
-      Interval distance = norm(exact(edge.source) - exact(pivot));
-      if (edge.is_arc()) distance = norm(exact(edge.center) - exact(pivot)) + root(Interval(edge.radius_squared));
-      best = std::max(best, distance.upper());
-    }
+  for (const auto& loop : shape.loops)
+    for (const IntervalEdge& edge : loop)
+      best = std::max(best, (edge.arc ? norm(edge.center) + edge.radius : norm(edge.source)).upper());
   return best;
 }
 

@@ -19,17 +19,16 @@ struct IntervalPoint {
   Interval x, y;
 };
 
-/// A set of rigid maps p -> pivot + R (p - pivot) + shift with R = [c -s; s c], c and s and
-/// shift ranging over intervals.
+/// A set of rigid maps p -> pivot + R (p - pivot) + shift with R = [c -s; s c], c, s and shift
+/// ranging over intervals; `pivot` is the part's rotation pivot (see shape_of).
 struct IntervalMap {
   Interval c{Rational(1)}, s{Rational(0)};
-  Point pivot{Rational(0), Rational(0)};
   IntervalPoint shift{Interval(Rational(0)), Interval(Rational(0))};
 };
 
 IntervalMap to_interval_map(const ExactMap& map);
-/// All rotations about `pivot` by angles in `angle` (rad).
-IntervalMap rotation_over(const Point& pivot, const RationalInterval& angle);
+/// All rotations (about the part's pivot) by angles in `angle` (rad).
+IntervalMap rotation_over(const RationalInterval& angle);
 /// All translations by offsets in `offset` along the unit vector `direction`.
 IntervalMap translation_over(const Point& direction, const RationalInterval& offset);
 
@@ -41,9 +40,11 @@ struct IntervalEdge {
   Interval radius_squared, radius, sweep, disc_radius;
 };
 
-/// A posed part; `groups` bound runs of consecutive edges of a loop (culling).
+/// A part's edges, either in its body frame relative to its pivot (a shape) or posed; `groups`
+/// bound runs of consecutive edges of a loop (culling).
 struct IntervalPart {
   std::string name;
+  IntervalPoint pivot;
   std::vector<std::vector<IntervalEdge>> loops;
   struct Group {
     std::size_t loop, first, last;
@@ -53,7 +54,16 @@ struct IntervalPart {
   std::vector<Group> groups;
 };
 
-IntervalPart place_over(const Part& part, const IntervalMap& map);
+/// The rotation pivot of a part (the origin for parts that do not rotate).
+Point pose_pivot(const Part& part);
+
+/// The part's geometry relative to its pose pivot, with every pose-independent quantity (radii,
+/// sweeps, bounding discs) computed once.
+IntervalPart shape_of(const Part& part);
+
+/// The shape posed by every map of `map` (rotations about the shape's pivot).
+IntervalPart place_over(const IntervalPart& shape, const IntervalMap& map);
+inline IntervalPart place_over(const Part& part, const IntervalMap& map) { return place_over(shape_of(part), map); }
 
 /// A certified lower bound of the distance between the boundaries of the two posed parts,
 /// for every pose of their maps, capped at `enough` (pairs farther than `enough` are skipped).
@@ -61,8 +71,8 @@ IntervalPart place_over(const Part& part, const IntervalMap& map);
 Rational boundary_distance_lower_bound(const IntervalPart& a, const IntervalPart& b, const Rational& enough,
                                        std::string* closest = nullptr);
 
-/// An upper bound of the distance of every point of `part` from `pivot` (its unposed geometry).
-Rational reach(const Part& part, const Point& pivot);
+/// An upper bound of the distance of every point of a shape from its pivot.
+Rational reach(const IntervalPart& shape);
 
 /// The point of edge e at parameter u (segment fraction, or arc angle from the source in the
 /// arc's direction), for every pose and every u in the interval.

@@ -40,13 +40,17 @@ PairRoles pair_roles(const Model& model, const std::string& first, const std::st
 double mid(const Interval& value) { return mpfi_get_d(value.get()); }
 Rational middle(const RationalInterval& range) { return (range.lo + range.hi) / 2; }
 Rational reach_of(const Part& part) {
-  return part.motion.kind == Motion::Kind::rotation ? verify::reach(part, part.motion.pivot) : Rational(1);
+  return part.motion.kind == Motion::Kind::rotation ? verify::reach(verify::shape_of(part)) : Rational(1);
 }
 
+struct Shapes {
+  IntervalPart driver, other;
+};
+
 // Lower bound of the clearance with the driver at x and the other part at y (ignored if fixed).
-Rational clearance_at(const PairRoles& r, const Rational& x, const Rational& y, const Rational& enough) {
-  IntervalPart driver = verify::place_over(*r.driver, interval_map(*r.driver, {x, x}));
-  IntervalPart other = verify::place_over(*r.other, r.has_follower ? interval_map(*r.other, {y, y}) : verify::IntervalMap{});
+Rational clearance_at(const PairRoles& r, const Shapes& shapes, const Rational& x, const Rational& y, const Rational& enough) {
+  IntervalPart driver = verify::place_over(shapes.driver, interval_map(*r.driver, {x, x}));
+  IntervalPart other = verify::place_over(shapes.other, r.has_follower ? interval_map(*r.other, {y, y}) : verify::IntervalMap{});
   return verify::boundary_distance_lower_bound(driver, other, enough);
 }
 
@@ -78,9 +82,10 @@ struct Placed {
 };
 
 Placed place_box(const Part& part, const std::optional<RationalInterval>& range) {
-  if (!range) return Placed{verify::place_over(part, {}), verify::place_over(part, {})};
+  IntervalPart shape = verify::shape_of(part);
+  if (!range) return Placed{verify::place_over(shape, {}), verify::place_over(shape, {})};
   Rational c = middle(*range);
-  return Placed{verify::place_over(part, interval_map(part, *range)), verify::place_over(part, interval_map(part, {c, c}))};
+  return Placed{verify::place_over(shape, interval_map(part, *range)), verify::place_over(shape, interval_map(part, {c, c}))};
 }
 
 // A piece of edge e (posed at the centre: ec, over the box: eo) crossing g, for every pose.
@@ -193,12 +198,13 @@ std::optional<Certificate> certify_free_passage(const Model& model, const std::s
       throw NumericError("the follower path must run from the start to the end of the driver range");
   }
   Rational reach_driver = reach_of(*r.driver), reach_other = reach_of(*r.other);
+  Shapes shapes{verify::shape_of(*r.driver), verify::shape_of(*r.other)};
   Rational far(1000000000);
   if (!distance) {
     Rational smallest = far;
     for (int i = 0; i <= 256; ++i) {
       Rational x = c.range.lo + (c.range.hi - c.range.lo) * i / 256;
-      smallest = std::min(smallest, clearance_at(r, x, path_value(c.path, x), far));
+      smallest = std::min(smallest, clearance_at(r, shapes, x, path_value(c.path, x), far));
     }
     if (sgn(smallest) <= 0) return std::nullopt;
     distance = round_down(smallest / 2, 3);
@@ -212,7 +218,7 @@ std::optional<Certificate> certify_free_passage(const Model& model, const std::s
     Rational half_driver = (piece.hi - piece.lo) / 2, half_other = (image.hi - image.lo) / 2;
     Rational needed = c.distance + reach_driver * half_driver + reach_other * half_other;
     needed += c.boxes.empty() ? Rational(1, 1000000000000) : Rational(0);   // the verifier's nesting slack on box 0
-    Rational bound = clearance_at(r, middle(piece), middle(image), far);
+    Rational bound = clearance_at(r, shapes, middle(piece), middle(image), far);
     if (bound >= needed) {
       c.boxes.push_back({piece, r.has_follower ? std::optional<RationalInterval>(image) : std::nullopt});
       continue;

@@ -8,6 +8,7 @@
 #include <hipair/error.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 namespace hipair {
@@ -71,7 +72,7 @@ verify::ExactMap exact_map(const Part& part, const ExactPosition* position) {
 verify::IntervalMap interval_map(const Part& part, const RationalInterval& range) {
   switch (part.motion.kind) {
     case Motion::Kind::fixed: return verify::IntervalMap{};
-    case Motion::Kind::rotation: return verify::rotation_over(part.motion.pivot, range);
+    case Motion::Kind::rotation: return verify::rotation_over(range);
     case Motion::Kind::translation: return verify::translation_over(part.motion.direction, range);
     default: throw GeometryError("part '" + part.name + "' is not a fixed-axis part");
   }
@@ -90,8 +91,9 @@ Rational round_down(const Rational& value, int digits) {
 }
 
 Rational approximate(double value) {
-  Rational result(value);   // exact binary value of the double
-  return result;
+  char text[40];
+  std::snprintf(text, sizeof text, "%.15g", value);   // a short decimal, readable in certificates
+  return parse_rational(text);
 }
 
 namespace {
