@@ -228,10 +228,11 @@ void check_blocked(const Certificate& c, const Model& model, const Roles& r, con
   check_crossing_parts(c, w);
   if (!w.along) reject(where + ": the crossing needs the piece 'along' of its edge");
   auto single = [&](const EdgeReference& reference) {
-    Part part;
-    part.name = reference.part;
-    part.loops.push_back(Loop{{edge_of(model, reference)}, false, ""});
     const Part& owner = reference.part == r.driver->name ? *r.driver : *r.other;
+    Part part;   // the one edge, moving like its part
+    part.name = reference.part;
+    part.motion = owner.motion;
+    part.loops.push_back(Loop{{edge_of(model, reference)}, false, ""});
     IntervalMap map = &owner == r.driver ? map_over(owner, driver) : (follower ? map_over(owner, *follower) : IntervalMap{});
     return place_over(part, map).loops[0][0];
   };

@@ -1,6 +1,10 @@
 // Exact geometry of the verifier (see exact_geometry.hpp).
 #include "certify/exact_geometry.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+
 namespace hipair::verify {
 namespace {
 
@@ -170,13 +174,31 @@ bool edges_cross(const PlacedEdge& e, const PlacedEdge& g) {
 }
 
 std::string overlap_evidence(const PlacedPart& a, const PlacedPart& b) {
+  // Bounding boxes in double with a wide margin only skip pairs that cannot cross.
+  auto box = [](const PlacedEdge& e) {
+    std::array<double, 4> r;
+    if (e.arc) {
+      double radius = std::sqrt(e.radius_squared.get_d()), x = e.center.x.get_d(), y = e.center.y.get_d();
+      r = {x - radius, x + radius, y - radius, y + radius};
+    } else {
+      double x0 = e.source.x.get_d(), x1 = e.target.x.get_d(), y0 = e.source.y.get_d(), y1 = e.target.y.get_d();
+      r = {std::min(x0, x1), std::max(x0, x1), std::min(y0, y1), std::max(y0, y1)};
+    }
+    double margin = 1e-6 * (1 + std::fabs(r[0]) + std::fabs(r[1]) + std::fabs(r[2]) + std::fabs(r[3]));
+    return std::array<double, 4>{r[0] - margin, r[1] + margin, r[2] - margin, r[3] + margin};
+  };
   for (std::size_t i = 0; i < a.loops.size(); ++i)
-    for (std::size_t j = 0; j < a.loops[i].size(); ++j)
+    for (std::size_t j = 0; j < a.loops[i].size(); ++j) {
+      auto p = box(a.loops[i][j]);
       for (std::size_t k = 0; k < b.loops.size(); ++k)
-        for (std::size_t l = 0; l < b.loops[k].size(); ++l)
+        for (std::size_t l = 0; l < b.loops[k].size(); ++l) {
+          auto q = box(b.loops[k][l]);
+          if (p[1] < q[0] || q[1] < p[0] || p[3] < q[2] || q[3] < p[2]) continue;
           if (edges_cross(a.loops[i][j], b.loops[k][l]))
             return "loop " + std::to_string(i) + " edge " + std::to_string(j) + " of '" + a.name + "' crosses loop " +
                    std::to_string(k) + " edge " + std::to_string(l) + " of '" + b.name + "'";
+        }
+    }
   for (int side = 0; side < 2; ++side) {
     const PlacedPart& inner = side ? b : a;
     const PlacedPart& outer = side ? a : b;

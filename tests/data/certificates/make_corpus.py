@@ -1,0 +1,138 @@
+#!/usr/bin/env python3
+"""Writes the mutation corpus of HIPAIR certificates (see README.md in this folder).
+
+The valid base certificates were produced with `hipair certify` (commands in README.md). Each
+mutation changes one thing and names the reason the verifier must give (a substring of its
+message). EXPECTED.txt lists: certificate, model (relative to the repository), expected reason
+("valid" for the base certificates).
+"""
+import copy
+import json
+import os
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+MODELS = "examples/models/"
+
+
+def load(name):
+    with open(os.path.join(HERE, name)) as f:
+        return json.load(f)
+
+
+def save(name, certificate):
+    with open(os.path.join(HERE, name), "w") as f:
+        json.dump(certificate, f, indent=1)
+        f.write("\n")
+
+
+expected = []
+bases = [
+    ("lever-interference.json", "lever-stop.json"),
+    ("lever-clearance.json", "lever-stop.json"),
+    ("lever-free.json", "lever-stop.json"),
+    ("lever-jam.json", "lever-stop.json"),
+    ("ratchet-jam.json", "ratchet.json"),
+    ("geneva-interference.json", "geneva.json"),
+    ("follower-guide-free.json", "cam-follower.json"),
+]
+for name, model in bases:
+    expected.append((name, MODELS + model, "valid"))
+
+
+def mutate(base, model, name, reason, change, model_path=None):
+    certificate = copy.deepcopy(load(base))
+    change(certificate)
+    save(name, certificate)
+    expected.append((name, model_path or MODELS + model, reason))
+
+
+def set_path(keys, value):
+    def change(c):
+        target = c
+        for key in keys[:-1]:
+            target = target[key]
+        target[keys[-1]] = value
+    return change
+
+
+# Perturbed witnesses.
+mutate("lever-interference.json", "lever-stop.json", "m01-point-outside.json",
+       "is not strictly inside part 'lever' (it lies outside)", set_path(["interference", "point"], ["1000", "1000"]))
+mutate("lever-interference.json", "lever-stop.json", "m02-point-on-boundary.json",
+       "is not strictly inside part 'stop' (it lies on its boundary)", set_path(["interference", "point"], ["20", "10"]))
+mutate("geneva-interference.json", "geneva.json", "m03-point-moved.json", "is not strictly inside part",
+       set_path(["interference", "point"], ["-100", "-100"]))
+mutate("lever-interference.json", "lever-stop.json", "m04-tangent-off-angle.json", "is not within",
+       set_path(["interference", "configuration", "lever", "tangent"], "27/100"))
+mutate("lever-interference.json", "lever-stop.json", "m05-missing-position.json",
+       "gives no position for moving part 'lever'", set_path(["interference", "configuration"], {}))
+mutate("lever-clearance.json", "lever-stop.json", "m06-clearance-too-large.json", "less than the claimed",
+       set_path(["clearance", "distance"], "21/10"))
+
+# The model edited after certification, or the certificate naming another model.
+mutate("lever-clearance.json", "lever-stop.json", "m07-hash-changed.json", "model hash mismatch",
+       set_path(["model", "content_hash"], "0" * 64))
+with open(os.path.join(HERE, "../../../examples/models/lever-stop.json")) as f:
+    edited = f.read().replace('"stop-gap":     { "nominal": 2,', '"stop-gap":     { "nominal": 2.5,')
+assert '"nominal": 2.5' in edited
+with open(os.path.join(HERE, "lever-stop-edited.json"), "w") as f:
+    f.write(edited)
+mutate("lever-clearance.json", "lever-stop.json", "m08-model-edited.json", "model hash mismatch", lambda c: None,
+       model_path="tests/data/certificates/lever-stop-edited.json")
+
+# Parameters and roundings.
+mutate("lever-clearance.json", "lever-stop.json", "m09-parameter-outside-tolerance.json",
+       "parameter outside its tolerance", set_path(["model", "parameters", "lever-length"], {"value": "61", "overridden": True}))
+mutate("lever-clearance.json", "lever-stop.json", "m10-parameter-not-nominal.json", "is not the model's nominal",
+       set_path(["model", "parameters", "lever-length"], {"value": "6001/100", "overridden": False}))
+mutate("lever-clearance.json", "lever-stop.json", "m11-parameter-missing.json", "gives no value for parameter 'stop-gap'",
+       lambda c: c["model"]["parameters"].pop("stop-gap"))
+mutate("lever-clearance.json", "lever-stop.json", "m12-rounding-changed.json", "rounding 0 differs",
+       lambda c: c["model"]["roundings"][0].__setitem__("value", "-1/2"))
+
+# Interval covers with gaps, and claims beyond what the boxes show.
+mutate("lever-free.json", "lever-stop.json", "m13-free-box-removed.json", "gap in the boxes' cover",
+       lambda c: c["free_passage"]["boxes"].pop(2))
+mutate("lever-free.json", "lever-stop.json", "m14-free-range-extended.json", "at its end",
+       set_path(["free_passage", "range"], ["-1/2", "3/100"]))
+mutate("lever-free.json", "lever-stop.json", "m15-free-distance-too-large.json",
+       "less than the claimed clearance plus the motion", set_path(["free_passage", "distance"], "3"))
+mutate("follower-guide-free.json", "cam-follower.json", "m16-free-beyond-limits.json", "outside the driver's limits",
+       lambda c: (c["free_passage"].__setitem__("range", ["-2", "20"]),
+                  c["free_passage"]["boxes"].append({"driver": ["3", "20"]})))
+mutate("ratchet-jam.json", "ratchet.json", "m17-jam-cut-gap.json", "gap in the cover of the cut",
+       lambda c: c["jam"]["cut"][0]["range"].__setitem__(1, "0"))
+mutate("ratchet-jam.json", "ratchet.json", "m18-jam-wall-gap.json", "gap in the cover of the lower wall",
+       lambda c: c["jam"]["lower_wall"].pop(1))
+mutate("ratchet-jam.json", "ratchet.json", "m19-jam-trap-widened.json", "gap in the cover of the cut",
+       lambda c: c["jam"]["trap"].__setitem__("follower", ["-7/500", "1/100"]))
+
+# Claimed feature pairs that do not block.
+mutate("lever-jam.json", "lever-stop.json", "m20-jam-pair-not-blocking.json", "does not block",
+       set_path(["jam", "cut", 0, "crossing", "across"], {"part": "stop", "loop": 0, "edge": 2, "label": ""}))
+mutate("lever-jam.json", "lever-stop.json", "m21-jam-piece-moved.json", "does not block",
+       set_path(["jam", "cut", 0, "crossing", "along"], ["1/2", "6/10"]))
+mutate("lever-jam.json", "lever-stop.json", "m22-jam-before-contact.json", "does not block",
+       set_path(["jam", "trap", "driver"], ["0", "1/100"]))
+mutate("ratchet-jam.json", "ratchet.json", "m23-jam-wall-pair-elsewhere.json", "does not block",
+       set_path(["jam", "lower_wall", 0, "crossing", "across"], {"part": "pawl", "loop": 0, "edge": 3, "label": "hub end"}))
+mutate("lever-jam.json", "lever-stop.json", "m24-jam-beyond-limits.json", "outside the driver's limits",
+       set_path(["jam", "trap", "driver"], ["3", "31/10"]))
+
+# References and syntax.
+mutate("lever-jam.json", "lever-stop.json", "m25-label-mismatch.json", "is labelled 'upper side' in the model",
+       set_path(["jam", "cut", 0, "crossing", "edge", "label"], "lower side"))
+mutate("lever-jam.json", "lever-stop.json", "m26-edge-out-of-range.json", "has no loop 0 edge 9",
+       set_path(["jam", "cut", 0, "crossing", "edge", "edge"], 9))
+mutate("lever-clearance.json", "lever-stop.json", "m27-unknown-key.json", "malformed certificate: /clearance/note: unknown key 'note'",
+       set_path(["clearance", "note"], "x"))
+mutate("lever-clearance.json", "lever-stop.json", "m28-unknown-part.json", "the model has no part 'leverr'",
+       set_path(["pair"], ["leverr", "stop"]))
+mutate("lever-clearance.json", "lever-stop.json", "m29-not-a-rational.json", "not an exact rational",
+       set_path(["clearance", "distance"], "two"))
+
+with open(os.path.join(HERE, "EXPECTED.txt"), "w") as f:
+    f.write("# certificate | model (relative to the repository) | expected: valid, or a substring of the reason\n")
+    for name, model, reason in expected:
+        f.write(f"{name} | {model} | {reason}\n")
+print(f"{len(expected)} certificates ({len(expected) - len(bases)} mutations)")
