@@ -28,6 +28,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace hipair {
@@ -202,6 +203,22 @@ struct KinematicsResult {
   double event_resolution = 0;           ///< largest certified width of a located event (driver units)
   double seconds = 0;
 };
+
+/// Blocked space of a two-part C-space sampled on columns of the x axis, for pictures (each
+/// column is an exact slice; the picture is as accurate as its column spacing).
+struct CSpaceRaster {
+  std::string pair, x_part, y_part;
+  bool x_rotates = true, y_rotates = true;
+  double x_lo = 0, x_hi = 0, y_lo = 0, y_hi = 0;   ///< axis ranges (rad or mm)
+  double column_width = 0;
+  std::vector<double> x;                           ///< column centres
+  std::vector<std::vector<std::pair<double, double>>> blocked;   ///< per column: blocked y ranges
+};
+
+/// Samples the C-space of the pair (first, second) of `model` (both must move).
+/// \throws ModelError for unknown parts or pairs, GeometryError for other motions.
+CSpaceRaster sample_cspace(const Model& model, std::string_view first, std::string_view second,
+                           std::size_t columns = 360);
 
 /// Loads read from the model's dynamics data (springs, torques, forces), by part name.
 std::map<std::string, FollowerLoad> model_loads(const Model& model);

@@ -12,6 +12,7 @@ using Action = std::function<int()>;
 
 void register_validate(CLI::App& app, Action& action);
 void register_show(CLI::App& app, Action& action);
+void register_analyze(CLI::App& app, Action& action);
 void register_certify(CLI::App& app, Action& action);
 
 }  // namespace hipair::cli

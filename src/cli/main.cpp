@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   hipair::cli::Action action;
   hipair::cli::register_validate(app, action);
   hipair::cli::register_show(app, action);
+  hipair::cli::register_analyze(app, action);
   hipair::cli::register_certify(app, action);
   try {
     app.parse(argc, argv);

@@ -227,7 +227,16 @@ struct Sweep {
     return false;
   }
 
-  bool differs(const ChainState& a, const ChainState& b) const { return !same_contacts(a, b) || jumped(a, b); }
+  // A contact change, a jump, or motion of a part that is free at both ends (it was pushed by
+  // a contact that came and went between the two driver positions).
+  bool differs(const ChainState& a, const ChainState& b) const {
+    if (!same_contacts(a, b) || jumped(a, b)) return true;
+    for (std::size_t k = 1; k < a.parts.size() && k < b.parts.size(); ++k)
+      if (a.parts[k].side == 0 && b.parts[k].side == 0 && compare(a.parts[k].position, b.parts[k].position) != 0 &&
+          chain.parts[k].load.kind == FollowerLoad::Kind::none)
+        return true;
+    return false;
+  }
 
   std::vector<ContactLabel> labels(const PartState& state, std::size_t k) const {
     std::vector<ContactLabel> out;
@@ -373,7 +382,7 @@ struct Sweep {
         left = std::move(a);
         return false;
       }
-      if (!same_contacts(a, b) || jumped(a, b)) record_event(segment, ta, tb, a, b);
+      record_event(segment, ta, tb, a, b);
       left = std::move(b);
       t_left = tb;
       if (t_left == t_right) return true;

@@ -306,7 +306,51 @@ bool update_part(const Chain& chain, std::size_t k, const PartState& old, const 
   bool pushed = false;
   auto old_down = [&]() { return old.lower.exists && !initial ? distance_down(line, y, old.lower.at) : infinity; };
   auto old_up = [&]() { return old.upper.exists && !initial ? distance_up(line, y, old.upper.at) : infinity; };
-  if (placement.on_point) {
+  // A follower in contact follows the contact curve it was on (compliant motion), however
+  // narrow its free channel: find the same contact with the same orientation nearby.
+  std::size_t followed = none;
+  double followed_offset = 0;   // signed coordinate offset of the contact point from y
+  if (!initial && old.side != 0 && !old.contacts.empty()) {
+    double best = infinity;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Breakpoint& point = slice.points[i];
+      bool shares = std::any_of(point.contacts.begin(), point.contacts.end(), [&](const SliceContact& c) {
+        return !c.limit && std::find(old.contacts.begin(), old.contacts.end(), c) != old.contacts.end();
+      });
+      if (!shares) continue;
+      bool blocked_below = !non_blocked(slice, interval_before(line, slice, i));
+      bool blocked_above = !non_blocked(slice, interval_after(slice, i));
+      if (old.side < 0 ? !(blocked_below && !blocked_above) : !(blocked_above && !blocked_below)) continue;
+      double offset = 0;
+      if (compare(point.at, y) != 0) {
+        offset = coordinate(line, point.at) - coordinate(line, y);
+        if (line.cyclic) offset = std::remainder(offset, 2 * pi);
+      }
+      if (std::abs(offset) < best) {
+        best = std::abs(offset);
+        followed = i;
+        followed_offset = offset;
+      }
+    }
+    if (followed != none && best > pi / 8) followed = none;   // too far to be the same contact
+  }
+  if (followed != none) {
+    // the contact point moved to `offset` from y: it pushes when it moved into the free side
+    std::size_t free_side = old.side < 0 ? interval_after(slice, followed) : interval_before(line, slice, followed);
+    bool pushing = old.side < 0 ? followed_offset >= 0 : followed_offset <= 0;
+    interval = free_side;
+    if (pushing) {
+      start = slice.points[followed].at;
+      moved = followed_offset;
+      pushed = followed_offset != 0;
+      out.push_distance = std::abs(moved);
+    } else if (placement.on_point || !non_blocked(slice, placement.interval) || placement.interval != free_side) {
+      followed = none;   // y is not in the free range next to the contact: decide as usual
+    }
+  }
+  if (followed != none) {
+    // decided above
+  } else if (placement.on_point) {
     std::size_t before = interval_before(line, slice, placement.point);
     std::size_t after = interval_after(slice, placement.point);
     bool free_before = non_blocked(slice, before), free_after = after <= n && non_blocked(slice, after);
@@ -464,7 +508,9 @@ ChainState step(const Chain& chain, const ChainState& state, std::size_t piece, 
     if (chain.parts[k].load.kind == FollowerLoad::Kind::none && part.side != 0 && driver_motion != 0 &&
         std::isfinite(known[k].ratio)) {
       double velocity = known[k].ratio * driver_motion;
-      if (velocity * -part.side <= 0) {
+      std::size_t curves = std::count_if(part.contacts.begin(), part.contacts.end(), [](const SliceContact& c) { return !c.limit; });
+      // the slope of a single contact curve is reliable; at a corner (several curves) trust the push
+      if (velocity * -part.side <= 0 && (curves == 1 || !part.pushed)) {
         part.side = 0;
         part.contacts.clear();
         known[k] = Rates{};

@@ -1,0 +1,233 @@
+// `hipair analyze MODEL [--driver PART] [--direction cw|ccw|+|-] [--range A:B | --cycles N]
+// [--out DIR] ...`: kinematic analysis — prints the report for designers and writes
+// report.json, kinematics.csv, kinematics.svg and cspace-PAIR.svg into DIR.
+#include "cli/commands.hpp"
+
+#include "io/atomic_file.hpp"
+#include "render/kinematics_svg.hpp"
+
+#include <hipair/error.hpp>
+#include <hipair/kinematics.hpp>
+#include <hipair/model.hpp>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <numbers>
+
+namespace hipair::cli {
+namespace {
+
+struct AnalyzeOptions {
+  std::string model;
+  std::string driver;
+  std::string direction;
+  std::string range;
+  std::string cycles = "1";
+  std::string out;
+  unsigned steps = 720;
+  std::vector<std::string> loads;
+  bool no_model_loads = false;
+  std::vector<std::string> expected;
+  bool accelerations = false;
+  bool no_reversal = false;
+  std::string method = "auto";
+  unsigned columns = 240;
+  bool no_pictures = false;
+  bool quiet = false;
+};
+
+std::string trim(const std::string& text) {
+  std::size_t first = text.find_first_not_of(" \t");
+  if (first == std::string::npos) return "";
+  std::size_t last = text.find_last_not_of(" \t");
+  return text.substr(first, last - first + 1);
+}
+
+// A number with an optional unit suffix: angles in the model's unit unless "deg"/"rad" is
+// given; converted to rad (degrees through a double: a driver position, rounded anyway).
+Rational coordinate_value(const std::string& text, bool angle, const std::string& unit, const std::string& what) {
+  std::string body = trim(text), suffix = angle ? unit : "mm";
+  for (const char* word : {"deg", "rad", "mm"}) {
+    std::string w = word;
+    if (body.size() > w.size() && body.compare(body.size() - w.size(), w.size(), w) == 0) {
+      suffix = w;
+      body = trim(body.substr(0, body.size() - w.size()));
+    }
+  }
+  Rational value;
+  try {
+    value = parse_rational(body);
+  } catch (const Error&) {
+    throw ModelError("", what + ": '" + text + "' is not a number");
+  }
+  if (angle && suffix == "deg") return Rational(value.get_d() * std::numbers::pi / 180);
+  if (!angle && suffix != "mm") throw ModelError("", what + ": a translating driver takes mm");
+  return value;
+}
+
+FollowerLoad parse_load(const std::string& text, std::string& part) {
+  std::size_t equals = text.find('=');
+  if (equals == std::string::npos) throw ModelError("", "--load expects PART=none|+|-|cw|ccw|spring:REST, got '" + text + "'");
+  part = trim(text.substr(0, equals));
+  std::string value = trim(text.substr(equals + 1));
+  FollowerLoad load;
+  load.source = "--load " + text;
+  if (value == "none") load.kind = FollowerLoad::Kind::none;
+  else if (value == "+" || value == "ccw") load.kind = FollowerLoad::Kind::positive;
+  else if (value == "-" || value == "cw") load.kind = FollowerLoad::Kind::negative;
+  else if (value.rfind("spring:", 0) == 0) {
+    load.kind = FollowerLoad::Kind::spring;
+    try {
+      load.rest = parse_rational(trim(value.substr(7))).get_d();
+    } catch (const Error&) {
+      throw ModelError("", "--load " + text + ": the rest position is not a number");
+    }
+  } else {
+    throw ModelError("", "--load " + text + ": expected none, +, -, cw, ccw or spring:REST");
+  }
+  return load;
+}
+
+std::string file_name_part(const std::string& text) {
+  std::string out;
+  for (char c : text) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_') ? c : '-';
+  return out;
+}
+
+int run_analyze(const AnalyzeOptions& options) {
+  Model model = read_model_file(options.model);
+  KinematicsOptions analysis;
+  analysis.driver = options.driver;
+  analysis.steps_per_cycle = options.steps;
+  analysis.accelerations = options.accelerations;
+  analysis.reversal = !options.no_reversal;
+  analysis.expected_contacts = options.expected;
+  analysis.model_loads = !options.no_model_loads;
+  if (options.method == "kernels") analysis.method = SliceMethod::kernels;
+  else if (options.method == "cspace") analysis.method = SliceMethod::cspace;
+  else if (options.method != "auto") throw ModelError("", "--method expects auto, kernels or cspace");
+  for (const std::string& text : options.loads) {
+    std::string part;
+    FollowerLoad load = parse_load(text, part);
+    if (!model.find_part(part)) throw ModelError("", "--load: no part named '" + part + "'");
+    analysis.loads[part] = load;
+  }
+  // which part is driven decides the units of --range
+  std::string driver_name = options.driver;
+  if (driver_name.empty())
+    for (const PairSpec& pair : model.pairs) {
+      for (std::size_t candidate : {pair.first, pair.second}) {
+        Motion::Kind kind = model.parts[candidate].motion.kind;
+        if (kind == Motion::Kind::rotation || kind == Motion::Kind::translation) {
+          driver_name = model.parts[candidate].name;
+          break;
+        }
+      }
+      if (!driver_name.empty()) break;
+    }
+  auto driver_index = model.find_part(driver_name);
+  if (!driver_index) throw ModelError("", "--driver: no part named '" + driver_name + "'");
+  bool rotates = model.parts[*driver_index].motion.kind == Motion::Kind::rotation;
+  if (!options.direction.empty()) {
+    const std::string& d = options.direction;
+    if (d == "ccw" || d == "+") analysis.direction = 1;
+    else if (d == "cw" || d == "-") analysis.direction = -1;
+    else throw ModelError("", "--direction expects cw, ccw, + or -");
+    if (!rotates && (d == "cw" || d == "ccw")) throw ModelError("", "--direction: a translating driver moves + or -");
+  }
+  if (!options.range.empty()) {
+    std::size_t colon = options.range.find(':');
+    if (colon == std::string::npos) throw ModelError("", "--range expects A:B");
+    Rational a = coordinate_value(options.range.substr(0, colon), rotates, model.angle_unit, "--range");
+    Rational b = coordinate_value(options.range.substr(colon + 1), rotates, model.angle_unit, "--range");
+    if (a == b) throw ModelError("", "--range: the range is empty");
+    if (!options.direction.empty() && (b > a) != (analysis.direction > 0))
+      throw ModelError("", "--range runs against --direction");
+    analysis.range = std::make_pair(a, b);
+  } else {
+    try {
+      analysis.cycles = parse_rational(options.cycles);
+    } catch (const Error&) {
+      throw ModelError("", "--cycles: '" + options.cycles + "' is not a number");
+    }
+    if (analysis.cycles <= 0) throw ModelError("", "--cycles must be positive");
+  }
+  bool terminal = isatty(2) && !options.quiet;
+  if (terminal)
+    analysis.progress = [](double fraction) {
+      std::cerr << "\ranalyze: " << static_cast<int>(fraction * 100) << "% " << std::flush;
+    };
+  std::vector<CSpace> spaces;
+  if (analysis.method == SliceMethod::cspace) {
+    CSpaceBuildOptions build;
+    build.progress = terminal;
+    spaces = CSpace::build_all(model, build);
+  }
+  KinematicsResult result = analyze_kinematics(model, analysis, spaces);
+  if (terminal) std::cerr << "\r              \r" << std::flush;
+  std::cout << kinematics_text_report(result);
+  if (options.out.empty()) {
+    std::cout << "\n(use --out DIR to write report.json, kinematics.csv and the pictures)\n";
+    return 0;
+  }
+  std::filesystem::path directory(options.out);
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) throw IoError("cannot create directory " + directory.string() + ": " + error.message());
+  io::write_file_atomically(directory / "report.json", kinematics_json_report(result));
+  io::write_file_atomically(directory / "kinematics.csv", kinematics_csv(result));
+  std::vector<std::string> written{"report.json", "kinematics.csv"};
+  if (!options.no_pictures) {
+    io::write_file_atomically(directory / "kinematics.svg", render::kinematics_plot_svg(result));
+    written.push_back("kinematics.svg");
+    for (const PairPath& path : result.paths) {
+      if (path.y_part.empty()) continue;
+      if (terminal) std::cerr << "\ranalyze: drawing the C-space of " << path.pair << "..." << std::flush;
+      CSpaceRaster raster = sample_cspace(model, path.x_part, path.y_part, options.columns);
+      std::string name = "cspace-" + file_name_part(path.x_part) + "-" + file_name_part(path.y_part) + ".svg";
+      io::write_file_atomically(directory / name, render::cspace_path_svg(raster, path));
+      written.push_back(name);
+      if (terminal) std::cerr << "\r" << std::string(60, ' ') << "\r" << std::flush;
+    }
+  }
+  std::cout << "\nwrote";
+  for (const std::string& name : written) std::cout << " " << (directory / name).string();
+  std::cout << "\n";
+  return 0;
+}
+
+}  // namespace
+
+void register_analyze(CLI::App& app, Action& action) {
+  auto options = std::make_shared<AnalyzeOptions>();
+  CLI::App* command = app.add_subcommand(
+      "analyze", "Kinematic analysis: drive one part and report how the others move (contacts, dwell, play, jamming)");
+  command->add_option("model", options->model, "model file (JSON, see docs/model-format.md)")->required();
+  command->add_option("--driver", options->driver, "part to drive (default: the first moving part of the first pair)");
+  command->add_option("--direction", options->direction, "cw, ccw (rotation) or +, - (default ccw / +)");
+  auto* range = command->add_option("--range", options->range,
+                                    "driver range A:B (angles in the model's unit or with a deg/rad suffix; mm)");
+  command->add_option("--cycles", options->cycles, "full driver turns from the initial configuration (default 1)")
+      ->excludes(range);
+  command->add_option("--out", options->out, "directory for report.json, kinematics.csv, kinematics.svg, cspace-*.svg");
+  command->add_option("--steps", options->steps, "driver grid steps per turn (default 720)")->check(CLI::Range(16u, 100000u));
+  command->add_option("--load", options->loads,
+                      "load on a driven part: PART=none|+|-|cw|ccw|spring:REST (replaces the model's dynamics data)");
+  command->add_flag("--no-model-loads", options->no_model_loads, "ignore springs/torques/forces of the model");
+  command->add_option("--expect", options->expected,
+                      "label text of an expected contact; every other contact is reported as unintended");
+  command->add_flag("--accelerations", options->accelerations, "also sample accelerations into the CSV");
+  command->add_flag("--no-reversal", options->no_reversal, "skip the lost-motion (reversal) checks");
+  command->add_option("--method", options->method, "slices from: auto (default), kernels, cspace");
+  command->add_option("--columns", options->columns, "columns of the C-space pictures (default 240)")
+      ->check(CLI::Range(16u, 4000u));
+  command->add_flag("--no-pictures", options->no_pictures, "write no SVG pictures");
+  command->add_flag("--quiet", options->quiet, "no progress on the terminal");
+  command->callback([&action, options] { action = [options] { return run_analyze(*options); }; });
+}
+
+}  // namespace hipair::cli

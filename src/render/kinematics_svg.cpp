@@ -1,0 +1,227 @@
+// Kinematic plots and C-space path pictures (SVG).
+#include "render/kinematics_svg.hpp"
+
+#include "io/svg.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+
+namespace hipair::render {
+namespace {
+
+constexpr double degrees = 180 / std::numbers::pi;
+
+std::string label_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", std::abs(value) < 1e-12 ? 0.0 : value);
+  return text;
+}
+
+// A rectangular plot area in world units (y up) with data ranges.
+struct Panel {
+  double left = 0, bottom = 0, width = 0, height = 0;
+  double x_min = 0, x_max = 1, y_min = 0, y_max = 1;
+  double x(double value) const { return left + (value - x_min) / (x_max - x_min) * width; }
+  double y(double value) const { return bottom + (value - y_min) / (y_max - y_min) * height; }
+};
+
+void nice_range(double& lo, double& hi) {
+  if (!(hi > lo)) {
+    double middle = std::isfinite(lo) ? lo : 0;
+    lo = middle - 1;
+    hi = middle + 1;
+  }
+  double step = io::nice_length((hi - lo) / 6);
+  lo = std::floor(lo / step) * step;
+  hi = std::ceil(hi / step) * step;
+}
+
+void draw_axes(io::SvgWriter& svg, const Panel& panel, const std::string& x_label, const std::string& y_label,
+               const std::string& title) {
+  io::SvgStyle frame;
+  frame.stroke = "#444";
+  frame.stroke_width = 1;
+  io::SvgStyle grid;
+  grid.stroke = "#ddd";
+  grid.stroke_width = 0.6;
+  double x_step = io::nice_length((panel.x_max - panel.x_min) / 8);
+  for (double v = std::ceil(panel.x_min / x_step) * x_step; v <= panel.x_max + 1e-9 * x_step; v += x_step) {
+    svg.line(panel.x(v), panel.bottom, panel.x(v), panel.bottom + panel.height, grid);
+    svg.text(panel.x(v), panel.bottom - 14, label_number(v), 11);
+  }
+  double y_step = io::nice_length((panel.y_max - panel.y_min) / 6);
+  for (double v = std::ceil(panel.y_min / y_step) * y_step; v <= panel.y_max + 1e-9 * y_step; v += y_step) {
+    svg.line(panel.left, panel.y(v), panel.left + panel.width, panel.y(v), grid);
+    svg.text(panel.left - 6, panel.y(v) - 4, label_number(v), 11, "end");
+  }
+  svg.rectangle(panel.left, panel.bottom, panel.width, panel.height, frame);
+  svg.text(panel.left + panel.width / 2, panel.bottom - 32, x_label, 12);
+  svg.text(panel.left - 8, panel.bottom + panel.height + 8, y_label, 12, "end");
+  svg.text(panel.left + panel.width / 2, panel.bottom + panel.height + 24, title, 13, "middle", "black", "bold");
+}
+
+}  // namespace
+
+std::string kinematics_plot_svg(const KinematicsResult& result, double pixel_width) {
+  bool rot = result.driver_rotates;
+  double driver_scale = rot ? degrees : 1.0;
+  const double width = 900, panel_height = 220, gap = 90, left = 90;
+  std::size_t followers = result.followers.size();
+  double total = followers * 2 * (panel_height + gap) + 50;
+  io::SvgWriter svg(io::SvgBox{0, 0, width, total}, pixel_width);
+  svg.set_default_stroke_width(1);
+  double x_min = std::min(result.start, result.reached) * driver_scale, x_max = std::max(result.start, result.reached) * driver_scale;
+  if (!result.samples.empty()) {
+    x_min = std::min(result.samples.front().driver, result.samples.back().driver) * driver_scale;
+    x_max = std::max(result.samples.front().driver, result.samples.back().driver) * driver_scale;
+  }
+  if (!(x_max > x_min)) x_max = x_min + 1;
+  std::string x_label = result.driver + (rot ? " angle (deg)" : " offset (mm)");
+  double top = total - 70;
+  for (std::size_t f = 0; f < followers; ++f) {
+    bool frot = result.follower_rotates[f];
+    double scale = frot ? degrees : 1.0;
+    for (int kind = 0; kind < 2; ++kind) {
+      Panel panel;
+      panel.left = left;
+      panel.width = width - left - 30;
+      panel.height = panel_height;
+      panel.bottom = top - panel_height;
+      top -= panel_height + gap;
+      panel.x_min = x_min;
+      panel.x_max = x_max;
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      auto value = [&](const KinematicSample& sample) {
+        if (kind == 0) return sample.positions[f] * scale;
+        return sample.velocity_ratios[f] * scale / driver_scale;
+      };
+      for (const KinematicSample& sample : result.samples) {
+        double v = value(sample);
+        if (!std::isfinite(v)) continue;
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+      nice_range(lo, hi);
+      panel.y_min = lo;
+      panel.y_max = hi;
+      // dwell periods shaded
+      io::SvgStyle dwell;
+      dwell.fill = "#eef3fb";
+      dwell.stroke = "none";
+      for (const KinematicPiece& piece : result.pieces) {
+        if (piece.part != result.followers[f] || piece.moving) continue;
+        double a = piece.start.value() * driver_scale, b = piece.end.value() * driver_scale;
+        svg.rectangle(panel.x(std::min(a, b)), panel.bottom, std::abs(panel.x(b) - panel.x(a)), panel.height, dwell);
+      }
+      std::string name = result.followers[f];
+      std::string y_label = kind == 0 ? (frot ? "angle (deg)" : "offset (mm)") : "velocity ratio";
+      std::string title = kind == 0 ? name + ": position against the driver (shaded: dwell)"
+                                    : name + ": velocity ratio d(" + name + ")/d(" + result.driver + ")";
+      draw_axes(svg, panel, x_label, y_label, title);
+      // contact changes
+      io::SvgStyle change;
+      change.stroke = "#999";
+      change.stroke_width = 0.8;
+      change.dash = "4 3";
+      for (const KinematicEvent& event : result.events) {
+        if (event.part != name) continue;
+        double x = panel.x(event.at.value() * driver_scale);
+        svg.line(x, panel.bottom, x, panel.bottom + panel.height, change);
+      }
+      io::SvgPath curve;
+      bool pen = false;
+      for (const KinematicSample& sample : result.samples) {
+        double v = value(sample);
+        if (!std::isfinite(v)) {
+          pen = false;
+          continue;
+        }
+        double px = panel.x(sample.driver * driver_scale), py = panel.y(v);
+        if (pen) curve.line_to(px, py);
+        else curve.move_to(px, py);
+        pen = true;
+      }
+      io::SvgStyle line;
+      line.stroke = kind == 0 ? "#1f4e9c" : "#b03a2e";
+      line.stroke_width = 1.6;
+      if (!curve.empty()) svg.path(curve, line);
+      if (result.jam) {
+        io::SvgStyle jam;
+        jam.stroke = "#c00";
+        jam.stroke_width = 2;
+        double x = panel.x(result.jam->at.value() * driver_scale);
+        svg.line(x, panel.bottom, x, panel.bottom + panel.height, jam);
+        svg.text(x + 4, panel.bottom + panel.height - 14, "blocked", 12, "start", "#c00");
+      }
+    }
+  }
+  svg.text(width / 2, total - 22, "Kinematics of " + result.model_name + " (driver " + result.driver + ")", 15, "middle", "black", "bold");
+  return svg.str();
+}
+
+std::string cspace_path_svg(const CSpaceRaster& raster, const PairPath& path, const std::string& title, double pixel_width) {
+  double xs = raster.x_rotates ? degrees : 1.0, ys = raster.y_rotates ? degrees : 1.0;
+  const double size = 600, left = 90, bottom = 110;
+  io::SvgWriter svg(io::SvgBox{0, 0, left + size + 40, bottom + size + 50}, pixel_width);
+  svg.set_default_stroke_width(1);
+  Panel panel;
+  panel.left = left;
+  panel.bottom = bottom;
+  panel.width = size;
+  panel.height = size;
+  panel.x_min = raster.x_lo * xs;
+  panel.x_max = raster.x_hi * xs;
+  panel.y_min = raster.y_lo * ys;
+  panel.y_max = raster.y_hi * ys;
+  io::SvgStyle blocked;
+  blocked.fill = "#9a9a9a";
+  blocked.stroke = "none";
+  for (std::size_t c = 0; c < raster.x.size(); ++c) {
+    double x0 = panel.x((raster.x[c] - raster.column_width / 2) * xs);
+    double x1 = panel.x((raster.x[c] + raster.column_width / 2) * xs);
+    for (auto [lo, hi] : raster.blocked[c]) {
+      double y0 = panel.y(std::max(lo * ys, panel.y_min)), y1 = panel.y(std::min(hi * ys, panel.y_max));
+      if (y1 > y0) svg.rectangle(x0, y0, x1 - x0 + 0.8, y1 - y0, blocked);
+    }
+  }
+  draw_axes(svg, panel, raster.x_part + (raster.x_rotates ? " angle (deg)" : " offset (mm)"),
+            raster.y_part + (raster.y_rotates ? " (deg)" : " (mm)"),
+            title.empty() ? "C-space of " + raster.pair + ": blocked grey, free white; path: free blue, contact red" : title);
+  // the path, broken where it wraps around
+  double x_period = raster.x_rotates ? 360 : 0, y_period = raster.y_rotates ? 360 : 0;
+  io::SvgStyle free_style, contact_style;
+  free_style.stroke = "#1f4e9c";
+  free_style.stroke_width = 2.2;
+  contact_style.stroke = "#d62d20";
+  contact_style.stroke_width = 2.6;
+  for (std::size_t i = 1; i < path.points.size(); ++i) {
+    const PathPoint& a = path.points[i - 1];
+    const PathPoint& b = path.points[i];
+    double ax = a.x * xs, ay = a.y * ys, bx = b.x * xs, by = b.y * ys;
+    if ((x_period > 0 && std::abs(bx - ax) > x_period / 2) || (y_period > 0 && std::abs(by - ay) > y_period / 2)) continue;
+    bool contact = a.contact && b.contact;
+    svg.line(panel.x(ax), panel.y(ay), panel.x(bx), panel.y(by), contact ? contact_style : free_style);
+  }
+  if (!path.points.empty()) {
+    io::SvgStyle start;
+    start.fill = "#2a9d3a";
+    start.stroke = "white";
+    io::SvgStyle end;
+    end.fill = "black";
+    end.stroke = "white";
+    svg.circle(panel.x(path.points.front().x * xs), panel.y(path.points.front().y * ys), 6, start);
+    svg.circle(panel.x(path.points.back().x * xs), panel.y(path.points.back().y * ys), 5, end);
+  }
+  std::vector<io::SvgWriter::LegendEntry> legend;
+  io::SvgStyle swatch_blocked = blocked;
+  legend.push_back({swatch_blocked, "blocked (parts overlap)"});
+  legend.push_back({free_style, "path, no contact"});
+  legend.push_back({contact_style, "path, in contact"});
+  svg.legend(left, bottom - 48, legend, 11);
+  return svg.str();
+}
+
+}  // namespace hipair::render
