@@ -38,8 +38,12 @@ Point unit_small_angle(const mpfr_t angle, const std::string& pointer, const std
   mpfr_init2(half, working_bits);
   mpfr_div_ui(half, angle, 2, MPFR_RNDN);
   mpfr_tan(half, half, MPFR_RNDN);
-  Rational t = round_mpfr_to_grid(half);
+  Rational tangent;
+  mpfr_get_q(tangent.get_mpq_t(), half);  // exact value of the 256-bit approximation
   mpfr_clear(half);
+  // The 256-bit tangent is within 2^-250 of the true one; shrink the window by that much.
+  Rational t = simplest_rational_between(tangent - grid_half_step() + Rational(1, mpz_class(1) << 240),
+                                         tangent + grid_half_step() - Rational(1, mpz_class(1) << 240));
   // |d theta / d t| = 2 / (1 + t^2) <= 2, so the angle error is at most twice the t error;
   // add 10^-60 for the 256-bit evaluation.
   // The record holds the half-angle tangent used and the bound on the angle it implies.
@@ -71,6 +75,46 @@ Point direction_from_mpfr(mpfr_t angle, const std::string& pointer, const std::s
 }
 
 }  // namespace
+
+Rational simplest_rational_between(const Rational& lo, const Rational& hi) {
+  if (lo <= 0 && hi >= 0) return Rational(0);
+  if (hi < 0) return Rational(-simplest_rational_between(Rational(-hi), Rational(-lo)));
+  // 0 < lo <= hi: continued-fraction descent (Stern-Brocot), iterative.
+  // Invariant: result = (p0 * x + p1) / (q0 * x + q1) for the simplest x in [a, b].
+  Rational a = lo, b = hi;
+  mpz_class p0 = 1, p1 = 0, q0 = 0, q1 = 1;
+  for (;;) {
+    mpz_class floor_a;
+    mpz_fdiv_q(floor_a.get_mpz_t(), a.get_num_mpz_t(), a.get_den_mpz_t());
+    mpz_class value;  // the simplest x is an integer when one lies in [a, b]
+    bool integer_found = false;
+    if (Rational(floor_a) == a) {
+      value = floor_a;
+      integer_found = true;
+    } else if (Rational(floor_a + 1) <= b) {
+      value = floor_a + 1;
+      integer_found = true;
+    }
+    if (integer_found) {
+      Rational result(p0 * value + p1, q0 * value + q1);
+      result.canonicalize();
+      return result;
+    }
+    // x = floor_a + 1/y with y in [1/(b - floor_a), 1/(a - floor_a)].
+    mpz_class np0 = p0 * floor_a + p1, nq0 = q0 * floor_a + q1;
+    p1 = p0;
+    q1 = q0;
+    p0 = np0;
+    q0 = nq0;
+    Rational new_a = 1 / (b - floor_a), new_b = 1 / (a - floor_a);
+    a = new_a;
+    b = new_b;
+  }
+}
+
+Rational round_half_tangent(const Rational& tangent) {
+  return simplest_rational_between(tangent - grid_half_step(), tangent + grid_half_step());
+}
 
 Rational round_to_grid(const Rational& value) {
   mpfr_t v;

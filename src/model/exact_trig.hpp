@@ -17,6 +17,14 @@ inline constexpr int rounding_decimals = 12;
 /// .cpp) to the nearest multiple of 10^-12. Internal helper.
 Rational round_to_grid(const Rational& value);
 
+/// The simplest rational (smallest denominator) in the closed interval [lo, hi], lo <= hi.
+Rational simplest_rational_between(const Rational& lo, const Rational& hi);
+
+/// Rounds a half-angle tangent for an exact unit vector: the simplest rational within half a
+/// grid step (5*10^-13) of `tangent`. Same error bound as the grid, but about half the digits
+/// (continued-fraction convergents), which keeps every exact computation downstream small.
+Rational round_half_tangent(const Rational& tangent);
+
 /// An exact rational unit vector (cos a, sin a) for the angle `angle` (rad), built from the
 /// half-angle tangent t = tan(a/2) (or of a - pi when |a| > pi/2, then negated), with t
 /// rounded to a multiple of 10^-12 when it is not rational. When rounding happens, a Rounding

@@ -62,7 +62,7 @@ Point point_on_circle_near(const Point& center, const Rational& radius, const Po
   bool flipped = relative.x < 0;
   Rational tangent = flipped ? Rational(-relative.y / (radius - relative.x))
                              : Rational(relative.y / (radius + relative.x));
-  Rational rounded = round_to_grid(tangent);
+  Rational rounded = round_half_tangent(tangent);
   Point unit = unit_from_half_tangent(rounded);
   if (flipped) unit = Point{-unit.x, -unit.y};
   roundings.push_back(Rounding{pointer, what + " (exact point on its circle, half-angle tangent)",

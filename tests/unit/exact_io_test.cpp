@@ -77,3 +77,29 @@ TEST(AtomicFile, FailureLeavesNoFileAndKeepsTheOldOne) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(ExactTrig, SimplestRationalBetween) {
+  using hipair::model_detail::simplest_rational_between;
+  EXPECT_EQ(simplest_rational_between(Rational(333, 1000), Rational(334, 1000)), Rational(1, 3));
+  EXPECT_EQ(simplest_rational_between(hipair::parse_rational("3.14159"), hipair::parse_rational("3.1416")),
+            Rational(355, 113));
+  EXPECT_EQ(simplest_rational_between(Rational(-1, 2), Rational(1, 3)), Rational(0));
+  EXPECT_EQ(simplest_rational_between(hipair::parse_rational("-3.1416"), hipair::parse_rational("-3.14159")),
+            Rational(-355, 113));
+  EXPECT_EQ(simplest_rational_between(Rational(7, 2), Rational(7, 2)), Rational(7, 2));
+  EXPECT_EQ(simplest_rational_between(Rational(5, 2), Rational(4)), Rational(3));
+}
+
+TEST(ExactTrig, HalfTangentsStayWithinTheGridBoundWithFewDigits) {
+  // tan(pi/8) = sqrt(2) - 1: the simplest rational within 5e-13 has a denominator near 10^6,
+  // where the grid value has 10^12.
+  Rational near_tangent = hipair::parse_rational("0.41421356237309504880168872");
+  Rational t = hipair::model_detail::round_half_tangent(near_tangent);
+  Rational error = t - near_tangent;
+  EXPECT_LE(abs(error), Rational(mpz_class(1), mpz_class("2000000000000")));
+  EXPECT_LT(mpz_sizeinbase(t.get_den_mpz_t(), 10), 9u);
+}
+
+}  // namespace
