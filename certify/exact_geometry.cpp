@@ -46,6 +46,17 @@ bool root_in_sector(const LineCircle& line, int sigma, const PlacedEdge& arc, bo
 // Crossings of the ray p + lambda v (lambda > 0) with edge e; nullopt when the ray passes
 // through an end point of e or touches it (then another direction is tried).
 std::optional<int> ray_crossings(const PlacedEdge& e, const Point& p, const Point& v) {
+  // The box behind the ray's start or on one side of its line: no crossing.
+  double px = p.x.get_d(), py = p.y.get_d(), vx = v.x.get_d(), vy = v.y.get_d();
+  int ahead = 0, left = 0, right = 0;
+  for (double x : {e.box[0], e.box[1]})
+    for (double y : {e.box[2], e.box[3]}) {
+      ahead += (x - px) * vx + (y - py) * vy > 0;
+      double side = vx * (y - py) - vy * (x - px);
+      left += side > 0;
+      right += side < 0;
+    }
+  if (ahead == 0 || left == 4 || right == 4) return 0;
   if (!e.arc) {
     Point d = minus(e.target, e.source), w = minus(e.source, p);
     Rational denominator = cross(v, d);
@@ -70,6 +81,8 @@ std::optional<int> ray_crossings(const PlacedEdge& e, const Point& p, const Poin
 }
 
 bool on_edge(const PlacedEdge& e, const Point& p) {
+  double x = p.x.get_d(), y = p.y.get_d();
+  if (x < e.box[0] || x > e.box[1] || y < e.box[2] || y > e.box[3]) return false;
   if (!e.arc) {
     Point d = minus(e.target, e.source);
     return sgn(cross(d, minus(p, e.source))) == 0 && sgn(dot(minus(p, e.source), d)) >= 0 &&
@@ -100,7 +113,14 @@ PlacedPart place(const Part& part, const ExactMap& map) {
         e.from = minus(edge.ccw ? e.source : e.target, e.center);
         e.to = minus(edge.ccw ? e.target : e.source, e.center);
         e.reflex = sgn(cross(e.from, e.to)) < 0;
+        double radius = std::sqrt(e.radius_squared.get_d()), x = e.center.x.get_d(), y = e.center.y.get_d();
+        e.box = {x - radius, x + radius, y - radius, y + radius};
+      } else {
+        double x0 = e.source.x.get_d(), x1 = e.target.x.get_d(), y0 = e.source.y.get_d(), y1 = e.target.y.get_d();
+        e.box = {std::min(x0, x1), std::max(x0, x1), std::min(y0, y1), std::max(y0, y1)};
       }
+      double margin = 1e-7 * (1 + std::fabs(e.box[0]) + std::fabs(e.box[1]) + std::fabs(e.box[2]) + std::fabs(e.box[3]));
+      e.box = {e.box[0] - margin, e.box[1] + margin, e.box[2] - margin, e.box[3] + margin};
       edges.push_back(std::move(e));
     }
   }
@@ -174,25 +194,12 @@ bool edges_cross(const PlacedEdge& e, const PlacedEdge& g) {
 }
 
 std::string overlap_evidence(const PlacedPart& a, const PlacedPart& b) {
-  // Bounding boxes in double with a wide margin only skip pairs that cannot cross.
-  auto box = [](const PlacedEdge& e) {
-    std::array<double, 4> r;
-    if (e.arc) {
-      double radius = std::sqrt(e.radius_squared.get_d()), x = e.center.x.get_d(), y = e.center.y.get_d();
-      r = {x - radius, x + radius, y - radius, y + radius};
-    } else {
-      double x0 = e.source.x.get_d(), x1 = e.target.x.get_d(), y0 = e.source.y.get_d(), y1 = e.target.y.get_d();
-      r = {std::min(x0, x1), std::max(x0, x1), std::min(y0, y1), std::max(y0, y1)};
-    }
-    double margin = 1e-6 * (1 + std::fabs(r[0]) + std::fabs(r[1]) + std::fabs(r[2]) + std::fabs(r[3]));
-    return std::array<double, 4>{r[0] - margin, r[1] + margin, r[2] - margin, r[3] + margin};
-  };
   for (std::size_t i = 0; i < a.loops.size(); ++i)
     for (std::size_t j = 0; j < a.loops[i].size(); ++j) {
-      auto p = box(a.loops[i][j]);
+      const auto& p = a.loops[i][j].box;
       for (std::size_t k = 0; k < b.loops.size(); ++k)
         for (std::size_t l = 0; l < b.loops[k].size(); ++l) {
-          auto q = box(b.loops[k][l]);
+          const auto& q = b.loops[k][l].box;
           if (p[1] < q[0] || q[1] < p[0] || p[3] < q[2] || q[3] < p[2]) continue;
           if (edges_cross(a.loops[i][j], b.loops[k][l]))
             return "loop " + std::to_string(i) + " edge " + std::to_string(j) + " of '" + a.name + "' crosses loop " +

@@ -7,6 +7,7 @@
 #include <hipair/geometry.hpp>
 #include <hipair/model.hpp>
 
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -36,6 +37,9 @@ struct PlacedEdge {
   bool reflex = false;   ///< the sector spans more than a half turn
   Point source, target, center, from, to;
   Rational radius_squared;
+  /// A box around the edge in double (x0, x1, y0, y1), widened by a margin far above rounding
+  /// errors: only used to skip exact tests that cannot succeed.
+  std::array<double, 4> box{};
 };
 
 /// A part posed in the world: its edges loop by loop.

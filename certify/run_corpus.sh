@@ -1,17 +1,25 @@
 #!/usr/bin/env bash
-# Runs hipair-verify on the certificate corpus (tests/data/certificates/EXPECTED.txt): the valid
-# certificates must verify (exit 0), every mutation must be rejected (exit 1) with its reason.
-# usage: run_corpus.sh HIPAIR_VERIFY SOURCE_DIR
+# End to end: produces the corpus's base certificates with `hipair certify` (against the current
+# model reader), writes the mutations (make_corpus.py), and runs hipair-verify on every one:
+# the valid certificates must verify (exit 0), every mutation must be rejected (exit 1) with its
+# reason. With WORK_DIR = tests/data/certificates it checks the committed snapshot instead.
+# usage: run_corpus.sh HIPAIR_VERIFY HIPAIR_CLI SOURCE_DIR WORK_DIR
 set -u
-verify=$1
-cd "$2" || exit 2
+verify=$1; cli=$2; source=$3; work=$4
+corpus=$source/tests/data/certificates
+if [ "$(cd "$work" 2>/dev/null && pwd)" != "$(cd "$corpus" && pwd)" ]; then
+  rm -rf "$work" && mkdir -p "$work"
+  bash "$corpus/make_bases.sh" "$cli" "$source" "$work" > "$work/bases.log" || { cat "$work/bases.log"; exit 1; }
+  python3 "$corpus/make_corpus.py" --dir "$work" --source "$source" || exit 1
+fi
+cd "$source" || exit 2
 failures=0
 count=0
-while IFS='|' read -r certificate model reason; do
+while IFS="|" read -r certificate model reason base; do
   case "$certificate" in '#'*|'') continue ;; esac
   certificate=$(echo $certificate); model=$(echo $model)
   reason=$(echo "$reason" | sed 's/^ *//;s/ *$//')
-  output=$("$verify" "tests/data/certificates/$certificate" "$model")
+  output=$("$verify" "$work/$certificate" "$model")
   status=$?
   count=$((count + 1))
   if [ "$reason" = valid ]; then
@@ -20,7 +28,7 @@ while IFS='|' read -r certificate model reason; do
     echo "FAIL $certificate: expected exit 1 and '$reason', got $status: $output"
     failures=$((failures + 1))
   fi
-done < tests/data/certificates/EXPECTED.txt
+done < "$work/EXPECTED.txt"
 # Usage errors exit 2.
 "$verify" > /dev/null 2>&1; [ $? -eq 2 ] || { echo "FAIL: no arguments should exit 2"; failures=$((failures + 1)); }
 echo "$count certificates checked, $failures failures"

@@ -197,6 +197,8 @@ std::optional<Certificate> certify_free_passage(const Model& model, const std::s
     if (c.path.size() < 2 || c.path.front().first != c.range.lo || c.path.back().first != c.range.hi)
       throw NumericError("the follower path must run from the start to the end of the driver range");
   }
+  // At the start the parts must not overlap (a part inside the other has a positive boundary distance).
+  if (overlapping_at(r, c.range.lo, path_value(c.path, c.range.lo))) return std::nullopt;
   Rational reach_driver = reach_of(*r.driver), reach_other = reach_of(*r.other);
   Shapes shapes{verify::shape_of(*r.driver), verify::shape_of(*r.other)};
   Rational far(1000000000);

@@ -1,16 +1,24 @@
 #!/usr/bin/env python3
 """Writes the mutation corpus of HIPAIR certificates (see README.md in this folder).
 
-The valid base certificates were produced with `hipair certify` (commands in README.md). Each
-mutation changes one thing and names the reason the verifier must give (a substring of its
-message). EXPECTED.txt lists: certificate, model (relative to the repository), expected reason
-("valid" for the base certificates).
+usage: make_corpus.py [--dir DIR] [--source SOURCE_DIR]
+
+The valid base certificates in DIR (default: this folder) are produced with `hipair certify`
+(make_bases.sh). Each mutation changes one thing and names the reason the verifier must give (a
+substring of its message). DIR/EXPECTED.txt lists: certificate, model (relative to the
+repository, or absolute), expected reason ("valid" for the base certificates).
 """
+import argparse
 import copy
 import json
 import os
 
-HERE = os.path.dirname(os.path.abspath(__file__))
+parser = argparse.ArgumentParser()
+parser.add_argument("--dir", default=os.path.dirname(os.path.abspath(__file__)))
+parser.add_argument("--source", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../.."))
+arguments = parser.parse_args()
+HERE = os.path.abspath(arguments.dir)
+SOURCE = os.path.abspath(arguments.source)
 MODELS = "examples/models/"
 
 
@@ -36,14 +44,14 @@ bases = [
     ("follower-guide-free.json", "cam-follower.json"),
 ]
 for name, model in bases:
-    expected.append((name, MODELS + model, "valid"))
+    expected.append((name, MODELS + model, "valid", name))
 
 
 def mutate(base, model, name, reason, change, model_path=None):
     certificate = copy.deepcopy(load(base))
     change(certificate)
     save(name, certificate)
-    expected.append((name, model_path or MODELS + model, reason))
+    expected.append((name, model_path or MODELS + model, reason, base))
 
 
 def set_path(keys, value):
@@ -72,13 +80,14 @@ mutate("lever-clearance.json", "lever-stop.json", "m06-clearance-too-large.json"
 # The model edited after certification, or the certificate naming another model.
 mutate("lever-clearance.json", "lever-stop.json", "m07-hash-changed.json", "model hash mismatch",
        set_path(["model", "content_hash"], "0" * 64))
-with open(os.path.join(HERE, "../../../examples/models/lever-stop.json")) as f:
+with open(os.path.join(SOURCE, "examples/models/lever-stop.json")) as f:
     edited = f.read().replace('"stop-gap":     { "nominal": 2,', '"stop-gap":     { "nominal": 2.5,')
 assert '"nominal": 2.5' in edited
 with open(os.path.join(HERE, "lever-stop-edited.json"), "w") as f:
     f.write(edited)
 mutate("lever-clearance.json", "lever-stop.json", "m08-model-edited.json", "model hash mismatch", lambda c: None,
-       model_path="tests/data/certificates/lever-stop-edited.json")
+       model_path=os.path.relpath(os.path.join(HERE, "lever-stop-edited.json"), SOURCE)
+       if HERE.startswith(SOURCE) else os.path.join(HERE, "lever-stop-edited.json"))
 
 # Parameters and roundings.
 mutate("lever-clearance.json", "lever-stop.json", "m09-parameter-outside-tolerance.json",
@@ -132,7 +141,7 @@ mutate("lever-clearance.json", "lever-stop.json", "m29-not-a-rational.json", "no
        set_path(["clearance", "distance"], "two"))
 
 with open(os.path.join(HERE, "EXPECTED.txt"), "w") as f:
-    f.write("# certificate | model (relative to the repository) | expected: valid, or a substring of the reason\n")
-    for name, model, reason in expected:
-        f.write(f"{name} | {model} | {reason}\n")
+    f.write("# certificate | model (relative to the repository) | expected: valid, or a substring of the reason | base\n")
+    for name, model, reason, base in expected:
+        f.write(f"{name} | {model} | {reason} | {base}\n")
 print(f"{len(expected)} certificates ({len(expected) - len(bases)} mutations)")

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Produces the valid base certificates of the corpus with `hipair certify`.
+# usage: make_bases.sh HIPAIR_CLI SOURCE_DIR OUT_DIR
+set -eu
+hipair=$1; models=$2/examples/models; out=$3
+mkdir -p "$out"
+"$hipair" certify "$models/lever-stop.json" --claim interference --at lever=30deg --out "$out/lever-interference.json"
+"$hipair" certify "$models/lever-stop.json" --claim clearance --out "$out/lever-clearance.json"
+"$hipair" certify "$models/lever-stop.json" --claim free --from -0.5 --to 0.02 --out "$out/lever-free.json"
+"$hipair" certify "$models/lever-stop.json" --claim jam --out "$out/lever-jam.json"
+"$hipair" certify "$models/ratchet.json" --claim jam --direction -1 --out "$out/ratchet-jam.json"
+"$hipair" certify "$models/geneva.json" --claim interference --at driver=1.2 --at wheel=0.3 --out "$out/geneva-interference.json"
+"$hipair" certify "$models/cam-follower.json" --claim free --pair follower:guide --from -2 --to 3 --out "$out/follower-guide-free.json"

@@ -1,0 +1,218 @@
+// Every certificate produced for every example model verifies: clearance, interference (parts
+// posed into each other), free passage and jams, each written to a file and re-checked the way
+// hipair-verify does it (hash, parameters, claim). Crossing witnesses are checked too, and a
+// crossing of two edges that do not cross is rejected.
+#include <hipair/certificate.hpp>
+#include <hipair/model.hpp>
+
+#include "certify/exact_geometry.hpp"
+#include "cspace/overlap.hpp"
+#include "io/atomic_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+
+namespace {
+
+using namespace hipair;
+namespace fs = std::filesystem;
+
+int verified = 0;
+
+// Writes the certificate, re-reads it and verifies it against the model file.
+void expect_verifies(const Certificate& certificate, const fs::path& model_path, const std::string& what) {
+  std::string text = write_certificate(certificate);
+  EXPECT_EQ(write_certificate(read_certificate(text)), text) << what << ": the format does not round-trip";
+  fs::path file = fs::path(testing::TempDir()) / "hipair_certificate.json";
+  io::write_file_atomically(file, text);
+  VerificationResult result = verify_certificate_file(file, model_path);
+  EXPECT_TRUE(result.valid) << what << ": " << result.reason << "\n" << text.substr(0, 3000);
+  if (result.valid) ++verified;
+}
+
+bool moves(const Part& part) { return part.motion.kind != Motion::Kind::fixed; }
+bool rotates(const Part& part) { return part.motion.kind == Motion::Kind::rotation; }
+
+// A random coordinate of a part: angle (rad, within limits) or offset (mm, within limits).
+Rational random_coordinate(const Part& part, std::mt19937_64& random) {
+  std::optional<RationalInterval> limits = rotates(part) ? part.motion.angle_limits : part.motion.translation_limits;
+  RationalInterval range = limits ? *limits : (rotates(part) ? RationalInterval{-3, 3} : RationalInterval{-30, 30});
+  return range.lo + (range.hi - range.lo) * Rational(long(random() % 10001), 10000);
+}
+
+ExactPosition position_of(const Part& part, const Rational& value) {
+  return rotates(part) ? exact_position_from_angle(value) : ExactPosition{value, true, false, {}, {}};
+}
+
+std::map<std::string, ExactPosition> positions(const Part& a, const Rational& x, const Part& b, const Rational& y) {
+  std::map<std::string, ExactPosition> result;
+  if (moves(a)) result[a.name] = position_of(a, x);
+  if (moves(b)) result[b.name] = position_of(b, y);
+  return result;
+}
+
+TEST(CertifyExamples, EveryCertificateOfEveryExampleVerifies) {
+  std::mt19937_64 random(7);
+  int interference = 0, clearance = 0, free = 0, crossings = 0;
+  for (const auto& entry : fs::directory_iterator(HIPAIR_EXAMPLES)) {
+    if (entry.path().extension() != ".json") continue;
+    Model model = read_model_file(entry.path());
+    for (const PairSpec& pair : model.pairs) {
+      const Part &a = model.parts[pair.first], &b = model.parts[pair.second];
+      std::string name = entry.path().filename().string() + " " + a.name + ":" + b.name;
+      int found_interference = 0, found_clearance = 0, found_free = 0, never_overlapping = 0;
+      for (int attempt = 0; attempt < 400 && (found_interference < 2 || !found_clearance || !found_free); ++attempt) {
+        Rational x = random_coordinate(a, random), y = random_coordinate(b, random);
+        auto at = positions(a, x, b, y);
+        if (found_interference < 2) {
+          auto c = certify_interference(model, a.name, b.name, at);
+          // The producer certifies exactly the configurations the library finds overlapping.
+          auto map_of = [&](const Part& part) {
+            cspace::RigidMap map;
+            if (!moves(part)) return map;
+            const ExactPosition& p = at.at(part.name);
+            if (p.is_offset) {
+              map.offset = Point{Rational(p.value * part.motion.direction.x), Rational(p.value * part.motion.direction.y)};
+              return map;
+            }
+            Rational t = p.value, w = 1 + t * t;
+            int sign = p.half_turn ? -1 : 1;
+            map.c = sign * (1 - t * t) / w;
+            map.s = sign * 2 * t / w;
+            Point rotated{Rational(map.c * part.motion.pivot.x - map.s * part.motion.pivot.y),
+                          Rational(map.s * part.motion.pivot.x + map.c * part.motion.pivot.y)};
+            map.offset = Point{Rational(part.motion.pivot.x - rotated.x), Rational(part.motion.pivot.y - rotated.y)};
+            return map;
+          };
+          bool overlapping = cspace::analyse_overlap(a, map_of(a), b, map_of(b)).relation == cspace::Overlap::overlapping;
+          EXPECT_EQ(bool(c), overlapping) << name;
+          if (!overlapping) ++never_overlapping;
+          if (c) {
+            expect_verifies(*c, entry.path(), name + " interference");
+            ++found_interference;
+            // The same claim with a crossing witness, when two edges cross there.
+            auto [map_a, map_b] = std::pair{verify::ExactMap{}, verify::ExactMap{}};
+            Certificate crossing = *c;
+            crossing.witness_point.reset();
+            for (const Part* part : {&a, &b}) {
+              if (!moves(*part)) continue;
+              const ExactPosition& p = c->configuration.at(part->name);
+              verify::ExactMap& map = part == &a ? map_a : map_b;
+              if (p.is_offset) {
+                map.shift = Point{Rational(p.value * part->motion.direction.x), Rational(p.value * part->motion.direction.y)};
+              } else {
+                Rational t = p.value, w = 1 + t * t;
+                int sign = p.half_turn ? -1 : 1;
+                map.c = sign * (1 - t * t) / w;
+                map.s = sign * 2 * t / w;
+                map.pivot = part->motion.pivot;
+              }
+            }
+            verify::PlacedPart pa = verify::place(a, map_a), pb = verify::place(b, map_b);
+            for (std::size_t i = 0; i < pa.loops.size() && !crossing.witness_crossing; ++i)
+              for (std::size_t j = 0; j < pa.loops[i].size() && !crossing.witness_crossing; ++j)
+                for (std::size_t k = 0; k < pb.loops.size() && !crossing.witness_crossing; ++k)
+                  for (std::size_t l = 0; l < pb.loops[k].size() && !crossing.witness_crossing; ++l)
+                    if (verify::edges_cross(pa.loops[i][j], pb.loops[k][l]))
+                      crossing.witness_crossing = CrossingWitness{{a.name, i, j, a.loops[i].edges[j].label},
+                                                                  {b.name, k, l, b.loops[k].edges[l].label}, std::nullopt};
+            if (crossing.witness_crossing) {
+              expect_verifies(crossing, entry.path(), name + " interference (crossing)");
+              ++crossings;
+              // Another edge of the second part that does not cross there is rejected.
+              for (std::size_t l = 0; l < pb.loops[0].size(); ++l) {
+                auto& across = crossing.witness_crossing->across;
+                if (verify::edges_cross(pa.loops[crossing.witness_crossing->edge.loop][crossing.witness_crossing->edge.edge],
+                                        pb.loops[0][l]))
+                  continue;
+                across = EdgeReference{b.name, 0, l, b.loops[0].edges[l].label};
+                VerificationResult result = check_certificate(crossing, model);
+                EXPECT_FALSE(result.valid) << name;
+                EXPECT_NE(result.reason.find("do not cross"), std::string::npos) << result.reason;
+                break;
+              }
+            }
+          }
+        }
+        if (!found_clearance) {
+          if (auto c = certify_clearance(model, a.name, b.name, at)) {
+            expect_verifies(*c, entry.path(), name + " clearance");
+            found_clearance = 1;
+          }
+        }
+        if (!found_free) {
+          const Part& driver = moves(a) ? a : b;
+          const Part& other = &driver == &a ? b : a;
+          Rational start = &driver == &a ? x : y, follower = &driver == &a ? y : x;
+          Rational span = rotates(driver) ? Rational(1, 20) : Rational(1, 2);
+          auto limits = rotates(driver) ? driver.motion.angle_limits : driver.motion.translation_limits;
+          if (limits && start + span > limits->hi) continue;
+          PassagePath path{driver.name, moves(other) ? other.name : "", {start, start + span}, {}};
+          if (moves(other)) path.polyline = {{start, follower}, {start + span, follower}};
+          if (auto c = certify_free_passage(model, a.name, b.name, path)) {
+            expect_verifies(*c, entry.path(), name + " free passage");
+            found_free = 1;
+          }
+        }
+      }
+      if (!found_free && entry.path().filename() == "spur-gears.json") {
+        // Meshing gears pass freely only along the gear ratio (18:27), from the initial position.
+        PassagePath path{"pinion", "gear", {Rational(0), Rational(1, 20)}, {{0, 0}, {Rational(1, 20), Rational(-1, 30)}}};
+        if (auto c = certify_free_passage(model, a.name, b.name, path)) {
+          expect_verifies(*c, entry.path(), name + " free passage along the gear ratio");
+          found_free = 1;
+        }
+      }
+      // Pairs whose motions cannot make them overlap (a follower sliding in its guide) have none.
+      if (found_interference < 2) EXPECT_EQ(never_overlapping, 400) << name;
+      EXPECT_EQ(found_clearance, 1) << name;
+      EXPECT_EQ(found_free, 1) << name;
+      interference += found_interference;
+      clearance += found_clearance;
+      free += found_free;
+    }
+  }
+  std::cout << "[ certify ] verified " << verified << " certificates: " << interference << " interference (+" << crossings
+            << " with crossing witnesses), " << clearance << " clearance, " << free << " free passage\n";
+  EXPECT_GE(interference, 20);
+}
+
+TEST(CertifyExamples, JamsOfTheLeverAndTheRatchetVerify) {
+  fs::path lever_path = fs::path(HIPAIR_EXAMPLES) / "lever-stop.json";
+  Model lever = read_model_file(lever_path);
+  auto query = find_jam(lever, "lever", "stop", "lever", 0, 0, +1, Rational(1, 500), Rational(2));
+  ASSERT_TRUE(query);
+  auto certificate = certify_jam(lever, "lever", "stop", *query);
+  ASSERT_TRUE(certificate);
+  expect_verifies(*certificate, lever_path, "lever jam");
+  // Driven backwards from 0 the lever meets only its limit (-30 deg): no jam within 0.5 rad.
+  EXPECT_FALSE(find_jam(lever, "lever", "stop", "lever", 0, 0, -1, Rational(1, 500), Rational(1, 2)));
+
+  fs::path ratchet_path = fs::path(HIPAIR_EXAMPLES) / "ratchet.json";
+  Model ratchet = read_model_file(ratchet_path);
+  auto backward = find_jam(ratchet, "wheel", "pawl", "wheel", 0, 0, -1, Rational(1, 500), Rational(1));
+  ASSERT_TRUE(backward);
+  auto jam = certify_jam(ratchet, "wheel", "pawl", *backward);
+  ASSERT_TRUE(jam);
+  EXPECT_FALSE(jam->cut.empty());
+  expect_verifies(*jam, ratchet_path, "ratchet jam");
+  // Forward, the pawl rides up the tooth backs: no jam over a tooth pitch (30 deg).
+  EXPECT_FALSE(find_jam(ratchet, "wheel", "pawl", "wheel", 0, 0, +1, Rational(1, 500), Rational(1, 2)));
+}
+
+TEST(CertifyExamples, ParameterValuesInsideTheTolerancesAreCertified) {
+  fs::path path = fs::path(HIPAIR_EXAMPLES) / "lever-stop.json";
+  ReadOptions options;
+  options.parameter_values["stop-gap"] = Rational(19, 10);   // tolerance [1.9, 2.1]
+  Model model = read_model_file(path, options);
+  auto c = certify_clearance(model, "lever", "stop", {{"lever", ExactPosition{0, false, false, {}, {}}}}, std::nullopt,
+                             CertifyContext{options.parameter_values});
+  ASSERT_TRUE(c);
+  EXPECT_LE(c->distance, Rational(19, 10));   // the bound, rounded down to 6 digits
+  EXPECT_GE(c->distance, Rational(18999, 10000));
+  expect_verifies(*c, path, "lever clearance with stop-gap 1.9");
+}
+
+}  // namespace
