@@ -166,7 +166,9 @@ TEST(CertifyExamples, EveryCertificateOfEveryExampleVerifies) {
         }
       }
       // Pairs whose motions cannot make them overlap (a follower sliding in its guide) have none.
-      if (found_interference < 2) EXPECT_EQ(never_overlapping, 400) << name;
+      if (found_interference < 2) {
+        EXPECT_EQ(never_overlapping, 400) << name;
+      }
       EXPECT_EQ(found_clearance, 1) << name;
       EXPECT_EQ(found_free, 1) << name;
       interference += found_interference;
@@ -176,7 +178,7 @@ TEST(CertifyExamples, EveryCertificateOfEveryExampleVerifies) {
   }
   std::cout << "[ certify ] verified " << verified << " certificates: " << interference << " interference (+" << crossings
             << " with crossing witnesses), " << clearance << " clearance, " << free << " free passage\n";
-  EXPECT_GE(interference, 20);
+  EXPECT_GE(interference, 18);   // 2 per pair, except the 2 followers sliding in guides
 }
 
 TEST(CertifyExamples, JamsOfTheLeverAndTheRatchetVerify) {

@@ -1,0 +1,125 @@
+// Writes certificates (docs/certify.md): JSON with exact rationals as strings. Used by the
+// producer in the hipair library; the verifier only reads (certificate_reader.cpp).
+#include <hipair/certificate.hpp>
+
+#include <cstdio>
+#include <sstream>
+
+namespace hipair {
+
+namespace {
+
+std::string quoted(const std::string& text) {
+  std::string out = "\"";
+  for (unsigned char ch : text) {
+    if (ch == '"' || ch == '\\') {
+      out += '\\';
+      out += char(ch);
+    } else if (ch < 0x20) {
+      char escape[8];
+      std::snprintf(escape, sizeof escape, "\\u%04x", ch);
+      out += escape;
+    } else {
+      out += char(ch);
+    }
+  }
+  return out + "\"";
+}
+std::string number(const Rational& value) { return quoted(to_exact_string(value)); }
+std::string interval(const RationalInterval& range) {
+  return "[" + number(range.lo) + ", " + number(range.hi) + "]";
+}
+std::string edge_reference(const EdgeReference& edge) {
+  return "{\"part\": " + quoted(edge.part) + ", \"loop\": " + std::to_string(edge.loop) +
+         ", \"edge\": " + std::to_string(edge.edge) + ", \"label\": " + quoted(edge.label) + "}";
+}
+std::string crossing(const CrossingWitness& witness) {
+  std::string out = "{\"edge\": " + edge_reference(witness.edge);
+  if (witness.along) out += ", \"along\": " + interval(*witness.along);
+  return out + ", \"across\": " + edge_reference(witness.across) + "}";
+}
+std::string pieces(const std::vector<BlockedPiece>& list, bool with_range, const std::string& indent) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    out += (i ? ",\n" : "\n") + indent + "  {";
+    if (with_range) out += "\"range\": " + interval(list[i].range) + ", ";
+    out += "\"crossing\": " + crossing(list[i].crossing) + "}";
+  }
+  return out + (list.empty() ? "]" : "\n" + indent + "]");
+}
+std::string configuration(const std::map<std::string, ExactPosition>& positions) {
+  std::string out = "{";
+  bool first = true;
+  for (const auto& [part, position] : positions) {
+    out += (first ? "\n      " : ",\n      ") + quoted(part) + ": {";
+    first = false;
+    out += (position.is_offset ? "\"offset\": " : "\"tangent\": ") + number(position.value);
+    if (position.half_turn) out += ", \"centre\": \"pi\"";
+    if (position.angle) out += ", \"angle\": " + number(*position.angle);
+    if (position.angle_error) out += ", \"angle_error\": " + number(*position.angle_error);
+    out += "}";
+  }
+  return out + (first ? "}" : "\n    }");
+}
+
+}  // namespace
+
+std::string write_certificate(const Certificate& c) {
+  std::ostringstream out;
+  out << "{\n  \"hipair_certificate\": 1,\n  \"claim\": " << quoted(to_string(c.claim)) << ",\n";
+  out << "  \"statement\": " << quoted(c.statement) << ",\n";
+  out << "  \"model\": {\n    \"name\": " << quoted(c.model_name) << ",\n    \"file\": " << quoted(c.model_file)
+      << ",\n    \"content_hash\": " << quoted(c.content_hash) << ",\n    \"parameters\": {";
+  for (std::size_t i = 0; i < c.parameters.size(); ++i)
+    out << (i ? ",\n      " : "\n      ") << quoted(c.parameters[i].name) << ": {\"value\": "
+        << number(c.parameters[i].value) << ", \"overridden\": " << (c.parameters[i].overridden ? "true" : "false")
+        << "}";
+  out << (c.parameters.empty() ? "},\n" : "\n    },\n") << "    \"roundings\": [";
+  for (std::size_t i = 0; i < c.roundings.size(); ++i)
+    out << (i ? ",\n      " : "\n      ") << "{\"pointer\": " << quoted(c.roundings[i].pointer)
+        << ", \"expression\": " << quoted(c.roundings[i].expression) << ", \"value\": " << number(c.roundings[i].value)
+        << ", \"bound\": " << number(c.roundings[i].bound) << "}";
+  out << (c.roundings.empty() ? "]\n  },\n" : "\n    ]\n  },\n");
+  out << "  \"pair\": [" << quoted(c.first) << ", " << quoted(c.second) << "],\n";
+  out << "  " << quoted(to_string(c.claim)) << ": {\n";
+  switch (c.claim) {
+    case ClaimKind::interference:
+      out << "    \"configuration\": " << configuration(c.configuration);
+      if (c.witness_point)
+        out << ",\n    \"point\": [" << number(c.witness_point->x) << ", " << number(c.witness_point->y) << "]";
+      if (c.witness_crossing) out << ",\n    \"crossing\": " << crossing(*c.witness_crossing);
+      break;
+    case ClaimKind::clearance:
+      out << "    \"configuration\": " << configuration(c.configuration) << ",\n    \"distance\": "
+          << number(c.distance);
+      break;
+    case ClaimKind::free_passage: {
+      out << "    \"driver\": " << quoted(c.driver) << ",\n    \"follower\": " << quoted(c.follower)
+          << ",\n    \"distance\": " << number(c.distance) << ",\n    \"range\": " << interval(c.range)
+          << ",\n    \"path\": [";
+      for (std::size_t i = 0; i < c.path.size(); ++i)
+        out << (i ? ", " : "") << "[" << number(c.path[i].first) << ", " << number(c.path[i].second) << "]";
+      out << "],\n    \"boxes\": [";
+      for (std::size_t i = 0; i < c.boxes.size(); ++i) {
+        out << (i ? ",\n      " : "\n      ") << "{\"driver\": " << interval(c.boxes[i].driver);
+        if (c.boxes[i].follower) out << ", \"follower\": " << interval(*c.boxes[i].follower);
+        out << "}";
+      }
+      out << (c.boxes.empty() ? "]" : "\n    ]");
+      break;
+    }
+    case ClaimKind::jam:
+      out << "    \"driver\": " << quoted(c.driver) << ",\n    \"follower\": " << quoted(c.follower)
+          << ",\n    \"direction\": " << c.direction << ",\n    \"trap\": {\"driver\": " << interval(c.trap.driver);
+      if (c.trap.follower) out << ", \"follower\": " << interval(*c.trap.follower);
+      out << "},\n    \"cut\": " << pieces(c.cut, bool(c.trap.follower), "    ");
+      if (c.trap.follower)
+        out << ",\n    \"lower_wall\": " << pieces(c.lower_wall, true, "    ") << ",\n    \"upper_wall\": "
+            << pieces(c.upper_wall, true, "    ");
+      break;
+  }
+  out << "\n  }\n}\n";
+  return out.str();
+}
+
+}  // namespace hipair
