@@ -221,6 +221,22 @@ std::optional<JamQuery> find_jam(const Model& model, const std::string& first,
                                  const Rational& start, const Rational& follower_start,
                                  int direction, const Rational& step, const Rational& travel);
 
+struct KinematicsResult;
+
+/// A finding of an analysis with its certificate, or why it has none.
+struct CertifiedFinding {
+  std::string finding;                    ///< "interference of driver:wheel at the initial configuration", ...
+  std::optional<Certificate> certificate;
+  std::string note;                       ///< why there is no certificate
+};
+
+/// Certificates for the interference and jamming findings of a kinematic analysis
+/// (include/hipair/kinematics.hpp): interference at the initial configuration of each pair
+/// reported, and the jam (pair by pair: the driver against a fixed part, or driver and jammed
+/// follower; the trap is searched around the reported jam position).
+std::vector<CertifiedFinding> certify_kinematic_findings(const Model& model, const KinematicsResult& result,
+                                                         const CertifyContext& context = {});
+
 /// The certificate as JSON text (docs/certify.md).
 std::string write_certificate(const Certificate& certificate);
 

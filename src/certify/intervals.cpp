@@ -292,6 +292,11 @@ std::optional<JamQuery> find_jam(const Model& model, const std::string& first, c
   if (sgn(step) <= 0) throw NumericError("the step must be positive");
   JamQuery query{d.name, r.has_follower ? o.name : "", direction, {}};
   Rational x = start, f = follower_start;
+  // A follower resting on a contact may overlap by a rounding: nudge it off, either way.
+  for (Rational nudge(1, 10000000000); overlapping_at(r, x, f) && nudge < Rational(1, 100); nudge *= 10) {
+    if (r.has_follower && !overlapping_at(r, x, follower_start + nudge)) f = follower_start + nudge;
+    else if (r.has_follower && !overlapping_at(r, x, follower_start - nudge)) f = follower_start - nudge;
+  }
   if (overlapping_at(r, x, f)) throw GeometryError("the parts overlap at the start");
   const auto& limits = o.motion.kind == Motion::Kind::rotation ? o.motion.angle_limits : o.motion.translation_limits;
   Rational follower_step = step / 4, follower_span = o.motion.kind == Motion::Kind::rotation ? Rational(1) : Rational(10);

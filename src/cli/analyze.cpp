@@ -6,6 +6,7 @@
 #include "io/atomic_file.hpp"
 #include "render/kinematics_svg.hpp"
 
+#include <hipair/certificate.hpp>
 #include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
@@ -193,6 +194,17 @@ int run_analyze(const AnalyzeOptions& options) {
       written.push_back(name);
       if (terminal) std::cerr << "\r" << std::string(60, ' ') << "\r" << std::flush;
     }
+  }
+  // Certificates for the interference and jamming findings (docs/certify.md).
+  std::size_t certificates = 0;
+  for (const CertifiedFinding& finding : certify_kinematic_findings(model, result)) {
+    if (!finding.certificate) {
+      std::cout << "not certified: " << finding.finding << " (" << finding.note << ")\n";
+      continue;
+    }
+    std::string name = "certificate-" + std::to_string(++certificates) + ".json";
+    io::write_file_atomically(directory / name, write_certificate(*finding.certificate));
+    written.push_back(name);
   }
   std::cout << "\nwrote";
   for (const std::string& name : written) std::cout << " " << (directory / name).string();

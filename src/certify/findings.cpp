@@ -1,0 +1,90 @@
+// Certificates for the findings of a kinematic analysis (interference at the initial
+// configuration, jamming), for `hipair analyze`.
+#include <hipair/certificate.hpp>
+#include <hipair/kinematics.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace hipair {
+namespace {
+
+Rational rational_of(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.12g", value);
+  return parse_rational(text);
+}
+
+bool moves(const Part& part) { return part.motion.kind != Motion::Kind::fixed; }
+bool rotates(const Part& part) { return part.motion.kind == Motion::Kind::rotation; }
+
+// The follower's position (unwrapped) at the last sample before `driver` in the driving direction.
+std::optional<double> follower_position(const KinematicsResult& result, const std::string& follower, double driver) {
+  auto index = std::find(result.followers.begin(), result.followers.end(), follower);
+  if (index == result.followers.end()) return std::nullopt;
+  std::size_t k = std::size_t(index - result.followers.begin());
+  std::optional<double> position;
+  for (const KinematicSample& sample : result.samples)
+    if ((sample.driver - driver) * result.direction <= 1e-12 && k < sample.positions.size()) position = sample.positions[k];
+  return position;
+}
+
+}  // namespace
+
+std::vector<CertifiedFinding> certify_kinematic_findings(const Model& model, const KinematicsResult& result,
+                                                         const CertifyContext& context) {
+  std::vector<CertifiedFinding> findings;
+  for (const Interference& interference : result.initial_interference) {
+    CertifiedFinding finding{"interference of " + interference.pair + " at the initial configuration", std::nullopt, ""};
+    auto colon = interference.pair.find(':');
+    std::string first = interference.pair.substr(0, colon), second = interference.pair.substr(colon + 1);
+    try {
+      std::map<std::string, ExactPosition> positions;
+      for (const std::string& name : {first, second}) {
+        const Part& part = model.parts.at(*model.find_part(name));
+        if (moves(part))
+          positions[name] = rotates(part) ? exact_position_from_angle(part.initial.angle)
+                                          : ExactPosition{part.initial.offset, true, false, {}, {}};
+      }
+      finding.certificate = certify_interference(model, first, second, positions, context);
+      if (!finding.certificate) finding.note = "the parts only touch there: no overlap to certify";
+    } catch (const std::exception& error) {
+      finding.note = error.what();
+    }
+    findings.push_back(std::move(finding));
+  }
+  if (result.jam) {
+    const KinematicEvent& jam = *result.jam;
+    CertifiedFinding finding{"jam: " + jam.description, std::nullopt, ""};
+    const Part& driver = model.parts.at(*model.find_part(result.driver));
+    double margin = rotates(driver) ? 0.02 : 0.2;
+    double at = result.direction > 0 ? jam.at.coordinate.lower : jam.at.coordinate.upper;
+    double from = result.direction > 0 ? std::max(result.start, at - margin) : std::min(result.start, at + margin);
+    Rational start = rational_of(from), step = rational_of(margin / 20);
+    // Candidate pairs: the driver with the jammed follower, or (driver jammed) with a fixed part.
+    for (const PairSpec& pair : model.pairs) {
+      const Part &a = model.parts[pair.first], &b = model.parts[pair.second];
+      if (a.name != driver.name && b.name != driver.name) continue;
+      const Part& other = a.name == driver.name ? b : a;
+      if (moves(other) && other.name != jam.part) continue;
+      std::optional<double> position = moves(other) ? follower_position(result, other.name, from)
+                                                    : std::optional<double>(0.0);
+      if (!position) continue;
+      try {
+        auto query = find_jam(model, a.name, b.name, driver.name, start, rational_of(*position), result.direction, step,
+                              Rational(3) * rational_of(margin));
+        if (query) finding.certificate = certify_jam(model, a.name, b.name, *query, context);
+      } catch (const std::exception& error) {
+        finding.note = error.what();
+      }
+      if (finding.certificate) break;
+    }
+    if (!finding.certificate && finding.note.empty())
+      finding.note = "no single pair traps the motion near the jam (a jam through several parts is not certified)";
+    findings.push_back(std::move(finding));
+  }
+  return findings;
+}
+
+}  // namespace hipair
