@@ -1,0 +1,298 @@
+// HIPAIR — the exact configuration space (C-space) of a fixed-axis pair of parts, as a
+// CGAL-free cell structure: free and blocked cells, contact edges labelled with the feature
+// pair that touches along them, contact-change vertices, exact point location, certified edge
+// evaluation and a certified "first contact along a path" query.
+//
+// Coordinates. Each moving part contributes one axis: x for the pair's first moving part, y for
+// the second. A rotation angle theta is carried in charts by t = tan((theta - c)/2) with chart
+// centre c = 0 or c = pi, so that rational t gives an exact rational pose; a translation offset
+// s (mm) is its own chart coordinate. A rotation without limits is covered by two charts that
+// are glued along seams (theta = +-pi/2); cells are connected across seams, so a free channel
+// that wraps around the torus (two rotations) or the cylinder (rotation x translation) is one
+// cell. A pair with one fixed part has a 1-D C-space: cells are intervals, contacts are points.
+#pragma once
+
+#include <hipair/model.hpp>
+#include <hipair/rational.hpp>
+
+#include <gmpxx.h>
+
+#include <cstddef>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hipair {
+
+/// Index value meaning "no such element".
+inline constexpr std::size_t no_index = std::numeric_limits<std::size_t>::max();
+
+/// An exact real algebraic number: `lower` when `exact`, otherwise the unique root of
+/// `polynomial` (integer coefficients, ascending powers, square-free) in the open interval
+/// (lower, upper).
+struct AlgebraicNumber {
+  std::vector<mpz_class> polynomial;
+  Rational lower;
+  Rational upper;
+  bool exact = false;
+
+  /// Nearest double (within one unit in the last place).
+  double approximate() const;
+  /// Exact text: "7/2", or "x^2 - 2 = 0, x in (1, 2)".
+  std::string to_string(const std::string& variable = "x") const;
+};
+
+/// Closed interval of doubles that certainly contains the exact quantity.
+struct CertifiedRange {
+  double lower = 0;
+  double upper = 0;
+};
+
+/// A double value with a certified bound: |exact - value| <= error.
+struct CertifiedValue {
+  double value = 0;
+  double error = 0;
+};
+
+/// The kind of a C-space axis.
+enum class AxisKind { rotation, translation };
+
+/// One chart of the C-space: a box in chart coordinates.
+struct CSpaceChart {
+  AxisKind x_kind = AxisKind::rotation;
+  AxisKind y_kind = AxisKind::rotation;   ///< meaningless for a 1-D space
+  bool x_half_turn = false;               ///< rotation chart centred at theta = pi
+  bool y_half_turn = false;
+  Rational x_lo, x_hi, y_lo, y_hi;        ///< box in chart coordinates (t or mm)
+
+  /// Chart x coordinate -> part coordinate (rad or mm), in double: theta = c + 2 atan(t).
+  double x_to_coordinate(double chart_x) const;
+  double y_to_coordinate(double chart_y) const;
+};
+
+/// How two features touch along a contact curve.
+enum class ContactKind { vertex_segment, segment_vertex, vertex_arc, arc_vertex, arc_arc, arc_segment, segment_arc };
+
+/// Short name of a contact kind: "vertex-segment", ...
+std::string_view to_string(ContactKind kind);
+
+/// The feature pair of a contact curve.
+struct FeaturePair {
+  std::string first_part;       ///< part names
+  std::string second_part;
+  std::string first_feature;    ///< edge label, or "loop 0 edge 3" / "vertex of loop 0 edge 3"
+  std::string second_feature;
+  ContactKind kind = ContactKind::vertex_segment;
+  std::string label;            ///< "driver pin / wheel slot 2 wall"
+};
+
+/// Classes of C-space cells.
+enum class CellKind {
+  free,      ///< the parts are apart
+  blocked,   ///< the parts overlap
+  touching   ///< the parts touch throughout a 2-D region (degenerate: e.g. concentric arcs of
+             ///< equal radius on parts turning about the same axis)
+};
+
+/// What an edge is.
+enum class EdgeRole {
+  contact,    ///< free on one side, blocked on the other: a real contact boundary
+  spurious,   ///< lies on a contact curve but has the same class on both sides (the features
+              ///< would touch outside their extent, or the curve passes through blocked space)
+  seam,       ///< chart boundary glued to another chart (theta = +-pi/2), same class across
+  limit       ///< chart boundary at a motion limit or the end of a translation chart
+};
+
+/// A vertex of the C-space (per chart; a configuration on a seam appears once per chart).
+struct CSpaceVertex {
+  std::size_t chart = 0;
+  AlgebraicNumber x;                   ///< chart coordinates, exact
+  /// y exactly: the `y_branch`-th (0-based, ascending) distinct real root in y of
+  /// y_curve(x, y) = 0 at this x; within the certified bounds [y_lower, y_upper], which isolate
+  /// it among those roots. As a univariate algebraic number `y` when `y_exact` (x rational).
+  /// A 1-D space has y = 0.
+  std::vector<std::vector<mpz_class>> y_curve;
+  int y_branch = 0;
+  Rational y_lower, y_upper;
+  bool y_exact = false;
+  AlgebraicNumber y;
+  std::vector<std::size_t> edges;      ///< incident edges
+  std::vector<std::size_t> curves;     ///< feature pairs (contact curves) through the vertex
+  bool contact_change = false;         ///< two or more distinct contact curves meet here
+  bool on_chart_boundary = false;
+};
+
+/// An edge of the C-space: a piece of one or more contact curves (or of a chart boundary).
+struct CSpaceEdge {
+  std::size_t chart = 0;
+  std::size_t source = no_index;       ///< vertex at the lexicographically smaller end
+  std::size_t target = no_index;
+  bool vertical = false;               ///< x constant along the edge
+  std::vector<std::size_t> curves;     ///< feature pairs touching along the edge (overlaps: several)
+  EdgeRole role = EdgeRole::spurious;
+  std::size_t left_cell = no_index;    ///< cell on the left of source -> target (above, if not vertical)
+  std::size_t right_cell = no_index;   ///< no_index: outside the C-space
+  CertifiedRange x_chart, y_chart;     ///< certified extent in chart coordinates
+  CertifiedRange x_coordinate, y_coordinate;   ///< certified extent in rad or mm
+
+  /// Free on one side and blocked on the other (contact edges, and seams/limits carrying a
+  /// contact curve that separates classes).
+  bool real = false;
+};
+
+/// A cell: a connected component of free or of blocked space (across charts and seams).
+struct CSpaceCell {
+  CellKind kind = CellKind::free;
+  std::vector<std::size_t> boundary;     ///< real edges bounding it
+  std::vector<std::size_t> neighbours;   ///< cells across its real edges
+  bool wraps_x = false;                  ///< a loop in the cell winds around the x rotation
+  bool wraps_y = false;
+  std::size_t faces = 0;                 ///< arrangement faces (or 1-D intervals) it consists of
+  std::size_t sample_chart = 0;          ///< a configuration strictly inside the cell
+  Rational sample_x, sample_y;
+};
+
+/// A configuration in the coordinates of one chart.
+struct ChartPoint {
+  std::size_t chart = 0;
+  Rational x;
+  Rational y;   ///< ignored for a 1-D space
+};
+
+/// A coordinate of one moving part, exact.
+struct PartCoordinate {
+  enum class Kind {
+    half_angle_tangent,   ///< rotation: value = tan(theta/2)
+    half_turn,            ///< rotation: theta = pi (value ignored)
+    offset                ///< translation: value = s (mm)
+  };
+  Kind kind = Kind::half_angle_tangent;
+  Rational value;
+};
+
+/// Result of exact point location.
+struct Location {
+  enum class Kind { free, blocked, edge, vertex, outside };
+  Kind kind = Kind::outside;
+  std::size_t cell = no_index;     ///< free / blocked
+  std::size_t edge = no_index;     ///< on the relative interior of this edge
+  std::size_t vertex = no_index;
+  std::size_t chart = no_index;
+};
+
+/// First contact crossing along a straight path.
+struct Crossing {
+  bool found = false;
+  Rational parameter_lower;        ///< the crossing is at u in [lower, upper] (equal when exact)
+  Rational parameter_upper;
+  std::size_t edge = no_index;     ///< the real edge crossed (no_index at a vertex)
+  std::size_t vertex = no_index;   ///< when the path passes through a vertex
+  std::size_t cell_left = no_index;     ///< cell just before the crossing
+  std::size_t cell_entered = no_index;  ///< cell just after (same as cell_left for a grazing touch)
+  bool grazing = false;            ///< the path touches contact space and returns to the same cell
+};
+
+/// Counts and times reported by --stats.
+struct CSpaceStatistics {
+  std::size_t feature_pairs_considered = 0;
+  std::size_t feature_pairs_culled = 0;
+  std::size_t curves = 0;
+  std::size_t charts = 0;
+  std::size_t pieces_inserted = 0;
+  std::size_t vertices = 0;
+  std::size_t edges = 0;
+  std::size_t faces = 0;
+  std::size_t cells = 0;
+  std::size_t contact_edges = 0;
+  double seconds_curves = 0;          ///< contact-curve generation (kernels)
+  double seconds_clipping = 0;        ///< CGAL curve analysis, x-monotone split, clipping
+  double seconds_arrangement = 0;     ///< CGAL insertion
+  double seconds_export = 0;          ///< topology export from CGAL
+  double seconds_labelling = 0;       ///< feature pairs on edges
+  double seconds_classification = 0;  ///< sample points + overlap oracle
+  double seconds_cells = 0;           ///< seams, cells, adjacency
+  double seconds_total = 0;
+};
+
+/// Options of a C-space build.
+struct CSpaceBuildOptions {
+  bool keep_arrangements = false;      ///< keep the raw CGAL arrangements (see hipair/cgal/)
+  bool aggregated_insertion = false;   ///< CGAL's aggregated (sweep) insertion instead of incremental
+  unsigned threads = 0;                ///< build_all: worker threads (0: hardware concurrency)
+  bool progress = false;               ///< report progress on stderr
+};
+
+/// The exact C-space of one pair. Value semantics: copies share the immutable structure.
+/// All queries are const and may be called from several threads at once.
+class CSpace {
+ public:
+  struct Impl;
+
+  /// Builds the C-space of the pair (first_part, second_part) of `model`.
+  /// \throws ModelError for unknown part names, GeometryError for pairs that are not
+  /// fixed-axis pairs (planar or pin-slot motion) or input CGAL cannot handle.
+  static CSpace build(const Model& model, std::string_view first_part, std::string_view second_part,
+                      const CSpaceBuildOptions& options = {});
+
+  /// Builds every pair of `model.pairs` that is a fixed-axis pair with at least one moving
+  /// part, in parallel. Pairs of other kinds are skipped.
+  static std::vector<CSpace> build_all(const Model& model, const CSpaceBuildOptions& options = {});
+
+  /// 1 (one part fixed) or 2.
+  int dimension() const;
+  /// Pair's part names in axis order: x belongs to the first moving part.
+  const std::string& first_part() const;
+  const std::string& second_part() const;
+  /// Names of the parts carrying the x and y axes ("" for none).
+  const std::string& x_part() const;
+  const std::string& y_part() const;
+
+  const std::vector<CSpaceChart>& charts() const;
+  const std::vector<FeaturePair>& feature_pairs() const;
+  const std::vector<CSpaceVertex>& vertices() const;
+  const std::vector<CSpaceEdge>& edges() const;
+  const std::vector<CSpaceCell>& cells() const;
+  const CSpaceStatistics& statistics() const;
+
+  /// The chart point of a configuration given per moving part (exact), choosing the chart
+  /// whose box contains it; nullopt when outside every chart (beyond a motion limit).
+  std::optional<ChartPoint> to_chart(const PartCoordinate& x, const PartCoordinate& y = {}) const;
+
+  /// Exact point location: free cell, blocked cell, on an edge, at a vertex, or outside.
+  /// \pre point.chart < charts().size().
+  Location locate(const ChartPoint& point) const;
+  /// Exact point location of a configuration per moving part.
+  Location locate(const PartCoordinate& x, const PartCoordinate& y = {}) const;
+
+  /// The edge's curve at chart abscissa x (the ordinate y(x); for a vertical edge, the edge's
+  /// constant x), evaluated in double with a certified error bound.
+  /// \pre x within the edge's x extent. \throws GeometryError otherwise.
+  CertifiedValue evaluate(std::size_t edge, double x) const;
+  /// The same, exact: the edge's ordinate at a rational abscissa as an algebraic number.
+  AlgebraicNumber evaluate_exact(std::size_t edge, const Rational& x) const;
+
+  /// The exact polynomial whose zero set contains the edge, in chart coordinates x, y.
+  std::string edge_polynomial(std::size_t edge) const;
+  /// Its integer coefficients: c[i][j] of x^i y^j.
+  const std::vector<std::vector<mpz_class>>& edge_polynomial_coefficients(std::size_t edge) const;
+
+  /// The first point where the straight path from `from` to (to_x, to_y) in the same chart
+  /// enters contact space on a real edge (a contact edge, or a vertex of one). Exact: the path
+  /// parameter u in [0, 1] is isolated by rational bounds; crossings of spurious edges are
+  /// skipped; a path that starts in contact space reports u = 0.
+  Crossing first_crossing(const ChartPoint& from, const Rational& to_x, const Rational& to_y = 0) const;
+
+ private:
+  std::shared_ptr<const Impl> impl_;
+  friend const Impl& implementation(const CSpace& space);
+  friend CSpace make_cspace(std::shared_ptr<const Impl> impl);
+};
+
+/// Internal access for the library's own modules (not part of the stable API).
+const CSpace::Impl& implementation(const CSpace& space);
+CSpace make_cspace(std::shared_ptr<const CSpace::Impl> impl);
+
+}  // namespace hipair

@@ -1,0 +1,745 @@
+// C-space builder pipeline (CGAL-free part): per chart, the CGAL stage's topology is labelled
+// with feature pairs, every face gets an exact rational sample point classified by the
+// overlap oracle, and charts are glued along seams into cells.
+#include "cspace/builder_impl.hpp"
+
+#include <hipair/error.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <set>
+
+namespace hipair::cspace {
+namespace {
+
+using algebra::Real;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+int kind_of(Overlap overlap) {
+  switch (overlap) {
+    case Overlap::apart: return 0;
+    case Overlap::overlapping: return 1;
+    case Overlap::touching: return 2;
+  }
+  return 2;
+}
+
+CellKind cell_kind(int kind) {
+  return kind == 0 ? CellKind::free : kind == 1 ? CellKind::blocked : CellKind::touching;
+}
+
+// A rational in (lo, hi) that differs from every rational in `avoid` (sorted).
+Rational rational_avoiding(const Real& lo, const Real& hi, const std::vector<Rational>& avoid) {
+  Rational candidate = algebra::rational_between(lo, hi);
+  while (std::binary_search(avoid.begin(), avoid.end(), candidate))
+    candidate = algebra::rational_between(Real::from_rational(candidate), hi);
+  return candidate;
+}
+
+// ---------------------------------------------------------------- per-chart stages
+
+// Can the curve have a valid point in the cell? Interval evaluation on a quadtree: the curve
+// must be able to vanish and every validity clause must be able to hold.
+bool may_be_valid(const algebra::IntervalPolynomial2& f,
+                  const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses, algebra::Interval x,
+                  algebra::Interval y, int depth) {
+  if (!f.evaluate(x, y).contains_zero()) return false;
+  for (const auto& clause : clauses) {
+    bool can_hold = false;
+    for (const auto& atom : clause)
+      if (atom.evaluate(x, y).hi >= 0) {
+        can_hold = true;
+        break;
+      }
+    if (!can_hold) return false;
+  }
+  if (depth == 0) return true;
+  double xm = 0.5 * (x.lo + x.hi), ym = 0.5 * (y.lo + y.hi);
+  for (auto xi : {algebra::Interval{x.lo, xm}, algebra::Interval{xm, x.hi}})
+    for (auto yi : {algebra::Interval{y.lo, ym}, algebra::Interval{ym, y.hi}})
+      if (may_be_valid(f, clauses, xi, yi, depth - 1)) return true;
+  return false;
+}
+
+// Keeps the curves that may be valid somewhere in the chart box; returns the input indices.
+std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input, int dimension) {
+  chart.x_axis = input.x;
+  chart.y_axis = input.y;
+  chart.box = raw::Box{input.x.lo, input.x.hi, input.y.lo, input.y.hi};
+  algebra::Interval x = algebra::enclose(input.x.lo), y = algebra::enclose(input.y.lo);
+  x.hi = algebra::upper_double(input.x.hi);
+  y.hi = algebra::upper_double(input.y.hi);
+  std::vector<std::size_t> kept;
+  for (std::size_t k = 0; k < input.curves.size(); ++k) {
+    const ContactCurve& curve = input.curves[k];
+    algebra::IntervalPolynomial2 f(curve.polynomial);
+    if (dimension == 2) {
+      std::vector<std::vector<algebra::IntervalPolynomial2>> clauses;
+      for (const auto& clause : curve.validity) {
+        clauses.emplace_back();
+        for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
+      }
+      if (!may_be_valid(f, clauses, x, y, 6)) continue;
+    }
+    kept.push_back(k);
+    chart.polynomials.push_back(curve.polynomial);
+    chart.validity.push_back(curve.validity);
+    chart.interval_polynomials.push_back(std::move(f));
+  }
+  return kept;
+}
+
+bool valid_at(const std::vector<ValidityClause>& clauses, const Rational& x, const Real& y) {
+  for (const auto& clause : clauses) {
+    bool holds = false;
+    for (const auto& atom : clause.atoms)
+      if (algebra::sign_at(atom, x, y) >= 0) {
+        holds = true;
+        break;
+      }
+    if (!holds) return false;
+  }
+  return true;
+}
+
+bool valid_at(const std::vector<ValidityClause>& clauses, const Real& x, const Rational& y) {
+  for (const auto& clause : clauses) {
+    bool holds = false;
+    for (const auto& atom : clause.atoms)
+      if (algebra::sign_at(atom, x, y) >= 0) {
+        holds = true;
+        break;
+      }
+    if (!holds) return false;
+  }
+  return true;
+}
+
+// Feature pairs along every edge: exact test at one interior point of the edge.
+void label_edges(ChartData& chart) {
+  const auto& arrangement = chart.arrangement;
+  chart.edges.resize(arrangement.edges.size());
+  for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
+    const raw::Edge& edge = arrangement.edges[e];
+    EdgeData& data = chart.edges[e];
+    const raw::Vertex& low = arrangement.vertices[edge.min_vertex];
+    const raw::Vertex& high = arrangement.vertices[edge.max_vertex];
+    data.interval_support = algebra::IntervalPolynomial2(edge.support);
+    algebra::Interval x_box, y_box;
+    if (edge.vertical) {
+      data.vertical_x = low.x;
+      Rational y = low.y_exact && high.y_exact ? algebra::rational_between(low.y, high.y)
+                                              : algebra::simplest_between(low.y_upper, high.y_lower);
+      data.sample_y = Real::from_rational(y);
+      Real x = low.x;
+      x.refine_to(Rational(1, mpz_class(1) << 80));
+      x_box = {x.lower_bound(), x.upper_bound()};
+      y_box = algebra::enclose(y);
+      for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
+        if (!chart.interval_polynomials[k].evaluate(x_box, y_box).contains_zero()) continue;
+        if (algebra::vanishes_at(chart.polynomials[k], x, y) && valid_at(chart.validity[k], x, y))
+          data.curves.push_back(k);
+      }
+    } else {
+      data.sample_x = algebra::rational_between(low.x, high.x);
+      data.sample_y = edge_y_at(chart, e, data.sample_x);
+      Real y = data.sample_y;
+      y.refine_to(Rational(1, mpz_class(1) << 80));
+      x_box = algebra::enclose(data.sample_x);
+      y_box = {y.lower_bound(), y.upper_bound()};
+      for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
+        if (!chart.interval_polynomials[k].evaluate(x_box, y_box).contains_zero()) continue;
+        if (algebra::vanishes_at(chart.polynomials[k], data.sample_x, y) &&
+            valid_at(chart.validity[k], data.sample_x, data.sample_y))
+          data.curves.push_back(k);
+      }
+    }
+  }
+}
+
+struct Hit {
+  bool found = false;
+  Real y;
+};
+
+// The nearest non-vertical edge above (or below) the point (x, from) on the vertical line x,
+// where x is no vertex abscissa of the chart.
+Hit nearest_on_vertical(const ChartData& chart, const Rational& x, const Real& from, bool upward) {
+  const auto& arrangement = chart.arrangement;
+  const algebra::Interval xi = algebra::enclose(x);
+  const double from_lo = from.lower_bound(), from_hi = from.upper_bound();
+  std::vector<std::pair<double, std::size_t>> candidates;
+  for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
+    const raw::Edge& edge = arrangement.edges[e];
+    if (edge.vertical || edge.box[0] > xi.hi || edge.box[2] < xi.lo) continue;
+    if (upward ? edge.box[3] < from_lo : edge.box[1] > from_hi) continue;
+    candidates.emplace_back(upward ? edge.box[1] : -edge.box[3], e);
+  }
+  std::sort(candidates.begin(), candidates.end());
+  Hit best;
+  for (const auto& [key, e] : candidates) {
+    if (best.found && (upward ? key > best.y.upper_bound() : -key < best.y.lower_bound())) break;
+    const raw::Edge& edge = arrangement.edges[e];
+    if (arrangement.vertices[edge.min_vertex].x.compare(x) >= 0 ||
+        arrangement.vertices[edge.max_vertex].x.compare(x) <= 0)
+      continue;
+    Real y = edge_y_at(chart, e, x);
+    int c = algebra::compare(y, from);
+    if (upward ? c <= 0 : c >= 0) continue;
+    if (!best.found || (upward ? algebra::compare(y, best.y) < 0 : algebra::compare(y, best.y) > 0)) {
+      best.found = true;
+      best.y = std::move(y);
+    }
+  }
+  return best;
+}
+
+void classify_faces(ChartData& chart, const Classifier& classify) {
+  const auto& arrangement = chart.arrangement;
+  for (const auto& v : arrangement.vertices)
+    if (v.x.exact) chart.rational_vertex_x.push_back(v.x.lower);
+  std::sort(chart.rational_vertex_x.begin(), chart.rational_vertex_x.end());
+  chart.faces.assign(arrangement.faces.size(), FaceData{});
+  for (std::size_t f = 0; f < arrangement.faces.size(); ++f) {
+    const raw::Face& face = arrangement.faces[f];
+    if (face.unbounded) continue;
+    // the non-vertical boundary edge with the widest x-range gives the simplest sample
+    std::size_t chosen = raw::none;
+    bool above = false;
+    double widest = -1;
+    for (const auto& [e, on_left] : face.boundary) {
+      const raw::Edge& edge = arrangement.edges[e];
+      if (edge.vertical) continue;
+      double width = edge.box[2] - edge.box[0];
+      if (width > widest) {
+        widest = width;
+        chosen = e;
+        above = on_left;
+      }
+    }
+    if (chosen == raw::none) throw GeometryError("internal: a C-space face has no non-vertical boundary edge");
+    const raw::Edge& edge = arrangement.edges[chosen];
+    Rational x = rational_avoiding(arrangement.vertices[edge.min_vertex].x, arrangement.vertices[edge.max_vertex].x,
+                                   chart.rational_vertex_x);
+    Real from = edge_y_at(chart, chosen, x);
+    Hit hit = nearest_on_vertical(chart, x, from, above);
+    if (!hit.found) throw GeometryError("internal: no edge bounds a C-space face on a vertical line");
+    Rational y = above ? algebra::rational_between(from, hit.y) : algebra::rational_between(hit.y, from);
+    FaceData& data = chart.faces[f];
+    data.sample_x = x;
+    data.sample_y = y;
+    data.kind = kind_of(classify(ChartPoint{x, y}));
+  }
+}
+
+// ---------------------------------------------------------------- 1-D charts
+
+void build_interval_chart(ChartData& chart, const ChartInput& input) {
+  struct Point {
+    Real x;
+    std::vector<std::size_t> curves;
+  };
+  std::vector<Point> points;
+  for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
+    algebra::Polynomial p = algebra::univariate_x(chart.polynomials[k]);
+    if (algebra::degree(p) < 1) continue;
+    for (auto& root : algebra::real_roots(p, chart.box.x_lo, chart.box.x_hi)) {
+      bool valid = true;
+      for (const auto& clause : chart.validity[k]) {
+        bool holds = false;
+        for (const auto& atom : clause.atoms)
+          if (algebra::sign_at(algebra::univariate_x(atom), root) >= 0) holds = true;
+        if (!holds) valid = false;
+      }
+      if (!valid) continue;
+      auto it = std::find_if(points.begin(), points.end(),
+                             [&](const Point& q) { return algebra::compare(q.x, root) == 0; });
+      if (it != points.end())
+        it->curves.push_back(k);
+      else
+        points.push_back(Point{std::move(root), {k}});
+    }
+  }
+  std::sort(points.begin(), points.end(), [](const Point& a, const Point& b) { return algebra::compare(a.x, b.x) < 0; });
+  for (auto& p : points) {
+    chart.points.push_back(p.x);
+    chart.point_curves.push_back(p.curves);
+  }
+  // faces[i]: the open interval before point i (faces.back(): after the last point)
+  chart.faces.assign(points.size() + 1, FaceData{});
+  for (std::size_t i = 0; i <= points.size(); ++i) {
+    Real lo = i == 0 ? Real::from_rational(chart.box.x_lo) : points[i - 1].x;
+    Real hi = i == points.size() ? Real::from_rational(chart.box.x_hi) : points[i].x;
+    if (algebra::compare(lo, hi) >= 0) continue;   // empty (a point on the chart boundary)
+    FaceData& face = chart.faces[i];
+    face.sample_x = algebra::rational_between(lo, hi);
+    face.sample_y = 0;
+    face.kind = kind_of(input.classify(ChartPoint{face.sample_x, Rational(0)}));
+  }
+}
+
+// ---------------------------------------------------------------- cells
+
+// Union-find over faces of all charts with integer winding potentials per rotation axis.
+class Components {
+ public:
+  explicit Components(std::size_t n) : parent_(n), offset_(n, {0, 0}), wraps_(n, {false, false}) {
+    std::iota(parent_.begin(), parent_.end(), std::size_t{0});
+  }
+  std::pair<std::size_t, std::array<long, 2>> find(std::size_t a) {
+    std::array<long, 2> total{0, 0};
+    std::size_t root = a;
+    while (parent_[root] != root) {
+      total[0] += offset_[root][0];
+      total[1] += offset_[root][1];
+      root = parent_[root];
+    }
+    // path compression
+    std::array<long, 2> running = total;
+    while (parent_[a] != a) {
+      std::size_t next = parent_[a];
+      std::array<long, 2> own = offset_[a];
+      parent_[a] = root;
+      offset_[a] = running;
+      running[0] -= own[0];
+      running[1] -= own[1];
+      a = next;
+    }
+    return {root, total};
+  }
+  // lift(b) = lift(a) + d
+  void join(std::size_t a, std::size_t b, std::array<long, 2> d) {
+    auto [ra, oa] = find(a);
+    auto [rb, ob] = find(b);
+    if (ra == rb) {
+      for (int k = 0; k < 2; ++k)
+        if (ob[k] - oa[k] != d[k]) wraps_[ra][k] = true;
+      return;
+    }
+    parent_[rb] = ra;
+    for (int k = 0; k < 2; ++k) {
+      offset_[rb][k] = oa[k] + d[k] - ob[k];
+      wraps_[ra][k] = wraps_[ra][k] || wraps_[rb][k];
+    }
+  }
+  std::array<bool, 2> wraps(std::size_t root) const { return wraps_[root]; }
+
+ private:
+  std::vector<std::size_t> parent_;
+  std::vector<std::array<long, 2>> offset_;
+  std::vector<std::array<bool, 2>> wraps_;
+};
+
+double chart_angle(const ChartAxis& axis, const Rational& t) {
+  return (axis.half_turn ? std::numbers::pi : 0.0) + 2 * std::atan(t.get_d());
+}
+
+// Is chart axis a's value `ta` the same part coordinate as chart axis b's value `tb`?
+bool same_coordinate(const ChartAxis& a, const Rational& ta, const ChartAxis& b, const Rational& tb) {
+  if (a.kind != ChartAxis::Kind::rotation || b.kind != ChartAxis::Kind::rotation) return false;
+  if (a.half_turn == b.half_turn) return ta == tb;
+  return ta * tb == -1;
+}
+
+long winding_between(const ChartAxis& a, const Rational& ta, const ChartAxis& b, const Rational& tb) {
+  return std::lround((chart_angle(a, ta) - chart_angle(b, tb)) / (2 * std::numbers::pi));
+}
+
+struct SeamPiece {
+  Real start, end;
+  std::size_t edge;   // local
+  std::size_t face;   // inner face, local
+};
+
+std::vector<SeamPiece> seam_pieces(const ChartData& chart, int side) {
+  std::vector<SeamPiece> pieces;
+  const auto& arrangement = chart.arrangement;
+  for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
+    const raw::Edge& edge = arrangement.edges[e];
+    if (edge.box_side != side) continue;
+    const raw::Vertex& a = arrangement.vertices[edge.min_vertex];
+    const raw::Vertex& b = arrangement.vertices[edge.max_vertex];
+    bool along_y = side == 1 || side == 3;
+    std::size_t inner = arrangement.faces[edge.left_face].unbounded ? edge.right_face : edge.left_face;
+    pieces.push_back(SeamPiece{along_y ? a.y : a.x, along_y ? b.y : b.x, e, inner});
+  }
+  std::sort(pieces.begin(), pieces.end(),
+            [](const SeamPiece& p, const SeamPiece& q) { return algebra::compare(p.start, q.start) < 0; });
+  return pieces;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- shared helpers
+
+algebra::Real edge_y_at(const ChartData& chart, std::size_t local_edge, const Rational& x) {
+  const raw::Edge& edge = chart.arrangement.edges[local_edge];
+  const raw::ArcNumbers& numbers = edge.arc_numbers;
+  int arcno = numbers.between.empty() ? 0 : numbers.between.back();
+  for (std::size_t i = 0; i < numbers.events.size(); ++i) {
+    int c = numbers.events[i].compare(x);
+    if (c > 0) {
+      arcno = numbers.between[i];
+      break;
+    }
+    if (c == 0) {
+      arcno = numbers.at_event[i];
+      break;
+    }
+  }
+  algebra::Polynomial p = algebra::substitute_x(edge.support, x);
+  Rational lo(edge.box[1]), hi(edge.box[3]);
+  return algebra::nth_real_root_in(p, arcno, lo, hi);
+}
+
+AlgebraicNumber to_public(const algebra::Real& r) {
+  AlgebraicNumber n;
+  n.polynomial = r.polynomial;
+  n.lower = r.lower;
+  n.upper = r.upper;
+  n.exact = r.exact;
+  return n;
+}
+
+CertifiedRange to_coordinate_range(const ChartAxis& axis, double lo, double hi) {
+  if (axis.kind == ChartAxis::Kind::translation) return {lo, hi};
+  // theta = c + 2 atan(t) is increasing; atan and the addition of c (pi rounded) are within a
+  // few units in the last place: widen by 8 ulp-sized margins plus 4e-16 absolute.
+  auto angle = [&](double t) { return (axis.half_turn ? std::numbers::pi : 0.0) + 2 * std::atan(t); };
+  double a = angle(lo), b = angle(hi);
+  double margin_a = 8 * std::numeric_limits<double>::epsilon() * std::fabs(a) + 4e-16;
+  double margin_b = 8 * std::numeric_limits<double>::epsilon() * std::fabs(b) + 4e-16;
+  return {a - margin_a, b + margin_b};
+}
+
+// ---------------------------------------------------------------- the build
+
+CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
+  auto total_start = Clock::now();
+  auto impl = std::make_shared<CSpace::Impl>();
+  impl->first_part = input.first_part;
+  impl->second_part = input.second_part;
+  impl->x_part = input.x_part;
+  impl->y_part = input.y_part;
+  impl->dimension = input.dimension;
+  CSpaceStatistics& stats = impl->statistics;
+  stats.feature_pairs_considered = input.curve_statistics.feature_pairs_considered;
+  stats.feature_pairs_culled = input.curve_statistics.feature_pairs_culled;
+  stats.seconds_curves = input.seconds_curves;
+
+  // feature pairs: one per contact curve of any chart, deduplicated by (first, second, type)
+  auto feature_name = [&](const FeatureRef& f) -> std::string {
+    std::string what = f.kind == FeatureRef::Kind::vertex ? "vertex of loop " : "loop ";
+    return what + std::to_string(f.loop) + " edge " + std::to_string(f.edge);
+  };
+  auto part_name = [&](std::size_t part) {
+    return part < input.part_names.size() ? input.part_names[part] : "part " + std::to_string(part);
+  };
+  struct Key {
+    FeatureRef first, second;
+    ContactType type;
+  };
+  std::vector<Key> keys;
+
+  impl->charts.resize(input.charts.size());
+  for (std::size_t c = 0; c < input.charts.size(); ++c) {
+    ChartInput& chart_input = input.charts[c];
+    ChartData& chart = impl->charts[c];
+    chart.x_index = chart_input.x_index;
+    chart.y_index = chart_input.y_index;
+    std::vector<std::size_t> kept = prepare_chart(chart, chart_input, input.dimension);
+    stats.curves += kept.size();
+    for (std::size_t k : kept) {
+      const ContactCurve& curve = chart_input.curves[k];
+      std::size_t index = keys.size();
+      for (std::size_t i = 0; i < keys.size(); ++i)
+        if (keys[i].first == curve.first && keys[i].second == curve.second && keys[i].type == curve.type) index = i;
+      if (index == keys.size()) {
+        keys.push_back(Key{curve.first, curve.second, curve.type});
+        FeaturePair pair;
+        pair.first_part = part_name(curve.first.part);
+        pair.second_part = part_name(curve.second.part);
+        pair.first_feature = feature_name(curve.first);
+        pair.second_feature = feature_name(curve.second);
+        pair.kind = static_cast<ContactKind>(static_cast<int>(curve.type));
+        pair.label = curve.label;
+        impl->feature_pairs.push_back(std::move(pair));
+      }
+      chart.curve_global.push_back(index);
+    }
+    CSpaceChart public_chart;
+    public_chart.x_kind = chart.x_axis.kind == ChartAxis::Kind::rotation ? AxisKind::rotation : AxisKind::translation;
+    public_chart.y_kind = chart.y_axis.kind == ChartAxis::Kind::rotation ? AxisKind::rotation : AxisKind::translation;
+    public_chart.x_half_turn = chart.x_axis.half_turn;
+    public_chart.y_half_turn = chart.y_axis.half_turn;
+    public_chart.x_lo = chart.box.x_lo;
+    public_chart.x_hi = chart.box.x_hi;
+    public_chart.y_lo = input.dimension == 2 ? chart.box.y_lo : Rational(0);
+    public_chart.y_hi = input.dimension == 2 ? chart.box.y_hi : Rational(0);
+    impl->public_charts.push_back(public_chart);
+
+    if (input.dimension == 1) {
+      auto start = Clock::now();
+      build_interval_chart(chart, chart_input);
+      stats.seconds_classification += seconds_since(start);
+      continue;
+    }
+    raw::Options raw_options;
+    raw_options.aggregated_insertion = options.aggregated_insertion;
+    raw_options.keep_cgal = options.keep_arrangements;
+    chart.arrangement = raw::build_arrangement(chart.box, chart.polynomials, chart.validity, raw_options);
+    stats.seconds_clipping += chart.arrangement.times.curves_seconds;
+    stats.seconds_arrangement += chart.arrangement.times.insertion_seconds;
+    stats.seconds_export += chart.arrangement.times.export_seconds;
+    stats.pieces_inserted += chart.arrangement.pieces_inserted;
+    auto start = Clock::now();
+    label_edges(chart);
+    stats.seconds_labelling += seconds_since(start);
+    start = Clock::now();
+    classify_faces(chart, chart_input.classify);
+    stats.seconds_classification += seconds_since(start);
+  }
+  stats.charts = impl->charts.size();
+
+  auto cells_start = Clock::now();
+  // global face numbering
+  std::vector<std::size_t> face_offset(impl->charts.size() + 1, 0);
+  for (std::size_t c = 0; c < impl->charts.size(); ++c)
+    face_offset[c + 1] = face_offset[c] + impl->charts[c].faces.size();
+  Components components(face_offset.back());
+  auto kind_at = [&](std::size_t c, std::size_t f) { return impl->charts[c].faces[f].kind; };
+
+  // seams: (chart a, local edge a) real across the seam?
+  std::vector<std::vector<int>> seam_state(impl->charts.size());   // per local edge: 0 none, 1 seam, 2 real seam
+  std::vector<std::pair<std::size_t, std::size_t>> real_face_pairs;
+  for (std::size_t c = 0; c < impl->charts.size(); ++c)
+    seam_state[c].assign(input.dimension == 2 ? impl->charts[c].arrangement.edges.size() : 0, 0);
+
+  if (input.dimension == 2) {
+    for (std::size_t c = 0; c < impl->charts.size(); ++c) {
+      ChartData& chart = impl->charts[c];
+      for (std::size_t e = 0; e < chart.arrangement.edges.size(); ++e) {
+        const raw::Edge& edge = chart.arrangement.edges[e];
+        if (edge.box_side >= 0) continue;
+        const raw::Face& left = chart.arrangement.faces[edge.left_face];
+        const raw::Face& right = chart.arrangement.faces[edge.right_face];
+        if (left.unbounded || right.unbounded) continue;
+        int a = kind_at(c, edge.left_face), b = kind_at(c, edge.right_face);
+        if (a == b)
+          components.join(face_offset[c] + edge.left_face, face_offset[c] + edge.right_face, {0, 0});
+        else
+          real_face_pairs.emplace_back(face_offset[c] + edge.left_face, face_offset[c] + edge.right_face);
+      }
+    }
+    // glue along seams: a's high side meets b's low side
+    for (std::size_t a = 0; a < impl->charts.size(); ++a)
+      for (std::size_t b = 0; b < impl->charts.size(); ++b) {
+        const ChartData& A = impl->charts[a];
+        const ChartData& B = impl->charts[b];
+        for (int axis = 0; axis < 2; ++axis) {
+          bool x_axis = axis == 0;
+          // the other axis must be the same chart axis
+          if (x_axis ? (A.y_index != B.y_index) : (A.x_index != B.x_index)) continue;
+          const ChartAxis& axis_a = x_axis ? A.x_axis : A.y_axis;
+          const ChartAxis& axis_b = x_axis ? B.x_axis : B.y_axis;
+          const Rational& high = x_axis ? A.box.x_hi : A.box.y_hi;
+          const Rational& low = x_axis ? B.box.x_lo : B.box.y_lo;
+          if (!same_coordinate(axis_a, high, axis_b, low)) continue;
+          std::array<long, 2> winding{0, 0};
+          winding[static_cast<std::size_t>(axis)] = winding_between(axis_a, high, axis_b, low);
+          auto pieces_a = seam_pieces(A, x_axis ? 1 : 2);
+          auto pieces_b = seam_pieces(B, x_axis ? 3 : 0);
+          std::size_t i = 0, j = 0;
+          while (i < pieces_a.size() && j < pieces_b.size()) {
+            const SeamPiece& p = pieces_a[i];
+            const SeamPiece& q = pieces_b[j];
+            if (algebra::compare(p.start, q.end) < 0 && algebra::compare(q.start, p.end) < 0) {
+              int ka = kind_at(a, p.face), kb = kind_at(b, q.face);
+              int state = ka == kb ? 1 : 2;
+              seam_state[a][p.edge] = std::max(seam_state[a][p.edge], state);
+              seam_state[b][q.edge] = std::max(seam_state[b][q.edge], state);
+              if (ka == kb)
+                components.join(face_offset[a] + p.face, face_offset[b] + q.face, winding);
+              else
+                real_face_pairs.emplace_back(face_offset[a] + p.face, face_offset[b] + q.face);
+            }
+            if (algebra::compare(p.end, q.end) < 0)
+              ++i;
+            else
+              ++j;
+          }
+        }
+      }
+  } else {
+    for (std::size_t c = 0; c < impl->charts.size(); ++c) {
+      ChartData& chart = impl->charts[c];
+      for (std::size_t i = 0; i < chart.points.size(); ++i) {
+        int a = chart.faces[i].kind, b = chart.faces[i + 1].kind;
+        if (a < 0 || b < 0) continue;
+        if (a == b)
+          components.join(face_offset[c] + i, face_offset[c] + i + 1, {0, 0});
+        else
+          real_face_pairs.emplace_back(face_offset[c] + i, face_offset[c] + i + 1);
+      }
+    }
+    // seams of a circle: a chart's high end meets another's low end
+    for (std::size_t a = 0; a < impl->charts.size(); ++a)
+      for (std::size_t b = 0; b < impl->charts.size(); ++b) {
+        const ChartData& A = impl->charts[a];
+        const ChartData& B = impl->charts[b];
+        if (!same_coordinate(A.x_axis, A.box.x_hi, B.x_axis, B.box.x_lo)) continue;
+        std::size_t fa = A.faces.size() - 1, fb = 0;
+        // a contact point exactly on the seam separates the two ends
+        if (A.faces[fa].kind < 0 || B.faces[fb].kind < 0) continue;
+        long winding = winding_between(A.x_axis, A.box.x_hi, B.x_axis, B.box.x_lo);
+        if (A.faces[fa].kind == B.faces[fb].kind)
+          components.join(face_offset[a] + fa, face_offset[b] + fb, {winding, 0});
+        else
+          real_face_pairs.emplace_back(face_offset[a] + fa, face_offset[b] + fb);
+      }
+  }
+
+  // cells
+  std::vector<std::size_t> cell_of_root(face_offset.back(), no_index);
+  for (std::size_t c = 0; c < impl->charts.size(); ++c) {
+    ChartData& chart = impl->charts[c];
+    for (std::size_t f = 0; f < chart.faces.size(); ++f) {
+      FaceData& face = chart.faces[f];
+      if (face.kind < 0) continue;
+      auto [root, offset] = components.find(face_offset[c] + f);
+      if (cell_of_root[root] == no_index) {
+        cell_of_root[root] = impl->cells.size();
+        CSpaceCell cell;
+        cell.kind = cell_kind(face.kind);
+        auto wraps = components.wraps(root);
+        cell.wraps_x = wraps[0];
+        cell.wraps_y = wraps[1];
+        cell.sample_chart = c;
+        cell.sample_x = face.sample_x;
+        cell.sample_y = face.sample_y;
+        impl->cells.push_back(std::move(cell));
+      }
+      face.cell = cell_of_root[root];
+      impl->cells[face.cell].faces += 1;
+    }
+  }
+  auto cell_of_global_face = [&](std::size_t g) {
+    std::size_t c = static_cast<std::size_t>(std::upper_bound(face_offset.begin(), face_offset.end(), g) - face_offset.begin()) - 1;
+    return impl->charts[c].faces[g - face_offset[c]].cell;
+  };
+  std::set<std::pair<std::size_t, std::size_t>> neighbour_pairs;
+  for (auto [fa, fb] : real_face_pairs) {
+    std::size_t ca = cell_of_global_face(fa), cb = cell_of_global_face(fb);
+    if (ca != cb) neighbour_pairs.insert({std::min(ca, cb), std::max(ca, cb)});
+  }
+  for (auto [ca, cb] : neighbour_pairs) {
+    impl->cells[ca].neighbours.push_back(cb);
+    impl->cells[cb].neighbours.push_back(ca);
+  }
+
+  // public vertices and edges
+  for (std::size_t c = 0; c < impl->charts.size(); ++c) {
+    ChartData& chart = impl->charts[c];
+    if (input.dimension == 1) {
+      for (std::size_t i = 0; i < chart.points.size(); ++i) {
+        CSpaceVertex vertex;
+        vertex.chart = c;
+        vertex.x = to_public(chart.points[i]);
+        vertex.y = to_public(Real::from_rational(0));
+        vertex.y_exact = true;
+        for (std::size_t k : chart.point_curves[i]) vertex.curves.push_back(chart.curve_global[k]);
+        std::sort(vertex.curves.begin(), vertex.curves.end());
+        vertex.curves.erase(std::unique(vertex.curves.begin(), vertex.curves.end()), vertex.curves.end());
+        vertex.contact_change = vertex.curves.size() >= 2;
+        vertex.on_chart_boundary = chart.points[i].compare(chart.box.x_lo) == 0 || chart.points[i].compare(chart.box.x_hi) == 0;
+        chart.vertex_global.push_back(impl->vertices.size());
+        impl->vertex_local.emplace_back(c, i);
+        impl->vertices.push_back(std::move(vertex));
+      }
+      continue;
+    }
+    const auto& arrangement = chart.arrangement;
+    for (std::size_t v = 0; v < arrangement.vertices.size(); ++v) {
+      chart.vertex_global.push_back(impl->vertices.size() + v);
+      impl->vertex_local.emplace_back(c, v);
+    }
+    std::size_t vertex_base = impl->vertices.size();
+    impl->vertices.resize(vertex_base + arrangement.vertices.size());
+    for (std::size_t v = 0; v < arrangement.vertices.size(); ++v) {
+      CSpaceVertex& vertex = impl->vertices[vertex_base + v];
+      vertex.chart = c;
+      vertex.x = to_public(arrangement.vertices[v].x);
+      const raw::Vertex& source = arrangement.vertices[v];
+      vertex.y_exact = source.y_exact;
+      if (source.y_exact) vertex.y = to_public(source.y);
+      vertex.y_lower = source.y_lower;
+      vertex.y_upper = source.y_upper;
+      vertex.y_curve = source.y_curve.coefficients;
+      vertex.y_branch = source.y_branch;
+    }
+    for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
+      const raw::Edge& edge = arrangement.edges[e];
+      EdgeData& data = chart.edges[e];
+      data.global = impl->edges.size();
+      impl->edge_local.emplace_back(c, e);
+      CSpaceEdge out;
+      out.chart = c;
+      out.source = chart.vertex_global[edge.min_vertex];
+      out.target = chart.vertex_global[edge.max_vertex];
+      out.vertical = edge.vertical;
+      for (std::size_t k : data.curves) out.curves.push_back(chart.curve_global[k]);
+      std::sort(out.curves.begin(), out.curves.end());
+      out.curves.erase(std::unique(out.curves.begin(), out.curves.end()), out.curves.end());
+      const raw::Face& left = arrangement.faces[edge.left_face];
+      const raw::Face& right = arrangement.faces[edge.right_face];
+      out.left_cell = left.unbounded ? no_index : chart.faces[edge.left_face].cell;
+      out.right_cell = right.unbounded ? no_index : chart.faces[edge.right_face].cell;
+      if (edge.box_side >= 0) {
+        int state = seam_state[c][e];
+        out.role = state == 0 ? EdgeRole::limit : EdgeRole::seam;
+        out.real = state == 2;
+      } else {
+        bool real = chart.faces[edge.left_face].kind != chart.faces[edge.right_face].kind;
+        out.role = real ? EdgeRole::contact : EdgeRole::spurious;
+        out.real = real;
+      }
+      out.x_chart = {edge.box[0], edge.box[2]};
+      out.y_chart = {edge.box[1], edge.box[3]};
+      out.x_coordinate = to_coordinate_range(chart.x_axis, edge.box[0], edge.box[2]);
+      out.y_coordinate = to_coordinate_range(chart.y_axis, edge.box[1], edge.box[3]);
+      for (std::size_t v : {out.source, out.target}) {
+        impl->vertices[v].edges.push_back(data.global);
+        for (std::size_t k : out.curves) impl->vertices[v].curves.push_back(k);
+        if (edge.box_side >= 0) impl->vertices[v].on_chart_boundary = true;
+      }
+      if (out.real) {
+        for (std::size_t cell : {out.left_cell, out.right_cell})
+          if (cell != no_index) impl->cells[cell].boundary.push_back(data.global);
+      }
+      if (out.role == EdgeRole::contact) ++stats.contact_edges;
+      impl->edges.push_back(std::move(out));
+    }
+    for (std::size_t v = 0; v < arrangement.vertices.size(); ++v) {
+      CSpaceVertex& vertex = impl->vertices[vertex_base + v];
+      std::sort(vertex.curves.begin(), vertex.curves.end());
+      vertex.curves.erase(std::unique(vertex.curves.begin(), vertex.curves.end()), vertex.curves.end());
+      vertex.contact_change = vertex.curves.size() >= 2;
+    }
+    stats.faces += arrangement.faces.size() - 1;
+  }
+  stats.vertices = impl->vertices.size();
+  stats.edges = impl->edges.size();
+  stats.cells = impl->cells.size();
+  stats.seconds_cells = seconds_since(cells_start);
+  stats.seconds_total = seconds_since(total_start) + stats.seconds_curves;
+  return make_cspace(impl);
+}
+
+}  // namespace hipair::cspace

@@ -1,0 +1,688 @@
+#include "cspace/builder_algebra.hpp"
+
+#include <hipair/error.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace hipair::cspace::algebra {
+
+// ---------------------------------------------------------------- univariate basics
+
+int degree(const Polynomial& p) { return static_cast<int>(p.size()) - 1; }
+
+void trim(Polynomial& p) {
+  while (!p.empty() && sgn(p.back()) == 0) p.pop_back();
+}
+
+Polynomial derivative(const Polynomial& p) {
+  Polynomial d;
+  for (std::size_t i = 1; i < p.size(); ++i) d.push_back(p[i] * static_cast<unsigned long>(i));
+  trim(d);
+  return d;
+}
+
+namespace {
+
+// Sum a_i n^i d^(deg-i): the value times d^deg (d > 0), so its sign is the sign of p(n/d).
+mpz_class homogeneous_value(const Polynomial& p, const mpz_class& n, const mpz_class& d) {
+  if (p.empty()) return 0;
+  mpz_class result = p.back();
+  mpz_class d_power = 1;
+  for (int i = degree(p) - 1; i >= 0; --i) {
+    d_power *= d;
+    result = result * n + p[static_cast<std::size_t>(i)] * d_power;
+  }
+  return result;
+}
+
+mpz_class content(const Polynomial& p) {
+  mpz_class g = 0;
+  for (const auto& c : p) {
+    mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), c.get_mpz_t());
+    if (g == 1) break;
+  }
+  return g;
+}
+
+// Pseudo-remainder a = q b + r scaled so that the scale factor is positive:
+// returns r' = s * rem(a, b) with s > 0.
+Polynomial positive_pseudo_remainder(Polynomial a, const Polynomial& b) {
+  const int db = degree(b);
+  const mpz_class& lb = b.back();
+  int steps = 0;
+  while (degree(a) >= db && !a.empty()) {
+    const int shift = degree(a) - db;
+    mpz_class la = a.back();
+    for (auto& c : a) c *= lb;
+    for (int i = 0; i <= db; ++i) a[static_cast<std::size_t>(i + shift)] -= la * b[static_cast<std::size_t>(i)];
+    trim(a);
+    ++steps;
+  }
+  if (sgn(lb) < 0 && steps % 2 == 1)
+    for (auto& c : a) c = -c;
+  return a;
+}
+
+}  // namespace
+
+int sign_at(const Polynomial& p, const Rational& x) {
+  return sgn(homogeneous_value(p, x.get_num(), x.get_den()));
+}
+
+Rational value_at(const Polynomial& p, const Rational& x) {
+  Rational result = 0;
+  for (auto it = p.rbegin(); it != p.rend(); ++it) result = result * x + Rational(*it);
+  return result;
+}
+
+Polynomial primitive_part(const Polynomial& p) {
+  Polynomial q = p;
+  trim(q);
+  if (q.empty()) return q;
+  mpz_class g = content(q);
+  if (sgn(q.back()) < 0) g = -g;
+  for (auto& c : q) mpz_divexact(c.get_mpz_t(), c.get_mpz_t(), g.get_mpz_t());
+  return q;
+}
+
+Polynomial gcd(const Polynomial& a, const Polynomial& b) {
+  Polynomial x = primitive_part(a), y = primitive_part(b);
+  if (x.empty()) return y;
+  if (y.empty()) return x;
+  if (degree(x) < degree(y)) std::swap(x, y);
+  while (!y.empty()) {
+    Polynomial r = primitive_part(positive_pseudo_remainder(x, y));
+    x = std::move(y);
+    y = std::move(r);
+  }
+  return primitive_part(x);
+}
+
+Polynomial square_free_part(const Polynomial& p) {
+  Polynomial q = primitive_part(p);
+  if (degree(q) <= 1) return q;
+  Polynomial g = gcd(q, derivative(q));
+  if (degree(g) == 0) return q;
+  // exact division q / g
+  Polynomial quotient(static_cast<std::size_t>(degree(q) - degree(g) + 1));
+  Polynomial remainder = q;
+  const mpz_class& lg = g.back();
+  for (int k = degree(q) - degree(g); k >= 0; --k) {
+    mpz_class coefficient = remainder[static_cast<std::size_t>(k + degree(g))];
+    // g is primitive and divides q over Q; by Gauss's lemma the quotient is integral.
+    mpz_divexact(coefficient.get_mpz_t(), coefficient.get_mpz_t(), lg.get_mpz_t());
+    quotient[static_cast<std::size_t>(k)] = coefficient;
+    for (int i = 0; i <= degree(g); ++i)
+      remainder[static_cast<std::size_t>(k + i)] -= coefficient * g[static_cast<std::size_t>(i)];
+  }
+  return primitive_part(quotient);
+}
+
+Polynomial from_rationals(const std::vector<Rational>& coefficients) {
+  mpz_class common = 1;
+  for (const auto& c : coefficients) mpz_lcm(common.get_mpz_t(), common.get_mpz_t(), c.get_den_mpz_t());
+  Polynomial p;
+  for (const auto& c : coefficients) {
+    mpz_class v = c.get_num() * (common / c.get_den());
+    p.push_back(v);
+  }
+  return primitive_part(p);
+}
+
+std::string to_string(const Polynomial& p, const std::string& variable) {
+  if (p.empty()) return "0";
+  std::ostringstream out;
+  bool first = true;
+  for (int i = degree(p); i >= 0; --i) {
+    const mpz_class& c = p[static_cast<std::size_t>(i)];
+    if (sgn(c) == 0) continue;
+    mpz_class magnitude = abs(c);
+    if (first) {
+      if (sgn(c) < 0) out << "-";
+    } else {
+      out << (sgn(c) < 0 ? " - " : " + ");
+    }
+    first = false;
+    if (i == 0 || magnitude != 1) {
+      out << magnitude.get_str();
+      if (i > 0) out << "*";
+    }
+    if (i > 0) out << variable;
+    if (i > 1) out << "^" << i;
+  }
+  return out.str();
+}
+
+double lower_double(const Rational& r) {
+  double d = r.get_d();
+  if (std::isinf(d)) return d > 0 ? std::numeric_limits<double>::max() : d;
+  if (Rational(d) > r) d = std::nextafter(d, -std::numeric_limits<double>::infinity());
+  return d;
+}
+
+double upper_double(const Rational& r) {
+  double d = r.get_d();
+  if (std::isinf(d)) return d < 0 ? std::numeric_limits<double>::lowest() : d;
+  if (Rational(d) < r) d = std::nextafter(d, std::numeric_limits<double>::infinity());
+  return d;
+}
+
+// ---------------------------------------------------------------- Sturm sequences
+
+SturmSequence::SturmSequence(const Polynomial& square_free) {
+  Polynomial p = primitive_part(square_free);
+  if (p.empty()) return;
+  sequence_.push_back(p);
+  Polynomial d = primitive_part(derivative(p));
+  if (d.empty()) return;
+  sequence_.push_back(d);
+  while (degree(sequence_.back()) > 0) {
+    Polynomial r = positive_pseudo_remainder(sequence_[sequence_.size() - 2], sequence_.back());
+    if (r.empty()) break;
+    for (auto& c : r) c = -c;
+    mpz_class g = content(r);  // positive
+    for (auto& c : r) mpz_divexact(c.get_mpz_t(), c.get_mpz_t(), g.get_mpz_t());
+    sequence_.push_back(std::move(r));
+  }
+}
+
+int SturmSequence::variations(const Rational& x) const {
+  int count = 0, previous = 0;
+  for (const auto& p : sequence_) {
+    int s = sign_at(p, x);
+    if (s == 0) continue;
+    if (previous != 0 && s != previous) ++count;
+    previous = s;
+  }
+  return count;
+}
+
+int SturmSequence::variations_at_infinity(bool positive) const {
+  int count = 0, previous = 0;
+  for (const auto& p : sequence_) {
+    int s = sgn(p.back());
+    if (!positive && degree(p) % 2 == 1) s = -s;
+    if (previous != 0 && s != previous) ++count;
+    previous = s;
+  }
+  return count;
+}
+
+int SturmSequence::count(const Rational& a, const Rational& b) const {
+  if (sequence_.empty() || !(a < b)) return 0;
+  return variations(a) - variations(b);
+}
+
+int SturmSequence::count_up_to(const Rational& b) const {
+  if (sequence_.empty()) return 0;
+  return variations_at_infinity(false) - variations(b);
+}
+
+int SturmSequence::total() const {
+  if (sequence_.empty()) return 0;
+  return variations_at_infinity(false) - variations_at_infinity(true);
+}
+
+// ---------------------------------------------------------------- real algebraic numbers
+
+Real Real::from_rational(const Rational& value) {
+  Real r;
+  r.polynomial = primitive_part(Polynomial{-value.get_num(), value.get_den()});
+  r.lower = value;
+  r.upper = value;
+  r.exact = true;
+  return r;
+}
+
+void Real::refine() {
+  if (exact) return;
+  Rational middle = (lower + upper) / 2;
+  int s = sign_at(polynomial, middle);
+  if (s == 0) {
+    lower = upper = middle;
+    exact = true;
+    return;
+  }
+  if (s == sign_at(polynomial, lower))
+    lower = middle;
+  else
+    upper = middle;
+}
+
+void Real::refine_to(const Rational& width) {
+  while (!exact && upper - lower > width) refine();
+}
+
+double Real::approximate() const {
+  if (exact) return lower.get_d();
+  Real copy = *this;
+  Rational width = abs(upper) + abs(lower);
+  width /= Rational(mpz_class(1) << 60);
+  if (width == 0) width = Rational(1, mpz_class(1) << 60);
+  copy.refine_to(width);
+  return Rational((copy.lower + copy.upper) / 2).get_d();
+}
+
+int Real::compare(const Rational& r) const {
+  if (exact) return cmp(lower, r) < 0 ? -1 : (cmp(lower, r) > 0 ? 1 : 0);
+  if (r <= lower) return 1;
+  if (r >= upper) return -1;
+  int s = sign_at(polynomial, r);
+  if (s == 0) return 0;
+  return s == sign_at(polynomial, lower) ? 1 : -1;
+}
+
+std::string Real::description(const std::string& variable) const {
+  if (exact) return to_exact_string(lower);
+  return to_string(polynomial, variable) + " = 0, " + variable + " in (" + to_exact_string(lower) +
+         ", " + to_exact_string(upper) + ")";
+}
+
+int compare(const Real& a, const Real& b) {
+  if (a.exact) return -b.compare(a.lower);
+  if (b.exact) return a.compare(b.lower);
+  if (a.upper <= b.lower) return -1;
+  if (b.upper <= a.lower) return 1;
+  // Overlapping intervals: equal iff the gcd has a root in the common part.
+  Polynomial g = gcd(a.polynomial, b.polynomial);
+  Rational lo = std::max(a.lower, b.lower), hi = std::min(a.upper, b.upper);
+  if (degree(g) >= 1) {
+    SturmSequence sturm(g);
+    int roots = sturm.count(lo, hi) - (sign_at(g, hi) == 0 ? 1 : 0);
+    if (roots > 0) return 0;
+  }
+  Real x = a, y = b;
+  for (;;) {
+    x.refine();
+    y.refine();
+    if (x.exact || y.exact) return compare(x, y);
+    if (x.upper <= y.lower) return -1;
+    if (y.upper <= x.lower) return 1;
+  }
+}
+
+Rational simplest_between(const Rational& lo, const Rational& hi) {
+  // Continued-fraction descent: smallest denominator in the open interval (lo, hi).
+  mpz_class floor_lo;
+  mpz_fdiv_q(floor_lo.get_mpz_t(), lo.get_num_mpz_t(), lo.get_den_mpz_t());
+  Rational candidate(floor_lo + 1);
+  if (candidate < hi) {
+    // an integer lies inside; prefer the one of smallest magnitude
+    if (lo < 0 && hi > 0) return Rational(0);
+    if (hi <= 0) {
+      mpz_class ceil_hi;
+      mpz_cdiv_q(ceil_hi.get_mpz_t(), hi.get_num_mpz_t(), hi.get_den_mpz_t());
+      Rational c(ceil_hi - 1);
+      if (c > lo) return c;
+    }
+    return candidate;
+  }
+  Rational fl(floor_lo);
+  Rational low_gap = lo - fl;   // in [0, 1)
+  Rational high_gap = hi - fl;  // in (0, 1]
+  Rational z;
+  Rational z_low = 1 / high_gap;
+  if (sgn(low_gap) == 0) {
+    mpz_class f;
+    mpz_fdiv_q(f.get_mpz_t(), z_low.get_num_mpz_t(), z_low.get_den_mpz_t());
+    z = Rational(f + 1);
+  } else {
+    z = simplest_between(z_low, 1 / low_gap);
+  }
+  Rational result = fl + 1 / z;
+  result.canonicalize();
+  return result;
+}
+
+Rational rational_between(const Real& a, const Real& b) {
+  Real x = a, y = b;
+  for (;;) {
+    const Rational& hi_x = x.upper;  // x <= hi_x
+    const Rational& lo_y = y.lower;  // lo_y <= y
+    if (hi_x < lo_y) return simplest_between(hi_x, lo_y);
+    if (x.exact && y.exact) return simplest_between(x.lower, y.lower);
+    if (x.exact && hi_x == lo_y && !y.exact) {
+      y.refine();
+      continue;
+    }
+    x.refine();
+    y.refine();
+  }
+}
+
+Rational root_bound(const Polynomial& p) {
+  // Cauchy: 1 + max |a_i / a_n|
+  Rational best = 0;
+  for (int i = 0; i < degree(p); ++i) {
+    Rational q(abs(p[static_cast<std::size_t>(i)]), abs(p.back()));
+    if (q > best) best = q;
+  }
+  return best + 1;
+}
+
+namespace {
+
+void isolate(const Polynomial& p, const SturmSequence& sturm, Rational a, Rational b, int n,
+             std::vector<Real>& out) {
+  // roots in (a, b], n of them, appended ascending
+  if (n <= 0) return;
+  if (sign_at(p, b) == 0) {
+    // b is the largest root in (a, b]; isolate the others in (a, c] with no root in (c, b)
+    if (n > 1) {
+      Rational c = (a + b) / 2;
+      while (sturm.count(c, b) > 1) c = (c + b) / 2;
+      isolate(p, sturm, a, c, n - 1, out);
+    }
+    out.push_back(Real::from_rational(b));
+    return;
+  }
+  if (n == 1) {
+    while (sign_at(p, a) == 0) {
+      Rational m = (a + b) / 2;
+      if (sign_at(p, m) == 0) {
+        out.push_back(Real::from_rational(m));
+        return;
+      }
+      if (sturm.count(a, m) == 1)
+        b = m;
+      else
+        a = m;
+    }
+    Real r;
+    r.polynomial = p;
+    r.lower = a;
+    r.upper = b;
+    out.push_back(std::move(r));
+    return;
+  }
+  Rational m = (a + b) / 2;
+  int left = sturm.count(a, m);
+  isolate(p, sturm, a, m, left, out);
+  isolate(p, sturm, m, b, n - left, out);
+}
+
+}  // namespace
+
+std::vector<Real> real_roots(const Polynomial& input, const Rational& lo, const Rational& hi) {
+  std::vector<Real> roots;
+  Polynomial p = square_free_part(input);
+  if (degree(p) < 1 || lo > hi) return roots;
+  if (lo == hi) {
+    if (sign_at(p, lo) == 0) roots.push_back(Real::from_rational(lo));
+    return roots;
+  }
+  SturmSequence sturm(p);
+  if (sign_at(p, lo) == 0) roots.push_back(Real::from_rational(lo));
+  isolate(p, sturm, lo, hi, sturm.count(lo, hi), roots);
+  return roots;
+}
+
+std::vector<Real> real_roots(const Polynomial& input) {
+  Polynomial p = square_free_part(input);
+  if (degree(p) < 1) return {};
+  Rational bound = root_bound(p);
+  return real_roots(p, -bound, bound);
+}
+
+Real nth_real_root(const Polynomial& p, int index) {
+  std::vector<Real> roots = real_roots(p);
+  if (index < 0 || index >= static_cast<int>(roots.size()))
+    throw NumericError("internal: contact curve has no real root number " + std::to_string(index));
+  return roots[static_cast<std::size_t>(index)];
+}
+
+Real nth_real_root_in(const Polynomial& input, int index, const Rational& lo, const Rational& hi) {
+  Polynomial p = square_free_part(input);
+  if (degree(p) < 1) throw NumericError("internal: evaluating a constant contact curve");
+  SturmSequence sturm(p);
+  Rational a = lo, b = hi;
+  if (sturm.count_up_to(a) > index || sturm.count_up_to(b) <= index || sign_at(p, a) == 0)
+    throw NumericError("internal: contact curve root " + std::to_string(index) + " is not in its certified box");
+  // invariant: count_up_to(a) <= index < count_up_to(b), p(a) != 0
+  while (sturm.count(a, b) > 1) {
+    Rational m = (a + b) / 2;
+    if (sturm.count_up_to(m) > index)
+      b = m;
+    else
+      a = m;
+  }
+  // exactly one root in (a, b]; p(a) may be zero only if a is not lo (then a is a root below)
+  for (;;) {
+    if (sign_at(p, b) == 0) return Real::from_rational(b);
+    if (sign_at(p, a) != 0) break;
+    Rational m = (a + b) / 2;
+    if (sturm.count(a, m) == 1)
+      b = m;
+    else
+      a = m;
+  }
+  Real r;
+  r.polynomial = std::move(p);
+  r.lower = std::move(a);
+  r.upper = std::move(b);
+  return r;
+}
+
+// ---------------------------------------------------------------- bivariate
+
+Polynomial substitute_x(const IntegerPolynomial2& f, const Rational& x) {
+  const auto& c = f.coefficients;
+  int dx = static_cast<int>(c.size()) - 1;
+  std::size_t dy = 0;
+  for (const auto& row : c) dy = std::max(dy, row.size());
+  Polynomial result(dy);
+  const mpz_class& n = x.get_num();
+  const mpz_class& d = x.get_den();
+  // coefficient of y^j: sum_i c[i][j] n^i d^(dx - i)
+  std::vector<mpz_class> weights(static_cast<std::size_t>(std::max(dx + 1, 0)));
+  for (int i = 0; i <= dx; ++i) {
+    mpz_class w;
+    mpz_pow_ui(w.get_mpz_t(), n.get_mpz_t(), static_cast<unsigned long>(i));
+    mpz_class dp;
+    mpz_pow_ui(dp.get_mpz_t(), d.get_mpz_t(), static_cast<unsigned long>(dx - i));
+    weights[static_cast<std::size_t>(i)] = w * dp;
+  }
+  for (int i = 0; i <= dx; ++i)
+    for (std::size_t j = 0; j < c[static_cast<std::size_t>(i)].size(); ++j)
+      result[j] += c[static_cast<std::size_t>(i)][j] * weights[static_cast<std::size_t>(i)];
+  trim(result);
+  return result;
+}
+
+Polynomial substitute_y(const IntegerPolynomial2& f, const Rational& y) {
+  const auto& c = f.coefficients;
+  std::size_t dy = 0;
+  for (const auto& row : c) dy = std::max(dy, row.size());
+  int degree_y = static_cast<int>(dy) - 1;
+  if (degree_y < 0) return {};
+  const mpz_class& n = y.get_num();
+  const mpz_class& d = y.get_den();
+  std::vector<mpz_class> weights(dy);
+  for (int j = 0; j <= degree_y; ++j) {
+    mpz_class w, dp;
+    mpz_pow_ui(w.get_mpz_t(), n.get_mpz_t(), static_cast<unsigned long>(j));
+    mpz_pow_ui(dp.get_mpz_t(), d.get_mpz_t(), static_cast<unsigned long>(degree_y - j));
+    weights[static_cast<std::size_t>(j)] = w * dp;
+  }
+  Polynomial result(c.size());
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (std::size_t j = 0; j < c[i].size(); ++j) result[i] += c[i][j] * weights[j];
+  trim(result);
+  return result;
+}
+
+namespace {
+std::vector<Rational> multiply(const std::vector<Rational>& a, const std::vector<Rational>& b) {
+  std::vector<Rational> r(a.size() + b.size() - 1);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) r[i + j] += a[i] * b[j];
+  return r;
+}
+}  // namespace
+
+Polynomial substitute_line(const IntegerPolynomial2& f, const Rational& x0, const Rational& dx,
+                           const Rational& y0, const Rational& dy) {
+  const auto& c = f.coefficients;
+  std::size_t max_j = 0;
+  for (const auto& row : c) max_j = std::max(max_j, row.size());
+  std::vector<std::vector<Rational>> x_powers{{Rational(1)}}, y_powers{{Rational(1)}};
+  for (std::size_t i = 1; i < c.size(); ++i) x_powers.push_back(multiply(x_powers.back(), {x0, dx}));
+  for (std::size_t j = 1; j < max_j; ++j) y_powers.push_back(multiply(y_powers.back(), {y0, dy}));
+  std::vector<Rational> result(1, Rational(0));
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (std::size_t j = 0; j < c[i].size(); ++j) {
+      if (sgn(c[i][j]) == 0) continue;
+      std::vector<Rational> term = multiply(x_powers[i], y_powers[j]);
+      if (term.size() > result.size()) result.resize(term.size());
+      for (std::size_t k = 0; k < term.size(); ++k) result[k] += Rational(c[i][j]) * term[k];
+    }
+  return from_rationals(result);
+}
+
+int sign_at(const IntegerPolynomial2& f, const Rational& x, const Rational& y) {
+  return sign_at(substitute_x(f, x), y);
+}
+
+Polynomial univariate_x(const IntegerPolynomial2& f) {
+  Polynomial p;
+  for (const auto& row : f.coefficients) p.push_back(row.empty() ? mpz_class(0) : row[0]);
+  trim(p);
+  return p;
+}
+
+bool vanishes_at(const Polynomial& p, const Real& u) {
+  if (p.empty()) return true;
+  if (u.exact) return sign_at(p, u.lower) == 0;
+  Polynomial g = gcd(p, u.polynomial);
+  if (degree(g) < 1) return false;
+  return sign_at(g, u.lower) * sign_at(g, u.upper) < 0;
+}
+
+int sign_at(const Polynomial& p, const Real& u) {
+  if (p.empty()) return 0;
+  if (u.exact) return sign_at(p, u.lower);
+  if (vanishes_at(p, u)) return 0;
+  Polynomial q = square_free_part(p);
+  SturmSequence sturm(q);
+  Real v = u;
+  for (;;) {
+    if (v.exact) return sign_at(p, v.lower);
+    // no root of p in (lower, upper]: p keeps the sign it has at upper
+    if (sturm.count(v.lower, v.upper) == 0) return sign_at(p, v.upper);
+    v.refine();
+  }
+}
+
+int sign_at(const IntegerPolynomial2& f, const Rational& x, const Real& y) {
+  return sign_at(substitute_x(f, x), y);
+}
+
+int sign_at(const IntegerPolynomial2& f, const Real& x, const Rational& y) {
+  return sign_at(substitute_y(f, y), x);
+}
+
+bool vanishes_at(const IntegerPolynomial2& f, const Rational& x, const Real& y) {
+  return vanishes_at(substitute_x(f, x), y);
+}
+
+bool vanishes_at(const IntegerPolynomial2& f, const Real& x, const Rational& y) {
+  return vanishes_at(substitute_y(f, y), x);
+}
+
+std::string to_string(const IntegerPolynomial2& f, const std::string& x, const std::string& y) {
+  std::ostringstream out;
+  bool first = true;
+  const auto& c = f.coefficients;
+  for (int i = static_cast<int>(c.size()) - 1; i >= 0; --i)
+    for (int j = static_cast<int>(c[static_cast<std::size_t>(i)].size()) - 1; j >= 0; --j) {
+      const mpz_class& v = c[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+      if (sgn(v) == 0) continue;
+      mpz_class magnitude = abs(v);
+      if (first)
+        out << (sgn(v) < 0 ? "-" : "");
+      else
+        out << (sgn(v) < 0 ? " - " : " + ");
+      first = false;
+      bool has_variable = i > 0 || j > 0;
+      if (!has_variable || magnitude != 1) out << magnitude.get_str() << (has_variable ? "*" : "");
+      if (i > 0) out << x << (i > 1 ? "^" + std::to_string(i) : "");
+      if (i > 0 && j > 0) out << "*";
+      if (j > 0) out << y << (j > 1 ? "^" + std::to_string(j) : "");
+    }
+  return first ? "0" : out.str();
+}
+
+// ---------------------------------------------------------------- intervals
+
+namespace {
+constexpr double infinity = std::numeric_limits<double>::infinity();
+double down(double v) { return std::nextafter(v, -infinity); }
+double up(double v) { return std::nextafter(v, infinity); }
+}  // namespace
+
+Interval operator+(Interval a, Interval b) { return {down(a.lo + b.lo), up(a.hi + b.hi)}; }
+
+Interval operator*(Interval a, Interval b) {
+  double p1 = a.lo * b.lo, p2 = a.lo * b.hi, p3 = a.hi * b.lo, p4 = a.hi * b.hi;
+  return {down(std::min({p1, p2, p3, p4})), up(std::max({p1, p2, p3, p4}))};
+}
+
+Interval enclose(const Rational& r) { return {lower_double(r), upper_double(r)}; }
+Interval enclose(const mpz_class& z) { return enclose(Rational(z)); }
+
+IntervalPolynomial2::IntervalPolynomial2(const IntegerPolynomial2& f) {
+  int dx = 0, dy = 0;
+  for (std::size_t i = 0; i < f.coefficients.size(); ++i) {
+    rows_.emplace_back();
+    nearest_.emplace_back();
+    for (std::size_t j = 0; j < f.coefficients[i].size(); ++j) {
+      rows_.back().push_back(enclose(f.coefficients[i][j]));
+      nearest_.back().push_back(f.coefficients[i][j].get_d());
+      if (sgn(f.coefficients[i][j]) != 0) {
+        dx = std::max(dx, static_cast<int>(i));
+        dy = std::max(dy, static_cast<int>(j));
+      }
+    }
+  }
+  total_degree_ = dx + dy;
+}
+
+Interval IntervalPolynomial2::evaluate(Interval x, Interval y) const {
+  Interval result{0, 0};
+  for (auto row = rows_.rbegin(); row != rows_.rend(); ++row) {
+    Interval inner{0, 0};
+    for (auto c = row->rbegin(); c != row->rend(); ++c) inner = inner * y + *c;
+    result = result * x + inner;
+  }
+  return result;
+}
+
+double IntervalPolynomial2::evaluate(double x, double y, double* error_bound) const {
+  // Nested Horner. Each term passes through at most 2(dx + dy) + 1 roundings, including the
+  // conversion of its coefficient, so |computed - exact| <= gamma_k * sum |c| |x|^i |y|^j with
+  // k = 2(dx + dy) + 2 (Higham, Accuracy and Stability, 5.1). The magnitude sum is itself
+  // computed in double: bound it by (1 + gamma_k) and double the result for safety.
+  double value = 0, magnitude = 0;
+  const double ax = std::fabs(x), ay = std::fabs(y);
+  for (auto row = nearest_.rbegin(); row != nearest_.rend(); ++row) {
+    double inner = 0, inner_magnitude = 0;
+    for (auto c = row->rbegin(); c != row->rend(); ++c) {
+      inner = inner * y + *c;
+      inner_magnitude = inner_magnitude * ay + std::fabs(*c);
+    }
+    value = value * x + inner;
+    magnitude = magnitude * ax + inner_magnitude;
+  }
+  if (error_bound) {
+    const double u = std::numeric_limits<double>::epsilon() / 2;
+    const double k = 2.0 * total_degree_ + 2;
+    const double gamma = k * u / (1 - k * u);
+    *error_bound = 2 * gamma * magnitude * (1 + gamma) + std::numeric_limits<double>::denorm_min();
+  }
+  return value;
+}
+
+}  // namespace hipair::cspace::algebra

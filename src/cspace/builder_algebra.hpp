@@ -1,0 +1,160 @@
+// Exact univariate algebra for the C-space adaptor: integer polynomials, Sturm sequences,
+// real root isolation, real algebraic numbers, and bivariate substitutions. CGAL-free, so that
+// point location and path queries never touch the arrangement code (and are thread-safe).
+#pragma once
+
+#include "cspace/contact_curves.hpp"
+
+#include <hipair/rational.hpp>
+
+#include <gmpxx.h>
+
+#include <string>
+#include <vector>
+
+namespace hipair::cspace::algebra {
+
+/// Integer polynomial, ascending coefficients, no trailing zero; empty is the zero polynomial.
+using Polynomial = std::vector<mpz_class>;
+
+int degree(const Polynomial& p);
+void trim(Polynomial& p);
+Polynomial derivative(const Polynomial& p);
+/// Sign of p at x, exact.
+int sign_at(const Polynomial& p, const Rational& x);
+/// Value of p at x, exact.
+Rational value_at(const Polynomial& p, const Rational& x);
+/// p divided by the gcd of its coefficients, with a positive leading coefficient.
+Polynomial primitive_part(const Polynomial& p);
+/// Primitive gcd over Q (positive leading coefficient); gcd(0, 0) is 0.
+Polynomial gcd(const Polynomial& a, const Polynomial& b);
+/// p / gcd(p, p'), primitive.
+Polynomial square_free_part(const Polynomial& p);
+/// The primitive integer polynomial proportional to the rational coefficients.
+Polynomial from_rationals(const std::vector<Rational>& coefficients);
+/// "3*x^2 - 2*x + 1".
+std::string to_string(const Polynomial& p, const std::string& variable);
+
+/// Certified double bounds of a rational: lower(r) <= r <= upper(r).
+double lower_double(const Rational& r);
+double upper_double(const Rational& r);
+
+/// Sturm sequence of a square-free polynomial (counts distinct real roots).
+class SturmSequence {
+ public:
+  explicit SturmSequence(const Polynomial& square_free);
+  /// Distinct real roots in (a, b].
+  int count(const Rational& a, const Rational& b) const;
+  /// Distinct real roots in (-infinity, b].
+  int count_up_to(const Rational& b) const;
+  int total() const;
+
+ private:
+  int variations(const Rational& x) const;
+  int variations_at_infinity(bool positive) const;
+  std::vector<Polynomial> sequence_;
+};
+
+/// A real algebraic number: `value` when exact, else the unique root of `polynomial` in the
+/// open interval (lower, upper), where the polynomial has opposite non-zero signs at the ends.
+/// The polynomial is square-free. Methods never modify shared state: refining happens on
+/// copies, so a const Real may be read from several threads.
+struct Real {
+  Polynomial polynomial;
+  Rational lower;
+  Rational upper;
+  bool exact = false;
+
+  static Real from_rational(const Rational& value);
+  /// Halves the interval (or finds the value exactly).
+  void refine();
+  /// Refines until upper - lower <= width (or exact).
+  void refine_to(const Rational& width);
+  /// Certified double enclosure.
+  double lower_bound() const { return lower_double(lower); }
+  double upper_bound() const { return upper_double(upper); }
+  double approximate() const;
+  /// Exact comparison with a rational: -1, 0, +1.
+  int compare(const Rational& r) const;
+  /// Exact text: "p(x) = 0, x in [lo, hi]" or the rational.
+  std::string description(const std::string& variable = "x") const;
+};
+
+/// Exact comparison of two real algebraic numbers: -1, 0, +1.
+int compare(const Real& a, const Real& b);
+/// A rational strictly between a < b, as simple as cheaply possible. \pre a < b.
+Rational rational_between(const Real& a, const Real& b);
+/// The simplest rational (smallest denominator) in the open interval (lo, hi). \pre lo < hi.
+Rational simplest_between(const Rational& lo, const Rational& hi);
+
+/// All distinct real roots of p in the closed interval [lo, hi], ascending, isolated.
+/// A zero polynomial has no isolated roots (the caller treats it).
+std::vector<Real> real_roots(const Polynomial& p, const Rational& lo, const Rational& hi);
+/// All distinct real roots of p, ascending.
+std::vector<Real> real_roots(const Polynomial& p);
+/// The index-th (0-based, ascending) distinct real root of p. \throws NumericError if none.
+Real nth_real_root(const Polynomial& p, int index);
+/// The index-th (0-based, ascending, counted over the whole real line) distinct real root of
+/// p, known to lie in the open interval (lo, hi). \throws NumericError if it does not.
+Real nth_real_root_in(const Polynomial& p, int index, const Rational& lo, const Rational& hi);
+/// Bound B with every real root in (-B, B).
+Rational root_bound(const Polynomial& p);
+
+// ---------------------------------------------------------------- bivariate substitutions
+
+/// f(x, y) at a rational x: a polynomial in y (scaled to integers, same roots).
+Polynomial substitute_x(const IntegerPolynomial2& f, const Rational& x);
+/// f(x, y) at a rational y: a polynomial in x.
+Polynomial substitute_y(const IntegerPolynomial2& f, const Rational& y);
+/// f(x0 + u dx, y0 + u dy): a polynomial in u (scaled to integers).
+Polynomial substitute_line(const IntegerPolynomial2& f, const Rational& x0, const Rational& dx,
+                           const Rational& y0, const Rational& dy);
+/// Sign of f at a rational point.
+int sign_at(const IntegerPolynomial2& f, const Rational& x, const Rational& y);
+/// The univariate polynomial in x of a 1-D contact curve (coefficients c[i][0]).
+Polynomial univariate_x(const IntegerPolynomial2& f);
+/// Does f vanish at the point (x, y) where x is rational and y is algebraic?
+bool vanishes_at(const IntegerPolynomial2& f, const Rational& x, const Real& y);
+/// Does f vanish at the point (x, y) where y is rational and x is algebraic?
+bool vanishes_at(const IntegerPolynomial2& f, const Real& x, const Rational& y);
+/// Sign of p at the algebraic u, exact.
+int sign_at(const Polynomial& p, const Real& u);
+/// Sign of f at (x, y) with x rational and y algebraic, exact.
+int sign_at(const IntegerPolynomial2& f, const Rational& x, const Real& y);
+/// Sign of f at (x, y) with x algebraic and y rational, exact.
+int sign_at(const IntegerPolynomial2& f, const Real& x, const Rational& y);
+/// p(u) = 0 at the algebraic u? (gcd test)
+bool vanishes_at(const Polynomial& p, const Real& u);
+/// "3*x^2*y - y + 1".
+std::string to_string(const IntegerPolynomial2& f, const std::string& x, const std::string& y);
+
+// ---------------------------------------------------------------- certified double evaluation
+
+/// Closed interval of doubles, rounded outwards.
+struct Interval {
+  double lo = 0;
+  double hi = 0;
+  bool contains_zero() const { return lo <= 0 && 0 <= hi; }
+};
+Interval operator+(Interval a, Interval b);
+Interval operator*(Interval a, Interval b);
+Interval enclose(const Rational& r);
+Interval enclose(const mpz_class& z);
+
+/// f over the box x in X, y in Y, certified enclosure.
+class IntervalPolynomial2 {
+ public:
+  IntervalPolynomial2() = default;
+  explicit IntervalPolynomial2(const IntegerPolynomial2& f);
+  Interval evaluate(Interval x, Interval y) const;
+  /// f at doubles with a certified bound on |value - exact f(x, y)|: returns value and bound.
+  double evaluate(double x, double y, double* error_bound) const;
+  bool empty() const { return rows_.empty(); }
+
+ private:
+  std::vector<std::vector<Interval>> rows_;   // rows_[i][j] encloses c[i][j]
+  std::vector<std::vector<double>> nearest_;  // nearest doubles
+  int total_degree_ = 0;
+};
+
+}  // namespace hipair::cspace::algebra

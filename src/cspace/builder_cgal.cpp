@@ -1,0 +1,601 @@
+// The only translation unit of the C-space builder that includes CGAL's algebraic arrangement
+// code (about 30 s to compile). See builder_cgal.hpp.
+#include "cspace/builder_cgal.hpp"
+
+#include <hipair/cgal/arrangement.hpp>
+#include <hipair/error.hpp>
+
+#include "cspace/builder_impl.hpp"
+
+#include <CGAL/Arr_algebraic_segment_traits_2.h>
+#include <CGAL/Arrangement_2.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <unordered_map>
+
+namespace hipair::cspace::raw {
+namespace {
+
+using Traits = hipair::cgal::Traits;
+using Arrangement_2 = hipair::cgal::Arrangement;
+using Polynomial_2 = Traits::Polynomial_2;
+using Polynomial_1 = Polynomial_2::NT;
+using Curve = Traits::Curve_2;
+using XCurve = Traits::X_monotone_curve_2;
+using Point = Traits::Point_2;
+using Algebraic_real_1 = Traits::Algebraic_real_1;
+using Bound = Traits::Bound;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+CGAL::Gmpz to_cgal(const mpz_class& z) { return CGAL::Gmpz(z.get_mpz_t()); }
+Bound to_bound(const Rational& q) { return Bound(q.get_mpq_t()); }
+mpz_class from_cgal(const CGAL::Gmpz& z) { return mpz_class(z.mpz()); }
+Rational from_bound(const Bound& q) { return Rational(q.mpq()); }
+
+Polynomial_2 to_cgal(const IntegerPolynomial2& f) {
+  const auto& c = f.coefficients;
+  std::size_t degree_y = 0;
+  for (const auto& row : c) degree_y = std::max(degree_y, row.size());
+  std::vector<Polynomial_1> by_y;
+  for (std::size_t j = 0; j < degree_y; ++j) {
+    std::vector<CGAL::Gmpz> by_x;
+    for (const auto& row : c) by_x.push_back(j < row.size() ? to_cgal(row[j]) : CGAL::Gmpz(0));
+    by_y.emplace_back(by_x.begin(), by_x.end());
+  }
+  if (by_y.empty()) by_y.emplace_back(CGAL::Gmpz(0));
+  return Polynomial_2(by_y.begin(), by_y.end());
+}
+
+IntegerPolynomial2 from_cgal(const Polynomial_2& g) {
+  IntegerPolynomial2 f;
+  int degree_x = 0;
+  for (int j = 0; j <= g.degree(); ++j) degree_x = std::max(degree_x, g[j].degree());
+  f.coefficients.assign(static_cast<std::size_t>(degree_x + 1),
+                        std::vector<mpz_class>(static_cast<std::size_t>(g.degree() + 1)));
+  for (int j = 0; j <= g.degree(); ++j)
+    for (int i = 0; i <= g[j].degree(); ++i)
+      f.coefficients[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = from_cgal(g[j][i]);
+  return f;
+}
+
+algebra::Real to_real(const Algebraic_real_1& a) {
+  if (a.is_rational()) return algebra::Real::from_rational(from_bound(a.rational()));
+  algebra::Polynomial p;
+  const auto& poly = a.polynomial();
+  for (int i = 0; i <= poly.degree(); ++i) p.push_back(from_cgal(poly[i]));
+  p = algebra::square_free_part(p);
+  Rational lo = from_bound(a.low()), hi = from_bound(a.high());
+  int s_lo = algebra::sign_at(p, lo), s_hi = algebra::sign_at(p, hi);
+  if (s_lo != 0 && s_hi != 0 && s_lo != s_hi) {
+    algebra::Real r;
+    r.polynomial = std::move(p);
+    r.lower = std::move(lo);
+    r.upper = std::move(hi);
+    return r;
+  }
+  auto roots = algebra::real_roots(p, lo, hi);
+  if (roots.size() != 1) throw NumericError("internal: algebraic number from CGAL is not isolated");
+  return roots.front();
+}
+
+Algebraic_real_1 to_algebraic(const Rational& q) { return Algebraic_real_1(to_bound(q)); }
+
+}  // namespace
+
+struct Kept {
+  std::unique_ptr<hipair::cgal::Traits> traits;
+  std::unique_ptr<hipair::cgal::Arrangement> arrangement;
+};
+
+namespace {
+
+class Builder {
+ public:
+  Builder(const Box& box, const Options& options) : box_(box), options_(options) {
+    traits_ = std::make_unique<Traits>();
+    arrangement_ = std::make_unique<Arrangement_2>(traits_.get());
+    make_box();
+  }
+
+  Arrangement run(const std::vector<IntegerPolynomial2>& curves,
+                  const std::vector<std::vector<ValidityClause>>& validity) {
+    auto start = Clock::now();
+    std::vector<XCurve> pieces;
+    std::vector<Point> isolated;
+    for (const auto& side : sides_) pieces.push_back(side);
+    static const std::vector<ValidityClause> no_clauses;
+    for (std::size_t k = 0; k < curves.size(); ++k)
+      clip(curves[k], k < validity.size() ? validity[k] : no_clauses, pieces, isolated);
+    result_.times.curves_seconds = seconds_since(start);
+
+    start = Clock::now();
+    if (options_.aggregated_insertion) {
+      CGAL::insert(*arrangement_, pieces.begin(), pieces.end());
+    } else {
+      for (const auto& piece : pieces) CGAL::insert(*arrangement_, piece);
+    }
+    for (const auto& point : isolated) CGAL::insert_point(*arrangement_, point);
+    result_.pieces_inserted = pieces.size();
+    result_.times.insertion_seconds = seconds_since(start);
+
+    start = Clock::now();
+    export_topology();
+    result_.times.export_seconds = seconds_since(start);
+    for (const auto& [what, seconds] : debug_totals_) std::fprintf(stderr, "  export %s: %.4f s\n", what.c_str(), seconds);
+    if (options_.keep_cgal) {
+      auto kept = std::make_shared<Kept>();
+      kept->traits = std::move(traits_);
+      kept->arrangement = std::move(arrangement_);
+      result_.cgal = kept;
+    }
+    return std::move(result_);
+  }
+
+ private:
+  const Traits& traits() const { return *traits_; }
+
+  Point rational_point(const Rational& x, const Rational& y) {
+    Curve horizontal = traits().construct_curve_2_object()(
+        to_cgal(IntegerPolynomial2{{{-y.get_num(), y.get_den()}}}));
+    return traits().construct_point_2_object()(to_algebraic(x), horizontal, 0);
+  }
+
+  void make_box() {
+    Point corners[4] = {rational_point(box_.x_lo, box_.y_lo), rational_point(box_.x_hi, box_.y_lo),
+                        rational_point(box_.x_hi, box_.y_hi), rational_point(box_.x_lo, box_.y_hi)};
+    auto segment = traits().construct_x_monotone_segment_2_object();
+    auto add = [&](const Point& p, const Point& q) {
+      std::vector<XCurve> out;
+      segment(p, q, std::back_inserter(out));
+      if (out.size() != 1) throw GeometryError("internal: chart box side is not one segment");
+      sides_.push_back(out.front());
+    };
+    add(corners[0], corners[1]);  // bottom
+    add(corners[1], corners[2]);  // right
+    add(corners[3], corners[2]);  // top
+    add(corners[0], corners[3]);  // left
+  }
+
+  // Strictly inside the open box? The point is known not to lie on the box boundary unless it
+  // is on it exactly (then false).
+  bool strictly_inside(const Point& p) {
+    const Algebraic_real_1& x = p.x();
+    if (!(to_algebraic(box_.x_lo) < x && x < to_algebraic(box_.x_hi))) return false;
+    auto compare_y_at_x = traits().compare_y_at_x_2_object();
+    return compare_y_at_x(p, sides_[0]) == CGAL::LARGER && compare_y_at_x(p, sides_[2]) == CGAL::SMALLER;
+  }
+
+  // Does every validity clause hold at the point of the arc above the rational x?
+  bool valid_at(const IntegerPolynomial2& f, const XCurve& arc, const Algebraic_real_1& x_cgal, const Rational& x,
+                const std::vector<ValidityClause>& clauses) {
+    if (clauses.empty()) return true;
+    algebra::Real y = algebra::nth_real_root(algebra::substitute_x(f, x), arc.arcno(x_cgal));
+    for (const auto& clause : clauses) {
+      bool holds = false;
+      for (const auto& atom : clause.atoms)
+        if (algebra::sign_at(atom, x, y) >= 0) {
+          holds = true;
+          break;
+        }
+      if (!holds) return false;
+    }
+    return true;
+  }
+
+  // Abscissae where an atom of a clause may change sign along the curve: roots of the
+  // resultant in y of the curve and the atom, within the box's x-range.
+  std::vector<Algebraic_real_1> validity_breaks(const Polynomial_2& f, const std::vector<ValidityClause>& clauses) {
+    std::vector<Algebraic_real_1> breaks;
+    auto& kernel = Traits::CKvA_2::instance().kernel();
+    Algebraic_real_1 x_lo = to_algebraic(box_.x_lo), x_hi = to_algebraic(box_.x_hi);
+    for (const auto& clause : clauses)
+      for (const auto& atom : clause.atoms) {
+        Polynomial_1 r = CGAL::resultant(f, to_cgal(atom));
+        if (CGAL::is_zero(r) || r.degree() < 1) continue;
+        std::vector<std::pair<Algebraic_real_1, unsigned>> roots;
+        kernel.solve_1_object()(r, std::back_inserter(roots));
+        for (const auto& root : roots)
+          if (x_lo < root.first && root.first < x_hi) breaks.push_back(root.first);
+      }
+    return breaks;
+  }
+
+  void clip(const IntegerPolynomial2& f, const std::vector<ValidityClause>& clauses, std::vector<XCurve>& pieces,
+            std::vector<Point>& isolated) {
+    Polynomial_2 polynomial = to_cgal(f);
+    Curve curve = traits().construct_curve_2_object()(polynomial);
+    std::vector<Algebraic_real_1> breaks = validity_breaks(polynomial, clauses);
+    std::vector<Algebraic_real_1> tangent_breaks;   // horizontal tangents: pieces stay y-monotone
+    {
+      Polynomial_2 f_x = CGAL::differentiate(polynomial, 0);
+      if (!CGAL::is_zero(f_x)) {
+        Polynomial_1 r = CGAL::resultant(polynomial, f_x);
+        if (!CGAL::is_zero(r) && r.degree() >= 1) {
+          std::vector<std::pair<Algebraic_real_1, unsigned>> roots;
+          Traits::CKvA_2::instance().kernel().solve_1_object()(r, std::back_inserter(roots));
+          Algebraic_real_1 x_lo = to_algebraic(box_.x_lo), x_hi = to_algebraic(box_.x_hi);
+          for (const auto& root : roots)
+            if (x_lo < root.first && root.first < x_hi) tangent_breaks.push_back(root.first);
+        }
+      }
+    }
+    std::vector<Algebraic_real_1> side_breaks;
+    for (const Rational& y : {box_.y_lo, box_.y_hi}) {
+      algebra::Polynomial p = algebra::substitute_y(f, y);
+      if (algebra::degree(p) < 1) continue;
+      std::vector<CGAL::Gmpz> coefficients;
+      for (const auto& c : p) coefficients.push_back(to_cgal(c));
+      Polynomial_1 restricted(coefficients.begin(), coefficients.end());
+      std::vector<std::pair<Algebraic_real_1, unsigned>> roots;
+      Traits::CKvA_2::instance().kernel().solve_1_object()(restricted, std::back_inserter(roots));
+      Algebraic_real_1 x_lo = to_algebraic(box_.x_lo), x_hi = to_algebraic(box_.x_hi);
+      for (const auto& root : roots)
+        if (x_lo < root.first && root.first < x_hi) side_breaks.push_back(root.first);
+    }
+    std::vector<boost::variant<Point, XCurve>> parts;
+    traits().make_x_monotone_2_object()(curve, std::back_inserter(parts));
+    auto intersect = traits().intersect_2_object();
+    auto compare_xy = traits().compare_xy_2_object();
+    auto equal = traits().equal_2_object();
+    auto& kernel = Traits::CKvA_2::instance().kernel();
+    for (const auto& part : parts) {
+      if (const Point* point = boost::get<Point>(&part)) {
+        if (strictly_inside(*point)) isolated.push_back(*point);
+        continue;
+      }
+      const XCurve& arc = boost::get<XCurve>(part);
+      std::vector<Point> cuts;
+      std::vector<Algebraic_real_1> hard;   // abscissae where runs of kept pieces must break
+      auto cut_at = [&](const Algebraic_real_1& x) {
+        if (!arc.is_in_x_range(x)) return;
+        for (auto end : {CGAL::ARR_MIN_END, CGAL::ARR_MAX_END})
+          if (arc.is_finite(end) && arc.curve_end(end).x() == x) return;
+        cuts.push_back(Point(x, arc.curve(), arc.arcno(x)));
+      };
+      if (arc.is_vertical()) {
+        for (std::size_t side : {0u, 2u}) {
+          using Result = boost::variant<std::pair<Point, Traits::Multiplicity>, XCurve>;
+          std::vector<Result> hits;
+          intersect(arc, sides_[side], std::back_inserter(hits));
+          for (const auto& hit : hits) {
+            if (const auto* p = boost::get<std::pair<Point, Traits::Multiplicity>>(&hit)) {
+              cuts.push_back(p->first);
+            } else {
+              const XCurve& overlap = boost::get<XCurve>(hit);
+              cuts.push_back(overlap.curve_end(CGAL::ARR_MIN_END));
+              cuts.push_back(overlap.curve_end(CGAL::ARR_MAX_END));
+            }
+          }
+        }
+      } else {
+        // crossings of the box sides: the arc's points at x_lo and x_hi, and at every root of
+        // f(x, y_lo) and f(x, y_hi) (cutting at a root where another branch crosses is harmless)
+        cut_at(to_algebraic(box_.x_lo));
+        cut_at(to_algebraic(box_.x_hi));
+        for (const auto& x : side_breaks) cut_at(x);
+        for (const auto& x : breaks) cut_at(x);
+        for (const auto& x : tangent_breaks) {
+          std::size_t before = cuts.size();
+          cut_at(x);
+          if (cuts.size() > before) hard.push_back(x);
+        }
+      }
+      for (auto end : {CGAL::ARR_MIN_END, CGAL::ARR_MAX_END})
+        if (arc.is_finite(end) && arc.location(end) == CGAL::ARR_INTERIOR) cuts.push_back(arc.curve_end(end));
+      std::sort(cuts.begin(), cuts.end(),
+                [&](const Point& a, const Point& b) { return compare_xy(a, b) == CGAL::SMALLER; });
+      cuts.erase(std::unique(cuts.begin(), cuts.end(), [&](const Point& a, const Point& b) { return equal(a, b); }),
+                 cuts.end());
+      std::size_t run_start = cuts.size();   // first cut of the current run of kept pieces
+      auto close_run = [&](std::size_t end) {
+        if (run_start < end) pieces.push_back(arc.trim(cuts[run_start], cuts[end]));
+        run_start = cuts.size();
+      };
+      for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+        const Point& a = cuts[i];
+        const Point& b = cuts[i + 1];
+        bool inside;
+        if (arc.is_vertical()) {
+          // the point (x, y_mid) with y_mid rational between the ends
+          algebra::Real ya = to_real(a.xy().y()), yb = to_real(b.xy().y());
+          Rational y_mid = algebra::rational_between(ya, yb);
+          inside = to_algebraic(box_.x_lo) < a.x() && a.x() < to_algebraic(box_.x_hi) && box_.y_lo < y_mid &&
+                   y_mid < box_.y_hi;
+        } else {
+          Bound x_mid = kernel.bound_between_1_object()(a.x(), b.x());
+          Algebraic_real_1 x(x_mid);
+          Point middle(x, arc.curve(), arc.arcno(x));
+          inside = strictly_inside(middle) && valid_at(f, arc, x, from_bound(x_mid), clauses);
+        }
+        if (inside) {
+          if (run_start != cuts.size() && std::find(hard.begin(), hard.end(), a.x()) != hard.end()) close_run(i);
+          if (run_start == cuts.size()) run_start = i;
+        } else {
+          close_run(i);
+        }
+      }
+      if (!cuts.empty()) close_run(cuts.size() - 1);
+    }
+  }
+
+  void export_topology() {
+    debug_time(nullptr);
+    const Arrangement_2& arr = *arrangement_;
+    std::unordered_map<const void*, std::size_t> vertex_id, face_id, edge_id;
+    std::unordered_map<const void*, bool> forward;   // halfedge -> goes min -> max
+    for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
+      vertex_id[&*v] = result_.vertices.size();
+      Vertex out;
+      fill_vertex(v->point(), out);
+      out.isolated = v->is_isolated();
+      result_.vertices.push_back(std::move(out));
+    }
+    for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+      face_id[&*f] = result_.faces.size();
+      Face out;
+      out.unbounded = f->is_unbounded();
+      if (out.unbounded && result_.unbounded_face == none) result_.unbounded_face = result_.faces.size();
+      result_.faces.push_back(std::move(out));
+    }
+    debug_time("vertices");
+    std::map<int, std::vector<Algebraic_real_1>> events_of_curve;
+    for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+      auto h = e->direction() == CGAL::ARR_LEFT_TO_RIGHT ? e : e->twin();
+      edge_id[&*h] = edge_id[&*h->twin()] = result_.edges.size();
+      forward[&*h] = true;
+      forward[&*h->twin()] = false;
+      Edge out;
+      const XCurve& arc = h->curve();
+      out.min_vertex = vertex_id.at(&*h->source());
+      out.max_vertex = vertex_id.at(&*h->target());
+      out.vertical = arc.is_vertical();
+      if (out.vertical) separate_in_y(h->source()->point(), h->target()->point(), out.min_vertex, out.max_vertex);
+      out.support = from_cgal(arc.curve().polynomial_2());
+      out.left_face = face_id.at(&*h->face());
+      out.right_face = face_id.at(&*h->twin()->face());
+      debug_time(nullptr);
+      fill_box(arc, out);
+      debug_time("box");
+      out.box_side = side_of(arc, h->source()->point(), h->target()->point());
+      debug_time("side");
+      if (!out.vertical) fill_arc_numbers(arc, h->source()->point().x(), h->target()->point().x(), events_of_curve,
+                                          out.arc_numbers);
+      debug_time("arcno");
+      result_.edges.push_back(std::move(out));
+    }
+    debug_time(nullptr);
+    for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
+      Vertex& out = result_.vertices[vertex_id.at(&*v)];
+      if (v->is_isolated()) {
+        out.face_below = out.face_above = face_id.at(&*v->face());
+        result_.faces[out.face_below].isolated_vertices.push_back(vertex_id.at(&*v));
+        continue;
+      }
+      std::vector<Arrangement_2::Halfedge_const_handle> around;
+      auto circulator = v->incident_halfedges();
+      auto first = circulator;
+      do {
+        around.push_back(circulator);
+      } while (++circulator != first);
+      for (const auto& h : around) {
+        Incidence incidence;
+        incidence.edge = edge_id.at(&*h);
+        bool source_is_smaller = h->direction() == CGAL::ARR_LEFT_TO_RIGHT;
+        if (h->curve().is_vertical())
+          incidence.direction = source_is_smaller ? Direction::down : Direction::up;
+        else
+          incidence.direction = source_is_smaller ? Direction::left : Direction::right;
+        incidence.wedge_face = face_id.at(&*h->face());
+        out.around.push_back(incidence);
+      }
+      out.face_below = wedge_containing(around, out.around, v->point(), true);
+      out.face_above = wedge_containing(around, out.around, v->point(), false);
+    }
+    debug_time("incidences");
+    for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+      Face& out = result_.faces[face_id.at(&*f)];
+      auto add_ccb = [&](Arrangement_2::Ccb_halfedge_const_circulator c) {
+        auto first = c;
+        do {
+          if (!c->is_fictitious()) out.boundary.emplace_back(edge_id.at(&*c), forward.at(&*c));
+        } while (++c != first);
+      };
+      if (f->has_outer_ccb()) add_ccb(f->outer_ccb());
+      for (auto inner = f->inner_ccbs_begin(); inner != f->inner_ccbs_end(); ++inner) add_ccb(*inner);
+    }
+  }
+
+  // The vertex's coordinates: x exact; y exact when x is rational (a root of the curve's
+  // polynomial at that x), else isolated by CGAL's fiber interval, refined.
+  void fill_vertex(const Point& p, Vertex& out) {
+    out.x = to_real(p.x());
+    out.y_curve = from_cgal(p.curve().polynomial_2());
+    out.y_branch = p.arcno();
+    if (out.x.exact) {
+      algebra::Polynomial fiber = algebra::substitute_x(out.y_curve, out.x.lower);
+      if (algebra::degree(fiber) >= 1) {
+        out.y = algebra::nth_real_root(fiber, out.y_branch);
+        out.y.refine_to(Rational(1, mpz_class(1) << 64));
+        out.y_exact = true;
+        out.y_lower = out.y.lower;
+        out.y_upper = out.y.upper;
+        return;
+      }
+      out.y = to_real(p.xy().y());   // the curve contains the vertical line: CGAL's exact y
+      out.y_exact = true;
+      out.y_lower = out.y.lower;
+      out.y_upper = out.y.upper;
+      return;
+    }
+    out.y_lower = from_bound(p.xy().lower_bound_y());
+    out.y_upper = from_bound(p.xy().upper_bound_y());
+  }
+
+  // The ends of a vertical edge get disjoint y bounds.
+  void separate_in_y(const Point& low, const Point& high, std::size_t low_id, std::size_t high_id) {
+    Vertex& a = result_.vertices[low_id];
+    Vertex& b = result_.vertices[high_id];
+    if (a.y_exact && b.y_exact) return;
+    while (!(a.y_upper < b.y_lower)) {
+      if (!a.y_exact) {
+        low.xy().refine_y();
+        a.y_lower = from_bound(low.xy().lower_bound_y());
+        a.y_upper = from_bound(low.xy().upper_bound_y());
+      }
+      if (!b.y_exact) {
+        high.xy().refine_y();
+        b.y_lower = from_bound(high.xy().lower_bound_y());
+        b.y_upper = from_bound(high.xy().upper_bound_y());
+      }
+    }
+  }
+
+  // Certified bounding box: the box of the ends (every edge is monotone in x and in y since
+  // curves are split at their vertical and horizontal tangents before insertion).
+  void fill_box(const XCurve& arc, Edge& out) {
+    const Vertex& a = result_.vertices[out.min_vertex];
+    const Vertex& b = result_.vertices[out.max_vertex];
+    out.box[0] = std::min(a.x.lower_bound(), b.x.lower_bound());
+    out.box[2] = std::max(a.x.upper_bound(), b.x.upper_bound());
+    out.box[1] = std::min(a.y_lower_bound(), b.y_lower_bound());
+    out.box[3] = std::max(a.y_upper_bound(), b.y_upper_bound());
+    // strictly around the edge, so that exact root brackets never end on a root
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    for (int k : {0, 1}) out.box[k] = std::nextafter(out.box[k], -inf);
+    for (int k : {2, 3}) out.box[k] = std::nextafter(out.box[k], inf);
+  }
+
+  // Which chart box side the edge lies on (-1: none).
+  int side_of(const XCurve& arc, const Point& source, const Point& target) {
+    if (arc.is_vertical()) {
+      if (source.x() == to_algebraic(box_.x_lo)) return 3;
+      if (source.x() == to_algebraic(box_.x_hi)) return 1;
+      return -1;
+    }
+    auto& kernel = Traits::CKvA_2::instance().kernel();
+    Algebraic_real_1 x(kernel.bound_between_1_object()(source.x(), target.x()));
+    Point middle(x, arc.curve(), arc.arcno(x));
+    auto compare_y_at_x = traits().compare_y_at_x_2_object();
+    if (compare_y_at_x(middle, sides_[0]) == CGAL::EQUAL) return 0;
+    if (compare_y_at_x(middle, sides_[2]) == CGAL::EQUAL) return 2;
+    return -1;
+  }
+
+  // Which wedge around the vertex contains the straight-down (below) or straight-up direction?
+  // Angles are measured clockwise from the reference direction; classes order them and, within
+  // a class, CGAL's comparisons to the right/left of the vertex.
+  std::size_t wedge_containing(const std::vector<Arrangement_2::Halfedge_const_handle>& around,
+                               const std::vector<Incidence>& incidences, const Point& p, bool below) {
+    const std::size_t n = incidences.size();
+    Direction reference = below ? Direction::down : Direction::up;
+    for (const auto& incidence : incidences)
+      if (incidence.direction == reference) return none;  // the ray runs along an edge
+    if (n == 1) return incidences[0].wedge_face;
+    auto key = [&](Direction d) {
+      // clockwise from the reference
+      if (below) return d == Direction::left ? 1 : d == Direction::up ? 2 : 3;
+      return d == Direction::right ? 1 : d == Direction::down ? 2 : 3;
+    };
+    auto compare_right = traits().compare_y_at_x_right_2_object();
+    auto compare_left = traits().compare_y_at_x_left_2_object();
+    // is the angle of a before the angle of b (clockwise from the reference)?
+    auto before = [&](std::size_t a, std::size_t b) {
+      Direction da = incidences[a].direction, db = incidences[b].direction;
+      if (da != db) return key(da) < key(db);
+      if (da == Direction::right)  // clockwise runs top to bottom
+        return compare_right(around[a]->curve(), around[b]->curve(), p) == CGAL::LARGER;
+      // left: clockwise runs bottom to top
+      return compare_left(around[a]->curve(), around[b]->curve(), p) == CGAL::SMALLER;
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+      std::size_t next = (i + 1) % n;
+      if (!before(i, next)) return incidences[i].wedge_face;  // the clockwise sweep wraps past the reference
+    }
+    throw GeometryError("internal: no wedge contains the vertical direction at a vertex");
+  }
+
+  void fill_arc_numbers(const XCurve& arc, const Algebraic_real_1& x_min, const Algebraic_real_1& x_max,
+                        std::map<int, std::vector<Algebraic_real_1>>& cache, ArcNumbers& out) {
+    const Curve& curve = arc.curve();
+    auto it = cache.find(curve.id());
+    if (it == cache.end()) {
+      std::vector<Algebraic_real_1> events;
+      for (int i = 0; i < curve.number_of_status_lines_with_event(); ++i)
+        events.push_back(curve.status_line_at_event(i).x());
+      it = cache.emplace(curve.id(), std::move(events)).first;
+    }
+    auto& kernel = Traits::CKvA_2::instance().kernel();
+    std::vector<Algebraic_real_1> inside;
+    for (const auto& x : it->second)
+      if (x_min < x && x < x_max) inside.push_back(x);
+    Algebraic_real_1 left = x_min;
+    for (std::size_t i = 0; i <= inside.size(); ++i) {
+      const Algebraic_real_1& right = i < inside.size() ? inside[i] : x_max;
+      Algebraic_real_1 sample(kernel.bound_between_1_object()(left, right));
+      out.between.push_back(arc.arcno(sample));
+      if (i < inside.size()) {
+        out.events.push_back(to_real(inside[i]));
+        out.at_event.push_back(arc.arcno(inside[i]));
+        left = inside[i];
+      }
+    }
+  }
+
+  // HIPAIR_CSPACE_DEBUG=1: time the export's parts on stderr
+  void debug_time(const char* what) {
+    static const bool enabled = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
+    if (!enabled) return;
+    auto now = Clock::now();
+    if (what) debug_totals_[what] += std::chrono::duration<double>(now - debug_last_).count();
+    debug_last_ = now;
+  }
+  Clock::time_point debug_last_ = Clock::now();
+  std::map<std::string, double> debug_totals_;
+
+  Box box_;
+  Options options_;
+  std::unique_ptr<Traits> traits_;
+  std::unique_ptr<Arrangement_2> arrangement_;
+  std::vector<XCurve> sides_;   // bottom, right, top, left
+  Arrangement result_;
+};
+
+}  // namespace
+
+Arrangement build_arrangement(const Box& box, const std::vector<IntegerPolynomial2>& curves,
+                              const std::vector<std::vector<ValidityClause>>& validity, const Options& options) {
+  try {
+    Builder builder(box, options);
+    return builder.run(curves, validity);
+  } catch (const hipair::Error&) {
+    throw;
+  } catch (const CGAL::Failure_exception& e) {
+    throw GeometryError(std::string("CGAL rejected a contact curve arrangement: ") + e.what());
+  } catch (const CGAL::internal::Zero_resultant_exception<Polynomial_2>&) {
+    throw GeometryError("CGAL could not analyse a contact curve (zero resultant: a curve is not square-free)");
+  }
+}
+
+}  // namespace hipair::cspace::raw
+
+namespace hipair::cgal {
+
+const Arrangement* arrangement(const CSpace& space, std::size_t chart) {
+  const auto& impl = cspace::impl_of(space);
+  if (chart >= impl.charts.size()) return nullptr;
+  const auto& kept = impl.charts[chart].arrangement.cgal;
+  if (!kept) return nullptr;
+  return static_cast<const cspace::raw::Kept*>(kept.get())->arrangement.get();
+}
+
+}  // namespace hipair::cgal

@@ -1,0 +1,113 @@
+// The one CGAL stage of the C-space builder: a chart's contact curves, clipped to the chart
+// box, inserted into a CGAL::Arrangement_2 with Arr_algebraic_segment_traits_2<Gmpz>, and the
+// resulting topology exported as plain exact data (no CGAL types here). Everything after this
+// stage (labelling, classification, cells, point location, path queries) is CGAL-free.
+#pragma once
+
+#include "cspace/builder_algebra.hpp"
+#include "cspace/contact_curves.hpp"
+
+#include <hipair/rational.hpp>
+
+#include <cstddef>
+#include <limits>
+#include <memory>
+#include <vector>
+
+namespace hipair::cspace::raw {
+
+inline constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+
+/// The chart box in chart coordinates.
+struct Box {
+  Rational x_lo, x_hi, y_lo, y_hi;
+};
+
+/// Direction in which an edge leaves a vertex.
+enum class Direction { up, right, down, left };
+
+/// One edge around a vertex, in clockwise order.
+struct Incidence {
+  std::size_t edge = none;
+  Direction direction = Direction::right;
+  std::size_t wedge_face = none;   ///< face between this edge and the next one clockwise
+};
+
+/// A vertex. Its x is an exact algebraic number. Its y is the `y_branch`-th (0-based,
+/// ascending) distinct real root of y_curve(x, y) in y: exact; as an algebraic number `y`
+/// only when x is rational (then y_exact), and always bounded by the certified rational
+/// interval [y_lower, y_upper], which isolates it among the roots of y_curve(x, .).
+struct Vertex {
+  algebra::Real x;
+  algebra::Real y;
+  bool y_exact = false;
+  Rational y_lower, y_upper;
+  IntegerPolynomial2 y_curve;
+  int y_branch = 0;
+  double y_lower_bound() const { return algebra::lower_double(y_lower); }
+  double y_upper_bound() const { return algebra::upper_double(y_upper); }
+  bool isolated = false;
+  std::vector<Incidence> around;       ///< clockwise
+  std::size_t face_below = none;       ///< face containing the points straight below (none if a vertical edge goes down)
+  std::size_t face_above = none;
+};
+
+/// Where an edge's support curve has its fiber events inside the edge's x-range, and the
+/// arc number (index among the distinct real roots of support(x, y) in y, ascending) of the
+/// edge between and at those events: the exact evaluation y(x) at a rational x.
+struct ArcNumbers {
+  std::vector<algebra::Real> events;     ///< ascending, strictly inside the x-range
+  std::vector<int> between;              ///< events.size() + 1 entries
+  std::vector<int> at_event;             ///< events.size() entries
+};
+
+struct Edge {
+  std::size_t min_vertex = none;   ///< lexicographically smaller end (left, or bottom if vertical)
+  std::size_t max_vertex = none;
+  bool vertical = false;
+  IntegerPolynomial2 support;      ///< polynomial of the CGAL supporting curve
+  std::size_t left_face = none;    ///< left of min -> max (above for a non-vertical edge)
+  std::size_t right_face = none;
+  double box[4] = {0, 0, 0, 0};    ///< certified x_min, y_min, x_max, y_max (the edge is monotone
+                                   ///< in x and y: the box of its ends)
+  ArcNumbers arc_numbers;          ///< non-vertical edges
+  int box_side = -1;               ///< on the chart box: 0 bottom, 1 right, 2 top, 3 left
+  std::vector<std::size_t> source_curves;   ///< curves whose pieces were inserted along it (hint)
+};
+
+struct Face {
+  bool unbounded = false;
+  std::vector<std::pair<std::size_t, bool>> boundary;   ///< (edge, face is on the edge's left side)
+  std::vector<std::size_t> isolated_vertices;
+};
+
+struct StageTimes {
+  double curves_seconds = 0;        ///< curve analysis + x-monotone split + clipping
+  double insertion_seconds = 0;
+  double export_seconds = 0;
+};
+
+struct Arrangement {
+  std::vector<Vertex> vertices;
+  std::vector<Edge> edges;
+  std::vector<Face> faces;
+  std::size_t unbounded_face = none;
+  StageTimes times;
+  std::size_t pieces_inserted = 0;
+  std::shared_ptr<void> cgal;   ///< the CGAL arrangement when kept (see include/hipair/cgal/)
+};
+
+struct Options {
+  bool aggregated_insertion = false;   ///< CGAL::insert(arr, begin, end) instead of one by one
+  bool keep_cgal = false;
+};
+
+/// Builds the arrangement of the curves (each square-free, non-zero) clipped to the box and,
+/// when `validity` is not empty (one entry per curve, possibly empty), to the parts of each
+/// curve where its validity clauses hold.
+/// \throws GeometryError when CGAL rejects the input.
+Arrangement build_arrangement(const Box& box, const std::vector<IntegerPolynomial2>& curves,
+                              const std::vector<std::vector<ValidityClause>>& validity,
+                              const Options& options);
+
+}  // namespace hipair::cspace::raw

@@ -1,0 +1,119 @@
+// Internal representation behind hipair::CSpace (CGAL-free). Shared by the builder
+// (builder.cpp), the queries (builder_locate.cpp) and the accessors (cspace.cpp).
+#pragma once
+
+#include <hipair/cspace.hpp>
+
+#include "cspace/builder_algebra.hpp"
+#include "cspace/builder_cgal.hpp"
+#include "cspace/contact_curves.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace hipair::cspace {
+
+/// The exact overlap oracle of one chart.
+using Classifier = std::function<Overlap(const ChartPoint&)>;
+
+/// Input of one chart: its axes, its contact curves and its oracle.
+struct ChartInput {
+  std::size_t x_index = 0;           ///< index of the x chart axis in the layout (seams glue
+  std::size_t y_index = 0;           ///< charts that share the other axis)
+  ChartAxis x;
+  ChartAxis y;                       ///< ignored for a 1-D space
+  std::vector<ContactCurve> curves;
+  Classifier classify;
+};
+
+/// Input of a pair's build (model-free, so that tests can feed synthetic curves).
+struct PairInput {
+  std::string first_part, second_part;   ///< names
+  std::string x_part, y_part;            ///< names of the moving parts carrying the axes
+  std::vector<std::string> part_names;   ///< model part names, for FeatureRef::part
+  int dimension = 2;
+  std::vector<ChartInput> charts;
+  CurveStatistics curve_statistics;
+  double seconds_curves = 0;
+};
+
+/// One face (2-D) or interval (1-D) of a chart.
+struct FaceData {
+  int kind = -1;                  ///< -1 outside the chart box, 0 free, 1 blocked, 2 touching
+  Rational sample_x, sample_y;    ///< strictly inside
+  std::size_t cell = no_index;
+};
+
+/// A non-vertical edge's exact evaluation data and its y at one interior rational abscissa.
+struct EdgeData {
+  std::size_t global = no_index;
+  Rational sample_x;              ///< interior point (vertical edges: sample_y is rational)
+  algebra::Real sample_y;
+  algebra::Real vertical_x;       ///< vertical edges: the constant x
+  std::vector<std::size_t> curves;   ///< local curve indices
+  algebra::IntervalPolynomial2 interval_support;
+};
+
+struct ChartData {
+  std::size_t x_index = 0, y_index = 0;   ///< indices into the layout's x and y charts
+  ChartAxis x_axis, y_axis;
+  raw::Box box;
+  std::vector<std::size_t> curve_global;       ///< local curve -> feature pair index
+  std::vector<IntegerPolynomial2> polynomials; ///< local curves (those that can be valid in the box)
+  std::vector<std::vector<ValidityClause>> validity;   ///< per local curve
+  std::vector<algebra::IntervalPolynomial2> interval_polynomials;
+  raw::Arrangement arrangement;                ///< 2-D topology (empty for 1-D)
+  std::vector<FaceData> faces;
+  std::vector<EdgeData> edges;
+  std::vector<std::size_t> vertex_global;
+  std::vector<Rational> rational_vertex_x;     ///< sorted: rational x of vertices (sampling avoids them)
+  // 1-D: contact points (ascending) and the intervals between them (faces[i] is the interval
+  // before point i; faces.back() after the last).
+  std::vector<algebra::Real> points;
+  std::vector<std::vector<std::size_t>> point_curves;
+};
+
+}  // namespace hipair::cspace
+
+namespace hipair {
+
+struct CSpace::Impl {
+  std::string first_part, second_part, x_part, y_part;
+  int dimension = 2;
+  std::vector<cspace::ChartData> charts;
+  std::vector<CSpaceChart> public_charts;
+  std::vector<FeaturePair> feature_pairs;
+  std::vector<CSpaceVertex> vertices;
+  std::vector<CSpaceEdge> edges;
+  std::vector<CSpaceCell> cells;
+  std::vector<std::pair<std::size_t, std::size_t>> edge_local;   ///< global edge -> (chart, local)
+  std::vector<std::pair<std::size_t, std::size_t>> vertex_local;
+  CSpaceStatistics statistics;
+};
+
+}  // namespace hipair
+
+namespace hipair::cspace {
+
+inline const CSpace::Impl& impl_of(const CSpace& space) { return implementation(space); }
+
+/// Builds the C-space from model-free input. \throws GeometryError, NumericError.
+CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options);
+
+// ---------------------------------------------------------------- helpers shared by modules
+
+/// Exact y of a non-vertical edge at rational x strictly inside its x-range.
+algebra::Real edge_y_at(const ChartData& chart, std::size_t local_edge, const Rational& x);
+/// Queries (builder_locate.cpp).
+Location locate_point(const CSpace::Impl& impl, const hipair::ChartPoint& q);
+CertifiedValue evaluate_edge(const CSpace::Impl& impl, std::size_t edge, double x);
+AlgebraicNumber evaluate_edge_exact(const CSpace::Impl& impl, std::size_t edge, const Rational& x);
+Crossing first_crossing_in_chart(const CSpace::Impl& impl, const hipair::ChartPoint& from, const Rational& to_x,
+                                 const Rational& to_y);
+/// AlgebraicNumber from Real.
+AlgebraicNumber to_public(const algebra::Real& r);
+/// Converts a ChartAxis value interval (chart coordinates) to part coordinates, certified.
+CertifiedRange to_coordinate_range(const ChartAxis& axis, double lo, double hi);
+
+}  // namespace hipair::cspace
