@@ -3,6 +3,7 @@
 // hipair-verify does it (hash, parameters, claim). Crossing witnesses are checked too, and a
 // crossing of two edges that do not cross is rejected.
 #include <hipair/certificate.hpp>
+#include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
 
 #include "certify/exact_geometry.hpp"
@@ -215,6 +216,47 @@ TEST(CertifyExamples, ParameterValuesInsideTheTolerancesAreCertified) {
   EXPECT_LE(c->distance, Rational(19, 10));   // the bound, rounded down to 6 digits
   EXPECT_GE(c->distance, Rational(18999, 10000));
   expect_verifies(*c, path, "lever clearance with stop-gap 1.9");
+}
+
+}  // namespace
+
+namespace {
+
+TEST(CertifyExamples, FindingsOfTheKinematicAnalysisAreCertified) {
+  // The ratchet driven backwards jams; the analysis's jam gets a certificate.
+  fs::path ratchet_path = fs::path(HIPAIR_EXAMPLES) / "ratchet.json";
+  Model ratchet = read_model_file(ratchet_path);
+  KinematicsOptions options;
+  options.driver = "wheel";
+  options.direction = -1;
+  options.range = std::make_pair(Rational(0), Rational(-1, 10));
+  KinematicsResult result = analyze_kinematics(ratchet, options);
+  ASSERT_TRUE(result.jam);
+  auto findings = certify_kinematic_findings(ratchet, result);
+  ASSERT_EQ(findings.size(), 1u);
+  ASSERT_TRUE(findings[0].certificate) << findings[0].note;
+  EXPECT_EQ(findings[0].certificate->claim, ClaimKind::jam);
+  expect_verifies(*findings[0].certificate, ratchet_path, "ratchet jam from the analysis");
+
+  // The Geneva pair posed into each other at the initial configuration: certified interference.
+  std::string text = io::read_file(fs::path(HIPAIR_EXAMPLES) / "geneva.json");
+  std::size_t from = 0;
+  for (const char* angle : {"1.2", "0.3"}) {   // driver, then wheel
+    from = text.find("\"initial\"", from);
+    auto at = text.find("\"angle\": 0", from);
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 10, std::string("\"angle\": ") + angle);
+    from = at;
+  }
+  Model geneva = read_model(text, "geneva-posed.json");
+  KinematicsOptions geneva_options;
+  geneva_options.range = std::make_pair(Rational(12, 10), Rational(13, 10));
+  KinematicsResult geneva_result = analyze_kinematics(geneva, geneva_options);
+  ASSERT_FALSE(geneva_result.initial_interference.empty());
+  auto interference = certify_kinematic_findings(geneva, geneva_result);
+  ASSERT_FALSE(interference.empty());
+  ASSERT_TRUE(interference[0].certificate) << interference[0].note;
+  EXPECT_TRUE(check_certificate(*interference[0].certificate, geneva).valid);
 }
 
 }  // namespace
