@@ -138,8 +138,10 @@ Point exact_unit_vector(const Rational& angle, const std::string& pointer,
 
 Point exact_unit_vector_pi(const Rational& multiple_of_pi, const std::string& pointer,
                            const std::string& expression, std::vector<Rounding>& roundings) {
-  // Exact for multiples of pi/2.
-  Rational twice = 2 * multiple_of_pi;
+  // Exact for multiples of pi/2. (Callers may pass mpq_class(a, b), which is not canonical.)
+  Rational multiple = multiple_of_pi;
+  multiple.canonicalize();
+  Rational twice = 2 * multiple;
   twice.canonicalize();
   if (twice.get_den() == 1) {
     mpz_class quarter = twice.get_num() % 4;
@@ -154,7 +156,7 @@ Point exact_unit_vector_pi(const Rational& multiple_of_pi, const std::string& po
   mpfr_t a, pi;
   mpfr_inits2(working_bits, a, pi, static_cast<mpfr_ptr>(nullptr));
   mpfr_const_pi(pi, MPFR_RNDN);
-  mpfr_set_q(a, multiple_of_pi.get_mpq_t(), MPFR_RNDN);
+  mpfr_set_q(a, multiple.get_mpq_t(), MPFR_RNDN);
   mpfr_mul(a, a, pi, MPFR_RNDN);
   Point unit = direction_from_mpfr(a, pointer, expression, roundings);
   mpfr_clears(a, pi, static_cast<mpfr_ptr>(nullptr));

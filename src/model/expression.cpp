@@ -481,6 +481,7 @@ class Evaluator {
       mpz_pow_ui(numerator.get_mpz_t(), base.rational.get_num_mpz_t(), magnitude);
       mpz_pow_ui(denominator.get_mpz_t(), base.rational.get_den_mpz_t(), magnitude);
       Rational result = exponent > 0 ? Rational(numerator, denominator) : Rational(denominator, numerator);
+      result.canonicalize();  // a negative base to a negative power puts the sign below
       return checked(Quantity::of(result));
     }
     Interval value = base.to_interval();

@@ -132,7 +132,7 @@ std::vector<Loop> expand_anchor(const Arguments& arguments, std::vector<Rounding
   Rational width = arguments.positive_length("pallet_width");
   Rational lift = arguments.angle("lift");
   Rational lock = arguments.angle("lock");
-  Rational default_extent = Rational(349066, 1000000);  // about 20 degrees
+  Rational default_extent = Rational(174533, 500000);  // canonical 0.349066:  // about 20 degrees
   Rational extent = arguments.angle("pallet_extent", default_extent);
   Rational fork_length = arguments.positive_length("fork_length");
   Rational fork_width = arguments.positive_length("fork_width");
