@@ -37,8 +37,10 @@ build() {
 demo() {
   local out=${HIPAIR_OUT:-out/geneva}
   mkdir -p "$out"
-  "$BUILD_DIR"/hipair validate examples/models/geneva.json
-  "$BUILD_DIR"/hipair show examples/models/geneva.json --svg "$out/geneva.svg" --labels
+  "$BUILD_DIR"/hipair validate examples/models/geneva.json >"$out/validate.txt"
+  echo "setup: model is valid (summary in $out/validate.txt)"
+  "$BUILD_DIR"/hipair show examples/models/geneva.json --svg "$out/geneva.svg"
+  "$BUILD_DIR"/hipair analyze examples/models/geneva.json --out "$out"
   echo
   echo "setup: outputs are in $(cd "$out" && pwd):"
   ls -1 "$out" | sed 's/^/  /'
