@@ -114,16 +114,65 @@ class Builder {
     std::vector<Point> isolated;
     for (const auto& side : sides_) pieces.push_back(side);
     static const std::vector<ValidityClause> no_clauses;
-    for (std::size_t k = 0; k < curves.size(); ++k)
-      clip(curves[k], k < validity.size() ? validity[k] : no_clauses, pieces, isolated);
+    static const bool debug = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
+    // curves with the same polynomial (up to a constant factor) are clipped once, together
+    std::vector<std::string> keys;   // exact text of the primitive polynomial, positive first term
+    std::vector<std::vector<std::size_t>> groups;
+    for (std::size_t k = 0; k < curves.size(); ++k) {
+      mpz_class g = 0;
+      int sign = 0;
+      for (const auto& row : curves[k].coefficients)
+        for (const auto& c : row) {
+          mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), c.get_mpz_t());
+          if (sign == 0 && sgn(c) != 0) sign = sgn(c);
+        }
+      IntegerPolynomial2 normal = curves[k];
+      if (sgn(g) != 0)
+        for (auto& row : normal.coefficients)
+          for (auto& c : row) c = sign * c / g;
+      std::string key = algebra::to_string(normal, "x", "y");
+      auto it = std::find(keys.begin(), keys.end(), key);
+      if (it == keys.end()) {
+        keys.push_back(std::move(key));
+        groups.push_back({k});
+      } else {
+        groups[static_cast<std::size_t>(it - keys.begin())].push_back(k);
+      }
+    }
+    for (const auto& group : groups) {
+      std::size_t k = group.front();
+      std::vector<const std::vector<ValidityClause>*> alternatives;
+      for (std::size_t member : group) alternatives.push_back(member < validity.size() ? &validity[member] : &no_clauses);
+      auto curve_start = Clock::now();
+      std::size_t before = pieces.size();
+      clip(curves[k], alternatives, pieces, isolated);
+      if (debug)
+        std::fprintf(stderr, "  clip curve %zu: %zu pieces, %.4f s\n", k, pieces.size() - before, seconds_since(curve_start));
+    }
     result_.times.curves_seconds = seconds_since(start);
 
     start = Clock::now();
     if (options_.aggregated_insertion) {
       CGAL::insert(*arrangement_, pieces.begin(), pieces.end());
     } else {
-      for (const auto& piece : pieces) CGAL::insert(*arrangement_, piece);
+      static const bool debug = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
+      for (std::size_t i = 0; i < pieces.size(); ++i) {
+        auto piece_start = Clock::now();
+        if (debug) {
+          const XCurve& c = pieces[i];
+          std::fprintf(stderr, "  inserting piece %zu: %s x [%.17g, %.17g] vertical %d\n", i,
+                       algebra::to_string(from_cgal(c.curve().polynomial_2()), "x", "y").substr(0, 300).c_str(),
+                       CGAL::to_double(c.curve_end(CGAL::ARR_MIN_END).x()), CGAL::to_double(c.curve_end(CGAL::ARR_MAX_END).x()),
+                       int(c.is_vertical()));
+        }
+        CGAL::insert(*arrangement_, pieces[i]);
+        if (debug)
+          std::fprintf(stderr, "  insert piece %zu: %.4f s, %zu vertices\n", i, seconds_since(piece_start),
+                       static_cast<std::size_t>(arrangement_->number_of_vertices()));
+      }
     }
+    static const bool debug_points = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
+    if (debug_points) std::fprintf(stderr, "  isolated points: %zu\n", isolated.size());
     for (const auto& point : isolated) CGAL::insert_point(*arrangement_, point);
     result_.pieces_inserted = pieces.size();
     result_.times.insertion_seconds = seconds_since(start);
@@ -176,20 +225,44 @@ class Builder {
   }
 
   // Does every validity clause hold at the point of the arc above the rational x?
+  bool valid_at_point(const Rational& x, const algebra::Real& y,
+                      const std::vector<const std::vector<ValidityClause>*>& alternatives) {
+    for (const auto* clauses : alternatives) {
+      bool all = true;
+      for (const auto& clause : *clauses) {
+        bool holds = false;
+        for (const auto& atom : clause.atoms)
+          if (algebra::sign_at(atom, x, y) >= 0) holds = true;
+        if (!holds) all = false;
+      }
+      if (all) return true;
+    }
+    return false;
+  }
+
+  // (Curves with the same polynomial are clipped together: valid where any of them is.)
   bool valid_at(const IntegerPolynomial2& f, const XCurve& arc, const Algebraic_real_1& x_cgal, const Rational& x,
-                const std::vector<ValidityClause>& clauses) {
-    if (clauses.empty()) return true;
+                const std::vector<const std::vector<ValidityClause>*>& alternatives) {
+    for (const auto* clauses : alternatives)
+      if (clauses->empty()) return true;
     algebra::Real y = algebra::nth_real_root(algebra::substitute_x(f, x), arc.arcno(x_cgal));
-    for (const auto& clause : clauses) {
-      bool holds = false;
-      for (const auto& atom : clause.atoms)
-        if (algebra::sign_at(atom, x, y) >= 0) {
-          holds = true;
+    for (const auto* clauses : alternatives) {
+      bool all = true;
+      for (const auto& clause : *clauses) {
+        bool holds = false;
+        for (const auto& atom : clause.atoms)
+          if (algebra::sign_at(atom, x, y) >= 0) {
+            holds = true;
+            break;
+          }
+        if (!holds) {
+          all = false;
           break;
         }
-      if (!holds) return false;
+      }
+      if (all) return true;
     }
-    return true;
+    return false;
   }
 
   // Abscissae where an atom of a clause may change sign along the curve: roots of the
@@ -210,11 +283,15 @@ class Builder {
     return breaks;
   }
 
-  void clip(const IntegerPolynomial2& f, const std::vector<ValidityClause>& clauses, std::vector<XCurve>& pieces,
-            std::vector<Point>& isolated) {
+  void clip(const IntegerPolynomial2& f, const std::vector<const std::vector<ValidityClause>*>& alternatives,
+            std::vector<XCurve>& pieces, std::vector<Point>& isolated) {
     Polynomial_2 polynomial = to_cgal(f);
     Curve curve = traits().construct_curve_2_object()(polynomial);
-    std::vector<Algebraic_real_1> breaks = validity_breaks(polynomial, clauses);
+    std::vector<Algebraic_real_1> breaks;
+    for (const auto* clauses : alternatives) {
+      auto more = validity_breaks(polynomial, *clauses);
+      breaks.insert(breaks.end(), more.begin(), more.end());
+    }
     std::vector<Algebraic_real_1> tangent_breaks;   // horizontal tangents: pieces stay y-monotone
     {
       Polynomial_2 f_x = CGAL::differentiate(polynomial, 0);
@@ -250,7 +327,17 @@ class Builder {
     auto& kernel = Traits::CKvA_2::instance().kernel();
     for (const auto& part : parts) {
       if (const Point* point = boost::get<Point>(&part)) {
-        if (strictly_inside(*point)) isolated.push_back(*point);
+        if (!strictly_inside(*point)) continue;
+        // an isolated real point of the curve: keep it when it may be a valid contact
+        algebra::Real x = to_real(point->x());
+        if (x.exact) {
+          algebra::Polynomial fiber = algebra::substitute_x(f, x.lower);
+          if (algebra::degree(fiber) >= 1) {
+            algebra::Real y = algebra::nth_real_root(fiber, point->arcno());
+            if (!valid_at_point(x.lower, y, alternatives)) continue;
+          }
+        }
+        isolated.push_back(*point);
         continue;
       }
       const XCurve& arc = boost::get<XCurve>(part);
@@ -296,35 +383,58 @@ class Builder {
                 [&](const Point& a, const Point& b) { return compare_xy(a, b) == CGAL::SMALLER; });
       cuts.erase(std::unique(cuts.begin(), cuts.end(), [&](const Point& a, const Point& b) { return equal(a, b); }),
                  cuts.end());
-      std::size_t run_start = cuts.size();   // first cut of the current run of kept pieces
-      auto close_run = [&](std::size_t end) {
-        if (run_start < end) pieces.push_back(arc.trim(cuts[run_start], cuts[end]));
-        run_start = cuts.size();
-      };
-      for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+      // Pieces between consecutive cuts are inside or outside the box and valid or not as a
+      // whole. Runs of inside, valid pieces are inserted (broken at horizontal tangents). A run
+      // that ends at a validity boundary inside the box is extended a little into the invalid
+      // part (a spurious stretch, harmless): the exact boundary is a tangency with another
+      // contact curve, and CGAL loops forever comparing such independently computed equal
+      // coordinates, while it handles the tangential intersection of the two curves fine.
+      const std::size_t count = cuts.size() < 2 ? 0 : cuts.size() - 1;
+      std::vector<char> in_box(count, 0), valid(count, 0);
+      for (std::size_t i = 0; i < count; ++i) {
         const Point& a = cuts[i];
         const Point& b = cuts[i + 1];
-        bool inside;
         if (arc.is_vertical()) {
           // the point (x, y_mid) with y_mid rational between the ends
           algebra::Real ya = to_real(a.xy().y()), yb = to_real(b.xy().y());
           Rational y_mid = algebra::rational_between(ya, yb);
-          inside = to_algebraic(box_.x_lo) < a.x() && a.x() < to_algebraic(box_.x_hi) && box_.y_lo < y_mid &&
-                   y_mid < box_.y_hi;
+          in_box[i] = to_algebraic(box_.x_lo) < a.x() && a.x() < to_algebraic(box_.x_hi) && box_.y_lo < y_mid &&
+                      y_mid < box_.y_hi;
+          valid[i] = 1;
         } else {
           Bound x_mid = kernel.bound_between_1_object()(a.x(), b.x());
           Algebraic_real_1 x(x_mid);
           Point middle(x, arc.curve(), arc.arcno(x));
-          inside = strictly_inside(middle) && valid_at(f, arc, x, from_bound(x_mid), clauses);
-        }
-        if (inside) {
-          if (run_start != cuts.size() && std::find(hard.begin(), hard.end(), a.x()) != hard.end()) close_run(i);
-          if (run_start == cuts.size()) run_start = i;
-        } else {
-          close_run(i);
+          in_box[i] = strictly_inside(middle);
+          valid[i] = in_box[i] && valid_at(f, arc, x, from_bound(x_mid), alternatives);
         }
       }
-      if (!cuts.empty()) close_run(cuts.size() - 1);
+      auto is_hard = [&](std::size_t c) { return std::find(hard.begin(), hard.end(), cuts[c].x()) != hard.end(); };
+      auto near = [&](std::size_t from, std::size_t to) {
+        // a point of the arc strictly between cuts[from] and cuts[to], near cuts[to]
+        Bound x = kernel.bound_between_1_object()(cuts[from].x(), cuts[to].x());
+        Algebraic_real_1 ax(x);
+        x = kernel.bound_between_1_object()(ax, cuts[to].x());
+        ax = Algebraic_real_1(x);
+        x = kernel.bound_between_1_object()(ax, cuts[to].x());
+        ax = Algebraic_real_1(x);
+        return Point(ax, arc.curve(), arc.arcno(ax));
+      };
+      for (std::size_t i = 0; i < count;) {
+        if (!valid[i]) {
+          ++i;
+          continue;
+        }
+        std::size_t start = i, end = i + 1;
+        while (end < count && valid[end] && !is_hard(end)) ++end;
+        Point first = cuts[start], last = cuts[end];
+        if (!arc.is_vertical()) {
+          if (start > 0 && in_box[start - 1] && !valid[start - 1]) first = near(start - 1, start);
+          if (end < count && in_box[end] && !valid[end]) last = near(end + 1, end);
+        }
+        pieces.push_back(arc.trim(first, last));
+        i = end;
+      }
     }
   }
 
