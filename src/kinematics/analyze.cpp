@@ -175,6 +175,7 @@ struct OpenPiece {
   bool open = false;
   DriverLocation start;
   double start_position = 0;
+  double lowest = 0, highest = 0;   // range of positions seen during the piece
   PartState state;
 };
 
@@ -216,14 +217,14 @@ struct Sweep {
     return segment_coordinate(driver_line(), segments[segment], t);
   }
 
-  ChainState step_to(const ChainState& from, std::size_t segment, const Rational& t) const {
-    return step(chain, from, segments[segment].piece, t, unwrapped(segment, t));
+  ChainState step_to(const ChainState& from, std::size_t segment, const Rational& t, bool strict = true) const {
+    return step(chain, from, segments[segment].piece, t, unwrapped(segment, t), strict);
   }
 
   static bool jumped(const ChainState& a, const ChainState& b) {
     double driver = std::abs(b.driver_unwrapped - a.driver_unwrapped);
     for (std::size_t k = 1; k < a.parts.size() && k < b.parts.size(); ++k)
-      if (std::abs(b.parts[k].unwrapped - a.parts[k].unwrapped) > 1e3 * driver + 1e-12) return true;
+      if (std::abs(b.parts[k].unwrapped - a.parts[k].unwrapped) > 1e9 * driver + 1e-12) return true;
     return false;
   }
 
@@ -247,6 +248,9 @@ struct Sweep {
   void close_piece(std::size_t k, const DriverLocation& end, const PartState& last) {
     OpenPiece& piece = open[k];
     if (!piece.open) return;
+    piece.open = false;
+    if (end.coordinate.lower <= piece.start.coordinate.upper && piece.start.coordinate.lower <= end.coordinate.upper)
+      return;   // empty: a contact change exactly at the start or the end of the range
     KinematicPiece out;
     out.part = chain.model->parts[chain.parts[k].part].name;
     out.start = piece.start;
@@ -258,7 +262,9 @@ struct Sweep {
     out.contacts = labels(piece.state, k);
     out.start_position = piece.start_position;
     out.end_position = last.unwrapped;
-    out.moving = std::abs(out.end_position - out.start_position) > 1e-9;
+    double lowest = std::min({piece.lowest, last.unwrapped, out.start_position});
+    double highest = std::max({piece.highest, last.unwrapped, out.start_position});
+    out.moving = highest - lowest > 1e-12;
     for (const SliceContact& contact : piece.state.contacts) {
       if (contact.limit) continue;
       const PairSlicer& slicer = *chain.slicers[contact.slicer];
@@ -269,11 +275,10 @@ struct Sweep {
       break;
     }
     result.pieces.push_back(std::move(out));
-    piece.open = false;
   }
 
   void open_piece(std::size_t k, const DriverLocation& start, const PartState& state) {
-    open[k] = OpenPiece{true, start, state.unwrapped, state};
+    open[k] = OpenPiece{true, start, state.unwrapped, state.unwrapped, state.unwrapped, state};
   }
 
   void record_event(std::size_t segment, const Rational& ta, const Rational& tb, const ChainState& a, const ChainState& b) {
@@ -335,10 +340,13 @@ struct Sweep {
     ChainState right = step_to(left, segment, t_right);
     // A step longer than the follower's play may lose track of its free range, which then
     // looks closed: halve such steps before looking for a real blocking point.
-    if ((right.jammed || jumped(left, right)) && abs(t_right - t_left) > Rational(1, 1 << 20)) {
-      Rational middle = (t_left + t_right) / 2;
-      if (!advance(left, segment, t_left, middle)) return false;
-      return advance(left, segment, middle, t_right);
+    if (right.jammed || jumped(left, right)) {
+      if (abs(t_right - t_left) > Rational(1, 1 << 20)) {
+        Rational middle = (t_left + t_right) / 2;
+        if (!advance(left, segment, t_left, middle)) return false;
+        return advance(left, segment, middle, t_right);
+      }
+      if (right.coarse) right = step_to(left, segment, t_right, false);
     }
     for (int guard = 0; guard < 10000; ++guard) {
       if (!differs(left, right)) {
@@ -360,7 +368,7 @@ struct Sweep {
       }
       // the state right of the event, reached from the left one by the smallest step (a state
       // reached by a longer step may show a change that a finer step does not)
-      b = step_to(a, segment, tb);
+      b = step_to(a, segment, tb, false);
       if (!differs(a, b)) {
         left = std::move(b);
         t_left = tb;
@@ -387,6 +395,7 @@ struct Sweep {
       t_left = tb;
       if (t_left == t_right) return true;
       right = step_to(left, segment, t_right);
+      if (right.coarse) return advance(left, segment, t_left, t_right);
     }
     throw NumericError("too many contact changes between two grid points");
   }
@@ -399,6 +408,10 @@ struct Sweep {
       const PartState& part = state.parts[k];
       const AxisLine& line = chain.parts[k].line;
       s.positions.push_back(part.unwrapped);
+      if (open[k].open) {
+        open[k].lowest = std::min(open[k].lowest, part.unwrapped);
+        open[k].highest = std::max(open[k].highest, part.unwrapped);
+      }
       s.velocity_ratios.push_back(r[k].ratio);
       if (options.accelerations) s.accelerations.push_back(r[k].acceleration);
       double width = std::numeric_limits<double>::infinity();

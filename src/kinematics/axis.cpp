@@ -180,12 +180,51 @@ AxisSlice compress(const AxisLine& line, std::vector<Item> items) {
 
 }  // namespace
 
+bool has_window_edge(const std::vector<SliceContact>& contacts) {
+  return std::any_of(contacts.begin(), contacts.end(), [](const SliceContact& c) { return c.window; });
+}
+
+namespace {
+
+// The chart range of piece `p` inside the window, or nullopt when the window misses the piece;
+// `full` is set when the window covers it.
+std::optional<ChartWindow> window_on_piece(const AxisLine& line, std::size_t p, const AxisWindow& window, bool& full) {
+  const ChartAxis& piece = line.pieces[p];
+  double c0 = line.coordinate(p, piece.lo.get_d()), c1 = line.coordinate(p, piece.hi.get_d());
+  double centre = coordinate(line, window.center);
+  full = false;
+  std::vector<std::pair<double, double>> hits;
+  for (int shift = -1; shift <= 1; ++shift) {
+    if (!line.cyclic && shift != 0) continue;
+    double lo = centre - window.half_width + shift * line.period();
+    double hi = centre + window.half_width + shift * line.period();
+    double a = std::max(lo, c0), b = std::min(hi, c1);
+    if (a <= b) hits.emplace_back(a, b);
+  }
+  if (hits.empty()) return std::nullopt;
+  if (hits.size() > 1 || (hits[0].first <= c0 && hits[0].second >= c1)) {
+    full = true;
+    return std::nullopt;
+  }
+  auto chart_value = [&](double c, bool up) {
+    double t = line.rotation ? std::tan((c - line.offsets[p]) / 2) : c;
+    double scaled = (up ? std::ceil(t * 1099511627776.0) : std::floor(t * 1099511627776.0));
+    Rational value(mpz_class(scaled), mpz_class(1) << 40);
+    value.canonicalize();
+    return std::clamp(value, piece.lo, piece.hi);
+  };
+  return ChartWindow{chart_value(hits[0].first, false), chart_value(hits[0].second, true)};
+}
+
+}  // namespace
+
 AxisSlice slice_on_axis(const AxisLine& line, const PairSlicer& slicer, std::size_t slicer_index,
-                        std::size_t other_chart, const Rational& value) {
+                        std::size_t other_chart, const Rational& value, const AxisWindow* window) {
   std::vector<Item> items;
   auto emit = [&](std::size_t piece, Real at, std::vector<SliceContact> contacts, SliceKind after) {
     items.push_back(Item{canonical(line, AxisPosition{piece, std::move(at)}), std::move(contacts), after});
   };
+  const SliceContact edge{slicer_index, 0, false, true};
   for (std::size_t p = 0; p < line.pieces.size(); ++p) {
     const ChartAxis& piece = line.pieces[p];
     std::optional<std::size_t> chart_index;
@@ -196,20 +235,41 @@ AxisSlice slice_on_axis(const AxisLine& line, const PairSlicer& slicer, std::siz
         break;
       }
     }
+    std::optional<ChartWindow> part;
+    if (window) {
+      bool full = false;
+      part = window_on_piece(line, p, *window, full);
+      if (!part && !full) {   // the window misses this piece: unknown
+        emit(p, Real::from_rational(piece.lo), {edge}, SliceKind::blocked);
+        continue;
+      }
+    }
     if (!chart_index) {
-      emit(p, Real::from_rational(piece.lo), {}, SliceKind::free);
+      if (part) {
+        if (part->lo > piece.lo) emit(p, Real::from_rational(piece.lo), {edge}, SliceKind::blocked);
+        emit(p, Real::from_rational(part->lo), {edge}, SliceKind::free);
+        if (part->hi < piece.hi) emit(p, Real::from_rational(part->hi), {edge}, SliceKind::blocked);
+      } else {
+        emit(p, Real::from_rational(piece.lo), {}, SliceKind::free);
+      }
       continue;
     }
     const ChartAxis& chart = slicer.follower_charts()[*chart_index];
-    ChartSlice chart_slice = slicer.slice(other_chart, value, *chart_index);
-    if (chart.lo > piece.lo) emit(p, Real::from_rational(piece.lo), {}, SliceKind::free);
-    emit(p, Real::from_rational(chart.lo), {}, chart_slice.kinds.front());
+    ChartSlice chart_slice = slicer.slice(other_chart, value, *chart_index, part ? &*part : nullptr);
+    const Rational& covered_lo = chart_slice.covered_lo;
+    const Rational& covered_hi = chart_slice.covered_hi;
+    bool cut_lo = part && covered_lo > chart.lo, cut_hi = part && covered_hi < chart.hi;
+    if (cut_lo && covered_lo > piece.lo) emit(p, Real::from_rational(piece.lo), {edge}, SliceKind::blocked);
+    if (!cut_lo && chart.lo > piece.lo) emit(p, Real::from_rational(piece.lo), {}, SliceKind::free);
+    emit(p, Real::from_rational(covered_lo), cut_lo ? std::vector<SliceContact>{edge} : std::vector<SliceContact>{},
+         chart_slice.kinds.front());
     for (std::size_t i = 0; i < chart_slice.points.size(); ++i) {
       std::vector<SliceContact> contacts;
       for (std::size_t feature : chart_slice.points[i].features) contacts.push_back(SliceContact{slicer_index, feature, false});
       emit(p, chart_slice.points[i].value, std::move(contacts), chart_slice.kinds[i + 1]);
     }
-    if (chart.hi < piece.hi) emit(p, Real::from_rational(chart.hi), {}, SliceKind::free);
+    if (cut_hi) emit(p, Real::from_rational(covered_hi), {edge}, SliceKind::blocked);
+    else if (chart.hi < piece.hi) emit(p, Real::from_rational(chart.hi), {}, SliceKind::free);
   }
   return compress(line, std::move(items));
 }

@@ -57,6 +57,7 @@ struct SliceContact {
   std::size_t slicer = 0;
   std::size_t feature = 0;
   bool limit = false;
+  bool window = false;   ///< the edge of a sliced window: beyond it the slice is unknown
   friend bool operator==(const SliceContact&, const SliceContact&) = default;
 };
 
@@ -77,10 +78,19 @@ struct AxisSlice {
   SliceKind kind(std::size_t interval) const { return interval == 0 ? start_kind : points[interval - 1].after; }
 };
 
+/// A part of an axis to slice: coordinates within `half_width` of `center` (rad or mm).
+struct AxisWindow {
+  AxisPosition center;
+  double half_width = 0;
+};
+
 /// One pair's contribution: the follower chart slices of `slicer` (index `slicer_index`) with
-/// the other part at (other_chart, value), placed on the follower's axis.
+/// the other part at (other_chart, value), placed on the follower's axis. With a window, only
+/// the window is sliced: the rest is marked blocked, bounded by contacts flagged `window`.
 AxisSlice slice_on_axis(const AxisLine& line, const PairSlicer& slicer, std::size_t slicer_index,
-                        std::size_t other_chart, const Rational& value);
+                        std::size_t other_chart, const Rational& value, const AxisWindow* window = nullptr);
+/// True when one of the contacts is a window edge.
+bool has_window_edge(const std::vector<SliceContact>& contacts);
 /// Intersection of free space: blocked where any is blocked, free where all are free.
 AxisSlice intersect(const AxisLine& line, const AxisSlice& a, const AxisSlice& b);
 

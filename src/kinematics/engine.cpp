@@ -259,7 +259,8 @@ Chain build_chain(const Model& model, std::size_t driver, const std::vector<CSpa
 
 namespace {
 
-AxisSlice constraint_slice(const Chain& chain, const ChainState& state, std::size_t k) {
+AxisSlice constraint_slice(const Chain& chain, const ChainState& state, std::size_t k,
+                           const AxisWindow* window = nullptr) {
   const AxisLine& line = chain.parts[k].line;
   AxisSlice result;
   bool first = true;
@@ -275,7 +276,7 @@ AxisSlice constraint_slice(const Chain& chain, const ChainState& state, std::siz
       const ChartAxis& chart = slicer.other_charts()[other_chart];
       if (value < chart.lo || value > chart.hi) continue;   // beyond any contact of this pair
     }
-    AxisSlice slice = slice_on_axis(line, slicer, s, other_chart, value);
+    AxisSlice slice = slice_on_axis(line, slicer, s, other_chart, value, slicer.other_moves() ? window : nullptr);
     result = first ? std::move(slice) : intersect(line, result, slice);
     first = false;
   }
@@ -292,9 +293,12 @@ void jam(ChainState& state, std::size_t part, std::string reason, std::vector<Sl
 
 bool non_blocked(const AxisSlice& slice, std::size_t interval) { return slice.kind(interval) != SliceKind::blocked; }
 
-// Moves part k of `next` given its old state and its free space `slice`. False when jammed.
-bool update_part(const Chain& chain, std::size_t k, const PartState& old, const AxisSlice& slice, ChainState& next,
-                 bool initial) {
+enum class Outcome { moved, jammed, widen, coarse };
+
+// Moves part k of `next` given its old state and its free space `slice`. `widen`: the decision
+// needs the slice beyond its window.
+Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, const AxisSlice& slice, ChainState& next,
+                    bool initial, double max_push) {
   const AxisLine& line = chain.parts[k].line;
   const AxisPosition& y = old.position;
   PartState& out = next.parts[k];
@@ -339,6 +343,28 @@ bool update_part(const Chain& chain, std::size_t k, const PartState& old, const 
     std::size_t free_side = old.side < 0 ? interval_after(slice, followed) : interval_before(line, slice, followed);
     bool pushing = old.side < 0 ? followed_offset >= 0 : followed_offset <= 0;
     interval = free_side;
+    if (pushing && std::abs(followed_offset) > max_push) return Outcome::coarse;
+    if (pushing) {
+      // The contact may not carry the follower past the far end of its old free range unless
+      // that end is still bounded by the same contact: otherwise the step may have passed
+      // through a point where the free range closes (the driver is blocked there).
+      Bound far = old.side < 0 ? upper_end(line, slice, free_side) : lower_end(line, slice, free_side);
+      const Bound& old_far = old.side < 0 ? old.upper : old.lower;
+      if (has_window_edge(far.contacts)) return Outcome::widen;
+      bool same_far = far.exists && old_far.exists && std::any_of(far.contacts.begin(), far.contacts.end(), [&](const SliceContact& c) {
+        return std::find(old_far.contacts.begin(), old_far.contacts.end(), c) != old_far.contacts.end();
+      });
+      if (!same_far && old_far.exists) {
+        double reach = old.side < 0 ? distance_up(line, y, old_far.at) : distance_down(line, y, old_far.at);
+        if (std::abs(followed_offset) >= reach) {
+          if (std::isfinite(max_push)) return Outcome::coarse;
+          std::vector<SliceContact> contacts = old.contacts;
+          contacts.insert(contacts.end(), old_far.contacts.begin(), old_far.contacts.end());
+          jam(next, k, "its free range closed: it cannot move out of the way", std::move(contacts));
+          return Outcome::jammed;
+        }
+      }
+    }
     if (pushing) {
       start = slice.points[followed].at;
       moved = followed_offset;
@@ -355,8 +381,9 @@ bool update_part(const Chain& chain, std::size_t k, const PartState& old, const 
     std::size_t after = interval_after(slice, placement.point);
     bool free_before = non_blocked(slice, before), free_after = after <= n && non_blocked(slice, after);
     if (!free_before && !free_after) {
+      if (has_window_edge(slice.points[placement.point].contacts)) return Outcome::widen;
       jam(next, k, "squeezed between two contacts", slice.points[placement.point].contacts);
-      return false;
+      return Outcome::jammed;
     }
     if (free_before && free_after) interval = old_up() >= old_down() ? after : before;
     else interval = free_before ? before : after;
@@ -365,6 +392,7 @@ bool update_part(const Chain& chain, std::size_t k, const PartState& old, const 
   } else {
     std::size_t i = placement.interval;
     Bound blocked_low = lower_end(line, slice, i), blocked_high = upper_end(line, slice, i);
+    if (has_window_edge(blocked_low.contacts) || has_window_edge(blocked_high.contacts)) return Outcome::widen;
     bool can_below = blocked_low.exists && !blocked_low.limit;
     bool can_above = blocked_high.exists && !blocked_high.limit;
     std::size_t below = 0, above = 0;
@@ -387,9 +415,10 @@ bool update_part(const Chain& chain, std::size_t k, const PartState& old, const 
       contacts.insert(contacts.end(), blocked_low.contacts.begin(), blocked_low.contacts.end());
       contacts.insert(contacts.end(), blocked_high.contacts.begin(), blocked_high.contacts.end());
       jam(next, k, "its free range closed: it cannot move out of the way", std::move(contacts));
-      return false;
+      return Outcome::jammed;
     }
     bool go_down = can_below && (!can_above || down <= up);
+    if ((go_down ? down : up) > max_push) return Outcome::coarse;
     if (go_down) {
       interval = below;
       start = blocked_low.at;
@@ -403,6 +432,7 @@ bool update_part(const Chain& chain, std::size_t k, const PartState& old, const 
     out.push_distance = std::abs(moved);
   }
   Bound low = lower_end(line, slice, interval), high = upper_end(line, slice, interval);
+  if (has_window_edge(low.contacts) || has_window_edge(high.contacts)) return Outcome::widen;
   AxisPosition target = start;
   const FollowerLoad& load = chain.parts[k].load;
   switch (load.kind) {
@@ -465,13 +495,30 @@ bool update_part(const Chain& chain, std::size_t k, const PartState& old, const 
     out.contacts = slice.points[placement.point].contacts;   // grazing touch
   }
   sort_contacts(out.contacts);
-  return true;
+  return Outcome::moved;
+}
+
+// Slices part k around its old position, widening the window until the decision is local.
+Outcome update_windowed(const Chain& chain, std::size_t k, const PartState& old, ChainState& next, bool initial,
+                        double max_push = std::numeric_limits<double>::infinity()) {
+  const AxisLine& line = chain.parts[k].line;
+  double full = line.rotation ? 4.0 : Rational(line.pieces.front().hi - line.pieces.front().lo).get_d();
+  double width = initial ? full : line.rotation ? 0.35 : 0.1 * full;
+  for (;;) {
+    AxisWindow window{old.position, width};
+    bool windowed = width < full;
+    AxisSlice slice = constraint_slice(chain, next, k, windowed ? &window : nullptr);
+    Outcome outcome = update_part(chain, k, old, slice, next, initial, max_push);
+    if (outcome != Outcome::widen || !windowed) return outcome == Outcome::widen ? Outcome::jammed : outcome;
+    next.jammed = false;
+    width *= 4;
+  }
 }
 
 }  // namespace
 
 ChainState step(const Chain& chain, const ChainState& state, std::size_t piece, const Rational& value,
-                double unwrapped) {
+                double unwrapped, bool strict) {
   ChainState next;
   next.driver_piece = piece;
   next.driver_value = value;
@@ -498,9 +545,22 @@ ChainState step(const Chain& chain, const ChainState& state, std::size_t piece, 
   }
   double driver_motion = unwrapped - state.driver_unwrapped;
   std::vector<Rates> known{rate_of(chain, next, 0, {})};
+  std::vector<Rates> old_rates;
+  if (strict && !state.parts.empty()) old_rates = rates(chain, state);
   for (std::size_t k = 1; k < chain.parts.size(); ++k) {
-    AxisSlice slice = constraint_slice(chain, next, k);
-    if (!update_part(chain, k, state.parts[k], slice, next, false)) return next;
+    double max_push = std::numeric_limits<double>::infinity();
+    if (strict) {
+      // a push may follow the old velocity ratio (four times over) or any ratio up to 20
+      double ratio = k < old_rates.size() && std::isfinite(old_rates[k].ratio) ? std::abs(old_rates[k].ratio) : 0.0;
+      max_push = std::max(20.0, 4 * ratio) * std::abs(driver_motion) + 1e-12;
+    }
+    Outcome outcome = update_windowed(chain, k, state.parts[k], next, false, max_push);
+    if (outcome == Outcome::coarse) {
+      jam(next, k, "step too long to follow the contact", {});
+      next.coarse = true;
+      return next;
+    }
+    if (outcome == Outcome::jammed) return next;
     known.push_back(rate_of(chain, next, k, known));
     // Without a load, a contact holds only while it pushes: a boundary moving away from the
     // follower (past a turning point) leaves it behind.
@@ -572,8 +632,7 @@ ChainState initial_state(const Chain& chain, std::size_t piece, const Rational& 
         interference.push_back(Interference{slicer.name(), description});
       }
     }
-    AxisSlice slice = constraint_slice(chain, next, k);
-    if (!update_part(chain, k, start.parts[k], slice, next, true)) return next;
+    if (update_windowed(chain, k, start.parts[k], next, true) == Outcome::jammed) return next;
   }
   return next;
 }

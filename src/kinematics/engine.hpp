@@ -61,14 +61,17 @@ struct ChainState {
   double driver_unwrapped = 0;
   std::vector<PartState> parts;           ///< chain order; parts[0] is the driver
   bool jammed = false;
+  bool coarse = false;                    ///< jammed only because the step was too long to follow
   std::size_t jam_part = none;
   std::string jam_reason;
   std::vector<SliceContact> jam_contacts;
 };
 
-/// Moves the chain from `state` to the driver at (piece, value, unwrapped).
+/// Moves the chain from `state` to the driver at (piece, value, unwrapped). When `strict`, a
+/// follower pushed further than a bounded velocity ratio allows stops the step (`coarse`): the
+/// step may have tunnelled through a blocking point, and must be subdivided.
 ChainState step(const Chain& chain, const ChainState& state, std::size_t piece, const Rational& value,
-                double unwrapped);
+                double unwrapped, bool strict = true);
 
 /// The initial state: every part at its initial configuration (rounded to rational chart
 /// values), pushed out of blocked space if needed. `interference` receives the overlaps found.

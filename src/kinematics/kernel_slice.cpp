@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <map>
 #include <mutex>
+#include <cmath>
 #include <tuple>
 
 namespace hipair::kinematics_detail {
@@ -47,16 +48,50 @@ FeatureKey key_of(const ContactCurve& curve) {
           static_cast<int>(curve.type)};
 }
 
+// Interval enclosure of an integer polynomial divided by a power of two, so that coefficients
+// of any size stay finite in double (the zero set and the signs are those of the polynomial).
+class ScaledIntervalPolynomial {
+ public:
+  ScaledIntervalPolynomial() = default;
+  explicit ScaledIntervalPolynomial(const IntegerPolynomial2& polynomial) {
+    std::size_t bits = 0;
+    for (const auto& row : polynomial.coefficients)
+      for (const mpz_class& c : row)
+        if (c != 0) bits = std::max(bits, mpz_sizeinbase(c.get_mpz_t(), 2));
+    std::size_t shift = bits > 800 ? bits - 800 : 0;
+    mpz_class scale = mpz_class(1) << shift;
+    for (const auto& row : polynomial.coefficients) {
+      std::vector<algebra::Interval> out;
+      for (const mpz_class& c : row) out.push_back(algebra::enclose(Rational(c, scale)));
+      rows_.push_back(std::move(out));
+    }
+  }
+  algebra::Interval evaluate(algebra::Interval x, algebra::Interval y) const {
+    algebra::Interval result{0, 0};
+    for (auto row = rows_.rbegin(); row != rows_.rend(); ++row) {
+      algebra::Interval inner{0, 0};
+      for (auto c = row->rbegin(); c != row->rend(); ++c) inner = inner * y + *c;
+      result = result * x + inner;
+    }
+    // an overflow or an undefined product must not hide a zero
+    if (!(result.lo <= result.hi)) return algebra::Interval{-HUGE_VAL, HUGE_VAL};
+    return result;
+  }
+
+ private:
+  std::vector<std::vector<algebra::Interval>> rows_;
+};
+
 // One clause of a validity condition, oriented (other, follower): some atom >= 0.
 struct OrientedClause {
-  std::vector<algebra::IntervalPolynomial2> atoms;
+  std::vector<ScaledIntervalPolynomial> atoms;
 };
 
 // One curve of a chart pair, oriented (other, follower).
 struct OrientedCurve {
   std::size_t feature = 0;
   IntegerPolynomial2 polynomial;
-  algebra::IntervalPolynomial2 interval;
+  ScaledIntervalPolynomial interval;
   std::vector<OrientedClause> validity;
   // cells[i]: follower cells where the curve may vanish when the other part is in cell i
   std::vector<std::uint32_t> cells;
@@ -111,7 +146,7 @@ class KernelSlicer final : public PairSlicer {
           OrientedCurve oriented;
           oriented.feature = it->second;
           oriented.polynomial = follower_is_x_ ? transposed(curve.polynomial) : std::move(curve.polynomial);
-          oriented.interval = algebra::IntervalPolynomial2(oriented.polynomial);
+          oriented.interval = ScaledIntervalPolynomial(oriented.polynomial);
           for (const cspace::ValidityClause& clause : curve.validity) {
             OrientedClause oriented_clause;
             for (const IntegerPolynomial2& atom : clause.atoms)
@@ -128,8 +163,12 @@ class KernelSlicer final : public PairSlicer {
     }
   }
 
-  ChartSlice slice(std::size_t other_chart, const Rational& value, std::size_t follower_chart) const override {
-    if (!other_moves_) {
+  ChartSlice slice(std::size_t other_chart, const Rational& value, std::size_t follower_chart,
+                   const ChartWindow* window) const override {
+    if (window && follower_chart < follower_charts_.size() && window->lo <= follower_charts_[follower_chart].lo &&
+        window->hi >= follower_charts_[follower_chart].hi)
+      window = nullptr;
+    if (!other_moves_ && !window) {
       std::lock_guard<std::mutex> lock(cache_mutex_);
       auto found = fixed_cache_.find(follower_chart);
       if (found != fixed_cache_.end()) return found->second;
@@ -139,6 +178,18 @@ class KernelSlicer final : public PairSlicer {
       throw GeometryError("slice outside the charts of pair " + name_);
     const ChartPair& chart = pairs_[o * follower_charts_.size() + follower_chart];
     const ChartAxis& axis = follower_charts_[follower_chart];
+    Rational range_lo = window ? std::max(window->lo, axis.lo) : axis.lo;
+    Rational range_hi = window ? std::min(window->hi, axis.hi) : axis.hi;
+    if (range_hi < range_lo) range_hi = range_lo;
+    std::uint32_t window_mask = ~std::uint32_t(0);
+    if (window) {
+      window_mask = 0;
+      for (int cell = 0; cell < follower_cells; ++cell) {
+        Rational lo = axis.lo + (axis.hi - axis.lo) * cell / follower_cells;
+        Rational hi = axis.lo + (axis.hi - axis.lo) * (cell + 1) / follower_cells;
+        if (hi >= range_lo && lo <= range_hi) window_mask |= std::uint32_t(1) << cell;
+      }
+    }
     std::size_t cell_lo = 0, cell_hi = 0;   // other-axis cells holding the value
     if (other_moves_) {
       const ChartAxis& other_axis = other_charts_[o];
@@ -154,6 +205,7 @@ class KernelSlicer final : public PairSlicer {
     for (const OrientedCurve& curve : chart.curves) {
       std::uint32_t mask = 0;
       for (std::size_t c = cell_lo; c <= cell_hi; ++c) mask |= curve.cells[c];
+      mask &= window_mask;
       if (!mask) continue;
       algebra::Polynomial p;
       bool substituted = false;
@@ -165,9 +217,10 @@ class KernelSlicer final : public PairSlicer {
         }
         int last = first;
         while (last + 1 < follower_cells && (mask & (std::uint32_t(1) << (last + 1)))) ++last;
-        Rational lo = axis.lo + (axis.hi - axis.lo) * first / follower_cells;
-        Rational hi = axis.lo + (axis.hi - axis.lo) * (last + 1) / follower_cells;
+        Rational lo = std::max(range_lo, Rational(axis.lo + (axis.hi - axis.lo) * first / follower_cells));
+        Rational hi = std::min(range_hi, Rational(axis.lo + (axis.hi - axis.lo) * (last + 1) / follower_cells));
         first = last + 1;
+        if (hi < lo) continue;
         if (!curve.interval.evaluate(value_box, algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)})
                  .contains_zero())
           continue;
@@ -197,7 +250,9 @@ class KernelSlicer final : public PairSlicer {
       result.points.push_back(std::move(point));
     }
     // classes of the intervals between the points, within the chart box
-    Real low = Real::from_rational(axis.lo), high = Real::from_rational(axis.hi);
+    result.covered_lo = range_lo;
+    result.covered_hi = range_hi;
+    Real low = Real::from_rational(range_lo), high = Real::from_rational(range_hi);
     for (std::size_t i = 0; i <= result.points.size(); ++i) {
       const Real& a = i == 0 ? low : result.points[i - 1].value;
       const Real& b = i == result.points.size() ? high : result.points[i].value;
@@ -219,7 +274,7 @@ class KernelSlicer final : public PairSlicer {
                              : relation == cspace::Overlap::overlapping ? SliceKind::blocked
                                                                         : SliceKind::touching);
     }
-    if (!other_moves_) {
+    if (!other_moves_ && !window) {
       std::lock_guard<std::mutex> lock(cache_mutex_);
       fixed_cache_[follower_chart] = result;
     }

@@ -44,11 +44,18 @@ struct SlicePoint {
   std::vector<std::size_t> features;   ///< indices into PairSlicer::features()
 };
 
-/// The slice of one follower chart: points ascending, and the classes of the intervals
-/// between them (kinds[i] is the interval before points[i], kinds.back() after the last).
+/// The slice of one follower chart over [covered_lo, covered_hi] (the whole chart unless a
+/// window was asked for): points ascending, and the classes of the intervals between them
+/// (kinds[i] is the interval before points[i], kinds.back() after the last).
 struct ChartSlice {
   std::vector<SlicePoint> points;
   std::vector<SliceKind> kinds;
+  Rational covered_lo, covered_hi;
+};
+
+/// A part of a follower chart to slice (chart coordinates).
+struct ChartWindow {
+  Rational lo, hi;
 };
 
 /// The 1-D C-spaces of one part of a pair, sliced at positions of the other part.
@@ -68,8 +75,8 @@ class PairSlicer {
 
   /// The slice of follower chart `follower_chart` with the other part at chart value `value`
   /// of its chart `other_chart` (both ignored when the other part is fixed).
-  virtual ChartSlice slice(std::size_t other_chart, const Rational& value,
-                           std::size_t follower_chart) const = 0;
+  virtual ChartSlice slice(std::size_t other_chart, const Rational& value, std::size_t follower_chart,
+                           const ChartWindow* window = nullptr) const = 0;
 
   /// The polynomial of `feature` in the chart pair, with variables ordered (other, follower):
   /// c[i][j] of other^i follower^j; nullptr when the feature has no curve in that chart pair.
