@@ -14,5 +14,6 @@ void register_validate(CLI::App& app, Action& action);
 void register_show(CLI::App& app, Action& action);
 void register_analyze(CLI::App& app, Action& action);
 void register_certify(CLI::App& app, Action& action);
+void register_cspace(CLI::App& app, Action& action);
 
 }  // namespace hipair::cli

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   hipair::cli::register_show(app, action);
   hipair::cli::register_analyze(app, action);
   hipair::cli::register_certify(app, action);
+  hipair::cli::register_cspace(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

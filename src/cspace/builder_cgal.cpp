@@ -515,6 +515,7 @@ class Builder {
     for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
       Face& out = result_.faces[face_id.at(&*f)];
       auto add_ccb = [&](Arrangement_2::Ccb_halfedge_const_circulator c) {
+        out.component_starts.push_back(out.boundary.size());
         auto first = c;
         do {
           if (!c->is_fictitious()) out.boundary.emplace_back(edge_id.at(&*c), forward.at(&*c));
@@ -546,6 +547,13 @@ class Builder {
       out.y_lower = out.y.lower;
       out.y_upper = out.y.upper;
       return;
+    }
+    // CGAL's interval isolates y among the fiber's points but may be wide: refine it so that
+    // edge boxes stay tight
+    for (int i = 0; i < 64; ++i) {
+      Rational lo = from_bound(p.xy().lower_bound_y()), hi = from_bound(p.xy().upper_bound_y());
+      if (hi - lo <= Rational(1, 1 << 20) * (1 + abs(lo))) break;
+      p.xy().refine_y();
     }
     out.y_lower = from_bound(p.xy().lower_bound_y());
     out.y_upper = from_bound(p.xy().upper_bound_y());

@@ -77,7 +77,10 @@ struct Edge {
 
 struct Face {
   bool unbounded = false;
-  std::vector<std::pair<std::size_t, bool>> boundary;   ///< (edge, face is on the edge's left side)
+  std::vector<std::pair<std::size_t, bool>> boundary;   ///< (edge, face is on the edge's left side),
+                                                        ///< connected boundary components in turn,
+                                                        ///< each in order with the face on the left
+  std::vector<std::size_t> component_starts;            ///< index in `boundary` of each component
   std::vector<std::size_t> isolated_vertices;
 };
 

@@ -1,0 +1,274 @@
+// `hipair cspace MODEL [--pair A:B] [--svg OUT.svg] [--json OUT.json] [--stats]`: builds the
+// exact configuration space of a pair (or of every fixed-axis pair) and writes it as a
+// picture (paper Figure 2 style) and as JSON (cells, edges with feature pairs and exact
+// polynomials, vertices with exact coordinates).
+#include "cli/commands.hpp"
+
+#include "io/atomic_file.hpp"
+#include "render/cspace_svg.hpp"
+
+#include <hipair/cspace.hpp>
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <unistd.h>
+
+namespace hipair::cli {
+namespace {
+
+struct CSpaceCommandOptions {
+  std::string model;
+  std::string pair;
+  std::string svg;
+  std::string json;
+  bool stats = false;
+  bool spurious = false;
+  bool aggregated = false;
+};
+
+using nlohmann::json;
+
+json exact(const AlgebraicNumber& n, const std::string& variable) {
+  json out;
+  out["exact"] = n.to_string(variable);
+  out["decimal"] = n.approximate();
+  if (!n.exact) out["interval"] = {to_exact_string(n.lower), to_exact_string(n.upper)};
+  return out;
+}
+
+std::string polynomial_text(const std::vector<std::vector<mpz_class>>& c) {
+  // x^i y^j terms, highest first
+  std::string text;
+  for (int i = static_cast<int>(c.size()) - 1; i >= 0; --i)
+    for (int j = static_cast<int>(c[static_cast<std::size_t>(i)].size()) - 1; j >= 0; --j) {
+      const mpz_class& v = c[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+      if (sgn(v) == 0) continue;
+      std::string term = mpz_class(abs(v)).get_str();
+      bool unit = abs(v) == 1 && (i > 0 || j > 0);
+      std::string monomial;
+      if (i > 0) monomial += "x" + (i > 1 ? "^" + std::to_string(i) : std::string());
+      if (j > 0) monomial += (monomial.empty() ? "" : "*") + std::string("y") + (j > 1 ? "^" + std::to_string(j) : std::string());
+      std::string body = unit ? monomial : term + (monomial.empty() ? "" : "*" + monomial);
+      if (text.empty())
+        text = (sgn(v) < 0 ? "-" : "") + body;
+      else
+        text += (sgn(v) < 0 ? " - " : " + ") + body;
+    }
+  return text.empty() ? "0" : text;
+}
+
+std::string role_name(EdgeRole role) {
+  switch (role) {
+    case EdgeRole::contact: return "contact";
+    case EdgeRole::spurious: return "spurious";
+    case EdgeRole::seam: return "seam";
+    case EdgeRole::limit: return "limit";
+  }
+  return "?";
+}
+
+std::string cell_kind_name(CellKind kind) {
+  return kind == CellKind::free ? "free" : kind == CellKind::blocked ? "blocked" : "touching";
+}
+
+json statistics_json(const CSpaceStatistics& s) {
+  return json{{"feature_pairs_considered", s.feature_pairs_considered},
+              {"feature_pairs_culled", s.feature_pairs_culled},
+              {"curves", s.curves},
+              {"charts", s.charts},
+              {"pieces_inserted", s.pieces_inserted},
+              {"vertices", s.vertices},
+              {"edges", s.edges},
+              {"faces", s.faces},
+              {"cells", s.cells},
+              {"contact_edges", s.contact_edges},
+              {"seconds",
+               {{"curves", s.seconds_curves},
+                {"clipping", s.seconds_clipping},
+                {"arrangement", s.seconds_arrangement},
+                {"export", s.seconds_export},
+                {"labelling", s.seconds_labelling},
+                {"classification", s.seconds_classification},
+                {"cells", s.seconds_cells},
+                {"total", s.seconds_total}}}};
+}
+
+json space_json(const CSpace& space) {
+  json out;
+  out["pair"] = {space.first_part(), space.second_part()};
+  out["dimension"] = space.dimension();
+  out["x_part"] = space.x_part();
+  if (space.dimension() == 2) out["y_part"] = space.y_part();
+  json charts = json::array();
+  for (const auto& chart : space.charts()) {
+    json c;
+    c["x"] = {{"kind", chart.x_kind == AxisKind::rotation ? "rotation" : "translation"},
+              {"chart_center", chart.x_kind == AxisKind::rotation ? (chart.x_half_turn ? "pi" : "0") : "-"},
+              {"lo", to_exact_string(chart.x_lo)},
+              {"hi", to_exact_string(chart.x_hi)}};
+    if (space.dimension() == 2)
+      c["y"] = {{"kind", chart.y_kind == AxisKind::rotation ? "rotation" : "translation"},
+                {"chart_center", chart.y_kind == AxisKind::rotation ? (chart.y_half_turn ? "pi" : "0") : "-"},
+                {"lo", to_exact_string(chart.y_lo)},
+                {"hi", to_exact_string(chart.y_hi)}};
+    charts.push_back(c);
+  }
+  out["charts"] = charts;
+  out["coordinates"] =
+      "rotation charts use t = tan((theta - c)/2), c = 0 or pi; translation charts use the offset in mm";
+  json pairs = json::array();
+  for (const auto& pair : space.feature_pairs())
+    pairs.push_back({{"label", pair.label},
+                     {"first_part", pair.first_part},
+                     {"first_feature", pair.first_feature},
+                     {"second_part", pair.second_part},
+                     {"second_feature", pair.second_feature},
+                     {"kind", std::string(to_string(pair.kind))}});
+  out["feature_pairs"] = pairs;
+  json cells = json::array();
+  for (const auto& cell : space.cells())
+    cells.push_back({{"kind", cell_kind_name(cell.kind)},
+                     {"wraps_x", cell.wraps_x},
+                     {"wraps_y", cell.wraps_y},
+                     {"faces", cell.faces},
+                     {"boundary_edges", cell.boundary},
+                     {"neighbours", cell.neighbours},
+                     {"sample", {{"chart", cell.sample_chart},
+                                 {"x", to_exact_string(cell.sample_x)},
+                                 {"y", to_exact_string(cell.sample_y)}}}});
+  out["cells"] = cells;
+  json vertices = json::array();
+  for (const auto& vertex : space.vertices()) {
+    json v;
+    v["chart"] = vertex.chart;
+    v["x"] = exact(vertex.x, "x");
+    if (space.dimension() == 2) {
+      if (vertex.y_exact) {
+        v["y"] = exact(vertex.y, "y");
+      } else {
+        v["y"] = {{"exact", "real root number " + std::to_string(vertex.y_branch) + " (ascending, from 0) in y of " +
+                                polynomial_text(vertex.y_curve) + " at this x"},
+                  {"interval", {to_exact_string(vertex.y_lower), to_exact_string(vertex.y_upper)}},
+                  {"decimal", Rational((vertex.y_lower + vertex.y_upper) / 2).get_d()}};
+      }
+    }
+    v["edges"] = vertex.edges;
+    v["feature_pairs"] = vertex.curves;
+    v["contact_change"] = vertex.contact_change;
+    v["on_chart_boundary"] = vertex.on_chart_boundary;
+    vertices.push_back(v);
+  }
+  out["vertices"] = vertices;
+  json edges = json::array();
+  for (std::size_t e = 0; e < space.edges().size(); ++e) {
+    const auto& edge = space.edges()[e];
+    json j;
+    j["chart"] = edge.chart;
+    j["source"] = edge.source;
+    j["target"] = edge.target;
+    j["role"] = role_name(edge.role);
+    j["real"] = edge.real;
+    j["feature_pairs"] = edge.curves;
+    j["left_cell"] = edge.left_cell == no_index ? json(nullptr) : json(edge.left_cell);
+    j["right_cell"] = edge.right_cell == no_index ? json(nullptr) : json(edge.right_cell);
+    j["vertical"] = edge.vertical;
+    j["polynomial"] = polynomial_text(space.edge_polynomial_coefficients(e));
+    j["extent_chart"] = {{"x", {edge.x_chart.lower, edge.x_chart.upper}}, {"y", {edge.y_chart.lower, edge.y_chart.upper}}};
+    j["extent_coordinates"] = {{"x", {edge.x_coordinate.lower, edge.x_coordinate.upper}},
+                               {"y", {edge.y_coordinate.lower, edge.y_coordinate.upper}}};
+    edges.push_back(j);
+  }
+  if (space.dimension() == 2) out["edges"] = edges;
+  out["statistics"] = statistics_json(space.statistics());
+  return out;
+}
+
+void print_statistics(const CSpace& space) {
+  const CSpaceStatistics& s = space.statistics();
+  std::printf("pair %s:%s (%d-D, %zu charts)\n", space.first_part().c_str(), space.second_part().c_str(),
+              space.dimension(), s.charts);
+  std::printf("  feature pairs considered %zu, culled %zu; curves %zu; pieces inserted %zu\n",
+              s.feature_pairs_considered, s.feature_pairs_culled, s.curves, s.pieces_inserted);
+  std::printf("  vertices %zu, edges %zu (contact %zu), faces %zu, cells %zu\n", s.vertices, s.edges, s.contact_edges,
+              s.faces, s.cells);
+  std::printf("  time (ms): curves %.1f, clipping %.1f, arrangement %.1f, export %.1f, labelling %.1f, "
+              "classification %.1f, cells %.1f, total %.1f\n",
+              s.seconds_curves * 1e3, s.seconds_clipping * 1e3, s.seconds_arrangement * 1e3, s.seconds_export * 1e3,
+              s.seconds_labelling * 1e3, s.seconds_classification * 1e3, s.seconds_cells * 1e3,
+              s.seconds_total * 1e3);
+}
+
+std::filesystem::path suffixed(const std::string& path, const CSpace& space, bool several) {
+  if (!several) return path;
+  std::filesystem::path p(path);
+  std::string stem = p.stem().string() + "-" + space.first_part() + "-" + space.second_part();
+  return p.parent_path() / (stem + p.extension().string());
+}
+
+int run(const CSpaceCommandOptions& options) {
+  Model model = read_model_file(options.model);
+  CSpaceBuildOptions build;
+  build.progress = isatty(2);
+  build.aggregated_insertion = options.aggregated;
+  std::vector<CSpace> spaces;
+  if (!options.pair.empty()) {
+    auto colon = options.pair.find(':');
+    if (colon == std::string::npos) throw ModelError("", "--pair expects FIRST:SECOND, got '" + options.pair + "'");
+    spaces.push_back(CSpace::build(model, options.pair.substr(0, colon), options.pair.substr(colon + 1), build));
+  } else {
+    spaces = CSpace::build_all(model, build);
+    if (spaces.empty()) throw GeometryError("the model has no fixed-axis pair with a moving part");
+  }
+  bool several = spaces.size() > 1;
+  for (const CSpace& space : spaces) {
+    if (options.stats) print_statistics(space);
+    if (!options.svg.empty()) {
+      render::CSpaceSvgOptions svg;
+      svg.show_spurious = options.spurious;
+      svg.title = model.name + ": C-space of " + space.first_part() + " / " + space.second_part();
+      auto x_index = model.find_part(space.x_part());
+      render::CSpaceMark mark;
+      mark.label = "initial";
+      if (x_index) {
+        const Part& part = model.parts[*x_index];
+        mark.x = part.motion.kind == Motion::Kind::translation ? part.initial.offset.get_d() : part.initial.angle.get_d();
+      }
+      if (space.dimension() == 2) {
+        auto y_index = model.find_part(space.y_part());
+        if (y_index) {
+          const Part& part = model.parts[*y_index];
+          mark.y = part.motion.kind == Motion::Kind::translation ? part.initial.offset.get_d() : part.initial.angle.get_d();
+        }
+      }
+      svg.marks.push_back(mark);
+      io::write_file_atomically(suffixed(options.svg, space, several), render::cspace_svg(space, svg));
+    }
+    if (!options.json.empty())
+      io::write_file_atomically(suffixed(options.json, space, several), space_json(space).dump(1) + "\n");
+  }
+  return 0;
+}
+
+}  // namespace
+
+void register_cspace(CLI::App& app, Action& action) {
+  auto options = std::make_shared<CSpaceCommandOptions>();
+  CLI::App* command = app.add_subcommand(
+      "cspace", "Build the exact configuration space of a pair (or of every fixed-axis pair) and write it as SVG/JSON");
+  command->add_option("model", options->model, "Model file (JSON)")->required()->check(CLI::ExistingFile);
+  command->add_option("--pair", options->pair, "The pair FIRST:SECOND (default: every fixed-axis pair)");
+  command->add_option("--svg", options->svg, "SVG picture (blocked shaded, contact curves coloured by feature pair)");
+  command->add_option("--json", options->json, "JSON: cells, edges (feature pair, exact polynomial), vertices");
+  command->add_flag("--stats", options->stats, "Print counts and times per stage");
+  command->add_flag("--spurious", options->spurious, "Also draw spurious edges (curves through free or blocked space)");
+  command->add_flag("--aggregated", options->aggregated, "Use CGAL's aggregated insertion (for measurements)");
+  command->callback([options, &action] { action = [options] { return run(*options); }; });
+}
+
+}  // namespace hipair::cli

@@ -1,0 +1,303 @@
+#include "render/cspace_svg.hpp"
+
+#include "cspace/builder_impl.hpp"
+#include "io/svg.hpp"
+
+#include <hipair/error.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+
+namespace hipair::render {
+namespace {
+
+using cspace::ChartAxis;
+using cspace::ChartData;
+
+constexpr double plot_size = 360;   // world units of the square plot
+
+const char* palette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2",
+                         "#17becf", "#bcbd22", "#7f7f7f", "#393b79", "#ad494a", "#637939", "#e7ba52",
+                         "#7b4173", "#3182bd", "#e6550d", "#31a354", "#756bb1", "#636363"};
+
+double to_display(const ChartAxis& axis, double chart_value) {
+  if (axis.kind == ChartAxis::Kind::translation) return chart_value;
+  double theta = (axis.half_turn ? std::numbers::pi : 0.0) + 2 * std::atan(chart_value);
+  return theta * 180 / std::numbers::pi;
+}
+
+double vertex_y(const cspace::raw::Vertex& v) {
+  if (v.y_exact) return v.y.approximate();
+  return Rational((v.y_lower + v.y_upper) / 2).get_d();
+}
+
+// Display range of an axis over all charts.
+struct Range {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  void add(double v) {
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+};
+
+class Painter {
+ public:
+  Painter(const CSpace& space, const CSpaceSvgOptions& options)
+      : space_(space), impl_(hipair::implementation(space)), options_(options) {}
+
+  std::string run() {
+    for (const auto& chart : impl_.charts) {
+      x_range_.add(to_display(chart.x_axis, chart.box.x_lo.get_d()));
+      x_range_.add(to_display(chart.x_axis, chart.box.x_hi.get_d()));
+      if (impl_.dimension == 2) {
+        y_range_.add(to_display(chart.y_axis, chart.box.y_lo.get_d()));
+        y_range_.add(to_display(chart.y_axis, chart.box.y_hi.get_d()));
+      }
+    }
+    if (impl_.dimension == 1) {
+      y_range_.lo = 0;
+      y_range_.hi = 1;
+    }
+    const double legend_width = 260, margin = 60;
+    double height = impl_.dimension == 2 ? plot_size : 60;
+    io::SvgBox box{-margin, -margin, plot_size + legend_width + 20, height + 40};
+    io::SvgWriter svg(box, options_.pixel_width);
+    svg.set_default_stroke_width(0.6);
+    svg.rectangle(-margin, -margin, plot_size + legend_width + 20 + margin, height + 40 + margin,
+                  io::SvgStyle{"white", "none"});
+    plot_height_ = height;
+    if (impl_.dimension == 2)
+      draw_2d(svg);
+    else
+      draw_1d(svg);
+    draw_axes(svg);
+    draw_marks(svg);
+    draw_legend(svg);
+    if (!options_.title.empty()) svg.text(plot_size / 2, height + 25, options_.title, 9);
+    return svg.str();
+  }
+
+ private:
+  double X(double display_x) const { return (display_x - x_range_.lo) / (x_range_.hi - x_range_.lo) * plot_size; }
+  double Y(double display_y) const {
+    return (display_y - y_range_.lo) / (y_range_.hi - y_range_.lo) * plot_height_;
+  }
+  std::pair<double, double> world(const ChartData& chart, double cx, double cy) const {
+    return {X(to_display(chart.x_axis, cx)), Y(impl_.dimension == 2 ? to_display(chart.y_axis, cy) : 0.5)};
+  }
+
+  // Points along an edge in chart coordinates, from its min to its max vertex.
+  const std::vector<std::pair<double, double>>& samples(std::size_t chart_index, std::size_t local_edge) {
+    auto key = std::make_pair(chart_index, local_edge);
+    auto it = samples_.find(key);
+    if (it != samples_.end()) return it->second;
+    const ChartData& chart = impl_.charts[chart_index];
+    const auto& edge = chart.arrangement.edges[local_edge];
+    const auto& a = chart.arrangement.vertices[edge.min_vertex];
+    const auto& b = chart.arrangement.vertices[edge.max_vertex];
+    std::vector<std::pair<double, double>> points;
+    double xa = a.x.approximate(), xb = b.x.approximate();
+    points.emplace_back(xa, vertex_y(a));
+    if (!edge.vertical) {
+      auto [wa_x, wa_y] = world(chart, xa, vertex_y(a));
+      auto [wb_x, wb_y] = world(chart, xb, vertex_y(b));
+      double length = std::hypot(wb_x - wa_x, wb_y - wa_y);
+      int n = std::clamp(static_cast<int>(length / 3), 1, 24);
+      for (int i = 1; i < n; ++i) {
+        double x = xa + (xb - xa) * i / n;
+        try {
+          points.emplace_back(x, space_.evaluate(chart.edges[local_edge].global, x).value);
+        } catch (const Error&) {
+        }
+      }
+    }
+    points.emplace_back(xb, vertex_y(b));
+    return samples_.emplace(key, std::move(points)).first->second;
+  }
+
+  void draw_2d(io::SvgWriter& svg) {
+    // blocked (and touching) faces
+    for (std::size_t c = 0; c < impl_.charts.size(); ++c) {
+      const ChartData& chart = impl_.charts[c];
+      for (std::size_t f = 0; f < chart.faces.size(); ++f) {
+        int kind = chart.faces[f].kind;
+        if (kind != 1 && kind != 2) continue;
+        const auto& face = chart.arrangement.faces[f];
+        io::SvgPath path;
+        for (std::size_t k = 0; k < face.component_starts.size(); ++k) {
+          std::size_t begin = face.component_starts[k];
+          std::size_t end = k + 1 < face.component_starts.size() ? face.component_starts[k + 1] : face.boundary.size();
+          bool first = true;
+          for (std::size_t i = begin; i < end; ++i) {
+            auto [e, forward] = face.boundary[i];
+            const auto& points = samples(c, e);
+            for (std::size_t j = 0; j < points.size(); ++j) {
+              const auto& p = forward ? points[j] : points[points.size() - 1 - j];
+              auto [wx, wy] = world(chart, p.first, p.second);
+              if (first) {
+                path.move_to(wx, wy);
+                first = false;
+              } else {
+                path.line_to(wx, wy);
+              }
+            }
+          }
+          if (!first) path.close();
+        }
+        std::string colour = kind == 1 ? "#c8c8c8" : "#f4d35e";
+        io::SvgStyle style{colour, colour};   // stroked too, to hide seams between faces
+        style.stroke_width = 0.35;
+        style.fill_rule = "evenodd";
+        svg.path(path, style);
+      }
+    }
+    // edges: contact edges coloured by feature pair, seams dashed, limits black
+    for (std::size_t c = 0; c < impl_.charts.size(); ++c) {
+      const ChartData& chart = impl_.charts[c];
+      for (std::size_t e = 0; e < chart.arrangement.edges.size(); ++e) {
+        const CSpaceEdge& edge = impl_.edges[chart.edges[e].global];
+        io::SvgStyle style{"none", "black"};
+        std::string title;
+        if (edge.role == EdgeRole::contact || (edge.real && !edge.curves.empty())) {
+          std::size_t pair = edge.curves.empty() ? 0 : edge.curves.front();
+          style.stroke = colour_of(pair);
+          style.stroke_width = 1.1;
+          for (std::size_t k : edge.curves) title += (title.empty() ? "" : "; ") + impl_.feature_pairs[k].label;
+        } else if (edge.role == EdgeRole::seam) {
+          style.stroke = "#555555";
+          style.dash = "3 2";
+          style.stroke_width = 0.4;
+        } else if (edge.role == EdgeRole::limit) {
+          style.stroke_width = 0.8;
+        } else if (options_.show_spurious) {
+          style.stroke = "#999999";
+          style.stroke_width = 0.25;
+        } else {
+          continue;
+        }
+        io::SvgPath path;
+        bool first = true;
+        for (const auto& p : samples(c, e)) {
+          auto [wx, wy] = world(chart, p.first, p.second);
+          if (first) {
+            path.move_to(wx, wy);
+            first = false;
+          } else {
+            path.line_to(wx, wy);
+          }
+        }
+        svg.path(path, style, title);
+      }
+    }
+  }
+
+  void draw_1d(io::SvgWriter& svg) {
+    for (std::size_t c = 0; c < impl_.charts.size(); ++c) {
+      const ChartData& chart = impl_.charts[c];
+      for (std::size_t i = 0; i < chart.faces.size(); ++i) {
+        if (chart.faces[i].kind < 0) continue;
+        double lo = i == 0 ? chart.box.x_lo.get_d() : chart.points[i - 1].approximate();
+        double hi = i == chart.points.size() ? chart.box.x_hi.get_d() : chart.points[i].approximate();
+        double a = X(to_display(chart.x_axis, lo)), b = X(to_display(chart.x_axis, hi));
+        std::string fill = chart.faces[i].kind == 1 ? "#c8c8c8" : chart.faces[i].kind == 2 ? "#f4d35e" : "white";
+        svg.rectangle(a, 0, b - a, plot_height_, io::SvgStyle{fill, "none"});
+      }
+      for (std::size_t i = 0; i < chart.points.size(); ++i) {
+        const CSpaceVertex& vertex = impl_.vertices[chart.vertex_global[i]];
+        double x = X(to_display(chart.x_axis, chart.points[i].approximate()));
+        io::SvgStyle style{"none", vertex.curves.empty() ? "black" : colour_of(vertex.curves.front())};
+        style.stroke_width = 1.2;
+        svg.line(x, 0, x, plot_height_, style);
+      }
+    }
+  }
+
+  std::string colour_of(std::size_t pair) {
+    auto it = colours_.find(pair);
+    if (it != colours_.end()) return it->second;
+    std::string colour = palette[colours_.size() % (sizeof(palette) / sizeof(palette[0]))];
+    colours_.emplace(pair, colour);
+    return colour;
+  }
+
+  void draw_axes(io::SvgWriter& svg) {
+    io::SvgStyle frame{"none", "black"};
+    frame.stroke_width = 0.8;
+    svg.rectangle(0, 0, plot_size, plot_height_, frame);
+    const CSpaceChart& first = impl_.public_charts.front();
+    auto ticks = [&](bool x_axis, const Range& range, bool rotation) {
+      double step = rotation ? 45 : io::nice_length((range.hi - range.lo) / 6);
+      double start = std::ceil(range.lo / step - 1e-9) * step;
+      for (double v = start; v <= range.hi + 1e-9; v += step) {
+        io::SvgStyle tick{"none", "black"};
+        tick.stroke_width = 0.5;
+        if (x_axis) {
+          svg.line(X(v), 0, X(v), -4, tick);
+          svg.text(X(v), -12, io::format_number(std::round(v * 1000) / 1000), 7);
+        } else {
+          svg.line(0, Y(v), -4, Y(v), tick);
+          svg.text(-6, Y(v) - 2.5, io::format_number(std::round(v * 1000) / 1000), 7, "end");
+        }
+      }
+    };
+    bool x_rotation = first.x_kind == AxisKind::rotation;
+    ticks(true, x_range_, x_rotation);
+    svg.text(plot_size / 2, -26, impl_.x_part + (x_rotation ? " angle (deg)" : " offset (mm)"), 8);
+    if (impl_.dimension == 2) {
+      bool y_rotation = first.y_kind == AxisKind::rotation;
+      ticks(false, y_range_, y_rotation);
+      svg.text(-30, plot_height_ + 8, impl_.y_part + (y_rotation ? " angle (deg)" : " offset (mm)"), 8, "start");
+    }
+  }
+
+  void draw_marks(io::SvgWriter& svg) {
+    for (const auto& mark : options_.marks) {
+      double x = impl_.charts.front().x_axis.kind == ChartAxis::Kind::rotation ? mark.x * 180 / std::numbers::pi : mark.x;
+      double y = impl_.dimension == 2 && impl_.charts.front().y_axis.kind == ChartAxis::Kind::rotation
+                     ? mark.y * 180 / std::numbers::pi
+                     : mark.y;
+      // bring angles into the plotted window
+      if (impl_.charts.front().x_axis.kind == ChartAxis::Kind::rotation)
+        while (x < x_range_.lo) x += 360;
+      if (impl_.dimension == 2 && impl_.charts.front().y_axis.kind == ChartAxis::Kind::rotation)
+        while (y < y_range_.lo) y += 360;
+      double wy = impl_.dimension == 2 ? Y(y) : plot_height_ / 2;
+      svg.circle(X(x), wy, 2.5, io::SvgStyle{"black", "white"});
+      if (!mark.label.empty()) svg.text(X(x) + 4, wy + 3, mark.label, 6, "start");
+    }
+  }
+
+  void draw_legend(io::SvgWriter& svg) {
+    std::vector<io::SvgWriter::LegendEntry> entries;
+    entries.push_back({io::SvgStyle{"#c8c8c8", "none"}, "blocked"});
+    entries.push_back({io::SvgStyle{"white", "black"}, "free"});
+    for (const auto& [pair, colour] : colours_) {
+      io::SvgStyle swatch{"none", colour};
+      swatch.stroke_width = 1.5;
+      entries.push_back({swatch, impl_.feature_pairs[pair].label});
+      if (entries.size() > 40) break;
+    }
+    svg.legend(plot_size + 15, plot_height_, entries, 6);
+  }
+
+  const CSpace& space_;
+  const CSpace::Impl& impl_;
+  const CSpaceSvgOptions& options_;
+  Range x_range_, y_range_;
+  double plot_height_ = plot_size;
+  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::pair<double, double>>> samples_;
+  std::map<std::size_t, std::string> colours_;
+};
+
+}  // namespace
+
+std::string cspace_svg(const CSpace& space, const CSpaceSvgOptions& options) {
+  Painter painter(space, options);
+  return painter.run();
+}
+
+}  // namespace hipair::render
