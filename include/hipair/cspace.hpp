@@ -208,6 +208,7 @@ struct CSpaceStatistics {
   std::size_t cells = 0;
   std::size_t contact_edges = 0;
   double seconds_curves = 0;          ///< contact-curve generation (kernels)
+  double seconds_culling = 0;         ///< curve windows: validity and certainly-blocked quadtree
   double seconds_clipping = 0;        ///< CGAL curve analysis, x-monotone split, clipping
   double seconds_arrangement = 0;     ///< CGAL insertion
   double seconds_export = 0;          ///< topology export from CGAL

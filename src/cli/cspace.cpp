@@ -90,6 +90,7 @@ json statistics_json(const CSpaceStatistics& s) {
               {"contact_edges", s.contact_edges},
               {"seconds",
                {{"curves", s.seconds_curves},
+                {"culling", s.seconds_culling},
                 {"clipping", s.seconds_clipping},
                 {"arrangement", s.seconds_arrangement},
                 {"export", s.seconds_export},
@@ -197,9 +198,9 @@ void print_statistics(const CSpace& space) {
               s.feature_pairs_considered, s.feature_pairs_culled, s.curves, s.pieces_inserted);
   std::printf("  vertices %zu, edges %zu (contact %zu), faces %zu, cells %zu\n", s.vertices, s.edges, s.contact_edges,
               s.faces, s.cells);
-  std::printf("  time (ms): curves %.1f, clipping %.1f, arrangement %.1f, export %.1f, labelling %.1f, "
+  std::printf("  time (ms): curves %.1f, culling %.1f, clipping %.1f, arrangement %.1f, export %.1f, labelling %.1f, "
               "classification %.1f, cells %.1f, total %.1f\n",
-              s.seconds_curves * 1e3, s.seconds_clipping * 1e3, s.seconds_arrangement * 1e3, s.seconds_export * 1e3,
+              s.seconds_curves * 1e3, s.seconds_culling * 1e3, s.seconds_clipping * 1e3, s.seconds_arrangement * 1e3, s.seconds_export * 1e3,
               s.seconds_labelling * 1e3, s.seconds_classification * 1e3, s.seconds_cells * 1e3,
               s.seconds_total * 1e3);
 }

@@ -11,6 +11,7 @@
 #include <numbers>
 #include <numeric>
 #include <set>
+#include <unordered_map>
 
 namespace hipair::cspace {
 namespace {
@@ -45,52 +46,111 @@ Rational rational_avoiding(const Real& lo, const Real& hi, const std::vector<Rat
 
 // ---------------------------------------------------------------- per-chart stages
 
-// Can the curve have a valid point in the cell? Interval evaluation on a quadtree: the curve
-// must be able to vanish and every validity clause must be able to hold.
-bool may_be_valid(const algebra::IntervalPolynomial2& f,
-                  const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses, algebra::Interval x,
-                  algebra::Interval y, int depth) {
-  if (!f.evaluate(x, y).contains_zero()) return false;
-  for (const auto& clause : clauses) {
-    bool can_hold = false;
-    for (const auto& atom : clause)
-      if (atom.evaluate(x, y).hi >= 0) {
-        can_hold = true;
-        break;
-      }
-    if (!can_hold) return false;
-  }
-  if (depth == 0) return true;
-  double xm = 0.5 * (x.lo + x.hi), ym = 0.5 * (y.lo + y.hi);
-  for (auto xi : {algebra::Interval{x.lo, xm}, algebra::Interval{xm, x.hi}})
-    for (auto yi : {algebra::Interval{y.lo, ym}, algebra::Interval{ym, y.hi}})
-      if (may_be_valid(f, clauses, xi, yi, depth - 1)) return true;
-  return false;
-}
+// Quadtree over a chart: where can a curve bound free space? A cell is dropped when the curve
+// cannot vanish in it (interval evaluation), when a validity clause certainly fails in it, or
+// when the whole cell is certainly blocked. The x-ranges of the surviving finest cells are the
+// curve's windows.
+class CurveCuller {
+ public:
+  CurveCuller(const ChartInput& input, algebra::Interval x, algebra::Interval y, int depth)
+      : input_(input), x_(x), y_(y), depth_(depth) {}
 
-// Keeps the curves that may be valid somewhere in the chart box; returns the input indices.
+  // Windows of the curve (merged, ascending); empty when the curve bounds nothing.
+  std::vector<std::pair<double, double>> windows(const algebra::IntervalPolynomial2& f,
+                                                 const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses) {
+    std::vector<std::pair<double, double>> found;
+    visit(f, clauses, 0, 0, 0, found);
+    std::sort(found.begin(), found.end());
+    std::vector<std::pair<double, double>> merged;
+    for (const auto& w : found) {
+      if (!merged.empty() && w.first <= merged.back().second)
+        merged.back().second = std::max(merged.back().second, w.second);
+      else
+        merged.push_back(w);
+    }
+    return merged;
+  }
+
+ private:
+  algebra::Interval cell_x(int depth, long i) const {
+    double width = (x_.hi - x_.lo) / static_cast<double>(1L << depth);
+    return {i == 0 ? x_.lo : x_.lo + width * static_cast<double>(i),
+            i + 1 == (1L << depth) ? x_.hi : x_.lo + width * static_cast<double>(i + 1)};
+  }
+  algebra::Interval cell_y(int depth, long j) const {
+    double width = (y_.hi - y_.lo) / static_cast<double>(1L << depth);
+    return {j == 0 ? y_.lo : y_.lo + width * static_cast<double>(j),
+            j + 1 == (1L << depth) ? y_.hi : y_.lo + width * static_cast<double>(j + 1)};
+  }
+  bool blocked(int depth, long i, long j) {
+    if (!input_.certainly_blocked) return false;
+    long key = (static_cast<long>(depth) << 56) | (i << 28) | j;
+    auto it = blocked_.find(key);
+    if (it != blocked_.end()) return it->second;
+    // a cell inside a blocked cell is blocked
+    bool result = depth > 3 && blocked(depth - 1, i / 2, j / 2);
+    if (!result) result = input_.certainly_blocked(cell_x(depth, i), cell_y(depth, j));
+    blocked_.emplace(key, result);
+    return result;
+  }
+  void visit(const algebra::IntervalPolynomial2& f, const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses,
+             int depth, long i, long j, std::vector<std::pair<double, double>>& found) {
+    algebra::Interval x = cell_x(depth, i), y = cell_y(depth, j);
+    if (!f.evaluate(x, y).contains_zero()) return;
+    for (const auto& clause : clauses) {
+      bool can_hold = false;
+      for (const auto& atom : clause)
+        if (atom.evaluate(x, y).hi >= 0) {
+          can_hold = true;
+          break;
+        }
+      if (!can_hold) return;
+    }
+    if (depth >= 3 && blocked(depth, i, j)) return;
+    if (depth == depth_) {
+      found.emplace_back(x.lo, x.hi);
+      return;
+    }
+    for (long di = 0; di < 2; ++di)
+      for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found);
+  }
+
+  const ChartInput& input_;
+  algebra::Interval x_, y_;
+  int depth_;
+  std::unordered_map<long, bool> blocked_;
+};
+
+// Keeps the curves that may bound free space somewhere in the chart box, with their windows;
+// returns the input indices of the kept curves.
 std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input, int dimension) {
   chart.x_axis = input.x;
   chart.y_axis = input.y;
   chart.box = raw::Box{input.x.lo, input.x.hi, input.y.lo, input.y.hi};
-  algebra::Interval x = algebra::enclose(input.x.lo), y = algebra::enclose(input.y.lo);
-  x.hi = algebra::upper_double(input.x.hi);
-  y.hi = algebra::upper_double(input.y.hi);
+  algebra::Interval x{algebra::lower_double(input.x.lo), algebra::upper_double(input.x.hi)};
+  algebra::Interval y{algebra::lower_double(input.y.lo), algebra::upper_double(input.y.hi)};
+  CurveCuller culler(input, x, y, input.certainly_blocked ? 8 : 6);
   std::vector<std::size_t> kept;
   for (std::size_t k = 0; k < input.curves.size(); ++k) {
     const ContactCurve& curve = input.curves[k];
     algebra::IntervalPolynomial2 f(curve.polynomial);
+    std::vector<std::pair<Rational, Rational>> windows;
     if (dimension == 2) {
       std::vector<std::vector<algebra::IntervalPolynomial2>> clauses;
       for (const auto& clause : curve.validity) {
         clauses.emplace_back();
         for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
       }
-      if (!may_be_valid(f, clauses, x, y, 6)) continue;
+      auto found = culler.windows(f, clauses);
+      if (found.empty()) continue;
+      if (input.certainly_blocked)
+        for (const auto& [lo, hi] : found)
+          windows.emplace_back(std::max(Rational(lo), input.x.lo), std::min(Rational(hi), input.x.hi));
     }
     kept.push_back(k);
     chart.polynomials.push_back(curve.polynomial);
     chart.validity.push_back(curve.validity);
+    chart.windows.push_back(std::move(windows));
     chart.interval_polynomials.push_back(std::move(f));
   }
   return kept;
@@ -454,7 +514,9 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     ChartData& chart = impl->charts[c];
     chart.x_index = chart_input.x_index;
     chart.y_index = chart_input.y_index;
+    auto culling_start = Clock::now();
     std::vector<std::size_t> kept = prepare_chart(chart, chart_input, input.dimension);
+    stats.seconds_culling += seconds_since(culling_start);
     stats.curves += kept.size();
     for (std::size_t k : kept) {
       const ContactCurve& curve = chart_input.curves[k];
@@ -494,7 +556,8 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     raw::Options raw_options;
     raw_options.aggregated_insertion = options.aggregated_insertion;
     raw_options.keep_cgal = options.keep_arrangements;
-    chart.arrangement = raw::build_arrangement(chart.box, chart.polynomials, chart.validity, raw_options);
+    chart.arrangement =
+        raw::build_arrangement(chart.box, chart.polynomials, chart.validity, chart.windows, raw_options);
     stats.seconds_clipping += chart.arrangement.times.curves_seconds;
     stats.seconds_arrangement += chart.arrangement.times.insertion_seconds;
     stats.seconds_export += chart.arrangement.times.export_seconds;

@@ -108,7 +108,8 @@ class Builder {
   }
 
   Arrangement run(const std::vector<IntegerPolynomial2>& curves,
-                  const std::vector<std::vector<ValidityClause>>& validity) {
+                  const std::vector<std::vector<ValidityClause>>& validity,
+                  const std::vector<std::vector<std::pair<Rational, Rational>>>& windows) {
     auto start = Clock::now();
     std::vector<XCurve> pieces;
     std::vector<Point> isolated;
@@ -143,9 +144,19 @@ class Builder {
       std::size_t k = group.front();
       std::vector<const std::vector<ValidityClause>*> alternatives;
       for (std::size_t member : group) alternatives.push_back(member < validity.size() ? &validity[member] : &no_clauses);
+      // windows: the union over the group (no restriction if a member has none)
+      std::vector<std::pair<Rational, Rational>> group_windows;
+      bool restricted = true;
+      for (std::size_t member : group) {
+        if (member >= windows.size() || windows[member].empty()) {
+          restricted = false;
+          break;
+        }
+        group_windows.insert(group_windows.end(), windows[member].begin(), windows[member].end());
+      }
       auto curve_start = Clock::now();
       std::size_t before = pieces.size();
-      clip(curves[k], alternatives, pieces, isolated);
+      clip(curves[k], alternatives, restricted ? &group_windows : nullptr, pieces, isolated);
       if (debug)
         std::fprintf(stderr, "  clip curve %zu: %zu pieces, %.4f s\n", k, pieces.size() - before, seconds_since(curve_start));
     }
@@ -283,8 +294,16 @@ class Builder {
     return breaks;
   }
 
+  static bool in_windows(const Rational& x, const std::vector<std::pair<Rational, Rational>>* windows) {
+    if (!windows) return true;
+    for (const auto& [lo, hi] : *windows)
+      if (lo <= x && x <= hi) return true;
+    return false;
+  }
+
   void clip(const IntegerPolynomial2& f, const std::vector<const std::vector<ValidityClause>*>& alternatives,
-            std::vector<XCurve>& pieces, std::vector<Point>& isolated) {
+            const std::vector<std::pair<Rational, Rational>>* windows, std::vector<XCurve>& pieces,
+            std::vector<Point>& isolated) {
     Polynomial_2 polynomial = to_cgal(f);
     Curve curve = traits().construct_curve_2_object()(polynomial);
     std::vector<Algebraic_real_1> breaks;
@@ -371,6 +390,10 @@ class Builder {
         cut_at(to_algebraic(box_.x_hi));
         for (const auto& x : side_breaks) cut_at(x);
         for (const auto& x : breaks) cut_at(x);
+        if (windows)
+          for (const auto& [lo, hi] : *windows)
+            for (const Rational* bound : {&lo, &hi})
+              if (box_.x_lo < *bound && *bound < box_.x_hi) cut_at(to_algebraic(*bound));
         for (const auto& x : tangent_breaks) {
           std::size_t before = cuts.size();
           cut_at(x);
@@ -406,7 +429,8 @@ class Builder {
           Algebraic_real_1 x(x_mid);
           Point middle(x, arc.curve(), arc.arcno(x));
           in_box[i] = strictly_inside(middle);
-          valid[i] = in_box[i] && valid_at(f, arc, x, from_bound(x_mid), alternatives);
+          valid[i] = in_box[i] && in_windows(from_bound(x_mid), windows) &&
+                     valid_at(f, arc, x, from_bound(x_mid), alternatives);
         }
       }
       auto is_hard = [&](std::size_t c) { return std::find(hard.begin(), hard.end(), cuts[c].x()) != hard.end(); };
@@ -691,10 +715,12 @@ class Builder {
 }  // namespace
 
 Arrangement build_arrangement(const Box& box, const std::vector<IntegerPolynomial2>& curves,
-                              const std::vector<std::vector<ValidityClause>>& validity, const Options& options) {
+                              const std::vector<std::vector<ValidityClause>>& validity,
+                              const std::vector<std::vector<std::pair<Rational, Rational>>>& windows,
+                              const Options& options) {
   try {
     Builder builder(box, options);
-    return builder.run(curves, validity);
+    return builder.run(curves, validity, windows);
   } catch (const hipair::Error&) {
     throw;
   } catch (const CGAL::Failure_exception& e) {

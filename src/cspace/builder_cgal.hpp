@@ -109,8 +109,11 @@ struct Options {
 /// when `validity` is not empty (one entry per curve, possibly empty), to the parts of each
 /// curve where its validity clauses hold.
 /// \throws GeometryError when CGAL rejects the input.
+/// `windows` (one entry per curve, possibly empty = no restriction): x-intervals outside
+/// which the curve is not inserted (it certainly bounds nothing there).
 Arrangement build_arrangement(const Box& box, const std::vector<IntegerPolynomial2>& curves,
                               const std::vector<std::vector<ValidityClause>>& validity,
+                              const std::vector<std::vector<std::pair<Rational, Rational>>>& windows,
                               const Options& options);
 
 }  // namespace hipair::cspace::raw

@@ -25,6 +25,9 @@ struct ChartInput {
   ChartAxis y;                       ///< ignored for a 1-D space
   std::vector<ContactCurve> curves;
   Classifier classify;
+  /// Optional: true only if every configuration of the chart box x * y is certainly blocked
+  /// (interiors overlap). Curve parts there bound nothing and are not inserted.
+  std::function<bool(const algebra::Interval& x, const algebra::Interval& y)> certainly_blocked;
 };
 
 /// Input of a pair's build (model-free, so that tests can feed synthetic curves).
@@ -62,6 +65,8 @@ struct ChartData {
   std::vector<std::size_t> curve_global;       ///< local curve -> feature pair index
   std::vector<IntegerPolynomial2> polynomials; ///< local curves (those that can be valid in the box)
   std::vector<std::vector<ValidityClause>> validity;   ///< per local curve
+  /// per local curve: x-intervals outside which the curve certainly bounds nothing (empty: all)
+  std::vector<std::vector<std::pair<Rational, Rational>>> windows;
   std::vector<algebra::IntervalPolynomial2> interval_polynomials;
   raw::Arrangement arrangement;                ///< 2-D topology (empty for 1-D)
   std::vector<FaceData> faces;
