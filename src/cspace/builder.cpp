@@ -311,6 +311,7 @@ void build_interval_chart(ChartData& chart, const ChartInput& input) {
     algebra::Polynomial p = algebra::univariate_x(chart.polynomials[k]);
     if (algebra::degree(p) < 1) continue;
     for (auto& root : algebra::real_roots(p, chart.box.x_lo, chart.box.x_hi)) {
+      root.detect_rational();
       bool valid = true;
       for (const auto& clause : chart.validity[k]) {
         bool holds = false;

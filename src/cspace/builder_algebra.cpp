@@ -256,6 +256,23 @@ void Real::refine_to(const Rational& width) {
   while (!exact && upper - lower > width) refine();
 }
 
+void Real::detect_rational() {
+  if (exact) return;
+  // a root p/q with q^2 < 1/(2 width) is the only rational of denominator <= q in the interval
+  Rational scale = 1 + abs(lower) + abs(upper);
+  for (int bits : {8, 24, 64}) {
+    Rational width = scale / Rational(mpz_class(1) << bits);
+    refine_to(width);
+    if (exact) return;
+    Rational candidate = simplest_between(lower, upper);
+    if (sign_at(polynomial, candidate) == 0) {
+      lower = upper = candidate;
+      exact = true;
+      return;
+    }
+  }
+}
+
 double Real::approximate() const {
   if (exact) return lower.get_d();
   Real copy = *this;

@@ -252,6 +252,7 @@ Crossing first_crossing_in_chart(const CSpace::Impl& impl, const hipair::ChartPo
     algebra::Polynomial derivative = algebra::derivative(p);
     for (auto& u : algebra::real_roots(p, Rational(0), Rational(1))) {
       if (u.compare(Rational(0)) == 0) continue;
+      u.detect_rational();
       bool tangent = algebra::vanishes_at(derivative, u);
       auto it = std::find_if(candidates.begin(), candidates.end(),
                              [&](const Candidate& c) { return algebra::compare(c.u, u) == 0; });

@@ -1,0 +1,131 @@
+// Exact univariate algebra behind the C-space adaptor: Sturm counts, root isolation, exact
+// comparison of algebraic numbers, simplest rationals, substitutions and signs at algebraic
+// points. Values are chosen where doubles fail (2^53 + 1, roots 10^-20 apart).
+#include "cspace/builder_algebra.hpp"
+
+#include <hipair/error.hpp>
+
+#include <gtest/gtest.h>
+
+namespace hipair::cspace::algebra {
+namespace {
+
+Polynomial poly(std::initializer_list<long> ascending) {
+  Polynomial p;
+  for (long c : ascending) p.push_back(mpz_class(c));
+  trim(p);
+  return p;
+}
+
+TEST(CSpaceAlgebra, SturmCountsDistinctRoots) {
+  // (x - 1)^2 (x + 2) (x - 3): distinct roots -2, 1, 3
+  Polynomial p = poly({6, -11, 3, 3, -1});   // -(x-1)^2 (x+2)(x-3) expanded, sign irrelevant
+  Polynomial q = square_free_part(p);
+  EXPECT_EQ(degree(q), 3);
+  SturmSequence sturm(q);
+  EXPECT_EQ(sturm.total(), 3);
+  EXPECT_EQ(sturm.count(Rational(-2), Rational(1)), 1);   // (-2, 1] holds 1 only
+  EXPECT_EQ(sturm.count(Rational(-3), Rational(1)), 2);
+  EXPECT_EQ(sturm.count_up_to(Rational(3)), 3);
+  EXPECT_EQ(sturm.count_up_to(Rational(-5, 2)), 0);
+}
+
+TEST(CSpaceAlgebra, RootsAreIsolatedAndExactWhenRational) {
+  // x^3 - 2x = x (x^2 - 2): 0 exact, +-sqrt(2) isolated
+  auto roots = real_roots(poly({0, -2, 0, 1}));
+  ASSERT_EQ(roots.size(), 3u);
+  EXPECT_FALSE(roots[0].exact);
+  EXPECT_TRUE(roots[1].exact);
+  EXPECT_EQ(roots[1].lower, 0);
+  EXPECT_EQ(roots[2].compare(Rational(141421, 100000)), 1);
+  EXPECT_EQ(roots[2].compare(Rational(141422, 100000)), -1);
+  // roots in a closed interval include its ends
+  auto ends = real_roots(poly({-1, 0, 1}), Rational(-1), Rational(1));
+  ASSERT_EQ(ends.size(), 2u);
+  EXPECT_TRUE(ends[0].exact && ends[1].exact);
+}
+
+TEST(CSpaceAlgebra, CloseRootsBeyondDoublePrecision) {
+  // (x - a)(x - a - 10^-20) with a = 2^53 + 1: doubles cannot separate them
+  mpz_class a = (mpz_class(1) << 53) + 1;
+  Rational r1(a), r2 = Rational(a) + Rational(1, mpz_class("100000000000000000000"));
+  Polynomial p = from_rationals({r1 * r2, -(r1 + r2), Rational(1)});
+  auto roots = real_roots(p);
+  ASSERT_EQ(roots.size(), 2u);
+  EXPECT_EQ(roots[0].compare(r1), 0);
+  EXPECT_EQ(roots[1].compare(r2), 0);
+  EXPECT_EQ(compare(roots[0], roots[1]), -1);
+  Rational between = rational_between(roots[0], roots[1]);
+  EXPECT_TRUE(r1 < between && between < r2);
+}
+
+TEST(CSpaceAlgebra, EqualAlgebraicNumbersFromDifferentPolynomials) {
+  // sqrt(2) as a root of x^2 - 2 and of x^4 - 4 = (x^2 - 2)(x^2 + 2)
+  Real a = nth_real_root(poly({-2, 0, 1}), 1);
+  Real b = nth_real_root(poly({-4, 0, 0, 0, 1}), 1);
+  EXPECT_EQ(compare(a, b), 0);
+  Real c = nth_real_root(poly({-3, 0, 1}), 1);   // sqrt(3)
+  EXPECT_EQ(compare(a, c), -1);
+  EXPECT_EQ(compare(c, b), 1);
+}
+
+TEST(CSpaceAlgebra, SimplestRationalBetween) {
+  EXPECT_EQ(simplest_between(Rational(1, 3), Rational(1, 2)), Rational(2, 5));
+  EXPECT_EQ(simplest_between(Rational(-1, 2), Rational(1, 2)), Rational(0));
+  EXPECT_EQ(simplest_between(Rational(3), Rational(5)), Rational(4));
+  EXPECT_EQ(simplest_between(Rational(-7, 2), Rational(-3)), Rational(-10, 3));
+  Rational lo(314159, 100000), hi(314160, 100000);
+  Rational s = simplest_between(lo, hi);
+  EXPECT_TRUE(lo < s && s < hi);
+  EXPECT_LE(s.get_den(), 100000);
+}
+
+TEST(CSpaceAlgebra, NthRootInBracket) {
+  // roots of (x^2 - 2)(x - 5): -sqrt2, sqrt2, 5; the root number 1 lies in (1, 2)
+  Polynomial p = poly({10, -2, -5, 1});
+  Real r = nth_real_root_in(p, 1, Rational(1), Rational(2));
+  EXPECT_EQ(r.compare(Rational(14142, 10000)), 1);
+  EXPECT_EQ(r.compare(Rational(14143, 10000)), -1);
+  EXPECT_THROW(nth_real_root_in(p, 2, Rational(1), Rational(2)), NumericError);
+}
+
+TEST(CSpaceAlgebra, BivariateSubstitutionsAndSigns) {
+  // f = x^2 + y^2 - 1
+  IntegerPolynomial2 f{{{-1, 0, 1}, {0}, {1}}};
+  Polynomial at_x = substitute_x(f, Rational(3, 5));   // y^2 - 16/25, scaled
+  auto roots = real_roots(at_x);
+  ASSERT_EQ(roots.size(), 2u);
+  EXPECT_EQ(roots[1].compare(Rational(4, 5)), 0);
+  // line (x, y) = (-1, 0) + u (2, 0): u^2 ... roots u = 0 and u = 1
+  Polynomial along = substitute_line(f, Rational(-1), Rational(2), Rational(0), Rational(0));
+  auto u = real_roots(along, Rational(0), Rational(1));
+  ASSERT_EQ(u.size(), 2u);
+  EXPECT_TRUE(u[0].exact && u[1].exact);
+  // the point (1/2, sqrt(3)/2) is on the circle, (1/2, sqrt(2)/2) inside
+  Real s3 = nth_real_root(poly({-3, 0, 4}), 1);   // sqrt(3)/2
+  Real s2 = nth_real_root(poly({-1, 0, 2}), 1);   // sqrt(2)/2
+  EXPECT_TRUE(vanishes_at(f, Rational(1, 2), s3));
+  EXPECT_EQ(sign_at(f, Rational(1, 2), s3), 0);
+  EXPECT_EQ(sign_at(f, Rational(1, 2), s2), -1);
+  EXPECT_EQ(sign_at(f, s3, Rational(1, 2)), 0);
+}
+
+TEST(CSpaceAlgebra, CertifiedDoubleEvaluation) {
+  // f = (x - 1/3)(x + y): the exact value at doubles is within the stated bound
+  IntegerPolynomial2 f{{{0, -1}, {-1, 3}, {3}}};   // 3x^2 + 3xy - x - y
+  IntervalPolynomial2 g(f);
+  for (double x : {0.1, 1.0 / 3, 2.5, -7.25})
+    for (double y : {-0.5, 0.3333333333333333, 9.0}) {
+      double bound = 0;
+      double value = g.evaluate(x, y, &bound);
+      Rational exact = Rational(3) * Rational(x) * Rational(x) + Rational(3) * Rational(x) * Rational(y) - Rational(x) -
+                       Rational(y);
+      EXPECT_LE(abs(exact - Rational(value)), Rational(bound)) << x << " " << y;
+      Interval box = g.evaluate(enclose(Rational(x)), enclose(Rational(y)));
+      EXPECT_LE(Rational(box.lo), exact);
+      EXPECT_GE(Rational(box.hi), exact);
+    }
+}
+
+}  // namespace
+}  // namespace hipair::cspace::algebra
