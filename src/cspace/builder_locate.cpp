@@ -66,6 +66,20 @@ Location locate_2d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
       at.chart = q.chart;
       at.kind = Location::Kind::vertex;
       at.vertex = chart.vertex_global[v];
+      // a vertex of spurious edges only lies inside one cell
+      bool real = false;
+      for (std::size_t e : impl.vertices[at.vertex].edges) real = real || impl.edges[e].real;
+      if (!real) {
+        if (vertex.isolated) {
+          at.cell = chart.faces[vertex.face_below].cell;
+        } else {
+          for (const auto& incidence : vertex.around)
+            if (incidence.wedge_face != raw::none && chart.faces[incidence.wedge_face].kind >= 0) {
+              at.cell = chart.faces[incidence.wedge_face].cell;
+              break;
+            }
+        }
+      }
       return at;
     }
     if (c > 0 && (!found || algebra::compare(vertex.y, best_y) < 0)) {
