@@ -431,6 +431,12 @@ std::vector<Real> real_roots(const Polynomial& input, const Rational& lo, const 
     if (sign_at(p, lo) == 0) roots.push_back(Real::from_rational(lo));
     return roots;
   }
+  if (degree(p) == 1) {   // linear: the root is rational
+    Rational root(-p[0], p[1]);
+    root.canonicalize();
+    if (lo <= root && root <= hi) roots.push_back(Real::from_rational(root));
+    return roots;
+  }
   SturmSequence sturm(p);
   if (sign_at(p, lo) == 0) roots.push_back(Real::from_rational(lo));
   isolate(p, sturm, lo, hi, sturm.count(lo, hi), roots);
@@ -454,6 +460,13 @@ Real nth_real_root(const Polynomial& p, int index) {
 Real nth_real_root_in(const Polynomial& input, int index, const Rational& lo, const Rational& hi) {
   Polynomial p = square_free_part(input);
   if (degree(p) < 1) throw NumericError("internal: evaluating a constant contact curve");
+  if (degree(p) == 1) {
+    Rational root(-p[0], p[1]);
+    root.canonicalize();
+    if (index != 0 || !(lo < root && root < hi))
+      throw NumericError("internal: contact curve root " + std::to_string(index) + " is not in its certified box");
+    return Real::from_rational(root);
+  }
   SturmSequence sturm(p);
   Rational a = lo, b = hi;
   if (sturm.count_up_to(a) > index || sturm.count_up_to(b) <= index || sign_at(p, a) == 0)

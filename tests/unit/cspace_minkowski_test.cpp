@@ -1,0 +1,151 @@
+// Translating polygon pairs (part A along x by s, part B along y by r): the blocked region
+// is {(s, r) : s e_x - r e_y in interior(B + (-A))}, the Minkowski sum reflected in the s axis.
+// The blocked faces of the C-space must make up exactly that polygon: the symmetric difference
+// with CGAL's minkowski_sum_2 is empty. (Includes CGAL: its own translation unit.)
+#include "cspace/builder_impl.hpp"
+
+#include <hipair/cspace.hpp>
+#include <hipair/model.hpp>
+
+#include <CGAL/Cartesian.h>
+#include <CGAL/Gmpq.h>
+#include <CGAL/Polygon_set_2.h>
+#include <CGAL/minkowski_sum_2.h>
+
+#include <gtest/gtest.h>
+
+namespace hipair {
+namespace {
+
+using Kernel = CGAL::Cartesian<CGAL::Gmpq>;
+using Point2 = Kernel::Point_2;
+using Polygon = CGAL::Polygon_2<Kernel>;
+using PolygonWithHoles = CGAL::Polygon_with_holes_2<Kernel>;
+using PolygonSet = CGAL::Polygon_set_2<Kernel>;
+
+std::string polygon_json(const std::vector<std::pair<std::string, std::string>>& points) {
+  auto quoted = [](const std::string& v) { return "\"" + v + "\""; };
+  std::string text = "{ \"start\": [" + quoted(points[0].first) + ", " + quoted(points[0].second) + "], \"edges\": [";
+  for (std::size_t i = 1; i <= points.size(); ++i) {
+    const auto& p = points[i % points.size()];
+    text += std::string(i > 1 ? ", " : "") + "{ \"line_to\": [" + quoted(p.first) + ", " + quoted(p.second) + "] }";
+  }
+  return text + "] }";
+}
+
+Model two_sliders(const std::vector<std::pair<std::string, std::string>>& a,
+                  const std::vector<std::pair<std::string, std::string>>& b) {
+  std::string text = R"({ "hipair": 1, "name": "sliders", "parts": [
+    { "name": "a", "motion": { "translation": { "direction": [1, 0] } }, "loops": [ )" +
+                     polygon_json(a) + R"( ] },
+    { "name": "b", "motion": { "translation": { "direction": [0, 1] } }, "loops": [ )" +
+                     polygon_json(b) + R"( ] } ] })";
+  return read_model(text);
+}
+
+Polygon to_polygon(const std::vector<std::pair<std::string, std::string>>& points, bool negate) {
+  Polygon p;
+  for (const auto& [x, y] : points) {
+    Rational px = parse_rational(x), py = parse_rational(y);
+    if (negate) {
+      px = -px;
+      py = -py;
+    }
+    p.push_back(Point2(CGAL::Gmpq(px.get_mpq_t()), CGAL::Gmpq(py.get_mpq_t())));
+  }
+  if (p.is_clockwise_oriented()) p.reverse_orientation();
+  return p;
+}
+
+Point2 vertex_point(const cspace::raw::Vertex& v) {
+  EXPECT_TRUE(v.x.exact);
+  EXPECT_TRUE(v.y_exact && v.y.exact);
+  return Point2(CGAL::Gmpq(v.x.lower.get_mpq_t()), CGAL::Gmpq(v.y.lower.get_mpq_t()));
+}
+
+// The union of the blocked faces of the (single) chart, exactly.
+PolygonSet blocked_region(const CSpace& space) {
+  const auto& impl = implementation(space);
+  PolygonSet region;
+  for (const auto& chart : impl.charts) {
+    const auto& arrangement = chart.arrangement;
+    for (std::size_t f = 0; f < arrangement.faces.size(); ++f) {
+      if (chart.faces[f].kind != 1) continue;
+      const auto& face = arrangement.faces[f];
+      std::vector<Polygon> components;
+      for (std::size_t k = 0; k < face.component_starts.size(); ++k) {
+        std::size_t begin = face.component_starts[k];
+        std::size_t end = k + 1 < face.component_starts.size() ? face.component_starts[k + 1] : face.boundary.size();
+        // cancel antennas (an edge walked out and back)
+        std::vector<std::pair<std::size_t, bool>> walk;
+        for (std::size_t i = begin; i < end; ++i) {
+          if (!walk.empty() && walk.back().first == face.boundary[i].first && walk.back().second != face.boundary[i].second)
+            walk.pop_back();
+          else
+            walk.push_back(face.boundary[i]);
+        }
+        while (walk.size() >= 2 && walk.front().first == walk.back().first && walk.front().second != walk.back().second) {
+          walk.pop_back();
+          walk.erase(walk.begin());
+        }
+        Polygon polygon;
+        for (const auto& [e, forward] : walk) {
+          const auto& edge = arrangement.edges[e];
+          polygon.push_back(vertex_point(arrangement.vertices[forward ? edge.min_vertex : edge.max_vertex]));
+        }
+        if (polygon.size() >= 3) components.push_back(polygon);
+      }
+      if (components.empty()) continue;
+      PolygonWithHoles piece(components[0]);
+      for (std::size_t k = 1; k < components.size(); ++k) piece.add_hole(components[k]);
+      region.join(piece);
+    }
+  }
+  return region;
+}
+
+void expect_minkowski(const std::vector<std::pair<std::string, std::string>>& a,
+                      const std::vector<std::pair<std::string, std::string>>& b) {
+  Model model = two_sliders(a, b);
+  CSpace space = CSpace::build(model, "a", "b");
+  ASSERT_EQ(space.dimension(), 2);
+  ASSERT_EQ(space.charts().size(), 1u);
+  // M = B + (-A); the blocked region is M reflected in the s axis: (u, v) -> (u, -v)
+  PolygonWithHoles sum = CGAL::minkowski_sum_2(to_polygon(b, false), to_polygon(a, true));
+  Polygon reflected;
+  for (auto it = sum.outer_boundary().vertices_begin(); it != sum.outer_boundary().vertices_end(); ++it)
+    reflected.push_back(Point2(it->x(), -it->y()));
+  reflected.reverse_orientation();
+  PolygonWithHoles expected(reflected);
+  for (auto hole = sum.holes_begin(); hole != sum.holes_end(); ++hole) {
+    Polygon h;
+    for (auto it = hole->vertices_begin(); it != hole->vertices_end(); ++it) h.push_back(Point2(it->x(), -it->y()));
+    h.reverse_orientation();
+    expected.add_hole(h);
+  }
+  PolygonSet difference = blocked_region(space);
+  EXPECT_FALSE(difference.is_empty());
+  difference.symmetric_difference(expected);
+  EXPECT_TRUE(difference.is_empty()) << "blocked faces differ from the Minkowski sum";
+  // and the free space is one cell (the complement of one polygon in the chart box)
+  int free = 0;
+  for (const auto& cell : space.cells()) free += cell.kind == CellKind::free;
+  EXPECT_EQ(free, 1);
+}
+
+TEST(CSpaceMinkowski, TriangleAndSquare) {
+  expect_minkowski({{"0", "0"}, {"4", "0"}, {"1", "3"}}, {{"10", "10"}, {"12", "10"}, {"12", "12"}, {"10", "12"}});
+}
+
+TEST(CSpaceMinkowski, NonConvexLAndRationalTriangle) {
+  expect_minkowski({{"0", "0"}, {"6", "0"}, {"6", "1"}, {"1", "1"}, {"1", "5"}, {"0", "5"}},
+                   {{"20", "-3"}, {"23.5", "-3"}, {"21", "1/7"}});
+}
+
+TEST(CSpaceMinkowski, CollinearAndParallelEdges) {
+  // squares of equal height: parallel edges slide along each other (overlapping contact curves)
+  expect_minkowski({{"0", "0"}, {"2", "0"}, {"2", "2"}, {"0", "2"}}, {{"5", "0"}, {"7", "0"}, {"7", "2"}, {"5", "2"}});
+}
+
+}  // namespace
+}  // namespace hipair
