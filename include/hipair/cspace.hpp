@@ -175,9 +175,10 @@ struct PartCoordinate {
 
 /// Result of exact point location.
 struct Location {
-  enum class Kind { free, blocked, edge, vertex, outside };
+  /// `touching`: inside a touching cell (degenerate: contact throughout a region).
+  enum class Kind { free, blocked, edge, vertex, outside, touching };
   Kind kind = Kind::outside;
-  std::size_t cell = no_index;     ///< free / blocked
+  std::size_t cell = no_index;     ///< free / blocked / touching (and edges or vertices inside one cell)
   std::size_t edge = no_index;     ///< on the relative interior of this edge
   std::size_t vertex = no_index;
   std::size_t chart = no_index;

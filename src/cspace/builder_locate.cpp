@@ -20,7 +20,7 @@ Location located_in_face(const CSpace::Impl& impl, std::size_t chart, std::size_
   if (data.kind < 0) return location;
   location.cell = data.cell;
   location.kind = data.kind == 1 ? Location::Kind::blocked : Location::Kind::free;
-  if (data.kind == 2) location.kind = Location::Kind::edge;   // touching throughout (degenerate)
+  if (data.kind == 2) location.kind = Location::Kind::touching;   // touching throughout (degenerate)
   return location;
 }
 

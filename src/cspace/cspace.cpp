@@ -73,8 +73,11 @@ const std::vector<CSpaceEdge>& CSpace::edges() const { return implementation(*th
 const std::vector<CSpaceCell>& CSpace::cells() const { return implementation(*this).cells; }
 const CSpaceStatistics& CSpace::statistics() const { return implementation(*this).statistics; }
 
-std::optional<ChartPoint> CSpace::to_chart(const PartCoordinate& x, const PartCoordinate& y) const {
+std::optional<ChartPoint> CSpace::to_chart(const PartCoordinate& x_input, const PartCoordinate& y_input) const {
   const Impl& impl = implementation(*this);
+  PartCoordinate x = x_input, y = y_input;
+  x.value.canonicalize();
+  y.value.canonicalize();
   // chart coordinate of one part coordinate for a chart axis, or nullopt if it cannot be
   // expressed in that chart (t infinite)
   auto convert = [](const PartCoordinate& p, AxisKind kind, bool half_turn) -> std::optional<Rational> {
@@ -101,7 +104,19 @@ std::optional<ChartPoint> CSpace::to_chart(const PartCoordinate& x, const PartCo
   return std::nullopt;
 }
 
-Location CSpace::locate(const ChartPoint& point) const { return cspace::locate_point(implementation(*this), point); }
+namespace {
+// Rationals built from (numerator, denominator) pairs need not be in canonical form; GMP
+// arithmetic requires it.
+ChartPoint canonical(ChartPoint p) {
+  p.x.canonicalize();
+  p.y.canonicalize();
+  return p;
+}
+}  // namespace
+
+Location CSpace::locate(const ChartPoint& point) const {
+  return cspace::locate_point(implementation(*this), canonical(point));
+}
 
 Location CSpace::locate(const PartCoordinate& x, const PartCoordinate& y) const {
   auto point = to_chart(x, y);
@@ -113,7 +128,9 @@ CertifiedValue CSpace::evaluate(std::size_t edge, double x) const {
   return cspace::evaluate_edge(implementation(*this), edge, x);
 }
 
-AlgebraicNumber CSpace::evaluate_exact(std::size_t edge, const Rational& x) const {
+AlgebraicNumber CSpace::evaluate_exact(std::size_t edge, const Rational& x_input) const {
+  Rational x = x_input;
+  x.canonicalize();
   return cspace::evaluate_edge_exact(implementation(*this), edge, x);
 }
 
@@ -129,7 +146,10 @@ const std::vector<std::vector<mpz_class>>& CSpace::edge_polynomial_coefficients(
 }
 
 Crossing CSpace::first_crossing(const ChartPoint& from, const Rational& to_x, const Rational& to_y) const {
-  return cspace::first_crossing_in_chart(implementation(*this), from, to_x, to_y);
+  Rational x = to_x, y = to_y;
+  x.canonicalize();
+  y.canonicalize();
+  return cspace::first_crossing_in_chart(implementation(*this), canonical(from), x, y);
 }
 
 }  // namespace hipair

@@ -39,6 +39,7 @@ Agreement check_pair(const std::string& file, const std::string& first, const st
       // random one
       Rational u = random() % 4 == 0 ? Rational(static_cast<long>(random() % 65), 64)
                                       : Rational(mpz_class(static_cast<unsigned long>(random() % 1000003)), 1000003);
+      u.canonicalize();
       return Rational(lo + u * (hi - lo));
     };
     ChartPoint q{c, pick(chart.x_lo, chart.x_hi), space.dimension() == 2 ? pick(chart.y_lo, chart.y_hi) : Rational(0)};
