@@ -88,7 +88,7 @@ class CurveCuller {
     auto it = blocked_.find(key);
     if (it != blocked_.end()) return it->second;
     // a cell inside a blocked cell is blocked
-    bool result = depth > 3 && blocked(depth - 1, i / 2, j / 2);
+    bool result = depth > 4 && blocked(depth - 2, i / 4, j / 4);
     if (!result) result = input_.certainly_blocked(cell_x(depth, i), cell_y(depth, j));
     blocked_.emplace(key, result);
     return result;
@@ -106,7 +106,7 @@ class CurveCuller {
         }
       if (!can_hold) return;
     }
-    if (depth >= 3 && blocked(depth, i, j)) return;
+    if (depth >= 3 && (depth % 2 == 1 || depth == depth_) && blocked(depth, i, j)) return;
     if (depth == depth_) {
       found.emplace_back(x.lo, x.hi);
       return;
@@ -129,7 +129,7 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input
   chart.box = raw::Box{input.x.lo, input.x.hi, input.y.lo, input.y.hi};
   algebra::Interval x{algebra::lower_double(input.x.lo), algebra::upper_double(input.x.hi)};
   algebra::Interval y{algebra::lower_double(input.y.lo), algebra::upper_double(input.y.hi)};
-  CurveCuller culler(input, x, y, input.certainly_blocked ? 8 : 6);
+  CurveCuller culler(input, x, y, input.certainly_blocked ? 9 : 6);
   std::vector<std::size_t> kept;
   for (std::size_t k = 0; k < input.curves.size(); ++k) {
     const ContactCurve& curve = input.curves[k];

@@ -647,19 +647,6 @@ std::string to_string(const IntegerPolynomial2& f, const std::string& x, const s
 
 // ---------------------------------------------------------------- intervals
 
-namespace {
-constexpr double infinity = std::numeric_limits<double>::infinity();
-double down(double v) { return std::nextafter(v, -infinity); }
-double up(double v) { return std::nextafter(v, infinity); }
-}  // namespace
-
-Interval operator+(Interval a, Interval b) { return {down(a.lo + b.lo), up(a.hi + b.hi)}; }
-
-Interval operator*(Interval a, Interval b) {
-  double p1 = a.lo * b.lo, p2 = a.lo * b.hi, p3 = a.hi * b.lo, p4 = a.hi * b.hi;
-  return {down(std::min({p1, p2, p3, p4})), up(std::max({p1, p2, p3, p4}))};
-}
-
 Interval enclose(const Rational& r) { return {lower_double(r), upper_double(r)}; }
 Interval enclose(const mpz_class& z) { return enclose(Rational(z)); }
 

@@ -139,8 +139,28 @@ struct Interval {
   double hi = 0;
   bool contains_zero() const { return lo <= 0 && 0 <= hi; }
 };
-Interval operator+(Interval a, Interval b);
-Interval operator*(Interval a, Interval b);
+namespace interval_detail {
+// Outward rounding without changing the rounding mode: a round-to-nearest result r of an exact
+// x satisfies |x - r| <= 2^-53 |r| (plus the smallest subnormal when underflowing), so
+// r -+ (2^-52 |r| + 2 denorm_min), itself rounded to nearest, still encloses x.
+inline double down(double v) {
+  return v - (__builtin_fabs(v) * 2.220446049250313e-16 + 2 * 4.9406564584124654e-324);
+}
+inline double up(double v) { return v + (__builtin_fabs(v) * 2.220446049250313e-16 + 2 * 4.9406564584124654e-324); }
+}  // namespace interval_detail
+
+inline Interval operator+(Interval a, Interval b) {
+  return {interval_detail::down(a.lo + b.lo), interval_detail::up(a.hi + b.hi)};
+}
+inline Interval operator*(Interval a, Interval b) {
+  double p1 = a.lo * b.lo, p2 = a.lo * b.hi, p3 = a.hi * b.lo, p4 = a.hi * b.hi;
+  double lo = p1 < p2 ? p1 : p2, hi = p1 < p2 ? p2 : p1;
+  lo = lo < p3 ? lo : p3;
+  hi = hi < p3 ? p3 : hi;
+  lo = lo < p4 ? lo : p4;
+  hi = hi < p4 ? p4 : hi;
+  return {interval_detail::down(lo), interval_detail::up(hi)};
+}
 Interval enclose(const Rational& r);
 Interval enclose(const mpz_class& z);
 

@@ -576,7 +576,7 @@ class Builder {
     // edge boxes stay tight
     for (int i = 0; i < 64; ++i) {
       Rational lo = from_bound(p.xy().lower_bound_y()), hi = from_bound(p.xy().upper_bound_y());
-      if (hi - lo <= Rational(1, 1 << 20) * (1 + abs(lo))) break;
+      if (hi - lo <= Rational(1, 1 << 12) * (1 + abs(lo))) break;
       p.xy().refine_y();
     }
     out.y_lower = from_bound(p.xy().lower_bound_y());

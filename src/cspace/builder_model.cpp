@@ -38,6 +38,7 @@ std::size_t part_index(const Model& model, std::string_view name) {
 
 struct Disk {
   double x, y, r;
+  double rho = 0;   // distance from the part's pivot (rotating parts)
 };
 
 struct EdgeGeometry {
@@ -201,6 +202,10 @@ class BlockedTester {
   BlockedTester(const Model& model, const cspace::PairAxes& axes) : model_(model), axes_(axes) {
     disks_[0] = inscribed_disks(model.parts[axes.first], 150);
     disks_[1] = inscribed_disks(model.parts[axes.second], 150);
+    for (int k = 0; k < 2; ++k) {
+      const Motion& motion = model.parts[k == 0 ? axes.first : axes.second].motion;
+      for (auto& d : disks_[k]) d.rho = std::hypot(d.x - motion.pivot.x.get_d(), d.y - motion.pivot.y.get_d());
+    }
   }
   bool usable() const { return !disks_[0].empty() && !disks_[1].empty(); }
 
@@ -225,9 +230,15 @@ class BlockedTester {
         ranges[k].offset_half_width = 0.5 * (range.hi - range.lo) + 1e-12;
       }
     }
-    // posed disks: centre at the middle pose, plus an error radius
-    std::vector<Disk> posed[2];
-    std::vector<double> error[2];
+    // posed disks: centre at the middle pose, plus an error radius (scratch buffers per thread)
+    thread_local std::vector<Disk> posed[2];
+    thread_local std::vector<double> error[2];
+    thread_local std::vector<std::size_t> order;
+    thread_local std::vector<double> xs;
+    for (int k = 0; k < 2; ++k) {
+      posed[k].clear();
+      error[k].clear();
+    }
     for (int k = 0; k < 2; ++k) {
       const Part& part = model_.parts[k == 0 ? axes_.first : axes_.second];
       const Motion& motion = part.motion;
@@ -241,7 +252,7 @@ class BlockedTester {
           double rx = d.x - px, ry = d.y - py;
           p.x = px + cos_a * rx - sin_a * ry;
           p.y = py + sin_a * rx + cos_a * ry;
-          e += std::hypot(rx, ry) * ranges[k].angle_half_width;   // arc length bounds the chord
+          e += d.rho * ranges[k].angle_half_width;   // arc length bounds the chord
         } else if (motion.kind == Motion::Kind::translation) {
           p.x = d.x + ranges[k].offset * dx;
           p.y = d.y + ranges[k].offset * dy;
@@ -251,15 +262,30 @@ class BlockedTester {
         error[k].push_back(e);
       }
     }
-    for (std::size_t i = 0; i < posed[0].size(); ++i)
-      for (std::size_t j = 0; j < posed[1].size(); ++j) {
-        const Disk& a = posed[0][i];
+    // sweep in x: B's disks sorted by the left end of their reach
+    order.resize(posed[1].size());
+    for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return posed[1][a].x < posed[1][b].x; });
+    double widest = 0;
+    for (std::size_t j = 0; j < posed[1].size(); ++j) widest = std::max(widest, posed[1][j].r - error[1][j]);
+    xs.resize(order.size());
+    for (std::size_t j = 0; j < order.size(); ++j) xs[j] = posed[1][order[j]].x;
+    for (std::size_t i = 0; i < posed[0].size(); ++i) {
+      const Disk& a = posed[0][i];
+      double reach_a = a.r - error[0][i];
+      if (reach_a <= 0) continue;
+      double span = reach_a + widest;
+      auto first = std::lower_bound(xs.begin(), xs.end(), a.x - span);
+      auto last = std::upper_bound(xs.begin(), xs.end(), a.x + span);
+      for (auto it = first; it != last; ++it) {
+        std::size_t j = order[static_cast<std::size_t>(it - xs.begin())];
         const Disk& b = posed[1][j];
-        double reach = a.r + b.r - error[0][i] - error[1][j];
+        double reach = reach_a + b.r - error[1][j];
         if (reach <= 0) continue;
         double dx = a.x - b.x, dy = a.y - b.y;
         if (dx * dx + dy * dy < reach * reach * (1 - 1e-9)) return true;
       }
+    }
     return false;
   }
 
