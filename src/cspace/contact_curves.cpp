@@ -316,18 +316,31 @@ std::vector<Core> inscribed_disks(const Part& part) {
         ny = edge->ccw ? -std::sin(angle) : std::sin(angle);
         scale = std::min(2 * r, r * span);
       }
-      Core best;
+      // The best candidate is the one of largest certified radius among those strictly
+      // inside: rank the candidates by radius first (cheap interval work) and locate them
+      // exactly in that order (ties keep the step order), stopping at the first inside.
+      struct Candidate {
+        Rational px, py;
+        Core core;
+      };
+      std::vector<Candidate> candidates;
+      candidates.reserve(6);
       for (int k = 1; k <= 6; ++k) {
         double step = scale / double(1 << k);
         Rational px(mx + step * nx), py(my + step * ny);
-        Point candidate{px, py};
-        if (locate_point(part, RigidMap{}, candidate) != PointLocation::inside) continue;
         Interval cx = Interval::enclose(px), cy = Interval::enclose(py);
         double radius = 1e300;
         for (const Edge* other : edges) radius = std::min(radius, distance_lower_bound(*other, cx, cy));
-        if (radius > best.radius) best = Core{cx, cy, radius};
+        if (!(radius > 0)) continue;   // could never beat the empty disk
+        candidates.push_back(Candidate{std::move(px), std::move(py), Core{cx, cy, radius}});
       }
-      if (best.radius > 0) cores.push_back(best);
+      std::stable_sort(candidates.begin(), candidates.end(),
+                       [](const Candidate& a, const Candidate& b) { return a.core.radius > b.core.radius; });
+      for (const Candidate& candidate : candidates)
+        if (locate_point(part, RigidMap{}, Point{candidate.px, candidate.py}) == PointLocation::inside) {
+          cores.push_back(candidate.core);
+          break;
+        }
     }
   }
   // Drop disks contained in larger ones (only weakens nothing: a contained disk proves less).

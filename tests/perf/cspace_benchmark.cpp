@@ -7,13 +7,18 @@
 //   BM_EscapementCSpace        escape wheel and anchor: many arcs
 //   BM_GenevaLocate            exact point location of random rational configurations
 //   BM_GenevaFirstCrossing     certified first contact along random straight paths
+//   BM_GenevaCurves            stage alone: contact-curve generation (all charts)
+//   BM_GenevaCgalStage         stage alone: CGAL clipping, insertion and export (all charts)
 // Peer comparisons: minkowski_peer_benchmark.cpp, overlap_peer_benchmark.cpp.
 // Counters: vertices, edges, cells, curves of the built space.
+#include "cspace/builder_impl.hpp"
+
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <random>
@@ -26,12 +31,36 @@ using namespace hipair;
 
 std::filesystem::path example(const std::string& name) { return std::filesystem::path(HIPAIR_EXAMPLES) / name; }
 
-void report(benchmark::State& state, const CSpace& space) {
+// Mean stage times of the builds (ms), as printed by --stats.
+struct StageTimes {
+  double curves = 0, culling = 0, clipping = 0, arrangement = 0, export_ = 0, labelling = 0, classification = 0,
+         cells = 0;
+  void add(const CSpaceStatistics& s) {
+    curves += s.seconds_curves;
+    culling += s.seconds_culling;
+    clipping += s.seconds_clipping;
+    arrangement += s.seconds_arrangement;
+    export_ += s.seconds_export;
+    labelling += s.seconds_labelling;
+    classification += s.seconds_classification;
+    cells += s.seconds_cells;
+  }
+};
+
+void report(benchmark::State& state, const CSpace& space, const StageTimes& times) {
   const CSpaceStatistics& s = space.statistics();
   state.counters["vertices"] = static_cast<double>(s.vertices);
   state.counters["edges"] = static_cast<double>(s.edges);
   state.counters["cells"] = static_cast<double>(s.cells);
   state.counters["curves"] = static_cast<double>(s.curves);
+  const double per = 1e3 / static_cast<double>(std::max<benchmark::IterationCount>(state.iterations(), 1));
+  state.counters["ms_curves"] = times.curves * per;
+  state.counters["ms_culling"] = times.culling * per;
+  state.counters["ms_clipping"] = times.clipping * per;
+  state.counters["ms_arrangement"] = times.arrangement * per;
+  state.counters["ms_export"] = times.export_ * per;
+  state.counters["ms_labelling"] = times.labelling * per;
+  state.counters["ms_classify_cells"] = (times.classification + times.cells) * per;
 }
 
 void build(benchmark::State& state, const Model& model, const char* first, const char* second,
@@ -39,11 +68,13 @@ void build(benchmark::State& state, const Model& model, const char* first, const
   CSpace space;
   CSpaceBuildOptions options;
   options.threads = threads;
+  StageTimes times;
   for (auto _ : state) {
     space = CSpace::build(model, first, second, options);
     benchmark::DoNotOptimize(space);
+    times.add(space.statistics());
   }
-  report(state, space);
+  report(state, space, times);
 }
 
 void BM_GenevaCSpace(benchmark::State& state) {
@@ -89,6 +120,46 @@ void BM_EscapementCSpace(benchmark::State& state) {
   build(state, model, "escape-wheel", "anchor", 1);
 }
 BENCHMARK(BM_EscapementCSpace)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+// Stages of the Geneva build that can run alone: contact-curve generation for every chart,
+// and the CGAL stage (curve analysis, clipping, insertion, export) on the charts' curves and
+// windows as the builder passed them.
+void BM_GenevaCurves(benchmark::State& state) {
+  Model model = read_model_file(example("geneva.json"));
+  auto axes = cspace::pair_axes(model, 0, 1);
+  auto layout = cspace::chart_layout(model, axes);
+  std::size_t curves = 0;
+  for (auto _ : state) {
+    curves = 0;
+    for (const auto& x : layout.x_charts)
+      for (const auto& y : layout.y_charts) curves += cspace::generate_contact_curves(model, axes, x, y).size();
+  }
+  state.counters["curves"] = static_cast<double>(curves);
+}
+BENCHMARK(BM_GenevaCurves)->Unit(benchmark::kMillisecond);
+
+void BM_GenevaCgalStage(benchmark::State& state) {
+  static const CSpace space = CSpace::build(read_model_file(example("geneva.json")), "driver", "wheel");
+  const auto& charts = cspace::impl_of(space).charts;
+  double clipping = 0, insertion = 0, export_ = 0;
+  std::size_t vertices = 0;
+  for (auto _ : state) {
+    vertices = 0;
+    for (const auto& chart : charts) {
+      auto arrangement = cspace::raw::build_arrangement(chart.box, chart.polynomials, chart.validity, chart.windows, {});
+      clipping += arrangement.times.curves_seconds;
+      insertion += arrangement.times.insertion_seconds;
+      export_ += arrangement.times.export_seconds;
+      vertices += arrangement.vertices.size();
+    }
+  }
+  const double per = 1e3 / static_cast<double>(state.iterations());
+  state.counters["ms_clipping"] = clipping * per;
+  state.counters["ms_arrangement"] = insertion * per;
+  state.counters["ms_export"] = export_ * per;
+  state.counters["vertices"] = static_cast<double>(vertices);
+}
+BENCHMARK(BM_GenevaCgalStage)->Unit(benchmark::kMillisecond);
 
 void BM_GenevaLocate(benchmark::State& state) {
   static const CSpace space = CSpace::build(read_model_file(example("geneva.json")), "driver", "wheel");
