@@ -17,6 +17,7 @@
 
 #include <gmpxx.h>
 
+#include <array>
 #include <cstddef>
 #include <limits>
 #include <memory>
@@ -208,6 +209,9 @@ struct CSpaceStatistics {
   std::size_t faces = 0;
   std::size_t cells = 0;
   std::size_t contact_edges = 0;
+  std::size_t region_tiles = 0;       ///< operating region: tiles built (0: whole space built)
+  std::size_t region_cells = 0;       ///< operating region: flooded quadtree cells
+  double seconds_region = 0;          ///< operating region: flood over certified-blocked cells
   double seconds_curves = 0;          ///< contact-curve generation (kernels)
   double seconds_culling = 0;         ///< curve windows: validity and certainly-blocked quadtree
   double seconds_clipping = 0;        ///< CGAL curve analysis, x-monotone split, clipping
@@ -225,6 +229,19 @@ struct CSpaceBuildOptions {
   bool aggregated_insertion = false;   ///< CGAL's aggregated (sweep) insertion instead of incremental
   unsigned threads = 0;                ///< build_all: worker threads (0: hardware concurrency)
   bool progress = false;               ///< report progress on stderr
+  /// Build only the operating region instead of the whole space: the connected set of
+  /// configurations not certified blocked that contains the seed (the free channel the
+  /// mechanism works in, with a margin), covered by tiles of each chart. Everything inside the
+  /// built tiles is exact; configurations outside them locate as `outside`; edges on the
+  /// region's border have role `limit`. A gear pair with z1 and z2 teeth has O(z1 z2) contact
+  /// curves on the whole torus but O(z1 + z2) along one channel. 2-D spaces only (a 1-D space
+  /// is always built whole).
+  bool operating_region = false;
+  /// Tiles per chart axis in operating-region mode (2 to 64).
+  unsigned region_tiles = 16;
+  /// Seed of the operating region: coordinates of the x and y parts (rad or mm). Empty: the
+  /// model's initial configuration. It only selects the channel, so double is enough.
+  std::optional<std::array<double, 2>> region_seed;
 };
 
 /// The exact C-space of one pair. Value semantics: copies share the immutable structure.
@@ -258,6 +275,9 @@ class CSpace {
   const std::vector<CSpaceEdge>& edges() const;
   const std::vector<CSpaceCell>& cells() const;
   const CSpaceStatistics& statistics() const;
+  /// False when only the operating region was built (CSpaceBuildOptions::operating_region):
+  /// cells touching the region's border may continue outside it.
+  bool complete() const;
 
   /// The chart point of a configuration given per moving part (exact), choosing the chart
   /// whose box contains it; nullopt when outside every chart (beyond a motion limit).

@@ -30,6 +30,10 @@ struct CSpaceCommandOptions {
   bool stats = false;
   bool spurious = false;
   bool aggregated = false;
+  std::vector<std::string> overrides;
+  bool allow_out_of_tolerance = false;
+  std::string region = "full";
+  unsigned tiles = 16;
 };
 
 using nlohmann::json;
@@ -88,6 +92,8 @@ json statistics_json(const CSpaceStatistics& s) {
               {"faces", s.faces},
               {"cells", s.cells},
               {"contact_edges", s.contact_edges},
+              {"region_tiles", s.region_tiles},
+              {"region_cells", s.region_cells},
               {"seconds",
                {{"curves", s.seconds_curves},
                 {"culling", s.seconds_culling},
@@ -104,6 +110,7 @@ json space_json(const CSpace& space) {
   json out;
   out["pair"] = {space.first_part(), space.second_part()};
   out["dimension"] = space.dimension();
+  out["complete"] = space.complete();
   out["x_part"] = space.x_part();
   if (space.dimension() == 2) out["y_part"] = space.y_part();
   json charts = json::array();
@@ -198,6 +205,9 @@ void print_statistics(const CSpace& space) {
               s.feature_pairs_considered, s.feature_pairs_culled, s.curves, s.pieces_inserted);
   std::printf("  vertices %zu, edges %zu (contact %zu), faces %zu, cells %zu\n", s.vertices, s.edges, s.contact_edges,
               s.faces, s.cells);
+  if (!space.complete())
+    std::printf("  operating region: %zu tiles, %zu quadtree cells flooded in %.1f ms (outside it nothing is claimed)\n",
+                s.region_tiles, s.region_cells, s.seconds_region * 1e3);
   std::printf("  time (ms): curves %.1f, culling %.1f, clipping %.1f, arrangement %.1f, export %.1f, labelling %.1f, "
               "classification %.1f, cells %.1f, total %.1f\n",
               s.seconds_curves * 1e3, s.seconds_culling * 1e3, s.seconds_clipping * 1e3, s.seconds_arrangement * 1e3, s.seconds_export * 1e3,
@@ -213,10 +223,24 @@ std::filesystem::path suffixed(const std::string& path, const CSpace& space, boo
 }
 
 int run(const CSpaceCommandOptions& options) {
-  Model model = read_model_file(options.model);
+  ReadOptions read;
+  read.allow_out_of_tolerance = options.allow_out_of_tolerance;
+  for (const std::string& assignment : options.overrides) {
+    auto equals = assignment.find('=');
+    if (equals == std::string::npos || equals == 0)
+      throw ModelError("", "--set expects NAME=VALUE, got '" + assignment + "'");
+    try {
+      read.parameter_values[assignment.substr(0, equals)] = parse_rational(assignment.substr(equals + 1));
+    } catch (const NumericError& error) {
+      throw ModelError("", "--set " + assignment + ": " + error.what() + " (values are exact literals in mm or rad)");
+    }
+  }
+  Model model = read_model_file(options.model, read);
   CSpaceBuildOptions build;
   build.progress = isatty(2);
   build.aggregated_insertion = options.aggregated;
+  build.operating_region = options.region == "operating";
+  build.region_tiles = options.tiles;
   std::vector<CSpace> spaces;
   if (!options.pair.empty()) {
     auto colon = options.pair.find(':');
@@ -269,6 +293,14 @@ void register_cspace(CLI::App& app, Action& action) {
   command->add_flag("--stats", options->stats, "Print counts and times per stage");
   command->add_flag("--spurious", options->spurious, "Also draw spurious edges (curves through free or blocked space)");
   command->add_flag("--aggregated", options->aggregated, "Use CGAL's aggregated insertion (for measurements)");
+  command->add_option("--region", options->region,
+                      "full: the whole C-space (default); operating: only the channel containing the initial "
+                      "configuration, built tile by tile (gear pairs: linear in the tooth count)")
+      ->check(CLI::IsMember({"full", "operating"}));
+  command->add_option("--tiles", options->tiles, "Operating region: tiles per chart axis")->check(CLI::Range(2u, 64u));
+  command->add_option("--set", options->overrides, "Override a parameter: NAME=VALUE (repeatable)");
+  command->add_flag("--allow-out-of-tolerance", options->allow_out_of_tolerance,
+                    "Accept --set values outside the parameter's tolerance range");
   command->callback([options, &action] { action = [options] { return run(*options); }; });
 }
 

@@ -129,7 +129,7 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input
   chart.box = raw::Box{input.x.lo, input.x.hi, input.y.lo, input.y.hi};
   algebra::Interval x{algebra::lower_double(input.x.lo), algebra::upper_double(input.x.hi)};
   algebra::Interval y{algebra::lower_double(input.y.lo), algebra::upper_double(input.y.hi)};
-  CurveCuller culler(input, x, y, input.certainly_blocked ? 9 : 6);
+  CurveCuller culler(input, x, y, input.cull_depth > 0 ? input.cull_depth : input.certainly_blocked ? 9 : 6);
   std::vector<std::size_t> kept;
   for (std::size_t k = 0; k < input.curves.size(); ++k) {
     const ContactCurve& curve = input.curves[k];
@@ -403,13 +403,16 @@ double chart_angle(const ChartAxis& axis, const Rational& t) {
 }
 
 // Is chart axis a's value `ta` the same part coordinate as chart axis b's value `tb`?
+// Translation axes meet only where tiles of one chart meet (a chart never wraps).
 bool same_coordinate(const ChartAxis& a, const Rational& ta, const ChartAxis& b, const Rational& tb) {
-  if (a.kind != ChartAxis::Kind::rotation || b.kind != ChartAxis::Kind::rotation) return false;
+  if (a.kind != b.kind) return false;
+  if (a.kind == ChartAxis::Kind::translation) return ta == tb && a.lo != b.lo;
   if (a.half_turn == b.half_turn) return ta == tb;
   return ta * tb == -1;
 }
 
 long winding_between(const ChartAxis& a, const Rational& ta, const ChartAxis& b, const Rational& tb) {
+  if (a.kind == ChartAxis::Kind::translation) return 0;
   return std::lround((chart_angle(a, ta) - chart_angle(b, tb)) / (2 * std::numbers::pi));
 }
 
@@ -494,6 +497,10 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
   stats.feature_pairs_considered = input.curve_statistics.feature_pairs_considered;
   stats.feature_pairs_culled = input.curve_statistics.feature_pairs_culled;
   stats.seconds_curves = input.seconds_curves;
+  impl->complete = input.complete;
+  stats.region_cells = input.region_cells;
+  stats.seconds_region = input.seconds_region;
+  if (!input.complete) stats.region_tiles = input.charts.size();
 
   // feature pairs: one per contact curve of any chart, deduplicated by (first, second, type)
   auto feature_name = [&](const FeatureRef& f) -> std::string {
@@ -802,7 +809,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
   stats.edges = impl->edges.size();
   stats.cells = impl->cells.size();
   stats.seconds_cells = seconds_since(cells_start);
-  stats.seconds_total = seconds_since(total_start) + stats.seconds_curves;
+  stats.seconds_total = seconds_since(total_start) + stats.seconds_curves + stats.seconds_region;
   return make_cspace(impl);
 }
 

@@ -28,6 +28,8 @@ struct ChartInput {
   /// Optional: true only if every configuration of the chart box x * y is certainly blocked
   /// (interiors overlap). Curve parts there bound nothing and are not inserted.
   std::function<bool(const algebra::Interval& x, const algebra::Interval& y)> certainly_blocked;
+  /// Depth of the curve-culling quadtree over the box (0: the default for a whole chart).
+  int cull_depth = 0;
 };
 
 /// Input of a pair's build (model-free, so that tests can feed synthetic curves).
@@ -39,6 +41,9 @@ struct PairInput {
   std::vector<ChartInput> charts;
   CurveStatistics curve_statistics;
   double seconds_curves = 0;
+  bool complete = true;          ///< false: the charts are tiles of an operating region
+  std::size_t region_cells = 0;
+  double seconds_region = 0;
 };
 
 /// One face (2-D) or interval (1-D) of a chart.
@@ -86,6 +91,7 @@ namespace hipair {
 struct CSpace::Impl {
   std::string first_part, second_part, x_part, y_part;
   int dimension = 2;
+  bool complete = true;   ///< false: only the operating region was built
   std::vector<cspace::ChartData> charts;
   std::vector<CSpaceChart> public_charts;
   std::vector<FeaturePair> feature_pairs;

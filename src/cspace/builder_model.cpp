@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <chrono>
 #include <exception>
 #include <iostream>
@@ -295,6 +296,140 @@ class BlockedTester {
   std::vector<Disk> disks_[2];
 };
 
+// ---------------------------------------------------------------- operating region
+//
+// The connected set of quadtree cells, not certified blocked, that contains the seed: a flood
+// over a fine grid of every chart, crossing seams where charts meet. A cell outside it is
+// either certified blocked or separated from the seed by certified-blocked cells, so the free
+// channel of the seed lies inside the flooded cells. Tiles (coarse boxes of a chart) holding
+// a flooded cell are built exactly; the others are not built.
+
+struct RegionTiles {
+  std::size_t tiles = 0;                 // per chart axis
+  std::vector<std::vector<char>> kept;   // per chart (x index * y charts + y index): tiles x * tiles + y
+  std::size_t cells = 0;                 // flooded cells
+};
+
+// Chart coordinate of a part coordinate (rad or mm) for a chart axis, or nullopt.
+std::optional<double> chart_coordinate(const cspace::ChartAxis& axis, double value) {
+  if (axis.kind == cspace::ChartAxis::Kind::translation) return value;
+  double local = std::remainder(value - (axis.half_turn ? std::numbers::pi : 0.0), 2 * std::numbers::pi);
+  if (std::fabs(local) > 0.5 * std::numbers::pi + 1e-12) return std::nullopt;
+  return std::tan(0.5 * local);
+}
+
+RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const cspace::ChartLayout& layout,
+                         const BlockedTester& tester, const CSpaceBuildOptions& options) {
+  using cspace::ChartAxis;
+  RegionTiles region;
+  unsigned tiles = std::clamp(options.region_tiles, 2u, 64u);
+  region.tiles = tiles;
+  const std::size_t sub = std::max<std::size_t>(2, 512 / tiles);   // fine cells per tile side
+  const std::size_t grid = tiles * sub;
+  const std::size_t nx = layout.x_charts.size(), ny = layout.y_charts.size();
+  auto chart_of = [&](std::size_t ix, std::size_t iy) { return ix * ny + iy; };
+  region.kept.assign(nx * ny, std::vector<char>(static_cast<std::size_t>(tiles) * tiles, 0));
+
+  // seed
+  std::array<double, 2> seed{};
+  if (options.region_seed) {
+    seed = *options.region_seed;
+  } else {
+    const Part& a = model.parts[axes.first];
+    const Part& b = model.parts[axes.second];
+    seed[0] = (a.motion.kind == Motion::Kind::rotation ? a.initial.angle : a.initial.offset).get_d();
+    seed[1] = (b.motion.kind == Motion::Kind::rotation ? b.initial.angle : b.initial.offset).get_d();
+  }
+  auto lo_of = [](const ChartAxis& axis) { return axis.lo.get_d(); };
+  auto hi_of = [](const ChartAxis& axis) { return axis.hi.get_d(); };
+  auto index_in = [&](const ChartAxis& axis, double t) {
+    double f = (t - lo_of(axis)) / (hi_of(axis) - lo_of(axis)) * static_cast<double>(grid);
+    return std::min<std::size_t>(grid - 1, static_cast<std::size_t>(std::max(0.0, f)));
+  };
+  std::optional<std::array<std::size_t, 3>> start;
+  for (std::size_t ix = 0; ix < nx && !start; ++ix)
+    for (std::size_t iy = 0; iy < ny && !start; ++iy) {
+      auto tx = chart_coordinate(layout.x_charts[ix], seed[0]);
+      auto ty = chart_coordinate(layout.y_charts[iy], seed[1]);
+      if (!tx || !ty) continue;
+      if (*tx < lo_of(layout.x_charts[ix]) || *tx > hi_of(layout.x_charts[ix])) continue;
+      if (*ty < lo_of(layout.y_charts[iy]) || *ty > hi_of(layout.y_charts[iy])) continue;
+      start = std::array<std::size_t, 3>{chart_of(ix, iy), index_in(layout.x_charts[ix], *tx),
+                                         index_in(layout.y_charts[iy], *ty)};
+    }
+  if (!start)
+    throw GeometryError("operating region of '" + model.parts[axes.first].name + "' and '" +
+                        model.parts[axes.second].name + "': the seed configuration is outside the motion limits");
+
+  auto cell_interval = [&](const ChartAxis& axis, std::size_t i) {
+    double lo = lo_of(axis), width = (hi_of(axis) - lo) / static_cast<double>(grid);
+    // one ulp-scale margin outward: the blocked test must see a superset of the cell
+    double a = i == 0 ? cspace::algebra::lower_double(axis.lo) : lo + width * static_cast<double>(i);
+    double b = i + 1 == grid ? cspace::algebra::upper_double(axis.hi) : lo + width * static_cast<double>(i + 1);
+    return cspace::algebra::Interval{std::nextafter(a, -1e300), std::nextafter(b, 1e300)};
+  };
+  // neighbours across chart boundaries: glued chart along x (same y chart) and along y
+  auto glued = [](const ChartAxis& a, const Rational& ta, const ChartAxis& b, const Rational& tb) {
+    if (a.kind != ChartAxis::Kind::rotation || b.kind != ChartAxis::Kind::rotation) return false;
+    if (a.half_turn == b.half_turn) return ta == tb;
+    return ta * tb == -1;
+  };
+  std::vector<std::vector<char>> seen(nx * ny, std::vector<char>(grid * grid, 0));
+  std::vector<std::array<std::size_t, 3>> queue;
+  auto blocked = [&](std::size_t c, std::size_t i, std::size_t j) {
+    const ChartAxis& x = layout.x_charts[c / ny];
+    const ChartAxis& y = layout.y_charts[c % ny];
+    return tester.blocked(x, y, cell_interval(x, i), cell_interval(y, j));
+  };
+  auto push = [&](std::size_t c, std::size_t i, std::size_t j) {
+    char& mark = seen[c][i * grid + j];
+    if (mark) return;
+    mark = 1;
+    if (blocked(c, i, j)) return;
+    mark = 2;
+    queue.push_back({c, i, j});
+  };
+  push((*start)[0], (*start)[1], (*start)[2]);
+  if (queue.empty())
+    throw GeometryError("operating region of '" + model.parts[axes.first].name + "' and '" +
+                        model.parts[axes.second].name + "': the parts certainly overlap at the seed configuration");
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    auto [c, i, j] = queue[head];
+    std::size_t ix = c / ny, iy = c % ny;
+    region.kept[c][(i / sub) * tiles + j / sub] = 1;
+    if (i > 0) push(c, i - 1, j);
+    if (i + 1 < grid) push(c, i + 1, j);
+    if (j > 0) push(c, i, j - 1);
+    if (j + 1 < grid) push(c, i, j + 1);
+    for (std::size_t other = 0; other < nx; ++other) {
+      const ChartAxis& a = layout.x_charts[ix];
+      const ChartAxis& b = layout.x_charts[other];
+      if (i + 1 == grid && glued(a, a.hi, b, b.lo)) push(chart_of(other, iy), 0, j);
+      if (i == 0 && glued(b, b.hi, a, a.lo)) push(chart_of(other, iy), grid - 1, j);
+    }
+    for (std::size_t other = 0; other < ny; ++other) {
+      const ChartAxis& a = layout.y_charts[iy];
+      const ChartAxis& b = layout.y_charts[other];
+      if (j + 1 == grid && glued(a, a.hi, b, b.lo)) push(chart_of(ix, other), i, 0);
+      if (j == 0 && glued(b, b.hi, a, a.lo)) push(chart_of(ix, other), i, grid - 1);
+    }
+  }
+  region.cells = queue.size();
+  return region;
+}
+
+// The sub-axis of tile k of `tiles` of a chart axis.
+cspace::ChartAxis tile_axis(const cspace::ChartAxis& axis, std::size_t k, std::size_t tiles) {
+  cspace::ChartAxis tile = axis;
+  Rational width = (axis.hi - axis.lo) / Rational(static_cast<long>(tiles));
+  width.canonicalize();
+  tile.lo = k == 0 ? axis.lo : axis.lo + width * Rational(static_cast<long>(k));
+  tile.hi = k + 1 == tiles ? axis.hi : axis.lo + width * Rational(static_cast<long>(k + 1));
+  tile.lo.canonicalize();
+  tile.hi.canonicalize();
+  return tile;
+}
+
 CSpace build_pair(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options) {
   using namespace cspace;
   PairAxes axes = pair_axes(model, first, second);
@@ -314,14 +449,47 @@ CSpace build_pair(const Model& model, std::size_t first, std::size_t second, con
   if (input.dimension == 1) y_charts = {ChartAxis{ChartAxis::Kind::translation, false, Rational(0), Rational(0)}};
   bool progress = options.progress && isatty(2);
   auto tester = std::make_shared<BlockedTester>(model, axes);
-  std::size_t total = layout.x_charts.size() * y_charts.size(), done = 0;
-  for (std::size_t ix = 0; ix < layout.x_charts.size(); ++ix)
-    for (std::size_t iy = 0; iy < y_charts.size(); ++iy) {
+  // the boxes to build: whole charts, or the tiles of the operating region
+  struct BoxToBuild {
+    std::size_t x_index, y_index;
+    ChartAxis x, y;
+  };
+  std::vector<BoxToBuild> boxes;
+  int cull_depth = 0;
+  if (options.operating_region && input.dimension == 2) {
+    if (!tester->usable())
+      throw GeometryError("operating region of '" + input.first_part + "' and '" + input.second_part +
+                          "': a part has no interior disks to certify blocked space");
+    auto region_start = Clock::now();
+    RegionTiles region = flood_region(model, axes, layout, *tester, options);
+    input.seconds_region = std::chrono::duration<double>(Clock::now() - region_start).count();
+    input.region_cells = region.cells;
+    input.complete = false;
+    std::size_t tiles = region.tiles;
+    for (std::size_t ix = 0; ix < layout.x_charts.size(); ++ix)
+      for (std::size_t iy = 0; iy < y_charts.size(); ++iy)
+        for (std::size_t tx = 0; tx < tiles; ++tx)
+          for (std::size_t ty = 0; ty < tiles; ++ty)
+            if (region.kept[ix * y_charts.size() + iy][tx * tiles + ty])
+              boxes.push_back({ix * tiles + tx, iy * tiles + ty, tile_axis(layout.x_charts[ix], tx, tiles),
+                               tile_axis(y_charts[iy], ty, tiles)});
+    // the culling quadtree keeps the resolution of a whole chart's
+    cull_depth = 3;
+    while ((std::size_t{1} << cull_depth) * tiles < 512 && cull_depth < 9) ++cull_depth;
+  } else {
+    for (std::size_t ix = 0; ix < layout.x_charts.size(); ++ix)
+      for (std::size_t iy = 0; iy < y_charts.size(); ++iy)
+        boxes.push_back({ix, iy, layout.x_charts[ix], y_charts[iy]});
+  }
+  std::size_t total = boxes.size(), done = 0;
+  for (const BoxToBuild& box : boxes) {
+    {
       ChartInput chart;
-      chart.x_index = ix;
-      chart.y_index = iy;
-      chart.x = layout.x_charts[ix];
-      chart.y = y_charts[iy];
+      chart.x_index = box.x_index;
+      chart.y_index = box.y_index;
+      chart.x = box.x;
+      chart.y = box.y;
+      chart.cull_depth = cull_depth;
       auto start = Clock::now();
       std::vector<ContactCurve> curves =
           generate_contact_curves(model, axes, chart.x, chart.y, &input.curve_statistics);
@@ -335,9 +503,10 @@ CSpace build_pair(const Model& model, std::size_t first, std::size_t second, con
           return tester->blocked(x, y, cx, cy);
         };
       input.charts.push_back(std::move(chart));
-      if (progress) std::cerr << "\rhipair: " << input.first_part << ":" << input.second_part << " curves for chart "
-                              << ++done << "/" << total << std::flush;
+      if (progress) std::cerr << "\rhipair: " << input.first_part << ":" << input.second_part << " curves for "
+                              << (input.complete ? "chart " : "tile ") << ++done << "/" << total << std::flush;
     }
+  }
   if (progress) std::cerr << "\rhipair: " << input.first_part << ":" << input.second_part << " building arrangements...\n";
   return build_cspace(std::move(input), options);
 }

@@ -72,6 +72,7 @@ const std::vector<CSpaceVertex>& CSpace::vertices() const { return implementatio
 const std::vector<CSpaceEdge>& CSpace::edges() const { return implementation(*this).edges; }
 const std::vector<CSpaceCell>& CSpace::cells() const { return implementation(*this).cells; }
 const CSpaceStatistics& CSpace::statistics() const { return implementation(*this).statistics; }
+bool CSpace::complete() const { return implementation(*this).complete; }
 
 std::optional<ChartPoint> CSpace::to_chart(const PartCoordinate& x_input, const PartCoordinate& y_input) const {
   const Impl& impl = implementation(*this);

@@ -120,12 +120,17 @@ class Painter {
   }
 
   void draw_2d(io::SvgWriter& svg) {
+    // an operating region: what was not built is hatched, free faces drawn white over it
+    if (!impl_.complete) {
+      svg.define_hatch("not-built", "#b0b0b0", 6);
+      svg.rectangle(0, 0, plot_size, plot_height_, io::SvgStyle{"url(#not-built)", "none"});
+    }
     // blocked (and touching) faces
     for (std::size_t c = 0; c < impl_.charts.size(); ++c) {
       const ChartData& chart = impl_.charts[c];
       for (std::size_t f = 0; f < chart.faces.size(); ++f) {
         int kind = chart.faces[f].kind;
-        if (kind != 1 && kind != 2) continue;
+        if (kind != 1 && kind != 2 && !(kind == 0 && !impl_.complete)) continue;
         const auto& face = chart.arrangement.faces[f];
         io::SvgPath path;
         for (std::size_t k = 0; k < face.component_starts.size(); ++k) {
@@ -148,7 +153,7 @@ class Painter {
           }
           if (!first) path.close();
         }
-        std::string colour = kind == 1 ? "#c8c8c8" : "#f4d35e";
+        std::string colour = kind == 1 ? "#c8c8c8" : kind == 2 ? "#f4d35e" : "white";
         io::SvgStyle style{colour, colour};   // stroked too, to hide seams between faces
         style.stroke_width = 0.35;
         style.fill_rule = "evenodd";
@@ -168,11 +173,13 @@ class Painter {
           style.stroke_width = 1.1;
           for (std::size_t k : edge.curves) title += (title.empty() ? "" : "; ") + impl_.feature_pairs[k].label;
         } else if (edge.role == EdgeRole::seam) {
+          if (!impl_.complete) continue;   // tiles of an operating region meet everywhere
           style.stroke = "#555555";
           style.dash = "3 2";
           style.stroke_width = 0.4;
         } else if (edge.role == EdgeRole::limit) {
-          style.stroke_width = 0.8;
+          style.stroke_width = impl_.complete ? 0.8 : 0.3;
+          if (!impl_.complete) style.stroke = "#707070";
         } else if (options_.show_spurious) {
           style.stroke = "#999999";
           style.stroke_width = 0.25;
@@ -275,6 +282,7 @@ class Painter {
     std::vector<io::SvgWriter::LegendEntry> entries;
     entries.push_back({io::SvgStyle{"#c8c8c8", "none"}, "blocked"});
     entries.push_back({io::SvgStyle{"white", "black"}, "free"});
+    if (!impl_.complete) entries.push_back({io::SvgStyle{"url(#not-built)", "#b0b0b0"}, "not built (outside the operating region)"});
     for (const auto& [pair, colour] : colours_) {
       io::SvgStyle swatch{"none", colour};
       swatch.stroke_width = 1.5;
