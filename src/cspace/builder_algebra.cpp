@@ -31,9 +31,10 @@ mpz_class homogeneous_value(const Polynomial& p, const mpz_class& n, const mpz_c
   if (p.empty()) return 0;
   mpz_class result = p.back();
   mpz_class d_power = 1;
-  for (int i = degree(p) - 1; i >= 0; --i) {
-    d_power *= d;
-    result = result * n + p[static_cast<std::size_t>(i)] * d_power;
+  for (int i = degree(p) - 1; i >= 0; --i) {   // in place: no temporaries
+    mpz_mul(d_power.get_mpz_t(), d_power.get_mpz_t(), d.get_mpz_t());
+    mpz_mul(result.get_mpz_t(), result.get_mpz_t(), n.get_mpz_t());
+    mpz_addmul(result.get_mpz_t(), p[static_cast<std::size_t>(i)].get_mpz_t(), d_power.get_mpz_t());
   }
   return result;
 }
@@ -253,7 +254,23 @@ void Real::refine() {
 }
 
 void Real::refine_to(const Rational& width) {
-  while (!exact && upper - lower > width) refine();
+  if (exact || upper - lower <= width) return;
+  // the bisection of refine(), with the sign at the lower end evaluated once: it never
+  // changes (lower only moves to midpoints of the same sign)
+  const int lower_sign = sign_at(polynomial, lower);
+  while (upper - lower > width) {
+    Rational middle = (lower + upper) / 2;
+    int s = sign_at(polynomial, middle);
+    if (s == 0) {
+      lower = upper = middle;
+      exact = true;
+      return;
+    }
+    if (s == lower_sign)
+      lower = std::move(middle);
+    else
+      upper = std::move(middle);
+  }
 }
 
 void Real::detect_rational() {
