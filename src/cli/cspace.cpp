@@ -33,7 +33,7 @@ struct CSpaceCommandOptions {
   std::vector<std::string> overrides;
   bool allow_out_of_tolerance = false;
   std::string region = "full";
-  unsigned tiles = 16;
+  unsigned tiles = 0;
 };
 
 using nlohmann::json;
@@ -297,7 +297,8 @@ void register_cspace(CLI::App& app, Action& action) {
                       "full: the whole C-space (default); operating: only the channel containing the initial "
                       "configuration, built tile by tile (gear pairs: linear in the tooth count)")
       ->check(CLI::IsMember({"full", "operating"}));
-  command->add_option("--tiles", options->tiles, "Operating region: tiles per chart axis")->check(CLI::Range(2u, 64u));
+  command->add_option("--tiles", options->tiles, "Operating region: tiles per chart axis (default: automatic)")
+      ->check(CLI::Range(0u, 64u));
   command->add_option("--set", options->overrides, "Override a parameter: NAME=VALUE (repeatable)");
   command->add_flag("--allow-out-of-tolerance", options->allow_out_of_tolerance,
                     "Accept --set values outside the parameter's tolerance range");

@@ -322,7 +322,15 @@ RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const
                          const BlockedTester& tester, const CSpaceBuildOptions& options) {
   using cspace::ChartAxis;
   RegionTiles region;
-  unsigned tiles = std::clamp(options.region_tiles, 2u, 64u);
+  unsigned tiles = options.region_tiles;
+  if (tiles == 0) {
+    std::size_t edges = 0;
+    for (std::size_t part : {axes.first, axes.second})
+      for (const Loop& loop : model.parts[part].loops) edges += loop.edges.size();
+    tiles = 4;
+    while (tiles < 64 && tiles * 8 < edges) tiles *= 2;
+  }
+  tiles = std::clamp(tiles, 2u, 64u);
   region.tiles = tiles;
   const std::size_t sub = std::max<std::size_t>(2, 512 / tiles);   // fine cells per tile side
   const std::size_t grid = tiles * sub;
@@ -482,6 +490,9 @@ CSpace build_pair(const Model& model, std::size_t first, std::size_t second, con
         boxes.push_back({ix, iy, layout.x_charts[ix], y_charts[iy]});
   }
   std::size_t total = boxes.size(), done = 0;
+  auto generator_start = Clock::now();
+  CurveGenerator generator(model, axes);
+  input.seconds_curves += std::chrono::duration<double>(Clock::now() - generator_start).count();
   for (const BoxToBuild& box : boxes) {
     {
       ChartInput chart;
@@ -491,8 +502,7 @@ CSpace build_pair(const Model& model, std::size_t first, std::size_t second, con
       chart.y = box.y;
       chart.cull_depth = cull_depth;
       auto start = Clock::now();
-      std::vector<ContactCurve> curves =
-          generate_contact_curves(model, axes, chart.x, chart.y, &input.curve_statistics);
+      std::vector<ContactCurve> curves = generator.generate(chart.x, chart.y, &input.curve_statistics);
       input.seconds_curves += std::chrono::duration<double>(Clock::now() - start).count();
       for (auto& curve : curves)
         if (!curve.polynomial.is_zero()) chart.curves.push_back(std::move(curve));

@@ -454,15 +454,13 @@ class BlockedSpaceCuller {
 
   // needed[k] set for the candidate pairs that survive.
   void run(const std::vector<std::pair<int, int>>& pairs, std::vector<char>& needed) {
-    std::vector<std::pair<int, int>> core_pairs;
-    for (int i = 0; i < static_cast<int>(cores_[0].size()); ++i)
-      for (int j = 0; j < static_cast<int>(cores_[1].size()); ++j) core_pairs.emplace_back(i, j);
     std::vector<int> indices(pairs.size());
     for (std::size_t k = 0; k < pairs.size(); ++k) indices[k] = static_cast<int>(k);
     Interval cx(x_.lo.get_d(), x_.hi.get_d());
     cx = Interval(Interval::enclose(x_.lo).lo, Interval::enclose(x_.hi).hi);
     Interval cy = dimension_ == 2 ? Interval(Interval::enclose(y_.lo).lo, Interval::enclose(y_.hi).hi)
                                   : Interval(0);
+    std::vector<std::pair<int, int>> core_pairs = near_core_pairs(cx, cy);
     pairs_ = &pairs;
     needed_ = &needed;
     visit(cx, cy, 0, indices, core_pairs);
@@ -478,6 +476,51 @@ class BlockedSpaceCuller {
     PoseBox b = first_moves ? pose_over(motion_[1], y_.half_turn, cy)
                             : pose_over(motion_[1], x_.half_turn, cx);
     return {a, b};
+  }
+
+  // Core pairs whose posed disks can overlap somewhere in the root cell: sweep and prune on
+  // the x extents of the posed cores grown by their radii (the pairs left out are apart over
+  // the whole cell, so they can neither certify it blocked nor be near in a sub-cell).
+  std::vector<std::pair<int, int>> near_core_pairs(const Interval& cx, const Interval& cy) const {
+    auto [pa, pb] = poses(cx, cy);
+    struct Extent {
+      double x_lo, x_hi, y_lo, y_hi;
+      int index;
+    };
+    std::array<std::vector<Extent>, 2> extents;
+    for (int side = 0; side < 2; ++side) {
+      const PoseBox& pose = side == 0 ? pa : pb;
+      for (std::size_t i = 0; i < cores_[side].size(); ++i) {
+        Interval u, v;
+        pose.apply(cores_[side][i].x, cores_[side][i].y, u, v);
+        double r = cores_[side][i].radius;
+        // grown outward by a relative margin far above double rounding
+        double margin = 1e-9 * (1 + std::fabs(u.lo) + std::fabs(u.hi) + std::fabs(v.lo) + std::fabs(v.hi) + r);
+        extents[side].push_back({u.lo - r - margin, u.hi + r + margin, v.lo - r - margin, v.hi + r + margin,
+                                 static_cast<int>(i)});
+      }
+      std::sort(extents[side].begin(), extents[side].end(),
+                [](const Extent& a, const Extent& b) { return a.x_lo < b.x_lo; });
+    }
+    std::vector<std::pair<int, int>> result;
+    // sweep over starts in x: a starting box meets the active boxes of the other list
+    std::array<std::vector<const Extent*>, 2> active;
+    std::size_t next[2] = {0, 0};
+    while (next[0] < extents[0].size() || next[1] < extents[1].size()) {
+      int side = next[1] >= extents[1].size() ||
+                         (next[0] < extents[0].size() && extents[0][next[0]].x_lo <= extents[1][next[1]].x_lo)
+                     ? 0
+                     : 1;
+      const Extent& box = extents[side][next[side]++];
+      auto& others = active[1 - side];
+      std::erase_if(others, [&](const Extent* e) { return e->x_hi < box.x_lo; });
+      for (const Extent* other : others)
+        if (!(other->y_hi < box.y_lo || other->y_lo > box.y_hi))
+          result.emplace_back(side == 0 ? box.index : other->index, side == 0 ? other->index : box.index);
+      active[side].push_back(&box);
+    }
+    std::sort(result.begin(), result.end());
+    return result;
   }
 
   // World boxes of one part's features and core centres over one interval of its axis,
@@ -776,12 +819,47 @@ std::vector<ContactCurve> generate_contact_curves(const Model& model, const Pair
                                                   const ChartAxis& x, const ChartAxis& y,
                                                   CurveStatistics* statistics,
                                                   const CurveOptions& options) {
+  return CurveGenerator(model, axes, options).generate(x, y, statistics);
+}
+
+struct CurveGenerator::Data {
+  const Model& model;
+  PairAxes axes;
+  CurveOptions options;
+  std::vector<BodyFeature> features_a, features_b;
+  std::size_t reflex_vertices_skipped = 0;
+  std::vector<BodyDisk> disks_a, disks_b;
+  std::vector<Core> cores_a, cores_b;
+};
+
+CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
+    : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}}) {
+  Data& d = *data_;
+  d.features_a = part_features(model, axes.first, &d.reflex_vertices_skipped);
+  d.features_b = part_features(model, axes.second, &d.reflex_vertices_skipped);
+  if (options.cull_blocked_space) {
+    for (const BodyFeature& f : d.features_a) d.disks_a.push_back(body_disk(f));
+    for (const BodyFeature& f : d.features_b) d.disks_b.push_back(body_disk(f));
+    d.cores_a = inscribed_disks(model.parts.at(axes.first));
+    d.cores_b = inscribed_disks(model.parts.at(axes.second));
+  }
+}
+
+CurveGenerator::~CurveGenerator() = default;
+
+std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const ChartAxis& y,
+                                                   CurveStatistics* statistics) const {
+  const Data& d = *data_;
+  const Model& model = d.model;
+  const PairAxes& axes = d.axes;
+  const CurveOptions& options = d.options;
   CurveStatistics local;
   CurveStatistics& stats = statistics ? *statistics : local;
   const Part& part_a = model.parts.at(axes.first);
   const Part& part_b = model.parts.at(axes.second);
-  std::vector<BodyFeature> features_a = part_features(model, axes.first, &stats.reflex_vertices_skipped);
-  std::vector<BodyFeature> features_b = part_features(model, axes.second, &stats.reflex_vertices_skipped);
+  const std::vector<BodyFeature>& features_a = d.features_a;
+  const std::vector<BodyFeature>& features_b = d.features_b;
+  stats.reflex_vertices_skipped += d.reflex_vertices_skipped;
 
   const ChartAxis& second_axis = axes.first_moves ? y : x;
   Culler culler(part_motion(part_a, axes.first_moves, x),
@@ -812,13 +890,9 @@ std::vector<ContactCurve> generate_contact_curves(const Model& model, const Pair
   }
   std::vector<char> needed(pairs.size(), options.cull_blocked_space ? 0 : 1);
   if (options.cull_blocked_space) {
-    std::vector<BodyDisk> disks_a, disks_b;
-    for (const BodyFeature& f : features_a) disks_a.push_back(body_disk(f));
-    for (const BodyFeature& f : features_b) disks_b.push_back(body_disk(f));
     BlockedSpaceCuller blocked(part_motion(part_a, axes.first_moves, x),
                                part_motion(part_b, axes.second_moves, second_axis), x, y,
-                               axes.dimension(), std::move(disks_a), std::move(disks_b),
-                               inscribed_disks(part_a), inscribed_disks(part_b));
+                               axes.dimension(), d.disks_a, d.disks_b, d.cores_a, d.cores_b);
     blocked.run(pairs, needed);
   }
 

@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <memory>
 #include <vector>
 
 namespace hipair::cspace {
@@ -167,6 +168,24 @@ std::vector<ContactCurve> generate_contact_curves(const Model& model, const Pair
                                                   const ChartAxis& x, const ChartAxis& y,
                                                   CurveStatistics* statistics,
                                                   const CurveOptions& options);
+
+/// Contact-curve generation for one pair with the per-part data (features, their bounding
+/// disks, the parts' inscribed disks) computed once and shared by every chart or tile:
+/// generate(x, y) equals generate_contact_curves(model, axes, x, y) curve for curve. The model
+/// must outlive the generator. generate() is const and may run on several threads.
+class CurveGenerator {
+ public:
+  CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options = {});
+  ~CurveGenerator();
+  CurveGenerator(const CurveGenerator&) = delete;
+  CurveGenerator& operator=(const CurveGenerator&) = delete;
+  std::vector<ContactCurve> generate(const ChartAxis& x, const ChartAxis& y,
+                                     CurveStatistics* statistics = nullptr) const;
+
+ private:
+  struct Data;
+  std::unique_ptr<Data> data_;
+};
 
 /// Exact relation of the two parts posed at chart point `q` of chart (x, y): the oracle.
 Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x,
