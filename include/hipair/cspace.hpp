@@ -302,10 +302,13 @@ class CSpace {
   /// Its integer coefficients: c[i][j] of x^i y^j.
   const std::vector<std::vector<mpz_class>>& edge_polynomial_coefficients(std::size_t edge) const;
 
-  /// The first point where the straight path from `from` to (to_x, to_y) in the same chart
-  /// enters contact space on a real edge (a contact edge, or a vertex of one). Exact: the path
-  /// parameter u in [0, 1] is isolated by rational bounds; crossings of spurious edges are
-  /// skipped; a path that starts in contact space reports u = 0.
+  /// The first point where the straight path from `from` to (to_x, to_y) (coordinates of
+  /// from's chart) enters contact space on a real edge (a contact edge, or a vertex of one).
+  /// Exact: the path parameter u in [0, 1] is isolated by rational bounds; crossings of
+  /// spurious edges are skipped; a path that starts in contact space reports u = 0. The path may
+  /// run through several boxes with the same coordinates (the tiles of an operating region,
+  /// the charts of a limited rotation); it may not cross to a chart with other coordinates
+  /// (split it at the chart side). \throws GeometryError when the path leaves the built space.
   Crossing first_crossing(const ChartPoint& from, const Rational& to_x, const Rational& to_y = 0) const;
 
  private:

@@ -1,5 +1,7 @@
 // hipair::CSpace: accessors and coordinate conversions of the adaptor (CGAL-free).
 #include <hipair/cspace.hpp>
+
+#include <algorithm>
 #include <hipair/error.hpp>
 
 #include "cspace/builder_impl.hpp"
@@ -146,11 +148,86 @@ const std::vector<std::vector<mpz_class>>& CSpace::edge_polynomial_coefficients(
   return impl.charts[c].arrangement.edges[e].support.coefficients;
 }
 
-Crossing CSpace::first_crossing(const ChartPoint& from, const Rational& to_x, const Rational& to_y) const {
-  Rational x = to_x, y = to_y;
+Crossing CSpace::first_crossing(const ChartPoint& from_input, const Rational& to_x, const Rational& to_y) const {
+  const Impl& impl = implementation(*this);
+  ChartPoint from = canonical(from_input);
+  Rational x = to_x, y = impl.dimension == 2 ? to_y : Rational(0);
   x.canonicalize();
   y.canonicalize();
-  return cspace::first_crossing_in_chart(implementation(*this), canonical(from), x, y);
+  if (from.chart >= impl.public_charts.size()) throw GeometryError("path: no chart " + std::to_string(from.chart));
+  const CSpaceChart& home = impl.public_charts[from.chart];
+  auto inside = [&](const CSpaceChart& c, const Rational& px, const Rational& py) {
+    return px >= c.x_lo && px <= c.x_hi && (impl.dimension == 1 || (py >= c.y_lo && py <= c.y_hi));
+  };
+  if (!inside(home, from.x, from.y)) throw GeometryError("path: the start is outside its chart's box");
+  if (inside(home, x, y)) return cspace::first_crossing_in_chart(impl, from, x, y);
+
+  // The segment leaves its box: continue through the other boxes with the same coordinates
+  // (the tiles of one chart in an operating region, the charts of a limited rotation), where
+  // the path is the same straight segment. Pieces [u0, u1] of the path, in order.
+  const Rational dx = x - from.x, dy = y - from.y;
+  auto same_system = [&](const CSpaceChart& c) {
+    bool x_same = c.x_kind == home.x_kind && (c.x_kind == AxisKind::translation || c.x_half_turn == home.x_half_turn);
+    bool y_same = impl.dimension == 1 ||
+                  (c.y_kind == home.y_kind && (c.y_kind == AxisKind::translation || c.y_half_turn == home.y_half_turn));
+    return x_same && y_same;
+  };
+  struct Piece {
+    Rational u0, u1;
+    std::size_t chart;
+  };
+  std::vector<Piece> pieces;
+  for (std::size_t c = 0; c < impl.public_charts.size(); ++c) {
+    const CSpaceChart& chart = impl.public_charts[c];
+    if (!same_system(chart)) continue;
+    Rational u0(0), u1(1);
+    bool empty = false;
+    auto clip = [&](const Rational& start, const Rational& delta, const Rational& lo, const Rational& hi) {
+      if (sgn(delta) == 0) {
+        if (start < lo || start > hi) empty = true;
+        return;
+      }
+      Rational a = (lo - start) / delta, b = (hi - start) / delta;
+      a.canonicalize();
+      b.canonicalize();
+      if (a > b) std::swap(a, b);
+      if (a > u0) u0 = a;
+      if (b < u1) u1 = b;
+    };
+    clip(from.x, dx, chart.x_lo, chart.x_hi);
+    if (impl.dimension == 2) clip(from.y, dy, chart.y_lo, chart.y_hi);
+    if (!empty && u0 < u1) pieces.push_back({u0, u1, c});
+  }
+  std::sort(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) { return a.u0 < b.u0; });
+  Rational covered(0);
+  for (const Piece& piece : pieces) {
+    if (piece.u1 <= covered) continue;
+    if (piece.u0 > covered)
+      throw GeometryError("path: the segment leaves the built space at parameter " + std::to_string(covered.get_d()) +
+                          " (split it at the chart side, or build the whole space)");
+    Rational start = covered, span = piece.u1 - start;
+    ChartPoint a{piece.chart, from.x + start * dx, from.y + start * dy};
+    a.x.canonicalize();
+    a.y.canonicalize();
+    Rational bx = from.x + piece.u1 * dx, by = from.y + piece.u1 * dy;
+    bx.canonicalize();
+    by.canonicalize();
+    Crossing crossing = cspace::first_crossing_in_chart(impl, a, bx, by);
+    if (crossing.found) {
+      // back to the whole path's parameter
+      crossing.parameter_lower = start + crossing.parameter_lower * span;
+      crossing.parameter_upper = start + crossing.parameter_upper * span;
+      crossing.parameter_lower.canonicalize();
+      crossing.parameter_upper.canonicalize();
+      return crossing;
+    }
+    covered = piece.u1;
+    if (covered >= 1) break;
+  }
+  if (covered < 1)
+    throw GeometryError("path: the segment leaves the built space at parameter " + std::to_string(covered.get_d()) +
+                        " (split it at the chart side, or build the whole space)");
+  return Crossing{};
 }
 
 }  // namespace hipair

@@ -150,5 +150,43 @@ TEST(CSpaceRegion, PointsOutsideTheRegionAreOutside) {
   EXPECT_TRUE(location.kind == Location::Kind::outside || location.kind == Location::Kind::blocked);
 }
 
+
+TEST(CSpaceRegion, FirstCrossingThroughTilesAgreesWithWholeBuild) {
+  Model model = read_model_file(example("geneva.json"));
+  CSpaceBuildOptions options;
+  options.operating_region = true;
+  options.region_tiles = 8;
+  CSpace region = CSpace::build(model, "driver", "wheel", options);
+  CSpace whole = CSpace::build(model, "driver", "wheel");
+  PartCoordinate zero{PartCoordinate::Kind::half_angle_tangent, Rational(0)};
+  // straight paths in the chart around (0, 0) from the initial configuration, through several
+  // tiles of the region build and inside one chart of the whole build
+  const Rational targets[][2] = {{Rational(9, 10), Rational(0)},
+                                 {Rational(-9, 10), Rational(0)},
+                                 {Rational(1, 10), Rational(1, 10)},
+                                 {Rational(9, 10), Rational(-1, 50)}};
+  int found = 0;
+  for (const auto& target : targets) {
+    ChartPoint a = *region.to_chart(zero, zero);
+    ChartPoint b = *whole.to_chart(zero, zero);
+    Crossing in_region = region.first_crossing(a, target[0], target[1]);
+    Crossing in_whole = whole.first_crossing(b, target[0], target[1]);
+    ASSERT_EQ(in_region.found, in_whole.found) << target[0] << ", " << target[1];
+    if (!in_whole.found) continue;
+    ++found;
+    // both isolate the same exact root: the intervals intersect
+    EXPECT_LE(in_region.parameter_lower, in_whole.parameter_upper);
+    EXPECT_LE(in_whole.parameter_lower, in_region.parameter_upper);
+    auto labels = [](const CSpace& space, const Crossing& c) {
+      std::set<std::string> out;
+      if (c.edge != no_index)
+        for (std::size_t k : space.edges()[c.edge].curves) out.insert(space.feature_pairs()[k].label);
+      return out;
+    };
+    EXPECT_EQ(labels(region, in_region), labels(whole, in_whole));
+  }
+  EXPECT_GT(found, 0);
+}
+
 }  // namespace
 }  // namespace hipair
