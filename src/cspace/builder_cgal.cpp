@@ -470,7 +470,7 @@ class Builder {
     for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
       vertex_id[&*v] = result_.vertices.size();
       Vertex out;
-      fill_vertex(v->point(), out);
+      fill_vertex(v, out);
       out.isolated = v->is_isolated();
       result_.vertices.push_back(std::move(out));
     }
@@ -552,7 +552,8 @@ class Builder {
 
   // The vertex's coordinates: x exact; y exact when x is rational (a root of the curve's
   // polynomial at that x), else isolated by CGAL's fiber interval, refined.
-  void fill_vertex(const Point& p, Vertex& out) {
+  void fill_vertex(Arrangement_2::Vertex_const_handle v, Vertex& out) {
+    const Point& p = v->point();
     out.x = to_real(p.x());
     out.y_curve = from_cgal(p.curve().polynomial_2());
     out.y_branch = p.arcno();
@@ -572,6 +573,13 @@ class Builder {
       out.y_upper = out.y.upper;
       return;
     }
+    {
+      static const bool debug = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
+      auto start = Clock::now();
+      bool done = !v->is_isolated() && certified_y_bounds(v, out);
+      if (debug) std::fprintf(stderr, "  own y bounds: %d %.6f s\n", int(done), seconds_since(start));
+      if (done) return;
+    }
     // CGAL's interval isolates y among the fiber's points but may be wide: refine it so that
     // edge boxes stay tight
     for (int i = 0; i < 64; ++i) {
@@ -581,6 +589,83 @@ class Builder {
     }
     out.y_lower = from_bound(p.xy().lower_bound_y());
     out.y_upper = from_bound(p.xy().upper_bound_y());
+  }
+
+  // Certified y bounds of a vertex with irrational x, without CGAL's fibre of the curve at an
+  // algebraic x (the costliest step of the export in a fresh process). With f = y_curve, X an
+  // isolating interval of x and B = X * [c, d]:
+  //  - f_y excludes 0 on B: f(x, .) has at most one root in [c, d] for each x in X;
+  //  - f(X, c) and f(X, d) exclude 0 with opposite signs: exactly one, never on the sides;
+  //  - an incident arc of f (same polynomial) reaches (x', y') with x' in X rational and
+  //    c < y' < d: between x' and the vertex the arc cannot leave the box without crossing
+  //    y = c or y = d, so the vertex's y lies in (c, d), the unique root of f(x, .) there.
+  // Returns false (the caller asks CGAL) when no attempt certifies.
+  bool certified_y_bounds(Arrangement_2::Vertex_const_handle v, Vertex& out) {
+    const IntegerPolynomial2& f = out.y_curve;
+    if (f.degree_y() < 1 || out.x.exact) return false;
+    const Polynomial_2& curve_polynomial = v->point().curve().polynomial_2();
+    auto h = v->incident_halfedges();
+    auto first = h;
+    const XCurve* arc = nullptr;
+    Arrangement_2::Halfedge_const_handle along;
+    do {
+      if (!h->curve().is_vertical() && h->curve().curve().polynomial_2() == curve_polynomial) {
+        arc = &h->curve();
+        along = h;
+        break;
+      }
+    } while (++h != first);
+    if (!arc) return false;
+    // h targets v: left to right means v is the arc's right (max) end
+    const bool v_is_right = along->direction() == CGAL::ARR_LEFT_TO_RIGHT;
+    const Algebraic_real_1& other_x = along->source()->point().x();
+    IntegerPolynomial2 f_y;
+    f_y.coefficients.assign(f.coefficients.size(), {});
+    for (std::size_t i = 0; i < f.coefficients.size(); ++i)
+      for (std::size_t j = 1; j < f.coefficients[i].size(); ++j) {
+        f_y.coefficients[i].resize(f.coefficients[i].size() - 1);
+        f_y.coefficients[i][j - 1] = f.coefficients[i][j] * static_cast<unsigned long>(j);
+      }
+    const algebra::IntervalPolynomial2 f_interval(f), f_y_interval(f_y);
+    algebra::Real x = out.x;   // a copy: the exported x keeps its interval
+    // One attempt: the failures are vertices where f_y vanishes (vertical tangents, crossings
+    // of f with itself), which finer boxes do not cure; retrying cost more than it saved.
+    constexpr int attempts = 1;
+    for (int attempt = 0; attempt < attempts; ++attempt) {
+      x.refine_to(Rational(1, mpz_class(1) << (24 + 12 * attempt)));
+      if (x.exact) return false;
+      const Rational& x_probe = v_is_right ? x.lower : x.upper;
+      Algebraic_real_1 probe = to_algebraic(x_probe);
+      if (v_is_right ? !(other_x < probe) : !(probe < other_x)) continue;   // beyond the arc
+      algebra::Polynomial fiber = algebra::substitute_x(f, x_probe);
+      if (algebra::degree(fiber) < 1) return false;
+      algebra::Real y = algebra::nth_real_root(fiber, arc->arcno(probe));
+      y.refine_to(Rational(1, mpz_class(1) << (24 + 6 * attempt)));
+      Rational scale = 1 + abs(y.lower);
+      // width about 2^-13 (1 + |y|), like the bounds CGAL's refinement gave (2^-12)
+      Rational margin = scale / Rational(mpz_class(1) << (14 + 6 * attempt));
+      // outward to dyadic bounds (small numbers for later exact work)
+      const mpz_class unit = mpz_class(1) << (18 + 6 * attempt);
+      Rational low = y.lower - margin, high = y.upper + margin;
+      mpz_class low_scaled, high_scaled;
+      mpz_class low_num = low.get_num() * unit, high_num = high.get_num() * unit;
+      mpz_fdiv_q(low_scaled.get_mpz_t(), low_num.get_mpz_t(), low.get_den_mpz_t());
+      mpz_cdiv_q(high_scaled.get_mpz_t(), high_num.get_mpz_t(), high.get_den_mpz_t());
+      Rational c(low_scaled, unit), d(high_scaled, unit);
+      c.canonicalize();
+      d.canonicalize();
+      algebra::Interval box_x{algebra::lower_double(x.lower), algebra::upper_double(x.upper)};
+      algebra::Interval box_y{algebra::lower_double(c), algebra::upper_double(d)};
+      if (f_y_interval.evaluate(box_x, box_y).contains_zero()) continue;
+      algebra::Interval at_c = f_interval.evaluate(box_x, algebra::enclose(c));
+      algebra::Interval at_d = f_interval.evaluate(box_x, algebra::enclose(d));
+      if (at_c.contains_zero() || at_d.contains_zero() || (at_c.lo > 0) == (at_d.lo > 0)) continue;
+      if (!(c < y.lower && y.upper < d)) continue;
+      out.y_lower = c;
+      out.y_upper = d;
+      return true;
+    }
+    return false;
   }
 
   // The ends of a vertical edge get disjoint y bounds.
