@@ -328,7 +328,7 @@ struct Sweep {
       if (std::find(event.before.begin(), event.before.end(), label) == event.before.end()) event.before.push_back(label);
     }
     event.position = a.parts[k].unwrapped;
-    event.description = (k == 0 ? "the driver cannot proceed: " : "the driver cannot proceed: " + event.part + " ") + reason;
+    event.description = (k == 0 ? "the driver cannot proceed: " : "the driver cannot proceed: " + event.part + ": ") + reason;
     result.events.push_back(event);
     result.jam = event;
     for (std::size_t j = 1; j < chain.parts.size(); ++j) close_piece(j, event.at, a.parts[j]);
@@ -386,6 +386,14 @@ struct Sweep {
                                       : "would have to jump: the contact pushes it at right angles to its motion (dead point or locking face)";
         std::vector<SliceContact> contacts = b.jammed ? b.jam_contacts : a.parts[jumping].contacts;
         if (!b.jammed) contacts.insert(contacts.end(), b.parts[jumping].contacts.begin(), b.parts[jumping].contacts.end());
+        if (b.jammed && part != none && part > 0) {
+          // just before the jam the part's free range is bounded by the contacts that close it
+          const PartState& last = a.parts[part];
+          if (last.lower.exists && last.upper.exists) {
+            contacts.insert(contacts.end(), last.lower.contacts.begin(), last.lower.contacts.end());
+            contacts.insert(contacts.end(), last.upper.contacts.begin(), last.upper.contacts.end());
+          }
+        }
         record_jam(segment, ta, tb, a, b, part, reason, contacts);
         left = std::move(a);
         return false;
@@ -600,17 +608,15 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
         ChainState next = sweep.step_to(current, point.segment, point.t);
         bool moved = next.jammed || compare(next.parts[k].position, origin_state.parts[k].position) != 0;
         if (moved) {
-          // bisect inside the chart of `point`
-          Rational ta = later.segment == point.segment ? later.t : sweep.segments[later.segment].from;
-          if (later.segment != point.segment) {
-            ta = sweep.segments[point.segment].to;
-          }
-          Rational tb = point.t;
+          // bisect inside the chart of `later` (a grid point at the end of a chart is the same
+          // configuration as the start of the next chart)
+          std::size_t chart_segment = later.segment;
+          Rational ta = later.t;
+          Rational tb = later.segment == point.segment ? point.t : sweep.segments[later.segment].from;
           ChainState a = current;
-          if (later.segment != point.segment) a = sweep.step_to(current, point.segment, ta);
           while (abs(tb - ta) > sweep.epsilon) {
             Rational tm = (ta + tb) / 2;
-            ChainState m = sweep.step_to(a, point.segment, tm);
+            ChainState m = sweep.step_to(a, chart_segment, tm, false);
             if (!m.jammed && compare(m.parts[k].position, origin_state.parts[k].position) == 0) {
               a = std::move(m);
               ta = tm;
@@ -618,8 +624,8 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
               tb = tm;
             }
           }
+          check.lost_motion = std::abs(sweep.unwrapped(chart_segment, ta) - check.driver);
           check.follower_moved = true;
-          check.lost_motion = std::abs(sweep.unwrapped(point.segment, ta) - check.driver);
           break;
         }
         current = std::move(next);

@@ -503,7 +503,7 @@ Outcome update_windowed(const Chain& chain, std::size_t k, const PartState& old,
                         double max_push = std::numeric_limits<double>::infinity()) {
   const AxisLine& line = chain.parts[k].line;
   double full = line.rotation ? 4.0 : Rational(line.pieces.front().hi - line.pieces.front().lo).get_d();
-  double width = initial ? full : line.rotation ? 0.35 : 0.1 * full;
+  double width = initial ? full : line.rotation ? 0.06 : 0.1 * full;
   for (;;) {
     AxisWindow window{old.position, width};
     bool windowed = width < full;
@@ -684,9 +684,10 @@ Rates rate_of(const Chain& chain, const ChainState& state, std::size_t k, const 
     result.ratio = std::numeric_limits<double>::quiet_NaN();
     return result;
   }
-  double pu = d.u.get_d(), pv = d.v.get_d(), puu = d.uu.get_d(), puv = d.uv.get_d(), pvv = d.vv.get_d();
-  double scale = std::max({std::abs(pu), std::abs(pv), 1e-300});
-  pu /= scale, pv /= scale, puu /= scale, puv /= scale, pvv /= scale;
+  // scale exactly before converting: the partials of gear contact polynomials overflow double
+  Rational scale = abs(d.u) > abs(d.v) ? Rational(abs(d.u)) : Rational(abs(d.v));
+  double pu = Rational(d.u / scale).get_d(), pv = Rational(d.v / scale).get_d();
+  double puu = Rational(d.uu / scale).get_d(), puv = Rational(d.uv / scale).get_d(), pvv = Rational(d.vv / scale).get_d();
   double first = -pu / pv;                                              // dv/du
   double second = -(puu + 2 * puv * first + pvv * first * first) / pv;  // d2v/du2
   double ud = u.get_d(), vd = v.get_d();

@@ -11,6 +11,8 @@
 #include <hipair/error.hpp>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <mutex>
 #include <cmath>
@@ -34,6 +36,8 @@ IntegerPolynomial2 transposed(const IntegerPolynomial2& polynomial) {
 }
 
 namespace {
+
+struct Stats { long slices=0, curves=0, isolations=0, roots=0, classify=0; ~Stats(){ if (std::getenv("HIPAIR_KIN_STATS")) std::fprintf(stderr, "slices %ld curves %ld isolations %ld roots %ld classify %ld\n", slices, curves, isolations, roots, classify);} } stats;
 
 constexpr int cull_cells = 64;       // sub-intervals of the other axis for curve culling
 constexpr int follower_cells = 32;   // sub-intervals of the follower axis
@@ -129,38 +133,45 @@ class KernelSlicer final : public PairSlicer {
     }
     std::size_t other_count = std::max<std::size_t>(1, other_charts_.size());
     pairs_.resize(other_count * follower_charts_.size());
-    std::map<FeatureKey, std::size_t> feature_index;
+    // the curves of a chart pair are generated when it is first sliced: a short driver range
+    // visits one or two of the four chart pairs of two rotations
+  }
+
+  // The chart pair (o, f), its curves generated and culled on first use. Features are numbered
+  // in the order they are met (labels are looked up by number; numbers never change).
+  const ChartPair& chart_pair(std::size_t o, std::size_t f) const {
+    std::lock_guard<std::mutex> lock(build_mutex_);
+    std::unique_ptr<ChartPair>& slot = pairs_.at(o * follower_charts_.size() + f);
+    if (slot) return *slot;
+    auto chart = std::make_unique<ChartPair>();
     ChartAxis dummy{ChartAxis::Kind::translation, false, Rational(0), Rational(0)};
-    for (std::size_t o = 0; o < other_count; ++o)
-      for (std::size_t f = 0; f < follower_charts_.size(); ++f) {
-        ChartPair& chart = pairs_[o * follower_charts_.size() + f];
-        const ChartAxis& other_axis = other_moves_ ? other_charts_[o] : dummy;
-        chart.x_axis = follower_is_x_ ? follower_charts_[f] : other_axis;
-        chart.y_axis = follower_is_x_ ? other_axis : follower_charts_[f];
-        std::vector<ContactCurve> curves =
-            cspace::generate_contact_curves(model, axes_, chart.x_axis, chart.y_axis);
-        for (ContactCurve& curve : curves) {
-          if (curve.polynomial.is_zero()) continue;
-          auto [it, added] = feature_index.try_emplace(key_of(curve), features_.size());
-          if (added) features_.push_back(ContactFeature{curve.label, public_kind(curve.type)});
-          OrientedCurve oriented;
-          oriented.feature = it->second;
-          oriented.polynomial = follower_is_x_ ? transposed(curve.polynomial) : std::move(curve.polynomial);
-          oriented.interval = ScaledIntervalPolynomial(oriented.polynomial);
-          for (const cspace::ValidityClause& clause : curve.validity) {
-            OrientedClause oriented_clause;
-            for (const IntegerPolynomial2& atom : clause.atoms)
-              oriented_clause.atoms.emplace_back(follower_is_x_ ? transposed(atom) : atom);
-            oriented.validity.push_back(std::move(oriented_clause));
-          }
-          chart.curves.push_back(std::move(oriented));
-        }
-        cull(chart, other_moves_ ? other_charts_[o] : dummy, follower_charts_[f], other_moves_);
+    const ChartAxis& other_axis = other_moves_ ? other_charts_[o] : dummy;
+    chart->x_axis = follower_is_x_ ? follower_charts_[f] : other_axis;
+    chart->y_axis = follower_is_x_ ? other_axis : follower_charts_[f];
+    std::vector<ContactCurve> curves = cspace::generate_contact_curves(model_, axes_, chart->x_axis, chart->y_axis);
+    for (ContactCurve& curve : curves) {
+      if (curve.polynomial.is_zero()) continue;
+      auto [it, added] = feature_index_.try_emplace(key_of(curve), features_.size());
+      if (added) features_.push_back(ContactFeature{curve.label, public_kind(curve.type)});
+      OrientedCurve oriented;
+      oriented.feature = it->second;
+      oriented.polynomial = follower_is_x_ ? transposed(curve.polynomial) : std::move(curve.polynomial);
+      oriented.interval = ScaledIntervalPolynomial(oriented.polynomial);
+      for (const cspace::ValidityClause& clause : curve.validity) {
+        OrientedClause oriented_clause;
+        for (const IntegerPolynomial2& atom : clause.atoms)
+          oriented_clause.atoms.emplace_back(follower_is_x_ ? transposed(atom) : atom);
+        oriented.validity.push_back(std::move(oriented_clause));
       }
-    for (ChartPair& chart : pairs_) {
-      chart.by_feature.assign(features_.size(), nullptr);
-      for (const OrientedCurve& curve : chart.curves) chart.by_feature[curve.feature] = &curve.polynomial;
+      chart->curves.push_back(std::move(oriented));
     }
+    cull(*chart, other_axis, follower_charts_[f], other_moves_);
+    for (const OrientedCurve& curve : chart->curves) {
+      if (chart->by_feature.size() <= curve.feature) chart->by_feature.resize(curve.feature + 1, nullptr);
+      chart->by_feature[curve.feature] = &curve.polynomial;
+    }
+    slot = std::move(chart);
+    return *slot;
   }
 
   ChartSlice slice(std::size_t other_chart, const Rational& value, std::size_t follower_chart,
@@ -176,7 +187,7 @@ class KernelSlicer final : public PairSlicer {
     std::size_t o = other_moves_ ? other_chart : 0;
     if (o >= std::max<std::size_t>(1, other_charts_.size()) || follower_chart >= follower_charts_.size())
       throw GeometryError("slice outside the charts of pair " + name_);
-    const ChartPair& chart = pairs_[o * follower_charts_.size() + follower_chart];
+    const ChartPair& chart = chart_pair(o, follower_chart);
     const ChartAxis& axis = follower_charts_[follower_chart];
     Rational range_lo = window ? std::max(window->lo, axis.lo) : axis.lo;
     Rational range_hi = window ? std::min(window->hi, axis.hi) : axis.hi;
@@ -202,6 +213,7 @@ class KernelSlicer final : public PairSlicer {
     }
     algebra::Interval value_box = algebra::enclose(value);
     std::vector<SlicePoint> points;
+    ++stats.slices; stats.curves += chart.curves.size();
     for (const OrientedCurve& curve : chart.curves) {
       std::uint32_t mask = 0;
       for (std::size_t c = cell_lo; c <= cell_hi; ++c) mask |= curve.cells[c];
@@ -229,9 +241,11 @@ class KernelSlicer final : public PairSlicer {
           algebra::trim(p);
           substituted = true;
           if (algebra::degree(p) <= 0) break;   // no root, or the whole line (a degenerate slice)
-          p = algebra::square_free_part(p);
+          // real_roots takes the square-free part itself
         }
+        ++stats.isolations;
         for (Real& root : algebra::real_roots(p, lo, hi)) {
+          ++stats.roots;
           if (!valid(curve, value_box, root)) continue;
           points.push_back(SlicePoint{std::move(root), {curve.feature}});
         }
@@ -269,6 +283,7 @@ class KernelSlicer final : public PairSlicer {
         q.x = value;
         q.y = sample;
       }
+      ++stats.classify;
       cspace::Overlap relation = cspace::classify_overlap(model_, axes_, chart.x_axis, chart.y_axis, q);
       result.kinds.push_back(relation == cspace::Overlap::apart       ? SliceKind::free
                              : relation == cspace::Overlap::overlapping ? SliceKind::blocked
@@ -284,33 +299,57 @@ class KernelSlicer final : public PairSlicer {
   const IntegerPolynomial2* polynomial(std::size_t other_chart, std::size_t follower_chart,
                                        std::size_t feature) const override {
     std::size_t o = other_moves_ ? other_chart : 0;
-    const ChartPair& chart = pairs_.at(o * follower_charts_.size() + follower_chart);
+    if (o >= std::max<std::size_t>(1, other_charts_.size()) || follower_chart >= follower_charts_.size()) return nullptr;
+    const ChartPair& chart = chart_pair(o, follower_chart);
     return feature < chart.by_feature.size() ? chart.by_feature[feature] : nullptr;
   }
 
  private:
   // Marks, for every cell of the other axis, the follower cells where each curve may vanish.
+  // Boxes of cells are tested coarse to fine: a box whose interval value excludes zero
+  // excludes it in every sub-box (conservative, like the cell-by-cell test, but cheaper).
   static void cull(ChartPair& chart, const ChartAxis& other_axis, const ChartAxis& follower_axis, bool other_moves) {
-    std::vector<algebra::Interval> follower_boxes(follower_cells);
-    for (int cell = 0; cell < follower_cells; ++cell) {
-      Rational lo = follower_axis.lo + (follower_axis.hi - follower_axis.lo) * cell / follower_cells;
-      Rational hi = follower_axis.lo + (follower_axis.hi - follower_axis.lo) * (cell + 1) / follower_cells;
-      follower_boxes[cell] = algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)};
+    // certified double bounds of the cell edges: a box from the lower bound of its first edge to
+    // the upper bound of its last encloses its cells
+    std::vector<double> follower_lows(follower_cells + 1), follower_highs(follower_cells + 1);
+    std::vector<double> other_lows(cull_cells + 1, 0.0), other_highs(cull_cells + 1, 0.0);
+    for (int cell = 0; cell <= follower_cells; ++cell) {
+      Rational at = follower_axis.lo + (follower_axis.hi - follower_axis.lo) * cell / follower_cells;
+      follower_lows[cell] = algebra::lower_double(at);
+      follower_highs[cell] = algebra::upper_double(at);
     }
+    if (other_moves)
+      for (int cell = 0; cell <= cull_cells; ++cell) {
+        Rational at = other_axis.lo + (other_axis.hi - other_axis.lo) * cell / cull_cells;
+        other_lows[cell] = algebra::lower_double(at);
+        other_highs[cell] = algebra::upper_double(at);
+      }
     int other_count = other_moves ? cull_cells : 1;
     for (OrientedCurve& curve : chart.curves) {
       curve.cells.assign(cull_cells, 0);
-      for (int cell = 0; cell < other_count; ++cell) {
-        algebra::Interval box{0, 0};
-        if (other_moves) {
-          Rational lo = other_axis.lo + (other_axis.hi - other_axis.lo) * cell / cull_cells;
-          Rational hi = other_axis.lo + (other_axis.hi - other_axis.lo) * (cell + 1) / cull_cells;
-          box = algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)};
+      // (other cells [o0, o1), follower cells [f0, f1))
+      struct Box { int o0, o1, f0, f1; };
+      std::vector<Box> stack{{0, other_count, 0, follower_cells}};
+      while (!stack.empty()) {
+        Box box = stack.back();
+        stack.pop_back();
+        algebra::Interval x{0, 0};
+        if (other_moves) x = algebra::Interval{other_lows[box.o0], other_highs[box.o1]};
+        algebra::Interval y{follower_lows[box.f0], follower_highs[box.f1]};
+        if (!curve.interval.evaluate(x, y).contains_zero()) continue;
+        if (box.o1 - box.o0 == 1 && box.f1 - box.f0 == 1) {
+          curve.cells[box.o0] |= std::uint32_t(1) << box.f0;
+          continue;
         }
-        std::uint32_t mask = 0;
-        for (int f = 0; f < follower_cells; ++f)
-          if (curve.interval.evaluate(box, follower_boxes[f]).contains_zero()) mask |= std::uint32_t(1) << f;
-        curve.cells[cell] = mask;
+        if (box.o1 - box.o0 >= box.f1 - box.f0) {
+          int middle = (box.o0 + box.o1) / 2;
+          stack.push_back({box.o0, middle, box.f0, box.f1});
+          stack.push_back({middle, box.o1, box.f0, box.f1});
+        } else {
+          int middle = (box.f0 + box.f1) / 2;
+          stack.push_back({box.o0, box.o1, box.f0, middle});
+          stack.push_back({box.o0, box.o1, middle, box.f1});
+        }
       }
       if (!other_moves)
         for (int cell = 1; cell < cull_cells; ++cell) curve.cells[cell] = curve.cells[0];
@@ -345,7 +384,9 @@ class KernelSlicer final : public PairSlicer {
   const Model& model_;
   cspace::PairAxes axes_;
   bool follower_is_x_ = true;
-  std::vector<ChartPair> pairs_;
+  mutable std::vector<std::unique_ptr<ChartPair>> pairs_;
+  mutable std::map<FeatureKey, std::size_t> feature_index_;
+  mutable std::mutex build_mutex_;
   mutable std::mutex cache_mutex_;
   mutable std::map<std::size_t, ChartSlice> fixed_cache_;
 };

@@ -88,7 +88,8 @@ class PairSlicer {
   std::size_t follower_ = 0, other_ = 0;
   bool other_moves_ = false;
   std::vector<ChartAxis> follower_charts_, other_charts_;
-  std::vector<ContactFeature> features_;
+  /// mutable: a slicer may number features as it meets them (numbers never change)
+  mutable std::vector<ContactFeature> features_;
 };
 
 /// Slicer on the pair's contact kernels and the exact overlap oracle.
