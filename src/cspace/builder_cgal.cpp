@@ -608,14 +608,17 @@ class Builder {
     auto first = h;
     const XCurve* arc = nullptr;
     Arrangement_2::Halfedge_const_handle along;
+    int on_left = 0, on_right = 0;   // arcs of f ending here from each side
     do {
       if (!h->curve().is_vertical() && h->curve().curve().polynomial_2() == curve_polynomial) {
         arc = &h->curve();
         along = h;
-        break;
+        ++(h->direction() == CGAL::ARR_LEFT_TO_RIGHT ? on_left : on_right);
       }
     } while (++h != first);
-    if (!arc) return false;
+    // Two arcs of f on one side: a turning point or a crossing of f, where f_y vanishes and the
+    // certificate below cannot succeed (and its exact work is the most expensive there).
+    if (!arc || on_left > 1 || on_right > 1) return false;
     // h targets v: left to right means v is the arc's right (max) end
     const bool v_is_right = along->direction() == CGAL::ARR_LEFT_TO_RIGHT;
     const Algebraic_real_1& other_x = along->source()->point().x();
