@@ -107,6 +107,7 @@ struct KinematicPiece {
   int side = 0;                          ///< contact on the lower (-1) or upper (+1) side of its play
   std::vector<ContactLabel> contacts;
   double start_position = 0, end_position = 0;   ///< follower coordinate (unwrapped, rad or mm)
+  double lowest_position = 0, highest_position = 0;   ///< range swept during the piece (grid samples and ends)
   bool moving = false;                   ///< drive (true) or dwell (false)
   std::string equation;                  ///< exact closed form P(driver_t, follower_t) = 0 of the contact
 };

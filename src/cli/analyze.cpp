@@ -133,6 +133,16 @@ int run_analyze(const AnalyzeOptions& options) {
   auto driver_index = model.find_part(driver_name);
   if (!driver_index) throw ModelError("", "--driver: no part named '" + driver_name + "'");
   bool rotates = model.parts[*driver_index].motion.kind == Motion::Kind::rotation;
+  std::string direction_note;
+  if (options.direction.empty() && options.range.empty()) {
+    // no direction given: the way the model's driving torque or force turns the driver
+    const Part& driver_part = model.parts[*driver_index];
+    if (driver_part.dynamics && driver_part.dynamics->torque && rotates && sgn(*driver_part.dynamics->torque) != 0) {
+      analysis.direction = sgn(*driver_part.dynamics->torque);
+      direction_note = std::string("direction: ") + (analysis.direction > 0 ? "counter-clockwise" : "clockwise") +
+                       ", as the model's driving torque turns " + driver_part.name + " (--direction to change)";
+    }
+  }
   if (!options.direction.empty()) {
     const std::string& d = options.direction;
     if (d == "ccw" || d == "+") analysis.direction = 1;
@@ -170,6 +180,7 @@ int run_analyze(const AnalyzeOptions& options) {
   }
   KinematicsResult result = analyze_kinematics(model, analysis, spaces);
   if (terminal) std::cerr << "\r              \r" << std::flush;
+  if (!direction_note.empty()) std::cout << "(" << direction_note << ")\n";
   std::cout << kinematics_text_report(result);
   if (options.out.empty()) {
     std::cout << "\n(use --out DIR to write report.json, kinematics.csv and the pictures)\n";
@@ -220,7 +231,7 @@ void register_analyze(CLI::App& app, Action& action) {
       "analyze", "Kinematic analysis: drive one part and report how the others move (contacts, dwell, play, jamming)");
   command->add_option("model", options->model, "model file (JSON, see docs/model-format.md)")->required();
   command->add_option("--driver", options->driver, "part to drive (default: the first moving part of the first pair)");
-  command->add_option("--direction", options->direction, "cw, ccw (rotation) or +, - (default ccw / +)");
+  command->add_option("--direction", options->direction, "cw, ccw (rotation) or +, - (default: the sense of the model's driving torque, else ccw / +)");
   auto* range = command->add_option("--range", options->range,
                                     "driver range A:B (angles in the model's unit or with a deg/rad suffix; mm)");
   command->add_option("--cycles", options->cycles, "full driver turns from the initial configuration (default 1)")

@@ -265,6 +265,8 @@ struct Sweep {
     double lowest = std::min({piece.lowest, last.unwrapped, out.start_position});
     double highest = std::max({piece.highest, last.unwrapped, out.start_position});
     out.moving = highest - lowest > 1e-12;
+    out.lowest_position = lowest;
+    out.highest_position = highest;
     for (const SliceContact& contact : piece.state.contacts) {
       if (contact.limit) continue;
       const PairSlicer& slicer = *chain.slicers[contact.slicer];
@@ -504,7 +506,9 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
     }
     result.paths.push_back(path);
   }
-  if (chain.parts.size() < 2) throw ModelError("/pairs", "part '" + driver_part.name + "' drives no other part");
+  if (chain.parts.size() < 2) throw ModelError("/pairs", "part '" + driver_part.name +
+                                                        "' drives no other part (its pairs are with fixed parts only; where a fixed "
+                                                        "part stops it is shown by 'hipair cspace' and 'hipair certify')");
 
   // the driver's travel
   const AxisLine& line = chain.parts[0].line;
@@ -593,6 +597,7 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
             std::abs(sweep.grid[best].state.driver_unwrapped - middle))
           best = g;
       if (best == 0) continue;
+      if (std::find(checks.begin(), checks.end(), std::make_pair(k, best)) != checks.end()) continue;
       checks.emplace_back(k, best);
     }
     for (auto [k, g] : checks) {

@@ -11,8 +11,6 @@
 #include <hipair/error.hpp>
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <map>
 #include <mutex>
 #include <cmath>
@@ -36,8 +34,6 @@ IntegerPolynomial2 transposed(const IntegerPolynomial2& polynomial) {
 }
 
 namespace {
-
-struct Stats { long slices=0, curves=0, isolations=0, roots=0, classify=0; ~Stats(){ if (std::getenv("HIPAIR_KIN_STATS")) std::fprintf(stderr, "slices %ld curves %ld isolations %ld roots %ld classify %ld\n", slices, curves, isolations, roots, classify);} } stats;
 
 constexpr int cull_cells = 64;       // sub-intervals of the other axis for curve culling
 constexpr int follower_cells = 32;   // sub-intervals of the follower axis
@@ -213,7 +209,6 @@ class KernelSlicer final : public PairSlicer {
     }
     algebra::Interval value_box = algebra::enclose(value);
     std::vector<SlicePoint> points;
-    ++stats.slices; stats.curves += chart.curves.size();
     for (const OrientedCurve& curve : chart.curves) {
       std::uint32_t mask = 0;
       for (std::size_t c = cell_lo; c <= cell_hi; ++c) mask |= curve.cells[c];
@@ -243,9 +238,7 @@ class KernelSlicer final : public PairSlicer {
           if (algebra::degree(p) <= 0) break;   // no root, or the whole line (a degenerate slice)
           // real_roots takes the square-free part itself
         }
-        ++stats.isolations;
         for (Real& root : algebra::real_roots(p, lo, hi)) {
-          ++stats.roots;
           if (!valid(curve, value_box, root)) continue;
           points.push_back(SlicePoint{std::move(root), {curve.feature}});
         }
@@ -283,7 +276,6 @@ class KernelSlicer final : public PairSlicer {
         q.x = value;
         q.y = sample;
       }
-      ++stats.classify;
       cspace::Overlap relation = cspace::classify_overlap(model_, axes_, chart.x_axis, chart.y_axis, q);
       result.kinds.push_back(relation == cspace::Overlap::apart       ? SliceKind::free
                              : relation == cspace::Overlap::overlapping ? SliceKind::blocked

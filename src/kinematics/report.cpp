@@ -102,13 +102,25 @@ std::string kinematics_text_report(const KinematicsResult& result) {
     int drives = 0, dwells = 0;
     double drive_travel = 0;
     bool last_moving = false, first = true;
+    const KinematicPiece* previous = nullptr;
     for (const KinematicPiece& piece : result.pieces) {
       if (piece.part != name) continue;
+      if (previous && std::abs(piece.start_position - previous->end_position) > 1e-9)
+        out << "  snap   at " << quantity(piece.start.value(), rot) << ": " << name << " jumps "
+            << quantity(previous->end_position, frot) << " -> " << quantity(piece.start_position, frot)
+            << " through free space (released by " << join(previous->contacts) << ")\n";
+      previous = &piece;
       std::string range = quantity(piece.start.value(), rot) + " .. " + quantity(piece.end.value(), rot);
       if (piece.moving) {
         out << "  drive  " << range << ": " << name << " moves " << quantity(piece.start_position, frot) << " -> "
             << quantity(piece.end_position, frot) << " (" << (piece.end_position >= piece.start_position ? "+" : "")
-            << quantity(piece.end_position - piece.start_position, frot) << "), pushed by " << join(piece.contacts) << "\n";
+            << quantity(piece.end_position - piece.start_position, frot) << ")";
+        // a piece that goes out and comes back (a cam's rise and return) shows its full sweep
+        if (piece.highest_position - piece.lowest_position >
+            std::abs(piece.end_position - piece.start_position) + 1e-9)
+          out << ", sweeping " << quantity(piece.lowest_position, frot) << " .. " << quantity(piece.highest_position, frot);
+        out << (result.loads[f].kind == FollowerLoad::Kind::none ? ", pushed by " : ", held by its load against ")
+            << join(piece.contacts) << "\n";
         if (first || !last_moving) ++drives;
         drive_travel += std::abs(piece.end.value() - piece.start.value());
       } else {
@@ -141,6 +153,9 @@ std::string kinematics_text_report(const KinematicsResult& result) {
       if (play.part == name) {
         if (play.minimum == 0 && play.maximum == 0 && play.unbounded)
           out << "  Play: " << name << " is never held on both sides.\n";
+        else if (!play.unbounded && play.maximum - play.minimum < 1e-9)
+          out << "  Play (backlash, the free motion " << name << " has with the driver held): " << quantity(play.minimum, frot)
+              << " all along.\n";
         else
           out << "  Play (backlash, the free motion " << name << " has with the driver held): from " << quantity(play.minimum, frot)
               << " (at driver " << quantity(play.at_minimum, rot) << ") to " << quantity(play.maximum, frot) << " (at driver "
@@ -172,7 +187,12 @@ std::string kinematics_text_report(const KinematicsResult& result) {
   for (const ContactUse& use : result.contacts)
     if (use.unintended) unintended.push_back(&use);
   out << "\nUnintended contacts: " << (unintended.empty() ? "none" : "") << "\n";
-  for (const ContactUse* use : unintended) out << "  " << use->contact.label << ": " << use->reason << "\n";
+  // repeated teeth repeat the same finding: show the first few, count the rest
+  const std::size_t shown = 6;
+  for (std::size_t u = 0; u < unintended.size() && u < shown; ++u)
+    out << "  " << unintended[u]->contact.label << ": " << unintended[u]->reason << "\n";
+  if (unintended.size() > shown)
+    out << "  ... and " << unintended.size() - shown << " more (report.json lists them all; --expect LABEL marks intended ones)\n";
 
   out << "\nBlocking: ";
   if (result.jam) {
@@ -238,6 +258,8 @@ std::string kinematics_json_report(const KinematicsResult& result) {
                           {"end", location(piece.end)},
                           {"start_position", display(piece.start_position, frot)},
                           {"end_position", display(piece.end_position, frot)},
+                          {"lowest_position", display(piece.lowest_position, frot)},
+                          {"highest_position", display(piece.highest_position, frot)},
                           {"contacts", contacts(piece.contacts)},
                           {"closed_form", piece.equation}});
   }

@@ -158,7 +158,7 @@ std::string kinematics_plot_svg(const KinematicsResult& result, double pixel_wid
       }
     }
   }
-  svg.text(width / 2, total - 22, "Kinematics of " + result.model_name + " (driver " + result.driver + ")", 15, "middle", "black", "bold");
+  svg.text(width / 2, total - 22, "Kinematics of " + result.model_name + ", driven by " + result.driver, 15, "middle", "black", "bold");
   return svg.str();
 }
 
