@@ -237,8 +237,8 @@ struct CSpaceBuildOptions {
   /// curves on the whole torus but O(z1 + z2) along one channel. 2-D spaces only (a 1-D space
   /// is always built whole).
   bool operating_region = false;
-  /// Tiles per chart axis in operating-region mode (2 to 64); 0: automatic, about one per 8
-  /// boundary edges of the pair's two parts (4 to 64), so that a tile spans about a tooth.
+  /// Tiles per chart axis in operating-region mode (2 to 128); 0: automatic, about one per 8
+  /// boundary edges of the pair's two parts (4 to 128), so that a tile spans about a tooth.
   unsigned region_tiles = 0;
   /// Seed of the operating region: coordinates of the x and y parts (rad or mm). Empty: the
   /// model's initial configuration. It only selects the channel, so double is enough.

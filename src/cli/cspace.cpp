@@ -298,7 +298,7 @@ void register_cspace(CLI::App& app, Action& action) {
                       "configuration, built tile by tile (gear pairs: linear in the tooth count)")
       ->check(CLI::IsMember({"full", "operating"}));
   command->add_option("--tiles", options->tiles, "Operating region: tiles per chart axis (default: automatic)")
-      ->check(CLI::Range(0u, 64u));
+      ->check(CLI::Range(0u, 128u));
   command->add_option("--set", options->overrides, "Override a parameter: NAME=VALUE (repeatable)");
   command->add_flag("--allow-out-of-tolerance", options->allow_out_of_tolerance,
                     "Accept --set values outside the parameter's tolerance range");

@@ -328,11 +328,11 @@ RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const
     for (std::size_t part : {axes.first, axes.second})
       for (const Loop& loop : model.parts[part].loops) edges += loop.edges.size();
     tiles = 4;
-    while (tiles < 64 && tiles * 8 < edges) tiles *= 2;
+    while (tiles < 128 && tiles * 8 < edges) tiles *= 2;
   }
-  tiles = std::clamp(tiles, 2u, 64u);
+  tiles = std::clamp(tiles, 2u, 128u);
   region.tiles = tiles;
-  const std::size_t sub = std::max<std::size_t>(2, 512 / tiles);   // fine cells per tile side
+  const std::size_t sub = std::max<std::size_t>(4, 512 / tiles);   // fine cells per tile side
   const std::size_t grid = tiles * sub;
   const std::size_t nx = layout.x_charts.size(), ny = layout.y_charts.size();
   auto chart_of = [&](std::size_t ix, std::size_t iy) { return ix * ny + iy; };

@@ -12,6 +12,7 @@
 #include <mpfr.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -184,6 +185,12 @@ class Culler {
   }
 
   SweptFeature describe(const BodyFeature& feature, int side) const {
+    return travel(describe_static(feature), side);
+  }
+
+  /// The part of describe() that does not depend on the chart box (radial and normal ranges,
+  /// the feature's static box).
+  SweptFeature describe_static(const BodyFeature& feature) const {
     SweptFeature swept;
     for (int k = 0; k < 2; ++k) {
       if (motion_[k].kind == MotionKind::rotation)
@@ -193,6 +200,11 @@ class Culler {
     }
     swept.box_x = projection_range(feature, Point{Rational(1), Rational(0)});
     swept.box_y = projection_range(feature, Point{Rational(0), Rational(1)});
+    return swept;
+  }
+
+  /// Adds a translating part's travel over the chart box to a static description.
+  SweptFeature travel(SweptFeature swept, int side) const {
     const PartMotion& own = motion_[side];
     if (own.kind == MotionKind::translation) {
       Rational x1 = own.lo * own.direction.x;
@@ -807,6 +819,92 @@ const char* contact_word(ContactType type) {
 
 }  // namespace
 
+// ============================================================================ broad phase
+
+namespace {
+
+// World box of a feature swept over a chart box (double, grown by a generous margin: it only
+// skips pairs that cannot touch).
+struct SweptBox {
+  double x_lo, x_hi, y_lo, y_hi;
+  int index;
+};
+
+SweptBox swept_box(const SweptFeature& swept, int side, const Part& part, bool moves, const ChartAxis& axis,
+                   int index) {
+  SweptBox box{swept.box_x.lo, swept.box_x.hi, swept.box_y.lo, swept.box_y.hi, index};
+  constexpr double pi = 3.14159265358979323846;
+  if (moves && part.motion.kind == Motion::Kind::rotation) {
+    double px = part.motion.pivot.x.get_d(), py = part.motion.pivot.y.get_d();
+    double r0 = std::max(0.0, swept.radial[side].lo), r1 = swept.radial[side].hi;
+    double margin = 1e-7 * (1 + std::fabs(px) + std::fabs(py) + r1);
+    // polar angles of the static box about the pivot (full turn if the box holds the pivot)
+    bool full = px >= box.x_lo - margin && px <= box.x_hi + margin && py >= box.y_lo - margin &&
+                py <= box.y_hi + margin;
+    double a0 = 0, a1 = 2 * pi;
+    if (!full) {
+      double centre = std::atan2(0.5 * (box.y_lo + box.y_hi) - py, 0.5 * (box.x_lo + box.x_hi) - px);
+      double low = 0, high = 0;
+      for (double cx : {box.x_lo, box.x_hi})
+        for (double cy : {box.y_lo, box.y_hi}) {
+          double d = std::remainder(std::atan2(cy - py, cx - px) - centre, 2 * pi);
+          low = std::min(low, d);
+          high = std::max(high, d);
+        }
+      double c = axis.half_turn ? pi : 0.0;
+      double t0 = c + 2 * std::atan(axis.lo.get_d()), t1 = c + 2 * std::atan(axis.hi.get_d());
+      a0 = centre + low + t0 - 1e-9;
+      a1 = centre + high + t1 + 1e-9;
+      if (a1 - a0 >= 2 * pi) full = true;
+    }
+    if (full) return {px - r1 - margin, px + r1 + margin, py - r1 - margin, py + r1 + margin, index};
+    double x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
+    auto add = [&](double r, double a) {
+      double x = px + r * std::cos(a), y = py + r * std::sin(a);
+      x_lo = std::min(x_lo, x);
+      x_hi = std::max(x_hi, x);
+      y_lo = std::min(y_lo, y);
+      y_hi = std::max(y_hi, y);
+    };
+    for (double r : {r0, r1})
+      for (double a : {a0, a1}) add(r, a);
+    // extreme points of the outer circle inside the angle range
+    for (double k = std::ceil(a0 / (0.5 * pi)); k * 0.5 * pi <= a1; k += 1) add(r1, k * 0.5 * pi);
+    return {x_lo - margin, x_hi + margin, y_lo - margin, y_hi + margin, index};
+  }
+  double margin = 1e-9 * (1 + std::fabs(box.x_lo) + std::fabs(box.x_hi) + std::fabs(box.y_lo) + std::fabs(box.y_hi));
+  box.x_lo -= margin;
+  box.x_hi += margin;
+  box.y_lo -= margin;
+  box.y_hi += margin;
+  return box;
+}
+
+// Pairs (index in a, index in b) whose boxes meet, ascending.
+std::vector<std::pair<int, int>> meeting_boxes(std::vector<SweptBox> a, std::vector<SweptBox> b) {
+  auto by_start = [](const SweptBox& p, const SweptBox& q) { return p.x_lo < q.x_lo; };
+  std::sort(a.begin(), a.end(), by_start);
+  std::sort(b.begin(), b.end(), by_start);
+  std::vector<std::pair<int, int>> result;
+  std::array<const std::vector<SweptBox>*, 2> lists{&a, &b};
+  std::array<std::vector<const SweptBox*>, 2> active;
+  std::size_t next[2] = {0, 0};
+  while (next[0] < a.size() || next[1] < b.size()) {
+    int side = next[1] >= b.size() || (next[0] < a.size() && a[next[0]].x_lo <= b[next[1]].x_lo) ? 0 : 1;
+    const SweptBox& box = (*lists[static_cast<std::size_t>(side)])[next[side]++];
+    auto& others = active[static_cast<std::size_t>(1 - side)];
+    std::erase_if(others, [&](const SweptBox* e) { return e->x_hi < box.x_lo; });
+    for (const SweptBox* other : others)
+      if (!(other->y_hi < box.y_lo || other->y_lo > box.y_hi))
+        result.emplace_back(side == 0 ? box.index : other->index, side == 0 ? other->index : box.index);
+    active[static_cast<std::size_t>(side)].push_back(&box);
+  }
+  std::sort(result.begin(), result.end());
+  return result;
+}
+
+}  // namespace
+
 // ============================================================================ curves
 
 std::vector<ContactCurve> generate_contact_curves(const Model& model, const PairAxes& axes,
@@ -830,13 +928,23 @@ struct CurveGenerator::Data {
   std::size_t reflex_vertices_skipped = 0;
   std::vector<BodyDisk> disks_a, disks_b;
   std::vector<Core> cores_a, cores_b;
+  std::vector<SweptFeature> static_a, static_b;   // Culler::describe_static, chart independent
 };
 
 CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
-    : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}}) {
+    : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}}) {
   Data& d = *data_;
   d.features_a = part_features(model, axes.first, &d.reflex_vertices_skipped);
   d.features_b = part_features(model, axes.second, &d.reflex_vertices_skipped);
+  {
+    // the pivots and directions of the motions do not depend on the chart
+    ChartAxis any;
+    any.kind = ChartAxis::Kind::translation;
+    Culler culler(part_motion(model.parts.at(axes.first), axes.first_moves, any),
+                  part_motion(model.parts.at(axes.second), axes.second_moves, any));
+    for (const BodyFeature& f : d.features_a) d.static_a.push_back(culler.describe_static(f));
+    for (const BodyFeature& f : d.features_b) d.static_b.push_back(culler.describe_static(f));
+  }
   if (options.cull_blocked_space) {
     for (const BodyFeature& f : d.features_a) d.disks_a.push_back(body_disk(f));
     for (const BodyFeature& f : d.features_b) d.disks_b.push_back(body_disk(f));
@@ -868,25 +976,33 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
   std::vector<SweptFeature> swept_b;
   swept_a.reserve(features_a.size());
   swept_b.reserve(features_b.size());
-  for (const BodyFeature& f : features_a) swept_a.push_back(culler.describe(f, 0));
-  for (const BodyFeature& f : features_b) swept_b.push_back(culler.describe(f, 1));
+  for (const SweptFeature& f : d.static_a) swept_a.push_back(culler.travel(f, 0));
+  for (const SweptFeature& f : d.static_b) swept_b.push_back(culler.travel(f, 1));
 
   auto constant = [](const Rational& value) { return Polynomial(value); };
   PairPoses<Polynomial> poses = pair_poses(model, axes, x, y, Polynomial::variable(0),
                                            Polynomial::variable(1), constant);
 
-  // Swept-region culling, then blocked-space culling over the chart.
+  // Broad phase: world boxes of the features swept over the chart box (a rotation over the
+  // box's angle range, not the whole turn), pairs whose boxes meet by a sweep in x; then the
+  // swept-region culling, then blocked-space culling over the chart.
+  std::vector<SweptBox> boxes_a, boxes_b;
+  boxes_a.reserve(features_a.size());
+  boxes_b.reserve(features_b.size());
+  for (std::size_t i = 0; i < features_a.size(); ++i)
+    boxes_a.push_back(swept_box(swept_a[i], 0, part_a, axes.first_moves, x, static_cast<int>(i)));
+  for (std::size_t j = 0; j < features_b.size(); ++j)
+    boxes_b.push_back(swept_box(swept_b[j], 1, part_b, axes.second_moves, second_axis, static_cast<int>(j)));
   std::vector<std::pair<int, int>> pairs;
-  for (std::size_t i = 0; i < features_a.size(); ++i) {
-    for (std::size_t j = 0; j < features_b.size(); ++j) {
-      if (!has_contact(features_a[i], features_b[j])) continue;
-      ++stats.feature_pairs_considered;
-      if (culler.never_touch(swept_a[i], swept_b[j])) {
-        ++stats.feature_pairs_culled;
-        continue;
-      }
-      pairs.emplace_back(static_cast<int>(i), static_cast<int>(j));
+  for (auto [i, j] : meeting_boxes(boxes_a, boxes_b)) {
+    auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+    if (!has_contact(features_a[ui], features_b[uj])) continue;
+    ++stats.feature_pairs_considered;
+    if (culler.never_touch(swept_a[ui], swept_b[uj])) {
+      ++stats.feature_pairs_culled;
+      continue;
     }
+    pairs.emplace_back(i, j);
   }
   std::vector<char> needed(pairs.size(), options.cull_blocked_space ? 0 : 1);
   if (options.cull_blocked_space) {
