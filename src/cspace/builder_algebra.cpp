@@ -273,6 +273,58 @@ void Real::refine_to(const Rational& width) {
   }
 }
 
+void refine_dyadically(Real& r, const Rational& width) {
+  if (r.exact || r.upper - r.lower <= width) return;
+  const int lower_sign = sign_at(r.polynomial, r.lower);
+  // inward dyadic ends a / 2^k >= lower and b / 2^k <= upper, 2^-k <= (upper - lower) / 4
+  Rational gap = (r.upper - r.lower) / 4;
+  unsigned long k = 0;
+  while (Rational(1, mpz_class(1) << k) > gap) ++k;
+  mpz_class scale = mpz_class(1) << k;
+  mpz_class a, b;
+  mpz_class scaled_lower = r.lower.get_num() * scale, scaled_upper = r.upper.get_num() * scale;
+  mpz_cdiv_q(a.get_mpz_t(), scaled_lower.get_mpz_t(), r.lower.get_den_mpz_t());
+  mpz_fdiv_q(b.get_mpz_t(), scaled_upper.get_mpz_t(), r.upper.get_den_mpz_t());
+  auto sign = [&](const mpz_class& numerator, const mpz_class& denominator) {
+    return sgn(homogeneous_value(r.polynomial, numerator, denominator));
+  };
+  auto settle_exact = [&](const mpz_class& numerator, const mpz_class& denominator) {
+    Rational root(numerator, denominator);
+    root.canonicalize();
+    r.lower = r.upper = root;
+    r.exact = true;
+  };
+  int sign_a = sign(a, scale), sign_b = sign(b, scale);
+  if (sign_a == 0) return settle_exact(a, scale);
+  if (sign_b == 0) return settle_exact(b, scale);
+  if (sign_a != lower_sign || sign_b == lower_sign) {   // the root is outside [a, b] / 2^k
+    r.refine_to(width);
+    return;
+  }
+  // invariant: the root is in (a / 2^k, b / 2^k), p(a / 2^k) has the sign lower_sign
+  const mpz_class& width_num = width.get_num();
+  const mpz_class& width_den = width.get_den();
+  mpz_class middle, difference;
+  for (;;) {
+    difference = b - a;
+    if (difference * width_den <= width_num * scale) break;
+    middle = a + b;
+    a <<= 1;
+    b <<= 1;
+    scale <<= 1;
+    int s = sign(middle, scale);
+    if (s == 0) return settle_exact(middle, scale);
+    if (s == lower_sign)
+      a = middle;
+    else
+      b = middle;
+  }
+  r.lower = Rational(a, scale);
+  r.upper = Rational(b, scale);
+  r.lower.canonicalize();
+  r.upper.canonicalize();
+}
+
 void Real::detect_rational() {
   if (exact) return;
   // a root p/q with q^2 < 1/(2 width) is the only rational of denominator <= q in the interval
@@ -611,6 +663,23 @@ bool vanishes_at(const Polynomial& p, const Real& u) {
 int sign_at(const Polynomial& p, const Real& u) {
   if (p.empty()) return 0;
   if (u.exact) return sign_at(p, u.lower);
+  {
+    // Filter: p over the isolating interval in certified double intervals, refined a little
+    // when inconclusive; the exact path below (gcd, Sturm) only when p may vanish near u.
+    std::vector<Interval> coefficients;
+    coefficients.reserve(p.size());
+    for (const auto& c : p) coefficients.push_back(enclose(c));
+    Real v = u;
+    for (int round = 0; round < 3; ++round) {
+      if (v.exact) return sign_at(p, v.lower);
+      Interval x{lower_double(v.lower), upper_double(v.upper)};
+      Interval value{0, 0};
+      for (auto c = coefficients.rbegin(); c != coefficients.rend(); ++c) value = value * x + *c;
+      if (value.lo > 0) return 1;   // (NaN from overflow fails both tests)
+      if (value.hi < 0) return -1;
+      for (int k = 0; k < 4 && !v.exact; ++k) v.refine();
+    }
+  }
   if (vanishes_at(p, u)) return 0;
   Polynomial q = square_free_part(p);
   SturmSequence sturm(q);

@@ -100,6 +100,10 @@ Real nth_real_root(const Polynomial& p, int index);
 /// The index-th (0-based, ascending, counted over the whole real line) distinct real root of
 /// p, known to lie in the open interval (lo, hi). \throws NumericError if it does not.
 Real nth_real_root_in(const Polynomial& p, int index, const Rational& lo, const Rational& hi);
+/// Refines r's isolating interval to width <= `width` by bisection on dyadic rationals
+/// (integer arithmetic, no rational canonicalisation): the same number, but not the same
+/// interval as Real::refine_to (use it where the interval is private).
+void refine_dyadically(Real& r, const Rational& width);
 /// Bound B with every real root in (-B, B).
 Rational root_bound(const Polynomial& p);
 

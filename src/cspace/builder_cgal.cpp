@@ -635,7 +635,7 @@ class Builder {
     // of f with itself), which finer boxes do not cure; retrying cost more than it saved.
     constexpr int attempts = 1;
     for (int attempt = 0; attempt < attempts; ++attempt) {
-      x.refine_to(Rational(1, mpz_class(1) << (24 + 12 * attempt)));
+      algebra::refine_dyadically(x, Rational(1, mpz_class(1) << (24 + 12 * attempt)));
       if (x.exact) return false;
       const Rational& x_probe = v_is_right ? x.lower : x.upper;
       Algebraic_real_1 probe = to_algebraic(x_probe);
@@ -643,7 +643,7 @@ class Builder {
       algebra::Polynomial fiber = algebra::substitute_x(f, x_probe);
       if (algebra::degree(fiber) < 1) return false;
       algebra::Real y = algebra::nth_real_root(fiber, arc->arcno(probe));
-      y.refine_to(Rational(1, mpz_class(1) << (24 + 6 * attempt)));
+      algebra::refine_dyadically(y, Rational(1, mpz_class(1) << (24 + 6 * attempt)));
       Rational scale = 1 + abs(y.lower);
       // width about 2^-13 (1 + |y|), like the bounds CGAL's refinement gave (2^-12)
       Rational margin = scale / Rational(mpz_class(1) << (14 + 6 * attempt));
