@@ -577,6 +577,7 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
     }
   }
   result.reached = state.driver_unwrapped;
+  if (options.progress) options.progress(1.0);
   if (!blocked) {
     const Segment& last = sweep.segments.back();
     DriverLocation end = sweep.locate(sweep.segments.size() - 1, last.to, last.to);

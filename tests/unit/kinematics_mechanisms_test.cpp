@@ -195,7 +195,7 @@ TEST(KinematicsMechanisms, GearBacklashGrowsWithCentreDistance) {
   double previous = 0;
   for (const char* distance : {"29.9", "30", "30.3"}) {
     Model model = read_model(gear_model(distance));
-    KinematicsOptions options = options_for("pinion");
+    KinematicsOptions options = options_for("pinion", 1, 60);   // play sampled every 6 deg
     options.range = std::make_pair(Rational(0), Rational(pi / pinion_teeth * 2));   // one pinion tooth pitch
     options.reversal = false;
     KinematicsResult result = analyze_kinematics(model, options);
