@@ -561,7 +561,7 @@ class Builder {
       algebra::Polynomial fiber = algebra::substitute_x(out.y_curve, out.x.lower);
       if (algebra::degree(fiber) >= 1) {
         out.y = algebra::nth_real_root(fiber, out.y_branch);
-        out.y.refine_to(Rational(1, mpz_class(1) << 64));
+        algebra::refine_dyadically(out.y, Rational(1, mpz_class(1) << 64));   // same number, no rational gcds
         out.y_exact = true;
         out.y_lower = out.y.lower;
         out.y_upper = out.y.upper;
