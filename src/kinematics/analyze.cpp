@@ -378,17 +378,25 @@ struct Sweep {
         right = step_to(left, segment, t_right);
         continue;
       }
-      // a discontinuous push is a jam: the follower would have to jump through blocked space
+      // a discontinuous push is a jam: the follower would have to jump through blocked space.
+      // Parts are updated in chain order, so a part before the one that jammed in `b` may
+      // already have been moved by such a jump; that jump, not what it did downstream (e.g. a
+      // balance squeezed by a fork the jump moved), is what stops the driver.
+      std::size_t upstream = b.jammed && b.jam_part != none ? b.jam_part : chain.parts.size();
       std::size_t jumping = none;
-      for (std::size_t k = 1; k < chain.parts.size() && !b.jammed; ++k)
+      for (std::size_t k = 1; k < upstream && k < b.parts.size() && jumping == none; ++k)
         if (b.parts[k].pushed && std::abs(b.parts[k].unwrapped - a.parts[k].unwrapped) > 1e-7) jumping = k;
       if (b.jammed || jumping != none) {
-        std::size_t part = b.jammed ? b.jam_part : jumping;
-        std::string reason = b.jammed ? b.jam_reason
-                                      : "would have to jump: the contact pushes it at right angles to its motion (dead point or locking face)";
-        std::vector<SliceContact> contacts = b.jammed ? b.jam_contacts : a.parts[jumping].contacts;
-        if (!b.jammed) contacts.insert(contacts.end(), b.parts[jumping].contacts.begin(), b.parts[jumping].contacts.end());
-        if (b.jammed && part != none && part > 0) {
+        bool jump = jumping != none;
+        std::size_t part = jump ? jumping : b.jam_part;
+        std::string reason = jump ? "would have to jump: the contact pushes it at right angles to its motion (dead point or locking face)"
+                                  : b.jam_reason;
+        std::vector<SliceContact> contacts = jump ? a.parts[jumping].contacts : b.jam_contacts;
+        if (jump) {
+          contacts.insert(contacts.end(), b.parts[jumping].blocked_by.begin(), b.parts[jumping].blocked_by.end());
+          contacts.insert(contacts.end(), b.parts[jumping].contacts.begin(), b.parts[jumping].contacts.end());
+        }
+        if (!jump && part != none && part > 0) {
           // just before the jam the part's free range is bounded by the contacts that close it
           const PartState& last = a.parts[part];
           if (last.lower.exists && last.upper.exists) {

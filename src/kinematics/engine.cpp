@@ -302,6 +302,7 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
   const AxisLine& line = chain.parts[k].line;
   const AxisPosition& y = old.position;
   PartState& out = next.parts[k];
+  out.blocked_by.clear();
   Placement placement = place(line, slice, y);
   std::size_t n = slice.points.size();
   std::size_t interval = 0;
@@ -430,6 +431,9 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
     }
     pushed = true;
     out.push_distance = std::abs(moved);
+    out.blocked_by = blocked_low.contacts;
+    out.blocked_by.insert(out.blocked_by.end(), blocked_high.contacts.begin(), blocked_high.contacts.end());
+    sort_contacts(out.blocked_by);
   }
   Bound low = lower_end(line, slice, interval), high = upper_end(line, slice, interval);
   if (has_window_edge(low.contacts) || has_window_edge(high.contacts)) return Outcome::widen;

@@ -52,6 +52,7 @@ struct PartState {
   SliceKind kind = SliceKind::free;
   bool pushed = false;                    ///< the previous position became blocked: it was pushed
   double push_distance = 0;
+  std::vector<SliceContact> blocked_by;   ///< when pushed out of blocked space: the contacts bounding it
 };
 
 /// State of the whole chain.
