@@ -183,6 +183,52 @@ std::string chart_variable_note(const AxisLine& line) {
   return line.rotation ? "tan of half the angle from the chart centre" : "offset in mm";
 }
 
+// The contacts of the wall of blocked C-space that chain part k ran into between the driver's
+// chart values ta and tb (exact): with the part held at its position in `before`, the
+// driver's own slice of each pair of the part with the driver has its breakpoints there.
+std::vector<ContactLabel> wall_contacts(const Chain& chain, const ChainState& before, std::size_t k,
+                                        std::size_t driver_piece, const Rational& ta, const Rational& tb) {
+  std::vector<ContactLabel> labels;
+  const Model& model = *chain.model;
+  const AxisLine& driver_line = chain.parts[0].line;
+  const AxisLine& line = chain.parts[k].line;
+  const PartState& part = before.parts[k];
+  Rational lo = std::min(ta, tb), hi = std::max(ta, tb);
+  for (std::size_t s : chain.parts[k].constraints) {
+    const PairSlicer& constraint = *chain.slicers[s];
+    if (!constraint.other_moves() || constraint.other() != chain.parts[0].part) continue;
+    std::size_t pair = none;
+    for (std::size_t p = 0; p < model.pairs.size(); ++p) {
+      const PairSpec& spec = model.pairs[p];
+      if ((spec.first == constraint.follower() && spec.second == constraint.other()) ||
+          (spec.second == constraint.follower() && spec.first == constraint.other()))
+        pair = p;
+    }
+    if (pair == none) continue;
+    std::unique_ptr<PairSlicer> slicer;
+    try {
+      slicer = make_kernel_slicer(model, pair, chain.parts[0].part);
+    } catch (const GeometryError&) {
+      continue;
+    }
+    std::size_t part_chart = none, driver_chart = none;
+    for (std::size_t c = 0; c < slicer->other_charts().size() && part_chart == none; ++c)
+      if (line.piece_of(slicer->other_charts()[c]) == part.position.piece) part_chart = c;
+    for (std::size_t c = 0; c < slicer->follower_charts().size() && driver_chart == none; ++c)
+      if (driver_line.piece_of(slicer->follower_charts()[c]) == driver_piece) driver_chart = c;
+    if (part_chart == none || driver_chart == none) continue;
+    ChartSlice slice = slicer->slice(part_chart, rational_near(part.position.value), driver_chart);
+    for (const SlicePoint& point : slice.points) {
+      if (point.value.compare(lo) < 0 || point.value.compare(hi) > 0) continue;
+      for (std::size_t f : point.features) {
+        ContactLabel label{constraint.name(), slicer->features()[f].label, slicer->features()[f].kind, false};
+        if (std::find(labels.begin(), labels.end(), label) == labels.end()) labels.push_back(label);
+      }
+    }
+  }
+  return labels;
+}
+
 struct Sweep {
   const Chain& chain;
   const KinematicsOptions& options;
@@ -405,6 +451,16 @@ struct Sweep {
           }
         }
         record_jam(segment, ta, tb, a, b, part, reason, contacts);
+        if (jump) {
+          // name the wall itself (e.g. a locking face), ahead of the ends of the blocked range
+          std::vector<ContactLabel> wall = wall_contacts(chain, a, jumping, segments[segment].piece, ta, tb);
+          for (KinematicEvent* event : {&result.events.back(), &*result.jam}) {
+            std::vector<ContactLabel> named = wall;
+            for (const ContactLabel& label : event->before)
+              if (std::find(named.begin(), named.end(), label) == named.end()) named.push_back(label);
+            event->before = std::move(named);
+          }
+        }
         left = std::move(a);
         return false;
       }
