@@ -201,8 +201,14 @@ struct PoseRange {
 class BlockedTester {
  public:
   BlockedTester(const Model& model, const cspace::PairAxes& axes) : model_(model), axes_(axes) {
-    disks_[0] = inscribed_disks(model.parts[axes.first], 150);
-    disks_[1] = inscribed_disks(model.parts[axes.second], 150);
+    // enough disks that every tooth of a many-toothed part gets some (the operating region's
+    // flood must see blocked space between neighbouring channels)
+    for (int k = 0; k < 2; ++k) {
+      const Part& part = model.parts[k == 0 ? axes.first : axes.second];
+      std::size_t edges = 0;
+      for (const Loop& loop : part.loops) edges += loop.edges.size();
+      disks_[k] = inscribed_disks(part, std::max<std::size_t>(150, 2 * edges));
+    }
     for (int k = 0; k < 2; ++k) {
       const Motion& motion = model.parts[k == 0 ? axes.first : axes.second].motion;
       for (auto& d : disks_[k]) d.rho = std::hypot(d.x - motion.pivot.x.get_d(), d.y - motion.pivot.y.get_d());
@@ -484,7 +490,16 @@ CSpace build_pair(const Model& model, std::size_t first, std::size_t second, con
     // the culling quadtree keeps the resolution of a whole chart's
     cull_depth = 3;
     while ((std::size_t{1} << cull_depth) * tiles < 512 && cull_depth < 9) ++cull_depth;
-  } else {
+    // a region that is most of a finely tiled space (free space that is not a narrow channel)
+    // is built whole: thousands of tiles would only add seams and repeated curve analyses
+    std::size_t all_tiles = layout.x_charts.size() * y_charts.size() * tiles * tiles;
+    if (tiles >= 32 && 2 * boxes.size() > all_tiles) {
+      boxes.clear();
+      input.complete = true;
+      cull_depth = 0;
+    }
+  }
+  if (boxes.empty()) {
     for (std::size_t ix = 0; ix < layout.x_charts.size(); ++ix)
       for (std::size_t iy = 0; iy < y_charts.size(); ++iy)
         boxes.push_back({ix, iy, layout.x_charts[ix], y_charts[iy]});
