@@ -81,7 +81,9 @@ std::vector<CertifiedFinding> certify_kinematic_findings(const Model& model, con
       if (finding.certificate) break;
     }
     if (!finding.certificate && finding.note.empty())
-      finding.note = "no single pair traps the motion near the jam (a jam through several parts is not certified)";
+      finding.note = "no pair geometrically traps the motion near the jam: the stop comes from the quasi-static "
+                     "model (a contact that cannot turn the part, or a jam through several parts), which a "
+                     "trap certificate does not express";
     findings.push_back(std::move(finding));
   }
   return findings;
