@@ -188,5 +188,62 @@ TEST(CSpaceRegion, FirstCrossingThroughTilesAgreesWithWholeBuild) {
   EXPECT_GT(found, 0);
 }
 
+TEST(CSpaceRegion, GearChannelIsOneFreeCellAroundTheTorus) {
+  // 6 x 6 teeth: the whole torus holds 36 tooth encounters, the channel the gears run in six
+  ReadOptions read;
+  read.parameter_values["teeth-1"] = Rational(6);
+  read.parameter_values["teeth-2"] = Rational(6);
+  read.allow_out_of_tolerance = true;
+  Model model = read_model_file(example("spur-gears.json"), read);
+  CSpaceBuildOptions options;
+  options.operating_region = true;
+  CSpace region = CSpace::build(model, "pinion", "gear", options);
+  ASSERT_FALSE(region.complete());
+  PartCoordinate zero{PartCoordinate::Kind::half_angle_tangent, Rational(0)};
+  Location start = region.locate(zero, zero);
+  ASSERT_NE(start.cell, no_index);
+  const CSpaceCell& channel = region.cells()[start.cell];
+  EXPECT_EQ(channel.kind, CellKind::free);
+  // equal gears: one pinion turn is one gear turn, the channel closes around both axes
+  EXPECT_TRUE(channel.wraps_x);
+  EXPECT_TRUE(channel.wraps_y);
+  ASSERT_FALSE(channel.boundary.empty());
+  for (std::size_t e : channel.boundary) {
+    const CSpaceEdge& edge = region.edges()[e];
+    if (edge.role != EdgeRole::contact) continue;
+    for (std::size_t k : edge.curves)
+      EXPECT_NE(region.feature_pairs()[k].label.find("tooth"), std::string::npos) << region.feature_pairs()[k].label;
+  }
+  // exact point location inside the tiles against the oracle
+  cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part("pinion"), *model.find_part("gear"));
+  std::mt19937_64 random(23);
+  int free = 0, blocked = 0;
+  for (int i = 0; i < 400; ++i) {
+    std::size_t t = random() % region.charts().size();
+    const CSpaceChart& chart = region.charts()[t];
+    auto pick = [&](const Rational& lo, const Rational& hi) {
+      Rational u(mpz_class(static_cast<unsigned long>(random() % 1000003)), 1000003);
+      u.canonicalize();
+      Rational v = lo + u * (hi - lo);
+      v.canonicalize();
+      return v;
+    };
+    ChartPoint q{t, pick(chart.x_lo, chart.x_hi), pick(chart.y_lo, chart.y_hi)};
+    Location location = region.locate(q);
+    cspace::Overlap overlap = cspace::classify_overlap(
+        model, axes, axis_of(chart.x_kind, chart.x_half_turn, chart.x_lo, chart.x_hi),
+        axis_of(chart.y_kind, chart.y_half_turn, chart.y_lo, chart.y_hi), cspace::ChartPoint{q.x, q.y});
+    if (location.kind == Location::Kind::free) {
+      EXPECT_EQ(overlap, cspace::Overlap::apart) << "tile " << t << " at " << q.x << ", " << q.y;
+      ++free;
+    } else if (location.kind == Location::Kind::blocked) {
+      EXPECT_EQ(overlap, cspace::Overlap::overlapping) << "tile " << t << " at " << q.x << ", " << q.y;
+      ++blocked;
+    }
+  }
+  EXPECT_GT(free, 0);
+  EXPECT_GT(blocked, 0);
+}
+
 }  // namespace
 }  // namespace hipair
