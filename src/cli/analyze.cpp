@@ -4,6 +4,7 @@
 #include "cli/commands.hpp"
 
 #include "io/atomic_file.hpp"
+#include "render/cspace_svg.hpp"
 #include "render/kinematics_svg.hpp"
 
 #include <hipair/certificate.hpp>
@@ -18,6 +19,7 @@
 #include <iostream>
 #include <memory>
 #include <numbers>
+#include <optional>
 
 namespace hipair::cli {
 namespace {
@@ -97,6 +99,27 @@ std::string file_name_part(const std::string& text) {
   std::string out;
   for (char c : text) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_') ? c : '-';
   return out;
+}
+
+// The exact C-space to draw a pair's path on: a whole space the analysis was given, or one
+// built now when the pair is small (a few hundred boundary edges build in about a second);
+// nullopt: draw the sampled picture instead.
+std::optional<CSpace> exact_space_for_picture(const Model& model, const PairPath& path, const std::vector<CSpace>& spaces) {
+  for (const CSpace& space : spaces)
+    if (space.complete() && space.dimension() == 2 && space.x_part() == path.x_part && space.y_part() == path.y_part)
+      return space;
+  auto x = model.find_part(path.x_part), y = model.find_part(path.y_part);
+  if (!x || !y) return std::nullopt;
+  std::size_t edges = 0;
+  for (std::size_t part : {*x, *y})
+    for (const Loop& loop : model.parts[part].loops) edges += loop.edges.size();
+  if (edges > 120) return std::nullopt;
+  try {
+    CSpace space = CSpace::build(model, path.x_part, path.y_part);
+    if (space.dimension() == 2 && space.x_part() == path.x_part && space.y_part() == path.y_part) return space;
+  } catch (const GeometryError&) {
+  }
+  return std::nullopt;
 }
 
 int run_analyze(const AnalyzeOptions& options) {
@@ -199,9 +222,18 @@ int run_analyze(const AnalyzeOptions& options) {
     for (const PairPath& path : result.paths) {
       if (path.y_part.empty()) continue;
       if (terminal) std::cerr << "\ranalyze: drawing the C-space of " << path.pair << "..." << std::flush;
-      CSpaceRaster raster = sample_cspace(model, path.x_part, path.y_part, options.columns);
       std::string name = "cspace-" + file_name_part(path.x_part) + "-" + file_name_part(path.y_part) + ".svg";
-      io::write_file_atomically(directory / name, render::cspace_path_svg(raster, path));
+      if (std::optional<CSpace> exact = exact_space_for_picture(model, path, spaces)) {
+        // the exact arrangement (as `hipair cspace` draws it) with the path over it
+        render::CSpaceSvgOptions picture;
+        for (const PathPoint& point : path.points) picture.path.push_back({point.x, point.y, point.contact});
+        if (!path.points.empty()) picture.marks.push_back({path.points.front().x, path.points.front().y, "start"});
+        picture.title = "exact C-space of " + path.pair + " with the motion path";
+        io::write_file_atomically(directory / name, render::cspace_svg(*exact, picture));
+      } else {
+        CSpaceRaster raster = sample_cspace(model, path.x_part, path.y_part, options.columns);
+        io::write_file_atomically(directory / name, render::cspace_path_svg(raster, path));
+      }
       written.push_back(name);
       if (terminal) std::cerr << "\r" << std::string(60, ' ') << "\r" << std::flush;
     }

@@ -75,6 +75,7 @@ class Painter {
     else
       draw_1d(svg);
     draw_axes(svg);
+    draw_path(svg);
     draw_marks(svg);
     draw_legend(svg);
     if (!options_.title.empty()) svg.text(plot_size / 2, height + 25, options_.title, 9);
@@ -261,6 +262,53 @@ class Painter {
     }
   }
 
+  // Part coordinates to display coordinates, angles brought into the plotted window.
+  std::pair<double, double> display_of(double px, double py) const {
+    bool x_rotates = impl_.charts.front().x_axis.kind == ChartAxis::Kind::rotation;
+    bool y_rotates = impl_.dimension == 2 && impl_.charts.front().y_axis.kind == ChartAxis::Kind::rotation;
+    double x = x_rotates ? px * 180 / std::numbers::pi : px;
+    double y = impl_.dimension == 2 ? (y_rotates ? py * 180 / std::numbers::pi : py) : 0;
+    if (x_rotates) x = x_range_.lo + std::fmod(std::fmod(x - x_range_.lo, 360.0) + 360.0, 360.0);
+    if (y_rotates) y = y_range_.lo + std::fmod(std::fmod(y - y_range_.lo, 360.0) + 360.0, 360.0);
+    return {x, y};
+  }
+
+  void draw_path(io::SvgWriter& svg) {
+    const auto& path = options_.path;
+    if (path.size() < 2) return;
+    auto style_of = [](bool contact) {
+      io::SvgStyle style{"none", contact ? "#d62728" : "#1f4e9c"};
+      style.stroke_width = 1.4;
+      return style;
+    };
+    io::SvgPath polyline;
+    bool open = false, contact = path.front().contact;
+    std::pair<double, double> previous{};
+    auto flush = [&] {
+      if (open) svg.path(polyline, style_of(contact));
+      polyline = io::SvgPath();
+      open = false;
+    };
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      auto point = display_of(path[i].x, path[i].y);
+      double wx = X(point.first), wy = impl_.dimension == 2 ? Y(point.second) : plot_height_ / 2;
+      bool wraps = open && (std::fabs(point.first - previous.first) > 180 || std::fabs(point.second - previous.second) > 180);
+      if (open && (wraps || path[i].contact != contact)) {
+        if (!wraps) polyline.line_to(wx, wy);   // the segment ends where the contact changes
+        flush();
+      }
+      if (!open) {
+        polyline.move_to(wx, wy);
+        open = true;
+        contact = path[i].contact;
+      } else {
+        polyline.line_to(wx, wy);
+      }
+      previous = point;
+    }
+    flush();
+  }
+
   void draw_marks(io::SvgWriter& svg) {
     for (const auto& mark : options_.marks) {
       double x = impl_.charts.front().x_axis.kind == ChartAxis::Kind::rotation ? mark.x * 180 / std::numbers::pi : mark.x;
@@ -283,6 +331,12 @@ class Painter {
     entries.push_back({io::SvgStyle{"#c8c8c8", "none"}, "blocked"});
     entries.push_back({io::SvgStyle{"white", "black"}, "free"});
     if (!impl_.complete) entries.push_back({io::SvgStyle{"url(#not-built)", "#b0b0b0"}, "not built (outside the operating region)"});
+    if (options_.path.size() >= 2) {
+      io::SvgStyle free{"none", "#1f4e9c"}, contact{"none", "#d62728"};
+      free.stroke_width = contact.stroke_width = 1.5;
+      entries.push_back({free, "motion path, parts apart"});
+      entries.push_back({contact, "motion path, in contact"});
+    }
     for (const auto& [pair, colour] : colours_) {
       io::SvgStyle swatch{"none", colour};
       swatch.stroke_width = 1.5;

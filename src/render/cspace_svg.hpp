@@ -18,9 +18,19 @@ struct CSpaceMark {
   std::string label;
 };
 
+/// A point of a motion path in part coordinates (rad or mm), and whether the parts touch.
+struct CSpacePathPoint {
+  double x = 0;
+  double y = 0;
+  bool contact = false;
+};
+
 struct CSpaceSvgOptions {
   double pixel_width = 1100;
   std::vector<CSpaceMark> marks;
+  /// A motion path drawn over the space (Figures 2 and 6b): blue where the parts are apart,
+  /// red in contact; wrapped into the plotted window.
+  std::vector<CSpacePathPoint> path;
   bool show_spurious = false;     ///< also draw spurious edges (thin, grey)
   std::string title;
 };
