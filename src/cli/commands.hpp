@@ -4,7 +4,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <hipair/model.hpp>
+
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace hipair::cli {
 
@@ -15,5 +19,9 @@ void register_show(CLI::App& app, Action& action);
 void register_analyze(CLI::App& app, Action& action);
 void register_certify(CLI::App& app, Action& action);
 void register_cspace(CLI::App& app, Action& action);
+
+/// Reader options from `--set NAME=VALUE` assignments (exact literals in mm or rad) and
+/// `--allow-out-of-tolerance`. \throws ModelError naming the bad assignment.
+ReadOptions parameter_overrides(const std::vector<std::string>& assignments, bool allow_out_of_tolerance);
 
 }  // namespace hipair::cli

@@ -223,19 +223,7 @@ std::filesystem::path suffixed(const std::string& path, const CSpace& space, boo
 }
 
 int run(const CSpaceCommandOptions& options) {
-  ReadOptions read;
-  read.allow_out_of_tolerance = options.allow_out_of_tolerance;
-  for (const std::string& assignment : options.overrides) {
-    auto equals = assignment.find('=');
-    if (equals == std::string::npos || equals == 0)
-      throw ModelError("", "--set expects NAME=VALUE, got '" + assignment + "'");
-    try {
-      read.parameter_values[assignment.substr(0, equals)] = parse_rational(assignment.substr(equals + 1));
-    } catch (const NumericError& error) {
-      throw ModelError("", "--set " + assignment + ": " + error.what() + " (values are exact literals in mm or rad)");
-    }
-  }
-  Model model = read_model_file(options.model, read);
+  Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
   CSpaceBuildOptions build;
   build.progress = isatty(2);
   build.aggregated_insertion = options.aggregated;

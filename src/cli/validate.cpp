@@ -113,19 +113,7 @@ struct ValidateArguments {
 };
 
 ReadOptions read_options(const ValidateArguments& arguments) {
-  ReadOptions options;
-  options.allow_out_of_tolerance = arguments.allow_out_of_tolerance;
-  for (const std::string& assignment : arguments.overrides) {
-    auto equals = assignment.find('=');
-    if (equals == std::string::npos || equals == 0)
-      throw ModelError("", "--set expects NAME=VALUE, got '" + assignment + "'");
-    try {
-      options.parameter_values[assignment.substr(0, equals)] = parse_rational(assignment.substr(equals + 1));
-    } catch (const NumericError& error) {
-      throw ModelError("", "--set " + assignment + ": " + error.what() + " (values are exact literals in mm or rad)");
-    }
-  }
-  return options;
+  return parameter_overrides(arguments.overrides, arguments.allow_out_of_tolerance);
 }
 
 }  // namespace
@@ -148,6 +136,22 @@ void register_validate(CLI::App& app, Action& action) {
       return 0;
     };
   });
+}
+
+ReadOptions parameter_overrides(const std::vector<std::string>& assignments, bool allow_out_of_tolerance) {
+  ReadOptions options;
+  options.allow_out_of_tolerance = allow_out_of_tolerance;
+  for (const std::string& assignment : assignments) {
+    auto equals = assignment.find('=');
+    if (equals == std::string::npos || equals == 0)
+      throw ModelError("", "--set expects NAME=VALUE, got '" + assignment + "'");
+    try {
+      options.parameter_values[assignment.substr(0, equals)] = parse_rational(assignment.substr(equals + 1));
+    } catch (const NumericError& error) {
+      throw ModelError("", "--set " + assignment + ": " + error.what() + " (values are exact literals in mm or rad)");
+    }
+  }
+  return options;
 }
 
 }  // namespace hipair::cli

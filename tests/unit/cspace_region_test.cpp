@@ -30,6 +30,28 @@ cspace::ChartAxis axis_of(AxisKind kind, bool half_turn, const Rational& lo, con
   return axis;
 }
 
+// A random rational configuration inside a random built tile.
+ChartPoint random_tile_point(const CSpace& space, std::mt19937_64& random) {
+  std::size_t t = random() % space.charts().size();
+  const CSpaceChart& chart = space.charts()[t];
+  auto pick = [&](const Rational& lo, const Rational& hi) {
+    Rational u(mpz_class(static_cast<unsigned long>(random() % 1000003)), 1000003);
+    u.canonicalize();
+    Rational v = lo + u * (hi - lo);
+    v.canonicalize();
+    return v;
+  };
+  return ChartPoint{t, pick(chart.x_lo, chart.x_hi), pick(chart.y_lo, chart.y_hi)};
+}
+
+// The exact overlap oracle at a chart point of `space`.
+cspace::Overlap oracle_at(const Model& model, const cspace::PairAxes& axes, const CSpace& space, const ChartPoint& q) {
+  const CSpaceChart& chart = space.charts()[q.chart];
+  return cspace::classify_overlap(model, axes, axis_of(chart.x_kind, chart.x_half_turn, chart.x_lo, chart.x_hi),
+                                  axis_of(chart.y_kind, chart.y_half_turn, chart.y_lo, chart.y_hi),
+                                  cspace::ChartPoint{q.x, q.y});
+}
+
 PartCoordinate initial_coordinate(const Model& model, const std::string& part_name) {
   const Part& part = model.parts[*model.find_part(part_name)];
   if (part.motion.kind == Motion::Kind::translation) return {PartCoordinate::Kind::offset, part.initial.offset};
@@ -87,20 +109,11 @@ TEST_P(CSpaceRegion, AgreesWithOracleAndWholeBuild) {
   std::mt19937_64 random(17);
   int free = 0, blocked = 0;
   for (int i = 0; i < 3000; ++i) {
-    std::size_t t = random() % region.charts().size();
+    ChartPoint q = random_tile_point(region, random);
+    std::size_t t = q.chart;
     const CSpaceChart& chart = region.charts()[t];
-    auto pick = [&](const Rational& lo, const Rational& hi) {
-      Rational u(mpz_class(static_cast<unsigned long>(random() % 1000003)), 1000003);
-      u.canonicalize();
-      Rational v = lo + u * (hi - lo);
-      v.canonicalize();
-      return v;
-    };
-    ChartPoint q{t, pick(chart.x_lo, chart.x_hi), pick(chart.y_lo, chart.y_hi)};
     Location location = region.locate(q);
-    cspace::Overlap overlap = cspace::classify_overlap(
-        model, axes, axis_of(chart.x_kind, chart.x_half_turn, chart.x_lo, chart.x_hi),
-        axis_of(chart.y_kind, chart.y_half_turn, chart.y_lo, chart.y_hi), cspace::ChartPoint{q.x, q.y});
+    cspace::Overlap overlap = oracle_at(model, axes, region, q);
     if (location.kind == Location::Kind::free) {
       EXPECT_EQ(overlap, cspace::Overlap::apart) << c.file << " tile " << t << " at " << q.x << ", " << q.y;
       ++free;
@@ -219,20 +232,10 @@ TEST(CSpaceRegion, GearChannelIsOneFreeCellAroundTheTorus) {
   std::mt19937_64 random(23);
   int free = 0, blocked = 0;
   for (int i = 0; i < 400; ++i) {
-    std::size_t t = random() % region.charts().size();
-    const CSpaceChart& chart = region.charts()[t];
-    auto pick = [&](const Rational& lo, const Rational& hi) {
-      Rational u(mpz_class(static_cast<unsigned long>(random() % 1000003)), 1000003);
-      u.canonicalize();
-      Rational v = lo + u * (hi - lo);
-      v.canonicalize();
-      return v;
-    };
-    ChartPoint q{t, pick(chart.x_lo, chart.x_hi), pick(chart.y_lo, chart.y_hi)};
+    ChartPoint q = random_tile_point(region, random);
+    std::size_t t = q.chart;
     Location location = region.locate(q);
-    cspace::Overlap overlap = cspace::classify_overlap(
-        model, axes, axis_of(chart.x_kind, chart.x_half_turn, chart.x_lo, chart.x_hi),
-        axis_of(chart.y_kind, chart.y_half_turn, chart.y_lo, chart.y_hi), cspace::ChartPoint{q.x, q.y});
+    cspace::Overlap overlap = oracle_at(model, axes, region, q);
     if (location.kind == Location::Kind::free) {
       EXPECT_EQ(overlap, cspace::Overlap::apart) << "tile " << t << " at " << q.x << ", " << q.y;
       ++free;
