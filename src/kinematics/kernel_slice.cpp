@@ -144,7 +144,9 @@ class KernelSlicer final : public PairSlicer {
     const ChartAxis& other_axis = other_moves_ ? other_charts_[o] : dummy;
     chart->x_axis = follower_is_x_ ? follower_charts_[f] : other_axis;
     chart->y_axis = follower_is_x_ ? other_axis : follower_charts_[f];
-    std::vector<ContactCurve> curves = cspace::generate_contact_curves(model_, axes_, chart->x_axis, chart->y_axis);
+    // one generator per pair: the parts' features and disks are computed once, not per chart pair
+    if (!generator_) generator_ = std::make_unique<cspace::CurveGenerator>(model_, axes_);
+    std::vector<ContactCurve> curves = generator_->generate(chart->x_axis, chart->y_axis);
     for (ContactCurve& curve : curves) {
       if (curve.polynomial.is_zero()) continue;
       auto [it, added] = feature_index_.try_emplace(key_of(curve), features_.size());
@@ -377,6 +379,7 @@ class KernelSlicer final : public PairSlicer {
   cspace::PairAxes axes_;
   bool follower_is_x_ = true;
   mutable std::vector<std::unique_ptr<ChartPair>> pairs_;
+  mutable std::unique_ptr<cspace::CurveGenerator> generator_;   // created with the first chart pair
   mutable std::map<FeatureKey, std::size_t> feature_index_;
   mutable std::mutex build_mutex_;
   mutable std::mutex cache_mutex_;
