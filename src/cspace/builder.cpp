@@ -156,30 +156,13 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input
   return kept;
 }
 
-bool valid_at(const std::vector<ValidityClause>& clauses, const Rational& x, const Real& y) {
-  for (const auto& clause : clauses) {
-    bool holds = false;
-    for (const auto& atom : clause.atoms)
-      if (algebra::sign_at(atom, x, y) >= 0) {
-        holds = true;
-        break;
-      }
-    if (!holds) return false;
-  }
-  return true;
-}
-
-bool valid_at(const std::vector<ValidityClause>& clauses, const Real& x, const Rational& y) {
-  for (const auto& clause : clauses) {
-    bool holds = false;
-    for (const auto& atom : clause.atoms)
-      if (algebra::sign_at(atom, x, y) >= 0) {
-        holds = true;
-        break;
-      }
-    if (!holds) return false;
-  }
-  return true;
+// Every validity clause holds at (x, y): one exact coordinate rational, the other algebraic.
+template <class X, class Y>
+bool valid_at(const std::vector<ValidityClause>& clauses, const X& x, const Y& y) {
+  return std::all_of(clauses.begin(), clauses.end(), [&](const ValidityClause& clause) {
+    return std::any_of(clause.atoms.begin(), clause.atoms.end(),
+                       [&](const IntegerPolynomial2& atom) { return algebra::sign_at(atom, x, y) >= 0; });
+  });
 }
 
 // Feature pairs along every edge: exact test at one interior point of the edge.

@@ -1,6 +1,8 @@
 // Kinematic analysis of an assembly of three moving parts in a chain (cam -> follower -> lever,
 // examples/models/cam-follower-lever.json): each part's position through the chain against its
 // closed form, and a jam caused by the last part of the chain stopping the driver.
+#include "kinematics_test_support.hpp"
+
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
 
@@ -16,19 +18,9 @@
 namespace {
 
 using namespace hipair;
+using test::mentions;
+using test::example_text;
 constexpr double pi = std::numbers::pi;
-
-std::string example_text(const std::string& name) {
-  std::ifstream in(std::string(HIPAIR_EXAMPLES) + "/" + name);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-bool mentions(const std::vector<ContactLabel>& contacts, const std::string& text) {
-  return std::any_of(contacts.begin(), contacts.end(),
-                     [&](const ContactLabel& c) { return c.label.find(text) != std::string::npos; });
-}
 
 // Geometry of the example: cam circle radius 25 centred 8 from the shaft; the follower's flat
 // face rests on it (held down by its spring), so its offset is s = 8 sin(theta). The stem tip is

@@ -8,6 +8,8 @@
 // pushes the anchor through the wall of blocked C-space moves the fork by 1.87 deg in a zero
 // driver step and then reports a fictitious squeeze of the balance between the slot walls.
 #include <hipair/certificate.hpp>
+#include "kinematics_test_support.hpp"
+
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
 
@@ -23,20 +25,10 @@
 namespace {
 
 using namespace hipair;
+using test::mentions;
+using test::example_text;
 constexpr double pi = std::numbers::pi;
 constexpr double degree = pi / 180;
-
-std::string example_text(const std::string& name) {
-  std::ifstream in(std::string(HIPAIR_EXAMPLES) + "/" + name);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-bool mentions(const std::vector<ContactLabel>& contacts, const std::string& text) {
-  return std::any_of(contacts.begin(), contacts.end(),
-                     [&](const ContactLabel& c) { return c.label.find(text) != std::string::npos; });
-}
 
 // `ten_thousandths` ten-thousandths of a degree, in rad, through a rational pi bound
 // (the certify API rounds the half-angle tangent exactly and records the error)

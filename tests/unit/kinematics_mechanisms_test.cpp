@@ -1,6 +1,8 @@
 // Kinematic analysis of the example mechanisms against their closed forms: eccentric cam with
 // a flat follower, Scotch yoke, ratchet (indexes one way, blocks the other) and spur gears
 // (tooth ratio, backlash against centre distance, jamming).
+#include "kinematics_test_support.hpp"
+
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
 
@@ -14,6 +16,7 @@
 namespace {
 
 using namespace hipair;
+using test::mentions;
 constexpr double pi = std::numbers::pi;
 
 Model example(const std::string& name) { return read_model_file(std::string(HIPAIR_EXAMPLES) + "/" + name); }
@@ -24,11 +27,6 @@ KinematicsOptions options_for(const std::string& driver, int direction = 1, unsi
   options.direction = direction;
   options.steps_per_cycle = steps;
   return options;
-}
-
-bool mentions(const std::vector<ContactLabel>& contacts, const std::string& text) {
-  return std::any_of(contacts.begin(), contacts.end(),
-                     [&](const ContactLabel& c) { return c.label.find(text) != std::string::npos; });
 }
 
 // Eccentric circular cam (radius R = 25, centre at e = 8 from the shaft along the cam's x axis)
