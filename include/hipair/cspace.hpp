@@ -80,6 +80,38 @@ enum class ContactKind { vertex_segment, segment_vertex, vertex_arc, arc_vertex,
 /// Short name of a contact kind: "vertex-segment", ...
 std::string_view to_string(ContactKind kind);
 
+// ------------------------------------------------------------------ typed ids (adaptor)
+
+/// A strongly typed index into one of a CSpace's tables (cells(), edges(), vertices(),
+/// feature_pairs()). Default-constructed ids are invalid (no_index).
+template <class Tag>
+struct Id {
+  std::size_t value = no_index;
+  constexpr Id() = default;
+  constexpr explicit Id(std::size_t index) : value(index) {}
+  constexpr bool valid() const noexcept { return value != no_index; }
+  constexpr std::size_t index() const noexcept { return value; }
+  friend constexpr bool operator==(Id, Id) = default;
+  friend constexpr auto operator<=>(Id, Id) = default;
+};
+using CellId = Id<struct CellTag>;        ///< index into CSpace::cells()
+using EdgeId = Id<struct EdgeTag>;        ///< index into CSpace::edges()
+using VertexId = Id<struct VertexTag>;    ///< index into CSpace::vertices()
+using FeatureId = Id<struct FeatureTag>;  ///< index into CSpace::feature_pairs()
+
+/// The shape of a boundary feature.
+enum class FeatureKind { vertex, segment, arc };
+
+/// Which boundary feature of which part: the model's part index, the loop of the part, the
+/// edge of the loop (for a vertex: the vertex is the source of that edge) and the kind.
+struct FeatureIdentity {
+  std::size_t part = no_index;   ///< index into Model::parts
+  std::size_t loop = 0;
+  std::size_t edge = 0;
+  FeatureKind kind = FeatureKind::segment;
+  friend bool operator==(const FeatureIdentity&, const FeatureIdentity&) = default;
+};
+
 /// The feature pair of a contact curve.
 struct FeaturePair {
   std::string first_part;       ///< part names
@@ -87,7 +119,12 @@ struct FeaturePair {
   std::string first_feature;    ///< edge label, or "loop 0 edge 3" / "vertex of loop 0 edge 3"
   std::string second_feature;
   ContactKind kind = ContactKind::vertex_segment;
-  std::string label;            ///< "driver pin / wheel slot 2 wall"
+  std::string label;            ///< "driver pin / wheel slot 2 wall" (a description for display)
+  FeatureIdentity first;        ///< the first part's feature (exact identity)
+  FeatureIdentity second;
+  /// Sign of the pair's contact polynomial on the locally blocked (penetrating) side next to
+  /// valid contact configurations: always -1 (docs/contact-kernels.md).
+  int blocked_sign = -1;
 };
 
 /// Classes of C-space cells.
@@ -197,6 +234,131 @@ struct Crossing {
   bool grazing = false;            ///< the path touches contact space and returns to the same cell
 };
 
+// ------------------------------------------------------------------ adaptor queries
+// (src/cspace/cspace_queries.cpp; contact mathematics in kernels/contact_geometry.hpp)
+
+/// Which side of an edge (see CSpaceEdge::left_cell) is blocked space.
+enum class BlockedSide { none, left, right };
+
+/// A feature pair touching at a configuration: the world contact point and the contact normal
+/// (unit, from the pair's first part into the second: the direction in which the first part
+/// pushes the second; kernels/contact_geometry.hpp).
+struct Contact {
+  FeatureId feature;
+  /// True when `point` and `normal_direction` are exact (the configuration is rational).
+  bool exact = false;
+  std::array<Rational, 2> point;              ///< world contact point (mm), when exact
+  std::array<Rational, 2> normal_direction;   ///< normal, not normalised, when exact
+  std::array<CertifiedRange, 2> point_range;  ///< certified enclosure of the point (always)
+  std::array<CertifiedRange, 2> normal;       ///< certified enclosure of the unit normal
+};
+
+/// Derivatives of a contact edge's curve y(x) at an abscissa, by implicit differentiation of
+/// the edge's exact polynomial F: y' = -F_x / F_y, y'' = -(F_xx + 2 F_xy y' + F_yy y'^2) / F_y.
+struct EdgeDerivatives {
+  AlgebraicNumber y;                  ///< the ordinate, exact
+  CertifiedRange dy, d2y;             ///< in chart coordinates
+  /// The same in part coordinates (rad or mm): d(y part)/d(x part) — for a driven pair the
+  /// velocity ratio — and its derivative (the acceleration ratio).
+  CertifiedRange coordinate_dy, coordinate_d2y;
+};
+
+/// The motion of one part along a path parameter u: a polynomial in u (ascending
+/// coefficients) giving its angle (rad), its offset (mm), or the half-angle tangent
+/// t = tan(theta/2) of its angle (a curve in chart coordinates, e.g. a gear ratio between
+/// two tangents). Angles wrap around: the path continues across the theta = +-pi/2 seams.
+struct AxisPath {
+  enum class Kind { angle, offset, half_tangent };
+  Kind kind = Kind::angle;
+  std::vector<Rational> coefficients;   ///< empty: constant 0
+};
+
+/// A motion of the pair for u in [u_begin, u_end]: x for the space's x part, y for its y part
+/// (ignored for a 1-D space).
+struct MotionPath {
+  AxisPath x;
+  AxisPath y;
+  Rational u_begin = 0;
+  Rational u_end = 1;
+};
+
+/// Outcome of a first-crossing query along a motion.
+enum class CrossingStatus {
+  none,                ///< the motion stays in its starting free cell
+  crossing,            ///< it reaches contact space at u in [u_lower, u_upper]
+  starts_in_contact,   ///< it does not start in a free cell (contact or overlap at u_begin)
+  outside_region       ///< it may leave the built space at u in [u_lower, u_upper] first
+};
+
+/// First contact along a motion (in the manner of Box2D's time-of-impact output).
+struct MotionCrossing {
+  CrossingStatus status = CrossingStatus::none;
+  /// Certified bounds: the motion is in its starting free cell on [u_begin, u_lower) and
+  /// reaches contact space (or leaves the built space) at some u in [u_lower, u_upper].
+  Rational u_lower, u_upper;
+  /// The motion comes within the resolution of a contact curve (a touch, or a pass closer than
+  /// the resolution) but is not certified to enter another cell: reported, so that no contact
+  /// is missed. False when the cell at u_upper is certified to differ from the start's.
+  bool grazing = false;
+  EdgeId edge;                          ///< a real edge crossed (when identified)
+  std::vector<FeatureId> features;      ///< feature pairs that may touch there
+  CellId cell_left;                     ///< the starting free cell
+  CellId cell_entered;                  ///< the cell at u_upper (when certified)
+  std::size_t chart = no_index;         ///< a chart holding the crossing
+  std::array<CertifiedRange, 2> chart_point;   ///< chart coordinates of the crossing, certified
+  std::array<CertifiedRange, 2> point;  ///< world contact point of features.front(), certified
+  std::array<CertifiedRange, 2> normal; ///< its unit normal (first part into second), certified
+};
+
+/// Resolution of the first-crossing query: the bounds [u_lower, u_upper] are at most
+/// (u_end - u_begin) / 2^resolution_bits wide.
+struct CrossingOptions {
+  unsigned resolution_bits = 44;
+};
+
+/// The axis of a slice: `x` fixes the chart abscissa, `y` the ordinate.
+enum class SliceAxis { x, y };
+
+/// A 1-D slice of one chart: the other coordinate's range cut into intervals of constant cell.
+struct Slice {
+  std::size_t chart = 0;
+  SliceAxis axis = SliceAxis::x;
+  Rational value;                       ///< the fixed coordinate
+  Rational lower, upper;                ///< the chart box along the free coordinate
+  /// Boundaries between consecutive intervals (exact), with the feature pairs whose curves
+  /// pass there.
+  struct Point {
+    AlgebraicNumber at;
+    std::vector<FeatureId> features;
+  };
+  struct Interval {
+    CellId cell;
+    CellKind kind = CellKind::free;
+    Rational sample;                    ///< a coordinate strictly inside the interval
+  };
+  std::vector<Point> points;
+  std::vector<Interval> intervals;      ///< intervals.size() == points.size() + 1
+};
+
+/// An edge sampled for drawing: points on the edge (chart coordinates), each within `error`
+/// of the exact curve. Labelled approximate: the chords between them are not certified.
+struct EdgePolyline {
+  std::vector<std::array<double, 2>> points;
+  double error = 0;
+  bool approximate = true;
+};
+
+class CSpace;
+
+/// The build of one pair by CSpace::build_pairs.
+struct PairBuild {
+  enum class Status { built, failed };
+  std::string first_part, second_part;
+  Status status = Status::failed;
+  std::string error;                    ///< the failure's message (status failed)
+  std::shared_ptr<const CSpace> space;   ///< the built space (status built)
+};
+
 /// Counts and times reported by --stats.
 struct CSpaceStatistics {
   std::size_t feature_pairs_considered = 0;
@@ -260,6 +422,9 @@ class CSpace {
   /// Builds every pair of `model.pairs` that is a fixed-axis pair with at least one moving
   /// part, in parallel. Pairs of other kinds are skipped.
   static std::vector<CSpace> build_all(const Model& model, const CSpaceBuildOptions& options = {});
+  /// The same pairs, built in parallel, with a status per pair: every pair that builds is kept
+  /// when others fail. build_all() is this, throwing the first failure after all have run.
+  static std::vector<PairBuild> build_pairs(const Model& model, const CSpaceBuildOptions& options = {});
 
   /// 1 (one part fixed) or 2.
   int dimension() const;
@@ -310,6 +475,38 @@ class CSpace {
   /// the charts of a limited rotation); it may not cross to a chart with other coordinates
   /// (split it at the chart side). \throws GeometryError when the path leaves the built space.
   Crossing first_crossing(const ChartPoint& from, const Rational& to_x, const Rational& to_y = 0) const;
+
+  // ---------------------------------------------------------------- adaptor queries
+  // (typed ids; see the block "adaptor queries" above)
+
+  const CSpaceCell& cell(CellId id) const;
+  const CSpaceEdge& edge(EdgeId id) const;
+  const CSpaceVertex& vertex(VertexId id) const;
+  const FeaturePair& feature_pair(FeatureId id) const;
+  /// Which side of the edge is blocked (none for spurious edges, seams and limits).
+  BlockedSide blocked_side(EdgeId id) const;
+
+  /// The feature pairs touching at a configuration (contact polynomial zero and contact valid,
+  /// decided exactly), with exact contact points and normals.
+  std::vector<Contact> contact_at(const ChartPoint& point) const;
+  std::vector<Contact> contact_at(const PartCoordinate& x, const PartCoordinate& y = {}) const;
+
+  /// y, y', y'' of a non-vertical edge at a rational abscissa within its x extent.
+  /// \throws GeometryError for a vertical edge, an abscissa outside the edge, or a singular
+  /// point of the curve (F_y = 0).
+  EdgeDerivatives derivatives(EdgeId edge, const Rational& x) const;
+
+  /// The first point where the motion reaches contact space (a real edge or vertex), across
+  /// charts, seams and tiles. Never misses a crossing: every u it passes over is certified
+  /// free by certified interval exclusion of every contact curve (with its validity), and the
+  /// cells are decided by exact point location.
+  MotionCrossing first_crossing(const MotionPath& path, const CrossingOptions& options = {}) const;
+
+  /// The 1-D slices through every chart whose box contains `value` on `axis`.
+  std::vector<Slice> slice(SliceAxis axis, const Rational& value) const;
+
+  /// The edge sampled at `samples` (>= 2) abscissae for drawing (labelled approximate).
+  EdgePolyline edge_polyline(EdgeId edge, std::size_t samples = 32) const;
 
  private:
   std::shared_ptr<const Impl> impl_;

@@ -481,6 +481,8 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
   stats.feature_pairs_culled = input.curve_statistics.feature_pairs_culled;
   stats.seconds_curves = input.seconds_curves;
   impl->complete = input.complete;
+  impl->model = input.model;
+  impl->axes = input.axes;
   stats.region_cells = input.region_cells;
   stats.seconds_region = input.seconds_region;
   if (!input.complete) stats.region_tiles = input.charts.size();
@@ -523,6 +525,12 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
         pair.second_feature = feature_name(curve.second);
         pair.kind = static_cast<ContactKind>(static_cast<int>(curve.type));
         pair.label = curve.label;
+        auto identity = [](const FeatureRef& f) {
+          return FeatureIdentity{f.part, f.loop, f.edge, static_cast<FeatureKind>(static_cast<int>(f.kind))};
+        };
+        pair.first = identity(curve.first);
+        pair.second = identity(curve.second);
+        pair.blocked_sign = curve.blocked_sign;
         impl->feature_pairs.push_back(std::move(pair));
       }
       chart.curve_global.push_back(index);

@@ -9,6 +9,7 @@
 #include "cspace/contact_curves.hpp"
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,9 @@ struct PairInput {
   CurveStatistics curve_statistics;
   double seconds_curves = 0;
   bool complete = true;          ///< false: the charts are tiles of an operating region
+  /// The model and the pair's axes (contact geometry queries); null for synthetic input.
+  std::shared_ptr<const Model> model;
+  PairAxes axes;
   std::size_t region_cells = 0;
   double seconds_region = 0;
 };
@@ -101,6 +105,10 @@ struct CSpace::Impl {
   std::vector<std::pair<std::size_t, std::size_t>> edge_local;   ///< global edge -> (chart, local)
   std::vector<std::pair<std::size_t, std::size_t>> vertex_local;
   CSpaceStatistics statistics;
+  /// The model and the pair's axes (contact_at, first_crossing's contact frames); null when
+  /// the space was built from synthetic curves.
+  std::shared_ptr<const Model> model;
+  cspace::PairAxes axes;
 };
 
 }  // namespace hipair

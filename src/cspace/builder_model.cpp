@@ -459,6 +459,8 @@ CSpace build_pair(const Model& model, std::size_t first, std::size_t second, con
   input.y_part = axes.dimension() == 2 ? model.parts[axes.second].name : std::string();
   for (const auto& part : model.parts) input.part_names.push_back(part.name);
   input.dimension = axes.dimension();
+  input.model = std::make_shared<const Model>(model);
+  input.axes = axes;
   std::vector<ChartAxis> y_charts = layout.y_charts;
   if (input.dimension == 1) y_charts = {ChartAxis{ChartAxis::Kind::translation, false, Rational(0), Rational(0)}};
   bool progress = options.progress && isatty(2);
@@ -545,31 +547,38 @@ CSpace CSpace::build(const Model& model, std::string_view first_part, std::strin
   return build_pair(model, first, second, options);
 }
 
-std::vector<CSpace> CSpace::build_all(const Model& model, const CSpaceBuildOptions& options) {
-  // the pairs that are fixed-axis pairs with a moving part
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+namespace {
+
+// Builds every fixed-axis pair with a moving part on worker threads; a pair's failure is kept
+// as its exception and never stops the other pairs.
+struct PairOutcome {
+  std::size_t first = 0, second = 0;
+  CSpace space;
+  std::exception_ptr error;
+};
+
+std::vector<PairOutcome> build_each(const Model& model, const CSpaceBuildOptions& options) {
+  std::vector<PairOutcome> outcomes;
   for (const auto& pair : model.pairs) {
     int first = model.parts[pair.first].motion.degrees_of_freedom();
     int second = model.parts[pair.second].motion.degrees_of_freedom();
     if (first > 1 || second > 1 || first + second == 0) continue;
-    pairs.emplace_back(pair.first, pair.second);
+    outcomes.push_back(PairOutcome{pair.first, pair.second, CSpace{}, nullptr});
   }
-  std::vector<CSpace> spaces(pairs.size());
-  std::vector<std::exception_ptr> errors(pairs.size());
   std::atomic<std::size_t> next{0};
   auto work = [&] {
-    for (std::size_t i = next++; i < pairs.size(); i = next++) {
+    for (std::size_t i = next++; i < outcomes.size(); i = next++) {
       try {
-        spaces[i] = build_pair(model, pairs[i].first, pairs[i].second, options);
+        outcomes[i].space = build_pair(model, outcomes[i].first, outcomes[i].second, options);
       } catch (...) {
-        errors[i] = std::current_exception();
+        outcomes[i].error = std::current_exception();
       }
     }
   };
   unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   // CGAL's algebraic kernel caches are per thread: kept arrangements must stay on this thread
   if (options.keep_arrangements) threads = 1;
-  threads = static_cast<unsigned>(std::min<std::size_t>(threads, pairs.size()));
+  threads = static_cast<unsigned>(std::min<std::size_t>(threads, outcomes.size()));
   if (threads <= 1) {
     work();
   } else {
@@ -577,9 +586,44 @@ std::vector<CSpace> CSpace::build_all(const Model& model, const CSpaceBuildOptio
     for (unsigned t = 0; t < threads; ++t) workers.emplace_back(work);
     for (auto& worker : workers) worker.join();
   }
-  for (auto& error : errors)
-    if (error) std::rethrow_exception(error);
+  return outcomes;
+}
+
+}  // namespace
+
+std::vector<CSpace> CSpace::build_all(const Model& model, const CSpaceBuildOptions& options) {
+  std::vector<PairOutcome> outcomes = build_each(model, options);
+  std::vector<CSpace> spaces;
+  for (auto& outcome : outcomes) {
+    if (outcome.error) std::rethrow_exception(outcome.error);
+    spaces.push_back(std::move(outcome.space));
+  }
   return spaces;
+}
+
+std::vector<PairBuild> CSpace::build_pairs(const Model& model, const CSpaceBuildOptions& options) {
+  std::vector<PairOutcome> outcomes = build_each(model, options);
+  std::vector<PairBuild> builds;
+  for (auto& outcome : outcomes) {
+    PairBuild build;
+    build.first_part = model.parts[outcome.first].name;
+    build.second_part = model.parts[outcome.second].name;
+    if (outcome.error) {
+      build.status = PairBuild::Status::failed;
+      try {
+        std::rethrow_exception(outcome.error);
+      } catch (const std::exception& e) {
+        build.error = e.what();
+      } catch (...) {
+        build.error = "unknown error";
+      }
+    } else {
+      build.status = PairBuild::Status::built;
+      build.space = std::make_shared<const CSpace>(std::move(outcome.space));
+    }
+    builds.push_back(std::move(build));
+  }
+  return builds;
 }
 
 }  // namespace hipair

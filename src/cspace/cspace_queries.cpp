@@ -1,0 +1,879 @@
+// The adaptor's queries for simulation and tolerancing (CGAL-free): typed access, blocked
+// sides, contacts with their world points and normals, certified derivatives of contact edges,
+// the first crossing along a motion across charts and seams, 1-D slices and edge polylines.
+//
+// Contact points and normals come from kernels/contact_geometry.hpp (one formula per contact
+// type, templated on the number type): exact rationals at rational configurations, certified
+// intervals at the crossing of a motion. Every decision is exact (GMP) or certified (MPFI/MPFR
+// with directed rounding, outward-rounded double intervals).
+#include <hipair/cspace.hpp>
+#include <hipair/error.hpp>
+
+#include "cspace/builder_impl.hpp"
+#include "cspace/pose.hpp"
+#include "kernels/contact_geometry.hpp"
+#include "kernels/interval.hpp"
+
+#include <mpfi.h>
+#include <mpfr.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+namespace hipair {
+
+namespace {
+
+using cspace::ChartData;
+using cspace::algebra::Real;
+using KInterval = kernels::Interval;
+
+const CSpace::Impl& checked(const CSpace& space) { return implementation(space); }
+
+template <class Id>
+std::size_t index_in(Id id, std::size_t size, const char* what) {
+  if (!id.valid() || id.index() >= size) throw GeometryError(std::string("no ") + what + " " + std::to_string(id.value));
+  return id.index();
+}
+
+CertifiedRange range_of(const Rational& lo, const Rational& hi) {
+  return CertifiedRange{cspace::algebra::lower_double(lo), cspace::algebra::upper_double(hi)};
+}
+
+CertifiedRange range_of(const KInterval& i) { return CertifiedRange{i.lo, i.hi}; }
+
+// ------------------------------------------------------------------ exact rational intervals
+
+struct RInterval {
+  Rational lo, hi;
+  static RInterval point(const Rational& r) { return {r, r}; }
+  bool contains_zero() const { return sgn(lo) <= 0 && sgn(hi) >= 0; }
+};
+
+RInterval operator+(const RInterval& a, const RInterval& b) {
+  return {Rational(a.lo + b.lo), Rational(a.hi + b.hi)};
+}
+RInterval operator-(const RInterval& a, const RInterval& b) {
+  return {Rational(a.lo - b.hi), Rational(a.hi - b.lo)};
+}
+RInterval operator-(const RInterval& a) { return {Rational(-a.hi), Rational(-a.lo)}; }
+RInterval operator*(const RInterval& a, const RInterval& b) {
+  Rational p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
+  return {*std::min_element(p, p + 4), *std::max_element(p, p + 4)};
+}
+// \pre b does not contain 0.
+RInterval operator/(const RInterval& a, const RInterval& b) {
+  RInterval inverse{Rational(1 / b.hi), Rational(1 / b.lo)};
+  return a * inverse;
+}
+
+// p(X) for ascending rational coefficients over an interval, by Horner (certified enclosure).
+RInterval horner(const std::vector<Rational>& p, const RInterval& x) {
+  RInterval value = RInterval::point(Rational(0));
+  for (std::size_t i = p.size(); i-- > 0;) value = value * x + RInterval::point(p[i]);
+  return value;
+}
+
+// Tighter enclosure of a polynomial over [a, b] for the path: Horner around the midpoint.
+RInterval evaluate_path(const std::vector<Rational>& p, const Rational& a, const Rational& b) {
+  if (a == b) {
+    Rational v(0);
+    for (std::size_t i = p.size(); i-- > 0;) v = v * a + p[i];
+    return RInterval::point(v);
+  }
+  Rational m = (a + b) / 2;
+  // coefficients of p(m + h)
+  std::vector<Rational> shifted = p;
+  for (std::size_t i = 0; i + 1 < shifted.size(); ++i)
+    for (std::size_t j = shifted.size() - 1; j > i; --j) shifted[j - 1] += m * shifted[j];
+  Rational half = (b - a) / 2;
+  return horner(shifted, RInterval{Rational(-half), half});
+}
+
+// ------------------------------------------------------------------ feature geometry
+
+template <class T, class Convert>
+kernels::FeatureGeometry<T> feature_geometry(const Model& model, const FeatureIdentity& id, Convert&& convert) {
+  const Part& part = model.parts.at(id.part);
+  const Edge& edge = part.loops.at(id.loop).edges.at(id.edge);
+  kernels::FeatureGeometry<T> f;
+  auto vec = [&](const Point& p) { return kernels::Vector<T>{convert(p.x), convert(p.y)}; };
+  switch (id.kind) {
+    case FeatureKind::vertex:
+      f.shape = kernels::FeatureShape::vertex;
+      f.point = vec(edge.source);
+      break;
+    case FeatureKind::segment:
+      f.shape = kernels::FeatureShape::segment;
+      f.point = vec(edge.source);
+      f.target = vec(edge.target);
+      break;
+    case FeatureKind::arc:
+      f.shape = kernels::FeatureShape::arc;
+      f.center = vec(edge.center);
+      f.radius_squared = convert(edge.radius_squared);
+      f.convex = edge.ccw;
+      break;
+  }
+  return f;
+}
+
+// The contact frame of feature pair `pair` at chart values (x, y) of chart `c`, in T.
+template <class T, class Convert>
+kernels::ContactFrame<T> frame_at(const CSpace::Impl& impl, std::size_t c, const FeaturePair& pair, const T& x,
+                                  const T& y, Convert&& convert) {
+  const ChartData& chart = impl.charts[c];
+  cspace::PairPoses<T> poses =
+      cspace::pair_poses<T>(*impl.model, impl.axes, chart.x_axis, chart.y_axis, x, y, convert);
+  const kernels::Pose<T>& a = pair.first.part == impl.axes.first ? poses.first : poses.second;
+  const kernels::Pose<T>& b = pair.second.part == impl.axes.first ? poses.first : poses.second;
+  return kernels::contact_frame(a, feature_geometry<T>(*impl.model, pair.first, convert), b,
+                                feature_geometry<T>(*impl.model, pair.second, convert));
+}
+
+std::array<CertifiedRange, 2> unit_normal(const kernels::Vector<KInterval>& n) {
+  kernels::Vector<KInterval> u = kernels::unit(n, [](const KInterval& v) { return kernels::sqrt(v); });
+  return {range_of(u.x), range_of(u.y)};
+}
+
+const Model& model_of(const CSpace::Impl& impl) {
+  if (!impl.model) throw GeometryError("this C-space was built without a model: no contact geometry");
+  return *impl.model;
+}
+
+// Every clause of a validity holds at a rational point (exact).
+bool valid_at(const std::vector<cspace::ValidityClause>& validity, const Rational& x, const Rational& y) {
+  for (const auto& clause : validity) {
+    bool holds = false;
+    for (const auto& atom : clause.atoms) holds = holds || cspace::algebra::sign_at(atom, x, y) >= 0;
+    if (!holds) return false;
+  }
+  return true;
+}
+
+bool contact_location(const CSpace::Impl& impl, const Location& location) {
+  if (location.kind == Location::Kind::touching) return true;
+  if (location.kind == Location::Kind::edge) return impl.edges[location.edge].real;
+  if (location.kind == Location::Kind::vertex) {
+    for (std::size_t e : impl.vertices[location.vertex].edges)
+      if (impl.edges[e].real) return true;
+    return impl.dimension == 1 && location.cell == no_index;
+  }
+  return false;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------ typed access
+
+const CSpaceCell& CSpace::cell(CellId id) const {
+  const Impl& impl = checked(*this);
+  return impl.cells[index_in(id, impl.cells.size(), "cell")];
+}
+const CSpaceEdge& CSpace::edge(EdgeId id) const {
+  const Impl& impl = checked(*this);
+  return impl.edges[index_in(id, impl.edges.size(), "edge")];
+}
+const CSpaceVertex& CSpace::vertex(VertexId id) const {
+  const Impl& impl = checked(*this);
+  return impl.vertices[index_in(id, impl.vertices.size(), "vertex")];
+}
+const FeaturePair& CSpace::feature_pair(FeatureId id) const {
+  const Impl& impl = checked(*this);
+  return impl.feature_pairs[index_in(id, impl.feature_pairs.size(), "feature pair")];
+}
+
+BlockedSide CSpace::blocked_side(EdgeId id) const {
+  const Impl& impl = checked(*this);
+  const CSpaceEdge& e = edge(id);
+  if (!e.real) return BlockedSide::none;
+  auto blocked = [&](std::size_t c) { return c != no_index && impl.cells[c].kind == CellKind::blocked; };
+  if (blocked(e.left_cell) && !blocked(e.right_cell)) return BlockedSide::left;
+  if (blocked(e.right_cell) && !blocked(e.left_cell)) return BlockedSide::right;
+  return BlockedSide::none;
+}
+
+// ------------------------------------------------------------------ contact_at
+
+std::vector<Contact> CSpace::contact_at(const ChartPoint& input) const {
+  const Impl& impl = checked(*this);
+  const Model& model = model_of(impl);
+  (void)model;
+  if (input.chart >= impl.charts.size()) throw GeometryError("contact_at: no chart " + std::to_string(input.chart));
+  ChartPoint q = input;
+  q.x.canonicalize();
+  q.y.canonicalize();
+  if (impl.dimension == 1) q.y = 0;
+  const ChartData& chart = impl.charts[q.chart];
+  std::vector<Contact> contacts;
+  for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
+    if (cspace::algebra::sign_at(chart.polynomials[k], q.x, q.y) != 0) continue;
+    if (!valid_at(chart.validity[k], q.x, q.y)) continue;
+    FeatureId id(chart.curve_global[k]);
+    if (std::any_of(contacts.begin(), contacts.end(), [&](const Contact& c) { return c.feature == id; })) continue;
+    const FeaturePair& pair = impl.feature_pairs[id.index()];
+    auto exact = [](const Rational& r) { return r; };
+    kernels::ContactFrame<Rational> frame = frame_at<Rational>(impl, q.chart, pair, q.x, q.y, exact);
+    if (!frame.defined) continue;
+    Contact contact;
+    contact.feature = id;
+    contact.exact = true;
+    contact.point = {frame.point.x, frame.point.y};
+    contact.normal_direction = {frame.normal.x, frame.normal.y};
+    for (auto& r : contact.point) r.canonicalize();
+    for (auto& r : contact.normal_direction) r.canonicalize();
+    contact.point_range = {range_of(frame.point.x, frame.point.x), range_of(frame.point.y, frame.point.y)};
+    contact.normal = unit_normal({KInterval::enclose(frame.normal.x), KInterval::enclose(frame.normal.y)});
+    contacts.push_back(std::move(contact));
+  }
+  return contacts;
+}
+
+std::vector<Contact> CSpace::contact_at(const PartCoordinate& x, const PartCoordinate& y) const {
+  auto point = to_chart(x, y);
+  if (!point) throw GeometryError("contact_at: the configuration is outside every chart");
+  return contact_at(*point);
+}
+
+// ------------------------------------------------------------------ derivatives
+
+namespace {
+
+// Partial derivative d^(dx+dy) F / dx^dx dy^dy at the rational x, as a polynomial in y.
+std::vector<Rational> partial_in_y(const cspace::IntegerPolynomial2& f, const Rational& x, int dx, int dy) {
+  std::vector<Rational> result;
+  for (std::size_t i = 0; i < f.coefficients.size(); ++i) {
+    if (static_cast<int>(i) < dx) continue;
+    Rational x_factor(1);
+    for (int d = 0; d < dx; ++d) x_factor *= static_cast<long>(i) - d;
+    for (std::size_t p = 0; p + dx < i; ++p) x_factor *= x;
+    const auto& row = f.coefficients[i];
+    for (std::size_t j = 0; j < row.size(); ++j) {
+      if (static_cast<int>(j) < dy || sgn(row[j]) == 0) continue;
+      Rational c = x_factor * Rational(row[j]);
+      for (int d = 0; d < dy; ++d) c *= static_cast<long>(j) - d;
+      std::size_t power = j - static_cast<std::size_t>(dy);
+      if (result.size() <= power) result.resize(power + 1, Rational(0));
+      result[power] += c;
+    }
+  }
+  return result;
+}
+
+// First and second derivatives of a part coordinate (rad or mm) with respect to its chart
+// coordinate: rotation theta = c + 2 atan(t): 2/(1+t^2), -4t/(1+t^2)^2; translation: 1, 0.
+std::pair<RInterval, RInterval> coordinate_slopes(const cspace::ChartAxis& axis,
+                                                                const RInterval& t) {
+  if (axis.kind == cspace::ChartAxis::Kind::translation)
+    return {RInterval::point(Rational(1)), RInterval::point(Rational(0))};
+  RInterval w = RInterval::point(Rational(1)) + t * t;
+  RInterval first = RInterval::point(Rational(2)) / w;
+  RInterval second = -(RInterval::point(Rational(4)) * t) / (w * w);
+  return {first, second};
+}
+
+}  // namespace
+
+EdgeDerivatives CSpace::derivatives(EdgeId id, const Rational& x_input) const {
+  const Impl& impl = checked(*this);
+  std::size_t index = index_in(id, impl.edges.size(), "edge");
+  if (impl.dimension != 2) throw GeometryError("derivatives: a 1-D C-space has no contact edges");
+  auto [c, e] = impl.edge_local[index];
+  const ChartData& chart = impl.charts[c];
+  const cspace::raw::Edge& raw_edge = chart.arrangement.edges[e];
+  if (raw_edge.vertical) throw GeometryError("derivatives: edge " + std::to_string(index) + " is vertical");
+  Rational x = x_input;
+  x.canonicalize();
+  const cspace::raw::Vertex& low = chart.arrangement.vertices[raw_edge.min_vertex];
+  const cspace::raw::Vertex& high = chart.arrangement.vertices[raw_edge.max_vertex];
+  int cl = low.x.compare(x), ch = high.x.compare(x);
+  if (cl > 0 || ch < 0) throw GeometryError("derivatives: abscissa outside the edge's extent");
+  Real y = cl == 0 ? low.y : ch == 0 ? high.y : cspace::edge_y_at(chart, e, x);
+  const cspace::IntegerPolynomial2& f = raw_edge.support;
+  std::vector<Rational> fx = partial_in_y(f, x, 1, 0), fy = partial_in_y(f, x, 0, 1);
+  std::vector<Rational> fxx = partial_in_y(f, x, 2, 0), fxy = partial_in_y(f, x, 1, 1), fyy = partial_in_y(f, x, 0, 2);
+  EdgeDerivatives result;
+  result.y = cspace::to_public(y);
+  for (int bits = 64;; bits *= 2) {
+    Real refined = y;
+    if (!refined.exact) refined.refine_to(Rational(1, mpz_class(1) << bits));
+    RInterval Y = refined.exact ? RInterval::point(refined.lower)
+                                       : RInterval{refined.lower, refined.upper};
+    RInterval Fy = horner(fy, Y);
+    if (Fy.contains_zero()) {
+      if (refined.exact || bits >= 2048)
+        throw GeometryError("derivatives: the curve of edge " + std::to_string(index) +
+                            " is singular or vertical at this abscissa (F_y = 0)");
+      continue;
+    }
+    RInterval Fx = horner(fx, Y);
+    RInterval dy = -(Fx / Fy);
+    RInterval d2y = -((horner(fxx, Y) + RInterval::point(Rational(2)) * horner(fxy, Y) * dy +
+                              horner(fyy, Y) * dy * dy) /
+                             Fy);
+    auto [x1, x2] = coordinate_slopes(chart.x_axis, RInterval::point(x));
+    auto [y1, y2] = coordinate_slopes(chart.y_axis, Y);
+    RInterval ratio = y1 * dy / x1;
+    RInterval acceleration = (y2 * dy * dy + y1 * d2y - ratio * x2) / (x1 * x1);
+    result.dy = range_of(dy.lo, dy.hi);
+    result.d2y = range_of(d2y.lo, d2y.hi);
+    result.coordinate_dy = range_of(ratio.lo, ratio.hi);
+    result.coordinate_d2y = range_of(acceleration.lo, acceleration.hi);
+    return result;
+  }
+}
+
+// ------------------------------------------------------------------ slices and polylines
+
+std::vector<Slice> CSpace::slice(SliceAxis axis, const Rational& value_input) const {
+  const Impl& impl = checked(*this);
+  if (impl.dimension != 2) throw GeometryError("slice: a 1-D C-space is its own slice (use cells and vertices)");
+  Rational value = value_input;
+  value.canonicalize();
+  std::vector<Slice> slices;
+  for (std::size_t c = 0; c < impl.charts.size(); ++c) {
+    const CSpaceChart& box = impl.public_charts[c];
+    const ChartData& chart = impl.charts[c];
+    bool along_x = axis == SliceAxis::x;
+    const Rational& fixed_lo = along_x ? box.x_lo : box.y_lo;
+    const Rational& fixed_hi = along_x ? box.x_hi : box.y_hi;
+    if (value < fixed_lo || value > fixed_hi) continue;
+    Slice s;
+    s.chart = c;
+    s.axis = axis;
+    s.value = value;
+    s.lower = along_x ? box.y_lo : box.x_lo;
+    s.upper = along_x ? box.y_hi : box.x_hi;
+    struct Root {
+      Real at;
+      std::vector<FeatureId> features;
+    };
+    std::vector<Root> roots;
+    for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
+      cspace::algebra::Polynomial p = along_x ? cspace::algebra::substitute_x(chart.polynomials[k], value)
+                                              : cspace::algebra::substitute_y(chart.polynomials[k], value);
+      if (p.empty()) continue;   // the slice runs along the curve: located below
+      for (Real& r : cspace::algebra::real_roots(p, s.lower, s.upper)) {
+        if (r.compare(s.lower) == 0 || r.compare(s.upper) == 0) continue;
+        FeatureId id(chart.curve_global[k]);
+        auto it = std::find_if(roots.begin(), roots.end(),
+                               [&](const Root& o) { return cspace::algebra::compare(o.at, r) == 0; });
+        if (it == roots.end()) {
+          roots.push_back(Root{std::move(r), {id}});
+        } else if (std::find(it->features.begin(), it->features.end(), id) == it->features.end()) {
+          it->features.push_back(id);
+        }
+      }
+    }
+    std::sort(roots.begin(), roots.end(),
+              [](const Root& a, const Root& b) { return cspace::algebra::compare(a.at, b.at) < 0; });
+    auto interval_at = [&](const Rational& t) {
+      ChartPoint q = along_x ? ChartPoint{c, value, t} : ChartPoint{c, t, value};
+      Location where = locate(q);
+      Slice::Interval interval;
+      interval.sample = t;
+      interval.cell = CellId(where.cell);
+      if (where.kind == Location::Kind::blocked) interval.kind = CellKind::blocked;
+      else if (where.kind == Location::Kind::free) interval.kind = CellKind::free;
+      else interval.kind = contact_location(impl, where) ? CellKind::touching : CellKind::free;
+      if (where.kind == Location::Kind::touching) interval.kind = CellKind::touching;
+      return interval;
+    };
+    Real previous = Real::from_rational(s.lower);
+    std::vector<Slice::Interval> intervals;
+    for (std::size_t i = 0; i <= roots.size(); ++i) {
+      Real next = i < roots.size() ? roots[i].at : Real::from_rational(s.upper);
+      intervals.push_back(interval_at(cspace::algebra::rational_between(previous, next)));
+      previous = next;
+    }
+    // keep the boundaries between different cells only
+    s.intervals.push_back(intervals[0]);
+    for (std::size_t i = 0; i < roots.size(); ++i) {
+      const Slice::Interval& before = s.intervals.back();
+      const Slice::Interval& after = intervals[i + 1];
+      if (before.cell == after.cell && before.kind == after.kind) continue;
+      s.points.push_back(Slice::Point{cspace::to_public(roots[i].at), roots[i].features});
+      s.intervals.push_back(after);
+    }
+    slices.push_back(std::move(s));
+  }
+  return slices;
+}
+
+EdgePolyline CSpace::edge_polyline(EdgeId id, std::size_t samples) const {
+  const Impl& impl = checked(*this);
+  std::size_t index = index_in(id, impl.edges.size(), "edge");
+  if (impl.dimension != 2) throw GeometryError("edge_polyline: a 1-D C-space has no edges to draw");
+  samples = std::max<std::size_t>(samples, 2);
+  auto [c, e] = impl.edge_local[index];
+  const ChartData& chart = impl.charts[c];
+  const cspace::raw::Edge& raw_edge = chart.arrangement.edges[e];
+  EdgePolyline line;
+  auto vertex_point = [&](std::size_t v) {
+    Real x = chart.arrangement.vertices[v].x, y = chart.arrangement.vertices[v].y;
+    x.refine_to(Rational(1, mpz_class(1) << 60));
+    y.refine_to(Rational(1, mpz_class(1) << 60));
+    double px = x.approximate(), py = y.approximate();
+    line.error = std::max({line.error, std::fabs(x.upper_bound() - px), std::fabs(px - x.lower_bound()),
+                           std::fabs(y.upper_bound() - py), std::fabs(py - y.lower_bound())});
+    return std::array<double, 2>{px, py};
+  };
+  line.points.push_back(vertex_point(raw_edge.min_vertex));
+  if (!raw_edge.vertical) {
+    const Real& lo = chart.arrangement.vertices[raw_edge.min_vertex].x;
+    const Real& hi = chart.arrangement.vertices[raw_edge.max_vertex].x;
+    double a = lo.upper_bound(), b = hi.lower_bound();
+    for (std::size_t i = 1; i + 1 < samples && a < b; ++i) {
+      double x = a + (b - a) * static_cast<double>(i) / static_cast<double>(samples - 1);
+      if (!(x > a && x < b)) continue;
+      CertifiedValue y = evaluate(index, x);
+      line.points.push_back({x, y.value});
+      line.error = std::max(line.error, y.error);
+    }
+  }
+  line.points.push_back(vertex_point(raw_edge.max_vertex));
+  return line;
+}
+
+// ------------------------------------------------------------------ first crossing along a motion
+
+namespace {
+
+constexpr mpfr_prec_t precision = 160;
+
+// RAII for MPFI / MPFR values.
+struct Mpfi {
+  mpfi_t v;
+  Mpfi() { mpfi_init2(v, precision); }
+  ~Mpfi() { mpfi_clear(v); }
+  Mpfi(const Mpfi&) = delete;
+  Mpfi& operator=(const Mpfi&) = delete;
+};
+struct Mpfr {
+  mpfr_t v;
+  Mpfr() { mpfr_init2(v, precision); }
+  ~Mpfr() { mpfr_clear(v); }
+  Mpfr(const Mpfr&) = delete;
+  Mpfr& operator=(const Mpfr&) = delete;
+};
+
+Rational to_rational(const mpfr_t value) {
+  Rational r;
+  mpfr_get_q(r.get_mpq_t(), value);
+  return r;
+}
+
+// One axis's position over a stretch of the path in one chart system: a rotation chart
+// centred at 0 or pi, or a translation; [lo, hi] in chart coordinates, exact.
+struct AxisPiece {
+  bool rotation = true;
+  bool half_turn = false;
+  Rational lo, hi;
+};
+
+// tan(angle / 2), rounded down or up; \pre |angle| < pi.
+Rational tan_half(const mpfr_t angle, mpfr_rnd_t rounding) {
+  Mpfr half, t;
+  mpfr_div_2ui(half.v, angle, 1, MPFR_RNDN);   // exact
+  mpfr_tan(t.v, half.v, rounding);
+  return to_rational(t.v);
+}
+
+// The chart-coordinate pieces of an angle enclosure `theta` (width < 2): t = tan((theta - c)/2)
+// in the charts centred at c = 0 and c = pi, clipped at the seams theta = +-pi/2 (where t = +-1
+// exactly), so that the pieces cover every angle in `theta`.
+std::vector<AxisPiece> angle_pieces(const RInterval& theta) {
+  Mpfi pi, half_pi, angle, shifted;
+  mpfi_const_pi(pi.v);
+  mpfi_div_2ui(half_pi.v, pi.v, 1);
+  mpfi_interv_q(angle.v, theta.lo.get_mpq_t(), theta.hi.get_mpq_t());
+  // reduce by a whole number of turns: k = floor((mid + pi) / 2 pi)
+  {
+    Mpfr mid, turn, k;
+    Rational m = (theta.lo + theta.hi) / 2;
+    mpfr_set_q(mid.v, m.get_mpq_t(), MPFR_RNDN);
+    mpfr_const_pi(turn.v, MPFR_RNDN);
+    mpfr_add(mid.v, mid.v, turn.v, MPFR_RNDN);
+    mpfr_mul_2ui(turn.v, turn.v, 1, MPFR_RNDN);
+    mpfr_div(k.v, mid.v, turn.v, MPFR_RNDN);
+    mpfr_floor(k.v, k.v);
+    mpz_class turns;
+    mpfr_get_z(turns.get_mpz_t(), k.v, MPFR_RNDN);
+    Mpfi full;
+    mpfi_mul_2ui(full.v, pi.v, 1);
+    mpfi_mul_z(full.v, full.v, turns.get_mpz_t());
+    mpfi_sub(angle.v, angle.v, full.v);
+  }
+  Mpfr hp_lo, hp_hi;
+  mpfi_get_left(hp_lo.v, half_pi.v);
+  mpfi_get_right(hp_hi.v, half_pi.v);
+  std::vector<AxisPiece> pieces;
+  // tau = angle - centre, clipped to [-pi/2, pi/2]
+  auto piece = [&](const mpfi_t tau, bool half_turn) {
+    Mpfr lo, hi;
+    mpfi_get_left(lo.v, tau);
+    mpfi_get_right(hi.v, tau);
+    // certainly below -pi/2 or certainly above pi/2: not in this chart
+    Mpfr below;
+    mpfr_neg(below.v, hp_hi.v, MPFR_RNDN);   // -pi/2 >= -hp_hi
+    if (mpfr_cmp(hi.v, below.v) < 0 || mpfr_cmp(lo.v, hp_hi.v) > 0) return;
+    AxisPiece p;
+    p.rotation = true;
+    p.half_turn = half_turn;
+    Mpfr neg_lo;
+    mpfr_neg(neg_lo.v, hp_lo.v, MPFR_RNDN);
+    p.lo = mpfr_cmp(lo.v, neg_lo.v) <= 0 ? Rational(-1) : tan_half(lo.v, MPFR_RNDD);
+    p.hi = mpfr_cmp(hi.v, hp_lo.v) >= 0 ? Rational(1) : tan_half(hi.v, MPFR_RNDU);
+    if (p.lo > p.hi) return;
+    pieces.push_back(p);
+  };
+  piece(angle.v, false);
+  Mpfi tau;
+  mpfi_sub(tau.v, angle.v, pi.v);
+  piece(tau.v, true);
+  mpfi_add(tau.v, angle.v, pi.v);
+  piece(tau.v, true);
+  return pieces;
+}
+
+// The chart-coordinate pieces of a half-angle-tangent enclosure t0 (chart centred at 0): the
+// part within [-1, 1], and the parts beyond the seams mapped to the chart centred at pi by
+// t -> -1/t.
+std::vector<AxisPiece> tangent_pieces(const RInterval& t) {
+  std::vector<AxisPiece> pieces;
+  Rational one(1), minus_one(-1);
+  if (t.hi >= minus_one && t.lo <= one)
+    pieces.push_back(AxisPiece{true, false, std::max(t.lo, minus_one), std::min(t.hi, one)});
+  if (t.hi >= one) {
+    Rational a = -1 / std::max(t.lo, one), b = -1 / t.hi;
+    pieces.push_back(AxisPiece{true, true, a, b});
+  }
+  if (t.lo <= minus_one) {
+    Rational a = -1 / t.lo, b = -1 / std::min(t.hi, minus_one);
+    pieces.push_back(AxisPiece{true, true, a, b});
+  }
+  return pieces;
+}
+
+// A box of one chart where the path may be.
+struct PieceBox {
+  std::size_t chart = 0;
+  Rational x_lo, x_hi, y_lo, y_hi;
+};
+
+// A contact curve of a chart that is not excluded over a box.
+struct Possible {
+  std::size_t chart, curve, piece;
+};
+
+class MotionScanner {
+ public:
+  MotionScanner(const CSpace::Impl& impl, const MotionPath& path) : impl_(impl), path_(path) {
+    auto check = [&](const AxisPath& axis, AxisKind kind, const char* which) {
+      bool rotation = axis.kind != AxisPath::Kind::offset;
+      if (rotation != (kind == AxisKind::rotation))
+        throw GeometryError(std::string("first_crossing: the ") + which + " part " +
+                            (kind == AxisKind::rotation ? "rotates (give an angle or a half-angle tangent)"
+                                                        : "translates (give an offset)"));
+    };
+    check(path.x, impl.public_charts.at(0).x_kind, "x");
+    if (impl.dimension == 2) check(path.y, impl.public_charts.at(0).y_kind, "y");
+  }
+
+  struct Evaluation {
+    bool too_wide = false;
+    bool covered = true;
+    std::vector<PieceBox> boxes;
+    std::vector<Possible> possible;
+  };
+
+  Evaluation evaluate(const Rational& a, const Rational& b) {
+    Evaluation result;
+    std::vector<AxisPiece> xs = pieces(path_.x, a, b, result.too_wide);
+    std::vector<AxisPiece> ys;
+    if (impl_.dimension == 2) ys = pieces(path_.y, a, b, result.too_wide);
+    else ys = {AxisPiece{false, false, Rational(0), Rational(0)}};
+    if (result.too_wide) return result;
+    for (const AxisPiece& px : xs)
+      for (const AxisPiece& py : ys) {
+        std::vector<std::size_t> charts;
+        for (std::size_t c = 0; c < impl_.public_charts.size(); ++c) {
+          const CSpaceChart& chart = impl_.public_charts[c];
+          if (!same_system(chart.x_kind, chart.x_half_turn, px)) continue;
+          if (px.hi < chart.x_lo || px.lo > chart.x_hi) continue;
+          if (impl_.dimension == 2) {
+            if (!same_system(chart.y_kind, chart.y_half_turn, py)) continue;
+            if (py.hi < chart.y_lo || py.lo > chart.y_hi) continue;
+          }
+          charts.push_back(c);
+        }
+        if (!covers(charts, px, py)) result.covered = false;
+        for (std::size_t c : charts) {
+          const CSpaceChart& chart = impl_.public_charts[c];
+          PieceBox box{c, std::max(px.lo, chart.x_lo), std::min(px.hi, chart.x_hi), py.lo, py.hi};
+          if (impl_.dimension == 2) {
+            box.y_lo = std::max(py.lo, chart.y_lo);
+            box.y_hi = std::min(py.hi, chart.y_hi);
+          }
+          result.boxes.push_back(box);
+          exclude(result.boxes.size() - 1, box, result.possible);
+        }
+      }
+    return result;
+  }
+
+  // Exact location of a rational point inside a box with no contact curve.
+  Location locate_inside(const PieceBox& box) const {
+    Rational x = (box.x_lo + box.x_hi) / 2, y = (box.y_lo + box.y_hi) / 2;
+    x.canonicalize();
+    y.canonicalize();
+    return cspace::locate_point(impl_, ChartPoint{box.chart, x, y});
+  }
+
+ private:
+  static bool same_system(AxisKind kind, bool half_turn, const AxisPiece& piece) {
+    if ((kind == AxisKind::rotation) != piece.rotation) return false;
+    return kind == AxisKind::translation || half_turn == piece.half_turn;
+  }
+
+  std::vector<AxisPiece> pieces(const AxisPath& axis, const Rational& a, const Rational& b, bool& too_wide) const {
+    RInterval value = evaluate_path(axis.coefficients, a, b);
+    switch (axis.kind) {
+      case AxisPath::Kind::offset: return {AxisPiece{false, false, value.lo, value.hi}};
+      case AxisPath::Kind::half_tangent: return tangent_pieces(value);
+      case AxisPath::Kind::angle:
+        if (value.hi - value.lo >= 2) {
+          too_wide = true;
+          return {};
+        }
+        return angle_pieces(value);
+    }
+    return {};
+  }
+
+  // Do the boxes of `charts` (same system) cover px x py? Grid of the boxes' sides.
+  bool covers(const std::vector<std::size_t>& charts, const AxisPiece& px, const AxisPiece& py) const {
+    auto cells = [](std::vector<Rational> cuts) {
+      std::sort(cuts.begin(), cuts.end());
+      cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+      if (cuts.size() == 1) return cuts;
+      std::vector<Rational> middles;
+      for (std::size_t i = 0; i + 1 < cuts.size(); ++i) middles.push_back((cuts[i] + cuts[i + 1]) / 2);
+      return middles;
+    };
+    std::vector<Rational> xcuts{px.lo, px.hi}, ycuts{py.lo, py.hi};
+    for (std::size_t c : charts) {
+      const CSpaceChart& chart = impl_.public_charts[c];
+      for (const Rational& v : {chart.x_lo, chart.x_hi})
+        if (v > px.lo && v < px.hi) xcuts.push_back(v);
+      if (impl_.dimension == 2)
+        for (const Rational& v : {chart.y_lo, chart.y_hi})
+          if (v > py.lo && v < py.hi) ycuts.push_back(v);
+    }
+    for (const Rational& mx : cells(xcuts))
+      for (const Rational& my : cells(ycuts)) {
+        bool inside = false;
+        for (std::size_t c : charts) {
+          const CSpaceChart& chart = impl_.public_charts[c];
+          if (mx < chart.x_lo || mx > chart.x_hi) continue;
+          if (impl_.dimension == 2 && (my < chart.y_lo || my > chart.y_hi)) continue;
+          inside = true;
+          break;
+        }
+        if (!inside) return false;
+      }
+    return true;
+  }
+
+  // Curves of the box's chart that may vanish (validly) in the box.
+  void exclude(std::size_t piece, const PieceBox& box, std::vector<Possible>& possible) {
+    const ChartData& chart = impl_.charts[box.chart];
+    cspace::algebra::Interval x{cspace::algebra::lower_double(box.x_lo), cspace::algebra::upper_double(box.x_hi)};
+    cspace::algebra::Interval y{cspace::algebra::lower_double(box.y_lo), cspace::algebra::upper_double(box.y_hi)};
+    for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
+      if (!chart.interval_polynomials[k].evaluate(x, y).contains_zero()) continue;
+      const auto& clauses = validity(box.chart, k);
+      bool invalid = false;
+      for (const auto& clause : clauses) {
+        bool all_negative = true;
+        for (const auto& atom : clause) all_negative = all_negative && atom.evaluate(x, y).hi < 0;
+        if (all_negative) {
+          invalid = true;
+          break;
+        }
+      }
+      if (!invalid) possible.push_back(Possible{box.chart, k, piece});
+    }
+  }
+
+  const std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>& validity(std::size_t chart, std::size_t k) {
+    auto key = std::make_pair(chart, k);
+    auto it = validity_.find(key);
+    if (it != validity_.end()) return it->second;
+    std::vector<std::vector<cspace::algebra::IntervalPolynomial2>> clauses;
+    for (const auto& clause : impl_.charts[chart].validity[k]) {
+      clauses.emplace_back();
+      for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
+    }
+    return validity_.emplace(key, std::move(clauses)).first->second;
+  }
+
+  const CSpace::Impl& impl_;
+  const MotionPath& path_;
+  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>>
+      validity_;
+};
+
+}  // namespace
+
+MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOptions& options) const {
+  const Impl& impl = checked(*this);
+  MotionPath path = input;
+  for (auto* axis : {&path.x, &path.y})
+    for (auto& c : axis->coefficients) c.canonicalize();
+  path.u_begin.canonicalize();
+  path.u_end.canonicalize();
+  if (path.u_end < path.u_begin) throw GeometryError("first_crossing: u_end < u_begin");
+  MotionScanner scanner(impl, path);
+  MotionCrossing result;
+
+  // a real edge of `possible` curves near the crossing, its feature pairs, chart point and frame
+  auto describe = [&](const MotionScanner::Evaluation& at, std::size_t entered) {
+    for (const Possible& p : at.possible) {
+      FeatureId id(impl.charts[p.chart].curve_global[p.curve]);
+      if (std::find(result.features.begin(), result.features.end(), id) == result.features.end())
+        result.features.push_back(id);
+    }
+    if (at.possible.empty()) return;
+    const Possible& first = at.possible.front();
+    const PieceBox& box = at.boxes[first.piece];
+    result.chart = box.chart;
+    result.chart_point = {range_of(box.x_lo, box.x_hi), range_of(box.y_lo, box.y_hi)};
+    const ChartData& chart = impl.charts[box.chart];
+    double bx[4] = {cspace::algebra::lower_double(box.x_lo), cspace::algebra::lower_double(box.y_lo),
+                    cspace::algebra::upper_double(box.x_hi), cspace::algebra::upper_double(box.y_hi)};
+    std::size_t fallback = no_index;
+    for (const Possible& p : at.possible) {
+      if (p.chart != box.chart) continue;
+      for (std::size_t e = 0; e < chart.edges.size(); ++e) {
+        const CSpaceEdge& edge = impl.edges[chart.edges[e].global];
+        if (!edge.real) continue;
+        const auto& curves = chart.edges[e].curves;
+        if (std::find(curves.begin(), curves.end(), p.curve) == curves.end()) continue;
+        if (impl.dimension == 2) {
+          const auto& raw_box = chart.arrangement.edges[e].box;
+          if (bx[2] < raw_box[0] || bx[0] > raw_box[2] || bx[3] < raw_box[1] || bx[1] > raw_box[3]) continue;
+        }
+        if (fallback == no_index) fallback = chart.edges[e].global;
+        bool separates = entered != no_index &&
+                         ((edge.left_cell == result.cell_left.index() && edge.right_cell == entered) ||
+                          (edge.right_cell == result.cell_left.index() && edge.left_cell == entered));
+        if (separates) {
+          result.edge = EdgeId(chart.edges[e].global);
+          break;
+        }
+      }
+      if (result.edge.valid()) break;
+    }
+    if (!result.edge.valid() && fallback != no_index) result.edge = EdgeId(fallback);
+    if (impl.model && !result.features.empty()) {
+      auto enclose = [](const Rational& r) { return KInterval::enclose(r); };
+      KInterval x(cspace::algebra::lower_double(box.x_lo), cspace::algebra::upper_double(box.x_hi));
+      KInterval y(cspace::algebra::lower_double(box.y_lo), cspace::algebra::upper_double(box.y_hi));
+      kernels::ContactFrame<KInterval> frame =
+          frame_at<KInterval>(impl, box.chart, impl.feature_pairs[result.features.front().index()], x, y, enclose);
+      if (frame.defined) {
+        result.point = {range_of(frame.point.x), range_of(frame.point.y)};
+        result.normal = unit_normal(frame.normal);
+      }
+    }
+  };
+
+  // ---- the start
+  MotionScanner::Evaluation start = scanner.evaluate(path.u_begin, path.u_begin);
+  result.u_lower = result.u_upper = path.u_begin;
+  if (!start.covered || start.boxes.empty()) {
+    result.status = CrossingStatus::outside_region;
+    return result;
+  }
+  Location where;
+  bool point_exact = std::all_of(start.boxes.begin(), start.boxes.end(), [](const PieceBox& b) {
+    return b.x_lo == b.x_hi && b.y_lo == b.y_hi;
+  });
+  if (start.possible.empty() || point_exact) {
+    where = scanner.locate_inside(start.boxes.front());
+  } else {
+    // an irrational start within the resolution of a contact curve: in contact, conservatively
+    result.status = CrossingStatus::starts_in_contact;
+    result.grazing = true;
+    describe(start, no_index);
+    return result;
+  }
+  if (where.kind != Location::Kind::free || contact_location(impl, where)) {
+    result.status = CrossingStatus::starts_in_contact;
+    result.cell_left = CellId(where.cell);
+    if (where.edge != no_index) result.edge = EdgeId(where.edge);
+    describe(start, no_index);
+    return result;
+  }
+  result.cell_left = CellId(where.cell);
+
+  // ---- subdivision: intervals in path order, excluded ones certified in the starting cell
+  Rational resolution = (path.u_end - path.u_begin) / Rational(mpz_class(1) << options.resolution_bits);
+  resolution.canonicalize();
+  std::vector<std::pair<Rational, Rational>> stack{{path.u_begin, path.u_end}};
+  while (!stack.empty()) {
+    auto [a, b] = stack.back();
+    stack.pop_back();
+    if (a == b) continue;
+    MotionScanner::Evaluation at = scanner.evaluate(a, b);
+    bool wide = b - a > resolution;
+    auto split = [&, a = a, b = b] {
+      Rational m = (a + b) / 2;
+      m.canonicalize();
+      stack.emplace_back(m, b);
+      stack.emplace_back(a, m);
+    };
+    if (at.too_wide) {
+      split();
+      continue;
+    }
+    if (!at.covered) {
+      if (wide) {
+        split();
+        continue;
+      }
+      result.status = CrossingStatus::outside_region;
+      result.u_lower = a;
+      result.u_upper = b;
+      return result;
+    }
+    if (at.possible.empty()) continue;
+    if (wide) {
+      split();
+      continue;
+    }
+    // a stretch within the resolution that may touch contact space: the cell at its end
+    result.status = CrossingStatus::crossing;
+    result.u_lower = a;
+    result.u_upper = b;
+    MotionScanner::Evaluation end = scanner.evaluate(b, b);
+    std::size_t entered = no_index;
+    if (end.covered && !end.boxes.empty() && end.possible.empty()) {
+      Location there = scanner.locate_inside(end.boxes.front());
+      if (there.kind != Location::Kind::free || there.cell != result.cell_left.index()) {
+        entered = there.cell;
+        result.cell_entered = CellId(there.cell);
+      }
+    }
+    result.grazing = entered == no_index;
+    describe(at, entered);
+    return result;
+  }
+  result.u_lower = result.u_upper = path.u_end;
+  return result;
+}
+
+}  // namespace hipair
