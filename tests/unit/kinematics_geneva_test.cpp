@@ -181,7 +181,8 @@ TEST_P(GenevaSlots, WheelFollowsTheClosedFormAndIndexesByOneSlot) {
   EXPECT_LT(drives[0]->end.value(), pi + spread + 4 * std::sqrt(g.delta / (g.d - g.a)));
 }
 
-INSTANTIATE_TEST_SUITE_P(Kinematics, GenevaSlots, ::testing::Values(3, 4, 5, 6, 8));
+INSTANTIATE_TEST_SUITE_P(Kinematics, GenevaSlots, ::testing::Values(3, 4, 5, 6, 8),
+                         [](const auto& info) { return std::to_string(info.param) + "_slots"; });
 
 // Zero-clearance limit (delta = 1e-5 mm, slot walls ending at the wheel radius): the classic
 // relation tan theta' = -lambda sin phi' / (1 - lambda cos phi'), a drive spanning
