@@ -411,16 +411,44 @@ EdgePolyline CSpace::edge_polyline(EdgeId id, std::size_t samples) const {
   const ChartData& chart = impl.charts[c];
   const cspace::raw::Edge& raw_edge = chart.arrangement.edges[e];
   EdgePolyline line;
-  auto vertex_point = [&](std::size_t v) {
-    Real x = chart.arrangement.vertices[v].x, y = chart.arrangement.vertices[v].y;
+  auto add_error = [&](const Real& r, double value) {
+    line.error = std::max({line.error, std::fabs(r.upper_bound() - value), std::fabs(value - r.lower_bound())});
+  };
+  // an end of the edge: the vertex when its y is an algebraic number (rational x); otherwise
+  // the point of the edge at a rational abscissa within 2^-60 of the vertex, inside the edge
+  auto vertex_point = [&](std::size_t v, bool low_end) {
+    const cspace::raw::Vertex& vertex = chart.arrangement.vertices[v];
+    Real x = vertex.x;
     x.refine_to(Rational(1, mpz_class(1) << 60));
+    double px = x.approximate();
+    add_error(x, px);
+    if (vertex.y_exact) {
+      Real y = vertex.y;
+      y.refine_to(Rational(1, mpz_class(1) << 60));
+      double py = y.approximate();
+      add_error(y, py);
+      return std::array<double, 2>{px, py};
+    }
+    // irrational x: the edge's point at the end of x's isolating interval that lies inside the
+    // edge (when the edge is longer than that), else the vertex's certified y interval
+    const cspace::raw::Vertex& other = chart.arrangement.vertices[low_end ? raw_edge.max_vertex : raw_edge.min_vertex];
+    Rational inside = low_end ? x.upper : x.lower;
+    bool fits = !raw_edge.vertical && !x.exact && (low_end ? other.x.compare(inside) > 0 : other.x.compare(inside) < 0);
+    if (!fits) {
+      Rational middle = (vertex.y_lower + vertex.y_upper) / 2;
+      double py = middle.get_d();
+      line.error = std::max({line.error, std::fabs(cspace::algebra::upper_double(vertex.y_upper) - py),
+                             std::fabs(py - cspace::algebra::lower_double(vertex.y_lower))});
+      return std::array<double, 2>{px, py};
+    }
+    Real y = cspace::edge_y_at(chart, e, inside);
     y.refine_to(Rational(1, mpz_class(1) << 60));
-    double px = x.approximate(), py = y.approximate();
-    line.error = std::max({line.error, std::fabs(x.upper_bound() - px), std::fabs(px - x.lower_bound()),
-                           std::fabs(y.upper_bound() - py), std::fabs(py - y.lower_bound())});
+    double py = y.approximate();
+    add_error(y, py);
+    line.error = std::max(line.error, std::fabs(Rational(inside - Rational(px)).get_d()));
     return std::array<double, 2>{px, py};
   };
-  line.points.push_back(vertex_point(raw_edge.min_vertex));
+  line.points.push_back(vertex_point(raw_edge.min_vertex, true));
   if (!raw_edge.vertical) {
     const Real& lo = chart.arrangement.vertices[raw_edge.min_vertex].x;
     const Real& hi = chart.arrangement.vertices[raw_edge.max_vertex].x;
@@ -433,7 +461,7 @@ EdgePolyline CSpace::edge_polyline(EdgeId id, std::size_t samples) const {
       line.error = std::max(line.error, y.error);
     }
   }
-  line.points.push_back(vertex_point(raw_edge.max_vertex));
+  line.points.push_back(vertex_point(raw_edge.max_vertex, false));
   return line;
 }
 
