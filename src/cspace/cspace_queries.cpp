@@ -780,32 +780,37 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
     result.chart = box.chart;
     result.chart_point = {range_of(box.x_lo, box.x_hi), range_of(box.y_lo, box.y_hi)};
     const ChartData& chart = impl.charts[box.chart];
-    double bx[4] = {cspace::algebra::lower_double(box.x_lo), cspace::algebra::lower_double(box.y_lo),
-                    cspace::algebra::upper_double(box.x_hi), cspace::algebra::upper_double(box.y_hi)};
-    std::size_t fallback = no_index;
-    for (const Possible& p : at.possible) {
-      if (p.chart != box.chart) continue;
-      for (std::size_t e = 0; e < chart.edges.size(); ++e) {
+    // the real edge crossed: among the real edges of the charts met whose certified boxes meet
+    // the bracket's, prefer one between the start cell and the cell entered carrying a
+    // possible curve, then one between the two cells, then one carrying a possible curve
+    int best = 0;
+    if (result.edge.valid()) best = 3;   // known exactly
+    for (std::size_t i = 0; i < at.boxes.size() && best < 3; ++i) {
+      const PieceBox& piece = at.boxes[i];
+      const ChartData& chart = impl.charts[piece.chart];
+      double bx[4] = {cspace::algebra::lower_double(piece.x_lo), cspace::algebra::lower_double(piece.y_lo),
+                      cspace::algebra::upper_double(piece.x_hi), cspace::algebra::upper_double(piece.y_hi)};
+      for (std::size_t e = 0; e < chart.edges.size() && best < 3; ++e) {
         const CSpaceEdge& edge = impl.edges[chart.edges[e].global];
         if (!edge.real) continue;
-        const auto& curves = chart.edges[e].curves;
-        if (std::find(curves.begin(), curves.end(), p.curve) == curves.end()) continue;
         if (impl.dimension == 2) {
           const auto& raw_box = chart.arrangement.edges[e].box;
           if (bx[2] < raw_box[0] || bx[0] > raw_box[2] || bx[3] < raw_box[1] || bx[1] > raw_box[3]) continue;
         }
-        if (fallback == no_index) fallback = chart.edges[e].global;
+        const auto& curves = chart.edges[e].curves;
+        bool carries = std::any_of(at.possible.begin(), at.possible.end(), [&](const Possible& p) {
+          return p.chart == piece.chart && std::find(curves.begin(), curves.end(), p.curve) != curves.end();
+        });
         bool separates = entered != no_index &&
                          ((edge.left_cell == result.cell_left.index() && edge.right_cell == entered) ||
                           (edge.right_cell == result.cell_left.index() && edge.left_cell == entered));
-        if (separates) {
+        int score = separates && carries ? 3 : separates ? 2 : carries ? 1 : 0;
+        if (score > best) {
+          best = score;
           result.edge = EdgeId(chart.edges[e].global);
-          break;
         }
       }
-      if (result.edge.valid()) break;
     }
-    if (!result.edge.valid() && fallback != no_index) result.edge = EdgeId(fallback);
     if (impl.model && !result.features.empty()) {
       auto enclose = [](const Rational& r) { return KInterval::enclose(r); };
       KInterval x(cspace::algebra::lower_double(box.x_lo), cspace::algebra::upper_double(box.x_hi));
@@ -883,21 +888,52 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
       split();
       continue;
     }
-    // a stretch within the resolution that may touch contact space: the cell at its end
+    // a stretch within the resolution that may touch contact space: decide where the motion
+    // is after it. A rational configuration (offset and half-tangent motions) is located
+    // exactly, any other one when no contact curve meets its enclosure; the end moves forward
+    // in doubling steps (at most 2^24 resolutions) until it is certainly outside the start
+    // cell, and the bracket grows to it: the motion is in the start cell at u_lower and no
+    // longer in it at u_upper, so its first contact lies between. If no such end is found,
+    // the tiny stretch is reported as a possible touch (grazing).
     result.status = CrossingStatus::crossing;
     result.u_lower = a;
     result.u_upper = b;
-    MotionScanner::Evaluation end = scanner.evaluate(b, b);
     std::size_t entered = no_index;
-    if (end.covered && !end.boxes.empty() && end.possible.empty()) {
-      Location there = scanner.locate_inside(end.boxes.front());
-      if (there.kind != Location::Kind::free || there.cell != result.cell_left.index()) {
-        entered = there.cell;
-        result.cell_entered = CellId(there.cell);
+    bool left_start = false;
+    Rational step = b - a;
+    Rational end_u = b;
+    for (int attempt = 0; attempt < 24; ++attempt) {
+      MotionScanner::Evaluation end = scanner.evaluate(end_u, end_u);
+      if (!end.covered || end.boxes.empty()) break;
+      bool exact_point = std::all_of(end.boxes.begin(), end.boxes.end(), [](const PieceBox& box) {
+        return box.x_lo == box.x_hi && box.y_lo == box.y_hi;
+      });
+      if (exact_point || end.possible.empty()) {
+        Location there = scanner.locate_inside(end.boxes.front());
+        if (there.kind != Location::Kind::free || there.cell != result.cell_left.index()) {
+          left_start = true;
+          result.u_upper = end_u;
+          if (there.kind == Location::Kind::blocked || there.kind == Location::Kind::free) {
+            entered = there.cell;
+            result.cell_entered = CellId(there.cell);
+          } else if (there.edge != no_index && impl.edges[there.edge].real) {
+            result.edge = EdgeId(there.edge);   // exactly on a contact edge at u_upper
+          }
+          break;
+        }
       }
+      step *= 2;
+      end_u = b + step;
+      if (end_u > path.u_end) break;
     }
-    result.grazing = entered == no_index;
-    describe(at, entered);
+    result.grazing = !left_start;
+    if (left_start && result.u_upper != b) {
+      MotionScanner::Evaluation bracket = scanner.evaluate(a, result.u_upper);
+      describe(bracket.possible.empty() ? at : bracket, entered);
+    } else {
+      describe(at, entered);
+    }
+    result.u_upper.canonicalize();
     return result;
   }
   result.u_lower = result.u_upper = path.u_end;

@@ -395,7 +395,7 @@ TEST(CSpaceAdaptorQueries, RandomMotionsNeverMissACrossingOfDenseExactSampling) 
       speed_s(-1500, 1500);
   int crossings = 0, certain = 0, free_runs = 0, outside = 0, motions = 0;
   const int samples = 300;
-  while (motions < 40) {
+  while (motions < 150) {
     Rational t0(start_t(random), 1000), a(speed_t(random), 1000), s0(start_s(random), 100), b(speed_s(random), 100);
     t0.canonicalize(), a.canonicalize(), s0.canonicalize(), b.canonicalize();
     if (oracle(model, axes, t0, s0) != cspace::Overlap::apart) continue;
@@ -449,7 +449,7 @@ TEST(CSpaceAdaptorQueries, RandomAngleMotionsAcrossSeamsAgreeWithSampling) {
   std::mt19937_64 random(77);
   std::uniform_int_distribution<int> angle(-3141, 3141), speed(-9000, 9000), start_s(-1100, 1100);
   int motions = 0, crossings = 0;
-  while (motions < 20) {
+  while (motions < 60) {
     Rational theta0(angle(random), 1000), omega(speed(random), 1000), s0(start_s(random), 100);
     theta0.canonicalize(), omega.canonicalize(), s0.canonicalize();
     auto t_of = [&](double theta) {
@@ -474,6 +474,8 @@ TEST(CSpaceAdaptorQueries, RandomAngleMotionsAcrossSeamsAgreeWithSampling) {
     }
     if (c.status == CrossingStatus::crossing) {
       ++crossings;
+      EXPECT_FALSE(c.grazing);
+      EXPECT_LT(Rational(c.u_upper - c.u_lower).get_d(), 1e-9);
       double u = c.u_upper.get_d(), theta = theta0.get_d() + omega.get_d() * u;
       // the contact at the crossing: the cam's top at the face (s = e sin theta), or another feature
       ASSERT_FALSE(c.features.empty());
@@ -483,6 +485,71 @@ TEST(CSpaceAdaptorQueries, RandomAngleMotionsAcrossSeamsAgreeWithSampling) {
     }
   }
   EXPECT_GT(crossings, 5);
+}
+
+// The exact overlap oracle of the Geneva pair at half-angle tangents (t1, t2) (centre 0).
+cspace::Overlap torus_oracle(const Model& model, const cspace::PairAxes& axes, const Rational& t1, const Rational& t2) {
+  auto axis = [](const Rational& t, Rational& chart_value) {
+    bool beyond = t > 1 || t < -1;
+    chart_value = beyond ? Rational(-1 / t) : t;
+    chart_value.canonicalize();
+    return cspace::ChartAxis{cspace::ChartAxis::Kind::rotation, beyond, Rational(-1), Rational(1)};
+  };
+  Rational x, y;
+  cspace::ChartAxis ax = axis(t1, x), ay = axis(t2, y);
+  return cspace::classify_overlap(model, axes, ax, ay, cspace::ChartPoint{x, y});
+}
+
+TEST(CSpaceAdaptorQueries, RandomGenevaMotionsOnTheTorusNeverMissACrossing) {
+  Model model = read_model_file(example("geneva.json"));
+  CSpace space = CSpace::build(model, "driver", "wheel");
+  cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+  // start configurations: rational points of the free channel (the free cell's sample, and
+  // random points located free)
+  std::mt19937_64 random(99);
+  std::uniform_int_distribution<int> coordinate(-2500, 2500), speed(-600, 600);
+  int motions = 0, certain = 0, free_runs = 0, tries = 0;
+  const int samples = 400;
+  while (motions < 30 && ++tries < 200000) {
+    Rational t1(coordinate(random), 1000), t2(coordinate(random), 1000);
+    t1.canonicalize(), t2.canonicalize();
+    if (torus_oracle(model, axes, t1, t2) != cspace::Overlap::apart) continue;
+    Rational a(speed(random), 1000), b(speed(random), 1000);
+    // gear-ratio-like motions in tangents: quadratic in u for the wheel
+    Rational b2(speed(random), 4000);
+    a.canonicalize(), b.canonicalize(), b2.canonicalize();
+    ++motions;
+    MotionPath path;
+    path.x = AxisPath{AxisPath::Kind::half_tangent, {t1, a}};
+    path.y = AxisPath{AxisPath::Kind::half_tangent, {t2, b, b2}};
+    MotionCrossing c = space.first_crossing(path);
+    ASSERT_NE(c.status, CrossingStatus::starts_in_contact);
+    ASSERT_NE(c.status, CrossingStatus::outside_region);
+    Rational limit = c.status == CrossingStatus::none ? Rational(2) : c.u_lower;
+    for (int k = 0; k <= samples; ++k) {
+      Rational u(k, samples);
+      Rational x = t1 + a * u, y = t2 + b * u + b2 * u * u;
+      x.canonicalize(), y.canonicalize();
+      if (torus_oracle(model, axes, x, y) != cspace::Overlap::apart) {
+        EXPECT_NE(c.status, CrossingStatus::none) << "missed at u = " << u;
+        EXPECT_LE(limit, u) << "t1 " << t1 << " t2 " << t2 << " a " << a << " b " << b << " b2 " << b2;
+        break;
+      }
+    }
+    if (c.status == CrossingStatus::crossing && !c.grazing) {
+      ++certain;
+      Rational x = t1 + a * c.u_upper, y = t2 + b * c.u_upper + b2 * c.u_upper * c.u_upper;
+      x.canonicalize(), y.canonicalize();
+      Location there = space.locate(tangent(x), tangent(y));
+      EXPECT_TRUE(there.kind != Location::Kind::free || there.cell != c.cell_left.index());
+      EXPECT_TRUE(c.edge.valid());
+      ASSERT_FALSE(c.features.empty());
+    }
+    if (c.status == CrossingStatus::none) ++free_runs;
+  }
+  EXPECT_EQ(motions, 30);
+  EXPECT_GE(certain, 25);   // certified: the cell at u_upper is not the start's
+  RecordProperty("free_runs", free_runs);
 }
 
 // ------------------------------------------------------------------ slices, polylines, build_pairs
