@@ -12,6 +12,7 @@
 #include "cspace/builder_impl.hpp"
 #include "cspace/pose.hpp"
 #include "kernels/contact_geometry.hpp"
+#include "kernels/implicit_curve.hpp"
 #include "kernels/interval.hpp"
 
 #include <mpfi.h>
@@ -48,6 +49,9 @@ CertifiedRange range_of(const KInterval& i) { return CertifiedRange{i.lo, i.hi};
 
 struct RInterval {
   Rational lo, hi;
+  RInterval() = default;
+  RInterval(int value) : lo(value), hi(value) {}  // NOLINT(google-explicit-constructor): kernels' T(int)
+  RInterval(Rational low, Rational high) : lo(std::move(low)), hi(std::move(high)) {}
   static RInterval point(const Rational& r) { return {r, r}; }
   bool contains_zero() const { return sgn(lo) <= 0 && sgn(hi) >= 0; }
 };
@@ -262,16 +266,11 @@ std::vector<Rational> partial_in_y(const cspace::IntegerPolynomial2& f, const Ra
   return result;
 }
 
-// First and second derivatives of a part coordinate (rad or mm) with respect to its chart
-// coordinate: rotation theta = c + 2 atan(t): 2/(1+t^2), -4t/(1+t^2)^2; translation: 1, 0.
-std::pair<RInterval, RInterval> coordinate_slopes(const cspace::ChartAxis& axis,
-                                                                const RInterval& t) {
+// Slopes of a part coordinate (rad or mm) with respect to its chart coordinate.
+kernels::Slopes<RInterval> coordinate_slopes(const cspace::ChartAxis& axis, const RInterval& t) {
   if (axis.kind == cspace::ChartAxis::Kind::translation)
     return {RInterval::point(Rational(1)), RInterval::point(Rational(0))};
-  RInterval w = RInterval::point(Rational(1)) + t * t;
-  RInterval first = RInterval::point(Rational(2)) / w;
-  RInterval second = -(RInterval::point(Rational(4)) * t) / (w * w);
-  return {first, second};
+  return kernels::half_angle_slopes(t);
 }
 
 }  // namespace
@@ -308,15 +307,14 @@ EdgeDerivatives CSpace::derivatives(EdgeId id, const Rational& x_input) const {
                             " is singular or vertical at this abscissa (F_y = 0)");
       continue;
     }
-    RInterval Fx = horner(fx, Y);
-    RInterval dy = -(Fx / Fy);
-    RInterval d2y = -((horner(fxx, Y) + RInterval::point(Rational(2)) * horner(fxy, Y) * dy +
-                              horner(fyy, Y) * dy * dy) /
-                             Fy);
-    auto [x1, x2] = coordinate_slopes(chart.x_axis, RInterval::point(x));
-    auto [y1, y2] = coordinate_slopes(chart.y_axis, Y);
-    RInterval ratio = y1 * dy / x1;
-    RInterval acceleration = (y2 * dy * dy + y1 * d2y - ratio * x2) / (x1 * x1);
+    kernels::Slopes<RInterval> chart_slopes =
+        kernels::implicit_slopes(horner(fx, Y), Fy, horner(fxx, Y), horner(fxy, Y), horner(fyy, Y));
+    kernels::Slopes<RInterval> part = kernels::part_slopes(
+        chart_slopes, coordinate_slopes(chart.x_axis, RInterval::point(x)), coordinate_slopes(chart.y_axis, Y));
+    const RInterval& dy = chart_slopes.first;
+    const RInterval& d2y = chart_slopes.second;
+    const RInterval& ratio = part.first;
+    const RInterval& acceleration = part.second;
     result.dy = range_of(dy.lo, dy.hi);
     result.d2y = range_of(d2y.lo, d2y.hi);
     result.coordinate_dy = range_of(ratio.lo, ratio.hi);
