@@ -552,6 +552,54 @@ TEST(CSpaceAdaptorQueries, RandomGenevaMotionsOnTheTorusNeverMissACrossing) {
   RecordProperty("free_runs", free_runs);
 }
 
+TEST(CSpaceAdaptorQueries, FirstCrossingOverOperatingRegionTilesAgreesWithTheWholeSpace) {
+  Model model = read_model_file(example("geneva.json"));
+  CSpace whole = CSpace::build(model, "driver", "wheel");
+  CSpaceBuildOptions options;
+  options.operating_region = true;
+  options.region_tiles = 8;
+  CSpace region = CSpace::build(model, "driver", "wheel", options);
+  ASSERT_FALSE(region.complete());
+  std::mt19937_64 random(31);
+  std::uniform_int_distribution<int> coordinate(-2500, 2500), speed(-1500, 1500);
+  int motions = 0, crossings = 0, outside = 0, tries = 0;
+  while (motions < 30 && ++tries < 200000) {
+    Rational t1(coordinate(random), 1000), t2(coordinate(random), 1000);
+    t1.canonicalize(), t2.canonicalize();
+    if (region.locate(tangent(t1), tangent(t2)).kind != Location::Kind::free) continue;
+    Rational a(speed(random), 1000), b(speed(random), 1000);
+    a.canonicalize(), b.canonicalize();
+    ++motions;
+    MotionPath path;
+    path.x = AxisPath{AxisPath::Kind::half_tangent, {t1, a}};
+    path.y = AxisPath{AxisPath::Kind::half_tangent, {t2, b}};
+    MotionCrossing in_region = region.first_crossing(path);
+    MotionCrossing in_whole = whole.first_crossing(path);
+    ASSERT_EQ(in_whole.status == CrossingStatus::crossing || in_whole.status == CrossingStatus::none, true);
+    if (in_region.status == CrossingStatus::outside_region) {
+      ++outside;
+      // nothing before the region's border: the whole space's crossing is not earlier
+      if (in_whole.status == CrossingStatus::crossing) EXPECT_GE(in_whole.u_upper, in_region.u_lower);
+      continue;
+    }
+    ASSERT_EQ(in_region.status, in_whole.status) << "t1 " << t1 << " t2 " << t2 << " a " << a << " b " << b;
+    if (in_region.status == CrossingStatus::crossing) {
+      ++crossings;
+      // the two certified brackets hold the same first contact
+      EXPECT_LE(in_region.u_lower, in_whole.u_upper);
+      EXPECT_LE(in_whole.u_lower, in_region.u_upper);
+      std::set<std::string> labels;
+      for (FeatureId f : in_whole.features) labels.insert(whole.feature_pair(f).label);
+      bool shared = false;
+      for (FeatureId f : in_region.features) shared = shared || labels.count(region.feature_pair(f).label) > 0;
+      EXPECT_TRUE(shared);
+    }
+  }
+  EXPECT_EQ(motions, 30);
+  EXPECT_GT(crossings, 15);
+  RecordProperty("outside", outside);
+}
+
 // ------------------------------------------------------------------ slices, polylines, build_pairs
 
 TEST(CSpaceAdaptorQueries, SlicesAgreeWithTheOracle) {
