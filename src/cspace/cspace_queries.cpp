@@ -713,12 +713,59 @@ class MotionScanner {
     return true;
   }
 
-  // Curves of the box's chart that may vanish (validly) in the box.
+  // The curves of a chart that can bound the start cell: those carried by an edge between
+  // different cells (contact edges), with the edges' certified boxes, and those through an
+  // isolated vertex (tested everywhere). A first crossing lies on such an edge or vertex.
+  struct Carrier {
+    double box[4];
+    std::vector<std::size_t> curves;
+  };
+  struct ChartCarriers {
+    bool ready = false;
+    std::vector<Carrier> edges;
+    std::vector<std::size_t> everywhere;
+  };
+
+  const ChartCarriers& carriers(std::size_t c) {
+    ChartCarriers& result = carriers_[c];
+    if (result.ready) return result;
+    result.ready = true;
+    const ChartData& chart = impl_.charts[c];
+    for (std::size_t e = 0; e < chart.edges.size(); ++e) {
+      const CSpaceEdge& edge = impl_.edges[chart.edges[e].global];
+      if (!edge.real && edge.left_cell == edge.right_cell) continue;
+      if (chart.edges[e].curves.empty()) continue;
+      Carrier carrier;
+      std::copy(std::begin(chart.arrangement.edges[e].box), std::end(chart.arrangement.edges[e].box), carrier.box);
+      carrier.curves = chart.edges[e].curves;
+      result.edges.push_back(std::move(carrier));
+    }
+    for (std::size_t v = 0; v < chart.arrangement.vertices.size(); ++v) {
+      if (!chart.arrangement.vertices[v].isolated) continue;
+      const CSpaceVertex& vertex = impl_.vertices[chart.vertex_global[v]];
+      for (std::size_t k = 0; k < chart.curve_global.size(); ++k)
+        if (std::find(vertex.curves.begin(), vertex.curves.end(), chart.curve_global[k]) != vertex.curves.end())
+          result.everywhere.push_back(k);
+    }
+    return result;
+  }
+
+  // Curves of the box's chart that may vanish (validly) in the box, on a contact edge's box.
   void exclude(std::size_t piece, const PieceBox& box, std::vector<Possible>& possible) {
     const ChartData& chart = impl_.charts[box.chart];
     cspace::algebra::Interval x{cspace::algebra::lower_double(box.x_lo), cspace::algebra::upper_double(box.x_hi)};
     cspace::algebra::Interval y{cspace::algebra::lower_double(box.y_lo), cspace::algebra::upper_double(box.y_hi)};
+    std::vector<char> candidate(chart.polynomials.size(), impl_.dimension == 1 ? 1 : 0);
+    if (impl_.dimension == 2) {
+      const ChartCarriers& known = carriers(box.chart);
+      for (std::size_t k : known.everywhere) candidate[k] = 1;
+      for (const Carrier& carrier : known.edges) {
+        if (x.hi < carrier.box[0] || x.lo > carrier.box[2] || y.hi < carrier.box[1] || y.lo > carrier.box[3]) continue;
+        for (std::size_t k : carrier.curves) candidate[k] = 1;
+      }
+    }
     for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
+      if (!candidate[k]) continue;
       if (!chart.interval_polynomials[k].evaluate(x, y).contains_zero()) continue;
       const auto& clauses = validity(box.chart, k);
       bool invalid = false;
@@ -748,6 +795,7 @@ class MotionScanner {
 
   const CSpace::Impl& impl_;
   const MotionPath& path_;
+  std::map<std::size_t, ChartCarriers> carriers_;
   std::map<std::pair<std::size_t, std::size_t>, std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>>
       validity_;
 };
