@@ -28,7 +28,8 @@ std::string plural(std::size_t count, const std::string& word) {
 }
 
 std::string interval(const RationalInterval& range) {
-  return "[" + number(range.lo) + ", " + number(range.hi) + "]";
+  auto [lo, hi] = to_decimal_strings_apart(range.lo, range.hi, 12);  // a narrow range shows as one
+  return "[" + lo + ", " + hi + "]";
 }
 
 std::string describe_motion(const Motion& motion) {
