@@ -94,6 +94,7 @@ Quantity Reader::parameter_value(const std::string& name, const std::string& use
 
 Parameter Reader::read_parameter(const std::string& name, const JsonValue& definition, Quantity& value) {
   check_keys(definition, {"nominal", "tolerance", "range", "distribution", "angle", "description"});
+  if (const JsonValue* description = definition.find("description")) read_string(*description, true, true);
   Parameter parameter;
   parameter.name = name;
   parameter.pointer = definition.pointer;

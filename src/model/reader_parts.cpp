@@ -30,6 +30,7 @@ void Reader::read_parts(const JsonValue& parts) {
 Part Reader::read_part(const JsonValue& value) {
   expect_object(value, "a part object");
   check_keys(value, {"name", "description", "motion", "initial", "loops", "features", "dynamics"});
+  if (const JsonValue* description = value.find("description")) read_string(*description, true, true);
   Part part;
   part.pointer = value.pointer;
   part.name = read_string(require(value, "name"), false);
