@@ -5,7 +5,6 @@
 
 #include <string>
 #include <string_view>
-#include <utility>
 
 namespace hipair {
 
@@ -22,11 +21,6 @@ std::string to_exact_string(const Rational& value);
 
 /// Decimal approximation with `digits` significant digits, for people to read.
 std::string to_decimal_string(const Rational& value, int digits = 12);
-
-/// Decimal texts of `a` and `b` for one message: at least `digits` significant digits, and as
-/// many more as it takes for the texts to differ when the values do (a message never prints two
-/// different values as if they were equal).
-std::pair<std::string, std::string> to_decimal_strings_apart(const Rational& a, const Rational& b, int digits = 12);
 
 /// Nearest double (round to nearest).
 double to_double(const Rational& value);

@@ -1,6 +1,7 @@
 // `hipair validate MODEL`: reads a model exactly, reports every error as one line (via main)
 // and, when valid, prints a summary including every value that had to be rounded.
 #include "cli/commands.hpp"
+#include "core/decimal_text.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>

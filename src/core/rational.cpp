@@ -1,5 +1,6 @@
 #include <hipair/error.hpp>
 #include <hipair/rational.hpp>
+#include "core/decimal_text.hpp"
 
 #include <mpfr.h>
 

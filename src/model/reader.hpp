@@ -7,6 +7,7 @@
 #include "model/expression.hpp"
 #include "model/json_document.hpp"
 #include "model/templates.hpp"
+#include "core/decimal_text.hpp"
 
 #include <hipair/model.hpp>
 

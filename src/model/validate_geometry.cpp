@@ -3,6 +3,7 @@
 // lie in Q(sqrt(D)) for a rational D and every test is an exact sign test there. Orientation
 // and nesting are integer- or sign-valued quantities computed on certified MPFI enclosures.
 #include "model/validate_geometry.hpp"
+#include "core/decimal_text.hpp"
 
 #include "model/interval.hpp"
 
