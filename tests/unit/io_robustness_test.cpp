@@ -266,6 +266,40 @@ TEST(ExactNumbers, HugeLiteralsAreNotEchoedWhole) {
   EXPECT_LT(message.size(), 400u) << message.substr(0, 400);
 }
 
+// ------------------------------------------------------------------ messages with two values
+
+TEST(MessagesWithTwoValues, NeverPrintDifferentValuesAsEqual) {
+  std::mt19937 random(6);
+  for (int k = 1; k <= 400; k += 3) {
+    std::string tiny = "1e-" + std::to_string(k);
+    std::string base = std::to_string(1 + random() % 50) + "." + std::to_string(random() % 1000);
+    std::string shifted = "\"" + base + " + " + tiny + "\"";
+    // an open loop whose last vertex misses the start by 10^-k
+    std::string loop = R"({"hipair": 1, "name": "p", "parts": [{"name": "plate", "motion": "fixed", "loops": [{"start": [)" +
+                       base + R"(, 6], "edges": [{"line_to": [60, 0]}, {"line_to": [60, 6]}, {"line_to": [)" + shifted +
+                       R"(, 6]}]}]}]})";
+    std::string message = model_error(loop);
+    std::smatch match;
+    ASSERT_TRUE(std::regex_search(message, match, std::regex("ends at (\\([^)]*\\)), not at the start (\\([^)]*\\))")))
+        << message;
+    EXPECT_NE(match[1].str(), match[2].str()) << message;
+    // limits lo >= hi by 10^-k
+    std::string limits = R"({"hipair": 1, "name": "p", "parts": [{"name": "arm", "motion": {"rotation": {"pivot": [0, 0], "limits": [)" +
+                         shifted + ", " + base + R"(]}}, "loops": [{"circle": {"center": [0, 0], "radius": 1}}]}]})";
+    message = model_error(limits);
+    ASSERT_TRUE(std::regex_search(message, match, std::regex("lower limit (\\S+) must be less than the upper limit (\\S+)")))
+        << message;
+    EXPECT_NE(match[1].str(), match[2].str()) << message;
+    // a nominal value just outside its range
+    std::string range = R"({"hipair": 1, "name": "p", "parameters": {"a": {"nominal": )" + shifted +
+                        R"(, "range": [0, )" + base + R"(]}}, "parts": [{"name": "arm", "motion": "fixed", "loops": [{"circle": {"center": [0, 0], "radius": 1}}]}]})";
+    message = model_error(range);
+    ASSERT_TRUE(std::regex_search(message, match, std::regex("nominal value (\\S+) lies outside its range \\[0, (\\S+)\\]")))
+        << message;
+    EXPECT_NE(match[1].str(), match[2].str()) << message;
+  }
+}
+
 // ------------------------------------------------------------------ tan next to a pole
 
 std::string evaluate_message(const std::string& expression, Rational* value = nullptr) {
