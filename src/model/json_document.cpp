@@ -137,9 +137,12 @@ class DocumentBuilder final : public nlohmann::json_sax<ExactJson> {
                    const nlohmann::detail::exception& error) override {
     // A number the lexer could not take (beyond even long double's range, or malformed):
     // named by the JSON pointer of the value it was to be.
-    // (the token of an invalid literal may start earlier: its last character is the one read)
-    bool number_token = !last_token.empty() && (std::string_view("-0123456789").find(last_token[0]) != std::string_view::npos ||
-                                                 last_token.back() == '+' || last_token.back() == '.');
+    // (nlohmann's lexer says "invalid number"; "+1" and ".5" are "invalid literal"s read up to
+    // the '+' or '.', and the token may start before the value)
+    std::string what = error.what();
+    bool number_token = what.find("invalid number") != std::string::npos ||
+                        (what.find("invalid literal") != std::string::npos && !last_token.empty() &&
+                         (last_token.back() == '+' || last_token.back() == '.'));
     if (error.id == 406 || (error.id == 101 && number_token)) {
       std::string pointer = pending_pointer();
       if (error.id == 406) {

@@ -402,8 +402,8 @@ void check_loop_edges(const Loop& loop) {
     const Edge& edge = loop.edges[i];
     if (i > 0 && !(edge.source == loop.edges[i - 1].target)) {
       auto [start, previous_end] = show_apart(edge.source, loop.edges[i - 1].target);
-      throw ModelError(edge.pointer, "edge " + describe(edge) + " starts at " + start +
-                                         ", not where the previous edge ends " + previous_end);
+      throw ModelError(edge.pointer, "edge " + describe(edge) + " does not start where the previous edge ends " +
+                                         previous_end + ": it starts at " + start);
     }
     if (!edge.is_arc()) {
       if (edge.source == edge.target)

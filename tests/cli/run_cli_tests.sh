@@ -74,9 +74,9 @@ done
 # analyze --out into the model's own directory, where a file it writes is the model
 for victim in report.json kinematics.csv kinematics.svg; do
   rm -rf "$refuse/an" && mkdir -p "$refuse/an"
-  cp "$source/examples/models/lever-stop.json" "$refuse/an/$victim"
+  cp "$source/examples/models/geneva.json" "$refuse/an/$victim"
   before=$(sha256sum <"$refuse/an/$victim")
-  "$hipair" analyze "$refuse/an/$victim" --out "$refuse/an" --quiet >/dev/null 2>"$work/refuse.err"
+  "$hipair" analyze "$refuse/an/$victim" --no-pictures --out "$refuse/an" --quiet >/dev/null 2>"$work/refuse.err"
   code=$?
   { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "analyze --out over the model ($victim): exit $code"
   grep -q "refusing to overwrite" "$work/refuse.err" || fail "analyze over $victim: $(cat "$work/refuse.err")"
