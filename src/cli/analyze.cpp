@@ -193,9 +193,12 @@ std::optional<CSpace> exact_space_for_picture(const Model& model, const PairPath
 }
 
 int run_analyze(const AnalyzeOptions& options) {
+  // refused before the analysis when a file every run writes is the model; the whole list of
+  // the run's files is checked again before anything is written
   if (!options.out.empty())
     for (const char* name : {"report.json", "kinematics.csv", "kinematics.svg"})
-      io::refuse_overwriting_input(std::filesystem::path(options.out) / name, "--out", options.model);
+      if (!options.no_pictures || std::string(name) != "kinematics.svg")
+        io::refuse_overwriting_input(std::filesystem::path(options.out) / name, "--out", options.model);
   Model model = read_model_file(options.model);
   KinematicsOptions analysis;
   analysis.driver = options.driver;
