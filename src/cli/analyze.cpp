@@ -3,7 +3,8 @@
 // report.json, kinematics.csv, kinematics.svg and cspace-PAIR.svg into DIR.
 #include "cli/commands.hpp"
 
-#include "io/atomic_file.hpp"
+#include "io/output_directory.hpp"
+#include "io/output_paths.hpp"
 #include "render/cspace_svg.hpp"
 #include "render/kinematics_svg.hpp"
 
@@ -14,6 +15,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -101,6 +103,74 @@ std::string file_name_part(const std::string& text) {
   return out;
 }
 
+// Files that `analyze --out` writes; those of an earlier run that this run does not write
+// again (a C-space picture of another pair, a certificate it no longer finds) are removed.
+bool earlier_output(const std::string& name) {
+  auto ends_with = [&](const std::string& suffix) {
+    return name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  if (name == "report.json" || name == "kinematics.csv" || name == "kinematics.svg") return true;
+  if (name.rfind("cspace-", 0) == 0 && ends_with(".svg")) return true;
+  if (name.rfind("certificate-", 0) == 0 && ends_with(".json")) {
+    std::string number = name.substr(12, name.size() - 12 - 5);
+    return !number.empty() && number.find_first_not_of("0123456789") == std::string::npos;
+  }
+  return false;
+}
+
+bool can_drive(const Part& part) {
+  return part.motion.kind == Motion::Kind::rotation || part.motion.kind == Motion::Kind::translation;
+}
+
+std::string motion_word(Motion::Kind kind) {
+  switch (kind) {
+    case Motion::Kind::fixed: return "fixed";
+    case Motion::Kind::rotation: return "rotating";
+    case Motion::Kind::translation: return "translating";
+    case Motion::Kind::planar: return "planar";
+    case Motion::Kind::pin_slot: return "pin-slot";
+  }
+  return "?";
+}
+
+// The part to drive: `--driver` checked, or the first rotating or translating part of the first
+// pair that has one; the messages say which parts could drive, or why none can.
+std::size_t choose_driver(const Model& model, const std::string& requested) {
+  std::vector<std::string> candidates;
+  for (const PairSpec& pair : model.pairs)
+    for (std::size_t k : {pair.first, pair.second}) {
+      const std::string& name = model.parts[k].name;
+      if (can_drive(model.parts[k]) && std::find(candidates.begin(), candidates.end(), name) == candidates.end())
+        candidates.push_back(name);
+    }
+  auto list = [](const std::vector<std::string>& names) {
+    std::string out;
+    for (const std::string& name : names) out += (out.empty() ? "'" : ", '") + name + "'";
+    return out;
+  };
+  if (!requested.empty()) {
+    auto index = model.find_part(requested);
+    std::string hint = candidates.empty() ? "no part of a pair rotates or translates, so none can drive"
+                                          : "parts that can drive: " + list(candidates);
+    if (!index) throw ModelError("", "--driver: no part named '" + requested + "' (" + hint + ")");
+    if (!can_drive(model.parts[*index]))
+      throw ModelError("", "--driver: part '" + requested + "' is " + motion_word(model.parts[*index].motion.kind) +
+                               "; analyze drives a rotating or translating part (" + hint + ")");
+    return *index;
+  }
+  if (!candidates.empty()) return *model.find_part(candidates.front());
+  std::string parts;
+  for (const PairSpec& pair : model.pairs)
+    for (std::size_t k : {pair.first, pair.second}) {
+      std::string item = "'" + model.parts[k].name + "' " + motion_word(model.parts[k].motion.kind);
+      if (parts.find(item) == std::string::npos) parts += (parts.empty() ? "" : ", ") + item;
+    }
+  if (model.pairs.empty())
+    throw ModelError("/pairs", "nothing to drive: the model has no pair of parts that can touch");
+  throw ModelError("/pairs", "nothing to drive: analyze drives a rotating or translating part of a pair, and the "
+                             "pairs have only fixed, planar or pin-slot parts (" + parts + ")");
+}
+
 // The exact C-space to draw a pair's path on: a whole space the analysis was given, or one
 // built now when the pair is small (a few hundred boundary edges build in about a second);
 // nullopt: draw the sampled picture instead.
@@ -123,6 +193,12 @@ std::optional<CSpace> exact_space_for_picture(const Model& model, const PairPath
 }
 
 int run_analyze(const AnalyzeOptions& options) {
+  // refused before the analysis when a file every run writes is the model; the whole list of
+  // the run's files is checked again before anything is written
+  if (!options.out.empty())
+    for (const char* name : {"report.json", "kinematics.csv", "kinematics.svg"})
+      if (!options.no_pictures || std::string(name) != "kinematics.svg")
+        io::refuse_overwriting_input(std::filesystem::path(options.out) / name, "--out", options.model);
   Model model = read_model_file(options.model);
   KinematicsOptions analysis;
   analysis.driver = options.driver;
@@ -141,25 +217,13 @@ int run_analyze(const AnalyzeOptions& options) {
     analysis.loads[part] = load;
   }
   // which part is driven decides the units of --range
-  std::string driver_name = options.driver;
-  if (driver_name.empty())
-    for (const PairSpec& pair : model.pairs) {
-      for (std::size_t candidate : {pair.first, pair.second}) {
-        Motion::Kind kind = model.parts[candidate].motion.kind;
-        if (kind == Motion::Kind::rotation || kind == Motion::Kind::translation) {
-          driver_name = model.parts[candidate].name;
-          break;
-        }
-      }
-      if (!driver_name.empty()) break;
-    }
-  auto driver_index = model.find_part(driver_name);
-  if (!driver_index) throw ModelError("", "--driver: no part named '" + driver_name + "'");
-  bool rotates = model.parts[*driver_index].motion.kind == Motion::Kind::rotation;
+  std::size_t driver_index = choose_driver(model, options.driver);
+  analysis.driver = model.parts[driver_index].name;
+  bool rotates = model.parts[driver_index].motion.kind == Motion::Kind::rotation;
   std::string direction_note;
   if (options.direction.empty() && options.range.empty()) {
     // no direction given: the way the model's driving torque or force turns the driver
-    const Part& driver_part = model.parts[*driver_index];
+    const Part& driver_part = model.parts[driver_index];
     if (driver_part.dynamics && driver_part.dynamics->torque && rotates && sgn(*driver_part.dynamics->torque) != 0) {
       analysis.direction = sgn(*driver_part.dynamics->torque);
       direction_note = std::string("direction: ") + (analysis.direction > 0 ? "counter-clockwise" : "clockwise") +
@@ -210,15 +274,12 @@ int run_analyze(const AnalyzeOptions& options) {
     return 0;
   }
   std::filesystem::path directory(options.out);
-  std::error_code error;
-  std::filesystem::create_directories(directory, error);
-  if (error) throw IoError("cannot create directory " + directory.string() + ": " + error.message());
-  io::write_file_atomically(directory / "report.json", kinematics_json_report(result));
-  io::write_file_atomically(directory / "kinematics.csv", kinematics_csv(result));
-  std::vector<std::string> written{"report.json", "kinematics.csv"};
+  // Every file of the run is made in memory, then published together (or not at all).
+  std::vector<io::RunFile> files;
+  files.push_back({"report.json", kinematics_json_report(result)});
+  files.push_back({"kinematics.csv", kinematics_csv(result)});
   if (!options.no_pictures) {
-    io::write_file_atomically(directory / "kinematics.svg", render::kinematics_plot_svg(result));
-    written.push_back("kinematics.svg");
+    files.push_back({"kinematics.svg", render::kinematics_plot_svg(result)});
     for (const PairPath& path : result.paths) {
       if (path.y_part.empty()) continue;
       if (terminal) std::cerr << "\ranalyze: drawing the C-space of " << path.pair << "..." << std::flush;
@@ -229,12 +290,11 @@ int run_analyze(const AnalyzeOptions& options) {
         for (const PathPoint& point : path.points) picture.path.push_back({point.x, point.y, point.contact});
         if (!path.points.empty()) picture.marks.push_back({path.points.front().x, path.points.front().y, "start"});
         picture.title = "exact C-space of " + path.pair + " with the motion path";
-        io::write_file_atomically(directory / name, render::cspace_svg(*exact, picture));
+        files.push_back({name, render::cspace_svg(*exact, picture)});
       } else {
         CSpaceRaster raster = sample_cspace(model, path.x_part, path.y_part, options.columns);
-        io::write_file_atomically(directory / name, render::cspace_path_svg(raster, path));
+        files.push_back({name, render::cspace_path_svg(raster, path)});
       }
-      written.push_back(name);
       if (terminal) std::cerr << "\r" << std::string(60, ' ') << "\r" << std::flush;
     }
   }
@@ -245,10 +305,14 @@ int run_analyze(const AnalyzeOptions& options) {
       std::cout << "not certified: " << finding.finding << " (" << finding.note << ")\n";
       continue;
     }
-    std::string name = "certificate-" + std::to_string(++certificates) + ".json";
-    io::write_file_atomically(directory / name, write_certificate(*finding.certificate));
-    written.push_back(name);
+    files.push_back({"certificate-" + std::to_string(++certificates) + ".json", write_certificate(*finding.certificate)});
   }
+  std::vector<io::PlannedOutput> planned;
+  for (const io::RunFile& file : files) planned.push_back({directory / file.name, "--out"});
+  io::refuse_overwriting_inputs(planned, {options.model});
+  io::publish_directory(directory, files, earlier_output, {options.model});
+  std::vector<std::string> written;
+  for (const io::RunFile& file : files) written.push_back(file.name);
   std::cout << "\nwrote";
   for (const std::string& name : written) std::cout << " " << (directory / name).string();
   std::cout << "\n";

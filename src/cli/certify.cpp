@@ -2,6 +2,7 @@
 // certificate that hipair-verify re-checks independently (docs/certify.md).
 #include "cli/commands.hpp"
 #include "io/atomic_file.hpp"
+#include "io/output_paths.hpp"
 #include "model/interval.hpp"
 
 #include <hipair/certificate.hpp>
@@ -71,6 +72,7 @@ int run(const CertifyArguments& arguments) {
     if (equals == std::string::npos || equals == 0) throw ModelError("", "--set expects NAME=VALUE, got '" + assignment + "'");
     options.parameter_values[assignment.substr(0, equals)] = value_of(assignment.substr(equals + 1), false, "--set");
   }
+  io::refuse_overwriting_input(arguments.out, "--out", arguments.path);
   Model model = read_model_file(arguments.path, options);
   CertifyContext context{options.parameter_values};
   auto [first, second] = pair_of(model, arguments.pair);

@@ -5,6 +5,7 @@
 #include "cli/commands.hpp"
 
 #include "io/atomic_file.hpp"
+#include "io/output_paths.hpp"
 #include "render/cspace_svg.hpp"
 
 #include <hipair/cspace.hpp>
@@ -13,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -215,14 +217,26 @@ void print_statistics(const CSpace& space) {
               s.seconds_total * 1e3);
 }
 
+// A part name as a piece of a file name: letters, digits, '-' and '_' kept, anything else
+// (a '/', a '.', a space) becomes '-', so a name never leaves the output's directory.
+std::string file_name_part(const std::string& text) {
+  std::string out;
+  for (char c : text) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_') ? c : '-';
+  return out;
+}
+
 std::filesystem::path suffixed(const std::string& path, const CSpace& space, bool several) {
   if (!several) return path;
   std::filesystem::path p(path);
-  std::string stem = p.stem().string() + "-" + space.first_part() + "-" + space.second_part();
+  std::string stem = p.stem().string() + "-" + file_name_part(space.first_part()) + "-" +
+                     file_name_part(space.second_part());
   return p.parent_path() / (stem + p.extension().string());
 }
 
 int run(const CSpaceCommandOptions& options) {
+  // Refused before the (possibly long) build when the paths are used as given; the suffixed
+  // names of several pairs are checked again below, before anything is written.
+  io::refuse_overwriting_inputs({{options.svg, "--svg"}, {options.json, "--json"}}, {options.model});
   Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
   CSpaceBuildOptions build;
   build.progress = isatty(2);
@@ -239,6 +253,12 @@ int run(const CSpaceCommandOptions& options) {
     if (spaces.empty()) throw GeometryError("the model has no fixed-axis pair with a moving part");
   }
   bool several = spaces.size() > 1;
+  std::vector<io::PlannedOutput> outputs;
+  for (const CSpace& space : spaces) {
+    if (!options.svg.empty()) outputs.push_back({suffixed(options.svg, space, several), "--svg"});
+    if (!options.json.empty()) outputs.push_back({suffixed(options.json, space, several), "--json"});
+  }
+  io::refuse_overwriting_inputs(outputs, {options.model});
   for (const CSpace& space : spaces) {
     if (options.stats) print_statistics(space);
     if (!options.svg.empty()) {

@@ -3,6 +3,7 @@
 #include "cli/commands.hpp"
 
 #include "io/atomic_file.hpp"
+#include "io/output_paths.hpp"
 #include "render/mechanism_svg.hpp"
 
 #include <hipair/error.hpp>
@@ -120,6 +121,7 @@ void apply_configuration(const Model& model, const std::vector<std::string>& ite
 }
 
 int run_show(const ShowOptions& options) {
+  io::refuse_overwriting_input(options.svg, "--svg", options.model);
   Model model = read_model_file(options.model);
   std::vector<PartConfiguration> configurations;
   for (const Part& part : model.parts) configurations.push_back(part.initial);

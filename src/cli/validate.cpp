@@ -1,6 +1,7 @@
 // `hipair validate MODEL`: reads a model exactly, reports every error as one line (via main)
 // and, when valid, prints a summary including every value that had to be rounded.
 #include "cli/commands.hpp"
+#include "core/decimal_text.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
@@ -28,7 +29,8 @@ std::string plural(std::size_t count, const std::string& word) {
 }
 
 std::string interval(const RationalInterval& range) {
-  return "[" + number(range.lo) + ", " + number(range.hi) + "]";
+  auto [lo, hi] = to_decimal_strings_apart(range.lo, range.hi, 12);  // a narrow range shows as one
+  return "[" + lo + ", " + hi + "]";
 }
 
 std::string describe_motion(const Motion& motion) {

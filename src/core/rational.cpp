@@ -1,8 +1,10 @@
 #include <hipair/error.hpp>
 #include <hipair/rational.hpp>
+#include "core/decimal_text.hpp"
 
 #include <mpfr.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <sstream>
@@ -23,9 +25,15 @@ mpz_class power_of_ten(unsigned long exponent) {
   return result;
 }
 
+// The text for a message: at most 40 characters, longer ones cut with "..." and their length.
+std::string excerpt(std::string_view text) {
+  if (text.size() <= 40) return "'" + std::string(text) + "'";
+  return "'" + std::string(text.substr(0, 40)) + "...' (" + std::to_string(text.size()) + " characters)";
+}
+
 // Exact value of an unsigned decimal "123", "1.25", "1.25e-7", ".5", "5.".
 Rational parse_unsigned_decimal(std::string_view text, std::string_view whole) {
-  auto fail = [&] { throw NumericError("'" + std::string(whole) + "' is not a number"); };
+  auto fail = [&] { throw NumericError(excerpt(whole) + " is not a number"); };
   std::string_view mantissa = text;
   long long exponent = 0;
   if (auto e = text.find_first_of("eE"); e != std::string_view::npos) {
@@ -78,7 +86,7 @@ Rational parse_rational(std::string_view text) {
   if (auto slash = text.find('/'); slash != std::string_view::npos) {
     Rational numerator = parse_unsigned_decimal(text.substr(0, slash), whole);
     Rational denominator = parse_unsigned_decimal(text.substr(slash + 1), whole);
-    if (denominator == 0) throw NumericError("'" + std::string(whole) + "' divides by zero");
+    if (denominator == 0) throw NumericError(excerpt(whole) + " divides by zero");
     value = numerator / denominator;
   } else {
     value = parse_unsigned_decimal(text, whole);
@@ -93,7 +101,8 @@ std::string to_exact_string(const Rational& value) {
 }
 
 std::string to_decimal_string(const Rational& value, int digits) {
-  mpf_class f(value, 256);
+  // enough bits for `digits` decimal digits (and never fewer than the 256 used so far)
+  mpf_class f(value, std::max<mp_bitcnt_t>(256, static_cast<mp_bitcnt_t>(digits) * 4 + 64));
   mp_exp_t exponent = 0;
   std::string mantissa = f.get_str(exponent, 10, static_cast<size_t>(digits));
   if (mantissa.empty()) return "0";
@@ -109,6 +118,17 @@ std::string to_decimal_string(const Rational& value, int digits) {
           mantissa.substr(static_cast<size_t>(exponent));
   }
   return negative ? "-" + out : out;
+}
+
+std::pair<std::string, std::string> to_decimal_strings_apart(const Rational& a, const Rational& b, int digits) {
+  std::string sa = to_decimal_string(a, digits), sb = to_decimal_string(b, digits);
+  // Different rationals of at most a few thousand bits differ within a few thousand digits.
+  for (int more = digits * 2; a != b && sa == sb && more <= 40000; more *= 2) {
+    sa = to_decimal_string(a, more);
+    sb = to_decimal_string(b, more);
+  }
+  if (a != b && sa == sb) return {to_exact_string(a), to_exact_string(b)};
+  return {sa, sb};
 }
 
 double to_double(const Rational& value) {

@@ -9,30 +9,63 @@
 namespace hipair::io {
 
 std::string escape_xml(std::string_view text) {
+  static const char replacement[] = "\xEF\xBF\xBD";  // U+FFFD
   std::string out;
   out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    auto byte = static_cast<unsigned char>(text[i]);
+    if (byte < 0x80) {
+      switch (byte) {
+        case '&': out += "&amp;"; break;
+        case '<': out += "&lt;"; break;
+        case '>': out += "&gt;"; break;
+        case '"': out += "&quot;"; break;
+        case '\'': out += "&apos;"; break;
+        case '\t': out += "&#9;"; break;
+        case '\n': out += "&#10;"; break;
+        case '\r': out += "&#13;"; break;
+        default:
+          // other C0 controls are not XML characters at all; DEL is discouraged
+          if (byte < 0x20 || byte == 0x7F) out += replacement;
+          else out += static_cast<char>(byte);
+      }
+      ++i;
+      continue;
+    }
+    // A UTF-8 sequence: well-formed and an XML character, or replaced.
+    std::size_t length = byte >= 0xF0 ? 4 : byte >= 0xE0 ? 3 : byte >= 0xC0 ? 2 : 0;
+    unsigned long code = length == 4 ? (byte & 0x07u) : length == 3 ? (byte & 0x0Fu) : (byte & 0x1Fu);
+    bool valid = length >= 2 && byte <= 0xF4 && i + length <= text.size();
+    for (std::size_t k = 1; valid && k < length; ++k) {
+      auto next = static_cast<unsigned char>(text[i + k]);
+      valid = (next & 0xC0) == 0x80;
+      code = (code << 6) | (next & 0x3Fu);
+    }
+    unsigned long smallest = length == 2 ? 0x80 : length == 3 ? 0x800 : 0x10000;
+    valid = valid && code >= smallest && code <= 0x10FFFF && !(code >= 0xD800 && code <= 0xDFFF) &&
+            !(code >= 0x80 && code <= 0x9F) && code != 0xFFFE && code != 0xFFFF;  // C1 controls, non-characters
+    if (valid) {
+      out.append(text.substr(i, length));
+      i += length;
+    } else {
+      out += replacement;
+      ++i;
+      while (i < text.size() && (static_cast<unsigned char>(text[i]) & 0xC0) == 0x80) ++i;
     }
   }
   return out;
 }
 
 std::string format_number(double value) {
-  if (!std::isfinite(value)) value = 0;
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.4f", value);
+  if (!std::isfinite(value) || value == 0) return "0";
+  // Four decimals for ordinary drawing coordinates, at least seven significant digits for
+  // tiny ones and an exponent for huge ones ("1e-300", "2.5e+60"): no value is cut or lost.
+  int magnitude = static_cast<int>(std::floor(std::log10(std::abs(value))));
+  int digits = std::clamp(magnitude + 5, 7, 15);
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
   std::string s = buffer;
-  if (s.find('.') != std::string::npos) {
-    while (!s.empty() && s.back() == '0') s.pop_back();
-    if (!s.empty() && s.back() == '.') s.pop_back();
-  }
   if (s == "-0") s = "0";
   return s;
 }

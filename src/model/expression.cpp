@@ -1,6 +1,7 @@
 #include "model/expression.hpp"
 
 #include "model/exact_trig.hpp"
+#include "model/json_document.hpp"
 
 #include <hipair/error.hpp>
 
@@ -14,12 +15,7 @@ constexpr std::size_t max_nesting = 100;
 constexpr long max_exponent = 1024;
 constexpr long max_angle = 1000000;  // rad: larger angles orienting geometry are mistakes
 
-std::string quoted_expression(std::string_view text) {
-  std::string shown;
-  for (char c : text.substr(0, 120)) shown += (static_cast<unsigned char>(c) < 0x20) ? ' ' : c;
-  if (text.size() > 120) shown += "...";
-  return "'" + shown + "'";
-}
+std::string quoted_expression(std::string_view text) { return quoted_excerpt(text, 120); }
 
 bool is_name_start(char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; }
 bool is_name_char(char c) {
@@ -563,8 +559,40 @@ class Evaluator {
       mpfi_cos(result.get(), x.get());
     else
       mpfi_tan(result.get(), x.get());
-    if (!result.is_bounded()) fail("tan is undefined at an odd multiple of 90 degrees");
+    if (!result.is_bounded()) result = tangent_near_pole(angle);
     return checked(Quantity::approximate(result));
+  }
+
+  // tan of an angle whose 256-bit enclosure contains a pole (an odd multiple of pi/2). An exact
+  // angle r + p*pi is at a pole only when r = 0 and 2p is an odd integer (pi is irrational),
+  // which the caller has ruled out; so the enclosure is refined at doubling precision until it
+  // excludes the pole, and the certified (huge) tangent is returned. An angle known only by an
+  // enclosure cannot be decided.
+  Interval tangent_near_pole(const Quantity& angle) const {
+    if (!angle.exact)
+      fail("cannot decide whether the argument of tan is at a pole (an odd multiple of 90 degrees): "
+           "it is known only approximately and too close to one");
+    constexpr mpfr_prec_t most_bits = 32768;
+    for (mpfr_prec_t bits = 2 * interval_bits; bits <= most_bits; bits *= 2) {
+      mpfi_t pi, x, tangent;
+      mpfi_init2(pi, bits);
+      mpfi_init2(x, bits);
+      mpfi_init2(tangent, bits);
+      mpfi_const_pi(pi);
+      mpfi_mul_q(x, pi, angle.pi_multiple.get_mpq_t());
+      mpfi_add_q(x, x, angle.rational.get_mpq_t());
+      mpfi_tan(tangent, x);
+      bool bounded = !mpfi_nan_p(tangent) && mpfi_bounded_p(tangent);
+      Interval result;
+      if (bounded) mpfi_set(result.get(), tangent);  // outward to 256 bits
+      mpfi_clear(pi);
+      mpfi_clear(x);
+      mpfi_clear(tangent);
+      if (bounded) return result;
+    }
+    fail("tan is too large: the argument is not at a pole (an odd multiple of 90 degrees) but so close to one that " +
+         std::to_string(most_bits) + "-bit arithmetic cannot separate them");
+    return Interval();
   }
 
   Quantity arc_tangent(const Quantity& y, const Quantity& x) const {
@@ -642,7 +670,7 @@ Quantity as_angle(const Quantity& value, bool degrees, const std::string& pointe
 Rational parse_literal(std::string_view text, const std::string& pointer) {
   std::string lower = lower_case(text);
   if (lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos)
-    throw ModelError(pointer, "'" + std::string(text) + "' is not a number: NaN and infinity are not allowed");
+    throw ModelError(pointer, quoted_excerpt(text) + " is not a number: NaN and infinity are not allowed");
   if (auto e = lower.find('e'); e != std::string::npos) {
     std::string_view exponent = text.substr(e + 1);
     if (!exponent.empty() && (exponent[0] == '+' || exponent[0] == '-')) exponent.remove_prefix(1);
@@ -650,7 +678,7 @@ Rational parse_literal(std::string_view text, const std::string& pointer) {
     bool digits = !exponent.empty();
     for (char c : exponent) digits = digits && is_digit(c);
     if (digits && (exponent.size() > 4 || std::stol(std::string(exponent)) > max_literal_exponent))
-      throw ModelError(pointer, "number '" + std::string(text) + "' out of range: the decimal exponent is limited to " +
+      throw ModelError(pointer, "number " + quoted_excerpt(text) + " out of range: the decimal exponent is limited to " +
                                     std::to_string(max_literal_exponent));
   }
   Rational value;

@@ -50,6 +50,11 @@ JsonValue parse_json(std::string_view text);
 /// Escapes a key for use in a JSON pointer (RFC 6901: "~" -> "~0", "/" -> "~1").
 std::string escape_pointer_token(std::string_view key);
 
+/// `text` in single quotes for a message, on one line (control characters as spaces); a text
+/// longer than `limit` characters is cut to its first `limit` with "..." and its length, so a
+/// 100,000-digit number does not fill the message.
+std::string quoted_excerpt(std::string_view text, std::size_t limit = 40);
+
 /// Human name of a JSON type ("a number", "an object", ...) for messages.
 const char* describe_type(JsonValue::Type type);
 

@@ -19,7 +19,7 @@ Model Reader::read() {
   read_version(require(root, "hipair"));
   model_.name = read_string(require(root, "name"), false);
   if (const JsonValue* description = root.find("description"))
-    model_.description = read_string(*description, true);
+    model_.description = read_string(*description, true, true);
   read_units(root.find("units"));
   read_parameters(root.find("parameters"));
   read_parts(require(root, "parts"));
@@ -37,7 +37,7 @@ void Reader::read_version(const JsonValue& value) {
   }
   if (!one)
     throw ModelError(value.pointer, "unsupported format version " +
-                                        (value.is_number() || value.is_string() ? "'" + value.text + "'"
+                                        (value.is_number() || value.is_string() ? quoted_excerpt(value.text)
                                                                                 : std::string(describe_type(value.type))) +
                                         ": this reader reads \"hipair\": 1");
 }

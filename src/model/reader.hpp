@@ -7,6 +7,7 @@
 #include "model/expression.hpp"
 #include "model/json_document.hpp"
 #include "model/templates.hpp"
+#include "core/decimal_text.hpp"
 
 #include <hipair/model.hpp>
 
@@ -30,6 +31,17 @@ inline std::string join(std::initializer_list<std::string_view> words) {
 
 /// A value for messages, 12 significant digits.
 inline std::string decimal(const Rational& value) { return to_decimal_string(value, 12); }
+/// Two values for one message, with enough digits to show that they differ.
+inline std::pair<std::string, std::string> apart(const Rational& a, const Rational& b) {
+  return to_decimal_strings_apart(a, b, 12);
+}
+/// The texts of v and of "[lo, hi]" for a message that v lies outside, with enough digits to
+/// show on which side.
+inline std::pair<std::string, std::string> outside(const Rational& v, const Rational& lo, const Rational& hi) {
+  const Rational& near = v < lo ? lo : hi;
+  auto [value, end] = to_decimal_strings_apart(v, near, 12);
+  return {value, "[" + (v < lo ? end : decimal(lo)) + ", " + (v < lo ? decimal(hi) : end) + "]"};
+}
 
 inline Rational squared_distance(const Point& a, const Point& b) {
   Rational dx = a.x - b.x, dy = a.y - b.y;
@@ -64,7 +76,8 @@ class Reader {
   void expect(const JsonValue& value, JsonValue::Type type, const std::string& what);
   const JsonValue& expect_object(const JsonValue& value, const std::string& what = "an object");
   const JsonValue& expect_array(const JsonValue& value, const std::string& what = "an array");
-  std::string read_string(const JsonValue& value, bool allow_empty);
+  /// A string value; control characters are refused (`layout`: tab and line breaks allowed).
+  std::string read_string(const JsonValue& value, bool allow_empty, bool layout = false);
   bool read_boolean(const JsonValue& value);
 
   // numbers, points, directions (reader_values.cpp)

@@ -94,6 +94,7 @@ Quantity Reader::parameter_value(const std::string& name, const std::string& use
 
 Parameter Reader::read_parameter(const std::string& name, const JsonValue& definition, Quantity& value) {
   check_keys(definition, {"nominal", "tolerance", "range", "distribution", "angle", "description"});
+  if (const JsonValue* description = definition.find("description")) read_string(*description, true, true);
   Parameter parameter;
   parameter.name = name;
   parameter.pointer = definition.pointer;
@@ -122,8 +123,8 @@ Parameter Reader::read_parameter(const std::string& name, const JsonValue& defin
                                                  std::to_string(tolerance->items.size()));
       Rational lo = deviation(tolerance->items[0]), hi = deviation(tolerance->items[1]);
       if (lo > hi)
-        throw ModelError(tolerance->pointer, "tolerance lower deviation " + decimal(lo) +
-                                                 " is greater than the upper deviation " + decimal(hi));
+        throw ModelError(tolerance->pointer, "tolerance lower deviation " + apart(lo, hi).first +
+                                                 " is greater than the upper deviation " + apart(lo, hi).second);
       if (lo > 0 || hi < 0)
         throw ModelError(tolerance->pointer, "the nominal value lies outside its tolerance [" + decimal(lo) +
                                                  ", " + decimal(hi) + "] (deviations must satisfy lo <= 0 <= hi)");
@@ -140,10 +141,11 @@ Parameter Reader::read_parameter(const std::string& name, const JsonValue& defin
                                            std::to_string(range->items.size()));
     Rational lo = deviation(range->items[0]), hi = deviation(range->items[1]);
     if (lo > hi)
-      throw ModelError(range->pointer, "range lower end " + decimal(lo) + " is greater than the upper end " + decimal(hi));
+      throw ModelError(range->pointer, "range lower end " + apart(lo, hi).first + " is greater than the upper end " +
+                                           apart(lo, hi).second);
     if (parameter.nominal < lo || parameter.nominal > hi)
-      throw ModelError(nominal_value.pointer, "the nominal value " + decimal(parameter.nominal) +
-                                                  " lies outside its range [" + decimal(lo) + ", " + decimal(hi) + "]");
+      throw ModelError(nominal_value.pointer, "the nominal value " + outside(parameter.nominal, lo, hi).first +
+                                                  " lies outside its range " + outside(parameter.nominal, lo, hi).second);
     parameter.range = RationalInterval{lo, hi};
   }
   if (const JsonValue* distribution = definition.find("distribution")) {
@@ -171,9 +173,9 @@ Parameter Reader::read_parameter(const std::string& name, const JsonValue& defin
       override_value != options_.parameter_values.end()) {
     const Rational& v = override_value->second;
     if (!options_.allow_out_of_tolerance && (v < parameter.range.lo || v > parameter.range.hi))
-      throw ModelError(definition.pointer, "override value " + decimal(v) + " of parameter '" + name +
-                                               "' lies outside its tolerance range [" + decimal(parameter.range.lo) +
-                                               ", " + decimal(parameter.range.hi) + "]");
+      throw ModelError(definition.pointer, "override value " + outside(v, parameter.range.lo, parameter.range.hi).first +
+                                               " of parameter '" + name + "' lies outside its tolerance range " +
+                                               outside(v, parameter.range.lo, parameter.range.hi).second);
     value = Quantity::of(v, parameter.is_angle);
   }
   return parameter;

@@ -30,6 +30,7 @@ void Reader::read_parts(const JsonValue& parts) {
 Part Reader::read_part(const JsonValue& value) {
   expect_object(value, "a part object");
   check_keys(value, {"name", "description", "motion", "initial", "loops", "features", "dynamics"});
+  if (const JsonValue* description = value.find("description")) read_string(*description, true, true);
   Part part;
   part.pointer = value.pointer;
   part.name = read_string(require(value, "name"), false);
@@ -186,7 +187,7 @@ TemplateValue Reader::template_argument(const JsonValue& value, ArgumentKind kin
     case ArgumentKind::direction_word: {
       std::string word = read_string(value, true);
       if (word != "ccw" && word != "cw")
-        throw ModelError(value.pointer, "expected \"ccw\" or \"cw\", not '" + word + "'");
+        throw ModelError(value.pointer, "expected \"ccw\" or \"cw\", not " + quoted_excerpt(word));
       return word;
     }
   }
@@ -198,8 +199,8 @@ Motion Reader::read_motion(const JsonValue& value) {
   motion.pointer = value.pointer;
   if (value.is_string()) {
     if (value.text != "fixed")
-      throw ModelError(value.pointer, "unknown motion '" + value.text +
-                                          "' (\"fixed\", or an object: rotation, translation, planar, pin_slot)");
+      throw ModelError(value.pointer, "unknown motion " + quoted_excerpt(value.text) +
+                                          " (\"fixed\", or an object: rotation, translation, planar, pin_slot)");
     motion.kind = Motion::Kind::fixed;
     return motion;
   }

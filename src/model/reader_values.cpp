@@ -6,6 +6,9 @@
 
 #include <hipair/error.hpp>
 
+#include <cstdio>
+#include <utility>
+
 namespace hipair::model_detail {
 
 const JsonValue& Reader::require(const JsonValue& object, std::string_view key) {
@@ -38,9 +41,42 @@ const JsonValue& Reader::expect_array(const JsonValue& value, const std::string&
   return value;
 }
 
-std::string Reader::read_string(const JsonValue& value, bool allow_empty) {
+namespace {
+
+// The first control character of `text` (C0 U+0000-U+001F, DEL U+007F, C1 U+0080-U+009F),
+// except tab, line feed and carriage return when `layout` allows them: its code point and the
+// (1-based) character position, or code point -1.
+std::pair<long, std::size_t> first_control(std::string_view text, bool layout) {
+  std::size_t character = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    auto byte = static_cast<unsigned char>(text[i]);
+    if ((byte & 0xC0) != 0x80) ++character;  // not a continuation byte: a new character
+    if (byte < 0x20 || byte == 0x7F) {
+      if (layout && (byte == '\t' || byte == '\n' || byte == '\r')) continue;
+      return {byte, character};
+    }
+    if (byte == 0xC2 && i + 1 < text.size()) {
+      auto next = static_cast<unsigned char>(text[i + 1]);
+      if (next >= 0x80 && next <= 0x9F) return {next, character};
+    }
+  }
+  return {-1, 0};
+}
+
+}  // namespace
+
+std::string Reader::read_string(const JsonValue& value, bool allow_empty, bool layout) {
   expect(value, JsonValue::Type::string, "a string");
   if (!allow_empty && value.text.empty()) throw ModelError(value.pointer, "must not be empty");
+  // Names and labels reach SVG pictures, terminals and reports: no control characters.
+  auto [code, position] = first_control(value.text, layout);
+  if (code >= 0) {
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "%04lX", static_cast<unsigned long>(code));
+    throw ModelError(value.pointer, std::string("control character U+") + hex + " (character " +
+                                        std::to_string(position) + ") is not allowed in " +
+                                        (layout ? "this text (only tab and line breaks are)" : "names and labels"));
+  }
   return value.text;
 }
 
@@ -122,8 +158,8 @@ RationalInterval Reader::limits(const JsonValue& value, bool angles) {
   Rational lo = angles ? angle(value.items[0]) : number(value.items[0]);
   Rational hi = angles ? angle(value.items[1]) : number(value.items[1]);
   if (!(lo < hi))
-    throw ModelError(value.pointer, "the lower limit " + decimal(lo) +
-                                        " must be less than the upper limit " + decimal(hi));
+    throw ModelError(value.pointer, "the lower limit " + apart(lo, hi).first +
+                                        " must be less than the upper limit " + apart(lo, hi).second);
   return RationalInterval{lo, hi};
 }
 

@@ -3,6 +3,7 @@
 // lie in Q(sqrt(D)) for a rational D and every test is an exact sign test there. Orientation
 // and nesting are integer- or sign-valued quantities computed on certified MPFI enclosures.
 #include "model/validate_geometry.hpp"
+#include "core/decimal_text.hpp"
 
 #include "model/interval.hpp"
 
@@ -69,6 +70,12 @@ std::optional<Rational> rational_sqrt(const Rational& value) {
 // ------------------------------------------------------------------ messages
 std::string decimal(const Rational& v) { return to_decimal_string(v, 10); }
 std::string show(const Point& p) { return "(" + decimal(p.x) + ", " + decimal(p.y) + ")"; }
+// Two points for one message, with enough digits to show that they differ.
+std::pair<std::string, std::string> show_apart(const Point& p, const Point& q) {
+  auto [px, qx] = to_decimal_strings_apart(p.x, q.x, 10);
+  auto [py, qy] = to_decimal_strings_apart(p.y, q.y, 10);
+  return {"(" + px + ", " + py + ")", "(" + qx + ", " + qy + ")"};
+}
 std::string show(const SurdPoint& p, const Rational& D) {
   double root = std::sqrt(to_double(D));
   std::ostringstream out;
@@ -393,9 +400,11 @@ void check_loop_edges(const Loop& loop) {
   if (loop.edges.empty()) throw ModelError(loop.pointer, "a loop needs at least one edge");
   for (std::size_t i = 0; i < loop.edges.size(); ++i) {
     const Edge& edge = loop.edges[i];
-    if (i > 0 && !(edge.source == loop.edges[i - 1].target))
+    if (i > 0 && !(edge.source == loop.edges[i - 1].target)) {
+      auto [start, previous_end] = show_apart(edge.source, loop.edges[i - 1].target);
       throw ModelError(edge.pointer, "edge " + describe(edge) + " does not start where the previous edge ends " +
-                                         show(loop.edges[i - 1].target));
+                                         previous_end + ": it starts at " + start);
+    }
     if (!edge.is_arc()) {
       if (edge.source == edge.target)
         throw ModelError(edge.pointer, "zero-length segment: it starts and ends at " + show(edge.source));
@@ -409,18 +418,22 @@ void check_loop_edges(const Loop& loop) {
       throw ModelError(edge.pointer, "zero radius: the arc starts at its centre " + show(edge.center));
     if (start_distance != edge.radius_squared)
       throw ModelError(edge.pointer, "inconsistent arc: its start is not on its circle");
-    if (end_distance != start_distance)
+    if (end_distance != start_distance) {
+      auto [end_text, start_text] = to_decimal_strings_apart(end_distance, start_distance, 10);
       throw ModelError(edge.pointer, "inconsistent arc: the end " + show(edge.target) + " is at distance " +
-                                         decimal(end_distance) + "^(1/2) from the centre " + show(edge.center) +
+                                         end_text + "^(1/2) from the centre " + show(edge.center) +
                                          " but the start " + show(edge.source) + " at distance " +
-                                         decimal(start_distance) +
+                                         start_text +
                                          "^(1/2) (they must be equal exactly: place the end with a polar point on the arc's circle)");
+    }
     if (edge.is_full_circle() && loop.edges.size() > 1)
       throw ModelError(edge.pointer, "a full circle (arc ending at its start) must be a loop of its own");
   }
   if (!(loop.edges.back().target == loop.edges.front().source))
-    throw ModelError(loop.pointer, "open loop: the last edge ends at " + show(loop.edges.back().target) +
-                                       ", not at the start " + show(loop.edges.front().source));
+  {
+    auto [end, start] = show_apart(loop.edges.back().target, loop.edges.front().source);
+    throw ModelError(loop.pointer, "open loop: the last edge ends at " + end + ", not at the start " + start);
+  }
 }
 
 struct EdgeRef {

@@ -240,15 +240,16 @@ class Painter {
     auto ticks = [&](bool x_axis, const Range& range, bool rotation) {
       double step = rotation ? 45 : io::nice_length((range.hi - range.lo) / 6);
       double start = std::ceil(range.lo / step - 1e-9) * step;
-      for (double v = start; v <= range.hi + 1e-9; v += step) {
+      // tolerances relative to the step: a range of 1e-300 mm gets its ticks, and ends
+      for (double v = start; v <= range.hi + step * 1e-9; v += step) {
         io::SvgStyle tick{"none", "black"};
         tick.stroke_width = 0.5;
         if (x_axis) {
           svg.line(X(v), 0, X(v), -4, tick);
-          svg.text(X(v), -12, io::format_number(std::round(v * 1000) / 1000), 7);
+          svg.text(X(v), -12, io::format_number(std::round(v / step) * step), 7);
         } else {
           svg.line(0, Y(v), -4, Y(v), tick);
-          svg.text(-6, Y(v) - 2.5, io::format_number(std::round(v * 1000) / 1000), 7, "end");
+          svg.text(-6, Y(v) - 2.5, io::format_number(std::round(v / step) * step), 7, "end");
         }
       }
     };

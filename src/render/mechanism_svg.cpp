@@ -5,6 +5,8 @@
 #include <hipair/error.hpp>
 
 #include <algorithm>
+#include <gmpxx.h>
+#include <mpfr.h>
 #include <cmath>
 #include <limits>
 
@@ -30,7 +32,114 @@ struct Box {
   bool valid() const { return min_x <= max_x; }
 };
 
-double to_number(const Rational& q) { return q.get_d(); }
+double to_number(const Rational& q) { return to_double(q); }
+
+// The drawing's coordinates: a world point q (exact, anywhere from 1e-300 to 1e400 mm) is drawn
+// at (q - origin) / 10^k, computed exactly and rounded once to double, so every picture is
+// normalised to a few hundred units whatever the model's scale.
+struct Normalisation {
+  Rational origin_x, origin_y;
+  Rational inverse_scale = Rational(1);  // 10^-k
+  long k = 0;
+  double x(const Rational& q) const { return to_double(Rational((q - origin_x) * inverse_scale)); }
+  double y(const Rational& q) const { return to_double(Rational((q - origin_y) * inverse_scale)); }
+  double length(const Rational& q) const { return to_double(Rational(q * inverse_scale)); }
+};
+
+Rational power_of_ten(long exponent) {
+  mpz_class p;
+  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(exponent < 0 ? -exponent : exponent));
+  return exponent < 0 ? Rational(mpz_class(1), p) : Rational(p);
+}
+
+// floor(log10(|q|)) for q != 0, to within one (drawing scale only).
+long decimal_exponent(const Rational& q) {
+  mpfr_t value;
+  mpfr_init2(value, 64);
+  mpfr_set_q(value, q.get_mpq_t(), MPFR_RNDN);
+  mpfr_abs(value, value, MPFR_RNDN);
+  mpfr_log10(value, value, MPFR_RNDN);
+  long exponent = mpfr_get_si(value, MPFR_RNDD);
+  mpfr_clear(value);
+  return exponent;
+}
+
+Normalisation normalisation_of(const Model& model, const std::vector<PartConfiguration>& configurations) {
+  Normalisation n;
+  bool have_origin = false;
+  for (const Part& part : model.parts)
+    for (const Loop& loop : part.loops)
+      if (!have_origin && !loop.edges.empty()) {
+        n.origin_x = loop.edges.front().source.x;
+        n.origin_y = loop.edges.front().source.y;
+        have_origin = true;
+      }
+  // The largest distance (per coordinate) of anything drawn from the origin: posing moves a
+  // point by at most its distance to the pivot plus the offsets, so this bounds the picture.
+  Rational largest(0);
+  auto consider = [&](const Rational& value) {
+    Rational a = abs(value);
+    if (a > largest) largest = a;
+  };
+  auto point = [&](const Point& p) {
+    consider(Rational(p.x - n.origin_x));
+    consider(Rational(p.y - n.origin_y));
+  };
+  for (std::size_t i = 0; i < model.parts.size(); ++i) {
+    const Part& part = model.parts[i];
+    for (const Loop& loop : part.loops)
+      for (const Edge& edge : loop.edges) {
+        point(edge.source);
+        point(edge.target);
+        if (edge.is_arc()) point(edge.center);
+      }
+    point(part.motion.pivot);
+    const PartConfiguration& c = configurations[i];
+    consider(c.offset);
+    consider(c.x);
+    consider(c.y);
+  }
+  if (largest == 0) return n;
+  n.k = decimal_exponent(largest) - 2;  // the picture spans about 100 to 1000 units
+  n.inverse_scale = power_of_ten(-n.k);
+  return n;
+}
+
+// A length of the real (unnormalised) world for a label: `value` drawing units times 10^k,
+// with up to 6 significant digits, in scientific form beyond 10^6 and below 10^-4.
+std::string world_text(double value, long k) {
+  if (!std::isfinite(value) || value == 0) return "0";
+  Rational exact = Rational(value) * power_of_ten(k);
+  mpfr_t m;
+  mpfr_init2(m, 64);
+  mpfr_set_q(m, exact.get_mpq_t(), MPFR_RNDN);
+  long exponent = decimal_exponent(exact);
+  char buffer[96];
+  if (exponent >= -4 && exponent < 6) mpfr_snprintf(buffer, sizeof buffer, "%.6Rg", m);
+  else mpfr_snprintf(buffer, sizeof buffer, "%.5Re", m);
+  mpfr_clear(m);
+  std::string text = buffer;
+  // "2.00000e+400" -> "2e400"
+  if (auto e = text.find('e'); e != std::string::npos) {
+    std::string mantissa = text.substr(0, e), power = text.substr(e + 1);
+    if (mantissa.find('.') != std::string::npos) {
+      while (mantissa.back() == '0') mantissa.pop_back();
+      if (mantissa.back() == '.') mantissa.pop_back();
+    }
+    if (!power.empty() && power[0] == '+') power.erase(0, 1);
+    bool negative = !power.empty() && power[0] == '-';
+    if (negative) power.erase(0, 1);
+    while (power.size() > 1 && power[0] == '0') power.erase(0, 1);
+    text = mantissa + "e" + (negative ? "-" : "") + power;
+  }
+  return text;
+}
+
+std::string world_text(const Rational& value) {
+  if (value == 0) return "0";
+  long k = decimal_exponent(value) - 2;
+  return world_text(to_double(Rational(value * power_of_ten(-k))), k);
+}
 
 std::string motion_name(const Motion& motion) {
   switch (motion.kind) {
@@ -55,37 +164,21 @@ std::string configuration_text(const Part& part, const PartConfiguration& c,
     case Motion::Kind::fixed: return "fixed";
     case Motion::Kind::rotation: return "rotation, \u03b8 = " + angle_text(c.angle, unit);
     case Motion::Kind::translation:
-      return "translation, s = " + io::format_number(to_number(c.offset)) + " mm";
+      return "translation, s = " + world_text(c.offset) + " mm";
     case Motion::Kind::planar:
-      return "planar, x = " + io::format_number(to_number(c.x)) +
-             ", y = " + io::format_number(to_number(c.y)) + ", \u03b8 = " + angle_text(c.angle, unit);
+      return "planar, x = " + world_text(c.x) + ", y = " + world_text(c.y) + ", \u03b8 = " + angle_text(c.angle, unit);
     case Motion::Kind::pin_slot:
       return "pin-slot, \u03b8 = " + angle_text(c.angle, unit) +
-             ", s = " + io::format_number(to_number(c.offset)) + " mm";
+             ", s = " + world_text(c.offset) + " mm";
   }
   return "";
 }
 
-// Midpoint of an edge at the part's configuration, for its label.
-PosedPoint edge_middle(const Part& part, const PartConfiguration& c, const Edge& edge) {
-  double sx = to_number(edge.source.x), sy = to_number(edge.source.y);
-  double tx = to_number(edge.target.x), ty = to_number(edge.target.y);
-  if (!edge.is_arc()) return pose_point(part.motion, c, (sx + tx) / 2, (sy + ty) / 2);
-  double cx = to_number(edge.center.x), cy = to_number(edge.center.y);
-  double radius = std::hypot(sx - cx, sy - cy);
-  double start = std::atan2(sy - cy, sx - cx);
-  double end = std::atan2(ty - cy, tx - cx);
-  double span = edge.is_full_circle() ? 2 * M_PI : (edge.ccw ? end - start : start - end);
-  span = std::fmod(span, 2 * M_PI);
-  if (span <= 0) span += 2 * M_PI;
-  double middle = start + (edge.ccw ? span / 2 : -span / 2);
-  return pose_point(part.motion, c, cx + radius * std::cos(middle), cy + radius * std::sin(middle));
-}
-
-}  // namespace
-
-PosedPoint pose_point(const Motion& motion, const PartConfiguration& c, double x, double y) {
-  double px = to_number(motion.pivot.x), py = to_number(motion.pivot.y);
+// Moves the normalised zero-configuration point (x, y) of a part to its configuration, in
+// normalised coordinates (the rotation about the normalised pivot, offsets scaled).
+PosedPoint pose_normalised(const Motion& motion, const PartConfiguration& c, const Normalisation& n, double x,
+                           double y) {
+  double px = n.x(motion.pivot.x), py = n.y(motion.pivot.y);
   auto rotate_about_pivot = [&](double angle) {
     double dx = x - px, dy = y - py;
     double cs = std::cos(angle), sn = std::sin(angle);
@@ -95,23 +188,48 @@ PosedPoint pose_point(const Motion& motion, const PartConfiguration& c, double x
     case Motion::Kind::fixed: return PosedPoint{x, y};
     case Motion::Kind::rotation: return rotate_about_pivot(to_number(c.angle));
     case Motion::Kind::translation: {
-      double s = to_number(c.offset);
-      return PosedPoint{x + s * to_number(motion.direction.x),
-                        y + s * to_number(motion.direction.y)};
+      double s = n.length(c.offset);
+      return PosedPoint{x + s * to_number(motion.direction.x), y + s * to_number(motion.direction.y)};
     }
     case Motion::Kind::planar: {
       PosedPoint p = rotate_about_pivot(to_number(c.angle));
-      return PosedPoint{p.x + to_number(c.x), p.y + to_number(c.y)};
+      return PosedPoint{p.x + n.length(c.x), p.y + n.length(c.y)};
     }
     case Motion::Kind::pin_slot: {
       double angle = to_number(c.angle);
       PosedPoint p = rotate_about_pivot(angle);
       double dx = to_number(motion.direction.x), dy = to_number(motion.direction.y);
-      double cs = std::cos(angle), sn = std::sin(angle), s = to_number(c.offset);
+      double cs = std::cos(angle), sn = std::sin(angle), s = n.length(c.offset);
       return PosedPoint{p.x + s * (cs * dx - sn * dy), p.y + s * (sn * dx + cs * dy)};
     }
   }
   return PosedPoint{x, y};
+}
+
+PosedPoint pose_exact(const Motion& motion, const PartConfiguration& c, const Normalisation& n, const Point& p) {
+  return pose_normalised(motion, c, n, n.x(p.x), n.y(p.y));
+}
+
+// Midpoint of an edge at the part's configuration, for its label.
+PosedPoint edge_middle(const Part& part, const PartConfiguration& c, const Edge& edge, const Normalisation& n) {
+  double sx = n.x(edge.source.x), sy = n.y(edge.source.y);
+  double tx = n.x(edge.target.x), ty = n.y(edge.target.y);
+  if (!edge.is_arc()) return pose_normalised(part.motion, c, n, (sx + tx) / 2, (sy + ty) / 2);
+  double cx = n.x(edge.center.x), cy = n.y(edge.center.y);
+  double radius = std::hypot(sx - cx, sy - cy);
+  double start = std::atan2(sy - cy, sx - cx);
+  double end = std::atan2(ty - cy, tx - cx);
+  double span = edge.is_full_circle() ? 2 * M_PI : (edge.ccw ? end - start : start - end);
+  span = std::fmod(span, 2 * M_PI);
+  if (span <= 0) span += 2 * M_PI;
+  double middle = start + (edge.ccw ? span / 2 : -span / 2);
+  return pose_normalised(part.motion, c, n, cx + radius * std::cos(middle), cy + radius * std::sin(middle));
+}
+
+}  // namespace
+
+PosedPoint pose_point(const Motion& motion, const PartConfiguration& c, double x, double y) {
+  return pose_normalised(motion, c, Normalisation{}, x, y);
 }
 
 std::string mechanism_svg(const Model& model, const std::vector<PartConfiguration>& configurations,
@@ -120,7 +238,8 @@ std::string mechanism_svg(const Model& model, const std::vector<PartConfiguratio
     throw Error("mechanism_svg: " + std::to_string(configurations.size()) +
                 " configurations for " + std::to_string(model.parts.size()) + " parts");
 
-  // Paths of every part at its configuration, and the drawing's extent.
+  // Paths of every part at its configuration, and the drawing's extent (normalised units).
+  Normalisation n = normalisation_of(model, configurations);
   std::vector<io::SvgPath> paths(model.parts.size());
   std::vector<Box> part_boxes(model.parts.size());
   Box extent;
@@ -129,15 +248,12 @@ std::string mechanism_svg(const Model& model, const std::vector<PartConfiguratio
     const PartConfiguration& c = configurations[i];
     for (const Loop& loop : part.loops) {
       if (loop.edges.empty()) continue;
-      PosedPoint start = pose_point(part.motion, c, to_number(loop.edges.front().source.x),
-                                    to_number(loop.edges.front().source.y));
+      PosedPoint start = pose_exact(part.motion, c, n, loop.edges.front().source);
       paths[i].move_to(start.x, start.y);
       for (const Edge& edge : loop.edges) {
-        PosedPoint target =
-            pose_point(part.motion, c, to_number(edge.target.x), to_number(edge.target.y));
+        PosedPoint target = pose_exact(part.motion, c, n, edge.target);
         if (edge.is_arc()) {
-          PosedPoint centre =
-              pose_point(part.motion, c, to_number(edge.center.x), to_number(edge.center.y));
+          PosedPoint centre = pose_exact(part.motion, c, n, edge.center);
           paths[i].arc_to(target.x, target.y, centre.x, centre.y, edge.ccw);
         } else {
           paths[i].line_to(target.x, target.y);
@@ -150,8 +266,7 @@ std::string mechanism_svg(const Model& model, const std::vector<PartConfiguratio
       extent.add(x, y);
     }
     if (part.motion.kind != Motion::Kind::fixed && part.motion.kind != Motion::Kind::translation) {
-      PosedPoint pivot = pose_point(part.motion, c, to_number(part.motion.pivot.x),
-                                    to_number(part.motion.pivot.y));
+      PosedPoint pivot = pose_exact(part.motion, c, n, part.motion.pivot);
       extent.add(pivot.x, pivot.y);
     }
   }
@@ -220,8 +335,7 @@ std::string mechanism_svg(const Model& model, const std::vector<PartConfiguratio
     mark.stroke_width = size / 700;
     if (motion.kind == Motion::Kind::rotation || motion.kind == Motion::Kind::planar ||
         motion.kind == Motion::Kind::pin_slot) {
-      PosedPoint pivot =
-          pose_point(motion, c, to_number(motion.pivot.x), to_number(motion.pivot.y));
+      PosedPoint pivot = pose_exact(motion, c, n, motion.pivot);
       double r = text_size * 0.45;
       io::SvgStyle ring = mark;
       ring.fill = "white";
@@ -307,15 +421,14 @@ std::string mechanism_svg(const Model& model, const std::vector<PartConfiguratio
     for (const Loop& loop : part.loops)
       for (const Edge& edge : loop.edges) {
         if (edge.label.empty()) continue;
-        PosedPoint m = edge_middle(part, configurations[i], edge);
+        PosedPoint m = edge_middle(part, configurations[i], edge, n);
         svg.text(m.x, m.y, edge.label, text_size * 0.4, "middle", "#202020");
       }
     svg.end_group();
   }
 
   double bar = io::nice_length(size / 5);
-  svg.scale_bar(extent.min_x, box.min_y + text_size * 1.4, bar,
-                io::format_number(bar) + " mm", text_size);
+  svg.scale_bar(extent.min_x, box.min_y + text_size * 1.4, bar, world_text(bar, n.k) + " mm", text_size);
   if (options.legend && !legend.empty())
     svg.legend(extent.max_x + margin, extent.max_y, legend, text_size);
   return svg.str();

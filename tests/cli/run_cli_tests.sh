@@ -50,6 +50,108 @@ grep -q "^hipair: error: " "$work/nodir.err" || fail "missing directory: unclear
 [ $? -ne 0 ] || fail "validate of a missing file succeeded"
 grep -q "does-not-exist.json" "$work/missing.err" || fail "missing file not named: $(cat "$work/missing.err")"
 
+# --- Outputs that are inputs (issue 9 §5): refused before anything is written, model unchanged.
+refuse="$work/refuse"
+mkdir -p "$refuse/sub"
+cp "$source/examples/models/lever-stop.json" "$refuse/m.json"
+ln -s m.json "$refuse/link.json"
+ln "$refuse/m.json" "$refuse/hard.json"
+sum_before=$(sha256sum <"$refuse/m.json")
+for output in "$refuse/m.json" "$refuse/./m.json" "$refuse/sub/../m.json" "$refuse/link.json" "$refuse/hard.json"; do
+  for form in "show @M --svg @O" "cspace @M --svg @O" "cspace @M --json @O" "cspace @M --pair lever:stop --svg @O" \
+              "certify @M --claim jam --direction 1 --out @O" "certify @M --claim interference --at lever=0 --out @O"; do
+    command=${form//@M/$refuse/m.json}
+    command=${command//@O/$output}
+    # shellcheck disable=SC2086
+    "$hipair" $command >/dev/null 2>"$work/refuse.err"
+    code=$?
+    { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "'$command' exit $code (want a refusal)"
+    grep -q "refusing to overwrite" "$work/refuse.err" || fail "'$command': no refusal: $(cat "$work/refuse.err")"
+    [ "$(wc -l <"$work/refuse.err")" -eq 1 ] || fail "'$command': not one error line"
+    [ "$(sha256sum <"$refuse/m.json")" = "$sum_before" ] || fail "'$command' changed the model file"
+  done
+done
+# analyze --out into the model's own directory, where a file it writes is the model
+for victim in report.json kinematics.csv kinematics.svg; do
+  rm -rf "$refuse/an" && mkdir -p "$refuse/an"
+  cp "$source/examples/models/geneva.json" "$refuse/an/$victim"
+  before=$(sha256sum <"$refuse/an/$victim")
+  pictures=--no-pictures
+  [ "$victim" = kinematics.svg ] && pictures=--quiet
+  "$hipair" analyze "$refuse/an/$victim" $pictures --out "$refuse/an" --quiet >/dev/null 2>"$work/refuse.err"
+  code=$?
+  { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "analyze --out over the model ($victim): exit $code"
+  grep -q "refusing to overwrite" "$work/refuse.err" || fail "analyze over $victim: $(cat "$work/refuse.err")"
+  [ "$(sha256sum <"$refuse/an/$victim")" = "$before" ] || fail "analyze --out overwrote the model $victim"
+  [ "$(ls "$refuse/an" | wc -l)" -eq 1 ] || fail "analyze over $victim wrote files: $(ls "$refuse/an")"
+done
+
+# --- analyze --out publishes all files of a run or none (issue 9 §5).
+publish="$work/publish"
+mkdir -p "$publish"
+lever="$source/examples/models/lever-stop.json"
+geneva="$source/examples/models/geneva.json"
+"$hipair" analyze "$geneva" --out "$publish/out" --quiet >/dev/null 2>"$work/publish.err" \
+  || fail "analyze --out failed: $(cat "$work/publish.err")"
+[ -s "$publish/out/report.json" ] && [ -s "$publish/out/kinematics.csv" ] || fail "analyze --out wrote no report"
+for f in "$publish/out"/*; do echo "earlier run" >>"$f"; done   # an earlier run's files, told apart
+echo "mine" >"$publish/out/notes.txt"
+state() { (cd "$publish/out" && find . -type f -exec sha256sum {} + | sort); }
+before=$(state)
+for step in 1 2 3 5; do
+  HIPAIR_TEST_PUBLISH_FAIL_AT=$step "$hipair" analyze "$geneva" --no-pictures --out "$publish/out" --quiet >/dev/null 2>"$work/publish.err"
+  code=$?
+  { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "injected publish failure $step: exit $code"
+  grep -q "left as it was" "$work/publish.err" || fail "injected failure $step: $(cat "$work/publish.err")"
+  [ "$(state)" = "$before" ] || fail "a failed analyze (move $step) changed the output directory"
+done
+# a full disk (file size limit) while writing: nothing changes, no temporary left
+( trap '' XFSZ; ulimit -f 4; exec "$hipair" analyze "$geneva" --no-pictures --out "$publish/out" --quiet ) >/dev/null 2>"$work/publish.err"
+code=$?
+{ [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "analyze under a 4 KB file size limit: exit $code"
+[ "$(state)" = "$before" ] || fail "analyze that ran out of space changed the output directory"
+( trap '' XFSZ; ulimit -f 4; exec "$hipair" analyze "$geneva" --no-pictures --out "$publish/new" --quiet ) >/dev/null 2>&1
+[ -e "$publish/new" ] && fail "analyze that ran out of space left a new output directory"
+ls -a "$publish" | grep -q '\.tmp-' && fail "analyze left a temporary directory: $(ls -a "$publish")"
+# and a successful run replaces the earlier run's files, keeping other files
+"$hipair" analyze "$geneva" --no-pictures --out "$publish/out" --quiet >/dev/null 2>&1 || fail "analyze --out again failed"
+grep -q "earlier run" "$publish/out"/* && fail "files of the earlier run remain after a new run"
+[ "$(cat "$publish/out/notes.txt")" = "mine" ] || fail "analyze --out touched another file"
+
+# --- analyze without a drivable part says why (issue 9 §4).
+cat >"$work/planar.json" <<'JSON'
+{"hipair": 1, "name": "planar block", "parts": [
+  {"name": "plate", "motion": "fixed", "loops": [{"start": [0, 0], "edges": [{"line_to": [10, 0]}, {"line_to": [10, 5]}, {"line_to": [0, 5]}, {"line_to": [0, 0]}]}]},
+  {"name": "block", "motion": {"planar": {"pivot": [20, 2]}}, "loops": [{"start": [18, 0], "edges": [{"line_to": [22, 0]}, {"line_to": [22, 4]}, {"line_to": [18, 4]}, {"line_to": [18, 0]}]}]}]}
+JSON
+"$hipair" analyze "$work/planar.json" >/dev/null 2>"$work/planar.err"
+code=$?
+{ [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "analyze of a planar pair: exit $code"
+grep -q "no part named ''" "$work/planar.err" && fail "analyze of a planar pair: $(cat "$work/planar.err")"
+grep -q "'block' planar" "$work/planar.err" || fail "analyze of a planar pair does not say why: $(cat "$work/planar.err")"
+"$hipair" analyze "$geneva" --driver nosuch >/dev/null 2>"$work/driver.err"
+grep -q "parts that can drive: 'driver', 'wheel'" "$work/driver.err" || fail "--driver nosuch: $(cat "$work/driver.err")"
+"$hipair" analyze "$lever" --driver stop >/dev/null 2>"$work/driver.err"
+grep -q "part 'stop' is fixed" "$work/driver.err" || fail "--driver stop: $(cat "$work/driver.err")"
+
+# --- JSON numbers beyond double range are read exactly; control characters are refused.
+for literal in 1e309 1e-400 1e1000; do
+  printf '{"hipair": 1, "name": "p", "parts": [{"name": "plate", "motion": "fixed", "loops": [{"start": [0, 0], "edges": [{"line_to": [%s, 0]}, {"line_to": [%s, 1]}, {"line_to": [0, 0]}]}]}]}\n' \
+    "$literal" "$literal" >"$work/big.json"
+  "$hipair" validate "$work/big.json" >/dev/null 2>"$work/big.err" || fail "validate rejects $literal: $(cat "$work/big.err")"
+  "$hipair" show "$work/big.json" --svg "$work/big.svg" >/dev/null 2>&1 || fail "show fails on $literal"
+  grep -q 'viewBox="[-0-9.e]* [-0-9.e]* [1-9][0-9.e]* [1-9][0-9.e]*"' "$work/big.svg" || fail "$literal: bad viewBox"
+done
+printf '{"hipair": 1, "name": "p", "parts": [{"name": "a\\u001b[31mb", "motion": "fixed", "loops": [{"start": [0, 0], "edges": [{"line_to": [1, 0]}, {"line_to": [1, 1]}, {"line_to": [0, 0]}]}]}]}\n' >"$work/escape.json"
+"$hipair" show "$work/escape.json" --svg "$work/escape.svg" >/dev/null 2>"$work/escape.err"
+[ $? -eq 2 ] || fail "a part name with ESC is accepted"
+grep -q "^hipair: error: /parts/0/name: control character U+001B" "$work/escape.err" || fail "ESC name: $(cat "$work/escape.err")"
+grep -q $'\x1b' "$work/escape.err" && fail "the ESC character reached the terminal"
+[ -e "$work/escape.svg" ] && fail "an SVG was written for a refused model"
+if command -v rsvg-convert >/dev/null; then
+  rsvg-convert "$work/big.svg" -o "$work/big.png" 2>/dev/null || fail "rsvg-convert cannot read the 1e1000 SVG"
+fi
+
 # No stray temporary files left by atomic writes.
 ls -a "$work" | grep -q '\.tmp' && fail "temporary files left behind"
 

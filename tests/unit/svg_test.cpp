@@ -63,7 +63,8 @@ TEST(Svg, EscapesText) {
 TEST(Svg, FormatsNumbersCompactly) {
   EXPECT_EQ(io::format_number(1.5), "1.5");
   EXPECT_EQ(io::format_number(2.0), "2");
-  EXPECT_EQ(io::format_number(-0.00001), "0");
+  EXPECT_EQ(io::format_number(-0.00001), "-1e-05");  // small values are kept, not cut to 0
+  EXPECT_EQ(io::format_number(-0.0), "0");
   EXPECT_EQ(io::format_number(-3.25), "-3.25");
 }
 

@@ -1,0 +1,52 @@
+#include "io/output_paths.hpp"
+
+#include <hipair/error.hpp>
+
+namespace hipair::io {
+namespace {
+
+std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
+
+}  // namespace
+
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
+  namespace fs = std::filesystem;
+  std::error_code ec_a, ec_b;
+  // Both exist: the device and inode decide (symbolic and hard links included).
+  bool a_exists = fs::exists(a, ec_a), b_exists = fs::exists(b, ec_b);
+  if (a_exists && b_exists) {
+    std::error_code ec;
+    bool same = fs::equivalent(a, b, ec);
+    if (!ec) return same;
+  }
+  // Otherwise the resolved paths (a file that does not exist yet cannot be an input, but two
+  // outputs that do not exist yet may still be the same path).
+  std::error_code ec1, ec2;
+  fs::path ra = fs::weakly_canonical(fs::absolute(a), ec1);
+  fs::path rb = fs::weakly_canonical(fs::absolute(b), ec2);
+  if (ec1 || ec2) return fs::absolute(a).lexically_normal() == fs::absolute(b).lexically_normal();
+  return ra == rb;
+}
+
+void refuse_overwriting_inputs(const std::vector<PlannedOutput>& outputs,
+                               const std::vector<std::filesystem::path>& inputs) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const PlannedOutput& output = outputs[i];
+    if (output.path.empty()) continue;
+    for (const std::filesystem::path& input : inputs)
+      if (same_file(output.path, input))
+        throw IoError(output.option + " " + quoted(output.path) + " is the input file " + quoted(input) +
+                      ": refusing to overwrite it (nothing was written)");
+    for (std::size_t j = 0; j < i; ++j)
+      if (!outputs[j].path.empty() && same_file(output.path, outputs[j].path))
+        throw IoError(output.option + " " + quoted(output.path) + " is also the output of " + outputs[j].option +
+                      " " + quoted(outputs[j].path) + ": refusing to write one file twice (nothing was written)");
+  }
+}
+
+void refuse_overwriting_input(const std::filesystem::path& output, const std::string& option,
+                              const std::filesystem::path& input) {
+  refuse_overwriting_inputs({PlannedOutput{output, option}}, {input});
+}
+
+}  // namespace hipair::io

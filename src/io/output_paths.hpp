@@ -1,0 +1,31 @@
+// Refusing outputs that would replace an input: every command that writes files checks its
+// output paths against the files it read (and against each other) before it writes anything.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace hipair::io {
+
+/// One file a command is about to write: the path and the option that named it ("--svg").
+struct PlannedOutput {
+  std::filesystem::path path;
+  std::string option;
+};
+
+/// True when `a` and `b` name the same file: the same path once symbolic links, "." and ".."
+/// are resolved, or (both existing) the same device and inode, so hard links count too.
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
+/// Throws IoError, before anything is written, when an output would replace an input file
+/// (the model read, a certificate read) or two outputs are the same file. `inputs` are the
+/// files the command read. The message names the option and both paths.
+void refuse_overwriting_inputs(const std::vector<PlannedOutput>& outputs,
+                               const std::vector<std::filesystem::path>& inputs);
+
+/// The one-output form: `refuse_overwriting_inputs({{output, option}}, {input})`.
+void refuse_overwriting_input(const std::filesystem::path& output, const std::string& option,
+                              const std::filesystem::path& input);
+
+}  // namespace hipair::io
