@@ -379,7 +379,13 @@ class Painter {
     if (!touching_edges_.empty() || touching_vertices_ > 0) {
       io::SvgStyle swatch{"none", touching_colour};
       swatch.stroke_width = 2.2;
-      entries.push_back({swatch, "touching, zero clearance (blocked on both sides)"});
+      entries.push_back({swatch, "touching, zero clearance (blocked on both sides):"});
+      // the feature pairs that touch along the channels
+      std::vector<std::size_t> pairs;
+      for (const auto& [c, e] : touching_edges_)
+        for (std::size_t k : impl_.edges[impl_.charts[c].edges[e].global].curves)
+          if (std::find(pairs.begin(), pairs.end(), k) == pairs.end()) pairs.push_back(k);
+      for (std::size_t i = 0; i < pairs.size() && i < 6; ++i) entries.push_back({swatch, "  " + impl_.feature_pairs[pairs[i]].label});
     }
     if (options_.path.size() >= 2) {
       io::SvgStyle free{"none", "#1f4e9c"}, contact{"none", "#d62728"};
