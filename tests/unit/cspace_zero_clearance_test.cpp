@@ -109,19 +109,20 @@ void check_touching_elements(const Model& model, const CSpace& space) {
 // its width (length H > L); the plate translates along y. The channel: r = 0, s in [c, c + H - L].
 struct SlotFit {
   Rational w, L, H, c;
+  Rational u = 1;   // the scale of the margins (w, L, H, c are given at scale)
   std::string json() const {
-    Rational plate_lo = c - 3, plate_hi = c + H + 3;
+    Rational plate_lo = c - 3 * u, plate_hi = c + H + 3 * u, m = 5 * u;
     return R"({ "hipair": 1, "name": "bar-in-slot",
       "parts": [
         { "name": "bar", "motion": { "translation": { "direction": [1, 0], "limits": [)" +
-           text(c - L - 1) + ", " + text(c + H + 1) + R"(] } },
+           text(c - L - u) + ", " + text(c + H + u) + R"(] } },
           "loops": [ { "start": [0, 0], "edges": [ { "line_to": [)" + text(L) + R"(, 0] }, { "line_to": [)" + text(L) + ", " +
            text(w) + R"(] }, { "line_to": [0, )" + text(w) + R"(] }, { "line_to": [0, 0] } ] } ] },
-        { "name": "plate", "motion": { "translation": { "direction": [0, 1], "limits": [-2, 2] } },
+        { "name": "plate", "motion": { "translation": { "direction": [0, 1], "limits": [)" + text(-2 * u) + ", " + text(2 * u) + R"(] } },
           "loops": [
-            { "start": [)" + text(plate_lo) + R"(, -5], "edges": [ { "line_to": [)" + text(plate_hi) + R"(, -5] }, { "line_to": [)" +
-           text(plate_hi) + ", " + text(w + 5) + R"(] }, { "line_to": [)" + text(plate_lo) + ", " + text(w + 5) +
-           R"(] }, { "line_to": [)" + text(plate_lo) + R"(, -5] } ] },
+            { "start": [)" + text(plate_lo) + ", " + text(-m) + R"(], "edges": [ { "line_to": [)" + text(plate_hi) + ", " + text(-m) +
+           R"(] }, { "line_to": [)" + text(plate_hi) + ", " + text(w + m) + R"(] }, { "line_to": [)" + text(plate_lo) + ", " +
+           text(w + m) + R"(] }, { "line_to": [)" + text(plate_lo) + ", " + text(-m) + R"(] } ] },
             { "start": [)" + text(c) + R"(, 0], "edges": [ { "line_to": [)" + text(c + H) + R"(, 0] }, { "line_to": [)" +
            text(c + H) + ", " + text(w) + R"(] }, { "line_to": [)" + text(c) + ", " + text(w) + R"(] }, { "line_to": [)" + text(c) +
            R"(, 0] } ] }
@@ -132,10 +133,14 @@ struct SlotFit {
 
 TEST(CSpaceZeroClearance, BarInASlotOfExactlyItsWidthIsATouchingChannel) {
   Random random(20261124);
-  for (int instance = 0; instance < 8; ++instance) {
-    SlotFit fit{random_rational(random, Rational(1, 10), Rational(3)), random_rational(random, Rational(1), Rational(4)), 0, 0};
-    fit.H = fit.L + random_rational(random, Rational(1, 2), Rational(5));
-    fit.c = random_rational(random, Rational(-3), Rational(3));
+  // sizes at scales from 10^-9 mm to 10^9 mm
+  const Rational scales[] = {Rational(1), Rational(1, 1000000000), Rational(1000), Rational(1, 1000), Rational(1000000000)};
+  for (int instance = 0; instance < 15; ++instance) {
+    Rational u = scales[instance % 5];
+    SlotFit fit{u * random_rational(random, Rational(1, 10), Rational(3)), u * random_rational(random, Rational(1), Rational(4)), 0, 0, u};
+    fit.H = fit.L + u * random_rational(random, Rational(1, 2), Rational(5));
+    fit.c = u * random_rational(random, Rational(-3), Rational(3));
+    for (Rational* r : {&fit.w, &fit.L, &fit.H, &fit.c}) r->canonicalize();
     SCOPED_TRACE("w " + fit.w.get_str() + " L " + fit.L.get_str() + " H " + fit.H.get_str() + " c " + fit.c.get_str());
     Model model = read_model(fit.json());
     CSpace space = CSpace::build(model, "bar", "plate");
@@ -153,7 +158,7 @@ TEST(CSpaceZeroClearance, BarInASlotOfExactlyItsWidthIsATouchingChannel) {
       EXPECT_TRUE(on_touching_edge(space, at)) << "s " << s.get_str();
       EXPECT_EQ(oracle(model, space, *on), cspace::Overlap::touching);
       // just beside the channel: blocked (the bar overlaps the plate)
-      for (const Rational& r : {Rational(1, 1000000), Rational(-1, 1000000), Rational(fit.w / 3)}) {
+      for (const Rational& r : {Rational(u / 1000000), Rational(-u / 1000000), Rational(fit.w / 3)}) {
         Rational rr = r;
         rr.canonicalize();
         auto beside = space.to_chart(PartCoordinate{PartCoordinate::Kind::offset, s}, PartCoordinate{PartCoordinate::Kind::offset, rr});
@@ -164,8 +169,10 @@ TEST(CSpaceZeroClearance, BarInASlotOfExactlyItsWidthIsATouchingChannel) {
       }
     }
     // past the channel's ends on r = 0: the bar's end overlaps the plate
-    for (const Rational& s : {Rational(fit.c - Rational(1, 1000)), Rational(fit.c + fit.H - fit.L + Rational(1, 1000))}) {
-      auto past = space.to_chart(PartCoordinate{PartCoordinate::Kind::offset, s}, PartCoordinate{PartCoordinate::Kind::offset, 0});
+    for (const Rational& s : {Rational(fit.c - u / 1000), Rational(fit.c + fit.H - fit.L + u / 1000)}) {
+      Rational ss = s;
+      ss.canonicalize();
+      auto past = space.to_chart(PartCoordinate{PartCoordinate::Kind::offset, ss}, PartCoordinate{PartCoordinate::Kind::offset, 0});
       ASSERT_TRUE(past);
       Location p = space.locate(*past);
       EXPECT_FALSE(located_touching(space, p)) << "s " << s.get_str();
@@ -204,7 +211,7 @@ struct CrankFit {
 
 TEST(CSpaceZeroClearance, CrankPinInAnExactSlotRunsOnTheChannelSEqualsRSinTheta) {
   Random random(977);
-  for (int instance = 0; instance < 5; ++instance) {
+  for (int instance = 0; instance < 8; ++instance) {
     CrankFit fit{random_rational(random, Rational(5), Rational(40)), 0};
     fit.p = random_rational(random, Rational(1, 2), fit.R / 3);
     SCOPED_TRACE("R " + fit.R.get_str() + " p " + fit.p.get_str());
@@ -276,7 +283,7 @@ struct PegFit {
 
 TEST(CSpaceZeroClearance, SquarePegInAnExactSquareHoleIsAnIsolatedTouchingConfiguration) {
   Random random(4242);
-  for (int instance = 0; instance < 8; ++instance) {
+  for (int instance = 0; instance < 12; ++instance) {
     PegFit fit{random_rational(random, Rational(1, 3), Rational(6)), random_rational(random, Rational(-5), Rational(5)),
                instance % 2 == 0};
     SCOPED_TRACE(std::string(fit.rotating ? "rotating" : "translating") + " a " + fit.a.get_str() + " h " + fit.h.get_str());
