@@ -245,6 +245,24 @@ TEST(CSpaceZeroClearance, CrankPinInAnExactSlotRunsOnTheChannelSEqualsRSinTheta)
       }
     }
     EXPECT_EQ(on_channel, 40);
+    // a straight path across the channel (theta fixed, s from p/2 above to p/2 below) crosses
+    // it exactly half-way, on a touching edge
+    for (const Rational& T : {Rational(1, 3), Rational(-2, 7)}) {
+      Rational s = 2 * fit.R * T / (1 + T * T);
+      s.canonicalize();
+      PartCoordinate theta{PartCoordinate::Kind::half_angle_tangent, T};
+      auto from = space.to_chart(theta, PartCoordinate{PartCoordinate::Kind::offset, Rational(s + fit.p / 2)});
+      auto to = space.to_chart(theta, PartCoordinate{PartCoordinate::Kind::offset, Rational(s - fit.p / 2)});
+      ASSERT_TRUE(from && to && from->chart == to->chart);
+      Crossing crossing = space.first_crossing(*from, to->x, to->y);
+      ASSERT_TRUE(crossing.found) << "T " << T.get_str();
+      EXPECT_EQ(crossing.parameter_lower, Rational(1, 2));
+      EXPECT_EQ(crossing.parameter_upper, Rational(1, 2));
+      bool touching = crossing.edge != no_index && space.edges()[crossing.edge].role == EdgeRole::touching;
+      if (crossing.vertex != no_index)
+        for (std::size_t e : space.vertices()[crossing.vertex].edges) touching = touching || space.edges()[e].role == EdgeRole::touching;
+      EXPECT_TRUE(touching) << "T " << T.get_str();
+    }
     agree_with_oracle(model, space, random, 300);
   }
 }
