@@ -141,7 +141,10 @@ enum class EdgeRole {
   spurious,   ///< lies on a contact curve but has the same class on both sides (the features
               ///< would touch outside their extent, or the curve passes through blocked space)
   seam,       ///< chart boundary glued to another chart (theta = +-pi/2), same class across
-  limit       ///< chart boundary at a motion limit or the end of a translation chart
+  limit,      ///< chart boundary at a motion limit or the end of a translation chart
+  touching    ///< blocked on both sides, but the parts only touch along it (interiors disjoint,
+              ///< decided by the exact overlap oracle): a zero-clearance channel, e.g. a pin in
+              ///< a slot of exactly its diameter. `real`; it separates the cells on its sides.
 };
 
 /// A vertex of the C-space (per chart; a configuration on a seam appears once per chart).
@@ -161,6 +164,10 @@ struct CSpaceVertex {
   std::vector<std::size_t> curves;     ///< feature pairs (contact curves) through the vertex
   bool contact_change = false;         ///< two or more distinct contact curves meet here
   bool on_chart_boundary = false;
+  /// An isolated touching configuration: blocked space all around, but the parts only touch
+  /// here (exact oracle), e.g. a square in a square hole of exactly its size. Vertices of real
+  /// edges (contact or touching) are contact configurations anyway.
+  bool touching = false;
 };
 
 /// An edge of the C-space: a piece of one or more contact curves (or of a chart boundary).
@@ -176,8 +183,8 @@ struct CSpaceEdge {
   CertifiedRange x_chart, y_chart;     ///< certified extent in chart coordinates
   CertifiedRange x_coordinate, y_coordinate;   ///< certified extent in rad or mm
 
-  /// Free on one side and blocked on the other (contact edges, and seams/limits carrying a
-  /// contact curve that separates classes).
+  /// The parts touch along it: free on one side and blocked on the other (contact edges, and
+  /// seams/limits carrying a contact curve that separates classes), or a touching edge.
   bool real = false;
 };
 
@@ -214,6 +221,10 @@ struct PartCoordinate {
 /// Result of exact point location.
 struct Location {
   /// `touching`: inside a touching cell (degenerate: contact throughout a region).
+  /// `edge` / `vertex`: on contact space. The parts touch there (`cell` is no_index) when the
+  /// edge is real (a free/blocked boundary, or EdgeRole::touching: a zero-clearance channel
+  /// between blocked faces), or the vertex is one of a real edge or CSpaceVertex::touching;
+  /// otherwise the point lies on a spurious piece inside `cell`.
   enum class Kind { free, blocked, edge, vertex, outside, touching };
   Kind kind = Kind::outside;
   std::size_t cell = no_index;     ///< free / blocked / touching (and edges or vertices inside one cell)
@@ -371,6 +382,11 @@ struct CSpaceStatistics {
   std::size_t faces = 0;
   std::size_t cells = 0;
   std::size_t contact_edges = 0;
+  std::size_t touching_edges = 0;      ///< zero-clearance channels (EdgeRole::touching)
+  std::size_t touching_vertices = 0;   ///< isolated touching configurations
+  /// Edges on two or more coincident contact curves between blocked faces with no rational
+  /// point found (they stay spurious, unchecked by the oracle; see docs/cspace.md).
+  std::size_t touching_undecided = 0;
   std::size_t region_tiles = 0;       ///< operating region: tiles built (0: whole space built)
   std::size_t region_cells = 0;       ///< operating region: flooded quadtree cells
   double seconds_region = 0;          ///< operating region: flood over certified-blocked cells

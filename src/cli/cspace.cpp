@@ -75,6 +75,7 @@ std::string role_name(EdgeRole role) {
     case EdgeRole::spurious: return "spurious";
     case EdgeRole::seam: return "seam";
     case EdgeRole::limit: return "limit";
+    case EdgeRole::touching: return "touching";
   }
   return "?";
 }
@@ -94,6 +95,9 @@ json statistics_json(const CSpaceStatistics& s) {
               {"faces", s.faces},
               {"cells", s.cells},
               {"contact_edges", s.contact_edges},
+              {"touching_edges", s.touching_edges},
+              {"touching_vertices", s.touching_vertices},
+              {"touching_undecided", s.touching_undecided},
               {"region_tiles", s.region_tiles},
               {"region_cells", s.region_cells},
               {"seconds",
@@ -172,6 +176,7 @@ json space_json(const CSpace& space) {
     v["feature_pairs"] = vertex.curves;
     v["contact_change"] = vertex.contact_change;
     v["on_chart_boundary"] = vertex.on_chart_boundary;
+    v["touching"] = vertex.touching;
     vertices.push_back(v);
   }
   out["vertices"] = vertices;
@@ -207,6 +212,13 @@ void print_statistics(const CSpace& space) {
               s.feature_pairs_considered, s.feature_pairs_culled, s.curves, s.pieces_inserted);
   std::printf("  vertices %zu, edges %zu (contact %zu), faces %zu, cells %zu\n", s.vertices, s.edges, s.contact_edges,
               s.faces, s.cells);
+  if (s.touching_edges + s.touching_vertices + s.touching_undecided > 0)
+    std::printf("  zero-clearance contacts: %zu touching edges, %zu isolated touching vertices%s\n", s.touching_edges,
+                s.touching_vertices,
+                s.touching_undecided ? (", " + std::to_string(s.touching_undecided) +
+                                        " coincident-curve edges in blocked space with no rational point (unchecked)")
+                                           .c_str()
+                                     : "");
   if (!space.complete())
     std::printf("  operating region: %zu tiles, %zu quadtree cells flooded in %.1f ms (outside it nothing is claimed)\n",
                 s.region_tiles, s.region_cells, s.seconds_region * 1e3);

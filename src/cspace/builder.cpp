@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <unordered_map>
 
@@ -279,6 +280,153 @@ void classify_faces(ChartData& chart, const Classifier& classify) {
     data.sample_x = x;
     data.sample_y = y;
     data.kind = kind_of(classify(ChartPoint{x, y}));
+  }
+}
+
+// ---------------------------------------------------------------- zero-clearance contacts
+
+// The exact value of r when it is rational: r exact, r the root of a linear polynomial, or a
+// rational of moderate denominator (Real::detect_rational).
+std::optional<Rational> rational_value(Real r, bool thorough = true) {
+  if (!r.exact && algebra::degree(r.polynomial) == 1) {
+    Rational value(r.polynomial[0], r.polynomial[1]);
+    value.canonicalize();
+    return Rational(-value);
+  }
+  if (!thorough) return r.exact ? std::optional<Rational>(r.lower) : std::nullopt;
+  r.detect_rational();
+  if (r.exact) return r.lower;
+  return std::nullopt;
+}
+
+// A rational point on the relative interior of edge e (not a chart side), or nullopt. The
+// oracle's answer there is the answer along the whole open edge: the overlap relation only
+// changes where some contact curve meets the edge, which is a vertex of the arrangement.
+// Not `thorough`: only the edge's sample, when its ordinate is rational without searching.
+std::optional<ChartPoint> rational_point_on_edge(const ChartData& chart, std::size_t e, bool thorough) {
+  const raw::Edge& edge = chart.arrangement.edges[e];
+  const EdgeData& data = chart.edges[e];
+  const raw::Vertex& low = chart.arrangement.vertices[edge.min_vertex];
+  const raw::Vertex& high = chart.arrangement.vertices[edge.max_vertex];
+  if (edge.vertical) {
+    // sample_y is rational; the edge's x is one number
+    auto x = rational_value(data.vertical_x, thorough);
+    if (x && data.sample_y.exact) return ChartPoint{*x, data.sample_y.lower};
+    return std::nullopt;
+  }
+  if (!thorough) {
+    auto y = rational_value(data.sample_y, false);
+    if (y) return ChartPoint{data.sample_x, *y};
+    return std::nullopt;
+  }
+  // rational abscissae across the edge (the sample first), each with the edge's exact ordinate
+  std::vector<Rational> xs{data.sample_x};
+  std::vector<std::pair<Real, Real>> spans{{low.x, Real::from_rational(data.sample_x)},
+                                           {Real::from_rational(data.sample_x), high.x}};
+  for (std::size_t i = 0; i < spans.size() && xs.size() < 7; ++i) {
+    auto [lo, hi] = spans[i];   // a copy: the vector grows below
+    Rational x = algebra::rational_between(lo, hi);
+    xs.push_back(x);
+    spans.emplace_back(lo, Real::from_rational(x));
+    spans.emplace_back(Real::from_rational(x), hi);
+  }
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    Real y = i == 0 ? data.sample_y : edge_y_at(chart, e, xs[i]);
+    if (auto value = rational_value(std::move(y))) return ChartPoint{xs[i], *value};
+  }
+  // rational ordinates: the edge is y-monotone, so a rational root x of support(x, y0) strictly
+  // inside the edge's x-range whose edge ordinate is y0 is a point of the edge
+  auto below = [](const raw::Vertex& v) { return v.y_exact ? v.y : Real::from_rational(v.y_lower); };
+  auto above = [](const raw::Vertex& v) { return v.y_exact ? v.y : Real::from_rational(v.y_upper); };
+  Real a, b;
+  if (algebra::compare(above(low), below(high)) < 0) {
+    a = above(low);
+    b = below(high);
+  } else if (algebra::compare(above(high), below(low)) < 0) {
+    a = above(high);
+    b = below(low);
+  } else {
+    return std::nullopt;
+  }
+  if (algebra::compare(a, b) >= 0) return std::nullopt;   // horizontal: handled by the abscissae
+  std::vector<Rational> ys;
+  std::vector<std::pair<Real, Real>> y_spans{{a, b}};
+  for (std::size_t i = 0; i < y_spans.size() && ys.size() < 7; ++i) {
+    auto [lo, hi] = y_spans[i];   // a copy: the vector grows below
+    Rational y = algebra::rational_between(lo, hi);
+    ys.push_back(y);
+    y_spans.emplace_back(lo, Real::from_rational(y));
+    y_spans.emplace_back(Real::from_rational(y), hi);
+  }
+  Rational x_lo = low.x.lower, x_hi = high.x.upper;
+  for (const Rational& y : ys) {
+    algebra::Polynomial p = algebra::substitute_y(edge.support, y);
+    if (algebra::degree(p) < 1) continue;
+    for (Real& root : algebra::real_roots(p, x_lo, x_hi)) {
+      auto x = rational_value(root);
+      if (!x || low.x.compare(*x) >= 0 || high.x.compare(*x) <= 0) continue;
+      if (edge_y_at(chart, e, *x).compare(y) == 0) return ChartPoint{*x, y};
+    }
+  }
+  return std::nullopt;
+}
+
+// Zero-clearance contacts: edges and isolated vertices of contact space with blocked space on
+// every side. A face sample never lies on them; the exact oracle decides at a rational point
+// of each whether the parts only touch there (a channel of zero width: EdgeRole::touching) or
+// overlap (a curve through blocked space: spurious).
+void find_touching(ChartData& chart, const Classifier& classify, CSpaceStatistics& stats) {
+  const auto& arrangement = chart.arrangement;
+  chart.touching_vertex.assign(arrangement.vertices.size(), 0);
+  auto blocked = [&](std::size_t face) {
+    return face != raw::none && !arrangement.faces[face].unbounded && chart.faces[face].kind == 1;
+  };
+  auto decide = [&](const ChartPoint& q) {
+    Overlap relation = classify(q);
+    if (relation == Overlap::apart)
+      throw GeometryError("internal: the parts are apart at " + q.x.get_str() + ", " + q.y.get_str() +
+                          " in contact space between blocked faces");
+    return relation == Overlap::touching;
+  };
+  for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
+    const raw::Edge& edge = arrangement.edges[e];
+    if (edge.box_side >= 0 || !blocked(edge.left_face) || !blocked(edge.right_face)) continue;
+    EdgeData& data = chart.edges[e];
+    if (data.curves.empty()) continue;
+    // one curve: the sample only (without a rational point the edge certainly overlaps, below)
+    auto point = rational_point_on_edge(chart, e, data.curves.size() >= 2);
+    if (!point) {
+      // A touching edge between blocked faces carries two or more contacts (one contact alone
+      // separates on one side); with one curve the edge certainly lies in blocked space.
+      if (data.curves.size() >= 2) ++stats.touching_undecided;
+      continue;
+    }
+    data.touching = decide(*point);
+    if (data.touching) ++stats.touching_edges;
+  }
+  // isolated points: rational vertices of curves only, blocked all around
+  for (std::size_t v = 0; v < arrangement.vertices.size(); ++v) {
+    const raw::Vertex& vertex = arrangement.vertices[v];
+    if (vertex.isolated || vertex.around.size() < 2) continue;
+    // on curves (not a corner of the box), no end of a touching edge, blocked in every wedge
+    // inside the box (a vertex on a seam is checked in each chart it appears in)
+    bool on_curve = false, candidate = true;
+    for (const auto& incidence : vertex.around) {
+      if (arrangement.edges[incidence.edge].box_side < 0) on_curve = true;
+      if (chart.edges[incidence.edge].touching) candidate = false;
+      if (incidence.wedge_face == raw::none) candidate = false;
+      else if (!arrangement.faces[incidence.wedge_face].unbounded && !blocked(incidence.wedge_face)) candidate = false;
+      if (!candidate) break;
+    }
+    if (!candidate || !on_curve) continue;
+    auto x = rational_value(vertex.x, false);   // rational vertices come out exact (or linear)
+    if (!x || !vertex.y_exact) continue;
+    auto y = rational_value(vertex.y);
+    if (!y) continue;
+    if (decide(ChartPoint{*x, *y})) {
+      chart.touching_vertex[v] = 1;
+      ++stats.touching_vertices;
+    }
   }
 }
 
@@ -566,6 +714,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     stats.seconds_labelling += seconds_since(start);
     start = Clock::now();
     classify_faces(chart, chart_input.classify);
+    find_touching(chart, chart_input.classify, stats);
     stats.seconds_classification += seconds_since(start);
   }
   stats.charts = impl->charts.size();
@@ -594,7 +743,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
         const raw::Face& right = chart.arrangement.faces[edge.right_face];
         if (left.unbounded || right.unbounded) continue;
         int a = kind_at(c, edge.left_face), b = kind_at(c, edge.right_face);
-        if (a == b)
+        if (a == b && !chart.edges[e].touching)
           components.join(face_offset[c] + edge.left_face, face_offset[c] + edge.right_face, {0, 0});
         else
           real_face_pairs.emplace_back(face_offset[c] + edge.left_face, face_offset[c] + edge.right_face);
@@ -745,6 +894,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       vertex.y_upper = source.y_upper;
       vertex.y_curve = source.y_curve.coefficients;
       vertex.y_branch = source.y_branch;
+      vertex.touching = chart.touching_vertex[v] != 0;
     }
     for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
       const raw::Edge& edge = arrangement.edges[e];
@@ -769,8 +919,8 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
         out.real = state == 2;
       } else {
         bool real = chart.faces[edge.left_face].kind != chart.faces[edge.right_face].kind;
-        out.role = real ? EdgeRole::contact : EdgeRole::spurious;
-        out.real = real;
+        out.role = real ? EdgeRole::contact : data.touching ? EdgeRole::touching : EdgeRole::spurious;
+        out.real = real || data.touching;
       }
       out.x_chart = {edge.box[0], edge.box[2]};
       out.y_chart = {edge.box[1], edge.box[3]};

@@ -65,6 +65,9 @@ struct EdgeData {
   algebra::Real vertical_x;       ///< vertical edges: the constant x
   std::vector<std::size_t> curves;   ///< local curve indices
   algebra::IntervalPolynomial2 interval_support;
+  /// Blocked on both sides, but the parts only touch along it (exact oracle at a rational
+  /// point of the edge): a zero-clearance channel, EdgeRole::touching.
+  bool touching = false;
 };
 
 struct ChartData {
@@ -81,6 +84,9 @@ struct ChartData {
   std::vector<FaceData> faces;
   std::vector<EdgeData> edges;
   std::vector<std::size_t> vertex_global;
+  /// per vertex: an isolated touching configuration (blocked all around, the parts only
+  /// touch there; exact oracle at the rational vertex)
+  std::vector<char> touching_vertex;
   std::vector<Rational> rational_vertex_x;     ///< sorted: rational x of vertices (sampling avoids them)
   // 1-D: contact points (ascending) and the intervals between them (faces[i] is the interval
   // before point i; faces.back() after the last).

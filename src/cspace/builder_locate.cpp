@@ -67,7 +67,7 @@ Location locate_2d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
       at.kind = Location::Kind::vertex;
       at.vertex = chart.vertex_global[v];
       // a vertex of spurious edges only lies inside one cell
-      bool real = false;
+      bool real = impl.vertices[at.vertex].touching;
       for (std::size_t e : impl.vertices[at.vertex].edges) real = real || impl.edges[e].real;
       if (!real) {
         if (vertex.isolated) {
@@ -218,6 +218,7 @@ struct Candidate {
 bool contact_location(const CSpace::Impl& impl, const Location& location) {
   if (location.kind == Location::Kind::edge) return impl.edges[location.edge].real;
   if (location.kind == Location::Kind::vertex) {
+    if (impl.vertices[location.vertex].touching) return true;
     for (std::size_t e : impl.vertices[location.vertex].edges)
       if (impl.edges[e].real) return true;
     return impl.dimension == 1 && location.cell == no_index;

@@ -76,7 +76,9 @@ class CSpaceSlicer final : public PairSlicer {
     std::vector<SlicePoint> points;
     auto add = [&](const Real& y, const CSpaceEdge& edge) {
       if (cspace::algebra::compare(y, low) < 0 || cspace::algebra::compare(y, high) > 0) return;
-      SlicePoint point{y, {}};
+      // every point lies on a real edge: the parts touch there (a zero-clearance channel when
+      // blocked space continues on both sides)
+      SlicePoint point{y, {}, true};
       for (std::size_t k : edge.curves) point.features.push_back(feature_of_pair_[k]);
       points.push_back(std::move(point));
     };
@@ -101,6 +103,16 @@ class CSpaceSlicer final : public PairSlicer {
         add(b.y, public_edge);
       else
         add(cspace::edge_y_at(chart, e, value), public_edge);
+    }
+    // isolated touching configurations (blocked all around) on this slice
+    for (std::size_t v = 0; v < arrangement.vertices.size(); ++v) {
+      const CSpaceVertex& vertex = impl.vertices[chart.vertex_global[v]];
+      if (!vertex.touching || arrangement.vertices[v].x.compare(value) != 0) continue;
+      const Real& y = arrangement.vertices[v].y;
+      if (cspace::algebra::compare(y, low) < 0 || cspace::algebra::compare(y, high) > 0) continue;
+      SlicePoint point{y, {}, true};
+      for (std::size_t k : vertex.curves) point.features.push_back(feature_of_pair_[k]);
+      points.push_back(std::move(point));
     }
     std::sort(points.begin(), points.end(), [](const SlicePoint& p, const SlicePoint& q) {
       return cspace::algebra::compare(p.value, q.value) < 0;

@@ -275,11 +275,13 @@ struct Sweep {
   }
 
   // A contact change, a jump, or motion of a part that is free at both ends (it was pushed by
-  // a contact that came and went between the two driver positions).
+  // a contact that came and went between the two driver positions; a part on a zero-clearance
+  // channel moves with it).
   bool differs(const ChainState& a, const ChainState& b) const {
     if (!same_contacts(a, b) || jumped(a, b)) return true;
     for (std::size_t k = 1; k < a.parts.size() && k < b.parts.size(); ++k)
-      if (a.parts[k].side == 0 && b.parts[k].side == 0 && compare(a.parts[k].position, b.parts[k].position) != 0 &&
+      if (a.parts[k].side == 0 && b.parts[k].side == 0 && !a.parts[k].channel && !b.parts[k].channel &&
+          compare(a.parts[k].position, b.parts[k].position) != 0 &&
           chain.parts[k].load.kind == FollowerLoad::Kind::none)
         return true;
     return false;

@@ -126,6 +126,7 @@ struct Item {
   AxisPosition at;
   std::vector<SliceContact> contacts;
   SliceKind after = SliceKind::empty;
+  bool channel = false;   ///< a touching point between blocked intervals (SlicePoint::touching)
 };
 
 void add_contacts(std::vector<SliceContact>& into, const std::vector<SliceContact>& from) {
@@ -140,6 +141,7 @@ std::vector<Item> merge_equal(std::vector<Item> items) {
     if (!merged.empty() && compare(merged.back().at, item.at) == 0) {
       add_contacts(merged.back().contacts, item.contacts);
       if (item.after != SliceKind::empty) merged.back().after = item.after;
+      merged.back().channel = merged.back().channel || item.channel;
       continue;
     }
     merged.push_back(std::move(item));
@@ -169,8 +171,10 @@ AxisSlice compress(const AxisLine& line, std::vector<Item> items) {
   SliceKind current = start;
   for (std::size_t i = 1; i < items.size(); ++i) {
     const Item& item = items[i];
-    if (item.after == SliceKind::empty || item.after == current) continue;
-    slice.points.push_back(Breakpoint{item.at, item.contacts, item.after});
+    // a zero-clearance channel is kept although blocked space continues across it
+    bool channel = item.channel && current == SliceKind::blocked && item.after == SliceKind::blocked;
+    if (item.after == SliceKind::empty || (item.after == current && !channel)) continue;
+    slice.points.push_back(Breakpoint{item.at, item.contacts, item.after, channel});
     current = item.after;
   }
   if (line.cyclic && current != start)   // the class changes at the start itself
@@ -221,8 +225,8 @@ std::optional<ChartWindow> window_on_piece(const AxisLine& line, std::size_t p, 
 AxisSlice slice_on_axis(const AxisLine& line, const PairSlicer& slicer, std::size_t slicer_index,
                         std::size_t other_chart, const Rational& value, const AxisWindow* window) {
   std::vector<Item> items;
-  auto emit = [&](std::size_t piece, Real at, std::vector<SliceContact> contacts, SliceKind after) {
-    items.push_back(Item{canonical(line, AxisPosition{piece, std::move(at)}), std::move(contacts), after});
+  auto emit = [&](std::size_t piece, Real at, std::vector<SliceContact> contacts, SliceKind after, bool channel = false) {
+    items.push_back(Item{canonical(line, AxisPosition{piece, std::move(at)}), std::move(contacts), after, channel});
   };
   const SliceContact edge{slicer_index, 0, false, true};
   for (std::size_t p = 0; p < line.pieces.size(); ++p) {
@@ -266,7 +270,7 @@ AxisSlice slice_on_axis(const AxisLine& line, const PairSlicer& slicer, std::siz
     for (std::size_t i = 0; i < chart_slice.points.size(); ++i) {
       std::vector<SliceContact> contacts;
       for (std::size_t feature : chart_slice.points[i].features) contacts.push_back(SliceContact{slicer_index, feature, false});
-      emit(p, chart_slice.points[i].value, std::move(contacts), chart_slice.kinds[i + 1]);
+      emit(p, chart_slice.points[i].value, std::move(contacts), chart_slice.kinds[i + 1], chart_slice.points[i].touching);
     }
     if (cut_hi) emit(p, Real::from_rational(covered_hi), {edge}, SliceKind::blocked);
     else if (chart.hi < piece.hi) emit(p, Real::from_rational(chart.hi), {}, SliceKind::free);
@@ -294,6 +298,9 @@ AxisSlice intersect(const AxisLine& line, const AxisSlice& a, const AxisSlice& b
   while (i < a.points.size() || j < b.points.size()) {
     int order = i == a.points.size() ? 1 : j == b.points.size() ? -1 : compare(a.points[i].at, b.points[j].at);
     Breakpoint point;
+    // the point itself is a touching configuration of both constraints: each has a breakpoint
+    // there (a class change or a channel: a contact) or is not blocked there
+    bool touching_here = (order <= 0 || ka != SliceKind::blocked) && (order >= 0 || kb != SliceKind::blocked);
     if (order <= 0) {
       point.at = a.points[i].at;
       add_contacts(point.contacts, a.points[i].contacts);
@@ -307,6 +314,9 @@ AxisSlice intersect(const AxisLine& line, const AxisSlice& a, const AxisSlice& b
       ++j;
     }
     SliceKind kind = combine(ka, kb);
+    bool channel = touching_here && current == SliceKind::blocked && kind == SliceKind::blocked &&
+                   !has_window_edge(point.contacts) &&
+                   std::any_of(point.contacts.begin(), point.contacts.end(), [](const SliceContact& c) { return !c.limit; });
     bool at_origin = point.at.piece == 0 && point.at.value.compare(line.pieces[0].lo) == 0;
     if (!line.cyclic && first && at_origin) {
       result.start_kind = kind;
@@ -315,8 +325,9 @@ AxisSlice intersect(const AxisLine& line, const AxisSlice& a, const AxisSlice& b
       continue;
     }
     first = false;
-    if (kind == current) continue;
+    if (kind == current && !channel) continue;
     point.after = kind;
+    point.channel = channel;
     current = kind;
     result.points.push_back(std::move(point));
   }

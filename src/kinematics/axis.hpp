@@ -66,6 +66,9 @@ struct Breakpoint {
   AxisPosition at;
   std::vector<SliceContact> contacts;
   SliceKind after = SliceKind::free;
+  /// Blocked on both sides, but a touching configuration: a zero-clearance channel (a free range
+  /// of zero width). The class does not change across it.
+  bool channel = false;
 };
 
 /// The 1-D C-space of a part along its whole axis: classes change at the breakpoints.

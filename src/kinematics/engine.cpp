@@ -313,6 +313,57 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
   auto old_up = [&]() { return old.upper.exists && !initial ? distance_up(line, y, old.upper.at) : infinity; };
   // A follower in contact follows the contact curve it was on (compliant motion), however
   // narrow its free channel: find the same contact with the same orientation nearby.
+  // A zero-clearance channel (a touching point with blocked space on both sides) is a free
+  // range of zero width: the follower sits on it and moves with it.
+  auto settle = [&](std::size_t i, double offset) {
+    const Breakpoint& point = slice.points[i];
+    Bound bound;
+    bound.exists = true;
+    bound.at = point.at;
+    bound.contacts = point.contacts;
+    out.position = point.at;
+    out.unwrapped = old.unwrapped + offset;
+    out.lower = bound;
+    out.upper = bound;
+    out.kind = SliceKind::touching;
+    out.pushed = offset != 0;
+    out.push_distance = std::abs(offset);
+    out.side = 0;
+    out.channel = true;
+    out.contacts = point.contacts;
+    sort_contacts(out.contacts);
+    return Outcome::moved;
+  };
+  auto offset_to = [&](const AxisPosition& at) {
+    if (compare(at, y) == 0) return 0.0;
+    double offset = coordinate(line, at) - coordinate(line, y);
+    return line.cyclic ? std::remainder(offset, 2 * pi) : offset;
+  };
+  if (!initial && old.channel) {
+    // the same channel nearby: a channel point sharing a contact with the old one
+    std::size_t nearest = none;
+    double best = infinity, best_offset = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Breakpoint& point = slice.points[i];
+      if (!point.channel) continue;
+      bool shares = std::any_of(point.contacts.begin(), point.contacts.end(), [&](const SliceContact& c) {
+        return !c.limit && std::find(old.contacts.begin(), old.contacts.end(), c) != old.contacts.end();
+      });
+      if (!shares) continue;
+      double offset = offset_to(point.at);
+      if (std::abs(offset) < best) {
+        best = std::abs(offset);
+        nearest = i;
+        best_offset = offset;
+      }
+    }
+    if (nearest != none && best <= pi / 8) {
+      if (best > max_push) return Outcome::coarse;
+      return settle(nearest, best_offset);
+    }
+  }
+  if (placement.on_point && slice.points[placement.point].channel) return settle(placement.point, 0);
+  out.channel = false;
   std::size_t followed = none;
   double followed_offset = 0;   // signed coordinate offset of the contact point from y
   if (!initial && old.side != 0 && !old.contacts.empty()) {
@@ -406,6 +457,15 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
       above = (line.cyclic && i == n) ? 1 : i + 1;
       can_above = above <= n && non_blocked(slice, above);
     }
+    // an end of the blocked interval may be a zero-clearance channel: a place to stay
+    std::size_t low_point = i >= 1 ? i - 1 : (line.cyclic && n > 0 ? n - 1 : none);
+    std::size_t high_point = i < n ? i : (line.cyclic && n > 0 ? 0 : none);
+    bool channel_below = !can_below && blocked_low.exists && !blocked_low.limit && low_point != none &&
+                         slice.points[low_point].channel && compare(slice.points[low_point].at, blocked_low.at) == 0;
+    bool channel_above = !can_above && blocked_high.exists && !blocked_high.limit && high_point != none &&
+                         slice.points[high_point].channel && compare(slice.points[high_point].at, blocked_high.at) == 0;
+    can_below = can_below || channel_below;
+    can_above = can_above || channel_above;
     double down = can_below ? distance_down(line, y, blocked_low.at) : infinity;
     double up = can_above ? distance_up(line, y, blocked_high.at) : infinity;
     // the free range moved continuously: the new one overlaps the old one
@@ -420,6 +480,13 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
     }
     bool go_down = can_below && (!can_above || down <= up);
     if ((go_down ? down : up) > max_push) return Outcome::coarse;
+    if (go_down ? channel_below : channel_above) {
+      Outcome settled = settle(go_down ? low_point : high_point, go_down ? -down : up);
+      out.blocked_by = blocked_low.contacts;
+      out.blocked_by.insert(out.blocked_by.end(), blocked_high.contacts.begin(), blocked_high.contacts.end());
+      sort_contacts(out.blocked_by);
+      return settled;
+    }
     if (go_down) {
       interval = below;
       start = blocked_low.at;
@@ -658,7 +725,7 @@ Rates rate_of(const Chain& chain, const ChainState& state, std::size_t k, const 
     return result;
   }
   const PartState& part = state.parts[k];
-  if (part.side == 0) return result;
+  if (part.side == 0 && !part.channel) return result;
   const SliceContact* contact = nullptr;
   for (const SliceContact& c : part.contacts)
     if (!c.limit) {

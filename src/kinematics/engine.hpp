@@ -53,6 +53,9 @@ struct PartState {
   bool pushed = false;                    ///< the previous position became blocked: it was pushed
   double push_distance = 0;
   std::vector<SliceContact> blocked_by;   ///< when pushed out of blocked space: the contacts bounding it
+  /// On a zero-clearance channel (Breakpoint::channel): a free range of zero width; lower and
+  /// upper are the channel point, `contacts` its contacts, `kind` touching, `side` 0.
+  bool channel = false;
 };
 
 /// State of the whole chain.

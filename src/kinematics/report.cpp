@@ -119,7 +119,9 @@ std::string kinematics_text_report(const KinematicsResult& result) {
         if (piece.highest_position - piece.lowest_position >
             std::abs(piece.end_position - piece.start_position) + 1e-9)
           out << ", sweeping " << quantity(piece.lowest_position, frot) << " .. " << quantity(piece.highest_position, frot);
-        out << (result.loads[f].kind == FollowerLoad::Kind::none ? ", pushed by " : ", held by its load against ")
+        out << (piece.mode == KinematicPiece::Mode::touching ? ", guided with zero clearance by "
+                : result.loads[f].kind == FollowerLoad::Kind::none ? ", pushed by "
+                                                                    : ", held by its load against ")
             << join(piece.contacts) << "\n";
         if (first || !last_moving) ++drives;
         drive_travel += std::abs(piece.end.value() - piece.start.value());

@@ -42,6 +42,10 @@ enum class SliceKind : int { empty = -1, free = 0, blocked = 1, touching = 2 };
 struct SlicePoint {
   Real value;                          ///< follower chart coordinate (t or mm), exact
   std::vector<std::size_t> features;   ///< indices into PairSlicer::features()
+  /// Blocked on both sides, but the parts only touch at the point itself (decided exactly): a
+  /// zero-clearance fit, the follower's whole free range there. Other points with the same
+  /// class on both sides are curves through blocked (or free) space, not contacts.
+  bool touching = false;
 };
 
 /// The slice of one follower chart over [covered_lo, covered_hi] (the whole chart unless a

@@ -18,6 +18,7 @@ using cspace::ChartAxis;
 using cspace::ChartData;
 
 constexpr double plot_size = 360;   // world units of the square plot
+constexpr const char* touching_colour = "#6a1b9a";   // zero-clearance contacts
 
 const char* palette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2",
                          "#17becf", "#bcbd22", "#7f7f7f", "#393b79", "#ad494a", "#637939", "#e7ba52",
@@ -168,6 +169,11 @@ class Painter {
         const CSpaceEdge& edge = impl_.edges[chart.edges[e].global];
         io::SvgStyle style{"none", "black"};
         std::string title;
+        if (edge.role == EdgeRole::touching) {
+          // a zero-clearance channel: drawn after the faces, as a dark band with a white core
+          touching_edges_.emplace_back(c, e);
+          continue;
+        }
         if (edge.role == EdgeRole::contact || (edge.real && !edge.curves.empty())) {
           std::size_t pair = edge.curves.empty() ? 0 : edge.curves.front();
           style.stroke = colour_of(pair);
@@ -200,6 +206,45 @@ class Painter {
         }
         svg.path(path, style, title);
       }
+    }
+    draw_touching(svg);
+  }
+
+  // Zero-clearance contacts (EdgeRole::touching edges, CSpaceVertex::touching vertices): the
+  // parts only touch there, with blocked space on every side.
+  void draw_touching(io::SvgWriter& svg) {
+    for (const auto& [c, e] : touching_edges_) {
+      const ChartData& chart = impl_.charts[c];
+      const CSpaceEdge& edge = impl_.edges[chart.edges[e].global];
+      std::string title = "touching (zero clearance): ";
+      for (std::size_t k = 0; k < edge.curves.size(); ++k) title += (k ? "; " : "") + impl_.feature_pairs[edge.curves[k]].label;
+      io::SvgPath path;
+      bool first = true;
+      for (const auto& p : samples(c, e)) {
+        auto [wx, wy] = world(chart, p.first, p.second);
+        if (first) {
+          path.move_to(wx, wy);
+          first = false;
+        } else {
+          path.line_to(wx, wy);
+        }
+      }
+      io::SvgStyle band{"none", touching_colour};
+      band.stroke_width = 2.2;
+      svg.path(path, band, title);
+      io::SvgStyle core{"none", "white"};
+      core.stroke_width = 0.7;
+      svg.path(path, core);
+    }
+    for (const CSpaceVertex& vertex : impl_.vertices) {
+      if (!vertex.touching) continue;
+      const ChartData& chart = impl_.charts[vertex.chart];
+      double y = vertex.y_exact ? vertex.y.approximate() : Rational((vertex.y_lower + vertex.y_upper) / 2).get_d();
+      auto [wx, wy] = world(chart, vertex.x.approximate(), y);
+      io::SvgStyle dot{"white", touching_colour};
+      dot.stroke_width = 1.2;
+      svg.circle(wx, wy, 2.4, dot);
+      ++touching_vertices_;
     }
   }
 
@@ -332,6 +377,17 @@ class Painter {
     entries.push_back({io::SvgStyle{"#c8c8c8", "none"}, "blocked"});
     entries.push_back({io::SvgStyle{"white", "black"}, "free"});
     if (!impl_.complete) entries.push_back({io::SvgStyle{"url(#not-built)", "#b0b0b0"}, "not built (outside the operating region)"});
+    if (!touching_edges_.empty() || touching_vertices_ > 0) {
+      io::SvgStyle swatch{"none", touching_colour};
+      swatch.stroke_width = 2.2;
+      entries.push_back({swatch, "touching, zero clearance (blocked on both sides):"});
+      // the feature pairs that touch along the channels
+      std::vector<std::size_t> pairs;
+      for (const auto& [c, e] : touching_edges_)
+        for (std::size_t k : impl_.edges[impl_.charts[c].edges[e].global].curves)
+          if (std::find(pairs.begin(), pairs.end(), k) == pairs.end()) pairs.push_back(k);
+      for (std::size_t i = 0; i < pairs.size() && i < 6; ++i) entries.push_back({swatch, "  " + impl_.feature_pairs[pairs[i]].label});
+    }
     if (options_.path.size() >= 2) {
       io::SvgStyle free{"none", "#1f4e9c"}, contact{"none", "#d62728"};
       free.stroke_width = contact.stroke_width = 1.5;
@@ -354,6 +410,8 @@ class Painter {
   double plot_height_ = plot_size;
   std::map<std::pair<std::size_t, std::size_t>, std::vector<std::pair<double, double>>> samples_;
   std::map<std::size_t, std::string> colours_;
+  std::vector<std::pair<std::size_t, std::size_t>> touching_edges_;   // (chart, local edge)
+  std::size_t touching_vertices_ = 0;
 };
 
 }  // namespace

@@ -152,6 +152,18 @@ if command -v rsvg-convert >/dev/null; then
   rsvg-convert "$work/big.svg" -o "$work/big.png" 2>/dev/null || fail "rsvg-convert cannot read the 1e1000 SVG"
 fi
 
+# A zero-clearance fit (issue 9): the crank pin in a slot of exactly its diameter runs on a
+# touching channel: a contact, not an interference.
+exact_fit="$source/tests/data/zero-clearance/scotch-yoke-exact-fit.json"
+"$hipair" analyze "$exact_fit" --driver crank >"$work/exact-fit.txt" 2>&1 \
+  || fail "analyze fails on the exact fit: $(tail -n 3 "$work/exact-fit.txt")"
+grep -q "INTERFERENCE" "$work/exact-fit.txt" && fail "analyze reports the exact fit as an interference"
+grep -q "guided with zero clearance" "$work/exact-fit.txt" || fail "analyze does not report the zero-clearance contact"
+"$hipair" cspace "$exact_fit" --pair crank:yoke --stats --svg "$work/exact-fit-cspace.svg" >"$work/exact-fit-stats.txt" 2>&1 \
+  || fail "cspace fails on the exact fit: $(tail -n 3 "$work/exact-fit-stats.txt")"
+grep -q "touching edges" "$work/exact-fit-stats.txt" || fail "cspace --stats shows no touching edge for the exact fit"
+grep -q "zero clearance" "$work/exact-fit-cspace.svg" || fail "the C-space picture does not draw the zero-clearance channel"
+
 # No stray temporary files left by atomic writes.
 ls -a "$work" | grep -q '\.tmp' && fail "temporary files left behind"
 

@@ -47,6 +47,7 @@ void agree_with_oracle(const Model& model, const CSpace& space, int samples, std
     if (location.kind == Location::Kind::edge) real = space.edges()[location.edge].real;
     if (location.kind == Location::Kind::vertex) {
       if (space.dimension() == 1) real = location.cell == no_index;
+      real = real || space.vertices()[location.vertex].touching;
       for (std::size_t e : space.vertices()[location.vertex].edges) real = real || space.edges()[e].real;
     }
     if (location.kind == Location::Kind::touching) {

@@ -1,0 +1,413 @@
+// Zero-clearance fits (issue 9, section 2): where parts fit exactly, contact space of positive
+// dimension has blocked space on both sides: a bar in a slot of exactly its width, a crank pin
+// in a slot of exactly its diameter (the channel s = r sin(theta)), a square peg in a square hole
+// of exactly its size (an isolated configuration). Such configurations are touching (the exact
+// overlap oracle says so), so the C-space keeps them as touching edges (EdgeRole::touching) and
+// touching vertices, point location finds them there (and blocked space just beside them), the
+// slicer and the kinematic analysis follow them, and `analyze` reports a contact, not an
+// interference. Generated over random rational sizes and positions with a fixed seed.
+#include "cspace/contact_curves.hpp"
+
+#include <hipair/cspace.hpp>
+#include <hipair/kinematics.hpp>
+#include <hipair/model.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <random>
+#include <string>
+
+namespace hipair {
+namespace {
+
+using Random = std::mt19937_64;
+
+// A random rational in [lo, hi] with a denominator up to `den` (not a decimal in general).
+Rational random_rational(Random& random, const Rational& lo, const Rational& hi, long den = 97) {
+  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
+  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
+  Rational u(p, q);
+  u.canonicalize();
+  Rational value = lo + u * (hi - lo);
+  value.canonicalize();
+  return value;
+}
+
+// The model text of a rational: "p/q" is an exact expression.
+std::string text(const Rational& r) { return "\"" + r.get_str() + "\""; }
+
+// The exact oracle at a public chart point of `space`.
+cspace::Overlap oracle(const Model& model, const CSpace& space, const ChartPoint& q) {
+  std::size_t first = *model.find_part(space.first_part()), second = *model.find_part(space.second_part());
+  cspace::PairAxes axes = cspace::pair_axes(model, first, second);
+  cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+  std::size_t y_count = layout.y_charts.size();
+  return cspace::classify_overlap(model, axes, layout.x_charts[q.chart / y_count], layout.y_charts[q.chart % y_count],
+                                  cspace::ChartPoint{q.x, q.y});
+}
+
+// The configuration is a touching one according to point location: on a touching or contact
+// edge, or at a vertex of one, or an isolated touching vertex; never inside a cell.
+bool located_touching(const CSpace& space, const Location& location) {
+  if (location.cell != no_index) return false;
+  if (location.kind == Location::Kind::edge) return space.edges()[location.edge].real;
+  if (location.kind == Location::Kind::vertex) {
+    const CSpaceVertex& vertex = space.vertices()[location.vertex];
+    bool real = vertex.touching;
+    for (std::size_t e : vertex.edges) real = real || space.edges()[e].real;
+    return real;
+  }
+  return false;
+}
+
+// Inside blocked space: in a blocked cell, or on a spurious edge or vertex inside one.
+bool located_blocked(const CSpace& space, const Location& location) {
+  if (location.kind == Location::Kind::blocked) return true;
+  return (location.kind == Location::Kind::edge || location.kind == Location::Kind::vertex) && location.cell != no_index &&
+         space.cells()[location.cell].kind == CellKind::blocked;
+}
+
+bool on_touching_edge(const CSpace& space, const Location& location) {
+  if (location.kind == Location::Kind::edge) return space.edges()[location.edge].role == EdgeRole::touching;
+  if (location.kind == Location::Kind::vertex)
+    for (std::size_t e : space.vertices()[location.vertex].edges)
+      if (space.edges()[e].role == EdgeRole::touching) return true;
+  return false;
+}
+
+// Location agrees with the oracle at random rational configurations of every chart.
+void agree_with_oracle(const Model& model, const CSpace& space, Random& random, int samples) {
+  for (int i = 0; i < samples; ++i) {
+    std::size_t c = random() % space.charts().size();
+    const CSpaceChart& chart = space.charts()[c];
+    ChartPoint q{c, random_rational(random, chart.x_lo, chart.x_hi, 1000), random_rational(random, chart.y_lo, chart.y_hi, 1000)};
+    Location location = space.locate(q);
+    cspace::Overlap truth = oracle(model, space, q);
+    std::string where = "chart " + std::to_string(c) + " at " + q.x.get_str() + ", " + q.y.get_str();
+    if (location.kind == Location::Kind::free) EXPECT_EQ(truth, cspace::Overlap::apart) << where;
+    if (location.kind == Location::Kind::blocked) EXPECT_EQ(truth, cspace::Overlap::overlapping) << where;
+    if (located_touching(space, location)) EXPECT_EQ(truth, cspace::Overlap::touching) << where;
+  }
+}
+
+// Every touching edge and vertex is touching at its exact points by the oracle; every edge that
+// separates two blocked faces without being touching overlaps at a rational point of it.
+void check_touching_elements(const Model& model, const CSpace& space) {
+  for (std::size_t v = 0; v < space.vertices().size(); ++v) {
+    const CSpaceVertex& vertex = space.vertices()[v];
+    if (!vertex.touching) continue;
+    ASSERT_TRUE(vertex.x.exact && vertex.y_exact && vertex.y.exact);
+    EXPECT_EQ(oracle(model, space, ChartPoint{vertex.chart, vertex.x.lower, vertex.y.lower}), cspace::Overlap::touching);
+  }
+}
+
+// --------------------------------------------------------------- a bar in a slot (translations)
+
+// A bar of width w and length L translating along x in a plate with a rectangular hole of exactly
+// its width (length H > L); the plate translates along y. The channel: r = 0, s in [c, c + H - L].
+struct SlotFit {
+  Rational w, L, H, c;
+  Rational u = 1;   // the scale of the margins (w, L, H, c are given at scale)
+  std::string json() const {
+    Rational plate_lo = c - 3 * u, plate_hi = c + H + 3 * u, m = 5 * u;
+    return R"({ "hipair": 1, "name": "bar-in-slot",
+      "parts": [
+        { "name": "bar", "motion": { "translation": { "direction": [1, 0], "limits": [)" +
+           text(c - L - u) + ", " + text(c + H + u) + R"(] } },
+          "loops": [ { "start": [0, 0], "edges": [ { "line_to": [)" + text(L) + R"(, 0] }, { "line_to": [)" + text(L) + ", " +
+           text(w) + R"(] }, { "line_to": [0, )" + text(w) + R"(] }, { "line_to": [0, 0] } ] } ] },
+        { "name": "plate", "motion": { "translation": { "direction": [0, 1], "limits": [)" + text(-2 * u) + ", " + text(2 * u) + R"(] } },
+          "loops": [
+            { "start": [)" + text(plate_lo) + ", " + text(-m) + R"(], "edges": [ { "line_to": [)" + text(plate_hi) + ", " + text(-m) +
+           R"(] }, { "line_to": [)" + text(plate_hi) + ", " + text(w + m) + R"(] }, { "line_to": [)" + text(plate_lo) + ", " +
+           text(w + m) + R"(] }, { "line_to": [)" + text(plate_lo) + ", " + text(-m) + R"(] } ] },
+            { "start": [)" + text(c) + R"(, 0], "edges": [ { "line_to": [)" + text(c + H) + R"(, 0] }, { "line_to": [)" +
+           text(c + H) + ", " + text(w) + R"(] }, { "line_to": [)" + text(c) + ", " + text(w) + R"(] }, { "line_to": [)" + text(c) +
+           R"(, 0] } ] }
+          ] } ],
+      "pairs": [ { "parts": ["bar", "plate"] } ] })";
+  }
+};
+
+TEST(CSpaceZeroClearance, BarInASlotOfExactlyItsWidthIsATouchingChannel) {
+  Random random(20261124);
+  // sizes at scales from 10^-9 mm to 10^9 mm
+  const Rational scales[] = {Rational(1), Rational(1, 1000000000), Rational(1000), Rational(1, 1000), Rational(1000000000)};
+  for (int instance = 0; instance < 15; ++instance) {
+    Rational u = scales[instance % 5];
+    SlotFit fit{u * random_rational(random, Rational(1, 10), Rational(3)), u * random_rational(random, Rational(1), Rational(4)), 0, 0, u};
+    fit.H = fit.L + u * random_rational(random, Rational(1, 2), Rational(5));
+    fit.c = u * random_rational(random, Rational(-3), Rational(3));
+    for (Rational* r : {&fit.w, &fit.L, &fit.H, &fit.c}) r->canonicalize();
+    SCOPED_TRACE("w " + fit.w.get_str() + " L " + fit.L.get_str() + " H " + fit.H.get_str() + " c " + fit.c.get_str());
+    Model model = read_model(fit.json());
+    CSpace space = CSpace::build(model, "bar", "plate");
+    ASSERT_EQ(space.dimension(), 2);
+    EXPECT_GE(space.statistics().touching_edges, 1u);
+    EXPECT_EQ(space.statistics().touching_undecided, 0u);
+    for (int k = 0; k <= 20; ++k) {
+      // s across the channel, ends included; r = 0 exactly
+      Rational s = fit.c + (fit.H - fit.L) * Rational(k, 20);
+      s.canonicalize();
+      auto on = space.to_chart(PartCoordinate{PartCoordinate::Kind::offset, s}, PartCoordinate{PartCoordinate::Kind::offset, 0});
+      ASSERT_TRUE(on);
+      Location at = space.locate(*on);
+      EXPECT_TRUE(located_touching(space, at)) << "s " << s.get_str();
+      EXPECT_TRUE(on_touching_edge(space, at)) << "s " << s.get_str();
+      EXPECT_EQ(oracle(model, space, *on), cspace::Overlap::touching);
+      // just beside the channel: blocked (the bar overlaps the plate)
+      for (const Rational& r : {Rational(u / 1000000), Rational(-u / 1000000), Rational(fit.w / 3)}) {
+        Rational rr = r;
+        rr.canonicalize();
+        auto beside = space.to_chart(PartCoordinate{PartCoordinate::Kind::offset, s}, PartCoordinate{PartCoordinate::Kind::offset, rr});
+        ASSERT_TRUE(beside);
+        Location b = space.locate(*beside);
+        EXPECT_TRUE(located_blocked(space, b)) << "s " << s.get_str() << " r " << rr.get_str();
+        EXPECT_EQ(oracle(model, space, *beside), cspace::Overlap::overlapping);
+      }
+    }
+    // past the channel's ends on r = 0: the bar's end overlaps the plate
+    for (const Rational& s : {Rational(fit.c - u / 1000), Rational(fit.c + fit.H - fit.L + u / 1000)}) {
+      Rational ss = s;
+      ss.canonicalize();
+      auto past = space.to_chart(PartCoordinate{PartCoordinate::Kind::offset, ss}, PartCoordinate{PartCoordinate::Kind::offset, 0});
+      ASSERT_TRUE(past);
+      Location p = space.locate(*past);
+      EXPECT_FALSE(located_touching(space, p)) << "s " << s.get_str();
+      EXPECT_EQ(oracle(model, space, *past), cspace::Overlap::overlapping);
+    }
+    check_touching_elements(model, space);
+    agree_with_oracle(model, space, random, 300);
+  }
+}
+
+// ------------------------------------------------- a crank pin in a slot of exactly its diameter
+
+// A crank (rotation about the origin) carries a pin of radius p at (R, 0); a yoke translating
+// along y has a horizontal slot of width 2p centred on y = 0: the pin centre's height R sin(theta)
+// must equal the yoke's offset s. The channel is s = R sin(theta) = 2 R T / (1 + T^2), T = tan(theta/2).
+struct CrankFit {
+  Rational R, p;
+  std::string json() const {
+    Rational half = R + p + 2;
+    return R"({ "hipair": 1, "name": "crank-in-slot",
+      "parts": [
+        { "name": "crank", "motion": { "rotation": { "pivot": [0, 0] } },
+          "loops": [ { "circle": { "center": [)" + text(R) + ", 0], \"radius\": " + text(p) + R"( } } ] },
+        { "name": "yoke", "motion": { "translation": { "direction": [0, 1], "limits": [)" + text(-R - p - 1) + ", " + text(R + p + 1) + R"(] } },
+          "loops": [
+            { "start": [)" + text(-half - 3) + ", " + text(-p - 4) + R"(], "edges": [ { "line_to": [)" + text(half + 3) + ", " +
+           text(-p - 4) + R"(] }, { "line_to": [)" + text(half + 3) + ", " + text(p + 4) + R"(] }, { "line_to": [)" + text(-half - 3) +
+           ", " + text(p + 4) + R"(] }, { "line_to": [)" + text(-half - 3) + ", " + text(-p - 4) + R"(] } ] },
+            { "start": [)" + text(-half) + ", " + text(-p) + R"(], "edges": [ { "line_to": [)" + text(half) + ", " + text(-p) +
+           R"(] }, { "line_to": [)" + text(half) + ", " + text(p) + R"(] }, { "line_to": [)" + text(-half) + ", " + text(p) +
+           R"(] }, { "line_to": [)" + text(-half) + ", " + text(-p) + R"(] } ] }
+          ] } ],
+      "pairs": [ { "parts": ["crank", "yoke"] } ] })";
+  }
+};
+
+TEST(CSpaceZeroClearance, CrankPinInAnExactSlotRunsOnTheChannelSEqualsRSinTheta) {
+  Random random(977);
+  for (int instance = 0; instance < 8; ++instance) {
+    CrankFit fit{random_rational(random, Rational(5), Rational(40)), 0};
+    fit.p = random_rational(random, Rational(1, 2), fit.R / 3);
+    SCOPED_TRACE("R " + fit.R.get_str() + " p " + fit.p.get_str());
+    Model model = read_model(fit.json());
+    CSpace space = CSpace::build(model, "crank", "yoke");
+    ASSERT_EQ(space.dimension(), 2);
+    EXPECT_GE(space.statistics().touching_edges, 2u);
+    int on_channel = 0;
+    for (int k = 0; k < 40; ++k) {
+      // T = tan(theta/2) over the whole turn (T = 1/0 is theta = pi)
+      Rational T = k == 0 ? Rational(0) : random_rational(random, Rational(-6), Rational(6), 50);
+      PartCoordinate theta{PartCoordinate::Kind::half_angle_tangent, T};
+      if (k == 1) theta = PartCoordinate{PartCoordinate::Kind::half_turn, 0};
+      Rational s = k == 1 ? Rational(0) : Rational(2 * fit.R * T / (1 + T * T));
+      s.canonicalize();
+      auto on = space.to_chart(theta, PartCoordinate{PartCoordinate::Kind::offset, s});
+      ASSERT_TRUE(on);
+      Location at = space.locate(*on);
+      std::string where = "T " + T.get_str() + " s " + s.get_str();
+      EXPECT_EQ(oracle(model, space, *on), cspace::Overlap::touching) << where;
+      EXPECT_TRUE(located_touching(space, at)) << where;
+      EXPECT_TRUE(on_touching_edge(space, at)) << where;
+      on_channel += on_touching_edge(space, at);
+      for (const Rational& d : {Rational(1, 1000000), Rational(-1, 1000000), Rational(fit.p / 2), Rational(-fit.p / 2)}) {
+        Rational sd = s + d;
+        sd.canonicalize();
+        auto beside = space.to_chart(theta, PartCoordinate{PartCoordinate::Kind::offset, sd});
+        ASSERT_TRUE(beside);
+        EXPECT_TRUE(located_blocked(space, space.locate(*beside))) << where << " + " << d.get_str();
+        EXPECT_EQ(oracle(model, space, *beside), cspace::Overlap::overlapping) << where << " + " << d.get_str();
+      }
+    }
+    EXPECT_EQ(on_channel, 40);
+    // a straight path across the channel (theta fixed, s from p/2 above to p/2 below) crosses
+    // it exactly half-way, on a touching edge
+    for (const Rational& T : {Rational(1, 3), Rational(-2, 7)}) {
+      Rational s = 2 * fit.R * T / (1 + T * T);
+      s.canonicalize();
+      PartCoordinate theta{PartCoordinate::Kind::half_angle_tangent, T};
+      auto from = space.to_chart(theta, PartCoordinate{PartCoordinate::Kind::offset, Rational(s + fit.p / 2)});
+      auto to = space.to_chart(theta, PartCoordinate{PartCoordinate::Kind::offset, Rational(s - fit.p / 2)});
+      ASSERT_TRUE(from && to && from->chart == to->chart);
+      Crossing crossing = space.first_crossing(*from, to->x, to->y);
+      ASSERT_TRUE(crossing.found) << "T " << T.get_str();
+      EXPECT_EQ(crossing.parameter_lower, Rational(1, 2));
+      EXPECT_EQ(crossing.parameter_upper, Rational(1, 2));
+      bool touching = crossing.edge != no_index && space.edges()[crossing.edge].role == EdgeRole::touching;
+      if (crossing.vertex != no_index)
+        for (std::size_t e : space.vertices()[crossing.vertex].edges) touching = touching || space.edges()[e].role == EdgeRole::touching;
+      EXPECT_TRUE(touching) << "T " << T.get_str();
+    }
+    agree_with_oracle(model, space, random, 300);
+  }
+}
+
+// ------------------------------------- a square peg in a square hole of exactly its size
+
+// A square peg of side a (centred on its pivot, rotating) in a plate with a square hole of side a
+// centred at (h, k); the plate translates along x. The peg fits only at theta = 0, 90, 180, 270
+// degrees with the plate at offset -h (the hole's centre on the pivot needs k = 0): isolated
+// touching configurations, blocked all around.
+struct PegFit {
+  Rational a, h;
+  bool rotating = true;
+  std::string json() const {
+    Rational e = a / 2, outer = a + 3;
+    std::string peg_motion = rotating ? R"({ "rotation": { "pivot": [0, 0] } })"
+                                      : R"({ "translation": { "direction": [0, 1], "limits": [-1, 1] } })";
+    return R"({ "hipair": 1, "name": "peg-in-hole",
+      "parts": [
+        { "name": "peg", "motion": )" + peg_motion + R"(,
+          "loops": [ { "start": [)" + text(-e) + ", " + text(-e) + R"(], "edges": [ { "line_to": [)" + text(e) + ", " + text(-e) +
+           R"(] }, { "line_to": [)" + text(e) + ", " + text(e) + R"(] }, { "line_to": [)" + text(-e) + ", " + text(e) +
+           R"(] }, { "line_to": [)" + text(-e) + ", " + text(-e) + R"(] } ] } ] },
+        { "name": "plate", "motion": { "translation": { "direction": [1, 0], "limits": [)" + text(-h - 1) + ", " + text(-h + 1) + R"(] } },
+          "loops": [
+            { "start": [)" + text(h - outer) + ", " + text(-outer) + R"(], "edges": [ { "line_to": [)" + text(h + outer) + ", " +
+           text(-outer) + R"(] }, { "line_to": [)" + text(h + outer) + ", " + text(outer) + R"(] }, { "line_to": [)" + text(h - outer) +
+           ", " + text(outer) + R"(] }, { "line_to": [)" + text(h - outer) + ", " + text(-outer) + R"(] } ] },
+            { "start": [)" + text(h - e) + ", " + text(-e) + R"(], "edges": [ { "line_to": [)" + text(h + e) + ", " + text(-e) +
+           R"(] }, { "line_to": [)" + text(h + e) + ", " + text(e) + R"(] }, { "line_to": [)" + text(h - e) + ", " + text(e) +
+           R"(] }, { "line_to": [)" + text(h - e) + ", " + text(-e) + R"(] } ] }
+          ] } ],
+      "pairs": [ { "parts": ["peg", "plate"] } ] })";
+  }
+};
+
+TEST(CSpaceZeroClearance, SquarePegInAnExactSquareHoleIsAnIsolatedTouchingConfiguration) {
+  Random random(4242);
+  for (int instance = 0; instance < 12; ++instance) {
+    PegFit fit{random_rational(random, Rational(1, 3), Rational(6)), random_rational(random, Rational(-5), Rational(5)),
+               instance % 2 == 0};
+    SCOPED_TRACE(std::string(fit.rotating ? "rotating" : "translating") + " a " + fit.a.get_str() + " h " + fit.h.get_str());
+    Model model = read_model(fit.json());
+    CSpace space = CSpace::build(model, "peg", "plate");
+    ASSERT_EQ(space.dimension(), 2);
+    // the plate's offset is x when the peg translates: the pair's axes follow the model's parts
+    bool peg_is_x = space.x_part() == "peg";
+    auto config = [&](const PartCoordinate& peg, const Rational& plate) {
+      PartCoordinate offset{PartCoordinate::Kind::offset, plate};
+      return peg_is_x ? space.to_chart(peg, offset) : space.to_chart(offset, peg);
+    };
+    std::vector<PartCoordinate> fits;
+    if (fit.rotating) {
+      fits = {{PartCoordinate::Kind::half_angle_tangent, 0}, {PartCoordinate::Kind::half_angle_tangent, 1},
+              {PartCoordinate::Kind::half_angle_tangent, -1}, {PartCoordinate::Kind::half_turn, 0}};
+    } else {
+      fits = {{PartCoordinate::Kind::offset, 0}};
+    }
+    // (a fit at theta = +-90 degrees lies on the seam of the two rotation charts: one vertex in each)
+    if (fit.rotating)
+      EXPECT_GE(space.statistics().touching_vertices, 4u);
+    else
+      EXPECT_EQ(space.statistics().touching_vertices, 1u);
+    for (const PartCoordinate& peg : fits) {
+      auto at = config(peg, -fit.h);
+      ASSERT_TRUE(at);
+      Location location = space.locate(*at);
+      EXPECT_EQ(location.kind, Location::Kind::vertex);
+      ASSERT_NE(location.vertex, no_index);
+      EXPECT_TRUE(space.vertices()[location.vertex].touching);
+      EXPECT_TRUE(located_touching(space, location));
+      EXPECT_EQ(oracle(model, space, *at), cspace::Overlap::touching);
+      // every neighbour is blocked
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy) {
+          if (dx == 0 && dy == 0) continue;
+          ChartPoint q = *at;
+          q.x += Rational(dx, 1000000);
+          q.y += Rational(dy, 1000000);
+          q.x.canonicalize();
+          q.y.canonicalize();
+          const CSpaceChart& chart = space.charts()[q.chart];
+          if (q.x < chart.x_lo || q.x > chart.x_hi || q.y < chart.y_lo || q.y > chart.y_hi) continue;   // the other chart's side of a seam
+          EXPECT_TRUE(located_blocked(space, space.locate(q))) << dx << " " << dy;
+          EXPECT_EQ(oracle(model, space, q), cspace::Overlap::overlapping);
+        }
+    }
+    check_touching_elements(model, space);
+    agree_with_oracle(model, space, random, 200);
+  }
+}
+
+// Ordinary clearance: no touching element appears (the C-space is unchanged).
+TEST(CSpaceZeroClearance, APositiveClearanceHasNoTouchingElements) {
+  CrankFit crank{Rational(20), Rational(4)};
+  std::string text_model = crank.json();
+  // a pin of radius 4 - 1/100 in the slot of width 8
+  std::string needle = "\"radius\": \"4\"";
+  text_model.replace(text_model.find(needle), needle.size(), "\"radius\": \"399/100\"");
+  Model loose = read_model(text_model);
+  CSpace space = CSpace::build(loose, "crank", "yoke");
+  EXPECT_EQ(space.statistics().touching_edges, 0u);
+  EXPECT_EQ(space.statistics().touching_vertices, 0u);
+  for (const CSpaceEdge& edge : space.edges()) EXPECT_NE(edge.role, EdgeRole::touching);
+}
+
+// ------------------------------------------------------------------ the kinematic analysis
+
+TEST(CSpaceZeroClearance, AnalyzeReportsTheExactFitAsAContactNotAnInterference) {
+  Model model = read_model_file(std::filesystem::path(HIPAIR_TEST_DATA) / "zero-clearance" / "scotch-yoke-exact-fit.json");
+  // the kernel slicer, and the built C-space for the crank:yoke pair (the 1-D yoke:guide pair
+  // falls back to the kernels)
+  for (SliceMethod method : {SliceMethod::kernels, SliceMethod::automatic}) {
+    SCOPED_TRACE(method == SliceMethod::kernels ? "kernels" : "cspace");
+    KinematicsOptions options;
+    options.driver = "crank";
+    options.steps_per_cycle = 360;
+    options.reversal = false;
+    options.method = method;
+    std::vector<CSpace> spaces;
+    if (method == SliceMethod::automatic) spaces = CSpace::build_all(model);
+    KinematicsResult result = analyze_kinematics(model, options, spaces);
+    if (method == SliceMethod::automatic)
+      EXPECT_NE(std::find(result.slice_methods.begin(), result.slice_methods.end(), "crank:yoke: cspace"),
+                result.slice_methods.end());
+    EXPECT_TRUE(result.initial_interference.empty());
+    std::string report = kinematics_text_report(result);
+    EXPECT_EQ(report.find("INTERFERENCE"), std::string::npos) << report;
+    EXPECT_FALSE(result.jam.has_value()) << report;
+    EXPECT_NEAR(result.reached, result.end, 1e-9);
+    // the yoke follows x = 30 cos(theta) - 30 exactly: no play anywhere
+    ASSERT_FALSE(result.samples.empty());
+    std::size_t yoke = 0;
+    for (std::size_t k = 0; k < result.followers.size(); ++k)
+      if (result.followers[k] == "yoke") yoke = k;
+    for (const KinematicSample& sample : result.samples) {
+      EXPECT_NEAR(sample.positions[yoke], 30 * std::cos(sample.driver) - 30, 1e-6) << "theta " << sample.driver;
+      EXPECT_NEAR(sample.play[yoke], 0, 1e-9);
+    }
+    bool contact = false;
+    for (const KinematicPiece& piece : result.pieces)
+      if (piece.part == "yoke" && piece.mode != KinematicPiece::Mode::free) contact = true;
+    EXPECT_TRUE(contact);
+  }
+}
+
+}  // namespace
+}  // namespace hipair
