@@ -38,6 +38,17 @@ PairRoles pair_roles(const Model& model, const std::string& first, const std::st
 }
 
 double mid(const Interval& value) { return mpfi_get_d(value.get()); }
+// The sign of the middle of an enclosure (a search heuristic: never a bound). Unlike mid(), it
+// survives magnitudes beyond double range (1e-400 is not 0, 1e400 is not infinite).
+int middle_sign(const Interval& value) {
+  if (mpfi_nan_p(value.get())) return 0;
+  mpfr_t middle;
+  mpfr_init2(middle, model_detail::interval_bits);
+  mpfi_mid(middle, value.get());
+  int sign = mpfr_sgn(middle);
+  mpfr_clear(middle);
+  return sign;
+}
 Rational middle(const RationalInterval& range) { return (range.lo + range.hi) / 2; }
 Rational reach_of(const Part& part) {
   return part.motion.kind == Motion::Kind::rotation ? verify::reach(verify::shape_of(part)) : Rational(1);
@@ -91,20 +102,22 @@ Placed place_box(const Part& part, const std::optional<RationalInterval>& range)
 // A piece of edge e (posed at the centre: ec, over the box: eo) crossing g, for every pose.
 std::optional<RationalInterval> crossing_piece(const IntervalEdge& ec, const IntervalEdge& eo, const IntervalEdge& gc,
                                                const IntervalEdge& go) {
-  double end = ec.arc ? mid(ec.sweep) : 1.0;
-  auto side = [&](double u) { return mid(verify::side_of(gc, verify::point_on(ec, Interval(approximate(u))))); };
+  double end = ec.arc ? mid(ec.sweep) : 1.0;   // a fraction or an angle (at most 2 pi)
+  auto side = [&](double u) { return middle_sign(verify::side_of(gc, verify::point_on(ec, Interval(approximate(u))))); };
   constexpr int samples = 32;
-  double previous = side(0);
+  int previous = side(0);
   for (int i = 1; i <= samples; ++i) {
-    double u0 = end * (i - 1) / samples, u1 = end * i / samples, value = side(u1);
-    if ((previous < 0) == (value < 0) || previous == 0 || value == 0) {
+    double u0 = end * (i - 1) / samples, u1 = end * i / samples;
+    int value = side(u1);
+    if (previous == value || previous == 0 || value == 0) {
       previous = value;
       continue;
     }
-    double lo = u0, hi = u1, lo_value = previous;
+    double lo = u0, hi = u1;
+    int lo_value = previous;
     for (int k = 0; k < 50; ++k) {
-      double m = 0.5 * (lo + hi), v = side(m);
-      if ((v < 0) == (lo_value < 0)) lo = m, lo_value = v;
+      double m = 0.5 * (lo + hi);
+      if (side(m) == lo_value) lo = m;
       else hi = m;
     }
     double root = 0.5 * (lo + hi);
@@ -133,8 +146,10 @@ std::optional<CrossingWitness> blocking_crossing(const PairRoles& r, const Ratio
         for (std::size_t k = 0; k < g_part.centre.loops.size(); ++k)
           for (std::size_t l = 0; l < g_part.centre.loops[k].size(); ++l) {
             const IntervalEdge &ec = e_part.centre.loops[i][j], &gc = g_part.centre.loops[k][l];
-            double dx = mid(ec.disc_center.x) - mid(gc.disc_center.x), dy = mid(ec.disc_center.y) - mid(gc.disc_center.y);
-            if (std::hypot(dx, dy) > mid(ec.disc_radius) + mid(gc.disc_radius) + 1e-6) continue;
+            // Skip the pair when its bounding discs are certainly apart (at the box centre).
+            Interval dx = ec.disc_center.x - gc.disc_center.x, dy = ec.disc_center.y - gc.disc_center.y;
+            Interval reach = ec.disc_radius + gc.disc_radius;
+            if ((dx * dx + dy * dy - reach * reach).sign() > 0 && reach.sign() >= 0) continue;
             auto along = crossing_piece(ec, e_part.over.loops[i][j], gc, g_part.over.loops[k][l]);
             if (along)
               return CrossingWitness{{e_model.name, i, j, e_model.loops[i].edges[j].label},
@@ -226,10 +241,17 @@ std::optional<Certificate> certify_free_passage(const Model& model, const std::s
       continue;
     }
     if (bound <= c.distance || c.boxes.size() + stack.size() >= options.max_boxes) return std::nullopt;
-    // Split into enough pieces for the margin bound - distance to absorb the motion.
-    double slope = half_driver > 0 ? to_double(half_other / half_driver) : 0;
-    double allowed = to_double(bound - c.distance) / (to_double(reach_driver) + to_double(reach_other) * slope) * 0.8;
-    long parts = std::clamp(long(std::ceil(to_double(half_driver) / allowed)), 2L, 1024L);
+    // Split into enough pieces for the margin bound - distance to absorb the motion (exact
+    // rationals: the magnitudes may lie beyond double range).
+    Rational slope = sgn(half_driver) > 0 ? Rational(half_other / half_driver) : Rational(0);
+    Rational motion = reach_driver + reach_other * slope;
+    Rational ratio = sgn(motion) > 0 ? Rational(half_driver * motion / (bound - c.distance) * Rational(5, 4)) : Rational(0);
+    long parts = 1024;
+    if (ratio < 1024) {
+      mpz_class whole;
+      mpz_cdiv_q(whole.get_mpz_t(), ratio.get_num_mpz_t(), ratio.get_den_mpz_t());
+      parts = std::max(2L, whole.get_si());
+    }
     for (long i = parts; i-- > 0;)
       stack.push_back({piece.lo + (piece.hi - piece.lo) * i / parts, piece.lo + (piece.hi - piece.lo) * (i + 1) / parts});
   }
@@ -249,7 +271,9 @@ std::optional<Certificate> certify_jam(const Model& model, const std::string& fi
   if (r.has_follower != bool(query.trap.follower)) throw NumericError("the trap needs a follower range exactly when the follower moves");
   c.driver = r.driver->name;
   c.follower = r.has_follower ? r.other->name : "";
-  c.direction = query.direction >= 0 ? 1 : -1;
+  if (query.direction != 1 && query.direction != -1)
+    throw NumericError("the jam direction must be +1 or -1, not " + std::to_string(query.direction));
+  c.direction = query.direction;
   c.trap = query.trap;
   Rational far = c.direction > 0 ? c.trap.driver.hi : c.trap.driver.lo;
   RationalInterval cut_at{far, far};
@@ -288,7 +312,8 @@ std::optional<JamQuery> find_jam(const Model& model, const std::string& first, c
   const Part& d = part_of(model, driver);
   const Part& o = part_of(model, driver == first ? second : first);
   PairRoles r = pair_roles(model, first, second, driver, o.motion.kind == Motion::Kind::fixed ? "" : o.name);
-  direction = direction >= 0 ? 1 : -1;
+  if (direction != 1 && direction != -1)
+    throw NumericError("the jam direction must be +1 or -1, not " + std::to_string(direction));
   if (sgn(step) <= 0) throw NumericError("the step must be positive");
   JamQuery query{d.name, r.has_follower ? o.name : "", direction, {}};
   Rational x = start, f = follower_start;
