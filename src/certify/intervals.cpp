@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <optional>
 
 namespace hipair {
 namespace {
@@ -38,6 +39,11 @@ PairRoles pair_roles(const Model& model, const std::string& first, const std::st
 }
 
 double mid(const Interval& value) { return mpfi_get_d(value.get()); }
+Rational power_of_ten(int exponent) {
+  mpz_class power;
+  mpz_ui_pow_ui(power.get_mpz_t(), 10, unsigned(std::abs(exponent)));
+  return exponent >= 0 ? Rational(power) : Rational(1) / Rational(power);
+}
 // The sign of the middle of an enclosure (a search heuristic: never a bound). Unlike mid(), it
 // survives magnitudes beyond double range (1e-400 is not 0, 1e400 is not infinite).
 int middle_sign(const Interval& value) {
@@ -58,11 +64,22 @@ struct Shapes {
   IntervalPart driver, other;
 };
 
-// Lower bound of the clearance with the driver at x and the other part at y (ignored if fixed).
-Rational clearance_at(const PairRoles& r, const Shapes& shapes, const Rational& x, const Rational& y, const Rational& enough) {
+// Lower bound of the clearance with the driver at x and the other part at y (ignored if fixed),
+// capped at `enough`; without a cap, at an upper bound of the distance (the L1 distance of two
+// boundary points: any magnitude, nothing is lost).
+Rational clearance_at(const PairRoles& r, const Shapes& shapes, const Rational& x, const Rational& y,
+                      std::optional<Rational> enough = std::nullopt) {
   IntervalPart driver = verify::place_over(shapes.driver, interval_map(*r.driver, {x, x}));
   IntervalPart other = verify::place_over(shapes.other, r.has_follower ? interval_map(*r.other, {y, y}) : verify::IntervalMap{});
-  return verify::boundary_distance_lower_bound(driver, other, enough);
+  if (!enough) {
+    const verify::IntervalPoint &p = driver.loops.at(0).at(0).source, &q = other.loops.at(0).at(0).source;
+    Interval dx = p.x - q.x, dy = p.y - q.y, l1;
+    mpfi_abs(dx.get(), dx.get());
+    mpfi_abs(dy.get(), dy.get());
+    l1 = dx + dy;
+    enough = l1.is_bounded() ? l1.upper() : Rational(1);
+  }
+  return verify::boundary_distance_lower_bound(driver, other, *enough);
 }
 
 Rational path_value(const std::vector<std::pair<Rational, Rational>>& path, const Rational& x) {
@@ -216,15 +233,15 @@ std::optional<Certificate> certify_free_passage(const Model& model, const std::s
   if (overlapping_at(r, c.range.lo, path_value(c.path, c.range.lo))) return std::nullopt;
   Rational reach_driver = reach_of(*r.driver), reach_other = reach_of(*r.other);
   Shapes shapes{verify::shape_of(*r.driver), verify::shape_of(*r.other)};
-  Rational far(1000000000);
   if (!distance) {
-    Rational smallest = far;
+    std::optional<Rational> smallest;
     for (int i = 0; i <= 256; ++i) {
       Rational x = c.range.lo + (c.range.hi - c.range.lo) * i / 256;
-      smallest = std::min(smallest, clearance_at(r, shapes, x, path_value(c.path, x), far));
+      Rational bound = clearance_at(r, shapes, x, path_value(c.path, x));
+      if (!smallest || bound < *smallest) smallest = bound;
     }
-    if (sgn(smallest) <= 0) return std::nullopt;
-    distance = round_down(smallest / 2, 3);
+    if (sgn(*smallest) <= 0) return std::nullopt;
+    distance = round_down(*smallest / 2, 3);
   }
   c.distance = *distance;
   std::vector<RationalInterval> stack{c.range};
@@ -234,8 +251,14 @@ std::optional<Certificate> certify_free_passage(const Model& model, const std::s
     RationalInterval image = r.has_follower ? path_image(c.path, piece.lo, piece.hi) : RationalInterval{0, 0};
     Rational half_driver = (piece.hi - piece.lo) / 2, half_other = (image.hi - image.lo) / 2;
     Rational needed = c.distance + reach_driver * half_driver + reach_other * half_other;
-    needed += c.boxes.empty() ? Rational(1, 1000000000000) : Rational(0);   // the verifier's nesting slack on box 0
-    Rational bound = clearance_at(r, shapes, middle(piece), middle(image), far);
+    // The verifier's nesting slack on box 0: its exact configuration lies within 1e-60 rad of the
+    // centre (relative to the parts' reach, so that it also holds at 1e-300 mm).
+    if (c.boxes.empty()) {
+      Rational reach_sum = r.driver->motion.kind == Motion::Kind::rotation ? reach_driver : Rational(0);
+      if (r.has_follower && r.other->motion.kind == Motion::Kind::rotation) reach_sum += reach_other;
+      needed += reach_sum * power_of_ten(-60);
+    }
+    Rational bound = clearance_at(r, shapes, middle(piece), middle(image), needed);   // only "enough?" matters
     if (bound >= needed) {
       c.boxes.push_back({piece, r.has_follower ? std::optional<RationalInterval>(image) : std::nullopt});
       continue;

@@ -230,8 +230,13 @@ std::optional<Certificate> certify_clearance(const Model& model, const std::stri
   c.configuration = pair_positions(positions, a, b);
   verify::ExactMap map_a = exact_map(a, position_of(c.configuration, a)), map_b = exact_map(b, position_of(c.configuration, b));
   if (cspace::analyse_overlap(a, to_rigid(map_a), b, to_rigid(map_b)).relation != cspace::Overlap::apart) return std::nullopt;
+  // Capped at an upper bound of the distance (the L1 distance of two boundary points), so that
+  // nothing is lost at any magnitude.
+  Point p = map_a.apply(a.loops.at(0).edges.at(0).source), q = map_b.apply(b.loops.at(0).edges.at(0).source);
+  Rational cap = abs(p.x - q.x) + abs(p.y - q.y);
+  if (distance && *distance > cap) return std::nullopt;
   Rational bound = verify::boundary_distance_lower_bound(verify::place_over(a, verify::to_interval_map(map_a)),
-                                                         verify::place_over(b, verify::to_interval_map(map_b)), Rational(1000000000));
+                                                         verify::place_over(b, verify::to_interval_map(map_b)), cap);
   if (sgn(bound) <= 0 || (distance && bound < *distance)) return std::nullopt;
   c.distance = distance ? *distance : round_down(bound, 6);
   c.statement = "Parts '" + first + "' and '" + second + "' are at least " + to_decimal_string(c.distance) + " mm apart with " +

@@ -6,8 +6,9 @@
 # exit: 0 no crash found; 1 crash/leak/timeout found (the input is saved in WORK_DIR); 77 no
 # libFuzzer runtime (skipped).
 set -uo pipefail
-clangxx=$1 source=$2 work=$3 seconds=$4
-mkdir -p "$work/objects" "$work/corpus"
+clangxx=$1 seconds=$4
+mkdir -p "$3/objects" "$3/corpus"
+source=$(cd "$2" && pwd) work=$(cd "$3" && pwd)   # absolute: the fuzzer runs in WORK_DIR
 
 # Skip when clang cannot link a fuzzer.
 printf 'extern "C" int LLVMFuzzerTestOneInput(const unsigned char*, unsigned long) { return 0; }\n' >"$work/probe.cpp"
@@ -22,6 +23,9 @@ sources=("$source"/src/core/*.cpp "$source"/src/model/*.cpp "$source"/src/io/ato
          "$source"/certify/certificate_reader.cpp "$source"/certify/exact_geometry.cpp
          "$source"/certify/interval_geometry.cpp "$source"/certify/check.cpp
          "$source"/tests/fuzz/certificate_verifier_fuzzer.cpp)
+# Objects built with other flags (another source directory) are rebuilt.
+if [ "$(cat "$work/objects/flags.txt" 2>/dev/null)" != "${flags[*]}" ]; then rm -f "$work"/objects/*.o; fi
+printf '%s' "${flags[*]}" >"$work/objects/flags.txt"
 objects=()
 pids=()
 for file in "${sources[@]}"; do

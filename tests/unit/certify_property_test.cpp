@@ -18,8 +18,10 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <functional>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <random>
 #include <string>
@@ -481,6 +483,42 @@ TEST(CertifyProperty, CollinearSquaresClearance) {
   }
 }
 
+// The producer at every scale: squares 1 mm apart with collinear edges get clearance and free
+// passage certificates; a puck in a plate of 1e400 mm (times the scale) gets an interference
+// certificate and no clearance one. Every certificate produced is re-checked by the verifier.
+TEST(CertifyProperty, ProducerCertifiesAtEveryScale) {
+  for (int exponent : scale_exponents) {
+    auto start = std::chrono::steady_clock::now();
+    Rational scale = power_of_ten(exponent);
+    std::string where = "scale 1e" + std::to_string(exponent);
+    PartSpec square{"a", true, pt(1, 1), {rectangle(0, 0, 2, 2)}};
+    PartSpec block{"b", false, pt(0, 0), {rectangle(3, 0, 2, 2)}};
+    Case squares = read_case({square, block}, scale);
+    std::map<std::string, ExactPosition> at_zero{{"a", ExactPosition{Rational(0), false, false, {}, {}}}};
+    std::optional<Certificate> clearance = certify_clearance(squares.model, "a", "b", at_zero);
+    ASSERT_TRUE(clearance) << where << ": squares 1 mm apart, no clearance certificate";
+    EXPECT_GE(clearance->distance, scale / 2) << where;
+    EXPECT_TRUE(certify_clearance(squares.model, "a", "b", at_zero, Rational(scale * (1 - power_of_ten(-30))))) << where;
+    EXPECT_FALSE(certify_clearance(squares.model, "a", "b", at_zero, Rational(scale * (1 + power_of_ten(-20))))) << where;
+    std::optional<Certificate> free =
+        certify_free_passage(squares.model, "a", "b", PassagePath{"a", "", {Rational(0), Rational(1, 2)}, {}});
+    ASSERT_TRUE(free) << where << ": squares 1 mm apart, no free-passage certificate";
+
+    PartSpec puck{"a", true, pt(0, 0), {circle(pt(5, 0), 1)}};
+    Rational side = power_of_ten(400);
+    PartSpec plate{"b", false, pt(0, 0), {rectangle(-side, -side, 2 * side, 2 * side)}};
+    Case pucks = read_case({puck, plate}, scale);
+    std::map<std::string, ExactPosition> turned{{"a", ExactPosition{Rational(3, 10), false, false, {}, {}}}};
+    std::optional<Certificate> interference = certify_interference(pucks.model, "a", "b", turned);
+    ASSERT_TRUE(interference) << where << ": a puck inside a plate of 1e400 mm, no interference certificate";
+    EXPECT_TRUE(interference->witness_point) << where;
+    EXPECT_TRUE(check_certificate(*interference, pucks.model).valid) << where;
+    EXPECT_FALSE(certify_clearance(pucks.model, "a", "b", turned)) << where;
+    std::cout << "[ property ] producer at " << where << ": " << free->boxes.size() << " free-passage boxes, "
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
+  }
+}
+
 // Free passage of a rotating part over random angle ranges, covered by equal boxes: never valid
 // where some configuration of the range overlaps (exact configurations sampled in the range),
 // and never together with an interference certificate in the range.
@@ -536,7 +574,7 @@ TEST(CertifyProperty, FreePassageNeverWhereThePartsOverlap) {
 // Printed values never look equal when they differ.
 TEST(CertifyProperty, RejectionMessagesTellCloseValuesApart) {
   PartSpec a{"a", true, pt(0, 0), {rectangle(0, 0, 2, 2)}};
-  PartSpec b{"b", false, pt(0, 0), {rectangle(4, 0, 2, 2)}};
+  PartSpec b{"b", false, pt(0, 0), {rectangle(4, 1, 2, 2)}};   // 2 mm apart, no collinear edges
   Case c = read_case({a, b}, Rational(1));
   Certificate clearance = base_certificate(c, ClaimKind::clearance);
   clearance.configuration["a"] = ExactPosition{Rational(0), false, false, {}, {}};
