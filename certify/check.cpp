@@ -8,14 +8,75 @@
 #include "core/sha256.hpp"
 #include "io/atomic_file.hpp"
 
-#include <cmath>
+#include <mpfr.h>
+
+#include <utility>
 
 namespace hipair::verify {
 namespace {
 
 [[noreturn]] void reject(const std::string& reason) { throw Rejection{reason}; }
-std::string show(const Rational& value) { return to_decimal_string(value, 10); }
+
+// ----------------------------------------------------------------------------- messages
+// Values are printed so that a message never shows two different numbers as equal: exactly
+// when a short decimal is exact, and two values that are compared with enough significant
+// digits to tell them apart (see show_apart).
+
+// `value` rounded to `digits` significant decimal digits ("0.125", "-3.5e+400", "1.2e-300").
+std::string decimal(const Rational& value, int digits) {
+  if (sgn(value) == 0) return "0";
+  mpfr_t x;
+  mpfr_init2(x, mpfr_prec_t(digits) * 4 + 64);
+  mpfr_set_q(x, value.get_mpq_t(), MPFR_RNDN);
+  mpfr_exp_t exponent = 0;
+  char* text = mpfr_get_str(nullptr, &exponent, 10, std::size_t(digits), x, MPFR_RNDN);
+  std::string mantissa(text);
+  mpfr_free_str(text);
+  mpfr_clear(x);
+  bool negative = mantissa[0] == '-';
+  if (negative) mantissa.erase(0, 1);
+  while (mantissa.size() > 1 && mantissa.back() == '0') mantissa.pop_back();
+  long e = long(exponent), size = long(mantissa.size());   // value = 0.mantissa * 10^e
+  std::string out;
+  if (e > 21 || e < -6)
+    out = mantissa.substr(0, 1) + (size > 1 ? "." + mantissa.substr(1) : "") + "e" + (e > 0 ? "+" : "") + std::to_string(e - 1);
+  else if (e <= 0)
+    out = "0." + std::string(std::size_t(-e), '0') + mantissa;
+  else if (e >= size)
+    out = mantissa + std::string(std::size_t(e - size), '0');
+  else
+    out = mantissa.substr(0, std::size_t(e)) + "." + mantissa.substr(std::size_t(e));
+  return negative ? "-" + out : out;
+}
+bool exact_text(const std::string& text, const Rational& value) {
+  try {
+    return parse_rational(text) == value;
+  } catch (const Error&) {
+    return false;
+  }
+}
+// The exact value when it has a short form (a decimal of up to 25 digits or a fraction of up
+// to 60 characters), else 25 significant digits marked as rounded.
+std::string show(const Rational& value) {
+  for (int digits : {12, 25}) {
+    std::string text = decimal(value, digits);
+    if (exact_text(text, value)) return text;
+  }
+  std::string fraction = to_exact_string(value);
+  return fraction.size() <= 60 ? fraction : decimal(value, 25) + " (rounded)";
+}
 std::string show(const RationalInterval& range) { return "[" + show(range.lo) + ", " + show(range.hi) + "]"; }
+// Two different values, exactly when both have a short exact form, else rounded to as many
+// significant digits as it takes to show that they differ (the exact fractions beyond 800).
+std::pair<std::string, std::string> show_apart(const Rational& a, const Rational& b) {
+  std::string x = show(a), y = show(b);
+  if (x != y && exact_text(x, a) && exact_text(y, b)) return {x, y};
+  for (int digits = 12; digits <= 800; digits *= 2) {
+    x = decimal(a, digits), y = decimal(b, digits);
+    if (x != y) return {x, y};
+  }
+  return {to_exact_string(a), to_exact_string(b)};
+}
 Interval hull(const Rational& lo, const Rational& hi) {
   Interval result(lo);
   mpfi_put_q(result.get(), const_cast<mpq_ptr>(hi.get_mpq_t()));
@@ -29,6 +90,20 @@ bool same(Rational a, Rational b) {
 }
 Interval two_pi() { return Interval::pi() * Interval(Rational(2)); }
 
+// The integer nearest to the middle of x / (2 pi): which whole turn to subtract. A choice, not a
+// decision: every use is followed by a certified check, whatever integer is chosen.
+Rational turns_of(const Interval& x) {
+  Interval quotient = x / two_pi();
+  if (!quotient.is_bounded()) return Rational(0);
+  mpfr_t middle;
+  mpfr_init2(middle, model_detail::interval_bits);
+  mpfi_mid(middle, quotient.get());
+  mpz_class turns;
+  mpfr_get_z(turns.get_mpz_t(), middle, MPFR_RNDN);
+  mpfr_clear(middle);
+  return Rational(turns);
+}
+
 // ----------------------------------------------------------------------------- model and pair
 void check_model(const Certificate& c, const Model& model) {
   if (c.model_name != model.name) reject("the model is named '" + model.name + "', the certificate names '" + c.model_name + "'");
@@ -39,12 +114,17 @@ void check_model(const Certificate& c, const Model& model) {
     for (const ParameterValue& candidate : c.parameters)
       if (candidate.name == parameter.name) value = &candidate;
     if (!value) reject("the certificate gives no value for parameter '" + parameter.name + "'");
-    if (!value->overridden && !same(value->value, parameter.nominal))
-      reject("parameter '" + parameter.name + "': the certificate's value " + show(value->value) +
-             " is not the model's nominal " + show(parameter.nominal));
-    if (value->value < parameter.range.lo || value->value > parameter.range.hi)
-      reject("parameter outside its tolerance: '" + parameter.name + "' = " + show(value->value) + " is not in " +
-             show(parameter.range));
+    if (!value->overridden && !same(value->value, parameter.nominal)) {
+      auto [given, nominal] = show_apart(value->value, parameter.nominal);
+      reject("parameter '" + parameter.name + "': the certificate's value " + given + " is not the model's nominal " + nominal);
+    }
+    if (value->value < parameter.range.lo || value->value > parameter.range.hi) {
+      const Rational& end = value->value < parameter.range.lo ? parameter.range.lo : parameter.range.hi;
+      auto [given, limit] = show_apart(value->value, end);
+      reject("parameter outside its tolerance: '" + parameter.name + "' = " + given + " is " +
+             (value->value < parameter.range.lo ? "below the lower end " : "above the upper end ") + limit +
+             " of its range " + show(parameter.range));
+    }
   }
   if (c.roundings.size() != model.roundings.size())
     reject("the model reader made " + std::to_string(model.roundings.size()) + " roundings, the certificate lists " +
@@ -126,11 +206,10 @@ ExactMap exact_map(const Part& part, const std::map<std::string, ExactPosition>&
   theta = theta * Interval(Rational(2)) + (position.half_turn ? Interval::pi() : Interval(Rational(0)));
   if (position.angle) {
     Interval difference = theta - Interval(*position.angle);
-    double turns = std::round(mpfi_get_d(difference.get()) / (2 * M_PI));
-    Interval error = difference - two_pi() * Interval(Rational(turns));
+    Interval error = difference - two_pi() * Interval(turns_of(difference));
     Interval size;
     mpfi_abs(size.get(), error.get());
-    if (size.upper() > *position.angle_error)
+    if (!size.is_bounded() || size.upper() > *position.angle_error)
       reject("the tangent of '" + part.name + "' is not within " + show(*position.angle_error) + " rad of the angle " +
              show(*position.angle));
   }
@@ -190,9 +269,11 @@ std::string check_clearance(const Certificate& c, const Model& model) {
   std::string closest;
   Rational bound = boundary_distance_lower_bound(place_over(a, to_interval_map(map_a)), place_over(b, to_interval_map(map_b)),
                                                  c.distance, &closest);
-  if (bound < c.distance)
-    reject("at " + configuration_text(c) + " the certified distance lower bound of " + closest + " is " + show(bound) +
-           ", less than the claimed " + show(c.distance));
+  if (bound < c.distance) {
+    auto [found, claimed] = show_apart(bound, c.distance);
+    reject("at " + configuration_text(c) + " the certified distance lower bound of " + closest + " is " + found +
+           ", less than the claimed " + claimed);
+  }
   check_nesting(place(a, map_a), place(b, map_b), "at " + configuration_text(c));
   return "parts '" + c.first + "' and '" + c.second + "' are at least " + show(c.distance) + " mm apart at " +
          configuration_text(c);
@@ -244,11 +325,22 @@ void check_blocked(const Certificate& c, const Model& model, const Roles& r, con
 // Pieces must cover [lo, hi] in order without gaps.
 void check_cover(const std::vector<BlockedPiece>& pieces, const RationalInterval& range, const std::string& what) {
   if (pieces.empty()) reject(what + " has no pieces");
-  if (pieces.front().range.lo > range.lo) reject("gap in the cover of " + what + " before " + show(pieces.front().range.lo));
-  for (std::size_t i = 1; i < pieces.size(); ++i)
-    if (pieces[i].range.lo > pieces[i - 1].range.hi || pieces[i].range.lo < pieces[i - 1].range.lo)
-      reject("gap in the cover of " + what + " between " + show(pieces[i - 1].range.hi) + " and " + show(pieces[i].range.lo));
-  if (pieces.back().range.hi < range.hi) reject("gap in the cover of " + what + " after " + show(pieces.back().range.hi));
+  if (pieces.front().range.lo > range.lo) {
+    auto [start, first] = show_apart(range.lo, pieces.front().range.lo);
+    reject("gap in the cover of " + what + " between its start " + start + " and the first piece's start " + first);
+  }
+  for (std::size_t i = 1; i < pieces.size(); ++i) {
+    if (pieces[i].range.lo < pieces[i - 1].range.lo)
+      reject("the pieces of " + what + " are out of order at piece " + std::to_string(i));
+    if (pieces[i].range.lo > pieces[i - 1].range.hi) {
+      auto [end, start] = show_apart(pieces[i - 1].range.hi, pieces[i].range.lo);
+      reject("gap in the cover of " + what + " between " + end + " and " + start);
+    }
+  }
+  if (pieces.back().range.hi < range.hi) {
+    auto [last, end] = show_apart(pieces.back().range.hi, range.hi);
+    reject("gap in the cover of " + what + " between the last piece's end " + last + " and its end " + end);
+  }
 }
 
 std::string check_jam(const Certificate& c, const Model& model) {
@@ -264,7 +356,8 @@ std::string check_jam(const Certificate& c, const Model& model) {
   } else {
     const RationalInterval& band = *c.trap.follower;
     if (band.lo >= band.hi) reject("the trap's follower range must have lo < hi");
-    if (rotates(*r.other) && band.hi - band.lo >= Rational(314159, 50000)) reject("the trap's follower range spans a whole turn");
+    if (rotates(*r.other) && (two_pi() - Interval(Rational(band.hi - band.lo))).sign() <= 0)
+      reject("the trap's follower range is not certainly shorter than a whole turn");
     check_cover(c.cut, band, "the cut");
     for (std::size_t i = 0; i < c.cut.size(); ++i)
       check_blocked(c, model, r, cut_at, c.cut[i].range, c.cut[i].crossing, "cut piece " + std::to_string(i));
@@ -299,19 +392,22 @@ Rational path_at(const std::vector<std::pair<Rational, Rational>>& path, const R
 std::pair<ExactPosition, Rational> near_position(const Part& part, const Rational& value) {
   ExactPosition position;
   if (!rotates(part)) return {ExactPosition{value, true, false, {}, {}}, Rational(0)};
-  double turns = std::round(to_double(value) / (2 * M_PI));
-  Interval reduced = Interval(value) - two_pi() * Interval(Rational(turns));
-  double approximate = mpfi_get_d(reduced.get());
-  position.half_turn = std::fabs(approximate) > M_PI / 2;
-  Interval half = (reduced - (position.half_turn ? Interval::pi() * Interval(Rational(approximate > 0 ? 1 : -1)) : Interval(Rational(0)))) /
-                  Interval(Rational(2));
+  Interval reduced = Interval(value) - two_pi() * Interval(turns_of(Interval(value)));   // about [-pi, pi]
+  if (!reduced.is_bounded()) reject("the angle " + show(value) + " cannot be reduced to a turn at 256 bits");
+  // The chart: centred at 0 when |reduced| <= pi/2 (by its middle: any choice is sound).
+  Rational middle = reduced.middle(), quarter = (Interval::pi() / Interval(Rational(2))).middle();
+  position.half_turn = abs(middle) > quarter;
+  Interval shift = position.half_turn ? Interval::pi() * Interval(Rational(sgn(middle))) : Interval(Rational(0));
+  Interval half = (reduced - shift) / Interval(Rational(2));
   Interval tangent;
   mpfi_tan(tangent.get(), half.get());
+  if (!tangent.is_bounded()) reject("the angle " + show(value) + " cannot be reduced to a turn at 256 bits");
   position.value = tangent.middle();
   Interval back;
   mpfi_atan(back.get(), Interval(position.value).get());
   Interval error = back - half, size;
   mpfi_abs(size.get(), error.get());
+  if (!size.is_bounded()) reject("the angle " + show(value) + " cannot be reduced to a turn at 256 bits");
   return {position, Rational(2 * size.upper())};
 }
 
@@ -328,13 +424,22 @@ std::string check_free_passage(const Certificate& c, const Model& model) {
   } else if (!c.path.empty()) {
     reject("a pair with a fixed part has no path");
   }
-  if (c.boxes.empty() || c.boxes.front().driver.lo > c.range.lo)
-    reject("gap in the boxes' cover of the driver range at its start " + show(c.range.lo));
-  for (std::size_t i = 1; i < c.boxes.size(); ++i)
-    if (c.boxes[i].driver.lo > c.boxes[i - 1].driver.hi || c.boxes[i].driver.lo < c.boxes[i - 1].driver.lo)
-      reject("gap in the boxes' cover of the driver range between " + show(c.boxes[i - 1].driver.hi) + " and " +
-             show(c.boxes[i].driver.lo));
-  if (c.boxes.back().driver.hi < c.range.hi) reject("gap in the boxes' cover of the driver range at its end " + show(c.range.hi));
+  if (c.boxes.empty()) reject("no boxes cover the driver range");
+  if (c.boxes.front().driver.lo > c.range.lo) {
+    auto [start, first] = show_apart(c.range.lo, c.boxes.front().driver.lo);
+    reject("gap in the boxes' cover of the driver range at its start: the range starts at " + start + ", the first box at " + first);
+  }
+  for (std::size_t i = 1; i < c.boxes.size(); ++i) {
+    if (c.boxes[i].driver.lo < c.boxes[i - 1].driver.lo) reject("the boxes are out of order at box " + std::to_string(i));
+    if (c.boxes[i].driver.lo > c.boxes[i - 1].driver.hi) {
+      auto [end, start] = show_apart(c.boxes[i - 1].driver.hi, c.boxes[i].driver.lo);
+      reject("gap in the boxes' cover of the driver range between " + end + " and " + start);
+    }
+  }
+  if (c.boxes.back().driver.hi < c.range.hi) {
+    auto [last, end] = show_apart(c.boxes.back().driver.hi, c.range.hi);
+    reject("gap in the boxes' cover of the driver range at its end: the last box ends at " + last + ", the range at " + end);
+  }
   IntervalPart shape_driver = shape_of(*r.driver), shape_other = shape_of(*r.other);
   Rational reach_driver = rotates(*r.driver) ? reach(shape_driver) : Rational(1);
   Rational reach_other = rotates(*r.other) ? reach(shape_other) : Rational(1);
@@ -369,9 +474,11 @@ std::string check_free_passage(const Certificate& c, const Model& model) {
     Rational bound = boundary_distance_lower_bound(
         place_over(shape_driver, map_over(*r.driver, {driver_mid, driver_mid})),
         place_over(shape_other, r.has_follower ? map_over(*r.other, {other_mid, other_mid}) : IntervalMap{}), needed, &closest);
-    if (bound < needed)
-      reject(name + ": the certified distance lower bound at its centre, " + show(bound) + " (" + closest +
-             "), is less than the claimed clearance plus the motion within the box, " + show(needed));
+    if (bound < needed) {
+      auto [found, required] = show_apart(bound, needed);
+      reject(name + ": the certified distance lower bound at its centre, " + found + " (" + closest +
+             "), is less than the claimed clearance plus the motion within the box, " + required);
+    }
     if (i == 0) {
       ExactMap exact_driver = exact_map(*r.driver, nest), exact_other = exact_map(*r.other, nest);
       check_nesting(place(*r.driver, exact_driver), place(*r.other, exact_other), "at the start of the path");

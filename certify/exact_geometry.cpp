@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 
 namespace hipair::verify {
 namespace {
@@ -44,28 +43,28 @@ bool root_in_sector(const LineCircle& line, int sigma, const PlacedEdge& arc, bo
 }
 
 // Crossings of the ray p + lambda v (lambda > 0) with edge e; nullopt when the ray passes
-// through an end point of e or touches it (then another direction is tried).
+// through an end point of e or touches it (then another direction is tried). Every test is an
+// exact sign: no screen in floating point (a rounded screen far from a small edge drops
+// crossings and flips the parity).
 std::optional<int> ray_crossings(const PlacedEdge& e, const Point& p, const Point& v) {
-  // The box behind the ray's start or on one side of its line: no crossing.
-  double px = p.x.get_d(), py = p.y.get_d(), vx = v.x.get_d(), vy = v.y.get_d();
-  int ahead = 0, left = 0, right = 0;
-  for (double x : {e.box[0], e.box[1]})
-    for (double y : {e.box[2], e.box[3]}) {
-      ahead += (x - px) * vx + (y - py) * vy > 0;
-      double side = vx * (y - py) - vy * (x - px);
-      left += side > 0;
-      right += side < 0;
-    }
-  if (ahead == 0 || left == 4 || right == 4) return 0;
   if (!e.arc) {
-    Point d = minus(e.target, e.source), w = minus(e.source, p);
-    Rational denominator = cross(v, d);
-    if (sgn(denominator) == 0) return sgn(cross(v, w)) == 0 ? std::nullopt : std::optional<int>(0);
-    Rational lambda = cross(w, d) / denominator, mu = cross(w, v) / denominator;
-    if (sgn(lambda) <= 0) return 0;
-    if (sgn(mu) == 0 || cmp(mu, Rational(1)) == 0) return std::nullopt;   // cmp: safe for non-canonical input
-    return (sgn(mu) > 0 && mu < 1) ? 1 : 0;
+    Point a = minus(e.source, p), b = minus(e.target, p);
+    int sa = sgn(cross(v, a)), sb = sgn(cross(v, b));   // sides of the ray's line
+    if (sa == 0 && sb == 0) return std::nullopt;          // along the ray's line
+    if (sa == sb) return 0;                               // both ends on one side
+    if (sa == 0) return sgn(dot(a, v)) > 0 ? std::nullopt : std::optional<int>(0);   // the line through an end
+    if (sb == 0) return sgn(dot(b, v)) > 0 ? std::nullopt : std::optional<int>(0);
+    // The line crosses the segment's interior at p + lambda v with
+    // lambda = cross(a, d) / cross(v, d), d = b - a; ahead iff lambda > 0.
+    Point d = minus(b, a);
+    return sgn(cross(a, d)) * sgn(cross(v, d)) > 0 ? 1 : 0;
   }
+  // Exact screens: the ray's line misses the circle, or the circle lies wholly behind p.
+  Point w = minus(e.center, p);
+  Rational vv = dot(v, v), reach2 = e.radius_squared * vv;
+  Rational across = cross(v, w), along = dot(v, w);
+  if (cmp(Rational(across * across), reach2) > 0) return 0;
+  if (sgn(along) < 0 && cmp(Rational(along * along), reach2) > 0) return 0;
   LineCircle line = line_circle(p, v, e.center, e.radius_squared);
   int d = sgn(line.discriminant);
   if (d < 0) return 0;
@@ -80,9 +79,16 @@ std::optional<int> ray_crossings(const PlacedEdge& e, const Point& p, const Poin
   return count;
 }
 
+bool in_box(const PlacedEdge& e, const Point& p) {
+  return !(p.x < e.box[0] || p.x > e.box[1] || p.y < e.box[2] || p.y > e.box[3]);
+}
+
+bool boxes_meet(const PlacedEdge& e, const PlacedEdge& g) {
+  return !(e.box[1] < g.box[0] || g.box[1] < e.box[0] || e.box[3] < g.box[2] || g.box[3] < e.box[2]);
+}
+
 bool on_edge(const PlacedEdge& e, const Point& p) {
-  double x = p.x.get_d(), y = p.y.get_d();
-  if (x < e.box[0] || x > e.box[1] || y < e.box[2] || y > e.box[3]) return false;
+  if (!in_box(e, p)) return false;
   if (!e.arc) {
     Point d = minus(e.target, e.source);
     return sgn(cross(d, minus(p, e.source))) == 0 && sgn(dot(minus(p, e.source), d)) >= 0 &&
@@ -90,6 +96,14 @@ bool on_edge(const PlacedEdge& e, const Point& p) {
   }
   Point w = minus(p, e.center);
   return cmp(dot(w, w), e.radius_squared) == 0 && in_sector(e, sgn(cross(e.from, w)), sgn(cross(w, e.to)), false);
+}
+
+// A rational upper bound of sqrt(q), q >= 0: sqrt(n/d) = sqrt(n d)/d <= (isqrt(n d) + 1)/d.
+Rational sqrt_upper(Rational q) {
+  q.canonicalize();
+  mpz_class product = q.get_num() * q.get_den(), root;
+  mpz_sqrt(root.get_mpz_t(), product.get_mpz_t());
+  return Rational(root + 1, q.get_den());
 }
 
 }  // namespace
@@ -113,14 +127,13 @@ PlacedPart place(const Part& part, const ExactMap& map) {
         e.from = minus(edge.ccw ? e.source : e.target, e.center);
         e.to = minus(edge.ccw ? e.target : e.source, e.center);
         e.reflex = sgn(cross(e.from, e.to)) < 0;
-        double radius = std::sqrt(e.radius_squared.get_d()), x = e.center.x.get_d(), y = e.center.y.get_d();
-        e.box = {x - radius, x + radius, y - radius, y + radius};
+        Rational radius = sqrt_upper(e.radius_squared);
+        e.box = {Rational(e.center.x - radius), Rational(e.center.x + radius), Rational(e.center.y - radius),
+                 Rational(e.center.y + radius)};
       } else {
-        double x0 = e.source.x.get_d(), x1 = e.target.x.get_d(), y0 = e.source.y.get_d(), y1 = e.target.y.get_d();
-        e.box = {std::min(x0, x1), std::max(x0, x1), std::min(y0, y1), std::max(y0, y1)};
+        e.box = {std::min(e.source.x, e.target.x), std::max(e.source.x, e.target.x), std::min(e.source.y, e.target.y),
+                 std::max(e.source.y, e.target.y)};
       }
-      double margin = 1e-7 * (1 + std::fabs(e.box[0]) + std::fabs(e.box[1]) + std::fabs(e.box[2]) + std::fabs(e.box[3]));
-      e.box = {e.box[0] - margin, e.box[1] + margin, e.box[2] - margin, e.box[3] + margin};
       edges.push_back(std::move(e));
     }
   }
@@ -196,11 +209,9 @@ bool edges_cross(const PlacedEdge& e, const PlacedEdge& g) {
 std::string overlap_evidence(const PlacedPart& a, const PlacedPart& b) {
   for (std::size_t i = 0; i < a.loops.size(); ++i)
     for (std::size_t j = 0; j < a.loops[i].size(); ++j) {
-      const auto& p = a.loops[i][j].box;
       for (std::size_t k = 0; k < b.loops.size(); ++k)
         for (std::size_t l = 0; l < b.loops[k].size(); ++l) {
-          const auto& q = b.loops[k][l].box;
-          if (p[1] < q[0] || q[1] < p[0] || p[3] < q[2] || q[3] < p[2]) continue;
+          if (!boxes_meet(a.loops[i][j], b.loops[k][l])) continue;
           if (edges_cross(a.loops[i][j], b.loops[k][l]))
             return "loop " + std::to_string(i) + " edge " + std::to_string(j) + " of '" + a.name + "' crosses loop " +
                    std::to_string(k) + " edge " + std::to_string(l) + " of '" + b.name + "'";

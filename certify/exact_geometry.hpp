@@ -37,9 +37,10 @@ struct PlacedEdge {
   bool reflex = false;   ///< the sector spans more than a half turn
   Point source, target, center, from, to;
   Rational radius_squared;
-  /// A box around the edge in double (x0, x1, y0, y1), widened by a margin far above rounding
-  /// errors: only used to skip exact tests that cannot succeed.
-  std::array<double, 4> box{};
+  /// An exact box containing the edge (x0, x1, y0, y1; an arc's box is its circle's, with a
+  /// rational upper bound of the radius): only used to skip exact tests that cannot succeed.
+  /// Every comparison with it is exact.
+  std::array<Rational, 4> box{};
 };
 
 /// A part posed in the world: its edges loop by loop.

@@ -1,10 +1,12 @@
 // Certified numeric geometry of the verifier (see interval_geometry.hpp). Every quantity is an
 // MPFI enclosure; a decision is taken only when the enclosure makes it certain, otherwise the
 // conservative answer is used (distance candidates kept, "may intersect" => distance 0).
+// Bounds are exact rationals (the MPFR end points of the enclosures, converted exactly) and are
+// compared exactly: nothing here is decided in double.
 #include "certify/interval_geometry.hpp"
 
 #include <algorithm>
-#include <cmath>
+#include <optional>
 
 namespace hipair::verify {
 namespace {
@@ -34,12 +36,21 @@ Interval hull(const Interval& a, const Interval& b) {
   return result;
 }
 bool certainly_positive(const Interval& a) { return a.sign() > 0; }
-// The lower end rounded down to a double (-infinity for NaN): lower bounds stay lower bounds.
-double lower(const Interval& a) {
-  double value = mpfr_get_d(&a.get()->left, MPFR_RNDD);
-  return std::isnan(value) ? -HUGE_VAL : value;
+// A lower bound of a distance (a non-negative quantity) enclosed by `a`: its exact lower end,
+// or 0 when that is negative or the enclosure is unbounded or NaN.
+Rational distance_lower(const Interval& a) {
+  if (!a.is_bounded() || mpfr_sgn(&a.get()->left) <= 0) return Rational(0);
+  return a.lower();
+}
+// True when every value of `a` is at least `bound` (exact comparison of the lower end).
+bool certainly_at_least(const Interval& a, const Rational& bound) {
+  return a.is_bounded() && mpfr_cmp_q(&a.get()->left, bound.get_mpq_t()) >= 0;
 }
 bool possibly_nonnegative(const Interval& a) { return a.sign() >= 0; }
+// best = min(best, candidate); an absent best is +infinity.
+void keep_smaller(std::optional<Rational>& best, const Rational& candidate) {
+  if (!best || candidate < *best) best = candidate;
+}
 
 P operator-(const P& a, const P& b) { return P{a.x - b.x, a.y - b.y}; }
 P operator+(const P& a, const P& b) { return P{a.x + b.x, a.y + b.y}; }
@@ -66,18 +77,20 @@ bool certainly_in_open_sector(const IntervalEdge& arc, const P& w) {
   return arc.reflex ? (first || second) : (first && second);
 }
 
-// Lower bound of the distance from point p to edge e.
-double point_to_edge(const P& p, const IntervalEdge& e) {
-  double best = e.full_circle ? HUGE_VAL : std::min(lower(norm(p - e.source)), lower(norm(p - e.target)));
+// Lower bound of the distance from point p to edge e (absent: no candidate, +infinity).
+void point_to_edge(const P& p, const IntervalEdge& e, std::optional<Rational>& best) {
+  if (!e.full_circle) {
+    keep_smaller(best, distance_lower(norm(p - e.source)));
+    keep_smaller(best, distance_lower(norm(p - e.target)));
+  }
   if (!e.arc) {
     P d = e.target - e.source;
     Interval u = dot(p - e.source, d) / dot(d, d);
     if (possibly_nonnegative(u) && possibly_nonnegative(Interval(Rational(1)) - u))
-      best = std::min(best, lower(absolute(cross(d, p - e.source)) / norm(d)));
+      keep_smaller(best, distance_lower(absolute(cross(d, p - e.source)) / norm(d)));
   } else if (possibly_in_sector(e, p - e.center)) {
-    best = std::min(best, lower(absolute(norm(p - e.center) - e.radius)));
+    keep_smaller(best, distance_lower(absolute(norm(p - e.center) - e.radius)));
   }
-  return best;
 }
 
 // May the segment s and arc a have a common point?
@@ -116,7 +129,14 @@ bool edges_may_meet(const IntervalEdge& e, const IntervalEdge& g) {
       int a = side(line, other.source), b = side(line, other.target);
       return a != 0 && a == b;
     };
-    return !separates(e, g) && !separates(g, e);
+    // Collinear or nearly parallel segments: their projections on either one's direction are
+    // certainly disjoint (a separating line perpendicular to it).
+    auto apart_along = [](const IntervalEdge& line, const IntervalEdge& other) {
+      P d = line.target - line.source;
+      Interval length2 = dot(d, d), u = dot(other.source - line.source, d), v = dot(other.target - line.source, d);
+      return (u.sign() < 0 && v.sign() < 0) || (certainly_positive(u - length2) && certainly_positive(v - length2));
+    };
+    return !separates(e, g) && !separates(g, e) && !apart_along(e, g) && !apart_along(g, e);
   }
   if (!e.arc) return segment_arc_may_meet(e, g);
   if (!g.arc) return segment_arc_may_meet(g, e);
@@ -124,11 +144,17 @@ bool edges_may_meet(const IntervalEdge& e, const IntervalEdge& g) {
 }
 
 // Lower bound of the distance between edges e and g (0 when they may meet).
-double edge_distance(const IntervalEdge& e, const IntervalEdge& g) {
-  if (edges_may_meet(e, g)) return 0;
-  double best = HUGE_VAL;
-  if (!e.full_circle) best = std::min({best, point_to_edge(e.source, g), point_to_edge(e.target, g)});
-  if (!g.full_circle) best = std::min({best, point_to_edge(g.source, e), point_to_edge(g.target, e)});
+Rational edge_distance(const IntervalEdge& e, const IntervalEdge& g) {
+  if (edges_may_meet(e, g)) return Rational(0);
+  std::optional<Rational> best;
+  if (!e.full_circle) {
+    point_to_edge(e.source, g, best);
+    point_to_edge(e.target, g, best);
+  }
+  if (!g.full_circle) {
+    point_to_edge(g.source, e, best);
+    point_to_edge(g.target, e, best);
+  }
   // Interior points of both at a common normal.
   if (e.arc != g.arc) {
     const IntervalEdge& s = e.arc ? g : e;
@@ -138,25 +164,25 @@ double edge_distance(const IntervalEdge& e, const IntervalEdge& g) {
     P normal{-d.y, d.x};
     if (possibly_nonnegative(u) && possibly_nonnegative(Interval(Rational(1)) - u) &&
         (possibly_in_sector(a, normal) || possibly_in_sector(a, scale(Interval(Rational(-1)), normal))))
-      best = std::min(best, lower(absolute(absolute(cross(d, w)) / norm(d) - a.radius)));
+      keep_smaller(best, distance_lower(absolute(absolute(cross(d, w)) / norm(d) - a.radius)));
   } else if (e.arc && g.arc) {
     P axis = g.center - e.center;
     Interval length = norm(axis);
     if (!certainly_positive(length)) {
-      best = std::min(best, lower(absolute(e.radius - g.radius)));
+      keep_smaller(best, distance_lower(absolute(e.radius - g.radius)));
     } else {
       for (int sign_e : {-1, 1})
         for (int sign_g : {-1, 1}) {
           Interval se{Rational(sign_e)}, sg{Rational(sign_g)};
           if (possibly_in_sector(e, scale(se, axis)) && possibly_in_sector(g, scale(sg, axis)))
-            best = std::min(best, lower(absolute(length + sg * g.radius - se * e.radius)));
+            keep_smaller(best, distance_lower(absolute(length + sg * g.radius - se * e.radius)));
         }
     }
   }
-  return best;
+  return best ? *best : Rational(0);   // no candidate (never: every pair has end points or normals)
 }
 
-double disc_gap(const P& c1, const Interval& r1, const P& c2, const Interval& r2) { return lower(norm(c1 - c2) - r1 - r2); }
+Interval disc_gap(const P& c1, const Interval& r1, const P& c2, const Interval& r2) { return norm(c1 - c2) - r1 - r2; }
 
 }  // namespace
 
@@ -229,6 +255,7 @@ IntervalPart shape_of(const Part& part) {
       Interval radius(Rational(0));
       for (std::size_t i = first; i < last; ++i)
         radius = hull(radius, norm(edges[i].disc_center - center) + edges[i].disc_radius);
+      if (!radius.is_bounded()) throw Rejection{"the edges of part '" + part.name + "' cannot be bounded"};
       shape.groups.push_back({l, first, last, center, Interval(radius.upper())});
     }
   }
@@ -254,34 +281,39 @@ IntervalPart place_over(const IntervalPart& shape, const IntervalMap& map) {
 
 Rational boundary_distance_lower_bound(const IntervalPart& a, const IntervalPart& b, const Rational& enough,
                                        std::string* closest) {
-  // Doubles: every bound is rounded down; the cap is rounded up (mpq_get_d truncates).
-  double cap = std::nextafter(mpq_get_d(enough.get_mpq_t()), HUGE_VAL), best = cap;
+  // Exact rational bounds throughout: `best` only decreases from the cap, each candidate is the
+  // exact lower end of an enclosure, and a pair is skipped only when its bounding discs are
+  // certainly at least `best` apart.
+  Rational best = enough;
   for (const auto& ga : a.groups)
     for (const auto& gb : b.groups) {
-      if (disc_gap(ga.center, ga.radius, gb.center, gb.radius) >= best) continue;
+      if (certainly_at_least(disc_gap(ga.center, ga.radius, gb.center, gb.radius), best)) continue;
       for (std::size_t i = ga.first; i < ga.last; ++i)
         for (std::size_t j = gb.first; j < gb.last; ++j) {
           const IntervalEdge& e = a.loops[ga.loop][i];
           const IntervalEdge& g = b.loops[gb.loop][j];
-          if (disc_gap(e.disc_center, e.disc_radius, g.disc_center, g.disc_radius) >= best) continue;
-          double distance = edge_distance(e, g);
+          if (certainly_at_least(disc_gap(e.disc_center, e.disc_radius, g.disc_center, g.disc_radius), best)) continue;
+          Rational distance = edge_distance(e, g);
           if (distance < best) {
             best = distance;
             if (closest)
               *closest = "loop " + std::to_string(ga.loop) + " edge " + std::to_string(i) + " of '" + a.name +
                          "' and loop " + std::to_string(gb.loop) + " edge " + std::to_string(j) + " of '" + b.name + "'";
           }
-          if (best <= 0) return Rational(0);
+          if (sgn(best) <= 0) return Rational(0);
         }
     }
-  return best >= cap ? enough : Rational(best);
+  return best;
 }
 
 Rational reach(const IntervalPart& shape) {
   Rational best(0);
   for (const auto& loop : shape.loops)
-    for (const IntervalEdge& edge : loop)
-      best = std::max(best, (edge.arc ? norm(edge.center) + edge.radius : norm(edge.source)).upper());
+    for (const IntervalEdge& edge : loop) {
+      Interval distance = edge.arc ? norm(edge.center) + edge.radius : norm(edge.source);
+      if (!distance.is_bounded()) throw Rejection{"the reach of part '" + shape.name + "' cannot be bounded"};
+      best = std::max(best, distance.upper());
+    }
   return best;
 }
 

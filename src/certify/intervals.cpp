@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <optional>
 
 namespace hipair {
 namespace {
@@ -38,6 +39,22 @@ PairRoles pair_roles(const Model& model, const std::string& first, const std::st
 }
 
 double mid(const Interval& value) { return mpfi_get_d(value.get()); }
+Rational power_of_ten(int exponent) {
+  mpz_class power;
+  mpz_ui_pow_ui(power.get_mpz_t(), 10, unsigned(std::abs(exponent)));
+  return exponent >= 0 ? Rational(power) : Rational(1) / Rational(power);
+}
+// The sign of the middle of an enclosure (a search heuristic: never a bound). Unlike mid(), it
+// survives magnitudes beyond double range (1e-400 is not 0, 1e400 is not infinite).
+int middle_sign(const Interval& value) {
+  if (mpfi_nan_p(value.get())) return 0;
+  mpfr_t middle;
+  mpfr_init2(middle, model_detail::interval_bits);
+  mpfi_mid(middle, value.get());
+  int sign = mpfr_sgn(middle);
+  mpfr_clear(middle);
+  return sign;
+}
 Rational middle(const RationalInterval& range) { return (range.lo + range.hi) / 2; }
 Rational reach_of(const Part& part) {
   return part.motion.kind == Motion::Kind::rotation ? verify::reach(verify::shape_of(part)) : Rational(1);
@@ -47,11 +64,22 @@ struct Shapes {
   IntervalPart driver, other;
 };
 
-// Lower bound of the clearance with the driver at x and the other part at y (ignored if fixed).
-Rational clearance_at(const PairRoles& r, const Shapes& shapes, const Rational& x, const Rational& y, const Rational& enough) {
+// Lower bound of the clearance with the driver at x and the other part at y (ignored if fixed),
+// capped at `enough`; without a cap, at an upper bound of the distance (the L1 distance of two
+// boundary points: any magnitude, nothing is lost).
+Rational clearance_at(const PairRoles& r, const Shapes& shapes, const Rational& x, const Rational& y,
+                      std::optional<Rational> enough = std::nullopt) {
   IntervalPart driver = verify::place_over(shapes.driver, interval_map(*r.driver, {x, x}));
   IntervalPart other = verify::place_over(shapes.other, r.has_follower ? interval_map(*r.other, {y, y}) : verify::IntervalMap{});
-  return verify::boundary_distance_lower_bound(driver, other, enough);
+  if (!enough) {
+    const verify::IntervalPoint &p = driver.loops.at(0).at(0).source, &q = other.loops.at(0).at(0).source;
+    Interval dx = p.x - q.x, dy = p.y - q.y, l1;
+    mpfi_abs(dx.get(), dx.get());
+    mpfi_abs(dy.get(), dy.get());
+    l1 = dx + dy;
+    enough = l1.is_bounded() ? l1.upper() : Rational(1);
+  }
+  return verify::boundary_distance_lower_bound(driver, other, *enough);
 }
 
 Rational path_value(const std::vector<std::pair<Rational, Rational>>& path, const Rational& x) {
@@ -91,20 +119,22 @@ Placed place_box(const Part& part, const std::optional<RationalInterval>& range)
 // A piece of edge e (posed at the centre: ec, over the box: eo) crossing g, for every pose.
 std::optional<RationalInterval> crossing_piece(const IntervalEdge& ec, const IntervalEdge& eo, const IntervalEdge& gc,
                                                const IntervalEdge& go) {
-  double end = ec.arc ? mid(ec.sweep) : 1.0;
-  auto side = [&](double u) { return mid(verify::side_of(gc, verify::point_on(ec, Interval(approximate(u))))); };
+  double end = ec.arc ? mid(ec.sweep) : 1.0;   // a fraction or an angle (at most 2 pi)
+  auto side = [&](double u) { return middle_sign(verify::side_of(gc, verify::point_on(ec, Interval(approximate(u))))); };
   constexpr int samples = 32;
-  double previous = side(0);
+  int previous = side(0);
   for (int i = 1; i <= samples; ++i) {
-    double u0 = end * (i - 1) / samples, u1 = end * i / samples, value = side(u1);
-    if ((previous < 0) == (value < 0) || previous == 0 || value == 0) {
+    double u0 = end * (i - 1) / samples, u1 = end * i / samples;
+    int value = side(u1);
+    if (previous == value || previous == 0 || value == 0) {
       previous = value;
       continue;
     }
-    double lo = u0, hi = u1, lo_value = previous;
+    double lo = u0, hi = u1;
+    int lo_value = previous;
     for (int k = 0; k < 50; ++k) {
-      double m = 0.5 * (lo + hi), v = side(m);
-      if ((v < 0) == (lo_value < 0)) lo = m, lo_value = v;
+      double m = 0.5 * (lo + hi);
+      if (side(m) == lo_value) lo = m;
       else hi = m;
     }
     double root = 0.5 * (lo + hi);
@@ -133,8 +163,10 @@ std::optional<CrossingWitness> blocking_crossing(const PairRoles& r, const Ratio
         for (std::size_t k = 0; k < g_part.centre.loops.size(); ++k)
           for (std::size_t l = 0; l < g_part.centre.loops[k].size(); ++l) {
             const IntervalEdge &ec = e_part.centre.loops[i][j], &gc = g_part.centre.loops[k][l];
-            double dx = mid(ec.disc_center.x) - mid(gc.disc_center.x), dy = mid(ec.disc_center.y) - mid(gc.disc_center.y);
-            if (std::hypot(dx, dy) > mid(ec.disc_radius) + mid(gc.disc_radius) + 1e-6) continue;
+            // Skip the pair when its bounding discs are certainly apart (at the box centre).
+            Interval dx = ec.disc_center.x - gc.disc_center.x, dy = ec.disc_center.y - gc.disc_center.y;
+            Interval reach = ec.disc_radius + gc.disc_radius;
+            if ((dx * dx + dy * dy - reach * reach).sign() > 0 && reach.sign() >= 0) continue;
             auto along = crossing_piece(ec, e_part.over.loops[i][j], gc, g_part.over.loops[k][l]);
             if (along)
               return CrossingWitness{{e_model.name, i, j, e_model.loops[i].edges[j].label},
@@ -201,15 +233,15 @@ std::optional<Certificate> certify_free_passage(const Model& model, const std::s
   if (overlapping_at(r, c.range.lo, path_value(c.path, c.range.lo))) return std::nullopt;
   Rational reach_driver = reach_of(*r.driver), reach_other = reach_of(*r.other);
   Shapes shapes{verify::shape_of(*r.driver), verify::shape_of(*r.other)};
-  Rational far(1000000000);
   if (!distance) {
-    Rational smallest = far;
+    std::optional<Rational> smallest;
     for (int i = 0; i <= 256; ++i) {
       Rational x = c.range.lo + (c.range.hi - c.range.lo) * i / 256;
-      smallest = std::min(smallest, clearance_at(r, shapes, x, path_value(c.path, x), far));
+      Rational bound = clearance_at(r, shapes, x, path_value(c.path, x));
+      if (!smallest || bound < *smallest) smallest = bound;
     }
-    if (sgn(smallest) <= 0) return std::nullopt;
-    distance = round_down(smallest / 2, 3);
+    if (sgn(*smallest) <= 0) return std::nullopt;
+    distance = round_down(*smallest / 2, 3);
   }
   c.distance = *distance;
   std::vector<RationalInterval> stack{c.range};
@@ -219,17 +251,30 @@ std::optional<Certificate> certify_free_passage(const Model& model, const std::s
     RationalInterval image = r.has_follower ? path_image(c.path, piece.lo, piece.hi) : RationalInterval{0, 0};
     Rational half_driver = (piece.hi - piece.lo) / 2, half_other = (image.hi - image.lo) / 2;
     Rational needed = c.distance + reach_driver * half_driver + reach_other * half_other;
-    needed += c.boxes.empty() ? Rational(1, 1000000000000) : Rational(0);   // the verifier's nesting slack on box 0
-    Rational bound = clearance_at(r, shapes, middle(piece), middle(image), far);
+    // The verifier's nesting slack on box 0: its exact configuration lies within 1e-60 rad of the
+    // centre (relative to the parts' reach, so that it also holds at 1e-300 mm).
+    if (c.boxes.empty()) {
+      Rational reach_sum = r.driver->motion.kind == Motion::Kind::rotation ? reach_driver : Rational(0);
+      if (r.has_follower && r.other->motion.kind == Motion::Kind::rotation) reach_sum += reach_other;
+      needed += reach_sum * power_of_ten(-60);
+    }
+    Rational bound = clearance_at(r, shapes, middle(piece), middle(image), needed);   // only "enough?" matters
     if (bound >= needed) {
       c.boxes.push_back({piece, r.has_follower ? std::optional<RationalInterval>(image) : std::nullopt});
       continue;
     }
     if (bound <= c.distance || c.boxes.size() + stack.size() >= options.max_boxes) return std::nullopt;
-    // Split into enough pieces for the margin bound - distance to absorb the motion.
-    double slope = half_driver > 0 ? to_double(half_other / half_driver) : 0;
-    double allowed = to_double(bound - c.distance) / (to_double(reach_driver) + to_double(reach_other) * slope) * 0.8;
-    long parts = std::clamp(long(std::ceil(to_double(half_driver) / allowed)), 2L, 1024L);
+    // Split into enough pieces for the margin bound - distance to absorb the motion (exact
+    // rationals: the magnitudes may lie beyond double range).
+    Rational slope = sgn(half_driver) > 0 ? Rational(half_other / half_driver) : Rational(0);
+    Rational motion = reach_driver + reach_other * slope;
+    Rational ratio = sgn(motion) > 0 ? Rational(half_driver * motion / (bound - c.distance) * Rational(5, 4)) : Rational(0);
+    long parts = 1024;
+    if (ratio < 1024) {
+      mpz_class whole;
+      mpz_cdiv_q(whole.get_mpz_t(), ratio.get_num_mpz_t(), ratio.get_den_mpz_t());
+      parts = std::max(2L, whole.get_si());
+    }
     for (long i = parts; i-- > 0;)
       stack.push_back({piece.lo + (piece.hi - piece.lo) * i / parts, piece.lo + (piece.hi - piece.lo) * (i + 1) / parts});
   }
@@ -249,7 +294,9 @@ std::optional<Certificate> certify_jam(const Model& model, const std::string& fi
   if (r.has_follower != bool(query.trap.follower)) throw NumericError("the trap needs a follower range exactly when the follower moves");
   c.driver = r.driver->name;
   c.follower = r.has_follower ? r.other->name : "";
-  c.direction = query.direction >= 0 ? 1 : -1;
+  if (query.direction != 1 && query.direction != -1)
+    throw NumericError("the jam direction must be +1 or -1, not " + std::to_string(query.direction));
+  c.direction = query.direction;
   c.trap = query.trap;
   Rational far = c.direction > 0 ? c.trap.driver.hi : c.trap.driver.lo;
   RationalInterval cut_at{far, far};
@@ -288,7 +335,8 @@ std::optional<JamQuery> find_jam(const Model& model, const std::string& first, c
   const Part& d = part_of(model, driver);
   const Part& o = part_of(model, driver == first ? second : first);
   PairRoles r = pair_roles(model, first, second, driver, o.motion.kind == Motion::Kind::fixed ? "" : o.name);
-  direction = direction >= 0 ? 1 : -1;
+  if (direction != 1 && direction != -1)
+    throw NumericError("the jam direction must be +1 or -1, not " + std::to_string(direction));
   if (sgn(step) <= 0) throw NumericError("the step must be positive");
   JamQuery query{d.name, r.has_follower ? o.name : "", direction, {}};
   Rational x = start, f = follower_start;

@@ -80,7 +80,17 @@ verify::IntervalMap interval_map(const Part& part, const RationalInterval& range
 
 Rational round_down(const Rational& value, int digits) {
   if (sgn(value) == 0) return value;
-  int exponent = int(std::floor(std::log10(std::fabs(to_double(value))))) - digits + 1;
+  // floor(log10 |value|), exactly (no double: any magnitude).
+  Rational magnitude = abs(value);
+  long exponent = long(mpz_sizeinbase(magnitude.get_num_mpz_t(), 10)) - long(mpz_sizeinbase(magnitude.get_den_mpz_t(), 10));
+  auto power = [](long e) {
+    mpz_class p;
+    mpz_ui_pow_ui(p.get_mpz_t(), 10, unsigned(std::abs(e)));
+    return e >= 0 ? Rational(p) : Rational(1) / Rational(p);
+  };
+  while (power(exponent) > magnitude) --exponent;
+  while (power(exponent + 1) <= magnitude) ++exponent;
+  exponent = exponent - digits + 1;
   mpz_class scale;
   mpz_ui_pow_ui(scale.get_mpz_t(), 10, unsigned(std::abs(exponent)));
   Rational unit = exponent >= 0 ? Rational(scale) : Rational(1, 1) / Rational(scale);
@@ -149,14 +159,25 @@ ExactPosition exact_position_from_angle(const Rational& angle) {
     position.angle_error = Rational(0);
     return position;
   }
-  double turns = std::round(to_double(angle) / (2 * M_PI));
+  // Reduce to about [-pi, pi] and choose the chart (centre 0 or pi) from the middle of the
+  // enclosures: choices, not decisions (the error bound below is certified whatever is chosen).
   Interval two_pi = Interval::pi() * Interval(Rational(2));
+  Interval quotient = Interval(angle) / two_pi;
+  mpfr_t middle;
+  mpfr_init2(middle, model_detail::interval_bits);
+  mpfi_mid(middle, quotient.get());
+  mpz_class turns;
+  mpfr_get_z(turns.get_mpz_t(), middle, MPFR_RNDN);
+  mpfr_clear(middle);
   Interval reduced = Interval(angle) - two_pi * Interval(Rational(turns));
-  double approximate_angle = mpfi_get_d(reduced.get());
-  position.half_turn = std::fabs(approximate_angle) > M_PI / 2;
-  Interval shift = position.half_turn ? Interval::pi() * Interval(Rational(approximate_angle > 0 ? 1 : -1)) : Interval(Rational(0));
+  auto too_large = [&] { return NumericError("the angle " + to_decimal_string(angle) + " rad is too large to reduce to a turn at 256 bits"); };
+  if (!reduced.is_bounded()) throw too_large();
+  Rational reduced_middle = reduced.middle(), quarter = (Interval::pi() / Interval(Rational(2))).middle();
+  position.half_turn = abs(reduced_middle) > quarter;
+  Interval shift = position.half_turn ? Interval::pi() * Interval(Rational(sgn(reduced_middle))) : Interval(Rational(0));
   Interval half = (reduced - shift) / Interval(Rational(2)), tangent;
   mpfi_tan(tangent.get(), half.get());
+  if (!tangent.is_bounded()) throw too_large();
   // Round t to a multiple of 10^-18: the angle moves by at most 2 * 10^-18 rad.
   Rational grid(1, 1000000000000000000ul);
   Rational steps = tangent.middle() / grid;
@@ -167,6 +188,7 @@ ExactPosition exact_position_from_angle(const Rational& angle) {
   mpfi_atan(back.get(), Interval(position.value).get());
   Interval error = (back - half) * Interval(Rational(2)), size;
   mpfi_abs(size.get(), error.get());
+  if (!size.is_bounded()) throw too_large();
   position.angle_error = round_down(size.upper(), 2) * 2 + Rational(1, 1000000000000000000ul);
   return position;
 }
@@ -208,8 +230,13 @@ std::optional<Certificate> certify_clearance(const Model& model, const std::stri
   c.configuration = pair_positions(positions, a, b);
   verify::ExactMap map_a = exact_map(a, position_of(c.configuration, a)), map_b = exact_map(b, position_of(c.configuration, b));
   if (cspace::analyse_overlap(a, to_rigid(map_a), b, to_rigid(map_b)).relation != cspace::Overlap::apart) return std::nullopt;
+  // Capped at an upper bound of the distance (the L1 distance of two boundary points), so that
+  // nothing is lost at any magnitude.
+  Point p = map_a.apply(a.loops.at(0).edges.at(0).source), q = map_b.apply(b.loops.at(0).edges.at(0).source);
+  Rational cap = abs(p.x - q.x) + abs(p.y - q.y);
+  if (distance && *distance > cap) return std::nullopt;
   Rational bound = verify::boundary_distance_lower_bound(verify::place_over(a, verify::to_interval_map(map_a)),
-                                                         verify::place_over(b, verify::to_interval_map(map_b)), Rational(1000000000));
+                                                         verify::place_over(b, verify::to_interval_map(map_b)), cap);
   if (sgn(bound) <= 0 || (distance && bound < *distance)) return std::nullopt;
   c.distance = distance ? *distance : round_down(bound, 6);
   c.statement = "Parts '" + first + "' and '" + second + "' are at least " + to_decimal_string(c.distance) + " mm apart with " +

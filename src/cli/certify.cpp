@@ -20,8 +20,15 @@ struct CertifyArguments {
   std::string path, claim, out, pair, driver, trap;
   std::vector<std::string> overrides, at;
   std::string distance, from, to, follower_at, ratio, start, follower_start, step, travel;
-  int direction = 1;
+  std::string direction = "+1";
 };
+
+// --direction: exactly +1 (the driver's coordinate increases) or -1; "+" and "-" are synonyms.
+int direction_of(const std::string& text) {
+  if (text == "+1" || text == "1" || text == "+") return 1;
+  if (text == "-1" || text == "-") return -1;
+  throw ModelError("", "--direction must be +1 or -1 (or + / -), not '" + text + "'");
+}
 
 // An exact literal; angles may end in "deg" (then converted to rad, rounded to 1e-18).
 Rational value_of(const std::string& text, bool angle, const std::string& option) {
@@ -103,6 +110,7 @@ int run(const CertifyArguments& arguments) {
       failure = "the parts touch or overlap there, or are closer than the distance";
     }
   } else if (arguments.claim == "free" || arguments.claim == "jam") {
+    int direction = direction_of(arguments.direction);
     std::string driver_name = arguments.driver;
     if (driver_name.empty()) driver_name = a.motion.kind != Motion::Kind::fixed ? a.name : b.name;
     const Part& driver = part_named(model, driver_name);
@@ -125,7 +133,7 @@ int run(const CertifyArguments& arguments) {
       std::optional<JamQuery> query;
       if (!arguments.trap.empty()) {
         auto comma = arguments.trap.find(',');
-        query = JamQuery{driver.name, follows ? other.name : "", arguments.direction,
+        query = JamQuery{driver.name, follows ? other.name : "", direction,
                          {range_of(arguments.trap.substr(0, comma), rotates(driver), "--trap"), std::nullopt}};
         if (follows) {
           if (comma == std::string::npos) throw ModelError("", "--trap needs DRIVER_LO:HI,FOLLOWER_LO:HI for a moving follower");
@@ -139,7 +147,7 @@ int run(const CertifyArguments& arguments) {
                                                : value_of(arguments.step, rotates(driver), "--step");
         Rational travel = arguments.travel.empty() ? Rational(rotates(driver) ? Rational(6283, 1000) : Rational(100))
                                                    : value_of(arguments.travel, rotates(driver), "--travel");
-        query = find_jam(model, first, second, driver.name, start, follower, arguments.direction, step, travel);
+        query = find_jam(model, first, second, driver.name, start, follower, direction, step, travel);
         if (!query) {
           std::cerr << "hipair: cannot certify: no jam found: the motion was not blocked within the travel\n";
           return 1;
@@ -180,7 +188,7 @@ void register_certify(CLI::App& app, Action& action) {
   command->add_option("--to", arguments->to, "free: end of the driver range (default: one turn)");
   command->add_option("--follower-at", arguments->follower_at, "free: follower position at the start (default: initial)");
   command->add_option("--ratio", arguments->ratio, "free: follower moves by RATIO x driver motion (default 0: it stays)");
-  command->add_option("--direction", arguments->direction, "jam: +1 (driver coordinate increases) or -1");
+  command->add_option("--direction", arguments->direction, "jam: +1 (driver coordinate increases) or -1; + and - are synonyms");
   command->add_option("--trap", arguments->trap, "jam: the trap DLO:DHI[,FLO:FHI] (default: searched)");
   command->add_option("--start", arguments->start, "jam search: driver start (default: initial)");
   command->add_option("--follower-start", arguments->follower_start, "jam search: follower start (default: initial)");

@@ -3,7 +3,10 @@
 // docs/contact-kernels.md ("The overlap predicate") for the argument.
 //
 // Method (in the second part's body frame, where only the first part is moved):
-//  1. double bounding boxes with a generous certified margin reject far edge pairs;
+//  1. double bounding boxes from certified interval enclosures reject far edge pairs (only
+//     while every enclosure is finite and below 2^200 in magnitude, so that no interval
+//     operation overflows: a part beyond that range, e.g. with coordinates of 1e400 mm, is
+//     analysed without boxes and without the interval filter, exactly);
 //  2. each remaining edge pair is intersected exactly: a transversal crossing interior to
 //     both edges means overlap; a common piece (collinear segments, cocircular arcs) with
 //     material on the same side means overlap, on opposite sides touching; every other
@@ -22,6 +25,8 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
+#include <optional>
 
 namespace hipair::cspace {
 
@@ -78,8 +83,24 @@ Point left_perpendicular(const Point& v) { return Point{Rational(-v.y), v.x}; }
 
 // ============================================================================ placed edges
 
+// A point's coordinate for the box screens: rounded toward zero (so that for a box with double
+// ends, `lo <= x <= hi` holds for the rounded value whenever it holds for the exact one), and
+// +-DBL_MAX beyond double range (GMP's own conversion is system dependent there).
+double toward_zero(const Rational& value) {
+  mpfr_t rounded;
+  mpfr_init2(rounded, 53);
+  mpfr_set_q(rounded, value.get_mpq_t(), MPFR_RNDZ);
+  double result = mpfr_get_d(rounded, MPFR_RNDZ);
+  mpfr_clear(rounded);
+  return result;
+}
+
 struct Box {
   double xlo = 0, xhi = 0, ylo = 0, yhi = 0;
+  static Box everything() {
+    double inf = std::numeric_limits<double>::infinity();
+    return Box{-inf, inf, -inf, inf};
+  }
   bool meets(const Box& other) const {
     return xlo <= other.xhi && other.xlo <= xhi && ylo <= other.yhi && other.ylo <= yhi;
   }
@@ -127,6 +148,12 @@ bool is_endpoint(const PlacedEdge& edge, const Point& p) {
 
 using kernels::Interval;
 
+// The double intervals are used only while they are finite and at most 2^200 in magnitude:
+// then no operation of the filter (degree 4 in coordinates at most) overflows, and no
+// infinity or NaN can enter a bound. Beyond (or for NaN) the exact path alone decides.
+constexpr double tame_limit = 0x1p200;
+bool tame(const Interval& value) { return value.lo >= -tame_limit && value.hi <= tame_limit; }
+
 // Certified enclosure of a rigid map p -> (c x - s y + ox, s x + c y + oy).
 struct IntervalMap {
   Interval c{1};
@@ -141,6 +168,7 @@ struct IntervalMap {
     return IntervalMap{Interval::enclose(map.c), Interval::enclose(map.s),
                        Interval::enclose(map.offset.x), Interval::enclose(map.offset.y)};
   }
+  bool tame() const { return hipair::cspace::tame(c) && hipair::cspace::tame(s) && hipair::cspace::tame(ox) && hipair::cspace::tame(oy); }
 };
 
 // An edge's posed geometry as certified intervals (the filter stage).
@@ -151,6 +179,11 @@ struct IntervalEdge {
   int large = 0;  // arc sector wider than a half turn: 0 no, 1 yes, 2 unknown
   Interval sx, sy, tx, ty, cx, cy, radius_squared;
   Interval start_x, start_y, end_x, end_y;  // sector: counter-clockwise from start to end
+  bool tame() const {
+    for (const Interval* v : {&sx, &sy, &tx, &ty, &cx, &cy, &radius_squared, &start_x, &start_y, &end_x, &end_y})
+      if (!hipair::cspace::tame(*v)) return false;
+    return true;
+  }
 };
 
 // A part placed in the common frame by a rigid map: certified interval geometry and boxes
@@ -171,15 +204,23 @@ class PlacedPart {
     exact_.resize(refs_.size());
     total_ = Box{1e300, -1e300, 1e300, -1e300};
     loop_boxes_.assign(part.loops.size(), Box{1e300, -1e300, 1e300, -1e300});
+    filtered_ = map.tame();
     for (std::size_t i = 0; i < refs_.size(); ++i) {
       intervals_[i] = interval_edge(original(i), map);
-      boxes_[i] = box_of(intervals_[i]);
+      filtered_ = filtered_ && intervals_[i].tame();
+    }
+    for (std::size_t i = 0; i < refs_.size(); ++i) {
+      boxes_[i] = filtered_ ? box_of(intervals_[i]) : Box::everything();
       total_.add(boxes_[i].xlo, boxes_[i].ylo);
       total_.add(boxes_[i].xhi, boxes_[i].yhi);
       loop_boxes_[refs_[i].first].add(boxes_[i].xlo, boxes_[i].ylo);
       loop_boxes_[refs_[i].first].add(boxes_[i].xhi, boxes_[i].yhi);
     }
   }
+
+  /// The interval enclosures (and the boxes from them) are usable: every one is tame. When
+  /// false, every box is the whole plane and only exact tests decide.
+  bool filtered() const { return filtered_; }
 
   std::size_t size() const { return refs_.size(); }
   std::size_t loops() const { return part_.loops.size(); }
@@ -297,6 +338,7 @@ class PlacedPart {
   std::vector<Box> loop_boxes_;
   std::vector<std::optional<PlacedEdge>> exact_;
   Box total_;
+  bool filtered_ = true;
 };
 
 // ============================================================================ interval filter
@@ -410,6 +452,7 @@ Filter filter_pair(const IntervalEdge& a, const IntervalEdge& b) {
 // Ray-casting location of an interval point; nullopt when some decision is uncertain.
 std::optional<bool> inside_by_intervals(const PlacedPart& part, const Interval& px,
                                         const Interval& py) {
+  if (!part.filtered() || !tame(px) || !tame(py)) return std::nullopt;
   bool inside = false;
   for (std::size_t i = 0; i < part.size(); ++i) {
     const Box& box = part.box(i);
@@ -471,7 +514,8 @@ class OverlapAnalysis {
       if (!a.box(i).meets(b.total())) continue;
       for (std::size_t j = 0; j < b.size(); ++j) {
         if (!a.box(i).meets(b.box(j))) continue;
-        Filter filter = exact_only_ ? Filter::unknown : filter_pair(a.interval(i), b.interval(j));
+        Filter filter = exact_only_ || !a.filtered() || !b.filtered() ? Filter::unknown
+                                                                       : filter_pair(a.interval(i), b.interval(j));
         if (filter == Filter::disjoint) continue;
         if (filter == Filter::overlapping && !need_site_) return Overlap::overlapping;
         if (intersect(i, j)) return Overlap::overlapping;
@@ -495,8 +539,8 @@ class OverlapAnalysis {
   std::vector<TouchEdge> edges_through(int side, const Point& p) {
     std::vector<TouchEdge> result;
     PlacedPart& part = *parts_[side];
-    double px = p.x.get_d();
-    double py = p.y.get_d();
+    double px = toward_zero(p.x);
+    double py = toward_zero(p.y);
     for (std::size_t i = 0; i < part.size(); ++i) {
       if (!part.box(i).contains(px, py)) continue;
       const PlacedEdge& e = part.edge(i);
@@ -781,8 +825,8 @@ class OverlapAnalysis {
 
   bool locally_overlapping(const Point& p) {
     std::vector<Germ> germs;
-    double px = p.x.get_d();
-    double py = p.y.get_d();
+    double px = toward_zero(p.x);
+    double py = toward_zero(p.y);
     for (int side = 0; side < 2; ++side) {
       PlacedPart& part = *parts_[side];
       for (std::size_t i = 0; i < part.size(); ++i) {
@@ -832,7 +876,10 @@ class OverlapAnalysis {
     return false;
   }
 
-  static Point bisector(const Point& from, const Point& to, bool whole_turn) {
+  // A direction between `from` and `to` (a hint for the witness search, not a decision; the
+  // directions are normalised first so that any magnitude converts to double).
+  static Point bisector(const Point& from_direction, const Point& to_direction, bool whole_turn) {
+    Point from = approximate_unit(from_direction), to = approximate_unit(to_direction);
     double fx = from.x.get_d(), fy = from.y.get_d(), tx = to.x.get_d(), ty = to.y.get_d();
     double a = std::atan2(fy, fx);
     double b = std::atan2(ty, tx);
@@ -856,7 +903,8 @@ class OverlapAnalysis {
       // The probe (a vertex of the loop) is not on the other boundary: the loop is untouched.
       const IntervalEdge& probe_interval = part.interval(first);
       std::optional<bool> quick;
-      if (!exact_only_) quick = inside_by_intervals(other, probe_interval.sx, probe_interval.sy);
+      if (!exact_only_ && part.filtered())
+        quick = inside_by_intervals(other, probe_interval.sx, probe_interval.sy);
       if (quick && !*quick) continue;
       if (quick && *quick && !need_site_) return true;
       const Point& probe = part.edge(first).source;
@@ -888,9 +936,9 @@ class OverlapAnalysis {
     for (int k = 0; k < 16; ++k)
       directions.push_back(Point{Rational(std::cos(k * M_PI / 8 + 0.1)),
                                  Rational(std::sin(k * M_PI / 8 + 0.1))});
-    const Box& total = parts_[1]->total();
-    double size = std::max({total.xhi - total.xlo, total.yhi - total.ylo, 1e-6});
-    Rational step = Rational(size) / 4;
+    // The overlap lies within the smaller part: start at its size (a part of 1e400 mm around a
+    // puck of 1 mm would otherwise need 1300 halvings).
+    Rational step = std::min(exact_size(*parts_[0]), exact_size(*parts_[1])) / 4;
     auto inside_both = [&](const Point& direction) {
       Point candidate{Rational(site_.point.x + step * direction.x),
                       Rational(site_.point.y + step * direction.y)};
@@ -911,6 +959,31 @@ class OverlapAnalysis {
   }
 
  private:
+  // The larger side of the bounding box of a part's vertices and arc circles (approximate
+  // radii), exactly in rationals: the witness search's first scale, at any magnitude.
+  static Rational exact_size(PlacedPart& part) {
+    std::optional<Rational> xlo, xhi, ylo, yhi;
+    auto add = [&](const Rational& x, const Rational& y) {
+      if (!xlo || x < *xlo) xlo = x;
+      if (!xhi || x > *xhi) xhi = x;
+      if (!ylo || y < *ylo) ylo = y;
+      if (!yhi || y > *yhi) yhi = y;
+    };
+    for (std::size_t i = 0; i < part.size(); ++i) {
+      const PlacedEdge& e = part.edge(i);
+      add(e.source.x, e.source.y);
+      add(e.target.x, e.target.y);
+      if (e.arc) {
+        Rational r = approximate_sqrt(e.radius_squared);
+        add(Rational(e.center.x - r), Rational(e.center.y - r));
+        add(Rational(e.center.x + r), Rational(e.center.y + r));
+      }
+    }
+    if (!xlo) return Rational(1);
+    Rational size = std::max(Rational(*xhi - *xlo), Rational(*yhi - *ylo));
+    return sgn(size) > 0 ? size : Rational(1);
+  }
+
   // Directions into part `side`'s material at boundary point p.
   void material_hints(int side, const Point& p) {
     PlacedPart& part = *parts_[side];
@@ -930,8 +1003,8 @@ class OverlapAnalysis {
  public:
   // Exact location of p relative to a placed part (see locate_point).
   static PointLocation locate(PlacedPart& part, const Point& p) {
-    double px = p.x.get_d();
-    double py = p.y.get_d();
+    double px = toward_zero(p.x);
+    double py = toward_zero(p.y);
     const Box& total = part.total();
     if (!total.contains(px, py)) return PointLocation::outside;
     for (std::size_t i = 0; i < part.size(); ++i)
@@ -1131,6 +1204,7 @@ PointLocation locate_point(const Part& part, const RigidMap& map, const Point& p
   RigidMap back = inverse(map);
   PlacedPart placed(part, IntervalMap{}, {}, true);
   Point body = back.apply(p);
+  // (inside_by_intervals refuses enclosures that are not tame: a point beyond double range.)
   std::optional<bool> quick =
       inside_by_intervals(placed, Interval::enclose(body.x), Interval::enclose(body.y));
   // A certain interval answer implies the point is on no edge: an edge through it would give

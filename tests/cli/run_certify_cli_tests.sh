@@ -1,0 +1,127 @@
+#!/usr/bin/env bash
+# `hipair certify` and the `hipair-verify` executable on models and certificates written by
+# hand: clearance and free passage of squares 1 mm apart with collinear edges, interference of
+# a puck in a plate with coordinates beyond double range, forged interference certificates
+# (witness points far away whose rays graze the lever), --direction validation, rejection
+# messages that never print two different values as equal.
+# usage: run_certify_cli_tests.sh HIPAIR_BINARY HIPAIR_VERIFY_BINARY SOURCE_DIR WORK_DIR
+set -uo pipefail
+hipair=$1 verify=$2 source=$3 work=$4
+rm -rf "$work" && mkdir -p "$work"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+hash_of() { sha256sum "$1" | cut -d' ' -f1; }
+
+# ------------------------------------------------------------------ squares 1 mm apart, collinear edges
+cat >"$work/squares.json" <<'EOF'
+{ "hipair": 1, "name": "squares",
+  "parts": [
+    { "name": "slider", "motion": { "translation": { "direction": [0, 1], "limits": [-10, 10] } },
+      "loops": [ { "start": [0, 0], "edges": [ { "line_to": [2, 0] }, { "line_to": [2, 2] }, { "line_to": [0, 2] }, { "line_to": [0, 0] } ] } ] },
+    { "name": "block", "motion": "fixed",
+      "loops": [ { "start": [3, 0], "edges": [ { "line_to": [5, 0] }, { "line_to": [5, 2] }, { "line_to": [3, 2] }, { "line_to": [3, 0] } ] } ] }
+  ] }
+EOF
+for claim in clearance free; do
+  extra=()
+  [ $claim = free ] && extra=(--from 0 --to 5)
+  "$hipair" certify "$work/squares.json" --claim $claim "${extra[@]}" --out "$work/squares-$claim.json" >"$work/squares-$claim.out" 2>&1 \
+    || fail "certify --claim $claim refuses squares 1 mm apart: $(cat "$work/squares-$claim.out")"
+  "$verify" "$work/squares-$claim.json" "$work/squares.json" >"$work/squares-$claim.verify" 2>&1 \
+    || fail "hipair-verify rejects the squares' $claim certificate: $(cat "$work/squares-$claim.verify")"
+done
+"$hipair" certify "$work/squares.json" --claim clearance --distance 1 --out "$work/squares-1.json" >/dev/null 2>&1 \
+  || fail "certify --claim clearance --distance 1 refuses squares exactly 1 mm apart"
+"$hipair" certify "$work/squares.json" --claim clearance --distance 1.0000000001 --out "$work/squares-more.json" >/dev/null 2>&1 \
+  && fail "certify --claim clearance certifies more than the distance"
+
+# A hand-made clearance claim just above the true distance: the message tells the values apart.
+hash=$(hash_of "$work/squares.json")
+cat >"$work/squares-close.json" <<EOF
+{ "hipair_certificate": 1, "claim": "clearance",
+  "model": { "name": "squares", "content_hash": "$hash", "parameters": {}, "roundings": [] },
+  "pair": ["slider", "block"],
+  "clearance": { "configuration": { "slider": { "offset": "0" } }, "distance": "1.000000000000001" } }
+EOF
+"$verify" "$work/squares-close.json" "$work/squares.json" >"$work/squares-close.out" 2>&1
+[ $? -eq 1 ] || fail "hipair-verify accepts a clearance above the distance: $(cat "$work/squares-close.out")"
+grep -q "is 1, less than the claimed 1.000000000000001" "$work/squares-close.out" \
+  || fail "the clearance rejection does not show both values: $(cat "$work/squares-close.out")"
+
+# ------------------------------------------------------------------ a puck in a plate of 1e400 mm
+cat >"$work/puck.json" <<'EOF'
+{ "hipair": 1, "name": "puck-in-plate",
+  "parts": [
+    { "name": "puck", "motion": { "rotation": { "pivot": [0, 0] } }, "loops": [ { "circle": { "center": [5, 0], "radius": 1 } } ] },
+    { "name": "plate", "motion": "fixed",
+      "loops": [ { "start": ["-1e400", "-1e400"], "edges": [ { "line_to": ["1e400", "-1e400"] }, { "line_to": ["1e400", "1e400"] },
+                                                           { "line_to": ["-1e400", "1e400"] }, { "line_to": ["-1e400", "-1e400"] } ] } ] }
+  ] }
+EOF
+"$hipair" certify "$work/puck.json" --claim interference --at puck=0.3 --out "$work/puck-interference.json" >"$work/puck.out" 2>&1 \
+  || fail "certify --claim interference refuses a puck inside a plate of 1e400 mm: $(cat "$work/puck.out")"
+"$verify" "$work/puck-interference.json" "$work/puck.json" >"$work/puck.verify" 2>&1 \
+  || fail "hipair-verify rejects the puck's interference certificate: $(cat "$work/puck.verify")"
+"$hipair" certify "$work/puck.json" --claim clearance --out "$work/puck-clearance.json" >/dev/null 2>&1 \
+  && fail "certify --claim clearance certifies a puck inside a plate"
+
+# ------------------------------------------------------------------ forged interference: a lever in a huge frame
+cat >"$work/frame.json" <<'EOF'
+{ "hipair": 1, "name": "lever-in-frame",
+  "parts": [
+    { "name": "lever", "motion": { "rotation": { "pivot": [0, 0] } },
+      "loops": [ { "start": [0, -1], "edges": [ { "line_to": [9, -1] }, { "line_to": [9, 1] }, { "line_to": [0, 1] }, { "line_to": [0, -1] } ] } ] },
+    { "name": "frame", "motion": "fixed",
+      "loops": [ { "start": ["-4e11", "-4e11"], "edges": [ { "line_to": ["4e11", "-4e11"] }, { "line_to": ["4e11", "4e11"] },
+                                                         { "line_to": ["-4e11", "4e11"] }, { "line_to": ["-4e11", "-4e11"] } ] },
+                 { "start": ["-1e11", "-1e11"], "edges": [ { "line_to": ["1e11", "-1e11"] }, { "line_to": ["1e11", "1e11"] },
+                                                         { "line_to": ["-1e11", "1e11"] }, { "line_to": ["-1e11", "-1e11"] } ] } ] }
+  ] }
+EOF
+hash=$(hash_of "$work/frame.json")
+# Witness points ~1.9e11 mm away whose first verifier ray, direction (7, -63), passes within
+# ~1e-5 mm of a corner of the lever (at angle 0): the verifier of the landed tree accepted each
+# of them ("a witness point lies strictly inside both"), dropping a crossing after a rounded
+# bounding-box screen.
+for witness in '"-5250000760176000380079/250000000000", "47250006862083999957769/250000000000"' \
+               '"-21000002682673000308007/1000000000000", "189000024145056999965777/1000000000000"' \
+               '"-52500003005869999448309/2500000000000", "472500027055330000061299/2500000000000"' \
+               '"-210000025244540015511419/10000000000000", "1890000228000859998276509/10000000000000"' \
+               '"-210000054868520007687197/10000000000000", "1890000493826679999145867/10000000000000"' \
+               '"-210000052432309996215779/10000000000000", "1890000471900790000420469/10000000000000"'; do
+  cat >"$work/forged.json" <<EOF
+{ "hipair_certificate": 1, "claim": "interference",
+  "model": { "name": "lever-in-frame", "content_hash": "$hash", "parameters": {}, "roundings": [] },
+  "pair": ["lever", "frame"],
+  "interference": { "configuration": { "lever": { "tangent": "0" } }, "point": [$witness] } }
+EOF
+  "$verify" "$work/forged.json" "$work/frame.json" >"$work/forged.out" 2>&1
+  code=$?
+  [ $code -eq 1 ] || fail "hipair-verify exit $code on a forged interference witness [$witness]: $(cat "$work/forged.out")"
+  grep -q "is not strictly inside part 'lever' (it lies outside)" "$work/forged.out" \
+    || fail "forged witness [$witness]: unexpected reason: $(cat "$work/forged.out")"
+done
+
+# ------------------------------------------------------------------ --direction is exactly +1 or -1
+lever="$source/examples/models/lever-stop.json"
+for direction in 0 -7 2 forward x; do
+  "$hipair" certify "$lever" --claim jam --direction="$direction" --out "$work/jam-$direction.json" >"$work/jam.out" 2>&1
+  code=$?
+  [ $code -eq 2 ] || fail "--direction $direction: exit $code, want 2: $(cat "$work/jam.out")"
+  grep -q -- "--direction must be +1 or -1" "$work/jam.out" || fail "--direction $direction: unclear message: $(cat "$work/jam.out")"
+  [ -e "$work/jam-$direction.json" ] && fail "--direction $direction wrote a certificate"
+done
+"$hipair" certify "$lever" --claim jam --direction +1 --out "$work/jam-forward.json" >"$work/jam.out" 2>&1 \
+  || fail "--direction +1: $(cat "$work/jam.out")"
+"$verify" "$work/jam-forward.json" "$lever" | grep -q "^valid: jam: driving 'lever' forward" || fail "the forward jam does not verify"
+"$hipair" certify "$lever" --claim jam --direction -1 --out "$work/jam-backward.json" >"$work/jam.out" 2>&1
+code=$?
+{ [ $code -eq 0 ] || [ $code -eq 1 ]; } || fail "--direction -1: exit $code: $(cat "$work/jam.out")"
+[ $code -eq 1 ] && { grep -q "no jam found" "$work/jam.out" || fail "--direction -1: $(cat "$work/jam.out")"; }
+
+ls -a "$work" | grep -q '\.tmp' && fail "temporary files left behind"
+if [ $failures -ne 0 ]; then
+  echo "$failures certify CLI check(s) failed"
+  exit 1
+fi
+echo "all certify CLI checks passed"
