@@ -14,6 +14,9 @@
 
 #include <filesystem>
 #include <random>
+#include <string>
+
+#include <unistd.h>
 
 namespace {
 
@@ -26,7 +29,8 @@ int verified = 0;
 void expect_verifies(const Certificate& certificate, const fs::path& model_path, const std::string& what) {
   std::string text = write_certificate(certificate);
   EXPECT_EQ(write_certificate(read_certificate(text)), text) << what << ": the format does not round-trip";
-  fs::path file = fs::path(testing::TempDir()) / "hipair_certificate.json";
+  // one file per process: test runs in parallel (ctest -j, several checkouts) never share it
+  fs::path file = fs::path(testing::TempDir()) / (std::string("hipair_certificate_") + std::to_string(::getpid()) + ".json");
   io::write_file_atomically(file, text);
   VerificationResult result = verify_certificate_file(file, model_path);
   EXPECT_TRUE(result.valid) << what << ": " << result.reason << "\n" << text.substr(0, 3000);
