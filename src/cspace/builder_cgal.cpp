@@ -671,22 +671,24 @@ class Builder {
     return false;
   }
 
-  // The ends of a vertical edge get disjoint y bounds.
+  // The ends of a vertical edge get disjoint y bounds. A vertex's bounds only ever shrink: they
+  // are intersected with CGAL's refined interval, never replaced by it (CGAL's interval may be
+  // wider than the vertex's own certified bounds, and a vertex shared by two vertical edges of
+  // one line must keep the separation the first edge gave it; replacing the bounds undid it
+  // and label_edges then asked for a rational strictly between overlapping intervals).
   void separate_in_y(const Point& low, const Point& high, std::size_t low_id, std::size_t high_id) {
     Vertex& a = result_.vertices[low_id];
     Vertex& b = result_.vertices[high_id];
     if (a.y_exact && b.y_exact) return;
+    auto tighten = [](const Point& p, Vertex& v) {
+      p.xy().refine_y();
+      Rational lower = from_bound(p.xy().lower_bound_y()), upper = from_bound(p.xy().upper_bound_y());
+      if (lower > v.y_lower) v.y_lower = std::move(lower);
+      if (upper < v.y_upper) v.y_upper = std::move(upper);
+    };
     while (!(a.y_upper < b.y_lower)) {
-      if (!a.y_exact) {
-        low.xy().refine_y();
-        a.y_lower = from_bound(low.xy().lower_bound_y());
-        a.y_upper = from_bound(low.xy().upper_bound_y());
-      }
-      if (!b.y_exact) {
-        high.xy().refine_y();
-        b.y_lower = from_bound(high.xy().lower_bound_y());
-        b.y_upper = from_bound(high.xy().upper_bound_y());
-      }
+      if (!a.y_exact) tighten(low, a);
+      if (!b.y_exact) tighten(high, b);
     }
   }
 
