@@ -6,6 +6,7 @@
 
 #include "cspace/builder_impl.hpp"
 #include "cspace/contact_curves.hpp"
+#include "core/model_scale.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -495,7 +496,20 @@ cspace::ChartAxis tile_axis(const cspace::ChartAxis& axis, std::size_t k, std::s
   return tile;
 }
 
+CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options);
+
 CSpace build_pair(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options) {
+  // see core/model_scale.hpp: a rotation pair far outside the doubles' comfortable range is
+  // built on an exactly rescaled copy (the same C-space)
+  long shift = normalising_shift(model, {first, second});
+  if (shift == 0) return build_pair_as_is(model, first, second, options);
+  // the scaled copy lives through the build (the charts' overlap oracles read it); the built
+  // space keeps no reference to it
+  Model scaled = scaled_model(model, shift);
+  return build_pair_as_is(scaled, first, second, options);
+}
+
+CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options) {
   using namespace cspace;
   PairAxes axes = pair_axes(model, first, second);
   if (axes.dimension() == 0)
