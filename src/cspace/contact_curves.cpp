@@ -1195,6 +1195,11 @@ double part_reach(const Model& model, std::size_t part_index, const Point& centr
 // Rational bounds around a certified range, widened by a margin so that the chart edges lie
 // in free space: integers outside the range, then max(1, 10% of the length) more.
 std::pair<Rational, Rational> widened(double lo, double hi) {
+  // certified bounds beyond the range of doubles (parts of 1e300 mm and more that translate):
+  // say so rather than turn an infinity into a rational
+  if (!std::isfinite(lo) || !std::isfinite(hi))
+    throw GeometryError("a translating part's reach exceeds about 1e300 mm: give it translation limits, or "
+                        "use a smaller unit of length");
   double low = std::floor(lo);
   double high = std::ceil(hi);
   double margin = std::max(1.0, std::ceil((high - low) / 10.0));

@@ -59,20 +59,19 @@ TEST(Rational, ToDoubleRoundsToNearestEven) {
 // allocate memory" and aborting (SIGABRT, exit 134). In a child process limited to 1 GB of
 // address space, an 8 GB number cannot be allocated.
 TEST(RationalDeathTest, GmpOutOfMemoryThrowsBadAlloc) {
-  EXPECT_EXIT(
-      {
-        rlimit limit{std::size_t{1} << 30, std::size_t{1} << 30};
-        setrlimit(RLIMIT_AS, &limit);
-        hipair::use_throwing_gmp_allocation();
-        try {
-          mpz_class huge;
-          mpz_realloc2(huge.get_mpz_t(), mp_bitcnt_t{1} << 36);   // 8 GB
-          std::exit(0);
-        } catch (const std::bad_alloc&) {
-          std::exit(4);
-        }
-      },
-      ::testing::ExitedWithCode(4), "");
+  auto child = [] {
+    rlimit limit{std::size_t{1} << 30, std::size_t{1} << 30};
+    setrlimit(RLIMIT_AS, &limit);
+    hipair::use_throwing_gmp_allocation();
+    try {
+      mpz_class huge;
+      mpz_realloc2(huge.get_mpz_t(), mp_bitcnt_t{1} << 36);   // 8 GB
+      std::exit(0);
+    } catch (const std::bad_alloc&) {
+      std::exit(4);
+    }
+  };
+  EXPECT_EXIT(child(), ::testing::ExitedWithCode(4), "");
 }
 
 }  // namespace
