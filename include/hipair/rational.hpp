@@ -25,4 +25,11 @@ std::string to_decimal_string(const Rational& value, int digits = 12);
 /// Nearest double (round to nearest).
 double to_double(const Rational& value);
 
+/// Makes GMP (and MPFR, MPFI and CGAL's GMP numbers, which allocate through it) throw
+/// std::bad_alloc when memory runs out, instead of printing "GNU MP: Cannot allocate memory"
+/// and aborting. Process-wide; call it once at start-up, before any GMP number exists (the
+/// `hipair` command does). GMP's own state after such a throw is only fit to be released:
+/// the caller reports the failure and ends the computation.
+void use_throwing_gmp_allocation();
+
 }  // namespace hipair

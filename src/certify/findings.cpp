@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <new>
 
 namespace hipair {
 namespace {
@@ -49,6 +50,8 @@ std::vector<CertifiedFinding> certify_kinematic_findings(const Model& model, con
       }
       finding.certificate = certify_interference(model, first, second, positions, context);
       if (!finding.certificate) finding.note = "the parts only touch there: no overlap to certify";
+    } catch (const std::bad_alloc&) {
+      throw;   // out of memory ends the run (exit 4), it is no note
     } catch (const std::exception& error) {
       finding.note = error.what();
     }
@@ -75,6 +78,8 @@ std::vector<CertifiedFinding> certify_kinematic_findings(const Model& model, con
         auto query = find_jam(model, a.name, b.name, driver.name, start, rational_of(*position), result.direction, step,
                               Rational(3) * rational_of(margin));
         if (query) finding.certificate = certify_jam(model, a.name, b.name, *query, context);
+      } catch (const std::bad_alloc&) {
+        throw;
       } catch (const std::exception& error) {
         finding.note = error.what();
       }

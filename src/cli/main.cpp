@@ -1,12 +1,15 @@
 #include "cli/commands.hpp"
 
 #include <hipair/error.hpp>
+#include <hipair/rational.hpp>
 
 #include <exception>
 #include <iostream>
 #include <new>
 
 int main(int argc, char** argv) {
+  // out of memory inside GMP (and MPFR, CGAL) becomes std::bad_alloc: exit 4, not an abort
+  hipair::use_throwing_gmp_allocation();
   CLI::App app{
       "HIPAIR: exact contact analysis of planar mechanisms from configuration spaces.\n"
       "Models are JSON files (see docs/model-format.md)."};
@@ -32,7 +35,7 @@ int main(int argc, char** argv) {
     std::cerr << "hipair: error: " << e.what() << "\n";
     return 3;
   } catch (const std::bad_alloc&) {
-    std::cerr << "hipair: error: out of memory\n";
+    std::cerr << "hipair: error: out of memory (the computation needs more memory than the process may use)\n";
     return 4;
   } catch (const std::exception& e) {
     std::cerr << "hipair: internal error: " << e.what() << "\n";

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
+#include <new>
 #include <sstream>
 
 namespace hipair {
@@ -140,5 +142,28 @@ double to_double(const Rational& value) {
   mpfr_clear(rounded);
   return result;
 }
+
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+void* gmp_allocate(std::size_t size) {
+  void* p = std::malloc(size == 0 ? 1 : size);
+  if (!p) throw std::bad_alloc();
+  return p;
+}
+
+void* gmp_reallocate(void* old, std::size_t, std::size_t size) {
+  void* p = std::realloc(old, size == 0 ? 1 : size);
+  if (!p) throw std::bad_alloc();   // `old` stays valid and owned by its GMP number
+  return p;
+}
+
+void gmp_free(void* p, std::size_t) { std::free(p); }
+
+}  // namespace
+
+void use_throwing_gmp_allocation() { mp_set_memory_functions(gmp_allocate, gmp_reallocate, gmp_free); }
 
 }  // namespace hipair

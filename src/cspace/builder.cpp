@@ -146,7 +146,10 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input
       if (found.empty()) continue;
       if (input.certainly_blocked)
         for (const auto& [lo, hi] : found)
-          windows.emplace_back(std::max(Rational(lo), input.x.lo), std::min(Rational(hi), input.x.hi));
+          // (a chart end beyond the doubles' range encloses to an infinite cell side: no
+          // double may become a rational there, the chart end is the window's end)
+          windows.emplace_back(std::isfinite(lo) ? std::max(Rational(lo), input.x.lo) : input.x.lo,
+                               std::isfinite(hi) ? std::min(Rational(hi), input.x.hi) : input.x.hi);
     }
     kept.push_back(k);
     chart.polynomials.push_back(curve.polynomial);

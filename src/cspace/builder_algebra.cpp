@@ -391,6 +391,10 @@ int compare(const Real& a, const Real& b) {
 }
 
 Rational simplest_between(const Rational& lo, const Rational& hi) {
+  // an empty interval is a caller's bug: say so instead of dividing by zero below
+  if (!(lo < hi))
+    throw NumericError("internal: no rational strictly between " + to_exact_string(lo) + " and " +
+                       to_exact_string(hi));
   // Continued-fraction descent: smallest denominator in the open interval (lo, hi).
   mpz_class floor_lo;
   mpz_fdiv_q(floor_lo.get_mpz_t(), lo.get_num_mpz_t(), lo.get_den_mpz_t());

@@ -116,18 +116,22 @@ class Builder {
     for (const auto& side : sides_) pieces.push_back(side);
     static const std::vector<ValidityClause> no_clauses;
     static const bool debug = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
-    // curves with the same polynomial (up to a constant factor) are clipped once, together
+    // Curves with the same polynomial (up to a constant factor) are clipped once, together.
+    // Monomial factors x^i y^j are split off first: x = 0 and y = 0 are lines shared by many
+    // curves (coincident lock arcs of a zero-clearance fit give y * g(x, y)), and CGAL's
+    // arrangement handles one line once far more robustly than the same line hidden in
+    // several reducible curves (it crashed inserting such overlaps). The zero set is the same.
     std::vector<std::string> keys;   // exact text of the primitive polynomial, positive first term
+    std::vector<IntegerPolynomial2> group_polynomials;
     std::vector<std::vector<std::size_t>> groups;
-    for (std::size_t k = 0; k < curves.size(); ++k) {
+    auto add_to_group = [&](IntegerPolynomial2 normal, std::size_t k) {
       mpz_class g = 0;
       int sign = 0;
-      for (const auto& row : curves[k].coefficients)
+      for (const auto& row : normal.coefficients)
         for (const auto& c : row) {
           mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), c.get_mpz_t());
           if (sign == 0 && sgn(c) != 0) sign = sgn(c);
         }
-      IntegerPolynomial2 normal = curves[k];
       if (sgn(g) != 0)
         for (auto& row : normal.coefficients)
           for (auto& c : row) c = sign * c / g;
@@ -135,12 +139,43 @@ class Builder {
       auto it = std::find(keys.begin(), keys.end(), key);
       if (it == keys.end()) {
         keys.push_back(std::move(key));
+        group_polynomials.push_back(std::move(normal));
         groups.push_back({k});
       } else {
-        groups[static_cast<std::size_t>(it - keys.begin())].push_back(k);
+        auto& group = groups[static_cast<std::size_t>(it - keys.begin())];
+        if (std::find(group.begin(), group.end(), k) == group.end()) group.push_back(k);
       }
+    };
+    for (std::size_t k = 0; k < curves.size(); ++k) {
+      const auto& c = curves[k].coefficients;   // c[i][j]: coefficient of x^i y^j
+      std::size_t min_i = c.size(), min_j = std::numeric_limits<std::size_t>::max();
+      bool any = false;
+      for (std::size_t i = 0; i < c.size(); ++i)
+        for (std::size_t j = 0; j < c[i].size(); ++j)
+          if (sgn(c[i][j]) != 0) {
+            any = true;
+            min_i = std::min(min_i, i);
+            min_j = std::min(min_j, j);
+          }
+      if (!any || (min_i == 0 && min_j == 0)) {
+        add_to_group(curves[k], k);
+        continue;
+      }
+      IntegerPolynomial2 rest;
+      rest.coefficients.assign(c.size() - min_i, {});
+      bool constant = true;
+      for (std::size_t i = min_i; i < c.size(); ++i) {
+        auto& row = rest.coefficients[i - min_i];
+        if (c[i].size() > min_j) row.assign(c[i].begin() + static_cast<std::ptrdiff_t>(min_j), c[i].end());
+        for (std::size_t j = 0; j < row.size(); ++j)
+          if (sgn(row[j]) != 0 && (i > min_i || j > 0)) constant = false;
+      }
+      if (min_i > 0) add_to_group(IntegerPolynomial2{{{mpz_class(0)}, {mpz_class(1)}}}, k);   // x
+      if (min_j > 0) add_to_group(IntegerPolynomial2{{{mpz_class(0), mpz_class(1)}}}, k);     // y
+      if (!constant) add_to_group(std::move(rest), k);
     }
-    for (const auto& group : groups) {
+    for (std::size_t group_index = 0; group_index < groups.size(); ++group_index) {
+      const auto& group = groups[group_index];
       std::size_t k = group.front();
       std::vector<const std::vector<ValidityClause>*> alternatives;
       for (std::size_t member : group) alternatives.push_back(member < validity.size() ? &validity[member] : &no_clauses);
@@ -156,7 +191,7 @@ class Builder {
       }
       auto curve_start = Clock::now();
       std::size_t before = pieces.size();
-      clip(curves[k], alternatives, restricted ? &group_windows : nullptr, pieces, isolated);
+      clip(group_polynomials[group_index], alternatives, restricted ? &group_windows : nullptr, pieces, isolated);
       if (debug)
         std::fprintf(stderr, "  clip curve %zu: %zu pieces, %.4f s\n", k, pieces.size() - before, seconds_since(curve_start));
     }
@@ -671,22 +706,24 @@ class Builder {
     return false;
   }
 
-  // The ends of a vertical edge get disjoint y bounds.
+  // The ends of a vertical edge get disjoint y bounds. A vertex's bounds only ever shrink: they
+  // are intersected with CGAL's refined interval, never replaced by it (CGAL's interval may be
+  // wider than the vertex's own certified bounds, and a vertex shared by two vertical edges of
+  // one line must keep the separation the first edge gave it; replacing the bounds undid it
+  // and label_edges then asked for a rational strictly between overlapping intervals).
   void separate_in_y(const Point& low, const Point& high, std::size_t low_id, std::size_t high_id) {
     Vertex& a = result_.vertices[low_id];
     Vertex& b = result_.vertices[high_id];
     if (a.y_exact && b.y_exact) return;
+    auto tighten = [](const Point& p, Vertex& v) {
+      p.xy().refine_y();
+      Rational lower = from_bound(p.xy().lower_bound_y()), upper = from_bound(p.xy().upper_bound_y());
+      if (lower > v.y_lower) v.y_lower = std::move(lower);
+      if (upper < v.y_upper) v.y_upper = std::move(upper);
+    };
     while (!(a.y_upper < b.y_lower)) {
-      if (!a.y_exact) {
-        low.xy().refine_y();
-        a.y_lower = from_bound(low.xy().lower_bound_y());
-        a.y_upper = from_bound(low.xy().upper_bound_y());
-      }
-      if (!b.y_exact) {
-        high.xy().refine_y();
-        b.y_lower = from_bound(high.xy().lower_bound_y());
-        b.y_upper = from_bound(high.xy().upper_bound_y());
-      }
+      if (!a.y_exact) tighten(low, a);
+      if (!b.y_exact) tighten(high, b);
     }
   }
 

@@ -6,6 +6,7 @@
 
 #include "cspace/builder_impl.hpp"
 #include "cspace/contact_curves.hpp"
+#include "core/model_scale.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -58,20 +59,53 @@ double angle_in_span(double angle, double start, double sweep) {
   return d / std::fabs(sweep);
 }
 
-std::vector<EdgeGeometry> edges_of(const Part& part) {
+// A length in the tester's unit of 2^exponent mm, as a double (exact scaling, then one rounding).
+double scaled(const Rational& value, long exponent) {
+  Rational q = value;
+  if (exponent >= 0)
+    mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(exponent));
+  else
+    mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(-exponent));
+  return q.get_d();
+}
+
+// The exponent of the largest coordinate of the parts (points, centres, pivots): lengths
+// divided by 2^exponent are about 1 in size, so that the doubles of this heuristic neither
+// overflow (plates of 1e400 mm) nor lose small features to rounding at any scale.
+long scale_exponent(const std::vector<const Part*>& parts) {
+  Rational largest = 0;
+  auto see = [&](const Rational& value) {
+    if (abs(value) > largest) largest = abs(value);
+  };
+  for (const Part* part : parts) {
+    see(part->motion.pivot.x);
+    see(part->motion.pivot.y);
+    for (const auto& loop : part->loops)
+      for (const auto& edge : loop.edges)
+        for (const Point* p : {&edge.source, &edge.target, &edge.center}) {
+          see(p->x);
+          see(p->y);
+        }
+  }
+  if (sgn(largest) == 0) return 0;
+  return static_cast<long>(mpz_sizeinbase(largest.get_num_mpz_t(), 2)) -
+         static_cast<long>(mpz_sizeinbase(largest.get_den_mpz_t(), 2));
+}
+
+std::vector<EdgeGeometry> edges_of(const Part& part, long exponent) {
   std::vector<EdgeGeometry> edges;
   for (const auto& loop : part.loops)
     for (const auto& edge : loop.edges) {
       EdgeGeometry g;
-      g.ax = edge.source.x.get_d();
-      g.ay = edge.source.y.get_d();
-      g.bx = edge.target.x.get_d();
-      g.by = edge.target.y.get_d();
+      g.ax = scaled(edge.source.x, exponent);
+      g.ay = scaled(edge.source.y, exponent);
+      g.bx = scaled(edge.target.x, exponent);
+      g.by = scaled(edge.target.y, exponent);
       if (edge.is_arc()) {
         g.arc = true;
-        g.cx = edge.center.x.get_d();
-        g.cy = edge.center.y.get_d();
-        g.r = std::sqrt(edge.radius_squared.get_d());
+        g.cx = scaled(edge.center.x, exponent);
+        g.cy = scaled(edge.center.y, exponent);
+        g.r = std::hypot(g.ax - g.cx, g.ay - g.cy);
         g.ccw = edge.ccw;
         g.start = std::atan2(g.ay - g.cy, g.ax - g.cx);
         double end = std::atan2(g.by - g.cy, g.bx - g.cx);
@@ -120,9 +154,14 @@ int crossings(const EdgeGeometry& e, double px, double py) {
   return count;
 }
 
-std::vector<Disk> inscribed_disks(const Part& part, std::size_t limit) {
-  std::vector<EdgeGeometry> edges = edges_of(part);
+std::vector<Disk> inscribed_disks(const Part& part, std::size_t limit, long exponent) {
+  std::vector<EdgeGeometry> edges = edges_of(part, exponent);
   if (edges.empty()) return {};
+  // every coordinate finite: lengths were divided by the largest coordinate's power of two
+  for (const auto& e : edges)
+    if (!std::isfinite(e.ax) || !std::isfinite(e.ay) || !std::isfinite(e.bx) || !std::isfinite(e.by) ||
+        !std::isfinite(e.cx) || !std::isfinite(e.cy) || !std::isfinite(e.r))
+      return {};
   double min_x = 1e300, min_y = 1e300, max_x = -1e300, max_y = -1e300;
   for (const auto& e : edges)
     for (auto [x, y] : {std::pair{e.ax, e.ay}, std::pair{e.bx, e.by}}) {
@@ -150,6 +189,7 @@ std::vector<Disk> inscribed_disks(const Part& part, std::size_t limit) {
       mx = 0.5 * (e.ax + e.bx);
       my = 0.5 * (e.ay + e.by);
       length = std::hypot(e.bx - e.ax, e.by - e.ay);
+      if (!(length > 0)) continue;   // a feature below the doubles' resolution at this scale
       nx = -(e.by - e.ay) / length;
       ny = (e.bx - e.ax) / length;
     } else {
@@ -157,6 +197,7 @@ std::vector<Disk> inscribed_disks(const Part& part, std::size_t limit) {
       mx = e.cx + e.r * std::cos(middle);
       my = e.cy + e.r * std::sin(middle);
       length = e.r * std::fabs(e.sweep);
+      if (!(e.r > 0) || !(length > 0)) continue;
       double toward_centre = e.ccw ? 1 : -1;
       nx = toward_centre * (e.cx - mx) / e.r;
       ny = toward_centre * (e.cy - my) / e.r;
@@ -171,6 +212,7 @@ std::vector<Disk> inscribed_disks(const Part& part, std::size_t limit) {
       count += crossings(e, px, py);
       distance = std::min(distance, distance_to(e, px, py));
     }
+    if (!std::isfinite(px) || !std::isfinite(py) || !std::isfinite(distance)) continue;
     if (count % 2 == 0 || distance <= 1e-9 * (1 + std::fabs(px) + std::fabs(py))) continue;
     // double rounding in the distance is far below 1e-9 relative: shrink by that much
     disks.push_back({px, py, distance * (1 - 1e-9) - 1e-9 * (1 + std::fabs(px) + std::fabs(py))});
@@ -200,18 +242,22 @@ struct PoseRange {
 
 class BlockedTester {
  public:
-  BlockedTester(const Model& model, const cspace::PairAxes& axes) : model_(model), axes_(axes) {
+  BlockedTester(const Model& model, const cspace::PairAxes& axes)
+      : model_(model), axes_(axes),
+        exponent_(scale_exponent({&model.parts[axes.first], &model.parts[axes.second]})) {
     // enough disks that every tooth of a many-toothed part gets some (the operating region's
     // flood must see blocked space between neighbouring channels)
     for (int k = 0; k < 2; ++k) {
       const Part& part = model.parts[k == 0 ? axes.first : axes.second];
       std::size_t edges = 0;
       for (const Loop& loop : part.loops) edges += loop.edges.size();
-      disks_[k] = inscribed_disks(part, std::max<std::size_t>(150, 2 * edges));
+      disks_[k] = inscribed_disks(part, std::max<std::size_t>(150, 2 * edges), exponent_);
     }
     for (int k = 0; k < 2; ++k) {
       const Motion& motion = model.parts[k == 0 ? axes.first : axes.second].motion;
-      for (auto& d : disks_[k]) d.rho = std::hypot(d.x - motion.pivot.x.get_d(), d.y - motion.pivot.y.get_d());
+      pivot_[k][0] = scaled(motion.pivot.x, exponent_);
+      pivot_[k][1] = scaled(motion.pivot.y, exponent_);
+      for (auto& d : disks_[k]) d.rho = std::hypot(d.x - pivot_[k][0], d.y - pivot_[k][1]);
     }
   }
   bool usable() const { return !disks_[0].empty() && !disks_[1].empty(); }
@@ -233,8 +279,12 @@ class BlockedTester {
         ranges[k].angle = 0.5 * (a + b);
         ranges[k].angle_half_width = 0.5 * (b - a) + 1e-12;
       } else {
-        ranges[k].offset = 0.5 * (range.lo + range.hi);
-        ranges[k].offset_half_width = 0.5 * (range.hi - range.lo) + 1e-12;
+        // chart offsets are in mm: into the tester's unit (out of double range: no claim)
+        double lo = std::ldexp(range.lo, static_cast<int>(std::clamp<long>(-exponent_, -4000, 4000)));
+        double hi = std::ldexp(range.hi, static_cast<int>(std::clamp<long>(-exponent_, -4000, 4000)));
+        if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
+        ranges[k].offset = 0.5 * (lo + hi);
+        ranges[k].offset_half_width = 0.5 * (hi - lo) + 1e-12;
       }
     }
     // posed disks: centre at the middle pose, plus an error radius (scratch buffers per thread)
@@ -249,7 +299,7 @@ class BlockedTester {
     for (int k = 0; k < 2; ++k) {
       const Part& part = model_.parts[k == 0 ? axes_.first : axes_.second];
       const Motion& motion = part.motion;
-      double px = motion.pivot.x.get_d(), py = motion.pivot.y.get_d();
+      double px = pivot_[k][0], py = pivot_[k][1];
       double cos_a = std::cos(ranges[k].angle), sin_a = std::sin(ranges[k].angle);
       double dx = motion.direction.x.get_d(), dy = motion.direction.y.get_d();
       for (const auto& d : disks_[k]) {
@@ -299,6 +349,8 @@ class BlockedTester {
  private:
   const Model& model_;
   cspace::PairAxes axes_;
+  long exponent_;            // lengths in units of 2^exponent_ mm
+  double pivot_[2][2] = {};  // the parts' pivots in that unit
   std::vector<Disk> disks_[2];
 };
 
@@ -444,7 +496,20 @@ cspace::ChartAxis tile_axis(const cspace::ChartAxis& axis, std::size_t k, std::s
   return tile;
 }
 
+CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options);
+
 CSpace build_pair(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options) {
+  // see core/model_scale.hpp: a rotation pair far outside the doubles' comfortable range is
+  // built on an exactly rescaled copy (the same C-space)
+  long shift = normalising_shift(model, {first, second});
+  if (shift == 0) return build_pair_as_is(model, first, second, options);
+  // the scaled copy lives through the build (the charts' overlap oracles read it); the built
+  // space keeps no reference to it
+  Model scaled = scaled_model(model, shift);
+  return build_pair_as_is(scaled, first, second, options);
+}
+
+CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options) {
   using namespace cspace;
   PairAxes axes = pair_axes(model, first, second);
   if (axes.dimension() == 0)

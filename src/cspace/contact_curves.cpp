@@ -304,8 +304,34 @@ std::vector<Core> inscribed_disks(const Part& part) {
     for (const Edge& edge : loop.edges) edges.push_back(&edge);
   std::vector<Core> cores;
   for (const Edge* edge : edges) {
-    double sx = edge->source.x.get_d(), sy = edge->source.y.get_d();
-    double tx = edge->target.x.get_d(), ty = edge->target.y.get_d();
+    // Candidates are guessed in doubles in the edge's own frame: origin at its (exact) source,
+    // unit 2^k about its size, so that no coordinate over- or underflows at any scale the model
+    // format admits (1e-300 mm features, 1e400 mm plates). They are then mapped back exactly and
+    // certified (interval distance bound, exact location): the guess decides nothing.
+    const Point& origin = edge->source;
+    Rational extent = abs(edge->target.x - origin.x) + abs(edge->target.y - origin.y);
+    if (edge->is_arc()) extent += abs(edge->center.x - origin.x) + abs(edge->center.y - origin.y);
+    if (sgn(extent) == 0) continue;
+    const long k = static_cast<long>(mpz_sizeinbase(extent.get_num_mpz_t(), 2)) -
+                   static_cast<long>(mpz_sizeinbase(extent.get_den_mpz_t(), 2));
+    auto local = [&](const Rational& value, const Rational& base) {
+      Rational q = value - base;
+      if (k >= 0)
+        mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(k));
+      else
+        mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(-k));
+      return q.get_d();
+    };
+    auto global = [&](double value, const Rational& base) {
+      Rational q(value);
+      if (k >= 0)
+        mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(k));
+      else
+        mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(-k));
+      return Rational(base + q);
+    };
+    const double sx = 0, sy = 0;
+    const double tx = local(edge->target.x, origin.x), ty = local(edge->target.y, origin.y);
     for (double fraction : {0.25, 0.5, 0.75}) {
       double mx, my, nx, ny, scale;
       if (!edge->is_arc()) {
@@ -315,8 +341,8 @@ std::vector<Core> inscribed_disks(const Part& part) {
         nx = -(ty - sy) / scale;
         ny = (tx - sx) / scale;
       } else {
-        double kx = edge->center.x.get_d(), ky = edge->center.y.get_d();
-        double r = std::sqrt(edge->radius_squared.get_d());
+        double kx = local(edge->center.x, origin.x), ky = local(edge->center.y, origin.y);
+        double r = std::hypot(kx - sx, ky - sy);   // |centre - source|, in the local unit
         double a0 = std::atan2(sy - ky, sx - kx), a1 = std::atan2(ty - ky, tx - kx);
         if (!edge->ccw) std::swap(a0, a1);
         double span = a1 - a0;
@@ -337,9 +363,11 @@ std::vector<Core> inscribed_disks(const Part& part) {
       };
       std::vector<Candidate> candidates;
       candidates.reserve(6);
-      for (int k = 1; k <= 6; ++k) {
-        double step = scale / double(1 << k);
-        Rational px(mx + step * nx), py(my + step * ny);
+      for (int depth = 1; depth <= 6; ++depth) {
+        double step = scale / double(1 << depth);
+        double lx = mx + step * nx, ly = my + step * ny;
+        if (!std::isfinite(lx) || !std::isfinite(ly)) continue;
+        Rational px = global(lx, origin.x), py = global(ly, origin.y);
         Interval cx = Interval::enclose(px), cy = Interval::enclose(py);
         double radius = 1e300;
         for (const Edge* other : edges) radius = std::min(radius, distance_lower_bound(*other, cx, cy));
@@ -1167,6 +1195,11 @@ double part_reach(const Model& model, std::size_t part_index, const Point& centr
 // Rational bounds around a certified range, widened by a margin so that the chart edges lie
 // in free space: integers outside the range, then max(1, 10% of the length) more.
 std::pair<Rational, Rational> widened(double lo, double hi) {
+  // certified bounds beyond the range of doubles (parts of 1e300 mm and more that translate):
+  // say so rather than turn an infinity into a rational
+  if (!std::isfinite(lo) || !std::isfinite(hi))
+    throw GeometryError("a translating part's reach exceeds about 1e300 mm: give it translation limits, or "
+                        "use a smaller unit of length");
   double low = std::floor(lo);
   double high = std::ceil(hi);
   double margin = std::max(1.0, std::ceil((high - low) / 10.0));

@@ -1,6 +1,7 @@
 // hipair::analyze_kinematics: drives the chain over the requested range on a grid, locates
 // every contact change between grid points by bisection on exact slices, and collects the
 // pieces, events, samples, play, contact usage, paths and reversal checks.
+#include "core/model_scale.hpp"
 #include "kinematics/engine.hpp"
 
 #include <hipair/error.hpp>
@@ -522,6 +523,16 @@ struct Sweep {
 }  // namespace
 
 KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions& options, const std::vector<CSpace>& spaces) {
+  {
+    // a rotation-only mechanism far outside the doubles' range is analysed exactly rescaled
+    // (core/model_scale.hpp): the same angles, and its C-spaces are the same charts
+    std::vector<std::size_t> parts(model.parts.size());
+    for (std::size_t k = 0; k < parts.size(); ++k) parts[k] = k;
+    if (long shift = normalising_shift(model, parts); shift != 0) {
+      Model scaled = scaled_model(model, shift);
+      return analyze_kinematics(scaled, options, spaces);
+    }
+  }
   auto clock_start = std::chrono::steady_clock::now();
   KinematicsResult result;
   result.model_name = model.name;

@@ -284,9 +284,12 @@ class Painter {
     const CSpaceChart& first = impl_.public_charts.front();
     auto ticks = [&](bool x_axis, const Range& range, bool rotation) {
       double step = rotation ? 45 : io::nice_length((range.hi - range.lo) / 6);
-      double start = std::ceil(range.lo / step - 1e-9) * step;
-      // tolerances relative to the step: a range of 1e-300 mm gets its ticks, and ends
-      for (double v = start; v <= range.hi + step * 1e-9; v += step) {
+      double first = std::ceil(range.lo / step - 1e-9);
+      // by index, with tolerances relative to the step: `v += step` never ends where step is
+      // below the spacing of doubles at v, and a range of 1e-300 mm gets its ticks and ends
+      for (int i = 0; i <= 100; ++i) {
+        double v = (first + i) * step;
+        if (!(v <= range.hi + step * 1e-9)) break;
         io::SvgStyle tick{"none", "black"};
         tick.stroke_width = 0.5;
         if (x_axis) {
@@ -361,11 +364,15 @@ class Painter {
       double y = impl_.dimension == 2 && impl_.charts.front().y_axis.kind == ChartAxis::Kind::rotation
                      ? mark.y * 180 / std::numbers::pi
                      : mark.y;
-      // bring angles into the plotted window
-      if (impl_.charts.front().x_axis.kind == ChartAxis::Kind::rotation)
-        while (x < x_range_.lo) x += 360;
+      // bring angles into the plotted window (in one step: adding 360 in a loop never ends
+      // for a coordinate far below the window, where x + 360 == x)
+      auto into_window = [](double angle, double lo) {
+        return angle < lo ? angle + 360 * std::ceil((lo - angle) / 360) : angle;
+      };
+      if (impl_.charts.front().x_axis.kind == ChartAxis::Kind::rotation) x = into_window(x, x_range_.lo);
       if (impl_.dimension == 2 && impl_.charts.front().y_axis.kind == ChartAxis::Kind::rotation)
-        while (y < y_range_.lo) y += 360;
+        y = into_window(y, y_range_.lo);
+      if (!std::isfinite(x) || !std::isfinite(y)) continue;
       double wy = impl_.dimension == 2 ? Y(y) : plot_height_ / 2;
       svg.circle(X(x), wy, 2.5, io::SvgStyle{"black", "white"});
       if (!mark.label.empty()) svg.text(X(x) + 4, wy + 3, mark.label, 6, "start");

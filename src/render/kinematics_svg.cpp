@@ -28,12 +28,31 @@ struct Panel {
   double y(double value) const { return bottom + (value - y_min) / (y_max - y_min) * height; }
 };
 
-void nice_range(double& lo, double& hi) {
-  if (!(hi > lo)) {
-    double middle = std::isfinite(lo) ? lo : 0;
-    lo = middle - 1;
-    hi = middle + 1;
+// A range wide enough to be drawn: at least 1e-9 of its magnitude (a jammed run's driver may
+// move by less than a double's spacing at its position).
+void drawable_range(double& lo, double& hi) {
+  double middle = std::isfinite(lo) ? (std::isfinite(hi) ? lo / 2 + hi / 2 : lo) : (std::isfinite(hi) ? hi : 0);
+  double least = 1e-9 * std::max(1.0, std::fabs(middle));
+  if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi - lo >= least)) {
+    lo = middle - least;
+    hi = middle + least;
   }
+}
+
+// Calls draw(v) for the multiples v of a nice step in [lo, hi] (at most 100 of them).
+template <class Draw>
+void for_each_tick(double lo, double hi, double parts, Draw draw) {
+  double step = io::nice_length((hi - lo) / parts);
+  double first = std::ceil(lo / step);
+  for (int i = 0; i <= 100; ++i) {
+    double v = (first + i) * step;
+    if (v > hi + 1e-9 * step) break;
+    draw(v);
+  }
+}
+
+void nice_range(double& lo, double& hi) {
+  drawable_range(lo, hi);
   double step = io::nice_length((hi - lo) / 6);
   lo = std::floor(lo / step) * step;
   hi = std::ceil(hi / step) * step;
@@ -47,16 +66,14 @@ void draw_axes(io::SvgWriter& svg, const Panel& panel, const std::string& x_labe
   io::SvgStyle grid;
   grid.stroke = "#ddd";
   grid.stroke_width = 0.6;
-  double x_step = io::nice_length((panel.x_max - panel.x_min) / 8);
-  for (double v = std::ceil(panel.x_min / x_step) * x_step; v <= panel.x_max + 1e-9 * x_step; v += x_step) {
+  for_each_tick(panel.x_min, panel.x_max, 8, [&](double v) {
     svg.line(panel.x(v), panel.bottom, panel.x(v), panel.bottom + panel.height, grid);
     svg.text(panel.x(v), panel.bottom - 14, label_number(v), 11);
-  }
-  double y_step = io::nice_length((panel.y_max - panel.y_min) / 6);
-  for (double v = std::ceil(panel.y_min / y_step) * y_step; v <= panel.y_max + 1e-9 * y_step; v += y_step) {
+  });
+  for_each_tick(panel.y_min, panel.y_max, 6, [&](double v) {
     svg.line(panel.left, panel.y(v), panel.left + panel.width, panel.y(v), grid);
     svg.text(panel.left - 6, panel.y(v) - 4, label_number(v), 11, "end");
-  }
+  });
   svg.rectangle(panel.left, panel.bottom, panel.width, panel.height, frame);
   svg.text(panel.left + panel.width / 2, panel.bottom - 32, x_label, 12);
   svg.text(panel.left - 8, panel.bottom + panel.height + 8, y_label, 12, "end");
@@ -78,7 +95,7 @@ std::string kinematics_plot_svg(const KinematicsResult& result, double pixel_wid
     x_min = std::min(result.samples.front().driver, result.samples.back().driver) * driver_scale;
     x_max = std::max(result.samples.front().driver, result.samples.back().driver) * driver_scale;
   }
-  if (!(x_max > x_min)) x_max = x_min + 1;
+  drawable_range(x_min, x_max);
   std::string x_label = result.driver + (rot ? " angle (deg)" : " offset (mm)");
   double top = total - 70;
   for (std::size_t f = 0; f < followers; ++f) {
@@ -176,6 +193,8 @@ std::string cspace_path_svg(const CSpaceRaster& raster, const PairPath& path, co
   panel.x_max = raster.x_hi * xs;
   panel.y_min = raster.y_lo * ys;
   panel.y_max = raster.y_hi * ys;
+  drawable_range(panel.x_min, panel.x_max);
+  drawable_range(panel.y_min, panel.y_max);
   io::SvgStyle blocked;
   blocked.fill = "#9a9a9a";
   blocked.stroke = "none";

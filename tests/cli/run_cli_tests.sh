@@ -164,6 +164,29 @@ grep -q "guided with zero clearance" "$work/exact-fit.txt" || fail "analyze does
 grep -q "touching edges" "$work/exact-fit-stats.txt" || fail "cspace --stats shows no touching edge for the exact fit"
 grep -q "zero clearance" "$work/exact-fit-cspace.svg" || fail "the C-space picture does not draw the zero-clearance channel"
 
+# Out of memory (also inside GMP, which aborted with "GNU MP: Cannot allocate memory", exit
+# 134): exit 4 and one line, no output file.
+(ulimit -v 200000; "$hipair" cspace "$source/examples/models/spur-gears.json" --json "$work/oom.json" \
+  >/dev/null 2>"$work/oom.err")
+code=$?
+[ $code -eq 4 ] || fail "out of memory: exit $code, want 4: $(tail -c 300 "$work/oom.err")"
+[ "$(wc -l <"$work/oom.err")" -eq 1 ] && grep -q "^hipair: error: out of memory" "$work/oom.err" \
+  || fail "out of memory: not one clear line: $(tail -c 300 "$work/oom.err")"
+[ -e "$work/oom.json" ] && fail "out of memory left an output file"
+
+# A Geneva pair whose locking clearance is closed (locking arc radius = wheel's locking
+# radius): the jammed run with its pictures finishes (the C-space build crashed in CGAL on the
+# coincident arcs, or the picture never finished).
+sed 's/"lock-outer-radius": { "nominal": 46.0/"lock-outer-radius": { "nominal": 46.683/' \
+  "$source/examples/models/geneva-template.json" >"$work/geneva-closed.json"
+timeout 120 "$hipair" analyze "$work/geneva-closed.json" --out "$work/geneva-closed" >"$work/geneva-closed.out" 2>&1
+code=$?
+[ $code -eq 0 ] || fail "analyze --out on the closed-clearance Geneva: exit $code: $(tail -c 300 "$work/geneva-closed.out")"
+for file in report.json kinematics.csv kinematics.svg cspace-driver-wheel.svg; do
+  [ -s "$work/geneva-closed/$file" ] || fail "closed-clearance Geneva: no $file"
+done
+grep -q "</svg>" "$work/geneva-closed/cspace-driver-wheel.svg" 2>/dev/null || fail "closed-clearance Geneva: C-space SVG incomplete"
+
 # No stray temporary files left by atomic writes.
 ls -a "$work" | grep -q '\.tmp' && fail "temporary files left behind"
 

@@ -4,6 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
+#include <cstdlib>
+#include <new>
+
 namespace {
 
 using hipair::parse_rational;
@@ -46,6 +51,27 @@ TEST(Rational, ToDoubleRoundsToNearestEven) {
   EXPECT_EQ(hipair::to_double(parse_rational("9007199254740995")), 9007199254740996.0);
   EXPECT_EQ(hipair::to_double(parse_rational("46.683")), 46.683);
   EXPECT_EQ(hipair::to_double(parse_rational("1e-30")), 1e-30);
+}
+
+
+// Out of memory inside GMP: with use_throwing_gmp_allocation() an allocation GMP cannot get
+// throws std::bad_alloc (the CLI maps it to exit 4) instead of printing "GNU MP: Cannot
+// allocate memory" and aborting (SIGABRT, exit 134). In a child process limited to 1 GB of
+// address space, an 8 GB number cannot be allocated.
+TEST(RationalDeathTest, GmpOutOfMemoryThrowsBadAlloc) {
+  auto child = [] {
+    rlimit limit{std::size_t{1} << 30, std::size_t{1} << 30};
+    setrlimit(RLIMIT_AS, &limit);
+    hipair::use_throwing_gmp_allocation();
+    try {
+      mpz_class huge;
+      mpz_realloc2(huge.get_mpz_t(), mp_bitcnt_t{1} << 36);   // 8 GB
+      std::exit(0);
+    } catch (const std::bad_alloc&) {
+      std::exit(4);
+    }
+  };
+  EXPECT_EXIT(child(), ::testing::ExitedWithCode(4), "");
 }
 
 }  // namespace

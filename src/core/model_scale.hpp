@@ -1,0 +1,28 @@
+// Exact rescaling of a model by a power of two (internal).
+//
+// A mechanism whose parts only rotate (or are fixed) has the same configuration space, in
+// half-angle tangent charts, and the same kinematics (angles) when every length is multiplied
+// by one positive factor: contact equations are homogeneous in lengths and overlap does not
+// depend on the unit. The builder's and the kinematic slicer's double filters (culling,
+// interval boxes, inscribed disks) are only meaningful for coordinates well inside the range
+// of doubles, while the model format admits 1e-300 mm features and 1e400 mm plates. Such a
+// model is analysed on a copy scaled by an exact power of two to coordinates of about 2^6 mm.
+#pragma once
+
+#include <hipair/model.hpp>
+
+#include <cstddef>
+#include <vector>
+
+namespace hipair {
+
+/// The power of two to divide the lengths of `parts` by before building or slicing: 0 when
+/// a part translates (its coordinate is a length) or the coordinates already lie between about
+/// 1e-9 mm and 1e18 mm; else the exponent that brings the largest coordinate near 2^6.
+long normalising_shift(const Model& model, const std::vector<std::size_t>& parts);
+
+/// The model with every length (points, centres, pivots, offsets, limits) divided by 2^shift,
+/// exactly; radii squared by 4^shift.
+Model scaled_model(const Model& model, long shift);
+
+}  // namespace hipair
