@@ -105,10 +105,10 @@ std::string case_name(const ::testing::TestParamInfo<GearCase>& info) {
   return std::to_string(info.param.z1) + "_" + std::to_string(info.param.z2);
 }
 
-// tooth counts 4..6, ratios 1, 3/2, 2, 3 (the CI budget: each pair's region costs 3-20 s)
+// tooth counts 4 and 5, ratios 3/2, 2, 3 (ratio 1: the 6 x 6 pair of cspace_region_test);
+// the CI budget: each pair's region costs 5-15 s of CPU
 INSTANTIATE_TEST_SUITE_P(Grid, GearSweep,
-                         ::testing::Values(GearCase{4, 4}, GearCase{4, 6}, GearCase{4, 8}, GearCase{4, 12},
-                                           GearCase{5, 10}),
+                         ::testing::Values(GearCase{4, 6}, GearCase{4, 8}, GearCase{4, 12}, GearCase{5, 10}),
                          case_name);
 
 class GearSweepSlow : public ::testing::TestWithParam<GearCase> {};
