@@ -825,7 +825,6 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
     const PieceBox& box = at.boxes[first.piece];
     result.chart = box.chart;
     result.chart_point = {range_of(box.x_lo, box.x_hi), range_of(box.y_lo, box.y_hi)};
-    const ChartData& chart = impl.charts[box.chart];
     // the real edge crossed: among the real edges of the charts met whose certified boxes meet
     // the bracket's, prefer one between the start cell and the cell entered carrying a
     // possible curve, then one between the two cells, then one carrying a possible curve
