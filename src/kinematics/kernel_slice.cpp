@@ -310,32 +310,6 @@ class KernelSlicer final : public PairSlicer {
       result.points[i].touching =
           cspace::classify_overlap(model_, axes_, chart.x_axis, chart.y_axis, q) == cspace::Overlap::touching;
     }
-    // zero-clearance fits: a point with blocked space on both sides may be a touching
-    // configuration (a channel of zero width) or a curve through blocked space; the oracle
-    // decides at the point when it is rational (an exact root, or the root of a linear factor)
-    for (std::size_t i = 0; i < result.points.size(); ++i) {
-      if (result.kinds[i] != SliceKind::blocked || result.kinds[i + 1] != SliceKind::blocked) continue;
-      const Real& root = result.points[i].value;
-      std::optional<Rational> exact;
-      if (root.exact) {
-        exact = root.lower;
-      } else if (algebra::degree(root.polynomial) == 1) {
-        Rational v(root.polynomial[0], root.polynomial[1]);
-        v.canonicalize();
-        exact = Rational(-v);
-      }
-      if (!exact) continue;
-      cspace::ChartPoint q;
-      if (follower_is_x_) {
-        q.x = *exact;
-        q.y = other_moves_ ? value : Rational(0);
-      } else {
-        q.x = value;
-        q.y = *exact;
-      }
-      result.points[i].touching =
-          cspace::classify_overlap(model_, axes_, chart.x_axis, chart.y_axis, q) == cspace::Overlap::touching;
-    }
     if (!other_moves_ && !window) {
       std::lock_guard<std::mutex> lock(cache_mutex_);
       fixed_cache_[follower_chart] = result;
