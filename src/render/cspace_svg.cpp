@@ -193,21 +193,27 @@ class Painter {
         } else {
           continue;
         }
-        io::SvgPath path;
-        bool first = true;
-        for (const auto& p : samples(c, e)) {
-          auto [wx, wy] = world(chart, p.first, p.second);
-          if (first) {
-            path.move_to(wx, wy);
-            first = false;
-          } else {
-            path.line_to(wx, wy);
-          }
-        }
-        svg.path(path, style, title);
+        svg.path(edge_path(c, e), style, title);
       }
     }
     draw_touching(svg);
+  }
+
+  // An edge of chart c as a drawing path through its samples.
+  io::SvgPath edge_path(std::size_t c, std::size_t e) {
+    const ChartData& chart = impl_.charts[c];
+    io::SvgPath path;
+    bool first = true;
+    for (const auto& p : samples(c, e)) {
+      auto [wx, wy] = world(chart, p.first, p.second);
+      if (first) {
+        path.move_to(wx, wy);
+        first = false;
+      } else {
+        path.line_to(wx, wy);
+      }
+    }
+    return path;
   }
 
   // Zero-clearance contacts (EdgeRole::touching edges, CSpaceVertex::touching vertices): the
@@ -218,17 +224,7 @@ class Painter {
       const CSpaceEdge& edge = impl_.edges[chart.edges[e].global];
       std::string title = "touching (zero clearance): ";
       for (std::size_t k = 0; k < edge.curves.size(); ++k) title += (k ? "; " : "") + impl_.feature_pairs[edge.curves[k]].label;
-      io::SvgPath path;
-      bool first = true;
-      for (const auto& p : samples(c, e)) {
-        auto [wx, wy] = world(chart, p.first, p.second);
-        if (first) {
-          path.move_to(wx, wy);
-          first = false;
-        } else {
-          path.line_to(wx, wy);
-        }
-      }
+      io::SvgPath path = edge_path(c, e);
       io::SvgStyle band{"none", touching_colour};
       band.stroke_width = 2.2;
       svg.path(path, band, title);

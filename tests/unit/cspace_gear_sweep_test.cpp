@@ -7,6 +7,7 @@
 // by two vertical edges lost the y separation the first edge gave it) are in the slow sweep,
 // run when HIPAIR_SLOW_TESTS is set (each takes minutes).
 #include "cspace/contact_curves.hpp"
+#include "cspace_test_support.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
@@ -21,6 +22,9 @@
 namespace hipair {
 namespace {
 
+using test::axis_of;
+using test::random_tile_point;
+
 struct GearCase {
   int z1, z2;
 };
@@ -33,15 +37,6 @@ Model gear_pair(const GearCase& c) {
   read.parameter_values["backlash"] = Rational(1, 10);
   read.allow_out_of_tolerance = true;
   return read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "spur-gears.json", read);
-}
-
-cspace::ChartAxis axis_of(AxisKind kind, bool half_turn, const Rational& lo, const Rational& hi) {
-  cspace::ChartAxis axis;
-  axis.kind = kind == AxisKind::rotation ? cspace::ChartAxis::Kind::rotation : cspace::ChartAxis::Kind::translation;
-  axis.half_turn = half_turn;
-  axis.lo = lo;
-  axis.hi = hi;
-  return axis;
 }
 
 void check_pair(const GearCase& c, int samples) {
@@ -69,16 +64,9 @@ void check_pair(const GearCase& c, int samples) {
   std::mt19937_64 random(static_cast<unsigned long>(31 * c.z1 + c.z2));
   int free = 0, blocked = 0;
   for (int i = 0; i < samples; ++i) {
-    std::size_t t = random() % space.charts().size();
+    ChartPoint q = random_tile_point(space, random);
+    std::size_t t = q.chart;
     const CSpaceChart& chart = space.charts()[t];
-    auto pick = [&](const Rational& lo, const Rational& hi) {
-      Rational u(mpz_class(static_cast<unsigned long>(random() % 1000003)), 1000003);
-      u.canonicalize();
-      Rational v = lo + u * (hi - lo);
-      v.canonicalize();
-      return v;
-    };
-    ChartPoint q{t, pick(chart.x_lo, chart.x_hi), pick(chart.y_lo, chart.y_hi)};
     Location location = space.locate(q);
     EXPECT_NE(location.kind, Location::Kind::outside) << "a point of a built tile is outside";
     cspace::Overlap overlap =

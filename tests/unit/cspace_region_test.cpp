@@ -6,6 +6,7 @@
 //    bounded by the same feature pairs, wrapping the same way;
 //  - tiles not built are reported as outside, and the space says it is not complete.
 #include "cspace/contact_curves.hpp"
+#include "cspace_test_support.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
@@ -19,30 +20,10 @@
 namespace hipair {
 namespace {
 
+using test::axis_of;
+using test::random_tile_point;
+
 std::filesystem::path example(const std::string& name) { return std::filesystem::path(HIPAIR_EXAMPLES) / name; }
-
-cspace::ChartAxis axis_of(AxisKind kind, bool half_turn, const Rational& lo, const Rational& hi) {
-  cspace::ChartAxis axis;
-  axis.kind = kind == AxisKind::rotation ? cspace::ChartAxis::Kind::rotation : cspace::ChartAxis::Kind::translation;
-  axis.half_turn = half_turn;
-  axis.lo = lo;
-  axis.hi = hi;
-  return axis;
-}
-
-// A random rational configuration inside a random built tile.
-ChartPoint random_tile_point(const CSpace& space, std::mt19937_64& random) {
-  std::size_t t = random() % space.charts().size();
-  const CSpaceChart& chart = space.charts()[t];
-  auto pick = [&](const Rational& lo, const Rational& hi) {
-    Rational u(mpz_class(static_cast<unsigned long>(random() % 1000003)), 1000003);
-    u.canonicalize();
-    Rational v = lo + u * (hi - lo);
-    v.canonicalize();
-    return v;
-  };
-  return ChartPoint{t, pick(chart.x_lo, chart.x_hi), pick(chart.y_lo, chart.y_hi)};
-}
 
 // The exact overlap oracle at a chart point of `space`.
 cspace::Overlap oracle_at(const Model& model, const cspace::PairAxes& axes, const CSpace& space, const ChartPoint& q) {

@@ -11,6 +11,7 @@
 // inscribed-disk guesses (SIGFPE in mpq_set_d on a NaN).
 #include "core/model_scale.hpp"
 #include "cspace/contact_curves.hpp"
+#include "cspace_test_support.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/kinematics.hpp>
@@ -24,6 +25,9 @@
 
 namespace hipair {
 namespace {
+
+using test::axis_of;
+using test::random_tile_point;
 
 // A crank turning about the origin and a rocker about (10u, 0); the rocker's left side has a
 // notch whose depth is `notch` (in units of u; 0: no notch).
@@ -86,15 +90,6 @@ Model at_scale(const std::string& text, int k) {
   return read_model(text, "scaled", options);
 }
 
-cspace::ChartAxis axis_of(AxisKind kind, bool half_turn, const Rational& lo, const Rational& hi) {
-  cspace::ChartAxis axis;
-  axis.kind = kind == AxisKind::rotation ? cspace::ChartAxis::Kind::rotation : cspace::ChartAxis::Kind::translation;
-  axis.half_turn = half_turn;
-  axis.lo = lo;
-  axis.hi = hi;
-  return axis;
-}
-
 struct Structure {
   std::vector<CellKind> cells;
   std::size_t contact_edges = 0;
@@ -116,17 +111,7 @@ void sweep_cspace(const std::string& text, const std::string& a, const std::stri
     if (points.empty()) {
       std::mt19937_64 random(29);
       for (int i = 0; i < 150; ++i) {
-        std::size_t t = random() % space.charts().size();
-        const CSpaceChart& chart = space.charts()[t];
-        auto pick = [&](const Rational& lo, const Rational& hi) {
-          Rational u(mpz_class(static_cast<unsigned long>(random() % 1000003)), 1000003);
-          u.canonicalize();
-          Rational v = lo + u * (hi - lo);
-          v.canonicalize();
-          return v;
-        };
-        points.push_back(ChartPoint{t, pick(chart.x_lo, chart.x_hi),
-                                    space.dimension() == 2 ? pick(chart.y_lo, chart.y_hi) : Rational(0)});
+        points.push_back(random_tile_point(space, random));
       }
       reference_charts = space.charts();
     }
