@@ -1,12 +1,39 @@
 #!/usr/bin/env bash
-# Builds the model-reader fuzzer with clang (libFuzzer + ASan + UBSan) straight from the reader's
-# sources, seeds it with every example and test model, and fuzzes for SECONDS.
-# usage: run_fuzz.sh CLANGXX SOURCE_DIR WORK_DIR SECONDS
-# exit: 0 no crash found; 1 crash/leak/timeout found (the input is saved in WORK_DIR); 77 no
-# libFuzzer runtime (skipped).
+# Builds one libFuzzer target with clang (libFuzzer + ASan + UBSan) straight from the sources it
+# exercises, seeds it, and fuzzes for SECONDS.
+#   model_reader          the model reader (src/core, src/model); seeds: every example and test model
+#   certificate_verifier  the certificate reader and the verifier, built from the verifier's own
+#                         sources as hipair-verify is (certify/, the model reader); seeds: the
+#                         certificate corpus
+# Both targets share one object directory beside WORK_DIR (the reader's objects are compiled once,
+# under a lock, when the two tests run in parallel).
+# usage: run_fuzz.sh TARGET CLANGXX SOURCE_DIR WORK_DIR SECONDS
+# exit: 0 no crash found; 1 crash/leak/timeout found (the input is saved in WORK_DIR); 2 usage;
+# 77 no libFuzzer runtime (skipped).
 set -uo pipefail
-clangxx=$1 source=$2 work=$3 seconds=$4
-mkdir -p "$work/objects" "$work/corpus"
+if [ $# -ne 5 ]; then echo "usage: run_fuzz.sh TARGET CLANGXX SOURCE_DIR WORK_DIR SECONDS" >&2; exit 2; fi
+target=$1 clangxx=$2 seconds=$5
+mkdir -p "$4/corpus"
+source=$(cd "$3" && pwd) work=$(cd "$4" && pwd)   # absolute: the fuzzer runs in WORK_DIR
+objects_dir="$(dirname "$work")/fuzz_objects"
+mkdir -p "$objects_dir"
+
+shopt -s nullglob
+case "$target" in
+  model_reader)
+    sources=("$source"/src/core/*.cpp "$source"/src/model/*.cpp "$source"/tests/fuzz/model_reader_fuzzer.cpp)
+    seeds=("$source"/examples/models/*.json "$source"/tests/data/good/*.json "$source"/tests/data/bad/*.json
+           "$source"/tests/fuzz/regressions/*)
+    dictionary=model.dict ;;
+  certificate_verifier)
+    sources=("$source"/src/core/*.cpp "$source"/src/model/*.cpp "$source"/src/io/atomic_file.cpp
+             "$source"/certify/certificate_reader.cpp "$source"/certify/exact_geometry.cpp
+             "$source"/certify/interval_geometry.cpp "$source"/certify/check.cpp
+             "$source"/tests/fuzz/certificate_verifier_fuzzer.cpp)
+    seeds=("$source"/tests/data/certificates/*.json "$source"/tests/fuzz/certificate_regressions/*)
+    dictionary=certificate.dict ;;
+  *) echo "run_fuzz.sh: unknown target '$target' (model_reader or certificate_verifier)" >&2; exit 2 ;;
+esac
 
 # Skip when clang cannot link a fuzzer.
 printf 'extern "C" int LLVMFuzzerTestOneInput(const unsigned char*, unsigned long) { return 0; }\n' >"$work/probe.cpp"
@@ -15,90 +42,42 @@ if ! "$clangxx" -fsanitize=fuzzer "$work/probe.cpp" -o "$work/probe" >"$work/pro
 fi
 
 flags=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,address,undefined
-       -fno-sanitize-recover=undefined -I"$source/include" -I"$source/src")
-sources=("$source"/src/core/rational.cpp "$source"/src/core/sha256.cpp "$source"/src/core/model.cpp
-         "$source"/src/model/*.cpp "$source"/tests/fuzz/model_reader_fuzzer.cpp)
+       -fno-sanitize-recover=undefined -I"$source/include" -I"$source/src" -I"$source"
+       -I/usr/include/eigen3 -DHIPAIR_EXAMPLES="\"$source/examples/models\"")
+
+# Compile what is missing or stale, at most two compilers at a time (the machine has two cores),
+# holding the object directory's lock so that the other target waits instead of racing.
+compile() {
+  # Objects built with other flags (another source directory) are rebuilt.
+  if [ "$(cat "$objects_dir/flags.txt" 2>/dev/null)" != "${flags[*]}" ]; then rm -f "$objects_dir"/*.o; fi
+  printf '%s' "${flags[*]}" >"$objects_dir/flags.txt"
+  local pids=() file object
+  for file in "${sources[@]}"; do
+    object="$objects_dir/$(basename "$(dirname "$file")")-$(basename "$file" .cpp).o"
+    objects+=("$object")
+    if [ ! -f "$object" ] || [ "$file" -nt "$object" ]; then
+      "$clangxx" "${flags[@]}" -c "$file" -o "$object.tmp" && mv "$object.tmp" "$object" &
+      pids+=($!)
+      if [ ${#pids[@]} -ge 2 ]; then wait "${pids[0]}" || return 1; pids=("${pids[@]:1}"); fi
+    fi
+  done
+  local pid
+  for pid in "${pids[@]}"; do wait "$pid" || return 1; done
+}
 objects=()
-pids=()
-for file in "${sources[@]}"; do
-  object="$work/objects/$(basename "$file" .cpp).o"
-  objects+=("$object")
-  if [ ! -f "$object" ] || [ "$file" -nt "$object" ]; then
-    "$clangxx" "${flags[@]}" -c "$file" -o "$object" &
-    pids+=($!)
-    # At most two compilers at a time (the machine has two cores).
-    if [ ${#pids[@]} -ge 2 ]; then wait "${pids[0]}" || { echo "compile failed: ${sources[*]}"; exit 1; }; pids=("${pids[@]:1}"); fi
-  fi
-done
-for pid in "${pids[@]}"; do wait "$pid" || { echo "compile failed"; exit 1; }; done
+exec 9>"$objects_dir/lock"
+flock 9
+compile || { echo "compile failed"; exit 1; }
+flock -u 9
 "$clangxx" -fsanitize=fuzzer,address,undefined "${objects[@]}" -lmpfi -lmpfr -lgmpxx -lgmp \
-  -o "$work/model_reader_fuzzer" || { echo "link failed"; exit 1; }
+  -o "$work/${target}_fuzzer" || { echo "link failed"; exit 1; }
 
-shopt -s nullglob
-for seed in "$source"/examples/models/*.json "$source"/tests/data/good/*.json "$source"/tests/data/bad/*.json \
-            "$source"/tests/fuzz/regressions/*; do
-  cp "$seed" "$work/corpus/" 2>/dev/null
-done
-
-cat >"$work/model.dict" <<'DICT'
-"\"hipair\""
-"\"name\""
-"\"units\""
-"\"deg\""
-"\"rad\""
-"\"parameters\""
-"\"nominal\""
-"\"tolerance\""
-"\"range\""
-"\"distribution\""
-"\"normal\""
-"\"sigma\""
-"\"angle\""
-"\"parts\""
-"\"motion\""
-"\"fixed\""
-"\"rotation\""
-"\"translation\""
-"\"planar\""
-"\"pin_slot\""
-"\"pivot\""
-"\"direction\""
-"\"limits\""
-"\"angle_limits\""
-"\"initial\""
-"\"offset\""
-"\"loops\""
-"\"start\""
-"\"edges\""
-"\"line_to\""
-"\"arc_to\""
-"\"center\""
-"\"dir\""
-"\"ccw\""
-"\"cw\""
-"\"circle\""
-"\"radius\""
-"\"polar\""
-"\"features\""
-"\"pin\""
-"\"geneva_wheel\""
-"\"spur_gear\""
-"\"ratchet_wheel\""
-"\"dynamics\""
-"\"pairs\""
-"sqrt("
-"atan2("
-"sin("
-" deg"
-"pi"
-"^"
-"1e-30"
-"9007199254740993"
-DICT
+for seed in "${seeds[@]}"; do cp "$seed" "$work/corpus/" 2>/dev/null; done
 
 cd "$work" || exit 1
-"$work/model_reader_fuzzer" -max_total_time="$seconds" -max_len=16384 -timeout=120 -rss_limit_mb=2560 \
-  -dict="$work/model.dict" -artifact_prefix="$work/" -print_final_stats=1 "$work/corpus" >"$work/fuzz.log" 2>&1
+"$work/${target}_fuzzer" -max_total_time="$seconds" -max_len=16384 -timeout=120 -rss_limit_mb=2560 \
+  -dict="$source/tests/fuzz/$dictionary" -artifact_prefix="$work/" -print_final_stats=1 "$work/corpus" \
+  >"$work/fuzz.log" 2>&1
 status=$?
 tail -n 25 "$work/fuzz.log"
 if [ $status -ne 0 ]; then
