@@ -24,6 +24,7 @@
 // arc lies inside the other).
 #pragma once
 
+#include "kernels/contact.hpp"
 #include "kernels/pose.hpp"
 
 namespace hipair::kernels {
@@ -40,6 +41,7 @@ struct FeatureGeometry {
   Vector<T> center{T(0), T(0)};  ///< arc: its centre
   T radius_squared{0};           ///< arc
   bool convex = true;            ///< arc: material inside its circle (a counter-clockwise arc)
+  ArcSector<T> sector;           ///< arc: its angular range (validity of the contact table)
 };
 
 /// Contact point and (not normalised) normal from the first part into the second, in world

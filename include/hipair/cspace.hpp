@@ -24,6 +24,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace hipair {
@@ -359,7 +360,27 @@ struct EdgePolyline {
   bool approximate = true;
 };
 
+/// A face of one chart (2-D: a face of the chart's arrangement inside the chart box; 1-D: an
+/// interval between consecutive contact points), for drawing and for walking the structure.
+/// Cells are unions of faces across charts and seams.
+struct CSpaceFace {
+  std::size_t chart = 0;
+  CellKind kind = CellKind::free;
+  /// False for a face of an operating-region chart outside the built tiles' cells (not
+  /// classified); `cell` is then invalid.
+  bool classified = true;
+  CellId cell;
+  /// 2-D: the connected components of the face's boundary, each a cycle of edges in order with
+  /// the face on the left: (edge, true) runs source -> target, (edge, false) target -> source.
+  std::vector<std::vector<std::pair<EdgeId, bool>>> boundary;
+  /// 1-D: the interval's end vertices, lower and upper (invalid: the chart box's end).
+  VertexId lower, upper;
+};
+
 class CSpace;
+/// The library's own access to a CSpace's internals (src/cspace/cspace_access.hpp; not part
+/// of the API: consumers use the queries below).
+struct CSpaceAccess;
 
 /// The build of one pair by CSpace::build_pairs.
 struct PairBuild {
@@ -524,14 +545,19 @@ class CSpace {
   /// The edge sampled at `samples` (>= 2) abscissae for drawing (labelled approximate).
   EdgePolyline edge_polyline(EdgeId edge, std::size_t samples = 32) const;
 
+  /// The faces of chart `chart` inside its box (2-D), or its intervals in ascending order (1-D).
+  /// \throws GeometryError for a chart index out of range.
+  std::vector<CSpaceFace> faces(std::size_t chart) const;
+
+  /// The exact contact polynomial of feature pair `feature` in the coordinates of chart
+  /// `chart` (c[i][j] of x^i y^j; 1-D: c[i][0] of x^i): its zero set holds every configuration
+  /// of the chart where the pair touches. Empty when the pair's curve was culled from the chart
+  /// (the features cannot touch inside its box).
+  std::vector<std::vector<mpz_class>> curve_polynomial(std::size_t chart, FeatureId feature) const;
+
  private:
   std::shared_ptr<const Impl> impl_;
-  friend const Impl& implementation(const CSpace& space);
-  friend CSpace make_cspace(std::shared_ptr<const Impl> impl);
+  friend struct CSpaceAccess;
 };
-
-/// Internal access for the library's own modules (not part of the stable API).
-const CSpace::Impl& implementation(const CSpace& space);
-CSpace make_cspace(std::shared_ptr<const CSpace::Impl> impl);
 
 }  // namespace hipair

@@ -3,7 +3,8 @@
 // and a simple search for the trap of a jam.
 #include "certify/producer.hpp"
 
-#include "cspace/overlap.hpp"
+#include <hipair/overlap.hpp>
+
 
 #include <hipair/error.hpp>
 
@@ -200,17 +201,10 @@ bool overlapping_at(const PairRoles& r, const Rational& x, const Rational& y) {
     ExactPosition position = part.motion.kind == Motion::Kind::rotation ? exact_position_from_angle(value) : ExactPosition{value, true, false, {}, {}};
     return exact_map(part, &position);
   };
-  auto rigid = [](const verify::ExactMap& map) {
-    cspace::RigidMap result;
-    result.c = map.c;
-    result.s = map.s;
-    Point rotated = map.rotate(map.pivot);
-    result.offset = Point{Rational(map.pivot.x - rotated.x + map.shift.x), Rational(map.pivot.y - rotated.y + map.shift.y)};
-    return result;
-  };
+  auto placed = [](const verify::ExactMap& map) { return placement_about(map.pivot, map.c, map.s, map.shift); };
   verify::ExactMap other = r.has_follower ? exact_of(*r.other, y) : verify::ExactMap{};
-  return cspace::analyse_overlap(*r.driver, rigid(exact_of(*r.driver, x)), *r.other, rigid(other)).relation ==
-         cspace::Overlap::overlapping;
+  return part_overlap(*r.driver, placed(exact_of(*r.driver, x)), *r.other, placed(other)).relation ==
+         PartRelation::overlapping;
 }
 
 }  // namespace

@@ -2,7 +2,8 @@
 // every producer (model identity, exact maps, self-check).
 #include "certify/producer.hpp"
 
-#include "cspace/overlap.hpp"
+#include <hipair/overlap.hpp>
+
 #include "model/interval.hpp"
 
 #include <hipair/error.hpp>
@@ -108,14 +109,7 @@ Rational approximate(double value) {
 
 namespace {
 
-cspace::RigidMap to_rigid(const verify::ExactMap& map) {
-  cspace::RigidMap rigid;
-  rigid.c = map.c;
-  rigid.s = map.s;
-  Point rotated = map.rotate(map.pivot);
-  rigid.offset = Point{Rational(map.pivot.x - rotated.x + map.shift.x), Rational(map.pivot.y - rotated.y + map.shift.y)};
-  return rigid;
-}
+Placement to_placement(const verify::ExactMap& map) { return placement_about(map.pivot, map.c, map.s, map.shift); }
 
 const ExactPosition* position_of(const std::map<std::string, ExactPosition>& positions, const Part& part) {
   auto found = positions.find(part.name);
@@ -200,10 +194,8 @@ std::optional<Certificate> certify_interference(const Model& model, const std::s
   const Part &a = part_of(model, first), &b = part_of(model, second);
   c.configuration = pair_positions(positions, a, b);
   verify::ExactMap map_a = exact_map(a, position_of(c.configuration, a)), map_b = exact_map(b, position_of(c.configuration, b));
-  cspace::OverlapOptions options;
-  options.want_witness = true;
-  cspace::OverlapReport report = cspace::analyse_overlap(a, to_rigid(map_a), b, to_rigid(map_b), options);
-  if (report.relation != cspace::Overlap::overlapping) return std::nullopt;
+  PartOverlap report = part_overlap(a, to_placement(map_a), b, to_placement(map_b), true);
+  if (report.relation != PartRelation::overlapping) return std::nullopt;
   if (report.witness) {
     c.witness_point = report.witness;
   } else {   // a transversal crossing of two edges, found with the verifier's own predicate
@@ -229,7 +221,7 @@ std::optional<Certificate> certify_clearance(const Model& model, const std::stri
   const Part &a = part_of(model, first), &b = part_of(model, second);
   c.configuration = pair_positions(positions, a, b);
   verify::ExactMap map_a = exact_map(a, position_of(c.configuration, a)), map_b = exact_map(b, position_of(c.configuration, b));
-  if (cspace::analyse_overlap(a, to_rigid(map_a), b, to_rigid(map_b)).relation != cspace::Overlap::apart) return std::nullopt;
+  if (part_overlap(a, to_placement(map_a), b, to_placement(map_b)).relation != PartRelation::apart) return std::nullopt;
   // Capped at an upper bound of the distance (the L1 distance of two boundary points), so that
   // nothing is lost at any magnitude.
   Point p = map_a.apply(a.loops.at(0).edges.at(0).source), q = map_b.apply(b.loops.at(0).edges.at(0).source);

@@ -4,6 +4,8 @@
 
 #include <hipair/cspace.hpp>
 
+#include "cspace/cspace_access.hpp"
+
 #include "cspace/builder_algebra.hpp"
 #include "cspace/builder_cgal.hpp"
 #include "cspace/contact_curves.hpp"

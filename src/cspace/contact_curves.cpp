@@ -5,6 +5,7 @@
 #include "cspace/polynomial.hpp"
 #include "cspace/pose.hpp"
 #include "kernels/contact.hpp"
+#include "kernels/contact_table.hpp"
 #include "kernels/interval.hpp"
 
 #include <hipair/error.hpp>
@@ -672,138 +673,25 @@ class BlockedSpaceCuller {
 using Polynomial = RationalPolynomial2;
 using PolyVector = kernels::Vector<Polynomial>;
 
-PolyVector poly(const Point& p) { return PolyVector{Polynomial(p.x), Polynomial(p.y)}; }
+// The contact table (kernels/contact_table.hpp) in exact polynomials of the chart coordinates:
+// body data are rationals, the radius products' roots taken when they are rational.
+static_assert(static_cast<int>(ContactType::segment_arc) == static_cast<int>(kernels::ContactType::segment_arc) &&
+              static_cast<int>(ContactType::arc_arc) == static_cast<int>(kernels::ContactType::arc_arc) &&
+              static_cast<int>(ContactType::vertex_arc) == static_cast<int>(kernels::ContactType::vertex_arc));
 
-kernels::ArcSector<Polynomial> poly_sector(const Edge& edge) {
-  kernels::ArcSector<Rational> exact = arc_sector(edge);
-  kernels::ArcSector<Polynomial> sector;
-  sector.start = PolyVector{Polynomial(exact.start.x), Polynomial(exact.start.y)};
-  sector.end = PolyVector{Polynomial(exact.end.x), Polynomial(exact.end.y)};
-  sector.large = exact.large;
-  sector.full = exact.full;
-  return sector;
-}
+ContactType to_contact_type(kernels::ContactType type) { return static_cast<ContactType>(static_cast<int>(type)); }
 
-struct KernelResult {
-  bool exists = false;
-  ContactType type = ContactType::vertex_segment;
-  Polynomial value;
-  kernels::Validity<Polynomial> validity;
-  int blocked_sign = -1;
-};
-
-// The contact function and validity of a feature pair, or exists == false when the pair has
-// no contact of its own (vertex–vertex, segment–segment, concave arcs).
-KernelResult contact_of(const BodyFeature& fa, const BodyFeature& fb,
-                        const kernels::Pose<Polynomial>& a, const kernels::Pose<Polynomial>& b) {
-  using Kind = FeatureRef::Kind;
-  KernelResult result;
-  const Edge& ea = *fa.edge;
-  const Edge& eb = *fb.edge;
-  Kind ka = fa.ref.kind;
-  Kind kb = fb.ref.kind;
-  if (ka == Kind::vertex && kb == Kind::segment) {
-    result.type = ContactType::vertex_segment;
-    result.value = kernels::vertex_segment(a, poly(fa.point), b, poly(eb.source), poly(eb.target));
-    result.validity = kernels::vertex_segment_validity(a, poly(fa.point), b, poly(eb.source),
-                                                       poly(eb.target));
-  } else if (ka == Kind::segment && kb == Kind::vertex) {
-    result.type = ContactType::segment_vertex;
-    result.value = kernels::segment_vertex(a, poly(ea.source), poly(ea.target), b, poly(fb.point));
-    result.validity = kernels::segment_vertex_validity(a, poly(ea.source), poly(ea.target), b,
-                                                       poly(fb.point));
-  } else if (ka == Kind::vertex && kb == Kind::arc) {
-    result.type = ContactType::vertex_arc;
-    result.value = kernels::vertex_arc(a, poly(fa.point), b, poly(eb.center),
-                                       Polynomial(eb.radius_squared), eb.ccw);
-    result.validity =
-        kernels::vertex_arc_validity(a, poly(fa.point), b, poly(eb.center), poly_sector(eb));
-  } else if (ka == Kind::arc && kb == Kind::vertex) {
-    result.type = ContactType::arc_vertex;
-    result.value = kernels::arc_vertex(a, poly(ea.center), Polynomial(ea.radius_squared), ea.ccw,
-                                       b, poly(fb.point));
-    result.validity =
-        kernels::arc_vertex_validity(a, poly(ea.center), poly_sector(ea), b, poly(fb.point));
-  } else if (ka == Kind::arc && kb == Kind::arc) {
-    const Rational& ra2 = ea.radius_squared;
-    const Rational& rb2 = eb.radius_squared;
-    kernels::Tangency tangency;
-    if (ea.ccw && eb.ccw) {
-      tangency = kernels::Tangency::external;
-    } else if (ea.ccw && !eb.ccw && rb2 >= ra2) {
-      tangency = kernels::Tangency::first_inside_second;
-    } else if (!ea.ccw && eb.ccw && ra2 >= rb2) {
-      tangency = kernels::Tangency::second_inside_first;
-    } else {
-      return result;  // concave–concave, or the larger circle inside the smaller: never tangent
-    }
-    result.type = ContactType::arc_arc;
-    std::optional<Rational> product = exact_square_root(Rational(ra2 * rb2));
-    if (product) {
-      Rational sum = ra2 + rb2;
-      Rational distance2 = tangency == kernels::Tangency::external ? Rational(sum + 2 * *product)
-                                                                   : Rational(sum - 2 * *product);
-      result.value = kernels::arc_arc(a, poly(ea.center), b, poly(eb.center),
-                                      Polynomial(distance2), tangency);
-    } else {
-      result.value = kernels::arc_arc_squared(a, poly(ea.center), Polynomial(ra2), b,
-                                              poly(eb.center), Polynomial(rb2));
-    }
-    result.validity =
-        kernels::arc_arc_validity(a, poly(ea.center), poly_sector(ea), Polynomial(ra2), b,
-                                  poly(eb.center), poly_sector(eb), Polynomial(rb2), tangency);
-  } else if (ka == Kind::arc && kb == Kind::segment) {
-    if (!ea.ccw) return result;  // a concave arc is never tangent to a line without overlap
-    result.type = ContactType::arc_segment;
-    Rational product2 = ea.radius_squared * squared_length(difference(eb.target, eb.source));
-    std::optional<Rational> product = exact_square_root(product2);
-    if (product) {
-      result.value = kernels::arc_segment(a, poly(ea.center), Polynomial(*product), b,
-                                          poly(eb.source), poly(eb.target));
-    } else {
-      result.value = kernels::arc_segment_squared(a, poly(ea.center), Polynomial(product2), b,
-                                                  poly(eb.source), poly(eb.target));
-    }
-    result.validity = kernels::arc_segment_validity(a, poly(ea.center), poly_sector(ea), b,
-                                                    poly(eb.source), poly(eb.target));
-  } else if (ka == Kind::segment && kb == Kind::arc) {
-    if (!eb.ccw) return result;
-    result.type = ContactType::segment_arc;
-    Rational product2 = eb.radius_squared * squared_length(difference(ea.target, ea.source));
-    std::optional<Rational> product = exact_square_root(product2);
-    if (product) {
-      result.value = kernels::segment_arc(a, poly(ea.source), poly(ea.target), b,
-                                          poly(eb.center), Polynomial(*product));
-    } else {
-      result.value = kernels::segment_arc_squared(a, poly(ea.source), poly(ea.target), b,
-                                                  poly(eb.center), Polynomial(product2));
-    }
-    result.validity = kernels::segment_arc_validity(a, poly(ea.source), poly(ea.target), b,
-                                                    poly(eb.center), poly_sector(eb));
-  } else {
-    return result;  // vertex–vertex and segment–segment are covered by vertex contacts
-  }
-  result.exists = true;
-  return result;
+std::optional<kernels::ContactFunction<Polynomial>> contact_of(const BodyFeature& fa, const BodyFeature& fb,
+                                                               const kernels::Pose<Polynomial>& a,
+                                                               const kernels::Pose<Polynomial>& b) {
+  return kernels::contact_function(a, feature_geometry(fa), b, feature_geometry(fb),
+                                   [](const Rational& r) { return Polynomial(r); },
+                                   kernels::ExactRootOrSquared{[](const Rational& square) { return exact_square_root(square); }});
 }
 
 // Whether a feature pair has a contact of its own (without computing it).
 bool has_contact(const BodyFeature& fa, const BodyFeature& fb) {
-  using Kind = FeatureRef::Kind;
-  Kind ka = fa.ref.kind;
-  Kind kb = fb.ref.kind;
-  if (ka == kb && ka != Kind::arc) return false;
-  if (ka == Kind::arc && kb == Kind::arc) {
-    const Edge& ea = *fa.edge;
-    const Edge& eb = *fb.edge;
-    if (ea.ccw && eb.ccw) return true;
-    if (ea.ccw && !eb.ccw) return eb.radius_squared >= ea.radius_squared;
-    if (!ea.ccw && eb.ccw) return ea.radius_squared >= eb.radius_squared;
-    return false;
-  }
-  if (ka == Kind::arc && kb == Kind::segment) return fa.edge->ccw;
-  if (ka == Kind::segment && kb == Kind::arc) return fb.edge->ccw;
-  return true;
+  return kernels::contact_type(feature_geometry(fa), feature_geometry(fb)).has_value();
 }
 
 // Validity clauses as integer polynomials; returns false when some clause can never hold.
@@ -1048,20 +936,20 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
     }
     const BodyFeature& fa = features_a[static_cast<std::size_t>(pairs[k].first)];
     const BodyFeature& fb = features_b[static_cast<std::size_t>(pairs[k].second)];
-    KernelResult kernel = contact_of(fa, fb, poses.first, poses.second);
-    if (!kernel.exists) continue;
+    std::optional<kernels::ContactFunction<Polynomial>> kernel = contact_of(fa, fb, poses.first, poses.second);
+    if (!kernel) continue;
     ContactCurve curve;
     curve.first = fa.ref;
     curve.second = fb.ref;
-    curve.type = kernel.type;
-    curve.polynomial = normalized_integer_polynomial(kernel.value);
-    curve.blocked_sign = kernel.blocked_sign;
+    curve.type = to_contact_type(kernel->type);
+    curve.polynomial = normalized_integer_polynomial(kernel->value);
+    curve.blocked_sign = kernels::blocked_sign;
     bool zero = curve.polynomial.is_zero();
     if (!zero && curve.polynomial.degree_x() == 0 && curve.polynomial.degree_y() == 0)
       continue;  // a non-zero constant: these features never touch
-    if (!convert_validity(kernel.validity, curve.validity)) continue;  // never within both
+    if (!convert_validity(kernel->validity, curve.validity)) continue;  // never within both
     curve.label = part_a.name + " " + fa.label + " / " + part_b.name + " " + fb.label + " (" +
-                  contact_word(kernel.type) + ")";
+                  contact_word(curve.type) + ")";
     if (zero) {
       ++stats.identically_zero;
     } else {

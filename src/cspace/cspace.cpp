@@ -11,12 +11,12 @@
 
 namespace hipair {
 
-const CSpace::Impl& implementation(const CSpace& space) {
+const CSpace::Impl& CSpaceAccess::implementation(const CSpace& space) {
   if (!space.impl_) throw GeometryError("empty C-space");
   return *space.impl_;
 }
 
-CSpace make_cspace(std::shared_ptr<const CSpace::Impl> impl) {
+CSpace CSpaceAccess::make(std::shared_ptr<const CSpace::Impl> impl) {
   CSpace space;
   space.impl_ = std::move(impl);
   return space;

@@ -400,6 +400,61 @@ std::vector<Slice> CSpace::slice(SliceAxis axis, const Rational& value_input) co
   return slices;
 }
 
+std::vector<CSpaceFace> CSpace::faces(std::size_t chart_index) const {
+  const Impl& impl = checked(*this);
+  if (chart_index >= impl.charts.size()) throw GeometryError("faces: no chart " + std::to_string(chart_index));
+  const ChartData& chart = impl.charts[chart_index];
+  auto kind_of = [](int kind) {
+    return kind == 1 ? CellKind::blocked : kind == 2 ? CellKind::touching : CellKind::free;
+  };
+  std::vector<CSpaceFace> result;
+  if (impl.dimension == 1) {
+    for (std::size_t i = 0; i < chart.faces.size(); ++i) {
+      CSpaceFace face;
+      face.chart = chart_index;
+      face.classified = chart.faces[i].kind >= 0;
+      face.kind = kind_of(chart.faces[i].kind);
+      if (face.classified) face.cell = CellId(chart.faces[i].cell);
+      if (i > 0) face.lower = VertexId(chart.vertex_global[i - 1]);
+      if (i < chart.points.size()) face.upper = VertexId(chart.vertex_global[i]);
+      result.push_back(std::move(face));
+    }
+    return result;
+  }
+  const auto& arrangement = chart.arrangement;
+  for (std::size_t f = 0; f < arrangement.faces.size(); ++f) {
+    const cspace::raw::Face& raw_face = arrangement.faces[f];
+    if (raw_face.unbounded) continue;
+    CSpaceFace face;
+    face.chart = chart_index;
+    face.classified = chart.faces[f].kind >= 0;
+    face.kind = kind_of(chart.faces[f].kind);
+    if (face.classified) face.cell = CellId(chart.faces[f].cell);
+    for (std::size_t k = 0; k < raw_face.component_starts.size(); ++k) {
+      std::size_t begin = raw_face.component_starts[k];
+      std::size_t end = k + 1 < raw_face.component_starts.size() ? raw_face.component_starts[k + 1] : raw_face.boundary.size();
+      std::vector<std::pair<EdgeId, bool>> cycle;
+      for (std::size_t i = begin; i < end; ++i) {
+        auto [e, forward] = raw_face.boundary[i];
+        cycle.emplace_back(EdgeId(chart.edges[e].global), forward);
+      }
+      face.boundary.push_back(std::move(cycle));
+    }
+    result.push_back(std::move(face));
+  }
+  return result;
+}
+
+std::vector<std::vector<mpz_class>> CSpace::curve_polynomial(std::size_t chart_index, FeatureId feature) const {
+  const Impl& impl = checked(*this);
+  if (chart_index >= impl.charts.size()) throw GeometryError("curve_polynomial: no chart " + std::to_string(chart_index));
+  index_in(feature, impl.feature_pairs.size(), "feature pair");
+  const ChartData& chart = impl.charts[chart_index];
+  for (std::size_t k = 0; k < chart.curve_global.size(); ++k)
+    if (chart.curve_global[k] == feature.index()) return chart.polynomials[k].coefficients;
+  return {};
+}
+
 EdgePolyline CSpace::edge_polyline(EdgeId id, std::size_t samples) const {
   const Impl& impl = checked(*this);
   std::size_t index = index_in(id, impl.edges.size(), "edge");

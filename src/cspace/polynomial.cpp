@@ -1,5 +1,7 @@
 #include "cspace/polynomial.hpp"
 
+#include "kernels/weights.hpp"
+
 #include <algorithm>
 
 namespace hipair::cspace {
@@ -42,30 +44,8 @@ bool depends_only_on_y(const IntegerPolynomial2& polynomial) { return polynomial
 
 namespace {
 
-// Divides every column polynomial (in x) by x^2 + 1 when all divide exactly.
-bool divide_by_one_plus_x_squared(std::vector<std::vector<mpz_class>>& c) {
-  std::size_t n = c.size();
-  if (n < 3) return false;
-  std::size_t columns = 0;
-  for (const auto& row : c) columns = std::max(columns, row.size());
-  std::vector<std::vector<mpz_class>> quotient(n - 2, std::vector<mpz_class>(columns));
-  auto at = [&](std::size_t i, std::size_t j) -> mpz_class {
-    return j < c[i].size() ? c[i][j] : mpz_class(0);
-  };
-  for (std::size_t j = 0; j < columns; ++j) {
-    // a(x) = q(x) (x^2 + 1) + r: q_k = a_{k+2} - q_{k+2}, from the top.
-    for (std::size_t k = n - 2; k-- > 0;) {
-      mpz_class value = at(k + 2, j);
-      if (k + 2 < n - 2) value -= quotient[k + 2][j];
-      quotient[k][j] = value;
-    }
-    mpz_class r1 = at(1, j) - (n - 2 > 1 ? quotient[1][j] : mpz_class(0));
-    mpz_class r0 = at(0, j) - quotient[0][j];
-    if (sgn(r1) != 0 || sgn(r0) != 0) return false;
-  }
-  c = std::move(quotient);
-  return true;
-}
+// The (1 + t^2) normalisation is the kernels' (kernels/weights.hpp).
+bool divide_by_one_plus_x_squared(std::vector<std::vector<mpz_class>>& c) { return kernels::divide_by_half_angle_weight(c); }
 
 std::vector<std::vector<mpz_class>> transposed(const std::vector<std::vector<mpz_class>>& c) {
   std::size_t columns = 0;

@@ -1,5 +1,7 @@
 #include "cspace/pose.hpp"
 
+#include "kernels/contact_table.hpp"
+
 namespace hipair::cspace {
 
 int motion_degrees_of_freedom(const Motion& motion) noexcept {
@@ -118,6 +120,30 @@ std::string edge_name(const Edge& edge, std::size_t loop, std::size_t index) {
 
 }  // namespace
 
+kernels::FeatureGeometry<Rational> feature_geometry(const BodyFeature& feature) {
+  kernels::FeatureGeometry<Rational> f;
+  const Edge& edge = *feature.edge;
+  switch (feature.ref.kind) {
+    case FeatureRef::Kind::vertex:
+      f.shape = kernels::FeatureShape::vertex;
+      f.point = to_kernel(feature.point);
+      break;
+    case FeatureRef::Kind::segment:
+      f.shape = kernels::FeatureShape::segment;
+      f.point = to_kernel(edge.source);
+      f.target = to_kernel(edge.target);
+      break;
+    case FeatureRef::Kind::arc:
+      f.shape = kernels::FeatureShape::arc;
+      f.center = to_kernel(edge.center);
+      f.radius_squared = edge.radius_squared;
+      f.convex = edge.ccw;
+      f.sector = arc_sector(edge);
+      break;
+  }
+  return f;
+}
+
 std::vector<BodyFeature> part_features(const Model& model, std::size_t part_index,
                                        std::size_t* reflex_skipped) {
   const Part& part = model.parts.at(part_index);
@@ -132,7 +158,7 @@ std::vector<BodyFeature> part_features(const Model& model, std::size_t part_inde
         const Edge& previous = loop.edges[(e + n - 1) % n];
         Point incoming = edge_tangent(previous, edge.source);
         Point outgoing = edge_tangent(edge, edge.source);
-        if (sgn(cross(incoming, outgoing)) < 0) {
+        if (kernels::strictly_reflex(to_kernel(incoming), to_kernel(outgoing), [](const Rational& r) { return sgn(r); })) {
           if (reflex_skipped) ++*reflex_skipped;
         } else {
           std::string previous_name = edge_name(previous, l, (e + n - 1) % n);

@@ -6,6 +6,7 @@
 #include "kernels/pose.hpp"
 
 #include "kernels/contact.hpp"
+#include "kernels/contact_geometry.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
@@ -99,6 +100,10 @@ struct BodyFeature {
 /// configuration, see docs/contact-kernels.md). `reflex_skipped` counts the latter.
 std::vector<BodyFeature> part_features(const Model& model, std::size_t part_index,
                                        std::size_t* reflex_skipped = nullptr);
+
+/// The feature's exact body geometry for the kernels' contact table and contact frames
+/// (kernels/contact_table.hpp, kernels/contact_geometry.hpp).
+kernels::FeatureGeometry<Rational> feature_geometry(const BodyFeature& feature);
 
 /// Exact square root of a non-negative rational when it is rational.
 std::optional<Rational> exact_square_root(const Rational& value);

@@ -9,6 +9,8 @@
 // no such range exists the follower is squeezed and the driver is blocked.
 #include "kinematics/engine.hpp"
 
+#include "kernels/implicit_curve.hpp"
+
 #include <hipair/error.hpp>
 
 #include <mpfr.h>
@@ -68,34 +70,6 @@ Rational half_tangent(const Rational& theta, long multiple_of_pi) {
   mpq_clear(exact);
   mpfr_clears(x, p, q, static_cast<mpfr_ptr>(nullptr));
   return round_to_bits(value, 60);
-}
-
-// Exact partial derivatives of P(u, v) (coefficients c[i][j] of u^i v^j) at rationals.
-struct Partials {
-  Rational u, v, uu, uv, vv;
-};
-
-Partials partials(const IntegerPolynomial2& polynomial, const Rational& u, const Rational& v) {
-  Partials result;
-  const auto& c = polynomial.coefficients;
-  std::vector<Rational> up, vp;   // powers
-  std::size_t max_i = c.size(), max_j = 0;
-  for (const auto& row : c) max_j = std::max(max_j, row.size());
-  up.assign(max_i + 1, Rational(1));
-  vp.assign(max_j + 1, Rational(1));
-  for (std::size_t i = 1; i <= max_i; ++i) up[i] = up[i - 1] * u;
-  for (std::size_t j = 1; j <= max_j; ++j) vp[j] = vp[j - 1] * v;
-  for (std::size_t i = 0; i < c.size(); ++i)
-    for (std::size_t j = 0; j < c[i].size(); ++j) {
-      if (c[i][j] == 0) continue;
-      Rational coefficient(c[i][j]);
-      if (i >= 1) result.u += coefficient * int(i) * up[i - 1] * vp[j];
-      if (j >= 1) result.v += coefficient * int(j) * up[i] * vp[j - 1];
-      if (i >= 2) result.uu += coefficient * int(i * (i - 1)) * up[i - 2] * vp[j];
-      if (i >= 1 && j >= 1) result.uv += coefficient * int(i * j) * up[i - 1] * vp[j - 1];
-      if (j >= 2) result.vv += coefficient * int(j * (j - 1)) * up[i] * vp[j - 2];
-    }
-  return result;
 }
 
 void sort_contacts(std::vector<SliceContact>& contacts) {
@@ -750,25 +724,22 @@ Rates rate_of(const Chain& chain, const ChainState& state, std::size_t k, const 
   const IntegerPolynomial2* polynomial = slicer.polynomial(other_chart, follower_chart, contact->feature);
   if (!polynomial) return result;
   Rational u = rational_near(other.position.value, 60), v = rational_near(part.position.value, 60);
-  Partials d = partials(*polynomial, u, v);
-  if (d.v == 0) {
+  // implicit differentiation of the contact curve P(u, v) = 0 (kernels/implicit_curve.hpp),
+  // exact at the rational point: dv/du, d2v/du2, then in part coordinates (rad or mm)
+  kernels::Partials<Rational> d =
+      kernels::polynomial_partials(polynomial->coefficients, u, v, [](const mpz_class& c) { return Rational(c); });
+  if (d.fy == 0) {
     result.ratio = std::numeric_limits<double>::quiet_NaN();
     return result;
   }
-  // scale exactly before converting: the partials of gear contact polynomials overflow double
-  Rational scale = abs(d.u) > abs(d.v) ? Rational(abs(d.u)) : Rational(abs(d.v));
-  double pu = Rational(d.u / scale).get_d(), pv = Rational(d.v / scale).get_d();
-  double puu = Rational(d.uu / scale).get_d(), puv = Rational(d.uv / scale).get_d(), pvv = Rational(d.vv / scale).get_d();
-  double first = -pu / pv;                                              // dv/du
-  double second = -(puu + 2 * puv * first + pvv * first * first) / pv;  // d2v/du2
-  double ud = u.get_d(), vd = v.get_d();
+  kernels::Slopes<Rational> chart = kernels::implicit_slopes(d.fx, d.fy, d.fxx, d.fxy, d.fyy);
   const AxisLine& other_line = chain.parts[q].line;
-  double g1 = line.rotation ? 2 / (1 + vd * vd) : 1.0;                       // d theta_f / dv
-  double g2 = line.rotation ? -4 * vd / ((1 + vd * vd) * (1 + vd * vd)) : 0.0;
-  double h1 = other_line.rotation ? (1 + ud * ud) / 2 : 1.0;                // du / d theta_q
-  double h2 = other_line.rotation ? ud * (1 + ud * ud) / 2 : 0.0;
-  double derivative = g1 * first * h1;
-  double curvature = g2 * (first * h1) * (first * h1) + g1 * (second * h1 * h1 + first * h2);
+  kernels::Slopes<Rational> part_axis = line.rotation ? kernels::half_angle_slopes(v) : kernels::offset_slopes<Rational>();
+  kernels::Slopes<Rational> other_axis =
+      other_line.rotation ? kernels::half_angle_slopes(u) : kernels::offset_slopes<Rational>();
+  kernels::Slopes<Rational> slopes = kernels::part_slopes(chart, other_axis, part_axis);
+  double derivative = slopes.first.get_d();    // d(follower coordinate) / d(other coordinate)
+  double curvature = slopes.second.get_d();
   result.ratio = derivative * known[q].ratio;
   result.acceleration = curvature * known[q].ratio * known[q].ratio + derivative * known[q].acceleration;
   return result;

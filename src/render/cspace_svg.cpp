@@ -1,6 +1,5 @@
 #include "render/cspace_svg.hpp"
 
-#include "cspace/builder_impl.hpp"
 #include "io/svg.hpp"
 
 #include <hipair/error.hpp>
@@ -14,8 +13,6 @@
 namespace hipair::render {
 namespace {
 
-using cspace::ChartAxis;
-using cspace::ChartData;
 
 constexpr double plot_size = 360;   // world units of the square plot
 constexpr const char* touching_colour = "#6a1b9a";   // zero-clearance contacts
@@ -24,13 +21,15 @@ const char* palette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", 
                          "#17becf", "#bcbd22", "#7f7f7f", "#393b79", "#ad494a", "#637939", "#e7ba52",
                          "#7b4173", "#3182bd", "#e6550d", "#31a354", "#756bb1", "#636363"};
 
-double to_display(const ChartAxis& axis, double chart_value) {
-  if (axis.kind == ChartAxis::Kind::translation) return chart_value;
-  double theta = (axis.half_turn ? std::numbers::pi : 0.0) + 2 * std::atan(chart_value);
+double to_display(AxisKind kind, bool half_turn, double chart_value) {
+  if (kind == AxisKind::translation) return chart_value;
+  double theta = (half_turn ? std::numbers::pi : 0.0) + 2 * std::atan(chart_value);
   return theta * 180 / std::numbers::pi;
 }
+double display_x(const CSpaceChart& chart, double value) { return to_display(chart.x_kind, chart.x_half_turn, value); }
+double display_y(const CSpaceChart& chart, double value) { return to_display(chart.y_kind, chart.y_half_turn, value); }
 
-double vertex_y(const cspace::raw::Vertex& v) {
+double vertex_y(const CSpaceVertex& v) {
   if (v.y_exact) return v.y.approximate();
   return Rational((v.y_lower + v.y_upper) / 2).get_d();
 }
@@ -48,30 +47,37 @@ struct Range {
 class Painter {
  public:
   Painter(const CSpace& space, const CSpaceSvgOptions& options)
-      : space_(space), impl_(hipair::implementation(space)), options_(options) {}
+      : space_(space),
+        charts_(space.charts()),
+        edges_(space.edges()),
+        vertices_(space.vertices()),
+        pairs_(space.feature_pairs()),
+        dimension_(space.dimension()),
+        complete_(space.complete()),
+        options_(options) {}
 
   std::string run() {
-    for (const auto& chart : impl_.charts) {
-      x_range_.add(to_display(chart.x_axis, chart.box.x_lo.get_d()));
-      x_range_.add(to_display(chart.x_axis, chart.box.x_hi.get_d()));
-      if (impl_.dimension == 2) {
-        y_range_.add(to_display(chart.y_axis, chart.box.y_lo.get_d()));
-        y_range_.add(to_display(chart.y_axis, chart.box.y_hi.get_d()));
+    for (const auto& chart : charts_) {
+      x_range_.add(display_x(chart, chart.x_lo.get_d()));
+      x_range_.add(display_x(chart, chart.x_hi.get_d()));
+      if (dimension_ == 2) {
+        y_range_.add(display_y(chart, chart.y_lo.get_d()));
+        y_range_.add(display_y(chart, chart.y_hi.get_d()));
       }
     }
-    if (impl_.dimension == 1) {
+    if (dimension_ == 1) {
       y_range_.lo = 0;
       y_range_.hi = 1;
     }
     const double legend_width = 260, margin = 60;
-    double height = impl_.dimension == 2 ? plot_size : 60;
+    double height = dimension_ == 2 ? plot_size : 60;
     io::SvgBox box{-margin, -margin, plot_size + legend_width + 20, height + 40};
     io::SvgWriter svg(box, options_.pixel_width);
     svg.set_default_stroke_width(0.6);
     svg.rectangle(-margin, -margin, plot_size + legend_width + 20 + margin, height + 40 + margin,
                   io::SvgStyle{"white", "none"});
     plot_height_ = height;
-    if (impl_.dimension == 2)
+    if (dimension_ == 2)
       draw_2d(svg);
     else
       draw_1d(svg);
@@ -88,19 +94,19 @@ class Painter {
   double Y(double display_y) const {
     return (display_y - y_range_.lo) / (y_range_.hi - y_range_.lo) * plot_height_;
   }
-  std::pair<double, double> world(const ChartData& chart, double cx, double cy) const {
-    return {X(to_display(chart.x_axis, cx)), Y(impl_.dimension == 2 ? to_display(chart.y_axis, cy) : 0.5)};
+  std::pair<double, double> world(const CSpaceChart& chart, double cx, double cy) const {
+    return {X(display_x(chart, cx)), Y(dimension_ == 2 ? display_y(chart, cy) : 0.5)};
   }
 
-  // Points along an edge in chart coordinates, from its min to its max vertex.
-  const std::vector<std::pair<double, double>>& samples(std::size_t chart_index, std::size_t local_edge) {
-    auto key = std::make_pair(chart_index, local_edge);
-    auto it = samples_.find(key);
+  // Points along an edge in chart coordinates, from its source (lexicographically smaller) to
+  // its target vertex.
+  const std::vector<std::pair<double, double>>& samples(std::size_t edge_index) {
+    auto it = samples_.find(edge_index);
     if (it != samples_.end()) return it->second;
-    const ChartData& chart = impl_.charts[chart_index];
-    const auto& edge = chart.arrangement.edges[local_edge];
-    const auto& a = chart.arrangement.vertices[edge.min_vertex];
-    const auto& b = chart.arrangement.vertices[edge.max_vertex];
+    const CSpaceEdge& edge = edges_[edge_index];
+    const CSpaceChart& chart = charts_[edge.chart];
+    const CSpaceVertex& a = vertices_[edge.source];
+    const CSpaceVertex& b = vertices_[edge.target];
     std::vector<std::pair<double, double>> points;
     double xa = a.x.approximate(), xb = b.x.approximate();
     points.emplace_back(xa, vertex_y(a));
@@ -112,36 +118,31 @@ class Painter {
       for (int i = 1; i < n; ++i) {
         double x = xa + (xb - xa) * i / n;
         try {
-          points.emplace_back(x, space_.evaluate(chart.edges[local_edge].global, x).value);
+          points.emplace_back(x, space_.evaluate(edge_index, x).value);
         } catch (const Error&) {
         }
       }
     }
     points.emplace_back(xb, vertex_y(b));
-    return samples_.emplace(key, std::move(points)).first->second;
+    return samples_.emplace(edge_index, std::move(points)).first->second;
   }
 
   void draw_2d(io::SvgWriter& svg) {
     // an operating region: what was not built is hatched, free faces drawn white over it
-    if (!impl_.complete) {
+    if (!complete_) {
       svg.define_hatch("not-built", "#b0b0b0", 6);
       svg.rectangle(0, 0, plot_size, plot_height_, io::SvgStyle{"url(#not-built)", "none"});
     }
     // blocked (and touching) faces
-    for (std::size_t c = 0; c < impl_.charts.size(); ++c) {
-      const ChartData& chart = impl_.charts[c];
-      for (std::size_t f = 0; f < chart.faces.size(); ++f) {
-        int kind = chart.faces[f].kind;
-        if (kind != 1 && kind != 2 && !(kind == 0 && !impl_.complete)) continue;
-        const auto& face = chart.arrangement.faces[f];
+    for (std::size_t c = 0; c < charts_.size(); ++c) {
+      const CSpaceChart& chart = charts_[c];
+      for (const CSpaceFace& face : space_.faces(c)) {
+        if (!face.classified || (face.kind == CellKind::free && complete_)) continue;
         io::SvgPath path;
-        for (std::size_t k = 0; k < face.component_starts.size(); ++k) {
-          std::size_t begin = face.component_starts[k];
-          std::size_t end = k + 1 < face.component_starts.size() ? face.component_starts[k + 1] : face.boundary.size();
+        for (const auto& component : face.boundary) {
           bool first = true;
-          for (std::size_t i = begin; i < end; ++i) {
-            auto [e, forward] = face.boundary[i];
-            const auto& points = samples(c, e);
+          for (auto [e, forward] : component) {
+            const auto& points = samples(e.index());
             for (std::size_t j = 0; j < points.size(); ++j) {
               const auto& p = forward ? points[j] : points[points.size() - 1 - j];
               auto [wx, wy] = world(chart, p.first, p.second);
@@ -155,7 +156,7 @@ class Painter {
           }
           if (!first) path.close();
         }
-        std::string colour = kind == 1 ? "#c8c8c8" : kind == 2 ? "#f4d35e" : "white";
+        std::string colour = face.kind == CellKind::blocked ? "#c8c8c8" : face.kind == CellKind::touching ? "#f4d35e" : "white";
         io::SvgStyle style{colour, colour};   // stroked too, to hide seams between faces
         style.stroke_width = 0.35;
         style.fill_rule = "evenodd";
@@ -163,48 +164,47 @@ class Painter {
       }
     }
     // edges: contact edges coloured by feature pair, seams dashed, limits black
-    for (std::size_t c = 0; c < impl_.charts.size(); ++c) {
-      const ChartData& chart = impl_.charts[c];
-      for (std::size_t e = 0; e < chart.arrangement.edges.size(); ++e) {
-        const CSpaceEdge& edge = impl_.edges[chart.edges[e].global];
+    {
+      for (std::size_t e = 0; e < edges_.size(); ++e) {
+        const CSpaceEdge& edge = edges_[e];
         io::SvgStyle style{"none", "black"};
         std::string title;
         if (edge.role == EdgeRole::touching) {
           // a zero-clearance channel: drawn after the faces, as a dark band with a white core
-          touching_edges_.emplace_back(c, e);
+          touching_edges_.push_back(e);
           continue;
         }
         if (edge.role == EdgeRole::contact || (edge.real && !edge.curves.empty())) {
           std::size_t pair = edge.curves.empty() ? 0 : edge.curves.front();
           style.stroke = colour_of(pair);
           style.stroke_width = 1.1;
-          for (std::size_t k : edge.curves) title += (title.empty() ? "" : "; ") + impl_.feature_pairs[k].label;
+          for (std::size_t k : edge.curves) title += (title.empty() ? "" : "; ") + pairs_[k].label;
         } else if (edge.role == EdgeRole::seam) {
-          if (!impl_.complete) continue;   // tiles of an operating region meet everywhere
+          if (!complete_) continue;   // tiles of an operating region meet everywhere
           style.stroke = "#555555";
           style.dash = "3 2";
           style.stroke_width = 0.4;
         } else if (edge.role == EdgeRole::limit) {
-          style.stroke_width = impl_.complete ? 0.8 : 0.3;
-          if (!impl_.complete) style.stroke = "#707070";
+          style.stroke_width = complete_ ? 0.8 : 0.3;
+          if (!complete_) style.stroke = "#707070";
         } else if (options_.show_spurious) {
           style.stroke = "#999999";
           style.stroke_width = 0.25;
         } else {
           continue;
         }
-        svg.path(edge_path(c, e), style, title);
+        svg.path(edge_path(e), style, title);
       }
     }
     draw_touching(svg);
   }
 
-  // An edge of chart c as a drawing path through its samples.
-  io::SvgPath edge_path(std::size_t c, std::size_t e) {
-    const ChartData& chart = impl_.charts[c];
+  // An edge as a drawing path through its samples.
+  io::SvgPath edge_path(std::size_t e) {
+    const CSpaceChart& chart = charts_[edges_[e].chart];
     io::SvgPath path;
     bool first = true;
-    for (const auto& p : samples(c, e)) {
+    for (const auto& p : samples(e)) {
       auto [wx, wy] = world(chart, p.first, p.second);
       if (first) {
         path.move_to(wx, wy);
@@ -219,12 +219,11 @@ class Painter {
   // Zero-clearance contacts (EdgeRole::touching edges, CSpaceVertex::touching vertices): the
   // parts only touch there, with blocked space on every side.
   void draw_touching(io::SvgWriter& svg) {
-    for (const auto& [c, e] : touching_edges_) {
-      const ChartData& chart = impl_.charts[c];
-      const CSpaceEdge& edge = impl_.edges[chart.edges[e].global];
+    for (std::size_t e : touching_edges_) {
+      const CSpaceEdge& edge = edges_[e];
       std::string title = "touching (zero clearance): ";
-      for (std::size_t k = 0; k < edge.curves.size(); ++k) title += (k ? "; " : "") + impl_.feature_pairs[edge.curves[k]].label;
-      io::SvgPath path = edge_path(c, e);
+      for (std::size_t k = 0; k < edge.curves.size(); ++k) title += (k ? "; " : "") + pairs_[edge.curves[k]].label;
+      io::SvgPath path = edge_path(e);
       io::SvgStyle band{"none", touching_colour};
       band.stroke_width = 2.2;
       svg.path(path, band, title);
@@ -232,9 +231,9 @@ class Painter {
       core.stroke_width = 0.7;
       svg.path(path, core);
     }
-    for (const CSpaceVertex& vertex : impl_.vertices) {
+    for (const CSpaceVertex& vertex : vertices_) {
       if (!vertex.touching) continue;
-      const ChartData& chart = impl_.charts[vertex.chart];
+      const CSpaceChart& chart = charts_[vertex.chart];
       double y = vertex.y_exact ? vertex.y.approximate() : Rational((vertex.y_lower + vertex.y_upper) / 2).get_d();
       auto [wx, wy] = world(chart, vertex.x.approximate(), y);
       io::SvgStyle dot{"white", touching_colour};
@@ -245,19 +244,21 @@ class Painter {
   }
 
   void draw_1d(io::SvgWriter& svg) {
-    for (std::size_t c = 0; c < impl_.charts.size(); ++c) {
-      const ChartData& chart = impl_.charts[c];
-      for (std::size_t i = 0; i < chart.faces.size(); ++i) {
-        if (chart.faces[i].kind < 0) continue;
-        double lo = i == 0 ? chart.box.x_lo.get_d() : chart.points[i - 1].approximate();
-        double hi = i == chart.points.size() ? chart.box.x_hi.get_d() : chart.points[i].approximate();
-        double a = X(to_display(chart.x_axis, lo)), b = X(to_display(chart.x_axis, hi));
-        std::string fill = chart.faces[i].kind == 1 ? "#c8c8c8" : chart.faces[i].kind == 2 ? "#f4d35e" : "white";
+    for (std::size_t c = 0; c < charts_.size(); ++c) {
+      const CSpaceChart& chart = charts_[c];
+      std::vector<CSpaceFace> faces = space_.faces(c);
+      for (const CSpaceFace& face : faces) {
+        if (!face.classified) continue;
+        double lo = face.lower.valid() ? vertices_[face.lower.index()].x.approximate() : chart.x_lo.get_d();
+        double hi = face.upper.valid() ? vertices_[face.upper.index()].x.approximate() : chart.x_hi.get_d();
+        double a = X(display_x(chart, lo)), b = X(display_x(chart, hi));
+        std::string fill = face.kind == CellKind::blocked ? "#c8c8c8" : face.kind == CellKind::touching ? "#f4d35e" : "white";
         svg.rectangle(a, 0, b - a, plot_height_, io::SvgStyle{fill, "none"});
       }
-      for (std::size_t i = 0; i < chart.points.size(); ++i) {
-        const CSpaceVertex& vertex = impl_.vertices[chart.vertex_global[i]];
-        double x = X(to_display(chart.x_axis, chart.points[i].approximate()));
+      for (const CSpaceFace& face : faces) {
+        if (!face.upper.valid()) continue;
+        const CSpaceVertex& vertex = vertices_[face.upper.index()];
+        double x = X(display_x(chart, vertex.x.approximate()));
         io::SvgStyle style{"none", vertex.curves.empty() ? "black" : colour_of(vertex.curves.front())};
         style.stroke_width = 1.2;
         svg.line(x, 0, x, plot_height_, style);
@@ -277,7 +278,7 @@ class Painter {
     io::SvgStyle frame{"none", "black"};
     frame.stroke_width = 0.8;
     svg.rectangle(0, 0, plot_size, plot_height_, frame);
-    const CSpaceChart& first = impl_.public_charts.front();
+    const CSpaceChart& first = charts_.front();
     auto ticks = [&](bool x_axis, const Range& range, bool rotation) {
       double step = rotation ? 45 : io::nice_length((range.hi - range.lo) / 6);
       double first = std::ceil(range.lo / step - 1e-9);
@@ -299,20 +300,20 @@ class Painter {
     };
     bool x_rotation = first.x_kind == AxisKind::rotation;
     ticks(true, x_range_, x_rotation);
-    svg.text(plot_size / 2, -26, impl_.x_part + (x_rotation ? " angle (deg)" : " offset (mm)"), 8);
-    if (impl_.dimension == 2) {
+    svg.text(plot_size / 2, -26, space_.x_part() + (x_rotation ? " angle (deg)" : " offset (mm)"), 8);
+    if (dimension_ == 2) {
       bool y_rotation = first.y_kind == AxisKind::rotation;
       ticks(false, y_range_, y_rotation);
-      svg.text(-30, plot_height_ + 8, impl_.y_part + (y_rotation ? " angle (deg)" : " offset (mm)"), 8, "start");
+      svg.text(-30, plot_height_ + 8, space_.y_part() + (y_rotation ? " angle (deg)" : " offset (mm)"), 8, "start");
     }
   }
 
   // Part coordinates to display coordinates, angles brought into the plotted window.
   std::pair<double, double> display_of(double px, double py) const {
-    bool x_rotates = impl_.charts.front().x_axis.kind == ChartAxis::Kind::rotation;
-    bool y_rotates = impl_.dimension == 2 && impl_.charts.front().y_axis.kind == ChartAxis::Kind::rotation;
+    bool x_rotates = charts_.front().x_kind == AxisKind::rotation;
+    bool y_rotates = dimension_ == 2 && charts_.front().y_kind == AxisKind::rotation;
     double x = x_rotates ? px * 180 / std::numbers::pi : px;
-    double y = impl_.dimension == 2 ? (y_rotates ? py * 180 / std::numbers::pi : py) : 0;
+    double y = dimension_ == 2 ? (y_rotates ? py * 180 / std::numbers::pi : py) : 0;
     if (x_rotates) x = x_range_.lo + std::fmod(std::fmod(x - x_range_.lo, 360.0) + 360.0, 360.0);
     if (y_rotates) y = y_range_.lo + std::fmod(std::fmod(y - y_range_.lo, 360.0) + 360.0, 360.0);
     return {x, y};
@@ -336,7 +337,7 @@ class Painter {
     };
     for (std::size_t i = 0; i < path.size(); ++i) {
       auto point = display_of(path[i].x, path[i].y);
-      double wx = X(point.first), wy = impl_.dimension == 2 ? Y(point.second) : plot_height_ / 2;
+      double wx = X(point.first), wy = dimension_ == 2 ? Y(point.second) : plot_height_ / 2;
       bool wraps = open && (std::fabs(point.first - previous.first) > 180 || std::fabs(point.second - previous.second) > 180);
       if (open && (wraps || path[i].contact != contact)) {
         if (!wraps) polyline.line_to(wx, wy);   // the segment ends where the contact changes
@@ -356,8 +357,8 @@ class Painter {
 
   void draw_marks(io::SvgWriter& svg) {
     for (const auto& mark : options_.marks) {
-      double x = impl_.charts.front().x_axis.kind == ChartAxis::Kind::rotation ? mark.x * 180 / std::numbers::pi : mark.x;
-      double y = impl_.dimension == 2 && impl_.charts.front().y_axis.kind == ChartAxis::Kind::rotation
+      double x = charts_.front().x_kind == AxisKind::rotation ? mark.x * 180 / std::numbers::pi : mark.x;
+      double y = dimension_ == 2 && charts_.front().y_kind == AxisKind::rotation
                      ? mark.y * 180 / std::numbers::pi
                      : mark.y;
       // bring angles into the plotted window (in one step: adding 360 in a loop never ends
@@ -365,11 +366,11 @@ class Painter {
       auto into_window = [](double angle, double lo) {
         return angle < lo ? angle + 360 * std::ceil((lo - angle) / 360) : angle;
       };
-      if (impl_.charts.front().x_axis.kind == ChartAxis::Kind::rotation) x = into_window(x, x_range_.lo);
-      if (impl_.dimension == 2 && impl_.charts.front().y_axis.kind == ChartAxis::Kind::rotation)
+      if (charts_.front().x_kind == AxisKind::rotation) x = into_window(x, x_range_.lo);
+      if (dimension_ == 2 && charts_.front().y_kind == AxisKind::rotation)
         y = into_window(y, y_range_.lo);
       if (!std::isfinite(x) || !std::isfinite(y)) continue;
-      double wy = impl_.dimension == 2 ? Y(y) : plot_height_ / 2;
+      double wy = dimension_ == 2 ? Y(y) : plot_height_ / 2;
       svg.circle(X(x), wy, 2.5, io::SvgStyle{"black", "white"});
       if (!mark.label.empty()) svg.text(X(x) + 4, wy + 3, mark.label, 6, "start");
     }
@@ -379,17 +380,17 @@ class Painter {
     std::vector<io::SvgWriter::LegendEntry> entries;
     entries.push_back({io::SvgStyle{"#c8c8c8", "none"}, "blocked"});
     entries.push_back({io::SvgStyle{"white", "black"}, "free"});
-    if (!impl_.complete) entries.push_back({io::SvgStyle{"url(#not-built)", "#b0b0b0"}, "not built (outside the operating region)"});
+    if (!complete_) entries.push_back({io::SvgStyle{"url(#not-built)", "#b0b0b0"}, "not built (outside the operating region)"});
     if (!touching_edges_.empty() || touching_vertices_ > 0) {
       io::SvgStyle swatch{"none", touching_colour};
       swatch.stroke_width = 2.2;
       entries.push_back({swatch, "touching, zero clearance (blocked on both sides):"});
       // the feature pairs that touch along the channels
       std::vector<std::size_t> pairs;
-      for (const auto& [c, e] : touching_edges_)
-        for (std::size_t k : impl_.edges[impl_.charts[c].edges[e].global].curves)
+      for (std::size_t e : touching_edges_)
+        for (std::size_t k : edges_[e].curves)
           if (std::find(pairs.begin(), pairs.end(), k) == pairs.end()) pairs.push_back(k);
-      for (std::size_t i = 0; i < pairs.size() && i < 6; ++i) entries.push_back({swatch, "  " + impl_.feature_pairs[pairs[i]].label});
+      for (std::size_t i = 0; i < pairs.size() && i < 6; ++i) entries.push_back({swatch, "  " + pairs_[pairs[i]].label});
     }
     if (options_.path.size() >= 2) {
       io::SvgStyle free{"none", "#1f4e9c"}, contact{"none", "#d62728"};
@@ -400,20 +401,25 @@ class Painter {
     for (const auto& [pair, colour] : colours_) {
       io::SvgStyle swatch{"none", colour};
       swatch.stroke_width = 1.5;
-      entries.push_back({swatch, impl_.feature_pairs[pair].label});
+      entries.push_back({swatch, pairs_[pair].label});
       if (entries.size() > 40) break;
     }
     svg.legend(plot_size + 15, plot_height_, entries, 6);
   }
 
   const CSpace& space_;
-  const CSpace::Impl& impl_;
+  const std::vector<CSpaceChart>& charts_;
+  const std::vector<CSpaceEdge>& edges_;
+  const std::vector<CSpaceVertex>& vertices_;
+  const std::vector<FeaturePair>& pairs_;
+  int dimension_ = 2;
+  bool complete_ = true;
   const CSpaceSvgOptions& options_;
   Range x_range_, y_range_;
   double plot_height_ = plot_size;
-  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::pair<double, double>>> samples_;
+  std::map<std::size_t, std::vector<std::pair<double, double>>> samples_;   // per edge
   std::map<std::size_t, std::string> colours_;
-  std::vector<std::pair<std::size_t, std::size_t>> touching_edges_;   // (chart, local edge)
+  std::vector<std::size_t> touching_edges_;   // edges
   std::size_t touching_vertices_ = 0;
 };
 

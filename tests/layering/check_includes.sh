@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# Layering check (ctest: layering_includes): every library, verifier and example source includes
+# only what its layer may see, so that the C-space adaptor (include/hipair/cspace.hpp and
+# include/hipair/overlap.hpp) stays the only door into the C-space layers.
+#
+#   bash tests/layering/check_includes.sh SOURCE_DIR
+#
+# A file's layer is its folder: src/<layer>/, certify/ (the independent verifier), kernels/,
+# include/hipair/ (public), examples/. Quoted includes "<folder>/..." are checked against the
+# table below; CGAL (<CGAL/...>, <hipair/cgal/...>) is the arrangement stage's alone. Tests are
+# exempt: they test internals on purpose. Prints every violation and exits 1 if there is one.
+set -u
+root="${1:?usage: check_includes.sh SOURCE_DIR}"
+cd "$root" || exit 2
+
+# Folders each layer may include with quoted includes (besides public <hipair/...>).
+declare -A allowed=(
+  [public]=""
+  [kernels]="kernels"
+  [core]="core"
+  [model]="model core"
+  [cspace]="cspace core model kernels"
+  [kinematics]="kinematics core kernels"
+  [certify]="certify core model kernels"
+  [verifier]="certify core model io"
+  [io]="io core"
+  [render]="render io core"
+  [cli]="cli io render core model"
+  [examples]=""
+)
+# The interfaces of the exact-algebra and contact-curve layers (still inside src/cspace): the
+# kinematic kernel slicer computes 1-D slices from the contact curves without an arrangement.
+# Every other src/cspace header is internal to the C-space (the arrangement stage, the
+# adaptor's internals, the oracle's internals: consumers use hipair/cspace.hpp, hipair/overlap.hpp).
+declare -A layer_interfaces=(
+  [kinematics]="cspace/builder_algebra.hpp cspace/contact_curves.hpp"
+)
+
+layer_of() {
+  case "$1" in
+    include/hipair/*) echo public ;;
+    kernels/*) echo kernels ;;
+    certify/*) echo verifier ;;
+    examples/*) echo examples ;;
+    src/*/*) local rest="${1#src/}"; echo "${rest%%/*}" ;;
+    *) echo "" ;;
+  esac
+}
+
+violations=0
+report() {
+  echo "layering: $1:$2: $3" >&2
+  violations=$((violations + 1))
+}
+
+while IFS= read -r file; do
+  layer="$(layer_of "$file")"
+  [ -n "$layer" ] || continue
+  if [ -z "${allowed[$layer]+x}" ]; then
+    report "$file" 0 "folder of unknown layer '$layer' (add it to tests/layering/check_includes.sh)"
+    continue
+  fi
+  line_number=0
+  while IFS= read -r line; do
+    line_number=$((line_number + 1))
+    [[ "$line" =~ ^[[:space:]]*#[[:space:]]*include[[:space:]]*([\"\<])([^\"\>]+)[\"\>] ]] || continue
+    kind="${BASH_REMATCH[1]}" target="${BASH_REMATCH[2]}"
+    if [ "$kind" = "<" ]; then
+      if [[ "$target" == CGAL/* || "$target" == hipair/cgal/* ]] &&
+         [[ "$file" != src/cspace/builder_cgal.cpp && "$file" != include/hipair/cgal/* ]]; then
+        report "$file" "$line_number" "includes <$target>: CGAL belongs to the arrangement stage (src/cspace/builder_cgal.cpp)"
+      fi
+      continue
+    fi
+    folder="${target%%/*}"
+    [ "$folder" != "$target" ] || continue   # a sibling header in the same folder
+    ok=0
+    for a in ${allowed[$layer]}; do [ "$a" = "$folder" ] && ok=1; done
+    for a in ${layer_interfaces[$layer]:-}; do [ "$a" = "$target" ] && ok=1; done
+    [ $ok = 1 ] || report "$file" "$line_number" "layer '$layer' includes \"$target\" (another layer's internals; use the public headers)"
+  done <"$file"
+done < <(find include kernels src certify examples -type f \( -name '*.hpp' -o -name '*.cpp' -o -name '*.h' \) 2>/dev/null | sort)
+
+# The public headers expose no internal access: the adaptor's internals stay behind
+# src/cspace/cspace_access.hpp.
+while IFS=: read -r file line_number _; do
+  report "$file" "$line_number" "a public header exposes the C-space internals (implementation()/make_cspace())"
+done < <(grep -nE '\b(implementation|make_cspace)[[:space:]]*\(' -r include/hipair 2>/dev/null)
+
+if [ $violations -gt 0 ]; then
+  echo "layering: $violations violation(s)" >&2
+  exit 1
+fi
+echo "layering: every include respects the layers"
