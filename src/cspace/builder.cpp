@@ -2,6 +2,7 @@
 // with feature pairs, every face gets an exact rational sample point classified by the
 // overlap oracle, and charts are glued along seams into cells.
 #include "cspace/builder_impl.hpp"
+#include "cspace/builder_circle_segment.hpp"
 
 #include <hipair/error.hpp>
 
@@ -706,8 +707,12 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     raw::Options raw_options;
     raw_options.aggregated_insertion = options.aggregated_insertion;
     raw_options.keep_cgal = options.keep_arrangements;
+    // lines and circles (translating pairs): the circle–segment traits; else the algebraic ones
     chart.arrangement =
-        raw::build_arrangement(chart.box, chart.polynomials, chart.validity, chart.windows, raw_options);
+        raw::circle_segment_applies(chart.polynomials, chart.validity)
+            ? raw::build_circle_segment_arrangement(chart.box, chart.polynomials, chart.validity, chart.windows,
+                                                    raw_options)
+            : raw::build_arrangement(chart.box, chart.polynomials, chart.validity, chart.windows, raw_options);
     stats.seconds_clipping += chart.arrangement.times.curves_seconds;
     stats.seconds_arrangement += chart.arrangement.times.insertion_seconds;
     stats.seconds_export += chart.arrangement.times.export_seconds;
