@@ -71,13 +71,23 @@ int total_degree(const IntegerPolynomial2& f) {
   return degree;
 }
 
-// k0 + kx x + ky y, exact.
+// k0 + kx x + ky y + q (x^2 + y^2), exact: a validity atom (q = 0 but for the circles of
+// arc–arc contacts, e.g. |D|^2 >= r1^2 + r2^2), or a line (q = 0).
 struct Linear {
   Rational k0, kx, ky;
+  Rational q = 0;
 };
 
+// A polynomial of total degree <= 1, or of the form q (x^2 + y^2) + linear.
+bool atom_form(const IntegerPolynomial2& f) {
+  int degree = total_degree(f);
+  if (degree <= 1) return true;
+  return degree == 2 && coefficient(f, 2, 0) == coefficient(f, 0, 2) && sgn(coefficient(f, 1, 1)) == 0;
+}
+
 Linear linear_of(const IntegerPolynomial2& f) {
-  return Linear{Rational(coefficient(f, 0, 0)), Rational(coefficient(f, 1, 0)), Rational(coefficient(f, 0, 1))};
+  return Linear{Rational(coefficient(f, 0, 0)), Rational(coefficient(f, 1, 0)), Rational(coefficient(f, 0, 1)),
+                Rational(coefficient(f, 2, 0))};
 }
 
 // The circle x^2 + y^2 + d x + e y + g = 0 (scaled): centre and squared radius.
@@ -386,7 +396,14 @@ class Builder {
   };
 
   // Points of the circle on the line k0 + kx x + ky y = 0.
-  static void circle_line(const Circle& c, const Linear& g, std::vector<Break>& out) {
+  static void circle_line(const Circle& c, const Linear& atom, std::vector<Break>& out) {
+    Linear g = atom;
+    if (sgn(atom.q) != 0) {
+      // a circle: its points on c lie on the radical line (atom / q) - (c's monic polynomial)
+      g = Linear{atom.k0 / atom.q - (c.cx * c.cx + c.cy * c.cy - c.r2), atom.kx / atom.q + 2 * c.cx,
+                 atom.ky / atom.q + 2 * c.cy};
+      if (sgn(g.kx) == 0 && sgn(g.ky) == 0) return;   // concentric: no common point (or the same circle)
+    }
     if (sgn(g.ky) == 0) {
       if (sgn(g.kx) == 0) return;
       Rational x0 = -g.k0 / g.kx;
@@ -415,7 +432,9 @@ class Builder {
     if (sgn(c.r2) == 0) {
       // a single point (equal arcs, concentric): kept when inside the box and valid
       if (c.cx < box_.x_lo || c.cx > box_.x_hi || c.cy < box_.y_lo || c.cy > box_.y_hi || !in_windows(c.cx, windows)) return;
-      bool valid = clauses_hold(clauses, [&](const Linear& g) { return sgn(g.k0 + g.kx * c.cx + g.ky * c.cy); });
+      bool valid = clauses_hold(clauses, [&](const Linear& g) {
+        return sgn(g.k0 + g.kx * c.cx + g.ky * c.cy + g.q * (c.cx * c.cx + c.cy * c.cy));
+      });
       if (valid) isolated_.emplace_back(CoordNT(to_nt(c.cx)), CoordNT(to_nt(c.cy)));
       return;
     }
@@ -489,8 +508,8 @@ class Builder {
         Real xa = to_real(chain[i].x.coord()), xb = to_real(chain[i + 1].x.coord());
         Rational x = algebra::rational_between(xa, xb);
         Rational s = c.r2 - (x - c.cx) * (x - c.cx);
-        auto sign_at = [&](const Linear& g) {   // g at (x, cy + ysign sqrt(s))
-          return sign_of(g.k0 + g.kx * x + g.ky * c.cy, g.ky * ysign, s);
+        auto sign_at = [&](const Linear& g) {   // g at (x, cy + ysign sqrt(s)): alpha + beta sqrt(s)
+          return sign_of(g.k0 + g.kx * x + g.ky * c.cy + g.q * (x * x + c.cy * c.cy + s), (g.ky + 2 * g.q * c.cy) * ysign, s);
         };
         bool keep = box_.x_lo < x && x < box_.x_hi && sign_at(Linear{-box_.y_lo, 0, 1}) > 0 &&
                     sign_at(Linear{box_.y_hi, 0, -1}) > 0 && in_windows(x, windows) && clauses_hold(clauses, sign_at);
@@ -643,14 +662,16 @@ class Builder {
 
 bool circle_segment_applies(const std::vector<IntegerPolynomial2>& curves,
                             const std::vector<std::vector<ValidityClause>>& validity) {
-  for (const auto& f : curves) {
-    int degree = total_degree(f);
-    if (degree >= 2 && !circle_of(f)) return false;
-  }
-  for (const auto& clauses : validity)
-    for (const auto& clause : clauses)
+  for (std::size_t k = 0; k < curves.size(); ++k) {
+    int degree = total_degree(curves[k]);
+    bool circle = degree >= 2;
+    if (circle && !circle_of(curves[k])) return false;
+    if (k >= validity.size()) continue;
+    // atoms: linear on every curve; on a circle also q (x^2 + y^2) + linear
+    for (const auto& clause : validity[k])
       for (const auto& atom : clause.atoms)
-        if (total_degree(atom) > 1) return false;
+        if (circle ? !atom_form(atom) : total_degree(atom) > 1) return false;
+  }
   return true;
 }
 

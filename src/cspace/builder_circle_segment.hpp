@@ -13,8 +13,9 @@
 namespace hipair::cspace::raw {
 
 /// True when every curve is a line or a circle with rational centre and squared radius (or
-/// zero / a non-zero constant: no points), and every validity atom has total degree <= 1:
-/// then build_circle_segment_arrangement applies.
+/// zero / a non-zero constant: no points), every validity atom of a line has total degree
+/// <= 1, and every atom of a circle is linear or a circle (q (x^2 + y^2) + linear: the
+/// external/internal branch of an arc–arc contact): then build_circle_segment_arrangement applies.
 bool circle_segment_applies(const std::vector<IntegerPolynomial2>& curves,
                             const std::vector<std::vector<ValidityClause>>& validity);
 
