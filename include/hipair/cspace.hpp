@@ -154,7 +154,8 @@ struct CSpaceVertex {
   AlgebraicNumber x;                   ///< chart coordinates, exact
   /// y exactly: the `y_branch`-th (0-based, ascending) distinct real root in y of
   /// y_curve(x, y) = 0 at this x; within the certified bounds [y_lower, y_upper], which isolate
-  /// it among those roots. As a univariate algebraic number `y` when `y_exact` (x rational).
+  /// it among those roots. As a univariate algebraic number `y` when `y_exact` (x rational;
+  /// or any vertex of a circle–segment chart, whose y_curve is y's minimal polynomial in y alone).
   /// A 1-D space has y = 0.
   std::vector<std::vector<mpz_class>> y_curve;
   int y_branch = 0;
@@ -408,6 +409,10 @@ struct CSpaceStatistics {
   /// Edges on two or more coincident contact curves between blocked faces with no rational
   /// point found (they stay spurious, unchecked by the oracle; see docs/cspace.md).
   std::size_t touching_undecided = 0;
+  /// Charts (or tiles) whose curves are all lines and circles (translating pairs), built on
+  /// CGAL's circle–segment traits instead of the algebraic ones; their vertices all have exact
+  /// coordinates (CSpaceVertex::y_exact).
+  std::size_t circle_segment_charts = 0;
   std::size_t region_tiles = 0;       ///< operating region: tiles built (0: whole space built)
   std::size_t region_cells = 0;       ///< operating region: flooded quadtree cells
   double seconds_region = 0;          ///< operating region: flood over certified-blocked cells

@@ -98,6 +98,7 @@ json statistics_json(const CSpaceStatistics& s) {
               {"touching_edges", s.touching_edges},
               {"touching_vertices", s.touching_vertices},
               {"touching_undecided", s.touching_undecided},
+              {"circle_segment_charts", s.circle_segment_charts},
               {"region_tiles", s.region_tiles},
               {"region_cells", s.region_cells},
               {"seconds",
@@ -212,6 +213,9 @@ void print_statistics(const CSpace& space) {
               s.feature_pairs_considered, s.feature_pairs_culled, s.curves, s.pieces_inserted);
   std::printf("  vertices %zu, edges %zu (contact %zu), faces %zu, cells %zu\n", s.vertices, s.edges, s.contact_edges,
               s.faces, s.cells);
+  if (s.circle_segment_charts > 0)
+    std::printf("  circle-segment arrangements (lines and circles): %zu of %zu charts\n", s.circle_segment_charts,
+                s.charts);
   if (s.touching_edges + s.touching_vertices + s.touching_undecided > 0)
     std::printf("  zero-clearance contacts: %zu touching edges, %zu isolated touching vertices%s\n", s.touching_edges,
                 s.touching_vertices,

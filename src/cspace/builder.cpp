@@ -2,6 +2,7 @@
 // with feature pairs, every face gets an exact rational sample point classified by the
 // overlap oracle, and charts are glued along seams into cells.
 #include "cspace/builder_impl.hpp"
+#include "cspace/builder_circle_segment.hpp"
 
 #include <hipair/error.hpp>
 
@@ -410,10 +411,12 @@ void find_touching(ChartData& chart, const Classifier& classify, CSpaceStatistic
   // isolated points: rational vertices of curves only, blocked all around
   for (std::size_t v = 0; v < arrangement.vertices.size(); ++v) {
     const raw::Vertex& vertex = arrangement.vertices[v];
-    if (vertex.isolated || vertex.around.size() < 2) continue;
+    if (!vertex.isolated && vertex.around.size() < 2) continue;
     // on curves (not a corner of the box), no end of a touching edge, blocked in every wedge
-    // inside the box (a vertex on a seam is checked in each chart it appears in)
-    bool on_curve = false, candidate = true;
+    // inside the box (a vertex on a seam is checked in each chart it appears in); an isolated
+    // point of a curve (a peg in a round hole of exactly its radius: the curve of two equal
+    // concentric arcs is one point) inside a blocked face
+    bool on_curve = vertex.isolated, candidate = !vertex.isolated || blocked(vertex.face_below);
     for (const auto& incidence : vertex.around) {
       if (arrangement.edges[incidence.edge].box_side < 0) on_curve = true;
       if (chart.edges[incidence.edge].touching) candidate = false;
@@ -706,8 +709,13 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     raw::Options raw_options;
     raw_options.aggregated_insertion = options.aggregated_insertion;
     raw_options.keep_cgal = options.keep_arrangements;
+    // lines and circles (translating pairs): the circle–segment traits; else the algebraic ones
+    const bool circle_segment = raw::circle_segment_applies(chart.polynomials, chart.validity);
     chart.arrangement =
-        raw::build_arrangement(chart.box, chart.polynomials, chart.validity, chart.windows, raw_options);
+        circle_segment ? raw::build_circle_segment_arrangement(chart.box, chart.polynomials, chart.validity,
+                                                               chart.windows, raw_options)
+                       : raw::build_arrangement(chart.box, chart.polynomials, chart.validity, chart.windows, raw_options);
+    stats.circle_segment_charts += circle_segment ? 1 : 0;
     stats.seconds_clipping += chart.arrangement.times.curves_seconds;
     stats.seconds_arrangement += chart.arrangement.times.insertion_seconds;
     stats.seconds_export += chart.arrangement.times.export_seconds;

@@ -24,7 +24,9 @@ using Traits = CGAL::Arr_algebraic_segment_traits_2<CGAL::Gmpz>;
 using Arrangement = CGAL::Arrangement_2<Traits>;
 
 /// The arrangement of chart `chart` (index into CSpace::charts()), or nullptr when it was not
-/// kept (or the space is 1-D). Edges are in chart coordinates; the chart box is its boundary.
+/// kept (or the space is 1-D, or the chart's curves are all lines and circles — a translating
+/// pair — and it was built on CGAL's circle–segment traits, which this accessor does not
+/// expose). Edges are in chart coordinates; the chart box is its boundary.
 const Arrangement* arrangement(const CSpace& space, std::size_t chart);
 
 }  // namespace hipair::cgal

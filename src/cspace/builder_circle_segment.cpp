@@ -1,0 +1,694 @@
+// The circle–segment CGAL stage of the C-space builder (see builder_circle_segment.hpp): the
+// only translation unit that includes Arr_circle_segment_traits_2.
+#include "cspace/builder_circle_segment.hpp"
+
+#include <hipair/error.hpp>
+
+#include "cspace/builder_algebra.hpp"
+
+#include <CGAL/Arr_circle_segment_traits_2.h>
+#include <CGAL/Arrangement_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <type_traits>
+#include <unordered_map>
+
+namespace hipair::cspace::raw {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
+using Traits = CGAL::Arr_circle_segment_traits_2<Kernel>;
+using NT = Traits::NT;
+using CoordNT = Traits::CoordNT;
+using Point = Traits::Point_2;
+using Curve = Traits::Curve_2;
+using XCurve = Traits::X_monotone_curve_2;
+using Arrangement_2 = CGAL::Arrangement_2<Traits>;
+using ET = std::remove_cv_t<std::remove_reference_t<decltype(CGAL::exact(std::declval<NT>()))>>;
+using Clock = std::chrono::steady_clock;
+using algebra::Real;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// (templates, so that only the branch of the kernel's exact type is instantiated)
+template <class E>
+E exact_of(const Rational& q) {
+  if constexpr (std::is_same_v<E, CGAL::Gmpq>)
+    return E(q.get_mpq_t());
+  else
+    return E(q);
+}
+
+template <class E>
+Rational rational_of(const E& e) {
+  if constexpr (std::is_same_v<E, CGAL::Gmpq>)
+    return Rational(e.mpq());
+  else
+    return Rational(e);
+}
+
+NT to_nt(const Rational& q) { return NT(exact_of<ET>(q)); }
+Rational to_rational(const NT& value) { return rational_of<ET>(CGAL::exact(value)); }
+
+const mpz_class& coefficient(const IntegerPolynomial2& f, std::size_t i, std::size_t j) {
+  static const mpz_class zero = 0;
+  if (i >= f.coefficients.size() || j >= f.coefficients[i].size()) return zero;
+  return f.coefficients[i][j];
+}
+
+int total_degree(const IntegerPolynomial2& f) {
+  int degree = -1;
+  for (std::size_t i = 0; i < f.coefficients.size(); ++i)
+    for (std::size_t j = 0; j < f.coefficients[i].size(); ++j)
+      if (sgn(f.coefficients[i][j]) != 0) degree = std::max(degree, static_cast<int>(i + j));
+  return degree;
+}
+
+// k0 + kx x + ky y + q (x^2 + y^2), exact: a validity atom (q = 0 but for the circles of
+// arc–arc contacts, e.g. |D|^2 >= r1^2 + r2^2), or a line (q = 0).
+struct Linear {
+  Rational k0, kx, ky;
+  Rational q = 0;
+};
+
+// A polynomial of total degree <= 1, or of the form q (x^2 + y^2) + linear.
+bool atom_form(const IntegerPolynomial2& f) {
+  int degree = total_degree(f);
+  if (degree <= 1) return true;
+  return degree == 2 && coefficient(f, 2, 0) == coefficient(f, 0, 2) && sgn(coefficient(f, 1, 1)) == 0;
+}
+
+Linear linear_of(const IntegerPolynomial2& f) {
+  return Linear{Rational(coefficient(f, 0, 0)), Rational(coefficient(f, 1, 0)), Rational(coefficient(f, 0, 1)),
+                Rational(coefficient(f, 2, 0))};
+}
+
+// The circle x^2 + y^2 + d x + e y + g = 0 (scaled): centre and squared radius.
+struct Circle {
+  Rational cx, cy, r2;
+};
+
+std::optional<Circle> circle_of(const IntegerPolynomial2& f) {
+  if (total_degree(f) != 2) return std::nullopt;
+  const mpz_class& a = coefficient(f, 2, 0);
+  if (sgn(a) == 0 || coefficient(f, 0, 2) != a || sgn(coefficient(f, 1, 1)) != 0) return std::nullopt;
+  Rational d(coefficient(f, 1, 0), a), e(coefficient(f, 0, 1), a), g(coefficient(f, 0, 0), a);
+  d.canonicalize();
+  e.canonicalize();
+  g.canonicalize();
+  Circle c{-d / 2, -e / 2, 0};
+  c.r2 = c.cx * c.cx + c.cy * c.cy - g;
+  return c;
+}
+
+// sqrt(q) when q >= 0 is the square of a rational.
+std::optional<Rational> rational_sqrt(const Rational& q) {
+  if (sgn(q) < 0) return std::nullopt;
+  if (mpz_perfect_square_p(q.get_num_mpz_t()) == 0 || mpz_perfect_square_p(q.get_den_mpz_t()) == 0) return std::nullopt;
+  mpz_class n, d;
+  mpz_sqrt(n.get_mpz_t(), q.get_num_mpz_t());
+  mpz_sqrt(d.get_mpz_t(), q.get_den_mpz_t());
+  Rational r(n, d);
+  r.canonicalize();
+  return r;
+}
+
+// a0 + a1 sqrt(root), root >= 0, exactly.
+struct OneRoot {
+  Rational a0, a1, root;
+  static OneRoot of(Rational a0, Rational a1, Rational root) {
+    if (sgn(a1) == 0 || sgn(root) == 0) return OneRoot{std::move(a0), 0, 0};
+    if (auto s = rational_sqrt(root)) return OneRoot{a0 + a1 * *s, 0, 0};
+    return OneRoot{std::move(a0), std::move(a1), std::move(root)};
+  }
+  bool rational() const { return sgn(a1) == 0; }
+  CoordNT coord() const {
+    if (rational()) return CoordNT(to_nt(a0));
+    return CoordNT(to_nt(a0), to_nt(a1), to_nt(root));
+  }
+};
+
+// Sign of alpha + beta sqrt(s), s >= 0.
+int sign_of(const Rational& alpha, const Rational& beta, const Rational& s) {
+  int sa = sgn(alpha), sb = sgn(s) == 0 ? 0 : sgn(beta);
+  if (sb == 0) return sa;
+  if (sa == 0 || sa == sb) return sb;
+  int c = cmp(alpha * alpha, beta * beta * s);
+  return c > 0 ? sa : c < 0 ? sb : 0;
+}
+
+// The exact real a0 + a1 sqrt(root) as an algebra::Real (its minimal polynomial and an
+// isolating interval about 2^-62 relatively wide).
+Real to_real(const CoordNT& value) {
+  Rational a0 = to_rational(value.a0());
+  if (!value.is_extended()) return Real::from_rational(a0);
+  Rational a1 = to_rational(value.a1()), root = to_rational(value.root());
+  if (sgn(a1) == 0 || sgn(root) == 0) return Real::from_rational(a0);
+  if (auto s = rational_sqrt(root)) return Real::from_rational(a0 + a1 * *s);
+  if (sgn(root) < 0) throw NumericError("internal: a circle–segment coordinate with a negative radicand");
+  // sqrt(root) = sqrt(num * den) / den, bracketed by floor(sqrt(num * den * 4^k)) / (den 2^k)
+  mpz_class m = root.get_num() * root.get_den();
+  long bits = static_cast<long>(mpz_sizeinbase(m.get_mpz_t(), 2));
+  unsigned long k = bits >= 126 ? 1 : static_cast<unsigned long>((126 - bits) / 2 + 1);
+  mpz_class scaled = m << (2 * k), s;
+  mpz_sqrt(s.get_mpz_t(), scaled.get_mpz_t());
+  mpz_class denominator = root.get_den() << k;
+  Rational s_lo(s, denominator), s_hi(s + 1, denominator);
+  s_lo.canonicalize();
+  s_hi.canonicalize();
+  Real r;
+  r.polynomial = algebra::from_rationals({a0 * a0 - a1 * a1 * root, -2 * a0, Rational(1)});
+  Rational u = a0 + a1 * s_lo, v = a0 + a1 * s_hi;
+  r.lower = sgn(a1) > 0 ? u : v;
+  r.upper = sgn(a1) > 0 ? v : u;
+  r.exact = false;
+  return r;
+}
+
+// The minimal polynomial of an exact y, in y alone, and y's index among its real roots.
+void fill_y(const CoordNT& value, Vertex& out) {
+  out.y = to_real(value);
+  out.y_exact = true;
+  out.y_lower = out.y.lower;
+  out.y_upper = out.y.upper;
+  out.y_curve.coefficients = {out.y.polynomial};   // x^0 y^j
+  out.y_branch = 0;
+  if (!out.y.exact && algebra::degree(out.y.polynomial) == 2)
+    out.y_branch = sgn(to_rational(value.a1())) > 0 ? 1 : 0;   // a0 + |a1| sqrt(c) is the larger root
+}
+
+IntegerPolynomial2 integer_polynomial(const std::vector<std::vector<Rational>>& c) {
+  mpz_class lcm = 1;
+  for (const auto& row : c)
+    for (const auto& q : row) mpz_lcm(lcm.get_mpz_t(), lcm.get_mpz_t(), q.get_den_mpz_t());
+  IntegerPolynomial2 f;
+  mpz_class g = 0;
+  for (const auto& row : c) {
+    f.coefficients.emplace_back();
+    for (const auto& q : row) {
+      mpz_class z = q.get_num() * (lcm / q.get_den());
+      mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), z.get_mpz_t());
+      f.coefficients.back().push_back(std::move(z));
+    }
+  }
+  if (sgn(g) > 0)
+    for (auto& row : f.coefficients)
+      for (auto& z : row) z /= g;
+  return f;
+}
+
+IntegerPolynomial2 support_of(const XCurve& arc) {
+  if (arc.is_linear()) {
+    const auto& line = arc.supporting_line();
+    return integer_polynomial({{to_rational(line.c()), to_rational(line.b())}, {to_rational(line.a()), Rational(0)}});
+  }
+  const auto& circle = arc.supporting_circle();
+  Rational cx = to_rational(circle.center().x()), cy = to_rational(circle.center().y());
+  Rational r2 = to_rational(circle.squared_radius());
+  return integer_polynomial({{cx * cx + cy * cy - r2, -2 * cy, Rational(1)}, {-2 * cx, Rational(0)}, {Rational(1)}});
+}
+
+// ---------------------------------------------------------------- sets of parameter values
+
+struct Span {
+  std::optional<Rational> lo, hi;   // closed; nullopt: infinite
+};
+using Set = std::vector<Span>;
+
+Set everything() { return {Span{}}; }
+
+// {t : p + q t >= 0}
+Set half(const Rational& p, const Rational& q) {
+  if (sgn(q) == 0) return sgn(p) >= 0 ? everything() : Set{};
+  Rational t = -p / q;
+  if (sgn(q) > 0) return {Span{t, std::nullopt}};
+  return {Span{std::nullopt, t}};
+}
+
+// As lower bounds (nullopt: -infinity): a < b.
+bool lo_before(const std::optional<Rational>& a, const std::optional<Rational>& b) {
+  if (!a) return static_cast<bool>(b);
+  if (!b) return false;
+  return *a < *b;
+}
+// As upper bounds (nullopt: +infinity): a < b.
+bool hi_before(const std::optional<Rational>& a, const std::optional<Rational>& b) {
+  if (!a) return false;
+  if (!b) return true;
+  return *a < *b;
+}
+
+Set intersect(const Set& a, const Set& b) {
+  Set out;
+  for (const auto& x : a)
+    for (const auto& y : b) {
+      Span s;
+      s.lo = lo_before(x.lo, y.lo) ? y.lo : x.lo;
+      s.hi = hi_before(x.hi, y.hi) ? x.hi : y.hi;
+      if (s.lo && s.hi && *s.hi < *s.lo) continue;
+      out.push_back(std::move(s));
+    }
+  std::sort(out.begin(), out.end(), [](const Span& p, const Span& q) { return lo_before(p.lo, q.lo); });
+  return out;
+}
+
+Set unite(Set a, const Set& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  std::sort(a.begin(), a.end(), [](const Span& p, const Span& q) { return lo_before(p.lo, q.lo); });
+  Set out;
+  for (auto& s : a) {
+    bool separate = out.empty() || (s.lo && out.back().hi && *s.lo > *out.back().hi);
+    if (!separate) {
+      if (hi_before(out.back().hi, s.hi)) out.back().hi = s.hi;
+      continue;
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- the builder
+
+class Builder {
+ public:
+  Builder(const Box& box, const Options& options) : box_(box), options_(options) {}
+
+  Arrangement run(const std::vector<IntegerPolynomial2>& curves, const std::vector<std::vector<ValidityClause>>& validity,
+                  const std::vector<std::vector<std::pair<Rational, Rational>>>& windows) {
+    auto start = Clock::now();
+    // the chart box
+    Kernel::Point_2 corners[4] = {point(box_.x_lo, box_.y_lo), point(box_.x_hi, box_.y_lo), point(box_.x_hi, box_.y_hi),
+                                  point(box_.x_lo, box_.y_hi)};
+    for (int i = 0; i < 4; ++i) pieces_.emplace_back(corners[i], corners[(i + 1) % 4]);
+    static const std::vector<ValidityClause> no_clauses;
+    static const std::vector<std::pair<Rational, Rational>> no_windows;
+    for (std::size_t k = 0; k < curves.size(); ++k) {
+      const auto& clauses = k < validity.size() ? validity[k] : no_clauses;
+      const auto& curve_windows = k < windows.size() ? windows[k] : no_windows;
+      int degree = total_degree(curves[k]);
+      if (degree <= 0) continue;   // no points (or identically zero: bounds nothing)
+      if (degree == 1)
+        clip_line(linear_of(curves[k]), clauses, curve_windows);
+      else if (auto circle = circle_of(curves[k]))
+        clip_circle(*circle, clauses, curve_windows);
+      else
+        throw GeometryError("internal: a contact curve is neither a line nor a circle");
+    }
+    result_.times.curves_seconds = seconds_since(start);
+
+    start = Clock::now();
+    Arrangement_2 arrangement;
+    CGAL::insert(arrangement, pieces_.begin(), pieces_.end());
+    for (const auto& p : isolated_) CGAL::insert_point(arrangement, p);
+    result_.pieces_inserted = pieces_.size() - 4;
+    result_.times.insertion_seconds = seconds_since(start);
+
+    start = Clock::now();
+    export_topology(arrangement);
+    result_.times.export_seconds = seconds_since(start);
+    return std::move(result_);
+  }
+
+ private:
+  static Kernel::Point_2 point(const Rational& x, const Rational& y) { return Kernel::Point_2(to_nt(x), to_nt(y)); }
+
+  // Clauses hold at a point where each atom's value is given by `value` (a sign).
+  template <class SignOf>
+  static bool clauses_hold(const std::vector<ValidityClause>& clauses, SignOf sign_of_atom) {
+    for (const auto& clause : clauses) {
+      bool holds = false;
+      for (const auto& atom : clause.atoms)
+        if (sign_of_atom(linear_of(atom)) >= 0) {
+          holds = true;
+          break;
+        }
+      if (!holds) return false;
+    }
+    return true;
+  }
+
+  static bool in_windows(const Rational& x, const std::vector<std::pair<Rational, Rational>>& windows) {
+    if (windows.empty()) return true;
+    for (const auto& [lo, hi] : windows)
+      if (lo <= x && x <= hi) return true;
+    return false;
+  }
+
+  // A line k0 + kx x + ky y = 0: the parameter set (x, or y for a vertical line) where it is
+  // inside the box, valid and inside its windows, as segments with rational ends.
+  void clip_line(const Linear& line, const std::vector<ValidityClause>& clauses,
+                 const std::vector<std::pair<Rational, Rational>>& windows) {
+    const bool vertical = sgn(line.ky) == 0;
+    Rational x0;   // vertical: the constant x
+    // a linear function g0 + gx x + gy y along the line: p + q t
+    auto along = [&](const Linear& g) -> std::pair<Rational, Rational> {
+      if (vertical) return {g.k0 + g.kx * x0, g.ky};
+      Rational u = -line.k0 / line.ky, v = -line.kx / line.ky;   // y = u + v x
+      return {g.k0 + g.ky * u, g.kx + g.ky * v};
+    };
+    if (vertical) {
+      x0 = -line.k0 / line.kx;
+      if (x0 < box_.x_lo || x0 > box_.x_hi || !in_windows(x0, windows)) return;
+    }
+    Set set = everything();
+    auto require = [&](const Linear& g) {
+      auto [p, q] = along(g);
+      set = intersect(set, half(p, q));
+    };
+    require(Linear{-box_.x_lo, 1, 0});
+    require(Linear{box_.x_hi, -1, 0});
+    require(Linear{-box_.y_lo, 0, 1});
+    require(Linear{box_.y_hi, 0, -1});
+    for (const auto& clause : clauses) {
+      Set either;
+      for (const auto& atom : clause.atoms) {
+        auto [p, q] = along(linear_of(atom));
+        either = unite(std::move(either), half(p, q));
+      }
+      set = intersect(set, either);
+      if (set.empty()) return;
+    }
+    if (!vertical && !windows.empty()) {
+      Set allowed;
+      for (const auto& [lo, hi] : windows) allowed = unite(std::move(allowed), Set{Span{lo, hi}});
+      set = intersect(set, allowed);
+    }
+    for (const auto& span : set) {
+      if (!span.lo || !span.hi) throw GeometryError("internal: a clipped contact segment is unbounded");
+      if (!(*span.lo < *span.hi)) continue;   // a single valid point: no segment (as the algebraic stage)
+      auto at = [&](const Rational& t) {
+        if (vertical) return point(x0, t);
+        return point(t, -(line.k0 + line.kx * t) / line.ky);
+      };
+      pieces_.emplace_back(at(*span.lo), at(*span.hi));
+    }
+  }
+
+  struct Break {
+    OneRoot x, y;
+  };
+
+  // Points of the circle on the line k0 + kx x + ky y = 0.
+  static void circle_line(const Circle& c, const Linear& atom, std::vector<Break>& out) {
+    Linear g = atom;
+    if (sgn(atom.q) != 0) {
+      // a circle: its points on c lie on the radical line (atom / q) - (c's monic polynomial)
+      g = Linear{atom.k0 / atom.q - (c.cx * c.cx + c.cy * c.cy - c.r2), atom.kx / atom.q + 2 * c.cx,
+                 atom.ky / atom.q + 2 * c.cy};
+      if (sgn(g.kx) == 0 && sgn(g.ky) == 0) return;   // concentric: no common point (or the same circle)
+    }
+    if (sgn(g.ky) == 0) {
+      if (sgn(g.kx) == 0) return;
+      Rational x0 = -g.k0 / g.kx;
+      Rational s = c.r2 - (x0 - c.cx) * (x0 - c.cx);
+      if (sgn(s) < 0) return;
+      out.push_back({OneRoot::of(x0, 0, 0), OneRoot::of(c.cy, 1, s)});
+      if (sgn(s) > 0) out.push_back({OneRoot::of(x0, 0, 0), OneRoot::of(c.cy, -1, s)});
+      return;
+    }
+    Rational u = -g.k0 / g.ky, v = -g.kx / g.ky;   // y = u + v x
+    Rational w = u - c.cy;
+    Rational a = 1 + v * v, b = 2 * (v * w - c.cx), d = c.cx * c.cx + w * w - c.r2;
+    Rational disc = b * b - 4 * a * d;
+    if (sgn(disc) < 0) return;
+    Rational x_mid = -b / (2 * a), x_half = 1 / (2 * a);
+    for (int sign : {1, -1}) {
+      Rational a1 = sign * x_half;
+      out.push_back({OneRoot::of(x_mid, a1, disc), OneRoot::of(u + v * x_mid, v * a1, disc)});
+      if (sgn(disc) == 0) break;
+    }
+  }
+
+  void clip_circle(const Circle& c, const std::vector<ValidityClause>& clauses,
+                   const std::vector<std::pair<Rational, Rational>>& windows) {
+    if (sgn(c.r2) < 0) return;
+    if (sgn(c.r2) == 0) {
+      // a single point (equal arcs, concentric): kept when inside the box and valid
+      if (c.cx < box_.x_lo || c.cx > box_.x_hi || c.cy < box_.y_lo || c.cy > box_.y_hi || !in_windows(c.cx, windows)) return;
+      bool valid = clauses_hold(clauses, [&](const Linear& g) {
+        return sgn(g.k0 + g.kx * c.cx + g.ky * c.cy + g.q * (c.cx * c.cx + c.cy * c.cy));
+      });
+      if (valid) isolated_.emplace_back(CoordNT(to_nt(c.cx)), CoordNT(to_nt(c.cy)));
+      return;
+    }
+    // cheap rejection: the circle's bounding box misses the chart box
+    {
+      auto outside = [&](const Rational& centre, const Rational& lo, const Rational& hi) {
+        Rational below = lo - centre, above = centre - hi;   // > r means outside
+        return (sgn(below) > 0 && below * below > c.r2) || (sgn(above) > 0 && above * above > c.r2);
+      };
+      if (outside(c.cx, box_.x_lo, box_.x_hi) || outside(c.cy, box_.y_lo, box_.y_hi)) return;
+    }
+    std::vector<Break> breaks;
+    circle_line(c, Linear{-box_.x_lo, 1, 0}, breaks);
+    circle_line(c, Linear{-box_.x_hi, 1, 0}, breaks);
+    circle_line(c, Linear{-box_.y_lo, 0, 1}, breaks);
+    circle_line(c, Linear{-box_.y_hi, 0, 1}, breaks);
+    for (const auto& clause : clauses)
+      for (const auto& atom : clause.atoms) circle_line(c, linear_of(atom), breaks);
+    for (const auto& [lo, hi] : windows) {
+      circle_line(c, Linear{-lo, 1, 0}, breaks);
+      circle_line(c, Linear{-hi, 1, 0}, breaks);
+    }
+    const Kernel::Circle_2 circle(point(c.cx, c.cy), to_nt(c.r2));   // counter-clockwise
+    const Break right{OneRoot::of(c.cx, 1, c.r2), OneRoot::of(c.cy, 0, 0)};
+    const Break top{OneRoot::of(c.cx, 0, 0), OneRoot::of(c.cy, 1, c.r2)};
+    const Break left{OneRoot::of(c.cx, -1, c.r2), OneRoot::of(c.cy, 0, 0)};
+    const Break bottom{OneRoot::of(c.cx, 0, 0), OneRoot::of(c.cy, -1, c.r2)};
+    struct Quarter {
+      Break first, last;   // ascending x
+      bool upper;
+      int sx, sy;
+    };
+    const Quarter quarters[4] = {{top, right, true, 1, 1}, {left, top, true, -1, 1}, {left, bottom, false, -1, -1},
+                                 {bottom, right, false, 1, -1}};
+    const CoordNT cx(to_nt(c.cx)), cy(to_nt(c.cy));
+    struct Located {
+      CoordNT x;
+      Break at;
+    };
+    std::vector<Located> located[4];
+    for (const auto& b : breaks) {
+      CoordNT bx = b.x.coord(), by = b.y.coord();
+      int sx = static_cast<int>(CGAL::compare(bx, cx)), sy = static_cast<int>(CGAL::compare(by, cy));
+      if (sx == 0 || sy == 0) continue;   // an extreme point: a quarter's end anyway
+      for (int q = 0; q < 4; ++q)
+        if (quarters[q].sx == sx && quarters[q].sy == sy) located[q].push_back({bx, b});
+    }
+    for (int q = 0; q < 4; ++q) {
+      const Quarter& quarter = quarters[q];
+      auto& list = located[q];
+      std::sort(list.begin(), list.end(), [](const Located& a, const Located& b) { return CGAL::compare(a.x, b.x) == CGAL::SMALLER; });
+      list.erase(std::unique(list.begin(), list.end(),
+                             [](const Located& a, const Located& b) { return CGAL::compare(a.x, b.x) == CGAL::EQUAL; }),
+                 list.end());
+      std::vector<Break> chain{quarter.first};
+      for (const auto& l : list) chain.push_back(l.at);
+      chain.push_back(quarter.last);
+      const int ysign = quarter.upper ? 1 : -1;
+      std::size_t run_start = 0;
+      bool in_run = false;
+      auto emit = [&](std::size_t from, std::size_t to) {
+        Point a(chain[from].x.coord(), chain[from].y.coord()), b(chain[to].x.coord(), chain[to].y.coord());
+        // counter-clockwise: the upper half runs right to left, the lower half left to right
+        if (quarter.upper)
+          pieces_.emplace_back(circle, b, a);
+        else
+          pieces_.emplace_back(circle, a, b);
+      };
+      for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
+        // a rational abscissa strictly inside the sub-arc, and its exact ordinate cy +- sqrt(s)
+        Real xa = to_real(chain[i].x.coord()), xb = to_real(chain[i + 1].x.coord());
+        Rational x = algebra::rational_between(xa, xb);
+        Rational s = c.r2 - (x - c.cx) * (x - c.cx);
+        auto sign_at = [&](const Linear& g) {   // g at (x, cy + ysign sqrt(s)): alpha + beta sqrt(s)
+          return sign_of(g.k0 + g.kx * x + g.ky * c.cy + g.q * (x * x + c.cy * c.cy + s), (g.ky + 2 * g.q * c.cy) * ysign, s);
+        };
+        bool keep = box_.x_lo < x && x < box_.x_hi && sign_at(Linear{-box_.y_lo, 0, 1}) > 0 &&
+                    sign_at(Linear{box_.y_hi, 0, -1}) > 0 && in_windows(x, windows) && clauses_hold(clauses, sign_at);
+        if (keep && !in_run) {
+          in_run = true;
+          run_start = i;
+        } else if (!keep && in_run) {
+          in_run = false;
+          emit(run_start, i);
+        }
+      }
+      if (in_run) emit(run_start, chain.size() - 1);
+    }
+  }
+
+  // ---------------------------------------------------------------- export
+
+  void export_topology(const Arrangement_2& arr) {
+    std::unordered_map<const void*, std::size_t> vertex_id, face_id, edge_id;
+    std::unordered_map<const void*, bool> forward;   // halfedge -> goes min -> max
+    for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
+      vertex_id[&*v] = result_.vertices.size();
+      Vertex out;
+      out.x = to_real(v->point().x());
+      fill_y(v->point().y(), out);
+      out.isolated = v->is_isolated();
+      result_.vertices.push_back(std::move(out));
+    }
+    for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+      face_id[&*f] = result_.faces.size();
+      Face out;
+      out.unbounded = f->is_unbounded();
+      if (out.unbounded && result_.unbounded_face == none) result_.unbounded_face = result_.faces.size();
+      result_.faces.push_back(std::move(out));
+    }
+    for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+      auto h = e->direction() == CGAL::ARR_LEFT_TO_RIGHT ? e : e->twin();
+      edge_id[&*h] = edge_id[&*h->twin()] = result_.edges.size();
+      forward[&*h] = true;
+      forward[&*h->twin()] = false;
+      Edge out;
+      const XCurve& arc = h->curve();
+      out.min_vertex = vertex_id.at(&*h->source());
+      out.max_vertex = vertex_id.at(&*h->target());
+      out.vertical = arc.is_vertical();
+      out.support = support_of(arc);
+      out.left_face = face_id.at(&*h->face());
+      out.right_face = face_id.at(&*h->twin()->face());
+      const Vertex& a = result_.vertices[out.min_vertex];
+      const Vertex& b = result_.vertices[out.max_vertex];
+      // certified box of the ends (every edge is monotone in x and in y), strictly around it
+      constexpr double inf = std::numeric_limits<double>::infinity();
+      out.box[0] = std::nextafter(std::min(a.x.lower_bound(), b.x.lower_bound()), -inf);
+      out.box[1] = std::nextafter(std::min(a.y_lower_bound(), b.y_lower_bound()), -inf);
+      out.box[2] = std::nextafter(std::max(a.x.upper_bound(), b.x.upper_bound()), inf);
+      out.box[3] = std::nextafter(std::max(a.y_upper_bound(), b.y_upper_bound()), inf);
+      if (arc.is_linear()) {
+        auto on = [](const Real& u, const Real& w, const Rational& q) { return u.compare(q) == 0 && w.compare(q) == 0; };
+        if (out.vertical)
+          out.box_side = on(a.x, b.x, box_.x_lo) ? 3 : on(a.x, b.x, box_.x_hi) ? 1 : -1;
+        else
+          out.box_side = on(a.y, b.y, box_.y_lo) ? 0 : on(a.y, b.y, box_.y_hi) ? 2 : -1;
+      }
+      if (!out.vertical) {
+        int arcno = 0;
+        if (arc.is_circular()) {
+          const CoordNT cy(arc.supporting_circle().center().y());
+          arcno = CGAL::compare(arc.left().y(), cy) == CGAL::LARGER || CGAL::compare(arc.right().y(), cy) == CGAL::LARGER;
+        }
+        out.arc_numbers.between.push_back(arcno);
+      }
+      result_.edges.push_back(std::move(out));
+    }
+    for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
+      Vertex& out = result_.vertices[vertex_id.at(&*v)];
+      if (v->is_isolated()) {
+        out.face_below = out.face_above = face_id.at(&*v->face());
+        result_.faces[out.face_below].isolated_vertices.push_back(vertex_id.at(&*v));
+        continue;
+      }
+      std::vector<Arrangement_2::Halfedge_const_handle> around;
+      auto circulator = v->incident_halfedges();
+      auto first = circulator;
+      do {
+        around.push_back(circulator);
+      } while (++circulator != first);
+      for (const auto& h : around) {
+        Incidence incidence;
+        incidence.edge = edge_id.at(&*h);
+        bool source_is_smaller = h->direction() == CGAL::ARR_LEFT_TO_RIGHT;
+        if (h->curve().is_vertical())
+          incidence.direction = source_is_smaller ? Direction::down : Direction::up;
+        else
+          incidence.direction = source_is_smaller ? Direction::left : Direction::right;
+        incidence.wedge_face = face_id.at(&*h->face());
+        out.around.push_back(incidence);
+      }
+      out.face_below = wedge_containing(around, out.around, v->point(), true);
+      out.face_above = wedge_containing(around, out.around, v->point(), false);
+    }
+    for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+      Face& out = result_.faces[face_id.at(&*f)];
+      auto add_ccb = [&](Arrangement_2::Ccb_halfedge_const_circulator c) {
+        out.component_starts.push_back(out.boundary.size());
+        auto first = c;
+        do {
+          out.boundary.emplace_back(edge_id.at(&*c), forward.at(&*c));
+        } while (++c != first);
+      };
+      if (f->has_outer_ccb()) add_ccb(f->outer_ccb());
+      for (auto inner = f->inner_ccbs_begin(); inner != f->inner_ccbs_end(); ++inner) add_ccb(*inner);
+    }
+  }
+
+  // Which wedge around the vertex contains the straight-down (below) or straight-up direction?
+  // (As in builder_cgal.cpp: angles clockwise from the reference direction.)
+  std::size_t wedge_containing(const std::vector<Arrangement_2::Halfedge_const_handle>& around,
+                               const std::vector<Incidence>& incidences, const Point& p, bool below) const {
+    const std::size_t n = incidences.size();
+    Direction reference = below ? Direction::down : Direction::up;
+    for (const auto& incidence : incidences)
+      if (incidence.direction == reference) return none;
+    if (n == 1) return incidences[0].wedge_face;
+    auto key = [&](Direction d) {
+      if (below) return d == Direction::left ? 1 : d == Direction::up ? 2 : 3;
+      return d == Direction::right ? 1 : d == Direction::down ? 2 : 3;
+    };
+    auto compare_right = traits_.compare_y_at_x_right_2_object();
+    auto compare_left = traits_.compare_y_at_x_left_2_object();
+    auto before = [&](std::size_t a, std::size_t b) {
+      Direction da = incidences[a].direction, db = incidences[b].direction;
+      if (da != db) return key(da) < key(db);
+      if (da == Direction::right) return compare_right(around[a]->curve(), around[b]->curve(), p) == CGAL::LARGER;
+      return compare_left(around[a]->curve(), around[b]->curve(), p) == CGAL::SMALLER;
+    };
+    for (std::size_t i = 0; i < n; ++i)
+      if (!before(i, (i + 1) % n)) return incidences[i].wedge_face;
+    throw GeometryError("internal: no wedge contains the vertical direction at a vertex");
+  }
+
+  Box box_;
+  Options options_;
+  Traits traits_;
+  std::vector<Curve> pieces_;
+  std::vector<Point> isolated_;
+  Arrangement result_;
+};
+
+}  // namespace
+
+bool circle_segment_applies(const std::vector<IntegerPolynomial2>& curves,
+                            const std::vector<std::vector<ValidityClause>>& validity) {
+  for (std::size_t k = 0; k < curves.size(); ++k) {
+    int degree = total_degree(curves[k]);
+    bool circle = degree >= 2;
+    if (circle && !circle_of(curves[k])) return false;
+    if (k >= validity.size()) continue;
+    // atoms: linear on every curve; on a circle also q (x^2 + y^2) + linear
+    for (const auto& clause : validity[k])
+      for (const auto& atom : clause.atoms)
+        if (circle ? !atom_form(atom) : total_degree(atom) > 1) return false;
+  }
+  return true;
+}
+
+Arrangement build_circle_segment_arrangement(const Box& box, const std::vector<IntegerPolynomial2>& curves,
+                                             const std::vector<std::vector<ValidityClause>>& validity,
+                                             const std::vector<std::vector<std::pair<Rational, Rational>>>& windows,
+                                             const Options& options) {
+  if (!circle_segment_applies(curves, validity))
+    throw GeometryError("internal: the circle–segment arrangement needs lines and circles with linear validity");
+  try {
+    Builder builder(box, options);
+    return builder.run(curves, validity, windows);
+  } catch (const hipair::Error&) {
+    throw;
+  } catch (const CGAL::Failure_exception& e) {
+    throw GeometryError(std::string("CGAL rejected a circle–segment contact arrangement: ") + e.what());
+  }
+}
+
+}  // namespace hipair::cspace::raw

@@ -1,0 +1,34 @@
+// The C-space builder's fast CGAL stage for charts whose contact curves are all lines and
+// circles (translating pairs: vertex–segment contacts are segments, anything with an arc is a
+// circular arc): CGAL::Arr_circle_segment_traits_2<Epeck> instead of the algebraic traits.
+// It exports the same plain exact topology (raw::Arrangement) as builder_cgal.hpp, so that
+// labelling, classification, cells, point location and every adaptor query are shared.
+// All circle–segment CGAL code is in builder_circle_segment.cpp (one translation unit).
+#pragma once
+
+#include "cspace/builder_cgal.hpp"
+
+#include <vector>
+
+namespace hipair::cspace::raw {
+
+/// True when every curve is a line or a circle with rational centre and squared radius (or
+/// zero / a non-zero constant: no points), every validity atom of a line has total degree
+/// <= 1, and every atom of a circle is linear or a circle (q (x^2 + y^2) + linear: the
+/// external/internal branch of an arc–arc contact): then build_circle_segment_arrangement applies.
+bool circle_segment_applies(const std::vector<IntegerPolynomial2>& curves,
+                            const std::vector<std::vector<ValidityClause>>& validity);
+
+/// build_arrangement for curves that circle_segment_applies() accepts: each curve clipped
+/// exactly to the box, its validity and its windows (one-root coordinates a + b sqrt(c)),
+/// circles split at their four extreme points (every edge is monotone in x and y), inserted by
+/// CGAL's aggregated insertion. Every vertex has exact coordinates (`y_exact`; y_curve is the
+/// minimal polynomial of y, in y alone). `options.keep_cgal` keeps nothing (the raw CGAL
+/// access of hipair/cgal/arrangement.hpp is for algebraic-traits arrangements).
+/// \throws GeometryError when the curves do not fit (see circle_segment_applies).
+Arrangement build_circle_segment_arrangement(const Box& box, const std::vector<IntegerPolynomial2>& curves,
+                                             const std::vector<std::vector<ValidityClause>>& validity,
+                                             const std::vector<std::vector<std::pair<Rational, Rational>>>& windows,
+                                             const Options& options);
+
+}  // namespace hipair::cspace::raw
