@@ -447,6 +447,11 @@ struct CSpaceBuildOptions {
   /// Seed of the operating region: coordinates of the x and y parts (rad or mm). Empty: the
   /// model's initial configuration. It only selects the channel, so double is enough.
   std::optional<std::array<double, 2>> region_seed;
+  /// Faces on the blocked side of a contact edge are classified from the contact's blocked
+  /// side, the others by the exact overlap oracle at a sample point. true: the oracle also
+  /// checks every face classified from a blocked side, and a disagreement is a GeometryError
+  /// (for tests; slower).
+  bool check_face_classification = false;
 };
 
 /// The exact C-space of one pair. Value semantics: copies share the immutable structure.

@@ -249,7 +249,61 @@ Hit nearest_on_vertical(const ChartData& chart, const Rational& x, const Real& f
   return best;
 }
 
-void classify_faces(ChartData& chart, const Classifier& classify) {
+// The derivative of f in y.
+IntegerPolynomial2 derivative_y(const IntegerPolynomial2& f) {
+  IntegerPolynomial2 d;
+  d.coefficients.resize(f.coefficients.size());
+  for (std::size_t i = 0; i < f.coefficients.size(); ++i)
+    for (std::size_t j = 1; j < f.coefficients[i].size(); ++j)
+      d.coefficients[i].push_back(f.coefficients[i][j] * static_cast<unsigned long>(j));
+  return d;
+}
+
+// Every validity clause holds strictly at (x, y): some atom > 0.
+bool strictly_valid_at(const std::vector<ValidityClause>& clauses, const Rational& x, const Real& y) {
+  return std::all_of(clauses.begin(), clauses.end(), [&](const ValidityClause& clause) {
+    return std::any_of(clause.atoms.begin(), clause.atoms.end(),
+                       [&](const IntegerPolynomial2& atom) { return algebra::sign_at(atom, x, y) > 0; });
+  });
+}
+
+// Face classification by the blocked side of a contact edge (docs/contact-kernels.md: a
+// contact function has the sign `blocked_sign` where its two features locally penetrate, near
+// configurations where the contact is valid). At the sample point of the non-vertical edge e,
+// a curve k along it is valid with every clause strictly satisfied and f_k,y != 0 (a simple
+// point): then f_k has the sign of f_k,y just above the edge and the opposite sign just below.
+// When the face on the `above` side gets the blocked sign, the two features penetrate at
+// configurations of that face arbitrarily near the sample, so the parts' interiors overlap
+// there, and a face has one overlap relation throughout (no touching configuration lies inside
+// a face): the face is blocked. Exact (signs at the edge's exact sample); false when undecided.
+class ContactSides {
+ public:
+  ContactSides(const ChartData& chart, std::vector<int> blocked_signs)
+      : chart_(chart), blocked_signs_(std::move(blocked_signs)), derivatives_(chart.polynomials.size()) {}
+
+  bool blocked_side(std::size_t e, bool above) {
+    const EdgeData& data = chart_.edges[e];
+    for (std::size_t k : data.curves) {
+      int sign = k < blocked_signs_.size() ? blocked_signs_[k] : 0;
+      if (sign == 0) continue;
+      if (!derivatives_[k]) derivatives_[k] = derivative_y(chart_.polynomials[k]);
+      int slope = algebra::sign_at(*derivatives_[k], data.sample_x, data.sample_y);
+      if (slope == 0 || (above ? slope : -slope) != sign) continue;
+      if (strictly_valid_at(chart_.validity[k], data.sample_x, data.sample_y)) return true;
+    }
+    return false;
+  }
+
+ private:
+  const ChartData& chart_;
+  std::vector<int> blocked_signs_;
+  std::vector<std::optional<IntegerPolynomial2>> derivatives_;
+};
+
+// Every bounded face gets an exact rational sample strictly inside it and its kind: blocked by
+// the side of a contact edge on its boundary when `sides` decides it, else the exact oracle at
+// the sample. `check`: the oracle also where the sides decided, and disagreement is an error.
+void classify_faces(ChartData& chart, const Classifier& classify, ContactSides* sides, bool check) {
   const auto& arrangement = chart.arrangement;
   for (const auto& v : arrangement.vertices)
     if (v.x.exact) chart.rational_vertex_x.push_back(v.x.lower);
@@ -283,7 +337,24 @@ void classify_faces(ChartData& chart, const Classifier& classify) {
     FaceData& data = chart.faces[f];
     data.sample_x = x;
     data.sample_y = y;
-    data.kind = kind_of(classify(ChartPoint{x, y}));
+    // the sides of every contact edge of the face's boundary (the chosen one first)
+    bool by_side = false;
+    if (sides) {
+      by_side = sides->blocked_side(chosen, above);
+      for (std::size_t i = 0; i < face.boundary.size() && !by_side; ++i) {
+        const auto& [e, on_left] = face.boundary[i];
+        if (e == chosen || arrangement.edges[e].vertical || chart.edges[e].curves.empty()) continue;
+        by_side = sides->blocked_side(e, on_left);
+      }
+    }
+    if (by_side) {
+      data.kind = 1;
+      if (check && kind_of(classify(ChartPoint{x, y})) != 1)
+        throw GeometryError("internal: a face on the blocked side of a contact edge is not blocked at " + x.get_str() +
+                            ", " + y.get_str());
+    } else {
+      data.kind = kind_of(classify(ChartPoint{x, y}));
+    }
   }
 }
 
@@ -724,7 +795,16 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     label_edges(chart);
     stats.seconds_labelling += seconds_since(start);
     start = Clock::now();
-    classify_faces(chart, chart_input.classify);
+    {
+      // kernel curves carry their blocked side; synthetic input (no model) is classified by the oracle only
+      std::optional<ContactSides> sides;
+      if (input.model) {
+        std::vector<int> signs;
+        for (std::size_t k : kept) signs.push_back(chart_input.curves[k].blocked_sign);
+        sides.emplace(chart, std::move(signs));
+      }
+      classify_faces(chart, chart_input.classify, sides ? &*sides : nullptr, options.check_face_classification);
+    }
     find_touching(chart, chart_input.classify, stats);
     stats.seconds_classification += seconds_since(start);
   }

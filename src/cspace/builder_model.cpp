@@ -5,8 +5,10 @@
 #include <hipair/error.hpp>
 
 #include "cspace/builder_impl.hpp"
+#include "cspace/blocked_tester.hpp"
 #include "cspace/contact_curves.hpp"
 #include "core/model_scale.hpp"
+#include "kernels/interval.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -18,6 +20,7 @@
 #include <iostream>
 #include <mutex>
 #include <thread>
+#include <tuple>
 #include <unistd.h>
 
 namespace hipair {
@@ -30,329 +33,6 @@ std::size_t part_index(const Model& model, std::string_view name) {
   if (!index) throw ModelError("/parts", "no part called '" + std::string(name) + "'");
   return *index;
 }
-
-// ---------------------------------------------------------------- certainly blocked cells
-//
-// Disks strictly inside a part's material (double geometry, shrunk for safety). When a disk of
-// one part and a disk of the other overlap for every configuration of a C-space cell, the
-// interiors of the parts overlap there: the cell is blocked, and contact curves crossing it
-// bound nothing.
-
-struct Disk {
-  double x, y, r;
-  double rho = 0;   // distance from the part's pivot (rotating parts)
-};
-
-struct EdgeGeometry {
-  bool arc = false;
-  double ax, ay, bx, by;           // ends
-  double cx = 0, cy = 0, r = 0;    // arcs
-  double start = 0, sweep = 0;     // arcs: start angle, signed sweep (ccw positive)
-  bool ccw = true;
-};
-
-double angle_in_span(double angle, double start, double sweep) {
-  // fraction along the arc of the direction `angle` (in [0, 1] when on the arc)
-  double d = sweep >= 0 ? angle - start : start - angle;
-  d = std::fmod(d, 2 * std::numbers::pi);
-  if (d < 0) d += 2 * std::numbers::pi;
-  return d / std::fabs(sweep);
-}
-
-// A length in the tester's unit of 2^exponent mm, as a double (exact scaling, then one rounding).
-double scaled(const Rational& value, long exponent) {
-  Rational q = value;
-  if (exponent >= 0)
-    mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(exponent));
-  else
-    mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(-exponent));
-  return q.get_d();
-}
-
-// The exponent of the largest coordinate of the parts (points, centres, pivots): lengths
-// divided by 2^exponent are about 1 in size, so that the doubles of this heuristic neither
-// overflow (plates of 1e400 mm) nor lose small features to rounding at any scale.
-long scale_exponent(const std::vector<const Part*>& parts) {
-  Rational largest = 0;
-  auto see = [&](const Rational& value) {
-    if (abs(value) > largest) largest = abs(value);
-  };
-  for (const Part* part : parts) {
-    see(part->motion.pivot.x);
-    see(part->motion.pivot.y);
-    for (const auto& loop : part->loops)
-      for (const auto& edge : loop.edges)
-        for (const Point* p : {&edge.source, &edge.target, &edge.center}) {
-          see(p->x);
-          see(p->y);
-        }
-  }
-  if (sgn(largest) == 0) return 0;
-  return static_cast<long>(mpz_sizeinbase(largest.get_num_mpz_t(), 2)) -
-         static_cast<long>(mpz_sizeinbase(largest.get_den_mpz_t(), 2));
-}
-
-std::vector<EdgeGeometry> edges_of(const Part& part, long exponent) {
-  std::vector<EdgeGeometry> edges;
-  for (const auto& loop : part.loops)
-    for (const auto& edge : loop.edges) {
-      EdgeGeometry g;
-      g.ax = scaled(edge.source.x, exponent);
-      g.ay = scaled(edge.source.y, exponent);
-      g.bx = scaled(edge.target.x, exponent);
-      g.by = scaled(edge.target.y, exponent);
-      if (edge.is_arc()) {
-        g.arc = true;
-        g.cx = scaled(edge.center.x, exponent);
-        g.cy = scaled(edge.center.y, exponent);
-        g.r = std::hypot(g.ax - g.cx, g.ay - g.cy);
-        g.ccw = edge.ccw;
-        g.start = std::atan2(g.ay - g.cy, g.ax - g.cx);
-        double end = std::atan2(g.by - g.cy, g.bx - g.cx);
-        double sweep = end - g.start;
-        if (edge.ccw) {
-          while (sweep <= 0) sweep += 2 * std::numbers::pi;
-        } else {
-          while (sweep >= 0) sweep -= 2 * std::numbers::pi;
-        }
-        if (edge.is_full_circle()) sweep = edge.ccw ? 2 * std::numbers::pi : -2 * std::numbers::pi;
-        g.sweep = sweep;
-      }
-      edges.push_back(g);
-    }
-  return edges;
-}
-
-double distance_to(const EdgeGeometry& e, double px, double py) {
-  if (!e.arc) {
-    double dx = e.bx - e.ax, dy = e.by - e.ay;
-    double t = ((px - e.ax) * dx + (py - e.ay) * dy) / (dx * dx + dy * dy);
-    t = std::clamp(t, 0.0, 1.0);
-    return std::hypot(px - e.ax - t * dx, py - e.ay - t * dy);
-  }
-  double angle = std::atan2(py - e.cy, px - e.cx);
-  if (angle_in_span(angle, e.start, e.sweep) <= 1) return std::fabs(std::hypot(px - e.cx, py - e.cy) - e.r);
-  return std::min(std::hypot(px - e.ax, py - e.ay), std::hypot(px - e.bx, py - e.by));
-}
-
-// Crossings of the ray from (px, py) towards +x with the edge (parity test).
-int crossings(const EdgeGeometry& e, double px, double py) {
-  if (!e.arc) {
-    if ((e.ay > py) == (e.by > py)) return 0;
-    double x = e.ax + (py - e.ay) * (e.bx - e.ax) / (e.by - e.ay);
-    return x > px ? 1 : 0;
-  }
-  double h = e.r * e.r - (py - e.cy) * (py - e.cy);
-  if (h <= 0) return 0;
-  int count = 0;
-  for (double sign : {-1.0, 1.0}) {
-    double x = e.cx + sign * std::sqrt(h);
-    if (x <= px) continue;
-    double angle = std::atan2(py - e.cy, x - e.cx);
-    if (angle_in_span(angle, e.start, e.sweep) <= 1) ++count;
-  }
-  return count;
-}
-
-std::vector<Disk> inscribed_disks(const Part& part, std::size_t limit, long exponent) {
-  std::vector<EdgeGeometry> edges = edges_of(part, exponent);
-  if (edges.empty()) return {};
-  // every coordinate finite: lengths were divided by the largest coordinate's power of two
-  for (const auto& e : edges)
-    if (!std::isfinite(e.ax) || !std::isfinite(e.ay) || !std::isfinite(e.bx) || !std::isfinite(e.by) ||
-        !std::isfinite(e.cx) || !std::isfinite(e.cy) || !std::isfinite(e.r))
-      return {};
-  double min_x = 1e300, min_y = 1e300, max_x = -1e300, max_y = -1e300;
-  for (const auto& e : edges)
-    for (auto [x, y] : {std::pair{e.ax, e.ay}, std::pair{e.bx, e.by}}) {
-      min_x = std::min(min_x, x);
-      max_x = std::max(max_x, x);
-      min_y = std::min(min_y, y);
-      max_y = std::max(max_y, y);
-    }
-  for (const auto& e : edges)
-    if (e.arc) {
-      min_x = std::min(min_x, e.cx - e.r);
-      max_x = std::max(max_x, e.cx + e.r);
-      min_y = std::min(min_y, e.cy - e.r);
-      max_y = std::max(max_y, e.cy + e.r);
-    }
-  std::vector<std::pair<double, double>> candidates;
-  const int grid = 40;
-  for (int i = 0; i < grid; ++i)
-    for (int j = 0; j < grid; ++j)
-      candidates.emplace_back(min_x + (max_x - min_x) * (i + 0.5) / grid, min_y + (max_y - min_y) * (j + 0.5) / grid);
-  // points just inside every edge (material lies on the left), at a few depths
-  for (const auto& e : edges) {
-    double mx, my, nx, ny, length;
-    if (!e.arc) {
-      mx = 0.5 * (e.ax + e.bx);
-      my = 0.5 * (e.ay + e.by);
-      length = std::hypot(e.bx - e.ax, e.by - e.ay);
-      if (!(length > 0)) continue;   // a feature below the doubles' resolution at this scale
-      nx = -(e.by - e.ay) / length;
-      ny = (e.bx - e.ax) / length;
-    } else {
-      double middle = e.start + 0.5 * e.sweep;
-      mx = e.cx + e.r * std::cos(middle);
-      my = e.cy + e.r * std::sin(middle);
-      length = e.r * std::fabs(e.sweep);
-      if (!(e.r > 0) || !(length > 0)) continue;
-      double toward_centre = e.ccw ? 1 : -1;
-      nx = toward_centre * (e.cx - mx) / e.r;
-      ny = toward_centre * (e.cy - my) / e.r;
-    }
-    for (double depth : {0.15, 0.35, 0.7}) candidates.emplace_back(mx + nx * depth * length, my + ny * depth * length);
-  }
-  std::vector<Disk> disks;
-  for (auto [px, py] : candidates) {
-    int count = 0;
-    double distance = 1e300;
-    for (const auto& e : edges) {
-      count += crossings(e, px, py);
-      distance = std::min(distance, distance_to(e, px, py));
-    }
-    if (!std::isfinite(px) || !std::isfinite(py) || !std::isfinite(distance)) continue;
-    if (count % 2 == 0 || distance <= 1e-9 * (1 + std::fabs(px) + std::fabs(py))) continue;
-    // double rounding in the distance is far below 1e-9 relative: shrink by that much
-    disks.push_back({px, py, distance * (1 - 1e-9) - 1e-9 * (1 + std::fabs(px) + std::fabs(py))});
-  }
-  std::sort(disks.begin(), disks.end(), [](const Disk& a, const Disk& b) { return a.r > b.r; });
-  std::vector<Disk> chosen;
-  for (const auto& d : disks) {
-    bool covered = false;
-    for (const auto& c : chosen)
-      if (std::hypot(d.x - c.x, d.y - c.y) + 0.5 * d.r <= c.r) {
-        covered = true;
-        break;
-      }
-    if (covered || d.r <= 0) continue;
-    chosen.push_back(d);
-    if (chosen.size() >= limit) break;
-  }
-  return chosen;
-}
-
-// A part's pose over an interval of its chart coordinate: the pose at the middle and a bound
-// on how far any point at distance rho from the pivot moves within the interval.
-struct PoseRange {
-  double angle = 0, offset = 0;      // middle
-  double angle_half_width = 0, offset_half_width = 0;
-};
-
-class BlockedTester {
- public:
-  BlockedTester(const Model& model, const cspace::PairAxes& axes)
-      : model_(model), axes_(axes),
-        exponent_(scale_exponent({&model.parts[axes.first], &model.parts[axes.second]})) {
-    // enough disks that every tooth of a many-toothed part gets some (the operating region's
-    // flood must see blocked space between neighbouring channels)
-    for (int k = 0; k < 2; ++k) {
-      const Part& part = model.parts[k == 0 ? axes.first : axes.second];
-      std::size_t edges = 0;
-      for (const Loop& loop : part.loops) edges += loop.edges.size();
-      disks_[k] = inscribed_disks(part, std::max<std::size_t>(150, 2 * edges), exponent_);
-    }
-    for (int k = 0; k < 2; ++k) {
-      const Motion& motion = model.parts[k == 0 ? axes.first : axes.second].motion;
-      pivot_[k][0] = scaled(motion.pivot.x, exponent_);
-      pivot_[k][1] = scaled(motion.pivot.y, exponent_);
-      for (auto& d : disks_[k]) d.rho = std::hypot(d.x - pivot_[k][0], d.y - pivot_[k][1]);
-    }
-  }
-  bool usable() const { return !disks_[0].empty() && !disks_[1].empty(); }
-
-  // chart x carries the first moving part, chart y the second (if any)
-  bool blocked(const cspace::ChartAxis& x_axis, const cspace::ChartAxis& y_axis, const cspace::algebra::Interval& x,
-               const cspace::algebra::Interval& y) const {
-    PoseRange ranges[2];
-    bool x_used = false;
-    for (int k = 0; k < 2; ++k) {
-      bool moves = k == 0 ? axes_.first_moves : axes_.second_moves;
-      if (!moves) continue;
-      const cspace::ChartAxis& axis = !x_used ? x_axis : y_axis;
-      const cspace::algebra::Interval& range = !x_used ? x : y;
-      x_used = true;
-      if (axis.kind == cspace::ChartAxis::Kind::rotation) {
-        double c = axis.half_turn ? std::numbers::pi : 0.0;
-        double a = c + 2 * std::atan(range.lo), b = c + 2 * std::atan(range.hi);
-        ranges[k].angle = 0.5 * (a + b);
-        ranges[k].angle_half_width = 0.5 * (b - a) + 1e-12;
-      } else {
-        // chart offsets are in mm: into the tester's unit (out of double range: no claim)
-        double lo = std::ldexp(range.lo, static_cast<int>(std::clamp<long>(-exponent_, -4000, 4000)));
-        double hi = std::ldexp(range.hi, static_cast<int>(std::clamp<long>(-exponent_, -4000, 4000)));
-        if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
-        ranges[k].offset = 0.5 * (lo + hi);
-        ranges[k].offset_half_width = 0.5 * (hi - lo) + 1e-12;
-      }
-    }
-    // posed disks: centre at the middle pose, plus an error radius (scratch buffers per thread)
-    thread_local std::vector<Disk> posed[2];
-    thread_local std::vector<double> error[2];
-    thread_local std::vector<std::size_t> order;
-    thread_local std::vector<double> xs;
-    for (int k = 0; k < 2; ++k) {
-      posed[k].clear();
-      error[k].clear();
-    }
-    for (int k = 0; k < 2; ++k) {
-      const Part& part = model_.parts[k == 0 ? axes_.first : axes_.second];
-      const Motion& motion = part.motion;
-      double px = pivot_[k][0], py = pivot_[k][1];
-      double cos_a = std::cos(ranges[k].angle), sin_a = std::sin(ranges[k].angle);
-      double dx = motion.direction.x.get_d(), dy = motion.direction.y.get_d();
-      for (const auto& d : disks_[k]) {
-        Disk p = d;
-        double e = 1e-9 * (1 + std::fabs(d.x) + std::fabs(d.y));
-        if (motion.kind == Motion::Kind::rotation) {
-          double rx = d.x - px, ry = d.y - py;
-          p.x = px + cos_a * rx - sin_a * ry;
-          p.y = py + sin_a * rx + cos_a * ry;
-          e += d.rho * ranges[k].angle_half_width;   // arc length bounds the chord
-        } else if (motion.kind == Motion::Kind::translation) {
-          p.x = d.x + ranges[k].offset * dx;
-          p.y = d.y + ranges[k].offset * dy;
-          e += ranges[k].offset_half_width * std::hypot(dx, dy);
-        }
-        posed[k].push_back(p);
-        error[k].push_back(e);
-      }
-    }
-    // sweep in x: B's disks sorted by the left end of their reach
-    order.resize(posed[1].size());
-    for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return posed[1][a].x < posed[1][b].x; });
-    double widest = 0;
-    for (std::size_t j = 0; j < posed[1].size(); ++j) widest = std::max(widest, posed[1][j].r - error[1][j]);
-    xs.resize(order.size());
-    for (std::size_t j = 0; j < order.size(); ++j) xs[j] = posed[1][order[j]].x;
-    for (std::size_t i = 0; i < posed[0].size(); ++i) {
-      const Disk& a = posed[0][i];
-      double reach_a = a.r - error[0][i];
-      if (reach_a <= 0) continue;
-      double span = reach_a + widest;
-      auto first = std::lower_bound(xs.begin(), xs.end(), a.x - span);
-      auto last = std::upper_bound(xs.begin(), xs.end(), a.x + span);
-      for (auto it = first; it != last; ++it) {
-        std::size_t j = order[static_cast<std::size_t>(it - xs.begin())];
-        const Disk& b = posed[1][j];
-        double reach = reach_a + b.r - error[1][j];
-        if (reach <= 0) continue;
-        double dx = a.x - b.x, dy = a.y - b.y;
-        if (dx * dx + dy * dy < reach * reach * (1 - 1e-9)) return true;
-      }
-    }
-    return false;
-  }
-
- private:
-  const Model& model_;
-  cspace::PairAxes axes_;
-  long exponent_;            // lengths in units of 2^exponent_ mm
-  double pivot_[2][2] = {};  // the parts' pivots in that unit
-  std::vector<Disk> disks_[2];
-};
 
 // ---------------------------------------------------------------- operating region
 //
@@ -377,7 +57,7 @@ std::optional<double> chart_coordinate(const cspace::ChartAxis& axis, double val
 }
 
 RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const cspace::ChartLayout& layout,
-                         const BlockedTester& tester, const CSpaceBuildOptions& options) {
+                         const cspace::BlockedTester& tester, const CSpaceBuildOptions& options) {
   using cspace::ChartAxis;
   RegionTiles region;
   unsigned tiles = options.region_tiles;
@@ -529,7 +209,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   std::vector<ChartAxis> y_charts = layout.y_charts;
   if (input.dimension == 1) y_charts = {ChartAxis{ChartAxis::Kind::translation, false, Rational(0), Rational(0)}};
   bool progress = options.progress && isatty(2);
-  auto tester = std::make_shared<BlockedTester>(model, axes);
+  auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
   // the boxes to build: whole charts, or the tiles of the operating region
   struct BoxToBuild {
     std::size_t x_index, y_index;

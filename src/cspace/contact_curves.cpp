@@ -274,32 +274,157 @@ struct Core {
   double radius = 0;
 };
 
-// Certified lower bound of the distance from point (cx, cy) to an edge.
-double distance_lower_bound(const Edge& edge, const Interval& cx, const Interval& cy) {
-  auto length = [](const Interval& dx, const Interval& dy) { return kernels::sqrt(dx * dx + dy * dy); };
-  Interval sx = Interval::enclose(edge.source.x), sy = Interval::enclose(edge.source.y);
-  Interval tx = Interval::enclose(edge.target.x), ty = Interval::enclose(edge.target.y);
-  double to_source = length(cx - sx, cy - sy).lo;
-  double to_target = length(cx - tx, cy - ty).lo;
-  double endpoints = std::min(to_source, to_target);
-  if (!edge.is_arc()) {
-    Interval dx = tx - sx, dy = ty - sy;
-    Interval fx = cx - sx, fy = cy - sy;
-    Interval length2 = dx * dx + dy * dy;
-    Interval line = kernels::sqrt((fx * dy - fy * dx) * (fx * dy - fy * dx)) / kernels::sqrt(length2);
-    return std::max(0.0, std::min(endpoints, line.lo));  // the line distance bounds the foot case
+}  // namespace
+
+std::pair<Interval, Interval> rotation_enclosure(bool half_turn, const Interval& t) {
+  Interval c, s;
+  auto cosine = [](double u) {  // (1 - t^2) / (1 + t^2) from u = t^2, certified
+    return (Interval(1) - Interval(u, u)) / (Interval(1) + Interval(u, u));
+  };
+  auto sine = [](double v) { return (Interval(2) * Interval(v, v)) / (Interval(1) + Interval(v, v) * Interval(v, v)); };
+  if (t.lo >= -1 && t.hi <= 1) {
+    // (1 - u)/(1 + u) decreases in u = t^2; 2t/(1 + t^2) increases on [-1, 1].
+    double u_lo = (t.lo <= 0 && t.hi >= 0) ? 0.0 : std::min((Interval(t.lo, t.lo) * Interval(t.lo, t.lo)).lo,
+                                                          (Interval(t.hi, t.hi) * Interval(t.hi, t.hi)).lo);
+    double u_hi = std::max((Interval(t.lo, t.lo) * Interval(t.lo, t.lo)).hi,
+                           (Interval(t.hi, t.hi) * Interval(t.hi, t.hi)).hi);
+    c = Interval(cosine(u_hi).lo, cosine(u_lo).hi);
+    s = Interval(sine(t.lo).lo, sine(t.hi).hi);
+  } else {
+    Interval t2 = t * t;
+    c = (Interval(1) - t2) / (Interval(1) + t2);
+    s = (Interval(2) * t) / (Interval(1) + t2);
   }
-  Interval kx = Interval::enclose(edge.center.x), ky = Interval::enclose(edge.center.y);
-  Interval radius = kernels::sqrt(Interval::enclose(edge.radius_squared));
-  Interval d = length(cx - kx, cy - ky);
-  Interval gap = d - radius;
-  double circle = std::max({0.0, gap.lo, (-gap).lo});
-  return std::max(0.0, std::min(endpoints, circle));  // circle distance bounds the in-sector case
+  if (half_turn) {
+    c = -c;
+    s = -s;
+  }
+  return {c, s};
 }
+
+ClearanceBound::ClearanceBound(const Part& part) {
+  for (const Loop& loop : part.loops)
+    for (const Edge& edge : loop.edges) {
+      EdgeBox e;
+      e.edge = &edge;
+      e.sx = Interval::enclose(edge.source.x);
+      e.sy = Interval::enclose(edge.source.y);
+      e.tx = Interval::enclose(edge.target.x);
+      e.ty = Interval::enclose(edge.target.y);
+      if (edge.is_arc()) {
+        e.arc = true;
+        e.kx = Interval::enclose(edge.center.x);
+        e.ky = Interval::enclose(edge.center.y);
+        e.radius = kernels::sqrt(Interval::enclose(edge.radius_squared));
+        kernels::ArcSector<Rational> sector = arc_sector(edge);
+        e.start_x = Interval::enclose(sector.start.x);
+        e.start_y = Interval::enclose(sector.start.y);
+        e.end_x = Interval::enclose(sector.end.x);
+        e.end_y = Interval::enclose(sector.end.y);
+        e.large = sector.large;
+        e.full = sector.full;
+      } else {
+        Interval dx = e.tx - e.sx, dy = e.ty - e.sy;
+        e.length = kernels::sqrt(dx * dx + dy * dy);
+      }
+      edges_.push_back(e);
+    }
+}
+
+// Certified lower bound of the distance from the box (cx, cy) to each edge, minimised.
+double ClearanceBound::lower(const Interval& cx, const Interval& cy) const {
+  auto length = [](const Interval& dx, const Interval& dy) { return kernels::sqrt(dx * dx + dy * dy); };
+  double best = std::numeric_limits<double>::infinity();
+  for (const EdgeBox& e : edges_) {
+    double to_source = length(cx - e.sx, cy - e.sy).lo;
+    double to_target = length(cx - e.tx, cy - e.ty).lo;
+    double endpoints = std::min(to_source, to_target);
+    double bound;
+    if (!e.arc) {
+      Interval dx = e.tx - e.sx, dy = e.ty - e.sy;
+      Interval fx = cx - e.sx, fy = cy - e.sy;
+      Interval line = kernels::sqrt((fx * dy - fy * dx) * (fx * dy - fy * dx)) / e.length;
+      bound = std::min(endpoints, line.lo);   // the line distance bounds the foot case
+    } else {
+      Interval gap = length(cx - e.kx, cy - e.ky) - e.radius;
+      bound = std::min(endpoints, std::max({0.0, gap.lo, (-gap).lo}));   // circle bounds the in-sector case
+    }
+    if (!(bound > 0)) return 0;   // NaN or touching: nothing proven
+    best = std::min(best, bound);
+  }
+  return std::isfinite(best) ? best : 0;
+}
+
+double ClearanceBound::lower(const Rational& px, const Rational& py) const {
+  auto length = [](const Interval& dx, const Interval& dy) { return kernels::sqrt(dx * dx + dy * dy); };
+  const Interval cx = Interval::enclose(px), cy = Interval::enclose(py);
+  const Point p{px, py};
+  // sign of an interval, or of the exact value when the interval straddles zero
+  auto sign = [](const Interval& value, auto exact) { return value.lo > 0 ? 1 : value.hi < 0 ? -1 : exact(); };
+  double best = std::numeric_limits<double>::infinity();
+  for (const EdgeBox& e : edges_) {
+    const Edge& edge = *e.edge;
+    double bound;
+    if (!e.arc) {
+      Interval dx = e.tx - e.sx, dy = e.ty - e.sy;
+      Interval fx = cx - e.sx, fy = cy - e.sy;
+      // foot parameter along = (p - s).(t - s), against 0 and |t - s|^2
+      Interval along = fx * dx + fy * dy;
+      Interval beyond = along - (dx * dx + dy * dy);
+      Point d = difference(edge.target, edge.source);
+      Point f = difference(p, edge.source);
+      int before = sign(along, [&] { return sgn(dot(f, d)); });
+      if (before <= 0) {
+        bound = length(fx, fy).lo;   // nearest point: the source
+      } else if (sign(beyond, [&] { return sgn(Rational(dot(f, d) - dot(d, d))); }) >= 0) {
+        bound = length(cx - e.tx, cy - e.ty).lo;   // the target
+      } else {
+        bound = (kernels::sqrt((fx * dy - fy * dx) * (fx * dy - fy * dx)) / e.length).lo;   // the foot
+      }
+    } else {
+      Interval vx = cx - e.kx, vy = cy - e.ky;
+      Point v = difference(p, edge.center);
+      bool inside = e.full;
+      if (!inside) {
+        // cross(start, v) >= 0 and cross(v, end) >= 0 (either, for a large sector)
+        int after_start = sign(e.start_x * vy - e.start_y * vx, [&] {
+          kernels::ArcSector<Rational> sector = arc_sector(edge);
+          return sgn(cross(Point{sector.start.x, sector.start.y}, v));
+        });
+        int before_end = sign(vx * e.end_y - vy * e.end_x, [&] {
+          kernels::ArcSector<Rational> sector = arc_sector(edge);
+          return sgn(cross(v, Point{sector.end.x, sector.end.y}));
+        });
+        inside = e.large ? (after_start >= 0 || before_end >= 0) : (after_start >= 0 && before_end >= 0);
+      }
+      if (inside) {
+        Interval gap = length(vx, vy) - e.radius;
+        bound = std::max({0.0, gap.lo, (-gap).lo});
+      } else {
+        bound = std::min(length(cx - e.sx, cy - e.sy).lo, length(cx - e.tx, cy - e.ty).lo);
+      }
+    }
+    if (!(bound > 0)) return 0;   // NaN or touching: nothing proven
+    best = std::min(best, bound);
+  }
+  return std::isfinite(best) ? best : 0;
+}
+
+std::optional<CertifiedDisk> certify_disk(const Part& part, const ClearanceBound& bound, const Rational& px,
+                                          const Rational& py) {
+  Interval cx = Interval::enclose(px), cy = Interval::enclose(py);
+  double radius = bound.lower(px, py);
+  if (!(radius > 0)) return std::nullopt;
+  if (locate_point(part, RigidMap{}, Point{px, py}) != PointLocation::inside) return std::nullopt;
+  return CertifiedDisk{cx, cy, radius};
+}
+
+namespace {
 
 // Inscribed disks of a part: for each edge, points pushed inward from its middle by a few
 // scales, kept when strictly inside; radius = certified distance to the whole boundary.
 std::vector<Core> inscribed_disks(const Part& part) {
+  const ClearanceBound clearance(part);
   std::vector<const Edge*> edges;
   for (const Loop& loop : part.loops)
     for (const Edge& edge : loop.edges) edges.push_back(&edge);
@@ -370,8 +495,7 @@ std::vector<Core> inscribed_disks(const Part& part) {
         if (!std::isfinite(lx) || !std::isfinite(ly)) continue;
         Rational px = global(lx, origin.x), py = global(ly, origin.y);
         Interval cx = Interval::enclose(px), cy = Interval::enclose(py);
-        double radius = 1e300;
-        for (const Edge* other : edges) radius = std::min(radius, distance_lower_bound(*other, cx, cy));
+        double radius = clearance.lower(cx, cy);
         if (!(radius > 0)) continue;   // could never beat the empty disk
         candidates.push_back(Candidate{std::move(px), std::move(py), Core{cx, cy, radius}});
       }
@@ -426,27 +550,7 @@ PoseBox pose_over(const PartMotion& motion, bool half_turn, const Interval& t) {
   }
   box.pivot_x = Interval::enclose(motion.pivot.x);
   box.pivot_y = Interval::enclose(motion.pivot.y);
-  auto cosine = [](double u) {  // (1 - t^2) / (1 + t^2) from u = t^2, certified
-    return (Interval(1) - Interval(u, u)) / (Interval(1) + Interval(u, u));
-  };
-  auto sine = [](double v) { return (Interval(2) * Interval(v, v)) / (Interval(1) + Interval(v, v) * Interval(v, v)); };
-  if (t.lo >= -1 && t.hi <= 1) {
-    // (1 - u)/(1 + u) decreases in u = t^2; 2t/(1 + t^2) increases on [-1, 1].
-    double u_lo = (t.lo <= 0 && t.hi >= 0) ? 0.0 : std::min((Interval(t.lo, t.lo) * Interval(t.lo, t.lo)).lo,
-                                                          (Interval(t.hi, t.hi) * Interval(t.hi, t.hi)).lo);
-    double u_hi = std::max((Interval(t.lo, t.lo) * Interval(t.lo, t.lo)).hi,
-                           (Interval(t.hi, t.hi) * Interval(t.hi, t.hi)).hi);
-    box.c = Interval(cosine(u_hi).lo, cosine(u_lo).hi);
-    box.s = Interval(sine(t.lo).lo, sine(t.hi).hi);
-  } else {
-    Interval t2 = t * t;
-    box.c = (Interval(1) - t2) / (Interval(1) + t2);
-    box.s = (Interval(2) * t) / (Interval(1) + t2);
-  }
-  if (half_turn) {
-    box.c = -box.c;
-    box.s = -box.s;
-  }
+  std::tie(box.c, box.s) = rotation_enclosure(half_turn, t);
   return box;
 }
 

@@ -17,10 +17,13 @@
 
 #include <gmpxx.h>
 
+#include "kernels/interval.hpp"
+
 #include <cstddef>
 #include <optional>
 #include <string>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace hipair::cspace {
@@ -190,6 +193,47 @@ class CurveGenerator {
 /// Exact relation of the two parts posed at chart point `q` of chart (x, y): the oracle.
 Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x,
                          const ChartAxis& y, const ChartPoint& q);
+
+/// Certified lower bounds of the distance from a point to the boundary of a part (every edge):
+/// the edges' coordinates are enclosed once. Shared by the contact-curve generator's inscribed
+/// disks and the builder's blocked-cell tester.
+class ClearanceBound {
+ public:
+  explicit ClearanceBound(const Part& part);
+  /// A lower bound (>= 0) of the distance from every point of the box [x] x [y] to the boundary.
+  /// Weak (min of the distances to the edges' lines / circles and their ends).
+  double lower(const kernels::Interval& x, const kernels::Interval& y) const;
+  /// Sharper, for an exact point: the distance to each edge's nearest point proper (the foot
+  /// on a segment, the arc's sector), where that is decided by an interval filter with an
+  /// exact fallback.
+  double lower(const Rational& x, const Rational& y) const;
+
+ private:
+  struct EdgeBox {
+    bool arc = false;
+    const Edge* edge = nullptr;
+    kernels::Interval sx, sy, tx, ty, kx, ky, radius, length;
+    kernels::Interval start_x, start_y, end_x, end_y;   // arcs: sector directions
+    bool large = false, full = false;
+  };
+  std::vector<EdgeBox> edges_;
+};
+
+/// A disk in a part's material, certified: the exact centre (px, py) lies strictly inside the
+/// part (exact location) and the radius is a certified lower bound of its distance to the
+/// boundary; nullopt when that cannot be proven (centre outside, on or too near the boundary).
+struct CertifiedDisk {
+  kernels::Interval x;   // enclosure of the centre
+  kernels::Interval y;
+  double radius = 0;     // > 0, rounded down
+};
+std::optional<CertifiedDisk> certify_disk(const Part& part, const ClearanceBound& bound,
+                                          const Rational& px, const Rational& py);
+
+/// Certified enclosure of (cos, sin) of the part angle theta = c + 2 atan(t) over the chart
+/// interval t (c = pi for half-turn charts): cos = (1 - t^2)/(1 + t^2), sin = 2t/(1 + t^2),
+/// negated for half turns. No libm trigonometry.
+std::pair<kernels::Interval, kernels::Interval> rotation_enclosure(bool half_turn, const kernels::Interval& t);
 
 /// Converts a chart coordinate to the part coordinate (angle in rad / offset in mm), in
 /// double, for drawing and reports: theta = c + 2 atan(t).

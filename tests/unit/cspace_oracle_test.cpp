@@ -1,5 +1,6 @@
 // Exact point location against the exact overlap oracle on the example mechanisms: at 10,000
-// random rational configurations per pair (fixed seed), free <=> apart, blocked <=>
+// random rational configurations per pair (fixed seed; the builder also checks every face it
+// classified from the blocked side of a contact edge with the oracle), free <=> apart, blocked <=>
 // overlapping, and a configuration on an edge or a vertex is touching (on a real edge) or of
 // the class of the surrounding cell (on a spurious edge, whose curve may still touch there).
 #include "cspace/contact_curves.hpp"
@@ -25,7 +26,10 @@ Agreement check_pair(const std::string& file, const std::string& first, const st
   std::filesystem::path path = std::filesystem::path(HIPAIR_EXAMPLES) / file;
   if (!std::filesystem::exists(path)) return counts;
   Model model = read_model_file(path);
-  CSpace space = CSpace::build(model, first, second);
+  // faces classified from the blocked side of a contact edge are checked by the oracle too
+  CSpaceBuildOptions options;
+  options.check_face_classification = true;
+  CSpace space = CSpace::build(model, first, second, options);
   cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part(first), *model.find_part(second));
   cspace::ChartLayout layout = cspace::chart_layout(model, axes);
   std::mt19937_64 random(seed);
@@ -100,6 +104,13 @@ TEST(CSpaceOracle, ScotchYokeCrankYoke) {
 TEST(CSpaceOracle, RatchetWheelPawl) {
   Agreement a = check_pair("ratchet.json", "wheel", "pawl", 10000, 3);
   if (a.free + a.blocked + a.on_contact == 0) GTEST_SKIP() << "examples/models/ratchet.json missing";
+  EXPECT_GT(a.free, 0);
+  EXPECT_GT(a.blocked, 0);
+}
+
+TEST(CSpaceOracle, EscapementWheelAnchor) {
+  Agreement a = check_pair("escapement.json", "escape-wheel", "anchor", 3000, 5);
+  if (a.free + a.blocked + a.on_contact == 0) GTEST_SKIP() << "examples/models/escapement.json missing";
   EXPECT_GT(a.free, 0);
   EXPECT_GT(a.blocked, 0);
 }

@@ -1,0 +1,425 @@
+// The certainly-blocked tester of the C-space builder (see blocked_tester.hpp): disks of the
+// parts' material guessed in doubles, certified once (exact location, certified clearance), and
+// a certified (outward-rounded interval) test that two posed disks overlap over a chart box.
+#include "cspace/blocked_tester.hpp"
+
+#include "core/model_scale.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <limits>
+#include <tuple>
+
+namespace hipair::cspace {
+namespace {
+
+// ---------------------------------------------------------------- certainly blocked cells
+//
+// The double guess of disks inside a part's material (candidates on a grid and just inside
+// every edge, kept when the doubles say they are inside, shrunk and greedily chosen). The guess
+// decides nothing: BlockedTester certifies every disk it keeps.
+
+struct Disk {
+  double x, y, r;
+  double rho = 0;   // distance from the part's pivot (rotating parts)
+};
+
+struct EdgeGeometry {
+  bool arc = false;
+  double ax, ay, bx, by;           // ends
+  double cx = 0, cy = 0, r = 0;    // arcs
+  double start = 0, sweep = 0;     // arcs: start angle, signed sweep (ccw positive)
+  bool ccw = true;
+};
+
+double angle_in_span(double angle, double start, double sweep) {
+  // fraction along the arc of the direction `angle` (in [0, 1] when on the arc)
+  double d = sweep >= 0 ? angle - start : start - angle;
+  d = std::fmod(d, 2 * std::numbers::pi);
+  if (d < 0) d += 2 * std::numbers::pi;
+  return d / std::fabs(sweep);
+}
+
+// A length in the tester's unit of 2^exponent mm, as a double (exact scaling, then one rounding).
+double scaled(const Rational& value, long exponent) {
+  Rational q = value;
+  if (exponent >= 0)
+    mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(exponent));
+  else
+    mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(-exponent));
+  return q.get_d();
+}
+
+// The exponent of the largest coordinate of the parts (points, centres, pivots): lengths
+// divided by 2^exponent are about 1 in size, so that the doubles of this heuristic neither
+// overflow (plates of 1e400 mm) nor lose small features to rounding at any scale.
+long scale_exponent(const std::vector<const Part*>& parts) {
+  Rational largest = 0;
+  auto see = [&](const Rational& value) {
+    if (abs(value) > largest) largest = abs(value);
+  };
+  for (const Part* part : parts) {
+    see(part->motion.pivot.x);
+    see(part->motion.pivot.y);
+    for (const auto& loop : part->loops)
+      for (const auto& edge : loop.edges)
+        for (const Point* p : {&edge.source, &edge.target, &edge.center}) {
+          see(p->x);
+          see(p->y);
+        }
+  }
+  if (sgn(largest) == 0) return 0;
+  return static_cast<long>(mpz_sizeinbase(largest.get_num_mpz_t(), 2)) -
+         static_cast<long>(mpz_sizeinbase(largest.get_den_mpz_t(), 2));
+}
+
+std::vector<EdgeGeometry> edges_of(const Part& part, long exponent) {
+  std::vector<EdgeGeometry> edges;
+  for (const auto& loop : part.loops)
+    for (const auto& edge : loop.edges) {
+      EdgeGeometry g;
+      g.ax = scaled(edge.source.x, exponent);
+      g.ay = scaled(edge.source.y, exponent);
+      g.bx = scaled(edge.target.x, exponent);
+      g.by = scaled(edge.target.y, exponent);
+      if (edge.is_arc()) {
+        g.arc = true;
+        g.cx = scaled(edge.center.x, exponent);
+        g.cy = scaled(edge.center.y, exponent);
+        g.r = std::hypot(g.ax - g.cx, g.ay - g.cy);
+        g.ccw = edge.ccw;
+        g.start = std::atan2(g.ay - g.cy, g.ax - g.cx);
+        double end = std::atan2(g.by - g.cy, g.bx - g.cx);
+        double sweep = end - g.start;
+        if (edge.ccw) {
+          while (sweep <= 0) sweep += 2 * std::numbers::pi;
+        } else {
+          while (sweep >= 0) sweep -= 2 * std::numbers::pi;
+        }
+        if (edge.is_full_circle()) sweep = edge.ccw ? 2 * std::numbers::pi : -2 * std::numbers::pi;
+        g.sweep = sweep;
+      }
+      edges.push_back(g);
+    }
+  return edges;
+}
+
+double distance_to(const EdgeGeometry& e, double px, double py) {
+  if (!e.arc) {
+    double dx = e.bx - e.ax, dy = e.by - e.ay;
+    double t = ((px - e.ax) * dx + (py - e.ay) * dy) / (dx * dx + dy * dy);
+    t = std::clamp(t, 0.0, 1.0);
+    return std::hypot(px - e.ax - t * dx, py - e.ay - t * dy);
+  }
+  double angle = std::atan2(py - e.cy, px - e.cx);
+  if (angle_in_span(angle, e.start, e.sweep) <= 1) return std::fabs(std::hypot(px - e.cx, py - e.cy) - e.r);
+  return std::min(std::hypot(px - e.ax, py - e.ay), std::hypot(px - e.bx, py - e.by));
+}
+
+// Crossings of the ray from (px, py) towards +x with the edge (parity test).
+int crossings(const EdgeGeometry& e, double px, double py) {
+  if (!e.arc) {
+    if ((e.ay > py) == (e.by > py)) return 0;
+    double x = e.ax + (py - e.ay) * (e.bx - e.ax) / (e.by - e.ay);
+    return x > px ? 1 : 0;
+  }
+  double h = e.r * e.r - (py - e.cy) * (py - e.cy);
+  if (h <= 0) return 0;
+  int count = 0;
+  for (double sign : {-1.0, 1.0}) {
+    double x = e.cx + sign * std::sqrt(h);
+    if (x <= px) continue;
+    double angle = std::atan2(py - e.cy, x - e.cx);
+    if (angle_in_span(angle, e.start, e.sweep) <= 1) ++count;
+  }
+  return count;
+}
+
+std::vector<Disk> inscribed_disks(const Part& part, std::size_t limit, long exponent) {
+  std::vector<EdgeGeometry> edges = edges_of(part, exponent);
+  if (edges.empty()) return {};
+  // every coordinate finite: lengths were divided by the largest coordinate's power of two
+  for (const auto& e : edges)
+    if (!std::isfinite(e.ax) || !std::isfinite(e.ay) || !std::isfinite(e.bx) || !std::isfinite(e.by) ||
+        !std::isfinite(e.cx) || !std::isfinite(e.cy) || !std::isfinite(e.r))
+      return {};
+  double min_x = 1e300, min_y = 1e300, max_x = -1e300, max_y = -1e300;
+  for (const auto& e : edges)
+    for (auto [x, y] : {std::pair{e.ax, e.ay}, std::pair{e.bx, e.by}}) {
+      min_x = std::min(min_x, x);
+      max_x = std::max(max_x, x);
+      min_y = std::min(min_y, y);
+      max_y = std::max(max_y, y);
+    }
+  for (const auto& e : edges)
+    if (e.arc) {
+      min_x = std::min(min_x, e.cx - e.r);
+      max_x = std::max(max_x, e.cx + e.r);
+      min_y = std::min(min_y, e.cy - e.r);
+      max_y = std::max(max_y, e.cy + e.r);
+    }
+  std::vector<std::pair<double, double>> candidates;
+  const int grid = 40;
+  for (int i = 0; i < grid; ++i)
+    for (int j = 0; j < grid; ++j)
+      candidates.emplace_back(min_x + (max_x - min_x) * (i + 0.5) / grid, min_y + (max_y - min_y) * (j + 0.5) / grid);
+  // points just inside every edge (material lies on the left), at a few depths
+  for (const auto& e : edges) {
+    double mx, my, nx, ny, length;
+    if (!e.arc) {
+      mx = 0.5 * (e.ax + e.bx);
+      my = 0.5 * (e.ay + e.by);
+      length = std::hypot(e.bx - e.ax, e.by - e.ay);
+      if (!(length > 0)) continue;   // a feature below the doubles' resolution at this scale
+      nx = -(e.by - e.ay) / length;
+      ny = (e.bx - e.ax) / length;
+    } else {
+      double middle = e.start + 0.5 * e.sweep;
+      mx = e.cx + e.r * std::cos(middle);
+      my = e.cy + e.r * std::sin(middle);
+      length = e.r * std::fabs(e.sweep);
+      if (!(e.r > 0) || !(length > 0)) continue;
+      double toward_centre = e.ccw ? 1 : -1;
+      nx = toward_centre * (e.cx - mx) / e.r;
+      ny = toward_centre * (e.cy - my) / e.r;
+    }
+    for (double depth : {0.15, 0.35, 0.7}) candidates.emplace_back(mx + nx * depth * length, my + ny * depth * length);
+  }
+  std::vector<Disk> disks;
+  for (auto [px, py] : candidates) {
+    int count = 0;
+    double distance = 1e300;
+    for (const auto& e : edges) {
+      count += crossings(e, px, py);
+      distance = std::min(distance, distance_to(e, px, py));
+    }
+    if (!std::isfinite(px) || !std::isfinite(py) || !std::isfinite(distance)) continue;
+    if (count % 2 == 0 || distance <= 1e-9 * (1 + std::fabs(px) + std::fabs(py))) continue;
+    // double rounding in the distance is far below 1e-9 relative: shrink by that much
+    disks.push_back({px, py, distance * (1 - 1e-9) - 1e-9 * (1 + std::fabs(px) + std::fabs(py))});
+  }
+  std::sort(disks.begin(), disks.end(), [](const Disk& a, const Disk& b) { return a.r > b.r; });
+  std::vector<Disk> chosen;
+  for (const auto& d : disks) {
+    bool covered = false;
+    for (const auto& c : chosen)
+      if (std::hypot(d.x - c.x, d.y - c.y) + 0.5 * d.r <= c.r) {
+        covered = true;
+        break;
+      }
+    if (covered || d.r <= 0) continue;
+    chosen.push_back(d);
+    if (chosen.size() >= limit) break;
+  }
+  return chosen;
+}
+
+// The two parts with every length divided by 2^exponent (exact).
+Model scaled_parts(const Model& model, const PairAxes& axes, long exponent) {
+  Model two;
+  two.parts = {model.parts[axes.first], model.parts[axes.second]};
+  return scaled_model(two, exponent);
+}
+
+}  // namespace
+
+// blocked() decides with certified bounds only: the disks are certified once (exact centre
+// strictly inside the part, radius a certified lower bound of its clearance), the parts' poses
+// at a middle chart value m come from outward-rounded enclosures of the rational cos/sin of m,
+// the movement from there over the box is bounded by a certified angle or travel bound, and
+// every rounding of the double evaluation of a posed centre is covered by an a-priori bound
+// (each term below is at least the error it stands for). The doubles of inscribed_disks()
+// only guess where to put the disks.
+BlockedTester::BlockedTester(const Model& model, const PairAxes& axes)
+    : axes_(axes), exponent_(scale_exponent({&model.parts[axes.first], &model.parts[axes.second]})) {
+  using kernels::Interval;
+  using kernels::interval_detail::up;
+  const Model scaled = scaled_parts(model, axes, exponent_);
+  for (int k = 0; k < 2; ++k) {
+    const Part& part = model.parts[k == 0 ? axes.first : axes.second];
+    const Part& exact = scaled.parts[static_cast<std::size_t>(k)];
+    motion_[k] = part.motion.kind;
+    moves_[k] = k == 0 ? axes.first_moves : axes.second_moves;
+    pivot_[k][0] = Interval::enclose(exact.motion.pivot.x);
+    pivot_[k][1] = Interval::enclose(exact.motion.pivot.y);
+    direction_[k][0] = Interval::enclose(part.motion.direction.x);
+    direction_[k][1] = Interval::enclose(part.motion.direction.y);
+    direction_length_[k] = kernels::sqrt(direction_[k][0] * direction_[k][0] + direction_[k][1] * direction_[k][1]).hi;
+    // enough disks that every tooth of a many-toothed part gets some (the operating
+    // region's flood must see blocked space between neighbouring channels)
+    std::size_t edges = 0;
+    for (const Loop& loop : part.loops) edges += loop.edges.size();
+    std::vector<Disk> guess = inscribed_disks(part, std::max<std::size_t>(150, 2 * edges), exponent_);
+    const ClearanceBound clearance(exact);
+    for (const Disk& d : guess) {
+      auto disk = certify_disk(exact, clearance, Rational(d.x), Rational(d.y));
+      if (!disk) continue;
+      CertifiedCore core;
+      core.x = disk->x;
+      core.y = disk->y;
+      // never larger than the guess: the tester claims no more than the guess would
+      core.r = std::min(disk->radius, d.r);
+      if (!(core.r > 0)) continue;
+      core.rx = core.x - pivot_[k][0];
+      core.ry = core.y - pivot_[k][1];
+      core.rho = kernels::sqrt(core.rx * core.rx + core.ry * core.ry).hi;
+      if (!std::isfinite(core.rho)) continue;
+      // the double evaluation of blocked(): the centre (an exact double), its offset from the
+      // pivot as a double and a bound of that double's error, and a bound of the magnitudes
+      core.cx = d.x;
+      core.cy = d.y;
+      core.rx_m = core.rx.lo;
+      core.ry_m = core.ry.lo;
+      core.r_error = up(std::max(core.rx.hi - core.rx.lo, core.ry.hi - core.ry.lo));
+      core.magnitude = up(up(std::fabs(core.rx_m) + std::fabs(core.ry_m)) + core.r_error);
+      if (!std::isfinite(core.magnitude) || !std::isfinite(core.cx) || !std::isfinite(core.cy)) continue;
+      disks_[k].push_back(core);
+    }
+    pivot_m_[k][0] = pivot_[k][0].lo;
+    pivot_m_[k][1] = pivot_[k][1].lo;
+    pivot_error_[k] = up(std::max(pivot_[k][0].hi - pivot_[k][0].lo, pivot_[k][1].hi - pivot_[k][1].lo));
+    pivot_magnitude_[k] = std::max(std::fabs(pivot_m_[k][0]), std::fabs(pivot_m_[k][1]));
+  }
+}
+
+bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
+                            const algebra::Interval& y) const {
+  using kernels::Interval;
+  using kernels::interval_detail::down;
+  using kernels::interval_detail::up;
+  // u = 2^-53 (unit roundoff); a bound of the rounding of a few operations on terms of size M
+  // is a small multiple of u M, plus an absolute term for underflow (each rounding below the
+  // normal range errs by at most 2^-1075).
+  constexpr double unit = 0x1p-53;
+  constexpr double underflow = 0x1p-1000;
+  constexpr double inflate = 1 + 0x1p-40;   // covers the rounding of the error terms' own sums
+  // Each moving part's pose over its chart interval: the pose at a middle chart value m
+  // (certified cos/sin of its angle, or its offset) and a bound on how far a point at
+  // distance rho from the pivot moves from there: rho * |theta - theta_m| for rotations
+  // (the chord is shorter than the arc), the angle bound from the series of atan (side() below);
+  // |s - m| * |direction| for translations.
+  struct PoseBound {
+    double c = 1, s = 0;            // a point of the enclosure of cos, sin at m
+    double cs_error = 0;            // bound of |cos - c| + |sin - s|
+    double cs_size = 1;             // bound of |c| + |s|
+    double shift = 0;               // translations: m
+    double angle = 0;               // bound of |theta - theta_m|
+    double travel = 0;              // bound of the translation's travel from the middle
+  } pose[2];
+  bool x_used = false;
+  for (int k = 0; k < 2; ++k) {
+    if (!moves_[k]) continue;
+    const ChartAxis& axis = !x_used ? x_axis : y_axis;
+    const algebra::Interval& range = !x_used ? x : y;
+    x_used = true;
+    if (!std::isfinite(range.lo) || !std::isfinite(range.hi) || !(range.lo <= range.hi)) return false;
+    double lo = range.lo, hi = range.hi;
+    if (axis.kind == ChartAxis::Kind::translation) {
+      // chart offsets are in mm: into the tester's unit, outward (out of double range: no claim)
+      int shift = static_cast<int>(std::clamp<long>(-exponent_, -4000, 4000));
+      lo = down(std::ldexp(lo, shift));
+      hi = up(std::ldexp(hi, shift));
+      if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
+      double m = std::clamp(0.5 * lo + 0.5 * hi, lo, hi);
+      double half = std::max((Interval(m, m) - Interval(lo, lo)).hi, (Interval(hi, hi) - Interval(m, m)).hi);
+      pose[k].shift = m;
+      pose[k].travel = (Interval(half, half) * Interval(direction_length_[k], direction_length_[k])).hi;
+      continue;
+    }
+    // the middle of the angle range (any m in [lo, hi] is sound; this one balances the sides)
+    double m = std::clamp(std::tan(0.5 * (std::atan(lo) + std::atan(hi))), lo, hi);
+    if (!std::isfinite(m)) m = std::clamp(0.5 * lo + 0.5 * hi, lo, hi);
+    auto [c, s] = rotation_enclosure(axis.half_turn, Interval(m, m));
+    pose[k].c = c.lo;
+    pose[k].s = s.lo;
+    pose[k].cs_error = up(up(c.hi - c.lo) + up(s.hi - s.lo));
+    pose[k].cs_size = up(std::max(std::fabs(c.lo), std::fabs(c.hi)) + std::max(std::fabs(s.lo), std::fabs(s.hi)));
+    auto side = [](double a, double b) {   // bound of |2 atan b - 2 atan a|, a <= b
+      // atan b - atan a = atan z, z = (b - a)/(1 + ab), when 1 + ab > 0; atan z <= z - z^3/3 + z^5/5
+      // for 0 <= z <= 1 (alternating series), atan z < pi/2 < 1.5708
+      Interval width = Interval(b, b) - Interval(a, a);
+      Interval denominator = Interval(1) + Interval(a, a) * Interval(b, b);
+      if (!(denominator.lo > 0)) return (Interval(2) * width).hi;   // mean value theorem: slope <= 2
+      double z = (width / denominator).hi;
+      if (!(z <= 1)) return (Interval(2) * Interval(std::min(z, 1.5708), std::min(z, 1.5708))).hi;
+      Interval zi(z, z), z2 = zi * zi;
+      Interval series = zi * (Interval(1) - z2 / Interval(3) + z2 * z2 / Interval(5));
+      return (Interval(2) * series).hi;
+    };
+    pose[k].angle = std::max(side(lo, m), side(m, hi));
+  }
+  // posed disks: the centre at the middle pose in doubles, and a lower bound of the radius
+  // that holds over the whole box: radius minus (movement + every error of the double centre)
+  struct Posed {
+    double x, y;
+    double reach;
+  };
+  thread_local std::vector<Posed> posed[2];
+  thread_local std::vector<std::size_t> order;
+  thread_local std::vector<double> xs;
+  for (int k = 0; k < 2; ++k) {
+    posed[k].clear();
+    const PoseBound& p = pose[k];
+    const bool rotates = moves_[k] && motion_[k] == Motion::Kind::rotation;
+    const bool translates = moves_[k] && motion_[k] == Motion::Kind::translation;
+    const double dx_m = direction_[k][0].lo, dy_m = direction_[k][1].lo;
+    const double direction_error =
+        up(std::max(direction_[k][0].hi - direction_[k][0].lo, direction_[k][1].hi - direction_[k][1].lo));
+    for (const CertifiedCore& d : disks_[k]) {
+      Posed q;
+      double error = 0;
+      if (rotates) {
+        // world = pivot + R (centre - pivot); |R - R_m| <= cs_error entrywise, |R_m| <= cs_size
+        q.x = pivot_m_[k][0] + (p.c * d.rx_m - p.s * d.ry_m);
+        q.y = pivot_m_[k][1] + (p.s * d.rx_m + p.c * d.ry_m);
+        error = pivot_error_[k] + p.cs_error * d.magnitude + p.cs_size * d.r_error +
+                4 * unit * (pivot_magnitude_[k] + p.cs_size * d.magnitude) + d.rho * p.angle;
+      } else if (translates) {
+        q.x = d.cx + p.shift * dx_m;
+        q.y = d.cy + p.shift * dy_m;
+        double shift = std::fabs(p.shift);
+        error = shift * direction_error + 4 * unit * (std::max(std::fabs(d.cx), std::fabs(d.cy)) + 2 * shift) + p.travel;
+      } else {
+        q.x = d.cx;
+        q.y = d.cy;
+      }
+      error = error * inflate + underflow;
+      // may be negative: a pair is tested on the sum of its reaches
+      q.reach = down(d.r - error);
+      if (!std::isfinite(q.reach) || !std::isfinite(q.x) || !std::isfinite(q.y)) continue;
+      posed[k].push_back(q);
+    }
+  }
+  // sweep in x: B's disks sorted by their centre's x; only pairs inside the window are tested
+  // (the window decides nothing: leaving a pair out can only keep the answer "not blocked")
+  order.resize(posed[1].size());
+  for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return posed[1][a].x < posed[1][b].x; });
+  double widest = -std::numeric_limits<double>::infinity();
+  for (const Posed& b : posed[1]) widest = std::max(widest, b.reach);
+  xs.resize(order.size());
+  for (std::size_t j = 0; j < order.size(); ++j) xs[j] = posed[1][order[j]].x;
+  for (const Posed& a : posed[0]) {
+    double span = a.reach + widest;
+    if (!(span > 0)) continue;
+    auto first = std::lower_bound(xs.begin(), xs.end(), a.x - span);
+    auto last = std::upper_bound(xs.begin(), xs.end(), a.x + span);
+    for (auto it = first; it != last; ++it) {
+      const Posed& b = posed[1][order[static_cast<std::size_t>(it - xs.begin())]];
+      // a plain double test first (the certified one below implies it: skipping when it fails
+      // decides nothing), then certified: |centre_a - centre_b|^2 (rounded up) <
+      // (reach_a + reach_b)^2 (rounded down)
+      double plain_dx = a.x - b.x, plain_dy = a.y - b.y, plain_reach = a.reach + b.reach;
+      if (!(plain_reach > 0) || !(plain_dx * plain_dx + plain_dy * plain_dy < plain_reach * plain_reach)) continue;
+      double dx = up(std::fabs(plain_dx)), dy = up(std::fabs(plain_dy));
+      double far2 = up(up(dx * dx) + up(dy * dy));
+      double reach = down(a.reach + b.reach);
+      if (!(reach > 0)) continue;
+      if (far2 < down(reach * reach)) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace hipair::cspace

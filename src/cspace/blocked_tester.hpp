@@ -1,0 +1,63 @@
+// Certainly-blocked C-space boxes of a fixed-axis pair (internal to the builder).
+//
+// A box of a chart is certainly blocked when, for every configuration in it, a disk of the
+// first part's material and a disk of the second part's material overlap: the interiors of
+// the parts overlap there. The builder culls contact curves in such boxes and stops the
+// operating-region flood at them. The decision is certified: the disks are certified once at
+// construction (exact centre strictly inside the part, radius a certified lower bound of the
+// clearance) and blocked() computes in outward-rounded interval arithmetic (kernels/interval.hpp)
+// from the chart coordinates (rational cos/sin of the half-angle tangent, no libm trigonometry).
+// Lengths are in units of 2^exponent mm (an exact power-of-two scaling of the parts), so no
+// double over- or underflows at any model scale.
+#pragma once
+
+#include "cspace/builder_algebra.hpp"
+#include "cspace/contact_curves.hpp"
+#include "kernels/interval.hpp"
+
+#include <hipair/model.hpp>
+
+#include <vector>
+
+namespace hipair::cspace {
+
+class BlockedTester {
+ public:
+  BlockedTester(const Model& model, const PairAxes& axes);
+  /// False when either part got no certified disk (then nothing is ever blocked).
+  bool usable() const { return !disks_[0].empty() && !disks_[1].empty(); }
+  /// True only if the parts' interiors overlap at every configuration of the box [x] x [y]
+  /// (chart x carries the first moving part, chart y the second, if any). Certified.
+  bool blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
+               const algebra::Interval& y) const;
+
+  /// A disk of a part's material in the tester's unit, certified once at construction (exact
+  /// centre strictly inside the part, radius a certified lower bound of its clearance).
+  struct CertifiedCore {
+    kernels::Interval x, y;     // centre enclosure (a point: the centre is a double)
+    kernels::Interval rx, ry;   // centre minus the part's pivot (rotating parts)
+    double r = 0;               // radius, rounded down
+    double rho = 0;             // upper bound of the distance from the pivot (rotating parts)
+    double cx = 0, cy = 0;      // the centre (exact doubles)
+    double rx_m = 0, ry_m = 0;  // points of rx, ry
+    double r_error = 0;         // bound of |rx - rx_m| and |ry - ry_m|
+    double magnitude = 0;       // bound of |rx| + |ry|
+  };
+
+  const std::vector<CertifiedCore>& disks(int part) const { return disks_[part]; }
+
+ private:
+  PairAxes axes_;
+  long exponent_;                        // lengths in units of 2^exponent_ mm
+  Motion::Kind motion_[2] = {};
+  bool moves_[2] = {};
+  kernels::Interval pivot_[2][2];        // the parts' pivots in that unit
+  kernels::Interval direction_[2][2];    // translation directions (unit vectors, enclosed)
+  double direction_length_[2] = {};      // upper bound of |direction|
+  double pivot_m_[2][2] = {};            // points of the pivots' enclosures
+  double pivot_error_[2] = {};           // bound of their error
+  double pivot_magnitude_[2] = {};       // max |pivot_m| coordinate
+  std::vector<CertifiedCore> disks_[2];
+};
+
+}  // namespace hipair::cspace

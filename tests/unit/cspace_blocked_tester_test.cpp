@@ -1,0 +1,285 @@
+// The builder's certainly-blocked tester (src/cspace/blocked_tester.hpp) against the exact
+// overlap oracle. A box the tester calls blocked must contain no free and no touching
+// configuration:
+//  - random boxes of the example pairs' charts (fixed seed): where the tester says "blocked",
+//    the parts overlap (exactly) at the box's corners and at random rational configurations;
+//  - generated tangencies at scales from 1e-200 to 1e200: a rotating bar whose extreme corner
+//    touches a translating wall at an exact rational configuration; no box around it, however
+//    thin, is blocked, and random boxes nearby are checked as above;
+//  - a part whose boundary makes a double ray-parity test count an arc junction twice (two
+//    arcs meeting on the ray): the old double tester took empty space beside it for material
+//    and culled the curves bounding the free channel; the C-space built from the certified
+//    tester agrees with the oracle.
+#include "cspace/blocked_tester.hpp"
+#include "cspace/contact_curves.hpp"
+#include "cspace/overlap.hpp"
+#include "kernels/interval.hpp"
+
+#include <hipair/cspace.hpp>
+#include <hipair/model.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <string>
+
+namespace hipair {
+namespace {
+
+using Random = std::mt19937_64;
+using cspace::algebra::Interval;
+
+struct Counts {
+  int boxes = 0, blocked = 0, points = 0;
+};
+
+// A rational in the double interval [a, b].
+Rational pick(Random& random, const Interval& range) {
+  Rational u(mpz_class(static_cast<unsigned long>(random() % 1000003)), 1000003);
+  u.canonicalize();
+  return Rational(Rational(range.lo) + u * (Rational(range.hi) - Rational(range.lo)));
+}
+
+// Wherever the tester says the box is blocked, the oracle says overlapping at its corners and
+// at `samples` random rational configurations in it.
+void check_blocked_box(const Model& model, const cspace::PairAxes& axes, const cspace::ChartAxis& x,
+                       const cspace::ChartAxis& y, const Interval& bx, const Interval& by, bool two_d, int samples,
+                       Random& random, Counts& counts, const std::string& what) {
+  std::vector<cspace::ChartPoint> points;
+  for (double cx : {bx.lo, bx.hi})
+    for (double cy : {by.lo, by.hi}) points.push_back({Rational(cx), two_d ? Rational(cy) : Rational(0)});
+  for (int k = 0; k < samples; ++k) points.push_back({pick(random, bx), two_d ? pick(random, by) : Rational(0)});
+  for (const auto& q : points) {
+    ++counts.points;
+    EXPECT_EQ(cspace::classify_overlap(model, axes, x, y, q), cspace::Overlap::overlapping)
+        << what << " box [" << bx.lo << ", " << bx.hi << "] x [" << by.lo << ", " << by.hi << "] at " << q.x << ", "
+        << q.y;
+  }
+}
+
+Counts check_pair(const std::string& file, const std::string& first, const std::string& second, int boxes, int samples,
+                  std::uint64_t seed) {
+  Counts counts;
+  std::filesystem::path path = std::filesystem::path(HIPAIR_EXAMPLES) / file;
+  if (!std::filesystem::exists(path)) return counts;
+  Model model = read_model_file(path);
+  cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part(first), *model.find_part(second));
+  cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+  cspace::BlockedTester tester(model, axes);
+  EXPECT_TRUE(tester.usable()) << file;
+  const bool two_d = !layout.y_charts.empty();
+  Random random(seed);
+  auto unit = [&] { return std::ldexp(static_cast<double>(random() >> 11), -53); };   // [0, 1)
+  // a double box [a, b] inside [lo, hi], of width (hi - lo) 2^-k, k in 1..9
+  auto box = [&](const Rational& lo, const Rational& hi) {
+    double l = lo.get_d(), h = hi.get_d();
+    double width = (h - l) * std::ldexp(1.0, -static_cast<int>(1 + random() % 9));
+    double a = l + unit() * (h - l - width);
+    double b = a + width;
+    return Interval{a, std::max(a, b)};
+  };
+  for (int i = 0; i < boxes; ++i) {
+    const cspace::ChartAxis& x = layout.x_charts[random() % layout.x_charts.size()];
+    cspace::ChartAxis y = two_d ? layout.y_charts[random() % layout.y_charts.size()]
+                                : cspace::ChartAxis{cspace::ChartAxis::Kind::translation, false, Rational(0), Rational(0)};
+    Interval bx = box(x.lo, x.hi);
+    Interval by = two_d ? box(y.lo, y.hi) : Interval{0, 0};
+    ++counts.boxes;
+    if (!tester.blocked(x, y, bx, by)) continue;
+    ++counts.blocked;
+    check_blocked_box(model, axes, x, y, bx, by, two_d, samples, random, counts, file);
+  }
+  return counts;
+}
+
+TEST(BlockedTester, BlockedBoxesOfTheExamplesOverlapEverywhere) {
+  struct Pair {
+    const char* file;
+    const char* first;
+    const char* second;
+    int boxes;
+  };
+  for (const Pair& pair : {Pair{"geneva.json", "driver", "wheel", 400}, Pair{"ratchet.json", "wheel", "pawl", 400},
+                           Pair{"cam-follower.json", "cam", "follower", 400},
+                           Pair{"spur-gears.json", "pinion", "gear", 150}}) {
+    Counts counts = check_pair(pair.file, pair.first, pair.second, pair.boxes, 6, 20261124);
+    if (counts.boxes == 0) continue;   // example not shipped
+    // the property must not hold vacuously
+    EXPECT_GT(counts.blocked, 20) << pair.file;
+    std::cout << pair.file << ": " << counts.blocked << " of " << counts.boxes << " boxes blocked, " << counts.points
+              << " configurations checked\n";
+  }
+}
+
+// ---------------------------------------------------------------- generated tangencies
+
+// A random rational in [lo, hi] with a denominator up to `den`.
+Rational random_rational(Random& random, const Rational& lo, const Rational& hi, long den = 97) {
+  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
+  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
+  Rational u(p, q);
+  u.canonicalize();
+  Rational value = lo + u * (hi - lo);
+  value.canonicalize();
+  return value;
+}
+
+std::string text(const Rational& r) { return "\"" + r.get_str() + "\""; }
+
+// A bar [0, L] x [-w, w] rotating about the origin and a wall (body: x in [0, D], |y| <= H)
+// translating along x. Lengths are multiplied by `scale`.
+std::string bar_and_wall(const Rational& L, const Rational& w, const Rational& D, const Rational& H,
+                         const Rational& reach) {
+  auto point = [](const Rational& x, const Rational& y) { return "[" + text(x) + ", " + text(y) + "]"; };
+  return R"({ "hipair": 1, "name": "bar-and-wall",
+    "parts": [
+      { "name": "bar", "motion": { "rotation": { "pivot": [0, 0] } },
+        "loops": [ { "start": )" + point(0, -w) + R"(, "edges": [ { "line_to": )" + point(L, -w) +
+         R"( }, { "line_to": )" + point(L, w) + R"( }, { "line_to": )" + point(0, w) + R"( }, { "line_to": )" +
+         point(0, -w) + R"( } ] } ] },
+      { "name": "wall", "motion": { "translation": { "direction": [1, 0], "limits": [)" + text(-reach) + ", " +
+         text(reach) + R"(] } },
+        "loops": [ { "start": )" + point(0, -H) + R"(, "edges": [ { "line_to": )" + point(D, -H) +
+         R"( }, { "line_to": )" + point(D, H) + R"( }, { "line_to": )" + point(0, H) + R"( }, { "line_to": )" +
+         point(0, -H) + R"( } ] } ] } ],
+    "pairs": [ { "parts": ["bar", "wall"] } ] })";
+}
+
+TEST(BlockedTester, NoBoxAroundATangencyIsBlockedAtAnyScale) {
+  Random random(20261124);
+  int thin_boxes = 0, blocked_nearby = 0;
+  Counts counts;
+  for (int exponent : {-200, -30, -3, 0, 3, 30, 200}) {
+    Rational scale = 1;
+    mpz_class power;
+    mpz_ui_pow_ui(power.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(exponent)));
+    scale = exponent >= 0 ? Rational(power) : Rational(mpz_class(1), power);
+    scale.canonicalize();
+    for (int trial = 0; trial < 6; ++trial) {
+      Rational L = scale * random_rational(random, 2, 10), w = scale * random_rational(random, Rational(1, 10), 1);
+      Rational D = scale * random_rational(random, Rational(1, 2), 3);
+      Rational H = 2 * (L + w), reach = 2 * (L + w + D);
+      Model model = read_model(bar_and_wall(L, w, D, H, reach));
+      cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+      cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+      cspace::BlockedTester tester(model, axes);
+      ASSERT_TRUE(tester.usable());
+      const cspace::ChartAxis& x = layout.x_charts[random() % layout.x_charts.size()];
+      const cspace::ChartAxis& y = layout.y_charts[0];
+      // the tangency: t0 in the chart, the wall's face on the bar's extreme corner
+      Rational t0 = random_rational(random, x.lo, x.hi, 1000);
+      Rational t2 = t0 * t0;
+      Rational c = (1 - t2) / (1 + t2), s = 2 * t0 / (1 + t2);
+      if (x.half_turn) {
+        c = -c;
+        s = -s;
+      }
+      Rational s0;
+      bool first = true;
+      for (const auto& [px, py] : {std::pair{Rational(0), Rational(-w)}, std::pair{L, Rational(-w)},
+                                   std::pair{L, w}, std::pair{Rational(0), w}}) {
+        Rational rx = c * px - s * py;
+        if (first || rx > s0) s0 = rx;
+        first = false;
+      }
+      s0.canonicalize();
+      const cspace::ChartPoint touch{t0, s0};
+      ASSERT_EQ(cspace::classify_overlap(model, axes, x, y, touch), cspace::Overlap::touching)
+          << "the generated configuration is a tangency";
+      const kernels::Interval ex = kernels::Interval::enclose(t0), ey = kernels::Interval::enclose(s0);
+      // boxes around the tangency, from 2^-1 down to 2^-60 of the chart wide (and degenerate)
+      for (int k = 1; k <= 60; k += 3) {
+        double wx = std::ldexp(Rational(x.hi - x.lo).get_d(), -k), wy = std::ldexp(Rational(y.hi - y.lo).get_d(), -k);
+        for (int side = 0; side < 4; ++side) {
+          double ax = side & 1 ? wx : 0, ay = side & 2 ? wy : 0;
+          Interval bx{ex.lo - ax, ex.hi + (wx - ax)}, by{ey.lo - ay, ey.hi + (wy - ay)};
+          if (k == 58) bx = {ex.lo, ex.hi}, by = {ey.lo, ey.hi};
+          ++thin_boxes;
+          EXPECT_FALSE(tester.blocked(x, y, bx, by))
+              << "scale 1e" << exponent << ": a box around the tangency (" << t0 << ", " << s0 << ") is blocked";
+        }
+      }
+      // boxes beside the tangency (on the wall's side, into the overlap): when blocked, overlapping
+      for (int k = 2; k <= 40; k += 2) {
+        double wx = std::ldexp(Rational(x.hi - x.lo).get_d(), -k), wy = std::ldexp(Rational(y.hi - y.lo).get_d(), -k);
+        double gap = std::ldexp(wy, -(static_cast<int>(random() % 8)));
+        Interval bx{ex.lo - 0.5 * wx, ex.hi + 0.5 * wx}, by{ey.lo - gap - wy, ey.lo - gap};
+        if (!tester.blocked(x, y, bx, by)) continue;
+        ++blocked_nearby;
+        check_blocked_box(model, axes, x, y, bx, by, true, 2, random, counts, "bar and wall");
+      }
+    }
+  }
+  EXPECT_GT(thin_boxes, 1000);
+  EXPECT_GT(blocked_nearby, 20) << "the boxes beside the tangency must sometimes be blocked (not vacuous)";
+  std::cout << thin_boxes << " boxes around tangencies, " << blocked_nearby << " blocked boxes beside them\n";
+}
+
+// ---------------------------------------------------------------- ray parity at an arc junction
+
+// A frame rotating about (17.5, 19.5): a bar [0, 10] x [0, 40] and a disk of radius 5 about
+// (30, 19.5) drawn as two arcs meeting at (25, 19.5), on the row y = 19.5 of candidate disk
+// centres; a square slider translating along x in the channel between them. Every point of the
+// row between the bar and the disk is outside the frame, but a double parity test counts the
+// junction once per arc.
+const char* const parity_model = R"({ "hipair": 1, "name": "arc-junction",
+  "parts": [
+    { "name": "frame", "motion": { "rotation": { "pivot": [17.5, 19.5] } },
+      "loops": [
+        { "start": [0, 0], "edges": [ { "line_to": [10, 0] }, { "line_to": [10, 40] }, { "line_to": [0, 40] }, { "line_to": [0, 0] } ] },
+        { "start": [25, 19.5], "edges": [ { "arc_to": [30, 14.5], "center": [30, 19.5], "dir": "ccw" },
+                                          { "arc_to": [25, 19.5], "center": [30, 19.5], "dir": "ccw" } ] } ] },
+    { "name": "slider", "motion": { "translation": { "direction": [1, 0], "limits": [6, 29] } }, "initial": { "offset": 17.5 },
+      "loops": [ { "start": [-1, 18.5], "edges": [ { "line_to": [1, 18.5] }, { "line_to": [1, 20.5] }, { "line_to": [-1, 20.5] }, { "line_to": [-1, 18.5] } ] } ] } ],
+  "pairs": [ { "parts": ["frame", "slider"] } ] })";
+
+TEST(BlockedTester, EmptySpaceBesideAnArcJunctionIsNotMaterial) {
+  Model model = read_model(parity_model);
+  cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+  cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+  cspace::BlockedTester tester(model, axes);
+  // the frame at angle 0 (t = 0) with the slider anywhere in the channel: free
+  const cspace::ChartAxis& x = layout.x_charts[0];
+  const cspace::ChartAxis& y = layout.y_charts[0];
+  ASSERT_FALSE(x.half_turn);
+  ASSERT_EQ(cspace::classify_overlap(model, axes, x, y, {Rational(0), Rational(35, 2)}), cspace::Overlap::apart);
+  for (double s : {13.0, 15.0, 17.5, 20.0, 22.0})
+    EXPECT_FALSE(tester.blocked(x, y, Interval{-1e-6, 1e-6}, Interval{s - 1e-6, s + 1e-6})) << "slider at " << s;
+}
+
+TEST(BlockedTester, CSpaceBesideAnArcJunctionAgreesWithTheOracle) {
+  Model model = read_model(parity_model);
+  CSpace space = CSpace::build(model, "frame", "slider");
+  cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+  cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+  const std::size_t y_count = layout.y_charts.size();
+  Random random(20261124);
+  int free = 0, blocked = 0;
+  for (int i = 0; i < 1500; ++i) {
+    std::size_t c = random() % space.charts().size();
+    const CSpaceChart& chart = space.charts()[c];
+    auto pick_in = [&](const Rational& lo, const Rational& hi) {
+      Rational u(mpz_class(static_cast<unsigned long>(random() % 1000003)), 1000003);
+      u.canonicalize();
+      return Rational(lo + u * (hi - lo));
+    };
+    ChartPoint q{c, pick_in(chart.x_lo, chart.x_hi), pick_in(chart.y_lo, chart.y_hi)};
+    Location location = space.locate(q);
+    cspace::Overlap overlap = cspace::classify_overlap(model, axes, layout.x_charts[c / y_count],
+                                                       layout.y_charts[c % y_count], cspace::ChartPoint{q.x, q.y});
+    if (location.kind == Location::Kind::free) {
+      ++free;
+      EXPECT_EQ(overlap, cspace::Overlap::apart) << "chart " << c << " at " << q.x << ", " << q.y;
+    } else if (location.kind == Location::Kind::blocked) {
+      ++blocked;
+      EXPECT_EQ(overlap, cspace::Overlap::overlapping) << "chart " << c << " at " << q.x << ", " << q.y;
+    }
+  }
+  EXPECT_GT(free, 100);
+  EXPECT_GT(blocked, 100);
+}
+
+}  // namespace
+}  // namespace hipair
