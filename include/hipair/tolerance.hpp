@@ -45,7 +45,7 @@ struct ToleranceOptions {
   std::vector<std::string> threshold_parameters;
   /// Certified band: subdivide the tolerance box until the certified enclosure is at most this
   /// much (relative) wider than the linearised worst case, or `absolute_accuracy` (part units).
-  double relative_accuracy = 0.01;
+  double relative_accuracy = 0.1;
   double absolute_accuracy = 1e-9;
   std::size_t zone_samples = 24;       ///< abscissae per contact edge for the contact zones
   std::function<void(double)> progress;   ///< fraction done, from the calling thread
@@ -87,6 +87,7 @@ struct VariationSample {
 struct ContactZone {
   std::string contact;
   std::size_t edge = no_index;         ///< edge id in the nominal C-space
+  bool x_rotates = true, y_rotates = true;   ///< rad (true) or mm
   std::vector<double> x;               ///< x part coordinate (rad or mm)
   std::vector<double> nominal;         ///< y part coordinate
   std::vector<double> linear_lower, linear_upper;

@@ -135,6 +135,15 @@ class ParametricModel {
   template <class T>
   std::vector<T> parameter_values(const std::vector<T>& deviations) const;
 
+  /// One edge of a part (Part::loops[loop].edges[edge], oriented as nominal) for number type T
+  /// at the parameter values `parameters` (from parameter_values): only its own formulas.
+  template <class T>
+  EdgeValue<T> edge_value(std::size_t part, std::size_t loop, std::size_t edge, const std::vector<T>& parameters) const;
+  /// A part's pivot and direction for number type T at the parameter values.
+  template <class T>
+  void motion_value(std::size_t part, const std::vector<T>& parameters, kernels::Vector<T>& pivot,
+                    kernels::Vector<T>& direction) const;
+
   /// Part `part`'s geometry for number type T at the deviations.
   /// \throws ModelError when the part uses an exact-only feature template.
   template <class T>
@@ -201,71 +210,84 @@ T squared_distance(const kernels::Vector<T>& a, const kernels::Vector<T>& b) {
 
 template <class T>
 PartGeometry<T> ParametricModel::part_geometry(std::size_t part, const std::vector<T>& deviations) const {
-  using namespace parametric_detail;
   const PartRecipe& recipe = parts_.at(part);
   std::vector<T> p = parameter_values(deviations);
   PartGeometry<T> geometry;
-  auto circle = [&](const kernels::Vector<T>& center, const T& radius) {
-    EdgeValue<T> edge;
-    edge.arc = true;
-    edge.center = center;
-    edge.source = kernels::Vector<T>{T(center.x + radius), center.y};
-    edge.target = edge.source;
-    edge.radius_squared = T(radius * radius);
-    edge.ccw = true;
-    return std::vector<EdgeValue<T>>{edge};
-  };
-  for (const LoopRecipe& loop : recipe.loops) {
-    if (loop.circle) {
-      geometry.loops.push_back(circle(point_value(loop.center, p), slot_value(loop.radius, p)));
-      continue;
-    }
-    std::vector<EdgeValue<T>> edges;
-    kernels::Vector<T> current = point_value(loop.start, p);
-    for (const EdgeRecipe& e : loop.edges) {
-      EdgeValue<T> edge;
-      edge.arc = e.arc;
-      edge.source = current;
-      edge.target = point_value(e.target, p);
-      if (e.arc) {
-        edge.center = point_value(e.center, p);
-        edge.radius_squared = squared_distance(edge.source, edge.center);
-        edge.ccw = e.ccw;
-      }
-      current = edge.target;
-      edges.push_back(edge);
-    }
-    geometry.loops.push_back(std::move(edges));
+  std::size_t loops = recipe.loops.size() + recipe.features.size();
+  for (std::size_t l = 0; l < loops; ++l) {
+    std::size_t edges = l < recipe.loops.size() && !recipe.loops[l].circle ? recipe.loops[l].edges.size() : 1;
+    std::vector<EdgeValue<T>> values;
+    for (std::size_t e = 0; e < edges; ++e) values.push_back(edge_value(part, l, e, p));
+    geometry.loops.push_back(std::move(values));
   }
-  for (const FeatureRecipe& feature : recipe.features) {
+  motion_value(part, p, geometry.pivot, geometry.direction);
+  return geometry;
+}
+
+template <class T>
+EdgeValue<T> ParametricModel::edge_value(std::size_t part, std::size_t loop, std::size_t edge,
+                                         const std::vector<T>& p) const {
+  using namespace parametric_detail;
+  const PartRecipe& recipe = parts_.at(part);
+  bool reversed = loop < recipe.reversed.size() && recipe.reversed[loop];
+  EdgeValue<T> value;
+  auto circle = [&](const kernels::Vector<T>& center, const T& radius) {
+    value.arc = true;
+    value.center = center;
+    value.source = kernels::Vector<T>{T(center.x + radius), center.y};
+    value.target = value.source;
+    value.radius_squared = T(radius * radius);
+    value.ccw = true;
+  };
+  if (loop < recipe.loops.size()) {
+    const LoopRecipe& l = recipe.loops[loop];
+    if (l.circle) {
+      circle(point_value(l.center, p), slot_value(l.radius, p));
+    } else {
+      std::size_t count = l.edges.size();
+      std::size_t index = reversed ? count - 1 - edge : edge;
+      const EdgeRecipe& e = l.edges.at(index);
+      value.arc = e.arc;
+      value.source = point_value(index == 0 ? l.start : l.edges[index - 1].target, p);
+      value.target = point_value(e.target, p);
+      if (e.arc) {
+        value.center = point_value(e.center, p);
+        value.radius_squared = squared_distance(value.source, value.center);
+        value.ccw = e.ccw;
+      }
+    }
+  } else {
+    const FeatureRecipe& feature = recipe.features.at(loop - recipe.loops.size());
     if (feature.name != "circle" && feature.name != "pin")
       throw ModelError(feature.pointer, "feature template '" + feature.name +
                                             "' has an exact parametric form only (no derivatives or intervals yet)");
-    geometry.loops.push_back(circle(point_value(feature.arguments.at("center").point, p),
-                                    slot_value(feature.arguments.at("radius").number, p)));
+    circle(point_value(feature.arguments.at("center").point, p), slot_value(feature.arguments.at("radius").number, p));
   }
-  for (std::size_t l = 0; l < geometry.loops.size() && l < recipe.reversed.size(); ++l) {
-    if (!recipe.reversed[l]) continue;
-    auto& edges = geometry.loops[l];
-    std::reverse(edges.begin(), edges.end());
-    for (EdgeValue<T>& edge : edges) {
-      std::swap(edge.source, edge.target);
-      edge.ccw = !edge.ccw;
-    }
+  if (reversed) {
+    std::swap(value.source, value.target);
+    value.ccw = !value.ccw;
   }
-  const MotionRecipe& motion = recipe.motion;
-  if (motion.has_pivot) geometry.pivot = point_value(motion.pivot, p);
+  return value;
+}
+
+template <class T>
+void ParametricModel::motion_value(std::size_t part, const std::vector<T>& p, kernels::Vector<T>& pivot,
+                                   kernels::Vector<T>& direction) const {
+  using namespace parametric_detail;
+  const MotionRecipe& motion = parts_.at(part).motion;
+  pivot = kernels::Vector<T>{Arithmetic<T>::constant(Rational(0)), Arithmetic<T>::constant(Rational(0))};
+  direction = kernels::Vector<T>{Arithmetic<T>::constant(Rational(1)), Arithmetic<T>::constant(Rational(0))};
+  if (motion.has_pivot) pivot = point_value(motion.pivot, p);
   if (motion.has_direction) {
     if (motion.direction_is_angle) {
       T a = slot_value(motion.direction_angle, p);
-      geometry.direction = {Arithmetic<T>::cos(a), Arithmetic<T>::sin(a)};
+      direction = {Arithmetic<T>::cos(a), Arithmetic<T>::sin(a)};
     } else {
       T dx = slot_value(motion.direction_x, p), dy = slot_value(motion.direction_y, p);
       T length = Arithmetic<T>::sqrt(T(dx * dx + dy * dy));
-      geometry.direction = {T(dx / length), T(dy / length)};
+      direction = {T(dx / length), T(dy / length)};
     }
   }
-  return geometry;
 }
 
 }  // namespace hipair::model_detail

@@ -23,22 +23,26 @@ using Geometry = model_detail::PartGeometry<T>;
 /// The world-frame pose of a part at a chart coordinate: rotation (half-angle tangent in the
 /// chart centred at 0 or pi), translation (offset), or fixed.
 template <class T>
-kernels::Pose<T> pose_of(const Motion& motion, const Geometry<T>& geometry, const T& chart, bool half_turn) {
+kernels::Pose<T> pose_of(const Motion& motion, const kernels::Vector<T>& pivot, const kernels::Vector<T>& direction,
+                         const T& chart, bool half_turn) {
   switch (motion.kind) {
-    case Motion::Kind::rotation: return kernels::rotation_pose_from_half_tangent(geometry.pivot, chart, half_turn);
-    case Motion::Kind::translation: return kernels::translation_pose(geometry.direction, chart);
+    case Motion::Kind::rotation: return kernels::rotation_pose_from_half_tangent(pivot, chart, half_turn);
+    case Motion::Kind::translation: return kernels::translation_pose(direction, chart);
     default: return kernels::fixed_pose<T>();
   }
+}
+
+template <class T>
+kernels::Pose<T> pose_of(const Motion& motion, const Geometry<T>& geometry, const T& chart, bool half_turn) {
+  return pose_of(motion, geometry.pivot, geometry.direction, chart, half_turn);
 }
 
 /// The contact function of the feature pair (fa of part a, fb of part b) at poses a, b.
 /// \throws GeometryError for a feature pair without a contact of its own.
 template <class T>
-T contact_function(const Geometry<T>& ga, const FeatureIdentity& fa, const kernels::Pose<T>& a,
-                   const Geometry<T>& gb, const FeatureIdentity& fb, const kernels::Pose<T>& b) {
+T contact_function(const model_detail::EdgeValue<T>& ea, const FeatureIdentity& fa, const kernels::Pose<T>& a,
+                   const model_detail::EdgeValue<T>& eb, const FeatureIdentity& fb, const kernels::Pose<T>& b) {
   using A = model_detail::Arithmetic<T>;
-  const auto& ea = ga.loops.at(fa.loop).at(fa.edge);
-  const auto& eb = gb.loops.at(fb.loop).at(fb.edge);
   using K = FeatureKind;
   if (fa.kind == K::vertex && fb.kind == K::segment) return kernels::vertex_segment(a, ea.source, b, eb.source, eb.target);
   if (fa.kind == K::segment && fb.kind == K::vertex) return kernels::segment_vertex(a, ea.source, ea.target, b, eb.source);
@@ -69,6 +73,13 @@ T contact_function(const Geometry<T>& ga, const FeatureIdentity& fa, const kerne
     return kernels::segment_arc(a, ea.source, ea.target, b, eb.center, product);
   }
   throw GeometryError("the feature pair has no contact of its own");
+}
+
+/// The same with the features looked up in whole part geometries.
+template <class T>
+T contact_function(const Geometry<T>& ga, const FeatureIdentity& fa, const kernels::Pose<T>& a,
+                   const Geometry<T>& gb, const FeatureIdentity& fb, const kernels::Pose<T>& b) {
+  return contact_function(ga.loops.at(fa.loop).at(fa.edge), fa, a, gb.loops.at(fb.loop).at(fb.edge), fb, b);
 }
 
 }  // namespace hipair::tolerance_detail
