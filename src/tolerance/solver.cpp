@@ -128,25 +128,46 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
       if (box.hi[i] > box.lo[i]) value = value + f.partial(i) * Interval(box.lo[i] - center[i], box.hi[i] - center[i]);
     return value.sign();
   };
-  double r = 0.75 * spread + slack;
-  for (int attempt = 0; attempt < 6; ++attempt, r *= 3) {
-    Interval y(root.lo - r, root.hi + r);
+  auto offset = [&](std::size_t i) {   // B_i - c_i, outward rounded
+    return Interval::point(box.lo[i]) - Interval::point(center[i]);
+  };
+  auto upper_offset = [&](std::size_t i) { return Interval::point(box.hi[i]) - Interval::point(center[i]); };
+  // The mean-value enclosure over B x Y when Y is certified to hold exactly one root for every
+  // p in B (end signs opposite, F_v of one sign); false otherwise.
+  auto enclose = [&](const Interval& y, Interval& out) {
     int s_lo = sign_over_box(y.lo);
     int s_hi = sign_over_box(y.hi);
-    if (s_lo == 2 || s_hi == 2 || s_lo == 0 || s_hi == 0 || s_lo == s_hi) continue;
+    if (s_lo == 2 || s_hi == 2 || s_lo == 0 || s_hi == 0 || s_lo == s_hi) return false;
     IntervalJet f = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, n_, n_ + 1));
     Interval fv = f.partial(n_);
     int s = fv.sign();
-    if (s != 1 && s != -1) continue;
+    if (s != 1 && s != -1) return false;
     Interval enclosure = root;
     split_score.assign(n_, 0.0);
     for (std::size_t i = 0; i < n_; ++i) {
       if (box.hi[i] == box.lo[i]) continue;
       Interval g = -(f.partial(i) / fv);
-      enclosure = enclosure + g * Interval(box.lo[i] - center[i], box.hi[i] - center[i]);
+      enclosure = enclosure + g * kernels::hull(offset(i), upper_offset(i));
       split_score[i] = g.width() * (box.hi[i] - box.lo[i]);
     }
-    result = Interval(std::max(enclosure.lo, y.lo), std::min(enclosure.hi, y.hi));
+    out = Interval(std::max(enclosure.lo, y.lo), std::min(enclosure.hi, y.hi));
+    return true;
+  };
+  double r = 0.75 * spread + slack;
+  for (int attempt = 0; attempt < 6; ++attempt, r *= 3) {
+    Interval y(root.lo - r, root.hi + r);
+    if (!enclose(y, result)) continue;
+    // Contract: the enclosure itself (slightly widened) as the next Y gives tighter derivative
+    // bounds; keep the last certified enclosure.
+    for (int contraction = 0; contraction < 3; ++contraction) {
+      double pad = 1e-3 * result.width() + slack;
+      Interval narrower(result.lo - pad, result.hi + pad);
+      if (!(narrower.width() < 0.9 * y.width())) break;
+      Interval next;
+      if (!enclose(narrower, next)) break;
+      y = narrower;
+      result = next;
+    }
     return true;
   }
   return false;
