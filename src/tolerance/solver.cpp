@@ -13,9 +13,8 @@ using model_detail::AutoDiff;
 
 CurveSolver::CurveSolver(std::shared_ptr<const model_detail::ParametricModel> model)
     : model_(std::move(model)), n_(model_->parameter_count()) {
-  std::vector<AutoDiff> deviations(n_);
-  for (std::size_t i = 0; i < n_; ++i)
-    deviations[i] = AutoDiff(0.0, Eigen::VectorXd::Unit(static_cast<Eigen::Index>(n_ + 1), static_cast<Eigen::Index>(i)));
+  std::vector<Jet<double>> deviations(n_);
+  for (std::size_t i = 0; i < n_; ++i) deviations[i] = Jet<double>::variable(0.0, i, n_ + 1);
   autodiff_ = model_->parameter_values(deviations);
 }
 
@@ -42,22 +41,21 @@ T CurveSolver::evaluate(const CurveSlice& curve, const PairGeometry<T>& g, const
 }
 
 std::vector<double> CurveSolver::sensitivities(const CurveSlice& curve, double& free_value) const {
-  auto e = static_cast<Eigen::Index>(n_ + 1);
-  AutoDiff fixed(curve.fixed_value.get_d(), Eigen::VectorXd::Zero(e));
-  AutoDiff f;
+  using Dual = Jet<double>;
+  Dual fixed(curve.fixed_value.get_d());
+  Dual f;
   double fv = 0;
-  PairGeometry<AutoDiff> g = geometry(curve, autodiff_);
+  PairGeometry<Dual> g = geometry(curve, autodiff_);
   for (int iteration = 0; iteration < 4; ++iteration) {
-    AutoDiff free(free_value, Eigen::VectorXd::Unit(e, static_cast<Eigen::Index>(n_)));
-    f = evaluate<AutoDiff>(curve, g, fixed, free);
-    fv = f.derivatives()[static_cast<Eigen::Index>(n_)];
+    f = evaluate<Dual>(curve, g, fixed, Dual::variable(free_value, n_, n_ + 1));
+    fv = f.partial(n_);
     if (!(std::fabs(fv) > 0)) throw NumericError("the contact curve is singular here (F_y = 0)");
-    double step = f.value() / fv;
+    double step = f.value / fv;
     free_value -= step;
     if (std::fabs(step) < 1e-15 * (1 + std::fabs(free_value))) break;
   }
   std::vector<double> s(n_);
-  for (std::size_t i = 0; i < n_; ++i) s[i] = -f.derivatives()[static_cast<Eigen::Index>(i)] / fv;
+  for (std::size_t i = 0; i < n_; ++i) s[i] = -f.partial(i) / fv;
   return s;
 }
 
@@ -84,9 +82,25 @@ bool CurveSolver::certified_point_root(const CurveSlice& curve, const std::vecto
     double m = 0.5 * (a + b);
     if (!(m > a && m < b)) break;
     int s = sign_at(m);
-    if (s == 2) break;
-    if (s == 0) {
-      a = b = m;
+    if (s == 2 || s == 0) {
+      // Too close to the root for a certain sign: narrow each end separately (a keeps the
+      // sign sa, b the sign sb; points of uncertain sign count as the other side).
+      double a2 = m, b2 = m;
+      double lo = a, hi = m;
+      for (int j = 0; j < 64 && 0.5 * (lo + hi) > lo && 0.5 * (lo + hi) < hi; ++j) {
+        double c = 0.5 * (lo + hi);
+        if (sign_at(c) == sa) lo = c; else hi = c;
+      }
+      a2 = lo;
+      lo = m;
+      hi = b;
+      for (int j = 0; j < 64 && 0.5 * (lo + hi) > lo && 0.5 * (lo + hi) < hi; ++j) {
+        double c = 0.5 * (lo + hi);
+        if (sign_at(c) == sb) hi = c; else lo = c;
+      }
+      b2 = hi;
+      a = a2;
+      b = b2;
       break;
     }
     if (s == sa) a = m; else b = m;

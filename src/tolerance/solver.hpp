@@ -78,7 +78,10 @@ class CurveSolver {
 
   std::shared_ptr<const model_detail::ParametricModel> model_;
   std::size_t n_ = 0;
-  std::vector<model_detail::AutoDiff> autodiff_;   ///< nominal parameter values, gradient over p and v
+  /// Nominal parameter values with their gradient over (p, v). A jet of doubles rather than
+  /// Eigen's AutoDiffScalar: the kernels mix constants (no gradient) into nested expressions,
+  /// which AutoDiffScalar's dynamic-size gradients do not reconcile.
+  std::vector<Jet<double>> autodiff_;
 };
 
 /// Half-angle tangent chart value -> part coordinate (rad), certified: c + 2 atan(t).
