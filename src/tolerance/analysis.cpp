@@ -712,10 +712,12 @@ class Analysis {
       }
       try {
         std::size_t boxes = 0;
+        // Separation needs no tight band: a coarse accuracy subdivides less and fails less.
+        double accuracy = std::max(options_.relative_accuracy, 1.0);
         Interval lo = solver_->certified_range(critical.lower, scaled, critical.lower_value, critical.lower_s,
-                                               options_.relative_accuracy, options_.absolute_accuracy, boxes);
+                                               accuracy, options_.absolute_accuracy, boxes);
         Interval hi = solver_->certified_range(critical.upper, scaled, critical.upper_value, critical.upper_s,
-                                               options_.relative_accuracy, options_.absolute_accuracy, boxes);
+                                               accuracy, options_.absolute_accuracy, boxes);
         if (hi.lo > lo.hi) {
           result.certified_open_scale = best * factor;
           break;
