@@ -5,7 +5,7 @@
 // model (solver.hpp).
 #include <hipair/tolerance.hpp>
 
-#include "model/parametric.hpp"
+#include "model/parametric/parametric.hpp"
 #include "tolerance/solver.hpp"
 
 #include <hipair/error.hpp>

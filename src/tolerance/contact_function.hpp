@@ -10,7 +10,7 @@
 #pragma once
 
 #include "kernels/contact.hpp"
-#include "model/parametric.hpp"
+#include "model/parametric/parametric.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/error.hpp>

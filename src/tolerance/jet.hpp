@@ -4,7 +4,7 @@
 // mean-value form of docs/tolerance.md); Eigen's AutoDiffScalar serves the double case.
 #pragma once
 
-#include "model/number_traits.hpp"
+#include "model/parametric/number_traits.hpp"
 
 #include <vector>
 

@@ -17,7 +17,7 @@
 #pragma once
 
 #include "kernels/vector.hpp"
-#include "model/formula.hpp"
+#include "model/parametric/formula.hpp"
 #include "model/templates.hpp"
 
 #include <hipair/error.hpp>

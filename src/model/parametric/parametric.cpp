@@ -1,7 +1,7 @@
 // The parametric model: recording the formulas of a model's geometry (RecipeBuilder) and the
 // exact evaluation at a parameter vector (ExactEvaluator), which repeats the reader's steps on
 // the recorded slots. See parametric.hpp.
-#include "model/parametric.hpp"
+#include "model/parametric/parametric.hpp"
 
 #include "model/exact_trig.hpp"
 #include "model/expression.hpp"

@@ -2,7 +2,7 @@
 // its precedence are the exact evaluator's (expression.cpp); every text reaching this parser
 // has already been evaluated exactly by the reader, so errors here are rare (the messages
 // still name the JSON pointer).
-#include "model/formula.hpp"
+#include "model/parametric/formula.hpp"
 
 #include "model/expression.hpp"
 
