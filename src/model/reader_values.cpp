@@ -139,7 +139,9 @@ Point Reader::point(const JsonValue& value) {
     check_keys(polar, {"center", "radius", "angle"});
     Point center = point(require(polar, "center"));
     const JsonValue& radius_value = require(polar, "radius");
-    Rational radius = non_negative(radius_value, "the radius");
+    // Signed: a negative radius puts the point on the opposite side (an offset toleranced
+    // about 0, such as the Geneva slot's medial offset, changes sign inside its box).
+    Rational radius = number(radius_value);
     const JsonValue& angle_value = require(polar, "angle");
     Point unit = unit_vector(as_angle(evaluate(angle_value), degrees_, angle_value.pointer, text_of(angle_value)),
                              angle_value.pointer,

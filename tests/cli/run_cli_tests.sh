@@ -187,6 +187,31 @@ for file in report.json kinematics.csv kinematics.svg cspace-driver-wheel.svg; d
 done
 grep -q "</svg>" "$work/geneva-closed/cspace-driver-wheel.svg" 2>/dev/null || fail "closed-clearance Geneva: C-space SVG incomplete"
 
+# --- hipair tolerance (docs/tolerance.md): bad options are one clear error line, no output;
+# a run writes its whole directory; an output that is the model is refused.
+geneva="$source/examples/models/geneva.json"
+for args in "--pair driver" "--pair driver:nosuch" "--driver nosuch" "--range 1:x" "--range 2:2" \
+            "--pair driver:wheel --driver driver"; do
+  # shellcheck disable=SC2086
+  "$hipair" tolerance "$geneva" $args --quiet --out "$work/tol-bad" >/dev/null 2>"$work/tol-bad.err"
+  code=$?
+  { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "tolerance $args: exit $code"
+  [ "$(wc -l <"$work/tol-bad.err")" -eq 1 ] || fail "tolerance $args: not one error line: $(cat "$work/tol-bad.err")"
+  [ -e "$work/tol-bad" ] && fail "tolerance $args wrote output"
+done
+"$hipair" tolerance "$geneva" --range 2.4:4 --positions 90 --accuracy 0.5 --monte-carlo 20 --seed 3 --quiet \
+  --out "$work/tol" >"$work/tol.out" 2>&1 || fail "tolerance on Geneva failed: $(tail -c 300 "$work/tol.out")"
+for file in report.txt tolerance.json variation.csv sensitivity.csv variation.svg contact-zone.svg; do
+  [ -s "$work/tol/$file" ] || fail "tolerance: no $file"
+done
+grep -q '"outside_certified": 0' "$work/tol/tolerance.json" || fail "tolerance: Monte Carlo left the certified band"
+grep -q "</svg>" "$work/tol/variation.svg" 2>/dev/null || fail "tolerance: variation.svg incomplete"
+mkdir -p "$work/tol-self"
+cp "$geneva" "$work/tol-self/report.txt"   # the model has the name of an output
+"$hipair" tolerance "$work/tol-self/report.txt" --quiet --out "$work/tol-self" >/dev/null 2>"$work/tol-self.err" \
+  && fail "tolerance --out over its own model succeeded"
+cmp -s "$geneva" "$work/tol-self/report.txt" || fail "tolerance --out clobbered its model"
+
 # No stray temporary files left by atomic writes.
 ls -a "$work" | grep -q '\.tmp' && fail "temporary files left behind"
 

@@ -1,0 +1,155 @@
+// HIPAIR — kinematic tolerance analysis of a driven pair (docs/tolerance.md; the paper's
+// section "Kinematic tolerance analysis").
+//
+// The nominal motion comes from the kinematic analysis and the nominal C-space (through its
+// public adaptor: slices with their feature pairs). Along it, each contact curve is
+// re-instantiated over the parametric model, so that the follower's position and its partial
+// derivatives with respect to every parameter are known at every driver position:
+//   - sensitivity tables per contact region (the paper's Table 1), ranked;
+//   - the variation of the kinematic function: worst case (linearised, as the paper), root sum
+//     of squares (statistical), and certified worst case (interval arithmetic over the whole
+//     tolerance box, subdivided until within the requested accuracy: no linearisation error);
+//   - contact zones (the paper's Figure 5), linearised and certified;
+//   - Monte Carlo validation (seedable, reproducible, parallel), against both bands;
+//   - the jamming threshold: the smallest uniform scaling of the tolerances at which the free
+//     channel can close, confirmed by an exact C-space built at the worst-case parameters.
+// No CGAL types.
+#pragma once
+
+#include <hipair/cspace.hpp>
+#include <hipair/model.hpp>
+#include <hipair/rational.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace hipair {
+
+/// Options of a tolerance analysis.
+struct ToleranceOptions {
+  std::string driver;                  ///< driven part ("" = the first moving part of the pair)
+  std::string follower;                ///< "" = the other part of the driver's first pair
+  /// Driver range (rad or mm); absent: one full turn from the initial angle.
+  std::optional<std::pair<Rational, Rational>> range;
+  std::size_t positions = 360;         ///< driver positions along the range
+  std::size_t monte_carlo = 0;         ///< Monte Carlo samples (0: none)
+  std::uint64_t seed = 1;
+  unsigned threads = 0;                ///< 0: hardware concurrency
+  bool threshold = false;              ///< search the jamming threshold
+  /// Parameters varied by the threshold search (empty: every toleranced parameter).
+  std::vector<std::string> threshold_parameters;
+  /// Certified band: subdivide the tolerance box until the certified enclosure is at most this
+  /// much (relative) wider than the linearised worst case, or `absolute_accuracy` (part units).
+  double relative_accuracy = 0.1;
+  double absolute_accuracy = 1e-9;
+  std::size_t zone_samples = 24;       ///< abscissae per contact edge for the contact zones
+  std::function<void(double)> progress;   ///< fraction done, from the calling thread
+};
+
+/// One parameter's share of the variation in a contact region.
+struct ParameterContribution {
+  std::string parameter;
+  double sensitivity = 0;     ///< d follower / d parameter at the region's largest contribution
+  double contribution = 0;    ///< |sensitivity| x half the tolerance width (part units)
+  double share = 0;           ///< contribution / sum of contributions (0..1)
+};
+
+/// A contact region of the nominal path: consecutive driver positions with one feature pair.
+struct ContactRegion {
+  std::string contact;        ///< "driver pin / wheel slot 1 wall R"
+  FeatureIdentity first, second;
+  double driver_start = 0, driver_end = 0;   ///< driver coordinate (rad or mm)
+  std::size_t first_sample = 0, last_sample = 0;
+  std::vector<ParameterContribution> ranked;   ///< largest first
+  double linear_half_width = 0;                ///< max over the region (part units)
+};
+
+/// The follower at one driver position.
+struct VariationSample {
+  double driver = 0;
+  bool contact = false;
+  std::size_t region = no_index;       ///< index into ToleranceResult::regions
+  double nominal = 0;                  ///< follower coordinate (rad or mm)
+  double linear_lower = 0, linear_upper = 0;   ///< worst case, linearised (absolute)
+  double rss_lower = 0, rss_upper = 0;         ///< mean -+ 3 sigma (absolute)
+  CertifiedRange certified;            ///< certified worst case (absolute)
+  double play = -1;                    ///< nominal width of the free channel (-1: unbounded)
+  bool has_monte_carlo = false;
+  double monte_carlo_min = 0, monte_carlo_max = 0;
+};
+
+/// A contact zone: a contact edge of the nominal C-space between its bounds over the box.
+struct ContactZone {
+  std::string contact;
+  std::size_t edge = no_index;         ///< edge id in the nominal C-space
+  bool x_rotates = true, y_rotates = true;   ///< rad (true) or mm
+  std::vector<double> x;               ///< x part coordinate (rad or mm)
+  std::vector<double> nominal;         ///< y part coordinate
+  std::vector<double> linear_lower, linear_upper;
+  std::vector<double> certified_lower, certified_upper;
+};
+
+struct MonteCarloSummary {
+  std::size_t samples = 0;
+  std::uint64_t seed = 0;
+  std::size_t evaluations = 0;         ///< follower positions computed (certified each)
+  std::size_t outside_certified = 0;   ///< must be 0
+  std::size_t outside_linear = 0;      ///< positions beyond the linearised band
+  double linearisation_error = 0;      ///< largest excess beyond the linearised band (part units)
+  double seconds = 0;
+};
+
+struct JammingThreshold {
+  bool found = false;
+  double scale = 0;                    ///< linearised: tolerances x scale close the channel
+  double driver = 0;                   ///< where (driver coordinate)
+  std::string lower_contact, upper_contact;   ///< the channel's two sides there
+  double nominal_play = 0;
+  double certified_open_scale = 0;     ///< certified: at tolerances x this, never closed there
+  double confirmed_scale = 0;          ///< the exact build's scale
+  std::vector<std::pair<std::string, Rational>> worst_values;   ///< parameter values, exact
+  bool confirmed = false;              ///< the exact C-space shows the closed channel
+  std::string evidence;                ///< what the exact build shows
+};
+
+/// Everything the tolerance analysis found.
+struct ToleranceResult {
+  std::string model_name;
+  std::string driver, follower;
+  bool driver_rotates = true, follower_rotates = true;
+  std::vector<Parameter> parameters;
+  std::vector<double> sigma;            ///< per parameter, as used (0: untoleranced)
+  std::vector<double> mean_shift;       ///< per parameter: mean deviation of its distribution
+  std::vector<ContactRegion> regions;
+  std::vector<VariationSample> samples;
+  std::vector<ContactZone> zones;
+  std::optional<MonteCarloSummary> monte_carlo;
+  std::vector<std::vector<double>> monte_carlo_curves;   ///< a few sampled kinematic functions
+  std::optional<JammingThreshold> threshold;
+  double certified_excess = 0;          ///< largest (certified - linearised) width, part units
+  std::size_t certified_boxes = 0;      ///< sub-boxes used by the certified bands
+  double seconds_sensitivity = 0, seconds_certified = 0, seconds_zones = 0, seconds_threshold = 0;
+  std::vector<std::string> notes;
+};
+
+/// Runs the analysis of `model_file`. \throws ModelError, GeometryError, IoError.
+ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, const ToleranceOptions& options = {});
+ToleranceResult analyze_tolerances_text(std::string_view json_text, const ToleranceOptions& options = {});
+
+std::string tolerance_text_report(const ToleranceResult& result);
+std::string tolerance_json_report(const ToleranceResult& result);
+/// Per driver position: nominal, linearised, RSS, certified and Monte Carlo bounds.
+std::string tolerance_csv(const ToleranceResult& result);
+/// Sensitivity tables as CSV: region, parameter, sensitivity, contribution, share.
+std::string tolerance_sensitivity_csv(const ToleranceResult& result);
+/// The kinematic function's variation band (deviation from nominal) with the Monte Carlo envelope.
+std::string tolerance_band_svg(const ToleranceResult& result);
+/// The contact-zone detail (Figure 5): one zone's bounds about its nominal curve.
+std::string tolerance_zone_svg(const ToleranceResult& result);
+
+}  // namespace hipair

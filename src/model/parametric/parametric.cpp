@@ -1,0 +1,434 @@
+// The parametric model: recording the formulas of a model's geometry (RecipeBuilder) and the
+// exact evaluation at a parameter vector (ExactEvaluator), which repeats the reader's steps on
+// the recorded slots. See parametric.hpp.
+#include "model/parametric/parametric.hpp"
+
+#include "model/exact_trig.hpp"
+#include "model/expression.hpp"
+#include "model/json_document.hpp"
+#include "model/validate_geometry.hpp"
+
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+namespace hipair::model_detail {
+namespace {
+
+Rational squared_distance(const Point& a, const Point& b) {
+  Rational dx = a.x - b.x, dy = a.y - b.y;
+  return dx * dx + dy * dy;
+}
+
+Quantity plus(Quantity q, const Rational& delta) {
+  if (delta == 0) return q;
+  if (q.exact) {
+    q.rational += delta;
+  } else {
+    q.enclosure = *q.enclosure + Interval(delta);
+  }
+  return q;
+}
+
+// Exact evaluation of recorded slots at a deviation vector: the reader's steps.
+class ExactEvaluator {
+ public:
+  ExactEvaluator(const Model& nominal, const std::vector<Slot>& parameter_nominals, bool degrees,
+                 const std::vector<Rational>& deviations, std::vector<Rounding>& roundings)
+      : nominal_(nominal), parameter_nominals_(parameter_nominals), degrees_(degrees),
+        deviations_(deviations), roundings_(roundings), cache_(nominal.parameters.size()) {}
+
+  Quantity parameter(std::size_t i) {
+    if (cache_[i]) return *cache_[i];
+    const Parameter& parameter = nominal_.parameters[i];
+    const Slot& slot = parameter_nominals_[i];
+    Quantity q = evaluate(slot);
+    if (parameter.is_angle || q.is_angle) q = as_angle(q, degrees_, slot.pointer, slot.text);
+    bool derived = mentions_parameters(slot.formula);
+    if (!derived && deviations_[i] != 0) {
+      q = Quantity::of(parameter.nominal + deviations_[i], parameter.is_angle);
+    } else {
+      q = plus(q, deviations_[i]);
+    }
+    cache_[i] = q;
+    return q;
+  }
+
+  Quantity evaluate(const Slot& slot) {
+    if (slot.literal) return Quantity::of(parse_literal(slot.text, slot.pointer));
+    ExpressionContext context;
+    context.degrees = degrees_;
+    context.pointer = slot.pointer;
+    context.parameter = [this, &slot](const std::string& name) {
+      const Parameter* found = nominal_.find_parameter(name);
+      if (!found) throw ModelError(slot.pointer, "unknown parameter '" + name + "'");
+      return parameter(static_cast<std::size_t>(found - nominal_.parameters.data()));
+    };
+    return evaluate_expression(slot.text, context);
+  }
+
+  Rational number(const Slot& slot) { return to_rational(evaluate(slot), slot.pointer, slot.text, roundings_); }
+  Quantity angle_quantity(const Slot& slot) { return as_angle(evaluate(slot), degrees_, slot.pointer, slot.text); }
+  Rational angle(const Slot& slot) { return to_rational(angle_quantity(slot), slot.pointer, slot.text, roundings_); }
+
+  Point point(const PointRecipe& recipe) {
+    if (!recipe.polar) return Point{number(recipe.x), number(recipe.y)};
+    Point center = point(*recipe.center);
+    Rational radius = number(recipe.radius);
+    Point unit = unit_vector(angle_quantity(recipe.angle), recipe.angle.pointer, recipe.angle.text, roundings_);
+    return point_on_circle(center, radius, unit);
+  }
+
+  Point direction(const MotionRecipe& motion) {
+    if (motion.direction_is_angle)
+      return unit_vector(angle_quantity(motion.direction_angle), motion.direction_angle.pointer,
+                         motion.direction_angle.text, roundings_);
+    Rational dx = number(motion.direction_x), dy = number(motion.direction_y);
+    Rational length_squared = dx * dx + dy * dy;
+    const std::string& pointer = motion.direction_x.pointer;
+    if (length_squared == 0) throw ModelError(pointer, "zero direction vector: the axis has no direction");
+    if (mpz_perfect_square_p(length_squared.get_num_mpz_t()) && mpz_perfect_square_p(length_squared.get_den_mpz_t())) {
+      mpz_class numerator, denominator;
+      mpz_sqrt(numerator.get_mpz_t(), length_squared.get_num_mpz_t());
+      mpz_sqrt(denominator.get_mpz_t(), length_squared.get_den_mpz_t());
+      Rational length(numerator, denominator);
+      return Point{Rational(dx / length), Rational(dy / length)};
+    }
+    // As Reader::direction: the half-angle tangent rounded to the grid.
+    bool flip = dx < 0;
+    Rational x = flip ? Rational(-dx) : dx, y = flip ? Rational(-dy) : dy;
+    Interval length;
+    Interval squared(length_squared);
+    mpfi_sqrt(length.get(), squared.get());
+    Interval t = Interval(y) / (length + Interval(x));
+    std::string expression = "direction [" + motion.direction_x.text + ", " + motion.direction_y.text +
+                             "] (half-angle tangent)";
+    Rational rounded = to_rational(Quantity::approximate(t), pointer, expression, roundings_);
+    Point unit = unit_from_half_tangent(rounded);
+    if (flip) unit = Point{Rational(-unit.x), Rational(-unit.y)};
+    return unit;
+  }
+
+  std::vector<Rounding>& roundings() { return roundings_; }
+
+ private:
+  const Model& nominal_;
+  const std::vector<Slot>& parameter_nominals_;
+  bool degrees_;
+  const std::vector<Rational>& deviations_;
+  std::vector<Rounding>& roundings_;
+  std::vector<std::optional<Quantity>> cache_;
+};
+
+// The loops of one part before orientation, from its recipe.
+std::vector<Loop> exact_loops(const PartRecipe& recipe, ExactEvaluator& exact) {
+  std::vector<Loop> loops;
+  for (const LoopRecipe& loop_recipe : recipe.loops) {
+    Loop loop;
+    if (loop_recipe.circle) {
+      Edge edge;
+      edge.kind = Edge::Kind::arc;
+      edge.center = exact.point(loop_recipe.center);
+      Rational radius = exact.number(loop_recipe.radius);
+      if (radius <= 0) throw ModelError(loop_recipe.radius.pointer, "a circle's radius must be positive");
+      edge.source = Point{edge.center.x + radius, edge.center.y};
+      edge.target = edge.source;
+      edge.radius_squared = radius * radius;
+      loop.edges.push_back(edge);
+    } else {
+      Point current = exact.point(loop_recipe.start);
+      for (const EdgeRecipe& e : loop_recipe.edges) {
+        Edge edge;
+        edge.source = current;
+        edge.target = exact.point(e.target);
+        if (e.arc) {
+          edge.kind = Edge::Kind::arc;
+          edge.center = exact.point(e.center);
+          edge.ccw = e.ccw;
+          edge.radius_squared = squared_distance(edge.source, edge.center);
+        }
+        current = edge.target;
+        loop.edges.push_back(edge);
+      }
+    }
+    loops.push_back(std::move(loop));
+  }
+  for (const FeatureRecipe& feature : recipe.features) {
+    std::map<std::string, TemplateValue> arguments;
+    for (const auto& [key, argument] : feature.arguments) {
+      switch (argument.kind) {
+        case ArgumentKind::length: arguments.emplace(key, exact.number(argument.number)); break;
+        case ArgumentKind::angle: arguments.emplace(key, exact.angle(argument.number)); break;
+        case ArgumentKind::count: {
+          Quantity q = exact.evaluate(argument.number);
+          if (!q.is_rational()) throw ModelError(argument.number.pointer, "expected a positive whole number");
+          arguments.emplace(key, q.rational);
+          break;
+        }
+        case ArgumentKind::point: arguments.emplace(key, exact.point(argument.point)); break;
+        case ArgumentKind::direction_word: arguments.emplace(key, argument.word); break;
+      }
+    }
+    std::vector<Loop> expanded;
+    try {
+      expanded = expand_template(feature.name, arguments, feature.pointer, exact.roundings());
+    } catch (const ModelError&) {
+      throw;
+    } catch (const Error& error) {
+      throw ModelError(feature.pointer, error.what());
+    }
+    for (Loop& loop : expanded) loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+}  // namespace
+
+// Walks the document as the reader did and records every slot.
+class RecipeBuilder {
+ public:
+  RecipeBuilder(ParametricModel& model, const JsonValue& root) : model_(model), root_(root) {}
+
+  void build() {
+    const Model& nominal = *model_.nominal_;
+    model_.degrees_ = nominal.angle_unit == "deg";
+    std::size_t n = nominal.parameters.size();
+    model_.parameter_nominals_.resize(n);
+    model_.derived_.assign(n, false);
+    const JsonValue* parameters = root_.find("parameters");
+    std::vector<Rational> zero(n, Rational(0));
+    exact_ = std::make_unique<ExactEvaluator>(nominal, model_.parameter_nominals_, model_.degrees_, zero, roundings_);
+    // First the slots (texts and formulas), then the unit conversions (which evaluate them).
+    for (std::size_t i = 0; i < n && parameters; ++i) {
+      const JsonValue& nominal_value = *parameters->find(nominal.parameters[i].name)->find("nominal");
+      model_.parameter_nominals_[i] = raw_slot(nominal_value);
+    }
+    for (std::size_t i = 0; i < n && parameters; ++i) {
+      Slot& slot = model_.parameter_nominals_[i];
+      if (nominal.parameters[i].is_angle) slot.formula = angle_formula(slot);
+      model_.derived_[i] = mentions_parameters(slot.formula);
+    }
+    const JsonValue& parts = *root_.find("parts");
+    for (std::size_t k = 0; k < parts.items.size(); ++k) model_.parts_.push_back(part(parts.items[k], k));
+  }
+
+ private:
+  Slot raw_slot(const JsonValue& value) {
+    Slot slot;
+    slot.text = value.text;
+    slot.pointer = value.pointer;
+    slot.literal = value.is_number();
+    const Model& nominal = *model_.nominal_;
+    slot.formula = slot.literal ? formula_constant(parse_literal(value.text, value.pointer))
+                                : parse_formula(value.text, value.pointer, [&](const std::string& name) {
+                                    const Parameter* found = nominal.find_parameter(name);
+                                    if (!found) throw ModelError(value.pointer, "unknown parameter '" + name + "'");
+                                    return static_cast<std::size_t>(found - nominal.parameters.data());
+                                  });
+    return slot;
+  }
+  // A plain number used as an angle in a degree file is in degrees.
+  FormulaPtr angle_formula(const Slot& slot) {
+    Quantity q = exact_->evaluate(slot);
+    if (!model_.degrees_ || q.is_angle) return slot.formula;
+    return formula_node(Formula::Op::multiply,
+                        {slot.formula, formula_node(Formula::Op::divide,
+                                                    {formula_node(Formula::Op::pi, {}), formula_constant(180)})});
+  }
+  Slot number_slot(const JsonValue& value) { return raw_slot(value); }
+  Slot angle_slot(const JsonValue& value) {
+    Slot slot = raw_slot(value);
+    slot.formula = angle_formula(slot);
+    return slot;
+  }
+
+  PointRecipe point(const JsonValue& value) {
+    PointRecipe recipe;
+    if (value.is_array()) {
+      recipe.x = number_slot(value.items[0]);
+      recipe.y = number_slot(value.items[1]);
+      return recipe;
+    }
+    const JsonValue& polar = *value.find("polar");
+    recipe.polar = true;
+    recipe.center = std::make_shared<PointRecipe>(point(*polar.find("center")));
+    recipe.radius = number_slot(*polar.find("radius"));
+    recipe.angle = angle_slot(*polar.find("angle"));
+    return recipe;
+  }
+
+  PartRecipe part(const JsonValue& value, std::size_t index) {
+    PartRecipe recipe;
+    if (const JsonValue* loops = value.find("loops")) {
+      for (const JsonValue& loop_value : loops->items) {
+        LoopRecipe loop;
+        if (const JsonValue* circle = loop_value.find("circle")) {
+          loop.circle = true;
+          loop.center = point(*circle->find("center"));
+          loop.radius = number_slot(*circle->find("radius"));
+        } else {
+          loop.start = point(*loop_value.find("start"));
+          for (const JsonValue& edge_value : loop_value.find("edges")->items) {
+            EdgeRecipe edge;
+            if (const JsonValue* line_to = edge_value.find("line_to")) {
+              edge.target = point(*line_to);
+            } else {
+              edge.arc = true;
+              edge.target = point(*edge_value.find("arc_to"));
+              edge.center = point(*edge_value.find("center"));
+              edge.ccw = edge_value.find("dir")->text == "ccw";
+            }
+            loop.edges.push_back(std::move(edge));
+          }
+        }
+        recipe.loops.push_back(std::move(loop));
+      }
+    }
+    if (const JsonValue* features = value.find("features")) {
+      for (const JsonValue& feature_value : features->items) {
+        const JsonMember& member = feature_value.members.front();
+        FeatureRecipe feature;
+        feature.name = member.key;
+        feature.pointer = member.value.pointer;
+        const TemplateSpec* spec = nullptr;
+        for (const TemplateSpec& candidate : template_specs())
+          if (candidate.name == member.key) spec = &candidate;
+        for (const JsonMember& argument : member.value.members) {
+          FeatureRecipe::Argument a;
+          for (const ArgumentSpec& candidate : spec->arguments)
+            if (candidate.key == argument.key) a.kind = candidate.kind;
+          switch (a.kind) {
+            case ArgumentKind::length:
+            case ArgumentKind::count: a.number = number_slot(argument.value); break;
+            case ArgumentKind::angle: a.number = angle_slot(argument.value); break;
+            case ArgumentKind::point: a.point = point(argument.value); break;
+            case ArgumentKind::direction_word: a.word = argument.value.text; break;
+          }
+          feature.arguments.emplace(argument.key, std::move(a));
+        }
+        if (feature.name != "circle" && feature.name != "pin" && model_.generic_) {
+          model_.generic_ = false;
+          model_.exact_only_feature_ = feature.name + " (" + feature.pointer + ")";
+        }
+        recipe.features.push_back(std::move(feature));
+      }
+    }
+    const JsonValue& motion = *value.find("motion");
+    if (motion.is_object()) {
+      const JsonValue& body = motion.members.front().value;
+      if (const JsonValue* pivot = body.find("pivot")) {
+        recipe.motion.has_pivot = true;
+        recipe.motion.pivot = point(*pivot);
+      }
+      if (const JsonValue* direction = body.find("direction")) {
+        recipe.motion.has_direction = true;
+        if (direction->is_array()) {
+          recipe.motion.direction_x = number_slot(direction->items[0]);
+          recipe.motion.direction_y = number_slot(direction->items[1]);
+        } else {
+          recipe.motion.direction_is_angle = true;
+          recipe.motion.direction_angle = angle_slot(*direction);
+        }
+      }
+    }
+    // Orientation: which loops the reader reversed (compare the first edge's end and sense).
+    std::vector<Loop> loops = exact_loops(recipe, *exact_);
+    const Part& read = model_.nominal_->parts[index];
+    if (loops.size() != read.loops.size())
+      throw ModelError(read.pointer, "internal error: the parametric form of the part has " +
+                                         std::to_string(loops.size()) + " loops, the model " +
+                                         std::to_string(read.loops.size()));
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+      const Edge& mine = loops[l].edges.front();
+      const Edge& theirs = read.loops[l].edges.front();
+      recipe.reversed.push_back(!(mine.target == theirs.target && mine.ccw == theirs.ccw));
+    }
+    return recipe;
+  }
+
+  ParametricModel& model_;
+  const JsonValue& root_;
+  std::vector<Rounding> roundings_;
+  std::unique_ptr<ExactEvaluator> exact_;
+};
+
+ParametricModel ParametricModel::read(std::string_view json_text, std::string_view source_name) {
+  ParametricModel model;
+  model.nominal_ = std::make_shared<const Model>(read_model(json_text, source_name));
+  model.text_ = std::string(json_text);
+  JsonValue root = parse_json(json_text);
+  RecipeBuilder(model, root).build();
+  // Self-check: the exact form at the nominal vector is the model that was read.
+  Model again = model.exact_model(std::vector<Rational>(model.parameter_count(), Rational(0)));
+  for (std::size_t k = 0; k < again.parts.size(); ++k) {
+    const Part& a = again.parts[k];
+    const Part& b = model.nominal_->parts[k];
+    bool same = a.loops.size() == b.loops.size() && a.motion.pivot == b.motion.pivot &&
+                a.motion.direction == b.motion.direction;
+    for (std::size_t l = 0; same && l < a.loops.size(); ++l) {
+      same = a.loops[l].edges.size() == b.loops[l].edges.size();
+      for (std::size_t e = 0; same && e < a.loops[l].edges.size(); ++e) {
+        const Edge& x = a.loops[l].edges[e];
+        const Edge& y = b.loops[l].edges[e];
+        same = x.kind == y.kind && x.source == y.source && x.target == y.target && x.ccw == y.ccw &&
+               (!x.is_arc() || (x.center == y.center && x.radius_squared == y.radius_squared));
+      }
+    }
+    if (!same)
+      throw ModelError(b.pointer, "internal error: the parametric form of part '" + b.name +
+                                      "' does not reproduce the geometry read");
+  }
+  return model;
+}
+
+ParametricModel ParametricModel::read_file(const std::filesystem::path& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error))
+    throw IoError("cannot read model file '" + path.string() + "': it is a directory");
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw IoError("cannot open model file '" + path.string() + "'");
+  std::ostringstream content;
+  content << file.rdbuf();
+  if (file.bad()) throw IoError("cannot read model file '" + path.string() + "'");
+  return read(content.str(), path.string());
+}
+
+Model ParametricModel::exact_model(const std::vector<Rational>& deviations) const {
+  if (deviations.size() != parameter_count())
+    throw ModelError("/parameters", "expected " + std::to_string(parameter_count()) +
+                                        " parameter deviations, got " + std::to_string(deviations.size()));
+  Model model = *nominal_;
+  model.roundings.clear();
+  ExactEvaluator exact(*nominal_, parameter_nominals_, degrees_, deviations, model.roundings);
+  for (std::size_t i = 0; i < model.parameters.size(); ++i) {
+    Parameter& parameter = model.parameters[i];
+    Rational shift = to_rational(exact.parameter(i), parameter.pointer, parameter.name, model.roundings) -
+                     parameter.nominal;
+    parameter.nominal += shift;
+    parameter.range.lo += shift;
+    parameter.range.hi += shift;
+  }
+  for (std::size_t k = 0; k < model.parts.size(); ++k) {
+    Part& part = model.parts[k];
+    const PartRecipe& recipe = parts_[k];
+    std::vector<Loop> loops = exact_loops(recipe, exact);
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+      loops[l].pointer = nominal_->parts[k].loops[l].pointer;
+      loops[l].is_hole = false;
+      const auto& nominal_edges = nominal_->parts[k].loops[l].edges;
+      // Labels and pointers as read (the nominal loop may be reversed).
+      for (std::size_t e = 0; e < loops[l].edges.size(); ++e) {
+        std::size_t m = recipe.reversed[l] ? loops[l].edges.size() - 1 - e : e;
+        loops[l].edges[e].label = nominal_edges[m].label;
+        loops[l].edges[e].pointer = nominal_edges[m].pointer;
+      }
+    }
+    part.loops = std::move(loops);
+    if (recipe.motion.has_pivot) part.motion.pivot = exact.point(recipe.motion.pivot);
+    if (recipe.motion.has_direction) part.motion.direction = exact.direction(recipe.motion);
+    validate_part_geometry(part);
+  }
+  return model;
+}
+
+}  // namespace hipair::model_detail

@@ -1,0 +1,293 @@
+// The parametric model (issue 10 item 3; docs/tolerance.md "The parametric model"): every
+// geometric value of a model — loop vertices, arc centres and radii, rotation pivots,
+// translation directions — recorded as a formula of the named parameters, so that the model
+// yields its geometry for any number type at any parameter vector without re-reading the file:
+//   exact rationals   exact_model(): the same steps as the reader (rational + pi arithmetic,
+//                     directions rounded to exact rational unit vectors, recorded), then the
+//                     exact validation and orientation of every part: a Model identical to the
+//                     one read_model gives with the parameter values overridden;
+//   double, certified intervals (kernels::Interval), AutoDiff over all parameters
+//                     part_geometry<T>(): the smooth geometry (no rounding), loops oriented
+//                     as in the nominal model.
+//
+// Parameter vector: one deviation per parameter (Model::parameters order), 0 = nominal. An
+// independent parameter's value is nominal + deviation; a parameter whose nominal is an
+// expression of other parameters (a derived parameter) is that expression at their values,
+// plus its own deviation (its tolerance): correlated parameters vary together.
+#pragma once
+
+#include "kernels/vector.hpp"
+#include "model/parametric/formula.hpp"
+#include "model/templates.hpp"
+
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace hipair::model_detail {
+
+/// One number slot of the file: its text (exact path) and its formula (generic path).
+struct Slot {
+  std::string text;
+  std::string pointer;
+  bool literal = false;   ///< a JSON number
+  FormulaPtr formula;     ///< the value in mm / rad (a plain angle in a degree file converted)
+};
+
+struct PointRecipe {
+  bool polar = false;
+  Slot x, y;                             ///< cartesian
+  std::shared_ptr<PointRecipe> center;   ///< polar
+  Slot radius, angle;                    ///< polar
+};
+
+struct EdgeRecipe {
+  bool arc = false;
+  PointRecipe target;
+  PointRecipe center;   ///< arc
+  bool ccw = true;
+};
+
+struct LoopRecipe {
+  bool circle = false;
+  PointRecipe center;   ///< circle
+  Slot radius;          ///< circle
+  PointRecipe start;
+  std::vector<EdgeRecipe> edges;
+};
+
+/// A feature template occurrence: its arguments as slots / points / words.
+struct FeatureRecipe {
+  std::string name;
+  std::string pointer;
+  struct Argument {
+    ArgumentKind kind = ArgumentKind::length;
+    Slot number;
+    PointRecipe point;
+    std::string word;
+  };
+  std::map<std::string, Argument> arguments;
+  std::size_t loop_count = 0;   ///< loops it expanded to in the nominal model
+};
+
+struct MotionRecipe {
+  bool has_pivot = false;
+  PointRecipe pivot;
+  bool has_direction = false;
+  bool direction_is_angle = false;
+  Slot direction_angle;
+  Slot direction_x, direction_y;
+};
+
+struct PartRecipe {
+  std::vector<LoopRecipe> loops;           ///< explicit loops (first in Part::loops)
+  std::vector<FeatureRecipe> features;     ///< then the templates' loops
+  MotionRecipe motion;
+  std::vector<bool> reversed;              ///< per Part::loops entry: reversed by orientation
+};
+
+/// An edge of a part in body coordinates (world coordinates at its zero configuration).
+template <class T>
+struct EdgeValue {
+  bool arc = false;
+  kernels::Vector<T> source, target, center;
+  T radius_squared{0};
+  bool ccw = true;
+};
+
+/// A part's geometry and motion axis for number type T.
+template <class T>
+struct PartGeometry {
+  std::vector<std::vector<EdgeValue<T>>> loops;   ///< Part::loops order, oriented as nominal
+  kernels::Vector<T> pivot{T(0), T(0)};
+  kernels::Vector<T> direction{T(1), T(0)};
+};
+
+/// A model with its geometry recorded as formulas of its parameters.
+class ParametricModel {
+ public:
+  /// Reads the model (read_model) and records its formulas. \throws as read_model.
+  static ParametricModel read(std::string_view json_text, std::string_view source_name = "<string>");
+  static ParametricModel read_file(const std::filesystem::path& path);
+
+  const Model& nominal() const { return *nominal_; }
+  std::size_t parameter_count() const { return nominal_->parameters.size(); }
+  /// Whether parameter i is defined by an expression of other parameters.
+  bool derived(std::size_t i) const { return derived_[i]; }
+  /// Whether every part's geometry has a generic (non-exact) form: false when a part uses a
+  /// feature template other than circle/pin (those are exact only; see docs/tolerance.md).
+  bool generic() const { return generic_; }
+  /// The first template that is exact only, for messages.
+  const std::string& exact_only_feature() const { return exact_only_feature_; }
+
+  /// The exact model at a deviation vector. \throws ModelError when the geometry is invalid
+  /// there (loops crossing, ...), naming the pointer.
+  Model exact_model(const std::vector<Rational>& deviations) const;
+
+  /// The value of every parameter at a deviation vector, for number type T.
+  template <class T>
+  std::vector<T> parameter_values(const std::vector<T>& deviations) const;
+
+  /// One edge of a part (Part::loops[loop].edges[edge], oriented as nominal) for number type T
+  /// at the parameter values `parameters` (from parameter_values): only its own formulas.
+  template <class T>
+  EdgeValue<T> edge_value(std::size_t part, std::size_t loop, std::size_t edge, const std::vector<T>& parameters) const;
+  /// A part's pivot and direction for number type T at the parameter values.
+  template <class T>
+  void motion_value(std::size_t part, const std::vector<T>& parameters, kernels::Vector<T>& pivot,
+                    kernels::Vector<T>& direction) const;
+
+  /// Part `part`'s geometry for number type T at the deviations.
+  /// \throws ModelError when the part uses an exact-only feature template.
+  template <class T>
+  PartGeometry<T> part_geometry(std::size_t part, const std::vector<T>& deviations) const;
+
+ private:
+  std::shared_ptr<const Model> nominal_;
+  std::string text_;
+  bool degrees_ = false;
+  std::vector<Slot> parameter_nominals_;
+  std::vector<bool> derived_;
+  std::vector<PartRecipe> parts_;
+  bool generic_ = true;
+  std::string exact_only_feature_;
+
+  friend class RecipeBuilder;
+};
+
+// ---------------------------------------------------------------- generic evaluation
+
+template <class T>
+std::vector<T> ParametricModel::parameter_values(const std::vector<T>& deviations) const {
+  std::size_t n = parameter_count();
+  if (deviations.size() != n)
+    throw ModelError("/parameters", "expected " + std::to_string(n) + " parameter deviations, got " +
+                                        std::to_string(deviations.size()));
+  std::vector<T> values(n, Arithmetic<T>::constant(Rational(0)));
+  std::vector<char> done(n, 0);
+  std::function<T(std::size_t)> value_of = [&](std::size_t i) -> T {
+    if (done[i]) return values[i];
+    T base = derived_[i] ? evaluate_formula<T>(*parameter_nominals_[i].formula, value_of)
+                         : Arithmetic<T>::constant(nominal_->parameters[i].nominal);
+    values[i] = T(base + deviations[i]);
+    done[i] = 1;
+    return values[i];
+  };
+  for (std::size_t i = 0; i < n; ++i) value_of(i);
+  return values;
+}
+
+namespace parametric_detail {
+
+template <class T>
+T slot_value(const Slot& slot, const std::vector<T>& parameters) {
+  return evaluate_formula<T>(*slot.formula, [&](std::size_t i) { return parameters[i]; });
+}
+
+template <class T>
+kernels::Vector<T> point_value(const PointRecipe& recipe, const std::vector<T>& parameters) {
+  if (!recipe.polar) return {slot_value(recipe.x, parameters), slot_value(recipe.y, parameters)};
+  kernels::Vector<T> center = point_value(*recipe.center, parameters);
+  T radius = slot_value(recipe.radius, parameters);
+  T angle = slot_value(recipe.angle, parameters);
+  return {T(center.x + radius * Arithmetic<T>::cos(angle)), T(center.y + radius * Arithmetic<T>::sin(angle))};
+}
+
+template <class T>
+T squared_distance(const kernels::Vector<T>& a, const kernels::Vector<T>& b) {
+  kernels::Vector<T> d = a - b;
+  return kernels::dot(d, d);
+}
+
+}  // namespace parametric_detail
+
+template <class T>
+PartGeometry<T> ParametricModel::part_geometry(std::size_t part, const std::vector<T>& deviations) const {
+  const PartRecipe& recipe = parts_.at(part);
+  std::vector<T> p = parameter_values(deviations);
+  PartGeometry<T> geometry;
+  std::size_t loops = recipe.loops.size() + recipe.features.size();
+  for (std::size_t l = 0; l < loops; ++l) {
+    std::size_t edges = l < recipe.loops.size() && !recipe.loops[l].circle ? recipe.loops[l].edges.size() : 1;
+    std::vector<EdgeValue<T>> values;
+    for (std::size_t e = 0; e < edges; ++e) values.push_back(edge_value(part, l, e, p));
+    geometry.loops.push_back(std::move(values));
+  }
+  motion_value(part, p, geometry.pivot, geometry.direction);
+  return geometry;
+}
+
+template <class T>
+EdgeValue<T> ParametricModel::edge_value(std::size_t part, std::size_t loop, std::size_t edge,
+                                         const std::vector<T>& p) const {
+  using namespace parametric_detail;
+  const PartRecipe& recipe = parts_.at(part);
+  bool reversed = loop < recipe.reversed.size() && recipe.reversed[loop];
+  EdgeValue<T> value;
+  auto circle = [&](const kernels::Vector<T>& center, const T& radius) {
+    value.arc = true;
+    value.center = center;
+    value.source = kernels::Vector<T>{T(center.x + radius), center.y};
+    value.target = value.source;
+    value.radius_squared = T(radius * radius);
+    value.ccw = true;
+  };
+  if (loop < recipe.loops.size()) {
+    const LoopRecipe& l = recipe.loops[loop];
+    if (l.circle) {
+      circle(point_value(l.center, p), slot_value(l.radius, p));
+    } else {
+      std::size_t count = l.edges.size();
+      std::size_t index = reversed ? count - 1 - edge : edge;
+      const EdgeRecipe& e = l.edges.at(index);
+      value.arc = e.arc;
+      value.source = point_value(index == 0 ? l.start : l.edges[index - 1].target, p);
+      value.target = point_value(e.target, p);
+      if (e.arc) {
+        value.center = point_value(e.center, p);
+        value.radius_squared = squared_distance(value.source, value.center);
+        value.ccw = e.ccw;
+      }
+    }
+  } else {
+    const FeatureRecipe& feature = recipe.features.at(loop - recipe.loops.size());
+    if (feature.name != "circle" && feature.name != "pin")
+      throw ModelError(feature.pointer, "feature template '" + feature.name +
+                                            "' has an exact parametric form only (no derivatives or intervals yet)");
+    circle(point_value(feature.arguments.at("center").point, p), slot_value(feature.arguments.at("radius").number, p));
+  }
+  if (reversed) {
+    std::swap(value.source, value.target);
+    value.ccw = !value.ccw;
+  }
+  return value;
+}
+
+template <class T>
+void ParametricModel::motion_value(std::size_t part, const std::vector<T>& p, kernels::Vector<T>& pivot,
+                                   kernels::Vector<T>& direction) const {
+  using namespace parametric_detail;
+  const MotionRecipe& motion = parts_.at(part).motion;
+  pivot = kernels::Vector<T>{Arithmetic<T>::constant(Rational(0)), Arithmetic<T>::constant(Rational(0))};
+  direction = kernels::Vector<T>{Arithmetic<T>::constant(Rational(1)), Arithmetic<T>::constant(Rational(0))};
+  if (motion.has_pivot) pivot = point_value(motion.pivot, p);
+  if (motion.has_direction) {
+    if (motion.direction_is_angle) {
+      T a = slot_value(motion.direction_angle, p);
+      direction = {Arithmetic<T>::cos(a), Arithmetic<T>::sin(a)};
+    } else {
+      T dx = slot_value(motion.direction_x, p), dy = slot_value(motion.direction_y, p);
+      T length = Arithmetic<T>::sqrt(T(dx * dx + dy * dy));
+      direction = {T(dx / length), T(dy / length)};
+    }
+  }
+}
+
+}  // namespace hipair::model_detail

@@ -1,0 +1,811 @@
+// Kinematic tolerance analysis of a driven pair (include/hipair/tolerance.hpp,
+// docs/tolerance.md). The nominal path comes from analyze_kinematics; at each driver position
+// an exact slice of the nominal C-space (the public adaptor) names the feature pair holding
+// the follower and the two sides of its free channel; each is then solved over the parametric
+// model (solver.hpp).
+#include <hipair/tolerance.hpp>
+
+#include "model/parametric/parametric.hpp"
+#include "tolerance/solver.hpp"
+
+#include <hipair/error.hpp>
+#include <hipair/kinematics.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <future>
+#include <limits>
+#include <sstream>
+#include <numbers>
+#include <thread>
+
+namespace hipair {
+namespace {
+
+using tolerance_detail::Box;
+using tolerance_detail::CurveSlice;
+using tolerance_detail::CurveSolver;
+using Interval = kernels::Interval;
+constexpr double pi = std::numbers::pi;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+struct ChartValue {
+  Rational t;
+  bool half = false;
+};
+
+// A part coordinate for CSpace::to_chart: tan(theta/2) of a rotation, the offset of a translation.
+PartCoordinate part_coordinate(bool rotates, double coordinate) {
+  PartCoordinate p;
+  if (!rotates) {
+    p.kind = PartCoordinate::Kind::offset;
+    p.value = Rational(coordinate);
+    return p;
+  }
+  double wrapped = std::remainder(coordinate, 2 * pi);
+  if (std::fabs(wrapped) == pi) {
+    p.kind = PartCoordinate::Kind::half_turn;
+    return p;
+  }
+  p.kind = PartCoordinate::Kind::half_angle_tangent;
+  p.value = Rational(std::tan(wrapped / 2));
+  return p;
+}
+
+// Chart enclosure -> part coordinate enclosure, unwrapped near `near` (rotations).
+Interval to_part(const Interval& chart, bool rotates, bool half, double near) {
+  if (!rotates) return chart;
+  Interval theta = tolerance_detail::chart_to_angle(chart, half);
+  double turns = std::round((near - theta.middle()) / (2 * pi));
+  if (turns != 0) {
+    Interval two_pi = Interval(2) * model_detail::Arithmetic<Interval>::pi();
+    theta = theta + Interval::point(turns) * two_pi;
+  }
+  return theta;
+}
+
+double chart_slope(double t, bool rotates) { return rotates ? 2 / (1 + t * t) : 1.0; }
+
+// A side of the follower's channel in a slice: where, and the feature pairs there.
+struct Side {
+  bool present = false;
+  double value = 0;                  // chart coordinate (approximate)
+  std::vector<FeatureId> features;
+};
+
+struct SampleState {
+  bool valid = false;
+  ChartValue driver_chart, follower_chart;
+  std::size_t chart = no_index;
+  bool contact = false;
+  FeatureId feature;
+  CurveSlice curve;
+  double v = 0;                      // follower chart coordinate on the curve
+  std::vector<double> s_chart;       // dv/dp
+  Interval certified_chart;
+  Side lower, upper;                 // the channel
+};
+
+struct Distribution {
+  double mean = 0;     // deviation
+  double sigma = 0;
+  enum class Kind { fixed, normal, uniform } kind = Kind::fixed;
+  double lo = 0, hi = 0;
+};
+
+std::vector<Distribution> distributions(const Model& model) {
+  std::vector<Distribution> result;
+  for (const Parameter& p : model.parameters) {
+    Distribution d;
+    d.lo = Rational(p.range.lo - p.nominal).get_d();
+    d.hi = Rational(p.range.hi - p.nominal).get_d();
+    double width = d.hi - d.lo;
+    if (width <= 0) {
+      result.push_back(d);
+      continue;
+    }
+    switch (p.distribution) {
+      case Parameter::Distribution::uniform:
+        d.kind = Distribution::Kind::uniform;
+        d.mean = 0.5 * (d.lo + d.hi);
+        d.sigma = width / std::sqrt(12.0);
+        break;
+      case Parameter::Distribution::normal:
+        d.kind = Distribution::Kind::normal;
+        d.mean = 0;
+        d.sigma = p.sigma->get_d();
+        break;
+      case Parameter::Distribution::none:
+        d.kind = Distribution::Kind::normal;
+        d.mean = 0.5 * (d.lo + d.hi);
+        d.sigma = width / 6;
+        break;
+    }
+    result.push_back(d);
+  }
+  return result;
+}
+
+// splitmix64: one independent, reproducible stream per Monte Carlo sample.
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+struct Stream {
+  std::uint64_t state;
+  double uniform() {  // (0, 1)
+    state = mix(state);
+    return (static_cast<double>(state >> 11) + 0.5) * 0x1.0p-53;
+  }
+  double normal() {   // Box-Muller
+    double u1 = uniform(), u2 = uniform();
+    return std::sqrt(-2 * std::log(u1)) * std::cos(2 * pi * u2);
+  }
+};
+
+std::vector<double> draw(const std::vector<Distribution>& ds, std::uint64_t seed, std::size_t index) {
+  Stream stream{mix(seed ^ mix(index + 1))};
+  std::vector<double> x(ds.size(), 0.0);
+  for (std::size_t i = 0; i < ds.size(); ++i) {
+    const Distribution& d = ds[i];
+    switch (d.kind) {
+      case Distribution::Kind::fixed: break;
+      case Distribution::Kind::uniform: x[i] = d.lo + (d.hi - d.lo) * stream.uniform(); break;
+      case Distribution::Kind::normal: {
+        double v = d.mean;
+        for (int attempt = 0; attempt < 1000; ++attempt) {   // truncated to the tolerance range
+          double candidate = d.mean + d.sigma * stream.normal();
+          if (candidate >= d.lo && candidate <= d.hi) {
+            v = candidate;
+            break;
+          }
+        }
+        x[i] = v;
+        break;
+      }
+    }
+  }
+  return x;
+}
+
+class Analysis {
+ public:
+  Analysis(std::string_view text, const ToleranceOptions& options) : options_(options) {
+    model_ = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text));
+    if (!model_->generic())
+      throw ModelError("", "tolerance analysis needs the generic parametric form; feature template " +
+                               model_->exact_only_feature() + " has an exact form only");
+    solver_ = std::make_unique<CurveSolver>(model_);
+  }
+
+  ToleranceResult run() {
+    const Model& m = model_->nominal();
+    result_.model_name = m.name;
+    result_.parameters = m.parameters;
+    choose_parts();
+    std::size_t n = m.parameters.size();
+    dist_ = distributions(m);
+    box_.lo.resize(n);
+    box_.hi.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      box_.lo[i] = dist_[i].lo;
+      box_.hi[i] = dist_[i].hi;
+      result_.sigma.push_back(dist_[i].sigma);
+      result_.mean_shift.push_back(dist_[i].mean);
+    }
+    progress(0.02);
+    auto t0 = std::chrono::steady_clock::now();
+    space_ = std::make_unique<CSpace>(CSpace::build(m, pair_first_, pair_second_));
+    driver_is_x_ = space_->x_part() == result_.driver;
+    nominal_path();
+    progress(0.2);
+    sensitivities();
+    result_.seconds_sensitivity = seconds_since(t0);
+    progress(0.3);
+    auto t1 = std::chrono::steady_clock::now();
+    certified();
+    result_.seconds_certified = seconds_since(t1);
+    progress(0.45);
+    auto t2 = std::chrono::steady_clock::now();
+    zones();
+    result_.seconds_zones = seconds_since(t2);
+    progress(0.55);
+    if (options_.monte_carlo > 0) monte_carlo();
+    progress(0.85);
+    if (options_.threshold) {
+      auto t3 = std::chrono::steady_clock::now();
+      threshold();
+      result_.seconds_threshold = seconds_since(t3);
+    }
+    progress(1.0);
+    return std::move(result_);
+  }
+
+ private:
+  void progress(double fraction) {
+    if (options_.progress) options_.progress(fraction);
+  }
+
+  void choose_parts() {
+    const Model& m = model_->nominal();
+    auto moving = [&](std::size_t k) {
+      auto kind = m.parts[k].motion.kind;
+      return kind == Motion::Kind::rotation || kind == Motion::Kind::translation;
+    };
+    std::optional<std::size_t> driver, follower;
+    if (!options_.driver.empty()) {
+      driver = m.find_part(options_.driver);
+      if (!driver) throw ModelError("", "unknown driver part '" + options_.driver + "' (--driver)");
+    }
+    if (!options_.follower.empty()) {
+      follower = m.find_part(options_.follower);
+      if (!follower) throw ModelError("", "unknown part '" + options_.follower + "' (--pair)");
+    }
+    for (const PairSpec& pair : m.pairs) {
+      if (!moving(pair.first) || !moving(pair.second)) continue;
+      bool matches = (!driver || pair.first == *driver || pair.second == *driver) &&
+                     (!follower || pair.first == *follower || pair.second == *follower);
+      if (!matches) continue;
+      std::size_t d = driver ? *driver : (follower && *follower == pair.first ? pair.second : pair.first);
+      std::size_t f = d == pair.first ? pair.second : pair.first;
+      if (follower && f != *follower) continue;
+      driver_ = d;
+      follower_ = f;
+      pair_first_ = m.parts[pair.first].name;
+      pair_second_ = m.parts[pair.second].name;
+      result_.driver = m.parts[d].name;
+      result_.follower = m.parts[f].name;
+      result_.driver_rotates = m.parts[d].motion.kind == Motion::Kind::rotation;
+      result_.follower_rotates = m.parts[f].motion.kind == Motion::Kind::rotation;
+      return;
+    }
+    throw ModelError("/pairs", "no pair of two parts with rotation or translation motions matches the driver and pair asked for");
+  }
+
+  void nominal_path() {
+    const Model& m = model_->nominal();
+    KinematicsOptions k;
+    k.driver = result_.driver;
+    k.range = options_.range;
+    k.steps_per_cycle = static_cast<unsigned>(std::max<std::size_t>(8, options_.positions));
+    k.reversal = false;
+    k.method = SliceMethod::cspace;
+    // Only the analysed pair: a model holding more parts is cut to the two.
+    Model pair_model = m;
+    pair_model.pairs.clear();
+    for (const PairSpec& pair : m.pairs)
+      if ((pair.first == driver_ && pair.second == follower_) || (pair.first == follower_ && pair.second == driver_))
+        pair_model.pairs.push_back(pair);
+    KinematicsResult kinematics = analyze_kinematics(pair_model, k, {*space_});
+    auto follower_index = std::find(kinematics.followers.begin(), kinematics.followers.end(), result_.follower);
+    if (follower_index == kinematics.followers.end())
+      throw GeometryError("the follower '" + result_.follower + "' is not moved by the driver over the range");
+    std::size_t fi = static_cast<std::size_t>(follower_index - kinematics.followers.begin());
+    if (kinematics.jam) result_.notes.push_back("the nominal mechanism jams: " + kinematics.jam->description);
+    for (const KinematicSample& ks : kinematics.samples) {
+      VariationSample sample;
+      sample.driver = ks.driver;
+      sample.nominal = ks.positions[fi];
+      SampleState state = locate(ks.driver, ks.positions[fi]);
+      sample.contact = state.contact;
+      sample.play = state.lower.present && state.upper.present ? state.upper.value - state.lower.value : -1;
+      if (state.lower.present && state.upper.present && result_.follower_rotates) {
+        // play in part units (rad)
+        double lo = 2 * std::atan(state.lower.value), hi = 2 * std::atan(state.upper.value);
+        sample.play = hi - lo;
+      }
+      result_.samples.push_back(sample);
+      states_.push_back(std::move(state));
+    }
+  }
+
+  // The slice of the nominal C-space at the driver position, and the follower in it.
+  SampleState locate(double driver, double follower) {
+    SampleState s;
+    PartCoordinate d = part_coordinate(result_.driver_rotates, driver);
+    PartCoordinate f = part_coordinate(result_.follower_rotates, follower);
+    std::optional<ChartPoint> point = driver_is_x_ ? space_->to_chart(d, f) : space_->to_chart(f, d);
+    if (!point) return s;
+    const CSpaceChart& chart = space_->charts()[point->chart];
+    s.chart = point->chart;
+    // to_chart may pick a chart centred elsewhere; use its own coordinates.
+    bool driver_half = driver_is_x_ ? chart.x_half_turn : chart.y_half_turn;
+    bool follower_half = driver_is_x_ ? chart.y_half_turn : chart.x_half_turn;
+    s.driver_chart = ChartValue{driver_is_x_ ? point->x : point->y, driver_half};
+    s.follower_chart = ChartValue{driver_is_x_ ? point->y : point->x, follower_half};
+    std::vector<Slice> slices = space_->slice(driver_is_x_ ? SliceAxis::x : SliceAxis::y, s.driver_chart.t);
+    const Slice* slice = nullptr;
+    for (const Slice& candidate : slices)
+      if (candidate.chart == point->chart) slice = &candidate;
+    if (!slice) return s;
+    s.valid = true;
+    double v = s.follower_chart.t.get_d();
+    double tolerance = 1e-9 * (1 + std::fabs(v));
+    std::size_t below = 0;   // number of points below v
+    std::optional<std::size_t> at;
+    for (std::size_t k = 0; k < slice->points.size(); ++k) {
+      double p = slice->points[k].at.approximate();
+      if (std::fabs(p - v) <= tolerance) at = k;
+      else if (p < v) below = k + 1;
+    }
+    auto side = [&](std::size_t k) {
+      Side result;
+      if (k >= slice->points.size()) return result;
+      result.present = true;
+      result.value = slice->points[k].at.approximate();
+      result.features = slice->points[k].features;
+      return result;
+    };
+    if (at) {
+      s.contact = !slice->points[*at].features.empty();
+      std::size_t k = *at;
+      bool free_above = slice->intervals[k + 1].kind == CellKind::free;
+      if (free_above) {
+        s.lower = side(k);
+        s.upper = side(k + 1);
+      } else {
+        if (k > 0) s.lower = side(k - 1);
+        s.upper = side(k);
+      }
+    } else {
+      if (below > 0) s.lower = side(below - 1);
+      s.upper = side(below);
+    }
+    if (s.contact) {
+      for (FeatureId id : slice->points[*at].features) {
+        CurveSlice curve = curve_for(id, s);
+        double value = v;
+        try {
+          s.s_chart = solver_->sensitivities(curve, value);
+        } catch (const Error&) {
+          continue;
+        }
+        s.feature = id;
+        s.curve = curve;
+        s.v = value;
+        break;
+      }
+      if (!s.feature.valid()) s.contact = false;
+    }
+    return s;
+  }
+
+  CurveSlice curve_for(FeatureId id, const SampleState& s) const {
+    const FeaturePair& pair = space_->feature_pair(id);
+    CurveSlice curve;
+    curve.first = pair.first;
+    curve.second = pair.second;
+    curve.fixed_part = driver_;
+    curve.free_part = follower_;
+    curve.fixed_half_turn = s.driver_chart.half;
+    curve.free_half_turn = s.follower_chart.half;
+    curve.fixed_value = s.driver_chart.t;
+    return curve;
+  }
+
+  // Per sample: linearised and statistical bands; per region: the sensitivity table.
+  void sensitivities() {
+    std::size_t n = result_.parameters.size();
+    for (std::size_t k = 0; k < states_.size(); ++k) {
+      VariationSample& sample = result_.samples[k];
+      SampleState& state = states_[k];
+      sample.linear_lower = sample.linear_upper = sample.rss_lower = sample.rss_upper = sample.nominal;
+      sample.certified = CertifiedRange{sample.nominal, sample.nominal};
+      if (!state.contact) continue;
+      double slope = chart_slope(state.v, result_.follower_rotates);
+      double lower = 0, upper = 0, mean = 0, variance = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        double s = state.s_chart[i] * slope;
+        lower += std::min(s * dist_[i].lo, s * dist_[i].hi);
+        upper += std::max(s * dist_[i].lo, s * dist_[i].hi);
+        mean += s * dist_[i].mean;
+        variance += s * s * dist_[i].sigma * dist_[i].sigma;
+      }
+      sample.linear_lower = sample.nominal + lower;
+      sample.linear_upper = sample.nominal + upper;
+      sample.rss_lower = sample.nominal + mean - 3 * std::sqrt(variance);
+      sample.rss_upper = sample.nominal + mean + 3 * std::sqrt(variance);
+      // regions
+      const FeaturePair& pair = space_->feature_pair(state.feature);
+      bool extend = !result_.regions.empty() && result_.regions.back().last_sample + 1 == k &&
+                    result_.regions.back().first == pair.first && result_.regions.back().second == pair.second;
+      if (!extend) {
+        ContactRegion region;
+        region.contact = pair.label;
+        region.first = pair.first;
+        region.second = pair.second;
+        region.driver_start = sample.driver;
+        region.first_sample = k;
+        region.ranked.resize(n);
+        for (std::size_t i = 0; i < n; ++i) region.ranked[i].parameter = result_.parameters[i].name;
+        result_.regions.push_back(region);
+      }
+      ContactRegion& region = result_.regions.back();
+      region.driver_end = sample.driver;
+      region.last_sample = k;
+      region.linear_half_width = std::max(region.linear_half_width, 0.5 * (upper - lower));
+      sample.region = result_.regions.size() - 1;
+      for (std::size_t i = 0; i < n; ++i) {
+        double s = state.s_chart[i] * slope;
+        double c = std::fabs(s) * 0.5 * (dist_[i].hi - dist_[i].lo);
+        if (c >= region.ranked[i].contribution) {
+          region.ranked[i].contribution = c;
+          region.ranked[i].sensitivity = s;
+        }
+      }
+    }
+    for (ContactRegion& region : result_.regions) {
+      double total = 0;
+      for (const ParameterContribution& c : region.ranked) total += c.contribution;
+      for (ParameterContribution& c : region.ranked) c.share = total > 0 ? c.contribution / total : 0;
+      std::stable_sort(region.ranked.begin(), region.ranked.end(),
+                       [](const ParameterContribution& a, const ParameterContribution& b) {
+                         return a.contribution > b.contribution;
+                       });
+    }
+  }
+
+  void certified() {
+    std::size_t uncertified = 0;
+    for (std::size_t k = 0; k < states_.size(); ++k) {
+      SampleState& state = states_[k];
+      if (!state.contact) continue;
+      VariationSample& sample = result_.samples[k];
+      try {
+      state.certified_chart = solver_->certified_range(state.curve, box_, state.v, state.s_chart,
+                                                       options_.relative_accuracy, options_.absolute_accuracy,
+                                                       result_.certified_boxes);
+      } catch (const NumericError&) {
+        // Not certified here (a singular curve, or a contact change inside the box): the band
+        // is the whole line, which keeps every statement about it true, and it is reported.
+        ++uncertified;
+        state.certified_chart = Interval(-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity());
+        sample.certified = CertifiedRange{-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+        continue;
+      }
+      Interval part = to_part(state.certified_chart, result_.follower_rotates, state.follower_chart.half, sample.nominal);
+      sample.certified = CertifiedRange{part.lo, part.hi};
+      double excess = (part.hi - part.lo) - (sample.linear_upper - sample.linear_lower);
+      result_.certified_excess = std::max(result_.certified_excess, excess);
+    }
+    if (uncertified > 0)
+      result_.notes.push_back("the certified band could not be computed at " + std::to_string(uncertified) +
+                              " driver position(s) (shown unbounded)");
+  }
+
+  void zones() {
+    const Model& m = model_->nominal();
+    std::size_t x_index = *m.find_part(space_->x_part());
+    std::size_t y_index = *m.find_part(space_->y_part());
+    bool x_rotates = m.parts[x_index].motion.kind == Motion::Kind::rotation;
+    bool y_rotates = m.parts[y_index].motion.kind == Motion::Kind::rotation;
+    std::size_t n = result_.parameters.size();
+    for (std::size_t e = 0; e < space_->edges().size(); ++e) {
+      const CSpaceEdge& edge = space_->edges()[e];
+      if (edge.role != EdgeRole::contact || edge.vertical || edge.curves.empty()) continue;
+      const FeaturePair& pair = space_->feature_pair(FeatureId(edge.curves.front()));
+      bool on_path = false;
+      for (const ContactRegion& region : result_.regions)
+        on_path = on_path || (region.first == pair.first && region.second == pair.second);
+      if (!on_path) continue;
+      const CSpaceChart& chart = space_->charts()[edge.chart];
+      ContactZone zone;
+      zone.contact = pair.label;
+      zone.edge = e;
+      zone.x_rotates = x_rotates;
+      zone.y_rotates = y_rotates;
+      double x0 = edge.x_chart.lower, x1 = edge.x_chart.upper;
+      if (!(x1 > x0)) continue;
+      for (std::size_t j = 0; j < options_.zone_samples; ++j) {
+        double xd = x0 + (x1 - x0) * (static_cast<double>(j) + 0.5) / static_cast<double>(options_.zone_samples);
+        CurveSlice curve;
+        curve.first = pair.first;
+        curve.second = pair.second;
+        curve.fixed_part = x_index;
+        curve.free_part = y_index;
+        curve.fixed_half_turn = chart.x_half_turn;
+        curve.free_half_turn = chart.y_half_turn;
+        curve.fixed_value = Rational(xd);
+        double v = 0;
+        std::vector<double> s;
+        Interval range;
+        try {
+          v = space_->evaluate(e, xd).value;
+          s = solver_->sensitivities(curve, v);
+          range = solver_->certified_range(curve, box_, v, s, options_.relative_accuracy, options_.absolute_accuracy,
+                                           result_.certified_boxes);
+        } catch (const Error&) {
+          continue;
+        }
+        double slope = chart_slope(v, y_rotates);
+        double lower = 0, upper = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+          lower += std::min(s[i] * dist_[i].lo, s[i] * dist_[i].hi) * slope;
+          upper += std::max(s[i] * dist_[i].lo, s[i] * dist_[i].hi) * slope;
+        }
+        double y = y_rotates ? chart.y_to_coordinate(v) : v;
+        Interval part = to_part(range, y_rotates, chart.y_half_turn, y);
+        zone.x.push_back(x_rotates ? chart.x_to_coordinate(xd) : xd);
+        zone.nominal.push_back(y);
+        zone.linear_lower.push_back(y + lower);
+        zone.linear_upper.push_back(y + upper);
+        zone.certified_lower.push_back(part.lo);
+        zone.certified_upper.push_back(part.hi);
+      }
+      if (!zone.x.empty()) result_.zones.push_back(std::move(zone));
+    }
+  }
+
+  void monte_carlo() {
+    auto start = std::chrono::steady_clock::now();
+    MonteCarloSummary summary;
+    summary.samples = options_.monte_carlo;
+    summary.seed = options_.seed;
+    std::size_t count = states_.size();
+    struct Outcome {
+      std::vector<double> value;   // part coordinate per driver position (NaN: free)
+      std::size_t outside_certified = 0, outside_linear = 0, evaluations = 0;
+      double excess = 0;
+    };
+    std::atomic<std::size_t> done{0};
+    auto evaluate = [&](std::size_t index) {
+      Outcome outcome;
+      outcome.value.assign(count, std::nan(""));
+      std::vector<double> deviations = draw(dist_, options_.seed, index);
+      auto geometry = solver_->point_parameters(deviations);
+      for (std::size_t k = 0; k < count; ++k) {
+        const SampleState& state = states_[k];
+        if (!state.contact) continue;
+        const VariationSample& sample = result_.samples[k];
+        Interval c = state.certified_chart;
+        double w = c.width() + 1e-12 * (1 + std::fabs(state.v));
+        Interval root;
+        ++outcome.evaluations;
+        if (!solver_->certified_point_root(state.curve, geometry, Interval(c.lo - w, c.hi + w), root)) {
+          ++outcome.outside_certified;   // no root near the band: counted as outside it
+          continue;
+        }
+        if (root.lo < c.lo || root.hi > c.hi) ++outcome.outside_certified;
+        Interval part = to_part(root, result_.follower_rotates, state.follower_chart.half, sample.nominal);
+        double value = part.middle();
+        outcome.value[k] = value;
+        double excess = std::max(value - sample.linear_upper, sample.linear_lower - value);
+        if (excess > 0) {
+          ++outcome.outside_linear;
+          outcome.excess = std::max(outcome.excess, excess);
+        }
+      }
+      ++done;
+      return outcome;
+    };
+    unsigned threads = options_.threads ? options_.threads : std::max(1u, std::thread::hardware_concurrency());
+    std::vector<Outcome> outcomes(options_.monte_carlo);
+    std::atomic<std::size_t> next{0};
+    std::vector<std::future<void>> workers;
+    for (unsigned t = 0; t < threads; ++t)
+      workers.push_back(std::async(std::launch::async, [&] {
+        for (std::size_t i = next++; i < outcomes.size(); i = next++) outcomes[i] = evaluate(i);
+      }));
+    for (auto& worker : workers) {
+      while (worker.wait_for(std::chrono::milliseconds(100)) != std::future_status::ready)
+        progress(0.55 + 0.3 * static_cast<double>(done.load()) / static_cast<double>(outcomes.size()));
+      worker.get();
+    }
+    for (std::size_t i = 0; i < outcomes.size(); ++i) {
+      const Outcome& o = outcomes[i];
+      summary.outside_certified += o.outside_certified;
+      summary.outside_linear += o.outside_linear;
+      summary.evaluations += o.evaluations;
+      summary.linearisation_error = std::max(summary.linearisation_error, o.excess);
+      for (std::size_t k = 0; k < count; ++k) {
+        double v = o.value[k];
+        if (std::isnan(v)) continue;
+        VariationSample& sample = result_.samples[k];
+        if (!sample.has_monte_carlo) {
+          sample.has_monte_carlo = true;
+          sample.monte_carlo_min = sample.monte_carlo_max = v;
+        } else {
+          sample.monte_carlo_min = std::min(sample.monte_carlo_min, v);
+          sample.monte_carlo_max = std::max(sample.monte_carlo_max, v);
+        }
+      }
+      if (i < 12) result_.monte_carlo_curves.push_back(o.value);
+    }
+    summary.seconds = seconds_since(start);
+    result_.monte_carlo = summary;
+  }
+
+  // The channel's sides at a sample: sensitivities of both (chart units) and the nominal play.
+  struct Channel {
+    bool ok = false;
+    std::size_t sample = 0;
+    CurveSlice lower, upper;
+    double lower_value = 0, upper_value = 0;
+    std::vector<double> lower_s, upper_s;
+    std::string lower_label, upper_label;
+  };
+
+  bool side_curve(const SampleState& state, const Side& side, CurveSlice& curve, double& value,
+                  std::vector<double>& s, std::string& label) {
+    for (FeatureId id : side.features) {
+      CurveSlice candidate = curve_for(id, state);
+      double v = side.value;
+      try {
+        s = solver_->sensitivities(candidate, v);
+      } catch (const Error&) {
+        continue;
+      }
+      curve = candidate;
+      value = v;
+      label = space_->feature_pair(id).label;
+      return true;
+    }
+    return false;
+  }
+
+  void threshold() {
+    const Model& m = model_->nominal();
+    std::size_t n = m.parameters.size();
+    std::vector<bool> varied(n, false);
+    for (std::size_t i = 0; i < n; ++i) varied[i] = dist_[i].hi > dist_[i].lo;
+    if (!options_.threshold_parameters.empty()) {
+      varied.assign(n, false);
+      for (const std::string& name : options_.threshold_parameters) {
+        const Parameter* p = m.find_parameter(name);
+        if (!p) throw ModelError("/parameters", "unknown parameter '" + name + "' for the threshold search");
+        varied[static_cast<std::size_t>(p - m.parameters.data())] = true;
+      }
+    }
+    JammingThreshold result;
+    double best = std::numeric_limits<double>::infinity();
+    Channel critical;
+    for (std::size_t k = 0; k < states_.size(); ++k) {
+      const SampleState& state = states_[k];
+      if (!state.valid || !state.lower.present || !state.upper.present) continue;
+      Channel channel;
+      channel.sample = k;
+      if (!side_curve(state, state.lower, channel.lower, channel.lower_value, channel.lower_s, channel.lower_label) ||
+          !side_curve(state, state.upper, channel.upper, channel.upper_value, channel.upper_s, channel.upper_label))
+        continue;
+      double play = channel.upper_value - channel.lower_value;
+      double closing = 0;   // largest decrease of the play per unit scale of the tolerances
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!varied[i]) continue;
+        double d = channel.upper_s[i] - channel.lower_s[i];
+        closing -= std::min(d * dist_[i].lo, d * dist_[i].hi);
+      }
+      if (closing <= 0 || play <= 0) continue;
+      double scale = play / closing;
+      if (scale < best) {
+        best = scale;
+        critical = channel;
+        critical.ok = true;
+      }
+    }
+    if (!critical.ok) {
+      result_.threshold = result;
+      result_.notes.push_back("threshold: no bounded channel along the path");
+      return;
+    }
+    result.found = true;
+    result.scale = best;
+    result.driver = result_.samples[critical.sample].driver;
+    result.lower_contact = critical.lower_label;
+    result.upper_contact = critical.upper_label;
+    result.nominal_play = result_.samples[critical.sample].play;
+    // Certified: the largest of a few scales below the threshold at which both sides' certified
+    // enclosures stay apart at the critical position.
+    for (double factor : {0.95, 0.9, 0.8, 0.6, 0.4}) {
+      Box scaled = box_;
+      for (std::size_t i = 0; i < n; ++i) {
+        scaled.lo[i] = varied[i] ? box_.lo[i] * best * factor : 0;
+        scaled.hi[i] = varied[i] ? box_.hi[i] * best * factor : 0;
+      }
+      try {
+        std::size_t boxes = 0;
+        // Separation needs no tight band: a coarse accuracy subdivides less and fails less.
+        double accuracy = std::max(options_.relative_accuracy, 1.0);
+        Interval lo = solver_->certified_range(critical.lower, scaled, critical.lower_value, critical.lower_s,
+                                               accuracy, options_.absolute_accuracy, boxes);
+        Interval hi = solver_->certified_range(critical.upper, scaled, critical.upper_value, critical.upper_s,
+                                               accuracy, options_.absolute_accuracy, boxes);
+        if (hi.lo > lo.hi) {
+          result.certified_open_scale = best * factor;
+          break;
+        }
+      } catch (const Error&) {
+      }
+    }
+    // Exact confirmation: the worst-case vector at a scale a little above the linearised one,
+    // an exact C-space built there, and its slice at the critical driver position.
+    const SampleState& state = states_[critical.sample];
+    for (int step : {21, 22, 24, 28, 36}) {   // scale x step/20
+      Rational factor = Rational(step, 20) * Rational(best);
+      std::vector<Rational> deviations(n, Rational(0));
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!varied[i]) continue;
+        double d = critical.upper_s[i] - critical.lower_s[i];
+        const Parameter& p = m.parameters[i];
+        deviations[i] = factor * (d > 0 ? Rational(p.range.lo - p.nominal) : Rational(p.range.hi - p.nominal));
+      }
+      Model worst;
+      try {
+        worst = model_->exact_model(deviations);
+      } catch (const ModelError& error) {
+        result.evidence = std::string("the worst-case geometry is invalid: ") + error.what();
+        continue;
+      }
+      CSpace space = CSpace::build(worst, pair_first_, pair_second_);
+      const CSpaceChart& nominal_chart = space_->charts()[state.chart];
+      std::vector<Slice> slices = space.slice(driver_is_x_ ? SliceAxis::x : SliceAxis::y, state.driver_chart.t);
+      const Slice* slice = nullptr;
+      for (const Slice& candidate : slices) {
+        const CSpaceChart& c = space.charts()[candidate.chart];
+        if (c.x_half_turn == nominal_chart.x_half_turn && c.y_half_turn == nominal_chart.y_half_turn) slice = &candidate;
+      }
+      if (!slice) continue;
+      // Free intervals of the slice meeting the nominal channel (lower, upper).
+      std::size_t open = 0;
+      for (std::size_t j = 0; j < slice->intervals.size(); ++j) {
+        if (slice->intervals[j].kind != CellKind::free) continue;
+        double a = j == 0 ? -std::numeric_limits<double>::infinity() : slice->points[j - 1].at.approximate();
+        double b = j == slice->points.size() ? std::numeric_limits<double>::infinity() : slice->points[j].at.approximate();
+        if (b > critical.lower_value && a < critical.upper_value) ++open;
+      }
+      result.confirmed_scale = factor.get_d();
+      result.worst_values.clear();
+      for (std::size_t i = 0; i < n; ++i)
+        if (deviations[i] != 0) result.worst_values.emplace_back(m.parameters[i].name, m.parameters[i].nominal + deviations[i]);
+      if (open == 0) {
+        result.confirmed = true;
+        result.evidence = "exact C-space at tolerances x " + std::to_string(factor.get_d()) +
+                          ": the slice at the critical driver position has no free interval between the two sides of the nominal channel (" +
+                          std::to_string(slice->intervals.size()) + " intervals, all blocked there)";
+        break;
+      }
+      result.evidence = "exact C-space at tolerances x " + std::to_string(factor.get_d()) + ": still " +
+                        std::to_string(open) + " free interval(s) in the channel";
+    }
+    result_.threshold = result;
+  }
+
+  ToleranceOptions options_;
+  std::shared_ptr<const model_detail::ParametricModel> model_;
+  std::unique_ptr<CurveSolver> solver_;
+  std::unique_ptr<CSpace> space_;
+  ToleranceResult result_;
+  std::vector<Distribution> dist_;
+  Box box_;
+  std::size_t driver_ = 0, follower_ = 0;
+  std::string pair_first_, pair_second_;
+  bool driver_is_x_ = true;
+  std::vector<SampleState> states_;
+};
+
+}  // namespace
+
+ToleranceResult analyze_tolerances_text(std::string_view json_text, const ToleranceOptions& options) {
+  return Analysis(json_text, options).run();
+}
+
+ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, const ToleranceOptions& options) {
+  std::error_code error;
+  if (std::filesystem::is_directory(model_file, error))
+    throw IoError("cannot read model file '" + model_file.string() + "': it is a directory");
+  std::ifstream file(model_file, std::ios::binary);
+  if (!file) throw IoError("cannot open model file '" + model_file.string() + "'");
+  std::ostringstream content;
+  content << file.rdbuf();
+  return analyze_tolerances_text(content.str(), options);
+}
+
+}  // namespace hipair

@@ -1,0 +1,124 @@
+// A forward-mode jet over a scalar type S: a value and its gradient with respect to a fixed
+// set of variables, every component of type S. With S = kernels::Interval it encloses a
+// function and its partial derivatives over a whole box of the variables (the certified
+// mean-value form of docs/tolerance.md); Eigen's AutoDiffScalar serves the double case.
+#pragma once
+
+#include "model/parametric/number_traits.hpp"
+
+#include <vector>
+
+namespace hipair::tolerance_detail {
+
+template <class S>
+struct Jet {
+  S value{0};
+  std::vector<S> gradient;   ///< empty: a constant (all partial derivatives 0)
+
+  Jet() = default;
+  Jet(int v) : value(S(v)) {}                      // NOLINT(google-explicit-constructor)
+  explicit Jet(const S& v) : value(v) {}
+  Jet(const S& v, std::vector<S> g) : value(v), gradient(std::move(g)) {}
+
+  static Jet variable(const S& v, std::size_t index, std::size_t count) {
+    std::vector<S> g(count, S(0));
+    g[index] = S(1);
+    return Jet(v, std::move(g));
+  }
+  S partial(std::size_t i) const { return i < gradient.size() ? gradient[i] : S(0); }
+};
+
+namespace jet_detail {
+// a.gradient * fa + b.gradient * fb
+template <class S>
+std::vector<S> combine(const Jet<S>& a, const S& fa, const Jet<S>& b, const S& fb) {
+  std::size_t n = std::max(a.gradient.size(), b.gradient.size());
+  std::vector<S> g(n, S(0));
+  for (std::size_t i = 0; i < a.gradient.size(); ++i) g[i] = g[i] + a.gradient[i] * fa;
+  for (std::size_t i = 0; i < b.gradient.size(); ++i) g[i] = g[i] + b.gradient[i] * fb;
+  return g;
+}
+template <class S>
+std::vector<S> scaled(const Jet<S>& a, const S& f) {
+  std::vector<S> g(a.gradient.size());
+  for (std::size_t i = 0; i < g.size(); ++i) g[i] = a.gradient[i] * f;
+  return g;
+}
+}  // namespace jet_detail
+
+template <class S>
+Jet<S> operator+(const Jet<S>& a, const Jet<S>& b) {
+  std::size_t n = std::max(a.gradient.size(), b.gradient.size());
+  std::vector<S> g(n, S(0));
+  for (std::size_t i = 0; i < a.gradient.size(); ++i) g[i] = a.gradient[i];
+  for (std::size_t i = 0; i < b.gradient.size(); ++i) g[i] = g[i] + b.gradient[i];
+  return Jet<S>(a.value + b.value, std::move(g));
+}
+template <class S>
+Jet<S> operator-(const Jet<S>& a) {
+  return Jet<S>(-a.value, jet_detail::scaled(a, S(-1)));
+}
+template <class S>
+Jet<S> operator-(const Jet<S>& a, const Jet<S>& b) {
+  return a + (-b);
+}
+template <class S>
+Jet<S> operator*(const Jet<S>& a, const Jet<S>& b) {
+  return Jet<S>(a.value * b.value, jet_detail::combine(a, b.value, b, a.value));
+}
+template <class S>
+Jet<S> operator/(const Jet<S>& a, const Jet<S>& b) {
+  S q = a.value / b.value;
+  S inverse = S(1) / b.value;
+  return Jet<S>(q, jet_detail::combine(a, inverse, b, S(-(q * inverse))));
+}
+
+}  // namespace hipair::tolerance_detail
+
+namespace hipair::model_detail {
+
+template <class S>
+struct Arithmetic<tolerance_detail::Jet<S>> {
+  using J = tolerance_detail::Jet<S>;
+  using A = Arithmetic<S>;
+  static J constant(const Rational& q) { return J(A::constant(q)); }
+  static J pi() { return J(A::pi()); }
+  static J sqrt(const J& x) {
+    S r = A::sqrt(x.value);
+    return J(r, tolerance_detail::jet_detail::scaled(x, S(S(1) / (S(2) * r))));
+  }
+  static J sin(const J& x) { return J(A::sin(x.value), tolerance_detail::jet_detail::scaled(x, A::cos(x.value))); }
+  static J cos(const J& x) { return J(A::cos(x.value), tolerance_detail::jet_detail::scaled(x, S(-A::sin(x.value)))); }
+  static J tan(const J& x) { return sin(x) / cos(x); }
+  static J atan2(const J& y, const J& x) {
+    S r2 = x.value * x.value + y.value * y.value;
+    return J(A::atan2(y.value, x.value),
+             tolerance_detail::jet_detail::combine(y, S(x.value / r2), x, S(-(y.value / r2))));
+  }
+  static J abs(const J& x) {
+    if constexpr (std::is_same_v<S, double>) {
+      return x.value < 0 ? J(-x) : x;
+    } else {
+      if (x.value.lo >= 0) return x;
+      if (x.value.hi <= 0) return -x;
+      return J(A::abs(x.value), tolerance_detail::jet_detail::scaled(x, S(-1.0, 1.0)));
+    }
+  }
+  static J extremum(const J& a, const J& b, bool minimum) {
+    if constexpr (std::is_same_v<S, double>) {
+      return (a.value <= b.value) == minimum ? a : b;
+    } else {
+      if (a.value.hi <= b.value.lo) return minimum ? a : b;
+      if (b.value.hi <= a.value.lo) return minimum ? b : a;
+      std::size_t n = std::max(a.gradient.size(), b.gradient.size());
+      std::vector<S> g(n, S(0));
+      for (std::size_t i = 0; i < n; ++i) g[i] = kernels::hull(a.partial(i), b.partial(i));
+      return J(minimum ? A::min(a.value, b.value) : A::max(a.value, b.value), std::move(g));
+    }
+  }
+  static J min(const J& a, const J& b) { return extremum(a, b, true); }
+  static J max(const J& a, const J& b) { return extremum(a, b, false); }
+  static double value(const J& x) { return A::value(x.value); }
+};
+
+}  // namespace hipair::model_detail

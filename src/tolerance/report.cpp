@@ -1,0 +1,378 @@
+// Reports of the tolerance analysis: text for designers, JSON, CSV, and two SVG pictures
+// (the variation band with the Monte Carlo envelope; a contact-zone detail like the paper's
+// Figure 5). Doubles here are for display only.
+#include <hipair/tolerance.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+namespace hipair {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+std::string number(double value, int digits = 6) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
+// Display unit of the follower: degrees for rotations (with the factor), mm for translations.
+double unit_factor(bool rotates) { return rotates ? 180 / pi : 1.0; }
+const char* unit_name(bool rotates) { return rotates ? "deg" : "mm"; }
+const char* driver_unit(bool rotates) { return rotates ? "deg" : "mm"; }
+
+std::string xml_escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '&': out += "&amp;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string distribution_text(const ToleranceResult& r, std::size_t i) {
+  const Parameter& p = r.parameters[i];
+  if (p.range.lo == p.range.hi) return "fixed";
+  switch (p.distribution) {
+    case Parameter::Distribution::uniform: return "uniform";
+    case Parameter::Distribution::normal: return "normal (sigma given), truncated";
+    case Parameter::Distribution::none: return "normal (sigma = width/6), truncated";
+  }
+  return "";
+}
+
+// A simple plot frame mapping data to a 900 x 420 picture.
+struct Frame {
+  double x0, x1, y0, y1;
+  double left = 80, right = 880, top = 40, bottom = 380;
+  double px(double x) const { return left + (x - x0) / (x1 - x0) * (right - left); }
+  double py(double y) const { return bottom - (y - y0) / (y1 - y0) * (bottom - top); }
+};
+
+std::string polyline(const Frame& f, const std::vector<double>& x, const std::vector<double>& y, const std::string& style) {
+  std::string out;
+  std::string points;
+  auto flush = [&] {
+    if (!points.empty()) out += "<polyline fill=\"none\" " + style + " points=\"" + points + "\"/>\n";
+    points.clear();
+  };
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (std::isnan(y[i])) {
+      flush();
+      continue;
+    }
+    points += number(f.px(x[i]), 7) + "," + number(f.py(y[i]), 7) + " ";
+  }
+  flush();
+  return out;
+}
+
+std::string axes(const Frame& f, const std::string& title, const std::string& x_label, const std::string& y_label) {
+  std::ostringstream out;
+  out << "<rect x=\"0\" y=\"0\" width=\"960\" height=\"460\" fill=\"white\"/>\n";
+  out << "<text x=\"480\" y=\"22\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"15\">"
+      << xml_escape(title) << "</text>\n";
+  out << "<rect x=\"" << f.left << "\" y=\"" << f.top << "\" width=\"" << f.right - f.left << "\" height=\""
+      << f.bottom - f.top << "\" fill=\"none\" stroke=\"#444\"/>\n";
+  for (int k = 0; k <= 4; ++k) {
+    double x = f.x0 + (f.x1 - f.x0) * k / 4, y = f.y0 + (f.y1 - f.y0) * k / 4;
+    out << "<text x=\"" << f.px(x) << "\" y=\"" << f.bottom + 16
+        << "\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"11\">" << number(x, 4) << "</text>\n";
+    out << "<text x=\"" << f.left - 6 << "\" y=\"" << f.py(y) + 4
+        << "\" text-anchor=\"end\" font-family=\"sans-serif\" font-size=\"11\">" << number(y, 3) << "</text>\n";
+    out << "<line x1=\"" << f.left << "\" x2=\"" << f.right << "\" y1=\"" << f.py(y) << "\" y2=\"" << f.py(y)
+        << "\" stroke=\"#eee\"/>\n";
+  }
+  out << "<text x=\"480\" y=\"412\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"12\">"
+      << xml_escape(x_label) << "</text>\n";
+  out << "<text x=\"16\" y=\"210\" transform=\"rotate(-90 16 210)\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"12\">"
+      << xml_escape(y_label) << "</text>\n";
+  return out.str();
+}
+
+std::string legend(const std::vector<std::pair<std::string, std::string>>& entries) {
+  std::ostringstream out;
+  double x = 90;
+  for (const auto& [style, text] : entries) {
+    out << "<line x1=\"" << x << "\" x2=\"" << x + 24 << "\" y1=\"440\" y2=\"440\" " << style << "/>\n";
+    out << "<text x=\"" << x + 30 << "\" y=\"444\" font-family=\"sans-serif\" font-size=\"11\">" << xml_escape(text)
+        << "</text>\n";
+    x += 40 + 6.5 * static_cast<double>(text.size());
+  }
+  return out.str();
+}
+
+}  // namespace
+
+std::string tolerance_text_report(const ToleranceResult& r) {
+  std::ostringstream out;
+  double uf = unit_factor(r.follower_rotates);
+  const char* u = unit_name(r.follower_rotates);
+  double ud = unit_factor(r.driver_rotates);
+  out << "Tolerance analysis of '" << r.model_name << "': " << r.driver << " drives " << r.follower << "\n";
+  std::size_t toleranced = 0;
+  for (const Parameter& p : r.parameters) toleranced += p.range.lo != p.range.hi;
+  out << toleranced << " toleranced parameters of " << r.parameters.size() << "; follower positions in " << u
+      << ", driver in " << driver_unit(r.driver_rotates) << ".\n\n";
+  std::size_t contact = 0;
+  double widest_linear = 0, widest_rss = 0, widest_certified = 0, at = 0;
+  for (const VariationSample& s : r.samples) {
+    if (!s.contact) continue;
+    ++contact;
+    if (s.linear_upper - s.linear_lower > widest_linear) {
+      widest_linear = s.linear_upper - s.linear_lower;
+      at = s.driver;
+    }
+    widest_rss = std::max(widest_rss, s.rss_upper - s.rss_lower);
+    widest_certified = std::max(widest_certified, s.certified.upper - s.certified.lower);
+  }
+  out << "Variation of the follower along the path (" << r.samples.size() << " driver positions, " << contact
+      << " in contact):\n";
+  out << "  worst case, linearised: +-" << number(0.5 * widest_linear * uf, 4) << " " << u << " at most (driver "
+      << number(at * ud, 5) << ")\n";
+  out << "  worst case, certified:  +-" << number(0.5 * widest_certified * uf, 4) << " " << u
+      << " at most (interval arithmetic over the whole tolerance box, " << r.certified_boxes
+      << " sub-boxes; at most " << number(r.certified_excess * uf, 3) << " " << u << " wider than linearised)\n";
+  out << "  statistical (mean +- 3 sigma): +-" << number(0.5 * widest_rss * uf, 4) << " " << u << " at most\n\n";
+  out << "Contact regions and their dominant parameters (the paper's Table 1):\n";
+  for (const ContactRegion& region : r.regions) {
+    out << "  " << region.contact << "  (driver " << number(region.driver_start * ud, 5) << " .. "
+        << number(region.driver_end * ud, 5) << "; +-" << number(region.linear_half_width * uf, 3) << " " << u << ")\n";
+    for (std::size_t k = 0; k < region.ranked.size() && k < 5; ++k) {
+      const ParameterContribution& c = region.ranked[k];
+      if (c.contribution <= 0) break;
+      out << "      " << c.parameter << ": " << number(100 * c.share, 3) << " %  (" << number(c.sensitivity * uf, 4)
+          << " " << u << " per unit)\n";
+    }
+  }
+  if (r.monte_carlo) {
+    const MonteCarloSummary& mc = *r.monte_carlo;
+    out << "\nMonte Carlo: " << mc.samples << " parameter vectors (seed " << mc.seed << "), " << mc.evaluations
+        << " certified follower positions in " << number(mc.seconds, 3) << " s\n";
+    out << "  outside the certified band: " << mc.outside_certified << (mc.outside_certified == 0 ? " (as it must be)" : " (A DEFECT)") << "\n";
+    out << "  outside the linearised band: " << mc.outside_linear << " (linearisation error up to "
+        << number(mc.linearisation_error * uf, 3) << " " << u << ")\n";
+  }
+  if (r.threshold) {
+    const JammingThreshold& t = *r.threshold;
+    out << "\nJamming threshold:\n";
+    if (!t.found) {
+      out << "  not found (no bounded channel along the path)\n";
+    } else {
+      out << "  the channel can close when every tolerance is scaled by " << number(t.scale, 4)
+          << " (linearised), at driver " << number(t.driver * ud, 5) << " " << driver_unit(r.driver_rotates)
+          << ", between '" << t.lower_contact << "' and '" << t.upper_contact << "' (nominal play "
+          << number(t.nominal_play * uf, 4) << " " << u << ")\n";
+      if (t.certified_open_scale > 0)
+        out << "  certified open there up to scale " << number(t.certified_open_scale, 4) << "\n";
+      out << "  exact check: " << (t.confirmed ? "CONFIRMED — " : "not confirmed — ") << t.evidence << "\n";
+    }
+  }
+  for (const std::string& note : r.notes) out << "\nNote: " << note << "\n";
+  return out.str();
+}
+
+std::string tolerance_json_report(const ToleranceResult& r) {
+  using nlohmann::ordered_json;
+  ordered_json j;
+  j["model"] = r.model_name;
+  j["driver"] = r.driver;
+  j["follower"] = r.follower;
+  j["follower_unit"] = r.follower_rotates ? "rad" : "mm";
+  ordered_json parameters = ordered_json::array();
+  for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+    const Parameter& p = r.parameters[i];
+    parameters.push_back({{"name", p.name},
+                          {"nominal", p.nominal.get_d()},
+                          {"lower", p.range.lo.get_d()},
+                          {"upper", p.range.hi.get_d()},
+                          {"distribution", distribution_text(r, i)},
+                          {"sigma", r.sigma[i]},
+                          {"mean_deviation", r.mean_shift[i]}});
+  }
+  j["parameters"] = parameters;
+  ordered_json regions = ordered_json::array();
+  for (const ContactRegion& region : r.regions) {
+    ordered_json ranked = ordered_json::array();
+    for (const ParameterContribution& c : region.ranked)
+      if (c.contribution > 0)
+        ranked.push_back({{"parameter", c.parameter}, {"sensitivity", c.sensitivity}, {"contribution", c.contribution}, {"share", c.share}});
+    regions.push_back({{"contact", region.contact},
+                       {"driver_start", region.driver_start},
+                       {"driver_end", region.driver_end},
+                       {"linear_half_width", region.linear_half_width},
+                       {"ranked", ranked}});
+  }
+  j["regions"] = regions;
+  j["certified"] = {{"boxes", r.certified_boxes}, {"largest_excess_over_linearised", r.certified_excess}};
+  if (r.monte_carlo) {
+    const MonteCarloSummary& mc = *r.monte_carlo;
+    j["monte_carlo"] = {{"samples", mc.samples},
+                        {"seed", mc.seed},
+                        {"evaluations", mc.evaluations},
+                        {"outside_certified", mc.outside_certified},
+                        {"outside_linear", mc.outside_linear},
+                        {"linearisation_error", mc.linearisation_error},
+                        {"seconds", mc.seconds}};
+  }
+  if (r.threshold) {
+    const JammingThreshold& t = *r.threshold;
+    ordered_json worst = ordered_json::object();
+    for (const auto& [name, value] : t.worst_values) worst[name] = value.get_str();
+    j["threshold"] = {{"found", t.found},
+                      {"scale", t.scale},
+                      {"driver", t.driver},
+                      {"lower_contact", t.lower_contact},
+                      {"upper_contact", t.upper_contact},
+                      {"nominal_play", t.nominal_play},
+                      {"certified_open_scale", t.certified_open_scale},
+                      {"confirmed", t.confirmed},
+                      {"confirmed_scale", t.confirmed_scale},
+                      {"worst_values", worst},
+                      {"evidence", t.evidence}};
+  }
+  j["zones"] = r.zones.size();
+  j["seconds"] = {{"sensitivity", r.seconds_sensitivity},
+                  {"certified", r.seconds_certified},
+                  {"zones", r.seconds_zones},
+                  {"threshold", r.seconds_threshold}};
+  j["notes"] = r.notes;
+  return j.dump(1) + "\n";
+}
+
+std::string tolerance_csv(const ToleranceResult& r) {
+  std::ostringstream out;
+  out << "driver,contact,nominal,linear_lower,linear_upper,rss_lower,rss_upper,certified_lower,certified_upper,"
+         "monte_carlo_min,monte_carlo_max,play\n";
+  auto f = [](double v) { return number(v, 12); };
+  for (const VariationSample& s : r.samples) {
+    out << f(s.driver) << "," << (s.contact ? (s.region < r.regions.size() ? "\"" + r.regions[s.region].contact + "\"" : "1") : "") << ","
+        << f(s.nominal) << "," << f(s.linear_lower) << "," << f(s.linear_upper) << "," << f(s.rss_lower) << ","
+        << f(s.rss_upper) << "," << f(s.certified.lower) << "," << f(s.certified.upper) << ","
+        << (s.has_monte_carlo ? f(s.monte_carlo_min) : "") << "," << (s.has_monte_carlo ? f(s.monte_carlo_max) : "")
+        << "," << f(s.play) << "\n";
+  }
+  return out.str();
+}
+
+std::string tolerance_sensitivity_csv(const ToleranceResult& r) {
+  std::ostringstream out;
+  out << "region,contact,driver_start,driver_end,rank,parameter,sensitivity,contribution,share\n";
+  for (std::size_t k = 0; k < r.regions.size(); ++k) {
+    const ContactRegion& region = r.regions[k];
+    for (std::size_t i = 0; i < region.ranked.size(); ++i) {
+      const ParameterContribution& c = region.ranked[i];
+      out << k << ",\"" << region.contact << "\"," << number(region.driver_start, 10) << ","
+          << number(region.driver_end, 10) << "," << i + 1 << "," << c.parameter << "," << number(c.sensitivity, 10)
+          << "," << number(c.contribution, 10) << "," << number(c.share, 6) << "\n";
+    }
+  }
+  return out.str();
+}
+
+std::string tolerance_band_svg(const ToleranceResult& r) {
+  double uf = unit_factor(r.follower_rotates), ud = unit_factor(r.driver_rotates);
+  std::vector<double> x, linear_lo, linear_hi, cert_lo, cert_hi, rss_lo, rss_hi, mc_lo, mc_hi;
+  double lo = 0, hi = 0;
+  for (const VariationSample& s : r.samples) {
+    x.push_back(s.driver * ud);
+    double nan = std::numeric_limits<double>::quiet_NaN();
+    auto d = [&](double v) { return s.contact ? (v - s.nominal) * uf : nan; };
+    linear_lo.push_back(d(s.linear_lower));
+    linear_hi.push_back(d(s.linear_upper));
+    cert_lo.push_back(d(s.certified.lower));
+    cert_hi.push_back(d(s.certified.upper));
+    rss_lo.push_back(d(s.rss_lower));
+    rss_hi.push_back(d(s.rss_upper));
+    mc_lo.push_back(s.has_monte_carlo ? d(s.monte_carlo_min) : nan);
+    mc_hi.push_back(s.has_monte_carlo ? d(s.monte_carlo_max) : nan);
+    if (s.contact) {
+      lo = std::min(lo, d(s.certified.lower));
+      hi = std::max(hi, d(s.certified.upper));
+    }
+  }
+  if (x.empty()) x = {0, 1};
+  double pad = 0.08 * (hi - lo + 1e-12);
+  Frame f{x.front(), x.back() == x.front() ? x.front() + 1 : x.back(), lo - pad, hi + pad};
+  if (f.x1 < f.x0) std::swap(f.x0, f.x1);
+  std::ostringstream out;
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"960\" height=\"460\" viewBox=\"0 0 960 460\">\n";
+  out << axes(f, "Variation of " + r.follower + " about its nominal motion (" + r.model_name + ")",
+              r.driver + " (" + driver_unit(r.driver_rotates) + ")",
+              std::string("deviation of ") + r.follower + " (" + unit_name(r.follower_rotates) + ")");
+  out << polyline(f, x, std::vector<double>(x.size(), 0.0), "stroke=\"#000\" stroke-width=\"1\"");
+  out << polyline(f, x, cert_lo, "stroke=\"#c00\" stroke-width=\"1.6\"");
+  out << polyline(f, x, cert_hi, "stroke=\"#c00\" stroke-width=\"1.6\"");
+  out << polyline(f, x, linear_lo, "stroke=\"#06c\" stroke-width=\"1.2\" stroke-dasharray=\"6 3\"");
+  out << polyline(f, x, linear_hi, "stroke=\"#06c\" stroke-width=\"1.2\" stroke-dasharray=\"6 3\"");
+  out << polyline(f, x, rss_lo, "stroke=\"#2a2\" stroke-width=\"1\" stroke-dasharray=\"2 2\"");
+  out << polyline(f, x, rss_hi, "stroke=\"#2a2\" stroke-width=\"1\" stroke-dasharray=\"2 2\"");
+  out << polyline(f, x, mc_lo, "stroke=\"#f90\" stroke-width=\"1.4\"");
+  out << polyline(f, x, mc_hi, "stroke=\"#f90\" stroke-width=\"1.4\"");
+  out << legend({{"stroke=\"#c00\" stroke-width=\"2\"", "certified worst case"},
+                 {"stroke=\"#06c\" stroke-dasharray=\"6 3\"", "linearised worst case"},
+                 {"stroke=\"#2a2\" stroke-dasharray=\"2 2\"", "mean +- 3 sigma"},
+                 {"stroke=\"#f90\" stroke-width=\"2\"", "Monte Carlo envelope"}});
+  out << "</svg>\n";
+  return out.str();
+}
+
+std::string tolerance_zone_svg(const ToleranceResult& r) {
+  // The zone with the widest certified band.
+  const ContactZone* zone = nullptr;
+  double widest = -1;
+  for (const ContactZone& z : r.zones)
+    for (std::size_t k = 0; k < z.x.size(); ++k)
+      if (z.certified_upper[k] - z.certified_lower[k] > widest) {
+        widest = z.certified_upper[k] - z.certified_lower[k];
+        zone = &z;
+      }
+  std::ostringstream out;
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"960\" height=\"460\" viewBox=\"0 0 960 460\">\n";
+  if (!zone) {
+    out << "<text x=\"20\" y=\"40\" font-family=\"sans-serif\">no contact zone</text>\n</svg>\n";
+    return out.str();
+  }
+  double uf = unit_factor(zone->y_rotates), xf = unit_factor(zone->x_rotates);
+  std::vector<double> x, zero, ll, lu, cl, cu;
+  double lo = 0, hi = 0;
+  for (std::size_t k = 0; k < zone->x.size(); ++k) {
+    x.push_back(zone->x[k] * xf);
+    zero.push_back(0);
+    ll.push_back((zone->linear_lower[k] - zone->nominal[k]) * uf);
+    lu.push_back((zone->linear_upper[k] - zone->nominal[k]) * uf);
+    cl.push_back((zone->certified_lower[k] - zone->nominal[k]) * uf);
+    cu.push_back((zone->certified_upper[k] - zone->nominal[k]) * uf);
+    lo = std::min({lo, cl.back(), ll.back()});
+    hi = std::max({hi, cu.back(), lu.back()});
+  }
+  double pad = 0.1 * (hi - lo + 1e-12);
+  Frame f{x.front(), x.back() == x.front() ? x.front() + 1 : x.back(), lo - pad, hi + pad};
+  out << axes(f, "Contact zone (Figure 5 detail): " + zone->contact,
+              std::string("x part coordinate (") + unit_name(zone->x_rotates) + ")",
+              std::string("zone boundary - nominal curve (") + unit_name(zone->y_rotates) + ")");
+  out << polyline(f, x, zero, "stroke=\"#000\" stroke-width=\"1.2\"");
+  out << polyline(f, x, cl, "stroke=\"#c00\" stroke-width=\"1.6\"");
+  out << polyline(f, x, cu, "stroke=\"#c00\" stroke-width=\"1.6\"");
+  out << polyline(f, x, ll, "stroke=\"#06c\" stroke-width=\"1.2\" stroke-dasharray=\"6 3\"");
+  out << polyline(f, x, lu, "stroke=\"#06c\" stroke-width=\"1.2\" stroke-dasharray=\"6 3\"");
+  out << legend({{"stroke=\"#000\"", "nominal contact curve"},
+                 {"stroke=\"#c00\" stroke-width=\"2\"", "certified zone bounds"},
+                 {"stroke=\"#06c\" stroke-dasharray=\"6 3\"", "linearised zone bounds"}});
+  out << "</svg>\n";
+  return out.str();
+}
+
+}  // namespace hipair

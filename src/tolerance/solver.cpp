@@ -1,0 +1,243 @@
+// Contact-curve solver over the parametric model (solver.hpp).
+#include "tolerance/solver.hpp"
+
+#include <hipair/error.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace hipair::tolerance_detail {
+
+using model_detail::Arithmetic;
+using model_detail::AutoDiff;
+
+CurveSolver::CurveSolver(std::shared_ptr<const model_detail::ParametricModel> model)
+    : model_(std::move(model)), n_(model_->parameter_count()) {
+  std::vector<Jet<double>> deviations(n_);
+  for (std::size_t i = 0; i < n_; ++i) deviations[i] = Jet<double>::variable(0.0, i, n_ + 1);
+  autodiff_ = model_->parameter_values(deviations);
+}
+
+template <class T>
+PairGeometry<T> CurveSolver::geometry(const CurveSlice& curve, const std::vector<T>& p) const {
+  PairGeometry<T> g;
+  g.first = model_->edge_value(curve.first.part, curve.first.loop, curve.first.edge, p);
+  g.second = model_->edge_value(curve.second.part, curve.second.loop, curve.second.edge, p);
+  model_->motion_value(curve.fixed_part, p, g.fixed_pivot, g.fixed_direction);
+  model_->motion_value(curve.free_part, p, g.free_pivot, g.free_direction);
+  return g;
+}
+
+template <class T>
+T CurveSolver::evaluate(const CurveSlice& curve, const PairGeometry<T>& g, const T& fixed, const T& free) const {
+  const Model& m = nominal();
+  kernels::Pose<T> fixed_pose =
+      pose_of(m.parts[curve.fixed_part].motion, g.fixed_pivot, g.fixed_direction, fixed, curve.fixed_half_turn);
+  kernels::Pose<T> free_pose =
+      pose_of(m.parts[curve.free_part].motion, g.free_pivot, g.free_direction, free, curve.free_half_turn);
+  const kernels::Pose<T>& a = curve.first.part == curve.fixed_part ? fixed_pose : free_pose;
+  const kernels::Pose<T>& b = curve.second.part == curve.fixed_part ? fixed_pose : free_pose;
+  return contact_function(g.first, curve.first, a, g.second, curve.second, b);
+}
+
+std::vector<double> CurveSolver::sensitivities(const CurveSlice& curve, double& free_value) const {
+  using Dual = Jet<double>;
+  Dual fixed(curve.fixed_value.get_d());
+  Dual f;
+  double fv = 0;
+  PairGeometry<Dual> g = geometry(curve, autodiff_);
+  for (int iteration = 0; iteration < 4; ++iteration) {
+    f = evaluate<Dual>(curve, g, fixed, Dual::variable(free_value, n_, n_ + 1));
+    fv = f.partial(n_);
+    if (!(std::fabs(fv) > 0)) throw NumericError("the contact curve is singular here (F_y = 0)");
+    double step = f.value / fv;
+    free_value -= step;
+    if (std::fabs(step) < 1e-15 * (1 + std::fabs(free_value))) break;
+  }
+  std::vector<double> s(n_);
+  for (std::size_t i = 0; i < n_; ++i) s[i] = -f.partial(i) / fv;
+  return s;
+}
+
+std::vector<Interval> CurveSolver::point_parameters(const std::vector<double>& point) const {
+  std::vector<Interval> deviations(n_);
+  for (std::size_t i = 0; i < n_; ++i) deviations[i] = Interval::point(point[i]);
+  return model_->parameter_values(deviations);
+}
+
+bool CurveSolver::certified_point_root(const CurveSlice& curve, const std::vector<double>& point, Interval bracket,
+                                       Interval& root) const {
+  return certified_point_root(curve, point_parameters(point), bracket, root);
+}
+
+bool CurveSolver::certified_point_root(const CurveSlice& curve, const std::vector<Interval>& parameters,
+                                       Interval bracket, Interval& root) const {
+  PairGeometry<Interval> geometry = this->geometry(curve, parameters);
+  Interval fixed = Interval::enclose(curve.fixed_value);
+  auto sign_at = [&](double v) { return evaluate<Interval>(curve, geometry, fixed, Interval::point(v)).sign(); };
+  double a = bracket.lo, b = bracket.hi;
+  int sa = sign_at(a), sb = sign_at(b);
+  if (sa == 2 || sb == 2 || sa == 0 || sb == 0 || sa == sb) return false;
+  for (int i = 0; i < 64; ++i) {
+    double m = 0.5 * (a + b);
+    if (!(m > a && m < b)) break;
+    int s = sign_at(m);
+    if (s == 2 || s == 0) {
+      // Too close to the root for a certain sign: narrow each end separately (a keeps the
+      // sign sa, b the sign sb; points of uncertain sign count as the other side).
+      double a2 = m, b2 = m;
+      double lo = a, hi = m;
+      for (int j = 0; j < 64 && 0.5 * (lo + hi) > lo && 0.5 * (lo + hi) < hi; ++j) {
+        double c = 0.5 * (lo + hi);
+        if (sign_at(c) == sa) lo = c; else hi = c;
+      }
+      a2 = lo;
+      lo = m;
+      hi = b;
+      for (int j = 0; j < 64 && 0.5 * (lo + hi) > lo && 0.5 * (lo + hi) < hi; ++j) {
+        double c = 0.5 * (lo + hi);
+        if (sign_at(c) == sb) hi = c; else lo = c;
+      }
+      b2 = hi;
+      a = a2;
+      b = b2;
+      break;
+    }
+    if (s == sa) a = m; else b = m;
+  }
+  root = Interval(a, b);
+  return true;
+}
+
+bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free_value,
+                            const std::vector<double>& sensitivity, Interval& result,
+                            std::vector<double>& split_score) const {
+  std::vector<double> center(n_);
+  double spread = 0, shift = 0;
+  for (std::size_t i = 0; i < n_; ++i) {
+    center[i] = 0.5 * (box.lo[i] + box.hi[i]);
+    spread += std::fabs(sensitivity[i]) * (box.hi[i] - box.lo[i]);
+    shift += sensitivity[i] * center[i];
+  }
+  double slack = 1e-12 * (1 + std::fabs(free_value));
+  Interval root;
+  double w0 = spread + slack;
+  bool found = false;
+  for (int attempt = 0; attempt < 4 && !found; ++attempt, w0 *= 4)
+    found = certified_point_root(curve, center, Interval(free_value + shift - w0, free_value + shift + w0), root);
+  if (!found) return false;
+  // Geometry over the box as interval jets (values and partial derivatives over the box), and
+  // at its centre as intervals. F over the box at a fixed v is enclosed in mean-value form:
+  // F(c, v) + sum_i F_i(B, v) (B_i - c_i), far tighter than plain interval evaluation.
+  std::vector<IntervalJet> jets(n_);
+  for (std::size_t i = 0; i < n_; ++i) jets[i] = IntervalJet::variable(Interval(box.lo[i], box.hi[i]), i, n_ + 1);
+  PairGeometry<IntervalJet> jet = geometry(curve, model_->parameter_values(jets));
+  PairGeometry<Interval> at_center = geometry(curve, point_parameters(center));
+  Interval fixed = Interval::enclose(curve.fixed_value);
+  IntervalJet fixed_jet(fixed);
+  auto sign_over_box = [&](double v) {
+    Interval value = evaluate<Interval>(curve, at_center, fixed, Interval::point(v));
+    IntervalJet f = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet(Interval::point(v)));
+    for (std::size_t i = 0; i < n_; ++i)
+      if (box.hi[i] > box.lo[i]) value = value + f.partial(i) * Interval(box.lo[i] - center[i], box.hi[i] - center[i]);
+    return value.sign();
+  };
+  auto offset = [&](std::size_t i) {   // B_i - c_i, outward rounded
+    return Interval::point(box.lo[i]) - Interval::point(center[i]);
+  };
+  auto upper_offset = [&](std::size_t i) { return Interval::point(box.hi[i]) - Interval::point(center[i]); };
+  // The mean-value enclosure over B x Y when Y is certified to hold exactly one root for every
+  // p in B (end signs opposite, F_v of one sign); false otherwise.
+  auto enclose = [&](const Interval& y, Interval& out) {
+    int s_lo = sign_over_box(y.lo);
+    int s_hi = sign_over_box(y.hi);
+    if (s_lo == 2 || s_hi == 2 || s_lo == 0 || s_hi == 0 || s_lo == s_hi) return false;
+    IntervalJet f = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, n_, n_ + 1));
+    Interval fv = f.partial(n_);
+    int s = fv.sign();
+    if (s != 1 && s != -1) return false;
+    Interval enclosure = root;
+    split_score.assign(n_, 0.0);
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (box.hi[i] == box.lo[i]) continue;
+      Interval g = -(f.partial(i) / fv);
+      enclosure = enclosure + g * kernels::hull(offset(i), upper_offset(i));
+      split_score[i] = g.width() * (box.hi[i] - box.lo[i]);
+    }
+    out = Interval(std::max(enclosure.lo, y.lo), std::min(enclosure.hi, y.hi));
+    return true;
+  };
+  double r = 0.75 * spread + slack;
+  for (int attempt = 0; attempt < 6; ++attempt, r *= 3) {
+    Interval y(root.lo - r, root.hi + r);
+    if (!enclose(y, result)) continue;
+    // Contract: the enclosure itself (slightly widened) as the next Y gives tighter derivative
+    // bounds; keep the last certified enclosure.
+    for (int contraction = 0; contraction < 3; ++contraction) {
+      double pad = 1e-3 * result.width() + slack;
+      Interval narrower(result.lo - pad, result.hi + pad);
+      if (!(narrower.width() < 0.9 * y.width())) break;
+      Interval next;
+      if (!enclose(narrower, next)) break;
+      y = narrower;
+      result = next;
+    }
+    return true;
+  }
+  return false;
+}
+
+Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, double free_value,
+                                      const std::vector<double>& sensitivity, double relative_accuracy,
+                                      double absolute_accuracy, std::size_t& boxes) const {
+  constexpr std::size_t max_boxes = 256;
+  std::vector<Box> pending{box};
+  bool have = false;
+  Interval hull_of_all;
+  std::size_t used = 0;
+  while (!pending.empty()) {
+    Box b = std::move(pending.back());
+    pending.pop_back();
+    ++used;
+    Interval range;
+    std::vector<double> score;
+    bool ok = box_range(curve, b, free_value, sensitivity, range, score);
+    double linear = 0;
+    for (std::size_t i = 0; i < n_; ++i) linear += std::fabs(sensitivity[i]) * (b.hi[i] - b.lo[i]);
+    bool accurate = ok && range.width() <= linear * (1 + relative_accuracy) + absolute_accuracy;
+    if (!accurate && used + pending.size() + 2 <= max_boxes) {
+      std::size_t split = 0;
+      double best = -1;
+      for (std::size_t i = 0; i < n_; ++i) {
+        double s = ok ? score[i] : std::fabs(sensitivity[i]) * (b.hi[i] - b.lo[i]);
+        if (b.hi[i] > b.lo[i] && s > best) {
+          best = s;
+          split = i;
+        }
+      }
+      if (best > 0) {
+        Box left = b, right = b;
+        double m = 0.5 * (b.lo[split] + b.hi[split]);
+        left.hi[split] = m;
+        right.lo[split] = m;
+        pending.push_back(std::move(left));
+        pending.push_back(std::move(right));
+        continue;
+      }
+    }
+    if (!ok) throw NumericError("cannot certify the contact curve over the tolerance box (the curve may be singular or the contact may change inside it)");
+    hull_of_all = have ? kernels::hull(hull_of_all, range) : range;
+    have = true;
+  }
+  boxes += used;
+  return hull_of_all;
+}
+
+Interval chart_to_angle(const Interval& t, bool half_turn) {
+  Interval a = model_detail::number_detail::through_mpfi(t, [](mpfi_ptr r, mpfi_srcptr x) { mpfi_atan(r, x); });
+  Interval theta = Interval(2) * a;
+  if (half_turn) theta = theta + Arithmetic<Interval>::pi();
+  return theta;
+}
+
+}  // namespace hipair::tolerance_detail

@@ -1,0 +1,90 @@
+// The follower's coordinate on one contact curve at a fixed driver coordinate, as a function of
+// the parameters: value and partial derivatives (AutoDiff, implicit differentiation), certified
+// enclosures over a box of parameters (interval jets, mean-value form, subdivision) and at a
+// point of the box (interval bisection). Internal to src/tolerance/ (docs/tolerance.md).
+#pragma once
+
+#include "tolerance/contact_function.hpp"
+#include "tolerance/jet.hpp"
+
+#include <hipair/cspace.hpp>
+
+#include <memory>
+#include <vector>
+
+namespace hipair::tolerance_detail {
+
+using Interval = kernels::Interval;
+using IntervalJet = Jet<Interval>;
+
+/// A contact curve with one coordinate held: F(fixed, free; p) = 0 solved for `free`.
+struct CurveSlice {
+  FeatureIdentity first, second;       ///< the feature pair (parts index Model::parts)
+  std::size_t fixed_part = 0;          ///< the part whose chart coordinate is held
+  std::size_t free_part = 0;           ///< the part whose chart coordinate is solved for
+  bool fixed_half_turn = false, free_half_turn = false;
+  Rational fixed_value;                ///< chart coordinate of the held part (exact)
+};
+
+/// What a curve slice needs of the geometry: the two features' edges and both parts' axes.
+template <class T>
+struct PairGeometry {
+  model_detail::EdgeValue<T> first, second;
+  kernels::Vector<T> fixed_pivot, fixed_direction, free_pivot, free_direction;
+};
+
+/// A tolerance box of deviations (per parameter, [lo, hi]).
+struct Box {
+  std::vector<double> lo, hi;
+};
+
+/// What the solver needs of the model, with geometry caches.
+class CurveSolver {
+ public:
+  explicit CurveSolver(std::shared_ptr<const model_detail::ParametricModel> model);
+
+  std::size_t parameters() const { return n_; }
+  const Model& nominal() const { return model_->nominal(); }
+
+  /// dv/dp_i (chart units) at the nominal parameters, at the curve point near `free_value`;
+  /// also the refined free value (Newton in double). \throws NumericError when F_free = 0.
+  std::vector<double> sensitivities(const CurveSlice& curve, double& free_value) const;
+
+  /// Certified enclosure of the root in `bracket` of F at the point deviations `point`
+  /// (each exact as a double). Returns false when no certified sign change is found.
+  bool certified_point_root(const CurveSlice& curve, const std::vector<double>& point, Interval bracket,
+                            Interval& root) const;
+  /// Same with the geometry already evaluated at the point.
+  bool certified_point_root(const CurveSlice& curve, const std::vector<Interval>& parameters,
+                            Interval bracket, Interval& root) const;
+  /// Parameter values (enclosures) at point deviations.
+  std::vector<Interval> point_parameters(const std::vector<double>& point) const;
+
+  /// Certified enclosure of {v(p) : p in box} (the root near the nominal `free_value`, unique
+  /// in a neighbourhood certified along the way), subdividing the box until the enclosure is
+  /// within `accuracy` of the linearised width `linear_width` (absolute, chart units).
+  /// Counts sub-boxes in `boxes`. \throws NumericError when it cannot certify.
+  Interval certified_range(const CurveSlice& curve, const Box& box, double free_value,
+                           const std::vector<double>& sensitivity, double relative_accuracy,
+                           double absolute_accuracy, std::size_t& boxes) const;
+
+ private:
+  template <class T>
+  PairGeometry<T> geometry(const CurveSlice& curve, const std::vector<T>& parameters) const;
+  template <class T>
+  T evaluate(const CurveSlice& curve, const PairGeometry<T>& geometry, const T& fixed, const T& free) const;
+  bool box_range(const CurveSlice& curve, const Box& box, double free_value, const std::vector<double>& sensitivity,
+                 Interval& result, std::vector<double>& split_score) const;
+
+  std::shared_ptr<const model_detail::ParametricModel> model_;
+  std::size_t n_ = 0;
+  /// Nominal parameter values with their gradient over (p, v). A jet of doubles rather than
+  /// Eigen's AutoDiffScalar: the kernels mix constants (no gradient) into nested expressions,
+  /// which AutoDiffScalar's dynamic-size gradients do not reconcile.
+  std::vector<Jet<double>> autodiff_;
+};
+
+/// Half-angle tangent chart value -> part coordinate (rad), certified: c + 2 atan(t).
+Interval chart_to_angle(const Interval& t, bool half_turn);
+
+}  // namespace hipair::tolerance_detail
