@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   hipair::cli::register_analyze(app, action);
   hipair::cli::register_certify(app, action);
   hipair::cli::register_cspace(app, action);
+  hipair::cli::register_simulate(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
