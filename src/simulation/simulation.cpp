@@ -219,6 +219,8 @@ struct Simulation::Impl {
     return std::tan(a / 2);
   }
 
+  static constexpr double edge_slack = 1e-9;   // chart units
+
   // the constraint's gradient over dofs, its bias h (g'' = G q'' + h) and its value g
   bool row(const Active& a, const Vec& qs, const Vec& vs, Vec& G, double& h, double& gval) const {
     G.assign(dofs.size(), 0.0);
@@ -230,7 +232,10 @@ struct Simulation::Impl {
     }
     const CSpaceChart& chart = chart_of(a);
     double tx = to_chart(chart.x_kind, chart.x_half_turn, qs[a.xdof]);
-    if (tx < a.x_lo || tx > a.x_hi) return false;
+    if (tx < a.x_lo - edge_slack || tx > a.x_hi + edge_slack) return false;
+    // within the slack of an end: the nearest abscissa strictly inside (the ends are algebraic)
+    double inset = 1e-9 * (a.x_hi - a.x_lo);
+    tx = std::clamp(tx, a.x_lo + inset, a.x_hi - inset);
     EdgeDerivatives d;
     try {
       d = spaces[a.pair]->derivatives(a.edge, Rational(tx));
@@ -483,9 +488,7 @@ struct Simulation::Impl {
   }
 
   // move the configuration off contact space along `G` until the pair is certainly free
-  void nudge_free(std::size_t pair, const Vec& G) {
-    double scale = 1;
-    for (std::size_t i = 0; i < dofs.size(); ++i) scale = std::max(scale, std::abs(q[i]));
+  void nudge_free(std::size_t pair, const Vec& G, double first = 1e-13) {
     Vec dir(dofs.size(), 0.0);
     double norm = 0;
     for (std::size_t i = 0; i < dofs.size(); ++i)
@@ -498,7 +501,7 @@ struct Simulation::Impl {
       if (c.status == CrossingStatus::none) return;
       if (c.status == CrossingStatus::outside_region) outside(pair, t);
       if (norm == 0) break;
-      double eps = 1e-13 * scale * std::ldexp(1.0, k);
+      double eps = first * std::ldexp(1.0, k);
       for (std::size_t i = 0; i < dofs.size(); ++i) q[i] += eps * dir[i] / norm;
     }
     std::ostringstream out;
@@ -646,7 +649,49 @@ struct Simulation::Impl {
   }
 
   // ---------------------------------------------------------------- one step
+  // The edge that continues sustained contact `a` past the end of its edge with the same feature
+  // pair (across a chart seam, or past a vertex where another curve only crosses spurious
+  // space): nullopt when the contact really changes there.
+  std::optional<Active> continuation(const Active& a) const {
+    if (a.point || !a.edge.valid()) return std::nullopt;
+    const CSpace& space = *spaces[a.pair];
+    const CSpaceEdge& old_edge = space.edge(a.edge);
+    for (std::size_t e = 0; e < space.edges().size(); ++e) {
+      if (e == a.edge.index()) continue;
+      const CSpaceEdge& edge = space.edges()[e];
+      if (!edge.real || edge.vertical) continue;
+      bool shares = std::any_of(edge.curves.begin(), edge.curves.end(), [&](std::size_t c) {
+        return std::find(old_edge.curves.begin(), old_edge.curves.end(), c) != old_edge.curves.end();
+      });
+      if (!shares) continue;
+      const CSpaceChart& chart = space.charts()[edge.chart];
+      double tx = to_chart(chart.x_kind, chart.x_half_turn, q[a.xdof]);
+      if (!(tx > edge.x_chart.lower - edge_slack && tx < edge.x_chart.upper + edge_slack)) continue;
+      Active b = a;
+      b.edge = EdgeId(e);
+      b.chart = edge.chart;
+      b.x_lo = edge.x_chart.lower;
+      b.x_hi = edge.x_chart.upper;
+      Vec G;
+      double h, gval;
+      b.sigma = 1;
+      if (!row(b, q, v, G, h, gval)) continue;
+      if (std::abs(gval) > 1e-6) continue;   // another branch of the curve
+      BlockedSide side = space.blocked_side(b.edge);
+      b.sigma = side == BlockedSide::left ? -1 : 1;
+      return b;
+    }
+    return std::nullopt;
+  }
+
   void release(std::size_t k, SimulationEvent::Kind kind) {
+    if (kind == SimulationEvent::Kind::edge_end) {
+      if (std::optional<Active> next = continuation(active[k])) {
+        active[k] = *next;
+        project_active();
+        return;
+      }
+    }
     Active a = active[k];
     Vec G;
     double h, gval;
@@ -667,7 +712,7 @@ struct Simulation::Impl {
       for (std::size_t f : spaces[a.pair]->edge(a.edge).curves) e.features.push_back(spaces[a.pair]->feature_pair(FeatureId(f)).label);
     events.push_back(e);
     active.erase(active.begin() + static_cast<std::ptrdiff_t>(k));
-    nudge_free(a.pair, G);
+    nudge_free(a.pair, G, options.release_gap);
   }
 
   void step(double t_limit) {
