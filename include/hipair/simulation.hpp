@@ -36,7 +36,7 @@ struct SimulationOptions {
   /// contact space along the contact normal by this much (relative to max(1, |q|), rad or mm)
   /// before the free motion's first certified query: a path leaving a contact curve
   /// tangentially is otherwise certified free only by exponentially fine subdivision.
-  double release_gap = 1e-6;
+  double release_gap = 1e-5;
   /// Stop with NumericError after this many steps (a runaway or Zeno run).
   std::size_t max_steps = 2000000;
 };
