@@ -28,7 +28,12 @@ std::vector<double> ticks(double lo, double hi) {
       break;
     }
   std::vector<double> out;
-  for (double v = std::ceil(lo / step) * step; v <= hi + step * 1e-9; v += step) out.push_back(std::abs(v) < step * 1e-9 ? 0 : v);
+  double first = std::ceil(lo / step) * step;
+  for (int i = 0; i < 20; ++i) {
+    double v = first + i * step;
+    if (v > hi + step * 1e-9) break;
+    out.push_back(std::abs(v) < step * 1e-9 ? 0 : v);
+  }
   return out;
 }
 
@@ -57,7 +62,7 @@ std::string time_plot_svg(const TimePlot& plot) {
         hi = any ? std::max(hi, v) : v;
         any = true;
       }
-    if (!(hi > lo)) {
+    if (!(hi - lo > 1e-9 * std::max({1.0, std::abs(lo), std::abs(hi)}))) {   // constant (to rounding)
       lo -= 1;
       hi += 1;
     }
