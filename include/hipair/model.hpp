@@ -109,6 +109,53 @@ struct PairSpec {
   std::string pointer;
 };
 
+/// What a dynamical simulation needs beyond the parts' dynamics data (top-level key
+/// "simulation", docs/model-format.md#simulation). Values are stored as written in the file's
+/// declared units (angles in rad); hipair::Simulation converts them once, using `time_unit`
+/// and `force_unit`, to its internal consistent system kg, mm, s (force kg·mm/s² = mN).
+struct SimulationSpec {
+  std::string time_unit = "s";     ///< "s" or "ms": unit of time of every rate in the file
+  std::string force_unit = "N";    ///< "N" or "mN": unit of every force, torque, stiffness, damping
+  Point gravity;                   ///< global acceleration, mm / time_unit^2
+  /// Initial velocity of a moving part: rad / time_unit (rotation) or mm / time_unit.
+  struct Velocity {
+    std::size_t part = 0;
+    Rational value;
+    std::string pointer;
+  };
+  /// A driver whose coordinate follows a prescribed law instead of its dynamics:
+  /// q(t) = q0 + speed * t (constant speed; rad or mm per time_unit).
+  struct Driver {
+    std::size_t part = 0;
+    Rational speed;
+    std::string pointer;
+  };
+  /// A linear spring and damper between a point of one part and a point of another (or of the
+  /// frame: a fixed part). Points in world coordinates at the parts' zero configuration (mm).
+  /// Force along the line: stiffness * (length - rest_length) + damping * d(length)/dt.
+  struct Coupling {
+    std::size_t first = 0, second = 0;
+    Point first_point, second_point;
+    Rational stiffness;            ///< force_unit / mm
+    Rational rest_length;          ///< mm
+    Rational damping;              ///< force_unit * time_unit / mm
+    std::string pointer;
+  };
+  /// Centre of mass of a rotating part (world coordinates at its zero configuration, mm):
+  /// where gravity acts. Default: the pivot (gravity exerts no torque).
+  struct CenterOfMass {
+    std::size_t part = 0;
+    Point at;
+    std::string pointer;
+  };
+  std::vector<Velocity> velocities;
+  std::vector<Driver> drivers;
+  std::vector<Coupling> couplings;
+  std::vector<CenterOfMass> centers_of_mass;
+  std::optional<Rational> accuracy;   ///< default integration accuracy (relative, > 0)
+  std::string pointer;
+};
+
 /// A whole mechanism, exact.
 struct Model {
   std::string name;
@@ -118,6 +165,7 @@ struct Model {
   std::vector<Part> parts;
   std::vector<PairSpec> pairs;             ///< explicit, or every pair of parts (see docs)
   bool pairs_explicit = false;
+  std::optional<SimulationSpec> simulation; ///< top-level "simulation" (docs/model-format.md)
   std::vector<Rounding> roundings;         ///< every inexact input that was rounded
   std::string source;                      ///< file name or "<string>"
   std::string content_hash;                ///< SHA-256 of the file bytes, hex

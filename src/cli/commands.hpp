@@ -20,6 +20,7 @@ void register_analyze(CLI::App& app, Action& action);
 void register_certify(CLI::App& app, Action& action);
 void register_cspace(CLI::App& app, Action& action);
 void register_tolerance(CLI::App& app, Action& action);
+void register_simulate(CLI::App& app, Action& action);
 
 /// Reader options from `--set NAME=VALUE` assignments (exact literals in mm or rad) and
 /// `--allow-out-of-tolerance`. \throws ModelError naming the bad assignment.

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   hipair::cli::register_certify(app, action);
   hipair::cli::register_cspace(app, action);
   hipair::cli::register_tolerance(app, action);
+  hipair::cli::register_simulate(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -15,7 +15,7 @@ Model Reader::read() {
   model_.content_hash = detail::sha256_hex(text_);
   JsonValue root = parse_json(text_);
   if (!root.is_object()) throw ModelError("", "a model file must hold a JSON object");
-  check_keys(root, {"hipair", "name", "description", "units", "parameters", "parts", "pairs"});
+  check_keys(root, {"hipair", "name", "description", "units", "parameters", "parts", "pairs", "simulation"});
   read_version(require(root, "hipair"));
   model_.name = read_string(require(root, "name"), false);
   if (const JsonValue* description = root.find("description"))
@@ -24,6 +24,7 @@ Model Reader::read() {
   read_parameters(root.find("parameters"));
   read_parts(require(root, "parts"));
   read_pairs(root.find("pairs"));
+  read_simulation(root.find("simulation"));
   return std::move(model_);
 }
 

@@ -98,6 +98,10 @@ class Reader {
   void read_units(const JsonValue* units);
   void read_pairs(const JsonValue* pairs);
 
+  // simulation data (reader_dynamics.cpp)
+  void read_simulation(const JsonValue* simulation);
+  std::size_t moving_part(const JsonValue& name);
+
   // parameters (reader_parameters.cpp)
   void read_parameters(const JsonValue* parameters);
   Quantity parameter_value(const std::string& name, const std::string& used_at);

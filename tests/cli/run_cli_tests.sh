@@ -211,6 +211,22 @@ cp "$geneva" "$work/tol-self/report.txt"   # the model has the name of an output
 "$hipair" tolerance "$work/tol-self/report.txt" --quiet --out "$work/tol-self" >/dev/null 2>"$work/tol-self.err" \
   && fail "tolerance --out over its own model succeeded"
 cmp -s "$geneva" "$work/tol-self/report.txt" || fail "tolerance --out clobbered its model"
+# hipair simulate: summary, event log, trajectories and pictures, all or nothing.
+"$hipair" simulate "$source/examples/models/bouncing-bar.json" --t-end 0.3 --out "$work/sim-bar" >"$work/sim-bar.out" 2>&1 \
+  || fail "simulate bouncing-bar: $(tail -c 300 "$work/sim-bar.out")"
+for file in trajectory.csv events.json events.txt positions.svg velocities.svg; do
+  [ -s "$work/sim-bar/$file" ] || fail "simulate bouncing-bar: no $file"
+done
+grep -q "impact" "$work/sim-bar/events.txt" || fail "simulate bouncing-bar: no impact logged"
+[ "$(grep -c . "$work/sim-bar/trajectory.csv")" -gt 10 ] || fail "simulate bouncing-bar: trajectory too short"
+"$hipair" simulate "$source/examples/models/bouncing-bar.json" --t-end -1 --out "$work/sim-bad" >/dev/null 2>"$work/sim-bad.err"
+code=$?
+{ [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "simulate --t-end -1: exit $code"
+[ -e "$work/sim-bad" ] && fail "simulate --t-end -1 wrote an output directory"
+printf '{"hipair": 1, "name": "m", "parts": [{"name": "a", "motion": {"rotation": {"pivot": [0, 0]}}, "loops": [{"start": [1, 0], "edges": [{"line_to": [2, 0]}, {"line_to": [2, 1]}, {"line_to": [1, 0]}]}]}], "simulation": {"units": {"time": "min"}}}' >"$work/sim-unit.json"
+"$hipair" simulate "$work/sim-unit.json" --t-end 1 >/dev/null 2>"$work/sim-unit.err"
+[ $? -eq 2 ] || fail "simulate with a bad time unit: not a model error"
+grep -q "/simulation/units/time" "$work/sim-unit.err" || fail "simulate bad unit: no pointer: $(cat "$work/sim-unit.err")"
 
 # No stray temporary files left by atomic writes.
 ls -a "$work" | grep -q '\.tmp' && fail "temporary files left behind"

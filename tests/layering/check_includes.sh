@@ -23,6 +23,7 @@ declare -A allowed=(
   [cspace]="cspace core model kernels"
   [kinematics]="kinematics core kernels"
   [tolerance]="tolerance core model kernels"
+  [simulation]="simulation core kernels"
   [certify]="certify core model kernels"
   [verifier]="certify core model io"
   [io]="io core"

@@ -1,0 +1,115 @@
+// HIPAIR — dynamical simulation of fixed-axis mechanisms with changing contacts
+// (docs/simulation.md). Collision detection uses only the public hipair::CSpace adaptor: every
+// integration step's motion of every pair is a MotionPath checked with the certified
+// CSpace::first_crossing, so that no contact is skipped whatever the step size; impacts use the
+// contact point and normal of the crossing, sustained contact the contact curve's derivatives.
+// No CGAL, Eigen or Boost type appears here.
+#pragma once
+
+#include <hipair/cspace.hpp>
+#include <hipair/model.hpp>
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace hipair {
+
+/// Options of a simulation. Times and rates are in the model's time unit
+/// (SimulationSpec::time_unit), positions in rad or mm.
+struct SimulationOptions {
+  /// Relative and absolute error tolerance per integration step (Dormand–Prince 5(4) with
+  /// error control). 0: the model's "simulation"/"accuracy", or 1e-9.
+  double accuracy = 0;
+  /// Largest integration step (time unit); 0: no limit beyond error control. Events never
+  /// depend on it: each step's motion is checked as a whole.
+  double max_step = 0;
+  /// Width of the certified crossing brackets: (step) / 2^crossing_bits.
+  unsigned crossing_bits = 44;
+  /// Build each pair's C-space as an operating region around the initial configuration
+  /// (CSpaceBuildOptions::operating_region); leaving it is a GeometryError.
+  bool operating_region = false;
+  /// When a sustained contact ends (lift-off, end of its edge) the configuration is moved off
+  /// contact space along the contact normal by this much (relative to max(1, |q|), rad or mm)
+  /// before the free motion's first certified query: a path leaving a contact curve
+  /// tangentially is otherwise certified free only by exponentially fine subdivision.
+  double release_gap = 1e-5;
+  /// Stop with NumericError after this many steps (a runaway or Zeno run).
+  std::size_t max_steps = 2000000;
+};
+
+/// The state of every part (model order); fixed parts have position and velocity 0.
+struct SimulationState {
+  double time = 0;
+  std::vector<double> position;   ///< rad or mm
+  std::vector<double> velocity;   ///< rad or mm per time unit
+};
+
+/// A contact event of one pair.
+struct SimulationEvent {
+  enum class Kind {
+    impact,      ///< free -> contact with an impulse (Newton restitution)
+    contact,     ///< sustained contact begins (after an impact that left no separating speed)
+    lift_off,    ///< sustained contact ends: its force would turn negative
+    edge_end     ///< sustained contact reaches the end of its contact edge (a contact change)
+  };
+  Kind kind = Kind::impact;
+  double time = 0;
+  std::size_t pair = 0;                  ///< index into Model::pairs
+  std::string first_part, second_part;
+  std::vector<std::string> features;     ///< feature-pair labels ("pin / slot wall")
+  EdgeId edge;                           ///< the contact edge (sustained contact), when known
+  double impulse = 0;                    ///< impact: normal impulse, force unit x time unit
+  double normal_speed_before = 0;        ///< impact: approach speed along the contact normal (mm / time unit)
+  double normal_speed_after = 0;
+  std::array<double, 2> point{};         ///< world contact point (mm), approximate
+  std::array<double, 2> normal{};        ///< unit normal, first part into second
+};
+
+/// Name of an event kind: "impact", "contact", "lift-off", "edge-end".
+std::string to_string(SimulationEvent::Kind kind);
+
+/// A simulation of a model with a "simulation" section (or none: all defaults).
+class Simulation {
+ public:
+  /// Builds the C-spaces of the model's pairs whose parts move (once) and the initial state.
+  /// \throws ModelError for dynamics data the simulator cannot use (a free part without mass,
+  /// a linear spring on a rotating part, ...), GeometryError for pairs that are not fixed-axis.
+  static Simulation create(const Model& model, const SimulationOptions& options = {});
+  Simulation(Simulation&&) noexcept;
+  Simulation& operator=(Simulation&&) noexcept;
+  ~Simulation();
+
+  /// One integration step; it ends exactly at the earliest contact event of any pair.
+  /// \throws GeometryError when a part leaves a pair's built C-space (or its motion limits),
+  /// NumericError when the integration fails.
+  void step();
+  /// Steps until `t_end` (the last step ends there exactly). `progress(t)` is called after
+  /// each step when given.
+  void run_until(double t_end, const std::function<void(double)>& progress = {});
+
+  const SimulationState& state() const;
+  const std::vector<SimulationEvent>& events() const;
+  /// Kinetic energy plus the potential of springs, gravity and constant loads, in the model's
+  /// force unit x mm.
+  double energy() const;
+  /// Accepted steps so far.
+  std::size_t steps() const;
+  /// The model and its pairs' C-spaces (index = Model::pairs index; null for pairs skipped
+  /// because no part of them moves).
+  const Model& model() const;
+  const std::vector<std::shared_ptr<const CSpace>>& spaces() const;
+  /// The time unit and force unit of the model ("s", "N", ...).
+  const std::string& time_unit() const;
+  const std::string& force_unit() const;
+
+ private:
+  struct Impl;
+  explicit Simulation(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace hipair

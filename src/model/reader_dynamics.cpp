@@ -1,0 +1,148 @@
+// Reader step for the top-level "simulation" object (docs/model-format.md#simulation): units of
+// time and force, gravity, initial velocities, drivers with a prescribed motion law, springs and
+// dampers between two parts, centres of mass, the default accuracy. Every error names the JSON
+// pointer of the offending value.
+#include "model/reader.hpp"
+
+#include <hipair/error.hpp>
+
+#include <map>
+#include <set>
+
+namespace hipair::model_detail {
+
+std::size_t Reader::moving_part(const JsonValue& value) {
+  std::string name = read_string(value, false);
+  auto index = model_.find_part(name);
+  if (!index) throw ModelError(value.pointer, "unknown part '" + name + "'");
+  const Motion& motion = model_.parts[*index].motion;
+  if (motion.kind != Motion::Kind::rotation && motion.kind != Motion::Kind::translation)
+    throw ModelError(value.pointer, "part '" + name + "' " +
+                                        (motion.kind == Motion::Kind::fixed
+                                             ? std::string("is fixed")
+                                             : std::string("is not a fixed-axis part (rotation or translation)")) +
+                                        ": the simulator moves rotating and translating parts");
+  return *index;
+}
+
+void Reader::read_simulation(const JsonValue* value) {
+  if (!value) return;
+  expect_object(*value, "a simulation object");
+  check_keys(*value, {"units", "gravity", "velocities", "drivers", "springs", "centers_of_mass", "accuracy"});
+  SimulationSpec spec;
+  spec.pointer = value->pointer;
+  if (const JsonValue* units = value->find("units")) {
+    expect_object(*units, "an object {\"time\": \"s\", \"force\": \"N\"}");
+    check_keys(*units, {"time", "force"});
+    if (const JsonValue* time = units->find("time")) {
+      spec.time_unit = read_string(*time, false);
+      if (spec.time_unit != "s" && spec.time_unit != "ms")
+        throw ModelError(time->pointer, "unsupported time unit '" + spec.time_unit + "' (\"s\" or \"ms\")");
+    }
+    if (const JsonValue* force = units->find("force")) {
+      spec.force_unit = read_string(*force, false);
+      if (spec.force_unit != "N" && spec.force_unit != "mN")
+        throw ModelError(force->pointer, "unsupported force unit '" + spec.force_unit + "' (\"N\" or \"mN\")");
+    }
+  }
+  if (const JsonValue* gravity = value->find("gravity")) {
+    expect_array(*gravity, "a gravity vector [gx, gy] (mm per time unit squared)");
+    if (gravity->items.size() != 2)
+      throw ModelError(gravity->pointer, "gravity is [gx, gy]: expected 2 numbers, found " +
+                                             std::to_string(gravity->items.size()));
+    spec.gravity = Point{number(gravity->items[0]), number(gravity->items[1])};
+  }
+  // a rate of a part's coordinate: angle per time (in the file's angle unit) or mm per time
+  auto rate = [&](const JsonValue& v, std::size_t part) {
+    return model_.parts[part].motion.kind == Motion::Kind::rotation ? angle(v) : number(v);
+  };
+  std::set<std::size_t> driven;
+  if (const JsonValue* drivers = value->find("drivers")) {
+    expect_array(*drivers, "an array of drivers");
+    for (const JsonValue& d : drivers->items) {
+      expect_object(d, "a driver {\"part\": name, \"speed\": v}");
+      check_keys(d, {"part", "law", "speed"});
+      SimulationSpec::Driver driver;
+      driver.pointer = d.pointer;
+      driver.part = moving_part(require(d, "part"));
+      if (!driven.insert(driver.part).second)
+        throw ModelError(d.pointer, "part '" + model_.parts[driver.part].name + "' is driven twice");
+      if (const JsonValue* law = d.find("law")) {
+        std::string name = read_string(*law, false);
+        if (name != "constant_speed")
+          throw ModelError(law->pointer, "unsupported motion law '" + name + "' (\"constant_speed\")");
+      }
+      driver.speed = rate(require(d, "speed"), driver.part);
+      spec.drivers.push_back(driver);
+    }
+  }
+  if (const JsonValue* velocities = value->find("velocities")) {
+    expect_object(*velocities, "an object: part name -> initial velocity");
+    for (const JsonMember& member : velocities->members) {
+      auto index = model_.find_part(member.key);
+      if (!index) throw ModelError(member.value.pointer, "unknown part '" + member.key + "'");
+      const Motion& motion = model_.parts[*index].motion;
+      if (motion.kind != Motion::Kind::rotation && motion.kind != Motion::Kind::translation)
+        throw ModelError(member.value.pointer, "part '" + member.key + "' has no single coordinate to give a velocity");
+      if (driven.count(*index))
+        throw ModelError(member.value.pointer, "part '" + member.key + "' is a driver: its speed is the driver's");
+      spec.velocities.push_back(SimulationSpec::Velocity{*index, rate(member.value, *index), member.value.pointer});
+    }
+  }
+  if (const JsonValue* springs = value->find("springs")) {
+    expect_array(*springs, "an array of springs between two parts");
+    for (const JsonValue& s : springs->items) {
+      expect_object(s, "a spring {\"parts\": [a, b], \"points\": [[x, y], [x, y]], \"stiffness\": k}");
+      check_keys(s, {"parts", "points", "stiffness", "rest_length", "damping"});
+      SimulationSpec::Coupling coupling;
+      coupling.pointer = s.pointer;
+      const JsonValue& names = expect_array(require(s, "parts"), "two part names [a, b]");
+      if (names.items.size() != 2)
+        throw ModelError(names.pointer, "a spring joins exactly 2 parts, found " + std::to_string(names.items.size()));
+      std::size_t indices[2];
+      for (int k = 0; k < 2; ++k) {
+        std::string name = read_string(names.items[k], false);
+        auto index = model_.find_part(name);
+        if (!index) throw ModelError(names.items[k].pointer, "unknown part '" + name + "'");
+        const Motion& motion = model_.parts[*index].motion;
+        if (motion.kind != Motion::Kind::fixed && motion.kind != Motion::Kind::rotation &&
+            motion.kind != Motion::Kind::translation)
+          throw ModelError(names.items[k].pointer, "part '" + name + "' is not a fixed-axis or fixed part");
+        indices[k] = *index;
+      }
+      if (indices[0] == indices[1])
+        throw ModelError(names.pointer, "a spring joins two different parts");
+      coupling.first = indices[0];
+      coupling.second = indices[1];
+      const JsonValue& points = expect_array(require(s, "points"), "two points [[x, y], [x, y]]");
+      if (points.items.size() != 2)
+        throw ModelError(points.pointer, "a spring has 2 attachment points, found " + std::to_string(points.items.size()));
+      coupling.first_point = point(points.items[0]);
+      coupling.second_point = point(points.items[1]);
+      coupling.stiffness = non_negative(require(s, "stiffness"), "stiffness");
+      if (const JsonValue* rest = s.find("rest_length")) coupling.rest_length = non_negative(*rest, "rest length");
+      if (const JsonValue* damping = s.find("damping")) coupling.damping = non_negative(*damping, "damping");
+      if (coupling.rest_length == 0 && coupling.first_point == coupling.second_point && coupling.damping > 0)
+        throw ModelError(s.pointer, "a damper needs two distinct attachment points (its direction is undefined)");
+      spec.couplings.push_back(coupling);
+    }
+  }
+  if (const JsonValue* centers = value->find("centers_of_mass")) {
+    expect_object(*centers, "an object: part name -> centre of mass [x, y]");
+    for (const JsonMember& member : centers->members) {
+      auto index = model_.find_part(member.key);
+      if (!index) throw ModelError(member.value.pointer, "unknown part '" + member.key + "'");
+      if (model_.parts[*index].motion.kind != Motion::Kind::rotation)
+        throw ModelError(member.value.pointer, "part '" + member.key +
+                                                   "' does not rotate: a centre of mass only matters for a rotating part");
+      spec.centers_of_mass.push_back(SimulationSpec::CenterOfMass{*index, point(member.value), member.value.pointer});
+    }
+  }
+  if (const JsonValue* accuracy = value->find("accuracy")) {
+    spec.accuracy = positive(*accuracy, "accuracy");
+    if (*spec.accuracy >= 1) throw ModelError(accuracy->pointer, "accuracy is relative: it must lie in (0, 1)");
+  }
+  model_.simulation = std::move(spec);
+}
+
+}  // namespace hipair::model_detail

@@ -1,0 +1,1019 @@
+// Dynamical simulation on the public C-space adaptor (docs/simulation.md).
+//
+// State: one coordinate per moving part (rad or mm). Integration: Dormand–Prince 5(4) with error
+// control (Boost.Odeint), one controlled step at a time. Each step's motion of each part is the
+// quintic Hermite polynomial through the step's end states (positions, velocities, accelerations):
+// that polynomial is what is checked, per pair, by the certified CSpace::first_crossing, and it
+// is the trajectory (states inside a step are read from it), so the detection covers the whole
+// path. Sustained contacts are bilateral constraints q_y = Y(q_x) along a contact edge (Y', Y''
+// from CSpace::derivatives), held while their multiplier stays non-negative.
+#include <hipair/simulation.hpp>
+
+#include <hipair/error.hpp>
+
+#include <Eigen/Dense>
+#include <boost/numeric/odeint.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <sstream>
+
+namespace hipair {
+
+std::string to_string(SimulationEvent::Kind kind) {
+  switch (kind) {
+    case SimulationEvent::Kind::impact: return "impact";
+    case SimulationEvent::Kind::contact: return "contact";
+    case SimulationEvent::Kind::lift_off: return "lift-off";
+    case SimulationEvent::Kind::edge_end: return "edge-end";
+  }
+  return "?";
+}
+
+namespace {
+
+using Vec = std::vector<double>;
+
+double mid(const CertifiedRange& r) { return 0.5 * (r.lower + r.upper); }
+double to_d(const Rational& r) { return r.get_d(); }
+
+// A quintic in u in [0, 1] through (p, h v, h^2 a) at both ends.
+std::array<double, 6> hermite(double q0, double v0, double a0, double q1, double v1, double a1, double h) {
+  double c0 = q0, c1 = h * v0, c2 = h * h * a0 / 2;
+  double A = q1 - (c0 + c1 + c2), B = h * v1 - (c1 + 2 * c2), C = h * h * a1 - 2 * c2;
+  return {c0, c1, c2, 10 * A - 4 * B + C / 2, -15 * A + 7 * B - C, 6 * A - 3 * B + C / 2};
+}
+double poly(const std::array<double, 6>& c, double u) {
+  double r = 0;
+  for (int i = 5; i >= 0; --i) r = r * u + c[i];
+  return r;
+}
+double dpoly(const std::array<double, 6>& c, double u) {
+  double r = 0;
+  for (int i = 5; i >= 1; --i) r = r * u + i * c[i];
+  return r;
+}
+
+struct Dof {
+  std::size_t part = 0;
+  bool rotation = true;
+  double pivot[2] = {0, 0};
+  double dir[2] = {1, 0};
+  double inertia = 0;        // kg mm^2 or kg
+  double mass = 0;           // kg (gravity)
+  double com[2] = {0, 0};    // rotation: centre of mass - pivot at zero configuration
+  bool driven = false;
+  double speed = 0;          // mm/s or rad/s
+  double q0 = 0;             // initial position (driver law)
+  double stiffness = 0, rest = 0, load = 0, damping = 0;   // internal units
+  double force[2] = {0, 0};  // constant force at the centre of mass (mN)
+};
+
+struct Coupling {
+  std::size_t first, second;
+  double p1[2], p2[2];
+  double k, rest, c;
+};
+
+// A sustained contact: g(q) = sigma (q_y - Y(q_x)) >= 0 (or sigma (q_x - c) for a point / vertical edge).
+struct Active {
+  std::size_t pair = 0;
+  EdgeId edge;
+  bool point = false;        // 1-D contact or vertical edge: q_x = c
+  double c = 0;
+  int sigma = 1;
+  int xdof = -1, ydof = -1;
+  std::size_t chart = 0;
+  double x_lo = 0, x_hi = 0; // the edge's chart abscissa range
+};
+
+struct ContactRow {
+  Vec g;                     // over dofs
+  double restitution = 0;
+  std::size_t pair = 0;
+  bool crossing = false;     // a new contact (false: an active sustained one)
+  std::size_t active = 0;    // index into active_ when !crossing
+  MotionCrossing hit;
+};
+
+}  // namespace
+
+struct Simulation::Impl {
+  Model model;
+  SimulationOptions options;
+  std::vector<std::shared_ptr<const CSpace>> spaces;
+  std::vector<Dof> dofs;
+  std::vector<int> part_dof;          // part -> dof or -1
+  std::vector<Coupling> couplings;
+  Point gravity_file;
+  double g[2] = {0, 0};
+  double time_scale = 1, force_scale = 1000;   // seconds per time unit, mN per force unit
+  double accuracy = 1e-9;
+  std::string time_unit = "s", force_unit = "N";
+
+  double t = 0;                       // seconds
+  Vec q, v;                           // per dof
+  std::vector<Active> active;
+  std::vector<SimulationEvent> events;
+  SimulationState public_state;
+  std::size_t steps = 0;
+  double dt = 0;                      // next trial step, seconds
+
+  // ---------------------------------------------------------------- kinematics and forces
+  void world_point(const Dof* d, double qd, const double p0[2], double p[2], double J[2]) const {
+    if (!d) {
+      p[0] = p0[0];
+      p[1] = p0[1];
+      J[0] = J[1] = 0;
+      return;
+    }
+    if (d->rotation) {
+      double c = std::cos(qd), s = std::sin(qd);
+      double rx = p0[0] - d->pivot[0], ry = p0[1] - d->pivot[1];
+      double x = c * rx - s * ry, y = s * rx + c * ry;
+      p[0] = d->pivot[0] + x;
+      p[1] = d->pivot[1] + y;
+      J[0] = -y;
+      J[1] = x;
+    } else {
+      p[0] = p0[0] + qd * d->dir[0];
+      p[1] = p0[1] + qd * d->dir[1];
+      J[0] = d->dir[0];
+      J[1] = d->dir[1];
+    }
+  }
+  const Dof* dof_of_part(std::size_t part) const {
+    int i = part_dof[part];
+    return i < 0 ? nullptr : &dofs[i];
+  }
+
+  Vec forces(double time, const Vec& qs, const Vec& vs) const {
+    (void)time;
+    Vec Q(dofs.size(), 0.0);
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+      const Dof& d = dofs[i];
+      Q[i] = d.load - d.stiffness * (qs[i] - d.rest) - d.damping * vs[i];
+      double F[2] = {d.force[0] + d.mass * g[0], d.force[1] + d.mass * g[1]};
+      if (d.rotation) {
+        double c = std::cos(qs[i]), s = std::sin(qs[i]);
+        double rx = c * d.com[0] - s * d.com[1], ry = s * d.com[0] + c * d.com[1];
+        Q[i] += rx * F[1] - ry * F[0];
+      } else {
+        Q[i] += F[0] * d.dir[0] + F[1] * d.dir[1];
+      }
+    }
+    for (const Coupling& k : couplings) {
+      int i1 = part_dof[k.first], i2 = part_dof[k.second];
+      double p1[2], p2[2], J1[2], J2[2];
+      world_point(dof_of_part(k.first), i1 < 0 ? 0 : qs[i1], k.p1, p1, J1);
+      world_point(dof_of_part(k.second), i2 < 0 ? 0 : qs[i2], k.p2, p2, J2);
+      double dx = p2[0] - p1[0], dy = p2[1] - p1[1], L = std::hypot(dx, dy);
+      if (L == 0) continue;
+      double ux = dx / L, uy = dy / L;
+      double w1 = i1 < 0 ? 0 : vs[i1], w2 = i2 < 0 ? 0 : vs[i2];
+      double Ldot = ux * (J2[0] * w2 - J1[0] * w1) + uy * (J2[1] * w2 - J1[1] * w1);
+      double f = k.k * (L - k.rest) + k.c * Ldot;
+      if (i2 >= 0) Q[i2] -= f * (J2[0] * ux + J2[1] * uy);
+      if (i1 >= 0) Q[i1] += f * (J1[0] * ux + J1[1] * uy);
+    }
+    return Q;
+  }
+
+  double energy() const {
+    double E = 0;
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+      const Dof& d = dofs[i];
+      if (!d.driven) E += 0.5 * d.inertia * v[i] * v[i];
+      E += 0.5 * d.stiffness * (q[i] - d.rest) * (q[i] - d.rest) - d.load * q[i];
+      double F[2] = {d.force[0] + d.mass * g[0], d.force[1] + d.mass * g[1]};
+      if (d.rotation) {
+        double c = std::cos(q[i]), s = std::sin(q[i]);
+        double rx = c * d.com[0] - s * d.com[1], ry = s * d.com[0] + c * d.com[1];
+        E -= F[0] * rx + F[1] * ry;
+      } else {
+        E -= q[i] * (F[0] * d.dir[0] + F[1] * d.dir[1]);
+      }
+    }
+    for (const Coupling& k : couplings) {
+      int i1 = part_dof[k.first], i2 = part_dof[k.second];
+      double p1[2], p2[2], J[2];
+      world_point(dof_of_part(k.first), i1 < 0 ? 0 : q[i1], k.p1, p1, J);
+      world_point(dof_of_part(k.second), i2 < 0 ? 0 : q[i2], k.p2, p2, J);
+      double L = std::hypot(p2[0] - p1[0], p2[1] - p1[1]);
+      E += 0.5 * k.k * (L - k.rest) * (L - k.rest);
+    }
+    return E / force_scale;
+  }
+
+  // ---------------------------------------------------------------- contact geometry
+  const CSpaceChart& chart_of(const Active& a) const { return spaces[a.pair]->charts().at(a.chart); }
+
+  // chart coordinate of a part coordinate (rotation: t = tan((theta - c)/2))
+  static double to_chart(AxisKind kind, bool half_turn, double value) {
+    if (kind == AxisKind::translation) return value;
+    double centre = half_turn ? std::numbers::pi : 0.0;
+    double a = std::remainder(value - centre, 2 * std::numbers::pi);
+    return std::tan(a / 2);
+  }
+
+  static constexpr double edge_slack = 1e-9;   // chart units
+
+  // the constraint's gradient over dofs, its bias h (g'' = G q'' + h) and its value g
+  bool row(const Active& a, const Vec& qs, const Vec& vs, Vec& G, double& h, double& gval) const {
+    G.assign(dofs.size(), 0.0);
+    h = 0;
+    if (a.point) {
+      G[a.xdof] = a.sigma;
+      gval = a.sigma * (qs[a.xdof] - a.c);
+      return true;
+    }
+    const CSpaceChart& chart = chart_of(a);
+    double tx = to_chart(chart.x_kind, chart.x_half_turn, qs[a.xdof]);
+    if (tx < a.x_lo - edge_slack || tx > a.x_hi + edge_slack) return false;
+    // within the slack of an end: the nearest abscissa strictly inside (the ends are algebraic)
+    double inset = 1e-9 * (a.x_hi - a.x_lo);
+    tx = std::clamp(tx, a.x_lo + inset, a.x_hi - inset);
+    EdgeDerivatives d;
+    try {
+      d = spaces[a.pair]->derivatives(a.edge, Rational(tx));
+    } catch (const GeometryError&) {
+      return false;
+    }
+    double y1 = mid(d.coordinate_dy), y2 = mid(d.coordinate_d2y);
+    G[a.xdof] = -a.sigma * y1;
+    G[a.ydof] += a.sigma;
+    h = -a.sigma * y2 * vs[a.xdof] * vs[a.xdof];
+    double ty = d.y.approximate();
+    double dy;
+    if (chart.y_kind == AxisKind::translation) {
+      dy = qs[a.ydof] - ty;
+    } else {
+      double yq = (chart.y_half_turn ? std::numbers::pi : 0.0) + 2 * std::atan(ty);
+      dy = std::remainder(qs[a.ydof] - yq, 2 * std::numbers::pi);
+    }
+    gval = a.sigma * dy;
+    return true;
+  }
+
+  // accelerations (all dofs) and multipliers of the active constraints; false when a
+  // constraint is outside its edge
+  bool accelerations(double time, const Vec& qs, const Vec& vs, Vec& acc, Vec& lambda) const {
+    Vec Q = forces(time, qs, vs);
+    std::size_t n = dofs.size();
+    acc.assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i)
+      if (!dofs[i].driven) acc[i] = Q[i] / dofs[i].inertia;
+    lambda.clear();
+    if (active.empty()) return true;
+    std::size_t m = active.size();
+    Eigen::MatrixXd G(m, n);
+    Eigen::VectorXd h(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      Vec row_k;
+      double hk, gk;
+      if (!row(active[k], qs, vs, row_k, hk, gk)) return false;
+      for (std::size_t i = 0; i < n; ++i) G(k, i) = row_k[i];
+      h(k) = hk;
+    }
+    Eigen::MatrixXd MinvGt(n, m);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t k = 0; k < m; ++k) MinvGt(i, k) = dofs[i].driven ? 0.0 : G(k, i) / dofs[i].inertia;
+    Eigen::VectorXd a0 = Eigen::Map<const Eigen::VectorXd>(acc.data(), n);
+    Eigen::MatrixXd A = G * MinvGt;
+    Eigen::VectorXd rhs = -(G * a0 + h);
+    Eigen::VectorXd l = A.completeOrthogonalDecomposition().solve(rhs);
+    Eigen::VectorXd da = MinvGt * l;
+    for (std::size_t i = 0; i < n; ++i) acc[i] += da(i);
+    lambda.assign(l.data(), l.data() + m);
+    return true;
+  }
+
+  // ---------------------------------------------------------------- integration
+  // ODE state: positions then velocities of the non-driven dofs
+  std::vector<std::size_t> free_dofs;
+  void unpack(double time, const Vec& x, Vec& qs, Vec& vs) const {
+    qs.resize(dofs.size());
+    vs.resize(dofs.size());
+    for (std::size_t i = 0; i < dofs.size(); ++i)
+      if (dofs[i].driven) {
+        qs[i] = dofs[i].q0 + dofs[i].speed * time;
+        vs[i] = dofs[i].speed;
+      }
+    for (std::size_t k = 0; k < free_dofs.size(); ++k) {
+      qs[free_dofs[k]] = x[k];
+      vs[free_dofs[k]] = x[free_dofs.size() + k];
+    }
+  }
+  Vec pack() const {
+    Vec x(2 * free_dofs.size());
+    for (std::size_t k = 0; k < free_dofs.size(); ++k) {
+      x[k] = q[free_dofs[k]];
+      x[free_dofs.size() + k] = v[free_dofs[k]];
+    }
+    return x;
+  }
+  void rhs(const Vec& x, Vec& dxdt, double time) const {
+    Vec qs, vs, acc, lambda;
+    unpack(time, x, qs, vs);
+    // outside its edge a constraint is dropped here (free accelerations); the step is then cut
+    // at the edge's end by end_of_step()
+    accelerations(time, qs, vs, acc, lambda);
+    dxdt.resize(x.size());
+    std::size_t f = free_dofs.size();
+    for (std::size_t k = 0; k < f; ++k) {
+      dxdt[k] = vs[free_dofs[k]];
+      dxdt[f + k] = acc[free_dofs[k]];
+    }
+  }
+
+  // ---------------------------------------------------------------- the step's motion
+  struct StepPath {
+    double t0 = 0, h = 0;
+    std::vector<std::array<double, 6>> c;   // per dof
+    void at(double u, Vec& qs, Vec& vs) const {
+      qs.resize(c.size());
+      vs.resize(c.size());
+      for (std::size_t i = 0; i < c.size(); ++i) {
+        qs[i] = poly(c[i], u);
+        vs[i] = dpoly(c[i], u) / h;
+      }
+    }
+  };
+
+  StepPath make_path(double t0, const Vec& q0, const Vec& v0, const Vec& a0, double t1, const Vec& q1, const Vec& v1,
+                     const Vec& a1) const {
+    StepPath p;
+    p.t0 = t0;
+    p.h = t1 - t0;
+    p.c.resize(dofs.size());
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+      if (dofs[i].driven) {
+        // the driver's law exactly: q0 + speed t
+        p.c[i] = {dofs[i].q0 + dofs[i].speed * t0, dofs[i].speed * p.h, 0, 0, 0, 0};
+      } else {
+        p.c[i] = hermite(q0[i], v0[i], a0[i], q1[i], v1[i], a1[i], p.h);
+      }
+    }
+    return p;
+  }
+
+  AxisPath axis_path(const std::array<double, 6>& c, bool rotation) const {
+    AxisPath a;
+    a.kind = rotation ? AxisPath::Kind::angle : AxisPath::Kind::offset;
+    int last = 5;
+    while (last > 0 && c[last] == 0) --last;
+    for (int i = 0; i <= last; ++i) a.coefficients.emplace_back(c[i]);
+    return a;
+  }
+
+  // the pair's motion along the step for u in [u0, u1]
+  MotionPath pair_path(std::size_t pair, const StepPath& p, double u0, double u1) const {
+    const CSpace& space = *spaces[pair];
+    MotionPath m;
+    auto axis = [&](const std::string& part) {
+      if (part.empty()) return AxisPath{};
+      std::size_t index = *model.find_part(part);
+      int d = part_dof[index];
+      return axis_path(p.c[d], dofs[d].rotation);
+    };
+    m.x = axis(space.x_part());
+    if (space.dimension() == 2) m.y = axis(space.y_part());
+    m.u_begin = Rational(u0);
+    m.u_end = Rational(u1);
+    return m;
+  }
+
+  MotionPath point_path(std::size_t pair, const Vec& qs) const {
+    StepPath p;
+    p.h = 1;
+    p.c.resize(dofs.size());
+    for (std::size_t i = 0; i < dofs.size(); ++i) p.c[i] = {qs[i], 0, 0, 0, 0, 0};
+    return pair_path(pair, p, 0, 1);
+  }
+
+  bool in_active(std::size_t pair) const {
+    return std::any_of(active.begin(), active.end(), [&](const Active& a) { return a.pair == pair; });
+  }
+
+  std::string pair_name(std::size_t pair) const {
+    return "pair (" + model.parts[model.pairs[pair].first].name + ", " + model.parts[model.pairs[pair].second].name + ")";
+  }
+
+  [[noreturn]] void outside(std::size_t pair, double time) const {
+    std::ostringstream out;
+    out << "simulation: at t = " << time / time_scale << " " << time_unit << " the motion of " << pair_name(pair)
+        << " leaves its built C-space (a motion limit, or the border of its operating region)";
+    throw GeometryError(out.str());
+  }
+
+  // physical contact row of a crossing: separation speed = G v
+  Vec physical_row(std::size_t pair, const MotionCrossing& hit, const Vec& qs) const {
+    Vec G(dofs.size(), 0.0);
+    const PairSpec& spec = model.pairs[pair];
+    double p[2] = {mid(hit.point[0]), mid(hit.point[1])}, n[2] = {mid(hit.normal[0]), mid(hit.normal[1])};
+    auto add = [&](std::size_t part, double sign) {
+      int d = part_dof[part];
+      if (d < 0) return;
+      double J[2];
+      if (dofs[d].rotation) {
+        J[0] = -(p[1] - dofs[d].pivot[1]);
+        J[1] = p[0] - dofs[d].pivot[0];
+      } else {
+        J[0] = dofs[d].dir[0];
+        J[1] = dofs[d].dir[1];
+      }
+      G[d] += sign * (n[0] * J[0] + n[1] * J[1]);
+    };
+    // the crossing's feature pair names the first part (normal from first into second)
+    std::size_t first = spec.first, second = spec.second;
+    if (!hit.features.empty()) {
+      const FeaturePair& fp = spaces[pair]->feature_pair(hit.features.front());
+      first = fp.first.part;
+      second = fp.second.part;
+    }
+    add(first, -1);
+    add(second, +1);
+    (void)qs;
+    return G;
+  }
+
+  std::vector<std::string> labels(std::size_t pair, const std::vector<FeatureId>& features) const {
+    std::vector<std::string> out;
+    for (FeatureId f : features) out.push_back(spaces[pair]->feature_pair(f).label);
+    return out;
+  }
+
+  // an active contact for a pair that touches after an impact, or nullopt
+  std::optional<Active> sustain(std::size_t pair, const MotionCrossing& hit, const Vec& G) const {
+    const CSpace& space = *spaces[pair];
+    Active a;
+    a.pair = pair;
+    a.xdof = part_dof[*model.find_part(space.x_part())];
+    if (space.dimension() == 1) {
+      a.point = true;
+      a.c = q[a.xdof];
+      a.sigma = G[a.xdof] >= 0 ? 1 : -1;
+      return a;
+    }
+    a.ydof = part_dof[*model.find_part(space.y_part())];
+    if (!hit.edge.valid()) return std::nullopt;
+    const CSpaceEdge& edge = space.edge(hit.edge);
+    a.edge = hit.edge;
+    a.chart = edge.chart;
+    if (edge.vertical) {
+      a.point = true;
+      a.c = q[a.xdof];
+      a.sigma = G[a.xdof] >= 0 ? 1 : -1;
+      return a;
+    }
+    a.x_lo = edge.x_chart.lower;
+    a.x_hi = edge.x_chart.upper;
+    const CSpaceChart& chart = space.charts()[edge.chart];
+    double tx = to_chart(chart.x_kind, chart.x_half_turn, q[a.xdof]);
+    if (tx < a.x_lo || tx > a.x_hi) return std::nullopt;
+    EdgeDerivatives d;
+    try {
+      d = space.derivatives(a.edge, Rational(tx));
+    } catch (const GeometryError&) {
+      return std::nullopt;
+    }
+    double y1 = mid(d.coordinate_dy);
+    // orient so that the C-space normal (-sigma Y', sigma) agrees with the physical normal
+    double dot = -y1 * G[a.xdof] + G[a.ydof];
+    a.sigma = dot >= 0 ? 1 : -1;
+    return a;
+  }
+
+  // move the configuration off contact space along `G` until the pair is certainly free
+  void nudge_free(std::size_t pair, const Vec& G, double first = 1e-13) {
+    Vec dir(dofs.size(), 0.0);
+    double norm = 0;
+    for (std::size_t i = 0; i < dofs.size(); ++i)
+      if (!dofs[i].driven) {
+        dir[i] = G[i] / dofs[i].inertia;
+        norm = std::max(norm, std::abs(dir[i]));
+      }
+    for (int k = 0; k < 40; ++k) {
+      MotionCrossing c = spaces[pair]->first_crossing(point_path(pair, q));
+      if (c.status == CrossingStatus::none) return;
+      if (c.status == CrossingStatus::outside_region) outside(pair, t);
+      if (norm == 0) break;
+      double eps = first * std::ldexp(1.0, k);
+      for (std::size_t i = 0; i < dofs.size(); ++i) q[i] += eps * dir[i] / norm;
+    }
+    std::ostringstream out;
+    out << "simulation: at t = " << t / time_scale << " " << time_unit << " " << pair_name(pair)
+        << " cannot be moved off its contact (a jammed contact change)";
+    throw NumericError(out.str());
+  }
+
+  void project_active() {
+    for (int iteration = 0; iteration < 3; ++iteration)
+      for (const Active& a : active) {
+        Vec G;
+        double h, gval;
+        if (!row(a, q, v, G, h, gval)) continue;
+        double A = 0;
+        for (std::size_t i = 0; i < dofs.size(); ++i)
+          if (!dofs[i].driven) A += G[i] * G[i] / dofs[i].inertia;
+        if (A == 0) continue;
+        double gv = 0;
+        for (std::size_t i = 0; i < dofs.size(); ++i) gv += G[i] * v[i];
+        for (std::size_t i = 0; i < dofs.size(); ++i)
+          if (!dofs[i].driven) {
+            q[i] -= G[i] / dofs[i].inertia * gval / A;
+            v[i] -= G[i] / dofs[i].inertia * gv / A;
+          }
+      }
+  }
+
+  // ---------------------------------------------------------------- impacts
+  // Newton restitution for all rows at once: lambda >= 0, w = G v+ + e G v- >= 0, lambda.w = 0
+  Vec solve_impacts(const std::vector<ContactRow>& rows) {
+    std::size_t m = rows.size(), n = dofs.size();
+    Eigen::MatrixXd G(m, n), MinvGt(n, m);
+    for (std::size_t k = 0; k < m; ++k)
+      for (std::size_t i = 0; i < n; ++i) {
+        G(k, i) = rows[k].g[i];
+        MinvGt(i, k) = dofs[i].driven ? 0.0 : rows[k].g[i] / dofs[i].inertia;
+      }
+    Eigen::MatrixXd A = G * MinvGt;
+    Eigen::VectorXd vm = Eigen::Map<const Eigen::VectorXd>(v.data(), n);
+    Eigen::VectorXd gv = G * vm, b(m);
+    for (std::size_t k = 0; k < m; ++k) b(k) = (1 + rows[k].restitution) * gv(k);
+    Eigen::VectorXd best = Eigen::VectorXd::Zero(m);
+    bool found = false;
+    double tol = 1e-12 * (1 + b.cwiseAbs().maxCoeff());
+    if (m <= 12) {
+      // enumerate the active sets (smallest first): exact complementarity
+      for (std::size_t size = 0; size <= m && !found; ++size)
+        for (std::size_t mask = 0; mask < (std::size_t(1) << m) && !found; ++mask) {
+          if (static_cast<std::size_t>(__builtin_popcountll(mask)) != size) continue;
+          std::vector<int> set;
+          for (std::size_t k = 0; k < m; ++k)
+            if (mask >> k & 1) set.push_back(static_cast<int>(k));
+          Eigen::VectorXd l = Eigen::VectorXd::Zero(m);
+          if (!set.empty()) {
+            Eigen::MatrixXd As(set.size(), set.size());
+            Eigen::VectorXd bs(set.size());
+            for (std::size_t i = 0; i < set.size(); ++i) {
+              bs(i) = -b(set[i]);
+              for (std::size_t j = 0; j < set.size(); ++j) As(i, j) = A(set[i], set[j]);
+            }
+            Eigen::VectorXd ls = As.completeOrthogonalDecomposition().solve(bs);
+            for (std::size_t i = 0; i < set.size(); ++i) l(set[i]) = ls(i);
+          }
+          Eigen::VectorXd w = A * l + b;
+          bool ok = true;
+          for (std::size_t k = 0; k < m && ok; ++k) ok = l(k) >= -tol && w(k) >= -tol;
+          if (ok) {
+            best = l.cwiseMax(0.0);
+            found = true;
+          }
+        }
+    }
+    if (!found) {
+      // projected Gauss-Seidel
+      for (int it = 0; it < 10000; ++it)
+        for (std::size_t k = 0; k < m; ++k) {
+          if (A(k, k) <= 0) continue;
+          double r = b(k) + A.row(k).dot(best);
+          best(k) = std::max(0.0, best(k) - r / A(k, k));
+        }
+    }
+    Eigen::VectorXd dv = MinvGt * best;
+    for (std::size_t i = 0; i < n; ++i) v[i] += dv(i);
+    return Vec(best.data(), best.data() + m);
+  }
+
+  double velocity_tolerance() const {
+    double vmax = 0;
+    for (double x : v) vmax = std::max(vmax, std::abs(x));
+    return std::sqrt(accuracy) * 1e-2 * (1 + vmax);
+  }
+
+  void handle_contacts(std::vector<ContactRow> rows) {
+    // the active sustained contacts take part as perfectly plastic contacts
+    for (std::size_t k = 0; k < active.size(); ++k) {
+      Vec G;
+      double h, gval;
+      if (!row(active[k], q, v, G, h, gval)) continue;
+      ContactRow r;
+      r.g = G;
+      r.pair = active[k].pair;
+      r.active = k;
+      rows.push_back(r);
+    }
+    Vec before(rows.size());
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      before[k] = 0;
+      for (std::size_t i = 0; i < dofs.size(); ++i) before[k] += rows[k].g[i] * v[i];
+    }
+    Vec lambda = solve_impacts(rows);
+    double vtol = velocity_tolerance();
+    std::vector<std::size_t> separate;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      if (!rows[k].crossing) continue;
+      const ContactRow& r = rows[k];
+      double after = 0;
+      for (std::size_t i = 0; i < dofs.size(); ++i) after += r.g[i] * v[i];
+      SimulationEvent e;
+      e.time = t / time_scale;
+      e.pair = r.pair;
+      e.first_part = model.parts[model.pairs[r.pair].first].name;
+      e.second_part = model.parts[model.pairs[r.pair].second].name;
+      e.features = labels(r.pair, r.hit.features);
+      e.edge = r.hit.edge;
+      e.point = {mid(r.hit.point[0]), mid(r.hit.point[1])};
+      e.normal = {mid(r.hit.normal[0]), mid(r.hit.normal[1])};
+      e.impulse = lambda[k] / (force_scale * time_scale);
+      e.normal_speed_before = before[k] * time_scale;
+      e.normal_speed_after = after * time_scale;
+      e.kind = SimulationEvent::Kind::impact;
+      events.push_back(e);
+      std::optional<Active> sustained;
+      if (after <= vtol) sustained = sustain(r.pair, r.hit, r.g);
+      if (sustained) {
+        active.push_back(*sustained);
+        e.kind = SimulationEvent::Kind::contact;
+        events.push_back(e);
+      } else {
+        separate.push_back(k);
+      }
+    }
+    project_active();
+    for (std::size_t k : separate) nudge_free(rows[k].pair, rows[k].g);
+  }
+
+  // ---------------------------------------------------------------- one step
+  // The edge that continues sustained contact `a` past the end of its edge with the same feature
+  // pair (across a chart seam, or past a vertex where another curve only crosses spurious
+  // space): nullopt when the contact really changes there.
+  std::optional<Active> continuation(const Active& a) const {
+    if (a.point || !a.edge.valid()) return std::nullopt;
+    const CSpace& space = *spaces[a.pair];
+    const CSpaceEdge& old_edge = space.edge(a.edge);
+    for (std::size_t e = 0; e < space.edges().size(); ++e) {
+      if (e == a.edge.index()) continue;
+      const CSpaceEdge& edge = space.edges()[e];
+      if (!edge.real || edge.vertical) continue;
+      bool shares = std::any_of(edge.curves.begin(), edge.curves.end(), [&](std::size_t c) {
+        return std::find(old_edge.curves.begin(), old_edge.curves.end(), c) != old_edge.curves.end();
+      });
+      if (!shares) continue;
+      const CSpaceChart& chart = space.charts()[edge.chart];
+      double tx = to_chart(chart.x_kind, chart.x_half_turn, q[a.xdof]);
+      if (!(tx > edge.x_chart.lower - edge_slack && tx < edge.x_chart.upper + edge_slack)) continue;
+      Active b = a;
+      b.edge = EdgeId(e);
+      b.chart = edge.chart;
+      b.x_lo = edge.x_chart.lower;
+      b.x_hi = edge.x_chart.upper;
+      Vec G;
+      double h, gval;
+      b.sigma = 1;
+      if (!row(b, q, v, G, h, gval)) continue;
+      if (std::abs(gval) > 1e-6) continue;   // another branch of the curve
+      BlockedSide side = space.blocked_side(b.edge);
+      b.sigma = side == BlockedSide::left ? -1 : 1;
+      return b;
+    }
+    return std::nullopt;
+  }
+
+  void release(std::size_t k, SimulationEvent::Kind kind) {
+    if (kind == SimulationEvent::Kind::edge_end) {
+      if (std::optional<Active> next = continuation(active[k])) {
+        active[k] = *next;
+        project_active();
+        return;
+      }
+    }
+    Active a = active[k];
+    Vec G;
+    double h, gval;
+    if (!row(a, q, v, G, h, gval)) {
+      // beyond the edge: the last known direction, from the C-space normal at the edge's end
+      G.assign(dofs.size(), 0.0);
+      G[a.xdof] = a.point ? a.sigma : 0;
+      if (!a.point) G[a.ydof] = a.sigma;
+    }
+    SimulationEvent e;
+    e.kind = kind;
+    e.time = t / time_scale;
+    e.pair = a.pair;
+    e.first_part = model.parts[model.pairs[a.pair].first].name;
+    e.second_part = model.parts[model.pairs[a.pair].second].name;
+    e.edge = a.edge;
+    if (a.edge.valid())
+      for (std::size_t f : spaces[a.pair]->edge(a.edge).curves) e.features.push_back(spaces[a.pair]->feature_pair(FeatureId(f)).label);
+    events.push_back(e);
+    active.erase(active.begin() + static_cast<std::ptrdiff_t>(k));
+    nudge_free(a.pair, G, options.release_gap);
+  }
+
+  void step(double t_limit) {
+    if (++steps > options.max_steps) throw NumericError("simulation: more than max_steps steps");
+    using namespace boost::numeric::odeint;
+    Vec x = pack();
+    Vec q0 = q, v0 = v, a0, l0;
+    accelerations(t, q0, v0, a0, l0);
+    // lift-off at the start: a multiplier that is negative (pulling) ends its contact
+    for (std::size_t k = 0; k < l0.size(); ++k)
+      if (l0[k] < 0) {
+        release(k, SimulationEvent::Kind::lift_off);
+        return;
+      }
+    double max_step = options.max_step > 0 ? options.max_step * time_scale : std::numeric_limits<double>::infinity();
+    double remaining = t_limit - t;
+    if (dt <= 0) dt = std::min({max_step, remaining, 1e-3});
+    dt = std::min({dt, max_step, remaining});
+    auto stepper = make_controlled(accuracy, accuracy, runge_kutta_dopri5<Vec>());
+    auto sys = [this](const Vec& state, Vec& d, double time) { rhs(state, d, time); };
+    double t1 = t;
+    Vec x1 = x;
+    for (int attempt = 0;; ++attempt) {
+      x1 = x;
+      t1 = t;
+      double trial = dt;
+      if (stepper.try_step(sys, x1, t1, trial) == success) {
+        dt = std::min(trial, max_step);
+        break;
+      }
+      dt = trial;
+      if (attempt > 200 || dt < 1e-300) throw NumericError("simulation: the integrator's step size underflows");
+    }
+    if (t1 > t_limit) t1 = t_limit;
+    Vec q1, v1, a1, l1;
+    unpack(t1, x1, q1, v1);
+    accelerations(t1, q1, v1, a1, l1);
+    StepPath path = make_path(t, q0, v0, a0, t1, q1, v1, a1);
+    double u_end = 1;
+    enum class Cut { none, lift_off, edge_end } cut = Cut::none;
+    std::size_t cut_active = 0;
+    // sustained contacts: the multiplier's sign and the edge's extent, by bisection on the path
+    auto violated = [&](double u, std::size_t& which) {
+      Vec qs, vs, acc, lambda;
+      path.at(u, qs, vs);
+      for (std::size_t k = 0; k < active.size(); ++k) {
+        Vec G;
+        double h, gval;
+        if (!row(active[k], qs, vs, G, h, gval)) {
+          which = k;
+          return 2;
+        }
+      }
+      if (!accelerations(path.t0 + u * path.h, qs, vs, acc, lambda)) return 2;
+      for (std::size_t k = 0; k < lambda.size(); ++k)
+        if (lambda[k] < 0) {
+          which = k;
+          return 1;
+        }
+      return 0;
+    };
+    if (!active.empty()) {
+      std::size_t which = 0;
+      int kind = violated(1, which);
+      if (kind != 0) {
+        double lo = 0, hi = 1;
+        for (int i = 0; i < 50; ++i) {
+          double m = 0.5 * (lo + hi);
+          std::size_t w = 0;
+          int k = violated(m, w);
+          if (k != 0) {
+            hi = m;
+            which = w;
+            kind = k;
+          } else {
+            lo = m;
+          }
+        }
+        u_end = lo;
+        cut = kind == 1 ? Cut::lift_off : Cut::edge_end;
+        cut_active = which;
+      }
+    }
+    // every free pair's motion, certified
+    std::vector<ContactRow> hits;
+    double u_hit = u_end, u_hit_upper = u_end;
+    std::vector<std::pair<std::size_t, MotionCrossing>> crossings;
+    CrossingOptions crossing_options;
+    crossing_options.resolution_bits = options.crossing_bits;
+    for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
+      if (!spaces[pair] || in_active(pair)) continue;
+      MotionCrossing c = spaces[pair]->first_crossing(pair_path(pair, path, 0, u_end), crossing_options);
+      if (c.status == CrossingStatus::none) continue;
+      if (c.status == CrossingStatus::outside_region) outside(pair, path.t0 + to_d(c.u_lower) * path.h);
+      if (c.status == CrossingStatus::starts_in_contact) {
+        c.u_lower = c.u_upper = 0;
+      }
+      crossings.emplace_back(pair, c);
+      if (to_d(c.u_lower) < u_hit) {
+        u_hit = to_d(c.u_lower);
+        u_hit_upper = to_d(c.u_upper);
+      }
+    }
+    if (!crossings.empty() && u_hit <= u_end) {
+      // the earliest crossing, and every other one whose bracket meets it (simultaneous)
+      path.at(u_hit, q, v);
+      t = path.t0 + u_hit * path.h;
+      std::vector<ContactRow> rows;
+      for (auto& [pair, c] : crossings) {
+        if (to_d(c.u_lower) > u_hit_upper) continue;
+        ContactRow r;
+        r.pair = pair;
+        r.crossing = true;
+        r.hit = c;
+        r.restitution = model.pairs[pair].restitution ? to_d(*model.pairs[pair].restitution) : 0.0;
+        r.g = physical_row(pair, c, q);
+        rows.push_back(r);
+      }
+      project_active();
+      handle_contacts(rows);
+      return;
+    }
+    path.at(u_end, q, v);
+    t = u_end == 1 ? t1 : path.t0 + u_end * path.h;
+    if (u_end == 1) {
+      unpack(t1, x1, q, v);
+    }
+    project_active();
+    if (cut == Cut::lift_off) release(cut_active, SimulationEvent::Kind::lift_off);
+    else if (cut == Cut::edge_end) release(cut_active, SimulationEvent::Kind::edge_end);
+  }
+
+  void publish() {
+    public_state.time = t / time_scale;
+    public_state.position.assign(model.parts.size(), 0.0);
+    public_state.velocity.assign(model.parts.size(), 0.0);
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+      public_state.position[dofs[i].part] = q[i];
+      public_state.velocity[dofs[i].part] = v[i] * time_scale;
+    }
+  }
+};
+
+// ------------------------------------------------------------------ construction
+
+Simulation::Simulation(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Simulation::Simulation(Simulation&&) noexcept = default;
+Simulation& Simulation::operator=(Simulation&&) noexcept = default;
+Simulation::~Simulation() = default;
+
+Simulation Simulation::create(const Model& model, const SimulationOptions& options) {
+  auto impl = std::make_unique<Impl>();
+  Impl& s = *impl;
+  s.model = model;
+  s.options = options;
+  SimulationSpec spec = model.simulation.value_or(SimulationSpec{});
+  s.time_unit = spec.time_unit;
+  s.force_unit = spec.force_unit;
+  s.time_scale = spec.time_unit == "ms" ? 1e-3 : 1.0;
+  s.force_scale = spec.force_unit == "mN" ? 1.0 : 1000.0;   // internal force: kg mm / s^2 = mN
+  s.accuracy = options.accuracy > 0 ? options.accuracy : spec.accuracy ? to_d(*spec.accuracy) : 1e-9;
+  s.g[0] = to_d(spec.gravity.x) / (s.time_scale * s.time_scale);
+  s.g[1] = to_d(spec.gravity.y) / (s.time_scale * s.time_scale);
+  const double fs = s.force_scale, ts = s.time_scale;
+
+  s.part_dof.assign(model.parts.size(), -1);
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const Part& part = model.parts[p];
+    auto kind = part.motion.kind;
+    if (kind == Motion::Kind::fixed) continue;
+    if (kind != Motion::Kind::rotation && kind != Motion::Kind::translation)
+      throw ModelError(part.motion.pointer, "part '" + part.name +
+                                                "': the simulator moves rotating and translating parts only");
+    Dof d;
+    d.part = p;
+    d.rotation = kind == Motion::Kind::rotation;
+    d.pivot[0] = to_d(part.motion.pivot.x);
+    d.pivot[1] = to_d(part.motion.pivot.y);
+    d.dir[0] = to_d(part.motion.direction.x);
+    d.dir[1] = to_d(part.motion.direction.y);
+    d.q0 = to_d(d.rotation ? part.initial.angle : part.initial.offset);
+    if (part.dynamics) {
+      const Dynamics& dyn = *part.dynamics;
+      if (dyn.mass) d.mass = to_d(*dyn.mass);
+      d.inertia = d.rotation ? (dyn.moment_of_inertia ? to_d(*dyn.moment_of_inertia) : 0) : d.mass;
+      if (d.rotation && dyn.linear_spring)
+        throw ModelError(part.pointer + "/dynamics/linear_spring",
+                         "part '" + part.name + "' rotates: give it a torsional_spring (or a spring between two parts)");
+      if (!d.rotation && dyn.torsional_spring)
+        throw ModelError(part.pointer + "/dynamics/torsional_spring",
+                         "part '" + part.name + "' translates: give it a linear_spring");
+      if (!d.rotation && dyn.torque)
+        throw ModelError(part.pointer + "/dynamics/torque", "part '" + part.name + "' translates: a torque cannot move it");
+      const auto& spring = d.rotation ? dyn.torsional_spring : dyn.linear_spring;
+      if (spring) {
+        d.stiffness = to_d(spring->stiffness) * fs;
+        d.rest = to_d(spring->rest);
+      }
+      if (dyn.torque) d.load = to_d(*dyn.torque) * fs;
+      if (dyn.force) {
+        d.force[0] = to_d(dyn.force->x) * fs;
+        d.force[1] = to_d(dyn.force->y) * fs;
+      }
+      if (dyn.damping) d.damping = to_d(*dyn.damping) * fs * ts;
+    }
+    s.part_dof[p] = static_cast<int>(s.dofs.size());
+    s.dofs.push_back(d);
+  }
+  for (const auto& driver : spec.drivers) {
+    Dof& d = s.dofs[s.part_dof[driver.part]];
+    d.driven = true;
+    d.speed = to_d(driver.speed) / ts;
+  }
+  for (const auto& c : spec.centers_of_mass) {
+    Dof& d = s.dofs[s.part_dof[c.part]];
+    d.com[0] = to_d(c.at.x) - d.pivot[0];
+    d.com[1] = to_d(c.at.y) - d.pivot[1];
+  }
+  for (const Dof& d : s.dofs)
+    if (!d.driven && !(d.inertia > 0)) {
+      const Part& part = model.parts[d.part];
+      throw ModelError(part.pointer, "part '" + part.name + "' moves freely but has no " +
+                                         (d.rotation ? "moment_of_inertia" : "mass") +
+                                         " (give dynamics data, or make it a driver in \"simulation\"/\"drivers\")");
+    }
+  for (const auto& k : spec.couplings) {
+    Coupling c;
+    c.first = k.first;
+    c.second = k.second;
+    c.p1[0] = to_d(k.first_point.x);
+    c.p1[1] = to_d(k.first_point.y);
+    c.p2[0] = to_d(k.second_point.x);
+    c.p2[1] = to_d(k.second_point.y);
+    c.k = to_d(k.stiffness) * fs;
+    c.rest = to_d(k.rest_length);
+    c.c = to_d(k.damping) * fs * ts;
+    s.couplings.push_back(c);
+  }
+  s.q.resize(s.dofs.size());
+  s.v.assign(s.dofs.size(), 0.0);
+  for (std::size_t i = 0; i < s.dofs.size(); ++i) {
+    s.q[i] = s.dofs[i].q0;
+    if (s.dofs[i].driven) s.v[i] = s.dofs[i].speed;
+    else s.free_dofs.push_back(i);
+  }
+  for (const auto& velocity : spec.velocities) s.v[s.part_dof[velocity.part]] = to_d(velocity.value) / ts;
+
+  // the pairs' C-spaces, built once
+  CSpaceBuildOptions build;
+  build.operating_region = options.operating_region;
+  s.spaces.assign(model.pairs.size(), nullptr);
+  std::vector<PairBuild> built = CSpace::build_pairs(model, build);
+  for (const PairBuild& b : built) {
+    if (b.status != PairBuild::Status::built)
+      throw GeometryError("simulation: the C-space of pair (" + b.first_part + ", " + b.second_part +
+                          ") does not build: " + b.error);
+    for (std::size_t pair = 0; pair < model.pairs.size(); ++pair) {
+      const std::string& a = model.parts[model.pairs[pair].first].name;
+      const std::string& c = model.parts[model.pairs[pair].second].name;
+      if ((a == b.first_part && c == b.second_part) || (a == b.second_part && c == b.first_part)) s.spaces[pair] = b.space;
+    }
+  }
+  // the start: every pair certainly free
+  for (std::size_t pair = 0; pair < s.spaces.size(); ++pair) {
+    if (!s.spaces[pair]) continue;
+    MotionCrossing c = s.spaces[pair]->first_crossing(s.point_path(pair, s.q));
+    if (c.status == CrossingStatus::outside_region) s.outside(pair, 0);
+    if (c.status == CrossingStatus::starts_in_contact) {
+      std::ostringstream out;
+      out << "simulation: the initial configuration of " << s.pair_name(pair)
+          << " is not free (the parts touch or overlap"
+          << (c.features.empty() ? std::string() : ": " + s.spaces[pair]->feature_pair(c.features.front()).label)
+          << "); start the simulation in free space";
+      throw ModelError(model.pairs[pair].pointer, out.str());
+    }
+  }
+  s.publish();
+  return Simulation(std::move(impl));
+}
+
+void Simulation::step() {
+  impl_->step(std::numeric_limits<double>::infinity());
+  impl_->publish();
+}
+
+void Simulation::run_until(double t_end, const std::function<void(double)>& progress) {
+  double limit = t_end * impl_->time_scale;
+  while (impl_->t < limit) {
+    impl_->step(limit);
+    impl_->publish();
+    if (progress) progress(impl_->public_state.time);
+  }
+}
+
+const SimulationState& Simulation::state() const { return impl_->public_state; }
+const std::vector<SimulationEvent>& Simulation::events() const { return impl_->events; }
+double Simulation::energy() const { return impl_->energy(); }
+std::size_t Simulation::steps() const { return impl_->steps; }
+const Model& Simulation::model() const { return impl_->model; }
+const std::vector<std::shared_ptr<const CSpace>>& Simulation::spaces() const { return impl_->spaces; }
+const std::string& Simulation::time_unit() const { return impl_->time_unit; }
+const std::string& Simulation::force_unit() const { return impl_->force_unit; }
+
+}  // namespace hipair
