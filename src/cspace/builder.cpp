@@ -2,7 +2,7 @@
 // with feature pairs, every face gets an exact rational sample point classified by the
 // overlap oracle, and charts are glued along seams into cells.
 #include "cspace/builder_impl.hpp"
-#include "cspace/builder_circle_segment.hpp"
+#include "arrangement/circle_segment_traits.hpp"
 
 #include <hipair/error.hpp>
 

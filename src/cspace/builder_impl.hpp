@@ -6,9 +6,9 @@
 
 #include "cspace/cspace_access.hpp"
 
-#include "cspace/builder_algebra.hpp"
-#include "cspace/builder_cgal.hpp"
-#include "cspace/contact_curves.hpp"
+#include "algebra/exact_real.hpp"
+#include "arrangement/arrangement.hpp"
+#include "curves/contact_curves.hpp"
 
 #include <functional>
 #include <memory>

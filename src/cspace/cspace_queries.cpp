@@ -10,7 +10,7 @@
 #include <hipair/error.hpp>
 
 #include "cspace/builder_impl.hpp"
-#include "cspace/pose.hpp"
+#include "curves/pose.hpp"
 #include "kernels/contact_geometry.hpp"
 #include "kernels/implicit_curve.hpp"
 #include "kernels/interval.hpp"

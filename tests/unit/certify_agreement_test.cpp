@@ -6,7 +6,7 @@
 // strictly inside both parts for the verifier's exact point location.
 #include "certify/exact_geometry.hpp"
 #include "certify/interval_geometry.hpp"
-#include "cspace/overlap.hpp"
+#include "oracle/overlap.hpp"
 
 #include <hipair/model.hpp>
 

@@ -11,7 +11,7 @@
 // The first family is the reported attack: a 2 x 9 mm lever in the hole of a huge frame, and
 // witness points about 1.9e11 mm away whose rays graze the lever's vertices (the verifier used
 // to screen ray crossings with a double bounding box and accepted some of them).
-#include "cspace/overlap.hpp"
+#include "oracle/overlap.hpp"
 
 #include <hipair/certificate.hpp>
 #include <hipair/model.hpp>

@@ -10,7 +10,7 @@
 // contact curve (doubles overflowed in the curve filters) and 1e-15 mm features crashed the
 // inscribed-disk guesses (SIGFPE in mpq_set_d on a NaN).
 #include "core/model_scale.hpp"
-#include "cspace/contact_curves.hpp"
+#include "curves/contact_curves.hpp"
 #include "cspace_test_support.hpp"
 
 #include <hipair/cspace.hpp>

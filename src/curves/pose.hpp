@@ -2,7 +2,7 @@
 // relative placement of one part in the other's body frame.
 #pragma once
 
-#include "cspace/contact_curves.hpp"
+#include "curves/contact_curves.hpp"
 #include "kernels/pose.hpp"
 
 #include "kernels/contact.hpp"

@@ -2,7 +2,7 @@
 // templated kernels compute with, and its conversion to the builder's IntegerPolynomial2.
 #pragma once
 
-#include "cspace/contact_curves.hpp"
+#include "curves/contact_curves.hpp"
 
 #include <hipair/rational.hpp>
 

@@ -1,9 +1,9 @@
 // Pair axes, chart layout and contact-curve generation for fixed-axis pairs.
-#include "cspace/contact_curves.hpp"
+#include "curves/contact_curves.hpp"
 
-#include "cspace/overlap.hpp"
-#include "cspace/polynomial.hpp"
-#include "cspace/pose.hpp"
+#include "oracle/overlap.hpp"
+#include "algebra/polynomial.hpp"
+#include "curves/pose.hpp"
 #include "kernels/contact.hpp"
 #include "kernels/contact_table.hpp"
 #include "kernels/interval.hpp"

@@ -6,7 +6,7 @@
 // All circle–segment CGAL code is in builder_circle_segment.cpp (one translation unit).
 #pragma once
 
-#include "cspace/builder_cgal.hpp"
+#include "arrangement/arrangement.hpp"
 
 #include <vector>
 

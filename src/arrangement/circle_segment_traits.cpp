@@ -1,10 +1,10 @@
 // The circle–segment CGAL stage of the C-space builder (see builder_circle_segment.hpp): the
 // only translation unit that includes Arr_circle_segment_traits_2.
-#include "cspace/builder_circle_segment.hpp"
+#include "arrangement/circle_segment_traits.hpp"
 
 #include <hipair/error.hpp>
 
-#include "cspace/builder_algebra.hpp"
+#include "algebra/exact_real.hpp"
 
 #include <CGAL/Arr_circle_segment_traits_2.h>
 #include <CGAL/Arrangement_2.h>

@@ -1,4 +1,4 @@
-#include "cspace/pose.hpp"
+#include "curves/pose.hpp"
 
 #include "kernels/contact_table.hpp"
 
