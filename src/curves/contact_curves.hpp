@@ -1,4 +1,4 @@
-// Contract between the contact kernels (kernels/, src/cspace/contact_curves.cpp) and the
+// Contract between the contact kernels (kernels/, src/curves/contact_curves.cpp) and the
 // C-space builder (src/cspace/builder*.cpp). Internal: not part of the public API.
 //
 // Configuration space of a fixed-axis pair: one axis per moving part (x: first part of the

@@ -3,7 +3,7 @@
 // polygons, levers with round ends, frames, rings, discs), the same model scaled by 10^k for
 // k from -300 to 400 (exact rational scale), and witness points near the parts, far from them,
 // on their edges, at their vertices, grazing vertices from 10^11 mm away, with huge and tiny
-// coordinates. Required, against the library's exact overlap predicate (src/cspace/overlap):
+// coordinates. Required, against the library's exact overlap predicate (src/oracle/overlap):
 //  - an interference certificate with a point witness verifies exactly when the point lies
 //    strictly inside both parts; one with a crossing witness only where the parts overlap;
 //  - a clearance or free-passage certificate never verifies where the parts touch or overlap;

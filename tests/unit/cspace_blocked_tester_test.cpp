@@ -1,4 +1,4 @@
-// The builder's certainly-blocked tester (src/cspace/blocked_tester.hpp) against the exact
+// The builder's certainly-blocked tester (src/oracle/blocked_tester.hpp) against the exact
 // overlap oracle. A box the tester calls blocked must contain no free and no touching
 // configuration:
 //  - random boxes of the example pairs' charts (fixed seed): where the tester says "blocked",

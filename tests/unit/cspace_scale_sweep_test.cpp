@@ -127,7 +127,7 @@ void sweep_cspace(const std::string& text, const std::string& a, const std::stri
       for (const CSpaceEdge& edge : space.edges()) s.contact_edges += edge.role == EdgeRole::contact;
     else
       s.contact_edges = space.vertices().size();   // 1-D: the contact configurations
-    // The oracle reads the model through doubles in its filters (src/cspace/overlap.cpp, fixed
+    // The oracle reads the model through doubles in its filters (src/oracle/overlap.cpp, fixed
     // separately); overlap does not depend on the unit, so it is asked about the exactly
     // rescaled copy (the identity within 1e-9 .. 1e18 mm).
     std::vector<std::size_t> both{*model.find_part(a), *model.find_part(b)};

@@ -1,4 +1,4 @@
-// Translating pairs on the circle–segment arrangement (src/cspace/builder_circle_segment.cpp):
+// Translating pairs on the circle–segment arrangement (src/arrangement/circle_segment_traits.cpp):
 // random rational parts bounded by segments and circular arcs (disks, rounded rectangles,
 // squares with a bulge or a dent, star polygons), each part translating along its own axis;
 // exact point location at thousands of random rational configurations per pair against the
