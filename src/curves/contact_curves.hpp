@@ -17,6 +17,7 @@
 
 #include <gmpxx.h>
 
+#include "algebra/polynomial.hpp"
 #include "kernels/interval.hpp"
 
 #include <cstddef>
@@ -27,15 +28,6 @@
 #include <vector>
 
 namespace hipair::cspace {
-
-/// Dense bivariate polynomial with integer coefficients: sum c[i][j] x^i y^j.
-/// For a 1-D space only the x variable occurs (c[i][0]).
-struct IntegerPolynomial2 {
-  std::vector<std::vector<mpz_class>> coefficients;  ///< coefficients[i][j] of x^i y^j
-  int degree_x() const noexcept;  ///< -1 for the zero polynomial (also degree_y)
-  int degree_y() const noexcept;
-  bool is_zero() const;
-};
 
 /// One chart axis of a pair's C-space.
 struct ChartAxis {

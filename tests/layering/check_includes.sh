@@ -22,7 +22,7 @@ declare -A allowed=(
   [model]="model core kernels"
   # The C-space, in the order the data flows: exact algebra -> contact curves -> overlap
   # oracle -> arrangement (CGAL) -> the adaptor (src/cspace, behind include/hipair/cspace.hpp).
-  [algebra]="algebra curves core kernels"
+  [algebra]="algebra core kernels"
   [curves]="curves algebra oracle core model kernels"
   [oracle]="oracle curves algebra core model kernels"
   [arrangement]="arrangement curves algebra core"
