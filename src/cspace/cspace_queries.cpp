@@ -404,15 +404,17 @@ std::vector<CSpaceFace> CSpace::faces(std::size_t chart_index) const {
   const Impl& impl = checked(*this);
   if (chart_index >= impl.charts.size()) throw GeometryError("faces: no chart " + std::to_string(chart_index));
   const ChartData& chart = impl.charts[chart_index];
-  auto kind_of = [](int kind) {
-    return kind == 1 ? CellKind::blocked : kind == 2 ? CellKind::touching : CellKind::free;
+  auto kind_of = [](cspace::FaceKind kind) {
+    return kind == cspace::FaceKind::blocked    ? CellKind::blocked
+           : kind == cspace::FaceKind::touching ? CellKind::touching
+                                                : CellKind::free;
   };
   std::vector<CSpaceFace> result;
   if (impl.dimension == 1) {
     for (std::size_t i = 0; i < chart.faces.size(); ++i) {
       CSpaceFace face;
       face.chart = chart_index;
-      face.classified = chart.faces[i].kind >= 0;
+      face.classified = chart.faces[i].kind != cspace::FaceKind::outside;
       face.kind = kind_of(chart.faces[i].kind);
       if (face.classified) face.cell = CellId(chart.faces[i].cell);
       if (i > 0) face.lower = VertexId(chart.vertex_global[i - 1]);
@@ -427,7 +429,7 @@ std::vector<CSpaceFace> CSpace::faces(std::size_t chart_index) const {
     if (raw_face.unbounded) continue;
     CSpaceFace face;
     face.chart = chart_index;
-    face.classified = chart.faces[f].kind >= 0;
+    face.classified = chart.faces[f].kind != cspace::FaceKind::outside;
     face.kind = kind_of(chart.faces[f].kind);
     if (face.classified) face.cell = CellId(chart.faces[f].cell);
     for (std::size_t k = 0; k < raw_face.component_starts.size(); ++k) {
