@@ -100,28 +100,8 @@ RInterval evaluate_path(const std::vector<Rational>& p, const Rational& a, const
 
 template <class T, class Convert>
 kernels::FeatureGeometry<T> feature_geometry(const Model& model, const FeatureIdentity& id, Convert&& convert) {
-  const Part& part = model.parts.at(id.part);
-  const Edge& edge = part.loops.at(id.loop).edges.at(id.edge);
-  kernels::FeatureGeometry<T> f;
-  auto vec = [&](const Point& p) { return kernels::Vector<T>{convert(p.x), convert(p.y)}; };
-  switch (id.kind) {
-    case FeatureKind::vertex:
-      f.shape = kernels::FeatureShape::vertex;
-      f.point = vec(edge.source);
-      break;
-    case FeatureKind::segment:
-      f.shape = kernels::FeatureShape::segment;
-      f.point = vec(edge.source);
-      f.target = vec(edge.target);
-      break;
-    case FeatureKind::arc:
-      f.shape = kernels::FeatureShape::arc;
-      f.center = vec(edge.center);
-      f.radius_squared = convert(edge.radius_squared);
-      f.convex = edge.ccw;
-      break;
-  }
-  return f;
+  const Edge& edge = model.parts.at(id.part).loops.at(id.loop).edges.at(id.edge);
+  return cspace::feature_geometry<T>(edge, id.kind, convert);
 }
 
 // The contact frame of feature pair `pair` at chart values (x, y) of chart `c`, in T.
