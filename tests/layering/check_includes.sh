@@ -22,6 +22,9 @@ declare -A allowed=(
   [model]="model core kernels"
   # The C-space, in the order the data flows: exact algebra -> contact curves -> overlap
   # oracle -> arrangement (CGAL) -> the adaptor (src/cspace, behind include/hipair/cspace.hpp).
+  # One edge goes back: curve generation certifies the inscribed disks of its blocked-space
+  # cull with the oracle's exact point location (oracle/overlap.hpp), while the oracle poses
+  # parts in the curves layer's chart vocabulary (curves/contact_curves.hpp, curves/pose.hpp).
   [algebra]="algebra core kernels"
   [curves]="curves algebra oracle core model kernels"
   [oracle]="oracle curves algebra core model kernels"
