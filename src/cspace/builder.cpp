@@ -2,7 +2,7 @@
 // with feature pairs, every face gets an exact rational sample point classified by the
 // overlap oracle, and charts are glued along seams into cells.
 #include "cspace/builder_impl.hpp"
-#include "cspace/builder_circle_segment.hpp"
+#include "arrangement/circle_segment_traits.hpp"
 
 #include <hipair/error.hpp>
 
@@ -25,17 +25,17 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-int kind_of(Overlap overlap) {
+FaceKind kind_of(Overlap overlap) {
   switch (overlap) {
-    case Overlap::apart: return 0;
-    case Overlap::overlapping: return 1;
-    case Overlap::touching: return 2;
+    case Overlap::apart: return FaceKind::free;
+    case Overlap::overlapping: return FaceKind::blocked;
+    case Overlap::touching: return FaceKind::touching;
   }
-  return 2;
+  return FaceKind::touching;
 }
 
-CellKind cell_kind(int kind) {
-  return kind == 0 ? CellKind::free : kind == 1 ? CellKind::blocked : CellKind::touching;
+CellKind cell_kind(FaceKind kind) {
+  return kind == FaceKind::free ? CellKind::free : kind == FaceKind::blocked ? CellKind::blocked : CellKind::touching;
 }
 
 // A rational in (lo, hi) that differs from every rational in `avoid` (sorted).
@@ -348,8 +348,8 @@ void classify_faces(ChartData& chart, const Classifier& classify, ContactSides* 
       }
     }
     if (by_side) {
-      data.kind = 1;
-      if (check && kind_of(classify(ChartPoint{x, y})) != 1)
+      data.kind = FaceKind::blocked;
+      if (check && kind_of(classify(ChartPoint{x, y})) != FaceKind::blocked)
         throw GeometryError("internal: a face on the blocked side of a contact edge is not blocked at " + x.get_str() +
                             ", " + y.get_str());
     } else {
@@ -454,7 +454,7 @@ void find_touching(ChartData& chart, const Classifier& classify, CSpaceStatistic
   const auto& arrangement = chart.arrangement;
   chart.touching_vertex.assign(arrangement.vertices.size(), 0);
   auto blocked = [&](std::size_t face) {
-    return face != raw::none && !arrangement.faces[face].unbounded && chart.faces[face].kind == 1;
+    return face != raw::none && !arrangement.faces[face].unbounded && chart.faces[face].kind == FaceKind::blocked;
   };
   auto decide = [&](const ChartPoint& q) {
     Overlap relation = classify(q);
@@ -748,10 +748,10 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
         pair.second_part = part_name(curve.second.part);
         pair.first_feature = feature_name(curve.first);
         pair.second_feature = feature_name(curve.second);
-        pair.kind = static_cast<ContactKind>(static_cast<int>(curve.type));
+        pair.kind = public_kind(curve.type);
         pair.label = curve.label;
         auto identity = [](const FeatureRef& f) {
-          return FeatureIdentity{f.part, f.loop, f.edge, static_cast<FeatureKind>(static_cast<int>(f.kind))};
+          return FeatureIdentity{f.part, f.loop, f.edge, f.kind};
         };
         pair.first = identity(curve.first);
         pair.second = identity(curve.second);
@@ -761,8 +761,8 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       chart.curve_global.push_back(index);
     }
     CSpaceChart public_chart;
-    public_chart.x_kind = chart.x_axis.kind == ChartAxis::Kind::rotation ? AxisKind::rotation : AxisKind::translation;
-    public_chart.y_kind = chart.y_axis.kind == ChartAxis::Kind::rotation ? AxisKind::rotation : AxisKind::translation;
+    public_chart.x_kind = chart.x_axis.kind;
+    public_chart.y_kind = chart.y_axis.kind;
     public_chart.x_half_turn = chart.x_axis.half_turn;
     public_chart.y_half_turn = chart.y_axis.half_turn;
     public_chart.x_lo = chart.box.x_lo;
@@ -833,7 +833,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
         const raw::Face& left = chart.arrangement.faces[edge.left_face];
         const raw::Face& right = chart.arrangement.faces[edge.right_face];
         if (left.unbounded || right.unbounded) continue;
-        int a = kind_at(c, edge.left_face), b = kind_at(c, edge.right_face);
+        FaceKind a = kind_at(c, edge.left_face), b = kind_at(c, edge.right_face);
         if (a == b && !chart.edges[e].touching)
           components.join(face_offset[c] + edge.left_face, face_offset[c] + edge.right_face, {0, 0});
         else
@@ -863,7 +863,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
             const SeamPiece& p = pieces_a[i];
             const SeamPiece& q = pieces_b[j];
             if (algebra::compare(p.start, q.end) < 0 && algebra::compare(q.start, p.end) < 0) {
-              int ka = kind_at(a, p.face), kb = kind_at(b, q.face);
+              FaceKind ka = kind_at(a, p.face), kb = kind_at(b, q.face);
               int state = ka == kb ? 1 : 2;
               seam_state[a][p.edge] = std::max(seam_state[a][p.edge], state);
               seam_state[b][q.edge] = std::max(seam_state[b][q.edge], state);
@@ -883,8 +883,8 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     for (std::size_t c = 0; c < impl->charts.size(); ++c) {
       ChartData& chart = impl->charts[c];
       for (std::size_t i = 0; i < chart.points.size(); ++i) {
-        int a = chart.faces[i].kind, b = chart.faces[i + 1].kind;
-        if (a < 0 || b < 0) continue;
+        FaceKind a = chart.faces[i].kind, b = chart.faces[i + 1].kind;
+        if (a == FaceKind::outside || b == FaceKind::outside) continue;
         if (a == b)
           components.join(face_offset[c] + i, face_offset[c] + i + 1, {0, 0});
         else
@@ -899,7 +899,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
         if (!same_coordinate(A.x_axis, A.box.x_hi, B.x_axis, B.box.x_lo)) continue;
         std::size_t fa = A.faces.size() - 1, fb = 0;
         // a contact point exactly on the seam separates the two ends
-        if (A.faces[fa].kind < 0 || B.faces[fb].kind < 0) continue;
+        if (A.faces[fa].kind == FaceKind::outside || B.faces[fb].kind == FaceKind::outside) continue;
         long winding = winding_between(A.x_axis, A.box.x_hi, B.x_axis, B.box.x_lo);
         if (A.faces[fa].kind == B.faces[fb].kind)
           components.join(face_offset[a] + fa, face_offset[b] + fb, {winding, 0});
@@ -914,7 +914,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     ChartData& chart = impl->charts[c];
     for (std::size_t f = 0; f < chart.faces.size(); ++f) {
       FaceData& face = chart.faces[f];
-      if (face.kind < 0) continue;
+      if (face.kind == FaceKind::outside) continue;
       auto [root, offset] = components.find(face_offset[c] + f);
       if (cell_of_root[root] == no_index) {
         cell_of_root[root] = impl->cells.size();

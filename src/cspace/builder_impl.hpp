@@ -6,9 +6,9 @@
 
 #include "cspace/cspace_access.hpp"
 
-#include "cspace/builder_algebra.hpp"
-#include "cspace/builder_cgal.hpp"
-#include "cspace/contact_curves.hpp"
+#include "algebra/exact_real.hpp"
+#include "arrangement/arrangement.hpp"
+#include "curves/contact_curves.hpp"
 
 #include <functional>
 #include <memory>
@@ -52,9 +52,13 @@ struct PairInput {
   double seconds_region = 0;
 };
 
+/// What the oracle says of a face: outside the chart box (not classified), or the kind of
+/// cell it belongs to.
+enum class FaceKind { outside, free, blocked, touching };
+
 /// One face (2-D) or interval (1-D) of a chart.
 struct FaceData {
-  int kind = -1;                  ///< -1 outside the chart box, 0 free, 1 blocked, 2 touching
+  FaceKind kind = FaceKind::outside;
   Rational sample_x, sample_y;    ///< strictly inside
   std::size_t cell = no_index;
 };

@@ -17,10 +17,10 @@ Location located_in_face(const CSpace::Impl& impl, std::size_t chart, std::size_
   Location location;
   location.chart = chart;
   const FaceData& data = impl.charts[chart].faces[face];
-  if (data.kind < 0) return location;
+  if (data.kind == FaceKind::outside) return location;
   location.cell = data.cell;
-  location.kind = data.kind == 1 ? Location::Kind::blocked : Location::Kind::free;
-  if (data.kind == 2) location.kind = Location::Kind::touching;   // touching throughout (degenerate)
+  location.kind = data.kind == FaceKind::blocked ? Location::Kind::blocked : Location::Kind::free;
+  if (data.kind == FaceKind::touching) location.kind = Location::Kind::touching;   // touching throughout (degenerate)
   return location;
 }
 
@@ -74,7 +74,7 @@ Location locate_2d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
           at.cell = chart.faces[vertex.face_below].cell;
         } else {
           for (const auto& incidence : vertex.around)
-            if (incidence.wedge_face != raw::none && chart.faces[incidence.wedge_face].kind >= 0) {
+            if (incidence.wedge_face != raw::none && chart.faces[incidence.wedge_face].kind != FaceKind::outside) {
               at.cell = chart.faces[incidence.wedge_face].cell;
               break;
             }
@@ -142,7 +142,7 @@ Location locate_1d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
       // a point of a contact curve with the same cell on both sides is no contact boundary
       const FaceData& before = chart.faces[i];
       const FaceData& after = chart.faces[i + 1];
-      if (before.kind >= 0 && after.kind >= 0 && before.cell == after.cell) location.cell = before.cell;
+      if (before.kind != FaceKind::outside && after.kind != FaceKind::outside && before.cell == after.cell) location.cell = before.cell;
       return location;
     }
     if (c > 0) break;

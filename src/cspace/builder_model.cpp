@@ -5,8 +5,8 @@
 #include <hipair/error.hpp>
 
 #include "cspace/builder_impl.hpp"
-#include "cspace/blocked_tester.hpp"
-#include "cspace/contact_curves.hpp"
+#include "oracle/blocked_tester.hpp"
+#include "curves/contact_curves.hpp"
 #include "core/model_scale.hpp"
 #include "kernels/interval.hpp"
 

@@ -10,7 +10,7 @@
 #include <hipair/error.hpp>
 
 #include "cspace/builder_impl.hpp"
-#include "cspace/pose.hpp"
+#include "curves/pose.hpp"
 #include "kernels/contact_geometry.hpp"
 #include "kernels/implicit_curve.hpp"
 #include "kernels/interval.hpp"
@@ -100,28 +100,8 @@ RInterval evaluate_path(const std::vector<Rational>& p, const Rational& a, const
 
 template <class T, class Convert>
 kernels::FeatureGeometry<T> feature_geometry(const Model& model, const FeatureIdentity& id, Convert&& convert) {
-  const Part& part = model.parts.at(id.part);
-  const Edge& edge = part.loops.at(id.loop).edges.at(id.edge);
-  kernels::FeatureGeometry<T> f;
-  auto vec = [&](const Point& p) { return kernels::Vector<T>{convert(p.x), convert(p.y)}; };
-  switch (id.kind) {
-    case FeatureKind::vertex:
-      f.shape = kernels::FeatureShape::vertex;
-      f.point = vec(edge.source);
-      break;
-    case FeatureKind::segment:
-      f.shape = kernels::FeatureShape::segment;
-      f.point = vec(edge.source);
-      f.target = vec(edge.target);
-      break;
-    case FeatureKind::arc:
-      f.shape = kernels::FeatureShape::arc;
-      f.center = vec(edge.center);
-      f.radius_squared = convert(edge.radius_squared);
-      f.convex = edge.ccw;
-      break;
-  }
-  return f;
+  const Edge& edge = model.parts.at(id.part).loops.at(id.loop).edges.at(id.edge);
+  return cspace::feature_geometry<T>(edge, id.kind, convert);
 }
 
 // The contact frame of feature pair `pair` at chart values (x, y) of chart `c`, in T.
@@ -404,15 +384,17 @@ std::vector<CSpaceFace> CSpace::faces(std::size_t chart_index) const {
   const Impl& impl = checked(*this);
   if (chart_index >= impl.charts.size()) throw GeometryError("faces: no chart " + std::to_string(chart_index));
   const ChartData& chart = impl.charts[chart_index];
-  auto kind_of = [](int kind) {
-    return kind == 1 ? CellKind::blocked : kind == 2 ? CellKind::touching : CellKind::free;
+  auto kind_of = [](cspace::FaceKind kind) {
+    return kind == cspace::FaceKind::blocked    ? CellKind::blocked
+           : kind == cspace::FaceKind::touching ? CellKind::touching
+                                                : CellKind::free;
   };
   std::vector<CSpaceFace> result;
   if (impl.dimension == 1) {
     for (std::size_t i = 0; i < chart.faces.size(); ++i) {
       CSpaceFace face;
       face.chart = chart_index;
-      face.classified = chart.faces[i].kind >= 0;
+      face.classified = chart.faces[i].kind != cspace::FaceKind::outside;
       face.kind = kind_of(chart.faces[i].kind);
       if (face.classified) face.cell = CellId(chart.faces[i].cell);
       if (i > 0) face.lower = VertexId(chart.vertex_global[i - 1]);
@@ -427,7 +409,7 @@ std::vector<CSpaceFace> CSpace::faces(std::size_t chart_index) const {
     if (raw_face.unbounded) continue;
     CSpaceFace face;
     face.chart = chart_index;
-    face.classified = chart.faces[f].kind >= 0;
+    face.classified = chart.faces[f].kind != cspace::FaceKind::outside;
     face.kind = kind_of(chart.faces[f].kind);
     if (face.classified) face.cell = CellId(chart.faces[f].cell);
     for (std::size_t k = 0; k < raw_face.component_starts.size(); ++k) {

@@ -30,7 +30,7 @@ bool same_axis(const ChartAxis& a, const ChartAxis& b) {
 
 ChartAxis axis_of(AxisKind kind, bool half_turn, const Rational& lo, const Rational& hi) {
   ChartAxis axis;
-  axis.kind = kind == AxisKind::rotation ? ChartAxis::Kind::rotation : ChartAxis::Kind::translation;
+  axis.kind = kind;
   axis.half_turn = half_turn;
   axis.lo = lo;
   axis.hi = hi;

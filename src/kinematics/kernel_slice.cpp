@@ -39,7 +39,7 @@ namespace {
 constexpr int cull_cells = 64;       // sub-intervals of the other axis for curve culling
 constexpr int follower_cells = 32;   // sub-intervals of the follower axis
 
-ContactKind public_kind(cspace::ContactType type) { return static_cast<ContactKind>(static_cast<int>(type)); }
+using cspace::public_kind;
 
 using FeatureKey = std::tuple<std::size_t, std::size_t, std::size_t, int, std::size_t, std::size_t, std::size_t, int, int>;
 

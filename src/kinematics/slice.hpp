@@ -12,8 +12,8 @@
 //   fast and is also the cross-check of the C-space slicer.
 #pragma once
 
-#include "cspace/builder_algebra.hpp"
-#include "cspace/contact_curves.hpp"
+#include "algebra/exact_real.hpp"
+#include "curves/contact_curves.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>

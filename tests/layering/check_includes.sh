@@ -20,23 +20,32 @@ declare -A allowed=(
   [kernels]="kernels"
   [core]="core"
   [model]="model core kernels"
-  [cspace]="cspace core model kernels"
-  [kinematics]="kinematics core kernels"
+  # The C-space, in the order the data flows: exact algebra -> contact curves -> overlap
+  # oracle -> arrangement (CGAL) -> the adaptor (src/cspace, behind include/hipair/cspace.hpp).
+  # One edge goes back: curve generation certifies the inscribed disks of its blocked-space
+  # cull with the oracle's exact point location (oracle/overlap.hpp), while the oracle poses
+  # parts in the curves layer's chart vocabulary (curves/contact_curves.hpp, curves/pose.hpp).
+  [algebra]="algebra core kernels"
+  [curves]="curves algebra oracle core model kernels"
+  [oracle]="oracle curves algebra core model kernels"
+  [arrangement]="arrangement curves algebra core"
+  [cspace]="cspace arrangement oracle curves algebra core model kernels"
+  [kinematics]="kinematics algebra curves core kernels"
   [tolerance]="tolerance core model kernels"
   [simulation]="simulation core kernels"
-  [certify]="certify core model kernels"
+  [certificates]="certificates certify core model kernels"
   [verifier]="certify core model io"
   [io]="io core"
   [render]="render io core"
   [cli]="cli io render core model"
   [examples]=""
 )
-# The interfaces of the exact-algebra and contact-curve layers (still inside src/cspace): the
-# kinematic kernel slicer computes 1-D slices from the contact curves without an arrangement.
-# Every other src/cspace header is internal to the C-space (the arrangement stage, the
-# adaptor's internals, the oracle's internals: consumers use hipair/cspace.hpp, hipair/overlap.hpp).
+# Single headers of another layer a layer may include besides its table: the algebraic-traits
+# translation unit implements the opt-in accessor hipair::cgal::arrangement() (it needs the
+# CGAL types, and CGAL stays in the arrangement files), which reads the kept arrangement
+# from the adaptor's internals.
 declare -A layer_interfaces=(
-  [kinematics]="cspace/builder_algebra.hpp cspace/contact_curves.hpp"
+  [arrangement]="cspace/builder_impl.hpp"
 )
 
 layer_of() {
@@ -70,9 +79,9 @@ while IFS= read -r file; do
     kind="${BASH_REMATCH[1]}" target="${BASH_REMATCH[2]}"
     if [ "$kind" = "<" ]; then
       if [[ "$target" == CGAL/* || "$target" == hipair/cgal/* ]] &&
-         [[ "$file" != src/cspace/builder_cgal.cpp && "$file" != src/cspace/builder_circle_segment.cpp &&
+         [[ "$file" != src/arrangement/algebraic_traits.cpp && "$file" != src/arrangement/circle_segment_traits.cpp &&
             "$file" != include/hipair/cgal/* ]]; then
-        report "$file" "$line_number" "includes <$target>: CGAL belongs to the arrangement stages (src/cspace/builder_cgal.cpp, builder_circle_segment.cpp)"
+        report "$file" "$line_number" "includes <$target>: CGAL belongs to the arrangement stages (src/arrangement/algebraic_traits.cpp, circle_segment_traits.cpp)"
       fi
       continue
     fi

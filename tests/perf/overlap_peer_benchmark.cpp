@@ -10,7 +10,7 @@
 // nearly touching configurations differ by design).
 #include "peer_timing.hpp"
 
-#include "cspace/contact_curves.hpp"
+#include "curves/contact_curves.hpp"
 
 #include <hipair/model.hpp>
 #include <hipair/rational.hpp>

@@ -1,12 +1,12 @@
 // The verifier's own geometry agrees with the library's exact overlap predicate
-// (src/cspace/overlap) on random rational configurations of every example pair: where the
+// (src/oracle/overlap) on random rational configurations of every example pair: where the
 // library says the parts overlap, the verifier finds evidence (an exact transversal crossing or
 // a vertex strictly inside); where it says they are apart, the verifier finds none and
 // certifies a positive distance lower bound (MPFI). Witness points of the library are
 // strictly inside both parts for the verifier's exact point location.
 #include "certify/exact_geometry.hpp"
 #include "certify/interval_geometry.hpp"
-#include "cspace/overlap.hpp"
+#include "oracle/overlap.hpp"
 
 #include <hipair/model.hpp>
 

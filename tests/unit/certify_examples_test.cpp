@@ -7,7 +7,7 @@
 #include <hipair/model.hpp>
 
 #include "certify/exact_geometry.hpp"
-#include "cspace/overlap.hpp"
+#include "oracle/overlap.hpp"
 #include "io/atomic_file.hpp"
 
 #include <gtest/gtest.h>

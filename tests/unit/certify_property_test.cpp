@@ -3,7 +3,7 @@
 // polygons, levers with round ends, frames, rings, discs), the same model scaled by 10^k for
 // k from -300 to 400 (exact rational scale), and witness points near the parts, far from them,
 // on their edges, at their vertices, grazing vertices from 10^11 mm away, with huge and tiny
-// coordinates. Required, against the library's exact overlap predicate (src/cspace/overlap):
+// coordinates. Required, against the library's exact overlap predicate (src/oracle/overlap):
 //  - an interference certificate with a point witness verifies exactly when the point lies
 //    strictly inside both parts; one with a crossing witness only where the parts overlap;
 //  - a clearance or free-passage certificate never verifies where the parts touch or overlap;
@@ -11,7 +11,7 @@
 // The first family is the reported attack: a 2 x 9 mm lever in the hole of a huge frame, and
 // witness points about 1.9e11 mm away whose rays graze the lever's vertices (the verifier used
 // to screen ray crossings with a double bounding box and accepted some of them).
-#include "cspace/overlap.hpp"
+#include "oracle/overlap.hpp"
 
 #include <hipair/certificate.hpp>
 #include <hipair/model.hpp>

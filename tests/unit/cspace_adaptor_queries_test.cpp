@@ -7,8 +7,8 @@
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 
-#include "cspace/contact_curves.hpp"
-#include "cspace/pose.hpp"
+#include "curves/contact_curves.hpp"
+#include "curves/pose.hpp"
 
 #include <gtest/gtest.h>
 

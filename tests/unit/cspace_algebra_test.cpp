@@ -1,7 +1,7 @@
 // Exact univariate algebra behind the C-space adaptor: Sturm counts, root isolation, exact
 // comparison of algebraic numbers, simplest rationals, substitutions and signs at algebraic
 // points. Values are chosen where doubles fail (2^53 + 1, roots 10^-20 apart).
-#include "cspace/builder_algebra.hpp"
+#include "algebra/exact_real.hpp"
 
 #include <hipair/error.hpp>
 

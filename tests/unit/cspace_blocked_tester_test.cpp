@@ -1,4 +1,4 @@
-// The builder's certainly-blocked tester (src/cspace/blocked_tester.hpp) against the exact
+// The builder's certainly-blocked tester (src/oracle/blocked_tester.hpp) against the exact
 // overlap oracle. A box the tester calls blocked must contain no free and no touching
 // configuration:
 //  - random boxes of the example pairs' charts (fixed seed): where the tester says "blocked",
@@ -10,9 +10,9 @@
 //    arcs meeting on the ray): the old double tester took empty space beside it for material
 //    and culled the curves bounding the free channel; the C-space built from the certified
 //    tester agrees with the oracle.
-#include "cspace/blocked_tester.hpp"
-#include "cspace/contact_curves.hpp"
-#include "cspace/overlap.hpp"
+#include "oracle/blocked_tester.hpp"
+#include "curves/contact_curves.hpp"
+#include "oracle/overlap.hpp"
 #include "kernels/interval.hpp"
 
 #include <hipair/cspace.hpp>

@@ -3,7 +3,7 @@
 // vertex on vertex, features touching along a whole interval. Every pair builds without a
 // crash and exact point location agrees with the exact overlap oracle; special
 // configurations are checked exactly.
-#include "cspace/contact_curves.hpp"
+#include "curves/contact_curves.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>

@@ -7,7 +7,7 @@
 #include <hipair/model.hpp>
 #include <hipair/overlap.hpp>
 
-#include "cspace/overlap.hpp"
+#include "oracle/overlap.hpp"
 
 #include <gtest/gtest.h>
 

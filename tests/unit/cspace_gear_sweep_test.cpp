@@ -6,7 +6,7 @@
 // The pairs reported crashing (SIGFPE in simplest_between from label_edges: a vertex shared
 // by two vertical edges lost the y separation the first edge gave it) are in the slow sweep,
 // run when HIPAIR_SLOW_TESTS is set (each takes minutes).
-#include "cspace/contact_curves.hpp"
+#include "curves/contact_curves.hpp"
 #include "cspace_test_support.hpp"
 
 #include <hipair/cspace.hpp>

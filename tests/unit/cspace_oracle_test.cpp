@@ -3,7 +3,7 @@
 // classified from the blocked side of a contact edge with the oracle), free <=> apart, blocked <=>
 // overlapping, and a configuration on an edge or a vertex is touching (on a real edge) or of
 // the class of the surrounding cell (on a spurious edge, whose curve may still touch there).
-#include "cspace/contact_curves.hpp"
+#include "curves/contact_curves.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>

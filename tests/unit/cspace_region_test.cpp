@@ -5,7 +5,7 @@
 //  - the channel of the initial configuration is the same as in the whole build: a free cell
 //    bounded by the same feature pairs, wrapping the same way;
 //  - tiles not built are reported as outside, and the space says it is not complete.
-#include "cspace/contact_curves.hpp"
+#include "curves/contact_curves.hpp"
 #include "cspace_test_support.hpp"
 
 #include <hipair/cspace.hpp>

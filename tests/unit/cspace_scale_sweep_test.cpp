@@ -10,7 +10,7 @@
 // contact curve (doubles overflowed in the curve filters) and 1e-15 mm features crashed the
 // inscribed-disk guesses (SIGFPE in mpq_set_d on a NaN).
 #include "core/model_scale.hpp"
-#include "cspace/contact_curves.hpp"
+#include "curves/contact_curves.hpp"
 #include "cspace_test_support.hpp"
 
 #include <hipair/cspace.hpp>
@@ -127,7 +127,7 @@ void sweep_cspace(const std::string& text, const std::string& a, const std::stri
       for (const CSpaceEdge& edge : space.edges()) s.contact_edges += edge.role == EdgeRole::contact;
     else
       s.contact_edges = space.vertices().size();   // 1-D: the contact configurations
-    // The oracle reads the model through doubles in its filters (src/cspace/overlap.cpp, fixed
+    // The oracle reads the model through doubles in its filters (src/oracle/overlap.cpp, fixed
     // separately); overlap does not depend on the unit, so it is asked about the exactly
     // rescaled copy (the identity within 1e-9 .. 1e18 mm).
     std::vector<std::size_t> both{*model.find_part(a), *model.find_part(b)};

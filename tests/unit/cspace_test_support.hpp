@@ -2,7 +2,7 @@
 // random rational configuration inside a random built chart or tile.
 #pragma once
 
-#include "cspace/contact_curves.hpp"
+#include "curves/contact_curves.hpp"
 
 #include <hipair/cspace.hpp>
 

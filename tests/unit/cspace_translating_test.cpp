@@ -1,4 +1,4 @@
-// Translating pairs on the circle–segment arrangement (src/cspace/builder_circle_segment.cpp):
+// Translating pairs on the circle–segment arrangement (src/arrangement/circle_segment_traits.cpp):
 // random rational parts bounded by segments and circular arcs (disks, rounded rectangles,
 // squares with a bulge or a dent, star polygons), each part translating along its own axis;
 // exact point location at thousands of random rational configurations per pair against the
@@ -6,8 +6,8 @@
 // hole and a rounded square in a rounded hole of exactly their size: one touching
 // configuration; a disk in a stadium slot of exactly its diameter: a touching channel).
 // The Minkowski-sum equality for polygons is in cspace_minkowski_test.cpp (CGAL there).
-#include "cspace/builder_algebra.hpp"
-#include "cspace/contact_curves.hpp"
+#include "algebra/exact_real.hpp"
+#include "curves/contact_curves.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>

@@ -6,7 +6,7 @@
 // touching vertices, point location finds them there (and blocked space just beside them), the
 // slicer and the kinematic analysis follow them, and `analyze` reports a contact, not an
 // interference. Generated over random rational sizes and positions with a fixed seed.
-#include "cspace/contact_curves.hpp"
+#include "curves/contact_curves.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/kinematics.hpp>

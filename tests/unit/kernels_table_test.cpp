@@ -3,7 +3,7 @@
 // exact-versus-squared policy (the squared form is the product of the two tangency branches),
 // the existence rule against the table of docs/contact-kernels.md, the reflex rule, and the
 // (1 + t^2) normalisation (kernels/weights.hpp).
-#include "cspace/polynomial.hpp"
+#include "algebra/polynomial.hpp"
 #include "kernels/contact_table.hpp"
 #include "kernels/weights.hpp"
 

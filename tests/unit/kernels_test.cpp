@@ -2,10 +2,10 @@
 // double, certified intervals and Eigen AutoDiff; constructed contacts for every feature pair
 // and motion pair checked against the exact overlap predicate; closed forms (eccentric cam,
 // Scotch yoke, Geneva pin and slot); degenerate cases.
-#include "cspace/contact_curves.hpp"
-#include "cspace/overlap.hpp"
-#include "cspace/polynomial.hpp"
-#include "cspace/pose.hpp"
+#include "curves/contact_curves.hpp"
+#include "oracle/overlap.hpp"
+#include "algebra/polynomial.hpp"
+#include "curves/pose.hpp"
 #include "kernels/contact.hpp"
 #include "kernels/interval.hpp"
 

@@ -86,7 +86,7 @@ TEST(KinematicsAssembly, TheLastPartOfTheChainBlocksTheDriver) {
   EXPECT_TRUE(std::any_of(result.jam->before.begin(), result.jam->before.end(), [](const ContactLabel& c) { return c.limit; }));
   // closed form: s* = offset_at_lever_angle(-2 deg), theta* = asin(s* / 8). The limit the
   // analysis uses is -2 deg rounded by the model (bound B rad), then its chart edge t = tan(a/2)
-  // rounded outward to the 1e-12 grid plus one step (src/cspace/contact_curves.cpp: up to 2e-12
+  // rounded outward to the 1e-12 grid plus one step (src/curves/contact_curves.cpp: up to 2e-12
   // in t, 4e-12 in angle): at most 5 B in the lever angle. That moves s* by up to 60 * 5 B
   // (ds/da ~ 60 mm/rad) and theta* by that over ds/dtheta = 8 cos(theta*); plus the certified
   // event width.

@@ -21,8 +21,74 @@
 
 namespace hipair::model_detail {
 
-/// Gradient-carrying scalar over all parameters.
-using AutoDiff = Eigen::AutoDiffScalar<Eigen::VectorXd>;
+/// Gradient-carrying scalar over all parameters: Eigen's AutoDiffScalar with a dynamic-size
+/// gradient, whose arithmetic is evaluated at once and treats an empty gradient as zero.
+///
+/// Eigen's own operators return lazy expressions and reconcile an empty gradient (a constant
+/// such as the kernels' T(0), T(1), T(2), or a fixed part's pose) with a sized one only when
+/// both sides are plain vectors; inside nested expressions (a.x * b.y - a.y * b.x with
+/// constant a and moving b) the sizes disagree and Eigen reads out of bounds (an assertion
+/// in debug builds). Here every +, -, *, / returns a plain AutoDiff, so the kernels
+/// (templated on the number type) run on it unchanged, with constants of any origin.
+class AutoDiff : public Eigen::AutoDiffScalar<Eigen::VectorXd> {
+ public:
+  using Base = Eigen::AutoDiffScalar<Eigen::VectorXd>;
+  using Gradient = Eigen::VectorXd;
+
+  AutoDiff() = default;
+  /// A constant (empty gradient: zero with respect to everything).
+  AutoDiff(double value) : Base(value) {}                                   // NOLINT(google-explicit-constructor)
+  AutoDiff(int value) : Base(static_cast<double>(value)) {}                 // NOLINT(google-explicit-constructor)
+  AutoDiff(double value, const Gradient& gradient) : Base(value, gradient) {}
+  /// The `index`-th of `size` variables at `value`.
+  AutoDiff(double value, Eigen::Index size, Eigen::Index index) : Base(value, size, index) {}
+  /// Evaluates any Eigen AutoDiff expression (Eigen::sqrt(x), Eigen::atan2(y, x), ...).
+  template <class Derivatives>
+  AutoDiff(const Eigen::AutoDiffScalar<Derivatives>& other)  // NOLINT(google-explicit-constructor)
+      : Base(other.value(), Gradient(other.derivatives())) {}
+
+  friend AutoDiff operator+(const AutoDiff& a, const AutoDiff& b) {
+    return AutoDiff(a.value() + b.value(), combine(a.derivatives(), 1.0, b.derivatives(), 1.0));
+  }
+  friend AutoDiff operator-(const AutoDiff& a, const AutoDiff& b) {
+    return AutoDiff(a.value() - b.value(), combine(a.derivatives(), 1.0, b.derivatives(), -1.0));
+  }
+  friend AutoDiff operator-(const AutoDiff& a) { return AutoDiff(-a.value(), Gradient(-a.derivatives())); }
+  friend AutoDiff operator*(const AutoDiff& a, const AutoDiff& b) {
+    return AutoDiff(a.value() * b.value(), combine(a.derivatives(), b.value(), b.derivatives(), a.value()));
+  }
+  friend AutoDiff operator/(const AutoDiff& a, const AutoDiff& b) {
+    const double inverse = 1.0 / b.value();
+    const double quotient = a.value() * inverse;
+    return AutoDiff(quotient, combine(a.derivatives(), inverse, b.derivatives(), -quotient * inverse));
+  }
+  friend AutoDiff operator+(const AutoDiff& a, double b) { return a + AutoDiff(b); }
+  friend AutoDiff operator+(double a, const AutoDiff& b) { return AutoDiff(a) + b; }
+  friend AutoDiff operator-(const AutoDiff& a, double b) { return a - AutoDiff(b); }
+  friend AutoDiff operator-(double a, const AutoDiff& b) { return AutoDiff(a) - b; }
+  friend AutoDiff operator*(const AutoDiff& a, double b) { return a * AutoDiff(b); }
+  friend AutoDiff operator*(double a, const AutoDiff& b) { return AutoDiff(a) * b; }
+  friend AutoDiff operator/(const AutoDiff& a, double b) { return a / AutoDiff(b); }
+  friend AutoDiff operator/(double a, const AutoDiff& b) { return AutoDiff(a) / b; }
+  AutoDiff& operator+=(const AutoDiff& b) { return *this = *this + b; }
+  AutoDiff& operator-=(const AutoDiff& b) { return *this = *this - b; }
+  AutoDiff& operator*=(const AutoDiff& b) { return *this = *this * b; }
+  AutoDiff& operator/=(const AutoDiff& b) { return *this = *this / b; }
+  friend bool operator==(const AutoDiff& a, const AutoDiff& b) { return a.value() == b.value(); }
+  friend bool operator!=(const AutoDiff& a, const AutoDiff& b) { return a.value() != b.value(); }
+  friend bool operator<(const AutoDiff& a, const AutoDiff& b) { return a.value() < b.value(); }
+  friend bool operator>(const AutoDiff& a, const AutoDiff& b) { return a.value() > b.value(); }
+  friend bool operator<=(const AutoDiff& a, const AutoDiff& b) { return a.value() <= b.value(); }
+  friend bool operator>=(const AutoDiff& a, const AutoDiff& b) { return a.value() >= b.value(); }
+
+ private:
+  // ka a + kb b, an empty gradient standing for zero (of the other's size).
+  static Gradient combine(const Gradient& a, double ka, const Gradient& b, double kb) {
+    if (a.size() == 0) return b.size() == 0 ? Gradient() : Gradient(kb * b);
+    if (b.size() == 0) return Gradient(ka * a);
+    return Gradient(ka * a + kb * b);
+  }
+};
 
 template <class T>
 struct Arithmetic;
@@ -105,12 +171,12 @@ struct Arithmetic<kernels::Interval> {
 
 template <>
 struct Arithmetic<AutoDiff> {
-  static AutoDiff constant(const Rational& q) { return AutoDiff(q.get_d()); }
+  static AutoDiff constant(const Rational& q) { return AutoDiff(q.get_d()); }   // empty gradient: zero
   static AutoDiff pi() { return AutoDiff(std::numbers::pi); }
   static AutoDiff sqrt(const AutoDiff& x) { return Eigen::sqrt(x); }
   static AutoDiff sin(const AutoDiff& x) { return Eigen::sin(x); }
   static AutoDiff cos(const AutoDiff& x) { return Eigen::cos(x); }
-  static AutoDiff tan(const AutoDiff& x) { return AutoDiff(Eigen::sin(x) / Eigen::cos(x)); }
+  static AutoDiff tan(const AutoDiff& x) { return AutoDiff(Eigen::sin(x)) / AutoDiff(Eigen::cos(x)); }
   static AutoDiff atan2(const AutoDiff& y, const AutoDiff& x) { return Eigen::atan2(y, x); }
   static AutoDiff abs(const AutoDiff& x) { return x.value() < 0 ? AutoDiff(-x) : x; }
   static AutoDiff min(const AutoDiff& a, const AutoDiff& b) { return a.value() <= b.value() ? a : b; }

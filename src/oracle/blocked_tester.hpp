@@ -11,8 +11,8 @@
 // double over- or underflows at any model scale.
 #pragma once
 
-#include "cspace/builder_algebra.hpp"
-#include "cspace/contact_curves.hpp"
+#include "algebra/exact_real.hpp"
+#include "curves/contact_curves.hpp"
 #include "kernels/interval.hpp"
 
 #include <hipair/model.hpp>

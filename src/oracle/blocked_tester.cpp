@@ -1,7 +1,7 @@
 // The certainly-blocked tester of the C-space builder (see blocked_tester.hpp): disks of the
 // parts' material guessed in doubles, certified once (exact location, certified clearance), and
 // a certified (outward-rounded interval) test that two posed disks overlap over a chart box.
-#include "cspace/blocked_tester.hpp"
+#include "oracle/blocked_tester.hpp"
 
 #include "core/model_scale.hpp"
 

@@ -1,4 +1,4 @@
-#include "cspace/builder_algebra.hpp"
+#include "algebra/exact_real.hpp"
 
 #include <hipair/error.hpp>
 

@@ -15,7 +15,7 @@
 //     and curvature; overlap iff some sector between consecutive germs is material of both;
 //  4. a loop with no common point with the other boundary lies entirely inside or outside
 //     the other part's interior: one exact point-in-region test per such loop decides.
-#include "cspace/overlap.hpp"
+#include "oracle/overlap.hpp"
 
 #include "kernels/interval.hpp"
 

@@ -1,4 +1,4 @@
-// Contract between the contact kernels (kernels/, src/cspace/contact_curves.cpp) and the
+// Contract between the contact kernels (kernels/, src/curves/contact_curves.cpp) and the
 // C-space builder (src/cspace/builder*.cpp). Internal: not part of the public API.
 //
 // Configuration space of a fixed-axis pair: one axis per moving part (x: first part of the
@@ -12,11 +12,14 @@
 // their zero sets are the contact curves of the chart.
 #pragma once
 
+#include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
 #include <hipair/rational.hpp>
 
 #include <gmpxx.h>
 
+#include "algebra/polynomial.hpp"
+#include "kernels/contact_table.hpp"
 #include "kernels/interval.hpp"
 
 #include <cstddef>
@@ -28,18 +31,9 @@
 
 namespace hipair::cspace {
 
-/// Dense bivariate polynomial with integer coefficients: sum c[i][j] x^i y^j.
-/// For a 1-D space only the x variable occurs (c[i][0]).
-struct IntegerPolynomial2 {
-  std::vector<std::vector<mpz_class>> coefficients;  ///< coefficients[i][j] of x^i y^j
-  int degree_x() const noexcept;  ///< -1 for the zero polynomial (also degree_y)
-  int degree_y() const noexcept;
-  bool is_zero() const;
-};
-
 /// One chart axis of a pair's C-space.
 struct ChartAxis {
-  enum class Kind { rotation, translation };
+  using Kind = AxisKind;    ///< the public axis kind (hipair/cspace.hpp)
   Kind kind = Kind::rotation;
   bool half_turn = false;   ///< rotation: chart centred at theta = pi instead of 0
   Rational lo;              ///< chart box in chart coordinates (t or s)
@@ -55,7 +49,7 @@ struct ChartLayout {
 
 /// A boundary feature of a part, in the model's loops.
 struct FeatureRef {
-  enum class Kind { vertex, segment, arc };
+  using Kind = FeatureKind;   ///< the public feature kind (hipair/cspace.hpp)
   std::size_t part = 0;
   std::size_t loop = 0;
   std::size_t edge = 0;   ///< for a vertex: the vertex is the source of this edge
@@ -63,16 +57,12 @@ struct FeatureRef {
   friend bool operator==(const FeatureRef&, const FeatureRef&) = default;
 };
 
-/// How two features touch along a curve.
-enum class ContactType {
-  vertex_segment,   ///< vertex of the first part on a segment of the second
-  segment_vertex,
-  vertex_arc,
-  arc_vertex,
-  arc_arc,          ///< circles tangent (outside or inside)
-  arc_segment,      ///< circle tangent to a line
-  segment_arc
-};
+/// How two features touch along a curve: the kernels' contact table (one spelling,
+/// kernels/contact_table.hpp); the public spelling is ContactKind (same order).
+using ContactType = kernels::ContactType;
+
+/// The public spelling of a contact type.
+ContactKind public_kind(ContactType type) noexcept;
 
 /// A contact curve of a pair in one chart: the zero set of `polynomial` restricted to the
 /// chart box contains every configuration where `first` touches `second` (a superset: the

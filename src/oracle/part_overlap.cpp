@@ -3,7 +3,7 @@
 #include <hipair/error.hpp>
 #include <hipair/overlap.hpp>
 
-#include "cspace/overlap.hpp"
+#include "oracle/overlap.hpp"
 
 namespace hipair {
 

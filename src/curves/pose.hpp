@@ -2,7 +2,7 @@
 // relative placement of one part in the other's body frame.
 #pragma once
 
-#include "cspace/contact_curves.hpp"
+#include "curves/contact_curves.hpp"
 #include "kernels/pose.hpp"
 
 #include "kernels/contact.hpp"
@@ -105,14 +105,47 @@ std::vector<BodyFeature> part_features(const Model& model, std::size_t part_inde
 /// (kernels/contact_table.hpp, kernels/contact_geometry.hpp).
 kernels::FeatureGeometry<Rational> feature_geometry(const BodyFeature& feature);
 
+/// The counter-clockwise sector of an arc edge seen from its centre (body frame).
+kernels::ArcSector<Rational> arc_sector(const Edge& edge);
+
+/// The body geometry of the feature of kind `kind` on `edge` (a vertex: the edge's source) in
+/// any number type T, `convert` taking the model's rationals to T: the one map from a model
+/// feature to the kernels' FeatureGeometry (curve generation, contact frames of the adaptor).
+template <class T, class Convert>
+kernels::FeatureGeometry<T> feature_geometry(const Edge& edge, FeatureKind kind, Convert&& convert) {
+  kernels::FeatureGeometry<T> f;
+  auto vec = [&](const auto& p) { return kernels::Vector<T>{convert(p.x), convert(p.y)}; };
+  switch (kind) {
+    case FeatureKind::vertex:
+      f.shape = kernels::FeatureShape::vertex;
+      f.point = vec(edge.source);
+      break;
+    case FeatureKind::segment:
+      f.shape = kernels::FeatureShape::segment;
+      f.point = vec(edge.source);
+      f.target = vec(edge.target);
+      break;
+    case FeatureKind::arc: {
+      f.shape = kernels::FeatureShape::arc;
+      f.center = vec(edge.center);
+      f.radius_squared = convert(edge.radius_squared);
+      f.convex = edge.ccw;
+      kernels::ArcSector<Rational> sector = arc_sector(edge);
+      f.sector.start = vec(sector.start);
+      f.sector.end = vec(sector.end);
+      f.sector.large = sector.large;
+      f.sector.full = sector.full;
+      break;
+    }
+  }
+  return f;
+}
+
 /// Exact square root of a non-negative rational when it is rational.
 std::optional<Rational> exact_square_root(const Rational& value);
 
 /// Tangent (direction of travel, not normalised) of an edge at a point on it.
 Point edge_tangent(const Edge& edge, const Point& at);
-
-/// The counter-clockwise sector of an arc edge seen from its centre (body frame).
-kernels::ArcSector<Rational> arc_sector(const Edge& edge);
 
 /// True when the direction `v` (from the arc's centre) lies in the closed sector.
 bool sector_contains(const kernels::ArcSector<Rational>& sector, const Point& v);

@@ -1,4 +1,4 @@
-#include "cspace/polynomial.hpp"
+#include "algebra/polynomial.hpp"
 
 #include "kernels/weights.hpp"
 

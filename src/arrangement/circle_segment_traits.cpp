@@ -1,10 +1,10 @@
-// The circle–segment CGAL stage of the C-space builder (see builder_circle_segment.hpp): the
+// The circle–segment CGAL stage of the C-space builder (see circle_segment_traits.hpp): the
 // only translation unit that includes Arr_circle_segment_traits_2.
-#include "cspace/builder_circle_segment.hpp"
+#include "arrangement/circle_segment_traits.hpp"
 
 #include <hipair/error.hpp>
 
-#include "cspace/builder_algebra.hpp"
+#include "algebra/exact_real.hpp"
 
 #include <CGAL/Arr_circle_segment_traits_2.h>
 #include <CGAL/Arrangement_2.h>
@@ -625,7 +625,7 @@ class Builder {
   }
 
   // Which wedge around the vertex contains the straight-down (below) or straight-up direction?
-  // (As in builder_cgal.cpp: angles clockwise from the reference direction.)
+  // (As in algebraic_traits.cpp: angles clockwise from the reference direction.)
   std::size_t wedge_containing(const std::vector<Arrangement_2::Halfedge_const_handle>& around,
                                const std::vector<Incidence>& incidences, const Point& p, bool below) const {
     const std::size_t n = incidences.size();

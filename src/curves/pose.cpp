@@ -1,4 +1,4 @@
-#include "cspace/pose.hpp"
+#include "curves/pose.hpp"
 
 #include "kernels/contact_table.hpp"
 
@@ -121,27 +121,8 @@ std::string edge_name(const Edge& edge, std::size_t loop, std::size_t index) {
 }  // namespace
 
 kernels::FeatureGeometry<Rational> feature_geometry(const BodyFeature& feature) {
-  kernels::FeatureGeometry<Rational> f;
-  const Edge& edge = *feature.edge;
-  switch (feature.ref.kind) {
-    case FeatureRef::Kind::vertex:
-      f.shape = kernels::FeatureShape::vertex;
-      f.point = to_kernel(feature.point);
-      break;
-    case FeatureRef::Kind::segment:
-      f.shape = kernels::FeatureShape::segment;
-      f.point = to_kernel(edge.source);
-      f.target = to_kernel(edge.target);
-      break;
-    case FeatureRef::Kind::arc:
-      f.shape = kernels::FeatureShape::arc;
-      f.center = to_kernel(edge.center);
-      f.radius_squared = edge.radius_squared;
-      f.convex = edge.ccw;
-      f.sector = arc_sector(edge);
-      break;
-  }
-  return f;
+  // a vertex feature's point is its edge's source (part_features)
+  return feature_geometry<Rational>(*feature.edge, feature.ref.kind, [](const Rational& r) { return r; });
 }
 
 std::vector<BodyFeature> part_features(const Model& model, std::size_t part_index,

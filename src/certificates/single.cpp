@@ -1,6 +1,6 @@
 // Certificates for single configurations: interference and clearance, and the helpers shared by
 // every producer (model identity, exact maps, self-check).
-#include "certify/producer.hpp"
+#include "certificates/producer.hpp"
 
 #include <hipair/overlap.hpp>
 

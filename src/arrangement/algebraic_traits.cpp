@@ -1,6 +1,6 @@
 // The only translation unit of the C-space builder that includes CGAL's algebraic arrangement
-// code (about 30 s to compile). See builder_cgal.hpp.
-#include "cspace/builder_cgal.hpp"
+// code (about 30 s to compile). See arrangement.hpp.
+#include "arrangement/arrangement.hpp"
 
 #include <hipair/cgal/arrangement.hpp>
 #include <hipair/error.hpp>

@@ -1,12 +1,12 @@
 // The C-space builder's fast CGAL stage for charts whose contact curves are all lines and
 // circles (translating pairs: vertex–segment contacts are segments, anything with an arc is a
 // circular arc): CGAL::Arr_circle_segment_traits_2<Epeck> instead of the algebraic traits.
-// It exports the same plain exact topology (raw::Arrangement) as builder_cgal.hpp, so that
+// It exports the same plain exact topology (raw::Arrangement) as arrangement.hpp, so that
 // labelling, classification, cells, point location and every adaptor query are shared.
-// All circle–segment CGAL code is in builder_circle_segment.cpp (one translation unit).
+// All circle–segment CGAL code is in circle_segment_traits.cpp (one translation unit).
 #pragma once
 
-#include "cspace/builder_cgal.hpp"
+#include "arrangement/arrangement.hpp"
 
 #include <vector>
 

@@ -8,8 +8,8 @@
 // in Q(sqrt(d)).
 #pragma once
 
-#include "cspace/contact_curves.hpp"
-#include "cspace/pose.hpp"
+#include "curves/contact_curves.hpp"
+#include "curves/pose.hpp"
 
 #include <hipair/geometry.hpp>
 #include <hipair/model.hpp>

@@ -4,8 +4,8 @@
 // stage (labelling, classification, cells, point location, path queries) is CGAL-free.
 #pragma once
 
-#include "cspace/builder_algebra.hpp"
-#include "cspace/contact_curves.hpp"
+#include "algebra/exact_real.hpp"
+#include "curves/contact_curves.hpp"
 
 #include <hipair/rational.hpp>
 

@@ -2,13 +2,22 @@
 // templated kernels compute with, and its conversion to the builder's IntegerPolynomial2.
 #pragma once
 
-#include "cspace/contact_curves.hpp"
-
 #include <hipair/rational.hpp>
+
+#include <gmpxx.h>
 
 #include <vector>
 
 namespace hipair::cspace {
+
+/// Dense bivariate polynomial with integer coefficients: sum c[i][j] x^i y^j.
+/// For a 1-D space only the x variable occurs (c[i][0]).
+struct IntegerPolynomial2 {
+  std::vector<std::vector<mpz_class>> coefficients;  ///< coefficients[i][j] of x^i y^j
+  int degree_x() const noexcept;  ///< -1 for the zero polynomial (also degree_y)
+  int degree_y() const noexcept;
+  bool is_zero() const;
+};
 
 /// Dense polynomial sum c(i, j) x^i y^j with exact rational coefficients. Behaves as a
 /// number type for kernels/ (construction from int, +, -, unary -, *).

@@ -1,9 +1,9 @@
 // Pair axes, chart layout and contact-curve generation for fixed-axis pairs.
-#include "cspace/contact_curves.hpp"
+#include "curves/contact_curves.hpp"
 
-#include "cspace/overlap.hpp"
-#include "cspace/polynomial.hpp"
-#include "cspace/pose.hpp"
+#include "oracle/overlap.hpp"
+#include "algebra/polynomial.hpp"
+#include "curves/pose.hpp"
 #include "kernels/contact.hpp"
 #include "kernels/contact_table.hpp"
 #include "kernels/interval.hpp"
@@ -779,12 +779,6 @@ using PolyVector = kernels::Vector<Polynomial>;
 
 // The contact table (kernels/contact_table.hpp) in exact polynomials of the chart coordinates:
 // body data are rationals, the radius products' roots taken when they are rational.
-static_assert(static_cast<int>(ContactType::segment_arc) == static_cast<int>(kernels::ContactType::segment_arc) &&
-              static_cast<int>(ContactType::arc_arc) == static_cast<int>(kernels::ContactType::arc_arc) &&
-              static_cast<int>(ContactType::vertex_arc) == static_cast<int>(kernels::ContactType::vertex_arc));
-
-ContactType to_contact_type(kernels::ContactType type) { return static_cast<ContactType>(static_cast<int>(type)); }
-
 std::optional<kernels::ContactFunction<Polynomial>> contact_of(const BodyFeature& fa, const BodyFeature& fb,
                                                                const kernels::Pose<Polynomial>& a,
                                                                const kernels::Pose<Polynomial>& b) {
@@ -1045,7 +1039,7 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
     ContactCurve curve;
     curve.first = fa.ref;
     curve.second = fb.ref;
-    curve.type = to_contact_type(kernel->type);
+    curve.type = kernel->type;
     curve.polynomial = normalized_integer_polynomial(kernel->value);
     curve.blocked_sign = kernels::blocked_sign;
     bool zero = curve.polynomial.is_zero();
@@ -1275,6 +1269,19 @@ ChartLayout chart_layout(const Model& model, const PairAxes& axes) {
     layout.x_charts = charts_of(model, axes.second, axes.first, axes.first_moves);
   }
   return layout;
+}
+
+ContactKind public_kind(ContactType type) noexcept {
+  switch (type) {
+    case ContactType::vertex_segment: return ContactKind::vertex_segment;
+    case ContactType::segment_vertex: return ContactKind::segment_vertex;
+    case ContactType::vertex_arc: return ContactKind::vertex_arc;
+    case ContactType::arc_vertex: return ContactKind::arc_vertex;
+    case ContactType::arc_arc: return ContactKind::arc_arc;
+    case ContactType::arc_segment: return ContactKind::arc_segment;
+    case ContactType::segment_arc: return ContactKind::segment_arc;
+  }
+  return ContactKind::vertex_segment;
 }
 
 }  // namespace hipair::cspace

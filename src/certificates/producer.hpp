@@ -1,4 +1,4 @@
-// Helpers shared by the certificate producers (src/certify/*.cpp). Internal.
+// Helpers shared by the certificate producers (src/certificates/*.cpp). Internal.
 #pragma once
 
 #include <hipair/certificate.hpp>

@@ -1,7 +1,7 @@
 // Certificates over intervals of configurations: free passage (boxes along a path, each with a
 // certified clearance) and jamming (a trap whose cut and walls are covered by blocked pieces),
 // and a simple search for the trap of a jam.
-#include "certify/producer.hpp"
+#include "certificates/producer.hpp"
 
 #include <hipair/overlap.hpp>
 

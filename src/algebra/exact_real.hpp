@@ -3,7 +3,7 @@
 // point location and path queries never touch the arrangement code (and are thread-safe).
 #pragma once
 
-#include "cspace/contact_curves.hpp"
+#include "algebra/polynomial.hpp"
 
 #include <hipair/rational.hpp>
 
