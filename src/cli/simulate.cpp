@@ -33,7 +33,6 @@ struct SimulateOptions {
   double t_end = 0;
   double accuracy = 0;
   double max_step = 0;
-  double release_gap = 0;
   std::string out;
   std::vector<std::string> overrides;
   bool allow_out_of_tolerance = false;
@@ -77,7 +76,6 @@ int run(const SimulateOptions& options) {
   SimulationOptions sim_options;
   sim_options.accuracy = options.accuracy;
   sim_options.max_step = options.max_step;
-  if (options.release_gap > 0) sim_options.release_gap = options.release_gap;
   sim_options.operating_region = options.region == "operating";
   if (terminal) std::cerr << "simulate: building the pairs' C-spaces..." << std::flush;
   Simulation simulation = Simulation::create(model, sim_options);
@@ -236,9 +234,6 @@ void register_simulate(CLI::App& app, Action& action) {
       ->check(CLI::Range(1e-15, 0.1));
   command->add_option("--max-step", options->max_step, "Largest integration step (time unit; default: none)")
       ->check(CLI::PositiveNumber);
-  command->add_option("--release-gap", options->release_gap,
-                      "Gap (rad or mm) by which a configuration is moved off a contact that ends (default 1e-5)")
-      ->check(CLI::Range(1e-12, 1e-2));
   command->add_option("--out", options->out,
                       "Output directory: trajectory.csv, events.json/.txt, positions.svg, velocities.svg, cspace-*.svg");
   command->add_option("--region", options->region,

@@ -15,6 +15,9 @@
 #include <boost/numeric/odeint.hpp>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -487,16 +490,22 @@ struct Simulation::Impl {
     return a;
   }
 
-  // move the configuration off contact space along `G` until the pair is certainly free
-  void nudge_free(std::size_t pair, const Vec& G, double first = 1e-13) {
+  // Move the configuration off contact space along M^-1 G until the pair's exact point location
+  // says free: the first trial is a few units in the last place of the coordinates (a
+  // configuration computed in doubles on a contact curve lies on either side of it by rounding),
+  // doubling up to 2^50 of them. Nothing is moved when the configuration is already free.
+  void nudge_free(std::size_t pair, const Vec& G) {
     Vec dir(dofs.size(), 0.0);
-    double norm = 0;
-    for (std::size_t i = 0; i < dofs.size(); ++i)
+    double norm = 0, scale = 1;
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+      scale = std::max(scale, std::abs(q[i]));
       if (!dofs[i].driven) {
         dir[i] = G[i] / dofs[i].inertia;
         norm = std::max(norm, std::abs(dir[i]));
       }
-    for (int k = 0; k < 40; ++k) {
+    }
+    const double first = 4 * std::numeric_limits<double>::epsilon() * scale;
+    for (int k = 0; k < 50; ++k) {
       MotionCrossing c = spaces[pair]->first_crossing(point_path(pair, q));
       if (c.status == CrossingStatus::none) return;
       if (c.status == CrossingStatus::outside_region) outside(pair, t);
@@ -595,6 +604,26 @@ struct Simulation::Impl {
     return std::sqrt(accuracy) * 1e-2 * (1 + vmax);
   }
 
+  // A contact that separates after an impact but falls back: the free flight over the contact
+  // curve, g(t) = w t + alpha t^2 / 2 in C-space units (g = the constraint of `a`, w = g', alpha
+  // = g'' of the free motion), rises at most w^2 / (2 |alpha|). When that height is below the
+  // integrator's accuracy (its absolute tolerance, rad or mm) the bounces that follow (a
+  // geometric series of ever shorter flights under restitution < 1) are not resolved by the
+  // integration anyway: the contact is taken as sustained, its remaining separating speed
+  // removed by the projection on the constraint.
+  bool settles(const Active& a) const {
+    Vec G, acc, lambda;
+    double h, gval;
+    if (!row(a, q, v, G, h, gval)) return false;
+    if (!accelerations(t, q, v, acc, lambda)) return false;
+    double w = 0, alpha = h;
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+      w += G[i] * v[i];
+      alpha += G[i] * acc[i];
+    }
+    return w >= 0 && alpha < 0 && w * w <= 2 * -alpha * accuracy;
+  }
+
   void handle_contacts(std::vector<ContactRow> rows) {
     // the active sustained contacts take part as perfectly plastic contacts
     for (std::size_t k = 0; k < active.size(); ++k) {
@@ -612,7 +641,17 @@ struct Simulation::Impl {
       before[k] = 0;
       for (std::size_t i = 0; i < dofs.size(); ++i) before[k] += rows[k].g[i] * v[i];
     }
+    Vec vprev = v;
     Vec lambda = solve_impacts(rows);
+    static const bool debug = std::getenv("HIPAIR_SIM_DEBUG") != nullptr;
+    if (debug)
+      for (std::size_t k = 0; k < rows.size(); ++k) {
+        std::fprintf(stderr, "  row %zu crossing %d pair %zu G=(", k, int(rows[k].crossing), rows[k].pair);
+        for (double x : rows[k].g) std::fprintf(stderr, "%.6g ", x);
+        std::fprintf(stderr, ") edge %d feats %zu normal (%.6g %.6g) point (%.6g %.6g)\n", rows[k].hit.edge.valid() ? int(rows[k].hit.edge.index()) : -1,
+                     rows[k].hit.features.size(), mid(rows[k].hit.normal[0]), mid(rows[k].hit.normal[1]), mid(rows[k].hit.point[0]), mid(rows[k].hit.point[1]));
+        std::fprintf(stderr, "  q=(%.12g %.12g %.12g) v-=(%.9g %.9g %.9g) v+=(%.9g %.9g %.9g)\n", q[0], q[1], q[2], vprev[0], vprev[1], vprev[2], v[0], v[1], v[2]);
+      }
     double vtol = velocity_tolerance();
     std::vector<std::size_t> separate;
     for (std::size_t k = 0; k < rows.size(); ++k) {
@@ -634,8 +673,8 @@ struct Simulation::Impl {
       e.normal_speed_after = after * time_scale;
       e.kind = SimulationEvent::Kind::impact;
       events.push_back(e);
-      std::optional<Active> sustained;
-      if (after <= vtol) sustained = sustain(r.pair, r.hit, r.g);
+      std::optional<Active> sustained = sustain(r.pair, r.hit, r.g);
+      if (sustained && after > vtol && !settles(*sustained)) sustained.reset();
       if (sustained) {
         active.push_back(*sustained);
         e.kind = SimulationEvent::Kind::contact;
@@ -712,7 +751,7 @@ struct Simulation::Impl {
       for (std::size_t f : spaces[a.pair]->edge(a.edge).curves) e.features.push_back(spaces[a.pair]->feature_pair(FeatureId(f)).label);
     events.push_back(e);
     active.erase(active.begin() + static_cast<std::ptrdiff_t>(k));
-    nudge_free(a.pair, G, options.release_gap);
+    nudge_free(a.pair, G);
   }
 
   void step(double t_limit) {
@@ -802,9 +841,15 @@ struct Simulation::Impl {
     std::vector<std::pair<std::size_t, MotionCrossing>> crossings;
     CrossingOptions crossing_options;
     crossing_options.resolution_bits = options.crossing_bits;
+    static const bool debug = std::getenv("HIPAIR_SIM_DEBUG") != nullptr;
     for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
       if (!spaces[pair] || in_active(pair)) continue;
+      auto clock0 = std::chrono::steady_clock::now();
       MotionCrossing c = spaces[pair]->first_crossing(pair_path(pair, path, 0, u_end), crossing_options);
+      if (debug)
+        std::fprintf(stderr, "step %zu t=%.12g h=%.3g pair %zu status %d u=[%.6g,%.6g] grazing %d  %.3f ms active %zu\n", steps, t,
+                     path.h, pair, int(c.status), to_d(c.u_lower), to_d(c.u_upper), int(c.grazing),
+                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - clock0).count(), active.size());
       if (c.status == CrossingStatus::none) continue;
       if (c.status == CrossingStatus::outside_region) outside(pair, path.t0 + to_d(c.u_lower) * path.h);
       if (c.status == CrossingStatus::starts_in_contact) {
