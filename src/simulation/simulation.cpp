@@ -91,6 +91,8 @@ struct Active {
   int xdof = -1, ydof = -1;
   std::size_t chart = 0;
   double x_lo = 0, x_hi = 0; // the edge's chart abscissa range
+  bool bounded_y = false;    // a vertical edge: its chart ordinate range
+  double y_lo = 0, y_hi = 0;
 };
 
 struct ContactRow {
@@ -229,6 +231,12 @@ struct Simulation::Impl {
     G.assign(dofs.size(), 0.0);
     h = 0;
     if (a.point) {
+      if (a.bounded_y) {
+        // a vertical edge ends where the other part leaves the edge's ordinate range
+        const CSpaceChart& chart = chart_of(a);
+        double ty = to_chart(chart.y_kind, chart.y_half_turn, qs[a.ydof]);
+        if (ty < a.y_lo - edge_slack || ty > a.y_hi + edge_slack) return false;
+      }
       G[a.xdof] = a.sigma;
       gval = a.sigma * (qs[a.xdof] - a.c);
       return true;
@@ -468,6 +476,9 @@ struct Simulation::Impl {
     a.chart = edge.chart;
     if (edge.vertical) {
       a.point = true;
+      a.bounded_y = true;
+      a.y_lo = edge.y_chart.lower;
+      a.y_hi = edge.y_chart.upper;
       a.c = q[a.xdof];
       a.sigma = G[a.xdof] >= 0 ? 1 : -1;
       return a;
