@@ -470,7 +470,10 @@ struct Simulation::Impl {
       return a;
     }
     a.ydof = part_dof[*model.find_part(space.y_part())];
-    if (!hit.edge.valid()) return std::nullopt;
+    if (!hit.edge.valid()) {
+      if (std::getenv("HIPAIR_SIM_DEBUG")) std::fprintf(stderr, "  sustain: no edge\n");
+      return std::nullopt;
+    }
     const CSpaceEdge& edge = space.edge(hit.edge);
     a.edge = hit.edge;
     a.chart = edge.chart;
@@ -485,14 +488,39 @@ struct Simulation::Impl {
     }
     a.x_lo = edge.x_chart.lower;
     a.x_hi = edge.x_chart.upper;
-    const CSpaceChart& chart = space.charts()[edge.chart];
-    double tx = to_chart(chart.x_kind, chart.x_half_turn, q[a.xdof]);
-    if (tx < a.x_lo || tx > a.x_hi) return std::nullopt;
+    const CSpaceChart* chart = &space.charts()[edge.chart];
+    double tx = to_chart(chart->x_kind, chart->x_half_turn, q[a.xdof]);
+    if (tx < a.x_lo || tx > a.x_hi) {
+      // at the end of the crossing's edge (a chart seam, or a vertex where the same feature pair
+      // continues): the edge that continues it here
+      std::optional<Active> next = continuation(a);
+      if (std::getenv("HIPAIR_SIM_DEBUG"))
+        std::fprintf(stderr, "  sustain: edge %zu (chart %zu, vertical %d) x [%.17g, %.17g] tx %.17g y %.17g  -> continuation %d\n", hit.edge.index(), edge.chart, int(edge.vertical),
+                     a.x_lo, a.x_hi, tx, q[a.ydof], int(bool(next)));
+      if (!next) return std::nullopt;
+      a = *next;
+      chart = &space.charts()[a.chart];
+      tx = to_chart(chart->x_kind, chart->x_half_turn, q[a.xdof]);
+      if (tx < a.x_lo || tx > a.x_hi) return std::nullopt;
+    }
     EdgeDerivatives d;
     try {
       d = space.derivatives(a.edge, Rational(tx));
     } catch (const GeometryError&) {
-      return std::nullopt;
+      // exactly past the end of the edge (its ends are algebraic; x_lo, x_hi are double
+      // bounds): the contact continues on the edge that meets this one here, the same feature
+      // pair or another one (a contact change at a vertex), if the configuration lies on it
+      std::optional<Active> next = continuation(a);
+      if (!next) next = continuation(a, true);
+      if (!next) return std::nullopt;
+      a = *next;
+      chart = &space.charts()[a.chart];
+      tx = to_chart(chart->x_kind, chart->x_half_turn, q[a.xdof]);
+      try {
+        d = space.derivatives(a.edge, Rational(tx));
+      } catch (const GeometryError&) {
+        return std::nullopt;
+      }
     }
     double y1 = mid(d.coordinate_dy);
     // orient so that the C-space normal (-sigma Y', sigma) agrees with the physical normal
@@ -702,7 +730,7 @@ struct Simulation::Impl {
   // The edge that continues sustained contact `a` past the end of its edge with the same feature
   // pair (across a chart seam, or past a vertex where another curve only crosses spurious
   // space): nullopt when the contact really changes there.
-  std::optional<Active> continuation(const Active& a) const {
+  std::optional<Active> continuation(const Active& a, bool any_curve = false) const {
     if (a.point || !a.edge.valid()) return std::nullopt;
     const CSpace& space = *spaces[a.pair];
     const CSpaceEdge& old_edge = space.edge(a.edge);
@@ -713,7 +741,7 @@ struct Simulation::Impl {
       bool shares = std::any_of(edge.curves.begin(), edge.curves.end(), [&](std::size_t c) {
         return std::find(old_edge.curves.begin(), old_edge.curves.end(), c) != old_edge.curves.end();
       });
-      if (!shares) continue;
+      if (!shares && !any_curve) continue;
       const CSpaceChart& chart = space.charts()[edge.chart];
       double tx = to_chart(chart.x_kind, chart.x_half_turn, q[a.xdof]);
       if (!(tx > edge.x_chart.lower - edge_slack && tx < edge.x_chart.upper + edge_slack)) continue;
@@ -797,6 +825,13 @@ struct Simulation::Impl {
       if (attempt > 200 || dt < 1e-300) throw NumericError("simulation: the integrator's step size underflows");
     }
     if (t1 > t_limit) t1 = t_limit;
+    for (double value : x1)
+      if (!std::isfinite(value)) {
+        std::ostringstream out;
+        out << "simulation: at t = " << t / time_scale << " " << time_unit
+            << " the integration produced a non-finite state (a singular contact constraint?)";
+        throw NumericError(out.str());
+      }
     Vec q1, v1, a1, l1;
     unpack(t1, x1, q1, v1);
     accelerations(t1, q1, v1, a1, l1);
