@@ -15,9 +15,6 @@
 #include <boost/numeric/odeint.hpp>
 
 #include <algorithm>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -470,10 +467,7 @@ struct Simulation::Impl {
       return a;
     }
     a.ydof = part_dof[*model.find_part(space.y_part())];
-    if (!hit.edge.valid()) {
-      if (std::getenv("HIPAIR_SIM_DEBUG")) std::fprintf(stderr, "  sustain: no edge\n");
-      return std::nullopt;
-    }
+    if (!hit.edge.valid()) return std::nullopt;
     const CSpaceEdge& edge = space.edge(hit.edge);
     a.edge = hit.edge;
     a.chart = edge.chart;
@@ -494,9 +488,6 @@ struct Simulation::Impl {
       // at the end of the crossing's edge (a chart seam, or a vertex where the same feature pair
       // continues): the edge that continues it here
       std::optional<Active> next = continuation(a);
-      if (std::getenv("HIPAIR_SIM_DEBUG"))
-        std::fprintf(stderr, "  sustain: edge %zu (chart %zu, vertical %d) x [%.17g, %.17g] tx %.17g y %.17g  -> continuation %d\n", hit.edge.index(), edge.chart, int(edge.vertical),
-                     a.x_lo, a.x_hi, tx, q[a.ydof], int(bool(next)));
       if (!next) return std::nullopt;
       a = *next;
       chart = &space.charts()[a.chart];
@@ -680,17 +671,7 @@ struct Simulation::Impl {
       before[k] = 0;
       for (std::size_t i = 0; i < dofs.size(); ++i) before[k] += rows[k].g[i] * v[i];
     }
-    Vec vprev = v;
     Vec lambda = solve_impacts(rows);
-    static const bool debug = std::getenv("HIPAIR_SIM_DEBUG") != nullptr;
-    if (debug)
-      for (std::size_t k = 0; k < rows.size(); ++k) {
-        std::fprintf(stderr, "  row %zu crossing %d pair %zu G=(", k, int(rows[k].crossing), rows[k].pair);
-        for (double x : rows[k].g) std::fprintf(stderr, "%.6g ", x);
-        std::fprintf(stderr, ") edge %d feats %zu normal (%.6g %.6g) point (%.6g %.6g)\n", rows[k].hit.edge.valid() ? int(rows[k].hit.edge.index()) : -1,
-                     rows[k].hit.features.size(), mid(rows[k].hit.normal[0]), mid(rows[k].hit.normal[1]), mid(rows[k].hit.point[0]), mid(rows[k].hit.point[1]));
-        std::fprintf(stderr, "  q=(%.12g %.12g %.12g) v-=(%.9g %.9g %.9g) v+=(%.9g %.9g %.9g)\n", q[0], q[1], q[2], vprev[0], vprev[1], vprev[2], v[0], v[1], v[2]);
-      }
     double vtol = velocity_tolerance();
     std::vector<std::size_t> separate;
     for (std::size_t k = 0; k < rows.size(); ++k) {
@@ -887,15 +868,9 @@ struct Simulation::Impl {
     std::vector<std::pair<std::size_t, MotionCrossing>> crossings;
     CrossingOptions crossing_options;
     crossing_options.resolution_bits = options.crossing_bits;
-    static const bool debug = std::getenv("HIPAIR_SIM_DEBUG") != nullptr;
     for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
       if (!spaces[pair] || in_active(pair)) continue;
-      auto clock0 = std::chrono::steady_clock::now();
       MotionCrossing c = spaces[pair]->first_crossing(pair_path(pair, path, 0, u_end), crossing_options);
-      if (debug)
-        std::fprintf(stderr, "step %zu t=%.12g h=%.3g pair %zu status %d u=[%.6g,%.6g] grazing %d  %.3f ms active %zu\n", steps, t,
-                     path.h, pair, int(c.status), to_d(c.u_lower), to_d(c.u_upper), int(c.grazing),
-                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - clock0).count(), active.size());
       if (c.status == CrossingStatus::none) continue;
       if (c.status == CrossingStatus::outside_region) outside(pair, path.t0 + to_d(c.u_lower) * path.h);
       if (c.status == CrossingStatus::starts_in_contact) {
