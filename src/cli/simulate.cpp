@@ -25,6 +25,7 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
+#include <ctime>
 #include <unistd.h>
 
 namespace hipair::cli {
@@ -69,6 +70,13 @@ std::string event_line(const SimulationEvent& e, const std::string& time_unit, c
     out << "  impulse " << number(e.impulse) << " " << force_unit << "·" << time_unit << ", normal speed "
         << number(e.normal_speed_before) << " -> " << number(e.normal_speed_after) << " mm/" << time_unit;
   return out.str();
+}
+
+// CPU time of the calling thread, seconds (a sweep runs several simulations in threads).
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 // ------------------------------------------------------------------ --sweep NAME=A:B:N
@@ -139,7 +147,7 @@ int run_sweep(const SimulateOptions& options) {
       }
       SweepRow& row = rows[i];
       row.value = values[i].get_d();
-      auto clock_start = std::chrono::steady_clock::now();
+      double cpu_start = thread_cpu_seconds();
       try {
         Simulation simulation = Simulation::create(models[i], sim_options);
         std::vector<double> start, last_velocity;
@@ -166,7 +174,7 @@ int run_sweep(const SimulateOptions& options) {
       } catch (const Error& error) {
         row.error = error.what();
       }
-      row.cpu = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+      row.cpu = thread_cpu_seconds() - cpu_start;
     }
   };
   unsigned jobs = options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
@@ -238,6 +246,7 @@ int run(const SimulateOptions& options) {
     if (model.parts[p].motion.kind != Motion::Kind::fixed) moving.push_back(p);
   std::vector<SimulationState> samples{simulation.state()};
   auto clock_start = std::chrono::steady_clock::now();
+  double cpu_start = thread_cpu_seconds();
   auto last_report = clock_start;
   std::size_t events_seen = 0;
   auto progress = [&](double t) {
@@ -251,7 +260,7 @@ int run(const SimulateOptions& options) {
                  simulation.time_unit().c_str(), 100 * t / options.t_end, simulation.steps(), events_seen);
   };
   simulation.run_until(options.t_end, progress);
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  double seconds = thread_cpu_seconds() - cpu_start;
   if (terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
 
   const std::string& tu = simulation.time_unit();
