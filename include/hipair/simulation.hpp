@@ -32,11 +32,6 @@ struct SimulationOptions {
   /// Build each pair's C-space as an operating region around the initial configuration
   /// (CSpaceBuildOptions::operating_region); leaving it is a GeometryError.
   bool operating_region = false;
-  /// When a sustained contact ends (lift-off, end of its edge) the configuration is moved off
-  /// contact space along the contact normal by this much (relative to max(1, |q|), rad or mm)
-  /// before the free motion's first certified query: a path leaving a contact curve
-  /// tangentially is otherwise certified free only by exponentially fine subdivision.
-  double release_gap = 1e-5;
   /// Stop with NumericError after this many steps (a runaway or Zeno run).
   std::size_t max_steps = 2000000;
 };

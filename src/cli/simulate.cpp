@@ -22,7 +22,10 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <sstream>
+#include <thread>
+#include <ctime>
 #include <unistd.h>
 
 namespace hipair::cli {
@@ -33,12 +36,13 @@ struct SimulateOptions {
   double t_end = 0;
   double accuracy = 0;
   double max_step = 0;
-  double release_gap = 0;
   std::string out;
   std::vector<std::string> overrides;
   bool allow_out_of_tolerance = false;
   std::string region = "full";
   bool no_pictures = false;
+  std::string sweep;
+  unsigned jobs = 0;
 };
 
 std::string file_name_part(const std::string& text) {
@@ -68,7 +72,162 @@ std::string event_line(const SimulationEvent& e, const std::string& time_unit, c
   return out.str();
 }
 
+// CPU time of the calling thread, seconds (a sweep runs several simulations in threads).
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// ------------------------------------------------------------------ --sweep NAME=A:B:N
+struct SweepRow {
+  double value = 0;
+  bool works = false;
+  std::string error;
+  double reached = 0, cpu = 0;
+  std::size_t steps = 0, events = 0;
+  std::vector<double> advance;        // per moving part: final - initial position
+  std::vector<std::size_t> swings;    // per moving part: sign changes of the velocity
+};
+
+int run_sweep(const SimulateOptions& options) {
+  // NAME=A:B:N
+  auto equals = options.sweep.find('=');
+  std::vector<std::string> fields;
+  if (equals != std::string::npos && equals > 0) {
+    std::string rest = options.sweep.substr(equals + 1);
+    std::size_t start = 0;
+    for (std::size_t colon; (colon = rest.find(':', start)) != std::string::npos; start = colon + 1)
+      fields.push_back(rest.substr(start, colon - start));
+    fields.push_back(rest.substr(start));
+  }
+  if (fields.size() != 3) throw ModelError("", "--sweep expects NAME=A:B:N, got '" + options.sweep + "'");
+  std::string name = options.sweep.substr(0, equals);
+  Rational a, b;
+  long n = 0;
+  try {
+    a = parse_rational(fields[0]);
+    b = parse_rational(fields[1]);
+    std::size_t used = 0;
+    n = std::stol(fields[2], &used);
+    if (used != fields[2].size()) throw std::invalid_argument("N");
+  } catch (const NumericError& error) {
+    throw ModelError("", "--sweep " + options.sweep + ": " + error.what());
+  } catch (const std::exception&) {
+    throw ModelError("", "--sweep " + options.sweep + ": N must be a whole number");
+  }
+  if (n < 1 || n > 10000) throw ModelError("", "--sweep " + options.sweep + ": N must lie in [1, 10000]");
+  if (n == 1 && a != b) throw ModelError("", "--sweep " + options.sweep + ": N = 1 needs A = B");
+  std::vector<Rational> values;
+  for (long i = 0; i < n; ++i) values.push_back(n == 1 ? a : Rational(a + (b - a) * Rational(i, n - 1)));
+  // every model is read (and checked) before any run starts: a bad value stops the sweep at once
+  std::vector<Model> models;
+  for (const Rational& v : values) {
+    std::vector<std::string> overrides = options.overrides;
+    overrides.push_back(name + "=" + v.get_str());
+    models.push_back(read_model_file(options.model, parameter_overrides(overrides, options.allow_out_of_tolerance)));
+  }
+  SimulationOptions sim_options;
+  sim_options.accuracy = options.accuracy;
+  sim_options.max_step = options.max_step;
+  sim_options.operating_region = options.region == "operating";
+  std::vector<std::size_t> moving;
+  for (std::size_t p = 0; p < models.front().parts.size(); ++p)
+    if (models.front().parts[p].motion.kind != Motion::Kind::fixed) moving.push_back(p);
+  std::vector<SweepRow> rows(values.size());
+  std::mutex mutex;
+  std::size_t next = 0;
+  auto worker = [&] {
+    for (;;) {
+      std::size_t i;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (next >= values.size()) return;
+        i = next++;
+      }
+      SweepRow& row = rows[i];
+      row.value = values[i].get_d();
+      double cpu_start = thread_cpu_seconds();
+      try {
+        Simulation simulation = Simulation::create(models[i], sim_options);
+        std::vector<double> start, last_velocity;
+        for (std::size_t p : moving) {
+          start.push_back(simulation.state().position[p]);
+          last_velocity.push_back(simulation.state().velocity[p]);
+        }
+        row.swings.assign(moving.size(), 0);
+        simulation.run_until(options.t_end, [&](double) {
+          for (std::size_t k = 0; k < moving.size(); ++k) {
+            double velocity = simulation.state().velocity[moving[k]];
+            if (velocity != 0) {
+              if (last_velocity[k] != 0 && (velocity > 0) != (last_velocity[k] > 0)) ++row.swings[k];
+              last_velocity[k] = velocity;
+            }
+          }
+        });
+        for (std::size_t k = 0; k < moving.size(); ++k)
+          row.advance.push_back(simulation.state().position[moving[k]] - start[k]);
+        row.reached = simulation.state().time;
+        row.steps = simulation.steps();
+        row.events = simulation.events().size();
+        row.works = true;
+      } catch (const Error& error) {
+        row.error = error.what();
+      }
+      row.cpu = thread_cpu_seconds() - cpu_start;
+    }
+  };
+  unsigned jobs = options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
+  jobs = static_cast<unsigned>(std::min<std::size_t>(jobs, values.size()));
+  std::vector<std::thread> threads;
+  for (unsigned j = 0; j < jobs; ++j) threads.emplace_back(worker);
+  for (std::thread& thread : threads) thread.join();
+
+  const Model& model = models.front();
+  std::cout << "sweep of " << name << " over " << values.size() << " values, t-end " << number(options.t_end) << "\n";
+  std::cout << name << "\tresult\tsteps\tevents\tcpu_s";
+  for (std::size_t p : moving) std::cout << "\t" << model.parts[p].name << "_advance\t" << model.parts[p].name << "_swings";
+  std::cout << "\n";
+  nlohmann::json doc = nlohmann::json::array();
+  for (const SweepRow& row : rows) {
+    std::cout << number(row.value) << "\t" << (row.works ? "completes" : "fails") << "\t" << row.steps << "\t"
+              << row.events << "\t" << number(row.cpu);
+    nlohmann::json j{{"value", row.value}, {"completes", row.works}, {"cpu_seconds", row.cpu}};
+    if (row.works) {
+      j["steps"] = row.steps;
+      j["events"] = row.events;
+      for (std::size_t k = 0; k < moving.size(); ++k) {
+        std::cout << "\t" << number(row.advance[k]) << "\t" << row.swings[k];
+        j["parts"][model.parts[moving[k]].name] = {{"advance", row.advance[k]}, {"velocity_sign_changes", row.swings[k]}};
+      }
+    } else {
+      std::cout << "\t" << row.error;
+      j["error"] = row.error;
+    }
+    std::cout << "\n";
+    doc.push_back(j);
+  }
+  if (!options.out.empty()) {
+    std::filesystem::path directory(options.out);
+    std::vector<io::RunFile> files{{"sweep.json", nlohmann::json{{"model", model.name}, {"parameter", name},
+                                                                  {"t_end", options.t_end}, {"runs", doc}}
+                                                           .dump(1) +
+                                                       "\n"}};
+    std::vector<io::PlannedOutput> planned{{directory / "sweep.json", "--out"}};
+    io::refuse_overwriting_inputs(planned, {options.model});
+    io::publish_directory(directory, files, [](const std::string& file) { return file == "sweep.json"; },
+                          {options.model});
+    std::cout << "wrote " << (directory / "sweep.json").string() << "\n";
+  }
+  return 0;
+}
+
 int run(const SimulateOptions& options) {
+  if (!options.sweep.empty()) {
+    if (!(options.t_end > 0) || !std::isfinite(options.t_end))
+      throw ModelError("", "--t-end must be a positive number of time units");
+    return run_sweep(options);
+  }
   std::filesystem::path directory(options.out);
   Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
   if (!(options.t_end > 0) || !std::isfinite(options.t_end))
@@ -77,7 +236,6 @@ int run(const SimulateOptions& options) {
   SimulationOptions sim_options;
   sim_options.accuracy = options.accuracy;
   sim_options.max_step = options.max_step;
-  if (options.release_gap > 0) sim_options.release_gap = options.release_gap;
   sim_options.operating_region = options.region == "operating";
   if (terminal) std::cerr << "simulate: building the pairs' C-spaces..." << std::flush;
   Simulation simulation = Simulation::create(model, sim_options);
@@ -88,6 +246,7 @@ int run(const SimulateOptions& options) {
     if (model.parts[p].motion.kind != Motion::Kind::fixed) moving.push_back(p);
   std::vector<SimulationState> samples{simulation.state()};
   auto clock_start = std::chrono::steady_clock::now();
+  double cpu_start = thread_cpu_seconds();
   auto last_report = clock_start;
   std::size_t events_seen = 0;
   auto progress = [&](double t) {
@@ -101,7 +260,7 @@ int run(const SimulateOptions& options) {
                  simulation.time_unit().c_str(), 100 * t / options.t_end, simulation.steps(), events_seen);
   };
   simulation.run_until(options.t_end, progress);
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  double seconds = thread_cpu_seconds() - cpu_start;
   if (terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
 
   const std::string& tu = simulation.time_unit();
@@ -236,15 +395,18 @@ void register_simulate(CLI::App& app, Action& action) {
       ->check(CLI::Range(1e-15, 0.1));
   command->add_option("--max-step", options->max_step, "Largest integration step (time unit; default: none)")
       ->check(CLI::PositiveNumber);
-  command->add_option("--release-gap", options->release_gap,
-                      "Gap (rad or mm) by which a configuration is moved off a contact that ends (default 1e-5)")
-      ->check(CLI::Range(1e-12, 1e-2));
   command->add_option("--out", options->out,
                       "Output directory: trajectory.csv, events.json/.txt, positions.svg, velocities.svg, cspace-*.svg");
   command->add_option("--region", options->region,
                       "full: whole C-spaces (default); operating: operating regions around the initial configuration")
       ->check(CLI::IsMember({"full", "operating"}));
   command->add_flag("--no-pictures", options->no_pictures, "Write the CSV and the event log only");
+  command->add_option("--sweep", options->sweep,
+                      "NAME=A:B:N: run N simulations with parameter NAME from A to B (exact literals, mm or rad), "
+                      "in parallel; report per value whether the run completes, and each part's advance and "
+                      "velocity sign changes (--out: sweep.json)");
+  command->add_option("--jobs", options->jobs, "Parallel runs of a sweep (default: the number of cores)")
+      ->check(CLI::Range(1, 256));
   command->add_option("--set", options->overrides, "Override a parameter: NAME=VALUE (repeatable)");
   command->add_flag("--allow-out-of-tolerance", options->allow_out_of_tolerance,
                     "Accept --set values outside the parameter's tolerance range");

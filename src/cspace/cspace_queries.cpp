@@ -684,6 +684,13 @@ class MotionScanner {
           exclude(result.boxes.size() - 1, box, result.possible);
         }
       }
+    // Where the boxes' natural enclosures cannot exclude a curve, try the mean-value form along
+    // the path (one chart system on [a, b]: no seam crossed): f(u) = F(X(u), Y(u)) lies in
+    // f(a) + [0, b - a] f'([a, b]) with f' = F_x X' + F_y Y'. It excludes a curve near which the
+    // path passes transversally (or leaves it: a motion that starts next to a contact curve and
+    // moves away) at a subdivision depth set by the distance, not by the resolution.
+    if (a < b && xs.size() == 1 && ys.size() == 1 && !result.possible.empty())
+      mean_value_exclusion(a, b, xs.front(), ys.front(), result.possible);
     return result;
   }
 
@@ -714,6 +721,87 @@ class MotionScanner {
         return angle_pieces(value);
     }
     return {};
+  }
+
+  using DInterval = cspace::algebra::Interval;
+  static DInterval enclose_range(const Rational& lo, const Rational& hi) {
+    return DInterval{cspace::algebra::lower_double(lo), cspace::algebra::upper_double(hi)};
+  }
+  static DInterval negate(DInterval v) { return DInterval{-v.hi, -v.lo}; }
+
+  // Enclosure of d(chart coordinate)/du over [a, b] on the piece `piece` (one system).
+  DInterval chart_derivative(const AxisPath& axis, const Rational& a, const Rational& b, const AxisPiece& piece) const {
+    std::vector<Rational> d;
+    for (std::size_t i = 1; i < axis.coefficients.size(); ++i) d.push_back(axis.coefficients[i] * static_cast<long>(i));
+    RInterval dv = d.empty() ? RInterval::point(Rational(0)) : evaluate_path(d, a, b);
+    DInterval rate = enclose_range(dv.lo, dv.hi);
+    DInterval x = enclose_range(piece.lo, piece.hi);
+    switch (axis.kind) {
+      case AxisPath::Kind::offset: return rate;
+      case AxisPath::Kind::angle:   // t = tan((theta - c) / 2): dt/du = (1 + t^2) / 2 theta'
+        return (DInterval{1, 1} + x * x) * DInterval{0.5, 0.5} * rate;
+      case AxisPath::Kind::half_tangent:   // t itself, or -1/t beyond the seam: d(-1/t) = t' (-1/t)^2
+        return piece.half_turn ? rate * (x * x) : rate;
+    }
+    return rate;
+  }
+
+  struct Gradient {
+    cspace::algebra::IntervalPolynomial2 fx, fy;
+  };
+  const Gradient& gradient(std::size_t chart, std::size_t k) {
+    auto key = std::make_pair(chart, k);
+    auto it = gradients_.find(key);
+    if (it != gradients_.end()) return it->second;
+    const cspace::IntegerPolynomial2& f = impl_.charts[chart].polynomials[k];
+    cspace::IntegerPolynomial2 fx, fy;
+    for (std::size_t i = 0; i < f.coefficients.size(); ++i)
+      for (std::size_t j = 0; j < f.coefficients[i].size(); ++j) {
+        if (sgn(f.coefficients[i][j]) == 0) continue;
+        if (i > 0) {
+          if (fx.coefficients.size() < i) fx.coefficients.resize(i);
+          if (fx.coefficients[i - 1].size() <= j) fx.coefficients[i - 1].resize(j + 1);
+          fx.coefficients[i - 1][j] = f.coefficients[i][j] * static_cast<long>(i);
+        }
+        if (j > 0) {
+          if (fy.coefficients.size() <= i) fy.coefficients.resize(i + 1);
+          if (fy.coefficients[i].size() < j) fy.coefficients[i].resize(j);
+          fy.coefficients[i][j - 1] = f.coefficients[i][j] * static_cast<long>(j);
+        }
+      }
+    Gradient g{cspace::algebra::IntervalPolynomial2(fx), cspace::algebra::IntervalPolynomial2(fy)};
+    return gradients_.emplace(key, std::move(g)).first->second;
+  }
+
+  // The mean-value exclusion (see evaluate): drops from `possible` every curve whose
+  // f(a) + [0, b - a] (F_x X' + F_y Y') over the path's enclosure on [a, b] excludes zero.
+  void mean_value_exclusion(const Rational& a, const Rational& b, const AxisPiece& px, const AxisPiece& py,
+                            std::vector<Possible>& possible) {
+    bool wide = false;
+    std::vector<AxisPiece> xa = pieces(path_.x, a, a, wide), ya;
+    if (impl_.dimension == 2) ya = pieces(path_.y, a, a, wide);
+    else ya = {AxisPiece{false, false, Rational(0), Rational(0)}};
+    if (wide) return;
+    auto same = [](const AxisPiece& p, const AxisPiece& q) { return p.rotation == q.rotation && p.half_turn == q.half_turn; };
+    auto sx = std::find_if(xa.begin(), xa.end(), [&](const AxisPiece& p) { return same(p, px); });
+    auto sy = std::find_if(ya.begin(), ya.end(), [&](const AxisPiece& p) { return same(p, py); });
+    if (sx == xa.end() || sy == ya.end()) return;
+    DInterval x_at = enclose_range(sx->lo, sx->hi), y_at = enclose_range(sy->lo, sy->hi);
+    DInterval x = enclose_range(px.lo, px.hi), y = enclose_range(py.lo, py.hi);
+    DInterval dx = chart_derivative(path_.x, a, b, px);
+    DInterval dy = impl_.dimension == 2 ? chart_derivative(path_.y, a, b, py) : DInterval{0, 0};
+    DInterval h{0, cspace::algebra::upper_double(Rational(b - a))};
+    std::vector<Possible> kept;
+    for (const Possible& p : possible) {
+      const ChartData& chart = impl_.charts[p.chart];
+      const Gradient& g = gradient(p.chart, p.curve);
+      DInterval start = chart.interval_polynomials[p.curve].evaluate(x_at, y_at);
+      DInterval rate = g.fx.evaluate(x, y) * dx + g.fy.evaluate(x, y) * dy;
+      DInterval value = start + h * rate;
+      // (a non-finite bound, from overflow, proves nothing)
+      if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) kept.push_back(p);
+    }
+    possible.swap(kept);
   }
 
   // Do the boxes of `charts` (same system) cover px x py? Grid of the boxes' sides.
@@ -833,6 +921,7 @@ class MotionScanner {
   const CSpace::Impl& impl_;
   const MotionPath& path_;
   std::map<std::size_t, ChartCarriers> carriers_;
+  std::map<std::pair<std::size_t, std::size_t>, Gradient> gradients_;
   std::map<std::pair<std::size_t, std::size_t>, std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>>
       validity_;
 };

@@ -88,6 +88,8 @@ struct Active {
   int xdof = -1, ydof = -1;
   std::size_t chart = 0;
   double x_lo = 0, x_hi = 0; // the edge's chart abscissa range
+  bool bounded_y = false;    // a vertical edge: its chart ordinate range
+  double y_lo = 0, y_hi = 0;
 };
 
 struct ContactRow {
@@ -226,6 +228,12 @@ struct Simulation::Impl {
     G.assign(dofs.size(), 0.0);
     h = 0;
     if (a.point) {
+      if (a.bounded_y) {
+        // a vertical edge ends where the other part leaves the edge's ordinate range
+        const CSpaceChart& chart = chart_of(a);
+        double ty = to_chart(chart.y_kind, chart.y_half_turn, qs[a.ydof]);
+        if (ty < a.y_lo - edge_slack || ty > a.y_hi + edge_slack) return false;
+      }
       G[a.xdof] = a.sigma;
       gval = a.sigma * (qs[a.xdof] - a.c);
       return true;
@@ -465,20 +473,45 @@ struct Simulation::Impl {
     a.chart = edge.chart;
     if (edge.vertical) {
       a.point = true;
+      a.bounded_y = true;
+      a.y_lo = edge.y_chart.lower;
+      a.y_hi = edge.y_chart.upper;
       a.c = q[a.xdof];
       a.sigma = G[a.xdof] >= 0 ? 1 : -1;
       return a;
     }
     a.x_lo = edge.x_chart.lower;
     a.x_hi = edge.x_chart.upper;
-    const CSpaceChart& chart = space.charts()[edge.chart];
-    double tx = to_chart(chart.x_kind, chart.x_half_turn, q[a.xdof]);
-    if (tx < a.x_lo || tx > a.x_hi) return std::nullopt;
+    const CSpaceChart* chart = &space.charts()[edge.chart];
+    double tx = to_chart(chart->x_kind, chart->x_half_turn, q[a.xdof]);
+    if (tx < a.x_lo || tx > a.x_hi) {
+      // at the end of the crossing's edge (a chart seam, or a vertex where the same feature pair
+      // continues): the edge that continues it here
+      std::optional<Active> next = continuation(a);
+      if (!next) return std::nullopt;
+      a = *next;
+      chart = &space.charts()[a.chart];
+      tx = to_chart(chart->x_kind, chart->x_half_turn, q[a.xdof]);
+      if (tx < a.x_lo || tx > a.x_hi) return std::nullopt;
+    }
     EdgeDerivatives d;
     try {
       d = space.derivatives(a.edge, Rational(tx));
     } catch (const GeometryError&) {
-      return std::nullopt;
+      // exactly past the end of the edge (its ends are algebraic; x_lo, x_hi are double
+      // bounds): the contact continues on the edge that meets this one here, the same feature
+      // pair or another one (a contact change at a vertex), if the configuration lies on it
+      std::optional<Active> next = continuation(a);
+      if (!next) next = continuation(a, true);
+      if (!next) return std::nullopt;
+      a = *next;
+      chart = &space.charts()[a.chart];
+      tx = to_chart(chart->x_kind, chart->x_half_turn, q[a.xdof]);
+      try {
+        d = space.derivatives(a.edge, Rational(tx));
+      } catch (const GeometryError&) {
+        return std::nullopt;
+      }
     }
     double y1 = mid(d.coordinate_dy);
     // orient so that the C-space normal (-sigma Y', sigma) agrees with the physical normal
@@ -487,16 +520,22 @@ struct Simulation::Impl {
     return a;
   }
 
-  // move the configuration off contact space along `G` until the pair is certainly free
-  void nudge_free(std::size_t pair, const Vec& G, double first = 1e-13) {
+  // Move the configuration off contact space along M^-1 G until the pair's exact point location
+  // says free: the first trial is a few units in the last place of the coordinates (a
+  // configuration computed in doubles on a contact curve lies on either side of it by rounding),
+  // doubling up to 2^50 of them. Nothing is moved when the configuration is already free.
+  void nudge_free(std::size_t pair, const Vec& G) {
     Vec dir(dofs.size(), 0.0);
-    double norm = 0;
-    for (std::size_t i = 0; i < dofs.size(); ++i)
+    double norm = 0, scale = 1;
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+      scale = std::max(scale, std::abs(q[i]));
       if (!dofs[i].driven) {
         dir[i] = G[i] / dofs[i].inertia;
         norm = std::max(norm, std::abs(dir[i]));
       }
-    for (int k = 0; k < 40; ++k) {
+    }
+    const double first = 4 * std::numeric_limits<double>::epsilon() * scale;
+    for (int k = 0; k < 50; ++k) {
       MotionCrossing c = spaces[pair]->first_crossing(point_path(pair, q));
       if (c.status == CrossingStatus::none) return;
       if (c.status == CrossingStatus::outside_region) outside(pair, t);
@@ -595,6 +634,26 @@ struct Simulation::Impl {
     return std::sqrt(accuracy) * 1e-2 * (1 + vmax);
   }
 
+  // A contact that separates after an impact but falls back: the free flight over the contact
+  // curve, g(t) = w t + alpha t^2 / 2 in C-space units (g = the constraint of `a`, w = g', alpha
+  // = g'' of the free motion), rises at most w^2 / (2 |alpha|). When that height is below the
+  // integrator's accuracy (its absolute tolerance, rad or mm) the bounces that follow (a
+  // geometric series of ever shorter flights under restitution < 1) are not resolved by the
+  // integration anyway: the contact is taken as sustained, its remaining separating speed
+  // removed by the projection on the constraint.
+  bool settles(const Active& a) const {
+    Vec G, acc, lambda;
+    double h, gval;
+    if (!row(a, q, v, G, h, gval)) return false;
+    if (!accelerations(t, q, v, acc, lambda)) return false;
+    double w = 0, alpha = h;
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+      w += G[i] * v[i];
+      alpha += G[i] * acc[i];
+    }
+    return w >= 0 && alpha < 0 && w * w <= 2 * -alpha * accuracy;
+  }
+
   void handle_contacts(std::vector<ContactRow> rows) {
     // the active sustained contacts take part as perfectly plastic contacts
     for (std::size_t k = 0; k < active.size(); ++k) {
@@ -634,8 +693,8 @@ struct Simulation::Impl {
       e.normal_speed_after = after * time_scale;
       e.kind = SimulationEvent::Kind::impact;
       events.push_back(e);
-      std::optional<Active> sustained;
-      if (after <= vtol) sustained = sustain(r.pair, r.hit, r.g);
+      std::optional<Active> sustained = sustain(r.pair, r.hit, r.g);
+      if (sustained && after > vtol && !settles(*sustained)) sustained.reset();
       if (sustained) {
         active.push_back(*sustained);
         e.kind = SimulationEvent::Kind::contact;
@@ -652,7 +711,7 @@ struct Simulation::Impl {
   // The edge that continues sustained contact `a` past the end of its edge with the same feature
   // pair (across a chart seam, or past a vertex where another curve only crosses spurious
   // space): nullopt when the contact really changes there.
-  std::optional<Active> continuation(const Active& a) const {
+  std::optional<Active> continuation(const Active& a, bool any_curve = false) const {
     if (a.point || !a.edge.valid()) return std::nullopt;
     const CSpace& space = *spaces[a.pair];
     const CSpaceEdge& old_edge = space.edge(a.edge);
@@ -663,7 +722,7 @@ struct Simulation::Impl {
       bool shares = std::any_of(edge.curves.begin(), edge.curves.end(), [&](std::size_t c) {
         return std::find(old_edge.curves.begin(), old_edge.curves.end(), c) != old_edge.curves.end();
       });
-      if (!shares) continue;
+      if (!shares && !any_curve) continue;
       const CSpaceChart& chart = space.charts()[edge.chart];
       double tx = to_chart(chart.x_kind, chart.x_half_turn, q[a.xdof]);
       if (!(tx > edge.x_chart.lower - edge_slack && tx < edge.x_chart.upper + edge_slack)) continue;
@@ -712,7 +771,7 @@ struct Simulation::Impl {
       for (std::size_t f : spaces[a.pair]->edge(a.edge).curves) e.features.push_back(spaces[a.pair]->feature_pair(FeatureId(f)).label);
     events.push_back(e);
     active.erase(active.begin() + static_cast<std::ptrdiff_t>(k));
-    nudge_free(a.pair, G, options.release_gap);
+    nudge_free(a.pair, G);
   }
 
   void step(double t_limit) {
@@ -747,6 +806,13 @@ struct Simulation::Impl {
       if (attempt > 200 || dt < 1e-300) throw NumericError("simulation: the integrator's step size underflows");
     }
     if (t1 > t_limit) t1 = t_limit;
+    for (double value : x1)
+      if (!std::isfinite(value)) {
+        std::ostringstream out;
+        out << "simulation: at t = " << t / time_scale << " " << time_unit
+            << " the integration produced a non-finite state (a singular contact constraint?)";
+        throw NumericError(out.str());
+      }
     Vec q1, v1, a1, l1;
     unpack(t1, x1, q1, v1);
     accelerations(t1, q1, v1, a1, l1);

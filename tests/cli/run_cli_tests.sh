@@ -228,6 +228,21 @@ printf '{"hipair": 1, "name": "m", "parts": [{"name": "a", "motion": {"rotation"
 [ $? -eq 2 ] || fail "simulate with a bad time unit: not a model error"
 grep -q "/simulation/units/time" "$work/sim-unit.err" || fail "simulate bad unit: no pointer: $(cat "$work/sim-unit.err")"
 
+# hipair simulate --sweep: one row per value, in parallel; a malformed sweep is a usage error
+"$hipair" simulate "$source/examples/models/cam-drive.json" --t-end 0.03 --sweep cam-speed=183:220:2 \
+  --allow-out-of-tolerance --jobs 2 --out "$work/sweep" >"$work/sweep.out" 2>&1 \
+  || fail "simulate --sweep: $(tail -c 300 "$work/sweep.out")"
+[ "$(grep -c "completes" "$work/sweep.out")" -eq 2 ] || fail "simulate --sweep: not two completed rows: $(cat "$work/sweep.out")"
+grep -q '"parameter": "cam-speed"' "$work/sweep/sweep.json" || fail "simulate --sweep: no sweep.json"
+for bad in "cam-speed=1:2" "cam-speed=1:2:0" "cam-speed=a:2:3" "=1:2:3" "cam-speed=1:2:1"; do
+  "$hipair" simulate "$source/examples/models/cam-drive.json" --t-end 0.01 --sweep "$bad" \
+    --allow-out-of-tolerance >/dev/null 2>"$work/sweep-bad.err"
+  [ $? -eq 2 ] || fail "simulate --sweep $bad: not a usage error"
+  grep -q "sweep" "$work/sweep-bad.err" || fail "simulate --sweep $bad: message does not name --sweep: $(cat "$work/sweep-bad.err")"
+done
+"$hipair" simulate "$source/examples/models/cam-drive.json" --t-end 0.01 --sweep no-such=1:2:2 >/dev/null 2>"$work/sweep-unknown.err"
+[ $? -eq 2 ] || fail "simulate --sweep of an unknown parameter: not a model error"
+
 # No stray temporary files left by atomic writes.
 ls -a "$work" | grep -q '\.tmp' && fail "temporary files left behind"
 
