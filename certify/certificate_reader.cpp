@@ -155,12 +155,17 @@ ToleranceClaim tolerance_of(const JsonValue& body) {
     t.sides.push_back(ContactSidePair{feature_of(require(side, "driver")), feature_of(require(side, "follower"))});
   }
   for (const JsonValue& item : array(require(body, "leaves")).items) {
-    check_keys(item, {"parameters", "driver", "lower", "upper"});
+    check_keys(item, {"parameters", "driver", "lower", "upper", "witness"});
     ToleranceLeaf leaf;
     for (const JsonValue& range : array(require(item, "parameters")).items) leaf.parameters.push_back(interval_of(range));
     leaf.driver = interval_of(require(item, "driver"));
     leaf.lower = leaf_side_of(require(item, "lower"));
     leaf.upper = leaf_side_of(require(item, "upper"));
+    if (const JsonValue* witness = item.find("witness")) {
+      check_keys(*witness, {"value", "slopes"});
+      leaf.witness = rational(require(*witness, "value"));
+      for (const JsonValue& slope : array(require(*witness, "slopes")).items) leaf.witness_slopes.push_back(rational(slope));
+    }
     t.leaves.push_back(std::move(leaf));
   }
   for (const JsonValue& node : array(require(body, "tree")).items) {

@@ -89,7 +89,13 @@ std::string tolerance(const ToleranceClaim& t) {
     out += std::string(i ? "," : "") + "\n      {\"parameters\": [";
     for (std::size_t j = 0; j < leaf.parameters.size(); ++j) out += (j ? ", " : "") + interval(leaf.parameters[j]);
     out += "], \"driver\": " + interval(leaf.driver) + ",\n       \"lower\": " + leaf_side(leaf.lower) +
-           ", \"upper\": " + leaf_side(leaf.upper) + "}";
+           ", \"upper\": " + leaf_side(leaf.upper);
+    if (leaf.witness) {
+      out += ",\n       \"witness\": {\"value\": " + number(*leaf.witness) + ", \"slopes\": [";
+      for (std::size_t j = 0; j < leaf.witness_slopes.size(); ++j) out += (j ? ", " : "") + number(leaf.witness_slopes[j]);
+      out += "]}";
+    }
+    out += "}";
   }
   out += t.leaves.empty() ? "]" : "\n    ]";
   out += ",\n    \"tree\": [";

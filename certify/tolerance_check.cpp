@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <set>
-#include <cstdlib>
 
 namespace hipair::verify {
 
@@ -407,6 +406,45 @@ int ToleranceEvaluator::sign_over_leaf(const ToleranceLeaf& leaf, std::size_t pa
   return meet(value, f.value).sign();
 }
 
+void ToleranceEvaluator::check_witness(const ToleranceLeaf& leaf, ToleranceGeometry& over, ToleranceGeometry& at,
+                                       const std::string& where) const {
+  std::size_t k = varied_.size();
+  if (leaf.witness_slopes.size() != k + 1)
+    reject(where + ": the witness has " + std::to_string(leaf.witness_slopes.size()) + " slopes for " +
+           std::to_string(k + 1) + " variables");
+  // y* as a jet over the leaf: its value encloses y* over the leaf, its gradient is the slopes.
+  std::vector<Interval> slopes;
+  Interval value = enclose(*leaf.witness);
+  for (std::size_t i = 0; i <= k; ++i) {
+    slopes.push_back(enclose(leaf.witness_slopes[i]));
+    value = value + slopes.back() * (i < k ? offset(leaf.parameters[i]) : offset(leaf.driver));
+  }
+  slopes.push_back(zero());
+  Jet witness(value, slopes);
+  Jet driver = Jet::variable(enclose(leaf.driver), driver_variable(), variables());
+  Jet driver_centre(enclose(middle(leaf.driver)));
+  for (int s = 0; s < 2; ++s) {
+    const LeafSide& side = s == 0 ? leaf.lower : leaf.upper;
+    const char* name = s == 0 ? "lower" : "upper";
+    // y* within the side's bracket, where the side's function is monotone with its one root.
+    Interval below = value - enclose(side.bracket.lo), above = enclose(side.bracket.hi) - value;
+    if (below.sign() <= 0 || above.sign() <= 0)
+      reject(where + ": the witness " + show(value) + " is not certainly inside the " + name + " side's bracket " +
+             show(side.bracket));
+    // The side's function at y*(p, d): mean-value form about the leaf's centre (chain rule
+    // through the jet), with the sign it has at the bracket's end on the channel's side.
+    Jet h = contact(over, side.pair, driver, witness);
+    Interval centred = contact(at, side.pair, driver_centre, Jet(enclose(*leaf.witness))).value;
+    for (std::size_t i = 0; i < k; ++i) centred = centred + h.partial(i) * offset(leaf.parameters[i]);
+    centred = centred + h.partial(k) * offset(leaf.driver);
+    int sign = meet(centred, h.value).sign();
+    int inside = sign_over_leaf(leaf, side.pair, s == 0 ? side.bracket.hi : side.bracket.lo, over, at);
+    if (sign == 0 || sign != inside)
+      reject(where + ": the witness is not certainly " + (s == 0 ? "above the lower" : "below the upper") +
+             " side (its contact function there encloses to " + show(meet(centred, h.value)) + ")");
+  }
+}
+
 Interval ToleranceEvaluator::play(const ToleranceLeaf& leaf, const SideEnclosure& lower, const SideEnclosure& upper) const {
   std::size_t k = varied_.size();
   Interval value = upper.centre - lower.centre;
@@ -437,6 +475,10 @@ void ToleranceEvaluator::check_leaf(const ToleranceLeaf& leaf, std::size_t index
   if (leaf.parameters.size() != varied_.size()) reject(where + ": wrong number of parameter intervals");
   SideEnclosure lower = check_side(leaf, leaf.lower, over, at, where + " (lower side)");
   SideEnclosure upper = check_side(leaf, leaf.upper, over, at, where + " (upper side)");
+  if (leaf.witness) {
+    check_witness(leaf, over, at, where);
+    return;
+  }
   Interval gap = play(leaf, lower, upper);
   if (gap.sign() <= 0)
     reject(where + ": the channel is not certainly open: the play between the sides encloses to " + show(gap) +

@@ -105,6 +105,11 @@ class ToleranceEvaluator {
   /// sides' enclosures.
   Interval play(const ToleranceLeaf& leaf, const SideEnclosure& lower, const SideEnclosure& upper) const;
 
+  /// Checks a leaf's witness: y*(p, d) strictly between the two sides over the whole leaf
+  /// (after both sides were isolated). \throws Rejection.
+  void check_witness(const ToleranceLeaf& leaf, ToleranceGeometry& over_box, ToleranceGeometry& at_centre,
+                     const std::string& where) const;
+
   /// Walks the subdivision tree: the leaves cover the box times the range. \throws Rejection.
   void check_cover() const;
 

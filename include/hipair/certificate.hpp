@@ -115,6 +115,12 @@ struct ToleranceLeaf {
   std::vector<RationalInterval> parameters;
   RationalInterval driver;
   LeafSide lower, upper;
+  /// Optional witness of the open channel: the follower coordinate
+  /// y*(p, d) = value + sum slopes_i (p_i - c_i) + slopes_k (d - d_c) (c, d_c: the leaf's
+  /// centre; slopes per varied parameter, then the driver) lies strictly between the two
+  /// sides over the whole leaf. Without it the play between the sides is enclosed instead.
+  std::optional<Rational> witness;
+  std::vector<Rational> witness_slopes;
 };
 
 /// A node of the subdivision tree in preorder: a split of the current region at `value` along

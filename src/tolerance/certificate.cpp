@@ -10,8 +10,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -77,14 +75,6 @@ class Producer {
         pieces.push_back(Piece{lower, upper, {}});
       pieces.back().samples.push_back(&s);
     }
-    if (std::getenv("HIPAIR_TOLCERT_DEBUG"))
-      for (const Piece& piece : pieces)
-        std::fprintf(stderr, "piece %g..%g lower %zu (%s / %s%s) upper %zu (%s / %s%s) lower %g upper %g\n", piece.samples.front()->driver,
-                     piece.samples.back()->driver, piece.lower, claim_.sides[piece.lower].driver.edge.label.c_str(),
-                     claim_.sides[piece.lower].follower.edge.label.c_str(), claim_.sides[piece.lower].follower.vertex ? " vertex" : "",
-                     piece.upper, claim_.sides[piece.upper].driver.edge.label.c_str(),
-                     claim_.sides[piece.upper].follower.edge.label.c_str(), claim_.sides[piece.upper].follower.vertex ? " vertex" : "",
-                     piece.samples.front()->lower, piece.samples.front()->upper);
     if (pieces.empty()) {
       result.reason = "no driver position of the nominal path lies in the range";
       return result;
@@ -324,6 +314,51 @@ class Producer {
         jam_reason_ += " " + claim_.varied[i] + "=" + std::to_string(Rational((region[i].lo + region[i].hi) / 2).get_d());
       return Status::jams;
     }
+    // A leaf with these two sides: first with a witness follower path between them (a linear
+    // function of the parameters and the driver, so that what moves both sides alike cancels),
+    // then with the play enclosed from the sides' slopes.
+    auto accept = [&](ToleranceLeaf candidate) {
+      try {
+        evaluator_->check_leaf(candidate, claim_.leaves.size(), over, point);
+      } catch (const verify::Rejection&) {
+        return false;
+      }
+      ToleranceTreeNode node;
+      node.leaf = true;
+      node.index = claim_.leaves.size();
+      claim_.tree.push_back(node);
+      claim_.leaves.push_back(std::move(candidate));
+      return true;
+    };
+    auto attempt = [&](std::size_t lp, const SideGuess& gl, std::size_t up, const SideGuess& gu) {
+      if (!gl.ok || !gu.ok || !(gu.root > gl.root)) return false;
+      double mid = 0.5 * (gl.root + gu.root), spread = 0, predicted = gu.root - gl.root;
+      std::vector<Rational> a;
+      for (std::size_t i = 0; i <= k; ++i) {
+        double h = i < k ? half[i] : half_driver;
+        double slope = 0.5 * (gl.slope[i] + gu.slope[i]);
+        a.push_back(grid(slope, false));
+        spread += std::fabs(slope) * h;
+        predicted -= std::fabs(gu.slope[i] - gl.slope[i]) * h;
+      }
+      if (predicted <= 0) return false;
+      Rational top = grid(mid + 1.05 * spread + 1e-12, true), bottom = grid(mid - 1.05 * spread - 1e-12, false);
+      RationalInterval bl = gl.bracket, bu = gu.bracket;
+      if (bl.hi < top) bl.hi = top;
+      if (bu.lo > bottom) bu.lo = bottom;
+      if (bottom > bl.lo && top < bu.hi) {
+        ToleranceLeaf w = leaf;
+        w.lower = LeafSide{lp, bl, gl.centre};
+        w.upper = LeafSide{up, bu, gu.centre};
+        w.witness = grid(mid, false);
+        w.witness_slopes = a;
+        if (accept(std::move(w))) return true;
+      }
+      ToleranceLeaf p = leaf;
+      p.lower = LeafSide{lp, gl.bracket, gl.centre};
+      p.upper = LeafSide{up, gu.bracket, gu.centre};
+      return accept(std::move(p));
+    };
     std::vector<double> score(k + 1, 1.0);
     bool slopes = lower.slope.size() == k + 1 && upper.slope.size() == k + 1;
     if (slopes && (!lower.ok || !upper.ok)) {
@@ -338,21 +373,7 @@ class Producer {
         score[i] = std::fabs(upper.slope[i] - lower.slope[i]) * (i < k ? half[i] : half_driver);
         predicted -= score[i];
       }
-      if (predicted > 0) {
-        leaf.lower = LeafSide{lower_pair, lower.bracket, lower.centre};
-        leaf.upper = LeafSide{upper_pair, upper.bracket, upper.centre};
-        try {
-          evaluator_->check_leaf(leaf, claim_.leaves.size(), over, point);
-          ToleranceTreeNode node;
-          node.leaf = true;
-          node.index = claim_.leaves.size();
-          claim_.tree.push_back(node);
-          claim_.leaves.push_back(std::move(leaf));
-          return Status::ok;
-        } catch (const verify::Rejection& r) {
-          if (std::getenv("HIPAIR_TOLCERT_DEBUG")) std::fprintf(stderr, "depth %d reject: %s\n", depth, r.reason.c_str());
-        }
-      }
+      if (attempt(lower_pair, lower, upper_pair, upper)) return Status::ok;
     } else {
       // Sides not found at the centre: split the widest dimension relative to the box.
       for (std::size_t i = 0; i < k; ++i) {
@@ -363,40 +384,13 @@ class Producer {
     }
     // The neighbouring sides (near a switch of sides).
     for (std::size_t a = 0; a < lowers.size(); ++a)
-      for (std::size_t b = 0; b < uppers.size(); ++b) {
-        if (a == 0 && b == 0) continue;
-        const SideGuess& gl = lowers[a].second;
-        const SideGuess& gu = uppers[b].second;
-        if (!gl.ok || !gu.ok) continue;
-        double predicted = gu.root - gl.root;
-        for (std::size_t i = 0; i <= k; ++i)
-          predicted -= std::fabs(gu.slope[i] - gl.slope[i]) * (i < k ? half[i] : half_driver);
-        if (predicted <= 0) continue;
-        leaf.lower = LeafSide{lowers[a].first, gl.bracket, gl.centre};
-        leaf.upper = LeafSide{uppers[b].first, gu.bracket, gu.centre};
-        try {
-          evaluator_->check_leaf(leaf, claim_.leaves.size(), over, point);
-          ToleranceTreeNode node;
-          node.leaf = true;
-          node.index = claim_.leaves.size();
-          claim_.tree.push_back(node);
-          claim_.leaves.push_back(std::move(leaf));
-          return Status::ok;
-        } catch (const verify::Rejection&) {
-        }
-      }
+      for (std::size_t b = 0; b < uppers.size(); ++b)
+        if ((a || b) && attempt(lowers[a].first, lowers[a].second, uppers[b].first, uppers[b].second)) return Status::ok;
     if (depth > 400) {
       undecided_reason_ = "the branch-and-bound reached depth 400 without certifying a box near driver " + std::to_string(dd);
       return Status::undecided;
     }
     std::size_t best = static_cast<std::size_t>(std::max_element(score.begin(), score.end()) - score.begin());
-    if (std::getenv("HIPAIR_TOLCERT_DEBUG")) {
-      double predicted = lower.ok && upper.ok ? upper.root - lower.root : -1;
-      double sum = 0;
-      for (double x : score) sum += x;
-      std::fprintf(stderr, "depth %d ok %d %d play %g sum %g split %s (%g) d [%g %g]\n", depth, lower.ok, upper.ok, predicted, sum,
-                   best == k ? "driver" : claim_.varied[best].c_str(), score[best], region[k].lo.get_d(), region[k].hi.get_d());
-    }
     Rational cut = (region[best].lo + region[best].hi) / 2;
     if (best == k) {
       Rational snapped = grid(cut.get_d(), false);
