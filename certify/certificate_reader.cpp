@@ -17,6 +17,7 @@ std::string to_string(ClaimKind kind) {
     case ClaimKind::clearance: return "clearance";
     case ClaimKind::jam: return "jam";
     case ClaimKind::free_passage: return "free_passage";
+    case ClaimKind::tolerance: return "tolerance";
   }
   return "?";
 }
@@ -124,13 +125,71 @@ ConfigurationBox box_of(const JsonValue& value, bool follower_required) {
   return box;
 }
 
+FeatureReference feature_of(const JsonValue& value) {
+  check_keys(value, {"part", "loop", "edge", "label", "vertex"});
+  FeatureReference f;
+  f.edge = EdgeReference{text(require(value, "part")), index(require(value, "loop")), index(require(value, "edge")),
+                         text(require(value, "label"))};
+  if (const JsonValue* vertex = value.find("vertex")) {
+    if (!vertex->is_boolean()) fail(*vertex, "expected true or false");
+    f.vertex = vertex->boolean;
+  }
+  return f;
+}
+LeafSide leaf_side_of(const JsonValue& value) {
+  check_keys(value, {"pair", "bracket", "centre"});
+  return LeafSide{index(require(value, "pair")), interval_of(require(value, "bracket")), interval_of(require(value, "centre"))};
+}
+ToleranceClaim tolerance_of(const JsonValue& body) {
+  check_keys(body, {"property", "driver", "follower", "range", "scale", "varied", "box", "sides", "leaves", "tree"});
+  ToleranceClaim t;
+  t.property = text(require(body, "property"));
+  t.driver = text(require(body, "driver"));
+  t.follower = text(require(body, "follower"));
+  t.range = interval_of(require(body, "range"));
+  t.scale = rational(require(body, "scale"));
+  for (const JsonValue& name : array(require(body, "varied")).items) t.varied.push_back(text(name));
+  for (const JsonValue& range : array(require(body, "box")).items) t.box.push_back(interval_of(range));
+  for (const JsonValue& side : array(require(body, "sides")).items) {
+    check_keys(side, {"driver", "follower"});
+    t.sides.push_back(ContactSidePair{feature_of(require(side, "driver")), feature_of(require(side, "follower"))});
+  }
+  for (const JsonValue& item : array(require(body, "leaves")).items) {
+    check_keys(item, {"parameters", "driver", "lower", "upper", "witness"});
+    ToleranceLeaf leaf;
+    for (const JsonValue& range : array(require(item, "parameters")).items) leaf.parameters.push_back(interval_of(range));
+    leaf.driver = interval_of(require(item, "driver"));
+    leaf.lower = leaf_side_of(require(item, "lower"));
+    leaf.upper = leaf_side_of(require(item, "upper"));
+    if (const JsonValue* witness = item.find("witness")) {
+      check_keys(*witness, {"value", "slopes"});
+      leaf.witness = rational(require(*witness, "value"));
+      for (const JsonValue& slope : array(require(*witness, "slopes")).items) leaf.witness_slopes.push_back(rational(slope));
+    }
+    t.leaves.push_back(std::move(leaf));
+  }
+  for (const JsonValue& node : array(require(body, "tree")).items) {
+    ToleranceTreeNode n;
+    if (node.is_number()) {
+      n.leaf = true;
+      n.index = index(node);
+    } else {
+      array(node, 2);
+      n.dimension = text(node.items[0]);
+      n.value = rational(node.items[1]);
+    }
+    t.tree.push_back(std::move(n));
+  }
+  return t;
+}
+
 }  // namespace
 
 Certificate read_certificate(std::string_view json_text) {
   JsonValue root = model_detail::parse_json(json_text);
   Certificate c;
   check_keys(root, {"hipair_certificate", "claim", "statement", "model", "pair", "interference", "clearance", "jam",
-                    "free_passage"});
+                    "free_passage", "tolerance"});
   const JsonValue& version = require(root, "hipair_certificate");
   if (!version.is_number() || version.text != "1") fail(version, "unsupported certificate version (expected 1)");
   std::string claim = text(require(root, "claim"));
@@ -138,6 +197,7 @@ Certificate read_certificate(std::string_view json_text) {
   else if (claim == "clearance") c.claim = ClaimKind::clearance;
   else if (claim == "jam") c.claim = ClaimKind::jam;
   else if (claim == "free_passage") c.claim = ClaimKind::free_passage;
+  else if (claim == "tolerance") c.claim = ClaimKind::tolerance;
   else fail(require(root, "claim"), "unknown claim '" + claim + "'");
   if (const JsonValue* statement = root.find("statement")) c.statement = text(*statement);
 
@@ -163,7 +223,7 @@ Certificate read_certificate(std::string_view json_text) {
   c.first = text(pair.items[0]);
   c.second = text(pair.items[1]);
 
-  for (const char* other : {"interference", "clearance", "jam", "free_passage"})
+  for (const char* other : {"interference", "clearance", "jam", "free_passage", "tolerance"})
     if (other != claim && root.find(other)) fail(*root.find(other), "section '" + std::string(other) + "' does not belong to a " + claim + " claim");
   const JsonValue& body = require(root, claim.c_str());
   switch (c.claim) {
@@ -196,6 +256,9 @@ Certificate read_certificate(std::string_view json_text) {
       for (const JsonValue& box : array(require(body, "boxes")).items) c.boxes.push_back(box_of(box, !c.follower.empty()));
       break;
     }
+    case ClaimKind::tolerance:
+      c.tolerance = tolerance_of(body);
+      break;
     case ClaimKind::jam: {
       check_keys(body, {"driver", "follower", "direction", "trap", "cut", "lower_wall", "upper_wall"});
       c.driver = text(require(body, "driver"));

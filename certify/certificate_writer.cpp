@@ -62,6 +62,51 @@ std::string configuration(const std::map<std::string, ExactPosition>& positions)
   return out + (first ? "}" : "\n    }");
 }
 
+std::string feature(const FeatureReference& f) {
+  std::string out = edge_reference(f.edge);
+  if (f.vertex) out.insert(out.size() - 1, ", \"vertex\": true");
+  return out;
+}
+std::string leaf_side(const LeafSide& side) {
+  return "{\"pair\": " + std::to_string(side.pair) + ", \"bracket\": " + interval(side.bracket) +
+         ", \"centre\": " + interval(side.centre) + "}";
+}
+std::string tolerance(const ToleranceClaim& t) {
+  std::string out = "    \"property\": " + quoted(t.property) + ",\n    \"driver\": " + quoted(t.driver) +
+                    ",\n    \"follower\": " + quoted(t.follower) + ",\n    \"range\": " + interval(t.range) +
+                    ",\n    \"scale\": " + number(t.scale) + ",\n    \"varied\": [";
+  for (std::size_t i = 0; i < t.varied.size(); ++i) out += (i ? ", " : "") + quoted(t.varied[i]);
+  out += "],\n    \"box\": [";
+  for (std::size_t i = 0; i < t.box.size(); ++i) out += (i ? ", " : "") + interval(t.box[i]);
+  out += "],\n    \"sides\": [";
+  for (std::size_t i = 0; i < t.sides.size(); ++i)
+    out += std::string(i ? "," : "") + "\n      {\"driver\": " + feature(t.sides[i].driver) + ", \"follower\": " +
+           feature(t.sides[i].follower) + "}";
+  out += t.sides.empty() ? "]" : "\n    ]";
+  out += ",\n    \"leaves\": [";
+  for (std::size_t i = 0; i < t.leaves.size(); ++i) {
+    const ToleranceLeaf& leaf = t.leaves[i];
+    out += std::string(i ? "," : "") + "\n      {\"parameters\": [";
+    for (std::size_t j = 0; j < leaf.parameters.size(); ++j) out += (j ? ", " : "") + interval(leaf.parameters[j]);
+    out += "], \"driver\": " + interval(leaf.driver) + ",\n       \"lower\": " + leaf_side(leaf.lower) +
+           ", \"upper\": " + leaf_side(leaf.upper);
+    if (leaf.witness) {
+      out += ",\n       \"witness\": {\"value\": " + number(*leaf.witness) + ", \"slopes\": [";
+      for (std::size_t j = 0; j < leaf.witness_slopes.size(); ++j) out += (j ? ", " : "") + number(leaf.witness_slopes[j]);
+      out += "]}";
+    }
+    out += "}";
+  }
+  out += t.leaves.empty() ? "]" : "\n    ]";
+  out += ",\n    \"tree\": [";
+  for (std::size_t i = 0; i < t.tree.size(); ++i) {
+    const ToleranceTreeNode& n = t.tree[i];
+    out += (i ? (i % 8 ? ", " : ",\n      ") : "");
+    out += n.leaf ? std::to_string(n.index) : "[" + quoted(n.dimension) + ", " + number(n.value) + "]";
+  }
+  return out + "]";
+}
+
 }  // namespace
 
 std::string write_certificate(const Certificate& c) {
@@ -108,6 +153,9 @@ std::string write_certificate(const Certificate& c) {
       out << (c.boxes.empty() ? "]" : "\n    ]");
       break;
     }
+    case ClaimKind::tolerance:
+      if (c.tolerance) out << tolerance(*c.tolerance);
+      break;
     case ClaimKind::jam:
       out << "    \"driver\": " << quoted(c.driver) << ",\n    \"follower\": " << quoted(c.follower)
           << ",\n    \"direction\": " << c.direction << ",\n    \"trap\": {\"driver\": " << interval(c.trap.driver);

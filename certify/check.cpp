@@ -5,6 +5,7 @@
 
 #include "certify/exact_geometry.hpp"
 #include "certify/interval_geometry.hpp"
+#include "certify/tolerance_check.hpp"
 #include "core/sha256.hpp"
 #include "io/atomic_file.hpp"
 
@@ -506,10 +507,46 @@ VerificationResult check_certificate(const Certificate& certificate, const Model
       case ClaimKind::clearance: result.summary = check_clearance(certificate, model); break;
       case ClaimKind::jam: result.summary = check_jam(certificate, model); break;
       case ClaimKind::free_passage: result.summary = check_free_passage(certificate, model); break;
+      case ClaimKind::tolerance:
+        reject("a tolerance certificate is checked against the model file's text (check_certificate_text, hipair-verify)");
     }
     result.summary = to_string(certificate.claim) + ": " + result.summary;
     result.valid = true;
   } catch (const Rejection& rejection) {
+    result.reason = rejection.reason;
+  } catch (const Error& error) {
+    result.reason = error.what();
+  }
+  return result;
+}
+
+VerificationResult check_certificate_text(const Certificate& certificate, std::string_view text,
+                                          const std::string& source_name) {
+  VerificationResult result;
+  std::string hash = detail::sha256_hex(text);
+  if (hash != certificate.content_hash) {
+    result.reason = "model hash mismatch: the certificate is for sha256 " + certificate.content_hash + ", the file has " + hash;
+    return result;
+  }
+  ReadOptions options;
+  for (const ParameterValue& value : certificate.parameters)
+    if (value.overridden) options.parameter_values[value.name] = value.value;
+  Model model;
+  try {
+    model = read_model(text, source_name, options);
+  } catch (const Error& error) {
+    std::string message = error.what();
+    bool tolerance = message.find("outside its tolerance") != std::string::npos;
+    result.reason = (tolerance ? "parameter outside its tolerance: " : "the model does not read: ") + message;
+    return result;
+  }
+  if (certificate.claim != ClaimKind::tolerance) return check_certificate(certificate, model);
+  try {
+    verify::check_model(certificate, model);
+    if (certificate.first == certificate.second) verify::reject("a pair needs two different parts");
+    result.summary = to_string(certificate.claim) + ": " + verify::check_tolerance(certificate, model, text);
+    result.valid = true;
+  } catch (const verify::Rejection& rejection) {
     result.reason = rejection.reason;
   } catch (const Error& error) {
     result.reason = error.what();
@@ -534,24 +571,7 @@ VerificationResult verify_certificate_file(const std::filesystem::path& certific
     result.reason = error.what();
     return result;
   }
-  std::string hash = detail::sha256_hex(text);
-  if (hash != certificate.content_hash) {
-    result.reason = "model hash mismatch: the certificate is for sha256 " + certificate.content_hash + ", the file has " + hash;
-    return result;
-  }
-  ReadOptions options;
-  for (const ParameterValue& value : certificate.parameters)
-    if (value.overridden) options.parameter_values[value.name] = value.value;
-  Model model;
-  try {
-    model = read_model(text, model_path.filename().string(), options);
-  } catch (const Error& error) {
-    std::string message = error.what();
-    bool tolerance = message.find("outside its tolerance") != std::string::npos;
-    result.reason = (tolerance ? "parameter outside its tolerance: " : "the model does not read: ") + message;
-    return result;
-  }
-  return check_certificate(certificate, model);
+  return check_certificate_text(certificate, text, model_path.filename().string());
 }
 
 }  // namespace hipair

@@ -31,7 +31,8 @@ enum class ClaimKind {
   interference,  ///< the pair overlaps at one exact configuration
   clearance,     ///< at one exact configuration the pair is at least `distance` apart
   jam,           ///< driving the driver monotonically cannot pass a driver position
-  free_passage   ///< along a motion path over a driver range the pair stays `distance` apart
+  free_passage,  ///< along a motion path over a driver range the pair stays `distance` apart
+  tolerance      ///< for every parameter vector of a box, a driven pair's channel never closes
 };
 
 /// "interference", "clearance", "jam", "free_passage".
@@ -83,6 +84,68 @@ struct ConfigurationBox {
   std::optional<RationalInterval> follower;
 };
 
+/// A feature of a part in a tolerance certificate: an edge (segment or arc) of the part's
+/// loops as read, or, with `vertex`, the source vertex of that edge (edges oriented as read).
+struct FeatureReference {
+  EdgeReference edge;
+  bool vertex = false;
+};
+
+/// One side of the follower's free channel in a tolerance certificate: the contact curve of
+/// a feature of the driver and a feature of the follower (docs/certify.md "Tolerance").
+struct ContactSidePair {
+  FeatureReference driver;     ///< the feature of the driven part
+  FeatureReference follower;   ///< the feature of the follower
+};
+
+/// A side's witness in one leaf: the side is the contact pair `pair` (index into
+/// ToleranceClaim::sides); for every (parameters, driver) of the leaf its contact function has
+/// exactly one root in the follower interval `bracket`, and at the leaf's centre that root
+/// lies in `centre` (follower coordinates, rad or mm).
+struct LeafSide {
+  std::size_t pair = 0;
+  RationalInterval bracket;
+  RationalInterval centre;
+};
+
+/// A leaf of the branch-and-bound: a sub-box of the parameter box (deviations from nominal, one
+/// interval per varied parameter, ToleranceClaim::varied order) times a driver interval, over
+/// which the channel between the two sides is certified open.
+struct ToleranceLeaf {
+  std::vector<RationalInterval> parameters;
+  RationalInterval driver;
+  LeafSide lower, upper;
+  /// Optional witness of the open channel: the follower coordinate
+  /// y*(p, d) = value + sum slopes_i (p_i - c_i) + slopes_k (d - d_c) (c, d_c: the leaf's
+  /// centre; slopes per varied parameter, then the driver) lies strictly between the two
+  /// sides over the whole leaf. Without it the play between the sides is enclosed instead.
+  std::optional<Rational> witness;
+  std::vector<Rational> witness_slopes;
+};
+
+/// A node of the subdivision tree in preorder: a split of the current region at `value` along
+/// `dimension` (a varied parameter's name, or "driver"; lower part first), or a leaf (index
+/// into ToleranceClaim::leaves) whose box must contain the region.
+struct ToleranceTreeNode {
+  bool leaf = false;
+  std::size_t index = 0;
+  std::string dimension;
+  Rational value;
+};
+
+/// A tolerance certificate's claim (docs/certify.md "Tolerance").
+struct ToleranceClaim {
+  std::string property = "no_jam";   ///< the only property: the channel never closes
+  std::string driver, follower;       ///< both rotating or translating parts of the pair
+  RationalInterval range;             ///< driver range (rad or mm)
+  Rational scale = 1;                 ///< the box is `scale` times each varied tolerance range
+  std::vector<std::string> varied;    ///< varied parameters (the others stay nominal)
+  std::vector<RationalInterval> box;  ///< per varied parameter: deviations from nominal
+  std::vector<ContactSidePair> sides;
+  std::vector<ToleranceLeaf> leaves;
+  std::vector<ToleranceTreeNode> tree;
+};
+
 /// The value of one model parameter used for the claim.
 struct ParameterValue {
   std::string name;
@@ -131,6 +194,9 @@ struct Certificate {
   std::vector<BlockedPiece> cut;          ///< range: follower (one piece, any range, for 1-D pairs)
   std::vector<BlockedPiece> lower_wall;   ///< range: driver; follower = trap.follower->lo
   std::vector<BlockedPiece> upper_wall;   ///< range: driver; follower = trap.follower->hi
+
+  /// tolerance: the parameter box, the driver range and the branch-and-bound leaves.
+  std::optional<ToleranceClaim> tolerance;
 };
 
 /// What the producer needs besides the model.
@@ -254,6 +320,12 @@ struct VerificationResult {
 /// runs): the model must have been read with the certificate's parameter values.
 /// Does not check the content hash (the model text is not at hand; see verify_certificate_file).
 VerificationResult check_certificate(const Certificate& certificate, const Model& model);
+
+/// Checks `certificate` against the model file's text: its SHA-256, the model read with the
+/// certificate's parameter values, then the claim (tolerance certificates need the text: the
+/// verifier re-reads the parametric form of the geometry from it).
+VerificationResult check_certificate_text(const Certificate& certificate, std::string_view model_text,
+                                          const std::string& source_name = "<string>");
 
 /// Everything `hipair-verify CERTIFICATE MODEL` does: reads the certificate, checks the model
 /// file's SHA-256 against it, reads the model with the certificate's parameter values (which

@@ -16,6 +16,7 @@
 // No CGAL types.
 #pragma once
 
+#include <hipair/certificate.hpp>
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
 #include <hipair/rational.hpp>
@@ -49,6 +50,16 @@ struct ToleranceOptions {
   double absolute_accuracy = 1e-9;
   std::size_t zone_samples = 24;       ///< abscissae per contact edge for the contact zones
   std::function<void(double)> progress;   ///< fraction done, from the calling thread
+  /// Produce a no-jam tolerance certificate (docs/certify.md "Tolerance"): for every parameter
+  /// vector in `certify_scale` x the tolerance box of the varied parameters (those of the
+  /// threshold search: `threshold_parameters`, or every toleranced one), over the driver range,
+  /// the follower's channel never closes. Proved by interval branch-and-bound.
+  bool certify = false;
+  Rational certify_scale = 1;
+  /// With `threshold`: the scale is `certify_scale` times the linearised jamming threshold found
+  /// (rounded down to 4 significant digits).
+  bool certify_relative_to_threshold = false;
+  std::size_t certify_max_leaves = 20000;   ///< undecided beyond this many leaves
 };
 
 /// One parameter's share of the variation in a contact region.
@@ -117,6 +128,19 @@ struct JammingThreshold {
   std::string evidence;                ///< what the exact build shows
 };
 
+/// The outcome of the tolerance certificate's branch-and-bound.
+struct ToleranceCertification {
+  /// certified: `certificate` holds the no-jam certificate (re-checked by the verifier's code);
+  /// jams: at a parameter vector of the box the two sides of the channel certainly cross
+  /// (`reason` names it); undecided: neither (budget exhausted, a side not isolated, ...).
+  enum class Outcome { certified, jams, undecided } outcome = Outcome::undecided;
+  std::optional<Certificate> certificate;
+  std::string reason;
+  Rational scale;
+  std::size_t leaves = 0, attempts = 0;
+  double seconds_produce = 0, seconds_verify = 0;
+};
+
 /// Everything the tolerance analysis found.
 struct ToleranceResult {
   std::string model_name;
@@ -134,6 +158,7 @@ struct ToleranceResult {
   double certified_excess = 0;          ///< largest (certified - linearised) width, part units
   std::size_t certified_boxes = 0;      ///< sub-boxes used by the certified bands
   double seconds_sensitivity = 0, seconds_certified = 0, seconds_zones = 0, seconds_threshold = 0;
+  std::optional<ToleranceCertification> certification;   ///< with ToleranceOptions::certify
   std::vector<std::string> notes;
 };
 

@@ -7,6 +7,7 @@
 #include "io/output_directory.hpp"
 #include "io/output_paths.hpp"
 
+#include <hipair/certificate.hpp>
 #include <hipair/error.hpp>
 #include <hipair/tolerance.hpp>
 
@@ -34,6 +35,9 @@ struct ToleranceCliOptions {
   unsigned threads = 0;
   std::string out;
   bool quiet = false;
+  bool certify = false;
+  std::string certify_scale = "1";
+  std::size_t certify_leaves = 20000;
 };
 
 std::string trim(const std::string& text) {
@@ -74,7 +78,8 @@ Rational coordinate(const std::string& text, const std::string& option) {
 
 bool earlier_output(const std::string& name) {
   return name == "tolerance.json" || name == "variation.csv" || name == "sensitivity.csv" ||
-         name == "variation.svg" || name == "contact-zone.svg" || name == "report.txt";
+         name == "variation.svg" || name == "contact-zone.svg" || name == "report.txt" ||
+         name == "tolerance-certificate.json";
 }
 
 int run(const ToleranceCliOptions& options) {
@@ -99,6 +104,20 @@ int run(const ToleranceCliOptions& options) {
   analysis.threshold_parameters = options.vary;
   analysis.relative_accuracy = options.accuracy;
   analysis.threads = options.threads;
+  analysis.certify = options.certify;
+  std::string scale = trim(options.certify_scale);
+  if (!scale.empty() && (scale.back() == 'T' || scale.back() == 't')) {
+    if (!options.threshold) throw ModelError("", "--certify-scale " + scale + " is relative to the jamming threshold: add --threshold");
+    analysis.certify_relative_to_threshold = true;
+    scale.pop_back();
+  }
+  try {
+    analysis.certify_scale = parse_rational(trim(scale));
+  } catch (const Error&) {
+    throw ModelError("", "--certify-scale: '" + options.certify_scale + "' is not a number");
+  }
+  if (!(analysis.certify_scale > 0)) throw ModelError("", "--certify-scale: the scale must be positive");
+  analysis.certify_max_leaves = options.certify_leaves;
   bool terminal = isatty(2) && !options.quiet;
   if (terminal)
     analysis.progress = [](double fraction) {
@@ -111,7 +130,7 @@ int run(const ToleranceCliOptions& options) {
     // Refuse before the (long) analysis when an output would replace the model.
     std::vector<io::PlannedOutput> planned;
     for (const char* name : {"tolerance.json", "variation.csv", "sensitivity.csv", "variation.svg",
-                             "contact-zone.svg", "report.txt"})
+                             "contact-zone.svg", "report.txt", "tolerance-certificate.json"})
       planned.push_back({std::filesystem::path(options.out) / name, "--out"});
     io::refuse_overwriting_inputs(planned, {options.model});
   }
@@ -130,6 +149,8 @@ int run(const ToleranceCliOptions& options) {
                                  {"sensitivity.csv", tolerance_sensitivity_csv(result)},
                                  {"variation.svg", tolerance_band_svg(result)},
                                  {"contact-zone.svg", tolerance_zone_svg(result)}};
+  if (result.certification && result.certification->certificate)
+    files.push_back({"tolerance-certificate.json", write_certificate(*result.certification->certificate)});
   io::publish_directory(directory, files, earlier_output, {options.model});
   std::cout << "\nwrote";
   for (const io::RunFile& file : files) std::cout << " " << (directory / file.name).string();
@@ -160,6 +181,14 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_option("--threads", options->threads, "Monte Carlo threads (default: all cores)");
   command->add_option("--out", options->out, "directory for tolerance.json, variation.csv, sensitivity.csv, variation.svg, contact-zone.svg");
   command->add_flag("--quiet", options->quiet, "no progress bar");
+  command->add_flag("--certify", options->certify,
+                    "prove by interval branch-and-bound that the pair never jams for any parameters in the box; "
+                    "writes tolerance-certificate.json (check it with hipair-verify)");
+  command->add_option("--certify-scale", options->certify_scale,
+                      "the certificate's box: this times the varied tolerance ranges (default 1; --vary names them); "
+                      "with a T suffix (0.95T), times the jamming threshold found by --threshold");
+  command->add_option("--certify-leaves", options->certify_leaves, "give up beyond this many leaves (default 20000)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{10000000}));
   command->callback([options, &action] { action = [options] { return run(*options); }; });
 }
 

@@ -6,6 +6,7 @@
 #include <hipair/tolerance.hpp>
 
 #include "model/parametric/parametric.hpp"
+#include "tolerance/certificate.hpp"
 #include "tolerance/solver.hpp"
 
 #include <hipair/error.hpp>
@@ -179,7 +180,8 @@ std::vector<double> draw(const std::vector<Distribution>& ds, std::uint64_t seed
 
 class Analysis {
  public:
-  Analysis(std::string_view text, const ToleranceOptions& options) : options_(options) {
+  Analysis(std::string_view text, const ToleranceOptions& options, std::string source_name = "<string>")
+      : options_(options), text_(text), source_name_(std::move(source_name)) {
     model_ = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text));
     if (!model_->generic())
       throw ModelError("", "tolerance analysis needs the generic parametric form; feature template " +
@@ -226,6 +228,7 @@ class Analysis {
       threshold();
       result_.seconds_threshold = seconds_since(t3);
     }
+    if (options_.certify) certify();
     progress(1.0);
     return std::move(result_);
   }
@@ -652,19 +655,102 @@ class Analysis {
     return false;
   }
 
-  void threshold() {
+  // The parameters the threshold search and the certificate vary: every toleranced one, or
+  // the named ones (each must have a tolerance).
+  std::vector<bool> varied_parameters() const {
     const Model& m = model_->nominal();
     std::size_t n = m.parameters.size();
     std::vector<bool> varied(n, false);
-    for (std::size_t i = 0; i < n; ++i) varied[i] = dist_[i].hi > dist_[i].lo;
+    for (std::size_t i = 0; i < n; ++i) varied[i] = m.parameters[i].range.lo < m.parameters[i].range.hi;
     if (!options_.threshold_parameters.empty()) {
       varied.assign(n, false);
       for (const std::string& name : options_.threshold_parameters) {
         const Parameter* p = m.find_parameter(name);
         if (!p) throw ModelError("/parameters", "unknown parameter '" + name + "' for the threshold search");
+        if (!(p->range.lo < p->range.hi))
+          throw ModelError("/parameters", "parameter '" + name + "' has no tolerance to vary");
         varied[static_cast<std::size_t>(p - m.parameters.data())] = true;
       }
     }
+    return varied;
+  }
+
+  // The no-jam tolerance certificate (certificate.hpp): the nominal channel along the range,
+  // then the branch-and-bound.
+  void certify() {
+    const Model& m = model_->nominal();
+    tolerance_detail::CertifyRequest request;
+    request.model = model_;
+    request.model_text = text_;
+    request.model_file = source_name_;
+    request.driver = driver_;
+    request.follower = follower_;
+    request.scale = options_.certify_scale;
+    if (options_.certify_relative_to_threshold) {
+      if (!result_.threshold || !result_.threshold->found) {
+        result_.notes.push_back("certificate: no jamming threshold was found to scale the box by");
+        return;
+      }
+      // fraction x threshold, rounded down to 4 significant digits.
+      double value = (options_.certify_scale.get_d()) * result_.threshold->scale;
+      double unit = std::pow(10.0, std::floor(std::log10(value)) - 3);
+      Rational q(mpz_class(std::floor(value / unit)), 1);
+      request.scale = unit >= 1 ? Rational(q * Rational(unit)) : Rational(q / Rational(static_cast<long>(std::llround(1 / unit))));
+    }
+    request.max_leaves = options_.certify_max_leaves;
+    if (!(request.scale > 0)) throw ModelError("", "the certificate's tolerance scale must be positive");
+    std::vector<bool> varied = varied_parameters();
+    for (std::size_t i = 0; i < varied.size(); ++i)
+      if (varied[i]) request.varied.push_back(i);
+    if (request.varied.empty()) throw ModelError("/parameters", "no toleranced parameter to certify over");
+    if (options_.range) {
+      request.range = {std::min(options_.range->first, options_.range->second),
+                       std::max(options_.range->first, options_.range->second)};
+    } else {
+      // One turn as analysed: the first and last driver positions, rounded inwards to 1e-9.
+      auto inward = [](double x, bool up) {
+        Rational q(mpz_class(up ? std::ceil(x * 1e9) : std::floor(x * 1e9)), mpz_class(1000000000));
+        q.canonicalize();
+        return q;
+      };
+      request.range = {inward(result_.samples.front().driver, true), inward(result_.samples.back().driver, false)};
+    }
+    double lo = request.range.lo.get_d(), hi = request.range.hi.get_d();
+    for (std::size_t k = 0; k < states_.size(); ++k) {
+      const VariationSample& sample = result_.samples[k];
+      if (sample.driver < lo - 1e-12 || sample.driver > hi + 1e-12) continue;
+      const SampleState& state = states_[k];
+      tolerance_detail::ChannelSample c;
+      c.driver = sample.driver;
+      CurveSlice lower, upper;
+      double lv = 0, uv = 0;
+      std::vector<double> s;
+      std::string label;
+      if (state.valid && state.lower.present && state.upper.present && side_curve(state, state.lower, lower, lv, s, label) &&
+          side_curve(state, state.upper, upper, uv, s, label)) {
+        c.bounded = true;
+        c.lower_first = lower.first;
+        c.lower_second = lower.second;
+        c.upper_first = upper.first;
+        c.upper_second = upper.second;
+        auto coordinate = [&](double t) {
+          if (!result_.follower_rotates) return t;
+          double theta = 2 * std::atan(t) + (state.follower_chart.half ? pi : 0.0);
+          return theta + 2 * pi * std::round((sample.nominal - theta) / (2 * pi));
+        };
+        c.lower = coordinate(lv);
+        c.upper = coordinate(uv);
+      }
+      (void)m;
+      request.samples.push_back(c);
+    }
+    result_.certification = tolerance_detail::certify_no_jam(request);
+  }
+
+  void threshold() {
+    const Model& m = model_->nominal();
+    std::size_t n = m.parameters.size();
+    std::vector<bool> varied = varied_parameters();
     JammingThreshold result;
     double best = std::numeric_limits<double>::infinity();
     Channel critical;
@@ -779,6 +865,7 @@ class Analysis {
   }
 
   ToleranceOptions options_;
+  std::string text_, source_name_;
   std::shared_ptr<const model_detail::ParametricModel> model_;
   std::unique_ptr<CurveSolver> solver_;
   std::unique_ptr<CSpace> space_;
@@ -805,7 +892,7 @@ ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, cons
   if (!file) throw IoError("cannot open model file '" + model_file.string() + "'");
   std::ostringstream content;
   content << file.rdbuf();
-  return analyze_tolerances_text(content.str(), options);
+  return Analysis(content.str(), options, model_file.filename().string()).run();
 }
 
 }  // namespace hipair

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "kernels/contact.hpp"
+#include "model/parametric/number_traits.hpp"
 #include "model/parametric/parametric.hpp"
 
 #include <hipair/cspace.hpp>

@@ -180,6 +180,23 @@ std::string tolerance_text_report(const ToleranceResult& r) {
       out << "  exact check: " << (t.confirmed ? "CONFIRMED — " : "not confirmed — ") << t.evidence << "\n";
     }
   }
+  if (r.certification) {
+    const ToleranceCertification& c = *r.certification;
+    out << "\nTolerance certificate (no jam, tolerances x " << to_exact_string(c.scale) << "):\n";
+    switch (c.outcome) {
+      case ToleranceCertification::Outcome::certified:
+        out << "  CERTIFIED: " << c.leaves << " leaves (" << c.attempts << " boxes tried) in "
+            << number(c.seconds_produce, 3) << " s, re-checked by the verifier's code in " << number(c.seconds_verify, 3)
+            << " s\n";
+        break;
+      case ToleranceCertification::Outcome::jams:
+        out << "  JAMS: " << c.reason << "\n";
+        break;
+      case ToleranceCertification::Outcome::undecided:
+        out << "  undecided (no certificate): " << c.reason << "\n";
+        break;
+    }
+  }
   for (const std::string& note : r.notes) out << "\nNote: " << note << "\n";
   return out.str();
 }
@@ -242,6 +259,18 @@ std::string tolerance_json_report(const ToleranceResult& r) {
                       {"confirmed_scale", t.confirmed_scale},
                       {"worst_values", worst},
                       {"evidence", t.evidence}};
+  }
+  if (r.certification) {
+    const ToleranceCertification& c = *r.certification;
+    const char* outcome = c.outcome == ToleranceCertification::Outcome::certified ? "certified"
+                          : c.outcome == ToleranceCertification::Outcome::jams ? "jams" : "undecided";
+    j["certificate"] = {{"outcome", outcome},
+                        {"scale", to_exact_string(c.scale)},
+                        {"leaves", c.leaves},
+                        {"boxes_tried", c.attempts},
+                        {"reason", c.reason},
+                        {"seconds_produce", c.seconds_produce},
+                        {"seconds_verify", c.seconds_verify}};
   }
   j["zones"] = r.zones.size();
   j["seconds"] = {{"sensitivity", r.seconds_sensitivity},

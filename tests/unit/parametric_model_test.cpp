@@ -2,6 +2,7 @@
 // exact form at a parameter vector equals a re-read with the values overridden, the generic
 // forms (double, intervals, AutoDiff) agree with it, and AutoDiff derivatives of a Geneva
 // contact curve equal central finite differences of exact rebuilds.
+#include "model/parametric/number_traits.hpp"
 #include "model/parametric/parametric.hpp"
 #include "tolerance/contact_function.hpp"
 

@@ -3,6 +3,7 @@
 // recomputations — the model rebuilt exactly at p +- h for a rational step h and the contact
 // root isolated exactly — for every one of the Geneva pair's 26 parameters, within the bound
 // h^2 + 2e-10 / h that the step and the rebuilds' recorded roundings give.
+#include "model/parametric/number_traits.hpp"
 #include "model/parametric/parametric.hpp"
 #include "tolerance/solver.hpp"
 

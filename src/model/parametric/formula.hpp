@@ -5,7 +5,7 @@
 // exact evaluation (rational + rational * pi, with certified enclosures) stays there.
 #pragma once
 
-#include "model/parametric/number_traits.hpp"
+#include "model/parametric/arithmetic.hpp"
 
 #include <hipair/rational.hpp>
 

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "kernels/interval.hpp"
+#include "model/parametric/arithmetic.hpp"
 
 #include <hipair/rational.hpp>
 
@@ -88,24 +89,6 @@ class AutoDiff : public Eigen::AutoDiffScalar<Eigen::VectorXd> {
     if (b.size() == 0) return Gradient(ka * a);
     return Gradient(ka * a + kb * b);
   }
-};
-
-template <class T>
-struct Arithmetic;
-
-template <>
-struct Arithmetic<double> {
-  static double constant(const Rational& q) { return q.get_d(); }
-  static double pi() { return std::numbers::pi; }
-  static double sqrt(double x) { return std::sqrt(x); }
-  static double sin(double x) { return std::sin(x); }
-  static double cos(double x) { return std::cos(x); }
-  static double tan(double x) { return std::tan(x); }
-  static double atan2(double y, double x) { return std::atan2(y, x); }
-  static double abs(double x) { return std::fabs(x); }
-  static double min(double a, double b) { return a < b ? a : b; }
-  static double max(double a, double b) { return a < b ? b : a; }
-  static double value(double x) { return x; }
 };
 
 namespace number_detail {

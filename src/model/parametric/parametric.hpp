@@ -14,6 +14,10 @@
 // independent parameter's value is nominal + deviation; a parameter whose nominal is an
 // expression of other parameters (a derived parameter) is that expression at their values,
 // plus its own deviation (its tolerance): correlated parameters vary together.
+//
+// Number types: this header needs only Arithmetic<T> (arithmetic.hpp: double); include
+// number_traits.hpp for the kernels' intervals and AutoDiff (the independent verifier supplies
+// its own MPFI arithmetic, certify/tolerance_check.cpp).
 #pragma once
 
 #include "kernels/vector.hpp"

@@ -1,0 +1,558 @@
+// The verifier's check of tolerance certificates (tolerance_check.hpp, docs/certify.md
+// "Tolerance"). No floating-point type: MPFI enclosures with exact rational ends, decided by
+// certain signs and exact comparisons.
+#include "certify/tolerance_check.hpp"
+
+#include <hipair/error.hpp>
+
+#include <mpfr.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <set>
+
+namespace hipair::verify {
+
+// ----------------------------------------------------------------------------- jets
+
+namespace {
+
+Interval apply1(int (*f)(mpfi_ptr, mpfi_srcptr), const Interval& x) {
+  Interval r;
+  f(r.get(), x.get());
+  return r;
+}
+Interval zero() { return Interval(Rational(0)); }
+Interval one() { return Interval(Rational(1)); }
+
+std::vector<Interval> scaled(const std::vector<Interval>& g, const Interval& f) {
+  std::vector<Interval> out;
+  out.reserve(g.size());
+  for (const Interval& x : g) out.push_back(x * f);
+  return out;
+}
+// a.gradient * fa + b.gradient * fb
+std::vector<Interval> combine(const Jet& a, const Interval& fa, const Jet& b, const Interval& fb) {
+  std::size_t n = std::max(a.gradient.size(), b.gradient.size());
+  std::vector<Interval> g;
+  g.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    bool ha = i < a.gradient.size(), hb = i < b.gradient.size();
+    if (ha && hb) g.push_back(a.gradient[i] * fa + b.gradient[i] * fb);
+    else if (ha) g.push_back(a.gradient[i] * fa);
+    else g.push_back(b.gradient[i] * fb);
+  }
+  return g;
+}
+Interval hull2(const Interval& a, const Interval& b) {
+  Interval r;
+  mpfi_union(r.get(), a.get(), b.get());
+  return r;
+}
+// The smaller (or larger) of two intervals, endpoint-wise.
+Interval extremum(const Interval& a, const Interval& b, bool minimum) {
+  mpfr_t x, y;
+  mpfr_init2(x, model_detail::interval_bits);
+  mpfr_init2(y, model_detail::interval_bits);
+  Interval r;
+  mpfi_get_left(x, a.get());
+  mpfi_get_left(y, b.get());
+  if (minimum) mpfr_min(x, x, y, MPFR_RNDD);
+  else mpfr_max(x, x, y, MPFR_RNDD);
+  mpfr_t z, w;
+  mpfr_init2(z, model_detail::interval_bits);
+  mpfr_init2(w, model_detail::interval_bits);
+  mpfi_get_right(z, a.get());
+  mpfi_get_right(w, b.get());
+  if (minimum) mpfr_min(z, z, w, MPFR_RNDU);
+  else mpfr_max(z, z, w, MPFR_RNDU);
+  mpfi_interv_fr(r.get(), x, z);
+  mpfr_clear(x);
+  mpfr_clear(y);
+  mpfr_clear(z);
+  mpfr_clear(w);
+  return r;
+}
+
+}  // namespace
+
+Jet Jet::variable(const Interval& v, std::size_t index, std::size_t count) {
+  std::vector<Interval> g(count, zero());
+  g[index] = one();
+  return Jet(v, std::move(g));
+}
+
+Jet operator+(const Jet& a, const Jet& b) { return Jet(a.value + b.value, combine(a, one(), b, one())); }
+Jet operator-(const Jet& a, const Jet& b) { return Jet(a.value - b.value, combine(a, one(), b, -one())); }
+Jet operator-(const Jet& a) { return Jet(-a.value, scaled(a.gradient, -one())); }
+Jet operator*(const Jet& a, const Jet& b) { return Jet(a.value * b.value, combine(a, b.value, b, a.value)); }
+Jet operator/(const Jet& a, const Jet& b) {
+  Interval q = a.value / b.value;
+  Interval inverse = one() / b.value;
+  return Jet(q, combine(a, inverse, b, -(q * inverse)));
+}
+
+Interval enclose(const Rational& value) { return Interval(value); }
+Interval enclose(const RationalInterval& range) {
+  Interval r;
+  mpfi_interv_q(r.get(), range.lo.get_mpq_t(), range.hi.get_mpq_t());
+  return r;
+}
+
+}  // namespace hipair::verify
+
+namespace hipair::model_detail {
+
+// The verifier's own arithmetic for the parametric formulas: MPFI, outward rounded.
+template <>
+struct Arithmetic<verify::Jet> {
+  using J = verify::Jet;
+  using I = Interval;
+  static J constant(const Rational& q) { return J(I(q)); }
+  static J pi() { return J(I::pi()); }
+  static J sqrt(const J& x) {
+    I r = verify::apply1(mpfi_sqrt, x.value);
+    return J(r, verify::scaled(x.gradient, I(Rational(1)) / (I(Rational(2)) * r)));
+  }
+  static J sin(const J& x) {
+    return J(verify::apply1(mpfi_sin, x.value), verify::scaled(x.gradient, verify::apply1(mpfi_cos, x.value)));
+  }
+  static J cos(const J& x) {
+    return J(verify::apply1(mpfi_cos, x.value), verify::scaled(x.gradient, -verify::apply1(mpfi_sin, x.value)));
+  }
+  static J tan(const J& x) { return sin(x) / cos(x); }
+  static J atan2(const J& y, const J& x) {
+    I r;
+    mpfi_atan2(r.get(), y.value.get(), x.value.get());
+    I r2 = x.value * x.value + y.value * y.value;
+    return J(r, verify::combine(y, x.value / r2, x, -(y.value / r2)));
+  }
+  static J abs(const J& x) {
+    int s = x.value.sign();
+    if (s > 0) return x;
+    if (s < 0) return -x;
+    // Not differentiable at 0: the generalised gradient lies in [-1, 1] times the gradient.
+    I unit;
+    mpfi_interv_si(unit.get(), -1, 1);
+    return J(verify::apply1(mpfi_abs, x.value), verify::scaled(x.gradient, unit));
+  }
+  static J extremum(const J& a, const J& b, bool minimum) {
+    int s = (a.value - b.value).sign();
+    if (s < 0) return minimum ? a : b;
+    if (s > 0) return minimum ? b : a;
+    std::size_t n = std::max(a.gradient.size(), b.gradient.size());
+    std::vector<I> g;
+    for (std::size_t i = 0; i < n; ++i) g.push_back(verify::hull2(a.partial(i), b.partial(i)));
+    return J(verify::extremum(a.value, b.value, minimum), std::move(g));
+  }
+  static J min(const J& a, const J& b) { return extremum(a, b, true); }
+  static J max(const J& a, const J& b) { return extremum(a, b, false); }
+};
+
+}  // namespace hipair::model_detail
+
+namespace hipair::verify {
+namespace {
+
+[[noreturn]] void reject(const std::string& reason) { throw Rejection{reason}; }
+
+// An enclosure printed with 8 significant digits per end (for messages only).
+std::string show(const Interval& x) {
+  if (!x.is_bounded()) return "unbounded";
+  mpfr_t end;
+  mpfr_init2(end, model_detail::interval_bits);
+  char* lo = nullptr;
+  char* hi = nullptr;
+  mpfi_get_left(end, x.get());
+  mpfr_asprintf(&lo, "%.8RDg", end);
+  mpfi_get_right(end, x.get());
+  mpfr_asprintf(&hi, "%.8RUg", end);
+  std::string out = std::string("[") + lo + ", " + hi + "]";
+  mpfr_free_str(lo);
+  mpfr_free_str(hi);
+  mpfr_clear(end);
+  return out;
+}
+std::string show(const RationalInterval& r) { return "[" + to_exact_string(r.lo) + ", " + to_exact_string(r.hi) + "]"; }
+
+bool contains(const RationalInterval& outer, const RationalInterval& inner) {
+  return outer.lo <= inner.lo && inner.hi <= outer.hi;
+}
+Rational middle(const RationalInterval& r) { return (r.lo + r.hi) / 2; }
+Interval offset(const RationalInterval& r) { return enclose(RationalInterval{r.lo - middle(r), r.hi - middle(r)}); }
+
+// x intersected with y (both enclose the same number).
+Interval meet(const Interval& x, const Interval& y) {
+  Interval r;
+  mpfi_intersect(r.get(), x.get(), y.get());
+  if (mpfi_is_empty(r.get())) return x;   // cannot happen for two enclosures of one number
+  return r;
+}
+
+std::string feature_text(const FeatureReference& f) {
+  return std::string(f.vertex ? "vertex at the start of " : "") + "'" + f.edge.label + "' (" + f.edge.part + " loop " +
+         std::to_string(f.edge.loop) + " edge " + std::to_string(f.edge.edge) + ")";
+}
+
+}  // namespace
+
+// ----------------------------------------------------------------------------- evaluator
+
+ToleranceEvaluator::ToleranceEvaluator(std::shared_ptr<const model_detail::ParametricModel> model,
+                                       const ToleranceClaim& claim)
+    : model_(std::move(model)), claim_(claim) {
+  const Model& m = model_->nominal();
+  if (claim.property != "no_jam") reject("unknown tolerance property '" + claim.property + "' (expected no_jam)");
+  auto part_index = [&](const std::string& name, const char* role) {
+    std::optional<std::size_t> k = m.find_part(name);
+    if (!k) reject(std::string("the model has no ") + role + " part '" + name + "'");
+    auto kind = m.parts[*k].motion.kind;
+    if (kind != Motion::Kind::rotation && kind != Motion::Kind::translation)
+      reject(std::string("the ") + role + " '" + name + "' neither rotates nor translates");
+    return *k;
+  };
+  driver_ = part_index(claim.driver, "driver");
+  follower_ = part_index(claim.follower, "follower");
+  if (driver_ == follower_) reject("the driver and the follower are the same part");
+  driver_rotates_ = m.parts[driver_].motion.kind == Motion::Kind::rotation;
+  follower_rotates_ = m.parts[follower_].motion.kind == Motion::Kind::rotation;
+  if (!model_->generic())
+    reject("the model uses feature template '" + model_->exact_only_feature() + "', which has no parametric form");
+  if (!(claim.range.lo < claim.range.hi)) reject("the driver range " + show(claim.range) + " is empty");
+  if (!(claim.scale > 0)) reject("the scale " + to_exact_string(claim.scale) + " is not positive");
+  if (claim.varied.empty()) reject("no varied parameter");
+  if (claim.box.size() != claim.varied.size())
+    reject("the box has " + std::to_string(claim.box.size()) + " intervals for " + std::to_string(claim.varied.size()) +
+           " varied parameters");
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < claim.varied.size(); ++i) {
+    const std::string& name = claim.varied[i];
+    if (!seen.insert(name).second) reject("parameter '" + name + "' is varied twice");
+    if (name == "driver") reject("a parameter named 'driver' cannot be varied (the name is the driver's dimension)");
+    const Parameter* p = m.find_parameter(name);
+    if (!p) reject("the model has no parameter '" + name + "'");
+    RationalInterval expected{claim.scale * (p->range.lo - p->nominal), claim.scale * (p->range.hi - p->nominal)};
+    if (!(expected.lo < expected.hi)) reject("parameter '" + name + "' has no tolerance to vary");
+    if (claim.box[i].lo != expected.lo || claim.box[i].hi != expected.hi)
+      reject("wrong parameter box: '" + name + "' varies over " + show(claim.box[i]) + ", but " +
+             to_exact_string(claim.scale) + " x its tolerance range is " + show(expected));
+    varied_.push_back(static_cast<std::size_t>(p - m.parameters.data()));
+  }
+  if (claim.sides.empty()) reject("no contact sides");
+  for (std::size_t s = 0; s < claim.sides.size(); ++s) {
+    const ContactSidePair& pair = claim.sides[s];
+    for (int k = 0; k < 2; ++k) {
+      const FeatureReference& f = k == 0 ? pair.driver : pair.follower;
+      std::size_t part = k == 0 ? driver_ : follower_;
+      const Part& p = m.parts[part];
+      if (f.edge.part != p.name)
+        reject("side " + std::to_string(s) + ": feature " + feature_text(f) + " is not a feature of '" + p.name + "'");
+      if (f.edge.loop >= p.loops.size() || f.edge.edge >= p.loops[f.edge.loop].edges.size())
+        reject("side " + std::to_string(s) + ": '" + p.name + "' has no loop " + std::to_string(f.edge.loop) +
+               " edge " + std::to_string(f.edge.edge));
+      const Edge& e = p.loops[f.edge.loop].edges[f.edge.edge];
+      if (e.label != f.edge.label)
+        reject("side " + std::to_string(s) + ": edge " + std::to_string(f.edge.edge) + " of loop " +
+               std::to_string(f.edge.loop) + " of '" + p.name + "' is labelled '" + e.label + "', not '" +
+               f.edge.label + "'");
+    }
+    const Edge& a = m.parts[driver_].loops[pair.driver.edge.loop].edges[pair.driver.edge.edge];
+    const Edge& b = m.parts[follower_].loops[pair.follower.edge.loop].edges[pair.follower.edge.edge];
+    bool a_arc = !pair.driver.vertex && a.kind == Edge::Kind::arc;
+    bool b_arc = !pair.follower.vertex && b.kind == Edge::Kind::arc;
+    bool a_segment = !pair.driver.vertex && !a_arc, b_segment = !pair.follower.vertex && !b_arc;
+    bool ok = (pair.driver.vertex && !pair.follower.vertex) || (!pair.driver.vertex && pair.follower.vertex) ||
+              (a_arc && b_arc && (a.ccw || b.ccw)) || (a_arc && b_segment && a.ccw) || (a_segment && b_arc && b.ccw);
+    if (!ok)
+      reject("side " + std::to_string(s) + ": " + feature_text(pair.driver) + " and " + feature_text(pair.follower) +
+             " have no contact of their own");
+  }
+}
+
+ToleranceGeometry ToleranceEvaluator::geometry(const std::vector<Interval>& deviations, bool gradient) const {
+  std::size_t n = model_->parameter_count();
+  std::vector<Jet> all(n, Jet(0));
+  for (std::size_t i = 0; i < varied_.size(); ++i)
+    all[varied_[i]] = gradient ? Jet::variable(deviations.at(i), i, variables()) : Jet(deviations.at(i));
+  ToleranceGeometry g;
+  g.parameters = model_->parameter_values(all);
+  model_->motion_value(driver_, g.parameters, g.driver_pivot, g.driver_direction);
+  model_->motion_value(follower_, g.parameters, g.follower_pivot, g.follower_direction);
+  return g;
+}
+
+const model_detail::EdgeValue<Jet>& ToleranceEvaluator::edge(ToleranceGeometry& g, std::size_t part,
+                                                              const FeatureReference& f) const {
+  auto key = std::make_tuple(part, f.edge.loop, f.edge.edge);
+  auto it = g.edges.find(key);
+  if (it == g.edges.end())
+    it = g.edges.emplace(key, model_->edge_value(part, f.edge.loop, f.edge.edge, g.parameters)).first;
+  return it->second;
+}
+
+kernels::Vector<Jet> ToleranceEvaluator::posed(const ToleranceGeometry& g, bool driver_part,
+                                               const kernels::Vector<Jet>& point, const Jet& coordinate) const {
+  bool rotates = driver_part ? driver_rotates_ : follower_rotates_;
+  const kernels::Vector<Jet>& pivot = driver_part ? g.driver_pivot : g.follower_pivot;
+  const kernels::Vector<Jet>& direction = driver_part ? g.driver_direction : g.follower_direction;
+  if (!rotates) return {point.x + coordinate * direction.x, point.y + coordinate * direction.y};
+  using A = model_detail::Arithmetic<Jet>;
+  Jet c = A::cos(coordinate), s = A::sin(coordinate);
+  Jet dx = point.x - pivot.x, dy = point.y - pivot.y;
+  return {pivot.x + (c * dx - s * dy), pivot.y + (s * dx + c * dy)};
+}
+
+Jet ToleranceEvaluator::contact(ToleranceGeometry& g, std::size_t pair, const Jet& driver, const Jet& follower) const {
+  const ContactSidePair& side = claim_.sides.at(pair);
+  const model_detail::EdgeValue<Jet>& ea = edge(g, driver_, side.driver);
+  const model_detail::EdgeValue<Jet>& eb = edge(g, follower_, side.follower);
+  using V = kernels::Vector<Jet>;
+  auto cross = [](const V& u, const V& v) { return u.x * v.y - u.y * v.x; };
+  auto dot = [](const V& u, const V& v) { return u.x * v.x + u.y * v.y; };
+  auto minus = [](const V& u, const V& v) { return V{u.x - v.x, u.y - v.y}; };
+  auto pa = [&](const V& p) { return posed(g, true, p, driver); };
+  auto pb = [&](const V& p) { return posed(g, false, p, follower); };
+  // vertex against a segment: the vertex on the segment's line.
+  auto vertex_segment = [&](const V& v, const V& s, const V& t) { return cross(minus(t, s), minus(v, s)); };
+  // vertex against an arc: the vertex on the arc's circle.
+  auto vertex_arc = [&](const V& v, const V& c, const Jet& r2) {
+    V d = minus(v, c);
+    return dot(d, d) - r2;
+  };
+  // arc (convex) against a segment: the circle tangent to the segment's line (either side).
+  auto arc_segment = [&](const V& c, const Jet& r2, const V& s, const V& t) {
+    V d = minus(t, s);
+    Jet k = cross(d, minus(c, s));
+    return k * k - r2 * dot(d, d);
+  };
+  bool a_vertex = side.driver.vertex, b_vertex = side.follower.vertex;
+  if (a_vertex && !eb.arc) return vertex_segment(pa(ea.source), pb(eb.source), pb(eb.target));
+  if (a_vertex) return vertex_arc(pa(ea.source), pb(eb.center), eb.radius_squared);
+  if (b_vertex && !ea.arc) return vertex_segment(pb(eb.source), pa(ea.source), pa(ea.target));
+  if (b_vertex) return vertex_arc(pb(eb.source), pa(ea.center), ea.radius_squared);
+  if (ea.arc && eb.arc) {
+    using A = model_detail::Arithmetic<Jet>;
+    Jet ra = A::sqrt(ea.radius_squared), rb = A::sqrt(eb.radius_squared);
+    Jet r = ea.ccw && eb.ccw ? ra + rb : ra - rb;   // external, or internal tangency
+    V d = minus(pa(ea.center), pb(eb.center));
+    return dot(d, d) - r * r;
+  }
+  if (ea.arc) return arc_segment(pa(ea.center), ea.radius_squared, pb(eb.source), pb(eb.target));
+  return arc_segment(pb(eb.center), eb.radius_squared, pa(ea.source), pa(ea.target));
+}
+
+SideEnclosure ToleranceEvaluator::check_side(const ToleranceLeaf& leaf, const LeafSide& side, ToleranceGeometry& over,
+                                             ToleranceGeometry& centre, const std::string& where) const {
+  if (side.pair >= claim_.sides.size()) reject(where + ": side " + std::to_string(side.pair) + " does not exist");
+  if (!contains(side.bracket, side.centre))
+    reject(where + ": the centre interval " + show(side.centre) + " is not inside the bracket " + show(side.bracket));
+  std::size_t k = varied_.size();
+  std::size_t m = variables();
+  Jet driver = Jet::variable(enclose(leaf.driver), driver_variable(), m);
+  Jet driver_centre(enclose(middle(leaf.driver)));
+  auto sign_at = [&](const Rational& y) { return sign_over_leaf(leaf, side.pair, y, over, centre); };
+  int s0 = sign_at(side.bracket.lo), s1 = sign_at(side.bracket.hi);
+  if (s0 == 0 || s1 == 0 || s0 == s1)
+    reject(where + ": the contact function of side " + std::to_string(side.pair) +
+           " does not certainly change sign across the bracket " + show(side.bracket));
+  Jet follower = Jet::variable(enclose(side.bracket), follower_variable(), m);
+  Jet f = contact(over, side.pair, driver, follower);
+  Interval fy = f.partial(follower_variable());
+  if (fy.sign() == 0)
+    reject(where + ": the contact function of side " + std::to_string(side.pair) +
+           " may be stationary in the follower over the bracket (derivative " + show(fy) + ")");
+  SideEnclosure result;
+  result.bracket = enclose(side.bracket);
+  for (std::size_t i = 0; i <= k; ++i) result.slope.push_back(-(f.partial(i) / fy));
+  int c0 = contact(centre, side.pair, driver_centre, Jet(enclose(side.centre.lo))).value.sign();
+  int c1 = contact(centre, side.pair, driver_centre, Jet(enclose(side.centre.hi))).value.sign();
+  if (c0 == 0 || c1 == 0 || c0 == c1)
+    reject(where + ": at the leaf's centre the contact function of side " + std::to_string(side.pair) +
+           " does not certainly change sign across " + show(side.centre));
+  result.centre = enclose(side.centre);
+  // Contraction: the side's root L(p, d) lies in root = centre + sum slope_i (P_i - c_i) (mean
+  // value theorem along the segment from the leaf's centre; slope encloses -F_p / F_y along it)
+  // and in the bracket; the slopes evaluated over that narrower follower range still enclose
+  // the gradient along the segment (its points are roots of the leaf), so iterate.
+  std::vector<Interval> offsets;
+  for (const RationalInterval& p : leaf.parameters) offsets.push_back(offset(p));
+  offsets.push_back(offset(leaf.driver));
+  for (int iteration = 0; iteration < 3; ++iteration) {
+    Interval root = result.centre;
+    for (std::size_t i = 0; i <= k; ++i) root = root + result.slope[i] * offsets[i];
+    root = meet(root, result.bracket);
+    if (!root.is_bounded()) break;
+    Jet g = contact(over, side.pair, driver, Jet::variable(root, follower_variable(), m));
+    Interval gy = g.partial(follower_variable());
+    if (gy.sign() == 0) break;
+    std::vector<Interval> slope;
+    for (std::size_t i = 0; i <= k; ++i) slope.push_back(meet(-(g.partial(i) / gy), result.slope[i]));
+    result.slope = std::move(slope);
+    result.bracket = root;
+  }
+  return result;
+}
+
+int ToleranceEvaluator::sign_over_leaf(const ToleranceLeaf& leaf, std::size_t pair, const Rational& y,
+                                       ToleranceGeometry& over, ToleranceGeometry& centre) const {
+  // Mean-value form about the leaf's centre in the parameters and the driver (the follower
+  // held at y), intersected with the plain enclosure.
+  std::size_t k = varied_.size();
+  Jet driver = Jet::variable(enclose(leaf.driver), driver_variable(), variables());
+  Jet f = contact(over, pair, driver, Jet(enclose(y)));
+  Interval value = contact(centre, pair, Jet(enclose(middle(leaf.driver))), Jet(enclose(y))).value;
+  for (std::size_t i = 0; i < k; ++i) value = value + f.partial(i) * offset(leaf.parameters[i]);
+  value = value + f.partial(k) * offset(leaf.driver);
+  return meet(value, f.value).sign();
+}
+
+void ToleranceEvaluator::check_witness(const ToleranceLeaf& leaf, ToleranceGeometry& over, ToleranceGeometry& at,
+                                       const std::string& where) const {
+  std::size_t k = varied_.size();
+  if (leaf.witness_slopes.size() != k + 1)
+    reject(where + ": the witness has " + std::to_string(leaf.witness_slopes.size()) + " slopes for " +
+           std::to_string(k + 1) + " variables");
+  // y* as a jet over the leaf: its value encloses y* over the leaf, its gradient is the slopes.
+  std::vector<Interval> slopes;
+  Interval value = enclose(*leaf.witness);
+  for (std::size_t i = 0; i <= k; ++i) {
+    slopes.push_back(enclose(leaf.witness_slopes[i]));
+    value = value + slopes.back() * (i < k ? offset(leaf.parameters[i]) : offset(leaf.driver));
+  }
+  slopes.push_back(zero());
+  Jet witness(value, slopes);
+  Jet driver = Jet::variable(enclose(leaf.driver), driver_variable(), variables());
+  Jet driver_centre(enclose(middle(leaf.driver)));
+  for (int s = 0; s < 2; ++s) {
+    const LeafSide& side = s == 0 ? leaf.lower : leaf.upper;
+    const char* name = s == 0 ? "lower" : "upper";
+    // y* within the side's bracket, where the side's function is monotone with its one root.
+    Interval below = value - enclose(side.bracket.lo), above = enclose(side.bracket.hi) - value;
+    if (below.sign() <= 0 || above.sign() <= 0)
+      reject(where + ": the witness " + show(value) + " is not certainly inside the " + name + " side's bracket " +
+             show(side.bracket));
+    // The side's function at y*(p, d): mean-value form about the leaf's centre (chain rule
+    // through the jet), with the sign it has at the bracket's end on the channel's side.
+    Jet h = contact(over, side.pair, driver, witness);
+    Interval centred = contact(at, side.pair, driver_centre, Jet(enclose(*leaf.witness))).value;
+    for (std::size_t i = 0; i < k; ++i) centred = centred + h.partial(i) * offset(leaf.parameters[i]);
+    centred = centred + h.partial(k) * offset(leaf.driver);
+    int sign = meet(centred, h.value).sign();
+    int inside = sign_over_leaf(leaf, side.pair, s == 0 ? side.bracket.hi : side.bracket.lo, over, at);
+    if (sign == 0 || sign != inside)
+      reject(where + ": the witness is not certainly " + (s == 0 ? "above the lower" : "below the upper") +
+             " side (its contact function there encloses to " + show(meet(centred, h.value)) + ")");
+  }
+}
+
+Interval ToleranceEvaluator::play(const ToleranceLeaf& leaf, const SideEnclosure& lower, const SideEnclosure& upper) const {
+  std::size_t k = varied_.size();
+  Interval value = upper.centre - lower.centre;
+  for (std::size_t i = 0; i < k; ++i) value = value + (upper.slope[i] - lower.slope[i]) * offset(leaf.parameters[i]);
+  value = value + (upper.slope[k] - lower.slope[k]) * offset(leaf.driver);
+  return meet(value, upper.bracket - lower.bracket);
+}
+
+void ToleranceEvaluator::check_leaf(const ToleranceLeaf& leaf, std::size_t index) const {
+  std::string where = "leaf " + std::to_string(index);
+  std::size_t k = varied_.size();
+  if (leaf.parameters.size() != k)
+    reject(where + ": " + std::to_string(leaf.parameters.size()) + " parameter intervals for " + std::to_string(k) +
+           " varied parameters");
+  std::vector<Interval> box, centre;
+  for (const RationalInterval& p : leaf.parameters) {
+    box.push_back(enclose(p));
+    centre.push_back(enclose(middle(p)));
+  }
+  ToleranceGeometry over = geometry(box, true);
+  ToleranceGeometry at = geometry(centre, false);
+  check_leaf(leaf, index, over, at);
+}
+
+void ToleranceEvaluator::check_leaf(const ToleranceLeaf& leaf, std::size_t index, ToleranceGeometry& over,
+                                    ToleranceGeometry& at) const {
+  std::string where = "leaf " + std::to_string(index);
+  if (leaf.parameters.size() != varied_.size()) reject(where + ": wrong number of parameter intervals");
+  SideEnclosure lower = check_side(leaf, leaf.lower, over, at, where + " (lower side)");
+  SideEnclosure upper = check_side(leaf, leaf.upper, over, at, where + " (upper side)");
+  if (leaf.witness) {
+    check_witness(leaf, over, at, where);
+    return;
+  }
+  Interval gap = play(leaf, lower, upper);
+  if (gap.sign() <= 0)
+    reject(where + ": the channel is not certainly open: the play between the sides encloses to " + show(gap) +
+           " over driver " + show(leaf.driver));
+}
+
+void ToleranceEvaluator::check_cover() const {
+  std::size_t k = varied_.size();
+  std::vector<RationalInterval> region = claim_.box;
+  region.push_back(claim_.range);
+  std::vector<char> used(claim_.leaves.size(), 0);
+  std::size_t next = 0;
+  auto dimension = [&](const std::string& name) -> std::size_t {
+    if (name == "driver") return k;
+    for (std::size_t i = 0; i < k; ++i)
+      if (claim_.varied[i] == name) return i;
+    reject("tree node " + std::to_string(next) + ": '" + name + "' is neither a varied parameter nor the driver");
+  };
+  auto name_of = [&](std::size_t d) { return d == k ? std::string("driver") : claim_.varied[d]; };
+  // Iterative preorder walk (the tree can be deep).
+  std::vector<std::vector<RationalInterval>> stack{region};
+  while (!stack.empty()) {
+    std::vector<RationalInterval> r = std::move(stack.back());
+    stack.pop_back();
+    if (next >= claim_.tree.size()) reject("the subdivision tree ends early: part of the box is not covered");
+    const ToleranceTreeNode& node = claim_.tree[next];
+    if (node.leaf) {
+      if (node.index >= claim_.leaves.size()) reject("tree node " + std::to_string(next) + ": no leaf " + std::to_string(node.index));
+      if (used[node.index]) reject("leaf " + std::to_string(node.index) + " is used twice in the tree");
+      used[node.index] = 1;
+      const ToleranceLeaf& leaf = claim_.leaves[node.index];
+      if (leaf.parameters.size() != k) reject("leaf " + std::to_string(node.index) + ": wrong number of parameter intervals");
+      for (std::size_t d = 0; d <= k; ++d) {
+        const RationalInterval& have = d == k ? leaf.driver : leaf.parameters[d];
+        if (!contains(have, r[d]))
+          reject("coverage gap: leaf " + std::to_string(node.index) + " covers " + name_of(d) + " " + show(have) +
+                 " but its region of the box needs " + show(r[d]));
+      }
+      ++next;
+      continue;
+    }
+    std::size_t d = dimension(node.dimension);
+    if (!(r[d].lo < node.value && node.value < r[d].hi))
+      reject("tree node " + std::to_string(next) + ": the split of " + name_of(d) + " at " + to_exact_string(node.value) +
+             " is not inside " + show(r[d]));
+    ++next;
+    std::vector<RationalInterval> low = r, high = std::move(r);
+    low[d].hi = node.value;
+    high[d].lo = node.value;
+    stack.push_back(std::move(high));   // the lower part comes first in preorder
+    stack.push_back(std::move(low));
+  }
+  if (next != claim_.tree.size()) reject("the subdivision tree has " + std::to_string(claim_.tree.size() - next) + " extra nodes");
+  for (std::size_t i = 0; i < used.size(); ++i)
+    if (!used[i]) reject("leaf " + std::to_string(i) + " is not in the subdivision tree");
+}
+
+std::string check_tolerance(const Certificate& c, const Model& model, std::string_view model_text) {
+  if (!c.tolerance) reject("a tolerance certificate needs its 'tolerance' section");
+  const ToleranceClaim& claim = *c.tolerance;
+  for (const ParameterValue& value : c.parameters)
+    if (value.overridden) reject("a tolerance certificate varies parameters about their nominal values: '" + value.name + "' is overridden");
+  bool pair_ok = (claim.driver == c.first && claim.follower == c.second) || (claim.driver == c.second && claim.follower == c.first);
+  if (!pair_ok) reject("the driver and follower are not the certificate's pair");
+  auto parametric = std::make_shared<const model_detail::ParametricModel>(
+      model_detail::ParametricModel::read(model_text, model.source));
+  ToleranceEvaluator evaluator(parametric, claim);
+  evaluator.check_cover();
+  for (std::size_t i = 0; i < claim.leaves.size(); ++i) evaluator.check_leaf(claim.leaves[i], i);
+  std::string unit = model.parts[*model.find_part(claim.driver)].motion.kind == Motion::Kind::rotation ? " rad" : " mm";
+  return "for every parameter vector within " + to_exact_string(claim.scale) + " x the tolerances of " +
+         std::to_string(claim.varied.size()) + " parameters, driving '" + claim.driver + "' over " + show(claim.range) + unit +
+         ", the channel of '" + claim.follower + "' between its contact sides never closes (" +
+         std::to_string(claim.leaves.size()) + " leaves)";
+}
+
+}  // namespace hipair::verify

@@ -1,0 +1,132 @@
+// The verifier's check of tolerance certificates (docs/certify.md "Tolerance"): the geometry
+// is re-evaluated from the model's parametric form (src/model/parametric: the formulas the
+// model reader records) with the verifier's own arithmetic — MPFI enclosures at 256 bits and
+// forward-mode jets over them — and each branch-and-bound leaf is re-checked: both sides of
+// the follower's channel isolated (a certain sign change of the side's contact function across
+// its bracket, its follower derivative of one certain sign), the play between them enclosed in
+// mean-value form over the leaf and certainly positive. The leaves must cover the parameter
+// box times the driver range (the subdivision tree is walked with exact rationals).
+//
+// The producer (src/tolerance/certificate.cpp) uses the same evaluator to search, so that what
+// it emits is what the verifier accepts; it is not trusted: every certificate is re-checked.
+#pragma once
+
+#include "certify/exact_geometry.hpp"
+#include "model/interval.hpp"
+#include "model/parametric/parametric.hpp"
+
+#include <hipair/certificate.hpp>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace hipair::verify {
+
+using model_detail::Interval;
+
+/// A value and its gradient with respect to the certificate's variables (the varied
+/// parameters, then the driver, then the follower), every component an MPFI enclosure.
+/// An empty gradient is a constant.
+struct Jet {
+  Interval value;
+  std::vector<Interval> gradient;
+
+  Jet() : value(Rational(0)) {}
+  Jet(int v) : value(Rational(v)) {}   // NOLINT(google-explicit-constructor): formulas use T(0)
+  explicit Jet(const Interval& v) : value(v) {}
+  Jet(const Interval& v, std::vector<Interval> g) : value(v), gradient(std::move(g)) {}
+  /// Variable `index` of `count` ranging over `v`.
+  static Jet variable(const Interval& v, std::size_t index, std::size_t count);
+  Interval partial(std::size_t i) const { return i < gradient.size() ? gradient[i] : Interval(Rational(0)); }
+};
+
+Jet operator+(const Jet& a, const Jet& b);
+Jet operator-(const Jet& a, const Jet& b);
+Jet operator-(const Jet& a);
+Jet operator*(const Jet& a, const Jet& b);
+Jet operator/(const Jet& a, const Jet& b);
+
+/// [lo, hi] as an MPFI enclosure (exact ends).
+Interval enclose(const RationalInterval& range);
+Interval enclose(const Rational& value);
+
+/// Geometry of the pair's two parts at one parameter set (edges evaluated on demand).
+struct ToleranceGeometry {
+  std::vector<Jet> parameters;   ///< every parameter's value
+  std::map<std::tuple<std::size_t, std::size_t, std::size_t>, model_detail::EdgeValue<Jet>> edges;
+  kernels::Vector<Jet> driver_pivot, driver_direction, follower_pivot, follower_direction;
+};
+
+/// What one side of one leaf certifies: the side's root over the leaf lies in `bracket`, at
+/// the leaf's centre in `centre`, and its partial derivatives (varied parameters, then the
+/// driver) lie in `slope`.
+struct SideEnclosure {
+  Interval bracket, centre;
+  std::vector<Interval> slope;
+};
+
+/// A tolerance claim resolved against the parametric model. \throws Rejection when the claim
+/// does not fit the model (unknown parts or parameters, a box that is not the scaled tolerance
+/// box, features that do not exist or have no contact of their own).
+class ToleranceEvaluator {
+ public:
+  ToleranceEvaluator(std::shared_ptr<const model_detail::ParametricModel> model, const ToleranceClaim& claim);
+
+  std::size_t varied_count() const { return varied_.size(); }
+  std::size_t variables() const { return varied_.size() + 2; }
+  std::size_t driver_variable() const { return varied_.size(); }
+  std::size_t follower_variable() const { return varied_.size() + 1; }
+  const ToleranceClaim& claim() const { return claim_; }
+
+  /// The geometry at deviations of the varied parameters (others nominal): with `gradient`,
+  /// each varied parameter is a variable.
+  ToleranceGeometry geometry(const std::vector<Interval>& deviations, bool gradient) const;
+
+  /// The contact function of side pair `pair` with the driver at `driver` and the follower at
+  /// `follower` (part coordinates: rad or mm): zero where the two features touch.
+  Jet contact(ToleranceGeometry& geometry, std::size_t pair, const Jet& driver, const Jet& follower) const;
+
+  /// The certain sign (+1, -1; 0 undecided) of side `pair`'s contact function over the whole
+  /// leaf with the follower at `y` (mean-value form about the leaf's centre).
+  int sign_over_leaf(const ToleranceLeaf& leaf, std::size_t pair, const Rational& y, ToleranceGeometry& over_box,
+                     ToleranceGeometry& at_centre) const;
+  /// Checks one side of a leaf. \throws Rejection with the reason.
+  SideEnclosure check_side(const ToleranceLeaf& leaf, const LeafSide& side, ToleranceGeometry& over_box,
+                           ToleranceGeometry& at_centre, const std::string& where) const;
+  /// Checks one leaf (both sides and the play). \throws Rejection with the reason.
+  void check_leaf(const ToleranceLeaf& leaf, std::size_t index) const;
+  /// The same with the geometry over the leaf's box and at its centre already evaluated.
+  void check_leaf(const ToleranceLeaf& leaf, std::size_t index, ToleranceGeometry& over_box,
+                  ToleranceGeometry& at_centre) const;
+  /// A certified enclosure of the play (upper side minus lower side) over the leaf, given both
+  /// sides' enclosures.
+  Interval play(const ToleranceLeaf& leaf, const SideEnclosure& lower, const SideEnclosure& upper) const;
+
+  /// Checks a leaf's witness: y*(p, d) strictly between the two sides over the whole leaf
+  /// (after both sides were isolated). \throws Rejection.
+  void check_witness(const ToleranceLeaf& leaf, ToleranceGeometry& over_box, ToleranceGeometry& at_centre,
+                     const std::string& where) const;
+
+  /// Walks the subdivision tree: the leaves cover the box times the range. \throws Rejection.
+  void check_cover() const;
+
+ private:
+  kernels::Vector<Jet> posed(const ToleranceGeometry& g, bool driver_part, const kernels::Vector<Jet>& point,
+                             const Jet& coordinate) const;
+  const model_detail::EdgeValue<Jet>& edge(ToleranceGeometry& g, std::size_t part, const FeatureReference& f) const;
+
+  std::shared_ptr<const model_detail::ParametricModel> model_;
+  const ToleranceClaim& claim_;
+  std::size_t driver_ = 0, follower_ = 0;
+  bool driver_rotates_ = true, follower_rotates_ = true;
+  std::vector<std::size_t> varied_;   ///< model parameter index per varied parameter
+};
+
+/// Checks a tolerance certificate against the model text (its hash already checked).
+/// Returns the summary line. \throws Rejection.
+std::string check_tolerance(const Certificate& certificate, const Model& model, std::string_view model_text);
+
+}  // namespace hipair::verify

@@ -1,0 +1,419 @@
+// The producer of no-jam tolerance certificates (certificate.hpp; docs/certify.md
+// "Tolerance"). It chooses — it does not decide: the brackets, the split dimensions and the
+// Newton iterates are approximate; whether a leaf holds is decided by the verifier's own check
+// (certify/tolerance_check.hpp), and the finished certificate is re-checked from its JSON text.
+#include "tolerance/certificate.hpp"
+
+#include "certify/tolerance_check.hpp"
+
+#include <hipair/error.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace hipair::tolerance_detail {
+namespace {
+
+using verify::Interval;
+using verify::Jet;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double approx(const Interval& x) { return x.is_bounded() ? x.middle().get_d() : std::nan(""); }
+
+// x rounded down (or up) to a multiple of 10^-14: short exact rationals in the certificate.
+Rational grid(double x, bool up) {
+  constexpr double scale = 1e14;
+  double k = up ? std::ceil(x * scale) : std::floor(x * scale);
+  Rational q(mpz_class(k), mpz_class("100000000000000"));
+  q.canonicalize();
+  return q;
+}
+
+FeatureReference reference(const Model& model, const FeatureIdentity& f) {
+  const Part& part = model.parts.at(f.part);
+  FeatureReference r;
+  r.edge = EdgeReference{part.name, f.loop, f.edge, part.loops.at(f.loop).edges.at(f.edge).label};
+  r.vertex = f.kind == FeatureKind::vertex;
+  return r;
+}
+
+class Producer {
+ public:
+  explicit Producer(const CertifyRequest& request) : request_(request) {}
+
+  ToleranceCertification run() {
+    auto start = std::chrono::steady_clock::now();
+    ToleranceCertification result;
+    result.scale = request_.scale;
+    const Model& m = request_.model->nominal();
+    claim_.driver = m.parts[request_.driver].name;
+    claim_.follower = m.parts[request_.follower].name;
+    claim_.range = request_.range;
+    claim_.scale = request_.scale;
+    for (std::size_t i : request_.varied) {
+      const Parameter& p = m.parameters[i];
+      claim_.varied.push_back(p.name);
+      claim_.box.push_back({request_.scale * (p.range.lo - p.nominal), request_.scale * (p.range.hi - p.nominal)});
+    }
+    // The channel's sides along the range, and the pieces of constant sides.
+    std::vector<Piece> pieces;
+    for (const ChannelSample& s : request_.samples) {
+      if (!s.bounded) {
+        result.reason = "the follower's channel is not bounded on both sides at driver " + std::to_string(s.driver) +
+                        " (nominal geometry): a no-jam certificate needs both sides";
+        return result;
+      }
+      std::size_t lower = side_index(m, s.lower_first, s.lower_second);
+      std::size_t upper = side_index(m, s.upper_first, s.upper_second);
+      if (pieces.empty() || pieces.back().lower != lower || pieces.back().upper != upper)
+        pieces.push_back(Piece{lower, upper, {}});
+      pieces.back().samples.push_back(&s);
+    }
+    if (pieces.empty()) {
+      result.reason = "no driver position of the nominal path lies in the range";
+      return result;
+    }
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      if (k > 0) pieces[k].previous = &pieces[k - 1];
+      if (k + 1 < pieces.size()) pieces[k].next = &pieces[k + 1];
+    }
+    try {
+      evaluator_ = std::make_unique<verify::ToleranceEvaluator>(request_.model, claim_);
+    } catch (const verify::Rejection& rejection) {
+      result.reason = rejection.reason;
+      return result;
+    }
+    std::vector<RationalInterval> region = claim_.box;
+    region.push_back(claim_.range);
+    Status status = Status::ok;
+    for (std::size_t k = 0; k < pieces.size() && status == Status::ok; ++k) {
+      RationalInterval driver = region.back();
+      if (k + 1 < pieces.size()) {
+        double boundary = 0.5 * (pieces[k].samples.back()->driver + pieces[k + 1].samples.front()->driver);
+        Rational cut = grid(boundary, false);
+        if (cut > driver.lo && cut < driver.hi) {
+          claim_.tree.push_back(split("driver", cut));
+          std::vector<RationalInterval> low = region;
+          low.back().hi = cut;
+          region.back().lo = cut;
+          status = solve(low, pieces[k], 0);
+          continue;
+        }
+        // A piece too short to separate: its sides are tried over the next piece's region.
+        continue;
+      }
+      status = solve(region, pieces[k], 0);
+    }
+    result.leaves = claim_.leaves.size();
+    result.attempts = attempts_;
+    result.seconds_produce = seconds_since(start);
+    if (status == Status::jams) {
+      result.outcome = ToleranceCertification::Outcome::jams;
+      result.reason = jam_reason_;
+      return result;
+    }
+    if (status != Status::ok) {
+      result.reason = undecided_reason_;
+      return result;
+    }
+    Certificate c;
+    c.claim = ClaimKind::tolerance;
+    c.model_name = m.name;
+    c.model_file = request_.model_file;
+    c.content_hash = m.content_hash;
+    for (const Parameter& p : m.parameters) c.parameters.push_back({p.name, p.nominal, false});
+    c.roundings = m.roundings;
+    c.first = claim_.driver;
+    c.second = claim_.follower;
+    c.statement = "For every value of the " + std::to_string(claim_.varied.size()) + " varied parameters within " +
+                  to_exact_string(claim_.scale) + " x their tolerance ranges, driving '" + claim_.driver + "' over [" +
+                  to_exact_string(claim_.range.lo) + ", " + to_exact_string(claim_.range.hi) + "], the channel of '" +
+                  claim_.follower + "' between its two contact sides never closes: the pair does not jam.";
+    c.tolerance = claim_;
+    auto verify_start = std::chrono::steady_clock::now();
+    VerificationResult check = check_certificate_text(read_certificate(write_certificate(c)), request_.model_text,
+                                                      request_.model_file);
+    result.seconds_verify = seconds_since(verify_start);
+    if (!check.valid) throw GeometryError("tolerance certificate failed its own check (a producer bug): " + check.reason);
+    result.outcome = ToleranceCertification::Outcome::certified;
+    result.certificate = std::move(c);
+    return result;
+  }
+
+ private:
+  enum class Status { ok, jams, undecided };
+  struct Piece {
+    std::size_t lower = 0, upper = 0;
+    std::vector<const ChannelSample*> samples;
+    const Piece* previous = nullptr;
+    const Piece* next = nullptr;
+  };
+
+  static ToleranceTreeNode split(const std::string& name, const Rational& value) {
+    ToleranceTreeNode n;
+    n.dimension = name;
+    n.value = value;
+    return n;
+  }
+
+  std::size_t side_index(const Model& m, const FeatureIdentity& a, const FeatureIdentity& b) {
+    const FeatureIdentity& d = a.part == request_.driver ? a : b;
+    const FeatureIdentity& f = a.part == request_.driver ? b : a;
+    ContactSidePair pair{reference(m, d), reference(m, f)};
+    for (std::size_t i = 0; i < claim_.sides.size(); ++i) {
+      const ContactSidePair& s = claim_.sides[i];
+      if (s.driver.edge.loop == pair.driver.edge.loop && s.driver.edge.edge == pair.driver.edge.edge &&
+          s.driver.vertex == pair.driver.vertex && s.follower.edge.loop == pair.follower.edge.loop &&
+          s.follower.edge.edge == pair.follower.edge.edge && s.follower.vertex == pair.follower.vertex)
+        return i;
+    }
+    claim_.sides.push_back(pair);
+    return claim_.sides.size() - 1;
+  }
+
+  // The nominal side value at driver d (linear interpolation between the piece's samples).
+  static double guess(const Piece& piece, bool upper, double d) {
+    const auto& s = piece.samples;
+    auto value = [&](std::size_t i) { return upper ? s[i]->upper : s[i]->lower; };
+    if (s.size() == 1 || d <= s.front()->driver) return value(0);
+    for (std::size_t i = 1; i < s.size(); ++i)
+      if (d <= s[i]->driver) {
+        double t = (d - s[i - 1]->driver) / (s[i]->driver - s[i - 1]->driver);
+        return value(i - 1) + t * (value(i) - value(i - 1));
+      }
+    return value(s.size() - 1);
+  }
+
+  struct SideGuess {
+    bool ok = false;
+    double root = 0;
+    RationalInterval centre, bracket;
+    std::vector<double> slope;   // varied parameters, then the driver
+    bool centre_certain = false; // the centre interval's sign change holds
+  };
+
+  // Newton at the leaf's centre from the nominal side value, a certified centre interval, the
+  // root's gradient (middle of its enclosure over the box), then bracket ends widened until the
+  // contact function's sign over the whole leaf is certain at both.
+  SideGuess side_guess(std::size_t pair, double start, const ToleranceLeaf& leaf, verify::ToleranceGeometry& over,
+                       verify::ToleranceGeometry& point, const std::vector<double>& half, double half_driver) {
+    SideGuess g;
+    Rational d0 = (leaf.driver.lo + leaf.driver.hi) / 2;
+    Jet driver(verify::enclose(d0));
+    double y = start;
+    bool converged = false;
+    for (int iteration = 0; iteration < 40; ++iteration) {
+      Jet f = evaluator_->contact(point, pair, driver, Jet::variable(verify::enclose(Rational(y)), 0, 1));
+      double value = approx(f.value), slope = approx(f.partial(0));
+      if (!std::isfinite(value) || !std::isfinite(slope) || slope == 0) return g;
+      double step = value / slope;
+      y -= step;
+      if (!std::isfinite(y)) return g;
+      if (std::fabs(step) <= 1e-15 * (1 + std::fabs(y))) {
+        converged = true;
+        break;
+      }
+    }
+    if (!converged || std::fabs(y - start) > 0.5) return g;   // wandered to another branch
+    g.root = y;
+    double eps = 1e-12 * (1 + std::fabs(y));
+    g.centre = {grid(y - eps, false), grid(y + eps, true)};
+    int s0 = evaluator_->contact(point, pair, driver, Jet(verify::enclose(g.centre.lo))).value.sign();
+    int s1 = evaluator_->contact(point, pair, driver, Jet(verify::enclose(g.centre.hi))).value.sign();
+    g.centre_certain = s0 != 0 && s1 != 0 && s0 != s1;
+    std::size_t m = evaluator_->variables();
+    Jet f = evaluator_->contact(over, pair, Jet::variable(verify::enclose(leaf.driver), evaluator_->driver_variable(), m),
+                                Jet::variable(verify::enclose(Rational(y)), evaluator_->follower_variable(), m));
+    double fy = approx(f.partial(evaluator_->follower_variable()));
+    if (!std::isfinite(fy) || fy == 0) return g;
+    double spread = 0;
+    for (std::size_t i = 0; i <= evaluator_->varied_count(); ++i) {
+      double s = -approx(f.partial(i)) / fy;
+      if (!std::isfinite(s)) return g;
+      g.slope.push_back(s);
+      spread += std::fabs(s) * (i < half.size() ? half[i] : half_driver);
+    }
+    if (!g.centre_certain) return g;
+    int sign_lo = 0, sign_hi = 0;
+    double w = 1.1 * spread + 4 * eps;
+    for (int attempt = 0; attempt < 10 && sign_lo == 0; ++attempt, w *= 1.3) {
+      g.bracket.lo = grid(y - w, false);
+      sign_lo = evaluator_->sign_over_leaf(leaf, pair, g.bracket.lo, over, point);
+    }
+    w = 1.1 * spread + 4 * eps;
+    for (int attempt = 0; attempt < 10 && sign_hi == 0; ++attempt, w *= 1.3) {
+      g.bracket.hi = grid(y + w, true);
+      sign_hi = evaluator_->sign_over_leaf(leaf, pair, g.bracket.hi, over, point);
+    }
+    g.ok = sign_lo != 0 && sign_hi != 0 && sign_lo != sign_hi;
+    if (g.ok) {
+      Jet over_bracket = evaluator_->contact(
+          over, pair, Jet::variable(verify::enclose(leaf.driver), evaluator_->driver_variable(), m),
+          Jet::variable(verify::enclose(g.bracket), evaluator_->follower_variable(), m));
+      g.ok = over_bracket.partial(evaluator_->follower_variable()).sign() != 0;
+    }
+    return g;
+  }
+
+  Status solve(const std::vector<RationalInterval>& region, const Piece& piece, int depth) {
+    if (attempts_ >= 4 * request_.max_leaves || claim_.leaves.size() >= request_.max_leaves) {
+      undecided_reason_ = "the branch-and-bound gave up after " + std::to_string(attempts_) + " boxes (" +
+                          std::to_string(claim_.leaves.size()) + " leaves certified)";
+      return Status::undecided;
+    }
+    ++attempts_;
+    std::size_t k = claim_.varied.size();
+    std::vector<Interval> centre;
+    std::vector<double> half;
+    for (std::size_t i = 0; i < k; ++i) {
+      centre.push_back(verify::enclose((region[i].lo + region[i].hi) / 2));
+      half.push_back(Rational((region[i].hi - region[i].lo) / 2).get_d());
+    }
+    Rational d0 = (region[k].lo + region[k].hi) / 2;
+    double half_driver = Rational((region[k].hi - region[k].lo) / 2).get_d();
+    double dd = d0.get_d();
+    ToleranceLeaf leaf;
+    leaf.parameters.assign(region.begin(), region.begin() + static_cast<std::ptrdiff_t>(k));
+    leaf.driver = region[k];
+    std::vector<Interval> box;
+    for (std::size_t i = 0; i < k; ++i) box.push_back(verify::enclose(region[i]));
+    verify::ToleranceGeometry over = evaluator_->geometry(box, true);
+    verify::ToleranceGeometry point = evaluator_->geometry(centre, false);
+    // Each side: the piece's own contact pair, and near a switch of sides (where the nominal
+    // side's curve may turn back within the box) the neighbouring pieces'.
+    auto candidates = [&](bool is_upper) {
+      std::vector<std::pair<std::size_t, SideGuess>> out;
+      std::vector<const Piece*> pieces{&piece};
+      if (piece.previous) pieces.push_back(piece.previous);
+      if (piece.next) pieces.push_back(piece.next);
+      for (const Piece* candidate : pieces) {
+        std::size_t p = is_upper ? candidate->upper : candidate->lower;
+        bool seen = false;
+        for (const auto& o : out) seen = seen || o.first == p;
+        if (seen) continue;
+        out.emplace_back(p, side_guess(p, guess(*candidate, is_upper, dd), leaf, over, point, half, half_driver));
+      }
+      return out;
+    };
+    auto lowers = candidates(false), uppers = candidates(true);
+    std::size_t lower_pair = lowers.front().first, upper_pair = uppers.front().first;
+    SideGuess lower = lowers.front().second, upper = uppers.front().second;
+    if (lower.centre_certain && upper.centre_certain && upper.centre.hi < lower.centre.lo) {
+      // Both sides isolated at the centre (certain sign changes) and in reverse order: the
+      // channel is closed at this parameter vector and driver position.
+      jam_reason_ = "the channel's sides cross at driver " + std::to_string(dd) + ": upper side at " +
+                    std::to_string(upper.root) + ", lower side at " + std::to_string(lower.root) +
+                    " (follower), at the parameter deviations";
+      for (std::size_t i = 0; i < k; ++i)
+        jam_reason_ += " " + claim_.varied[i] + "=" + std::to_string(Rational((region[i].lo + region[i].hi) / 2).get_d());
+      return Status::jams;
+    }
+    // A leaf with these two sides: first with a witness follower path between them (a linear
+    // function of the parameters and the driver, so that what moves both sides alike cancels),
+    // then with the play enclosed from the sides' slopes.
+    auto accept = [&](ToleranceLeaf candidate) {
+      try {
+        evaluator_->check_leaf(candidate, claim_.leaves.size(), over, point);
+      } catch (const verify::Rejection&) {
+        return false;
+      }
+      ToleranceTreeNode node;
+      node.leaf = true;
+      node.index = claim_.leaves.size();
+      claim_.tree.push_back(node);
+      claim_.leaves.push_back(std::move(candidate));
+      return true;
+    };
+    auto attempt = [&](std::size_t lp, const SideGuess& gl, std::size_t up, const SideGuess& gu) {
+      if (!gl.ok || !gu.ok || !(gu.root > gl.root)) return false;
+      double mid = 0.5 * (gl.root + gu.root), spread = 0, predicted = gu.root - gl.root;
+      std::vector<Rational> a;
+      for (std::size_t i = 0; i <= k; ++i) {
+        double h = i < k ? half[i] : half_driver;
+        double slope = 0.5 * (gl.slope[i] + gu.slope[i]);
+        a.push_back(grid(slope, false));
+        spread += std::fabs(slope) * h;
+        predicted -= std::fabs(gu.slope[i] - gl.slope[i]) * h;
+      }
+      if (predicted <= 0) return false;
+      Rational top = grid(mid + 1.05 * spread + 1e-12, true), bottom = grid(mid - 1.05 * spread - 1e-12, false);
+      RationalInterval bl = gl.bracket, bu = gu.bracket;
+      if (bl.hi < top) bl.hi = top;
+      if (bu.lo > bottom) bu.lo = bottom;
+      if (bottom > bl.lo && top < bu.hi) {
+        ToleranceLeaf w = leaf;
+        w.lower = LeafSide{lp, bl, gl.centre};
+        w.upper = LeafSide{up, bu, gu.centre};
+        w.witness = grid(mid, false);
+        w.witness_slopes = a;
+        if (accept(std::move(w))) return true;
+      }
+      ToleranceLeaf p = leaf;
+      p.lower = LeafSide{lp, gl.bracket, gl.centre};
+      p.upper = LeafSide{up, gu.bracket, gu.centre};
+      return accept(std::move(p));
+    };
+    std::vector<double> score(k + 1, 1.0);
+    bool slopes = lower.slope.size() == k + 1 && upper.slope.size() == k + 1;
+    if (slopes && (!lower.ok || !upper.ok)) {
+      // A side not isolated over the leaf: split where that side varies most.
+      for (std::size_t i = 0; i <= k; ++i) {
+        double h = i < k ? half[i] : half_driver;
+        score[i] = (lower.ok ? 0 : std::fabs(lower.slope[i]) * h) + (upper.ok ? 0 : std::fabs(upper.slope[i]) * h);
+      }
+    } else if (lower.ok && upper.ok) {
+      double predicted = upper.root - lower.root;
+      for (std::size_t i = 0; i <= k; ++i) {
+        score[i] = std::fabs(upper.slope[i] - lower.slope[i]) * (i < k ? half[i] : half_driver);
+        predicted -= score[i];
+      }
+      if (attempt(lower_pair, lower, upper_pair, upper)) return Status::ok;
+    } else {
+      // Sides not found at the centre: split the widest dimension relative to the box.
+      for (std::size_t i = 0; i < k; ++i) {
+        Rational full = claim_.box[i].hi - claim_.box[i].lo;
+        score[i] = Rational((region[i].hi - region[i].lo) / full).get_d();
+      }
+      score[k] = Rational((region[k].hi - region[k].lo) / (claim_.range.hi - claim_.range.lo)).get_d();
+    }
+    // The neighbouring sides (near a switch of sides).
+    for (std::size_t a = 0; a < lowers.size(); ++a)
+      for (std::size_t b = 0; b < uppers.size(); ++b)
+        if ((a || b) && attempt(lowers[a].first, lowers[a].second, uppers[b].first, uppers[b].second)) return Status::ok;
+    if (depth > 400) {
+      undecided_reason_ = "the branch-and-bound reached depth 400 without certifying a box near driver " + std::to_string(dd);
+      return Status::undecided;
+    }
+    std::size_t best = static_cast<std::size_t>(std::max_element(score.begin(), score.end()) - score.begin());
+    Rational cut = (region[best].lo + region[best].hi) / 2;
+    if (best == k) {
+      Rational snapped = grid(cut.get_d(), false);
+      if (snapped > region[k].lo && snapped < region[k].hi) cut = snapped;
+    }
+    claim_.tree.push_back(split(best == k ? "driver" : claim_.varied[best], cut));
+    std::vector<RationalInterval> low = region, high = region;
+    low[best].hi = cut;
+    high[best].lo = cut;
+    Status s = solve(low, piece, depth + 1);
+    if (s != Status::ok) return s;
+    return solve(high, piece, depth + 1);
+  }
+
+  const CertifyRequest& request_;
+  ToleranceClaim claim_;
+  std::unique_ptr<verify::ToleranceEvaluator> evaluator_;
+  std::size_t attempts_ = 0;
+  std::string jam_reason_, undecided_reason_;
+};
+
+}  // namespace
+
+ToleranceCertification certify_no_jam(const CertifyRequest& request) { return Producer(request).run(); }
+
+}  // namespace hipair::tolerance_detail
