@@ -276,6 +276,39 @@ BlockedTester::BlockedTester(const Model& model, const PairAxes& axes)
       if (!std::isfinite(core.magnitude) || !std::isfinite(core.cx) || !std::isfinite(core.cy)) continue;
       disks_[k].push_back(core);
     }
+    interior_disks_[k] = disks_[k].size();
+    // Points of the part's boundary as disks of radius 0: a point of the part's closure
+    // strictly inside a disk of the other part's material makes the interiors overlap (the
+    // part is the closure of its interior, so every neighbourhood of the point holds interior
+    // points of the part). A pair of posed disks is tested on the sum of its reaches, so such
+    // a point certifies a box only where it lies in the other part's disk by more than every
+    // error. The points are the loops' vertices (exact; the double centre's error is carried in
+    // centre_error and in the offset's r_error): where a part's corners reach deepest into the
+    // other part. Points along the edges certified no further box of the examples' charts.
+    for (const Loop& loop : exact.loops)
+      for (const Edge& edge : loop.edges) {
+        {
+          const Point& point = edge.source;
+          CertifiedCore core;
+          core.x = Interval::enclose(point.x);
+          core.y = Interval::enclose(point.y);
+          core.r = 0;
+          core.rx = core.x - pivot_[k][0];
+          core.ry = core.y - pivot_[k][1];
+          core.rho = kernels::sqrt(core.rx * core.rx + core.ry * core.ry).hi;
+          core.cx = core.x.lo;
+          core.cy = core.y.lo;
+          core.centre_error = up(std::max(core.x.hi - core.x.lo, core.y.hi - core.y.lo));
+          core.rx_m = core.rx.lo;
+          core.ry_m = core.ry.lo;
+          core.r_error = up(std::max(core.rx.hi - core.rx.lo, core.ry.hi - core.ry.lo));
+          core.magnitude = up(up(std::fabs(core.rx_m) + std::fabs(core.ry_m)) + core.r_error);
+          if (!std::isfinite(core.rho) || !std::isfinite(core.magnitude) || !std::isfinite(core.cx) ||
+              !std::isfinite(core.cy) || !std::isfinite(core.centre_error))
+            continue;
+          disks_[k].push_back(core);
+        }
+      }
     pivot_m_[k][0] = pivot_[k][0].lo;
     pivot_m_[k][1] = pivot_[k][1].lo;
     pivot_error_[k] = up(std::max(pivot_[k][0].hi - pivot_[k][0].lo, pivot_[k][1].hi - pivot_[k][1].lo));
@@ -289,7 +322,6 @@ bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, co
   // the first moving part carries the chart's x axis, the second moving part its y axis
   bool x_used = false;
   for (int k = 0; k < 2; ++k) {
-    posed[k].disks.clear();
     const bool use_x = !x_used;
     if (moves_[k]) x_used = true;
     if (!pose_part(k, use_x ? x_axis : y_axis, use_x ? x : y, posed[k])) return false;
@@ -343,7 +375,8 @@ bool BlockedTester::pose_part(int k, const ChartAxis& axis, const algebra::Inter
     double angle = 0;               // bound of |theta - theta_m|
     double travel = 0;              // bound of the translation's travel from the middle
   } pose_bound;
-  out.disks.clear();
+  out.interior.disks.clear();
+  out.boundary.disks.clear();
   if (moves_[k]) {
     PoseBound& pose = pose_bound;
     if (!std::isfinite(range.lo) || !std::isfinite(range.hi) || !(range.lo <= range.hi)) return false;
@@ -402,30 +435,41 @@ bool BlockedTester::pose_part(int k, const ChartAxis& axis, const algebra::Inter
         q.x = d.cx + p.shift * dx_m;
         q.y = d.cy + p.shift * dy_m;
         double shift = std::fabs(p.shift);
-        error = shift * direction_error + 4 * unit * (std::max(std::fabs(d.cx), std::fabs(d.cy)) + 2 * shift) + p.travel;
+        error = shift * direction_error + 4 * unit * (std::max(std::fabs(d.cx), std::fabs(d.cy)) + 2 * shift) + p.travel +
+                d.centre_error;
       } else {
         q.x = d.cx;
         q.y = d.cy;
+        error = d.centre_error;
       }
       error = error * inflate + underflow;
       // may be negative: a pair is tested on the sum of its reaches
       q.reach = down(d.r - error);
       if (!std::isfinite(q.reach) || !std::isfinite(q.x) || !std::isfinite(q.y)) continue;
-      out.disks.push_back(q);
+      (d.r > 0 ? out.interior : out.boundary).disks.push_back(q);
     }
   }
-  std::sort(out.disks.begin(), out.disks.end(), [](const PosedDisk& a, const PosedDisk& b) { return a.x < b.x; });
-  out.xs.resize(out.disks.size());
-  out.widest = -std::numeric_limits<double>::infinity();
-  for (std::size_t j = 0; j < out.disks.size(); ++j) {
-    out.xs[j] = out.disks[j].x;
-    out.widest = std::max(out.widest, out.disks[j].reach);
+  for (PosedSet* set : {&out.interior, &out.boundary}) {
+    std::sort(set->disks.begin(), set->disks.end(), [](const PosedDisk& a, const PosedDisk& b) { return a.x < b.x; });
+    set->xs.resize(set->disks.size());
+    set->widest = -std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < set->disks.size(); ++j) {
+      set->xs[j] = set->disks[j].x;
+      set->widest = std::max(set->widest, set->disks[j].reach);
+    }
   }
   return true;
 }
 
-// Does some pair of posed disks certainly overlap (the box is blocked)?
+// Does some pair of posed disks certainly overlap (the box is blocked)? Pairs of two boundary
+// points (reach <= 0 both) never do.
 bool BlockedTester::overlapping(const Posed& first, const Posed& second) {
+  return overlapping(first.interior, second.interior) || overlapping(first.boundary, second.interior) ||
+         overlapping(first.interior, second.boundary);
+}
+
+// Does some pair of posed disks certainly overlap (the box is blocked)?
+bool BlockedTester::overlapping(const PosedSet& first, const PosedSet& second) {
   using kernels::interval_detail::down;
   using kernels::interval_detail::up;
   // sweep in x over both parts' disks sorted by their centre's x: only pairs with
