@@ -17,14 +17,14 @@
 // once. CGAL's algebraic kernel creates and releases millions of small handles and vectors;
 // glibc's per-thread cache holds only 7 blocks per size, so most releases took malloc's slow
 // path (measured on the Geneva C-space build: docs/performance.md). Every block comes from
-// malloc and goes back to free() when its class already keeps 256 KB, at thread exit, or
+// malloc and goes back to free() when its class already keeps 64 KB, at thread exit, or
 // when it was not allocated here (its class follows malloc's usable size, so any block
 // malloc handed out is safe to reuse for the class it is filed under).
 namespace {
 
 constexpr std::size_t block_step = 16;
 constexpr std::size_t block_classes = 32;   // blocks up to 512 bytes
-constexpr std::size_t class_bytes = std::size_t{256} << 10;
+constexpr std::size_t class_bytes = std::size_t{64} << 10;
 
 struct BlockNode {
   BlockNode* next;

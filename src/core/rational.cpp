@@ -154,12 +154,12 @@ namespace {
 // (16-byte steps), instead of going back to malloc at once: exact computations create and
 // release millions of small numbers (2-10 limbs), and glibc's per-thread cache holds only 7
 // blocks per size, so most releases took its slow path (a quarter of all instructions of a
-// Geneva C-space build were malloc and free). A class keeps at most 256 KB; beyond that
+// Geneva C-space build were malloc and free). A class keeps at most 64 KB; beyond that
 // blocks go back to free(). A block allocated before these functions were installed (or by
 // anyone else) is reused only if malloc says it is large enough for its class.
 constexpr std::size_t pool_step = 16;
 constexpr std::size_t pool_classes = 32;   // blocks up to 512 bytes
-constexpr std::size_t pool_class_bytes = std::size_t{256} << 10;
+constexpr std::size_t pool_class_bytes = std::size_t{64} << 10;
 
 struct PoolNode {
   PoolNode* next;
