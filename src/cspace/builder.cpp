@@ -734,6 +734,8 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     chart.y_index = chart_input.y_index;
     auto culling_start = Clock::now();
     std::vector<std::size_t> kept = prepare_chart(chart, chart_input, input.dimension);
+    // the culling's blocked test is done with: release what it keeps (posed disks per interval)
+    chart_input.certainly_blocked = nullptr;
     stats.seconds_culling += seconds_since(culling_start);
     stats.curves += kept.size();
     for (std::size_t k : kept) {

@@ -122,10 +122,11 @@ RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const
   };
   std::vector<std::vector<char>> seen(nx * ny, std::vector<char>(grid * grid, 0));
   std::vector<std::array<std::size_t, 3>> queue;
+  std::vector<cspace::BlockedTester::Cache> caches(nx * ny);   // per chart: its axes are fixed
   auto blocked = [&](std::size_t c, std::size_t i, std::size_t j) {
     const ChartAxis& x = layout.x_charts[c / ny];
     const ChartAxis& y = layout.y_charts[c % ny];
-    return tester.blocked(x, y, cell_interval(x, i), cell_interval(y, j));
+    return tester.blocked(x, y, cell_interval(x, i), cell_interval(y, j), caches[c]);
   };
   auto push = [&](std::size_t c, std::size_t i, std::size_t j) {
     char& mark = seen[c][i * grid + j];
@@ -271,8 +272,9 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
       ChartAxis x = chart.x, y = chart.y;
       chart.classify = [&model, axes, x, y](const cspace::ChartPoint& q) { return classify_overlap(model, axes, x, y, q); };
       if (input.dimension == 2 && tester->usable())
-        chart.certainly_blocked = [tester, x, y](const algebra::Interval& cx, const algebra::Interval& cy) {
-          return tester->blocked(x, y, cx, cy);
+        chart.certainly_blocked = [tester, x, y, cache = std::make_shared<cspace::BlockedTester::Cache>()](
+                                      const algebra::Interval& cx, const algebra::Interval& cy) {
+          return tester->blocked(x, y, cx, cy, *cache);
         };
       input.charts.push_back(std::move(chart));
       if (progress) std::cerr << "\rhipair: " << input.first_part << ":" << input.second_part << " curves for "

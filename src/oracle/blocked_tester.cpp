@@ -276,6 +276,39 @@ BlockedTester::BlockedTester(const Model& model, const PairAxes& axes)
       if (!std::isfinite(core.magnitude) || !std::isfinite(core.cx) || !std::isfinite(core.cy)) continue;
       disks_[k].push_back(core);
     }
+    interior_disks_[k] = disks_[k].size();
+    // Points of the part's boundary as disks of radius 0: a point of the part's closure
+    // strictly inside a disk of the other part's material makes the interiors overlap (the
+    // part is the closure of its interior, so every neighbourhood of the point holds interior
+    // points of the part). A pair of posed disks is tested on the sum of its reaches, so such
+    // a point certifies a box only where it lies in the other part's disk by more than every
+    // error. The points are the loops' vertices (exact; the double centre's error is carried in
+    // centre_error and in the offset's r_error): where a part's corners reach deepest into the
+    // other part. Points along the edges certified no further box of the examples' charts.
+    for (const Loop& loop : exact.loops)
+      for (const Edge& edge : loop.edges) {
+        {
+          const Point& point = edge.source;
+          CertifiedCore core;
+          core.x = Interval::enclose(point.x);
+          core.y = Interval::enclose(point.y);
+          core.r = 0;
+          core.rx = core.x - pivot_[k][0];
+          core.ry = core.y - pivot_[k][1];
+          core.rho = kernels::sqrt(core.rx * core.rx + core.ry * core.ry).hi;
+          core.cx = core.x.lo;
+          core.cy = core.y.lo;
+          core.centre_error = up(std::max(core.x.hi - core.x.lo, core.y.hi - core.y.lo));
+          core.rx_m = core.rx.lo;
+          core.ry_m = core.ry.lo;
+          core.r_error = up(std::max(core.rx.hi - core.rx.lo, core.ry.hi - core.ry.lo));
+          core.magnitude = up(up(std::fabs(core.rx_m) + std::fabs(core.ry_m)) + core.r_error);
+          if (!std::isfinite(core.rho) || !std::isfinite(core.magnitude) || !std::isfinite(core.cx) ||
+              !std::isfinite(core.cy) || !std::isfinite(core.centre_error))
+            continue;
+          disks_[k].push_back(core);
+        }
+      }
     pivot_m_[k][0] = pivot_[k][0].lo;
     pivot_m_[k][1] = pivot_[k][1].lo;
     pivot_error_[k] = up(std::max(pivot_[k][0].hi - pivot_[k][0].lo, pivot_[k][1].hi - pivot_[k][1].lo));
@@ -285,6 +318,41 @@ BlockedTester::BlockedTester(const Model& model, const PairAxes& axes)
 
 bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
                             const algebra::Interval& y) const {
+  thread_local Posed posed[2];
+  // the first moving part carries the chart's x axis, the second moving part its y axis
+  bool x_used = false;
+  for (int k = 0; k < 2; ++k) {
+    const bool use_x = !x_used;
+    if (moves_[k]) x_used = true;
+    if (!pose_part(k, use_x ? x_axis : y_axis, use_x ? x : y, posed[k])) return false;
+  }
+  return overlapping(posed[0], posed[1]);
+}
+
+bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
+                            const algebra::Interval& y, Cache& cache) const {
+  const Posed* posed[2] = {nullptr, nullptr};
+  bool x_used = false;
+  for (int k = 0; k < 2; ++k) {
+    const bool use_x = !x_used;
+    if (moves_[k]) x_used = true;
+    const algebra::Interval& range = use_x ? x : y;
+    // a fixed part's posed disks do not depend on the box: one entry
+    std::pair<double, double> key = moves_[k] ? std::pair<double, double>{range.lo, range.hi}
+                                              : std::pair<double, double>{0.0, 0.0};
+    auto [it, inserted] = cache.posed_[k].try_emplace(key);
+    if (inserted) it->second.usable = pose_part(k, use_x ? x_axis : y_axis, range, it->second);
+    if (!it->second.usable) return false;
+    posed[k] = &it->second;
+  }
+  return overlapping(*posed[0], *posed[1]);
+}
+
+// Part k's disks posed over its axis interval `range`: the centre at the middle pose in
+// doubles and a lower bound of the radius that holds over the whole interval (radius minus
+// movement and every error of the double centre), sorted by the centre's x. False when the
+// interval admits no claim (then nothing is blocked).
+bool BlockedTester::pose_part(int k, const ChartAxis& axis, const algebra::Interval& range, Posed& out) const {
   using kernels::Interval;
   using kernels::interval_detail::down;
   using kernels::interval_detail::up;
@@ -294,7 +362,7 @@ bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, co
   constexpr double unit = 0x1p-53;
   constexpr double underflow = 0x1p-1000;
   constexpr double inflate = 1 + 0x1p-40;   // covers the rounding of the error terms' own sums
-  // Each moving part's pose over its chart interval: the pose at a middle chart value m
+  // The moving part's pose over its chart interval: the pose at a middle chart value m
   // (certified cos/sin of its angle, or its offset) and a bound on how far a point at
   // distance rho from the pivot moves from there: rho * |theta - theta_m| for rotations
   // (the chord is shorter than the arc), the angle bound from the series of atan (side() below);
@@ -306,13 +374,11 @@ bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, co
     double shift = 0;               // translations: m
     double angle = 0;               // bound of |theta - theta_m|
     double travel = 0;              // bound of the translation's travel from the middle
-  } pose[2];
-  bool x_used = false;
-  for (int k = 0; k < 2; ++k) {
-    if (!moves_[k]) continue;
-    const ChartAxis& axis = !x_used ? x_axis : y_axis;
-    const algebra::Interval& range = !x_used ? x : y;
-    x_used = true;
+  } pose_bound;
+  out.interior.disks.clear();
+  out.boundary.disks.clear();
+  if (moves_[k]) {
+    PoseBound& pose = pose_bound;
     if (!std::isfinite(range.lo) || !std::isfinite(range.hi) || !(range.lo <= range.hi)) return false;
     double lo = range.lo, hi = range.hi;
     if (axis.kind == ChartAxis::Kind::translation) {
@@ -323,51 +389,41 @@ bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, co
       if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
       double m = std::clamp(0.5 * lo + 0.5 * hi, lo, hi);
       double half = std::max((Interval(m, m) - Interval(lo, lo)).hi, (Interval(hi, hi) - Interval(m, m)).hi);
-      pose[k].shift = m;
-      pose[k].travel = (Interval(half, half) * Interval(direction_length_[k], direction_length_[k])).hi;
-      continue;
+      pose.shift = m;
+      pose.travel = (Interval(half, half) * Interval(direction_length_[k], direction_length_[k])).hi;
+    } else {
+      // the middle of the angle range (any m in [lo, hi] is sound; this one balances the sides)
+      double m = std::clamp(std::tan(0.5 * (std::atan(lo) + std::atan(hi))), lo, hi);
+      if (!std::isfinite(m)) m = std::clamp(0.5 * lo + 0.5 * hi, lo, hi);
+      auto [c, s] = rotation_enclosure(axis.half_turn, Interval(m, m));
+      pose.c = c.lo;
+      pose.s = s.lo;
+      pose.cs_error = up(up(c.hi - c.lo) + up(s.hi - s.lo));
+      pose.cs_size = up(std::max(std::fabs(c.lo), std::fabs(c.hi)) + std::max(std::fabs(s.lo), std::fabs(s.hi)));
+      auto side = [](double a, double b) {   // bound of |2 atan b - 2 atan a|, a <= b
+        // atan b - atan a = atan z, z = (b - a)/(1 + ab), when 1 + ab > 0; atan z <= z - z^3/3 + z^5/5
+        // for 0 <= z <= 1 (alternating series), atan z < pi/2 < 1.5708
+        Interval width = Interval(b, b) - Interval(a, a);
+        Interval denominator = Interval(1) + Interval(a, a) * Interval(b, b);
+        if (!(denominator.lo > 0)) return (Interval(2) * width).hi;   // mean value theorem: slope <= 2
+        double z = (width / denominator).hi;
+        if (!(z <= 1)) return (Interval(2) * Interval(std::min(z, 1.5708), std::min(z, 1.5708))).hi;
+        Interval zi(z, z), z2 = zi * zi;
+        Interval series = zi * (Interval(1) - z2 / Interval(3) + z2 * z2 / Interval(5));
+        return (Interval(2) * series).hi;
+      };
+      pose.angle = std::max(side(lo, m), side(m, hi));
     }
-    // the middle of the angle range (any m in [lo, hi] is sound; this one balances the sides)
-    double m = std::clamp(std::tan(0.5 * (std::atan(lo) + std::atan(hi))), lo, hi);
-    if (!std::isfinite(m)) m = std::clamp(0.5 * lo + 0.5 * hi, lo, hi);
-    auto [c, s] = rotation_enclosure(axis.half_turn, Interval(m, m));
-    pose[k].c = c.lo;
-    pose[k].s = s.lo;
-    pose[k].cs_error = up(up(c.hi - c.lo) + up(s.hi - s.lo));
-    pose[k].cs_size = up(std::max(std::fabs(c.lo), std::fabs(c.hi)) + std::max(std::fabs(s.lo), std::fabs(s.hi)));
-    auto side = [](double a, double b) {   // bound of |2 atan b - 2 atan a|, a <= b
-      // atan b - atan a = atan z, z = (b - a)/(1 + ab), when 1 + ab > 0; atan z <= z - z^3/3 + z^5/5
-      // for 0 <= z <= 1 (alternating series), atan z < pi/2 < 1.5708
-      Interval width = Interval(b, b) - Interval(a, a);
-      Interval denominator = Interval(1) + Interval(a, a) * Interval(b, b);
-      if (!(denominator.lo > 0)) return (Interval(2) * width).hi;   // mean value theorem: slope <= 2
-      double z = (width / denominator).hi;
-      if (!(z <= 1)) return (Interval(2) * Interval(std::min(z, 1.5708), std::min(z, 1.5708))).hi;
-      Interval zi(z, z), z2 = zi * zi;
-      Interval series = zi * (Interval(1) - z2 / Interval(3) + z2 * z2 / Interval(5));
-      return (Interval(2) * series).hi;
-    };
-    pose[k].angle = std::max(side(lo, m), side(m, hi));
   }
-  // posed disks: the centre at the middle pose in doubles, and a lower bound of the radius
-  // that holds over the whole box: radius minus (movement + every error of the double centre)
-  struct Posed {
-    double x, y;
-    double reach;
-  };
-  thread_local std::vector<Posed> posed[2];
-  thread_local std::vector<std::size_t> order;
-  thread_local std::vector<double> xs;
-  for (int k = 0; k < 2; ++k) {
-    posed[k].clear();
-    const PoseBound& p = pose[k];
+  {
+    const PoseBound& p = pose_bound;
     const bool rotates = moves_[k] && motion_[k] == Motion::Kind::rotation;
     const bool translates = moves_[k] && motion_[k] == Motion::Kind::translation;
     const double dx_m = direction_[k][0].lo, dy_m = direction_[k][1].lo;
     const double direction_error =
         up(std::max(direction_[k][0].hi - direction_[k][0].lo, direction_[k][1].hi - direction_[k][1].lo));
     for (const CertifiedCore& d : disks_[k]) {
-      Posed q;
+      PosedDisk q;
       double error = 0;
       if (rotates) {
         // world = pivot + R (centre - pivot); |R - R_m| <= cs_error entrywise, |R_m| <= cs_size
@@ -379,34 +435,62 @@ bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, co
         q.x = d.cx + p.shift * dx_m;
         q.y = d.cy + p.shift * dy_m;
         double shift = std::fabs(p.shift);
-        error = shift * direction_error + 4 * unit * (std::max(std::fabs(d.cx), std::fabs(d.cy)) + 2 * shift) + p.travel;
+        error = shift * direction_error + 4 * unit * (std::max(std::fabs(d.cx), std::fabs(d.cy)) + 2 * shift) + p.travel +
+                d.centre_error;
       } else {
         q.x = d.cx;
         q.y = d.cy;
+        error = d.centre_error;
       }
       error = error * inflate + underflow;
       // may be negative: a pair is tested on the sum of its reaches
       q.reach = down(d.r - error);
       if (!std::isfinite(q.reach) || !std::isfinite(q.x) || !std::isfinite(q.y)) continue;
-      posed[k].push_back(q);
+      (d.r > 0 ? out.interior : out.boundary).disks.push_back(q);
     }
   }
-  // sweep in x: B's disks sorted by their centre's x; only pairs inside the window are tested
-  // (the window decides nothing: leaving a pair out can only keep the answer "not blocked")
-  order.resize(posed[1].size());
-  for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return posed[1][a].x < posed[1][b].x; });
-  double widest = -std::numeric_limits<double>::infinity();
-  for (const Posed& b : posed[1]) widest = std::max(widest, b.reach);
-  xs.resize(order.size());
-  for (std::size_t j = 0; j < order.size(); ++j) xs[j] = posed[1][order[j]].x;
-  for (const Posed& a : posed[0]) {
-    double span = a.reach + widest;
+  for (PosedSet* set : {&out.interior, &out.boundary}) {
+    std::sort(set->disks.begin(), set->disks.end(), [](const PosedDisk& a, const PosedDisk& b) { return a.x < b.x; });
+    set->xs.resize(set->disks.size());
+    set->widest = -std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < set->disks.size(); ++j) {
+      set->xs[j] = set->disks[j].x;
+      set->widest = std::max(set->widest, set->disks[j].reach);
+    }
+  }
+  return true;
+}
+
+// Does some pair of posed disks certainly overlap (the box is blocked)? Pairs of two boundary
+// points (reach <= 0 both) never do.
+bool BlockedTester::overlapping(const Posed& first, const Posed& second) {
+  return overlapping(first.interior, second.interior) || overlapping(first.boundary, second.interior) ||
+         overlapping(first.interior, second.boundary);
+}
+
+// Does some pair of posed disks certainly overlap (the box is blocked)?
+bool BlockedTester::overlapping(const PosedSet& first, const PosedSet& second) {
+  using kernels::interval_detail::down;
+  using kernels::interval_detail::up;
+  // sweep in x over both parts' disks sorted by their centre's x: only pairs with
+  // |x_a - x_b| <= reach_a + (the widest reach of B) are tested (the window decides nothing:
+  // leaving a pair out can only keep the answer "not blocked"). The window's left end moves
+  // monotonically behind x_a - (widest of A + widest of B), which is at most x_a - span.
+  const double widest = second.widest;
+  const double reach_bound = first.widest + widest;
+  if (!(reach_bound > 0)) return false;
+  const std::vector<double>& xs = second.xs;
+  const std::size_t n = xs.size();
+  std::size_t low = 0;
+  for (const PosedDisk& a : first.disks) {
+    const double span = a.reach + widest;
     if (!(span > 0)) continue;
-    auto first = std::lower_bound(xs.begin(), xs.end(), a.x - span);
-    auto last = std::upper_bound(xs.begin(), xs.end(), a.x + span);
-    for (auto it = first; it != last; ++it) {
-      const Posed& b = posed[1][order[static_cast<std::size_t>(it - xs.begin())]];
+    const double from = a.x - reach_bound;
+    while (low < n && xs[low] < from) ++low;
+    const double left = a.x - span, right = a.x + span;
+    for (std::size_t j = low; j < n && xs[j] <= right; ++j) {
+      if (xs[j] < left) continue;
+      const PosedDisk& b = second.disks[j];
       // a plain double test first (the certified one below implies it: skipping when it fails
       // decides nothing), then certified: |centre_a - centre_b|^2 (rounded up) <
       // (reach_a + reach_b)^2 (rounded down)

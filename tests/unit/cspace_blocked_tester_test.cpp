@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <random>
 #include <string>
+#include <tuple>
 
 namespace hipair {
 namespace {
@@ -278,6 +279,46 @@ TEST(BlockedTester, CSpaceBesideAnArcJunctionAgreesWithTheOracle) {
     }
   }
   EXPECT_GT(free, 100);
+  EXPECT_GT(blocked, 100);
+}
+
+// The cache of posed disks (one per chart, as the builder's culling and the region flood use
+// it) gives the same answer as the uncached test on every box of a grid of nested boxes (the
+// quadtree's pattern: each column and row interval shared by many boxes), on the examples'
+// charts.
+TEST(BlockedTester, CachedAnswersEqualUncachedOnes) {
+  int blocked = 0, boxes = 0;
+  for (const auto& [file, first, second] : {std::tuple{"geneva.json", "driver", "wheel"},
+                                            std::tuple{"ratchet.json", "wheel", "pawl"},
+                                            std::tuple{"scotch-yoke.json", "crank", "yoke"}}) {
+    std::filesystem::path path = std::filesystem::path(HIPAIR_EXAMPLES) / file;
+    if (!std::filesystem::exists(path)) continue;
+    Model model = read_model_file(path);
+    auto a = model.find_part(first), b = model.find_part(second);
+    if (!a || !b) continue;
+    cspace::PairAxes axes = cspace::pair_axes(model, *a, *b);
+    cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+    if (layout.y_charts.empty()) continue;
+    cspace::BlockedTester tester(model, axes);
+    for (const auto& x : layout.x_charts)
+      for (const auto& y : layout.y_charts) {
+        cspace::BlockedTester::Cache cache;
+        const double x_lo = x.lo.get_d(), x_hi = x.hi.get_d(), y_lo = y.lo.get_d(), y_hi = y.hi.get_d();
+        for (int depth : {3, 4, 5}) {
+          const int n = 1 << depth;
+          for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+              Interval bx{x_lo + (x_hi - x_lo) * i / n, x_lo + (x_hi - x_lo) * (i + 1) / n};
+              Interval by{y_lo + (y_hi - y_lo) * j / n, y_lo + (y_hi - y_lo) * (j + 1) / n};
+              const bool plain = tester.blocked(x, y, bx, by);
+              EXPECT_EQ(tester.blocked(x, y, bx, by, cache), plain) << file << " box " << i << ", " << j << " at depth " << depth;
+              ++boxes;
+              blocked += plain;
+            }
+        }
+      }
+  }
+  std::cout << blocked << " of " << boxes << " boxes blocked\n";
   EXPECT_GT(blocked, 100);
 }
 
