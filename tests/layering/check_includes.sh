@@ -24,6 +24,7 @@ declare -A allowed=(
   [kinematics]="kinematics core kernels"
   [tolerance]="tolerance core model kernels"
   [simulation]="simulation core kernels"
+  [sliced]="sliced core model kernels"
   [certify]="certify core model kernels"
   [verifier]="certify core model io"
   [io]="io core"
@@ -32,11 +33,14 @@ declare -A allowed=(
   [examples]=""
 )
 # The interfaces of the exact-algebra and contact-curve layers (still inside src/cspace): the
-# kinematic kernel slicer computes 1-D slices from the contact curves without an arrangement.
+# kinematic kernel slicer computes 1-D slices from the contact curves without an arrangement;
+# the 3-DOF slicer (src/sliced) isolates critical angles with the exact univariate algebra and
+# builds its slices through the adaptor (hipair/cspace.hpp).
 # Every other src/cspace header is internal to the C-space (the arrangement stage, the
 # adaptor's internals, the oracle's internals: consumers use hipair/cspace.hpp, hipair/overlap.hpp).
 declare -A layer_interfaces=(
   [kinematics]="cspace/builder_algebra.hpp cspace/contact_curves.hpp"
+  [sliced]="cspace/builder_algebra.hpp"
 )
 
 layer_of() {
