@@ -7,9 +7,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <array>
-#include <chrono>
-#include <cstdlib>
-#include <iostream>
 #include <optional>
 #include <tuple>
 #include <type_traits>
@@ -73,8 +70,25 @@ TrigPoly operator*(const TrigPoly& x, const TrigPoly& y) {
   return a;
 }
 
+// Divides out the factors (1 + u^2) of the numerator (same value, lower degree).
+TrigPoly reduced(TrigPoly a) {
+  while (a.w > 0 && a.c.size() >= 3) {
+    std::vector<Rational> r = a.c, q(a.c.size() - 2, Rational(0));
+    for (std::size_t i = r.size() - 1; i >= 2; --i) {
+      q[i - 2] = r[i];
+      r[i - 2] -= r[i];
+      r[i] = 0;
+    }
+    if (sgn(r[0]) != 0 || sgn(r[1]) != 0) break;
+    a.c = std::move(q);
+    --a.w;
+  }
+  return a;
+}
+
 // The integer polynomial with the same sign as the numerator (positive scaling).
-algebra::Polynomial integer_numerator(const TrigPoly& p) {
+algebra::Polynomial integer_numerator(const TrigPoly& unreduced) {
+  const TrigPoly p = reduced(unreduced);
   mpz_class lcm = 1;
   for (const auto& q : p.c) mpz_lcm(lcm.get_mpz_t(), lcm.get_mpz_t(), q.get_den_mpz_t());
   algebra::Polynomial out;
@@ -167,8 +181,21 @@ Rotation<Box> rotation_box(const Rational& lo, const Rational& hi, bool flip) {
     if (b.hi > 1) b.hi = 1;
     return b;
   };
-  c = clamp(c);
-  s = clamp(s);
+  // rounded outwards to dyadics of 64 bits (keeps the enclosures' numbers small)
+  auto outward = [](Box b) {
+    const mpz_class scale = mpz_class(1) << 64;
+    mpz_class lo, hi;
+    mpz_class n = b.lo.get_num() * scale;
+    mpz_fdiv_q(lo.get_mpz_t(), n.get_mpz_t(), b.lo.get_den_mpz_t());
+    n = b.hi.get_num() * scale;
+    mpz_cdiv_q(hi.get_mpz_t(), n.get_mpz_t(), b.hi.get_den_mpz_t());
+    Box out{Rational(lo, scale), Rational(hi, scale)};
+    out.lo.canonicalize();
+    out.hi.canonicalize();
+    return out;
+  };
+  c = clamp(outward(c));
+  s = clamp(outward(s));
   if (flip) return {-c, -s};
   return {c, s};
 }
@@ -229,10 +256,12 @@ bool segment_meets_box(const Point& p, const Point& q, const Box& bx, const Box&
 
 // Is the box strictly inside the part's region (world coordinates of its zero configuration)?
 bool box_inside(const Part& part, const Box& bx, const Box& by) {
+  // a corner strictly inside (cheap: most probes fail here), and no boundary in the box
+  if (region_side(part.loops, bx.lo, by.lo) <= 0) return false;
   for (const auto& loop : part.loops)
     for (const auto& e : loop.edges)
       if (segment_meets_box(e.source, e.target, bx, by)) return false;
-  return region_side(part.loops, bx.lo, by.lo) > 0;   // no boundary in the box: one corner decides
+  return true;
 }
 
 class Finder {
@@ -254,23 +283,11 @@ class Finder {
   }
 
   std::vector<Critical> run() {
-    auto clock = std::chrono::steady_clock::now();
-    auto lap = [&](const char* what) {
-      auto now = std::chrono::steady_clock::now();
-      if (std::getenv("HIPAIR_SLICED_DEBUG"))
-        std::cerr << "  " << what << " " << std::chrono::duration<double>(now - clock).count() << " s, roots " << stats_.roots << ", relevance " << blocked_seconds_ << " s\n";
-      clock = now;
-    };
     compute_masks();
-    lap("masks");
     antiparallel();
-    lap("antiparallel");
     vertex_on_segment();
-    lap("vertex on segment");
     parallel_overlap();
-    lap("parallel overlap");
     three_concurrent();
-    lap("three concurrent");
     // sort and merge
     std::sort(found_.begin(), found_.end(), [](const Critical& a, const Critical& b) {
       if (a.half_turn != b.half_turn) return !a.half_turn;
@@ -363,14 +380,6 @@ class Finder {
   // Is the configuration (point(c, s), theta) certainly overlapping (inside blocked space)?
   template <class PointOf>
   bool certainly_blocked(const Real& root, bool half_turn, PointOf point_of) {
-    auto start = std::chrono::steady_clock::now();
-    bool out = certainly_blocked_(root, half_turn, point_of);
-    blocked_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return out;
-  }
-  double blocked_seconds_ = 0;
-  template <class PointOf>
-  bool certainly_blocked_(const Real& root, bool half_turn, PointOf point_of) {
     if (half_turn || root.exact) {
       Rotation<Rational> r = half_turn ? Rotation<Rational>{Rational(-1), Rational(0)} : exact_rotation(root.lower);
       std::optional<Vec<Rational>> p = point_of(r);
@@ -388,23 +397,19 @@ class Finder {
       // a vertex or edge midpoint of one part certainly strictly inside the other
       for (const auto& u : probes_free_) {
         Vec<Box> w = rb.apply(Vec<Box>{Box(u.x), Box(u.y)});
-        if (box_inside(*g_.fixed, w.x + pb->x + Box(g_.pivot.x), w.y + pb->y + Box(g_.pivot.y))) {
-          if (std::getenv("HIPAIR_SLICED_DEBUG2"))
-            std::cerr << "free probe " << u.x << "," << u.y << " box " << (w.x + pb->x).lo.get_d() << " " << (w.x + pb->x).hi.get_d() << " "
-                      << (w.y + pb->y).lo.get_d() << " " << (w.y + pb->y).hi.get_d() << " t " << t.lower.get_d() << "\n";
-          return true;
-        }
+        if (box_inside(*g_.fixed, w.x + pb->x + Box(g_.pivot.x), w.y + pb->y + Box(g_.pivot.y))) return true;
       }
       for (const auto& a : probes_fixed_) {
         Vec<Box> rel{Box(a.x) - pb->x, Box(a.y) - pb->y};
         if (box_inside(*g_.free, rb.c * rel.x + rb.s * rel.y + Box(g_.pivot.x), rb.c * rel.y - rb.s * rel.x + Box(g_.pivot.y)))
           return true;
       }
-      if (bits < 52) continue;
       Rotation<Rational> rm = exact_rotation(mid(Box{t.lower, t.upper}));
       Point d{mid(pb->x), mid(pb->y)};
       auto relation = part_overlap(*g_.fixed, Placement{}, *g_.free, placement_about(g_.pivot, rm.c, rm.s, d), true);
-      if (relation.relation != PartRelation::overlapping || !relation.witness) continue;
+      // a configuration of the enclosure that is not overlapping: no certificate (kept)
+      if (relation.relation != PartRelation::overlapping) return false;
+      if (!relation.witness) continue;
       // the witness w (world) is inside the fixed part; in the free part's body it is
       // p + R^T (w - p - d) over every (c, s, d) of the enclosure
       Vec<Box> rel{Box(relation.witness->x - g_.pivot.x) - pb->x, Box(relation.witness->y - g_.pivot.y) - pb->y};
@@ -619,6 +624,11 @@ class Finder {
 
   void three_concurrent() {
     const std::size_t n = segments_.size();
+    Rotation<TrigPoly> rp{poly_cos(false), poly_sin(false)};
+    for (const auto& segment : segments_) {
+      auto line = line_of(rp, segment);
+      lines_.emplace_back(Vec<TrigPoly>{reduced(line.first.x), reduced(line.first.y)}, reduced(line.second));
+    }
     for (std::size_t a = 0; a < n; ++a)
       for (std::size_t b = a + 1; b < n; ++b) {
         std::uint64_t mab = masks_[a * n + b];
@@ -627,7 +637,7 @@ class Finder {
           std::uint64_t mask = mab & masks_[a * n + c] & masks_[b * n + c];
           if (mask == 0) continue;
           if (always_parallel(segments_[a], segments_[c]) || always_parallel(segments_[b], segments_[c])) continue;
-          triple(segments_[a], segments_[b], segments_[c], mask);
+          triple(a, b, c, mask);
         }
       }
   }
@@ -641,7 +651,8 @@ class Finder {
     return {nn, dot(nn, p0)};
   }
 
-  void triple(const Segment& s1, const Segment& s2, const Segment& s3, std::uint64_t mask) {
+  void triple(std::size_t i1, std::size_t i2, std::size_t i3, std::uint64_t mask) {
+    const Segment &s1 = segments_[i1], &s2 = segments_[i2], &s3 = segments_[i3];
     const Segment* s[3] = {&s1, &s2, &s3};
     // determinant and the meeting point (Cramer, from the first two lines whose denominator
     // does not vanish), with extents checked on all three
@@ -664,7 +675,14 @@ class Finder {
       return std::make_tuple(nx, ny, den);
     };
     Rotation<TrigPoly> rp{poly_cos(false), poly_sin(false)};
-    TrigPoly poly = det_of(rp);
+    TrigPoly poly;
+    {
+      // the determinant from the lines computed once per segment
+      const auto &l1 = lines_[i1], &l2 = lines_[i2], &l3 = lines_[i3];
+      const auto &n1 = l1.first, &n2 = l2.first, &n3 = l3.first;
+      poly = reduced(n1.x * (n2.y * l3.second - l2.second * n3.y) - n1.y * (n2.x * l3.second - l2.second * n3.x) +
+                     l1.second * (n2.x * n3.y - n2.y * n3.x));
+    }
     // exact extents at a root: lambda_k = dot(num - den p0, d) / (den |d|^2) in [0, 1]
     auto extent_polys = [&](auto rot, int p, int q) {
       auto [nx, ny, den] = meet(rot, p, q);
@@ -681,44 +699,59 @@ class Finder {
       return out;
     };
     const int pairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
-    // exact extent polynomials, computed only when an enclosure leaves a sign open
-    std::vector<algebra::Polynomial> ext[3];
-    auto exact_extents = [&]() {
-      if (!ext[0].empty()) return;
-      for (int k = 0; k < 3; ++k)
-        for (const auto& t : extent_polys(rp, pairs[k][0], pairs[k][1])) ext[k].push_back(integer_numerator(t));
-    };
     int chosen = -1;   // the pair used for the point (set by accept)
-    auto accept = [&](const Real& root) {
-      // first by enclosure over a narrow isolating interval: each sign certain or open
-      if (!root.exact) {
-        Real t = root;
-        algebra::refine_dyadically(t, Rational(1) / Rational(mpz_class(1) << 40));
-        if (!t.exact) {
-          Rotation<Box> rb = rotation_box(t.lower, t.upper, false);
-          for (int k = 0; k < 3; ++k) {
-            auto e = extent_polys(rb, pairs[k][0], pairs[k][1]);
-            if (sgn(e[0].lo) <= 0 && sgn(e[0].hi) >= 0) break;   // denominator open: decide exactly
-            bool open = false;
-            for (std::size_t m = 1; m < e.size(); ++m) {
-              if (sgn(e[m].hi) < 0) return false;   // certainly outside an extent
-              if (sgn(e[m].lo) <= 0) open = true;
-            }
-            if (open) break;
-            chosen = k;
-            return true;
-          }
-        }
-      }
-      exact_extents();
+    auto accept_exact = [&](const Real& t) {
+      Rotation<Rational> r = exact_rotation(t.lower);
       for (int k = 0; k < 3; ++k) {
-        if (algebra::sign_at(ext[k][0], root) == 0) continue;
-        for (std::size_t m = 1; m < ext[k].size(); ++m)
-          if (algebra::sign_at(ext[k][m], root) < 0) return false;
+        auto e = extent_polys(r, pairs[k][0], pairs[k][1]);
+        if (sgn(e[0]) == 0) continue;
+        for (std::size_t m = 1; m < e.size(); ++m)
+          if (sgn(e[m]) < 0) return false;
         chosen = k;
         return true;
       }
-      return false;   // the three lines are pairwise parallel there
+      return false;
+    };
+    // Extents at a root: exactly at a rational root; at an irrational one by an enclosure over
+    // a narrow isolating interval, a sign the enclosure leaves open counting as inside (the
+    // point is at a segment's end: an event anyway, or so close to one that keeping it only
+    // adds a critical angle, still subject to the blocked-space test).
+    auto accept = [&](const Real& root) {
+      chosen = -1;
+      if (root.exact) {
+        Rotation<Rational> r = exact_rotation(root.lower);
+        for (int k = 0; k < 3; ++k) {
+          auto e = extent_polys(r, pairs[k][0], pairs[k][1]);
+          if (sgn(e[0]) == 0) continue;
+          for (std::size_t m = 1; m < e.size(); ++m)
+            if (sgn(e[m]) < 0) return false;
+          chosen = k;
+          return true;
+        }
+        return false;
+      }
+      Real t = root;
+      for (int bits : {40}) {
+        algebra::refine_dyadically(t, Rational(1) / Rational(mpz_class(1) << bits));
+        if (t.exact) return accept_exact(t);
+        Rotation<Box> rb = rotation_box(t.lower, t.upper, false);
+        bool open = false;
+        for (int k = 0; k < 3; ++k) {
+          auto e = extent_polys(rb, pairs[k][0], pairs[k][1]);
+          if (sgn(e[0].lo) <= 0 && sgn(e[0].hi) >= 0) continue;   // lines (nearly) parallel: another pair
+          bool undecided = false;
+          for (std::size_t m = 1; m < e.size(); ++m) {
+            if (sgn(e[m].hi) < 0) return false;   // certainly outside an extent
+            if (sgn(e[m].lo) <= 0) undecided = true;
+          }
+          chosen = k;
+          if (!undecided) return true;
+          open = true;
+          break;
+        }
+        if (open) return true;   // undecided: kept (see above)
+      }
+      return chosen >= 0;
     };
     auto point_of = [&](auto rot) {
       using T = std::decay_t<decltype(rot.c)>;
@@ -766,6 +799,7 @@ class Finder {
   CriticalStatistics& stats_;
   std::vector<Segment> segments_;
   std::vector<Point> probes_free_, probes_fixed_;
+  std::vector<std::pair<Vec<TrigPoly>, TrigPoly>> lines_;   // n . X = h per segment (three_concurrent)
   std::vector<std::uint64_t> masks_, vmasks_;
   std::vector<Critical> found_;
 };

@@ -10,8 +10,6 @@
 #include "sliced/critical_angles.hpp"
 
 #include <algorithm>
-#include <cstdlib>
-#include <iostream>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -35,8 +33,20 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-std::string quoted(const Rational& r) { return "\"" + to_exact_string(r) + "\""; }
-std::string point_json(const Rational& x, const Rational& y) { return "[" + quoted(x) + ", " + quoted(y) + "]"; }
+std::string quoted(const Rational& r) {
+  std::string out = "\"";
+  out += to_exact_string(r);
+  out += '"';
+  return out;
+}
+std::string point_json(const Rational& x, const Rational& y) {
+  std::string out = "[";
+  out += quoted(x);
+  out += ", ";
+  out += quoted(y);
+  out += ']';
+  return out;
+}
 
 std::optional<Rational> rational_sqrt(const Rational& q) {
   if (sgn(q) < 0) return std::nullopt;
@@ -178,7 +188,10 @@ struct SlicedSpace::Impl {
         labels.insert(name(fp.first_part, fp.first) + " / " + name(fp.second_part, fp.second));
       }
     std::string key;
-    for (const auto& l : labels) key += (key.empty() ? "" : "; ") + l;
+    for (const auto& l : labels) {
+      if (!key.empty()) key += "; ";
+      key += l;
+    }
     return key.empty() ? "(no contact)" : key;
   }
 
@@ -320,13 +333,6 @@ struct SlicedSpace::Impl {
     stats.candidate_roots = cs.roots;
     stats.irrelevant_roots = cs.irrelevant;
     stats.seconds_critical = seconds_since(start);
-    if (std::getenv("HIPAIR_SLICED_DEBUG")) {
-      std::cerr << "sliced: " << critical.size() << " critical angles, " << cs.polynomials << " polynomials, " << cs.roots
-                << " roots, " << cs.irrelevant << " irrelevant, " << stats.seconds_critical << " s\n";
-      for (std::size_t i = 0; i < critical.size(); ++i)
-        std::cerr << "  " << i << ": " << (critical[i].half_turn ? 180.0 : 2 * std::atan(critical[i].t.approximate()) * 180 / 3.141592653589793)
-                  << " deg, events " << critical[i].events.size() << " first " << static_cast<int>(critical[i].events[0]) << "\n";
-    }
     for (const auto& c : critical) {
       CriticalAngle out;
       out.half_turn = c.half_turn;

@@ -252,26 +252,30 @@ TEST(Sliced, SquarePegTurnsInALargeHole) {
 }
 
 // The slot plate: a 12 x 2 peg passes the 3 mm slot turned upright; a peg 3.01 mm wide cannot.
-TEST(Sliced, PegPassesTheSlotOnlyWhenTurned) {
-  SlicedConfiguration below{0, -11, SlicedAngle{0, false}};   // lying flat in the lower chamber
-  SlicedConfiguration above{0, 11, SlicedAngle{0, false}};    // inserted: flat in the upper chamber
-  {
-    Model model = slot_plate(3, 2);
-    SlicedSpace space = SlicedSpace::build(model, "fixed", "free");
-    EXPECT_EQ(space.locate(below).kind, SlicedLocation::Kind::free);
-    EXPECT_EQ(space.locate(above).kind, SlicedLocation::Kind::free);
-    // flat, the peg cannot pass: below and above are apart in the slice theta = 0
-    auto flat = space.slice(SlicedAngle{0, false});
-    EXPECT_NE(flat->locate(ChartPoint{0, 0, -11}).cell, flat->locate(ChartPoint{0, 0, 11}).cell);
-    EXPECT_TRUE(space.connected(below, above));
-  }
-  {
-    Model model = slot_plate(3, Rational(301, 100));
-    SlicedSpace space = SlicedSpace::build(model, "fixed", "free");
-    EXPECT_EQ(space.locate(below).kind, SlicedLocation::Kind::free);
-    EXPECT_EQ(space.locate(above).kind, SlicedLocation::Kind::free);
-    EXPECT_FALSE(space.connected(below, above));
-  }
+const SlicedConfiguration below{0, -11, SlicedAngle{0, false}};   // lying flat in the lower chamber
+const SlicedConfiguration above{0, 11, SlicedAngle{0, false}};    // inserted: flat in the upper chamber
+
+TEST(Sliced, PegPassesTheSlotWhenTurned) {
+  Model model = slot_plate(3, 2);
+  SlicedSpace space = SlicedSpace::build(model, "fixed", "free");
+  EXPECT_EQ(space.locate(below).kind, SlicedLocation::Kind::free);
+  EXPECT_EQ(space.locate(above).kind, SlicedLocation::Kind::free);
+  // flat, the peg cannot pass: below and above are apart in the slice theta = 0
+  auto flat = space.slice(SlicedAngle{0, false});
+  EXPECT_NE(flat->locate(ChartPoint{0, 0, -11}).cell, flat->locate(ChartPoint{0, 0, 11}).cell);
+  EXPECT_TRUE(space.connected(below, above));
+  // upright (a quarter turn, a critical angle) in the slot itself
+  EXPECT_TRUE(space.connected(below, SlicedConfiguration{0, 0, SlicedAngle{1, false}}));
+}
+
+TEST(Sliced, PegTooWideForTheSlotNeverPasses) {
+  Model model = slot_plate(3, Rational(301, 100));
+  SlicedSpace space = SlicedSpace::build(model, "fixed", "free");
+  EXPECT_EQ(space.locate(below).kind, SlicedLocation::Kind::free);
+  EXPECT_EQ(space.locate(above).kind, SlicedLocation::Kind::free);
+  EXPECT_FALSE(space.connected(below, above));
+  EXPECT_TRUE(space.connected(below, SlicedConfiguration{0, -11, SlicedAngle{1, false}}));   // it turns in its chamber
+  EXPECT_EQ(space.locate(SlicedConfiguration{0, 0, SlicedAngle{1, false}}).kind, SlicedLocation::Kind::blocked);
 }
 
 // An L-shaped corridor of width W = 4 (a horizontal arm x in [-20, 4], y in [0, 4], a vertical
@@ -286,8 +290,8 @@ Model l_corridor(const Rational& length) {
   return pair_model(rectangle(-30, -30, 30, 30) + ", " + hole, rectangle(-length / 2, -1, length / 2, 1));
 }
 
-TEST(Sliced, RectangleInAnLShapedCorridor) {
-  for (int length : {6, 12}) {
+void expect_corridor(int length) {
+  {
     SCOPED_TRACE("peg length " + std::to_string(length));
     Model model = l_corridor(length);
     SlicedSpace space = SlicedSpace::build(model, "fixed", "free");
@@ -312,6 +316,9 @@ TEST(Sliced, RectangleInAnLShapedCorridor) {
     EXPECT_EQ(space.connected(in_horizontal_arm, in_vertical_arm), length == 6);
   }
 }
+
+TEST(Sliced, ShortRectangleTurnsTheCornerOfAnLShapedCorridor) { expect_corridor(6); }
+TEST(Sliced, LongRectangleCannotTurnTheCornerOfAnLShapedCorridor) { expect_corridor(12); }
 
 TEST(Sliced, BadPairsAreRefused) {
   Model model = peg_in_hole(10, 11);
