@@ -674,7 +674,6 @@ class Finder {
       T ny = lp.first.x * lq.second - lq.first.x * lp.second;
       return std::make_tuple(nx, ny, den);
     };
-    Rotation<TrigPoly> rp{poly_cos(false), poly_sin(false)};
     TrigPoly poly;
     {
       // the determinant from the lines computed once per segment

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -84,6 +85,55 @@ std::vector<std::pair<Rational, Rational>> star(Random& random, int k, double cx
     points.emplace_back(x, y);
   }
   return points;
+}
+
+algebra::Real real_of(const AlgebraicNumber& a) {
+  algebra::Real t;
+  t.polynomial = a.polynomial;
+  t.lower = a.lower;
+  t.upper = a.upper;
+  t.exact = a.exact;
+  return t;
+}
+
+// Slices at random rational angles inside each interval between two finite critical angles
+// have free cells in one-to-one correspondence with the interval's representative (a missed
+// critical angle shows as a cell without counterpart, or two cells on one).
+void expect_intervals_consistent(const SlicedSpace& space, Random& random) {
+  const auto& critical = space.critical_angles();
+  int checked = 0;
+  for (std::size_t i = 0; i < space.intervals().size(); ++i) {
+    const auto& interval = space.intervals()[i];
+    if (interval.lower_critical == no_index) continue;
+    const auto& lo = critical[interval.lower_critical];
+    const auto& hi = critical[interval.upper_critical];
+    if (lo.half_turn || hi.half_turn || interval.upper_critical <= interval.lower_critical) continue;
+    algebra::Real a = real_of(lo.t), b = real_of(hi.t);
+    while (!a.exact && !b.exact && a.upper >= b.lower) {
+      a.refine();
+      b.refine();
+    }
+    Rational from = a.exact ? a.lower : a.upper, to = b.exact ? b.lower : b.lower;
+    for (int k = 0; k < 2; ++k) {
+      Rational t = random_rational(random, from, to, 31);
+      if (a.compare(t) >= 0 || b.compare(t) <= 0) continue;
+      auto slice = space.slice(SlicedAngle{t, false});
+      std::set<std::size_t> seen;
+      std::size_t free_cells = 0;
+      for (const auto& cell : slice->cells()) {
+        if (cell.kind != CellKind::free) continue;
+        ++free_cells;
+        SlicedLocation l = space.locate(SlicedConfiguration{cell.sample_x, cell.sample_y, SlicedAngle{t, false}});
+        ASSERT_EQ(l.kind, SlicedLocation::Kind::free);
+        EXPECT_EQ(l.interval, i);
+        seen.insert(l.cell);
+      }
+      EXPECT_EQ(seen.size(), free_cells);
+      EXPECT_EQ(free_cells, interval.free_cells.size());
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 4);
 }
 
 SlicedLocation::Kind oracle(const Model& model, const SlicedConfiguration& q) {
@@ -237,6 +287,16 @@ TEST(Sliced, SquarePegInSquareHoleCriticalAngles) {
   EXPECT_TRUE(space.connected(outside, outside_half));
   SlicedConfiguration blocked{10, 0, SlicedAngle{0, false}};
   EXPECT_FALSE(space.connected(blocked, outside));
+  // the free cell in the hole ends at each angle where the free square shrinks to a point
+  int endings = 0, startings = 0;
+  for (const auto& crossing : space.crossings()) {
+    endings += static_cast<int>(crossing.ending.size());
+    startings += static_cast<int>(crossing.starting.size());
+  }
+  EXPECT_EQ(endings, 4);
+  EXPECT_EQ(startings, 4);
+  Random random(5);
+  expect_intervals_consistent(space, random);
 }
 
 // A hole wider than the peg's diagonal: the peg turns freely inside, no critical angle but the
@@ -314,6 +374,8 @@ void expect_corridor(int length) {
     ASSERT_EQ(space.locate(in_horizontal_arm).kind, SlicedLocation::Kind::free);
     ASSERT_EQ(space.locate(in_vertical_arm).kind, SlicedLocation::Kind::free);
     EXPECT_EQ(space.connected(in_horizontal_arm, in_vertical_arm), length == 6);
+    Random random(length);
+    expect_intervals_consistent(space, random);
   }
 }
 
