@@ -33,6 +33,7 @@ declare -A allowed=(
   [kinematics]="kinematics algebra curves core kernels"
   [tolerance]="tolerance core model kernels certify"
   [simulation]="simulation core kernels"
+  [sliced]="sliced algebra core model kernels"
   [certificates]="certificates certify core model kernels"
   [verifier]="certify core model io"
   [io]="io core"

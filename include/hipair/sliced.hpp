@@ -1,0 +1,165 @@
+// HIPAIR — sliced configuration spaces of 3-DOF pairs: a part free in the plane (motion
+// "planar": x, y and theta about its pivot) against a fixed part (Sacks & Bajaj's slicing).
+//
+// Coordinates. A configuration (x, y, theta) places the free part's body point q at
+// pivot + R(theta) (q - pivot) + (x, y). theta is carried exactly by its half-angle tangent
+// t = tan(theta/2) (rational t: an exact rational rotation) or is the half turn theta = pi.
+//
+// Structure. At a fixed rational rotation the slice is the C-space of a translating pair,
+// built exactly by the circle–segment arrangement stage and served by hipair::CSpace. The
+// critical angles (polygonal parts), where the free space of the slice changes its contact
+// structure, are exact algebraic numbers in t; between two consecutive critical angles the
+// slices are alike, one rational representative each; across each critical angle the free
+// cells of the two neighbouring intervals that connect are listed. Point location is exact
+// at every rational configuration; connectivity uses the cell structure (see docs/cspace.md,
+// "3-DOF pairs").
+#pragma once
+
+#include <hipair/cspace.hpp>
+#include <hipair/model.hpp>
+#include <hipair/rational.hpp>
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace hipair {
+
+/// An exact rotation angle: tan(theta/2) = t, or the half turn.
+struct SlicedAngle {
+  Rational t;
+  bool half_turn = false;   ///< theta = pi (t ignored)
+  /// The angle in radians (double, for display): 2 atan(t), or pi.
+  double radians() const;
+};
+
+/// A configuration of the free part relative to the fixed part.
+struct SlicedConfiguration {
+  Rational x, y;            ///< mm
+  SlicedAngle angle;
+};
+
+/// What a critical angle is (several may coincide).
+enum class CriticalEvent {
+  antiparallel_edges,   ///< an edge of the free part is antiparallel to an edge of the fixed
+                        ///< part: edge–edge contact, vertex–edge contacts change
+  vertex_on_contact,    ///< a vertex–vertex contact lies on another vertex–edge contact
+  three_contacts        ///< three vertex–edge contacts are concurrent
+};
+
+/// A critical angle: the half-angle tangent t is the unique root of `t_polynomial` in its
+/// isolating interval (AlgebraicNumber), or the half turn.
+struct CriticalAngle {
+  AlgebraicNumber t;
+  bool half_turn = false;
+  std::vector<CriticalEvent> events;   ///< kinds of event found there (distinct)
+  double degrees = 0;                  ///< approximate, for display
+};
+
+/// Result of exact point location in (x, y, theta).
+struct SlicedLocation {
+  enum class Kind { free, blocked, contact };
+  Kind kind = Kind::free;
+  /// The free cell of the interval holding the angle (when free and the angle is not
+  /// critical): an index into SlicedSpace::intervals()[interval].free_cells.
+  std::size_t interval = no_index;
+  std::size_t cell = no_index;
+};
+
+/// Free cells connected across a critical angle: left is a free cell of the interval before
+/// the critical angle (counter-clockwise order), right one of the interval after it.
+struct SlicedConnection {
+  std::size_t left_cell = no_index;
+  std::size_t right_cell = no_index;
+};
+
+/// One open interval of angles between two consecutive critical angles.
+struct SlicedInterval {
+  std::size_t lower_critical = no_index;   ///< index into critical_angles() (no_index: none at all)
+  std::size_t upper_critical = no_index;
+  SlicedAngle representative;              ///< a rational angle inside
+  /// Free cells of the representative slice: each the slice's CSpace cell index, and the
+  /// contact features on its boundary ("a loop 0 edge 3 / b vertex of loop 0 edge 1; ...").
+  struct Cell {
+    std::size_t slice_cell = no_index;
+    std::string contacts;
+    std::size_t component = no_index;      ///< connected component of the 3-D free space
+  };
+  std::vector<Cell> free_cells;
+};
+
+/// What happens across one critical angle.
+struct SlicedCrossing {
+  std::size_t critical = no_index;         ///< index into critical_angles()
+  std::size_t left_interval = no_index, right_interval = no_index;
+  std::vector<SlicedConnection> connections;
+  /// Free cells of the left interval ending at the critical angle (no continuation found), and
+  /// of the right interval starting there.
+  std::vector<std::size_t> ending, starting;
+};
+
+/// Options of a sliced build.
+struct SlicedBuildOptions {
+  /// Compute critical angles and the cell structure (polygonal parts only). Off: slices and
+  /// point location only (parts may have arcs).
+  bool cell_structure = true;
+};
+
+/// Counts and times of a sliced build.
+struct SlicedStatistics {
+  std::size_t candidate_polynomials = 0;   ///< event polynomials whose roots were isolated
+  std::size_t candidate_roots = 0;         ///< roots inside the features' extents
+  std::size_t irrelevant_roots = 0;        ///< certified inside blocked space: no change
+  std::size_t slices_built = 0;
+  double seconds_critical = 0;
+  double seconds_slices = 0;
+  double seconds_total = 0;
+};
+
+/// The sliced 3-D C-space of a free (planar) part against a fixed part.
+class SlicedSpace {
+ public:
+  struct Impl;
+
+  /// \throws ModelError for unknown part names; GeometryError when `fixed_part` is not fixed,
+  /// `free_part` is not planar, or (with the cell structure) a part has arcs.
+  static SlicedSpace build(const Model& model, std::string_view fixed_part, std::string_view free_part,
+                           const SlicedBuildOptions& options = {});
+
+  const std::string& fixed_part() const;
+  const std::string& free_part() const;
+
+  /// The slice at an exact rotation: the translating C-space in (x, y), built on demand and
+  /// cached. Its x axis is x, its y axis is y (chart coordinates = mm).
+  std::shared_ptr<const CSpace> slice(const SlicedAngle& angle) const;
+  /// The chart box of every slice: [-bound, bound]^2; outside it the parts are apart.
+  const Rational& bound() const;
+
+  /// Exact point location (any rational configuration; inside a free cell of the structure
+  /// when the cell structure was built and the angle is not critical).
+  SlicedLocation locate(const SlicedConfiguration& configuration) const;
+
+  /// Critical angles in counter-clockwise order from theta = -pi (t = -infinity) to pi.
+  const std::vector<CriticalAngle>& critical_angles() const;
+  /// Intervals between consecutive critical angles (interval i lies after critical angle i;
+  /// the last wraps around theta = pi when pi is not critical).
+  const std::vector<SlicedInterval>& intervals() const;
+  const std::vector<SlicedCrossing>& crossings() const;
+  /// Number of connected components of the free space.
+  std::size_t components() const;
+
+  /// Are two free configurations connected through free space? false when either is not free.
+  bool connected(const SlicedConfiguration& a, const SlicedConfiguration& b) const;
+  /// The 3-D free component of a free configuration (no_index when not free).
+  std::size_t component_of(const SlicedConfiguration& configuration) const;
+
+  const SlicedStatistics& statistics() const;
+
+ private:
+  std::shared_ptr<Impl> impl_;
+};
+
+}  // namespace hipair

@@ -1,0 +1,878 @@
+// Critical angles of a free polygonal part against a fixed one (see critical_angles.hpp).
+#include "sliced/critical_angles.hpp"
+
+#include <hipair/error.hpp>
+#include <hipair/overlap.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <array>
+#include <optional>
+#include <tuple>
+#include <type_traits>
+
+namespace hipair::sliced {
+namespace {
+
+namespace algebra = cspace::algebra;
+using algebra::Real;
+
+// ---------------------------------------------------------------- number types
+// Three arithmetics run the same formulas: TrigPoly (a polynomial in u over (1 + u^2)^w:
+// the event polynomials), Rational (exact values at a rational rotation) and Box (exact
+// rational intervals: enclosures over an interval of u).
+
+struct TrigPoly {
+  std::vector<Rational> c;   // ascending powers of u
+  int w = 0;                 // value = c(u) / (1 + u^2)^w
+  TrigPoly() = default;
+  TrigPoly(const Rational& r) : c{r} {}   // NOLINT: implicit, as for the other number types
+  bool zero() const {
+    for (const auto& x : c)
+      if (sgn(x) != 0) return false;
+    return true;
+  }
+};
+
+TrigPoly lift(TrigPoly a, int w) {
+  while (a.w < w) {
+    std::vector<Rational> out(a.c.size() + 2, Rational(0));
+    for (std::size_t i = 0; i < a.c.size(); ++i) {
+      out[i] += a.c[i];
+      out[i + 2] += a.c[i];
+    }
+    a.c = std::move(out);
+    ++a.w;
+  }
+  return a;
+}
+
+TrigPoly operator+(const TrigPoly& x, const TrigPoly& y) {
+  int w = std::max(x.w, y.w);
+  TrigPoly a = lift(x, w), b = lift(y, w);
+  if (a.c.size() < b.c.size()) a.c.resize(b.c.size(), Rational(0));
+  for (std::size_t i = 0; i < b.c.size(); ++i) a.c[i] += b.c[i];
+  return a;
+}
+TrigPoly operator-(const TrigPoly& x) {
+  TrigPoly a = x;
+  for (auto& v : a.c) v = -v;
+  return a;
+}
+TrigPoly operator-(const TrigPoly& x, const TrigPoly& y) { return x + (-y); }
+TrigPoly operator*(const TrigPoly& x, const TrigPoly& y) {
+  TrigPoly a;
+  a.w = x.w + y.w;
+  a.c.assign(x.c.size() + y.c.size(), Rational(0));
+  for (std::size_t i = 0; i < x.c.size(); ++i)
+    if (sgn(x.c[i]) != 0)
+      for (std::size_t j = 0; j < y.c.size(); ++j) a.c[i + j] += x.c[i] * y.c[j];
+  return a;
+}
+
+// Divides out the factors (1 + u^2) of the numerator (same value, lower degree).
+TrigPoly reduced(TrigPoly a) {
+  while (a.w > 0 && a.c.size() >= 3) {
+    std::vector<Rational> r = a.c, q(a.c.size() - 2, Rational(0));
+    for (std::size_t i = r.size() - 1; i >= 2; --i) {
+      q[i - 2] = r[i];
+      r[i - 2] -= r[i];
+      r[i] = 0;
+    }
+    if (sgn(r[0]) != 0 || sgn(r[1]) != 0) break;
+    a.c = std::move(q);
+    --a.w;
+  }
+  return a;
+}
+
+// The integer polynomial with the same sign as the numerator (positive scaling).
+algebra::Polynomial integer_numerator(const TrigPoly& unreduced) {
+  const TrigPoly p = reduced(unreduced);
+  mpz_class lcm = 1;
+  for (const auto& q : p.c) mpz_lcm(lcm.get_mpz_t(), lcm.get_mpz_t(), q.get_den_mpz_t());
+  algebra::Polynomial out;
+  for (const auto& q : p.c) out.push_back(q.get_num() * (lcm / q.get_den()));
+  algebra::trim(out);
+  return out;
+}
+
+struct Box {
+  Rational lo, hi;
+  Box() = default;
+  Box(const Rational& r) : lo(r), hi(r) {}   // NOLINT
+  Box(Rational l, Rational h) : lo(std::move(l)), hi(std::move(h)) {}
+};
+Box operator+(const Box& a, const Box& b) { return {a.lo + b.lo, a.hi + b.hi}; }
+Box operator-(const Box& a) { return {-a.hi, -a.lo}; }
+Box operator-(const Box& a, const Box& b) { return {a.lo - b.hi, a.hi - b.lo}; }
+Box operator*(const Box& a, const Box& b) {
+  Rational p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
+  return {*std::min_element(p, p + 4), *std::max_element(p, p + 4)};
+}
+// a / b, b not containing zero.
+std::optional<Box> divide(const Box& a, const Box& b) {
+  if (sgn(b.lo) <= 0 && sgn(b.hi) >= 0) return std::nullopt;
+  Box inverse{1 / b.hi, 1 / b.lo};
+  return a * inverse;
+}
+Rational mid(const Box& b) { return (b.lo + b.hi) / 2; }
+
+template <class T>
+struct Vec {
+  T x, y;
+};
+template <class T>
+Vec<T> operator+(const Vec<T>& a, const Vec<T>& b) {
+  return {a.x + b.x, a.y + b.y};
+}
+template <class T>
+Vec<T> operator-(const Vec<T>& a, const Vec<T>& b) {
+  return {a.x - b.x, a.y - b.y};
+}
+template <class T>
+Vec<T> scale(const T& k, const Vec<T>& a) {
+  return {k * a.x, k * a.y};
+}
+template <class T>
+T cross(const Vec<T>& a, const Vec<T>& b) {
+  return a.x * b.y - a.y * b.x;
+}
+template <class T>
+T dot(const Vec<T>& a, const Vec<T>& b) {
+  return a.x * b.x + a.y * b.y;
+}
+template <class T>
+Vec<T> lift_point(const Point& p) {
+  return {T(p.x), T(p.y)};
+}
+
+template <class T>
+struct Rotation {
+  T c, s;
+  Vec<T> apply(const Vec<T>& v) const { return {c * v.x - s * v.y, s * v.x + c * v.y}; }
+};
+
+TrigPoly poly_cos(bool flip) {
+  TrigPoly c;
+  c.c = {Rational(1), Rational(0), Rational(-1)};
+  c.w = 1;
+  return flip ? -c : c;
+}
+TrigPoly poly_sin(bool flip) {
+  TrigPoly s;
+  s.c = {Rational(0), Rational(2)};
+  s.w = 1;
+  return flip ? -s : s;
+}
+
+// cos, sin enclosures over u in [lo, hi] (any interval; flip: the half turn added).
+Rotation<Box> rotation_box(const Rational& lo, const Rational& hi, bool flip) {
+  Box u{lo, hi};
+  Box u2 = u * u;
+  if (sgn(lo) <= 0 && sgn(hi) >= 0) u2.lo = 0;
+  Box one(Rational(1));
+  Box den = one + u2;   // > 0
+  Box c = *divide(one - u2, den);
+  Box s = *divide(Box(Rational(2)) * u, den);
+  // clamp to [-1, 1] (true values lie there)
+  auto clamp = [](Box b) {
+    if (b.lo < -1) b.lo = -1;
+    if (b.hi > 1) b.hi = 1;
+    return b;
+  };
+  // rounded outwards to dyadics of 64 bits (keeps the enclosures' numbers small)
+  auto outward = [](Box b) {
+    const mpz_class scale = mpz_class(1) << 64;
+    mpz_class lo, hi;
+    mpz_class n = b.lo.get_num() * scale;
+    mpz_fdiv_q(lo.get_mpz_t(), n.get_mpz_t(), b.lo.get_den_mpz_t());
+    n = b.hi.get_num() * scale;
+    mpz_cdiv_q(hi.get_mpz_t(), n.get_mpz_t(), b.hi.get_den_mpz_t());
+    Box out{Rational(lo, scale), Rational(hi, scale)};
+    out.lo.canonicalize();
+    out.hi.canonicalize();
+    return out;
+  };
+  c = clamp(outward(c));
+  s = clamp(outward(s));
+  if (flip) return {-c, -s};
+  return {c, s};
+}
+
+// ---------------------------------------------------------------- the pair's formulas
+
+// Contact segments: vertex of B on edge of A (ab), vertex of A on edge of B (ba); endpoints are
+// vertex–vertex translations V(i, j) = a_i - R u_j.
+struct Segment {
+  bool ab = true;
+  std::size_t i0, j0, i1, j1;   // endpoints V(i0, j0), V(i1, j1)
+  std::size_t edge;             // A edge (ab) or B edge (ba)
+};
+
+template <class T>
+Vec<T> vv(const PolygonalPair& g, const Rotation<T>& r, std::size_t i, std::size_t j) {
+  return lift_point<T>(g.a[i]) - r.apply(lift_point<T>(g.u[j]));
+}
+
+// Is the (world, rational) point strictly inside the region of loops (material left)?
+// Crossing parity over every loop; false on the boundary.
+int region_side(const std::vector<Loop>& loops, const Rational& x, const Rational& y) {
+  bool inside = false;
+  for (const auto& loop : loops)
+    for (const auto& e : loop.edges) {
+      const Point &p = e.source, &q = e.target;
+      Rational cr = (q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x);
+      if (sgn(cr) == 0 && std::min(p.x, q.x) <= x && x <= std::max(p.x, q.x) && std::min(p.y, q.y) <= y &&
+          y <= std::max(p.y, q.y))
+        return 0;   // on the boundary
+      if ((p.y <= y) != (q.y <= y)) {
+        Rational x_cross = p.x + (y - p.y) * (q.x - p.x) / (q.y - p.y);
+        if (x_cross > x) inside = !inside;
+      }
+    }
+  return inside ? 1 : -1;
+}
+
+// Does the closed segment pq meet the closed box [x0, x1] x [y0, y1]? (Liang–Barsky, exact.)
+bool segment_meets_box(const Point& p, const Point& q, const Box& bx, const Box& by) {
+  Rational t0 = 0, t1 = 1;
+  Rational d[2] = {q.x - p.x, q.y - p.y};
+  Rational s[2] = {p.x, p.y};
+  const Box* b[2] = {&bx, &by};
+  for (int k = 0; k < 2; ++k) {
+    if (sgn(d[k]) == 0) {
+      if (s[k] < b[k]->lo || s[k] > b[k]->hi) return false;
+      continue;
+    }
+    Rational ta = (b[k]->lo - s[k]) / d[k], tb = (b[k]->hi - s[k]) / d[k];
+    if (ta > tb) std::swap(ta, tb);
+    if (ta > t0) t0 = ta;
+    if (tb < t1) t1 = tb;
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+// Is the box strictly inside the part's region (world coordinates of its zero configuration)?
+bool box_inside(const Part& part, const Box& bx, const Box& by) {
+  // a corner strictly inside (cheap: most probes fail here), and no boundary in the box
+  if (region_side(part.loops, bx.lo, by.lo) <= 0) return false;
+  for (const auto& loop : part.loops)
+    for (const auto& e : loop.edges)
+      if (segment_meets_box(e.source, e.target, bx, by)) return false;
+  return true;
+}
+
+class Finder {
+ public:
+  Finder(const PolygonalPair& g, CriticalStatistics& stats) : g_(g), stats_(stats) {
+    // probe points (relative to the pivot): vertices and edge midpoints of each part
+    for (const auto& v : g.u) probes_free_.push_back(v);
+    for (const auto& [m0, m1] : g.b_edges)
+      probes_free_.push_back(Point{Rational((g.u[m0].x + g.u[m1].x) / 2), Rational((g.u[m0].y + g.u[m1].y) / 2)});
+    for (const auto& v : g.a) probes_fixed_.push_back(v);
+    for (const auto& [k0, k1] : g.a_edges)
+      probes_fixed_.push_back(Point{Rational((g.a[k0].x + g.a[k1].x) / 2), Rational((g.a[k0].y + g.a[k1].y) / 2)});
+    for (std::size_t k = 0; k < g.a_edges.size(); ++k)
+      for (std::size_t j = 0; j < g.u.size(); ++j)
+        segments_.push_back({true, g.a_edges[k].first, j, g.a_edges[k].second, j, k});
+    for (std::size_t i = 0; i < g.a.size(); ++i)
+      for (std::size_t m = 0; m < g.b_edges.size(); ++m)
+        segments_.push_back({false, i, g.b_edges[m].first, i, g.b_edges[m].second, m});
+  }
+
+  std::vector<Critical> run() {
+    compute_masks();
+    antiparallel();
+    vertex_on_segment();
+    parallel_overlap();
+    three_concurrent();
+    // sort and merge
+    std::sort(found_.begin(), found_.end(), [](const Critical& a, const Critical& b) {
+      if (a.half_turn != b.half_turn) return !a.half_turn;
+      if (a.half_turn) return false;
+      return algebra::compare(a.t, b.t) < 0;
+    });
+    std::vector<Critical> out;
+    for (auto& c : found_) {
+      bool same = !out.empty() && out.back().half_turn == c.half_turn &&
+                  (c.half_turn || algebra::compare(out.back().t, c.t) == 0);
+      if (same) {
+        for (auto e : c.events)
+          if (std::find(out.back().events.begin(), out.back().events.end(), e) == out.back().events.end())
+            out.back().events.push_back(e);
+        continue;
+      }
+      out.push_back(std::move(c));
+    }
+    return out;
+  }
+
+ private:
+  template <class T>
+  Vec<T> endpoint(const Rotation<T>& r, const Segment& s, bool second) const {
+    return second ? vv(g_, r, s.i1, s.j1) : vv(g_, r, s.i0, s.j0);
+  }
+
+  // ------------------------------------------------------------ prefilter masks
+  // 64 ranges of the angle (32 of u in [-1, 1], 32 of the half-turn chart); bit r of a
+  // segment pair's mask: their bounding boxes meet over range r (certified, exact rationals).
+  void compute_masks() {
+    const std::size_t n = segments_.size();
+    std::vector<std::vector<std::pair<Box, Box>>> boxes(n);
+    std::vector<std::vector<std::pair<Box, Box>>> vbox(g_.a.size() * g_.u.size());
+    for (int r = 0; r < 64; ++r) {
+      bool flip = r >= 32;
+      int k = r % 32;
+      Rational lo(k - 16, 16), hi(k - 15, 16);
+      lo.canonicalize();
+      hi.canonicalize();
+      Rotation<Box> rot = rotation_box(lo, hi, flip);
+      for (std::size_t i = 0; i < g_.a.size(); ++i)
+        for (std::size_t j = 0; j < g_.u.size(); ++j) {
+          auto v = vv(g_, rot, i, j);
+          vbox[i * g_.u.size() + j].push_back({v.x, v.y});
+        }
+      for (std::size_t s = 0; s < n; ++s) {
+        const auto& p = vbox[segments_[s].i0 * g_.u.size() + segments_[s].j0].back();
+        const auto& q = vbox[segments_[s].i1 * g_.u.size() + segments_[s].j1].back();
+        boxes[s].push_back({Box{std::min(p.first.lo, q.first.lo), std::max(p.first.hi, q.first.hi)},
+                            Box{std::min(p.second.lo, q.second.lo), std::max(p.second.hi, q.second.hi)}});
+      }
+    }
+    auto meet = [](const std::pair<Box, Box>& a, const std::pair<Box, Box>& b) {
+      return !(a.first.hi < b.first.lo || b.first.hi < a.first.lo || a.second.hi < b.second.lo || b.second.hi < a.second.lo);
+    };
+    masks_.assign(n * n, 0);
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = a + 1; b < n; ++b) {
+        std::uint64_t m = 0;
+        for (int r = 0; r < 64; ++r)
+          if (meet(boxes[a][r], boxes[b][r])) m |= std::uint64_t(1) << r;
+        masks_[a * n + b] = masks_[b * n + a] = m;
+      }
+    vmasks_.assign(vbox.size() * n, 0);
+    for (std::size_t v = 0; v < vbox.size(); ++v)
+      for (std::size_t s = 0; s < n; ++s) {
+        std::uint64_t m = 0;
+        for (int r = 0; r < 64; ++r)
+          if (meet(vbox[v][r], boxes[s][r])) m |= std::uint64_t(1) << r;
+        vmasks_[v * n + s] = m;
+      }
+  }
+
+  Vec<Rational> edge_a(std::size_t k) const {
+    const auto& e = g_.a_edges[k];
+    return lift_point<Rational>(g_.a[e.second]) - lift_point<Rational>(g_.a[e.first]);
+  }
+  Vec<Rational> edge_b(std::size_t m) const {
+    const auto& e = g_.b_edges[m];
+    return lift_point<Rational>(g_.u[e.second]) - lift_point<Rational>(g_.u[e.first]);
+  }
+  // Are the lines of two segments parallel at every angle?
+  bool always_parallel(const Segment& s, const Segment& t) const {
+    if (s.ab != t.ab) return false;
+    return s.ab ? sgn(cross(edge_a(s.edge), edge_a(t.edge))) == 0 : sgn(cross(edge_b(s.edge), edge_b(t.edge))) == 0;
+  }
+
+  // ------------------------------------------------------------ relevance
+  // Is the configuration (point(c, s), theta) certainly overlapping (inside blocked space)?
+  template <class PointOf>
+  bool certainly_blocked(const Real& root, bool half_turn, PointOf point_of) {
+    if (half_turn || root.exact) {
+      Rotation<Rational> r = half_turn ? Rotation<Rational>{Rational(-1), Rational(0)} : exact_rotation(root.lower);
+      std::optional<Vec<Rational>> p = point_of(r);
+      if (!p) return false;
+      auto relation = part_overlap(*g_.fixed, Placement{}, *g_.free, placement_about(g_.pivot, r.c, r.s, Point{p->x, p->y}));
+      return relation.relation == PartRelation::overlapping;
+    }
+    Real t = root;
+    for (int bits : {20, 52}) {
+      algebra::refine_dyadically(t, Rational(1) / Rational(mpz_class(1) << bits));
+      if (t.exact) return certainly_blocked(t, false, point_of);
+      Rotation<Box> rb = rotation_box(t.lower, t.upper, false);
+      std::optional<Vec<Box>> pb = point_of(rb);
+      if (!pb) continue;
+      // a vertex or edge midpoint of one part certainly strictly inside the other
+      for (const auto& u : probes_free_) {
+        Vec<Box> w = rb.apply(Vec<Box>{Box(u.x), Box(u.y)});
+        if (box_inside(*g_.fixed, w.x + pb->x + Box(g_.pivot.x), w.y + pb->y + Box(g_.pivot.y))) return true;
+      }
+      for (const auto& a : probes_fixed_) {
+        Vec<Box> rel{Box(a.x) - pb->x, Box(a.y) - pb->y};
+        if (box_inside(*g_.free, rb.c * rel.x + rb.s * rel.y + Box(g_.pivot.x), rb.c * rel.y - rb.s * rel.x + Box(g_.pivot.y)))
+          return true;
+      }
+      Rotation<Rational> rm = exact_rotation(mid(Box{t.lower, t.upper}));
+      Point d{mid(pb->x), mid(pb->y)};
+      auto relation = part_overlap(*g_.fixed, Placement{}, *g_.free, placement_about(g_.pivot, rm.c, rm.s, d), true);
+      // a configuration of the enclosure that is not overlapping: no certificate (kept)
+      if (relation.relation != PartRelation::overlapping) return false;
+      if (!relation.witness) continue;
+      // the witness w (world) is inside the fixed part; in the free part's body it is
+      // p + R^T (w - p - d) over every (c, s, d) of the enclosure
+      Vec<Box> rel{Box(relation.witness->x - g_.pivot.x) - pb->x, Box(relation.witness->y - g_.pivot.y) - pb->y};
+      Box bx = rb.c * rel.x + rb.s * rel.y + Box(g_.pivot.x);
+      Box by = rb.c * rel.y - rb.s * rel.x + Box(g_.pivot.y);
+      if (box_inside(*g_.free, bx, by)) return true;
+    }
+    return false;
+  }
+
+  static Rotation<Rational> exact_rotation(Rational u) {
+    u.canonicalize();
+    Rational d = 1 + u * u;
+    return {Rational((1 - u * u) / d), Rational(2 * u / d)};
+  }
+
+  // Records the roots of `poly` (and the half turn when `at_half_turn` vanishes) that pass
+  // `accept` (exact extents) and are not certainly inside blocked space.
+  template <class Accept, class PointOf>
+  void roots_of(const TrigPoly& poly, CriticalEvent kind, std::uint64_t mask, Accept accept, PointOf point_of,
+                const Rational& at_half_turn, bool half_turn_ok) {
+    if (poly.zero()) return;
+    ++stats_.polynomials;
+    algebra::Polynomial p = integer_numerator(poly);
+    if (algebra::degree(p) >= 1) {
+      for (Real root : algebra::real_roots(algebra::square_free_part(p))) {
+        root.detect_rational();
+        if (!accept(root)) continue;
+        ++stats_.roots;
+        if (certainly_blocked(root, false, point_of)) {
+          ++stats_.irrelevant;
+          continue;
+        }
+        found_.push_back(Critical{false, root, {kind}});
+      }
+    }
+    if (sgn(at_half_turn) == 0 && half_turn_ok && (mask >> 32) != 0) {
+      ++stats_.roots;
+      if (certainly_blocked(Real{}, true, point_of)) {
+        ++stats_.irrelevant;
+        return;
+      }
+      found_.push_back(Critical{true, Real{}, {kind}});
+    }
+  }
+
+  // ------------------------------------------------------------ events
+
+  void antiparallel() {
+    for (std::size_t k = 0; k < g_.a_edges.size(); ++k)
+      for (std::size_t m = 0; m < g_.b_edges.size(); ++m) {
+        Vec<Rational> ea = edge_a(k), eb = edge_b(m);
+        Rotation<TrigPoly> r{poly_cos(false), poly_sin(false)};
+        Vec<TrigPoly> reb = r.apply(Vec<TrigPoly>{TrigPoly(eb.x), TrigPoly(eb.y)});
+        Vec<TrigPoly> eat{TrigPoly(ea.x), TrigPoly(ea.y)};
+        TrigPoly poly = cross(eat, reb);
+        TrigPoly sense = dot(eat, reb);
+        algebra::Polynomial sense_p = integer_numerator(sense);
+        const auto& ae = g_.a_edges[k];
+        const auto& be = g_.b_edges[m];
+        // the edge–edge contact locus: the hull of the four vertex–vertex points; probed at
+        // the four and their centroid
+        auto probes = [&](auto rot) {
+          using T = std::decay_t<decltype(rot.c)>;
+          std::vector<Vec<T>> out;
+          Vec<T> sum{T(Rational(0)), T(Rational(0))};
+          for (std::size_t i : {ae.first, ae.second})
+            for (std::size_t j : {be.first, be.second}) {
+              out.push_back(vv(g_, rot, i, j));
+              sum = sum + out.back();
+            }
+          out.push_back(scale(T(Rational(1, 4)), sum));
+          return out;
+        };
+        auto accept = [&](const Real& root) { return algebra::sign_at(sense_p, root) < 0; };
+        if (poly.zero()) continue;
+        ++stats_.polynomials;
+        algebra::Polynomial p = integer_numerator(poly);
+        auto consider = [&](const Real& root, bool half_turn) {
+          ++stats_.roots;
+          bool all_blocked = true;
+          for (int probe = 0; probe < 5 && all_blocked; ++probe) {
+            auto point_of = [&](auto rot) { return std::optional(probes(rot)[probe]); };
+            if (!certainly_blocked(root, half_turn, point_of)) all_blocked = false;
+          }
+          if (all_blocked) {
+            ++stats_.irrelevant;
+            return;
+          }
+          found_.push_back(Critical{half_turn, root, {CriticalEvent::antiparallel_edges}});
+        };
+        if (algebra::degree(p) >= 1)
+          for (Real root : algebra::real_roots(algebra::square_free_part(p))) {
+            root.detect_rational();
+            if (accept(root)) consider(root, false);
+          }
+        // half turn: R = -I
+        Vec<Rational> minus_eb{-eb.x, -eb.y};
+        if (sgn(cross(ea, minus_eb)) == 0 && sgn(dot(ea, minus_eb)) < 0) consider(Real{}, true);
+      }
+  }
+
+  // Two always-parallel contact segments become collinear (e.g. the free strip between two
+  // parallel walls closes): the event holds along their overlap, probed at the four endpoints
+  // and their six pairwise midpoints (the overlap's ends and middle are among them).
+  void parallel_overlap() {
+    const std::size_t n = segments_.size();
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = a + 1; b < n; ++b) {
+        const Segment &s = segments_[a], &t = segments_[b];
+        if (masks_[a * n + b] == 0 || !always_parallel(s, t)) continue;
+        auto probes = [&](auto rot) {
+          using T = std::decay_t<decltype(rot.c)>;
+          Vec<T> e[4] = {endpoint(rot, s, false), endpoint(rot, s, true), endpoint(rot, t, false), endpoint(rot, t, true)};
+          std::vector<Vec<T>> out(e, e + 4);
+          for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j) out.push_back(scale(T(Rational(1, 2)), e[i] + e[j]));
+          return out;
+        };
+        // signs that put probe k on both segments (all >= 0)
+        auto within = [&](auto rot, std::size_t k) {
+          using T = std::decay_t<decltype(rot.c)>;
+          Vec<T> q = probes(rot)[k];
+          std::vector<T> out;
+          for (const Segment* x : {&s, &t}) {
+            Vec<T> p0 = endpoint(rot, *x, false), d = endpoint(rot, *x, true) - p0, w = q - p0;
+            T along = dot(w, d);
+            out.push_back(along);
+            out.push_back(dot(d, d) - along);
+          }
+          return out;
+        };
+        Rotation<TrigPoly> rp{poly_cos(false), poly_sin(false)};
+        TrigPoly poly;
+        {
+          Vec<TrigPoly> p0 = endpoint(rp, s, false), d = endpoint(rp, s, true) - p0;
+          poly = cross(endpoint(rp, t, false) - p0, d);
+        }
+        if (poly.zero()) continue;   // on one line at every angle
+        ++stats_.polynomials;
+        std::vector<std::vector<algebra::Polynomial>> ext(10);
+        for (std::size_t k = 0; k < 10; ++k)
+          for (const auto& q : within(rp, k)) ext[k].push_back(integer_numerator(q));
+        auto consider = [&](const Real& root, bool half_turn, const std::vector<bool>& inside) {
+          ++stats_.roots;
+          for (std::size_t k = 0; k < 10; ++k) {
+            if (!inside[k]) continue;
+            auto point_of = [&](auto rot) { return std::optional(probes(rot)[k]); };
+            if (!certainly_blocked(root, half_turn, point_of)) {
+              found_.push_back(Critical{half_turn, root, {CriticalEvent::vertex_on_contact}});
+              return;
+            }
+          }
+          ++stats_.irrelevant;
+        };
+        algebra::Polynomial p = integer_numerator(poly);
+        if (algebra::degree(p) >= 1)
+          for (Real root : algebra::real_roots(algebra::square_free_part(p))) {
+            root.detect_rational();
+            std::vector<bool> inside(10, true);
+            bool any = false;
+            for (std::size_t k = 0; k < 10; ++k) {
+              for (const auto& q : ext[k])
+                if (algebra::sign_at(q, root) < 0) inside[k] = false;
+              any = any || inside[k];
+            }
+            if (any) consider(root, false, inside);
+          }
+        Rotation<Rational> half{Rational(-1), Rational(0)};
+        Vec<Rational> h0 = endpoint(half, s, false), hd = endpoint(half, s, true) - h0;
+        if (sgn(cross(endpoint(half, t, false) - h0, hd)) == 0 && (masks_[a * n + b] >> 32) != 0) {
+          std::vector<bool> inside(10, true);
+          bool any = false;
+          for (std::size_t k = 0; k < 10; ++k) {
+            for (const auto& q : within(half, k))
+              if (sgn(q) < 0) inside[k] = false;
+            any = any || inside[k];
+          }
+          if (any) consider(Real{}, true, inside);
+        }
+      }
+  }
+
+  void vertex_on_segment() {
+    const std::size_t n = segments_.size();
+    for (std::size_t i = 0; i < g_.a.size(); ++i)
+      for (std::size_t j = 0; j < g_.u.size(); ++j)
+        for (std::size_t si = 0; si < n; ++si) {
+          const Segment& s = segments_[si];
+          if ((s.i0 == i && s.j0 == j) || (s.i1 == i && s.j1 == j)) continue;
+          std::uint64_t mask = vmasks_[(i * g_.u.size() + j) * n + si];
+          if (mask == 0) continue;
+          auto quantities = [&](auto rot) {
+            using T = std::decay_t<decltype(rot.c)>;
+            Vec<T> v = vv(g_, rot, i, j), p0 = endpoint(rot, s, false), p1 = endpoint(rot, s, true);
+            Vec<T> d = p1 - p0, w = v - p0;
+            return std::array<T, 3>{cross(w, d), dot(w, d), dot(d, d) - dot(w, d)};
+          };
+          Rotation<TrigPoly> rp{poly_cos(false), poly_sin(false)};
+          auto q = quantities(rp);
+          algebra::Polynomial lower = integer_numerator(q[1]), upper = integer_numerator(q[2]);
+          auto accept = [&](const Real& root) {
+            return algebra::sign_at(lower, root) >= 0 && algebra::sign_at(upper, root) >= 0;
+          };
+          auto point_of = [&](auto rot) { return std::optional(vv(g_, rot, i, j)); };
+          Rotation<Rational> half{Rational(-1), Rational(0)};
+          auto qh = quantities(half);
+          roots_of(q[0], CriticalEvent::vertex_on_contact, mask, accept, point_of, qh[0],
+                   sgn(qh[1]) >= 0 && sgn(qh[2]) >= 0);
+        }
+  }
+
+  void three_concurrent() {
+    const std::size_t n = segments_.size();
+    Rotation<TrigPoly> rp{poly_cos(false), poly_sin(false)};
+    for (const auto& segment : segments_) {
+      auto line = line_of(rp, segment);
+      lines_.emplace_back(Vec<TrigPoly>{reduced(line.first.x), reduced(line.first.y)}, reduced(line.second));
+    }
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = a + 1; b < n; ++b) {
+        std::uint64_t mab = masks_[a * n + b];
+        if (mab == 0 || always_parallel(segments_[a], segments_[b])) continue;
+        for (std::size_t c = b + 1; c < n; ++c) {
+          std::uint64_t mask = mab & masks_[a * n + c] & masks_[b * n + c];
+          if (mask == 0) continue;
+          if (always_parallel(segments_[a], segments_[c]) || always_parallel(segments_[b], segments_[c])) continue;
+          triple(a, b, c, mask);
+        }
+      }
+  }
+
+  // Line n . X = h through a segment.
+  template <class T>
+  std::pair<Vec<T>, T> line_of(const Rotation<T>& r, const Segment& s) const {
+    Vec<T> p0 = endpoint(r, s, false), p1 = endpoint(r, s, true);
+    Vec<T> d = p1 - p0;
+    Vec<T> nn{-d.y, d.x};
+    return {nn, dot(nn, p0)};
+  }
+
+  void triple(std::size_t i1, std::size_t i2, std::size_t i3, std::uint64_t mask) {
+    const Segment &s1 = segments_[i1], &s2 = segments_[i2], &s3 = segments_[i3];
+    const Segment* s[3] = {&s1, &s2, &s3};
+    // determinant and the meeting point (Cramer, from the first two lines whose denominator
+    // does not vanish), with extents checked on all three
+    auto det_of = [&](auto rot) {
+      using T = std::decay_t<decltype(rot.c)>;
+      auto l1 = line_of(rot, s1), l2 = line_of(rot, s2), l3 = line_of(rot, s3);
+      auto& n1 = l1.first;
+      auto& n2 = l2.first;
+      auto& n3 = l3.first;
+      return T(n1.x * (n2.y * l3.second - l2.second * n3.y) - n1.y * (n2.x * l3.second - l2.second * n3.x) +
+               l1.second * (n2.x * n3.y - n2.y * n3.x));
+    };
+    // point of lines (p, q): num / den
+    auto meet = [&](auto rot, int p, int q) {
+      using T = std::decay_t<decltype(rot.c)>;
+      auto lp = line_of(rot, *s[p]), lq = line_of(rot, *s[q]);
+      T den = cross(lp.first, lq.first);
+      T nx = lp.second * lq.first.y - lq.second * lp.first.y;
+      T ny = lp.first.x * lq.second - lq.first.x * lp.second;
+      return std::make_tuple(nx, ny, den);
+    };
+    TrigPoly poly;
+    {
+      // the determinant from the lines computed once per segment
+      const auto &l1 = lines_[i1], &l2 = lines_[i2], &l3 = lines_[i3];
+      const auto &n1 = l1.first, &n2 = l2.first, &n3 = l3.first;
+      poly = reduced(n1.x * (n2.y * l3.second - l2.second * n3.y) - n1.y * (n2.x * l3.second - l2.second * n3.x) +
+                     l1.second * (n2.x * n3.y - n2.y * n3.x));
+    }
+    // exact extents at a root: lambda_k = dot(num - den p0, d) / (den |d|^2) in [0, 1]
+    auto extent_polys = [&](auto rot, int p, int q) {
+      auto [nx, ny, den] = meet(rot, p, q);
+      using T = std::decay_t<decltype(den)>;
+      std::vector<T> out{den};
+      for (int k = 0; k < 3; ++k) {
+        Vec<T> p0 = endpoint(rot, *s[k], false), p1 = endpoint(rot, *s[k], true);
+        Vec<T> d = p1 - p0;
+        Vec<T> num{nx - den * p0.x, ny - den * p0.y};
+        T lam = dot(num, d);
+        out.push_back(lam * den);                         // >= 0
+        out.push_back(den * den * dot(d, d) - lam * den); // >= 0
+      }
+      return out;
+    };
+    const int pairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+    int chosen = -1;   // the pair used for the point (set by accept)
+    auto accept_exact = [&](const Real& t) {
+      Rotation<Rational> r = exact_rotation(t.lower);
+      for (int k = 0; k < 3; ++k) {
+        auto e = extent_polys(r, pairs[k][0], pairs[k][1]);
+        if (sgn(e[0]) == 0) continue;
+        for (std::size_t m = 1; m < e.size(); ++m)
+          if (sgn(e[m]) < 0) return false;
+        chosen = k;
+        return true;
+      }
+      return false;
+    };
+    // Extents at a root: exactly at a rational root; at an irrational one by an enclosure over
+    // a narrow isolating interval, a sign the enclosure leaves open counting as inside (the
+    // point is at a segment's end: an event anyway, or so close to one that keeping it only
+    // adds a critical angle, still subject to the blocked-space test).
+    auto accept = [&](const Real& root) {
+      chosen = -1;
+      if (root.exact) {
+        Rotation<Rational> r = exact_rotation(root.lower);
+        for (int k = 0; k < 3; ++k) {
+          auto e = extent_polys(r, pairs[k][0], pairs[k][1]);
+          if (sgn(e[0]) == 0) continue;
+          for (std::size_t m = 1; m < e.size(); ++m)
+            if (sgn(e[m]) < 0) return false;
+          chosen = k;
+          return true;
+        }
+        return false;
+      }
+      Real t = root;
+      for (int bits : {40}) {
+        algebra::refine_dyadically(t, Rational(1) / Rational(mpz_class(1) << bits));
+        if (t.exact) return accept_exact(t);
+        Rotation<Box> rb = rotation_box(t.lower, t.upper, false);
+        bool open = false;
+        for (int k = 0; k < 3; ++k) {
+          auto e = extent_polys(rb, pairs[k][0], pairs[k][1]);
+          if (sgn(e[0].lo) <= 0 && sgn(e[0].hi) >= 0) continue;   // lines (nearly) parallel: another pair
+          bool undecided = false;
+          for (std::size_t m = 1; m < e.size(); ++m) {
+            if (sgn(e[m].hi) < 0) return false;   // certainly outside an extent
+            if (sgn(e[m].lo) <= 0) undecided = true;
+          }
+          chosen = k;
+          if (!undecided) return true;
+          open = true;
+          break;
+        }
+        if (open) return true;   // undecided: kept (see above)
+      }
+      return chosen >= 0;
+    };
+    auto point_of = [&](auto rot) {
+      using T = std::decay_t<decltype(rot.c)>;
+      auto [nx, ny, den] = meet(rot, pairs[chosen][0], pairs[chosen][1]);
+      if constexpr (std::is_same_v<T, Box>) {
+        auto x = divide(nx, den), y = divide(ny, den);
+        if (!x || !y) return std::optional<Vec<Box>>{};
+        return std::optional(Vec<Box>{*x, *y});
+      } else {
+        if (sgn(den) == 0) return std::optional<Vec<Rational>>{};
+        return std::optional(Vec<Rational>{Rational(nx / den), Rational(ny / den)});
+      }
+    };
+    // the half turn, exactly
+    Rotation<Rational> half{Rational(-1), Rational(0)};
+    Rational at_half = det_of(half);
+    bool half_ok = false;
+    if (sgn(at_half) == 0)
+      for (int k = 0; k < 3 && !half_ok; ++k) {
+        auto e = extent_polys(half, pairs[k][0], pairs[k][1]);
+        if (sgn(e[0]) == 0) continue;
+        half_ok = true;
+        for (std::size_t m = 1; m < e.size(); ++m)
+          if (sgn(e[m]) < 0) half_ok = false;
+        chosen = k;
+        if (!half_ok) break;
+      }
+    roots_of(poly, CriticalEvent::three_contacts, mask, accept, point_of, Rational(1), false);
+    if (sgn(at_half) == 0 && half_ok && (mask >> 32) != 0) {
+      // (chosen: recomputed for the half turn)
+      for (int k = 0; k < 3; ++k)
+        if (sgn(extent_polys(half, pairs[k][0], pairs[k][1])[0]) != 0) {
+          chosen = k;
+          break;
+        }
+      ++stats_.roots;
+      if (certainly_blocked(Real{}, true, point_of))
+        ++stats_.irrelevant;
+      else
+        found_.push_back(Critical{true, Real{}, {CriticalEvent::three_contacts}});
+    }
+  }
+
+  const PolygonalPair& g_;
+  CriticalStatistics& stats_;
+  std::vector<Segment> segments_;
+  std::vector<Point> probes_free_, probes_fixed_;
+  std::vector<std::pair<Vec<TrigPoly>, TrigPoly>> lines_;   // n . X = h per segment (three_concurrent)
+  std::vector<std::uint64_t> masks_, vmasks_;
+  std::vector<Critical> found_;
+};
+
+}  // namespace
+
+PolygonalPair polygonal_pair(const Part& fixed, const Part& free) {
+  PolygonalPair g;
+  g.pivot = free.motion.pivot;
+  g.fixed = &fixed;
+  g.free = &free;
+  auto collect = [&](const Part& part, std::vector<Point>& vertices, std::vector<std::pair<std::size_t, std::size_t>>& edges,
+                     const Point& origin) {
+    for (const auto& loop : part.loops) {
+      std::size_t first = vertices.size();
+      for (const auto& e : loop.edges) {
+        if (e.is_arc())
+          throw GeometryError("part '" + part.name + "' has an arc (" + e.pointer +
+                              "): critical angles of 3-DOF pairs are computed for polygonal parts only");
+        vertices.push_back(Point{Rational(e.source.x - origin.x), Rational(e.source.y - origin.y)});
+      }
+      std::size_t count = vertices.size() - first;
+      for (std::size_t k = 0; k < count; ++k) edges.emplace_back(first + k, first + (k + 1) % count);
+    }
+  };
+  collect(fixed, g.a, g.a_edges, g.pivot);
+  collect(free, g.u, g.b_edges, g.pivot);
+  return g;
+}
+
+std::vector<Critical> critical_angles(const PolygonalPair& pair, CriticalStatistics& statistics) {
+  Finder finder(pair, statistics);
+  return finder.run();
+}
+
+std::pair<Rational, Rational> rotation_at(const Rational& u, bool flip) {
+  Rational d = 1 + u * u;
+  Rational c = (1 - u * u) / d, s = 2 * u / d;
+  if (flip) return {-c, -s};
+  return {c, s};
+}
+
+std::pair<Rational, Rational> rotation_of(const SlicedAngle& angle) {
+  if (angle.half_turn) return {Rational(-1), Rational(0)};
+  return rotation_at(angle.t, false);
+}
+
+bool steady_along(const PolygonalPair& g, const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip) {
+  Rotation<TrigPoly> r{poly_cos(flip), poly_sin(flip)};
+  const Vec<TrigPoly> qq{TrigPoly(q.x), TrigPoly(q.y)};
+  auto no_root = [&](const TrigPoly& poly) {
+    if (poly.zero()) return false;
+    algebra::Polynomial p = integer_numerator(poly);
+    if (algebra::degree(p) < 1) return true;   // a non-zero constant
+    return algebra::real_roots(algebra::square_free_part(p), u_lo, u_hi).empty();
+  };
+  // vertex j of the free part on the line of fixed edge k: cross(R u_j + q - a_k, e_A) = 0
+  for (const auto& [k0, k1] : g.a_edges) {
+    Vec<TrigPoly> ea{TrigPoly(Rational(g.a[k1].x - g.a[k0].x)), TrigPoly(Rational(g.a[k1].y - g.a[k0].y))};
+    for (const auto& uj : g.u) {
+      Vec<TrigPoly> v = r.apply(lift_point<TrigPoly>(uj)) + qq - lift_point<TrigPoly>(g.a[k0]);
+      if (!no_root(cross(v, ea))) return false;
+    }
+  }
+  // vertex i of the fixed part on the line of free edge m: cross(a_i - q - R u_m, R e_m) = 0
+  for (const auto& [m0, m1] : g.b_edges) {
+    Vec<TrigPoly> em = r.apply(Vec<TrigPoly>{TrigPoly(Rational(g.u[m1].x - g.u[m0].x)), TrigPoly(Rational(g.u[m1].y - g.u[m0].y))});
+    Vec<TrigPoly> um = r.apply(lift_point<TrigPoly>(g.u[m0]));
+    for (const auto& ai : g.a) {
+      Vec<TrigPoly> w = lift_point<TrigPoly>(ai) - qq - um;
+      if (!no_root(cross(w, em))) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace hipair::sliced

@@ -1,0 +1,65 @@
+// Critical angles of a polygonal part free in the plane against a fixed polygonal part
+// (docs/cspace.md, "3-DOF pairs"): the rotations at which the free space of the translational
+// slice changes its contact structure. Every candidate event is a polynomial in the half-angle
+// tangent t (vertex–vertex contacts are a_i - p - R(t) u_j, with R's entries rational in t);
+// its roots are isolated exactly, checked exactly against the features' extents, and dropped
+// only when the event point is certified to lie inside blocked space (interval enclosure of the
+// configuration and an interior witness point certified inside both parts). CGAL-free.
+#pragma once
+
+#include <hipair/geometry.hpp>
+#include <hipair/model.hpp>
+#include <hipair/rational.hpp>
+#include <hipair/sliced.hpp>
+
+#include "algebra/exact_real.hpp"
+
+#include <cstddef>
+#include <vector>
+
+namespace hipair::sliced {
+
+/// The polygonal geometry of the pair: the fixed part's vertices (world), the free part's
+/// vertices relative to its pivot, and their edges (source, target) with material on the left.
+struct PolygonalPair {
+  std::vector<Point> a;                                   ///< fixed part vertices minus pivot
+  std::vector<std::pair<std::size_t, std::size_t>> a_edges;
+  std::vector<Point> u;                                   ///< free part vertices minus pivot
+  std::vector<std::pair<std::size_t, std::size_t>> b_edges;
+  Point pivot;
+  const Part* fixed = nullptr;
+  const Part* free = nullptr;
+};
+
+/// \throws GeometryError when a part has an arc.
+PolygonalPair polygonal_pair(const Part& fixed, const Part& free);
+
+/// A critical angle, exact.
+struct Critical {
+  bool half_turn = false;
+  cspace::algebra::Real t;   ///< the half-angle tangent (half_turn: unused)
+  std::vector<CriticalEvent> events;
+};
+
+struct CriticalStatistics {
+  std::size_t polynomials = 0;
+  std::size_t roots = 0;
+  std::size_t irrelevant = 0;
+};
+
+/// The critical angles, in counter-clockwise order from -pi (t ascending, the half turn last).
+std::vector<Critical> critical_angles(const PolygonalPair& pair, CriticalStatistics& statistics);
+
+/// cos and sin of the rotation with half-angle tangent t (or the half turn), exact.
+std::pair<Rational, Rational> rotation_of(const SlicedAngle& angle);
+
+/// The rotation theta(u) = 2 atan(u), or pi + 2 atan(u) when `flip` (u = -1/t: the chart
+/// about the half turn).
+std::pair<Rational, Rational> rotation_at(const Rational& u, bool flip);
+
+/// Does the free part at offset q keep its overlap relation for every theta(u), u in
+/// [u_lo, u_hi] (see rotation_at)? Exact and conservative: true when no vertex–edge contact
+/// line (extents ignored) passes through q for any such u.
+bool steady_along(const PolygonalPair& pair, const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip);
+
+}  // namespace hipair::sliced
