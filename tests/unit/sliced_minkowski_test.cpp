@@ -44,7 +44,7 @@ PolygonSet blocked_region(const CSpace& space) {
   for (const auto& chart : impl.charts) {
     const auto& arrangement = chart.arrangement;
     for (std::size_t f = 0; f < arrangement.faces.size(); ++f) {
-      if (chart.faces[f].kind != 1) continue;
+      if (chart.faces[f].kind != cspace::FaceKind::blocked) continue;
       const auto& face = arrangement.faces[f];
       std::vector<Polygon> components;
       for (std::size_t k = 0; k < face.component_starts.size(); ++k) {
