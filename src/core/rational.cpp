@@ -8,8 +8,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
-#include <malloc.h>
 #include <new>
 #include <sstream>
 
@@ -150,103 +148,19 @@ double to_double(const Rational& value) {
 namespace hipair {
 namespace {
 
-// GMP's blocks of up to 512 bytes are kept for reuse in per-thread free lists by size class
-// (16-byte steps), instead of going back to malloc at once: exact computations create and
-// release millions of small numbers (2-10 limbs), and glibc's per-thread cache holds only 7
-// blocks per size, so most releases took its slow path (a quarter of all instructions of a
-// Geneva C-space build were malloc and free). A class keeps at most 64 KB; beyond that
-// blocks go back to free(). A block allocated before these functions were installed (or by
-// anyone else) is reused only if malloc says it is large enough for its class.
-constexpr std::size_t pool_step = 16;
-constexpr std::size_t pool_classes = 32;   // blocks up to 512 bytes
-constexpr std::size_t pool_class_bytes = std::size_t{64} << 10;
-
-struct PoolNode {
-  PoolNode* next;
-};
-
-// Trivially destructible, so that it stays usable during thread and process exit (GMP numbers
-// of static objects are released after the guard below has emptied the lists).
-struct PoolState {
-  PoolNode* heads[pool_classes];
-  std::size_t counts[pool_classes];
-  bool registered;
-  bool closed;
-};
-thread_local PoolState pool_state{};
-
-struct PoolGuard {
-  ~PoolGuard() {
-    PoolState& state = pool_state;
-    state.closed = true;
-    for (std::size_t c = 0; c < pool_classes; ++c) {
-      while (PoolNode* node = state.heads[c]) {
-        state.heads[c] = node->next;
-        std::free(node);
-      }
-      state.counts[c] = 0;
-    }
-  }
-};
-thread_local PoolGuard pool_guard;
-
-std::size_t pool_class(std::size_t size) { return (size + pool_step - 1) / pool_step - 1; }
-
 void* gmp_allocate(std::size_t size) {
-  if (size == 0) size = 1;
-  if (size <= pool_step * pool_classes) {
-    PoolState& state = pool_state;
-    std::size_t c = pool_class(size);
-    if (PoolNode* node = state.heads[c]) {
-      state.heads[c] = node->next;
-      --state.counts[c];
-      return node;
-    }
-    size = (c + 1) * pool_step;   // the whole class: the block can serve any size of it
-  }
-  void* p = std::malloc(size);
+  void* p = std::malloc(size == 0 ? 1 : size);
   if (!p) throw std::bad_alloc();
   return p;
 }
 
-void gmp_free(void* p, std::size_t size) {
-  if (!p) return;
-  if (size == 0) size = 1;
-  PoolState& state = pool_state;
-  if (size <= pool_step * pool_classes && !state.closed) {
-    if (!state.registered) {
-      state.registered = true;
-      (void)&pool_guard;   // constructs the guard: the lists are emptied at thread exit
-    }
-    std::size_t c = pool_class(size);
-    const std::size_t class_size = (c + 1) * pool_step;
-    if (state.counts[c] * class_size < pool_class_bytes && malloc_usable_size(p) >= class_size) {
-      auto* node = static_cast<PoolNode*>(p);
-      node->next = state.heads[c];
-      state.heads[c] = node;
-      ++state.counts[c];
-      return;
-    }
-  }
-  std::free(p);
-}
-
-void* gmp_reallocate(void* old, std::size_t old_size, std::size_t size) {
-  if (size == 0) size = 1;
-  const std::size_t small = pool_step * pool_classes;
-  if (old_size > small && size > small) {
-    void* p = std::realloc(old, size);
-    if (!p) throw std::bad_alloc();   // `old` stays valid and owned by its GMP number
-    return p;
-  }
-  if (old_size != 0 && old_size <= small && size <= small && pool_class(old_size) == pool_class(size) &&
-      malloc_usable_size(old) >= size)
-    return old;
-  void* p = gmp_allocate(size);   // throws with `old` still valid and owned by its GMP number
-  std::memcpy(p, old, std::min(old_size, size));
-  gmp_free(old, old_size);
+void* gmp_reallocate(void* old, std::size_t, std::size_t size) {
+  void* p = std::realloc(old, size == 0 ? 1 : size);
+  if (!p) throw std::bad_alloc();   // `old` stays valid and owned by its GMP number
   return p;
 }
+
+void gmp_free(void* p, std::size_t) { std::free(p); }
 
 }  // namespace
 
