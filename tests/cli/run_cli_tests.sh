@@ -191,7 +191,8 @@ grep -q "</svg>" "$work/geneva-closed/cspace-driver-wheel.svg" 2>/dev/null || fa
 # a run writes its whole directory; an output that is the model is refused.
 geneva="$source/examples/models/geneva.json"
 for args in "--pair driver" "--pair driver:nosuch" "--driver nosuch" "--range 1:x" "--range 2:2" \
-            "--pair driver:wheel --driver driver"; do
+            "--pair driver:wheel --driver driver" "--certify --certify-scale -1" "--certify --certify-scale x" \
+            "--certify --certify-scale 0.9T"; do
   # shellcheck disable=SC2086
   "$hipair" tolerance "$geneva" $args --quiet --out "$work/tol-bad" >/dev/null 2>"$work/tol-bad.err"
   code=$?
@@ -206,6 +207,11 @@ for file in report.txt tolerance.json variation.csv sensitivity.csv variation.sv
 done
 grep -q '"outside_certified": 0' "$work/tol/tolerance.json" || fail "tolerance: Monte Carlo left the certified band"
 grep -q "</svg>" "$work/tol/variation.svg" 2>/dev/null || fail "tolerance: variation.svg incomplete"
+# --certify writes the no-jam tolerance certificate (docs/certify.md "Tolerance").
+"$hipair" tolerance "$geneva" --range 2.2:2.3 --positions 720 --accuracy 0.5 --certify --certify-scale 2 --quiet \
+  --out "$work/tol-cert" >"$work/tol-cert.out" 2>&1 || fail "tolerance --certify failed: $(tail -c 300 "$work/tol-cert.out")"
+grep -q "CERTIFIED" "$work/tol-cert.out" || fail "tolerance --certify: not certified: $(tail -c 300 "$work/tol-cert.out")"
+grep -q '"claim": "tolerance"' "$work/tol-cert/tolerance-certificate.json" 2>/dev/null || fail "tolerance --certify: no certificate"
 mkdir -p "$work/tol-self"
 cp "$geneva" "$work/tol-self/report.txt"   # the model has the name of an output
 "$hipair" tolerance "$work/tol-self/report.txt" --quiet --out "$work/tol-self" >/dev/null 2>"$work/tol-self.err" \
