@@ -25,7 +25,11 @@ struct Enclosure {
     }
     sign_lo = sign_at(a.polynomial, lo);
     int sign_hi = sign_at(a.polynomial, hi);
-    if (sign_lo == 0 || sign_hi == 0 || sign_lo == sign_hi || !(lo < hi))
+    // An end may be another root of the polynomial: the sign just inside it is then the
+    // opposite of the other end's (one simple root in between).
+    if (sign_lo == 0) sign_lo = -sign_hi;
+    else if (sign_hi == 0) sign_hi = -sign_lo;
+    if (sign_lo == 0 || sign_lo == sign_hi || !(lo < hi))
       throw GeometryError("exact order: an algebraic number's isolating interval " + a.to_string() +
                           " does not bracket a sign change");
   }
@@ -93,8 +97,15 @@ int compare(const AlgebraicNumber& a, const Rational& x) {
   if (x >= a.upper) return -1;
   int s = sign_at(a.polynomial, x);
   if (s == 0) return 0;
+  // One simple root in (lower, upper): x is below it iff the sign at x is the sign at lower
+  // (or, should lower be another root of the polynomial, not the sign at upper).
   int s_lo = sign_at(a.polynomial, a.lower);
-  return s == s_lo ? 1 : -1;   // same sign as at lower: the root is above x
+  if (s_lo != 0) return s == s_lo ? 1 : -1;
+  int s_hi = sign_at(a.polynomial, a.upper);
+  if (s_hi == 0)
+    throw GeometryError("exact order: an algebraic number's isolating interval " + a.to_string() +
+                        " does not bracket a sign change");
+  return s == s_hi ? -1 : 1;
 }
 
 int compare(const AlgebraicNumber& a, const AlgebraicNumber& b) {

@@ -75,6 +75,17 @@ TEST(ToleranceExactOrder, AlgebraicComparisons) {
   b.upper = 3;
   EXPECT_EQ(compare(sqrt_of(8), b), 0);
   EXPECT_EQ(compare(b, sqrt_of(7)), 1);
+  // An isolating interval whose lower end is another root: sqrt 2 as the root of
+  // (x - 1)(x^2 - 2) in (1, 2).
+  AlgebraicNumber r2;
+  r2.polynomial = {2, -2, -1, 1};
+  r2.lower = 1;
+  r2.upper = 2;
+  EXPECT_EQ(compare(r2, Rational(3, 2)), -1);
+  EXPECT_EQ(compare(r2, Rational(7, 5)), 1);
+  EXPECT_EQ(compare(r2, sqrt_of(2)), 0);
+  EXPECT_EQ(compare(r2, sqrt_of(3)), -1);
+  EXPECT_EQ(compare(sqrt_of(3), r2), 1);
   // 10^-30 apart: the doubles are equal, the order is not.
   mpz_class big("1000000000000000000000000000000");
   AlgebraicNumber c = root(2 * big + 1, big, 1, 2);
