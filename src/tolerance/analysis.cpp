@@ -7,6 +7,8 @@
 
 #include "model/parametric/parametric.hpp"
 #include "tolerance/certificate.hpp"
+#include "tolerance/exact_order.hpp"
+#include "tolerance/sampling.hpp"
 #include "tolerance/solver.hpp"
 
 #include <hipair/error.hpp>
@@ -76,12 +78,14 @@ double chart_slope(double t, bool rotates) { return rotates ? 2 / (1 + t * t) : 
 // A side of the follower's channel in a slice: where, and the feature pairs there.
 struct Side {
   bool present = false;
-  double value = 0;                  // chart coordinate (approximate)
+  double value = 0;                  // chart coordinate (approximate, for reports)
+  AlgebraicNumber exact;             // chart coordinate (exact: the decisions use this)
   std::vector<FeatureId> features;
 };
 
 struct SampleState {
   bool valid = false;
+  bool ambiguous = false;            // in contact, but equidistant from two slice points
   ChartValue driver_chart, follower_chart;
   std::size_t chart = no_index;
   bool contact = false;
@@ -93,90 +97,9 @@ struct SampleState {
   Side lower, upper;                 // the channel
 };
 
-struct Distribution {
-  double mean = 0;     // deviation
-  double sigma = 0;
-  enum class Kind { fixed, normal, uniform } kind = Kind::fixed;
-  double lo = 0, hi = 0;
-};
-
-std::vector<Distribution> distributions(const Model& model) {
-  std::vector<Distribution> result;
-  for (const Parameter& p : model.parameters) {
-    Distribution d;
-    d.lo = Rational(p.range.lo - p.nominal).get_d();
-    d.hi = Rational(p.range.hi - p.nominal).get_d();
-    double width = d.hi - d.lo;
-    if (width <= 0) {
-      result.push_back(d);
-      continue;
-    }
-    switch (p.distribution) {
-      case Parameter::Distribution::uniform:
-        d.kind = Distribution::Kind::uniform;
-        d.mean = 0.5 * (d.lo + d.hi);
-        d.sigma = width / std::sqrt(12.0);
-        break;
-      case Parameter::Distribution::normal:
-        d.kind = Distribution::Kind::normal;
-        d.mean = 0;
-        d.sigma = p.sigma->get_d();
-        break;
-      case Parameter::Distribution::none:
-        d.kind = Distribution::Kind::normal;
-        d.mean = 0.5 * (d.lo + d.hi);
-        d.sigma = width / 6;
-        break;
-    }
-    result.push_back(d);
-  }
-  return result;
-}
-
-// splitmix64: one independent, reproducible stream per Monte Carlo sample.
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
-struct Stream {
-  std::uint64_t state;
-  double uniform() {  // (0, 1)
-    state = mix(state);
-    return (static_cast<double>(state >> 11) + 0.5) * 0x1.0p-53;
-  }
-  double normal() {   // Box-Muller
-    double u1 = uniform(), u2 = uniform();
-    return std::sqrt(-2 * std::log(u1)) * std::cos(2 * pi * u2);
-  }
-};
-
-std::vector<double> draw(const std::vector<Distribution>& ds, std::uint64_t seed, std::size_t index) {
-  Stream stream{mix(seed ^ mix(index + 1))};
-  std::vector<double> x(ds.size(), 0.0);
-  for (std::size_t i = 0; i < ds.size(); ++i) {
-    const Distribution& d = ds[i];
-    switch (d.kind) {
-      case Distribution::Kind::fixed: break;
-      case Distribution::Kind::uniform: x[i] = d.lo + (d.hi - d.lo) * stream.uniform(); break;
-      case Distribution::Kind::normal: {
-        double v = d.mean;
-        for (int attempt = 0; attempt < 1000; ++attempt) {   // truncated to the tolerance range
-          double candidate = d.mean + d.sigma * stream.normal();
-          if (candidate >= d.lo && candidate <= d.hi) {
-            v = candidate;
-            break;
-          }
-        }
-        x[i] = v;
-        break;
-      }
-    }
-  }
-  return x;
-}
+using tolerance_detail::Distribution;
+using tolerance_detail::distributions;
+using tolerance_detail::draw;
 
 class Analysis {
  public:
@@ -298,7 +221,14 @@ class Analysis {
       VariationSample sample;
       sample.driver = ks.driver;
       sample.nominal = ks.positions[fi];
-      SampleState state = locate(ks.driver, ks.positions[fi]);
+      // Contact or free is the exact kinematic engine's decision (its contacts at the
+      // follower's exact position); locate() then matches the slice point exactly.
+      bool in_contact = std::any_of(ks.contacts[fi].begin(), ks.contacts[fi].end(),
+                                    [](const ContactLabel& c) { return !c.limit; });
+      SampleState state = locate(ks.driver, ks.positions[fi], in_contact);
+      if (state.ambiguous)
+        result_.notes.push_back("driver " + std::to_string(ks.driver) +
+                                ": the follower is equidistant from two slice points; position not analysed");
       sample.contact = state.contact;
       sample.play = state.lower.present && state.upper.present ? state.upper.value - state.lower.value : -1;
       if (state.lower.present && state.upper.present && result_.follower_rotates) {
@@ -312,7 +242,7 @@ class Analysis {
   }
 
   // The slice of the nominal C-space at the driver position, and the follower in it.
-  SampleState locate(double driver, double follower) {
+  SampleState locate(double driver, double follower, bool in_contact) {
     SampleState s;
     PartCoordinate d = part_coordinate(result_.driver_rotates, driver);
     PartCoordinate f = part_coordinate(result_.follower_rotates, follower);
@@ -332,18 +262,17 @@ class Analysis {
     if (!slice) return s;
     s.valid = true;
     double v = s.follower_chart.t.get_d();
-    double tolerance = 1e-9 * (1 + std::fabs(v));
-    std::size_t below = 0;   // number of points below v
-    std::optional<std::size_t> at;
-    for (std::size_t k = 0; k < slice->points.size(); ++k) {
-      double p = slice->points[k].at.approximate();
-      if (std::fabs(p - v) <= tolerance) at = k;
-      else if (p < v) below = k + 1;
-    }
+    // Exact: the points below the follower's chart coordinate, and (in contact) the slice point
+    // holding it, the nearest neighbour decided on exact enclosures (exact_order.hpp).
+    tolerance_detail::PointMatch match = tolerance_detail::match_point(slice->points, s.follower_chart.t, in_contact);
+    s.ambiguous = match.ambiguous;
+    std::size_t below = match.below;
+    std::optional<std::size_t> at = match.at;
     auto side = [&](std::size_t k) {
       Side result;
       if (k >= slice->points.size()) return result;
       result.present = true;
+      result.exact = slice->points[k].at;
       result.value = slice->points[k].at.approximate();
       result.features = slice->points[k].features;
       return result;
@@ -840,13 +769,8 @@ class Analysis {
       }
       if (!slice) continue;
       // Free intervals of the slice meeting the nominal channel (lower, upper).
-      std::size_t open = 0;
-      for (std::size_t j = 0; j < slice->intervals.size(); ++j) {
-        if (slice->intervals[j].kind != CellKind::free) continue;
-        double a = j == 0 ? -std::numeric_limits<double>::infinity() : slice->points[j - 1].at.approximate();
-        double b = j == slice->points.size() ? std::numeric_limits<double>::infinity() : slice->points[j].at.approximate();
-        if (b > critical.lower_value && a < critical.upper_value) ++open;
-      }
+      // Decided exactly against the nominal channel's exact sides (exact_order.hpp).
+      std::size_t open = tolerance_detail::free_intervals_in_channel(*slice, state.lower.exact, state.upper.exact);
       result.confirmed_scale = factor.get_d();
       result.worst_values.clear();
       for (std::size_t i = 0; i < n; ++i)

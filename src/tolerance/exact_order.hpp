@@ -1,0 +1,39 @@
+// HIPAIR — exact order of the slice points of the nominal C-space (AlgebraicNumber) against
+// each other and against rationals, for the tolerance analysis' decisions: which slice point
+// holds the follower (sample matching) and whether a slice has a free interval inside a channel
+// (the jamming threshold's exact confirmation). No double is on these decision paths: the
+// isolating intervals are refined by exact bisection (GMP) and equality of two irrational
+// numbers is decided by the gcd of their polynomials.
+#pragma once
+
+#include <hipair/cspace.hpp>
+#include <hipair/rational.hpp>
+
+#include <optional>
+#include <vector>
+
+namespace hipair::tolerance_detail {
+
+/// Sign of `polynomial` (ascending powers) at x, exact.
+int sign_at(const std::vector<mpz_class>& polynomial, const Rational& x);
+/// Sign of a - x, exact.
+int compare(const AlgebraicNumber& a, const Rational& x);
+/// Sign of a - b, exact.
+int compare(const AlgebraicNumber& a, const AlgebraicNumber& b);
+
+/// Where a follower coordinate t lies among the ordered points of a slice (exact):
+/// `below` points are < t; `at` is the point equal to t or, when `in_contact`, the neighbour
+/// of t nearest to it (decided by exact rational enclosures of the two distances; a tie, which
+/// exact refinement cannot break, leaves `at` empty and `ambiguous` set).
+struct PointMatch {
+  std::size_t below = 0;
+  std::optional<std::size_t> at;
+  bool ambiguous = false;
+};
+PointMatch match_point(const std::vector<Slice::Point>& points, const Rational& t, bool in_contact);
+
+/// The number of free intervals of `slice` that meet the open channel (lower, upper), decided
+/// exactly (an interval (a, b) meets it when b > lower and a < upper).
+std::size_t free_intervals_in_channel(const Slice& slice, const AlgebraicNumber& lower, const AlgebraicNumber& upper);
+
+}  // namespace hipair::tolerance_detail
