@@ -169,6 +169,17 @@ void SvgWriter::begin_group(const std::string& id, const std::string& css_class,
   ++open_groups_;
 }
 
+void SvgWriter::define_clip_rectangle(const std::string& id, double x, double y, double width, double height) {
+  add_definition("<clipPath id=\"" + escape_xml(id) + "\"><rect x=\"" + format_number(x) + "\" y=\"" +
+                 format_number(-(y + height)) + "\" width=\"" + format_number(width) + "\" height=\"" +
+                 format_number(height) + "\"/></clipPath>");
+}
+
+void SvgWriter::begin_clipped_group(const std::string& clip_id) {
+  body_ += "<g clip-path=\"url(#" + escape_xml(clip_id) + ")\">\n";
+  ++open_groups_;
+}
+
 void SvgWriter::end_group() {
   if (open_groups_ == 0) throw Error("SVG writer: end_group without begin_group");
   body_ += "</g>\n";
@@ -229,14 +240,17 @@ void SvgWriter::text(double x, double y, const std::string& content, double size
   body_ += ">" + escape_xml(content) + "</text>\n";
 }
 
-void SvgWriter::legend(double x, double y, const std::vector<LegendEntry>& entries,
-                       double size) {
-  double row = size * 1.5;
+std::pair<double, double> SvgWriter::legend_size(const std::vector<LegendEntry>& entries, double size) {
   double longest = 0;
   for (const LegendEntry& entry : entries)
     longest = std::max(longest, static_cast<double>(entry.label.size()));
-  double width = size * (2.2 + 0.62 * longest);
-  double height = row * static_cast<double>(entries.size()) + size * 0.6;
+  return {size * (2.2 + 0.62 * longest), size * 1.5 * static_cast<double>(entries.size()) + size * 0.6};
+}
+
+void SvgWriter::legend(double x, double y, const std::vector<LegendEntry>& entries,
+                       double size) {
+  double row = size * 1.5;
+  auto [width, height] = legend_size(entries, size);
   SvgStyle frame;
   frame.fill = "white";
   frame.stroke = "#999999";

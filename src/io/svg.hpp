@@ -4,6 +4,7 @@
 
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace hipair::io {
@@ -75,6 +76,10 @@ class SvgWriter {
   void begin_group(const std::string& id, const std::string& css_class = "",
                    const std::string& title = "");
   void end_group();
+  /// Defines a clip path `id`: the world rectangle from (x, y) of `width` x `height`.
+  void define_clip_rectangle(const std::string& id, double x, double y, double width, double height);
+  /// Opens <g> clipped to the clip path `clip_id` (closed by end_group()).
+  void begin_clipped_group(const std::string& clip_id);
 
   void path(const SvgPath& path, const SvgStyle& style, const std::string& title = "");
   void line(double x1, double y1, double x2, double y2, const SvgStyle& style);
@@ -92,6 +97,8 @@ class SvgWriter {
   };
   /// Draws a legend box with its top-left corner at world (x, y); rows of height `size`*1.5.
   void legend(double x, double y, const std::vector<LegendEntry>& entries, double size);
+  /// Width and height (world units) of the box legend() draws for these entries.
+  static std::pair<double, double> legend_size(const std::vector<LegendEntry>& entries, double size);
   /// Draws a scale bar of `length` world units from (x, y) to the right, labelled `label`.
   void scale_bar(double x, double y, double length, const std::string& label, double size);
 

@@ -69,22 +69,45 @@ class Painter {
       y_range_.lo = 0;
       y_range_.hi = 1;
     }
-    const double legend_width = 260, margin = 60;
+    chart_x_ = x_range_;
+    chart_y_ = y_range_;
+    zoom_to_path();
+    const double margin = 60;
     double height = dimension_ == 2 ? plot_size : 60;
-    io::SvgBox box{-margin, -margin, plot_size + legend_width + 20, height + 40};
+    plot_height_ = height;
+    // the drawing goes first (into a buffer writer), since the legend lists what it drew and
+    // the canvas is sized to hold the legend
+    io::SvgWriter body({0, 0, 1, 1});
+    body.set_default_stroke_width(0.6);
+    if (dimension_ == 2)
+      draw_2d(body);
+    else
+      draw_1d(body);
+    std::vector<io::SvgWriter::LegendEntry> entries = legend_entries();
+    touching_edges_.clear();
+    touching_vertices_ = 0;
+    visible_pairs_.clear();
+    const double legend_text = 6;
+    auto [legend_width, legend_height] = io::SvgWriter::legend_size(entries, legend_text);
+    double right = plot_size + 15 + legend_width + 10;
+    double bottom = std::min(-margin, height - legend_height - 10);
+    io::SvgBox box{-margin, bottom, right, height + 40};
     io::SvgWriter svg(box, options_.pixel_width);
     svg.set_default_stroke_width(0.6);
-    svg.rectangle(-margin, -margin, plot_size + legend_width + 20 + margin, height + 40 + margin,
-                  io::SvgStyle{"white", "none"});
-    plot_height_ = height;
+    svg.rectangle(-margin, bottom, right + margin, height + 40 - bottom, io::SvgStyle{"white", "none"});
+    // everything over the C-space is clipped to the plotted window
+    svg.define_clip_rectangle("plot-window", 0, 0, plot_size, height);
+    if (!complete_ && dimension_ == 2) svg.define_hatch("not-built", "#b0b0b0", 6);
+    svg.begin_clipped_group("plot-window");
     if (dimension_ == 2)
       draw_2d(svg);
     else
       draw_1d(svg);
-    draw_axes(svg);
     draw_path(svg);
     draw_marks(svg);
-    draw_legend(svg);
+    svg.end_group();
+    draw_axes(svg);
+    svg.legend(plot_size + 15, plot_height_, entries, legend_text);
     if (!options_.title.empty()) svg.text(plot_size / 2, height + 25, options_.title, 9);
     return svg.str();
   }
@@ -96,6 +119,79 @@ class Painter {
   }
   std::pair<double, double> world(const CSpaceChart& chart, double cx, double cy) const {
     return {X(display_x(chart, cx)), Y(dimension_ == 2 ? display_y(chart, cy) : 0.5)};
+  }
+
+  // With a motion path, the plotted window is the path's (and the marks') bounding box plus a
+  // margin, within the charts' range (the paper's Figure 6b shows the band the motion lives
+  // in). Angles are brought into the charts' range as the path is drawn.
+  void zoom_to_path() {
+    if (options_.path.size() < 2) return;
+    Range x, y;
+    for (const auto& p : options_.path) {
+      auto [dx, dy] = display_of(p.x, p.y);
+      if (!std::isfinite(dx) || !std::isfinite(dy)) continue;
+      x.add(dx);
+      y.add(dy);
+    }
+    for (const auto& mark : options_.marks) {
+      auto [dx, dy] = display_of(mark.x, mark.y);
+      if (!std::isfinite(dx) || !std::isfinite(dy)) continue;
+      x.add(dx);
+      y.add(dy);
+    }
+    if (!(x.lo <= x.hi)) return;
+    auto zoom = [](Range& window, const Range& path, const Range& chart) {
+      double span = path.hi - path.lo, full = chart.hi - chart.lo;
+      // a margin of 8 % of the path's extent, at least 0.5 % of the charts' (1.8 deg of a
+      // turn: a path along a contact curve, or at rest, still shows its neighbourhood)
+      double pad = std::max(0.08 * span, 0.005 * full);
+      double lo = std::max(chart.lo, path.lo - pad), hi = std::min(chart.hi, path.hi + pad);
+      if (hi - lo >= 0.85 * full) return;   // nearly everything: show the whole range
+      window.lo = lo;
+      window.hi = hi;
+    };
+    zoom(x_range_, x, chart_x_);
+    if (dimension_ == 2) zoom(y_range_, y, chart_y_);
+  }
+
+  bool zoomed() const {
+    return x_range_.lo != chart_x_.lo || x_range_.hi != chart_x_.hi || y_range_.lo != chart_y_.lo ||
+           y_range_.hi != chart_y_.hi;
+  }
+
+  // Whether a polyline (world coordinates) meets the plotted window.
+  bool meets_window(const std::vector<std::pair<double, double>>& world_points) const {
+    const double w = plot_size, h = plot_height_;
+    auto inside = [&](double x, double y) { return x >= 0 && x <= w && y >= 0 && y <= h; };
+    for (std::size_t i = 0; i < world_points.size(); ++i) {
+      auto [x0, y0] = world_points[i];
+      if (inside(x0, y0)) return true;
+      if (i + 1 == world_points.size()) break;
+      auto [x1, y1] = world_points[i + 1];
+      // Liang-Barsky: the parameter interval of the segment inside the window
+      double t0 = 0, t1 = 1, dx = x1 - x0, dy = y1 - y0;
+      bool out = false;
+      for (auto [p, q] : {std::pair{-dx, x0}, std::pair{dx, w - x0}, std::pair{-dy, y0}, std::pair{dy, h - y0}}) {
+        if (p == 0) {
+          if (q < 0) out = true;
+          continue;
+        }
+        double t = q / p;
+        if (p < 0)
+          t0 = std::max(t0, t);
+        else
+          t1 = std::min(t1, t);
+      }
+      if (!out && t0 <= t1) return true;
+    }
+    return false;
+  }
+
+  bool edge_visible(std::size_t e) {
+    const CSpaceChart& chart = charts_[edges_[e].chart];
+    std::vector<std::pair<double, double>> points;
+    for (const auto& p : samples(e)) points.push_back(world(chart, p.first, p.second));
+    return meets_window(points);
   }
 
   // Points along an edge in chart coordinates, from its source (lexicographically smaller) to
@@ -130,7 +226,6 @@ class Painter {
   void draw_2d(io::SvgWriter& svg) {
     // an operating region: what was not built is hatched, free faces drawn white over it
     if (!complete_) {
-      svg.define_hatch("not-built", "#b0b0b0", 6);
       svg.rectangle(0, 0, plot_size, plot_height_, io::SvgStyle{"url(#not-built)", "none"});
     }
     // blocked (and touching) faces
@@ -139,6 +234,7 @@ class Painter {
       for (const CSpaceFace& face : space_.faces(c)) {
         if (!face.classified || (face.kind == CellKind::free && complete_)) continue;
         io::SvgPath path;
+        Range fx, fy;   // the face's extent (world), to leave out faces outside the window
         for (const auto& component : face.boundary) {
           bool first = true;
           for (auto [e, forward] : component) {
@@ -146,6 +242,8 @@ class Painter {
             for (std::size_t j = 0; j < points.size(); ++j) {
               const auto& p = forward ? points[j] : points[points.size() - 1 - j];
               auto [wx, wy] = world(chart, p.first, p.second);
+              fx.add(wx);
+              fy.add(wy);
               if (first) {
                 path.move_to(wx, wy);
                 first = false;
@@ -156,6 +254,7 @@ class Painter {
           }
           if (!first) path.close();
         }
+        if (fx.hi < 0 || fx.lo > plot_size || fy.hi < 0 || fy.lo > plot_height_) continue;
         std::string colour = face.kind == CellKind::blocked ? "#c8c8c8" : face.kind == CellKind::touching ? "#f4d35e" : "white";
         io::SvgStyle style{colour, colour};   // stroked too, to hide seams between faces
         style.stroke_width = 0.35;
@@ -169,6 +268,7 @@ class Painter {
         const CSpaceEdge& edge = edges_[e];
         io::SvgStyle style{"none", "black"};
         std::string title;
+        if (zoomed() && !edge_visible(e)) continue;
         if (edge.role == EdgeRole::touching) {
           // a zero-clearance channel: drawn after the faces, as a dark band with a white core
           touching_edges_.push_back(e);
@@ -177,6 +277,7 @@ class Painter {
         if (edge.role == EdgeRole::contact || (edge.real && !edge.curves.empty())) {
           std::size_t pair = edge.curves.empty() ? 0 : edge.curves.front();
           style.stroke = colour_of(pair);
+          for (std::size_t k : edge.curves) visible_pairs_.insert(k);
           style.stroke_width = 1.1;
           for (std::size_t k : edge.curves) title += (title.empty() ? "" : "; ") + pairs_[k].label;
         } else if (edge.role == EdgeRole::seam) {
@@ -236,6 +337,7 @@ class Painter {
       const CSpaceChart& chart = charts_[vertex.chart];
       double y = vertex.y_exact ? vertex.y.approximate() : Rational((vertex.y_lower + vertex.y_upper) / 2).get_d();
       auto [wx, wy] = world(chart, vertex.x.approximate(), y);
+      if (wx < 0 || wx > plot_size || wy < 0 || wy > plot_height_) continue;
       io::SvgStyle dot{"white", touching_colour};
       dot.stroke_width = 1.2;
       svg.circle(wx, wy, 2.4, dot);
@@ -266,12 +368,10 @@ class Painter {
     }
   }
 
+  // Contact curves are coloured by the kind of contact (vertex-segment, arc-arc, ...): a
+  // colour per feature pair repeats and cannot be told apart once there are dozens of pairs.
   std::string colour_of(std::size_t pair) {
-    auto it = colours_.find(pair);
-    if (it != colours_.end()) return it->second;
-    std::string colour = palette[colours_.size() % (sizeof(palette) / sizeof(palette[0]))];
-    colours_.emplace(pair, colour);
-    return colour;
+    return palette[static_cast<std::size_t>(pairs_[pair].kind) % (sizeof(palette) / sizeof(palette[0]))];
   }
 
   void draw_axes(io::SvgWriter& svg) {
@@ -280,7 +380,15 @@ class Painter {
     svg.rectangle(0, 0, plot_size, plot_height_, frame);
     const CSpaceChart& first = charts_.front();
     auto ticks = [&](bool x_axis, const Range& range, bool rotation) {
-      double step = rotation ? 45 : io::nice_length((range.hi - range.lo) / 6);
+      double step = io::nice_length((range.hi - range.lo) / 6);
+      if (rotation) {   // degrees: steps of 1, 2, 5, 10, 15, 30, 45 or 90 (finer: a nice length)
+        double span = range.hi - range.lo;
+        for (double candidate : {1.0, 2.0, 5.0, 10.0, 15.0, 30.0, 45.0, 90.0})
+          if (span / candidate <= 9) {
+            step = span >= 5 ? candidate : step;
+            break;
+          }
+      }
       double first = std::ceil(range.lo / step - 1e-9);
       // by index, with tolerances relative to the step: `v += step` never ends where step is
       // below the spacing of doubles at v, and a range of 1e-300 mm gets its ticks and ends
@@ -314,8 +422,8 @@ class Painter {
     bool y_rotates = dimension_ == 2 && charts_.front().y_kind == AxisKind::rotation;
     double x = x_rotates ? px * 180 / std::numbers::pi : px;
     double y = dimension_ == 2 ? (y_rotates ? py * 180 / std::numbers::pi : py) : 0;
-    if (x_rotates) x = x_range_.lo + std::fmod(std::fmod(x - x_range_.lo, 360.0) + 360.0, 360.0);
-    if (y_rotates) y = y_range_.lo + std::fmod(std::fmod(y - y_range_.lo, 360.0) + 360.0, 360.0);
+    if (x_rotates) x = chart_x_.lo + std::fmod(std::fmod(x - chart_x_.lo, 360.0) + 360.0, 360.0);
+    if (y_rotates) y = chart_y_.lo + std::fmod(std::fmod(y - chart_y_.lo, 360.0) + 360.0, 360.0);
     return {x, y};
   }
 
@@ -357,18 +465,7 @@ class Painter {
 
   void draw_marks(io::SvgWriter& svg) {
     for (const auto& mark : options_.marks) {
-      double x = charts_.front().x_kind == AxisKind::rotation ? mark.x * 180 / std::numbers::pi : mark.x;
-      double y = dimension_ == 2 && charts_.front().y_kind == AxisKind::rotation
-                     ? mark.y * 180 / std::numbers::pi
-                     : mark.y;
-      // bring angles into the plotted window (in one step: adding 360 in a loop never ends
-      // for a coordinate far below the window, where x + 360 == x)
-      auto into_window = [](double angle, double lo) {
-        return angle < lo ? angle + 360 * std::ceil((lo - angle) / 360) : angle;
-      };
-      if (charts_.front().x_kind == AxisKind::rotation) x = into_window(x, x_range_.lo);
-      if (dimension_ == 2 && charts_.front().y_kind == AxisKind::rotation)
-        y = into_window(y, y_range_.lo);
+      auto [x, y] = display_of(mark.x, mark.y);   // angles brought into the charts' range
       if (!std::isfinite(x) || !std::isfinite(y)) continue;
       double wy = dimension_ == 2 ? Y(y) : plot_height_ / 2;
       svg.circle(X(x), wy, 2.5, io::SvgStyle{"black", "white"});
@@ -376,7 +473,9 @@ class Painter {
     }
   }
 
-  void draw_legend(io::SvgWriter& svg) {
+  // The legend: shading, the path, and the contact curves drawn in the window, grouped by
+  // kind of contact (one colour each), a few feature pairs per kind and "+N more".
+  std::vector<io::SvgWriter::LegendEntry> legend_entries() const {
     std::vector<io::SvgWriter::LegendEntry> entries;
     entries.push_back({io::SvgStyle{"#c8c8c8", "none"}, "blocked"});
     entries.push_back({io::SvgStyle{"white", "black"}, "free"});
@@ -390,7 +489,10 @@ class Painter {
       for (std::size_t e : touching_edges_)
         for (std::size_t k : edges_[e].curves)
           if (std::find(pairs.begin(), pairs.end(), k) == pairs.end()) pairs.push_back(k);
-      for (std::size_t i = 0; i < pairs.size() && i < 6; ++i) entries.push_back({swatch, "  " + pairs_[pairs[i]].label});
+      for (std::size_t i = 0; i < pairs.size() && i < max_pairs_per_kind; ++i)
+        entries.push_back({swatch, "  " + shortened(pairs_[pairs[i]].label)});
+      if (pairs.size() > max_pairs_per_kind)
+        entries.push_back({io::SvgStyle{"none", "none"}, "  +" + std::to_string(pairs.size() - max_pairs_per_kind) + " more"});
     }
     if (options_.path.size() >= 2) {
       io::SvgStyle free{"none", "#1f4e9c"}, contact{"none", "#d62728"};
@@ -398,14 +500,33 @@ class Painter {
       entries.push_back({free, "motion path, parts apart"});
       entries.push_back({contact, "motion path, in contact"});
     }
-    for (const auto& [pair, colour] : colours_) {
-      io::SvgStyle swatch{"none", colour};
+    std::map<ContactKind, std::vector<std::size_t>> by_kind;
+    for (std::size_t k : visible_pairs_) by_kind[pairs_[k].kind].push_back(k);
+    if (!by_kind.empty())
+      entries.push_back({io::SvgStyle{"none", "none"}, std::string("contact curves") + (zoomed() ? " in view" : "") +
+                                                           " (" + std::to_string(visible_pairs_.size()) + " feature pairs):"});
+    for (const auto& [kind, pairs] : by_kind) {
+      io::SvgStyle swatch{"none", palette[static_cast<std::size_t>(kind) % (sizeof(palette) / sizeof(palette[0]))]};
       swatch.stroke_width = 1.5;
-      entries.push_back({swatch, pairs_[pair].label});
-      if (entries.size() > 40) break;
+      entries.push_back({swatch, std::string(to_string(kind)) + " (" + std::to_string(pairs.size()) + "):"});
+      for (std::size_t i = 0; i < pairs.size() && i < max_pairs_per_kind; ++i)
+        entries.push_back({swatch, "  " + shortened(pairs_[pairs[i]].label)});
+      if (pairs.size() > max_pairs_per_kind)
+        entries.push_back({io::SvgStyle{"none", "none"}, "  +" + std::to_string(pairs.size() - max_pairs_per_kind) + " more"});
     }
-    svg.legend(plot_size + 15, plot_height_, entries, 6);
+    return entries;
   }
+
+  // A feature-pair label cut to a readable length (the curves' tooltips have it in full).
+  static std::string shortened(const std::string& label) {
+    constexpr std::size_t longest = 72;
+    if (label.size() <= longest) return label;
+    std::size_t cut = longest - 3;
+    while (cut > 0 && (static_cast<unsigned char>(label[cut]) & 0xC0) == 0x80) --cut;   // UTF-8 boundary
+    return label.substr(0, cut) + "...";
+  }
+
+  static constexpr std::size_t max_pairs_per_kind = 3;
 
   const CSpace& space_;
   const std::vector<CSpaceChart>& charts_;
@@ -415,10 +536,11 @@ class Painter {
   int dimension_ = 2;
   bool complete_ = true;
   const CSpaceSvgOptions& options_;
-  Range x_range_, y_range_;
+  Range x_range_, y_range_;   // the plotted window (display units)
+  Range chart_x_, chart_y_;   // the charts' whole range
   double plot_height_ = plot_size;
   std::map<std::size_t, std::vector<std::pair<double, double>>> samples_;   // per edge
-  std::map<std::size_t, std::string> colours_;
+  std::set<std::size_t> visible_pairs_;   // feature pairs of the contact curves drawn
   std::vector<std::size_t> touching_edges_;   // edges
   std::size_t touching_vertices_ = 0;
 };

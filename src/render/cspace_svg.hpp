@@ -1,6 +1,9 @@
 // A C-space as an SVG picture in the style of Joskowicz & Sacks (1997), Figure 2: blocked
-// space shaded, free space white, contact curves coloured by feature pair with a legend, axes
-// in degrees (rotation) or mm (translation), chart seams dashed. A picture only: edges are
+// space shaded, free space white, contact curves coloured by kind of contact (vertex-segment,
+// arc-arc, ...) with a legend listing the curves in view (a few feature pairs per kind, "+N
+// more"; the canvas is sized to hold it), axes in degrees (rotation) or mm (translation),
+// chart seams dashed. With a motion path the view zooms to the path's bounding box plus a
+// margin (within the charts' range), everything clipped to it. A picture only: edges are
 // drawn by sampling their certified double evaluation.
 #pragma once
 
@@ -29,7 +32,8 @@ struct CSpaceSvgOptions {
   double pixel_width = 1100;
   std::vector<CSpaceMark> marks;
   /// A motion path drawn over the space (Figures 2 and 6b): blue where the parts are apart,
-  /// red in contact; wrapped into the plotted window.
+  /// red in contact; angles wrapped into the charts' range. The plotted window is the path's
+  /// (and the marks') bounding box plus a margin.
   std::vector<CSpacePathPoint> path;
   bool show_spurious = false;     ///< also draw spurious edges (thin, grey)
   std::string title;

@@ -2,13 +2,16 @@
 // atomic output.
 #include "io/atomic_file.hpp"
 #include "io/svg.hpp"
+#include "render/cspace_svg.hpp"
 #include "render/mechanism_svg.hpp"
 
+#include <hipair/cspace.hpp>
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <regex>
@@ -245,6 +248,57 @@ TEST(MechanismSvg, WritesAtomically) {
   EXPECT_THROW(io::write_file_atomically(directory / "missing" / "x.svg", svg), IoError);
   EXPECT_FALSE(fs::exists(directory / "missing"));
   fs::remove_all(directory);
+}
+
+
+// The C-space picture with a motion path zooms to the path's window (ticks chosen for it,
+// drawing clipped to it), lists only a few contact curves per kind, and fits its legend.
+TEST(Svg, CSpacePathPictureZoomsToThePathAndFitsItsLegend) {
+  std::filesystem::path file = std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "examples/models/geneva.json missing";
+  CSpace space = CSpace::build(read_model_file(file), "driver", "wheel");
+  const double degree = std::acos(-1.0) / 180;
+  render::CSpaceSvgOptions picture;   // the driver's dwell: wheel within +-0.5 deg of 0
+  for (int i = 0; i <= 90; ++i) picture.path.push_back({(10 + i) * degree, 0.5 * std::sin(i * 0.3) * degree, false});
+  picture.title = "dwell";
+  std::string zoomed = render::cspace_svg(space, picture);
+  std::string whole = render::cspace_svg(space, {});
+  for (const std::string* out : {&zoomed, &whole}) {
+    ASSERT_TRUE(well_formed(*out));
+    // the legend box lies inside the canvas (the viewBox is in SVG coordinates)
+    std::smatch box, legend;
+    ASSERT_TRUE(std::regex_search(*out, box, std::regex(R"re(viewBox="([-0-9.e]+) ([-0-9.e]+) ([0-9.e]+) ([0-9.e]+)")re")));
+    ASSERT_TRUE(std::regex_search(*out, legend, std::regex(
+        R"re(class="legend">\n<rect x="([-0-9.e]+)" y="([-0-9.e]+)" width="([0-9.e]+)" height="([0-9.e]+)")re")));
+    double bx = std::stod(box[1]), by = std::stod(box[2]), bw = std::stod(box[3]), bh = std::stod(box[4]);
+    double lx = std::stod(legend[1]), ly = std::stod(legend[2]), lw = std::stod(legend[3]), lh = std::stod(legend[4]);
+    EXPECT_GE(lx, bx);
+    EXPECT_LE(lx + lw, bx + bw);
+    EXPECT_GE(ly, by);
+    EXPECT_LE(ly + lh, by + bh);
+    // at most 3 feature pairs listed per kind of contact (7 kinds) and "+N more"
+    std::size_t listed = 0;
+    for (std::size_t at = out->find("\">  "); at != std::string::npos; at = out->find("\">  ", at + 1)) ++listed;
+    EXPECT_LE(listed, 8u * 4);   // and the touching pairs
+  }
+  EXPECT_NE(zoomed.find("clip-path=\"url(#plot-window)\""), std::string::npos);
+  EXPECT_NE(zoomed.find("contact curves in view"), std::string::npos);
+  EXPECT_EQ(whole.find("contact curves in view"), std::string::npos);
+  // y-axis tick labels (right-aligned, size 7): within the window -0.5 - 1.8 .. 0.5 + 1.8 deg
+  // (margin: 0.5 % of the 360 deg range) in the zoomed picture; the whole turn otherwise
+  auto y_ticks = [](const std::string& svg) {
+    std::vector<double> ticks;
+    std::regex tick(R"re(font-size="7" font-family="[^"]*" text-anchor="end" fill="black">([-0-9.]+)<)re");
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), tick); it != std::sregex_iterator(); ++it)
+      ticks.push_back(std::stod((*it)[1]));
+    return ticks;
+  };
+  std::vector<double> ticks = y_ticks(zoomed);
+  EXPECT_GE(ticks.size(), 3u);
+  for (double v : ticks) EXPECT_LE(std::fabs(v), 2.3) << v;
+  std::vector<double> all = y_ticks(whole);
+  ASSERT_FALSE(all.empty());
+  EXPECT_EQ(*std::max_element(all.begin(), all.end()), 270);
 }
 
 }  // namespace
