@@ -368,3 +368,36 @@ TEST(SimulationEscapement, RunMatchesItsPinnedHash) {
 }
 
 }  // namespace hipair
+
+namespace hipair {
+// Every simulated state of the escapement lies in the closure of free space of both moving
+// pairs (escape-wheel/anchor, anchor/balance), to the run's accuracy, decided by the exact slice
+// of each pair's C-space (distance_to_free above).
+TEST(SimulationEscapement, EveryStateIsInTheClosureOfFreeSpace) {
+  Model model = example("escapement.json");
+  Simulation s = Simulation::create(model);
+  auto index_of = [&](const std::string& name) {
+    for (std::size_t i = 0; i < model.parts.size(); ++i)
+      if (model.parts[i].name == name) return i;
+    ADD_FAILURE() << "no part " << name;
+    return std::size_t{0};
+  };
+  const double accuracy = 1e-9;
+  double largest = 0;
+  int checked = 0;
+  while (s.state().time < 0.1) {
+    s.step();
+    for (const auto& space : s.spaces()) {
+      if (!space) continue;
+      std::string x = space->x_part(), y = space->y_part();
+      if (x.empty() || y.empty()) continue;   // a pair with a fixed part (the banking pins): a 1-D C-space
+      double d = distance_to_free(*space, s.state().position[index_of(x)], s.state().position[index_of(y)]);
+      largest = std::max(largest, d);
+      EXPECT_LE(d, accuracy) << x << "/" << y << " t " << s.state().time;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 50);
+  std::cout << "[ escapement ] largest distance to free space " << largest << " over " << checked << " checks\n";
+}
+}  // namespace hipair
