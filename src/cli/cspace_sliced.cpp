@@ -58,7 +58,8 @@ SlicedSpace build_sliced(const Model& model, const std::string& fixed, const std
       std::cerr << "\rhipair: " << label << " sliced C-space: " << stage << "          " << std::flush;
     };
   SlicedSpace space = SlicedSpace::build(model, fixed, free, options);
-  if (progress) std::cerr << "\rhipair: " << fixed << ":" << free << " sliced C-space built\n";
+  if (progress)   // padded to cover the longest stage line
+    std::cerr << "\rhipair: " << fixed << ":" << free << " sliced C-space built" << std::string(32, ' ') << "\n";
   return space;
 }
 
