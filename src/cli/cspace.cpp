@@ -1,7 +1,8 @@
 // `hipair cspace MODEL [--pair A:B] [--svg OUT.svg] [--json OUT.json] [--stats]`: builds the
 // exact configuration space of a pair (or of every fixed-axis pair) and writes it as a
 // picture (paper Figure 2 style) and as JSON (cells, edges with feature pairs and exact
-// polynomials, vertices with exact coordinates).
+// polynomials, vertices with exact coordinates). 3-DOF pairs (a planar part against a fixed
+// part) are sliced: a stack of slices and the cell structure (cli/cspace_sliced.cpp).
 #include "cli/commands.hpp"
 #include "cli/cspace_sliced.hpp"
 

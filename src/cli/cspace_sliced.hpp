@@ -5,6 +5,7 @@
 #include <hipair/model.hpp>
 #include <hipair/sliced.hpp>
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
