@@ -20,6 +20,7 @@
 #include <hipair/rational.hpp>
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -106,6 +107,9 @@ struct SlicedBuildOptions {
   /// Compute critical angles and the cell structure (polygonal parts only). Off: slices and
   /// point location only (parts may have arcs).
   bool cell_structure = true;
+  /// Called with a short description of the stage under way ("critical angles", "slice 3 of
+  /// 12", "crossing 5 of 12"), for a progress line; may be empty.
+  std::function<void(const std::string&)> progress;
 };
 
 /// Counts and times of a sliced build.

@@ -1,12 +1,15 @@
 // `hipair cspace MODEL [--pair A:B] [--svg OUT.svg] [--json OUT.json] [--stats]`: builds the
 // exact configuration space of a pair (or of every fixed-axis pair) and writes it as a
 // picture (paper Figure 2 style) and as JSON (cells, edges with feature pairs and exact
-// polynomials, vertices with exact coordinates).
+// polynomials, vertices with exact coordinates). 3-DOF pairs (a planar part against a fixed
+// part) are sliced: a stack of slices and the cell structure (cli/cspace_sliced.cpp).
 #include "cli/commands.hpp"
+#include "cli/cspace_sliced.hpp"
 
 #include "io/atomic_file.hpp"
 #include "io/output_paths.hpp"
 #include "render/cspace_svg.hpp"
+#include "render/sliced_svg.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/error.hpp>
@@ -241,12 +244,20 @@ std::string file_name_part(const std::string& text) {
   return out;
 }
 
-std::filesystem::path suffixed(const std::string& path, const CSpace& space, bool several) {
+std::filesystem::path suffixed(const std::string& path, const std::string& first, const std::string& second,
+                               bool several) {
   if (!several) return path;
   std::filesystem::path p(path);
-  std::string stem = p.stem().string() + "-" + file_name_part(space.first_part()) + "-" +
-                     file_name_part(space.second_part());
+  std::string stem = p.stem().string() + "-" + file_name_part(first) + "-" + file_name_part(second);
   return p.parent_path() / (stem + p.extension().string());
+}
+
+std::filesystem::path suffixed(const std::string& path, const CSpace& space, bool several) {
+  return suffixed(path, space.first_part(), space.second_part(), several);
+}
+
+std::filesystem::path suffixed(const std::string& path, const SlicedSpace& space, bool several) {
+  return suffixed(path, space.fixed_part(), space.free_part(), several);
 }
 
 int run(const CSpaceCommandOptions& options) {
@@ -260,21 +271,51 @@ int run(const CSpaceCommandOptions& options) {
   build.operating_region = options.region == "operating";
   build.region_tiles = options.tiles;
   std::vector<CSpace> spaces;
+  // 3-DOF pairs (a planar part against a fixed part): sliced C-spaces (docs/cspace.md)
+  std::vector<std::pair<std::string, std::string>> sliced_requests;
   if (!options.pair.empty()) {
     auto colon = options.pair.find(':');
     if (colon == std::string::npos) throw ModelError("", "--pair expects FIRST:SECOND, got '" + options.pair + "'");
-    spaces.push_back(CSpace::build(model, options.pair.substr(0, colon), options.pair.substr(colon + 1), build));
+    std::string first = options.pair.substr(0, colon), second = options.pair.substr(colon + 1);
+    if (auto sliced = sliced_pair(model, first, second))
+      sliced_requests.push_back(*sliced);
+    else
+      spaces.push_back(CSpace::build(model, first, second, build));
   } else {
     spaces = CSpace::build_all(model, build);
-    if (spaces.empty()) throw GeometryError("the model has no fixed-axis pair with a moving part");
+    sliced_requests = sliced_pairs(model);
+    if (spaces.empty() && sliced_requests.empty())
+      throw GeometryError("the model has no fixed-axis pair with a moving part and no 3-DOF pair (a planar part "
+                          "against a fixed part)");
   }
-  bool several = spaces.size() > 1;
+  std::vector<SlicedSpace> sliced_spaces;
+  for (const auto& [fixed, free] : sliced_requests)
+    sliced_spaces.push_back(build_sliced(model, fixed, free, isatty(2)));
+  bool several = spaces.size() + sliced_spaces.size() > 1;
   std::vector<io::PlannedOutput> outputs;
   for (const CSpace& space : spaces) {
     if (!options.svg.empty()) outputs.push_back({suffixed(options.svg, space, several), "--svg"});
     if (!options.json.empty()) outputs.push_back({suffixed(options.json, space, several), "--json"});
   }
+  for (const SlicedSpace& space : sliced_spaces) {
+    if (!options.svg.empty()) outputs.push_back({suffixed(options.svg, space, several), "--svg"});
+    if (!options.json.empty()) outputs.push_back({suffixed(options.json, space, several), "--json"});
+  }
   io::refuse_overwriting_inputs(outputs, {options.model});
+  // every document is made before any is written: a failure leaves no partial output
+  std::vector<std::pair<std::filesystem::path, std::string>> sliced_documents;
+  for (const SlicedSpace& space : sliced_spaces) {
+    if (options.stats) print_sliced_statistics(space);
+    if (!options.svg.empty()) {
+      render::SlicedSvgOptions svg;
+      svg.title = model.name + ": sliced C-space of " + space.free_part() + " against " + space.fixed_part() + " (" +
+                  std::to_string(space.critical_angles().size()) + " critical angles, " +
+                  std::to_string(space.intervals().size()) + " slices, " + std::to_string(space.components()) +
+                  " free components)";
+      sliced_documents.emplace_back(suffixed(options.svg, space, several), render::sliced_stack_svg(space, svg));
+    }
+    if (!options.json.empty()) sliced_documents.emplace_back(suffixed(options.json, space, several), sliced_json(space));
+  }
   for (const CSpace& space : spaces) {
     if (options.stats) print_statistics(space);
     if (!options.svg.empty()) {
@@ -301,6 +342,7 @@ int run(const CSpaceCommandOptions& options) {
     if (!options.json.empty())
       io::write_file_atomically(suffixed(options.json, space, several), space_json(space).dump(1) + "\n");
   }
+  for (const auto& [path, document] : sliced_documents) io::write_file_atomically(path, document);
   return 0;
 }
 
@@ -309,11 +351,11 @@ int run(const CSpaceCommandOptions& options) {
 void register_cspace(CLI::App& app, Action& action) {
   auto options = std::make_shared<CSpaceCommandOptions>();
   CLI::App* command = app.add_subcommand(
-      "cspace", "Build the exact configuration space of a pair (or of every fixed-axis pair) and write it as SVG/JSON");
+      "cspace", "Build the exact configuration space of a pair (or of every fixed-axis pair and 3-DOF pair) and write it as SVG/JSON");
   command->add_option("model", options->model, "Model file (JSON)")->required()->check(CLI::ExistingFile);
-  command->add_option("--pair", options->pair, "The pair FIRST:SECOND (default: every fixed-axis pair)");
-  command->add_option("--svg", options->svg, "SVG picture (blocked shaded, contact curves coloured by feature pair)");
-  command->add_option("--json", options->json, "JSON: cells, edges (feature pair, exact polynomial), vertices");
+  command->add_option("--pair", options->pair, "The pair FIRST:SECOND (default: every fixed-axis pair and every 3-DOF pair)");
+  command->add_option("--svg", options->svg, "SVG picture (blocked shaded, contact curves coloured by feature pair; 3-DOF pairs: a stack of slices)");
+  command->add_option("--json", options->json, "JSON: cells, edges (feature pair, exact polynomial), vertices; 3-DOF pairs: critical angles, slices, free cells, crossings, components");
   command->add_flag("--stats", options->stats, "Print counts and times per stage");
   command->add_flag("--spurious", options->spurious, "Also draw spurious edges (curves through free or blocked space)");
   command->add_flag("--aggregated", options->aggregated, "Use CGAL's aggregated insertion (for measurements)");

@@ -328,6 +328,7 @@ struct SlicedSpace::Impl {
     auto start = Clock::now();
     pair = sliced::polygonal_pair(model.parts[fixed], model.parts[free]);
     sliced::CriticalStatistics cs;
+    if (options.progress) options.progress("critical angles");
     critical = sliced::critical_angles(*pair, cs);
     stats.candidate_polynomials = cs.polynomials;
     stats.candidate_roots = cs.roots;
@@ -376,6 +377,7 @@ struct SlicedSpace::Impl {
           in.representative.t = algebra::rational_between(L.t, U.t);
         }
       }
+      if (options.progress) options.progress("slice " + std::to_string(i + 1) + " of " + std::to_string(count));
       auto space = slice(in.representative);
       for (const auto& [cell, key] : free_cells(*space)) {
         if (!keys[i].emplace(key, in.free_cells.size()).second)
@@ -392,6 +394,7 @@ struct SlicedSpace::Impl {
       for (std::size_t k = 0; k < intervals[i].free_cells.size(); ++k) uf.add();
     }
     for (std::size_t i = 0; i < n; ++i) {
+      if (options.progress) options.progress("crossing " + std::to_string(i + 1) + " of " + std::to_string(n));
       SlicedCrossing crossing;
       crossing.critical = i;
       crossing.left_interval = (i + n - 1) % n;

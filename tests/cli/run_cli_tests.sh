@@ -249,6 +249,24 @@ done
 "$hipair" simulate "$source/examples/models/cam-drive.json" --t-end 0.01 --sweep no-such=1:2:2 >/dev/null 2>"$work/sweep-unknown.err"
 [ $? -eq 2 ] || fail "simulate --sweep of an unknown parameter: not a model error"
 
+# 3-DOF pair (a planar peg against a fixed plate): a sliced C-space, a stack of slice panels
+# in the SVG and the cell structure in the JSON (12 critical angles: docs/cspace.md).
+pih="$source/examples/models/peg-in-hole.json"
+"$hipair" cspace "$pih" --svg "$work/pih.svg" --json "$work/pih.json" >/dev/null 2>"$work/pih.err" \
+  || fail "cspace on the 3-DOF peg-in-hole fails: $(cat "$work/pih.err")"
+grep -q "</svg>" "$work/pih.svg" 2>/dev/null || fail "cspace 3-DOF: SVG not written or not complete"
+[ "$(grep -c '^<svg x=' "$work/pih.svg" 2>/dev/null)" = 12 ] || fail "cspace 3-DOF: SVG does not have 12 slice panels"
+for key in critical_angles slices crossings components free_cells connections; do
+  grep -q "\"$key\"" "$work/pih.json" 2>/dev/null || fail "cspace 3-DOF: JSON has no $key"
+done
+[ "$(grep -c '"events"' "$work/pih.json" 2>/dev/null)" = 12 ] || fail "cspace 3-DOF: JSON does not list 12 critical angles"
+"$hipair" cspace "$pih" --pair plate:no-such --svg "$work/pih-bad.svg" --json "$work/pih-bad.json" >/dev/null 2>"$work/pih-bad.err"
+code=$?
+{ [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "cspace 3-DOF with a bad --pair: exit code $code"
+[ "$(wc -l <"$work/pih-bad.err")" -eq 1 ] || fail "cspace 3-DOF bad --pair: not one error line: $(cat "$work/pih-bad.err")"
+grep -q "no-such" "$work/pih-bad.err" || fail "cspace 3-DOF bad --pair: message does not name the part: $(cat "$work/pih-bad.err")"
+[ -e "$work/pih-bad.svg" ] || [ -e "$work/pih-bad.json" ] && fail "cspace 3-DOF bad --pair wrote output"
+
 # No stray temporary files left by atomic writes.
 ls -a "$work" | grep -q '\.tmp' && fail "temporary files left behind"
 

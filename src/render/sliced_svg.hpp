@@ -1,0 +1,27 @@
+// A 3-DOF pair's sliced C-space as a stack of slices (Joskowicz & Sacks 1997, Figure 3b):
+// one panel per interval between consecutive critical angles, each the representative
+// slice drawn by the translating-pair renderer (cspace_svg) and labelled with its angle
+// interval, laid out as small multiples in a grid. A picture only.
+#pragma once
+
+#include <hipair/sliced.hpp>
+
+#include <string>
+
+namespace hipair::render {
+
+struct SlicedSvgOptions {
+  double panel_pixel_width = 420;   ///< width of one panel in the document
+  std::size_t columns = 0;          ///< 0: about the square root of the number of panels (at most 6)
+  std::string title;
+};
+
+/// The degrees of an interval's ends and of its representative, as display text, e.g.
+/// "θ in (-45.00°, 45.00°), slice at θ = 0.00°" (angles approximate; "all θ" when there is no
+/// critical angle).
+std::string sliced_interval_label(const SlicedSpace& space, std::size_t interval);
+
+/// The SVG document of the stack of slices (builds each representative slice on demand).
+std::string sliced_stack_svg(const SlicedSpace& space, const SlicedSvgOptions& options = {});
+
+}  // namespace hipair::render
