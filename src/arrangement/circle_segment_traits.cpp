@@ -1,6 +1,7 @@
 // The circle–segment CGAL stage of the C-space builder (see circle_segment_traits.hpp): the
 // only translation unit that includes Arr_circle_segment_traits_2.
 #include "arrangement/circle_segment_traits.hpp"
+#include "core/exact_sqrt.hpp"
 
 #include <hipair/error.hpp>
 
@@ -106,18 +107,6 @@ std::optional<Circle> circle_of(const IntegerPolynomial2& f) {
   Circle c{-d / 2, -e / 2, 0};
   c.r2 = c.cx * c.cx + c.cy * c.cy - g;
   return c;
-}
-
-// sqrt(q) when q >= 0 is the square of a rational.
-std::optional<Rational> rational_sqrt(const Rational& q) {
-  if (sgn(q) < 0) return std::nullopt;
-  if (mpz_perfect_square_p(q.get_num_mpz_t()) == 0 || mpz_perfect_square_p(q.get_den_mpz_t()) == 0) return std::nullopt;
-  mpz_class n, d;
-  mpz_sqrt(n.get_mpz_t(), q.get_num_mpz_t());
-  mpz_sqrt(d.get_mpz_t(), q.get_den_mpz_t());
-  Rational r(n, d);
-  r.canonicalize();
-  return r;
 }
 
 // a0 + a1 sqrt(root), root >= 0, exactly.

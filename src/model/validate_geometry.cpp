@@ -3,6 +3,7 @@
 // lie in Q(sqrt(D)) for a rational D and every test is an exact sign test there. Orientation
 // and nesting are integer- or sign-valued quantities computed on certified MPFI enclosures.
 #include "model/validate_geometry.hpp"
+#include "core/exact_sqrt.hpp"
 #include "core/decimal_text.hpp"
 
 #include "model/interval.hpp"
@@ -55,16 +56,6 @@ SurdPoint rational_point(const Point& p) { return {{p.x, 0}, {p.y, 0}}; }
 
 bool equals(const SurdPoint& p, const Point& q) {
   return p.x.b == 0 && p.y.b == 0 && p.x.a == q.x && p.y.a == q.y;
-}
-
-std::optional<Rational> rational_sqrt(const Rational& value) {
-  if (value < 0) return std::nullopt;
-  if (!mpz_perfect_square_p(value.get_num_mpz_t()) || !mpz_perfect_square_p(value.get_den_mpz_t()))
-    return std::nullopt;
-  mpz_class numerator, denominator;
-  mpz_sqrt(numerator.get_mpz_t(), value.get_num_mpz_t());
-  mpz_sqrt(denominator.get_mpz_t(), value.get_den_mpz_t());
-  return Rational(numerator, denominator);
 }
 
 // ------------------------------------------------------------------ messages

@@ -8,6 +8,7 @@
 #include <hipair/overlap.hpp>
 
 #include "sliced/critical_angles.hpp"
+#include "core/exact_sqrt.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -46,17 +47,6 @@ std::string point_json(const Rational& x, const Rational& y) {
   out += quoted(y);
   out += ']';
   return out;
-}
-
-std::optional<Rational> rational_sqrt(const Rational& q) {
-  if (sgn(q) < 0) return std::nullopt;
-  if (mpz_perfect_square_p(q.get_num_mpz_t()) == 0 || mpz_perfect_square_p(q.get_den_mpz_t()) == 0) return std::nullopt;
-  mpz_class n, d;
-  mpz_sqrt(n.get_mpz_t(), q.get_num_mpz_t());
-  mpz_sqrt(d.get_mpz_t(), q.get_den_mpz_t());
-  Rational r(n, d);
-  r.canonicalize();
-  return r;
 }
 
 // The loops of `part` moved by p -> pivot + R (p - pivot), as model JSON.
