@@ -46,18 +46,30 @@ flags=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,addre
        -fno-sanitize-recover=undefined -I"$source/include" -I"$source/src" -I"$source"
        -I/usr/include/eigen3 -DHIPAIR_EXAMPLES="\"$source/examples/models\"")
 
+# An object is stale when it is missing, has no dependency list, or any file it was compiled
+# from (the source and every header clang listed with -MMD) is newer than it.
+stale() {
+  local object=$1 dep
+  [ -f "$object" ] && [ -f "$object.d" ] || return 0
+  for dep in $(sed -e 's/^[^:]*://' -e 's/\\$//' "$object.d"); do
+    [ "$dep" -nt "$object" ] && return 0
+  done
+  return 1
+}
+
 # Compile what is missing or stale, at most two compilers at a time (the machine has two cores),
 # holding the object directory's lock so that the other target waits instead of racing.
 compile() {
   # Objects built with other flags (another source directory) are rebuilt.
-  if [ "$(cat "$objects_dir/flags.txt" 2>/dev/null)" != "${flags[*]}" ]; then rm -f "$objects_dir"/*.o; fi
+  if [ "$(cat "$objects_dir/flags.txt" 2>/dev/null)" != "${flags[*]}" ]; then rm -f "$objects_dir"/*.o "$objects_dir"/*.o.d; fi
   printf '%s' "${flags[*]}" >"$objects_dir/flags.txt"
   local pids=() file object
   for file in "${sources[@]}"; do
     object="$objects_dir/$(basename "$(dirname "$file")")-$(basename "$file" .cpp).o"
     objects+=("$object")
-    if [ ! -f "$object" ] || [ "$file" -nt "$object" ]; then
-      "$clangxx" "${flags[@]}" -c "$file" -o "$object.tmp" && mv "$object.tmp" "$object" &
+    if stale "$object"; then
+      "$clangxx" "${flags[@]}" -MMD -MF "$object.d.tmp" -c "$file" -o "$object.tmp" &&
+        mv "$object.d.tmp" "$object.d" && mv "$object.tmp" "$object" &
       pids+=($!)
       if [ ${#pids[@]} -ge 2 ]; then wait "${pids[0]}" || return 1; pids=("${pids[@]:1}"); fi
     fi
