@@ -12,8 +12,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
 #include <filesystem>
 #include <random>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -48,52 +53,102 @@ cspace::RigidMap rigid(const verify::ExactMap& map) {
   return result;
 }
 
-TEST(CertifyAgreement, VerifierGeometryAgreesWithTheLibraryOverlapPredicate) {
-  std::mt19937_64 random(20240605);
-  int pairs = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(HIPAIR_EXAMPLES)) {
-    if (entry.path().extension() != ".json") continue;
-    Model model = read_model_file(entry.path());
-    for (const PairSpec& pair : model.pairs) {
-      const Part &a = model.parts[pair.first], &b = model.parts[pair.second];
-      // fixed-axis pairs only (a planar part's 3-DOF pair is sliced: tests/unit/sliced_test.cpp)
-      auto fixed_axis = [](const Part& part) {
-        return part.motion.kind != Motion::Kind::planar && part.motion.kind != Motion::Kind::pin_slot;
-      };
-      if (!fixed_axis(a) || !fixed_axis(b)) continue;
-      std::string name = entry.path().filename().string() + " " + a.name + ":" + b.name;
-      int overlapping = 0, apart = 0, touching = 0;
-      verify::IntervalPart shape_a = verify::shape_of(a), shape_b = verify::shape_of(b);
-      for (int i = 0; i < configurations_per_pair; ++i) {
-        verify::ExactMap map_a = random_map(a, random), map_b = random_map(b, random);
-        cspace::OverlapOptions options;
-        options.want_witness = true;
-        cspace::OverlapReport report = cspace::analyse_overlap(a, rigid(map_a), b, rigid(map_b), options);
-        verify::PlacedPart placed_a = verify::place(a, map_a), placed_b = verify::place(b, map_b);
-        std::string evidence = verify::overlap_evidence(placed_a, placed_b);
-        if (report.relation == cspace::Overlap::overlapping) {
-          ++overlapping;
-          EXPECT_FALSE(evidence.empty()) << name << " configuration " << i << ": the library says overlapping";
-          if (report.witness) {
-            EXPECT_EQ(verify::locate(placed_a, *report.witness), 1) << name << " configuration " << i;
-            EXPECT_EQ(verify::locate(placed_b, *report.witness), 1) << name << " configuration " << i;
-          }
-        } else if (report.relation == cspace::Overlap::apart) {
-          ++apart;
-          EXPECT_EQ(evidence, "") << name << " configuration " << i << ": the library says apart";
-          Rational bound = verify::boundary_distance_lower_bound(verify::place_over(shape_a, verify::to_interval_map(map_a)),
-                                                                 verify::place_over(shape_b, verify::to_interval_map(map_b)),
-                                                                 Rational(1000));
-          EXPECT_GT(bound, 0) << name << " configuration " << i << ": apart, but no positive distance bound";
-        } else {
-          ++touching;   // measure zero for random configurations
+bool fixed_axis(const Part& part) {
+  // fixed-axis pairs only (a planar part's 3-DOF pair is sliced: tests/unit/sliced_test.cpp; a
+  // pin-slot part's pairs are stacks of slices: tests/unit/pin_slot_test.cpp)
+  return part.motion.kind != Motion::Kind::planar && part.motion.kind != Motion::Kind::pin_slot;
+}
+
+std::vector<std::string> example_files() {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(HIPAIR_EXAMPLES))
+    if (entry.path().extension() == ".json") names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// One test per example file and shard, so that ctest runs them side by side, each within its
+// own time limit (all examples in one test took 2-5 minutes, the spur gears alone 170 s). Each
+// shard draws configurations_per_pair / shards configurations per pair with its own seed,
+// derived from the file's name and the shard, so a file's configurations do not depend on which
+// other examples exist; the shards together test configurations_per_pair per pair.
+constexpr int shards = 4;
+static_assert(configurations_per_pair % shards == 0);
+
+struct Shard {
+  std::string file;
+  int index;
+};
+
+std::vector<Shard> example_shards() {
+  std::vector<Shard> result;
+  for (const std::string& file : example_files())
+    for (int index = 0; index < shards; ++index) result.push_back({file, index});
+  return result;
+}
+
+class CertifyAgreement : public ::testing::TestWithParam<Shard> {};
+
+TEST_P(CertifyAgreement, VerifierGeometryAgreesWithTheLibraryOverlapPredicate) {
+  const std::string file = GetParam().file;
+  std::uint64_t seed = 20240605 + GetParam().index;
+  for (unsigned char c : file) seed = seed * 1099511628211ULL + c;
+  std::mt19937_64 random(seed);
+  constexpr int configurations = configurations_per_pair / shards;
+  Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / file);
+  for (const PairSpec& pair : model.pairs) {
+    const Part &a = model.parts[pair.first], &b = model.parts[pair.second];
+    if (!fixed_axis(a) || !fixed_axis(b)) continue;
+    std::string name = file + " " + a.name + ":" + b.name;
+    int overlapping = 0, apart = 0, touching = 0;
+    verify::IntervalPart shape_a = verify::shape_of(a), shape_b = verify::shape_of(b);
+    for (int i = 0; i < configurations; ++i) {
+      verify::ExactMap map_a = random_map(a, random), map_b = random_map(b, random);
+      cspace::OverlapOptions options;
+      options.want_witness = true;
+      cspace::OverlapReport report = cspace::analyse_overlap(a, rigid(map_a), b, rigid(map_b), options);
+      verify::PlacedPart placed_a = verify::place(a, map_a), placed_b = verify::place(b, map_b);
+      std::string evidence = verify::overlap_evidence(placed_a, placed_b);
+      if (report.relation == cspace::Overlap::overlapping) {
+        ++overlapping;
+        EXPECT_FALSE(evidence.empty()) << name << " configuration " << i << ": the library says overlapping";
+        if (report.witness) {
+          EXPECT_EQ(verify::locate(placed_a, *report.witness), 1) << name << " configuration " << i;
+          EXPECT_EQ(verify::locate(placed_b, *report.witness), 1) << name << " configuration " << i;
         }
+      } else if (report.relation == cspace::Overlap::apart) {
+        ++apart;
+        EXPECT_EQ(evidence, "") << name << " configuration " << i << ": the library says apart";
+        Rational bound = verify::boundary_distance_lower_bound(verify::place_over(shape_a, verify::to_interval_map(map_a)),
+                                                               verify::place_over(shape_b, verify::to_interval_map(map_b)),
+                                                               Rational(1000));
+        EXPECT_GT(bound, 0) << name << " configuration " << i << ": apart, but no positive distance bound";
+      } else {
+        ++touching;   // measure zero for random configurations
       }
-      EXPECT_EQ(overlapping + apart + touching, configurations_per_pair);
-      std::cout << "[ agreement ] " << name << ": " << overlapping << " overlapping, " << apart << " apart, " << touching
-                << " touching\n";
-      ++pairs;
     }
+    EXPECT_EQ(overlapping + apart + touching, configurations);
+    std::cout << "[ agreement ] " << name << " (shard " << GetParam().index << "): " << overlapping << " overlapping, " << apart << " apart, " << touching
+              << " touching\n";
+  }
+}
+
+std::string test_name(const ::testing::TestParamInfo<Shard>& info) {
+  std::string name = std::filesystem::path(info.param.file).stem().string();
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name + "_" + std::to_string(info.param.index);
+}
+
+INSTANTIATE_TEST_SUITE_P(Examples, CertifyAgreement, ::testing::ValuesIn(example_shards()), test_name);
+
+// The agreement above must cover the examples' fixed-axis pairs: at least ten of them.
+TEST(CertifyAgreementCoverage, AtLeastTenFixedAxisExamplePairs) {
+  int pairs = 0;
+  for (const std::string& file : example_files()) {
+    Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / file);
+    for (const PairSpec& pair : model.pairs)
+      if (fixed_axis(model.parts[pair.first]) && fixed_axis(model.parts[pair.second])) ++pairs;
   }
   EXPECT_GE(pairs, 10);
 }
