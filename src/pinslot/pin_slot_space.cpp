@@ -1,0 +1,537 @@
+// The stack-of-slices C-space of a pin-in-slot pair (include/hipair/pin_slot.hpp): slices at
+// rational tau = tan(psi/2) built by hipair::CSpace on a derived two-part model, witnesses of
+// connections between consecutive slices certified by exact 1-D C-spaces, changes of the
+// free-cell structure isolated by bisection, exact point location.
+#include <hipair/pin_slot.hpp>
+
+#include <hipair/error.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <numbers>
+#include <set>
+
+namespace hipair {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+struct Rotation {
+  Rational c = 1, s = 0;
+};
+// The exact rotation through psi with tan(psi/2) = t.
+Rotation rotation_of_tangent(const Rational& t) {
+  Rational d = 1 + t * t;
+  Rotation r{Rational((1 - t * t) / d), Rational(2 * t / d)};
+  r.c.canonicalize();
+  r.s.canonicalize();
+  return r;
+}
+
+Point rotate(const Point& v, const Rotation& r) {
+  return Point{Rational(r.c * v.x - r.s * v.y), Rational(r.s * v.x + r.c * v.y)};
+}
+
+// The part with every point moved by `placement` (a rigid map keeps radii and orientation).
+Part moved(const Part& part, const Placement& placement) {
+  Part out = part;
+  for (auto& loop : out.loops)
+    for (auto& e : loop.edges) {
+      e.source = placement.apply(e.source);
+      e.target = placement.apply(e.target);
+      if (e.is_arc()) e.center = placement.apply(e.center);
+    }
+  return out;
+}
+
+std::string kind_text(Motion::Kind kind) {
+  switch (kind) {
+    case Motion::Kind::fixed: return "fixed";
+    case Motion::Kind::rotation: return "rotation";
+    case Motion::Kind::translation: return "translation";
+    case Motion::Kind::planar: return "planar";
+    case Motion::Kind::pin_slot: return "pin_slot";
+  }
+  return "?";
+}
+
+// A rational near `value` with a small denominator (1/4096 steps, exact).
+Rational near_rational(double value) {
+  Rational r(static_cast<long>(std::llround(value * 4096)), 4096);
+  r.canonicalize();
+  return r;
+}
+
+struct UnionFind {
+  std::vector<std::size_t> parent;
+  std::size_t find(std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
+};
+
+}  // namespace
+
+Placement pin_slot_placement(const Part& part, const Rational& slide, const Rational& tau) {
+  Rotation r = rotation_of_tangent(tau);
+  Point shift = rotate(part.motion.direction, r);
+  shift.x *= slide;
+  shift.y *= slide;
+  return placement_about(part.motion.pivot, r.c, r.s, shift);
+}
+
+Placement part_placement(const Part& part, const PartCoordinate& coordinate) {
+  switch (part.motion.kind) {
+    case Motion::Kind::fixed: return Placement{};
+    case Motion::Kind::rotation: {
+      if (coordinate.kind == PartCoordinate::Kind::offset)
+        throw GeometryError("part '" + part.name + "' rotates: its coordinate is a half-angle tangent");
+      if (coordinate.kind == PartCoordinate::Kind::half_turn)
+        return placement_about(part.motion.pivot, Rational(-1), Rational(0), Point{});
+      Rotation r = rotation_of_tangent(coordinate.value);
+      return placement_about(part.motion.pivot, r.c, r.s, Point{});
+    }
+    case Motion::Kind::translation: {
+      if (coordinate.kind != PartCoordinate::Kind::offset)
+        throw GeometryError("part '" + part.name + "' translates: its coordinate is an offset");
+      Point shift{Rational(part.motion.direction.x * coordinate.value), Rational(part.motion.direction.y * coordinate.value)};
+      return placement_about(Point{}, Rational(1), Rational(0), shift);
+    }
+    default: break;
+  }
+  throw GeometryError("part '" + part.name + "': a " + kind_text(part.motion.kind) +
+                      " part has no single coordinate");
+}
+
+struct PinSlotSpace::Impl {
+  Model model;          // the two parts only: 0 = other, 1 = pin-slot part
+  std::string other_name, pin_name;
+  Motion::Kind other_kind = Motion::Kind::fixed;
+  Rational tau_lo, tau_hi;
+  bool whole_turn = false;
+  std::vector<PinSlotSlice> slices;
+  std::vector<PinSlotConnection> connections;
+  std::vector<PinSlotChange> changes;
+  std::size_t group_count = 0;
+  mutable PinSlotStatistics stats;
+  mutable std::mutex mutex;
+  mutable std::map<Rational, std::shared_ptr<const CSpace>> cache;
+
+  const Part& other() const { return model.parts[0]; }
+  const Part& pin() const { return model.parts[1]; }
+
+  std::string where(const Rational& tau) const {
+    return "pin-slot pair '" + other_name + "':'" + pin_name + "' at tan(psi/2) = " + to_exact_string(tau);
+  }
+
+  // ------------------------------------------------------------ slices
+  std::shared_ptr<const CSpace> slice(const Rational& tau) const {
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      auto it = cache.find(tau);
+      if (it != cache.end()) return it->second;
+    }
+    auto start = Clock::now();
+    Rotation r = rotation_of_tangent(tau);
+    Model derived;
+    derived.name = "pin-slot slice";
+    derived.angle_unit = "rad";
+    derived.source = "<pin-slot slice>";
+    derived.parts.push_back(other());
+    Part turned = moved(pin(), placement_about(pin().motion.pivot, r.c, r.s, Point{}));
+    turned.motion.kind = Motion::Kind::translation;
+    turned.motion.direction = rotate(pin().motion.direction, r);
+    turned.motion.angle_limits.reset();
+    turned.initial = PartConfiguration{};
+    turned.initial.offset = pin().initial.offset;
+    turned.dynamics.reset();
+    derived.parts.push_back(std::move(turned));
+    derived.parts[0].dynamics.reset();
+    derived.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, ""});
+    derived.pairs_explicit = true;
+    std::shared_ptr<const CSpace> space;
+    try {
+      space = std::make_shared<const CSpace>(CSpace::build(derived, other_name, pin_name));
+    } catch (const Error& e) {
+      throw GeometryError(where(tau) + ": the slice cannot be built: " + e.what());
+    }
+    std::lock_guard<std::mutex> lock(mutex);
+    ++stats.slices_built;
+    stats.seconds_slices += seconds_since(start);
+    cache.emplace(tau, space);
+    return space;
+  }
+
+  // A slice's chart point as coordinates per part.
+  std::pair<PartCoordinate, Rational> coordinates(const CSpace& space, std::size_t chart, const Rational& x,
+                                                  const Rational& y) const {
+    if (space.dimension() == 1) return {PartCoordinate{}, x};
+    const CSpaceChart& c = space.charts()[chart];
+    PartCoordinate other;
+    if (c.x_kind == AxisKind::translation) {
+      other.kind = PartCoordinate::Kind::offset;
+      other.value = x;
+    } else if (!c.x_half_turn) {
+      other.value = x;
+    } else if (sgn(x) == 0) {
+      other.kind = PartCoordinate::Kind::half_turn;
+    } else {   // theta = pi + 2 atan(x): tan(theta/2) = -1/x
+      other.value = Rational(-1) / x;
+      other.value.canonicalize();
+    }
+    return {other, y};
+  }
+
+  Location locate_in(const CSpace& space, const PartCoordinate& other, const Rational& slide) const {
+    if (space.dimension() == 1) return space.locate(PartCoordinate{PartCoordinate::Kind::offset, slide});
+    return space.locate(other, PartCoordinate{PartCoordinate::Kind::offset, slide});
+  }
+
+  static PinSlotLocation::Kind kind_of(const CSpace& space, const Location& at) {
+    switch (at.kind) {
+      case Location::Kind::free: return PinSlotLocation::Kind::free;
+      case Location::Kind::blocked: return PinSlotLocation::Kind::blocked;
+      case Location::Kind::touching: return PinSlotLocation::Kind::contact;
+      case Location::Kind::outside: return PinSlotLocation::Kind::outside;
+      case Location::Kind::edge:
+      case Location::Kind::vertex:
+        if (at.cell == no_index) return PinSlotLocation::Kind::contact;
+        switch (space.cells()[at.cell].kind) {
+          case CellKind::free: return PinSlotLocation::Kind::free;
+          case CellKind::blocked: return PinSlotLocation::Kind::blocked;
+          case CellKind::touching: return PinSlotLocation::Kind::contact;
+        }
+    }
+    return PinSlotLocation::Kind::outside;
+  }
+
+  // ------------------------------------------------------------ cells of a slice
+  static std::string cell_contacts(const CSpace& space, std::size_t cell) {
+    std::set<std::string> labels;
+    for (std::size_t e : space.cells()[cell].boundary)
+      for (std::size_t f : space.edges()[e].curves) labels.insert(space.feature_pairs()[f].label);
+    if (space.dimension() == 1) {
+      // 1-D: a cell is an interval; its ends are vertices carrying the feature pairs
+      for (const CSpaceFace& face : space.faces(0)) {
+        if (face.cell.index() != cell) continue;
+        for (VertexId v : {face.lower, face.upper})
+          if (v.valid())
+            for (std::size_t f : space.vertices()[v.index()].curves) labels.insert(space.feature_pairs()[f].label);
+      }
+    }
+    std::string out;
+    for (const auto& l : labels) out += (out.empty() ? "" : "; ") + l;
+    return out.empty() ? "(no contact)" : out;
+  }
+
+  PinSlotSlice make_slice(const Rational& tau, bool refinement) const {
+    auto space = slice(tau);
+    PinSlotSlice out;
+    out.tau = tau;
+    out.degrees = 2 * std::atan(to_double(tau)) * 180 / std::numbers::pi;
+    out.refinement = refinement;
+    out.cells = space->cells().size();
+    for (std::size_t c = 0; c < space->cells().size(); ++c) {
+      const CSpaceCell& cell = space->cells()[c];
+      if (cell.kind != CellKind::free) continue;
+      PinSlotCell fc;
+      fc.slice_cell = c;
+      fc.contacts = cell_contacts(*space, c);
+      auto [other, slide] = coordinates(*space, cell.sample_chart, cell.sample_x, cell.sample_y);
+      fc.sample_other = other;
+      fc.sample_slide = slide;
+      out.free_cells.push_back(std::move(fc));
+    }
+    return out;
+  }
+
+  static std::multiset<std::string> signature(const PinSlotSlice& slice) {
+    std::multiset<std::string> out;
+    for (const auto& c : slice.free_cells) out.insert(c.contacts);
+    return out;
+  }
+
+  // ------------------------------------------------------------ witnesses
+  // Is the segment at (other, slide) from tau a to tau b (a < b, the short way; across the
+  // half turn when `wrap`) free throughout? Exact: the 1-D C-space of the pin-slot part turning
+  // about its pivot, shifted by s along its direction, against the other part at `other`.
+  bool segment_free(const PartCoordinate& other_at, const Rational& slide, const Rational& a, const Rational& b,
+                    bool wrap) const {
+    Model derived;
+    derived.name = "pin-slot witness";
+    derived.angle_unit = "rad";
+    derived.source = "<pin-slot witness>";
+    Part fixed = moved(other(), part_placement(other(), other_at));
+    fixed.motion = Motion{};
+    fixed.motion.kind = Motion::Kind::fixed;
+    fixed.dynamics.reset();
+    Point shift{Rational(pin().motion.direction.x * slide), Rational(pin().motion.direction.y * slide)};
+    // across the half turn the part is pre-turned by pi: psi = pi + psi', tan(psi'/2) = -1/tau
+    Rational cos_pre = wrap ? -1 : 1;
+    Part turning = moved(pin(), placement_about(pin().motion.pivot, cos_pre, Rational(0), Point{}));
+    if (wrap) shift = Point{Rational(-shift.x), Rational(-shift.y)};
+    turning = moved(turning, placement_about(Point{}, Rational(1), Rational(0), shift));
+    turning.motion.kind = Motion::Kind::rotation;
+    turning.motion.angle_limits.reset();
+    turning.motion.translation_limits.reset();
+    turning.initial = PartConfiguration{};
+    turning.dynamics.reset();
+    derived.parts = {fixed, turning};
+    derived.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, ""});
+    derived.pairs_explicit = true;
+    CSpace space = CSpace::build(derived, other_name, pin_name);
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      ++stats.witness_spaces;
+    }
+    Rational from = a, to = b;
+    if (wrap) {
+      from = Rational(-1) / a;
+      to = Rational(-1) / b;
+      from.canonicalize();
+      to.canonicalize();
+    }
+    MotionPath path;
+    path.x.kind = AxisPath::Kind::half_tangent;
+    path.x.coefficients = {from, Rational(to - from)};
+    path.u_begin = 0;
+    path.u_end = 1;
+    MotionCrossing crossing = space.first_crossing(path);
+    return crossing.status == CrossingStatus::none;
+  }
+
+  // Connections between slices i and j (j = i + 1, or the wrap from the last to the first).
+  void connect(std::size_t i, std::size_t j, bool wrap) {
+    const PinSlotSlice& lo = slices[i];
+    const PinSlotSlice& hi = slices[j];
+    if (lo.free_cells.empty() || hi.free_cells.empty()) return;
+    auto lo_space = slice(lo.tau);
+    auto hi_space = slice(hi.tau);
+    std::set<std::pair<std::size_t, std::size_t>> joined;
+    auto cell_index = [](const PinSlotSlice& s, const Location& at) -> std::size_t {
+      if (at.kind != Location::Kind::free) return no_index;
+      for (std::size_t k = 0; k < s.free_cells.size(); ++k)
+        if (s.free_cells[k].slice_cell == at.cell) return k;
+      return no_index;
+    };
+    auto candidates = [&](const PinSlotSlice& s) {
+      std::vector<std::pair<PartCoordinate, Rational>> out;
+      for (const auto& c : s.free_cells) out.emplace_back(c.sample_other, c.sample_slide);
+      return out;
+    };
+    std::vector<std::pair<PartCoordinate, Rational>> points = candidates(lo);
+    for (auto& p : candidates(hi)) points.push_back(p);
+    for (const auto& [other_at, slide] : points) {
+      ++stats.witness_candidates;
+      std::size_t a = cell_index(lo, locate_in(*lo_space, other_at, slide));
+      std::size_t b = cell_index(hi, locate_in(*hi_space, other_at, slide));
+      if (a == no_index || b == no_index || joined.count({a, b})) continue;
+      if (!segment_free(other_at, slide, lo.tau, hi.tau, wrap)) continue;
+      joined.insert({a, b});
+      connections.push_back(PinSlotConnection{i, a, b, other_at, slide});
+      if (wrap) connections.back().lower = i;   // i is the last slice, j == 0
+    }
+  }
+};
+
+PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part, std::string_view pin_slot_part,
+                                 const PinSlotBuildOptions& options) {
+  auto start = Clock::now();
+  auto a = model.find_part(other_part);
+  auto b = model.find_part(pin_slot_part);
+  if (!a) throw ModelError("", "no part named '" + std::string(other_part) + "'");
+  if (!b) throw ModelError("", "no part named '" + std::string(pin_slot_part) + "'");
+  const Part& pin = model.parts[*b];
+  const Part& other = model.parts[*a];
+  std::string pair = "pair '" + other.name + "':'" + pin.name + "'";
+  if (*a == *b) throw GeometryError(pair + ": a part cannot be paired with itself");
+  if (pin.motion.kind != Motion::Kind::pin_slot)
+    throw GeometryError(pair + ": part '" + pin.name + "' (" + pin.pointer + ") has " + kind_text(pin.motion.kind) +
+                        " motion, not pin_slot");
+  if (other.motion.kind == Motion::Kind::planar || other.motion.kind == Motion::Kind::pin_slot)
+    throw GeometryError(pair + ": a pin_slot part against a " + kind_text(other.motion.kind) + " part (" +
+                        other.pointer +
+                        ") has a C-space of 4 or more dimensions, which is not built; the other part must be fixed, "
+                        "rotate or translate");
+  if (options.slices == 1) throw GeometryError(pair + ": a stack needs at least 2 slices");
+  auto impl = std::make_shared<Impl>();
+  impl->other_name = other.name;
+  impl->pin_name = pin.name;
+  impl->other_kind = other.motion.kind;
+  impl->model.name = model.name;
+  impl->model.parts = {other, pin};
+  // slice angles: interior points of n equal angle steps across the limits (or the turn)
+  std::size_t n = options.slices ? options.slices : 16;
+  double lo = -std::numbers::pi, hi = std::numbers::pi;
+  impl->whole_turn = !pin.motion.angle_limits;
+  if (pin.motion.angle_limits) {
+    lo = to_double(pin.motion.angle_limits->lo);
+    hi = to_double(pin.motion.angle_limits->hi);
+    if (hi - lo >= 2 * std::numbers::pi) impl->whole_turn = true, lo = -std::numbers::pi, hi = std::numbers::pi;
+  }
+  // Each slice angle is n-th of the range away from the limits; the rational tangent is within
+  // 2^-13 of tan(angle/2), i.e. within about 2^-12 rad (times 1 + tan^2 <= 2 inside a half
+  // turn... checked below) of the intended angle: the check that it stays inside the limits
+  // uses a margin of a quarter step, far above the doubles' rounding.
+  std::vector<Rational> taus;
+  const double step = (hi - lo) / static_cast<double>(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    double angle = lo + step * (static_cast<double>(k) + 0.5);
+    Rational t = near_rational(std::tan(angle / 2));
+    double back = 2 * std::atan(to_double(t));
+    if (back < lo + step / 4 || back > hi - step / 4)
+      throw GeometryError(pair + ": " + std::to_string(n) + " slices are too many for the angle range of part '" +
+                          pin.name + "'");
+    if (!taus.empty() && t <= taus.back()) continue;
+    taus.push_back(t);
+  }
+  if (taus.size() < 2) throw GeometryError(pair + ": the angle limits of part '" + pin.name + "' are too narrow to slice");
+  impl->tau_lo = taus.front();
+  impl->tau_hi = taus.back();
+  for (std::size_t k = 0; k < taus.size(); ++k) {
+    if (options.progress) options.progress("slice " + std::to_string(k + 1) + " of " + std::to_string(taus.size()));
+    impl->slices.push_back(impl->make_slice(taus[k], false));
+  }
+  // isolate changes by bisection
+  for (unsigned step_count = 0; step_count < options.refine_steps; ++step_count) {
+    std::vector<PinSlotSlice> refined;
+    bool any = false;
+    for (std::size_t k = 0; k < impl->slices.size(); ++k) {
+      refined.push_back(impl->slices[k]);
+      if (k + 1 == impl->slices.size()) break;
+      if (Impl::signature(impl->slices[k]) == Impl::signature(impl->slices[k + 1])) continue;
+      Rational mid = (impl->slices[k].tau + impl->slices[k + 1].tau) / 2;
+      mid.canonicalize();
+      if (options.progress) options.progress("isolating a change, step " + std::to_string(step_count + 1));
+      refined.push_back(impl->make_slice(mid, true));
+      any = true;
+    }
+    impl->slices = std::move(refined);
+    if (!any) break;
+  }
+  for (std::size_t k = 0; k + 1 < impl->slices.size(); ++k) {
+    const auto& p = impl->slices[k];
+    const auto& q = impl->slices[k + 1];
+    if (Impl::signature(p) == Impl::signature(q)) continue;
+    std::string what = p.free_cells.size() != q.free_cells.size()
+                           ? "free cells " + std::to_string(p.free_cells.size()) + " -> " + std::to_string(q.free_cells.size())
+                           : "contacts of the free cells differ";
+    impl->changes.push_back(PinSlotChange{k, what});
+  }
+  // connections and groups
+  auto connections_start = Clock::now();
+  if (options.connections) {
+    std::size_t gaps = impl->slices.size() - 1 + (impl->whole_turn ? 1 : 0);
+    for (std::size_t k = 0; k + 1 < impl->slices.size(); ++k) {
+      if (options.progress) options.progress("connections " + std::to_string(k + 1) + " of " + std::to_string(gaps));
+      impl->connect(k, k + 1, false);
+    }
+    if (impl->whole_turn) impl->connect(impl->slices.size() - 1, 0, true);
+  }
+  impl->stats.seconds_connections = seconds_since(connections_start);
+  std::vector<std::size_t> offset;
+  std::size_t total = 0;
+  for (const auto& s : impl->slices) offset.push_back(total), total += s.free_cells.size();
+  UnionFind uf;
+  uf.parent.resize(total);
+  for (std::size_t i = 0; i < total; ++i) uf.parent[i] = i;
+  for (const auto& c : impl->connections) {
+    std::size_t upper = c.lower + 1 == impl->slices.size() ? 0 : c.lower + 1;
+    uf.unite(offset[c.lower] + c.lower_cell, offset[upper] + c.upper_cell);
+  }
+  std::map<std::size_t, std::size_t> group_of;
+  for (std::size_t k = 0; k < impl->slices.size(); ++k)
+    for (std::size_t c = 0; c < impl->slices[k].free_cells.size(); ++c) {
+      std::size_t root = uf.find(offset[k] + c);
+      auto [it, inserted] = group_of.emplace(root, group_of.size());
+      impl->slices[k].free_cells[c].group = it->second;
+    }
+  impl->group_count = group_of.size();
+  impl->stats.seconds_total = seconds_since(start);
+  PinSlotSpace space;
+  space.impl_ = impl;
+  return space;
+}
+
+const std::string& PinSlotSpace::other_part() const { return impl_->other_name; }
+const std::string& PinSlotSpace::pin_slot_part() const { return impl_->pin_name; }
+Motion::Kind PinSlotSpace::other_kind() const { return impl_->other_kind; }
+int PinSlotSpace::dimension() const { return impl_->other_kind == Motion::Kind::fixed ? 2 : 3; }
+const Rational& PinSlotSpace::tau_lower() const { return impl_->tau_lo; }
+const Rational& PinSlotSpace::tau_upper() const { return impl_->tau_hi; }
+std::shared_ptr<const CSpace> PinSlotSpace::slice(const Rational& tau) const {
+  Rational t = tau;
+  t.canonicalize();
+  return impl_->slice(t);
+}
+const std::vector<PinSlotSlice>& PinSlotSpace::slices() const { return impl_->slices; }
+const std::vector<PinSlotConnection>& PinSlotSpace::connections() const { return impl_->connections; }
+const std::vector<PinSlotChange>& PinSlotSpace::changes() const { return impl_->changes; }
+std::size_t PinSlotSpace::groups() const { return impl_->group_count; }
+const PinSlotStatistics& PinSlotSpace::statistics() const { return impl_->stats; }
+
+PinSlotLocation PinSlotSpace::locate(const PinSlotConfiguration& q) const {
+  const Impl& impl = *impl_;
+  Rational tau = q.tau;
+  tau.canonicalize();
+  if (impl.pin().motion.angle_limits && !impl.whole_turn) {
+    // outside the angle limits: psi = 2 atan(tau) against rational limits, decided with a
+    // certified double (atan's error is far below 1e-12; ties within it are refused)
+    double psi = 2 * std::atan(to_double(tau));
+    double lo = to_double(impl.pin().motion.angle_limits->lo), hi = to_double(impl.pin().motion.angle_limits->hi);
+    double margin = 1e-12 * (1 + std::abs(psi));
+    if (psi < lo - margin || psi > hi + margin) return PinSlotLocation{};
+    if (std::abs(psi - lo) <= margin || std::abs(psi - hi) <= margin)
+      throw GeometryError("locate: tan(psi/2) = " + to_exact_string(tau) +
+                          " is too close to an angle limit to decide with certainty");
+  }
+  auto space = impl.slice(tau);
+  PinSlotLocation out;
+  out.in_slice = impl.locate_in(*space, q.other, q.slide);
+  out.kind = Impl::kind_of(*space, out.in_slice);
+  for (std::size_t k = 0; k < impl.slices.size(); ++k)
+    if (impl.slices[k].tau == tau) {
+      out.slice = k;
+      if (out.kind == PinSlotLocation::Kind::free && out.in_slice.kind == Location::Kind::free)
+        for (std::size_t c = 0; c < impl.slices[k].free_cells.size(); ++c)
+          if (impl.slices[k].free_cells[c].slice_cell == out.in_slice.cell) out.cell = c;
+    }
+  return out;
+}
+
+bool PinSlotSpace::certainly_connected(const PinSlotConfiguration& a, const PinSlotConfiguration& b) const {
+  const Impl& impl = *impl_;
+  // the group of a free configuration: through a witnessed segment to the nearest slice below
+  // or above, or within its own slice when tau is a slice's
+  auto group = [&](const PinSlotConfiguration& q) -> std::size_t {
+    PinSlotLocation at = locate(q);
+    if (at.kind != PinSlotLocation::Kind::free) return no_index;
+    if (at.cell != no_index) return impl.slices[at.slice].free_cells[at.cell].group;
+    Rational tau = q.tau;
+    tau.canonicalize();
+    std::size_t above = 0;
+    while (above < impl.slices.size() && impl.slices[above].tau < tau) ++above;
+    for (std::size_t k : {above, above - 1}) {
+      if (k >= impl.slices.size()) continue;
+      const PinSlotSlice& s = impl.slices[k];
+      PinSlotLocation there = locate(PinSlotConfiguration{q.other, q.slide, s.tau});
+      if (there.cell == no_index) continue;
+      bool ok = k == above ? impl.segment_free(q.other, q.slide, tau, s.tau, false)
+                           : impl.segment_free(q.other, q.slide, s.tau, tau, false);
+      if (ok) return s.free_cells[there.cell].group;
+    }
+    return no_index;
+  };
+  std::size_t ga = group(a), gb = group(b);
+  if (ga == no_index || gb == no_index) return false;
+  if (ga == gb) return true;
+  return false;
+}
+
+}  // namespace hipair
