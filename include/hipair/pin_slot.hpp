@@ -99,6 +99,9 @@ struct PinSlotBuildOptions {
   unsigned refine_steps = 3;
   /// Search witnesses of connections between consecutive slices.
   bool connections = true;
+  /// Build the stack. false: nothing is built up front; slices are built on demand by slice()
+  /// and locate() (slices(), connections(), changes() stay empty).
+  bool stack = true;
   /// Called with the stage under way ("slice 3 of 16", "connections 5 of 15").
   std::function<void(const std::string&)> progress;
 };
@@ -154,6 +157,71 @@ class PinSlotSpace {
  private:
   std::shared_ptr<Impl> impl_;
 };
+
+// ------------------------------------------------------------------ the work cycle
+
+/// Options of a pin-in-slot work cycle (pin_slot_cycle).
+struct PinSlotCycleOptions {
+  std::string driver;     ///< rotating part driving the pin-slot part (empty: the one paired with it)
+  std::string follower;   ///< the pin-slot part (empty: the model's only one)
+  std::string target;     ///< translating part the follower pushes (empty: the one paired with it)
+  std::size_t steps = 72; ///< driver samples per turn (>= 8)
+  bool clockwise = false; ///< the driver's sense
+  std::function<void(const std::string&)> progress;
+};
+
+/// What the follower does to the target at one sample.
+enum class CyclePhase {
+  clear,     ///< the target's free cell has no contact end: the follower does not hold it
+  engaged,   ///< the target's free cell is bounded by a contact with the follower (e.g. a claw
+             ///< inside a perforation): held but not moved
+  pushing,   ///< the target had to move to stay free of the follower: it is pushed, in contact
+  jammed     ///< no free target offset within the target's limits
+};
+std::string_view to_string(CyclePhase phase);
+
+/// One sample of the cycle. The follower's pose is the middle of its largest free slide
+/// interval over follower angles searched near the previous pose (a choice, not a law), and it
+/// is certified free against the driver by exact point location; the target's offset is exact.
+struct CycleSample {
+  PartCoordinate driver;            ///< half-angle tangent (or half turn), exact
+  double driver_degrees = 0;
+  Rational slide, tau;              ///< follower pose, exact
+  double psi_degrees = 0;
+  double clearance = 0;             ///< length of the follower's free slide interval there (mm, approximate)
+  bool follower_free = false;       ///< exact point location against the driver
+  Rational target_offset;           ///< exact
+  bool target_offset_exact = true;  ///< false: an irrational contact, the offset is the rational
+                                    ///< end of its isolating interval on the free side
+  CyclePhase phase = CyclePhase::clear;
+  std::vector<std::string> contacts;   ///< feature pairs touching between follower and target
+};
+
+/// A run of samples with one phase.
+struct CycleRun {
+  CyclePhase phase = CyclePhase::clear;
+  std::size_t first = 0, last = 0;  ///< sample indices
+  Rational target_moved;            ///< target offset change over the run (exact)
+};
+
+struct PinSlotCycle {
+  std::string driver, follower, target;
+  std::vector<CycleSample> samples;
+  std::vector<CycleRun> runs;
+  Rational advance;                 ///< target offset change over the whole cycle (exact)
+  double seconds = 0;
+};
+
+/// The work cycle of a driver, a pin-slot follower and a translating target it pushes (the
+/// film advance: the cam turns once; the claw enters a perforation, pulls the film, retracts).
+/// Quasi-static: the target stays where it is unless the follower's new pose overlaps it, then
+/// it moves to the nearest free offset (the contact). Exact at every sample: the follower's pose
+/// is rational and located exactly against the driver; the target's free offsets are the exact
+/// 1-D C-space of the target against the follower at that pose. Between samples nothing is
+/// claimed: phase changes are located to the sample spacing.
+/// \throws GeometryError when the parts are not such a chain (naming them), ModelError for
+/// unknown names.
+PinSlotCycle pin_slot_cycle(const Model& model, const PinSlotCycleOptions& options = {});
 
 /// The rigid placement of the pin-slot part at (s, tau) (body point p -> pivot + R(psi)(p -
 /// pivot) + s R(psi) d), and of the other part at its coordinate: exact, for the overlap oracle.

@@ -394,6 +394,7 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
   if (taus.size() < 2) throw GeometryError(pair + ": the angle limits of part '" + pin.name + "' are too narrow to slice");
   impl->tau_lo = taus.front();
   impl->tau_hi = taus.back();
+  if (!options.stack) taus.clear();
   for (std::size_t k = 0; k < taus.size(); ++k) {
     if (options.progress) options.progress("slice " + std::to_string(k + 1) + " of " + std::to_string(taus.size()));
     impl->slices.push_back(impl->make_slice(taus[k], false));
@@ -426,7 +427,7 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
   }
   // connections and groups
   auto connections_start = Clock::now();
-  if (options.connections) {
+  if (options.connections && impl->slices.size() >= 2) {
     std::size_t gaps = impl->slices.size() - 1 + (impl->whole_turn ? 1 : 0);
     for (std::size_t k = 0; k + 1 < impl->slices.size(); ++k) {
       if (options.progress) options.progress("connections " + std::to_string(k + 1) + " of " + std::to_string(gaps));

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -240,6 +241,70 @@ TEST(PinSlot, BadPairsAreRefusedWithAMessage) {
   EXPECT_THROW(PinSlotSpace::build(fine, "a", "nope"), ModelError);
   PinSlotSpace ok = PinSlotSpace::build(fine, "a", "b", quick(4, true));
   EXPECT_EQ(ok.dimension(), 2);
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// The film advance's work cycle (pin_slot_cycle): the claw enters a perforation, pulls the film
+// down one frame and retracts, in that order; every sample re-checked by the exact oracle.
+TEST(PinSlot, FilmAdvanceCycle) {
+  const Model& model = film_advance();
+  PinSlotCycleOptions options;
+  options.clockwise = true;
+  options.steps = 72;
+  PinSlotCycle cycle = pin_slot_cycle(model, options);
+  EXPECT_EQ(cycle.driver, "cam");
+  EXPECT_EQ(cycle.follower, "follower");
+  EXPECT_EQ(cycle.target, "film");
+  ASSERT_EQ(cycle.samples.size(), 73u);
+  // phases: clear, engaged (the claw inside the perforation), pushing, clear
+  std::vector<CyclePhase> phases;
+  for (const auto& run : cycle.runs) phases.push_back(run.phase);
+  ASSERT_EQ(phases, (std::vector<CyclePhase>{CyclePhase::clear, CyclePhase::engaged, CyclePhase::pushing,
+                                             CyclePhase::clear}));
+  // one frame: the pitch is 7.8 mm; the film stops where the claw's last pushing sample leaves
+  // it, and the claw's slide changes by at most 4 mm * (5 deg in rad) = 0.35 mm per sample
+  // (s ~ 4 sin(phi)), so the sampled pull is within that of the pitch
+  EXPECT_NEAR(to_double(cycle.advance), -7.8, 0.35);
+  const Part& cam = model.parts[*model.find_part("cam")];
+  const Part& follower = model.parts[*model.find_part("follower")];
+  const Part& film = model.parts[*model.find_part("film")];
+  for (const CycleSample& s : cycle.samples) {
+    EXPECT_TRUE(s.follower_free);
+    Placement pose = pin_slot_placement(follower, s.slide, s.tau);
+    EXPECT_EQ(part_overlap(cam, part_placement(cam, s.driver), follower, pose).relation, PartRelation::apart)
+        << s.driver_degrees;
+    PartRelation film_relation =
+        part_overlap(film, part_placement(film, PartCoordinate{PartCoordinate::Kind::offset, s.target_offset}), follower, pose)
+            .relation;
+    EXPECT_NE(film_relation, PartRelation::overlapping) << s.driver_degrees;
+    // pushing: the film is exactly in contact with the claw
+    if (s.phase == CyclePhase::pushing) {
+      EXPECT_TRUE(s.target_offset_exact);
+      EXPECT_EQ(film_relation, PartRelation::touching) << s.driver_degrees;
+      ASSERT_FALSE(s.contacts.empty());
+      EXPECT_NE(s.contacts.front().find("claw bottom"), std::string::npos) << s.contacts.front();
+    }
+    if (s.phase == CyclePhase::clear) EXPECT_TRUE(s.contacts.empty());
+  }
+}
+
+TEST(PinSlot, CycleNeedsAChain) {
+  // the pin and the follower alone: nothing to drive it
+  Model model = film_advance();
+  model.pairs.erase(std::remove_if(model.pairs.begin(), model.pairs.end(),
+                                   [&](const PairSpec& p) { return model.parts[p.first].name == "cam" || model.parts[p.second].name == "cam"; }),
+                    model.pairs.end());
+  try {
+    pin_slot_cycle(model);
+    FAIL() << "a cycle without a driver was accepted";
+  } catch (const GeometryError& e) {
+    EXPECT_NE(std::string(e.what()).find("no rotating part"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
