@@ -309,3 +309,46 @@ TEST(PinSlot, CycleNeedsAChain) {
 
 }  // namespace
 }  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// A slotted bar on a pin without angle limits: the stack covers the whole turn, and the wrap
+// across the half turn is witnessed too (the slotted part pre-turned by pi): one group. A bar
+// also carrying a stop that hits a fixed block splits nothing but adds contacts.
+TEST(PinSlot, WholeTurnWrapsAcrossTheHalfTurn) {
+  Model model = read_model(R"({ "hipair": 1, "name": "whole-turn", "parts": [
+    { "name": "pin", "motion": "fixed", "features": [ { "circle": { "center": [0, 0], "radius": 1 } } ] },
+    { "name": "bar", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "limits": [-3, 3] } },
+      "loops": [
+        { "start": [-8, -2], "edges": [ { "line_to": [8, -2] }, { "line_to": [8, 2] }, { "line_to": [-8, 2] },
+          { "line_to": [-8, -2] } ] },
+        { "start": [-3, -1.25], "edges": [ { "line_to": [3, -1.25] }, { "line_to": [3, 1.25] },
+          { "line_to": [-3, 1.25] }, { "line_to": [-3, -1.25] } ] } ] } ],
+    "pairs": [ { "parts": ["pin", "bar"] } ] })");
+  PinSlotBuildOptions options;
+  options.slices = 6;
+  PinSlotSpace space = PinSlotSpace::build(model, "pin", "bar", options);
+  ASSERT_EQ(space.slices().size(), 6u);
+  EXPECT_LT(space.slices().front().degrees, -149);   // -150 deg, rounded tangent
+  EXPECT_GT(space.slices().back().degrees, 149);
+  for (const auto& slice : space.slices()) EXPECT_EQ(slice.free_cells.size(), 1u);
+  bool wrap = false;
+  for (const auto& c : space.connections()) wrap = wrap || c.lower + 1 == space.slices().size();
+  EXPECT_TRUE(wrap);
+  EXPECT_EQ(space.groups(), 1u);
+  // the pin meets the slot's ends at s = +-2 (slot half-length 3 less the pin's radius 1)
+  for (const Rational& tau : {Rational(5), Rational(-7, 3), Rational(0)}) {
+    EXPECT_EQ(space.locate(PinSlotConfiguration{{}, Rational(2), tau}).kind, PinSlotLocation::Kind::contact);
+    EXPECT_EQ(space.locate(PinSlotConfiguration{{}, Rational(199, 100), tau}).kind, PinSlotLocation::Kind::free);
+    EXPECT_EQ(space.locate(PinSlotConfiguration{{}, Rational(201, 100), tau}).kind, PinSlotLocation::Kind::blocked);
+  }
+  // connected across the half turn: psi near +pi and near -pi
+  EXPECT_TRUE(space.certainly_connected(PinSlotConfiguration{{}, Rational(1), Rational(40)},
+                                        PinSlotConfiguration{{}, Rational(-1), Rational(-40)}));
+  EXPECT_FALSE(space.certainly_connected(PinSlotConfiguration{{}, Rational(1), Rational(40)},
+                                         PinSlotConfiguration{{}, Rational(5, 2), Rational(-40)}));   // blocked
+}
+
+}  // namespace
+}  // namespace hipair
