@@ -75,13 +75,21 @@ struct PinSlotSlice {
   std::size_t cells = 0;               ///< all cells of the slice (free, blocked, touching)
 };
 
-/// Free cells of slices `lower` and `lower` + 1 joined by an exact witness: the segment at
-/// (other, slide) from the lower slice's tau to the upper's is free throughout.
+/// Free cells of slices `lower` and `lower` + 1 (the last and the first across the half turn)
+/// joined by an exact witness, a segment free throughout:
+///  - vertical: at (witness_other, witness_slide) from the lower slice's tau to the upper's;
+///  - in a plane of constant slide: from (witness_other, lower tau) to (witness_other_upper,
+///    upper tau), straight in the coordinates (the other part's half-angle tangent or offset,
+///    tau), at witness_slide (certified on the exact 2-D C-space of the other part against the
+///    slotted part turning about its pin at that slide).
 struct PinSlotConnection {
-  std::size_t lower = no_index;        ///< slice index; the upper slice is lower + 1
+  enum class Kind { vertical, plane };
+  Kind kind = Kind::vertical;
+  std::size_t lower = no_index;        ///< slice index
   std::size_t lower_cell = no_index;   ///< index into the lower slice's free_cells
   std::size_t upper_cell = no_index;
   PartCoordinate witness_other;
+  PartCoordinate witness_other_upper;  ///< plane witnesses: the other end's coordinate
   Rational witness_slide;
 };
 
@@ -99,6 +107,9 @@ struct PinSlotBuildOptions {
   unsigned refine_steps = 3;
   /// Search witnesses of connections between consecutive slices.
   bool connections = true;
+  /// Also try plane witnesses (constant slide) between cells no vertical witness joined: one
+  /// 2-D C-space per slide tried (slower; the other part must move).
+  bool plane_witnesses = false;
   /// Build the stack. false: nothing is built up front; slices are built on demand by slice()
   /// and locate() (slices(), connections(), changes() stay empty).
   bool stack = true;
@@ -109,6 +120,7 @@ struct PinSlotBuildOptions {
 struct PinSlotStatistics {
   std::size_t slices_built = 0;          ///< 2-D (or 1-D) slices, including refinements and queries
   std::size_t witness_spaces = 0;        ///< 1-D C-spaces built to certify witnesses
+  std::size_t plane_spaces = 0;          ///< 2-D C-spaces built for plane witnesses
   std::size_t witness_candidates = 0;    ///< candidate witness points tried
   double seconds_slices = 0;
   double seconds_connections = 0;

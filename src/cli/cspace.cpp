@@ -42,6 +42,7 @@ struct CSpaceCommandOptions {
   std::string region = "full";
   unsigned tiles = 0;
   std::size_t slices = 0;
+  bool plane_witnesses = false;
 };
 
 using nlohmann::json;
@@ -300,7 +301,7 @@ int run(const CSpaceCommandOptions& options) {
     sliced_spaces.push_back(build_sliced(model, fixed, free, isatty(2)));
   std::vector<PinSlotSpace> pin_spaces;
   for (const auto& [other, pin] : pin_requests)
-    pin_spaces.push_back(build_pin_slot(model, other, pin, isatty(2), options.slices));
+    pin_spaces.push_back(build_pin_slot(model, other, pin, isatty(2), options.slices, options.plane_witnesses));
   bool several = spaces.size() + sliced_spaces.size() + pin_spaces.size() > 1;
   std::vector<io::PlannedOutput> outputs;
   for (const CSpace& space : spaces) {
@@ -399,6 +400,9 @@ void register_cspace(CLI::App& app, Action& action) {
   command->add_option("--slices", options->slices,
                       "Pin-in-slot pairs: slices of the stack across the pin-slot part's angle range (default 16)")
       ->check(CLI::Range(std::size_t{2}, std::size_t{256}));
+  command->add_flag("--plane-witnesses", options->plane_witnesses,
+                    "Pin-in-slot pairs: also join cells of neighbouring slices through paths at constant slide "
+                    "(one 2-D C-space per slide tried; slower, connects more)");
   command->add_option("--set", options->overrides, "Override a parameter: NAME=VALUE (repeatable)");
   command->add_flag("--allow-out-of-tolerance", options->allow_out_of_tolerance,
                     "Accept --set values outside the parameter's tolerance range");

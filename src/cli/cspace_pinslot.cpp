@@ -48,9 +48,10 @@ std::vector<std::pair<std::string, std::string>> pin_slot_pairs(const Model& mod
 }
 
 PinSlotSpace build_pin_slot(const Model& model, const std::string& other, const std::string& pin_slot, bool progress,
-                            std::size_t slices) {
+                            std::size_t slices, bool plane_witnesses) {
   PinSlotBuildOptions options;
   options.slices = slices;
+  options.plane_witnesses = plane_witnesses;
   if (progress)
     options.progress = [label = other + ":" + pin_slot](const std::string& stage) {
       std::cerr << "\rhipair: " << label << " pin-slot C-space: " << stage << "          " << std::flush;
@@ -96,11 +97,14 @@ std::string pin_slot_json(const PinSlotSpace& space) {
   out["slices"] = slices;
   json connections = json::array();
   for (const PinSlotConnection& c : space.connections())
-    connections.push_back({{"lower_slice", c.lower},
+    connections.push_back({{"kind", c.kind == PinSlotConnection::Kind::vertical ? "vertical" : "plane"},
+                           {"lower_slice", c.lower},
                            {"upper_slice", c.lower + 1 == space.slices().size() ? 0 : c.lower + 1},
                            {"lower_cell", c.lower_cell},
                            {"upper_cell", c.upper_cell},
-                           {"witness", {{"other", coordinate_json(c.witness_other, kind)}, {"slide", to_exact_string(c.witness_slide)}}}});
+                           {"witness", {{"other", coordinate_json(c.witness_other, kind)},
+                                        {"other_upper", coordinate_json(c.witness_other_upper, kind)},
+                                        {"slide", to_exact_string(c.witness_slide)}}}});
   out["connections"] = connections;
   json changes = json::array();
   for (const PinSlotChange& c : space.changes())
@@ -118,6 +122,7 @@ std::string pin_slot_json(const PinSlotSpace& space) {
   const PinSlotStatistics& st = space.statistics();
   out["statistics"] = {{"slices_built", st.slices_built},
                        {"witness_spaces", st.witness_spaces},
+                       {"plane_witness_spaces", st.plane_spaces},
                        {"witness_candidates", st.witness_candidates},
                        {"seconds", {{"slices", st.seconds_slices}, {"connections", st.seconds_connections}, {"total", st.seconds_total}}}};
   return out.dump(1) + "\n";
@@ -131,8 +136,8 @@ void print_pin_slot_statistics(const PinSlotSpace& space) {
               space.dimension());
   std::printf("  slices %zu, free cells %zu, connections %zu, changes %zu, groups %zu\n", space.slices().size(), cells,
               space.connections().size(), space.changes().size(), space.groups());
-  std::printf("  slices built %zu, witness spaces %zu (candidates %zu)\n", s.slices_built, s.witness_spaces,
-              s.witness_candidates);
+  std::printf("  slices built %zu, witness spaces %zu 1-D + %zu 2-D (candidates %zu)\n", s.slices_built,
+              s.witness_spaces, s.plane_spaces, s.witness_candidates);
   std::printf("  time (ms): slices %.1f, connections %.1f, total %.1f\n", s.seconds_slices * 1e3,
               s.seconds_connections * 1e3, s.seconds_total * 1e3);
 }

@@ -23,7 +23,7 @@ std::vector<std::pair<std::string, std::string>> pin_slot_pairs(const Model& mod
 
 /// Builds the stack, with a progress line on stderr when `progress`.
 PinSlotSpace build_pin_slot(const Model& model, const std::string& other, const std::string& pin_slot, bool progress,
-                            std::size_t slices);
+                            std::size_t slices, bool plane_witnesses);
 
 /// JSON of the stack: slices (tau exact, degrees), free cells (contacts, sample, group),
 /// connections with their witnesses, changes, groups, statistics.

@@ -122,6 +122,7 @@ struct PinSlotSpace::Impl {
   mutable PinSlotStatistics stats;
   mutable std::mutex mutex;
   mutable std::map<Rational, std::shared_ptr<const CSpace>> cache;
+  mutable std::map<Rational, std::shared_ptr<const CSpace>> plane_cache;   // plane witnesses by slide
 
   const Part& other() const { return model.parts[0]; }
   const Part& pin() const { return model.parts[1]; }
@@ -306,8 +307,70 @@ struct PinSlotSpace::Impl {
     return crossing.status == CrossingStatus::none;
   }
 
+  // Is the straight path at constant `slide` from (a_other, tau a) to (b_other, tau b) free
+  // throughout? Exact: first crossing on the 2-D C-space of the other part (its own motion)
+  // against the slotted part turning about its pivot, shifted by s along its direction.
+  bool plane_free(const PartCoordinate& a_other, const PartCoordinate& b_other, const Rational& slide,
+                  const Rational& a, const Rational& b) const {
+    std::shared_ptr<const CSpace> space;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      auto it = plane_cache.find(slide);
+      if (it != plane_cache.end()) space = it->second;
+    }
+    if (!space) {
+      Model derived;
+      derived.name = "pin-slot plane witness";
+      derived.angle_unit = "rad";
+      derived.source = "<pin-slot plane witness>";
+      Part moving = other();
+      moving.dynamics.reset();
+      Point shift{Rational(pin().motion.direction.x * slide), Rational(pin().motion.direction.y * slide)};
+      Part turning = moved(pin(), placement_about(Point{}, Rational(1), Rational(0), shift));
+      turning.motion.kind = Motion::Kind::rotation;
+      turning.motion.angle_limits.reset();
+      turning.motion.translation_limits.reset();
+      turning.initial = PartConfiguration{};
+      turning.dynamics.reset();
+      derived.parts = {moving, turning};
+      derived.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, ""});
+      derived.pairs_explicit = true;
+      space = std::make_shared<const CSpace>(CSpace::build(derived, other_name, pin_name));
+      std::lock_guard<std::mutex> lock(mutex);
+      ++stats.plane_spaces;
+      plane_cache.emplace(slide, space);
+    }
+    MotionPath path;
+    if (other_kind == Motion::Kind::translation) {
+      path.x.kind = AxisPath::Kind::offset;
+    } else {
+      // the straight path in t = tan(phi/2) is the short way only when it does not pass
+      // through t = 0 between two large tangents of opposite signs: then it is skipped
+      if (a_other.kind == PartCoordinate::Kind::half_turn || b_other.kind == PartCoordinate::Kind::half_turn) return false;
+      if (sgn(a_other.value) * sgn(b_other.value) < 0 && (abs(a_other.value) > 1 || abs(b_other.value) > 1)) return false;
+      path.x.kind = AxisPath::Kind::half_tangent;
+    }
+    path.x.coefficients = {a_other.value, Rational(b_other.value - a_other.value)};
+    path.y.kind = AxisPath::Kind::half_tangent;
+    path.y.coefficients = {a, Rational(b - a)};
+    path.u_begin = 0;
+    path.u_end = 1;
+    return space->first_crossing(path).status == CrossingStatus::none;
+  }
+
+  // Points of free cell `cell` of `space` at slide s: (other coordinate) samples of the 1-D
+  // slice along the other axis at y = s.
+  std::vector<PartCoordinate> cell_points_at(const CSpace& space, std::size_t cell, const Rational& s) const {
+    std::vector<PartCoordinate> out;
+    for (const Slice& line : space.slice(SliceAxis::y, s))
+      for (const Slice::Interval& in : line.intervals)
+        if (in.cell.valid() && in.cell.index() == cell && in.kind == CellKind::free)
+          out.push_back(coordinates(space, line.chart, in.sample, s).first);
+    return out;
+  }
+
   // Connections between slices i and j (j = i + 1, or the wrap from the last to the first).
-  void connect(std::size_t i, std::size_t j, bool wrap) {
+  void connect(std::size_t i, std::size_t j, bool wrap, bool planes) {
     const PinSlotSlice& lo = slices[i];
     const PinSlotSlice& hi = slices[j];
     if (lo.free_cells.empty() || hi.free_cells.empty()) return;
@@ -334,9 +397,50 @@ struct PinSlotSpace::Impl {
       if (a == no_index || b == no_index || joined.count({a, b})) continue;
       if (!segment_free(other_at, slide, lo.tau, hi.tau, wrap)) continue;
       joined.insert({a, b});
-      connections.push_back(PinSlotConnection{i, a, b, other_at, slide});
-      if (wrap) connections.back().lower = i;   // i is the last slice, j == 0
+      PinSlotConnection c;
+      c.lower = i;   // across the half turn: i is the last slice, j == 0
+      c.lower_cell = a;
+      c.upper_cell = b;
+      c.witness_other = other_at;
+      c.witness_other_upper = other_at;
+      c.witness_slide = slide;
+      connections.push_back(c);
     }
+    if (!planes || wrap || other_kind == Motion::Kind::fixed) return;
+    // plane witnesses between pairs of cells still apart: slides at both samples and between
+    for (std::size_t a = 0; a < lo.free_cells.size(); ++a)
+      for (std::size_t b = 0; b < hi.free_cells.size(); ++b) {
+        if (joined.count({a, b})) continue;
+        const PinSlotCell& ca = lo.free_cells[a];
+        const PinSlotCell& cb = hi.free_cells[b];
+        Rational middle = (ca.sample_slide + cb.sample_slide) / 2;
+        middle.canonicalize();
+        bool done = false;
+        for (const Rational& s : {middle, ca.sample_slide, cb.sample_slide}) {
+          if (done) break;
+          std::vector<PartCoordinate> from = cell_points_at(*lo_space, ca.slice_cell, s);
+          std::vector<PartCoordinate> to = cell_points_at(*hi_space, cb.slice_cell, s);
+          for (const auto& p : from) {
+            for (const auto& q : to) {
+              ++stats.witness_candidates;
+              if (!plane_free(p, q, s, lo.tau, hi.tau)) continue;
+              joined.insert({a, b});
+              PinSlotConnection c;
+              c.kind = PinSlotConnection::Kind::plane;
+              c.lower = i;
+              c.lower_cell = a;
+              c.upper_cell = b;
+              c.witness_other = p;
+              c.witness_other_upper = q;
+              c.witness_slide = s;
+              connections.push_back(c);
+              done = true;
+              break;
+            }
+            if (done) break;
+          }
+        }
+      }
   }
 };
 
@@ -431,9 +535,9 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
     std::size_t gaps = impl->slices.size() - 1 + (impl->whole_turn ? 1 : 0);
     for (std::size_t k = 0; k + 1 < impl->slices.size(); ++k) {
       if (options.progress) options.progress("connections " + std::to_string(k + 1) + " of " + std::to_string(gaps));
-      impl->connect(k, k + 1, false);
+      impl->connect(k, k + 1, false, options.plane_witnesses);
     }
-    if (impl->whole_turn) impl->connect(impl->slices.size() - 1, 0, true);
+    if (impl->whole_turn) impl->connect(impl->slices.size() - 1, 0, true, false);
   }
   impl->stats.seconds_connections = seconds_since(connections_start);
   std::vector<std::size_t> offset;

@@ -352,3 +352,52 @@ TEST(PinSlot, WholeTurnWrapsAcrossTheHalfTurn) {
 
 }  // namespace
 }  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// The cam pair's free space is one thin tube (0.2 mm clearance) winding through (phi, s, psi):
+// vertical witnesses leave it in pieces, plane witnesses (constant slide) join it into one
+// group at 32 slices. Every plane witness re-checked by the oracle along its straight path.
+TEST(PinSlot, CamFollowerTubeIsOneGroupWithPlaneWitnesses) {
+  PinSlotBuildOptions options;
+  options.slices = 32;
+  options.plane_witnesses = true;
+  PinSlotSpace space = PinSlotSpace::build(film_advance(), "cam", "follower", options);
+  EXPECT_EQ(space.groups(), 1u);
+  const Model& model = film_advance();
+  std::size_t planes = 0;
+  for (const auto& c : space.connections()) {
+    if (c.kind != PinSlotConnection::Kind::plane) continue;
+    ++planes;
+    Rational lo = space.slices()[c.lower].tau, hi = space.slices()[c.lower + 1].tau;
+    ASSERT_EQ(c.witness_other.kind, PartCoordinate::Kind::half_angle_tangent);
+    ASSERT_EQ(c.witness_other_upper.kind, PartCoordinate::Kind::half_angle_tangent);
+    for (int k = 0; k <= 40; ++k) {
+      Rational u(k, 40);
+      PartCoordinate at{PartCoordinate::Kind::half_angle_tangent,
+                        Rational(c.witness_other.value + u * (c.witness_other_upper.value - c.witness_other.value))};
+      at.value.canonicalize();
+      Rational tau = lo + u * (hi - lo);
+      tau.canonicalize();
+      EXPECT_EQ(oracle(model, space, PinSlotConfiguration{at, c.witness_slide, tau}), PinSlotLocation::Kind::free)
+          << "plane witness between slices " << c.lower << " and " << c.lower + 1 << " at u = " << u;
+    }
+    EXPECT_EQ(space.locate(PinSlotConfiguration{c.witness_other, c.witness_slide, lo}).cell, c.lower_cell);
+    EXPECT_EQ(space.locate(PinSlotConfiguration{c.witness_other_upper, c.witness_slide, hi}).cell, c.upper_cell);
+  }
+  EXPECT_GT(planes, 0u);
+  // two configurations on opposite sides of the tube (claw at the top and at the bottom of its
+  // stroke, near psi = 0) are certainly connected
+  const PinSlotSlice* middle = nullptr;
+  for (const auto& slice : space.slices())
+    if (!middle || std::abs(slice.degrees) < std::abs(middle->degrees)) middle = &slice;
+  ASSERT_EQ(middle->free_cells.size(), 2u);
+  const PinSlotCell& top = middle->free_cells[0];
+  const PinSlotCell& bottom = middle->free_cells[1];
+  EXPECT_TRUE(space.certainly_connected(PinSlotConfiguration{top.sample_other, top.sample_slide, middle->tau},
+                                        PinSlotConfiguration{bottom.sample_other, bottom.sample_slide, middle->tau}));
+}
+
+}  // namespace
+}  // namespace hipair
