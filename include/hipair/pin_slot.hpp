@@ -207,6 +207,9 @@ struct CycleSample {
                                     ///< end of its isolating interval on the free side
   CyclePhase phase = CyclePhase::clear;
   std::vector<std::string> contacts;   ///< feature pairs touching between follower and target
+  /// engaged: the feature pairs whose contacts bound the target's free interval (they touch
+  /// when the target moves to that end)
+  std::vector<std::string> bounds;
 };
 
 /// A run of samples with one phase.

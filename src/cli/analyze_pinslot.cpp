@@ -16,8 +16,14 @@
 namespace hipair::cli {
 
 bool has_pin_slot_part(const Model& model) {
-  for (const Part& part : model.parts)
-    if (part.motion.kind == Motion::Kind::pin_slot) return true;
+  // a pin-slot part paired with a rotating part (its driver): the work cycle applies
+  for (const PairSpec& pair : model.pairs) {
+    const Part& a = model.parts[pair.first];
+    const Part& b = model.parts[pair.second];
+    if ((a.motion.kind == Motion::Kind::pin_slot && b.motion.kind == Motion::Kind::rotation) ||
+        (b.motion.kind == Motion::Kind::pin_slot && a.motion.kind == Motion::Kind::rotation))
+      return true;
+  }
   return false;
 }
 
@@ -77,6 +83,7 @@ int run_pin_slot_cycle(const Model& model, const PinSlotCycleRequest& request) {
     j["target_offset_exact"] = s.target_offset_exact;
     j["phase"] = std::string(to_string(s.phase));
     j["contacts"] = s.contacts;
+    j["bounded_by"] = s.bounds;
     samples.push_back(j);
   }
   out["samples"] = samples;
@@ -111,10 +118,13 @@ int run_pin_slot_cycle(const Model& model, const PinSlotCycleRequest& request) {
       std::printf("  %8.1f .. %8.1f deg  %-28s %s moved %s mm (exact %s)\n", a.driver_degrees, b.driver_degrees,
                   what.c_str(), cycle.target.c_str(), to_decimal_string(r.target_moved, 6).c_str(),
                   to_exact_string(r.target_moved).c_str());
-      std::set<std::string> contacts;
-      for (std::size_t i = r.first; i <= r.last; ++i)
+      std::set<std::string> contacts, bounds;
+      for (std::size_t i = r.first; i <= r.last; ++i) {
         for (const auto& c : cycle.samples[i].contacts) contacts.insert(c);
+        for (const auto& c : cycle.samples[i].bounds) bounds.insert(c);
+      }
       for (const auto& c : contacts) std::printf("        contact: %s\n", c.c_str());
+      for (const auto& c : bounds) std::printf("        held between contacts: %s\n", c.c_str());
     }
     std::printf("  %s advanced by %s mm (exact %s) over the cycle; %.2f s\n", cycle.target.c_str(),
                 to_decimal_string(cycle.advance, 6).c_str(), to_exact_string(cycle.advance).c_str(), cycle.seconds);

@@ -9,6 +9,7 @@
 
 namespace hipair::cli {
 
+/// A pin_slot part is paired with a rotating part: analyze runs the work cycle.
 bool has_pin_slot_part(const Model& model);
 
 struct PinSlotCycleRequest {

@@ -313,7 +313,7 @@ PinSlotCycle pin_slot_cycle(const Model& model, const PinSlotCycleOptions& optio
         } else {
           for (const End* e : {&in->lower, &in->upper})
             if (e->contact)
-              for (auto& l : labels_at(space, *e)) sample.contacts.push_back("(bounds) " + l);
+              for (auto& l : labels_at(space, *e)) sample.bounds.push_back(l);
         }
       } else {
         sample.phase = CyclePhase::clear;

@@ -60,9 +60,9 @@ std::string kind_text(Motion::Kind kind) {
   return "?";
 }
 
-// A rational near `value` with a small denominator (1/4096 steps, exact).
-Rational near_rational(double value) {
-  Rational r(static_cast<long>(std::llround(value * 4096)), 4096);
+// A rational near `value` with denominator `den` (exact).
+Rational near_rational(double value, long den) {
+  Rational r(static_cast<long>(std::llround(value * static_cast<double>(den))), den);
   r.canonicalize();
   return r;
 }
@@ -485,13 +485,20 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
   // uses a margin of a quarter step, far above the doubles' rounding.
   std::vector<Rational> taus;
   const double step = (hi - lo) / static_cast<double>(n);
+  if (!(step > 1e-9))
+    throw GeometryError(pair + ": the angle limits of part '" + pin.name + "' are too narrow to slice");
   for (std::size_t k = 0; k < n; ++k) {
     double angle = lo + step * (static_cast<double>(k) + 0.5);
-    Rational t = near_rational(std::tan(angle / 2));
-    double back = 2 * std::atan(to_double(t));
-    if (back < lo + step / 4 || back > hi - step / 4)
-      throw GeometryError(pair + ": " + std::to_string(n) + " slices are too many for the angle range of part '" +
-                          pin.name + "'");
+    // the simplest dyadic tangent (denominator 4096 or finer) within a quarter step of the
+    // intended angle: far inside the limits (the doubles' rounding is below 1e-15 rad)
+    Rational t;
+    for (long den = 4096;; den *= 2) {
+      t = near_rational(std::tan(angle / 2), den);
+      double back = 2 * std::atan(to_double(t));
+      if (back >= lo + step / 4 && back <= hi - step / 4) break;
+      if (den > (1L << 40))
+        throw GeometryError(pair + ": no rational slice angle found inside the angle limits of part '" + pin.name + "'");
+    }
     if (!taus.empty() && t <= taus.back()) continue;
     taus.push_back(t);
   }

@@ -241,6 +241,13 @@ TEST(PinSlot, BadPairsAreRefusedWithAMessage) {
   EXPECT_THROW(PinSlotSpace::build(fine, "a", "nope"), ModelError);
   PinSlotSpace ok = PinSlotSpace::build(fine, "a", "b", quick(4, true));
   EXPECT_EQ(ok.dimension(), 2);
+  // narrow angle limits (+-0.001 rad) are sliced with finer tangents, inside the limits
+  Model narrow = fine;
+  narrow.parts[1].motion.angle_limits = RationalInterval{Rational(-1, 1000), Rational(1, 1000)};
+  PinSlotSpace thin = PinSlotSpace::build(narrow, "a", "b", quick(16, false));
+  ASSERT_EQ(thin.slices().size(), 16u);
+  for (const auto& slice : thin.slices()) EXPECT_LT(std::abs(slice.degrees), 0.001 * 180 / std::numbers::pi);
+  EXPECT_EQ(thin.locate(PinSlotConfiguration{{}, Rational(0), Rational(1, 100)}).kind, PinSlotLocation::Kind::outside);
 }
 
 }  // namespace
@@ -289,7 +296,13 @@ TEST(PinSlot, FilmAdvanceCycle) {
       ASSERT_FALSE(s.contacts.empty());
       EXPECT_NE(s.contacts.front().find("claw bottom"), std::string::npos) << s.contacts.front();
     }
-    if (s.phase == CyclePhase::clear) EXPECT_TRUE(s.contacts.empty());
+    if (s.phase == CyclePhase::clear) EXPECT_TRUE(s.contacts.empty() && s.bounds.empty());
+    // engaged: the claw inside perforation 0, held between its edges
+    if (s.phase == CyclePhase::engaged) {
+      bool perforation = false;
+      for (const auto& b : s.bounds) perforation = perforation || b.find("perforation 0") != std::string::npos;
+      EXPECT_TRUE(perforation) << s.driver_degrees;
+    }
   }
 }
 
