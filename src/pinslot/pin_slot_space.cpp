@@ -495,7 +495,7 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
     for (long den = 4096;; den *= 2) {
       t = near_rational(std::tan(angle / 2), den);
       double back = 2 * std::atan(to_double(t));
-      if (back >= lo + step / 4 && back <= hi - step / 4) break;
+      if (std::abs(back - angle) <= step / 4) break;   // so also >= lo + step / 4, <= hi - step / 4
       if (den > (1L << 40))
         throw GeometryError(pair + ": no rational slice angle found inside the angle limits of part '" + pin.name + "'");
     }
