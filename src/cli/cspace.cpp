@@ -339,8 +339,9 @@ int run(const CSpaceCommandOptions& options) {
       render::PinSlotSvgOptions svg;
       svg.title = model.name + ": pin-in-slot C-space of " + space.pin_slot_part() + " against " + space.other_part() +
                   " (" + std::to_string(space.slices().size()) + " slices, " +
-                  std::to_string(space.changes().size()) + " changes isolated, " + std::to_string(space.groups()) +
-                  " certainly-connected groups)";
+                  std::to_string(space.changes().size()) + (space.changes().size() == 1 ? " change" : " changes") +
+                  " isolated, " + std::to_string(space.groups()) +
+                  (space.groups() == 1 ? " certainly-connected group)" : " certainly-connected groups)");
       sliced_documents.emplace_back(suffixed(options.svg, space.other_part(), space.pin_slot_part(), several),
                                     render::pin_slot_stack_svg(space, svg));
     }
