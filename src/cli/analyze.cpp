@@ -1,6 +1,7 @@
 // `hipair analyze MODEL [--driver PART] [--direction cw|ccw|+|-] [--range A:B | --cycles N]
 // [--out DIR] ...`: kinematic analysis — prints the report for designers and writes
 // report.json, kinematics.csv, kinematics.svg and cspace-PAIR.svg into DIR.
+#include "cli/analyze_pinslot.hpp"
 #include "cli/commands.hpp"
 
 #include "io/output_directory.hpp"
@@ -200,6 +201,11 @@ int run_analyze(const AnalyzeOptions& options) {
       if (!options.no_pictures || std::string(name) != "kinematics.svg")
         io::refuse_overwriting_input(std::filesystem::path(options.out) / name, "--out", options.model);
   Model model = read_model_file(options.model);
+  // a pin-in-slot follower (the film advance): its work cycle (cli/analyze_pinslot.cpp)
+  if (has_pin_slot_part(model))
+    return run_pin_slot_cycle(model, PinSlotCycleRequest{options.driver, options.direction,
+                                                         options.steps == 720 ? 72u : options.steps, options.out,
+                                                         options.quiet});
   KinematicsOptions analysis;
   analysis.driver = options.driver;
   analysis.steps_per_cycle = options.steps;

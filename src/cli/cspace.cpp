@@ -4,11 +4,13 @@
 // polynomials, vertices with exact coordinates). 3-DOF pairs (a planar part against a fixed
 // part) are sliced: a stack of slices and the cell structure (cli/cspace_sliced.cpp).
 #include "cli/commands.hpp"
+#include "cli/cspace_pinslot.hpp"
 #include "cli/cspace_sliced.hpp"
 
 #include "io/atomic_file.hpp"
 #include "io/output_paths.hpp"
 #include "render/cspace_svg.hpp"
+#include "render/pinslot_svg.hpp"
 #include "render/sliced_svg.hpp"
 
 #include <hipair/cspace.hpp>
@@ -39,6 +41,8 @@ struct CSpaceCommandOptions {
   bool allow_out_of_tolerance = false;
   std::string region = "full";
   unsigned tiles = 0;
+  std::size_t slices = 0;
+  bool plane_witnesses = false;
 };
 
 using nlohmann::json;
@@ -273,25 +277,32 @@ int run(const CSpaceCommandOptions& options) {
   std::vector<CSpace> spaces;
   // 3-DOF pairs (a planar part against a fixed part): sliced C-spaces (docs/cspace.md)
   std::vector<std::pair<std::string, std::string>> sliced_requests;
+  std::vector<std::pair<std::string, std::string>> pin_requests;   // (other, pin_slot part)
   if (!options.pair.empty()) {
     auto colon = options.pair.find(':');
     if (colon == std::string::npos) throw ModelError("", "--pair expects FIRST:SECOND, got '" + options.pair + "'");
     std::string first = options.pair.substr(0, colon), second = options.pair.substr(colon + 1);
     if (auto sliced = sliced_pair(model, first, second))
       sliced_requests.push_back(*sliced);
+    else if (auto pin = pin_slot_pair(model, first, second))
+      pin_requests.push_back(*pin);
     else
       spaces.push_back(CSpace::build(model, first, second, build));
   } else {
     spaces = CSpace::build_all(model, build);
     sliced_requests = sliced_pairs(model);
-    if (spaces.empty() && sliced_requests.empty())
-      throw GeometryError("the model has no fixed-axis pair with a moving part and no 3-DOF pair (a planar part "
-                          "against a fixed part)");
+    pin_requests = pin_slot_pairs(model);
+    if (spaces.empty() && sliced_requests.empty() && pin_requests.empty())
+      throw GeometryError("the model has no fixed-axis pair with a moving part, no 3-DOF pair (a planar part "
+                          "against a fixed part) and no pin-in-slot pair");
   }
   std::vector<SlicedSpace> sliced_spaces;
   for (const auto& [fixed, free] : sliced_requests)
     sliced_spaces.push_back(build_sliced(model, fixed, free, isatty(2)));
-  bool several = spaces.size() + sliced_spaces.size() > 1;
+  std::vector<PinSlotSpace> pin_spaces;
+  for (const auto& [other, pin] : pin_requests)
+    pin_spaces.push_back(build_pin_slot(model, other, pin, isatty(2), options.slices, options.plane_witnesses));
+  bool several = spaces.size() + sliced_spaces.size() + pin_spaces.size() > 1;
   std::vector<io::PlannedOutput> outputs;
   for (const CSpace& space : spaces) {
     if (!options.svg.empty()) outputs.push_back({suffixed(options.svg, space, several), "--svg"});
@@ -300,6 +311,12 @@ int run(const CSpaceCommandOptions& options) {
   for (const SlicedSpace& space : sliced_spaces) {
     if (!options.svg.empty()) outputs.push_back({suffixed(options.svg, space, several), "--svg"});
     if (!options.json.empty()) outputs.push_back({suffixed(options.json, space, several), "--json"});
+  }
+  for (const PinSlotSpace& space : pin_spaces) {
+    if (!options.svg.empty())
+      outputs.push_back({suffixed(options.svg, space.other_part(), space.pin_slot_part(), several), "--svg"});
+    if (!options.json.empty())
+      outputs.push_back({suffixed(options.json, space.other_part(), space.pin_slot_part(), several), "--json"});
   }
   io::refuse_overwriting_inputs(outputs, {options.model});
   // every document is made before any is written: a failure leaves no partial output
@@ -315,6 +332,22 @@ int run(const CSpaceCommandOptions& options) {
       sliced_documents.emplace_back(suffixed(options.svg, space, several), render::sliced_stack_svg(space, svg));
     }
     if (!options.json.empty()) sliced_documents.emplace_back(suffixed(options.json, space, several), sliced_json(space));
+  }
+  for (const PinSlotSpace& space : pin_spaces) {
+    if (options.stats) print_pin_slot_statistics(space);
+    if (!options.svg.empty()) {
+      render::PinSlotSvgOptions svg;
+      svg.title = model.name + ": pin-in-slot C-space of " + space.pin_slot_part() + " against " + space.other_part() +
+                  " (" + std::to_string(space.slices().size()) + " slices, " +
+                  std::to_string(space.changes().size()) + (space.changes().size() == 1 ? " change" : " changes") +
+                  " isolated, " + std::to_string(space.groups()) +
+                  (space.groups() == 1 ? " certainly-connected group)" : " certainly-connected groups)");
+      sliced_documents.emplace_back(suffixed(options.svg, space.other_part(), space.pin_slot_part(), several),
+                                    render::pin_slot_stack_svg(space, svg));
+    }
+    if (!options.json.empty())
+      sliced_documents.emplace_back(suffixed(options.json, space.other_part(), space.pin_slot_part(), several),
+                                    pin_slot_json(space));
   }
   for (const CSpace& space : spaces) {
     if (options.stats) print_statistics(space);
@@ -365,6 +398,12 @@ void register_cspace(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"full", "operating"}));
   command->add_option("--tiles", options->tiles, "Operating region: tiles per chart axis (default: automatic)")
       ->check(CLI::Range(0u, 128u));
+  command->add_option("--slices", options->slices,
+                      "Pin-in-slot pairs: slices of the stack across the pin-slot part's angle range (default 16)")
+      ->check(CLI::Range(std::size_t{2}, std::size_t{256}));
+  command->add_flag("--plane-witnesses", options->plane_witnesses,
+                    "Pin-in-slot pairs: also join cells of neighbouring slices through paths at constant slide "
+                    "(one 2-D C-space per slide tried; slower, connects more)");
   command->add_option("--set", options->overrides, "Override a parameter: NAME=VALUE (repeatable)");
   command->add_flag("--allow-out-of-tolerance", options->allow_out_of_tolerance,
                     "Accept --set values outside the parameter's tolerance range");

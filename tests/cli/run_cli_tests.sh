@@ -267,6 +267,41 @@ code=$?
 grep -q "no-such" "$work/pih-bad.err" || fail "cspace 3-DOF bad --pair: message does not name the part: $(cat "$work/pih-bad.err")"
 [ -e "$work/pih-bad.svg" ] || [ -e "$work/pih-bad.json" ] && fail "cspace 3-DOF bad --pair wrote output"
 
+# Pin-in-slot pairs (the film advance): a stack of slices in the SVG, the stack's structure in
+# the JSON; analyze's work cycle (claw enters, pulls, retracts); a pin_slot part against a
+# planar part is refused with one message naming the pair, and nothing is written.
+fa="$source/examples/models/film-advance.json"
+"$hipair" cspace "$fa" --pair cam:follower --slices 6 --svg "$work/fa.svg" --json "$work/fa.json" >/dev/null 2>"$work/fa.err" \
+  || fail "cspace on the pin-in-slot cam:follower fails: $(cat "$work/fa.err")"
+grep -q "</svg>" "$work/fa.svg" 2>/dev/null || fail "cspace pin-slot: SVG not written or not complete"
+[ "$(grep -c '^<svg x=' "$work/fa.svg" 2>/dev/null)" -ge 6 ] || fail "cspace pin-slot: SVG has fewer than 6 slice panels"
+for key in tau_range slices free_cells connections changes groups witness; do
+  grep -q "\"$key\"" "$work/fa.json" 2>/dev/null || fail "cspace pin-slot: JSON has no $key"
+done
+"$hipair" analyze "$fa" --quiet --out "$work/fa-cycle" >/dev/null 2>"$work/fa-cycle.err" \
+  || fail "analyze on the film advance fails: $(cat "$work/fa-cycle.err")"
+python3 -c "
+import json, sys
+d = json.load(open(sys.argv[1]))
+phases = [r['phase'] for r in d['phases']]
+assert phases == ['clear', 'engaged', 'pushing', 'clear'], phases
+assert abs(d['advance_mm'] + 7.8) < 0.35, d['advance_mm']
+" "$work/fa-cycle/cycle.json" 2>"$work/fa-cycle.check" || fail "analyze film advance: phases or advance wrong: $(cat "$work/fa-cycle.check")"
+cat >"$work/pin-planar.json" <<'MODEL'
+{ "hipair": 1, "name": "pin-planar", "parts": [
+  { "name": "free", "motion": { "planar": { "pivot": [0, 0] } }, "loops": [ { "start": [30, 0], "edges": [
+    { "line_to": [34, 0] }, { "line_to": [34, 4] }, { "line_to": [30, 4] }, { "line_to": [30, 0] } ] } ] },
+  { "name": "slotted", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "limits": [-2, 2] } },
+    "loops": [ { "start": [0, 0], "edges": [ { "line_to": [10, 0] }, { "line_to": [10, 2] }, { "line_to": [0, 2] },
+    { "line_to": [0, 0] } ] } ] } ] }
+MODEL
+"$hipair" cspace "$work/pin-planar.json" --svg "$work/pin-planar.svg" >/dev/null 2>"$work/pin-planar.err"
+code=$?
+{ [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "cspace of a pin_slot part against a planar part: exit code $code"
+[ "$(wc -l <"$work/pin-planar.err")" -eq 1 ] || fail "cspace pin_slot/planar: not one error line: $(cat "$work/pin-planar.err")"
+grep -q "'free':'slotted'\|'slotted':'free'" "$work/pin-planar.err" || fail "cspace pin_slot/planar: message does not name the pair: $(cat "$work/pin-planar.err")"
+[ -e "$work/pin-planar.svg" ] && fail "cspace pin_slot/planar wrote output"
+
 # No stray temporary files left by atomic writes.
 ls -a "$work" | grep -q '\.tmp' && fail "temporary files left behind"
 

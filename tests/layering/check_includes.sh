@@ -34,6 +34,7 @@ declare -A allowed=(
   [tolerance]="tolerance core model kernels certify"
   [simulation]="simulation core kernels"
   [sliced]="sliced algebra core model kernels"
+  [pinslot]="pinslot core"
   [certificates]="certificates certify core model kernels"
   [verifier]="certify core model io"
   [io]="io core"

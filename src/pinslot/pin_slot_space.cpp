@@ -1,0 +1,649 @@
+// The stack-of-slices C-space of a pin-in-slot pair (include/hipair/pin_slot.hpp): slices at
+// rational tau = tan(psi/2) built by hipair::CSpace on a derived two-part model, witnesses of
+// connections between consecutive slices certified by exact 1-D C-spaces, changes of the
+// free-cell structure isolated by bisection, exact point location.
+#include <hipair/pin_slot.hpp>
+
+#include <hipair/error.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <numbers>
+#include <set>
+
+namespace hipair {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+struct Rotation {
+  Rational c = 1, s = 0;
+};
+// The exact rotation through psi with tan(psi/2) = t.
+Rotation rotation_of_tangent(const Rational& t) {
+  Rational d = 1 + t * t;
+  Rotation r{Rational((1 - t * t) / d), Rational(2 * t / d)};
+  r.c.canonicalize();
+  r.s.canonicalize();
+  return r;
+}
+
+Point rotate(const Point& v, const Rotation& r) {
+  return Point{Rational(r.c * v.x - r.s * v.y), Rational(r.s * v.x + r.c * v.y)};
+}
+
+// The part with every point moved by `placement` (a rigid map keeps radii and orientation).
+Part moved(const Part& part, const Placement& placement) {
+  Part out = part;
+  for (auto& loop : out.loops)
+    for (auto& e : loop.edges) {
+      e.source = placement.apply(e.source);
+      e.target = placement.apply(e.target);
+      if (e.is_arc()) e.center = placement.apply(e.center);
+    }
+  return out;
+}
+
+std::string kind_text(Motion::Kind kind) {
+  switch (kind) {
+    case Motion::Kind::fixed: return "fixed";
+    case Motion::Kind::rotation: return "rotation";
+    case Motion::Kind::translation: return "translation";
+    case Motion::Kind::planar: return "planar";
+    case Motion::Kind::pin_slot: return "pin_slot";
+  }
+  return "?";
+}
+
+// A rational near `value` with denominator `den` (exact).
+Rational near_rational(double value, long den) {
+  Rational r(static_cast<long>(std::llround(value * static_cast<double>(den))), den);
+  r.canonicalize();
+  return r;
+}
+
+struct UnionFind {
+  std::vector<std::size_t> parent;
+  std::size_t find(std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
+};
+
+}  // namespace
+
+Placement pin_slot_placement(const Part& part, const Rational& slide, const Rational& tau) {
+  Rotation r = rotation_of_tangent(tau);
+  Point shift = rotate(part.motion.direction, r);
+  shift.x *= slide;
+  shift.y *= slide;
+  return placement_about(part.motion.pivot, r.c, r.s, shift);
+}
+
+Placement part_placement(const Part& part, const PartCoordinate& coordinate) {
+  switch (part.motion.kind) {
+    case Motion::Kind::fixed: return Placement{};
+    case Motion::Kind::rotation: {
+      if (coordinate.kind == PartCoordinate::Kind::offset)
+        throw GeometryError("part '" + part.name + "' rotates: its coordinate is a half-angle tangent");
+      if (coordinate.kind == PartCoordinate::Kind::half_turn)
+        return placement_about(part.motion.pivot, Rational(-1), Rational(0), Point{});
+      Rotation r = rotation_of_tangent(coordinate.value);
+      return placement_about(part.motion.pivot, r.c, r.s, Point{});
+    }
+    case Motion::Kind::translation: {
+      if (coordinate.kind != PartCoordinate::Kind::offset)
+        throw GeometryError("part '" + part.name + "' translates: its coordinate is an offset");
+      Point shift{Rational(part.motion.direction.x * coordinate.value), Rational(part.motion.direction.y * coordinate.value)};
+      return placement_about(Point{}, Rational(1), Rational(0), shift);
+    }
+    default: break;
+  }
+  throw GeometryError("part '" + part.name + "': a " + kind_text(part.motion.kind) +
+                      " part has no single coordinate");
+}
+
+struct PinSlotSpace::Impl {
+  Model model;          // the two parts only: 0 = other, 1 = pin-slot part
+  std::string other_name, pin_name;
+  Motion::Kind other_kind = Motion::Kind::fixed;
+  Rational tau_lo, tau_hi;
+  bool whole_turn = false;
+  std::vector<PinSlotSlice> slices;
+  std::vector<PinSlotConnection> connections;
+  std::vector<PinSlotChange> changes;
+  std::size_t group_count = 0;
+  mutable PinSlotStatistics stats;
+  mutable std::mutex mutex;
+  mutable std::map<Rational, std::shared_ptr<const CSpace>> cache;
+  mutable std::map<Rational, std::shared_ptr<const CSpace>> plane_cache;   // plane witnesses by slide
+
+  const Part& other() const { return model.parts[0]; }
+  const Part& pin() const { return model.parts[1]; }
+
+  std::string where(const Rational& tau) const {
+    return "pin-slot pair '" + other_name + "':'" + pin_name + "' at tan(psi/2) = " + to_exact_string(tau);
+  }
+
+  // ------------------------------------------------------------ slices
+  std::shared_ptr<const CSpace> slice(const Rational& tau) const {
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      auto it = cache.find(tau);
+      if (it != cache.end()) return it->second;
+    }
+    auto start = Clock::now();
+    Rotation r = rotation_of_tangent(tau);
+    Model derived;
+    derived.name = "pin-slot slice";
+    derived.angle_unit = "rad";
+    derived.source = "<pin-slot slice>";
+    derived.parts.push_back(other());
+    Part turned = moved(pin(), placement_about(pin().motion.pivot, r.c, r.s, Point{}));
+    turned.motion.kind = Motion::Kind::translation;
+    turned.motion.direction = rotate(pin().motion.direction, r);
+    turned.motion.angle_limits.reset();
+    turned.initial = PartConfiguration{};
+    turned.initial.offset = pin().initial.offset;
+    turned.dynamics.reset();
+    derived.parts.push_back(std::move(turned));
+    derived.parts[0].dynamics.reset();
+    derived.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, ""});
+    derived.pairs_explicit = true;
+    std::shared_ptr<const CSpace> space;
+    try {
+      space = std::make_shared<const CSpace>(CSpace::build(derived, other_name, pin_name));
+    } catch (const Error& e) {
+      throw GeometryError(where(tau) + ": the slice cannot be built: " + e.what());
+    }
+    std::lock_guard<std::mutex> lock(mutex);
+    ++stats.slices_built;
+    stats.seconds_slices += seconds_since(start);
+    cache.emplace(tau, space);
+    return space;
+  }
+
+  // A slice's chart point as coordinates per part.
+  std::pair<PartCoordinate, Rational> coordinates(const CSpace& space, std::size_t chart, const Rational& x,
+                                                  const Rational& y) const {
+    if (space.dimension() == 1) return {PartCoordinate{}, x};
+    const CSpaceChart& c = space.charts()[chart];
+    PartCoordinate other;
+    if (c.x_kind == AxisKind::translation) {
+      other.kind = PartCoordinate::Kind::offset;
+      other.value = x;
+    } else if (!c.x_half_turn) {
+      other.value = x;
+    } else if (sgn(x) == 0) {
+      other.kind = PartCoordinate::Kind::half_turn;
+    } else {   // theta = pi + 2 atan(x): tan(theta/2) = -1/x
+      other.value = Rational(-1) / x;
+      other.value.canonicalize();
+    }
+    return {other, y};
+  }
+
+  Location locate_in(const CSpace& space, const PartCoordinate& other, const Rational& slide) const {
+    if (space.dimension() == 1) return space.locate(PartCoordinate{PartCoordinate::Kind::offset, slide});
+    return space.locate(other, PartCoordinate{PartCoordinate::Kind::offset, slide});
+  }
+
+  static PinSlotLocation::Kind kind_of(const CSpace& space, const Location& at) {
+    switch (at.kind) {
+      case Location::Kind::free: return PinSlotLocation::Kind::free;
+      case Location::Kind::blocked: return PinSlotLocation::Kind::blocked;
+      case Location::Kind::touching: return PinSlotLocation::Kind::contact;
+      case Location::Kind::outside: return PinSlotLocation::Kind::outside;
+      case Location::Kind::edge:
+      case Location::Kind::vertex:
+        if (at.cell == no_index) return PinSlotLocation::Kind::contact;
+        switch (space.cells()[at.cell].kind) {
+          case CellKind::free: return PinSlotLocation::Kind::free;
+          case CellKind::blocked: return PinSlotLocation::Kind::blocked;
+          case CellKind::touching: return PinSlotLocation::Kind::contact;
+        }
+    }
+    return PinSlotLocation::Kind::outside;
+  }
+
+  // ------------------------------------------------------------ cells of a slice
+  static std::string cell_contacts(const CSpace& space, std::size_t cell) {
+    std::set<std::string> labels;
+    for (std::size_t e : space.cells()[cell].boundary)
+      for (std::size_t f : space.edges()[e].curves) labels.insert(space.feature_pairs()[f].label);
+    if (space.dimension() == 1) {
+      // 1-D: a cell is an interval; its ends are vertices carrying the feature pairs
+      for (const CSpaceFace& face : space.faces(0)) {
+        if (face.cell.index() != cell) continue;
+        for (VertexId v : {face.lower, face.upper})
+          if (v.valid())
+            for (std::size_t f : space.vertices()[v.index()].curves) labels.insert(space.feature_pairs()[f].label);
+      }
+    }
+    std::string out;
+    for (const auto& l : labels) out += (out.empty() ? "" : "; ") + l;
+    return out.empty() ? "(no contact)" : out;
+  }
+
+  PinSlotSlice make_slice(const Rational& tau, bool refinement) const {
+    auto space = slice(tau);
+    PinSlotSlice out;
+    out.tau = tau;
+    out.degrees = 2 * std::atan(to_double(tau)) * 180 / std::numbers::pi;
+    out.refinement = refinement;
+    out.cells = space->cells().size();
+    for (std::size_t c = 0; c < space->cells().size(); ++c) {
+      const CSpaceCell& cell = space->cells()[c];
+      if (cell.kind != CellKind::free) continue;
+      PinSlotCell fc;
+      fc.slice_cell = c;
+      fc.contacts = cell_contacts(*space, c);
+      auto [other, slide] = coordinates(*space, cell.sample_chart, cell.sample_x, cell.sample_y);
+      fc.sample_other = other;
+      fc.sample_slide = slide;
+      out.free_cells.push_back(std::move(fc));
+    }
+    return out;
+  }
+
+  static std::multiset<std::string> signature(const PinSlotSlice& slice) {
+    std::multiset<std::string> out;
+    for (const auto& c : slice.free_cells) out.insert(c.contacts);
+    return out;
+  }
+
+  // ------------------------------------------------------------ witnesses
+  // Is the segment at (other, slide) from tau a to tau b (a < b, the short way; across the
+  // half turn when `wrap`) free throughout? Exact: the 1-D C-space of the pin-slot part turning
+  // about its pivot, shifted by s along its direction, against the other part at `other`.
+  bool segment_free(const PartCoordinate& other_at, const Rational& slide, const Rational& a, const Rational& b,
+                    bool wrap) const {
+    Model derived;
+    derived.name = "pin-slot witness";
+    derived.angle_unit = "rad";
+    derived.source = "<pin-slot witness>";
+    Part fixed = moved(other(), part_placement(other(), other_at));
+    fixed.motion = Motion{};
+    fixed.motion.kind = Motion::Kind::fixed;
+    fixed.dynamics.reset();
+    Point shift{Rational(pin().motion.direction.x * slide), Rational(pin().motion.direction.y * slide)};
+    // across the half turn the part is pre-turned by pi: psi = pi + psi', tan(psi'/2) = -1/tau
+    Rational cos_pre = wrap ? -1 : 1;
+    Part turning = moved(pin(), placement_about(pin().motion.pivot, cos_pre, Rational(0), Point{}));
+    if (wrap) shift = Point{Rational(-shift.x), Rational(-shift.y)};
+    turning = moved(turning, placement_about(Point{}, Rational(1), Rational(0), shift));
+    turning.motion.kind = Motion::Kind::rotation;
+    turning.motion.angle_limits.reset();
+    turning.motion.translation_limits.reset();
+    turning.initial = PartConfiguration{};
+    turning.dynamics.reset();
+    derived.parts = {fixed, turning};
+    derived.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, ""});
+    derived.pairs_explicit = true;
+    CSpace space = CSpace::build(derived, other_name, pin_name);
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      ++stats.witness_spaces;
+    }
+    Rational from = a, to = b;
+    if (wrap) {
+      from = Rational(-1) / a;
+      to = Rational(-1) / b;
+      from.canonicalize();
+      to.canonicalize();
+    }
+    MotionPath path;
+    path.x.kind = AxisPath::Kind::half_tangent;
+    path.x.coefficients = {from, Rational(to - from)};
+    path.u_begin = 0;
+    path.u_end = 1;
+    MotionCrossing crossing = space.first_crossing(path);
+    return crossing.status == CrossingStatus::none;
+  }
+
+  // Is the straight path at constant `slide` from (a_other, tau a) to (b_other, tau b) free
+  // throughout? Exact: first crossing on the 2-D C-space of the other part (its own motion)
+  // against the slotted part turning about its pivot, shifted by s along its direction.
+  bool plane_free(const PartCoordinate& a_other, const PartCoordinate& b_other, const Rational& slide,
+                  const Rational& a, const Rational& b) const {
+    std::shared_ptr<const CSpace> space;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      auto it = plane_cache.find(slide);
+      if (it != plane_cache.end()) space = it->second;
+    }
+    if (!space) {
+      Model derived;
+      derived.name = "pin-slot plane witness";
+      derived.angle_unit = "rad";
+      derived.source = "<pin-slot plane witness>";
+      Part moving = other();
+      moving.dynamics.reset();
+      Point shift{Rational(pin().motion.direction.x * slide), Rational(pin().motion.direction.y * slide)};
+      Part turning = moved(pin(), placement_about(Point{}, Rational(1), Rational(0), shift));
+      turning.motion.kind = Motion::Kind::rotation;
+      turning.motion.angle_limits.reset();
+      turning.motion.translation_limits.reset();
+      turning.initial = PartConfiguration{};
+      turning.dynamics.reset();
+      derived.parts = {moving, turning};
+      derived.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, ""});
+      derived.pairs_explicit = true;
+      space = std::make_shared<const CSpace>(CSpace::build(derived, other_name, pin_name));
+      std::lock_guard<std::mutex> lock(mutex);
+      ++stats.plane_spaces;
+      plane_cache.emplace(slide, space);
+    }
+    MotionPath path;
+    if (other_kind == Motion::Kind::translation) {
+      path.x.kind = AxisPath::Kind::offset;
+    } else {
+      // the straight path in t = tan(phi/2) is the short way only when it does not pass
+      // through t = 0 between two large tangents of opposite signs: then it is skipped
+      if (a_other.kind == PartCoordinate::Kind::half_turn || b_other.kind == PartCoordinate::Kind::half_turn) return false;
+      if (sgn(a_other.value) * sgn(b_other.value) < 0 && (abs(a_other.value) > 1 || abs(b_other.value) > 1)) return false;
+      path.x.kind = AxisPath::Kind::half_tangent;
+    }
+    path.x.coefficients = {a_other.value, Rational(b_other.value - a_other.value)};
+    path.y.kind = AxisPath::Kind::half_tangent;
+    path.y.coefficients = {a, Rational(b - a)};
+    path.u_begin = 0;
+    path.u_end = 1;
+    return space->first_crossing(path).status == CrossingStatus::none;
+  }
+
+  // Points of free cell `cell` of `space` at slide s: (other coordinate) samples of the 1-D
+  // slice along the other axis at y = s.
+  std::vector<PartCoordinate> cell_points_at(const CSpace& space, std::size_t cell, const Rational& s) const {
+    std::vector<PartCoordinate> out;
+    for (const Slice& line : space.slice(SliceAxis::y, s))
+      for (const Slice::Interval& in : line.intervals)
+        if (in.cell.valid() && in.cell.index() == cell && in.kind == CellKind::free)
+          out.push_back(coordinates(space, line.chart, in.sample, s).first);
+    return out;
+  }
+
+  // Connections between slices i and j (j = i + 1, or the wrap from the last to the first).
+  void connect(std::size_t i, std::size_t j, bool wrap, bool planes) {
+    const PinSlotSlice& lo = slices[i];
+    const PinSlotSlice& hi = slices[j];
+    if (lo.free_cells.empty() || hi.free_cells.empty()) return;
+    auto lo_space = slice(lo.tau);
+    auto hi_space = slice(hi.tau);
+    std::set<std::pair<std::size_t, std::size_t>> joined;
+    auto cell_index = [](const PinSlotSlice& s, const Location& at) -> std::size_t {
+      if (at.kind != Location::Kind::free) return no_index;
+      for (std::size_t k = 0; k < s.free_cells.size(); ++k)
+        if (s.free_cells[k].slice_cell == at.cell) return k;
+      return no_index;
+    };
+    auto candidates = [&](const PinSlotSlice& s) {
+      std::vector<std::pair<PartCoordinate, Rational>> out;
+      for (const auto& c : s.free_cells) out.emplace_back(c.sample_other, c.sample_slide);
+      return out;
+    };
+    std::vector<std::pair<PartCoordinate, Rational>> points = candidates(lo);
+    for (auto& p : candidates(hi)) points.push_back(p);
+    for (const auto& [other_at, slide] : points) {
+      ++stats.witness_candidates;
+      std::size_t a = cell_index(lo, locate_in(*lo_space, other_at, slide));
+      std::size_t b = cell_index(hi, locate_in(*hi_space, other_at, slide));
+      if (a == no_index || b == no_index || joined.count({a, b})) continue;
+      if (!segment_free(other_at, slide, lo.tau, hi.tau, wrap)) continue;
+      joined.insert({a, b});
+      PinSlotConnection c;
+      c.lower = i;   // across the half turn: i is the last slice, j == 0
+      c.lower_cell = a;
+      c.upper_cell = b;
+      c.witness_other = other_at;
+      c.witness_other_upper = other_at;
+      c.witness_slide = slide;
+      connections.push_back(c);
+    }
+    if (!planes || wrap || other_kind == Motion::Kind::fixed) return;
+    // plane witnesses between pairs of cells still apart: slides at both samples and between
+    for (std::size_t a = 0; a < lo.free_cells.size(); ++a)
+      for (std::size_t b = 0; b < hi.free_cells.size(); ++b) {
+        if (joined.count({a, b})) continue;
+        const PinSlotCell& ca = lo.free_cells[a];
+        const PinSlotCell& cb = hi.free_cells[b];
+        Rational middle = (ca.sample_slide + cb.sample_slide) / 2;
+        middle.canonicalize();
+        bool done = false;
+        for (const Rational& s : {middle, ca.sample_slide, cb.sample_slide}) {
+          if (done) break;
+          std::vector<PartCoordinate> from = cell_points_at(*lo_space, ca.slice_cell, s);
+          std::vector<PartCoordinate> to = cell_points_at(*hi_space, cb.slice_cell, s);
+          for (const auto& p : from) {
+            for (const auto& q : to) {
+              ++stats.witness_candidates;
+              if (!plane_free(p, q, s, lo.tau, hi.tau)) continue;
+              joined.insert({a, b});
+              PinSlotConnection c;
+              c.kind = PinSlotConnection::Kind::plane;
+              c.lower = i;
+              c.lower_cell = a;
+              c.upper_cell = b;
+              c.witness_other = p;
+              c.witness_other_upper = q;
+              c.witness_slide = s;
+              connections.push_back(c);
+              done = true;
+              break;
+            }
+            if (done) break;
+          }
+        }
+      }
+  }
+};
+
+PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part, std::string_view pin_slot_part,
+                                 const PinSlotBuildOptions& options) {
+  auto start = Clock::now();
+  auto a = model.find_part(other_part);
+  auto b = model.find_part(pin_slot_part);
+  if (!a) throw ModelError("", "no part named '" + std::string(other_part) + "'");
+  if (!b) throw ModelError("", "no part named '" + std::string(pin_slot_part) + "'");
+  const Part& pin = model.parts[*b];
+  const Part& other = model.parts[*a];
+  std::string pair = "pair '" + other.name + "':'" + pin.name + "'";
+  if (*a == *b) throw GeometryError(pair + ": a part cannot be paired with itself");
+  if (pin.motion.kind != Motion::Kind::pin_slot)
+    throw GeometryError(pair + ": part '" + pin.name + "' (" + pin.pointer + ") has " + kind_text(pin.motion.kind) +
+                        " motion, not pin_slot");
+  if (other.motion.kind == Motion::Kind::planar || other.motion.kind == Motion::Kind::pin_slot)
+    throw GeometryError(pair + ": a pin_slot part against a " + kind_text(other.motion.kind) + " part (" +
+                        other.pointer +
+                        ") has a C-space of 4 or more dimensions, which is not built; the other part must be fixed, "
+                        "rotate or translate");
+  if (options.slices == 1) throw GeometryError(pair + ": a stack needs at least 2 slices");
+  auto impl = std::make_shared<Impl>();
+  impl->other_name = other.name;
+  impl->pin_name = pin.name;
+  impl->other_kind = other.motion.kind;
+  impl->model.name = model.name;
+  impl->model.parts = {other, pin};
+  // slice angles: interior points of n equal angle steps across the limits (or the turn)
+  std::size_t n = options.slices ? options.slices : 16;
+  double lo = -std::numbers::pi, hi = std::numbers::pi;
+  impl->whole_turn = !pin.motion.angle_limits;
+  if (pin.motion.angle_limits) {
+    lo = to_double(pin.motion.angle_limits->lo);
+    hi = to_double(pin.motion.angle_limits->hi);
+    if (hi - lo >= 2 * std::numbers::pi) impl->whole_turn = true, lo = -std::numbers::pi, hi = std::numbers::pi;
+  }
+  // Each slice angle is n-th of the range away from the limits; the rational tangent is within
+  // 2^-13 of tan(angle/2), i.e. within about 2^-12 rad (times 1 + tan^2 <= 2 inside a half
+  // turn... checked below) of the intended angle: the check that it stays inside the limits
+  // uses a margin of a quarter step, far above the doubles' rounding.
+  std::vector<Rational> taus;
+  const double step = (hi - lo) / static_cast<double>(n);
+  if (!(step > 1e-9))
+    throw GeometryError(pair + ": the angle limits of part '" + pin.name + "' are too narrow to slice");
+  for (std::size_t k = 0; k < n; ++k) {
+    double angle = lo + step * (static_cast<double>(k) + 0.5);
+    // the simplest dyadic tangent (denominator 4096 or finer) within a quarter step of the
+    // intended angle: far inside the limits (the doubles' rounding is below 1e-15 rad)
+    Rational t;
+    for (long den = 4096;; den *= 2) {
+      t = near_rational(std::tan(angle / 2), den);
+      double back = 2 * std::atan(to_double(t));
+      if (std::abs(back - angle) <= step / 4) break;   // so also >= lo + step / 4, <= hi - step / 4
+      if (den > (1L << 40))
+        throw GeometryError(pair + ": no rational slice angle found inside the angle limits of part '" + pin.name + "'");
+    }
+    if (!taus.empty() && t <= taus.back()) continue;
+    taus.push_back(t);
+  }
+  if (taus.size() < 2) throw GeometryError(pair + ": the angle limits of part '" + pin.name + "' are too narrow to slice");
+  impl->tau_lo = taus.front();
+  impl->tau_hi = taus.back();
+  if (!options.stack) taus.clear();
+  for (std::size_t k = 0; k < taus.size(); ++k) {
+    if (options.progress) options.progress("slice " + std::to_string(k + 1) + " of " + std::to_string(taus.size()));
+    impl->slices.push_back(impl->make_slice(taus[k], false));
+  }
+  // isolate changes by bisection
+  for (unsigned step_count = 0; step_count < options.refine_steps; ++step_count) {
+    std::vector<PinSlotSlice> refined;
+    bool any = false;
+    for (std::size_t k = 0; k < impl->slices.size(); ++k) {
+      refined.push_back(impl->slices[k]);
+      if (k + 1 == impl->slices.size()) break;
+      if (Impl::signature(impl->slices[k]) == Impl::signature(impl->slices[k + 1])) continue;
+      Rational mid = (impl->slices[k].tau + impl->slices[k + 1].tau) / 2;
+      mid.canonicalize();
+      if (options.progress) options.progress("isolating a change, step " + std::to_string(step_count + 1));
+      refined.push_back(impl->make_slice(mid, true));
+      any = true;
+    }
+    impl->slices = std::move(refined);
+    if (!any) break;
+  }
+  for (std::size_t k = 0; k + 1 < impl->slices.size(); ++k) {
+    const auto& p = impl->slices[k];
+    const auto& q = impl->slices[k + 1];
+    if (Impl::signature(p) == Impl::signature(q)) continue;
+    std::string what = p.free_cells.size() != q.free_cells.size()
+                           ? "free cells " + std::to_string(p.free_cells.size()) + " -> " + std::to_string(q.free_cells.size())
+                           : "contacts of the free cells differ";
+    impl->changes.push_back(PinSlotChange{k, what});
+  }
+  // connections and groups
+  auto connections_start = Clock::now();
+  if (options.connections && impl->slices.size() >= 2) {
+    std::size_t gaps = impl->slices.size() - 1 + (impl->whole_turn ? 1 : 0);
+    for (std::size_t k = 0; k + 1 < impl->slices.size(); ++k) {
+      if (options.progress) options.progress("connections " + std::to_string(k + 1) + " of " + std::to_string(gaps));
+      impl->connect(k, k + 1, false, options.plane_witnesses);
+    }
+    if (impl->whole_turn) impl->connect(impl->slices.size() - 1, 0, true, false);
+  }
+  impl->stats.seconds_connections = seconds_since(connections_start);
+  std::vector<std::size_t> offset;
+  std::size_t total = 0;
+  for (const auto& s : impl->slices) offset.push_back(total), total += s.free_cells.size();
+  UnionFind uf;
+  uf.parent.resize(total);
+  for (std::size_t i = 0; i < total; ++i) uf.parent[i] = i;
+  for (const auto& c : impl->connections) {
+    std::size_t upper = c.lower + 1 == impl->slices.size() ? 0 : c.lower + 1;
+    uf.unite(offset[c.lower] + c.lower_cell, offset[upper] + c.upper_cell);
+  }
+  std::map<std::size_t, std::size_t> group_of;
+  for (std::size_t k = 0; k < impl->slices.size(); ++k)
+    for (std::size_t c = 0; c < impl->slices[k].free_cells.size(); ++c) {
+      std::size_t root = uf.find(offset[k] + c);
+      auto [it, inserted] = group_of.emplace(root, group_of.size());
+      impl->slices[k].free_cells[c].group = it->second;
+    }
+  impl->group_count = group_of.size();
+  impl->stats.seconds_total = seconds_since(start);
+  PinSlotSpace space;
+  space.impl_ = impl;
+  return space;
+}
+
+const std::string& PinSlotSpace::other_part() const { return impl_->other_name; }
+const std::string& PinSlotSpace::pin_slot_part() const { return impl_->pin_name; }
+Motion::Kind PinSlotSpace::other_kind() const { return impl_->other_kind; }
+int PinSlotSpace::dimension() const { return impl_->other_kind == Motion::Kind::fixed ? 2 : 3; }
+const Rational& PinSlotSpace::tau_lower() const { return impl_->tau_lo; }
+const Rational& PinSlotSpace::tau_upper() const { return impl_->tau_hi; }
+std::shared_ptr<const CSpace> PinSlotSpace::slice(const Rational& tau) const {
+  Rational t = tau;
+  t.canonicalize();
+  return impl_->slice(t);
+}
+const std::vector<PinSlotSlice>& PinSlotSpace::slices() const { return impl_->slices; }
+const std::vector<PinSlotConnection>& PinSlotSpace::connections() const { return impl_->connections; }
+const std::vector<PinSlotChange>& PinSlotSpace::changes() const { return impl_->changes; }
+std::size_t PinSlotSpace::groups() const { return impl_->group_count; }
+const PinSlotStatistics& PinSlotSpace::statistics() const { return impl_->stats; }
+
+PinSlotLocation PinSlotSpace::locate(const PinSlotConfiguration& q) const {
+  const Impl& impl = *impl_;
+  Rational tau = q.tau;
+  tau.canonicalize();
+  if (impl.pin().motion.angle_limits && !impl.whole_turn) {
+    // outside the angle limits: psi = 2 atan(tau) against rational limits, decided with a
+    // certified double (atan's error is far below 1e-12; ties within it are refused)
+    double psi = 2 * std::atan(to_double(tau));
+    double lo = to_double(impl.pin().motion.angle_limits->lo), hi = to_double(impl.pin().motion.angle_limits->hi);
+    double margin = 1e-12 * (1 + std::abs(psi));
+    if (psi < lo - margin || psi > hi + margin) return PinSlotLocation{};
+    if (std::abs(psi - lo) <= margin || std::abs(psi - hi) <= margin)
+      throw GeometryError("locate: tan(psi/2) = " + to_exact_string(tau) +
+                          " is too close to an angle limit to decide with certainty");
+  }
+  auto space = impl.slice(tau);
+  PinSlotLocation out;
+  out.in_slice = impl.locate_in(*space, q.other, q.slide);
+  out.kind = Impl::kind_of(*space, out.in_slice);
+  for (std::size_t k = 0; k < impl.slices.size(); ++k)
+    if (impl.slices[k].tau == tau) {
+      out.slice = k;
+      if (out.kind == PinSlotLocation::Kind::free && out.in_slice.kind == Location::Kind::free)
+        for (std::size_t c = 0; c < impl.slices[k].free_cells.size(); ++c)
+          if (impl.slices[k].free_cells[c].slice_cell == out.in_slice.cell) out.cell = c;
+    }
+  return out;
+}
+
+bool PinSlotSpace::certainly_connected(const PinSlotConfiguration& a, const PinSlotConfiguration& b) const {
+  const Impl& impl = *impl_;
+  // the group of a free configuration: through a witnessed segment to the nearest slice below
+  // or above, or within its own slice when tau is a slice's
+  auto group = [&](const PinSlotConfiguration& q) -> std::size_t {
+    PinSlotLocation at = locate(q);
+    if (at.kind != PinSlotLocation::Kind::free) return no_index;
+    if (at.cell != no_index) return impl.slices[at.slice].free_cells[at.cell].group;
+    Rational tau = q.tau;
+    tau.canonicalize();
+    std::size_t above = 0;
+    while (above < impl.slices.size() && impl.slices[above].tau < tau) ++above;
+    for (std::size_t k : {above, above - 1}) {
+      if (k >= impl.slices.size()) continue;
+      const PinSlotSlice& s = impl.slices[k];
+      PinSlotLocation there = locate(PinSlotConfiguration{q.other, q.slide, s.tau});
+      if (there.cell == no_index) continue;
+      bool ok = k == above ? impl.segment_free(q.other, q.slide, tau, s.tau, false)
+                           : impl.segment_free(q.other, q.slide, s.tau, tau, false);
+      if (ok) return s.free_cells[there.cell].group;
+    }
+    return no_index;
+  };
+  std::size_t ga = group(a), gb = group(b);
+  if (ga == no_index || gb == no_index) return false;
+  if (ga == gb) return true;
+  return false;
+}
+
+}  // namespace hipair
