@@ -143,6 +143,11 @@ struct ToleranceCertification {
   /// the reader's own steps) has the two parts' interiors overlapping (exact predicate).
   std::vector<std::pair<std::string, Rational>> witness_parameters;
   std::optional<ExactPosition> witness_driver, witness_follower;
+  /// jams: the driver coordinate (rad or mm, exact) at which, with the parameters at
+  /// `witness_parameters`, the channel's upper side (its root certified in `witness_upper` by a
+  /// certain sign change of its contact function) lies below the lower side (`witness_lower`).
+  std::optional<Rational> witness_coordinate;
+  std::optional<RationalInterval> witness_lower, witness_upper;
   Rational scale;
   std::size_t leaves = 0, attempts = 0;
   double seconds_produce = 0, seconds_verify = 0;
