@@ -15,10 +15,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iostream>
 #include <random>
 #include <sstream>
 
@@ -241,17 +239,6 @@ TEST(CertifyToleranceInterference, BadRequestsAreRefusedWithAMessage) {
   o = options(q(0, 1), q(1, 1), q(0, 1), q(0, 1));
   o.vary = {"no-such-parameter"};
   EXPECT_THROW(certify_no_interference(geneva(), o), ModelError);
-}
-
-TEST(CertifyToleranceInterference, Probe) {
-  const char* env = std::getenv("HIPAIR_PROBE");
-  if (!env) GTEST_SKIP();
-  std::istringstream in(env);
-  long a, b, c, d, e, den;
-  in >> a >> b >> c >> d >> e >> den;
-  auto r = certify_no_interference(geneva(), options(q(a, den), q(b, den), q(c, den), q(d, den), q(e, 1)));
-  std::cout << int(r.outcome) << " leaves " << r.leaves << " attempts " << r.attempts << " produce "
-            << r.seconds_produce << " verify " << r.seconds_verify << "\n" << r.reason << "\n";
 }
 
 }  // namespace
