@@ -141,12 +141,14 @@ LeafSide leaf_side_of(const JsonValue& value) {
   return LeafSide{index(require(value, "pair")), interval_of(require(value, "bracket")), interval_of(require(value, "centre"))};
 }
 ToleranceClaim tolerance_of(const JsonValue& body) {
-  check_keys(body, {"property", "driver", "follower", "range", "scale", "varied", "box", "sides", "leaves", "tree"});
+  check_keys(body, {"property", "driver", "follower", "range", "follower_range", "scale", "varied", "box", "sides",
+                    "leaves", "tree"});
   ToleranceClaim t;
   t.property = text(require(body, "property"));
   t.driver = text(require(body, "driver"));
   t.follower = text(require(body, "follower"));
   t.range = interval_of(require(body, "range"));
+  if (const JsonValue* follower = body.find("follower_range")) t.follower_range = interval_of(*follower);
   t.scale = rational(require(body, "scale"));
   for (const JsonValue& name : array(require(body, "varied")).items) t.varied.push_back(text(name));
   for (const JsonValue& range : array(require(body, "box")).items) t.box.push_back(interval_of(range));
@@ -155,10 +157,18 @@ ToleranceClaim tolerance_of(const JsonValue& body) {
     t.sides.push_back(ContactSidePair{feature_of(require(side, "driver")), feature_of(require(side, "follower"))});
   }
   for (const JsonValue& item : array(require(body, "leaves")).items) {
-    check_keys(item, {"parameters", "driver", "lower", "upper", "witness"});
+    check_keys(item, {"parameters", "driver", "follower", "lower", "upper", "witness"});
     ToleranceLeaf leaf;
     for (const JsonValue& range : array(require(item, "parameters")).items) leaf.parameters.push_back(interval_of(range));
     leaf.driver = interval_of(require(item, "driver"));
+    if (const JsonValue* follower = item.find("follower")) {
+      // no_interference: a box of configurations, no sides.
+      leaf.follower = interval_of(*follower);
+      if (item.find("lower") || item.find("upper") || item.find("witness"))
+        fail(item, "a leaf with a 'follower' interval (no_interference) has no sides or witness");
+      t.leaves.push_back(std::move(leaf));
+      continue;
+    }
     leaf.lower = leaf_side_of(require(item, "lower"));
     leaf.upper = leaf_side_of(require(item, "upper"));
     if (const JsonValue* witness = item.find("witness")) {

@@ -74,6 +74,7 @@ std::string leaf_side(const LeafSide& side) {
 std::string tolerance(const ToleranceClaim& t) {
   std::string out = "    \"property\": " + quoted(t.property) + ",\n    \"driver\": " + quoted(t.driver) +
                     ",\n    \"follower\": " + quoted(t.follower) + ",\n    \"range\": " + interval(t.range) +
+                    (t.follower_range ? ",\n    \"follower_range\": " + interval(*t.follower_range) : std::string()) +
                     ",\n    \"scale\": " + number(t.scale) + ",\n    \"varied\": [";
   for (std::size_t i = 0; i < t.varied.size(); ++i) out += (i ? ", " : "") + quoted(t.varied[i]);
   out += "],\n    \"box\": [";
@@ -88,8 +89,12 @@ std::string tolerance(const ToleranceClaim& t) {
     const ToleranceLeaf& leaf = t.leaves[i];
     out += std::string(i ? "," : "") + "\n      {\"parameters\": [";
     for (std::size_t j = 0; j < leaf.parameters.size(); ++j) out += (j ? ", " : "") + interval(leaf.parameters[j]);
-    out += "], \"driver\": " + interval(leaf.driver) + ",\n       \"lower\": " + leaf_side(leaf.lower) +
-           ", \"upper\": " + leaf_side(leaf.upper);
+    out += "], \"driver\": " + interval(leaf.driver);
+    if (leaf.follower) {
+      out += ", \"follower\": " + interval(*leaf.follower) + "}";
+      continue;
+    }
+    out += ",\n       \"lower\": " + leaf_side(leaf.lower) + ", \"upper\": " + leaf_side(leaf.upper);
     if (leaf.witness) {
       out += ",\n       \"witness\": {\"value\": " + number(*leaf.witness) + ", \"slopes\": [";
       for (std::size_t j = 0; j < leaf.witness_slopes.size(); ++j) out += (j ? ", " : "") + number(leaf.witness_slopes[j]);

@@ -202,7 +202,16 @@ ToleranceEvaluator::ToleranceEvaluator(std::shared_ptr<const model_detail::Param
                                        const ToleranceClaim& claim)
     : model_(std::move(model)), claim_(claim) {
   const Model& m = model_->nominal();
-  if (claim.property != "no_jam") reject("unknown tolerance property '" + claim.property + "' (expected no_jam)");
+  if (claim.property != "no_jam" && claim.property != "no_interference")
+    reject("unknown tolerance property '" + claim.property + "' (expected no_jam or no_interference)");
+  if (claim.property == "no_interference") {
+    if (!claim.follower_range) reject("a no_interference claim needs its follower_range");
+    if (!(claim.follower_range->lo <= claim.follower_range->hi))
+      reject("the follower range " + show(*claim.follower_range) + " is empty");
+    if (!claim.sides.empty()) reject("a no_interference claim has no contact sides");
+  } else if (claim.follower_range) {
+    reject("a follower_range belongs to no_interference claims only");
+  }
   auto part_index = [&](const std::string& name, const char* role) {
     std::optional<std::size_t> k = m.find_part(name);
     if (!k) reject(std::string("the model has no ") + role + " part '" + name + "'");
@@ -238,7 +247,7 @@ ToleranceEvaluator::ToleranceEvaluator(std::shared_ptr<const model_detail::Param
              to_exact_string(claim.scale) + " x its tolerance range is " + show(expected));
     varied_.push_back(static_cast<std::size_t>(p - m.parameters.data()));
   }
-  if (claim.sides.empty()) reject("no contact sides");
+  if (claim.sides.empty() && claim.property == "no_jam") reject("no contact sides");
   for (std::size_t s = 0; s < claim.sides.size(); ++s) {
     const ContactSidePair& pair = claim.sides[s];
     for (int k = 0; k < 2; ++k) {
@@ -487,17 +496,24 @@ void ToleranceEvaluator::check_leaf(const ToleranceLeaf& leaf, std::size_t index
 
 void ToleranceEvaluator::check_cover() const {
   std::size_t k = varied_.size();
+  bool interference = interference_claim();
   std::vector<RationalInterval> region = claim_.box;
   region.push_back(claim_.range);
+  if (interference) region.push_back(*claim_.follower_range);
+  std::size_t last = interference ? k + 1 : k;   // the last dimension
   std::vector<char> used(claim_.leaves.size(), 0);
   std::size_t next = 0;
   auto dimension = [&](const std::string& name) -> std::size_t {
     if (name == "driver") return k;
+    if (name == "follower" && interference) return k + 1;
     for (std::size_t i = 0; i < k; ++i)
       if (claim_.varied[i] == name) return i;
-    reject("tree node " + std::to_string(next) + ": '" + name + "' is neither a varied parameter nor the driver");
+    reject("tree node " + std::to_string(next) + ": '" + name + "' is neither a varied parameter nor the driver" +
+           (interference ? " nor the follower" : ""));
   };
-  auto name_of = [&](std::size_t d) { return d == k ? std::string("driver") : claim_.varied[d]; };
+  auto name_of = [&](std::size_t d) {
+    return d == k ? std::string("driver") : d == k + 1 ? std::string("follower") : claim_.varied[d];
+  };
   // Iterative preorder walk (the tree can be deep).
   std::vector<std::vector<RationalInterval>> stack{region};
   while (!stack.empty()) {
@@ -511,8 +527,11 @@ void ToleranceEvaluator::check_cover() const {
       used[node.index] = 1;
       const ToleranceLeaf& leaf = claim_.leaves[node.index];
       if (leaf.parameters.size() != k) reject("leaf " + std::to_string(node.index) + ": wrong number of parameter intervals");
-      for (std::size_t d = 0; d <= k; ++d) {
-        const RationalInterval& have = d == k ? leaf.driver : leaf.parameters[d];
+      if (bool(leaf.follower) != interference)
+        reject("leaf " + std::to_string(node.index) + (interference ? " has no follower interval (a no_interference leaf needs one)"
+                                                                    : " has a follower interval, but the claim is no_jam"));
+      for (std::size_t d = 0; d <= last; ++d) {
+        const RationalInterval& have = d == k + 1 ? *leaf.follower : d == k ? leaf.driver : leaf.parameters[d];
         if (!contains(have, r[d]))
           reject("coverage gap: leaf " + std::to_string(node.index) + " covers " + name_of(d) + " " + show(have) +
                  " but its region of the box needs " + show(r[d]));
@@ -536,6 +555,328 @@ void ToleranceEvaluator::check_cover() const {
     if (!used[i]) reject("leaf " + std::to_string(i) + " is not in the subdivision tree");
 }
 
+// ----------------------------------------------------------------------------- no_interference
+
+namespace {
+
+using IV = kernels::Vector<Interval>;
+
+bool positive(const Interval& x) { return x.sign() > 0; }
+Interval sq(const Interval& x) { return x * x; }
+Interval cross_iv(const IV& u, const IV& v) { return u.x * v.y - u.y * v.x; }
+IV minus_iv(const IV& u, const IV& v) { return {u.x - v.x, u.y - v.y}; }
+Interval norm2(const IV& u) { return u.x * u.x + u.y * u.y; }
+
+// A posed edge over a leaf (every coordinate an enclosure).
+struct Posed {
+  std::string name;   // for messages: "'label' (loop l edge e)"
+  std::size_t loop = 0, edge = 0;
+  bool arc = false, ccw = false;
+  IV s, t, c;
+  Interval r2, r;
+  Interval bx, by;   // enclosure of the edge's points (bounding box)
+};
+
+// The side of the arc's chord on which the arc lies (strictly, except its ends): a
+// counter-clockwise arc from s to t lies to the right of the directed chord s -> t, a clockwise
+// one to its left.
+int arc_side(const Posed& e) { return e.ccw ? -1 : 1; }
+// +1/-1: p certainly on the arc's side of the chord / on the other side; 0: undecided.
+int chord_side(const Posed& e, const IV& p) {
+  int side = cross_iv(minus_iv(e.t, e.s), minus_iv(p, e.s)).sign();
+  return side == 0 ? 0 : (side == arc_side(e) ? 1 : -1);
+}
+
+void bound(Posed& e) {
+  e.bx = hull2(e.s.x, e.t.x);
+  e.by = hull2(e.s.y, e.t.y);
+  if (!e.arc) return;
+  // The circle's four axis-extreme points, unless certainly off the arc.
+  Interval zero_iv = zero();
+  for (int k = 0; k < 4; ++k) {
+    IV p = e.c;
+    if (k == 0) p.x = e.c.x + e.r;
+    if (k == 1) p.x = e.c.x - e.r;
+    if (k == 2) p.y = e.c.y + e.r;
+    if (k == 3) p.y = e.c.y - e.r;
+    if (chord_side(e, p) < 0) continue;
+    e.bx = hull2(e.bx, p.x);
+    e.by = hull2(e.by, p.y);
+  }
+}
+
+bool less(const Interval& a, const Interval& b) { return positive(b - a); }   // every a < every b
+
+// The separation tests on two posed edges, for a number type N (plain enclosures, or the
+// mean-value pairs below) with `sign` its certain sign (+1, -1; 0 undecided).
+template <class N>
+struct EdgeT {
+  bool arc = false, ccw = false;
+  kernels::Vector<N> s, t, c;
+  N r2, r;
+};
+
+template <class N, class Sign>
+bool separated(const EdgeT<N>& a, const EdgeT<N>& b, const Sign& sign) {
+  using V = kernels::Vector<N>;
+  auto minus = [](const V& u, const V& v) { return V{u.x - v.x, u.y - v.y}; };
+  auto cross = [](const V& u, const V& v) { return u.x * v.y - u.y * v.x; };
+  auto dot = [](const V& u, const V& v) { return u.x * v.x + u.y * v.y; };
+  auto chord = [&](const EdgeT<N>& e, const V& q) {   // +1 on the arc's side of its chord, -1 the other
+    int side = sign(cross(minus(e.t, e.s), minus(q, e.s)));
+    return side == 0 ? 0 : (side == (e.ccw ? -1 : 1) ? 1 : -1);
+  };
+  auto same_side_of_line = [&](const EdgeT<N>& line, const EdgeT<N>& e) {   // e's ends strictly on one side
+    V d = minus(line.t, line.s);
+    int s0 = sign(cross(d, minus(e.s, line.s))), s1 = sign(cross(d, minus(e.t, line.s)));
+    return s0 != 0 && s0 == s1;
+  };
+  if (!a.arc && !b.arc) return same_side_of_line(a, b) || same_side_of_line(b, a);
+  if (a.arc && b.arc) {
+    V cc = minus(a.c, b.c);
+    N d2 = dot(cc, cc);
+    N outer = a.r + b.r, inner = a.r - b.r;
+    if (sign(d2 - outer * outer) > 0) return true;   // circles apart
+    if (sign(inner * inner - d2) > 0) return true;   // one circle strictly inside the other
+    return false;
+  }
+  const EdgeT<N>& arc = a.arc ? a : b;
+  const EdgeT<N>& seg = a.arc ? b : a;
+  V d = minus(seg.t, seg.s);
+  N k = cross(d, minus(arc.c, seg.s));
+  if (sign(k * k - arc.r2 * dot(d, d)) > 0) return true;   // the segment's line misses the circle
+  V cs = minus(arc.c, seg.s), ct = minus(arc.c, seg.t);
+  int in_s = sign(arc.r2 - dot(cs, cs)), in_t = sign(arc.r2 - dot(ct, ct));
+  if (in_s > 0 && in_t > 0) return true;   // the segment strictly inside the disc
+  // Both ends strictly outside the disc, and the point of the line nearest the centre beyond
+  // one end: the segment's point nearest the centre is an end, outside.
+  if (in_s < 0 && in_t < 0 && (sign(dot(cs, d)) < 0 || sign(dot(ct, d)) > 0)) return true;
+  if (chord(arc, seg.s) < 0 && chord(arc, seg.t) < 0) return true;   // beyond the arc's chord
+  return false;
+}
+
+// Certainly no common point of the two closed edges (plain enclosures).
+bool apart(const Posed& a, const Posed& b) {
+  if (less(a.bx, b.bx) || less(b.bx, a.bx) || less(a.by, b.by) || less(b.by, a.by)) return true;   // boxes
+  auto edge = [](const Posed& p) {
+    EdgeT<Interval> e;
+    e.arc = p.arc;
+    e.ccw = p.ccw;
+    e.s = p.s;
+    e.t = p.t;
+    e.c = p.c;
+    e.r2 = p.r2;
+    e.r = p.r;
+    return e;
+  };
+  return separated(edge(a), edge(b), [](const Interval& x) { return x.sign(); });
+}
+
+// A quantity over a leaf in mean-value form: `over` its jet over the whole leaf (gradient with
+// respect to the varied parameters, the driver and the follower), `at` its value at the
+// leaf's centre. Its certain sign is that of at + sum over_i' (X_i - c_i), met with over.
+struct MeanValue {
+  Jet over;
+  Interval at;
+};
+MeanValue operator+(const MeanValue& a, const MeanValue& b) { return {a.over + b.over, a.at + b.at}; }
+MeanValue operator-(const MeanValue& a, const MeanValue& b) { return {a.over - b.over, a.at - b.at}; }
+MeanValue operator*(const MeanValue& a, const MeanValue& b) { return {a.over * b.over, a.at * b.at}; }
+
+}  // namespace
+
+namespace {
+
+
+// The point p (rotated so that the ray is +x from the origin) against the edges: the number of
+// crossings of the ray, or -1 when a crossing cannot be decided.
+int crossings(const IV& p, const std::vector<Posed>& edges, int direction) {
+  auto turn = [&](const IV& q) -> IV {
+    IV v = minus_iv(q, p);
+    switch (direction) {
+      case 0: return v;
+      case 1: return {-v.x, -v.y};
+      case 2: return {v.y, -v.x};
+      default: return {-v.y, v.x};
+    }
+  };
+  int count = 0;
+  for (const Posed& e0 : edges) {
+    Posed e = e0;   // rotations keep the arcs' orientation
+    e.s = turn(e0.s);
+    e.t = turn(e0.t);
+    e.c = turn(e0.c);
+    if (!e.arc) {
+      int ys = e.s.y.sign(), yt = e.t.y.sign();
+      if (ys == 0 || yt == 0) return -1;
+      if (ys == yt) continue;
+      Interval x = e.s.x - e.s.y * (e.t.x - e.s.x) / (e.t.y - e.s.y);
+      int sx = x.sign();
+      if (sx == 0) return -1;
+      count += sx > 0;
+      continue;
+    }
+    Interval h2 = e.r2 - sq(e.c.y);
+    int sh = h2.sign();
+    if (sh < 0) continue;
+    if (sh == 0) return -1;
+    Interval h = model_detail::Arithmetic<Jet>::sqrt(Jet(h2)).value;
+    for (int k = 0; k < 2; ++k) {
+      IV q{k == 0 ? e.c.x + h : e.c.x - h, zero()};
+      int sx = q.x.sign();
+      if (sx == 0) return -1;
+      if (sx < 0) continue;
+      int on = chord_side(e, q);
+      if (on == 0) return -1;
+      count += on > 0;
+    }
+  }
+  return count;
+}
+
+}  // namespace
+
+std::string ToleranceEvaluator::apart_failure(const ToleranceLeaf& leaf) const {
+  std::size_t k = varied_.size();
+  if (leaf.parameters.size() != k) return "wrong number of parameter intervals";
+  if (!leaf.follower) return "no follower interval";
+  const Model& m = model_->nominal();
+  auto pose_part = [&](ToleranceGeometry& g, std::size_t part, const Jet& coordinate) {
+    std::vector<std::vector<Posed>> loops;
+    bool is_driver = part == driver_;
+    const Part& p = m.parts[part];
+    for (std::size_t l = 0; l < p.loops.size(); ++l) {
+      std::vector<Posed> loop;
+      for (std::size_t e = 0; e < p.loops[l].edges.size(); ++e) {
+        model_detail::EdgeValue<Jet> v = model_->edge_value(part, l, e, g.parameters);
+        Posed q;
+        q.name = "'" + p.loops[l].edges[e].label + "' (loop " + std::to_string(l) + " edge " + std::to_string(e) + ")";
+        q.loop = l;
+        q.edge = e;
+        q.arc = v.arc;
+        q.ccw = v.ccw;
+        auto pose = [&](const kernels::Vector<Jet>& point) {
+          kernels::Vector<Jet> w = posed(g, is_driver, point, coordinate);
+          return IV{w.x.value, w.y.value};
+        };
+        q.s = pose(v.source);
+        q.t = pose(v.target);
+        if (q.arc) {
+          q.c = pose(v.center);
+          q.r2 = v.radius_squared.value;
+          q.r = model_detail::Arithmetic<Jet>::sqrt(Jet(q.r2)).value;
+        }
+        bound(q);
+        loop.push_back(std::move(q));
+      }
+      loops.push_back(std::move(loop));
+    }
+    return loops;
+  };
+  auto flat = [](const std::vector<std::vector<Posed>>& loops) {
+    std::vector<Posed> all;
+    for (const auto& l : loops) all.insert(all.end(), l.begin(), l.end());
+    return all;
+  };
+  // 1. Over the whole leaf: no edge of one part meets an edge of the other. The boundaries are
+  //    then apart for every point of the (connected) leaf, so each loop of a part stays on one
+  //    side of the other part throughout.
+  {
+    std::vector<Interval> box, centre;
+    for (const RationalInterval& p : leaf.parameters) {
+      box.push_back(enclose(p));
+      centre.push_back(enclose(middle(p)));
+    }
+    ToleranceGeometry g = geometry(box, false);
+    std::vector<Posed> a = flat(pose_part(g, driver_, Jet(enclose(leaf.driver))));
+    std::vector<Posed> b = flat(pose_part(g, follower_, Jet(enclose(*leaf.follower))));
+    // Pairs the plain enclosures do not separate are tried again in mean-value form (the
+    // geometry with its gradient over the leaf, evaluated once and only when needed).
+    std::optional<ToleranceGeometry> over, at;
+    std::vector<Interval> offsets;
+    std::map<std::tuple<bool, std::size_t, std::size_t>, EdgeT<MeanValue>> cache;
+    std::size_t m = variables();
+    Jet driver_over = Jet::variable(enclose(leaf.driver), driver_variable(), m);
+    Jet follower_over = Jet::variable(enclose(*leaf.follower), follower_variable(), m);
+    Jet driver_at(enclose(middle(leaf.driver))), follower_at(enclose(middle(*leaf.follower)));
+    auto mean_value_edge = [&](bool is_driver, const Posed& p) -> const EdgeT<MeanValue>& {
+      auto key = std::make_tuple(is_driver, p.loop, p.edge);
+      auto it = cache.find(key);
+      if (it != cache.end()) return it->second;
+      if (!over) {
+        over = geometry(box, true);
+        at = geometry(centre, false);
+        for (const RationalInterval& r : leaf.parameters) offsets.push_back(offset(r));
+        offsets.push_back(offset(leaf.driver));
+        offsets.push_back(offset(*leaf.follower));
+      }
+      std::size_t part = is_driver ? driver_ : follower_;
+      model_detail::EdgeValue<Jet> vo = model_->edge_value(part, p.loop, p.edge, over->parameters);
+      model_detail::EdgeValue<Jet> va = model_->edge_value(part, p.loop, p.edge, at->parameters);
+      const Jet& co = is_driver ? driver_over : follower_over;
+      const Jet& ca = is_driver ? driver_at : follower_at;
+      auto pose = [&](const kernels::Vector<Jet>& qo, const kernels::Vector<Jet>& qa) {
+        kernels::Vector<Jet> wo = posed(*over, is_driver, qo, co), wa = posed(*at, is_driver, qa, ca);
+        return kernels::Vector<MeanValue>{MeanValue{wo.x, wa.x.value}, MeanValue{wo.y, wa.y.value}};
+      };
+      EdgeT<MeanValue> e;
+      e.arc = vo.arc;
+      e.ccw = vo.ccw;
+      e.s = pose(vo.source, va.source);
+      e.t = pose(vo.target, va.target);
+      if (e.arc) {
+        e.c = pose(vo.center, va.center);
+        e.r2 = MeanValue{vo.radius_squared, va.radius_squared.value};
+        e.r = MeanValue{model_detail::Arithmetic<Jet>::sqrt(vo.radius_squared),
+                        model_detail::Arithmetic<Jet>::sqrt(va.radius_squared).value};
+      }
+      return cache.emplace(key, std::move(e)).first->second;
+    };
+    auto mean_value_sign = [&](const MeanValue& x) {
+      Interval value = x.at;
+      for (std::size_t i = 0; i < offsets.size(); ++i) value = value + x.over.partial(i) * offsets[i];
+      return meet(value, x.over.value).sign();
+    };
+    for (std::size_t i = 0; i < a.size(); ++i)
+      for (std::size_t j = 0; j < b.size(); ++j)
+        if (!apart(a[i], b[j]) && !separated(mean_value_edge(true, a[i]), mean_value_edge(false, b[j]), mean_value_sign))
+          return a[i].name + " of '" + claim_.driver + "' and " + b[j].name + " of '" + claim_.follower +
+                 "' are not certainly apart over driver " + show(leaf.driver) + ", follower " +
+                 show(*leaf.follower);
+  }
+  // 2. At the leaf's centre: one vertex of every loop of each part certainly outside the other
+  //    part (ray crossings of certain parity). With 1., the parts' boundaries never meet and no
+  //    boundary point lies in the other part, so the closed parts are disjoint over the leaf.
+  std::vector<Interval> centre;
+  for (const RationalInterval& p : leaf.parameters) centre.push_back(enclose(middle(p)));
+  ToleranceGeometry g = geometry(centre, false);
+  auto la = pose_part(g, driver_, Jet(enclose(middle(leaf.driver))));
+  auto lb = pose_part(g, follower_, Jet(enclose(middle(*leaf.follower))));
+  for (int side = 0; side < 2; ++side) {
+    const auto& loops = side == 0 ? la : lb;
+    std::vector<Posed> other = flat(side == 0 ? lb : la);
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+      if (loops[l].empty()) continue;
+      int count = -1;
+      for (int direction = 0; direction < 4 && count < 0; ++direction) count = crossings(loops[l][0].s, other, direction);
+      const std::string& name = side == 0 ? claim_.driver : claim_.follower;
+      const std::string& other_name = side == 0 ? claim_.follower : claim_.driver;
+      if (count < 0)
+        return "at the leaf's centre, whether loop " + std::to_string(l) + " of '" + name + "' lies inside '" +
+               other_name + "' is undecided";
+      if (count % 2 == 1)
+        return "at the leaf's centre, loop " + std::to_string(l) + " of '" + name + "' lies inside '" + other_name +
+               "': the parts interfere";
+    }
+  }
+  return "";
+}
+
+void ToleranceEvaluator::check_apart(const ToleranceLeaf& leaf, std::size_t index) const {
+  std::string failure = apart_failure(leaf);
+  if (!failure.empty()) reject("leaf " + std::to_string(index) + ": the parts may interfere: " + failure);
+}
+
 std::string check_tolerance(const Certificate& c, const Model& model, std::string_view model_text) {
   if (!c.tolerance) reject("a tolerance certificate needs its 'tolerance' section");
   const ToleranceClaim& claim = *c.tolerance;
@@ -547,8 +888,17 @@ std::string check_tolerance(const Certificate& c, const Model& model, std::strin
       model_detail::ParametricModel::read(model_text, model.source));
   ToleranceEvaluator evaluator(parametric, claim);
   evaluator.check_cover();
-  for (std::size_t i = 0; i < claim.leaves.size(); ++i) evaluator.check_leaf(claim.leaves[i], i);
   std::string unit = model.parts[*model.find_part(claim.driver)].motion.kind == Motion::Kind::rotation ? " rad" : " mm";
+  if (evaluator.interference_claim()) {
+    for (std::size_t i = 0; i < claim.leaves.size(); ++i) evaluator.check_apart(claim.leaves[i], i);
+    std::string follower_unit =
+        model.parts[*model.find_part(claim.follower)].motion.kind == Motion::Kind::rotation ? " rad" : " mm";
+    return "for every parameter vector within " + to_exact_string(claim.scale) + " x the tolerances of " +
+           std::to_string(claim.varied.size()) + " parameters, with '" + claim.driver + "' over " + show(claim.range) +
+           unit + " and '" + claim.follower + "' over " + show(*claim.follower_range) + follower_unit +
+           ", the two parts are apart: they never interfere (" + std::to_string(claim.leaves.size()) + " leaves)";
+  }
+  for (std::size_t i = 0; i < claim.leaves.size(); ++i) evaluator.check_leaf(claim.leaves[i], i);
   return "for every parameter vector within " + to_exact_string(claim.scale) + " x the tolerances of " +
          std::to_string(claim.varied.size()) + " parameters, driving '" + claim.driver + "' over " + show(claim.range) + unit +
          ", the channel of '" + claim.follower + "' between its contact sides never closes (" +

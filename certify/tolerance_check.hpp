@@ -110,8 +110,18 @@ class ToleranceEvaluator {
   void check_witness(const ToleranceLeaf& leaf, ToleranceGeometry& over_box, ToleranceGeometry& at_centre,
                      const std::string& where) const;
 
-  /// Walks the subdivision tree: the leaves cover the box times the range. \throws Rejection.
+  /// Walks the subdivision tree: the leaves cover the box times the range (times the follower
+  /// range for no_interference). \throws Rejection.
   void check_cover() const;
+
+  /// no_interference: the claim's property.
+  bool interference_claim() const { return claim_.property == "no_interference"; }
+  /// no_interference: checks one leaf — every edge of the driver certainly apart from every
+  /// edge of the follower over the whole leaf, and at the leaf's centre one vertex of every
+  /// loop of each part certainly outside the other part. \throws Rejection with the reason.
+  void check_apart(const ToleranceLeaf& leaf, std::size_t index) const;
+  /// The same, returning the reason instead of throwing ("" when the leaf holds).
+  std::string apart_failure(const ToleranceLeaf& leaf) const;
 
  private:
   kernels::Vector<Jet> posed(const ToleranceGeometry& g, bool driver_part, const kernels::Vector<Jet>& point,

@@ -110,10 +110,13 @@ struct LeafSide {
 
 /// A leaf of the branch-and-bound: a sub-box of the parameter box (deviations from nominal, one
 /// interval per varied parameter, ToleranceClaim::varied order) times a driver interval, over
-/// which the channel between the two sides is certified open.
+/// which the channel between the two sides is certified open (no_jam), or times a driver and a
+/// follower interval over which the two parts are certified apart (no_interference: `follower`
+/// set, `lower`/`upper` unused).
 struct ToleranceLeaf {
   std::vector<RationalInterval> parameters;
   RationalInterval driver;
+  std::optional<RationalInterval> follower;   ///< no_interference only
   LeafSide lower, upper;
   /// Optional witness of the open channel: the follower coordinate
   /// y*(p, d) = value + sum slopes_i (p_i - c_i) + slopes_k (d - d_c) (c, d_c: the leaf's
@@ -124,7 +127,8 @@ struct ToleranceLeaf {
 };
 
 /// A node of the subdivision tree in preorder: a split of the current region at `value` along
-/// `dimension` (a varied parameter's name, or "driver"; lower part first), or a leaf (index
+/// `dimension` (a varied parameter's name, "driver", or for no_interference "follower"; lower
+/// part first), or a leaf (index
 /// into ToleranceClaim::leaves) whose box must contain the region.
 struct ToleranceTreeNode {
   bool leaf = false;
@@ -135,13 +139,16 @@ struct ToleranceTreeNode {
 
 /// A tolerance certificate's claim (docs/certify.md "Tolerance").
 struct ToleranceClaim {
-  std::string property = "no_jam";   ///< the only property: the channel never closes
+  /// "no_jam": the channel never closes; "no_interference": the parts stay apart over
+  /// range x follower_range (the operating configuration set).
+  std::string property = "no_jam";
   std::string driver, follower;       ///< both rotating or translating parts of the pair
   RationalInterval range;             ///< driver range (rad or mm)
+  std::optional<RationalInterval> follower_range;   ///< no_interference: follower range (rad or mm)
   Rational scale = 1;                 ///< the box is `scale` times each varied tolerance range
   std::vector<std::string> varied;    ///< varied parameters (the others stay nominal)
   std::vector<RationalInterval> box;  ///< per varied parameter: deviations from nominal
-  std::vector<ContactSidePair> sides;
+  std::vector<ContactSidePair> sides;   ///< no_jam only
   std::vector<ToleranceLeaf> leaves;
   std::vector<ToleranceTreeNode> tree;
 };

@@ -133,9 +133,21 @@ struct ToleranceCertification {
   /// certified: `certificate` holds the no-jam certificate (re-checked by the verifier's code);
   /// jams: at a parameter vector of the box the two sides of the channel certainly cross
   /// (`reason` names it); undecided: neither (budget exhausted, a side not isolated, ...).
-  enum class Outcome { certified, jams, undecided } outcome = Outcome::undecided;
+  /// interferes (no_interference certificates): at `witness` the exact model's parts overlap.
+  enum class Outcome { certified, jams, undecided, interferes } outcome = Outcome::undecided;
   std::optional<Certificate> certificate;
   std::string reason;
+  /// interferes: an exact witness — deviations of the varied parameters (exact rationals; the
+  /// others nominal), the driver's and the follower's exact positions (rotation: tangent of the
+  /// half angle; translation: offset), at which the exact model (ParametricModel::exact_model,
+  /// the reader's own steps) has the two parts' interiors overlapping (exact predicate).
+  std::vector<std::pair<std::string, Rational>> witness_parameters;
+  std::optional<ExactPosition> witness_driver, witness_follower;
+  /// jams: the driver coordinate (rad or mm, exact) at which, with the parameters at
+  /// `witness_parameters`, the channel's upper side (its root certified in `witness_upper` by a
+  /// certain sign change of its contact function) lies below the lower side (`witness_lower`).
+  std::optional<Rational> witness_coordinate;
+  std::optional<RationalInterval> witness_lower, witness_upper;
   Rational scale;
   std::size_t leaves = 0, attempts = 0;
   double seconds_produce = 0, seconds_verify = 0;
@@ -161,6 +173,27 @@ struct ToleranceResult {
   std::optional<ToleranceCertification> certification;   ///< with ToleranceOptions::certify
   std::vector<std::string> notes;
 };
+
+/// What a "never interferes" tolerance certificate claims (docs/certify.md "Tolerance", property
+/// no_interference): for every vector of the varied parameters within `scale` x their tolerance
+/// ranges (the others nominal, derived ones following their expressions), every driver
+/// coordinate in `driver_range` and every follower coordinate in `follower_range` (rad or mm:
+/// the operating configuration set), the two parts are apart (closed parts disjoint).
+struct InterferenceCertifyOptions {
+  std::string driver, follower;               ///< part names (each rotating or translating)
+  RationalInterval driver_range, follower_range;
+  Rational scale = 1;
+  std::vector<std::string> vary;              ///< varied parameters; empty: every toleranced one
+  std::size_t max_leaves = 20000;             ///< undecided beyond this many leaves
+};
+
+/// Interval branch-and-bound over parameters x driver x follower; a certificate returned has been
+/// re-checked by the verifier's code from its JSON text. Outcome `interferes` comes with an exact
+/// witness. \throws ModelError (unknown parts or parameters, bad ranges), IoError.
+ToleranceCertification certify_no_interference(const std::filesystem::path& model_file,
+                                               const InterferenceCertifyOptions& options);
+ToleranceCertification certify_no_interference_text(std::string_view json_text, const InterferenceCertifyOptions& options,
+                                                    const std::string& source_name = "<string>");
 
 /// Runs the analysis of `model_file`. \throws ModelError, GeometryError, IoError.
 ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, const ToleranceOptions& options = {});

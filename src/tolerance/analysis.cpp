@@ -122,8 +122,10 @@ class Analysis {
     box_.lo.resize(n);
     box_.hi.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-      box_.lo[i] = dist_[i].lo;
-      box_.hi[i] = dist_[i].hi;
+      // Outward: the band's box contains the exact rational tolerance box (the nearest doubles
+      // of its ends could leave out half an ulp of it).
+      box_.lo[i] = dist_[i].box_lo;
+      box_.hi[i] = dist_[i].box_hi;
       result_.sigma.push_back(dist_[i].sigma);
       result_.mean_shift.push_back(dist_[i].mean);
     }
@@ -720,10 +722,14 @@ class Analysis {
     // Certified: the largest of a few scales below the threshold at which both sides' certified
     // enclosures stay apart at the critical position.
     for (double factor : {0.95, 0.9, 0.8, 0.6, 0.4}) {
+      // The box at the scale reported (the double best * factor, exactly), rounded outwards
+      // from the exact rational tolerance box.
+      Rational scale(best * factor);
       Box scaled = box_;
       for (std::size_t i = 0; i < n; ++i) {
-        scaled.lo[i] = varied[i] ? box_.lo[i] * best * factor : 0;
-        scaled.hi[i] = varied[i] ? box_.hi[i] * best * factor : 0;
+        const Parameter& p = m.parameters[i];
+        scaled.lo[i] = varied[i] ? tolerance_detail::round_to_double(scale * (p.range.lo - p.nominal), false) : 0;
+        scaled.hi[i] = varied[i] ? tolerance_detail::round_to_double(scale * (p.range.hi - p.nominal), true) : 0;
       }
       try {
         std::size_t boxes = 0;
@@ -734,7 +740,7 @@ class Analysis {
         Interval hi = solver_->certified_range(critical.upper, scaled, critical.upper_value, critical.upper_s,
                                                accuracy, options_.absolute_accuracy, boxes);
         if (hi.lo > lo.hi) {
-          result.certified_open_scale = best * factor;
+          result.certified_open_scale = scale.get_d();
           break;
         }
       } catch (const Error&) {

@@ -89,6 +89,16 @@ class Producer {
       result.reason = rejection.reason;
       return result;
     }
+    // First the linearised worst corner of the box at each driver position of the nominal path:
+    // above the jamming threshold the channel closes there, and a corner is an exact rational
+    // vector of the box — the witness.
+    if (corner_jams(pieces, result)) {
+      result.outcome = ToleranceCertification::Outcome::jams;
+      result.reason = jam_reason_;
+      result.attempts = attempts_;
+      result.seconds_produce = seconds_since(start);
+      return result;
+    }
     std::vector<RationalInterval> region = claim_.box;
     region.push_back(claim_.range);
     Status status = Status::ok;
@@ -116,6 +126,10 @@ class Producer {
     if (status == Status::jams) {
       result.outcome = ToleranceCertification::Outcome::jams;
       result.reason = jam_reason_;
+      result.witness_parameters = jam_witness_;
+      result.witness_coordinate = jam_coordinate_;
+      result.witness_lower = jam_lower_;
+      result.witness_upper = jam_upper_;
       return result;
     }
     if (status != Status::ok) {
@@ -261,6 +275,64 @@ class Producer {
     return g;
   }
 
+  // At every sample of the nominal path: the sides' sensitivities over the box (middles of their
+  // enclosures), the corner of the box that narrows the channel most by them, and at that exact
+  // corner and driver position both sides isolated by certain sign changes. The upper side
+  // certainly below the lower one is a jam with an exact witness.
+  bool corner_jams(const std::vector<Piece>& pieces, ToleranceCertification& result) {
+    std::size_t k = claim_.varied.size();
+    std::vector<Interval> box;
+    std::vector<double> half;
+    for (std::size_t i = 0; i < k; ++i) {
+      box.push_back(verify::enclose(claim_.box[i]));
+      half.push_back(Rational((claim_.box[i].hi - claim_.box[i].lo) / 2).get_d());
+    }
+    verify::ToleranceGeometry over = evaluator_->geometry(box, true);
+    for (const Piece& piece : pieces)
+      for (const ChannelSample* s : piece.samples) {
+        ++attempts_;
+        Rational d(s->driver);
+        if (d < claim_.range.lo || d > claim_.range.hi) continue;
+        ToleranceLeaf leaf;
+        leaf.parameters = claim_.box;
+        leaf.driver = {d, d};
+        std::vector<Interval> middle;
+        for (std::size_t i = 0; i < k; ++i) middle.push_back(verify::enclose((claim_.box[i].lo + claim_.box[i].hi) / 2));
+        verify::ToleranceGeometry point = evaluator_->geometry(middle, false);
+        SideGuess gl = side_guess(piece.lower, s->lower, leaf, over, point, half, 0);
+        SideGuess gu = side_guess(piece.upper, s->upper, leaf, over, point, half, 0);
+        if (gl.slope.size() != k + 1 || gu.slope.size() != k + 1) continue;
+        ToleranceLeaf corner;
+        corner.driver = {d, d};
+        std::vector<Interval> at;
+        for (std::size_t i = 0; i < k; ++i) {
+          // the play U - L decreases with p_i when its slope is positive: take the low end
+          const Rational& end = gu.slope[i] - gl.slope[i] > 0 ? claim_.box[i].lo : claim_.box[i].hi;
+          corner.parameters.push_back({end, end});
+          at.push_back(verify::enclose(end));
+        }
+        verify::ToleranceGeometry corner_point = evaluator_->geometry(at, false);
+        verify::ToleranceGeometry corner_over = evaluator_->geometry(at, true);
+        SideGuess cl = side_guess(piece.lower, s->lower, corner, corner_over, corner_point, std::vector<double>(k, 0), 0);
+        SideGuess cu = side_guess(piece.upper, s->upper, corner, corner_over, corner_point, std::vector<double>(k, 0), 0);
+        if (!(cl.centre_certain && cu.centre_certain && cu.centre.hi < cl.centre.lo)) continue;
+        jam_reason_ = "the channel's sides cross at driver " + to_exact_string(d) + " (" + std::to_string(s->driver) +
+                      "): the upper side's root lies in [" + to_exact_string(cu.centre.lo) + ", " +
+                      to_exact_string(cu.centre.hi) + "], below the lower side's [" + to_exact_string(cl.centre.lo) +
+                      ", " + to_exact_string(cl.centre.hi) + "] (certain sign changes), at the corner of the box";
+        result.witness_parameters.clear();
+        for (std::size_t i = 0; i < k; ++i) {
+          result.witness_parameters.emplace_back(claim_.varied[i], corner.parameters[i].lo);
+          jam_reason_ += " " + claim_.varied[i] + "=" + to_exact_string(corner.parameters[i].lo);
+        }
+        result.witness_coordinate = d;
+        result.witness_lower = cl.centre;
+        result.witness_upper = cu.centre;
+        return true;
+      }
+    return false;
+  }
+
   Status solve(const std::vector<RationalInterval>& region, const Piece& piece, int depth) {
     if (attempts_ >= 4 * request_.max_leaves || claim_.leaves.size() >= request_.max_leaves) {
       undecided_reason_ = "the branch-and-bound gave up after " + std::to_string(attempts_) + " boxes (" +
@@ -310,8 +382,15 @@ class Producer {
       jam_reason_ = "the channel's sides cross at driver " + std::to_string(dd) + ": upper side at " +
                     std::to_string(upper.root) + ", lower side at " + std::to_string(lower.root) +
                     " (follower), at the parameter deviations";
-      for (std::size_t i = 0; i < k; ++i)
-        jam_reason_ += " " + claim_.varied[i] + "=" + std::to_string(Rational((region[i].lo + region[i].hi) / 2).get_d());
+      jam_witness_.clear();
+      for (std::size_t i = 0; i < k; ++i) {
+        Rational c = (region[i].lo + region[i].hi) / 2;
+        jam_witness_.emplace_back(claim_.varied[i], c);
+        jam_reason_ += " " + claim_.varied[i] + "=" + to_exact_string(c);
+      }
+      jam_coordinate_ = d0;
+      jam_lower_ = lower.centre;
+      jam_upper_ = upper.centre;
       return Status::jams;
     }
     // A leaf with these two sides: first with a witness follower path between them (a linear
@@ -410,6 +489,9 @@ class Producer {
   std::unique_ptr<verify::ToleranceEvaluator> evaluator_;
   std::size_t attempts_ = 0;
   std::string jam_reason_, undecided_reason_;
+  std::vector<std::pair<std::string, Rational>> jam_witness_;
+  Rational jam_coordinate_;
+  RationalInterval jam_lower_, jam_upper_;
 };
 
 }  // namespace

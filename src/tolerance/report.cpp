@@ -195,6 +195,9 @@ std::string tolerance_text_report(const ToleranceResult& r) {
       case ToleranceCertification::Outcome::undecided:
         out << "  undecided (no certificate): " << c.reason << "\n";
         break;
+      case ToleranceCertification::Outcome::interferes:
+        out << "  INTERFERES: " << c.reason << "\n";
+        break;
     }
   }
   for (const std::string& note : r.notes) out << "\nNote: " << note << "\n";
@@ -263,7 +266,8 @@ std::string tolerance_json_report(const ToleranceResult& r) {
   if (r.certification) {
     const ToleranceCertification& c = *r.certification;
     const char* outcome = c.outcome == ToleranceCertification::Outcome::certified ? "certified"
-                          : c.outcome == ToleranceCertification::Outcome::jams ? "jams" : "undecided";
+                          : c.outcome == ToleranceCertification::Outcome::jams ? "jams"
+                          : c.outcome == ToleranceCertification::Outcome::interferes ? "interferes" : "undecided";
     j["certificate"] = {{"outcome", outcome},
                         {"scale", to_exact_string(c.scale)},
                         {"leaves", c.leaves},

@@ -7,15 +7,15 @@
 #include <cmath>
 
 namespace hipair::tolerance_detail {
-namespace {
 
-// The double nearest to x on the side of x given: not below it (up) or not above it.
-double rounded(const Rational& x, bool up) {
+double round_to_double(const Rational& x, bool up) {
   double d = x.get_d();
   if (up && Rational(d) < x) d = std::nextafter(d, INFINITY);
   if (!up && Rational(d) > x) d = std::nextafter(d, -INFINITY);
   return d;
 }
+
+namespace {
 
 // splitmix64: one independent, reproducible stream per Monte Carlo sample.
 std::uint64_t mix(std::uint64_t x) {
@@ -68,8 +68,10 @@ std::vector<Distribution> distributions(const Model& model) {
     Rational lo = p.range.lo - p.nominal, hi = p.range.hi - p.nominal;
     d.lo = lo.get_d();
     d.hi = hi.get_d();
-    d.sample_lo = rounded(lo, true);
-    d.sample_hi = rounded(hi, false);
+    d.sample_lo = round_to_double(lo, true);
+    d.sample_hi = round_to_double(hi, false);
+    d.box_lo = round_to_double(lo, false);
+    d.box_hi = round_to_double(hi, true);
     double width = d.hi - d.lo;
     if (width <= 0 || d.sample_lo > d.sample_hi) {
       d.sample_lo = d.sample_hi = 0;

@@ -14,9 +14,13 @@ struct Distribution {
   double mean = 0;     ///< deviation at the centre of the (untruncated) distribution
   double sigma = 0;    ///< untruncated standard deviation (0: fixed)
   enum class Kind { fixed, normal, uniform } kind = Kind::fixed;
-  double lo = 0, hi = 0;                 ///< tolerance range (deviations), nearest doubles
+  double lo = 0, hi = 0;                 ///< tolerance range (deviations), nearest doubles (statistics only)
+  double box_lo = 0, box_hi = 0;         ///< the range rounded outwards: it contains the exact range
   double sample_lo = 0, sample_hi = 0;   ///< the range rounded inwards: every draw lies in it
 };
+
+/// The double nearest to x on the side given: not below x (up) or not above it.
+double round_to_double(const Rational& x, bool up);
 
 /// Per parameter (Model::parameters order). Toleranced without a distribution: normal about the
 /// range's centre, sigma = width / 6; uniform: on the range, width / sqrt(12); normal with sigma s:

@@ -241,5 +241,35 @@ TEST(CertifyTolerance, AboveTheJammingThresholdNothingIsCertified) {
   EXPECT_FALSE(result.certification->reason.empty());
 }
 
+
+// Above the threshold (x 1.1) the producer reports the jam with an exact witness: a rational
+// vector of the scaled box (exact comparisons) and a driver position in the range at which the
+// upper side's certified root lies below the lower side's (certain sign changes of each side's
+// contact function at the witness, decided with the verifier's MPFI evaluator).
+TEST(CertifyTolerance, AboveTheThresholdTheJamHasAnExactWitness) {
+  ToleranceOptions options = around_the_pin_entry();
+  options.threshold = true;
+  options.certify = true;
+  options.certify_relative_to_threshold = true;
+  options.certify_scale = Rational(11, 10);
+  options.certify_max_leaves = 20;
+  ToleranceResult result = analyze_tolerances(geneva(), options);
+  ASSERT_TRUE(result.certification);
+  const ToleranceCertification& c = *result.certification;
+  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::jams) << c.reason;
+  ASSERT_TRUE(c.witness_coordinate && c.witness_lower && c.witness_upper);
+  EXPECT_LT(c.witness_upper->hi, c.witness_lower->lo);
+  EXPECT_GE(*c.witness_coordinate, Rational(11, 5));
+  EXPECT_LE(*c.witness_coordinate, Rational(23, 10));
+  const Model& m = read_model_file(geneva());
+  ASSERT_EQ(c.witness_parameters.size(), 26u);
+  for (const auto& [name, value] : c.witness_parameters) {
+    const Parameter* p = m.find_parameter(name);
+    ASSERT_TRUE(p);
+    EXPECT_GE(value, c.scale * (p->range.lo - p->nominal)) << name;
+    EXPECT_LE(value, c.scale * (p->range.hi - p->nominal)) << name;
+  }
+}
+
 }  // namespace
 }  // namespace hipair

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <numbers>
 
 namespace hipair {
@@ -113,6 +114,40 @@ TEST(ToleranceDistribution, FarTailTruncationStaysInside) {
   // Half-normal with sigma 1e-5: the largest of 2000 is about 3.5 sigma.
   EXPECT_GT(largest, 2e-5);
   EXPECT_LT(largest, 6e-5);
+}
+
+
+// The certified bands' box (Distribution::box_lo/box_hi) contains the exact rational tolerance
+// range, and the draws' range (sample_lo/sample_hi) lies inside it: exact comparisons on 2 000
+// random ranges with denominators that are not powers of two (the ends' nearest doubles fall on
+// either side of them), nominals far from 0 included.
+TEST(ToleranceDistribution, BandBoxContainsTheExactRangeAndDrawsStayInside) {
+  std::mt19937_64 random(12);
+  std::uniform_int_distribution<long> numerator(1, 1000000), denominator(3, 99999), nominal(-100000, 100000);
+  std::size_t below = 0, above = 0;   // how often the nearest double fell inside the range
+  for (int trial = 0; trial < 2000; ++trial) {
+    Rational lo(-numerator(random), denominator(random)), hi(numerator(random), denominator(random));
+    lo.canonicalize();
+    hi.canonicalize();
+    Rational n(nominal(random), 7);
+    n.canonicalize();
+    Model model;
+    model.parameters.push_back(parameter("p", n, lo, hi, Parameter::Distribution::uniform));
+    Distribution d = tolerance_detail::distributions(model)[0];
+    Rational exact_lo = model.parameters[0].range.lo - n, exact_hi = model.parameters[0].range.hi - n;
+    ASSERT_LE(Rational(d.box_lo), exact_lo) << trial;
+    ASSERT_GE(Rational(d.box_hi), exact_hi) << trial;
+    ASSERT_GE(Rational(d.sample_lo), exact_lo) << trial;
+    ASSERT_LE(Rational(d.sample_hi), exact_hi) << trial;
+    // Outward by at most one ulp: nextafter towards the range lands inside it.
+    ASSERT_GT(Rational(std::nextafter(d.box_lo, INFINITY)), exact_lo) << trial;
+    ASSERT_LT(Rational(std::nextafter(d.box_hi, -INFINITY)), exact_hi) << trial;
+    below += Rational(d.lo) > exact_lo;
+    above += Rational(d.hi) < exact_hi;
+  }
+  // The hole this closes: the nearest doubles (d.lo, d.hi) leave part of the range out often.
+  EXPECT_GT(below, 100u);
+  EXPECT_GT(above, 100u);
 }
 
 }  // namespace

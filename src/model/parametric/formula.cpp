@@ -169,21 +169,31 @@ class Parser {
     FormulaPtr base = primary();
     if (!at_symbol('^')) return base;
     ++next_;
+    std::size_t first = next_;
     FormulaPtr exponent = unary();
-    // The exact evaluator accepted it: an integer (possibly written as an expression).
-    Rational n = integer_value(exponent);
     auto f = std::make_shared<Formula>();
     f->op = Formula::Op::power;
-    f->exponent = n.get_num().get_si();
+    f->exponent = integer_value(exponent, first, next_);
     f->arguments = {base};
     return f;
   }
 
-  Rational integer_value(const FormulaPtr& f) {
+  // The exponent's exact value: its tokens evaluated again by the exact evaluator
+  // (expression.cpp: rationals and multiples of pi, certified enclosures otherwise), which
+  // already accepted it as an integer when the model was read. No double on the way.
+  long integer_value(const FormulaPtr& f, std::size_t first, std::size_t last) {
     if (mentions_parameters(f)) fail("an exponent must not depend on parameters");
-    double value = evaluate_formula<double>(*f, [](std::size_t) { return 0.0; });
-    Rational n(static_cast<long>(std::llround(value)));
-    return n;
+    std::string text;
+    for (std::size_t i = first; i < last; ++i) text += (i > first ? " " : "") + tokens_[i].text;
+    ExpressionContext context;
+    context.pointer = pointer_;
+    context.parameter = [&](const std::string& name) -> Quantity {
+      fail("an exponent must not depend on parameters ('" + name + "')");
+    };
+    Quantity value = evaluate_expression(text, context);
+    if (!value.is_rational() || value.rational.get_den() != 1 || !value.rational.get_num().fits_slong_p())
+      fail("the exponent '" + text + "' is not an integer");
+    return value.rational.get_num().get_si();
   }
 
   FormulaPtr primary() {
