@@ -272,6 +272,8 @@ int run_interference(const ToleranceCliOptions& options) {
 }
 
 int run(const ToleranceCliOptions& options) {
+  if (!options.pair.empty() && !options.driver.empty())
+    throw ModelError("", "give either --pair or --driver, not both");
   if (options.certify_interference) return run_interference(options);
   if (!options.follower_range.empty()) throw ModelError("", "--follower-range is for --certify-interference");
   ToleranceOptions analysis;

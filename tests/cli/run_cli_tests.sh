@@ -226,7 +226,8 @@ for args in "--pair driver:nosuch --range 1:2 --follower-range 0" "--range 1:2" 
             "--range 1:2 --follower-range 0 --certify" "--range 1:2 --follower-range 0 --certify-scale 0.9T" \
             "--range 1:2 --follower-range 0 --certify-scale 0" "--range 1:2 --follower-range 0 --vary nosuch" \
             "--pair driver:driver --range 1:2 --follower-range 0" "MODEL=lever-stop --pair lever:stop --range 0:1 --follower-range 0" \
-            "MODEL=lever-stop --pair lever:stop --range 0:1" "NOFLAG --range 1:2 --follower-range 0"; do
+            "MODEL=lever-stop --pair lever:stop --range 0:1" "NOFLAG --range 1:2 --follower-range 0" \
+            "--pair driver:wheel --driver driver --range 1:2 --follower-range 0" "--driver nosuch --range 1:2 --follower-range 0"; do
   model="$geneva" flag=--certify-interference rest=$args
   case "$args" in MODEL=lever-stop*) model="$lever_stop" rest=${args#MODEL=lever-stop } ;; NOFLAG*) flag= rest=${args#NOFLAG } ;; esac
   # shellcheck disable=SC2086
