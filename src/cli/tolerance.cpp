@@ -2,6 +2,10 @@
 // [--threshold] [--out DIR]`: kinematic tolerance analysis (docs/tolerance.md) — prints the
 // report for designers and writes tolerance.json, variation.csv, sensitivity.csv,
 // variation.svg and contact-zone.svg into DIR (all or nothing).
+// `hipair tolerance MODEL --certify-interference --range A:B --follower-range A:B [--pair A:B]
+// [--certify-scale S] [--vary P...] [--out DIR]`: instead of the analysis, the "never interferes"
+// tolerance certificate (hipair::certify_no_interference; docs/certify.md, property
+// no_interference), written as interference-certificate.json with report.txt (all or nothing).
 #include "cli/commands.hpp"
 
 #include "io/output_directory.hpp"
@@ -13,10 +17,16 @@
 
 #include <unistd.h>
 
+#include <hipair/model.hpp>
+
+#include <chrono>
 #include <cmath>
+#include <future>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <numbers>
+#include <sstream>
 
 namespace hipair::cli {
 namespace {
@@ -38,6 +48,8 @@ struct ToleranceCliOptions {
   bool certify = false;
   std::string certify_scale = "1";
   std::size_t certify_leaves = 20000;
+  bool certify_interference = false;
+  std::string follower_range;
 };
 
 std::string trim(const std::string& text) {
@@ -79,10 +91,191 @@ Rational coordinate(const std::string& text, const std::string& option) {
 bool earlier_output(const std::string& name) {
   return name == "tolerance.json" || name == "variation.csv" || name == "sensitivity.csv" ||
          name == "variation.svg" || name == "contact-zone.svg" || name == "report.txt" ||
-         name == "tolerance-certificate.json";
+         name == "tolerance-certificate.json" || name == "interference-certificate.json";
+}
+
+const char* const kOutputNames[] = {"tolerance.json", "variation.csv", "sensitivity.csv", "variation.svg",
+                                    "contact-zone.svg", "report.txt", "tolerance-certificate.json",
+                                    "interference-certificate.json"};
+
+// Refuses, before a long computation, an --out whose files would replace the model.
+void refuse_overwriting_model(const ToleranceCliOptions& options) {
+  if (options.out.empty()) return;
+  std::vector<io::PlannedOutput> planned;
+  for (const char* name : kOutputNames) planned.push_back({std::filesystem::path(options.out) / name, "--out"});
+  io::refuse_overwriting_inputs(planned, {options.model});
+}
+
+// A coordinate of `part` from the command line: rad (or a deg suffix) for a rotating part, mm
+// (optional suffix) for a translating one; a unit of the other kind is refused.
+Rational part_coordinate(const std::string& text, const std::string& option, const Part& part) {
+  std::string body = trim(text);
+  bool rotating = part.motion.kind == Motion::Kind::rotation;
+  auto ends_with = [&](const std::string& unit) {
+    return body.size() > unit.size() && body.compare(body.size() - unit.size(), unit.size(), unit) == 0;
+  };
+  if (!rotating && (ends_with("deg") || ends_with("rad")))
+    throw ModelError("", option + ": '" + text + "' is an angle, but '" + part.name + "' translates (give mm)");
+  if (rotating && ends_with("mm"))
+    throw ModelError("", option + ": '" + text + "' is a length, but '" + part.name + "' rotates (give rad or deg)");
+  return coordinate(text, option);
+}
+
+std::string unit_of(const Part& part) { return part.motion.kind == Motion::Kind::rotation ? " rad" : " mm"; }
+
+// --certify-interference: the "never interferes" tolerance certificate alone (no analysis).
+int run_interference(const ToleranceCliOptions& options) {
+  if (options.certify || options.threshold || options.monte_carlo > 0)
+    throw ModelError("", "--certify-interference runs alone: drop --certify, --threshold and --monte-carlo "
+                         "(run the analysis separately)");
+  std::string scale = trim(options.certify_scale);
+  if (!scale.empty() && (scale.back() == 'T' || scale.back() == 't'))
+    throw ModelError("", "--certify-scale " + scale +
+                             " is relative to the jamming threshold, which --certify-interference does not use: give a number");
+  InterferenceCertifyOptions certify;
+  try {
+    certify.scale = parse_rational(scale);
+  } catch (const Error&) {
+    throw ModelError("", "--certify-scale: '" + options.certify_scale + "' is not a number");
+  }
+  if (!(certify.scale > 0)) throw ModelError("", "--certify-scale: the scale must be positive");
+  certify.vary = options.vary;
+  certify.max_leaves = options.certify_leaves;
+
+  Model model = read_model_file(options.model);
+  auto part_named = [&](const std::string& name, const std::string& option) -> const Part& {
+    std::optional<std::size_t> k = model.find_part(name);
+    if (!k) throw ModelError("", option + ": no part '" + name + "' in the model");
+    return model.parts[*k];
+  };
+  auto moving = [](const Part& part) { return part.motion.kind != Motion::Kind::fixed; };
+  const Part* driver = nullptr;
+  const Part* follower = nullptr;
+  if (!options.pair.empty()) {
+    auto [a, b] = split_pair(options.pair, "--pair");
+    driver = &part_named(a, "--pair");
+    follower = &part_named(b, "--pair");
+    if (driver == follower) throw ModelError("", "--pair: '" + a + "' twice (give two different parts)");
+  } else {
+    if (!options.driver.empty()) driver = &part_named(options.driver, "--driver");
+    for (const PairSpec& pair : model.pairs) {
+      const Part &p = model.parts[pair.first], &q = model.parts[pair.second];
+      if (driver) {
+        if (&p == driver) follower = &q;
+        else if (&q == driver) follower = &p;
+        if (follower) break;
+      } else if (moving(p) && moving(q)) {
+        driver = &p;
+        follower = &q;
+        break;
+      }
+    }
+    if (!follower)
+      throw ModelError("", driver ? "--driver: '" + driver->name + "' is in no pair of the model"
+                                  : std::string("the model has no pair of two moving parts: give --pair DRIVER:FOLLOWER"));
+  }
+  if (!moving(*follower) && !options.follower_range.empty())
+    throw ModelError("", "--follower-range: the follower '" + follower->name +
+                             "' is fixed: it has no coordinate to range over (the certificate needs two parts that "
+                             "each rotate or translate)");
+  for (const Part* part : {driver, follower})
+    if (part->motion.kind != Motion::Kind::rotation && part->motion.kind != Motion::Kind::translation)
+      throw ModelError("", "--certify-interference: '" + part->name + "' " +
+                               (moving(*part) ? "neither rotates nor translates" : "is fixed") +
+                               (part == follower && !moving(*part) ? " (it has no follower range)" : "") +
+                               "; both parts of the pair must rotate or translate");
+  if (options.range.empty())
+    throw ModelError("", "--certify-interference needs the driver range: add --range A:B");
+  if (options.follower_range.empty())
+    throw ModelError("", "--certify-interference needs the follower's range: add --follower-range A:B (or one value, "
+                         "e.g. 0, for a follower held still)");
+
+  auto [dlo, dhi] = split_pair(options.range, "--range");
+  certify.driver = driver->name;
+  certify.follower = follower->name;
+  certify.driver_range = {part_coordinate(dlo, "--range", *driver), part_coordinate(dhi, "--range", *driver)};
+  if (!(certify.driver_range.lo < certify.driver_range.hi))
+    throw ModelError("", "--range: the driver range " + options.range + " is empty (give A:B with A < B)");
+  std::string frange = trim(options.follower_range);
+  if (frange.find(':') == std::string::npos) {
+    Rational at = part_coordinate(frange, "--follower-range", *follower);
+    certify.follower_range = {at, at};
+  } else {
+    auto [flo, fhi] = split_pair(frange, "--follower-range");
+    certify.follower_range = {part_coordinate(flo, "--follower-range", *follower),
+                              part_coordinate(fhi, "--follower-range", *follower)};
+    if (!(certify.follower_range.lo <= certify.follower_range.hi))
+      throw ModelError("", "--follower-range: the range " + options.follower_range + " is empty (give A:B with A <= B)");
+  }
+  refuse_overwriting_model(options);
+
+  // The branch-and-bound has no progress hook: on a terminal, the elapsed time.
+  bool terminal = isatty(2) && !options.quiet;
+  ToleranceCertification result;
+  if (terminal) {
+    auto start = std::chrono::steady_clock::now();
+    std::future<ToleranceCertification> work =
+        std::async(std::launch::async, [&] { return certify_no_interference(options.model, certify); });
+    while (work.wait_for(std::chrono::milliseconds(250)) != std::future_status::ready)
+      std::cerr << "\rcertifying no interference of " << certify.driver << ":" << certify.follower << " ... "
+                << static_cast<long>(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
+                << " s " << std::flush;
+    std::cerr << "\r" << std::string(70, ' ') << "\r" << std::flush;
+    result = work.get();
+  } else {
+    result = certify_no_interference(options.model, certify);
+  }
+
+  std::ostringstream report;
+  report << "Tolerance certificate (never interferes) for " << certify.driver << ":" << certify.follower << "\n"
+         << "  " << certify.driver << " in [" << to_exact_string(certify.driver_range.lo) << ", "
+         << to_exact_string(certify.driver_range.hi) << "]" << unit_of(*driver) << ", " << certify.follower << " in ["
+         << to_exact_string(certify.follower_range.lo) << ", " << to_exact_string(certify.follower_range.hi) << "]"
+         << unit_of(*follower) << "\n  parameters: "
+         << (certify.vary.empty() ? std::string("every toleranced one") : std::to_string(certify.vary.size()) + " named")
+         << ", tolerances x " << to_exact_string(certify.scale) << "\n";
+  switch (result.outcome) {
+    case ToleranceCertification::Outcome::certified:
+      report << std::fixed << std::setprecision(3) << "  CERTIFIED: " << result.leaves << " leaves (" << result.attempts << " boxes tried) in "
+             << result.seconds_produce << " s, re-checked by the verifier's code in " << result.seconds_verify << " s\n";
+      break;
+    case ToleranceCertification::Outcome::interferes:
+      // The reason names the exact witness: the driver's and follower's rational positions and
+      // the parameter deviations (result.witness_*).
+      report << "  INTERFERES: " << result.reason << "\n";
+      break;
+    case ToleranceCertification::Outcome::undecided:
+    case ToleranceCertification::Outcome::jams:
+      report << "  undecided (no certificate): " << result.reason << "\n";
+      break;
+  }
+  std::cout << report.str();
+  if (result.outcome != ToleranceCertification::Outcome::certified || !result.certificate) {
+    std::cerr << "hipair: cannot certify: "
+              << (result.outcome == ToleranceCertification::Outcome::interferes ? "the parts interfere (exact witness above)"
+                                                                                 : "undecided: " + result.reason)
+              << "\n";
+    return 1;
+  }
+  if (options.out.empty()) {
+    std::cout << "\n(use --out DIR to write interference-certificate.json and report.txt)\n";
+    return 0;
+  }
+  std::filesystem::path directory(options.out);
+  std::vector<io::RunFile> files{{"report.txt", report.str()},
+                                 {"interference-certificate.json", write_certificate(*result.certificate)}};
+  io::publish_directory(directory, files, earlier_output, {options.model});
+  std::cout << "\nwrote " << (directory / "report.txt").string() << " " << (directory / "interference-certificate.json").string()
+            << "\n(check it with: hipair-verify " << (directory / "interference-certificate.json").string() << " "
+            << options.model << ")\n";
+  return 0;
 }
 
 int run(const ToleranceCliOptions& options) {
+  if (!options.pair.empty() && !options.driver.empty())
+    throw ModelError("", "give either --pair or --driver, not both");
+  if (options.certify_interference) return run_interference(options);
+  if (!options.follower_range.empty()) throw ModelError("", "--follower-range is for --certify-interference");
   ToleranceOptions analysis;
   if (!options.pair.empty() && !options.driver.empty())
     throw ModelError("", "give either --pair or --driver, not both");
@@ -126,14 +319,7 @@ int run(const ToleranceCliOptions& options) {
                 << std::string(static_cast<std::size_t>(width - filled), ' ') << "] "
                 << static_cast<int>(fraction * 100) << "% " << std::flush;
     };
-  if (!options.out.empty()) {
-    // Refuse before the (long) analysis when an output would replace the model.
-    std::vector<io::PlannedOutput> planned;
-    for (const char* name : {"tolerance.json", "variation.csv", "sensitivity.csv", "variation.svg",
-                             "contact-zone.svg", "report.txt", "tolerance-certificate.json"})
-      planned.push_back({std::filesystem::path(options.out) / name, "--out"});
-    io::refuse_overwriting_inputs(planned, {options.model});
-  }
+  refuse_overwriting_model(options);   // before the (long) analysis
   ToleranceResult result = analyze_tolerances(options.model, analysis);
   if (terminal) std::cerr << "\r" << std::string(50, ' ') << "\r" << std::flush;
   std::string report = tolerance_text_report(result);
@@ -189,6 +375,12 @@ void register_tolerance(CLI::App& app, Action& action) {
                       "with a T suffix (0.95T), times the jamming threshold found by --threshold");
   command->add_option("--certify-leaves", options->certify_leaves, "give up beyond this many leaves (default 20000)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{10000000}));
+  command->add_flag("--certify-interference", options->certify_interference,
+                    "instead of the analysis: prove that the pair never interferes for any parameters in the box, "
+                    "driver in --range and follower in --follower-range; writes interference-certificate.json "
+                    "(check it with hipair-verify)");
+  command->add_option("--follower-range", options->follower_range,
+                      "--certify-interference: the follower's range A:B, or one value for a follower held still");
   command->callback([options, &action] { action = [options] { return run(*options); }; });
 }
 

@@ -120,6 +120,42 @@ code=$?
 [ $code -eq 1 ] && { grep -q "no jam found" "$work/jam.out" || fail "--direction -1: $(cat "$work/jam.out")"; }
 
 ls -a "$work" | grep -q '\.tmp' && fail "temporary files left behind"
+# ------------------------------------------------------------------ never-interferes tolerance certificate
+# `hipair tolerance --certify-interference` on the Geneva: the wheel held at 0 while the pin enters
+# slot 1's mouth (driver 1 ... 2.4 rad), all 26 parameters at their declared tolerances.
+geneva="$source/examples/models/geneva.json"
+"$hipair" tolerance "$geneva" --certify-interference --pair driver:wheel --range 1:2.4 --follower-range 0 --quiet \
+  --out "$work/noint" >"$work/noint.out" 2>&1 || fail "tolerance --certify-interference: $(tail -c 300 "$work/noint.out")"
+cert="$work/noint/interference-certificate.json"
+"$verify" "$cert" "$geneva" >"$work/noint.verify" 2>&1 \
+  || fail "hipair-verify rejects the CLI's no-interference certificate: $(cat "$work/noint.verify")"
+grep -q "never interfere" "$work/noint.verify" || fail "no-interference verdict: $(cat "$work/noint.verify")"
+# Mutations: a wider follower range or driver range (not covered by the leaves), a larger scale
+# (not the box), another property; each must be rejected (exit 1).
+mutations=('s|"follower_range": \["0", "0"\]|"follower_range": ["0", "1/1000"]|'
+           's|"range": \["1", "12/5"\]|"range": ["1", "5/2"]|'
+           's|"scale": "1"|"scale": "2"|'
+           's|"property": "no_interference"|"property": "no_jam"|')
+for mutation in "${mutations[@]}"; do
+  sed "$mutation" "$cert" >"$work/noint-mutated.json"
+  cmp -s "$cert" "$work/noint-mutated.json" && { fail "mutation $mutation changed nothing"; continue; }
+  "$verify" "$work/noint-mutated.json" "$geneva" >"$work/noint-mutated.out" 2>&1
+  code=$?
+  [ $code -eq 1 ] || fail "hipair-verify does not reject the mutation $mutation (exit $code): $(head -c 300 "$work/noint-mutated.out")"
+done
+# The certificate is for this model: another tolerance on one parameter is rejected.
+sed '0,/"tolerance": 0.02/s//"tolerance": 0.03/' "$geneva" >"$work/geneva-other.json"
+cmp -s "$geneva" "$work/geneva-other.json" && fail "the model mutation changed nothing"
+"$verify" "$cert" "$work/geneva-other.json" >"$work/noint-other.out" 2>&1
+[ $? -eq 1 ] || fail "hipair-verify accepts the no-interference certificate for another model: $(head -c 300 "$work/noint-other.out")"
+# A bad request: a follower range whose ends are reversed is one clear error, exit 2, no output.
+"$hipair" tolerance "$geneva" --certify-interference --range 1:2.4 --follower-range 0.1:-0.1 --quiet \
+  --out "$work/noint-bad" >/dev/null 2>"$work/noint-bad.err"
+[ $? -eq 2 ] || fail "tolerance --certify-interference with a reversed follower range: not exit 2"
+grep -q "^hipair: error: --follower-range: the range 0.1:-0.1 is empty" "$work/noint-bad.err" \
+  || fail "reversed follower range: $(cat "$work/noint-bad.err")"
+[ -e "$work/noint-bad" ] && fail "tolerance --certify-interference with a bad request wrote output"
+
 if [ $failures -ne 0 ]; then
   echo "$failures certify CLI check(s) failed"
   exit 1

@@ -217,6 +217,47 @@ cp "$geneva" "$work/tol-self/report.txt"   # the model has the name of an output
 "$hipair" tolerance "$work/tol-self/report.txt" --quiet --out "$work/tol-self" >/dev/null 2>"$work/tol-self.err" \
   && fail "tolerance --out over its own model succeeded"
 cmp -s "$geneva" "$work/tol-self/report.txt" || fail "tolerance --out clobbered its model"
+# --certify-interference: the "never interferes" certificate alone (docs/certify.md "Tolerance
+# (never interferes ...)"). Bad requests: one clear error line, exit 2, no output.
+lever_stop="$source/examples/models/lever-stop.json"
+for args in "--pair driver:nosuch --range 1:2 --follower-range 0" "--range 1:2" "--follower-range 0" \
+            "--range 2:1 --follower-range 0" "--range 2:2 --follower-range 0" "--range 1:2 --follower-range 0.1:-0.1" \
+            "--range 1:2 --follower-range 0mm" "--range 1:2 --follower-range x" "--range 1:2 --follower-range 0 --threshold" \
+            "--range 1:2 --follower-range 0 --certify" "--range 1:2 --follower-range 0 --certify-scale 0.9T" \
+            "--range 1:2 --follower-range 0 --certify-scale 0" "--range 1:2 --follower-range 0 --vary nosuch" \
+            "--pair driver:driver --range 1:2 --follower-range 0" "MODEL=lever-stop --pair lever:stop --range 0:1 --follower-range 0" \
+            "MODEL=lever-stop --pair lever:stop --range 0:1" "NOFLAG --range 1:2 --follower-range 0" \
+            "--pair driver:wheel --driver driver --range 1:2 --follower-range 0" "--driver nosuch --range 1:2 --follower-range 0"; do
+  model="$geneva" flag=--certify-interference rest=$args
+  case "$args" in MODEL=lever-stop*) model="$lever_stop" rest=${args#MODEL=lever-stop } ;; NOFLAG*) flag= rest=${args#NOFLAG } ;; esac
+  # shellcheck disable=SC2086
+  "$hipair" tolerance "$model" $flag $rest --quiet --out "$work/tol-bad" >/dev/null 2>"$work/tol-bad.err"
+  code=$?
+  [ $code -eq 2 ] || fail "tolerance --certify-interference $args: exit $code"
+  [ "$(wc -l <"$work/tol-bad.err")" -eq 1 ] || fail "tolerance --certify-interference $args: not one error line: $(cat "$work/tol-bad.err")"
+  grep -q "^hipair: error: " "$work/tol-bad.err" || fail "tolerance --certify-interference $args: $(cat "$work/tol-bad.err")"
+  [ -e "$work/tol-bad" ] && fail "tolerance --certify-interference $args wrote output"
+done
+"$hipair" tolerance "$lever_stop" --certify-interference --pair lever:stop --range 0:1 --follower-range 0 --quiet \
+  >/dev/null 2>"$work/tol-fixed.err"
+grep -q "'stop' is fixed" "$work/tol-fixed.err" || fail "a follower range for a fixed part: $(cat "$work/tol-fixed.err")"
+# The wheel locked while the pin enters slot 1's mouth: certified (docs/tolerance.md, 22 leaves),
+# published in place of the no-jam run's files (one directory, one run).
+"$hipair" tolerance "$geneva" --certify-interference --pair driver:wheel --range 1:2.4 --follower-range 0 --quiet \
+  --out "$work/tol-cert" >"$work/tol-int.out" 2>&1 || fail "tolerance --certify-interference failed: $(tail -c 300 "$work/tol-int.out")"
+grep -q "CERTIFIED" "$work/tol-int.out" || fail "tolerance --certify-interference: not certified: $(tail -c 300 "$work/tol-int.out")"
+grep -q '"property": "no_interference"' "$work/tol-cert/interference-certificate.json" 2>/dev/null \
+  || fail "tolerance --certify-interference: no certificate"
+[ -s "$work/tol-cert/report.txt" ] || fail "tolerance --certify-interference: no report.txt"
+[ -e "$work/tol-cert/tolerance-certificate.json" ] && fail "tolerance --certify-interference left the earlier run's certificate"
+# Where the pin drives the wheel (held still) the parts overlap: exit 1, the exact witness, no output.
+"$hipair" tolerance "$geneva" --certify-interference --range 2.5:3 --follower-range 0 --quiet --out "$work/tol-int-bad" \
+  >"$work/tol-int-bad.out" 2>"$work/tol-int-bad.err"
+code=$?
+[ $code -eq 1 ] || fail "tolerance --certify-interference on an interfering range: exit $code"
+grep -q "INTERFERES: the parts overlap" "$work/tol-int-bad.out" || fail "no interference witness: $(cat "$work/tol-int-bad.out")"
+grep -q "cannot certify" "$work/tol-int-bad.err" || fail "interfering range: $(cat "$work/tol-int-bad.err")"
+[ -e "$work/tol-int-bad" ] && fail "tolerance --certify-interference wrote output for an interfering range"
 # hipair simulate: summary, event log, trajectories and pictures, all or nothing.
 "$hipair" simulate "$source/examples/models/bouncing-bar.json" --t-end 0.3 --out "$work/sim-bar" >"$work/sim-bar.out" 2>&1 \
   || fail "simulate bouncing-bar: $(tail -c 300 "$work/sim-bar.out")"
