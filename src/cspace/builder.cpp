@@ -450,7 +450,8 @@ std::optional<ChartPoint> rational_point_on_edge(const ChartData& chart, std::si
 // every side. A face sample never lies on them; the exact oracle decides at a rational point
 // of each whether the parts only touch there (a channel of zero width: EdgeRole::touching) or
 // overlap (a curve through blocked space: spurious).
-void find_touching(ChartData& chart, const Classifier& classify, CSpaceStatistics& stats) {
+void find_touching(ChartData& chart, const Classifier& classify, ContactSides* sides, bool check,
+                   CSpaceStatistics& stats) {
   const auto& arrangement = chart.arrangement;
   chart.touching_vertex.assign(arrangement.vertices.size(), 0);
   auto blocked = [&](std::size_t face) {
@@ -468,6 +469,22 @@ void find_touching(ChartData& chart, const Classifier& classify, CSpaceStatistic
     if (edge.box_side >= 0 || !blocked(edge.left_face) || !blocked(edge.right_face)) continue;
     EdgeData& data = chart.edges[e];
     if (data.curves.empty()) continue;
+    // One contact along the edge, with a decided blocked side (ContactSides: the curve is
+    // valid with every clause strict and f_y != 0 at the sample): if the parts only touched at
+    // the sample, that contact would be their only one (every feature pair touching there has
+    // a valid curve through it, and culled curves lie only in certainly blocked space), so
+    // moving off the edge to the curve's other side would separate them: that face would be
+    // free. Both faces are blocked, so the edge lies in blocked space; no oracle call.
+    if (sides && data.curves.size() == 1 && !edge.vertical &&
+        (sides->blocked_side(e, true) || sides->blocked_side(e, false))) {
+      if (check) {
+        auto point = rational_point_on_edge(chart, e, false);
+        if (point && decide(*point))
+          throw GeometryError("internal: a one-contact edge between blocked faces is touching at " +
+                              point->x.get_str() + ", " + point->y.get_str());
+      }
+      continue;
+    }
     // one curve: the sample only (without a rational point the edge certainly overlaps, below)
     auto point = rational_point_on_edge(chart, e, data.curves.size() >= 2);
     if (!point) {
@@ -806,8 +823,8 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
         sides.emplace(chart, std::move(signs));
       }
       classify_faces(chart, chart_input.classify, sides ? &*sides : nullptr, options.check_face_classification);
+      find_touching(chart, chart_input.classify, sides ? &*sides : nullptr, options.check_face_classification, stats);
     }
-    find_touching(chart, chart_input.classify, stats);
     stats.seconds_classification += seconds_since(start);
   }
   stats.charts = impl->charts.size();
