@@ -13,6 +13,7 @@
 #include <numeric>
 #include <optional>
 #include <set>
+#include <string>
 #include <unordered_map>
 
 namespace hipair::cspace {
@@ -170,11 +171,53 @@ bool valid_at(const std::vector<ValidityClause>& clauses, const X& x, const Y& y
   });
 }
 
+// A line or circle up to a non-zero factor: its non-zero integer coefficients, divided by their
+// gcd, with the sign that makes the first one (in x^i y^j order) positive.
+std::string support_key(const IntegerPolynomial2& f) {
+  mpz_class g = 0;
+  int sign = 0;
+  for (const auto& row : f.coefficients)
+    for (const auto& c : row) {
+      if (sgn(c) == 0) continue;
+      if (sign == 0) sign = sgn(c);
+      mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), c.get_mpz_t());
+    }
+  std::string key;
+  if (sign == 0) return key;
+  for (std::size_t i = 0; i < f.coefficients.size(); ++i)
+    for (std::size_t j = 0; j < f.coefficients[i].size(); ++j) {
+      const mpz_class& c = f.coefficients[i][j];
+      if (sgn(c) == 0) continue;
+      mpz_class q = c / g;
+      if (sign < 0) q = -q;
+      key += std::to_string(i) + "," + std::to_string(j) + ":" + q.get_str(16) + ";";
+    }
+  return key;
+}
+
 // Feature pairs along every edge: exact test at one interior point of the edge.
-void label_edges(ChartData& chart) {
+// `by_support` (circle–segment charts: every curve and every edge's support is a line or a
+// circle, irreducible): a curve vanishes along an edge only if it is its support up to a
+// factor, so only the curves with the edge's support are tested (a curve crossing the edge
+// at its sample point alone would be a vertex there, unless its piece there was culled as
+// certainly blocked: such a crossing is no contact along the edge and is not listed).
+void label_edges(ChartData& chart, bool by_support) {
   const auto& arrangement = chart.arrangement;
   chart.edges.resize(arrangement.edges.size());
+  std::unordered_map<std::string, std::vector<std::size_t>> with_support;
+  if (by_support)
+    for (std::size_t k = 0; k < chart.polynomials.size(); ++k)
+      with_support[support_key(chart.polynomials[k])].push_back(k);
+  static const std::vector<std::size_t> no_curves;
+  std::vector<std::size_t> all_curves;
+  if (!by_support)
+    for (std::size_t k = 0; k < chart.polynomials.size(); ++k) all_curves.push_back(k);
   for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
+    const std::vector<std::size_t>* candidates = &all_curves;
+    if (by_support) {
+      auto it = with_support.find(support_key(arrangement.edges[e].support));
+      candidates = it == with_support.end() ? &no_curves : &it->second;
+    }
     const raw::Edge& edge = arrangement.edges[e];
     EdgeData& data = chart.edges[e];
     const raw::Vertex& low = arrangement.vertices[edge.min_vertex];
@@ -190,7 +233,7 @@ void label_edges(ChartData& chart) {
       x.refine_to(Rational(1, mpz_class(1) << 80));
       x_box = {x.lower_bound(), x.upper_bound()};
       y_box = algebra::enclose(y);
-      for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
+      for (std::size_t k : *candidates) {
         if (!chart.interval_polynomials[k].evaluate(x_box, y_box).contains_zero()) continue;
         if (algebra::vanishes_at(chart.polynomials[k], x, y) && valid_at(chart.validity[k], x, y))
           data.curves.push_back(k);
@@ -202,7 +245,7 @@ void label_edges(ChartData& chart) {
       y.refine_to(Rational(1, mpz_class(1) << 80));
       x_box = algebra::enclose(data.sample_x);
       y_box = {y.lower_bound(), y.upper_bound()};
-      for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
+      for (std::size_t k : *candidates) {
         if (!chart.interval_polynomials[k].evaluate(x_box, y_box).contains_zero()) continue;
         if (algebra::vanishes_at(chart.polynomials[k], data.sample_x, y) &&
             valid_at(chart.validity[k], data.sample_x, data.sample_y))
@@ -811,7 +854,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     stats.seconds_export += chart.arrangement.times.export_seconds;
     stats.pieces_inserted += chart.arrangement.pieces_inserted;
     auto start = Clock::now();
-    label_edges(chart);
+    label_edges(chart, circle_segment);
     stats.seconds_labelling += seconds_since(start);
     start = Clock::now();
     {
