@@ -787,6 +787,27 @@ std::optional<kernels::ContactFunction<Polynomial>> contact_of(const BodyFeature
                                    kernels::ExactRootOrSquared{[](const Rational& square) { return exact_square_root(square); }});
 }
 
+// Translating pairs (no rotation: body directions are world directions): a vertex feature of
+// one part against a segment feature of the other whose corner enters the segment's side. The
+// corner's material near the vertex is the closed cone of its edges' tangents (out, -in; the
+// vertex is not strictly reflex), the other part's material near a point inside the segment is
+// the open half-plane behind it (outward normal n, material on the left of every edge). When
+// out . n < 0 or in . n > 0 the cone reaches into that half-plane, so wherever the vertex lies
+// inside the segment the interiors overlap: the whole open contact curve is in blocked space
+// and bounds nothing (its end points are contacts of the neighbouring features). Exact.
+bool corner_enters_segment(const Model& model, const BodyFeature& vertex, const BodyFeature& segment) {
+  if (vertex.ref.kind != FeatureRef::Kind::vertex || segment.ref.kind != FeatureRef::Kind::segment) return false;
+  const Loop& loop = model.parts.at(vertex.ref.part).loops.at(vertex.ref.loop);
+  const std::size_t n = loop.edges.size();
+  const Edge& outgoing_edge = loop.edges[vertex.ref.edge];
+  const Edge& incoming_edge = loop.edges[(vertex.ref.edge + n - 1) % n];
+  const Point out = edge_tangent(outgoing_edge, vertex.point), in = edge_tangent(incoming_edge, vertex.point);
+  const Point t = difference(segment.edge->target, segment.edge->source);
+  // outward normal of the segment: (t.y, -t.x)
+  auto dot_n = [&](const Point& u) { return sgn(u.x * t.y - u.y * t.x); };
+  return dot_n(out) < 0 || dot_n(in) > 0;
+}
+
 // Whether a feature pair has a contact of its own (without computing it).
 bool has_contact(const BodyFeature& fa, const BodyFeature& fb) {
   return kernels::contact_type(feature_geometry(fa), feature_geometry(fb)).has_value();
@@ -1008,12 +1029,21 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
   for (std::size_t j = 0; j < features_b.size(); ++j)
     boxes_b.push_back(swept_box(swept_b[j], 1, part_b, axes.second_moves, second_axis, static_cast<int>(j)));
   std::vector<std::pair<int, int>> pairs;
+  auto without_rotation = [](const Part& part) {
+    return part.motion.kind == Motion::Kind::fixed || part.motion.kind == Motion::Kind::translation;
+  };
+  const bool translating = without_rotation(part_a) && without_rotation(part_b);
   for (auto [i, j] : meeting_boxes(boxes_a, boxes_b)) {
     auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
     if (!has_contact(features_a[ui], features_b[uj])) continue;
     ++stats.feature_pairs_considered;
     if (culler.never_touch(swept_a[ui], swept_b[uj])) {
       ++stats.feature_pairs_culled;
+      continue;
+    }
+    if (translating && (corner_enters_segment(model, features_a[ui], features_b[uj]) ||
+                        corner_enters_segment(model, features_b[uj], features_a[ui]))) {
+      ++stats.feature_pairs_in_blocked_space;
       continue;
     }
     pairs.emplace_back(i, j);
