@@ -795,17 +795,34 @@ std::optional<kernels::ContactFunction<Polynomial>> contact_of(const BodyFeature
 // out . n < 0 or in . n > 0 the cone reaches into that half-plane, so wherever the vertex lies
 // inside the segment the interiors overlap: the whole open contact curve is in blocked space
 // and bounds nothing (its end points are contacts of the neighbouring features). Exact.
-bool corner_enters_segment(const Model& model, const BodyFeature& vertex, const BodyFeature& segment) {
-  if (vertex.ref.kind != FeatureRef::Kind::vertex || segment.ref.kind != FeatureRef::Kind::segment) return false;
-  const Loop& loop = model.parts.at(vertex.ref.part).loops.at(vertex.ref.loop);
-  const std::size_t n = loop.edges.size();
-  const Edge& outgoing_edge = loop.edges[vertex.ref.edge];
-  const Edge& incoming_edge = loop.edges[(vertex.ref.edge + n - 1) % n];
-  const Point out = edge_tangent(outgoing_edge, vertex.point), in = edge_tangent(incoming_edge, vertex.point);
-  const Point t = difference(segment.edge->target, segment.edge->source);
-  // outward normal of the segment: (t.y, -t.x)
-  auto dot_n = [&](const Point& u) { return sgn(u.x * t.y - u.y * t.x); };
-  return dot_n(out) < 0 || dot_n(in) > 0;
+// A feature's directions for corner_enters: a vertex's outgoing and incoming tangents, a
+// segment's direction (source to target); nothing for other features.
+struct FeatureDirections {
+  bool vertex = false, segment = false;
+  Point out, in;   // vertex; segment: out = direction
+};
+
+FeatureDirections feature_directions(const Model& model, const BodyFeature& feature) {
+  FeatureDirections d;
+  if (feature.ref.kind == FeatureRef::Kind::vertex) {
+    const Loop& loop = model.parts.at(feature.ref.part).loops.at(feature.ref.loop);
+    const std::size_t n = loop.edges.size();
+    d.vertex = true;
+    d.out = edge_tangent(loop.edges[feature.ref.edge], feature.point);
+    d.in = edge_tangent(loop.edges[(feature.ref.edge + n - 1) % n], feature.point);
+  } else if (feature.ref.kind == FeatureRef::Kind::segment) {
+    d.segment = true;
+    d.out = difference(feature.edge->target, feature.edge->source);
+  }
+  return d;
+}
+
+bool corner_enters_segment(const FeatureDirections& vertex, const FeatureDirections& segment) {
+  if (!vertex.vertex || !segment.segment) return false;
+  const Point& t = segment.out;
+  // sign of u . n with the segment's outward normal n = (t.y, -t.x)
+  auto dot_n = [&](const Point& u) { return cmp(u.x * t.y, u.y * t.x); };
+  return dot_n(vertex.out) < 0 || dot_n(vertex.in) > 0;
 }
 
 // Whether a feature pair has a contact of its own (without computing it).
@@ -1033,17 +1050,23 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
     return part.motion.kind == Motion::Kind::fixed || part.motion.kind == Motion::Kind::translation;
   };
   const bool translating = without_rotation(part_a) && without_rotation(part_b);
+  std::vector<FeatureDirections> directions_a, directions_b;
+  if (translating) {
+    for (const BodyFeature& f : features_a) directions_a.push_back(feature_directions(model, f));
+    for (const BodyFeature& f : features_b) directions_b.push_back(feature_directions(model, f));
+  }
   for (auto [i, j] : meeting_boxes(boxes_a, boxes_b)) {
     auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
-    if (!has_contact(features_a[ui], features_b[uj])) continue;
+    const bool enters = translating && (corner_enters_segment(directions_a[ui], directions_b[uj]) ||
+                                        corner_enters_segment(directions_b[uj], directions_a[ui]));
+    if (!enters && !has_contact(features_a[ui], features_b[uj])) continue;
     ++stats.feature_pairs_considered;
-    if (culler.never_touch(swept_a[ui], swept_b[uj])) {
-      ++stats.feature_pairs_culled;
+    if (enters) {
+      ++stats.feature_pairs_in_blocked_space;
       continue;
     }
-    if (translating && (corner_enters_segment(model, features_a[ui], features_b[uj]) ||
-                        corner_enters_segment(model, features_b[uj], features_a[ui]))) {
-      ++stats.feature_pairs_in_blocked_space;
+    if (culler.never_touch(swept_a[ui], swept_b[uj])) {
+      ++stats.feature_pairs_culled;
       continue;
     }
     pairs.emplace_back(i, j);
