@@ -13,6 +13,7 @@
 #include <numeric>
 #include <optional>
 #include <set>
+#include <string>
 #include <unordered_map>
 
 namespace hipair::cspace {
@@ -170,11 +171,53 @@ bool valid_at(const std::vector<ValidityClause>& clauses, const X& x, const Y& y
   });
 }
 
+// A line or circle up to a non-zero factor: its non-zero integer coefficients, divided by their
+// gcd, with the sign that makes the first one (in x^i y^j order) positive.
+std::string support_key(const IntegerPolynomial2& f) {
+  mpz_class g = 0;
+  int sign = 0;
+  for (const auto& row : f.coefficients)
+    for (const auto& c : row) {
+      if (sgn(c) == 0) continue;
+      if (sign == 0) sign = sgn(c);
+      mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), c.get_mpz_t());
+    }
+  std::string key;
+  if (sign == 0) return key;
+  for (std::size_t i = 0; i < f.coefficients.size(); ++i)
+    for (std::size_t j = 0; j < f.coefficients[i].size(); ++j) {
+      const mpz_class& c = f.coefficients[i][j];
+      if (sgn(c) == 0) continue;
+      mpz_class q = c / g;
+      if (sign < 0) q = -q;
+      key += std::to_string(i) + "," + std::to_string(j) + ":" + q.get_str(16) + ";";
+    }
+  return key;
+}
+
 // Feature pairs along every edge: exact test at one interior point of the edge.
-void label_edges(ChartData& chart) {
+// `by_support` (circle–segment charts: every curve and every edge's support is a line or a
+// circle, irreducible): a curve vanishes along an edge only if it is its support up to a
+// factor, so only the curves with the edge's support are tested (a curve crossing the edge
+// at its sample point alone would be a vertex there, unless its piece there was culled as
+// certainly blocked: such a crossing is no contact along the edge and is not listed).
+void label_edges(ChartData& chart, bool by_support) {
   const auto& arrangement = chart.arrangement;
   chart.edges.resize(arrangement.edges.size());
+  std::unordered_map<std::string, std::vector<std::size_t>> with_support;
+  if (by_support)
+    for (std::size_t k = 0; k < chart.polynomials.size(); ++k)
+      with_support[support_key(chart.polynomials[k])].push_back(k);
+  static const std::vector<std::size_t> no_curves;
+  std::vector<std::size_t> all_curves;
+  if (!by_support)
+    for (std::size_t k = 0; k < chart.polynomials.size(); ++k) all_curves.push_back(k);
   for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
+    const std::vector<std::size_t>* candidates = &all_curves;
+    if (by_support) {
+      auto it = with_support.find(support_key(arrangement.edges[e].support));
+      candidates = it == with_support.end() ? &no_curves : &it->second;
+    }
     const raw::Edge& edge = arrangement.edges[e];
     EdgeData& data = chart.edges[e];
     const raw::Vertex& low = arrangement.vertices[edge.min_vertex];
@@ -190,7 +233,7 @@ void label_edges(ChartData& chart) {
       x.refine_to(Rational(1, mpz_class(1) << 80));
       x_box = {x.lower_bound(), x.upper_bound()};
       y_box = algebra::enclose(y);
-      for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
+      for (std::size_t k : *candidates) {
         if (!chart.interval_polynomials[k].evaluate(x_box, y_box).contains_zero()) continue;
         if (algebra::vanishes_at(chart.polynomials[k], x, y) && valid_at(chart.validity[k], x, y))
           data.curves.push_back(k);
@@ -202,7 +245,7 @@ void label_edges(ChartData& chart) {
       y.refine_to(Rational(1, mpz_class(1) << 80));
       x_box = algebra::enclose(data.sample_x);
       y_box = {y.lower_bound(), y.upper_bound()};
-      for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
+      for (std::size_t k : *candidates) {
         if (!chart.interval_polynomials[k].evaluate(x_box, y_box).contains_zero()) continue;
         if (algebra::vanishes_at(chart.polynomials[k], data.sample_x, y) &&
             valid_at(chart.validity[k], data.sample_x, data.sample_y))
@@ -300,61 +343,125 @@ class ContactSides {
   std::vector<std::optional<IntegerPolynomial2>> derivatives_;
 };
 
-// Every bounded face gets an exact rational sample strictly inside it and its kind: blocked by
-// the side of a contact edge on its boundary when `sides` decides it, else the exact oracle at
-// the sample. `check`: the oracle also where the sides decided, and disagreement is an error.
-void classify_faces(ChartData& chart, const Classifier& classify, ContactSides* sides, bool check) {
+// An exact rational sample strictly inside the bounded face f (once; deterministic: the same
+// point whichever face asks first): on the vertical line through a rational abscissa of the
+// face's widest non-vertical boundary edge, between that edge and the next edge on the face's
+// side. Costs a scan of the chart's edges (nearest_on_vertical).
+void sample_face(ChartData& chart, std::size_t f) {
+  FaceData& data = chart.faces[f];
+  if (data.sampled) return;
+  const auto& arrangement = chart.arrangement;
+  const raw::Face& face = arrangement.faces[f];
+  // the non-vertical boundary edge with the widest x-range gives the simplest sample
+  std::size_t chosen = raw::none;
+  bool above = false;
+  double widest = -1;
+  for (const auto& [e, on_left] : face.boundary) {
+    const raw::Edge& edge = arrangement.edges[e];
+    if (edge.vertical) continue;
+    double width = edge.box[2] - edge.box[0];
+    if (width > widest) {
+      widest = width;
+      chosen = e;
+      above = on_left;
+    }
+  }
+  if (chosen == raw::none) throw GeometryError("internal: a C-space face has no non-vertical boundary edge");
+  const raw::Edge& edge = arrangement.edges[chosen];
+  Rational x = rational_avoiding(arrangement.vertices[edge.min_vertex].x, arrangement.vertices[edge.max_vertex].x,
+                                 chart.rational_vertex_x);
+  Real from = edge_y_at(chart, chosen, x);
+  Hit hit = nearest_on_vertical(chart, x, from, above);
+  if (!hit.found) throw GeometryError("internal: no edge bounds a C-space face on a vertical line");
+  data.sample_x = x;
+  data.sample_y = above ? algebra::rational_between(from, hit.y) : algebra::rational_between(hit.y, from);
+  data.sampled = true;
+}
+
+// Every bounded face gets its kind (samples are taken lazily by sample_face: the builder needs
+// one per cell). Blocked when it lies on the blocked side of a contact edge of its boundary
+// (`sides`); else, with `propagate`, the kind of a neighbour across an edge that carries no
+// valid contact curve; else the exact oracle at its sample. `check`: the oracle at every
+// face's sample, and disagreement is an error.
+//
+// Propagation: every configuration where the parts touch lies on a valid contact curve of the
+// chart (the curve generator and the culls remove only feature pairs that never touch there
+// or whose contacts lie in certified blocked space, and label_edges lists every curve valid
+// along an edge). A point inside an edge that carries no valid curve is therefore no touching
+// configuration: the parts are apart there or overlap, both open conditions, so the faces on
+// its two sides have the same kind. Only free and blocked are propagated (not touching), and
+// never across the chart box. The caller switches it off when some contact function is
+// identically zero (then touching configurations fill whole faces).
+void classify_faces(ChartData& chart, const Classifier& classify, ContactSides* sides, bool check, bool propagate) {
   const auto& arrangement = chart.arrangement;
   for (const auto& v : arrangement.vertices)
     if (v.x.exact) chart.rational_vertex_x.push_back(v.x.lower);
   std::sort(chart.rational_vertex_x.begin(), chart.rational_vertex_x.end());
   chart.faces.assign(arrangement.faces.size(), FaceData{});
+  std::vector<char> known(arrangement.faces.size(), 0);
+  std::vector<std::size_t> queue;
+  // faces on the blocked side of a contact edge
   for (std::size_t f = 0; f < arrangement.faces.size(); ++f) {
     const raw::Face& face = arrangement.faces[f];
     if (face.unbounded) continue;
-    // the non-vertical boundary edge with the widest x-range gives the simplest sample
-    std::size_t chosen = raw::none;
-    bool above = false;
-    double widest = -1;
-    for (const auto& [e, on_left] : face.boundary) {
-      const raw::Edge& edge = arrangement.edges[e];
-      if (edge.vertical) continue;
-      double width = edge.box[2] - edge.box[0];
-      if (width > widest) {
-        widest = width;
-        chosen = e;
-        above = on_left;
-      }
-    }
-    if (chosen == raw::none) throw GeometryError("internal: a C-space face has no non-vertical boundary edge");
-    const raw::Edge& edge = arrangement.edges[chosen];
-    Rational x = rational_avoiding(arrangement.vertices[edge.min_vertex].x, arrangement.vertices[edge.max_vertex].x,
-                                   chart.rational_vertex_x);
-    Real from = edge_y_at(chart, chosen, x);
-    Hit hit = nearest_on_vertical(chart, x, from, above);
-    if (!hit.found) throw GeometryError("internal: no edge bounds a C-space face on a vertical line");
-    Rational y = above ? algebra::rational_between(from, hit.y) : algebra::rational_between(hit.y, from);
-    FaceData& data = chart.faces[f];
-    data.sample_x = x;
-    data.sample_y = y;
-    // the sides of every contact edge of the face's boundary (the chosen one first)
     bool by_side = false;
-    if (sides) {
-      by_side = sides->blocked_side(chosen, above);
+    if (sides)
       for (std::size_t i = 0; i < face.boundary.size() && !by_side; ++i) {
         const auto& [e, on_left] = face.boundary[i];
-        if (e == chosen || arrangement.edges[e].vertical || chart.edges[e].curves.empty()) continue;
+        if (arrangement.edges[e].vertical || chart.edges[e].curves.empty()) continue;
         by_side = sides->blocked_side(e, on_left);
       }
+    if (!by_side) continue;
+    chart.faces[f].kind = FaceKind::blocked;
+    known[f] = 1;
+    queue.push_back(f);
+  }
+  // propagation across edges without a valid contact curve
+  std::vector<std::vector<std::size_t>> free_edges;   // per face: its curve-free inner edges
+  if (propagate) {
+    free_edges.resize(arrangement.faces.size());
+    for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
+      const raw::Edge& edge = arrangement.edges[e];
+      if (edge.box_side >= 0 || !chart.edges[e].curves.empty() || edge.left_face == edge.right_face) continue;
+      free_edges[edge.left_face].push_back(e);
+      free_edges[edge.right_face].push_back(e);
     }
-    if (by_side) {
-      data.kind = FaceKind::blocked;
-      if (check && kind_of(classify(ChartPoint{x, y})) != FaceKind::blocked)
-        throw GeometryError("internal: a face on the blocked side of a contact edge is not blocked at " + x.get_str() +
-                            ", " + y.get_str());
-    } else {
-      data.kind = kind_of(classify(ChartPoint{x, y}));
+  }
+  auto spread = [&] {
+    while (propagate && !queue.empty()) {
+      std::size_t f = queue.back();
+      queue.pop_back();
+      const FaceKind kind = chart.faces[f].kind;
+      if (kind != FaceKind::free && kind != FaceKind::blocked) continue;
+      for (std::size_t e : free_edges[f]) {
+        const raw::Edge& edge = arrangement.edges[e];
+        std::size_t g = edge.left_face == f ? edge.right_face : edge.left_face;
+        if (g == raw::none || known[g] || arrangement.faces[g].unbounded) continue;
+        chart.faces[g].kind = kind;
+        known[g] = 1;
+        queue.push_back(g);
+      }
     }
+    queue.clear();
+  };
+  spread();
+  // the rest: the exact oracle at the sample, then propagation from it
+  for (std::size_t f = 0; f < arrangement.faces.size(); ++f) {
+    if (arrangement.faces[f].unbounded) continue;
+    FaceData& data = chart.faces[f];
+    if (known[f]) {
+      if (!check) continue;
+      sample_face(chart, f);
+      if (kind_of(classify(ChartPoint{data.sample_x, data.sample_y})) != data.kind)
+        throw GeometryError("internal: a face classified by a contact edge's blocked side or by propagation "
+                            "disagrees with the oracle at " + data.sample_x.get_str() + ", " + data.sample_y.get_str());
+      continue;
+    }
+    sample_face(chart, f);
+    data.kind = kind_of(classify(ChartPoint{data.sample_x, data.sample_y}));
+    known[f] = 1;
+    queue.push_back(f);
+    spread();
   }
 }
 
@@ -450,7 +557,8 @@ std::optional<ChartPoint> rational_point_on_edge(const ChartData& chart, std::si
 // every side. A face sample never lies on them; the exact oracle decides at a rational point
 // of each whether the parts only touch there (a channel of zero width: EdgeRole::touching) or
 // overlap (a curve through blocked space: spurious).
-void find_touching(ChartData& chart, const Classifier& classify, CSpaceStatistics& stats) {
+void find_touching(ChartData& chart, const Classifier& classify, ContactSides* sides, bool check,
+                   CSpaceStatistics& stats) {
   const auto& arrangement = chart.arrangement;
   chart.touching_vertex.assign(arrangement.vertices.size(), 0);
   auto blocked = [&](std::size_t face) {
@@ -468,6 +576,22 @@ void find_touching(ChartData& chart, const Classifier& classify, CSpaceStatistic
     if (edge.box_side >= 0 || !blocked(edge.left_face) || !blocked(edge.right_face)) continue;
     EdgeData& data = chart.edges[e];
     if (data.curves.empty()) continue;
+    // One contact along the edge, with a decided blocked side (ContactSides: the curve is
+    // valid with every clause strict and f_y != 0 at the sample): if the parts only touched at
+    // the sample, that contact would be their only one (every feature pair touching there has
+    // a valid curve through it, and culled curves lie only in certainly blocked space), so
+    // moving off the edge to the curve's other side would separate them: that face would be
+    // free. Both faces are blocked, so the edge lies in blocked space; no oracle call.
+    if (sides && data.curves.size() == 1 && !edge.vertical &&
+        (sides->blocked_side(e, true) || sides->blocked_side(e, false))) {
+      if (check) {
+        auto point = rational_point_on_edge(chart, e, false);
+        if (point && decide(*point))
+          throw GeometryError("internal: a one-contact edge between blocked faces is touching at " +
+                              point->x.get_str() + ", " + point->y.get_str());
+      }
+      continue;
+    }
     // one curve: the sample only (without a rational point the edge certainly overlaps, below)
     auto point = rational_point_on_edge(chart, e, data.curves.size() >= 2);
     if (!point) {
@@ -550,6 +674,7 @@ void build_interval_chart(ChartData& chart, const ChartInput& input) {
     FaceData& face = chart.faces[i];
     face.sample_x = algebra::rational_between(lo, hi);
     face.sample_y = 0;
+    face.sampled = true;
     face.kind = kind_of(input.classify(ChartPoint{face.sample_x, Rational(0)}));
   }
 }
@@ -794,7 +919,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     stats.seconds_export += chart.arrangement.times.export_seconds;
     stats.pieces_inserted += chart.arrangement.pieces_inserted;
     auto start = Clock::now();
-    label_edges(chart);
+    label_edges(chart, circle_segment);
     stats.seconds_labelling += seconds_since(start);
     start = Clock::now();
     {
@@ -805,9 +930,12 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
         for (std::size_t k : kept) signs.push_back(chart_input.curves[k].blocked_sign);
         sides.emplace(chart, std::move(signs));
       }
-      classify_faces(chart, chart_input.classify, sides ? &*sides : nullptr, options.check_face_classification);
+      // propagation needs the kernels' curves (every touching configuration on a valid curve)
+      const bool propagate = sides && input.curve_statistics.identically_zero == 0;
+      classify_faces(chart, chart_input.classify, sides ? &*sides : nullptr, options.check_face_classification,
+                     propagate);
+      find_touching(chart, chart_input.classify, sides ? &*sides : nullptr, options.check_face_classification, stats);
     }
-    find_touching(chart, chart_input.classify, stats);
     stats.seconds_classification += seconds_since(start);
   }
   stats.charts = impl->charts.size();
@@ -926,6 +1054,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
         cell.wraps_x = wraps[0];
         cell.wraps_y = wraps[1];
         cell.sample_chart = c;
+        sample_face(chart, f);
         cell.sample_x = face.sample_x;
         cell.sample_y = face.sample_y;
         impl->cells.push_back(std::move(cell));

@@ -59,7 +59,8 @@ enum class FaceKind { outside, free, blocked, touching };
 /// One face (2-D) or interval (1-D) of a chart.
 struct FaceData {
   FaceKind kind = FaceKind::outside;
-  Rational sample_x, sample_y;    ///< strictly inside
+  Rational sample_x, sample_y;    ///< strictly inside (2-D: once `sampled`; a cell's first face always is)
+  bool sampled = false;
   std::size_t cell = no_index;
 };
 

@@ -787,10 +787,54 @@ std::optional<kernels::ContactFunction<Polynomial>> contact_of(const BodyFeature
                                    kernels::ExactRootOrSquared{[](const Rational& square) { return exact_square_root(square); }});
 }
 
-// Whether a feature pair has a contact of its own (without computing it).
-bool has_contact(const BodyFeature& fa, const BodyFeature& fb) {
-  return kernels::contact_type(feature_geometry(fa), feature_geometry(fb)).has_value();
+// A feature's directions for corner_enters_segment: a vertex's outgoing and incoming tangents, a
+// segment's direction (source to target); nothing for other features.
+struct FeatureDirections {
+  bool vertex = false, segment = false;
+  Point out, in;   // vertex; segment: out = direction
+  Interval out_x, out_y, in_x, in_y;   // their enclosures (the filter of corner_enters_segment)
+};
+
+FeatureDirections feature_directions(const Model& model, const BodyFeature& feature) {
+  FeatureDirections d;
+  if (feature.ref.kind == FeatureRef::Kind::vertex) {
+    const Loop& loop = model.parts.at(feature.ref.part).loops.at(feature.ref.loop);
+    const std::size_t n = loop.edges.size();
+    d.vertex = true;
+    d.out = edge_tangent(loop.edges[feature.ref.edge], feature.point);
+    d.in = edge_tangent(loop.edges[(feature.ref.edge + n - 1) % n], feature.point);
+  } else if (feature.ref.kind == FeatureRef::Kind::segment) {
+    d.segment = true;
+    d.out = difference(feature.edge->target, feature.edge->source);
+  }
+  d.out_x = Interval::enclose(d.out.x);
+  d.out_y = Interval::enclose(d.out.y);
+  d.in_x = Interval::enclose(d.in.x);
+  d.in_y = Interval::enclose(d.in.y);
+  return d;
 }
+
+// Translating pairs (no rotation: body directions are world directions): a vertex feature of
+// one part against a segment feature of the other whose corner enters the segment's side. The
+// corner's material near the vertex is the closed cone of its edges' tangents (out, -in; the
+// vertex is not strictly reflex), the other part's material near a point inside the segment is
+// the open half-plane behind it (outward normal n, material on the left of every edge). When
+// out . n < 0 or in . n > 0 the cone reaches into that half-plane, so wherever the vertex lies
+// inside the segment the interiors overlap: the whole open contact curve is in blocked space
+// and bounds nothing (its end points are contacts of the neighbouring features). Exact.
+bool corner_enters_segment(const FeatureDirections& vertex, const FeatureDirections& segment) {
+  if (!vertex.vertex || !segment.segment) return false;
+  const Point& t = segment.out;
+  // sign of u . n with the segment's outward normal n = (t.y, -t.x): certified in interval
+  // arithmetic, exact when the enclosure holds zero
+  auto dot_n = [&](const Point& u, const Interval& ux, const Interval& uy) {
+    int sign = (ux * segment.out_y - uy * segment.out_x).sign();
+    if (sign == 1 || sign == -1) return sign;
+    return cmp(u.x * t.y, u.y * t.x);
+  };
+  return dot_n(vertex.out, vertex.out_x, vertex.out_y) < 0 || dot_n(vertex.in, vertex.in_x, vertex.in_y) > 0;
+}
+
 
 // Validity clauses as integer polynomials; returns false when some clause can never hold.
 bool convert_validity(const kernels::Validity<Polynomial>& validity,
@@ -1008,10 +1052,30 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
   for (std::size_t j = 0; j < features_b.size(); ++j)
     boxes_b.push_back(swept_box(swept_b[j], 1, part_b, axes.second_moves, second_axis, static_cast<int>(j)));
   std::vector<std::pair<int, int>> pairs;
+  auto without_rotation = [](const Part& part) {
+    return part.motion.kind == Motion::Kind::fixed || part.motion.kind == Motion::Kind::translation;
+  };
+  const bool translating = without_rotation(part_a) && without_rotation(part_b);
+  std::vector<kernels::FeatureGeometry<Rational>> geometry_a, geometry_b;
+  geometry_a.reserve(features_a.size());
+  geometry_b.reserve(features_b.size());
+  for (const BodyFeature& f : features_a) geometry_a.push_back(feature_geometry(f));
+  for (const BodyFeature& f : features_b) geometry_b.push_back(feature_geometry(f));
+  std::vector<FeatureDirections> directions_a, directions_b;
+  if (translating) {
+    for (const BodyFeature& f : features_a) directions_a.push_back(feature_directions(model, f));
+    for (const BodyFeature& f : features_b) directions_b.push_back(feature_directions(model, f));
+  }
   for (auto [i, j] : meeting_boxes(boxes_a, boxes_b)) {
     auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
-    if (!has_contact(features_a[ui], features_b[uj])) continue;
+    const bool enters = translating && (corner_enters_segment(directions_a[ui], directions_b[uj]) ||
+                                        corner_enters_segment(directions_b[uj], directions_a[ui]));
+    if (!enters && !kernels::contact_type(geometry_a[ui], geometry_b[uj]).has_value()) continue;   // has_contact
     ++stats.feature_pairs_considered;
+    if (enters) {
+      ++stats.feature_pairs_in_blocked_space;
+      continue;
+    }
     if (culler.never_touch(swept_a[ui], swept_b[uj])) {
       ++stats.feature_pairs_culled;
       continue;

@@ -111,7 +111,7 @@ void BM_MinkowskiHipair(benchmark::State& state) {
   state.counters["vertices"] = static_cast<double>(space.statistics().vertices);
   state.counters["polygon_vertices"] = static_cast<double>(a.size() + b.size());
 }
-BENCHMARK(BM_MinkowskiHipair)->Arg(0)->Arg(1)->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MinkowskiHipair)->Arg(0)->Arg(1)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
 
 void BM_MinkowskiCgal(benchmark::State& state) {
   auto [a, b] = polygons(static_cast<int>(state.range(0)));
@@ -119,6 +119,6 @@ void BM_MinkowskiCgal(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(size = cgal_sum(a, b));
   state.counters["sum_vertices"] = static_cast<double>(size);
 }
-BENCHMARK(BM_MinkowskiCgal)->Arg(0)->Arg(1)->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MinkowskiCgal)->Arg(0)->Arg(1)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
 
 }  // namespace
