@@ -17,6 +17,8 @@
 #include <boost/numeric/odeint.hpp>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -93,6 +95,7 @@ struct Active {
   bool bounded_y = false;    // a vertical edge: its chart ordinate range
   double y_lo = 0, y_hi = 0;
   double slack = 1e-9;       // chart units beyond the edge's certified extent still accepted
+  bool at_vertex = false;    // taken up (or kept) at a contact-change vertex: valid up to the vertex
 };
 
 struct ContactRow {
@@ -226,6 +229,65 @@ struct Simulation::Impl {
 
   static constexpr double edge_slack = 1e-9;   // chart units
 
+  // Two rationals either side of an algebraic number, 2^-64 of its isolating interval apart
+  // (exact bisection on the sign of its square-free polynomial).
+  static std::vector<Rational> refined(const AlgebraicNumber& x) {
+    auto sign_at = [&](const Rational& r) {
+      Rational value = 0;
+      for (std::size_t i = x.polynomial.size(); i-- > 0;) value = value * r + Rational(x.polynomial[i]);
+      return sgn(value);
+    };
+    Rational lo = x.lower, hi = x.upper;
+    int s_lo = sign_at(lo);
+    for (int i = 0; i < 64; ++i) {
+      Rational m = (lo + hi) / 2;
+      int s_m = sign_at(m);
+      if (s_m == 0) return {m};
+      if (s_m == s_lo) lo = m;
+      else hi = m;
+    }
+    return {lo, hi};
+  }
+
+  // Set while the step's motion is checked for contact ends: rows are then valid only on their
+  // edges exactly, or within 1e-12 of the vertex where they were taken up (a contact taken up at
+  // a vertex ends as soon as the motion leaves its edge).
+  mutable bool strict_rows = false;
+
+  // The edge's derivatives at chart abscissa tx; past the edge's exact end (derivatives()
+  // throws) but within the contact's slack of an end vertex, those at the vertex (at the ends of
+  // its isolating interval that lie on the edge): at a contact change the configuration is at the
+  // vertex to the bisection's resolution, on either side of it by rounding.
+  bool derivatives_near(const Active& a, double tx, EdgeDerivatives& d) const {
+    const CSpace& space = *spaces[a.pair];
+    try {
+      d = space.derivatives(a.edge, Rational(tx));
+      return true;
+    } catch (const GeometryError&) {
+    }
+    if (!a.at_vertex) return false;
+    // while the motion is checked, only within 1e-12 chart units of the vertex (rounding about a
+    // corner held by two contacts), not along the curve past the vertex
+    const double limit = strict_rows ? 1e-12 : a.slack;
+    const CSpaceEdge& edge = space.edge(a.edge);
+    for (std::size_t vertex : {edge.source, edge.target}) {
+      if (vertex == no_index) continue;
+      const AlgebraicNumber& x = space.vertex(VertexId(vertex)).x;
+      if (!(std::abs(x.approximate() - tx) <= limit)) continue;
+      std::vector<Rational> trials{x.lower};
+      if (!x.exact) trials = refined(x);
+      for (const Rational& r : trials) {
+        if (!(std::abs(r.get_d() - tx) <= 2 * limit)) continue;
+        try {
+          d = space.derivatives(a.edge, r);
+          return true;
+        } catch (const GeometryError&) {
+        }
+      }
+    }
+    return false;
+  }
+
   // the constraint's gradient over dofs, its bias h (g'' = G q'' + h) and its value g
   bool row(const Active& a, const Vec& qs, const Vec& vs, Vec& G, double& h, double& gval) const {
     G.assign(dofs.size(), 0.0);
@@ -248,11 +310,7 @@ struct Simulation::Impl {
     double inset = 1e-9 * (a.x_hi - a.x_lo);
     tx = std::clamp(tx, a.x_lo + inset, a.x_hi - inset);
     EdgeDerivatives d;
-    try {
-      d = spaces[a.pair]->derivatives(a.edge, Rational(tx));
-    } catch (const GeometryError&) {
-      return false;
-    }
+    if (!derivatives_near(a, tx, d)) return false;
     double y1 = mid(d.coordinate_dy), y2 = mid(d.coordinate_d2y);
     G[a.xdof] = -a.sigma * y1;
     G[a.ydof] += a.sigma;
@@ -761,9 +819,12 @@ struct Simulation::Impl {
     if (vertex == no_index) return out;
     BlockedSide old_side = space.blocked_side(a.edge);
     std::size_t free_cell = old_side == BlockedSide::left ? old_edge.right_cell : old_edge.left_cell;
+    bool debug = std::getenv("HIPAIR_SIM_DEBUG") != nullptr;
+    if (debug) std::fprintf(stderr, "vertex %zu of edge %zu (at target %d), free cell %zu, %zu edges x %.17g [%.17g %.17g] exact %d\n", vertex, a.edge.index(), int(at_target), free_cell, space.vertex(VertexId(vertex)).edges.size(), space.vertex(VertexId(vertex)).x.approximate(), space.vertex(VertexId(vertex)).x.lower.get_d(), space.vertex(VertexId(vertex)).x.upper.get_d(), int(space.vertex(VertexId(vertex)).x.exact));
     for (std::size_t e : space.vertex(VertexId(vertex)).edges) {
       if (e == a.edge.index()) continue;
       const CSpaceEdge& edge = space.edges()[e];
+      if (debug) std::fprintf(stderr, "  edge %zu real %d role %d curves %zu side %d left %zu right %zu vertical %d\n", e, int(edge.real), int(edge.role), edge.curves.size(), int(space.blocked_side(EdgeId(e))), edge.left_cell, edge.right_cell, int(edge.vertical));
       if (!edge.real || edge.role != EdgeRole::contact) continue;
       if (edge.curves == old_edge.curves) continue;   // the same contact (its continuation failed)
       BlockedSide side = space.blocked_side(EdgeId(e));
@@ -783,6 +844,7 @@ struct Simulation::Impl {
       // the configuration is at the vertex to the bisection's resolution: accept the new edge
       // within three times the old edge's slack of its certified extent
       b.slack = 3 * a.slack;
+      b.at_vertex = true;
       if (edge.vertical) {
         b.point = true;
         b.bounded_y = true;
@@ -797,7 +859,12 @@ struct Simulation::Impl {
       }
       Vec G;
       double h, gval;
-      if (!row(b, q, v, G, h, gval)) continue;
+      bool ok = row(b, q, v, G, h, gval);
+      if (debug) {
+        double tx = to_chart(chart_of(b).x_kind, chart_of(b).x_half_turn, q[b.xdof]);
+        std::fprintf(stderr, "  candidate %zu row %d gval %g tx %.17g range %.17g %.17g old %.17g %.17g\n", e, int(ok), ok ? gval : 0.0, tx, b.x_lo, b.x_hi, a.x_lo, a.x_hi);
+      }
+      if (!ok) continue;
       if (std::abs(gval) > 1e-6) continue;   // another branch of the curve
       if (std::none_of(out.begin(), out.end(), [&](const Active& c) { return space.edge(c.edge).curves == edge.curves; }))
         out.push_back(b);
@@ -883,6 +950,10 @@ struct Simulation::Impl {
     for (std::size_t j = 0; j < active.size(); ++j)
       for (const Active& c : candidates) added = added || (active[j].pair == pair && active[j].edge == c.edge);
     bool keep = added && r_old < row_active.size() && after_of(r_old) <= vtol;
+    if (keep) {
+      active[k].slack = 3 * old.slack;
+      active[k].at_vertex = true;
+    }
     if (!keep) {
       Vec G;
       double h, gval;
@@ -1004,6 +1075,11 @@ struct Simulation::Impl {
       return 0;
     };
     if (!active.empty()) {
+      strict_rows = true;
+      struct Reset {
+        bool& flag;
+        ~Reset() { flag = false; }
+      } reset{strict_rows};
       std::size_t which = 0;
       int kind = violated(1, which);
       if (kind != 0) {
@@ -1119,6 +1195,12 @@ struct Simulation::Impl {
 
   void step_and_free(double t_limit) {
     step(t_limit);
+    if (std::getenv("HIPAIR_SIM_DEBUG")) {
+      std::fprintf(stderr, "t %.15g active %zu events %zu q", t, active.size(), events.size());
+      for (double x : q) std::fprintf(stderr, " %.15g", x);
+      for (const Active& a : active) std::fprintf(stderr, " [pair %zu edge %zu pt %d]", a.pair, a.edge.index(), int(a.point));
+      std::fprintf(stderr, "\n");
+    }
     free_active();
   }
 
