@@ -17,8 +17,6 @@
 #include <boost/numeric/odeint.hpp>
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -105,6 +103,7 @@ struct ContactRow {
   bool crossing = false;     // a new contact (false: an active sustained one)
   std::size_t active = 0;    // index into active_ when !crossing
   MotionCrossing hit;
+  std::optional<Active> near;   // a contact of another pair within the accuracy of closing
 };
 
 }  // namespace
@@ -125,6 +124,7 @@ struct Simulation::Impl {
   double t = 0;                       // seconds
   Vec q, v;                           // per dof
   std::vector<Active> active;
+  std::vector<std::optional<Active>> last_contact;   // per pair: the contact of its last impact
   std::vector<SimulationEvent> events;
   SimulationState public_state;
   std::size_t steps = 0;
@@ -707,6 +707,29 @@ struct Simulation::Impl {
   }
 
   void handle_contacts(std::vector<ContactRow> rows) {
+    // Contacts of other pairs that are open but within the integrator's accuracy of closing (a
+    // C-space gap g of their last impact's contact edge below the absolute tolerance, rad or
+    // mm) take part as impacts too: a part struck while it is squeezed between two others (the
+    // escapement's anchor between a tooth and the impulse pin) otherwise bounces between the two
+    // pairs at geometrically shrinking intervals, and each bounce's nudge off one contact pushes
+    // it into the other. The gap is below what the integration resolves, so the contacts are
+    // treated as one simultaneous impact.
+    last_contact.resize(spaces.size());
+    for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
+      if (!last_contact[pair] || in_active(pair)) continue;
+      if (std::any_of(rows.begin(), rows.end(), [&](const ContactRow& r) { return r.pair == pair; })) continue;
+      Vec G;
+      double h, gval;
+      if (!row(*last_contact[pair], q, v, G, h, gval)) continue;
+      if (!(gval <= accuracy && gval > -accuracy)) continue;
+      ContactRow r;
+      r.g = G;
+      r.pair = pair;
+      r.crossing = true;
+      r.restitution = model.pairs[pair].restitution ? to_d(*model.pairs[pair].restitution) : 0.0;
+      r.near = last_contact[pair];
+      rows.push_back(r);
+    }
     // the active sustained contacts take part as perfectly plastic contacts
     for (std::size_t k = 0; k < active.size(); ++k) {
       Vec G;
@@ -729,6 +752,7 @@ struct Simulation::Impl {
     for (std::size_t k = 0; k < rows.size(); ++k) {
       if (!rows[k].crossing) continue;
       const ContactRow& r = rows[k];
+      if (r.near && lambda[k] == 0 && before[k] >= 0) continue;   // not struck: it stays open
       double after = 0;
       for (std::size_t i = 0; i < dofs.size(); ++i) after += r.g[i] * v[i];
       SimulationEvent e;
@@ -738,6 +762,11 @@ struct Simulation::Impl {
       e.second_part = model.parts[model.pairs[r.pair].second].name;
       e.features = labels(r.pair, r.hit.features);
       e.edge = r.hit.edge;
+      if (r.near && r.near->edge.valid()) {
+        e.edge = r.near->edge;
+        for (std::size_t f : spaces[r.pair]->edge(r.near->edge).curves)
+          e.features.push_back(spaces[r.pair]->feature_pair(FeatureId(f)).label);
+      }
       e.point = {mid(r.hit.point[0]), mid(r.hit.point[1])};
       e.normal = {mid(r.hit.normal[0]), mid(r.hit.normal[1])};
       e.impulse = lambda[k] / (force_scale * time_scale);
@@ -745,7 +774,8 @@ struct Simulation::Impl {
       e.normal_speed_after = after * time_scale;
       e.kind = SimulationEvent::Kind::impact;
       events.push_back(e);
-      std::optional<Active> sustained = sustain(r.pair, r.hit, r.g);
+      std::optional<Active> sustained = r.near ? r.near : sustain(r.pair, r.hit, r.g);
+      if (sustained) last_contact[r.pair] = sustained;
       if (sustained && after > vtol && !settles(*sustained)) sustained.reset();
       if (sustained) {
         active.push_back(*sustained);
@@ -819,12 +849,9 @@ struct Simulation::Impl {
     if (vertex == no_index) return out;
     BlockedSide old_side = space.blocked_side(a.edge);
     std::size_t free_cell = old_side == BlockedSide::left ? old_edge.right_cell : old_edge.left_cell;
-    bool debug = std::getenv("HIPAIR_SIM_DEBUG") != nullptr;
-    if (debug) std::fprintf(stderr, "vertex %zu of edge %zu (at target %d), free cell %zu, %zu edges x %.17g [%.17g %.17g] exact %d\n", vertex, a.edge.index(), int(at_target), free_cell, space.vertex(VertexId(vertex)).edges.size(), space.vertex(VertexId(vertex)).x.approximate(), space.vertex(VertexId(vertex)).x.lower.get_d(), space.vertex(VertexId(vertex)).x.upper.get_d(), int(space.vertex(VertexId(vertex)).x.exact));
     for (std::size_t e : space.vertex(VertexId(vertex)).edges) {
       if (e == a.edge.index()) continue;
       const CSpaceEdge& edge = space.edges()[e];
-      if (debug) std::fprintf(stderr, "  edge %zu real %d role %d curves %zu side %d left %zu right %zu vertical %d\n", e, int(edge.real), int(edge.role), edge.curves.size(), int(space.blocked_side(EdgeId(e))), edge.left_cell, edge.right_cell, int(edge.vertical));
       if (!edge.real || edge.role != EdgeRole::contact) continue;
       if (edge.curves == old_edge.curves) continue;   // the same contact (its continuation failed)
       BlockedSide side = space.blocked_side(EdgeId(e));
@@ -860,10 +887,6 @@ struct Simulation::Impl {
       Vec G;
       double h, gval;
       bool ok = row(b, q, v, G, h, gval);
-      if (debug) {
-        double tx = to_chart(chart_of(b).x_kind, chart_of(b).x_half_turn, q[b.xdof]);
-        std::fprintf(stderr, "  candidate %zu row %d gval %g tx %.17g range %.17g %.17g old %.17g %.17g\n", e, int(ok), ok ? gval : 0.0, tx, b.x_lo, b.x_hi, a.x_lo, a.x_hi);
-      }
       if (!ok) continue;
       if (std::abs(gval) > 1e-6) continue;   // another branch of the curve
       if (std::none_of(out.begin(), out.end(), [&](const Active& c) { return space.edge(c.edge).curves == edge.curves; }))
@@ -1195,12 +1218,6 @@ struct Simulation::Impl {
 
   void step_and_free(double t_limit) {
     step(t_limit);
-    if (std::getenv("HIPAIR_SIM_DEBUG")) {
-      std::fprintf(stderr, "t %.15g active %zu events %zu q", t, active.size(), events.size());
-      for (double x : q) std::fprintf(stderr, " %.15g", x);
-      for (const Active& a : active) std::fprintf(stderr, " [pair %zu edge %zu pt %d]", a.pair, a.edge.index(), int(a.point));
-      std::fprintf(stderr, "\n");
-    }
     free_active();
   }
 
