@@ -57,7 +57,10 @@ struct SimulationEvent {
   std::string first_part, second_part;
   std::vector<std::string> features;     ///< feature-pair labels ("pin / slot wall")
   EdgeId edge;                           ///< the contact edge (sustained contact), when known
-  double impulse = 0;                    ///< impact: normal impulse, force unit x time unit
+  /// impact: normal impulse, force unit x time unit. For a contact met at a C-space vertex while
+  /// sliding, or joined to an impact within the accuracy of closing, the impulse is along the
+  /// contact's C-space normal (generalised units) and point/normal are 0 (docs/simulation.md).
+  double impulse = 0;
   double normal_speed_before = 0;        ///< impact: approach speed along the contact normal (mm / time unit)
   double normal_speed_after = 0;
   std::array<double, 2> point{};         ///< world contact point (mm), approximate

@@ -270,10 +270,25 @@ TEST(SimulationContacts, RatchetHoldsAtTheWedgeOfItsPawl) {
   Model model = example("ratchet.json");
   model.parts[0].dynamics->torque = Rational(-20);
   Simulation s = Simulation::create(model);
+  // every state certainly free: the certified point query (first_crossing of a motion that
+  // stands still at the state's exact double angles) finds the pair in a free cell
+  auto certainly_free = [&]() {
+    const CSpace& space = *s.spaces().at(0);
+    MotionPath still;
+    still.x.kind = AxisPath::Kind::angle;
+    still.x.coefficients = {Rational(s.state().position[*s.model().find_part(space.x_part())])};
+    still.y.kind = AxisPath::Kind::angle;
+    still.y.coefficients = {Rational(s.state().position[*s.model().find_part(space.y_part())])};
+    return space.first_crossing(still).status == CrossingStatus::none;
+  };
+  int checked = 0;
   while (s.state().time < 0.05) {
     s.step();
     EXPECT_GT(s.state().position[0], -0.0089 - 1e-3) << s.state().time;
+    EXPECT_TRUE(certainly_free()) << s.state().time;
+    ++checked;
   }
+  EXPECT_GT(checked, 50);
   bool nose_face = false, nose_corner = false;
   for (const auto& e : s.events()) {
     if (e.kind != SimulationEvent::Kind::contact && e.kind != SimulationEvent::Kind::impact) continue;
