@@ -6,7 +6,10 @@
 // that polynomial is what is checked, per pair, by the certified CSpace::first_crossing, and it
 // is the trajectory (states inside a step are read from it), so the detection covers the whole
 // path. Sustained contacts are bilateral constraints q_y = Y(q_x) along a contact edge (Y', Y''
-// from CSpace::derivatives), held while their multiplier stays non-negative.
+// from CSpace::derivatives), any number at once (of one pair and of several); their forces come
+// from one complementarity problem (src/simulation/lcp.hpp), as do the impulses of simultaneous
+// impacts, and a contact is held while its force stays non-negative. A sliding pair's new
+// contacts are the other curves through its edge's end vertex (vertex_contacts).
 #include <hipair/simulation.hpp>
 
 #include <hipair/error.hpp>
