@@ -57,11 +57,26 @@ struct SimulationEvent {
   std::string first_part, second_part;
   std::vector<std::string> features;     ///< feature-pair labels ("pin / slot wall")
   EdgeId edge;                           ///< the contact edge (sustained contact), when known
-  double impulse = 0;                    ///< impact: normal impulse, force unit x time unit
+  /// impact: normal impulse, force unit x time unit. For a contact met at a C-space vertex while
+  /// sliding, or joined to an impact within the accuracy of closing, the impulse is along the
+  /// contact's C-space normal (generalised units) and point/normal are 0 (docs/simulation.md).
+  double impulse = 0;
   double normal_speed_before = 0;        ///< impact: approach speed along the contact normal (mm / time unit)
   double normal_speed_after = 0;
   std::array<double, 2> point{};         ///< world contact point (mm), approximate
   std::array<double, 2> normal{};        ///< unit normal, first part into second
+};
+
+/// A sustained contact at the current state and its force from the contact complementarity
+/// problem of all sustained contacts at once (docs/simulation.md). The force is the multiplier
+/// of the contact's constraint g = sigma (q_y - Y(q_x)) >= 0 (or sigma (q_x - c)) in the
+/// model's force unit, per unit of g: a force when g is an offset (mm), a torque (force unit x
+/// mm) when g is an angle (rad).
+struct SimulationContact {
+  std::size_t pair = 0;                  ///< index into Model::pairs
+  EdgeId edge;                           ///< the contact edge (invalid for a 1-D pair)
+  std::vector<std::string> features;     ///< feature-pair labels of the edge
+  double force = 0;                      ///< >= 0
 };
 
 /// Name of an event kind: "impact", "contact", "lift-off", "edge-end".
@@ -88,6 +103,8 @@ class Simulation {
 
   const SimulationState& state() const;
   const std::vector<SimulationEvent>& events() const;
+  /// The sustained contacts at the current state, with their forces (solved at once).
+  std::vector<SimulationContact> contacts() const;
   /// Kinetic energy plus the potential of springs, gravity and constant loads, in the model's
   /// force unit x mm.
   double energy() const;

@@ -6,10 +6,15 @@
 // that polynomial is what is checked, per pair, by the certified CSpace::first_crossing, and it
 // is the trajectory (states inside a step are read from it), so the detection covers the whole
 // path. Sustained contacts are bilateral constraints q_y = Y(q_x) along a contact edge (Y', Y''
-// from CSpace::derivatives), held while their multiplier stays non-negative.
+// from CSpace::derivatives), any number at once (of one pair and of several); their forces come
+// from one complementarity problem (src/simulation/lcp.hpp), as do the impulses of simultaneous
+// impacts, and a contact is held while its force stays non-negative. A sliding pair's new
+// contacts are the other curves through its edge's end vertex (vertex_contacts).
 #include <hipair/simulation.hpp>
 
 #include <hipair/error.hpp>
+
+#include "simulation/lcp.hpp"
 
 #include <Eigen/Dense>
 #include <boost/numeric/odeint.hpp>
@@ -90,6 +95,8 @@ struct Active {
   double x_lo = 0, x_hi = 0; // the edge's chart abscissa range
   bool bounded_y = false;    // a vertical edge: its chart ordinate range
   double y_lo = 0, y_hi = 0;
+  double slack = 1e-9;       // chart units beyond the edge's certified extent still accepted
+  bool at_vertex = false;    // taken up (or kept) at a contact-change vertex: valid up to the vertex
 };
 
 struct ContactRow {
@@ -99,6 +106,7 @@ struct ContactRow {
   bool crossing = false;     // a new contact (false: an active sustained one)
   std::size_t active = 0;    // index into active_ when !crossing
   MotionCrossing hit;
+  std::optional<Active> near;   // a contact of another pair within the accuracy of closing
 };
 
 }  // namespace
@@ -119,6 +127,7 @@ struct Simulation::Impl {
   double t = 0;                       // seconds
   Vec q, v;                           // per dof
   std::vector<Active> active;
+  std::vector<std::optional<Active>> last_contact;   // per pair: the contact of its last impact
   std::vector<SimulationEvent> events;
   SimulationState public_state;
   std::size_t steps = 0;
@@ -223,6 +232,65 @@ struct Simulation::Impl {
 
   static constexpr double edge_slack = 1e-9;   // chart units
 
+  // Two rationals either side of an algebraic number, 2^-64 of its isolating interval apart
+  // (exact bisection on the sign of its square-free polynomial).
+  static std::vector<Rational> refined(const AlgebraicNumber& x) {
+    auto sign_at = [&](const Rational& r) {
+      Rational value = 0;
+      for (std::size_t i = x.polynomial.size(); i-- > 0;) value = value * r + Rational(x.polynomial[i]);
+      return sgn(value);
+    };
+    Rational lo = x.lower, hi = x.upper;
+    int s_lo = sign_at(lo);
+    for (int i = 0; i < 64; ++i) {
+      Rational m = (lo + hi) / 2;
+      int s_m = sign_at(m);
+      if (s_m == 0) return {m};
+      if (s_m == s_lo) lo = m;
+      else hi = m;
+    }
+    return {lo, hi};
+  }
+
+  // Set while the step's motion is checked for contact ends: rows are then valid only on their
+  // edges exactly, or within 1e-12 of the vertex where they were taken up (a contact taken up at
+  // a vertex ends as soon as the motion leaves its edge).
+  mutable bool strict_rows = false;
+
+  // The edge's derivatives at chart abscissa tx; past the edge's exact end (derivatives()
+  // throws) but within the contact's slack of an end vertex, those at the vertex (at the ends of
+  // its isolating interval that lie on the edge): at a contact change the configuration is at the
+  // vertex to the bisection's resolution, on either side of it by rounding.
+  bool derivatives_near(const Active& a, double tx, EdgeDerivatives& d) const {
+    const CSpace& space = *spaces[a.pair];
+    try {
+      d = space.derivatives(a.edge, Rational(tx));
+      return true;
+    } catch (const GeometryError&) {
+    }
+    if (!a.at_vertex) return false;
+    // while the motion is checked, only within 1e-12 chart units of the vertex (rounding about a
+    // corner held by two contacts), not along the curve past the vertex
+    const double limit = strict_rows ? 1e-12 : a.slack;
+    const CSpaceEdge& edge = space.edge(a.edge);
+    for (std::size_t vertex : {edge.source, edge.target}) {
+      if (vertex == no_index) continue;
+      const AlgebraicNumber& x = space.vertex(VertexId(vertex)).x;
+      if (!(std::abs(x.approximate() - tx) <= limit)) continue;
+      std::vector<Rational> trials{x.lower};
+      if (!x.exact) trials = refined(x);
+      for (const Rational& r : trials) {
+        if (!(std::abs(r.get_d() - tx) <= 2 * limit)) continue;
+        try {
+          d = space.derivatives(a.edge, r);
+          return true;
+        } catch (const GeometryError&) {
+        }
+      }
+    }
+    return false;
+  }
+
   // the constraint's gradient over dofs, its bias h (g'' = G q'' + h) and its value g
   bool row(const Active& a, const Vec& qs, const Vec& vs, Vec& G, double& h, double& gval) const {
     G.assign(dofs.size(), 0.0);
@@ -232,7 +300,7 @@ struct Simulation::Impl {
         // a vertical edge ends where the other part leaves the edge's ordinate range
         const CSpaceChart& chart = chart_of(a);
         double ty = to_chart(chart.y_kind, chart.y_half_turn, qs[a.ydof]);
-        if (ty < a.y_lo - edge_slack || ty > a.y_hi + edge_slack) return false;
+        if (ty < a.y_lo - a.slack || ty > a.y_hi + a.slack) return false;
       }
       G[a.xdof] = a.sigma;
       gval = a.sigma * (qs[a.xdof] - a.c);
@@ -240,16 +308,12 @@ struct Simulation::Impl {
     }
     const CSpaceChart& chart = chart_of(a);
     double tx = to_chart(chart.x_kind, chart.x_half_turn, qs[a.xdof]);
-    if (tx < a.x_lo - edge_slack || tx > a.x_hi + edge_slack) return false;
+    if (tx < a.x_lo - a.slack || tx > a.x_hi + a.slack) return false;
     // within the slack of an end: the nearest abscissa strictly inside (the ends are algebraic)
     double inset = 1e-9 * (a.x_hi - a.x_lo);
     tx = std::clamp(tx, a.x_lo + inset, a.x_hi - inset);
     EdgeDerivatives d;
-    try {
-      d = spaces[a.pair]->derivatives(a.edge, Rational(tx));
-    } catch (const GeometryError&) {
-      return false;
-    }
+    if (!derivatives_near(a, tx, d)) return false;
     double y1 = mid(d.coordinate_dy), y2 = mid(d.coordinate_d2y);
     G[a.xdof] = -a.sigma * y1;
     G[a.ydof] += a.sigma;
@@ -267,14 +331,22 @@ struct Simulation::Impl {
   }
 
   // accelerations (all dofs) and multipliers of the active constraints; false when a
-  // constraint is outside its edge
-  bool accelerations(double time, const Vec& qs, const Vec& vs, Vec& acc, Vec& lambda) const {
+  // constraint is outside its edge. `lifting` null: every active contact is held (a bilateral
+  // constraint: the multipliers may come out negative, which the step's bisection detects).
+  // `lifting` given: the contact forces of all active contacts at once from the complementarity
+  // problem lambda >= 0, g'' = A lambda + b >= 0, lambda g'' = 0 (A = G M^-1 G^T, b = G a_free + h;
+  // src/simulation/lcp.hpp); the contacts whose force is zero and whose normal acceleration is
+  // positive (they would separate) are listed in `lifting`, and the accelerations are those of
+  // the LCP's solution.
+  bool accelerations(double time, const Vec& qs, const Vec& vs, Vec& acc, Vec& lambda,
+                     std::vector<std::size_t>* lifting = nullptr) const {
     Vec Q = forces(time, qs, vs);
     std::size_t n = dofs.size();
     acc.assign(n, 0.0);
     for (std::size_t i = 0; i < n; ++i)
       if (!dofs[i].driven) acc[i] = Q[i] / dofs[i].inertia;
     lambda.clear();
+    if (lifting) lifting->clear();
     if (active.empty()) return true;
     std::size_t m = active.size();
     Eigen::MatrixXd G(m, n);
@@ -291,8 +363,23 @@ struct Simulation::Impl {
       for (std::size_t k = 0; k < m; ++k) MinvGt(i, k) = dofs[i].driven ? 0.0 : G(k, i) / dofs[i].inertia;
     Eigen::VectorXd a0 = Eigen::Map<const Eigen::VectorXd>(acc.data(), n);
     Eigen::MatrixXd A = G * MinvGt;
-    Eigen::VectorXd rhs = -(G * a0 + h);
-    Eigen::VectorXd l = A.completeOrthogonalDecomposition().solve(rhs);
+    Eigen::VectorXd l;
+    if (lifting) {
+      Eigen::VectorXd b = G * a0 + h;
+      simulation::LcpSolution s = simulation::solve_lcp(A, b);
+      if (!s.solved) {
+        std::ostringstream out;
+        out << "simulation: at t = " << time / time_scale << " " << time_unit
+            << " the contact-force complementarity problem of " << m << " contacts has no solution (a jam)";
+        throw NumericError(out.str());
+      }
+      l = s.lambda;
+      for (std::size_t k = 0; k < m; ++k)
+        if (l(k) == 0 && s.w(k) > s.tolerance) lifting->push_back(k);
+    } else {
+      Eigen::VectorXd rhs = -(G * a0 + h);
+      l = A.completeOrthogonalDecomposition().solve(rhs);
+    }
     Eigen::VectorXd da = MinvGt * l;
     for (std::size_t i = 0; i < n; ++i) acc[i] += da(i);
     lambda.assign(l.data(), l.data() + m);
@@ -583,46 +670,14 @@ struct Simulation::Impl {
     Eigen::VectorXd vm = Eigen::Map<const Eigen::VectorXd>(v.data(), n);
     Eigen::VectorXd gv = G * vm, b(m);
     for (std::size_t k = 0; k < m; ++k) b(k) = (1 + rows[k].restitution) * gv(k);
-    Eigen::VectorXd best = Eigen::VectorXd::Zero(m);
-    bool found = false;
-    double tol = 1e-12 * (1 + b.cwiseAbs().maxCoeff());
-    if (m <= 12) {
-      // enumerate the active sets (smallest first): exact complementarity
-      for (std::size_t size = 0; size <= m && !found; ++size)
-        for (std::size_t mask = 0; mask < (std::size_t(1) << m) && !found; ++mask) {
-          if (static_cast<std::size_t>(__builtin_popcountll(mask)) != size) continue;
-          std::vector<int> set;
-          for (std::size_t k = 0; k < m; ++k)
-            if (mask >> k & 1) set.push_back(static_cast<int>(k));
-          Eigen::VectorXd l = Eigen::VectorXd::Zero(m);
-          if (!set.empty()) {
-            Eigen::MatrixXd As(set.size(), set.size());
-            Eigen::VectorXd bs(set.size());
-            for (std::size_t i = 0; i < set.size(); ++i) {
-              bs(i) = -b(set[i]);
-              for (std::size_t j = 0; j < set.size(); ++j) As(i, j) = A(set[i], set[j]);
-            }
-            Eigen::VectorXd ls = As.completeOrthogonalDecomposition().solve(bs);
-            for (std::size_t i = 0; i < set.size(); ++i) l(set[i]) = ls(i);
-          }
-          Eigen::VectorXd w = A * l + b;
-          bool ok = true;
-          for (std::size_t k = 0; k < m && ok; ++k) ok = l(k) >= -tol && w(k) >= -tol;
-          if (ok) {
-            best = l.cwiseMax(0.0);
-            found = true;
-          }
-        }
+    simulation::LcpSolution solution = simulation::solve_lcp(A, b);
+    if (!solution.solved) {
+      std::ostringstream out;
+      out << "simulation: at t = " << t / time_scale << " " << time_unit << " the impact problem of " << m
+          << " simultaneous contacts has no solution";
+      throw NumericError(out.str());
     }
-    if (!found) {
-      // projected Gauss-Seidel
-      for (int it = 0; it < 10000; ++it)
-        for (std::size_t k = 0; k < m; ++k) {
-          if (A(k, k) <= 0) continue;
-          double r = b(k) + A.row(k).dot(best);
-          best(k) = std::max(0.0, best(k) - r / A(k, k));
-        }
-    }
+    Eigen::VectorXd best = solution.lambda;
     Eigen::VectorXd dv = MinvGt * best;
     for (std::size_t i = 0; i < n; ++i) v[i] += dv(i);
     return Vec(best.data(), best.data() + m);
@@ -655,6 +710,29 @@ struct Simulation::Impl {
   }
 
   void handle_contacts(std::vector<ContactRow> rows) {
+    // Contacts of other pairs that are open but within the integrator's accuracy of closing (a
+    // C-space gap g of their last impact's contact edge below the absolute tolerance, rad or
+    // mm) take part as impacts too: a part struck while it is squeezed between two others (the
+    // escapement's anchor between a tooth and the impulse pin) otherwise bounces between the two
+    // pairs at geometrically shrinking intervals, and each bounce's nudge off one contact pushes
+    // it into the other. The gap is below what the integration resolves, so the contacts are
+    // treated as one simultaneous impact.
+    last_contact.resize(spaces.size());
+    for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
+      if (!last_contact[pair] || in_active(pair)) continue;
+      if (std::any_of(rows.begin(), rows.end(), [&](const ContactRow& r) { return r.pair == pair; })) continue;
+      Vec G;
+      double h, gval;
+      if (!row(*last_contact[pair], q, v, G, h, gval)) continue;
+      if (!(gval <= accuracy && gval > -accuracy)) continue;
+      ContactRow r;
+      r.g = G;
+      r.pair = pair;
+      r.crossing = true;
+      r.restitution = model.pairs[pair].restitution ? to_d(*model.pairs[pair].restitution) : 0.0;
+      r.near = last_contact[pair];
+      rows.push_back(r);
+    }
     // the active sustained contacts take part as perfectly plastic contacts
     for (std::size_t k = 0; k < active.size(); ++k) {
       Vec G;
@@ -677,6 +755,7 @@ struct Simulation::Impl {
     for (std::size_t k = 0; k < rows.size(); ++k) {
       if (!rows[k].crossing) continue;
       const ContactRow& r = rows[k];
+      if (r.near && lambda[k] == 0 && before[k] >= 0) continue;   // not struck: it stays open
       double after = 0;
       for (std::size_t i = 0; i < dofs.size(); ++i) after += r.g[i] * v[i];
       SimulationEvent e;
@@ -686,6 +765,11 @@ struct Simulation::Impl {
       e.second_part = model.parts[model.pairs[r.pair].second].name;
       e.features = labels(r.pair, r.hit.features);
       e.edge = r.hit.edge;
+      if (r.near && r.near->edge.valid()) {
+        e.edge = r.near->edge;
+        for (std::size_t f : spaces[r.pair]->edge(r.near->edge).curves)
+          e.features.push_back(spaces[r.pair]->feature_pair(FeatureId(f)).label);
+      }
       e.point = {mid(r.hit.point[0]), mid(r.hit.point[1])};
       e.normal = {mid(r.hit.normal[0]), mid(r.hit.normal[1])};
       e.impulse = lambda[k] / (force_scale * time_scale);
@@ -693,7 +777,8 @@ struct Simulation::Impl {
       e.normal_speed_after = after * time_scale;
       e.kind = SimulationEvent::Kind::impact;
       events.push_back(e);
-      std::optional<Active> sustained = sustain(r.pair, r.hit, r.g);
+      std::optional<Active> sustained = r.near ? r.near : sustain(r.pair, r.hit, r.g);
+      if (sustained) last_contact[r.pair] = sustained;
       if (sustained && after > vtol && !settles(*sustained)) sustained.reset();
       if (sustained) {
         active.push_back(*sustained);
@@ -743,13 +828,187 @@ struct Simulation::Impl {
     return std::nullopt;
   }
 
-  void release(std::size_t k, SimulationEvent::Kind kind) {
+  // The contact change at the end of sustained contact k's edge: the vertex reached, and the
+  // real contact edges of the same pair that meet it there and bound the same free cell (the
+  // other contact curves through the vertex). While the pair slides along the edge nothing else
+  // can be touched: the arrangement has a vertex wherever another contact curve meets the edge,
+  // and curves culled as certainly blocked cannot meet a free cell's boundary; so the vertex's
+  // curves are every new contact of the pair, and they are all taken up here.
+  std::vector<Active> vertex_candidates(const Active& a) const {
+    std::vector<Active> out;
+    if (!a.edge.valid()) return out;
+    const CSpace& space = *spaces[a.pair];
+    const CSpaceEdge& old_edge = space.edge(a.edge);
+    const CSpaceChart& chart = chart_of(a);
+    bool at_target;
+    if (a.point) {
+      double ty = to_chart(chart.y_kind, chart.y_half_turn, q[a.ydof]);
+      at_target = ty > 0.5 * (a.y_lo + a.y_hi);
+    } else {
+      double tx = to_chart(chart.x_kind, chart.x_half_turn, q[a.xdof]);
+      at_target = tx > 0.5 * (a.x_lo + a.x_hi);
+    }
+    std::size_t vertex = at_target ? old_edge.target : old_edge.source;
+    if (vertex == no_index) return out;
+    BlockedSide old_side = space.blocked_side(a.edge);
+    std::size_t free_cell = old_side == BlockedSide::left ? old_edge.right_cell : old_edge.left_cell;
+    for (std::size_t e : space.vertex(VertexId(vertex)).edges) {
+      if (e == a.edge.index()) continue;
+      const CSpaceEdge& edge = space.edges()[e];
+      if (!edge.real || edge.role != EdgeRole::contact) continue;
+      if (edge.curves == old_edge.curves) continue;   // the same contact (its continuation failed)
+      BlockedSide side = space.blocked_side(EdgeId(e));
+      if (side == BlockedSide::none) continue;
+      std::size_t cell = side == BlockedSide::left ? edge.right_cell : edge.left_cell;
+      if (cell != free_cell) continue;
+      bool held = std::any_of(active.begin(), active.end(), [&](const Active& b) {
+        return b.pair == a.pair && b.edge.valid() && space.edge(b.edge).curves == edge.curves;
+      });
+      if (held) continue;
+      Active b;
+      b.pair = a.pair;
+      b.xdof = a.xdof;
+      b.ydof = a.ydof;
+      b.edge = EdgeId(e);
+      b.chart = edge.chart;
+      // the configuration is at the vertex to the bisection's resolution: accept the new edge
+      // within three times the old edge's slack of its certified extent
+      b.slack = 3 * a.slack;
+      b.at_vertex = true;
+      if (edge.vertical) {
+        b.point = true;
+        b.bounded_y = true;
+        b.y_lo = edge.y_chart.lower;
+        b.y_hi = edge.y_chart.upper;
+        b.c = q[a.xdof];
+        b.sigma = side == BlockedSide::left ? 1 : -1;   // upwards, left is smaller x
+      } else {
+        b.x_lo = edge.x_chart.lower;
+        b.x_hi = edge.x_chart.upper;
+        b.sigma = side == BlockedSide::left ? -1 : 1;   // left is above
+      }
+      Vec G;
+      double h, gval;
+      bool ok = row(b, q, v, G, h, gval);
+      if (!ok) continue;
+      if (std::abs(gval) > 1e-6) continue;   // another branch of the curve
+      if (std::none_of(out.begin(), out.end(), [&](const Active& c) { return space.edge(c.edge).curves == edge.curves; }))
+        out.push_back(b);
+    }
+    return out;
+  }
+
+  void edge_event(const Active& a, SimulationEvent::Kind kind, double impulse = 0, double before = 0, double after = 0) {
+    SimulationEvent e;
+    e.kind = kind;
+    e.time = t / time_scale;
+    e.pair = a.pair;
+    e.first_part = model.parts[model.pairs[a.pair].first].name;
+    e.second_part = model.parts[model.pairs[a.pair].second].name;
+    e.edge = a.edge;
+    if (a.edge.valid())
+      for (std::size_t f : spaces[a.pair]->edge(a.edge).curves) e.features.push_back(spaces[a.pair]->feature_pair(FeatureId(f)).label);
+    e.impulse = impulse;
+    e.normal_speed_before = before;
+    e.normal_speed_after = after;
+    events.push_back(e);
+  }
+
+  // Sustained contact k reached the end of its edge at a vertex where other contact curves of
+  // its pair begin: one impact problem over every active contact (plastic) and the new ones
+  // (the pair's restitution), all at once; the new contacts left without separating speed are
+  // held, and contact k stays held while it has no separating speed (the corner of a wedge).
+  // False when the vertex has no new contact (the caller releases k).
+  bool vertex_contacts(std::size_t k) {
+    std::vector<Active> candidates = vertex_candidates(active[k]);
+    if (candidates.empty()) return false;
+    std::size_t pair = active[k].pair;
+    double e = model.pairs[pair].restitution ? to_d(*model.pairs[pair].restitution) : 0.0;
+    std::vector<ContactRow> rows;
+    std::vector<std::size_t> row_active;   // active index, or no_index for a candidate
+    for (std::size_t j = 0; j < active.size(); ++j) {
+      ContactRow r;
+      double h, gval;
+      if (!row(active[j], q, v, r.g, h, gval)) continue;
+      r.pair = active[j].pair;
+      r.active = j;
+      rows.push_back(r);
+      row_active.push_back(j);
+    }
+    std::size_t first_candidate = rows.size();
+    for (const Active& c : candidates) {
+      ContactRow r;
+      double h, gval;
+      row(c, q, v, r.g, h, gval);
+      r.pair = pair;
+      r.crossing = true;
+      r.restitution = e;
+      rows.push_back(r);
+    }
+    Vec before(rows.size(), 0.0);
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      for (std::size_t i = 0; i < dofs.size(); ++i) before[r] += rows[r].g[i] * v[i];
+    Vec lambda = solve_impacts(rows);
+    double vtol = velocity_tolerance();
+    auto after_of = [&](std::size_t r) {
+      double w = 0;
+      for (std::size_t i = 0; i < dofs.size(); ++i) w += rows[r].g[i] * v[i];
+      return w;
+    };
+    // the impulse of a contact met at a vertex is along its C-space normal (generalised units:
+    // force unit x time unit x mm per C-space unit): no physical contact point is computed there
+    Active old = active[k];
+    for (std::size_t r = first_candidate; r < rows.size(); ++r) {
+      const Active& c = candidates[r - first_candidate];
+      double after = after_of(r);
+      if (lambda[r] > 0 || before[r] < 0)
+        edge_event(c, SimulationEvent::Kind::impact, lambda[r] / (force_scale * time_scale), before[r] * time_scale,
+                   after * time_scale);
+      if (after <= vtol || settles(c)) {
+        active.push_back(c);
+        edge_event(c, SimulationEvent::Kind::contact);
+      }
+    }
+    // the old contact: held when it has no separating speed, else it ends here
+    // (with no new contact held, the motion leaves the vertex into free space: k ends too)
+    std::size_t r_old = std::find(row_active.begin(), row_active.end(), k) - row_active.begin();
+    bool added = false;
+    for (std::size_t j = 0; j < active.size(); ++j)
+      for (const Active& c : candidates) added = added || (active[j].pair == pair && active[j].edge == c.edge);
+    bool keep = added && r_old < row_active.size() && after_of(r_old) <= vtol;
+    if (keep) {
+      active[k].slack = 3 * old.slack;
+      active[k].at_vertex = true;
+    }
+    if (!keep) {
+      Vec G;
+      double h, gval;
+      if (!row(old, q, v, G, h, gval)) {
+        G.assign(dofs.size(), 0.0);
+        G[old.xdof] = old.sigma;
+      }
+      edge_event(old, SimulationEvent::Kind::edge_end);
+      active.erase(active.begin() + static_cast<std::ptrdiff_t>(k));
+      project_active();
+      if (!in_active(pair)) nudge_free(pair, G);
+    } else {
+      project_active();
+    }
+    return true;
+  }
+
+  // Ends sustained contact k (event `kind`). An edge end first tries the edge that continues the
+  // same contact, then the new contacts at the edge's vertex. The pair is moved off contact
+  // space when `nudge` and it holds no other contact; `normal` receives the contact's C-space
+  // normal (for a caller that nudges later).
+  void release(std::size_t k, SimulationEvent::Kind kind, bool nudge = true, Vec* normal = nullptr) {
     if (kind == SimulationEvent::Kind::edge_end) {
       if (std::optional<Active> next = continuation(active[k])) {
         active[k] = *next;
         project_active();
         return;
       }
+      if (vertex_contacts(k)) return;
     }
     Active a = active[k];
     Vec G;
@@ -760,18 +1019,10 @@ struct Simulation::Impl {
       G[a.xdof] = a.point ? a.sigma : 0;
       if (!a.point) G[a.ydof] = a.sigma;
     }
-    SimulationEvent e;
-    e.kind = kind;
-    e.time = t / time_scale;
-    e.pair = a.pair;
-    e.first_part = model.parts[model.pairs[a.pair].first].name;
-    e.second_part = model.parts[model.pairs[a.pair].second].name;
-    e.edge = a.edge;
-    if (a.edge.valid())
-      for (std::size_t f : spaces[a.pair]->edge(a.edge).curves) e.features.push_back(spaces[a.pair]->feature_pair(FeatureId(f)).label);
-    events.push_back(e);
+    edge_event(a, kind);
     active.erase(active.begin() + static_cast<std::ptrdiff_t>(k));
-    nudge_free(a.pair, G);
+    if (normal) *normal = G;
+    if (nudge && !in_active(a.pair)) nudge_free(a.pair, G);
   }
 
   void step(double t_limit) {
@@ -779,13 +1030,22 @@ struct Simulation::Impl {
     using namespace boost::numeric::odeint;
     Vec x = pack();
     Vec q0 = q, v0 = v, a0, l0;
-    accelerations(t, q0, v0, a0, l0);
-    // lift-off at the start: a multiplier that is negative (pulling) ends its contact
-    for (std::size_t k = 0; k < l0.size(); ++k)
-      if (l0[k] < 0) {
-        release(k, SimulationEvent::Kind::lift_off);
-        return;
+    // the contact forces of all active contacts at once (the LCP): the contacts it leaves
+    // without force and with a separating normal acceleration lift off, together
+    std::vector<std::size_t> lifting;
+    if (!active.empty() && accelerations(t, q0, v0, a0, l0, &lifting) && !lifting.empty()) {
+      std::vector<std::pair<std::size_t, Vec>> gone;
+      for (std::size_t j = lifting.size(); j-- > 0;) {
+        std::size_t k = lifting[j];
+        gone.emplace_back(active[k].pair, Vec());
+        release(k, SimulationEvent::Kind::lift_off, false, &gone.back().second);
       }
+      project_active();
+      for (auto& [pair, G] : gone)
+        if (!in_active(pair)) nudge_free(pair, G);
+      return;
+    }
+    accelerations(t, q0, v0, a0, l0);
     double max_step = options.max_step > 0 ? options.max_step * time_scale : std::numeric_limits<double>::infinity();
     double remaining = t_limit - t;
     if (dt <= 0) dt = std::min({max_step, remaining, 1e-3});
@@ -841,6 +1101,11 @@ struct Simulation::Impl {
       return 0;
     };
     if (!active.empty()) {
+      strict_rows = true;
+      struct Reset {
+        bool& flag;
+        ~Reset() { flag = false; }
+      } reset{strict_rows};
       std::size_t which = 0;
       int kind = violated(1, which);
       if (kind != 0) {
@@ -865,6 +1130,8 @@ struct Simulation::Impl {
     // every free pair's motion, certified
     std::vector<ContactRow> hits;
     double u_hit = u_end, u_hit_upper = u_end;
+    double u_out = std::numeric_limits<double>::infinity();
+    std::size_t out_pair = 0;
     std::vector<std::pair<std::size_t, MotionCrossing>> crossings;
     CrossingOptions crossing_options;
     crossing_options.resolution_bits = options.crossing_bits;
@@ -872,7 +1139,15 @@ struct Simulation::Impl {
       if (!spaces[pair] || in_active(pair)) continue;
       MotionCrossing c = spaces[pair]->first_crossing(pair_path(pair, path, 0, u_end), crossing_options);
       if (c.status == CrossingStatus::none) continue;
-      if (c.status == CrossingStatus::outside_region) outside(pair, path.t0 + to_d(c.u_lower) * path.h);
+      if (c.status == CrossingStatus::outside_region) {
+        // leaving the built space is an error only when it comes first; its bracket is
+        // conservative, so the step is first shortened to its lower end (below)
+        if (to_d(c.u_lower) < u_out) {
+          u_out = to_d(c.u_lower);
+          out_pair = pair;
+        }
+        continue;
+      }
       if (c.status == CrossingStatus::starts_in_contact) {
         c.u_lower = c.u_upper = 0;
       }
@@ -881,6 +1156,17 @@ struct Simulation::Impl {
         u_hit = to_d(c.u_lower);
         u_hit_upper = to_d(c.u_upper);
       }
+    }
+    if (u_out <= u_hit && (crossings.empty() || u_out < u_hit)) {
+      // no contact before the pair may leave its built space: at the very start of the step
+      // that is the error; otherwise the step ends just before (no event) and the next step
+      // looks again from there
+      if (u_out * path.h <= 1e-12 * (1 + std::abs(path.t0))) outside(out_pair, path.t0 + u_out * path.h);
+      path.at(u_out, q, v);
+      t = path.t0 + u_out * path.h;
+      dt = u_out * path.h;
+      project_active();
+      return;
     }
     if (!crossings.empty() && u_hit <= u_end) {
       // the earliest crossing, and every other one whose bracket meets it (simultaneous)
@@ -909,6 +1195,52 @@ struct Simulation::Impl {
     project_active();
     if (cut == Cut::lift_off) release(cut_active, SimulationEvent::Kind::lift_off);
     else if (cut == Cut::edge_end) release(cut_active, SimulationEvent::Kind::edge_end);
+  }
+
+  // Every pair in sustained contact is left certainly free: its configuration, projected on
+  // its contact curve(s) in doubles, lies on either side of them by rounding; it is moved by a
+  // few units in the last place along M^-1 (sum of its contacts' normals) until the certified
+  // point query says free (nudge_free). So no state is ever inside blocked space.
+  void free_active() {
+    for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
+      if (!spaces[pair] || !in_active(pair)) continue;
+      Vec sum(dofs.size(), 0.0);
+      for (const Active& a : active) {
+        if (a.pair != pair) continue;
+        Vec G;
+        double h, gval;
+        if (!row(a, q, v, G, h, gval)) continue;
+        double norm = 0;
+        for (double x : G) norm = std::max(norm, std::abs(x));
+        if (norm > 0)
+          for (std::size_t i = 0; i < dofs.size(); ++i) sum[i] += G[i] / norm;
+      }
+      nudge_free(pair, sum);
+    }
+  }
+
+  void step_and_free(double t_limit) {
+    step(t_limit);
+    free_active();
+  }
+
+  std::vector<SimulationContact> contacts() const {
+    std::vector<SimulationContact> out;
+    Vec acc, lambda;
+    std::vector<std::size_t> lifting;
+    if (active.empty() || !accelerations(t, q, v, acc, lambda, &lifting)) return out;
+    for (std::size_t k = 0; k < active.size(); ++k) {
+      const Active& a = active[k];
+      SimulationContact c;
+      c.pair = a.pair;
+      c.edge = a.edge;
+      if (a.edge.valid())
+        for (std::size_t f : spaces[a.pair]->edge(a.edge).curves)
+          c.features.push_back(spaces[a.pair]->feature_pair(FeatureId(f)).label);
+      c.force = lambda[k] / force_scale;
+      out.push_back(c);
+    }
+    return out;
   }
 
   void publish() {
@@ -1060,14 +1392,14 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
 }
 
 void Simulation::step() {
-  impl_->step(std::numeric_limits<double>::infinity());
+  impl_->step_and_free(std::numeric_limits<double>::infinity());
   impl_->publish();
 }
 
 void Simulation::run_until(double t_end, const std::function<void(double)>& progress) {
   double limit = t_end * impl_->time_scale;
   while (impl_->t < limit) {
-    impl_->step(limit);
+    impl_->step_and_free(limit);
     impl_->publish();
     if (progress) progress(impl_->public_state.time);
   }
@@ -1075,6 +1407,7 @@ void Simulation::run_until(double t_end, const std::function<void(double)>& prog
 
 const SimulationState& Simulation::state() const { return impl_->public_state; }
 const std::vector<SimulationEvent>& Simulation::events() const { return impl_->events; }
+std::vector<SimulationContact> Simulation::contacts() const { return impl_->contacts(); }
 double Simulation::energy() const { return impl_->energy(); }
 std::size_t Simulation::steps() const { return impl_->steps; }
 const Model& Simulation::model() const { return impl_->model; }
