@@ -154,14 +154,24 @@ struct SlicedSpace::Impl {
     const Part& a = model.parts[fixed];
     const Part& b = model.parts[free];
     std::string limits = "[" + quoted(-bound) + ", " + quoted(bound) + "]";
+    // the slice's parts carry the pair's names (legends and labels read "plate ... / peg ...")
+    auto json_string = [](const std::string& name) {
+      std::string out = "\"";
+      for (char ch : name) {
+        if (ch == '"' || ch == '\\') out += '\\';
+        if (static_cast<unsigned char>(ch) >= 0x20) out += ch;
+      }
+      return out + "\"";
+    };
+    const std::string first = json_string(a.name), second = json_string(b.name);
     std::string text = R"({ "hipair": 1, "name": "slice", "parts": [
-      { "name": "fixed", "motion": { "translation": { "direction": [-1, 0], "limits": )" +
+      { "name": )" + first + R"(, "motion": { "translation": { "direction": [-1, 0], "limits": )" +
                        limits + R"( } }, "loops": [ )" + loops_json(a, b.motion.pivot, Rational(1), Rational(0)) + R"( ] },
-      { "name": "free", "motion": { "translation": { "direction": [0, 1], "limits": )" +
+      { "name": )" + second + R"(, "motion": { "translation": { "direction": [0, 1], "limits": )" +
                        limits + R"( } }, "loops": [ )" + loops_json(b, b.motion.pivot, c, s) + R"( ] } ],
-      "pairs": [ { "parts": ["fixed", "free"] } ] })";
+      "pairs": [ { "parts": [)" + first + ", " + second + R"(] } ] })";
     Model slice_model = read_model(text, "<slice>");
-    auto space = std::make_shared<const CSpace>(CSpace::build(slice_model, "fixed", "free"));
+    auto space = std::make_shared<const CSpace>(CSpace::build(slice_model, a.name, b.name));
     std::lock_guard<std::mutex> lock(mutex);
     ++stats.slices_built;
     stats.seconds_slices += seconds_since(start);
