@@ -33,8 +33,10 @@ algebra::Real real_of(const AlgebraicNumber& a) {
   return t;
 }
 
-Rational dyadic(double v) {
-  Rational r(static_cast<long>(std::lround(v * 1024)), 1024);
+// A rational near v (a multiple of 2^-bits): a waypoint proposal, decided on exactly later.
+Rational dyadic(double v, int bits = 10) {
+  const double scale = std::ldexp(1.0, bits);
+  Rational r(mpz_class(std::nearbyint(v * scale)), mpz_class(1) << bits);
   r.canonicalize();
   return r;
 }
@@ -172,8 +174,34 @@ class Planner {
         x0 = bx0, x1 = bx1, y0 = by0, y1 = by1;
       }
     }
+    // proposals along thin channels: midpoints of each boundary vertex of the cell with its
+    // nearest ones (a channel's mouth), fine enough for channels far narrower than the grid
+    std::vector<Point> mouths;
+    if (cell != no_index && cell != no_index - 1) {
+      std::vector<std::array<double, 2>> corners;
+      for (std::size_t e : slice->cells()[cell].boundary)
+        for (std::size_t v : {slice->edges()[e].source, slice->edges()[e].target}) {
+          const auto& vertex = slice->vertices()[v];
+          if (!vertex.y_exact) continue;
+          corners.push_back({vertex.x.approximate(), vertex.y.approximate()});
+        }
+      for (std::size_t i = 0; i < corners.size(); ++i) {
+        std::vector<std::pair<double, std::size_t>> near;
+        for (std::size_t j = 0; j < corners.size(); ++j)
+          if (j != i)
+            near.emplace_back(std::hypot(corners[i][0] - corners[j][0], corners[i][1] - corners[j][1]), j);
+        std::sort(near.begin(), near.end());
+        for (std::size_t k = 0; k < near.size() && k < 4; ++k) {
+          if (near[k].first <= 0) continue;
+          const auto& c = corners[near[k].second];
+          Point p{dyadic((corners[i][0] + c[0]) / 2, 30), dyadic((corners[i][1] + c[1]) / 2, 30)};
+          if (cell_at(p) == cell) mouths.push_back(p);
+        }
+      }
+    }
     for (int grid : {10, 24}) {
       std::vector<Point> nodes{Point{from.x, from.y}, to};
+      for (const auto& p : mouths) nodes.push_back(p);
       for (int i = 1; i < grid; ++i)
         for (int j = 1; j < grid; ++j) {
           Point p{dyadic(x0 + (x1 - x0) * i / grid), dyadic(y0 + (y1 - y0) * j / grid)};
@@ -254,6 +282,42 @@ class Planner {
 
   // From `from` (current, last waypoint) to `to`, both in free cell `cell` of `interval`.
   bool within(const SlicedConfiguration& from, const SlicedConfiguration& to, std::size_t interval, std::size_t cell) {
+    const std::size_t mark = out_.waypoints.size();
+    if (direct(from, to, interval, cell)) return true;
+    // a detour: turn to another angle of the interval (its representative, the middle of the
+    // chart range between the two, quarter points), move there, and come back
+    std::vector<SlicedAngle> detours{space_.intervals()[interval].representative};
+    for (bool flip : {false, true}) {
+      auto a = w_of(from.angle, flip), b = w_of(to.angle, flip);
+      if (!a || !b) continue;
+      for (const Rational& f : {Rational(1, 2), Rational(1, 4), Rational(3, 4)})
+        detours.push_back(angle_of(Rational(*a + f * (*b - *a)), flip));
+    }
+    for (const auto& angle : detours) {
+      if (space_.locate(SlicedConfiguration{from.x, from.y, angle}).interval != interval &&
+          space_.locate(SlicedConfiguration{to.x, to.y, angle}).interval != interval)
+        continue;
+      rollback(mark);
+      // the goal's offset at the detour angle, else the cell's samples there
+      std::vector<Point> via{Point{to.x, to.y}};
+      for (const auto& p : cell_samples(angle, interval, cell)) via.push_back(p);
+      for (const auto& p : via) {
+        SlicedConfiguration middle{p.x, p.y, angle};
+        if (space_.locate(middle).kind != SlicedLocation::Kind::free) continue;
+        rollback(mark);
+        if (direct(from, middle, interval, cell) && direct(out_.waypoints.back(), to, interval, cell)) return true;
+      }
+    }
+    rollback(mark);
+    return false;
+  }
+
+  void rollback(std::size_t mark) {
+    out_.waypoints.resize(mark);
+    out_.through_half_turn.resize(mark - 1);
+  }
+
+  bool direct(const SlicedConfiguration& from, const SlicedConfiguration& to, std::size_t interval, std::size_t cell) {
     if (same_angle(from.angle, to.angle)) return in_slice(from, Point{to.x, to.y});
     bool flip = false;
     std::optional<Rational> a0 = w_of(from.angle, false), a1 = w_of(to.angle, false);

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <random>
 #include <string>
@@ -381,6 +382,25 @@ TEST(SlicedQueries, PathWithARotationInAWideHole) {
   SlicedConfiguration flat{0, 0, SlicedAngle{0, false}}, upright{0, 0, SlicedAngle{1, false}};
   SlicedPath p = space.path(flat, upright);
   expect_path_free(model, space, p, flat, upright);
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// The 12 x 2 peg of examples/models/peg-in-slot.json from its chamber below the 3 mm slot to its
+// insertion configuration above: a certified path (turned upright through the slot). The pair
+// takes about 10 s idle to build: with HIPAIR_SLOW_TESTS=1.
+TEST(SlicedQueries, PathOfThePegThroughTheSlot) {
+  if (!std::getenv("HIPAIR_SLOW_TESTS")) GTEST_SKIP() << "set HIPAIR_SLOW_TESTS=1 (about 10 s idle)";
+  ReadOptions options;
+  Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/peg-in-slot.json", options);
+  SlicedSpace space = SlicedSpace::build(model, "plate", "peg");
+  SlicedConfiguration below{0, 0, SlicedAngle{0, false}}, above{0, 22, SlicedAngle{0, false}};
+  SlicedPath p = space.path(below, above);
+  expect_path_free(model, space, p, below, above);
 }
 
 }  // namespace
