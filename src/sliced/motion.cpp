@@ -15,11 +15,13 @@ namespace algebra = cspace::algebra;
 using algebra::Real;
 
 // ---------------------------------------------------------------- polynomials in u
-using UPoly = std::vector<Rational>;   // ascending powers of u
+// Integer coefficients: the motion's inputs are scaled to integers first (lengths by a common
+// denominator L, the tangent w by its own W), so no rational canonicalisation happens here.
+using UPoly = std::vector<mpz_class>;   // ascending powers of u
 
-UPoly constant(const Rational& r) { return UPoly{r}; }
+UPoly constant(const mpz_class& r) { return UPoly{r}; }
 UPoly operator+(const UPoly& a, const UPoly& b) {
-  UPoly out(std::max(a.size(), b.size()), Rational(0));
+  UPoly out(std::max(a.size(), b.size()), mpz_class(0));
   for (std::size_t i = 0; i < a.size(); ++i) out[i] += a[i];
   for (std::size_t i = 0; i < b.size(); ++i) out[i] += b[i];
   return out;
@@ -32,22 +34,22 @@ UPoly operator-(const UPoly& a) {
 UPoly operator-(const UPoly& a, const UPoly& b) { return a + (-b); }
 UPoly operator*(const UPoly& a, const UPoly& b) {
   if (a.empty() || b.empty()) return {};
-  UPoly out(a.size() + b.size() - 1, Rational(0));
+  UPoly out(a.size() + b.size() - 1, mpz_class(0));
   for (std::size_t i = 0; i < a.size(); ++i)
     if (sgn(a[i]) != 0)
       for (std::size_t j = 0; j < b.size(); ++j) out[i + j] += a[i] * b[j];
   return out;
 }
-UPoly operator*(const Rational& k, const UPoly& a) { return constant(k) * a; }
-bool is_zero(const UPoly& a) {
-  return std::all_of(a.begin(), a.end(), [](const Rational& c) { return sgn(c) == 0; });
+UPoly operator*(const mpz_class& k, const UPoly& a) {
+  UPoly out = a;
+  for (auto& c : out) c *= k;
+  return out;
 }
-// Positive integer multiple (same signs and roots).
+bool is_zero(const UPoly& a) {
+  return std::all_of(a.begin(), a.end(), [](const mpz_class& c) { return sgn(c) == 0; });
+}
 algebra::Polynomial integer(const UPoly& p) {
-  mpz_class lcm = 1;
-  for (const auto& q : p) mpz_lcm(lcm.get_mpz_t(), lcm.get_mpz_t(), q.get_den_mpz_t());
-  algebra::Polynomial out;
-  for (const auto& q : p) out.push_back(q.get_num() * (lcm / q.get_den()));
+  algebra::Polynomial out = p;
   algebra::trim(out);
   return out;
 }
@@ -61,7 +63,7 @@ UPoly cross(const HVec& a, const HVec& b) { return a.x * b.y - a.y * b.x; }
 UPoly dot(const HVec& a, const HVec& b) { return a.x * b.x + a.y * b.y; }
 
 // Sign of a polynomial at an algebraic root.
-int sign_at(const UPoly& p, const Real& u) {
+int sign_of(const UPoly& p, const Real& u) {
   algebra::Polynomial q = integer(p);
   if (q.empty()) return 0;
   return algebra::sign_at(q, u);
@@ -82,6 +84,28 @@ struct Candidate {
 };
 
 Rational l1(const Point& p) { return abs(p.x) + abs(p.y); }
+
+// Certainly no root in [0, 1]: the Bernstein coefficients on [0, 1] all have one strict sign
+// (the polynomial is their convex combination there). b_k = sum_{i <= k} C(k, i)/C(n, i) p_i
+// (n the degree), scaled by n!: B_k = sum_{i <= k} C(k, i) i! (n - i)! p_i. Exact.
+bool no_root_in_unit_interval(const UPoly& p) {
+  if (p.empty()) return false;
+  const std::size_t n = p.size() - 1;
+  std::vector<mpz_class> factorial(n + 1, mpz_class(1));
+  for (std::size_t i = 1; i <= n; ++i) factorial[i] = factorial[i - 1] * static_cast<unsigned long>(i);
+  int sign = 0;
+  for (std::size_t k = 0; k <= n; ++k) {
+    mpz_class b = 0, choose = 1;   // C(k, i)
+    for (std::size_t i = 0; i <= k; ++i) {
+      if (i > 0) choose = choose * static_cast<unsigned long>(k - i + 1) / static_cast<unsigned long>(i);
+      if (sgn(p[i]) != 0) b += choose * factorial[i] * factorial[n - i] * p[i];
+    }
+    int s = sgn(b);
+    if (s == 0 || (sign != 0 && s != sign)) return false;
+    sign = s;
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -132,6 +156,24 @@ MotionChecker::MotionChecker(const Model& model, std::size_t fixed, std::size_t 
   };
   collect(model.parts[fixed], fixed, fixed_, Point{Rational(0), Rational(0)}, reach_fixed_);
   collect(model.parts[free], free, free_, pivot_, reach_free_);
+  // the common denominator of every coordinate used (points, arc centres and sector vectors)
+  lengths_denominator_ = 1;
+  auto add = [&](const Point& p) {
+    for (const Rational* r : {&p.x, &p.y}) mpz_lcm(lengths_denominator_.get_mpz_t(), lengths_denominator_.get_mpz_t(), r->get_den_mpz_t());
+  };
+  add(pivot_);
+  for (const Features* f : {&fixed_, &free_}) {
+    for (const auto& v : f->vertices) add(v.p);
+    for (const auto& s : f->segments) {
+      add(s.p0);
+      add(s.p1);
+    }
+    for (const auto& a : f->arcs) {
+      add(a.center);
+      add(a.from);
+      add(a.to);
+    }
+  }
 }
 
 MotionResult MotionChecker::first_contact(const StraightMotion& m) const {
@@ -143,20 +185,35 @@ MotionResult MotionChecker::first_contact(const StraightMotion& m) const {
     result.starts_apart = parts_apart(fixed_part, free_part, c, s, m.x0, m.y0);
     if (!result.starts_apart) return result;
   }
-  // u -> x, y, w; den = 1 + w^2; the rotation scaled by den: cn = +-(1 - w^2), sn = +-2 w
-  const UPoly x{m.x0, Rational(m.x1 - m.x0)}, y{m.y0, Rational(m.y1 - m.y0)}, w{m.w0, Rational(m.w1 - m.w0)};
-  const UPoly den = constant(1) + w * w;
-  UPoly cn = constant(1) - w * w, sn = Rational(2) * w;
+  // Lengths scaled by L (every coordinate of the features, the pivot and the motion an integer),
+  // the tangent w = (w_num(u)) / W; then den = W^2 + w_num^2 = W^2 (1 + w^2) and the rotation
+  // scaled by den: cn = +-(W^2 - w_num^2), sn = +-2 W w_num. Every quantity below is an integer
+  // polynomial in u, a positive multiple of the true one.
+  mpz_class L = lengths_denominator_;
+  for (const Rational* r : {&m.x0, &m.x1, &m.y0, &m.y1}) mpz_lcm(L.get_mpz_t(), L.get_mpz_t(), r->get_den_mpz_t());
+  mpz_class W = 1;
+  for (const Rational* r : {&m.w0, &m.w1}) mpz_lcm(W.get_mpz_t(), W.get_mpz_t(), r->get_den_mpz_t());
+  auto scaled = [](const Rational& r, const mpz_class& k) {
+    mpz_class out = r.get_num() * (k / r.get_den());
+    return out;
+  };
+  auto Z = [&](const Rational& r) { return scaled(r, L); };
+  const UPoly x{Z(m.x0), Z(Rational(m.x1 - m.x0))}, y{Z(m.y0), Z(Rational(m.y1 - m.y0))};
+  const UPoly w{scaled(m.w0, W), scaled(Rational(m.w1 - m.w0), W)};
+  const UPoly den = constant(W * W) + w * w;
+  UPoly cn = constant(W * W) - w * w, sn = mpz_class(2 * W) * w;
   if (m.flip) {
     cn = -cn;
     sn = -sn;
   }
-  // world points and vectors, all scaled by den
-  auto fixed_point = [&](const Point& p) { return HVec{p.x * den, p.y * den}; };
-  auto free_vector = [&](const Point& v) { return HVec{v.x * cn - v.y * sn, v.x * sn + v.y * cn}; };
+  const mpz_class L2 = L * L;
+  auto r2 = [&](const Arc& a) { return scaled(a.radius_squared, L2); };   // L^2 r^2: an integer (|L s - L c|^2)
+  // world points and vectors (times L), all scaled by den
+  auto fixed_point = [&](const Point& p) { return HVec{Z(p.x) * den, Z(p.y) * den}; };
+  auto free_vector = [&](const Point& v) { return HVec{Z(v.x) * cn - Z(v.y) * sn, Z(v.x) * sn + Z(v.y) * cn}; };
   auto free_point = [&](const Point& p) {
     HVec r = free_vector(p);
-    return HVec{r.x + (constant(pivot_.x) + x) * den, r.y + (constant(pivot_.y) + y) * den};
+    return HVec{r.x + (constant(Z(pivot_.x)) + x) * den, r.y + (constant(Z(pivot_.y)) + y) * den};
   };
   const UPoly den2 = den * den;
 
@@ -186,7 +243,7 @@ MotionResult MotionChecker::first_contact(const StraightMotion& m) const {
     c.contact = cross(q, d);
     UPoly along = dot(q, d), rest = dot(d, d) - dot(q, d);
     c.conditions = {along, rest};
-    c.valid = [along, rest](const Real& u) { return sign_at(along, u) >= 0 && sign_at(rest, u) >= 0; };
+    c.valid = [along, rest](const Real& u) { return sign_of(along, u) >= 0 && sign_of(rest, u) >= 0; };
     c.features = features;
     candidates.push_back(std::move(c));
   };
@@ -194,12 +251,12 @@ MotionResult MotionChecker::first_contact(const StraightMotion& m) const {
                         MotionContact features) {
     HVec q = v - centre;
     Candidate c;
-    c.contact = dot(q, q) - arc.radius_squared * den2;
+    c.contact = dot(q, q) - r2(arc) * den2;
     UPoly s1 = cross(from, q), s2 = cross(q, to);
     c.conditions = {s1, s2};
     bool reflex = arc.reflex, full = arc.full;
     c.valid = [s1, s2, reflex, full](const Real& u) {
-      return full || in_closed_sector(sign_at(s1, u), sign_at(s2, u), reflex, false);
+      return full || in_closed_sector(sign_of(s1, u), sign_of(s2, u), reflex, false);
     };
     c.features = features;
     candidates.push_back(std::move(c));
@@ -209,7 +266,7 @@ MotionResult MotionChecker::first_contact(const StraightMotion& m) const {
     HVec d = p1 - p0, q = centre - p0;
     UPoly k = cross(d, q);   // (centre - p0) . left normal of d, the normal n = (-d.y, d.x)
     Candidate c;
-    c.contact = k * k - arc.radius_squared * den2 * dot(d, d);
+    c.contact = k * k - r2(arc) * den2 * dot(d, d);
     UPoly along = dot(q, d), rest = dot(d, d) - dot(q, d);
     // direction from the centre to the foot: -sign(k) n; its cross signs with from and to
     HVec n{-d.y, d.x};
@@ -217,11 +274,11 @@ MotionResult MotionChecker::first_contact(const StraightMotion& m) const {
     c.conditions = {along, rest, k, from_n, n_to};
     bool reflex = arc.reflex, full = arc.full;
     c.valid = [along, rest, k, from_n, n_to, reflex, full](const Real& u) {
-      if (sign_at(along, u) < 0 || sign_at(rest, u) < 0) return false;
+      if (sign_of(along, u) < 0 || sign_of(rest, u) < 0) return false;
       if (full) return true;
-      int sigma = sign_at(k, u);
+      int sigma = sign_of(k, u);
       if (sigma == 0) return false;   // the centre on the line: not a tangency (r > 0)
-      return in_closed_sector(-sigma * sign_at(from_n, u), -sigma * sign_at(n_to, u), reflex, false);
+      return in_closed_sector(-sigma * sign_of(from_n, u), -sigma * sign_of(n_to, u), reflex, false);
     };
     c.features = features;
     candidates.push_back(std::move(c));
@@ -230,21 +287,21 @@ MotionResult MotionChecker::first_contact(const StraightMotion& m) const {
                      const HVec& to2, const Arc& a2, MotionContact features) {
     HVec n = c2 - c1;
     UPoly distance = dot(n, n);
-    UPoly e = distance - (a1.radius_squared + a2.radius_squared) * den2;
+    UPoly e = distance - mpz_class(r2(a1) + r2(a2)) * den2;
     Candidate c;
-    c.contact = e * e - Rational(4 * a1.radius_squared * a2.radius_squared) * den2 * den2;
+    c.contact = e * e - mpz_class(4 * r2(a1) * r2(a2)) * den2 * den2;
     UPoly s1a = cross(from1, n), s2a = cross(n, to1), s1b = cross(from2, n), s2b = cross(n, to2);
     c.conditions = {distance, e, s1a, s2a, s1b, s2b};
     const int bigger = a1.radius_squared > a2.radius_squared ? 1 : a1.radius_squared < a2.radius_squared ? 2 : 0;
     Arc first = a1, second = a2;
     c.valid = [=](const Real& u) {
-      if (sign_at(distance, u) == 0) return first.full && second.full;   // concentric equal circles
-      int external = sign_at(e, u) > 0;
+      if (sign_of(distance, u) == 0) return first.full && second.full;   // concentric equal circles
+      int external = sign_of(e, u) > 0;
       // direction of the contact point from each centre: +n or -n
       int from_first = external || bigger == 1 ? 1 : -1;
       int from_second = external ? -1 : bigger == 1 ? 1 : -1;
-      return in_closed_sector(from_first * sign_at(s1a, u), from_first * sign_at(s2a, u), first.reflex, first.full) &&
-             in_closed_sector(from_second * sign_at(s1b, u), from_second * sign_at(s2b, u), second.reflex, second.full);
+      return in_closed_sector(from_first * sign_of(s1a, u), from_first * sign_of(s2a, u), first.reflex, first.full) &&
+             in_closed_sector(from_second * sign_of(s1b, u), from_second * sign_of(s2b, u), second.reflex, second.full);
     };
     c.features = features;
     candidates.push_back(std::move(c));
@@ -306,6 +363,7 @@ MotionResult MotionChecker::first_contact(const StraightMotion& m) const {
       roots.push_back(Real::from_rational(Rational(0)));
       std::sort(roots.begin(), roots.end(), [](const Real& a, const Real& b) { return algebra::compare(a, b) < 0; });
     } else {
+      if (no_root_in_unit_interval(c.contact)) continue;
       algebra::Polynomial q = integer(c.contact);
       if (algebra::degree(q) < 1) continue;
       roots = algebra::real_roots(algebra::square_free_part(q), Rational(0), Rational(1));

@@ -78,6 +78,7 @@ class MotionChecker {
   Features fixed_, free_;
   Point pivot_;
   Rational reach_fixed_, reach_free_;
+  mpz_class lengths_denominator_;   ///< lcm of the denominators of every coordinate above
 };
 
 /// Does a rational placement of the free part (rotation (c, s) about its pivot, shift) leave
