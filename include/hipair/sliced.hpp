@@ -189,7 +189,9 @@ class SlicedSpace {
   struct Impl;
 
   /// \throws ModelError for unknown part names; GeometryError when `fixed_part` is not fixed,
-  /// `free_part` is not planar, or (with the cell structure) a part has arcs.
+  /// `free_part` is not planar, or (with the cell structure) a part has arcs — except when the
+  /// free part is a disc or concentric rings (full circles with one centre): its slices are
+  /// translates of one another, there is no critical angle, and the fixed part may have arcs.
   static SlicedSpace build(const Model& model, std::string_view fixed_part, std::string_view free_part,
                            const SlicedBuildOptions& options = {});
 

@@ -123,6 +123,19 @@ std::string kind_name(FeatureKind k) { return k == FeatureKind::vertex ? "vertex
 
 }  // namespace
 
+// Is the part invariant under every rotation about some point: every loop a full circle, all
+// with one centre (exact)?
+bool round_free_part(const Part& part) {
+  const Point* centre = nullptr;
+  for (const auto& loop : part.loops)
+    for (const auto& e : loop.edges) {
+      if (!e.is_full_circle()) return false;
+      if (centre && !(e.center.x == centre->x && e.center.y == centre->y)) return false;
+      centre = &e.center;
+    }
+  return centre != nullptr;
+}
+
 struct SlicedSpace::Impl {
   Model model;
   std::size_t fixed = 0, free = 0;
@@ -329,10 +342,16 @@ struct SlicedSpace::Impl {
   // ------------------------------------------------------------ the structure
   void build_structure() {
     auto start = Clock::now();
-    pair = sliced::polygonal_pair(model.parts[fixed], model.parts[free]);
     sliced::CriticalStatistics cs;
-    if (options.progress) options.progress("critical angles");
-    critical = sliced::critical_angles(*pair, cs);
+    if (round_free_part(model.parts[free])) {
+      // A disc (or concentric rings) turning about its pivot only moves its centre: the slice at
+      // theta is the slice at 0 translated by (c - pivot) - R(theta)(c - pivot). Its contact
+      // structure never changes: no critical angle, whatever the fixed part (arcs included).
+    } else {
+      pair = sliced::polygonal_pair(model.parts[fixed], model.parts[free]);
+      if (options.progress) options.progress("critical angles");
+      critical = sliced::critical_angles(*pair, cs);
+    }
     stats.candidate_polynomials = cs.polynomials;
     stats.candidate_roots = cs.roots;
     stats.irrelevant_roots = cs.irrelevant;

@@ -405,3 +405,60 @@ TEST(SlicedQueries, PathOfThePegThroughTheSlot) {
 
 }  // namespace
 }  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// A round peg (a disc of radius 4 whose centre is 1 mm off the pivot) in a round hole of radius
+// 6 and in a square hole of side 12: turning only moves the disc's centre, so every slice is a
+// translate of the slice at theta = 0 and there is no critical angle; the free space in the hole
+// is one solid torus (hand-checked: the centre within 2 mm of the hole's centre, resp. within
+// the square of half-side 1), outside the plate another. A disc of radius 6.01 does not fit.
+TEST(SlicedQueries, RoundPegInRoundAndSquareHoles) {
+  Random random(11);
+  const std::string plate = rectangle(-20, -20, 20, 20);
+  struct Case {
+    std::string hole;
+    Rational radius;
+    std::size_t components;
+  };
+  const std::vector<Case> cases{{circle(0, 0, 6), 4, 2}, {rectangle(-6, -6, 6, 6), 4, 2}, {circle(0, 0, 6), Rational(601, 100), 1}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE("hole " + c.hole + ", peg radius " + c.radius.get_str());
+    Model model = pair_model(plate + ", " + c.hole, circle(1, 0, c.radius), Point{0, 0});
+    SlicedSpace space = SlicedSpace::build(model, "fixed", "free");
+    EXPECT_TRUE(space.critical_angles().empty());
+    ASSERT_EQ(space.intervals().size(), 1u);
+    EXPECT_EQ(space.components(), c.components);
+    // point location against the oracle; the free cell is the hole's exactly when the disc's
+    // centre pivot + R(1, 0) + (x, y) lies in the hole's free region
+    int inside = 0;
+    for (int i = 0; i < 300; ++i) {
+      SlicedConfiguration q{random_rational(random, -3, 3), random_rational(random, -3, 3),
+                            SlicedAngle{random_rational(random, -4, 4, 13), random() % 7 == 0}};
+      SlicedLocation l = space.locate(q);
+      PartRelation expected = oracle(model, q);
+      ASSERT_EQ(l.kind == SlicedLocation::Kind::free, expected == PartRelation::apart);
+      ASSERT_EQ(l.kind == SlicedLocation::Kind::blocked, expected == PartRelation::overlapping);
+      if (l.kind == SlicedLocation::Kind::free) {
+        ++inside;
+        EXPECT_EQ(l.interval, 0u);
+        EXPECT_NE(l.cell, no_index);
+      }
+    }
+    if (c.components == 2) EXPECT_GT(inside, 20);
+  }
+  // paths in the round hole: the centre from (0, 0) (theta = 0, shift (-1, 0)) to (1/2, 3/2)
+  // (theta = pi/2, shift (1/2, 1/2)), and from the hole to outside: not connected
+  Model model = pair_model(plate + ", " + circle(0, 0, 6), circle(1, 0, 4), Point{0, 0});
+  SlicedSpace space = SlicedSpace::build(model, "fixed", "free");
+  SlicedConfiguration a{-1, 0, SlicedAngle{0, false}}, b{Rational(1, 2), Rational(1, 2), SlicedAngle{1, false}};
+  EXPECT_TRUE(space.connected(a, b));
+  expect_path_free(model, space, space.path(a, b), a, b);
+  SlicedConfiguration turned_round{-1, 0, SlicedAngle{0, true}};   // centre at (-2, 0): touching, not free
+  EXPECT_EQ(space.locate(turned_round).kind, SlicedLocation::Kind::contact);
+  EXPECT_EQ(space.path(a, SlicedConfiguration{30, 0, SlicedAngle{0, false}}).status, SlicedPath::Status::not_connected);
+}
+
+}  // namespace
+}  // namespace hipair
