@@ -18,6 +18,8 @@ std::string to_string(ClaimKind kind) {
     case ClaimKind::jam: return "jam";
     case ClaimKind::free_passage: return "free_passage";
     case ClaimKind::tolerance: return "tolerance";
+    case ClaimKind::planar_interference: return "planar_interference";
+    case ClaimKind::planar_clearance: return "planar_clearance";
   }
   return "?";
 }
@@ -193,13 +195,28 @@ ToleranceClaim tolerance_of(const JsonValue& body) {
   return t;
 }
 
+PlanarPose pose_of(const JsonValue& value) {
+  check_keys(value, {"part", "x", "y", "tangent", "centre"});
+  PlanarPose pose;
+  pose.part = text(require(value, "part"));
+  pose.x = rational(require(value, "x"));
+  pose.y = rational(require(value, "y"));
+  pose.tangent = rational(require(value, "tangent"));
+  if (const JsonValue* centre = value.find("centre")) {
+    std::string c = text(*centre);
+    if (c != "pi" && c != "0") fail(*centre, "centre is \"0\" or \"pi\"");
+    pose.half_turn = c == "pi";
+  }
+  return pose;
+}
+
 }  // namespace
 
 Certificate read_certificate(std::string_view json_text) {
   JsonValue root = model_detail::parse_json(json_text);
   Certificate c;
   check_keys(root, {"hipair_certificate", "claim", "statement", "model", "pair", "interference", "clearance", "jam",
-                    "free_passage", "tolerance"});
+                    "free_passage", "tolerance", "planar_interference", "planar_clearance"});
   const JsonValue& version = require(root, "hipair_certificate");
   if (!version.is_number() || version.text != "1") fail(version, "unsupported certificate version (expected 1)");
   std::string claim = text(require(root, "claim"));
@@ -208,6 +225,8 @@ Certificate read_certificate(std::string_view json_text) {
   else if (claim == "jam") c.claim = ClaimKind::jam;
   else if (claim == "free_passage") c.claim = ClaimKind::free_passage;
   else if (claim == "tolerance") c.claim = ClaimKind::tolerance;
+  else if (claim == "planar_interference") c.claim = ClaimKind::planar_interference;
+  else if (claim == "planar_clearance") c.claim = ClaimKind::planar_clearance;
   else fail(require(root, "claim"), "unknown claim '" + claim + "'");
   if (const JsonValue* statement = root.find("statement")) c.statement = text(*statement);
 
@@ -233,7 +252,8 @@ Certificate read_certificate(std::string_view json_text) {
   c.first = text(pair.items[0]);
   c.second = text(pair.items[1]);
 
-  for (const char* other : {"interference", "clearance", "jam", "free_passage", "tolerance"})
+  for (const char* other : {"interference", "clearance", "jam", "free_passage", "tolerance", "planar_interference",
+                            "planar_clearance"})
     if (other != claim && root.find(other)) fail(*root.find(other), "section '" + std::string(other) + "' does not belong to a " + claim + " claim");
   const JsonValue& body = require(root, claim.c_str());
   switch (c.claim) {
@@ -268,6 +288,22 @@ Certificate read_certificate(std::string_view json_text) {
     }
     case ClaimKind::tolerance:
       c.tolerance = tolerance_of(body);
+      break;
+    case ClaimKind::planar_interference: {
+      check_keys(body, {"pose", "point", "crossing"});
+      c.pose = pose_of(require(body, "pose"));
+      if (const JsonValue* point = body.find("point")) {
+        array(*point, 2);
+        c.witness_point = Point{rational(point->items[0]), rational(point->items[1])};
+      }
+      if (const JsonValue* cross = body.find("crossing")) c.witness_crossing = crossing_of(*cross);
+      if (bool(c.witness_point) == bool(c.witness_crossing)) fail(body, "give exactly one witness: 'point' or 'crossing'");
+      break;
+    }
+    case ClaimKind::planar_clearance:
+      check_keys(body, {"pose", "distance"});
+      c.pose = pose_of(require(body, "pose"));
+      c.distance = rational(require(body, "distance"));
       break;
     case ClaimKind::jam: {
       check_keys(body, {"driver", "follower", "direction", "trap", "cut", "lower_wall", "upper_wall"});

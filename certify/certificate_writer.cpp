@@ -161,6 +161,17 @@ std::string write_certificate(const Certificate& c) {
     case ClaimKind::tolerance:
       if (c.tolerance) out << tolerance(*c.tolerance);
       break;
+    case ClaimKind::planar_interference:
+    case ClaimKind::planar_clearance:
+      if (c.pose)
+        out << "    \"pose\": {\"part\": " << quoted(c.pose->part) << ", \"x\": " << number(c.pose->x) << ", \"y\": "
+            << number(c.pose->y) << ", \"tangent\": " << number(c.pose->tangent)
+            << (c.pose->half_turn ? ", \"centre\": \"pi\"" : "") << "}";
+      if (c.claim == ClaimKind::planar_clearance) out << ",\n    \"distance\": " << number(c.distance);
+      if (c.witness_point)
+        out << ",\n    \"point\": [" << number(c.witness_point->x) << ", " << number(c.witness_point->y) << "]";
+      if (c.witness_crossing) out << ",\n    \"crossing\": " << crossing(*c.witness_crossing);
+      break;
     case ClaimKind::jam:
       out << "    \"driver\": " << quoted(c.driver) << ",\n    \"follower\": " << quoted(c.follower)
           << ",\n    \"direction\": " << c.direction << ",\n    \"trap\": {\"driver\": " << interval(c.trap.driver);

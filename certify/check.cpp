@@ -5,6 +5,7 @@
 
 #include "certify/exact_geometry.hpp"
 #include "certify/interval_geometry.hpp"
+#include "certify/planar_check.hpp"
 #include "certify/tolerance_check.hpp"
 #include "core/sha256.hpp"
 #include "io/atomic_file.hpp"
@@ -507,6 +508,8 @@ VerificationResult check_certificate(const Certificate& certificate, const Model
       case ClaimKind::clearance: result.summary = check_clearance(certificate, model); break;
       case ClaimKind::jam: result.summary = check_jam(certificate, model); break;
       case ClaimKind::free_passage: result.summary = check_free_passage(certificate, model); break;
+      case ClaimKind::planar_interference:
+      case ClaimKind::planar_clearance: result.summary = check_planar(certificate, model); break;
       case ClaimKind::tolerance:
         reject("a tolerance certificate is checked against the model file's text (check_certificate_text, hipair-verify)");
     }

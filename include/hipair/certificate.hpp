@@ -32,7 +32,9 @@ enum class ClaimKind {
   clearance,     ///< at one exact configuration the pair is at least `distance` apart
   jam,           ///< driving the driver monotonically cannot pass a driver position
   free_passage,  ///< along a motion path over a driver range the pair stays `distance` apart
-  tolerance      ///< for every parameter vector of a box, a driven pair's channel never closes
+  tolerance,     ///< for every parameter vector of a box, a driven pair's channel never closes
+  planar_interference,  ///< a part free in the plane overlaps a fixed part at one exact pose (x, y, theta)
+  planar_clearance      ///< at one exact pose the free part is at least `distance` from the fixed part
 };
 
 /// "interference", "clearance", "jam", "free_passage".
@@ -48,6 +50,17 @@ struct ExactPosition {
   /// |theta - angle| (an irrational tangent is rounded). Checked by the verifier.
   std::optional<Rational> angle;
   std::optional<Rational> angle_error;
+};
+
+/// The exact pose of a part free in the plane (motion "planar") in planar claims: body point p
+/// goes to pivot + R(theta) (p - pivot) + (x, y), theta given by its half-angle tangent
+/// t = tan((theta - c)/2) with c = 0, or c = pi when `half_turn` (so that cos and sin are
+/// rational).
+struct PlanarPose {
+  std::string part;   ///< the planar part (the other part of the pair is fixed)
+  Rational x, y;      ///< mm
+  Rational tangent;
+  bool half_turn = false;
 };
 
 /// One boundary edge of a part, by index; `label` must equal the model edge's label.
@@ -176,7 +189,10 @@ struct Certificate {
 
   /// interference, clearance: the position of every moving part of the pair.
   std::map<std::string, ExactPosition> configuration;
-  /// interference: a point strictly inside both parts (world, mm), or a crossing.
+  /// planar_interference, planar_clearance: the free part's pose (the other part is fixed).
+  std::optional<PlanarPose> pose;
+
+  /// interference, planar_interference: a point strictly inside both parts (world, mm), or a crossing.
   std::optional<Point> witness_point;
   std::optional<CrossingWitness> witness_crossing;
 
@@ -240,6 +256,20 @@ std::optional<Certificate> certify_clearance(const Model& model, const std::stri
                                              const std::map<std::string, ExactPosition>& positions,
                                              std::optional<Rational> distance = std::nullopt,
                                              const CertifyContext& context = {});
+
+/// Certifies that the planar part `pose.part` overlaps the fixed part `fixed` at the exact pose
+/// (the 3-DOF counterpart of certify_interference): witness point or crossing, re-checked.
+/// \returns nullopt when they do not overlap there. \throws ModelError for unknown parts,
+/// GeometryError when `fixed` is not fixed or the posed part is not planar.
+std::optional<Certificate> certify_planar_interference(const Model& model, const std::string& fixed, const PlanarPose& pose,
+                                                       const CertifyContext& context = {});
+
+/// Certifies that at the exact pose the planar part is at least `distance` from the fixed part
+/// (absent: the largest certified lower bound found, rounded down to 6 significant digits).
+/// \returns nullopt when the parts touch or overlap there, or the bound cannot be certified.
+std::optional<Certificate> certify_planar_clearance(const Model& model, const std::string& fixed, const PlanarPose& pose,
+                                                    std::optional<Rational> distance = std::nullopt,
+                                                    const CertifyContext& context = {});
 
 /// A motion path for free passage: the follower coordinate as a polyline of the driver
 /// coordinate (rational vertices, rad or mm). Empty for a pair with a fixed part.

@@ -75,6 +75,11 @@ struct SlicedLocation {
 struct SlicedConnection {
   std::size_t left_cell = no_index;
   std::size_t right_cell = no_index;
+  /// A witness of the connection: the same offset (x, y) at an angle inside the left interval
+  /// and one inside the right interval; the pure rotation between them (through the half turn
+  /// when `through_half_turn`) is certified free (no vertex–edge contact line passes the offset).
+  SlicedConfiguration left_witness, right_witness;
+  bool through_half_turn = false;
 };
 
 /// One open interval of angles between two consecutive critical angles.
@@ -100,6 +105,61 @@ struct SlicedCrossing {
   /// Free cells of the left interval ending at the critical angle (no continuation found), and
   /// of the right interval starting there.
   std::vector<std::size_t> ending, starting;
+};
+
+/// A straight motion in (x, y, w): x and y the shift, w the half-angle tangent of the angle in
+/// the chart centred at 0 (w = tan(theta/2)) or, `through_half_turn`, at the half turn
+/// (w = tan((theta - pi)/2) = -1/t); all three are linear in the motion parameter u in [0, 1].
+/// \pre without `through_half_turn` neither end is the half turn; with it neither end is at
+/// theta = 0 (GeometryError otherwise).
+struct SlicedMotion {
+  SlicedConfiguration from, to;
+  bool through_half_turn = false;
+};
+
+/// A feature pair of a 3-DOF pair: a feature of the fixed part and one of the free part
+/// (FeatureIdentity::part indexes the model's parts).
+struct SlicedFeaturePair {
+  FeatureIdentity fixed;
+  FeatureIdentity free;
+  std::string label;   ///< "plate segment loop 1 edge 2 / peg vertex of loop 0 edge 3"
+};
+
+/// The first contact along a straight motion, exact: the least u in [0, 1] at which the parts
+/// touch (the closed parts meet), an algebraic number, with certified rational bounds.
+struct SlicedMotionCrossing {
+  /// none (free on all of [0, 1], ends included), crossing, or starts_in_contact (the parts are
+  /// not apart at u = 0).
+  CrossingStatus status = CrossingStatus::none;
+  AlgebraicNumber u;                ///< exact (status crossing)
+  Rational u_lower, u_upper;        ///< u_lower <= u <= u_upper, at most 2^-resolution_bits apart
+  std::vector<SlicedFeaturePair> features;   ///< every feature pair touching at u
+  SlicedConfiguration before;       ///< a rational configuration of the motion at u_lower (free)
+};
+
+/// A feature pair whose contact surface passes near a configuration: in the slice through the
+/// configuration, the distance of (x, y) from the pair's contact curve is the world distance
+/// of the two features there; certified bounds of it.
+struct SlicedNearFeature {
+  SlicedFeaturePair pair;
+  Rational distance_lower;   ///< certified: distance_lower <= distance <= distance_upper
+  Rational distance_upper;
+  bool exact = false;        ///< the comparison with the query's distance was decided exactly
+};
+
+/// A path through free space: straight motions (SlicedMotion) between consecutive waypoints,
+/// each certified free by first_crossing (status none).
+struct SlicedPath {
+  enum class Status {
+    found,           ///< waypoints from the first configuration to the second
+    not_free,        ///< an end is not a free configuration
+    not_connected,   ///< the ends lie in different components of the free space
+    not_found        ///< connected, but the planner found no certified path (within its budget)
+  };
+  Status status = Status::not_free;
+  std::vector<SlicedConfiguration> waypoints;
+  std::vector<bool> through_half_turn;   ///< per motion (waypoints.size() - 1)
+  std::size_t motions_checked = 0;       ///< straight motions certified or refused while planning
 };
 
 /// Options of a sliced build.
@@ -129,7 +189,9 @@ class SlicedSpace {
   struct Impl;
 
   /// \throws ModelError for unknown part names; GeometryError when `fixed_part` is not fixed,
-  /// `free_part` is not planar, or (with the cell structure) a part has arcs.
+  /// `free_part` is not planar, or (with the cell structure) a part has arcs — except when the
+  /// free part is a disc or concentric rings (full circles with one centre): its slices are
+  /// translates of one another, there is no critical angle, and the fixed part may have arcs.
   static SlicedSpace build(const Model& model, std::string_view fixed_part, std::string_view free_part,
                            const SlicedBuildOptions& options = {});
 
@@ -161,6 +223,25 @@ class SlicedSpace {
   std::size_t component_of(const SlicedConfiguration& configuration) const;
 
   const SlicedStatistics& statistics() const;
+
+  // ---------------------------------------------------------------- queries (3-D)
+
+  /// The first contact along a straight motion (exact; arcs supported). Never misses a touch:
+  /// the parts are apart on [0, u) (see src/sliced/motion.hpp for why).
+  SlicedMotionCrossing first_crossing(const SlicedMotion& motion, const CrossingOptions& options = {}) const;
+  /// Is the whole closed motion free (apart at every u in [0, 1])? Exact.
+  bool motion_free(const SlicedMotion& motion) const;
+
+  /// The feature pairs (vertex–edge, vertex–arc, segment–arc, arc–arc: the contact surfaces of
+  /// the 3-DOF C-space) whose features may lie within `distance` (mm) of each other at the
+  /// configuration: every pair whose certified distance lower bound is <= `distance`, nearest
+  /// first. \pre distance >= 0.
+  std::vector<SlicedNearFeature> features_near(const SlicedConfiguration& configuration,
+                                               const Rational& distance) const;
+
+  /// A path through free space from `a` to `b` (needs the cell structure): waypoints whose
+  /// straight motions are each certified free.
+  SlicedPath path(const SlicedConfiguration& a, const SlicedConfiguration& b) const;
 
  private:
   std::shared_ptr<Impl> impl_;

@@ -88,7 +88,33 @@ int run(const CertifyArguments& arguments) {
   if (!arguments.distance.empty()) distance = value_of(arguments.distance, false, "--distance");
   std::optional<Certificate> certificate;
   std::string failure;
-  if (arguments.claim == "interference" || arguments.claim == "clearance") {
+  const Part* planar = a.motion.kind == Motion::Kind::planar ? &a : b.motion.kind == Motion::Kind::planar ? &b : nullptr;
+  if (planar && (arguments.claim == "interference" || arguments.claim == "clearance")) {
+    // a part free in the plane: its pose (x, y, angle) from the model's initial configuration
+    // or --at PART=X,Y,ANGLE; the angle is rounded to an exact half-angle tangent
+    Rational x = planar->initial.x, y = planar->initial.y, angle = planar->initial.angle;
+    for (const std::string& assignment : arguments.at) {
+      auto equals = assignment.find('=');
+      if (equals == std::string::npos || assignment.substr(0, equals) != planar->name)
+        throw ModelError("", "--at expects " + planar->name + "=X,Y,ANGLE for the planar part, got '" + assignment + "'");
+      std::string rest = assignment.substr(equals + 1);
+      auto c1 = rest.find(','), c2 = c1 == std::string::npos ? c1 : rest.find(',', c1 + 1);
+      if (c2 == std::string::npos) throw ModelError("", "--at expects " + planar->name + "=X,Y,ANGLE, got '" + assignment + "'");
+      x = value_of(rest.substr(0, c1), false, "--at");
+      y = value_of(rest.substr(c1 + 1, c2 - c1 - 1), false, "--at");
+      angle = value_of(rest.substr(c2 + 1), true, "--at");
+    }
+    ExactPosition rotation = exact_position_from_angle(angle);
+    PlanarPose pose{planar->name, x, y, rotation.value, rotation.half_turn};
+    const std::string& fixed = planar == &a ? b.name : a.name;
+    if (arguments.claim == "interference") {
+      certificate = certify_planar_interference(model, fixed, pose, context);
+      failure = "the parts do not overlap there";
+    } else {
+      certificate = certify_planar_clearance(model, fixed, pose, distance, context);
+      failure = "the parts touch or overlap there, or are closer than the distance";
+    }
+  } else if (arguments.claim == "interference" || arguments.claim == "clearance") {
     std::map<std::string, Rational> values;
     for (const Part* part : {&a, &b}) values[part->name] = coordinate(*part);
     for (const std::string& assignment : arguments.at) {
@@ -180,7 +206,7 @@ void register_certify(CLI::App& app, Action& action) {
   command->add_option("--out", arguments->out, "certificate file to write (JSON)")->required();
   command->add_option("--pair", arguments->pair, "A:B (default: the model's first pair)");
   command->add_option("--set", arguments->overrides, "override a parameter: NAME=VALUE (repeatable)");
-  command->add_option("--at", arguments->at, "interference/clearance: PART=VALUE, angle in rad (or NNdeg) or offset in mm "
+  command->add_option("--at", arguments->at, "interference/clearance: PART=VALUE, angle in rad (or NNdeg) or offset in mm (a planar part: PART=X,Y,ANGLE) "
                                              "(default: the initial configuration)");
   command->add_option("--distance", arguments->distance, "clearance/free: the clearance to certify (mm; default: found)");
   command->add_option("--driver", arguments->driver, "jam/free: the driven part (default: the pair's first moving part)");

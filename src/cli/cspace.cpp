@@ -43,6 +43,7 @@ struct CSpaceCommandOptions {
   unsigned tiles = 0;
   std::size_t slices = 0;
   bool plane_witnesses = false;
+  std::vector<std::size_t> full_slices;   // 3-DOF pairs: slices drawn at full size
 };
 
 using nlohmann::json;
@@ -325,6 +326,7 @@ int run(const CSpaceCommandOptions& options) {
     if (options.stats) print_sliced_statistics(space);
     if (!options.svg.empty()) {
       render::SlicedSvgOptions svg;
+      svg.full_size = options.full_slices;
       svg.title = model.name + ": sliced C-space of " + space.free_part() + " against " + space.fixed_part() + " (" +
                   std::to_string(space.critical_angles().size()) + " critical angles, " +
                   std::to_string(space.intervals().size()) + " slices, " + std::to_string(space.components()) +
@@ -390,6 +392,10 @@ void register_cspace(CLI::App& app, Action& action) {
   command->add_option("--svg", options->svg, "SVG picture (blocked shaded, contact curves coloured by feature pair; 3-DOF pairs: a stack of slices)");
   command->add_option("--json", options->json, "JSON: cells, edges (feature pair, exact polynomial), vertices; 3-DOF pairs: critical angles, slices, free cells, crossings, components");
   command->add_flag("--stats", options->stats, "Print counts and times per stage");
+  command->add_option("--full-slices", options->full_slices,
+                      "3-DOF pairs: slices (indices, in order of the angle) drawn again at full size below the stack "
+                      "(default: up to two with the most free cells)")
+      ->delimiter(',');
   command->add_flag("--spurious", options->spurious, "Also draw spurious edges (curves through free or blocked space)");
   command->add_flag("--aggregated", options->aggregated, "Use CGAL's aggregated insertion (for measurements)");
   command->add_option("--region", options->region,

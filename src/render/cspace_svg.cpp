@@ -72,6 +72,19 @@ class Painter {
     chart_x_ = x_range_;
     chart_y_ = y_range_;
     zoom_to_path();
+    if (options_.window) {
+      const auto& w = *options_.window;
+      x_range_.lo = std::max(chart_x_.lo, w[0]);
+      x_range_.hi = std::min(chart_x_.hi, w[1]);
+      if (dimension_ == 2) {
+        y_range_.lo = std::max(chart_y_.lo, w[2]);
+        y_range_.hi = std::min(chart_y_.hi, w[3]);
+      }
+      if (!(x_range_.lo < x_range_.hi) || !(y_range_.lo < y_range_.hi)) {
+        x_range_ = chart_x_;
+        y_range_ = chart_y_;
+      }
+    }
     const double margin = 60;
     double height = dimension_ == 2 ? plot_size : 60;
     plot_height_ = height;
@@ -87,7 +100,7 @@ class Painter {
     touching_edges_.clear();
     touching_vertices_ = 0;
     visible_pairs_.clear();
-    const double legend_text = 6;
+    const double legend_text = options_.legend_text_size;
     auto [legend_width, legend_height] = io::SvgWriter::legend_size(entries, legend_text);
     double right = plot_size + 15 + legend_width + 10;
     double bottom = std::min(-margin, height - legend_height - 10);
@@ -408,11 +421,14 @@ class Painter {
     };
     bool x_rotation = first.x_kind == AxisKind::rotation;
     ticks(true, x_range_, x_rotation);
-    svg.text(plot_size / 2, -26, space_.x_part() + (x_rotation ? " angle (deg)" : " offset (mm)"), 8);
+    svg.text(plot_size / 2, -26,
+             options_.x_axis_label.empty() ? space_.x_part() + (x_rotation ? " angle (deg)" : " offset (mm)") : options_.x_axis_label, 8);
     if (dimension_ == 2) {
       bool y_rotation = first.y_kind == AxisKind::rotation;
       ticks(false, y_range_, y_rotation);
-      svg.text(-30, plot_height_ + 8, space_.y_part() + (y_rotation ? " angle (deg)" : " offset (mm)"), 8, "start");
+      svg.text(-30, plot_height_ + 8,
+               options_.y_axis_label.empty() ? space_.y_part() + (y_rotation ? " angle (deg)" : " offset (mm)") : options_.y_axis_label,
+               8, "start");
     }
   }
 
@@ -508,11 +524,13 @@ class Painter {
     for (const auto& [kind, pairs] : by_kind) {
       io::SvgStyle swatch{"none", palette[static_cast<std::size_t>(kind) % (sizeof(palette) / sizeof(palette[0]))]};
       swatch.stroke_width = 1.5;
-      entries.push_back({swatch, std::string(to_string(kind)) + " (" + std::to_string(pairs.size()) + "):"});
-      for (std::size_t i = 0; i < pairs.size() && i < max_pairs_per_kind; ++i)
+      entries.push_back({swatch, std::string(to_string(kind)) + " (" + std::to_string(pairs.size()) + ")" +
+                                     (options_.legend_pairs_per_kind > 0 ? ":" : "")});
+      const std::size_t listed = options_.legend_pairs_per_kind;
+      for (std::size_t i = 0; i < pairs.size() && i < listed; ++i)
         entries.push_back({swatch, "  " + shortened(pairs_[pairs[i]].label)});
-      if (pairs.size() > max_pairs_per_kind)
-        entries.push_back({io::SvgStyle{"none", "none"}, "  +" + std::to_string(pairs.size() - max_pairs_per_kind) + " more"});
+      if (listed > 0 && pairs.size() > listed)
+        entries.push_back({io::SvgStyle{"none", "none"}, "  +" + std::to_string(pairs.size() - listed) + " more"});
     }
     return entries;
   }

@@ -9,6 +9,8 @@
 
 #include <hipair/cspace.hpp>
 
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +39,14 @@ struct CSpaceSvgOptions {
   std::vector<CSpacePathPoint> path;
   bool show_spurious = false;     ///< also draw spurious edges (thin, grey)
   std::string title;
+  /// Axis names replacing "<part> offset (mm)" / "<part> angle (deg)" (empty: those).
+  std::string x_axis_label, y_axis_label;
+  /// A plotted window in display units (deg or mm): x_lo, x_hi, y_lo, y_hi (within the charts'
+  /// range); a motion path's zoom applies when absent.
+  std::optional<std::array<double, 4>> window;
+  /// Legend: feature pairs listed per kind of contact (0: the kinds only), and its text size.
+  std::size_t legend_pairs_per_kind = 3;
+  double legend_text_size = 6;
 };
 
 /// The SVG document of the C-space.

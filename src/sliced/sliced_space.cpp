@@ -8,6 +8,8 @@
 #include <hipair/overlap.hpp>
 
 #include "sliced/critical_angles.hpp"
+#include "sliced/motion.hpp"
+#include "sliced/nearby.hpp"
 #include "core/exact_sqrt.hpp"
 
 #include <algorithm>
@@ -121,6 +123,19 @@ std::string kind_name(FeatureKind k) { return k == FeatureKind::vertex ? "vertex
 
 }  // namespace
 
+// Is the part invariant under every rotation about some point: every loop a full circle, all
+// with one centre (exact)?
+bool round_free_part(const Part& part) {
+  const Point* centre = nullptr;
+  for (const auto& loop : part.loops)
+    for (const auto& e : loop.edges) {
+      if (!e.is_full_circle()) return false;
+      if (centre && !(e.center.x == centre->x && e.center.y == centre->y)) return false;
+      centre = &e.center;
+    }
+  return centre != nullptr;
+}
+
 struct SlicedSpace::Impl {
   Model model;
   std::size_t fixed = 0, free = 0;
@@ -128,6 +143,7 @@ struct SlicedSpace::Impl {
   Rational bound;
   SlicedBuildOptions options;
   std::optional<sliced::PolygonalPair> pair;
+  std::optional<sliced::MotionChecker> motion;
   std::vector<sliced::Critical> critical;
   std::vector<CriticalAngle> critical_public;
   std::vector<SlicedInterval> intervals;
@@ -151,14 +167,24 @@ struct SlicedSpace::Impl {
     const Part& a = model.parts[fixed];
     const Part& b = model.parts[free];
     std::string limits = "[" + quoted(-bound) + ", " + quoted(bound) + "]";
+    // the slice's parts carry the pair's names (legends and labels read "plate ... / peg ...")
+    auto json_string = [](const std::string& name) {
+      std::string out = "\"";
+      for (char ch : name) {
+        if (ch == '"' || ch == '\\') out += '\\';
+        if (static_cast<unsigned char>(ch) >= 0x20) out += ch;
+      }
+      return out + "\"";
+    };
+    const std::string first = json_string(a.name), second = json_string(b.name);
     std::string text = R"({ "hipair": 1, "name": "slice", "parts": [
-      { "name": "fixed", "motion": { "translation": { "direction": [-1, 0], "limits": )" +
+      { "name": )" + first + R"(, "motion": { "translation": { "direction": [-1, 0], "limits": )" +
                        limits + R"( } }, "loops": [ )" + loops_json(a, b.motion.pivot, Rational(1), Rational(0)) + R"( ] },
-      { "name": "free", "motion": { "translation": { "direction": [0, 1], "limits": )" +
+      { "name": )" + second + R"(, "motion": { "translation": { "direction": [0, 1], "limits": )" +
                        limits + R"( } }, "loops": [ )" + loops_json(b, b.motion.pivot, c, s) + R"( ] } ],
-      "pairs": [ { "parts": ["fixed", "free"] } ] })";
+      "pairs": [ { "parts": [)" + first + ", " + second + R"(] } ] })";
     Model slice_model = read_model(text, "<slice>");
-    auto space = std::make_shared<const CSpace>(CSpace::build(slice_model, "fixed", "free"));
+    auto space = std::make_shared<const CSpace>(CSpace::build(slice_model, a.name, b.name));
     std::lock_guard<std::mutex> lock(mutex);
     ++stats.slices_built;
     stats.seconds_slices += seconds_since(start);
@@ -316,10 +342,16 @@ struct SlicedSpace::Impl {
   // ------------------------------------------------------------ the structure
   void build_structure() {
     auto start = Clock::now();
-    pair = sliced::polygonal_pair(model.parts[fixed], model.parts[free]);
     sliced::CriticalStatistics cs;
-    if (options.progress) options.progress("critical angles");
-    critical = sliced::critical_angles(*pair, cs);
+    if (round_free_part(model.parts[free])) {
+      // A disc (or concentric rings) turning about its pivot only moves its centre: the slice at
+      // theta is the slice at 0 translated by (c - pivot) - R(theta)(c - pivot). Its contact
+      // structure never changes: no critical angle, whatever the fixed part (arcs included).
+    } else {
+      pair = sliced::polygonal_pair(model.parts[fixed], model.parts[free]);
+      if (options.progress) options.progress("critical angles");
+      critical = sliced::critical_angles(*pair, cs);
+    }
     stats.candidate_polynomials = cs.polynomials;
     stats.candidate_roots = cs.roots;
     stats.irrelevant_roots = cs.irrelevant;
@@ -390,7 +422,7 @@ struct SlicedSpace::Impl {
       crossing.left_interval = (i + n - 1) % n;
       crossing.right_interval = i;
       std::set<std::size_t> left_done, right_done;
-      std::set<std::pair<std::size_t, std::size_t>> links;
+      std::map<std::pair<std::size_t, std::size_t>, SlicedConnection> links;
       const std::size_t left_count = intervals[crossing.left_interval].free_cells.size();
       const std::size_t right_count = intervals[crossing.right_interval].free_cells.size();
       for (int round = 0; round < 4 && (left_done.size() < left_count || right_done.size() < right_count); ++round) {
@@ -416,12 +448,16 @@ struct SlicedSpace::Impl {
           std::size_t a = match(crossing.left_interval, *ls, lc), b = match(crossing.right_interval, *rs, rc);
           left_done.insert(a);
           right_done.insert(b);
-          links.emplace(a, b);
+          SlicedConnection link{a, b, SlicedConfiguration{q.x, q.y, nr.left}, SlicedConfiguration{q.x, q.y, nr.right}, nr.flip};
+          link.left_witness.angle.t.canonicalize();   // (dyadic refinement leaves fractions unreduced)
+          link.right_witness.angle.t.canonicalize();
+          links.emplace(std::make_pair(a, b), link);
         }
         if (round >= 1 && links.size() == before) break;   // the rest end or start here
       }
-      for (const auto& [a, b] : links) {
-        crossing.connections.push_back(SlicedConnection{a, b});
+      for (const auto& [ab, link] : links) {
+        const auto [a, b] = ab;
+        crossing.connections.push_back(link);
         uf.unite(first_node[crossing.left_interval] + a, first_node[crossing.right_interval] + b);
       }
       for (std::size_t a = 0; a < left_count; ++a)
@@ -498,6 +534,7 @@ SlicedSpace SlicedSpace::build(const Model& model, std::string_view fixed_part, 
   impl->options = options;
   // every contact translation d = a - pivot - R (b - pivot) has |d|_inf <= reach(a) + reach(b)
   impl->bound = reach(a, b.motion.pivot) + reach(b, b.motion.pivot) + 2;
+  impl->motion.emplace(impl->model, *fixed, *free);
   if (options.cell_structure) impl->build_structure();
   impl->stats.seconds_total = seconds_since(start);
   SlicedSpace out;
@@ -534,6 +571,107 @@ std::size_t SlicedSpace::component_of(const SlicedConfiguration& q) const {
   auto [interval, cell] = impl_->node_of(q);
   if (interval == no_index) return no_index;
   return impl_->intervals[interval].free_cells[cell].component;
+}
+
+namespace {
+
+std::string feature_text(const Model& model, const FeatureIdentity& id) {
+  std::string out = model.parts[id.part].name + " ";
+  if (id.kind == FeatureKind::vertex) return out + "vertex of loop " + std::to_string(id.loop) + " edge " + std::to_string(id.edge);
+  const std::string& label = model.parts[id.part].loops[id.loop].edges[id.edge].label;
+  out += (id.kind == FeatureKind::arc ? "arc" : "segment");
+  out += " loop " + std::to_string(id.loop) + " edge " + std::to_string(id.edge);
+  if (!label.empty()) out += " (" + label + ")";
+  return out;
+}
+
+// The motion's chart coordinate of an end.
+Rational chart_w(SlicedAngle angle, bool flip, const char* which) {
+  angle.t.canonicalize();
+  if (!flip) {
+    if (angle.half_turn)
+      throw GeometryError(std::string("3-DOF motion: its ") + which +
+                          " is the half turn; give the motion through_half_turn (the chart centred at pi)");
+    return angle.t;
+  }
+  if (angle.half_turn) return Rational(0);
+  if (sgn(angle.t) == 0)
+    throw GeometryError(std::string("3-DOF motion: its ") + which +
+                        " is at theta = 0, outside the chart centred at the half turn (through_half_turn)");
+  return Rational(-1 / angle.t);
+}
+
+SlicedAngle angle_of_w(const Rational& w, bool flip) {
+  if (!flip) return SlicedAngle{w, false};
+  if (sgn(w) == 0) return SlicedAngle{Rational(0), true};
+  return SlicedAngle{Rational(-1 / w), false};
+}
+
+SlicedFeaturePair sliced_feature_pair(const Model& model, const FeatureIdentity& fixed, const FeatureIdentity& free) {
+  return SlicedFeaturePair{fixed, free, feature_text(model, fixed) + " / " + feature_text(model, free)};
+}
+
+}  // namespace
+
+SlicedMotionCrossing SlicedSpace::first_crossing(const SlicedMotion& motion, const CrossingOptions& options) const {
+  sliced::StraightMotion m;
+  m.flip = motion.through_half_turn;
+  m.x0 = motion.from.x;
+  m.y0 = motion.from.y;
+  m.w0 = chart_w(motion.from.angle, m.flip, "start");
+  m.x1 = motion.to.x;
+  m.y1 = motion.to.y;
+  m.w1 = chart_w(motion.to.angle, m.flip, "end");
+  for (Rational* r : {&m.x0, &m.y0, &m.x1, &m.y1}) r->canonicalize();
+  sliced::MotionResult r = impl_->motion->first_contact(m);
+  SlicedMotionCrossing out;
+  if (!r.starts_apart) {
+    out.status = CrossingStatus::starts_in_contact;
+    out.before = motion.from;
+    return out;
+  }
+  if (!r.found) {
+    out.u_lower = out.u_upper = 1;
+    out.before = motion.to;
+    return out;
+  }
+  out.status = CrossingStatus::crossing;
+  Rational width = Rational(1) / Rational(mpz_class(1) << options.resolution_bits);
+  Real u = r.u;
+  if (!u.exact) algebra::refine_dyadically(u, width);
+  out.u.polynomial = u.polynomial;
+  out.u.lower = u.lower;
+  out.u.upper = u.upper;
+  out.u.exact = u.exact;
+  out.u.lower.canonicalize();
+  out.u.upper.canonicalize();
+  out.u_lower = out.u.lower;
+  out.u_upper = u.exact ? out.u.lower : out.u.upper;
+  Rational before = u.exact ? Rational(out.u_lower - width) : out.u_lower;   // < u: free
+  if (sgn(before) < 0) before = 0;
+  auto lerp = [&](const Rational& a, const Rational& b) { return Rational(a + before * (b - a)); };
+  out.before = SlicedConfiguration{lerp(m.x0, m.x1), lerp(m.y0, m.y1), angle_of_w(lerp(m.w0, m.w1), m.flip)};
+  for (const auto& c : r.contacts) out.features.push_back(sliced_feature_pair(impl_->model, c.fixed, c.free));
+  return out;
+}
+
+bool SlicedSpace::motion_free(const SlicedMotion& motion) const {
+  return first_crossing(motion, CrossingOptions{4}).status == CrossingStatus::none;
+}
+
+std::vector<SlicedNearFeature> SlicedSpace::features_near(const SlicedConfiguration& q, const Rational& distance) const {
+  if (sgn(distance) < 0) throw GeometryError("3-DOF pair: features_near needs a distance >= 0");
+  auto found = sliced::near_features(impl_->model, impl_->fixed, impl_->free, q, distance);
+  std::vector<SlicedNearFeature> out;
+  for (const auto& f : found) {
+    SlicedNearFeature n;
+    n.pair = sliced_feature_pair(impl_->model, f.fixed, f.free);
+    n.distance_lower = f.lower;
+    n.distance_upper = f.upper;
+    n.exact = f.exact;
+    out.push_back(std::move(n));
+  }
+  return out;
 }
 
 bool SlicedSpace::connected(const SlicedConfiguration& a, const SlicedConfiguration& b) const {

@@ -42,6 +42,8 @@ bases = [
     ("ratchet-jam.json", "ratchet.json"),
     ("geneva-interference.json", "geneva.json"),
     ("follower-guide-free.json", "cam-follower.json"),
+    ("peg-planar-clearance.json", "peg-in-hole.json"),
+    ("peg-planar-interference.json", "peg-in-hole.json"),
 ]
 for name, model in bases:
     expected.append((name, MODELS + model, "valid", name))
@@ -139,6 +141,20 @@ mutate("lever-clearance.json", "lever-stop.json", "m28-unknown-part.json", "the 
        set_path(["pair"], ["leverr", "stop"]))
 mutate("lever-clearance.json", "lever-stop.json", "m29-not-a-rational.json", "not an exact rational",
        set_path(["clearance", "distance"], "two"))
+
+# Planar claims (a part free in the plane at an exact pose).
+mutate("peg-planar-clearance.json", "peg-in-hole.json", "p01-planar-pose-moved.json", "less than the claimed",
+       set_path(["planar_clearance", "pose", "x"], "3/2"))
+mutate("peg-planar-clearance.json", "peg-in-hole.json", "p02-planar-clearance-too-large.json", "less than the claimed",
+       set_path(["planar_clearance", "distance"], "11/10"))
+mutate("peg-planar-interference.json", "peg-in-hole.json", "p03-planar-point-outside.json",
+       "is not strictly inside part 'peg' (it lies outside)", set_path(["planar_interference", "point"], ["-8", "-8"]))
+mutate("peg-planar-interference.json", "peg-in-hole.json", "p04-planar-pose-centred.json", "is not strictly inside part",
+       set_path(["planar_interference", "pose", "x"], "0"))
+mutate("peg-planar-interference.json", "peg-in-hole.json", "p05-planar-part-not-planar.json",
+       "is not free in the plane", set_path(["planar_interference", "pose", "part"], "plate"))
+mutate("peg-planar-clearance.json", "peg-in-hole.json", "p06-planar-pose-incomplete.json", "missing key 'y'",
+       lambda c: c["planar_clearance"]["pose"].pop("y"))
 
 with open(os.path.join(HERE, "EXPECTED.txt"), "w") as f:
     f.write("# certificate | model (relative to the repository) | expected: valid, or a substring of the reason | base\n")
