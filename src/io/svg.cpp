@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 namespace hipair::io {
 
@@ -298,6 +299,31 @@ double nice_length(double approximate) {
   double mantissa = approximate / power;
   double nice = mantissa < 1.5 ? 1 : mantissa < 3.5 ? 2 : mantissa < 7.5 ? 5 : 10;
   return nice * power;
+}
+
+namespace {
+
+// The attribute `name="..."` of the first <svg> tag of `document`, as a number (0 when absent).
+double svg_attribute(const std::string& document, const std::string& name) {
+  std::size_t tag = document.find("<svg");
+  if (tag == std::string::npos) return 0;
+  std::size_t end = document.find('>', tag);
+  std::size_t at = document.find(" " + name + "=\"", tag);
+  if (at == std::string::npos || at > end) return 0;
+  return std::atof(document.c_str() + at + name.size() + 3);
+}
+
+}  // namespace
+
+std::string nested_svg(const std::string& document, double x, double y, double width, double* height) {
+  std::size_t tag = document.find("<svg");
+  std::size_t view = tag == std::string::npos ? std::string::npos : document.find(" viewBox=", tag);
+  if (tag == std::string::npos || view == std::string::npos)
+    throw GeometryError("internal: the slice renderer did not produce an <svg> element");
+  double w = svg_attribute(document, "width"), h = svg_attribute(document, "height");
+  *height = w > 0 ? width * h / w : width;
+  return "<svg x=\"" + format_number(x) + "\" y=\"" + format_number(y) + "\" width=\"" + format_number(width) +
+         "\" height=\"" + format_number(*height) + "\"" + document.substr(view);
 }
 
 }  // namespace hipair::io

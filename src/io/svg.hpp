@@ -55,6 +55,12 @@ std::string escape_xml(std::string_view text);
 /// Formats a coordinate compactly (up to 4 decimals, no trailing zeros, no "-0").
 std::string format_number(double value);
 
+/// A whole SVG document (as SvgWriter writes it) placed as a nested <svg> element at (x, y) with
+/// the given width: the XML declaration is dropped and the outer size is replaced by the
+/// placement; `*height` receives the placed height (the document's aspect ratio kept). Stacks of
+/// C-space slices are drawn this way, one panel per slice.
+std::string nested_svg(const std::string& document, double x, double y, double width, double* height);
+
 /// Builds one SVG document. The viewBox is the world box (y up, flipped for SVG).
 class SvgWriter {
  public:

@@ -11,30 +11,6 @@
 #include <set>
 
 namespace hipair::render {
-namespace {
-
-double attribute(const std::string& document, const std::string& name) {
-  std::size_t tag = document.find("<svg");
-  if (tag == std::string::npos) return 0;
-  std::size_t end = document.find('>', tag);
-  std::size_t at = document.find(" " + name + "=\"", tag);
-  if (at == std::string::npos || at > end) return 0;
-  return std::atof(document.c_str() + at + name.size() + 3);
-}
-
-// A whole SVG document placed as a nested <svg> at (x, y) with the given width.
-std::string nested(const std::string& document, double x, double y, double width, double* height) {
-  std::size_t tag = document.find("<svg");
-  std::size_t view = document.find(" viewBox=", tag);
-  if (tag == std::string::npos || view == std::string::npos)
-    throw GeometryError("internal: the slice renderer did not produce an <svg> element");
-  double w = attribute(document, "width"), h = attribute(document, "height");
-  *height = w > 0 ? width * h / w : width;
-  return "<svg x=\"" + io::format_number(x) + "\" y=\"" + io::format_number(y) + "\" width=\"" +
-         io::format_number(width) + "\" height=\"" + io::format_number(*height) + "\"" + document.substr(view);
-}
-
-}  // namespace
 
 std::string pin_slot_stack_svg(const PinSlotSpace& space, const PinSlotSvgOptions& options) {
   const auto& slices = space.slices();
@@ -64,7 +40,7 @@ std::string pin_slot_stack_svg(const PinSlotSpace& space, const PinSlotSvgOption
     for (std::size_t g : groups) text += " " + std::to_string(g);
     if (groups.empty()) text += " -";
     double height = 0;
-    std::string body = nested(cspace_svg(*slice, CSpaceSvgOptions{}), x, y + heading, panel_width, &height);
+    std::string body = io::nested_svg(cspace_svg(*slice, CSpaceSvgOptions{}), x, y + heading, panel_width, &height);
     panels += "<text x=\"" + io::format_number(x + 4) + "\" y=\"" + io::format_number(y + heading - 7) +
               "\" font-family=\"sans-serif\" font-size=\"11\">" + io::escape_xml(text) + "</text>\n";
     panels += "<rect x=\"" + io::format_number(x) + "\" y=\"" + io::format_number(y) + "\" width=\"" +

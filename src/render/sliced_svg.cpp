@@ -21,29 +21,6 @@ std::string degrees_text(double degrees) {
   return buffer;
 }
 
-// The attribute `name="..."` of the first tag of `document`, as a number (0 when absent).
-double attribute(const std::string& document, const std::string& name) {
-  std::size_t tag = document.find("<svg");
-  if (tag == std::string::npos) return 0;
-  std::size_t end = document.find('>', tag);
-  std::size_t at = document.find(" " + name + "=\"", tag);
-  if (at == std::string::npos || at > end) return 0;
-  return std::atof(document.c_str() + at + name.size() + 3);
-}
-
-// A whole SVG document from SvgWriter as a nested <svg> placed at (x, y) with the given width:
-// the XML declaration dropped, the outer size replaced by the placement.
-std::string nested(const std::string& document, double x, double y, double width, double* height) {
-  std::size_t tag = document.find("<svg");
-  std::size_t view = document.find(" viewBox=", tag);
-  if (tag == std::string::npos || view == std::string::npos)
-    throw GeometryError("internal: the slice renderer did not produce an <svg> element");
-  double w = attribute(document, "width"), h = attribute(document, "height");
-  *height = w > 0 ? width * h / w : width;
-  return "<svg x=\"" + io::format_number(x) + "\" y=\"" + io::format_number(y) + "\" width=\"" +
-         io::format_number(width) + "\" height=\"" + io::format_number(*height) + "\"" + document.substr(view);
-}
-
 }  // namespace
 
 std::string sliced_interval_label(const SlicedSpace& space, std::size_t interval) {
@@ -154,7 +131,7 @@ std::string sliced_stack_svg(const SlicedSpace& space, const SlicedSvgOptions& o
     std::string label = "slice " + std::to_string(i) + ": " + sliced_interval_label(space, i) + " (" +
                         std::to_string(space.intervals()[i].free_cells.size()) + " free cells)";
     double height = 0;
-    std::string body = nested(cspace_svg(*slices[i], panel), x, y + heading, panel_width, &height);
+    std::string body = io::nested_svg(cspace_svg(*slices[i], panel), x, y + heading, panel_width, &height);
     panels += text_at(x + 4, y + heading - 7, label, 11);
     panels += "<rect x=\"" + io::format_number(x) + "\" y=\"" + io::format_number(y) + "\" width=\"" +
               io::format_number(panel_width) + "\" height=\"" + io::format_number(height + heading) +
@@ -193,7 +170,7 @@ std::string sliced_stack_svg(const SlicedSpace& space, const SlicedSvgOptions& o
     panel.legend_pairs_per_kind = 4;
     panel.legend_text_size = 6;
     double height = 0;
-    std::string body = nested(cspace_svg(*slices[i], panel), gap, y + heading, full_width, &height);
+    std::string body = io::nested_svg(cspace_svg(*slices[i], panel), gap, y + heading, full_width, &height);
     panels += text_at(gap + 4, y + heading - 7, "slice " + std::to_string(i) + ": " + sliced_interval_label(space, i), 12);
     panels += "<rect x=\"" + io::format_number(gap) + "\" y=\"" + io::format_number(y) + "\" width=\"" +
               io::format_number(full_width) + "\" height=\"" + io::format_number(height + heading) +
