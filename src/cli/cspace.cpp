@@ -394,7 +394,8 @@ void register_cspace(CLI::App& app, Action& action) {
   command->add_flag("--stats", options->stats, "Print counts and times per stage");
   command->add_option("--full-slices", options->full_slices,
                       "3-DOF pairs: slices (indices, in order of the angle) drawn again at full size below the stack "
-                      "(default: up to two with the most free cells)")
+                      "(default: the two either side of the critical angle nearest 0 where the free cells change; without one, up to two "
+                      "with the most free cells)")
       ->delimiter(',');
   command->add_flag("--spurious", options->spurious, "Also draw spurious edges (curves through free or blocked space)");
   command->add_flag("--aggregated", options->aggregated, "Use CGAL's aggregated insertion (for measurements)");

@@ -30,6 +30,14 @@ json angle_json(const SlicedAngle& angle) {
   return out;
 }
 
+// A configuration with exact x, y (mm) and angle (t = tan(theta/2) or the half turn).
+json configuration_json(const SlicedConfiguration& q) {
+  json out = angle_json(q.angle);
+  out["x"] = to_exact_string(q.x);
+  out["y"] = to_exact_string(q.y);
+  return out;
+}
+
 }  // namespace
 
 std::optional<std::pair<std::string, std::string>> sliced_pair(const Model& model, const std::string& first,
@@ -127,8 +135,15 @@ std::string sliced_json(const SlicedSpace& space) {
     j["left_slice"] = crossing.left_interval;
     j["right_slice"] = crossing.right_interval;
     json connections = json::array();
-    for (const auto& c : crossing.connections) connections.push_back({c.left_cell, c.right_cell});
+    json witnesses = json::array();   // parallel to connections
+    for (const auto& c : crossing.connections) {
+      connections.push_back({c.left_cell, c.right_cell});
+      witnesses.push_back({{"left", configuration_json(c.left_witness)},
+                           {"right", configuration_json(c.right_witness)},
+                           {"through_half_turn", c.through_half_turn}});
+    }
     j["connections"] = connections;
+    j["witnesses"] = witnesses;
     j["ending"] = crossing.ending;
     j["starting"] = crossing.starting;
     crossings.push_back(j);

@@ -24,7 +24,8 @@ std::vector<std::pair<std::string, std::string>> sliced_pairs(const Model& model
 SlicedSpace build_sliced(const Model& model, const std::string& fixed, const std::string& free, bool progress);
 
 /// JSON of the cell structure: critical angles (isolating intervals, decimals), slices with
-/// their representative angle and free cells, connections across critical angles, components.
+/// their representative angle and free cells, connections across critical angles (with their
+/// exact witnesses: `witnesses`, parallel to `connections`), components.
 std::string sliced_json(const SlicedSpace& space);
 
 /// Counts and times, as `--stats` prints them.

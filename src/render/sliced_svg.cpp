@@ -38,6 +38,62 @@ std::string sliced_interval_label(const SlicedSpace& space, std::size_t interval
 
 namespace {
 
+// The crossing of the critical angle nearest theta = 0 at which the free space changes its
+// structure (no_index: none).
+std::size_t structure_change(const SlicedSpace& space) {
+  const auto& intervals = space.intervals();
+  // critical angles where the free space changes its structure: a free cell ends or starts
+  // there, or splits or merges (the crossing's connections are not one-to-one onto both sides)
+  std::size_t best = no_index;
+  double best_distance = 0;
+  for (std::size_t k = 0; k < space.crossings().size(); ++k) {
+    const SlicedCrossing& c = space.crossings()[k];
+    if (c.left_interval == c.right_interval) continue;   // one interval all round: nothing to compare
+    std::vector<int> left(intervals[c.left_interval].free_cells.size()), right(intervals[c.right_interval].free_cells.size());
+    for (const auto& link : c.connections) {
+      ++left.at(link.left_cell);
+      ++right.at(link.right_cell);
+    }
+    bool changes = !c.ending.empty() || !c.starting.empty();
+    for (int n : left) changes = changes || n != 1;
+    for (int n : right) changes = changes || n != 1;
+    if (!changes) continue;
+    // nearest theta = 0 (display choice: the approximate degrees, rounded so that mirror
+    // images tie and the first in order of theta wins)
+    const CriticalAngle& angle = space.critical_angles()[c.critical];
+    double distance = angle.half_turn ? 180.0 : std::round(std::fabs(angle.degrees) * 1e6) / 1e6;
+    if (best == no_index || distance < best_distance) {
+      best = k;
+      best_distance = distance;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<std::size_t> sliced_default_full_size(const SlicedSpace& space) {
+  const auto& intervals = space.intervals();
+  const std::size_t best = structure_change(space);
+  std::vector<std::size_t> chosen;
+  if (best != no_index) {
+    const SlicedCrossing& c = space.crossings()[best];
+    chosen = {c.left_interval, c.right_interval};
+  } else {   // no change of structure: up to two slices with the most free cells (more than one)
+    std::vector<std::size_t> order(intervals.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return intervals[a].free_cells.size() > intervals[b].free_cells.size();
+    });
+    for (std::size_t i : order)
+      if (intervals[i].free_cells.size() > 1 && chosen.size() < 2) chosen.push_back(i);
+  }
+  std::sort(chosen.begin(), chosen.end());
+  return chosen;
+}
+
+namespace {
+
 struct Box {
   double x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
   void add(const CSpaceEdge& e) {
@@ -145,18 +201,28 @@ std::string sliced_stack_svg(const SlicedSpace& space, const SlicedSvgOptions& o
   std::vector<std::size_t> chosen = options.full_size;
   for (std::size_t i : chosen)
     if (i >= n) throw GeometryError("slice " + std::to_string(i) + " does not exist (the pair has " + std::to_string(n) + " slices)");
+  std::string heading_text = "Chosen slices at full size, zoomed onto their inner free cells:";
+  Box shared;   // the two sides of a change share one window, so the panels compare
   if (chosen.empty() && options.choose_full_size) {
-    std::vector<std::size_t> order(n);
-    for (std::size_t i = 0; i < n; ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return space.intervals()[a].free_cells.size() > space.intervals()[b].free_cells.size();
-    });
-    for (std::size_t i : order)
-      if (space.intervals()[i].free_cells.size() > 1 && chosen.size() < 2) chosen.push_back(i);
-    std::sort(chosen.begin(), chosen.end());
+    chosen = sliced_default_full_size(space);
+    if (std::size_t change = structure_change(space); change != no_index) {
+      for (std::size_t i : chosen) {
+        Box b = inner_free_extent(*slices[i]);
+        if (!b.empty()) {
+          shared.x_lo = std::min(shared.x_lo, b.x_lo);
+          shared.x_hi = std::max(shared.x_hi, b.x_hi);
+          shared.y_lo = std::min(shared.y_lo, b.y_lo);
+          shared.y_hi = std::max(shared.y_hi, b.y_hi);
+        }
+      }
+      const CriticalAngle& angle = space.critical_angles()[space.crossings()[change].critical];
+      heading_text = "Chosen slices at full size, either side of the critical angle \u03b8 = " +
+                     degrees_text(angle.half_turn ? 180.0 : angle.degrees) +
+                     " where the free cells change, zoomed onto their inner free cells (one window):";
+    }
   }
   if (!chosen.empty()) {
-    panels += text_at(gap, y + 14, "Chosen slices at full size, zoomed onto their inner free cells:", 13, "bold");
+    panels += text_at(gap, y + 14, heading_text, 13, "bold");
     y += 24;
   }
   for (std::size_t i : chosen) {
@@ -164,7 +230,7 @@ std::string sliced_stack_svg(const SlicedSpace& space, const SlicedSvgOptions& o
     CSpaceSvgOptions panel;
     panel.x_axis_label = x_label;
     panel.y_axis_label = y_label;
-    Box inner = inner_free_extent(*slices[i]);
+    Box inner = shared.empty() ? inner_free_extent(*slices[i]) : shared;
     if (!inner.empty()) panel.window = inner.window(0.6);
     else if (!all.empty()) panel.window = all.window(0.08);
     panel.legend_pairs_per_kind = 4;

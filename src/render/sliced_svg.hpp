@@ -19,7 +19,8 @@ struct SlicedSvgOptions {
   std::size_t columns = 0;          ///< 0: about the square root of the number of panels (at most 6)
   std::string title;
   /// Intervals drawn again at full size below the grid (indices into intervals()); when empty
-  /// and `choose_full_size`, up to two intervals with the most free cells (more than one).
+  /// and `choose_full_size`, sliced_default_full_size (the two sides of a change of structure,
+  /// drawn in one shared window so that they compare).
   std::vector<std::size_t> full_size;
   bool choose_full_size = true;
   double full_pixel_width = 760;   ///< width of a full-size panel
@@ -29,6 +30,12 @@ struct SlicedSvgOptions {
 /// "θ in (-45.00°, 45.00°), slice at θ = 0.00°" (angles approximate; "all θ" when there is no
 /// critical angle).
 std::string sliced_interval_label(const SlicedSpace& space, std::size_t interval);
+
+/// The default full-size slices: the two intervals either side of the critical angle nearest
+/// theta = 0 at which the free space changes its structure (a free cell ends, starts, splits or
+/// merges there: the crossing's connections are not one-to-one); without such an angle, up to
+/// two intervals with the most free cells (more than one). Ascending indices.
+std::vector<std::size_t> sliced_default_full_size(const SlicedSpace& space);
 
 /// The SVG document of the stack of slices (builds each representative slice on demand).
 std::string sliced_stack_svg(const SlicedSpace& space, const SlicedSvgOptions& options = {});

@@ -296,10 +296,12 @@ pih="$source/examples/models/peg-in-hole.json"
 "$hipair" cspace "$pih" --svg "$work/pih.svg" --json "$work/pih.json" >/dev/null 2>"$work/pih.err" \
   || fail "cspace on the 3-DOF peg-in-hole fails: $(cat "$work/pih.err")"
 grep -q "</svg>" "$work/pih.svg" 2>/dev/null || fail "cspace 3-DOF: SVG not written or not complete"
-# 12 slice panels, then the two slices with a free cell in the hole at full size (default choice)
+# 12 slice panels, then the two slices either side of the critical angle where the free square in
+# the hole closes, at full size (default choice)
 [ "$(grep -c '^<svg x=' "$work/pih.svg" 2>/dev/null)" = 14 ] || fail "cspace 3-DOF: SVG does not have 12 slice panels and 2 full-size ones"
 grep -q "shift of peg" "$work/pih.svg" || fail "cspace 3-DOF: SVG axes are not named x, y (shift of the peg's pivot)"
 grep -q "Chosen slices at full size" "$work/pih.svg" || fail "cspace 3-DOF: no full-size slices"
+grep -q "either side of the critical angle θ = -13.05°" "$work/pih.svg" || fail "cspace 3-DOF: default full-size slices are not the two sides of the change at -13.05°"
 "$hipair" cspace "$pih" --svg "$work/pih-full.svg" --full-slices 0,4,5 >/dev/null 2>"$work/pih-full.err" \
   || fail "cspace 3-DOF --full-slices 0,4,5 fails: $(cat "$work/pih-full.err")"
 [ "$(grep -c '^<svg x=' "$work/pih-full.svg" 2>/dev/null)" = 15 ] || fail "cspace 3-DOF --full-slices 0,4,5: not 12 + 3 panels"
@@ -311,6 +313,7 @@ grep -q "slice 12 does not exist" "$work/pih-none.err" || fail "cspace 3-DOF --f
 for key in critical_angles slices crossings components free_cells connections; do
   grep -q "\"$key\"" "$work/pih.json" 2>/dev/null || fail "cspace 3-DOF: JSON has no $key"
 done
+grep -q '"witnesses"' "$work/pih.json" 2>/dev/null || fail "cspace 3-DOF: JSON has no connection witnesses"
 [ "$(grep -c '"events"' "$work/pih.json" 2>/dev/null)" = 12 ] || fail "cspace 3-DOF: JSON does not list 12 critical angles"
 "$hipair" cspace "$pih" --pair plate:no-such --svg "$work/pih-bad.svg" --json "$work/pih-bad.json" >/dev/null 2>"$work/pih-bad.err"
 code=$?
