@@ -80,10 +80,83 @@ double thread_cpu_seconds() {
 }
 
 // ------------------------------------------------------------------ --sweep NAME=A:B:N
+// Status of one run of a sweep (docs/simulation.md, "Sweep status"):
+//   failed   the simulator threw (the message is reported);
+//   stopped  it reached t-end, and over the rest window W = the last quarter of the run,
+//            [3/4 t-end, t-end], every moving part (drivers included) stayed at rest: the
+//            range of its position over the states recorded in the window (and the last state
+//            before it) is at most eps = sqrt(accuracy) (rad or mm), and its speed at each of
+//            them at most eps / W (rad or mm per time unit: at that speed it could not travel
+//            eps across the window);
+//   running  it reached t-end and did not stop.
+// eps: the integrator's absolute tolerance per step is the accuracy (rad or mm); its square
+// root, 3.2e-5 at the default 1e-9, is far above what a part held in sustained contact drifts
+// (a projection back on its contact curve every step) and far below any motion of a working
+// mechanism (the escapement's parts turn by tenths of a radian).
+enum class RunStatus { running, stopped, failed };
+
+const char* to_string(RunStatus status) {
+  switch (status) {
+    case RunStatus::running: return "running";
+    case RunStatus::stopped: return "stopped";
+    case RunStatus::failed: return "failed";
+  }
+  return "failed";
+}
+
+// Watches the moving parts over the rest window [t_window, t_end].
+class RestWindow {
+ public:
+  RestWindow(std::size_t parts, double t_window, double epsilon, double window)
+      : t_window_(t_window), epsilon_(epsilon), speed_limit_(epsilon / window), low_(parts), high_(parts),
+        speed_(parts, 0.0), last_before_(parts) {}
+
+  // Called with every recorded state, in time order.
+  void record(double time, const std::vector<double>& position, const std::vector<double>& velocity) {
+    if (time < t_window_) {
+      before_ = true;
+      last_before_ = position;
+      last_before_speed_ = velocity;
+      return;
+    }
+    if (!inside_) {
+      inside_ = true;
+      if (before_) {
+        low_ = high_ = last_before_;
+        for (std::size_t k = 0; k < speed_.size(); ++k) speed_[k] = std::abs(last_before_speed_[k]);
+      } else {
+        low_ = high_ = position;
+      }
+    }
+    for (std::size_t k = 0; k < speed_.size(); ++k) {
+      low_[k] = std::min(low_[k], position[k]);
+      high_[k] = std::max(high_[k], position[k]);
+      speed_[k] = std::max(speed_[k], std::abs(velocity[k]));
+    }
+  }
+  bool at_rest() const {
+    if (!inside_) return false;
+    for (std::size_t k = 0; k < speed_.size(); ++k)
+      if (!(high_[k] - low_[k] <= epsilon_) || !(speed_[k] <= speed_limit_)) return false;
+    return true;
+  }
+  double epsilon() const { return epsilon_; }
+  double speed_limit() const { return speed_limit_; }
+  // per part: position range and largest speed over the window
+  double range(std::size_t k) const { return inside_ ? high_[k] - low_[k] : 0; }
+  double speed(std::size_t k) const { return speed_[k]; }
+
+ private:
+  double t_window_, epsilon_, speed_limit_;
+  std::vector<double> low_, high_, speed_, last_before_, last_before_speed_;
+  bool inside_ = false, before_ = false;
+};
+
 struct SweepRow {
   double value = 0;
-  bool works = false;
+  RunStatus status = RunStatus::failed;
   std::string error;
+  std::vector<double> window_range, window_speed;  // per moving part, over the rest window
   double reached = 0, cpu = 0;
   std::size_t steps = 0, events = 0;
   std::vector<double> advance;        // per moving part: final - initial position
@@ -156,7 +229,25 @@ int run_sweep(const SimulateOptions& options) {
           last_velocity.push_back(simulation.state().velocity[p]);
         }
         row.swings.assign(moving.size(), 0);
+        // the accuracy the simulation uses (as Simulation::create resolves it)
+        double accuracy = 1e-9;
+        if (sim_options.accuracy > 0)
+          accuracy = sim_options.accuracy;
+        else if (models[i].simulation && models[i].simulation->accuracy)
+          accuracy = models[i].simulation->accuracy->get_d();
+        double window = options.t_end / 4;
+        RestWindow rest(moving.size(), options.t_end - window, std::sqrt(accuracy), window);
+        std::vector<double> position(moving.size()), velocity(moving.size());
+        auto record = [&] {
+          for (std::size_t k = 0; k < moving.size(); ++k) {
+            position[k] = simulation.state().position[moving[k]];
+            velocity[k] = simulation.state().velocity[moving[k]];
+          }
+          rest.record(simulation.state().time, position, velocity);
+        };
+        record();
         simulation.run_until(options.t_end, [&](double) {
+          record();
           for (std::size_t k = 0; k < moving.size(); ++k) {
             double velocity = simulation.state().velocity[moving[k]];
             if (velocity != 0) {
@@ -170,7 +261,11 @@ int run_sweep(const SimulateOptions& options) {
         row.reached = simulation.state().time;
         row.steps = simulation.steps();
         row.events = simulation.events().size();
-        row.works = true;
+        row.status = rest.at_rest() ? RunStatus::stopped : RunStatus::running;
+        for (std::size_t k = 0; k < moving.size(); ++k) {
+          row.window_range.push_back(rest.range(k));
+          row.window_speed.push_back(rest.speed(k));
+        }
       } catch (const Error& error) {
         row.error = error.what();
       }
@@ -185,20 +280,27 @@ int run_sweep(const SimulateOptions& options) {
 
   const Model& model = models.front();
   std::cout << "sweep of " << name << " over " << values.size() << " values, t-end " << number(options.t_end) << "\n";
-  std::cout << name << "\tresult\tsteps\tevents\tcpu_s";
+  std::cout << "status: failed (simulator error), stopped (over the last quarter of the run every moving part moved "
+               "at most sqrt(accuracy) rad or mm, at speeds at most that / (t-end / 4)), running (otherwise)\n";
+  std::cout << name << "\tstatus\tsteps\tevents\tcpu_s";
   for (std::size_t p : moving) std::cout << "\t" << model.parts[p].name << "_advance\t" << model.parts[p].name << "_swings";
   std::cout << "\n";
   nlohmann::json doc = nlohmann::json::array();
   for (const SweepRow& row : rows) {
-    std::cout << number(row.value) << "\t" << (row.works ? "completes" : "fails") << "\t" << row.steps << "\t"
-              << row.events << "\t" << number(row.cpu);
-    nlohmann::json j{{"value", row.value}, {"completes", row.works}, {"cpu_seconds", row.cpu}};
-    if (row.works) {
+    bool completed = row.status != RunStatus::failed;
+    std::cout << number(row.value) << "\t" << to_string(row.status) << "\t" << row.steps << "\t" << row.events << "\t"
+              << number(row.cpu);
+    nlohmann::json j{
+        {"value", row.value}, {"status", to_string(row.status)}, {"completes", completed}, {"cpu_seconds", row.cpu}};
+    if (completed) {
       j["steps"] = row.steps;
       j["events"] = row.events;
       for (std::size_t k = 0; k < moving.size(); ++k) {
         std::cout << "\t" << number(row.advance[k]) << "\t" << row.swings[k];
-        j["parts"][model.parts[moving[k]].name] = {{"advance", row.advance[k]}, {"velocity_sign_changes", row.swings[k]}};
+        j["parts"][model.parts[moving[k]].name] = {{"advance", row.advance[k]},
+                                                   {"velocity_sign_changes", row.swings[k]},
+                                                   {"rest_window_position_range", row.window_range[k]},
+                                                   {"rest_window_max_speed", row.window_speed[k]}};
       }
     } else {
       std::cout << "\t" << row.error;
@@ -403,8 +505,9 @@ void register_simulate(CLI::App& app, Action& action) {
   command->add_flag("--no-pictures", options->no_pictures, "Write the CSV and the event log only");
   command->add_option("--sweep", options->sweep,
                       "NAME=A:B:N: run N simulations with parameter NAME from A to B (exact literals, mm or rad), "
-                      "in parallel; report per value whether the run completes, and each part's advance and "
-                      "velocity sign changes (--out: sweep.json)");
+                      "in parallel; report per value the run's status (running, stopped: every part at rest over "
+                      "the last quarter of the run, failed: with the error), each part's advance and velocity sign "
+                      "changes (--out: sweep.json)");
   command->add_option("--jobs", options->jobs, "Parallel runs of a sweep (default: the number of cores)")
       ->check(CLI::Range(1, 256));
   command->add_option("--set", options->overrides, "Override a parameter: NAME=VALUE (repeatable)");
