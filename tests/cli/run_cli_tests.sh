@@ -285,7 +285,7 @@ grep -q '"parameter": "cam-speed"' "$work/sweep/sweep.json" || fail "simulate --
 # sweep status (docs/simulation.md, "Sweep status"): the elastic bouncing bar keeps bouncing
 # (running); the same bar with restitution 0 and a constant torque instead of its spring
 # strikes the upper stop plastically at t ~ 0.025 s and rests pressed on it (stopped: over the
-# last quarter of the 0.3 s run it moves by no more than sqrt(accuracy) = 1e-5 rad).
+# last quarter of the 0.3 s run its speed stays below sqrt(accuracy) = 1e-5 times its top speed).
 "$hipair" simulate "$source/examples/models/bouncing-bar.json" --t-end 0.3 --sweep speed=1:2:2 --allow-out-of-tolerance \
   --jobs 1 >"$work/sweep-run.out" 2>&1 || fail "simulate --sweep bouncing bar: $(tail -c 300 "$work/sweep-run.out")"
 [ "$(grep -cP "^\\S+\trunning\t" "$work/sweep-run.out")" -eq 2 ] \
