@@ -80,10 +80,83 @@ double thread_cpu_seconds() {
 }
 
 // ------------------------------------------------------------------ --sweep NAME=A:B:N
+// Status of one run of a sweep (docs/simulation.md, "Sweep status"):
+//   failed   the simulator threw (the message is reported);
+//   stopped  it reached t-end, and over the rest window, the last quarter of the run
+//            [3/4 t-end, t-end] (W = t-end / 4), every moving part (drivers included) stayed
+//            at rest: at every state recorded in the window (and the last state before it) its
+//            speed is at most v_rest = sqrt(accuracy) * V, V its largest speed over the whole
+//            run, and its position range there is at most v_rest * W (what that speed could
+//            travel in the window);
+//   running  it reached t-end and did not stop.
+// The threshold is relative to the run's own motion (rad or mm per time unit, whatever the
+// units), in the form of the simulator's own "no separating speed" test (sqrt(accuracy) times
+// a speed scale): at the default accuracy 1e-9, 3.2e-5 of the part's top speed. A part held
+// in sustained contact keeps a creep far below it (the escapement at -1000 N mm: the balance
+// pressed on a fork horn creeps at 2e-4 rad/s after reaching 51 rad/s, 1/8 of the threshold),
+// and a moving mechanism is far above it.
+enum class RunStatus { running, stopped, failed };
+
+const char* to_string(RunStatus status) {
+  switch (status) {
+    case RunStatus::running: return "running";
+    case RunStatus::stopped: return "stopped";
+    case RunStatus::failed: return "failed";
+  }
+  return "failed";
+}
+
+// Watches the moving parts over the run and over the rest window [t_window, t_end].
+class RestWindow {
+ public:
+  RestWindow(std::size_t parts, double t_window, double window, double relative)
+      : t_window_(t_window), window_(window), relative_(relative), low_(parts), high_(parts), speed_(parts, 0.0),
+        top_speed_(parts, 0.0), last_before_(parts), last_before_speed_(parts, 0.0) {}
+
+  // Called with every recorded state, in time order.
+  void record(double time, const std::vector<double>& position, const std::vector<double>& velocity) {
+    for (std::size_t k = 0; k < top_speed_.size(); ++k) top_speed_[k] = std::max(top_speed_[k], std::abs(velocity[k]));
+    if (time < t_window_) {
+      before_ = true;
+      last_before_ = position;
+      last_before_speed_ = velocity;
+      return;
+    }
+    if (!inside_) {
+      inside_ = true;
+      low_ = high_ = before_ ? last_before_ : position;
+      for (std::size_t k = 0; k < speed_.size(); ++k) speed_[k] = before_ ? std::abs(last_before_speed_[k]) : 0.0;
+    }
+    for (std::size_t k = 0; k < speed_.size(); ++k) {
+      low_[k] = std::min(low_[k], position[k]);
+      high_[k] = std::max(high_[k], position[k]);
+      speed_[k] = std::max(speed_[k], std::abs(velocity[k]));
+    }
+  }
+  double speed_limit(std::size_t k) const { return relative_ * top_speed_[k]; }
+  bool at_rest() const {
+    if (!inside_) return false;
+    for (std::size_t k = 0; k < speed_.size(); ++k)
+      if (!(speed_[k] <= speed_limit(k)) || !(high_[k] - low_[k] <= speed_limit(k) * window_)) return false;
+    return true;
+  }
+  // per part: position range and largest speed over the window
+  double range(std::size_t k) const { return inside_ ? high_[k] - low_[k] : 0; }
+  double speed(std::size_t k) const { return speed_[k]; }
+  double top_speed(std::size_t k) const { return top_speed_[k]; }
+
+ private:
+  double t_window_, window_, relative_;
+  std::vector<double> low_, high_, speed_, top_speed_, last_before_, last_before_speed_;
+  bool inside_ = false, before_ = false;
+};
+
 struct SweepRow {
   double value = 0;
-  bool works = false;
+  RunStatus status = RunStatus::failed;
   std::string error;
+  std::vector<double> window_range, window_speed;  // per moving part, over the rest window
+  std::vector<double> top_speed;                    // per moving part, over the run
   double reached = 0, cpu = 0;
   std::size_t steps = 0, events = 0;
   std::vector<double> advance;        // per moving part: final - initial position
@@ -156,21 +229,51 @@ int run_sweep(const SimulateOptions& options) {
           last_velocity.push_back(simulation.state().velocity[p]);
         }
         row.swings.assign(moving.size(), 0);
-        simulation.run_until(options.t_end, [&](double) {
+        // the accuracy the simulation uses (as Simulation::create resolves it)
+        double accuracy = 1e-9;
+        if (sim_options.accuracy > 0)
+          accuracy = sim_options.accuracy;
+        else if (models[i].simulation && models[i].simulation->accuracy)
+          accuracy = models[i].simulation->accuracy->get_d();
+        double window = options.t_end / 4;
+        RestWindow rest(moving.size(), options.t_end - window, window, std::sqrt(accuracy));
+        std::vector<double> position(moving.size()), velocity(moving.size());
+        auto record = [&] {
           for (std::size_t k = 0; k < moving.size(); ++k) {
-            double velocity = simulation.state().velocity[moving[k]];
-            if (velocity != 0) {
-              if (last_velocity[k] != 0 && (velocity > 0) != (last_velocity[k] > 0)) ++row.swings[k];
-              last_velocity[k] = velocity;
-            }
+            position[k] = simulation.state().position[moving[k]];
+            velocity[k] = simulation.state().velocity[moving[k]];
           }
-        });
+          rest.record(simulation.state().time, position, velocity);
+        };
+        record();
+        try {
+          simulation.run_until(options.t_end, [&](double) {
+            record();
+            for (std::size_t k = 0; k < moving.size(); ++k) {
+              double velocity = simulation.state().velocity[moving[k]];
+              if (velocity != 0) {
+                if (last_velocity[k] != 0 && (velocity > 0) != (last_velocity[k] > 0)) ++row.swings[k];
+                last_velocity[k] = velocity;
+              }
+            }
+          });
+        } catch (const Error&) {
+          // how far the failed run got (the message names the time)
+          row.steps = simulation.steps();
+          row.events = simulation.events().size();
+          throw;
+        }
         for (std::size_t k = 0; k < moving.size(); ++k)
           row.advance.push_back(simulation.state().position[moving[k]] - start[k]);
         row.reached = simulation.state().time;
         row.steps = simulation.steps();
         row.events = simulation.events().size();
-        row.works = true;
+        row.status = rest.at_rest() ? RunStatus::stopped : RunStatus::running;
+        for (std::size_t k = 0; k < moving.size(); ++k) {
+          row.window_range.push_back(rest.range(k));
+          row.window_speed.push_back(rest.speed(k));
+          row.top_speed.push_back(rest.top_speed(k));
+        }
       } catch (const Error& error) {
         row.error = error.what();
       }
@@ -185,20 +288,28 @@ int run_sweep(const SimulateOptions& options) {
 
   const Model& model = models.front();
   std::cout << "sweep of " << name << " over " << values.size() << " values, t-end " << number(options.t_end) << "\n";
-  std::cout << name << "\tresult\tsteps\tevents\tcpu_s";
+  std::cout << "status: failed (simulator error), stopped (over the last quarter of the run every moving part's speed "
+               "stayed below sqrt(accuracy) times its top speed in the run), running (otherwise)\n";
+  std::cout << name << "\tstatus\tsteps\tevents\tcpu_s";
   for (std::size_t p : moving) std::cout << "\t" << model.parts[p].name << "_advance\t" << model.parts[p].name << "_swings";
   std::cout << "\n";
   nlohmann::json doc = nlohmann::json::array();
   for (const SweepRow& row : rows) {
-    std::cout << number(row.value) << "\t" << (row.works ? "completes" : "fails") << "\t" << row.steps << "\t"
-              << row.events << "\t" << number(row.cpu);
-    nlohmann::json j{{"value", row.value}, {"completes", row.works}, {"cpu_seconds", row.cpu}};
-    if (row.works) {
-      j["steps"] = row.steps;
-      j["events"] = row.events;
+    bool completed = row.status != RunStatus::failed;
+    std::cout << number(row.value) << "\t" << to_string(row.status) << "\t" << row.steps << "\t" << row.events << "\t"
+              << number(row.cpu);
+    nlohmann::json j{
+        {"value", row.value}, {"status", to_string(row.status)}, {"completes", completed}, {"cpu_seconds", row.cpu}};
+    j["steps"] = row.steps;    // a failed run: up to its failure
+    j["events"] = row.events;
+    if (completed) {
       for (std::size_t k = 0; k < moving.size(); ++k) {
         std::cout << "\t" << number(row.advance[k]) << "\t" << row.swings[k];
-        j["parts"][model.parts[moving[k]].name] = {{"advance", row.advance[k]}, {"velocity_sign_changes", row.swings[k]}};
+        j["parts"][model.parts[moving[k]].name] = {{"advance", row.advance[k]},
+                                                   {"velocity_sign_changes", row.swings[k]},
+                                                   {"rest_window_position_range", row.window_range[k]},
+                                                   {"rest_window_max_speed", row.window_speed[k]},
+                                                   {"max_speed", row.top_speed[k]}};
       }
     } else {
       std::cout << "\t" << row.error;
@@ -403,8 +514,9 @@ void register_simulate(CLI::App& app, Action& action) {
   command->add_flag("--no-pictures", options->no_pictures, "Write the CSV and the event log only");
   command->add_option("--sweep", options->sweep,
                       "NAME=A:B:N: run N simulations with parameter NAME from A to B (exact literals, mm or rad), "
-                      "in parallel; report per value whether the run completes, and each part's advance and "
-                      "velocity sign changes (--out: sweep.json)");
+                      "in parallel; report per value the run's status (running, stopped: every part at rest over "
+                      "the last quarter of the run, failed: with the error), each part's advance and velocity sign "
+                      "changes (--out: sweep.json)");
   command->add_option("--jobs", options->jobs, "Parallel runs of a sweep (default: the number of cores)")
       ->check(CLI::Range(1, 256));
   command->add_option("--set", options->overrides, "Override a parameter: NAME=VALUE (repeatable)");

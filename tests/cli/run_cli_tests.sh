@@ -279,8 +279,26 @@ grep -q "/simulation/units/time" "$work/sim-unit.err" || fail "simulate bad unit
 "$hipair" simulate "$source/examples/models/cam-drive.json" --t-end 0.03 --sweep cam-speed=183:220:2 \
   --allow-out-of-tolerance --jobs 2 --out "$work/sweep" >"$work/sweep.out" 2>&1 \
   || fail "simulate --sweep: $(tail -c 300 "$work/sweep.out")"
-[ "$(grep -c "completes" "$work/sweep.out")" -eq 2 ] || fail "simulate --sweep: not two completed rows: $(cat "$work/sweep.out")"
+# the cam is driven at a constant speed: it never stops
+[ "$(grep -cP "^\\S+\trunning\t" "$work/sweep.out")" -eq 2 ] || fail "simulate --sweep: not two running rows: $(cat "$work/sweep.out")"
 grep -q '"parameter": "cam-speed"' "$work/sweep/sweep.json" || fail "simulate --sweep: no sweep.json"
+# sweep status (docs/simulation.md, "Sweep status"): the elastic bouncing bar keeps bouncing
+# (running); the same bar with restitution 0 and a constant torque instead of its spring
+# strikes the upper stop plastically at t ~ 0.025 s and rests pressed on it (stopped: over the
+# last quarter of the 0.3 s run its speed stays below sqrt(accuracy) = 1e-5 times its top speed).
+"$hipair" simulate "$source/examples/models/bouncing-bar.json" --t-end 0.3 --sweep speed=1:2:2 --allow-out-of-tolerance \
+  --jobs 1 >"$work/sweep-run.out" 2>&1 || fail "simulate --sweep bouncing bar: $(tail -c 300 "$work/sweep-run.out")"
+[ "$(grep -cP "^\\S+\trunning\t" "$work/sweep-run.out")" -eq 2 ] \
+  || fail "simulate --sweep: the bouncing bar is not running in both rows: $(cat "$work/sweep-run.out")"
+sed -e 's/"restitution": 1/"restitution": 0/' -e 's/"torsional_spring": { "stiffness": 1, "rest": 0 }/"torque": 50/' \
+  "$source/examples/models/bouncing-bar.json" >"$work/pressed-bar.json"
+grep -q '"torque": 50' "$work/pressed-bar.json" || fail "pressed-bar model not generated (bouncing-bar.json changed?)"
+"$hipair" simulate "$work/pressed-bar.json" --t-end 0.3 --sweep speed=1:2:2 --allow-out-of-tolerance --jobs 1 \
+  --out "$work/sweep-stop" >"$work/sweep-stop.out" 2>&1 || fail "simulate --sweep pressed bar: $(tail -c 300 "$work/sweep-stop.out")"
+[ "$(grep -cP "^\\S+\tstopped\t" "$work/sweep-stop.out")" -eq 2 ] \
+  || fail "simulate --sweep: the pressed bar is not stopped in both rows: $(cat "$work/sweep-stop.out")"
+[ "$(grep -c '"status": "stopped"' "$work/sweep-stop/sweep.json")" -eq 2 ] || fail "simulate --sweep: sweep.json has no stopped status"
+grep -q '"completes": true' "$work/sweep-stop/sweep.json" || fail "simulate --sweep: a stopped run reached t-end (completes)"
 for bad in "cam-speed=1:2" "cam-speed=1:2:0" "cam-speed=a:2:3" "=1:2:3" "cam-speed=1:2:1"; do
   "$hipair" simulate "$source/examples/models/cam-drive.json" --t-end 0.01 --sweep "$bad" \
     --allow-out-of-tolerance >/dev/null 2>"$work/sweep-bad.err"
