@@ -58,7 +58,11 @@ Model Reader::read() {
         for (std::size_t e = 0; !inverted && e < a.edges.size(); ++e) {
           const Edge& x = a.edges[e];
           const Edge& y = b.edges[e];
-          if (x.is_arc()) continue;
+          if (x.is_arc()) {  // an arc whose radius passed zero: its start on the other side of the centre
+            inverted = (x.source.x - x.center.x) * (y.source.x - y.center.x) +
+                           (x.source.y - x.center.y) * (y.source.y - y.center.y) <= 0;
+            continue;
+          }
           inverted = (x.target.x - x.source.x) * (y.target.x - y.source.x) +
                          (x.target.y - x.source.y) * (y.target.y - y.source.y) <= 0;
         }

@@ -223,6 +223,16 @@ TEST(ModelProfileTolerance, BadInputNamesWhere) {
   EXPECT_EQ(error_pointer(part(R"({"feature": 0, "tolerance": 0.1})")), "/parts/0/profile_tolerances/0/feature");
   // a band so wide that the square collapses and turns inside out at -t/2
   EXPECT_EQ(error_pointer(part(R"({"loop": 0, "tolerance": 24})")), "/parts/0/profile_tolerances/0");
+  // a full circle written as one arc, its radius 2 passing zero at -t/2
+  std::string disc = with_parts(R"({"name": "p", "motion": "fixed",
+      "loops": [{"start": [2, 0], "edges": [{"arc_to": [2, 0], "center": [0, 0], "dir": "cw"}]}],
+      "profile_tolerances": [{"loop": 0, "tolerance": 6}]})");
+  EXPECT_EQ(error_pointer(disc), "/parts/0/profile_tolerances/0");
+  // non-tangent arc corner: refused, naming the edge
+  std::string lens = with_parts(R"({"name": "p", "motion": "fixed",
+      "loops": [{"start": [0, 0], "edges": [{"line_to": [6, 0]}, {"arc_to": [0, 0], "center": [3, 4], "dir": "ccw"}]}],
+      "profile_tolerances": [{"loop": 0, "tolerance": 0.1}]})");
+  EXPECT_EQ(error_pointer(lens).rfind("/parts/0/loops/0/edges/", 0), 0u) << error_pointer(lens);
   // a notch that closes on itself: an L-shaped loop offset inward past its narrow arm
   std::string notch = with_parts(R"({"name": "p", "motion": "fixed",
       "loops": [{"start": [0, 0], "edges": [{"line_to": [10, 0]}, {"line_to": [10, 1]}, {"line_to": [1, 1]}, {"line_to": [1, 10]}, {"line_to": [0, 10]}, {"line_to": [0, 0]}]}],
