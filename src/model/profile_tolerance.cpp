@@ -23,6 +23,8 @@
 
 #include <gmp.h>
 
+#include <optional>
+
 namespace hipair::model_detail {
 namespace {
 
@@ -127,12 +129,20 @@ class Translator {
     if (!tolerance) throw ModelError(entry.pointer, "missing key 'tolerance' (the band's total width t, mm)");
     if (!tolerance->is_number() && !tolerance->is_string())
       throw ModelError(tolerance->pointer, "expected a number or expression (the band's total width, mm)");
-    if (tolerance->is_number() || tolerance->text.find_first_not_of("0123456789.+-eE/ ") == std::string::npos) {
-      Rational t = parse_literal(tolerance->text, tolerance->pointer);
-      if (t < 0)
-        throw ModelError(tolerance->pointer, "a profile tolerance (band width) must not be negative (got " +
-                                                 decimal(t) + ")");
+    // A literal band is checked here (an expression is checked by the parameter reader, whose
+    // message names the same pointer but the half width).
+    std::optional<Rational> literal;
+    if (tolerance->is_number()) {
+      literal = parse_literal(tolerance->text, tolerance->pointer);
+    } else {
+      try {
+        literal = parse_literal(tolerance->text, tolerance->pointer);
+      } catch (const ModelError&) {  // not a literal: an expression such as "e" or "2*t"
+      }
     }
+    if (literal && *literal < 0)
+      throw ModelError(tolerance->pointer, "a profile tolerance (band width) must not be negative (got " +
+                                               decimal(*literal) + ")");
     const Part& read = nominal_.parts[p];
     bool is_loop = loop_index != nullptr;
     const JsonValue& index_value = is_loop ? *loop_index : *feature_index;

@@ -199,6 +199,17 @@ TEST(ModelProfileTolerance, CircleFeatureAndParametricRoundTrip) {
   }
 }
 
+TEST(ModelProfileTolerance, BandGivenByAnExpressionOfParameters) {
+  std::string text = with_parts(R"({"name": "p", "motion": "fixed",
+      "loops": [{"circle": {"center": [0, 0], "radius": 3}}],
+      "profile_tolerances": [{"loop": 0, "tolerance": "e", "parameter": "band"}]})",
+                                R"({"e": {"nominal": "1/10"}})");
+  Model m = read_model(text);
+  ASSERT_NE(m.find_parameter("band"), nullptr);
+  EXPECT_EQ(m.find_parameter("band")->range.hi, q(1, 20));
+  EXPECT_EQ(m.profile_tolerances.front().loop, "/parts/0/loops/0");
+}
+
 std::string error_pointer(const std::string& text) {
   try {
     read_model(text);
