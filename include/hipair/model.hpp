@@ -39,6 +39,17 @@ struct Rounding {
   Rational bound;          ///< |exact - value| <= bound (mm, rad, or unitless as the quantity)
 };
 
+/// A geometric profile tolerance (ISO 1101 / ASME Y14.5 surface profile): a band of total
+/// width `band` around the nominal profile of one loop of a part, translated by the reader into
+/// the ordinary parameter `parameter` (nominal 0, range [-band/2, band/2]): the loop's offset,
+/// positive outward from the material (docs/model-format.md "Profile tolerances").
+struct ProfileTolerance {
+  std::string parameter;   ///< name of the offset parameter (in Model::parameters)
+  std::size_t part = 0;    ///< index into Model::parts
+  std::string loop;        ///< JSON pointer of the toleranced loop or feature
+  std::string pointer;     ///< JSON pointer of the profile tolerance entry
+};
+
 /// How a part may move. A part's geometry is given in world coordinates at its zero
 /// configuration; a configuration moves it rigidly.
 ///
@@ -167,6 +178,7 @@ struct Model {
   bool pairs_explicit = false;
   std::optional<SimulationSpec> simulation; ///< top-level "simulation" (docs/model-format.md)
   std::vector<Rounding> roundings;         ///< every inexact input that was rounded
+  std::vector<ProfileTolerance> profile_tolerances; ///< as translated into parameters
   std::string source;                      ///< file name or "<string>"
   std::string content_hash;                ///< SHA-256 of the file bytes, hex
 

@@ -422,6 +422,10 @@ class Evaluator {
 
   Quantity multiply_values(const Quantity& a, const Quantity& b) const {
     bool angle = a.is_angle != b.is_angle;
+    // An exact zero times anything is exactly zero (a profile offset of 0 along an irrational
+    // normal leaves the nominal point exact).
+    if ((a.is_rational() && a.rational == 0) || (b.is_rational() && b.rational == 0))
+      return checked(Quantity::of(0, angle));
     if (a.exact && b.exact) {
       if (a.pi_multiple == 0) {
         Quantity product = Quantity::of(a.rational * b.rational, angle);

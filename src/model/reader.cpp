@@ -1,6 +1,8 @@
 // The model reader: JSON text -> exact, validated hipair::Model (docs/model-format.md).
 #include "model/reader.hpp"
 
+#include "model/profile_tolerance.hpp"
+
 #include "core/sha256.hpp"
 
 #include <hipair/error.hpp>
@@ -12,8 +14,68 @@ namespace hipair {
 namespace model_detail {
 
 Model Reader::read() {
-  model_.content_hash = detail::sha256_hex(text_);
+  std::string hash = detail::sha256_hex(text_);
   JsonValue root = parse_json(text_);
+  if (!root.is_object() || !has_profile_tolerances(root)) {
+    model_.content_hash = hash;
+    return read_root(root);
+  }
+  // Profile tolerances: read the model without them (orientation, holes, exact corner tests),
+  // translate them into offset parameters, read the translated document.
+  ReadOptions plain = options_;
+  const JsonValue* declared = root.find("parameters");
+  std::erase_if(plain.parameter_values,
+                [&](const auto& entry) { return !declared || !declared->find(entry.first); });
+  Model nominal = Reader(text_, model_.source, plain).read_root(strip_profile_tolerances(root));
+  std::vector<ProfileTolerance> tolerances = translate_profile_tolerances(root, nominal);
+  Model model = read_root(root);
+  model.content_hash = hash;
+  model.profile_tolerances = tolerances;
+  // The band's extremes must give valid geometry (each offset alone at -t/2 and +t/2).
+  for (const ProfileTolerance& tolerance : tolerances) {
+    const Parameter* parameter = model.find_parameter(tolerance.parameter);
+    for (const Rational& value : {parameter->range.lo, parameter->range.hi}) {
+      if (value == parameter->nominal) continue;
+      ReadOptions extreme = options_;
+      extreme.parameter_values[tolerance.parameter] = value;
+      Model offset;
+      try {
+        offset = Reader(text_, model.source, extreme).read_root(root);
+      } catch (const ModelError& error) {
+        throw ModelError(tolerance.pointer, "the profile band is too wide: offsetting " + tolerance.loop + " by " +
+                                                decimal(value) + " mm makes it invalid (" + error.what() + ")");
+      }
+      // An offset past a collapse turns the loop inside out, which the reader would silently
+      // re-orient: the loop must keep its sense and its hole status.
+      for (std::size_t l = 0; l < model.parts[tolerance.part].loops.size(); ++l) {
+        const Loop& a = model.parts[tolerance.part].loops[l];
+        const Loop& b = offset.parts[tolerance.part].loops[l];
+        if (a.pointer != tolerance.loop) continue;
+        bool inverted = a.is_hole != b.is_hole || a.edges.size() != b.edges.size() ||
+                        a.edges.front().pointer != b.edges.front().pointer || a.edges.front().ccw != b.edges.front().ccw;
+        // A segment running against its nominal direction: the offset passed a collapse (a
+        // square offset by more than half its side is the same square turned by 180 degrees).
+        for (std::size_t e = 0; !inverted && e < a.edges.size(); ++e) {
+          const Edge& x = a.edges[e];
+          const Edge& y = b.edges[e];
+          if (x.is_arc()) {  // an arc whose radius passed zero: its start on the other side of the centre
+            inverted = (x.source.x - x.center.x) * (y.source.x - y.center.x) +
+                           (x.source.y - x.center.y) * (y.source.y - y.center.y) <= 0;
+            continue;
+          }
+          inverted = (x.target.x - x.source.x) * (y.target.x - y.source.x) +
+                         (x.target.y - x.source.y) * (y.target.y - y.source.y) <= 0;
+        }
+        if (inverted)
+          throw ModelError(tolerance.pointer, "the profile band is too wide: offsetting " + tolerance.loop + " by " +
+                                                  decimal(value) + " mm turns the loop inside out");
+      }
+    }
+  }
+  return model;
+}
+
+Model Reader::read_root(const JsonValue& root) {
   if (!root.is_object()) throw ModelError("", "a model file must hold a JSON object");
   check_keys(root, {"hipair", "name", "description", "units", "parameters", "parts", "pairs", "simulation"});
   read_version(require(root, "hipair"));
@@ -109,6 +171,11 @@ void Reader::read_pairs(const JsonValue* pairs) {
     }
     model_.pairs.push_back(pair);
   }
+}
+
+Model read_model_root(const JsonValue& root, std::string_view source_name) {
+  ReadOptions options;
+  return Reader("", source_name, options).read_root(root);
 }
 
 }  // namespace model_detail

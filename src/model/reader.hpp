@@ -57,8 +57,11 @@ class Reader {
     model_.source = std::string(source);
   }
 
-  /// Parses, evaluates and validates the whole document.
+  /// Parses, evaluates and validates the whole document (profile tolerances translated into
+  /// parameters first, and checked at their band's extremes: profile_tolerance.hpp).
   Model read();
+  /// Evaluates and validates a parsed document (without profile tolerances).
+  Model read_root(const JsonValue& root);
 
  private:
   struct ParameterState {

@@ -6,6 +6,7 @@
 #include "model/exact_trig.hpp"
 #include "model/expression.hpp"
 #include "model/json_document.hpp"
+#include "model/profile_tolerance.hpp"
 #include "model/validate_geometry.hpp"
 
 #include <fstream>
@@ -357,6 +358,11 @@ ParametricModel ParametricModel::read(std::string_view json_text, std::string_vi
   model.nominal_ = std::make_shared<const Model>(read_model(json_text, source_name));
   model.text_ = std::string(json_text);
   JsonValue root = parse_json(json_text);
+  if (root.is_object() && has_profile_tolerances(root)) {
+    // The same translation as the reader's: offset parameters and rewritten loop points.
+    Model plain = read_model_root(strip_profile_tolerances(root), source_name);
+    translate_profile_tolerances(root, plain);
+  }
   RecipeBuilder(model, root).build();
   // Self-check: the exact form at the nominal vector is the model that was read.
   Model again = model.exact_model(std::vector<Rational>(model.parameter_count(), Rational(0)));
