@@ -256,16 +256,21 @@ Certificate read_certificate(std::string_view json_text) {
                             "planar_clearance"})
     if (other != claim && root.find(other)) fail(*root.find(other), "section '" + std::string(other) + "' does not belong to a " + claim + " claim");
   const JsonValue& body = require(root, claim.c_str());
+  // The witness of an interference claim (fixed-axis or planar): exactly one of a point inside
+  // both parts or a transversal crossing of their boundaries.
+  auto read_overlap_witness = [&](const JsonValue& section) {
+    if (const JsonValue* point = section.find("point")) {
+      array(*point, 2);
+      c.witness_point = Point{rational(point->items[0]), rational(point->items[1])};
+    }
+    if (const JsonValue* cross = section.find("crossing")) c.witness_crossing = crossing_of(*cross);
+    if (bool(c.witness_point) == bool(c.witness_crossing)) fail(section, "give exactly one witness: 'point' or 'crossing'");
+  };
   switch (c.claim) {
     case ClaimKind::interference: {
       check_keys(body, {"configuration", "point", "crossing"});
       c.configuration = configuration_of(require(body, "configuration"));
-      if (const JsonValue* point = body.find("point")) {
-        array(*point, 2);
-        c.witness_point = Point{rational(point->items[0]), rational(point->items[1])};
-      }
-      if (const JsonValue* cross = body.find("crossing")) c.witness_crossing = crossing_of(*cross);
-      if (bool(c.witness_point) == bool(c.witness_crossing)) fail(body, "give exactly one witness: 'point' or 'crossing'");
+      read_overlap_witness(body);
       break;
     }
     case ClaimKind::clearance:
@@ -292,12 +297,7 @@ Certificate read_certificate(std::string_view json_text) {
     case ClaimKind::planar_interference: {
       check_keys(body, {"pose", "point", "crossing"});
       c.pose = pose_of(require(body, "pose"));
-      if (const JsonValue* point = body.find("point")) {
-        array(*point, 2);
-        c.witness_point = Point{rational(point->items[0]), rational(point->items[1])};
-      }
-      if (const JsonValue* cross = body.find("crossing")) c.witness_crossing = crossing_of(*cross);
-      if (bool(c.witness_point) == bool(c.witness_crossing)) fail(body, "give exactly one witness: 'point' or 'crossing'");
+      read_overlap_witness(body);
       break;
     }
     case ClaimKind::planar_clearance:
