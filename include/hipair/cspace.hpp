@@ -452,6 +452,11 @@ struct CSpaceBuildOptions {
   /// checks every face classified from a blocked side, and a disagreement is a GeometryError
   /// (for tests; slower).
   bool check_face_classification = false;
+  /// Translating polygon pairs take a dedicated front end (the reduced convolution's segments
+  /// written from the vertices, each edge's line carried through CGAL from its input segment,
+  /// no interval culling quadtree). false: the general path of every other pair. The C-space is
+  /// the same either way (for tests that compare the two).
+  bool polygon_front_end = true;
 };
 
 /// The exact C-space of one pair. Value semantics: copies share the immutable structure.

@@ -73,6 +73,10 @@ struct Edge {
   ArcNumbers arc_numbers;          ///< non-vertical edges
   int box_side = -1;               ///< on the chart box: 0 bottom, 1 right, 2 top, 3 left
   std::vector<std::size_t> source_curves;   ///< curves whose pieces were inserted along it (hint)
+  /// Circle–segment stage: an input line curve whose piece lies along the edge (so `support`
+  /// is that curve up to a non-zero factor), carried through CGAL as curve data; none when
+  /// the edge is a chart side or an arc.
+  std::size_t support_curve = none;
 };
 
 struct Face {
@@ -103,6 +107,9 @@ struct Arrangement {
 struct Options {
   bool aggregated_insertion = false;   ///< CGAL::insert(arr, begin, end) instead of one by one
   bool keep_cgal = false;
+  /// Circle–segment stage: a line edge's support from its input curve (Edge::support_curve)
+  /// instead of CGAL's lazy line (the same polynomial; false for tests of the general path).
+  bool carry_line_supports = true;
 };
 
 /// Builds the arrangement of the curves (each square-free, non-zero) clipped to the box and,

@@ -8,6 +8,7 @@
 #include "algebra/exact_real.hpp"
 
 #include <CGAL/Arr_circle_segment_traits_2.h>
+#include <CGAL/Arr_curve_data_traits_2.h>
 #include <CGAL/Arrangement_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
@@ -23,10 +24,19 @@ namespace hipair::cspace::raw {
 namespace {
 
 using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
-using Traits = CGAL::Arr_circle_segment_traits_2<Kernel>;
-using NT = Traits::NT;
-using CoordNT = Traits::CoordNT;
+using BaseTraits = CGAL::Arr_circle_segment_traits_2<Kernel>;
+// Every piece carries the index of its input curve (chart sides: no_curve); where pieces
+// overlap, the smaller index is kept (a contact curve rather than a chart side). The export
+// takes a line edge's support from that curve instead of converting CGAL's lazy line.
+constexpr std::size_t no_curve = static_cast<std::size_t>(-1);
+struct SmallerIndex {
+  std::size_t operator()(std::size_t a, std::size_t b) const { return std::min(a, b); }
+};
+using Traits = CGAL::Arr_curve_data_traits_2<BaseTraits, std::size_t, SmallerIndex>;
+using NT = BaseTraits::NT;
+using CoordNT = BaseTraits::CoordNT;
 using Point = Traits::Point_2;
+using BaseCurve = BaseTraits::Curve_2;
 using Curve = Traits::Curve_2;
 using XCurve = Traits::X_monotone_curve_2;
 using Arrangement_2 = CGAL::Arrangement_2<Traits>;
@@ -275,7 +285,7 @@ class Builder {
     // the chart box
     Kernel::Point_2 corners[4] = {point(box_.x_lo, box_.y_lo), point(box_.x_hi, box_.y_lo), point(box_.x_hi, box_.y_hi),
                                   point(box_.x_lo, box_.y_hi)};
-    for (int i = 0; i < 4; ++i) pieces_.emplace_back(corners[i], corners[(i + 1) % 4]);
+    for (int i = 0; i < 4; ++i) pieces_.emplace_back(BaseCurve(corners[i], corners[(i + 1) % 4]), no_curve);
     static const std::vector<ValidityClause> no_clauses;
     static const std::vector<std::pair<Rational, Rational>> no_windows;
     for (std::size_t k = 0; k < curves.size(); ++k) {
@@ -283,10 +293,14 @@ class Builder {
       const auto& curve_windows = k < windows.size() ? windows[k] : no_windows;
       int degree = total_degree(curves[k]);
       if (degree <= 0) continue;   // no points (or identically zero: bounds nothing)
-      if (degree == 1)
+      current_ = k;
+      if (degree == 1) {
+        line_supports_.resize(curves.size());
+        line_supports_[k] = oriented_line(curves[k]);
         clip_line(linear_of(curves[k]), clauses, curve_windows);
-      else if (auto circle = circle_of(curves[k]))
+      } else if (auto circle = circle_of(curves[k])) {
         clip_circle(*circle, clauses, curve_windows);
+      }
       else
         throw GeometryError("internal: a contact curve is neither a line nor a circle");
     }
@@ -376,7 +390,7 @@ class Builder {
         if (vertical) return point(x0, t);
         return point(t, -(line.k0 + line.kx * t) / line.ky);
       };
-      pieces_.emplace_back(at(*span.lo), at(*span.hi));
+      pieces_.emplace_back(BaseCurve(at(*span.lo), at(*span.hi)), current_);
     }
   }
 
@@ -488,9 +502,9 @@ class Builder {
         Point a(chain[from].x.coord(), chain[from].y.coord()), b(chain[to].x.coord(), chain[to].y.coord());
         // counter-clockwise: the upper half runs right to left, the lower half left to right
         if (quarter.upper)
-          pieces_.emplace_back(circle, b, a);
+          pieces_.emplace_back(BaseCurve(circle, b, a), current_);
         else
-          pieces_.emplace_back(circle, a, b);
+          pieces_.emplace_back(BaseCurve(circle, a, b), current_);
       };
       for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
         // a rational abscissa strictly inside the sub-arc, and its exact ordinate cy +- sqrt(s)
@@ -544,7 +558,9 @@ class Builder {
       out.min_vertex = vertex_id.at(&*h->source());
       out.max_vertex = vertex_id.at(&*h->target());
       out.vertical = arc.is_vertical();
-      out.support = support_of(arc);
+      out.support = support_for(arc);
+      if (options_.carry_line_supports && arc.is_linear() && arc.data() < line_supports_.size())
+        out.support_curve = arc.data();
       out.left_face = face_id.at(&*h->face());
       out.right_face = face_id.at(&*h->twin()->face());
       const Vertex& a = result_.vertices[out.min_vertex];
@@ -639,9 +655,47 @@ class Builder {
     throw GeometryError("internal: no wedge contains the vertical direction at a vertex");
   }
 
+  // The support of an edge: for a piece of an input line, that line's primitive polynomial
+  // with the sign CGAL's supporting line has (the same polynomial support_of computes from the
+  // lazy line, without its exact conversion); else support_of.
+  IntegerPolynomial2 support_for(const XCurve& arc) const {
+    if (!options_.carry_line_supports || !arc.is_linear() || arc.data() >= line_supports_.size())
+      return support_of(arc);
+    IntegerPolynomial2 support = line_supports_[arc.data()];
+    // oriented_line has y coefficient > 0, or x coefficient < 0 for a vertical line; CGAL's
+    // line (a, b, c) has its own orientation: compare the signs of b (or a)
+    const bool vertical = sgn(coefficient(support, 0, 1)) == 0;
+    const int ours = vertical ? sgn(coefficient(support, 1, 0)) : sgn(coefficient(support, 0, 1));
+    const auto line = arc.supporting_line();
+    const int theirs = static_cast<int>(CGAL::sign(vertical ? line.a() : line.b()));
+    if (theirs == 0) return support_of(arc);   // (cannot happen: a line has a or b non-zero)
+    if (ours != theirs)
+      for (auto& row : support.coefficients)
+        for (auto& z : row) z = -z;
+    return support;
+  }
+
+  // The primitive integer polynomial of a line (total degree 1) oriented as CGAL orients a
+  // segment from its smaller to its larger end: y coefficient > 0, or, for a vertical line,
+  // x coefficient < 0.
+  static IntegerPolynomial2 oriented_line(const IntegerPolynomial2& f) {
+    const mpz_class& kx = coefficient(f, 1, 0);
+    const mpz_class& ky = coefficient(f, 0, 1);
+    const mpz_class& k0 = coefficient(f, 0, 0);
+    mpz_class g = 0;
+    for (const mpz_class* z : {&k0, &kx, &ky}) mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), z->get_mpz_t());
+    const bool flip = sgn(ky) != 0 ? sgn(ky) < 0 : sgn(kx) > 0;
+    auto scaled = [&](const mpz_class& z) { return mpz_class(flip ? mpz_class(-z / g) : mpz_class(z / g)); };
+    IntegerPolynomial2 out;
+    out.coefficients = {{scaled(k0), scaled(ky)}, {scaled(kx), mpz_class(0)}};
+    return out;
+  }
+
   Box box_;
   Options options_;
   Traits traits_;
+  std::size_t current_ = no_curve;                  // the input curve being clipped
+  std::vector<IntegerPolynomial2> line_supports_;   // per input line curve (empty for others)
   std::vector<Curve> pieces_;
   std::vector<Point> isolated_;
   Arrangement result_;

@@ -124,9 +124,43 @@ class CurveCuller {
   std::unordered_map<long, bool> blocked_;
 };
 
+const mpz_class& coefficient_of(const IntegerPolynomial2& f, std::size_t i, std::size_t j) {
+  static const mpz_class zero = 0;
+  if (i >= f.coefficients.size() || j >= f.coefficients[i].size()) return zero;
+  return f.coefficients[i][j];
+}
+
+// An exact witness that the culling quadtree keeps a line: a point of the line inside the
+// closed chart box where every validity clause holds (some atom >= 0), found where the line
+// meets the line of one of its linear atoms. The quadtree's interval enclosures contain the
+// exact values at that point, so the finest cell holding it survives every test (there is no
+// blocked test without `certainly_blocked`): the curve is kept with the same (empty) windows.
+bool valid_point_in_box(const ContactCurve& curve, const raw::Box& box) {
+  const IntegerPolynomial2& f = curve.polynomial;
+  if (f.degree_x() > 1 || f.degree_y() > 1 || sgn(coefficient_of(f, 1, 1)) != 0 || curve.validity.empty()) return false;
+  const mpz_class &a = coefficient_of(f, 1, 0), &b = coefficient_of(f, 0, 1), &c = coefficient_of(f, 0, 0);
+  for (const auto& clause : curve.validity)
+    for (const auto& atom : clause.atoms) {
+      if (atom.degree_x() > 1 || atom.degree_y() > 1 || sgn(coefficient_of(atom, 1, 1)) != 0) continue;
+      const mpz_class &d = coefficient_of(atom, 1, 0), &e = coefficient_of(atom, 0, 1), &g = coefficient_of(atom, 0, 0);
+      mpz_class det = a * e - b * d;
+      if (sgn(det) == 0) continue;
+      Rational x(mpz_class(b * g - c * e), det), y(mpz_class(c * d - a * g), det);
+      x.canonicalize();
+      y.canonicalize();
+      if (x < box.x_lo || x > box.x_hi || y < box.y_lo || y > box.y_hi) continue;
+      bool valid = std::all_of(curve.validity.begin(), curve.validity.end(), [&](const ValidityClause& other) {
+        return std::any_of(other.atoms.begin(), other.atoms.end(),
+                           [&](const IntegerPolynomial2& p) { return sgn(evaluate(p, x, y)) >= 0; });
+      });
+      if (valid) return true;
+    }
+  return false;
+}
+
 // Keeps the curves that may bound free space somewhere in the chart box, with their windows;
 // returns the input indices of the kept curves.
-std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input, int dimension) {
+std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input, int dimension, bool shortcuts) {
   chart.x_axis = input.x;
   chart.y_axis = input.y;
   chart.box = raw::Box{input.x.lo, input.x.hi, input.y.lo, input.y.hi};
@@ -139,13 +173,17 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input
     algebra::IntervalPolynomial2 f(curve.polynomial);
     std::vector<std::pair<Rational, Rational>> windows;
     if (dimension == 2) {
-      std::vector<std::vector<algebra::IntervalPolynomial2>> clauses;
-      for (const auto& clause : curve.validity) {
-        clauses.emplace_back();
-        for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
+      // (a line with an exact valid point in the box is kept without the quadtree)
+      std::vector<std::pair<double, double>> found;
+      if (input.certainly_blocked || !shortcuts || !valid_point_in_box(curve, chart.box)) {
+        std::vector<std::vector<algebra::IntervalPolynomial2>> clauses;
+        for (const auto& clause : curve.validity) {
+          clauses.emplace_back();
+          for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
+        }
+        found = culler.windows(f, clauses);
+        if (found.empty()) continue;
       }
-      auto found = culler.windows(f, clauses);
-      if (found.empty()) continue;
       if (input.certainly_blocked)
         for (const auto& [lo, hi] : found)
           // (a chart end beyond the doubles' range encloses to an infinite cell side: no
@@ -205,9 +243,16 @@ void label_edges(ChartData& chart, bool by_support) {
   const auto& arrangement = chart.arrangement;
   chart.edges.resize(arrangement.edges.size());
   std::unordered_map<std::string, std::vector<std::size_t>> with_support;
-  if (by_support)
-    for (std::size_t k = 0; k < chart.polynomials.size(); ++k)
-      with_support[support_key(chart.polynomials[k])].push_back(k);
+  std::vector<const std::vector<std::size_t>*> group_of;   // per curve: the curves with its support
+  if (by_support) {
+    std::vector<std::string> keys;
+    keys.reserve(chart.polynomials.size());
+    for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
+      keys.push_back(support_key(chart.polynomials[k]));
+      with_support[keys.back()].push_back(k);
+    }
+    for (const std::string& key : keys) group_of.push_back(&with_support.at(key));
+  }
   static const std::vector<std::size_t> no_curves;
   std::vector<std::size_t> all_curves;
   if (!by_support)
@@ -215,8 +260,14 @@ void label_edges(ChartData& chart, bool by_support) {
   for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
     const std::vector<std::size_t>* candidates = &all_curves;
     if (by_support) {
-      auto it = with_support.find(support_key(arrangement.edges[e].support));
-      candidates = it == with_support.end() ? &no_curves : &it->second;
+      // an edge along an input line has that line's support: its group, without a key
+      const std::size_t carried = arrangement.edges[e].support_curve;
+      if (carried < group_of.size()) {
+        candidates = group_of[carried];
+      } else {
+        auto it = with_support.find(support_key(arrangement.edges[e].support));
+        candidates = it == with_support.end() ? &no_curves : &it->second;
+      }
     }
     const raw::Edge& edge = arrangement.edges[e];
     EdgeData& data = chart.edges[e];
@@ -858,7 +909,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     chart.x_index = chart_input.x_index;
     chart.y_index = chart_input.y_index;
     auto culling_start = Clock::now();
-    std::vector<std::size_t> kept = prepare_chart(chart, chart_input, input.dimension);
+    std::vector<std::size_t> kept = prepare_chart(chart, chart_input, input.dimension, options.polygon_front_end);
     // the culling's blocked test is done with: release what it keeps (posed disks per interval)
     chart_input.certainly_blocked = nullptr;
     stats.seconds_culling += seconds_since(culling_start);
@@ -907,6 +958,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     raw::Options raw_options;
     raw_options.aggregated_insertion = options.aggregated_insertion;
     raw_options.keep_cgal = options.keep_arrangements;
+    raw_options.carry_line_supports = options.polygon_front_end;
     // lines and circles (translating pairs): the circle–segment traits; else the algebraic ones
     const bool circle_segment = raw::circle_segment_applies(chart.polynomials, chart.validity);
     chart.arrangement =

@@ -273,6 +273,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   auto generator_start = Clock::now();
   CurveOptions curve_options;
   curve_options.cull_blocked_space = !polygon_translation;
+  curve_options.polygon_front_end = options.polygon_front_end;
   CurveGenerator generator(model, axes, curve_options);
   input.seconds_curves += std::chrono::duration<double>(Clock::now() - generator_start).count();
   for (const BoxToBuild& box : boxes) {

@@ -835,6 +835,120 @@ bool corner_enters_segment(const FeatureDirections& vertex, const FeatureDirecti
   return dot_n(vertex.out, vertex.out_x, vertex.out_y) < 0 || dot_n(vertex.in, vertex.in_x, vertex.in_y) > 0;
 }
 
+// ---------------------------------------------------------------- polygon front end
+//
+// Translating polygon pairs (no rotation, segments and vertices only). The pairs whose curve
+// is not entirely in blocked space are those of the reduced convolution: a vertex v (tangents
+// in, out) of one part and a segment with direction t of the other, with cross(out, t) >= 0
+// and cross(in, t) <= 0 (the complement of corner_enters_segment). That set of directions t
+// is an arc of the circle of directions (the cone from -in to -out for a convex vertex, the
+// two directions +-out for a straight one, a half-plane for a spike), so the pairs are found
+// by walking the segments' directions sorted by angle from the arc's start: O((m + n) log n +
+// pairs) exact predicates instead of m n corner tests.
+
+// Exact angular order of non-zero directions: angle in [0, 2 pi) from +x.
+int half_of(const Point& u) { return sgn(u.y) > 0 || (sgn(u.y) == 0 && sgn(u.x) > 0) ? 0 : 1; }
+bool angle_before(const Point& a, const Point& b) {
+  int ha = half_of(a), hb = half_of(b);
+  if (ha != hb) return ha < hb;
+  return sgn(cross(a, b)) > 0;
+}
+
+// The reduced convolution's (vertex feature, segment feature) pairs: `vertices` with their
+// tangents, `segments` with their directions (indices into the parts' feature lists).
+struct DirectedFeature {
+  int index;
+  Point out, in;   // vertex: tangents; segment: out = direction
+};
+
+std::vector<std::pair<int, int>> cone_pairs(const std::vector<DirectedFeature>& vertices,
+                                            std::vector<DirectedFeature> segments) {
+  std::vector<std::pair<int, int>> result;
+  if (segments.empty()) return result;
+  std::sort(segments.begin(), segments.end(),
+            [](const DirectedFeature& a, const DirectedFeature& b) { return angle_before(a.out, b.out); });
+  const std::size_t n = segments.size();
+  for (const DirectedFeature& v : vertices) {
+    auto inside = [&](const Point& t) { return sgn(cross(v.out, t)) >= 0 && sgn(cross(v.in, t)) <= 0; };
+    // walk cyclically from the first direction at or after `start` while inside the arc
+    auto walk = [&](const Point& start) {
+      std::size_t first = static_cast<std::size_t>(
+          std::lower_bound(segments.begin(), segments.end(), start,
+                           [](const DirectedFeature& s, const Point& u) { return angle_before(s.out, u); }) -
+          segments.begin());
+      for (std::size_t k = 0; k < n; ++k) {
+        const DirectedFeature& s = segments[(first + k) % n];
+        if (!inside(s.out)) break;
+        result.emplace_back(v.index, s.index);
+      }
+    };
+    int turn = sgn(cross(v.in, v.out));
+    Point minus_in{Rational(-v.in.x), Rational(-v.in.y)};
+    if (turn > 0) {
+      walk(minus_in);   // the cone from -in counter-clockwise to -out
+    } else if (turn == 0 && sgn(dot(v.in, v.out)) > 0) {
+      walk(minus_in);   // a straight vertex: the directions -out and +out
+      walk(v.out);
+    } else if (turn == 0) {
+      walk(v.out);      // a spike (in = -out): the half-plane from out to -out
+    } else {
+      for (const DirectedFeature& s : segments)   // (no feature: strictly reflex vertices are skipped)
+        if (inside(s.out)) result.emplace_back(v.index, s.index);
+    }
+  }
+  return result;
+}
+
+// c + cx x + cy y exactly, as the normalised integer polynomial of the kernels' path.
+struct Affine {
+  Rational c, x, y;
+};
+
+IntegerPolynomial2 integer_affine(const Affine& f) {
+  mpz_class lcm = 1;
+  for (const Rational* q : {&f.c, &f.x, &f.y}) mpz_lcm(lcm.get_mpz_t(), lcm.get_mpz_t(), q->get_den_mpz_t());
+  auto scaled = [&](const Rational& q) { return mpz_class(q.get_num() * (lcm / q.get_den())); };
+  IntegerPolynomial2 p;
+  p.coefficients = {{scaled(f.c), scaled(f.y)}, {scaled(f.x)}};
+  normalize(p);
+  return p;
+}
+
+// The world shift of a translating part as an affine form of the chart coordinates.
+struct Shift {
+  Point x, y;   // shift = x * chart_x + y * chart_y
+};
+
+// Vertex p of the part shifted by `vertex_shift` on segment q1 -> q2 (direction d) of the part
+// shifted by `segment_shift`: cross(P - Q1, d) with its validity 0 <= dot(P - Q1, d) <= |d|^2,
+// the kernels' vertex_segment for translation poses (weights 1, no rotation).
+struct LinearContact {
+  Affine value, along;
+  Rational length2;
+};
+
+LinearContact vertex_on_segment(const Point& p, const Shift& vertex_shift, const Point& q1, const Point& d,
+                                const Shift& segment_shift) {
+  Point base = difference(p, q1);
+  Point ux = difference(vertex_shift.x, segment_shift.x), uy = difference(vertex_shift.y, segment_shift.y);
+  LinearContact c;
+  c.value = Affine{cross(base, d), cross(ux, d), cross(uy, d)};
+  c.along = Affine{dot(base, d), dot(ux, d), dot(uy, d)};
+  c.length2 = dot(d, d);
+  return c;
+}
+
+// Validity clauses of the linear contact (as convert_validity): false when one never holds.
+bool linear_validity(const LinearContact& c, std::vector<ValidityClause>& clauses) {
+  for (const Affine& atom : {c.along, Affine{Rational(c.length2 - c.along.c), Rational(-c.along.x), Rational(-c.along.y)}}) {
+    if (sgn(atom.x) == 0 && sgn(atom.y) == 0) {
+      if (sgn(atom.c) >= 0) continue;   // always holds
+      return false;
+    }
+    clauses.push_back(ValidityClause{{integer_affine(atom)}});
+  }
+  return true;
+}
 
 // Validity clauses as integer polynomials; returns false when some clause can never hold.
 bool convert_validity(const kernels::Validity<Polynomial>& validity,
@@ -987,13 +1101,17 @@ struct CurveGenerator::Data {
   std::vector<BodyDisk> disks_a, disks_b;
   std::vector<Core> cores_a, cores_b;
   std::vector<SweptFeature> static_a, static_b;   // Culler::describe_static, chart independent
+  bool polygons = true;   // every feature of both parts is a vertex or a segment
 };
 
 CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
-    : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}}) {
+    : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}, true}) {
   Data& d = *data_;
   d.features_a = part_features(model, axes.first, &d.reflex_vertices_skipped);
   d.features_b = part_features(model, axes.second, &d.reflex_vertices_skipped);
+  for (const auto* features : {&d.features_a, &d.features_b})
+    for (const BodyFeature& f : *features)
+      if (f.ref.kind != FeatureRef::Kind::vertex && f.ref.kind != FeatureRef::Kind::segment) d.polygons = false;
   {
     // the pivots and directions of the motions do not depend on the chart
     ChartAxis any;
@@ -1037,10 +1155,6 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
   for (const SweptFeature& f : d.static_a) swept_a.push_back(culler.travel(f, 0));
   for (const SweptFeature& f : d.static_b) swept_b.push_back(culler.travel(f, 1));
 
-  auto constant = [](const Rational& value) { return Polynomial(value); };
-  PairPoses<Polynomial> poses = pair_poses(model, axes, x, y, Polynomial::variable(0),
-                                           Polynomial::variable(1), constant);
-
   // Broad phase: world boxes of the features swept over the chart box (a rotation over the
   // box's angle range, not the whole turn), pairs whose boxes meet by a sweep in x; then the
   // swept-region culling, then blocked-space culling over the chart.
@@ -1056,6 +1170,87 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
     return part.motion.kind == Motion::Kind::fixed || part.motion.kind == Motion::Kind::translation;
   };
   const bool translating = without_rotation(part_a) && without_rotation(part_b);
+  if (translating && d.polygons && options.polygon_front_end && !options.cull_blocked_space) {
+    // The polygon front end: the reduced convolution's pairs by the angular walk (cone_pairs),
+    // then the same broad-phase box test and swept-region cull as the general path (so the
+    // same pairs, in the same order), and each curve written down from the vertices.
+    std::vector<DirectedFeature> vertices_a, segments_a, vertices_b, segments_b;
+    auto directed = [&](const std::vector<BodyFeature>& features, std::vector<DirectedFeature>& vertices,
+                        std::vector<DirectedFeature>& segments) {
+      for (std::size_t i = 0; i < features.size(); ++i) {
+        FeatureDirections fd = feature_directions(model, features[i]);
+        (fd.vertex ? vertices : segments).push_back(DirectedFeature{static_cast<int>(i), fd.out, fd.in});
+      }
+    };
+    directed(features_a, vertices_a, segments_a);
+    directed(features_b, vertices_b, segments_b);
+    std::vector<std::pair<int, int>> reduced = cone_pairs(vertices_a, segments_b);
+    for (auto [j, i] : cone_pairs(vertices_b, segments_a)) reduced.emplace_back(i, j);
+    std::sort(reduced.begin(), reduced.end());
+    auto meets = [](const SweptBox& a, const SweptBox& b) {
+      return !(a.x_hi < b.x_lo || b.x_hi < a.x_lo || a.y_hi < b.y_lo || b.y_hi < a.y_lo);
+    };
+    // statistics as the general path counts them: vertex–segment pairs whose boxes meet
+    std::size_t considered = 0, kept = 0;
+    for (const auto& v : vertices_a)
+      for (const auto& t : segments_b) considered += meets(boxes_a[static_cast<std::size_t>(v.index)], boxes_b[static_cast<std::size_t>(t.index)]);
+    for (const auto& t : segments_a)
+      for (const auto& v : vertices_b) considered += meets(boxes_a[static_cast<std::size_t>(t.index)], boxes_b[static_cast<std::size_t>(v.index)]);
+    stats.feature_pairs_considered += considered;
+    for (auto [i, j] : reduced) {
+      auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+      if (!meets(boxes_a[ui], boxes_b[uj])) continue;
+      ++kept;
+      if (culler.never_touch(swept_a[ui], swept_b[uj])) {
+        ++stats.feature_pairs_culled;
+        continue;
+      }
+      pairs.emplace_back(i, j);
+    }
+    stats.feature_pairs_in_blocked_space += considered - kept;
+    // the parts' world shifts as affine forms of the chart coordinates
+    auto shift_of = [&](const Part& part, bool moves, int variable) {
+      Shift shift{Point{Rational(0), Rational(0)}, Point{Rational(0), Rational(0)}};
+      if (moves && part.motion.kind == Motion::Kind::translation) (variable == 0 ? shift.x : shift.y) = part.motion.direction;
+      return shift;
+    };
+    const Shift shift_a = shift_of(part_a, axes.first_moves, 0);
+    const Shift shift_b = shift_of(part_b, axes.second_moves, axes.first_moves ? 1 : 0);
+    std::vector<ContactCurve> curves;
+    curves.reserve(pairs.size());
+    for (auto [i, j] : pairs) {
+      const BodyFeature& fa = features_a[static_cast<std::size_t>(i)];
+      const BodyFeature& fb = features_b[static_cast<std::size_t>(j)];
+      const bool vertex_first = fa.ref.kind == FeatureRef::Kind::vertex;
+      const BodyFeature& vertex = vertex_first ? fa : fb;
+      const BodyFeature& segment = vertex_first ? fb : fa;
+      const Point d_segment = difference(segment.edge->target, segment.edge->source);
+      LinearContact contact = vertex_on_segment(vertex.point, vertex_first ? shift_a : shift_b, segment.edge->source,
+                                                d_segment, vertex_first ? shift_b : shift_a);
+      ContactCurve curve;
+      curve.first = fa.ref;
+      curve.second = fb.ref;
+      curve.type = vertex_first ? ContactType::vertex_segment : ContactType::segment_vertex;
+      curve.polynomial = integer_affine(contact.value);
+      curve.blocked_sign = kernels::blocked_sign;
+      bool zero = curve.polynomial.is_zero();
+      if (!zero && curve.polynomial.degree_x() == 0 && curve.polynomial.degree_y() == 0)
+        continue;  // a non-zero constant: these features never touch
+      if (!linear_validity(contact, curve.validity)) continue;  // never within both
+      curve.label = part_a.name + " " + fa.label + " / " + part_b.name + " " + fb.label + " (" +
+                    contact_word(curve.type) + ")";
+      if (zero) {
+        ++stats.identically_zero;
+      } else {
+        ++stats.curves;
+      }
+      curves.push_back(std::move(curve));
+    }
+    return curves;
+  }
+  auto constant = [](const Rational& value) { return Polynomial(value); };
+  PairPoses<Polynomial> poses = pair_poses(model, axes, x, y, Polynomial::variable(0),
+                                           Polynomial::variable(1), constant);
   std::vector<kernels::FeatureGeometry<Rational>> geometry_a, geometry_b;
   geometry_a.reserve(features_a.size());
   geometry_b.reserve(features_b.size());
@@ -1219,26 +1414,39 @@ std::vector<ChartAxis> rotation_charts(const Motion& motion) {
 }
 
 // Certified extent of a whole part along the exact unit vector u.
+// The part's segment and arc features, without labels (part_features' curve features, in
+// its order).
+template <class Visit>
+void for_each_curve_feature(const Model& model, std::size_t part_index, Visit&& visit) {
+  const Part& part = model.parts.at(part_index);
+  for (std::size_t l = 0; l < part.loops.size(); ++l)
+    for (std::size_t e = 0; e < part.loops[l].edges.size(); ++e) {
+      const Edge& edge = part.loops[l].edges[e];
+      BodyFeature feature;
+      feature.ref = FeatureRef{part_index, l, e, edge.is_arc() ? FeatureRef::Kind::arc : FeatureRef::Kind::segment};
+      feature.edge = &edge;
+      feature.point = edge.source;
+      visit(feature);
+    }
+}
+
 Interval part_extent(const Model& model, std::size_t part_index, const Point& unit) {
-  std::vector<BodyFeature> features = part_features(model, part_index);
   Interval extent(0.0, 0.0);
   bool first = true;
-  for (const BodyFeature& feature : features) {
-    if (feature.ref.kind == FeatureRef::Kind::vertex) continue;
+  for_each_curve_feature(model, part_index, [&](const BodyFeature& feature) {
     Interval range = projection_range(feature, unit);
     extent = first ? range : kernels::hull(extent, range);
     first = false;
-  }
+  });
   return extent;
 }
 
 // Certified largest distance of a part from a point.
 double part_reach(const Model& model, std::size_t part_index, const Point& centre) {
   double reach = 0.0;
-  for (const BodyFeature& feature : part_features(model, part_index)) {
-    if (feature.ref.kind == FeatureRef::Kind::vertex) continue;
+  for_each_curve_feature(model, part_index, [&](const BodyFeature& feature) {
     reach = std::max(reach, radial_range(feature, centre).hi);
-  }
+  });
   return reach;
 }
 

@@ -154,6 +154,10 @@ std::vector<ContactCurve> generate_contact_curves(const Model& model, const Pair
 /// Added by the kernels: options of curve generation (tests switch the blocked-space cull off).
 struct CurveOptions {
   bool cull_blocked_space = true;
+  /// Translating polygon pairs without the blocked-space cull: the pairs of the reduced
+  /// convolution by an angular walk and each curve written from the vertices (the same curves,
+  /// in the same order, as the general path; false: the general path, for tests).
+  bool polygon_front_end = true;
 };
 
 /// generate_contact_curves with options.
