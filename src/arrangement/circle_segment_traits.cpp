@@ -349,16 +349,54 @@ class Builder {
   void clip_line(const Linear& line, const std::vector<ValidityClause>& clauses,
                  const std::vector<std::pair<Rational, Rational>>& windows) {
     const bool vertical = sgn(line.ky) == 0;
-    Rational x0;   // vertical: the constant x
+    Rational x0;     // vertical: the constant x
+    Rational u, v;   // else y = u + v x
     // a linear function g0 + gx x + gy y along the line: p + q t
     auto along = [&](const Linear& g) -> std::pair<Rational, Rational> {
       if (vertical) return {g.k0 + g.kx * x0, g.ky};
-      Rational u = -line.k0 / line.ky, v = -line.kx / line.ky;   // y = u + v x
       return {g.k0 + g.ky * u, g.kx + g.ky * v};
     };
     if (vertical) {
       x0 = -line.k0 / line.kx;
       if (x0 < box_.x_lo || x0 > box_.x_hi || !in_windows(x0, windows)) return;
+    } else {
+      u = -line.k0 / line.ky;
+      v = -line.kx / line.ky;
+    }
+    auto at = [&](const Rational& t) {
+      if (vertical) return point(x0, t);
+      return point(t, -(line.k0 + line.kx * t) / line.ky);
+    };
+    // One-atom clauses and no windows (every contact segment of a polygon pair): the set is
+    // one closed interval, kept as its two ends (the same ends as the set arithmetic below).
+    const bool single = (vertical || windows.empty()) &&
+                        std::all_of(clauses.begin(), clauses.end(), [](const ValidityClause& c) { return c.atoms.size() == 1; });
+    if (single) {
+      std::optional<Rational> lo, hi;
+      bool empty = false;
+      auto bound = [&](const Linear& g) {   // p + q t >= 0
+        auto [p, q] = along(g);
+        if (sgn(q) == 0) {
+          if (sgn(p) < 0) empty = true;
+          return;
+        }
+        Rational t = -p / q;
+        if (sgn(q) > 0) {
+          if (!lo || *lo < t) lo = std::move(t);
+        } else if (!hi || t < *hi) {
+          hi = std::move(t);
+        }
+      };
+      bound(Linear{-box_.x_lo, 1, 0});
+      bound(Linear{box_.x_hi, -1, 0});
+      bound(Linear{-box_.y_lo, 0, 1});
+      bound(Linear{box_.y_hi, 0, -1});
+      for (const auto& clause : clauses) bound(linear_of(clause.atoms[0]));
+      if (empty || (lo && hi && *hi < *lo)) return;
+      if (!lo || !hi) throw GeometryError("internal: a clipped contact segment is unbounded");
+      if (!(*lo < *hi)) return;   // a single valid point: no segment (as the algebraic stage)
+      pieces_.emplace_back(BaseCurve(at(*lo), at(*hi)), current_);
+      return;
     }
     Set set = everything();
     auto require = [&](const Linear& g) {
@@ -386,10 +424,6 @@ class Builder {
     for (const auto& span : set) {
       if (!span.lo || !span.hi) throw GeometryError("internal: a clipped contact segment is unbounded");
       if (!(*span.lo < *span.hi)) continue;   // a single valid point: no segment (as the algebraic stage)
-      auto at = [&](const Rational& t) {
-        if (vertical) return point(x0, t);
-        return point(t, -(line.k0 + line.kx * t) / line.ky);
-      };
       pieces_.emplace_back(BaseCurve(at(*span.lo), at(*span.hi)), current_);
     }
   }
