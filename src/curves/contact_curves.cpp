@@ -846,19 +846,34 @@ bool corner_enters_segment(const FeatureDirections& vertex, const FeatureDirecti
 // by walking the segments' directions sorted by angle from the arc's start: O((m + n) log n +
 // pairs) exact predicates instead of m n corner tests.
 
+// A direction with its enclosure (the filter of the exact signs below).
+struct Direction {
+  Point p;
+  Interval x, y;
+  static Direction of(const Point& p) { return Direction{p, Interval::enclose(p.x), Interval::enclose(p.y)}; }
+  Direction negated() const { return Direction{Point{Rational(-p.x), Rational(-p.y)}, -x, -y}; }
+};
+
+// Sign of cross(a, b): interval filter, exact when the enclosure holds zero.
+int cross_sign(const Direction& a, const Direction& b) {
+  int sign = (a.x * b.y - a.y * b.x).sign();
+  if (sign == 1 || sign == -1) return sign;
+  return sgn(cross(a.p, b.p));
+}
+
 // Exact angular order of non-zero directions: angle in [0, 2 pi) from +x.
 int half_of(const Point& u) { return sgn(u.y) > 0 || (sgn(u.y) == 0 && sgn(u.x) > 0) ? 0 : 1; }
-bool angle_before(const Point& a, const Point& b) {
-  int ha = half_of(a), hb = half_of(b);
+bool angle_before(const Direction& a, const Direction& b) {
+  int ha = half_of(a.p), hb = half_of(b.p);
   if (ha != hb) return ha < hb;
-  return sgn(cross(a, b)) > 0;
+  return cross_sign(a, b) > 0;
 }
 
 // The reduced convolution's (vertex feature, segment feature) pairs: `vertices` with their
 // tangents, `segments` with their directions (indices into the parts' feature lists).
 struct DirectedFeature {
   int index;
-  Point out, in;   // vertex: tangents; segment: out = direction
+  Direction out, in;   // vertex: tangents; segment: out = direction
 };
 
 std::vector<std::pair<int, int>> cone_pairs(const std::vector<DirectedFeature>& vertices,
@@ -869,12 +884,12 @@ std::vector<std::pair<int, int>> cone_pairs(const std::vector<DirectedFeature>& 
             [](const DirectedFeature& a, const DirectedFeature& b) { return angle_before(a.out, b.out); });
   const std::size_t n = segments.size();
   for (const DirectedFeature& v : vertices) {
-    auto inside = [&](const Point& t) { return sgn(cross(v.out, t)) >= 0 && sgn(cross(v.in, t)) <= 0; };
+    auto inside = [&](const Direction& t) { return cross_sign(v.out, t) >= 0 && cross_sign(v.in, t) <= 0; };
     // walk cyclically from the first direction at or after `start` while inside the arc
-    auto walk = [&](const Point& start) {
+    auto walk = [&](const Direction& start) {
       std::size_t first = static_cast<std::size_t>(
           std::lower_bound(segments.begin(), segments.end(), start,
-                           [](const DirectedFeature& s, const Point& u) { return angle_before(s.out, u); }) -
+                           [](const DirectedFeature& s, const Direction& u) { return angle_before(s.out, u); }) -
           segments.begin());
       for (std::size_t k = 0; k < n; ++k) {
         const DirectedFeature& s = segments[(first + k) % n];
@@ -882,15 +897,14 @@ std::vector<std::pair<int, int>> cone_pairs(const std::vector<DirectedFeature>& 
         result.emplace_back(v.index, s.index);
       }
     };
-    int turn = sgn(cross(v.in, v.out));
-    Point minus_in{Rational(-v.in.x), Rational(-v.in.y)};
+    int turn = cross_sign(v.in, v.out);
     if (turn > 0) {
-      walk(minus_in);   // the cone from -in counter-clockwise to -out
-    } else if (turn == 0 && sgn(dot(v.in, v.out)) > 0) {
-      walk(minus_in);   // a straight vertex: the directions -out and +out
+      walk(v.in.negated());   // the cone from -in counter-clockwise to -out
+    } else if (turn == 0 && sgn(dot(v.in.p, v.out.p)) > 0) {
+      walk(v.in.negated());   // a straight vertex: the directions -out and +out
       walk(v.out);
     } else if (turn == 0) {
-      walk(v.out);      // a spike (in = -out): the half-plane from out to -out
+      walk(v.out);            // a spike (in = -out): the half-plane from out to -out
     } else {
       for (const DirectedFeature& s : segments)   // (no feature: strictly reflex vertices are skipped)
         if (inside(s.out)) result.emplace_back(v.index, s.index);
@@ -1179,7 +1193,9 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
                         std::vector<DirectedFeature>& segments) {
       for (std::size_t i = 0; i < features.size(); ++i) {
         FeatureDirections fd = feature_directions(model, features[i]);
-        (fd.vertex ? vertices : segments).push_back(DirectedFeature{static_cast<int>(i), fd.out, fd.in});
+        (fd.vertex ? vertices : segments)
+            .push_back(DirectedFeature{static_cast<int>(i), Direction{fd.out, fd.out_x, fd.out_y},
+                                       Direction{fd.in, fd.in_x, fd.in_y}});
       }
     };
     directed(features_a, vertices_a, segments_a);
