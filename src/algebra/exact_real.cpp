@@ -255,22 +255,45 @@ void Real::refine() {
 
 void Real::refine_to(const Rational& width) {
   if (exact || upper - lower <= width) return;
-  // the bisection of refine(), with the sign at the lower end evaluated once: it never
-  // changes (lower only moves to midpoints of the same sign)
+  // The bisection of refine(), on integers: after k halvings the interval is
+  // [lower + j w / 2^k, lower + (j + 1) w / 2^k] with w = upper - lower, so every midpoint is
+  // (a q 2^k + p b m) / (b q 2^k) for lower = a / b, w = p / q and an odd m. Signs are taken
+  // at these unreduced fractions (the sign of p(N / D) with D > 0 does not depend on common
+  // factors), and the ends are reduced once at the end: the same intervals, and the same exact
+  // roots, as halving canonical rationals, without a gcd per step. The sign at the lower end
+  // is evaluated once: it never changes (lower only moves to midpoints of the same sign).
   const int lower_sign = sign_at(polynomial, lower);
-  while (upper - lower > width) {
-    Rational middle = (lower + upper) / 2;
-    int s = sign_at(polynomial, middle);
+  Rational span = upper - lower;
+  const mpz_class& p = span.get_num();
+  const mpz_class& q = span.get_den();
+  const mpz_class base = lower.get_num() * q;   // a q
+  const mpz_class step = p * lower.get_den();    // p b
+  const mpz_class denominator = lower.get_den() * q;   // b q
+  const mpz_class limit_left = p * width.get_den();    // the interval is wider than width while
+  const mpz_class& limit_right = width.get_num();      // p w_den > w_num q 2^k
+  mpz_class j = 0, numerator, scaled_denominator, right = limit_right * q;
+  unsigned long k = 0;
+  while (limit_left > right) {
+    mpz_class m = 2 * j + 1;
+    ++k;
+    numerator = (base << k) + step * m;
+    scaled_denominator = denominator << k;
+    int s = sgn(homogeneous_value(polynomial, numerator, scaled_denominator));
     if (s == 0) {
-      lower = upper = middle;
+      lower = Rational(numerator, scaled_denominator);
+      lower.canonicalize();
+      upper = lower;
       exact = true;
       return;
     }
-    if (s == lower_sign)
-      lower = std::move(middle);
-    else
-      upper = std::move(middle);
+    j = s == lower_sign ? m : mpz_class(2 * j);
+    right <<= 1;
   }
+  scaled_denominator = denominator << k;
+  lower = Rational(mpz_class((base << k) + step * j), scaled_denominator);
+  upper = Rational(mpz_class((base << k) + step * (j + 1)), scaled_denominator);
+  lower.canonicalize();
+  upper.canonicalize();
 }
 
 void refine_dyadically(Real& r, const Rational& width) {
