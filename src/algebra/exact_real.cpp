@@ -253,6 +253,57 @@ void Real::refine() {
     upper = middle;
 }
 
+namespace {
+
+// A certified double filter for the sign of an integer polynomial at a point given by an
+// interval enclosure: the coefficients scaled by one power of two (so that large ones stay
+// finite; the sign does not change) and enclosed outwards, evaluated by interval Horner.
+// Returns 0 when the enclosure of the value contains zero or is not finite: the caller then
+// decides exactly.
+class SignFilter {
+ public:
+  explicit SignFilter(const Polynomial& p) {
+    std::size_t bits = 0;
+    for (const mpz_class& c : p)
+      if (sgn(c) != 0) bits = std::max(bits, mpz_sizeinbase(c.get_mpz_t(), 2));
+    std::size_t shift = bits > 900 ? bits - 900 : 0;
+    mpz_class floor_value;
+    for (const mpz_class& c : p) {
+      // c / 2^shift lies in [f, f + 1] for f = floor(c / 2^shift); mpz_get_d truncates
+      // towards zero, so the double next to it away from zero bounds the other side
+      mpz_fdiv_q_2exp(floor_value.get_mpz_t(), c.get_mpz_t(), shift);
+      double lo = truncated_bound(floor_value, false);
+      if (shift == 0) {
+        coefficients_.push_back({lo, truncated_bound(floor_value, true)});
+      } else {
+        floor_value += 1;
+        coefficients_.push_back({lo, truncated_bound(floor_value, true)});
+      }
+    }
+  }
+  // A double below (upper = false) or above z.
+  static double truncated_bound(const mpz_class& z, bool upper) {
+    double d = mpz_get_d(z.get_mpz_t());   // |d| <= |z|, towards zero
+    if (mpz_sizeinbase(z.get_mpz_t(), 2) <= 53) return d;   // exact
+    bool away = upper ? sgn(z) > 0 : sgn(z) < 0;
+    return away ? std::nextafter(d, upper ? HUGE_VAL : -HUGE_VAL) : d;
+  }
+  int sign(Interval x) const {
+    if (coefficients_.empty()) return 0;
+    Interval value = coefficients_.back();
+    for (std::size_t i = coefficients_.size() - 1; i-- > 0;) value = value * x + coefficients_[i];
+    if (!std::isfinite(value.lo) || !std::isfinite(value.hi)) return 0;
+    if (value.lo > 0) return 1;
+    if (value.hi < 0) return -1;
+    return 0;
+  }
+
+ private:
+  std::vector<Interval> coefficients_;
+};
+
+}  // namespace
+
 void Real::refine_to(const Rational& width) {
   if (exact || upper - lower <= width) return;
   // The bisection of refine(), on integers: after k halvings the interval is
@@ -273,13 +324,25 @@ void Real::refine_to(const Rational& width) {
   const mpz_class& limit_right = width.get_num();      // p w_den > w_num q 2^k
   mpz_class j = 0, numerator, scaled_denominator, right = limit_right * q;
   unsigned long k = 0;
+  // The certified double filter decides the sign at a midpoint lower + span m / 2^k while
+  // m / 2^k is a double (k <= 52) and the value's enclosure excludes zero; else exactly.
+  const SignFilter filter(polynomial);
+  const Interval lower_box = enclose(lower), span_box = enclose(span);
+  bool filtering = std::isfinite(lower_box.lo) && std::isfinite(lower_box.hi) && std::isfinite(span_box.hi);
   while (limit_left > right) {
     mpz_class m = 2 * j + 1;
     ++k;
-    numerator = (base << k) + step * m;
-    scaled_denominator = denominator << k;
-    int s = sgn(homogeneous_value(polynomial, numerator, scaled_denominator));
+    int s = 0;
+    if (filtering && k <= 52) {
+      double t = std::ldexp(m.get_d(), -static_cast<int>(k));   // exact: m < 2^k <= 2^52
+      s = filter.sign(lower_box + span_box * Interval{t, t});
+    }
     if (s == 0) {
+      numerator = (base << k) + step * m;
+      scaled_denominator = denominator << k;
+      s = sgn(homogeneous_value(polynomial, numerator, scaled_denominator));
+    }
+    if (s == 0) {   // decided exactly (the filter never returns 0 as a sign)
       lower = Rational(numerator, scaled_denominator);
       lower.canonicalize();
       upper = lower;
@@ -396,6 +459,16 @@ int compare(const Real& a, const Real& b) {
   if (a.upper <= b.lower) return -1;
   if (b.upper <= a.lower) return 1;
   // Overlapping intervals: equal iff the gcd has a root in the common part.
+  {
+    // distinct numbers usually separate after a few halvings: try that before the gcd
+    Real x = a, y = b;
+    Rational width = std::max(Rational(x.upper - x.lower), Rational(y.upper - y.lower)) / 1048576;
+    x.refine_to(width);
+    y.refine_to(width);
+    if (x.exact || y.exact) return compare(x, y);
+    if (x.upper <= y.lower) return -1;
+    if (y.upper <= x.lower) return 1;
+  }
   Polynomial g = gcd(a.polynomial, b.polynomial);
   Rational lo = std::max(a.lower, b.lower), hi = std::min(a.upper, b.upper);
   if (degree(g) >= 1) {
@@ -403,10 +476,12 @@ int compare(const Real& a, const Real& b) {
     int roots = sturm.count(lo, hi) - (sign_at(g, hi) == 0 ? 1 : 0);
     if (roots > 0) return 0;
   }
+  // distinct numbers: refine copies until their intervals separate (sixteen halvings a round)
   Real x = a, y = b;
   for (;;) {
-    x.refine();
-    y.refine();
+    Rational width = std::max(Rational(x.upper - x.lower), Rational(y.upper - y.lower)) / 65536;
+    x.refine_to(width);
+    y.refine_to(width);
     if (x.exact || y.exact) return compare(x, y);
     if (x.upper <= y.lower) return -1;
     if (y.upper <= x.lower) return 1;
