@@ -314,6 +314,29 @@ void Real::refine_to(const Rational& width) {
   // roots, as halving canonical rationals, without a gcd per step. The sign at the lower end
   // is evaluated once: it never changes (lower only moves to midpoints of the same sign).
   const int lower_sign = sign_at(polynomial, lower);
+  auto reduced = [](const Rational& r) {
+    mpz_class g;
+    mpz_gcd(g.get_mpz_t(), r.get_num_mpz_t(), r.get_den_mpz_t());
+    return g == 1;
+  };
+  if (!reduced(lower) || !reduced(upper)) {
+    // GMP's arithmetic keeps an unreduced end's factors in the midpoints: halve as before, so
+    // that the ends are written the same way
+    while (upper - lower > width) {
+      Rational middle = (lower + upper) / 2;
+      int s = sign_at(polynomial, middle);
+      if (s == 0) {
+        lower = upper = middle;
+        exact = true;
+        return;
+      }
+      if (s == lower_sign)
+        lower = std::move(middle);
+      else
+        upper = std::move(middle);
+    }
+    return;
+  }
   Rational span = upper - lower;
   const mpz_class& p = span.get_num();
   const mpz_class& q = span.get_den();
@@ -352,11 +375,16 @@ void Real::refine_to(const Rational& width) {
     j = s == lower_sign ? m : mpz_class(2 * j);
     right <<= 1;
   }
+  // an end that never moved keeps its representation (as halving did), a moved one is reduced
   scaled_denominator = denominator << k;
-  lower = Rational(mpz_class((base << k) + step * j), scaled_denominator);
-  upper = Rational(mpz_class((base << k) + step * (j + 1)), scaled_denominator);
-  lower.canonicalize();
-  upper.canonicalize();
+  if (j != 0) {
+    lower = Rational(mpz_class((base << k) + step * j), scaled_denominator);
+    lower.canonicalize();
+  }
+  if (j + 1 != mpz_class(1) << k) {
+    upper = Rational(mpz_class((base << k) + step * (j + 1)), scaled_denominator);
+    upper.canonicalize();
+  }
 }
 
 void refine_dyadically(Real& r, const Rational& width) {
