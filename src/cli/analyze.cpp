@@ -196,7 +196,8 @@ std::optional<CSpace> exact_space_for_picture(const Model& model, const PairPath
     }
     CSpace space = CSpace::build(model, path.x_part, path.y_part, options);
     if (space.dimension() == 2 && space.x_part() == path.x_part && space.y_part() == path.y_part) return space;
-  } catch (const GeometryError&) {
+  } catch (const GeometryError&) {   // a pair the builder cannot handle: the sampled picture
+  } catch (const NumericError&) {
   }
   return std::nullopt;
 }
