@@ -253,23 +253,137 @@ void Real::refine() {
     upper = middle;
 }
 
+namespace {
+
+// A certified double filter for the sign of an integer polynomial at a point given by an
+// interval enclosure: the coefficients scaled by one power of two (so that large ones stay
+// finite; the sign does not change) and enclosed outwards, evaluated by interval Horner.
+// Returns 0 when the enclosure of the value contains zero or is not finite: the caller then
+// decides exactly.
+class SignFilter {
+ public:
+  explicit SignFilter(const Polynomial& p) {
+    std::size_t bits = 0;
+    for (const mpz_class& c : p)
+      if (sgn(c) != 0) bits = std::max(bits, mpz_sizeinbase(c.get_mpz_t(), 2));
+    std::size_t shift = bits > 900 ? bits - 900 : 0;
+    mpz_class floor_value;
+    for (const mpz_class& c : p) {
+      // c / 2^shift lies in [f, f + 1] for f = floor(c / 2^shift); mpz_get_d truncates
+      // towards zero, so the double next to it away from zero bounds the other side
+      mpz_fdiv_q_2exp(floor_value.get_mpz_t(), c.get_mpz_t(), shift);
+      double lo = truncated_bound(floor_value, false);
+      if (shift == 0) {
+        coefficients_.push_back({lo, truncated_bound(floor_value, true)});
+      } else {
+        floor_value += 1;
+        coefficients_.push_back({lo, truncated_bound(floor_value, true)});
+      }
+    }
+  }
+  // A double below (upper = false) or above z.
+  static double truncated_bound(const mpz_class& z, bool upper) {
+    double d = mpz_get_d(z.get_mpz_t());   // |d| <= |z|, towards zero
+    if (mpz_sizeinbase(z.get_mpz_t(), 2) <= 53) return d;   // exact
+    bool away = upper ? sgn(z) > 0 : sgn(z) < 0;
+    return away ? std::nextafter(d, upper ? HUGE_VAL : -HUGE_VAL) : d;
+  }
+  int sign(Interval x) const {
+    if (coefficients_.empty()) return 0;
+    Interval value = coefficients_.back();
+    for (std::size_t i = coefficients_.size() - 1; i-- > 0;) value = value * x + coefficients_[i];
+    if (!std::isfinite(value.lo) || !std::isfinite(value.hi)) return 0;
+    if (value.lo > 0) return 1;
+    if (value.hi < 0) return -1;
+    return 0;
+  }
+
+ private:
+  std::vector<Interval> coefficients_;
+};
+
+}  // namespace
+
 void Real::refine_to(const Rational& width) {
   if (exact || upper - lower <= width) return;
-  // the bisection of refine(), with the sign at the lower end evaluated once: it never
-  // changes (lower only moves to midpoints of the same sign)
+  // The bisection of refine(), on integers: after k halvings the interval is
+  // [lower + j w / 2^k, lower + (j + 1) w / 2^k] with w = upper - lower, so every midpoint is
+  // (a q 2^k + p b m) / (b q 2^k) for lower = a / b, w = p / q and an odd m. Signs are taken
+  // at these unreduced fractions (the sign of p(N / D) with D > 0 does not depend on common
+  // factors), and the ends are reduced once at the end: the same intervals, and the same exact
+  // roots, as halving canonical rationals, without a gcd per step. The sign at the lower end
+  // is evaluated once: it never changes (lower only moves to midpoints of the same sign).
   const int lower_sign = sign_at(polynomial, lower);
-  while (upper - lower > width) {
-    Rational middle = (lower + upper) / 2;
-    int s = sign_at(polynomial, middle);
+  auto reduced = [](const Rational& r) {
+    mpz_class g;
+    mpz_gcd(g.get_mpz_t(), r.get_num_mpz_t(), r.get_den_mpz_t());
+    return g == 1;
+  };
+  if (!reduced(lower) || !reduced(upper)) {
+    // GMP's arithmetic keeps an unreduced end's factors in the midpoints: halve as before, so
+    // that the ends are written the same way
+    while (upper - lower > width) {
+      Rational middle = (lower + upper) / 2;
+      int s = sign_at(polynomial, middle);
+      if (s == 0) {
+        lower = upper = middle;
+        exact = true;
+        return;
+      }
+      if (s == lower_sign)
+        lower = std::move(middle);
+      else
+        upper = std::move(middle);
+    }
+    return;
+  }
+  Rational span = upper - lower;
+  const mpz_class& p = span.get_num();
+  const mpz_class& q = span.get_den();
+  const mpz_class base = lower.get_num() * q;   // a q
+  const mpz_class step = p * lower.get_den();    // p b
+  const mpz_class denominator = lower.get_den() * q;   // b q
+  const mpz_class limit_left = p * width.get_den();    // the interval is wider than width while
+  const mpz_class& limit_right = width.get_num();      // p w_den > w_num q 2^k
+  mpz_class j = 0, numerator, scaled_denominator, right = limit_right * q;
+  unsigned long k = 0;
+  // The certified double filter decides the sign at a midpoint lower + span m / 2^k while
+  // m / 2^k is a double (k <= 52) and the value's enclosure excludes zero; else exactly.
+  const SignFilter filter(polynomial);
+  const Interval lower_box = enclose(lower), span_box = enclose(span);
+  bool filtering = std::isfinite(lower_box.lo) && std::isfinite(lower_box.hi) && std::isfinite(span_box.hi);
+  while (limit_left > right) {
+    mpz_class m = 2 * j + 1;
+    ++k;
+    int s = 0;
+    if (filtering && k <= 52) {
+      double t = std::ldexp(m.get_d(), -static_cast<int>(k));   // exact: m < 2^k <= 2^52
+      s = filter.sign(lower_box + span_box * Interval{t, t});
+    }
     if (s == 0) {
-      lower = upper = middle;
+      numerator = (base << k) + step * m;
+      scaled_denominator = denominator << k;
+      s = sgn(homogeneous_value(polynomial, numerator, scaled_denominator));
+    }
+    if (s == 0) {   // decided exactly (the filter never returns 0 as a sign)
+      lower = Rational(numerator, scaled_denominator);
+      lower.canonicalize();
+      upper = lower;
       exact = true;
       return;
     }
-    if (s == lower_sign)
-      lower = std::move(middle);
-    else
-      upper = std::move(middle);
+    j = s == lower_sign ? m : mpz_class(2 * j);
+    right <<= 1;
+  }
+  // an end that never moved keeps its representation (as halving did), a moved one is reduced
+  scaled_denominator = denominator << k;
+  if (j != 0) {
+    lower = Rational(mpz_class((base << k) + step * j), scaled_denominator);
+    lower.canonicalize();
+  }
+  if (j + 1 != mpz_class(1) << k) {
+    upper = Rational(mpz_class((base << k) + step * (j + 1)), scaled_denominator);
+    upper.canonicalize();
   }
 }
 
@@ -373,6 +487,16 @@ int compare(const Real& a, const Real& b) {
   if (a.upper <= b.lower) return -1;
   if (b.upper <= a.lower) return 1;
   // Overlapping intervals: equal iff the gcd has a root in the common part.
+  {
+    // distinct numbers usually separate after a few halvings: try that before the gcd
+    Real x = a, y = b;
+    Rational width = std::max(Rational(x.upper - x.lower), Rational(y.upper - y.lower)) / 1048576;
+    x.refine_to(width);
+    y.refine_to(width);
+    if (x.exact || y.exact) return compare(x, y);
+    if (x.upper <= y.lower) return -1;
+    if (y.upper <= x.lower) return 1;
+  }
   Polynomial g = gcd(a.polynomial, b.polynomial);
   Rational lo = std::max(a.lower, b.lower), hi = std::min(a.upper, b.upper);
   if (degree(g) >= 1) {
@@ -380,10 +504,12 @@ int compare(const Real& a, const Real& b) {
     int roots = sturm.count(lo, hi) - (sign_at(g, hi) == 0 ? 1 : 0);
     if (roots > 0) return 0;
   }
+  // distinct numbers: refine copies until their intervals separate (sixteen halvings a round)
   Real x = a, y = b;
   for (;;) {
-    x.refine();
-    y.refine();
+    Rational width = std::max(Rational(x.upper - x.lower), Rational(y.upper - y.lower)) / 65536;
+    x.refine_to(width);
+    y.refine_to(width);
     if (x.exact || y.exact) return compare(x, y);
     if (x.upper <= y.lower) return -1;
     if (y.upper <= x.lower) return 1;

@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -173,8 +174,11 @@ std::size_t choose_driver(const Model& model, const std::string& requested) {
 }
 
 // The exact C-space to draw a pair's path on: a whole space the analysis was given, or one
-// built now when the pair is small (a few hundred boundary edges build in about a second);
-// nullopt: draw the sampled picture instead.
+// built now — the whole space when the pair is small (a few hundred boundary edges build in
+// about a second), else its operating region, the channel the path starts in (a gear pair's
+// z1 + z2 tooth encounters instead of z1 z2: the picture costs less than the analysis, where
+// slicing 240 columns of the whole space cost more than the analysis itself); nullopt: draw
+// the sampled picture instead (a pair the builder cannot handle).
 std::optional<CSpace> exact_space_for_picture(const Model& model, const PairPath& path, const std::vector<CSpace>& spaces) {
   for (const CSpace& space : spaces)
     if (space.complete() && space.dimension() == 2 && space.x_part() == path.x_part && space.y_part() == path.y_part)
@@ -184,11 +188,16 @@ std::optional<CSpace> exact_space_for_picture(const Model& model, const PairPath
   std::size_t edges = 0;
   for (std::size_t part : {*x, *y})
     for (const Loop& loop : model.parts[part].loops) edges += loop.edges.size();
-  if (edges > 120) return std::nullopt;
   try {
-    CSpace space = CSpace::build(model, path.x_part, path.y_part);
+    CSpaceBuildOptions options;
+    if (edges > 120) {
+      options.operating_region = true;
+      if (!path.points.empty()) options.region_seed = std::array<double, 2>{path.points.front().x, path.points.front().y};
+    }
+    CSpace space = CSpace::build(model, path.x_part, path.y_part, options);
     if (space.dimension() == 2 && space.x_part() == path.x_part && space.y_part() == path.y_part) return space;
-  } catch (const GeometryError&) {
+  } catch (const GeometryError&) {   // a pair the builder cannot handle: the sampled picture
+  } catch (const NumericError&) {
   }
   return std::nullopt;
 }

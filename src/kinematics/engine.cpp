@@ -645,6 +645,11 @@ ChainState initial_state(const Chain& chain, std::size_t piece, const Rational& 
   next.parts[0].unwrapped = unwrapped;
   for (std::size_t k = 1; k < chain.parts.size(); ++k) {
     const AxisLine& line = chain.parts[k].line;
+    // The whole slices of part k's pairs: checked for interference here, and their
+    // intersection is the free space update_windowed(initial) would slice again (the same
+    // slices, skipped by the same rules as constraint_slice).
+    AxisSlice free_space;
+    bool first = true;
     // interference of each pair at the initial configuration
     for (std::size_t s : chain.parts[k].constraints) {
       ChainState probe = next;
@@ -676,8 +681,12 @@ ChainState initial_state(const Chain& chain, std::size_t piece, const Rational& 
         }
         interference.push_back(Interference{slicer.name(), description});
       }
+      free_space = first ? std::move(slice) : intersect(line, free_space, slice);
+      first = false;
     }
-    if (update_windowed(chain, k, start.parts[k], next, true) == Outcome::jammed) return next;
+    // update_windowed(initial) slices the whole axis at once: the same decision on the slices above
+    Outcome outcome = update_part(chain, k, start.parts[k], free_space, next, true, std::numeric_limits<double>::infinity());
+    if (outcome == Outcome::widen || outcome == Outcome::jammed) return next;
   }
   return next;
 }

@@ -17,6 +17,106 @@ Polynomial poly(std::initializer_list<long> ascending) {
   return p;
 }
 
+// The bisection of Real::refine_to as it was written before its integer and filtered form:
+// halving canonical rationals, the sign at every midpoint decided exactly. The analysis prints
+// doubles taken from these intervals, so the fast form must give the same intervals.
+void reference_refine_to(Real& r, const Rational& width) {
+  if (r.exact || r.upper - r.lower <= width) return;
+  const int lower_sign = sign_at(r.polynomial, r.lower);
+  while (r.upper - r.lower > width) {
+    Rational middle = (r.lower + r.upper) / 2;
+    int s = sign_at(r.polynomial, middle);
+    if (s == 0) {
+      r.lower = r.upper = middle;
+      r.exact = true;
+      return;
+    }
+    if (s == lower_sign)
+      r.lower = middle;
+    else
+      r.upper = middle;
+  }
+}
+
+// Random square-free products of linear and quadratic factors with integer coefficients (up to
+// 2^70, beyond doubles), some with rational roots hit exactly by a dyadic midpoint.
+TEST(CSpaceAlgebra, RefineToGivesTheIntervalsOfCanonicalBisection) {
+  gmp_randclass random(gmp_randinit_default);
+  random.seed(20261127);
+  std::size_t checked = 0, exact_hits = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    Polynomial p{1};
+    int factors = 1 + trial % 4;
+    for (int f = 0; f < factors; ++f) {
+      mpz_class a = random.get_z_bits(trial % 3 == 0 ? 70 : 12) - (mpz_class(1) << (trial % 3 == 0 ? 69 : 11));
+      mpz_class b = random.get_z_bits(8) + 1;
+      Polynomial factor = (f + trial) % 3 == 0 ? Polynomial{a, mpz_class(b)}                 // b x + a
+                                                : Polynomial{a, mpz_class(0), mpz_class(b)};  // b x^2 + a
+      if (trial % 7 == 0 && f == 0) factor = Polynomial{mpz_class(-3 * (trial % 5 + 1)), mpz_class(1) << 6};   // a dyadic root
+      Polynomial product(p.size() + factor.size() - 1);
+      for (std::size_t i = 0; i < p.size(); ++i)
+        for (std::size_t j = 0; j < factor.size(); ++j) product[i + j] += p[i] * factor[j];
+      p = product;
+    }
+    p = square_free_part(p);
+    if (degree(p) < 1) continue;
+    Rational bound = 1;
+    for (const mpz_class& c : p) bound += Rational(abs(c), abs(p.back()));   // Cauchy's bound
+    std::vector<Real> roots = real_roots(p, -bound, bound);
+    for (std::size_t i = 0, n = roots.size(); i < n; ++i) {   // also with reduced ends
+      Real reduced = roots[i];
+      reduced.lower.canonicalize();
+      reduced.upper.canonicalize();
+      roots.push_back(reduced);
+    }
+    for (Real& root : roots) {
+      for (int bits : {10, 40, 64, 100}) {
+        Real fast = root, reference = root;
+        Rational width = (abs(root.lower) + abs(root.upper) + 1) / Rational(mpz_class(1) << bits);
+        fast.refine_to(width);
+        reference_refine_to(reference, width);
+        ASSERT_EQ(fast.exact, reference.exact) << to_string(p, "x") << " at " << bits << " bits";
+        // the same numbers, written the same way (an end that never moved is not reduced)
+        ASSERT_EQ(fast.lower.get_str(), reference.lower.get_str()) << to_string(p, "x") << " at " << bits << " bits";
+        ASSERT_EQ(fast.upper.get_str(), reference.upper.get_str()) << to_string(p, "x") << " at " << bits << " bits";
+        // refine_to keeps the root: the polynomial changes sign across the interval
+        if (!fast.exact) EXPECT_LT(sign_at(p, fast.lower) * sign_at(p, fast.upper), 0);
+        exact_hits += fast.exact;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 1000u);
+  EXPECT_GT(exact_hits, 0u);
+}
+
+// compare() on roots of different polynomials against the exact order of their squares (roots
+// of b x^2 - a are +-sqrt(a / b): compared exactly through a / b), equal ones included.
+TEST(CSpaceAlgebra, CompareOrdersSquareRootsExactly) {
+  gmp_randclass random(gmp_randinit_default);
+  random.seed(7);
+  std::vector<std::pair<Real, Rational>> roots;   // root, its square
+  for (int i = 0; i < 60; ++i) {
+    mpz_class a = random.get_z_bits(i % 2 ? 60 : 10) + 1, b = random.get_z_bits(i % 2 ? 60 : 10) + 1;
+    Polynomial p = square_free_part(Polynomial{-a, mpz_class(0), b});
+    if (i % 5 == 4) {   // the same number as the previous one, from another polynomial: (x + 7) (b x^2 - a)
+      a = roots.back().second.get_num();
+      b = roots.back().second.get_den();
+      p = square_free_part(Polynomial{-7 * a, -a, 7 * b, b});
+    }
+    Rational square(a, b);
+    square.canonicalize();
+    Rational top = square + 1;
+    for (Real& root : real_roots(p, Rational(0), top)) roots.emplace_back(root, square);
+  }
+  ASSERT_GT(roots.size(), 40u);
+  for (const auto& [x, x_square] : roots)
+    for (const auto& [y, y_square] : roots) {
+      int expected = x_square < y_square ? -1 : x_square > y_square ? 1 : 0;
+      ASSERT_EQ(compare(x, y), expected) << x.description() << " vs " << y.description();
+    }
+}
+
 TEST(CSpaceAlgebra, SturmCountsDistinctRoots) {
   // (x - 1)^2 (x + 2) (x - 3): distinct roots -2, 1, 3
   Polynomial p = poly({6, -11, 3, 3, -1});   // -(x-1)^2 (x+2)(x-3) expanded, sign irrelevant

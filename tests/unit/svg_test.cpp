@@ -15,6 +15,7 @@
 #include <cmath>
 #include <filesystem>
 #include <regex>
+#include <set>
 #include <vector>
 
 namespace hipair {
@@ -299,6 +300,46 @@ TEST(Svg, CSpacePathPictureZoomsToThePathAndFitsItsLegend) {
   std::vector<double> all = y_ticks(whole);
   ASSERT_FALSE(all.empty());
   EXPECT_EQ(*std::max_element(all.begin(), all.end()), 270);
+}
+
+// The C-space picture is drawn from the edges the CSpace has: every contact edge (and every
+// zero-clearance edge) of the built space is one path with its feature pairs as title, for a
+// whole space and for an operating region (the picture `hipair analyze` draws for a large pair).
+TEST(CSpaceSvg, EveryContactEdgeOfTheBuiltSpaceIsDrawn) {
+  struct Case {
+    const char* model;
+    const char* first;
+    const char* second;
+    bool region;
+  };
+  for (const Case& test : {Case{"geneva.json", "driver", "wheel", false}, Case{"geneva.json", "driver", "wheel", true},
+                           Case{"ratchet.json", "wheel", "pawl", false}}) {
+    std::filesystem::path file = std::filesystem::path(HIPAIR_EXAMPLES) / test.model;
+    if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " missing";
+    CSpaceBuildOptions options;
+    options.operating_region = test.region;
+    CSpace space = CSpace::build(read_model_file(file), test.first, test.second, options);
+    ASSERT_EQ(space.complete(), !test.region);
+    std::multiset<std::string> expected;
+    for (const CSpaceEdge& edge : space.edges()) {
+      bool touching = edge.role == EdgeRole::touching;
+      if (!touching && edge.role != EdgeRole::contact && !(edge.real && !edge.curves.empty())) continue;
+      std::string title = touching ? "touching (zero clearance): " : "";
+      for (std::size_t k = 0; k < edge.curves.size(); ++k)
+        title += std::string(k ? "; " : "") + space.feature_pairs()[edge.curves[k]].label;
+      expected.insert(io::escape_xml(title));
+    }
+    ASSERT_GT(expected.size(), 20u) << test.model;
+    std::string svg = render::cspace_svg(space, {});
+    ASSERT_TRUE(well_formed(svg));
+    std::multiset<std::string> drawn;
+    std::regex titled(R"re(<path d="([^"]*)"[^>]*><title>([^<]*)</title></path>)re");
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), titled); it != std::sregex_iterator(); ++it) {
+      EXPECT_NE((*it)[1].str().find('L'), std::string::npos) << "an edge drawn as a single point";
+      drawn.insert((*it)[2].str());
+    }
+    EXPECT_EQ(drawn, expected) << test.model << (test.region ? " (operating region)" : "");
+  }
 }
 
 }  // namespace
