@@ -356,7 +356,26 @@ struct Row {
   std::vector<Episode> found; // contact episodes
   std::string failure;        // the simulator's error, when it stopped early
   double reached = t_end;     // time reached
+  double deviation = -1;      // largest |wheel - reference| on the 4 ms grid (-1: not measured)
 };
+
+// The reference trajectory: HIPAIR at accuracy 1e-12 (steps at most 0.1 s), stopped exactly at
+// every multiple of 4 ms (a grid every peer's steps land on), wheel angles. Computed once.
+constexpr double grid = 4e-3;
+constexpr double reference_accuracy = 1e-12;
+const std::vector<double>& reference_wheel();
+
+// Largest |wheel - reference| over the samples that lie on the grid.
+double deviation(const std::vector<Sample>& samples) {
+  const std::vector<double>& ref = reference_wheel();
+  double worst = 0;
+  for (const Sample& s : samples) {
+    double k = std::round(s.t / grid);
+    if (std::abs(s.t - k * grid) > 1e-9 || k >= static_cast<double>(ref.size())) continue;
+    worst = std::max(worst, std::abs(s.wheel - ref[static_cast<std::size_t>(k)]));
+  }
+  return worst;
+}
 
 std::vector<Row> rows;
 std::vector<Episode> exact_episodes;   // HIPAIR's at its tightest accuracy
@@ -398,12 +417,44 @@ void report(benchmark::State& state, const Row& row) {
   state.counters["err_dwell_rad"] = row.error.dwell;
   state.counters["steps"] = static_cast<double>(row.steps);
   state.counters["contacts"] = static_cast<double>(row.found.size());
+  state.counters["deviation_rad"] = row.deviation;
   state.counters["setup_s"] = row.setup;
 }
 
 // ------------------------------------------------------------------ HIPAIR
 // One run: CPU time of run_until alone; the contact labels at each step end are read in the
 // progress callback, whose own CPU time is subtracted.
+// HIPAIR's wheel angles at every multiple of the grid (run_until stops there exactly), or up
+// to its failure.
+std::vector<Sample> hipair_on_grid(double accuracy, std::string* failure) {
+  SimulationOptions options;
+  options.accuracy = accuracy;
+  options.max_step = 0.1;
+  Simulation s = Simulation::create(geneva_model(), options);
+  std::vector<Sample> samples{{0, s.state().position[0], s.state().position[1], {}}};
+  auto n = static_cast<long>(std::llround(t_end / grid));
+  try {
+    for (long k = 1; k <= n; ++k) {
+      s.run_until(static_cast<double>(k) * grid);
+      samples.push_back({s.state().time, s.state().position[0], s.state().position[1], {}});
+    }
+  } catch (const Error& error) {
+    if (failure) *failure = error.what();
+  }
+  return samples;
+}
+
+const std::vector<double>& reference_wheel() {
+  static const std::vector<double> reference = [] {
+    std::string failure;
+    std::vector<double> wheel;
+    for (const Sample& s : hipair_on_grid(reference_accuracy, &failure)) wheel.push_back(s.wheel);
+    if (!failure.empty()) std::cerr << "reference run failed: " << failure << "\n";
+    return wheel;
+  }();
+  return reference;
+}
+
 Row run_hipair(double accuracy) {
   Model model = geneva_model();
   Row row;
@@ -453,6 +504,9 @@ Row run_hipair(double accuracy) {
   // an edge change within one class (HIPAIR's edge end and the impact taken up 1e-8 s later at
   // the next edge, for instance) is one episode: merged within 1 microsecond
   row.found = merged(episodes(samples), 1e-6);
+  // the deviation from the reference comes from a second run at the same accuracy whose steps
+  // also end on the grid (not timed)
+  row.deviation = deviation(hipair_on_grid(accuracy, nullptr));
   row.window = 1e-3;
   row.final_wheel = s.state().position[1];
   if (row.failure.empty() && (exact_episodes.empty() || accuracy < exact_accuracy)) {
@@ -583,6 +637,7 @@ Row run_box2d(double step, int velocity_iterations, int position_iterations, con
   row.steps = static_cast<std::size_t>(steps);
   row.error = errors(samples);
   row.final_wheel = wheel->GetAngle();
+  row.deviation = deviation(samples);
   row.found = episodes(samples);
   row.window = 2 * step + 1e-3;
   return row;
@@ -702,6 +757,7 @@ Row run_mujoco(double step, const std::string& integrator, double time_constant,
   row.steps = static_cast<std::size_t>(steps);
   row.error = errors(samples);
   row.final_wheel = d->qpos[wheel_q];
+  row.deviation = deviation(samples);
   row.found = episodes(samples);
   row.window = 2 * step + 1e-3;
   mj_deleteData(d);
@@ -976,27 +1032,36 @@ std::string number(double v) {
 
 // Error used for the plot and the ratios: the larger of the drive and dwell errors, floored at
 // 1e-15 rad (a zero cannot be drawn on a log scale).
+// The deviation from the reference (0: not drawn: a failed run, or the reference run itself).
+double plotted_deviation(const Row& r) {
+  if (!r.failure.empty() || (r.engine == "HIPAIR" && r.parameter == reference_accuracy)) return 0;
+  return std::max(r.deviation, 1e-15);
+}
+
 double plotted_error(const Row& r) {
   if (!r.failure.empty()) return 0; return std::max({r.error.drive, r.error.dwell, 1e-15}); }
 
 std::string csv() {
   std::ostringstream out;
   out << "engine,setting,parameter,cpu_s,sim_s_per_cpu_s,setup_s,steps,err_drive_rad,err_dwell_rad,"
-         "episodes,raw_episodes,missed,invented,final_wheel_rad,failure\n";
+         "deviation_rad,episodes,raw_episodes,missed,invented,final_wheel_rad,failure\n";
   for (const Row& r : rows)
     out << r.engine << ",\"" << r.setting << "\"," << number(r.parameter) << "," << number(r.cpu) << ","
         << number(t_end / r.cpu) << "," << number(r.setup) << "," << r.steps << "," << number(r.error.drive) << ","
-        << number(r.error.dwell) << "," << r.episodes << "," << r.raw_episodes << "," << r.missed << "," << r.invented
+        << number(r.error.dwell) << "," << number(r.deviation) << "," << r.episodes << "," << r.raw_episodes << "," << r.missed << "," << r.invented
         << "," << number(r.final_wheel) << ",\"" << r.failure << "\"\n";
   return out.str();
 }
 
-std::string plot() {
+std::string plot(double (*metric)(const Row&), const std::string& title) {
+  bool any = false;
+  for (const Row& r : rows) any |= r.failure.empty() && metric(r) > 0;
+  if (!any) return io::SvgWriter(io::SvgBox{0, 0, 1, 1}).str();
   // log-log: x = log10(CPU seconds per simulated second), y = log10(error)
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
   for (const Row& r : rows) {
-    if (!r.failure.empty()) continue;
-    double x = std::log10(r.cpu / t_end), y = std::log10(plotted_error(r));
+    if (!r.failure.empty() || !(metric(r) > 0)) continue;
+    double x = std::log10(r.cpu / t_end), y = std::log10(metric(r));
     x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
   }
   x0 = std::floor(x0), x1 = std::ceil(x1), y0 = std::floor(y0), y1 = std::ceil(y1);
@@ -1021,13 +1086,13 @@ std::string plot() {
   io::SvgStyle frame;
   svg.rectangle(0, 0, w, h, frame);
   svg.text(w / 2, -9, "CPU seconds per simulated second (log)", 2.6);
-  svg.text(0, h + 3, "Geneva drive, 2 s: wheel-angle error against the closed form (rad, log), floored at 1e-15", 2.6,
+  svg.text(0, h + 3, title, 2.6,
            "start", "black", "bold");
   const std::map<std::string, std::string> colours{{"HIPAIR", "#4e79a7"}, {"Box2D", "#e15759"}, {"MuJoCo", "#59a14f"}};
   std::vector<io::SvgWriter::LegendEntry> legend;
   std::map<std::string, std::vector<const Row*>> series;
   for (const Row& r : rows) {
-    if (!r.failure.empty()) continue;
+    if (!r.failure.empty() || !(metric(r) > 0)) continue;
     std::string key = r.engine;
     if (r.engine == "MuJoCo") key += r.setting.find("RK4") != std::string::npos ? " RK4" : " Euler";
     if (r.engine == "MuJoCo" && r.setting.find("default") == std::string::npos) key += ", stiff";
@@ -1041,7 +1106,7 @@ std::string plot() {
     std::sort(list.begin(), list.end(), [](const Row* a, const Row* b) { return a->cpu < b->cpu; });
     io::SvgPath path;
     for (std::size_t i = 0; i < list.size(); ++i) {
-      double x = X(std::log10(list[i]->cpu / t_end)), y = Y(std::log10(plotted_error(*list[i])));
+      double x = X(std::log10(list[i]->cpu / t_end)), y = Y(std::log10(metric(*list[i])));
       if (i == 0) path.move_to(x, y);
       else path.line_to(x, y);
     }
@@ -1052,7 +1117,7 @@ std::string plot() {
     io::SvgStyle dot;
     dot.fill = colour;
     dot.stroke = colour;
-    for (const Row* r : list) svg.circle(X(std::log10(r->cpu / t_end)), Y(std::log10(plotted_error(*r))), 0.8, dot);
+    for (const Row* r : list) svg.circle(X(std::log10(r->cpu / t_end)), Y(std::log10(metric(*r))), 0.8, dot);
     legend.push_back({dot, key});
   }
   svg.legend(w + 2, h, legend, 2.4);
@@ -1121,6 +1186,13 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(name, BM_PinMujoco, step)->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
   }
 #endif
+  {
+    Decomposition shape = decompose(12);
+    std::size_t most = 0;
+    for (const Polygon& p : shape.wheel) most = std::max(most, p.size());
+    std::cout << "peers' Geneva: wheel in " << shape.wheel.size() << " convex pieces (at most " << most
+              << " vertices), driver's locking segment in " << shape.driver.size() << " quadrilaterals, pin a circle\n";
+  }
   benchmark::Initialize(&count, arguments.data());
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
@@ -1128,10 +1200,10 @@ int main(int argc, char** argv) {
   for (Row& r : rows) compare(r);
   // The table, and the ratios at equal CPU time: each peer's error interpolated (log-log, along
   // its own runs sorted by CPU time) at each HIPAIR run's CPU time.
-  std::cout << "\nengine\tsetting\tCPU s\tsim/CPU\terr drive\terr dwell\tsteps\tepisodes(raw)\tmissed\tinvented\n";
+  std::cout << "\nengine\tsetting\tCPU s\tsim/CPU\terr drive\terr dwell\tdeviation\tsteps\tepisodes(raw)\tmissed\tinvented\n";
   for (const Row& r : rows)
     std::cout << r.engine << "\t" << r.setting << "\t" << number(r.cpu) << "\t" << number(t_end / r.cpu) << "\t"
-              << number(r.error.drive) << "\t" << number(r.error.dwell) << "\t" << r.steps << "\t" << r.episodes << "("
+              << number(r.error.drive) << "\t" << number(r.error.dwell) << "\t" << number(r.deviation) << "\t" << r.steps << "\t" << r.episodes << "("
               << r.raw_episodes << ")\t" << r.missed << "\t" << r.invented
               << (r.failure.empty() ? "" : "\tFAILED at t = " + number(r.reached) + ": " + r.failure) << "\n";
   std::cout << "exact contact episodes (HIPAIR, accuracy " << number(exact_accuracy) << "):\n";
@@ -1151,6 +1223,15 @@ int main(int argc, char** argv) {
       std::cout << "  HIPAIR " << h.setting << " (" << number(h.cpu) << " s, error " << number(plotted_error(h)) << ") vs "
                 << peer << " " << best->setting << " (" << number(best->cpu) << " s, error " << number(plotted_error(*best))
                 << "): HIPAIR " << number(plotted_error(*best) / plotted_error(h)) << "x more accurate\n";
+      const Row* closest = nullptr;
+      for (const Row& r : rows)
+        if (r.engine == peer && r.failure.empty() && r.cpu <= h.cpu &&
+            (!closest || plotted_deviation(r) < plotted_deviation(*closest)))
+          closest = &r;
+      if (plotted_deviation(h) > 0)
+        std::cout << "    deviation from the reference: HIPAIR " << number(plotted_deviation(h)) << ", " << peer << " "
+                << closest->setting << " " << number(plotted_deviation(*closest)) << ": ratio "
+                << number(plotted_deviation(*closest) / plotted_deviation(h)) << "\n";
     }
   }
   for (const Row& r : rows) {
@@ -1173,8 +1254,38 @@ int main(int argc, char** argv) {
   if (!out.empty()) {
     std::filesystem::create_directories(out);
     io::write_file_atomically(std::filesystem::path(out) / "simulation-peers.csv", csv());
-    io::write_file_atomically(std::filesystem::path(out) / "simulation-peers.svg", plot());
-    std::cout << "wrote " << out << "/simulation-peers.csv, simulation-peers.svg\n";
+    io::write_file_atomically(
+        std::filesystem::path(out) / "simulation-peers.svg",
+        plot(plotted_error, "Geneva drive, 2 s: wheel-angle error against the closed form (rad, log), floored at 1e-15"));
+    io::write_file_atomically(
+        std::filesystem::path(out) / "simulation-peers-deviation.svg",
+        plot(plotted_deviation, "Geneva drive, 2 s: largest wheel-angle deviation from the reference run (rad, log)"));
+    // the peers' geometry at the initial configuration: every convex piece outlined
+    {
+      Decomposition shape = decompose(12);
+      io::SvgWriter svg(io::SvgBox{-70, -70, 146, 70}, 900);
+      svg.set_default_stroke_width(0.15);
+      auto draw = [&](const Polygon& p, Vec2 offset, const std::string& colour) {
+        io::SvgPath path;
+        path.move_to(p[0].x + offset.x, p[0].y + offset.y);
+        for (std::size_t i = 1; i < p.size(); ++i) path.line_to(p[i].x + offset.x, p[i].y + offset.y);
+        path.close();
+        io::SvgStyle style;
+        style.fill = colour;
+        style.opacity = 0.5;
+        svg.path(path, style);
+      };
+      for (const Polygon& p : shape.wheel) draw(p, {0, 0}, "#f28e2b");
+      for (const Polygon& p : shape.driver) draw(p, {centre, 0}, "#4e79a7");
+      io::SvgStyle pin;
+      pin.fill = "#4e79a7";
+      svg.circle(centre + shape.pin.x, shape.pin.y, pin_radius, pin);
+      svg.text(-65, 63, "Box2D / MuJoCo geometry: convex pieces (wheel " + std::to_string(shape.wheel.size()) +
+                            ", locking segment " + std::to_string(shape.driver.size()) + ")", 4, "start");
+      io::write_file_atomically(std::filesystem::path(out) / "geneva-peer-pieces.svg", svg.str());
+    }
+    std::cout << "wrote " << out << "/simulation-peers.csv, simulation-peers.svg, simulation-peers-deviation.svg, "
+                                    "geneva-peer-pieces.svg\n";
   }
   return 0;
 }
