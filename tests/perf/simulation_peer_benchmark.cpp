@@ -25,9 +25,16 @@
 // the same label overlaps is "missed", a peer episode overlapping no HIPAIR episode of its label
 // is "invented" (intervals widened by a matching window of 2 peer steps + 1 ms, a convention).
 //
+// Deviation: the largest |wheel - reference| on a 4 ms grid, the reference being HIPAIR at
+// accuracy 1e-12 stopped on the grid (HIPAIR's own rows: a second, untimed run on the grid).
+// HIPAIR runs with max_step 0.1 s: without it, the second drive is skipped (see run_hipair).
+// A second case, a falling pin bouncing in a slot, is compared with its closed form (BM_Pin*).
+//
 // Output: Google Benchmark rows (CPU time = the simulation loop only, C-space build and model
-// compilation excluded) with counters; with --out=DIR (before the benchmark flags) also
-// DIR/simulation-peers.csv and DIR/simulation-peers.svg (error against CPU time, log-log).
+// compilation excluded) with counters, then the tables; with --out=DIR (before the benchmark
+// flags) also DIR/simulation-peers.csv, DIR/simulation-peers.svg (closed-form error against CPU
+// time, log-log), DIR/simulation-peers-deviation.svg and DIR/geneva-peer-pieces.svg (the peers'
+// convex pieces). Results: docs/performance.md, "Simulation against Box2D and MuJoCo".
 #include "peer_timing.hpp"
 
 #include "io/atomic_file.hpp"
@@ -1039,7 +1046,9 @@ double plotted_deviation(const Row& r) {
 }
 
 double plotted_error(const Row& r) {
-  if (!r.failure.empty()) return 0; return std::max({r.error.drive, r.error.dwell, 1e-15}); }
+  if (!r.failure.empty()) return 0;
+  return std::max({r.error.drive, r.error.dwell, 1e-15});
+}
 
 std::string csv() {
   std::ostringstream out;
