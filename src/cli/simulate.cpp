@@ -1,13 +1,15 @@
 // `hipair simulate MODEL --t-end T [--accuracy EPS] [--max-step H] [--set P=V] [--out DIR]`:
 // dynamical simulation (docs/simulation.md). Prints a summary and the event log; with --out
 // writes, all or nothing, trajectory.csv, events.json, events.txt, positions.svg,
-// velocities.svg and, per two-dimensional pair, the path over its C-space
-// (cspace-X-Y.svg, like Joskowicz & Sacks 1997, Figure 6b).
+// velocities.svg, animation.svg (the mechanism playing in a browser: SMIL, frames sampled at a
+// fixed rate) and, per two-dimensional pair, the path over its C-space (cspace-X-Y.svg, like
+// Joskowicz & Sacks 1997, Figure 6b).
 #include "cli/commands.hpp"
 
 #include "io/output_directory.hpp"
 #include "io/output_paths.hpp"
 #include "render/cspace_svg.hpp"
+#include "render/mechanism_svg.hpp"
 #include "render/time_plot_svg.hpp"
 
 #include <hipair/error.hpp>
@@ -43,7 +45,12 @@ struct SimulateOptions {
   bool no_pictures = false;
   std::string sweep;
   unsigned jobs = 0;
+  double fps = 25;                  // animation frames per second of playback
+  double animation_duration = 0;    // playback seconds; 0: the simulated time (real time), at least 1 s
 };
+
+// Seconds per time unit of the model ("s" or "ms").
+double seconds_per_unit(const std::string& time_unit) { return time_unit == "ms" ? 1e-3 : 1.0; }
 
 std::string file_name_part(const std::string& text) {
   std::string out;
@@ -370,7 +377,42 @@ int run(const SimulateOptions& options) {
     std::fprintf(stderr, "\rsimulate: t = %-12.6g of %g %s (%3.0f%%), %zu steps, %zu events   ", t, options.t_end,
                  simulation.time_unit().c_str(), 100 * t / options.t_end, simulation.steps(), events_seen);
   };
-  simulation.run_until(options.t_end, progress);
+  // The animation's frames are states at a fixed rate: the run stops exactly at each frame time
+  // (run_until ends its last step there), so every frame is a state of the simulation itself,
+  // not an interpolation. Without pictures the run goes straight to t-end.
+  std::vector<render::MechanismFrame> frames;
+  double playback = 0;
+  if (!options.out.empty() && !options.no_pictures) {
+    playback = options.animation_duration > 0
+                   ? options.animation_duration
+                   : std::max(1.0, options.t_end * seconds_per_unit(simulation.time_unit()));
+    double count = std::ceil(playback * options.fps);
+    if (count > 20000)
+      throw ModelError("", "the animation would have " + number(count) +
+                               " frames (more than 20000): lower --fps or --animation-duration");
+    auto frame_count = static_cast<std::size_t>(std::max(1.0, count));
+    auto record_frame = [&] {
+      render::MechanismFrame frame;
+      frame.time = simulation.state().time;
+      for (std::size_t p = 0; p < model.parts.size(); ++p) {
+        PartConfiguration c = model.parts[p].initial;
+        if (model.parts[p].motion.kind == Motion::Kind::rotation) c.angle = Rational(simulation.state().position[p]);
+        if (model.parts[p].motion.kind == Motion::Kind::translation)
+          c.offset = Rational(simulation.state().position[p]);
+        frame.configurations.push_back(c);
+      }
+      frames.push_back(std::move(frame));
+    };
+    record_frame();
+    for (std::size_t k = 1; k <= frame_count; ++k) {
+      double t = k == frame_count ? options.t_end
+                                  : options.t_end * static_cast<double>(k) / static_cast<double>(frame_count);
+      simulation.run_until(t, progress);
+      record_frame();
+    }
+  } else {
+    simulation.run_until(options.t_end, progress);
+  }
   double seconds = thread_cpu_seconds() - cpu_start;
   if (terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
 
@@ -477,13 +519,23 @@ int run(const SimulateOptions& options) {
       files.push_back({"cspace-" + file_name_part(space->x_part()) + "-" + file_name_part(space->y_part()) + ".svg",
                        render::cspace_svg(*space, picture)});
     }
+    render::MechanismAnimationOptions animation;
+    animation.duration = playback;
+    animation.time_unit = tu;
+    animation.drawing.title = model.name + ": simulated";
+    for (const SimulationEvent& e : simulation.events()) {
+      bool located = e.point[0] != 0 || e.point[1] != 0 || e.normal[0] != 0 || e.normal[1] != 0;
+      if (e.kind != SimulationEvent::Kind::impact || !located) continue;
+      animation.marks.push_back({e.time, e.point[0], e.point[1], event_line(e, tu, fu)});
+    }
+    files.push_back({"animation.svg", render::mechanism_animation_svg(model, frames, animation)});
   }
   std::vector<io::PlannedOutput> planned;
   for (const io::RunFile& file : files) planned.push_back({directory / file.name, "--out"});
   io::refuse_overwriting_inputs(planned, {options.model});
   auto earlier_output = [](const std::string& name) {
     return name == "trajectory.csv" || name == "events.json" || name == "events.txt" || name == "positions.svg" ||
-           name == "velocities.svg" || (name.rfind("cspace-", 0) == 0 && name.size() > 4 &&
+           name == "velocities.svg" || name == "animation.svg" || (name.rfind("cspace-", 0) == 0 && name.size() > 4 &&
                                         name.compare(name.size() - 4, 4, ".svg") == 0);
   };
   io::publish_directory(directory, files, earlier_output, {options.model});
@@ -507,11 +559,16 @@ void register_simulate(CLI::App& app, Action& action) {
   command->add_option("--max-step", options->max_step, "Largest integration step (time unit; default: none)")
       ->check(CLI::PositiveNumber);
   command->add_option("--out", options->out,
-                      "Output directory: trajectory.csv, events.json/.txt, positions.svg, velocities.svg, cspace-*.svg");
+                      "Output directory: trajectory.csv, events.json/.txt, positions.svg, velocities.svg, animation.svg, cspace-*.svg");
   command->add_option("--region", options->region,
                       "full: whole C-spaces (default); operating: operating regions around the initial configuration")
       ->check(CLI::IsMember({"full", "operating"}));
   command->add_flag("--no-pictures", options->no_pictures, "Write the CSV and the event log only");
+  command->add_option("--fps", options->fps, "Frames per second of animation.svg's playback (default 25)")
+      ->check(CLI::Range(1.0, 240.0));
+  command->add_option("--animation-duration", options->animation_duration,
+                      "Playback time of animation.svg in seconds (default: the simulated time, at least 1 s)")
+      ->check(CLI::Range(0.01, 3600.0));
   command->add_option("--sweep", options->sweep,
                       "NAME=A:B:N: run N simulations with parameter NAME from A to B (exact literals, mm or rad), "
                       "in parallel; report per value the run's status (running, stopped: every part at rest over "

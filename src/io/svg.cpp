@@ -170,6 +170,18 @@ void SvgWriter::begin_group(const std::string& id, const std::string& css_class,
   ++open_groups_;
 }
 
+void SvgWriter::begin_transformed_group(const std::string& transform, const std::string& id,
+                                        const std::string& css_class) {
+  body_ += "<g";
+  if (!id.empty()) body_ += " id=\"" + escape_xml(id) + "\"";
+  if (!css_class.empty()) body_ += " class=\"" + escape_xml(css_class) + "\"";
+  if (!transform.empty()) body_ += " transform=\"" + escape_xml(transform) + "\"";
+  body_ += ">\n";
+  ++open_groups_;
+}
+
+void SvgWriter::raw(const std::string& markup) { body_ += markup; }
+
 void SvgWriter::define_clip_rectangle(const std::string& id, double x, double y, double width, double height) {
   add_definition("<clipPath id=\"" + escape_xml(id) + "\"><rect x=\"" + format_number(x) + "\" y=\"" +
                  format_number(-(y + height)) + "\" width=\"" + format_number(width) + "\" height=\"" +

@@ -81,6 +81,11 @@ class SvgWriter {
   /// Opens <g> with an optional id/class and a title (tooltip).
   void begin_group(const std::string& id, const std::string& css_class = "",
                    const std::string& title = "");
+  /// Opens <g> with a transform attribute (SVG user units, y down) and an optional id/class.
+  void begin_transformed_group(const std::string& transform, const std::string& id = "",
+                               const std::string& css_class = "");
+  /// Appends raw markup (animation elements, for instance) to the body, inside the open group.
+  void raw(const std::string& markup);
   void end_group();
   /// Defines a clip path `id`: the world rectangle from (x, y) of `width` x `height`.
   void define_clip_rectangle(const std::string& id, double x, double y, double width, double height);

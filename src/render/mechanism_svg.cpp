@@ -8,6 +8,7 @@
 #include <gmpxx.h>
 #include <mpfr.h>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace hipair::render {
@@ -64,7 +65,8 @@ long decimal_exponent(const Rational& q) {
   return exponent;
 }
 
-Normalisation normalisation_of(const Model& model, const std::vector<PartConfiguration>& configurations) {
+Normalisation normalisation_of(const Model& model, const std::vector<PartConfiguration>& configurations,
+                               const std::vector<MechanismFrame>* frames = nullptr) {
   Normalisation n;
   bool have_origin = false;
   for (const Part& part : model.parts)
@@ -98,6 +100,12 @@ Normalisation normalisation_of(const Model& model, const std::vector<PartConfigu
     consider(c.offset);
     consider(c.x);
     consider(c.y);
+    if (frames)
+      for (const MechanismFrame& frame : *frames) {
+        consider(frame.configurations[i].offset);
+        consider(frame.configurations[i].x);
+        consider(frame.configurations[i].y);
+      }
   }
   if (largest == 0) return n;
   n.k = decimal_exponent(largest) - 2;  // the picture spans about 100 to 1000 units
@@ -226,45 +234,101 @@ PosedPoint edge_middle(const Part& part, const PartConfiguration& c, const Edge&
   return pose_normalised(part.motion, c, n, cx + radius * std::cos(middle), cy + radius * std::sin(middle));
 }
 
-}  // namespace
 
-PosedPoint pose_point(const Motion& motion, const PartConfiguration& c, double x, double y) {
-  return pose_normalised(motion, c, Normalisation{}, x, y);
+// The outline of a part at a configuration (normalised units).
+io::SvgPath part_path(const Part& part, const PartConfiguration& c, const Normalisation& n) {
+  io::SvgPath path;
+  for (const Loop& loop : part.loops) {
+    if (loop.edges.empty()) continue;
+    PosedPoint start = pose_exact(part.motion, c, n, loop.edges.front().source);
+    path.move_to(start.x, start.y);
+    for (const Edge& edge : loop.edges) {
+      PosedPoint target = pose_exact(part.motion, c, n, edge.target);
+      if (edge.is_arc()) {
+        PosedPoint centre = pose_exact(part.motion, c, n, edge.center);
+        path.arc_to(target.x, target.y, centre.x, centre.y, edge.ccw);
+      } else {
+        path.line_to(target.x, target.y);
+      }
+    }
+    path.close();
+  }
+  return path;
 }
 
-std::string mechanism_svg(const Model& model, const std::vector<PartConfiguration>& configurations,
-                          const MechanismSvgOptions& options) {
+bool animated_motion(const Motion& motion) {
+  return motion.kind == Motion::Kind::rotation || motion.kind == Motion::Kind::translation;
+}
+
+// The SVG transform (user units, y down) that takes a part drawn at its zero configuration to
+// configuration c: a rotation by -theta (degrees) about the normalised pivot (y negated), or a
+// translation by the normalised offset along the axis. Same numbers as pose_normalised.
+std::string transform_value(const Motion& motion, const PartConfiguration& c, const Normalisation& n) {
+  if (motion.kind == Motion::Kind::rotation)
+    return io::format_number(-to_number(c.angle) * 180 / M_PI) + " " + io::format_number(n.x(motion.pivot.x)) + " " +
+           io::format_number(-n.y(motion.pivot.y));
+  double s = n.length(c.offset);
+  return io::format_number(s * to_number(motion.direction.x)) + " " +
+         io::format_number(-s * to_number(motion.direction.y));
+}
+
+// A number with enough digits to keep keyTimes of up to a million frames apart.
+std::string key_time(double value) {
+  if (value <= 0) return "0";
+  if (value >= 1) return "1";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.9g", value);
+  return buffer;
+}
+
+// <animate> of visibility, discrete: visible over [from, to) of the cycle (fractions in [0, 1]).
+std::string blink(double from, double to, double duration) {
+  std::string values, times;
+  if (from <= 0) {
+    values = "visible;hidden";
+    times = "0;" + key_time(to);
+  } else if (to >= 1) {
+    values = "hidden;visible";
+    times = "0;" + key_time(from);
+  } else {
+    values = "hidden;visible;hidden";
+    times = "0;" + key_time(from) + ";" + key_time(to);
+  }
+  if (from <= 0 && to >= 1) return "";
+  return "<animate attributeName=\"visibility\" calcMode=\"discrete\" values=\"" + values + "\" keyTimes=\"" +
+         times + "\" dur=\"" + io::format_number(duration) + "s\" repeatCount=\"indefinite\"/>";
+}
+
+struct Animation {
+  const std::vector<MechanismFrame>& frames;
+  const MechanismAnimationOptions& options;
+};
+
+std::string draw(const Model& model, const std::vector<PartConfiguration>& configurations,
+                 const MechanismSvgOptions& options, const Animation* animation) {
   if (configurations.size() != model.parts.size())
     throw Error("mechanism_svg: " + std::to_string(configurations.size()) +
                 " configurations for " + std::to_string(model.parts.size()) + " parts");
 
   // Paths of every part at its configuration, and the drawing's extent (normalised units).
-  Normalisation n = normalisation_of(model, configurations);
+  Normalisation n = normalisation_of(model, configurations, animation ? &animation->frames : nullptr);
   std::vector<io::SvgPath> paths(model.parts.size());
   std::vector<Box> part_boxes(model.parts.size());
   Box extent;
   for (std::size_t i = 0; i < model.parts.size(); ++i) {
     const Part& part = model.parts[i];
     const PartConfiguration& c = configurations[i];
-    for (const Loop& loop : part.loops) {
-      if (loop.edges.empty()) continue;
-      PosedPoint start = pose_exact(part.motion, c, n, loop.edges.front().source);
-      paths[i].move_to(start.x, start.y);
-      for (const Edge& edge : loop.edges) {
-        PosedPoint target = pose_exact(part.motion, c, n, edge.target);
-        if (edge.is_arc()) {
-          PosedPoint centre = pose_exact(part.motion, c, n, edge.center);
-          paths[i].arc_to(target.x, target.y, centre.x, centre.y, edge.ccw);
-        } else {
-          paths[i].line_to(target.x, target.y);
-        }
-      }
-      paths[i].close();
-    }
+    paths[i] = part_path(part, c, n);
     for (const auto& [x, y] : paths[i].extent_points()) {
       part_boxes[i].add(x, y);
       extent.add(x, y);
     }
+    // an animated part: the extent covers it at every frame
+    if (animation && animated_motion(part.motion))
+      for (const MechanismFrame& frame : animation->frames) {
+        io::SvgPath posed = part_path(part, frame.configurations[i], n);
+        for (const auto& [x, y] : posed.extent_points()) extent.add(x, y);
+      }
     if (part.motion.kind != Motion::Kind::fixed && part.motion.kind != Motion::Kind::translation) {
       PosedPoint pivot = pose_exact(part.motion, c, n, part.motion.pivot);
       extent.add(pivot.x, pivot.y);
@@ -284,8 +348,10 @@ std::string mechanism_svg(const Model& model, const std::vector<PartConfiguratio
     bool fixed = part.motion.kind == Motion::Kind::fixed;
     swatch.fill = fixed ? "url(#hatch)" : palette[i % 9];
     swatch.stroke = fixed ? "#555555" : outline[i % 9];
-    std::string label =
-        part.name + " (" + configuration_text(part, configurations[i], model.angle_unit) + ")";
+    std::string label = part.name + " (" +
+                        (animation ? motion_name(part.motion)
+                                   : configuration_text(part, configurations[i], model.angle_unit)) +
+                        ")";
     longest = std::max(longest, label.size());
     legend.push_back({swatch, label});
   }
@@ -296,7 +362,7 @@ std::string mechanism_svg(const Model& model, const std::vector<PartConfiguratio
   box.min_x = extent.min_x - margin;
   box.max_x = extent.max_x + margin + legend_width;
   box.min_y = extent.min_y - margin - text_size * 3;
-  box.max_y = extent.max_y + margin + text_size * 2.5;
+  box.max_y = extent.max_y + margin + text_size * (animation ? 4.5 : 2.5);
   io::SvgWriter svg(box, options.pixel_width);
   svg.set_default_stroke_width(size / 500);
   svg.define_hatch("hatch", "#8c8c8c", text_size * 0.6);
@@ -320,7 +386,35 @@ std::string mechanism_svg(const Model& model, const std::vector<PartConfiguratio
       style.fill_rule = "evenodd";
       style.opacity = fixed ? 1 : 0.8;
       svg.begin_group("part-" + part.name, "part", part.name);
-      svg.path(paths[i], style, part.name);
+      if (animation && animated_motion(part.motion)) {
+        // drawn at its zero configuration, moved by the transform (the first frame's when the
+        // renderer does not animate), animated through every frame
+        const auto& frames = animation->frames;
+        const char* type = part.motion.kind == Motion::Kind::rotation ? "rotate" : "translate";
+        double t0 = frames.front().time, span = frames.back().time - t0;
+        std::string values, times;
+        for (std::size_t f = 0; f < frames.size(); ++f) {
+          values += (f ? ";" : "") + transform_value(part.motion, frames[f].configurations[i], n);
+          times += (f ? ";" : "") + key_time(f + 1 == frames.size() ? 1.0 : (frames[f].time - t0) / span);
+        }
+        svg.begin_transformed_group(std::string(type) + "(" +
+                                        transform_value(part.motion, frames.front().configurations[i], n) + ")",
+                                    "motion-" + part.name, "moving");
+        svg.raw("<animateTransform attributeName=\"transform\" type=\"" + std::string(type) + "\" values=\"" +
+                values + "\" keyTimes=\"" + times + "\" dur=\"" + io::format_number(animation->options.duration) +
+                "s\" calcMode=\"linear\" repeatCount=\"indefinite\"/>\n");
+        svg.path(part_path(part, PartConfiguration{}, n), style, part.name);
+        if (options.labels)
+          for (const Loop& loop : part.loops)
+            for (const Edge& edge : loop.edges) {
+              if (edge.label.empty()) continue;
+              PosedPoint m = edge_middle(part, PartConfiguration{}, edge, n);
+              svg.text(m.x, m.y, edge.label, text_size * 0.4, "middle", "#202020");
+            }
+        svg.end_group();
+      } else {
+        svg.path(paths[i], style, part.name);
+      }
       svg.end_group();
     }
   }
@@ -417,6 +511,7 @@ std::string mechanism_svg(const Model& model, const std::vector<PartConfiguratio
     const Part& part = model.parts[i];
     if (!part_boxes[i].valid()) continue;
     if (!options.labels) continue;
+    if (animation && animated_motion(part.motion)) continue;  // drawn in the moving group
     svg.begin_group("labels-" + part.name, "labels");
     for (const Loop& loop : part.loops)
       for (const Edge& edge : loop.edges) {
@@ -431,7 +526,85 @@ std::string mechanism_svg(const Model& model, const std::vector<PartConfiguratio
   svg.scale_bar(extent.min_x, box.min_y + text_size * 1.4, bar, world_text(bar, n.k) + " mm", text_size);
   if (options.legend && !legend.empty())
     svg.legend(extent.max_x + margin, extent.max_y, legend, text_size);
+
+  if (animation) {
+    const auto& frames = animation->frames;
+    const MechanismAnimationOptions& a = animation->options;
+    double t0 = frames.front().time, span = frames.back().time - t0;
+    std::string duration = io::format_number(a.duration) + "s";
+    // marks: a ring at the point, visible for mark_seconds of playback from its time
+    io::SvgStyle ring;
+    ring.stroke = "#d62728";
+    ring.stroke_width = size / 250;
+    svg.begin_group("marks", "marks");
+    for (const MechanismMark& mark : a.marks) {
+      if (!(mark.time >= t0 && mark.time <= frames.back().time) || !std::isfinite(mark.x) || !std::isfinite(mark.y))
+        continue;
+      double from = (mark.time - t0) / span, to = from + a.mark_seconds / a.duration;
+      double x = n.x(Rational(mark.x)), y = n.y(Rational(mark.y)), r = text_size * 0.5;
+      svg.raw("<g visibility=\"" + std::string(from <= 0 ? "visible" : "hidden") + "\">" +
+              (mark.title.empty() ? "" : "<title>" + io::escape_xml(mark.title) + "</title>") + blink(from, to, a.duration));
+      svg.circle(x, y, r, ring);
+      svg.raw("</g>\n");
+    }
+    svg.end_group();
+    // time readout (every k-th frame beyond max_readouts) and a progress bar
+    double y = box.max_y - text_size * 3.4;
+    std::size_t every = std::max<std::size_t>(1, (frames.size() + std::max<std::size_t>(a.max_readouts, 1) - 1) /
+                                                     std::max<std::size_t>(a.max_readouts, 1));
+    double spacing = span / static_cast<double>(frames.size() - 1) * static_cast<double>(every);
+    int decimals = std::clamp(static_cast<int>(std::ceil(-std::log10(spacing))), 0, 9);
+    svg.begin_group("time", "time-readout");
+    std::vector<std::size_t> shown;
+    for (std::size_t f = 0; f < frames.size(); f += every) shown.push_back(f);
+    for (std::size_t k = 0; k < shown.size(); ++k) {
+      double from = (frames[shown[k]].time - t0) / span;
+      double to = k + 1 < shown.size() ? (frames[shown[k + 1]].time - t0) / span : 1.0;
+      char text[96];
+      std::snprintf(text, sizeof text, "t = %.*f %s", decimals, frames[shown[k]].time, a.time_unit.c_str());
+      svg.raw("<g visibility=\"" + std::string(k == 0 ? "visible" : "hidden") + "\">" + blink(from, to, a.duration));
+      svg.text(extent.min_x, y, text, text_size, "start", "#111111");
+      svg.raw("</g>\n");
+    }
+    svg.end_group();
+    double bar_x = extent.min_x + text_size * 11, bar_width = std::max(extent.max_x - bar_x, text_size * 5);
+    double bar_height = text_size * 0.5;
+    svg.rectangle(bar_x, y, bar_width, bar_height, io::SvgStyle{"#e6e6e6", "#999999", 0, "", "", 1, ""});
+    // the rectangle's SVG y is -(y + height): the bar grows from its left end
+    svg.raw("<rect class=\"progress\" x=\"" + io::format_number(bar_x) + "\" y=\"" +
+            io::format_number(-(y + bar_height)) + "\" width=\"0\" height=\"" + io::format_number(bar_height) +
+            "\" fill=\"#4e79a7\"><animate attributeName=\"width\" values=\"0;" + io::format_number(bar_width) +
+            "\" keyTimes=\"0;1\" dur=\"" + duration + "\" calcMode=\"linear\" repeatCount=\"indefinite\"/></rect>\n");
+  }
   return svg.str();
+}
+
+}  // namespace
+
+PosedPoint pose_point(const Motion& motion, const PartConfiguration& c, double x, double y) {
+  return pose_normalised(motion, c, Normalisation{}, x, y);
+}
+
+std::string mechanism_svg(const Model& model, const std::vector<PartConfiguration>& configurations,
+                          const MechanismSvgOptions& options) {
+  return draw(model, configurations, options, nullptr);
+}
+
+std::string mechanism_animation_svg(const Model& model, const std::vector<MechanismFrame>& frames,
+                                    const MechanismAnimationOptions& options) {
+  if (frames.size() < 2) throw Error("mechanism_animation_svg: at least two frames are needed");
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    if (frames[f].configurations.size() != model.parts.size())
+      throw Error("mechanism_animation_svg: frame " + std::to_string(f) + " has " +
+                  std::to_string(frames[f].configurations.size()) + " configurations for " +
+                  std::to_string(model.parts.size()) + " parts");
+    if (!std::isfinite(frames[f].time) || (f > 0 && !(frames[f].time > frames[f - 1].time)))
+      throw Error("mechanism_animation_svg: frame times must increase (frame " + std::to_string(f) + ")");
+  }
+  if (!(options.duration > 0) || !std::isfinite(options.duration))
+    throw Error("mechanism_animation_svg: the playback duration must be positive");
+  Animation animation{frames, options};
+  return draw(model, frames.front().configurations, options.drawing, &animation);
 }
 
 }  // namespace hipair::render

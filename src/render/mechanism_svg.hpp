@@ -32,4 +32,41 @@ PosedPoint pose_point(const Motion& motion, const PartConfiguration& configurati
 std::string mechanism_svg(const Model& model, const std::vector<PartConfiguration>& configurations,
                           const MechanismSvgOptions& options = {});
 
+/// One frame of an animated drawing: a time (the model's time unit) and every part's
+/// configuration (size = the part count).
+struct MechanismFrame {
+  double time = 0;
+  std::vector<PartConfiguration> configurations;
+};
+
+/// A mark shown for a moment at a world point (an impact's contact point, mm).
+struct MechanismMark {
+  double time = 0;
+  double x = 0;
+  double y = 0;
+  std::string title;   ///< tooltip
+};
+
+/// Options of an animated drawing.
+struct MechanismAnimationOptions {
+  MechanismSvgOptions drawing;     ///< as the still drawing (legend, labels, title, width)
+  double duration = 0;             ///< playback time of the whole run, seconds (> 0)
+  std::string time_unit = "s";     ///< unit of the frames' times, for the readout
+  std::vector<MechanismMark> marks;
+  double mark_seconds = 0.2;       ///< how long (playback seconds) a mark stays visible
+  std::size_t max_readouts = 1000; ///< time readouts at most (every k-th frame beyond)
+};
+
+/// An SVG that plays the frames in a browser (SMIL, repeating): every part is drawn once, as in
+/// mechanism_svg() (same normalisation, colours, pivots, names), and each rotating or
+/// translating part's group carries one <animateTransform> (type rotate about its pivot, or
+/// translate along its axis) whose keyTimes are the frames' times over the run, scaled to
+/// [0, 1], with calcMode linear; its transform attribute is the first frame's, so a renderer
+/// without animation shows the first frame. A time readout and a progress bar play along; marks
+/// blink at their times. Planar and pin-in-slot parts are drawn still at the first frame.
+/// \throws Error when there are fewer than two frames, a frame's size differs from the part
+/// count, times do not increase, or the duration is not positive.
+std::string mechanism_animation_svg(const Model& model, const std::vector<MechanismFrame>& frames,
+                                    const MechanismAnimationOptions& options);
+
 }  // namespace hipair::render

@@ -261,9 +261,24 @@ grep -q "cannot certify" "$work/tol-int-bad.err" || fail "interfering range: $(c
 # hipair simulate: summary, event log, trajectories and pictures, all or nothing.
 "$hipair" simulate "$source/examples/models/bouncing-bar.json" --t-end 0.3 --out "$work/sim-bar" >"$work/sim-bar.out" 2>&1 \
   || fail "simulate bouncing-bar: $(tail -c 300 "$work/sim-bar.out")"
-for file in trajectory.csv events.json events.txt positions.svg velocities.svg; do
+for file in trajectory.csv events.json events.txt positions.svg velocities.svg animation.svg; do
   [ -s "$work/sim-bar/$file" ] || fail "simulate bouncing-bar: no $file"
 done
+# animation.svg: well-formed, one animateTransform for the one moving part, frames at 25 per
+# second of playback over at least 1 s (26 values)
+if command -v xmllint >/dev/null; then
+  xmllint --noout "$work/sim-bar/animation.svg" 2>"$work/sim-anim.err" || fail "animation.svg not well-formed: $(head -c 300 "$work/sim-anim.err")"
+fi
+[ "$(grep -c '<animateTransform' "$work/sim-bar/animation.svg")" -eq 1 ] || fail "animation.svg: not one animateTransform"
+grep -o 'type="rotate" values="[^"]*"' "$work/sim-bar/animation.svg" | tr ';' '\n' | [ "$(wc -l)" -eq 26 ] \
+  || fail "animation.svg: not 26 frames"
+# a failing run (too many frames) leaves the earlier outputs as they were
+sum_before=$(cat "$work/sim-bar/"* | cksum)
+"$hipair" simulate "$source/examples/models/bouncing-bar.json" --t-end 0.3 --fps 240 --animation-duration 3600 \
+  --out "$work/sim-bar" >/dev/null 2>"$work/sim-frames.err"
+[ $? -eq 2 ] || fail "simulate with 864000 frames: not a usage error"
+grep -q "frames" "$work/sim-frames.err" || fail "simulate with too many frames: $(cat "$work/sim-frames.err")"
+[ "$(cat "$work/sim-bar/"* | cksum)" = "$sum_before" ] || fail "a failed simulate changed the earlier outputs"
 grep -q "impact" "$work/sim-bar/events.txt" || fail "simulate bouncing-bar: no impact logged"
 [ "$(grep -c . "$work/sim-bar/trajectory.csv")" -gt 10 ] || fail "simulate bouncing-bar: trajectory too short"
 "$hipair" simulate "$source/examples/models/bouncing-bar.json" --t-end -1 --out "$work/sim-bad" >/dev/null 2>"$work/sim-bad.err"
