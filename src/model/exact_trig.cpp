@@ -7,29 +7,9 @@ namespace {
 
 constexpr mpfr_prec_t working_bits = 256;
 
-mpz_class grid_denominator() {
-  mpz_class d;
-  mpz_ui_pow_ui(d.get_mpz_t(), 10, rounding_decimals);
-  return d;
-}
+thread_local RoundingBoundScope* current_scope = nullptr;
 
-// Nearest multiple of 10^-12 of an MPFR value (ties away from zero; the value is never a tie
-// in practice since the inputs are irrational).
-Rational round_mpfr_to_grid(const mpfr_t value) {
-  mpfr_t scaled;
-  mpfr_init2(scaled, working_bits);
-  mpz_class denominator = grid_denominator();
-  mpfr_mul_z(scaled, value, denominator.get_mpz_t(), MPFR_RNDN);
-  mpfr_round(scaled, scaled);
-  mpz_class numerator;
-  mpfr_get_z(numerator.get_mpz_t(), scaled, MPFR_RNDN);
-  mpfr_clear(scaled);
-  Rational result(numerator, denominator);
-  result.canonicalize();
-  return result;
-}
-
-Rational grid_half_step() { return Rational(1, grid_denominator() * 2); }
+Rational half_bound() { return Rational(rounding_bound() / 2); }
 
 // Unit vector of angle a (|a| <= pi/2 + small) via rounded t = tan(a/2).
 Point unit_small_angle(const mpfr_t angle, const std::string& pointer, const std::string& expression,
@@ -42,13 +22,13 @@ Point unit_small_angle(const mpfr_t angle, const std::string& pointer, const std
   mpfr_get_q(tangent.get_mpq_t(), half);  // exact value of the 256-bit approximation
   mpfr_clear(half);
   // The 256-bit tangent is within 2^-250 of the true one; shrink the window by that much.
-  Rational t = simplest_rational_between(tangent - grid_half_step() + Rational(1, mpz_class(1) << 240),
-                                         tangent + grid_half_step() - Rational(1, mpz_class(1) << 240));
-  // |d theta / d t| = 2 / (1 + t^2) <= 2, so the angle error is at most twice the t error;
-  // add 10^-60 for the 256-bit evaluation.
+  Rational t = simplest_rational_between(tangent - half_bound() + Rational(1, mpz_class(1) << 240),
+                                         tangent + half_bound() - Rational(1, mpz_class(1) << 240));
+  // |d theta / d t| = 2 / (1 + t^2) <= 2, so the angle error is at most twice the t error
+  // (the window above is shrunk by the 256-bit evaluation's error).
   // The record holds the half-angle tangent used and the bound on the angle it implies.
   roundings.push_back(Rounding{pointer, "direction of " + expression + " (half-angle tangent)", t,
-                               Rational(2 * grid_half_step())});
+                               rounding_bound()});
   return unit_from_half_tangent(t);
 }
 
@@ -75,6 +55,26 @@ Point direction_from_mpfr(mpfr_t angle, const std::string& pointer, const std::s
 }
 
 }  // namespace
+
+Rational default_rounding_bound() { return Rational(1, 1000000000000L); }
+
+Rational smallest_rounding_bound() { return Rational(mpz_class(1), mpz_class("1000000000000000000000000000000")); }
+
+Rational largest_rounding_bound() { return Rational(1, 1000); }
+
+const Rational& rounding_bound() {
+  static const Rational fallback = default_rounding_bound();
+  return current_scope ? current_scope->bound_ : fallback;
+}
+
+bool rounding_bound_overrides_model() { return current_scope && current_scope->overrides_model_; }
+
+RoundingBoundScope::RoundingBoundScope(const Rational& bound, bool overrides_model)
+    : previous_(current_scope), bound_(bound), overrides_model_(overrides_model) {
+  current_scope = this;
+}
+
+RoundingBoundScope::~RoundingBoundScope() { current_scope = previous_; }
 
 Rational simplest_rational_between(const Rational& lo, const Rational& hi) {
   if (lo <= 0 && hi >= 0) return Rational(0);
@@ -113,16 +113,11 @@ Rational simplest_rational_between(const Rational& lo, const Rational& hi) {
 }
 
 Rational round_half_tangent(const Rational& tangent) {
-  return simplest_rational_between(tangent - grid_half_step(), tangent + grid_half_step());
+  return simplest_rational_between(tangent - half_bound(), tangent + half_bound());
 }
 
-Rational round_to_grid(const Rational& value) {
-  mpfr_t v;
-  mpfr_init2(v, working_bits);
-  mpfr_set_q(v, value.get_mpq_t(), MPFR_RNDN);
-  Rational r = round_mpfr_to_grid(v);
-  mpfr_clear(v);
-  return r;
+Rational round_simplest(const Rational& value) {
+  return simplest_rational_between(value - half_bound(), value + half_bound());
 }
 
 Point exact_unit_vector(const Rational& angle, const std::string& pointer,
