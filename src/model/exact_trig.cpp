@@ -11,21 +11,28 @@ thread_local RoundingBoundScope* current_scope = nullptr;
 
 Rational half_bound() { return Rational(rounding_bound() / 2); }
 
-// Unit vector of angle a (|a| <= pi/2 + small) via rounded t = tan(a/2).
+// Unit vector of angle a (|a| <= pi/2 + small) via a rounded t = tan(a/2): the simplest
+// rational t with |2 atan t - a| <= b, the rounding bound (the window of angles [a - b, a + b]
+// mapped through tan(./2), which is increasing there). Taking the whole angle window (not a
+// window of fixed width in t) keeps a nearby exact direction reachable after an earlier
+// rounding of the angle itself: pi/2 rounded to a rational a' still gives t = 1, (0, 1).
 Point unit_small_angle(const mpfr_t angle, const std::string& pointer, const std::string& expression,
                        std::vector<Rounding>& roundings) {
-  mpfr_t half;
-  mpfr_init2(half, working_bits);
-  mpfr_div_ui(half, angle, 2, MPFR_RNDN);
-  mpfr_tan(half, half, MPFR_RNDN);
-  Rational tangent;
-  mpfr_get_q(tangent.get_mpq_t(), half);  // exact value of the 256-bit approximation
-  mpfr_clear(half);
-  // The 256-bit tangent is within 2^-250 of the true one; shrink the window by that much.
-  Rational t = simplest_rational_between(tangent - half_bound() + Rational(1, mpz_class(1) << 240),
-                                         tangent + half_bound() - Rational(1, mpz_class(1) << 240));
-  // |d theta / d t| = 2 / (1 + t^2) <= 2, so the angle error is at most twice the t error
-  // (the window above is shrunk by the 256-bit evaluation's error).
+  mpfr_t bound, end;
+  mpfr_inits2(working_bits, bound, end, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_q(bound, rounding_bound().get_mpq_t(), MPFR_RNDN);
+  Rational ends[2];
+  for (int side = 0; side < 2; ++side) {
+    (side == 0 ? mpfr_sub : mpfr_add)(end, angle, bound, MPFR_RNDN);
+    mpfr_div_ui(end, end, 2, MPFR_RNDN);
+    mpfr_tan(end, end, MPFR_RNDN);
+    mpfr_get_q(ends[side].get_mpq_t(), end);  // exact value of the 256-bit approximation
+  }
+  mpfr_clears(bound, end, static_cast<mpfr_ptr>(nullptr));
+  // Each 256-bit end is within 2^-245 of the true one (|t| <= 1 + small, a few roundings of
+  // relative size 2^-256); shrink the window by 2^-240 on each side.
+  Rational t = simplest_rational_between(ends[0] + Rational(1, mpz_class(1) << 240),
+                                         ends[1] - Rational(1, mpz_class(1) << 240));
   // The record holds the half-angle tangent used and the bound on the angle it implies.
   roundings.push_back(Rounding{pointer, "direction of " + expression + " (half-angle tangent)", t,
                                rounding_bound()});

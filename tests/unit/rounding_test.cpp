@@ -196,6 +196,24 @@ TEST(ModelRounding, HalfAngleTangentsTurnByAtMostTheBound) {
   }
 }
 
+// An angle rounded first (a template's phase of 90 degrees becomes a rational near pi/2) and
+// then turned into a direction: the half-angle tangent's window is the whole angle window
+// [a' - b, a' + b], so the exact quarter turn stays reachable and is the simplest (t = +-1, 0).
+TEST(ModelRounding, QuarterTurnsStayExactAfterTheAngleIsRounded) {
+  using namespace hipair::model_detail;
+  for (int exponent : {12, 9, 6}) {
+    RoundingBoundScope scope(power_of_ten(-exponent));
+    for (const char* text : {"pi/2", "-pi/2", "3*pi/2", "pi", "5*pi/2", "pi/2 + 0"}) {
+      ExpressionContext context;
+      context.pointer = "/test";
+      std::vector<hipair::Rounding> roundings;
+      Rational angle = to_rational(evaluate_expression(text, context), "/test", text, roundings);
+      hipair::Point unit = exact_unit_vector(angle, "/test", text, roundings);
+      EXPECT_EQ(abs(unit.x) + abs(unit.y), Rational(1)) << text << " 1e-" << exponent << ": " << unit.x << ", " << unit.y;
+    }
+  }
+}
+
 const char* model_with_rounding(const std::string& rounding_entry) {
   static std::string text;
   text = R"({ "hipair": 1, "name": "r", )" + rounding_entry + R"(
