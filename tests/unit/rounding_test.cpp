@@ -15,6 +15,7 @@
 
 #include <mpfi.h>
 
+#include <algorithm>
 #include <random>
 #include <string>
 
@@ -111,11 +112,14 @@ TEST(SimplestRational, ExtremeMagnitudes) {
       ASSERT_TRUE(certified_simplest(above, abs(centre), abs(centre) + half_width));
     }
   }
-  // Narrow window at 1e-300: the result is tiny but exact, with a denominator near 1e300.
+  // Narrow window at 1e-300: the result is 1/q with q the smallest integer in
+  // [1e300 / 1.000001, 1e300], exact.
   Rational tiny = hipair::parse_rational("1e-300");
   Rational r = simplest_rational_between(tiny, tiny * Rational(1000001, 1000000));
-  EXPECT_TRUE(r > 0);
-  EXPECT_EQ(r, Rational(mpz_class(1), power_of_ten(300).get_num()));
+  Rational smallest_q = Rational(1) / (tiny * Rational(1000001, 1000000));
+  mpz_class q;
+  mpz_cdiv_q(q.get_mpz_t(), smallest_q.get_num_mpz_t(), smallest_q.get_den_mpz_t());
+  EXPECT_EQ(r, Rational(mpz_class(1), q));
 }
 
 // The enclosure of sqrt(n) at 256 bits, as rationals.
@@ -135,6 +139,7 @@ TEST(ModelRounding, GeneratedSquareRootsAreTheSimplestWithinTheBound) {
   for (int exponent : {12, 9, 6, 4}) {
     Rational bound = power_of_ten(-exponent);
     RoundingBoundScope scope(bound);
+    std::vector<std::size_t> sizes;
     for (long n = 2; n < 400; ++n) {
       if (n == static_cast<long>(std::sqrt(static_cast<double>(n))) * static_cast<long>(std::sqrt(static_cast<double>(n))))
         continue;
@@ -155,10 +160,13 @@ TEST(ModelRounding, GeneratedSquareRootsAreTheSimplestWithinTheBound) {
       Rational left_shift = left + bound, right_shift = right - bound;
       EXPECT_TRUE(left_shift < 0 || left_shift * left_shift < n) << text << " 1e-" << exponent;
       EXPECT_TRUE(right_shift > 0 && right_shift * right_shift > n) << text << " 1e-" << exponent;
-      // The denominator is near 1/sqrt(bound), far below the grid's 1/bound.
-      EXPECT_LE(mpz_sizeinbase(v.get_den_mpz_t(), 2), static_cast<std::size_t>(exponent * 3.33 / 2 + 4)) << text;
+      sizes.push_back(mpz_sizeinbase(v.get_den_mpz_t(), 2));
       ++checked;
     }
+    // Typically the denominator is near 1/sqrt(bound) (the grid's is 1/bound): the median size
+    // over the generated values (a guarantee holds only for the simplest property above).
+    std::sort(sizes.begin(), sizes.end());
+    EXPECT_LE(sizes[sizes.size() / 2], static_cast<std::size_t>(exponent * 3.33 / 2 + 4)) << "1e-" << exponent;
   }
   EXPECT_GT(checked, 1400);
 }
@@ -168,8 +176,8 @@ TEST(ModelRounding, HalfAngleTangentsTurnByAtMostTheBound) {
   for (int exponent : {12, 9, 6}) {
     Rational bound = power_of_ten(-exponent);
     RoundingBoundScope scope(bound);
-    for (int k = 1; k < 60; ++k) {
-      Rational angle(k, 37);  // rational angles in (0, pi/2): irrational tangents
+    for (int k = 1; k <= 58; ++k) {
+      Rational angle(k, 37);  // rational angles in (0, pi/2) (58/37 < pi/2 < 59/37): irrational tangents
       angle.canonicalize();
       std::vector<hipair::Rounding> roundings;
       hipair::Point unit = exact_unit_vector(angle, "/test", "angle", roundings);
@@ -191,7 +199,6 @@ TEST(ModelRounding, HalfAngleTangentsTurnByAtMostTheBound) {
       mpfr_clear(magnitude);
       mpfi_clear(t);
       mpfi_clear(turned);
-      EXPECT_LE(mpz_sizeinbase(roundings[0].value.get_den_mpz_t(), 2), static_cast<std::size_t>(exponent * 3.33 / 2 + 4));
     }
   }
 }
@@ -216,12 +223,12 @@ TEST(ModelRounding, QuarterTurnsStayExactAfterTheAngleIsRounded) {
 
 const char* model_with_rounding(const std::string& rounding_entry) {
   static std::string text;
-  text = R"({ "hipair": 1, "name": "r", )" + rounding_entry + R"(
+  text = R"json({ "hipair": 1, "name": "r", )json" + rounding_entry + R"json(
     "parts": [
       { "name": "frame", "motion": "fixed", "loops": [ { "start": [0, 0], "edges": [
           { "line_to": [10, 0] }, { "line_to": [10, "sqrt(2)"] }, { "line_to": [0, 10] }, { "line_to": [0, 0] } ] } ] },
       { "name": "arm", "motion": { "rotation": { "pivot": [30, 0] } }, "loops": [ { "start": [20, 0], "edges": [
-          { "line_to": [26, 0] }, { "line_to": [26, "sqrt(3)"] }, { "line_to": [20, 4] }, { "line_to": [20, 0] } ] } ] } ] })";
+          { "line_to": [26, 0] }, { "line_to": [26, "sqrt(3)"] }, { "line_to": [20, 4] }, { "line_to": [20, 0] } ] } ] } ] })json";
   return text.c_str();
 }
 
@@ -244,7 +251,7 @@ TEST(ModelRounding, BoundFromTheModelAndFromTheCommandLine) {
     hipair::Model overridden = hipair::read_model(model_with_rounding(R"("rounding": 1e-6,)"));
     EXPECT_EQ(overridden.roundings[0].bound, Rational(1, 1000000000));
     EXPECT_TRUE(within_sqrt(overridden.roundings[0].value, 2, Rational(1, 1000000000)));
-    EXPECT_FALSE(within_sqrt(overridden.roundings[0].value, 2, Rational(1, 10000000000LL)));
+    EXPECT_FALSE(within_sqrt(overridden.roundings[0].value, 2, Rational(mpz_class(1), mpz_class("10000000000"))));
   }
   {
     // an inner non-overriding scope (a library user's) does not change what a file asks for
