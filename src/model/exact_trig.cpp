@@ -83,7 +83,10 @@ RoundingBoundScope::RoundingBoundScope(const Rational& bound, bool overrides_mod
 
 RoundingBoundScope::~RoundingBoundScope() { current_scope = previous_; }
 
-Rational simplest_rational_between(const Rational& lo, const Rational& hi) {
+Rational simplest_rational_between(const Rational& lo_in, const Rational& hi_in) {
+  Rational lo = lo_in, hi = hi_in;  // canonical copies (mpq_class(a, b) is not canonical)
+  lo.canonicalize();
+  hi.canonicalize();
   if (lo <= 0 && hi >= 0) return Rational(0);
   if (hi < 0) return Rational(-simplest_rational_between(Rational(-hi), Rational(-lo)));
   // 0 < lo <= hi: continued-fraction descent (Stern-Brocot), iterative.

@@ -407,7 +407,11 @@ Model ParametricModel::exact_model(const std::vector<Rational>& deviations) cons
   Model model = *nominal_;
   model.roundings.clear();
   RoundingBoundScope rounding_scope(model_rounding_bound(parse_json(text_)));
-  ExactEvaluator exact(*nominal_, parameter_nominals_, degrees_, deviations, model.roundings);
+  // Callers may pass mpq_class(a, b), which is not canonical: GMP's arithmetic needs canonical
+  // operands (the rounding's continued fractions gave wrong results on such input).
+  std::vector<Rational> canonical = deviations;
+  for (Rational& deviation : canonical) deviation.canonicalize();
+  ExactEvaluator exact(*nominal_, parameter_nominals_, degrees_, canonical, model.roundings);
   for (std::size_t i = 0; i < model.parameters.size(); ++i) {
     Parameter& parameter = model.parameters[i];
     Rational shift = to_rational(exact.parameter(i), parameter.pointer, parameter.name, model.roundings) -
