@@ -113,18 +113,18 @@ Rational model_rounding_bound(const JsonValue& root) {
 }
 
 Rational Reader::read_rounding(const JsonValue* value) {
-  auto check = [&](const Rational& bound, const std::string& where, const std::string& text) {
+  auto check = [&](const Rational& bound, const std::string& where, const std::string& what) {
     if (bound < smallest_rounding_bound() || bound > largest_rounding_bound())
-      throw ModelError(where, "rounding bound " + text + " out of range: it must lie in [1e-30, 1e-3]");
+      throw ModelError(where, what + " out of range: it must lie in [1e-30, 1e-3]");
   };
-  if (rounding_bound_overrides_model()) {  // --rounding
-    check(rounding_bound(), "/rounding", to_decimal_string(rounding_bound(), 12) + " (--rounding)");
+  if (rounding_bound_overrides_model()) {  // a command line's --rounding
+    check(rounding_bound(), "", "--rounding " + to_decimal_string(rounding_bound(), 12));
     return rounding_bound();
   }
   if (!value) return default_rounding_bound();
   if (!value->is_number()) throw ModelError(value->pointer, "the rounding bound must be a number (e.g. 1e-9)");
   Rational bound = parse_literal(value->text, value->pointer);
-  check(bound, value->pointer, quoted_excerpt(value->text));
+  check(bound, value->pointer, "rounding bound " + quoted_excerpt(value->text));
   return bound;
 }
 
