@@ -30,6 +30,7 @@ namespace {
 
 struct AnalyzeOptions {
   std::string model;
+  std::string rounding;
   std::string driver;
   std::string direction;
   std::string range;
@@ -209,6 +210,7 @@ int run_analyze(const AnalyzeOptions& options) {
     for (const char* name : {"report.json", "kinematics.csv", "kinematics.svg"})
       if (!options.no_pictures || std::string(name) != "kinematics.svg")
         io::refuse_overwriting_input(std::filesystem::path(options.out) / name, "--out", options.model);
+  auto rounding = rounding_scope(options.rounding);
   Model model = read_model_file(options.model);
   // a pin-in-slot follower (the film advance): its work cycle (cli/analyze_pinslot.cpp)
   if (has_pin_slot_part(model))
@@ -341,6 +343,7 @@ void register_analyze(CLI::App& app, Action& action) {
   CLI::App* command = app.add_subcommand(
       "analyze", "Kinematic analysis: drive one part and report how the others move (contacts, dwell, play, jamming)");
   command->add_option("model", options->model, "model file (JSON, see docs/model-format.md)")->required();
+  add_rounding_option(command, options->rounding);
   command->add_option("--driver", options->driver, "part to drive (default: the first moving part of the first pair)");
   command->add_option("--direction", options->direction, "cw, ccw (rotation) or +, - (default: the sense of the model's driving torque, else ccw / +)");
   auto* range = command->add_option("--range", options->range,

@@ -6,7 +6,10 @@
 
 #include <hipair/model.hpp>
 
+#include "model/exact_trig.hpp"
+
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -25,5 +28,13 @@ void register_simulate(CLI::App& app, Action& action);
 /// Reader options from `--set NAME=VALUE` assignments (exact literals in mm or rad) and
 /// `--allow-out-of-tolerance`. \throws ModelError naming the bad assignment.
 ReadOptions parameter_overrides(const std::vector<std::string>& assignments, bool allow_out_of_tolerance);
+
+/// Adds `--rounding B` (the model's rounding bound, docs/model-format.md) to a command; the
+/// text is stored in `text` (empty: the model's own bound).
+void add_rounding_option(CLI::App* command, std::string& text);
+/// Puts a `--rounding` bound in force (overriding the models' own "rounding" key) while the
+/// result lives; nullptr for an empty text. \throws ModelError for a malformed number (the
+/// range is checked by the reader).
+std::unique_ptr<model_detail::RoundingBoundScope> rounding_scope(const std::string& text);
 
 }  // namespace hipair::cli

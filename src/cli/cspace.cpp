@@ -39,6 +39,7 @@ struct CSpaceCommandOptions {
   bool aggregated = false;
   std::vector<std::string> overrides;
   bool allow_out_of_tolerance = false;
+  std::string rounding;
   std::string region = "full";
   unsigned tiles = 0;
   std::size_t slices = 0;
@@ -269,6 +270,7 @@ int run(const CSpaceCommandOptions& options) {
   // Refused before the (possibly long) build when the paths are used as given; the suffixed
   // names of several pairs are checked again below, before anything is written.
   io::refuse_overwriting_inputs({{options.svg, "--svg"}, {options.json, "--json"}}, {options.model});
+  auto rounding = rounding_scope(options.rounding);
   Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
   CSpaceBuildOptions build;
   build.progress = isatty(2);
@@ -414,6 +416,7 @@ void register_cspace(CLI::App& app, Action& action) {
   command->add_option("--set", options->overrides, "Override a parameter: NAME=VALUE (repeatable)");
   command->add_flag("--allow-out-of-tolerance", options->allow_out_of_tolerance,
                     "Accept --set values outside the parameter's tolerance range");
+  add_rounding_option(command, options->rounding);
   command->callback([options, &action] { action = [options] { return run(*options); }; });
 }
 

@@ -41,6 +41,7 @@ struct SimulateOptions {
   std::string out;
   std::vector<std::string> overrides;
   bool allow_out_of_tolerance = false;
+  std::string rounding;
   std::string region = "full";
   bool no_pictures = false;
   std::string sweep;
@@ -341,6 +342,7 @@ int run_sweep(const SimulateOptions& options) {
 }
 
 int run(const SimulateOptions& options) {
+  auto rounding = rounding_scope(options.rounding);
   if (!options.sweep.empty()) {
     if (!(options.t_end > 0) || !std::isfinite(options.t_end))
       throw ModelError("", "--t-end must be a positive number of time units");
@@ -579,6 +581,7 @@ void register_simulate(CLI::App& app, Action& action) {
   command->add_option("--set", options->overrides, "Override a parameter: NAME=VALUE (repeatable)");
   command->add_flag("--allow-out-of-tolerance", options->allow_out_of_tolerance,
                     "Accept --set values outside the parameter's tolerance range");
+  add_rounding_option(command, options->rounding);
   command->callback([options, &action] { action = [options] { return run(*options); }; });
 }
 

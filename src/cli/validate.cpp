@@ -112,6 +112,7 @@ struct ValidateArguments {
   std::string path;
   std::vector<std::string> overrides;
   bool allow_out_of_tolerance = false;
+  std::string rounding;
 };
 
 ReadOptions read_options(const ValidateArguments& arguments) {
@@ -128,9 +129,11 @@ void register_validate(CLI::App& app, Action& action) {
                       "override a parameter: NAME=VALUE (exact literal in mm or rad; repeatable)");
   command->add_flag("--allow-out-of-tolerance", arguments->allow_out_of_tolerance,
                     "accept --set values outside the parameter's tolerance range");
+  add_rounding_option(command, arguments->rounding);
   command->callback([&action, arguments] {
     action = [arguments] {
       ReadOptions options = read_options(*arguments);
+      auto rounding = rounding_scope(arguments->rounding);
       Model model = read_model_file(arguments->path, options);
       std::ostringstream summary;
       print_summary(model, options, summary);
@@ -154,6 +157,23 @@ ReadOptions parameter_overrides(const std::vector<std::string>& assignments, boo
     }
   }
   return options;
+}
+
+void add_rounding_option(CLI::App* command, std::string& text) {
+  command->add_option("--rounding", text,
+                      "rounding bound B for values that cannot be exact (default: the model's \"rounding\", else "
+                      "1e-12): each becomes the simplest rational within B");
+}
+
+std::unique_ptr<model_detail::RoundingBoundScope> rounding_scope(const std::string& text) {
+  if (text.empty()) return nullptr;
+  Rational bound;
+  try {
+    bound = parse_rational(text);
+  } catch (const NumericError& error) {
+    throw ModelError("", "--rounding " + text + ": " + error.what() + " (a number such as 1e-9)");
+  }
+  return std::make_unique<model_detail::RoundingBoundScope>(bound, true);
 }
 
 }  // namespace hipair::cli

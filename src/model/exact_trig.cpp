@@ -7,48 +7,35 @@ namespace {
 
 constexpr mpfr_prec_t working_bits = 256;
 
-mpz_class grid_denominator() {
-  mpz_class d;
-  mpz_ui_pow_ui(d.get_mpz_t(), 10, rounding_decimals);
-  return d;
-}
+thread_local RoundingBoundScope* current_scope = nullptr;
 
-// Nearest multiple of 10^-12 of an MPFR value (ties away from zero; the value is never a tie
-// in practice since the inputs are irrational).
-Rational round_mpfr_to_grid(const mpfr_t value) {
-  mpfr_t scaled;
-  mpfr_init2(scaled, working_bits);
-  mpz_class denominator = grid_denominator();
-  mpfr_mul_z(scaled, value, denominator.get_mpz_t(), MPFR_RNDN);
-  mpfr_round(scaled, scaled);
-  mpz_class numerator;
-  mpfr_get_z(numerator.get_mpz_t(), scaled, MPFR_RNDN);
-  mpfr_clear(scaled);
-  Rational result(numerator, denominator);
-  result.canonicalize();
-  return result;
-}
+Rational half_bound() { return Rational(rounding_bound() / 2); }
 
-Rational grid_half_step() { return Rational(1, grid_denominator() * 2); }
-
-// Unit vector of angle a (|a| <= pi/2 + small) via rounded t = tan(a/2).
+// Unit vector of angle a (|a| <= pi/2 + small) via a rounded t = tan(a/2): the simplest
+// rational t with |2 atan t - a| <= b, the rounding bound (the window of angles [a - b, a + b]
+// mapped through tan(./2), which is increasing there). Taking the whole angle window (not a
+// window of fixed width in t) keeps a nearby exact direction reachable after an earlier
+// rounding of the angle itself: pi/2 rounded to a rational a' still gives t = 1, (0, 1).
 Point unit_small_angle(const mpfr_t angle, const std::string& pointer, const std::string& expression,
                        std::vector<Rounding>& roundings) {
-  mpfr_t half;
-  mpfr_init2(half, working_bits);
-  mpfr_div_ui(half, angle, 2, MPFR_RNDN);
-  mpfr_tan(half, half, MPFR_RNDN);
-  Rational tangent;
-  mpfr_get_q(tangent.get_mpq_t(), half);  // exact value of the 256-bit approximation
-  mpfr_clear(half);
-  // The 256-bit tangent is within 2^-250 of the true one; shrink the window by that much.
-  Rational t = simplest_rational_between(tangent - grid_half_step() + Rational(1, mpz_class(1) << 240),
-                                         tangent + grid_half_step() - Rational(1, mpz_class(1) << 240));
-  // |d theta / d t| = 2 / (1 + t^2) <= 2, so the angle error is at most twice the t error;
-  // add 10^-60 for the 256-bit evaluation.
+  mpfr_t bound, end;
+  mpfr_inits2(working_bits, bound, end, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_q(bound, rounding_bound().get_mpq_t(), MPFR_RNDN);
+  Rational ends[2];
+  for (int side = 0; side < 2; ++side) {
+    (side == 0 ? mpfr_sub : mpfr_add)(end, angle, bound, MPFR_RNDN);
+    mpfr_div_ui(end, end, 2, MPFR_RNDN);
+    mpfr_tan(end, end, MPFR_RNDN);
+    mpfr_get_q(ends[side].get_mpq_t(), end);  // exact value of the 256-bit approximation
+  }
+  mpfr_clears(bound, end, static_cast<mpfr_ptr>(nullptr));
+  // Each 256-bit end is within 2^-245 of the true one (|t| <= 1 + small, a few roundings of
+  // relative size 2^-256); shrink the window by 2^-240 on each side.
+  Rational t = simplest_rational_between(ends[0] + Rational(1, mpz_class(1) << 240),
+                                         ends[1] - Rational(1, mpz_class(1) << 240));
   // The record holds the half-angle tangent used and the bound on the angle it implies.
   roundings.push_back(Rounding{pointer, "direction of " + expression + " (half-angle tangent)", t,
-                               Rational(2 * grid_half_step())});
+                               rounding_bound()});
   return unit_from_half_tangent(t);
 }
 
@@ -76,7 +63,30 @@ Point direction_from_mpfr(mpfr_t angle, const std::string& pointer, const std::s
 
 }  // namespace
 
-Rational simplest_rational_between(const Rational& lo, const Rational& hi) {
+Rational default_rounding_bound() { return Rational(1, 1000000000000L); }
+
+Rational smallest_rounding_bound() { return Rational(mpz_class(1), mpz_class("1000000000000000000000000000000")); }
+
+Rational largest_rounding_bound() { return Rational(1, 1000); }
+
+const Rational& rounding_bound() {
+  static const Rational fallback = default_rounding_bound();
+  return current_scope ? current_scope->bound_ : fallback;
+}
+
+bool rounding_bound_overrides_model() { return current_scope && current_scope->overrides_model_; }
+
+RoundingBoundScope::RoundingBoundScope(const Rational& bound, bool overrides_model)
+    : previous_(current_scope), bound_(bound), overrides_model_(overrides_model) {
+  current_scope = this;
+}
+
+RoundingBoundScope::~RoundingBoundScope() { current_scope = previous_; }
+
+Rational simplest_rational_between(const Rational& lo_in, const Rational& hi_in) {
+  Rational lo = lo_in, hi = hi_in;  // canonical copies (mpq_class(a, b) is not canonical)
+  lo.canonicalize();
+  hi.canonicalize();
   if (lo <= 0 && hi >= 0) return Rational(0);
   if (hi < 0) return Rational(-simplest_rational_between(Rational(-hi), Rational(-lo)));
   // 0 < lo <= hi: continued-fraction descent (Stern-Brocot), iterative.
@@ -113,16 +123,11 @@ Rational simplest_rational_between(const Rational& lo, const Rational& hi) {
 }
 
 Rational round_half_tangent(const Rational& tangent) {
-  return simplest_rational_between(tangent - grid_half_step(), tangent + grid_half_step());
+  return simplest_rational_between(tangent - half_bound(), tangent + half_bound());
 }
 
-Rational round_to_grid(const Rational& value) {
-  mpfr_t v;
-  mpfr_init2(v, working_bits);
-  mpfr_set_q(v, value.get_mpq_t(), MPFR_RNDN);
-  Rational r = round_mpfr_to_grid(v);
-  mpfr_clear(v);
-  return r;
+Rational round_simplest(const Rational& value) {
+  return simplest_rational_between(value - half_bound(), value + half_bound());
 }
 
 Point exact_unit_vector(const Rational& angle, const std::string& pointer,

@@ -9,25 +9,57 @@
 
 namespace hipair::model_detail {
 
-/// Precision of every rounding the reader performs: values are rounded to the nearest
-/// multiple of 10^-12 (mm, rad or unitless).
-inline constexpr int rounding_decimals = 12;
+/// The rounding bound b of every rounding the reader performs (docs/model-format.md
+/// "Exactness and rounding"): a value that cannot be exact is replaced by the simplest rational
+/// (smallest denominator) within b of it (mm, rad or unitless). The model's `"rounding"` key
+/// chooses it, a command line's `--rounding` overrides that; 10^-12 by default.
+Rational default_rounding_bound();
 
-/// Rounds a 256-bit value given as decimal text (or an MPFR value via the overload in the
-/// .cpp) to the nearest multiple of 10^-12. Internal helper.
-Rational round_to_grid(const Rational& value);
+/// The bound in force on this thread: the innermost RoundingBoundScope's, else the default.
+const Rational& rounding_bound();
+/// True when the innermost RoundingBoundScope overrides the model's own "rounding" key.
+bool rounding_bound_overrides_model();
 
-/// The simplest rational (smallest denominator) in the closed interval [lo, hi], lo <= hi.
+/// Sets the thread's rounding bound for its lifetime (the reader, the parametric model, a
+/// command's `--rounding` with `overrides_model`), and restores the previous one when it ends.
+/// \pre bound > 0.
+class RoundingBoundScope {
+ public:
+  explicit RoundingBoundScope(const Rational& bound, bool overrides_model = false);
+  ~RoundingBoundScope();
+  RoundingBoundScope(const RoundingBoundScope&) = delete;
+  RoundingBoundScope& operator=(const RoundingBoundScope&) = delete;
+
+ private:
+  RoundingBoundScope* previous_;
+  Rational bound_;
+  bool overrides_model_;
+  friend const Rational& rounding_bound();
+  friend bool rounding_bound_overrides_model();
+};
+
+/// The smallest and the largest rounding bound a model may ask for: 1e-30 (far above the
+/// 256-bit evaluations' error) and 1e-3 (already coarse geometry).
+Rational smallest_rounding_bound();
+Rational largest_rounding_bound();
+
+/// The simplest rational within half the rounding bound of `value` (for values known to far
+/// better than b/2, such as 10^-30 square roots: the result is then within b of the exact one).
+Rational round_simplest(const Rational& value);
+
+/// The simplest rational (smallest denominator, and among those the smallest numerator in
+/// magnitude) in the closed interval [lo, hi], lo <= hi: the continued-fraction (Stern–Brocot)
+/// descent. Exact: the result lies in [lo, hi] and no rational with a smaller denominator does.
 Rational simplest_rational_between(const Rational& lo, const Rational& hi);
 
-/// Rounds a half-angle tangent for an exact unit vector: the simplest rational within half a
-/// grid step (5*10^-13) of `tangent`. Same error bound as the grid, but about half the digits
-/// (continued-fraction convergents), which keeps every exact computation downstream small.
+/// Rounds a half-angle tangent for an exact unit vector: the simplest rational within half the
+/// rounding bound of `tangent` (so the angle moves by at most the bound, |dθ/dt| <= 2): small
+/// denominators p/q give unit vectors ((q²−p²), 2pq)/(q²+p²) with small coefficients.
 Rational round_half_tangent(const Rational& tangent);
 
 /// An exact rational unit vector (cos a, sin a) for the angle `angle` (rad), built from the
 /// half-angle tangent t = tan(a/2) (or of a - pi when |a| > pi/2, then negated), with t
-/// rounded to a multiple of 10^-12 when it is not rational. When rounding happens, a Rounding
+/// rounded (round_half_tangent) when it is not rational. When rounding happens, a Rounding
 /// with the resulting angle error bound is appended to `roundings` under `pointer`.
 /// Exact cases: angles that are integer multiples of pi/2 (given exactly as rationals only
 /// when 0) — in practice only a = 0 is rational among them.

@@ -721,14 +721,15 @@ Rational to_rational(const Quantity& value, const std::string& pointer,
   if (!enclosure.is_bounded())
     throw ModelError(pointer, "the value of " + quoted_expression(expression) + " is not finite");
   Rational lower = enclosure.lower(), upper = enclosure.upper();
-  Rational rounded = round_to_grid((lower + upper) / 2);
-  Rational bound(1, 1);
-  mpz_class scale;
-  mpz_ui_pow_ui(scale.get_mpz_t(), 10, rounding_decimals);
-  bound /= Rational(scale);
-  if (abs(Rational(rounded - lower)) > bound || abs(Rational(upper - rounded)) > bound)
-    throw ModelError(pointer, "cannot evaluate " + quoted_expression(expression) +
-                                  " to within 1e-12 (the value is too large for 256-bit precision)");
+  // Every value within the bound of each end of the enclosure is within the bound of the exact
+  // value: the simplest rational of [upper - bound, lower + bound] (small denominators keep the
+  // downstream polynomials' coefficients small).
+  const Rational& bound = rounding_bound();
+  Rational from = upper - bound, to = lower + bound;
+  if (from > to)
+    throw ModelError(pointer, "cannot evaluate " + quoted_expression(expression) + " to within the rounding bound " +
+                                  to_decimal_string(bound, 3) + " (the value is too large for 256-bit precision)");
+  Rational rounded = simplest_rational_between(from, to);
   roundings.push_back(Rounding{pointer, expression, rounded, bound});
   return rounded;
 }

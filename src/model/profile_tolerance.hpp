@@ -28,6 +28,9 @@ std::vector<ProfileTolerance> translate_profile_tolerances(JsonValue& root, cons
 
 /// The model of a parsed document that has no profile tolerances (reader.cpp).
 Model read_model_root(const JsonValue& root, std::string_view source_name);
+/// The rounding bound a document asks for (its "rounding" key, a --rounding override in force,
+/// else the default; reader.cpp). \throws ModelError for a bad key.
+Rational model_rounding_bound(const JsonValue& root);
 
 /// A copy of `root` without the parts' `profile_tolerances` keys.
 JsonValue strip_profile_tolerances(const JsonValue& root);

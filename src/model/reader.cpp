@@ -1,6 +1,7 @@
 // The model reader: JSON text -> exact, validated hipair::Model (docs/model-format.md).
 #include "model/reader.hpp"
 
+#include "model/exact_trig.hpp"
 #include "model/profile_tolerance.hpp"
 
 #include "core/sha256.hpp"
@@ -77,8 +78,9 @@ Model Reader::read() {
 
 Model Reader::read_root(const JsonValue& root) {
   if (!root.is_object()) throw ModelError("", "a model file must hold a JSON object");
-  check_keys(root, {"hipair", "name", "description", "units", "parameters", "parts", "pairs", "simulation"});
+  check_keys(root, {"hipair", "name", "description", "units", "rounding", "parameters", "parts", "pairs", "simulation"});
   read_version(require(root, "hipair"));
+  RoundingBoundScope rounding_scope(read_rounding(root.find("rounding")), rounding_bound_overrides_model());
   model_.name = read_string(require(root, "name"), false);
   if (const JsonValue* description = root.find("description"))
     model_.description = read_string(*description, true, true);
@@ -103,6 +105,27 @@ void Reader::read_version(const JsonValue& value) {
                                         (value.is_number() || value.is_string() ? quoted_excerpt(value.text)
                                                                                 : std::string(describe_type(value.type))) +
                                         ": this reader reads \"hipair\": 1");
+}
+
+Rational model_rounding_bound(const JsonValue& root) {
+  ReadOptions options;
+  return Reader("", "<string>", options).read_rounding(root.is_object() ? root.find("rounding") : nullptr);
+}
+
+Rational Reader::read_rounding(const JsonValue* value) {
+  auto check = [&](const Rational& bound, const std::string& where, const std::string& what) {
+    if (bound < smallest_rounding_bound() || bound > largest_rounding_bound())
+      throw ModelError(where, what + " out of range: it must lie in [1e-30, 1e-3]");
+  };
+  if (rounding_bound_overrides_model()) {  // a command line's --rounding
+    check(rounding_bound(), "", "--rounding " + to_decimal_string(rounding_bound(), 12));
+    return rounding_bound();
+  }
+  if (!value) return default_rounding_bound();
+  if (!value->is_number()) throw ModelError(value->pointer, "the rounding bound must be a number (e.g. 1e-9)");
+  Rational bound = parse_literal(value->text, value->pointer);
+  check(bound, value->pointer, "rounding bound " + quoted_excerpt(value->text));
+  return bound;
 }
 
 void Reader::read_units(const JsonValue* units) {

@@ -62,6 +62,9 @@ class Reader {
   Model read();
   /// Evaluates and validates a parsed document (without profile tolerances).
   Model read_root(const JsonValue& root);
+  /// The rounding bound: the optional top-level "rounding" key, or a command line's override
+  /// (rounding_bound_overrides_model()), else the default.
+  Rational read_rounding(const JsonValue* value);
 
  private:
   struct ParameterState {

@@ -171,7 +171,8 @@ Parameter Reader::read_parameter(const std::string& name, const JsonValue& defin
   value = nominal;
   if (auto override_value = options_.parameter_values.find(name);
       override_value != options_.parameter_values.end()) {
-    const Rational& v = override_value->second;
+    Rational v = override_value->second;
+    v.canonicalize();  // callers may pass mpq_class(a, b), which is not canonical
     if (!options_.allow_out_of_tolerance && (v < parameter.range.lo || v > parameter.range.hi))
       throw ModelError(definition.pointer, "override value " + outside(v, parameter.range.lo, parameter.range.hi).first +
                                                " of parameter '" + name + "' lies outside its tolerance range " +

@@ -186,7 +186,7 @@ Point Reader::direction(const JsonValue& value) {
     return Point{Rational(dx / length), Rational(dy / length)};
   }
   // Half-angle tangent t = dy / (|d| + dx) of the direction (or of its opposite when dx < 0,
-  // which keeps |t| <= 1), rounded to the 10^-12 grid: the vector is then exactly unit.
+  // which keeps |t| <= 1), rounded within the rounding bound: the vector is then exactly unit.
   bool flip = dx < 0;
   Rational x = flip ? Rational(-dx) : dx, y = flip ? Rational(-dy) : dy;
   Interval length;

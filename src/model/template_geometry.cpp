@@ -65,12 +65,10 @@ Point point_on_circle_near(const Point& center, const Rational& radius, const Po
   Rational rounded = round_half_tangent(tangent);
   Point unit = unit_from_half_tangent(rounded);
   if (flipped) unit = Point{-unit.x, -unit.y};
-  // Moving t by at most 5e-13 turns the unit vector by at most 1e-12 rad: the point moves by
-  // at most radius * 1e-12. (mpq_class(a, b) is not canonical: canonicalize before arithmetic.)
-  Rational angle_bound(2, power_of_ten(12));
-  angle_bound.canonicalize();
+  // Moving t by at most b/2 turns the unit vector by at most b rad (the rounding bound b): the
+  // point moves by at most radius * b.
   roundings.push_back(Rounding{pointer, what + " (exact point on its circle, half-angle tangent)",
-                               rounded, Rational(radius * angle_bound)});
+                               rounded, Rational(radius * rounding_bound())});
   return point_on_circle(center, radius, unit);
 }
 

@@ -29,11 +29,8 @@ Rational squared_distance(const Point& a, const Point& b);
 /// |a|^2, exact.
 Rational squared_norm(const Point& a);
 
-/// 10^-12, the rounding grid step.
-inline Rational grid_step() { return Rational("1/1000000000000"); }
-
 /// sqrt(q) for q >= 0 to within 10^-30 (truncated), as a rational. For constructions whose
-/// results are rounded to the 10^-12 grid afterwards; never for decisions.
+/// results are rounded afterwards (round_simplest, point_on_circle_near); never for decisions.
 Rational approximate_sqrt(const Rational& q);
 /// A rational >= sqrt(q), within 10^-15 of it: for error bounds.
 Rational upper_sqrt(const Rational& q);
@@ -41,10 +38,10 @@ Rational upper_sqrt(const Rational& q);
 double approximate(const Rational& q);
 
 /// An exact rational point on the circle of radius `radius` about `center` whose polar angle
-/// is within 10^-12 rad of the polar angle of `near` (a point on or very near that circle,
-/// typically an irrational intersection computed to ~10^-30). Built from the half-angle
-/// tangent rounded to the 10^-12 grid; records a Rounding (pointer, `what`) with the bound
-/// 2*10^-12 * radius (mm) on the displacement from the ideal point.
+/// is within the rounding bound b (rad) of the polar angle of `near` (a point on or very near
+/// that circle, typically an irrational intersection computed to ~10^-30). Built from the
+/// half-angle tangent (round_half_tangent); records a Rounding (pointer, `what`) with the bound
+/// b * radius (mm) on the displacement from the ideal point.
 Point point_on_circle_near(const Point& center, const Rational& radius, const Point& near,
                            const std::string& pointer, const std::string& what,
                            std::vector<Rounding>& roundings);

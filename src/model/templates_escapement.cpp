@@ -150,10 +150,10 @@ std::vector<Loop> expand_anchor(const Arguments& arguments, std::vector<Rounding
     throw ModelError(arguments.at("center"), "the anchor pivot must lie outside the escape wheel");
   double D = std::sqrt(tg::approximate(distance_squared));
   double R = tg::approximate(wheel_radius);
-  Rational tangent = round_to_grid(tg::approximate_sqrt(distance_squared - wheel_radius * wheel_radius));
+  Rational tangent = round_simplest(tg::approximate_sqrt(distance_squared - wheel_radius * wheel_radius));
   roundings.push_back(Rounding{pointer, "anchor tangent length sqrt(|center - wheel_center|^2 - "
                                         "wheel_radius^2)",
-                               tangent, tg::grid_step()});
+                               tangent, rounding_bound()});
   Rational inner = tangent - width / 2;
   Rational outer = tangent + width / 2;
   if (inner <= 0)
@@ -206,7 +206,7 @@ std::vector<Loop> expand_anchor(const Arguments& arguments, std::vector<Rounding
       tg::point_on_circle_near(Point{0, 0}, outer, Point{half_fork, fork_base_y}, pointer,
                                "fork base on the pallet circle", roundings);
   Point fork_base_left{-fork_base_right.x, fork_base_right.y};
-  Rational notch_depth = round_to_grid(Rational((D - R) / 2));
+  Rational notch_depth = round_simplest(Rational((D - R) / 2));
   Point notch{Rational(0), Rational(-notch_depth)};
 
   // Canonical +y is the direction from the wheel to the pivot.

@@ -114,7 +114,7 @@ std::vector<Loop> expand_spur_gear(const Arguments& arguments, std::vector<Round
                                                  "end points (bound: centre displacement, mm)",
                                  used.x,
                                  Rational(tg::upper_sqrt(tg::squared_distance(used, ideal)) +
-                                          tip_radius * Rational(2 * tg::grid_step()))});
+                                          tip_radius * Rational(2 * rounding_bound()))});
   };
 
   Flank flank;
@@ -158,7 +158,7 @@ std::vector<Loop> expand_spur_gear(const Arguments& arguments, std::vector<Round
       // Below the base circle the involute does not exist: a radial segment down to the root
       // circle; the lower arc runs from the involute's start on the base circle to P.
       Point base_point = involute_point(low);
-      base_point = Point{round_to_grid(base_point.x), round_to_grid(base_point.y)};
+      base_point = Point{round_simplest(base_point.x), round_simplest(base_point.y)};
       Point lower_centre = centre_on_normal(pitch_point, base_point, normal);
       Rational scale_to_root = tg::approximate(root_radius) / low;
       Point root = exact_on(root_radius, tg::scale(scale_to_root, base_point),

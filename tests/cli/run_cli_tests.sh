@@ -45,6 +45,19 @@ done
 [ $? -ne 0 ] || fail "show into a missing directory succeeded"
 grep -q "^hipair: error: " "$work/nodir.err" || fail "missing directory: unclear message: $(cat "$work/nodir.err")"
 
+# --rounding: the bound of every recorded rounding; out of range or malformed: one error line.
+"$hipair" validate --rounding 1e-6 "$source/examples/models/geneva.json" >"$work/rounding.txt" 2>&1 \
+  || fail "validate --rounding 1e-6 fails: $(tail -n 2 "$work/rounding.txt")"
+grep -q "bound 1e-06" "$work/rounding.txt" || fail "--rounding 1e-6: roundings not recorded with bound 1e-6"
+grep -q "bound 1e-12" "$work/rounding.txt" && fail "--rounding 1e-6: a rounding kept the default bound"
+for bad in 0.1 0 abc; do
+  "$hipair" validate --rounding "$bad" "$source/examples/models/geneva.json" >/dev/null 2>"$work/rounding-bad.err"
+  code=$?
+  { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "--rounding $bad: exit code $code"
+  [ "$(wc -l <"$work/rounding-bad.err")" -eq 1 ] || fail "--rounding $bad: not one error line: $(cat "$work/rounding-bad.err")"
+  grep -q "rounding" "$work/rounding-bad.err" || fail "--rounding $bad: message does not name it: $(cat "$work/rounding-bad.err")"
+done
+
 # A missing model file.
 "$hipair" validate "$work/does-not-exist.json" >/dev/null 2>"$work/missing.err"
 [ $? -ne 0 ] || fail "validate of a missing file succeeded"

@@ -126,7 +126,9 @@ TEST(Expression, TrigonometryIsExactWhereTheValueIsRational) {
 TEST(Expression, InexactValuesAreRoundedWithARecordedBound) {
   std::vector<hipair::Rounding> roundings;
   Rational root2 = hipair::model_detail::to_rational(evaluate("sqrt(2)"), "/p", "sqrt(2)", roundings);
-  EXPECT_EQ(root2, hipair::parse_rational("1.414213562373"));  // 1.41421356237309... rounds down
+  // the simplest rational within 1e-12 of sqrt(2): the convergent 1607521/1136689 (was the grid
+  // value 1.414213562373)
+  EXPECT_EQ(root2, Rational(1607521, 1136689));
   ASSERT_EQ(roundings.size(), 1u);
   EXPECT_EQ(roundings[0].pointer, "/p");
   EXPECT_EQ(roundings[0].expression, "sqrt(2)");
@@ -134,9 +136,11 @@ TEST(Expression, InexactValuesAreRoundedWithARecordedBound) {
   // The bound is true: |2 - value^2| <= 2 * sqrt(2) * bound + bound^2.
   EXPECT_LT(abs(Rational(2 - root2 * root2)), hipair::parse_rational("3e-12"));
   Rational cos30 = hipair::model_detail::to_rational(evaluate("cos(30 deg)"), "/q", "cos(30 deg)", roundings);
-  EXPECT_EQ(cos30, hipair::parse_rational("0.866025403784"));  // 0.86602540378443...
+  EXPECT_EQ(cos30, Rational(489061, 564719));  // simplest within 1e-12 of 0.86602540378443...
+  EXPECT_LT(abs(Rational(cos30 * cos30 - Rational(3, 4))), hipair::parse_rational("2e-12"));
   Rational pi4 = hipair::model_detail::to_rational(evaluate("pi/4"), "/r", "pi/4", roundings);
-  EXPECT_EQ(pi4, hipair::parse_rational("0.785398163397"));  // 0.78539816339744...
+  EXPECT_EQ(pi4, Rational(286602, 364913));  // simplest within 1e-12 of 0.78539816339744...
+  EXPECT_LT(abs(Rational(pi4 - hipair::parse_rational("0.78539816339744830961566"))), hipair::parse_rational("1e-12"));
   EXPECT_EQ(roundings.size(), 3u);
   // Exact values are never recorded.
   hipair::model_detail::to_rational(evaluate("1/3"), "/s", "1/3", roundings);

@@ -91,7 +91,7 @@ TEST(ModelReader, ParametersWithTolerancesRangesAndDistributions) {
   const hipair::Parameter* span = model.find_parameter("span");
   EXPECT_TRUE(span->is_angle);
   EXPECT_EQ(span->distribution, hipair::Parameter::Distribution::uniform);
-  EXPECT_EQ(span->nominal, q("1.570796326795"));  // pi/2 rounded to the 1e-12 grid
+  EXPECT_EQ(span->nominal, Rational(573204, 364913));  // the simplest rational within 1e-12 of pi/2
   EXPECT_LT(span->range.lo, span->nominal);
   const hipair::Parameter* fixed = model.find_parameter("fixed-one");
   EXPECT_EQ(fixed->range.lo, fixed->range.hi);
@@ -128,7 +128,7 @@ TEST(ModelReader, RoundingsAreRecordedWithPointerExpressionAndBound) {
   ASSERT_EQ(model.roundings.size(), 2u);
   EXPECT_EQ(model.roundings[0].pointer, "/parts/0/loops/0/edges/0/line_to/0");
   EXPECT_EQ(model.roundings[0].expression, "sqrt(2)");
-  EXPECT_EQ(model.roundings[0].value, q("1.414213562373"));
+  EXPECT_EQ(model.roundings[0].value, Rational(1607521, 1136689));  // simplest within 1e-12 of sqrt(2)
   EXPECT_EQ(model.roundings[0].bound, q("1e-12"));
   EXPECT_EQ(model.roundings[1].pointer, "/parts/0/loops/0/edges/1/line_to/0");
 }
@@ -218,7 +218,7 @@ TEST(ModelReader, MotionsAndDirections) {
   EXPECT_EQ(by_angle.direction, (Point{Rational(0), Rational(1)}));
   hipair::Motion rotation = motion_of(R"({"rotation": {"pivot": [0.5, 0.5], "limits": ["-pi/2", "pi/2"]}})");
   EXPECT_EQ(rotation.pivot, (Point{Rational(1, 2), Rational(1, 2)}));
-  EXPECT_EQ(rotation.angle_limits->hi, q("1.570796326795"));
+  EXPECT_EQ(rotation.angle_limits->hi, Rational(573204, 364913));  // simplest within 1e-12 of pi/2
   EXPECT_EQ(rotation.degrees_of_freedom(), 1);
   hipair::Motion planar = motion_of(R"({"planar": {"pivot": [0, 0]}})");
   EXPECT_EQ(planar.degrees_of_freedom(), 3);
@@ -239,7 +239,7 @@ TEST(ModelReader, InitialConfigurationAndDynamics) {
   EXPECT_EQ(part.initial.angle, Rational(0));
   ASSERT_TRUE(part.dynamics.has_value());
   EXPECT_EQ(*part.dynamics->mass, Rational(1, 4));
-  EXPECT_EQ(part.dynamics->torsional_spring->rest, q("1.570796326795"));
+  EXPECT_EQ(part.dynamics->torsional_spring->rest, Rational(573204, 364913));  // simplest within 1e-12 of pi/2
   EXPECT_EQ(part.dynamics->linear_spring->rest, Rational(0));
   EXPECT_EQ(*part.dynamics->torque, Rational(-1));
   EXPECT_EQ(part.dynamics->force->y, q("-9.81"));

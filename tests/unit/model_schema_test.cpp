@@ -22,7 +22,7 @@ TEST(ModelSchema, IsDraft2020JsonSchema) {
   EXPECT_EQ(schema["additionalProperties"], false);
   std::set<std::string> top;
   for (auto& [key, value] : schema["properties"].items()) top.insert(key);
-  EXPECT_EQ(top, (std::set<std::string>{"hipair", "name", "description", "units", "parameters", "parts", "pairs", "simulation"}));
+  EXPECT_EQ(top, (std::set<std::string>{"hipair", "name", "description", "units", "rounding", "parameters", "parts", "pairs", "simulation"}));
 }
 
 TEST(ModelSchema, DescribesEveryTemplateWithItsArguments) {

@@ -95,7 +95,7 @@ class ExactEvaluator {
       Rational length(numerator, denominator);
       return Point{Rational(dx / length), Rational(dy / length)};
     }
-    // As Reader::direction: the half-angle tangent rounded to the grid.
+    // As Reader::direction: the half-angle tangent rounded within the bound.
     bool flip = dx < 0;
     Rational x = flip ? Rational(-dx) : dx, y = flip ? Rational(-dy) : dy;
     Interval length;
@@ -358,6 +358,7 @@ ParametricModel ParametricModel::read(std::string_view json_text, std::string_vi
   model.nominal_ = std::make_shared<const Model>(read_model(json_text, source_name));
   model.text_ = std::string(json_text);
   JsonValue root = parse_json(json_text);
+  RoundingBoundScope rounding_scope(model_rounding_bound(root));  // the file's bound
   if (root.is_object() && has_profile_tolerances(root)) {
     // The same translation as the reader's: offset parameters and rewritten loop points.
     Model plain = read_model_root(strip_profile_tolerances(root), source_name);
@@ -405,7 +406,12 @@ Model ParametricModel::exact_model(const std::vector<Rational>& deviations) cons
                                         " parameter deviations, got " + std::to_string(deviations.size()));
   Model model = *nominal_;
   model.roundings.clear();
-  ExactEvaluator exact(*nominal_, parameter_nominals_, degrees_, deviations, model.roundings);
+  RoundingBoundScope rounding_scope(model_rounding_bound(parse_json(text_)));
+  // Callers may pass mpq_class(a, b), which is not canonical: GMP's arithmetic needs canonical
+  // operands (the rounding's continued fractions gave wrong results on such input).
+  std::vector<Rational> canonical = deviations;
+  for (Rational& deviation : canonical) deviation.canonicalize();
+  ExactEvaluator exact(*nominal_, parameter_nominals_, degrees_, canonical, model.roundings);
   for (std::size_t i = 0; i < model.parameters.size(); ++i) {
     Parameter& parameter = model.parameters[i];
     Rational shift = to_rational(exact.parameter(i), parameter.pointer, parameter.name, model.roundings) -

@@ -1,0 +1,278 @@
+// Rounding to small coefficients (issue 14, item 3): every value that cannot be exact becomes
+// the simplest rational within the model's rounding bound. Checked exactly (mpq comparisons):
+// the chosen rational lies in the interval, and no rational with a smaller denominator does —
+// by brute force on small intervals, and by the Stern–Brocot parents of the result (every
+// rational strictly between a/b and c/d, the Farey parents of p/q, has denominator >= q) on
+// generated and extreme values.
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+#include <hipair/rational.hpp>
+
+#include "model/exact_trig.hpp"
+#include "model/expression.hpp"
+
+#include <gtest/gtest.h>
+
+#include <mpfi.h>
+
+#include <algorithm>
+#include <random>
+#include <string>
+
+namespace {
+
+using hipair::Rational;
+using hipair::model_detail::simplest_rational_between;
+
+Rational power_of_ten(int exponent) {
+  mpz_class p;
+  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(exponent < 0 ? -exponent : exponent));
+  return exponent < 0 ? Rational(mpz_class(1), p) : Rational(p);
+}
+
+// The Farey parents of r = p/q (q > 0) in the Stern–Brocot tree: left < r < right, with
+// every rational strictly between them having denominator >= q. For an integer r the parents
+// are r - 1 and r + 1 (then "denominator < 1" is empty and the claim is about |numerator|).
+std::pair<Rational, Rational> farey_parents(const Rational& r) {
+  mpz_class p = r.get_num(), q = r.get_den();
+  if (q == 1) return {Rational(p - 1), Rational(p + 1)};
+  // Left parent a/b: p b - a q = 1, 0 < b < q (b = p^-1 mod q).
+  mpz_class b;
+  mpz_invert(b.get_mpz_t(), p.get_mpz_t(), q.get_mpz_t());
+  mpz_class a = (p * b - 1) / q;
+  Rational left(a, b), right(p - a, q - b);
+  left.canonicalize();
+  right.canonicalize();
+  return {left, right};
+}
+
+// True when no rational with a denominator smaller than r's (or, among integers, a smaller
+// magnitude) lies in [lo, hi], given lo <= r <= hi: the interval lies strictly inside the
+// Farey parents' span, or contains 0 only when r = 0.
+bool certified_simplest(const Rational& r, const Rational& lo, const Rational& hi) {
+  if (r == 0) return true;
+  if (lo <= 0 && hi >= 0) return false;  // 0 is simpler
+  auto [left, right] = farey_parents(r);
+  if (r.get_den() == 1) return r > 0 ? lo > left : hi < right;
+  return lo > left && hi < right;
+}
+
+TEST(SimplestRational, BruteForceOnSmallIntervals) {
+  std::mt19937 random(20261127);
+  std::uniform_int_distribution<int> numerator(-400, 400), denominator(1, 60);
+  int checked = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    Rational a(numerator(random), denominator(random)), b(numerator(random), denominator(random));
+    a.canonicalize();
+    b.canonicalize();
+    if (trial % 7 == 0) b = a;  // degenerate intervals
+    Rational lo = a < b ? a : b, hi = a < b ? b : a;
+    Rational r = simplest_rational_between(lo, hi);
+    ASSERT_TRUE(lo <= r && r <= hi) << lo << " " << hi << " -> " << r;
+    ASSERT_GT(r.get_den(), 0);
+    // No rational with a smaller denominator lies in [lo, hi]: ceil(lo q) > floor(hi q).
+    for (long q = 1; q < r.get_den().get_si(); ++q) {
+      Rational lq = lo * q, hq = hi * q;
+      mpz_class ceil_lo, floor_hi;
+      mpz_cdiv_q(ceil_lo.get_mpz_t(), lq.get_num_mpz_t(), lq.get_den_mpz_t());
+      mpz_fdiv_q(floor_hi.get_mpz_t(), hq.get_num_mpz_t(), hq.get_den_mpz_t());
+      ASSERT_GT(ceil_lo, floor_hi) << "[" << lo << ", " << hi << "] holds a rational with denominator " << q
+                                   << " but the result is " << r;
+    }
+    // Among the rationals of that denominator in the interval, the smallest magnitude.
+    mpz_class q = r.get_den();
+    Rational lq = lo * Rational(q), hq = hi * Rational(q);
+    mpz_class ceil_lo, floor_hi;
+    mpz_cdiv_q(ceil_lo.get_mpz_t(), lq.get_num_mpz_t(), lq.get_den_mpz_t());
+    mpz_fdiv_q(floor_hi.get_mpz_t(), hq.get_num_mpz_t(), hq.get_den_mpz_t());
+    for (mpz_class p = ceil_lo; p <= floor_hi; ++p) {
+      Rational candidate(p, q);
+      candidate.canonicalize();
+      if (candidate.get_den() == q) ASSERT_GE(abs(candidate), abs(r));
+    }
+    ASSERT_TRUE(certified_simplest(r, lo, hi)) << lo << " " << hi << " -> " << r;  // the certificate agrees
+    ++checked;
+  }
+  EXPECT_EQ(checked, 4000);
+}
+
+TEST(SimplestRational, ExtremeMagnitudes) {
+  // Around 1e-300 and 1e400, given as text, with widths from 1e-320 to 1e390.
+  for (const char* centre_text : {"1e-300", "3.25e-300", "1e400", "-7.123456789e400", "1e-12", "0.999999999999"}) {
+    Rational centre = hipair::parse_rational(centre_text);
+    for (int width_exponent : {-320, -310, -301, -200, -12, 0, 390}) {
+      Rational half_width = power_of_ten(width_exponent);
+      Rational lo = centre - half_width, hi = centre + half_width;
+      Rational r = simplest_rational_between(lo, hi);
+      ASSERT_TRUE(lo <= r && r <= hi) << centre_text << " 1e" << width_exponent;
+      ASSERT_TRUE(certified_simplest(r, lo, hi)) << centre_text << " 1e" << width_exponent << " -> " << r;
+      // One-sided windows (the interval away from zero).
+      Rational above = simplest_rational_between(abs(centre), abs(centre) + half_width);
+      ASSERT_TRUE(abs(centre) <= above && above <= abs(centre) + half_width);
+      ASSERT_TRUE(certified_simplest(above, abs(centre), abs(centre) + half_width));
+    }
+  }
+  // Narrow window at 1e-300: the result is 1/q with q the smallest integer in
+  // [1e300 / 1.000001, 1e300], exact.
+  Rational tiny = hipair::parse_rational("1e-300");
+  Rational r = simplest_rational_between(tiny, tiny * Rational(1000001, 1000000));
+  Rational smallest_q = Rational(1) / (tiny * Rational(1000001, 1000000));
+  mpz_class q;
+  mpz_cdiv_q(q.get_mpz_t(), smallest_q.get_num_mpz_t(), smallest_q.get_den_mpz_t());
+  EXPECT_EQ(r, Rational(mpz_class(1), q));
+}
+
+// The enclosure of sqrt(n) at 256 bits, as rationals.
+struct Enclosure {
+  Rational lower, upper;
+};
+
+// Exact check of |sqrt(n) - v| <= bound: (v - bound)^2 <= n <= (v + bound)^2 with v - bound >= 0.
+bool within_sqrt(const Rational& v, long n, const Rational& bound) {
+  Rational below = v - bound, above = v + bound;
+  return below >= 0 && below * below <= n && above * above >= n;
+}
+
+TEST(ModelRounding, GeneratedSquareRootsAreTheSimplestWithinTheBound) {
+  using namespace hipair::model_detail;
+  int checked = 0;
+  for (int exponent : {12, 9, 6, 4}) {
+    Rational bound = power_of_ten(-exponent);
+    RoundingBoundScope scope(bound);
+    std::vector<std::size_t> sizes;
+    for (long n = 2; n < 400; ++n) {
+      if (n == static_cast<long>(std::sqrt(static_cast<double>(n))) * static_cast<long>(std::sqrt(static_cast<double>(n))))
+        continue;
+      std::string text = "sqrt(" + std::to_string(n) + ")";
+      ExpressionContext context;
+      context.pointer = "/test";
+      Quantity q = evaluate_expression(text, context);
+      ASSERT_FALSE(q.is_rational());
+      std::vector<hipair::Rounding> roundings;
+      Rational v = to_rational(q, "/test", text, roundings);
+      ASSERT_EQ(roundings.size(), 1u);
+      EXPECT_EQ(roundings[0].value, v);
+      EXPECT_EQ(roundings[0].bound, bound);
+      ASSERT_TRUE(within_sqrt(v, n, bound)) << text << " -> " << v;
+      // No simpler rational within the bound of sqrt(n): both Farey parents lie outside
+      // [sqrt(n) - bound, sqrt(n) + bound], decided exactly by squaring.
+      auto [left, right] = farey_parents(v);
+      Rational left_shift = left + bound, right_shift = right - bound;
+      EXPECT_TRUE(left_shift < 0 || left_shift * left_shift < n) << text << " 1e-" << exponent;
+      EXPECT_TRUE(right_shift > 0 && right_shift * right_shift > n) << text << " 1e-" << exponent;
+      sizes.push_back(mpz_sizeinbase(v.get_den_mpz_t(), 2));
+      ++checked;
+    }
+    // Typically the denominator is near 1/sqrt(bound) (the grid's is 1/bound): the median size
+    // over the generated values (a guarantee holds only for the simplest property above).
+    std::sort(sizes.begin(), sizes.end());
+    EXPECT_LE(sizes[sizes.size() / 2], static_cast<std::size_t>(exponent * 3.33 / 2 + 4)) << "1e-" << exponent;
+  }
+  EXPECT_GT(checked, 1400);
+}
+
+TEST(ModelRounding, HalfAngleTangentsTurnByAtMostTheBound) {
+  using namespace hipair::model_detail;
+  for (int exponent : {12, 9, 6}) {
+    Rational bound = power_of_ten(-exponent);
+    RoundingBoundScope scope(bound);
+    for (int k = 1; k <= 58; ++k) {
+      Rational angle(k, 37);  // rational angles in (0, pi/2) (58/37 < pi/2 < 59/37): irrational tangents
+      angle.canonicalize();
+      std::vector<hipair::Rounding> roundings;
+      hipair::Point unit = exact_unit_vector(angle, "/test", "angle", roundings);
+      ASSERT_EQ(roundings.size(), 1u);
+      EXPECT_EQ(roundings[0].bound, bound);
+      EXPECT_EQ(unit.x * unit.x + unit.y * unit.y, Rational(1));  // exactly on the unit circle
+      // |2 atan(t) - angle| <= bound, certified with 256-bit interval arithmetic.
+      mpfi_t t, turned;
+      mpfi_init2(t, 256);
+      mpfi_init2(turned, 256);
+      mpfi_set_q(t, roundings[0].value.get_mpq_t());
+      mpfi_atan(turned, t);
+      mpfi_mul_ui(turned, turned, 2);
+      mpfi_sub_q(turned, turned, angle.get_mpq_t());
+      mpfr_t magnitude;
+      mpfr_init2(magnitude, 256);
+      mpfi_mag(magnitude, turned);
+      EXPECT_LE(mpfr_cmp_q(magnitude, bound.get_mpq_t()), 0) << "angle " << angle << " 1e-" << exponent;
+      mpfr_clear(magnitude);
+      mpfi_clear(t);
+      mpfi_clear(turned);
+    }
+  }
+}
+
+// An angle rounded first (a template's phase of 90 degrees becomes a rational near pi/2) and
+// then turned into a direction: the half-angle tangent's window is the whole angle window
+// [a' - b, a' + b], so the exact quarter turn stays reachable and is the simplest (t = +-1, 0).
+TEST(ModelRounding, QuarterTurnsStayExactAfterTheAngleIsRounded) {
+  using namespace hipair::model_detail;
+  for (int exponent : {12, 9, 6}) {
+    RoundingBoundScope scope(power_of_ten(-exponent));
+    for (const char* text : {"pi/2", "-pi/2", "3*pi/2", "pi", "5*pi/2", "pi/2 + 0"}) {
+      ExpressionContext context;
+      context.pointer = "/test";
+      std::vector<hipair::Rounding> roundings;
+      Rational angle = to_rational(evaluate_expression(text, context), "/test", text, roundings);
+      hipair::Point unit = exact_unit_vector(angle, "/test", text, roundings);
+      EXPECT_EQ(abs(unit.x) + abs(unit.y), Rational(1)) << text << " 1e-" << exponent << ": " << unit.x << ", " << unit.y;
+    }
+  }
+}
+
+const char* model_with_rounding(const std::string& rounding_entry) {
+  static std::string text;
+  text = R"json({ "hipair": 1, "name": "r", )json" + rounding_entry + R"json(
+    "parts": [
+      { "name": "frame", "motion": "fixed", "loops": [ { "start": [0, 0], "edges": [
+          { "line_to": [10, 0] }, { "line_to": [10, "sqrt(2)"] }, { "line_to": [0, 10] }, { "line_to": [0, 0] } ] } ] },
+      { "name": "arm", "motion": { "rotation": { "pivot": [30, 0] } }, "loops": [ { "start": [20, 0], "edges": [
+          { "line_to": [26, 0] }, { "line_to": [26, "sqrt(3)"] }, { "line_to": [20, 4] }, { "line_to": [20, 0] } ] } ] } ] })json";
+  return text.c_str();
+}
+
+TEST(ModelRounding, BoundFromTheModelAndFromTheCommandLine) {
+  hipair::Model plain = hipair::read_model(model_with_rounding(""));
+  ASSERT_EQ(plain.roundings.size(), 2u);
+  for (const hipair::Rounding& r : plain.roundings) EXPECT_EQ(r.bound, Rational(1, 1000000000000L));
+  EXPECT_TRUE(within_sqrt(plain.roundings[0].value, 2, Rational(1, 1000000000000L)));
+
+  hipair::Model coarse = hipair::read_model(model_with_rounding(R"("rounding": 1e-6,)"));
+  ASSERT_EQ(coarse.roundings.size(), 2u);
+  EXPECT_EQ(coarse.roundings[0].bound, Rational(1, 1000000));
+  EXPECT_TRUE(within_sqrt(coarse.roundings[0].value, 2, Rational(1, 1000000)));
+  EXPECT_EQ(coarse.roundings[0].value, Rational(1393, 985));  // a convergent of sqrt(2)
+  EXPECT_TRUE(within_sqrt(coarse.roundings[1].value, 3, Rational(1, 1000000)));
+
+  {
+    // --rounding: overrides the model's key while it is in force
+    hipair::model_detail::RoundingBoundScope command_line(Rational(1, 1000000000), true);
+    hipair::Model overridden = hipair::read_model(model_with_rounding(R"("rounding": 1e-6,)"));
+    EXPECT_EQ(overridden.roundings[0].bound, Rational(1, 1000000000));
+    EXPECT_TRUE(within_sqrt(overridden.roundings[0].value, 2, Rational(1, 1000000000)));
+    EXPECT_FALSE(within_sqrt(overridden.roundings[0].value, 2, Rational(mpz_class(1), mpz_class("10000000000"))));
+  }
+  {
+    // an inner non-overriding scope (a library user's) does not change what a file asks for
+    hipair::model_detail::RoundingBoundScope other(Rational(1, 1000));
+    EXPECT_EQ(hipair::read_model(model_with_rounding("")).roundings[0].bound, Rational(1, 1000000000000L));
+  }
+  EXPECT_EQ(hipair::model_detail::rounding_bound(), hipair::model_detail::default_rounding_bound());
+}
+
+TEST(ModelRounding, BadBoundsNameTheKey) {
+  for (const char* entry : {R"("rounding": "1e-9",)", R"("rounding": 0,)", R"("rounding": -1e-9,)",
+                            R"("rounding": 0.01,)", R"("rounding": 1e-31,)", R"("rounding": [1],)"}) {
+    try {
+      hipair::read_model(model_with_rounding(entry));
+      ADD_FAILURE() << entry << " was accepted";
+    } catch (const hipair::ModelError& error) {
+      EXPECT_EQ(error.pointer(), "/rounding") << entry;
+    }
+  }
+  hipair::model_detail::RoundingBoundScope command_line(Rational(1, 10), true);
+  EXPECT_THROW(hipair::read_model(model_with_rounding("")), hipair::ModelError);
+}
+
+}  // namespace
