@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <set>
 
 namespace hipair::verify {
@@ -449,8 +448,6 @@ int ToleranceEvaluator::monotone_sign(const ToleranceLeaf& leaf, const Jet& over
       if (r.lo != r.hi) bound = bound + gradient.partial(i) * offset(r);
     }
     bound = meet(bound, gradient.value);
-    if (std::getenv("HIPAIR_CERT_TRACE") && std::string(std::getenv("HIPAIR_CERT_TRACE")) == "v")
-      std::fprintf(stderr, "      monotone want %d round %d: bound %s\n", want, round, show(bound).c_str());
     if (bound.sign() == want) return want;
   }
   return 0;
