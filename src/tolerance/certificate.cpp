@@ -10,8 +10,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -101,11 +99,6 @@ class Producer {
       result.seconds_produce = seconds_since(start);
       return result;
     }
-    if (trace_)
-      for (std::size_t i = 0; i < claim_.sides.size(); ++i)
-        std::fprintf(stderr, "side %zu: %s%s / %s%s\n", i, claim_.sides[i].driver.vertex ? "vertex " : "",
-                     claim_.sides[i].driver.edge.label.c_str(), claim_.sides[i].follower.vertex ? "vertex " : "",
-                     claim_.sides[i].follower.edge.label.c_str());
     std::vector<RationalInterval> region = claim_.box;
     region.push_back(claim_.range);
     Status status = Status::ok;
@@ -418,12 +411,6 @@ class Producer {
       return out;
     };
     auto lowers = candidates(false), uppers = candidates(true);
-    if (trace_) {
-      std::fprintf(stderr, "box %zu depth %d driver [%.9f, %.9f] piece L%zu U%zu\n", attempts_, depth,
-                   region[k].lo.get_d(), region[k].hi.get_d(), piece.lower, piece.upper);
-      for (auto& c : lowers) std::fprintf(stderr, "  L%zu ok=%d cc=%d root=%.9f\n", c.first, c.second.ok, c.second.centre_certain, c.second.root);
-      for (auto& c : uppers) std::fprintf(stderr, "  U%zu ok=%d cc=%d root=%.9f\n", c.first, c.second.ok, c.second.centre_certain, c.second.root);
-    }
     std::size_t lower_pair = lowers.front().first, upper_pair = uppers.front().first;
     SideGuess lower = lowers.front().second, upper = uppers.front().second;
     if (lower.centre_certain && upper.centre_certain && upper.centre.hi < lower.centre.lo) {
@@ -449,8 +436,7 @@ class Producer {
     auto accept = [&](ToleranceLeaf candidate) {
       try {
         evaluator_->check_leaf(candidate, claim_.leaves.size(), over, point);
-      } catch (const verify::Rejection& r) {
-        if (trace_) std::fprintf(stderr, "    reject: %s\n", r.reason.substr(0, 300).c_str());
+      } catch (const verify::Rejection&) {
         return false;
       }
       ToleranceTreeNode node;
@@ -471,7 +457,6 @@ class Producer {
         spread += std::fabs(slope) * h;
         predicted -= std::fabs(gu.slope[i] - gl.slope[i]) * h;
       }
-      if (trace_) std::fprintf(stderr, "   attempt L%zu U%zu centre play %.3g predicted linear min %.3g\n", lp, up, gu.root - gl.root, predicted);
       if (predicted <= 0) return false;
       Rational top = grid(mid + 1.05 * spread + 1e-12, true), bottom = grid(mid - 1.05 * spread - 1e-12, false);
       RationalInterval bl = gl.bracket, bu = gu.bracket;
@@ -540,7 +525,6 @@ class Producer {
       Rational snapped = grid(cut.get_d(), false);
       if (snapped > region[k].lo && snapped < region[k].hi) cut = snapped;
     }
-    if (trace_) std::fprintf(stderr, "  split %zu (%s) score %.3g\n", best, best == k ? "driver" : claim_.varied[best].c_str(), score[best]);
     claim_.tree.push_back(split(best == k ? "driver" : claim_.varied[best], cut));
     std::vector<RationalInterval> low = region, high = region;
     low[best].hi = cut;
@@ -551,7 +535,6 @@ class Producer {
   }
 
   const CertifyRequest& request_;
-  bool trace_ = std::getenv("HIPAIR_CERT_TRACE") != nullptr;
   ToleranceClaim claim_;
   std::unique_ptr<verify::ToleranceEvaluator> evaluator_;
   std::size_t attempts_ = 0;
