@@ -402,17 +402,76 @@ SideEnclosure ToleranceEvaluator::check_side(const ToleranceLeaf& leaf, const Le
   return result;
 }
 
+template <class Evaluate>
+int ToleranceEvaluator::monotone_sign(const ToleranceLeaf& leaf, const Jet& over_leaf, int want,
+                                      const Evaluate& evaluate) const {
+  // For fixed values of the other dimensions the function is monotone in each dimension whose
+  // partial derivative has a certain sign over the current face (a box, so moving one
+  // coordinate at a time stays inside it): its smallest (want = +1) or largest (want = -1)
+  // value over the face is on the sub-face with those dimensions at the chosen ends. On the
+  // final face, the mean value theorem about its centre with the gradient enclosed over that
+  // face bounds the rest.
+  std::size_t k = varied_.size();
+  ToleranceLeaf face;
+  face.parameters = leaf.parameters;
+  face.driver = leaf.driver;
+  auto dimension = [&](std::size_t i) -> RationalInterval& { return i < k ? face.parameters[i] : face.driver; };
+  Jet gradient = over_leaf;
+  for (int round = 0; round < 4; ++round) {
+    bool fixed = false;
+    for (std::size_t i = 0; i <= k; ++i) {
+      RationalInterval& r = dimension(i);
+      if (r.lo == r.hi) continue;
+      int s = gradient.partial(i).sign();
+      if (s == 0) continue;
+      Rational end = s == want ? r.lo : r.hi;
+      r = {end, end};
+      fixed = true;
+    }
+    if (!fixed) return 0;   // nothing new: the previous round's bound stands
+    std::vector<Interval> box, centre;
+    ToleranceLeaf middle_point;
+    for (std::size_t i = 0; i < k; ++i) {
+      box.push_back(enclose(face.parameters[i]));
+      Rational c = middle(face.parameters[i]);
+      centre.push_back(enclose(c));
+      middle_point.parameters.push_back({c, c});
+    }
+    Rational dc = middle(face.driver);
+    middle_point.driver = {dc, dc};
+    ToleranceGeometry at = geometry(centre, false);
+    Interval bound = evaluate(middle_point, at).value;
+    ToleranceGeometry over = geometry(box, true);
+    gradient = evaluate(face, over);
+    for (std::size_t i = 0; i <= k; ++i) {
+      const RationalInterval& r = dimension(i);
+      if (r.lo != r.hi) bound = bound + gradient.partial(i) * offset(r);
+    }
+    bound = meet(bound, gradient.value);
+    if (bound.sign() == want) return want;
+  }
+  return 0;
+}
+
 int ToleranceEvaluator::sign_over_leaf(const ToleranceLeaf& leaf, std::size_t pair, const Rational& y,
                                        ToleranceGeometry& over, ToleranceGeometry& centre) const {
   // Mean-value form about the leaf's centre in the parameters and the driver (the follower
-  // held at y), intersected with the plain enclosure.
+  // held at y), intersected with the plain enclosure; when that is undecided, the monotone
+  // form with the sign the function has at the centre.
   std::size_t k = varied_.size();
   Jet driver = Jet::variable(enclose(leaf.driver), driver_variable(), variables());
   Jet f = contact(over, pair, driver, Jet(enclose(y)));
-  Interval value = contact(centre, pair, Jet(enclose(middle(leaf.driver))), Jet(enclose(y))).value;
+  Interval at_centre = contact(centre, pair, Jet(enclose(middle(leaf.driver))), Jet(enclose(y))).value;
+  Interval value = at_centre;
   for (std::size_t i = 0; i < k; ++i) value = value + f.partial(i) * offset(leaf.parameters[i]);
   value = value + f.partial(k) * offset(leaf.driver);
-  return meet(value, f.value).sign();
+  int sign = meet(value, f.value).sign();
+  if (sign != 0) return sign;
+  int want = at_centre.sign();
+  if (want == 0) return 0;
+  return monotone_sign(leaf, f, want, [&](const ToleranceLeaf& face, ToleranceGeometry& g) {
+    return contact(g, pair, Jet::variable(enclose(face.driver), driver_variable(), variables()), Jet(enclose(y)));
+  });
 }
 
 void ToleranceEvaluator::check_witness(const ToleranceLeaf& leaf, ToleranceGeometry& over, ToleranceGeometry& at,
@@ -448,6 +507,16 @@ void ToleranceEvaluator::check_witness(const ToleranceLeaf& leaf, ToleranceGeome
     centred = centred + h.partial(k) * offset(leaf.driver);
     int sign = meet(centred, h.value).sign();
     int inside = sign_over_leaf(leaf, side.pair, s == 0 ? side.bracket.hi : side.bracket.lo, over, at);
+    if (sign == 0 && inside != 0)
+      sign = monotone_sign(leaf, h, inside, [&](const ToleranceLeaf& face, ToleranceGeometry& g) {
+        // y* over the face: exact at its centre plus the slopes times the face's offsets.
+        Interval y = enclose(*leaf.witness);
+        for (std::size_t i = 0; i < k; ++i)
+          y = y + slopes[i] * enclose(RationalInterval{face.parameters[i].lo - middle(leaf.parameters[i]),
+                                                       face.parameters[i].hi - middle(leaf.parameters[i])});
+        y = y + slopes[k] * enclose(RationalInterval{face.driver.lo - middle(leaf.driver), face.driver.hi - middle(leaf.driver)});
+        return contact(g, side.pair, Jet::variable(enclose(face.driver), driver_variable(), variables()), Jet(y, slopes));
+      });
     if (sign == 0 || sign != inside)
       reject(where + ": the witness is not certainly " + (s == 0 ? "above the lower" : "below the upper") +
              " side (its contact function there encloses to " + show(meet(centred, h.value)) + ")");

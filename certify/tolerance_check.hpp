@@ -93,6 +93,17 @@ class ToleranceEvaluator {
   /// leaf with the follower at `y` (mean-value form about the leaf's centre).
   int sign_over_leaf(const ToleranceLeaf& leaf, std::size_t pair, const Rational& y, ToleranceGeometry& over_box,
                      ToleranceGeometry& at_centre) const;
+  /// The sign `want` (+1 or -1) of a function over the leaf proved with monotonicity, or 0
+  /// (docs/certify.md "Tolerance", check 3): `over_leaf` encloses the function with its
+  /// gradient (varied parameters, then the driver) over the leaf. Every dimension whose partial
+  /// derivative has a certain sign is fixed at the end of its interval where the function is
+  /// nearest to 0; on that face of the leaf `evaluate(face, geometry)` (a sub-box of the leaf,
+  /// the geometry evaluated over it with gradient, or at a point without) gives the function
+  /// with its gradient over the face, which may fix more dimensions; the bound is the value at
+  /// the face's centre plus the mean-value remainder over the face's remaining widths.
+  template <class Evaluate>
+  int monotone_sign(const ToleranceLeaf& leaf, const Jet& over_leaf, int want, const Evaluate& evaluate) const;
+
   /// Checks one side of a leaf. \throws Rejection with the reason.
   SideEnclosure check_side(const ToleranceLeaf& leaf, const LeafSide& side, ToleranceGeometry& over_box,
                            ToleranceGeometry& at_centre, const std::string& where) const;

@@ -333,6 +333,43 @@ class Producer {
     return false;
   }
 
+  // Per dimension (varied parameters, then the driver): the mean-value remainder that the
+  // witness test of `w` adds for it (|partial| x half-width of each side's contact function at
+  // the witness path, where the partial's sign is not certain), relative to the function's size
+  // at the leaf's centre. Only guides the split.
+  std::vector<double> witness_error(const ToleranceLeaf& w, verify::ToleranceGeometry& over,
+                                    verify::ToleranceGeometry& point, const std::vector<double>& half,
+                                    double half_driver) {
+    std::size_t k = claim_.varied.size(), m = evaluator_->variables();
+    auto offset = [](const RationalInterval& r) {
+      Rational c = (r.lo + r.hi) / 2;
+      return verify::enclose(RationalInterval{r.lo - c, r.hi - c});
+    };
+    Interval value = verify::enclose(*w.witness);
+    std::vector<Interval> slopes;
+    for (std::size_t i = 0; i <= k; ++i) {
+      slopes.push_back(verify::enclose(w.witness_slopes[i]));
+      value = value + slopes.back() * (i < k ? offset(w.parameters[i]) : offset(w.driver));
+    }
+    slopes.push_back(Interval(Rational(0)));
+    Jet witness(value, slopes);
+    Jet driver = Jet::variable(verify::enclose(w.driver), evaluator_->driver_variable(), m);
+    Jet driver_centre(verify::enclose((w.driver.lo + w.driver.hi) / 2));
+    std::vector<double> score(k + 1, 0.0);
+    for (const LeafSide* side : {&w.lower, &w.upper}) {
+      Jet h = evaluator_->contact(over, side->pair, driver, witness);
+      double size = std::fabs(approx(evaluator_->contact(point, side->pair, driver_centre, Jet(verify::enclose(*w.witness))).value));
+      if (!(size > 0)) size = 1;
+      for (std::size_t i = 0; i <= k; ++i) {
+        const Interval& d = h.partial(i);
+        if (d.sign() != 0 || !d.is_bounded()) continue;
+        double magnitude = std::max(std::fabs(d.lower().get_d()), std::fabs(d.upper().get_d()));
+        score[i] += magnitude * (i < k ? half[i] : half_driver) / size;
+      }
+    }
+    return score;
+  }
+
   Status solve(const std::vector<RationalInterval>& region, const Piece& piece, int depth) {
     if (attempts_ >= 4 * request_.max_leaves || claim_.leaves.size() >= request_.max_leaves) {
       undecided_reason_ = "the branch-and-bound gave up after " + std::to_string(attempts_) + " boxes (" +
@@ -431,7 +468,14 @@ class Producer {
         w.upper = LeafSide{up, bu, gu.centre};
         w.witness = grid(mid, false);
         w.witness_slopes = a;
-        if (accept(std::move(w))) return true;
+        if (accept(w)) return true;
+        // The most promising pair of sides so far (largest linearised margin relative to the
+        // play at the centre) guides the split.
+        double ratio = predicted / (gu.root - gl.root);
+        if (witness_score_.empty() || ratio > witness_ratio_) {
+          witness_ratio_ = ratio;
+          witness_score_ = witness_error(w, over, point, half, half_driver);
+        }
       }
       ToleranceLeaf p = leaf;
       p.lower = LeafSide{lp, gl.bracket, gl.centre};
@@ -439,6 +483,7 @@ class Producer {
       return accept(std::move(p));
     };
     std::vector<double> score(k + 1, 1.0);
+    witness_score_.clear();
     bool slopes = lower.slope.size() == k + 1 && upper.slope.size() == k + 1;
     if (slopes && (!lower.ok || !upper.ok)) {
       // A side not isolated over the leaf: split where that side varies most.
@@ -465,6 +510,11 @@ class Producer {
     for (std::size_t a = 0; a < lowers.size(); ++a)
       for (std::size_t b = 0; b < uppers.size(); ++b)
         if ((a || b) && attempt(lowers[a].first, lowers[a].second, uppers[b].first, uppers[b].second)) return Status::ok;
+    // A pair of sides whose linearised play stays positive but whose witness test failed: split
+    // where the test's mean-value remainder is largest (a dimension moving both sides alike adds
+    // nothing to the play, yet its width widens every gradient enclosure).
+    if (witness_score_.size() == k + 1 && *std::max_element(witness_score_.begin(), witness_score_.end()) > 0)
+      score = witness_score_;
     if (depth > 400) {
       undecided_reason_ = "the branch-and-bound reached depth 400 without certifying a box near driver " + std::to_string(dd);
       return Status::undecided;
@@ -488,6 +538,8 @@ class Producer {
   ToleranceClaim claim_;
   std::unique_ptr<verify::ToleranceEvaluator> evaluator_;
   std::size_t attempts_ = 0;
+  std::vector<double> witness_score_;
+  double witness_ratio_ = 0;
   std::string jam_reason_, undecided_reason_;
   std::vector<std::pair<std::string, Rational>> jam_witness_;
   Rational jam_coordinate_;

@@ -6,6 +6,7 @@
 #include <hipair/certificate.hpp>
 #include <hipair/tolerance.hpp>
 
+#include "certify/tolerance_check.hpp"
 #include "model/parametric/number_traits.hpp"
 #include "model/parametric/parametric.hpp"
 #include "tolerance/contact_function.hpp"
@@ -269,6 +270,240 @@ TEST(CertifyTolerance, AboveTheThresholdTheJamHasAnExactWitness) {
     EXPECT_GE(value, c.scale * (p->range.lo - p->nominal)) << name;
     EXPECT_LE(value, c.scale * (p->range.hi - p->nominal)) << name;
   }
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// Both sides' roots (bisection on the library's own kernels, double precision) at random
+// parameter vectors and driver values of every leaf (`per_leaf` each) keep the channel open:
+// the independent check of LeavesAgreeWithTheLibraryKernelsAtRandomPoints, shared.
+std::size_t check_leaves_with_kernels(const ToleranceClaim& t, int per_leaf, std::uint64_t seed) {
+  auto model = model_detail::ParametricModel::read(read(geneva()));
+  const Model& m = model.nominal();
+  std::size_t driver = *m.find_part(t.driver), follower = *m.find_part(t.follower);
+  auto identity = [&](std::size_t part, const FeatureReference& f) {
+    FeatureIdentity id;
+    id.part = part;
+    id.loop = f.edge.loop;
+    id.edge = f.edge.edge;
+    const Edge& e = m.parts[part].loops[f.edge.loop].edges[f.edge.edge];
+    id.kind = f.vertex ? FeatureKind::vertex : e.is_arc() ? FeatureKind::arc : FeatureKind::segment;
+    return id;
+  };
+  std::mt19937_64 random(seed);
+  std::size_t checked = 0;
+  for (const ToleranceLeaf& leaf : t.leaves) {
+    for (int trial = 0; trial < per_leaf; ++trial) {
+      std::vector<double> deviations(m.parameters.size(), 0.0);
+      for (std::size_t i = 0; i < t.varied.size(); ++i) {
+        // half of the draws at an end of the leaf's interval (the monotone forms' corners)
+        double lo = leaf.parameters[i].lo.get_d(), hi = leaf.parameters[i].hi.get_d();
+        double u = std::uniform_real_distribution<double>(0, 1)(random);
+        double value = trial % 2 == 0 ? (u < 0.5 ? lo : hi) : lo + u * (hi - lo);
+        deviations[static_cast<std::size_t>(m.find_parameter(t.varied[i]) - m.parameters.data())] = value;
+      }
+      double d = std::uniform_real_distribution<double>(leaf.driver.lo.get_d(), leaf.driver.hi.get_d())(random);
+      auto ga = model.part_geometry<double>(driver, deviations);
+      auto gb = model.part_geometry<double>(follower, deviations);
+      auto side_root = [&](const LeafSide& side) {
+        const ContactSidePair& pair = t.sides[side.pair];
+        FeatureIdentity fa = identity(driver, pair.driver), fb = identity(follower, pair.follower);
+        auto pa = tolerance_detail::pose_of(m.parts[driver].motion, ga, std::tan(d / 2), false);
+        auto f = [&](double y) {
+          auto pb = tolerance_detail::pose_of(m.parts[follower].motion, gb, std::tan(y / 2), false);
+          return tolerance_detail::contact_function(ga, fa, pa, gb, fb, pb);
+        };
+        double lo = side.bracket.lo.get_d(), hi = side.bracket.hi.get_d();
+        double flo = f(lo), fhi = f(hi);
+        EXPECT_LT(flo * fhi, 0.0) << "no sign change across the bracket at driver " << d;
+        for (int i = 0; i < 80; ++i) {
+          double mid = 0.5 * (lo + hi), fm = f(mid);
+          if ((fm < 0) == (flo < 0)) {
+            lo = mid;
+            flo = fm;
+          } else {
+            hi = mid;
+          }
+        }
+        return 0.5 * (lo + hi);
+      };
+      double lower = side_root(leaf.lower), upper = side_root(leaf.upper);
+      EXPECT_GT(upper - lower, 1e-12) << "the channel closes at driver " << d;
+      ++checked;
+    }
+  }
+  return checked;
+}
+
+// The test: just below the jamming threshold (0.9 x the linearised threshold found on
+// the range, driver 2.23 .. 2.2505 rad, which holds the threshold's position 128.94 deg =
+// 2.2504 rad and the switch of the lower side to the pin on slot 1's mouth) the no-jam
+// certificate is produced and verifies; 1.1 x gives an exact jam witness
+// (AboveTheThresholdTheJamHasAnExactWitness).
+const ToleranceResult& below_threshold() {
+  static const ToleranceResult result = [] {
+    ToleranceOptions options = around_the_pin_entry();
+    options.range = std::make_pair(Rational(223, 100), Rational(4501, 2000));
+    // 0.9 x the linearised threshold 8.425 that `hipair tolerance --threshold` finds on this
+    // range (docs/tolerance.md), rounded down to 4 digits as --certify-scale 0.9T does.
+    options.certify = true;
+    options.certify_scale = Rational(3791, 500);
+    options.certify_max_leaves = 5000;
+    return analyze_tolerances(geneva(), options);
+  }();
+  return result;
+}
+
+TEST(CertifyTolerance, JustBelowTheThresholdTheCertificateVerifies) {
+  const ToleranceResult& result = below_threshold();
+  ASSERT_TRUE(result.certification);
+  const ToleranceCertification& c = *result.certification;
+  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
+  ASSERT_TRUE(c.certificate && c.certificate->tolerance);
+  const ToleranceClaim& t = *c.certificate->tolerance;
+  EXPECT_EQ(t.scale, Rational(3791, 500));
+  EXPECT_EQ(t.varied.size(), 26u);
+  std::filesystem::path file = std::filesystem::temp_directory_path() / "hipair-tolerance-certificate-09-test.json";
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << write_certificate(*c.certificate);
+  }
+  VerificationResult v = verify_certificate_file(file, geneva());
+  std::filesystem::remove(file);
+  EXPECT_TRUE(v.valid) << v.reason;
+  EXPECT_EQ(check_leaves_with_kernels(t, 10, 21), 10 * t.leaves.size());
+}
+
+// Tampered witness paths: one slope of a leaf's witness moved so that y* leaves the channel by
+// twice the play at the leaf's centre at an end of that dimension (then y* certainly crosses a
+// side somewhere in the leaf, so no sound check can accept it).
+TEST(CertifyTolerance, TamperedWitnessSlopesAreRejected) {
+  const ToleranceResult& result = below_threshold();
+  ASSERT_TRUE(result.certification && result.certification->certificate);
+  const Certificate base = *result.certification->certificate;
+  const std::string model_text = read(geneva());
+  const ToleranceClaim& t = *base.tolerance;
+  std::size_t tried = 0;
+  for (std::size_t leaf = 0; leaf < t.leaves.size(); leaf += 3) {
+    const ToleranceLeaf& l = t.leaves[leaf];
+    if (!l.witness) continue;
+    // the dimension with the widest interval relative to the box
+    std::size_t k = t.varied.size(), best = k;
+    double widest = Rational((l.driver.hi - l.driver.lo) / (t.range.hi - t.range.lo)).get_d();
+    for (std::size_t i = 0; i < k; ++i) {
+      double w = Rational((l.parameters[i].hi - l.parameters[i].lo) / (t.box[i].hi - t.box[i].lo)).get_d();
+      if (w > widest) {
+        widest = w;
+        best = i;
+      }
+    }
+    const RationalInterval& r = best < k ? l.parameters[best] : l.driver;
+    Rational play = l.upper.centre.hi - l.lower.centre.lo;
+    Certificate c = base;
+    c.tolerance->leaves[leaf].witness_slopes[best] += 4 * play / (r.hi - r.lo);
+    VerificationResult v = check_certificate_text(read_certificate(write_certificate(c)), model_text, "geneva.json");
+    EXPECT_FALSE(v.valid) << "leaf " << leaf;
+    EXPECT_NE(v.reason.find("witness"), std::string::npos) << v.reason;
+    ++tried;
+  }
+  EXPECT_GT(tried, 0u);
+}
+
+// Generated requests: random sub-ranges of the driver range and random scales below the
+// linearised threshold (8.425 on 2.23 .. 2.2505 rad, 8.484 on 2.2 .. 2.3: the smaller is used). The outcome is certified or undecided —
+// or a jam with its exact witness, which the linearisation cannot rule out —; every
+// certificate verifies from its text and its leaves keep the channel open at random points and
+// corners (the library's own kernels).
+TEST(CertifyTolerance, GeneratedRangesAndScalesBelowTheThresholdNeverCertifyAClosedChannel) {
+  const double threshold = 8.425;   // found on 2.23 .. 2.2505 rad; the range's minimum is at most this
+  const std::string model_text = read(geneva());
+  std::mt19937_64 random(77);
+  std::size_t certified = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    ToleranceOptions options = around_the_pin_entry();
+    // a sub-range of [2.2, 2.3] of width 0.005 .. 0.03 (thousandths), a scale 0.3 .. 0.95 x threshold
+    int width = std::uniform_int_distribution<int>(5, 30)(random);
+    int start = std::uniform_int_distribution<int>(2200, 2300 - width)(random);
+    options.range = std::make_pair(Rational(start, 1000), Rational(start + width, 1000));
+    double fraction = std::uniform_real_distribution<double>(0.3, 0.95)(random);
+    options.certify = true;
+    options.certify_scale = Rational(static_cast<long>(fraction * threshold * 1000), 1000);
+    options.certify_max_leaves = 150;
+    ToleranceResult result = analyze_tolerances(geneva(), options);
+    ASSERT_TRUE(result.certification);
+    const ToleranceCertification& c = *result.certification;
+    SCOPED_TRACE("range [" + to_exact_string(options.range->first) + ", " + to_exact_string(options.range->second) +
+                 "], scale " + to_exact_string(options.certify_scale) + ": " + c.reason);
+    if (c.outcome != ToleranceCertification::Outcome::certified) {
+      EXPECT_FALSE(c.certificate);
+      EXPECT_FALSE(c.reason.empty());
+      continue;
+    }
+    ++certified;
+    ASSERT_TRUE(c.certificate && c.certificate->tolerance);
+    VerificationResult v = check_certificate_text(read_certificate(write_certificate(*c.certificate)), model_text, "geneva.json");
+    EXPECT_TRUE(v.valid) << v.reason;
+    EXPECT_EQ(check_leaves_with_kernels(*c.certificate->tolerance, 6, 100 + trial), 6 * c.certificate->tolerance->leaves.size());
+  }
+  EXPECT_GE(certified, 1u);
+}
+
+// The verifier's sign over a leaf (mean-value form, then monotonicity on successive faces) on
+// generated leaves: random sub-boxes of the 0.9 x box and of the range, the follower at a point
+// of a certificate leaf's bracket. Every decided sign is confirmed by the verifier's own point
+// evaluation (256-bit MPFI at exact rational points) at random points and random corners of the
+// leaf — the corners are where the monotone form takes its bound.
+TEST(CertifyTolerance, SignOverGeneratedLeavesHoldsAtTheirPointsAndCorners) {
+  const ToleranceResult& result = below_threshold();
+  ASSERT_TRUE(result.certification && result.certification->certificate);
+  const ToleranceClaim& t = *result.certification->certificate->tolerance;
+  auto parametric =
+      std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(read(geneva())));
+  verify::ToleranceEvaluator evaluator(parametric, t);
+  std::size_t k = t.varied.size();
+  std::mt19937_64 random(2026);
+  auto between = [&](const RationalInterval& r, double u) -> Rational { return r.lo + Rational(u) * (r.hi - r.lo); };
+  std::size_t decided = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    std::uniform_real_distribution<double> u(0, 1);
+    const ToleranceLeaf& source = t.leaves[std::uniform_int_distribution<std::size_t>(0, t.leaves.size() - 1)(random)];
+    // a sub-box around the source leaf: 2^-j of the box in each dimension, j in 0..6
+    ToleranceLeaf leaf;
+    auto sub = [&](const RationalInterval& whole, const RationalInterval& near) {
+      Rational width = (whole.hi - whole.lo) / (1 << std::uniform_int_distribution<int>(0, 6)(random));
+      Rational lo = between(near, u(random)) - width * Rational(u(random));
+      if (lo < whole.lo) lo = whole.lo;
+      if (lo + width > whole.hi) lo = whole.hi - width;
+      return RationalInterval{lo, lo + width};
+    };
+    for (std::size_t i = 0; i < k; ++i) leaf.parameters.push_back(sub(t.box[i], source.parameters[i]));
+    leaf.driver = sub(RationalInterval{t.range.lo, t.range.hi}, source.driver);
+    const LeafSide& side = trial % 2 == 0 ? source.lower : source.upper;
+    Rational y = between(side.bracket, u(random));
+    std::vector<verify::Interval> box, centre;
+    for (const RationalInterval& p : leaf.parameters) {
+      box.push_back(verify::enclose(p));
+      centre.push_back(verify::enclose((p.lo + p.hi) / 2));
+    }
+    verify::ToleranceGeometry over = evaluator.geometry(box, true), at = evaluator.geometry(centre, false);
+    int sign = evaluator.sign_over_leaf(leaf, side.pair, y, over, at);
+    if (sign == 0) continue;
+    ++decided;
+    for (int point = 0; point < 12; ++point) {
+      std::vector<verify::Interval> p;
+      for (const RationalInterval& r : leaf.parameters)
+        p.push_back(verify::enclose(point % 2 == 0 ? (u(random) < 0.5 ? r.lo : r.hi) : between(r, u(random))));
+      Rational d = point % 2 == 0 ? (u(random) < 0.5 ? leaf.driver.lo : leaf.driver.hi) : between(leaf.driver, u(random));
+      verify::ToleranceGeometry g = evaluator.geometry(p, false);
+      verify::Interval value = evaluator.contact(g, side.pair, verify::Jet(verify::enclose(d)), verify::Jet(verify::enclose(y))).value;
+      EXPECT_NE(value.sign(), -sign) << "trial " << trial << " point " << point;
+    }
+  }
+  EXPECT_GE(decided, 30u);
 }
 
 }  // namespace
