@@ -115,7 +115,11 @@ struct Part {
 struct PairSpec {
   std::size_t first = 0;   ///< index into Model::parts
   std::size_t second = 0;
+  /// Coulomb friction coefficient, static (mu_s): the scalar form "friction": mu, or
+  /// "friction": {"static": mu_s, "kinetic": mu_k}. Absent: frictionless.
   std::optional<Rational> friction;
+  /// Kinetic coefficient mu_k <= mu_s; absent: equal to `friction` (the scalar form).
+  std::optional<Rational> kinetic_friction;
   std::optional<Rational> restitution;
   std::string pointer;
 };
