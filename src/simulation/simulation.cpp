@@ -75,6 +75,9 @@ struct Dof {
   double com[2] = {0, 0};    // rotation: centre of mass - pivot at zero configuration
   bool driven = false;
   double speed = 0;          // mm/s or rad/s
+  // speed profile (law "speed_profile"): times (s), speeds, and the positions at those times
+  // relative to q0 (the integral of the piecewise-linear speed); empty: constant speed
+  std::vector<double> profile_t, profile_v, profile_q;
   double q0 = 0;             // initial position (driver law)
   double stiffness = 0, rest = 0, load = 0, damping = 0;   // internal units
   double force[2] = {0, 0};  // constant force at the centre of mass (mN)
@@ -178,6 +181,34 @@ struct Simulation::Impl {
   const Dof* dof_of_part(std::size_t part) const {
     int i = part_dof[part];
     return i < 0 ? nullptr : &dofs[i];
+  }
+
+  // A driver's law at `time` (s): position, speed, acceleration. Constant speed: q0 + speed t.
+  // Speed profile: within segment i, v = v_i + a_i (t - t_i), q = q0 + Q_i + v_i (t - t_i) +
+  // a_i (t - t_i)^2 / 2; after the last point the last speed.
+  static void driver_law(const Dof& d, double time, double& qd, double& vd, double& ad) {
+    if (d.profile_t.empty()) {
+      qd = d.q0 + d.speed * time;
+      vd = d.speed;
+      ad = 0;
+      return;
+    }
+    std::size_t i = std::upper_bound(d.profile_t.begin(), d.profile_t.end(), time) - d.profile_t.begin();
+    i = i == 0 ? 0 : i - 1;
+    double tau = time - d.profile_t[i];
+    ad = i + 1 < d.profile_t.size() ? (d.profile_v[i + 1] - d.profile_v[i]) / (d.profile_t[i + 1] - d.profile_t[i]) : 0.0;
+    vd = d.profile_v[i] + ad * tau;
+    qd = d.q0 + d.profile_q[i] + d.profile_v[i] * tau + 0.5 * ad * tau * tau;
+  }
+  // The first profile point strictly after `time` (steps end there: a step's driver motion is
+  // one polynomial), or infinity.
+  double next_breakpoint(double time) const {
+    double next = std::numeric_limits<double>::infinity();
+    for (const Dof& d : dofs) {
+      auto it = std::upper_bound(d.profile_t.begin(), d.profile_t.end(), time);
+      if (it != d.profile_t.end()) next = std::min(next, *it);
+    }
+    return next;
   }
 
   Vec forces(double time, const Vec& qs, const Vec& vs) const {
@@ -364,6 +395,10 @@ struct Simulation::Impl {
     acc.assign(n, 0.0);
     for (std::size_t i = 0; i < n; ++i)
       if (!dofs[i].driven) acc[i] = Q[i] / dofs[i].inertia;
+      else if (!dofs[i].profile_t.empty()) {
+        double qd, vd;
+        driver_law(dofs[i], time, qd, vd, acc[i]);
+      }
     lambda.clear();
     if (lifting) lifting->clear();
     if (active.empty()) return true;
@@ -479,8 +514,13 @@ struct Simulation::Impl {
     vs.resize(dofs.size());
     for (std::size_t i = 0; i < dofs.size(); ++i)
       if (dofs[i].driven) {
-        qs[i] = dofs[i].q0 + dofs[i].speed * time;
-        vs[i] = dofs[i].speed;
+        if (dofs[i].profile_t.empty()) {
+          qs[i] = dofs[i].q0 + dofs[i].speed * time;
+          vs[i] = dofs[i].speed;
+        } else {
+          double ad;
+          driver_law(dofs[i], time, qs[i], vs[i], ad);
+        }
       }
     for (std::size_t k = 0; k < free_dofs.size(); ++k) {
       qs[free_dofs[k]] = x[k];
@@ -530,7 +570,12 @@ struct Simulation::Impl {
     p.h = t1 - t0;
     p.c.resize(dofs.size());
     for (std::size_t i = 0; i < dofs.size(); ++i) {
-      if (dofs[i].driven) {
+      if (dofs[i].driven && !dofs[i].profile_t.empty()) {
+        // a speed profile: one segment's quadratic exactly (steps end at the profile's points)
+        double qd, vd, ad;
+        driver_law(dofs[i], t0, qd, vd, ad);
+        p.c[i] = {qd, vd * p.h, 0.5 * ad * p.h * p.h, 0, 0, 0};
+      } else if (dofs[i].driven) {
         // the driver's law exactly: q0 + speed t
         p.c[i] = {dofs[i].q0 + dofs[i].speed * t0, dofs[i].speed * p.h, 0, 0, 0, 0};
       } else {
@@ -1329,6 +1374,10 @@ struct Simulation::Impl {
     }
     accelerations(t, q0, v0, a0, l0);
     double max_step = options.max_step > 0 ? options.max_step * time_scale : std::numeric_limits<double>::infinity();
+    // a speed profile's next point ends the step (its driver's motion is one quadratic per step)
+    double breakpoint = next_breakpoint(t);
+    bool to_breakpoint = breakpoint <= t_limit;
+    if (to_breakpoint) t_limit = breakpoint;
     double remaining = t_limit - t;
     if (dt <= 0) dt = std::min({max_step, remaining, 1e-3});
     dt = std::min({dt, max_step, remaining});
@@ -1348,6 +1397,7 @@ struct Simulation::Impl {
       if (attempt > 200 || dt < 1e-300) throw NumericError("simulation: the integrator's step size underflows");
     }
     if (t1 > t_limit) t1 = t_limit;
+    if (to_breakpoint && t_limit - t1 <= 4 * std::numeric_limits<double>::epsilon() * std::abs(t_limit)) t1 = t_limit;
     for (double value : x1)
       if (!std::isfinite(value)) {
         std::ostringstream out;
@@ -1636,6 +1686,14 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
     Dof& d = s.dofs[s.part_dof[driver.part]];
     d.driven = true;
     d.speed = to_d(driver.speed) / ts;
+    double position = 0;
+    for (std::size_t k = 0; k < driver.profile.size(); ++k) {
+      double time = to_d(driver.profile[k].first) * ts, speed = to_d(driver.profile[k].second) / ts;
+      if (k > 0) position += 0.5 * (speed + d.profile_v.back()) * (time - d.profile_t.back());
+      d.profile_t.push_back(time);
+      d.profile_v.push_back(speed);
+      d.profile_q.push_back(position);
+    }
   }
   for (const auto& c : spec.centers_of_mass) {
     Dof& d = s.dofs[s.part_dof[c.part]];
