@@ -1376,7 +1376,7 @@ struct Simulation::Impl {
     double max_step = options.max_step > 0 ? options.max_step * time_scale : std::numeric_limits<double>::infinity();
     // a speed profile's next point ends the step (its driver's motion is one quadratic per step)
     double breakpoint = next_breakpoint(t);
-    bool to_breakpoint = breakpoint <= t_limit;
+    bool to_breakpoint = std::isfinite(breakpoint) && breakpoint <= t_limit;
     if (to_breakpoint) t_limit = breakpoint;
     double remaining = t_limit - t;
     if (dt <= 0) dt = std::min({max_step, remaining, 1e-3});
