@@ -184,6 +184,45 @@ TEST(SimulationFriction, StickSlipEventsDoNotDependOnTheStepSize) {
   }
 }
 
+// The adaptor's contact_frame: at a configuration on the contact curve its enclosures contain
+// contact_at's exact point and normal; next to the curve (a state moved off contact space),
+// where contact_at finds nothing, it still gives the frame (the presser's tip and the slider
+// top's normal, here exact: (x, 10 + offset) and (0, 1) up to the sign of the feature order).
+TEST(SimulationFriction, ContactFrameAgreesWithContactAtAndWorksNextToTheCurve) {
+  Simulation s = Simulation::create(read_model(press_model(1, 1, 0, 1, 0.5, 0.5)));
+  const CSpace& space = *s.spaces().at(0);
+  auto offset = [](double v) {
+    PartCoordinate c;
+    c.kind = PartCoordinate::Kind::offset;
+    c.value = Rational(v);
+    return c;
+  };
+  bool slider_is_x = space.x_part() == "slider";
+  for (double x : {-30.0, 0.0, 12.5, 47.0}) {
+    PartCoordinate sx = offset(x), py = offset(0);
+    std::vector<Contact> on = slider_is_x ? space.contact_at(sx, py) : space.contact_at(py, sx);
+    ASSERT_EQ(on.size(), 1u) << x;
+    std::optional<Contact> frame = slider_is_x ? space.contact_frame(on[0].feature, sx, py)
+                                               : space.contact_frame(on[0].feature, py, sx);
+    ASSERT_TRUE(frame.has_value());
+    for (int k = 0; k < 2; ++k) {
+      double p = on[0].point[k].get_d();
+      EXPECT_LE(frame->point_range[k].lower, p);
+      EXPECT_GE(frame->point_range[k].upper, p);
+    }
+    PartCoordinate near = offset(1e-9);
+    EXPECT_TRUE((slider_is_x ? space.contact_at(sx, near) : space.contact_at(near, sx)).empty());
+    std::optional<Contact> off = slider_is_x ? space.contact_frame(on[0].feature, sx, near)
+                                             : space.contact_frame(on[0].feature, near, sx);
+    ASSERT_TRUE(off.has_value());
+    EXPECT_LE(off->point_range[1].lower, 10 + 1e-9);
+    EXPECT_GE(off->point_range[1].upper, 10 + 1e-9);
+    EXPECT_LE(off->normal[0].lower, 0.0);
+    EXPECT_GE(off->normal[0].upper, 0.0);
+    EXPECT_NEAR(std::abs(0.5 * (off->normal[1].lower + off->normal[1].upper)), 1.0, 1e-15);
+  }
+}
+
 // A drum (radius R, moment of inertia I, torque T) braked by a shoe pressed radially onto its
 // top with P: the contact point is a point of the drum's circle (vertex-arc contact; its
 // tangential Jacobian is the radius). Sticks when |T| <= mu_s P R, else turns with
