@@ -1413,6 +1413,11 @@ struct Simulation::Impl {
     enum class Cut { none, lift_off, edge_end, coulomb } cut = Cut::none;
     std::size_t cut_active = 0;
     // sustained contacts: the multiplier's sign and the edge's extent, by bisection on the path
+    // (and the Coulomb conditions of the contacts' states, except for a contact whose condition
+    // the step's held motion already violates at its start: the step-start LCP and the held
+    // (bilateral) forces can differ by round-off where a contact is at its limit, and a change
+    // present at u = 0 would cut every step there)
+    std::vector<bool> coulomb_ignored;
     auto violated = [&](double u, std::size_t& which) {
       Vec qs, vs, acc, lambda;
       path.at(u, qs, vs);
@@ -1433,6 +1438,7 @@ struct Simulation::Impl {
         }
       if (cf.friction && start.friction)
         for (std::size_t k = 0; k < cf.state.size() && k < start.vt.size(); ++k) {
+          if (k < coulomb_ignored.size() && coulomb_ignored[k]) continue;
           int st = cf.state[k];
           if (st == simulation::stick) {
             // stick -> slip: the static limit reached (with a margin of 2e-9 over the 1e-9 the
@@ -1460,8 +1466,10 @@ struct Simulation::Impl {
         ~Reset() { flag = false; }
       } reset{strict_rows};
       std::size_t which = 0;
-      int kind = violated(1, which);
-      if (kind != 0) {
+      coulomb_ignored.assign(active.size(), false);
+      for (std::size_t pass = 0; pass <= active.size(); ++pass) {
+        int kind = violated(1, which);
+        if (kind == 0) break;
         double lo = 0, hi = 1;
         for (int i = 0; i < 50; ++i) {
           double m = 0.5 * (lo + hi);
@@ -1475,9 +1483,15 @@ struct Simulation::Impl {
             lo = m;
           }
         }
+        if (kind == 3 && lo == 0 && which < coulomb_ignored.size()) {
+          // a Coulomb change right at the step's start: not a change along the step (see above)
+          coulomb_ignored[which] = true;
+          continue;
+        }
         u_end = lo;
         cut = kind == 1 ? Cut::lift_off : kind == 3 ? Cut::coulomb : Cut::edge_end;
         cut_active = which;
+        break;
       }
     }
     // every free pair's motion, certified
