@@ -542,6 +542,13 @@ class CSpace {
   /// decided exactly), with exact contact points and normals.
   std::vector<Contact> contact_at(const ChartPoint& point) const;
   std::vector<Contact> contact_at(const PartCoordinate& x, const PartCoordinate& y = {}) const;
+  /// The contact frame of feature pair `feature` at a configuration on or next to its contact
+  /// curve: the kernels' contact point and normal (kernels/contact_geometry.hpp) evaluated there
+  /// whether or not the features touch exactly (e.g. a state moved off contact space by a few
+  /// rounding units). Certified enclosures of the point and unit normal for the configuration
+  /// given; `exact` is false. nullopt where the frame is undefined (a degenerate configuration).
+  /// \throws GeometryError when the configuration is outside every chart.
+  std::optional<Contact> contact_frame(FeatureId feature, const PartCoordinate& x, const PartCoordinate& y = {}) const;
 
   /// y, y', y'' of a non-vertical edge at a rational abscissa within its x extent.
   /// \throws GeometryError for a vertical edge, an abscissa outside the edge, or a singular

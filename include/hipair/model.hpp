@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 #include <vector>
+#include <utility>
 
 namespace hipair {
 
@@ -115,9 +116,13 @@ struct Part {
 struct PairSpec {
   std::size_t first = 0;   ///< index into Model::parts
   std::size_t second = 0;
+  /// Coulomb friction coefficient, static (mu_s): the scalar form "friction": mu, or
+  /// "friction": {"static": mu_s, "kinetic": mu_k}. Absent: frictionless.
   std::optional<Rational> friction;
   std::optional<Rational> restitution;
   std::string pointer;
+  /// Kinetic coefficient mu_k <= mu_s; absent: equal to `friction` (the scalar form).
+  std::optional<Rational> kinetic_friction;
 };
 
 /// What a dynamical simulation needs beyond the parts' dynamics data (top-level key
@@ -135,11 +140,16 @@ struct SimulationSpec {
     std::string pointer;
   };
   /// A driver whose coordinate follows a prescribed law instead of its dynamics:
-  /// q(t) = q0 + speed * t (constant speed; rad or mm per time_unit).
+  /// q(t) = q0 + speed * t (constant speed; rad or mm per time_unit), or a piecewise-linear
+  /// speed profile.
   struct Driver {
     std::size_t part = 0;
     Rational speed;
     std::string pointer;
+    /// law "speed_profile": (time, speed) points, times strictly increasing from 0; the speed
+    /// is linear between them and keeps the last value after the last time; q(t) = q0 + the
+    /// integral of the speed. Empty for "constant_speed" (then `speed`).
+    std::vector<std::pair<Rational, Rational>> profile;
   };
   /// A linear spring and damper between a point of one part and a point of another (or of the
   /// frame: a fixed part). Points in world coordinates at the parts' zero configuration (mm).

@@ -49,7 +49,9 @@ struct SimulationEvent {
     impact,      ///< free -> contact with an impulse (Newton restitution)
     contact,     ///< sustained contact begins (after an impact that left no separating speed)
     lift_off,    ///< sustained contact ends: its force would turn negative
-    edge_end     ///< sustained contact reaches the end of its contact edge (a contact change)
+    edge_end,    ///< sustained contact reaches the end of its contact edge (a contact change)
+    stick,       ///< a frictional contact begins to stick (relative tangential velocity 0)
+    slip         ///< a frictional contact begins to slide (static limit reached, or from an impact)
   };
   Kind kind = Kind::impact;
   double time = 0;
@@ -65,6 +67,15 @@ struct SimulationEvent {
   double normal_speed_after = 0;
   std::array<double, 2> point{};         ///< world contact point (mm), approximate
   std::array<double, 2> normal{};        ///< unit normal, first part into second
+  /// impact: tangential (Coulomb) impulse, force unit x time unit, along the tangent
+  /// (-normal.y, normal.x), acting on the second part (0 without friction).
+  double tangential_impulse = 0;
+  /// stick / slip: the contact's normal force and friction force (force unit; the friction force
+  /// along the tangent on the second part) at the event, and for slip the sliding direction
+  /// (+1 / -1: the second part's contact point moves along +/- the tangent relative to the first).
+  double normal_force = 0;
+  double friction_force = 0;
+  int slip_direction = 0;
 };
 
 /// A sustained contact at the current state and its force from the contact complementarity
@@ -77,9 +88,15 @@ struct SimulationContact {
   EdgeId edge;                           ///< the contact edge (invalid for a 1-D pair)
   std::vector<std::string> features;     ///< feature-pair labels of the edge
   double force = 0;                      ///< >= 0
+  /// Coulomb friction (pairs with "friction" > 0 whose contact frame is defined): the physical
+  /// normal force (force unit), the friction force along the tangent (-n_y, n_x) on the second
+  /// part (force unit), and whether the contact sticks (else it slides, or is frictionless).
+  double normal_force = 0;
+  double friction_force = 0;
+  bool sticking = false;
 };
 
-/// Name of an event kind: "impact", "contact", "lift-off", "edge-end".
+/// Name of an event kind: "impact", "contact", "lift-off", "edge-end", "stick", "slip".
 std::string to_string(SimulationEvent::Kind kind);
 
 /// A simulation of a model with a "simulation" section (or none: all defaults).

@@ -77,6 +77,11 @@ std::string event_line(const SimulationEvent& e, const std::string& time_unit, c
   if (e.kind == SimulationEvent::Kind::impact)
     out << "  impulse " << number(e.impulse) << " " << force_unit << "·" << time_unit << ", normal speed "
         << number(e.normal_speed_before) << " -> " << number(e.normal_speed_after) << " mm/" << time_unit;
+  if (e.kind == SimulationEvent::Kind::impact && e.tangential_impulse != 0)
+    out << ", tangential impulse " << number(e.tangential_impulse) << " " << force_unit << "·" << time_unit;
+  if (e.kind == SimulationEvent::Kind::stick || e.kind == SimulationEvent::Kind::slip)
+    out << "  normal force " << number(e.normal_force) << " " << force_unit << ", friction force "
+        << number(e.friction_force) << " " << force_unit;
   return out.str();
 }
 
@@ -466,6 +471,12 @@ int run(const SimulateOptions& options) {
         j["normal_speed_after"] = e.normal_speed_after;
         j["point"] = e.point;
         j["normal"] = e.normal;
+        if (e.tangential_impulse != 0) j["tangential_impulse"] = e.tangential_impulse;
+      }
+      if (e.kind == SimulationEvent::Kind::stick || e.kind == SimulationEvent::Kind::slip) {
+        j["normal_force"] = e.normal_force;
+        j["friction_force"] = e.friction_force;
+        if (e.kind == SimulationEvent::Kind::slip) j["slip_direction"] = e.slip_direction;
       }
       log.push_back(j);
       text += event_line(e, tu, fu) + "\n";

@@ -221,6 +221,24 @@ std::vector<Contact> CSpace::contact_at(const PartCoordinate& x, const PartCoord
   return contact_at(*point);
 }
 
+std::optional<Contact> CSpace::contact_frame(FeatureId feature, const PartCoordinate& x, const PartCoordinate& y) const {
+  const Impl& impl = checked(*this);
+  model_of(impl);
+  std::size_t index = index_in(feature, impl.feature_pairs.size(), "feature pair");
+  auto point = to_chart(x, y);
+  if (!point) throw GeometryError("contact_frame: the configuration is outside every chart");
+  if (impl.dimension == 1) point->y = 0;
+  auto enclose = [](const Rational& r) { return KInterval::enclose(r); };
+  kernels::ContactFrame<KInterval> frame = frame_at<KInterval>(impl, point->chart, impl.feature_pairs[index],
+                                                               enclose(point->x), enclose(point->y), enclose);
+  if (!frame.defined) return std::nullopt;
+  Contact contact;
+  contact.feature = feature;
+  contact.point_range = {range_of(frame.point.x), range_of(frame.point.y)};
+  contact.normal = unit_normal(frame.normal);
+  return contact;
+}
+
 // ------------------------------------------------------------------ derivatives
 
 namespace {

@@ -187,7 +187,21 @@ void Reader::read_pairs(const JsonValue* pairs) {
     auto key = std::minmax(indices[0], indices[1]);
     if (auto [where, inserted] = seen.emplace(key, value.pointer); !inserted)
       throw ModelError(value.pointer, "duplicate pair (also " + where->second + ")");
-    if (const JsonValue* f = value.find("friction")) pair.friction = non_negative(*f, "friction");
+    if (const JsonValue* f = value.find("friction")) {
+      if (f->is_object()) {
+        // {"static": mu_s, "kinetic": mu_k}: both required, 0 <= mu_k <= mu_s
+        check_keys(*f, {"static", "kinetic"});
+        const JsonValue& s = require(*f, "static");
+        const JsonValue& k = require(*f, "kinetic");
+        pair.friction = non_negative(s, "static friction");
+        pair.kinetic_friction = non_negative(k, "kinetic friction");
+        if (*pair.kinetic_friction > *pair.friction)
+          throw ModelError(k.pointer, "kinetic friction must not exceed static friction (" +
+                                          decimal(*pair.friction) + ")");
+      } else {
+        pair.friction = non_negative(*f, "friction");
+      }
+    }
     if (const JsonValue* e = value.find("restitution")) {
       pair.restitution = non_negative(*e, "restitution");
       if (*pair.restitution > 1) throw ModelError(e->pointer, "restitution must lie in [0, 1]");

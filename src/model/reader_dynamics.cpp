@@ -61,18 +61,43 @@ void Reader::read_simulation(const JsonValue* value) {
     expect_array(*drivers, "an array of drivers");
     for (const JsonValue& d : drivers->items) {
       expect_object(d, "a driver {\"part\": name, \"speed\": v}");
-      check_keys(d, {"part", "law", "speed"});
+      check_keys(d, {"part", "law", "speed", "profile"});
       SimulationSpec::Driver driver;
       driver.pointer = d.pointer;
       driver.part = moving_part(require(d, "part"));
       if (!driven.insert(driver.part).second)
         throw ModelError(d.pointer, "part '" + model_.parts[driver.part].name + "' is driven twice");
+      std::string law_name = "constant_speed";
       if (const JsonValue* law = d.find("law")) {
-        std::string name = read_string(*law, false);
-        if (name != "constant_speed")
-          throw ModelError(law->pointer, "unsupported motion law '" + name + "' (\"constant_speed\")");
+        law_name = read_string(*law, false);
+        if (law_name != "constant_speed" && law_name != "speed_profile")
+          throw ModelError(law->pointer,
+                           "unsupported motion law '" + law_name + "' (\"constant_speed\" or \"speed_profile\")");
       }
-      driver.speed = rate(require(d, "speed"), driver.part);
+      if (law_name == "constant_speed") {
+        if (const JsonValue* profile = d.find("profile"))
+          throw ModelError(profile->pointer, "a profile needs \"law\": \"speed_profile\"");
+        driver.speed = rate(require(d, "speed"), driver.part);
+      } else {
+        // [[t, v], ...]: times strictly increasing from 0, the speed linear between them
+        if (const JsonValue* speed = d.find("speed"))
+          throw ModelError(speed->pointer, "a speed profile gives its speeds in \"profile\"");
+        const JsonValue& profile = expect_array(require(d, "profile"), "an array of [time, speed] points");
+        if (profile.items.empty()) throw ModelError(profile.pointer, "a speed profile needs at least one point");
+        for (const JsonValue& point : profile.items) {
+          expect_array(point, "a point [time, speed]");
+          if (point.items.size() != 2)
+            throw ModelError(point.pointer, "a profile point is [time, speed]: expected 2 numbers, found " +
+                                                std::to_string(point.items.size()));
+          Rational time = number(point.items[0]);
+          if (driver.profile.empty() && time != 0)
+            throw ModelError(point.items[0].pointer, "a speed profile starts at time 0");
+          if (!driver.profile.empty() && time <= driver.profile.back().first)
+            throw ModelError(point.items[0].pointer, "profile times must increase strictly");
+          driver.profile.emplace_back(time, rate(point.items[1], driver.part));
+        }
+        driver.speed = driver.profile.front().second;
+      }
       spec.drivers.push_back(driver);
     }
   }

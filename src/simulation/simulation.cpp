@@ -14,6 +14,7 @@
 
 #include <hipair/error.hpp>
 
+#include "simulation/friction.hpp"
 #include "simulation/lcp.hpp"
 
 #include <Eigen/Dense>
@@ -34,6 +35,8 @@ std::string to_string(SimulationEvent::Kind kind) {
     case SimulationEvent::Kind::contact: return "contact";
     case SimulationEvent::Kind::lift_off: return "lift-off";
     case SimulationEvent::Kind::edge_end: return "edge-end";
+    case SimulationEvent::Kind::stick: return "stick";
+    case SimulationEvent::Kind::slip: return "slip";
   }
   return "?";
 }
@@ -72,6 +75,9 @@ struct Dof {
   double com[2] = {0, 0};    // rotation: centre of mass - pivot at zero configuration
   bool driven = false;
   double speed = 0;          // mm/s or rad/s
+  // speed profile (law "speed_profile"): times (s), speeds, and the positions at those times
+  // relative to q0 (the integral of the piecewise-linear speed); empty: constant speed
+  std::vector<double> profile_t, profile_v, profile_q;
   double q0 = 0;             // initial position (driver law)
   double stiffness = 0, rest = 0, load = 0, damping = 0;   // internal units
   double force[2] = {0, 0};  // constant force at the centre of mass (mN)
@@ -97,6 +103,20 @@ struct Active {
   double y_lo = 0, y_hi = 0;
   double slack = 1e-9;       // chart units beyond the edge's certified extent still accepted
   bool at_vertex = false;    // taken up (or kept) at a contact-change vertex: valid up to the vertex
+  std::vector<FeatureId> features;   // a contact without an edge (1-D pair): its feature pairs
+  // Coulomb state (pairs with friction): simulation::stick or slip_positive / slip_negative,
+  // once decided at a step's start (docs/simulation.md#friction)
+  int coulomb = simulation::frictionless;
+  bool coulomb_known = false;
+};
+
+// The contact forces of the held contacts at a state (friction included).
+struct ContactForces {
+  bool friction = false;     // some held contact has friction
+  std::vector<int> state;    // per active contact
+  Vec normal, tangential;    // physical normal and friction force (internal units)
+  Vec vt;                    // relative tangential velocity
+  Vec mu_static;
 };
 
 struct ContactRow {
@@ -107,6 +127,7 @@ struct ContactRow {
   std::size_t active = 0;    // index into active_ when !crossing
   MotionCrossing hit;
   std::optional<Active> near;   // a contact of another pair within the accuracy of closing
+  std::vector<FeatureId> features;   // its feature pairs (the Coulomb frame)
 };
 
 }  // namespace
@@ -124,6 +145,7 @@ struct Simulation::Impl {
   double accuracy = 1e-9;
   std::string time_unit = "s", force_unit = "N";
 
+  std::vector<double> mu_static, mu_kinetic;   // per pair (0: frictionless)
   double t = 0;                       // seconds
   Vec q, v;                           // per dof
   std::vector<Active> active;
@@ -159,6 +181,34 @@ struct Simulation::Impl {
   const Dof* dof_of_part(std::size_t part) const {
     int i = part_dof[part];
     return i < 0 ? nullptr : &dofs[i];
+  }
+
+  // A driver's law at `time` (s): position, speed, acceleration. Constant speed: q0 + speed t.
+  // Speed profile: within segment i, v = v_i + a_i (t - t_i), q = q0 + Q_i + v_i (t - t_i) +
+  // a_i (t - t_i)^2 / 2; after the last point the last speed.
+  static void driver_law(const Dof& d, double time, double& qd, double& vd, double& ad) {
+    if (d.profile_t.empty()) {
+      qd = d.q0 + d.speed * time;
+      vd = d.speed;
+      ad = 0;
+      return;
+    }
+    std::size_t i = std::upper_bound(d.profile_t.begin(), d.profile_t.end(), time) - d.profile_t.begin();
+    i = i == 0 ? 0 : i - 1;
+    double tau = time - d.profile_t[i];
+    ad = i + 1 < d.profile_t.size() ? (d.profile_v[i + 1] - d.profile_v[i]) / (d.profile_t[i + 1] - d.profile_t[i]) : 0.0;
+    vd = d.profile_v[i] + ad * tau;
+    qd = d.q0 + d.profile_q[i] + d.profile_v[i] * tau + 0.5 * ad * tau * tau;
+  }
+  // The first profile point strictly after `time` (steps end there: a step's driver motion is
+  // one polynomial), or infinity.
+  double next_breakpoint(double time) const {
+    double next = std::numeric_limits<double>::infinity();
+    for (const Dof& d : dofs) {
+      auto it = std::upper_bound(d.profile_t.begin(), d.profile_t.end(), time);
+      if (it != d.profile_t.end()) next = std::min(next, *it);
+    }
+    return next;
   }
 
   Vec forces(double time, const Vec& qs, const Vec& vs) const {
@@ -339,12 +389,16 @@ struct Simulation::Impl {
   // positive (they would separate) are listed in `lifting`, and the accelerations are those of
   // the LCP's solution.
   bool accelerations(double time, const Vec& qs, const Vec& vs, Vec& acc, Vec& lambda,
-                     std::vector<std::size_t>* lifting = nullptr) const {
+                     std::vector<std::size_t>* lifting = nullptr, ContactForces* out = nullptr) const {
     Vec Q = forces(time, qs, vs);
     std::size_t n = dofs.size();
     acc.assign(n, 0.0);
     for (std::size_t i = 0; i < n; ++i)
       if (!dofs[i].driven) acc[i] = Q[i] / dofs[i].inertia;
+      else if (!dofs[i].profile_t.empty()) {
+        double qd, vd;
+        driver_law(dofs[i], time, qd, vd, acc[i]);
+      }
     lambda.clear();
     if (lifting) lifting->clear();
     if (active.empty()) return true;
@@ -357,6 +411,72 @@ struct Simulation::Impl {
       if (!row(active[k], qs, vs, row_k, hk, gk)) return false;
       for (std::size_t i = 0; i < n; ++i) G(k, i) = row_k[i];
       h(k) = hk;
+    }
+    // Coulomb friction of the held contacts (docs/simulation.md#friction); without it the
+    // frictionless code below runs unchanged (bit for bit)
+    std::vector<simulation::Friction> friction(m);
+    bool any = false;
+    for (std::size_t k = 0; k < m; ++k) {
+      if (mu_static[active[k].pair] <= 0) continue;
+      Vec row_k(n);
+      for (std::size_t i = 0; i < n; ++i) row_k[i] = G(k, i);
+      friction[k] = friction_of(active[k].pair, features_of(active[k]), row_k, qs);
+      any = any || friction[k].on;
+    }
+    if (any) {
+      Eigen::VectorXd minv = inverse_masses();
+      Eigen::VectorXd a0 = Eigen::Map<const Eigen::VectorXd>(acc.data(), n);
+      Eigen::VectorXd vel = Eigen::Map<const Eigen::VectorXd>(vs.data(), n);
+      std::vector<int> state(m, simulation::frictionless);
+      for (std::size_t k = 0; k < m; ++k) {
+        simulation::Friction& c = friction[k];
+        if (!c.on) continue;
+        double vt = c.T.dot(vel);
+        bool sliding = std::abs(vt) > tangential_tolerance(c.T);
+        if (lifting) {
+          // at a step's start: a sliding contact keeps its direction; one at rest is decided
+          c.decided = sliding;
+          c.state = sliding ? (vt > 0 ? simulation::slip_positive : simulation::slip_negative) : simulation::stick;
+        } else {
+          c.decided = true;
+          c.state = active[k].coulomb_known ? active[k].coulomb
+                    : sliding                ? (vt > 0 ? simulation::slip_positive : simulation::slip_negative)
+                                             : simulation::stick;
+        }
+        state[k] = c.state;
+      }
+      simulation::FrictionalSolution s;
+      if (lifting) {
+        s = simulation::solve_frictional(G, minv, a0, h, friction);
+        if (!s.solved) {
+          std::ostringstream text;
+          text << "simulation: at t = " << time / time_scale << " " << time_unit << " the contact-force problem of "
+               << m << " contacts with Coulomb friction has no consistent stick/slip solution (a frictional jam)";
+          throw NumericError(text.str());
+        }
+        for (std::size_t k = 0; k < m; ++k)
+          if (s.lambda(k) == 0 && s.w(k) > s.tolerance) lifting->push_back(k);
+      } else {
+        s = simulation::solve_bilateral(G, minv, a0, h, friction, state);
+      }
+      for (std::size_t i = 0; i < n; ++i) acc[i] = s.x(i);
+      lambda.assign(s.lambda.data(), s.lambda.data() + m);
+      if (out) {
+        out->friction = true;
+        out->state = s.state;
+        out->normal.assign(m, 0.0);
+        out->tangential.assign(m, 0.0);
+        out->vt.assign(m, 0.0);
+        out->mu_static.assign(m, 0.0);
+        for (std::size_t k = 0; k < m; ++k) {
+          if (!friction[k].on) continue;
+          out->normal[k] = s.lambda(k) / friction[k].s;
+          out->tangential[k] = s.f(k);
+          out->vt[k] = friction[k].T.dot(vel);
+          out->mu_static[k] = friction[k].mu_static;
+        }
+      }
+      return true;
     }
     Eigen::MatrixXd MinvGt(n, m);
     for (std::size_t i = 0; i < n; ++i)
@@ -394,8 +514,13 @@ struct Simulation::Impl {
     vs.resize(dofs.size());
     for (std::size_t i = 0; i < dofs.size(); ++i)
       if (dofs[i].driven) {
-        qs[i] = dofs[i].q0 + dofs[i].speed * time;
-        vs[i] = dofs[i].speed;
+        if (dofs[i].profile_t.empty()) {
+          qs[i] = dofs[i].q0 + dofs[i].speed * time;
+          vs[i] = dofs[i].speed;
+        } else {
+          double ad;
+          driver_law(dofs[i], time, qs[i], vs[i], ad);
+        }
       }
     for (std::size_t k = 0; k < free_dofs.size(); ++k) {
       qs[free_dofs[k]] = x[k];
@@ -445,7 +570,12 @@ struct Simulation::Impl {
     p.h = t1 - t0;
     p.c.resize(dofs.size());
     for (std::size_t i = 0; i < dofs.size(); ++i) {
-      if (dofs[i].driven) {
+      if (dofs[i].driven && !dofs[i].profile_t.empty()) {
+        // a speed profile: one segment's quadratic exactly (steps end at the profile's points)
+        double qd, vd, ad;
+        driver_law(dofs[i], t0, qd, vd, ad);
+        p.c[i] = {qd, vd * p.h, 0.5 * ad * p.h * p.h, 0, 0, 0};
+      } else if (dofs[i].driven) {
         // the driver's law exactly: q0 + speed t
         p.c[i] = {dofs[i].q0 + dofs[i].speed * t0, dofs[i].speed * p.h, 0, 0, 0, 0};
       } else {
@@ -547,6 +677,7 @@ struct Simulation::Impl {
     Active a;
     a.pair = pair;
     a.xdof = part_dof[*model.find_part(space.x_part())];
+    a.features = hit.features;
     if (space.dimension() == 1) {
       a.point = true;
       a.c = q[a.xdof];
@@ -656,10 +787,151 @@ struct Simulation::Impl {
       }
   }
 
+  // ---------------------------------------------------------------- Coulomb friction
+  // The feature pairs of a held contact: its edge's curves, or (1-D pair) those it was met with.
+  std::vector<FeatureId> features_of(const Active& a) const {
+    if (!a.edge.valid()) return a.features;
+    std::vector<FeatureId> out;
+    for (std::size_t f : spaces[a.pair]->edge(a.edge).curves) out.emplace_back(f);
+    return out;
+  }
+
+  PartCoordinate coordinate(int dof, const Vec& qs) const {
+    PartCoordinate c;
+    if (dofs[dof].rotation) {
+      double a = std::remainder(qs[dof], 2 * std::numbers::pi);
+      double tangent = std::tan(a / 2);
+      if (!std::isfinite(tangent) || std::abs(tangent) > 1e15) {
+        c.kind = PartCoordinate::Kind::half_turn;
+      } else {
+        c.kind = PartCoordinate::Kind::half_angle_tangent;
+        c.value = Rational(tangent);
+      }
+    } else {
+      c.kind = PartCoordinate::Kind::offset;
+      c.value = Rational(qs[dof]);
+    }
+    return c;
+  }
+
+  // The Coulomb data of a contact of `pair` with feature pairs `features` and constraint row G at
+  // configuration qs: the contact point and normal from the adaptor's contact_frame (the
+  // kernels' frame at the configuration), the physical normal row Gp = n.(J2 - J1), the tangent
+  // row T = t.(J2 - J1) with t = (-n_y, n_x), and s = (Gp.G)/(G.G) (Gp = s G for a contact whose
+  // constraint is the C-space contact curve). Off when the pair is frictionless, the frame is
+  // undefined, s <= 0, or the tangent has no freedom independent of the normal (T parallel to
+  // G: a one-coordinate contact, whose guide takes the load; docs/simulation.md#friction).
+  simulation::Friction friction_of(std::size_t pair, const std::vector<FeatureId>& features, const Vec& G,
+                                   const Vec& qs) const {
+    simulation::Friction c;
+    if (mu_static[pair] <= 0 || features.empty()) return c;
+    const CSpace& space = *spaces[pair];
+    PartCoordinate x = coordinate(part_dof[*model.find_part(space.x_part())], qs), y;
+    if (space.dimension() == 2) y = coordinate(part_dof[*model.find_part(space.y_part())], qs);
+    double p[2] = {0, 0}, n[2] = {0, 0};
+    int count = 0;
+    std::size_t first = 0, second = 0;
+    for (FeatureId f : features) {
+      std::optional<Contact> frame;
+      try {
+        frame = space.contact_frame(f, x, y);
+      } catch (const GeometryError&) {
+        continue;
+      }
+      if (!frame) continue;
+      if (count == 0) {
+        n[0] = mid(frame->normal[0]);
+        n[1] = mid(frame->normal[1]);
+        const FeaturePair& fp = space.feature_pair(f);
+        first = fp.first.part;
+        second = fp.second.part;
+      }
+      p[0] += mid(frame->point_range[0]);
+      p[1] += mid(frame->point_range[1]);
+      ++count;
+    }
+    if (count == 0) return c;
+    p[0] /= count;
+    p[1] /= count;
+    Vec Gp(dofs.size(), 0.0), T(dofs.size(), 0.0);
+    auto add = [&](std::size_t part, double sign) {
+      int d = part_dof[part];
+      if (d < 0) return;
+      double J[2];
+      if (dofs[d].rotation) {
+        J[0] = -(p[1] - dofs[d].pivot[1]);
+        J[1] = p[0] - dofs[d].pivot[0];
+      } else {
+        J[0] = dofs[d].dir[0];
+        J[1] = dofs[d].dir[1];
+      }
+      Gp[d] += sign * (n[0] * J[0] + n[1] * J[1]);
+      T[d] += sign * (-n[1] * J[0] + n[0] * J[1]);
+    };
+    add(first, -1);
+    add(second, +1);
+    double gg = 0, gpg = 0, tt = 0, tg = 0;
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+      gg += G[i] * G[i];
+      gpg += Gp[i] * G[i];
+      tt += T[i] * T[i];
+      tg += T[i] * G[i];
+    }
+    if (!(gg > 0) || !(gpg > 0) || !(tt > 0)) return c;
+    // the tangent's part orthogonal to the normal row
+    double orthogonal = tt - tg * tg / gg;
+    if (!(orthogonal > 1e-18 * tt)) return c;
+    c.on = true;
+    c.s = gpg / gg;
+    c.T = Eigen::Map<const Eigen::VectorXd>(T.data(), static_cast<Eigen::Index>(T.size()));
+    c.mu_static = mu_static[pair];
+    c.mu_kinetic = mu_kinetic[pair];
+    return c;
+  }
+
+  // tolerance of "no relative tangential velocity" for tangent row T (mm per second)
+  double tangential_tolerance(const Eigen::VectorXd& T) const { return velocity_tolerance() * (1 + T.cwiseAbs().sum()); }
+
+  Eigen::VectorXd inverse_masses() const {
+    Eigen::VectorXd minv(dofs.size());
+    for (std::size_t i = 0; i < dofs.size(); ++i) minv(i) = dofs[i].driven ? 0.0 : 1.0 / dofs[i].inertia;
+    return minv;
+  }
+
   // ---------------------------------------------------------------- impacts
   // Newton restitution for all rows at once: lambda >= 0, w = G v+ + e G v- >= 0, lambda.w = 0
-  Vec solve_impacts(const std::vector<ContactRow>& rows) {
+  Vec solve_impacts(const std::vector<ContactRow>& rows, Vec* tangential = nullptr) {
     std::size_t m = rows.size(), n = dofs.size();
+    if (tangential) tangential->assign(m, 0.0);
+    // Coulomb friction in the impulse (docs/simulation.md#friction); without it the
+    // frictionless code below runs unchanged (bit for bit)
+    std::vector<simulation::Friction> friction(m);
+    bool any = false;
+    for (std::size_t k = 0; k < m; ++k) {
+      friction[k] = friction_of(rows[k].pair, rows[k].features, rows[k].g, q);
+      any = any || friction[k].on;
+    }
+    if (any) {
+      Eigen::MatrixXd G(m, n);
+      for (std::size_t k = 0; k < m; ++k)
+        for (std::size_t i = 0; i < n; ++i) G(k, i) = rows[k].g[i];
+      Eigen::VectorXd vm = Eigen::Map<const Eigen::VectorXd>(v.data(), n);
+      Eigen::VectorXd gv = G * vm, h(m);
+      for (std::size_t k = 0; k < m; ++k) h(k) = rows[k].restitution * gv(k);
+      // velocity level: v+ = v- + M^-1 (W^T Lambda + T_S^T F_S), w = G v+ + e G v- (Newton)
+      simulation::FrictionalSolution solution = simulation::solve_frictional(G, inverse_masses(), vm, h, friction);
+      if (!solution.solved) {
+        std::ostringstream out;
+        out << "simulation: at t = " << t / time_scale << " " << time_unit << " the impact problem of " << m
+            << " simultaneous contacts with Coulomb friction has no consistent stick/slip solution";
+        throw NumericError(out.str());
+      }
+      for (std::size_t i = 0; i < n; ++i)
+        if (!dofs[i].driven) v[i] = solution.x(i);
+      if (tangential)
+        for (std::size_t k = 0; k < m; ++k) (*tangential)[k] = solution.f(k);
+      return Vec(solution.lambda.data(), solution.lambda.data() + m);
+    }
     Eigen::MatrixXd G(m, n), MinvGt(n, m);
     for (std::size_t k = 0; k < m; ++k)
       for (std::size_t i = 0; i < n; ++i) {
@@ -731,6 +1003,7 @@ struct Simulation::Impl {
       r.crossing = true;
       r.restitution = model.pairs[pair].restitution ? to_d(*model.pairs[pair].restitution) : 0.0;
       r.near = last_contact[pair];
+      r.features = features_of(*r.near);
       rows.push_back(r);
     }
     // the active sustained contacts take part as perfectly plastic contacts
@@ -742,6 +1015,7 @@ struct Simulation::Impl {
       r.g = G;
       r.pair = active[k].pair;
       r.active = k;
+      r.features = features_of(active[k]);
       rows.push_back(r);
     }
     Vec before(rows.size());
@@ -749,7 +1023,8 @@ struct Simulation::Impl {
       before[k] = 0;
       for (std::size_t i = 0; i < dofs.size(); ++i) before[k] += rows[k].g[i] * v[i];
     }
-    Vec lambda = solve_impacts(rows);
+    Vec tangential;
+    Vec lambda = solve_impacts(rows, &tangential);
     double vtol = velocity_tolerance();
     std::vector<std::size_t> separate;
     for (std::size_t k = 0; k < rows.size(); ++k) {
@@ -773,6 +1048,7 @@ struct Simulation::Impl {
       e.point = {mid(r.hit.point[0]), mid(r.hit.point[1])};
       e.normal = {mid(r.hit.normal[0]), mid(r.hit.normal[1])};
       e.impulse = lambda[k] / (force_scale * time_scale);
+      e.tangential_impulse = tangential[k] / (force_scale * time_scale);
       e.normal_speed_before = before[k] * time_scale;
       e.normal_speed_after = after * time_scale;
       e.kind = SimulationEvent::Kind::impact;
@@ -932,6 +1208,7 @@ struct Simulation::Impl {
       if (!row(active[j], q, v, r.g, h, gval)) continue;
       r.pair = active[j].pair;
       r.active = j;
+      r.features = features_of(active[j]);
       rows.push_back(r);
       row_active.push_back(j);
     }
@@ -943,12 +1220,14 @@ struct Simulation::Impl {
       r.pair = pair;
       r.crossing = true;
       r.restitution = e;
+      r.features = features_of(c);
       rows.push_back(r);
     }
     Vec before(rows.size(), 0.0);
     for (std::size_t r = 0; r < rows.size(); ++r)
       for (std::size_t i = 0; i < dofs.size(); ++i) before[r] += rows[r].g[i] * v[i];
-    Vec lambda = solve_impacts(rows);
+    Vec tangential;
+    Vec lambda = solve_impacts(rows, &tangential);
     double vtol = velocity_tolerance();
     auto after_of = [&](std::size_t r) {
       double w = 0;
@@ -961,9 +1240,11 @@ struct Simulation::Impl {
     for (std::size_t r = first_candidate; r < rows.size(); ++r) {
       const Active& c = candidates[r - first_candidate];
       double after = after_of(r);
-      if (lambda[r] > 0 || before[r] < 0)
+      if (lambda[r] > 0 || before[r] < 0) {
         edge_event(c, SimulationEvent::Kind::impact, lambda[r] / (force_scale * time_scale), before[r] * time_scale,
                    after * time_scale);
+        events.back().tangential_impulse = tangential[r] / (force_scale * time_scale);
+      }
       if (after <= vtol || settles(c)) {
         active.push_back(c);
         edge_event(c, SimulationEvent::Kind::contact);
@@ -1025,6 +1306,49 @@ struct Simulation::Impl {
     if (nudge && !in_active(a.pair)) nudge_free(a.pair, G);
   }
 
+  // The stick/slip states decided at a step's start (the frictional LCP) replace the held
+  // contacts' states; every change is a `stick` or `slip` event with its forces.
+  void coulomb_states(const ContactForces& forces, const std::vector<std::size_t>& lifting) {
+    for (std::size_t k = 0; k < active.size() && k < forces.state.size(); ++k) {
+      int st = forces.state[k];
+      if (st == simulation::frictionless) continue;
+      if (std::find(lifting.begin(), lifting.end(), k) != lifting.end()) continue;
+      Active& a = active[k];
+      bool changed = !a.coulomb_known || a.coulomb != st;
+      a.coulomb = st;
+      a.coulomb_known = true;
+      if (!changed) continue;
+      edge_event(a, st == simulation::stick ? SimulationEvent::Kind::stick : SimulationEvent::Kind::slip);
+      SimulationEvent& e = events.back();
+      if (!a.edge.valid()) e.features = labels(a.pair, a.features);
+      e.normal_force = forces.normal[k] / force_scale;
+      e.friction_force = forces.tangential[k] / force_scale;
+      e.slip_direction = st == simulation::stick ? 0 : st;
+    }
+  }
+
+  // Sticking contacts keep no relative tangential velocity: after each step the velocities are
+  // projected (mass-weighted) on T v = 0, as the normal rows are by project_active.
+  void project_sticking() {
+    for (int iteration = 0; iteration < 3; ++iteration)
+      for (const Active& a : active) {
+        if (!a.coulomb_known || a.coulomb != simulation::stick) continue;
+        Vec G;
+        double h, gval;
+        if (!row(a, q, v, G, h, gval)) continue;
+        simulation::Friction c = friction_of(a.pair, features_of(a), G, q);
+        if (!c.on) continue;
+        double A = 0, tv = 0;
+        for (std::size_t i = 0; i < dofs.size(); ++i) {
+          if (!dofs[i].driven) A += c.T(i) * c.T(i) / dofs[i].inertia;
+          tv += c.T(i) * v[i];
+        }
+        if (A == 0) continue;
+        for (std::size_t i = 0; i < dofs.size(); ++i)
+          if (!dofs[i].driven) v[i] -= c.T(i) / dofs[i].inertia * tv / A;
+      }
+  }
+
   void step(double t_limit) {
     if (++steps > options.max_steps) throw NumericError("simulation: more than max_steps steps");
     using namespace boost::numeric::odeint;
@@ -1033,7 +1357,10 @@ struct Simulation::Impl {
     // the contact forces of all active contacts at once (the LCP): the contacts it leaves
     // without force and with a separating normal acceleration lift off, together
     std::vector<std::size_t> lifting;
-    if (!active.empty() && accelerations(t, q0, v0, a0, l0, &lifting) && !lifting.empty()) {
+    ContactForces start;
+    bool held = !active.empty() && accelerations(t, q0, v0, a0, l0, &lifting, &start);
+    if (held && start.friction) coulomb_states(start, lifting);
+    if (held && !lifting.empty()) {
       std::vector<std::pair<std::size_t, Vec>> gone;
       for (std::size_t j = lifting.size(); j-- > 0;) {
         std::size_t k = lifting[j];
@@ -1047,6 +1374,10 @@ struct Simulation::Impl {
     }
     accelerations(t, q0, v0, a0, l0);
     double max_step = options.max_step > 0 ? options.max_step * time_scale : std::numeric_limits<double>::infinity();
+    // a speed profile's next point ends the step (its driver's motion is one quadratic per step)
+    double breakpoint = next_breakpoint(t);
+    bool to_breakpoint = std::isfinite(breakpoint) && breakpoint <= t_limit;
+    if (to_breakpoint) t_limit = breakpoint;
     double remaining = t_limit - t;
     if (dt <= 0) dt = std::min({max_step, remaining, 1e-3});
     dt = std::min({dt, max_step, remaining});
@@ -1066,6 +1397,7 @@ struct Simulation::Impl {
       if (attempt > 200 || dt < 1e-300) throw NumericError("simulation: the integrator's step size underflows");
     }
     if (t1 > t_limit) t1 = t_limit;
+    if (to_breakpoint && t_limit - t1 <= 4 * std::numeric_limits<double>::epsilon() * std::abs(t_limit)) t1 = t_limit;
     for (double value : x1)
       if (!std::isfinite(value)) {
         std::ostringstream out;
@@ -1078,9 +1410,14 @@ struct Simulation::Impl {
     accelerations(t1, q1, v1, a1, l1);
     StepPath path = make_path(t, q0, v0, a0, t1, q1, v1, a1);
     double u_end = 1;
-    enum class Cut { none, lift_off, edge_end } cut = Cut::none;
+    enum class Cut { none, lift_off, edge_end, coulomb } cut = Cut::none;
     std::size_t cut_active = 0;
     // sustained contacts: the multiplier's sign and the edge's extent, by bisection on the path
+    // (and the Coulomb conditions of the contacts' states, except for a contact whose condition
+    // the step's held motion already violates at its start: the step-start LCP and the held
+    // (bilateral) forces can differ by round-off where a contact is at its limit, and a change
+    // present at u = 0 would cut every step there)
+    std::vector<bool> coulomb_ignored;
     auto violated = [&](double u, std::size_t& which) {
       Vec qs, vs, acc, lambda;
       path.at(u, qs, vs);
@@ -1092,11 +1429,33 @@ struct Simulation::Impl {
           return 2;
         }
       }
-      if (!accelerations(path.t0 + u * path.h, qs, vs, acc, lambda)) return 2;
+      ContactForces cf;
+      if (!accelerations(path.t0 + u * path.h, qs, vs, acc, lambda, nullptr, &cf)) return 2;
       for (std::size_t k = 0; k < lambda.size(); ++k)
         if (lambda[k] < 0) {
           which = k;
           return 1;
+        }
+      if (cf.friction && start.friction)
+        for (std::size_t k = 0; k < cf.state.size() && k < start.vt.size(); ++k) {
+          if (k < coulomb_ignored.size() && coulomb_ignored[k]) continue;
+          int st = cf.state[k];
+          if (st == simulation::stick) {
+            // stick -> slip: the static limit reached (with a margin of 2e-9 over the 1e-9 the
+            // step-start decision allows, so that the next step does not stick again)
+            double limit = cf.mu_static[k] * cf.normal[k];
+            if (std::abs(cf.tangential[k]) > limit * (1 + 2e-9) + 1e-300) {
+              which = k;
+              return 3;
+            }
+          } else if (st == simulation::slip_positive || st == simulation::slip_negative) {
+            // slip -> stick (or reversal): the relative tangential velocity crosses zero
+            double threshold = std::min(0.0, st * start.vt[k]);
+            if (st * cf.vt[k] < threshold) {
+              which = k;
+              return 3;
+            }
+          }
         }
       return 0;
     };
@@ -1107,8 +1466,10 @@ struct Simulation::Impl {
         ~Reset() { flag = false; }
       } reset{strict_rows};
       std::size_t which = 0;
-      int kind = violated(1, which);
-      if (kind != 0) {
+      coulomb_ignored.assign(active.size(), false);
+      for (std::size_t pass = 0; pass <= active.size(); ++pass) {
+        int kind = violated(1, which);
+        if (kind == 0) break;
         double lo = 0, hi = 1;
         for (int i = 0; i < 50; ++i) {
           double m = 0.5 * (lo + hi);
@@ -1122,9 +1483,15 @@ struct Simulation::Impl {
             lo = m;
           }
         }
+        if (kind == 3 && lo == 0 && which < coulomb_ignored.size()) {
+          // a Coulomb change right at the step's start: not a change along the step (see above)
+          coulomb_ignored[which] = true;
+          continue;
+        }
         u_end = lo;
-        cut = kind == 1 ? Cut::lift_off : Cut::edge_end;
+        cut = kind == 1 ? Cut::lift_off : kind == 3 ? Cut::coulomb : Cut::edge_end;
         cut_active = which;
+        break;
       }
     }
     // every free pair's motion, certified
@@ -1181,6 +1548,7 @@ struct Simulation::Impl {
         r.hit = c;
         r.restitution = model.pairs[pair].restitution ? to_d(*model.pairs[pair].restitution) : 0.0;
         r.g = physical_row(pair, c, q);
+        r.features = c.features;
         rows.push_back(r);
       }
       project_active();
@@ -1193,6 +1561,9 @@ struct Simulation::Impl {
       unpack(t1, x1, q, v);
     }
     project_active();
+    project_sticking();
+    // Cut::coulomb: the step ends where a contact's stick/slip state changes; the next step's
+    // frictional LCP decides its new state (coulomb_states)
     if (cut == Cut::lift_off) release(cut_active, SimulationEvent::Kind::lift_off);
     else if (cut == Cut::edge_end) release(cut_active, SimulationEvent::Kind::edge_end);
   }
@@ -1228,7 +1599,8 @@ struct Simulation::Impl {
     std::vector<SimulationContact> out;
     Vec acc, lambda;
     std::vector<std::size_t> lifting;
-    if (active.empty() || !accelerations(t, q, v, acc, lambda, &lifting)) return out;
+    ContactForces forces;
+    if (active.empty() || !accelerations(t, q, v, acc, lambda, &lifting, &forces)) return out;
     for (std::size_t k = 0; k < active.size(); ++k) {
       const Active& a = active[k];
       SimulationContact c;
@@ -1238,6 +1610,11 @@ struct Simulation::Impl {
         for (std::size_t f : spaces[a.pair]->edge(a.edge).curves)
           c.features.push_back(spaces[a.pair]->feature_pair(FeatureId(f)).label);
       c.force = lambda[k] / force_scale;
+      if (forces.friction && k < forces.state.size() && forces.state[k] != simulation::frictionless) {
+        c.normal_force = forces.normal[k] / force_scale;
+        c.friction_force = forces.tangential[k] / force_scale;
+        c.sticking = forces.state[k] == simulation::stick;
+      }
       out.push_back(c);
     }
     return out;
@@ -1323,6 +1700,14 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
     Dof& d = s.dofs[s.part_dof[driver.part]];
     d.driven = true;
     d.speed = to_d(driver.speed) / ts;
+    double position = 0;
+    for (std::size_t k = 0; k < driver.profile.size(); ++k) {
+      double time = to_d(driver.profile[k].first) * ts, speed = to_d(driver.profile[k].second) / ts;
+      if (k > 0) position += 0.5 * (speed + d.profile_v.back()) * (time - d.profile_t.back());
+      d.profile_t.push_back(time);
+      d.profile_v.push_back(speed);
+      d.profile_q.push_back(position);
+    }
   }
   for (const auto& c : spec.centers_of_mass) {
     Dof& d = s.dofs[s.part_dof[c.part]];
@@ -1358,6 +1743,12 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
   }
   for (const auto& velocity : spec.velocities) s.v[s.part_dof[velocity.part]] = to_d(velocity.value) / ts;
 
+  // Coulomb coefficients per pair (static; kinetic defaults to static)
+  for (const PairSpec& pair : model.pairs) {
+    double mus = pair.friction ? to_d(*pair.friction) : 0.0;
+    s.mu_static.push_back(mus);
+    s.mu_kinetic.push_back(pair.kinetic_friction ? to_d(*pair.kinetic_friction) : mus);
+  }
   // the pairs' C-spaces, built once
   CSpaceBuildOptions build;
   build.operating_region = options.operating_region;

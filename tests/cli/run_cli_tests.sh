@@ -302,6 +302,17 @@ printf '{"hipair": 1, "name": "m", "parts": [{"name": "a", "motion": {"rotation"
 "$hipair" simulate "$work/sim-unit.json" --t-end 1 >/dev/null 2>"$work/sim-unit.err"
 [ $? -eq 2 ] || fail "simulate with a bad time unit: not a model error"
 grep -q "/simulation/units/time" "$work/sim-unit.err" || fail "simulate bad unit: no pointer: $(cat "$work/sim-unit.err")"
+# friction: a slider pushed by 3 N under a presser of 2 N (mu_s 0.6, mu_k 0.5) slides; with 1 N it
+# sticks: the event log has the slip / stick changes with their forces
+printf '%s' '{"hipair": 1, "name": "press", "parts": [     {"name": "slider", "motion": {"translation": {"direction": [1, 0], "limits": [-80, 80]}},      "dynamics": {"mass": 1, "force": [3, 0]},      "loops": [{"start": [-100, 0], "edges": [{"line_to": [100, 0]}, {"line_to": [100, 10]},                 {"line_to": [-100, 10], "label": "slider top"}, {"line_to": [-100, 0]}]}]},     {"name": "presser", "motion": {"translation": {"direction": [0, 1], "limits": [-5, 20]}},      "initial": {"offset": 0.001},      "dynamics": {"mass": 1, "force": [0, -2]},      "loops": [{"start": [0, 10], "edges": [{"line_to": [8, 14]}, {"line_to": [8, 20]}, {"line_to": [-8, 20]},                 {"line_to": [-8, 14]}, {"line_to": [0, 10]}]}]}],     "pairs": [{"parts": ["slider", "presser"], "restitution": 0, "friction": {"static": 0.6, "kinetic": 0.5}}],     "simulation": {"accuracy": 1e-10}} ' >"$work/sim-press.json"
+"$hipair" simulate "$work/sim-press.json" --t-end 0.02 --no-pictures --out "$work/sim-press" >"$work/sim-press.out" 2>&1 \
+  || fail "simulate press: $(tail -c 300 "$work/sim-press.out")"
+grep -q "  slip  slider / presser.*friction force" "$work/sim-press/events.txt" || fail "simulate press: no slip event: $(cat "$work/sim-press/events.txt")"
+grep -q "tangential impulse" "$work/sim-press/events.txt" || fail "simulate press: no tangential impulse"
+sed 's/"force": \[3, 0\]/"force": [1, 0]/' "$work/sim-press.json" >"$work/sim-press-stick.json"
+"$hipair" simulate "$work/sim-press-stick.json" --t-end 0.02 --no-pictures --out "$work/sim-stick" >"$work/sim-stick.out" 2>&1 \
+  || fail "simulate press (stick): $(tail -c 300 "$work/sim-stick.out")"
+grep -q '"kind": "stick"' "$work/sim-stick/events.json" || fail "simulate press: no stick event: $(cat "$work/sim-stick/events.txt")"
 
 # hipair simulate --sweep: one row per value, in parallel; a malformed sweep is a usage error
 "$hipair" simulate "$source/examples/models/cam-drive.json" --t-end 0.03 --sweep cam-speed=183:220:2 \

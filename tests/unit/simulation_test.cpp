@@ -359,8 +359,16 @@ std::uint64_t run_hash(const Simulation& s, double quantum) {
 // features, times to 1e-6 s) and the final positions (to 1e-6 rad) hash to a pinned value, so
 // that any change of the event sequence, or of the run from one process to the next, shows.
 // (A double-bit-pattern hash, run_hash(s, 0), is not pinned: it may differ between compilers.)
+// The model's pairs carry friction 0.1, ignored before the simulator had friction: the pinned
+// run is the frictionless one (friction removed here), which friction 0 must reproduce exactly
+// (docs/simulation.md#friction).
 TEST(SimulationEscapement, RunMatchesItsPinnedHash) {
-  Simulation s = Simulation::create(example("escapement.json"));
+  Model model = example("escapement.json");
+  for (PairSpec& pair : model.pairs) {
+    pair.friction.reset();
+    pair.kinetic_friction.reset();
+  }
+  Simulation s = Simulation::create(model);
   s.run_until(0.25);
   EXPECT_GE(s.events().size(), 10u);
   std::uint64_t coarse = run_hash(s, 1e-6);

@@ -1,0 +1,198 @@
+// HIPAIR — contact forces and impulses with Coulomb friction (docs/simulation.md#friction).
+//
+// Contacts k = 1..m with normal rows G_k (the constraint gradient over the coordinates; its
+// multiplier lambda_k >= 0) and, where friction acts, a tangent row T_k (relative tangential
+// velocity at the contact point v_t = T_k qdot, the second part relative to the first along
+// t = (-n_y, n_x)) and the ratio s_k of the physical normal row to G_k (G_phys = s_k G_k, so the
+// physical normal force is N_k = lambda_k / s_k). Each frictional contact is in one state:
+//   stick  (0):  T_k x = 0, tangential force f_k a free unknown with |f_k| <= mu_s N_k;
+//   slip  (+-1): f_k = -sign mu_k N_k: the force column of contact k becomes
+//                W_k = G_k - sign (mu_k / s_k) T_k, and sign T_k x >= 0 (it keeps sliding that way);
+//   off   (2):   frictionless.
+// The unknown x is an acceleration (contact forces: x = a_free + M^-1 (W^T lambda + T_S^T f_S),
+// w = G x + h with h the curvature terms) or a velocity (impacts: x = v- + M^-1 (...), w = G x
+// + e G v-): the same algebra. The stick rows are eliminated by their Schur complement, leaving
+// the normal LCP  w = A lambda + b  in lambda alone (A non-symmetric when some contact slips).
+// The states of contacts that are not sliding (their |v_t| below the velocity tolerance, and
+// every contact of an impact) are found by enumeration, the most sticking contacts first: the
+// first assignment whose LCP solution satisfies the Coulomb conditions is taken (a principled
+// active-set search on stick/slip states; no iteration with a stopping rule).
+#pragma once
+
+#include "simulation/lcp.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace hipair::simulation {
+
+enum : int { stick = 0, slip_positive = 1, slip_negative = -1, frictionless = 2 };
+
+/// Coulomb data of one contact.
+struct Friction {
+  bool on = false;
+  Eigen::VectorXd T;            ///< tangent row over the coordinates
+  double s = 1;                 ///< G_phys = s G (> 0)
+  double mu_static = 0, mu_kinetic = 0;
+  /// The contact's state when it is known (sliding: +-1), or `undecided` (stick or slip decided
+  /// by the enumeration).
+  int state = 0;
+  bool decided = false;
+};
+
+struct FrictionalSolution {
+  bool solved = false;
+  Eigen::VectorXd lambda;        ///< normal multipliers (>= 0 for an LCP solution)
+  Eigen::VectorXd w;             ///< G x + h
+  Eigen::VectorXd x;             ///< accelerations (or velocities after the impact)
+  Eigen::VectorXd f;             ///< tangential force (physical) per contact: stick: solved; slip: -sign mu_k N
+  std::vector<int> state;        ///< per contact
+  double tolerance = 0;          ///< of the normal LCP
+};
+
+/// The reduced normal problem for given states: x = x0 + B lambda (stick forces eliminated),
+/// f_S = f0 + F lambda.
+struct Reduced {
+  Eigen::MatrixXd B, F;
+  Eigen::VectorXd x0, f0;
+  std::vector<Eigen::Index> sticking;   ///< contact index of each row of f_S
+};
+
+inline Reduced reduce(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
+                      const std::vector<Friction>& friction, const std::vector<int>& state) {
+  const Eigen::Index m = G.rows(), n = G.cols();
+  Eigen::MatrixXd W = G;   // force columns (as rows)
+  Reduced r;
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const Friction& c = friction[static_cast<std::size_t>(k)];
+    int st = state[static_cast<std::size_t>(k)];
+    if (!c.on || st == frictionless) continue;
+    if (st == stick) r.sticking.push_back(k);
+    else W.row(k) -= st * (c.mu_kinetic / c.s) * c.T.transpose();
+  }
+  const auto p = static_cast<Eigen::Index>(r.sticking.size());
+  Eigen::MatrixXd MinvWt = minv.asDiagonal() * W.transpose();   // n x m
+  r.x0 = a0;
+  r.B = MinvWt;
+  r.f0 = Eigen::VectorXd::Zero(p);
+  r.F = Eigen::MatrixXd::Zero(p, m);
+  if (p == 0) return r;
+  Eigen::MatrixXd TS(p, n);
+  for (Eigen::Index j = 0; j < p; ++j) TS.row(j) = friction[static_cast<std::size_t>(r.sticking[j])].T.transpose();
+  Eigen::MatrixXd MinvTt = minv.asDiagonal() * TS.transpose();   // n x p
+  Eigen::MatrixXd K = TS * MinvTt;                                // p x p
+  auto solver = K.completeOrthogonalDecomposition();
+  // T_S (x0 + B lambda + MinvTt f) = 0  =>  f = -K^+ (T_S x0 + T_S B lambda)
+  r.f0 = -solver.solve(TS * a0);
+  r.F = -solver.solve(TS * MinvWt);
+  r.x0 = a0 + MinvTt * r.f0;
+  r.B = MinvWt + MinvTt * r.F;
+  return r;
+}
+
+/// Fills the solution's x, w, f for multipliers lambda and states.
+inline void complete(FrictionalSolution& s, const Reduced& r, const Eigen::MatrixXd& G, const Eigen::VectorXd& h,
+                     const std::vector<Friction>& friction) {
+  const Eigen::Index m = G.rows();
+  s.x = r.x0 + r.B * s.lambda;
+  s.w = G * s.x + h;
+  s.f = Eigen::VectorXd::Zero(m);
+  Eigen::VectorXd fs = r.f0 + r.F * s.lambda;
+  for (std::size_t j = 0; j < r.sticking.size(); ++j) s.f(r.sticking[j]) = fs(static_cast<Eigen::Index>(j));
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const Friction& c = friction[static_cast<std::size_t>(k)];
+    int st = s.state[static_cast<std::size_t>(k)];
+    if (c.on && (st == slip_positive || st == slip_negative)) s.f(k) = -st * c.mu_kinetic * s.lambda(k) / c.s;
+  }
+}
+
+/// All normal rows held (bilateral: w = 0), states given: the integration's right-hand side.
+inline FrictionalSolution solve_bilateral(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
+                                          const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
+                                          const std::vector<Friction>& friction, const std::vector<int>& state) {
+  FrictionalSolution s;
+  s.state = state;
+  Reduced r = reduce(G, minv, a0, friction, state);
+  Eigen::MatrixXd A = G * r.B;
+  Eigen::VectorXd b = G * r.x0 + h;
+  s.lambda = A.completeOrthogonalDecomposition().solve(-b);
+  complete(s, r, G, h, friction);
+  s.solved = true;
+  return s;
+}
+
+/// True when the Coulomb conditions hold for the solution (stick: |f| <= mu_s N; a slip decided
+/// here: it accelerates (or moves) in its sliding direction).
+inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Friction>& friction) {
+  for (std::size_t k = 0; k < friction.size(); ++k) {
+    const Friction& c = friction[k];
+    if (!c.on) continue;
+    const auto i = static_cast<Eigen::Index>(k);
+    double N = s.lambda(i) / c.s;
+    int st = s.state[k];
+    if (st == stick) {
+      double limit = c.mu_static * N;
+      if (std::abs(s.f(i)) > limit + 1e-9 * (limit + std::abs(s.f(i))) + 1e-300) return false;
+    } else if (!c.decided && (st == slip_positive || st == slip_negative)) {
+      double vt = c.T.dot(s.x);
+      double scale = c.T.cwiseAbs().dot(s.x.cwiseAbs());
+      if (st * vt < -1e-9 * scale) return false;
+    }
+  }
+  return true;
+}
+
+/// The normal LCP with Coulomb friction: states of the undecided frictional contacts by
+/// enumeration (fewest sliding contacts first; at most 3^8 assignments), each assignment's
+/// normal LCP solved by solve_lcp. solved = false when no assignment is consistent.
+inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
+                                           const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
+                                           const std::vector<Friction>& friction) {
+  const std::size_t m = friction.size();
+  std::vector<std::size_t> open;
+  std::vector<int> state(m, frictionless);
+  for (std::size_t k = 0; k < m; ++k) {
+    if (!friction[k].on) continue;
+    if (friction[k].decided) state[k] = friction[k].state;
+    else open.push_back(k);
+  }
+  FrictionalSolution best;
+  if (open.size() > 8) return best;
+  std::size_t combinations = 1;
+  for (std::size_t i = 0; i < open.size(); ++i) combinations *= 3;
+  std::vector<std::size_t> order(combinations);
+  auto slips = [&](std::size_t code) {
+    int count = 0;
+    for (std::size_t i = 0; i < open.size(); ++i, code /= 3) count += code % 3 != 0;
+    return count;
+  };
+  for (std::size_t c = 0; c < combinations; ++c) order[c] = c;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return slips(a) < slips(b); });
+  for (std::size_t code : order) {
+    std::size_t rest = code;
+    for (std::size_t i = 0; i < open.size(); ++i, rest /= 3) {
+      static constexpr int digit_state[3] = {stick, slip_positive, slip_negative};
+      state[open[i]] = digit_state[rest % 3];
+    }
+    Reduced r = reduce(G, minv, a0, friction, state);
+    Eigen::MatrixXd A = G * r.B;
+    Eigen::VectorXd b = G * r.x0 + h;
+    LcpSolution lcp = solve_lcp(A, b);
+    if (!lcp.solved) continue;
+    FrictionalSolution s;
+    s.state = state;
+    s.lambda = lcp.lambda;
+    s.tolerance = lcp.tolerance;
+    complete(s, r, G, h, friction);
+    if (!coulomb_satisfied(s, friction)) continue;
+    s.solved = true;
+    return s;
+  }
+  return best;
+}
+
+}  // namespace hipair::simulation
