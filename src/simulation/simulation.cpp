@@ -563,6 +563,76 @@ struct Simulation::Impl {
     }
   };
 
+  // The earliest u of the step's path at which held contact `a` may reach the end of its edge:
+  // the watched coordinate (the abscissa, or the ordinate of a vertical edge) is a polynomial
+  // of degree <= 5 in u, whose slope on [0, 1] is at most M = sum of i |c_i|; from a distance d
+  // to the extent's ends (unwrapped angles about the start) it cannot pass them by tol before
+  // u + (d + tol) / M, so the scan steps by that and cannot skip an excursion past an end
+  // however long the step. Returns 1 when the path stays inside, else the first u found outside
+  // by more than tol = 1e-12 (relative), or where the scan gives up after 10^5 steps (a graze
+  // along an end: the step is only shortened there).
+  double edge_watch_end(const Active& a, const StepPath& path) const {
+    int dof = -1;
+    double lo = 0, hi = 0;
+    AxisKind kind = AxisKind::translation;
+    bool half_turn = false;
+    if (a.point) {
+      if (!a.bounded_y || a.ydof < 0) return 1;
+      const CSpaceChart& chart = chart_of(a);
+      dof = a.ydof;
+      lo = a.y_lo - a.slack;
+      hi = a.y_hi + a.slack;
+      kind = chart.y_kind;
+      half_turn = chart.y_half_turn;
+    } else {
+      if (a.xdof < 0) return 1;
+      const CSpaceChart& chart = chart_of(a);
+      dof = a.xdof;
+      lo = a.x_lo - a.slack;
+      hi = a.x_hi + a.slack;
+      kind = chart.x_kind;
+      half_turn = chart.x_half_turn;
+    }
+    const std::array<double, 6>& c = path.c[static_cast<std::size_t>(dof)];
+    double q0 = c[0];
+    double A = lo, B = hi;
+    if (kind == AxisKind::rotation) {
+      // the chart t = tan((q - centre)/2) on the branch of the path's start
+      double centre = half_turn ? std::numbers::pi : 0.0;
+      double base = q0 - std::remainder(q0 - centre, 2 * std::numbers::pi);
+      A = base + 2 * std::atan(lo);
+      B = base + 2 * std::atan(hi);
+    }
+    double slope = 0;
+    for (int i = 1; i < 6; ++i) slope += i * std::abs(c[i]);
+    if (!(slope > 0)) return 1;
+    // outside by more than tol: past the end (the extent already holds the edge's slack)
+    const double tol = 1e-12 * (1 + std::abs(A) + std::abs(B));
+    double u = 0;
+    for (int iteration = 0; iteration < 100000; ++iteration) {
+      double q = poly(c, u);
+      double d = std::min(q - A, B - q);
+      // (a start already outside is left to violated(), as before)
+      if (d < -tol) return u > 0 ? u : 1;
+      // cannot be outside by tol before u + (d + tol) / slope: a step of at least tol / slope
+      u += (d + tol) / slope;
+      if (u >= 1) return 1;
+    }
+    return u;
+  }
+
+  // A state taken from a step's path at time t: the prescribed parts exactly where their law
+  // puts them at t, as the next step's path starts them (the path's polynomial and the law agree
+  // only to rounding, and a state moved off contact space by a few units in the last place,
+  // nudge_free, must be the state the next step starts from).
+  void sync_driven() {
+    for (std::size_t i = 0; i < dofs.size(); ++i)
+      if (dofs[i].driven) {
+        double ad;
+        driver_law(dofs[i], t, q[i], v[i], ad);
+      }
+  }
+
   StepPath make_path(double t0, const Vec& q0, const Vec& v0, const Vec& a0, double t1, const Vec& q1, const Vec& v1,
                      const Vec& a1) const {
     StepPath p;
@@ -1467,10 +1537,20 @@ struct Simulation::Impl {
       } reset{strict_rows};
       std::size_t which = 0;
       coulomb_ignored.assign(active.size(), false);
+      // The motion may leave a held contact's edge and come back to it within one step (a
+      // driver turning once in a long step along a locking arc): the edge's extent is watched
+      // along the whole path, not only at its end (edge_watch_end).
+      double u_probe = 1;
+      for (const Active& a : active) u_probe = std::min(u_probe, edge_watch_end(a, path));
       for (std::size_t pass = 0; pass <= active.size(); ++pass) {
-        int kind = violated(1, which);
-        if (kind == 0) break;
-        double lo = 0, hi = 1;
+        int kind = violated(u_probe, which);
+        if (kind == 0) {
+          // the path came near an edge's end and did not pass it: the step ends there (no
+          // event) and the next one watches on from that state
+          if (u_probe < 1) u_end = u_probe;
+          break;
+        }
+        double lo = 0, hi = u_probe;
         for (int i = 0; i < 50; ++i) {
           double m = 0.5 * (lo + hi);
           std::size_t w = 0;
@@ -1531,6 +1611,7 @@ struct Simulation::Impl {
       if (u_out * path.h <= 1e-12 * (1 + std::abs(path.t0))) outside(out_pair, path.t0 + u_out * path.h);
       path.at(u_out, q, v);
       t = path.t0 + u_out * path.h;
+      sync_driven();
       dt = u_out * path.h;
       project_active();
       return;
@@ -1539,6 +1620,7 @@ struct Simulation::Impl {
       // the earliest crossing, and every other one whose bracket meets it (simultaneous)
       path.at(u_hit, q, v);
       t = path.t0 + u_hit * path.h;
+      sync_driven();
       std::vector<ContactRow> rows;
       for (auto& [pair, c] : crossings) {
         if (to_d(c.u_lower) > u_hit_upper) continue;
@@ -1559,6 +1641,8 @@ struct Simulation::Impl {
     t = u_end == 1 ? t1 : path.t0 + u_end * path.h;
     if (u_end == 1) {
       unpack(t1, x1, q, v);
+    } else {
+      sync_driven();
     }
     project_active();
     project_sticking();
