@@ -704,6 +704,17 @@ struct Simulation::Impl {
     throw GeometryError(out.str());
   }
 
+  // The velocity of point p of the part moved by coordinate d, per unit coordinate speed.
+  static void point_velocity(const Dof& d, const double p[2], double J[2]) {
+    if (d.rotation) {
+      J[0] = -(p[1] - d.pivot[1]);
+      J[1] = p[0] - d.pivot[0];
+    } else {
+      J[0] = d.dir[0];
+      J[1] = d.dir[1];
+    }
+  }
+
   // physical contact row of a crossing: separation speed = G v
   Vec physical_row(std::size_t pair, const MotionCrossing& hit, const Vec& qs) const {
     Vec G(dofs.size(), 0.0);
@@ -713,13 +724,7 @@ struct Simulation::Impl {
       int d = part_dof[part];
       if (d < 0) return;
       double J[2];
-      if (dofs[d].rotation) {
-        J[0] = -(p[1] - dofs[d].pivot[1]);
-        J[1] = p[0] - dofs[d].pivot[0];
-      } else {
-        J[0] = dofs[d].dir[0];
-        J[1] = dofs[d].dir[1];
-      }
+      point_velocity(dofs[d], p, J);
       G[d] += sign * (n[0] * J[0] + n[1] * J[1]);
     };
     // the crossing's feature pair names the first part (normal from first into second)
@@ -928,13 +933,7 @@ struct Simulation::Impl {
       int d = part_dof[part];
       if (d < 0) return;
       double J[2];
-      if (dofs[d].rotation) {
-        J[0] = -(p[1] - dofs[d].pivot[1]);
-        J[1] = p[0] - dofs[d].pivot[0];
-      } else {
-        J[0] = dofs[d].dir[0];
-        J[1] = dofs[d].dir[1];
-      }
+      point_velocity(dofs[d], p, J);
       Gp[d] += sign * (n[0] * J[0] + n[1] * J[1]);
       T[d] += sign * (-n[1] * J[0] + n[0] * J[1]);
     };
