@@ -574,6 +574,7 @@ Rational root_bound(const Polynomial& p) {
   Rational best = 0;
   for (int i = 0; i < degree(p); ++i) {
     Rational q(abs(p[static_cast<std::size_t>(i)]), abs(p.back()));
+    q.canonicalize();   // GMP's rational functions expect canonical operands (== compares num/den)
     if (q > best) best = q;
   }
   return best + 1;

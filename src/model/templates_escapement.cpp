@@ -56,6 +56,7 @@ std::vector<Loop> expand_escape_wheel(const Arguments& arguments,
   if (tip_angle < 0) throw ModelError(arguments.at("tip_angle"), "must not be negative");
   if (face_angle < 0) throw ModelError(arguments.at("face_angle"), "must not be negative");
   Rational pitch_turns(2, teeth);  // the pitch as a multiple of pi
+  pitch_turns.canonicalize();      // 2/teeth is not in lowest terms for an even tooth count
   double pitch = 2 * M_PI / static_cast<double>(teeth);
   bool has_root_arc = arguments.has("back_angle");
   Rational back_angle = has_root_arc ? arguments.angle("back_angle") : Rational(0);

@@ -227,5 +227,29 @@ TEST(CSpaceAlgebra, CertifiedDoubleEvaluation) {
     }
 }
 
+// GMP's rational functions expect canonical operands and mpq_equal compares numerators and
+// denominators: the root bound 1 + max |a_i / a_n| was built from a non-canonical quotient, so
+// 2x^2 + 4x + 6 gave 8/2, unequal to 4 under ==. Every bound is now in lowest terms.
+TEST(CSpaceAlgebra, RootBoundIsInLowestTerms) {
+  EXPECT_EQ(root_bound(Polynomial{mpz_class(6), mpz_class(4), mpz_class(2)}), Rational(4));
+  std::uint64_t state = 0x9e3779b97f4a7c15ull;
+  auto next = [&] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<long>((state >> 33) % 2001) - 1000;
+  };
+  for (int trial = 0; trial < 500; ++trial) {
+    Polynomial p;
+    for (int i = 0; i < 2 + trial % 7; ++i) p.emplace_back(next());
+    if (p.back() == 0) p.back() = 6 * (trial % 4 + 1);
+    Rational bound = root_bound(p);
+    mpz_class g;
+    mpz_gcd(g.get_mpz_t(), bound.get_num_mpz_t(), bound.get_den_mpz_t());
+    EXPECT_EQ(g, 1) << "trial " << trial;
+    Rational reduced(bound);
+    reduced.canonicalize();
+    EXPECT_EQ(bound, reduced) << "trial " << trial;
+  }
+}
+
 }  // namespace
 }  // namespace hipair::cspace::algebra
