@@ -1184,6 +1184,17 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
     return part.motion.kind == Motion::Kind::fixed || part.motion.kind == Motion::Kind::translation;
   };
   const bool translating = without_rotation(part_a) && without_rotation(part_b);
+  // A curve that passed the constant and validity tests: labelled, counted and kept.
+  auto keep = [&](std::vector<ContactCurve>& out, ContactCurve&& curve, const BodyFeature& fa, const BodyFeature& fb) {
+    curve.label = part_a.name + " " + fa.label + " / " + part_b.name + " " + fb.label + " (" +
+                  contact_word(curve.type) + ")";
+    if (curve.polynomial.is_zero()) {
+      ++stats.identically_zero;
+    } else {
+      ++stats.curves;
+    }
+    out.push_back(std::move(curve));
+  };
   if (translating && d.polygons && options.polygon_front_end && !options.cull_blocked_space) {
     // The polygon front end: the reduced convolution's pairs by the angular walk (cone_pairs),
     // then the same broad-phase box test and swept-region cull as the general path (so the
@@ -1253,14 +1264,7 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
       if (!zero && curve.polynomial.degree_x() == 0 && curve.polynomial.degree_y() == 0)
         continue;  // a non-zero constant: these features never touch
       if (!linear_validity(contact, curve.validity)) continue;  // never within both
-      curve.label = part_a.name + " " + fa.label + " / " + part_b.name + " " + fb.label + " (" +
-                    contact_word(curve.type) + ")";
-      if (zero) {
-        ++stats.identically_zero;
-      } else {
-        ++stats.curves;
-      }
-      curves.push_back(std::move(curve));
+      keep(curves, std::move(curve), fa, fb);
     }
     return curves;
   }
@@ -1321,14 +1325,7 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
     if (!zero && curve.polynomial.degree_x() == 0 && curve.polynomial.degree_y() == 0)
       continue;  // a non-zero constant: these features never touch
     if (!convert_validity(kernel->validity, curve.validity)) continue;  // never within both
-    curve.label = part_a.name + " " + fa.label + " / " + part_b.name + " " + fb.label + " (" +
-                  contact_word(curve.type) + ")";
-    if (zero) {
-      ++stats.identically_zero;
-    } else {
-      ++stats.curves;
-    }
-    curves.push_back(std::move(curve));
+    keep(curves, std::move(curve), fa, fb);
   }
   return curves;
 }

@@ -572,27 +572,15 @@ struct Simulation::Impl {
   // by more than tol = 1e-12 (relative), or where the scan gives up after 10^5 steps (a graze
   // along an end: the step is only shortened there).
   double edge_watch_end(const Active& a, const StepPath& path) const {
-    int dof = -1;
-    double lo = 0, hi = 0;
-    AxisKind kind = AxisKind::translation;
-    bool half_turn = false;
-    if (a.point) {
-      if (!a.bounded_y || a.ydof < 0) return 1;
-      const CSpaceChart& chart = chart_of(a);
-      dof = a.ydof;
-      lo = a.y_lo - a.slack;
-      hi = a.y_hi + a.slack;
-      kind = chart.y_kind;
-      half_turn = chart.y_half_turn;
-    } else {
-      if (a.xdof < 0) return 1;
-      const CSpaceChart& chart = chart_of(a);
-      dof = a.xdof;
-      lo = a.x_lo - a.slack;
-      hi = a.x_hi + a.slack;
-      kind = chart.x_kind;
-      half_turn = chart.x_half_turn;
-    }
+    // a vertical edge (a point contact with an ordinate range) is watched in its ordinate
+    if (a.point && !a.bounded_y) return 1;
+    const bool ordinate = a.point;
+    const int dof = ordinate ? a.ydof : a.xdof;
+    if (dof < 0) return 1;
+    const CSpaceChart& chart = chart_of(a);
+    const double lo = (ordinate ? a.y_lo : a.x_lo) - a.slack, hi = (ordinate ? a.y_hi : a.x_hi) + a.slack;
+    const AxisKind kind = ordinate ? chart.y_kind : chart.x_kind;
+    const bool half_turn = ordinate ? chart.y_half_turn : chart.x_half_turn;
     const std::array<double, 6>& c = path.c[static_cast<std::size_t>(dof)];
     double q0 = c[0];
     double A = lo, B = hi;

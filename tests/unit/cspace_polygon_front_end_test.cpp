@@ -8,6 +8,7 @@
 // vertices), scaled by 10^-30 and 10^40 as exact rationals, a zero-clearance slot, shared
 // vertex coordinates, and general translation directions.
 #include "cspace/builder_impl.hpp"
+#include "cspace_minkowski_support.hpp"
 #include "curves/contact_curves.hpp"
 
 #include <hipair/cspace.hpp>
@@ -27,11 +28,7 @@
 namespace hipair {
 namespace {
 
-using Kernel = CGAL::Cartesian<CGAL::Gmpq>;
-using Point2 = Kernel::Point_2;
-using Polygon = CGAL::Polygon_2<Kernel>;
-using PolygonWithHoles = CGAL::Polygon_with_holes_2<Kernel>;
-using PolygonSet = CGAL::Polygon_set_2<Kernel>;
+using namespace minkowski_support;
 using Points = std::vector<std::pair<Rational, Rational>>;
 
 std::string text(const Rational& q) { return "\"" + q.get_str() + "\""; }
@@ -161,50 +158,6 @@ void expect_same_space(const CSpace& fast, const CSpace& general) {
   EXPECT_EQ(s.touching_edges, t.touching_edges);
   EXPECT_EQ(s.touching_vertices, t.touching_vertices);
   EXPECT_EQ(s.faces, t.faces);
-}
-
-Point2 vertex_point(const cspace::raw::Vertex& v) {
-  EXPECT_TRUE(v.x.exact && v.y_exact && v.y.exact);
-  return Point2(CGAL::Gmpq(v.x.lower.get_mpq_t()), CGAL::Gmpq(v.y.lower.get_mpq_t()));
-}
-
-// The union of the blocked faces (as cspace_minkowski_test.cpp).
-PolygonSet blocked_region(const CSpace& space) {
-  PolygonSet region;
-  for (const auto& chart : implementation(space).charts) {
-    const auto& arrangement = chart.arrangement;
-    for (std::size_t f = 0; f < arrangement.faces.size(); ++f) {
-      if (chart.faces[f].kind != cspace::FaceKind::blocked) continue;
-      const auto& face = arrangement.faces[f];
-      std::vector<Polygon> components;
-      for (std::size_t k = 0; k < face.component_starts.size(); ++k) {
-        std::size_t begin = face.component_starts[k];
-        std::size_t end = k + 1 < face.component_starts.size() ? face.component_starts[k + 1] : face.boundary.size();
-        std::vector<std::pair<std::size_t, bool>> walk;
-        for (std::size_t i = begin; i < end; ++i) {
-          if (!walk.empty() && walk.back().first == face.boundary[i].first && walk.back().second != face.boundary[i].second)
-            walk.pop_back();
-          else
-            walk.push_back(face.boundary[i]);
-        }
-        while (walk.size() >= 2 && walk.front().first == walk.back().first && walk.front().second != walk.back().second) {
-          walk.pop_back();
-          walk.erase(walk.begin());
-        }
-        Polygon polygon;
-        for (const auto& [e, forward] : walk) {
-          const auto& edge = arrangement.edges[e];
-          polygon.push_back(vertex_point(arrangement.vertices[forward ? edge.min_vertex : edge.max_vertex]));
-        }
-        if (polygon.size() >= 3) components.push_back(polygon);
-      }
-      if (components.empty()) continue;
-      PolygonWithHoles piece(components[0]);
-      for (std::size_t k = 1; k < components.size(); ++k) piece.add_hole(components[k]);
-      region.join(piece);
-    }
-  }
-  return region;
 }
 
 Polygon cgal_polygon(const Points& points, bool negate) {

@@ -3,6 +3,7 @@
 // difference with CGAL's minkowski_sum_2), for random polygon pairs and a plate with a hole, at
 // rational half-angle tangents and the half turn. (Includes CGAL: its own translation unit.)
 #include "cspace/builder_impl.hpp"
+#include "cspace_minkowski_support.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/error.hpp>
@@ -23,59 +24,7 @@
 namespace hipair {
 namespace {
 
-using Kernel = CGAL::Cartesian<CGAL::Gmpq>;
-using Point2 = Kernel::Point_2;
-using Polygon = CGAL::Polygon_2<Kernel>;
-using PolygonWithHoles = CGAL::Polygon_with_holes_2<Kernel>;
-using PolygonSet = CGAL::Polygon_set_2<Kernel>;
-
-CGAL::Gmpq gmpq(const Rational& r) { return CGAL::Gmpq(r.get_mpq_t()); }
-
-Point2 vertex_point(const cspace::raw::Vertex& v) {
-  EXPECT_TRUE(v.x.exact);
-  EXPECT_TRUE(v.y_exact && v.y.exact);
-  return Point2(gmpq(v.x.lower), gmpq(v.y.lower));
-}
-
-// The union of the blocked faces of the (single) chart, exactly (as cspace_minkowski_test).
-PolygonSet blocked_region(const CSpace& space) {
-  const auto& impl = implementation(space);
-  PolygonSet region;
-  for (const auto& chart : impl.charts) {
-    const auto& arrangement = chart.arrangement;
-    for (std::size_t f = 0; f < arrangement.faces.size(); ++f) {
-      if (chart.faces[f].kind != cspace::FaceKind::blocked) continue;
-      const auto& face = arrangement.faces[f];
-      std::vector<Polygon> components;
-      for (std::size_t k = 0; k < face.component_starts.size(); ++k) {
-        std::size_t begin = face.component_starts[k];
-        std::size_t end = k + 1 < face.component_starts.size() ? face.component_starts[k + 1] : face.boundary.size();
-        std::vector<std::pair<std::size_t, bool>> walk;
-        for (std::size_t i = begin; i < end; ++i) {
-          if (!walk.empty() && walk.back().first == face.boundary[i].first && walk.back().second != face.boundary[i].second)
-            walk.pop_back();
-          else
-            walk.push_back(face.boundary[i]);
-        }
-        while (walk.size() >= 2 && walk.front().first == walk.back().first && walk.front().second != walk.back().second) {
-          walk.pop_back();
-          walk.erase(walk.begin());
-        }
-        Polygon polygon;
-        for (const auto& [e, forward] : walk) {
-          const auto& edge = arrangement.edges[e];
-          polygon.push_back(vertex_point(arrangement.vertices[forward ? edge.min_vertex : edge.max_vertex]));
-        }
-        if (polygon.size() >= 3) components.push_back(polygon);
-      }
-      if (components.empty()) continue;
-      PolygonWithHoles piece(components[0]);
-      for (std::size_t k = 1; k < components.size(); ++k) piece.add_hole(components[k]);
-      region.join(piece);
-    }
-  }
-  return region;
-}
+using namespace minkowski_support;
 
 Polygon loop_polygon(const Loop& loop, const Point& pivot, const Rational& c, const Rational& s, bool negate) {
   Polygon p;
