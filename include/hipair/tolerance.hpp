@@ -12,7 +12,10 @@
 //   - contact zones (the paper's Figure 5), linearised and certified;
 //   - Monte Carlo validation (seedable, reproducible, parallel), against both bands;
 //   - the jamming threshold: the smallest uniform scaling of the tolerances at which the free
-//     channel can close, confirmed by an exact C-space built at the worst-case parameters.
+//     channel can close, confirmed by an exact C-space built at the worst-case parameters;
+//   - contacts that appear or disappear under tolerance (a contact curve that does not bound the
+//     nominal channel but does for some parameters in the box, or the reverse), found from
+//     certified enclosures over the box and confirmed by an exact C-space at a witness vector.
 // No CGAL types.
 #pragma once
 
@@ -37,7 +40,11 @@ struct ToleranceOptions {
   std::string follower;                ///< "" = the other part of the driver's first pair
   /// Driver range (rad or mm); absent: one full turn from the initial angle.
   std::optional<std::pair<Rational, Rational>> range;
-  std::size_t positions = 360;         ///< driver positions along the range
+  /// Spacing of the driver positions (the kinematic analysis' grid, steps_per_cycle): a rotating
+  /// driver gets `positions` per full turn (so a range of a quarter turn gets about a quarter
+  /// of them), a translating driver `positions` along its range; at least 8. The analysis
+  /// reports the grid's positions (the range's start included).
+  std::size_t positions = 360;
   std::size_t monte_carlo = 0;         ///< Monte Carlo samples (0: none)
   std::uint64_t seed = 1;
   unsigned threads = 0;                ///< 0: hardware concurrency
@@ -60,6 +67,10 @@ struct ToleranceOptions {
   /// (rounded down to 4 significant digits).
   bool certify_relative_to_threshold = false;
   std::size_t certify_max_leaves = 20000;   ///< undecided beyond this many leaves
+  /// Look for contacts that appear or disappear under tolerance (ToleranceResult::contact_changes).
+  bool contact_changes = false;
+  /// Exact C-spaces built to confirm them (one per change, the largest linearised first).
+  std::size_t contact_change_confirmations = 4;
 };
 
 /// One parameter's share of the variation in a contact region.
@@ -128,6 +139,41 @@ struct JammingThreshold {
   std::string evidence;                ///< what the exact build shows
 };
 
+/// A contact that appears or disappears for some parameter vector of the tolerance box
+/// (docs/tolerance.md "Contacts that appear or disappear").
+struct ContactChange {
+  /// appears: `contact` bounds no side of the nominal channel anywhere along the path, but at
+  /// `witness` it overtakes the nominal side `other` and bounds the channel. disappears: the
+  /// nominal side `contact` is overtaken by `other` at every driver position where it bounds
+  /// the nominal channel, so at `witness` it bounds the channel nowhere along the path.
+  enum class Kind { appears, disappears } kind = Kind::appears;
+  std::string contact, other;          ///< feature pair labels
+  bool lower_side = true;              ///< the channel's side concerned (lower: below the follower)
+  double driver_first = 0, driver_last = 0;   ///< driver positions (rad or mm) where it can happen
+  std::size_t positions = 0;           ///< how many analysed positions
+  double driver = 0;                   ///< the witness position (largest linearised overshoot)
+  double overshoot = 0;                ///< linearised: how far past `other` at the witness (part units)
+  /// Certified at the witness vector and position: both roots isolated by interval bisection,
+  /// in reversed order (true), or only the linearised model predicts it (false).
+  bool certified_at_witness = false;
+  std::vector<std::pair<std::string, Rational>> witness;   ///< toleranced parameters' values (exact)
+  bool confirmed = false;              ///< the exact C-space at `witness` shows it
+  std::size_t confirmed_positions = 0; ///< analysed positions at which the exact slices show it
+  std::string evidence;
+};
+
+/// The search for contacts that appear or disappear (ToleranceOptions::contact_changes).
+struct ContactChangeCheck {
+  std::size_t positions = 0;           ///< driver positions with a channel checked
+  std::size_t candidates = 0;          ///< (position, contact curve beyond a side) pairs examined
+  std::size_t excluded = 0;            ///< certified: cannot reach the side over the whole box there
+  std::size_t possible = 0;            ///< enclosures overlap: the linearised worst corner tried
+  std::size_t undecided = 0;           ///< an enclosure could not be computed
+  std::size_t switch_shifts = 0;       ///< overtaken by a pair bounding the channel elsewhere on the path
+  std::vector<ContactChange> changes;
+  double seconds = 0;
+};
+
 /// The outcome of the tolerance certificate's branch-and-bound.
 struct ToleranceCertification {
   /// certified: `certificate` holds the no-jam certificate (re-checked by the verifier's code);
@@ -171,6 +217,7 @@ struct ToleranceResult {
   std::size_t certified_boxes = 0;      ///< sub-boxes used by the certified bands
   double seconds_sensitivity = 0, seconds_certified = 0, seconds_zones = 0, seconds_threshold = 0;
   std::optional<ToleranceCertification> certification;   ///< with ToleranceOptions::certify
+  std::optional<ContactChangeCheck> contact_changes;     ///< with ToleranceOptions::contact_changes
   std::vector<std::string> notes;
 };
 

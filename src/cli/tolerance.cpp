@@ -40,6 +40,7 @@ struct ToleranceCliOptions {
   std::uint64_t seed = 1;
   std::size_t positions = 360;
   bool threshold = false;
+  bool contact_changes = false;
   std::vector<std::string> vary;
   double accuracy = 0.1;
   unsigned threads = 0;
@@ -125,8 +126,8 @@ std::string unit_of(const Part& part) { return part.motion.kind == Motion::Kind:
 
 // --certify-interference: the "never interferes" tolerance certificate alone (no analysis).
 int run_interference(const ToleranceCliOptions& options) {
-  if (options.certify || options.threshold || options.monte_carlo > 0)
-    throw ModelError("", "--certify-interference runs alone: drop --certify, --threshold and --monte-carlo "
+  if (options.certify || options.threshold || options.contact_changes || options.monte_carlo > 0)
+    throw ModelError("", "--certify-interference runs alone: drop --certify, --threshold, --contact-changes and --monte-carlo "
                          "(run the analysis separately)");
   std::string scale = trim(options.certify_scale);
   if (!scale.empty() && (scale.back() == 'T' || scale.back() == 't'))
@@ -298,6 +299,7 @@ int run(const ToleranceCliOptions& options) {
   analysis.relative_accuracy = options.accuracy;
   analysis.threads = options.threads;
   analysis.certify = options.certify;
+  analysis.contact_changes = options.contact_changes;
   std::string scale = trim(options.certify_scale);
   if (!scale.empty() && (scale.back() == 'T' || scale.back() == 't')) {
     if (!options.threshold) throw ModelError("", "--certify-scale " + scale + " is relative to the jamming threshold: add --threshold");
@@ -357,9 +359,12 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_option("--monte-carlo", options->monte_carlo, "Monte Carlo samples (default 0: none)")
       ->check(CLI::Range(std::size_t{0}, std::size_t{10000000}));
   command->add_option("--seed", options->seed, "Monte Carlo seed (default 1)");
-  command->add_option("--positions", options->positions, "driver positions per turn (default 360)")
+  command->add_option("--positions", options->positions, "driver positions per turn for a rotating driver, along the range for a translating one (default 360)")
       ->check(CLI::Range(std::size_t{16}, std::size_t{100000}));
   command->add_flag("--threshold", options->threshold, "find the jamming threshold and confirm it with an exact C-space");
+  command->add_flag("--contact-changes", options->contact_changes,
+                    "look for contacts that appear or disappear for some parameters in the tolerance box; "
+                    "confirm each with an exact C-space at a witness vector");
   command->add_option("--vary", options->vary, "parameters the threshold search scales (default: every toleranced one)");
   command->add_option("--accuracy", options->accuracy,
                       "certified band: at most this much (relative) wider than the linearised one (default 0.1)")

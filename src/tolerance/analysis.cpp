@@ -153,6 +153,7 @@ class Analysis {
       threshold();
       result_.seconds_threshold = seconds_since(t3);
     }
+    if (options_.contact_changes) contact_changes();
     if (options_.certify) certify();
     progress(1.0);
     return std::move(result_);
@@ -792,6 +793,277 @@ class Analysis {
                         std::to_string(open) + " free interval(s) in the channel";
     }
     result_.threshold = result;
+  }
+
+  // ------------------------------------------------------------ contacts appearing/disappearing
+  using PairKey = std::pair<FeatureIdentity, FeatureIdentity>;
+  static PairKey key_of(const FeaturePair& pair) { return {pair.first, pair.second}; }
+
+  // The feature pairs of a C-space at the ends of the free intervals of its slice at the sample's
+  // driver position that meet the sample's nominal channel (exact: exact_order.hpp).
+  std::optional<std::vector<PairKey>> channel_bounds(const CSpace& space, std::size_t k) const {
+    const SampleState& state = states_[k];
+    const CSpaceChart& nominal_chart = space_->charts()[state.chart];
+    std::vector<Slice> slices = space.slice(SliceAxis::x, state.driver_chart.t);
+    const Slice* slice = nullptr;
+    for (const Slice& candidate : slices) {
+      const CSpaceChart& c = space.charts()[candidate.chart];
+      if (c.x_half_turn == nominal_chart.x_half_turn && c.y_half_turn == nominal_chart.y_half_turn) slice = &candidate;
+    }
+    if (!slice) return std::nullopt;
+    std::vector<PairKey> keys;
+    auto add = [&](std::size_t point) {
+      for (FeatureId id : slice->points[point].features) keys.push_back(key_of(space.feature_pair(id)));
+    };
+    for (std::size_t j : tolerance_detail::free_intervals_meeting(*slice, state.lower.present ? &state.lower.exact : nullptr,
+                                                                   state.upper.present ? &state.upper.exact : nullptr)) {
+      if (j > 0) add(j - 1);
+      if (j < slice->points.size()) add(j);
+    }
+    return keys;
+  }
+
+  // docs/tolerance.md "Contacts that appear or disappear". At every driver position with a
+  // channel, every contact curve of the nominal C-space (contact and spurious edges: the curves
+  // the build kept) lying beyond a side of the channel is enclosed over the whole box, as is the
+  // side: enclosures apart = certainly never overtakes it there. Otherwise the box corner that
+  // the linearised model says moves it furthest past the side is tried (both roots certified at
+  // that vector), and the largest such overshoot per (curve, side) is confirmed by an exact
+  // C-space at that vector: its slice shows the curve bounding the channel.
+  void contact_changes() {
+    auto start = std::chrono::steady_clock::now();
+    ContactChangeCheck check;
+    const Model& m = model_->nominal();
+    std::size_t n = m.parameters.size();
+    if (!driver_is_x_) {
+      result_.notes.push_back("contact changes: not searched (the driver is the C-space's second part)");
+      result_.contact_changes = check;
+      return;
+    }
+    // Every feature pair bounding the nominal channel somewhere along the path, and where.
+    std::vector<std::pair<PairKey, std::pair<std::size_t, bool>>> side_positions;   // key, (sample, lower)
+    auto side_keys = [&](const Side& side) {
+      std::vector<PairKey> keys;
+      if (side.present)
+        for (FeatureId id : side.features) keys.push_back(key_of(space_->feature_pair(id)));
+      return keys;
+    };
+    for (std::size_t k = 0; k < states_.size(); ++k) {
+      if (!states_[k].valid) continue;
+      for (bool lower : {true, false})
+        for (const PairKey& key : side_keys(lower ? states_[k].lower : states_[k].upper))
+          side_positions.push_back({key, {k, lower}});
+    }
+    auto bounds_on_path = [&](const PairKey& key) {
+      return std::any_of(side_positions.begin(), side_positions.end(), [&](const auto& e) { return e.first == key; });
+    };
+    struct Candidate {
+      PairKey key, side_key;
+      std::string label, side_label;
+      bool lower = true;
+      std::size_t sample = 0;
+      double overshoot = 0;           // part units
+      bool certified = false;
+      std::vector<Rational> corner;   // deviations: ends of the exact tolerance ranges
+    };
+    std::vector<Candidate> found;
+    double accuracy = std::max(options_.relative_accuracy, 1.0);   // separation needs no tight band
+    for (std::size_t k = 0; k < states_.size(); ++k) {
+      const SampleState& state = states_[k];
+      if (!state.valid || (!state.lower.present && !state.upper.present)) continue;
+      ++check.positions;
+      struct SideCurve {
+        bool ok = false;
+        CurveSlice curve;
+        double value = 0;
+        std::vector<double> s;
+        std::string label;
+        Interval range;
+        std::vector<PairKey> keys;
+      } sides[2];
+      for (int j = 0; j < 2; ++j) {
+        const Side& side = j == 0 ? state.lower : state.upper;
+        if (!side.present) continue;
+        SideCurve& sc = sides[j];
+        sc.keys = side_keys(side);
+        if (!side_curve(state, side, sc.curve, sc.value, sc.s, sc.label)) continue;
+        try {
+          sc.range = solver_->certified_range(sc.curve, box_, sc.value, sc.s, accuracy, options_.absolute_accuracy,
+                                              result_.certified_boxes);
+          sc.ok = true;
+        } catch (const Error&) {
+        }
+      }
+      double x = state.driver_chart.t.get_d();
+      std::vector<std::pair<PairKey, double>> seen;
+      for (std::size_t e = 0; e < space_->edges().size(); ++e) {
+        const CSpaceEdge& edge = space_->edges()[e];
+        if (edge.chart != state.chart || edge.vertical || edge.curves.empty()) continue;
+        if (edge.role != EdgeRole::contact && edge.role != EdgeRole::spurious) continue;
+        if (!(edge.x_chart.lower <= x && x <= edge.x_chart.upper)) continue;
+        FeatureId id(edge.curves.front());
+        const FeaturePair& pair = space_->feature_pair(id);
+        PairKey key = key_of(pair);
+        bool is_side = false;
+        for (const SideCurve& sc : sides) is_side = is_side || std::find(sc.keys.begin(), sc.keys.end(), key) != sc.keys.end();
+        if (is_side) continue;
+        double y = 0;
+        try {
+          y = space_->evaluate(e, x).value;
+        } catch (const Error&) {
+          continue;
+        }
+        bool duplicate = std::any_of(seen.begin(), seen.end(), [&](const auto& p) {
+          return p.first == key && std::fabs(p.second - y) <= 1e-9 * (1 + std::fabs(y));
+        });
+        if (duplicate) continue;
+        seen.push_back({key, y});
+        // Beyond which side? (A curve inside the channel touches in free space: not a side.)
+        int j = state.lower.present && y < state.lower.value ? 0 : state.upper.present && y > state.upper.value ? 1 : -1;
+        if (j < 0) continue;
+        ++check.candidates;
+        const SideCurve& side = sides[j];
+        CurveSlice curve = curve_for(id, state);
+        std::vector<double> s;
+        Interval range;
+        try {
+          if (!side.ok) throw NumericError("side not enclosed");
+          s = solver_->sensitivities(curve, y);
+          range = solver_->certified_range(curve, box_, y, s, accuracy, options_.absolute_accuracy, result_.certified_boxes);
+        } catch (const Error&) {
+          ++check.undecided;
+          continue;
+        }
+        bool lower = j == 0;
+        if (lower ? range.hi < side.range.lo : range.lo > side.range.hi) {
+          ++check.excluded;
+          continue;
+        }
+        ++check.possible;
+        if (bounds_on_path(key)) {
+          ++check.switch_shifts;
+          continue;
+        }
+        // The corner moving the curve furthest past the side (linearised), inside the box.
+        Candidate c;
+        c.key = key;
+        c.label = pair.label;
+        c.side_label = side.label;
+        c.side_key = side.keys.front();
+        for (FeatureId fid : (lower ? state.lower : state.upper).features)
+          if (space_->feature_pair(fid).label == side.label) c.side_key = key_of(space_->feature_pair(fid));
+        c.lower = lower;
+        c.sample = k;
+        c.corner.assign(n, Rational(0));
+        std::vector<Interval> corner(n, Interval(0));
+        double chart_overshoot = lower ? y - side.value : side.value - y;
+        for (std::size_t i = 0; i < n; ++i) {
+          double d = lower ? s[i] - side.s[i] : side.s[i] - s[i];
+          const Parameter& p = m.parameters[i];
+          if (d == 0 || !(p.range.lo < p.range.hi)) continue;
+          c.corner[i] = d > 0 ? Rational(p.range.hi - p.nominal) : Rational(p.range.lo - p.nominal);
+          corner[i] = Interval::enclose(c.corner[i]);
+          chart_overshoot += d * (d > 0 ? dist_[i].hi : dist_[i].lo);
+        }
+        if (!(chart_overshoot > 0)) continue;
+        c.overshoot = chart_overshoot * chart_slope(side.value, result_.follower_rotates);
+        std::vector<Interval> geometry = model_->parameter_values(corner);
+        auto widen = [](const Interval& r) {
+          double w = 1e-12 * (1 + std::max(std::fabs(r.lo), std::fabs(r.hi)));
+          return Interval(r.lo - w, r.hi + w);
+        };
+        Interval root, side_root;
+        if (solver_->certified_point_root(curve, geometry, widen(range), root) &&
+            solver_->certified_point_root(side.curve, geometry, widen(side.range), side_root))
+          c.certified = lower ? root.lo > side_root.hi : root.hi < side_root.lo;
+        found.push_back(std::move(c));
+      }
+      progress(0.85 + 0.1 * static_cast<double>(k + 1) / static_cast<double>(states_.size()));
+    }
+    // One change per (curve, side it overtakes, side of the channel): its largest overshoot.
+    struct Group {
+      std::size_t best = 0;
+      std::vector<std::size_t> samples;
+    };
+    std::vector<Group> groups;
+    for (std::size_t c = 0; c < found.size(); ++c) {
+      auto same = [&](const Group& g) {
+        const Candidate& b = found[g.best];
+        return b.key == found[c].key && b.side_key == found[c].side_key && b.lower == found[c].lower;
+      };
+      auto g = std::find_if(groups.begin(), groups.end(), same);
+      if (g == groups.end()) {
+        groups.push_back(Group{c, {}});
+        g = groups.end() - 1;
+      }
+      g->samples.push_back(found[c].sample);
+      if (found[c].overshoot > found[g->best].overshoot) g->best = c;
+    }
+    std::stable_sort(groups.begin(), groups.end(),
+                     [&](const Group& a, const Group& b) { return found[a.best].overshoot > found[b.best].overshoot; });
+    for (std::size_t gi = 0; gi < groups.size(); ++gi) {
+      const Group& g = groups[gi];
+      const Candidate& best = found[g.best];
+      ContactChange change;
+      change.kind = ContactChange::Kind::appears;
+      change.contact = best.label;
+      change.other = best.side_label;
+      change.lower_side = best.lower;
+      change.driver_first = result_.samples[g.samples.front()].driver;
+      change.driver_last = result_.samples[g.samples.back()].driver;
+      change.positions = g.samples.size();
+      change.driver = result_.samples[best.sample].driver;
+      change.overshoot = best.overshoot;
+      change.certified_at_witness = best.certified;
+      const std::vector<Rational>& deviations = best.corner;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (m.parameters[i].range.lo < m.parameters[i].range.hi)
+          change.witness.emplace_back(m.parameters[i].name, m.parameters[i].nominal + deviations[i]);
+      }
+      std::optional<ContactChange> disappears;
+      if (gi >= options_.contact_change_confirmations) {
+        change.evidence = "not confirmed: only the " + std::to_string(options_.contact_change_confirmations) +
+                          " largest changes are confirmed by an exact C-space";
+      } else {
+        try {
+          Model witness = model_->exact_model(deviations);
+          CSpace space = CSpace::build(witness, pair_first_, pair_second_);
+          for (std::size_t k : g.samples) {
+            std::optional<std::vector<PairKey>> keys = channel_bounds(space, k);
+            if (keys && std::find(keys->begin(), keys->end(), best.key) != keys->end()) ++change.confirmed_positions;
+          }
+          change.confirmed = change.confirmed_positions > 0;
+          change.evidence = "exact C-space at the witness: at " + std::to_string(change.confirmed_positions) + " of " +
+                            std::to_string(g.samples.size()) + " positions the contact bounds the channel";
+          // The side it overtakes: does it still bound the channel anywhere along the path?
+          std::size_t where = 0, bounded = 0;
+          for (const auto& [key, at] : side_positions) {
+            if (key != best.side_key) continue;
+            ++where;
+            std::optional<std::vector<PairKey>> keys = channel_bounds(space, at.first);
+            if (!keys || std::find(keys->begin(), keys->end(), key) != keys->end()) ++bounded;
+          }
+          if (where > 0 && bounded == 0) {
+            ContactChange gone = change;
+            gone.kind = ContactChange::Kind::disappears;
+            gone.contact = best.side_label;
+            gone.other = best.label;
+            gone.positions = where;
+            gone.confirmed = true;
+            gone.confirmed_positions = where;
+            gone.evidence = "exact C-space at the witness: at none of the " + std::to_string(where) +
+                            " positions where it bounds the nominal channel does it bound the channel";
+            disappears = gone;
+          }
+        } catch (const Error& error) {
+          change.evidence = std::string("no exact C-space at the witness: ") + error.what();
+        }
+      }
+      check.changes.push_back(change);
+      if (disappears) check.changes.push_back(*disappears);
+    }
+    check.seconds = seconds_since(start);
+    result_.contact_changes = check;
   }
 
   ToleranceOptions options_;

@@ -168,15 +168,20 @@ PointMatch match_point(const std::vector<Slice::Point>& points, const Rational& 
   return match;
 }
 
-std::size_t free_intervals_in_channel(const Slice& slice, const AlgebraicNumber& lower, const AlgebraicNumber& upper) {
-  std::size_t open = 0;
+std::vector<std::size_t> free_intervals_meeting(const Slice& slice, const AlgebraicNumber* lower,
+                                                const AlgebraicNumber* upper) {
+  std::vector<std::size_t> meeting;
   for (std::size_t j = 0; j < slice.intervals.size(); ++j) {
     if (slice.intervals[j].kind != CellKind::free) continue;
-    bool below_upper = j == 0 || compare(slice.points[j - 1].at, upper) < 0;            // a < upper
-    bool above_lower = j == slice.points.size() || compare(slice.points[j].at, lower) > 0;   // b > lower
-    if (below_upper && above_lower) ++open;
+    bool below_upper = j == 0 || !upper || compare(slice.points[j - 1].at, *upper) < 0;            // a < upper
+    bool above_lower = j == slice.points.size() || !lower || compare(slice.points[j].at, *lower) > 0;   // b > lower
+    if (below_upper && above_lower) meeting.push_back(j);
   }
-  return open;
+  return meeting;
+}
+
+std::size_t free_intervals_in_channel(const Slice& slice, const AlgebraicNumber& lower, const AlgebraicNumber& upper) {
+  return free_intervals_meeting(slice, &lower, &upper).size();
 }
 
 }  // namespace hipair::tolerance_detail

@@ -32,8 +32,12 @@ struct PointMatch {
 };
 PointMatch match_point(const std::vector<Slice::Point>& points, const Rational& t, bool in_contact);
 
-/// The number of free intervals of `slice` that meet the open channel (lower, upper), decided
-/// exactly (an interval (a, b) meets it when b > lower and a < upper).
+/// The indices (into slice.intervals) of the free intervals of `slice` that meet the open
+/// channel (lower, upper), decided exactly (an interval (a, b) meets it when b > lower and
+/// a < upper); a null side is unbounded.
+std::vector<std::size_t> free_intervals_meeting(const Slice& slice, const AlgebraicNumber* lower,
+                                                const AlgebraicNumber* upper);
+/// The number of free intervals of `slice` that meet the open channel (lower, upper).
 std::size_t free_intervals_in_channel(const Slice& slice, const AlgebraicNumber& lower, const AlgebraicNumber& upper);
 
 }  // namespace hipair::tolerance_detail

@@ -180,6 +180,26 @@ std::string tolerance_text_report(const ToleranceResult& r) {
       out << "  exact check: " << (t.confirmed ? "CONFIRMED — " : "not confirmed — ") << t.evidence << "\n";
     }
   }
+  if (r.contact_changes) {
+    const ContactChangeCheck& c = *r.contact_changes;
+    out << "\nContacts appearing or disappearing under tolerance (" << c.positions << " driver positions, "
+        << c.candidates << " curves beyond a side of the channel: " << c.excluded << " certainly never reach it, "
+        << c.possible << " might, " << c.undecided << " not enclosed; " << c.switch_shifts
+        << " of those that might are contact switches moving along the path):\n";
+    if (c.changes.empty()) out << "  none found\n";
+    for (const ContactChange& change : c.changes) {
+      bool appears = change.kind == ContactChange::Kind::appears;
+      out << "  " << (appears ? "APPEARS: '" : "DISAPPEARS: '") << change.contact << "' "
+          << (appears ? "overtakes '" : "is overtaken by '") << change.other << "' on the channel's "
+          << (change.lower_side ? "lower" : "upper") << " side, driver " << number(change.driver_first * ud, 5) << " .. "
+          << number(change.driver_last * ud, 5) << " " << driver_unit(r.driver_rotates) << " (" << change.positions
+          << " positions); at driver " << number(change.driver * ud, 5) << " by " << number(change.overshoot * uf, 4) << " " << u
+          << " (linearised" << (change.certified_at_witness ? "; reversed order certified at the witness" : "") << ")\n";
+      out << "    witness:";
+      for (const auto& [name, value] : change.witness) out << " " << name << "=" << to_exact_string(value);
+      out << "\n    exact check: " << (change.confirmed ? "CONFIRMED — " : "not confirmed — ") << change.evidence << "\n";
+    }
+  }
   if (r.certification) {
     const ToleranceCertification& c = *r.certification;
     out << "\nTolerance certificate (no jam, tolerances x " << to_exact_string(c.scale) << "):\n";
@@ -275,6 +295,36 @@ std::string tolerance_json_report(const ToleranceResult& r) {
                         {"reason", c.reason},
                         {"seconds_produce", c.seconds_produce},
                         {"seconds_verify", c.seconds_verify}};
+  }
+  if (r.contact_changes) {
+    const ContactChangeCheck& c = *r.contact_changes;
+    ordered_json changes = ordered_json::array();
+    for (const ContactChange& change : c.changes) {
+      ordered_json witness = ordered_json::object();
+      for (const auto& [name, value] : change.witness) witness[name] = value.get_str();
+      changes.push_back({{"kind", change.kind == ContactChange::Kind::appears ? "appears" : "disappears"},
+                         {"contact", change.contact},
+                         {"other", change.other},
+                         {"side", change.lower_side ? "lower" : "upper"},
+                         {"driver_first", change.driver_first},
+                         {"driver_last", change.driver_last},
+                         {"positions", change.positions},
+                         {"driver", change.driver},
+                         {"overshoot", change.overshoot},
+                         {"certified_at_witness", change.certified_at_witness},
+                         {"witness", witness},
+                         {"confirmed", change.confirmed},
+                         {"confirmed_positions", change.confirmed_positions},
+                         {"evidence", change.evidence}});
+    }
+    j["contact_changes"] = {{"positions", c.positions},
+                            {"candidates", c.candidates},
+                            {"excluded", c.excluded},
+                            {"possible", c.possible},
+                            {"undecided", c.undecided},
+                            {"switch_shifts", c.switch_shifts},
+                            {"changes", changes},
+                            {"seconds", c.seconds}};
   }
   j["zones"] = r.zones.size();
   j["seconds"] = {{"sensitivity", r.seconds_sensitivity},

@@ -1,0 +1,156 @@
+// Contacts that appear or disappear under tolerance (docs/tolerance.md "Contacts that appear or
+// disappear"): a plunger with two pins rests on a translating wedge (ramp slope 3/4). Pin A
+// (radius rA) holds it; pin B (radius rB, centre `gap` higher than the ramp would put it) is
+// nominally `gap` short of the ramp along the whole stroke. Closed form: the lifts are
+// sA = (5 rA - 3 x)/4 and sB = (5 rB + 3 (20 - x))/4 - (15 + gap), so sB - sA = 5 (rB - rA)/4 - gap
+// for every wedge offset x. B appears (and A disappears) for some allowable vector exactly when
+// 5 (tol_rB + tol_rA)/4 > gap; the analysis must find it, say where, give the closed-form
+// overshoot, and an exact C-space at its witness must show B bounding the channel.
+#include <hipair/tolerance.hpp>
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+
+namespace hipair {
+namespace {
+
+std::string two_pin_wedge(const std::string& tol_a, const std::string& tol_b, const std::string& gap) {
+  return R"({
+  "hipair": 1, "name": "two-pin-wedge",
+  "units": {"length": "mm", "angle": "rad"},
+  "parameters": {
+    "rA": {"nominal": 2, "tolerance": )" + tol_a + R"(},
+    "rB": {"nominal": 2, "tolerance": )" + tol_b + R"(},
+    "gap": {"nominal": ")" + gap + R"("}
+  },
+  "parts": [
+    {"name": "wedge", "motion": {"translation": {"direction": [1, 0], "limits": [-40, 10]}},
+     "initial": {"offset": -20},
+     "loops": [{"start": [0, 0], "edges": [
+        {"line_to": [80, 60], "label": "ramp"}, {"line_to": [80, 0]}, {"line_to": [0, 0]}]}]},
+    {"name": "plunger", "motion": {"translation": {"direction": [0, 1], "limits": [-40, 60]}},
+     "initial": {"offset": 17.5},
+     "loops": [{"circle": {"center": [0, 0], "radius": "rA"}},
+               {"circle": {"center": [20, "15 + gap"], "radius": "rB"}}],
+     "dynamics": {"mass": 0.1, "force": [0, -10]}}
+  ],
+  "pairs": [{"parts": ["wedge", "plunger"]}]
+})";
+}
+
+ToleranceOptions options() {
+  ToleranceOptions o;
+  o.driver = "wedge";
+  o.range = std::make_pair(Rational(-20), Rational(-5));
+  o.positions = 24;
+  o.contact_changes = true;
+  return o;
+}
+
+Rational value_of(const ContactChange& change, const std::string& name) {
+  for (const auto& [n, v] : change.witness)
+    if (n == name) return v;
+  ADD_FAILURE() << "no witness value for " << name;
+  return Rational(0);
+}
+
+TEST(ToleranceContactChange, SecondPinAppearsWithinToleranceConfirmedExactly) {
+  ToleranceResult result = analyze_tolerances_text(two_pin_wedge("0.004", "0.02", "1/100"), options());
+  ASSERT_TRUE(result.contact_changes);
+  const ContactChangeCheck& check = *result.contact_changes;
+  std::size_t contact_positions = 0;
+  for (const VariationSample& s : result.samples) contact_positions += s.contact;
+  ASSERT_GE(contact_positions, 20u);
+  EXPECT_EQ(check.positions, result.samples.size());
+  EXPECT_EQ(check.undecided, 0u);
+  ASSERT_EQ(check.changes.size(), 2u) << tolerance_text_report(result);
+  const ContactChange& appears = check.changes[0];
+  const ContactChange& disappears = check.changes[1];
+  EXPECT_EQ(appears.kind, ContactChange::Kind::appears);
+  EXPECT_NE(appears.contact.find("loop 1"), std::string::npos) << appears.contact;   // pin B
+  EXPECT_NE(appears.other.find("loop 0"), std::string::npos) << appears.other;       // pin A
+  EXPECT_TRUE(appears.lower_side);
+  // everywhere along the stroke: the closed form does not depend on x
+  EXPECT_EQ(appears.positions, result.samples.size());
+  EXPECT_DOUBLE_EQ(appears.driver_first, result.samples.front().driver);
+  EXPECT_DOUBLE_EQ(appears.driver_last, result.samples.back().driver);
+  // the witness: rB at the top of its range, rA at the bottom (the box's corner, exactly)
+  Rational rA = value_of(appears, "rA"), rB = value_of(appears, "rB");
+  EXPECT_EQ(rA, Rational(499, 250));
+  EXPECT_EQ(rB, Rational(101, 50));
+  // closed form at the witness, exact: B's lift exceeds A's
+  Rational excess = Rational(5, 4) * (rB - rA) - Rational(1, 100);
+  EXPECT_GT(excess, 0);
+  // the linearised overshoot is the closed form (linear), up to the doubles' rounding
+  EXPECT_EQ(excess, Rational(1, 50));
+  EXPECT_NEAR(appears.overshoot, excess.get_d(), 1e-12);
+  EXPECT_NEAR(appears.overshoot, 1.25 * 0.024 - 0.01, 1e-12);
+  EXPECT_TRUE(appears.certified_at_witness);
+  EXPECT_TRUE(appears.confirmed) << appears.evidence;
+  EXPECT_EQ(appears.confirmed_positions, appears.positions) << appears.evidence;
+  // A no longer bounds the channel anywhere at that vector
+  EXPECT_EQ(disappears.kind, ContactChange::Kind::disappears);
+  EXPECT_EQ(disappears.contact, appears.other);
+  EXPECT_EQ(disappears.other, appears.contact);
+  EXPECT_TRUE(disappears.confirmed) << disappears.evidence;
+  EXPECT_EQ(disappears.witness, appears.witness);
+  // reports
+  std::string text = tolerance_text_report(result);
+  EXPECT_NE(text.find("APPEARS"), std::string::npos);
+  EXPECT_NE(text.find("DISAPPEARS"), std::string::npos);
+  EXPECT_NE(text.find("CONFIRMED"), std::string::npos);
+  std::string json = tolerance_json_report(result);
+  EXPECT_NE(json.find("\"contact_changes\""), std::string::npos);
+  EXPECT_NE(json.find("\"kind\": \"appears\""), std::string::npos);
+}
+
+TEST(ToleranceContactChange, SecondPinOutOfReachIsCertifiedAbsent) {
+  // 5 (0.004 + 0.004)/4 = 0.01 minus a margin: B stays below A over the whole box
+  ToleranceResult result = analyze_tolerances_text(two_pin_wedge("0.004", "0.003", "1/100"), options());
+  ASSERT_TRUE(result.contact_changes);
+  const ContactChangeCheck& check = *result.contact_changes;
+  EXPECT_TRUE(check.changes.empty()) << tolerance_text_report(result);
+  EXPECT_GE(check.candidates, result.samples.size());   // pin B below pin A at every position
+  EXPECT_EQ(check.excluded, check.candidates);          // each certified out of reach
+  EXPECT_EQ(check.possible, 0u);
+  EXPECT_NE(tolerance_text_report(result).find("none found"), std::string::npos);
+}
+
+TEST(ToleranceContactChange, GeneratedGapsAndTolerancesAgreeWithTheClosedForm) {
+  std::mt19937 random(20261128);
+  std::uniform_int_distribution<int> thousandths(1, 30);
+  int appearing = 0, absent = 0;
+  while (appearing < 4 || absent < 4) {
+    int ta = thousandths(random), tb = thousandths(random), gap = thousandths(random);
+    // closed form (in thousandths): appears iff 5 (ta + tb) / 4 > gap; stay clear of the edge
+    int margin = 5 * (ta + tb) - 4 * gap;
+    if (std::abs(margin) < gap) continue;
+    bool expected = margin > 0;
+    if ((expected ? appearing : absent) >= 4) continue;
+    (expected ? appearing : absent) += 1;
+    auto ratio = [](int k) { return std::to_string(k) + "/1000"; };
+    auto tol = [](int k) { return std::to_string(k / 1000.0); };
+    ToleranceResult result = analyze_tolerances_text(two_pin_wedge(tol(ta), tol(tb), ratio(gap)), options());
+    const ContactChangeCheck& check = *result.contact_changes;
+    SCOPED_TRACE("tol rA " + tol(ta) + " tol rB " + tol(tb) + " gap " + ratio(gap));
+    if (!expected) {
+      EXPECT_TRUE(check.changes.empty());
+      EXPECT_EQ(check.excluded, check.candidates);
+      continue;
+    }
+    ASSERT_FALSE(check.changes.empty());
+    const ContactChange& appears = check.changes.front();
+    EXPECT_EQ(appears.kind, ContactChange::Kind::appears);
+    EXPECT_TRUE(appears.confirmed) << appears.evidence;
+    Rational gap_value(gap, 1000);
+    gap_value.canonicalize();
+    Rational excess = Rational(5, 4) * (value_of(appears, "rB") - value_of(appears, "rA")) - gap_value;
+    EXPECT_GT(excess, 0);
+    EXPECT_NEAR(appears.overshoot, 1.25 * (ta + tb) / 1000.0 - gap / 1000.0, 1e-12);
+  }
+}
+
+}  // namespace
+}  // namespace hipair
