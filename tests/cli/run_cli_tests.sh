@@ -230,13 +230,21 @@ cp "$geneva" "$work/tol-self/report.txt"   # the model has the name of an output
 "$hipair" tolerance "$work/tol-self/report.txt" --quiet --out "$work/tol-self" >/dev/null 2>"$work/tol-self.err" \
   && fail "tolerance --out over its own model succeeded"
 cmp -s "$geneva" "$work/tol-self/report.txt" || fail "tolerance --out clobbered its model"
+# --contact-changes: pin B of the two-pin wedge can overtake pin A within tolerance, confirmed
+# by an exact C-space (docs/tolerance.md "Contacts that appear or disappear").
+"$hipair" tolerance "$source/examples/models/two-pin-wedge.json" --driver wedge --range -20:-5 --positions 24 \
+  --contact-changes --quiet --out "$work/tol-cc" >"$work/tol-cc.out" 2>&1 \
+  || fail "tolerance --contact-changes failed: $(tail -c 300 "$work/tol-cc.out")"
+grep -q "APPEARS: 'wedge ramp / plunger loop 1" "$work/tol-cc.out" || fail "tolerance --contact-changes: no appearing pin B"
+grep -q "exact check: CONFIRMED" "$work/tol-cc.out" || fail "tolerance --contact-changes: not confirmed"
+grep -q '"kind": "disappears"' "$work/tol-cc/tolerance.json" || fail "tolerance --contact-changes: JSON has no disappearing pin A"
 # --certify-interference: the "never interferes" certificate alone (docs/certify.md "Tolerance
 # (never interferes ...)"). Bad requests: one clear error line, exit 2, no output.
 lever_stop="$source/examples/models/lever-stop.json"
 for args in "--pair driver:nosuch --range 1:2 --follower-range 0" "--range 1:2" "--follower-range 0" \
             "--range 2:1 --follower-range 0" "--range 2:2 --follower-range 0" "--range 1:2 --follower-range 0.1:-0.1" \
             "--range 1:2 --follower-range 0mm" "--range 1:2 --follower-range x" "--range 1:2 --follower-range 0 --threshold" \
-            "--range 1:2 --follower-range 0 --certify" "--range 1:2 --follower-range 0 --certify-scale 0.9T" \
+            "--range 1:2 --follower-range 0 --certify" "--range 1:2 --follower-range 0 --contact-changes" "--range 1:2 --follower-range 0 --certify-scale 0.9T" \
             "--range 1:2 --follower-range 0 --certify-scale 0" "--range 1:2 --follower-range 0 --vary nosuch" \
             "--pair driver:driver --range 1:2 --follower-range 0" "MODEL=lever-stop --pair lever:stop --range 0:1 --follower-range 0" \
             "MODEL=lever-stop --pair lever:stop --range 0:1" "NOFLAG --range 1:2 --follower-range 0" \
