@@ -40,10 +40,10 @@ struct ToleranceOptions {
   std::string follower;                ///< "" = the other part of the driver's first pair
   /// Driver range (rad or mm); absent: one full turn from the initial angle.
   std::optional<std::pair<Rational, Rational>> range;
-  /// Spacing of the driver positions (the kinematic analysis' grid, steps_per_cycle): a rotating
-  /// driver gets `positions` per full turn (so a range of a quarter turn gets about a quarter
-  /// of them), a translating driver `positions` along its range; at least 8. The analysis
-  /// reports the grid's positions (the range's start included).
+  /// Density of the driver positions (the kinematic analysis' grid, steps_per_cycle): a rotating
+  /// driver gets `positions` per full turn (equal steps of at most 2 pi / positions over the
+  /// range, so a quarter turn gets about a quarter of them), a translating driver `positions`
+  /// equal steps along its range; at least 8. The range's start is a position too.
   std::size_t positions = 360;
   std::size_t monte_carlo = 0;         ///< Monte Carlo samples (0: none)
   std::uint64_t seed = 1;

@@ -152,5 +152,42 @@ TEST(ToleranceContactChange, GeneratedGapsAndTolerancesAgreeWithTheClosedForm) {
   }
 }
 
+// ToleranceOptions::positions: per full turn for a rotating driver (a quarter turn gets a
+// quarter of them), along the range for a translating one; the range's start included.
+TEST(TolerancePositions, PerTurnForRotationAlongTheRangeForTranslation) {
+  ToleranceOptions o = options();
+  o.contact_changes = false;
+  for (std::size_t positions : {16u, 24u, 60u}) {
+    o.positions = positions;
+    ToleranceResult result = analyze_tolerances_text(two_pin_wedge("0.004", "0.003", "1/100"), o);
+    EXPECT_EQ(result.samples.size(), positions + 1);
+    EXPECT_DOUBLE_EQ(result.samples.front().driver, -20);
+    EXPECT_DOUBLE_EQ(result.samples.back().driver, -5);
+  }
+  const char* cam = R"({
+  "hipair": 1, "name": "cam", "units": {"length": "mm", "angle": "rad"},
+  "parameters": {"R": {"nominal": 20, "tolerance": 0.03}},
+  "parts": [
+    {"name": "cam", "motion": {"rotation": {"pivot": [0, 0]}}, "initial": {"angle": 0},
+     "loops": [{"circle": {"center": [5, 0], "radius": "R"}}]},
+    {"name": "follower", "motion": {"translation": {"direction": [0, 1], "limits": [-20, 20]}},
+     "initial": {"offset": -10},
+     "loops": [{"start": [-40, 30], "edges": [{"line_to": [40, 30]}, {"line_to": [40, 40]},
+        {"line_to": [-40, 40]}, {"line_to": [-40, 30]}]}],
+     "dynamics": {"mass": 0.1, "force": [0, -10]}}
+  ],
+  "pairs": [{"parts": ["cam", "follower"]}]
+})";
+  ToleranceOptions r;
+  r.driver = "cam";
+  r.positions = 360;
+  r.range = std::make_pair(Rational(0), Rational(15707, 10000));   // just under a quarter turn
+  ToleranceResult quarter = analyze_tolerances_text(cam, r);
+  // at most 2 pi / 360 apart: 90 equal steps over the range, its start included
+  EXPECT_EQ(quarter.samples.size(), 91u);
+  EXPECT_NEAR(quarter.samples[1].driver, 1.5707 / 90, 1e-6);
+  EXPECT_LE(quarter.samples[1].driver, 2 * 3.14159265358979323846 / 360);
+}
+
 }  // namespace
 }  // namespace hipair
