@@ -71,6 +71,10 @@ struct ToleranceOptions {
   bool contact_changes = false;
   /// Exact C-spaces built to confirm them (one per change, the largest linearised first).
   std::size_t contact_change_confirmations = 4;
+  /// For measurements only (tests/perf/tolerance_benchmark.cpp): false takes the paths of
+  /// session 7 (interval jets over every parameter varying in the box; the contact curve's
+  /// geometry evaluated again at every Monte Carlo position). Same results either way.
+  bool fast_paths = true;
 };
 
 /// One parameter's share of the variation in a contact region.
@@ -124,6 +128,7 @@ struct MonteCarloSummary {
   std::size_t outside_linear = 0;      ///< positions beyond the linearised band
   double linearisation_error = 0;      ///< largest excess beyond the linearised band (part units)
   double seconds = 0;
+  double cpu_seconds = 0;              ///< CPU time of all threads over the Monte Carlo
 };
 
 struct JammingThreshold {
@@ -216,6 +221,7 @@ struct ToleranceResult {
   double certified_excess = 0;          ///< largest (certified - linearised) width, part units
   std::size_t certified_boxes = 0;      ///< sub-boxes used by the certified bands
   double seconds_sensitivity = 0, seconds_certified = 0, seconds_zones = 0, seconds_threshold = 0;
+  double cpu_seconds_certified = 0, cpu_seconds_zones = 0;   ///< CPU time (the calling thread)
   std::optional<ToleranceCertification> certification;   ///< with ToleranceOptions::certify
   std::optional<ContactChangeCheck> contact_changes;     ///< with ToleranceOptions::contact_changes
   std::vector<std::string> notes;

@@ -18,6 +18,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <fstream>
 #include <future>
 #include <limits>
@@ -36,6 +37,13 @@ constexpr double pi = std::numbers::pi;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// CPU time of the calling thread, or of the whole process (s).
+double cpu_seconds(bool process = false) {
+  timespec t{};
+  clock_gettime(process ? CLOCK_PROCESS_CPUTIME_ID : CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 struct ChartValue {
@@ -110,6 +118,7 @@ class Analysis {
       throw ModelError("", "tolerance analysis needs the generic parametric form; feature template " +
                                model_->exact_only_feature() + " has an exact form only");
     solver_ = std::make_unique<CurveSolver>(model_);
+    solver_->set_compact_jets(options_.fast_paths);
   }
 
   ToleranceResult run() {
@@ -139,12 +148,16 @@ class Analysis {
     result_.seconds_sensitivity = seconds_since(t0);
     progress(0.3);
     auto t1 = std::chrono::steady_clock::now();
+    double c1 = cpu_seconds();
     certified();
     result_.seconds_certified = seconds_since(t1);
+    result_.cpu_seconds_certified = cpu_seconds() - c1;
     progress(0.45);
     auto t2 = std::chrono::steady_clock::now();
+    double c2 = cpu_seconds();
     zones();
     result_.seconds_zones = seconds_since(t2);
+    result_.cpu_seconds_zones = cpu_seconds() - c2;
     progress(0.55);
     if (options_.monte_carlo > 0) monte_carlo();
     progress(0.85);
@@ -482,6 +495,7 @@ class Analysis {
 
   void monte_carlo() {
     auto start = std::chrono::steady_clock::now();
+    double cpu_start = cpu_seconds(true);
     MonteCarloSummary summary;
     summary.samples = options_.monte_carlo;
     summary.seed = options_.seed;
@@ -497,15 +511,25 @@ class Analysis {
       outcome.value.assign(count, std::nan(""));
       std::vector<double> deviations = draw(dist_, options_.seed, index);
       auto geometry = solver_->point_parameters(deviations);
+      // The contact curve's geometry at this vector, shared by the positions along one feature
+      // pair (it does not depend on the driver position).
+      std::optional<tolerance_detail::PairGeometry<Interval>> pair_geometry;
+      const CurveSlice* pair_curve = nullptr;
       for (std::size_t k = 0; k < count; ++k) {
         const SampleState& state = states_[k];
         if (!state.contact) continue;
+        bool same_pair = pair_curve && pair_curve->first == state.curve.first && pair_curve->second == state.curve.second &&
+                         pair_curve->fixed_part == state.curve.fixed_part && pair_curve->free_part == state.curve.free_part;
+        if (!same_pair || !options_.fast_paths) {
+          pair_geometry = solver_->point_geometry(state.curve, geometry);
+          pair_curve = &state.curve;
+        }
         const VariationSample& sample = result_.samples[k];
         Interval c = state.certified_chart;
         double w = c.width() + 1e-12 * (1 + std::fabs(state.v));
         Interval root;
         ++outcome.evaluations;
-        if (!solver_->certified_point_root(state.curve, geometry, Interval(c.lo - w, c.hi + w), root)) {
+        if (!solver_->certified_point_root(state.curve, *pair_geometry, Interval(c.lo - w, c.hi + w), root)) {
           ++outcome.outside_certified;   // no root near the band: counted as outside it
           continue;
         }
@@ -556,6 +580,7 @@ class Analysis {
       if (i < 12) result_.monte_carlo_curves.push_back(o.value);
     }
     summary.seconds = seconds_since(start);
+    summary.cpu_seconds = cpu_seconds(true) - cpu_start;
     result_.monte_carlo = summary;
   }
 

@@ -265,7 +265,8 @@ std::string tolerance_json_report(const ToleranceResult& r) {
                         {"outside_certified", mc.outside_certified},
                         {"outside_linear", mc.outside_linear},
                         {"linearisation_error", mc.linearisation_error},
-                        {"seconds", mc.seconds}};
+                        {"seconds", mc.seconds},
+                        {"cpu_seconds", mc.cpu_seconds}};
   }
   if (r.threshold) {
     const JammingThreshold& t = *r.threshold;
@@ -331,6 +332,7 @@ std::string tolerance_json_report(const ToleranceResult& r) {
                   {"certified", r.seconds_certified},
                   {"zones", r.seconds_zones},
                   {"threshold", r.seconds_threshold}};
+  j["cpu_seconds"] = {{"certified", r.cpu_seconds_certified}, {"zones", r.cpu_seconds_zones}};
   j["notes"] = r.notes;
   return j.dump(1) + "\n";
 }

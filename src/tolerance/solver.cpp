@@ -72,7 +72,11 @@ bool CurveSolver::certified_point_root(const CurveSlice& curve, const std::vecto
 
 bool CurveSolver::certified_point_root(const CurveSlice& curve, const std::vector<Interval>& parameters,
                                        Interval bracket, Interval& root) const {
-  PairGeometry<Interval> geometry = this->geometry(curve, parameters);
+  return certified_point_root(curve, geometry(curve, parameters), bracket, root);
+}
+
+bool CurveSolver::certified_point_root(const CurveSlice& curve, const PairGeometry<Interval>& geometry,
+                                       Interval bracket, Interval& root) const {
   Interval fixed = Interval::enclose(curve.fixed_value);
   auto sign_at = [&](double v) { return evaluate<Interval>(curve, geometry, fixed, Interval::point(v)).sign(); };
   double a = bracket.lo, b = bracket.hi;
@@ -109,6 +113,27 @@ bool CurveSolver::certified_point_root(const CurveSlice& curve, const std::vecto
   return true;
 }
 
+std::vector<bool> CurveSolver::dependencies(const CurveSlice& curve) const {
+  PairGeometry<Jet<double>> g = geometry(curve, autodiff_);
+  std::vector<bool> depends(n_, false);
+  auto mark = [&](const Jet<double>& x) {
+    for (std::size_t i = 0; i < n_ && i < x.gradient.size(); ++i) depends[i] = depends[i] || x.gradient[i] != 0;
+  };
+  auto mark_vector = [&](const kernels::Vector<Jet<double>>& v) {
+    mark(v.x);
+    mark(v.y);
+  };
+  for (const model_detail::EdgeValue<Jet<double>>* e : {&g.first, &g.second}) {
+    mark_vector(e->source);
+    mark_vector(e->target);
+    mark_vector(e->center);
+    mark(e->radius_squared);
+  }
+  for (const kernels::Vector<Jet<double>>* v : {&g.fixed_pivot, &g.fixed_direction, &g.free_pivot, &g.free_direction})
+    mark_vector(*v);
+  return depends;
+}
+
 bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free_value,
                             const std::vector<double>& sensitivity, Interval& result,
                             std::vector<double>& split_score) const {
@@ -120,26 +145,48 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     shift += sensitivity[i] * center[i];
   }
   double slack = 1e-12 * (1 + std::fabs(free_value));
+  // The jets' variables: the parameters varying in the box that the curve's geometry (its two
+  // features and the two parts' axes) depends on, then the free coordinate. A varying parameter
+  // left out (no partial derivative of any of those coordinates at nominal: one the two
+  // features do not depend on) enters as its whole range, in plain interval arithmetic, both at
+  // the "centre" and in the jets: the enclosures stay valid whatever it does, and are the same
+  // as with it as a variable when the geometry does not depend on it. Fewer variables: shorter
+  // gradients in every jet operation.
+  std::vector<bool> depends = compact_jets_ ? dependencies(curve) : std::vector<bool>(n_, true);
+  std::vector<std::size_t> active;
+  for (std::size_t i = 0; i < n_; ++i)
+    if (box.hi[i] > box.lo[i] && depends[i]) active.push_back(i);
+  std::size_t k = active.size();   // the free coordinate's index
+  std::vector<Interval> center_deviations(n_);
+  std::vector<IntervalJet> jets(n_);
+  for (std::size_t i = 0; i < n_; ++i) {
+    bool varies = box.hi[i] > box.lo[i];
+    center_deviations[i] = varies && !depends[i] ? Interval(box.lo[i], box.hi[i]) : Interval::point(center[i]);
+    jets[i] = IntervalJet(varies ? Interval(box.lo[i], box.hi[i]) : Interval::point(box.lo[i]));
+  }
+  for (std::size_t a = 0; a < k; ++a)
+    jets[active[a]] = IntervalJet::variable(Interval(box.lo[active[a]], box.hi[active[a]]), a, k + 1);
+  std::vector<Interval> center_parameters = model_->parameter_values(center_deviations);
   Interval root;
   double w0 = spread + slack;
   bool found = false;
   for (int attempt = 0; attempt < 4 && !found; ++attempt, w0 *= 4)
-    found = certified_point_root(curve, center, Interval(free_value + shift - w0, free_value + shift + w0), root);
+    found = certified_point_root(curve, center_parameters, Interval(free_value + shift - w0, free_value + shift + w0), root);
   if (!found) return false;
   // Geometry over the box as interval jets (values and partial derivatives over the box), and
   // at its centre as intervals. F over the box at a fixed v is enclosed in mean-value form:
   // F(c, v) + sum_i F_i(B, v) (B_i - c_i), far tighter than plain interval evaluation.
-  std::vector<IntervalJet> jets(n_);
-  for (std::size_t i = 0; i < n_; ++i) jets[i] = IntervalJet::variable(Interval(box.lo[i], box.hi[i]), i, n_ + 1);
   PairGeometry<IntervalJet> jet = geometry(curve, model_->parameter_values(jets));
-  PairGeometry<Interval> at_center = geometry(curve, point_parameters(center));
+  PairGeometry<Interval> at_center = geometry(curve, center_parameters);
   Interval fixed = Interval::enclose(curve.fixed_value);
   IntervalJet fixed_jet(fixed);
   auto sign_over_box = [&](double v) {
     Interval value = evaluate<Interval>(curve, at_center, fixed, Interval::point(v));
     IntervalJet f = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet(Interval::point(v)));
-    for (std::size_t i = 0; i < n_; ++i)
-      if (box.hi[i] > box.lo[i]) value = value + f.partial(i) * Interval(box.lo[i] - center[i], box.hi[i] - center[i]);
+    for (std::size_t a = 0; a < k; ++a) {
+      std::size_t i = active[a];
+      value = value + f.partial(a) * Interval(box.lo[i] - center[i], box.hi[i] - center[i]);
+    }
     return value.sign();
   };
   auto offset = [&](std::size_t i) {   // B_i - c_i, outward rounded
@@ -152,15 +199,15 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     int s_lo = sign_over_box(y.lo);
     int s_hi = sign_over_box(y.hi);
     if (s_lo == 2 || s_hi == 2 || s_lo == 0 || s_hi == 0 || s_lo == s_hi) return false;
-    IntervalJet f = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, n_, n_ + 1));
-    Interval fv = f.partial(n_);
+    IntervalJet f = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, k + 1));
+    Interval fv = f.partial(k);
     int s = fv.sign();
     if (s != 1 && s != -1) return false;
     Interval enclosure = root;
     split_score.assign(n_, 0.0);
-    for (std::size_t i = 0; i < n_; ++i) {
-      if (box.hi[i] == box.lo[i]) continue;
-      Interval g = -(f.partial(i) / fv);
+    for (std::size_t a = 0; a < k; ++a) {
+      std::size_t i = active[a];
+      Interval g = -(f.partial(a) / fv);
       enclosure = enclosure + g * kernels::hull(offset(i), upper_offset(i));
       split_score[i] = g.width() * (box.hi[i] - box.lo[i]);
     }

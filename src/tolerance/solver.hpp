@@ -57,8 +57,19 @@ class CurveSolver {
   /// Same with the geometry already evaluated at the point.
   bool certified_point_root(const CurveSlice& curve, const std::vector<Interval>& parameters,
                             Interval bracket, Interval& root) const;
+  /// Same with the curve's geometry already evaluated (point_geometry): the geometry does not
+  /// depend on the held coordinate, so positions along one feature pair share it.
+  bool certified_point_root(const CurveSlice& curve, const PairGeometry<Interval>& geometry, Interval bracket,
+                            Interval& root) const;
+  /// The curve's geometry (both features, both axes) at parameter values (enclosures).
+  PairGeometry<Interval> point_geometry(const CurveSlice& curve, const std::vector<Interval>& parameters) const {
+    return geometry(curve, parameters);
+  }
   /// Parameter values (enclosures) at point deviations.
   std::vector<Interval> point_parameters(const std::vector<double>& point) const;
+  /// For measurements only (ToleranceOptions::fast_paths): false makes the jets of
+  /// certified_range range over every parameter varying in the box, as before session 8.
+  void set_compact_jets(bool compact) { compact_jets_ = compact; }
 
   /// Certified enclosure of {v(p) : p in box} (the root near the nominal `free_value`, unique
   /// in a neighbourhood certified along the way), subdividing the box until the enclosure is
@@ -73,6 +84,9 @@ class CurveSolver {
   PairGeometry<T> geometry(const CurveSlice& curve, const std::vector<T>& parameters) const;
   template <class T>
   T evaluate(const CurveSlice& curve, const PairGeometry<T>& geometry, const T& fixed, const T& free) const;
+  /// Per parameter: whether the curve's geometry (both features, both axes) has a non-zero
+  /// partial derivative with respect to it at the nominal vector.
+  std::vector<bool> dependencies(const CurveSlice& curve) const;
   bool box_range(const CurveSlice& curve, const Box& box, double free_value, const std::vector<double>& sensitivity,
                  Interval& result, std::vector<double>& split_score) const;
 
@@ -82,6 +96,7 @@ class CurveSolver {
   /// Eigen's AutoDiffScalar: the kernels mix constants (no gradient) into nested expressions,
   /// which AutoDiffScalar's dynamic-size gradients do not reconcile.
   std::vector<Jet<double>> autodiff_;
+  bool compact_jets_ = true;
 };
 
 /// Half-angle tangent chart value -> part coordinate (rad), certified: c + 2 atan(t).

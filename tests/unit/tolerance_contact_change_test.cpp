@@ -10,6 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <iostream>
 #include <random>
 #include <string>
 
@@ -187,6 +190,73 @@ TEST(TolerancePositions, PerTurnForRotationAlongTheRangeForTranslation) {
   EXPECT_EQ(quarter.samples.size(), 91u);
   EXPECT_NEAR(quarter.samples[1].driver, 1.5707 / 90, 1e-6);
   EXPECT_LE(quarter.samples[1].driver, 2 * 3.14159265358979323846 / 360);
+}
+
+// The session 8 fast paths (interval jets over the parameters the curve's geometry depends on;
+// one geometry per feature pair and Monte Carlo vector) against the former ones
+// (ToleranceOptions::fast_paths = false), on Geneva over the pin's drive. Not bit for bit: the
+// former jets carried a partial derivative for every parameter, exactly 0 for those the
+// curve does not depend on, and its mean-value term [0, 0] x (B_i - c_i) still cost one
+// outward rounding per addition; the enclosures differ by a few ulps and, where that changes a
+// subdivision decision, by the subdivision's own tolerance. So: every band of either path holds
+// every Monte Carlo value of both; the bounds agree within the accuracy each band is certified
+// to (at most relative_accuracy x the linearised width wider than linearised); same number of
+// Monte Carlo evaluations; sub-boxes within 1 %; zone bounds at the same abscissae within the
+// same accuracy.
+TEST(TolerancePerformancePaths, FastPathsAgreeWithTheFormerOnes) {
+  ToleranceOptions o;
+  o.range = std::make_pair(Rational(24, 10), Rational(4));
+  o.positions = 180;
+  o.monte_carlo = 16;
+  o.seed = 5;
+  o.threads = 2;
+  o.zone_samples = 6;
+  ToleranceResult fast = analyze_tolerances(std::string(HIPAIR_EXAMPLES) + "/geneva.json", o);
+  o.fast_paths = false;
+  ToleranceResult former = analyze_tolerances(std::string(HIPAIR_EXAMPLES) + "/geneva.json", o);
+  ASSERT_EQ(fast.samples.size(), former.samples.size());
+  std::size_t contact = 0, identical = 0;
+  for (std::size_t k = 0; k < fast.samples.size(); ++k) {
+    const VariationSample& a = fast.samples[k];
+    const VariationSample& b = former.samples[k];
+    ASSERT_EQ(a.contact, b.contact);
+    if (!a.contact) continue;
+    ++contact;
+    double allowed = o.relative_accuracy * (a.linear_upper - a.linear_lower);
+    EXPECT_LE(std::fabs(a.certified.lower - b.certified.lower), allowed) << k;
+    EXPECT_LE(std::fabs(a.certified.upper - b.certified.upper), allowed) << k;
+    identical += a.certified.lower == b.certified.lower && a.certified.upper == b.certified.upper;
+    ASSERT_TRUE(a.has_monte_carlo && b.has_monte_carlo);
+    for (const VariationSample* band : {&a, &b})
+      for (double v : {a.monte_carlo_min, a.monte_carlo_max, b.monte_carlo_min, b.monte_carlo_max}) {
+        EXPECT_LE(band->certified.lower, v) << k;
+        EXPECT_GE(band->certified.upper, v) << k;
+      }
+    EXPECT_LE(std::fabs(a.monte_carlo_min - b.monte_carlo_min), allowed) << k;
+    EXPECT_LE(std::fabs(a.monte_carlo_max - b.monte_carlo_max), allowed) << k;
+  }
+  EXPECT_GE(contact, 20u);
+  std::cout << identical << " of " << contact << " bands identical bit for bit\n";
+  EXPECT_NEAR(static_cast<double>(fast.certified_boxes), static_cast<double>(former.certified_boxes),
+              0.01 * static_cast<double>(former.certified_boxes));
+  ASSERT_EQ(fast.zones.size(), former.zones.size());
+  for (std::size_t z = 0; z < fast.zones.size(); ++z) {
+    const ContactZone& a = fast.zones[z];
+    const ContactZone& b = former.zones[z];
+    // matched by abscissa (an edge's certified extent, and so its samples, can differ between
+    // the two nominal C-space builds)
+    for (std::size_t j = 0; j < a.x.size(); ++j) {
+      std::size_t i = std::find(b.x.begin(), b.x.end(), a.x[j]) - b.x.begin();
+      if (i == b.x.size()) continue;
+      double allowed = o.relative_accuracy * (a.linear_upper[j] - a.linear_lower[j]);
+      EXPECT_LE(std::fabs(a.certified_lower[j] - b.certified_lower[i]), allowed);
+      EXPECT_LE(std::fabs(a.certified_upper[j] - b.certified_upper[i]), allowed);
+    }
+  }
+  ASSERT_TRUE(fast.monte_carlo && former.monte_carlo);
+  EXPECT_EQ(fast.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(former.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(fast.monte_carlo->evaluations, former.monte_carlo->evaluations);
 }
 
 }  // namespace
