@@ -47,7 +47,7 @@ struct ToleranceOptions {
   std::size_t positions = 360;
   std::size_t monte_carlo = 0;         ///< Monte Carlo samples (0: none)
   std::uint64_t seed = 1;
-  unsigned threads = 0;                ///< 0: hardware concurrency
+  unsigned threads = 0;                ///< Monte Carlo, certified band, zones (0: hardware concurrency)
   bool threshold = false;              ///< search the jamming threshold
   /// Parameters varied by the threshold search (empty: every toleranced parameter).
   std::vector<std::string> threshold_parameters;
@@ -221,7 +221,8 @@ struct ToleranceResult {
   double certified_excess = 0;          ///< largest (certified - linearised) width, part units
   std::size_t certified_boxes = 0;      ///< sub-boxes used by the certified bands
   double seconds_sensitivity = 0, seconds_certified = 0, seconds_zones = 0, seconds_threshold = 0;
-  double cpu_seconds_certified = 0, cpu_seconds_zones = 0;   ///< CPU time (the calling thread)
+  /// CPU time of the process (all threads) during the certified band and the zones.
+  double cpu_seconds_certified = 0, cpu_seconds_zones = 0;
   std::optional<ToleranceCertification> certification;   ///< with ToleranceOptions::certify
   std::optional<ContactChangeCheck> contact_changes;     ///< with ToleranceOptions::contact_changes
   std::vector<std::string> notes;

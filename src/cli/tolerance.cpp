@@ -369,7 +369,7 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_option("--accuracy", options->accuracy,
                       "certified band: at most this much (relative) wider than the linearised one (default 0.1)")
       ->check(CLI::Range(1e-6, 10.0));
-  command->add_option("--threads", options->threads, "Monte Carlo threads (default: all cores)");
+  command->add_option("--threads", options->threads, "threads for the Monte Carlo, the certified band and the zones (default: all cores)");
   command->add_option("--out", options->out, "directory for tolerance.json, variation.csv, sensitivity.csv, variation.svg, contact-zone.svg");
   command->add_flag("--quiet", options->quiet, "no progress bar");
   command->add_flag("--certify", options->certify,

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <ctime>
 #include <fstream>
+#include <functional>
 #include <future>
 #include <limits>
 #include <sstream>
@@ -148,16 +149,16 @@ class Analysis {
     result_.seconds_sensitivity = seconds_since(t0);
     progress(0.3);
     auto t1 = std::chrono::steady_clock::now();
-    double c1 = cpu_seconds();
+    double c1 = cpu_seconds(true);
     certified();
     result_.seconds_certified = seconds_since(t1);
-    result_.cpu_seconds_certified = cpu_seconds() - c1;
+    result_.cpu_seconds_certified = cpu_seconds(true) - c1;
     progress(0.45);
     auto t2 = std::chrono::steady_clock::now();
-    double c2 = cpu_seconds();
+    double c2 = cpu_seconds(true);
     zones();
     result_.seconds_zones = seconds_since(t2);
-    result_.cpu_seconds_zones = cpu_seconds() - c2;
+    result_.cpu_seconds_zones = cpu_seconds(true) - c2;
     progress(0.55);
     if (options_.monte_carlo > 0) monte_carlo();
     progress(0.85);
@@ -402,17 +403,50 @@ class Analysis {
     }
   }
 
+  // Runs task(0 .. count-1) on the analysis' threads (ToleranceOptions::threads); each task
+  // writes only its own slot, so the results do not depend on the number of threads.
+  void parallel_for(std::size_t count, const std::function<void(std::size_t)>& task) const {
+    unsigned threads = options_.threads ? options_.threads : std::max(1u, std::thread::hardware_concurrency());
+    threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+      for (std::size_t i = next++; i < count; i = next++) task(i);
+    };
+    std::vector<std::future<void>> workers;
+    for (unsigned t = 1; t < threads; ++t) workers.push_back(std::async(std::launch::async, work));
+    work();
+    for (auto& worker : workers) worker.get();
+  }
+
+  // One certified enclosure of a curve's root over the whole box (the band's or a zone's).
+  struct Enclosure {
+    Interval chart;
+    std::size_t boxes = 0;
+    bool ok = false;
+  };
+  Enclosure enclose(const CurveSlice& curve, double v, const std::vector<double>& s) const {
+    Enclosure e;
+    try {
+      e.chart = solver_->certified_range(curve, box_, v, s, options_.relative_accuracy, options_.absolute_accuracy, e.boxes);
+      e.ok = true;
+    } catch (const NumericError&) {
+    }
+    return e;
+  }
+
   void certified() {
     std::size_t uncertified = 0;
+    std::vector<Enclosure> enclosures(states_.size());
+    parallel_for(states_.size(), [&](std::size_t k) {
+      const SampleState& state = states_[k];
+      if (state.contact) enclosures[k] = enclose(state.curve, state.v, state.s_chart);
+    });
     for (std::size_t k = 0; k < states_.size(); ++k) {
       SampleState& state = states_[k];
       if (!state.contact) continue;
       VariationSample& sample = result_.samples[k];
-      try {
-      state.certified_chart = solver_->certified_range(state.curve, box_, state.v, state.s_chart,
-                                                       options_.relative_accuracy, options_.absolute_accuracy,
-                                                       result_.certified_boxes);
-      } catch (const NumericError&) {
+      result_.certified_boxes += enclosures[k].boxes;
+      if (!enclosures[k].ok) {
         // Not certified here (a singular curve, or a contact change inside the box): the band
         // is the whole line, which keeps every statement about it true, and it is reported.
         ++uncertified;
@@ -420,6 +454,7 @@ class Analysis {
         sample.certified = CertifiedRange{-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
         continue;
       }
+      state.certified_chart = enclosures[k].chart;
       Interval part = to_part(state.certified_chart, result_.follower_rotates, state.follower_chart.half, sample.nominal);
       sample.certified = CertifiedRange{part.lo, part.hi};
       double excess = (part.hi - part.lo) - (sample.linear_upper - sample.linear_lower);
@@ -437,6 +472,17 @@ class Analysis {
     bool x_rotates = m.parts[x_index].motion.kind == Motion::Kind::rotation;
     bool y_rotates = m.parts[y_index].motion.kind == Motion::Kind::rotation;
     std::size_t n = result_.parameters.size();
+    // The samples of every zone (nominal curve point and sensitivities: sequential), then their
+    // certified enclosures (in parallel), then the zones in edge order.
+    struct ZoneSample {
+      std::size_t zone = 0;
+      double xd = 0, v = 0;
+      CurveSlice curve;
+      std::vector<double> s;
+      Enclosure range;
+    };
+    std::vector<ContactZone> zones;
+    std::vector<ZoneSample> samples;
     for (std::size_t e = 0; e < space_->edges().size(); ++e) {
       const CSpaceEdge& edge = space_->edges()[e];
       if (edge.role != EdgeRole::contact || edge.vertical || edge.curves.empty()) continue;
@@ -454,43 +500,54 @@ class Analysis {
       double x0 = edge.x_chart.lower, x1 = edge.x_chart.upper;
       if (!(x1 > x0)) continue;
       for (std::size_t j = 0; j < options_.zone_samples; ++j) {
-        double xd = x0 + (x1 - x0) * (static_cast<double>(j) + 0.5) / static_cast<double>(options_.zone_samples);
-        CurveSlice curve;
-        curve.first = pair.first;
-        curve.second = pair.second;
-        curve.fixed_part = x_index;
-        curve.free_part = y_index;
-        curve.fixed_half_turn = chart.x_half_turn;
-        curve.free_half_turn = chart.y_half_turn;
-        curve.fixed_value = Rational(xd);
-        double v = 0;
-        std::vector<double> s;
-        Interval range;
+        ZoneSample sample;
+        sample.zone = zones.size();
+        sample.xd = x0 + (x1 - x0) * (static_cast<double>(j) + 0.5) / static_cast<double>(options_.zone_samples);
+        sample.curve.first = pair.first;
+        sample.curve.second = pair.second;
+        sample.curve.fixed_part = x_index;
+        sample.curve.free_part = y_index;
+        sample.curve.fixed_half_turn = chart.x_half_turn;
+        sample.curve.free_half_turn = chart.y_half_turn;
+        sample.curve.fixed_value = Rational(sample.xd);
         try {
-          v = space_->evaluate(e, xd).value;
-          s = solver_->sensitivities(curve, v);
-          range = solver_->certified_range(curve, box_, v, s, options_.relative_accuracy, options_.absolute_accuracy,
-                                           result_.certified_boxes);
+          sample.v = space_->evaluate(e, sample.xd).value;
+          sample.s = solver_->sensitivities(sample.curve, sample.v);
         } catch (const Error&) {
           continue;
         }
-        double slope = chart_slope(v, y_rotates);
-        double lower = 0, upper = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-          lower += std::min(s[i] * dist_[i].lo, s[i] * dist_[i].hi) * slope;
-          upper += std::max(s[i] * dist_[i].lo, s[i] * dist_[i].hi) * slope;
-        }
-        double y = y_rotates ? chart.y_to_coordinate(v) : v;
-        Interval part = to_part(range, y_rotates, chart.y_half_turn, y);
-        zone.x.push_back(x_rotates ? chart.x_to_coordinate(xd) : xd);
-        zone.nominal.push_back(y);
-        zone.linear_lower.push_back(y + lower);
-        zone.linear_upper.push_back(y + upper);
-        zone.certified_lower.push_back(part.lo);
-        zone.certified_upper.push_back(part.hi);
+        samples.push_back(std::move(sample));
       }
-      if (!zone.x.empty()) result_.zones.push_back(std::move(zone));
+      zones.push_back(std::move(zone));
     }
+    parallel_for(samples.size(), [&](std::size_t k) {
+      ZoneSample& sample = samples[k];
+      sample.range = enclose(sample.curve, sample.v, sample.s);
+    });
+    for (const ZoneSample& sample : samples) {
+      result_.certified_boxes += sample.range.boxes;
+      if (!sample.range.ok) continue;
+      ContactZone& zone = zones[sample.zone];
+      const CSpaceChart& chart = space_->charts()[space_->edges()[zone.edge].chart];
+      const std::vector<double>& s = sample.s;
+      double v = sample.v, xd = sample.xd;
+      double slope = chart_slope(v, y_rotates);
+      double lower = 0, upper = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        lower += std::min(s[i] * dist_[i].lo, s[i] * dist_[i].hi) * slope;
+        upper += std::max(s[i] * dist_[i].lo, s[i] * dist_[i].hi) * slope;
+      }
+      double y = y_rotates ? chart.y_to_coordinate(v) : v;
+      Interval part = to_part(sample.range.chart, y_rotates, chart.y_half_turn, y);
+      zone.x.push_back(x_rotates ? chart.x_to_coordinate(xd) : xd);
+      zone.nominal.push_back(y);
+      zone.linear_lower.push_back(y + lower);
+      zone.linear_upper.push_back(y + upper);
+      zone.certified_lower.push_back(part.lo);
+      zone.certified_upper.push_back(part.hi);
+    }
+    for (ContactZone& zone : zones)
+      if (!zone.x.empty()) result_.zones.push_back(std::move(zone));
   }
 
   void monte_carlo() {
