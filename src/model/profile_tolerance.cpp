@@ -117,10 +117,10 @@ class Translator {
     if (!entry.is_object())
       throw ModelError(entry.pointer, "a profile tolerance is an object {\"loop\": k, \"tolerance\": t}");
     for (const JsonMember& member : entry.members)
-      if (member.key != "loop" && member.key != "feature" && member.key != "tolerance" &&
+      if (member.key != "loop" && member.key != "feature" && member.key != "edge" && member.key != "tolerance" &&
           member.key != "distribution" && member.key != "parameter")
         throw ModelError(member.value.pointer, "unknown key '" + escape_pointer_token(member.key) +
-                                                   "' (allowed: loop, feature, tolerance, distribution, parameter)");
+                                                   "' (allowed: loop, feature, edge, tolerance, distribution, parameter)");
     const JsonValue* loop_index = entry.find("loop");
     const JsonValue* feature_index = entry.find("feature");
     if (!loop_index == !feature_index)
@@ -161,8 +161,27 @@ class Translator {
                                                 quoted_excerpt(index_value.text) + " (it has " + std::to_string(count) +
                                                 " " + list_key + ", numbered from 0)");
     JsonValue& target = list->items[k];
+    // "edge": one segment of the loop instead of the whole loop.
+    const JsonValue* edge_index = entry.find("edge");
+    std::size_t edge = 0;
+    if (edge_index) {
+      if (!is_loop) throw ModelError(edge_index->pointer, "'edge' needs 'loop' (an edge of a written loop)");
+      const JsonValue* written = target.find("edges");
+      std::size_t edges = written && written->is_array() ? written->items.size() : 0;
+      bool valid = edge_index->is_number();
+      if (valid) {
+        Rational r = parse_literal(edge_index->text, edge_index->pointer);
+        valid = r >= 0 && r.get_den() == 1 && r < Rational(static_cast<long>(edges));
+        if (valid) edge = r.get_num().get_ui();
+      }
+      if (!valid)
+        throw ModelError(edge_index->pointer, "loop " + std::to_string(k) + " of part '" + read.name + "' has no edge " +
+                                                  quoted_excerpt(edge_index->text) + " (it has " + std::to_string(edges) +
+                                                  " written edges, numbered from 0)");
+    }
 
-    std::string name = "profile-" + std::to_string(p) + (is_loop ? "-loop-" : "-feature-") + std::to_string(k);
+    std::string name = "profile-" + std::to_string(p) + (is_loop ? "-loop-" : "-feature-") + std::to_string(k) +
+                       (edge_index ? "-edge-" + std::to_string(edge) : std::string());
     if (const JsonValue* given = entry.find("parameter")) {
       if (!given->is_string()) throw ModelError(given->pointer, "expected a parameter name (a string)");
       name = given->text;
@@ -193,6 +212,13 @@ class Translator {
       return;
     }
     const Loop* loop = find_loop(read, target.pointer, index_value);
+    if (edge_index) {
+      if (find_mutable(target, "circle"))
+        throw ModelError(edge_index->pointer, "a circle loop has no segment edge: band the whole loop instead");
+      offset_edge(target, *loop, delta, what, edge, *edge_index);
+      result_.push_back(ProfileTolerance{name, p, target.pointer, entry.pointer});
+      return;
+    }
     if (JsonValue* circle = find_mutable(target, "circle")) {
       JsonValue* radius = find_mutable(*circle, "radius");
       *radius = string_value(paren(radius->text) + (loop->is_hole ? " - " : " + ") + delta, radius->pointer);
@@ -262,7 +288,19 @@ class Translator {
     return Normal{paren(sign + rx + "/" + length), paren(sign + ry + "/" + length)};
   }
 
-  void offset_loop(JsonValue& target, const Loop& read, const std::string& delta, const std::string& what) {
+  // A written loop as the offsets need it: nominal vertices, edges, the vertices' texts, and
+  // sigma = 1 when the material is on the left of the loop as written.
+  struct WrittenLoop {
+    std::size_t n = 0;
+    int sigma = 1;
+    std::vector<Point> values;
+    std::vector<WrittenEdge> edges;
+    std::vector<PointText> texts;
+    JsonValue* start = nullptr;
+    JsonValue* edge_list = nullptr;
+  };
+
+  WrittenLoop written_loop(JsonValue& target, const Loop& read, const std::string& what) {
     JsonValue* start = find_mutable(target, "start");
     JsonValue* edge_list = find_mutable(target, "edges");
     std::size_t n = edge_list->items.size();
@@ -296,6 +334,29 @@ class Translator {
                          "a profile tolerance (" + what +
                              ") needs arcs of rational radius: this arc's squared radius " +
                              decimal(squared_distance(values[i], edges[i].center)) + " is not a rational square");
+    return WrittenLoop{n, sigma, std::move(values), std::move(edges), std::move(texts), start, edge_list};
+  }
+
+  // Writes vertex j of a written loop (vertex 0 is the start and the last edge's end).
+  static void write_vertex(const WrittenLoop& w, std::size_t j, const PointText& text) {
+    auto write = [](JsonValue& point, const PointText& t) {
+      point.items[0] = string_value(t.x, point.items[0].pointer);
+      point.items[1] = string_value(t.y, point.items[1].pointer);
+    };
+    std::size_t before = (j + w.n - 1) % w.n;   // the edge ending at vertex j
+    if (j == 0) write(*w.start, text);
+    JsonValue& edge = w.edge_list->items[before];
+    write(*find_mutable(edge, w.edges[before].arc ? "arc_to" : "line_to"), text);
+  }
+
+  void offset_loop(JsonValue& target, const Loop& read, const std::string& delta, const std::string& what) {
+    WrittenLoop w = written_loop(target, read, what);
+    std::size_t n = w.n;
+    int sigma = w.sigma;
+    const std::vector<Point>& values = w.values;
+    const std::vector<WrittenEdge>& edges = w.edges;
+    const std::vector<PointText>& texts = w.texts;
+    JsonValue* edge_list = w.edge_list;
     std::vector<PointText> moved(n);
     for (std::size_t j = 0; j < n; ++j) {
       std::size_t in = (j + n - 1) % n, out = j;
@@ -331,15 +392,45 @@ class Translator {
       }
       moved[j] = PointText{texts[j].x + " + " + delta + "*" + paren(mx), texts[j].y + " + " + delta + "*" + paren(my)};
     }
-    auto write = [](JsonValue& point, const PointText& text) {
-      point.items[0] = string_value(text.x, point.items[0].pointer);
-      point.items[1] = string_value(text.y, point.items[1].pointer);
+    for (std::size_t j = 0; j < n; ++j) write_vertex(w, j, moved[j]);
+  }
+
+  // One segment edge j of a written loop offset by δ (outward from the material): its two
+  // vertices slide along the neighbouring segments' lines to the offset line,
+  // v + δ D / (n·D) with n the edge's outward unit normal and D the neighbour's direction;
+  // the rest of the loop stays. The neighbours must be segments not parallel to the edge
+  // (decided exactly at nominal).
+  void offset_edge(JsonValue& target, const Loop& read, const std::string& delta, const std::string& what,
+                   std::size_t j, const JsonValue& index_value) {
+    WrittenLoop w = written_loop(target, read, what);
+    std::size_t n = w.n, prev = (j + n - 1) % n, next = (j + 1) % n;
+    if (w.edges[j].arc)
+      throw ModelError(index_value.pointer, "a profile tolerance on one edge needs a segment: edge " + std::to_string(j) +
+                                                " is an arc (band the whole loop instead)");
+    if (w.edges[prev].arc || w.edges[next].arc)
+      throw ModelError(index_value.pointer, "a profile tolerance on edge " + std::to_string(j) +
+                                                " needs segments on both sides of it (a neighbour is an arc)");
+    const Point& a = w.values[j];
+    const Point& b = w.values[next];
+    const Point& before = w.values[prev];
+    const Point& after = w.values[(j + 2) % n];
+    auto cross = [](const Rational& ux, const Rational& uy, const Rational& vx, const Rational& vy) {
+      return Rational(ux * vy - uy * vx);
     };
-    write(*start, moved[0]);
-    for (std::size_t i = 0; i < n; ++i) {
-      JsonValue& edge = edge_list->items[i];
-      write(*find_mutable(edge, edges[i].arc ? "arc_to" : "line_to"), moved[(i + 1) % n]);
-    }
+    Rational ex = b.x - a.x, ey = b.y - a.y;
+    if (cross(ex, ey, a.x - before.x, a.y - before.y) == 0 || cross(ex, ey, after.x - b.x, after.y - b.y) == 0)
+      throw ModelError(index_value.pointer, "a profile tolerance on edge " + std::to_string(j) +
+                                                " needs neighbours that are not parallel to it");
+    Normal normal_text = normal(w.texts, w.edges, j, j, w.sigma);
+    auto slide = [&](const PointText& v, const PointText& from, const PointText& to) {
+      std::string dx = paren(to.x + "-" + from.x), dy = paren(to.y + "-" + from.y);
+      std::string dot = paren(normal_text.x + "*" + dx + "+" + normal_text.y + "*" + dy);
+      return PointText{v.x + " + " + delta + "*" + dx + "/" + dot, v.y + " + " + delta + "*" + dy + "/" + dot};
+    };
+    PointText moved_a = slide(w.texts[j], w.texts[prev], w.texts[j]);
+    PointText moved_b = slide(w.texts[next], w.texts[next], w.texts[(j + 2) % n]);
+    write_vertex(w, j, moved_a);
+    write_vertex(w, next, moved_b);
   }
 
   JsonValue& root_;
