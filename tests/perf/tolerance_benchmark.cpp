@@ -9,6 +9,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <fstream>
+#include <sstream>
 #include <string>
 
 namespace {
@@ -53,6 +55,39 @@ BENCHMARK(BM_GenevaTolerance_Former)->Args({360, 400})->Iterations(1)->Unit(benc
 BENCHMARK(BM_GenevaTolerance_Fast)->Args({360, 400})->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 BENCHMARK(BM_GenevaTolerance_Former)->Args({1440, 200})->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 BENCHMARK(BM_GenevaTolerance_Fast)->Args({1440, 200})->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+
+// Growth with the parameter count on one pair: examples/models/cam-shim-stack.json (an eccentric
+// cam under a face on 99 toleranced shims: 101 parameters, 100 toleranced) cut to its first
+// n - 1 shims by setting the others' tolerances to 0 (fixed at nominal).
+void BM_ShimStack(benchmark::State& state) {
+  int toleranced = static_cast<int>(state.range(0));   // e and toleranced - 1 shims
+  std::ifstream file(std::string(HIPAIR_EXAMPLES) + "/cam-shim-stack.json");
+  std::stringstream text;
+  text << file.rdbuf();
+  std::string model = text.str();
+  for (int i = toleranced; i < 100; ++i) {
+    std::string from = "\"shim" + std::to_string(i) + "\": {\n   \"nominal\": \"1/5\",\n   \"tolerance\": 0.002";
+    std::size_t at = model.find(from);
+    if (at == std::string::npos) {
+      state.SkipWithError("unexpected layout of cam-shim-stack.json");
+      return;
+    }
+    model.replace(at, from.size(), "\"shim" + std::to_string(i) + "\": {\n   \"nominal\": \"1/5\",\n   \"tolerance\": 0");
+  }
+  hipair::ToleranceOptions options;
+  options.driver = "cam";
+  options.positions = 360;
+  options.threads = 1;
+  hipair::ToleranceResult result;
+  for (auto _ : state) {
+    result = hipair::analyze_tolerances_text(model, options);
+    benchmark::DoNotOptimize(result.samples.data());
+  }
+  state.counters["toleranced"] = toleranced;
+  state.counters["certified_cpu_ms"] = 1e3 * result.cpu_seconds_certified;
+  state.counters["zones_cpu_ms"] = 1e3 * result.cpu_seconds_zones;
+}
+BENCHMARK(BM_ShimStack)->Arg(10)->Arg(25)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
