@@ -183,7 +183,7 @@ std::string tolerance_text_report(const ToleranceResult& r) {
   if (r.contact_changes) {
     const ContactChangeCheck& c = *r.contact_changes;
     out << "\nContacts appearing or disappearing under tolerance (" << c.positions << " driver positions, "
-        << c.candidates << " curves beyond a side of the channel: " << c.excluded << " certainly never reach it, "
+        << c.candidates << " curves beyond a side of the channel: " << c.excluded << " certainly never reach it there, "
         << c.possible << " might, " << c.undecided << " not enclosed; " << c.switch_shifts
         << " of those that might are contact switches moving along the path):\n";
     if (c.changes.empty()) out << "  none found\n";
