@@ -346,6 +346,175 @@ int run_sweep(const SimulateOptions& options) {
   return 0;
 }
 
+// A model with a part free in the plane: PlanarSimulation (docs/simulation.md, "Parts free in
+// the plane"). Same outputs as the fixed-axis run except the C-space pictures (its C-space is
+// three-dimensional): trajectory.csv, events.json/.txt, positions.svg, velocities.svg,
+// animation.svg.
+int run_planar(const Model& model, const SimulateOptions& options) {
+  std::filesystem::path directory(options.out);
+  bool terminal = isatty(2);
+  SimulationOptions sim_options;
+  sim_options.accuracy = options.accuracy;
+  sim_options.max_step = options.max_step;
+  if (options.region != "full") throw ModelError("", "--region: a planar part's C-space has no operating region");
+  PlanarSimulation simulation = PlanarSimulation::create(model, sim_options);
+  const std::string& tu = simulation.time_unit();
+  const std::string& fu = simulation.force_unit();
+  const Part& part = model.parts[simulation.part()];
+  std::vector<PlanarState> samples{simulation.state()};
+  double cpu_start = thread_cpu_seconds();
+  auto last_report = std::chrono::steady_clock::now();
+  auto progress = [&](double t) {
+    samples.push_back(simulation.state());
+    if (!terminal) return;
+    auto now = std::chrono::steady_clock::now();
+    if (now - last_report < std::chrono::milliseconds(200)) return;
+    last_report = now;
+    std::fprintf(stderr, "\rsimulate: t = %-12.6g of %g %s (%3.0f%%), %zu steps, %zu events   ", t, options.t_end,
+                 tu.c_str(), 100 * t / options.t_end, simulation.steps(), simulation.events().size());
+  };
+  std::vector<render::MechanismFrame> frames;
+  double playback = 0;
+  auto record_frame = [&] {
+    render::MechanismFrame frame;
+    frame.time = simulation.state().time;
+    for (const Part& p : model.parts) frame.configurations.push_back(p.initial);
+    PartConfiguration& c = frame.configurations[simulation.part()];
+    c.x = Rational(simulation.state().x);
+    c.y = Rational(simulation.state().y);
+    c.angle = Rational(simulation.state().angle);
+    frames.push_back(std::move(frame));
+  };
+  if (!options.out.empty() && !options.no_pictures) {
+    playback = options.animation_duration > 0 ? options.animation_duration
+                                              : std::max(1.0, options.t_end * seconds_per_unit(tu));
+    double count = std::ceil(playback * options.fps);
+    if (count > 20000)
+      throw ModelError("", "the animation would have " + number(count) +
+                               " frames (more than 20000): lower --fps or --animation-duration");
+    auto frame_count = static_cast<std::size_t>(std::max(1.0, count));
+    record_frame();
+    for (std::size_t k = 1; k <= frame_count; ++k) {
+      double t = k == frame_count ? options.t_end
+                                  : options.t_end * static_cast<double>(k) / static_cast<double>(frame_count);
+      simulation.run_until(t, progress);
+      record_frame();
+    }
+  } else {
+    simulation.run_until(options.t_end, progress);
+  }
+  double seconds = thread_cpu_seconds() - cpu_start;
+  if (terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
+  const PlanarState& end = simulation.state();
+  const PlanarStatistics& stats = simulation.statistics();
+  std::cout << "simulated " << model.name << " to t = " << number(end.time) << " " << tu << " in "
+            << simulation.steps() << " steps, " << simulation.events().size() << " events, " << number(seconds)
+            << " s CPU\n";
+  std::cout << "  " << part.name << ": x " << number(end.x) << " mm, y " << number(end.y) << " mm, angle "
+            << number(end.angle) << " rad; velocity (" << number(end.vx) << ", " << number(end.vy) << ") mm/" << tu
+            << ", " << number(end.omega) << " rad/" << tu << (end.resting ? " (at rest)" : "") << "\n";
+  std::cout << "  energy " << number(simulation.energy()) << " " << fu << "·mm\n";
+  std::cout << "  collision tests: " << stats.advancement_steps << " advancement steps, " << stats.distance_queries
+            << " distance queries, " << stats.chord_tests << " exact chord tests (chord deviation "
+            << number(simulation.chord_deviation()) << " mm)\n";
+  std::size_t shown = 0;
+  for (const SimulationEvent& e : simulation.events()) {
+    if (++shown > 20) {
+      std::cout << "  ... " << simulation.events().size() - 20 << " more events (see events.txt)\n";
+      break;
+    }
+    std::cout << "  " << event_line(e, tu, fu) << "\n";
+  }
+  if (options.out.empty()) return 0;
+
+  std::vector<io::RunFile> files;
+  const char* names[6] = {"x", "y", "angle", "vx", "vy", "omega"};
+  auto column = [](const PlanarState& s, int i) {
+    double values[6] = {s.x, s.y, s.angle, s.vx, s.vy, s.omega};
+    return values[i];
+  };
+  {
+    std::ostringstream csv;
+    csv << "time_" << tu;
+    for (const char* n : names) csv << "," << part.name << "_" << n;
+    csv << "\n";
+    for (const PlanarState& s : samples) {
+      csv << number(s.time);
+      for (int i = 0; i < 6; ++i) csv << "," << number(column(s, i));
+      csv << "\n";
+    }
+    files.push_back({"trajectory.csv", csv.str()});
+  }
+  {
+    nlohmann::json log = nlohmann::json::array();
+    std::string text;
+    for (const SimulationEvent& e : simulation.events()) {
+      nlohmann::json j{{"time", e.time},
+                       {"kind", to_string(e.kind)},
+                       {"pair", {e.first_part, e.second_part}},
+                       {"features", e.features}};
+      if (e.kind == SimulationEvent::Kind::impact) {
+        j["impulse"] = e.impulse;
+        j["normal_speed_before"] = e.normal_speed_before;
+        j["normal_speed_after"] = e.normal_speed_after;
+        j["point"] = e.point;
+        j["normal"] = e.normal;
+      }
+      if (e.kind == SimulationEvent::Kind::contact) j["normal_force"] = e.normal_force;
+      log.push_back(j);
+      text += event_line(e, tu, fu) + "\n";
+    }
+    nlohmann::json doc{{"model", model.name},
+                       {"units", {{"time", tu}, {"force", fu}, {"length", "mm"}, {"angle", "rad"}, {"mass", "kg"}}},
+                       {"t_end", end.time},
+                       {"steps", simulation.steps()},
+                       {"energy", simulation.energy()},
+                       {"chord_deviation_mm", simulation.chord_deviation()},
+                       {"events", log}};
+    files.push_back({"events.json", doc.dump(1) + "\n"});
+    files.push_back({"events.txt", text});
+  }
+  if (!options.no_pictures) {
+    std::vector<double> event_times;
+    for (const SimulationEvent& e : simulation.events()) event_times.push_back(e.time);
+    for (int which = 0; which < 2; ++which) {
+      render::TimePlot plot;
+      plot.title = model.name + (which == 0 ? ": position of " : ": velocity of ") + part.name;
+      plot.x_label = "t (" + tu + ")";
+      plot.y_label = which == 0 ? "mm or rad" : "mm or rad per " + tu;
+      plot.event_times = event_times;
+      for (const PlanarState& s : samples) plot.times.push_back(s.time);
+      for (int i = 3 * which; i < 3 * which + 3; ++i) {
+        render::TimeSeries series;
+        series.label = part.name + " " + names[i];
+        for (const PlanarState& s : samples) series.values.push_back(column(s, i));
+        plot.series.push_back(series);
+      }
+      files.push_back({which == 0 ? "positions.svg" : "velocities.svg", render::time_plot_svg(plot)});
+    }
+    render::MechanismAnimationOptions animation;
+    animation.duration = playback;
+    animation.time_unit = tu;
+    animation.drawing.title = model.name + ": simulated";
+    for (const SimulationEvent& e : simulation.events())
+      if (e.kind == SimulationEvent::Kind::impact)
+        animation.marks.push_back({e.time, e.point[0], e.point[1], event_line(e, tu, fu)});
+    files.push_back({"animation.svg", render::mechanism_animation_svg(model, frames, animation)});
+  }
+  std::vector<io::PlannedOutput> planned;
+  for (const io::RunFile& file : files) planned.push_back({directory / file.name, "--out"});
+  io::refuse_overwriting_inputs(planned, {options.model});
+  auto earlier_output = [](const std::string& name) {
+    return name == "trajectory.csv" || name == "events.json" || name == "events.txt" || name == "positions.svg" ||
+           name == "velocities.svg" || name == "animation.svg";
+  };
+  io::publish_directory(directory, files, earlier_output, {options.model});
+  std::cout << "wrote";
+  for (const io::RunFile& file : files) std::cout << " " << (directory / file.name).string();
+  std::cout << "\n";
+  return 0;
+}
+
 int run(const SimulateOptions& options) {
   auto rounding = rounding_scope(options.rounding);
   if (!options.sweep.empty()) {
@@ -357,6 +526,8 @@ int run(const SimulateOptions& options) {
   Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
   if (!(options.t_end > 0) || !std::isfinite(options.t_end))
     throw ModelError("", "--t-end must be a positive number of time units");
+  for (const Part& part : model.parts)
+    if (part.motion.kind == Motion::Kind::planar) return run_planar(model, options);
   bool terminal = isatty(2);
   SimulationOptions sim_options;
   sim_options.accuracy = options.accuracy;
