@@ -418,6 +418,17 @@ void add_event_files(std::vector<io::RunFile>& files, const Model& model, const 
   files.push_back({"events.txt", text});
 }
 
+// The first 20 events on standard output.
+void print_events(const std::vector<SimulationEvent>& events, const std::string& tu, const std::string& fu) {
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    if (i == 20) {
+      std::cout << "  ... " << events.size() - 20 << " more events (see events.txt)\n";
+      break;
+    }
+    std::cout << "  " << event_line(events[i], tu, fu) << "\n";
+  }
+}
+
 // Writes the run's files into --out, all or nothing, and says so.
 void publish_run(const std::vector<io::RunFile>& files, const SimulateOptions& options) {
   std::filesystem::path directory(options.out);
@@ -488,14 +499,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   std::cout << "  collision tests: " << stats.advancement_steps << " advancement steps, " << stats.distance_queries
             << " distance queries, " << stats.chord_tests << " exact chord tests (chord deviation "
             << number(simulation.chord_deviation()) << " mm)\n";
-  std::size_t shown = 0;
-  for (const SimulationEvent& e : simulation.events()) {
-    if (++shown > 20) {
-      std::cout << "  ... " << simulation.events().size() - 20 << " more events (see events.txt)\n";
-      break;
-    }
-    std::cout << "  " << event_line(e, tu, fu) << "\n";
-  }
+  print_events(simulation.events(), tu, fu);
   if (options.out.empty()) return 0;
 
   std::vector<io::RunFile> files;
@@ -622,14 +626,7 @@ int run(const SimulateOptions& options) {
               << (model.parts[p].motion.kind == Motion::Kind::rotation ? " rad" : " mm") << ", velocity "
               << number(simulation.state().velocity[p]) << " per " << tu << "\n";
   std::cout << "  energy " << number(simulation.energy()) << " " << fu << "·mm\n";
-  std::size_t shown = 0;
-  for (const SimulationEvent& e : simulation.events()) {
-    if (++shown > 20) {
-      std::cout << "  ... " << simulation.events().size() - 20 << " more events (see events.txt)\n";
-      break;
-    }
-    std::cout << "  " << event_line(e, tu, fu) << "\n";
-  }
+  print_events(simulation.events(), tu, fu);
   if (options.out.empty()) return 0;
 
   std::vector<io::RunFile> files;

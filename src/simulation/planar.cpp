@@ -31,6 +31,7 @@
 #include <hipair/simulation.hpp>
 
 #include "simulation/lcp.hpp"
+#include "simulation/units.hpp"
 
 #include <algorithm>
 #include <array>
@@ -166,6 +167,15 @@ struct PlanarSimulation::Impl {
   };
   Rows contact_rows(double time, const Kinematic& at, const SlicedConfiguration& c,
                     const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching) const;
+  // One event per fixed part met: its features, the sum of its rows' multipliers and its row
+  // of largest multiplier.
+  struct PairEvent {
+    SimulationEvent event;
+    double total = 0;
+    Eigen::Index top = 0;
+  };
+  std::vector<PairEvent> pair_events(SimulationEvent::Kind kind, double time, const Rows& rows,
+                                     const Eigen::VectorXd& lambda) const;
   void impact(double time, const Rows& rows);
   bool try_rest(const Rows& rows);
 };
@@ -332,11 +342,37 @@ PlanarSimulation::Impl::Rows PlanarSimulation::Impl::contact_rows(
   return out;
 }
 
+std::vector<PlanarSimulation::Impl::PairEvent> PlanarSimulation::Impl::pair_events(
+    SimulationEvent::Kind kind, double time, const Rows& rows, const Eigen::VectorXd& lambda) const {
+  std::vector<PairEvent> out;
+  std::vector<bool> done(pairs.size(), false);
+  for (std::size_t r = 0; r < rows.pair.size(); ++r) {
+    std::size_t i = rows.pair[r];
+    if (done[i]) continue;
+    done[i] = true;
+    PairEvent p;
+    p.event.kind = kind;
+    p.event.time = time / time_scale;
+    p.event.pair = pairs[i].index;
+    p.event.first_part = model.parts[pairs[i].fixed].name;
+    p.event.second_part = model.parts[part].name;
+    p.top = static_cast<Eigen::Index>(r);
+    for (std::size_t s = 0; s < rows.pair.size(); ++s)
+      if (rows.pair[s] == i) {
+        auto row = static_cast<Eigen::Index>(s);
+        p.event.features.push_back(rows.feature[s].label);
+        p.total += lambda(row);
+        if (lambda(row) > lambda(p.top)) p.top = row;
+      }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
 void PlanarSimulation::Impl::impact(double time, const Rows& contact) {
   const Eigen::MatrixXd& J = contact.J;
   const auto& frames = contact.frames;
   const auto& rows_pair = contact.pair;
-  const auto& rows_feature = contact.feature;
   const Kinematic at = k;
   const std::size_t m = rows_pair.size();
   Eigen::Vector3d minv(1 / mass, 1 / mass, 1 / inertia);
@@ -358,31 +394,13 @@ void PlanarSimulation::Impl::impact(double time, const Rows& contact) {
   k.vy = after_v(1);
   k.omega = after_v(2);
   // one impact event per pair, at its row of largest impulse
-  std::vector<bool> done(pairs.size(), false);
-  for (std::size_t r = 0; r < m; ++r) {
-    std::size_t i = rows_pair[r];
-    if (done[i]) continue;
-    done[i] = true;
-    SimulationEvent e;
-    e.kind = SimulationEvent::Kind::impact;
-    e.time = time / time_scale;
-    e.pair = pairs[i].index;
-    e.first_part = model.parts[pairs[i].fixed].name;
-    e.second_part = model.parts[part].name;
-    std::size_t top = r;
-    double total = 0;
-    for (std::size_t s = 0; s < m; ++s)
-      if (rows_pair[s] == i) {
-        e.features.push_back(rows_feature[s].label);
-        total += lcp.lambda(s);
-        if (lcp.lambda(s) > lcp.lambda(top)) top = s;
-      }
-    e.impulse = total / (force_scale * time_scale);
-    e.normal_speed_before = before(top) * time_scale;
-    e.normal_speed_after = after(top) * time_scale;
-    e.point = {frames[top][0], frames[top][1]};
-    e.normal = {frames[top][2], frames[top][3]};
-    events.push_back(std::move(e));
+  for (PairEvent& p : pair_events(SimulationEvent::Kind::impact, time, contact, lcp.lambda)) {
+    p.event.impulse = p.total / (force_scale * time_scale);
+    p.event.normal_speed_before = before(p.top) * time_scale;
+    p.event.normal_speed_after = after(p.top) * time_scale;
+    p.event.point = {frames[p.top][0], frames[p.top][1]};
+    p.event.normal = {frames[p.top][2], frames[p.top][3]};
+    events.push_back(std::move(p.event));
   }
   if (!plastic) {
     plastic_run = 0;
@@ -403,8 +421,6 @@ void PlanarSimulation::Impl::impact(double time, const Rows& contact) {
 // forces (a complementarity problem on the normal accelerations) balance the loads.
 bool PlanarSimulation::Impl::try_rest(const Rows& contact) {
   const Eigen::MatrixXd& J = contact.J;
-  const auto& rows_pair = contact.pair;
-  const auto& rows_feature = contact.feature;
   double speed = std::hypot(k.vx, k.vy) + std::abs(k.omega) * reach;
   if (speed > rest_speed) return false;
   Eigen::Vector3d minv(1 / mass, 1 / mass, 1 / inertia);
@@ -416,28 +432,14 @@ bool PlanarSimulation::Impl::try_rest(const Rows& contact) {
   Eigen::Vector3d acc = free_acc + minv.asDiagonal() * (J.transpose() * lcp.lambda);
   double scale = std::hypot(accel[0], accel[1]) + std::abs(alpha) * reach;
   double residual = std::hypot(acc(0), acc(1)) + std::abs(acc(2)) * reach;
+  // balanced: the residual acceleration is round-off of the solve (its tolerance is 1e-10
+  // relative, lcp_tolerance), not a motion
   if (residual > 1e-9 * std::max(scale, 1e-300)) return false;
   resting = true;
   k.vx = k.vy = k.omega = 0;
-  std::vector<bool> done(pairs.size(), false);
-  for (std::size_t r = 0; r < rows_pair.size(); ++r) {
-    std::size_t i = rows_pair[r];
-    if (done[i]) continue;
-    done[i] = true;
-    SimulationEvent e;
-    e.kind = SimulationEvent::Kind::contact;
-    e.time = t / time_scale;
-    e.pair = pairs[i].index;
-    e.first_part = model.parts[pairs[i].fixed].name;
-    e.second_part = model.parts[part].name;
-    double force = 0;
-    for (std::size_t s = 0; s < rows_pair.size(); ++s)
-      if (rows_pair[s] == i) {
-        e.features.push_back(rows_feature[s].label);
-        force += lcp.lambda(s);
-      }
-    e.normal_force = force / force_scale;
-    events.push_back(std::move(e));
+  for (PairEvent& p : pair_events(SimulationEvent::Kind::contact, t, contact, lcp.lambda)) {
+    p.event.normal_force = p.total / force_scale;
+    events.push_back(std::move(p.event));
   }
   return true;
 }
@@ -455,8 +457,8 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
   SimulationSpec spec = model.simulation.value_or(SimulationSpec{});
   s.time_unit = spec.time_unit;
   s.force_unit = spec.force_unit;
-  s.time_scale = spec.time_unit == "ms" ? 1e-3 : 1.0;
-  s.force_scale = spec.force_unit == "mN" ? 1.0 : 1000.0;   // internal force: kg mm / s^2 = mN
+  s.time_scale = simulation::seconds_per(spec);
+  s.force_scale = simulation::millinewtons_per(spec);
   const double fs = s.force_scale, ts = s.time_scale;
   std::optional<std::size_t> planar;
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
