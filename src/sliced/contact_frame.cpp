@@ -46,6 +46,8 @@ SlicedContactFrame sliced_contact_frame(const Model& model, const SlicedFeatureP
       model.parts[pair.free.part].motion.kind != Motion::Kind::planar)
     throw GeometryError("sliced_contact_frame: the pair is not a fixed part and a planar part of the model");
   const Motion& motion = model.parts[pair.free.part].motion;
+  Rational x = configuration.x, y = configuration.y, t = configuration.angle.t;
+  for (Rational* r : {&x, &y, &t}) r->canonicalize();
   kernels::Pose<Rational> free_pose;
   if (configuration.angle.half_turn) {
     free_pose.c = Rational(-1);
@@ -54,9 +56,9 @@ SlicedContactFrame sliced_contact_frame(const Model& model, const SlicedFeatureP
     free_pose.pivot = vec(motion.pivot);
     free_pose.rotates = true;
   } else {
-    free_pose = kernels::rotation_pose_from_half_tangent(vec(motion.pivot), configuration.angle.t, false);
+    free_pose = kernels::rotation_pose_from_half_tangent(vec(motion.pivot), t, false);
   }
-  free_pose.shift = V{configuration.x, configuration.y};
+  free_pose.shift = V{x, y};
   free_pose.translates = true;
   kernels::ContactFrame<Rational> frame =
       kernels::contact_frame(kernels::fixed_pose<Rational>(), geometry_of(model, pair.fixed), free_pose,
