@@ -213,7 +213,7 @@ bool PlanarSimulation::Impl::advance(double span) {
       auto near = p.space.features_near(node_q, Rational(reach_distance));
       for (const auto& f : near) nearest = std::min(nearest, to_d(f.distance_lower));
     }
-    if (nearest > reach_distance) {   // no feature within reach: free over the horizon
+    if (nearest > reach_distance + slack) {   // no feature within reach: free over the horizon
       ++stats.advancement_steps;
       sa = horizon == remaining ? span : sa + horizon;
       node = end;
