@@ -134,6 +134,9 @@ struct SimulationSpec {
   std::string force_unit = "N";    ///< "N" or "mN": unit of every force, torque, stiffness, damping
   Point gravity;                   ///< global acceleration, mm / time_unit^2
   /// Initial velocity of a moving part: rad / time_unit (rotation) or mm / time_unit.
+  /// A planar part's initial velocity {"x": vx, "y": vy, "angle": omega} is three entries of
+  /// that part, in the order vx, vy (its pivot's velocity, mm / time_unit), omega (rad /
+  /// time_unit), each with the pointer of the velocity object.
   struct Velocity {
     std::size_t part = 0;
     Rational value;

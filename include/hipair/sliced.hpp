@@ -147,6 +147,24 @@ struct SlicedNearFeature {
   bool exact = false;        ///< the comparison with the query's distance was decided exactly
 };
 
+/// The contact frame of a 3-DOF feature pair at a configuration, from the contact kernels
+/// (kernels/contact_geometry.hpp), exact: the contact point (world, mm) and a normal from the
+/// fixed part into the free part (the direction the fixed part pushes; not unit length). Where
+/// the pair touches these are the contact's point and normal; elsewhere the formulas are
+/// continuous in the configuration. `defined` is false for pairs without a contact of their own
+/// (vertex–vertex).
+struct SlicedContactFrame {
+  Point point;
+  Point normal;
+  bool defined = false;
+};
+
+/// The contact frame of `pair` (a feature of the fixed part, one of the planar part) with the
+/// planar part at `configuration` (src/sliced/contact_frame.cpp). \throws GeometryError when
+/// the pair's parts are not a fixed part and a planar part of `model`.
+SlicedContactFrame sliced_contact_frame(const Model& model, const SlicedFeaturePair& pair,
+                                        const SlicedConfiguration& configuration);
+
 /// A path through free space: straight motions (SlicedMotion) between consecutive waypoints,
 /// each certified free by first_crossing (status none).
 struct SlicedPath {

@@ -346,6 +346,216 @@ int run_sweep(const SimulateOptions& options) {
   return 0;
 }
 
+// ------------------------------------------------------------------ shared by both runs
+
+// The animation's frame times (k / N of t-end, k = 1..N) and its playback time; none without
+// pictures. Too many frames is a usage error.
+std::vector<double> frame_times(const SimulateOptions& options, const std::string& time_unit, double& playback) {
+  playback = 0;
+  if (options.out.empty() || options.no_pictures) return {};
+  playback = options.animation_duration > 0 ? options.animation_duration
+                                            : std::max(1.0, options.t_end * seconds_per_unit(time_unit));
+  double count = std::ceil(playback * options.fps);
+  if (count > 20000)
+    throw ModelError("", "the animation would have " + number(count) +
+                             " frames (more than 20000): lower --fps or --animation-duration");
+  auto frame_count = static_cast<std::size_t>(std::max(1.0, count));
+  std::vector<double> times;
+  for (std::size_t k = 1; k <= frame_count; ++k)
+    times.push_back(k == frame_count ? options.t_end
+                                     : options.t_end * static_cast<double>(k) / static_cast<double>(frame_count));
+  return times;
+}
+
+// The progress line on a terminal, at most every 200 ms.
+struct ProgressLine {
+  bool terminal = isatty(2);
+  std::chrono::steady_clock::time_point last = std::chrono::steady_clock::now();
+  void show(double t, const SimulateOptions& options, const std::string& time_unit, std::size_t steps,
+            std::size_t events) {
+    if (!terminal) return;
+    auto now = std::chrono::steady_clock::now();
+    if (now - last < std::chrono::milliseconds(200)) return;
+    last = now;
+    std::fprintf(stderr, "\rsimulate: t = %-12.6g of %g %s (%3.0f%%), %zu steps, %zu events   ", t, options.t_end,
+                 time_unit.c_str(), 100 * t / options.t_end, steps, events);
+  }
+};
+
+// events.json (the log with `summary`'s members) and events.txt.
+void add_event_files(std::vector<io::RunFile>& files, const Model& model, const std::vector<SimulationEvent>& events,
+                     const std::string& tu, const std::string& fu, nlohmann::json summary) {
+  nlohmann::json log = nlohmann::json::array();
+  std::string text;
+  for (const SimulationEvent& e : events) {
+    nlohmann::json j{{"time", e.time},
+                     {"kind", to_string(e.kind)},
+                     {"pair", {e.first_part, e.second_part}},
+                     {"features", e.features}};
+    if (e.edge.valid()) j["edge"] = e.edge.index();
+    if (e.kind == SimulationEvent::Kind::impact) {
+      j["impulse"] = e.impulse;
+      j["normal_speed_before"] = e.normal_speed_before;
+      j["normal_speed_after"] = e.normal_speed_after;
+      j["point"] = e.point;
+      j["normal"] = e.normal;
+      if (e.tangential_impulse != 0) j["tangential_impulse"] = e.tangential_impulse;
+    }
+    if (e.kind == SimulationEvent::Kind::stick || e.kind == SimulationEvent::Kind::slip) {
+      j["normal_force"] = e.normal_force;
+      j["friction_force"] = e.friction_force;
+      if (e.kind == SimulationEvent::Kind::slip) j["slip_direction"] = e.slip_direction;
+    }
+    if (e.kind == SimulationEvent::Kind::contact && e.normal_force != 0) j["normal_force"] = e.normal_force;
+    log.push_back(j);
+    text += event_line(e, tu, fu) + "\n";
+  }
+  nlohmann::json doc{{"model", model.name},
+                     {"units", {{"time", tu}, {"force", fu}, {"length", "mm"}, {"angle", "rad"}, {"mass", "kg"}}}};
+  for (auto& [key, value] : summary.items()) doc[key] = value;
+  doc["events"] = log;
+  files.push_back({"events.json", doc.dump(1) + "\n"});
+  files.push_back({"events.txt", text});
+}
+
+// The first 20 events on standard output.
+void print_events(const std::vector<SimulationEvent>& events, const std::string& tu, const std::string& fu) {
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    if (i == 20) {
+      std::cout << "  ... " << events.size() - 20 << " more events (see events.txt)\n";
+      break;
+    }
+    std::cout << "  " << event_line(events[i], tu, fu) << "\n";
+  }
+}
+
+// Writes the run's files into --out, all or nothing, and says so.
+void publish_run(const std::vector<io::RunFile>& files, const SimulateOptions& options) {
+  std::filesystem::path directory(options.out);
+  std::vector<io::PlannedOutput> planned;
+  for (const io::RunFile& file : files) planned.push_back({directory / file.name, "--out"});
+  io::refuse_overwriting_inputs(planned, {options.model});
+  auto earlier_output = [](const std::string& name) {
+    return name == "trajectory.csv" || name == "events.json" || name == "events.txt" || name == "positions.svg" ||
+           name == "velocities.svg" || name == "animation.svg" || (name.rfind("cspace-", 0) == 0 && name.size() > 4 &&
+                                        name.compare(name.size() - 4, 4, ".svg") == 0);
+  };
+  io::publish_directory(directory, files, earlier_output, {options.model});
+  std::cout << "wrote";
+  for (const io::RunFile& file : files) std::cout << " " << (directory / file.name).string();
+  std::cout << "\n";
+}
+
+// A model with a part free in the plane: PlanarSimulation (docs/simulation.md, "Parts free in
+// the plane"). Same outputs as the fixed-axis run except the C-space pictures (its C-space is
+// three-dimensional): trajectory.csv, events.json/.txt, positions.svg, velocities.svg,
+// animation.svg.
+int run_planar(const Model& model, const SimulateOptions& options) {
+  SimulationOptions sim_options;
+  sim_options.accuracy = options.accuracy;
+  sim_options.max_step = options.max_step;
+  if (options.region != "full") throw ModelError("", "--region: a planar part's C-space has no operating region");
+  PlanarSimulation simulation = PlanarSimulation::create(model, sim_options);
+  const std::string& tu = simulation.time_unit();
+  const std::string& fu = simulation.force_unit();
+  const Part& part = model.parts[simulation.part()];
+  std::vector<PlanarState> samples{simulation.state()};
+  double cpu_start = thread_cpu_seconds();
+  ProgressLine line;
+  auto progress = [&](double t) {
+    samples.push_back(simulation.state());
+    line.show(t, options, tu, simulation.steps(), simulation.events().size());
+  };
+  std::vector<render::MechanismFrame> frames;
+  double playback = 0;
+  auto record_frame = [&] {
+    render::MechanismFrame frame;
+    frame.time = simulation.state().time;
+    for (const Part& p : model.parts) frame.configurations.push_back(p.initial);
+    PartConfiguration& c = frame.configurations[simulation.part()];
+    c.x = Rational(simulation.state().x);
+    c.y = Rational(simulation.state().y);
+    c.angle = Rational(simulation.state().angle);
+    frames.push_back(std::move(frame));
+  };
+  std::vector<double> times = frame_times(options, tu, playback);
+  if (!times.empty()) record_frame();
+  for (double t : times) {
+    simulation.run_until(t, progress);
+    record_frame();
+  }
+  simulation.run_until(options.t_end, progress);
+  double seconds = thread_cpu_seconds() - cpu_start;
+  if (line.terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
+  const PlanarState& end = simulation.state();
+  const PlanarStatistics& stats = simulation.statistics();
+  std::cout << "simulated " << model.name << " to t = " << number(end.time) << " " << tu << " in "
+            << simulation.steps() << " steps, " << simulation.events().size() << " events, " << number(seconds)
+            << " s CPU\n";
+  std::cout << "  " << part.name << ": x " << number(end.x) << " mm, y " << number(end.y) << " mm, angle "
+            << number(end.angle) << " rad; velocity (" << number(end.vx) << ", " << number(end.vy) << ") mm/" << tu
+            << ", " << number(end.omega) << " rad/" << tu << (end.resting ? " (at rest)" : "") << "\n";
+  std::cout << "  energy " << number(simulation.energy()) << " " << fu << "·mm\n";
+  std::cout << "  collision tests: " << stats.advancement_steps << " advancement steps, " << stats.distance_queries
+            << " distance queries, " << stats.chord_tests << " exact chord tests (chord deviation "
+            << number(simulation.chord_deviation()) << " mm)\n";
+  print_events(simulation.events(), tu, fu);
+  if (options.out.empty()) return 0;
+
+  std::vector<io::RunFile> files;
+  const char* names[6] = {"x", "y", "angle", "vx", "vy", "omega"};
+  auto column = [](const PlanarState& s, int i) {
+    double values[6] = {s.x, s.y, s.angle, s.vx, s.vy, s.omega};
+    return values[i];
+  };
+  {
+    std::ostringstream csv;
+    csv << "time_" << tu;
+    for (const char* n : names) csv << "," << part.name << "_" << n;
+    csv << "\n";
+    for (const PlanarState& s : samples) {
+      csv << number(s.time);
+      for (int i = 0; i < 6; ++i) csv << "," << number(column(s, i));
+      csv << "\n";
+    }
+    files.push_back({"trajectory.csv", csv.str()});
+  }
+  add_event_files(files, model, simulation.events(), tu, fu,
+                  {{"t_end", end.time},
+                   {"steps", simulation.steps()},
+                   {"energy", simulation.energy()},
+                   {"chord_deviation_mm", simulation.chord_deviation()}});
+  if (!options.no_pictures) {
+    std::vector<double> event_times;
+    for (const SimulationEvent& e : simulation.events()) event_times.push_back(e.time);
+    for (int which = 0; which < 2; ++which) {
+      render::TimePlot plot;
+      plot.title = model.name + (which == 0 ? ": position of " : ": velocity of ") + part.name;
+      plot.x_label = "t (" + tu + ")";
+      plot.y_label = which == 0 ? "mm or rad" : "mm or rad per " + tu;
+      plot.event_times = event_times;
+      for (const PlanarState& s : samples) plot.times.push_back(s.time);
+      for (int i = 3 * which; i < 3 * which + 3; ++i) {
+        render::TimeSeries series;
+        series.label = part.name + " " + names[i];
+        for (const PlanarState& s : samples) series.values.push_back(column(s, i));
+        plot.series.push_back(series);
+      }
+      files.push_back({which == 0 ? "positions.svg" : "velocities.svg", render::time_plot_svg(plot)});
+    }
+    render::MechanismAnimationOptions animation;
+    animation.duration = playback;
+    animation.time_unit = tu;
+    animation.drawing.title = model.name + ": simulated";
+    for (const SimulationEvent& e : simulation.events())
+      if (e.kind == SimulationEvent::Kind::impact)
+        animation.marks.push_back({e.time, e.point[0], e.point[1], event_line(e, tu, fu)});
+    files.push_back({"animation.svg", render::mechanism_animation_svg(model, frames, animation)});
+  }
+  publish_run(files, options);
+  return 0;
+}
+
 int run(const SimulateOptions& options) {
   auto rounding = rounding_scope(options.rounding);
   if (!options.sweep.empty()) {
@@ -353,10 +563,11 @@ int run(const SimulateOptions& options) {
       throw ModelError("", "--t-end must be a positive number of time units");
     return run_sweep(options);
   }
-  std::filesystem::path directory(options.out);
   Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
   if (!(options.t_end > 0) || !std::isfinite(options.t_end))
     throw ModelError("", "--t-end must be a positive number of time units");
+  for (const Part& part : model.parts)
+    if (part.motion.kind == Motion::Kind::planar) return run_planar(model, options);
   bool terminal = isatty(2);
   SimulationOptions sim_options;
   sim_options.accuracy = options.accuracy;
@@ -370,34 +581,19 @@ int run(const SimulateOptions& options) {
   for (std::size_t p = 0; p < model.parts.size(); ++p)
     if (model.parts[p].motion.kind != Motion::Kind::fixed) moving.push_back(p);
   std::vector<SimulationState> samples{simulation.state()};
-  auto clock_start = std::chrono::steady_clock::now();
   double cpu_start = thread_cpu_seconds();
-  auto last_report = clock_start;
-  std::size_t events_seen = 0;
+  ProgressLine line;
   auto progress = [&](double t) {
     samples.push_back(simulation.state());
-    events_seen = simulation.events().size();
-    if (!terminal) return;
-    auto now = std::chrono::steady_clock::now();
-    if (now - last_report < std::chrono::milliseconds(200)) return;
-    last_report = now;
-    std::fprintf(stderr, "\rsimulate: t = %-12.6g of %g %s (%3.0f%%), %zu steps, %zu events   ", t, options.t_end,
-                 simulation.time_unit().c_str(), 100 * t / options.t_end, simulation.steps(), events_seen);
+    line.show(t, options, simulation.time_unit(), simulation.steps(), simulation.events().size());
   };
   // The animation's frames are states at a fixed rate: the run stops exactly at each frame time
   // (run_until ends its last step there), so every frame is a state of the simulation itself,
   // not an interpolation. Without pictures the run goes straight to t-end.
   std::vector<render::MechanismFrame> frames;
   double playback = 0;
-  if (!options.out.empty() && !options.no_pictures) {
-    playback = options.animation_duration > 0
-                   ? options.animation_duration
-                   : std::max(1.0, options.t_end * seconds_per_unit(simulation.time_unit()));
-    double count = std::ceil(playback * options.fps);
-    if (count > 20000)
-      throw ModelError("", "the animation would have " + number(count) +
-                               " frames (more than 20000): lower --fps or --animation-duration");
-    auto frame_count = static_cast<std::size_t>(std::max(1.0, count));
+  std::vector<double> times = frame_times(options, simulation.time_unit(), playback);
+  {
     auto record_frame = [&] {
       render::MechanismFrame frame;
       frame.time = simulation.state().time;
@@ -410,14 +606,11 @@ int run(const SimulateOptions& options) {
       }
       frames.push_back(std::move(frame));
     };
-    record_frame();
-    for (std::size_t k = 1; k <= frame_count; ++k) {
-      double t = k == frame_count ? options.t_end
-                                  : options.t_end * static_cast<double>(k) / static_cast<double>(frame_count);
+    if (!times.empty()) record_frame();
+    for (double t : times) {
       simulation.run_until(t, progress);
       record_frame();
     }
-  } else {
     simulation.run_until(options.t_end, progress);
   }
   double seconds = thread_cpu_seconds() - cpu_start;
@@ -433,14 +626,7 @@ int run(const SimulateOptions& options) {
               << (model.parts[p].motion.kind == Motion::Kind::rotation ? " rad" : " mm") << ", velocity "
               << number(simulation.state().velocity[p]) << " per " << tu << "\n";
   std::cout << "  energy " << number(simulation.energy()) << " " << fu << "·mm\n";
-  std::size_t shown = 0;
-  for (const SimulationEvent& e : simulation.events()) {
-    if (++shown > 20) {
-      std::cout << "  ... " << simulation.events().size() - 20 << " more events (see events.txt)\n";
-      break;
-    }
-    std::cout << "  " << event_line(e, tu, fu) << "\n";
-  }
+  print_events(simulation.events(), tu, fu);
   if (options.out.empty()) return 0;
 
   std::vector<io::RunFile> files;
@@ -456,40 +642,8 @@ int run(const SimulateOptions& options) {
     }
     files.push_back({"trajectory.csv", csv.str()});
   }
-  {
-    nlohmann::json log = nlohmann::json::array();
-    std::string text;
-    for (const SimulationEvent& e : simulation.events()) {
-      nlohmann::json j{{"time", e.time},
-                       {"kind", to_string(e.kind)},
-                       {"pair", {e.first_part, e.second_part}},
-                       {"features", e.features}};
-      if (e.edge.valid()) j["edge"] = e.edge.index();
-      if (e.kind == SimulationEvent::Kind::impact) {
-        j["impulse"] = e.impulse;
-        j["normal_speed_before"] = e.normal_speed_before;
-        j["normal_speed_after"] = e.normal_speed_after;
-        j["point"] = e.point;
-        j["normal"] = e.normal;
-        if (e.tangential_impulse != 0) j["tangential_impulse"] = e.tangential_impulse;
-      }
-      if (e.kind == SimulationEvent::Kind::stick || e.kind == SimulationEvent::Kind::slip) {
-        j["normal_force"] = e.normal_force;
-        j["friction_force"] = e.friction_force;
-        if (e.kind == SimulationEvent::Kind::slip) j["slip_direction"] = e.slip_direction;
-      }
-      log.push_back(j);
-      text += event_line(e, tu, fu) + "\n";
-    }
-    nlohmann::json doc{{"model", model.name},
-                       {"units", {{"time", tu}, {"force", fu}, {"length", "mm"}, {"angle", "rad"}, {"mass", "kg"}}},
-                       {"t_end", simulation.state().time},
-                       {"steps", simulation.steps()},
-                       {"energy", simulation.energy()},
-                       {"events", log}};
-    files.push_back({"events.json", doc.dump(1) + "\n"});
-    files.push_back({"events.txt", text});
-  }
+  add_event_files(files, model, simulation.events(), tu, fu,
+                  {{"t_end", simulation.state().time}, {"steps", simulation.steps()}, {"energy", simulation.energy()}});
   if (!options.no_pictures) {
     std::vector<double> event_times;
     for (const SimulationEvent& e : simulation.events()) event_times.push_back(e.time);
@@ -543,18 +697,7 @@ int run(const SimulateOptions& options) {
     }
     files.push_back({"animation.svg", render::mechanism_animation_svg(model, frames, animation)});
   }
-  std::vector<io::PlannedOutput> planned;
-  for (const io::RunFile& file : files) planned.push_back({directory / file.name, "--out"});
-  io::refuse_overwriting_inputs(planned, {options.model});
-  auto earlier_output = [](const std::string& name) {
-    return name == "trajectory.csv" || name == "events.json" || name == "events.txt" || name == "positions.svg" ||
-           name == "velocities.svg" || name == "animation.svg" || (name.rfind("cspace-", 0) == 0 && name.size() > 4 &&
-                                        name.compare(name.size() - 4, 4, ".svg") == 0);
-  };
-  io::publish_directory(directory, files, earlier_output, {options.model});
-  std::cout << "wrote";
-  for (const io::RunFile& file : files) std::cout << " " << (directory / file.name).string();
-  std::cout << "\n";
+  publish_run(files, options);
   return 0;
 }
 

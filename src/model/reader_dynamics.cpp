@@ -107,6 +107,18 @@ void Reader::read_simulation(const JsonValue* value) {
       auto index = model_.find_part(member.key);
       if (!index) throw ModelError(member.value.pointer, "unknown part '" + member.key + "'");
       const Motion& motion = model_.parts[*index].motion;
+      if (motion.kind == Motion::Kind::planar) {
+        // {"x": vx, "y": vy, "angle": omega}, each optional (0)
+        expect_object(member.value, "a planar part's velocity {\"x\": vx, \"y\": vy, \"angle\": omega}");
+        check_keys(member.value, {"x", "y", "angle"});
+        const JsonValue* vx = member.value.find("x");
+        const JsonValue* vy = member.value.find("y");
+        const JsonValue* omega = member.value.find("angle");
+        spec.velocities.push_back({*index, vx ? number(*vx) : Rational(0), member.value.pointer});
+        spec.velocities.push_back({*index, vy ? number(*vy) : Rational(0), member.value.pointer});
+        spec.velocities.push_back({*index, omega ? angle(*omega) : Rational(0), member.value.pointer});
+        continue;
+      }
       if (motion.kind != Motion::Kind::rotation && motion.kind != Motion::Kind::translation)
         throw ModelError(member.value.pointer, "part '" + member.key + "' has no single coordinate to give a velocity");
       if (driven.count(*index))
@@ -157,6 +169,9 @@ void Reader::read_simulation(const JsonValue* value) {
     for (const JsonMember& member : centers->members) {
       auto index = model_.find_part(member.key);
       if (!index) throw ModelError(member.value.pointer, "unknown part '" + member.key + "'");
+      if (model_.parts[*index].motion.kind == Motion::Kind::planar)
+        throw ModelError(member.value.pointer, "part '" + member.key +
+                                                   "' is planar: its centre of mass is its pivot (set \"pivot\" there)");
       if (model_.parts[*index].motion.kind != Motion::Kind::rotation)
         throw ModelError(member.value.pointer, "part '" + member.key +
                                                    "' does not rotate: a centre of mass only matters for a rotating part");

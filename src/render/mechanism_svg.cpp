@@ -257,14 +257,20 @@ io::SvgPath part_path(const Part& part, const PartConfiguration& c, const Normal
 }
 
 bool animated_motion(const Motion& motion) {
-  return motion.kind == Motion::Kind::rotation || motion.kind == Motion::Kind::translation;
+  return motion.kind == Motion::Kind::rotation || motion.kind == Motion::Kind::translation ||
+         motion.kind == Motion::Kind::planar;
 }
 
 // The SVG transform (user units, y down) that takes a part drawn at its zero configuration to
 // configuration c: a rotation by -theta (degrees) about the normalised pivot (y negated), or a
 // translation by the normalised offset along the axis. Same numbers as pose_normalised.
-std::string transform_value(const Motion& motion, const PartConfiguration& c, const Normalisation& n) {
-  if (motion.kind == Motion::Kind::rotation)
+// A planar part takes both: its rotation about the pivot (`planar_part` 0), then its shift (x, y)
+// (`planar_part` 1).
+std::string transform_value(const Motion& motion, const PartConfiguration& c, const Normalisation& n,
+                            int planar_part = 0) {
+  if (motion.kind == Motion::Kind::planar && planar_part == 1)
+    return io::format_number(n.length(c.x)) + " " + io::format_number(-n.length(c.y));
+  if (motion.kind == Motion::Kind::rotation || motion.kind == Motion::Kind::planar)
     return io::format_number(-to_number(c.angle) * 180 / M_PI) + " " + io::format_number(n.x(motion.pivot.x)) + " " +
            io::format_number(-n.y(motion.pivot.y));
   double s = n.length(c.offset);
@@ -390,19 +396,24 @@ std::string draw(const Model& model, const std::vector<PartConfiguration>& confi
         // drawn at its zero configuration, moved by the transform (the first frame's when the
         // renderer does not animate), animated through every frame
         const auto& frames = animation->frames;
-        const char* type = part.motion.kind == Motion::Kind::rotation ? "rotate" : "translate";
         double t0 = frames.front().time, span = frames.back().time - t0;
-        std::string values, times;
-        for (std::size_t f = 0; f < frames.size(); ++f) {
-          values += (f ? ";" : "") + transform_value(part.motion, frames[f].configurations[i], n);
-          times += (f ? ";" : "") + key_time(f + 1 == frames.size() ? 1.0 : (frames[f].time - t0) / span);
+        bool planar = part.motion.kind == Motion::Kind::planar;
+        // a planar part: an outer group shifts it, an inner one turns it about its pivot
+        for (int layer = planar ? 1 : 0; layer >= 0; --layer) {
+          const char* type = part.motion.kind == Motion::Kind::translation || layer == 1 ? "translate" : "rotate";
+          std::string values, times;
+          for (std::size_t f = 0; f < frames.size(); ++f) {
+            values += (f ? ";" : "") + transform_value(part.motion, frames[f].configurations[i], n, layer);
+            times += (f ? ";" : "") + key_time(f + 1 == frames.size() ? 1.0 : (frames[f].time - t0) / span);
+          }
+          svg.begin_transformed_group(std::string(type) + "(" +
+                                          transform_value(part.motion, frames.front().configurations[i], n, layer) +
+                                          ")",
+                                      "motion-" + part.name + (layer == 1 ? "-shift" : ""), "moving");
+          svg.raw("<animateTransform attributeName=\"transform\" type=\"" + std::string(type) + "\" values=\"" +
+                  values + "\" keyTimes=\"" + times + "\" dur=\"" + io::format_number(animation->options.duration) +
+                  "s\" calcMode=\"linear\" repeatCount=\"indefinite\"/>\n");
         }
-        svg.begin_transformed_group(std::string(type) + "(" +
-                                        transform_value(part.motion, frames.front().configurations[i], n) + ")",
-                                    "motion-" + part.name, "moving");
-        svg.raw("<animateTransform attributeName=\"transform\" type=\"" + std::string(type) + "\" values=\"" +
-                values + "\" keyTimes=\"" + times + "\" dur=\"" + io::format_number(animation->options.duration) +
-                "s\" calcMode=\"linear\" repeatCount=\"indefinite\"/>\n");
         svg.path(part_path(part, PartConfiguration{}, n), style, part.name);
         if (options.labels)
           for (const Loop& loop : part.loops)
@@ -412,6 +423,7 @@ std::string draw(const Model& model, const std::vector<PartConfiguration>& confi
               svg.text(m.x, m.y, edge.label, text_size * 0.4, "middle", "#202020");
             }
         svg.end_group();
+        if (part.motion.kind == Motion::Kind::planar) svg.end_group();
       } else {
         svg.path(paths[i], style, part.name);
       }
@@ -427,8 +439,10 @@ std::string draw(const Model& model, const std::vector<PartConfiguration>& confi
     io::SvgStyle mark;
     mark.stroke = "#111111";
     mark.stroke_width = size / 700;
-    if (motion.kind == Motion::Kind::rotation || motion.kind == Motion::Kind::planar ||
-        motion.kind == Motion::Kind::pin_slot) {
+    // (an animated planar part's pivot moves with it: no mark left at its first place)
+    bool moving_pivot = animation && motion.kind == Motion::Kind::planar;
+    if ((motion.kind == Motion::Kind::rotation || motion.kind == Motion::Kind::planar ||
+         motion.kind == Motion::Kind::pin_slot) && !moving_pivot) {
       PosedPoint pivot = pose_exact(motion, c, n, motion.pivot);
       double r = text_size * 0.45;
       io::SvgStyle ring = mark;

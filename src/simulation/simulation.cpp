@@ -16,6 +16,7 @@
 
 #include "simulation/friction.hpp"
 #include "simulation/lcp.hpp"
+#include "simulation/units.hpp"
 
 #include <Eigen/Dense>
 #include <boost/numeric/odeint.hpp>
@@ -1717,8 +1718,8 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
   SimulationSpec spec = model.simulation.value_or(SimulationSpec{});
   s.time_unit = spec.time_unit;
   s.force_unit = spec.force_unit;
-  s.time_scale = spec.time_unit == "ms" ? 1e-3 : 1.0;
-  s.force_scale = spec.force_unit == "mN" ? 1.0 : 1000.0;   // internal force: kg mm / s^2 = mN
+  s.time_scale = simulation::seconds_per(spec);
+  s.force_scale = simulation::millinewtons_per(spec);   // internal force: kg mm / s^2 = mN
   s.accuracy = options.accuracy > 0 ? options.accuracy : spec.accuracy ? to_d(*spec.accuracy) : 1e-9;
   s.g[0] = to_d(spec.gravity.x) / (s.time_scale * s.time_scale);
   s.g[1] = to_d(spec.gravity.y) / (s.time_scale * s.time_scale);

@@ -322,6 +322,16 @@ sed 's/"force": \[3, 0\]/"force": [1, 0]/' "$work/sim-press.json" >"$work/sim-pr
   || fail "simulate press (stick): $(tail -c 300 "$work/sim-stick.out")"
 grep -q '"kind": "stick"' "$work/sim-stick/events.json" || fail "simulate press: no stick event: $(cat "$work/sim-stick/events.txt")"
 
+# hipair simulate with a part free in the plane: the peg drop lands, bounces, rests
+"$hipair" simulate "$source/examples/models/peg-drop.json" --t-end 0.3 --fps 10 --out "$work/sim-peg" \
+  >"$work/sim-peg.out" 2>&1 || fail "simulate peg-drop: $(tail -c 300 "$work/sim-peg.out")"
+for file in trajectory.csv events.json events.txt positions.svg velocities.svg animation.svg; do
+  [ -s "$work/sim-peg/$file" ] || fail "simulate peg-drop: no $file"
+done
+grep -q "impact  cup / peg" "$work/sim-peg/events.txt" || fail "simulate peg-drop: no impact: $(cat "$work/sim-peg/events.txt")"
+grep -q "contact  cup / peg" "$work/sim-peg/events.txt" || fail "simulate peg-drop: never rests"
+grep -q "(at rest)" "$work/sim-peg.out" || fail "simulate peg-drop: not at rest at the end"
+
 # hipair simulate --sweep: one row per value, in parallel; a malformed sweep is a usage error
 "$hipair" simulate "$source/examples/models/cam-drive.json" --t-end 0.03 --sweep cam-speed=183:220:2 \
   --allow-out-of-tolerance --jobs 2 --out "$work/sweep" >"$work/sweep.out" 2>&1 \

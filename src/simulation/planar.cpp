@@ -1,0 +1,597 @@
+// HIPAIR — simulation of a part free in the plane among fixed parts (docs/simulation.md, "Parts
+// free in the plane"). Collision detection uses only the 3-DOF C-space adaptor
+// (include/hipair/sliced.hpp) and contact frames from the kernels (sliced_contact_frame).
+//
+// Free flight is integrated in closed form: with the pivot at the centre of mass, constant
+// acceleration a = g + F/m, linear damping k = c/m, constant angular acceleration alpha = T/I,
+//   v(s) = v_inf + (v0 - v_inf) e^{-ks},  X(s) = X0 + v_inf s + (v0 - v_inf)(1 - e^{-ks})/k
+//   (k = 0: v0 + a s, X0 + v0 s + a s^2/2),   omega(s) = omega0 + alpha s,
+//   theta(s) = theta0 + omega0 s + alpha s^2/2.
+// Every velocity lies on a segment between its values at the ends of any interval (it moves
+// along a straight line, monotonically), so |v| and |omega| over an interval are bounded by
+// their values at its ends, and so is |a - k v| (the translational acceleration).
+//
+// A step from s = 0 to its end is covered by nodes s_0 = 0 < s_1 < ... ; at each node:
+//  1. Conservative advancement over a horizon H (at most the rest of the step; about the time
+//     in which the speed would double, at least a chord length): L = max|v| + max|omega| R over
+//     [s_i, s_i + H] bounds the speed of every point of the part (R: the part's reach from its
+//     pivot). features_near gives a certified lower bound d of the distance between the parts;
+//     the part is then apart from the fixed part on [s_i, s_i + min(d / L, H)] (no point moves
+//     farther than d). Nothing within L H: free over the whole horizon.
+//  2. Near a fixed part (d / L below the chord length tau), the chord from the node's
+//     configuration to the next one's, straight in (x, y, w = tan((theta - c)/2)), is tested
+//     exactly by SlicedSpace::first_crossing. Its length tau keeps every point of the part within
+//     delta of the closed-form path: |X_chord - X| <= tau^2/8 max|X''|,
+//     |w_chord - w| <= tau^2/8 max|w''| with w'' = (1 + w^2)/2 (alpha + w omega^2), and an angle
+//     error of at most 2 |dw|, so delta = tau^2/8 (max|X''| + 2 R max|w''|).
+// Certified: every state's configuration is free or touching (never blocked); the simulated
+// path is free except for contacts that would penetrate less than delta within one chord; the
+// first contact is exact on its chord (bracketed to 2^-crossing_bits of the chord's time).
+#include <hipair/error.hpp>
+#include <hipair/simulation.hpp>
+
+#include "simulation/lcp.hpp"
+#include "simulation/units.hpp"
+
+#include <algorithm>
+#include <array>
+#include <optional>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+namespace hipair {
+namespace {
+
+double to_d(const Rational& r) { return r.get_d(); }
+
+// theta wrapped into (-pi, pi]
+double wrap(double theta) {
+  double w = std::remainder(theta, 2 * std::numbers::pi);
+  return w <= -std::numbers::pi ? w + 2 * std::numbers::pi : w;
+}
+
+SlicedConfiguration configuration_of(double x, double y, double theta) {
+  SlicedConfiguration c;
+  c.x = Rational(x);
+  c.y = Rational(y);
+  double w = wrap(theta);
+  if (w == std::numbers::pi) {
+    c.angle.half_turn = true;
+  } else {
+    c.angle.t = Rational(std::tan(w / 2));
+  }
+  return c;
+}
+
+// A kinematic state in internal units (s, mm, rad, kg, mN).
+struct Kinematic {
+  double x = 0, y = 0, theta = 0, vx = 0, vy = 0, omega = 0;
+};
+
+}  // namespace
+
+struct PlanarSimulation::Impl {
+  Model model;
+  SimulationOptions options;
+  std::size_t part = 0;
+  double time_scale = 1, force_scale = 1000;
+  std::string time_unit = "s", force_unit = "N";
+  double mass = 0, inertia = 0, damping_rate = 0;   // damping_rate = c / m (1/s)
+  double accel[2] = {0, 0};                         // g + F/m (mm/s^2)
+  double alpha = 0;                                 // T / I (rad/s^2)
+  double force[2] = {0, 0}, torque = 0, g[2] = {0, 0};
+  double reach = 0;                                 // max |q - pivot| over the part (mm)
+  double delta = 0;                                 // chord deviation (mm)
+  double rest_speed = 0;                            // impacts slower than this are plastic
+  struct Pair {
+    std::size_t index = 0;                          // into Model::pairs
+    std::size_t fixed = 0;
+    double restitution = 0;
+    SlicedSpace space;
+  };
+  std::vector<Pair> pairs;
+  double t = 0;
+  Kinematic k;
+  PlanarState public_state;
+  SlicedConfiguration q;                            // exact configuration of the state
+  bool resting = false;
+  std::vector<SimulationEvent> events;
+  std::size_t steps = 0;
+  std::size_t plastic_run = 0;                      // consecutive plastic impacts without rest
+  PlanarStatistics stats;
+
+  // closed-form free flight for a duration s from k
+  Kinematic flight(const Kinematic& a, double s) const {
+    Kinematic b = a;
+    double v0[2] = {a.vx, a.vy}, x0[2] = {a.x, a.y}, v[2], x[2];
+    for (int i = 0; i < 2; ++i) {
+      if (damping_rate > 0) {
+        double vinf = accel[i] / damping_rate;
+        double decay = -std::expm1(-damping_rate * s);   // 1 - e^{-ks}
+        v[i] = vinf + (v0[i] - vinf) * (1 - decay);
+        x[i] = x0[i] + vinf * s + (v0[i] - vinf) * decay / damping_rate;
+      } else {
+        v[i] = v0[i] + accel[i] * s;
+        x[i] = x0[i] + v0[i] * s + 0.5 * accel[i] * s * s;
+      }
+    }
+    b.x = x[0];
+    b.y = x[1];
+    b.vx = v[0];
+    b.vy = v[1];
+    b.omega = a.omega + alpha * s;
+    b.theta = a.theta + a.omega * s + 0.5 * alpha * s * s;
+    return b;
+  }
+
+  std::string where(double time) const {
+    std::ostringstream out;
+    out << "simulation: at t = " << time / time_scale << " " << time_unit << " the planar part '"
+        << model.parts[part].name << "'";
+    return out.str();
+  }
+
+  void publish() {
+    public_state.time = t / time_scale;
+    public_state.x = k.x;
+    public_state.y = k.y;
+    public_state.angle = k.theta;
+    public_state.vx = k.vx * time_scale;
+    public_state.vy = k.vy * time_scale;
+    public_state.omega = k.omega * time_scale;
+    public_state.configuration = q;
+    public_state.resting = resting;
+  }
+
+  // Moves the state to the exact configuration c (free or touching) with velocities of `at`.
+  void set_state(const Kinematic& at, const SlicedConfiguration& c) {
+    k = at;
+    q = c;
+    // the double coordinates of the exact configuration (theta continuous with the flight)
+    k.x = to_d(c.x);
+    k.y = to_d(c.y);
+    double exact_theta = c.angle.half_turn ? std::numbers::pi : 2 * std::atan(to_d(c.angle.t));
+    k.theta = at.theta + wrap(exact_theta - at.theta);
+  }
+
+  // One step of free flight of at most `span` seconds; ends at the first contact (then resolved).
+  bool advance(double span);
+  // The contact rows of the touching feature pairs at configuration c (state `at`).
+  struct Rows {
+    Eigen::MatrixXd J;                         // [n_x, n_y, r x n] per contact
+    std::vector<std::array<double, 4>> frames; // point, unit normal
+    std::vector<std::size_t> pair;             // index into pairs
+    std::vector<SlicedFeaturePair> feature;
+  };
+  Rows contact_rows(double time, const Kinematic& at, const SlicedConfiguration& c,
+                    const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching) const;
+  // One event per fixed part met: its features, the sum of its rows' multipliers and its row
+  // of largest multiplier.
+  struct PairEvent {
+    SimulationEvent event;
+    double total = 0;
+    Eigen::Index top = 0;
+  };
+  std::vector<PairEvent> pair_events(SimulationEvent::Kind kind, double time, const Rows& rows,
+                                     const Eigen::VectorXd& lambda) const;
+  void impact(double time, const Rows& rows);
+  bool try_rest(const Rows& rows);
+};
+
+bool PlanarSimulation::Impl::advance(double span) {
+  const double pi = std::numbers::pi;
+  Kinematic start = k;
+  SlicedConfiguration node_q = q;
+  double sa = 0;
+  Kinematic node = start;
+  const double slack = 64 * std::numeric_limits<double>::epsilon() * (std::abs(k.x) + std::abs(k.y) + reach + 1);
+  double shorten = 1;   // < 1 after a chord met a contact the path leaves (see below)
+  while (sa < span) {
+    double remaining = span - sa;
+    // The horizon of the bounds: short enough that the speed at most about doubles over it (a
+    // bound over a whole long step would be dominated by the speed gained at its end), at
+    // least a chord length. The bounds below are computed for it exactly as stated.
+    double horizon = remaining;
+    {
+      double now = std::hypot(node.vx, node.vy) + std::abs(node.omega) * reach;
+      double gain = std::hypot(accel[0] - damping_rate * node.vx, accel[1] - damping_rate * node.vy) +
+                    std::abs(alpha) * reach;
+      if (gain > 0) horizon = std::min(remaining, std::max(now / gain, std::sqrt(8 * delta / gain)));
+    }
+    Kinematic end = flight(start, sa + horizon);
+    double vmax = std::max(std::hypot(node.vx, node.vy), std::hypot(end.vx, end.vy));
+    double wmax = std::max(std::abs(node.omega), std::abs(end.omega));
+    double speed = vmax + wmax * reach;
+    if (speed == 0) break;   // nothing moves
+    // 1. conservative advancement
+    double reach_distance = speed * horizon;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Pair& p : pairs) {
+      ++stats.distance_queries;
+      auto near = p.space.features_near(node_q, Rational(reach_distance));
+      for (const auto& f : near) nearest = std::min(nearest, to_d(f.distance_lower));
+    }
+    if (nearest > reach_distance + slack) {   // no feature within reach: free over the horizon
+      ++stats.advancement_steps;
+      sa = horizon == remaining ? span : sa + horizon;
+      node = end;
+      node_q = configuration_of(node.x, node.y, node.theta);
+      continue;
+    }
+    double safe = std::max(0.0, nearest - slack) / speed * (1 - 1e-12);
+    // the chord length for the deviation delta
+    double amax = 0;
+    for (const Kinematic* s : {&node, &end})
+      amax = std::max(amax, std::hypot(accel[0] - damping_rate * s->vx, accel[1] - damping_rate * s->vy));
+    double phi = std::abs(wrap(node.theta));
+    bool flip = phi > pi / 2;
+    if (flip) phi = pi - phi;
+    double tau_cap = wmax > 0 ? (pi / 4) / wmax : horizon;
+    double w_bound = std::tan((phi + pi / 4) / 2);
+    double wpp = 0.5 * (1 + w_bound * w_bound) * (std::abs(alpha) + w_bound * wmax * wmax);
+    double bend = amax + 2 * reach * wpp;
+    double tau = std::min(horizon, tau_cap);
+    if (bend > 0) tau = std::min(tau, std::sqrt(8 * std::max(delta - slack, 0.5 * delta) / bend));
+    tau *= shorten;
+    if (safe >= tau) {
+      ++stats.advancement_steps;
+      sa = safe >= horizon ? (horizon == remaining ? span : sa + horizon) : sa + safe;
+      node = flight(start, sa);
+      node_q = configuration_of(node.x, node.y, node.theta);
+      continue;
+    }
+    // 2. the chord [sa, sa + tau], exact
+    double sb = tau >= remaining ? span : sa + tau;
+    Kinematic next = flight(start, sb);
+    SlicedConfiguration next_q = configuration_of(next.x, next.y, next.theta);
+    SlicedMotion motion{node_q, next_q, flip};
+    ++stats.chord_tests;
+    std::vector<std::pair<std::size_t, SlicedMotionCrossing>> crossings;
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      SlicedMotionCrossing c = pairs[i].space.first_crossing(motion, CrossingOptions{options.crossing_bits});
+      if (c.status == CrossingStatus::starts_in_contact) {
+        std::ostringstream out;
+        out << where(t + sa) << " starts a chord in contact with '" << model.parts[pairs[i].fixed].name
+            << "' (the previous node was certified free: an internal error)";
+        throw NumericError(out.str());
+      }
+      if (c.status == CrossingStatus::crossing) crossings.emplace_back(i, std::move(c));
+    }
+    if (crossings.empty()) {
+      sa = sb;
+      node = next;
+      node_q = next_q;
+      shorten = 1;
+      continue;
+    }
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < crossings.size(); ++i)
+      if (crossings[i].second.u_lower < crossings[best].second.u_lower) best = i;
+    const SlicedMotionCrossing& c = crossings[best].second;
+    // every pair whose bracket meets the earliest one touches there (to the bracket's width)
+    std::vector<std::pair<std::size_t, SlicedFeaturePair>> touching;
+    for (const auto& [i, other] : crossings)
+      if (other.u_lower <= c.u_upper)
+        for (const SlicedFeaturePair& f : other.features) touching.emplace_back(i, f);
+    // contacts within delta of touching there are met at once (within the accuracy: a contact
+    // this close is separated from the first by less than the chord's deviation)
+    for (std::size_t i = 0; i < pairs.size(); ++i)
+      for (const SlicedNearFeature& f : pairs[i].space.features_near(c.before, Rational(delta))) {
+        bool listed = false;
+        for (const auto& [j, g] : touching) listed = listed || (j == i && g.label == f.pair.label);
+        if (!listed) touching.emplace_back(i, f.pair);
+      }
+    double u = to_d(c.u_lower);
+    double s_contact = sa + u * (sb - sa);
+    Kinematic at = flight(start, s_contact);
+    Rows rows = contact_rows(t + s_contact, at, c.before, touching);
+    Eigen::VectorXd normal_speed = rows.J * Eigen::Vector3d(at.vx, at.vy, at.omega);
+    if (normal_speed.minCoeff() >= 0 && shorten > 1e-9) {
+      // The path leaves every contact the chord met (the chord, within delta of the path, cuts
+      // the corner of a path that starts touching and departs): no impact; a shorter chord
+      // deviates less (delta ~ tau^2) while the path departs linearly.
+      shorten /= 4;
+      continue;
+    }
+    t += s_contact;
+    set_state(at, c.before);
+    impact(t, rows);
+    return true;
+  }
+  // the end node: certified free by the advancement or the last chord (its own configuration)
+  if (sa == 0 && node.vx == 0 && node.vy == 0 && node.omega == 0 && accel[0] == 0 && accel[1] == 0 && alpha == 0)
+    return false;   // nothing moves: the exact configuration stays
+  k = flight(start, span);
+  q = configuration_of(k.x, k.y, k.theta);
+  return false;
+}
+
+PlanarSimulation::Impl::Rows PlanarSimulation::Impl::contact_rows(
+    double time, const Kinematic& at, const SlicedConfiguration& c,
+    const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching) const {
+  // contact rows J = [n_x, n_y, r x n] (unit normal from the fixed part into the planar part)
+  std::vector<std::array<double, 3>> rows;
+  Rows out;
+  for (const auto& [i, f] : touching) {
+    SlicedContactFrame frame = sliced_contact_frame(model, f, c);
+    if (!frame.defined) continue;   // vertex–vertex: its neighbouring edges carry the contact
+    double px = to_d(frame.point.x), py = to_d(frame.point.y);
+    double nx = to_d(frame.normal.x), ny = to_d(frame.normal.y), n = std::hypot(nx, ny);
+    if (!(n > 0)) continue;
+    nx /= n;
+    ny /= n;
+    double rx = px - (to_d(model.parts[part].motion.pivot.x) + at.x);
+    double ry = py - (to_d(model.parts[part].motion.pivot.y) + at.y);
+    std::array<double, 3> row{nx, ny, rx * ny - ry * nx};
+    bool repeated = false;
+    for (const auto& r : rows)
+      if (std::abs(r[0] - row[0]) + std::abs(r[1] - row[1]) + std::abs(r[2] - row[2]) / std::max(reach, 1.0) < 1e-12)
+        repeated = true;
+    if (repeated) continue;
+    rows.push_back(row);
+    out.frames.push_back({px, py, nx, ny});
+    out.pair.push_back(i);
+    out.feature.push_back(f);
+  }
+  if (rows.empty())
+    throw GeometryError(where(time) + " touches a fixed part only at vertex–vertex contacts: no contact normal");
+  out.J.resize(static_cast<Eigen::Index>(rows.size()), 3);
+  for (std::size_t r = 0; r < rows.size(); ++r) out.J.row(static_cast<Eigen::Index>(r)) << rows[r][0], rows[r][1], rows[r][2];
+  return out;
+}
+
+std::vector<PlanarSimulation::Impl::PairEvent> PlanarSimulation::Impl::pair_events(
+    SimulationEvent::Kind kind, double time, const Rows& rows, const Eigen::VectorXd& lambda) const {
+  std::vector<PairEvent> out;
+  std::vector<bool> done(pairs.size(), false);
+  for (std::size_t r = 0; r < rows.pair.size(); ++r) {
+    std::size_t i = rows.pair[r];
+    if (done[i]) continue;
+    done[i] = true;
+    PairEvent p;
+    p.event.kind = kind;
+    p.event.time = time / time_scale;
+    p.event.pair = pairs[i].index;
+    p.event.first_part = model.parts[pairs[i].fixed].name;
+    p.event.second_part = model.parts[part].name;
+    p.top = static_cast<Eigen::Index>(r);
+    for (std::size_t s = 0; s < rows.pair.size(); ++s)
+      if (rows.pair[s] == i) {
+        auto row = static_cast<Eigen::Index>(s);
+        p.event.features.push_back(rows.feature[s].label);
+        p.total += lambda(row);
+        if (lambda(row) > lambda(p.top)) p.top = row;
+      }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+void PlanarSimulation::Impl::impact(double time, const Rows& contact) {
+  const Eigen::MatrixXd& J = contact.J;
+  const auto& frames = contact.frames;
+  const auto& rows_pair = contact.pair;
+  const Kinematic at = k;
+  const std::size_t m = rows_pair.size();
+  Eigen::Vector3d minv(1 / mass, 1 / mass, 1 / inertia);
+  Eigen::Vector3d v(at.vx, at.vy, at.omega);
+  Eigen::VectorXd before = J * v;
+  double approach = std::max(0.0, -before.minCoeff());
+  bool plastic = approach < rest_speed;
+  Eigen::MatrixXd A = J * minv.asDiagonal() * J.transpose();
+  Eigen::VectorXd b(m);
+  for (std::size_t r = 0; r < m; ++r) {
+    double e = plastic ? 0.0 : pairs[rows_pair[r]].restitution;
+    b(r) = (1 + e) * before(r);
+  }
+  simulation::LcpSolution lcp = simulation::solve_lcp(A, b);
+  if (!lcp.solved) throw NumericError(where(time) + ": the impact problem has no solution");
+  Eigen::Vector3d after_v = v + minv.asDiagonal() * (J.transpose() * lcp.lambda);
+  Eigen::VectorXd after = J * after_v;
+  k.vx = after_v(0);
+  k.vy = after_v(1);
+  k.omega = after_v(2);
+  // one impact event per pair, at its row of largest impulse
+  for (PairEvent& p : pair_events(SimulationEvent::Kind::impact, time, contact, lcp.lambda)) {
+    p.event.impulse = p.total / (force_scale * time_scale);
+    p.event.normal_speed_before = before(p.top) * time_scale;
+    p.event.normal_speed_after = after(p.top) * time_scale;
+    p.event.point = {frames[p.top][0], frames[p.top][1]};
+    p.event.normal = {frames[p.top][2], frames[p.top][3]};
+    events.push_back(std::move(p.event));
+  }
+  if (!plastic) {
+    plastic_run = 0;
+    return;
+  }
+  if (try_rest(contact)) {
+    plastic_run = 0;
+    return;
+  }
+  if (++plastic_run > 200)
+    throw NumericError(where(time) + " keeps touching a fixed part at speeds below " +
+                       std::to_string(rest_speed * time_scale) +
+                       " mm per time unit without coming to rest: sustained sliding or rocking contact of a planar "
+                       "part is not supported (only resting contact is; docs/simulation.md)");
+}
+
+// After a plastic impact: does the part rest? Its speed is below the rest speed and the contact
+// forces (a complementarity problem on the normal accelerations) balance the loads.
+bool PlanarSimulation::Impl::try_rest(const Rows& contact) {
+  const Eigen::MatrixXd& J = contact.J;
+  double speed = std::hypot(k.vx, k.vy) + std::abs(k.omega) * reach;
+  if (speed > rest_speed) return false;
+  Eigen::Vector3d minv(1 / mass, 1 / mass, 1 / inertia);
+  Eigen::Vector3d free_acc(accel[0], accel[1], alpha);   // at rest: no damping, no centripetal terms
+  Eigen::MatrixXd A = J * minv.asDiagonal() * J.transpose();
+  Eigen::VectorXd b = J * free_acc;
+  simulation::LcpSolution lcp = simulation::solve_lcp(A, b);
+  if (!lcp.solved) return false;
+  Eigen::Vector3d acc = free_acc + minv.asDiagonal() * (J.transpose() * lcp.lambda);
+  double scale = std::hypot(accel[0], accel[1]) + std::abs(alpha) * reach;
+  double residual = std::hypot(acc(0), acc(1)) + std::abs(acc(2)) * reach;
+  // balanced: the residual acceleration is round-off of the solve (its tolerance is 1e-10
+  // relative, lcp_tolerance), not a motion
+  if (residual > 1e-9 * std::max(scale, 1e-300)) return false;
+  resting = true;
+  k.vx = k.vy = k.omega = 0;
+  for (PairEvent& p : pair_events(SimulationEvent::Kind::contact, t, contact, lcp.lambda)) {
+    p.event.normal_force = p.total / force_scale;
+    events.push_back(std::move(p.event));
+  }
+  return true;
+}
+
+PlanarSimulation::PlanarSimulation(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+PlanarSimulation::PlanarSimulation(PlanarSimulation&&) noexcept = default;
+PlanarSimulation& PlanarSimulation::operator=(PlanarSimulation&&) noexcept = default;
+PlanarSimulation::~PlanarSimulation() = default;
+
+PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOptions& options) {
+  auto impl = std::make_unique<Impl>();
+  Impl& s = *impl;
+  s.model = model;
+  s.options = options;
+  SimulationSpec spec = model.simulation.value_or(SimulationSpec{});
+  s.time_unit = spec.time_unit;
+  s.force_unit = spec.force_unit;
+  s.time_scale = simulation::seconds_per(spec);
+  s.force_scale = simulation::millinewtons_per(spec);
+  const double fs = s.force_scale, ts = s.time_scale;
+  std::optional<std::size_t> planar;
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const Part& part = model.parts[p];
+    if (part.motion.kind == Motion::Kind::fixed) continue;
+    if (part.motion.kind != Motion::Kind::planar)
+      throw ModelError(part.motion.pointer, "part '" + part.name +
+                                                "': the planar simulator moves one planar part among fixed parts");
+    if (planar)
+      throw ModelError(part.motion.pointer, "part '" + part.name +
+                                                "': the planar simulator moves one planar part only ('" +
+                                                model.parts[*planar].name + "' is the other)");
+    planar = p;
+  }
+  if (!planar) throw ModelError("", "the model has no planar part to simulate");
+  s.part = *planar;
+  const Part& part = model.parts[s.part];
+  if (!spec.drivers.empty()) throw ModelError(spec.drivers.front().pointer, "the planar simulator has no drivers");
+  if (!spec.couplings.empty())
+    throw ModelError(spec.couplings.front().pointer, "the planar simulator has no springs between parts");
+  const Dynamics dyn = part.dynamics.value_or(Dynamics{});
+  const std::string at = part.pointer + "/dynamics";
+  if (!dyn.mass || !(*dyn.mass > 0))
+    throw ModelError(part.pointer, "planar part '" + part.name + "' needs a positive dynamics mass");
+  if (!dyn.moment_of_inertia || !(*dyn.moment_of_inertia > 0))
+    throw ModelError(part.pointer, "planar part '" + part.name +
+                                       "' needs a positive dynamics moment_of_inertia (about its pivot, its centre of mass)");
+  if (dyn.torsional_spring) throw ModelError(at + "/torsional_spring", "a planar part has no spring to the frame");
+  if (dyn.linear_spring) throw ModelError(at + "/linear_spring", "a planar part has no spring to the frame");
+  s.mass = to_d(*dyn.mass);
+  s.inertia = to_d(*dyn.moment_of_inertia);
+  if (dyn.force) {
+    s.force[0] = to_d(dyn.force->x) * fs;
+    s.force[1] = to_d(dyn.force->y) * fs;
+  }
+  if (dyn.torque) s.torque = to_d(*dyn.torque) * fs;
+  if (dyn.damping) s.damping_rate = to_d(*dyn.damping) * fs * ts / s.mass;
+  s.g[0] = to_d(spec.gravity.x) / (ts * ts);
+  s.g[1] = to_d(spec.gravity.y) / (ts * ts);
+  s.accel[0] = s.g[0] + s.force[0] / s.mass;
+  s.accel[1] = s.g[1] + s.force[1] / s.mass;
+  s.alpha = s.torque / s.inertia;
+  // reach: the farthest boundary point from the pivot (an arc: its centre's distance + radius)
+  double px = to_d(part.motion.pivot.x), py = to_d(part.motion.pivot.y);
+  for (const Loop& loop : part.loops)
+    for (const Edge& e : loop.edges) {
+      s.reach = std::max(s.reach, std::hypot(to_d(e.source.x) - px, to_d(e.source.y) - py));
+      if (e.is_arc())
+        s.reach = std::max(s.reach, std::hypot(to_d(e.center.x) - px, to_d(e.center.y) - py) +
+                                        std::sqrt(to_d(e.radius_squared)));
+    }
+  s.reach *= 1 + 1e-12;
+  double accuracy = options.accuracy > 0 ? options.accuracy : spec.accuracy ? to_d(*spec.accuracy) : 1e-9;
+  s.delta = options.chord_deviation > 0 ? options.chord_deviation : accuracy * std::max(s.reach, 1.0);
+  // a bounce that would rise less than delta under the loads is plastic
+  s.rest_speed = std::sqrt(2 * (std::hypot(s.accel[0], s.accel[1]) + std::abs(s.alpha) * s.reach) * s.delta);
+  for (std::size_t i = 0; i < model.pairs.size(); ++i) {
+    const PairSpec& pair = model.pairs[i];
+    std::size_t other = pair.first == s.part ? pair.second : pair.second == s.part ? pair.first : no_index;
+    if (other == no_index) continue;   // two fixed parts
+    if (pair.friction && *pair.friction > 0)
+      throw ModelError(pair.pointer + "/friction", "the planar simulator is frictionless: friction is not supported");
+    Impl::Pair p{i, other, pair.restitution ? to_d(*pair.restitution) : 0.0,
+                 SlicedSpace::build(model, model.parts[other].name, part.name, SlicedBuildOptions{false, {}})};
+    s.pairs.push_back(std::move(p));
+  }
+  s.k.x = to_d(part.initial.x);
+  s.k.y = to_d(part.initial.y);
+  s.k.theta = to_d(part.initial.angle);
+  // a planar part's velocity: three entries vx, vy, omega (SimulationSpec::Velocity)
+  std::vector<double> rates;
+  for (const auto& v : spec.velocities)
+    if (v.part == s.part) rates.push_back(to_d(v.value) / ts);
+  if (rates.size() == 3) {
+    s.k.vx = rates[0];
+    s.k.vy = rates[1];
+    s.k.omega = rates[2];
+  }
+  s.q = configuration_of(s.k.x, s.k.y, s.k.theta);
+  for (const Impl::Pair& p : s.pairs) {
+    SlicedLocation where = p.space.locate(s.q);
+    if (where.kind != SlicedLocation::Kind::free)
+      throw ModelError(part.pointer + "/initial", "planar part '" + part.name + "' starts " +
+                                                      (where.kind == SlicedLocation::Kind::blocked ? "overlapping"
+                                                                                                   : "touching") +
+                                                      " fixed part '" + model.parts[p.fixed].name +
+                                                      "': it must start apart");
+  }
+  s.publish();
+  return PlanarSimulation(std::move(impl));
+}
+
+void PlanarSimulation::step(double t_limit) {
+  Impl& s = *impl_;
+  double limit = t_limit * s.time_scale;
+  double span = limit - s.t;
+  if (s.options.max_step > 0) span = std::min(span, s.options.max_step * s.time_scale);
+  if (!(span > 0)) return;
+  if (++s.steps > s.options.max_steps)
+    throw NumericError(s.where(s.t) + ": more than " + std::to_string(s.options.max_steps) + " steps");
+  // forces balanced and constant: a resting part stays
+  bool event = !s.resting && s.advance(span);
+  if (!event) s.t = span == limit - s.t ? limit : s.t + span;
+  s.publish();
+}
+
+void PlanarSimulation::run_until(double t_end, const std::function<void(double)>& progress) {
+  while (impl_->t < t_end * impl_->time_scale) {
+    double before = impl_->t;
+    std::size_t events = impl_->events.size();
+    step(t_end);
+    if (progress) progress(impl_->public_state.time);
+    // no progress possible (t_end reached in the internal unit)
+    if (impl_->t == before && impl_->events.size() == events) break;
+  }
+}
+
+const PlanarState& PlanarSimulation::state() const { return impl_->public_state; }
+const std::vector<SimulationEvent>& PlanarSimulation::events() const { return impl_->events; }
+std::size_t PlanarSimulation::steps() const { return impl_->steps; }
+const PlanarStatistics& PlanarSimulation::statistics() const { return impl_->stats; }
+double PlanarSimulation::chord_deviation() const { return impl_->delta; }
+std::size_t PlanarSimulation::part() const { return impl_->part; }
+const Model& PlanarSimulation::model() const { return impl_->model; }
+const std::string& PlanarSimulation::time_unit() const { return impl_->time_unit; }
+const std::string& PlanarSimulation::force_unit() const { return impl_->force_unit; }
+
+double PlanarSimulation::energy() const {
+  const Impl& s = *impl_;
+  double kinetic = 0.5 * s.mass * (s.k.vx * s.k.vx + s.k.vy * s.k.vy) + 0.5 * s.inertia * s.k.omega * s.k.omega;
+  double potential = -(s.mass * s.g[0] + s.force[0]) * s.k.x - (s.mass * s.g[1] + s.force[1]) * s.k.y -
+                     s.torque * s.k.theta;
+  return (kinetic + potential) / s.force_scale;
+}
+
+}  // namespace hipair
