@@ -1013,11 +1013,18 @@ class MotionScanner {
   // f(a) + [0, b - a] (F_x X' + F_y Y') over the path's enclosure on [a, b] excludes zero.
   void mean_value_exclusion(const Rational& a, const Rational& b, const AxisPiece& px, const AxisPiece& py,
                             std::vector<Possible>& possible) {
-    bool wide = false;
-    std::vector<AxisPiece> xa = pieces(path_.x, a, a, wide, true), ya;
-    if (impl_.dimension == 2) ya = pieces(path_.y, a, a, wide, true);
-    else ya = {AxisPiece{false, false, Rational(0), Rational(0)}};
-    if (wide) return;
+    // the path's pieces at a (the subdivision visits [a, m] right after [a, b]: kept for the
+    // last a)
+    if (!start_ || start_->a != a) {
+      StartPieces at{a, {}, {}, false};
+      at.x = pieces(path_.x, a, a, at.wide, true);
+      if (impl_.dimension == 2) at.y = pieces(path_.y, a, a, at.wide, true);
+      else at.y = {AxisPiece{false, false, Rational(0), Rational(0)}};
+      start_ = std::move(at);
+    }
+    if (start_->wide) return;
+    const std::vector<AxisPiece>& xa = start_->x;
+    const std::vector<AxisPiece>& ya = start_->y;
     auto same = [](const AxisPiece& p, const AxisPiece& q) { return p.rotation == q.rotation && p.half_turn == q.half_turn; };
     auto sx = std::find_if(xa.begin(), xa.end(), [&](const AxisPiece& p) { return same(p, px); });
     auto sy = std::find_if(ya.begin(), ya.end(), [&](const AxisPiece& p) { return same(p, py); });
@@ -1156,6 +1163,12 @@ class MotionScanner {
 
   const CSpace::Impl& impl_;
   const MotionPath& path_;
+  struct StartPieces {
+    Rational a;
+    std::vector<AxisPiece> x, y;
+    bool wide = false;
+  };
+  std::optional<StartPieces> start_;
   // per axis (x, y): the path's coefficients and those of its derivative, enclosed in doubles
   std::vector<std::vector<KInterval>> enclosed_, enclosed_rate_;
   std::map<std::size_t, ChartCarriers> carriers_;
