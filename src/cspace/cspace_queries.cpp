@@ -7,6 +7,7 @@
 // intervals at the crossing of a motion. Every decision is exact (GMP) or certified (MPFI/MPFR
 // with directed rounding, outward-rounded double intervals).
 #include <hipair/cspace.hpp>
+#include <hipair/edge_tracker.hpp>
 #include <hipair/error.hpp>
 
 #include "cspace/builder_impl.hpp"
@@ -21,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <utility>
 
 namespace hipair {
@@ -94,6 +96,29 @@ RInterval evaluate_path(const std::vector<Rational>& p, const Rational& a, const
     for (std::size_t j = shifted.size() - 1; j > i; --j) shifted[j - 1] += m * shifted[j];
   Rational half = (b - a) / 2;
   return horner(shifted, RInterval{Rational(-half), half});
+}
+
+// The same enclosure in outward-rounded doubles, the filter in front of the exact one (a
+// certified enclosure a few units in the last place wider): Horner in h = u - m around a double m
+// near the midpoint, with p(m + h)'s coefficients enclosed. nullopt on overflow.
+std::optional<RInterval> evaluate_path_filtered(const std::vector<KInterval>& p, const Rational& a, const Rational& b) {
+  KInterval A = KInterval::enclose(a), B = KInterval::enclose(b);
+  double m = 0.5 * A.lo + 0.5 * B.hi;
+  KInterval M = KInterval::point(m);
+  std::vector<KInterval> shifted = p;
+  for (std::size_t i = 0; i + 1 < shifted.size(); ++i)
+    for (std::size_t j = shifted.size() - 1; j > i; --j) shifted[j - 1] = shifted[j - 1] + M * shifted[j];
+  KInterval H(kernels::interval_detail::down(A.lo - m), kernels::interval_detail::up(B.hi - m));
+  KInterval value(0);
+  for (std::size_t i = shifted.size(); i-- > 0;) value = value * H + shifted[i];
+  if (!std::isfinite(value.lo) || !std::isfinite(value.hi)) return std::nullopt;
+  return RInterval{Rational(value.lo), Rational(value.hi)};
+}
+
+std::vector<KInterval> enclosed_coefficients(const std::vector<Rational>& p) {
+  std::vector<KInterval> result;
+  for (const Rational& c : p) result.push_back(KInterval::enclose(c));
+  return result;
 }
 
 // ------------------------------------------------------------------ feature geometry
@@ -321,6 +346,169 @@ EdgeDerivatives CSpace::derivatives(EdgeId id, const Rational& x_input) const {
   }
 }
 
+// ------------------------------------------------------------------ filtered derivatives
+
+namespace {
+
+// kernels::Interval with the equality polynomial_partials uses to skip zero coefficients.
+struct TrackInterval : KInterval {
+  TrackInterval() = default;
+  TrackInterval(int value) : KInterval(value) {}                 // NOLINT(google-explicit-constructor)
+  TrackInterval(const KInterval& value) : KInterval(value) {}    // NOLINT(google-explicit-constructor)
+  friend bool operator==(const TrackInterval& a, const TrackInterval& b) { return a.lo == b.lo && a.hi == b.hi; }
+};
+
+// What a tracker keeps of its edge: the support polynomial in doubles (nearest, for Newton),
+// in certified double intervals (the partials over boxes) and with a certified error bound (the
+// signs of F), the abscissae strictly inside the edge's extent, and the chart's axis kinds.
+struct TrackerData {
+  std::vector<std::vector<double>> nearest;
+  std::vector<std::vector<TrackInterval>> enclosed;
+  cspace::algebra::IntervalPolynomial2 value;
+  double x_min = 0, x_max = 0;   // an abscissa in (x_min, x_max) is strictly inside the edge's extent
+  bool x_rotation = false, y_rotation = false;
+};
+
+// Certified sign of F at a double point: -1, +1, or 0 when rounding cannot decide.
+int certified_sign(const TrackerData& data, double x, double y) {
+  double error = 0;
+  double v = data.value.evaluate(x, y, &error);
+  if (!std::isfinite(v) || !std::isfinite(error)) return 0;
+  return v > error ? 1 : v < -error ? -1 : 0;
+}
+
+// The filter proper (track_derivatives): y, y', y'' at x from the certified point (x0, Y0) of
+// the same edge, or nullopt.
+std::optional<EdgeSlopes> slopes_from(const TrackerData& data, double x, double x0, CertifiedRange y0) {
+  namespace detail = kernels::interval_detail;
+  auto identity = [](const auto& v) { return v; };
+
+  // 1. the ordinate by Newton's method in doubles from the last certified point
+  double y = 0.5 * (y0.lower + y0.upper);
+  for (int i = 0; i < 8; ++i) {
+    kernels::Partials<double> p = kernels::polynomial_partials(data.nearest, x, y, identity);
+    double error = 0;
+    double step = data.value.evaluate(x, y, &error) / p.fy;
+    if (!std::isfinite(step)) return std::nullopt;
+    y -= step;
+    if (std::abs(step) <= 1e-16 * std::max(1.0, std::abs(y))) break;
+  }
+  // 2. a certified enclosure Y1 of a root of F(x, .): opposite certified signs at its ends
+  const double scale = std::max(1.0, std::abs(y));
+  KInterval y1;
+  bool bracketed = false;
+  for (double delta = 4e-16 * scale; delta < 1e-7 * scale && !bracketed; delta *= 8) {
+    double lo = y - delta, hi = y + delta;
+    int s_lo = certified_sign(data, x, lo), s_hi = certified_sign(data, x, hi);
+    if (s_lo != 0 && s_hi != 0 && s_lo != s_hi) {
+      y1 = KInterval(lo, hi);
+      bracketed = true;
+    }
+  }
+  if (!bracketed) return std::nullopt;
+  // 3. the root in Y1 is the edge's: on the box X x Y (X between the certified point x0 and
+  // x), F_y excludes 0 (each fibre has at most one root in Y) and |y'| = |F_x / F_y| <= S, so
+  // the edge's branch, in Y0 at x0, stays within S |x - x0| of Y0, inside Y, and meets the
+  // fibre at x in its only root in Y, which lies in Y1 (within the edge's extent: no end between;
+  // x = x0 too: Y0 and Y1 then hold the same root)
+  const TrackInterval X(KInterval(std::min(x0, x), std::max(x0, x)));
+  const double dx = detail::up(std::abs(x - x0));
+  double margin = detail::up(std::abs(y1.hi - y0.lower) + std::abs(y0.upper - y1.lo));
+  bool certified = false;
+  for (int attempt = 0; attempt < 4 && !certified; ++attempt) {
+    TrackInterval Y(KInterval(detail::down(std::min(y0.lower, y1.lo) - margin),
+                              detail::up(std::max(y0.upper, y1.hi) + margin)));
+    kernels::Partials<TrackInterval> box = kernels::polynomial_partials(data.enclosed, X, Y, identity);
+    if (box.fy.sign() == 2 || box.fy.sign() == 0) return std::nullopt;
+    KInterval q = box.fx / box.fy;
+    double slope = std::max(std::abs(q.lo), std::abs(q.hi));
+    if (!std::isfinite(slope)) return std::nullopt;
+    double reach = detail::up(detail::up(slope) * dx);
+    certified = Y.lo < detail::down(y0.lower - reach) && detail::up(y0.upper + reach) < Y.hi &&
+                Y.lo <= y1.lo && y1.hi <= Y.hi;
+    margin = std::max(4 * margin, 2 * reach);
+  }
+  if (!certified) return std::nullopt;
+  // 4. the slopes on {x} x Y1
+  const TrackInterval X1(KInterval::point(x)), Y1(y1);
+  kernels::Partials<TrackInterval> at = kernels::polynomial_partials(data.enclosed, X1, Y1, identity);
+  if (at.fy.sign() == 2 || at.fy.sign() == 0) return std::nullopt;
+  kernels::Slopes<TrackInterval> chart_slopes = kernels::implicit_slopes(at.fx, at.fy, at.fxx, at.fxy, at.fyy);
+  auto axis_slopes = [](bool rotation, const TrackInterval& t) {
+    return rotation ? kernels::half_angle_slopes(t) : kernels::offset_slopes<TrackInterval>();
+  };
+  kernels::Slopes<TrackInterval> part =
+      kernels::part_slopes(chart_slopes, axis_slopes(data.x_rotation, X1), axis_slopes(data.y_rotation, Y1));
+  for (const KInterval* v : {&chart_slopes.first, &chart_slopes.second, &part.first, &part.second})
+    if (!std::isfinite(v->lo) || !std::isfinite(v->hi)) return std::nullopt;
+  return EdgeSlopes{range_of(y1), range_of(chart_slopes.first), range_of(chart_slopes.second), range_of(part.first),
+                    range_of(part.second)};
+}
+
+// A certified enclosure of the edge's ordinate at x, exactly (the edge's arc number).
+CertifiedRange exact_ordinate(const ChartData& chart, std::size_t e, double x) {
+  Real y = cspace::edge_y_at(chart, e, Rational(x));
+  if (!y.exact) y.refine_to(Rational(1, mpz_class(1) << 64));
+  return y.exact ? range_of(y.lower, y.lower) : range_of(y.lower, y.upper);
+}
+
+}  // namespace
+
+std::optional<EdgeSlopes> track_derivatives(const CSpace& space, EdgeId id, double x, EdgeTracker& tracker) {
+  const CSpace::Impl& impl = checked(space);
+  if (impl.dimension != 2 || !id.valid() || id.index() >= impl.edges.size() || !std::isfinite(x)) return std::nullopt;
+  auto [c, e] = impl.edge_local[id.index()];
+  const ChartData& chart = impl.charts[c];
+  const cspace::raw::Edge& raw_edge = chart.arrangement.edges[e];
+  if (raw_edge.vertical) return std::nullopt;
+
+  if (tracker.space_ != &impl || tracker.edge_ != id || !tracker.data_) {
+    // place the tracker: the edge's polynomial in doubles, and one exact point of the edge
+    auto data = std::make_shared<TrackerData>();
+    const cspace::raw::Vertex& low = chart.arrangement.vertices[raw_edge.min_vertex];
+    const cspace::raw::Vertex& high = chart.arrangement.vertices[raw_edge.max_vertex];
+    // the ends' abscissae to about a unit in the last place (their isolating intervals may be
+    // wide): abscissae strictly between are inside the edge's extent
+    Real x_low = low.x, x_high = high.x;
+    for (Real* end : {&x_low, &x_high})
+      if (!end->exact) end->refine_to(Rational(1, mpz_class(1) << 60));
+    data->x_min = x_low.upper_bound();
+    data->x_max = x_high.lower_bound();
+    if (!(x > data->x_min && x < data->x_max)) return std::nullopt;
+    const auto& f = raw_edge.support.coefficients;
+    data->nearest.resize(f.size());
+    data->enclosed.resize(f.size());
+    for (std::size_t i = 0; i < f.size(); ++i)
+      for (const mpz_class& coefficient : f[i]) {
+        data->nearest[i].push_back(coefficient.get_d());
+        data->enclosed[i].push_back(KInterval::enclose(mpq_class(coefficient)));
+      }
+    data->value = cspace::algebra::IntervalPolynomial2(raw_edge.support);
+    data->x_rotation = chart.x_axis.kind != cspace::ChartAxis::Kind::translation;
+    data->y_rotation = chart.y_axis.kind != cspace::ChartAxis::Kind::translation;
+    tracker.space_ = &impl;
+    tracker.edge_ = id;
+    tracker.x_ = x;
+    tracker.y_ = exact_ordinate(chart, e, x);
+    tracker.data_ = std::move(data);
+  }
+  const TrackerData& data = *static_cast<const TrackerData*>(tracker.data_.get());
+  if (!(x > data.x_min && x < data.x_max)) return std::nullopt;
+  std::optional<EdgeSlopes> result = slopes_from(data, x, tracker.x_, tracker.y_);
+  if (!result && x != tracker.x_) {
+    // a jump the a-priori box cannot bridge: one exact point of the edge at x, and the filter
+    // from there
+    tracker.x_ = x;
+    tracker.y_ = exact_ordinate(chart, e, x);
+    result = slopes_from(data, x, x, tracker.y_);
+  }
+  if (result) {
+    tracker.x_ = x;
+    tracker.y_ = result->y;
+  }
+  return result;
+}
+
 // ------------------------------------------------------------------ slices and polylines
 
 std::vector<Slice> CSpace::slice(SliceAxis axis, const Rational& value_input) const {
@@ -527,14 +715,14 @@ constexpr mpfr_prec_t precision = 160;
 // RAII for MPFI / MPFR values.
 struct Mpfi {
   mpfi_t v;
-  Mpfi() { mpfi_init2(v, precision); }
+  explicit Mpfi(mpfr_prec_t bits = precision) { mpfi_init2(v, bits); }
   ~Mpfi() { mpfi_clear(v); }
   Mpfi(const Mpfi&) = delete;
   Mpfi& operator=(const Mpfi&) = delete;
 };
 struct Mpfr {
   mpfr_t v;
-  Mpfr() { mpfr_init2(v, precision); }
+  explicit Mpfr(mpfr_prec_t bits = precision) { mpfr_init2(v, bits); }
   ~Mpfr() { mpfr_clear(v); }
   Mpfr(const Mpfr&) = delete;
   Mpfr& operator=(const Mpfr&) = delete;
@@ -555,8 +743,8 @@ struct AxisPiece {
 };
 
 // tan(angle / 2), rounded down or up; \pre |angle| < pi.
-Rational tan_half(const mpfr_t angle, mpfr_rnd_t rounding) {
-  Mpfr half, t;
+Rational tan_half(const mpfr_t angle, mpfr_rnd_t rounding, mpfr_prec_t bits) {
+  Mpfr half(bits), t(bits);
   mpfr_div_2ui(half.v, angle, 1, MPFR_RNDN);   // exact
   mpfr_tan(t.v, half.v, rounding);
   return to_rational(t.v);
@@ -564,15 +752,16 @@ Rational tan_half(const mpfr_t angle, mpfr_rnd_t rounding) {
 
 // The chart-coordinate pieces of an angle enclosure `theta` (width < 2): t = tan((theta - c)/2)
 // in the charts centred at c = 0 and c = pi, clipped at the seams theta = +-pi/2 (where t = +-1
-// exactly), so that the pieces cover every angle in `theta`.
-std::vector<AxisPiece> angle_pieces(const RInterval& theta) {
-  Mpfi pi, half_pi, angle, shifted;
+// exactly), so that the pieces cover every angle in `theta`. Computed with `bits` of precision
+// and directed rounding: certified at any precision, tighter at more.
+std::vector<AxisPiece> angle_pieces(const RInterval& theta, mpfr_prec_t bits) {
+  Mpfi pi(bits), half_pi(bits), angle(bits), shifted(bits);
   mpfi_const_pi(pi.v);
   mpfi_div_2ui(half_pi.v, pi.v, 1);
   mpfi_interv_q(angle.v, theta.lo.get_mpq_t(), theta.hi.get_mpq_t());
   // reduce by a whole number of turns: k = floor((mid + pi) / 2 pi)
   {
-    Mpfr mid, turn, k;
+    Mpfr mid(bits), turn(bits), k(bits);
     Rational m = (theta.lo + theta.hi) / 2;
     mpfr_set_q(mid.v, m.get_mpq_t(), MPFR_RNDN);
     mpfr_const_pi(turn.v, MPFR_RNDN);
@@ -582,36 +771,36 @@ std::vector<AxisPiece> angle_pieces(const RInterval& theta) {
     mpfr_floor(k.v, k.v);
     mpz_class turns;
     mpfr_get_z(turns.get_mpz_t(), k.v, MPFR_RNDN);
-    Mpfi full;
+    Mpfi full(bits);
     mpfi_mul_2ui(full.v, pi.v, 1);
     mpfi_mul_z(full.v, full.v, turns.get_mpz_t());
     mpfi_sub(angle.v, angle.v, full.v);
   }
-  Mpfr hp_lo, hp_hi;
+  Mpfr hp_lo(bits), hp_hi(bits);
   mpfi_get_left(hp_lo.v, half_pi.v);
   mpfi_get_right(hp_hi.v, half_pi.v);
   std::vector<AxisPiece> pieces;
   // tau = angle - centre, clipped to [-pi/2, pi/2]
   auto piece = [&](const mpfi_t tau, bool half_turn) {
-    Mpfr lo, hi;
+    Mpfr lo(bits), hi(bits);
     mpfi_get_left(lo.v, tau);
     mpfi_get_right(hi.v, tau);
     // certainly below -pi/2 or certainly above pi/2: not in this chart
-    Mpfr below;
+    Mpfr below(bits);
     mpfr_neg(below.v, hp_hi.v, MPFR_RNDN);   // -pi/2 >= -hp_hi
     if (mpfr_cmp(hi.v, below.v) < 0 || mpfr_cmp(lo.v, hp_hi.v) > 0) return;
     AxisPiece p;
     p.rotation = true;
     p.half_turn = half_turn;
-    Mpfr neg_lo;
+    Mpfr neg_lo(bits);
     mpfr_neg(neg_lo.v, hp_lo.v, MPFR_RNDN);
-    p.lo = mpfr_cmp(lo.v, neg_lo.v) <= 0 ? Rational(-1) : tan_half(lo.v, MPFR_RNDD);
-    p.hi = mpfr_cmp(hi.v, hp_lo.v) >= 0 ? Rational(1) : tan_half(hi.v, MPFR_RNDU);
+    p.lo = mpfr_cmp(lo.v, neg_lo.v) <= 0 ? Rational(-1) : tan_half(lo.v, MPFR_RNDD, bits);
+    p.hi = mpfr_cmp(hi.v, hp_lo.v) >= 0 ? Rational(1) : tan_half(hi.v, MPFR_RNDU, bits);
     if (p.lo > p.hi) return;
     pieces.push_back(p);
   };
   piece(angle.v, false);
-  Mpfi tau;
+  Mpfi tau(bits);
   mpfi_sub(tau.v, angle.v, pi.v);
   piece(tau.v, true);
   mpfi_add(tau.v, angle.v, pi.v);
@@ -661,6 +850,12 @@ class MotionScanner {
     };
     check(path.x, impl.public_charts.at(0).x_kind, "x");
     if (impl.dimension == 2) check(path.y, impl.public_charts.at(0).y_kind, "y");
+    for (const AxisPath* axis : {&path.x, &path.y}) {
+      std::vector<Rational> d;
+      for (std::size_t i = 1; i < axis->coefficients.size(); ++i) d.push_back(axis->coefficients[i] * static_cast<long>(i));
+      enclosed_.push_back(enclosed_coefficients(axis->coefficients));
+      enclosed_rate_.push_back(enclosed_coefficients(d));
+    }
   }
 
   struct Evaluation {
@@ -672,9 +867,12 @@ class MotionScanner {
 
   Evaluation evaluate(const Rational& a, const Rational& b) {
     Evaluation result;
-    std::vector<AxisPiece> xs = pieces(path_.x, a, b, result.too_wide);
+    // a point of the path (a start, an end: located exactly) to the full precision; a stretch
+    // through the filter
+    const bool fine = a == b;
+    std::vector<AxisPiece> xs = pieces(path_.x, a, b, result.too_wide, fine);
     std::vector<AxisPiece> ys;
-    if (impl_.dimension == 2) ys = pieces(path_.y, a, b, result.too_wide);
+    if (impl_.dimension == 2) ys = pieces(path_.y, a, b, result.too_wide, fine);
     else ys = {AxisPiece{false, false, Rational(0), Rational(0)}};
     if (result.too_wide) return result;
     for (const AxisPiece& px : xs)
@@ -726,8 +924,20 @@ class MotionScanner {
     return kind == AxisKind::translation || half_turn == piece.half_turn;
   }
 
-  std::vector<AxisPiece> pieces(const AxisPath& axis, const Rational& a, const Rational& b, bool& too_wide) const {
-    RInterval value = evaluate_path(axis.coefficients, a, b);
+  // The path's enclosure over [a, b]: `fine`, exact (rational Horner; a start or an end, whose
+  // point is located exactly); else in certified double intervals (exact where they overflow).
+  RInterval path_value(const AxisPath& axis, const Rational& a, const Rational& b, bool fine) const {
+    if (!fine)
+      if (std::optional<RInterval> value = evaluate_path_filtered(enclosed_[&axis == &path_.x ? 0 : 1], a, b))
+        return *value;
+    return evaluate_path(axis.coefficients, a, b);
+  }
+
+  // The chart pieces of the path over [a, b]; `fine`: the exact path and 160-bit tangents,
+  // else the filtered path and 64-bit tangents (certified either way).
+  std::vector<AxisPiece> pieces(const AxisPath& axis, const Rational& a, const Rational& b, bool& too_wide,
+                                bool fine) const {
+    RInterval value = path_value(axis, a, b, fine);
     switch (axis.kind) {
       case AxisPath::Kind::offset: return {AxisPiece{false, false, value.lo, value.hi}};
       case AxisPath::Kind::half_tangent: return tangent_pieces(value);
@@ -736,7 +946,7 @@ class MotionScanner {
           too_wide = true;
           return {};
         }
-        return angle_pieces(value);
+        return angle_pieces(value, fine ? precision : 64);
     }
     return {};
   }
@@ -749,10 +959,18 @@ class MotionScanner {
 
   // Enclosure of d(chart coordinate)/du over [a, b] on the piece `piece` (one system).
   DInterval chart_derivative(const AxisPath& axis, const Rational& a, const Rational& b, const AxisPiece& piece) const {
-    std::vector<Rational> d;
-    for (std::size_t i = 1; i < axis.coefficients.size(); ++i) d.push_back(axis.coefficients[i] * static_cast<long>(i));
-    RInterval dv = d.empty() ? RInterval::point(Rational(0)) : evaluate_path(d, a, b);
-    DInterval rate = enclose_range(dv.lo, dv.hi);
+    const std::vector<KInterval>& d = enclosed_rate_[&axis == &path_.x ? 0 : 1];
+    DInterval rate{0, 0};
+    if (!d.empty()) {
+      std::optional<RInterval> dv = evaluate_path_filtered(d, a, b);
+      if (!dv) {
+        std::vector<Rational> exact;
+        for (std::size_t i = 1; i < axis.coefficients.size(); ++i)
+          exact.push_back(axis.coefficients[i] * static_cast<long>(i));
+        dv = evaluate_path(exact, a, b);
+      }
+      rate = enclose_range(dv->lo, dv->hi);
+    }
     DInterval x = enclose_range(piece.lo, piece.hi);
     switch (axis.kind) {
       case AxisPath::Kind::offset: return rate;
@@ -795,11 +1013,18 @@ class MotionScanner {
   // f(a) + [0, b - a] (F_x X' + F_y Y') over the path's enclosure on [a, b] excludes zero.
   void mean_value_exclusion(const Rational& a, const Rational& b, const AxisPiece& px, const AxisPiece& py,
                             std::vector<Possible>& possible) {
-    bool wide = false;
-    std::vector<AxisPiece> xa = pieces(path_.x, a, a, wide), ya;
-    if (impl_.dimension == 2) ya = pieces(path_.y, a, a, wide);
-    else ya = {AxisPiece{false, false, Rational(0), Rational(0)}};
-    if (wide) return;
+    // the path's pieces at a (the subdivision visits [a, m] right after [a, b]: kept for the
+    // last a)
+    if (!start_ || start_->a != a) {
+      StartPieces at{a, {}, {}, false};
+      at.x = pieces(path_.x, a, a, at.wide, true);
+      if (impl_.dimension == 2) at.y = pieces(path_.y, a, a, at.wide, true);
+      else at.y = {AxisPiece{false, false, Rational(0), Rational(0)}};
+      start_ = std::move(at);
+    }
+    if (start_->wide) return;
+    const std::vector<AxisPiece>& xa = start_->x;
+    const std::vector<AxisPiece>& ya = start_->y;
     auto same = [](const AxisPiece& p, const AxisPiece& q) { return p.rotation == q.rotation && p.half_turn == q.half_turn; };
     auto sx = std::find_if(xa.begin(), xa.end(), [&](const AxisPiece& p) { return same(p, px); });
     auto sy = std::find_if(ya.begin(), ya.end(), [&](const AxisPiece& p) { return same(p, py); });
@@ -938,6 +1163,14 @@ class MotionScanner {
 
   const CSpace::Impl& impl_;
   const MotionPath& path_;
+  struct StartPieces {
+    Rational a;
+    std::vector<AxisPiece> x, y;
+    bool wide = false;
+  };
+  std::optional<StartPieces> start_;
+  // per axis (x, y): the path's coefficients and those of its derivative, enclosed in doubles
+  std::vector<std::vector<KInterval>> enclosed_, enclosed_rate_;
   std::map<std::size_t, ChartCarriers> carriers_;
   std::map<std::pair<std::size_t, std::size_t>, Gradient> gradients_;
   std::map<std::pair<std::size_t, std::size_t>, std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>>

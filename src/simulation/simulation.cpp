@@ -12,6 +12,7 @@
 // contacts are the other curves through its edge's end vertex (vertex_contacts).
 #include <hipair/simulation.hpp>
 
+#include <hipair/edge_tracker.hpp>
 #include <hipair/error.hpp>
 
 #include "simulation/friction.hpp"
@@ -109,6 +110,8 @@ struct Active {
   // once decided at a step's start (docs/simulation.md#friction)
   int coulomb = simulation::frictionless;
   bool coulomb_known = false;
+  // the last certified point of the edge, for the contact rows' filtered derivatives
+  mutable EdgeTracker tracker;
 };
 
 // The contact forces of the held contacts at a state (friction included).
@@ -363,13 +366,23 @@ struct Simulation::Impl {
     // within the slack of an end: the nearest abscissa strictly inside (the ends are algebraic)
     double inset = 1e-9 * (a.x_hi - a.x_lo);
     tx = std::clamp(tx, a.x_lo + inset, a.x_hi - inset);
-    EdgeDerivatives d;
-    if (!derivatives_near(a, tx, d)) return false;
-    double y1 = mid(d.coordinate_dy), y2 = mid(d.coordinate_d2y);
+    // certified double-interval derivatives along the edge; the exact ones where that filter
+    // cannot certify (an end, a near-singular point): the same rows within rounding
+    double y1, y2, ty;
+    if (std::optional<EdgeSlopes> s = track_derivatives(*spaces[a.pair], a.edge, tx, a.tracker)) {
+      y1 = mid(s->coordinate_dy);
+      y2 = mid(s->coordinate_d2y);
+      ty = mid(s->y);
+    } else {
+      EdgeDerivatives d;
+      if (!derivatives_near(a, tx, d)) return false;
+      y1 = mid(d.coordinate_dy);
+      y2 = mid(d.coordinate_d2y);
+      ty = d.y.approximate();
+    }
     G[a.xdof] = -a.sigma * y1;
     G[a.ydof] += a.sigma;
     h = -a.sigma * y2 * vs[a.xdof] * vs[a.xdof];
-    double ty = d.y.approximate();
     double dy;
     if (chart.y_kind == AxisKind::translation) {
       dy = qs[a.ydof] - ty;

@@ -1,0 +1,81 @@
+// Simulated seconds per CPU second of HIPAIR's simulator (issue 11's speed goal: >= 100x real
+// time at 0.1 % accuracy; docs/performance.md, "Session 8: simulator speed").
+//
+// `hipair_simulation_speed [--benchmark_filter=...]`: the Geneva drive (examples/models/
+// geneva-drive.json, driver at its prescribed 2 pi rad/s, 2 s = two drives and two dwells) and
+// the escapement (examples/models/escapement.json, its own simulation section, 0.5 s) at
+// accuracies 1e-3 (0.1 %), 1e-4, 1e-6 and 1e-9 (a run that stops with an error is reported as
+// such). CPU time of the simulating thread for run_until alone (the C-space build is reported
+// apart as setup_s). Counters: sim_s_per_cpu_s (the figure the goal is about), steps, events,
+// setup_s. One translation unit without CGAL; not a ctest test.
+#include "peer_timing.hpp"
+
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+#include <hipair/simulation.hpp>
+
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+namespace hipair {
+namespace {
+
+void BM_Simulate(benchmark::State& state, const std::string& file, double t_end, double accuracy) {
+  Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / file);
+  SimulationOptions options;
+  options.accuracy = accuracy;
+  double cpu = 0, setup = 0;
+  std::size_t steps = 0, events = 0;
+  for (auto _ : state) {
+    double begin = bench::thread_cpu_seconds();
+    Simulation s = Simulation::create(model, options);
+    double start = bench::thread_cpu_seconds();
+    setup = start - begin;
+    try {
+      s.run_until(t_end, [&](double) { ++steps; });
+    } catch (const Error& error) {
+      state.SkipWithError(error.what());
+      return;
+    }
+    double elapsed = bench::thread_cpu_seconds() - start;
+    cpu += elapsed;
+    events = s.events().size();
+    state.SetIterationTime(elapsed);
+  }
+  double runs = static_cast<double>(state.iterations());
+  state.counters["sim_s_per_cpu_s"] = t_end * runs / cpu;
+  state.counters["steps"] = static_cast<double>(steps) / runs;
+  state.counters["events"] = static_cast<double>(events);
+  state.counters["setup_s"] = setup;
+}
+
+void register_all() {
+  struct Case {
+    const char* name;
+    const char* file;
+    double t_end;
+  };
+  for (const Case& c : {Case{"Geneva", "geneva-drive.json", 2.0}, Case{"Escapement", "escapement.json", 0.5}})
+    for (double accuracy : {1e-3, 1e-4, 1e-6, 1e-9}) {
+      char name[96];
+      std::snprintf(name, sizeof name, "BM_Simulate%s/accuracy:%.0e", c.name, accuracy);
+      benchmark::RegisterBenchmark(name, BM_Simulate, std::string(c.file), c.t_end, accuracy)
+          ->Iterations(1)
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond);
+    }
+}
+
+}  // namespace
+}  // namespace hipair
+
+int main(int argc, char** argv) {
+  hipair::register_all();
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
