@@ -295,9 +295,9 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
       if (curve_options.blocked_grid)
         cells = std::make_shared<BlockedCells>(tester, chart.x, chart.y, input.dimension, grid_depth);
       std::vector<ContactCurve> curves = generator.generate(chart.x, chart.y, &input.curve_statistics, cells.get());
-      // many boxes (the tiles of an operating region): their posed disks are posed again when
-      // the builder culls the box, rather than kept for every box at once
-      if (cells && boxes.size() > 4) cells->release_cache();
+      // the tester's posed disks are posed again when the builder culls the box, rather than
+      // kept for every box at once (the known cells stay)
+      if (cells) cells->release_cache();
       input.seconds_curves += std::chrono::duration<double>(Clock::now() - start).count();
       for (auto& curve : curves)
         if (!curve.polynomial.is_zero()) chart.curves.push_back(std::move(curve));
