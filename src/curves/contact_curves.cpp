@@ -764,7 +764,7 @@ class BlockedSpaceCuller {
     if (meeting.empty()) return;
     // the grid's blocked test (memoised, shared with the builder) after the cheap box tests
     if (grid_ && depth >= 2 && grid_->blocked(depth, i, j)) return;
-    if (depth >= (grid_ ? grid_->depth() : max_depth)) {
+    if (depth >= (grid_ ? std::max(grid_->depth(), min_grid_depth) : max_depth)) {
       for (int k : meeting) (*needed_)[static_cast<std::size_t>(k)] = 1;
       return;
     }
@@ -794,6 +794,10 @@ class BlockedSpaceCuller {
   }
 
   static constexpr int max_depth = 10;
+  // With a grid, pairs are followed at least to this depth of the box: an operating-region
+  // tile's grid is as coarse as the chart's 512 columns allow (the builder's windows), but a
+  // pair is dropped only where the tile's own finer cells are blocked.
+  static constexpr int min_grid_depth = 9;
   PartMotion motion_[2];
   ChartAxis x_;
   ChartAxis y_;

@@ -104,7 +104,8 @@ class BlockedTester {
 /// the one grid of the merged blocked-space cull. Depth 0 is the box (its rational ends
 /// enclosed outward in doubles), a cell of depth d + 1 is a quarter of one of depth d (a half
 /// for a 1-D space), so cell (d, i, j) covers [cell_x(d, i)] x [cell_y(d, j)] and the cells of
-/// one depth tile the box. The curve generator asks it which feature pairs can touch outside
+/// one depth tile the box. `depth()` is the builder's finest depth (its windows); the curve
+/// generator may go deeper (any depth up to 24 is a cell). The curve generator asks it which feature pairs can touch outside
 /// certified blocked space (before any exact polynomial is formed), and the builder which
 /// parts of each kept curve can bound free space (its windows); every cell is tested once
 /// (memoised, with the posed disks of the tester's cache), and a cell inside a blocked cell

@@ -76,10 +76,10 @@ def summary(d):
                 chain_of_edge[j] = chain
     cell_list = []
     for c in cells:
-        boundary = collections.Counter(chain_of_edge[e] for e in c["boundary_edges"] if e in chain_of_edge)
+        boundary = {chain_of_edge[e] for e in c["boundary_edges"] if e in chain_of_edge}
         neighbours = sorted(str(kind(n)) for n in c.get("neighbours", []))
         cell_list.append((c["kind"], c.get("wraps_x"), c.get("wraps_y"), tuple(neighbours),
-                          tuple(sorted(boundary.items()))))
+                          tuple(sorted(boundary))))
     roles = collections.Counter(e["role"] for e in d["edges"])
     return chains, collections.Counter(cell_list), roles
 
