@@ -145,15 +145,9 @@ void expect_same_space(const Model& model, const std::string& first, const std::
   std::map<std::size_t, std::size_t> cell_map, inverse;
   int compared = 0;
   for (int i = 0; i < 300; ++i) {
-    std::size_t c = random() % a.charts().size();
+    const ChartPoint q = test::random_tile_point(a, random);
+    const std::size_t c = q.chart;
     const CSpaceChart& chart = a.charts()[c];
-    auto pick = [&](const Rational& lo, const Rational& hi) {
-      Rational u = random() % 4 == 0 ? Rational(static_cast<long>(random() % 65), 64)
-                                      : Rational(mpz_class(static_cast<unsigned long>(random() % 1000003)), 1000003);
-      u.canonicalize();
-      return Rational(lo + u * (hi - lo));
-    };
-    ChartPoint q{c, pick(chart.x_lo, chart.x_hi), a.dimension() == 2 ? pick(chart.y_lo, chart.y_hi) : Rational(0)};
     Location la = a.locate(q), lb = b.locate(q);
     std::string ca = located_class(a, la), cb = located_class(b, lb);
     // a point on a spurious piece of one build only is inside the same cell of the other
