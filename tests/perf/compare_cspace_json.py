@@ -4,26 +4,59 @@
 Same cells (kind, wrapping, neighbour kinds, the contact chains on their boundary), the same
 contact and touching boundary: maximal chains of contact edges per chart, polynomial, feature
 pairs and the kinds of the two sides, identified by their end vertices' exact coordinates
-(rationals exactly; algebraic numbers by a 12-digit decimal, since the same number may come
-with another defining polynomial and isolating interval).
+(rationals exactly; algebraic numbers by overlapping isolating intervals, since the same number
+may come with another defining polynomial and interval; a chain's end is matched to one of the
+other's). Cells are compared by kind, wrapping, neighbour kinds and their number of contact
+chains.
 Spurious edges, seams and the splitting of a chain by spurious edges may differ.
 Prints the differences; exit 1 if there is one.
 
   python3 compare_cspace_json.py BEFORE.json AFTER.json
 """
 import collections
+from fractions import Fraction
 import json
 import re
 import sys
 
 
 def coordinate(c):
+    """A rational exactly; an algebraic number as (lower, upper) of its isolating interval
+    (the same number may come with another defining polynomial and interval)."""
     exact = c["exact"]
-    if " in (" in exact or " = 0" in exact or "root" in exact:
-        # algebraic: its value to 12 digits (the same number comes with different defining
-        # polynomials, e.g. another factor of a resultant, and other isolating intervals)
-        return "~ %.12g" % c["decimal"]
-    return exact
+    if "interval" in c:
+        lo, hi = (Fraction(v) for v in c["interval"])
+        return ("algebraic", float(lo), float(hi))
+    return ("rational", exact)
+
+
+def same_point(a, b):
+    # the same vertex: equal rationals, or overlapping enclosures (a rational inside one)
+    def bounds(c):
+        if c[0] == "algebraic":
+            return c[1], c[2]
+        v = float(Fraction(c[1]))
+        return v, v
+    if a[0] == "rational" and b[0] == "rational":
+        return a[1] == b[1]
+    (alo, ahi), (blo, bhi) = bounds(a), bounds(b)
+    slack = 1e-12 * (1 + abs(alo) + abs(blo))
+    return alo <= bhi + slack and blo <= ahi + slack
+
+
+def same_ends(a, b):
+    # two chains' sorted end lists: the same vertices in some order
+    if len(a) != len(b):
+        return False
+    used = [False] * len(b)
+    for p in a:
+        for k, q in enumerate(b):
+            if not used[k] and p[0] == q[0] and same_point(p[1], q[1]) and same_point(p[2], q[2]):
+                used[k] = True
+                break
+        else:
+            return False
+    return True
 
 
 def spaces(document):
@@ -70,7 +103,7 @@ def summary(d):
                         if k not in seen:
                             seen.add(k)
                             stack.append(k)
-            chain = (key, tuple(sorted(ends)))
+            chain = (key, tuple(sorted(ends, key=repr)))
             chains[chain] += 1
             for j in component:
                 chain_of_edge[j] = chain
@@ -84,6 +117,25 @@ def summary(d):
     return chains, collections.Counter(cell_list), roles
 
 
+def matched(a, b):
+    """Counters of chains a and b are the same up to equal vertices (same_ends)."""
+    left = [c for c, n in a.items() for _ in range(n)]
+    right = [c for c, n in b.items() for _ in range(n)]
+    by_key = collections.defaultdict(list)
+    for k, c in enumerate(right):
+        by_key[c[0]].append(k)
+    used = set()
+    unmatched = []
+    for c in left:
+        for k in by_key.get(c[0], []):
+            if k not in used and same_ends(c[1], right[k][1]):
+                used.add(k)
+                break
+        else:
+            unmatched.append(c)
+    return unmatched, [right[k] for k in range(len(right)) if k not in used]
+
+
 def main():
     before = json.load(open(sys.argv[1]))
     after = json.load(open(sys.argv[2]))
@@ -93,14 +145,17 @@ def main():
         ca, cella, ra = summary(a)
         cb, cellb, rb = summary(b)
         name = a.get("pair", "?")
-        if ca != cb:
+        only_a, only_b = matched(ca, cb)
+        if only_a or only_b:
             differ = True
-            print(name, "contact chains differ:", len(ca), "vs", len(cb))
-            for c in list((ca - cb).keys())[:5]:
+            print(name, "contact chains differ:", len(only_a), "only before,", len(only_b), "only after")
+            for c in only_a[:5]:
                 print("  only before:", c)
-            for c in list((cb - ca).keys())[:5]:
+            for c in only_b[:5]:
                 print("  only after:", c)
-        if cella != cellb:
+        # cells: kinds, wrapping, neighbour kinds and how many contact chains bound them
+        shape = lambda cells: collections.Counter((c[0], c[1], c[2], c[3], len(c[4])) for c in cells.elements())
+        if shape(cella) != shape(cellb):
             differ = True
             print(name, "cells differ")
         print(name, "edges before", dict(ra), "after", dict(rb), "chains", sum(ca.values()), "cells", sum(cella.values()))
