@@ -40,14 +40,6 @@ CellKind cell_kind(FaceKind kind) {
   return kind == FaceKind::free ? CellKind::free : kind == FaceKind::blocked ? CellKind::blocked : CellKind::touching;
 }
 
-// A rational in (lo, hi) that differs from every rational in `avoid` (sorted).
-Rational rational_avoiding(const Real& lo, const Real& hi, const std::vector<Rational>& avoid) {
-  Rational candidate = algebra::rational_between(lo, hi);
-  while (std::binary_search(avoid.begin(), avoid.end(), candidate))
-    candidate = algebra::rational_between(Real::from_rational(candidate), hi);
-  return candidate;
-}
-
 // ---------------------------------------------------------------- per-chart stages
 
 // Quadtree over a chart: where can a curve bound free space? A cell is dropped when the curve
@@ -373,6 +365,31 @@ class ContactSides {
   std::vector<std::optional<IntegerPolynomial2>> derivatives_;
 };
 
+// A rational in (lo, hi) that is the abscissa of no vertex of the chart, decided exactly: the
+// rational abscissae flagged exact are looked up, and every other vertex whose isolating
+// interval holds the candidate is compared with it exactly (an abscissa can be rational
+// without being flagged exact, e.g. a clipping end that CGAL reports as an algebraic real; a
+// face sample taken on such a vertical line would miss the edges ending there).
+Rational abscissa_avoiding_vertices(const ChartData& chart, const Real& lo, const Real& hi) {
+  const std::vector<Rational>& exact = chart.rational_vertex_x;
+  Rational candidate = algebra::rational_between(lo, hi);
+  for (;;) {
+    bool on_vertex = std::binary_search(exact.begin(), exact.end(), candidate);
+    if (!on_vertex) {
+      const algebra::Interval c = algebra::enclose(candidate);
+      for (const raw::Vertex& v : chart.arrangement.vertices) {
+        if (v.x.exact || v.x.upper_bound() < c.lo || v.x.lower_bound() > c.hi) continue;
+        if (v.x.compare(candidate) == 0) {
+          on_vertex = true;
+          break;
+        }
+      }
+    }
+    if (!on_vertex) return candidate;
+    candidate = algebra::rational_between(Real::from_rational(candidate), hi);
+  }
+}
+
 // An exact rational sample strictly inside the bounded face f (once; deterministic: the same
 // point whichever face asks first): on the vertical line through a rational abscissa of the
 // face's widest non-vertical boundary edge, between that edge and the next edge on the face's
@@ -398,8 +415,8 @@ void sample_face(ChartData& chart, std::size_t f) {
   }
   if (chosen == raw::none) throw GeometryError("internal: a C-space face has no non-vertical boundary edge");
   const raw::Edge& edge = arrangement.edges[chosen];
-  Rational x = rational_avoiding(arrangement.vertices[edge.min_vertex].x, arrangement.vertices[edge.max_vertex].x,
-                                 chart.rational_vertex_x);
+  Rational x = abscissa_avoiding_vertices(chart, arrangement.vertices[edge.min_vertex].x,
+                                         arrangement.vertices[edge.max_vertex].x);
   Real from = edge_y_at(chart, chosen, x);
   Hit hit = nearest_on_vertical(chart, x, from, above);
   if (!hit.found) throw GeometryError("internal: no edge bounds a C-space face on a vertical line");

@@ -168,17 +168,13 @@ void expect_same_space(const Model& model, const std::string& first, const std::
   EXPECT_EQ(compared, 300);
 }
 
-// DISABLED: fails, and the defects it finds are older than the merged cull (main builds the
-// same C-spaces). Pair 1 at scale 1 (tests/data/cull/star-located-blocked.json): the default
-// (culled) build locates chart 1 at (-138503/1000003, 981261/1000003) in a blocked cell where the
-// oracle says apart and the unculled build has a small free cell (the culled build has one
-// spurious edge, 208, where the unculled one has the contact edges 292, 294, 296 of that cell:
-// a window of "a loop 0 edge 3 / b corner of loop 0 edge 2 and loop 0 edge 3" ends at
-// x = -0.425781 while its contact edge starts at x = -0.426068). Pair 1 at scale 1e-30
-// (tests/data/cull/star-unculled-check.json): the unculled build fails
-// check_face_classification ("a face classified by a contact edge's blocked side or by
-// propagation disagrees with the oracle at -1/3, 2/3"). Enable when both are fixed.
-TEST(CSpaceCull, DISABLED_CulledBuildEqualsTheUnculledOneOnRandomStarPairs) {
+// Found two defects (reproductions in tests/data/cull/), both one cause: a face sample taken on
+// the vertical line through a vertex whose rational abscissa was not flagged exact (the edges
+// ending there were skipped, the sample landed in the face below, and the oracle check agreed
+// with the wrong sample). Pair 1 at scale 1: the default build located (-138503/1000003,
+// 981261/1000003) of chart 1 in a blocked cell where the oracle says apart; pair 1 at scale
+// 1e-30: the unculled build failed check_face_classification.
+TEST(CSpaceCull, CulledBuildEqualsTheUnculledOneOnRandomStarPairs) {
   std::mt19937_64 random(1402);
   int pairs = 0;
   for (int scale : {0, -30, 40}) {
