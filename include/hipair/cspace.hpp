@@ -457,6 +457,11 @@ struct CSpaceBuildOptions {
   /// no interval culling quadtree). false: the general path of every other pair. The C-space is
   /// the same either way (for tests that compare the two).
   bool polygon_front_end = true;
+  /// The certified blocked-space cull (feature pairs whose contacts all lie in certainly
+  /// blocked cells are never built, and curve parts there are not inserted). false: every
+  /// feature pair that can touch is built and inserted whole; the C-space is the same, with
+  /// more spurious edges (for tests that compare the two; slower).
+  bool cull_blocked_space = true;
 };
 
 /// The exact C-space of one pair. Value semantics: copies share the immutable structure.

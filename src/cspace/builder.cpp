@@ -3,6 +3,7 @@
 // overlap oracle, and charts are glued along seams into cells.
 #include "cspace/builder_impl.hpp"
 #include "arrangement/circle_segment_traits.hpp"
+#include "oracle/blocked_tester.hpp"
 
 #include <hipair/error.hpp>
 
@@ -39,24 +40,16 @@ CellKind cell_kind(FaceKind kind) {
   return kind == FaceKind::free ? CellKind::free : kind == FaceKind::blocked ? CellKind::blocked : CellKind::touching;
 }
 
-// A rational in (lo, hi) that differs from every rational in `avoid` (sorted).
-Rational rational_avoiding(const Real& lo, const Real& hi, const std::vector<Rational>& avoid) {
-  Rational candidate = algebra::rational_between(lo, hi);
-  while (std::binary_search(avoid.begin(), avoid.end(), candidate))
-    candidate = algebra::rational_between(Real::from_rational(candidate), hi);
-  return candidate;
-}
-
 // ---------------------------------------------------------------- per-chart stages
 
 // Quadtree over a chart: where can a curve bound free space? A cell is dropped when the curve
 // cannot vanish in it (interval evaluation), when a validity clause certainly fails in it, or
-// when the whole cell is certainly blocked. The x-ranges of the surviving finest cells are the
-// curve's windows.
+// when the whole cell is certainly blocked (the chart box's grid, BlockedCells: the merged
+// cull's cells, memoised and shared with the curve generator). The x-ranges of the surviving
+// finest cells are the curve's windows.
 class CurveCuller {
  public:
-  CurveCuller(const ChartInput& input, algebra::Interval x, algebra::Interval y, int depth)
-      : input_(input), x_(x), y_(y), depth_(depth) {}
+  explicit CurveCuller(BlockedCells& grid) : grid_(grid) {}
 
   // Windows of the curve (merged, ascending); empty when the curve bounds nothing.
   std::vector<std::pair<double, double>> windows(const algebra::IntervalPolynomial2& f,
@@ -75,30 +68,9 @@ class CurveCuller {
   }
 
  private:
-  algebra::Interval cell_x(int depth, long i) const {
-    double width = (x_.hi - x_.lo) / static_cast<double>(1L << depth);
-    return {i == 0 ? x_.lo : x_.lo + width * static_cast<double>(i),
-            i + 1 == (1L << depth) ? x_.hi : x_.lo + width * static_cast<double>(i + 1)};
-  }
-  algebra::Interval cell_y(int depth, long j) const {
-    double width = (y_.hi - y_.lo) / static_cast<double>(1L << depth);
-    return {j == 0 ? y_.lo : y_.lo + width * static_cast<double>(j),
-            j + 1 == (1L << depth) ? y_.hi : y_.lo + width * static_cast<double>(j + 1)};
-  }
-  bool blocked(int depth, long i, long j) {
-    if (!input_.certainly_blocked) return false;
-    long key = (static_cast<long>(depth) << 56) | (i << 28) | j;
-    auto it = blocked_.find(key);
-    if (it != blocked_.end()) return it->second;
-    // a cell inside a blocked cell is blocked
-    bool result = depth > 4 && blocked(depth - 2, i / 4, j / 4);
-    if (!result) result = input_.certainly_blocked(cell_x(depth, i), cell_y(depth, j));
-    blocked_.emplace(key, result);
-    return result;
-  }
   void visit(const algebra::IntervalPolynomial2& f, const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses,
              int depth, long i, long j, std::vector<std::pair<double, double>>& found) {
-    algebra::Interval x = cell_x(depth, i), y = cell_y(depth, j);
+    algebra::Interval x = grid_.cell_x(depth, i), y = grid_.cell_y(depth, j);
     if (!f.evaluate(x, y).contains_zero()) return;
     for (const auto& clause : clauses) {
       bool can_hold = false;
@@ -109,8 +81,8 @@ class CurveCuller {
         }
       if (!can_hold) return;
     }
-    if (depth >= 3 && (depth % 2 == 1 || depth == depth_) && blocked(depth, i, j)) return;
-    if (depth == depth_) {
+    if (depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && grid_.blocked(depth, i, j)) return;
+    if (depth == grid_.depth()) {
       found.emplace_back(x.lo, x.hi);
       return;
     }
@@ -118,10 +90,7 @@ class CurveCuller {
       for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found);
   }
 
-  const ChartInput& input_;
-  algebra::Interval x_, y_;
-  int depth_;
-  std::unordered_map<long, bool> blocked_;
+  BlockedCells& grid_;
 };
 
 const mpz_class& coefficient_of(const IntegerPolynomial2& f, std::size_t i, std::size_t j) {
@@ -134,7 +103,7 @@ const mpz_class& coefficient_of(const IntegerPolynomial2& f, std::size_t i, std:
 // closed chart box where every validity clause holds (some atom >= 0), found where the line
 // meets the line of one of its linear atoms. The quadtree's interval enclosures contain the
 // exact values at that point, so the finest cell holding it survives every test (there is no
-// blocked test without `certainly_blocked`): the curve is kept with the same (empty) windows.
+// blocked test without a usable grid): the curve is kept with the same (empty) windows.
 bool valid_point_in_box(const ContactCurve& curve, const raw::Box& box) {
   const IntegerPolynomial2& f = curve.polynomial;
   if (f.degree_x() > 1 || f.degree_y() > 1 || sgn(coefficient_of(f, 1, 1)) != 0 || curve.validity.empty()) return false;
@@ -164,9 +133,11 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input
   chart.x_axis = input.x;
   chart.y_axis = input.y;
   chart.box = raw::Box{input.x.lo, input.x.hi, input.y.lo, input.y.hi};
-  algebra::Interval x{algebra::lower_double(input.x.lo), algebra::upper_double(input.x.hi)};
-  algebra::Interval y{algebra::lower_double(input.y.lo), algebra::upper_double(input.y.hi)};
-  CurveCuller culler(input, x, y, input.cull_depth > 0 ? input.cull_depth : input.certainly_blocked ? 9 : 6);
+  // without a grid (no blocked test): one of the culling depth, that blocks nothing
+  const bool blocked_test = input.blocked_cells && input.blocked_cells->usable();
+  std::optional<BlockedCells> own;
+  if (!input.blocked_cells) own.emplace(nullptr, input.x, input.y, dimension, input.cull_depth > 0 ? input.cull_depth : 6);
+  CurveCuller culler(input.blocked_cells ? *input.blocked_cells : *own);
   std::vector<std::size_t> kept;
   for (std::size_t k = 0; k < input.curves.size(); ++k) {
     const ContactCurve& curve = input.curves[k];
@@ -175,7 +146,7 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input
     if (dimension == 2) {
       // (a line with an exact valid point in the box is kept without the quadtree)
       std::vector<std::pair<double, double>> found;
-      if (input.certainly_blocked || !shortcuts || !valid_point_in_box(curve, chart.box)) {
+      if (blocked_test || !shortcuts || !valid_point_in_box(curve, chart.box)) {
         std::vector<std::vector<algebra::IntervalPolynomial2>> clauses;
         for (const auto& clause : curve.validity) {
           clauses.emplace_back();
@@ -184,7 +155,7 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input
         found = culler.windows(f, clauses);
         if (found.empty()) continue;
       }
-      if (input.certainly_blocked)
+      if (blocked_test)
         for (const auto& [lo, hi] : found)
           // (a chart end beyond the doubles' range encloses to an infinite cell side: no
           // double may become a rational there, the chart end is the window's end)
@@ -394,6 +365,31 @@ class ContactSides {
   std::vector<std::optional<IntegerPolynomial2>> derivatives_;
 };
 
+// A rational in (lo, hi) that is the abscissa of no vertex of the chart, decided exactly: the
+// rational abscissae flagged exact are looked up, and every other vertex whose isolating
+// interval holds the candidate is compared with it exactly (an abscissa can be rational
+// without being flagged exact, e.g. a clipping end that CGAL reports as an algebraic real; a
+// face sample taken on such a vertical line would miss the edges ending there).
+Rational abscissa_avoiding_vertices(const ChartData& chart, const Real& lo, const Real& hi) {
+  const std::vector<Rational>& exact = chart.rational_vertex_x;
+  Rational candidate = algebra::rational_between(lo, hi);
+  for (;;) {
+    bool on_vertex = std::binary_search(exact.begin(), exact.end(), candidate);
+    if (!on_vertex) {
+      const algebra::Interval c = algebra::enclose(candidate);
+      for (const raw::Vertex& v : chart.arrangement.vertices) {
+        if (v.x.exact || v.x.upper_bound() < c.lo || v.x.lower_bound() > c.hi) continue;
+        if (v.x.compare(candidate) == 0) {
+          on_vertex = true;
+          break;
+        }
+      }
+    }
+    if (!on_vertex) return candidate;
+    candidate = algebra::rational_between(Real::from_rational(candidate), hi);
+  }
+}
+
 // An exact rational sample strictly inside the bounded face f (once; deterministic: the same
 // point whichever face asks first): on the vertical line through a rational abscissa of the
 // face's widest non-vertical boundary edge, between that edge and the next edge on the face's
@@ -419,8 +415,8 @@ void sample_face(ChartData& chart, std::size_t f) {
   }
   if (chosen == raw::none) throw GeometryError("internal: a C-space face has no non-vertical boundary edge");
   const raw::Edge& edge = arrangement.edges[chosen];
-  Rational x = rational_avoiding(arrangement.vertices[edge.min_vertex].x, arrangement.vertices[edge.max_vertex].x,
-                                 chart.rational_vertex_x);
+  Rational x = abscissa_avoiding_vertices(chart, arrangement.vertices[edge.min_vertex].x,
+                                         arrangement.vertices[edge.max_vertex].x);
   Real from = edge_y_at(chart, chosen, x);
   Hit hit = nearest_on_vertical(chart, x, from, above);
   if (!hit.found) throw GeometryError("internal: no edge bounds a C-space face on a vertical line");
@@ -911,7 +907,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     auto culling_start = Clock::now();
     std::vector<std::size_t> kept = prepare_chart(chart, chart_input, input.dimension, options.polygon_front_end);
     // the culling's blocked test is done with: release what it keeps (posed disks per interval)
-    chart_input.certainly_blocked = nullptr;
+    chart_input.blocked_cells.reset();
     stats.seconds_culling += seconds_since(culling_start);
     stats.curves += kept.size();
     for (std::size_t k : kept) {

@@ -28,10 +28,11 @@ struct ChartInput {
   ChartAxis y;                       ///< ignored for a 1-D space
   std::vector<ContactCurve> curves;
   Classifier classify;
-  /// Optional: true only if every configuration of the chart box x * y is certainly blocked
-  /// (interiors overlap). Curve parts there bound nothing and are not inserted.
-  std::function<bool(const algebra::Interval& x, const algebra::Interval& y)> certainly_blocked;
-  /// Depth of the curve-culling quadtree over the box (0: the default for a whole chart).
+  /// Optional: the box's certainly-blocked cells (the merged cull's grid, whose cells the
+  /// curve generator has already tested). Curve parts in blocked cells bound nothing and are
+  /// not inserted (the curves' windows); its depth is the culling quadtree's.
+  std::shared_ptr<BlockedCells> blocked_cells;
+  /// Depth of the curve-culling quadtree over the box without a grid (0: 6).
   int cull_depth = 0;
 };
 

@@ -272,8 +272,14 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   std::size_t total = boxes.size(), done = 0;
   auto generator_start = Clock::now();
   CurveOptions curve_options;
-  curve_options.cull_blocked_space = !polygon_translation;
+  curve_options.cull_blocked_space = !polygon_translation && options.cull_blocked_space;
   curve_options.polygon_front_end = options.polygon_front_end;
+  // One merged blocked-space cull: each box's grid of certainly-blocked cells (the tester's,
+  // memoised) culls feature pairs before their exact polynomials are formed and then gives the
+  // kept curves their windows (prepare_chart); 2-D grids have the culling quadtree's depth,
+  // 1-D ones the generator's former depth.
+  curve_options.blocked_grid = curve_options.cull_blocked_space;
+  const int grid_depth = input.dimension == 2 ? (cull_depth > 0 ? cull_depth : 9) : 10;
   CurveGenerator generator(model, axes, curve_options);
   input.seconds_curves += std::chrono::duration<double>(Clock::now() - generator_start).count();
   for (const BoxToBuild& box : boxes) {
@@ -285,17 +291,19 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
       chart.y = box.y;
       chart.cull_depth = cull_depth;
       auto start = Clock::now();
-      std::vector<ContactCurve> curves = generator.generate(chart.x, chart.y, &input.curve_statistics);
+      std::shared_ptr<BlockedCells> cells;
+      if (curve_options.blocked_grid)
+        cells = std::make_shared<BlockedCells>(tester, chart.x, chart.y, input.dimension, grid_depth);
+      std::vector<ContactCurve> curves = generator.generate(chart.x, chart.y, &input.curve_statistics, cells.get());
+      // the tester's posed disks are posed again when the builder culls the box, rather than
+      // kept for every box at once (the known cells stay)
+      if (cells) cells->release_cache();
       input.seconds_curves += std::chrono::duration<double>(Clock::now() - start).count();
       for (auto& curve : curves)
         if (!curve.polynomial.is_zero()) chart.curves.push_back(std::move(curve));
       ChartAxis x = chart.x, y = chart.y;
       chart.classify = [&model, axes, x, y](const cspace::ChartPoint& q) { return classify_overlap(model, axes, x, y, q); };
-      if (input.dimension == 2 && tester && tester->usable() && !polygon_translation)
-        chart.certainly_blocked = [tester, x, y, cache = std::make_shared<cspace::BlockedTester::Cache>()](
-                                      const algebra::Interval& cx, const algebra::Interval& cy) {
-          return tester->blocked(x, y, cx, cy, *cache);
-        };
+      if (input.dimension == 2 && cells && cells->usable()) chart.blocked_cells = std::move(cells);
       input.charts.push_back(std::move(chart));
       if (progress) std::cerr << "\rhipair: " << input.first_part << ":" << input.second_part << " curves for "
                               << (input.complete ? "chart " : "tile ") << ++done << "/" << total << std::flush;

@@ -1,6 +1,7 @@
 // Pair axes, chart layout and contact-curve generation for fixed-axis pairs.
 #include "curves/contact_curves.hpp"
 
+#include "oracle/blocked_tester.hpp"
 #include "oracle/overlap.hpp"
 #include "algebra/polynomial.hpp"
 #include "curves/pose.hpp"
@@ -572,7 +573,10 @@ BodyDisk body_disk(const BodyFeature& feature) {
   Interval bx = projection_range(feature, Point{Rational(1), Rational(0)});
   Interval by = projection_range(feature, Point{Rational(0), Rational(1)});
   double cx = bx.middle(), cy = by.middle();
-  double half_x = std::max(bx.hi - cx, cx - bx.lo), half_y = std::max(by.hi - cy, cy - by.lo);
+  // half extents rounded up (the disk must contain the feature's box)
+  using P = Interval;
+  double half_x = std::max((P::point(bx.hi) - P::point(cx)).hi, (P::point(cx) - P::point(bx.lo)).hi);
+  double half_y = std::max((P::point(by.hi) - P::point(cy)).hi, (P::point(cy) - P::point(by.lo)).hi);
   Interval r = kernels::sqrt(Interval(half_x, half_x) * Interval(half_x, half_x) +
                              Interval(half_y, half_y) * Interval(half_y, half_y));
   return BodyDisk{Interval(cx, cx), Interval(cy, cy), r.hi};
@@ -585,30 +589,37 @@ WorldBox world_box(const PoseBox& pose, const Interval& x, const Interval& y, do
                   (v - Interval(radius, radius)).lo, (v + Interval(radius, radius)).hi};
 }
 
-// Quadtree over the chart: a cell is dropped when two inscribed disks certainly overlap in
-// all of it (every configuration there is blocked) or when no candidate pair can meet in
-// it; feature pairs still candidates in the smallest cells are kept.
+// Quadtree over the chart: a cell is dropped when no candidate pair can meet in it or when it
+// is certainly blocked (every configuration there is blocked); feature pairs still candidates
+// in the smallest cells are kept. The blocked test is either the chart box's grid of the
+// merged cull (`grid`: the builder's BlockedTester, memoised per cell and shared with the
+// windows of the kept curves, the grid's cells and depth) or, without a grid, two inscribed
+// disks of the parts (`cores`) certainly overlapping in all of the cell (midpoint cells to
+// depth 10).
 class BlockedSpaceCuller {
  public:
   BlockedSpaceCuller(const PartMotion& first, const PartMotion& second, const ChartAxis& x,
                      const ChartAxis& y, int dimension, std::vector<BodyDisk> disks_a,
                      std::vector<BodyDisk> disks_b, std::vector<Core> cores_a,
-                     std::vector<Core> cores_b)
+                     std::vector<Core> cores_b, BlockedCells* grid = nullptr)
       : motion_{first, second}, x_(x), y_(y), dimension_(dimension),
-        disks_{std::move(disks_a), std::move(disks_b)}, cores_{std::move(cores_a), std::move(cores_b)} {}
+        disks_{std::move(disks_a), std::move(disks_b)}, cores_{std::move(cores_a), std::move(cores_b)}, grid_(grid) {}
 
   // needed[k] set for the candidate pairs that survive.
   void run(const std::vector<std::pair<int, int>>& pairs, std::vector<char>& needed) {
     std::vector<int> indices(pairs.size());
     for (std::size_t k = 0; k < pairs.size(); ++k) indices[k] = static_cast<int>(k);
-    Interval cx(x_.lo.get_d(), x_.hi.get_d());
-    cx = Interval(Interval::enclose(x_.lo).lo, Interval::enclose(x_.hi).hi);
+    pairs_ = &pairs;
+    needed_ = &needed;
+    if (grid_) {
+      visit(grid_cell_x(0, 0), grid_cell_y(0, 0), 0, 0, 0, indices, {});
+      return;
+    }
+    Interval cx(Interval::enclose(x_.lo).lo, Interval::enclose(x_.hi).hi);
     Interval cy = dimension_ == 2 ? Interval(Interval::enclose(y_.lo).lo, Interval::enclose(y_.hi).hi)
                                   : Interval(0);
     std::vector<std::pair<int, int>> core_pairs = near_core_pairs(cx, cy);
-    pairs_ = &pairs;
-    needed_ = &needed;
-    visit(cx, cy, 0, indices, core_pairs);
+    visit(cx, cy, 0, 0, 0, indices, core_pairs);
   }
 
   std::size_t cells_visited() const { return cells_; }
@@ -690,7 +701,16 @@ class BlockedSpaceCuller {
     return it->second;
   }
 
-  void visit(const Interval& cx, const Interval& cy, int depth, const std::vector<int>& candidates,
+  Interval grid_cell_x(int depth, long i) const {
+    algebra::Interval c = grid_->cell_x(depth, i);
+    return Interval(c.lo, c.hi);
+  }
+  Interval grid_cell_y(int depth, long j) const {
+    algebra::Interval c = grid_->cell_y(depth, j);
+    return Interval(c.lo, c.hi);
+  }
+
+  void visit(const Interval& cx, const Interval& cy, int depth, long i, long j, const std::vector<int>& candidates,
              const std::vector<std::pair<int, int>>& core_pairs) {
     ++cells_;
     // Pairs already kept need no further exploration.
@@ -707,8 +727,8 @@ class BlockedSpaceCuller {
     AxisCache& cache_b = cache_for(1, key_b);
     // Blocked: some pair of inscribed disks certainly overlaps everywhere in the cell.
     std::vector<std::pair<int, int>> near_cores;
-    for (const auto& [i, j] : core_pairs) {
-      auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+    for (const auto& [ci, cj] : core_pairs) {
+      auto ui = static_cast<std::size_t>(ci), uj = static_cast<std::size_t>(cj);
       if (!cache_a.core_done[ui]) {
         pa.apply(cores_[0][ui].x, cores_[0][ui].y, cache_a.core_x[ui], cache_a.core_y[ui]);
         cache_a.core_done[ui] = 1;
@@ -724,7 +744,7 @@ class BlockedSpaceCuller {
       Interval reach = Interval(ra, ra) + Interval(rb, rb);
       Interval reach2 = reach * reach;
       if (distance2.hi < reach2.lo) return;  // blocked everywhere in the cell
-      if (distance2.lo < reach2.hi) near_cores.emplace_back(i, j);
+      if (distance2.lo < reach2.hi) near_cores.emplace_back(ci, cj);
     }
     // Candidate pairs whose features can meet in the cell.
     std::vector<int> meeting;
@@ -742,8 +762,22 @@ class BlockedSpaceCuller {
       if (cache_a.boxes[ui].meets(cache_b.boxes[uj])) meeting.push_back(k);
     }
     if (meeting.empty()) return;
-    if (depth >= max_depth) {
+    // the grid's blocked test (memoised, shared with the builder) after the cheap box tests
+    if (grid_ && depth >= 2 && grid_->blocked(depth, i, j)) return;
+    if (depth >= (grid_ ? std::max(grid_->depth(), min_grid_depth) : max_depth)) {
       for (int k : meeting) (*needed_)[static_cast<std::size_t>(k)] = 1;
+      return;
+    }
+    if (grid_) {
+      for (long di = 0; di < 2; ++di) {
+        if (dimension_ != 2) {
+          visit(grid_cell_x(depth + 1, 2 * i + di), cy, depth + 1, 2 * i + di, j, meeting, near_cores);
+          continue;
+        }
+        for (long dj = 0; dj < 2; ++dj)
+          visit(grid_cell_x(depth + 1, 2 * i + di), grid_cell_y(depth + 1, 2 * j + dj), depth + 1, 2 * i + di,
+                2 * j + dj, meeting, near_cores);
+      }
       return;
     }
     // Split every axis at its middle.
@@ -753,13 +787,17 @@ class BlockedSpaceCuller {
       double my = 0.5 * (cy.lo + cy.hi);
       std::array<Interval, 2> ys{Interval(cy.lo, my), Interval(my, cy.hi)};
       for (const Interval& sx : xs)
-        for (const Interval& sy : ys) visit(sx, sy, depth + 1, meeting, near_cores);
+        for (const Interval& sy : ys) visit(sx, sy, depth + 1, 0, 0, meeting, near_cores);
     } else {
-      for (const Interval& sx : xs) visit(sx, cy, depth + 1, meeting, near_cores);
+      for (const Interval& sx : xs) visit(sx, cy, depth + 1, 0, 0, meeting, near_cores);
     }
   }
 
   static constexpr int max_depth = 10;
+  // With a grid, pairs are followed at least to this depth of the box: an operating-region
+  // tile's grid is as coarse as the chart's 512 columns allow (the builder's windows), but a
+  // pair is dropped only where the tile's own finer cells are blocked.
+  static constexpr int min_grid_depth = 9;
   PartMotion motion_[2];
   ChartAxis x_;
   ChartAxis y_;
@@ -770,6 +808,7 @@ class BlockedSpaceCuller {
   std::vector<char>* needed_ = nullptr;
   std::size_t cells_ = 0;
   std::map<std::pair<double, double>, AxisCache> caches_[2];
+  BlockedCells* grid_ = nullptr;
 };
 
 // ============================================================================ exact kernels
@@ -1138,6 +1177,8 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
   if (options.cull_blocked_space) {
     for (const BodyFeature& f : d.features_a) d.disks_a.push_back(body_disk(f));
     for (const BodyFeature& f : d.features_b) d.disks_b.push_back(body_disk(f));
+  }
+  if (options.cull_blocked_space && !options.blocked_grid) {
     d.cores_a = inscribed_disks(model.parts.at(axes.first));
     d.cores_b = inscribed_disks(model.parts.at(axes.second));
   }
@@ -1146,7 +1187,7 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
 CurveGenerator::~CurveGenerator() = default;
 
 std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const ChartAxis& y,
-                                                   CurveStatistics* statistics) const {
+                                                   CurveStatistics* statistics, BlockedCells* grid) const {
   const Data& d = *data_;
   const Model& model = d.model;
   const PairAxes& axes = d.axes;
@@ -1297,11 +1338,17 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
     }
     pairs.emplace_back(i, j);
   }
+  // the merged cull: the caller's grid of the chart box (see BlockedCells)
+  const bool on_grid = grid != nullptr && options.cull_blocked_space && options.blocked_grid;
+  if (options.blocked_grid && options.cull_blocked_space && !on_grid)
+    throw GeometryError("internal: the curve generator of a merged cull was given no blocked-space grid");
   std::vector<char> needed(pairs.size(), options.cull_blocked_space ? 0 : 1);
   if (options.cull_blocked_space) {
+    // the merged cull's grid when the caller has one, else the parts' inscribed disks
     BlockedSpaceCuller blocked(part_motion(part_a, axes.first_moves, x),
-                               part_motion(part_b, axes.second_moves, second_axis), x, y,
-                               axes.dimension(), d.disks_a, d.disks_b, d.cores_a, d.cores_b);
+                               part_motion(part_b, axes.second_moves, second_axis), x, y, axes.dimension(),
+                               d.disks_a, d.disks_b, on_grid ? std::vector<Core>{} : d.cores_a,
+                               on_grid ? std::vector<Core>{} : d.cores_b, on_grid ? grid : nullptr);
     blocked.run(pairs, needed);
   }
 

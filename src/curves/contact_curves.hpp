@@ -31,6 +31,8 @@
 
 namespace hipair::cspace {
 
+class BlockedCells;   // oracle/blocked_tester.hpp
+
 /// One chart axis of a pair's C-space.
 struct ChartAxis {
   using Kind = AxisKind;    ///< the public axis kind (hipair/cspace.hpp)
@@ -154,6 +156,10 @@ std::vector<ContactCurve> generate_contact_curves(const Model& model, const Pair
 /// Added by the kernels: options of curve generation (tests switch the blocked-space cull off).
 struct CurveOptions {
   bool cull_blocked_space = true;
+  /// The C-space builder's merged cull: the blocked test is the caller's grid of each chart
+  /// box (BlockedCells, given to every generate() call), not the parts' inscribed disks,
+  /// which are then not computed.
+  bool blocked_grid = false;
   /// Translating polygon pairs without the blocked-space cull: the pairs of the reduced
   /// convolution by an angular walk and each curve written from the vertices (the same curves,
   /// in the same order, as the general path; false: the general path, for tests).
@@ -176,8 +182,12 @@ class CurveGenerator {
   ~CurveGenerator();
   CurveGenerator(const CurveGenerator&) = delete;
   CurveGenerator& operator=(const CurveGenerator&) = delete;
+  /// `grid`: the chart box's certainly-blocked cells (required with CurveOptions::blocked_grid,
+  /// else ignored): a feature pair is kept only if its features' posed boxes meet in a cell of
+  /// the grid's finest depth that is not certainly blocked; the cells it tests stay known to
+  /// the grid for the builder's windows.
   std::vector<ContactCurve> generate(const ChartAxis& x, const ChartAxis& y,
-                                     CurveStatistics* statistics = nullptr) const;
+                                     CurveStatistics* statistics = nullptr, BlockedCells* grid = nullptr) const;
 
  private:
   struct Data;

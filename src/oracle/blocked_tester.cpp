@@ -5,6 +5,8 @@
 
 #include "core/model_scale.hpp"
 
+#include <hipair/error.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -504,6 +506,55 @@ bool BlockedTester::overlapping(const PosedSet& first, const PosedSet& second) {
     }
   }
   return false;
+}
+
+// ---------------------------------------------------------------- the grid of one chart box
+
+BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const ChartAxis& x, const ChartAxis& y,
+                           int dimension, int depth)
+    : tester_(tester && tester->usable() ? std::move(tester) : nullptr), x_axis_(x), y_axis_(y),
+      dimension_(dimension), depth_(depth),
+      x_{algebra::lower_double(x.lo), algebra::upper_double(x.hi)},
+      y_{dimension == 2 ? algebra::Interval{algebra::lower_double(y.lo), algebra::upper_double(y.hi)}
+                        : algebra::Interval{0, 0}} {
+  if (depth_ < 0 || depth_ > 24) throw NumericError("blocked-space grid: depth out of range");
+}
+
+namespace {
+// Side k of 2^depth equal parts of [whole]: the ends are the doubles lo + width * k (the same
+// expression for the cells on either side of a cut, so the cells tile the whole interval).
+algebra::Interval part_of(const algebra::Interval& whole, int depth, long k) {
+  const long count = 1L << depth;
+  const double width = (whole.hi - whole.lo) / static_cast<double>(count);
+  return {k == 0 ? whole.lo : whole.lo + width * static_cast<double>(k),
+          k + 1 == count ? whole.hi : whole.lo + width * static_cast<double>(k + 1)};
+}
+}  // namespace
+
+algebra::Interval BlockedCells::cell_x(int depth, long i) const { return part_of(x_, depth, i); }
+
+algebra::Interval BlockedCells::cell_y(int depth, long j) const {
+  return dimension_ == 2 ? part_of(y_, depth, j) : y_;
+}
+
+bool BlockedCells::blocked(int depth, long i, long j) {
+  if (!tester_) return false;
+  const long key = (static_cast<long>(depth) << 56) | (i << 28) | j;
+  auto it = known_.find(key);
+  if (it != known_.end()) return it->second != 0;
+  // a cell inside a cell already known to be blocked is blocked (no test); the parent is only
+  // looked up, never tested on the way
+  bool result = false;
+  for (int up = 1; up <= depth && !result; ++up) {
+    auto parent = known_.find((static_cast<long>(depth - up) << 56) | ((i >> up) << 28) | (dimension_ == 2 ? j >> up : j));
+    if (parent != known_.end() && parent->second) result = true;
+  }
+  if (!result) {
+    ++tests_;
+    result = tester_->blocked(x_axis_, y_axis_, cell_x(depth, i), cell_y(depth, j), cache_);
+  }
+  known_.emplace(key, result ? 1 : 0);
+  return result;
 }
 
 }  // namespace hipair::cspace

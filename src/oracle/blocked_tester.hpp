@@ -18,6 +18,8 @@
 #include <hipair/model.hpp>
 
 #include <map>
+#include <memory>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -96,6 +98,46 @@ class BlockedTester {
   double pivot_magnitude_[2] = {};       // max |pivot_m| coordinate
   std::vector<CertifiedCore> disks_[2];
   std::size_t interior_disks_[2] = {};   // disks of positive radius (the rest: boundary points)
+};
+
+/// The certainly-blocked cells of one chart box (a whole chart or an operating-region tile):
+/// the one grid of the merged blocked-space cull. Depth 0 is the box (its rational ends
+/// enclosed outward in doubles), a cell of depth d + 1 is a quarter of one of depth d (a half
+/// for a 1-D space), so cell (d, i, j) covers [cell_x(d, i)] x [cell_y(d, j)] and the cells of
+/// one depth tile the box. `depth()` is the builder's finest depth (its windows); the curve
+/// generator may go deeper (any depth up to 24 is a cell). The curve generator asks it which feature pairs can touch outside
+/// certified blocked space (before any exact polynomial is formed), and the builder which
+/// parts of each kept curve can bound free space (its windows); every cell is tested once
+/// (memoised, with the posed disks of the tester's cache), and a cell inside a blocked cell
+/// is blocked without a test. Certified as BlockedTester::blocked. One instance per box and
+/// thread.
+class BlockedCells {
+ public:
+  /// `tester` may be null or unusable: then no cell is blocked. `depth`: the finest depth.
+  BlockedCells(std::shared_ptr<const BlockedTester> tester, const ChartAxis& x, const ChartAxis& y, int dimension,
+               int depth);
+  int depth() const { return depth_; }
+  int dimension() const { return dimension_; }
+  /// False: nothing is ever blocked (no usable tester).
+  bool usable() const { return tester_ != nullptr; }
+  algebra::Interval cell_x(int depth, long i) const;
+  algebra::Interval cell_y(int depth, long j) const;   ///< a point (0) for a 1-D space
+  /// Every configuration of cell (depth, i, j) is certainly blocked.
+  bool blocked(int depth, long i, long j);
+  /// Tester calls made (each cell at most once).
+  std::size_t tests() const { return tests_; }
+  /// Frees the tester's posed disks (kept for the next cells); the known cells stay.
+  void release_cache() { cache_ = BlockedTester::Cache{}; }
+
+ private:
+  std::shared_ptr<const BlockedTester> tester_;
+  ChartAxis x_axis_, y_axis_;
+  int dimension_;
+  int depth_;
+  algebra::Interval x_, y_;
+  BlockedTester::Cache cache_;
+  std::unordered_map<long, char> known_;
+  std::size_t tests_ = 0;
 };
 
 }  // namespace hipair::cspace

@@ -10,11 +10,13 @@
 //   BM_EscapementCSpace        escape wheel and anchor: many arcs
 //   BM_GenevaLocate            exact point location of random rational configurations
 //   BM_GenevaFirstCrossing     certified first contact along random straight paths
-//   BM_GenevaCurves            stage alone: contact-curve generation (all charts)
+//   BM_GenevaCurves            stage alone: contact-curve generation (all charts, with the merged
+//                              cull's grid of each chart as the builder gives it)
 //   BM_GenevaCgalStage         stage alone: CGAL clipping, insertion and export (all charts)
 // Peer comparisons: minkowski_peer_benchmark.cpp, overlap_peer_benchmark.cpp.
 // Counters: vertices, edges, cells, curves of the built space.
 #include "cspace/builder_impl.hpp"
+#include "oracle/blocked_tester.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
@@ -209,14 +211,24 @@ void BM_GenevaCurves(benchmark::State& state) {
   built_in_process = true;   // (no CGAL here, but keep the cold figure honest)
   auto axes = cspace::pair_axes(model, 0, 1);
   auto layout = cspace::chart_layout(model, axes);
-  std::size_t curves = 0;
+  std::size_t curves = 0, tests = 0;
+  // as the builder does: per-pair data once, and the merged cull's grid of each chart (the
+  // generator's part of the cull: the grid's blocked tests made before any polynomial)
+  cspace::CurveOptions options;
+  options.blocked_grid = true;
+  auto tester = std::make_shared<const cspace::BlockedTester>(model, axes);
   for (auto _ : state) {
-    curves = 0;
-    cspace::CurveGenerator generator(model, axes);   // per-pair data once, as the builder does
+    curves = tests = 0;
+    cspace::CurveGenerator generator(model, axes, options);
     for (const auto& x : layout.x_charts)
-      for (const auto& y : layout.y_charts) curves += generator.generate(x, y).size();
+      for (const auto& y : layout.y_charts) {
+        cspace::BlockedCells grid(tester, x, y, 2, 9);
+        curves += generator.generate(x, y, nullptr, &grid).size();
+        tests += grid.tests();
+      }
   }
   state.counters["curves"] = static_cast<double>(curves);
+  state.counters["blocked_tests"] = static_cast<double>(tests);
 }
 BENCHMARK(BM_GenevaCurves)->Unit(benchmark::kMillisecond);
 
