@@ -50,6 +50,11 @@ struct CriticalStatistics {
 /// The critical angles, in counter-clockwise order from -pi (t ascending, the half turn last).
 std::vector<Critical> critical_angles(const PolygonalPair& pair, CriticalStatistics& statistics);
 
+/// The critical angles of a pair with circular arcs (docs/cspace.md, "Critical angles with
+/// arcs"): arcs of rational radius; a segment facing a convex arc of the other part of rational
+/// length. \throws GeometryError otherwise.
+std::vector<Critical> critical_angles_with_arcs(const Part& fixed, const Part& free, CriticalStatistics& statistics);
+
 /// cos and sin of the rotation with half-angle tangent t (or the half turn), exact.
 std::pair<Rational, Rational> rotation_of(const SlicedAngle& angle);
 
