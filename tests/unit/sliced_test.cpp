@@ -543,18 +543,34 @@ TEST(SlicedArcs, DiscOffItsPivotHasNoCriticalAngle) {
   }
 }
 
-// Generated pairs with arcs: a random stadium or disc-with-flat free part against a plate whose
-// hole is a random star polygon or a stadium: in every interval between critical angles two
-// random rational slices have free cells in one-to-one correspondence with the representative,
-// and point location agrees with the exact overlap oracle.
+// A disc of radius 5k with a flat: the major arc from (3k, 4k) to (3k, -4k) about (cx, cy) and
+// the chord back (a span above a half turn).
+std::string flat_disc_loop(const Rational& k, const Rational& cx, const Rational& cy) {
+  return R"({ "start": )" + point(cx + 3 * k, cy + 4 * k) + R"(, "edges": [ { "arc_to": )" + point(cx + 3 * k, cy - 4 * k) +
+         R"(, "center": )" + point(cx, cy) + R"(, "dir": "ccw" }, { "line_to": )" + point(cx + 3 * k, cy + 4 * k) + " } ] }";
+}
+
+// Generated pairs with arcs (segments facing arcs of rational length, the class the arc finder
+// handles): a random stadium or flat disc, turning about a random rational pivot, against a
+// plate whose hole is a random L-shaped polygon or a stadium. In every interval between critical
+// angles two random rational slices have free cells in one-to-one correspondence with the
+// representative, and point location agrees with the exact overlap oracle.
 TEST(SlicedArcs, GeneratedPairsHaveSteadyIntervals) {
   Random random(2026);
   for (int round = 0; round < 4; ++round) {
     SCOPED_TRACE("round " + std::to_string(round));
-    Rational l = random_rational(random, 1, 4, 4), r = random_rational(random, 1, 2, 2);
-    std::string hole = round % 2 == 0 ? polygon(star(random, 5, 0, 0, 9))
-                                      : stadium_loop(random_rational(random, 3, 6, 2), random_rational(random, 2, 4, 2));
-    Model model = pair_model(rectangle(-20, -20, 20, 20) + ", " + hole, stadium_loop(l, r), Point{Rational(1, 2), 0});
+    std::string hole;
+    if (round % 2 == 0) {
+      Rational a = random_rational(random, 4, 9, 4), b = random_rational(random, 2, 5, 4), c = random_rational(random, 4, 9, 4);
+      Rational e = random_rational(random, -2, 2, 4), d = random_rational(random, -1, 2, 4), f = random_rational(random, 5, 9, 4);
+      hole = polygon({{-a, -b}, {c, -b}, {c, d}, {e, d}, {e, f}, {-a, f}});
+    } else {
+      hole = stadium_loop(random_rational(random, 3, 6, 2), random_rational(random, 2, 4, 2));
+    }
+    std::string free = round < 2 ? stadium_loop(random_rational(random, 1, 3, 4), random_rational(random, 1, 2, 2))
+                                 : flat_disc_loop(random_rational(random, Rational(1, 3), Rational(1, 2), 3), 0, 0);
+    Point pivot{random_rational(random, -1, 1, 4), random_rational(random, -1, 1, 4)};
+    Model model = pair_model(rectangle(-20, -20, 20, 20) + ", " + hole, free, pivot);
     SlicedSpace space = SlicedSpace::build(model, "fixed", "free");
     EXPECT_GE(space.critical_angles().size(), 1u);
     expect_intervals_consistent(space, random);
