@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <array>
+#include <functional>
 #include <optional>
 #include <tuple>
 #include <type_traits>
@@ -945,6 +946,7 @@ struct SpanCondition {
 
 struct Curve {
   bool circle = false;
+  bool extra = false;  // a line of the slice window (pin-slot pairs), not a contact
   Aff p0, d;          // line: p0 + lambda d, lambda in [0, 1]
   Aff centre;         // circle
   Rational radius;
@@ -1003,13 +1005,51 @@ class CurveFinder {
     make_curves();
   }
 
+  // A pin-slot slice sees the translations X = s R d (other part fixed: a segment of the line,
+  // s in [s_lo, s_hi]) or X = s R d - q f (other part translating along f: a parallelogram,
+  // q in [q_lo, q_hi]); events count only inside, and the window's edges are extra curves.
+  void pin_slot_window(const Vec<Rational>& d, const Rational& s_lo, const Rational& s_hi,
+                       const std::optional<std::pair<Vec<Rational>, std::pair<Rational, Rational>>>& translating) {
+    window_ = Window{d, s_lo, s_hi, translating};
+    auto extra = [&](const Aff& p0, const Aff& dd) {
+      add_line(p0, dd);
+      curves_.back().extra = true;
+    };
+    if (!translating) {
+      only_extra_ = true;
+      extra(turning_point(scale(s_lo, d)), turning_point(scale(Rational(s_hi - s_lo), d)));
+      return;
+    }
+    const Vec<Rational>& f = translating->first;
+    const auto& [q_lo, q_hi] = translating->second;
+    for (const Rational& sv : {s_lo, s_hi})
+      extra(turning_point(scale(sv, d)) - fixed_point(scale(q_lo, f)), fixed_point(scale(Rational(q_lo - q_hi), f)));
+    for (const Rational& qv : {q_lo, q_hi})
+      extra(turning_point(scale(s_lo, d)) - fixed_point(scale(qv, f)), turning_point(scale(Rational(s_hi - s_lo), d)));
+    // the window degenerates where R d is parallel to f
+    auto build = [&](const Rotation<TrigPoly>& r) {
+      Event e;
+      e.poly = cross(at(turning_point(d), r), Vec<TrigPoly>{TrigPoly(f.x), TrigPoly(f.y)});
+      return e;
+    };
+    degenerate_ = build;
+  }
+
   std::vector<Critical> run() {
     compute_masks();
     const std::size_t n = curves_.size();
-    for (std::size_t i = 0; i < n; ++i) appearing(i);
+    if (degenerate_) window_degenerate();
+    auto skip = [&](std::initializer_list<std::size_t> ids) {
+      if (!only_extra_) return false;
+      for (std::size_t id : ids)
+        if (curves_[id].extra) return false;
+      return true;
+    };
+    for (std::size_t i = 0; i < n; ++i)
+      if (!skip({i})) appearing(i);
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n; ++j) {
-        if (i == j || mask(i, j) == 0) continue;
+        if (i == j || mask(i, j) == 0 || skip({i, j})) continue;
         for (std::size_t k = 0; k < curves_[i].ends.size(); ++k) end_on_curve(i, k, j);
         if (i < j && (curves_[i].circle || curves_[j].circle)) tangent(i, j);
       }
@@ -1019,7 +1059,7 @@ class CurveFinder {
         if (mij == 0) continue;
         for (std::size_t k = j + 1; k < n; ++k) {
           std::uint64_t m = mij & mask(i, k) & mask(j, k);
-          if (m != 0) concurrent(i, j, k, m);
+          if (m != 0 && !skip({i, j, k})) concurrent(i, j, k, m);
         }
       }
     return merged(std::move(found_));
@@ -1225,6 +1265,45 @@ class CurveFinder {
     }
   }
 
+  // The conditions for the point num / den to lie in the pin-slot window (none without one).
+  void in_window(const Vec<TrigPoly>& num, const TrigPoly& den, const Rotation<TrigPoly>& r, std::vector<Condition>& out) const {
+    if (!window_) return;
+    const Window& w = *window_;
+    Vec<TrigPoly> rd = at(turning_point(w.d), r);
+    const TrigPoly dd = den * den;
+    // lo <= v / m <= hi for v = value * m * den^2 and m^2 den^2 > 0: signs of v - lo m^2 den^2, hi m^2 den^2 - v
+    auto between = [&](const TrigPoly& v, const TrigPoly& m2, const Rational& lo, const Rational& hi) {
+      out.push_back({{v - TrigPoly(lo) * m2 * dd, TrigPoly(hi) * m2 * dd - v}, false});
+    };
+    if (!w.translating) {
+      TrigPoly c = cross(rd, num);
+      out.push_back({{c, TrigPoly(Rational(0)) - c}, false});   // on the line: c = 0
+      between(dot(num, rd) * den, TrigPoly(Rational(1)), w.s_lo, w.s_hi);   // s = dot(X, R d), |d| = 1
+      return;
+    }
+    Vec<TrigPoly> f{TrigPoly(w.translating->first.x), TrigPoly(w.translating->first.y)};
+    const TrigPoly k = cross(rd, f);
+    // s = cross(X, f) / k, q = cross(X, R d) / k
+    between(cross(num, f) * den * k, k * k, w.s_lo, w.s_hi);
+    between(cross(num, rd) * den * k, k * k, w.translating->second.first, w.translating->second.second);
+  }
+
+  // Where the translating window degenerates (R d parallel to f): critical, kept unfiltered.
+  void window_degenerate() {
+    Event e = degenerate_(Rotation<TrigPoly>{poly_cos(false), poly_sin(false)});
+    if (e.poly.zero()) return;
+    ++stats_.polynomials;
+    algebra::Polynomial p = integer_numerator(e.poly);
+    if (algebra::degree(p) >= 1)
+      for (Real root : algebra::real_roots(algebra::square_free_part(p))) {
+        root.detect_rational();
+        ++stats_.roots;
+        found_.push_back(Critical{false, root, {CriticalEvent::antiparallel_edges}});
+      }
+    Event h = degenerate_(Rotation<TrigPoly>{poly_cos(true), poly_sin(true)});
+    if (!h.poly.zero() && sgn(reduced(h.poly).c[0]) == 0) found_.push_back(Critical{true, Real{}, {CriticalEvent::antiparallel_edges}});
+  }
+
   // ------------------------------------------------------------ events
   void end_on_curve(std::size_t i, std::size_t k, std::size_t j) {
     const Curve &ci = curves_[i], &cj = curves_[j];
@@ -1235,6 +1314,7 @@ class CurveFinder {
       e.poly = on_support(cj, p, one, r);
       end_valid(ci, k, r, e.conditions);
       on_extent(cj, p, one, r, e.conditions);
+      in_window(p, one, r, e.conditions);
       return e;
     };
     auto points = [&](auto rot) { return std::vector{std::optional(at(ci.ends[k].point, rot))}; };
@@ -1278,6 +1358,7 @@ class CurveFinder {
         auto [num, den] = touch_point(a, b, r, internal);
         on_extent(a, num, den, r, e.conditions);
         on_extent(b, num, den, r, e.conditions);
+        in_window(num, den, r, e.conditions);
         return e;
       };
       auto points = [&](auto rot) {
@@ -1306,6 +1387,16 @@ class CurveFinder {
     std::array<const Curve*, 3> c{&curves_[i], &curves_[j], &curves_[k]};
     std::stable_partition(c.begin(), c.end(), [](const Curve* x) { return !x->circle; });   // lines first
     const int lines = static_cast<int>(std::count_if(c.begin(), c.end(), [](const Curve* x) { return !x->circle; }));
+    if (lines >= 2) {
+      // two lines that are not parallel at every angle give the point; the third is checked
+      const Rotation<TrigPoly> rp{poly_cos(false), poly_sin(false)};
+      auto parallel = [&](const Curve* a, const Curve* b) { return cross(at(a->d, rp), at(b->d, rp)).zero(); };
+      if (parallel(c[0], c[1])) {
+        if (lines == 3 && !parallel(c[0], c[2])) std::swap(c[1], c[2]);
+        else if (lines == 3 && !parallel(c[1], c[2])) std::swap(c[0], c[2]);
+        else return;   // all parallel (or two lines and a circle: the lines meet only when they coincide)
+      }
+    }
     // two linear equations and the curve the point must also lie on
     auto meet = [&](auto rot) {
       using T = std::decay_t<decltype(rot.c)>;
@@ -1334,6 +1425,7 @@ class CurveFinder {
       e.poly = on_support(check, num, den, r);
       e.conditions.push_back({{den, TrigPoly(Rational(0)) - den}, true, true});   // den != 0
       for (const Curve* x : c) on_extent(*x, num, den, r, e.conditions);
+      in_window(num, den, r, e.conditions);
       return e;
     };
     auto points = [&](auto rot) {
@@ -1416,8 +1508,16 @@ class CurveFinder {
   }
   std::uint64_t mask(std::size_t i, std::size_t j) const { return masks_[i * curves_.size() + j]; }
 
+  struct Window {
+    Vec<Rational> d;
+    Rational s_lo, s_hi;
+    std::optional<std::pair<Vec<Rational>, std::pair<Rational, Rational>>> translating;
+  };
   CriticalStatistics& stats_;
   Certifier cert_;
+  std::optional<Window> window_;
+  bool only_extra_ = false;
+  std::function<Event(const Rotation<TrigPoly>&)> degenerate_;
   Features a_, b_;
   std::vector<Curve> curves_;
   std::vector<std::uint64_t> masks_;
@@ -1457,6 +1557,17 @@ std::vector<Critical> critical_angles(const PolygonalPair& pair, CriticalStatist
 
 std::vector<Critical> critical_angles_with_arcs(const Part& fixed, const Part& free, CriticalStatistics& statistics) {
   CurveFinder finder(fixed, free, statistics);
+  return finder.run();
+}
+
+std::vector<Critical> pin_slot_critical_values(const Part& other, const Part& pin, const Rational& s_lo, const Rational& s_hi,
+                                               const std::optional<std::pair<Rational, Rational>>& q_range,
+                                               CriticalStatistics& statistics) {
+  CurveFinder finder(other, pin, statistics);
+  const Vec<Rational> d{pin.motion.direction.x, pin.motion.direction.y};
+  std::optional<std::pair<Vec<Rational>, std::pair<Rational, Rational>>> translating;
+  if (q_range) translating.emplace(Vec<Rational>{other.motion.direction.x, other.motion.direction.y}, *q_range);
+  finder.pin_slot_window(d, s_lo, s_hi, translating);
   return finder.run();
 }
 

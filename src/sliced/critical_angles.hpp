@@ -15,6 +15,7 @@
 #include "algebra/exact_real.hpp"
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace hipair::sliced {
@@ -54,6 +55,17 @@ std::vector<Critical> critical_angles(const PolygonalPair& pair, CriticalStatist
 /// arcs"): arcs of rational radius; a segment facing a convex arc of the other part of rational
 /// length. \throws GeometryError otherwise.
 std::vector<Critical> critical_angles_with_arcs(const Part& fixed, const Part& free, CriticalStatistics& statistics);
+
+/// The critical values of tau = tan(psi/2) of a pin-slot part (rotation psi about its pivot, then
+/// the slide s in [s_lo, s_hi] along its turned direction d) against a fixed part (`q_range`
+/// empty: the slice is the segment X = s R d of the translation plane) or a part translating
+/// along f by q in `q_range` (the slice is the parallelogram X = s R d - q f, a linear image of
+/// the 3-DOF slice): the events of critical_angles_with_arcs inside the window, those with the
+/// window's edges, and (translating) where R d is parallel to f. Same input class as
+/// critical_angles_with_arcs (polygonal parts included).
+std::vector<Critical> pin_slot_critical_values(const Part& other, const Part& pin, const Rational& s_lo, const Rational& s_hi,
+                                               const std::optional<std::pair<Rational, Rational>>& q_range,
+                                               CriticalStatistics& statistics);
 
 /// cos and sin of the rotation with half-angle tangent t (or the half turn), exact.
 std::pair<Rational, Rational> rotation_of(const SlicedAngle& angle);
