@@ -525,7 +525,8 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
     std::vector<sliced::Critical> found;
     try {
       found = sliced::pin_slot_critical_values(other, pin, pin.motion.translation_limits->lo,
-                                               pin.motion.translation_limits->hi, q_range, cs);
+                                               pin.motion.translation_limits->hi, q_range,
+                                               std::make_pair(impl->tau_lo, impl->tau_hi), cs);
     } catch (const GeometryError& e) {
       throw GeometryError(pair + ": critical values: " + e.what());
     }

@@ -1035,6 +1035,10 @@ class CurveFinder {
     degenerate_ = build;
   }
 
+  // Only half-angle tangents in [lo, hi] matter (the pin-slot part's angle limits): masks over
+  // that range, roots isolated in it, no half turn.
+  void restrict_to(const Rational& lo, const Rational& hi) { range_ = std::make_pair(lo, hi); }
+
   std::vector<Critical> run() {
     compute_masks();
     const std::size_t n = curves_.size();
@@ -1046,7 +1050,7 @@ class CurveFinder {
       return true;
     };
     for (std::size_t i = 0; i < n; ++i)
-      if (!skip({i})) appearing(i);
+      if (!skip({i}) && std::find(outside_.begin(), outside_.end(), i) == outside_.end()) appearing(i);
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n; ++j) {
         if (i == j || mask(i, j) == 0 || skip({i, j})) continue;
@@ -1238,18 +1242,24 @@ class CurveFinder {
       ++stats_.polynomials;
       algebra::Polynomial p = integer_numerator(e.poly);
       if (algebra::degree(p) >= 1)
-        for (Real root : algebra::real_roots(algebra::square_free_part(p))) {
+        for (Real root : isolated(p)) {
           root.detect_rational();
           bool ok = std::all_of(e.conditions.begin(), e.conditions.end(), [&](const Condition& c) { return holds(c, root); });
           if (ok && relevant(root, false)) found_.push_back(Critical{false, root, {kind}});
         }
     }
-    if ((mask >> 32) == 0) return;
+    if ((mask >> 32) == 0 || range_) return;
     Event h = build(Rotation<TrigPoly>{poly_cos(true), poly_sin(true)});
     if (h.poly.zero() || sgn(reduced(h.poly).c[0]) != 0) return;
     Real zero = Real::from_rational(Rational(0));
     if (!std::all_of(h.conditions.begin(), h.conditions.end(), [&](const Condition& c) { return holds(c, zero); })) return;
     if (relevant(Real{}, true)) found_.push_back(Critical{true, Real{}, {kind}});
+  }
+
+  // The real roots of p (in the range, when restricted).
+  std::vector<Real> isolated(const algebra::Polynomial& p) const {
+    algebra::Polynomial q = algebra::square_free_part(p);
+    return range_ ? algebra::real_roots(q, range_->first, range_->second) : algebra::real_roots(q);
   }
 
   // A point num / den as optional<Vec<T>> (T Rational or Box).
@@ -1295,11 +1305,12 @@ class CurveFinder {
     ++stats_.polynomials;
     algebra::Polynomial p = integer_numerator(e.poly);
     if (algebra::degree(p) >= 1)
-      for (Real root : algebra::real_roots(algebra::square_free_part(p))) {
+      for (Real root : isolated(p)) {
         root.detect_rational();
         ++stats_.roots;
         found_.push_back(Critical{false, root, {CriticalEvent::antiparallel_edges}});
       }
+    if (range_) return;
     Event h = degenerate_(Rotation<TrigPoly>{poly_cos(true), poly_sin(true)});
     if (!h.poly.zero() && sgn(reduced(h.poly).c[0]) == 0) found_.push_back(Critical{true, Real{}, {CriticalEvent::antiparallel_edges}});
   }
@@ -1476,8 +1487,12 @@ class CurveFinder {
     const std::size_t n = curves_.size();
     std::vector<std::vector<std::pair<Box, Box>>> boxes(n);
     for (int r = 0; r < 64; ++r) {
-      bool flip = r >= 32;
+      bool flip = r >= 32 && !range_;
       Rational lo(r % 32 - 16, 16), hi(r % 32 - 15, 16);
+      if (range_) {
+        lo = range_->first + (range_->second - range_->first) * Rational(r, 64);
+        hi = range_->first + (range_->second - range_->first) * Rational(r + 1, 64);
+      }
       lo.canonicalize();
       hi.canonicalize();
       Rotation<Box> rot = rotation_box(lo, hi, flip);
@@ -1505,6 +1520,33 @@ class CurveFinder {
         }
         masks_[a * n + b] = masks_[b * n + a] = m;
       }
+    // with a window: a curve whose box never meets the window's (the hull of its edges') is out
+    if (!window_) return;
+    std::vector<std::pair<Box, Box>> window(64);
+    std::vector<bool> set(64, false);
+    for (std::size_t i = 0; i < n; ++i)
+      if (curves_[i].extra)
+        for (int r = 0; r < 64; ++r) {
+          const auto& b = boxes[i][r];
+          if (!set[r]) {
+            window[r] = b;
+            set[r] = true;
+            continue;
+          }
+          window[r] = {Box{std::min(window[r].first.lo, b.first.lo), std::max(window[r].first.hi, b.first.hi)},
+                       Box{std::min(window[r].second.lo, b.second.lo), std::max(window[r].second.hi, b.second.hi)}};
+        }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (curves_[i].extra) continue;
+      bool meets = false;
+      for (int r = 0; r < 64 && !meets; ++r) {
+        const auto &x = boxes[i][r], &y = window[r];
+        meets = !(x.first.hi < y.first.lo || y.first.hi < x.first.lo || x.second.hi < y.second.lo || y.second.hi < x.second.lo);
+      }
+      if (!meets)
+        for (std::size_t j = 0; j < n; ++j) masks_[i * n + j] = masks_[j * n + i] = 0;
+      if (!meets) outside_.push_back(i);
+    }
   }
   std::uint64_t mask(std::size_t i, std::size_t j) const { return masks_[i * curves_.size() + j]; }
 
@@ -1516,6 +1558,8 @@ class CurveFinder {
   CriticalStatistics& stats_;
   Certifier cert_;
   std::optional<Window> window_;
+  std::optional<std::pair<Rational, Rational>> range_;
+  std::vector<std::size_t> outside_;   // curves never meeting the window's box
   bool only_extra_ = false;
   std::function<Event(const Rotation<TrigPoly>&)> degenerate_;
   Features a_, b_;
@@ -1562,8 +1606,10 @@ std::vector<Critical> critical_angles_with_arcs(const Part& fixed, const Part& f
 
 std::vector<Critical> pin_slot_critical_values(const Part& other, const Part& pin, const Rational& s_lo, const Rational& s_hi,
                                                const std::optional<std::pair<Rational, Rational>>& q_range,
+                                               const std::optional<std::pair<Rational, Rational>>& tau_range,
                                                CriticalStatistics& statistics) {
   CurveFinder finder(other, pin, statistics);
+  if (tau_range) finder.restrict_to(tau_range->first, tau_range->second);
   const Vec<Rational> d{pin.motion.direction.x, pin.motion.direction.y};
   std::optional<std::pair<Vec<Rational>, std::pair<Rational, Rational>>> translating;
   if (q_range) translating.emplace(Vec<Rational>{other.motion.direction.x, other.motion.direction.y}, *q_range);

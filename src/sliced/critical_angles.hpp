@@ -62,9 +62,11 @@ std::vector<Critical> critical_angles_with_arcs(const Part& fixed, const Part& f
 /// along f by q in `q_range` (the slice is the parallelogram X = s R d - q f, a linear image of
 /// the 3-DOF slice): the events of critical_angles_with_arcs inside the window, those with the
 /// window's edges, and (translating) where R d is parallel to f. Same input class as
-/// critical_angles_with_arcs (polygonal parts included).
+/// critical_angles_with_arcs (polygonal parts included). With `tau_range`, only critical values
+/// in it (and not the half turn) are found.
 std::vector<Critical> pin_slot_critical_values(const Part& other, const Part& pin, const Rational& s_lo, const Rational& s_hi,
                                                const std::optional<std::pair<Rational, Rational>>& q_range,
+                                               const std::optional<std::pair<Rational, Rational>>& tau_range,
                                                CriticalStatistics& statistics);
 
 /// cos and sin of the rotation with half-angle tangent t (or the half turn), exact.

@@ -534,6 +534,9 @@ TEST(PinSlotCritical, BarAgainstAWallHasThreeCriticalValues) {
 
 // The film advance's film/follower pair (a translating part; both within limits) and the
 // pin/follower pair (fixed): exact critical values, and slices between consecutive ones alike.
+// The pin is a disc centred on the follower's pivot: turning the follower turns the slot about
+// the pin's centre, so nothing changes with psi (no critical value); the claw meets the film's
+// perforations at many.
 TEST(PinSlotCritical, FilmAdvancePairsAreSteadyBetweenCriticalValues) {
   const Model& model = film_advance();
   Random random(17);
@@ -541,7 +544,8 @@ TEST(PinSlotCritical, FilmAdvancePairsAreSteadyBetweenCriticalValues) {
     SCOPED_TRACE(other);
     PinSlotSpace space = PinSlotSpace::build(model, other, "follower");
     ASSERT_TRUE(space.critical_values_exact());
-    EXPECT_GE(space.critical_values().size(), 1u);
+    if (std::string(other) == "pin") EXPECT_TRUE(space.critical_values().empty());
+    else EXPECT_GE(space.critical_values().size(), 1u);
     expect_steady_between_critical_values(space, random);
   }
 }
