@@ -1176,8 +1176,9 @@ class CurveFinder {
   }
   // The conditions for the point num / den to lie on curve c's extent (given it lies on its
   // supporting line or circle).
-  static void on_extent(const Curve& c, const Vec<TrigPoly>& num, const TrigPoly& den, const Rotation<TrigPoly>& r,
+  void on_extent(const Curve& c, const Vec<TrigPoly>& num, const TrigPoly& den, const Rotation<TrigPoly>& r,
                         std::vector<Condition>& out) {
+    if (skip_conditions_) return;
     if (c.circle) {
       Vec<TrigPoly> w = scale(den, num - scale(den, at(c.centre, r)));
       for (const auto& sc : c.spans) out.push_back(in_span(sc, w, r));
@@ -1189,7 +1190,8 @@ class CurveFinder {
     for (const auto& sc : c.spans) out.push_back(in_span(sc, at(c.dir, r), r));
   }
   // Is the curve's end k a true end (inside the curve's other span conditions)?
-  static void end_valid(const Curve& c, std::size_t k, const Rotation<TrigPoly>& r, std::vector<Condition>& out) {
+  void end_valid(const Curve& c, std::size_t k, const Rotation<TrigPoly>& r, std::vector<Condition>& out) {
+    if (skip_conditions_) return;
     if (!c.circle) {
       for (const auto& sc : c.spans) out.push_back(in_span(sc, at(c.dir, r), r));
       return;
@@ -1237,12 +1239,16 @@ class CurveFinder {
       ++stats_.irrelevant;
       return false;
     };
+    // the polynomial alone first (its conditions only when it has roots)
+    skip_conditions_ = true;
     Event e = build(Rotation<TrigPoly>{poly_cos(false), poly_sin(false)});
+    skip_conditions_ = false;
     if (!e.poly.zero()) {
       ++stats_.polynomials;
       algebra::Polynomial p = integer_numerator(e.poly);
-      if (algebra::degree(p) >= 1)
-        for (Real root : isolated(p)) {
+      std::vector<Real> found = algebra::degree(p) >= 1 ? isolated(p) : std::vector<Real>{};
+      if (!found.empty()) e = build(Rotation<TrigPoly>{poly_cos(false), poly_sin(false)});
+      for (Real root : found) {
           root.detect_rational();
           bool ok = std::all_of(e.conditions.begin(), e.conditions.end(), [&](const Condition& c) { return holds(c, root); });
           if (ok && relevant(root, false)) found_.push_back(Critical{false, root, {kind}});
@@ -1277,7 +1283,7 @@ class CurveFinder {
 
   // The conditions for the point num / den to lie in the pin-slot window (none without one).
   void in_window(const Vec<TrigPoly>& num, const TrigPoly& den, const Rotation<TrigPoly>& r, std::vector<Condition>& out) const {
-    if (!window_) return;
+    if (!window_ || skip_conditions_) return;
     const Window& w = *window_;
     Vec<TrigPoly> rd = at(turning_point(w.d), r);
     const TrigPoly dd = den * den;
@@ -1509,14 +1515,21 @@ class CurveFinder {
         boxes[i].push_back(b);
       }
     }
+    // the boxes rounded outwards to doubles (a prefilter: disjoint doubles, disjoint boxes)
+    std::vector<std::array<double, 4>> near(n * 64);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int r = 0; r < 64; ++r) {
+        const auto& b = boxes[i][r];
+        near[i * 64 + r] = {algebra::lower_double(b.first.lo), algebra::upper_double(b.first.hi), algebra::lower_double(b.second.lo),
+                            algebra::upper_double(b.second.hi)};
+      }
     masks_.assign(n * n, 0);
     for (std::size_t a = 0; a < n; ++a)
       for (std::size_t b = a + 1; b < n; ++b) {
         std::uint64_t m = 0;
         for (int r = 0; r < 64; ++r) {
-          const auto &x = boxes[a][r], &y = boxes[b][r];
-          if (!(x.first.hi < y.first.lo || y.first.hi < x.first.lo || x.second.hi < y.second.lo || y.second.hi < x.second.lo))
-            m |= std::uint64_t(1) << r;
+          const auto &x = near[a * 64 + r], &y = near[b * 64 + r];
+          if (!(x[1] < y[0] || y[1] < x[0] || x[3] < y[2] || y[3] < x[2])) m |= std::uint64_t(1) << r;
         }
         masks_[a * n + b] = masks_[b * n + a] = m;
       }
@@ -1561,6 +1574,7 @@ class CurveFinder {
   std::optional<std::pair<Rational, Rational>> range_;
   std::vector<std::size_t> outside_;   // curves never meeting the window's box
   bool only_extra_ = false;
+  bool skip_conditions_ = false;   // while building an event's polynomial alone
   std::function<Event(const Rotation<TrigPoly>&)> degenerate_;
   Features a_, b_;
   std::vector<Curve> curves_;
