@@ -523,15 +523,19 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
       q_range.emplace(other.motion.translation_limits->lo, other.motion.translation_limits->hi);
     sliced::CriticalStatistics cs;
     std::vector<sliced::Critical> found;
+    bool in_class = true;
     try {
       found = sliced::pin_slot_critical_values(other, pin, pin.motion.translation_limits->lo,
                                                pin.motion.translation_limits->hi, q_range,
                                                std::make_pair(impl->tau_lo, impl->tau_hi), cs);
-    } catch (const GeometryError& e) {
-      throw GeometryError(pair + ": critical values: " + e.what());
+    } catch (const GeometryError&) {
+      // outside the finder's class (an arc of irrational radius, a segment of irrational
+      // length facing an arc): the sampled stack, as without critical values
+      in_class = false;
     }
     impl->stats.critical_roots = cs.roots;
     std::vector<cspace::algebra::Real> inside;
+    if (in_class)
     for (const auto& c : found)
       if (!c.half_turn && c.t.compare(impl->tau_lo) > 0 && c.t.compare(impl->tau_hi) < 0) inside.push_back(c.t);
     // a slice in every interval between consecutive critical values
@@ -545,16 +549,11 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
     for (auto& r : inside) {
       PinSlotCritical c;
       cspace::algebra::refine_dyadically(r, Rational(1, 1 << 30));
-      c.tau.polynomial = r.polynomial;
-      c.tau.lower = r.lower;
-      c.tau.upper = r.upper;
-      c.tau.exact = r.exact;
-      c.tau.lower.canonicalize();
-      c.tau.upper.canonicalize();
+      c.tau = sliced::algebraic_of(r);
       c.degrees = 2 * std::atan(r.approximate()) * 180 / std::numbers::pi;
       impl->critical.push_back(std::move(c));
     }
-    impl->critical_exact = true;
+    impl->critical_exact = in_class;
     impl->stats.seconds_critical = seconds_since(critical_start);
   }
   for (std::size_t k = 0; k < taus.size(); ++k) {

@@ -1631,6 +1631,26 @@ std::vector<Critical> pin_slot_critical_values(const Part& other, const Part& pi
   return finder.run();
 }
 
+AlgebraicNumber algebraic_of(const Real& r) {
+  AlgebraicNumber out;
+  out.polynomial = r.polynomial;
+  out.lower = r.lower;
+  out.upper = r.upper;
+  out.exact = r.exact;
+  out.lower.canonicalize();
+  out.upper.canonicalize();
+  return out;
+}
+
+Real real_of(const AlgebraicNumber& a) {
+  Real t;
+  t.polynomial = a.polynomial;
+  t.lower = a.lower;
+  t.upper = a.upper;
+  t.exact = a.exact;
+  return t;
+}
+
 std::pair<Rational, Rational> rotation_at(const Rational& u, bool flip) {
   Rational d = 1 + u * u;
   Rational c = (1 - u * u) / d, s = 2 * u / d;

@@ -7,6 +7,7 @@
 // configuration and an interior witness point certified inside both parts). CGAL-free.
 #pragma once
 
+#include <hipair/cspace.hpp>
 #include <hipair/geometry.hpp>
 #include <hipair/model.hpp>
 #include <hipair/rational.hpp>
@@ -68,6 +69,10 @@ std::vector<Critical> pin_slot_critical_values(const Part& other, const Part& pi
                                                const std::optional<std::pair<Rational, Rational>>& q_range,
                                                const std::optional<std::pair<Rational, Rational>>& tau_range,
                                                CriticalStatistics& statistics);
+
+/// An exact real (algebra) as the public AlgebraicNumber, and back.
+AlgebraicNumber algebraic_of(const cspace::algebra::Real& r);
+cspace::algebra::Real real_of(const AlgebraicNumber& a);
 
 /// cos and sin of the rotation with half-angle tangent t (or the half turn), exact.
 std::pair<Rational, Rational> rotation_of(const SlicedAngle& angle);

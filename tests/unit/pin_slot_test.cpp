@@ -10,6 +10,7 @@
 #include <hipair/pin_slot.hpp>
 
 #include "algebra/exact_real.hpp"
+#include "sliced/critical_angles.hpp"
 
 #include <gtest/gtest.h>
 
@@ -423,48 +424,39 @@ namespace {
 
 namespace algebra = cspace::algebra;
 
-algebra::Real real_of(const AlgebraicNumber& a) {
-  algebra::Real t;
-  t.polynomial = a.polynomial;
-  t.lower = a.lower;
-  t.upper = a.upper;
-  t.exact = a.exact;
-  return t;
-}
+using sliced::real_of;
 
-// A slice's structure, exactly: its cells' kinds, the feature pairs at its vertices in order
-// along the slice's first axis, and those on its edges (as a multiset).
+// A slice's free structure, exactly: its free cells, each with the feature pairs on its boundary
+// (edges; 1-D: the contacts at its ends), as a multiset. (Vertices and edges inside blocked
+// space are left out: events there are dropped once certified blocked.)
 std::string structure(const CSpace& space) {
+  std::multiset<std::string> cells;
+  for (std::size_t c = 0; c < space.cells().size(); ++c) {
+    if (space.cells()[c].kind != CellKind::free) continue;
+    std::set<std::string> labels;
+    for (std::size_t e : space.cells()[c].boundary)
+      for (std::size_t f : space.edges()[e].curves) labels.insert(space.feature_pairs()[f].label);
+    if (space.dimension() == 1)
+      for (const CSpaceFace& face : space.faces(0)) {
+        if (face.cell.index() != c) continue;
+        for (VertexId v : {face.lower, face.upper})
+          if (v.valid())
+            for (std::size_t f : space.vertices()[v.index()].curves) labels.insert(space.feature_pairs()[f].label);
+      }
+    std::string text;
+    for (const auto& l : labels) text += l + "; ";
+    cells.insert(text);
+  }
   std::string out;
-  std::multiset<int> kinds;
-  for (const auto& cell : space.cells()) kinds.insert(static_cast<int>(cell.kind));
-  for (int k : kinds) out += std::to_string(k);
-  out += " |";
-  std::vector<std::pair<double, std::string>> vertices;
-  for (const auto& v : space.vertices()) {
-    std::set<std::string> labels;
-    for (std::size_t f : v.curves) labels.insert(space.feature_pairs()[f].label);
-    std::string text;
-    for (const auto& l : labels) text += l + ";";
-    vertices.emplace_back(v.x.approximate(), text);
-  }
-  std::sort(vertices.begin(), vertices.end());
-  for (const auto& [x, labels] : vertices) out += " " + labels;
-  std::multiset<std::string> edges;
-  for (const auto& e : space.edges()) {
-    std::set<std::string> labels;
-    for (std::size_t f : e.curves) labels.insert(space.feature_pairs()[f].label);
-    std::string text;
-    for (const auto& l : labels) text += l + ";";
-    edges.insert(text);
-  }
-  for (const auto& e : edges) out += " /" + e;
+  for (const auto& c : cells) out += "[" + c + "] ";
   return out;
 }
 
 // Slices at two random rational tau inside each interval between consecutive critical values
-// have the same structure; a rational critical value's slice differs from both neighbours'.
-void expect_steady_between_critical_values(const PinSlotSpace& space, Random& random) {
+// have the same structure; with `all_change` (hand-checked cases where every critical value is
+// a change; in general the list is a superset) a rational critical value's slice differs from
+// both neighbours'.
+void expect_steady_between_critical_values(const PinSlotSpace& space, Random& random, bool all_change = false) {
   const auto& critical = space.critical_values();
   std::vector<algebra::Real> ends;
   ends.push_back(algebra::Real::from_rational(space.tau_lower()));
@@ -489,7 +481,7 @@ void expect_steady_between_critical_values(const PinSlotSpace& space, Random& ra
     ++checked;
   }
   EXPECT_GE(checked, static_cast<int>(critical.size()));
-  for (std::size_t k = 0; k < critical.size(); ++k) {
+  for (std::size_t k = 0; k < critical.size() && all_change; ++k) {
     if (!critical[k].tau.exact) continue;
     Rational t = critical[k].tau.lower, d(1, 1 << 20);
     std::string at = structure(*space.slice(t));
@@ -525,7 +517,7 @@ TEST(PinSlotCritical, BarAgainstAWallHasThreeCriticalValues) {
   EXPECT_GT(critical[2].degrees, 40);
   // the free interval at tau: s < (12 - |sin|) / cos - 10, within [-5, 5]
   Random random(13);
-  expect_steady_between_critical_values(space, random);
+  expect_steady_between_critical_values(space, random, true);
   for (int i = 0; i < 200; ++i) {
     PinSlotConfiguration q{{}, random_rational(random, -5, 5, 64), random_rational(random, -0.57, 0.57, 64)};
     EXPECT_EQ(space.locate(q).kind, oracle(model, space, q));
@@ -534,6 +526,8 @@ TEST(PinSlotCritical, BarAgainstAWallHasThreeCriticalValues) {
 
 // The film advance's film/follower pair (a translating part; both within limits) and the
 // pin/follower pair (fixed): exact critical values, and slices between consecutive ones alike.
+// (tau = 0 is listed for the film pair without a change: the slot is parallel to the film's
+// motion there, the window degenerates, and such a value is kept unfiltered.)
 // The pin is a disc centred on the follower's pivot: turning the follower turns the slot about
 // the pin's centre, so nothing changes with psi (no critical value); the claw meets the film's
 // perforations at many.
@@ -556,14 +550,21 @@ TEST(PinSlotCritical, GeneratedPairsAreSteadyBetweenCriticalValues) {
   Random random(29);
   for (int round = 0; round < 3; ++round) {
     SCOPED_TRACE("round " + std::to_string(round));
-    auto coord = [&](double lo, double hi) { return to_exact_string(random_rational(random, lo, hi, 4)); };
-    std::string bar = R"({ "start": [0, -1], "edges": [ { "line_to": [)" + coord(6, 9) + R"(, -1] }, { "line_to": [)" +
-                      coord(6, 9) + ", " + coord(0, 1.5) + R"(] }, { "line_to": [0, 1] }, { "line_to": [0, -1] } ] })";
+    auto coord = [&](double lo, double hi) { return "\"" + to_exact_string(random_rational(random, lo, hi, 4)) + "\""; };
+    // (against the stadium an axis-parallel bar: a slanted edge of irrational length facing an
+    // arc is outside the exact class, checked below)
+    const std::string length = coord(6, 9);
+    std::string bar = round == 2 ? R"({ "start": [0, -1], "edges": [ { "line_to": [)" + length + R"(, -1] }, { "line_to": [)" +
+                                       length + R"(, 1] }, { "line_to": [0, 1] }, { "line_to": [0, -1] } ] })"
+                                 : R"({ "start": [0, -1], "edges": [ { "line_to": [)" + coord(6, 9) + R"(, -1] }, { "line_to": [)" +
+                                       coord(6, 9) + ", " + coord(0, 1.5) + R"(] }, { "line_to": [0, 1] }, { "line_to": [0, -1] } ] })";
+    const std::string x0 = coord(9, 11), y0 = coord(-8, -4);
     std::string fixed = round == 2
         ? R"({ "start": [10, -3], "edges": [ { "line_to": [14, -3] }, { "arc_to": [14, 3], "center": [14, 0], "dir": "ccw" },
              { "line_to": [10, 3] }, { "arc_to": [10, -3], "center": [10, 0], "dir": "ccw" } ] })"
-        : R"({ "start": [)" + coord(9, 11) + ", " + coord(-8, -4) + R"(], "edges": [ { "line_to": [16, -6] }, { "line_to": [15, 7] },
-             { "line_to": [)" + coord(9, 11) + ", " + coord(3, 8) + R"(] }, { "line_to": [)" + coord(11, 12) + R"(, 0] } ] })";
+        : R"({ "start": [)" + x0 + ", " + y0 + R"(], "edges": [ { "line_to": [16, -6] }, { "line_to": [15, 7] },
+             { "line_to": [)" + coord(9, 11) + ", " + coord(3, 8) + R"(] }, { "line_to": [)" + coord(11, 12) +
+              R"(, 0] }, { "line_to": [)" + x0 + ", " + y0 + R"(] } ] })";
     std::string text = R"({ "hipair": 1, "name": "generated", "parts": [
       { "name": "block", "motion": "fixed", "loops": [ )" + fixed + R"( ] },
       { "name": "bar", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "angle_limits": [-70, 70],
@@ -578,6 +579,19 @@ TEST(PinSlotCritical, GeneratedPairsAreSteadyBetweenCriticalValues) {
       EXPECT_EQ(space.locate(q).kind, oracle(model, space, q));
     }
   }
+  // outside the class (a slanted bar end of length sqrt 5 facing the stadium's arcs): the
+  // sampled stack, no exact critical values, no error
+  Model slanted = read_model(R"({ "hipair": 1, "name": "slanted", "parts": [
+    { "name": "block", "motion": "fixed", "loops": [ { "start": [10, -3], "edges": [ { "line_to": [14, -3] },
+      { "arc_to": [14, 3], "center": [14, 0], "dir": "ccw" }, { "line_to": [10, 3] },
+      { "arc_to": [10, -3], "center": [10, 0], "dir": "ccw" } ] } ] },
+    { "name": "bar", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "angle_limits": [-70, 70],
+      "limits": [-3, 4] } }, "loops": [ { "start": [0, -1], "edges": [ { "line_to": [7, -1] }, { "line_to": [8, 1] },
+      { "line_to": [0, 1] }, { "line_to": [0, -1] } ] } ] } ],
+    "pairs": [ { "parts": ["block", "bar"] } ] })");
+  PinSlotSpace sampled = PinSlotSpace::build(slanted, "block", "bar");
+  EXPECT_FALSE(sampled.critical_values_exact());
+  EXPECT_TRUE(sampled.critical_values().empty());
 }
 
 }  // namespace

@@ -79,14 +79,7 @@ std::vector<std::pair<Rational, Rational>> star(Random& random, int k, double cx
   return points;
 }
 
-algebra::Real real_of(const AlgebraicNumber& a) {
-  algebra::Real t;
-  t.polynomial = a.polynomial;
-  t.lower = a.lower;
-  t.upper = a.upper;
-  t.exact = a.exact;
-  return t;
-}
+using sliced::real_of;
 
 // Slices at random rational angles inside each interval between two finite critical angles
 // have free cells in one-to-one correspondence with the interval's representative (a missed
