@@ -196,11 +196,16 @@ ToleranceClaim tolerance_of(const JsonValue& body) {
 }
 
 PlanarPose pose_of(const JsonValue& value) {
-  check_keys(value, {"part", "x", "y", "tangent", "centre"});
+  check_keys(value, {"part", "x", "y", "slide", "tangent", "centre"});
   PlanarPose pose;
   pose.part = text(require(value, "part"));
-  pose.x = rational(require(value, "x"));
-  pose.y = rational(require(value, "y"));
+  if (const JsonValue* slide = value.find("slide")) {
+    if (value.find("x") || value.find("y")) fail(value, "a pose gives either \"slide\" (pin-slot) or \"x\" and \"y\"");
+    pose.slide = rational(*slide);
+  } else {
+    pose.x = rational(require(value, "x"));
+    pose.y = rational(require(value, "y"));
+  }
   pose.tangent = rational(require(value, "tangent"));
   if (const JsonValue* centre = value.find("centre")) {
     std::string c = text(*centre);
@@ -295,14 +300,16 @@ Certificate read_certificate(std::string_view json_text) {
       c.tolerance = tolerance_of(body);
       break;
     case ClaimKind::planar_interference: {
-      check_keys(body, {"pose", "point", "crossing"});
+      check_keys(body, {"pose", "configuration", "point", "crossing"});
       c.pose = pose_of(require(body, "pose"));
+      if (const JsonValue* positions = body.find("configuration")) c.configuration = configuration_of(*positions);
       read_overlap_witness(body);
       break;
     }
     case ClaimKind::planar_clearance:
-      check_keys(body, {"pose", "distance"});
+      check_keys(body, {"pose", "configuration", "distance"});
       c.pose = pose_of(require(body, "pose"));
+      if (const JsonValue* positions = body.find("configuration")) c.configuration = configuration_of(*positions);
       c.distance = rational(require(body, "distance"));
       break;
     case ClaimKind::jam: {

@@ -163,10 +163,15 @@ std::string write_certificate(const Certificate& c) {
       break;
     case ClaimKind::planar_interference:
     case ClaimKind::planar_clearance:
-      if (c.pose)
-        out << "    \"pose\": {\"part\": " << quoted(c.pose->part) << ", \"x\": " << number(c.pose->x) << ", \"y\": "
-            << number(c.pose->y) << ", \"tangent\": " << number(c.pose->tangent)
-            << (c.pose->half_turn ? ", \"centre\": \"pi\"" : "") << "}";
+      if (c.pose) {
+        out << "    \"pose\": {\"part\": " << quoted(c.pose->part);
+        if (c.pose->slide)
+          out << ", \"slide\": " << number(*c.pose->slide);
+        else
+          out << ", \"x\": " << number(c.pose->x) << ", \"y\": " << number(c.pose->y);
+        out << ", \"tangent\": " << number(c.pose->tangent) << (c.pose->half_turn ? ", \"centre\": \"pi\"" : "") << "}";
+      }
+      if (!c.configuration.empty()) out << ",\n    \"configuration\": " << configuration(c.configuration);
       if (c.claim == ClaimKind::planar_clearance) out << ",\n    \"distance\": " << number(c.distance);
       if (c.witness_point)
         out << ",\n    \"point\": [" << number(c.witness_point->x) << ", " << number(c.witness_point->y) << "]";

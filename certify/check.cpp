@@ -182,6 +182,8 @@ void check_crossing_parts(const Certificate& c, const CrossingWitness& w) {
 }
 
 // ----------------------------------------------------------------------------- single configurations
+}  // namespace
+
 ExactMap exact_map(const Part& part, const std::map<std::string, ExactPosition>& configuration) {
   auto found = configuration.find(part.name);
   ExactMap map;
@@ -218,6 +220,8 @@ ExactMap exact_map(const Part& part, const std::map<std::string, ExactPosition>&
   if (!within_limits(part, theta)) reject("the angle of '" + part.name + "' is not certainly within its limits");
   return map;
 }
+
+namespace {
 
 void check_nesting(const PlacedPart& a, const PlacedPart& b, const std::string& where) {
   for (int side = 0; side < 2; ++side) {

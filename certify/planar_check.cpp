@@ -18,7 +18,8 @@ const Part& part_named(const Model& model, const std::string& name) {
 std::string text(const Rational& r) { return to_exact_string(r); }
 
 // p -> pivot + R (p - pivot) + (x, y) as a rotation about the origin: R p + (pivot - R pivot + (x, y))
-// (the interval posing rotates a planar part's shape about the origin, see pose_pivot).
+// (the interval posing rotates a planar part's shape about the origin, see pose_pivot); a
+// pin-slot part's shift is slide R d.
 ExactMap pose_map(const Part& part, const PlanarPose& pose) {
   Rational w = 1 + pose.tangent * pose.tangent;
   int sign = pose.half_turn ? -1 : 1;
@@ -27,13 +28,18 @@ ExactMap pose_map(const Part& part, const PlanarPose& pose) {
   map.s = sign * 2 * pose.tangent / w;
   const Point& p = part.motion.pivot;
   Point turned = map.rotate(p);
-  map.shift = Point{Rational(p.x - turned.x + pose.x), Rational(p.y - turned.y + pose.y)};
+  Point shift{pose.x, pose.y};
+  if (pose.slide) {
+    Point d = map.rotate(part.motion.direction);
+    shift = Point{Rational(*pose.slide * d.x), Rational(*pose.slide * d.y)};
+  }
+  map.shift = Point{Rational(p.x - turned.x + shift.x), Rational(p.y - turned.y + shift.y)};
   return map;
 }
 
 std::string pose_text(const PlanarPose& pose) {
-  return "'" + pose.part + "' at x=" + text(pose.x) + ", y=" + text(pose.y) + (pose.half_turn ? ", t(pi)=" : ", t=") +
-         text(pose.tangent);
+  return "'" + pose.part + "' at " + (pose.slide ? "s=" + text(*pose.slide) : "x=" + text(pose.x) + ", y=" + text(pose.y)) +
+         (pose.half_turn ? ", t(pi)=" : ", t=") + text(pose.tangent);
 }
 
 const Edge& edge_of(const Part& part, const EdgeReference& reference) {
@@ -54,12 +60,26 @@ std::string check_planar(const Certificate& c, const Model& model) {
   if (pose.part != c.first && pose.part != c.second) reject("the posed part '" + pose.part + "' is not a part of the pair");
   const Part& free = part_named(model, pose.part);
   const Part& fixed = part_named(model, pose.part == c.first ? c.second : c.first);
-  if (free.motion.kind != Motion::Kind::planar) reject("part '" + free.name + "' is not free in the plane (motion \"planar\")");
-  if (fixed.motion.kind != Motion::Kind::fixed) reject("part '" + fixed.name + "' is not fixed");
-  if (free.motion.angle_limits || free.motion.translation_limits)
-    reject("part '" + free.name + "' has motion limits (planar claims cover parts without limits)");
+  ExactMap fixed_map;
+  if (pose.slide) {
+    // a pin-in-slot part: its slide within its limits (the angle is the posed geometry's; angle
+    // limits are not part of the claim), the other part fixed or at its configured position
+    if (free.motion.kind != Motion::Kind::pin_slot) reject("part '" + free.name + "' has no pin_slot motion (a pose with a slide)");
+    const auto& limits = free.motion.translation_limits;
+    if (limits && (*pose.slide < limits->lo || *pose.slide > limits->hi))
+      reject("the slide of '" + free.name + "' (" + text(*pose.slide) + ") is outside its limits");
+    if (fixed.motion.kind == Motion::Kind::planar || fixed.motion.kind == Motion::Kind::pin_slot)
+      reject("part '" + fixed.name + "' must be fixed, rotate or translate");
+    fixed_map = exact_map(fixed, c.configuration);
+  } else {
+    if (free.motion.kind != Motion::Kind::planar) reject("part '" + free.name + "' is not free in the plane (motion \"planar\")");
+    if (fixed.motion.kind != Motion::Kind::fixed) reject("part '" + fixed.name + "' is not fixed");
+    if (free.motion.angle_limits || free.motion.translation_limits)
+      reject("part '" + free.name + "' has motion limits (planar claims cover parts without limits)");
+    if (!c.configuration.empty()) reject("a planar claim against a fixed part has no configuration");
+  }
   const ExactMap map = pose_map(free, pose);
-  const PlacedPart placed_fixed = place(fixed, ExactMap{}), placed_free = place(free, map);
+  const PlacedPart placed_fixed = place(fixed, fixed_map), placed_free = place(free, map);
   const std::string where = pose_text(pose);
   if (c.claim == ClaimKind::planar_interference) {
     if (c.witness_point) {
@@ -88,7 +108,7 @@ std::string check_planar(const Certificate& c, const Model& model) {
   }
   if (sgn(c.distance) <= 0) reject("the claimed clearance must be positive");
   std::string closest;
-  Rational bound = boundary_distance_lower_bound(place_over(fixed, IntervalMap{}), place_over(free, to_interval_map(map)),
+  Rational bound = boundary_distance_lower_bound(place_over(fixed, to_interval_map(fixed_map)), place_over(free, to_interval_map(map)),
                                                  c.distance, &closest);
   if (bound < c.distance)
     reject("with " + where + " the certified distance lower bound of " + closest + " is " + to_decimal_string(bound) +

@@ -1,6 +1,7 @@
 // The verifier's check of planar claims (docs/certify.md, "Planar pairs"): a part free in the
 // plane (motion "planar") at one exact pose (x, y and a rational half-angle tangent) against a
-// fixed part. Interference: a witness point strictly inside both posed parts, or two edges that
+// fixed part, or a pin-in-slot part at an exact pose (slide s and tangent) against a fixed part
+// or a rotating or translating one at its position in the certificate's configuration. Interference: a witness point strictly inside both posed parts, or two edges that
 // cross transversally (exact). Clearance: a certified lower bound (MPFI) of the distance between
 // the posed boundaries at least the claim, and no loop of one part inside the other (exact).
 // Uses only the verifier's own geometry (exact_geometry, interval_geometry).
@@ -9,9 +10,16 @@
 #include <hipair/certificate.hpp>
 #include <hipair/model.hpp>
 
+#include "certify/exact_geometry.hpp"
+
+#include <map>
 #include <string>
 
 namespace hipair::verify {
+
+/// The exact map of a fixed, rotating or translating part at its position in `configuration`
+/// (identity when fixed); positions and limits checked (check.cpp). \throws Rejection.
+ExactMap exact_map(const Part& part, const std::map<std::string, ExactPosition>& configuration);
 
 /// Checks a planar_interference or planar_clearance claim; returns the summary line.
 /// \throws Rejection with the exact reason when the claim does not hold.

@@ -56,11 +56,14 @@ struct ExactPosition {
 /// goes to pivot + R(theta) (p - pivot) + (x, y), theta given by its half-angle tangent
 /// t = tan((theta - c)/2) with c = 0, or c = pi when `half_turn` (so that cos and sin are
 /// rational).
+/// A pin-in-slot part (motion "pin_slot") is posed by its slide instead of (x, y): body point p
+/// goes to pivot + R(theta) (p - pivot) + slide R(theta) d (d its direction).
 struct PlanarPose {
-  std::string part;   ///< the planar part (the other part of the pair is fixed)
-  Rational x, y;      ///< mm
+  std::string part;   ///< the posed part (the other part of the pair is fixed, or placed by the configuration)
+  Rational x, y;      ///< mm (planar parts)
   Rational tangent;
   bool half_turn = false;
+  std::optional<Rational> slide;   ///< pin-slot parts: the slide s (mm); x and y unused
 };
 
 /// One boundary edge of a part, by index; `label` must equal the model edge's label.
@@ -189,7 +192,8 @@ struct Certificate {
 
   /// interference, clearance: the position of every moving part of the pair.
   std::map<std::string, ExactPosition> configuration;
-  /// planar_interference, planar_clearance: the free part's pose (the other part is fixed).
+  /// planar_interference, planar_clearance: the free part's pose (the other part is fixed or,
+  /// against a pin-slot part, placed by `configuration`).
   std::optional<PlanarPose> pose;
 
   /// interference, planar_interference: a point strictly inside both parts (world, mm), or a crossing.
@@ -270,6 +274,22 @@ std::optional<Certificate> certify_planar_interference(const Model& model, const
 std::optional<Certificate> certify_planar_clearance(const Model& model, const std::string& fixed, const PlanarPose& pose,
                                                     std::optional<Rational> distance = std::nullopt,
                                                     const CertifyContext& context = {});
+
+/// Certifies that the pin-in-slot part `pose.part` (pose.slide set) overlaps part `other` (fixed,
+/// or rotating or translating to its position in `configuration`) at the exact pose: a planar
+/// interference claim with the pin-slot pose, re-checked. \returns nullopt when they do not
+/// overlap there. \throws ModelError for unknown parts, GeometryError for other motions.
+std::optional<Certificate> certify_pin_slot_interference(const Model& model, const std::string& other, const PlanarPose& pose,
+                                                         const std::map<std::string, ExactPosition>& configuration = {},
+                                                         const CertifyContext& context = {});
+
+/// Certifies that at the exact pin-slot pose the parts are at least `distance` apart (absent: the
+/// largest certified bound found, rounded down to 6 significant digits). \returns nullopt when
+/// they touch or overlap, or the bound cannot be certified.
+std::optional<Certificate> certify_pin_slot_clearance(const Model& model, const std::string& other, const PlanarPose& pose,
+                                                      const std::map<std::string, ExactPosition>& configuration = {},
+                                                      std::optional<Rational> distance = std::nullopt,
+                                                      const CertifyContext& context = {});
 
 /// A motion path for free passage: the follower coordinate as a polyline of the driver
 /// coordinate (rational vertices, rad or mm). Empty for a pair with a fixed part.

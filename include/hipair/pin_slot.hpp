@@ -99,6 +99,14 @@ struct PinSlotChange {
   std::string description;             ///< "free cells 2 -> 1", "contacts of the free cells differ"
 };
 
+/// An exact critical value of tau = tan(psi/2): where the slice's structure may change (the
+/// events of docs/cspace.md, "Critical values of pin-in-slot pairs"). Between two consecutive
+/// critical values the slices are alike.
+struct PinSlotCritical {
+  AlgebraicNumber tau;
+  double degrees = 0;      ///< psi, approximate, for display
+};
+
 /// Options of a pin-in-slot build.
 struct PinSlotBuildOptions {
   /// Slices across the angle limits (0: automatic, 16). At least 2.
@@ -113,6 +121,9 @@ struct PinSlotBuildOptions {
   /// Build the stack. false: nothing is built up front; slices are built on demand by slice()
   /// and locate() (slices(), connections(), changes() stay empty).
   bool stack = true;
+  /// Compute the exact critical values of tau (when the class allows: see
+  /// PinSlotSpace::critical_values_exact) and put a slice in every interval between them.
+  bool critical_values = true;
   /// Called with the stage under way ("slice 3 of 16", "connections 5 of 15").
   std::function<void(const std::string&)> progress;
 };
@@ -122,6 +133,8 @@ struct PinSlotStatistics {
   std::size_t witness_spaces = 0;        ///< 1-D C-spaces built to certify witnesses
   std::size_t plane_spaces = 0;          ///< 2-D C-spaces built for plane witnesses
   std::size_t witness_candidates = 0;    ///< candidate witness points tried
+  std::size_t critical_roots = 0;        ///< candidate roots of the critical-value events
+  double seconds_critical = 0;
   double seconds_slices = 0;
   double seconds_connections = 0;
   double seconds_total = 0;
@@ -156,6 +169,17 @@ class PinSlotSpace {
   const std::vector<PinSlotConnection>& connections() const;
   const std::vector<PinSlotChange>& changes() const;
   std::size_t groups() const;
+
+  /// Are the critical values exact and complete? True when they were asked for, the stack was
+  /// built, the other part is fixed or translates, and every slide (and the other part's
+  /// translation) has limits (the slice box is then fixed); parts as for 3-DOF pairs with arcs
+  /// (arcs of rational radius; a segment facing a convex arc of rational length). Otherwise
+  /// (a rotating driver, no limits) the stack is sampled as described above.
+  bool critical_values_exact() const;
+  /// The exact critical values inside (tau_lower, tau_upper), ascending (empty unless
+  /// critical_values_exact()). Every interval between consecutive ones (and the stack's ends)
+  /// holds a slice of the stack: two slices with no critical value between them are alike.
+  const std::vector<PinSlotCritical>& critical_values() const;
 
   /// Exact point location at any rational configuration.
   PinSlotLocation locate(const PinSlotConfiguration& configuration) const;

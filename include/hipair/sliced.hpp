@@ -7,7 +7,8 @@
 //
 // Structure. At a fixed rational rotation the slice is the C-space of a translating pair,
 // built exactly by the circle–segment arrangement stage and served by hipair::CSpace. The
-// critical angles (polygonal parts), where the free space of the slice changes its contact
+// critical angles (polygonal parts, and parts with arcs of rational radius: docs/cspace.md,
+// "Critical angles with arcs"), where the free space of the slice changes its contact
 // structure, are exact algebraic numbers in t; between two consecutive critical angles the
 // slices are alike, one rational representative each; across each critical angle the free
 // cells of the two neighbouring intervals that connect are listed. Point location is exact
@@ -182,8 +183,9 @@ struct SlicedPath {
 
 /// Options of a sliced build.
 struct SlicedBuildOptions {
-  /// Compute critical angles and the cell structure (polygonal parts only). Off: slices and
-  /// point location only (parts may have arcs).
+  /// Compute critical angles and the cell structure (polygonal parts, a round free part, or
+  /// arcs of rational radius with every segment facing a convex arc of rational length). Off:
+  /// slices and point location only (any arcs).
   bool cell_structure = true;
   /// Called with a short description of the stage under way ("critical angles", "slice 3 of
   /// 12", "crossing 5 of 12"), for a progress line; may be empty.
@@ -207,9 +209,10 @@ class SlicedSpace {
   struct Impl;
 
   /// \throws ModelError for unknown part names; GeometryError when `fixed_part` is not fixed,
-  /// `free_part` is not planar, or (with the cell structure) a part has arcs — except when the
-  /// free part is a disc or concentric rings (full circles with one centre): its slices are
-  /// translates of one another, there is no critical angle, and the fixed part may have arcs.
+  /// `free_part` is not planar, or (with the cell structure) an arc has an irrational radius or a
+  /// segment of irrational length faces a convex arc — except when the free part is a disc or
+  /// concentric rings (full circles with one centre): its slices are translates of one another,
+  /// there is no critical angle, and the fixed part may have any arcs.
   static SlicedSpace build(const Model& model, std::string_view fixed_part, std::string_view free_part,
                            const SlicedBuildOptions& options = {});
 

@@ -3,6 +3,7 @@
 // found with the exact overlap predicate (interference) or the verifier's certified distance
 // bound (clearance), and every certificate is re-checked with the verifier's own code.
 #include "certificates/producer.hpp"
+#include "certify/planar_check.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/overlap.hpp>
@@ -15,48 +16,70 @@ using namespace certify_detail;
 struct PlanarPair {
   const Part* fixed;
   const Part* free;
-  verify::ExactMap map;   // the free part's pose as a rotation about the origin and a shift
+  verify::ExactMap map;         // the free part's pose as a rotation about the origin and a shift
+  verify::ExactMap fixed_map;   // the other part's (identity when fixed)
 };
 
-PlanarPair planar_pair(const Model& model, const std::string& fixed, const PlanarPose& pose) {
+// A planar part against a fixed part, or (pose.slide) a pin-slot part against a fixed, rotating
+// or translating part placed by `configuration`.
+PlanarPair planar_pair(const Model& model, const std::string& fixed, const PlanarPose& pose,
+                       const std::map<std::string, ExactPosition>& configuration) {
   const Part& a = part_of(model, fixed);
   const Part& b = part_of(model, pose.part);
-  if (a.motion.kind != Motion::Kind::fixed) throw GeometryError("planar certificate: part '" + a.name + "' must be fixed");
-  if (b.motion.kind != Motion::Kind::planar)
-    throw GeometryError("planar certificate: part '" + b.name + "' must be free in the plane (motion \"planar\")");
-  if (b.motion.angle_limits || b.motion.translation_limits)
-    throw GeometryError("planar certificate: part '" + b.name + "' has motion limits");
+  verify::ExactMap fixed_map;
+  if (pose.slide) {
+    if (b.motion.kind != Motion::Kind::pin_slot)
+      throw GeometryError("pin-slot certificate: part '" + b.name + "' has no pin_slot motion");
+    if (a.motion.kind == Motion::Kind::planar || a.motion.kind == Motion::Kind::pin_slot)
+      throw GeometryError("pin-slot certificate: part '" + a.name + "' must be fixed, rotate or translate");
+    try {
+      fixed_map = verify::exact_map(a, configuration);
+    } catch (const verify::Rejection& r) {
+      throw GeometryError("pin-slot certificate: " + r.reason);
+    }
+  } else {
+    if (a.motion.kind != Motion::Kind::fixed) throw GeometryError("planar certificate: part '" + a.name + "' must be fixed");
+    if (b.motion.kind != Motion::Kind::planar)
+      throw GeometryError("planar certificate: part '" + b.name + "' must be free in the plane (motion \"planar\")");
+    if (b.motion.angle_limits || b.motion.translation_limits)
+      throw GeometryError("planar certificate: part '" + b.name + "' has motion limits");
+  }
   Rational w = 1 + pose.tangent * pose.tangent;
   int sign = pose.half_turn ? -1 : 1;
   verify::ExactMap map;
   map.c = sign * (1 - pose.tangent * pose.tangent) / w;
   map.s = sign * 2 * pose.tangent / w;
   Point turned = map.rotate(b.motion.pivot);
-  map.shift = Point{Rational(b.motion.pivot.x - turned.x + pose.x), Rational(b.motion.pivot.y - turned.y + pose.y)};
-  return PlanarPair{&a, &b, map};
+  Point shift{pose.x, pose.y};
+  if (pose.slide) {
+    Point d = map.rotate(b.motion.direction);
+    shift = Point{Rational(*pose.slide * d.x), Rational(*pose.slide * d.y)};
+  }
+  map.shift = Point{Rational(b.motion.pivot.x - turned.x + shift.x), Rational(b.motion.pivot.y - turned.y + shift.y)};
+  return PlanarPair{&a, &b, map, fixed_map};
 }
 
 Placement placement_of(const verify::ExactMap& map) { return placement_about(map.pivot, map.c, map.s, map.shift); }
 
 std::string pose_words(const PlanarPose& pose) {
-  return "'" + pose.part + "' shifted by (" + to_decimal_string(pose.x) + ", " + to_decimal_string(pose.y) +
-         ") mm and turned by 2 atan(" + to_exact_string(pose.tangent) + ")" + (pose.half_turn ? " + pi" : "") + " rad";
+  std::string turned = "turned by 2 atan(" + to_exact_string(pose.tangent) + ")" + (pose.half_turn ? " + pi" : "") + " rad";
+  if (pose.slide) return "'" + pose.part + "' " + turned + " and slid by " + to_decimal_string(*pose.slide) + " mm";
+  return "'" + pose.part + "' shifted by (" + to_decimal_string(pose.x) + ", " + to_decimal_string(pose.y) + ") mm and " + turned;
 }
 
-}  // namespace
-
-std::optional<Certificate> certify_planar_interference(const Model& model, const std::string& fixed, const PlanarPose& pose,
-                                                       const CertifyContext& context) {
-  PlanarPair pair = planar_pair(model, fixed, pose);
+std::optional<Certificate> interference(const Model& model, const std::string& fixed, const PlanarPose& pose,
+                                        const std::map<std::string, ExactPosition>& configuration, const CertifyContext& context) {
+  PlanarPair pair = planar_pair(model, fixed, pose, configuration);
   Certificate c = start_certificate(model, context, ClaimKind::planar_interference, fixed, pose.part);
   c.pose = pose;
-  PartOverlap report = part_overlap(*pair.fixed, Placement{}, *pair.free, placement_of(pair.map), true);
+  c.configuration = configuration;
+  PartOverlap report = part_overlap(*pair.fixed, placement_of(pair.fixed_map), *pair.free, placement_of(pair.map), true);
   if (report.relation != PartRelation::overlapping) return std::nullopt;
   if (report.witness) {
     c.witness_point = report.witness;
   } else {   // a transversal crossing of two edges, found with the verifier's own predicate
     const Part &a = *pair.fixed, &b = *pair.free;
-    verify::PlacedPart placed_a = verify::place(a, verify::ExactMap{}), placed_b = verify::place(b, pair.map);
+    verify::PlacedPart placed_a = verify::place(a, pair.fixed_map), placed_b = verify::place(b, pair.map);
     for (std::size_t i = 0; i < a.loops.size() && !c.witness_crossing; ++i)
       for (std::size_t j = 0; j < a.loops[i].edges.size() && !c.witness_crossing; ++j)
         for (std::size_t k = 0; k < b.loops.size() && !c.witness_crossing; ++k)
@@ -71,18 +94,20 @@ std::optional<Certificate> certify_planar_interference(const Model& model, const
   return c;
 }
 
-std::optional<Certificate> certify_planar_clearance(const Model& model, const std::string& fixed, const PlanarPose& pose,
-                                                    std::optional<Rational> distance, const CertifyContext& context) {
-  PlanarPair pair = planar_pair(model, fixed, pose);
+std::optional<Certificate> clearance(const Model& model, const std::string& fixed, const PlanarPose& pose,
+                                     const std::map<std::string, ExactPosition>& configuration, std::optional<Rational> distance,
+                                     const CertifyContext& context) {
+  PlanarPair pair = planar_pair(model, fixed, pose, configuration);
   Certificate c = start_certificate(model, context, ClaimKind::planar_clearance, fixed, pose.part);
   c.pose = pose;
+  c.configuration = configuration;
   const Part &a = *pair.fixed, &b = *pair.free;
-  if (part_overlap(a, Placement{}, b, placement_of(pair.map)).relation != PartRelation::apart) return std::nullopt;
+  if (part_overlap(a, placement_of(pair.fixed_map), b, placement_of(pair.map)).relation != PartRelation::apart) return std::nullopt;
   // capped at the L1 distance of two boundary points (an upper bound of the distance)
-  Point p = a.loops.at(0).edges.at(0).source, q = pair.map.apply(b.loops.at(0).edges.at(0).source);
+  Point p = pair.fixed_map.apply(a.loops.at(0).edges.at(0).source), q = pair.map.apply(b.loops.at(0).edges.at(0).source);
   Rational cap = abs(p.x - q.x) + abs(p.y - q.y);
   if (distance && *distance > cap) return std::nullopt;
-  Rational bound = verify::boundary_distance_lower_bound(verify::place_over(a, verify::IntervalMap{}),
+  Rational bound = verify::boundary_distance_lower_bound(verify::place_over(a, verify::to_interval_map(pair.fixed_map)),
                                                          verify::place_over(b, verify::to_interval_map(pair.map)), cap);
   if (sgn(bound) <= 0 || (distance && bound < *distance)) return std::nullopt;
   c.distance = distance ? *distance : round_down(bound, 6);
@@ -90,6 +115,34 @@ std::optional<Certificate> certify_planar_clearance(const Model& model, const st
                 " mm apart.";
   self_check(c, model);
   return c;
+}
+
+}  // namespace
+
+std::optional<Certificate> certify_planar_interference(const Model& model, const std::string& fixed, const PlanarPose& pose,
+                                                       const CertifyContext& context) {
+  if (pose.slide) throw GeometryError("planar certificate: the pose of '" + pose.part + "' has a slide (a pin-slot pose)");
+  return interference(model, fixed, pose, {}, context);
+}
+
+std::optional<Certificate> certify_planar_clearance(const Model& model, const std::string& fixed, const PlanarPose& pose,
+                                                    std::optional<Rational> distance, const CertifyContext& context) {
+  if (pose.slide) throw GeometryError("planar certificate: the pose of '" + pose.part + "' has a slide (a pin-slot pose)");
+  return clearance(model, fixed, pose, {}, distance, context);
+}
+
+std::optional<Certificate> certify_pin_slot_interference(const Model& model, const std::string& other, const PlanarPose& pose,
+                                                         const std::map<std::string, ExactPosition>& configuration,
+                                                         const CertifyContext& context) {
+  if (!pose.slide) throw GeometryError("pin-slot certificate: the pose of '" + pose.part + "' needs a slide");
+  return interference(model, other, pose, configuration, context);
+}
+
+std::optional<Certificate> certify_pin_slot_clearance(const Model& model, const std::string& other, const PlanarPose& pose,
+                                                      const std::map<std::string, ExactPosition>& configuration,
+                                                      std::optional<Rational> distance, const CertifyContext& context) {
+  if (!pose.slide) throw GeometryError("pin-slot certificate: the pose of '" + pose.part + "' needs a slide");
+  return clearance(model, other, pose, configuration, distance, context);
 }
 
 }  // namespace hipair

@@ -113,6 +113,15 @@ std::string pin_slot_json(const PinSlotSpace& space) {
                        {"degrees", {space.slices()[c.lower].degrees, space.slices()[c.lower + 1].degrees}},
                        {"what", c.description}});
   out["changes"] = changes;
+  out["critical_values_exact"] = space.critical_values_exact();
+  json critical = json::array();
+  for (const PinSlotCritical& c : space.critical_values())
+    critical.push_back({{"tau", c.tau.to_string("tau")}, {"degrees", c.degrees}});
+  out["critical_values"] = critical;
+  out["critical_values_note"] =
+      "when exact (the other part fixed or translating, slides within limits): every tau in (tau_range) where the "
+      "slice's structure may change, exact algebraic numbers; each interval between consecutive ones holds a slice, "
+      "and slices with no critical value between them are alike";
   out["changes_note"] =
       "each interval certainly contains a change of the free-cell structure (both slices exact); gaps between alike "
       "slices are not certified free of changes";

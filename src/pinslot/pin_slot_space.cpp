@@ -6,6 +6,9 @@
 
 #include <hipair/error.hpp>
 
+#include "algebra/exact_real.hpp"
+#include "sliced/critical_angles.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -118,6 +121,8 @@ struct PinSlotSpace::Impl {
   std::vector<PinSlotSlice> slices;
   std::vector<PinSlotConnection> connections;
   std::vector<PinSlotChange> changes;
+  std::vector<PinSlotCritical> critical;
+  bool critical_exact = false;
   std::size_t group_count = 0;
   mutable PinSlotStatistics stats;
   mutable std::mutex mutex;
@@ -506,12 +511,57 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
   impl->tau_lo = taus.front();
   impl->tau_hi = taus.back();
   if (!options.stack) taus.clear();
+  // exact critical values: a fixed or translating other part, slides within limits
+  const bool exact_class = (other.motion.kind == Motion::Kind::fixed ||
+                            (other.motion.kind == Motion::Kind::translation && other.motion.translation_limits)) &&
+                           pin.motion.translation_limits.has_value();
+  if (options.critical_values && options.stack && exact_class) {
+    auto critical_start = Clock::now();
+    if (options.progress) options.progress("critical values");
+    std::optional<std::pair<Rational, Rational>> q_range;
+    if (other.motion.kind == Motion::Kind::translation)
+      q_range.emplace(other.motion.translation_limits->lo, other.motion.translation_limits->hi);
+    sliced::CriticalStatistics cs;
+    std::vector<sliced::Critical> found;
+    bool in_class = true;
+    try {
+      found = sliced::pin_slot_critical_values(other, pin, pin.motion.translation_limits->lo,
+                                               pin.motion.translation_limits->hi, q_range,
+                                               std::make_pair(impl->tau_lo, impl->tau_hi), cs);
+    } catch (const GeometryError&) {
+      // outside the finder's class (an arc of irrational radius, a segment of irrational
+      // length facing an arc): the sampled stack, as without critical values
+      in_class = false;
+    }
+    impl->stats.critical_roots = cs.roots;
+    std::vector<cspace::algebra::Real> inside;
+    if (in_class)
+    for (const auto& c : found)
+      if (!c.half_turn && c.t.compare(impl->tau_lo) > 0 && c.t.compare(impl->tau_hi) < 0) inside.push_back(c.t);
+    // a slice in every interval between consecutive critical values
+    for (std::size_t k = 0; k + 1 < inside.size(); ++k) {
+      bool has = std::any_of(taus.begin(), taus.end(), [&](const Rational& t) {
+        return inside[k].compare(t) < 0 && inside[k + 1].compare(t) > 0;
+      });
+      if (!has) taus.push_back(cspace::algebra::rational_between(inside[k], inside[k + 1]));
+    }
+    std::sort(taus.begin(), taus.end());
+    for (auto& r : inside) {
+      PinSlotCritical c;
+      cspace::algebra::refine_dyadically(r, Rational(1, 1 << 30));
+      c.tau = sliced::algebraic_of(r);
+      c.degrees = 2 * std::atan(r.approximate()) * 180 / std::numbers::pi;
+      impl->critical.push_back(std::move(c));
+    }
+    impl->critical_exact = in_class;
+    impl->stats.seconds_critical = seconds_since(critical_start);
+  }
   for (std::size_t k = 0; k < taus.size(); ++k) {
     if (options.progress) options.progress("slice " + std::to_string(k + 1) + " of " + std::to_string(taus.size()));
     impl->slices.push_back(impl->make_slice(taus[k], false));
   }
-  // isolate changes by bisection
-  for (unsigned step_count = 0; step_count < options.refine_steps; ++step_count) {
+  // isolate changes by bisection (not needed with exact critical values)
+  for (unsigned step_count = 0; step_count < (impl->critical_exact ? 0u : options.refine_steps); ++step_count) {
     std::vector<PinSlotSlice> refined;
     bool any = false;
     for (std::size_t k = 0; k < impl->slices.size(); ++k) {
@@ -586,6 +636,8 @@ const std::vector<PinSlotSlice>& PinSlotSpace::slices() const { return impl_->sl
 const std::vector<PinSlotConnection>& PinSlotSpace::connections() const { return impl_->connections; }
 const std::vector<PinSlotChange>& PinSlotSpace::changes() const { return impl_->changes; }
 std::size_t PinSlotSpace::groups() const { return impl_->group_count; }
+bool PinSlotSpace::critical_values_exact() const { return impl_->critical_exact; }
+const std::vector<PinSlotCritical>& PinSlotSpace::critical_values() const { return impl_->critical; }
 const PinSlotStatistics& PinSlotSpace::statistics() const { return impl_->stats; }
 
 PinSlotLocation PinSlotSpace::locate(const PinSlotConfiguration& q) const {

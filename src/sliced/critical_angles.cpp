@@ -1,12 +1,15 @@
 // Critical angles of a free polygonal part against a fixed one (see critical_angles.hpp).
 #include "sliced/critical_angles.hpp"
 
+#include "core/exact_sqrt.hpp"
+
 #include <hipair/error.hpp>
 #include <hipair/overlap.hpp>
 
 #include <algorithm>
 #include <cstdint>
 #include <array>
+#include <functional>
 #include <optional>
 #include <tuple>
 #include <type_traits>
@@ -215,13 +218,51 @@ Vec<T> vv(const PolygonalPair& g, const Rotation<T>& r, std::size_t i, std::size
   return lift_point<T>(g.a[i]) - r.apply(lift_point<T>(g.u[j]));
 }
 
+// sign(a + b sqrt(d)), d >= 0.
+int sign_with_root(const Rational& a, const Rational& b, const Rational& d) {
+  int sa = sgn(a), sb = sgn(b);
+  if (sb == 0 || sgn(d) == 0) return sa;
+  if (sa == 0 || sa == sb) return sa == 0 ? sb : sa;
+  // opposite signs: compare a^2 with b^2 d
+  int c = cmp(Rational(a * a), Rational(b * b * d));
+  return c == 0 ? 0 : (c > 0 ? sa : sb);
+}
+
 // Is the (world, rational) point strictly inside the region of loops (material left)?
-// Crossing parity over every loop; false on the boundary.
+// Crossing parity of the ray to +x over every loop: 1 inside, -1 outside, 0 on the boundary
+// or undecided (the ray through an arc's end or tangent to an arc's circle: callers treat 0 as
+// "not certainly inside").
 int region_side(const std::vector<Loop>& loops, const Rational& x, const Rational& y) {
   bool inside = false;
   for (const auto& loop : loops)
     for (const auto& e : loop.edges) {
       const Point &p = e.source, &q = e.target;
+      if (e.is_arc()) {
+        if (!e.is_full_circle() && (p.y == y || q.y == y)) return 0;
+        Rational dy = y - e.center.y, d = e.radius_squared - dy * dy;
+        if (sgn(d) < 0) continue;
+        if (sgn(d) == 0) return 0;   // tangent
+        // the arc's span, counter-clockwise from s to f
+        Rational sx = p.x - e.center.x, sy = p.y - e.center.y, fx = q.x - e.center.x, fy = q.y - e.center.y;
+        if (!e.ccw) {
+          std::swap(sx, fx);
+          std::swap(sy, fy);
+        }
+        int span = sgn(Rational(sx * fy - sy * fx));
+        for (int sigma : {-1, 1}) {
+          // the point (cx + sigma sqrt(d), y)
+          int right = sign_with_root(Rational(e.center.x - x), Rational(sigma), d);
+          int on_arc_a = sign_with_root(Rational(sx * dy), Rational(-sy * sigma), d);   // cross(s, n)
+          int on_arc_b = sign_with_root(Rational(-dy * fx), Rational(fy * sigma), d);   // cross(n, f)
+          bool on_arc = e.is_full_circle() || (span > 0 ? on_arc_a > 0 && on_arc_b > 0
+                                                 : span < 0 ? on_arc_a > 0 || on_arc_b > 0
+                                                            : on_arc_a > 0);
+          if (!on_arc) continue;
+          if (right == 0) return 0;   // on the boundary
+          if (right > 0) inside = !inside;
+        }
+        continue;
+      }
       Rational cr = (q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x);
       if (sgn(cr) == 0 && std::min(p.x, q.x) <= x && x <= std::max(p.x, q.x) && std::min(p.y, q.y) <= y &&
           y <= std::max(p.y, q.y))
@@ -254,26 +295,151 @@ bool segment_meets_box(const Point& p, const Point& q, const Box& bx, const Box&
   return true;
 }
 
+// May the circle of an arc meet the box? (Conservative: the box's squared distances from the
+// centre straddle the squared radius.)
+bool circle_may_meet_box(const Edge& e, const Box& bx, const Box& by) {
+  Box dx = bx - Box(e.center.x), dy = by - Box(e.center.y);
+  auto square = [](const Box& b) {
+    Box s = b * b;
+    if (sgn(b.lo) <= 0 && sgn(b.hi) >= 0) s.lo = 0;
+    return s;
+  };
+  Box d = square(dx) + square(dy);
+  return d.lo <= e.radius_squared && e.radius_squared <= d.hi;
+}
+
 // Is the box strictly inside the part's region (world coordinates of its zero configuration)?
 bool box_inside(const Part& part, const Box& bx, const Box& by) {
   // a corner strictly inside (cheap: most probes fail here), and no boundary in the box
   if (region_side(part.loops, bx.lo, by.lo) <= 0) return false;
   for (const auto& loop : part.loops)
     for (const auto& e : loop.edges)
-      if (segment_meets_box(e.source, e.target, bx, by)) return false;
+      if (e.is_arc() ? circle_may_meet_box(e, bx, by) : segment_meets_box(e.source, e.target, bx, by)) return false;
   return true;
+}
+
+Rotation<Rational> exact_rotation(Rational u) {
+  u.canonicalize();
+  Rational d = 1 + u * u;
+  return {Rational((1 - u * u) / d), Rational(2 * u / d)};
+}
+
+// Certifies that a configuration lies inside blocked space (the relevance test of every event):
+// exactly at a rational angle, and by enclosures over a narrow interval of an irrational one
+// (a probe point of one part, a vertex, an edge midpoint or a circle's axis point, certainly
+// strictly inside the other part; or the exact overlap witness at a mid configuration
+// certainly inside both over the enclosure).
+class Certifier {
+ public:
+  Certifier(const Part& fixed, const Part& free, const Point& pivot) : fixed_(fixed), free_(free), pivot_(pivot) {
+    collect(free, probes_free_);
+    collect(fixed, probes_fixed_);
+  }
+
+  // Is the configuration (point(c, s), theta) certainly overlapping (inside blocked space)?
+  template <class PointOf>
+  bool certainly_blocked(const Real& root, bool half_turn, PointOf point_of) const {
+    if (half_turn || root.exact) {
+      Rotation<Rational> r = half_turn ? Rotation<Rational>{Rational(-1), Rational(0)} : exact_rotation(root.lower);
+      std::optional<Vec<Rational>> p = point_of(r);
+      if (!p) return false;
+      auto relation = part_overlap(fixed_, Placement{}, free_, placement_about(pivot_, r.c, r.s, Point{p->x, p->y}));
+      return relation.relation == PartRelation::overlapping;
+    }
+    Real t = root;
+    for (int bits : {20, 52}) {
+      algebra::refine_dyadically(t, Rational(1) / Rational(mpz_class(1) << bits));
+      if (t.exact) return certainly_blocked(t, false, point_of);
+      Rotation<Box> rb = rotation_box(t.lower, t.upper, false);
+      std::optional<Vec<Box>> pb = point_of(rb);
+      if (!pb) continue;
+      // a vertex or edge midpoint of one part certainly strictly inside the other
+      for (const auto& u : probes_free_) {
+        Vec<Box> w = rb.apply(Vec<Box>{Box(u.x), Box(u.y)});
+        if (box_inside(fixed_, w.x + pb->x + Box(pivot_.x), w.y + pb->y + Box(pivot_.y))) return true;
+      }
+      for (const auto& a : probes_fixed_) {
+        Vec<Box> rel{Box(a.x) - pb->x, Box(a.y) - pb->y};
+        if (box_inside(free_, rb.c * rel.x + rb.s * rel.y + Box(pivot_.x), rb.c * rel.y - rb.s * rel.x + Box(pivot_.y)))
+          return true;
+      }
+      Rotation<Rational> rm = exact_rotation(mid(Box{t.lower, t.upper}));
+      Point d{mid(pb->x), mid(pb->y)};
+      auto relation = part_overlap(fixed_, Placement{}, free_, placement_about(pivot_, rm.c, rm.s, d), true);
+      // a configuration of the enclosure that is not overlapping: no certificate (kept)
+      if (relation.relation != PartRelation::overlapping) return false;
+      if (!relation.witness) continue;
+      // the witness w (world) is inside the fixed part; in the free part's body it is
+      // p + R^T (w - p - d) over every (c, s, d) of the enclosure
+      Vec<Box> rel{Box(relation.witness->x - pivot_.x) - pb->x, Box(relation.witness->y - pivot_.y) - pb->y};
+      Box bx = rb.c * rel.x + rb.s * rel.y + Box(pivot_.x);
+      Box by = rb.c * rel.y - rb.s * rel.x + Box(pivot_.y);
+      if (box_inside(free_, bx, by)) return true;
+    }
+    return false;
+  }
+
+ private:
+  // probe points relative to the pivot: vertices, segment midpoints, axis points of circles
+  // of rational radius
+  void collect(const Part& part, std::vector<Point>& out) const {
+    for (const auto& loop : part.loops)
+      for (const auto& e : loop.edges) {
+        Point v{Rational(e.source.x - pivot_.x), Rational(e.source.y - pivot_.y)};
+        if (!e.is_full_circle()) out.push_back(v);
+        if (!e.is_arc()) {
+          out.push_back(Point{Rational((e.source.x + e.target.x) / 2 - pivot_.x), Rational((e.source.y + e.target.y) / 2 - pivot_.y)});
+          continue;
+        }
+        // rational points of an arc: its source turned by rational rotations (half-angle
+        // tangents m), those strictly inside the arc's span
+        const Rational sx = e.source.x - e.center.x, sy = e.source.y - e.center.y;
+        const Rational fx = e.target.x - e.center.x, fy = e.target.y - e.center.y;
+        const int span = sgn(Rational(sx * fy - sy * fx)) * (e.ccw ? 1 : -1);
+        for (const Rational& m : {Rational(1, 4), Rational(1, 2), Rational(1), Rational(2), Rational(4), Rational(-4), Rational(-2),
+                                  Rational(-1), Rational(-1, 2), Rational(-1, 4)}) {
+          Rational d = 1 + m * m, c = (1 - m * m) / d, si = (e.ccw ? 2 : -2) * m / d;
+          Rational px = c * sx - si * sy, py = si * sx + c * sy;
+          // strictly between source and target along the arc's sense
+          Rational a = (e.ccw ? 1 : -1) * (sx * py - sy * px), b = (e.ccw ? 1 : -1) * (px * fy - py * fx);
+          bool inside = e.is_full_circle() || (span > 0 ? sgn(a) > 0 && sgn(b) > 0 : span < 0 ? sgn(a) > 0 || sgn(b) > 0 : sgn(a) > 0);
+          if (inside) out.push_back(Point{Rational(e.center.x + px - pivot_.x), Rational(e.center.y + py - pivot_.y)});
+        }
+      }
+  }
+
+  const Part& fixed_;
+  const Part& free_;
+  Point pivot_;
+  std::vector<Point> probes_free_, probes_fixed_;
+};
+
+// Sorted counter-clockwise from -pi (t ascending, the half turn last); equal angles merged
+// with their events united.
+std::vector<Critical> merged(std::vector<Critical> found) {
+  std::sort(found.begin(), found.end(), [](const Critical& a, const Critical& b) {
+    if (a.half_turn != b.half_turn) return !a.half_turn;
+    if (a.half_turn) return false;
+    return algebra::compare(a.t, b.t) < 0;
+  });
+  std::vector<Critical> out;
+  for (auto& c : found) {
+    bool same = !out.empty() && out.back().half_turn == c.half_turn &&
+                (c.half_turn || algebra::compare(out.back().t, c.t) == 0);
+    if (same) {
+      for (auto e : c.events)
+        if (std::find(out.back().events.begin(), out.back().events.end(), e) == out.back().events.end())
+          out.back().events.push_back(e);
+      continue;
+    }
+    out.push_back(std::move(c));
+  }
+  return out;
 }
 
 class Finder {
  public:
-  Finder(const PolygonalPair& g, CriticalStatistics& stats) : g_(g), stats_(stats) {
-    // probe points (relative to the pivot): vertices and edge midpoints of each part
-    for (const auto& v : g.u) probes_free_.push_back(v);
-    for (const auto& [m0, m1] : g.b_edges)
-      probes_free_.push_back(Point{Rational((g.u[m0].x + g.u[m1].x) / 2), Rational((g.u[m0].y + g.u[m1].y) / 2)});
-    for (const auto& v : g.a) probes_fixed_.push_back(v);
-    for (const auto& [k0, k1] : g.a_edges)
-      probes_fixed_.push_back(Point{Rational((g.a[k0].x + g.a[k1].x) / 2), Rational((g.a[k0].y + g.a[k1].y) / 2)});
+  Finder(const PolygonalPair& g, CriticalStatistics& stats) : g_(g), stats_(stats), cert_(*g.fixed, *g.free, g.pivot) {
     for (std::size_t k = 0; k < g.a_edges.size(); ++k)
       for (std::size_t j = 0; j < g.u.size(); ++j)
         segments_.push_back({true, g.a_edges[k].first, j, g.a_edges[k].second, j, k});
@@ -288,25 +454,7 @@ class Finder {
     vertex_on_segment();
     parallel_overlap();
     three_concurrent();
-    // sort and merge
-    std::sort(found_.begin(), found_.end(), [](const Critical& a, const Critical& b) {
-      if (a.half_turn != b.half_turn) return !a.half_turn;
-      if (a.half_turn) return false;
-      return algebra::compare(a.t, b.t) < 0;
-    });
-    std::vector<Critical> out;
-    for (auto& c : found_) {
-      bool same = !out.empty() && out.back().half_turn == c.half_turn &&
-                  (c.half_turn || algebra::compare(out.back().t, c.t) == 0);
-      if (same) {
-        for (auto e : c.events)
-          if (std::find(out.back().events.begin(), out.back().events.end(), e) == out.back().events.end())
-            out.back().events.push_back(e);
-        continue;
-      }
-      out.push_back(std::move(c));
-    }
-    return out;
+    return merged(std::move(found_));
   }
 
  private:
@@ -376,54 +524,9 @@ class Finder {
     return s.ab ? sgn(cross(edge_a(s.edge), edge_a(t.edge))) == 0 : sgn(cross(edge_b(s.edge), edge_b(t.edge))) == 0;
   }
 
-  // ------------------------------------------------------------ relevance
-  // Is the configuration (point(c, s), theta) certainly overlapping (inside blocked space)?
   template <class PointOf>
-  bool certainly_blocked(const Real& root, bool half_turn, PointOf point_of) {
-    if (half_turn || root.exact) {
-      Rotation<Rational> r = half_turn ? Rotation<Rational>{Rational(-1), Rational(0)} : exact_rotation(root.lower);
-      std::optional<Vec<Rational>> p = point_of(r);
-      if (!p) return false;
-      auto relation = part_overlap(*g_.fixed, Placement{}, *g_.free, placement_about(g_.pivot, r.c, r.s, Point{p->x, p->y}));
-      return relation.relation == PartRelation::overlapping;
-    }
-    Real t = root;
-    for (int bits : {20, 52}) {
-      algebra::refine_dyadically(t, Rational(1) / Rational(mpz_class(1) << bits));
-      if (t.exact) return certainly_blocked(t, false, point_of);
-      Rotation<Box> rb = rotation_box(t.lower, t.upper, false);
-      std::optional<Vec<Box>> pb = point_of(rb);
-      if (!pb) continue;
-      // a vertex or edge midpoint of one part certainly strictly inside the other
-      for (const auto& u : probes_free_) {
-        Vec<Box> w = rb.apply(Vec<Box>{Box(u.x), Box(u.y)});
-        if (box_inside(*g_.fixed, w.x + pb->x + Box(g_.pivot.x), w.y + pb->y + Box(g_.pivot.y))) return true;
-      }
-      for (const auto& a : probes_fixed_) {
-        Vec<Box> rel{Box(a.x) - pb->x, Box(a.y) - pb->y};
-        if (box_inside(*g_.free, rb.c * rel.x + rb.s * rel.y + Box(g_.pivot.x), rb.c * rel.y - rb.s * rel.x + Box(g_.pivot.y)))
-          return true;
-      }
-      Rotation<Rational> rm = exact_rotation(mid(Box{t.lower, t.upper}));
-      Point d{mid(pb->x), mid(pb->y)};
-      auto relation = part_overlap(*g_.fixed, Placement{}, *g_.free, placement_about(g_.pivot, rm.c, rm.s, d), true);
-      // a configuration of the enclosure that is not overlapping: no certificate (kept)
-      if (relation.relation != PartRelation::overlapping) return false;
-      if (!relation.witness) continue;
-      // the witness w (world) is inside the fixed part; in the free part's body it is
-      // p + R^T (w - p - d) over every (c, s, d) of the enclosure
-      Vec<Box> rel{Box(relation.witness->x - g_.pivot.x) - pb->x, Box(relation.witness->y - g_.pivot.y) - pb->y};
-      Box bx = rb.c * rel.x + rb.s * rel.y + Box(g_.pivot.x);
-      Box by = rb.c * rel.y - rb.s * rel.x + Box(g_.pivot.y);
-      if (box_inside(*g_.free, bx, by)) return true;
-    }
-    return false;
-  }
-
-  static Rotation<Rational> exact_rotation(Rational u) {
-    u.canonicalize();
-    Rational d = 1 + u * u;
-    return {Rational((1 - u * u) / d), Rational(2 * u / d)};
+  bool certainly_blocked(const Real& root, bool half_turn, PointOf point_of) const {
+    return cert_.certainly_blocked(root, half_turn, point_of);
   }
 
   // Records the roots of `poly` (and the half turn when `at_half_turn` vanishes) that pass
@@ -796,10 +899,686 @@ class Finder {
 
   const PolygonalPair& g_;
   CriticalStatistics& stats_;
+  Certifier cert_;
   std::vector<Segment> segments_;
-  std::vector<Point> probes_free_, probes_fixed_;
   std::vector<std::pair<Vec<TrigPoly>, TrigPoly>> lines_;   // n . X = h per segment (three_concurrent)
   std::vector<std::uint64_t> masks_, vmasks_;
+  std::vector<Critical> found_;
+};
+
+// ---------------------------------------------------------------- pairs with arcs
+// The contact curves of a slice are line segments (vertex–segment, and segment–arc: the segment
+// offset by the radius) and circular arcs (vertex–arc, arc–arc). Every point of their geometry
+// is a + R b with rational a, b (R the rotation), so every event below is a polynomial in the
+// half-angle tangent. Events: an end of one curve on another, two curves tangent, three curves
+// concurrent, a segment–arc contact appearing (the segment's normal at an end of the arc's
+// span) and the ends of the two spans of an arc–arc contact meeting. Each root is checked
+// exactly against the curves' extents (sign_at) and dropped only when certainly blocked.
+
+// A point a + R b.
+struct Aff {
+  Vec<Rational> a{Rational(0), Rational(0)}, b{Rational(0), Rational(0)};
+};
+Aff operator+(const Aff& x, const Aff& y) { return {x.a + y.a, x.b + y.b}; }
+Aff operator-(const Aff& x, const Aff& y) { return {x.a - y.a, x.b - y.b}; }
+Aff fixed_point(const Vec<Rational>& v) { return {v, {Rational(0), Rational(0)}}; }
+Aff turning_point(const Vec<Rational>& v) { return {{Rational(0), Rational(0)}, v}; }
+
+template <class T>
+Vec<T> at(const Aff& p, const Rotation<T>& r) {
+  return Vec<T>{T(p.a.x), T(p.a.y)} + r.apply(Vec<T>{T(p.b.x), T(p.b.y)});
+}
+
+// Directions counter-clockwise from s to e of an arc of rational radius (|s| = |e| = radius).
+struct Span {
+  Vec<Rational> s, e;
+  Rational radius;
+  enum Mode { full, below_half, above_half, half } mode = full;
+};
+
+// A direction w (of a circle curve: from its centre to the point; of a line curve: `dir`) must
+// lie in the span, turned by R when `turning`, after negation when `negate`.
+struct SpanCondition {
+  Span span;
+  bool turning = false;
+  bool negate = false;
+};
+
+struct Curve {
+  bool circle = false;
+  bool extra = false;  // a line of the slice window (pin-slot pairs), not a contact
+  Aff p0, d;          // line: p0 + lambda d, lambda in [0, 1]
+  Aff centre;         // circle
+  Rational radius;
+  Aff dir;            // line: the direction its span conditions test (segment–arc contacts)
+  std::vector<SpanCondition> spans;
+  struct End {
+    Aff point;
+    std::size_t own = no_index;   // circle: the span condition it ends
+  };
+  std::vector<End> ends;
+};
+
+// A sign condition at a root: every polynomial >= 0 (or, `any`, one of them; `strict`: > 0).
+struct Condition {
+  std::vector<TrigPoly> p;
+  bool any = false;
+  bool strict = false;
+};
+
+class CurveFinder {
+ public:
+  CurveFinder(const Part& fixed, const Part& free, CriticalStatistics& stats)
+      : stats_(stats), cert_(fixed, free, free.motion.pivot) {
+    const Point& pivot = free.motion.pivot;
+    auto rel = [&](const Point& p) { return Vec<Rational>{Rational(p.x - pivot.x), Rational(p.y - pivot.y)}; };
+    auto features = [&](const Part& part, Features& f) {
+      for (const auto& loop : part.loops)
+        for (const auto& e : loop.edges) {
+          if (!e.is_full_circle()) f.vertices.push_back(rel(e.source));
+          if (!e.is_arc()) {
+            f.segments.push_back({rel(e.source), rel(e.target)});
+            continue;
+          }
+          auto r = rational_sqrt(e.radius_squared);
+          if (!r)
+            throw GeometryError("part '" + part.name + "': an arc of irrational radius (" + e.pointer +
+                                "): critical angles of 3-DOF pairs with arcs need rational radii");
+          Arc a;
+          a.centre = rel(e.center);
+          a.convex = e.ccw;
+          a.span.radius = *r;
+          if (e.is_full_circle()) {
+            a.span.mode = Span::full;
+          } else {
+            a.span.s = rel(e.source) - a.centre;
+            a.span.e = rel(e.target) - a.centre;
+            if (!e.ccw) std::swap(a.span.s, a.span.e);
+            int c = sgn(cross(a.span.s, a.span.e));
+            a.span.mode = c > 0 ? Span::below_half : c < 0 ? Span::above_half : Span::half;
+          }
+          f.arcs.push_back(a);
+        }
+    };
+    features(fixed, a_);
+    features(free, b_);
+    make_curves();
+  }
+
+  // A pin-slot slice sees the translations X = s R d (other part fixed: a segment of the line,
+  // s in [s_lo, s_hi]) or X = s R d - q f (other part translating along f: a parallelogram,
+  // q in [q_lo, q_hi]); events count only inside, and the window's edges are extra curves.
+  void pin_slot_window(const Vec<Rational>& d, const Rational& s_lo, const Rational& s_hi,
+                       const std::optional<std::pair<Vec<Rational>, std::pair<Rational, Rational>>>& translating) {
+    window_ = Window{d, s_lo, s_hi, translating};
+    auto extra = [&](const Aff& p0, const Aff& dd) {
+      add_line(p0, dd);
+      curves_.back().extra = true;
+    };
+    if (!translating) {
+      only_extra_ = true;
+      extra(turning_point(scale(s_lo, d)), turning_point(scale(Rational(s_hi - s_lo), d)));
+      return;
+    }
+    const Vec<Rational>& f = translating->first;
+    const auto& [q_lo, q_hi] = translating->second;
+    for (const Rational& sv : {s_lo, s_hi})
+      extra(turning_point(scale(sv, d)) - fixed_point(scale(q_lo, f)), fixed_point(scale(Rational(q_lo - q_hi), f)));
+    for (const Rational& qv : {q_lo, q_hi})
+      extra(turning_point(scale(s_lo, d)) - fixed_point(scale(qv, f)), turning_point(scale(Rational(s_hi - s_lo), d)));
+    // the window degenerates where R d is parallel to f
+    auto build = [&](const Rotation<TrigPoly>& r) {
+      Event e;
+      e.poly = cross(at(turning_point(d), r), Vec<TrigPoly>{TrigPoly(f.x), TrigPoly(f.y)});
+      return e;
+    };
+    degenerate_ = build;
+  }
+
+  // Only half-angle tangents in [lo, hi] matter (the pin-slot part's angle limits): masks over
+  // that range, roots isolated in it, no half turn.
+  void restrict_to(const Rational& lo, const Rational& hi) { range_ = std::make_pair(lo, hi); }
+
+  std::vector<Critical> run() {
+    compute_masks();
+    const std::size_t n = curves_.size();
+    if (degenerate_) window_degenerate();
+    auto skip = [&](std::initializer_list<std::size_t> ids) {
+      if (!only_extra_) return false;
+      for (std::size_t id : ids)
+        if (curves_[id].extra) return false;
+      return true;
+    };
+    for (std::size_t i = 0; i < n; ++i)
+      if (!skip({i}) && std::find(outside_.begin(), outside_.end(), i) == outside_.end()) appearing(i);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j) {
+        if (i == j || mask(i, j) == 0 || skip({i, j})) continue;
+        for (std::size_t k = 0; k < curves_[i].ends.size(); ++k) end_on_curve(i, k, j);
+        if (i < j && (curves_[i].circle || curves_[j].circle)) tangent(i, j);
+      }
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j) {
+        std::uint64_t mij = mask(i, j);
+        if (mij == 0) continue;
+        for (std::size_t k = j + 1; k < n; ++k) {
+          std::uint64_t m = mij & mask(i, k) & mask(j, k);
+          if (m != 0 && !skip({i, j, k})) concurrent(i, j, k, m);
+        }
+      }
+    return merged(std::move(found_));
+  }
+
+ private:
+  struct Arc {
+    Vec<Rational> centre;
+    Span span;
+    bool convex = true;
+  };
+  struct Features {
+    std::vector<Vec<Rational>> vertices;
+    std::vector<std::pair<Vec<Rational>, Vec<Rational>>> segments;
+    std::vector<Arc> arcs;
+  };
+
+  static Vec<Rational> outward(const Vec<Rational>& e) { return {e.y, -e.x}; }   // material on the left
+  static std::optional<Rational> length(const Vec<Rational>& e) { return rational_sqrt(Rational(dot(e, e))); }
+
+  void add_circle(const Aff& centre, const Rational& radius, std::vector<SpanCondition> spans) {
+    Curve c;
+    c.circle = true;
+    c.centre = centre;
+    c.radius = radius;
+    c.spans = std::move(spans);
+    for (std::size_t k = 0; k < c.spans.size(); ++k) {
+      const SpanCondition& sc = c.spans[k];
+      if (sc.span.mode == Span::full) continue;
+      for (const auto& end : {sc.span.s, sc.span.e}) {
+        // w = +-(R) end / radius_of_span
+        Vec<Rational> v = scale(Rational(radius / sc.span.radius), end);
+        if (sc.negate) v = scale(Rational(-1), v);
+        c.ends.push_back({c.centre + (sc.turning ? turning_point(v) : fixed_point(v)), k});
+      }
+    }
+    curves_.push_back(std::move(c));
+  }
+  void add_line(const Aff& p0, const Aff& d, const Aff& dir = {}, std::vector<SpanCondition> spans = {}) {
+    Curve c;
+    c.p0 = p0;
+    c.d = d;
+    c.dir = dir;
+    c.spans = std::move(spans);
+    c.ends = {{p0}, {p0 + d}};
+    curves_.push_back(std::move(c));
+  }
+
+  void make_curves() {
+    for (const auto& [p, q] : a_.segments)
+      for (const auto& u : b_.vertices) add_line(fixed_point(p) - turning_point(u), fixed_point(q - p));
+    for (const auto& a : a_.vertices)
+      for (const auto& [p, q] : b_.segments) add_line(fixed_point(a) - turning_point(p), turning_point(scale(Rational(-1), q - p)));
+    for (const auto& arc : a_.arcs)
+      for (const auto& u : b_.vertices) add_circle(fixed_point(arc.centre) - turning_point(u), arc.span.radius, {{arc.span, false, false}});
+    for (const auto& a : a_.vertices)
+      for (const auto& arc : b_.arcs) add_circle(fixed_point(a) - turning_point(arc.centre), arc.span.radius, {{arc.span, true, true}});
+    auto unit_normal = [](const Vec<Rational>& e, const char* which) {
+      auto l = length(e);
+      if (!l)
+        throw GeometryError(std::string("3-DOF pair with arcs: a ") + which +
+                            " segment of irrational length faces an arc; critical angles need rational lengths there");
+      return scale(Rational(1 / *l), outward(e));
+    };
+    // fixed segment against a convex arc of the free part: the arc's centre at distance rho
+    // outside the segment; contact direction -N from the arc's centre in R span
+    for (const auto& [p, q] : a_.segments)
+      for (const auto& arc : b_.arcs) {
+        if (!arc.convex) continue;
+        Vec<Rational> n = unit_normal(q - p, "fixed");
+        add_line(fixed_point(p + scale(arc.span.radius, n)) - turning_point(arc.centre), fixed_point(q - p),
+                 fixed_point(scale(Rational(-1), n)), {{arc.span, true, false}});
+      }
+    // free segment against a convex arc of the fixed part
+    for (const auto& arc : a_.arcs)
+      for (const auto& [p, q] : b_.segments) {
+        if (!arc.convex) continue;
+        Vec<Rational> n = unit_normal(q - p, "free");
+        add_line(fixed_point(arc.centre) - turning_point(p + scale(arc.span.radius, n)), turning_point(scale(Rational(-1), q - p)),
+                 turning_point(scale(Rational(-1), n)), {{arc.span, false, false}});
+      }
+    // arc against arc: X = cA - R cB + Rc w, w from the fixed arc's centre towards the free one's
+    for (const auto& A : a_.arcs)
+      for (const auto& B : b_.arcs) {
+        Aff centre = fixed_point(A.centre) - turning_point(B.centre);
+        const Rational &ra = A.span.radius, &rb = B.span.radius;
+        if (A.convex && B.convex) {
+          add_circle(centre, ra + rb, {{A.span, false, false}, {B.span, true, true}});
+        } else if (!A.convex && B.convex) {
+          if (ra > rb) add_circle(centre, ra - rb, {{A.span, false, false}, {B.span, true, false}});
+        } else if (A.convex && !B.convex) {
+          if (rb > ra) add_circle(centre, rb - ra, {{A.span, false, true}, {B.span, true, true}});
+        }
+        // concave against concave: no tangential contact; equal radii: the arcs coincide at one
+        // translation, reached through their ends' vertex–arc contacts
+      }
+  }
+
+  // ------------------------------------------------------------ conditions
+  static Condition in_span(const SpanCondition& sc, Vec<TrigPoly> w, const Rotation<TrigPoly>& r) {
+    if (sc.span.mode == Span::full) return {};
+    if (sc.negate) w = scale(TrigPoly(Rational(-1)), w);
+    Vec<TrigPoly> s{TrigPoly(sc.span.s.x), TrigPoly(sc.span.s.y)}, e{TrigPoly(sc.span.e.x), TrigPoly(sc.span.e.y)};
+    if (sc.turning) {
+      s = r.apply(s);
+      e = r.apply(e);
+    }
+    if (sc.span.mode == Span::half) return {{cross(s, w)}, false};
+    return {{cross(s, w), cross(w, e)}, sc.span.mode == Span::above_half};
+  }
+  // The conditions for the point num / den to lie on curve c's extent (given it lies on its
+  // supporting line or circle).
+  void on_extent(const Curve& c, const Vec<TrigPoly>& num, const TrigPoly& den, const Rotation<TrigPoly>& r,
+                        std::vector<Condition>& out) {
+    if (skip_conditions_) return;
+    if (c.circle) {
+      Vec<TrigPoly> w = scale(den, num - scale(den, at(c.centre, r)));
+      for (const auto& sc : c.spans) out.push_back(in_span(sc, w, r));
+      return;
+    }
+    Vec<TrigPoly> d = at(c.d, r);
+    TrigPoly l = dot(num - scale(den, at(c.p0, r)), d) * den;
+    out.push_back({{l, den * den * dot(d, d) - l}, false});
+    for (const auto& sc : c.spans) out.push_back(in_span(sc, at(c.dir, r), r));
+  }
+  // Is the curve's end k a true end (inside the curve's other span conditions)?
+  void end_valid(const Curve& c, std::size_t k, const Rotation<TrigPoly>& r, std::vector<Condition>& out) {
+    if (skip_conditions_) return;
+    if (!c.circle) {
+      for (const auto& sc : c.spans) out.push_back(in_span(sc, at(c.dir, r), r));
+      return;
+    }
+    Vec<TrigPoly> w = at(c.ends[k].point, r) - at(c.centre, r);
+    for (std::size_t m = 0; m < c.spans.size(); ++m)
+      if (m != c.ends[k].own) out.push_back(in_span(c.spans[m], w, r));
+  }
+  // The polynomial vanishing when num / den lies on the curve's supporting line or circle.
+  static TrigPoly on_support(const Curve& c, const Vec<TrigPoly>& num, const TrigPoly& den, const Rotation<TrigPoly>& r) {
+    if (c.circle) {
+      Vec<TrigPoly> w = num - scale(den, at(c.centre, r));
+      return dot(w, w) - TrigPoly(Rational(c.radius * c.radius)) * den * den;
+    }
+    return cross(num - scale(den, at(c.p0, r)), at(c.d, r));
+  }
+
+  // ------------------------------------------------------------ roots
+  struct Event {
+    TrigPoly poly;
+    std::vector<Condition> conditions;
+  };
+  static bool holds(const Condition& c, const Real& root) {
+    if (c.p.empty()) return true;
+    for (const auto& p : c.p) {
+      int s = p.zero() ? 0 : algebra::sign_at(integer_numerator(p), root);
+      bool ok = c.strict ? s > 0 : s >= 0;
+      if (c.any && ok) return true;
+      if (!c.any && !ok) return false;
+    }
+    return !c.any;
+  }
+  // Records the roots of build(rotation).poly (in the chart about 0, and the half turn: u = 0 in
+  // the chart about pi) that meet the conditions and are not certainly blocked at any of the
+  // points point_of(rotation) (optional<Vec<T>> each, for T Rational and Box).
+  template <class Build, class PointsOf>
+  void roots(Build build, CriticalEvent kind, std::uint64_t mask, PointsOf points_of) {
+    const std::size_t count = points_of(Rotation<Rational>{Rational(1), Rational(0)}).size();
+    auto relevant = [&](const Real& root, bool half_turn) {
+      ++stats_.roots;
+      for (std::size_t k = 0; k < count; ++k) {
+        auto point_of = [&](auto rot) { return points_of(rot)[k]; };
+        if (!cert_.certainly_blocked(root, half_turn, point_of)) return true;
+      }
+      ++stats_.irrelevant;
+      return false;
+    };
+    // the polynomial alone first (its conditions only when it has roots)
+    skip_conditions_ = true;
+    Event e = build(Rotation<TrigPoly>{poly_cos(false), poly_sin(false)});
+    skip_conditions_ = false;
+    if (!e.poly.zero()) {
+      ++stats_.polynomials;
+      algebra::Polynomial p = integer_numerator(e.poly);
+      std::vector<Real> found = algebra::degree(p) >= 1 ? isolated(p) : std::vector<Real>{};
+      if (!found.empty()) e = build(Rotation<TrigPoly>{poly_cos(false), poly_sin(false)});
+      for (Real root : found) {
+          root.detect_rational();
+          bool ok = std::all_of(e.conditions.begin(), e.conditions.end(), [&](const Condition& c) { return holds(c, root); });
+          if (ok && relevant(root, false)) found_.push_back(Critical{false, root, {kind}});
+        }
+    }
+    if ((mask >> 32) == 0 || range_) return;
+    Event h = build(Rotation<TrigPoly>{poly_cos(true), poly_sin(true)});
+    if (h.poly.zero() || sgn(reduced(h.poly).c[0]) != 0) return;
+    Real zero = Real::from_rational(Rational(0));
+    if (!std::all_of(h.conditions.begin(), h.conditions.end(), [&](const Condition& c) { return holds(c, zero); })) return;
+    if (relevant(Real{}, true)) found_.push_back(Critical{true, Real{}, {kind}});
+  }
+
+  // The real roots of p (in the range, when restricted).
+  std::vector<Real> isolated(const algebra::Polynomial& p) const {
+    algebra::Polynomial q = algebra::square_free_part(p);
+    return range_ ? algebra::real_roots(q, range_->first, range_->second) : algebra::real_roots(q);
+  }
+
+  // A point num / den as optional<Vec<T>> (T Rational or Box).
+  template <class T>
+  static std::optional<Vec<T>> quotient(const Vec<T>& num, const T& den) {
+    if constexpr (std::is_same_v<T, Box>) {
+      auto x = divide(num.x, den), y = divide(num.y, den);
+      if (!x || !y) return std::nullopt;
+      return Vec<Box>{*x, *y};
+    } else {
+      if (sgn(den) == 0) return std::nullopt;
+      return Vec<Rational>{Rational(num.x / den), Rational(num.y / den)};
+    }
+  }
+
+  // The conditions for the point num / den to lie in the pin-slot window (none without one).
+  void in_window(const Vec<TrigPoly>& num, const TrigPoly& den, const Rotation<TrigPoly>& r, std::vector<Condition>& out) const {
+    if (!window_ || skip_conditions_) return;
+    const Window& w = *window_;
+    Vec<TrigPoly> rd = at(turning_point(w.d), r);
+    const TrigPoly dd = den * den;
+    // lo <= v / m <= hi for v = value * m * den^2 and m^2 den^2 > 0: signs of v - lo m^2 den^2, hi m^2 den^2 - v
+    auto between = [&](const TrigPoly& v, const TrigPoly& m2, const Rational& lo, const Rational& hi) {
+      out.push_back({{v - TrigPoly(lo) * m2 * dd, TrigPoly(hi) * m2 * dd - v}, false});
+    };
+    if (!w.translating) {
+      TrigPoly c = cross(rd, num);
+      out.push_back({{c, TrigPoly(Rational(0)) - c}, false});   // on the line: c = 0
+      between(dot(num, rd) * den, TrigPoly(Rational(1)), w.s_lo, w.s_hi);   // s = dot(X, R d), |d| = 1
+      return;
+    }
+    Vec<TrigPoly> f{TrigPoly(w.translating->first.x), TrigPoly(w.translating->first.y)};
+    const TrigPoly k = cross(rd, f);
+    // s = cross(X, f) / k, q = cross(X, R d) / k
+    between(cross(num, f) * den * k, k * k, w.s_lo, w.s_hi);
+    between(cross(num, rd) * den * k, k * k, w.translating->second.first, w.translating->second.second);
+  }
+
+  // Where the translating window degenerates (R d parallel to f): critical, kept unfiltered.
+  void window_degenerate() {
+    Event e = degenerate_(Rotation<TrigPoly>{poly_cos(false), poly_sin(false)});
+    if (e.poly.zero()) return;
+    ++stats_.polynomials;
+    algebra::Polynomial p = integer_numerator(e.poly);
+    if (algebra::degree(p) >= 1)
+      for (Real root : isolated(p)) {
+        root.detect_rational();
+        ++stats_.roots;
+        found_.push_back(Critical{false, root, {CriticalEvent::antiparallel_edges}});
+      }
+    if (range_) return;
+    Event h = degenerate_(Rotation<TrigPoly>{poly_cos(true), poly_sin(true)});
+    if (!h.poly.zero() && sgn(reduced(h.poly).c[0]) == 0) found_.push_back(Critical{true, Real{}, {CriticalEvent::antiparallel_edges}});
+  }
+
+  // ------------------------------------------------------------ events
+  void end_on_curve(std::size_t i, std::size_t k, std::size_t j) {
+    const Curve &ci = curves_[i], &cj = curves_[j];
+    auto build = [&](const Rotation<TrigPoly>& r) {
+      Event e;
+      Vec<TrigPoly> p = at(ci.ends[k].point, r);
+      TrigPoly one(Rational(1));
+      e.poly = on_support(cj, p, one, r);
+      end_valid(ci, k, r, e.conditions);
+      on_extent(cj, p, one, r, e.conditions);
+      in_window(p, one, r, e.conditions);
+      return e;
+    };
+    auto points = [&](auto rot) { return std::vector{std::optional(at(ci.ends[k].point, rot))}; };
+    roots(build, CriticalEvent::vertex_on_contact, mask(i, j), points);
+  }
+
+  // (num, den) of the tangency point of two curves (one a circle).
+  template <class T>
+  std::pair<Vec<T>, T> touch_point(const Curve& a, const Curve& b, const Rotation<T>& r, bool internal) const {
+    if (!a.circle) return touch_point(b, a, r, internal);
+    Vec<T> c = at(a.centre, r);
+    if (!b.circle) {
+      Vec<T> d = at(b.d, r), p0 = at(b.p0, r);
+      Vec<T> n{T(Rational(0)) - d.y, d.x};
+      T nn = dot(n, n);
+      return {scale(nn, c) + scale(T(dot(n, p0) - dot(n, c)), n), nn};
+    }
+    // c + ra / (ra -+ rb) (c2 - c)
+    Rational k = a.radius / (internal ? Rational(a.radius - b.radius) : Rational(a.radius + b.radius));
+    return {c + scale(T(k), at(b.centre, r) - c), T(Rational(1))};
+  }
+
+  void tangent(std::size_t i, std::size_t j) {
+    const Curve &a = curves_[i], &b = curves_[j];
+    for (bool internal : {false, true}) {
+      if (!(a.circle && b.circle) && internal) break;
+      if (internal && a.radius == b.radius) break;   // coincident circles: their ends' events
+      auto build = [&](const Rotation<TrigPoly>& r) {
+        Event e;
+        if (a.circle && b.circle) {
+          Vec<TrigPoly> v = at(a.centre, r) - at(b.centre, r);
+          Rational sum = internal ? Rational(a.radius - b.radius) : Rational(a.radius + b.radius);
+          e.poly = dot(v, v) - TrigPoly(Rational(sum * sum));
+        } else {
+          const Curve& c = a.circle ? a : b;
+          const Curve& l = a.circle ? b : a;
+          Vec<TrigPoly> d = at(l.d, r), w = at(c.centre, r) - at(l.p0, r);
+          TrigPoly off = cross(d, w);
+          e.poly = off * off - TrigPoly(Rational(c.radius * c.radius)) * dot(d, d);
+        }
+        auto [num, den] = touch_point(a, b, r, internal);
+        on_extent(a, num, den, r, e.conditions);
+        on_extent(b, num, den, r, e.conditions);
+        in_window(num, den, r, e.conditions);
+        return e;
+      };
+      auto points = [&](auto rot) {
+        auto [num, den] = touch_point(a, b, rot, internal);
+        return std::vector{quotient(num, den)};
+      };
+      roots(build, CriticalEvent::three_contacts, mask(i, j), points);
+    }
+  }
+
+  // The line n . X = h of a line curve, or the radical axis of two circle curves.
+  template <class T>
+  static std::pair<Vec<T>, T> line_form(const Curve& c, const Rotation<T>& r) {
+    Vec<T> d = at(c.d, r);
+    Vec<T> n{T(Rational(0)) - d.y, d.x};
+    return {n, dot(n, at(c.p0, r))};
+  }
+  template <class T>
+  static std::pair<Vec<T>, T> radical_axis(const Curve& a, const Curve& b, const Rotation<T>& r) {
+    Vec<T> ca = at(a.centre, r), cb = at(b.centre, r);
+    Vec<T> n = scale(T(Rational(2)), cb - ca);
+    return {n, T(dot(cb, cb) - dot(ca, ca) + T(Rational(a.radius * a.radius - b.radius * b.radius)))};
+  }
+
+  void concurrent(std::size_t i, std::size_t j, std::size_t k, std::uint64_t m) {
+    std::array<const Curve*, 3> c{&curves_[i], &curves_[j], &curves_[k]};
+    std::stable_partition(c.begin(), c.end(), [](const Curve* x) { return !x->circle; });   // lines first
+    const int lines = static_cast<int>(std::count_if(c.begin(), c.end(), [](const Curve* x) { return !x->circle; }));
+    if (lines >= 2) {
+      // two lines that are not parallel at every angle give the point; the third is checked
+      const Rotation<TrigPoly> rp{poly_cos(false), poly_sin(false)};
+      auto parallel = [&](const Curve* a, const Curve* b) { return cross(at(a->d, rp), at(b->d, rp)).zero(); };
+      if (parallel(c[0], c[1])) {
+        if (lines == 3 && !parallel(c[0], c[2])) std::swap(c[1], c[2]);
+        else if (lines == 3 && !parallel(c[1], c[2])) std::swap(c[0], c[2]);
+        else return;   // all parallel (or two lines and a circle: the lines meet only when they coincide)
+      }
+    }
+    // two linear equations and the curve the point must also lie on
+    auto meet = [&](auto rot) {
+      using T = std::decay_t<decltype(rot.c)>;
+      std::pair<Vec<T>, T> e1, e2;
+      if (lines >= 2) {
+        e1 = line_form(*c[0], rot);
+        e2 = line_form(*c[1], rot);
+      } else if (lines == 1) {
+        e1 = line_form(*c[0], rot);
+        e2 = radical_axis(*c[1], *c[2], rot);
+      } else {
+        e1 = radical_axis(*c[0], *c[1], rot);
+        e2 = radical_axis(*c[0], *c[2], rot);
+      }
+      const auto &[n1, h1] = e1;
+      const auto &[n2, h2] = e2;
+      T den = cross(n1, n2);
+      Vec<T> num{T(h1 * n2.y - h2 * n1.y), T(n1.x * h2 - n2.x * h1)};
+      return std::make_pair(num, den);
+    };
+    const Curve& check = lines >= 2 ? *c[2] : *c[1];   // (no lines: radical axes of c0 with c1, c2)
+    auto build = [&](const Rotation<TrigPoly>& r) {
+      Event e;
+      auto [num, den] = meet(r);
+      if (den.zero()) return e;   // never a single point: parallel lines or concentric circles
+      e.poly = on_support(check, num, den, r);
+      e.conditions.push_back({{den, TrigPoly(Rational(0)) - den}, true, true});   // den != 0
+      for (const Curve* x : c) on_extent(*x, num, den, r, e.conditions);
+      in_window(num, den, r, e.conditions);
+      return e;
+    };
+    auto points = [&](auto rot) {
+      auto [num, den] = meet(rot);
+      return std::vector{quotient(num, den)};
+    };
+    roots(build, CriticalEvent::three_contacts, m, points);
+  }
+
+  // A segment–arc contact appears or goes (the segment's normal at an end of the arc's span),
+  // and the ends of an arc–arc contact's two spans meet.
+  void appearing(std::size_t i) {
+    const Curve& c = curves_[i];
+    std::vector<std::pair<Aff, Aff>> pairs;   // directions to align (same sense)
+    if (!c.circle) {
+      for (const auto& sc : c.spans)
+        for (const auto& end : {sc.span.s, sc.span.e}) {
+          if (sc.span.mode == Span::full) continue;
+          Vec<Rational> v = sc.negate ? scale(Rational(-1), end) : end;
+          pairs.emplace_back(c.dir, sc.turning ? turning_point(v) : fixed_point(v));
+        }
+    } else if (c.spans.size() == 2) {
+      for (std::size_t k = 0; k < c.ends.size(); ++k)
+        for (std::size_t l = k + 1; l < c.ends.size(); ++l)
+          if (c.ends[k].own != c.ends[l].own) pairs.emplace_back(c.ends[k].point - c.centre, c.ends[l].point - c.centre);
+    }
+    for (const auto& [x, y] : pairs) {
+      auto build = [&](const Rotation<TrigPoly>& r) {
+        Event e;
+        Vec<TrigPoly> u = at(x, r), v = at(y, r);
+        e.poly = cross(u, v);
+        e.conditions.push_back({{dot(u, v)}, false});
+        return e;
+      };
+      auto points = [&](auto rot) {
+        using T = std::decay_t<decltype(rot.c)>;
+        std::vector<std::optional<Vec<T>>> out;
+        for (const auto& end : c.ends) out.push_back(at(end.point, rot));
+        if (!c.circle) out.push_back(scale(T(Rational(1, 2)), at(c.ends[0].point, rot) + at(c.ends[1].point, rot)));
+        return out;
+      };
+      roots(build, CriticalEvent::antiparallel_edges, ~std::uint64_t(0), points);
+    }
+  }
+
+  // ------------------------------------------------------------ prefilter
+  void compute_masks() {
+    const std::size_t n = curves_.size();
+    std::vector<std::vector<std::pair<Box, Box>>> boxes(n);
+    for (int r = 0; r < 64; ++r) {
+      bool flip = r >= 32 && !range_;
+      Rational lo(r % 32 - 16, 16), hi(r % 32 - 15, 16);
+      if (range_) {
+        lo = range_->first + (range_->second - range_->first) * Rational(r, 64);
+        hi = range_->first + (range_->second - range_->first) * Rational(r + 1, 64);
+      }
+      lo.canonicalize();
+      hi.canonicalize();
+      Rotation<Box> rot = rotation_box(lo, hi, flip);
+      for (std::size_t i = 0; i < n; ++i) {
+        const Curve& c = curves_[i];
+        std::pair<Box, Box> b;
+        if (c.circle) {
+          Vec<Box> p = at(c.centre, rot);
+          b = {p.x + Box(-c.radius, c.radius), p.y + Box(-c.radius, c.radius)};
+        } else {
+          Vec<Box> p = at(c.p0, rot), q = at(c.p0 + c.d, rot);
+          b = {Box{std::min(p.x.lo, q.x.lo), std::max(p.x.hi, q.x.hi)}, Box{std::min(p.y.lo, q.y.lo), std::max(p.y.hi, q.y.hi)}};
+        }
+        boxes[i].push_back(b);
+      }
+    }
+    // the boxes rounded outwards to doubles (a prefilter: disjoint doubles, disjoint boxes)
+    std::vector<std::array<double, 4>> near(n * 64);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int r = 0; r < 64; ++r) {
+        const auto& b = boxes[i][r];
+        near[i * 64 + r] = {algebra::lower_double(b.first.lo), algebra::upper_double(b.first.hi), algebra::lower_double(b.second.lo),
+                            algebra::upper_double(b.second.hi)};
+      }
+    masks_.assign(n * n, 0);
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = a + 1; b < n; ++b) {
+        std::uint64_t m = 0;
+        for (int r = 0; r < 64; ++r) {
+          const auto &x = near[a * 64 + r], &y = near[b * 64 + r];
+          if (!(x[1] < y[0] || y[1] < x[0] || x[3] < y[2] || y[3] < x[2])) m |= std::uint64_t(1) << r;
+        }
+        masks_[a * n + b] = masks_[b * n + a] = m;
+      }
+    // with a window: a curve whose box never meets the window's (the hull of its edges') is out
+    if (!window_) return;
+    std::vector<std::pair<Box, Box>> window(64);
+    std::vector<bool> set(64, false);
+    for (std::size_t i = 0; i < n; ++i)
+      if (curves_[i].extra)
+        for (int r = 0; r < 64; ++r) {
+          const auto& b = boxes[i][r];
+          if (!set[r]) {
+            window[r] = b;
+            set[r] = true;
+            continue;
+          }
+          window[r] = {Box{std::min(window[r].first.lo, b.first.lo), std::max(window[r].first.hi, b.first.hi)},
+                       Box{std::min(window[r].second.lo, b.second.lo), std::max(window[r].second.hi, b.second.hi)}};
+        }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (curves_[i].extra) continue;
+      bool meets = false;
+      for (int r = 0; r < 64 && !meets; ++r) {
+        const auto &x = boxes[i][r], &y = window[r];
+        meets = !(x.first.hi < y.first.lo || y.first.hi < x.first.lo || x.second.hi < y.second.lo || y.second.hi < x.second.lo);
+      }
+      if (!meets)
+        for (std::size_t j = 0; j < n; ++j) masks_[i * n + j] = masks_[j * n + i] = 0;
+      if (!meets) outside_.push_back(i);
+    }
+  }
+  std::uint64_t mask(std::size_t i, std::size_t j) const { return masks_[i * curves_.size() + j]; }
+
+  struct Window {
+    Vec<Rational> d;
+    Rational s_lo, s_hi;
+    std::optional<std::pair<Vec<Rational>, std::pair<Rational, Rational>>> translating;
+  };
+  CriticalStatistics& stats_;
+  Certifier cert_;
+  std::optional<Window> window_;
+  std::optional<std::pair<Rational, Rational>> range_;
+  std::vector<std::size_t> outside_;   // curves never meeting the window's box
+  bool only_extra_ = false;
+  bool skip_conditions_ = false;   // while building an event's polynomial alone
+  std::function<Event(const Rotation<TrigPoly>&)> degenerate_;
+  Features a_, b_;
+  std::vector<Curve> curves_;
+  std::vector<std::uint64_t> masks_;
   std::vector<Critical> found_;
 };
 
@@ -832,6 +1611,44 @@ PolygonalPair polygonal_pair(const Part& fixed, const Part& free) {
 std::vector<Critical> critical_angles(const PolygonalPair& pair, CriticalStatistics& statistics) {
   Finder finder(pair, statistics);
   return finder.run();
+}
+
+std::vector<Critical> critical_angles_with_arcs(const Part& fixed, const Part& free, CriticalStatistics& statistics) {
+  CurveFinder finder(fixed, free, statistics);
+  return finder.run();
+}
+
+std::vector<Critical> pin_slot_critical_values(const Part& other, const Part& pin, const Rational& s_lo, const Rational& s_hi,
+                                               const std::optional<std::pair<Rational, Rational>>& q_range,
+                                               const std::optional<std::pair<Rational, Rational>>& tau_range,
+                                               CriticalStatistics& statistics) {
+  CurveFinder finder(other, pin, statistics);
+  if (tau_range) finder.restrict_to(tau_range->first, tau_range->second);
+  const Vec<Rational> d{pin.motion.direction.x, pin.motion.direction.y};
+  std::optional<std::pair<Vec<Rational>, std::pair<Rational, Rational>>> translating;
+  if (q_range) translating.emplace(Vec<Rational>{other.motion.direction.x, other.motion.direction.y}, *q_range);
+  finder.pin_slot_window(d, s_lo, s_hi, translating);
+  return finder.run();
+}
+
+AlgebraicNumber algebraic_of(const Real& r) {
+  AlgebraicNumber out;
+  out.polynomial = r.polynomial;
+  out.lower = r.lower;
+  out.upper = r.upper;
+  out.exact = r.exact;
+  out.lower.canonicalize();
+  out.upper.canonicalize();
+  return out;
+}
+
+Real real_of(const AlgebraicNumber& a) {
+  Real t;
+  t.polynomial = a.polynomial;
+  t.lower = a.lower;
+  t.upper = a.upper;
+  t.exact = a.exact;
+  return t;
 }
 
 std::pair<Rational, Rational> rotation_at(const Rational& u, bool flip) {

@@ -7,6 +7,7 @@
 // configuration and an interior witness point certified inside both parts). CGAL-free.
 #pragma once
 
+#include <hipair/cspace.hpp>
 #include <hipair/geometry.hpp>
 #include <hipair/model.hpp>
 #include <hipair/rational.hpp>
@@ -15,6 +16,7 @@
 #include "algebra/exact_real.hpp"
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace hipair::sliced {
@@ -49,6 +51,28 @@ struct CriticalStatistics {
 
 /// The critical angles, in counter-clockwise order from -pi (t ascending, the half turn last).
 std::vector<Critical> critical_angles(const PolygonalPair& pair, CriticalStatistics& statistics);
+
+/// The critical angles of a pair with circular arcs (docs/cspace.md, "Critical angles with
+/// arcs"): arcs of rational radius; a segment facing a convex arc of the other part of rational
+/// length. \throws GeometryError otherwise.
+std::vector<Critical> critical_angles_with_arcs(const Part& fixed, const Part& free, CriticalStatistics& statistics);
+
+/// The critical values of tau = tan(psi/2) of a pin-slot part (rotation psi about its pivot, then
+/// the slide s in [s_lo, s_hi] along its turned direction d) against a fixed part (`q_range`
+/// empty: the slice is the segment X = s R d of the translation plane) or a part translating
+/// along f by q in `q_range` (the slice is the parallelogram X = s R d - q f, a linear image of
+/// the 3-DOF slice): the events of critical_angles_with_arcs inside the window, those with the
+/// window's edges, and (translating) where R d is parallel to f. Same input class as
+/// critical_angles_with_arcs (polygonal parts included). With `tau_range`, only critical values
+/// in it (and not the half turn) are found.
+std::vector<Critical> pin_slot_critical_values(const Part& other, const Part& pin, const Rational& s_lo, const Rational& s_hi,
+                                               const std::optional<std::pair<Rational, Rational>>& q_range,
+                                               const std::optional<std::pair<Rational, Rational>>& tau_range,
+                                               CriticalStatistics& statistics);
+
+/// An exact real (algebra) as the public AlgebraicNumber, and back.
+AlgebraicNumber algebraic_of(const cspace::algebra::Real& r);
+cspace::algebra::Real real_of(const AlgebraicNumber& a);
 
 /// cos and sin of the rotation with half-angle tangent t (or the half turn), exact.
 std::pair<Rational, Rational> rotation_of(const SlicedAngle& angle);

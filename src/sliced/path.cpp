@@ -10,6 +10,7 @@
 #include <hipair/sliced.hpp>
 
 #include "algebra/exact_real.hpp"
+#include "sliced/critical_angles.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,15 +24,7 @@ namespace hipair {
 namespace {
 
 namespace algebra = cspace::algebra;
-
-algebra::Real real_of(const AlgebraicNumber& a) {
-  algebra::Real t;
-  t.polynomial = a.polynomial;
-  t.lower = a.lower;
-  t.upper = a.upper;
-  t.exact = a.exact;
-  return t;
-}
+using sliced::real_of;
 
 // A rational near v (a multiple of 2^-bits): a waypoint proposal, decided on exactly later.
 Rational dyadic(double v, int bits = 10) {

@@ -121,6 +121,13 @@ struct UnionFind {
 
 std::string kind_name(FeatureKind k) { return k == FeatureKind::vertex ? "vertex" : k == FeatureKind::arc ? "arc" : "segment"; }
 
+bool has_arc(const Part& part) {
+  for (const auto& loop : part.loops)
+    for (const auto& e : loop.edges)
+      if (e.is_arc()) return true;
+  return false;
+}
+
 }  // namespace
 
 // Is the part invariant under every rotation about some point: every loop a full circle, all
@@ -190,6 +197,17 @@ struct SlicedSpace::Impl {
     stats.seconds_slices += seconds_since(start);
     cache.emplace(key, space);
     return space;
+  }
+
+  // Does the free part at offset q stay apart from the fixed part while it turns through the
+  // half-angle range [u_lo, u_hi] (chart about pi when `flip`)? Polygonal pairs: no contact
+  // line passes q (steady_along); pairs with arcs: the pure rotation is certified free (exact).
+  bool steady(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip) const {
+    if (pair) return sliced::steady_along(*pair, q, u_lo, u_hi, flip);
+    sliced::StraightMotion m{q.x, q.y, u_lo, q.x, q.y, u_hi, flip};
+    for (Rational* r : {&m.x0, &m.y0, &m.w0, &m.x1, &m.y1, &m.w1}) r->canonicalize();
+    sliced::MotionResult r = motion->first_contact(m);
+    return r.starts_apart && !r.found;
   }
 
   // ------------------------------------------------------------ cells of a slice
@@ -347,6 +365,9 @@ struct SlicedSpace::Impl {
       // A disc (or concentric rings) turning about its pivot only moves its centre: the slice at
       // theta is the slice at 0 translated by (c - pivot) - R(theta)(c - pivot). Its contact
       // structure never changes: no critical angle, whatever the fixed part (arcs included).
+    } else if (has_arc(model.parts[fixed]) || has_arc(model.parts[free])) {
+      if (options.progress) options.progress("critical angles");
+      critical = sliced::critical_angles_with_arcs(model.parts[fixed], model.parts[free], cs);
     } else {
       pair = sliced::polygonal_pair(model.parts[fixed], model.parts[free]);
       if (options.progress) options.progress("critical angles");
@@ -440,7 +461,7 @@ struct SlicedSpace::Impl {
         for (const auto& q : samples) {
           std::size_t lc = no_index, rc = no_index;
           if (classify(*ls, q.x, q.y, &lc) != SlicedLocation::Kind::free) continue;
-          if (!sliced::steady_along(*pair, q, nr.u_lo, nr.u_hi, nr.flip)) continue;
+          if (!steady(q, nr.u_lo, nr.u_hi, nr.flip)) continue;
           if (classify(*rs, q.x, q.y, &rc) != SlicedLocation::Kind::free)
             throw GeometryError("internal: a configuration steady across a critical angle is not free on both sides");
           if (lc == no_index) lc = outer_cell(*ls);
@@ -497,7 +518,7 @@ struct SlicedSpace::Impl {
     for (int round = 0; round < 40; ++round) {
       Near nr = near(index, round);
       Rational u_lo = nr.flip ? Rational(0) : q.angle.t;
-      if (sliced::steady_along(*pair, p, u_lo, nr.u_hi, nr.flip)) {
+      if (steady(p, u_lo, nr.u_hi, nr.flip)) {
         auto space = slice(nr.right);
         std::size_t cell = no_index;
         if (classify(*space, q.x, q.y, &cell) != SlicedLocation::Kind::free)

@@ -9,6 +9,7 @@
 #include <hipair/sliced.hpp>
 
 #include "algebra/exact_real.hpp"
+#include "sliced/critical_angles.hpp"
 
 #include <gtest/gtest.h>
 
@@ -78,14 +79,7 @@ std::vector<std::pair<Rational, Rational>> star(Random& random, int k, double cx
   return points;
 }
 
-algebra::Real real_of(const AlgebraicNumber& a) {
-  algebra::Real t;
-  t.polynomial = a.polynomial;
-  t.lower = a.lower;
-  t.upper = a.upper;
-  t.exact = a.exact;
-  return t;
-}
+using sliced::real_of;
 
 // Slices at random rational angles inside each interval between two finite critical angles
 // have free cells in one-to-one correspondence with the interval's representative (a missed
@@ -409,6 +403,172 @@ TEST(Sliced, BadPairsAreRefused) {
   Model model = peg_in_hole(10, 11);
   EXPECT_THROW(SlicedSpace::build(model, "free", "fixed"), GeometryError);
   EXPECT_THROW(SlicedSpace::build(model, "fixed", "nothing"), ModelError);
+}
+
+}  // namespace
+}  // namespace hipair
+
+// ---------------------------------------------------------------- parts with arcs
+namespace hipair {
+namespace {
+
+std::string circle_loop(const Rational& x, const Rational& y, const Rational& r) {
+  return R"({ "circle": { "center": )" + point(x, y) + R"(, "radius": )" + text(r) + " } }";
+}
+// A stadium centred at (cx, cy): centres (cx -+ l, cy), radius r, the flat sides horizontal.
+std::string stadium_loop(const Rational& l, const Rational& r, const Rational& cx = 0, const Rational& cy = 0) {
+  return R"({ "start": )" + point(cx - l, cy - r) + R"(, "edges": [ { "line_to": )" + point(cx + l, cy - r) +
+         R"( }, { "arc_to": )" + point(cx + l, cy + r) + R"(, "center": )" + point(cx + l, cy) +
+         R"(, "dir": "ccw" }, { "line_to": )" + point(cx - l, cy + r) + R"( }, { "arc_to": )" + point(cx - l, cy - r) +
+         R"(, "center": )" + point(cx - l, cy) + R"(, "dir": "ccw" } ] })";
+}
+
+// Counts the critical angles whose tangent is a root of `p`.
+int roots_of(const SlicedSpace& space, const algebra::Polynomial& p) {
+  int count = 0;
+  for (const auto& c : space.critical_angles())
+    if (!c.half_turn && algebra::vanishes_at(p, real_of(c.t))) ++count;
+  return count;
+}
+
+// A stadium (centres (-5, 0), (5, 0), radius 2) in a plate [-20, 20]^2 with a hole
+// [-12, 12] x [-4, 4], turning about its centre. Both are convex, so the free space in the hole is
+// the rectangle of half-widths 10 - 5 |cos| and 2 - 5 |sin|: it closes where sin = +-2/5, the
+// roots of t^2 -+ 5 t + 1 (four angles: +-23.6 and +-156.4 degrees). The contacts change where
+// a flat side is parallel to a wall: t = 0, +-1 and the half turn (in the hole at 0 and pi, and
+// outside the plate at all four). Nothing else: eight critical angles. Components: outside,
+// and in the hole near 0 and near pi.
+TEST(SlicedArcs, StadiumInARectangularHoleCriticalAngles) {
+  Model model = pair_model(rectangle(-20, -20, 20, 20) + ", " + rectangle(-12, -4, 12, 4), stadium_loop(5, 2));
+  SlicedSpace space = SlicedSpace::build(model, "fixed", "free");
+  const auto& critical = space.critical_angles();
+  std::string listing;
+  for (const auto& c : critical) {
+    listing += (c.half_turn ? std::string("pi") : c.t.to_string("t"));
+    for (auto e : c.events) listing += " event " + std::to_string(static_cast<int>(e));
+    listing += "\n";
+  }
+  EXPECT_EQ(critical.size(), 8u) << listing;
+  int rational = 0, half = 0;
+  for (const auto& c : critical) {
+    half += c.half_turn;
+    if (!c.half_turn && c.t.exact) {
+      ++rational;
+      EXPECT_TRUE(c.t.lower == 0 || c.t.lower == 1 || c.t.lower == -1) << c.t.to_string("t");
+    }
+  }
+  EXPECT_EQ(half, 1);
+  EXPECT_EQ(rational, 3);
+  EXPECT_EQ(roots_of(space, algebra::from_rationals({1, -5, 1})), 2);
+  EXPECT_EQ(roots_of(space, algebra::from_rationals({1, 5, 1})), 2);
+  EXPECT_EQ(space.components(), 3u);
+  SlicedConfiguration centred{0, 0, SlicedAngle{0, false}}, nudged{Rational(1, 2), Rational(-1, 3), SlicedAngle{Rational(1, 10), false}};
+  SlicedConfiguration reversed{0, 0, SlicedAngle{0, true}}, outside{30, 0, SlicedAngle{Rational(2, 3), false}};
+  EXPECT_TRUE(space.connected(centred, nudged));
+  EXPECT_FALSE(space.connected(centred, reversed));   // it cannot turn round in the hole
+  EXPECT_FALSE(space.connected(centred, outside));
+  EXPECT_FALSE(space.connected(reversed, outside));
+  // at the rational critical angle 0 the hole's free cell touches the walls with the flat sides;
+  // on either side with an arc: the slices differ
+  auto contacts_in_hole = [&](const SlicedAngle& a) {
+    auto slice = space.slice(a);
+    std::size_t cell = no_index;
+    Location l = slice->locate(ChartPoint{0, 0, 0});
+    EXPECT_EQ(l.kind, Location::Kind::free);
+    cell = l.cell;
+    std::set<std::string> labels;
+    for (std::size_t e : slice->cells()[cell].boundary)
+      for (std::size_t f : slice->edges()[e].curves) {
+        const FeaturePair& fp = slice->feature_pairs()[f];
+        labels.insert(std::to_string(fp.first.loop) + " " + std::to_string(fp.first.edge) + " / " +
+                      std::to_string(static_cast<int>(fp.second.kind)) + " " + std::to_string(fp.second.edge));
+      }
+    return labels;
+  };
+  auto at0 = contacts_in_hole(SlicedAngle{0, false});
+  auto below = contacts_in_hole(SlicedAngle{Rational(-1, 50), false});
+  auto above = contacts_in_hole(SlicedAngle{Rational(1, 50), false});
+  EXPECT_NE(at0, below);
+  EXPECT_NE(at0, above);
+  EXPECT_NE(below, above);
+  Random random(3);
+  expect_intervals_consistent(space, random);
+  expect_oracle_agreement(model, space, random);
+}
+
+// The stadium (centres -+l, radius 1: width 2) in the L-shaped corridor of width 4 (l_corridor):
+// in the horizontal arm it fits while 2 l |sin| <= 2, critical where sin = +-1/l; in the vertical
+// arm while 2 l |cos| <= 2. With l = 3: the roots of t^2 -+ 6 t + 1 (sin = +-1/3) and of
+// 2 t^2 - 1 and t^2 - 2 (cos = +-1/3), two each. Turning the corner at 45 degrees needs the
+// centre segment 2 l <= 6 sqrt 2 - 2 = 6.49 (the segment in the corridor eroded by the radius):
+// l = 3 turns, l = 4 does not.
+void expect_stadium_corridor(int l) {
+  SCOPED_TRACE("stadium half-length " + std::to_string(l));
+  std::string hole = polygon({{-20, 0}, {4, 0}, {4, 20}, {0, 20}, {0, 4}, {-20, 4}});
+  Model model = pair_model(rectangle(-30, -30, 30, 30) + ", " + hole, stadium_loop(l, 1));
+  SlicedSpace space = SlicedSpace::build(model, "fixed", "free");
+  const Rational k = l;
+  // sin = 1/l: t^2 - 2 l t + 1; cos = 1/l: (l + 1) t^2 - (l - 1); cos = -1/l: (l - 1) t^2 - (l + 1)
+  EXPECT_EQ(roots_of(space, algebra::from_rationals({1, -2 * k, 1})), 2);
+  EXPECT_EQ(roots_of(space, algebra::from_rationals({1, 2 * k, 1})), 2);
+  EXPECT_EQ(roots_of(space, algebra::from_rationals({1 - k, 0, k + 1})), 2);
+  EXPECT_EQ(roots_of(space, algebra::from_rationals({-1 - k, 0, k - 1})), 2);
+  SlicedConfiguration in_horizontal_arm{-10, 2, SlicedAngle{0, false}};
+  SlicedConfiguration in_vertical_arm{2, 12, SlicedAngle{1, false}};
+  ASSERT_EQ(space.locate(in_horizontal_arm).kind, SlicedLocation::Kind::free);
+  ASSERT_EQ(space.locate(in_vertical_arm).kind, SlicedLocation::Kind::free);
+  EXPECT_EQ(space.connected(in_horizontal_arm, in_vertical_arm), l == 3);
+  Random random(l);
+  expect_intervals_consistent(space, random);
+}
+TEST(SlicedArcs, ShortStadiumTurnsTheCornerOfAnLShapedCorridor) { expect_stadium_corridor(3); }
+TEST(SlicedArcs, LongStadiumCannotTurnTheCornerOfAnLShapedCorridor) { expect_stadium_corridor(4); }
+
+// A disc turning about a point off its centre: every slice is a translate of the first, so the
+// general arc finder (bypassed by SlicedSpace for round parts) finds no critical angle at all,
+// against a square hole and against a plate with round holes.
+TEST(SlicedArcs, DiscOffItsPivotHasNoCriticalAngle) {
+  for (const std::string& hole : {rectangle(-6, -6, 6, 6), circle_loop(0, 0, 6) + ", " + stadium_loop(3, 2, 0, 12)}) {
+    Model model = pair_model(rectangle(-20, -20, 20, 20) + ", " + hole, circle_loop(1, 0, 4));
+    sliced::CriticalStatistics stats;
+    auto critical = sliced::critical_angles_with_arcs(model.parts[0], model.parts[1], stats);
+    EXPECT_TRUE(critical.empty()) << hole;
+  }
+}
+
+// A disc of radius 5k with a flat: the major arc from (3k, 4k) to (3k, -4k) about (cx, cy) and
+// the chord back (a span above a half turn).
+std::string flat_disc_loop(const Rational& k, const Rational& cx, const Rational& cy) {
+  return R"({ "start": )" + point(cx + 3 * k, cy + 4 * k) + R"(, "edges": [ { "arc_to": )" + point(cx + 3 * k, cy - 4 * k) +
+         R"(, "center": )" + point(cx, cy) + R"(, "dir": "ccw" }, { "line_to": )" + point(cx + 3 * k, cy + 4 * k) + " } ] }";
+}
+
+// Generated pairs with arcs (segments facing arcs of rational length, the class the arc finder
+// handles): a random stadium or flat disc, turning about a random rational pivot, against a
+// plate whose hole is a random L-shaped polygon or a stadium. In every interval between critical
+// angles two random rational slices have free cells in one-to-one correspondence with the
+// representative, and point location agrees with the exact overlap oracle.
+TEST(SlicedArcs, GeneratedPairsHaveSteadyIntervals) {
+  Random random(2026);
+  for (int round = 0; round < 4; ++round) {
+    SCOPED_TRACE("round " + std::to_string(round));
+    std::string hole;
+    if (round % 2 == 0) {
+      Rational a = random_rational(random, 4, 9, 4), b = random_rational(random, 2, 5, 4), c = random_rational(random, 4, 9, 4);
+      Rational e = random_rational(random, -2, 2, 4), d = random_rational(random, -1, 2, 4), f = random_rational(random, 5, 9, 4);
+      hole = polygon({{-a, -b}, {c, -b}, {c, d}, {e, d}, {e, f}, {-a, f}});
+    } else {
+      hole = stadium_loop(random_rational(random, 3, 6, 2), random_rational(random, 2, 4, 2));
+    }
+    std::string free = round < 2 ? stadium_loop(random_rational(random, 1, 3, 4), random_rational(random, 1, 2, 2))
+                                 : flat_disc_loop(random_rational(random, Rational(1, 3), Rational(1, 2), 3), 0, 0);
+    Point pivot{random_rational(random, -1, 1, 4), random_rational(random, -1, 1, 4)};
+    Model model = pair_model(rectangle(-20, -20, 20, 20) + ", " + hole, free, pivot);
+    SlicedSpace space = SlicedSpace::build(model, "fixed", "free");
+    EXPECT_GE(space.critical_angles().size(), 1u);
+    expect_intervals_consistent(space, random);
+    expect_oracle_agreement(model, space, random);
+  }
 }
 
 }  // namespace
