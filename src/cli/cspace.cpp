@@ -108,6 +108,7 @@ json statistics_json(const CSpaceStatistics& s) {
               {"touching_vertices", s.touching_vertices},
               {"touching_undecided", s.touching_undecided},
               {"circle_segment_charts", s.circle_segment_charts},
+              {"quadratic_charts", s.quadratic_charts},
               {"region_tiles", s.region_tiles},
               {"region_cells", s.region_cells},
               {"seconds",
@@ -225,6 +226,8 @@ void print_statistics(const CSpace& space) {
   if (s.circle_segment_charts > 0)
     std::printf("  circle-segment arrangements (lines and circles): %zu of %zu charts\n", s.circle_segment_charts,
                 s.charts);
+  if (s.quadratic_charts > 0)
+    std::printf("  quadratic-traits arrangements (degree <= 2 in y): %zu of %zu charts\n", s.quadratic_charts, s.charts);
   if (s.touching_edges + s.touching_vertices + s.touching_undecided > 0)
     std::printf("  zero-clearance contacts: %zu touching edges, %zu isolated touching vertices%s\n", s.touching_edges,
                 s.touching_vertices,
