@@ -1156,11 +1156,13 @@ class QuadraticBuilder {
     }
     (void)branch;
     auto near = [&](std::size_t from, std::size_t to) {
-      // a point of the arc strictly between xs[from] and xs[to], near xs[to]
-      Real x = Real::from_rational(algebra::rational_between(*xs[std::min(from, to)], *xs[std::max(from, to)]));
-      for (int k = 0; k < 2; ++k)
-        x = Real::from_rational(from < to ? algebra::rational_between(x, *xs[to]) : algebra::rational_between(*xs[to], x));
-      return traits_.make_point(x, expr);
+      // a point of the arc strictly between xs[from] and xs[to], near xs[to] (a short
+      // spurious stretch: 8 halvings toward the bound of xs[to]'s interval on this side)
+      Rational m = algebra::rational_between(*xs[std::min(from, to)], *xs[std::max(from, to)]);
+      const Rational& bound = from < to ? xs[to]->lower : xs[to]->upper;
+      if (from < to ? m < bound || xs[to]->exact : bound < m || xs[to]->exact)
+        for (int k = 0; k < 8; ++k) m = (m + bound) / 2;
+      return traits_.make_point(Real::from_rational(m), expr);
     };
     for (std::size_t i = 0; i < count;) {
       if (!valid[i]) {
@@ -1407,7 +1409,28 @@ std::optional<Arrangement> build_quadratic_arrangement(
   if (options.keep_cgal || !quadratic_applies(curves)) return std::nullopt;
   try {
     QuadraticBuilder builder(box, options);
-    return builder.run(curves, validity, windows);
+    Arrangement result = builder.run(curves, validity, windows);
+    if (const char* dump = std::getenv("HIPAIR_QT_COMPARE")) {
+      static int chart = 0;
+      Arrangement other = build_arrangement(box, curves, validity, windows, options);
+      for (const auto* a : {&result, &other}) {
+        std::string name = std::string(dump) + "." + std::to_string(chart) + (a == &result ? ".q" : ".a");
+        FILE* out = std::fopen(name.c_str(), "w");
+        std::vector<std::string> lines;
+        for (const auto& v : a->vertices) {
+          char buf[200];
+          std::snprintf(buf, sizeof buf, "v %.12f %.12f iso %d deg %zu", v.x.approximate(),
+                        (v.y_lower_bound() + v.y_upper_bound()) / 2, int(v.isolated), v.around.size());
+          lines.push_back(buf);
+        }
+        std::sort(lines.begin(), lines.end());
+        for (const auto& c : curves) lines.push_back("c " + algebra::to_string(c, "x", "y"));
+        for (const auto& l : lines) std::fprintf(out, "%s\n", l.c_str());
+        std::fclose(out);
+      }
+      ++chart;
+    }
+    return result;
   } catch (const NotApplicable& e) {
     if (debug) std::fprintf(stderr, "  quadratic traits not applicable: %s\n", e.why);
     return std::nullopt;

@@ -37,6 +37,7 @@ struct CSpaceCommandOptions {
   bool stats = false;
   bool spurious = false;
   bool aggregated = false;
+  bool algebraic_traits = false;
   std::vector<std::string> overrides;
   bool allow_out_of_tolerance = false;
   std::string rounding;
@@ -278,6 +279,7 @@ int run(const CSpaceCommandOptions& options) {
   CSpaceBuildOptions build;
   build.progress = isatty(2);
   build.aggregated_insertion = options.aggregated;
+  build.quadratic_traits = !options.algebraic_traits;
   build.operating_region = options.region == "operating";
   build.region_tiles = options.tiles;
   std::vector<CSpace> spaces;
@@ -404,6 +406,9 @@ void register_cspace(CLI::App& app, Action& action) {
       ->delimiter(',');
   command->add_flag("--spurious", options->spurious, "Also draw spurious edges (curves through free or blocked space)");
   command->add_flag("--aggregated", options->aggregated, "Use CGAL's aggregated insertion (for measurements)");
+  command->add_flag("--algebraic-traits", options->algebraic_traits,
+                    "Build every chart on CGAL's algebraic traits, also those whose curves have degree <= 2 in y "
+                    "(the filtered quadratic traits otherwise; for comparisons)");
   command->add_option("--region", options->region,
                       "full: the whole C-space (default); operating: only the channel containing the initial "
                       "configuration, built tile by tile (gear pairs: linear in the tooth count)")

@@ -12,8 +12,14 @@
 //   BM_GenevaFirstCrossing     certified first contact along random straight paths
 //   BM_GenevaCurves            stage alone: contact-curve generation (all charts)
 //   BM_GenevaCgalStage         stage alone: CGAL clipping, insertion and export (all charts)
+//   BM_ArrangementStage/m/t    the arrangement stage alone on the charts of model m (0 Geneva,
+//                              1 ratchet, 2 escapement wheel:anchor) that the quadratic traits
+//                              accepts: t = 0 CGAL's algebraic traits, t = 1 the filtered
+//                              quadratic traits (side by side: the ratio is the figure)
 // Peer comparisons: minkowski_peer_benchmark.cpp, overlap_peer_benchmark.cpp.
 // Counters: vertices, edges, cells, curves of the built space.
+#include "arrangement/circle_segment_traits.hpp"
+#include "arrangement/quadratic_traits.hpp"
 #include "cspace/builder_impl.hpp"
 
 #include <hipair/cspace.hpp>
@@ -22,6 +28,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <map>
 #include <cstdlib>
 #include <filesystem>
 #include <random>
@@ -243,6 +250,54 @@ void BM_GenevaCgalStage(benchmark::State& state) {
   state.counters["vertices"] = static_cast<double>(vertices);
 }
 BENCHMARK(BM_GenevaCgalStage)->Unit(benchmark::kMillisecond);
+
+struct StageCase {
+  const char* file;
+  const char* first;
+  const char* second;
+};
+const StageCase stage_cases[] = {
+    {"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"}, {"escapement.json", "escape-wheel", "anchor"}};
+
+void BM_ArrangementStage(benchmark::State& state) {
+  built_in_process = true;
+  const auto which = static_cast<std::size_t>(state.range(0));
+  const bool quadratic = state.range(1) == 1;
+  static std::map<std::size_t, CSpace> spaces;
+  if (!spaces.count(which)) {
+    CSpaceBuildOptions options;
+    options.quadratic_traits = false;
+    const StageCase& c = stage_cases[which];
+    spaces.emplace(which, CSpace::build(read_model_file(example(c.file)), c.first, c.second, options));
+  }
+  std::vector<const cspace::ChartData*> charts;   // those the quadratic traits accepts
+  for (const auto& chart : cspace::impl_of(spaces.at(which)).charts)
+    if (!cspace::raw::circle_segment_applies(chart.polynomials, chart.validity) &&
+        cspace::raw::build_quadratic_arrangement(chart.box, chart.polynomials, chart.validity, chart.windows, {}))
+      charts.push_back(&chart);
+  double clipping = 0, insertion = 0, export_ = 0;
+  std::size_t vertices = 0;
+  for (auto _ : state) {
+    vertices = 0;
+    for (const auto* chart : charts) {
+      auto arrangement =
+          quadratic ? *cspace::raw::build_quadratic_arrangement(chart->box, chart->polynomials, chart->validity,
+                                                                chart->windows, {})
+                    : cspace::raw::build_arrangement(chart->box, chart->polynomials, chart->validity, chart->windows, {});
+      clipping += arrangement.times.curves_seconds;
+      insertion += arrangement.times.insertion_seconds;
+      export_ += arrangement.times.export_seconds;
+      vertices += arrangement.vertices.size();
+    }
+  }
+  const double per = 1e3 / static_cast<double>(state.iterations());
+  state.counters["charts"] = static_cast<double>(charts.size());
+  state.counters["ms_clipping"] = clipping * per;
+  state.counters["ms_arrangement"] = insertion * per;
+  state.counters["ms_export"] = export_ * per;
+  state.counters["vertices"] = static_cast<double>(vertices);
+}
+BENCHMARK(BM_ArrangementStage)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 void BM_GenevaLocate(benchmark::State& state) {
   built_in_process = true;
