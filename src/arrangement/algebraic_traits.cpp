@@ -1,6 +1,7 @@
 // The only translation unit of the C-space builder that includes CGAL's algebraic arrangement
 // code (about 30 s to compile). See arrangement.hpp.
 #include "arrangement/arrangement.hpp"
+#include "arrangement/curve_groups.hpp"
 
 #include <hipair/cgal/arrangement.hpp>
 #include <hipair/error.hpp>
@@ -116,64 +117,11 @@ class Builder {
     for (const auto& side : sides_) pieces.push_back(side);
     static const std::vector<ValidityClause> no_clauses;
     static const bool debug = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
-    // Curves with the same polynomial (up to a constant factor) are clipped once, together.
-    // Monomial factors x^i y^j are split off first: x = 0 and y = 0 are lines shared by many
-    // curves (coincident lock arcs of a zero-clearance fit give y * g(x, y)), and CGAL's
-    // arrangement handles one line once far more robustly than the same line hidden in
-    // several reducible curves (it crashed inserting such overlaps). The zero set is the same.
-    std::vector<std::string> keys;   // exact text of the primitive polynomial, positive first term
-    std::vector<IntegerPolynomial2> group_polynomials;
-    std::vector<std::vector<std::size_t>> groups;
-    auto add_to_group = [&](IntegerPolynomial2 normal, std::size_t k) {
-      mpz_class g = 0;
-      int sign = 0;
-      for (const auto& row : normal.coefficients)
-        for (const auto& c : row) {
-          mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), c.get_mpz_t());
-          if (sign == 0 && sgn(c) != 0) sign = sgn(c);
-        }
-      if (sgn(g) != 0)
-        for (auto& row : normal.coefficients)
-          for (auto& c : row) c = sign * c / g;
-      std::string key = algebra::to_string(normal, "x", "y");
-      auto it = std::find(keys.begin(), keys.end(), key);
-      if (it == keys.end()) {
-        keys.push_back(std::move(key));
-        group_polynomials.push_back(std::move(normal));
-        groups.push_back({k});
-      } else {
-        auto& group = groups[static_cast<std::size_t>(it - keys.begin())];
-        if (std::find(group.begin(), group.end(), k) == group.end()) group.push_back(k);
-      }
-    };
-    for (std::size_t k = 0; k < curves.size(); ++k) {
-      const auto& c = curves[k].coefficients;   // c[i][j]: coefficient of x^i y^j
-      std::size_t min_i = c.size(), min_j = std::numeric_limits<std::size_t>::max();
-      bool any = false;
-      for (std::size_t i = 0; i < c.size(); ++i)
-        for (std::size_t j = 0; j < c[i].size(); ++j)
-          if (sgn(c[i][j]) != 0) {
-            any = true;
-            min_i = std::min(min_i, i);
-            min_j = std::min(min_j, j);
-          }
-      if (!any || (min_i == 0 && min_j == 0)) {
-        add_to_group(curves[k], k);
-        continue;
-      }
-      IntegerPolynomial2 rest;
-      rest.coefficients.assign(c.size() - min_i, {});
-      bool constant = true;
-      for (std::size_t i = min_i; i < c.size(); ++i) {
-        auto& row = rest.coefficients[i - min_i];
-        if (c[i].size() > min_j) row.assign(c[i].begin() + static_cast<std::ptrdiff_t>(min_j), c[i].end());
-        for (std::size_t j = 0; j < row.size(); ++j)
-          if (sgn(row[j]) != 0 && (i > min_i || j > 0)) constant = false;
-      }
-      if (min_i > 0) add_to_group(IntegerPolynomial2{{{mpz_class(0)}, {mpz_class(1)}}}, k);   // x
-      if (min_j > 0) add_to_group(IntegerPolynomial2{{{mpz_class(0), mpz_class(1)}}}, k);     // y
-      if (!constant) add_to_group(std::move(rest), k);
-    }
+    // Curves with the same polynomial (up to a constant factor) are clipped once, together
+    // (monomial factors split off first: see curve_groups.hpp).
+    const CurveGroups grouped = group_curves(curves);
+    const auto& group_polynomials = grouped.polynomials;
+    const auto& groups = grouped.members;
     for (std::size_t group_index = 0; group_index < groups.size(); ++group_index) {
       const auto& group = groups[group_index];
       std::size_t k = group.front();

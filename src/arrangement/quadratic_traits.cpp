@@ -2,6 +2,8 @@
 // Arrangement_2 on arcs of curves of degree <= 2 in y, with our own exact univariate algebra.
 #include "arrangement/quadratic_traits.hpp"
 
+#include "arrangement/curve_groups.hpp"
+
 #include <hipair/error.hpp>
 
 #include <CGAL/Arr_tags.h>
@@ -530,15 +532,6 @@ class QuadraticTraits {
   /// A rational x strictly right (toward = +1) or left (-1) of p.x on both curves, before
   /// their next common point: the order of the curves there is their order next to p.
   int compare_beside(const XCurve& c1, const XCurve& c2, const Point& p, int toward) const {
-    int r = compare_beside_(c1, c2, p, toward);
-    if (trace_) std::fprintf(stderr, "beside %s (%g,%g)-(%g,%g)%s vs (%g,%g)-(%g,%g)%s at (%g,%g): %d\n", toward > 0 ? "right" : "left",
-                              c1.left.rep->xi().lo, c1.left.rep->yi.lo, c1.right.rep->xi().lo, c1.right.rep->yi.lo, c1.vertical ? "v" : "",
-                              c2.left.rep->xi().lo, c2.left.rep->yi.lo, c2.right.rep->xi().lo, c2.right.rep->yi.lo, c2.vertical ? "v" : "",
-                              p.rep->xi().lo, p.rep->yi.lo, r);
-    return r;
-  }
-  bool trace_ = std::getenv("HIPAIR_QT_TRACE") != nullptr;
-  int compare_beside_(const XCurve& c1, const XCurve& c2, const Point& p, int toward) const {
     if (c1.vertical || c2.vertical) {
       if (c1.vertical && c2.vertical) return 0;
       // a vertical curve through p counts as above the other one to the right of p unless p
@@ -810,10 +803,9 @@ class QuadraticBuilder {
     std::vector<XCurve> pieces(sides_.begin(), sides_.end());
     std::vector<Point> isolated;
     static const std::vector<ValidityClause> no_clauses;
-    std::vector<std::string> keys;
-    std::vector<IntegerPolynomial2> group_polynomials;
-    std::vector<std::vector<std::size_t>> groups;
-    group_curves(curves, keys, group_polynomials, groups);
+    const CurveGroups grouped = group_curves(curves);   // as the algebraic stage
+    const auto& group_polynomials = grouped.polynomials;
+    const auto& groups = grouped.members;
     for (std::size_t g = 0; g < groups.size(); ++g) {
       ClauseAlternatives alternatives;
       for (std::size_t member : groups[g])
@@ -852,64 +844,6 @@ class QuadraticBuilder {
   }
 
  private:
-  // Curves with the same polynomial (up to a constant factor) are clipped once, together;
-  // monomial factors x^i y^j are split off first (as the algebraic stage does).
-  static void group_curves(const std::vector<IntegerPolynomial2>& curves, std::vector<std::string>& keys,
-                           std::vector<IntegerPolynomial2>& group_polynomials,
-                           std::vector<std::vector<std::size_t>>& groups) {
-    auto add_to_group = [&](IntegerPolynomial2 normal, std::size_t k) {
-      mpz_class g = 0;
-      int sign = 0;
-      for (const auto& row : normal.coefficients)
-        for (const auto& c : row) {
-          mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), c.get_mpz_t());
-          if (sign == 0 && sgn(c) != 0) sign = sgn(c);
-        }
-      if (sgn(g) != 0)
-        for (auto& row : normal.coefficients)
-          for (auto& c : row) c = sign * c / g;
-      std::string key = algebra::to_string(normal, "x", "y");
-      auto it = std::find(keys.begin(), keys.end(), key);
-      if (it == keys.end()) {
-        keys.push_back(std::move(key));
-        group_polynomials.push_back(std::move(normal));
-        groups.push_back({k});
-      } else {
-        auto& group = groups[static_cast<std::size_t>(it - keys.begin())];
-        if (std::find(group.begin(), group.end(), k) == group.end()) group.push_back(k);
-      }
-    };
-    for (std::size_t k = 0; k < curves.size(); ++k) {
-      const auto& c = curves[k].coefficients;
-      std::size_t min_i = c.size(), min_j = std::numeric_limits<std::size_t>::max();
-      bool any = false;
-      for (std::size_t i = 0; i < c.size(); ++i)
-        for (std::size_t j = 0; j < c[i].size(); ++j)
-          if (sgn(c[i][j]) != 0) {
-            any = true;
-            min_i = std::min(min_i, i);
-            min_j = std::min(min_j, j);
-          }
-      if (!any) continue;   // the zero polynomial: CGAL rejects it; never a chart curve
-      if (min_i == 0 && min_j == 0) {
-        add_to_group(curves[k], k);
-        continue;
-      }
-      IntegerPolynomial2 rest;
-      rest.coefficients.assign(c.size() - min_i, {});
-      bool constant = true;
-      for (std::size_t i = min_i; i < c.size(); ++i) {
-        auto& row = rest.coefficients[i - min_i];
-        if (c[i].size() > min_j) row.assign(c[i].begin() + static_cast<std::ptrdiff_t>(min_j), c[i].end());
-        for (std::size_t j = 0; j < row.size(); ++j)
-          if (sgn(row[j]) != 0 && (i > min_i || j > 0)) constant = false;
-      }
-      if (min_i > 0) add_to_group(IntegerPolynomial2{{{mpz_class(0)}, {mpz_class(1)}}}, k);   // x
-      if (min_j > 0) add_to_group(IntegerPolynomial2{{{mpz_class(0), mpz_class(1)}}}, k);     // y
-      if (!constant) add_to_group(std::move(rest), k);
-    }
-  }
-
   static IntegerPolynomial2 horizontal_line(const Rational& y) {   // den y - num
     return IntegerPolynomial2{{{mpz_class(-y.get_num()), mpz_class(y.get_den())}}};
   }
@@ -1410,26 +1344,6 @@ std::optional<Arrangement> build_quadratic_arrangement(
   try {
     QuadraticBuilder builder(box, options);
     Arrangement result = builder.run(curves, validity, windows);
-    if (const char* dump = std::getenv("HIPAIR_QT_COMPARE")) {
-      static int chart = 0;
-      Arrangement other = build_arrangement(box, curves, validity, windows, options);
-      for (const auto* a : {&result, &other}) {
-        std::string name = std::string(dump) + "." + std::to_string(chart) + (a == &result ? ".q" : ".a");
-        FILE* out = std::fopen(name.c_str(), "w");
-        std::vector<std::string> lines;
-        for (const auto& v : a->vertices) {
-          char buf[200];
-          std::snprintf(buf, sizeof buf, "v %.12f %.12f iso %d deg %zu", v.x.approximate(),
-                        (v.y_lower_bound() + v.y_upper_bound()) / 2, int(v.isolated), v.around.size());
-          lines.push_back(buf);
-        }
-        std::sort(lines.begin(), lines.end());
-        for (const auto& c : curves) lines.push_back("c " + algebra::to_string(c, "x", "y"));
-        for (const auto& l : lines) std::fprintf(out, "%s\n", l.c_str());
-        std::fclose(out);
-      }
-      ++chart;
-    }
     return result;
   } catch (const NotApplicable& e) {
     if (debug) std::fprintf(stderr, "  quadratic traits not applicable: %s\n", e.why);

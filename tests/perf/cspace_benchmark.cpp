@@ -2,6 +2,8 @@
 //   BM_GenevaCSpaceCold        the Geneva build in a fresh process (cold CGAL caches): child CPU
 //                              time of a forked single-thread build; runs first, skipped if
 //                              something already built in this process
+//   BM_CSpaceColdTraits/m/t    cold builds (forked) of Geneva, ratchet, escapement (m = 0, 1, 2) with
+//                              the algebraic (t = 0) or the quadratic traits (t = 1)
 //   BM_GenevaCSpace            the paper's Geneva pair, exact C-space (charts in parallel; real time)
 //   BM_GenevaCSpaceSingleThread  the same on one thread
 //   BM_SpurGearsCSpace/n       spur gear pair with n x n teeth on the full torus
@@ -100,12 +102,12 @@ void build(benchmark::State& state, const Model& model, const char* first, const
 // child builds once on one thread and exits; the time is the child's CPU time (user + system,
 // from wait4), and the counters are its stage times (ms, wall clock of the child).
 // Must run before anything else builds in this process (it is registered first).
-void BM_GenevaCSpaceCold(benchmark::State& state) {
+void cold_build(benchmark::State& state, const char* file, const char* first, const char* second, bool quadratic) {
   if (built_in_process) {
     state.SkipWithError("CGAL caches are already warm: run with --benchmark_filter=Cold");
     return;
   }
-  Model model = read_model_file(example("geneva.json"));
+  Model model = read_model_file(example(file));
   StageTimes times;
   std::size_t vertices = 0;
   for (auto _ : state) {
@@ -119,7 +121,8 @@ void BM_GenevaCSpaceCold(benchmark::State& state) {
       close(channel[0]);
       CSpaceBuildOptions options;
       options.threads = 1;
-      CSpace space = CSpace::build(model, "driver", "wheel", options);
+      options.quadratic_traits = quadratic;
+      CSpace space = CSpace::build(model, first, second, options);
       const CSpaceStatistics& s = space.statistics();
       double values[9] = {s.seconds_curves, s.seconds_culling, s.seconds_clipping, s.seconds_arrangement,
                           s.seconds_export, s.seconds_labelling, s.seconds_classification, s.seconds_cells,
@@ -162,7 +165,23 @@ void BM_GenevaCSpaceCold(benchmark::State& state) {
   state.counters["ms_labelling"] = times.labelling * per;
   state.counters["ms_classify_cells"] = (times.classification + times.cells) * per;
 }
+void BM_GenevaCSpaceCold(benchmark::State& state) { cold_build(state, "geneva.json", "driver", "wheel", true); }
 BENCHMARK(BM_GenevaCSpaceCold)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
+
+// The same cold build of Geneva (0), the ratchet (1) and the escapement's wheel and anchor (2)
+// with CGAL's algebraic traits (t = 0) and with the filtered quadratic traits (t = 1), side by
+// side (CPU time of the child; counters: its stage times).
+void BM_CSpaceColdTraits(benchmark::State& state) {
+  static const char* const cases[3][3] = {
+      {"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"}, {"escapement.json", "escape-wheel", "anchor"}};
+  const auto* c = cases[state.range(0)];
+  cold_build(state, c[0], c[1], c[2], state.range(1) == 1);
+}
+BENCHMARK(BM_CSpaceColdTraits)
+    ->ArgsProduct({{0, 1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime()
+    ->Iterations(3);
 
 void BM_GenevaCSpace(benchmark::State& state) {
   Model model = read_model_file(example("geneva.json"));
