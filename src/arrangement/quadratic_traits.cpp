@@ -1007,7 +1007,7 @@ class QuadraticBuilder {
         YExpr expr = s.degree == 1 ? YExpr{id, 2, 0} : YExpr{id, 0, k == 0 ? -a_sign[i] : a_sign[i]};
         std::optional<Point> first = end_point(s, id, expr, bounds[i]);
         std::optional<Point> last = end_point(s, id, expr, bounds[i + 1]);
-        clip_arc(s, id, expr, k, first, last, bounds[i], bounds[i + 1], inside, f, alternatives, windows, pieces);
+        clip_arc(s, id, expr, first, last, bounds[i], bounds[i + 1], inside, f, alternatives, windows, pieces);
       }
     }
     // isolated points: a double root with no branch on either side
@@ -1053,7 +1053,7 @@ class QuadraticBuilder {
     return algebra::sign_at(s.a, x) * expr.s < 0 ? 0 : 1;
   }
 
-  void clip_arc(const Support& s, int id, const YExpr& expr, int branch, const std::optional<Point>& first_end,
+  void clip_arc(const Support& s, int id, const YExpr& expr, const std::optional<Point>& first_end,
                 const std::optional<Point>& last_end, const Real& x_first, const Real& x_last,
                 const std::vector<const Cut*>& inside, const IntegerPolynomial2& f,
                 const ClauseAlternatives& alternatives, const Windows* windows, std::vector<XCurve>& pieces) {
@@ -1088,7 +1088,6 @@ class QuadraticBuilder {
       algebra::Polynomial fiber = algebra::substitute_x(f, m);
       valid[i] = clauses_hold(alternatives, m, algebra::nth_real_root(fiber, arcno(s, expr, mx)));
     }
-    (void)branch;
     auto near = [&](std::size_t from, std::size_t to) {
       // a point of the arc strictly between xs[from] and xs[to], near xs[to] (a short
       // spurious stretch: 8 halvings toward the bound of xs[to]'s interval on this side)
