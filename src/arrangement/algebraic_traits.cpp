@@ -1,7 +1,7 @@
 // The only translation unit of the C-space builder that includes CGAL's algebraic arrangement
 // code (about 30 s to compile). See arrangement.hpp.
 #include "arrangement/arrangement.hpp"
-#include "arrangement/curve_groups.hpp"
+#include "arrangement/clip_common.hpp"
 
 #include <hipair/cgal/arrangement.hpp>
 #include <hipair/error.hpp>
@@ -118,7 +118,7 @@ class Builder {
     static const std::vector<ValidityClause> no_clauses;
     static const bool debug = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
     // Curves with the same polynomial (up to a constant factor) are clipped once, together
-    // (monomial factors split off first: see curve_groups.hpp).
+    // (monomial factors split off first: see clip_common.hpp).
     const CurveGroups grouped = group_curves(curves);
     const auto& group_polynomials = grouped.polynomials;
     const auto& groups = grouped.members;
@@ -221,17 +221,7 @@ class Builder {
   // Does every validity clause hold at the point of the arc above the rational x?
   bool valid_at_point(const Rational& x, const algebra::Real& y,
                       const std::vector<const std::vector<ValidityClause>*>& alternatives) {
-    for (const auto* clauses : alternatives) {
-      bool all = true;
-      for (const auto& clause : *clauses) {
-        bool holds = false;
-        for (const auto& atom : clause.atoms)
-          if (algebra::sign_at(atom, x, y) >= 0) holds = true;
-        if (!holds) all = false;
-      }
-      if (all) return true;
-    }
-    return false;
+    return clauses_hold(alternatives, x, y);
   }
 
   // (Curves with the same polynomial are clipped together: valid where any of them is.)
@@ -240,23 +230,7 @@ class Builder {
     for (const auto* clauses : alternatives)
       if (clauses->empty()) return true;
     algebra::Real y = algebra::nth_real_root(algebra::substitute_x(f, x), arc.arcno(x_cgal));
-    for (const auto* clauses : alternatives) {
-      bool all = true;
-      for (const auto& clause : *clauses) {
-        bool holds = false;
-        for (const auto& atom : clause.atoms)
-          if (algebra::sign_at(atom, x, y) >= 0) {
-            holds = true;
-            break;
-          }
-        if (!holds) {
-          all = false;
-          break;
-        }
-      }
-      if (all) return true;
-    }
-    return false;
+    return clauses_hold(alternatives, x, y);
   }
 
   // Abscissae where an atom of a clause may change sign along the curve: roots of the
@@ -275,13 +249,6 @@ class Builder {
           if (x_lo < root.first && root.first < x_hi) breaks.push_back(root.first);
       }
     return breaks;
-  }
-
-  static bool in_windows(const Rational& x, const std::vector<std::pair<Rational, Rational>>* windows) {
-    if (!windows) return true;
-    for (const auto& [lo, hi] : *windows)
-      if (lo <= x && x <= hi) return true;
-    return false;
   }
 
   void clip(const IntegerPolynomial2& f, const std::vector<const std::vector<ValidityClause>*>& alternatives,
@@ -677,18 +644,7 @@ class Builder {
 
   // Certified bounding box: the box of the ends (every edge is monotone in x and in y since
   // curves are split at their vertical and horizontal tangents before insertion).
-  void fill_box(const XCurve& arc, Edge& out) {
-    const Vertex& a = result_.vertices[out.min_vertex];
-    const Vertex& b = result_.vertices[out.max_vertex];
-    out.box[0] = std::min(a.x.lower_bound(), b.x.lower_bound());
-    out.box[2] = std::max(a.x.upper_bound(), b.x.upper_bound());
-    out.box[1] = std::min(a.y_lower_bound(), b.y_lower_bound());
-    out.box[3] = std::max(a.y_upper_bound(), b.y_upper_bound());
-    // strictly around the edge, so that exact root brackets never end on a root
-    constexpr double inf = std::numeric_limits<double>::infinity();
-    for (int k : {0, 1}) out.box[k] = std::nextafter(out.box[k], -inf);
-    for (int k : {2, 3}) out.box[k] = std::nextafter(out.box[k], inf);
-  }
+  void fill_box(const XCurve&, Edge& out) { fill_edge_box(result_.vertices, out); }
 
   // Which chart box side the edge lies on (-1: none).
   int side_of(const XCurve& arc, const Point& source, const Point& target) {

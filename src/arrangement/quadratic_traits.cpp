@@ -2,7 +2,7 @@
 // Arrangement_2 on arcs of curves of degree <= 2 in y, with our own exact univariate algebra.
 #include "arrangement/quadratic_traits.hpp"
 
-#include "arrangement/curve_groups.hpp"
+#include "arrangement/clip_common.hpp"
 
 #include <hipair/error.hpp>
 
@@ -870,33 +870,6 @@ class QuadraticBuilder {
     return traits_.compare_y(x, xi, y, bottom_) > 0 && traits_.compare_y(x, xi, y, top_) < 0;
   }
 
-  static bool in_windows(const Rational& x, const Windows* windows) {
-    if (!windows) return true;
-    for (const auto& [lo, hi] : *windows)
-      if (lo <= x && x <= hi) return true;
-    return false;
-  }
-
-  static bool clauses_hold(const ClauseAlternatives& alternatives, const Rational& x, const Real& y) {
-    for (const auto* clauses : alternatives) {
-      bool all = true;
-      for (const auto& clause : *clauses) {
-        bool holds = false;
-        for (const auto& atom : clause.atoms)
-          if (algebra::sign_at(atom, x, y) >= 0) {
-            holds = true;
-            break;
-          }
-        if (!holds) {
-          all = false;
-          break;
-        }
-      }
-      if (all) return true;
-    }
-    return false;
-  }
-
   static bool unrestricted(const ClauseAlternatives& alternatives) {
     for (const auto* clauses : alternatives)
       if (clauses->empty()) return true;
@@ -1173,18 +1146,6 @@ class QuadraticBuilder {
     }
   }
 
-  void fill_box(Edge& out) const {
-    const Vertex& a = result_.vertices[out.min_vertex];
-    const Vertex& b = result_.vertices[out.max_vertex];
-    out.box[0] = std::min(a.x.lower_bound(), b.x.lower_bound());
-    out.box[2] = std::max(a.x.upper_bound(), b.x.upper_bound());
-    out.box[1] = std::min(a.y_lower_bound(), b.y_lower_bound());
-    out.box[3] = std::max(a.y_upper_bound(), b.y_upper_bound());
-    constexpr double inf = std::numeric_limits<double>::infinity();
-    for (int k : {0, 1}) out.box[k] = std::nextafter(out.box[k], -inf);
-    for (int k : {2, 3}) out.box[k] = std::nextafter(out.box[k], inf);
-  }
-
   int side_of(const XCurve& c) const {
     if (c.vertical) {
       if (c.left.x().compare(box_.x_lo) == 0) return 3;
@@ -1263,7 +1224,7 @@ class QuadraticBuilder {
       out.support = traits_.support(arc.support).full;
       out.left_face = face_id.at(&*h->face());
       out.right_face = face_id.at(&*h->twin()->face());
-      fill_box(out);
+      fill_edge_box(result_.vertices, out);
       out.box_side = side_of(arc);
       if (!out.vertical) fill_arc_numbers(arc, out.arc_numbers);
       result_.edges.push_back(std::move(out));

@@ -1,8 +1,9 @@
-#include "arrangement/curve_groups.hpp"
+#include "arrangement/clip_common.hpp"
 
 #include "algebra/exact_real.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace hipair::cspace::raw {
@@ -61,6 +62,46 @@ CurveGroups group_curves(const std::vector<IntegerPolynomial2>& curves) {
     if (!constant) add_to_group(std::move(rest), k);
   }
   return out;
+}
+
+bool clauses_hold(const std::vector<const std::vector<ValidityClause>*>& alternatives, const Rational& x,
+                  const algebra::Real& y) {
+  for (const auto* clauses : alternatives) {
+    bool all = true;
+    for (const auto& clause : *clauses) {
+      bool holds = false;
+      for (const auto& atom : clause.atoms)
+        if (algebra::sign_at(atom, x, y) >= 0) {
+          holds = true;
+          break;
+        }
+      if (!holds) {
+        all = false;
+        break;
+      }
+    }
+    if (all) return true;
+  }
+  return false;
+}
+
+bool in_windows(const Rational& x, const std::vector<std::pair<Rational, Rational>>* windows) {
+  if (!windows) return true;
+  for (const auto& [lo, hi] : *windows)
+    if (lo <= x && x <= hi) return true;
+  return false;
+}
+
+void fill_edge_box(const std::vector<Vertex>& vertices, Edge& out) {
+  const Vertex& a = vertices[out.min_vertex];
+  const Vertex& b = vertices[out.max_vertex];
+  out.box[0] = std::min(a.x.lower_bound(), b.x.lower_bound());
+  out.box[2] = std::max(a.x.upper_bound(), b.x.upper_bound());
+  out.box[1] = std::min(a.y_lower_bound(), b.y_lower_bound());
+  out.box[3] = std::max(a.y_upper_bound(), b.y_upper_bound());
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  for (int k : {0, 1}) out.box[k] = std::nextafter(out.box[k], -inf);
+  for (int k : {2, 3}) out.box[k] = std::nextafter(out.box[k], inf);
 }
 
 }  // namespace hipair::cspace::raw
