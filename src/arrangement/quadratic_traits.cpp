@@ -1282,8 +1282,12 @@ class QuadraticBuilder {
 }  // namespace
 
 bool quadratic_applies(const std::vector<IntegerPolynomial2>& curves) {
-  for (const auto& c : curves)
+  for (const auto& c : curves) {
     if (c.degree_y() > 2) return false;
+    for (const auto& row : c.coefficients)
+      for (const auto& z : row)
+        if (mpz_sizeinbase(z.get_mpz_t(), 2) > quadratic_max_coefficient_bits) return false;
+  }
   return true;
 }
 

@@ -12,12 +12,20 @@
 
 #include "arrangement/arrangement.hpp"
 
+#include <cstddef>
 #include <optional>
 #include <vector>
 
 namespace hipair::cspace::raw {
 
-/// True when every curve has degree <= 2 in y (then build_quadratic_arrangement may apply).
+/// Coefficient size above which the quadratic traits declines: its exact fallback squares
+/// the square roots away (polynomials of 4x the coefficient size), and on the 18x27 spur
+/// gears (247-653-bit coefficients) the operating region took 103 s CPU against 40 s on the
+/// algebraic traits, while Geneva (at most 139 bits) is 1.4x faster (docs/performance.md).
+inline constexpr std::size_t quadratic_max_coefficient_bits = 200;
+
+/// True when every curve has degree <= 2 in y and coefficients of at most
+/// quadratic_max_coefficient_bits bits (then build_quadratic_arrangement may apply).
 bool quadratic_applies(const std::vector<IntegerPolynomial2>& curves);
 
 /// build_arrangement for curves of degree <= 2 in y, on the filtered quadratic traits.
