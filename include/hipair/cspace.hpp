@@ -413,6 +413,9 @@ struct CSpaceStatistics {
   /// CGAL's circle–segment traits instead of the algebraic ones; their vertices all have exact
   /// coordinates (CSpaceVertex::y_exact).
   std::size_t circle_segment_charts = 0;
+  /// Charts (or tiles) whose curves all have degree <= 2 in y, built on the filtered quadratic
+  /// traits (CSpaceBuildOptions::quadratic_traits) instead of CGAL's algebraic traits.
+  std::size_t quadratic_charts = 0;
   std::size_t region_tiles = 0;       ///< operating region: tiles built (0: whole space built)
   std::size_t region_cells = 0;       ///< operating region: flooded quadtree cells
   double seconds_region = 0;          ///< operating region: flood over certified-blocked cells
@@ -462,6 +465,11 @@ struct CSpaceBuildOptions {
   /// feature pair that can touch is built and inserted whole; the C-space is the same, with
   /// more spurious edges (for tests that compare the two; slower).
   bool cull_blocked_space = true;
+  /// Charts whose contact curves all have degree <= 2 in y take the filtered quadratic traits
+  /// (exact, without CGAL's curve analysis; see docs/cspace.md) instead of CGAL's algebraic
+  /// traits; charts it does not decide fall back to the algebraic traits. Not with
+  /// keep_arrangements (the raw CGAL access is for algebraic-traits arrangements).
+  bool quadratic_traits = true;
 };
 
 /// The exact C-space of one pair. Value semantics: copies share the immutable structure.

@@ -1,6 +1,7 @@
 // The only translation unit of the C-space builder that includes CGAL's algebraic arrangement
 // code (about 30 s to compile). See arrangement.hpp.
 #include "arrangement/arrangement.hpp"
+#include "arrangement/clip_common.hpp"
 
 #include <hipair/cgal/arrangement.hpp>
 #include <hipair/error.hpp>
@@ -116,64 +117,11 @@ class Builder {
     for (const auto& side : sides_) pieces.push_back(side);
     static const std::vector<ValidityClause> no_clauses;
     static const bool debug = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
-    // Curves with the same polynomial (up to a constant factor) are clipped once, together.
-    // Monomial factors x^i y^j are split off first: x = 0 and y = 0 are lines shared by many
-    // curves (coincident lock arcs of a zero-clearance fit give y * g(x, y)), and CGAL's
-    // arrangement handles one line once far more robustly than the same line hidden in
-    // several reducible curves (it crashed inserting such overlaps). The zero set is the same.
-    std::vector<std::string> keys;   // exact text of the primitive polynomial, positive first term
-    std::vector<IntegerPolynomial2> group_polynomials;
-    std::vector<std::vector<std::size_t>> groups;
-    auto add_to_group = [&](IntegerPolynomial2 normal, std::size_t k) {
-      mpz_class g = 0;
-      int sign = 0;
-      for (const auto& row : normal.coefficients)
-        for (const auto& c : row) {
-          mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), c.get_mpz_t());
-          if (sign == 0 && sgn(c) != 0) sign = sgn(c);
-        }
-      if (sgn(g) != 0)
-        for (auto& row : normal.coefficients)
-          for (auto& c : row) c = sign * c / g;
-      std::string key = algebra::to_string(normal, "x", "y");
-      auto it = std::find(keys.begin(), keys.end(), key);
-      if (it == keys.end()) {
-        keys.push_back(std::move(key));
-        group_polynomials.push_back(std::move(normal));
-        groups.push_back({k});
-      } else {
-        auto& group = groups[static_cast<std::size_t>(it - keys.begin())];
-        if (std::find(group.begin(), group.end(), k) == group.end()) group.push_back(k);
-      }
-    };
-    for (std::size_t k = 0; k < curves.size(); ++k) {
-      const auto& c = curves[k].coefficients;   // c[i][j]: coefficient of x^i y^j
-      std::size_t min_i = c.size(), min_j = std::numeric_limits<std::size_t>::max();
-      bool any = false;
-      for (std::size_t i = 0; i < c.size(); ++i)
-        for (std::size_t j = 0; j < c[i].size(); ++j)
-          if (sgn(c[i][j]) != 0) {
-            any = true;
-            min_i = std::min(min_i, i);
-            min_j = std::min(min_j, j);
-          }
-      if (!any || (min_i == 0 && min_j == 0)) {
-        add_to_group(curves[k], k);
-        continue;
-      }
-      IntegerPolynomial2 rest;
-      rest.coefficients.assign(c.size() - min_i, {});
-      bool constant = true;
-      for (std::size_t i = min_i; i < c.size(); ++i) {
-        auto& row = rest.coefficients[i - min_i];
-        if (c[i].size() > min_j) row.assign(c[i].begin() + static_cast<std::ptrdiff_t>(min_j), c[i].end());
-        for (std::size_t j = 0; j < row.size(); ++j)
-          if (sgn(row[j]) != 0 && (i > min_i || j > 0)) constant = false;
-      }
-      if (min_i > 0) add_to_group(IntegerPolynomial2{{{mpz_class(0)}, {mpz_class(1)}}}, k);   // x
-      if (min_j > 0) add_to_group(IntegerPolynomial2{{{mpz_class(0), mpz_class(1)}}}, k);     // y
-      if (!constant) add_to_group(std::move(rest), k);
-    }
+    // Curves with the same polynomial (up to a constant factor) are clipped once, together
+    // (monomial factors split off first: see clip_common.hpp).
+    const CurveGroups grouped = group_curves(curves);
+    const auto& group_polynomials = grouped.polynomials;
+    const auto& groups = grouped.members;
     for (std::size_t group_index = 0; group_index < groups.size(); ++group_index) {
       const auto& group = groups[group_index];
       std::size_t k = group.front();
@@ -273,17 +221,7 @@ class Builder {
   // Does every validity clause hold at the point of the arc above the rational x?
   bool valid_at_point(const Rational& x, const algebra::Real& y,
                       const std::vector<const std::vector<ValidityClause>*>& alternatives) {
-    for (const auto* clauses : alternatives) {
-      bool all = true;
-      for (const auto& clause : *clauses) {
-        bool holds = false;
-        for (const auto& atom : clause.atoms)
-          if (algebra::sign_at(atom, x, y) >= 0) holds = true;
-        if (!holds) all = false;
-      }
-      if (all) return true;
-    }
-    return false;
+    return clauses_hold(alternatives, x, y);
   }
 
   // (Curves with the same polynomial are clipped together: valid where any of them is.)
@@ -292,23 +230,7 @@ class Builder {
     for (const auto* clauses : alternatives)
       if (clauses->empty()) return true;
     algebra::Real y = algebra::nth_real_root(algebra::substitute_x(f, x), arc.arcno(x_cgal));
-    for (const auto* clauses : alternatives) {
-      bool all = true;
-      for (const auto& clause : *clauses) {
-        bool holds = false;
-        for (const auto& atom : clause.atoms)
-          if (algebra::sign_at(atom, x, y) >= 0) {
-            holds = true;
-            break;
-          }
-        if (!holds) {
-          all = false;
-          break;
-        }
-      }
-      if (all) return true;
-    }
-    return false;
+    return clauses_hold(alternatives, x, y);
   }
 
   // Abscissae where an atom of a clause may change sign along the curve: roots of the
@@ -327,13 +249,6 @@ class Builder {
           if (x_lo < root.first && root.first < x_hi) breaks.push_back(root.first);
       }
     return breaks;
-  }
-
-  static bool in_windows(const Rational& x, const std::vector<std::pair<Rational, Rational>>* windows) {
-    if (!windows) return true;
-    for (const auto& [lo, hi] : *windows)
-      if (lo <= x && x <= hi) return true;
-    return false;
   }
 
   void clip(const IntegerPolynomial2& f, const std::vector<const std::vector<ValidityClause>*>& alternatives,
@@ -729,18 +644,7 @@ class Builder {
 
   // Certified bounding box: the box of the ends (every edge is monotone in x and in y since
   // curves are split at their vertical and horizontal tangents before insertion).
-  void fill_box(const XCurve& arc, Edge& out) {
-    const Vertex& a = result_.vertices[out.min_vertex];
-    const Vertex& b = result_.vertices[out.max_vertex];
-    out.box[0] = std::min(a.x.lower_bound(), b.x.lower_bound());
-    out.box[2] = std::max(a.x.upper_bound(), b.x.upper_bound());
-    out.box[1] = std::min(a.y_lower_bound(), b.y_lower_bound());
-    out.box[3] = std::max(a.y_upper_bound(), b.y_upper_bound());
-    // strictly around the edge, so that exact root brackets never end on a root
-    constexpr double inf = std::numeric_limits<double>::infinity();
-    for (int k : {0, 1}) out.box[k] = std::nextafter(out.box[k], -inf);
-    for (int k : {2, 3}) out.box[k] = std::nextafter(out.box[k], inf);
-  }
+  void fill_box(const XCurve&, Edge& out) { fill_edge_box(result_.vertices, out); }
 
   // Which chart box side the edge lies on (-1: none).
   int side_of(const XCurve& arc, const Point& source, const Point& target) {

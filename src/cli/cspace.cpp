@@ -37,6 +37,7 @@ struct CSpaceCommandOptions {
   bool stats = false;
   bool spurious = false;
   bool aggregated = false;
+  bool algebraic_traits = false;
   std::vector<std::string> overrides;
   bool allow_out_of_tolerance = false;
   std::string rounding;
@@ -108,6 +109,7 @@ json statistics_json(const CSpaceStatistics& s) {
               {"touching_vertices", s.touching_vertices},
               {"touching_undecided", s.touching_undecided},
               {"circle_segment_charts", s.circle_segment_charts},
+              {"quadratic_charts", s.quadratic_charts},
               {"region_tiles", s.region_tiles},
               {"region_cells", s.region_cells},
               {"seconds",
@@ -225,6 +227,8 @@ void print_statistics(const CSpace& space) {
   if (s.circle_segment_charts > 0)
     std::printf("  circle-segment arrangements (lines and circles): %zu of %zu charts\n", s.circle_segment_charts,
                 s.charts);
+  if (s.quadratic_charts > 0)
+    std::printf("  quadratic-traits arrangements (degree <= 2 in y): %zu of %zu charts\n", s.quadratic_charts, s.charts);
   if (s.touching_edges + s.touching_vertices + s.touching_undecided > 0)
     std::printf("  zero-clearance contacts: %zu touching edges, %zu isolated touching vertices%s\n", s.touching_edges,
                 s.touching_vertices,
@@ -275,6 +279,7 @@ int run(const CSpaceCommandOptions& options) {
   CSpaceBuildOptions build;
   build.progress = isatty(2);
   build.aggregated_insertion = options.aggregated;
+  build.quadratic_traits = !options.algebraic_traits;
   build.operating_region = options.region == "operating";
   build.region_tiles = options.tiles;
   std::vector<CSpace> spaces;
@@ -401,6 +406,9 @@ void register_cspace(CLI::App& app, Action& action) {
       ->delimiter(',');
   command->add_flag("--spurious", options->spurious, "Also draw spurious edges (curves through free or blocked space)");
   command->add_flag("--aggregated", options->aggregated, "Use CGAL's aggregated insertion (for measurements)");
+  command->add_flag("--algebraic-traits", options->algebraic_traits,
+                    "Build every chart on CGAL's algebraic traits, also those whose curves have degree <= 2 in y "
+                    "(the filtered quadratic traits otherwise; for comparisons)");
   command->add_option("--region", options->region,
                       "full: the whole C-space (default); operating: only the channel containing the initial "
                       "configuration, built tile by tile (gear pairs: linear in the tooth count)")

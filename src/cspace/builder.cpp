@@ -3,6 +3,7 @@
 // overlap oracle, and charts are glued along seams into cells.
 #include "cspace/builder_impl.hpp"
 #include "arrangement/circle_segment_traits.hpp"
+#include "arrangement/quadratic_traits.hpp"
 #include "oracle/blocked_tester.hpp"
 
 #include <hipair/error.hpp>
@@ -957,11 +958,18 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     raw_options.carry_line_supports = options.polygon_front_end;
     // lines and circles (translating pairs): the circle–segment traits; else the algebraic ones
     const bool circle_segment = raw::circle_segment_applies(chart.polynomials, chart.validity);
+    // curves of degree <= 2 in y: the filtered quadratic traits (nullopt: outside its class)
+    std::optional<raw::Arrangement> quadratic;
+    if (!circle_segment && options.quadratic_traits)
+      quadratic = raw::build_quadratic_arrangement(chart.box, chart.polynomials, chart.validity, chart.windows,
+                                                   raw_options);
     chart.arrangement =
         circle_segment ? raw::build_circle_segment_arrangement(chart.box, chart.polynomials, chart.validity,
                                                                chart.windows, raw_options)
+        : quadratic    ? std::move(*quadratic)
                        : raw::build_arrangement(chart.box, chart.polynomials, chart.validity, chart.windows, raw_options);
     stats.circle_segment_charts += circle_segment ? 1 : 0;
+    stats.quadratic_charts += quadratic ? 1 : 0;
     stats.seconds_clipping += chart.arrangement.times.curves_seconds;
     stats.seconds_arrangement += chart.arrangement.times.insertion_seconds;
     stats.seconds_export += chart.arrangement.times.export_seconds;

@@ -2,6 +2,8 @@
 //   BM_GenevaCSpaceCold        the Geneva build in a fresh process (cold CGAL caches): child CPU
 //                              time of a forked single-thread build; runs first, skipped if
 //                              something already built in this process
+//   BM_CSpaceColdTraits/m/t    cold builds (forked) of Geneva, ratchet, escapement (m = 0, 1, 2) with
+//                              the algebraic (t = 0) or the quadratic traits (t = 1)
 //   BM_GenevaCSpace            the paper's Geneva pair, exact C-space (charts in parallel; real time)
 //   BM_GenevaCSpaceSingleThread  the same on one thread
 //   BM_SpurGearsCSpace/n       spur gear pair with n x n teeth on the full torus
@@ -13,8 +15,14 @@
 //   BM_GenevaCurves            stage alone: contact-curve generation (all charts, with the merged
 //                              cull's grid of each chart as the builder gives it)
 //   BM_GenevaCgalStage         stage alone: CGAL clipping, insertion and export (all charts)
+//   BM_ArrangementStage/m/t    the arrangement stage alone on the charts of model m (0 Geneva,
+//                              1 ratchet, 2 escapement wheel:anchor) that the quadratic traits
+//                              accepts: t = 0 CGAL's algebraic traits, t = 1 the filtered
+//                              quadratic traits (side by side: the ratio is the figure)
 // Peer comparisons: minkowski_peer_benchmark.cpp, overlap_peer_benchmark.cpp.
 // Counters: vertices, edges, cells, curves of the built space.
+#include "arrangement/circle_segment_traits.hpp"
+#include "arrangement/quadratic_traits.hpp"
 #include "cspace/builder_impl.hpp"
 #include "oracle/blocked_tester.hpp"
 
@@ -24,6 +32,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <map>
 #include <cstdlib>
 #include <filesystem>
 #include <random>
@@ -95,12 +104,12 @@ void build(benchmark::State& state, const Model& model, const char* first, const
 // child builds once on one thread and exits; the time is the child's CPU time (user + system,
 // from wait4), and the counters are its stage times (ms, wall clock of the child).
 // Must run before anything else builds in this process (it is registered first).
-void BM_GenevaCSpaceCold(benchmark::State& state) {
+void cold_build(benchmark::State& state, const char* file, const char* first, const char* second, bool quadratic) {
   if (built_in_process) {
     state.SkipWithError("CGAL caches are already warm: run with --benchmark_filter=Cold");
     return;
   }
-  Model model = read_model_file(example("geneva.json"));
+  Model model = read_model_file(example(file));
   StageTimes times;
   std::size_t vertices = 0;
   for (auto _ : state) {
@@ -114,7 +123,8 @@ void BM_GenevaCSpaceCold(benchmark::State& state) {
       close(channel[0]);
       CSpaceBuildOptions options;
       options.threads = 1;
-      CSpace space = CSpace::build(model, "driver", "wheel", options);
+      options.quadratic_traits = quadratic;
+      CSpace space = CSpace::build(model, first, second, options);
       const CSpaceStatistics& s = space.statistics();
       double values[9] = {s.seconds_curves, s.seconds_culling, s.seconds_clipping, s.seconds_arrangement,
                           s.seconds_export, s.seconds_labelling, s.seconds_classification, s.seconds_cells,
@@ -157,7 +167,23 @@ void BM_GenevaCSpaceCold(benchmark::State& state) {
   state.counters["ms_labelling"] = times.labelling * per;
   state.counters["ms_classify_cells"] = (times.classification + times.cells) * per;
 }
+void BM_GenevaCSpaceCold(benchmark::State& state) { cold_build(state, "geneva.json", "driver", "wheel", true); }
 BENCHMARK(BM_GenevaCSpaceCold)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
+
+// The same cold build of Geneva (0), the ratchet (1) and the escapement's wheel and anchor (2)
+// with CGAL's algebraic traits (t = 0) and with the filtered quadratic traits (t = 1), side by
+// side (CPU time of the child; counters: its stage times).
+void BM_CSpaceColdTraits(benchmark::State& state) {
+  static const char* const cases[3][3] = {
+      {"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"}, {"escapement.json", "escape-wheel", "anchor"}};
+  const auto* c = cases[state.range(0)];
+  cold_build(state, c[0], c[1], c[2], state.range(1) == 1);
+}
+BENCHMARK(BM_CSpaceColdTraits)
+    ->ArgsProduct({{0, 1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime()
+    ->Iterations(3);
 
 void BM_GenevaCSpace(benchmark::State& state) {
   Model model = read_model_file(example("geneva.json"));
@@ -255,6 +281,54 @@ void BM_GenevaCgalStage(benchmark::State& state) {
   state.counters["vertices"] = static_cast<double>(vertices);
 }
 BENCHMARK(BM_GenevaCgalStage)->Unit(benchmark::kMillisecond);
+
+struct StageCase {
+  const char* file;
+  const char* first;
+  const char* second;
+};
+const StageCase stage_cases[] = {
+    {"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"}, {"escapement.json", "escape-wheel", "anchor"}};
+
+void BM_ArrangementStage(benchmark::State& state) {
+  built_in_process = true;
+  const auto which = static_cast<std::size_t>(state.range(0));
+  const bool quadratic = state.range(1) == 1;
+  static std::map<std::size_t, CSpace> spaces;
+  if (!spaces.count(which)) {
+    CSpaceBuildOptions options;
+    options.quadratic_traits = false;
+    const StageCase& c = stage_cases[which];
+    spaces.emplace(which, CSpace::build(read_model_file(example(c.file)), c.first, c.second, options));
+  }
+  std::vector<const cspace::ChartData*> charts;   // those the quadratic traits accepts
+  for (const auto& chart : cspace::impl_of(spaces.at(which)).charts)
+    if (!cspace::raw::circle_segment_applies(chart.polynomials, chart.validity) &&
+        cspace::raw::build_quadratic_arrangement(chart.box, chart.polynomials, chart.validity, chart.windows, {}))
+      charts.push_back(&chart);
+  double clipping = 0, insertion = 0, export_ = 0;
+  std::size_t vertices = 0;
+  for (auto _ : state) {
+    vertices = 0;
+    for (const auto* chart : charts) {
+      auto arrangement =
+          quadratic ? *cspace::raw::build_quadratic_arrangement(chart->box, chart->polynomials, chart->validity,
+                                                                chart->windows, {})
+                    : cspace::raw::build_arrangement(chart->box, chart->polynomials, chart->validity, chart->windows, {});
+      clipping += arrangement.times.curves_seconds;
+      insertion += arrangement.times.insertion_seconds;
+      export_ += arrangement.times.export_seconds;
+      vertices += arrangement.vertices.size();
+    }
+  }
+  const double per = 1e3 / static_cast<double>(state.iterations());
+  state.counters["charts"] = static_cast<double>(charts.size());
+  state.counters["ms_clipping"] = clipping * per;
+  state.counters["ms_arrangement"] = insertion * per;
+  state.counters["ms_export"] = export_ * per;
+  state.counters["vertices"] = static_cast<double>(vertices);
+}
+BENCHMARK(BM_ArrangementStage)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 void BM_GenevaLocate(benchmark::State& state) {
   built_in_process = true;

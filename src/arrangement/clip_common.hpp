@@ -1,0 +1,41 @@
+// CGAL-free pieces shared by the arrangement stages of the algebraic and the quadratic
+// traits: grouping a chart's curves, validity and windows along a curve, edge boxes.
+#pragma once
+
+#include "algebra/exact_real.hpp"
+#include "arrangement/arrangement.hpp"
+#include "curves/contact_curves.hpp"
+
+#include <utility>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace hipair::cspace::raw {
+
+/// Curves with the same polynomial up to a constant factor form one group (clipped once,
+/// valid where any member is). Monomial factors x^i y^j are split off first: x = 0 and y = 0
+/// are lines shared by many curves (coincident lock arcs of a zero-clearance fit give
+/// y * g(x, y)), and one line is handled far more robustly than the same line hidden in
+/// several reducible curves; the zero set is the same.
+struct CurveGroups {
+  std::vector<IntegerPolynomial2> polynomials;   ///< primitive, first non-zero coefficient positive
+  std::vector<std::vector<std::size_t>> members; ///< indices of the input curves, per group
+};
+
+CurveGroups group_curves(const std::vector<IntegerPolynomial2>& curves);
+
+/// Does some alternative (the clauses of one curve of a group) hold at (x, y): in each of its
+/// clauses some atom >= 0?
+bool clauses_hold(const std::vector<const std::vector<ValidityClause>*>& alternatives, const Rational& x,
+                  const algebra::Real& y);
+
+/// Is x in one of the windows (none: no restriction)?
+bool in_windows(const Rational& x, const std::vector<std::pair<Rational, Rational>>* windows);
+
+/// The edge's certified bounding box: the box of its ends (edges are monotone in x and y),
+/// widened by one ulp so that exact root brackets never end on a root.
+void fill_edge_box(const std::vector<Vertex>& vertices, Edge& out);
+
+}  // namespace hipair::cspace::raw

@@ -1,0 +1,1320 @@
+// The filtered quadratic traits of the C-space builder (see quadratic_traits.hpp): CGAL's
+// Arrangement_2 on arcs of curves of degree <= 2 in y, with our own exact univariate algebra.
+#include "arrangement/quadratic_traits.hpp"
+
+#include "arrangement/clip_common.hpp"
+
+#include <hipair/error.hpp>
+
+#include <CGAL/Arr_tags.h>
+#include <CGAL/Arrangement_2.h>
+#include <CGAL/enum.h>
+
+#include <boost/variant.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <map>
+#include <tuple>
+#include <memory>
+#include <unordered_map>
+
+namespace hipair::cspace::raw {
+namespace {
+
+using algebra::Interval;
+using algebra::Polynomial;
+using algebra::Real;
+using Clock = std::chrono::steady_clock;
+
+/// Thrown where the input leaves the class the traits decides; the caller falls back.
+struct NotApplicable {
+  const char* why = "";
+};
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// ------------------------------------------------------------------ univariate arithmetic
+
+Polynomial add(const Polynomial& a, const Polynomial& b) {
+  Polynomial r(std::max(a.size(), b.size()));
+  for (std::size_t i = 0; i < a.size(); ++i) r[i] += a[i];
+  for (std::size_t i = 0; i < b.size(); ++i) r[i] += b[i];
+  algebra::trim(r);
+  return r;
+}
+
+Polynomial scale(const Polynomial& a, long k) {
+  Polynomial r(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) r[i] = a[i] * k;
+  algebra::trim(r);
+  return r;
+}
+
+Polynomial sub(const Polynomial& a, const Polynomial& b) { return add(a, scale(b, -1)); }
+
+Polynomial mul(const Polynomial& a, const Polynomial& b) {
+  if (a.empty() || b.empty()) return {};
+  Polynomial r(a.size() + b.size() - 1);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) r[i + j] += a[i] * b[j];
+  algebra::trim(r);
+  return r;
+}
+
+/// p / d when d divides p in Z[x]. \throws NotApplicable otherwise (never for a content).
+Polynomial divide_exact(Polynomial p, const Polynomial& d) {
+  const int n = algebra::degree(d);
+  if (n < 0) throw NotApplicable{};
+  if (algebra::degree(p) < n) {
+    if (!p.empty()) throw NotApplicable{};
+    return {};
+  }
+  Polynomial q(p.size() - static_cast<std::size_t>(n));
+  for (int k = static_cast<int>(p.size()) - 1; k >= n; --k) {
+    mpz_class& top = p[static_cast<std::size_t>(k)];
+    if (sgn(top) == 0) continue;
+    if (!mpz_divisible_p(top.get_mpz_t(), d.back().get_mpz_t())) throw NotApplicable{};
+    mpz_class factor;
+    mpz_divexact(factor.get_mpz_t(), top.get_mpz_t(), d.back().get_mpz_t());
+    q[static_cast<std::size_t>(k - n)] = factor;
+    for (int i = 0; i <= n; ++i) p[static_cast<std::size_t>(k - n + i)] -= factor * d[static_cast<std::size_t>(i)];
+  }
+  algebra::trim(p);
+  if (!p.empty()) throw NotApplicable{};
+  algebra::trim(q);
+  return q;
+}
+
+/// Columns of f by powers of y: f = sum_j column[j](x) y^j, no trailing zero column.
+std::vector<Polynomial> columns(const IntegerPolynomial2& f) {
+  std::vector<Polynomial> out;
+  for (std::size_t i = 0; i < f.coefficients.size(); ++i)
+    for (std::size_t j = 0; j < f.coefficients[i].size(); ++j) {
+      if (sgn(f.coefficients[i][j]) == 0) continue;
+      if (out.size() <= j) out.resize(j + 1);
+      if (out[j].size() <= i) out[j].resize(i + 1);
+      out[j][i] = f.coefficients[i][j];
+    }
+  for (auto& c : out) algebra::trim(c);
+  while (!out.empty() && out.back().empty()) out.pop_back();
+  return out;
+}
+
+IntegerPolynomial2 from_columns(const std::vector<Polynomial>& cols) {
+  IntegerPolynomial2 f;
+  std::size_t rows = 0;
+  for (const auto& c : cols) rows = std::max(rows, c.size());
+  f.coefficients.assign(rows, std::vector<mpz_class>(cols.size()));
+  for (std::size_t j = 0; j < cols.size(); ++j)
+    for (std::size_t i = 0; i < cols[j].size(); ++i) f.coefficients[i][j] = cols[j][i];
+  return f;
+}
+
+Polynomial column(const std::vector<Polynomial>& cols, std::size_t j) { return j < cols.size() ? cols[j] : Polynomial{}; }
+
+/// Res_y(f, g) for f, g of degree <= 2 in y (exact degrees; closed forms of the Sylvester
+/// determinants, up to sign). Both of degree 0 is not asked for.
+Polynomial resultant_y(const std::vector<Polynomial>& f, const std::vector<Polynomial>& g) {
+  if (f.size() < g.size()) return resultant_y(g, f);
+  const std::size_t m = f.size() - 1, n = g.size() - 1;   // degrees, m >= n
+  if (n == 0) {
+    Polynomial r = g[0];
+    for (std::size_t k = 1; k < m; ++k) r = mul(r, g[0]);
+    return r;
+  }
+  if (m == 1) return sub(mul(f[1], g[0]), mul(f[0], g[1]));   // b f - c e
+  const Polynomial &a = f[2], &b = f[1], &c = f[0];
+  if (n == 1) {   // a f^2 - b e f + c e^2
+    const Polynomial &e = g[1], &ff = g[0];
+    return add(sub(mul(a, mul(ff, ff)), mul(b, mul(e, ff))), mul(c, mul(e, e)));
+  }
+  const Polynomial &d = g[2], &e = g[1], &ff = g[0];
+  Polynomial af_cd = sub(mul(a, ff), mul(c, d));
+  return sub(mul(af_cd, af_cd), mul(sub(mul(a, e), mul(b, d)), sub(mul(b, ff), mul(c, e))));
+}
+
+/// Pseudo-remainder of g by f in y (deg_y f >= 1): degree < deg_y f, same common roots
+/// where f's leading coefficient does not vanish.
+std::vector<Polynomial> pseudo_remainder(std::vector<Polynomial> g, const std::vector<Polynomial>& f) {
+  const std::size_t m = f.size() - 1;
+  while (g.size() > m) {
+    const std::size_t shift = g.size() - 1 - m;
+    const Polynomial lead = g.back();
+    for (auto& c : g) c = mul(c, f.back());
+    for (std::size_t j = 0; j <= m; ++j) g[j + shift] = sub(g[j + shift], mul(lead, f[j]));
+    while (!g.empty() && g.back().empty()) g.pop_back();
+  }
+  return g;
+}
+
+// ------------------------------------------------------------------ certified intervals
+
+Interval ineg(Interval a) { return {-a.hi, -a.lo}; }
+
+Interval idiv(Interval a, Interval b) {   // b must exclude 0
+  const double inf = std::numeric_limits<double>::infinity();
+  if (b.contains_zero() || !(b.lo == b.lo) || !(b.hi == b.hi)) return {-inf, inf};
+  double q[4] = {a.lo / b.lo, a.lo / b.hi, a.hi / b.lo, a.hi / b.hi};
+  double lo = q[0], hi = q[0];
+  for (double v : q) {
+    if (!(v == v)) return {-inf, inf};
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  return {algebra::interval_detail::down(lo), algebra::interval_detail::up(hi)};
+}
+
+Interval isqrt(Interval a) {   // of the non-negative part (the exact value is known >= 0)
+  double lo = a.lo <= 0 ? 0 : algebra::interval_detail::down(std::sqrt(a.lo));
+  double hi = a.hi <= 0 ? 0 : algebra::interval_detail::up(std::sqrt(a.hi));
+  return {std::max(0.0, lo), hi};
+}
+
+std::vector<Interval> enclose(const Polynomial& p) {
+  std::vector<Interval> out;
+  for (const auto& c : p) out.push_back(algebra::enclose(c));
+  return out;
+}
+
+Interval evaluate(const std::vector<Interval>& c, Interval x) {
+  Interval v{0, 0};
+  for (auto it = c.rbegin(); it != c.rend(); ++it) v = v * x + *it;
+  return v;
+}
+
+Interval enclose(const Real& x) { return {x.lower_bound(), x.upper_bound()}; }
+
+bool disjoint(Interval a, Interval b) { return a.hi < b.lo || b.hi < a.lo; }
+
+// ------------------------------------------------------------------ supports and points
+
+/// One polynomial of the arrangement. `part` (= full without its factors in x alone) is
+/// a y^2 + b y + c (degree 2) or b y + c (degree 1); degree 0: vertical lines only.
+struct Support {
+  IntegerPolynomial2 full;
+  IntegerPolynomial2 part;
+  std::vector<Polynomial> part_columns;
+  int degree = 0;
+  Polynomial a, b, disc, two_a, neg_b, neg_c, content;
+  std::vector<Interval> i_a, i_b, i_disc, i_two_a, i_neg_b, i_neg_c;
+  std::vector<Real> events;   ///< inside the box's open x-range, ascending
+};
+
+/// y = (P + s sqrt(D)) / Q of a support at a given x: kind 0 a root (-b + s sqrt(disc)) / 2a
+/// (a != 0, disc > 0), kind 1 the double root -b / 2a (disc = 0), kind 2 the root -c / b of
+/// a linear fibre (degree 1, or a = 0).
+struct YExpr {
+  int support = -1;
+  int kind = 2;
+  int s = 0;
+  bool operator==(const YExpr& o) const { return support == o.support && kind == o.kind && s == o.s; }
+  bool operator!=(const YExpr& o) const { return !(*this == o); }
+};
+
+/// An x-coordinate, shared by every point and root list with that x (one entry per number:
+/// equal abscissae compare by address).
+struct XEntry {
+  Real x;
+  Interval xi;
+  mutable Interval fine;   ///< at 2^-100, computed when a filter at xi fails
+  mutable bool has_fine = false;
+};
+
+struct PointRep {
+  std::shared_ptr<const XEntry> entry;
+  YExpr y;
+  Interval yi;
+  const Interval& xi() const { return entry->xi; }
+};
+
+struct Point {
+  std::shared_ptr<const PointRep> rep;
+  const Real& x() const { return rep->entry->x; }
+};
+
+struct XCurve {
+  Point left, right;
+  int support = -1;
+  bool vertical = false;
+  YExpr interior;   ///< non-vertical: the arc strictly between its ends
+};
+
+/// CGAL's insertion functions are also instantiated for general curves: a curve here is one
+/// x-monotone arc (the builder does its own x-monotone split and inserts arcs only).
+struct Curve {
+  XCurve arc;
+};
+
+class QuadraticTraits;
+
+}  // namespace
+}  // namespace hipair::cspace::raw
+
+namespace hipair::cspace::raw {
+namespace {
+
+class QuadraticTraits {
+ public:
+  using Point_2 = Point;
+  using X_monotone_curve_2 = XCurve;
+  using Multiplicity = unsigned int;
+  using Curve_2 = Curve;
+  using Has_left_category = CGAL::Tag_true;
+  using Has_merge_category = CGAL::Tag_false;
+  using Has_do_intersect_category = CGAL::Tag_false;
+  using Left_side_category = CGAL::Arr_oblivious_side_tag;
+  using Bottom_side_category = CGAL::Arr_oblivious_side_tag;
+  using Top_side_category = CGAL::Arr_oblivious_side_tag;
+  using Right_side_category = CGAL::Arr_oblivious_side_tag;
+
+  QuadraticTraits(const Box& box) : st_(std::make_shared<State>()) { st_->box = box; }
+
+  // ---------------------------------------------------------------- state
+
+  int add_support(const IntegerPolynomial2& full) {
+    Support s;
+    s.full = full;
+    std::vector<Polynomial> cols = columns(full);
+    if (cols.empty()) throw NotApplicable{"zero curve"};
+    Polynomial content;
+    for (const auto& c : cols) content = content.empty() ? algebra::primitive_part(c) : algebra::gcd(content, c);
+    if (algebra::degree(content) >= 1)
+      for (auto& c : cols) c = divide_exact(c, content);
+    else
+      content = {mpz_class(1)};
+    s.content = content;
+    s.degree = static_cast<int>(cols.size()) - 1;
+    s.part_columns = cols;
+    s.part = from_columns(cols);
+    if (s.degree > 2) throw NotApplicable{"degree in y above 2"};
+    if (s.degree == 2) {
+      s.a = cols[2];
+      s.b = cols[1];
+      s.disc = sub(mul(cols[1], cols[1]), scale(mul(cols[2], cols[0]), 4));
+      if (s.disc.empty()) throw NotApplicable{"zero discriminant"};
+      s.two_a = scale(cols[2], 2);
+      s.neg_b = scale(cols[1], -1);
+      s.neg_c = scale(cols[0], -1);
+    } else if (s.degree == 1) {
+      s.b = cols[1];
+      s.neg_c = scale(column(cols, 0), -1);
+    }
+    s.i_a = enclose(s.a);
+    s.i_b = enclose(s.b);
+    s.i_disc = enclose(s.disc);
+    s.i_two_a = enclose(s.two_a);
+    s.i_neg_b = enclose(s.neg_b);
+    s.i_neg_c = enclose(s.neg_c);
+    // events: x-only factors, leading coefficient and discriminant (the x where CGAL's curve
+    // analysis has its status lines with events)
+    std::vector<Real> events;
+    auto add_roots = [&](const Polynomial& p) {
+      if (algebra::degree(p) < 1) return;
+      for (auto& r : algebra::real_roots(p, st_->box.x_lo, st_->box.x_hi))
+        if (r.compare(st_->box.x_lo) > 0 && r.compare(st_->box.x_hi) < 0) events.push_back(std::move(r));
+    };
+    add_roots(content);
+    if (s.degree == 2) {
+      add_roots(s.a);
+      add_roots(s.disc);
+    } else if (s.degree == 1) {
+      add_roots(s.b);
+    }
+    s.events = sorted_unique(std::move(events));
+    st_->supports.push_back(std::move(s));
+    return static_cast<int>(st_->supports.size()) - 1;
+  }
+
+  const Support& support(int i) const { return st_->supports[static_cast<std::size_t>(i)]; }
+
+  std::vector<Real> sorted_unique(std::vector<Real> xs) const {
+    for (auto& x : xs) refine(x);
+    std::sort(xs.begin(), xs.end(), [&](const Real& p, const Real& q) { return compare_x(p, q) < 0; });
+    std::vector<Real> out;
+    for (auto& x : xs)
+      if (out.empty() || compare_x(out.back(), x) != 0) out.push_back(std::move(x));
+    return out;
+  }
+
+  static void refine(Real& x) {
+    if (!x.exact) algebra::refine_dyadically(x, Rational(1, mpz_class(1) << 52));
+  }
+
+  // ---------------------------------------------------------------- numbers
+
+  static int compare_x(const Real& a, const Real& b) {
+    if (&a == &b) return 0;
+    Interval ia = enclose(a), ib = enclose(b);
+    if (ia.hi < ib.lo) return -1;
+    if (ib.hi < ia.lo) return 1;
+    return algebra::compare(a, b);
+  }
+
+  const Polynomial& P(const YExpr& e) const { return e.kind == 2 ? support(e.support).neg_c : support(e.support).neg_b; }
+  const Polynomial& Q(const YExpr& e) const { return e.kind == 2 ? support(e.support).b : support(e.support).two_a; }
+
+  Interval y_interval(const YExpr& e, Interval x) const {
+    const Support& s = support(e.support);
+    if (e.kind == 2) return idiv(evaluate(s.i_neg_c, x), evaluate(s.i_b, x));
+    Interval p = evaluate(s.i_neg_b, x);
+    if (e.kind == 0) {
+      Interval r = isqrt(evaluate(s.i_disc, x));
+      p = p + (e.s > 0 ? r : ineg(r));
+    }
+    return idiv(p, evaluate(s.i_two_a, x));
+  }
+
+  static int sign(const Polynomial& p, const Real& x) { return p.empty() ? 0 : algebra::sign_at(p, x); }
+
+  // sign of A + B sqrt(D) at x (D(x) >= 0)
+  static int sign2(const Real& x, const Polynomial& A, const Polynomial& B, const Polynomial& D) {
+    int sa = sign(A, x);
+    int sb = B.empty() ? 0 : sign(B, x);
+    if (sb != 0 && sign(D, x) == 0) sb = 0;
+    if (sb == 0) return sa;
+    if (sa == 0 || sa == sb) return sb;
+    return sa * sign(sub(mul(A, A), mul(mul(B, B), D)), x);
+  }
+
+  // sign of A + B sqrt(D1) + C sqrt(D2) at x
+  static int sign3(const Real& x, const Polynomial& A, const Polynomial& B, const Polynomial& D1, const Polynomial& C,
+                   const Polynomial& D2) {
+    int sc = C.empty() ? 0 : sign(C, x);
+    if (sc != 0 && sign(D2, x) == 0) sc = 0;
+    int sx = sign2(x, A, B, D1);
+    if (sc == 0) return sx;
+    if (sx == 0 || sx == sc) return sc;
+    Polynomial A2 = sub(add(mul(A, A), mul(mul(B, B), D1)), mul(mul(C, C), D2));
+    return sx * sign2(x, A2, scale(mul(A, B), 2), D1);
+  }
+
+  /// sign(y1 - y2) at x, exact (filtered by the intervals y1i, y2i, then at a finer x;
+  /// exact results cached per canonical x).
+  int compare_y(const Real& x, const YExpr& e1, const YExpr& e2, Interval y1i, Interval y2i) const {
+    if (e1 == e2) return 0;
+    if (y1i.hi < y2i.lo) return -1;
+    if (y2i.hi < y1i.lo) return 1;
+    auto found = st_->entries.find(&x);
+    const XEntry* entry = found == st_->entries.end() ? nullptr : found->second.get();
+    if (!x.exact) {   // a tighter filter at a finer x
+      Interval xi;
+      if (entry && entry->has_fine) {
+        xi = entry->fine;
+      } else {
+        Real fine = x;
+        algebra::refine_dyadically(fine, Rational(1, mpz_class(1) << 100));
+        xi = enclose(fine);
+        if (entry) {
+          entry->fine = xi;
+          entry->has_fine = true;
+        }
+      }
+      Interval a = y_interval(e1, xi), b = y_interval(e2, xi);
+      if (a.hi < b.lo) return -1;
+      if (b.hi < a.lo) return 1;
+    }
+    auto key = std::make_tuple(static_cast<const void*>(entry), e1.support, e1.kind, e1.s, e2.support, e2.kind, e2.s);
+    if (entry) {
+      auto it = st_->exact_cache.find(key);
+      if (it != st_->exact_cache.end()) return it->second;
+    }
+    int result = exact_compare_y(x, e1, e2);
+    if (entry) {
+      st_->exact_cache.emplace(key, result);
+      st_->exact_cache.emplace(std::make_tuple(static_cast<const void*>(entry), e2.support, e2.kind, e2.s, e1.support,
+                                           e1.kind, e1.s),
+                           -result);
+    }
+    return result;
+  }
+
+  int exact_compare_y(const Real& x, const YExpr& e1, const YExpr& e2) const {
+    ++st_->exact_comparisons;
+    const Polynomial &P1 = P(e1), &Q1 = Q(e1), &P2 = P(e2), &Q2 = Q(e2);
+    const Polynomial& D1 = support(e1.support).disc;
+    const Polynomial& D2 = support(e2.support).disc;
+    int q1 = sign(Q1, x), q2 = sign(Q2, x);
+    if (q1 == 0 || q2 == 0) throw NotApplicable{"zero denominator"};
+    Polynomial A = sub(mul(P1, Q2), mul(P2, Q1));
+    Polynomial B = e1.kind == 0 ? scale(Q2, e1.s) : Polynomial{};
+    Polynomial C = e2.kind == 0 ? scale(Q1, -e2.s) : Polynomial{};
+    if (e1.kind == 0 && e2.kind == 0 && e1.support == e2.support) {
+      B = add(B, C);
+      C.clear();
+    }
+    return q1 * q2 * sign3(x, A, B, D1, C, D2);
+  }
+
+  int compare_y(const Real& x, Interval xi, const YExpr& e1, const YExpr& e2) const {
+    return compare_y(x, e1, e2, y_interval(e1, xi), y_interval(e2, xi));
+  }
+
+  /// The one entry of the number x.
+  std::shared_ptr<const XEntry> canonical(const Real& x) const {
+    auto known = st_->entries.find(&x);
+    if (known != st_->entries.end()) return known->second;
+    Real refined = x;
+    refine(refined);
+    Interval xi = enclose(refined);
+    for (auto it = st_->by_lower.lower_bound(xi.lo - (1e-14 * (1 + std::fabs(xi.lo)))); it != st_->by_lower.end(); ++it) {
+      if (it->first > xi.hi) break;
+      if (!disjoint(it->second->xi, xi) && algebra::compare(it->second->x, refined) == 0) return it->second;
+    }
+    auto entry = std::make_shared<XEntry>();
+    entry->x = std::move(refined);
+    entry->xi = xi;
+    st_->entries.emplace(&entry->x, entry);
+    st_->by_lower.emplace(xi.lo, entry);
+    return entry;
+  }
+
+  Point make_point(const Real& x, const YExpr& y) const {
+    auto rep = std::make_shared<PointRep>();
+    rep->entry = canonical(x);
+    rep->y = y;
+    rep->yi = y_interval(y, rep->entry->xi);
+    return Point{std::move(rep)};
+  }
+
+  int compare_x(const Point& p, const Point& q) const {
+    if (p.rep == q.rep || p.rep->entry == q.rep->entry) return 0;
+    if (p.rep->xi().hi < q.rep->xi().lo) return -1;
+    if (q.rep->xi().hi < p.rep->xi().lo) return 1;
+    return algebra::compare(p.x(), q.x());
+  }
+
+  int compare_y_same_x(const Point& p, const Point& q) const {
+    if (p.rep == q.rep) return 0;
+    return compare_y(p.x(), p.rep->y, q.rep->y, p.rep->yi, q.rep->yi);
+  }
+
+  int compare_xy(const Point& p, const Point& q) const {
+    if (p.rep == q.rep) return 0;
+    int c = compare_x(p, q);
+    return c != 0 ? c : compare_y_same_x(p, q);
+  }
+
+  /// The point of the non-vertical curve c above x (x within c's closed x-range).
+  Point point_on(const XCurve& c, const Real& x) const {
+    if (compare_x(x, c.left.x()) == 0) return c.left;
+    if (compare_x(x, c.right.x()) == 0) return c.right;
+    return make_point(x, c.interior);
+  }
+
+  /// y of the non-vertical c vs the point p (p.x within c's x-range).
+  int compare_point_curve(const Point& p, const XCurve& c) const {
+    if (compare_x(p.x(), c.left.x()) == 0) return compare_y_same_x(p, c.left);
+    if (compare_x(p.x(), c.right.x()) == 0) return compare_y_same_x(p, c.right);
+    return compare_y(p.x(), p.rep->y, c.interior, p.rep->yi, y_interval(c.interior, p.rep->xi()));
+  }
+
+  /// Roots of Res_y of two distinct supports in the closed box x-range, ascending.
+  const std::vector<std::shared_ptr<const XEntry>>& root_entries(int i, int j) const {
+    auto key = std::make_pair(std::min(i, j), std::max(i, j));
+    auto it = st_->roots.find(key);
+    if (it != st_->roots.end()) return it->second;
+    Polynomial r = resultant_y(support(i).part_columns, support(j).part_columns);
+    if (r.empty()) throw NotApplicable{"common component"};   // a common component of two supports
+    std::vector<Real> xs;
+    if (algebra::degree(r) >= 1) xs = algebra::real_roots(r, st_->box.x_lo, st_->box.x_hi);
+    std::vector<std::shared_ptr<const XEntry>> out;
+    for (const Real& x : sorted_unique(std::move(xs))) out.push_back(canonical(x));
+    return st_->roots.emplace(key, std::move(out)).first->second;
+  }
+
+  /// A rational x strictly right (toward = +1) or left (-1) of p.x on both curves, before
+  /// their next common point: the order of the curves there is their order next to p.
+  int compare_beside(const XCurve& c1, const XCurve& c2, const Point& p, int toward) const {
+    if (c1.vertical || c2.vertical) {
+      if (c1.vertical && c2.vertical) return 0;
+      // a vertical curve through p counts as above the other one to the right of p unless p
+      // is its upper end, and below it to the left unless p is its lower end (as the slopes)
+      const XCurve& v = c1.vertical ? c1 : c2;
+      int above = toward > 0 ? (compare_xy(v.right, p) == 0 ? -1 : 1) : (compare_xy(v.left, p) == 0 ? 1 : -1);
+      return c1.vertical ? above : -above;
+    }
+    if (c1.support == c2.support && c1.interior == c2.interior) return 0;
+    const Point& e1 = toward > 0 ? c1.right : c1.left;
+    const Point& e2 = toward > 0 ? c2.right : c2.left;
+    const Point& end = (compare_x(e1, e2) <= 0) == (toward > 0) ? e1 : e2;
+    const Real* bound = &end.x();
+    if (c1.support != c2.support) {
+      const auto& xs = root_entries(c1.support, c2.support);
+      if (toward > 0) {
+        for (const auto& r : xs)
+          if (compare_x(r->x, p.x()) > 0) {
+            if (compare_x(r->x, *bound) < 0) bound = &r->x;
+            break;
+          }
+      } else {
+        for (auto it = xs.rbegin(); it != xs.rend(); ++it)
+          if (compare_x((*it)->x, p.x()) < 0) {
+            if (compare_x((*it)->x, *bound) > 0) bound = &(*it)->x;
+            break;
+          }
+      }
+    }
+    Rational m = toward > 0 ? algebra::rational_between(p.x(), *bound) : algebra::rational_between(*bound, p.x());
+    Real x = Real::from_rational(m);
+    return compare_y(x, enclose(x), c1.interior, c2.interior);
+  }
+
+  using Intersection = boost::variant<std::pair<Point, Multiplicity>, XCurve>;
+
+  void intersect(const XCurve& c1, const XCurve& c2, std::vector<Intersection>& out) const {
+    auto point = [&](const Point& p) { out.emplace_back(std::make_pair(p, Multiplicity(0))); };
+    if (c1.vertical && c2.vertical) {
+      if (compare_x(c1.left, c2.left) != 0) return;
+      const Point& lo = compare_y_same_x(c1.left, c2.left) >= 0 ? c1.left : c2.left;
+      const Point& hi = compare_y_same_x(c1.right, c2.right) <= 0 ? c1.right : c2.right;
+      int c = compare_y_same_x(lo, hi);
+      if (c < 0) out.emplace_back(XCurve{lo, hi, c1.support, true, {}});
+      else if (c == 0) point(lo);
+      return;
+    }
+    if (c1.vertical || c2.vertical) {
+      const XCurve& v = c1.vertical ? c1 : c2;
+      const XCurve& c = c1.vertical ? c2 : c1;
+      if (compare_x(v.left, c.left) < 0 || compare_x(v.left, c.right) > 0) return;
+      Point p = point_on(c, v.left.x());
+      int below = compare_y_same_x(p, v.left);
+      if (below < 0) return;
+      if (below == 0) return point(v.left);
+      int above = compare_y_same_x(p, v.right);
+      if (above > 0) return;
+      return point(above == 0 ? v.right : p);
+    }
+    const Point& lo = compare_x(c1.left, c2.left) >= 0 ? c1.left : c2.left;
+    const Point& hi = compare_x(c1.right, c2.right) <= 0 ? c1.right : c2.right;
+    int range = compare_x(lo, hi);
+    if (range > 0) return;
+    if (c1.support == c2.support) {
+      if (range < 0 && c1.interior == c2.interior) {
+        out.emplace_back(XCurve{lo, hi, c1.support, false, c1.interior});
+        return;
+      }
+      // distinct branches of one support meet only at events: ends of both arcs
+      for (const Point* e1 : {&c1.left, &c1.right})
+        for (const Point* e2 : {&c2.left, &c2.right})
+          if (compare_xy(*e1, *e2) == 0) point(*e1);
+      return;
+    }
+    for (const auto& entry : root_entries(c1.support, c2.support)) {
+      const Real& x = entry->x;
+      if (compare_x(x, lo.x()) < 0) continue;
+      if (compare_x(x, hi.x()) > 0) break;
+      Point p1 = point_on(c1, x), p2 = point_on(c2, x);
+      if (compare_y_same_x(p1, p2) != 0) continue;
+      bool p1_end = p1.rep == c1.left.rep || p1.rep == c1.right.rep;
+      point(p1_end ? p1 : p2);
+    }
+  }
+
+  // ---------------------------------------------------------------- CGAL functors
+
+  class Compare_x_2 {
+   public:
+    explicit Compare_x_2(const QuadraticTraits* t) : t_(t) {}
+    CGAL::Comparison_result operator()(const Point& p, const Point& q) const {
+      return CGAL::Comparison_result(t_->compare_x(p, q));
+    }
+   private:
+    const QuadraticTraits* t_;
+  };
+  Compare_x_2 compare_x_2_object() const { return Compare_x_2(this); }
+
+  class Compare_xy_2 {
+   public:
+    explicit Compare_xy_2(const QuadraticTraits* t) : t_(t) {}
+    CGAL::Comparison_result operator()(const Point& p, const Point& q) const {
+      return CGAL::Comparison_result(t_->compare_xy(p, q));
+    }
+   private:
+    const QuadraticTraits* t_;
+  };
+  Compare_xy_2 compare_xy_2_object() const { return Compare_xy_2(this); }
+
+  class Construct_min_vertex_2 {
+   public:
+    const Point& operator()(const XCurve& c) const { return c.left; }
+  };
+  Construct_min_vertex_2 construct_min_vertex_2_object() const { return {}; }
+
+  class Construct_max_vertex_2 {
+   public:
+    const Point& operator()(const XCurve& c) const { return c.right; }
+  };
+  Construct_max_vertex_2 construct_max_vertex_2_object() const { return {}; }
+
+  class Is_vertical_2 {
+   public:
+    bool operator()(const XCurve& c) const { return c.vertical; }
+  };
+  Is_vertical_2 is_vertical_2_object() const { return {}; }
+
+  class Compare_y_at_x_2 {
+   public:
+    explicit Compare_y_at_x_2(const QuadraticTraits* t) : t_(t) {}
+    CGAL::Comparison_result operator()(const Point& p, const XCurve& c) const {
+      if (c.vertical) {
+        if (t_->compare_y_same_x(p, c.left) < 0) return CGAL::SMALLER;
+        if (t_->compare_y_same_x(p, c.right) > 0) return CGAL::LARGER;
+        return CGAL::EQUAL;
+      }
+      return CGAL::Comparison_result(t_->compare_point_curve(p, c));
+    }
+   private:
+    const QuadraticTraits* t_;
+  };
+  Compare_y_at_x_2 compare_y_at_x_2_object() const { return Compare_y_at_x_2(this); }
+
+  class Compare_y_at_x_right_2 {
+   public:
+    explicit Compare_y_at_x_right_2(const QuadraticTraits* t) : t_(t) {}
+    CGAL::Comparison_result operator()(const XCurve& c1, const XCurve& c2, const Point& p) const {
+      return CGAL::Comparison_result(t_->compare_beside(c1, c2, p, 1));
+    }
+   private:
+    const QuadraticTraits* t_;
+  };
+  Compare_y_at_x_right_2 compare_y_at_x_right_2_object() const { return Compare_y_at_x_right_2(this); }
+
+  class Compare_y_at_x_left_2 {
+   public:
+    explicit Compare_y_at_x_left_2(const QuadraticTraits* t) : t_(t) {}
+    CGAL::Comparison_result operator()(const XCurve& c1, const XCurve& c2, const Point& p) const {
+      return CGAL::Comparison_result(t_->compare_beside(c1, c2, p, -1));
+    }
+   private:
+    const QuadraticTraits* t_;
+  };
+  Compare_y_at_x_left_2 compare_y_at_x_left_2_object() const { return Compare_y_at_x_left_2(this); }
+
+  class Equal_2 {
+   public:
+    explicit Equal_2(const QuadraticTraits* t) : t_(t) {}
+    bool operator()(const Point& p, const Point& q) const { return t_->compare_xy(p, q) == 0; }
+    bool operator()(const XCurve& c1, const XCurve& c2) const {
+      if (c1.vertical != c2.vertical) return false;
+      if (!c1.vertical && (c1.support != c2.support || c1.interior != c2.interior)) return false;
+      return t_->compare_xy(c1.left, c2.left) == 0 && t_->compare_xy(c1.right, c2.right) == 0;
+    }
+   private:
+    const QuadraticTraits* t_;
+  };
+  Equal_2 equal_2_object() const { return Equal_2(this); }
+
+  class Split_2 {
+   public:
+    void operator()(const XCurve& c, const Point& p, XCurve& c1, XCurve& c2) const {
+      XCurve left = c, right = c;
+      left.right = p;
+      right.left = p;
+      c1 = std::move(left);
+      c2 = std::move(right);
+    }
+  };
+  Split_2 split_2_object() const { return {}; }
+
+  class Intersect_2 {
+   public:
+    explicit Intersect_2(const QuadraticTraits* t) : t_(t) {}
+    template <typename OutputIterator>
+    OutputIterator operator()(const XCurve& c1, const XCurve& c2, OutputIterator oi) const {
+      std::vector<Intersection> out;
+      t_->intersect(c1, c2, out);
+      for (auto& item : out) *oi++ = std::move(item);
+      return oi;
+    }
+   private:
+    const QuadraticTraits* t_;
+  };
+  Intersect_2 intersect_2_object() const { return Intersect_2(this); }
+
+  class Make_x_monotone_2 {
+   public:
+    template <typename OutputIterator>
+    OutputIterator operator()(const Curve& c, OutputIterator oi) const {
+      *oi++ = boost::variant<Point, XCurve>(c.arc);
+      return oi;
+    }
+  };
+  Make_x_monotone_2 make_x_monotone_2_object() const { return {}; }
+
+  class Are_mergeable_2 {
+   public:
+    bool operator()(const XCurve&, const XCurve&) const { return false; }
+  };
+  Are_mergeable_2 are_mergeable_2_object() const { return {}; }
+
+  class Merge_2 {
+   public:
+    void operator()(const XCurve&, const XCurve&, XCurve&) const {
+      throw GeometryError("internal: the quadratic traits does not merge curves");
+    }
+  };
+  Merge_2 merge_2_object() const { return {}; }
+
+  std::size_t exact_comparisons() const { return st_->exact_comparisons; }
+  std::size_t x_entries() const { return st_->entries.size(); }
+
+ private:
+  // CGAL copies traits objects (adaptors): the supports and caches are shared by the copies.
+  struct State {
+    Box box;
+    std::vector<Support> supports;
+    std::map<std::pair<int, int>, std::vector<std::shared_ptr<const XEntry>>> roots;
+    std::unordered_map<const Real*, std::shared_ptr<const XEntry>> entries;
+    std::multimap<double, std::shared_ptr<const XEntry>> by_lower;
+    std::map<std::tuple<const void*, int, int, int, int, int, int>, int> exact_cache;
+    std::size_t exact_comparisons = 0;
+  };
+  std::shared_ptr<State> st_;
+};
+
+}  // namespace
+}  // namespace hipair::cspace::raw
+
+namespace hipair::cspace::raw {
+namespace {
+
+using Arrangement_2 = CGAL::Arrangement_2<QuadraticTraits>;
+using ClauseAlternatives = std::vector<const std::vector<ValidityClause>*>;
+using Windows = std::vector<std::pair<Rational, Rational>>;
+
+class QuadraticBuilder {
+ public:
+  QuadraticBuilder(const Box& box, const Options& options)
+      : box_(box), options_(options), traits_(box), arrangement_(&traits_) {
+    make_box();
+  }
+
+  Arrangement run(const std::vector<IntegerPolynomial2>& curves,
+                  const std::vector<std::vector<ValidityClause>>& validity,
+                  const std::vector<std::vector<std::pair<Rational, Rational>>>& windows) {
+    auto start = Clock::now();
+    std::vector<XCurve> pieces(sides_.begin(), sides_.end());
+    std::vector<Point> isolated;
+    static const std::vector<ValidityClause> no_clauses;
+    const CurveGroups grouped = group_curves(curves);   // as the algebraic stage
+    const auto& group_polynomials = grouped.polynomials;
+    const auto& groups = grouped.members;
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      ClauseAlternatives alternatives;
+      for (std::size_t member : groups[g])
+        alternatives.push_back(member < validity.size() ? &validity[member] : &no_clauses);
+      Windows group_windows;
+      bool restricted = true;
+      for (std::size_t member : groups[g]) {
+        if (member >= windows.size() || windows[member].empty()) {
+          restricted = false;
+          break;
+        }
+        group_windows.insert(group_windows.end(), windows[member].begin(), windows[member].end());
+      }
+      clip(group_polynomials[g], alternatives, restricted ? &group_windows : nullptr, pieces, isolated);
+    }
+    result_.times.curves_seconds = seconds_since(start);
+
+    start = Clock::now();
+    if (options_.aggregated_insertion) {
+      CGAL::insert(arrangement_, pieces.begin(), pieces.end());
+    } else {
+      for (const auto& piece : pieces) CGAL::insert(arrangement_, piece);
+    }
+    for (const auto& point : isolated) CGAL::insert_point(arrangement_, point);
+    result_.pieces_inserted = pieces.size();
+    result_.times.insertion_seconds = seconds_since(start);
+    static const bool debug = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
+    if (debug)
+      std::fprintf(stderr, "  quadratic traits: %zu pieces, %zu exact y comparisons, %zu x entries, insertion %.4f s\n",
+                   pieces.size(), traits_.exact_comparisons(), traits_.x_entries(), result_.times.insertion_seconds);
+
+    start = Clock::now();
+    export_topology();
+    result_.times.export_seconds = seconds_since(start);
+    return std::move(result_);
+  }
+
+ private:
+  static IntegerPolynomial2 horizontal_line(const Rational& y) {   // den y - num
+    return IntegerPolynomial2{{{mpz_class(-y.get_num()), mpz_class(y.get_den())}}};
+  }
+  static IntegerPolynomial2 vertical_line(const Rational& x) {   // den x - num
+    return IntegerPolynomial2{{{mpz_class(-x.get_num())}, {mpz_class(x.get_den())}}};
+  }
+
+  void make_box() {
+    bottom_ = YExpr{traits_.add_support(horizontal_line(box_.y_lo)), 2, 0};
+    top_ = YExpr{traits_.add_support(horizontal_line(box_.y_hi)), 2, 0};
+    int left = traits_.add_support(vertical_line(box_.x_lo));
+    int right = traits_.add_support(vertical_line(box_.x_hi));
+    Real x_lo = Real::from_rational(box_.x_lo), x_hi = Real::from_rational(box_.x_hi);
+    Point corners[4] = {traits_.make_point(x_lo, bottom_), traits_.make_point(x_hi, bottom_),
+                        traits_.make_point(x_hi, top_), traits_.make_point(x_lo, top_)};
+    sides_.push_back(XCurve{corners[0], corners[1], bottom_.support, false, bottom_});   // bottom
+    sides_.push_back(XCurve{corners[1], corners[2], right, true, {}});                    // right
+    sides_.push_back(XCurve{corners[3], corners[2], top_.support, false, top_});          // top
+    sides_.push_back(XCurve{corners[0], corners[3], left, true, {}});                     // left
+  }
+
+  bool strictly_between_sides(const Real& x, const YExpr& y) const {
+    Interval xi = enclose(x);
+    return traits_.compare_y(x, xi, y, bottom_) > 0 && traits_.compare_y(x, xi, y, top_) < 0;
+  }
+
+  static bool unrestricted(const ClauseAlternatives& alternatives) {
+    for (const auto* clauses : alternatives)
+      if (clauses->empty()) return true;
+    return false;
+  }
+
+  // roots of p in the open box x-range
+  void roots_inside(const Polynomial& p, std::vector<Real>& out) const {
+    if (algebra::degree(p) < 1) return;
+    for (auto& r : algebra::real_roots(p, box_.x_lo, box_.x_hi))
+      if (r.compare(box_.x_lo) > 0 && r.compare(box_.x_hi) < 0) out.push_back(std::move(r));
+  }
+
+  // Abscissae where an atom may change sign along the curve (a superset of the roots of the
+  // resultant in y of the curve and the atom; none when they share a component, as in the
+  // algebraic stage).
+  void validity_breaks(const Support& s, const ClauseAlternatives& alternatives, std::vector<Real>& out) const {
+    for (const auto* clauses : alternatives)
+      for (const auto& clause : *clauses)
+        for (const auto& atom : clause.atoms) {
+          std::vector<Polynomial> g = columns(atom);
+          if (g.empty()) continue;
+          if (g.size() > s.part_columns.size()) {
+            g = pseudo_remainder(std::move(g), s.part_columns);
+            if (g.empty()) continue;
+            roots_inside(s.part_columns.back(), out);
+          }
+          Polynomial r = resultant_y(s.part_columns, g);
+          if (r.empty()) continue;
+          roots_inside(r, out);
+        }
+  }
+
+  enum class CutKind { soft = 0, hard = 1 };
+
+  struct Cut {
+    Real x;
+    CutKind kind;
+  };
+
+  void clip(const IntegerPolynomial2& f, const ClauseAlternatives& alternatives, const Windows* windows,
+            std::vector<XCurve>& pieces, std::vector<Point>& isolated) {
+    const int id = traits_.add_support(f);
+    const Support& s = traits_.support(id);
+    // vertical lines (factors in x alone), strictly inside the box's x-range
+    if (algebra::degree(s.content) >= 1) {
+      std::vector<Real> lines;
+      roots_inside(s.content, lines);
+      for (const Real& r : lines)
+        pieces.push_back(XCurve{traits_.make_point(r, bottom_), traits_.make_point(r, top_), id, true, {}});
+    }
+    if (s.degree == 0) return;
+    // cuts strictly inside the box's x-range that are not events of the curve
+    std::vector<Real> soft, hard;
+    for (const Rational& y : {box_.y_lo, box_.y_hi}) roots_inside(algebra::substitute_y(f, y), soft);
+    validity_breaks(s, alternatives, soft);
+    if (windows)
+      for (const auto& [lo, hi] : *windows)
+        for (const Rational* bound : {&lo, &hi})
+          if (box_.x_lo < *bound && *bound < box_.x_hi) soft.push_back(Real::from_rational(*bound));
+    {   // horizontal tangents of the whole polynomial (pieces stay y-monotone)
+      std::vector<Polynomial> cols = columns(f), f_x;
+      for (const auto& c : cols) f_x.push_back(algebra::derivative(c));
+      while (!f_x.empty() && f_x.back().empty()) f_x.pop_back();
+      if (!f_x.empty()) roots_inside(resultant_y(cols, f_x), hard);
+    }
+    std::vector<Cut> cuts;
+    {
+      std::vector<Real> h = traits_.sorted_unique(std::move(hard)), all = std::move(h);
+      std::size_t hard_count = all.size();
+      for (auto& x : soft) all.push_back(std::move(x));
+      std::vector<std::pair<std::size_t, Real*>> order;
+      for (auto& x : all) QuadraticTraits::refine(x);
+      for (std::size_t i = 0; i < all.size(); ++i) order.emplace_back(i, &all[i]);
+      std::sort(order.begin(), order.end(), [&](const auto& p, const auto& q) {
+        int c = QuadraticTraits::compare_x(*p.second, *q.second);
+        return c != 0 ? c < 0 : p.first < q.first;   // hard ones (lower index) first among equals
+      });
+      for (auto& [index, x] : order) {
+        if (!cuts.empty() && QuadraticTraits::compare_x(cuts.back().x, *x) == 0) continue;
+        cuts.push_back(Cut{*x, index < hard_count ? CutKind::hard : CutKind::soft});
+      }
+    }
+    // event intervals: [x_lo, e_1], ..., [e_k, x_hi]
+    std::vector<Real> bounds;
+    bounds.push_back(Real::from_rational(box_.x_lo));
+    for (const Real& e : s.events) bounds.push_back(e);
+    bounds.push_back(Real::from_rational(box_.x_hi));
+    std::vector<int> branches(bounds.size() - 1, 0);
+    std::vector<int> a_sign(bounds.size() - 1, 0);
+    for (std::size_t i = 0; i + 1 < bounds.size(); ++i) {
+      Rational m = algebra::rational_between(bounds[i], bounds[i + 1]);
+      if (s.degree == 1) {
+        branches[i] = 1;
+        continue;
+      }
+      branches[i] = algebra::sign_at(s.disc, m) > 0 ? 2 : 0;
+      a_sign[i] = algebra::sign_at(s.a, m);
+    }
+    std::size_t next_cut = 0;
+    for (std::size_t i = 0; i + 1 < bounds.size(); ++i) {
+      // cuts strictly inside (bounds[i], bounds[i + 1])
+      std::vector<const Cut*> inside;
+      while (next_cut < cuts.size() && QuadraticTraits::compare_x(cuts[next_cut].x, bounds[i]) <= 0) ++next_cut;
+      for (std::size_t c = next_cut; c < cuts.size() && QuadraticTraits::compare_x(cuts[c].x, bounds[i + 1]) < 0; ++c)
+        inside.push_back(&cuts[c]);
+      for (int k = 0; k < branches[i]; ++k) {
+        YExpr expr = s.degree == 1 ? YExpr{id, 2, 0} : YExpr{id, 0, k == 0 ? -a_sign[i] : a_sign[i]};
+        std::optional<Point> first = end_point(s, id, expr, bounds[i]);
+        std::optional<Point> last = end_point(s, id, expr, bounds[i + 1]);
+        clip_arc(s, id, expr, first, last, bounds[i], bounds[i + 1], inside, f, alternatives, windows, pieces);
+      }
+    }
+    // isolated points: a double root with no branch on either side
+    if (s.degree == 2)
+      for (std::size_t e = 1; e + 1 < bounds.size(); ++e) {
+        if (branches[e - 1] != 0 || branches[e] != 0) continue;
+        const Real& x = bounds[e];
+        if (algebra::sign_at(s.a, x) == 0 || algebra::sign_at(s.disc, x) != 0 ||
+            algebra::sign_at(s.content, x) == 0)
+          continue;
+        YExpr expr{id, 1, 0};
+        if (!strictly_between_sides(x, expr)) continue;
+        if (x.exact && !unrestricted(alternatives)) {
+          algebra::Polynomial fiber = algebra::substitute_x(f, x.lower);
+          if (algebra::degree(fiber) >= 1 && !clauses_hold(alternatives, x.lower, algebra::nth_real_root(fiber, 0)))
+            continue;
+        }
+        isolated.push_back(traits_.make_point(x, expr));
+      }
+  }
+
+  // The end of a branch at a bound of its event interval; nullopt when the branch goes to
+  // infinity there (a vertical asymptote).
+  std::optional<Point> end_point(const Support& s, int id, const YExpr& expr, const Real& x) const {
+    if (s.degree == 1) {
+      if (algebra::sign_at(s.b, x) == 0) return std::nullopt;
+      return traits_.make_point(x, expr);
+    }
+    int a = algebra::sign_at(s.a, x);
+    if (a != 0) {
+      if (algebra::sign_at(s.disc, x) == 0) return traits_.make_point(x, YExpr{id, 1, 0});
+      return traits_.make_point(x, expr);
+    }
+    int b = algebra::sign_at(s.b, x);
+    if (b == 0 || b != expr.s) return std::nullopt;
+    return traits_.make_point(x, YExpr{id, 2, 0});
+  }
+
+  // Arc number of a branch at a rational x inside its event interval (index among the
+  // distinct real roots of the support's fibre).
+  int arcno(const Support& s, const YExpr& expr, const Real& x) const {
+    if (expr.kind != 0) return 0;
+    return algebra::sign_at(s.a, x) * expr.s < 0 ? 0 : 1;
+  }
+
+  void clip_arc(const Support& s, int id, const YExpr& expr, const std::optional<Point>& first_end,
+                const std::optional<Point>& last_end, const Real& x_first, const Real& x_last,
+                const std::vector<const Cut*>& inside, const IntegerPolynomial2& f,
+                const ClauseAlternatives& alternatives, const Windows* windows, std::vector<XCurve>& pieces) {
+    // the cut abscissae along the arc, its ends included (an infinite end keeps its x)
+    std::vector<const Real*> xs;
+    std::vector<std::optional<Point>> points;
+    std::vector<char> is_hard;
+    xs.push_back(&x_first);
+    points.push_back(first_end);
+    is_hard.push_back(0);
+    for (const Cut* cut : inside) {
+      xs.push_back(&cut->x);
+      points.push_back(traits_.make_point(cut->x, expr));
+      is_hard.push_back(cut->kind == CutKind::hard);
+    }
+    xs.push_back(&x_last);
+    points.push_back(last_end);
+    is_hard.push_back(0);
+    const std::size_t count = xs.size() - 1;
+    std::vector<char> in_box(count, 0), valid(count, 0);
+    const bool any_clauses = !unrestricted(alternatives);
+    for (std::size_t i = 0; i < count; ++i) {
+      Rational m = algebra::rational_between(*xs[i], *xs[i + 1]);
+      Real mx = Real::from_rational(m);
+      in_box[i] = strictly_between_sides(mx, expr);
+      if ((!points[i] || !points[i + 1]) && in_box[i]) throw NotApplicable{"asymptote inside the box"};   // an asymptote inside the box
+      if (!in_box[i] || !in_windows(m, windows)) continue;
+      if (!any_clauses) {
+        valid[i] = 1;
+        continue;
+      }
+      algebra::Polynomial fiber = algebra::substitute_x(f, m);
+      valid[i] = clauses_hold(alternatives, m, algebra::nth_real_root(fiber, arcno(s, expr, mx)));
+    }
+    auto near = [&](std::size_t from, std::size_t to) {
+      // a point of the arc strictly between xs[from] and xs[to], near xs[to] (a short
+      // spurious stretch: 8 halvings toward the bound of xs[to]'s interval on this side)
+      Rational m = algebra::rational_between(*xs[std::min(from, to)], *xs[std::max(from, to)]);
+      const Rational& bound = from < to ? xs[to]->lower : xs[to]->upper;
+      if (from < to ? m < bound || xs[to]->exact : bound < m || xs[to]->exact)
+        for (int k = 0; k < 8; ++k) m = (m + bound) / 2;
+      return traits_.make_point(Real::from_rational(m), expr);
+    };
+    for (std::size_t i = 0; i < count;) {
+      if (!valid[i]) {
+        ++i;
+        continue;
+      }
+      std::size_t start = i, end = i + 1;
+      while (end < count && valid[end] && !is_hard[end]) ++end;
+      Point first = *points[start], last = *points[end];
+      if (start > 0 && in_box[start - 1] && !valid[start - 1]) first = near(start - 1, start);
+      if (end < count && in_box[end] && !valid[end]) last = near(end + 1, end);
+      pieces.push_back(XCurve{first, last, id, false, expr});
+      i = end;
+    }
+  }
+
+  // ---------------------------------------------------------------- export
+
+  // Certified y bounds isolating the point's y among the roots of its curve's fibre.
+  void y_bounds(const Point& p, int branches, Rational& lower, Rational& upper, int bits) const {
+    const PointRep& r = *p.rep;
+    for (;; bits *= 2) {
+      if (bits > 1600) throw NotApplicable{"y bounds"};
+      Real x = r.entry->x;
+      algebra::refine_dyadically(x, Rational(1, mpz_class(1) << bits));
+      Interval xi = enclose(x);
+      Interval yi = traits_.y_interval(r.y, xi);
+      if (!std::isfinite(yi.lo) || !std::isfinite(yi.hi)) continue;
+      if (branches == 2) {
+        Interval other = traits_.y_interval(YExpr{r.y.support, 0, -r.y.s}, xi);
+        if (!disjoint(yi, other)) continue;
+      }
+      lower = Rational(yi.lo);
+      upper = Rational(yi.hi);
+      return;
+    }
+  }
+
+  void fill_vertex(const Point& p, Vertex& out) const {
+    const PointRep& r = *p.rep;
+    const Support& s = traits_.support(r.y.support);
+    out.x = r.entry->x;
+    out.y_curve = s.part;
+    out.y_branch = arcno(s, r.y, r.entry->x);
+    if (r.entry->x.exact) {
+      algebra::Polynomial fiber = algebra::substitute_x(out.y_curve, r.entry->x.lower);
+      if (algebra::degree(fiber) < 1) throw NotApplicable{"vanishing fibre"};
+      out.y = algebra::nth_real_root(fiber, out.y_branch);
+      algebra::refine_dyadically(out.y, Rational(1, mpz_class(1) << 64));
+      out.y_exact = true;
+      out.y_lower = out.y.lower;
+      out.y_upper = out.y.upper;
+      return;
+    }
+    y_bounds(p, r.y.kind == 0 ? 2 : 1, out.y_lower, out.y_upper, 52);
+  }
+
+  void separate_in_y(const Point& low, const Point& high, std::size_t low_id, std::size_t high_id) const {
+    Vertex& a = result_.vertices[low_id];
+    Vertex& b = result_.vertices[high_id];
+    for (int bits = 104; !(a.y_upper < b.y_lower); bits *= 2) {
+      if (bits > 1600) throw NotApplicable{"y bounds"};
+      for (auto [point, vertex] : {std::pair{&low, &a}, std::pair{&high, &b}}) {
+        Rational lower, upper;
+        if (vertex->y_exact) {
+          algebra::refine_dyadically(vertex->y, Rational(1, mpz_class(1) << bits));
+          lower = vertex->y.lower;
+          upper = vertex->y.upper;
+        } else {
+          y_bounds(*point, point->rep->y.kind == 0 ? 2 : 1, lower, upper, bits);
+        }
+        if (lower > vertex->y_lower) vertex->y_lower = std::move(lower);
+        if (upper < vertex->y_upper) vertex->y_upper = std::move(upper);
+      }
+    }
+  }
+
+  int side_of(const XCurve& c) const {
+    if (c.vertical) {
+      if (c.left.x().compare(box_.x_lo) == 0) return 3;
+      if (c.left.x().compare(box_.x_hi) == 0) return 1;
+      return -1;
+    }
+    Real m = Real::from_rational(algebra::rational_between(c.left.x(), c.right.x()));
+    Interval mi = enclose(m);
+    if (traits_.compare_y(m, mi, c.interior, bottom_) == 0) return 0;
+    if (traits_.compare_y(m, mi, c.interior, top_) == 0) return 2;
+    return -1;
+  }
+
+  void fill_arc_numbers(const XCurve& c, ArcNumbers& out) const {
+    const Support& s = traits_.support(c.support);
+    for (const Real& e : s.events)
+      if (traits_.compare_x(e, c.left.x()) > 0 && traits_.compare_x(e, c.right.x()) < 0)
+        throw NotApplicable{"event inside an edge"};   // never: arcs end at their curve's events
+    Real m = Real::from_rational(algebra::rational_between(c.left.x(), c.right.x()));
+    out.between.push_back(arcno(s, c.interior, m));
+  }
+
+  std::size_t wedge_containing(const std::vector<Arrangement_2::Halfedge_const_handle>& around,
+                               const std::vector<Incidence>& incidences, const Point& p, bool below) const {
+    const std::size_t n = incidences.size();
+    Direction reference = below ? Direction::down : Direction::up;
+    for (const auto& incidence : incidences)
+      if (incidence.direction == reference) return none;
+    if (n == 1) return incidences[0].wedge_face;
+    auto key = [&](Direction d) {
+      if (below) return d == Direction::left ? 1 : d == Direction::up ? 2 : 3;
+      return d == Direction::right ? 1 : d == Direction::down ? 2 : 3;
+    };
+    auto before = [&](std::size_t a, std::size_t b) {
+      Direction da = incidences[a].direction, db = incidences[b].direction;
+      if (da != db) return key(da) < key(db);
+      if (da == Direction::right) return traits_.compare_beside(around[a]->curve(), around[b]->curve(), p, 1) > 0;
+      return traits_.compare_beside(around[a]->curve(), around[b]->curve(), p, -1) < 0;
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+      std::size_t next = (i + 1) % n;
+      if (!before(i, next)) return incidences[i].wedge_face;
+    }
+    throw GeometryError("internal: no wedge contains the vertical direction at a vertex");
+  }
+
+  void export_topology() {
+    const Arrangement_2& arr = arrangement_;
+    std::unordered_map<const void*, std::size_t> vertex_id, face_id, edge_id;
+    std::unordered_map<const void*, bool> forward;
+    for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
+      vertex_id[&*v] = result_.vertices.size();
+      Vertex out;
+      fill_vertex(v->point(), out);
+      out.isolated = v->is_isolated();
+      result_.vertices.push_back(std::move(out));
+    }
+    for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+      face_id[&*f] = result_.faces.size();
+      Face out;
+      out.unbounded = f->is_unbounded();
+      if (out.unbounded && result_.unbounded_face == none) result_.unbounded_face = result_.faces.size();
+      result_.faces.push_back(std::move(out));
+    }
+    for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+      auto h = e->direction() == CGAL::ARR_LEFT_TO_RIGHT ? e : e->twin();
+      edge_id[&*h] = edge_id[&*h->twin()] = result_.edges.size();
+      forward[&*h] = true;
+      forward[&*h->twin()] = false;
+      Edge out;
+      const XCurve& arc = h->curve();
+      out.min_vertex = vertex_id.at(&*h->source());
+      out.max_vertex = vertex_id.at(&*h->target());
+      out.vertical = arc.vertical;
+      if (out.vertical) separate_in_y(h->source()->point(), h->target()->point(), out.min_vertex, out.max_vertex);
+      out.support = traits_.support(arc.support).full;
+      out.left_face = face_id.at(&*h->face());
+      out.right_face = face_id.at(&*h->twin()->face());
+      fill_edge_box(result_.vertices, out);
+      out.box_side = side_of(arc);
+      if (!out.vertical) fill_arc_numbers(arc, out.arc_numbers);
+      result_.edges.push_back(std::move(out));
+    }
+    for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
+      Vertex& out = result_.vertices[vertex_id.at(&*v)];
+      if (v->is_isolated()) {
+        out.face_below = out.face_above = face_id.at(&*v->face());
+        result_.faces[out.face_below].isolated_vertices.push_back(vertex_id.at(&*v));
+        continue;
+      }
+      std::vector<Arrangement_2::Halfedge_const_handle> around;
+      auto circulator = v->incident_halfedges();
+      auto first = circulator;
+      do {
+        around.push_back(circulator);
+      } while (++circulator != first);
+      for (const auto& h : around) {
+        Incidence incidence;
+        incidence.edge = edge_id.at(&*h);
+        bool source_is_smaller = h->direction() == CGAL::ARR_LEFT_TO_RIGHT;
+        if (h->curve().vertical)
+          incidence.direction = source_is_smaller ? Direction::down : Direction::up;
+        else
+          incidence.direction = source_is_smaller ? Direction::left : Direction::right;
+        incidence.wedge_face = face_id.at(&*h->face());
+        out.around.push_back(incidence);
+      }
+      out.face_below = wedge_containing(around, out.around, v->point(), true);
+      out.face_above = wedge_containing(around, out.around, v->point(), false);
+    }
+    for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+      Face& out = result_.faces[face_id.at(&*f)];
+      auto add_ccb = [&](Arrangement_2::Ccb_halfedge_const_circulator c) {
+        out.component_starts.push_back(out.boundary.size());
+        auto first = c;
+        do {
+          if (!c->is_fictitious()) out.boundary.emplace_back(edge_id.at(&*c), forward.at(&*c));
+        } while (++c != first);
+      };
+      if (f->has_outer_ccb()) add_ccb(f->outer_ccb());
+      for (auto inner = f->inner_ccbs_begin(); inner != f->inner_ccbs_end(); ++inner) add_ccb(*inner);
+    }
+  }
+
+  Box box_;
+  Options options_;
+  QuadraticTraits traits_;
+  Arrangement_2 arrangement_;
+  YExpr bottom_, top_;
+  std::vector<XCurve> sides_;
+  mutable Arrangement result_;
+};
+
+}  // namespace
+
+bool quadratic_applies(const std::vector<IntegerPolynomial2>& curves) {
+  for (const auto& c : curves) {
+    if (c.degree_y() > 2) return false;
+    for (const auto& row : c.coefficients)
+      for (const auto& z : row)
+        if (mpz_sizeinbase(z.get_mpz_t(), 2) > quadratic_max_coefficient_bits) return false;
+  }
+  return true;
+}
+
+std::optional<Arrangement> build_quadratic_arrangement(
+    const Box& box, const std::vector<IntegerPolynomial2>& curves,
+    const std::vector<std::vector<ValidityClause>>& validity,
+    const std::vector<std::vector<std::pair<Rational, Rational>>>& windows, const Options& options) {
+  static const bool debug = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
+  if (debug) {
+    int max_x = 0, max_y = 0;
+    for (const auto& c : curves) {
+      max_x = std::max(max_x, c.degree_x());
+      max_y = std::max(max_y, c.degree_y());
+    }
+    std::fprintf(stderr, "  quadratic traits: %zu curves, degrees up to %d in x, %d in y\n", curves.size(), max_x, max_y);
+  }
+  if (options.keep_cgal || !quadratic_applies(curves)) return std::nullopt;
+  try {
+    QuadraticBuilder builder(box, options);
+    Arrangement result = builder.run(curves, validity, windows);
+    return result;
+  } catch (const NotApplicable& e) {
+    if (debug) std::fprintf(stderr, "  quadratic traits not applicable: %s\n", e.why);
+    return std::nullopt;
+  } catch (const CGAL::Failure_exception& e) {
+    throw GeometryError(std::string("CGAL rejected a contact curve arrangement (quadratic traits): ") + e.what());
+  }
+}
+
+}  // namespace hipair::cspace::raw
