@@ -274,6 +274,22 @@ TEST(QuadraticTraitsGenerated, CgalDuplicateVertexReproductions) {
     compare_stages(unit_box, curves, "seed 47");
     compare_stages(unit_box, {f0, f3}, "curves 0 and 3 of seed 47");
   }
+  // the smallest reproduction: two whole curves tangent at (0, 0), both with a vertical tangent
+  // there (zero-clearance set 1 below); CGAL's incremental insertion alone gives two vertices at
+  // (0, 0) (Arrangement_2::is_valid: are_vertices_unique), with a third and fourth curve through
+  // (0, 0) a precondition failure, and the box pieces a corrupt face boundary
+  const auto g1 = poly({{0, 0, -3}, {2, 2, 2}, {-2, -1, -1}});   // -(x^2y^2 + x^2y + 2x^2 - 2xy^2 - 2xy - 2x + 3y^2)
+  const auto g2 = poly({{0, 0, 24}, {2, 38, 2}, {10, -1, -1}});
+  for (const auto& [what, set] : {std::pair{"two curves tangent at a vertical tangent", std::vector{g1, g2}},
+                                   std::pair{"with the tangent line and a crossing curve",
+                                             std::vector{g1, g2, poly({{0}, {2}}),
+                                                         poly({{0, 3, 1}, {-1, 3, -2}, {2, -3}})}}}) {
+    raw::Arrangement a = raw::build_arrangement(unit_box, set, {}, {}, raw::Options{});
+    std::size_t at_origin = 0;
+    for (const auto& v : a.vertices) at_origin += v.x.exact && sgn(v.x.lower) == 0 && v.y_exact && v.y.exact && sgn(v.y.lower) == 0;
+    EXPECT_EQ(at_origin, 1u) << what;
+    compare_stages(unit_box, set, what);
+  }
 }
 
 Rational random_rational(std::mt19937& random) {
