@@ -452,7 +452,9 @@ struct CSpaceBuildOptions {
   std::optional<std::array<double, 2>> region_seed;
   /// Faces on the blocked side of a contact edge are classified from the contact's blocked
   /// side, the others by the exact overlap oracle at a sample point. true: the oracle also
-  /// checks every face classified from a blocked side, and a disagreement is a GeometryError
+  /// checks every face classified from a blocked side, and a disagreement is a GeometryError;
+  /// every face's sample is also checked to lie inside its face (crossing parity of a vertical
+  /// ray with the face's own boundary cycles, exact), independently of how it was found
   /// (for tests; slower).
   bool check_face_classification = false;
   /// Translating polygon pairs take a dedicated front end (the reduced convolution's segments

@@ -18,6 +18,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
+#include <string>
 #include <unordered_map>
 
 namespace hipair::cspace::raw {
@@ -92,6 +94,12 @@ algebra::Real to_real(const Algebraic_real_1& a) {
 Algebraic_real_1 to_algebraic(const Rational& q) { return Algebraic_real_1(to_bound(q)); }
 
 }  // namespace
+
+/// Thrown by Builder::run when CGAL's arrangement has one point as two vertices (see
+/// duplicate_vertex below); build_arrangement then rebuilds with the other insertion.
+struct DuplicateVertex {
+  std::string where;
+};
 
 struct Kept {
   std::unique_ptr<hipair::cgal::Traits> traits;
@@ -419,11 +427,15 @@ class Builder {
     std::unordered_map<const void*, bool> forward;   // halfedge -> goes min -> max
     for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
       vertex_id[&*v] = result_.vertices.size();
+      vertex_handles_.push_back(v);
       Vertex out;
       fill_vertex(v, out);
       out.isolated = v->is_isolated();
       result_.vertices.push_back(std::move(out));
     }
+    // before anything walks the edges and faces: a DCEL with a duplicated vertex may also have
+    // broken boundary cycles (seen: a crash walking a face's outer boundary)
+    if (auto where = duplicate_vertex()) throw DuplicateVertex{*where};
     for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
       face_id[&*f] = result_.faces.size();
       Face out;
@@ -498,6 +510,34 @@ class Builder {
       if (f->has_outer_ccb()) add_ccb(f->outer_ccb());
       for (auto inner = f->inner_ccbs_begin(); inner != f->inner_ccbs_end(); ++inner) add_ccb(*inner);
     }
+  }
+
+  // CGAL 5.5.1's incremental insertion can record one point as two vertices (docs/cspace.md,
+  // "A CGAL failure and its guard"): an arc ending exactly at a vertex where another curve has
+  // a vertical tangent. The arrangement is then wrong (edges end at the wrong copy, crossings
+  // nearby are missed). Exact check: vertices whose x are equal (exact comparison) and whose
+  // certified y bounds overlap (equal points always do) are compared by CGAL's Equal_2.
+  // Returns where the first duplicate is, or nothing.
+  std::optional<std::string> duplicate_vertex() const {
+    const auto& vertices = result_.vertices;
+    std::vector<std::size_t> order(vertices.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return vertices[a].x.lower_bound() < vertices[b].x.lower_bound();
+    });
+    auto equal = traits().equal_2_object();
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      const Vertex& p = vertices[order[i]];
+      for (std::size_t j = i + 1; j < order.size(); ++j) {
+        const Vertex& q = vertices[order[j]];
+        if (q.x.lower_bound() > p.x.upper_bound()) break;   // sorted: no later x overlaps
+        if (p.y_upper < q.y_lower || q.y_upper < p.y_lower) continue;
+        if (algebra::compare(p.x, q.x) != 0) continue;
+        if (equal(vertex_handles_[order[i]]->point(), vertex_handles_[order[j]]->point()))
+          return "x ~ " + std::to_string(p.x.approximate()) + ", y ~ " + std::to_string(p.y_lower_bound());
+      }
+    }
+    return std::nullopt;
   }
 
   // The vertex's coordinates: x exact; y exact when x is rational (a root of the curve's
@@ -738,6 +778,7 @@ class Builder {
   std::unique_ptr<Traits> traits_;
   std::unique_ptr<Arrangement_2> arrangement_;
   std::vector<XCurve> sides_;   // bottom, right, top, left
+  std::vector<Arrangement_2::Vertex_const_handle> vertex_handles_;   // by exported vertex index
   Arrangement result_;
 };
 
@@ -747,9 +788,29 @@ Arrangement build_arrangement(const Box& box, const std::vector<IntegerPolynomia
                               const std::vector<std::vector<ValidityClause>>& validity,
                               const std::vector<std::vector<std::pair<Rational, Rational>>>& windows,
                               const Options& options) {
-  try {
-    Builder builder(box, options);
+  // the other insertion (sweep <-> incremental), checked the same way
+  auto with_other_insertion = [&]() {
+    if (std::getenv("HIPAIR_CSPACE_DEBUG")) std::fprintf(stderr, "  rebuilding with the other insertion\n");
+    Options other = options;
+    other.aggregated_insertion = !options.aggregated_insertion;
+    Builder builder(box, other);
     return builder.run(curves, validity, windows);
+  };
+  try {
+    try {
+      Builder builder(box, options);
+      return builder.run(curves, validity, windows);
+    } catch (const DuplicateVertex&) {
+      return with_other_insertion();
+    } catch (const CGAL::Failure_exception&) {
+      // a precondition of CGAL's incremental insertion failed on the same kind of input (two
+      // curves with a vertical tangent at one point, docs/cspace.md); the sweep builds it
+      if (options.aggregated_insertion) throw;
+      return with_other_insertion();
+    }
+  } catch (const DuplicateVertex& failure) {
+    throw GeometryError("CGAL's arrangement has one point as two vertices (" + failure.where +
+                        ") with both insertions; see docs/cspace.md");
   } catch (const hipair::Error&) {
     throw;
   } catch (const CGAL::Failure_exception& e) {

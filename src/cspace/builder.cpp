@@ -426,6 +426,45 @@ void sample_face(ChartData& chart, std::size_t f) {
   data.sampled = true;
 }
 
+// Test-only check (CSpaceBuildOptions::check_face_classification) that a face's sample lies
+// inside the face, independent of how sample_face found it (the nearest edge above or below
+// on a vertical line, over all edges of the chart): the parity of the crossings of the upward
+// ray from the sample with each boundary cycle of the face itself (the export's CCBs, an edge
+// counted as often as the cycle runs along it). Inside iff the outer cycle is crossed an odd
+// number of times and every inner cycle (hole) an even number. The sample's abscissa avoids
+// every vertex (abscissa_avoiding_vertices), so every crossing is at an edge's interior and
+// decided exactly (edge_y_at at a rational x); the sample on an edge, or a vertex at its
+// abscissa, is an error too.
+void check_sample_in_face(const ChartData& chart, std::size_t f) {
+  const auto& arrangement = chart.arrangement;
+  const raw::Face& face = arrangement.faces[f];
+  const FaceData& data = chart.faces[f];
+  const std::string where = data.sample_x.get_str() + ", " + data.sample_y.get_str();
+  const Real sample_y = Real::from_rational(data.sample_y);
+  for (std::size_t c = 0; c < face.component_starts.size(); ++c) {
+    const std::size_t begin = face.component_starts[c];
+    const std::size_t end = c + 1 < face.component_starts.size() ? face.component_starts[c + 1] : face.boundary.size();
+    std::size_t crossings = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::size_t e = face.boundary[i].first;
+      const raw::Edge& edge = arrangement.edges[e];
+      const int at_min = arrangement.vertices[edge.min_vertex].x.compare(data.sample_x);
+      const int at_max = arrangement.vertices[edge.max_vertex].x.compare(data.sample_x);
+      if (at_min == 0 || at_max == 0)
+        throw GeometryError("internal: a face sample's abscissa meets a boundary vertex at " + where);
+      if (edge.vertical || at_min > 0 || at_max < 0) continue;
+      const int side = algebra::compare(edge_y_at(chart, e, data.sample_x), sample_y);
+      if (side == 0) throw GeometryError("internal: a face sample lies on the face's boundary at " + where);
+      crossings += side > 0;
+    }
+    // the first cycle of a bounded face is its outer boundary
+    const bool outer = c == 0 && !face.unbounded;
+    if ((crossings % 2 == 1) != outer)
+      throw GeometryError(std::string("internal: a face sample is not inside its face (") +
+                          (outer ? "outside the outer boundary" : "inside a hole") + ") at " + where);
+  }
+}
+
 // Every bounded face gets its kind (samples are taken lazily by sample_face: the builder needs
 // one per cell). Blocked when it lies on the blocked side of a contact edge of its boundary
 // (`sides`); else, with `propagate`, the kind of a neighbour across an edge that carries no
@@ -497,9 +536,12 @@ void classify_faces(ChartData& chart, const Classifier& classify, ContactSides* 
   for (std::size_t f = 0; f < arrangement.faces.size(); ++f) {
     if (arrangement.faces[f].unbounded) continue;
     FaceData& data = chart.faces[f];
+    if (check) {
+      sample_face(chart, f);
+      check_sample_in_face(chart, f);
+    }
     if (known[f]) {
       if (!check) continue;
-      sample_face(chart, f);
       if (kind_of(classify(ChartPoint{data.sample_x, data.sample_y})) != data.kind)
         throw GeometryError("internal: a face classified by a contact edge's blocked side or by propagation "
                             "disagrees with the oracle at " + data.sample_x.get_str() + ", " + data.sample_y.get_str());

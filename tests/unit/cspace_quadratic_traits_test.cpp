@@ -23,6 +23,11 @@
 #include <map>
 #include <set>
 #include <random>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <tuple>
 
 namespace hipair {
 namespace {
@@ -56,97 +61,370 @@ Counts counts(const raw::Arrangement& a) {
   return c;
 }
 
-// Two vertices of one arrangement at the same point: same x exactly and overlapping certified
-// y bounds (bounds isolate y among the roots of the vertex's curve). CGAL's algebraic stage
-// leaves such duplicates on some tangential configurations (seen on random bi-quadratic sets):
-// its arrangement is then not a reference.
+// ------------------------------------------------------------------ exact vertex comparison
+
+// Univariate helpers on algebra::Polynomial (coefficients by ascending power).
+algebra::Polynomial padd(const algebra::Polynomial& a, const algebra::Polynomial& b) {
+  algebra::Polynomial r(std::max(a.size(), b.size()));
+  for (std::size_t i = 0; i < a.size(); ++i) r[i] += a[i];
+  for (std::size_t i = 0; i < b.size(); ++i) r[i] += b[i];
+  algebra::trim(r);
+  return r;
+}
+algebra::Polynomial pmul(const algebra::Polynomial& a, const algebra::Polynomial& b) {
+  if (a.empty() || b.empty()) return {};
+  algebra::Polynomial r(a.size() + b.size() - 1);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) r[i + j] += a[i] * b[j];
+  algebra::trim(r);
+  return r;
+}
+algebra::Polynomial pscale(const algebra::Polynomial& a, const mpz_class& k) {
+  algebra::Polynomial r(a);
+  for (auto& c : r) c *= k;
+  algebra::trim(r);
+  return r;
+}
+// f = col[0] + col[1] y + col[2] y^2 (degree <= 2 in y)
+std::array<algebra::Polynomial, 3> columns_of(const IntegerPolynomial2& f) {
+  std::array<algebra::Polynomial, 3> col;
+  for (std::size_t i = 0; i < f.coefficients.size(); ++i)
+    for (std::size_t j = 0; j < f.coefficients[i].size(); ++j) {
+      if (sgn(f.coefficients[i][j]) == 0) continue;
+      if (j > 2) throw std::runtime_error("test: degree > 2 in y");
+      col[j].resize(std::max(col[j].size(), i + 1));
+      col[j][i] = f.coefficients[i][j];
+    }
+  for (auto& c : col) algebra::trim(c);
+  return col;
+}
+int sign_of(const algebra::Polynomial& p, const algebra::Real& x) { return p.empty() ? 0 : algebra::sign_at(p, x); }
+
+// Are two vertices at the same exact x (x already compared equal) at the same y? Exact:
+//  - rational x: both y are exact algebraic numbers, compared exactly;
+//  - the same curve up to a constant factor: the same branch (index among the fibre's roots);
+//  - otherwise (x irrational, different curves g1, g2 of degree <= 2 in y): with
+//    r = a1 g2 - a2 g1 = r1 y + r0 (a_k leading in y), y1 is a root of g2 iff y1 = y* =
+//    -r0/r1 (r1(x) != 0) and g1(x, y*) = 0 (a1 r0^2 - b1 r0 r1 + c1 r1^2 at x), and then
+//    y1 = y* iff y* lies in y1's isolating bounds; equal iff y* is in both vertices' bounds.
+//    Fibres proportional at x (r1 = r0 = 0): the same branch. Linear fibres: c1 b2 = c2 b1.
+bool same_y(const raw::Vertex& p, const raw::Vertex& q) {
+  if (p.y_exact && q.y_exact) return algebra::compare(p.y, q.y) == 0;
+  auto normal = [](const IntegerPolynomial2& f) {
+    std::string key = algebra::to_string(f, "x", "y");
+    return key;
+  };
+  auto negated = [](IntegerPolynomial2 f) {
+    for (auto& row : f.coefficients)
+      for (auto& c : row) c = -c;
+    return f;
+  };
+  if (normal(p.y_curve) == normal(q.y_curve) || normal(negated(p.y_curve)) == normal(q.y_curve))
+    return p.y_branch == q.y_branch;
+  const algebra::Real& x = p.x;
+  auto g1 = columns_of(p.y_curve), g2 = columns_of(q.y_curve);
+  const raw::Vertex* first = &p;
+  const raw::Vertex* second = &q;
+  if (sign_of(g1[2], x) == 0 && sign_of(g2[2], x) != 0) {
+    std::swap(g1, g2);
+    std::swap(first, second);
+  }
+  auto in_bounds = [&](const algebra::Polynomial& r0, const algebra::Polynomial& r1, const raw::Vertex& v) {
+    // -r0/r1 in [v.y_lower, v.y_upper] at x (r1(x) != 0)
+    const int s1 = sign_of(r1, x);
+    auto minus = [&](const Rational& bound) {   // sign of (-r0/r1 - bound)
+      algebra::Polynomial t = padd(pscale(r0, bound.get_den()), pscale(r1, bound.get_num()));
+      return -sign_of(t, x) * s1;
+    };
+    return minus(v.y_lower) >= 0 && minus(v.y_upper) <= 0;
+  };
+  if (sign_of(g1[2], x) != 0) {
+    algebra::Polynomial r1 = padd(pmul(g1[2], g2[1]), pscale(pmul(g2[2], g1[1]), -1));
+    algebra::Polynomial r0 = padd(pmul(g1[2], g2[0]), pscale(pmul(g2[2], g1[0]), -1));
+    if (sign_of(r1, x) == 0) return sign_of(r0, x) == 0 && p.y_branch == q.y_branch;
+    algebra::Polynomial h = padd(padd(pmul(g1[2], pmul(r0, r0)), pscale(pmul(g1[1], pmul(r0, r1)), -1)),
+                                 pmul(g1[0], pmul(r1, r1)));
+    if (sign_of(h, x) != 0) return false;
+    return in_bounds(r0, r1, *first) && in_bounds(r0, r1, *second);
+  }
+  // both fibres have degree <= 1 at x
+  if (sign_of(g1[1], x) == 0 || sign_of(g2[1], x) == 0)
+    throw std::runtime_error("test: vertex on a vertical line at an irrational x");
+  return sign_of(padd(pmul(g1[0], g2[1]), pscale(pmul(g2[0], g1[1]), -1)), x) == 0;
+}
+
+// Are two vertices the same point? x compared exactly, y exactly when the certified bounds
+// overlap (disjoint bounds: different points).
+bool same_point(const raw::Vertex& p, const raw::Vertex& q) {
+  if (p.x.upper_bound() < q.x.lower_bound() || q.x.upper_bound() < p.x.lower_bound()) return false;
+  if (p.y_upper < q.y_lower || q.y_upper < p.y_lower) return false;
+  if (algebra::compare(p.x, q.x) != 0) return false;
+  return same_y(p, q);
+}
+
+// Two vertices of one arrangement at the same point. (CGAL 5.5.1's incremental insertion
+// produced such duplicates, docs/cspace.md "A CGAL failure and its guard"; the algebraic stage
+// now checks for them and rebuilds.)
 bool has_duplicate_vertices(const raw::Arrangement& a) {
   for (std::size_t i = 0; i < a.vertices.size(); ++i)
-    for (std::size_t j = i + 1; j < a.vertices.size(); ++j) {
-      const auto &p = a.vertices[i], &q = a.vertices[j];
-      if (p.x.upper_bound() < q.x.lower_bound() || q.x.upper_bound() < p.x.lower_bound()) continue;
-      if (algebra::compare(p.x, q.x) != 0) continue;
-      if (p.y_upper < q.y_lower || q.y_upper < p.y_lower) continue;
-      return true;
-    }
+    for (std::size_t j = i + 1; j < a.vertices.size(); ++j)
+      if (same_point(a.vertices[i], a.vertices[j])) return true;
   return false;
 }
 
-// Every vertex of `a` has a vertex of `b` at the same x (exact comparison) with overlapping
-// certified y bounds, and the same degree.
-void expect_same_vertices(const raw::Arrangement& a, const raw::Arrangement& b, const std::string& what,
-                          bool same_degree = true) {
+// Every vertex of `a` has a distinct vertex of `b` at the same point (exact) with the same
+// degree and isolation.
+void expect_same_vertices(const raw::Arrangement& a, const raw::Arrangement& b, const std::string& what) {
   std::vector<char> used(b.vertices.size(), 0);
   for (const auto& p : a.vertices) {
     bool found = false;
     for (std::size_t j = 0; j < b.vertices.size() && !found; ++j) {
       const auto& q = b.vertices[j];
-      if (same_degree && (used[j] || p.around.size() != q.around.size() || p.isolated != q.isolated)) continue;
-      if (p.x.upper_bound() < q.x.lower_bound() || q.x.upper_bound() < p.x.lower_bound()) continue;
-      if (p.y_upper < q.y_lower || q.y_upper < p.y_lower) continue;
-      if (algebra::compare(p.x, q.x) != 0) continue;
-      used[j] = same_degree;
+      if (used[j] || p.around.size() != q.around.size() || p.isolated != q.isolated) continue;
+      if (!same_point(p, q)) continue;
+      used[j] = 1;
       found = true;
     }
     EXPECT_TRUE(found) << what << ": no vertex at x ~ " << p.x.approximate() << ", y ~ " << p.y_lower_bound();
   }
 }
 
-struct Comparison {
-  bool applied = false;
-  bool reference_inconsistent = false;
-};
-
-Comparison compare_stages(const raw::Box& box, const std::vector<IntegerPolynomial2>& curves,
-                          const std::string& what) {
-  std::vector<std::vector<cspace::ValidityClause>> validity;
+// Both stages on the same input: the quadratic stage must apply (unless `may_decline`), and
+// the two arrangements must be the same (counts, degrees, every vertex at the same exact
+// point), neither with a point as two vertices. Returns whether the quadratic stage applied.
+bool compare_stages(const raw::Box& box, const std::vector<IntegerPolynomial2>& curves, const std::string& what,
+                    const std::vector<std::vector<cspace::ValidityClause>>& validity = {},
+                    bool may_decline = false) {
   std::vector<std::vector<std::pair<Rational, Rational>>> windows;
   raw::Options options;
   raw::Arrangement reference = raw::build_arrangement(box, curves, validity, windows, options);
   std::optional<raw::Arrangement> fast = raw::build_quadratic_arrangement(box, curves, validity, windows, options);
-  Comparison result;
-  if (!fast) return result;
-  result.applied = true;
+  if (!may_decline) EXPECT_TRUE(fast.has_value()) << what << ": the quadratic stage declined";
+  EXPECT_FALSE(has_duplicate_vertices(reference)) << what;
+  if (!fast) return false;
+  EXPECT_FALSE(has_duplicate_vertices(*fast)) << what;
   Counts p = counts(*fast), q = counts(reference);
-  const bool same = p.vertices == q.vertices && p.edges == q.edges && p.faces == q.faces;
-  if (!same && has_duplicate_vertices(reference)) {
-    // CGAL's arrangement has one point as two vertices: every point of it is a vertex here
-    result.reference_inconsistent = true;
-    EXPECT_FALSE(has_duplicate_vertices(*fast)) << what;
-    expect_same_vertices(reference, *fast, what, false);
-    return result;
-  }
   EXPECT_EQ(p.vertices, q.vertices) << what;
   EXPECT_EQ(p.edges, q.edges) << what;
   EXPECT_EQ(p.faces, q.faces) << what;
   EXPECT_EQ(p.isolated, q.isolated) << what;
   EXPECT_EQ(p.degrees, q.degrees) << what;
   expect_same_vertices(*fast, reference, what);
-  return result;
+  return true;
 }
 
 const raw::Box unit_box{Rational(-2), Rational(2), Rational(-2), Rational(2)};
 
-TEST(QuadraticTraitsGenerated, RandomSmallCoefficientBiquadraticCurves) {
-  std::size_t applied = 0, inconsistent = 0, total = 0;
-  for (unsigned seed = 1; seed <= 60; ++seed) {
-    std::mt19937 random(seed);
-    std::vector<IntegerPolynomial2> curves;
-    const int n = 2 + static_cast<int>(random() % 4);
-    for (int k = 0; k < n; ++k) {
-      std::vector<std::vector<long>> c(3, std::vector<long>(3));
-      for (auto& row : c)
-        for (auto& v : row) v = static_cast<long>(random() % 7) - 3;
-      curves.push_back(poly(c));
-    }
-    ++total;
-    Comparison r = compare_stages(unit_box, curves, "seed " + std::to_string(seed));
-    applied += r.applied;
-    inconsistent += r.reference_inconsistent;
+std::vector<IntegerPolynomial2> random_curves(unsigned seed) {
+  std::mt19937 random(seed);
+  std::vector<IntegerPolynomial2> curves;
+  const int n = 2 + static_cast<int>(random() % 4);
+  for (int k = 0; k < n; ++k) {
+    std::vector<std::vector<long>> c(3, std::vector<long>(3));
+    for (auto& row : c)
+      for (auto& v : row) v = static_cast<long>(random() % 7) - 3;
+    curves.push_back(poly(c));
   }
-  // the quadratic stage declines only curve sets with common components
+  return curves;
+}
+
+// Every seed must agree (no tolerance). Until session 9 up to 10 % of seeds were excused as
+// "CGAL wrong on tangential inputs"; the one such seed (47) was CGAL 5.5.1's incremental
+// insertion recording (0, 0) as two vertices, now caught and rebuilt by the algebraic stage.
+TEST(QuadraticTraitsGenerated, RandomSmallCoefficientBiquadraticCurves) {
+  std::size_t applied = 0, total = 0;
+  for (unsigned seed = 1; seed <= 60; ++seed) {
+    ++total;
+    // the quadratic stage declines only curve sets with common components
+    applied += compare_stages(unit_box, random_curves(seed), "seed " + std::to_string(seed), {}, true);
+  }
   EXPECT_GE(applied, total * 9 / 10);
-  EXPECT_LE(inconsistent, total / 10) << "CGAL's reference arrangement had duplicate vertices too often";
+}
+
+// Pinned reproductions of the disagreement once excused: generated seed 47 (five curves; CGAL's
+// incremental insertion put (0, 0) in twice, left curve 3 with a gap at x ~ 0.2873 and missed
+// its transversal crossing with curve 2 at x ~ 0.12932; checked independently with
+// tests/arrangement/exact_seed_check.py), and its minimal core: curve 0 (a vertical tangent at
+// (0, 0)) inserted before curve 3 (cut at x = 0, where its other branch has a horizontal
+// tangent). The quadratic stage's counts are the exact ones.
+TEST(QuadraticTraitsGenerated, CgalDuplicateVertexReproductions) {
+  const auto curves = random_curves(47);
+  const auto f0 = poly({{0, 0, -3}, {3, 3, -1}, {3, -3, -1}});
+  const auto f3 = poly({{0, -1, 1}, {2, 0, -2}, {-3, -1, 3}});
+  ASSERT_EQ(curves.size(), 5u);
+  EXPECT_EQ(algebra::to_string(curves[0], "x", "y"), algebra::to_string(f0, "x", "y"));
+  EXPECT_EQ(algebra::to_string(curves[3], "x", "y"), algebra::to_string(f3, "x", "y"));
+  for (bool aggregated : {false, true}) {
+    raw::Options options;
+    options.aggregated_insertion = aggregated;
+    const std::string how = aggregated ? " (sweep)" : " (incremental)";
+    for (const auto& [what, set, vertices] :
+         {std::tuple{"seed 47", curves, std::size_t{78}}, std::tuple{"curves 0 and 3 of seed 47", std::vector{f0, f3}, std::size_t{22}}}) {
+      raw::Arrangement a = raw::build_arrangement(unit_box, set, {}, {}, options);
+      EXPECT_EQ(a.vertices.size(), vertices) << what << how;
+      EXPECT_FALSE(has_duplicate_vertices(a)) << what << how;
+      // the crossing of curves 2 and 3 at x ~ 0.129322885556, y ~ 0.256105727582
+      if (set.size() == 5) {
+        bool crossing = false;
+        for (const auto& v : a.vertices)
+          crossing |= std::abs(v.x.approximate() - 0.129322885556) < 1e-9 && v.around.size() == 4;
+        EXPECT_TRUE(crossing) << what << how;
+      }
+    }
+    compare_stages(unit_box, curves, "seed 47");
+    compare_stages(unit_box, {f0, f3}, "curves 0 and 3 of seed 47");
+  }
+  // the smallest reproduction: two whole curves tangent at (0, 0), both with a vertical tangent
+  // there (zero-clearance set 1 below); CGAL's incremental insertion alone gives two vertices at
+  // (0, 0) (Arrangement_2::is_valid: are_vertices_unique), with a third and fourth curve through
+  // (0, 0) a precondition failure, and the box pieces a corrupt face boundary
+  const auto g1 = poly({{0, 0, -3}, {2, 2, 2}, {-2, -1, -1}});   // -(x^2y^2 + x^2y + 2x^2 - 2xy^2 - 2xy - 2x + 3y^2)
+  const auto g2 = poly({{0, 0, 24}, {2, 38, 2}, {10, -1, -1}});
+  for (const auto& [what, set] : {std::pair{"two curves tangent at a vertical tangent", std::vector{g1, g2}},
+                                   std::pair{"with the tangent line and a crossing curve",
+                                             std::vector{g1, g2, poly({{0}, {2}}),
+                                                         poly({{0, 3, 1}, {-1, 3, -2}, {2, -3}})}}}) {
+    raw::Arrangement a = raw::build_arrangement(unit_box, set, {}, {}, raw::Options{});
+    std::size_t at_origin = 0;
+    for (const auto& v : a.vertices) at_origin += v.x.exact && sgn(v.x.lower) == 0 && v.y_exact && v.y.exact && sgn(v.y.lower) == 0;
+    EXPECT_EQ(at_origin, 1u) << what;
+    compare_stages(unit_box, set, what);
+  }
+}
+
+Rational random_rational(std::mt19937& random) {
+  return Rational(static_cast<long>(random() % 13) - 6, static_cast<long>(1 + random() % 4));
+}
+
+// Clears denominators of a polynomial with rational coefficients c[i][j] (x^i y^j).
+IntegerPolynomial2 integer_polynomial(const std::vector<std::vector<Rational>>& c) {
+  mpz_class l = 1;
+  for (const auto& row : c)
+    for (const auto& v : row) mpz_lcm(l.get_mpz_t(), l.get_mpz_t(), v.get_den_mpz_t());
+  IntegerPolynomial2 f;
+  for (const auto& row : c) {
+    std::vector<mpz_class> r;
+    for (const auto& v : row) r.push_back(mpz_class(v * l));
+    f.coefficients.push_back(std::move(r));
+  }
+  return f;
+}
+
+Rational evaluate(const std::vector<std::vector<Rational>>& c, const Rational& x, const Rational& y) {
+  Rational sum = 0, xi = 1;
+  for (const auto& row : c) {
+    Rational yj = 1;
+    for (const auto& v : row) {
+      sum += v * xi * yj;
+      yj *= y;
+    }
+    xi *= x;
+  }
+  return sum;
+}
+
+// Zero clearance by construction: curves through a rational point P with exactly the same
+// tangent there (g2 = g1 + k L^2 with L a line through P: g2(P) = g1(P) = 0 and equal
+// gradients), the common tangent line itself, and a curve crossing through P; tangencies of
+// same and opposite curvature. Exact rational tangency, no rounding.
+TEST(QuadraticTraitsGenerated, ZeroClearanceTangentCurves) {
+  std::size_t tangent_sets = 0;
+  for (unsigned seed = 1; seed <= 30; ++seed) {
+    std::mt19937 random(1000 + seed);
+    const Rational px(static_cast<long>(random() % 5) - 2, 2), py(static_cast<long>(random() % 5) - 2, 3);
+    auto random_through_p = [&]() {
+      std::vector<std::vector<Rational>> c(3, std::vector<Rational>(3));
+      for (auto& row : c)
+        for (auto& v : row) v = Rational(static_cast<long>(random() % 7) - 3);
+      c[0][0] -= evaluate(c, px, py);   // through P
+      return c;
+    };
+    auto g1 = random_through_p();
+    // gradient at P
+    Rational gx = 0, gy = 0;
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = 0; j < 3; ++j) {
+        Rational xi = 1, yj = 1;
+        for (std::size_t k = 0; k + 1 < i; ++k) xi *= px;
+        for (std::size_t k = 0; k + 1 < j; ++k) yj *= py;
+        if (i > 0) {
+          Rational yj_full = 1;
+          for (std::size_t k = 0; k < j; ++k) yj_full *= py;
+          gx += g1[i][j] * Rational(static_cast<long>(i)) * xi * yj_full;
+        }
+        if (j > 0) {
+          Rational xi_full = 1;
+          for (std::size_t k = 0; k < i; ++k) xi_full *= px;
+          gy += g1[i][j] * Rational(static_cast<long>(j)) * xi_full * yj;
+        }
+      }
+    if (gx == 0 && gy == 0) continue;   // P singular: no tangent line
+    ++tangent_sets;
+    // L = a (x - px) + b (y - py), random direction; g2 = g1 + k L^2
+    const Rational a(static_cast<long>(random() % 5) - 2), b(static_cast<long>(random() % 3) + 1);
+    const Rational k = (random() % 2 ? 1 : -1) * Rational(static_cast<long>(1 + random() % 3));
+    auto g2 = g1;
+    g2[0][0] += k * (a * px + b * py) * (a * px + b * py);
+    g2[1][0] += k * (-2 * a * (a * px + b * py));
+    g2[0][1] += k * (-2 * b * (a * px + b * py));
+    g2[2][0] += k * a * a;
+    g2[0][2] += k * b * b;
+    g2[1][1] += k * 2 * a * b;
+    // the common tangent line gx (x - px) + gy (y - py) = 0
+    std::vector<std::vector<Rational>> tangent(3, std::vector<Rational>(3));
+    tangent[0][0] = -gx * px - gy * py;
+    tangent[1][0] = gx;
+    tangent[0][1] = gy;
+    // a curve through P, generically transversal
+    auto g3 = random_through_p();
+    std::vector<IntegerPolynomial2> set = {integer_polynomial(g1), integer_polynomial(g2), integer_polynomial(tangent),
+                                           integer_polynomial(g3)};
+    // sanity: P is on every curve (exact)
+    for (const auto& f : set) ASSERT_EQ(algebra::sign_at(f, px, py), 0) << "seed " << seed;
+    compare_stages(unit_box, set, "zero-clearance seed " + std::to_string(seed), {}, true);
+    compare_stages(unit_box, {set[0], set[1]}, "tangent pair seed " + std::to_string(seed), {}, true);
+  }
+  EXPECT_GE(tangent_sets, 25u);
+}
+
+// Generated validity clauses: every curve valid only where one of two random linear atoms
+// (and, for some curves, a second clause) is >= 0. The stages' spurious stretches past a
+// validity end stop at points of their own choice, so what is compared is: the quadratic
+// stage applies, neither arrangement has a point as two vertices, and every vertex where two
+// different input curves meet inside the box in both is found in the other.
+TEST(QuadraticTraitsGenerated, RandomValidityClauses) {
+  for (unsigned seed = 1; seed <= 30; ++seed) {
+    std::vector<IntegerPolynomial2> curves = random_curves(seed);
+    std::mt19937 random(500 + seed);
+    std::vector<std::vector<cspace::ValidityClause>> validity(curves.size());
+    for (auto& clauses : validity) {
+      const int count = 1 + static_cast<int>(random() % 2);
+      for (int c = 0; c < count; ++c) {
+        cspace::ValidityClause clause;
+        for (int atom = 0; atom < 2; ++atom)
+          clause.atoms.push_back(poly({{static_cast<long>(random() % 5) - 2, static_cast<long>(random() % 5) - 2},
+                                       {static_cast<long>(random() % 5) - 2}}));
+        clauses.push_back(std::move(clause));
+      }
+    }
+    std::vector<std::vector<std::pair<Rational, Rational>>> windows;
+    raw::Options options;
+    const std::string what = "validity seed " + std::to_string(seed);
+    raw::Arrangement reference = raw::build_arrangement(unit_box, curves, validity, windows, options);
+    std::optional<raw::Arrangement> fast = raw::build_quadratic_arrangement(unit_box, curves, validity, windows, options);
+    EXPECT_FALSE(has_duplicate_vertices(reference)) << what;
+    if (!fast) continue;   // common components: declined
+    EXPECT_FALSE(has_duplicate_vertices(*fast)) << what;
+    // vertices of degree >= 3 not on the box: crossings and branchings of the valid pieces;
+    // a spurious stretch may add a crossing to one side only, so only degree >= 4 vertices
+    // (two valid pieces crossing) of the quadratic build are required in the reference
+    for (const auto& p : fast->vertices) {
+      if (p.around.size() < 4) continue;
+      bool found = false;
+      for (const auto& q : reference.vertices) found = found || (q.around.size() >= 4 && same_point(p, q));
+      EXPECT_TRUE(found) << what << ": crossing at x ~ " << p.x.approximate() << " only in the quadratic build";
+    }
+  }
 }
 
 TEST(QuadraticTraitsGenerated, DegenerateConfigurations) {
@@ -178,13 +456,9 @@ TEST(QuadraticTraitsGenerated, DegenerateConfigurations) {
       {"cusp", {cusp, horizontal, circle}},
       {"asymptotes", {asymptote, circle}},
       {"curve on the box sides", {poly({{-4, 0, 1}}), poly({{-4}, {0}, {1}}), circle}},
-      {"tangency at the origin (CGAL: a duplicate vertex)", {vertical, with_line, circle}},
+      {"tangency at the origin (CGAL's incremental insertion: a duplicate vertex)", {vertical, with_line, circle}},
   };
-  for (const auto& [name, curves] : cases) {
-    Comparison r = compare_stages(unit_box, curves, name);
-    EXPECT_TRUE(r.applied) << name;
-    if (name.find("CGAL:") == std::string::npos) EXPECT_FALSE(r.reference_inconsistent) << name;
-  }
+  for (const auto& [name, curves] : cases) compare_stages(unit_box, curves, name);
   // curves with a common component: declined (the algebraic traits takes them)
   std::vector<IntegerPolynomial2> common = {poly({{-1, 1}, {-1, 1}}), poly({{-1, 1}, {1, -1}})};   // (y-1)(x+1), (y-1)(1-x)
   std::vector<std::vector<cspace::ValidityClause>> no_validity;
