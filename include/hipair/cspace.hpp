@@ -570,6 +570,14 @@ class CSpace {
   /// point of the curve (F_y = 0).
   EdgeDerivatives derivatives(EdgeId edge, const Rational& x) const;
 
+  /// Exact comparison of a chart ordinate with the ordinate of a vertex (in the vertex's
+  /// chart): the sign of y - (the vertex's exact y), -1, 0 or +1. With it a vertical edge (x
+  /// constant) is ended exactly at its end vertices, as derivatives() ends the others.
+  /// \throws GeometryError for a 1-D space, or where the vertex's y_curve does not change sign
+  /// across the ends of its isolating interval [y_lower, y_upper] (a root of even multiplicity,
+  /// a fibre vanishing there), which this comparison does not resolve.
+  int compare_ordinate(VertexId vertex, const Rational& y) const;
+
   /// The first point where the motion reaches contact space (a real edge or vertex), across
   /// charts, seams and tiles. Never misses a crossing: every u it passes over is certified
   /// free by certified interval exclusion of every contact curve (with its validity), and the

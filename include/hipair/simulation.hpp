@@ -33,6 +33,10 @@ struct SimulationOptions {
   /// Build each pair's C-space as an operating region around the initial configuration
   /// (CSpaceBuildOptions::operating_region); leaving it is a GeometryError.
   bool operating_region = false;
+  /// The pairs' C-spaces take the filtered quadratic traits where it applies
+  /// (CSpaceBuildOptions::quadratic_traits); false: CGAL's algebraic traits for every chart (for
+  /// tests that compare the two: the same exact C-space, certified extents of other widths).
+  bool quadratic_traits = true;
   /// Stop with NumericError after this many steps (a runaway or Zeno run).
   std::size_t max_steps = 2000000;
   /// PlanarSimulation: the largest deviation (mm) of any point of the planar part between its

@@ -346,6 +346,32 @@ EdgeDerivatives CSpace::derivatives(EdgeId id, const Rational& x_input) const {
   }
 }
 
+// ------------------------------------------------------------------ compare_ordinate
+
+int CSpace::compare_ordinate(VertexId id, const Rational& y_input) const {
+  const Impl& impl = checked(*this);
+  std::size_t index = index_in(id, impl.vertices.size(), "vertex");
+  if (impl.dimension != 2) throw GeometryError("compare_ordinate: a 1-D C-space has no ordinate");
+  auto [c, v] = impl.vertex_local[index];
+  const cspace::raw::Vertex& vertex = impl.charts[c].arrangement.vertices[v];
+  Rational y = y_input;
+  y.canonicalize();
+  // Real::compare is the sign of (value - y)
+  if (vertex.y_exact) return -vertex.y.compare(y);
+  if (y < vertex.y_lower) return -1;
+  if (y > vertex.y_upper) return 1;
+  // the vertex's y is the only root of y_curve(x, .) in [y_lower, y_upper]: where y_curve
+  // changes sign across the interval, the sign at y tells on which side of the root y lies
+  int lower = cspace::algebra::sign_at(vertex.y_curve, vertex.x, vertex.y_lower);
+  int upper = cspace::algebra::sign_at(vertex.y_curve, vertex.x, vertex.y_upper);
+  if (lower == 0 || upper == 0 || lower == upper)
+    throw GeometryError("compare_ordinate: the ordinate of vertex " + std::to_string(index) +
+                        " is not a sign change of its curve's fibre (not decided)");
+  int at = cspace::algebra::sign_at(vertex.y_curve, vertex.x, y);
+  if (at == 0) return 0;
+  return at == lower ? -1 : 1;
+}
+
 // ------------------------------------------------------------------ filtered derivatives
 
 namespace {

@@ -345,6 +345,44 @@ struct Simulation::Impl {
     return false;
   }
 
+  // Whether the ordinate ty lies on the vertical edge of `a`, decided exactly against its end
+  // vertices (CSpace::compare_ordinate; the ends are closed), as derivatives() decides it for
+  // the other edges: the vertex's isolating interval first (a rational comparison), the exact
+  // comparison only inside it. Past an end but within the contact's slack of it (strict rows:
+  // 1e-12), a contact taken up at a vertex still holds (as derivatives_near()). Where the exact
+  // comparison does not decide (a vertex whose fibre does not change sign), the certified
+  // extent already tested by row() stands.
+  bool on_vertical_edge(const Active& a, double ty) const {
+    const CSpace& space = *spaces[a.pair];
+    const CSpaceEdge& edge = space.edge(a.edge);
+    // the sign of y - (the vertex's y); nullopt where it is not decided
+    auto side_of = [&](std::size_t vertex, const Rational& y) -> std::optional<int> {
+      const CSpaceVertex& p = space.vertex(VertexId(vertex));
+      if (y < p.y_lower) return -1;
+      if (y > p.y_upper) return 1;
+      try {
+        return space.compare_ordinate(VertexId(vertex), y);
+      } catch (const GeometryError&) {
+        return std::nullopt;
+      }
+    };
+    const Rational y(ty);
+    // source: the lower end (same x, smaller y); target: the upper end
+    for (int end = 0; end < 2; ++end) {
+      std::size_t vertex = end == 0 ? edge.source : edge.target;
+      if (vertex == no_index) continue;
+      const int outside = end == 0 ? -1 : 1;   // the side of the vertex off the edge
+      std::optional<int> side = side_of(vertex, y);
+      if (!side || *side != outside) continue;
+      if (!a.at_vertex) return false;
+      // within `limit` of the vertex: y moved back by limit is not off the edge
+      const double limit = strict_rows ? 1e-12 : a.slack;
+      std::optional<int> back = side_of(vertex, y - outside * Rational(limit));
+      if (back && *back == outside) return false;
+    }
+    return true;
+  }
+
   // the constraint's gradient over dofs, its bias h (g'' = G q'' + h) and its value g
   bool row(const Active& a, const Vec& qs, const Vec& vs, Vec& G, double& h, double& gval) const {
     G.assign(dofs.size(), 0.0);
@@ -355,6 +393,7 @@ struct Simulation::Impl {
         const CSpaceChart& chart = chart_of(a);
         double ty = to_chart(chart.y_kind, chart.y_half_turn, qs[a.ydof]);
         if (ty < a.y_lo - a.slack || ty > a.y_hi + a.slack) return false;
+        if (!on_vertical_edge(a, ty)) return false;
       }
       G[a.xdof] = a.sigma;
       gval = a.sigma * (qs[a.xdof] - a.c);
@@ -1645,6 +1684,13 @@ struct Simulation::Impl {
     } else {
       sync_driven();
     }
+    // a contact cut at its edge's end is at the end vertex to the bisection's resolution, and
+    // the prescribed parts just moved to their law (sync_driven) may put it past the vertex by
+    // rounding: it is projected (and continued or released) with the rows of that vertex, as a
+    // contact taken up at a vertex is. Before, its row failed there, the projection skipped it,
+    // and the state kept the step's drift off the curve (the Geneva drive at accuracy 1e-3:
+    // 0.043 rad into slot 2's wall L at 1.62378 s, from where nudge_free found no free state).
+    if (cut == Cut::edge_end) active[cut_active].at_vertex = true;
     project_active();
     project_sticking();
     // Cut::coulomb: the step ends where a contact's stick/slip state changes; the next step's
@@ -1837,6 +1883,7 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
   // the pairs' C-spaces, built once
   CSpaceBuildOptions build;
   build.operating_region = options.operating_region;
+  build.quadratic_traits = options.quadratic_traits;
   s.spaces.assign(model.pairs.size(), nullptr);
   std::vector<PairBuild> built = CSpace::build_pairs(model, build);
   for (const PairBuild& b : built) {
