@@ -310,6 +310,29 @@ TEST(PinSlot, FilmAdvanceCycle) {
   }
 }
 
+// The cam-follower contacts reported per sample: the follower's free slide interval against the
+// eccentric cam (radius 10 in a square window of half side 10.2 whose top and bottom are normal
+// to the slot at every follower angle) is bounded below by the cam touching the window's top and
+// above by its bottom, and is exactly 2 (10.2 - 10) = 0.4 mm long at every cam and follower angle (closed form;
+// `clearance` is the difference of the doubles of the two exact ends, each within a few units
+// in the last place of numbers below 60, hence the 1e-12).
+TEST(PinSlot, FilmAdvanceCycleReportsTheCamContactsBoundingTheSlide) {
+  const Model& model = film_advance();
+  PinSlotCycleOptions options;
+  options.clockwise = true;
+  options.steps = 24;
+  PinSlotCycle cycle = pin_slot_cycle(model, options);
+  ASSERT_EQ(cycle.samples.size(), 25u);
+  for (const CycleSample& s : cycle.samples) {
+    SCOPED_TRACE(s.driver_degrees);
+    ASSERT_EQ(s.driver_bounds.size(), 2u);
+    // sliding down (the lower end) brings the window's top onto the cam; sliding up, its bottom
+    EXPECT_EQ(s.driver_bounds[0], "cam circle / follower window top (arc tangent to segment)");
+    EXPECT_EQ(s.driver_bounds[1], "cam circle / follower window bottom (arc tangent to segment)");
+    EXPECT_NEAR(s.clearance, 0.4, 1e-12);
+  }
+}
+
 TEST(PinSlot, CycleNeedsAChain) {
   // the pin and the follower alone: nothing to drive it
   Model model = film_advance();
