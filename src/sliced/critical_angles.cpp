@@ -285,14 +285,16 @@ int region_side(const std::vector<Loop>& loops, const Rational& x, const Rationa
         }
         continue;
       }
-      Rational cr = (q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x);
-      if (sgn(cr) == 0 && std::min(p.x, q.x) <= x && x <= std::max(p.x, q.x) && std::min(p.y, q.y) <= y &&
-          y <= std::max(p.y, q.y))
-        return 0;   // on the boundary
-      if ((p.y <= y) != (q.y <= y)) {
-        Rational x_cross = p.x + (y - p.y) * (q.x - p.x) / (q.y - p.y);
-        if (x_cross > x) inside = !inside;
-      }
+      // cr = cross(q - p, (x, y) - p), formed only for edges whose y-range holds y (comparisons
+      // first): zero with (x, y) in the edge's box, on the boundary; for an edge crossing the
+      // line at height y, its crossing lies right of x iff cr has the sign of q.y - p.y
+      // (x_cross - x = cr / (q.y - p.y)), so no division
+      const bool straddles = (p.y <= y) != (q.y <= y);
+      const bool in_y_range = std::min(p.y, q.y) <= y && y <= std::max(p.y, q.y);
+      if (!straddles && !in_y_range) continue;
+      const int side = sgn(Rational((q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x)));
+      if (side == 0 && in_y_range && std::min(p.x, q.x) <= x && x <= std::max(p.x, q.x)) return 0;   // on the boundary
+      if (straddles && side * sgn(Rational(q.y - p.y)) > 0) inside = !inside;
     }
   return inside ? 1 : -1;
 }
