@@ -1573,17 +1573,24 @@ class CurveFinder {
           window[r] = {Box{std::min(window[r].first.lo, b.first.lo), std::max(window[r].first.hi, b.first.hi)},
                        Box{std::min(window[r].second.lo, b.second.lo), std::max(window[r].second.hi, b.second.hi)}};
         }
+    // Per range: an event of a window curve with another curve lies on the window curve, inside
+    // the window, at an angle of some range r; so it lies in the curve's box and the window's box
+    // of range r (both closed enclosures over the closed range). A range where a curve's box
+    // misses the window's is cleared from every mask of that curve.
+    std::vector<std::uint64_t> in_window(n, ~std::uint64_t(0));
     for (std::size_t i = 0; i < n; ++i) {
       if (curves_[i].extra) continue;
-      bool meets = false;
-      for (int r = 0; r < 64 && !meets; ++r) {
+      std::uint64_t bits = 0;
+      for (int r = 0; r < 64; ++r) {
         const auto &x = boxes[i][r], &y = window[r];
-        meets = !(x.first.hi < y.first.lo || y.first.hi < x.first.lo || x.second.hi < y.second.lo || y.second.hi < x.second.lo);
+        if (!(x.first.hi < y.first.lo || y.first.hi < x.first.lo || x.second.hi < y.second.lo || y.second.hi < x.second.lo))
+          bits |= std::uint64_t(1) << r;
       }
-      if (!meets)
-        for (std::size_t j = 0; j < n; ++j) masks_[i * n + j] = masks_[j * n + i] = 0;
-      if (!meets) outside_.push_back(i);
+      in_window[i] = bits;
+      if (bits == 0) outside_.push_back(i);
     }
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = 0; b < n; ++b) masks_[a * n + b] &= in_window[a] & in_window[b];
   }
   std::uint64_t mask(std::size_t i, std::size_t j) const { return masks_[i * curves_.size() + j]; }
 
