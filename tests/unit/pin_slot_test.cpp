@@ -262,12 +262,17 @@ namespace {
 
 // The film advance's work cycle (pin_slot_cycle): the claw enters a perforation, pulls the film
 // down one frame and retracts, in that order; every sample re-checked by the exact oracle.
-TEST(PinSlot, FilmAdvanceCycle) {
-  const Model& model = film_advance();
+// The film advance's cycle, the cam turning clockwise (the sense of its torque) in `steps` steps.
+PinSlotCycle film_cycle(std::size_t steps) {
   PinSlotCycleOptions options;
   options.clockwise = true;
-  options.steps = 72;
-  PinSlotCycle cycle = pin_slot_cycle(model, options);
+  options.steps = steps;
+  return pin_slot_cycle(film_advance(), options);
+}
+
+TEST(PinSlot, FilmAdvanceCycle) {
+  const Model& model = film_advance();
+  PinSlotCycle cycle = film_cycle(72);
   EXPECT_EQ(cycle.driver, "cam");
   EXPECT_EQ(cycle.follower, "follower");
   EXPECT_EQ(cycle.target, "film");
@@ -317,11 +322,7 @@ TEST(PinSlot, FilmAdvanceCycle) {
 // `clearance` is the difference of the doubles of the two exact ends, each within a few units
 // in the last place of numbers below 60, hence the 1e-12).
 TEST(PinSlot, FilmAdvanceCycleReportsTheCamContactsBoundingTheSlide) {
-  const Model& model = film_advance();
-  PinSlotCycleOptions options;
-  options.clockwise = true;
-  options.steps = 24;
-  PinSlotCycle cycle = pin_slot_cycle(model, options);
+  PinSlotCycle cycle = film_cycle(24);
   ASSERT_EQ(cycle.samples.size(), 25u);
   for (const CycleSample& s : cycle.samples) {
     SCOPED_TRACE(s.driver_degrees);
