@@ -132,6 +132,12 @@ Box operator+(const Box& a, const Box& b) { return {a.lo + b.lo, a.hi + b.hi}; }
 Box operator-(const Box& a) { return {-a.hi, -a.lo}; }
 Box operator-(const Box& a, const Box& b) { return {a.lo - b.hi, a.hi - b.lo}; }
 Box operator*(const Box& a, const Box& b) {
+  // by the signs of the ends (two products) when neither box straddles zero; else all four
+  const int al = sgn(a.lo), ah = sgn(a.hi), bl = sgn(b.lo), bh = sgn(b.hi);
+  if (al >= 0 && bl >= 0) return {a.lo * b.lo, a.hi * b.hi};
+  if (ah <= 0 && bh <= 0) return {a.hi * b.hi, a.lo * b.lo};
+  if (al >= 0 && bh <= 0) return {a.hi * b.lo, a.lo * b.hi};
+  if (ah <= 0 && bl >= 0) return {a.lo * b.hi, a.hi * b.lo};
   Rational p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
   return {*std::min_element(p, p + 4), *std::max_element(p, p + 4)};
 }
