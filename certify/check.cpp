@@ -153,14 +153,7 @@ bool rotates(const Part& part) { return part.motion.kind == Motion::Kind::rotati
 
 // Is every angle of `theta` (or offset) within the part's motion limits (up to whole turns)?
 bool within_limits(const Part& part, const Interval& value) {
-  const auto& limits = rotates(part) ? part.motion.angle_limits : part.motion.translation_limits;
-  if (!limits) return true;
-  for (int turns = rotates(part) ? -3 : 0; turns <= (rotates(part) ? 3 : 0); ++turns) {
-    Interval shifted = value + two_pi() * Interval(Rational(turns));
-    if (mpfi_is_nonneg((shifted - Interval(limits->lo)).get()) > 0 && mpfi_is_nonneg((Interval(limits->hi) - shifted).get()) > 0)
-      return true;
-  }
-  return false;
+  return certainly_within(rotates(part) ? part.motion.angle_limits : part.motion.translation_limits, value, rotates(part));
 }
 
 const Edge& edge_of(const Model& model, const EdgeReference& reference) {
@@ -184,6 +177,22 @@ void check_crossing_parts(const Certificate& c, const CrossingWitness& w) {
 // ----------------------------------------------------------------------------- single configurations
 }  // namespace
 
+bool certainly_within(const std::optional<RationalInterval>& limits, const Interval& value, bool angle) {
+  if (!limits) return true;
+  for (int turns = angle ? -3 : 0; turns <= (angle ? 3 : 0); ++turns) {
+    Interval shifted = value + two_pi() * Interval(Rational(turns));
+    if (mpfi_is_nonneg((shifted - Interval(limits->lo)).get()) > 0 && mpfi_is_nonneg((Interval(limits->hi) - shifted).get()) > 0)
+      return true;
+  }
+  return false;
+}
+
+Interval angle_of_tangent(const Rational& tangent, bool half_turn) {
+  Interval theta;
+  mpfi_atan(theta.get(), Interval(tangent).get());
+  return theta * Interval(Rational(2)) + (half_turn ? Interval::pi() : Interval(Rational(0)));
+}
+
 ExactMap exact_map(const Part& part, const std::map<std::string, ExactPosition>& configuration) {
   auto found = configuration.find(part.name);
   ExactMap map;
@@ -205,9 +214,7 @@ ExactMap exact_map(const Part& part, const std::map<std::string, ExactPosition>&
   map.c = (1 - t * t) / w * (position.half_turn ? -1 : 1);
   map.s = 2 * t / w * (position.half_turn ? -1 : 1);
   map.pivot = part.motion.pivot;
-  Interval theta;
-  mpfi_atan(theta.get(), Interval(t).get());
-  theta = theta * Interval(Rational(2)) + (position.half_turn ? Interval::pi() : Interval(Rational(0)));
+  Interval theta = angle_of_tangent(t, position.half_turn);
   if (position.angle) {
     Interval difference = theta - Interval(*position.angle);
     Interval error = difference - two_pi() * Interval(turns_of(difference));

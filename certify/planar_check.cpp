@@ -62,12 +62,16 @@ std::string check_planar(const Certificate& c, const Model& model) {
   const Part& fixed = part_named(model, pose.part == c.first ? c.second : c.first);
   ExactMap fixed_map;
   if (pose.slide) {
-    // a pin-in-slot part: its slide within its limits (the angle is the posed geometry's; angle
-    // limits are not part of the claim), the other part fixed or at its configured position
+    // a pin-in-slot part: its slide within its limits (exact), its angle certainly within its
+    // angle limits (MPFI enclosure of 2 atan t), the other part fixed or at its configured position
     if (free.motion.kind != Motion::Kind::pin_slot) reject("part '" + free.name + "' has no pin_slot motion (a pose with a slide)");
     const auto& limits = free.motion.translation_limits;
     if (limits && (*pose.slide < limits->lo || *pose.slide > limits->hi))
       reject("the slide of '" + free.name + "' (" + text(*pose.slide) + ") is outside its limits");
+    if (!certainly_within(free.motion.angle_limits, angle_of_tangent(pose.tangent, pose.half_turn), true))
+      reject("the angle of '" + free.name + "' (2 atan(" + text(pose.tangent) + ")" + (pose.half_turn ? " + pi" : "") +
+             " rad) is not certainly within its limits [" + to_decimal_string(free.motion.angle_limits->lo) + ", " +
+             to_decimal_string(free.motion.angle_limits->hi) + "] rad");
     if (fixed.motion.kind == Motion::Kind::planar || fixed.motion.kind == Motion::Kind::pin_slot)
       reject("part '" + fixed.name + "' must be fixed, rotate or translate");
     fixed_map = exact_map(fixed, c.configuration);

@@ -11,8 +11,10 @@
 #include <hipair/model.hpp>
 
 #include "certify/exact_geometry.hpp"
+#include "certify/interval_geometry.hpp"
 
 #include <map>
+#include <optional>
 #include <string>
 
 namespace hipair::verify {
@@ -20,6 +22,13 @@ namespace hipair::verify {
 /// The exact map of a fixed, rotating or translating part at its position in `configuration`
 /// (identity when fixed); positions and limits checked (check.cpp). \throws Rejection.
 ExactMap exact_map(const Part& part, const std::map<std::string, ExactPosition>& configuration);
+
+/// Is every value of `value` certainly within `limits` (true when absent)? For an angle (rad)
+/// up to whole turns (-3 ... 3). Decided with MPFI: an interval straddling an end is not within.
+bool certainly_within(const std::optional<RationalInterval>& limits, const Interval& value, bool angle);
+
+/// An MPFI enclosure of the angle 2 atan(t) (+ pi when `half_turn`) of a half-angle tangent.
+Interval angle_of_tangent(const Rational& tangent, bool half_turn);
 
 /// Checks a planar_interference or planar_clearance claim; returns the summary line.
 /// \throws Rejection with the exact reason when the claim does not hold.

@@ -234,6 +234,11 @@ struct CycleSample {
   /// engaged: the feature pairs whose contacts bound the target's free interval (they touch
   /// when the target moves to that end)
   std::vector<std::string> bounds;
+  /// The driver–follower contacts that bound the follower's free slide interval at its pose
+  /// (feature-pair labels of the interval's two end vertices in the exact 1-D slice of the
+  /// follower against the driver; "slide limit" for an end at the slot's limit). The follower
+  /// itself is posed inside the interval, clear of the driver.
+  std::vector<std::string> driver_bounds;
 };
 
 /// A run of samples with one phase.

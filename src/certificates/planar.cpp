@@ -32,6 +32,16 @@ PlanarPair planar_pair(const Model& model, const std::string& fixed, const Plana
       throw GeometryError("pin-slot certificate: part '" + b.name + "' has no pin_slot motion");
     if (a.motion.kind == Motion::Kind::planar || a.motion.kind == Motion::Kind::pin_slot)
       throw GeometryError("pin-slot certificate: part '" + a.name + "' must be fixed, rotate or translate");
+    const auto& slide_limits = b.motion.translation_limits;
+    if (slide_limits && (*pose.slide < slide_limits->lo || *pose.slide > slide_limits->hi))
+      throw GeometryError("pin-slot certificate: the slide of '" + b.name + "' (" + to_decimal_string(*pose.slide) +
+                          " mm) is outside its limits [" + to_decimal_string(slide_limits->lo) + ", " +
+                          to_decimal_string(slide_limits->hi) + "] mm");
+    if (!verify::certainly_within(b.motion.angle_limits, verify::angle_of_tangent(pose.tangent, pose.half_turn), true))
+      throw GeometryError("pin-slot certificate: the angle of '" + b.name + "' (2 atan(" + to_exact_string(pose.tangent) + ")" +
+                          (pose.half_turn ? " + pi" : "") + " rad) is not certainly within its limits [" +
+                          to_decimal_string(b.motion.angle_limits->lo) + ", " + to_decimal_string(b.motion.angle_limits->hi) +
+                          "] rad");
     try {
       fixed_map = verify::exact_map(a, configuration);
     } catch (const verify::Rejection& r) {
@@ -67,6 +77,15 @@ std::string pose_words(const PlanarPose& pose) {
   return "'" + pose.part + "' shifted by (" + to_decimal_string(pose.x) + ", " + to_decimal_string(pose.y) + ") mm and " + turned;
 }
 
+// "Part 'cam' turned by 2 atan(t) rad" / "Part 'film' at offset s mm" / "Part 'pin'"
+std::string other_words(const std::string& other, const std::map<std::string, ExactPosition>& configuration) {
+  auto found = configuration.find(other);
+  if (found == configuration.end()) return "Part '" + other + "'";
+  const ExactPosition& p = found->second;
+  if (p.is_offset) return "Part '" + other + "' at offset " + to_decimal_string(p.value) + " mm";
+  return "Part '" + other + "' turned by 2 atan(" + to_exact_string(p.value) + ")" + (p.half_turn ? " + pi" : "") + " rad";
+}
+
 std::optional<Certificate> interference(const Model& model, const std::string& fixed, const PlanarPose& pose,
                                         const std::map<std::string, ExactPosition>& configuration, const CertifyContext& context) {
   PlanarPair pair = planar_pair(model, fixed, pose, configuration);
@@ -89,7 +108,7 @@ std::optional<Certificate> interference(const Model& model, const std::string& f
                                                    {b.name, k, l, b.loops[k].edges[l].label}, std::nullopt};
     if (!c.witness_crossing) return std::nullopt;
   }
-  c.statement = "Part '" + fixed + "' and " + pose_words(pose) + " overlap.";
+  c.statement = other_words(fixed, configuration) + " and " + pose_words(pose) + " overlap.";
   self_check(c, model);
   return c;
 }
@@ -111,7 +130,7 @@ std::optional<Certificate> clearance(const Model& model, const std::string& fixe
                                                          verify::place_over(b, verify::to_interval_map(pair.map)), cap);
   if (sgn(bound) <= 0 || (distance && bound < *distance)) return std::nullopt;
   c.distance = distance ? *distance : round_down(bound, 6);
-  c.statement = "Part '" + fixed + "' and " + pose_words(pose) + " are at least " + to_decimal_string(c.distance) +
+  c.statement = other_words(fixed, configuration) + " and " + pose_words(pose) + " are at least " + to_decimal_string(c.distance) +
                 " mm apart.";
   self_check(c, model);
   return c;

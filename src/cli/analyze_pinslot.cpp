@@ -84,6 +84,7 @@ int run_pin_slot_cycle(const Model& model, const PinSlotCycleRequest& request) {
     j["phase"] = std::string(to_string(s.phase));
     j["contacts"] = s.contacts;
     j["bounded_by"] = s.bounds;
+    j["follower_slide_bounded_by"] = s.driver_bounds;
     samples.push_back(j);
   }
   out["samples"] = samples;
@@ -118,13 +119,16 @@ int run_pin_slot_cycle(const Model& model, const PinSlotCycleRequest& request) {
       std::printf("  %8.1f .. %8.1f deg  %-28s %s moved %s mm (exact %s)\n", a.driver_degrees, b.driver_degrees,
                   what.c_str(), cycle.target.c_str(), to_decimal_string(r.target_moved, 6).c_str(),
                   to_exact_string(r.target_moved).c_str());
-      std::set<std::string> contacts, bounds;
+      std::set<std::string> contacts, bounds, driver_bounds;
       for (std::size_t i = r.first; i <= r.last; ++i) {
         for (const auto& c : cycle.samples[i].contacts) contacts.insert(c);
         for (const auto& c : cycle.samples[i].bounds) bounds.insert(c);
+        for (const auto& c : cycle.samples[i].driver_bounds) driver_bounds.insert(c);
       }
       for (const auto& c : contacts) std::printf("        contact: %s\n", c.c_str());
       for (const auto& c : bounds) std::printf("        held between contacts: %s\n", c.c_str());
+      for (const auto& c : driver_bounds)
+        std::printf("        %s slide bounded by (%s): %s\n", cycle.follower.c_str(), cycle.driver.c_str(), c.c_str());
     }
     std::printf("  %s advanced by %s mm (exact %s) over the cycle; %.2f s\n", cycle.target.c_str(),
                 to_decimal_string(cycle.advance, 6).c_str(), to_exact_string(cycle.advance).c_str(), cycle.seconds);

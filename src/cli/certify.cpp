@@ -89,6 +89,7 @@ int run(const CertifyArguments& arguments) {
   std::optional<Certificate> certificate;
   std::string failure;
   const Part* planar = a.motion.kind == Motion::Kind::planar ? &a : b.motion.kind == Motion::Kind::planar ? &b : nullptr;
+  const Part* pin_slot = a.motion.kind == Motion::Kind::pin_slot ? &a : b.motion.kind == Motion::Kind::pin_slot ? &b : nullptr;
   if (planar && (arguments.claim == "interference" || arguments.claim == "clearance")) {
     // a part free in the plane: its pose (x, y, angle) from the model's initial configuration
     // or --at PART=X,Y,ANGLE; the angle is rounded to an exact half-angle tangent
@@ -112,6 +113,42 @@ int run(const CertifyArguments& arguments) {
       failure = "the parts do not overlap there";
     } else {
       certificate = certify_planar_clearance(model, fixed, pose, distance, context);
+      failure = "the parts touch or overlap there, or are closer than the distance";
+    }
+  } else if (pin_slot && (arguments.claim == "interference" || arguments.claim == "clearance")) {
+    // a pin-in-slot part: its pose (slide, angle) from the model's initial configuration or
+    // --at PART=SLIDE,ANGLE; the other part (fixed, rotating or translating) at its initial
+    // position or --at OTHER=VALUE
+    const Part& other = pin_slot == &a ? b : a;
+    Rational slide = pin_slot->initial.offset, angle = pin_slot->initial.angle, value = coordinate(other);
+    for (const std::string& assignment : arguments.at) {
+      auto equals = assignment.find('=');
+      std::string name = equals == std::string::npos ? "" : assignment.substr(0, equals), rest = assignment.substr(equals + 1);
+      if (name == pin_slot->name) {
+        auto comma = rest.find(',');
+        if (comma == std::string::npos)
+          throw ModelError("", "--at expects " + pin_slot->name + "=SLIDE,ANGLE for the pin-slot part, got '" + assignment + "'");
+        slide = value_of(rest.substr(0, comma), false, "--at");
+        angle = value_of(rest.substr(comma + 1), true, "--at");
+      } else if (name == other.name && other.motion.kind != Motion::Kind::fixed) {
+        value = value_of(rest, rotates(other), "--at");
+      } else {
+        throw ModelError("", "--at expects " + pin_slot->name + "=SLIDE,ANGLE" +
+                                 (other.motion.kind != Motion::Kind::fixed ? " or " + other.name + "=VALUE" : "") + ", got '" +
+                                 assignment + "'");
+      }
+    }
+    ExactPosition rotation = exact_position_from_angle(angle);
+    PlanarPose pose{pin_slot->name, 0, 0, rotation.value, rotation.half_turn};
+    pose.slide = slide;
+    std::map<std::string, ExactPosition> configuration;
+    if (other.motion.kind != Motion::Kind::fixed)
+      configuration[other.name] = rotates(other) ? exact_position_from_angle(value) : ExactPosition{value, true, false, {}, {}};
+    if (arguments.claim == "interference") {
+      certificate = certify_pin_slot_interference(model, other.name, pose, configuration, context);
+      failure = "the parts do not overlap there";
+    } else {
+      certificate = certify_pin_slot_clearance(model, other.name, pose, configuration, distance, context);
       failure = "the parts touch or overlap there, or are closer than the distance";
     }
   } else if (arguments.claim == "interference" || arguments.claim == "clearance") {
@@ -206,7 +243,8 @@ void register_certify(CLI::App& app, Action& action) {
   command->add_option("--out", arguments->out, "certificate file to write (JSON)")->required();
   command->add_option("--pair", arguments->pair, "A:B (default: the model's first pair)");
   command->add_option("--set", arguments->overrides, "override a parameter: NAME=VALUE (repeatable)");
-  command->add_option("--at", arguments->at, "interference/clearance: PART=VALUE, angle in rad (or NNdeg) or offset in mm (a planar part: PART=X,Y,ANGLE) "
+  command->add_option("--at", arguments->at, "interference/clearance: PART=VALUE, angle in rad (or NNdeg) or offset in mm (a planar part: PART=X,Y,ANGLE; "
+                                             "a pin-slot part: PART=SLIDE,ANGLE) "
                                              "(default: the initial configuration)");
   command->add_option("--distance", arguments->distance, "clearance/free: the clearance to certify (mm; default: found)");
   command->add_option("--driver", arguments->driver, "jam/free: the driven part (default: the pair's first moving part)");

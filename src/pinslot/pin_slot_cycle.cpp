@@ -216,6 +216,7 @@ PinSlotCycle pin_slot_cycle(const Model& model, const PinSlotCycleOptions& optio
       double length = 0;
       Rational tau, slide;
       bool found = false;
+      std::vector<std::string> bounds;   // the driver contacts at the ends of the chosen interval
     };
     auto best_at = [&](const Rational& tau) {
       Best b;
@@ -228,6 +229,12 @@ PinSlotCycle pin_slot_cycle(const Model& model, const PinSlotCycleOptions& optio
           b.found = true;
           b.length = length;
           b.slide = near_rational((in.upper.approx + in.lower.approx) / 2);
+          b.bounds.clear();
+          for (const End* e : {&in.lower, &in.upper}) {
+            std::vector<std::string> labels = labels_at(*slice, *e);
+            if (!e->contact) labels = {"slide limit"};
+            b.bounds.insert(b.bounds.end(), labels.begin(), labels.end());
+          }
         }
       }
       return b;
@@ -278,6 +285,7 @@ PinSlotCycle pin_slot_cycle(const Model& model, const PinSlotCycleOptions& optio
     sample.tau = best.tau;
     sample.slide = best.slide;
     sample.clearance = best.length;
+    sample.driver_bounds = best.bounds;
     sample.psi_degrees = 2 * std::atan(to_double(best.tau)) * 180 / std::numbers::pi;
     tau_before = tau_previous;
     tau_previous = best.tau;

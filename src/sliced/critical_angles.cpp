@@ -25,11 +25,15 @@ using algebra::Real;
 // the event polynomials), Rational (exact values at a rational rotation) and Box (exact
 // rational intervals: enclosures over an interval of u).
 
+// The coefficients are integers over one common positive denominator: products and sums need no
+// gcd per coefficient (canonical rationals spent a fifth of the film advance's critical-value
+// time in gcds); the sign of the value is the sign of the integer numerator.
 struct TrigPoly {
-  std::vector<Rational> c;   // ascending powers of u
-  int w = 0;                 // value = c(u) / (1 + u^2)^w
+  std::vector<mpz_class> c;   // ascending powers of u
+  mpz_class den = 1;          // > 0
+  int w = 0;                  // value = c(u) / (den (1 + u^2)^w)
   TrigPoly() = default;
-  TrigPoly(const Rational& r) : c{r} {}   // NOLINT: implicit, as for the other number types
+  TrigPoly(const Rational& r) : c{r.get_num()}, den(r.get_den()) {}   // NOLINT: implicit, as for the other number types
   bool zero() const {
     for (const auto& x : c)
       if (sgn(x) != 0) return false;
@@ -39,7 +43,7 @@ struct TrigPoly {
 
 TrigPoly lift(TrigPoly a, int w) {
   while (a.w < w) {
-    std::vector<Rational> out(a.c.size() + 2, Rational(0));
+    std::vector<mpz_class> out(a.c.size() + 2);
     for (std::size_t i = 0; i < a.c.size(); ++i) {
       out[i] += a.c[i];
       out[i + 2] += a.c[i];
@@ -53,7 +57,15 @@ TrigPoly lift(TrigPoly a, int w) {
 TrigPoly operator+(const TrigPoly& x, const TrigPoly& y) {
   int w = std::max(x.w, y.w);
   TrigPoly a = lift(x, w), b = lift(y, w);
-  if (a.c.size() < b.c.size()) a.c.resize(b.c.size(), Rational(0));
+  if (a.den != b.den) {
+    mpz_class g;
+    mpz_gcd(g.get_mpz_t(), a.den.get_mpz_t(), b.den.get_mpz_t());
+    mpz_class fa = b.den / g, fb = a.den / g;
+    for (auto& v : a.c) v *= fa;
+    for (auto& v : b.c) v *= fb;
+    a.den *= fa;
+  }
+  if (a.c.size() < b.c.size()) a.c.resize(b.c.size());
   for (std::size_t i = 0; i < b.c.size(); ++i) a.c[i] += b.c[i];
   return a;
 }
@@ -66,17 +78,18 @@ TrigPoly operator-(const TrigPoly& x, const TrigPoly& y) { return x + (-y); }
 TrigPoly operator*(const TrigPoly& x, const TrigPoly& y) {
   TrigPoly a;
   a.w = x.w + y.w;
-  a.c.assign(x.c.size() + y.c.size(), Rational(0));
+  a.den = x.den * y.den;
+  a.c.assign(x.c.size() + y.c.size(), mpz_class(0));
   for (std::size_t i = 0; i < x.c.size(); ++i)
     if (sgn(x.c[i]) != 0)
-      for (std::size_t j = 0; j < y.c.size(); ++j) a.c[i + j] += x.c[i] * y.c[j];
+      for (std::size_t j = 0; j < y.c.size(); ++j) mpz_addmul(a.c[i + j].get_mpz_t(), x.c[i].get_mpz_t(), y.c[j].get_mpz_t());
   return a;
 }
 
 // Divides out the factors (1 + u^2) of the numerator (same value, lower degree).
 TrigPoly reduced(TrigPoly a) {
   while (a.w > 0 && a.c.size() >= 3) {
-    std::vector<Rational> r = a.c, q(a.c.size() - 2, Rational(0));
+    std::vector<mpz_class> r = a.c, q(a.c.size() - 2);
     for (std::size_t i = r.size() - 1; i >= 2; --i) {
       q[i - 2] = r[i];
       r[i - 2] -= r[i];
@@ -89,13 +102,22 @@ TrigPoly reduced(TrigPoly a) {
   return a;
 }
 
-// The integer polynomial with the same sign as the numerator (positive scaling).
+// The integer polynomial with the same sign as the numerator (positive scaling: the
+// denominators are positive; divided by the content of its coefficients).
 algebra::Polynomial integer_numerator(const TrigPoly& unreduced) {
   const TrigPoly p = reduced(unreduced);
-  mpz_class lcm = 1;
-  for (const auto& q : p.c) mpz_lcm(lcm.get_mpz_t(), lcm.get_mpz_t(), q.get_den_mpz_t());
+  mpz_class content = 0;
+  for (const auto& q : p.c) mpz_gcd(content.get_mpz_t(), content.get_mpz_t(), q.get_mpz_t());
   algebra::Polynomial out;
-  for (const auto& q : p.c) out.push_back(q.get_num() * (lcm / q.get_den()));
+  for (const auto& q : p.c) {
+    if (sgn(content) > 0 && content != 1) {
+      mpz_class v;
+      mpz_divexact(v.get_mpz_t(), q.get_mpz_t(), content.get_mpz_t());
+      out.push_back(v);
+    } else {
+      out.push_back(q);
+    }
+  }
   algebra::trim(out);
   return out;
 }
@@ -110,6 +132,12 @@ Box operator+(const Box& a, const Box& b) { return {a.lo + b.lo, a.hi + b.hi}; }
 Box operator-(const Box& a) { return {-a.hi, -a.lo}; }
 Box operator-(const Box& a, const Box& b) { return {a.lo - b.hi, a.hi - b.lo}; }
 Box operator*(const Box& a, const Box& b) {
+  // by the signs of the ends (two products) when neither box straddles zero; else all four
+  const int al = sgn(a.lo), ah = sgn(a.hi), bl = sgn(b.lo), bh = sgn(b.hi);
+  if (al >= 0 && bl >= 0) return {a.lo * b.lo, a.hi * b.hi};
+  if (ah <= 0 && bh <= 0) return {a.hi * b.hi, a.lo * b.lo};
+  if (al >= 0 && bh <= 0) return {a.hi * b.lo, a.lo * b.hi};
+  if (ah <= 0 && bl >= 0) return {a.lo * b.hi, a.hi * b.lo};
   Rational p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
   return {*std::min_element(p, p + 4), *std::max_element(p, p + 4)};
 }
@@ -158,13 +186,13 @@ struct Rotation {
 
 TrigPoly poly_cos(bool flip) {
   TrigPoly c;
-  c.c = {Rational(1), Rational(0), Rational(-1)};
+  c.c = {mpz_class(1), mpz_class(0), mpz_class(-1)};
   c.w = 1;
   return flip ? -c : c;
 }
 TrigPoly poly_sin(bool flip) {
   TrigPoly s;
-  s.c = {Rational(0), Rational(2)};
+  s.c = {mpz_class(0), mpz_class(2)};
   s.w = 1;
   return flip ? -s : s;
 }
@@ -263,14 +291,16 @@ int region_side(const std::vector<Loop>& loops, const Rational& x, const Rationa
         }
         continue;
       }
-      Rational cr = (q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x);
-      if (sgn(cr) == 0 && std::min(p.x, q.x) <= x && x <= std::max(p.x, q.x) && std::min(p.y, q.y) <= y &&
-          y <= std::max(p.y, q.y))
-        return 0;   // on the boundary
-      if ((p.y <= y) != (q.y <= y)) {
-        Rational x_cross = p.x + (y - p.y) * (q.x - p.x) / (q.y - p.y);
-        if (x_cross > x) inside = !inside;
-      }
+      // cr = cross(q - p, (x, y) - p), formed only for edges whose y-range holds y (comparisons
+      // first): zero with (x, y) in the edge's box, on the boundary; for an edge crossing the
+      // line at height y, its crossing lies right of x iff cr has the sign of q.y - p.y
+      // (x_cross - x = cr / (q.y - p.y)), so no division
+      const bool straddles = (p.y <= y) != (q.y <= y);
+      const bool in_y_range = std::min(p.y, q.y) <= y && y <= std::max(p.y, q.y);
+      if (!straddles && !in_y_range) continue;
+      const int side = sgn(Rational((q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x)));
+      if (side == 0 && in_y_range && std::min(p.x, q.x) <= x && x <= std::max(p.x, q.x)) return 0;   // on the boundary
+      if (straddles && side * sgn(Rational(q.y - p.y)) > 0) inside = !inside;
     }
   return inside ? 1 : -1;
 }
@@ -1549,17 +1579,24 @@ class CurveFinder {
           window[r] = {Box{std::min(window[r].first.lo, b.first.lo), std::max(window[r].first.hi, b.first.hi)},
                        Box{std::min(window[r].second.lo, b.second.lo), std::max(window[r].second.hi, b.second.hi)}};
         }
+    // Per range: an event of a window curve with another curve lies on the window curve, inside
+    // the window, at an angle of some range r; so it lies in the curve's box and the window's box
+    // of range r (both closed enclosures over the closed range). A range where a curve's box
+    // misses the window's is cleared from every mask of that curve.
+    std::vector<std::uint64_t> in_window(n, ~std::uint64_t(0));
     for (std::size_t i = 0; i < n; ++i) {
       if (curves_[i].extra) continue;
-      bool meets = false;
-      for (int r = 0; r < 64 && !meets; ++r) {
+      std::uint64_t bits = 0;
+      for (int r = 0; r < 64; ++r) {
         const auto &x = boxes[i][r], &y = window[r];
-        meets = !(x.first.hi < y.first.lo || y.first.hi < x.first.lo || x.second.hi < y.second.lo || y.second.hi < x.second.lo);
+        if (!(x.first.hi < y.first.lo || y.first.hi < x.first.lo || x.second.hi < y.second.lo || y.second.hi < x.second.lo))
+          bits |= std::uint64_t(1) << r;
       }
-      if (!meets)
-        for (std::size_t j = 0; j < n; ++j) masks_[i * n + j] = masks_[j * n + i] = 0;
-      if (!meets) outside_.push_back(i);
+      in_window[i] = bits;
+      if (bits == 0) outside_.push_back(i);
     }
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = 0; b < n; ++b) masks_[a * n + b] &= in_window[a] & in_window[b];
   }
   std::uint64_t mask(std::size_t i, std::size_t j) const { return masks_[i * curves_.size() + j]; }
 

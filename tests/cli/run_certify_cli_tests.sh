@@ -156,6 +156,51 @@ grep -q "^hipair: error: --follower-range: the range 0.1:-0.1 is empty" "$work/n
   || fail "reversed follower range: $(cat "$work/noint-bad.err")"
 [ -e "$work/noint-bad" ] && fail "tolerance --certify-interference with a bad request wrote output"
 
+# ------------------------------------------------------------------ 3-DOF poses: a planar peg, a pin-in-slot follower
+# `--at PART=X,Y,ANGLE` (planar) and `--at PART=SLIDE,ANGLE` (pin_slot) with the other part at
+# `--at OTHER=VALUE`: certified where the parts overlap / are apart, verified; refused where not;
+# a pose beyond the pin-slot part's slide or angle limits is one clear error (exit 3, a GeometryError), no output;
+# a certificate edited to a tangent beyond the angle limits is rejected by hipair-verify.
+peg=$source/examples/models/peg-in-hole.json film=$source/examples/models/film-advance.json
+certify_ok() {   # NAME MODEL ARGS...: certify, then verify
+  local name=$1 model=$2; shift 2
+  "$hipair" certify "$model" "$@" --out "$work/$name.json" >"$work/$name.out" 2>&1 \
+    || { fail "certify $* refused: $(cat "$work/$name.out")"; return; }
+  "$verify" "$work/$name.json" "$model" >"$work/$name.verify" 2>&1 \
+    || fail "hipair-verify rejects the certificate of certify $*: $(cat "$work/$name.verify")"
+}
+certify_refused() {   # NAME EXIT MESSAGE MODEL ARGS...: refused with exit EXIT and MESSAGE, no output written
+  local name=$1 code=$2 message=$3 model=$4; shift 4
+  "$hipair" certify "$model" "$@" --out "$work/$name.json" >"$work/$name.out" 2>&1
+  local got=$?
+  [ $got -eq "$code" ] || fail "certify $* : exit $got, not $code: $(cat "$work/$name.out")"
+  grep -qF -- "$message" "$work/$name.out" || fail "certify $* : message not '$message': $(cat "$work/$name.out")"
+  [ -e "$work/$name.json" ] && fail "certify $* wrote output although it was refused"
+}
+certify_ok peg-clear "$peg" --claim clearance
+certify_ok peg-overlap "$peg" --claim interference --at peg=2,0,10deg
+certify_refused peg-not-clear 1 "touch or overlap" "$peg" --claim clearance --at peg=2,0,10deg
+certify_refused peg-bad-at 2 "--at expects peg=X,Y,ANGLE" "$peg" --claim clearance --at peg=2,0
+for pair in cam:follower pin:follower film:follower; do
+  certify_ok "film-${pair%%:*}-clear" "$film" --claim clearance --pair $pair
+  certify_refused "film-${pair%%:*}-overlap" 1 "do not overlap" "$film" --claim interference --pair $pair
+done
+certify_ok film-cam-overlap "$film" --claim interference --pair cam:follower --at follower=4,5deg --at cam=80deg
+certify_ok film-film-clear-moved "$film" --claim clearance --pair film:follower --at film=-3 --at follower=-2,-7deg --distance 0.1
+grep -q '"film": {"offset": "-3"}' "$work/film-film-clear-moved.json" \
+  || fail "the film's offset is not in the certificate: $(head -c 600 "$work/film-film-clear-moved.json")"
+certify_refused film-beyond-angle 3 "is not certainly within its limits" "$film" --claim clearance --pair pin:follower --at follower=0,9deg
+certify_refused film-beyond-slide 3 "is outside its limits" "$film" --claim clearance --pair pin:follower --at follower=7,0
+certify_refused film-at-fixed 2 "--at expects follower=SLIDE,ANGLE, got 'pin=3'" "$film" --claim clearance --pair pin:follower --at pin=3
+certify_refused film-at-incomplete 2 "--at expects follower=SLIDE,ANGLE for the pin-slot part" "$film" --claim clearance --pair pin:follower --at follower=3
+# hipair-verify: the follower's tangent edited beyond its 8 deg limit (2 atan(0.0701) = 8.02 deg)
+sed 's|"tangent": "0"|"tangent": "701/10000"|' "$work/film-pin-clear.json" >"$work/film-pin-turned.json"
+cmp -s "$work/film-pin-clear.json" "$work/film-pin-turned.json" && fail "the tangent edit changed nothing"
+"$verify" "$work/film-pin-turned.json" "$film" >"$work/film-pin-turned.out" 2>&1
+[ $? -eq 1 ] || fail "hipair-verify accepts a follower beyond its angle limits: $(cat "$work/film-pin-turned.out")"
+grep -q "angle of 'follower' .* is not certainly within its limits" "$work/film-pin-turned.out" \
+  || fail "angle-limit rejection: $(cat "$work/film-pin-turned.out")"
+
 if [ $failures -ne 0 ]; then
   echo "$failures certify CLI check(s) failed"
   exit 1

@@ -416,6 +416,9 @@ d = json.load(open(sys.argv[1]))
 phases = [r['phase'] for r in d['phases']]
 assert phases == ['clear', 'engaged', 'pushing', 'clear'], phases
 assert abs(d['advance_mm'] + 7.8) < 0.35, d['advance_mm']
+for s in d['samples']:   # the cam on the window's top (sliding down) and bottom (sliding up)
+    assert s['follower_slide_bounded_by'] == ['cam circle / follower window top (arc tangent to segment)',
+                                              'cam circle / follower window bottom (arc tangent to segment)'], s
 " "$work/fa-cycle/cycle.json" 2>"$work/fa-cycle.check" || fail "analyze film advance: phases or advance wrong: $(cat "$work/fa-cycle.check")"
 cat >"$work/pin-planar.json" <<'MODEL'
 { "hipair": 1, "name": "pin-planar", "parts": [

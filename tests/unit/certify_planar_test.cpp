@@ -148,7 +148,7 @@ TEST(CertifyPinSlot, FilmAdvanceFollowerAtRandomPoses) {
   const Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/film-advance.json");
   const Part& follower = model.parts[*model.find_part("follower")];
   Random random(41);
-  int interference = 0, clearance = 0;
+  int interference = 0, clearance = 0, beyond_angle_limits = 0;
   for (const std::string other : {"cam", "film", "pin"}) {
     const Part& part = model.parts[*model.find_part(other)];
     for (int i = 0; i < 30; ++i) {
@@ -169,6 +169,15 @@ TEST(CertifyPinSlot, FilmAdvanceFollowerAtRandomPoses) {
         coordinate = PartCoordinate{PartCoordinate::Kind::offset, p.value};
       }
       SCOPED_TRACE(other + " s=" + pose.slide->get_str() + " t=" + pose.tangent.get_str());
+      // a pose beyond the follower's angle limits (+-8 deg, |t| > tan(4 deg) = 0.0699268...; the
+      // generated tangents -0.07 + 0.14 p/q with q <= 97 come no closer than 7e-5 to it) is refused by
+      // both producers
+      if (abs(pose.tangent) > Rational(69927, 1000000)) {
+        EXPECT_THROW(certify_pin_slot_interference(model, other, pose, configuration), GeometryError);
+        EXPECT_THROW(certify_pin_slot_clearance(model, other, pose, configuration), GeometryError);
+        ++beyond_angle_limits;
+        continue;
+      }
       PartRelation r = part_overlap(part, part_placement(part, coordinate), follower,
                                     pin_slot_placement(follower, *pose.slide, pose.tangent))
                            .relation;
@@ -190,6 +199,9 @@ TEST(CertifyPinSlot, FilmAdvanceFollowerAtRandomPoses) {
         Certificate out_of_limits = read;
         out_of_limits.pose->slide = Rational(13, 2);
         expect_rejected(out_of_limits, "outside its limits");
+        Certificate turned_too_far = read;   // 2 atan(71/1000) = 8.12 deg, beyond the 8 deg limit
+        turned_too_far.pose->tangent = Rational(71, 1000) * (sgn(read.pose->tangent) < 0 ? -1 : 1);
+        expect_rejected(turned_too_far, "is not certainly within its limits");
         if (!configuration.empty()) {
           Certificate dropped = read;
           dropped.configuration.clear();
@@ -218,6 +230,7 @@ TEST(CertifyPinSlot, FilmAdvanceFollowerAtRandomPoses) {
   }
   EXPECT_GT(interference, 5);
   EXPECT_GT(clearance, 5);
+  EXPECT_GT(beyond_angle_limits, 0);
   // bad requests: no slide, a planar-pose producer with a slide
   PlanarPose no_slide{"follower", 0, 0, 0, false};
   EXPECT_THROW(certify_pin_slot_clearance(model, "pin", no_slide), GeometryError);

@@ -262,12 +262,17 @@ namespace {
 
 // The film advance's work cycle (pin_slot_cycle): the claw enters a perforation, pulls the film
 // down one frame and retracts, in that order; every sample re-checked by the exact oracle.
-TEST(PinSlot, FilmAdvanceCycle) {
-  const Model& model = film_advance();
+// The film advance's cycle, the cam turning clockwise (the sense of its torque) in `steps` steps.
+PinSlotCycle film_cycle(std::size_t steps) {
   PinSlotCycleOptions options;
   options.clockwise = true;
-  options.steps = 72;
-  PinSlotCycle cycle = pin_slot_cycle(model, options);
+  options.steps = steps;
+  return pin_slot_cycle(film_advance(), options);
+}
+
+TEST(PinSlot, FilmAdvanceCycle) {
+  const Model& model = film_advance();
+  PinSlotCycle cycle = film_cycle(72);
   EXPECT_EQ(cycle.driver, "cam");
   EXPECT_EQ(cycle.follower, "follower");
   EXPECT_EQ(cycle.target, "film");
@@ -307,6 +312,25 @@ TEST(PinSlot, FilmAdvanceCycle) {
       for (const auto& b : s.bounds) perforation = perforation || b.find("perforation 0") != std::string::npos;
       EXPECT_TRUE(perforation) << s.driver_degrees;
     }
+  }
+}
+
+// The cam-follower contacts reported per sample: the follower's free slide interval against the
+// eccentric cam (radius 10 in a square window of half side 10.2 whose top and bottom are normal
+// to the slot at every follower angle) is bounded below by the cam touching the window's top and
+// above by its bottom, and is exactly 2 (10.2 - 10) = 0.4 mm long at every cam and follower angle (closed form;
+// `clearance` is the difference of the doubles of the two exact ends, each within a few units
+// in the last place of numbers below 60, hence the 1e-12).
+TEST(PinSlot, FilmAdvanceCycleReportsTheCamContactsBoundingTheSlide) {
+  PinSlotCycle cycle = film_cycle(24);
+  ASSERT_EQ(cycle.samples.size(), 25u);
+  for (const CycleSample& s : cycle.samples) {
+    SCOPED_TRACE(s.driver_degrees);
+    ASSERT_EQ(s.driver_bounds.size(), 2u);
+    // sliding down (the lower end) brings the window's top onto the cam; sliding up, its bottom
+    EXPECT_EQ(s.driver_bounds[0], "cam circle / follower window top (arc tangent to segment)");
+    EXPECT_EQ(s.driver_bounds[1], "cam circle / follower window bottom (arc tangent to segment)");
+    EXPECT_NEAR(s.clearance, 0.4, 1e-12);
   }
 }
 

@@ -44,6 +44,9 @@ bases = [
     ("follower-guide-free.json", "cam-follower.json"),
     ("peg-planar-clearance.json", "peg-in-hole.json"),
     ("peg-planar-interference.json", "peg-in-hole.json"),
+    ("film-cam-clearance.json", "film-advance.json"),
+    ("film-pin-clearance.json", "film-advance.json"),
+    ("film-claw-interference.json", "film-advance.json"),
 ]
 for name, model in bases:
     expected.append((name, MODELS + model, "valid", name))
@@ -155,6 +158,26 @@ mutate("peg-planar-interference.json", "peg-in-hole.json", "p05-planar-part-not-
        "is not free in the plane", set_path(["planar_interference", "pose", "part"], "plate"))
 mutate("peg-planar-clearance.json", "peg-in-hole.json", "p06-planar-pose-incomplete.json", "missing key 'y'",
        lambda c: c["planar_clearance"]["pose"].pop("y"))
+
+# Pin-in-slot claims (the film advance's follower at an exact slide and angle, the other part
+# fixed, turned or shifted to its position in the configuration).
+mutate("film-pin-clearance.json", "film-advance.json", "s01-pin-slot-angle-beyond-limits.json",
+       "the angle of 'follower' (2 atan(701/10000) rad) is not certainly within its limits",
+       set_path(["planar_clearance", "pose", "tangent"], "701/10000"))
+mutate("film-pin-clearance.json", "film-advance.json", "s02-pin-slot-slide-beyond-limits.json",
+       "the slide of 'follower' (61/10) is outside its limits", set_path(["planar_clearance", "pose", "slide"], "61/10"))
+mutate("film-cam-clearance.json", "film-advance.json", "s03-pin-slot-clearance-too-large.json", "less than the claimed",
+       set_path(["planar_clearance", "distance"], "1/4"))
+mutate("film-cam-clearance.json", "film-advance.json", "s04-pin-slot-cam-tangent-off-angle.json", "is not within",
+       lambda c: c["planar_clearance"]["configuration"]["cam"].__setitem__("tangent", "0"))
+mutate("film-claw-interference.json", "film-advance.json", "s05-pin-slot-film-position-dropped.json",
+       "gives no position for moving part 'film'", set_path(["planar_interference", "configuration"], {}))
+mutate("film-claw-interference.json", "film-advance.json", "s06-pin-slot-film-moved.json", "is not strictly inside part 'film'",
+       set_path(["planar_interference", "configuration", "film", "offset"], "2"))
+mutate("film-claw-interference.json", "film-advance.json", "s07-pin-slot-claw-swung-out.json", "is not strictly inside part 'follower'",
+       set_path(["planar_interference", "pose", "tangent"], "-1/20"))
+mutate("film-cam-clearance.json", "film-advance.json", "s08-pin-slot-pose-on-the-cam.json", "has no pin_slot motion",
+       set_path(["planar_clearance", "pose", "part"], "cam"))
 
 with open(os.path.join(HERE, "EXPECTED.txt"), "w") as f:
     f.write("# certificate | model (relative to the repository) | expected: valid, or a substring of the reason | base\n")
