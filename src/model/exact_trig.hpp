@@ -76,7 +76,9 @@ Point exact_unit_vector_pi(const Rational& multiple_of_pi, const std::string& po
 /// direction is within b of the exact angle and its coordinates have the size of one rounded
 /// tangent, where rotating by exact_unit_vector(phase) after exact_unit_vector_pi(multiple)
 /// would make two roundings (2b) and square the denominators. Exact without a rounding when
-/// phase is 0 and the multiple is one of pi/2 (exact_unit_vector_pi).
+/// phase is 0 and the multiple is one of pi/2 (exact_unit_vector_pi). A phase whose own
+/// direction is exact (a quarter turn) turns the rounded u(pi multiple) exactly instead (also
+/// one rounding; the rationals of the former two-step construction).
 Point exact_unit_vector_sum(const Rational& phase, const Rational& multiple_of_pi, const std::string& pointer,
                             const std::string& expression, std::vector<Rounding>& roundings);
 

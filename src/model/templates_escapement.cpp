@@ -91,18 +91,16 @@ std::vector<Loop> expand_escape_wheel(const Arguments& arguments,
                                                          arguments.at("back_angle"),
                                                          "-back_angle", roundings));
 
-  // Tooth k of the canonical (counter-clockwise driven) frame turned by k pitches, mirrored for
-  // clockwise, then turned by the phase: one rotation by phase +- k pitches (mirror(R(a) v) =
-  // R(-a) mirror(v)), its direction rounded once (exact_unit_vector_sum) rather than the tooth's
-  // and the phase's directions rounded separately and multiplied (two roundings, denominators
-  // squared).
+  Point phase_unit = exact_unit_vector(phase, arguments.at("phase"), "phase", roundings);
   std::vector<Point> turn(teeth);
-  Rational sense = driven_ccw ? Rational(1) : Rational(-1);
   for (long k = 0; k < teeth; ++k)
-    turn[k] = exact_unit_vector_sum(phase, Rational(sense * pitch_turns * k), pointer,
-                                    "phase + " + tooth(k) + " direction", roundings);
+    turn[k] = exact_unit_vector_pi(Rational(pitch_turns * k), pointer, tooth(k) + " direction",
+                                   roundings);
+  // Canonical (counter-clockwise driven) frame, then mirrored for clockwise, then placed.
   auto at = [&](long k, const Point& local) {
-    return tg::add(center, tg::rotate(driven_ccw ? local : tg::mirror(local), turn[((k % teeth) + teeth) % teeth]));
+    Point p = tg::rotate(local, turn[((k % teeth) + teeth) % teeth]);
+    if (!driven_ccw) p = tg::mirror(p);
+    return tg::add(center, tg::rotate(p, phase_unit));
   };
   Point wheel_center = center;
   tg::LoopBuilder loop(at(teeth - 1, face_root), pointer);
