@@ -168,4 +168,33 @@ Point exact_unit_vector_pi(const Rational& multiple_of_pi, const std::string& po
   return unit;
 }
 
+Point exact_unit_vector_sum(const Rational& phase, const Rational& multiple_of_pi, const std::string& pointer,
+                            const std::string& expression, std::vector<Rounding>& roundings) {
+  if (phase == 0) return exact_unit_vector_pi(multiple_of_pi, pointer, expression, roundings);
+  // A phase whose own direction comes out exact (a quarter turn, rounded or not: 90 degrees)
+  // turns the rounded u(pi multiple) exactly: still one rounding, and the same rationals as
+  // before this function existed (the ratchet's and the certificate corpus's geometry).
+  std::vector<Rounding> phase_rounding;
+  Point base = exact_unit_vector(phase, pointer, "phase of " + expression, phase_rounding);
+  if (sgn(base.x) == 0 || sgn(base.y) == 0) {
+    Point turn = exact_unit_vector_pi(multiple_of_pi, pointer, expression, roundings);
+    roundings.insert(roundings.end(), phase_rounding.begin(), phase_rounding.end());
+    return Point{turn.x * base.x - turn.y * base.y, turn.x * base.y + turn.y * base.x};
+  }
+  mpfr_t a, pi;
+  mpfr_inits2(working_bits, a, pi, static_cast<mpfr_ptr>(nullptr));
+  mpfr_const_pi(pi, MPFR_RNDN);
+  Rational multiple = multiple_of_pi;
+  multiple.canonicalize();
+  mpfr_set_q(a, multiple.get_mpq_t(), MPFR_RNDN);
+  mpfr_mul(a, a, pi, MPFR_RNDN);
+  mpfr_t p;
+  mpfr_init2(p, working_bits);
+  mpfr_set_q(p, phase.get_mpq_t(), MPFR_RNDN);
+  mpfr_add(a, a, p, MPFR_RNDN);
+  Point unit = direction_from_mpfr(a, pointer, expression, roundings);
+  mpfr_clears(a, pi, p, static_cast<mpfr_ptr>(nullptr));
+  return unit;
+}
+
 }  // namespace hipair::model_detail

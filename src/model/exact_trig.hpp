@@ -71,6 +71,17 @@ Point exact_unit_vector(const Rational& angle, const std::string& pointer,
 Point exact_unit_vector_pi(const Rational& multiple_of_pi, const std::string& pointer,
                            const std::string& expression, std::vector<Rounding>& roundings);
 
+/// Exact unit vector for the angle phase + pi * multiple_of_pi with ONE rounding: the half-angle
+/// tangent of the whole angle is rounded (within the bound b, recorded under `pointer`), so the
+/// direction is within b of the exact angle and its coordinates have the size of one rounded
+/// tangent, where rotating by exact_unit_vector(phase) after exact_unit_vector_pi(multiple)
+/// would make two roundings (2b) and square the denominators. Exact without a rounding when
+/// phase is 0 and the multiple is one of pi/2 (exact_unit_vector_pi). A phase whose own
+/// direction is exact (a quarter turn) turns the rounded u(pi multiple) exactly instead (also
+/// one rounding; the rationals of the former two-step construction).
+Point exact_unit_vector_sum(const Rational& phase, const Rational& multiple_of_pi, const std::string& pointer,
+                            const std::string& expression, std::vector<Rounding>& roundings);
+
 /// Exact point on the circle (center, radius) in direction `unit` (an exact unit vector).
 inline Point point_on_circle(const Point& center, const Rational& radius, const Point& unit) {
   return Point{center.x + radius * unit.x, center.y + radius * unit.y};

@@ -77,8 +77,8 @@ class Arguments {
   std::string pointer_;
 };
 
-/// Exact unit vector of the angle phase + pi * multiple_of_pi (rounded through the half-angle
-/// tangent of each part when irrational; exact for phase 0 and multiples of pi/2).
+/// Exact unit vector of the angle phase + pi * multiple_of_pi (exact_unit_vector_sum: one
+/// rounding of the whole angle's half-angle tangent; exact for phase 0 and multiples of pi/2).
 Point direction(const Rational& phase, const Rational& multiple_of_pi, const std::string& pointer,
                 const std::string& what, std::vector<Rounding>& roundings);
 

@@ -120,10 +120,7 @@ namespace template_detail {
 
 Point direction(const Rational& phase, const Rational& multiple_of_pi, const std::string& pointer,
                 const std::string& what, std::vector<Rounding>& roundings) {
-  Point turn = exact_unit_vector_pi(multiple_of_pi, pointer, what, roundings);
-  if (phase == 0) return turn;
-  Point base = exact_unit_vector(phase, pointer, "phase of " + what, roundings);
-  return tg::rotate(turn, base);
+  return exact_unit_vector_sum(phase, multiple_of_pi, pointer, what, roundings);
 }
 
 std::vector<Loop> expand_circle(const Arguments& arguments, const std::string& label) {

@@ -33,12 +33,30 @@ struct Flank {
   std::vector<std::string> names;   // "", "radial", "lower", "upper"
 };
 
-// The centre of the circle through `a` and `b` whose centre lies on the line a + t * normal:
-// exact (t = |b - a|^2 / (2 (b - a).normal)).
-Point centre_on_normal(const Point& a, const Point& b, const Point& normal) {
-  Point d = tg::subtract(b, a);
-  Rational t = dot(d, d) / (2 * dot(d, normal));
-  return tg::add(a, tg::scale(t, normal));
+// A flank arc tangent at `a` to the direction perpendicular to the exact unit vector `normal`,
+// through a point near `ideal_end`: its centre a + s normal has s the simplest rational within
+// b/2 of the exact s of the circle through `ideal_end` (so the radius |s| is rational and small,
+// where the circle through an exact end point has a centre and a squared radius of hundreds of
+// bits), and its end is the exact point of that circle nearest `ideal_end` (point_on_circle_near,
+// polar angle about the centre rounded within b). Records the centre's and the end's
+// displacements from the ideal construction (mm).
+struct TangentArc {
+  Point centre, end;
+};
+TangentArc tangent_arc_near(const Point& a, const Point& normal, const Point& ideal_end, const std::string& pointer,
+                            const std::string& what, std::vector<Rounding>& roundings) {
+  Point d = tg::subtract(ideal_end, a);
+  Rational exact_s = dot(d, d) / (2 * dot(d, normal));
+  Rational s = round_simplest(exact_s);
+  Point centre = tg::add(a, tg::scale(s, normal));
+  roundings.push_back(Rounding{pointer, what + " centre on the normal at the pitch point, distance rounded (bound: centre "
+                                               "displacement, mm)",
+                               s, Rational(abs(Rational(s - exact_s)))});
+  Point end = tg::point_on_circle_near(centre, Rational(abs(s)), ideal_end, pointer, what + " end", roundings);
+  roundings.back().bound = Rational(tg::upper_sqrt(tg::squared_distance(end, ideal_end)));
+  roundings.back().expression = what + " end: exact point of its arc's circle (half-angle tangent; bound: displacement "
+                                       "from the ideal end, mm)";
+  return {centre, end};
 }
 
 bool arc_is_ccw(const Point& from, const Point& to, const Point& centre) {
@@ -109,29 +127,19 @@ std::vector<Loop> expand_spur_gear(const Arguments& arguments, std::vector<Round
   auto exact_on = [&](const Rational& circle, const Point& near, const std::string& what) {
     return tg::point_on_circle_near(Point{0, 0}, circle, near, pointer, what, roundings);
   };
-  auto record_centre = [&](const Point& used, const Point& ideal, const std::string& what) {
-    roundings.push_back(Rounding{pointer, what + " centre placed exactly through its rounded "
-                                                 "end points (bound: centre displacement, mm)",
-                                 used.x,
-                                 Rational(tg::upper_sqrt(tg::squared_distance(used, ideal)) +
-                                          tip_radius * Rational(2 * rounding_bound()))});
-  };
 
   Flank flank;
   if (arguments.has("flank_radius")) {
     Rational radius = arguments.positive_length("flank_radius");
-    Point ideal_centre = tg::add(pitch_point, tg::scale(radius, normal));
-    Point tip = exact_on(tip_radius, crossing(ideal_centre, radius, tip_radius, "addendum", "tip"),
-                         "tooth flank end on the tip circle");
-    Point root =
-        exact_on(root_radius, crossing(ideal_centre, radius, root_radius, "dedendum", "root"),
-                 "tooth flank end on the root circle");
-    // The exact centre: on the bisector of root-tip, nearest the ideal one.
-    Point middle = tg::scale(Rational(1, 2), tg::add(tip, root));
-    Point across = tg::perpendicular(tg::subtract(tip, root));
-    Rational along = dot(tg::subtract(ideal_centre, middle), across) / dot(across, across);
-    Point centre = tg::add(middle, tg::scale(along, across));
-    record_centre(centre, ideal_centre, "tooth flank");
+    // The centre P + rf n is exact and the radius rf rational: the ends are exact points of
+    // that circle next to its crossings with the tip and root circles (they need not lie on
+    // those circles exactly: the tip and root arcs are centred on the gear's centre and run
+    // between mirror images, equidistant from it whatever the ends).
+    Point centre = tg::add(pitch_point, tg::scale(radius, normal));
+    Point tip = tg::point_on_circle_near(centre, radius, crossing(centre, radius, tip_radius, "addendum", "tip"),
+                                         pointer, "tooth flank end next to the tip circle", roundings);
+    Point root = tg::point_on_circle_near(centre, radius, crossing(centre, radius, root_radius, "dedendum", "root"),
+                                          pointer, "tooth flank end next to the root circle", roundings);
     flank.start = root;
     flank.ends = {tip};
     flank.centres = {centre};
@@ -151,15 +159,21 @@ std::vector<Loop> expand_spur_gear(const Arguments& arguments, std::vector<Round
     if (tg::approximate(tip_radius) <= base)
       throw ModelError(arguments.at("addendum"),
                        "the tip circle lies inside the base circle: no involute to follow");
-    Point tip = exact_on(tip_radius, involute_point(tg::approximate(tip_radius)),
-                         "tooth flank end on the tip circle (involute point)");
-    Point upper_centre = centre_on_normal(pitch_point, tip, normal);
+    // Each arc's centre lies on the normal at P at a rounded distance (tangent_arc_near), and
+    // its far end is an exact point of that circle next to the involute's point; the tip need
+    // not lie on the tip circle exactly (the tip arc is centred on the gear's centre and runs
+    // between mirror images).
+    TangentArc upper = tangent_arc_near(pitch_point, normal, involute_point(tg::approximate(tip_radius)), pointer,
+                                        "upper tooth flank arc (involute point on the tip circle)", roundings);
+    Point tip = upper.end;
+    Point upper_centre = upper.centre;
     if (low > tg::approximate(root_radius)) {
       // Below the base circle the involute does not exist: a radial segment down to the root
       // circle; the lower arc runs from the involute's start on the base circle to P.
-      Point base_point = involute_point(low);
-      base_point = Point{round_simplest(base_point.x), round_simplest(base_point.y)};
-      Point lower_centre = centre_on_normal(pitch_point, base_point, normal);
+      TangentArc lower = tangent_arc_near(pitch_point, normal, involute_point(low), pointer,
+                                          "lower tooth flank arc (involute point on the base circle)", roundings);
+      Point base_point = lower.end;
+      Point lower_centre = lower.centre;
       Rational scale_to_root = tg::approximate(root_radius) / low;
       Point root = exact_on(root_radius, tg::scale(scale_to_root, base_point),
                             "tooth flank end on the root circle (radial below the base circle)");
@@ -171,9 +185,10 @@ std::vector<Loop> expand_spur_gear(const Arguments& arguments, std::vector<Round
       flank.is_arc = {false, true, true};
       flank.names = {"radial", "lower", "upper"};
     } else {
-      Point root = exact_on(root_radius, involute_point(low),
-                            "tooth flank end on the root circle (involute point)");
-      Point lower_centre = centre_on_normal(pitch_point, root, normal);
+      TangentArc lower = tangent_arc_near(pitch_point, normal, involute_point(low), pointer,
+                                          "lower tooth flank arc (involute point on the root circle)", roundings);
+      Point root = lower.end;
+      Point lower_centre = lower.centre;
       flank.start = root;
       flank.ends = {pitch_point, tip};
       flank.centres = {lower_centre, upper_centre};

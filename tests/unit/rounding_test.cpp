@@ -16,6 +16,7 @@
 #include <mpfi.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <string>
 
@@ -276,3 +277,83 @@ TEST(ModelRounding, BadBoundsNameTheKey) {
 }
 
 }  // namespace
+
+// A template's direction phase + pi k / z (gear and ratchet teeth, Geneva slots, escapement
+// teeth, the gear flank normal) is ONE rounding of the whole angle: exactly on the unit circle,
+// within the bound of the exact angle (certified with 256-bit intervals: the chord to the
+// exact direction is at most the angle error), one rounding recorded, and coordinates of one
+// rounded tangent's size, where rotating a rounded u(pi k / z) by a rounded u(phase) made two
+// roundings (2b) with the denominators multiplied.
+TEST(ModelRounding, PhasePlusPiMultipleIsOneRoundingWithinTheBound) {
+  using namespace hipair::model_detail;
+  std::mt19937 random(20261128);
+  for (int exponent : {12, 9, 6}) {
+    Rational bound = power_of_ten(-exponent);
+    RoundingBoundScope scope(bound);
+    std::vector<std::size_t> one_bits, product_bits;
+    for (int trial = 0; trial < 150; ++trial) {
+      Rational phase(static_cast<long>(random() % 4001) - 2000, 577);  // (-3.5, 3.5) rad
+      phase.canonicalize();
+      long teeth = 3 + static_cast<long>(random() % 60);
+      Rational multiple(static_cast<long>(random() % static_cast<unsigned>(2 * teeth)), teeth);
+      multiple.canonicalize();
+      std::vector<hipair::Rounding> roundings;
+      hipair::Point unit = exact_unit_vector_sum(phase, multiple, "/test", "direction", roundings);
+      EXPECT_EQ(unit.x * unit.x + unit.y * unit.y, Rational(1));
+      if (phase == 0) continue;
+      ASSERT_EQ(roundings.size(), 1u) << phase << " + pi " << multiple;
+      EXPECT_EQ(roundings[0].bound, bound);
+      mpfi_t angle, pi, c, s, dx, dy;
+      for (mpfi_ptr v : {angle, pi, c, s, dx, dy}) mpfi_init2(v, 256);
+      mpfi_const_pi(pi);
+      mpfi_mul_q(angle, pi, multiple.get_mpq_t());
+      mpfi_add_q(angle, angle, phase.get_mpq_t());
+      mpfi_cos(c, angle);
+      mpfi_sin(s, angle);
+      mpfi_q_sub(dx, unit.x.get_mpq_t(), c);
+      mpfi_q_sub(dy, unit.y.get_mpq_t(), s);
+      mpfi_sqr(dx, dx);
+      mpfi_sqr(dy, dy);
+      mpfi_add(dx, dx, dy);
+      mpfr_t upper;
+      mpfr_init2(upper, 256);
+      mpfi_get_right(upper, dx);
+      Rational bound2 = bound * bound;
+      EXPECT_LE(mpfr_cmp_q(upper, bound2.get_mpq_t()), 0) << phase << " + pi " << multiple << " 1e-" << exponent;
+      mpfr_clear(upper);
+      for (mpfi_ptr v : {angle, pi, c, s, dx, dy}) mpfi_clear(v);
+      // the former two-rounding product, for the size comparison
+      std::vector<hipair::Rounding> former;
+      hipair::Point turn = exact_unit_vector_pi(multiple, "/test", "turn", former);
+      hipair::Point base = exact_unit_vector(phase, "/test", "phase", former);
+      Rational product_x = turn.x * base.x - turn.y * base.y;
+      one_bits.push_back(mpz_sizeinbase(unit.x.get_den_mpz_t(), 2));
+      product_bits.push_back(mpz_sizeinbase(product_x.get_den_mpz_t(), 2));
+    }
+    ASSERT_GT(one_bits.size(), 100u);
+    std::sort(one_bits.begin(), one_bits.end());
+    std::sort(product_bits.begin(), product_bits.end());
+    // one rounded tangent p/q gives denominators q^2 + p^2, about log2(1/b) bits; the product
+    // about twice that (when the turn is not exact)
+    double expected = std::log2(std::pow(10.0, exponent));
+    EXPECT_LE(static_cast<double>(one_bits[one_bits.size() / 2]), expected + 4) << "1e-" << exponent;
+    EXPECT_GE(static_cast<double>(product_bits[product_bits.size() / 2]), 1.6 * expected) << "1e-" << exponent;
+  }
+}
+
+// The exact quarter turns survive the one rounding: a phase rounded near pi/2 plus a multiple
+// of pi/2 is still an axis direction.
+TEST(ModelRounding, PhasePlusPiMultipleKeepsQuarterTurnsExact) {
+  using namespace hipair::model_detail;
+  for (int exponent : {12, 9, 6}) {
+    RoundingBoundScope scope(power_of_ten(-exponent));
+    ExpressionContext context;
+    context.pointer = "/test";
+    std::vector<hipair::Rounding> roundings;
+    Rational quarter = to_rational(evaluate_expression("pi/2", context), "/test", "pi/2", roundings);
+    for (int twice = -4; twice <= 4; ++twice) {
+      hipair::Point unit = exact_unit_vector_sum(quarter, Rational(twice, 2), "/test", "axis", roundings);
+      EXPECT_EQ(abs(unit.x) + abs(unit.y), Rational(1)) << twice << " 1e-" << exponent;
+    }
+  }
+}
