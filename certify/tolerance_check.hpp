@@ -104,9 +104,13 @@ class ToleranceEvaluator {
   template <class Evaluate>
   int monotone_sign(const ToleranceLeaf& leaf, const Jet& over_leaf, int want, const Evaluate& evaluate) const;
 
-  /// Checks one side of a leaf. \throws Rejection with the reason.
+  /// Checks one side of a leaf: certain opposite signs at the bracket's ends over the whole
+  /// leaf, and a sign change across the centre interval at the leaf's centre; with
+  /// `monotone_in_bracket` (leaves without a witness) also a follower derivative of one sign
+  /// over leaf x bracket (one root; its slopes in the result). \throws Rejection with the reason.
   SideEnclosure check_side(const ToleranceLeaf& leaf, const LeafSide& side, ToleranceGeometry& over_box,
-                           ToleranceGeometry& at_centre, const std::string& where) const;
+                           ToleranceGeometry& at_centre, const std::string& where,
+                           bool monotone_in_bracket = true) const;
   /// Checks one leaf (both sides and the play). \throws Rejection with the reason.
   void check_leaf(const ToleranceLeaf& leaf, std::size_t index) const;
   /// The same with the geometry over the leaf's box and at its centre already evaluated.
