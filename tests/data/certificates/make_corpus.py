@@ -250,7 +250,7 @@ mutate(NOJAM, "geneva.json", "t12-nojam-lower-centre-moved.json", "at the leaf's
 mutate(NOINT, "geneva.json", "t13-nointerference-leaf-driver-halved.json", "coverage gap", halve_driver(0))
 mutate(NOINT, "geneva.json", "t14-nointerference-follower-widened.json", "coverage gap",
        set_path(["tolerance", "follower_range"], ["-1/1000", "1/1000"]))
-mutate(NOINT, "geneva.json", "t15-nointerference-leaf-follower-dropped.json", "has no follower interval",
+mutate(NOINT, "geneva.json", "t15-nointerference-leaf-follower-dropped.json", "missing key 'lower'",
        lambda c: c["tolerance"]["leaves"][0].pop("follower"))
 mutate(NOINT, "geneva.json", "t16-nointerference-scale-raised.json", "wrong parameter box",
        set_path(["tolerance", "scale"], "2"))
