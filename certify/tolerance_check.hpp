@@ -2,9 +2,11 @@
 // is re-evaluated from the model's parametric form (src/model/parametric: the formulas the
 // model reader records) with the verifier's own arithmetic — MPFI enclosures at 256 bits and
 // forward-mode jets over them — and each branch-and-bound leaf is re-checked: both sides of
-// the follower's channel isolated (a certain sign change of the side's contact function across
-// its bracket, its follower derivative of one certain sign), the play between them enclosed in
-// mean-value form over the leaf and certainly positive. The leaves must cover the parameter
+// the follower's channel bracketed (a certain sign change of the side's contact function across
+// its bracket), then either a witness follower path strictly between the sides (each side's
+// function monotone from the witness to its bracket's channel-side end: the side is the root
+// nearest the channel) or the play between them (each function monotone over its whole bracket)
+// enclosed in mean-value form over the leaf and certainly positive. The leaves must cover the parameter
 // box times the driver range (the subdivision tree is walked with exact rationals).
 //
 // The producer (src/tolerance/certificate.cpp) uses the same evaluator to search, so that what
@@ -121,7 +123,9 @@ class ToleranceEvaluator {
   Interval play(const ToleranceLeaf& leaf, const SideEnclosure& lower, const SideEnclosure& upper) const;
 
   /// Checks a leaf's witness: y*(p, d) strictly between the two sides over the whole leaf
-  /// (after both sides were isolated). \throws Rejection.
+  /// (after both sides' brackets were checked): each side's function has at y* the sign of its
+  /// bracket's channel-side end and is monotone between them, so the side (the root nearest
+  /// the channel in its bracket) lies strictly beyond y*. \throws Rejection.
   void check_witness(const ToleranceLeaf& leaf, ToleranceGeometry& over_box, ToleranceGeometry& at_centre,
                      const std::string& where) const;
 
