@@ -351,7 +351,8 @@ Jet ToleranceEvaluator::contact(ToleranceGeometry& g, std::size_t pair, const Je
 }
 
 SideEnclosure ToleranceEvaluator::check_side(const ToleranceLeaf& leaf, const LeafSide& side, ToleranceGeometry& over,
-                                             ToleranceGeometry& centre, const std::string& where) const {
+                                             ToleranceGeometry& centre, const std::string& where,
+                                             bool monotone_in_bracket) const {
   if (side.pair >= claim_.sides.size()) reject(where + ": side " + std::to_string(side.pair) + " does not exist");
   if (!contains(side.bracket, side.centre))
     reject(where + ": the centre interval " + show(side.centre) + " is not inside the bracket " + show(side.bracket));
@@ -364,21 +365,25 @@ SideEnclosure ToleranceEvaluator::check_side(const ToleranceLeaf& leaf, const Le
   if (s0 == 0 || s1 == 0 || s0 == s1)
     reject(where + ": the contact function of side " + std::to_string(side.pair) +
            " does not certainly change sign across the bracket " + show(side.bracket));
-  Jet follower = Jet::variable(enclose(side.bracket), follower_variable(), m);
-  Jet f = contact(over, side.pair, driver, follower);
-  Interval fy = f.partial(follower_variable());
-  if (fy.sign() == 0)
-    reject(where + ": the contact function of side " + std::to_string(side.pair) +
-           " may be stationary in the follower over the bracket (derivative " + show(fy) + ")");
   SideEnclosure result;
   result.bracket = enclose(side.bracket);
-  for (std::size_t i = 0; i <= k; ++i) result.slope.push_back(-(f.partial(i) / fy));
   int c0 = contact(centre, side.pair, driver_centre, Jet(enclose(side.centre.lo))).value.sign();
   int c1 = contact(centre, side.pair, driver_centre, Jet(enclose(side.centre.hi))).value.sign();
   if (c0 == 0 || c1 == 0 || c0 == c1)
     reject(where + ": at the leaf's centre the contact function of side " + std::to_string(side.pair) +
            " does not certainly change sign across " + show(side.centre));
   result.centre = enclose(side.centre);
+  // With a witness the side is the root nearest the channel in the bracket; the witness check
+  // proves there is none between it and the witness (check_witness). Without one the play is
+  // enclosed from the root's slopes, which needs the one root of a monotone function.
+  if (!monotone_in_bracket) return result;
+  Jet follower = Jet::variable(enclose(side.bracket), follower_variable(), m);
+  Jet f = contact(over, side.pair, driver, follower);
+  Interval fy = f.partial(follower_variable());
+  if (fy.sign() == 0)
+    reject(where + ": the contact function of side " + std::to_string(side.pair) +
+           " may be stationary in the follower over the bracket (derivative " + show(fy) + ")");
+  for (std::size_t i = 0; i <= k; ++i) result.slope.push_back(-(f.partial(i) / fy));
   // Contraction: the side's root L(p, d) lies in root = centre + sum slope_i (P_i - c_i) (mean
   // value theorem along the segment from the leaf's centre; slope encloses -F_p / F_y along it)
   // and in the bracket; the slopes evaluated over that narrower follower range still enclose
@@ -520,6 +525,16 @@ void ToleranceEvaluator::check_witness(const ToleranceLeaf& leaf, ToleranceGeome
     if (sign == 0 || sign != inside)
       reject(where + ": the witness is not certainly " + (s == 0 ? "above the lower" : "below the upper") +
              " side (its contact function there encloses to " + show(meet(centred, h.value)) + ")");
+    // No root between y* and the bracket's end on the channel's side: the function is monotone
+    // there (its follower derivative of one certain sign over the leaf, y* taking every value
+    // of its enclosure) and has the same sign at both ends. So the side, the root nearest the
+    // channel in the bracket, lies strictly beyond y*.
+    Interval between = s == 0 ? hull2(value, enclose(side.bracket.hi)) : hull2(enclose(side.bracket.lo), value);
+    Interval fy = contact(over, side.pair, driver, Jet::variable(between, follower_variable(), variables()))
+                      .partial(follower_variable());
+    if (fy.sign() == 0)
+      reject(where + ": the " + name + " side's contact function may be stationary in the follower between the witness and " +
+             "the bracket's end " + show(between) + " (derivative " + show(fy) + "): another root may lie beyond the witness");
   }
 }
 
@@ -551,8 +566,9 @@ void ToleranceEvaluator::check_leaf(const ToleranceLeaf& leaf, std::size_t index
                                     ToleranceGeometry& at) const {
   std::string where = "leaf " + std::to_string(index);
   if (leaf.parameters.size() != varied_.size()) reject(where + ": wrong number of parameter intervals");
-  SideEnclosure lower = check_side(leaf, leaf.lower, over, at, where + " (lower side)");
-  SideEnclosure upper = check_side(leaf, leaf.upper, over, at, where + " (upper side)");
+  bool monotone = !leaf.witness;
+  SideEnclosure lower = check_side(leaf, leaf.lower, over, at, where + " (lower side)", monotone);
+  SideEnclosure upper = check_side(leaf, leaf.upper, over, at, where + " (upper side)", monotone);
   if (leaf.witness) {
     check_witness(leaf, over, at, where);
     return;

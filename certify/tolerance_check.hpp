@@ -2,9 +2,11 @@
 // is re-evaluated from the model's parametric form (src/model/parametric: the formulas the
 // model reader records) with the verifier's own arithmetic — MPFI enclosures at 256 bits and
 // forward-mode jets over them — and each branch-and-bound leaf is re-checked: both sides of
-// the follower's channel isolated (a certain sign change of the side's contact function across
-// its bracket, its follower derivative of one certain sign), the play between them enclosed in
-// mean-value form over the leaf and certainly positive. The leaves must cover the parameter
+// the follower's channel bracketed (a certain sign change of the side's contact function across
+// its bracket), then either a witness follower path strictly between the sides (each side's
+// function monotone from the witness to its bracket's channel-side end: the side is the root
+// nearest the channel) or the play between them (each function monotone over its whole bracket)
+// enclosed in mean-value form over the leaf and certainly positive. The leaves must cover the parameter
 // box times the driver range (the subdivision tree is walked with exact rationals).
 //
 // The producer (src/tolerance/certificate.cpp) uses the same evaluator to search, so that what
@@ -104,9 +106,13 @@ class ToleranceEvaluator {
   template <class Evaluate>
   int monotone_sign(const ToleranceLeaf& leaf, const Jet& over_leaf, int want, const Evaluate& evaluate) const;
 
-  /// Checks one side of a leaf. \throws Rejection with the reason.
+  /// Checks one side of a leaf: certain opposite signs at the bracket's ends over the whole
+  /// leaf, and a sign change across the centre interval at the leaf's centre; with
+  /// `monotone_in_bracket` (leaves without a witness) also a follower derivative of one sign
+  /// over leaf x bracket (one root; its slopes in the result). \throws Rejection with the reason.
   SideEnclosure check_side(const ToleranceLeaf& leaf, const LeafSide& side, ToleranceGeometry& over_box,
-                           ToleranceGeometry& at_centre, const std::string& where) const;
+                           ToleranceGeometry& at_centre, const std::string& where,
+                           bool monotone_in_bracket = true) const;
   /// Checks one leaf (both sides and the play). \throws Rejection with the reason.
   void check_leaf(const ToleranceLeaf& leaf, std::size_t index) const;
   /// The same with the geometry over the leaf's box and at its centre already evaluated.
@@ -117,7 +123,9 @@ class ToleranceEvaluator {
   Interval play(const ToleranceLeaf& leaf, const SideEnclosure& lower, const SideEnclosure& upper) const;
 
   /// Checks a leaf's witness: y*(p, d) strictly between the two sides over the whole leaf
-  /// (after both sides were isolated). \throws Rejection.
+  /// (after both sides' brackets were checked): each side's function has at y* the sign of its
+  /// bracket's channel-side end and is monotone between them, so the side (the root nearest
+  /// the channel in its bracket) lies strictly beyond y*. \throws Rejection.
   void check_witness(const ToleranceLeaf& leaf, ToleranceGeometry& over_box, ToleranceGeometry& at_centre,
                      const std::string& where) const;
 

@@ -205,11 +205,12 @@ class Producer {
   }
 
   struct SideGuess {
-    bool ok = false;
+    bool ok = false;             // certain opposite signs at the bracket's ends over the leaf
     double root = 0;
     RationalInterval centre, bracket;
     std::vector<double> slope;   // varied parameters, then the driver
     bool centre_certain = false; // the centre interval's sign change holds
+    bool monotone = false;       // ok, and the follower derivative has one sign over the bracket
   };
 
   // Newton at the leaf's centre from the nominal side value, a certified centre interval, the
@@ -266,11 +267,11 @@ class Producer {
       sign_hi = evaluator_->sign_over_leaf(leaf, pair, g.bracket.hi, over, point);
     }
     g.ok = sign_lo != 0 && sign_hi != 0 && sign_lo != sign_hi;
-    if (g.ok) {
+    if (g.ok) {   // without it, only a leaf with a witness can use this side (check_witness)
       Jet over_bracket = evaluator_->contact(
           over, pair, Jet::variable(verify::enclose(leaf.driver), evaluator_->driver_variable(), m),
           Jet::variable(verify::enclose(g.bracket), evaluator_->follower_variable(), m));
-      g.ok = over_bracket.partial(evaluator_->follower_variable()).sign() != 0;
+      g.monotone = over_bracket.partial(evaluator_->follower_variable()).sign() != 0;
     }
     return g;
   }
@@ -477,6 +478,7 @@ class Producer {
           witness_score_ = witness_error(w, over, point, half, half_driver);
         }
       }
+      if (!gl.monotone || !gu.monotone) return false;
       ToleranceLeaf p = leaf;
       p.lower = LeafSide{lp, gl.bracket, gl.centre};
       p.upper = LeafSide{up, gu.bracket, gu.centre};

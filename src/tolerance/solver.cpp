@@ -145,39 +145,20 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     shift += sensitivity[i] * center[i];
   }
   double slack = 1e-12 * (1 + std::fabs(free_value));
-  // The jets' variables: the parameters varying in the box that the curve's geometry (its two
-  // features and the two parts' axes) depends on, then the free coordinate. A varying parameter
-  // left out (no partial derivative of any of those coordinates at nominal: one the two
-  // features do not depend on) enters as its whole range, in plain interval arithmetic, both at
-  // the "centre" and in the jets: the enclosures stay valid whatever it does, and are the same
-  // as with it as a variable when the geometry does not depend on it. Fewer variables: shorter
-  // gradients in every jet operation.
-  std::vector<bool> depends = compact_jets_ ? dependencies(curve) : std::vector<bool>(n_, true);
-  std::vector<std::size_t> active;
-  for (std::size_t i = 0; i < n_; ++i)
-    if (box.hi[i] > box.lo[i] && depends[i]) active.push_back(i);
+  std::shared_ptr<const BoxGeometry> memo = box_geometry(curve, box, center);
+  const std::vector<std::size_t>& active = memo->active;
   std::size_t k = active.size();   // the free coordinate's index
-  std::vector<Interval> center_deviations(n_);
-  std::vector<IntervalJet> jets(n_);
-  for (std::size_t i = 0; i < n_; ++i) {
-    bool varies = box.hi[i] > box.lo[i];
-    center_deviations[i] = varies && !depends[i] ? Interval(box.lo[i], box.hi[i]) : Interval::point(center[i]);
-    jets[i] = IntervalJet(varies ? Interval(box.lo[i], box.hi[i]) : Interval::point(box.lo[i]));
-  }
-  for (std::size_t a = 0; a < k; ++a)
-    jets[active[a]] = IntervalJet::variable(Interval(box.lo[active[a]], box.hi[active[a]]), a, k + 1);
-  std::vector<Interval> center_parameters = model_->parameter_values(center_deviations);
   Interval root;
   double w0 = spread + slack;
   bool found = false;
   for (int attempt = 0; attempt < 4 && !found; ++attempt, w0 *= 4)
-    found = certified_point_root(curve, center_parameters, Interval(free_value + shift - w0, free_value + shift + w0), root);
+    found = certified_point_root(curve, memo->at_center, Interval(free_value + shift - w0, free_value + shift + w0), root);
   if (!found) return false;
   // Geometry over the box as interval jets (values and partial derivatives over the box), and
   // at its centre as intervals. F over the box at a fixed v is enclosed in mean-value form:
   // F(c, v) + sum_i F_i(B, v) (B_i - c_i), far tighter than plain interval evaluation.
-  PairGeometry<IntervalJet> jet = geometry(curve, model_->parameter_values(jets));
-  PairGeometry<Interval> at_center = geometry(curve, center_parameters);
+  const PairGeometry<IntervalJet>& jet = memo->jet;
+  const PairGeometry<Interval>& at_center = memo->at_center;
   Interval fixed = Interval::enclose(curve.fixed_value);
   IntervalJet fixed_jet(fixed);
   auto sign_over_box = [&](double v) {
@@ -232,6 +213,50 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     return true;
   }
   return false;
+}
+
+std::shared_ptr<const CurveSolver::BoxGeometry> CurveSolver::box_geometry(const CurveSlice& curve, const Box& box,
+                                                                         const std::vector<double>& center) const {
+  std::vector<double> key{static_cast<double>(curve.first.part),  static_cast<double>(curve.first.loop),
+                          static_cast<double>(curve.first.edge),  static_cast<double>(curve.second.part),
+                          static_cast<double>(curve.second.loop), static_cast<double>(curve.second.edge),
+                          static_cast<double>(curve.fixed_part),  static_cast<double>(curve.free_part),
+                          compact_jets_ ? 1.0 : 0.0};
+  key.insert(key.end(), box.lo.begin(), box.lo.end());
+  key.insert(key.end(), box.hi.begin(), box.hi.end());
+  {
+    std::lock_guard<std::mutex> lock(memo_->mutex);
+    auto found = memo_->entries.find(key);
+    if (found != memo_->entries.end()) return found->second;
+  }
+  auto g = std::make_shared<BoxGeometry>();
+  // The jets' variables: the parameters varying in the box that the curve's geometry (its two
+  // features and the two parts' axes) depends on, then the free coordinate. A varying parameter
+  // left out (no partial derivative of any of those coordinates at nominal: one the two
+  // features do not depend on) enters as its whole range, in plain interval arithmetic, both at
+  // the "centre" and in the jets: the enclosures stay valid whatever it does, and are the same
+  // as with it as a variable when the geometry does not depend on it. Fewer variables: shorter
+  // gradients in every jet operation.
+  std::vector<bool> depends = compact_jets_ ? dependencies(curve) : std::vector<bool>(n_, true);
+  std::vector<std::size_t>& active = g->active;
+  for (std::size_t i = 0; i < n_; ++i)
+    if (box.hi[i] > box.lo[i] && depends[i]) active.push_back(i);
+  std::size_t k = active.size();   // the free coordinate's index
+  std::vector<Interval> center_deviations(n_);
+  std::vector<IntervalJet> jets(n_);
+  for (std::size_t i = 0; i < n_; ++i) {
+    bool varies = box.hi[i] > box.lo[i];
+    center_deviations[i] = varies && !depends[i] ? Interval(box.lo[i], box.hi[i]) : Interval::point(center[i]);
+    jets[i] = IntervalJet(varies ? Interval(box.lo[i], box.hi[i]) : Interval::point(box.lo[i]));
+  }
+  for (std::size_t a = 0; a < k; ++a)
+    jets[active[a]] = IntervalJet::variable(Interval(box.lo[active[a]], box.hi[active[a]]), a, k + 1);
+  g->center_parameters = model_->parameter_values(center_deviations);
+  g->jet = geometry(curve, model_->parameter_values(jets));
+  g->at_center = geometry(curve, g->center_parameters);
+  std::lock_guard<std::mutex> lock(memo_->mutex);
+  if (memo_->entries.size() >= BoxGeometryMemo::max_entries) memo_->entries.clear();
+  return memo_->entries.emplace(std::move(key), std::move(g)).first->second;
 }
 
 Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, double free_value,

@@ -9,7 +9,9 @@
 
 #include <hipair/cspace.hpp>
 
+#include <map>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace hipair::tolerance_detail {
@@ -89,6 +91,28 @@ class CurveSolver {
   std::vector<bool> dependencies(const CurveSlice& curve) const;
   bool box_range(const CurveSlice& curve, const Box& box, double free_value, const std::vector<double>& sensitivity,
                  Interval& result, std::vector<double>& split_score) const;
+
+  /// What box_range needs of the geometry over one box: it depends on the two features, the
+  /// two parts and the box only, not on the held coordinate, so the positions of a zone or of
+  /// the certified band along one feature pair share it (profiled: re-evaluating it, with MPFR
+  /// trigonometry for angle parameters, was over half of the zones' CPU time).
+  struct BoxGeometry {
+    std::vector<std::size_t> active;   ///< the jets' variables (parameter indices)
+    std::vector<Interval> center_parameters;
+    PairGeometry<IntervalJet> jet;     ///< over the box, gradients over `active`
+    PairGeometry<Interval> at_center;
+  };
+  std::shared_ptr<const BoxGeometry> box_geometry(const CurveSlice& curve, const Box& box,
+                                                  const std::vector<double>& center) const;
+  /// The memo of box_geometry, shared by the threads of the band and the zones (a pure
+  /// function of its key, so results are the same with or without it). Bounded: cleared when
+  /// it holds `max_entries`.
+  struct BoxGeometryMemo {
+    static constexpr std::size_t max_entries = 20000;
+    std::mutex mutex;
+    std::map<std::vector<double>, std::shared_ptr<const BoxGeometry>> entries;
+  };
+  std::shared_ptr<BoxGeometryMemo> memo_ = std::make_shared<BoxGeometryMemo>();
 
   std::shared_ptr<const model_detail::ParametricModel> model_;
   std::size_t n_ = 0;

@@ -16,3 +16,14 @@ mkdir -p "$out"
 "$hipair" certify "$models/film-advance.json" --claim clearance --pair cam:follower --out "$out/film-cam-clearance.json"
 "$hipair" certify "$models/film-advance.json" --claim clearance --pair pin:follower --at follower=-2,-3deg --out "$out/film-pin-clearance.json"
 "$hipair" certify "$models/film-advance.json" --claim interference --pair film:follower --at film=0 --at follower=4,5deg --out "$out/film-claw-interference.json"
+# Tolerance certificates (`hipair tolerance`, docs/certify.md "Tolerance"): no jam of the Geneva
+# over the pin's entry at 2 x the declared tolerances, and never interferes with the wheel held
+# at 0 while the pin enters slot 1's mouth.
+tmp=$(mktemp -d)
+"$hipair" tolerance "$models/geneva.json" --range 2.2:2.3 --positions 720 --accuracy 0.5 --certify --certify-scale 2 \
+  --quiet --out "$tmp/nojam" > /dev/null
+cp "$tmp/nojam/tolerance-certificate.json" "$out/geneva-tolerance-no-jam.json"
+"$hipair" tolerance "$models/geneva.json" --certify-interference --pair driver:wheel --range 1:2.4 --follower-range 0 \
+  --quiet --out "$tmp/noint" > /dev/null
+cp "$tmp/noint/interference-certificate.json" "$out/geneva-tolerance-no-interference.json"
+rm -rf "$tmp"

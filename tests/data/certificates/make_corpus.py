@@ -47,6 +47,8 @@ bases = [
     ("film-cam-clearance.json", "film-advance.json"),
     ("film-pin-clearance.json", "film-advance.json"),
     ("film-claw-interference.json", "film-advance.json"),
+    ("geneva-tolerance-no-jam.json", "geneva.json"),
+    ("geneva-tolerance-no-interference.json", "geneva.json"),
 ]
 for name, model in bases:
     expected.append((name, MODELS + model, "valid", name))
@@ -178,6 +180,106 @@ mutate("film-claw-interference.json", "film-advance.json", "s07-pin-slot-claw-sw
        set_path(["planar_interference", "pose", "tangent"], "-1/20"))
 mutate("film-cam-clearance.json", "film-advance.json", "s08-pin-slot-pose-on-the-cam.json", "has no pin_slot motion",
        set_path(["planar_clearance", "pose", "part"], "cam"))
+# Tolerance certificates (`hipair tolerance --certify` / `--certify-interference`): the parameter
+# box times the driver range (times the follower range) must be covered by leaves that each hold.
+def fraction(text):
+    from fractions import Fraction
+    return Fraction(text)
+
+
+def rational(value):
+    return f"{value.numerator}/{value.denominator}" if value.denominator != 1 else str(value.numerator)
+
+
+def halve_driver(leaf):
+    def change(c):
+        d = c["tolerance"]["leaves"][leaf]["driver"]
+        d[1] = rational((fraction(d[0]) + fraction(d[1])) / 2)
+    return change
+
+
+def nearest_double_box_end(c):
+    # A box end replaced by its nearest double (half an ulp away from the exact tolerance).
+    end = fraction(c["tolerance"]["box"][0][1])
+    from fractions import Fraction
+    moved = Fraction(float(end))
+    assert moved != end
+    c["tolerance"]["box"][0][1] = rational(moved)
+
+
+def witness_onto_lower_side(c):
+    for leaf in c["tolerance"]["leaves"]:
+        if "witness" in leaf:
+            centre = leaf["lower"]["centre"]
+            leaf["witness"]["value"] = rational((fraction(centre[0]) + fraction(centre[1])) / 2)
+            return
+    raise AssertionError("no leaf with a witness")
+
+
+def witness_slopes_reversed(c):
+    for leaf in c["tolerance"]["leaves"]:
+        if "witness" in leaf:
+            leaf["witness"]["slopes"] = [rational(-3 * fraction(a) - 1) for a in leaf["witness"]["slopes"]]
+            return
+    raise AssertionError("no leaf with a witness")
+
+
+def upper_bracket_moved(c):
+    side = c["tolerance"]["leaves"][0]["upper"]
+    lo, hi = fraction(side["bracket"][0]), fraction(side["bracket"][1])
+    shift = 2 * (hi - lo)
+    side["bracket"] = [rational(lo + shift), rational(hi + shift)]
+    width = fraction(side["centre"][1]) - fraction(side["centre"][0])
+    side["centre"] = [rational(lo + shift), rational(lo + shift + width)]
+
+
+def lower_centre_moved(c):
+    side = c["tolerance"]["leaves"][0]["lower"]
+    width = fraction(side["centre"][1]) - fraction(side["centre"][0])
+    lo = fraction(side["bracket"][0])
+    side["centre"] = [side["bracket"][0], rational(lo + width)]
+
+
+def extend_range(c):
+    r = c["tolerance"]["range"]
+    r[1] = rational(fraction(r[1]) + fraction("1/100"))
+
+
+def follower_moved(value):
+    def change(c):
+        c["tolerance"]["follower_range"] = [value, value]
+        for leaf in c["tolerance"]["leaves"]:
+            leaf["follower"] = [value, value]
+    return change
+
+
+NOJAM, NOINT = "geneva-tolerance-no-jam.json", "geneva-tolerance-no-interference.json"
+mutate(NOJAM, "geneva.json", "t01-nojam-leaf-driver-halved.json", "coverage gap", halve_driver(0))
+mutate(NOJAM, "geneva.json", "t02-nojam-range-extended.json", "coverage gap", extend_range)
+mutate(NOJAM, "geneva.json", "t03-nojam-tree-node-dropped.json", "ends early", lambda c: c["tolerance"]["tree"].pop())
+mutate(NOJAM, "geneva.json", "t04-nojam-box-widened.json", "wrong parameter box",
+       lambda c: c["tolerance"]["box"][3].__setitem__(1, rational(2 * fraction(c["tolerance"]["box"][3][1]))))
+mutate(NOJAM, "geneva.json", "t05-nojam-scale-raised.json", "wrong parameter box", set_path(["tolerance", "scale"], "3"))
+mutate(NOJAM, "geneva.json", "t06-nojam-box-end-nearest-double.json", "wrong parameter box", nearest_double_box_end)
+mutate(NOJAM, "geneva.json", "t07-nojam-varied-twice.json", "varied twice",
+       lambda c: c["tolerance"]["varied"].__setitem__(0, c["tolerance"]["varied"][1]))
+mutate(NOJAM, "geneva.json", "t08-nojam-side-label.json", "labelled",
+       lambda c: c["tolerance"]["sides"][0]["follower"].__setitem__("label", c["tolerance"]["sides"][0]["follower"]["label"] + "x"))
+mutate(NOJAM, "geneva.json", "t09-nojam-witness-on-lower-side.json", "witness", witness_onto_lower_side)
+mutate(NOJAM, "geneva.json", "t10-nojam-witness-slopes.json", "witness", witness_slopes_reversed)
+mutate(NOJAM, "geneva.json", "t11-nojam-upper-bracket-moved.json", "leaf 0", upper_bracket_moved)
+mutate(NOJAM, "geneva.json", "t12-nojam-lower-centre-moved.json", "at the leaf's centre", lower_centre_moved)
+mutate(NOINT, "geneva.json", "t13-nointerference-leaf-driver-halved.json", "coverage gap", halve_driver(0))
+mutate(NOINT, "geneva.json", "t14-nointerference-follower-widened.json", "coverage gap",
+       set_path(["tolerance", "follower_range"], ["-1/1000", "1/1000"]))
+mutate(NOINT, "geneva.json", "t15-nointerference-leaf-follower-dropped.json", "missing key 'lower'",
+       lambda c: c["tolerance"]["leaves"][0].pop("follower"))
+mutate(NOINT, "geneva.json", "t16-nointerference-scale-raised.json", "wrong parameter box",
+       set_path(["tolerance", "scale"], "2"))
+mutate(NOINT, "geneva.json", "t17-nointerference-wheel-turned-into-the-lock.json", "may interfere",
+       follower_moved("3/10"))
+mutate(NOINT, "geneva.json", "t18-nointerference-box-end-nearest-double.json", "wrong parameter box",
+       nearest_double_box_end)
 
 with open(os.path.join(HERE, "EXPECTED.txt"), "w") as f:
     f.write("# certificate | model (relative to the repository) | expected: valid, or a substring of the reason | base\n")
