@@ -6,8 +6,8 @@
 // they fail, equality of two arcs at a root of their supports' resultant by the first
 // subresultant, then certified MPFI intervals at a finer x, and last exact univariate sign
 // evaluation (algebra::sign_at at a Real, repeated squaring of the square roots); pairs of
-// arcs whose interval enclosures are apart are not intersected. No Curve_analysis_2. The x-monotone split, clipping to
-// the chart box, validity, windows and the export to raw::Arrangement are those of
+// arcs whose interval enclosures are apart are not intersected. No Curve_analysis_2. The
+// x-monotone split, clipping to the chart box, validity, windows and the export to raw::Arrangement are those of
 // arrangement.hpp (same cuts, same pieces), so labelling and everything after are shared.
 // All code is in quadratic_traits.cpp (one translation unit).
 #pragma once
@@ -22,7 +22,7 @@ namespace hipair::cspace::raw {
 
 /// Coefficient size above which the quadratic traits declines (the algebraic traits takes
 /// the chart). Predicates are decided in double intervals, then (at a common root of two
-/// supports) by their first subresultant, then in MPFI intervals at 128-2000 bits, and only
+/// supports) by their first subresultant, then in MPFI intervals at 192-2064 bits, and only
 /// then exactly by squaring the square roots away (polynomials of 4x the coefficient size).
 /// The largest coefficients measured are the spur gears' (247-653 bits), on which the
 /// quadratic traits is faster than the algebraic one (docs/performance.md, session 9); larger
