@@ -1564,12 +1564,12 @@ class QuadraticBuilder {
 
 }  // namespace
 
-bool quadratic_applies(const std::vector<IntegerPolynomial2>& curves) {
+bool quadratic_applies(const std::vector<IntegerPolynomial2>& curves, std::size_t max_bits) {
   for (const auto& c : curves) {
     if (c.degree_y() > 2) return false;
     for (const auto& row : c.coefficients)
       for (const auto& z : row)
-        if (mpz_sizeinbase(z.get_mpz_t(), 2) > quadratic_max_coefficient_bits) return false;
+        if (mpz_sizeinbase(z.get_mpz_t(), 2) > max_bits) return false;
   }
   return true;
 }
@@ -1587,7 +1587,7 @@ std::optional<Arrangement> build_quadratic_arrangement(
     }
     std::fprintf(stderr, "  quadratic traits: %zu curves, degrees up to %d in x, %d in y\n", curves.size(), max_x, max_y);
   }
-  if (options.keep_cgal || !quadratic_applies(curves)) return std::nullopt;
+  if (options.keep_cgal || !quadratic_applies(curves, options.quadratic_max_coefficient_bits)) return std::nullopt;
   try {
     QuadraticBuilder builder(box, options);
     Arrangement result = builder.run(curves, validity, windows);

@@ -20,18 +20,15 @@
 
 namespace hipair::cspace::raw {
 
-/// Coefficient size above which the quadratic traits declines (the algebraic traits takes
-/// the chart). Predicates are decided in double intervals, then (at a common root of two
-/// supports) by their first subresultant, then in MPFI intervals at 192-2064 bits, and only
-/// then exactly by squaring the square roots away (polynomials of 4x the coefficient size).
-/// The largest coefficients measured are the spur gears' (247-653 bits), on which the
-/// quadratic traits is faster than the algebraic one (docs/performance.md, session 9); larger
-/// ones are outside what has been measured and keep the algebraic traits.
-inline constexpr std::size_t quadratic_max_coefficient_bits = 1024;
-
-/// True when every curve has degree <= 2 in y and coefficients of at most
-/// quadratic_max_coefficient_bits bits (then build_quadratic_arrangement may apply).
-bool quadratic_applies(const std::vector<IntegerPolynomial2>& curves);
+/// True when every curve has degree <= 2 in y and coefficients of at most `max_bits` bits
+/// (then build_quadratic_arrangement may apply). The default (Options and
+/// CSpaceBuildOptions::quadratic_max_coefficient_bits) is 200: predicates are decided in
+/// double intervals, then (at a common root of two supports) by their first subresultant,
+/// then in MPFI intervals at 192-2064 bits, and only then exactly by squaring the square
+/// roots away; on the spur gears (247-653 bits) this is at parity with the algebraic traits
+/// at 18x27 teeth and 9-20 % slower at 40x40 and 80x80 (docs/performance.md, session 9), so
+/// they keep the algebraic traits unless the limit is raised.
+bool quadratic_applies(const std::vector<IntegerPolynomial2>& curves, std::size_t max_bits);
 
 /// build_arrangement for curves of degree <= 2 in y, on the filtered quadratic traits.
 /// Returns nullopt (the caller takes the algebraic traits) for inputs outside the class it
