@@ -472,6 +472,11 @@ struct CSpaceBuildOptions {
   /// traits; charts it does not decide fall back to the algebraic traits. Not with
   /// keep_arrangements (the raw CGAL access is for algebraic-traits arrangements).
   bool quadratic_traits = true;
+  /// The quadratic traits declines charts with a coefficient above this many bits (the
+  /// algebraic traits takes them). 200 keeps the spur gears (247-653 bits) on the algebraic
+  /// traits, which is as fast or faster there (docs/performance.md, session 9); raise it to
+  /// build them on the quadratic traits (tests, measurements; about 10 % less memory).
+  std::size_t quadratic_max_coefficient_bits = 200;
 };
 
 /// The exact C-space of one pair. Value semantics: copies share the immutable structure.

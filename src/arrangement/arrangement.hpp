@@ -110,6 +110,8 @@ struct Options {
   /// Circle–segment stage: a line edge's support from its input curve (Edge::support_curve)
   /// instead of CGAL's lazy line (the same polynomial; false for tests of the general path).
   bool carry_line_supports = true;
+  /// Quadratic stage: declines curves with a coefficient of more bits (CSpaceBuildOptions).
+  std::size_t quadratic_max_coefficient_bits = 200;
 };
 
 /// Builds the arrangement of the curves (each square-free, non-zero) clipped to the box and,

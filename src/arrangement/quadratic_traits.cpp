@@ -12,7 +12,10 @@
 
 #include <boost/variant.hpp>
 
+#include <mpfi.h>
+
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -193,6 +196,97 @@ Interval enclose(const Real& x) { return {x.lower_bound(), x.upper_bound()}; }
 
 bool disjoint(Interval a, Interval b) { return a.hi < b.lo || b.hi < a.lo; }
 
+/// Certified double enclosures of p / 2^shift (the same signs; the shift keeps resultants of
+/// more than 1024 bits finite).
+std::vector<Interval> enclose_scaled(const Polynomial& p) {
+  std::size_t bits = 0;
+  for (const auto& c : p) bits = std::max(bits, mpz_sizeinbase(c.get_mpz_t(), 2));
+  const long shift = bits > 900 ? static_cast<long>(bits) - 900 : 0;
+  std::vector<Interval> out;
+  out.reserve(p.size());
+  for (const auto& c : p) {
+    if (sgn(c) == 0) {
+      out.push_back({0, 0});
+      continue;
+    }
+    long exponent = 0;
+    const double d = mpz_get_d_2exp(&exponent, c.get_mpz_t());   // truncated: |c| in [|d|, |d| + 2^-53) 2^e
+    const double far = std::nextafter(d, d > 0 ? 2.0 : -2.0);
+    const long e = exponent - shift;
+    double lo = std::ldexp(std::min(d, far), static_cast<int>(e)), hi = std::ldexp(std::max(d, far), static_cast<int>(e));
+    if (e < -1000) {   // underflow: a coefficient below 2^-1000 (relative to the largest)
+      lo = std::min(lo, -std::numeric_limits<double>::min());
+      hi = std::max(hi, std::numeric_limits<double>::min());
+    }
+    out.push_back({lo, hi});
+  }
+  return out;
+}
+
+bool no_root_on(const std::vector<Interval>& c, double lo, double hi, int depth) {
+  const Interval v = evaluate(c, Interval{lo, hi});
+  if (v.lo > 0 || v.hi < 0) return true;   // (NaN fails both)
+  if (depth == 0) return false;
+  const double m = lo + (hi - lo) / 2;
+  if (!(lo < m && m < hi)) return false;
+  return no_root_on(c, lo, m, depth - 1) && no_root_on(c, m, hi, depth - 1);
+}
+
+/// Certified: p has no real root in [lo, hi] (interval evaluation on a subdivision), so that
+/// the exact isolation (square-free part, Sturm sequence) is skipped for most polynomials of a
+/// small chart. False means "may have one".
+bool certainly_no_root(const Polynomial& p, const Rational& lo, const Rational& hi) {
+  if (algebra::degree(p) < 1) return !p.empty();
+  return no_root_on(enclose_scaled(p), algebra::lower_double(lo), algebra::upper_double(hi), 5);
+}
+
+/// algebra::real_roots(p, lo, hi) behind certainly_no_root.
+std::vector<Real> roots_in(const Polynomial& p, const Rational& lo, const Rational& hi) {
+  if (certainly_no_root(p, lo, hi)) return {};
+  return algebra::real_roots(p, lo, hi);
+}
+
+// ------------------------------------------------------------------ multiple-precision intervals
+
+/// An MPFI interval (outward-rounded interval arithmetic at a chosen precision): the certified
+/// filter between double intervals and exact arithmetic. Coefficients of 250-650 bits leave
+/// double intervals about 2^-50 wide relative to the values, so two arcs closer than that (or
+/// meeting) need more bits; evaluating at an x refined to 2^-k with k + 64 bits of precision
+/// costs a few multiplications of (k + coefficient size)-bit numbers.
+class Mp {
+ public:
+  explicit Mp(mpfr_prec_t bits) { mpfi_init2(v_, bits); }
+  ~Mp() { mpfi_clear(v_); }
+  Mp(const Mp&) = delete;
+  Mp& operator=(const Mp&) = delete;
+  mpfi_ptr get() { return v_; }
+  mpfi_srcptr get() const { return v_; }
+
+ private:
+  mpfi_t v_;
+};
+
+/// Precision levels of the multiple-precision filter: x is refined to width 2^-bits and the
+/// arithmetic runs at bits + 64 bits.
+constexpr int mp_level_bits[] = {128, 320, 800, 2000};
+constexpr int mp_levels = 4;
+
+void mp_evaluate(mpfi_ptr out, const Polynomial& p, mpfi_srcptr x) {
+  mpfi_set_ui(out, 0);
+  for (auto it = p.rbegin(); it != p.rend(); ++it) {
+    mpfi_mul(out, out, x);
+    mpfi_add_z(out, out, it->get_mpz_t());
+  }
+}
+
+/// -1 / +1 when the interval certifies the sign, 0 when it contains 0 (or is NaN).
+int mp_sign(mpfi_srcptr v) {
+  if (mpfi_nan_p(v)) return 0;
+  if (mpfi_is_strictly_pos(v) > 0) return 1;
+  if (mpfi_is_strictly_neg(v) > 0) return -1;
+  return 0;
+}
+
 // ------------------------------------------------------------------ supports and points
 
 /// One polynomial of the arrangement. `part` (= full without its factors in x alone) is
@@ -223,8 +317,8 @@ struct YExpr {
 struct XEntry {
   Real x;
   Interval xi;
-  mutable Interval fine;   ///< at 2^-100, computed when a filter at xi fails
-  mutable bool has_fine = false;
+  /// x refined to 2^-mp_level_bits[k], computed when a filter at a coarser level fails
+  mutable std::array<std::unique_ptr<Real>, mp_levels> refined;
 };
 
 struct PointRep {
@@ -317,7 +411,7 @@ class QuadraticTraits {
     std::vector<Real> events;
     auto add_roots = [&](const Polynomial& p) {
       if (algebra::degree(p) < 1) return;
-      for (auto& r : algebra::real_roots(p, st_->box.x_lo, st_->box.x_hi))
+      for (auto& r : roots_in(p, st_->box.x_lo, st_->box.x_hi))
         if (r.compare(st_->box.x_lo) > 0 && r.compare(st_->box.x_hi) < 0) events.push_back(std::move(r));
     };
     add_roots(content);
@@ -395,44 +489,198 @@ class QuadraticTraits {
     return sx * sign2(x, A2, scale(mul(A, B), 2), D1);
   }
 
-  /// sign(y1 - y2) at x, exact (filtered by the intervals y1i, y2i, then at a finer x;
-  /// exact results cached per canonical x).
+  /// sign(y1 - y2) at x, exact: filtered by the double intervals y1i, y2i, then decided
+  /// equal or not at a root of the supports' resultant by their first subresultant, then by
+  /// multiple-precision intervals at a finer x, then by exact_compare_y (squaring the square
+  /// roots away); results after the double filter are cached per canonical x.
   int compare_y(const Real& x, const YExpr& e1, const YExpr& e2, Interval y1i, Interval y2i) const {
     if (e1 == e2) return 0;
     if (y1i.hi < y2i.lo) return -1;
     if (y2i.hi < y1i.lo) return 1;
     auto found = st_->entries.find(&x);
     const XEntry* entry = found == st_->entries.end() ? nullptr : found->second.get();
-    if (!x.exact) {   // a tighter filter at a finer x
-      Interval xi;
-      if (entry && entry->has_fine) {
-        xi = entry->fine;
-      } else {
-        Real fine = x;
-        algebra::refine_dyadically(fine, Rational(1, mpz_class(1) << 100));
-        xi = enclose(fine);
-        if (entry) {
-          entry->fine = xi;
-          entry->has_fine = true;
-        }
-      }
-      Interval a = y_interval(e1, xi), b = y_interval(e2, xi);
-      if (a.hi < b.lo) return -1;
-      if (b.hi < a.lo) return 1;
-    }
     auto key = std::make_tuple(static_cast<const void*>(entry), e1.support, e1.kind, e1.s, e2.support, e2.kind, e2.s);
     if (entry) {
       auto it = st_->exact_cache.find(key);
       if (it != st_->exact_cache.end()) return it->second;
     }
-    int result = exact_compare_y(x, e1, e2);
+    int result = 0;
+    std::optional<bool> equal = equal_by_subresultant(x, entry, e1, e2);
+    if (equal && *equal) {
+      ++st_->subresultant_equalities;
+    } else {
+      result = mp_compare_y(x, entry, e1, e2);
+      if (result == 0) result = exact_compare_y(x, e1, e2);
+    }
     if (entry) {
       st_->exact_cache.emplace(key, result);
       st_->exact_cache.emplace(std::make_tuple(static_cast<const void*>(entry), e2.support, e2.kind, e2.s, e1.support,
-                                           e1.kind, e1.s),
-                           -result);
+                                               e1.kind, e1.s),
+                               -result);
     }
     return result;
+  }
+
+  // ---------------------------------------------------------------- multiple-precision filter
+
+  /// x enclosed at a precision level (refined copies cached on x's entry).
+  void mp_x(const Real& x, const XEntry* entry, int level, mpfi_ptr out) const {
+    if (x.exact) {
+      mpfi_set_q(out, x.lower.get_mpq_t());
+      return;
+    }
+    const Rational width(1, mpz_class(1) << mp_level_bits[level]);
+    Real local;
+    const Real* refined = nullptr;
+    if (entry && entry->refined[static_cast<std::size_t>(level)]) {
+      refined = entry->refined[static_cast<std::size_t>(level)].get();
+    } else {
+      const Real* start = &x;   // refine from the finest level already known
+      if (entry)
+        for (int k = level - 1; k >= 0; --k)
+          if (entry->refined[static_cast<std::size_t>(k)]) {
+            start = entry->refined[static_cast<std::size_t>(k)].get();
+            break;
+          }
+      auto fine = std::make_unique<Real>(*start);
+      algebra::refine_dyadically(*fine, width);
+      if (entry) {
+        entry->refined[static_cast<std::size_t>(level)] = std::move(fine);
+        refined = entry->refined[static_cast<std::size_t>(level)].get();
+      } else {
+        local = std::move(*fine);
+        refined = &local;
+      }
+    }
+    if (refined->exact)
+      mpfi_set_q(out, refined->lower.get_mpq_t());
+    else
+      mpfi_interv_q(out, refined->lower.get_mpq_t(), refined->upper.get_mpq_t());
+  }
+
+  /// y of e over the interval x; false when the enclosure is useless (denominator not
+  /// certified non-zero, discriminant certified negative).
+  bool mp_y(const YExpr& e, mpfi_srcptr x, mpfr_prec_t prec, mpfi_ptr out) const {
+    const Support& s = support(e.support);
+    Mp num(prec), den(prec);
+    if (e.kind == 2) {
+      mp_evaluate(num.get(), s.neg_c, x);
+      mp_evaluate(den.get(), s.b, x);
+    } else {
+      mp_evaluate(num.get(), s.neg_b, x);
+      if (e.kind == 0) {
+        Mp root(prec);
+        mp_evaluate(root.get(), s.disc, x);
+        if (mpfi_nan_p(root.get()) || mpfr_sgn(&root.get()->right) < 0) return false;
+        if (mpfr_sgn(&root.get()->left) < 0) mpfr_set_zero(&root.get()->left, 1);   // the value is >= 0
+        mpfi_sqrt(root.get(), root.get());
+        if (e.s > 0)
+          mpfi_add(num.get(), num.get(), root.get());
+        else
+          mpfi_sub(num.get(), num.get(), root.get());
+      }
+      mp_evaluate(den.get(), s.two_a, x);
+    }
+    if (mp_sign(den.get()) == 0) return false;
+    mpfi_div(out, num.get(), den.get());
+    return !mpfi_nan_p(out);
+  }
+
+  /// sign(y1 - y2) at x certified by multiple-precision intervals, 0 when undecided.
+  int mp_compare_y(const Real& x, const XEntry* entry, const YExpr& e1, const YExpr& e2) const {
+    for (int level = 0; level < mp_levels; ++level) {
+      const mpfr_prec_t prec = mp_level_bits[level] + 64;
+      Mp xi(prec), y1(prec), y2(prec);
+      mp_x(x, entry, level, xi.get());
+      if (!mp_y(e1, xi.get(), prec, y1.get()) || !mp_y(e2, xi.get(), prec, y2.get())) continue;
+      mpfi_sub(y1.get(), y1.get(), y2.get());
+      if (int c = mp_sign(y1.get())) {
+        ++st_->mp_decided[level];
+        return c;
+      }
+    }
+    return 0;
+  }
+
+  /// sign of p at x certified by multiple-precision intervals (exact at a rational x), 0 when
+  /// undecided (p may vanish at x).
+  int mp_sign_at(const Polynomial& p, const Real& x, const XEntry* entry) const {
+    if (p.empty()) return 0;
+    if (x.exact) return algebra::sign_at(p, x.lower);
+    for (int level = 0; level < mp_levels; ++level) {
+      const mpfr_prec_t prec = mp_level_bits[level] + 64;
+      Mp xi(prec), v(prec);
+      mp_x(x, entry, level, xi.get());
+      mp_evaluate(v.get(), p, xi.get());
+      if (int c = mp_sign(v.get())) return c;
+    }
+    return 0;
+  }
+
+  // ---------------------------------------------------------------- equality without squaring
+
+  /// The first subresultant N + M y of the parts of two distinct supports i < j (it vanishes
+  /// at their common roots; where M(x) != 0 its root -N/M is the only one), and for each
+  /// support the numerator T = b M - 2 a N of 2 a y* + b = T / M at that root.
+  struct CommonRoot {
+    Polynomial N, M, T_first, T_second;
+  };
+
+  const CommonRoot& common_root(int i, int j) const {
+    auto key = std::make_pair(i, j);
+    auto it = st_->common.find(key);
+    if (it != st_->common.end()) return it->second;
+    const auto &f = support(i).part_columns, &g = support(j).part_columns;
+    CommonRoot r;
+    if (f.size() == 2) {   // f = b y + c: its root
+      r.N = column(f, 0);
+      r.M = f[1];
+    } else if (g.size() == 2) {
+      r.N = column(g, 0);
+      r.M = g[1];
+    } else {   // f = a y^2 + b y + c, g = d y^2 + e y + h: S1 = (a e - b d) y + (a h - c d)
+      r.M = sub(mul(f[2], g[1]), mul(f[1], g[2]));
+      r.N = sub(mul(f[2], g[0]), mul(f[0], g[2]));
+    }
+    auto branch_numerator = [&](const Support& s) {
+      return s.degree == 2 ? sub(mul(s.b, r.M), scale(mul(s.a, r.N), 2)) : Polynomial{};
+    };
+    r.T_first = branch_numerator(support(i));
+    r.T_second = branch_numerator(support(j));
+    return st_->common.emplace(key, std::move(r)).first->second;
+  }
+
+  /// Is y1 == y2 at x, for arcs of two distinct supports? Decided without squaring: a common
+  /// point lies over a root of the resultant of the supports (root_entries: canonical, so
+  /// membership is identity), and there, when one leading coefficient does not vanish and
+  /// M(x) != 0, the common root is y* = -N(x)/M(x); an arc y = (-b + s sqrt(disc)) / 2a passes
+  /// through it iff sign(2 a y* + b) = s, the other arc kinds (the only finite root of their
+  /// fibre) always do. nullopt: not decided here (a rational or unregistered x, a vanishing
+  /// M(x) or a sign the filter does not certify); the caller compares numerically then.
+  std::optional<bool> equal_by_subresultant(const Real& x, const XEntry* entry, const YExpr& e1,
+                                            const YExpr& e2) const {
+    if (!entry || x.exact || e1.support == e2.support) return std::nullopt;
+    bool root = false;
+    for (const auto& r : root_entries(e1.support, e2.support)) root = root || r.get() == entry;
+    if (!root) return false;
+    // the resultant vanishes without a common root where both leading coefficients vanish:
+    // arcs of kind 2 on a curve of degree 2 (a(x) = 0); kinds 0 and 1 have a(x) != 0, kind 2
+    // on a curve of degree 1 has b(x) != 0 (their denominators)
+    auto leading_may_vanish = [&](const YExpr& e) { return e.kind == 2 && support(e.support).degree == 2; };
+    if (leading_may_vanish(e1) && leading_may_vanish(e2)) return std::nullopt;
+    const bool first_is_1 = e1.support < e2.support;
+    const CommonRoot& common = common_root(std::min(e1.support, e2.support), std::max(e1.support, e2.support));
+    const int m = mp_sign_at(common.M, x, entry);
+    if (m == 0) return std::nullopt;
+    bool equal = true;
+    for (const YExpr* e : {&e1, &e2}) {
+      if (e->kind != 0) continue;
+      const bool first = (e == &e1) == first_is_1;
+      const int t = mp_sign_at(first ? common.T_first : common.T_second, x, entry);
+      if (t == 0) return std::nullopt;
+      if (t * m != e->s) equal = false;
+    }
+    return equal;
   }
 
   int exact_compare_y(const Real& x, const YExpr& e1, const YExpr& e2) const {
@@ -523,7 +771,7 @@ class QuadraticTraits {
     Polynomial r = resultant_y(support(i).part_columns, support(j).part_columns);
     if (r.empty()) throw NotApplicable{"common component"};   // a common component of two supports
     std::vector<Real> xs;
-    if (algebra::degree(r) >= 1) xs = algebra::real_roots(r, st_->box.x_lo, st_->box.x_hi);
+    if (algebra::degree(r) >= 1) xs = roots_in(r, st_->box.x_lo, st_->box.x_hi);
     std::vector<std::shared_ptr<const XEntry>> out;
     for (const Real& x : sorted_unique(std::move(xs))) out.push_back(canonical(x));
     return st_->roots.emplace(key, std::move(out)).first->second;
@@ -568,6 +816,28 @@ class QuadraticTraits {
 
   using Intersection = boost::variant<std::pair<Point, Multiplicity>, XCurve>;
 
+  /// Certified: the non-vertical arcs c1, c2 of distinct supports have no common point over
+  /// [lo.x, hi.x] (their common x-range). Over an x-interval X, y_interval of an arc's interior
+  /// expression encloses the arc's y at every x of X in the arc's closed x-range (at an end
+  /// where that expression is 0/0, a(x) = 0, the enclosure is infinite and the test fails);
+  /// disjoint enclosures on every part of a subdivision of the range exclude a common point
+  /// without the resultant of the supports (most pairs CGAL's zone computation tests are far
+  /// apart).
+  bool apart(const XCurve& c1, const XCurve& c2, const Point& lo, const Point& hi) const {
+    return apart(c1, c2, lo.rep->xi().lo, hi.rep->xi().hi, 6);
+  }
+
+  bool apart(const XCurve& c1, const XCurve& c2, double left, double right, int depth) const {
+    const Interval x{left, right};
+    const Interval y1 = y_interval(c1.interior, x), y2 = y_interval(c2.interior, x);
+    auto finite = [](Interval a) { return std::isfinite(a.lo) && std::isfinite(a.hi); };
+    if (finite(y1) && finite(y2) && disjoint(y1, y2)) return true;
+    if (depth == 0) return false;
+    const double m = left + (right - left) / 2;
+    if (!(left < m && m < right)) return false;
+    return apart(c1, c2, left, m, depth - 1) && apart(c1, c2, m, right, depth - 1);
+  }
+
   void intersect(const XCurve& c1, const XCurve& c2, std::vector<Intersection>& out) const {
     auto point = [&](const Point& p) { out.emplace_back(std::make_pair(p, Multiplicity(0))); };
     if (c1.vertical && c2.vertical) {
@@ -604,6 +874,10 @@ class QuadraticTraits {
       for (const Point* e1 : {&c1.left, &c1.right})
         for (const Point* e2 : {&c2.left, &c2.right})
           if (compare_xy(*e1, *e2) == 0) point(*e1);
+      return;
+    }
+    if (range < 0 && apart(c1, c2, lo, hi)) {
+      ++st_->intersections_filtered;
       return;
     }
     for (const auto& entry : root_entries(c1.support, c2.support)) {
@@ -763,6 +1037,9 @@ class QuadraticTraits {
   Merge_2 merge_2_object() const { return {}; }
 
   std::size_t exact_comparisons() const { return st_->exact_comparisons; }
+  std::size_t subresultant_equalities() const { return st_->subresultant_equalities; }
+  std::size_t intersections_filtered() const { return st_->intersections_filtered; }
+  std::size_t mp_decided(int level) const { return st_->mp_decided[static_cast<std::size_t>(level)]; }
   std::size_t x_entries() const { return st_->entries.size(); }
 
  private:
@@ -774,7 +1051,9 @@ class QuadraticTraits {
     std::unordered_map<const Real*, std::shared_ptr<const XEntry>> entries;
     std::multimap<double, std::shared_ptr<const XEntry>> by_lower;
     std::map<std::tuple<const void*, int, int, int, int, int, int>, int> exact_cache;
-    std::size_t exact_comparisons = 0;
+    std::map<std::pair<int, int>, CommonRoot> common;
+    std::size_t exact_comparisons = 0, subresultant_equalities = 0, intersections_filtered = 0;
+    std::array<std::size_t, mp_levels> mp_decided{};
   };
   std::shared_ptr<State> st_;
 };
@@ -834,8 +1113,12 @@ class QuadraticBuilder {
     result_.times.insertion_seconds = seconds_since(start);
     static const bool debug = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
     if (debug)
-      std::fprintf(stderr, "  quadratic traits: %zu pieces, %zu exact y comparisons, %zu x entries, insertion %.4f s\n",
-                   pieces.size(), traits_.exact_comparisons(), traits_.x_entries(), result_.times.insertion_seconds);
+      std::fprintf(stderr,
+                   "  quadratic traits: %zu pieces, %zu arc pairs apart in interval enclosures, %zu equal by subresultant, decided at 2^-128/-320/-800/-2000: "
+                   "%zu/%zu/%zu/%zu, %zu exact y comparisons, %zu x entries, insertion %.4f s\n",
+                   pieces.size(), traits_.intersections_filtered(), traits_.subresultant_equalities(), traits_.mp_decided(0), traits_.mp_decided(1),
+                   traits_.mp_decided(2), traits_.mp_decided(3), traits_.exact_comparisons(), traits_.x_entries(),
+                   result_.times.insertion_seconds);
 
     start = Clock::now();
     export_topology();
@@ -879,7 +1162,7 @@ class QuadraticBuilder {
   // roots of p in the open box x-range
   void roots_inside(const Polynomial& p, std::vector<Real>& out) const {
     if (algebra::degree(p) < 1) return;
-    for (auto& r : algebra::real_roots(p, box_.x_lo, box_.x_hi))
+    for (auto& r : roots_in(p, box_.x_lo, box_.x_hi))
       if (r.compare(box_.x_lo) > 0 && r.compare(box_.x_hi) < 0) out.push_back(std::move(r));
   }
 
@@ -1281,12 +1564,12 @@ class QuadraticBuilder {
 
 }  // namespace
 
-bool quadratic_applies(const std::vector<IntegerPolynomial2>& curves) {
+bool quadratic_applies(const std::vector<IntegerPolynomial2>& curves, std::size_t max_bits) {
   for (const auto& c : curves) {
     if (c.degree_y() > 2) return false;
     for (const auto& row : c.coefficients)
       for (const auto& z : row)
-        if (mpz_sizeinbase(z.get_mpz_t(), 2) > quadratic_max_coefficient_bits) return false;
+        if (mpz_sizeinbase(z.get_mpz_t(), 2) > max_bits) return false;
   }
   return true;
 }
@@ -1304,7 +1587,7 @@ std::optional<Arrangement> build_quadratic_arrangement(
     }
     std::fprintf(stderr, "  quadratic traits: %zu curves, degrees up to %d in x, %d in y\n", curves.size(), max_x, max_y);
   }
-  if (options.keep_cgal || !quadratic_applies(curves)) return std::nullopt;
+  if (options.keep_cgal || !quadratic_applies(curves, options.quadratic_max_coefficient_bits)) return std::nullopt;
   try {
     QuadraticBuilder builder(box, options);
     Arrangement result = builder.run(curves, validity, windows);

@@ -2,10 +2,12 @@
 // <= 2 in y (rot–rot contacts in half-angle tangents are bi-quadratic): a model of CGAL's
 // ArrangementXMonotoneTraits_2 for arcs (support F = a(x) y^2 + b(x) y + c(x), branch,
 // x-interval), whose points have an algebra::Real x and y = (P + s sqrt(D)) / Q with P, Q, D
-// polynomials in x. Every predicate is decided in certified double intervals first and by
-// exact univariate sign evaluation (algebra::sign_at at a Real, repeated squaring of the
-// square roots) when the filter fails; no Curve_analysis_2. The x-monotone split, clipping to
-// the chart box, validity, windows and the export to raw::Arrangement are those of
+// polynomials in x. Every predicate is decided in certified double intervals first; when
+// they fail, equality of two arcs at a root of their supports' resultant by the first
+// subresultant, then certified MPFI intervals at a finer x, and last exact univariate sign
+// evaluation (algebra::sign_at at a Real, repeated squaring of the square roots); pairs of
+// arcs whose interval enclosures are apart are not intersected. No Curve_analysis_2. The
+// x-monotone split, clipping to the chart box, validity, windows and the export to raw::Arrangement are those of
 // arrangement.hpp (same cuts, same pieces), so labelling and everything after are shared.
 // All code is in quadratic_traits.cpp (one translation unit).
 #pragma once
@@ -18,15 +20,15 @@
 
 namespace hipair::cspace::raw {
 
-/// Coefficient size above which the quadratic traits declines: its exact fallback squares
-/// the square roots away (polynomials of 4x the coefficient size), and on the 18x27 spur
-/// gears (247-653-bit coefficients) the operating region took 103 s CPU against 40 s on the
-/// algebraic traits, while Geneva (at most 139 bits) is 1.4x faster (docs/performance.md).
-inline constexpr std::size_t quadratic_max_coefficient_bits = 200;
-
-/// True when every curve has degree <= 2 in y and coefficients of at most
-/// quadratic_max_coefficient_bits bits (then build_quadratic_arrangement may apply).
-bool quadratic_applies(const std::vector<IntegerPolynomial2>& curves);
+/// True when every curve has degree <= 2 in y and coefficients of at most `max_bits` bits
+/// (then build_quadratic_arrangement may apply). The default (Options and
+/// CSpaceBuildOptions::quadratic_max_coefficient_bits) is 200: predicates are decided in
+/// double intervals, then (at a common root of two supports) by their first subresultant,
+/// then in MPFI intervals at 192-2064 bits, and only then exactly by squaring the square
+/// roots away; on the spur gears (247-653 bits) this is at parity with the algebraic traits
+/// at 18x27 teeth and 9-20 % slower at 40x40 and 80x80 (docs/performance.md, session 9), so
+/// they keep the algebraic traits unless the limit is raised.
+bool quadratic_applies(const std::vector<IntegerPolynomial2>& curves, std::size_t max_bits);
 
 /// build_arrangement for curves of degree <= 2 in y, on the filtered quadratic traits.
 /// Returns nullopt (the caller takes the algebraic traits) for inputs outside the class it

@@ -998,6 +998,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     raw_options.aggregated_insertion = options.aggregated_insertion;
     raw_options.keep_cgal = options.keep_arrangements;
     raw_options.carry_line_supports = options.polygon_front_end;
+    raw_options.quadratic_max_coefficient_bits = options.quadratic_max_coefficient_bits;
     // lines and circles (translating pairs): the circle–segment traits; else the algebraic ones
     const bool circle_segment = raw::circle_segment_applies(chart.polynomials, chart.validity);
     // curves of degree <= 2 in y: the filtered quadratic traits (nullopt: outside its class)

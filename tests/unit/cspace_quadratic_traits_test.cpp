@@ -580,5 +580,31 @@ TEST(QuadraticTraitsExamples, SameCSpaceAsAlgebraicTraits) {
   EXPECT_GT(checked, 0u);
 }
 
+// Gears have 250-650-bit coefficients: the multiple-precision filter and the subresultant
+// equality test decide their predicates (declined by default above 200 bits, taken here). A 10 x 10 tooth
+// pair's operating region (about 10 s per build on this machine).
+TEST(QuadraticTraitsExamples, SameGearCSpaceAsAlgebraicTraits) {
+  ReadOptions read;
+  read.parameter_values["teeth-1"] = Rational(10);
+  read.parameter_values["teeth-2"] = Rational(10);
+  read.allow_out_of_tolerance = true;
+  Model model = read_model_file((std::filesystem::path(HIPAIR_EXAMPLES) / "spur-gears.json").string(), read);
+  CSpaceBuildOptions fast_options, reference_options;
+  fast_options.operating_region = reference_options.operating_region = true;
+  fast_options.quadratic_max_coefficient_bits = 1024;   // the default (200) keeps gears algebraic
+  reference_options.quadratic_traits = false;
+  CSpace fast = CSpace::build(model, "pinion", "gear", fast_options);
+  CSpace reference = CSpace::build(model, "pinion", "gear", reference_options);
+  EXPECT_EQ(reference.statistics().quadratic_charts, 0u);
+  EXPECT_GE(fast.statistics().quadratic_charts, 50u);
+  // the coefficients are big (the class this test is about)
+  std::size_t max_bits = 0;
+  for (std::size_t e = 0; e < fast.edges().size(); ++e)
+    for (const auto& row : fast.edge_polynomial_coefficients(e))
+      for (const auto& c : row) max_bits = std::max<std::size_t>(max_bits, mpz_sizeinbase(c.get_mpz_t(), 2));
+  EXPECT_GT(max_bits, 400u);
+  expect_same_space(fast, reference, "spur gears 10x10 pinion:gear");
+}
+
 }  // namespace
 }  // namespace hipair
