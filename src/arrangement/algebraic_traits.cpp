@@ -788,24 +788,25 @@ Arrangement build_arrangement(const Box& box, const std::vector<IntegerPolynomia
                               const std::vector<std::vector<ValidityClause>>& validity,
                               const std::vector<std::vector<std::pair<Rational, Rational>>>& windows,
                               const Options& options) {
-  // the other insertion (sweep <-> incremental), checked the same way
+  // The sweep (aggregated) insertion is the default of this stage, whatever
+  // options.aggregated_insertion says: CGAL 5.5.1's incremental insertion can record one point as
+  // two vertices (docs/cspace.md), and the duplicate check below only sees that symptom, not an
+  // arrangement wrong without a duplicate. The duplicate check stays as a guard, with the
+  // incremental insertion as the fallback.
+  Options sweep = options;
+  sweep.aggregated_insertion = true;
   auto with_other_insertion = [&]() {
-    if (std::getenv("HIPAIR_CSPACE_DEBUG")) std::fprintf(stderr, "  rebuilding with the other insertion\n");
+    if (std::getenv("HIPAIR_CSPACE_DEBUG")) std::fprintf(stderr, "  rebuilding with the incremental insertion\n");
     Options other = options;
-    other.aggregated_insertion = !options.aggregated_insertion;
+    other.aggregated_insertion = false;
     Builder builder(box, other);
     return builder.run(curves, validity, windows);
   };
   try {
     try {
-      Builder builder(box, options);
+      Builder builder(box, sweep);
       return builder.run(curves, validity, windows);
     } catch (const DuplicateVertex&) {
-      return with_other_insertion();
-    } catch (const CGAL::Failure_exception&) {
-      // a precondition of CGAL's incremental insertion failed on the same kind of input (two
-      // curves with a vertical tangent at one point, docs/cspace.md); the sweep builds it
-      if (options.aggregated_insertion) throw;
       return with_other_insertion();
     }
   } catch (const DuplicateVertex& failure) {
