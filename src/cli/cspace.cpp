@@ -405,7 +405,7 @@ void register_cspace(CLI::App& app, Action& action) {
                       "with the most free cells)")
       ->delimiter(',');
   command->add_flag("--spurious", options->spurious, "Also draw spurious edges (curves through free or blocked space)");
-  command->add_flag("--aggregated", options->aggregated, "Use CGAL's aggregated insertion (for measurements)");
+  command->add_flag("--aggregated", options->aggregated, "Insert the quadratic stage's curves by one sweep (for measurements; the algebraic stage always sweeps)");
   command->add_flag("--algebraic-traits", options->algebraic_traits,
                     "Build every chart on CGAL's algebraic traits, also those whose curves have degree <= 2 in y "
                     "(the filtered quadratic traits otherwise; for comparisons)");
