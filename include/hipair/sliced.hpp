@@ -116,6 +116,10 @@ struct SlicedCrossing {
 struct SlicedMotion {
   SlicedConfiguration from, to;
   bool through_half_turn = false;
+  /// Feature pairs (fixed feature, free feature) that first_crossing does not test: a
+  /// simulation's held contacts, whose own contact surface the motion follows (their touch is
+  /// the caller's business); every other feature pair is tested as always.
+  std::vector<std::pair<FeatureIdentity, FeatureIdentity>> ignored;
 };
 
 /// A feature pair of a 3-DOF pair: a feature of the fixed part and one of the free part

@@ -30,8 +30,12 @@
 #include <hipair/error.hpp>
 #include <hipair/simulation.hpp>
 
+#include "kernels/contact_geometry.hpp"
+#include "simulation/friction.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/units.hpp"
+
+#include <boost/numeric/odeint.hpp>
 
 #include <algorithm>
 #include <array>
@@ -40,6 +44,7 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
+#include <type_traits>
 
 namespace hipair {
 namespace {
@@ -65,10 +70,104 @@ SlicedConfiguration configuration_of(double x, double y, double theta) {
   return c;
 }
 
+
 // A kinematic state in internal units (s, mm, rad, kg, mN).
 struct Kinematic {
   double x = 0, y = 0, theta = 0, vx = 0, vy = 0, omega = 0;
 };
+
+using State6 = std::array<double, 6>;
+State6 to_array(const Kinematic& k) { return {k.x, k.y, k.theta, k.vx, k.vy, k.omega}; }
+Kinematic to_kinematic(const State6& y) { return {y[0], y[1], y[2], y[3], y[4], y[5]}; }
+
+// ---- held contacts: the contact function of a vertex–segment feature pair, from the kernels
+// (kernels::contact_frame), for double (integration) and Rational (the exact sign at a state).
+
+template <class T>
+T number(const Rational& r) {
+  if constexpr (std::is_same_v<T, double>) return r.get_d();
+  else return r;
+}
+
+// A polygon feature of the model in body coordinates (an arc is returned as an arc: its
+// contacts are not held).
+template <class T>
+kernels::FeatureGeometry<T> feature_geometry(const Model& model, const FeatureIdentity& id) {
+  const Edge& edge = model.parts.at(id.part).loops.at(id.loop).edges.at(id.edge);
+  kernels::FeatureGeometry<T> f;
+  f.shape = kernels::FeatureShape::arc;
+  if (id.kind == FeatureKind::arc) return f;
+  f.shape = id.kind == FeatureKind::vertex ? kernels::FeatureShape::vertex : kernels::FeatureShape::segment;
+  f.point = kernels::Vector<T>{number<T>(edge.source.x), number<T>(edge.source.y)};
+  f.target = kernels::Vector<T>{number<T>(edge.target.x), number<T>(edge.target.y)};
+  return f;
+}
+
+// The contact function of a held (vertex–segment) pair at a pose of the planar part: the
+// kernels' contact point and normal (fixed part into the planar part, not unit), the gap
+// g = normal . (free feature - fixed feature) (times |normal|: > 0 apart, 0 touching, < 0 the
+// vertex past the segment's line) and the vertex's foot parameter along the segment (the
+// contact is valid for 0 <= along <= 1).
+template <class T>
+struct ContactGap {
+  bool defined = false;
+  bool free_vertex = false;   // the planar part's vertex on a fixed segment (else the reverse)
+  kernels::Vector<T> point{T(0), T(0)}, normal{T(0), T(0)};
+  T gap{0}, along{0};
+};
+
+template <class T>
+ContactGap<T> contact_gap(const Model& model, const SlicedFeaturePair& pair, const kernels::Pose<T>& free_pose) {
+  using S = kernels::FeatureShape;
+  kernels::FeatureGeometry<T> fa = feature_geometry<T>(model, pair.fixed), fb = feature_geometry<T>(model, pair.free);
+  ContactGap<T> g;
+  kernels::Vector<T> s0, s1;
+  kernels::ContactFrame<T> frame = kernels::contact_frame(kernels::fixed_pose<T>(), fa, free_pose, fb);
+  if (fa.shape == S::segment && fb.shape == S::vertex) {
+    s0 = fa.point;
+    s1 = fa.target;
+    g.free_vertex = true;
+    g.gap = kernels::dot(frame.normal, frame.point - s0);
+  } else if (fa.shape == S::vertex && fb.shape == S::segment) {
+    s0 = kernels::world_point(free_pose, fb.point);
+    s1 = kernels::world_point(free_pose, fb.target);
+    g.gap = kernels::dot(frame.normal, s0 - frame.point);
+  } else {
+    return g;
+  }
+  g.defined = true;
+  g.point = frame.point;
+  g.normal = frame.normal;
+  kernels::Vector<T> d = s1 - s0;
+  g.along = T(kernels::dot(frame.point - s0, d) / kernels::dot(d, d));
+  return g;
+}
+
+kernels::Pose<double> pose_of(const Point& pivot, const Kinematic& k) {
+  kernels::Pose<double> pose =
+      kernels::rotation_pose_from_cos_sin(kernels::Vector<double>{pivot.x.get_d(), pivot.y.get_d()}, std::cos(k.theta),
+                                          std::sin(k.theta));
+  pose.shift = kernels::Vector<double>{k.x, k.y};
+  pose.translates = true;
+  return pose;
+}
+
+kernels::Pose<Rational> pose_of(const Point& pivot, const SlicedConfiguration& c) {
+  kernels::Vector<Rational> p{pivot.x, pivot.y};
+  kernels::Pose<Rational> pose;
+  if (c.angle.half_turn) {
+    pose.c = Rational(-1);
+    pose.s = Rational(0);
+    pose.w = Rational(1);
+    pose.pivot = p;
+    pose.rotates = true;
+  } else {
+    pose = kernels::rotation_pose_from_half_tangent(p, c.angle.t, false);
+  }
+  pose.shift = kernels::Vector<Rational>{c.x, c.y};
+  pose.translates = true;
+  return pose;
+}
 
 }  // namespace
 
@@ -90,6 +189,7 @@ struct PlanarSimulation::Impl {
     std::size_t fixed = 0;
     double restitution = 0;
     SlicedSpace space;
+    double mu_static = 0, mu_kinetic = 0;   // Coulomb friction (0: frictionless)
   };
   std::vector<Pair> pairs;
   double t = 0;
@@ -178,6 +278,62 @@ struct PlanarSimulation::Impl {
                                      const Eigen::VectorXd& lambda) const;
   void impact(double time, const Rows& rows);
   bool try_rest(const Rows& rows);
+
+  // ---- sustained contact (docs/simulation.md, "Sustained contact of a planar part")
+  struct Held {
+    std::size_t pair = 0;                        // into pairs
+    SlicedFeaturePair feature;
+    int state = simulation::frictionless;        // stick, slip +-1 (friction), frictionless
+  };
+  std::vector<Held> held;
+  double hold_gap = 0;                           // the gap (mm) held contacts are projected to
+  double step_guess = 0;                         // the integrator's suggested next step (s)
+  double accuracy = 1e-9;
+  // A held contact's data at a state: the normal row J = [n, r x n], the tangent row
+  // T = [t, r x t] (t = (-n_y, n_x)), the curvature term h (d2g/dt2 = J qdd + h), the unit gap
+  // and the foot parameter.
+  struct HeldFrame {
+    Eigen::Vector3d J, T;
+    double h = 0, gap = 0, along = 0;
+    std::array<double, 4> frame{};               // point, unit normal
+  };
+  HeldFrame held_frame(const Held& c, const Kinematic& at) const;
+  // The contact problem of the held contacts at a state: unilateral (the frictional LCP, states
+  // decided where not sliding) or bilateral with the given states (the integration's RHS).
+  struct HeldProblem {
+    std::vector<HeldFrame> frames;
+    std::vector<simulation::Friction> friction;
+    Eigen::MatrixXd G;
+    Eigen::VectorXd h, a0;
+    simulation::FrictionalSolution solution;
+  };
+  HeldProblem held_problem(const Kinematic& at, bool unilateral) const;
+  Eigen::Vector3d inverse_mass() const { return Eigen::Vector3d(1 / mass, 1 / mass, 1 / inertia); }
+  double tangential_tolerance() const { return rest_speed; }
+  double force_tolerance() const {
+    return 1e-9 * (mass * std::hypot(accel[0], accel[1]) + std::abs(torque) / std::max(reach, 1.0) + 1e-300) *
+           static_cast<double>(1 + held.size());
+  }
+  // Projects a state onto the held contacts' surfaces (gap = hold_gap) and their velocities
+  // onto J v = 0 (and T v = 0 for sticking contacts), mass-weighted.
+  void project(Kinematic& at, bool positions) const;
+  // The longest chord (s) from a within delta/2 of the path to b (the bounds of both ends).
+  double chord_cap(const Kinematic& a, const Kinematic& b) const;
+  // The held conditions at a state integrated with fixed states: 0 when all hold, else a
+  // bit set: 1 lift-off (a bilateral force below 0), 2 stick -> slip, 4 slip -> stick
+  // (the sliding velocity changes sign), 8 edge end (the foot leaves the segment).
+  unsigned violated(const Kinematic& at, std::vector<unsigned>* per_contact = nullptr) const;
+  // One fixed Dormand–Prince step of the held system from `from` for `span` seconds.
+  Kinematic held_step(const Kinematic& from, double span) const;
+  void held_rhs(const State6& y, State6& dy) const;
+  // After an impact: hold the contacts without separating speed (vertex–segment contacts).
+  void hold(double time, const Rows& rows);
+  // Decides the held contacts' states at the start of a step (lift-offs, stick/slip, rest).
+  void decide();
+  // One step in sustained contact (always an event or progress: returns true, t advanced).
+  bool held_advance(double span);
+  SimulationEvent held_event(SimulationEvent::Kind kind, const Held& c, const HeldFrame& f, double normal_force,
+                             double friction_force) const;
 };
 
 bool PlanarSimulation::Impl::advance(double span) {
@@ -246,7 +402,7 @@ bool PlanarSimulation::Impl::advance(double span) {
     double sb = tau >= remaining ? span : sa + tau;
     Kinematic next = flight(start, sb);
     SlicedConfiguration next_q = configuration_of(next.x, next.y, next.theta);
-    SlicedMotion motion{node_q, next_q, flip};
+    SlicedMotion motion{node_q, next_q, flip, {}};
     ++stats.chord_tests;
     std::vector<std::pair<std::size_t, SlicedMotionCrossing>> crossings;
     for (std::size_t i = 0; i < pairs.size(); ++i) {
@@ -386,9 +542,40 @@ void PlanarSimulation::Impl::impact(double time, const Rows& contact) {
     double e = plastic ? 0.0 : pairs[rows_pair[r]].restitution;
     b(r) = (1 + e) * before(r);
   }
-  simulation::LcpSolution lcp = simulation::solve_lcp(A, b);
-  if (!lcp.solved) throw NumericError(where(time) + ": the impact problem has no solution");
-  Eigen::Vector3d after_v = v + minv.asDiagonal() * (J.transpose() * lcp.lambda);
+  bool frictional = false;
+  for (std::size_t r = 0; r < m; ++r) frictional = frictional || pairs[rows_pair[r]].mu_static > 0;
+  simulation::LcpSolution lcp;
+  Eigen::VectorXd tangential = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m));
+  Eigen::Vector3d after_v;
+  if (!frictional) {
+    lcp = simulation::solve_lcp(A, b);
+    if (!lcp.solved) throw NumericError(where(time) + ": the impact problem has no solution");
+    after_v = v + minv.asDiagonal() * (J.transpose() * lcp.lambda);
+  } else {
+    // Newton restitution with Coulomb-limited tangential impulses: the fixed-axis simulator's
+    // frictional impulse problem (src/simulation/friction.hpp) over (x, y, theta)
+    std::vector<simulation::Friction> friction(m);
+    for (std::size_t r = 0; r < m; ++r) {
+      const Pair& pair = pairs[rows_pair[r]];
+      simulation::Friction& f = friction[r];
+      f.on = pair.mu_static > 0;
+      double nx = frames[r][2], ny = frames[r][3];
+      double rx = frames[r][0] - (to_d(model.parts[part].motion.pivot.x) + at.x);
+      double ry = frames[r][1] - (to_d(model.parts[part].motion.pivot.y) + at.y);
+      f.T = Eigen::Vector3d(-ny, nx, rx * nx + ry * ny);
+      f.mu_static = pair.mu_static;
+      f.mu_kinetic = pair.mu_kinetic;
+    }
+    Eigen::VectorXd h = b - before;   // e J v-
+    simulation::FrictionalSolution sol = simulation::solve_frictional(J, Eigen::VectorXd(minv), v, h, friction);
+    if (!sol.solved)
+      throw NumericError(where(time) + ": the frictional impact problem has no consistent solution (a Painlevé-type "
+                                       "inconsistency of Coulomb friction, or more than 8 contacts)");
+    lcp.lambda = sol.lambda;
+    lcp.solved = true;
+    tangential = sol.f;
+    after_v = sol.x;
+  }
   Eigen::VectorXd after = J * after_v;
   k.vx = after_v(0);
   k.vy = after_v(1);
@@ -400,13 +587,20 @@ void PlanarSimulation::Impl::impact(double time, const Rows& contact) {
     p.event.normal_speed_after = after(p.top) * time_scale;
     p.event.point = {frames[p.top][0], frames[p.top][1]};
     p.event.normal = {frames[p.top][2], frames[p.top][3]};
+    p.event.tangential_impulse = tangential(p.top) / (force_scale * time_scale);
     events.push_back(std::move(p.event));
   }
   if (!plastic) {
     plastic_run = 0;
+    hold(time, contact);
     return;
   }
   if (try_rest(contact)) {
+    plastic_run = 0;
+    return;
+  }
+  hold(time, contact);
+  if (!held.empty()) {
     plastic_run = 0;
     return;
   }
@@ -442,6 +636,357 @@ bool PlanarSimulation::Impl::try_rest(const Rows& contact) {
     events.push_back(std::move(p.event));
   }
   return true;
+}
+
+// ---------------------------------------------------------------- sustained contact
+
+PlanarSimulation::Impl::HeldFrame PlanarSimulation::Impl::held_frame(const Held& c, const Kinematic& at) const {
+  const Point& pivot = model.parts[part].motion.pivot;
+  ContactGap<double> g = contact_gap(model, c.feature, pose_of(pivot, at));
+  double n = std::hypot(g.normal.x, g.normal.y);
+  double nx = g.normal.x / n, ny = g.normal.y / n;
+  double rx = g.point.x - (pivot.x.get_d() + at.x), ry = g.point.y - (pivot.y.get_d() + at.y);
+  HeldFrame f;
+  f.J = Eigen::Vector3d(nx, ny, rx * ny - ry * nx);
+  f.T = Eigen::Vector3d(-ny, nx, rx * nx + ry * ny);
+  f.gap = g.gap / n;
+  f.along = g.along;
+  f.frame = {g.point.x, g.point.y, nx, ny};
+  // curvature terms (d2g/dt2 - J qdd): a vertex of the part on a fixed segment: -w^2 (n . r);
+  // a fixed vertex on a segment of the part: -2 w (v x n) + w^2 (r . n)
+  double w = at.omega, rn = rx * nx + ry * ny;
+  f.h = g.free_vertex ? -w * w * rn : -2 * w * (at.vx * ny - at.vy * nx) + w * w * rn;
+  return f;
+}
+
+PlanarSimulation::Impl::HeldProblem PlanarSimulation::Impl::held_problem(const Kinematic& at, bool unilateral) const {
+  HeldProblem p;
+  const auto m = static_cast<Eigen::Index>(held.size());
+  p.G.resize(m, 3);
+  p.h.resize(m);
+  p.a0 = Eigen::Vector3d(accel[0] - damping_rate * at.vx, accel[1] - damping_rate * at.vy, alpha);
+  Eigen::Vector3d v(at.vx, at.vy, at.omega);
+  std::vector<int> states;
+  for (Eigen::Index r = 0; r < m; ++r) {
+    const Held& c = held[static_cast<std::size_t>(r)];
+    p.frames.push_back(held_frame(c, at));
+    const HeldFrame& f = p.frames.back();
+    p.G.row(r) = f.J.transpose();
+    p.h(r) = f.h;
+    simulation::Friction fr;
+    const Pair& pair = pairs[c.pair];
+    fr.on = pair.mu_static > 0;
+    fr.T = f.T;
+    fr.mu_static = pair.mu_static;
+    fr.mu_kinetic = pair.mu_kinetic;
+    double vt = f.T.dot(v);
+    fr.state = vt > 0 ? simulation::slip_positive : simulation::slip_negative;
+    fr.decided = std::abs(vt) > tangential_tolerance();
+    p.friction.push_back(fr);
+    states.push_back(fr.on ? c.state : simulation::frictionless);
+  }
+  Eigen::VectorXd minv = inverse_mass();
+  p.solution = unilateral ? simulation::solve_frictional(p.G, minv, p.a0, p.h, p.friction)
+                          : simulation::solve_bilateral(p.G, minv, p.a0, p.h, p.friction, states);
+  return p;
+}
+
+void PlanarSimulation::Impl::project(Kinematic& at, bool positions) const {
+  if (held.empty()) return;
+  Eigen::Vector3d minv = inverse_mass();
+  const auto m = static_cast<Eigen::Index>(held.size());
+  for (int iteration = 0; positions && iteration < 4; ++iteration) {
+    Eigen::MatrixXd J(m, 3);
+    Eigen::VectorXd g(m);
+    for (Eigen::Index r = 0; r < m; ++r) {
+      HeldFrame f = held_frame(held[static_cast<std::size_t>(r)], at);
+      J.row(r) = f.J.transpose();
+      g(r) = f.gap - hold_gap;
+    }
+    if (g.cwiseAbs().maxCoeff() <= 1e-3 * hold_gap) break;
+    Eigen::MatrixXd MJt = minv.asDiagonal() * J.transpose();
+    Eigen::Vector3d dq = -MJt * (J * MJt).completeOrthogonalDecomposition().solve(g);
+    at.x += dq(0);
+    at.y += dq(1);
+    at.theta += dq(2);
+  }
+  // velocities: normal rows, and the tangent rows of sticking contacts
+  std::vector<Eigen::Vector3d> rows;
+  for (const Held& c : held) {
+    HeldFrame f = held_frame(c, at);
+    rows.push_back(f.J);
+    if (pairs[c.pair].mu_static > 0 && c.state == simulation::stick) rows.push_back(f.T);
+  }
+  Eigen::MatrixXd A(static_cast<Eigen::Index>(rows.size()), 3);
+  for (std::size_t r = 0; r < rows.size(); ++r) A.row(static_cast<Eigen::Index>(r)) = rows[r].transpose();
+  Eigen::Vector3d v(at.vx, at.vy, at.omega);
+  Eigen::MatrixXd MAt = minv.asDiagonal() * A.transpose();
+  v -= MAt * (A * MAt).completeOrthogonalDecomposition().solve(A * v);
+  at.vx = v(0);
+  at.vy = v(1);
+  at.omega = v(2);
+}
+
+void PlanarSimulation::Impl::held_rhs(const State6& y, State6& dy) const {
+  Kinematic at = to_kinematic(y);
+  HeldProblem p = held_problem(at, false);
+  dy = {at.vx, at.vy, at.omega, p.solution.x(0), p.solution.x(1), p.solution.x(2)};
+}
+
+Kinematic PlanarSimulation::Impl::held_step(const Kinematic& from, double span) const {
+  boost::numeric::odeint::runge_kutta_dopri5<State6> stepper;
+  State6 y = to_array(from);
+  stepper.do_step([this](const State6& x, State6& dx, double) { held_rhs(x, dx); }, y, 0.0, span);
+  Kinematic out = to_kinematic(y);
+  project(out, true);
+  return out;
+}
+
+unsigned PlanarSimulation::Impl::violated(const Kinematic& at, std::vector<unsigned>* per_contact) const {
+  HeldProblem p = held_problem(at, false);
+  Eigen::Vector3d v(at.vx, at.vy, at.omega);
+  unsigned all = 0;
+  if (per_contact) per_contact->assign(held.size(), 0);
+  for (std::size_t k = 0; k < held.size(); ++k) {
+    const auto r = static_cast<Eigen::Index>(k);
+    const Held& c = held[k];
+    unsigned bits = 0;
+    double lambda = p.solution.lambda(r);
+    if (lambda < -force_tolerance()) bits |= 1;
+    if (p.friction[k].on && c.state == simulation::stick) {
+      double limit = pairs[c.pair].mu_static * std::max(lambda, 0.0), f = std::abs(p.solution.f(r));
+      if (f > limit + 2e-9 * (limit + f) + force_tolerance()) bits |= 2;
+    }
+    if (p.friction[k].on && (c.state == simulation::slip_positive || c.state == simulation::slip_negative)) {
+      if (c.state * p.frames[k].T.dot(v) < 0) bits |= 4;
+    }
+    if (p.frames[k].along < 0 || p.frames[k].along > 1) bits |= 8;
+    all |= bits;
+    if (per_contact) (*per_contact)[k] = bits;
+  }
+  return all;
+}
+
+SimulationEvent PlanarSimulation::Impl::held_event(SimulationEvent::Kind kind, const Held& c, const HeldFrame& f,
+                                                   double normal_force, double friction_force) const {
+  SimulationEvent e;
+  e.kind = kind;
+  e.time = t / time_scale;
+  e.pair = pairs[c.pair].index;
+  e.first_part = model.parts[pairs[c.pair].fixed].name;
+  e.second_part = model.parts[part].name;
+  e.features.push_back(c.feature.label);
+  e.point = {f.frame[0], f.frame[1]};
+  e.normal = {f.frame[2], f.frame[3]};
+  e.normal_force = normal_force / force_scale;
+  e.friction_force = friction_force / force_scale;
+  return e;
+}
+
+void PlanarSimulation::Impl::hold(double time, const Rows& rows) {
+  Eigen::VectorXd after = rows.J * Eigen::Vector3d(k.vx, k.vy, k.omega);
+  held.clear();
+  for (std::size_t r = 0; r < rows.pair.size(); ++r) {
+    if (after(static_cast<Eigen::Index>(r)) > rest_speed) continue;   // separating
+    Held c{rows.pair[r], rows.feature[r], simulation::frictionless};
+    if (!contact_gap(model, c.feature, pose_of(model.parts[part].motion.pivot, k)).defined) continue;   // not vertex–segment
+    bool repeated = false;
+    for (const Held& h : held) repeated = repeated || (h.feature.fixed == c.feature.fixed && h.feature.free == c.feature.free);
+    if (!repeated) held.push_back(c);
+  }
+  if (held.empty()) return;
+  // the velocity onto the held contacts' tangent space (their normal speeds are below the rest
+  // speed: a plastic remainder)
+  project(k, false);
+  for (const Held& c : held) events.push_back(held_event(SimulationEvent::Kind::contact, c, held_frame(c, k), 0, 0));
+  (void)time;
+}
+
+void PlanarSimulation::Impl::decide() {
+  HeldProblem p = held_problem(k, true);
+  if (!p.solution.solved)
+    throw NumericError(where(t) + ": the contact problem of its held contacts has no consistent solution "
+                                  "(a Painlevé-type inconsistency of Coulomb friction, or more than 8 contacts)");
+  std::vector<Held> kept;
+  std::vector<HeldFrame> frames;
+  for (std::size_t c = 0; c < held.size(); ++c) {
+    const auto r = static_cast<Eigen::Index>(c);
+    Held h = held[c];
+    double lambda = p.solution.lambda(r), w = p.solution.w(r);
+    if (lambda <= force_tolerance() && w > 0) {   // no force and separating: lift-off
+      events.push_back(held_event(SimulationEvent::Kind::lift_off, h, p.frames[c], 0, 0));
+      continue;
+    }
+    int state = p.friction[c].on ? p.solution.state[c] : simulation::frictionless;
+    if (state != h.state && p.friction[c].on) {
+      SimulationEvent e = held_event(state == simulation::stick ? SimulationEvent::Kind::stick : SimulationEvent::Kind::slip,
+                                     h, p.frames[c], lambda, p.solution.f(r));
+      if (state != simulation::stick) e.slip_direction = state;
+      events.push_back(std::move(e));
+    }
+    h.state = state;
+    kept.push_back(h);
+    frames.push_back(p.frames[c]);
+  }
+  bool lifted = kept.size() != held.size();
+  held = std::move(kept);
+  if (held.empty() || lifted) return;   // the next problem (or free flight) decides the rest
+  // at rest: slower than the rest speed and the contact forces balance the loads
+  double speed = std::hypot(k.vx, k.vy) + std::abs(k.omega) * reach;
+  const Eigen::VectorXd& acc = p.solution.x;
+  double scale = std::hypot(accel[0], accel[1]) + std::abs(alpha) * reach;
+  double residual = std::hypot(acc(0), acc(1)) + std::abs(acc(2)) * reach;
+  if (speed > rest_speed || residual > 1e-9 * std::max(scale, 1e-300)) return;
+  resting = true;
+  k.vx = k.vy = k.omega = 0;
+  // one event per fixed part, with its total normal force and friction force (as try_rest)
+  Rows rows;
+  rows.J = p.G;
+  for (std::size_t c = 0; c < held.size(); ++c) {
+    rows.frames.push_back(frames[c].frame);
+    rows.pair.push_back(held[c].pair);
+    rows.feature.push_back(held[c].feature);
+  }
+  for (PairEvent& e : pair_events(SimulationEvent::Kind::contact, t, rows, p.solution.lambda)) {
+    e.event.normal_force = e.total / force_scale;
+    for (std::size_t c = 0; c < held.size(); ++c)
+      if (pairs[held[c].pair].index == e.event.pair) e.event.friction_force += p.solution.f(static_cast<Eigen::Index>(c)) / force_scale;
+    e.event.point = {frames[static_cast<std::size_t>(e.top)].frame[0], frames[static_cast<std::size_t>(e.top)].frame[1]};
+    e.event.normal = {frames[static_cast<std::size_t>(e.top)].frame[2], frames[static_cast<std::size_t>(e.top)].frame[3]};
+    events.push_back(std::move(e.event));
+  }
+}
+
+double PlanarSimulation::Impl::chord_cap(const Kinematic& a, const Kinematic& b) const {
+  const double pi = std::numbers::pi;
+  double amax = 0, wmax = 0, alpha_max = 0;
+  for (const Kinematic* s : {&a, &b}) {
+    Eigen::VectorXd acc = held_problem(*s, false).solution.x;
+    amax = std::max(amax, std::hypot(acc(0), acc(1)));
+    alpha_max = std::max(alpha_max, std::abs(acc(2)));
+    wmax = std::max(wmax, std::abs(s->omega));
+  }
+  double phi = std::abs(wrap(a.theta));
+  if (phi > pi / 2) phi = pi - phi;
+  double w_bound = std::tan((phi + pi / 4) / 2);
+  double wpp = 0.5 * (1 + w_bound * w_bound) * (alpha_max + w_bound * wmax * wmax);
+  double bend = amax + 2 * reach * wpp;
+  double cap = wmax > 0 ? (pi / 4) / wmax : std::numeric_limits<double>::infinity();
+  if (bend > 0) cap = std::min(cap, std::sqrt(8 * 0.5 * delta / bend));
+  return cap;
+}
+
+bool PlanarSimulation::Impl::held_advance(double span) {
+  using namespace boost::numeric::odeint;
+  decide();
+  if (held.empty()) return advance(span);
+  if (resting) return false;
+  const Kinematic k0 = k;
+  const SlicedConfiguration q0 = q;
+  auto rhs = [this](const State6& x, State6& dx, double) { held_rhs(x, dx); };
+  auto stepper = make_controlled(accuracy, accuracy, runge_kutta_dopri5<State6>());
+  double h = step_guess > 0 ? std::min(step_guess, span) : span;
+  h = std::min(h, chord_cap(k0, k0));
+  const bool flip = std::abs(wrap(k0.theta)) > std::numbers::pi / 2;
+  std::vector<std::pair<FeatureIdentity, FeatureIdentity>> ignored;
+  for (const Held& c : held) ignored.emplace_back(c.feature.fixed, c.feature.free);
+  for (int attempt = 0; attempt < 60; ++attempt) {
+    State6 y = to_array(k0);
+    double tt = 0, trial = h;
+    for (int tries = 0; stepper.try_step(rhs, y, tt, trial) == fail; ++tries)
+      if (tries > 200 || !(trial > 0)) throw NumericError(where(t) + ": the integration in sustained contact fails");
+    double end = tt;
+    step_guess = trial;
+    Kinematic kend = to_kinematic(y);
+    project(kend, true);
+    std::vector<unsigned> bits;
+    if (violated(kend) != 0) {
+      // the first violated condition, by bisection to 2^-50 of the step
+      double lo = 0, hi = end;
+      for (int i = 0; i < 50; ++i) {
+        double mid = 0.5 * (lo + hi);
+        if (violated(held_step(k0, mid)) != 0) hi = mid;
+        else lo = mid;
+      }
+      end = hi;
+      kend = held_step(k0, hi);
+      violated(kend, &bits);
+    }
+    double cap = chord_cap(k0, kend);
+    if (end > cap * (1 + 1e-9)) {   // the chord would deviate more than delta: shorter
+      h = step_guess = cap;
+      continue;
+    }
+    SlicedConfiguration q1 = configuration_of(kend.x, kend.y, kend.theta);
+    // the held contacts at the new state: exactly apart from their segments' lines
+    const Point& pivot = model.parts[part].motion.pivot;
+    for (const Held& c : held)
+      if (sgn(contact_gap(model, c.feature, pose_of(pivot, q1)).gap) <= 0)
+        throw NumericError(where(t + end) + ": a held contact's projected state is not exactly apart (internal error)");
+    // every other feature pair: the chord q0 -> q1, certified
+    SlicedMotion motion{q0, q1, flip, ignored};
+    ++stats.chord_tests;
+    std::optional<std::pair<std::size_t, SlicedMotionCrossing>> first;
+    std::vector<std::pair<std::size_t, SlicedMotionCrossing>> crossings;
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      SlicedMotionCrossing c = pairs[i].space.first_crossing(motion, CrossingOptions{options.crossing_bits});
+      if (c.status == CrossingStatus::starts_in_contact)
+        throw NumericError(where(t) + " starts a chord in contact with '" + model.parts[pairs[i].fixed].name +
+                           "' (an internal error)");
+      if (c.status == CrossingStatus::crossing) crossings.emplace_back(i, std::move(c));
+    }
+    if (!crossings.empty()) {
+      std::size_t best = 0;
+      for (std::size_t i = 1; i < crossings.size(); ++i)
+        if (crossings[i].second.u_lower < crossings[best].second.u_lower) best = i;
+      const SlicedMotionCrossing& c = crossings[best].second;
+      std::vector<std::pair<std::size_t, SlicedFeaturePair>> touching;
+      for (const auto& [i, other] : crossings)
+        if (other.u_lower <= c.u_upper)
+          for (const SlicedFeaturePair& f : other.features) touching.emplace_back(i, f);
+      for (std::size_t i = 0; i < pairs.size(); ++i)
+        for (const SlicedNearFeature& f : pairs[i].space.features_near(c.before, Rational(delta))) {
+          bool listed = false;
+          for (const auto& [j, g] : touching) listed = listed || (j == i && g.label == f.pair.label);
+          if (!listed) touching.emplace_back(i, f.pair);
+        }
+      double s_contact = to_d(c.u_lower) * end;
+      Kinematic at = s_contact > 0 ? held_step(k0, s_contact) : k0;
+      Rows rows = contact_rows(t + s_contact, at, c.before, touching);
+      Eigen::VectorXd normal_speed = rows.J * Eigen::Vector3d(at.vx, at.vy, at.omega);
+      double approach = 0;
+      for (std::size_t r = 0; r < rows.pair.size(); ++r) {
+        bool is_held = false;
+        for (const Held& hc : held)
+          is_held = is_held || (hc.feature.fixed == rows.feature[r].fixed && hc.feature.free == rows.feature[r].free);
+        if (!is_held) approach = std::min(approach, normal_speed(static_cast<Eigen::Index>(r)));
+      }
+      if (approach >= 0 && attempt < 40) {   // a contact the path leaves (the chord cut its corner)
+        h = std::max(end / 4, 1e-300);
+        continue;
+      }
+      t += s_contact;
+      set_state(at, c.before);
+      impact(t, rows);
+      return true;
+    }
+    t += end;
+    k = kend;
+    q = q1;
+    // contacts reaching the end of their segment end; lift-offs and stick/slip changes are
+    // decided by the next step's problem
+    std::vector<Held> kept;
+    for (std::size_t c = 0; c < held.size(); ++c) {
+      if (!bits.empty() && (bits[c] & 8)) {
+        events.push_back(held_event(SimulationEvent::Kind::edge_end, held[c], held_frame(held[c], k), 0, 0));
+        continue;
+      }
+      kept.push_back(held[c]);
+    }
+    held = std::move(kept);
+    return true;
+  }
+  throw NumericError(where(t) + ": no step in sustained contact could be certified");
 }
 
 PlanarSimulation::PlanarSimulation(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -513,16 +1058,20 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
   s.reach *= 1 + 1e-12;
   double accuracy = options.accuracy > 0 ? options.accuracy : spec.accuracy ? to_d(*spec.accuracy) : 1e-9;
   s.delta = options.chord_deviation > 0 ? options.chord_deviation : accuracy * std::max(s.reach, 1.0);
+  s.accuracy = accuracy;
+  s.hold_gap = s.delta / 16;
   // a bounce that would rise less than delta under the loads is plastic
   s.rest_speed = std::sqrt(2 * (std::hypot(s.accel[0], s.accel[1]) + std::abs(s.alpha) * s.reach) * s.delta);
   for (std::size_t i = 0; i < model.pairs.size(); ++i) {
     const PairSpec& pair = model.pairs[i];
     std::size_t other = pair.first == s.part ? pair.second : pair.second == s.part ? pair.first : no_index;
     if (other == no_index) continue;   // two fixed parts
-    if (pair.friction && *pair.friction > 0)
-      throw ModelError(pair.pointer + "/friction", "the planar simulator is frictionless: friction is not supported");
     Impl::Pair p{i, other, pair.restitution ? to_d(*pair.restitution) : 0.0,
                  SlicedSpace::build(model, model.parts[other].name, part.name, SlicedBuildOptions{false, {}})};
+    if (pair.friction) {
+      p.mu_static = to_d(*pair.friction);
+      p.mu_kinetic = pair.kinetic_friction ? to_d(*pair.kinetic_friction) : p.mu_static;
+    }
     s.pairs.push_back(std::move(p));
   }
   s.k.x = to_d(part.initial.x);
@@ -560,7 +1109,7 @@ void PlanarSimulation::step(double t_limit) {
   if (++s.steps > s.options.max_steps)
     throw NumericError(s.where(s.t) + ": more than " + std::to_string(s.options.max_steps) + " steps");
   // forces balanced and constant: a resting part stays
-  bool event = !s.resting && s.advance(span);
+  bool event = !s.resting && (s.held.empty() ? s.advance(span) : s.held_advance(span));
   if (!event) s.t = span == limit - s.t ? limit : s.t + span;
   s.publish();
 }

@@ -351,6 +351,9 @@ MotionResult MotionChecker::first_contact(const StraightMotion& m) const {
   std::optional<Real> best;
   std::vector<std::pair<Real, MotionContact>> firsts;
   for (const auto& c : candidates) {
+    bool skip = false;
+    for (const MotionContact& i : m.ignored) skip = skip || (i.fixed == c.features.fixed && i.free == c.features.free);
+    if (skip) continue;
     std::vector<Real> roots;
     if (is_zero(c.contact)) {
       // in contact position all along: the contact becomes valid where a condition changes sign

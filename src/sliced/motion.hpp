@@ -36,6 +36,7 @@ struct MotionContact {
 struct StraightMotion {
   Rational x0, y0, w0, x1, y1, w1;
   bool flip = false;
+  std::vector<MotionContact> ignored;   ///< feature pairs not tested (SlicedMotion::ignored)
 };
 
 /// Result of a first-contact query.

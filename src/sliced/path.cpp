@@ -61,7 +61,7 @@ class Planner {
   bool motion(const SlicedConfiguration& a, const SlicedConfiguration& b, bool flip) {
     ++out_.motions_checked;
     try {
-      return space_.motion_free(SlicedMotion{a, b, flip});
+      return space_.motion_free(SlicedMotion{a, b, flip, {}});
     } catch (const GeometryError&) {
       return false;
     }

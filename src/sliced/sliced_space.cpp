@@ -204,7 +204,7 @@ struct SlicedSpace::Impl {
   // line passes q (steady_along); pairs with arcs: the pure rotation is certified free (exact).
   bool steady(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip) const {
     if (pair) return sliced::steady_along(*pair, q, u_lo, u_hi, flip);
-    sliced::StraightMotion m{q.x, q.y, u_lo, q.x, q.y, u_hi, flip};
+    sliced::StraightMotion m{q.x, q.y, u_lo, q.x, q.y, u_hi, flip, {}};
     for (Rational* r : {&m.x0, &m.y0, &m.w0, &m.x1, &m.y1, &m.w1}) r->canonicalize();
     sliced::MotionResult r = motion->first_contact(m);
     return r.starts_apart && !r.found;
@@ -644,6 +644,7 @@ SlicedMotionCrossing SlicedSpace::first_crossing(const SlicedMotion& motion, con
   m.y1 = motion.to.y;
   m.w1 = chart_w(motion.to.angle, m.flip, "end");
   for (Rational* r : {&m.x0, &m.y0, &m.x1, &m.y1}) r->canonicalize();
+  for (const auto& [fixed, free] : motion.ignored) m.ignored.push_back(sliced::MotionContact{fixed, free});
   sliced::MotionResult r = impl_->motion->first_contact(m);
   SlicedMotionCrossing out;
   if (!r.starts_apart) {

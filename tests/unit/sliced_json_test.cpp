@@ -72,7 +72,7 @@ void expect_witnesses_as_claimed(const SlicedSpace& space, std::size_t* checked,
       EXPECT_EQ(b.interval, right_slice);
       EXPECT_EQ(b.cell, right_cell);
       // the rotation across the critical angle is free throughout (ends included)
-      EXPECT_TRUE(space.motion_free(SlicedMotion{left, right, flip}));
+      EXPECT_TRUE(space.motion_free(SlicedMotion{left, right, flip, {}}));
       ++*checked;
       if (flip) ++*through_half_turn;
     }
