@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace hipair::simulation {
@@ -149,9 +150,13 @@ inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Fri
 /// The normal LCP with Coulomb friction: states of the undecided frictional contacts by
 /// enumeration (fewest sliding contacts first; at most 3^8 assignments), each assignment's
 /// normal LCP solved by solve_lcp. solved = false when no assignment is consistent.
+/// `adjust` (optional) may redistribute the tangential forces of a candidate solution before
+/// its Coulomb conditions are checked (the planar simulator splits the friction of collinear
+/// contacts, whose split the equations leave open, in proportion to their normal forces).
 inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
                                            const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
-                                           const std::vector<Friction>& friction) {
+                                           const std::vector<Friction>& friction,
+                                           const std::function<void(FrictionalSolution&)>& adjust = {}) {
   const std::size_t m = friction.size();
   std::vector<std::size_t> open;
   std::vector<int> state(m, frictionless);
@@ -188,6 +193,7 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
     s.lambda = lcp.lambda;
     s.tolerance = lcp.tolerance;
     complete(s, r, G, h, friction);
+    if (adjust) adjust(s);
     if (!coulomb_satisfied(s, friction)) continue;
     s.solved = true;
     return s;

@@ -308,6 +308,13 @@ struct PlanarSimulation::Impl {
     simulation::FrictionalSolution solution;
   };
   HeldProblem held_problem(const Kinematic& at, bool unilateral) const;
+  // Splits the sticking friction of contacts with equal tangent rows (collinear contacts of one
+  // pair: a face on a face, where the equations fix only the sum) in proportion to their normal
+  // forces; the Coulomb condition of the sum is then that of each.
+  static void split_collinear(simulation::FrictionalSolution& s, const std::vector<simulation::Friction>& friction,
+                              const std::vector<std::size_t>& group);
+  std::vector<std::size_t> collinear_groups(const std::vector<simulation::Friction>& friction,
+                                            const std::vector<std::size_t>& pair_of) const;
   Eigen::Vector3d inverse_mass() const { return Eigen::Vector3d(1 / mass, 1 / mass, 1 / inertia); }
   double tangential_tolerance() const { return rest_speed; }
   double force_tolerance() const {
@@ -329,7 +336,8 @@ struct PlanarSimulation::Impl {
   // After an impact: hold the contacts without separating speed (vertex–segment contacts).
   void hold(double time, const Rows& rows);
   // Decides the held contacts' states at the start of a step (lift-offs, stick/slip, rest).
-  void decide();
+  // Returns true when it changed something (events: lift-off, stick/slip, rest).
+  bool decide();
   // One step in sustained contact (always an event or progress: returns true, t advanced).
   bool held_advance(double span);
   SimulationEvent held_event(SimulationEvent::Kind kind, const Held& c, const HeldFrame& f, double normal_force,
@@ -567,7 +575,10 @@ void PlanarSimulation::Impl::impact(double time, const Rows& contact) {
       f.mu_kinetic = pair.mu_kinetic;
     }
     Eigen::VectorXd h = b - before;   // e J v-
-    simulation::FrictionalSolution sol = simulation::solve_frictional(J, Eigen::VectorXd(minv), v, h, friction);
+    std::vector<std::size_t> group = collinear_groups(friction, rows_pair);
+    simulation::FrictionalSolution sol = simulation::solve_frictional(
+        J, Eigen::VectorXd(minv), v, h, friction,
+        [&](simulation::FrictionalSolution& s) { split_collinear(s, friction, group); });
     if (!sol.solved)
       throw NumericError(where(time) + ": the frictional impact problem has no consistent solution (a Painlevé-type "
                                        "inconsistency of Coulomb friction, or more than 8 contacts)");
@@ -587,7 +598,9 @@ void PlanarSimulation::Impl::impact(double time, const Rows& contact) {
     p.event.normal_speed_after = after(p.top) * time_scale;
     p.event.point = {frames[p.top][0], frames[p.top][1]};
     p.event.normal = {frames[p.top][2], frames[p.top][3]};
-    p.event.tangential_impulse = tangential(p.top) / (force_scale * time_scale);
+    for (std::size_t r = 0; r < m; ++r)
+      if (pairs[rows_pair[r]].index == p.event.pair)
+        p.event.tangential_impulse += tangential(static_cast<Eigen::Index>(r)) / (force_scale * time_scale);
     events.push_back(std::move(p.event));
   }
   if (!plastic) {
@@ -681,14 +694,61 @@ PlanarSimulation::Impl::HeldProblem PlanarSimulation::Impl::held_problem(const K
     fr.mu_kinetic = pair.mu_kinetic;
     double vt = f.T.dot(v);
     fr.state = vt > 0 ? simulation::slip_positive : simulation::slip_negative;
-    fr.decided = std::abs(vt) > tangential_tolerance();
+    // sliding: faster than the tangential tolerance, or still sliding the way it slid (a slide
+    // ends where its velocity changes sign, located by bisection: then it is decided afresh)
+    fr.decided = std::abs(vt) > tangential_tolerance() || (vt != 0 && c.state == fr.state);
     p.friction.push_back(fr);
     states.push_back(fr.on ? c.state : simulation::frictionless);
   }
   Eigen::VectorXd minv = inverse_mass();
-  p.solution = unilateral ? simulation::solve_frictional(p.G, minv, p.a0, p.h, p.friction)
-                          : simulation::solve_bilateral(p.G, minv, p.a0, p.h, p.friction, states);
+  std::vector<std::size_t> pair_of;
+  for (const Held& c : held) pair_of.push_back(c.pair);
+  std::vector<std::size_t> group = collinear_groups(p.friction, pair_of);
+  auto split = [&](simulation::FrictionalSolution& s) { split_collinear(s, p.friction, group); };
+  if (unilateral) {
+    p.solution = simulation::solve_frictional(p.G, minv, p.a0, p.h, p.friction, split);
+  } else {
+    p.solution = simulation::solve_bilateral(p.G, minv, p.a0, p.h, p.friction, states);
+    split(p.solution);
+  }
   return p;
+}
+
+std::vector<std::size_t> PlanarSimulation::Impl::collinear_groups(const std::vector<simulation::Friction>& friction,
+                                                                  const std::vector<std::size_t>& pair_of) const {
+  std::vector<std::size_t> group(friction.size());
+  for (std::size_t i = 0; i < friction.size(); ++i) {
+    group[i] = i;
+    for (std::size_t j = 0; j < i; ++j)
+      if (friction[i].on && friction[j].on && pair_of[i] == pair_of[j] &&
+          (friction[i].T - friction[j].T).cwiseAbs().maxCoeff() <= 1e-12 * (1 + friction[i].T.cwiseAbs().maxCoeff())) {
+        group[i] = group[j];
+        break;
+      }
+  }
+  return group;
+}
+
+void PlanarSimulation::Impl::split_collinear(simulation::FrictionalSolution& s,
+                                             const std::vector<simulation::Friction>& friction,
+                                             const std::vector<std::size_t>& group) {
+  for (std::size_t g = 0; g < group.size(); ++g) {
+    double total = 0, normal = 0;
+    std::size_t members = 0;
+    for (std::size_t k = 0; k < group.size(); ++k)
+      if (group[k] == g && s.state[k] == simulation::stick) {
+        total += s.f(static_cast<Eigen::Index>(k));
+        normal += std::max(0.0, s.lambda(static_cast<Eigen::Index>(k)) / friction[k].s);
+        ++members;
+      }
+    if (members < 2) continue;
+    for (std::size_t k = 0; k < group.size(); ++k)
+      if (group[k] == g && s.state[k] == simulation::stick) {
+        double share = normal > 0 ? std::max(0.0, s.lambda(static_cast<Eigen::Index>(k)) / friction[k].s) / normal
+                                  : 1.0 / static_cast<double>(members);
+        s.f(static_cast<Eigen::Index>(k)) = total * share;
+      }
+  }
 }
 
 void PlanarSimulation::Impl::project(Kinematic& at, bool positions) const {
@@ -802,13 +862,14 @@ void PlanarSimulation::Impl::hold(double time, const Rows& rows) {
   (void)time;
 }
 
-void PlanarSimulation::Impl::decide() {
+bool PlanarSimulation::Impl::decide() {
   HeldProblem p = held_problem(k, true);
   if (!p.solution.solved)
     throw NumericError(where(t) + ": the contact problem of its held contacts has no consistent solution "
                                   "(a Painlevé-type inconsistency of Coulomb friction, or more than 8 contacts)");
   std::vector<Held> kept;
   std::vector<HeldFrame> frames;
+  bool changed = false;
   for (std::size_t c = 0; c < held.size(); ++c) {
     const auto r = static_cast<Eigen::Index>(c);
     Held h = held[c];
@@ -823,6 +884,7 @@ void PlanarSimulation::Impl::decide() {
                                      h, p.frames[c], lambda, p.solution.f(r));
       if (state != simulation::stick) e.slip_direction = state;
       events.push_back(std::move(e));
+      changed = true;
     }
     h.state = state;
     kept.push_back(h);
@@ -830,13 +892,13 @@ void PlanarSimulation::Impl::decide() {
   }
   bool lifted = kept.size() != held.size();
   held = std::move(kept);
-  if (held.empty() || lifted) return;   // the next problem (or free flight) decides the rest
+  if (held.empty() || lifted) return true;   // the next problem (or free flight) decides the rest
   // at rest: slower than the rest speed and the contact forces balance the loads
   double speed = std::hypot(k.vx, k.vy) + std::abs(k.omega) * reach;
   const Eigen::VectorXd& acc = p.solution.x;
   double scale = std::hypot(accel[0], accel[1]) + std::abs(alpha) * reach;
   double residual = std::hypot(acc(0), acc(1)) + std::abs(acc(2)) * reach;
-  if (speed > rest_speed || residual > 1e-9 * std::max(scale, 1e-300)) return;
+  if (speed > rest_speed || residual > 1e-9 * std::max(scale, 1e-300)) return changed;
   resting = true;
   k.vx = k.vy = k.omega = 0;
   // one event per fixed part, with its total normal force and friction force (as try_rest)
@@ -855,6 +917,7 @@ void PlanarSimulation::Impl::decide() {
     e.event.normal = {frames[static_cast<std::size_t>(e.top)].frame[2], frames[static_cast<std::size_t>(e.top)].frame[3]};
     events.push_back(std::move(e.event));
   }
+  return true;
 }
 
 double PlanarSimulation::Impl::chord_cap(const Kinematic& a, const Kinematic& b) const {
@@ -878,19 +941,19 @@ double PlanarSimulation::Impl::chord_cap(const Kinematic& a, const Kinematic& b)
 
 bool PlanarSimulation::Impl::held_advance(double span) {
   using namespace boost::numeric::odeint;
-  decide();
-  if (held.empty()) return advance(span);
-  if (resting) return false;
+  // a change of the held set or of a state is a step of its own (its events at its time)
+  if (decide()) return true;
   const Kinematic k0 = k;
   const SlicedConfiguration q0 = q;
   auto rhs = [this](const State6& x, State6& dx, double) { held_rhs(x, dx); };
-  auto stepper = make_controlled(accuracy, accuracy, runge_kutta_dopri5<State6>());
   double h = step_guess > 0 ? std::min(step_guess, span) : span;
-  h = std::min(h, chord_cap(k0, k0));
   const bool flip = std::abs(wrap(k0.theta)) > std::numbers::pi / 2;
   std::vector<std::pair<FeatureIdentity, FeatureIdentity>> ignored;
   for (const Held& c : held) ignored.emplace_back(c.feature.fixed, c.feature.free);
   for (int attempt = 0; attempt < 60; ++attempt) {
+    // a fresh stepper per attempt: Dormand–Prince reuses its last derivative (FSAL), which
+    // belongs to the previous attempt's end
+    auto stepper = make_controlled(accuracy, accuracy, runge_kutta_dopri5<State6>());
     State6 y = to_array(k0);
     double tt = 0, trial = h;
     for (int tries = 0; stepper.try_step(rhs, y, tt, trial) == fail; ++tries)
@@ -912,7 +975,27 @@ bool PlanarSimulation::Impl::held_advance(double span) {
       kend = held_step(k0, hi);
       violated(kend, &bits);
     }
-    double cap = chord_cap(k0, kend);
+    // Far from every other feature pair (features_near's certified distance beyond what the
+    // part's points can travel in the step: speed at the ends plus acceleration x step, in
+    // double): no chord needed. Otherwise the chord, within delta of the path, is tested.
+    double travel = 0;
+    for (const Kinematic* e : std::array<const Kinematic*, 2>{&k0, &kend}) {
+      Eigen::VectorXd acc = held_problem(*e, false).solution.x;
+      double speed = std::hypot(e->vx, e->vy) + std::abs(e->omega) * reach;
+      double gain = std::hypot(acc(0), acc(1)) + std::abs(acc(2)) * reach;
+      travel = std::max(travel, (speed + gain * end) * end);
+    }
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Pair& pr : pairs) {
+      ++stats.distance_queries;
+      for (const SlicedNearFeature& f : pr.space.features_near(q0, Rational(2 * travel + delta))) {
+        bool is_held = false;
+        for (const Held& c : held) is_held = is_held || (c.feature.fixed == f.pair.fixed && c.feature.free == f.pair.free);
+        if (!is_held) nearest = std::min(nearest, to_d(f.distance_lower));
+      }
+    }
+    const bool far = nearest > 2 * travel + delta;
+    double cap = far ? std::numeric_limits<double>::infinity() : chord_cap(k0, kend);
     if (end > cap * (1 + 1e-9)) {   // the chord would deviate more than delta: shorter
       h = step_guess = cap;
       continue;
@@ -925,10 +1008,10 @@ bool PlanarSimulation::Impl::held_advance(double span) {
         throw NumericError(where(t + end) + ": a held contact's projected state is not exactly apart (internal error)");
     // every other feature pair: the chord q0 -> q1, certified
     SlicedMotion motion{q0, q1, flip, ignored};
-    ++stats.chord_tests;
-    std::optional<std::pair<std::size_t, SlicedMotionCrossing>> first;
+    if (far) ++stats.advancement_steps;
+    else ++stats.chord_tests;
     std::vector<std::pair<std::size_t, SlicedMotionCrossing>> crossings;
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
+    for (std::size_t i = 0; !far && i < pairs.size(); ++i) {
       SlicedMotionCrossing c = pairs[i].space.first_crossing(motion, CrossingOptions{options.crossing_bits});
       if (c.status == CrossingStatus::starts_in_contact)
         throw NumericError(where(t) + " starts a chord in contact with '" + model.parts[pairs[i].fixed].name +
