@@ -166,6 +166,9 @@ struct PlanarStatistics {
   std::size_t advancement_steps = 0;    ///< free intervals certified by a distance bound
   std::size_t chord_tests = 0;          ///< chords tested with SlicedSpace::first_crossing
   std::size_t distance_queries = 0;     ///< SlicedSpace::features_near calls
+  /// Frictional impacts whose restitution was scaled down because Newton's law with Coulomb
+  /// friction would have created energy (docs/simulation.md).
+  std::size_t restitution_limited = 0;
 };
 
 /// A simulation of one part free in the plane (motion "planar") among fixed parts: free flight

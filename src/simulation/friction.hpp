@@ -43,6 +43,9 @@ struct Friction {
   /// by the enumeration).
   int state = 0;
   bool decided = false;
+  /// The tangential curvature term (T' qdot): a sticking contact keeps T x + bias = 0 (0: the
+  /// term neglected, as the fixed-axis simulator does).
+  double bias = 0;
 };
 
 struct FrictionalSolution {
@@ -87,8 +90,10 @@ inline Reduced reduce(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, con
   Eigen::MatrixXd MinvTt = minv.asDiagonal() * TS.transpose();   // n x p
   Eigen::MatrixXd K = TS * MinvTt;                                // p x p
   auto solver = K.completeOrthogonalDecomposition();
-  // T_S (x0 + B lambda + MinvTt f) = 0  =>  f = -K^+ (T_S x0 + T_S B lambda)
-  r.f0 = -solver.solve(TS * a0);
+  // T_S (x0 + B lambda + MinvTt f) + bias = 0  =>  f = -K^+ (T_S x0 + bias + T_S B lambda)
+  Eigen::VectorXd bias(p);
+  for (Eigen::Index j = 0; j < p; ++j) bias(j) = friction[static_cast<std::size_t>(r.sticking[j])].bias;
+  r.f0 = -solver.solve(TS * a0 + bias);
   r.F = -solver.solve(TS * MinvWt);
   r.x0 = a0 + MinvTt * r.f0;
   r.B = MinvWt + MinvTt * r.F;

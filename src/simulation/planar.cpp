@@ -294,7 +294,7 @@ struct PlanarSimulation::Impl {
   // and the foot parameter.
   struct HeldFrame {
     Eigen::Vector3d J, T;
-    double h = 0, gap = 0, along = 0;
+    double h = 0, h_t = 0, gap = 0, along = 0;   // h_t: the tangential curvature term
     std::array<double, 4> frame{};               // point, unit normal
   };
   HeldFrame held_frame(const Held& c, const Kinematic& at) const;
@@ -576,12 +576,38 @@ void PlanarSimulation::Impl::impact(double time, const Rows& contact) {
     }
     Eigen::VectorXd h = b - before;   // e J v-
     std::vector<std::size_t> group = collinear_groups(friction, rows_pair);
-    simulation::FrictionalSolution sol = simulation::solve_frictional(
-        J, Eigen::VectorXd(minv), v, h, friction,
-        [&](simulation::FrictionalSolution& s) { split_collinear(s, friction, group); });
-    if (!sol.solved)
-      throw NumericError(where(time) + ": the frictional impact problem has no consistent solution (a Painlevé-type "
-                                       "inconsistency of Coulomb friction, or more than 8 contacts)");
+    auto solve = [&](double scale) {
+      simulation::FrictionalSolution sol = simulation::solve_frictional(
+          J, Eigen::VectorXd(minv), v, scale * h, friction,
+          [&](simulation::FrictionalSolution& s) { split_collinear(s, friction, group); });
+      if (!sol.solved)
+        throw NumericError(where(time) + ": the frictional impact problem has no consistent solution (a Painlevé-type "
+                                         "inconsistency of Coulomb friction, or more than 8 contacts)");
+      return sol;
+    };
+    // Newton's restitution with Coulomb friction can create energy where the normal and
+    // tangential rows are coupled (J M^-1 T^T != 0: a corner of a turning part; Kane and
+    // Levinson). Where it would, the restitution is scaled down to the largest factor (by
+    // bisection, 2^-30) whose impact creates none.
+    auto kinetic = [&](const Eigen::Vector3d& u) { return 0.5 * (u.cwiseProduct(u).cwiseQuotient(minv)).sum(); };
+    const double k_before = kinetic(v);
+    simulation::FrictionalSolution sol = solve(1);
+    if (kinetic(sol.x) > k_before) {
+      double lo = 0, hi = 1;
+      simulation::FrictionalSolution best = solve(0);
+      for (int i = 0; i < 30; ++i) {
+        double mid = 0.5 * (lo + hi);
+        simulation::FrictionalSolution trial = solve(mid);
+        if (kinetic(trial.x) > k_before) {
+          hi = mid;
+        } else {
+          lo = mid;
+          best = std::move(trial);
+        }
+      }
+      sol = std::move(best);
+      ++stats.restitution_limited;
+    }
     lcp.lambda = sol.lambda;
     lcp.solved = true;
     tangential = sol.f;
@@ -669,6 +695,11 @@ PlanarSimulation::Impl::HeldFrame PlanarSimulation::Impl::held_frame(const Held&
   // a fixed vertex on a segment of the part: -2 w (v x n) + w^2 (r . n)
   double w = at.omega, rn = rx * nx + ry * ny;
   f.h = g.free_vertex ? -w * w * rn : -2 * w * (at.vx * ny - at.vy * nx) + w * w * rn;
+  // the same for the sliding velocity T qdot (a sticking contact keeps it 0): a vertex of the
+  // part: -w^2 (t . r); a fixed vertex on the part's segment: -w (J qdot) - w (v x t)
+  double rt = rx * -ny + ry * nx;
+  double jv = f.J.dot(Eigen::Vector3d(at.vx, at.vy, at.omega));
+  f.h_t = g.free_vertex ? -w * w * rt : -w * jv - w * (at.vx * nx - at.vy * -ny);
   return f;
 }
 
@@ -690,6 +721,7 @@ PlanarSimulation::Impl::HeldProblem PlanarSimulation::Impl::held_problem(const K
     const Pair& pair = pairs[c.pair];
     fr.on = pair.mu_static > 0;
     fr.T = f.T;
+    fr.bias = f.h_t;
     fr.mu_static = pair.mu_static;
     fr.mu_kinetic = pair.mu_kinetic;
     double vt = f.T.dot(v);
@@ -892,6 +924,9 @@ bool PlanarSimulation::Impl::decide() {
   }
   bool lifted = kept.size() != held.size();
   held = std::move(kept);
+  // a contact that starts to stick keeps no sliding velocity (below the tangential tolerance):
+  // removed now, mass-weighted (dissipative), so that its stick force does no work
+  if (changed) project(k, false);
   if (held.empty() || lifted) return true;   // the next problem (or free flight) decides the rest
   // at rest: slower than the rest speed and the contact forces balance the loads
   double speed = std::hypot(k.vx, k.vy) + std::abs(k.omega) * reach;
@@ -1142,7 +1177,9 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
   double accuracy = options.accuracy > 0 ? options.accuracy : spec.accuracy ? to_d(*spec.accuracy) : 1e-9;
   s.delta = options.chord_deviation > 0 ? options.chord_deviation : accuracy * std::max(s.reach, 1.0);
   s.accuracy = accuracy;
-  s.hold_gap = s.delta / 16;
+  // held contacts are kept 3/4 delta apart and chords deviate at most delta / 2 from the path
+  // (chord_cap): a chord never touches a held contact
+  s.hold_gap = 0.75 * s.delta;
   // a bounce that would rise less than delta under the loads is plastic
   s.rest_speed = std::sqrt(2 * (std::hypot(s.accel[0], s.accel[1]) + std::abs(s.alpha) * s.reach) * s.delta);
   for (std::size_t i = 0; i < model.pairs.size(); ++i) {
