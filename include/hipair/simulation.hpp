@@ -175,7 +175,9 @@ struct PlanarStatistics {
 /// in closed form (gravity, constant force and torque, linear viscous damping), collision
 /// detection by the pairs' exact 3-DOF C-spaces (hipair::SlicedSpace) so that no contact deeper
 /// than the stated chord deviation is missed, impacts by Newton restitution at the contact
-/// points and normals of the kernels, and resting contact (docs/simulation.md).
+/// points and normals of the kernels (with Coulomb friction), sustained sliding, rocking and
+/// sticking on vertex–segment contacts (forces from the complementarity problem, integrated
+/// with error control), and resting contact (docs/simulation.md).
 class PlanarSimulation {
  public:
   /// \throws ModelError when the model is not one planar part among fixed parts, or its
@@ -185,9 +187,10 @@ class PlanarSimulation {
   PlanarSimulation& operator=(PlanarSimulation&&) noexcept;
   ~PlanarSimulation();
 
-  /// One step: free flight until `t_limit` (time unit) or the first contact, whichever is first.
-  /// \throws NumericError for a sustained sliding or rocking contact (not supported) or a
-  /// runaway of impacts.
+  /// One step: free flight until `t_limit` (time unit) or the first contact, whichever is first;
+  /// in sustained contact one integration step (or a step of its own for a contact change).
+  /// \throws NumericError for a runaway of plastic impacts that hold no contact (contacts on
+  /// arcs are not held), or an inconsistent frictional contact problem.
   void step(double t_limit);
   /// Steps until `t_end` (the last step ends there exactly).
   void run_until(double t_end, const std::function<void(double)>& progress = {});

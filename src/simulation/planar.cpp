@@ -27,6 +27,14 @@
 // Certified: every state's configuration is free or touching (never blocked); the simulated
 // path is free except for contacts that would penetrate less than delta within one chord; the
 // first contact is exact on its chord (bracketed to 2^-crossing_bits of the chord's time).
+//
+// Sustained contact (held_advance; docs/simulation.md, "Sustained contact of a planar part"):
+// vertex–segment contacts without separating speed after an impact are held; their forces come
+// from the fixed-axis simulator's frictional complementarity problem (simulation/friction.hpp)
+// over (x, y, theta); the state is integrated by Dormand–Prince with error control, projected
+// onto the held gaps (3/4 delta) and J v = 0; lift-off, stick/slip changes and a vertex leaving
+// its segment are located by bisection; the other feature pairs are watched by features_near
+// (far) or by exact chords that skip the held pairs (SlicedMotion::ignored).
 #include <hipair/error.hpp>
 #include <hipair/simulation.hpp>
 
