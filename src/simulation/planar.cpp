@@ -266,6 +266,11 @@ struct PlanarSimulation::Impl {
 
   // One step of free flight of at most `span` seconds; ends at the first contact (then resolved).
   bool advance(double span);
+  // The earliest of a chord's crossings (pair index, crossing), and in `touching` every feature
+  // pair touching there: those whose bracket meets the earliest one, and those within delta of
+  // touching at its configuration (met at once: within the chord's accuracy).
+  const SlicedMotionCrossing& earliest(const std::vector<std::pair<std::size_t, SlicedMotionCrossing>>& crossings,
+                                       std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching) const;
   // The contact rows of the touching feature pairs at configuration c (state `at`).
   struct Rows {
     Eigen::MatrixXd J;                         // [n_x, n_y, r x n] per contact
@@ -351,6 +356,28 @@ struct PlanarSimulation::Impl {
   SimulationEvent held_event(SimulationEvent::Kind kind, const Held& c, const HeldFrame& f, double normal_force,
                              double friction_force) const;
 };
+
+const SlicedMotionCrossing& PlanarSimulation::Impl::earliest(
+    const std::vector<std::pair<std::size_t, SlicedMotionCrossing>>& crossings,
+    std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching) const {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < crossings.size(); ++i)
+    if (crossings[i].second.u_lower < crossings[best].second.u_lower) best = i;
+  const SlicedMotionCrossing& c = crossings[best].second;
+  // every pair whose bracket meets the earliest one touches there (to the bracket's width)
+  for (const auto& [i, other] : crossings)
+    if (other.u_lower <= c.u_upper)
+      for (const SlicedFeaturePair& f : other.features) touching.emplace_back(i, f);
+  // contacts within delta of touching there are met at once (within the accuracy: a contact
+  // this close is separated from the first by less than the chord's deviation)
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+    for (const SlicedNearFeature& f : pairs[i].space.features_near(c.before, Rational(delta))) {
+      bool listed = false;
+      for (const auto& [j, g] : touching) listed = listed || (j == i && g.label == f.pair.label);
+      if (!listed) touching.emplace_back(i, f.pair);
+    }
+  return c;
+}
 
 bool PlanarSimulation::Impl::advance(double span) {
   const double pi = std::numbers::pi;
@@ -438,23 +465,8 @@ bool PlanarSimulation::Impl::advance(double span) {
       shorten = 1;
       continue;
     }
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < crossings.size(); ++i)
-      if (crossings[i].second.u_lower < crossings[best].second.u_lower) best = i;
-    const SlicedMotionCrossing& c = crossings[best].second;
-    // every pair whose bracket meets the earliest one touches there (to the bracket's width)
     std::vector<std::pair<std::size_t, SlicedFeaturePair>> touching;
-    for (const auto& [i, other] : crossings)
-      if (other.u_lower <= c.u_upper)
-        for (const SlicedFeaturePair& f : other.features) touching.emplace_back(i, f);
-    // contacts within delta of touching there are met at once (within the accuracy: a contact
-    // this close is separated from the first by less than the chord's deviation)
-    for (std::size_t i = 0; i < pairs.size(); ++i)
-      for (const SlicedNearFeature& f : pairs[i].space.features_near(c.before, Rational(delta))) {
-        bool listed = false;
-        for (const auto& [j, g] : touching) listed = listed || (j == i && g.label == f.pair.label);
-        if (!listed) touching.emplace_back(i, f.pair);
-      }
+    const SlicedMotionCrossing& c = earliest(crossings, touching);
     double u = to_d(c.u_lower);
     double s_contact = sa + u * (sb - sa);
     Kinematic at = flight(start, s_contact);
@@ -1062,20 +1074,8 @@ bool PlanarSimulation::Impl::held_advance(double span) {
       if (c.status == CrossingStatus::crossing) crossings.emplace_back(i, std::move(c));
     }
     if (!crossings.empty()) {
-      std::size_t best = 0;
-      for (std::size_t i = 1; i < crossings.size(); ++i)
-        if (crossings[i].second.u_lower < crossings[best].second.u_lower) best = i;
-      const SlicedMotionCrossing& c = crossings[best].second;
       std::vector<std::pair<std::size_t, SlicedFeaturePair>> touching;
-      for (const auto& [i, other] : crossings)
-        if (other.u_lower <= c.u_upper)
-          for (const SlicedFeaturePair& f : other.features) touching.emplace_back(i, f);
-      for (std::size_t i = 0; i < pairs.size(); ++i)
-        for (const SlicedNearFeature& f : pairs[i].space.features_near(c.before, Rational(delta))) {
-          bool listed = false;
-          for (const auto& [j, g] : touching) listed = listed || (j == i && g.label == f.pair.label);
-          if (!listed) touching.emplace_back(i, f.pair);
-        }
+      const SlicedMotionCrossing& c = earliest(crossings, touching);
       double s_contact = to_d(c.u_lower) * end;
       Kinematic at = s_contact > 0 ? held_step(k0, s_contact) : k0;
       Rows rows = contact_rows(t + s_contact, at, c.before, touching);

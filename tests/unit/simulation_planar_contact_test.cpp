@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include "simulation_planar_support.hpp"
+
 #include <cmath>
 #include <iostream>
 #include <cstdint>
@@ -25,20 +27,8 @@
 namespace hipair {
 namespace {
 
-struct Lcg {
-  std::uint64_t s;
-  double uniform(double a, double b) {
-    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
-    return a + (b - a) * static_cast<double>(s >> 11) / 9007199254740992.0;
-  }
-};
-
-std::string num(double v) {
-  std::ostringstream out;
-  out.precision(17);
-  out << v;
-  return out.str();
-}
+using planar_test::Lcg;
+using planar_test::num;
 
 // A planar part "body" (a polygon in body coordinates, pivot = centre of mass at the origin)
 // among the fixed part "base" (an L: a floor with top y = 0 for x in [0, 1000] and a wall with
@@ -83,6 +73,15 @@ std::vector<std::array<double, 2>> box(double w, double h) {
   return {{-w / 2, -h / 2}, {w / 2, -h / 2}, {w / 2, h / 2}, {-w / 2, h / 2}};
 }
 
+// A uniform w x h block (its moment of inertia m (w^2 + h^2) / 12) a gap above the floor.
+Scene block_scene(double w, double h, double gap) {
+  Scene scene;
+  scene.body = box(w, h);
+  scene.inertia = scene.mass * (w * w + h * h) / 12;
+  scene.y = h / 2 + gap;
+  return scene;
+}
+
 std::size_t count(const std::vector<SimulationEvent>& events, SimulationEvent::Kind kind) {
   std::size_t n = 0;
   for (const auto& e : events) n += e.kind == kind;
@@ -107,12 +106,8 @@ std::size_t run_to(PlanarSimulation& s, SimulationEvent::Kind kind, double t_end
 TEST(SimulationPlanarContact, SlidingBlockDeceleratesAtMuGAndStopsAtTheClosedFormDistance) {
   Lcg rng{3};
   for (int c = 0; c < 6; ++c) {
-    Scene scene;
     double w = 10, h = 4, gap = 1e-3, g = 9810;
-    scene.body = box(w, h);
-    scene.inertia = scene.mass * (w * w + h * h) / 12;
-    scene.x = 0;
-    scene.y = h / 2 + gap;
+    Scene scene = block_scene(w, h, gap);
     scene.vx = rng.uniform(50, 300);
     scene.mu_static = rng.uniform(0.2, 0.8);
     scene.mu_kinetic = scene.mu_static * rng.uniform(0.5, 1);
@@ -159,10 +154,8 @@ TEST(SimulationPlanarContact, SlidingBlockDeceleratesAtMuGAndStopsAtTheClosedFor
 TEST(SimulationPlanarContact, BlockOnAnInclineSticksIffTanAlphaIsAtMostMuStatic) {
   Lcg rng{17};
   for (int c = 0; c < 8; ++c) {
-    Scene scene;
     double w = 10, h = 4, gap = 1e-3, G = 9810;
-    scene.body = box(w, h);
-    scene.inertia = scene.mass * (w * w + h * h) / 12;
+    Scene scene = block_scene(w, h, gap);
     scene.mu_static = rng.uniform(0.15, 0.6);
     scene.mu_kinetic = scene.mu_static * rng.uniform(0.5, 1);
     bool sticks = c % 2 == 0;
@@ -170,7 +163,6 @@ TEST(SimulationPlanarContact, BlockOnAnInclineSticksIffTanAlphaIsAtMostMuStatic)
     double a = std::atan(tan_a);
     scene.gx = G * std::sin(a);
     scene.gy = -G * std::cos(a);
-    scene.y = h / 2 + gap;
     PlanarSimulation s = PlanarSimulation::create(scene.model());
     std::size_t landing = run_to(s, SimulationEvent::Kind::impact, 1);
     ASSERT_NE(landing, std::string::npos) << c;

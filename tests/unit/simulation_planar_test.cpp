@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "simulation_planar_support.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -21,21 +23,8 @@
 namespace hipair {
 namespace {
 
-// deterministic generator of test values
-struct Lcg {
-  std::uint64_t s;
-  double uniform(double a, double b) {
-    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
-    return a + (b - a) * static_cast<double>(s >> 11) / 9007199254740992.0;
-  }
-};
-
-std::string num(double v) {
-  std::ostringstream out;
-  out.precision(17);
-  out << v;
-  return out.str();
-}
+using planar_test::Lcg;
+using planar_test::num;
 
 // A square peg of side a (pivot at its centre) above a floor (top face y = 0, wide), or a wall
 // with a slot; gravity (0, -g); restitution e.
