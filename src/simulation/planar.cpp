@@ -1051,6 +1051,16 @@ bool PlanarSimulation::Impl::held_advance(double span) {
     }
     const bool far = nearest > 2 * travel + delta;
     double cap = far ? std::numeric_limits<double>::infinity() : chord_cap(k0, kend);
+    if (!far) {
+      // conservative advancement as in free flight: a step short enough to be far, when that
+      // is longer than a chord (e.g. just after a lift-off, the contact left slowly)
+      double rate = travel / end;   // speed + gain x end, which only falls as the step does
+      double h_far = rate > 0 && nearest > delta ? 0.5 * (nearest - delta) / rate * (1 - 1e-6) : 0;
+      if (h_far > cap && h_far < end) {
+        h = step_guess = h_far;
+        continue;
+      }
+    }
     if (end > cap * (1 + 1e-9)) {   // the chord would deviate more than delta: shorter
       h = step_guess = cap;
       continue;
