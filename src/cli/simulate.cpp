@@ -499,6 +499,9 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   std::cout << "  collision tests: " << stats.advancement_steps << " advancement steps, " << stats.distance_queries
             << " distance queries, " << stats.chord_tests << " exact chord tests (chord deviation "
             << number(simulation.chord_deviation()) << " mm)\n";
+  if (stats.restitution_limited > 0)
+    std::cout << "  " << stats.restitution_limited
+              << " frictional impacts with their restitution limited (Newton's law would have created energy)\n";
   print_events(simulation.events(), tu, fu);
   if (options.out.empty()) return 0;
 
