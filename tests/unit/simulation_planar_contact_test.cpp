@@ -37,13 +37,16 @@ using planar_test::num;
 struct Scene {
   std::vector<std::array<double, 2>> body;   // counter-clockwise
   bool wall = false;
+  bool table = false;   // the floor ends at x = 0 (a table top for x in [-1000, 0], its side below)
   double mass = 0.01, inertia = 0.2, e = 0;
   double gx = 0, gy = -9810;
   double x = 0, y = 0, angle = 0, vx = 0, vy = 0, omega = 0;
   double mu_static = 0, mu_kinetic = 0;
 
   std::string json() const {
-    std::string base = wall ? R"({ "start": [-20, -20], "edges": [ { "line_to": [1000, -20] }, { "line_to": [1000, 0] },
+    std::string base = table ? R"({ "start": [-1000, -500], "edges": [ { "line_to": [0, -500] }, { "line_to": [0, 0], "label": "side" },
+          { "line_to": [-1000, 0], "label": "table" }, { "line_to": [-1000, -500] } ] })"
+                       : wall ? R"({ "start": [-20, -20], "edges": [ { "line_to": [1000, -20] }, { "line_to": [1000, 0] },
           { "line_to": [0, 0], "label": "floor" }, { "line_to": [0, 1000], "label": "wall" }, { "line_to": [-20, 1000] },
           { "line_to": [-20, -20] } ] })"
                             : R"({ "start": [-1000, -20], "edges": [ { "line_to": [1000, -20] }, { "line_to": [1000, 0] },
@@ -376,6 +379,58 @@ TEST(SimulationPlanarContact, EventSequenceDoesNotDependOnTheStepSize) {
         EXPECT_NEAR(runs[r][i].time, runs[0][i].time, 2 * delta / slowest + 1e-7) << c << " event " << i;
       }
     }
+  }
+}
+
+
+// A frictionless block w x h sliding at v off the end of a table (top y = 0 for x <= 0): its
+// leading corner reaches the table's end at t = (-w/2 - x0) / v exactly (it slides at constant
+// speed: `edge-end`), the table's corner then holds the block's bottom (a fixed vertex on a
+// segment of the part, the other kind of held contact), the trailing corner lifts off when the
+// centre of mass passes over the table's corner, t = -x0 / v, and the block tips over the corner
+// and leaves it. Energy is conserved after the landing (frictionless; the integration's
+// accuracy), and every state is exactly not blocked.
+TEST(SimulationPlanarContact, BlockSlidingOffATableEndsItsEdgeAndTipsOverTheCorner) {
+  Lcg rng{59};
+  for (int c = 0; c < 3; ++c) {
+    double w = 10, h = 4, gap = 1e-3;
+    Scene scene = block_scene(w, h, gap);
+    scene.table = true;
+    scene.x = -rng.uniform(20, 40);
+    scene.vx = rng.uniform(60, 200);
+    Model model = scene.model();
+    PlanarSimulation s = PlanarSimulation::create(model);
+    SlicedSpace space = SlicedSpace::build(model, "base", "body", SlicedBuildOptions{false, {}});
+    double t_edge = (-w / 2 - scene.x) / scene.vx, t_lift = -scene.x / scene.vx;
+    double e_landed = 0;
+    double worst = 0;
+    std::size_t edge = std::string::npos, lift = std::string::npos, corner = std::string::npos;
+    while (s.state().time < t_lift + 0.1) {
+      std::size_t from = s.events().size();
+      s.step(t_lift + 0.1);
+      ASSERT_NE(space.locate(s.state().configuration).kind, SlicedLocation::Kind::blocked) << c << " t = " << s.state().time;
+      if (e_landed == 0 && !s.events().empty()) e_landed = s.energy();
+      else if (e_landed != 0) worst = std::max(worst, std::abs(s.energy() - e_landed));
+      for (std::size_t i = from; i < s.events().size(); ++i) {
+        const SimulationEvent& e = s.events()[i];
+        if (e.kind == SimulationEvent::Kind::edge_end && edge == std::string::npos) edge = i;
+        if (e.kind == SimulationEvent::Kind::lift_off && lift == std::string::npos) lift = i;
+        if (e.kind == SimulationEvent::Kind::contact && e.features[0].find("base vertex") == 0 && corner == std::string::npos)
+          corner = i;
+      }
+    }
+    ASSERT_NE(edge, std::string::npos) << c;
+    ASSERT_NE(corner, std::string::npos) << c;
+    ASSERT_NE(lift, std::string::npos) << c;
+    EXPECT_LT(edge, corner) << c;
+    EXPECT_LT(corner, lift) << c;
+    // the foot parameter's bisection (2^-50 of a step) and the integration (1e-9)
+    EXPECT_NEAR(s.events()[edge].time, t_edge, 1e-9 * t_edge + 1e-12) << c;
+    // the trailing corner's force reaches the lift-off threshold (1e-9 m g per held contact)
+    // within 3e-9 w of the corner
+    EXPECT_NEAR(s.events()[lift].time, t_lift, 1e-9 * t_lift + 3e-9 * w / scene.vx) << c;
+    EXPECT_NE(s.events()[lift].features[0].find("base segment"), std::string::npos) << c;   // the table top's contact
+    EXPECT_LE(worst, 1e-9 * static_cast<double>(s.steps()) * e_landed) << c;
   }
 }
 
