@@ -434,5 +434,30 @@ TEST(SimulationPlanarContact, BlockSlidingOffATableEndsItsEdgeAndTipsOverTheCorn
   }
 }
 
+
+// SlicedMotion::ignored: the peg of peg-drop.json lowered flat onto the hole's bottom first
+// touches it with both bottom corners at once (exact); ignoring one corner's pair leaves the
+// other at the same exact parameter; ignoring both leaves no contact on the motion (the chord
+// then passes through the bottom: ignoring a pair is the caller's business).
+TEST(SimulationPlanarContact, FirstCrossingSkipsTheIgnoredFeaturePairsOnly) {
+  Model model = read_model_file(std::filesystem::path(HIPAIR_SOURCE_DIR) / "examples/models/peg-drop.json");
+  SlicedSpace space = SlicedSpace::build(model, "cup", "peg", SlicedBuildOptions{false, {}});
+  SlicedMotion down{SlicedConfiguration{0, 10, SlicedAngle{0, false}}, SlicedConfiguration{0, -8, SlicedAngle{0, false}}, false, {}};
+  SlicedMotionCrossing both = space.first_crossing(down);
+  ASSERT_EQ(both.status, CrossingStatus::crossing);
+  ASSERT_EQ(both.features.size(), 2u);
+  EXPECT_EQ(both.u_lower, Rational(5, 6));   // the centre at y = -5: 15 of 18 mm down, exactly
+  SlicedMotion one = down;
+  one.ignored.emplace_back(both.features[0].fixed, both.features[0].free);
+  SlicedMotionCrossing other = space.first_crossing(one);
+  ASSERT_EQ(other.status, CrossingStatus::crossing);
+  ASSERT_EQ(other.features.size(), 1u);
+  EXPECT_EQ(other.features[0].label, both.features[1].label);
+  EXPECT_EQ(other.u_lower, both.u_lower);
+  SlicedMotion none = one;
+  none.ignored.emplace_back(both.features[1].fixed, both.features[1].free);
+  EXPECT_EQ(space.first_crossing(none).status, CrossingStatus::none);
+}
+
 }  // namespace
 }  // namespace hipair
