@@ -122,6 +122,11 @@ std::string tolerance_text_report(const ToleranceResult& r) {
   const char* u = unit_name(r.follower_rotates);
   double ud = unit_factor(r.driver_rotates);
   out << "Tolerance analysis of '" << r.model_name << "': " << r.driver << " drives " << r.follower << "\n";
+  if (!r.chain.empty()) {
+    out << "Assembly chain of " << r.chain.size() << " pairs: " << r.driver;
+    for (const ChainStage& stage : r.chain) out << " -> " << stage.follower;
+    out << " (the pairs' kinematic functions and sensitivities composed; regions name each pair's contact)\n";
+  }
   std::size_t toleranced = 0;
   for (const Parameter& p : r.parameters) toleranced += p.range.lo != p.range.hi;
   out << toleranced << " toleranced parameters of " << r.parameters.size() << "; follower positions in " << u
@@ -231,6 +236,15 @@ std::string tolerance_json_report(const ToleranceResult& r) {
   j["driver"] = r.driver;
   j["follower"] = r.follower;
   j["follower_unit"] = r.follower_rotates ? "rad" : "mm";
+  if (!r.chain.empty()) {
+    ordered_json chain = ordered_json::array();
+    for (const ChainStage& stage : r.chain)
+      chain.push_back({{"driver", stage.driver},
+                       {"follower", stage.follower},
+                       {"contact_positions", stage.contact_positions},
+                       {"certified_boxes", stage.certified_boxes}});
+    j["chain"] = chain;
+  }
   ordered_json parameters = ordered_json::array();
   for (std::size_t i = 0; i < r.parameters.size(); ++i) {
     const Parameter& p = r.parameters[i];
