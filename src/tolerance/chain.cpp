@@ -136,11 +136,13 @@ class ChainAnalysis {
     k.range = options_.range;
     k.steps_per_cycle = static_cast<unsigned>(std::max<std::size_t>(8, options_.positions));
     k.reversal = false;
-    k.method = SliceMethod::cspace;
-    // The exact C-space of every pair (the kinematic engine's slices, as for a single pair).
+    k.method = SliceMethod::automatic;
+    // The exact C-space of every pair of two moving parts (the kinematic engine's slices, as for a
+    // single pair); pairs with a fixed part are sliced from the contact kernels (exact too).
     std::vector<CSpace> spaces;
     for (const PairSpec& pair : model.pairs)
-      spaces.push_back(CSpace::build(model, model.parts[pair.first].name, model.parts[pair.second].name));
+      if (moving(model, pair.first) && moving(model, pair.second))
+        spaces.push_back(CSpace::build(model, model.parts[pair.first].name, model.parts[pair.second].name));
     KinematicsResult kinematics = analyze_kinematics(model, k, spaces);
     if (kinematics.jam) notes_.push_back("the nominal mechanism jams: " + kinematics.jam->description);
     auto follower_index = [&](std::size_t part) {
@@ -337,7 +339,8 @@ class ChainAnalysis {
       std::vector<const CurveSlice*> geometry_curve(stages_.size(), nullptr);
       for (std::size_t i = 0; i < positions(); ++i) {
         const VariationSample& sample = result_.samples[i];
-        if (!sample.contact) continue;
+        // Not sampled where the band is unbounded (not certified): every value lies in it.
+        if (!sample.contact || !std::isfinite(sample.certified.upper - sample.certified.lower)) continue;
         ++outcome.evaluations;
         Interval x;
         bool inside = true;

@@ -140,6 +140,10 @@ TEST(ToleranceChain, TwoPairChainEqualsTheCompositionOfItsPairs) {
   }
 }
 
+bool moving(const Model& m, std::size_t k) {
+  return m.parts[k].motion.kind == Motion::Kind::rotation || m.parts[k].motion.kind == Motion::Kind::translation;
+}
+
 // The output part's position at driver position `theta` of the chain of `model` (the exact
 // kinematic engine; the range's start is a sample).
 double chain_output(const Model& model, double theta, const std::string& output) {
@@ -148,10 +152,11 @@ double chain_output(const Model& model, double theta, const std::string& output)
   k.range = std::make_pair(Rational(theta), Rational(theta) + Rational(1, 100));
   k.steps_per_cycle = 16;
   k.reversal = false;
-  k.method = SliceMethod::cspace;
+  k.method = SliceMethod::automatic;
   std::vector<CSpace> spaces;
   for (const PairSpec& pair : model.pairs)
-    spaces.push_back(CSpace::build(model, model.parts[pair.first].name, model.parts[pair.second].name));
+    if (moving(model, pair.first) && moving(model, pair.second))
+      spaces.push_back(CSpace::build(model, model.parts[pair.first].name, model.parts[pair.second].name));
   KinematicsResult r = analyze_kinematics(model, k, spaces);
   std::size_t index = static_cast<std::size_t>(
       std::find(r.followers.begin(), r.followers.end(), output) - r.followers.begin());
