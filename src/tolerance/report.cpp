@@ -391,15 +391,17 @@ std::string tolerance_band_svg(const ToleranceResult& r) {
     auto d = [&](double v) { return s.contact ? (v - s.nominal) * uf : nan; };
     linear_lo.push_back(d(s.linear_lower));
     linear_hi.push_back(d(s.linear_upper));
-    cert_lo.push_back(d(s.certified.lower));
-    cert_hi.push_back(d(s.certified.upper));
+    // An unbounded (uncertified) position is a gap, and does not set the scale.
+    bool bounded = std::isfinite(s.certified.lower) && std::isfinite(s.certified.upper);
+    cert_lo.push_back(bounded ? d(s.certified.lower) : nan);
+    cert_hi.push_back(bounded ? d(s.certified.upper) : nan);
     rss_lo.push_back(d(s.rss_lower));
     rss_hi.push_back(d(s.rss_upper));
     mc_lo.push_back(s.has_monte_carlo ? d(s.monte_carlo_min) : nan);
     mc_hi.push_back(s.has_monte_carlo ? d(s.monte_carlo_max) : nan);
     if (s.contact) {
-      lo = std::min(lo, d(s.certified.lower));
-      hi = std::max(hi, d(s.certified.upper));
+      lo = std::min(lo, bounded ? d(s.certified.lower) : d(s.linear_lower));
+      hi = std::max(hi, bounded ? d(s.certified.upper) : d(s.linear_upper));
     }
   }
   if (x.empty()) x = {0, 1};
