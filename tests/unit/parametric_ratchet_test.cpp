@@ -1,0 +1,128 @@
+// The generic (double / interval / AutoDiff) form of the ratchet_wheel template
+// (src/model/parametric/parametric.hpp ratchet_edge; docs/tolerance.md "The parametric model"):
+// on examples/models/ratchet.json and on generated ratchet wheels (random tooth counts, phases,
+// directions, centres and radii, all toleranced), at random deviation vectors inside the box, the
+// interval form encloses the exact form's every vertex (ParametricModel::exact_model: the
+// template expanded exactly, with its unit vectors rounded to rationals within 1e-12 rad) and the
+// double form agrees with it, within that rounding times the radius; the Jet (AutoDiff) form's
+// derivatives equal central differences of exact expansions.
+#include "model/parametric/number_traits.hpp"
+#include "model/parametric/parametric.hpp"
+#include "tolerance/jet.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+#include <string>
+
+namespace hipair {
+namespace {
+
+using model_detail::ParametricModel;
+
+std::string generated_ratchet(std::mt19937& rng) {
+  std::uniform_int_distribution<int> teeth(3, 40), tip(25, 60), depth(2, 8), phase(-180, 180), offset(-20, 20), flip(0, 1);
+  int t = tip(rng);
+  return R"({"hipair": 1, "name": "ratchet", "units": {"length": "mm", "angle": "deg"},
+  "parameters": {"tip": {"nominal": )" + std::to_string(t) + R"(, "tolerance": 0.02},
+                 "root": {"nominal": )" + std::to_string(t - depth(rng)) + R"(, "tolerance": [-0.01, 0.03]},
+                 "phase": {"nominal": )" + std::to_string(phase(rng)) + R"(, "tolerance": 0.1},
+                 "cx": {"nominal": )" + std::to_string(offset(rng)) + R"(, "tolerance": 0.01},
+                 "n": {"nominal": )" + std::to_string(teeth(rng)) + R"(}},
+  "parts": [{"name": "wheel", "motion": {"rotation": {"pivot": [0, 0]}},
+             "features": [{"ratchet_wheel": {"center": ["cx", 3], "teeth": "n", "tip_radius": "tip",
+                           "root_radius": "root", "phase": "phase", "dir": ")" + std::string(flip(rng) ? "ccw" : "cw") + R"("}}]}],
+  "pairs": []})";
+}
+
+void expect_generic_form_agrees(const ParametricModel& model, std::mt19937& rng) {
+  ASSERT_TRUE(model.generic()) << model.exact_only_feature();
+  std::size_t n = model.parameter_count();
+  std::uniform_int_distribution<int> u(0, 1000);
+  for (int trial = 0; trial < 4; ++trial) {
+    std::vector<Rational> deviations(n, Rational(0));
+    for (std::size_t i = 0; i < n; ++i) {
+      const Parameter& p = model.nominal().parameters[i];
+      if (p.range.lo == p.range.hi) continue;
+      deviations[i] = p.range.lo - p.nominal + Rational(u(rng), 1000) * (p.range.hi - p.range.lo);
+    }
+    Model exact = model.exact_model(deviations);
+    std::vector<kernels::Interval> box(n);
+    std::vector<double> point(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      box[i] = kernels::Interval::enclose(deviations[i]);
+      point[i] = deviations[i].get_d();
+    }
+    for (std::size_t k = 0; k < exact.parts.size(); ++k) {
+      auto enclosure = model.part_geometry<kernels::Interval>(k, box);
+      auto approximate = model.part_geometry<double>(k, point);
+      ASSERT_EQ(enclosure.loops.size(), exact.parts[k].loops.size());
+      for (std::size_t l = 0; l < exact.parts[k].loops.size(); ++l) {
+        ASSERT_EQ(enclosure.loops[l].size(), exact.parts[k].loops[l].edges.size());
+        for (std::size_t e = 0; e < exact.parts[k].loops[l].edges.size(); ++e) {
+          const Edge& edge = exact.parts[k].loops[l].edges[e];
+          const auto& x = enclosure.loops[l][e];
+          const double slack = 1e-9;   // the exact form's rounded unit vectors: <= 1e-12 rad x 100 mm
+          EXPECT_EQ(x.arc, edge.kind == Edge::Kind::arc);
+          EXPECT_LE(x.source.x.lo - slack, edge.source.x.get_d());
+          EXPECT_GE(x.source.x.hi + slack, edge.source.x.get_d());
+          EXPECT_LE(x.source.y.lo - slack, edge.source.y.get_d());
+          EXPECT_GE(x.source.y.hi + slack, edge.source.y.get_d());
+          EXPECT_LE(x.target.x.lo - slack, edge.target.x.get_d());
+          EXPECT_GE(x.target.x.hi + slack, edge.target.x.get_d());
+          EXPECT_LT(x.source.x.width(), 1e-9);
+          EXPECT_NEAR(approximate.loops[l][e].target.x, edge.target.x.get_d(), slack);
+          EXPECT_NEAR(approximate.loops[l][e].target.y, edge.target.y.get_d(), slack);
+        }
+      }
+    }
+  }
+}
+
+TEST(ParametricRatchet, GenericFormAgreesWithTheExactFormOnTheExample) {
+  std::mt19937 rng(3);
+  expect_generic_form_agrees(ParametricModel::read_file(std::filesystem::path(HIPAIR_EXAMPLES) / "ratchet.json"), rng);
+}
+
+TEST(ParametricRatchet, GenericFormAgreesWithTheExactFormOnGeneratedWheels) {
+  std::mt19937 rng(11);
+  for (int round = 0; round < 20; ++round) {
+    std::string text = generated_ratchet(rng);
+    SCOPED_TRACE(text);
+    expect_generic_form_agrees(ParametricModel::read(text), rng);
+  }
+}
+
+// Derivatives of every vertex with respect to every parameter (Jet<double>) against central
+// differences of exact expansions at +- h: within h^2 |x'''| / 6 (|x'''| <= 100 mm x 1 for the
+// angles, 0 for the linear ones) + 2 x 1e-9 / h (the rounded unit vectors, as above).
+TEST(ParametricRatchet, DerivativesEqualFiniteDifferencesOfExactExpansions) {
+  std::mt19937 rng(29);
+  for (int round = 0; round < 3; ++round) {
+    ParametricModel model = ParametricModel::read(generated_ratchet(rng));
+    std::size_t n = model.parameter_count();
+    std::vector<tolerance_detail::Jet<double>> jets(n);
+    for (std::size_t i = 0; i < n; ++i) jets[i] = tolerance_detail::Jet<double>::variable(0.0, i, n);
+    auto geometry = model.part_geometry<tolerance_detail::Jet<double>>(0, jets);
+    Rational h(1, 10000);
+    double bound = 100 * h.get_d() * h.get_d() / 6 + 2e-9 / h.get_d();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Parameter& p = model.nominal().parameters[i];
+      if (p.range.lo == p.range.hi) continue;
+      std::vector<Rational> plus(n, Rational(0)), minus(n, Rational(0));
+      plus[i] = h;
+      minus[i] = -h;
+      Model a = model.exact_model(plus), b = model.exact_model(minus);
+      for (std::size_t e = 0; e < a.parts[0].loops[0].edges.size(); ++e) {
+        double dx = Rational((a.parts[0].loops[0].edges[e].target.x - b.parts[0].loops[0].edges[e].target.x) / (2 * h)).get_d();
+        double dy = Rational((a.parts[0].loops[0].edges[e].target.y - b.parts[0].loops[0].edges[e].target.y) / (2 * h)).get_d();
+        EXPECT_NEAR(geometry.loops[0][e].target.x.partial(i), dx, bound) << p.name << " edge " << e;
+        EXPECT_NEAR(geometry.loops[0][e].target.y.partial(i), dy, bound) << p.name << " edge " << e;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hipair
