@@ -10,8 +10,11 @@
 #include "model/parametric/parametric.hpp"
 #include "tolerance/jet.hpp"
 
+#include <hipair/tolerance.hpp>
+
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -122,6 +125,38 @@ TEST(ParametricRatchet, DerivativesEqualFiniteDifferencesOfExactExpansions) {
       }
     }
   }
+}
+
+// The tolerance analysis of the ratchet pair itself (refused before the generic form): every
+// Monte Carlo sample inside the certified band; the sensitivity table ranks the wheel's radii.
+TEST(ParametricRatchet, RatchetPairToleranceAnalysisHoldsEveryMonteCarloSample) {
+  ToleranceOptions options;
+  options.driver = "wheel";
+  options.follower = "pawl";
+  options.positions = 120;
+  options.monte_carlo = 40;
+  options.threads = 2;
+  ToleranceResult result = analyze_tolerances(std::filesystem::path(HIPAIR_EXAMPLES) / "ratchet.json", options);
+  std::size_t contact = 0;
+  for (const VariationSample& s : result.samples) {
+    if (!s.contact) continue;
+    ++contact;
+    ASSERT_TRUE(std::isfinite(s.certified.lower) && std::isfinite(s.certified.upper));
+    EXPECT_LE(s.certified.lower, s.nominal);   // the nominal vector is in the box
+    EXPECT_GE(s.certified.upper, s.nominal);
+    if (s.has_monte_carlo) {
+      EXPECT_GE(s.monte_carlo_min, s.certified.lower);
+      EXPECT_LE(s.monte_carlo_max, s.certified.upper);
+    }
+  }
+  EXPECT_GE(contact, 100u);
+  ASSERT_TRUE(result.monte_carlo);
+  EXPECT_EQ(result.monte_carlo->outside_certified, 0u);
+  bool radius_dominates = false;
+  for (const ContactRegion& region : result.regions)
+    radius_dominates = radius_dominates || region.ranked.front().parameter == "tip-radius" ||
+                       region.ranked.front().parameter == "root-radius";
+  EXPECT_TRUE(radius_dominates);
 }
 
 }  // namespace
