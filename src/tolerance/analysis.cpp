@@ -106,6 +106,44 @@ void rank_regions(ToleranceResult& result) {
   }
 }
 
+void MonteCarloOutcome::record(std::size_t k, const Interval& part, const VariationSample& sample) {
+  if (part.lo < sample.certified.lower || part.hi > sample.certified.upper) ++outside_certified;
+  record_linear(k, part.middle(), sample);
+}
+
+void MonteCarloOutcome::record_linear(std::size_t k, double v, const VariationSample& sample) {
+  value[k] = v;
+  double e = std::max(v - sample.linear_upper, sample.linear_lower - v);
+  if (e > 0) {
+    ++outside_linear;
+    excess = std::max(excess, e);
+  }
+}
+
+void merge_monte_carlo(const std::vector<MonteCarloOutcome>& outcomes, MonteCarloSummary& summary,
+                       ToleranceResult& result) {
+  for (std::size_t i = 0; i < outcomes.size(); ++i) {
+    const MonteCarloOutcome& o = outcomes[i];
+    summary.outside_certified += o.outside_certified;
+    summary.outside_linear += o.outside_linear;
+    summary.evaluations += o.evaluations;
+    summary.linearisation_error = std::max(summary.linearisation_error, o.excess);
+    for (std::size_t k = 0; k < o.value.size(); ++k) {
+      double v = o.value[k];
+      if (std::isnan(v)) continue;
+      VariationSample& sample = result.samples[k];
+      if (!sample.has_monte_carlo) {
+        sample.has_monte_carlo = true;
+        sample.monte_carlo_min = sample.monte_carlo_max = v;
+      } else {
+        sample.monte_carlo_min = std::min(sample.monte_carlo_min, v);
+        sample.monte_carlo_max = std::max(sample.monte_carlo_max, v);
+      }
+    }
+    if (i < 12) result.monte_carlo_curves.push_back(o.value);
+  }
+}
+
 void parallel_for(unsigned threads, std::size_t count, const std::function<void(std::size_t)>& task) {
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
@@ -625,11 +663,7 @@ class Analysis {
     summary.samples = options_.monte_carlo;
     summary.seed = options_.seed;
     std::size_t count = states_.size();
-    struct Outcome {
-      std::vector<double> value;   // part coordinate per driver position (NaN: free)
-      std::size_t outside_certified = 0, outside_linear = 0, evaluations = 0;
-      double excess = 0;
-    };
+    using Outcome = tolerance_detail::MonteCarloOutcome;
     std::atomic<std::size_t> done{0};
     auto evaluate = [&](std::size_t index) {
       Outcome outcome;
@@ -658,15 +692,10 @@ class Analysis {
           ++outcome.outside_certified;   // no root near the band: counted as outside it
           continue;
         }
+        // Outside the certified band: decided on the chart enclosure (the band's own units).
         if (root.lo < c.lo || root.hi > c.hi) ++outcome.outside_certified;
         Interval part = to_part(root, result_.follower_rotates, state.follower_chart.half, sample.nominal);
-        double value = part.middle();
-        outcome.value[k] = value;
-        double excess = std::max(value - sample.linear_upper, sample.linear_lower - value);
-        if (excess > 0) {
-          ++outcome.outside_linear;
-          outcome.excess = std::max(outcome.excess, excess);
-        }
+        outcome.record_linear(k, part.middle(), sample);
       }
       ++done;
       return outcome;
@@ -684,26 +713,7 @@ class Analysis {
         progress(0.55 + 0.3 * static_cast<double>(done.load()) / static_cast<double>(outcomes.size()));
       worker.get();
     }
-    for (std::size_t i = 0; i < outcomes.size(); ++i) {
-      const Outcome& o = outcomes[i];
-      summary.outside_certified += o.outside_certified;
-      summary.outside_linear += o.outside_linear;
-      summary.evaluations += o.evaluations;
-      summary.linearisation_error = std::max(summary.linearisation_error, o.excess);
-      for (std::size_t k = 0; k < count; ++k) {
-        double v = o.value[k];
-        if (std::isnan(v)) continue;
-        VariationSample& sample = result_.samples[k];
-        if (!sample.has_monte_carlo) {
-          sample.has_monte_carlo = true;
-          sample.monte_carlo_min = sample.monte_carlo_max = v;
-        } else {
-          sample.monte_carlo_min = std::min(sample.monte_carlo_min, v);
-          sample.monte_carlo_max = std::max(sample.monte_carlo_max, v);
-        }
-      }
-      if (i < 12) result_.monte_carlo_curves.push_back(o.value);
-    }
+    tolerance_detail::merge_monte_carlo(outcomes, summary, result_);
     summary.seconds = seconds_since(start);
     summary.cpu_seconds = cpu_seconds(true) - cpu_start;
     result_.monte_carlo = summary;

@@ -322,15 +322,10 @@ class ChainAnalysis {
     MonteCarloSummary summary;
     summary.samples = options_.monte_carlo;
     summary.seed = options_.seed;
-    struct Outcome {
-      std::vector<double> value;
-      std::size_t outside_certified = 0, outside_linear = 0, evaluations = 0;
-      double excess = 0;
-    };
-    std::vector<Outcome> outcomes(options_.monte_carlo);
+    std::vector<MonteCarloOutcome> outcomes(options_.monte_carlo);
     const std::vector<Distribution>& dist = stages_.front().distributions;
     parallel_for(options_.threads, outcomes.size(), [&](std::size_t index) {
-      Outcome& outcome = outcomes[index];
+      MonteCarloOutcome& outcome = outcomes[index];
       outcome.value.assign(positions(), std::nan(""));
       std::vector<double> deviations = draw(dist, options_.seed, index);
       std::vector<Interval> parameters = stages_.front().solver->point_parameters(deviations);
@@ -375,32 +370,10 @@ class ChainAnalysis {
           ++outcome.outside_certified;   // no root near the band: counted as outside it
           continue;
         }
-        if (x.lo < sample.certified.lower || x.hi > sample.certified.upper) ++outcome.outside_certified;
-        double value = x.middle();
-        outcome.value[i] = value;
-        double excess = std::max(value - sample.linear_upper, sample.linear_lower - value);
-        if (excess > 0) {
-          ++outcome.outside_linear;
-          outcome.excess = std::max(outcome.excess, excess);
-        }
+        outcome.record(i, x, sample);
       }
     });
-    for (std::size_t j = 0; j < outcomes.size(); ++j) {
-      const Outcome& o = outcomes[j];
-      summary.outside_certified += o.outside_certified;
-      summary.outside_linear += o.outside_linear;
-      summary.evaluations += o.evaluations;
-      summary.linearisation_error = std::max(summary.linearisation_error, o.excess);
-      for (std::size_t i = 0; i < positions(); ++i) {
-        double v = o.value[i];
-        if (std::isnan(v)) continue;
-        VariationSample& sample = result_.samples[i];
-        sample.monte_carlo_min = sample.has_monte_carlo ? std::min(sample.monte_carlo_min, v) : v;
-        sample.monte_carlo_max = sample.has_monte_carlo ? std::max(sample.monte_carlo_max, v) : v;
-        sample.has_monte_carlo = true;
-      }
-      if (j < 12) result_.monte_carlo_curves.push_back(o.value);
-    }
+    merge_monte_carlo(outcomes, summary, result_);
     summary.seconds = wall_since(start);
     summary.cpu_seconds = cpu_now() - cpu_start;
     result_.monte_carlo = summary;

@@ -63,6 +63,22 @@ void extend_regions(ToleranceResult& result, std::size_t k, const std::string& l
                     const std::vector<Distribution>& distributions, double half_width);
 /// Shares of the contributions, ranked (largest first), in every region.
 void rank_regions(ToleranceResult& result);
+/// One Monte Carlo vector's values along the path, counted against the bands.
+struct MonteCarloOutcome {
+  std::vector<double> value;   ///< part coordinate per driver position (NaN: not evaluated)
+  std::size_t outside_certified = 0, outside_linear = 0, evaluations = 0;
+  double excess = 0;           ///< largest excess beyond the linearised band
+  /// The value at position k (certified enclosure `value`, part units): outside the certified
+  /// band or beyond the linearised one.
+  void record(std::size_t k, const kernels::Interval& value, const VariationSample& sample);
+  /// The value at position k (part units), against the linearised band only.
+  void record_linear(std::size_t k, double value, const VariationSample& sample);
+};
+/// The outcomes into the summary and the samples' Monte Carlo envelopes (the first 12 curves
+/// kept).
+void merge_monte_carlo(const std::vector<MonteCarloOutcome>& outcomes, MonteCarloSummary& summary,
+                       ToleranceResult& result);
+
 /// task(0 .. count-1) on `threads` threads (0: hardware concurrency); each task writes its own
 /// slot, so results do not depend on the number of threads.
 void parallel_for(unsigned threads, std::size_t count, const std::function<void(std::size_t)>& task);

@@ -6,8 +6,7 @@
 // template expanded exactly, with its unit vectors rounded to rationals within 1e-12 rad) and the
 // double form agrees with it, within that rounding times the radius; the Jet (AutoDiff) form's
 // derivatives equal central differences of exact expansions.
-#include "model/parametric/number_traits.hpp"
-#include "model/parametric/parametric.hpp"
+#include "generic_form_check.hpp"
 #include "tolerance/jet.hpp"
 
 #include <hipair/tolerance.hpp>
@@ -39,7 +38,7 @@ std::string generated_ratchet(std::mt19937& rng) {
   "pairs": []})";
 }
 
-void expect_generic_form_agrees(const ParametricModel& model, std::mt19937& rng) {
+void expect_agrees_at_random_vectors(const ParametricModel& model, std::mt19937& rng) {
   ASSERT_TRUE(model.generic()) << model.exact_only_feature();
   std::size_t n = model.parameter_count();
   std::uniform_int_distribution<int> u(0, 1000);
@@ -50,42 +49,13 @@ void expect_generic_form_agrees(const ParametricModel& model, std::mt19937& rng)
       if (p.range.lo == p.range.hi) continue;
       deviations[i] = p.range.lo - p.nominal + Rational(u(rng), 1000) * (p.range.hi - p.range.lo);
     }
-    Model exact = model.exact_model(deviations);
-    std::vector<kernels::Interval> box(n);
-    std::vector<double> point(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      box[i] = kernels::Interval::enclose(deviations[i]);
-      point[i] = deviations[i].get_d();
-    }
-    for (std::size_t k = 0; k < exact.parts.size(); ++k) {
-      auto enclosure = model.part_geometry<kernels::Interval>(k, box);
-      auto approximate = model.part_geometry<double>(k, point);
-      ASSERT_EQ(enclosure.loops.size(), exact.parts[k].loops.size());
-      for (std::size_t l = 0; l < exact.parts[k].loops.size(); ++l) {
-        ASSERT_EQ(enclosure.loops[l].size(), exact.parts[k].loops[l].edges.size());
-        for (std::size_t e = 0; e < exact.parts[k].loops[l].edges.size(); ++e) {
-          const Edge& edge = exact.parts[k].loops[l].edges[e];
-          const auto& x = enclosure.loops[l][e];
-          const double slack = 1e-9;   // the exact form's rounded unit vectors: <= 1e-12 rad x 100 mm
-          EXPECT_EQ(x.arc, edge.kind == Edge::Kind::arc);
-          EXPECT_LE(x.source.x.lo - slack, edge.source.x.get_d());
-          EXPECT_GE(x.source.x.hi + slack, edge.source.x.get_d());
-          EXPECT_LE(x.source.y.lo - slack, edge.source.y.get_d());
-          EXPECT_GE(x.source.y.hi + slack, edge.source.y.get_d());
-          EXPECT_LE(x.target.x.lo - slack, edge.target.x.get_d());
-          EXPECT_GE(x.target.x.hi + slack, edge.target.x.get_d());
-          EXPECT_LT(x.source.x.width(), 1e-9);
-          EXPECT_NEAR(approximate.loops[l][e].target.x, edge.target.x.get_d(), slack);
-          EXPECT_NEAR(approximate.loops[l][e].target.y, edge.target.y.get_d(), slack);
-        }
-      }
-    }
+    test_generic::expect_generic_form_agrees(model, deviations);
   }
 }
 
 TEST(ParametricRatchet, GenericFormAgreesWithTheExactFormOnTheExample) {
   std::mt19937 rng(3);
-  expect_generic_form_agrees(ParametricModel::read_file(std::filesystem::path(HIPAIR_EXAMPLES) / "ratchet.json"), rng);
+  expect_agrees_at_random_vectors(ParametricModel::read_file(std::filesystem::path(HIPAIR_EXAMPLES) / "ratchet.json"), rng);
 }
 
 TEST(ParametricRatchet, GenericFormAgreesWithTheExactFormOnGeneratedWheels) {
@@ -93,7 +63,7 @@ TEST(ParametricRatchet, GenericFormAgreesWithTheExactFormOnGeneratedWheels) {
   for (int round = 0; round < 20; ++round) {
     std::string text = generated_ratchet(rng);
     SCOPED_TRACE(text);
-    expect_generic_form_agrees(ParametricModel::read(text), rng);
+    expect_agrees_at_random_vectors(ParametricModel::read(text), rng);
   }
 }
 
