@@ -107,7 +107,7 @@ bool part_to_chart(const Interval& x, bool rotates, bool half, double nominal, I
   double turns = std::round((nominal - (half ? std::numbers::pi : 0.0)) / (2 * std::numbers::pi));
   Interval y = x - centre - Interval::point(turns) * (Interval(2) * A::pi());
   if (!(y.lo > -3.0 && y.hi < 3.0)) return false;   // within (-pi, pi), away from the pole
-  t = A::tan(y * Interval(0.5));
+  t = A::tan(y * Interval::point(0.5));   // (Interval(0.5) would be the integer 0)
   return true;
 }
 
