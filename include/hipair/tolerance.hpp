@@ -75,6 +75,19 @@ struct ToleranceOptions {
   /// session 7 (interval jets over every parameter varying in the box; the contact curve's
   /// geometry evaluated again at every Monte Carlo position). Same results either way.
   bool fast_paths = true;
+  /// Assembly chain (docs/tolerance.md "Assembly chains"): analyse the output of the chain of
+  /// pairs driver -> part -> ... -> `follower` (or the chain's last moving part) instead of one
+  /// pair; the per-pair kinematic functions and sensitivities are composed by the chain rule.
+  /// Not combined with `threshold`, `certify` or `contact_changes` (ModelError); no zones.
+  bool chain = false;
+};
+
+/// One pair of an assembly chain (ToleranceResult::chain).
+struct ChainStage {
+  std::string driver, follower;
+  bool driver_rotates = true, follower_rotates = true;
+  std::size_t contact_positions = 0;   ///< chain positions at which this pair holds its follower
+  std::size_t certified_boxes = 0;     ///< sub-boxes of this pair's certified enclosures
 };
 
 /// One parameter's share of the variation in a contact region.
@@ -107,6 +120,9 @@ struct VariationSample {
   double play = -1;                    ///< nominal width of the free channel (-1: unbounded)
   bool has_monte_carlo = false;
   double monte_carlo_min = 0, monte_carlo_max = 0;
+  /// In contact: d follower / d parameter (part units per parameter unit, Model::parameters
+  /// order) at the nominal parameters; for an assembly chain, composed by the chain rule.
+  std::vector<double> sensitivities;
 };
 
 /// A contact zone: a contact edge of the nominal C-space between its bounds over the box.
@@ -225,6 +241,9 @@ struct ToleranceResult {
   double cpu_seconds_certified = 0, cpu_seconds_zones = 0;
   std::optional<ToleranceCertification> certification;   ///< with ToleranceOptions::certify
   std::optional<ContactChangeCheck> contact_changes;     ///< with ToleranceOptions::contact_changes
+  /// With ToleranceOptions::chain: the pairs from the driver to the output part (`follower`), in
+  /// order; the samples, regions (one per tuple of the pairs' contacts) and bands are the output's.
+  std::vector<ChainStage> chain;
   std::vector<std::string> notes;
 };
 

@@ -1,5 +1,5 @@
 // `hipair tolerance MODEL [--pair A:B | --driver P] [--range A:B] [--monte-carlo N --seed S]
-// [--threshold] [--out DIR]`: kinematic tolerance analysis (docs/tolerance.md) — prints the
+// [--threshold] [--chain] [--out DIR]`: kinematic tolerance analysis (docs/tolerance.md) — prints the
 // report for designers and writes tolerance.json, variation.csv, sensitivity.csv,
 // variation.svg and contact-zone.svg into DIR (all or nothing).
 // `hipair tolerance MODEL --certify-interference --range A:B --follower-range A:B [--pair A:B]
@@ -41,6 +41,7 @@ struct ToleranceCliOptions {
   std::size_t positions = 360;
   bool threshold = false;
   bool contact_changes = false;
+  bool chain = false;
   std::vector<std::string> vary;
   double accuracy = 0.1;
   unsigned threads = 0;
@@ -275,6 +276,7 @@ int run_interference(const ToleranceCliOptions& options) {
 int run(const ToleranceCliOptions& options) {
   if (!options.pair.empty() && !options.driver.empty())
     throw ModelError("", "give either --pair or --driver, not both");
+  if (options.certify_interference && options.chain) throw ModelError("", "--certify-interference is per pair: drop --chain");
   if (options.certify_interference) return run_interference(options);
   if (!options.follower_range.empty()) throw ModelError("", "--follower-range is for --certify-interference");
   ToleranceOptions analysis;
@@ -300,6 +302,7 @@ int run(const ToleranceCliOptions& options) {
   analysis.threads = options.threads;
   analysis.certify = options.certify;
   analysis.contact_changes = options.contact_changes;
+  analysis.chain = options.chain;
   std::string scale = trim(options.certify_scale);
   if (!scale.empty() && (scale.back() == 'T' || scale.back() == 't')) {
     if (!options.threshold) throw ModelError("", "--certify-scale " + scale + " is relative to the jamming threshold: add --threshold");
@@ -362,6 +365,9 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_option("--positions", options->positions, "driver positions per turn for a rotating driver, along the range for a translating one (default 360)")
       ->check(CLI::Range(std::size_t{16}, std::size_t{100000}));
   command->add_flag("--threshold", options->threshold, "find the jamming threshold and confirm it with an exact C-space");
+  command->add_flag("--chain", options->chain,
+                    "analyse the assembly chain from the driver (--driver P, or --pair P:OUTPUT) to its output part: "
+                    "the pairs' kinematic functions and sensitivities composed (docs/tolerance.md \"Assembly chains\")");
   command->add_flag("--contact-changes", options->contact_changes,
                     "look for contacts that appear or disappear for some parameters in the tolerance box; "
                     "confirm each with an exact C-space at a witness vector");

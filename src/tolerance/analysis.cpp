@@ -10,6 +10,7 @@
 #include "tolerance/exact_order.hpp"
 #include "tolerance/sampling.hpp"
 #include "tolerance/solver.hpp"
+#include "tolerance/stage.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>
@@ -28,6 +29,136 @@
 #include <thread>
 
 namespace hipair {
+namespace tolerance_detail {
+
+// Chart enclosure -> part coordinate enclosure, unwrapped near `near` (rotations).
+Interval to_part(const Interval& chart, bool rotates, bool half, double near) {
+  if (!rotates) return chart;
+  Interval theta = tolerance_detail::chart_to_angle(chart, half);
+  double turns = std::round((near - theta.middle()) / (2 * std::numbers::pi));
+  if (turns != 0) {
+    Interval two_pi = Interval(2) * model_detail::Arithmetic<Interval>::pi();
+    theta = theta + Interval::point(turns) * two_pi;
+  }
+  return theta;
+}
+
+double chart_slope(double t, bool rotates) { return rotates ? 2 / (1 + t * t) : 1.0; }
+
+std::pair<double, double> linear_bands(VariationSample& sample, const std::vector<double>& s,
+                                       const std::vector<Distribution>& dist) {
+  double lower = 0, upper = 0, mean = 0, variance = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    lower += std::min(s[i] * dist[i].lo, s[i] * dist[i].hi);
+    upper += std::max(s[i] * dist[i].lo, s[i] * dist[i].hi);
+    mean += s[i] * dist[i].mean;
+    variance += s[i] * s[i] * dist[i].sigma * dist[i].sigma;
+  }
+  sample.linear_lower = sample.nominal + lower;
+  sample.linear_upper = sample.nominal + upper;
+  sample.rss_lower = sample.nominal + mean - 3 * std::sqrt(variance);
+  sample.rss_upper = sample.nominal + mean + 3 * std::sqrt(variance);
+  sample.sensitivities = s;
+  return {lower, upper};
+}
+
+void extend_regions(ToleranceResult& result, std::size_t k, const std::string& label, const FeatureIdentity& first,
+                    const FeatureIdentity& second, const std::vector<double>& s, const std::vector<Distribution>& dist,
+                    double half_width) {
+  VariationSample& sample = result.samples[k];
+  bool extend = !result.regions.empty() && result.regions.back().last_sample + 1 == k &&
+                result.regions.back().contact == label && result.regions.back().first == first &&
+                result.regions.back().second == second;
+  if (!extend) {
+    ContactRegion region;
+    region.contact = label;
+    region.first = first;
+    region.second = second;
+    region.driver_start = sample.driver;
+    region.first_sample = k;
+    region.ranked.resize(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) region.ranked[i].parameter = result.parameters[i].name;
+    result.regions.push_back(region);
+  }
+  ContactRegion& region = result.regions.back();
+  region.driver_end = sample.driver;
+  region.last_sample = k;
+  region.linear_half_width = std::max(region.linear_half_width, half_width);
+  sample.region = result.regions.size() - 1;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    double c = std::fabs(s[i]) * 0.5 * (dist[i].hi - dist[i].lo);
+    if (c >= region.ranked[i].contribution) {
+      region.ranked[i].contribution = c;
+      region.ranked[i].sensitivity = s[i];
+    }
+  }
+}
+
+void rank_regions(ToleranceResult& result) {
+  for (ContactRegion& region : result.regions) {
+    double total = 0;
+    for (const ParameterContribution& c : region.ranked) total += c.contribution;
+    for (ParameterContribution& c : region.ranked) c.share = total > 0 ? c.contribution / total : 0;
+    std::stable_sort(region.ranked.begin(), region.ranked.end(),
+                     [](const ParameterContribution& a, const ParameterContribution& b) {
+                       return a.contribution > b.contribution;
+                     });
+  }
+}
+
+void MonteCarloOutcome::record(std::size_t k, const Interval& part, const VariationSample& sample) {
+  if (part.lo < sample.certified.lower || part.hi > sample.certified.upper) ++outside_certified;
+  record_linear(k, part.middle(), sample);
+}
+
+void MonteCarloOutcome::record_linear(std::size_t k, double v, const VariationSample& sample) {
+  value[k] = v;
+  double e = std::max(v - sample.linear_upper, sample.linear_lower - v);
+  if (e > 0) {
+    ++outside_linear;
+    excess = std::max(excess, e);
+  }
+}
+
+void merge_monte_carlo(const std::vector<MonteCarloOutcome>& outcomes, MonteCarloSummary& summary,
+                       ToleranceResult& result) {
+  for (std::size_t i = 0; i < outcomes.size(); ++i) {
+    const MonteCarloOutcome& o = outcomes[i];
+    summary.outside_certified += o.outside_certified;
+    summary.outside_linear += o.outside_linear;
+    summary.evaluations += o.evaluations;
+    summary.linearisation_error = std::max(summary.linearisation_error, o.excess);
+    for (std::size_t k = 0; k < o.value.size(); ++k) {
+      double v = o.value[k];
+      if (std::isnan(v)) continue;
+      VariationSample& sample = result.samples[k];
+      if (!sample.has_monte_carlo) {
+        sample.has_monte_carlo = true;
+        sample.monte_carlo_min = sample.monte_carlo_max = v;
+      } else {
+        sample.monte_carlo_min = std::min(sample.monte_carlo_min, v);
+        sample.monte_carlo_max = std::max(sample.monte_carlo_max, v);
+      }
+    }
+    if (i < 12) result.monte_carlo_curves.push_back(o.value);
+  }
+}
+
+void parallel_for(unsigned threads, std::size_t count, const std::function<void(std::size_t)>& task) {
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t i = next++; i < count; i = next++) task(i);
+  };
+  std::vector<std::future<void>> workers;
+  for (unsigned t = 1; t < threads; ++t) workers.push_back(std::async(std::launch::async, work));
+  work();
+  for (auto& worker : workers) worker.get();
+}
+
+}  // namespace tolerance_detail
+
 namespace {
 
 using tolerance_detail::Box;
@@ -70,19 +201,8 @@ PartCoordinate part_coordinate(bool rotates, double coordinate) {
   return p;
 }
 
-// Chart enclosure -> part coordinate enclosure, unwrapped near `near` (rotations).
-Interval to_part(const Interval& chart, bool rotates, bool half, double near) {
-  if (!rotates) return chart;
-  Interval theta = tolerance_detail::chart_to_angle(chart, half);
-  double turns = std::round((near - theta.middle()) / (2 * pi));
-  if (turns != 0) {
-    Interval two_pi = Interval(2) * model_detail::Arithmetic<Interval>::pi();
-    theta = theta + Interval::point(turns) * two_pi;
-  }
-  return theta;
-}
-
-double chart_slope(double t, bool rotates) { return rotates ? 2 / (1 + t * t) : 1.0; }
+using tolerance_detail::chart_slope;
+using tolerance_detail::to_part;
 
 // A side of the follower's channel in a slice: where, and the feature pairs there.
 struct Side {
@@ -118,11 +238,39 @@ class Analysis {
     if (!model_->generic())
       throw ModelError("", "tolerance analysis needs the generic parametric form; feature template " +
                                model_->exact_only_feature() + " has an exact form only");
-    solver_ = std::make_unique<CurveSolver>(model_);
+    solver_ = std::make_shared<CurveSolver>(model_);
     solver_->set_compact_jets(options_.fast_paths);
   }
 
-  ToleranceResult run() {
+  // One pair of an assembly chain at the chain's positions (stage.hpp): the nominal path is
+  // given, and only the sensitivities and the linearised and RSS bands are computed here.
+  tolerance_detail::StageAnalysis stage(const std::vector<tolerance_detail::StagePosition>& path) {
+    start();
+    for (const tolerance_detail::StagePosition& position : path)
+      add_sample(position.driver, position.follower, position.contact);
+    sensitivities();
+    tolerance_detail::StageAnalysis out;
+    for (const SampleState& state : states_) {
+      tolerance_detail::StageContact c;
+      c.contact = state.contact;
+      if (state.contact) {
+        c.curve = state.curve;
+        c.label = space_->feature_pair(state.feature).label;
+        c.v = state.v;
+        c.follower_half = state.follower_chart.half;
+        c.s_chart = state.s_chart;
+      }
+      out.contacts.push_back(std::move(c));
+    }
+    out.result = std::move(result_);
+    out.solver = std::move(solver_);
+    out.distributions = dist_;
+    out.box = box_;
+    return out;
+  }
+
+  // What run() and stage() share: the parts, the distributions and box, the pair's C-space.
+  void start() {
     const Model& m = model_->nominal();
     result_.model_name = m.name;
     result_.parameters = m.parameters;
@@ -139,10 +287,14 @@ class Analysis {
       result_.sigma.push_back(dist_[i].sigma);
       result_.mean_shift.push_back(dist_[i].mean);
     }
-    progress(0.02);
-    auto t0 = std::chrono::steady_clock::now();
     space_ = std::make_unique<CSpace>(CSpace::build(m, pair_first_, pair_second_));
     driver_is_x_ = space_->x_part() == result_.driver;
+  }
+
+  ToleranceResult run() {
+    progress(0.02);
+    auto t0 = std::chrono::steady_clock::now();
+    start();
     nominal_path();
     progress(0.2);
     sensitivities();
@@ -235,16 +387,22 @@ class Analysis {
     std::size_t fi = static_cast<std::size_t>(follower_index - kinematics.followers.begin());
     if (kinematics.jam) result_.notes.push_back("the nominal mechanism jams: " + kinematics.jam->description);
     for (const KinematicSample& ks : kinematics.samples) {
-      VariationSample sample;
-      sample.driver = ks.driver;
-      sample.nominal = ks.positions[fi];
       // Contact or free is the exact kinematic engine's decision (its contacts at the
       // follower's exact position); locate() then matches the slice point exactly.
       bool in_contact = std::any_of(ks.contacts[fi].begin(), ks.contacts[fi].end(),
                                     [](const ContactLabel& c) { return !c.limit; });
-      SampleState state = locate(ks.driver, ks.positions[fi], in_contact);
+      add_sample(ks.driver, ks.positions[fi], in_contact);
+    }
+  }
+
+  void add_sample(double driver, double follower, bool in_contact) {
+    {
+      VariationSample sample;
+      sample.driver = driver;
+      sample.nominal = follower;
+      SampleState state = locate(driver, follower, in_contact);
       if (state.ambiguous)
-        result_.notes.push_back("driver " + std::to_string(ks.driver) +
+        result_.notes.push_back("driver " + std::to_string(driver) +
                                 ": the follower is equidistant from two slice points; position not analysed");
       sample.contact = state.contact;
       sample.play = state.lower.present && state.upper.present ? state.upper.value - state.lower.value : -1;
@@ -351,71 +509,19 @@ class Analysis {
       sample.certified = CertifiedRange{sample.nominal, sample.nominal};
       if (!state.contact) continue;
       double slope = chart_slope(state.v, result_.follower_rotates);
-      double lower = 0, upper = 0, mean = 0, variance = 0;
-      for (std::size_t i = 0; i < n; ++i) {
-        double s = state.s_chart[i] * slope;
-        lower += std::min(s * dist_[i].lo, s * dist_[i].hi);
-        upper += std::max(s * dist_[i].lo, s * dist_[i].hi);
-        mean += s * dist_[i].mean;
-        variance += s * s * dist_[i].sigma * dist_[i].sigma;
-      }
-      sample.linear_lower = sample.nominal + lower;
-      sample.linear_upper = sample.nominal + upper;
-      sample.rss_lower = sample.nominal + mean - 3 * std::sqrt(variance);
-      sample.rss_upper = sample.nominal + mean + 3 * std::sqrt(variance);
-      // regions
+      std::vector<double> s(n);
+      for (std::size_t i = 0; i < n; ++i) s[i] = state.s_chart[i] * slope;
+      auto [lower, upper] = tolerance_detail::linear_bands(sample, s, dist_);
       const FeaturePair& pair = space_->feature_pair(state.feature);
-      bool extend = !result_.regions.empty() && result_.regions.back().last_sample + 1 == k &&
-                    result_.regions.back().first == pair.first && result_.regions.back().second == pair.second;
-      if (!extend) {
-        ContactRegion region;
-        region.contact = pair.label;
-        region.first = pair.first;
-        region.second = pair.second;
-        region.driver_start = sample.driver;
-        region.first_sample = k;
-        region.ranked.resize(n);
-        for (std::size_t i = 0; i < n; ++i) region.ranked[i].parameter = result_.parameters[i].name;
-        result_.regions.push_back(region);
-      }
-      ContactRegion& region = result_.regions.back();
-      region.driver_end = sample.driver;
-      region.last_sample = k;
-      region.linear_half_width = std::max(region.linear_half_width, 0.5 * (upper - lower));
-      sample.region = result_.regions.size() - 1;
-      for (std::size_t i = 0; i < n; ++i) {
-        double s = state.s_chart[i] * slope;
-        double c = std::fabs(s) * 0.5 * (dist_[i].hi - dist_[i].lo);
-        if (c >= region.ranked[i].contribution) {
-          region.ranked[i].contribution = c;
-          region.ranked[i].sensitivity = s;
-        }
-      }
+      tolerance_detail::extend_regions(result_, k, pair.label, pair.first, pair.second, s, dist_, 0.5 * (upper - lower));
     }
-    for (ContactRegion& region : result_.regions) {
-      double total = 0;
-      for (const ParameterContribution& c : region.ranked) total += c.contribution;
-      for (ParameterContribution& c : region.ranked) c.share = total > 0 ? c.contribution / total : 0;
-      std::stable_sort(region.ranked.begin(), region.ranked.end(),
-                       [](const ParameterContribution& a, const ParameterContribution& b) {
-                         return a.contribution > b.contribution;
-                       });
-    }
+    tolerance_detail::rank_regions(result_);
   }
 
   // Runs task(0 .. count-1) on the analysis' threads (ToleranceOptions::threads); each task
   // writes only its own slot, so the results do not depend on the number of threads.
   void parallel_for(std::size_t count, const std::function<void(std::size_t)>& task) const {
-    unsigned threads = options_.threads ? options_.threads : std::max(1u, std::thread::hardware_concurrency());
-    threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
-    std::atomic<std::size_t> next{0};
-    auto work = [&] {
-      for (std::size_t i = next++; i < count; i = next++) task(i);
-    };
-    std::vector<std::future<void>> workers;
-    for (unsigned t = 1; t < threads; ++t) workers.push_back(std::async(std::launch::async, work));
-    work();
-    for (auto& worker : workers) worker.get();
+    tolerance_detail::parallel_for(options_.threads, count, task);
   }
 
   // One certified enclosure of a curve's root over the whole box (the band's or a zone's).
@@ -557,11 +663,7 @@ class Analysis {
     summary.samples = options_.monte_carlo;
     summary.seed = options_.seed;
     std::size_t count = states_.size();
-    struct Outcome {
-      std::vector<double> value;   // part coordinate per driver position (NaN: free)
-      std::size_t outside_certified = 0, outside_linear = 0, evaluations = 0;
-      double excess = 0;
-    };
+    using Outcome = tolerance_detail::MonteCarloOutcome;
     std::atomic<std::size_t> done{0};
     auto evaluate = [&](std::size_t index) {
       Outcome outcome;
@@ -590,15 +692,10 @@ class Analysis {
           ++outcome.outside_certified;   // no root near the band: counted as outside it
           continue;
         }
+        // Outside the certified band: decided on the chart enclosure (the band's own units).
         if (root.lo < c.lo || root.hi > c.hi) ++outcome.outside_certified;
         Interval part = to_part(root, result_.follower_rotates, state.follower_chart.half, sample.nominal);
-        double value = part.middle();
-        outcome.value[k] = value;
-        double excess = std::max(value - sample.linear_upper, sample.linear_lower - value);
-        if (excess > 0) {
-          ++outcome.outside_linear;
-          outcome.excess = std::max(outcome.excess, excess);
-        }
+        outcome.record_linear(k, part.middle(), sample);
       }
       ++done;
       return outcome;
@@ -616,26 +713,7 @@ class Analysis {
         progress(0.55 + 0.3 * static_cast<double>(done.load()) / static_cast<double>(outcomes.size()));
       worker.get();
     }
-    for (std::size_t i = 0; i < outcomes.size(); ++i) {
-      const Outcome& o = outcomes[i];
-      summary.outside_certified += o.outside_certified;
-      summary.outside_linear += o.outside_linear;
-      summary.evaluations += o.evaluations;
-      summary.linearisation_error = std::max(summary.linearisation_error, o.excess);
-      for (std::size_t k = 0; k < count; ++k) {
-        double v = o.value[k];
-        if (std::isnan(v)) continue;
-        VariationSample& sample = result_.samples[k];
-        if (!sample.has_monte_carlo) {
-          sample.has_monte_carlo = true;
-          sample.monte_carlo_min = sample.monte_carlo_max = v;
-        } else {
-          sample.monte_carlo_min = std::min(sample.monte_carlo_min, v);
-          sample.monte_carlo_max = std::max(sample.monte_carlo_max, v);
-        }
-      }
-      if (i < 12) result_.monte_carlo_curves.push_back(o.value);
-    }
+    tolerance_detail::merge_monte_carlo(outcomes, summary, result_);
     summary.seconds = seconds_since(start);
     summary.cpu_seconds = cpu_seconds(true) - cpu_start;
     result_.monte_carlo = summary;
@@ -1151,7 +1229,7 @@ class Analysis {
   ToleranceOptions options_;
   std::string text_, source_name_;
   std::shared_ptr<const model_detail::ParametricModel> model_;
-  std::unique_ptr<CurveSolver> solver_;
+  std::shared_ptr<CurveSolver> solver_;
   std::unique_ptr<CSpace> space_;
   ToleranceResult result_;
   std::vector<Distribution> dist_;
@@ -1164,7 +1242,16 @@ class Analysis {
 
 }  // namespace
 
+namespace tolerance_detail {
+
+StageAnalysis analyze_stage(std::string_view text, const ToleranceOptions& options, const std::vector<StagePosition>& path) {
+  return Analysis(text, options).stage(path);
+}
+
+}  // namespace tolerance_detail
+
 ToleranceResult analyze_tolerances_text(std::string_view json_text, const ToleranceOptions& options) {
+  if (options.chain) return tolerance_detail::analyze_chain(json_text, options);
   return Analysis(json_text, options).run();
 }
 
@@ -1176,6 +1263,7 @@ ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, cons
   if (!file) throw IoError("cannot open model file '" + model_file.string() + "'");
   std::ostringstream content;
   content << file.rdbuf();
+  if (options.chain) return tolerance_detail::analyze_chain(content.str(), options);
   return Analysis(content.str(), options, model_file.filename().string()).run();
 }
 

@@ -122,6 +122,11 @@ std::string tolerance_text_report(const ToleranceResult& r) {
   const char* u = unit_name(r.follower_rotates);
   double ud = unit_factor(r.driver_rotates);
   out << "Tolerance analysis of '" << r.model_name << "': " << r.driver << " drives " << r.follower << "\n";
+  if (!r.chain.empty()) {
+    out << "Assembly chain of " << r.chain.size() << " pairs: " << r.driver;
+    for (const ChainStage& stage : r.chain) out << " -> " << stage.follower;
+    out << " (the pairs' kinematic functions and sensitivities composed; regions name each pair's contact)\n";
+  }
   std::size_t toleranced = 0;
   for (const Parameter& p : r.parameters) toleranced += p.range.lo != p.range.hi;
   out << toleranced << " toleranced parameters of " << r.parameters.size() << "; follower positions in " << u
@@ -231,6 +236,15 @@ std::string tolerance_json_report(const ToleranceResult& r) {
   j["driver"] = r.driver;
   j["follower"] = r.follower;
   j["follower_unit"] = r.follower_rotates ? "rad" : "mm";
+  if (!r.chain.empty()) {
+    ordered_json chain = ordered_json::array();
+    for (const ChainStage& stage : r.chain)
+      chain.push_back({{"driver", stage.driver},
+                       {"follower", stage.follower},
+                       {"contact_positions", stage.contact_positions},
+                       {"certified_boxes", stage.certified_boxes}});
+    j["chain"] = chain;
+  }
   ordered_json parameters = ordered_json::array();
   for (std::size_t i = 0; i < r.parameters.size(); ++i) {
     const Parameter& p = r.parameters[i];
@@ -377,15 +391,17 @@ std::string tolerance_band_svg(const ToleranceResult& r) {
     auto d = [&](double v) { return s.contact ? (v - s.nominal) * uf : nan; };
     linear_lo.push_back(d(s.linear_lower));
     linear_hi.push_back(d(s.linear_upper));
-    cert_lo.push_back(d(s.certified.lower));
-    cert_hi.push_back(d(s.certified.upper));
+    // An unbounded (uncertified) position is a gap, and does not set the scale.
+    bool bounded = std::isfinite(s.certified.lower) && std::isfinite(s.certified.upper);
+    cert_lo.push_back(bounded ? d(s.certified.lower) : nan);
+    cert_hi.push_back(bounded ? d(s.certified.upper) : nan);
     rss_lo.push_back(d(s.rss_lower));
     rss_hi.push_back(d(s.rss_upper));
     mc_lo.push_back(s.has_monte_carlo ? d(s.monte_carlo_min) : nan);
     mc_hi.push_back(s.has_monte_carlo ? d(s.monte_carlo_max) : nan);
     if (s.contact) {
-      lo = std::min(lo, d(s.certified.lower));
-      hi = std::max(hi, d(s.certified.upper));
+      lo = std::min(lo, bounded ? d(s.certified.lower) : d(s.linear_lower));
+      hi = std::max(hi, bounded ? d(s.certified.upper) : d(s.linear_upper));
     }
   }
   if (x.empty()) x = {0, 1};

@@ -40,9 +40,9 @@ T CurveSolver::evaluate(const CurveSlice& curve, const PairGeometry<T>& g, const
   return contact_function(g.first, curve.first, a, g.second, curve.second, b);
 }
 
-std::vector<double> CurveSolver::sensitivities(const CurveSlice& curve, double& free_value) const {
+std::vector<double> CurveSolver::sensitivities(const CurveSlice& curve, double& free_value, double* fixed_slope) const {
   using Dual = Jet<double>;
-  Dual fixed(curve.fixed_value.get_d());
+  Dual fixed = fixed_slope ? Dual::variable(curve.fixed_value.get_d(), n_ + 1, n_ + 2) : Dual(curve.fixed_value.get_d());
   Dual f;
   double fv = 0;
   PairGeometry<Dual> g = geometry(curve, autodiff_);
@@ -56,6 +56,7 @@ std::vector<double> CurveSolver::sensitivities(const CurveSlice& curve, double& 
   }
   std::vector<double> s(n_);
   for (std::size_t i = 0; i < n_; ++i) s[i] = -f.partial(i) / fv;
+  if (fixed_slope) *fixed_slope = -f.partial(n_ + 1) / fv;
   return s;
 }
 
@@ -77,7 +78,7 @@ bool CurveSolver::certified_point_root(const CurveSlice& curve, const std::vecto
 
 bool CurveSolver::certified_point_root(const CurveSlice& curve, const PairGeometry<Interval>& geometry,
                                        Interval bracket, Interval& root) const {
-  Interval fixed = Interval::enclose(curve.fixed_value);
+  Interval fixed = curve.fixed_range ? *curve.fixed_range : Interval::enclose(curve.fixed_value);
   auto sign_at = [&](double v) { return evaluate<Interval>(curve, geometry, fixed, Interval::point(v)).sign(); };
   double a = bracket.lo, b = bracket.hi;
   int sa = sign_at(a), sb = sign_at(b);
@@ -144,6 +145,7 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     spread += std::fabs(sensitivity[i]) * (box.hi[i] - box.lo[i]);
     shift += sensitivity[i] * center[i];
   }
+  spread += curve.fixed_spread;
   double slack = 1e-12 * (1 + std::fabs(free_value));
   std::shared_ptr<const BoxGeometry> memo = box_geometry(curve, box, center);
   const std::vector<std::size_t>& active = memo->active;
@@ -159,7 +161,7 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   // F(c, v) + sum_i F_i(B, v) (B_i - c_i), far tighter than plain interval evaluation.
   const PairGeometry<IntervalJet>& jet = memo->jet;
   const PairGeometry<Interval>& at_center = memo->at_center;
-  Interval fixed = Interval::enclose(curve.fixed_value);
+  Interval fixed = curve.fixed_range ? *curve.fixed_range : Interval::enclose(curve.fixed_value);
   IntervalJet fixed_jet(fixed);
   auto sign_over_box = [&](double v) {
     Interval value = evaluate<Interval>(curve, at_center, fixed, Interval::point(v));
@@ -276,6 +278,7 @@ Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, d
     bool ok = box_range(curve, b, free_value, sensitivity, range, score);
     double linear = 0;
     for (std::size_t i = 0; i < n_; ++i) linear += std::fabs(sensitivity[i]) * (b.hi[i] - b.lo[i]);
+    linear += curve.fixed_spread;
     bool accurate = ok && range.width() <= linear * (1 + relative_accuracy) + absolute_accuracy;
     if (!accurate && used + pending.size() + 2 <= max_boxes) {
       std::size_t split = 0;

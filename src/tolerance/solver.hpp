@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 namespace hipair::tolerance_detail {
@@ -26,6 +27,13 @@ struct CurveSlice {
   std::size_t free_part = 0;           ///< the part whose chart coordinate is solved for
   bool fixed_half_turn = false, free_half_turn = false;
   Rational fixed_value;                ///< chart coordinate of the held part (exact)
+  /// Assembly chains (chain.cpp): the held part's chart coordinate ranges over this enclosure
+  /// instead of the point `fixed_value` (a driver moved by an earlier pair of the chain); the
+  /// enclosures then hold for every held coordinate in it.
+  std::optional<kernels::Interval> fixed_range;
+  /// With `fixed_range`: |dv/d fixed| x its width (chart units), added to the linearised width
+  /// that sizes the root's bracket and the certified band's accuracy target.
+  double fixed_spread = 0;
 };
 
 /// What a curve slice needs of the geometry: the two features' edges and both parts' axes.
@@ -49,8 +57,9 @@ class CurveSolver {
   const Model& nominal() const { return model_->nominal(); }
 
   /// dv/dp_i (chart units) at the nominal parameters, at the curve point near `free_value`;
-  /// also the refined free value (Newton in double). \throws NumericError when F_free = 0.
-  std::vector<double> sensitivities(const CurveSlice& curve, double& free_value) const;
+  /// also the refined free value (Newton in double); with `fixed_slope`, also dv/d fixed there
+  /// (= -F_fixed / F_free, chart units). \throws NumericError when F_free = 0.
+  std::vector<double> sensitivities(const CurveSlice& curve, double& free_value, double* fixed_slope = nullptr) const;
 
   /// Certified enclosure of the root in `bracket` of F at the point deviations `point`
   /// (each exact as a double). Returns false when no certified sign change is found.

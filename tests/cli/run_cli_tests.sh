@@ -203,15 +203,19 @@ grep -q "</svg>" "$work/geneva-closed/cspace-driver-wheel.svg" 2>/dev/null || fa
 # --- hipair tolerance (docs/tolerance.md): bad options are one clear error line, no output;
 # a run writes its whole directory; an output that is the model is refused.
 geneva="$source/examples/models/geneva.json"
+# tolerance_refused MODEL ARGS: one error line, an ordinary non-zero exit, nothing written.
+tolerance_refused() {
+  # shellcheck disable=SC2086
+  "$hipair" tolerance "$1" $2 --quiet --out "$work/tol-bad" >/dev/null 2>"$work/tol-bad.err"
+  code=$?
+  { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "tolerance $2: exit $code"
+  [ "$(wc -l <"$work/tol-bad.err")" -eq 1 ] || fail "tolerance $2: not one error line: $(cat "$work/tol-bad.err")"
+  [ -e "$work/tol-bad" ] && fail "tolerance $2 wrote output"
+}
 for args in "--pair driver" "--pair driver:nosuch" "--driver nosuch" "--range 1:x" "--range 2:2" \
             "--pair driver:wheel --driver driver" "--certify --certify-scale -1" "--certify --certify-scale x" \
             "--certify --certify-scale 0.9T"; do
-  # shellcheck disable=SC2086
-  "$hipair" tolerance "$geneva" $args --quiet --out "$work/tol-bad" >/dev/null 2>"$work/tol-bad.err"
-  code=$?
-  { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "tolerance $args: exit $code"
-  [ "$(wc -l <"$work/tol-bad.err")" -eq 1 ] || fail "tolerance $args: not one error line: $(cat "$work/tol-bad.err")"
-  [ -e "$work/tol-bad" ] && fail "tolerance $args wrote output"
+  tolerance_refused "$geneva" "$args"
 done
 "$hipair" tolerance "$geneva" --range 2.4:4 --positions 90 --accuracy 0.5 --monte-carlo 20 --seed 3 --quiet \
   --out "$work/tol" >"$work/tol.out" 2>&1 || fail "tolerance on Geneva failed: $(tail -c 300 "$work/tol.out")"
@@ -220,6 +224,17 @@ for file in report.txt tolerance.json variation.csv sensitivity.csv variation.sv
 done
 grep -q '"outside_certified": 0' "$work/tol/tolerance.json" || fail "tolerance: Monte Carlo left the certified band"
 grep -q "</svg>" "$work/tol/variation.svg" 2>/dev/null || fail "tolerance: variation.svg incomplete"
+# --chain: the assembly chain's output (docs/tolerance.md "Assembly chains"); per-pair options refused.
+lift="$source/examples/models/lift-chain.json"
+"$hipair" tolerance "$lift" --driver cam --chain --positions 36 --monte-carlo 10 --quiet --out "$work/tol-chain" \
+  >"$work/tol-chain.out" 2>&1 || fail "tolerance --chain failed: $(tail -c 300 "$work/tol-chain.out")"
+grep -q "Assembly chain of 4 pairs: cam -> lifter1 -> lifter2 -> lifter3 -> lifter4" "$work/tol-chain.out" \
+  || fail "tolerance --chain: no chain in the report"
+grep -q '"chain"' "$work/tol-chain/tolerance.json" || fail "tolerance --chain: no chain in tolerance.json"
+grep -q '"outside_certified": 0' "$work/tol-chain/tolerance.json" || fail "tolerance --chain: Monte Carlo left the certified band"
+for args in "--chain --threshold" "--chain --pair cam:nosuch" "--chain --certify-interference --range 0:1 --follower-range 0"; do
+  tolerance_refused "$lift" "$args"
+done
 # --certify writes the no-jam tolerance certificate (docs/certify.md "Tolerance").
 "$hipair" tolerance "$geneva" --range 2.2:2.3 --positions 720 --accuracy 0.5 --certify --certify-scale 2 --quiet \
   --out "$work/tol-cert" >"$work/tol-cert.out" 2>&1 || fail "tolerance --certify failed: $(tail -c 300 "$work/tol-cert.out")"

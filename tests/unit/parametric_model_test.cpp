@@ -2,6 +2,7 @@
 // exact form at a parameter vector equals a re-read with the values overridden, the generic
 // forms (double, intervals, AutoDiff) agree with it, and AutoDiff derivatives of a Geneva
 // contact curve equal central finite differences of exact rebuilds.
+#include "generic_form_check.hpp"
 #include "model/parametric/number_traits.hpp"
 #include "model/parametric/parametric.hpp"
 #include "tolerance/contact_function.hpp"
@@ -99,31 +100,7 @@ TEST(ParametricModel, GenericFormsAgreeWithTheExactForm) {
   std::size_t n = model.parameter_count();
   std::vector<Rational> deviations(n);
   for (std::size_t i = 0; i < n; ++i) deviations[i] = Rational(static_cast<long>(i % 5) - 2, 200000);
-  Model exact = model.exact_model(deviations);
-  std::vector<kernels::Interval> box(n);
-  std::vector<double> point(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    box[i] = kernels::Interval::enclose(deviations[i]);
-    point[i] = deviations[i].get_d();
-  }
-  for (std::size_t k = 0; k < exact.parts.size(); ++k) {
-    auto enclosure = model.part_geometry<kernels::Interval>(k, box);
-    auto approximate = model.part_geometry<double>(k, point);
-    for (std::size_t l = 0; l < exact.parts[k].loops.size(); ++l)
-      for (std::size_t e = 0; e < exact.parts[k].loops[l].edges.size(); ++e) {
-        const Edge& edge = exact.parts[k].loops[l].edges[e];
-        const auto& x = enclosure.loops[l][e];
-        const double slack = 1e-9;  // the exact form's rounded unit vectors: <= 1e-12 rad x 100 mm
-        EXPECT_LE(x.source.x.lo - slack, edge.source.x.get_d());
-        EXPECT_GE(x.source.x.hi + slack, edge.source.x.get_d());
-        EXPECT_LE(x.source.y.lo - slack, edge.source.y.get_d());
-        EXPECT_GE(x.source.y.hi + slack, edge.source.y.get_d());
-        EXPECT_LT(x.source.x.width(), 1e-9);
-        EXPECT_NEAR(approximate.loops[l][e].target.x, edge.target.x.get_d(), slack);
-        EXPECT_NEAR(approximate.loops[l][e].target.y, edge.target.y.get_d(), slack);
-        EXPECT_EQ(approximate.loops[l][e].ccw, edge.ccw);
-      }
-  }
+  test_generic::expect_generic_form_agrees(model, deviations);
 }
 
 // ---------------------------------------------------------------- Geneva contact derivative

@@ -9,6 +9,7 @@
 #include "model/profile_tolerance.hpp"
 #include "model/validate_geometry.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -237,6 +238,20 @@ class RecipeBuilder {
                                                     {formula_node(Formula::Op::pi, {}), formula_constant(180)})});
   }
   Slot number_slot(const JsonValue& value) { return raw_slot(value); }
+  // A count argument's value at the nominal vector, or 0 when it depends on a toleranced
+  // parameter (a tooth count cannot vary continuously: the template then stays exact only).
+  long fixed_count(const FeatureRecipe& feature, const char* key) {
+    auto found = feature.arguments.find(key);
+    if (found == feature.arguments.end()) return 0;
+    bool varies = false;
+    const Model& nominal = *model_.nominal_;
+    double value = evaluate_formula<double>(*found->second.number.formula, [&](std::size_t i) {
+      const Parameter& parameter = nominal.parameters[i];
+      varies = varies || parameter.range.lo != parameter.range.hi || model_.derived_[i];
+      return parameter.nominal.get_d();
+    });
+    return varies ? 0 : std::lround(value);
+  }
   Slot angle_slot(const JsonValue& value) {
     Slot slot = raw_slot(value);
     slot.formula = angle_formula(slot);
@@ -307,7 +322,10 @@ class RecipeBuilder {
           }
           feature.arguments.emplace(argument.key, std::move(a));
         }
-        if (feature.name != "circle" && feature.name != "pin" && model_.generic_) {
+        if (feature.name == "ratchet_wheel") feature.teeth = fixed_count(feature, "teeth");
+        bool generic = feature.name == "circle" || feature.name == "pin" ||
+                       (feature.name == "ratchet_wheel" && feature.teeth > 0);
+        if (!generic && model_.generic_) {
           model_.generic_ = false;
           model_.exact_only_feature_ = feature.name + " (" + feature.pointer + ")";
         }

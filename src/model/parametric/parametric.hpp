@@ -79,6 +79,7 @@ struct FeatureRecipe {
   };
   std::map<std::string, Argument> arguments;
   std::size_t loop_count = 0;   ///< loops it expanded to in the nominal model
+  long teeth = 0;               ///< ratchet_wheel: the tooth count (fixed: no toleranced parameter)
 };
 
 struct MotionRecipe {
@@ -154,6 +155,13 @@ class ParametricModel {
   PartGeometry<T> part_geometry(std::size_t part, const std::vector<T>& deviations) const;
 
  private:
+  /// Edge `edge` of a ratchet_wheel's loop in the template's own order (templates_gears.cpp:
+  /// tip and root vertices centre + r u(phase + 2 pi k / teeth), the smooth form of the exact
+  /// expansion's rounded unit vectors).
+  template <class T>
+  void ratchet_edge(const FeatureRecipe& feature, std::size_t edge, const std::vector<T>& parameters,
+                    EdgeValue<T>& value) const;
+
   std::shared_ptr<const Model> nominal_;
   std::string text_;
   bool degrees_ = false;
@@ -220,6 +228,8 @@ PartGeometry<T> ParametricModel::part_geometry(std::size_t part, const std::vect
   std::size_t loops = recipe.loops.size() + recipe.features.size();
   for (std::size_t l = 0; l < loops; ++l) {
     std::size_t edges = l < recipe.loops.size() && !recipe.loops[l].circle ? recipe.loops[l].edges.size() : 1;
+    if (l >= recipe.loops.size() && recipe.features[l - recipe.loops.size()].name == "ratchet_wheel")
+      edges = 2 * static_cast<std::size_t>(recipe.features[l - recipe.loops.size()].teeth);
     std::vector<EdgeValue<T>> values;
     for (std::size_t e = 0; e < edges; ++e) values.push_back(edge_value(part, l, e, p));
     geometry.loops.push_back(std::move(values));
@@ -262,16 +272,50 @@ EdgeValue<T> ParametricModel::edge_value(std::size_t part, std::size_t loop, std
     }
   } else {
     const FeatureRecipe& feature = recipe.features.at(loop - recipe.loops.size());
-    if (feature.name != "circle" && feature.name != "pin")
-      throw ModelError(feature.pointer, "feature template '" + feature.name +
-                                            "' has an exact parametric form only (no derivatives or intervals yet)");
-    circle(point_value(feature.arguments.at("center").point, p), slot_value(feature.arguments.at("radius").number, p));
+    if (feature.name == "ratchet_wheel") {
+      ratchet_edge(feature, reversed ? 2 * static_cast<std::size_t>(feature.teeth) - 1 - edge : edge, p, value);
+    } else {
+      if (feature.name != "circle" && feature.name != "pin")
+        throw ModelError(feature.pointer, "feature template '" + feature.name +
+                                              "' has an exact parametric form only (no derivatives or intervals yet)");
+      circle(point_value(feature.arguments.at("center").point, p), slot_value(feature.arguments.at("radius").number, p));
+    }
   }
   if (reversed) {
     std::swap(value.source, value.target);
     value.ccw = !value.ccw;
   }
   return value;
+}
+
+template <class T>
+void ParametricModel::ratchet_edge(const FeatureRecipe& feature, std::size_t edge, const std::vector<T>& p,
+                                   EdgeValue<T>& value) const {
+  using namespace parametric_detail;
+  using A = Arithmetic<T>;
+  auto argument = [&](const char* key) { return feature.arguments.find(key); };
+  kernels::Vector<T> center = point_value(argument("center")->second.point, p);
+  T tip = slot_value(argument("tip_radius")->second.number, p);
+  T root = slot_value(argument("root_radius")->second.number, p);
+  T phase = argument("phase") != feature.arguments.end() ? slot_value(argument("phase")->second.number, p)
+                                                         : A::constant(Rational(0));
+  bool free_ccw = argument("dir") == feature.arguments.end() || argument("dir")->second.word == "ccw";
+  long n = feature.teeth;
+  auto vertex = [&](long k, const T& radius) {
+    T angle = T(phase + A::constant(Rational(2 * (k % n), n)) * A::pi());
+    return kernels::Vector<T>{T(center.x + radius * A::cos(angle)), T(center.y + radius * A::sin(angle))};
+  };
+  long k = static_cast<long>(edge / 2);
+  // ccw: root k -> tip k (face), tip k -> root k+1 (back); cw: tip k -> root k, root k -> tip k+1.
+  bool first = edge % 2 == 0;
+  if (free_ccw) {
+    value.source = first ? vertex(k, root) : vertex(k, tip);
+    value.target = first ? vertex(k, tip) : vertex(k + 1, root);
+  } else {
+    value.source = first ? vertex(k, tip) : vertex(k, root);
+    value.target = first ? vertex(k, root) : vertex(k + 1, tip);
+  }
+  value.arc = false;
 }
 
 template <class T>

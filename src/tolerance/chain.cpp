@@ -1,0 +1,396 @@
+// Kinematic tolerance analysis of an assembly chain (ToleranceOptions::chain; docs/tolerance.md
+// "Assembly chains"): driver -> pair 1 -> part -> pair 2 -> ... -> output. The nominal motion of
+// every part comes from the kinematic analysis of the whole model; each pair is then analysed at
+// the chain's positions like a single pair (stage.hpp: exact slices of its nominal C-space, the
+// feature pair holding its follower, the parametric contact curve), and the pairs are composed:
+//   - sensitivities by the chain rule, d out/dp = df_k/dp + df_k/dx_k . d x_k/dp, where x_k (the
+//     pair's driver) is the previous pair's output;
+//   - the linearised and RSS bands from the composed sensitivities;
+//   - the certified band by interval composition: each pair's certified enclosure over the whole
+//     tolerance box, its driver ranging over the previous pair's enclosure (no linearisation);
+//   - Monte Carlo: at each sampled vector, each pair's root certified (interval bisection) with
+//     its driver ranging over the previous pair's certified root at that vector.
+#include "model/parametric/parametric.hpp"
+#include "tolerance/stage.hpp"
+
+#include <hipair/error.hpp>
+#include <hipair/kinematics.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <deque>
+#include <limits>
+#include <map>
+#include <numbers>
+
+namespace hipair::tolerance_detail {
+namespace {
+
+double cpu_now() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+double wall_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool moving(const Model& m, std::size_t k) {
+  auto kind = m.parts[k].motion.kind;
+  return kind == Motion::Kind::rotation || kind == Motion::Kind::translation;
+}
+
+// The chain's parts: the driver, then each part moved through a pair by the one before it, up to
+// the output (options.follower, or the part furthest from the driver; breadth first over the
+// pairs of two moving parts, ties in model order).
+std::vector<std::size_t> chain_parts(const Model& m, const ToleranceOptions& options) {
+  std::optional<std::size_t> driver;
+  if (!options.driver.empty()) {
+    driver = m.find_part(options.driver);
+    if (!driver) throw ModelError("", "unknown driver part '" + options.driver + "' (--driver)");
+    if (!moving(m, *driver)) throw ModelError("", "the driver '" + options.driver + "' neither rotates nor translates");
+  } else {
+    for (const PairSpec& pair : m.pairs)
+      if (moving(m, pair.first) && moving(m, pair.second)) {
+        driver = pair.first;
+        break;
+      }
+    if (!driver) throw ModelError("/pairs", "no pair of two moving parts to analyse");
+  }
+  std::vector<std::size_t> parent(m.parts.size(), no_index);
+  std::vector<bool> seen(m.parts.size(), false);
+  std::deque<std::size_t> queue{*driver};
+  seen[*driver] = true;
+  std::size_t last = *driver;
+  while (!queue.empty()) {
+    std::size_t part = queue.front();
+    queue.pop_front();
+    last = part;
+    for (const PairSpec& pair : m.pairs) {
+      if (!moving(m, pair.first) || !moving(m, pair.second)) continue;
+      std::size_t other = pair.first == part ? pair.second : pair.second == part ? pair.first : no_index;
+      if (other == no_index || seen[other]) continue;
+      seen[other] = true;
+      parent[other] = part;
+      queue.push_back(other);
+    }
+  }
+  std::size_t output = last;
+  if (!options.follower.empty()) {
+    std::optional<std::size_t> f = m.find_part(options.follower);
+    if (!f) throw ModelError("", "unknown part '" + options.follower + "' (--pair)");
+    if (!seen[*f] || *f == *driver)
+      throw ModelError("", "the part '" + options.follower + "' is not moved by the driver '" + m.parts[*driver].name +
+                               "' through pairs of moving parts");
+    output = *f;
+  }
+  if (output == *driver) throw ModelError("/pairs", "the driver '" + m.parts[*driver].name + "' moves no other part");
+  std::vector<std::size_t> parts;
+  for (std::size_t k = output; k != no_index; k = parent[k]) parts.push_back(k);
+  std::reverse(parts.begin(), parts.end());
+  return parts;
+}
+
+// Part coordinate enclosure -> chart enclosure (the inverse of to_part): the offset of a
+// translation; tan((theta - c)/2) of a rotation, c = 0 or pi (the half-turn chart), theta
+// reduced by whole turns near `nominal`. False when the range reaches the chart's pole.
+bool part_to_chart(const Interval& x, bool rotates, bool half, double nominal, Interval& t) {
+  if (!rotates) {
+    t = x;
+    return true;
+  }
+  using A = model_detail::Arithmetic<Interval>;
+  Interval centre = half ? A::pi() : Interval(0);
+  double turns = std::round((nominal - (half ? std::numbers::pi : 0.0)) / (2 * std::numbers::pi));
+  Interval y = x - centre - Interval::point(turns) * (Interval(2) * A::pi());
+  if (!(y.lo > -3.0 && y.hi < 3.0)) return false;   // within (-pi, pi), away from the pole
+  t = A::tan(y * Interval::point(0.5));   // (Interval(0.5) would be the integer 0)
+  return true;
+}
+
+struct PositionStage {
+  double fixed_slope = 0;            // dv/d(driver chart), chart units
+  double driver_factor = 0;          // d follower / d driver, part units
+  std::vector<double> s_part;        // d follower / dp at a fixed driver, part units
+  Interval certified_chart;          // enclosure of the follower's chart coordinate over the box
+};
+
+class ChainAnalysis {
+ public:
+  ChainAnalysis(std::string_view text, const ToleranceOptions& options) : text_(text), options_(options) {
+    if (options.threshold || options.certify || options.contact_changes)
+      throw ModelError("", "the jamming threshold, tolerance certificates and contact changes are analysed per pair "
+                           "(--pair), not over an assembly chain");
+  }
+
+  ToleranceResult run() {
+    auto t0 = std::chrono::steady_clock::now();
+    Model model = read_model(text_);
+    std::vector<std::size_t> parts = chain_parts(model, options_);
+    progress(0.05);
+    KinematicsOptions k;
+    k.driver = model.parts[parts.front()].name;
+    k.range = options_.range;
+    k.steps_per_cycle = static_cast<unsigned>(std::max<std::size_t>(8, options_.positions));
+    k.reversal = false;
+    k.method = SliceMethod::automatic;
+    // The exact C-space of every pair of two moving parts (the kinematic engine's slices, as for a
+    // single pair); pairs with a fixed part are sliced from the contact kernels (exact too).
+    std::vector<CSpace> spaces;
+    for (const PairSpec& pair : model.pairs)
+      if (moving(model, pair.first) && moving(model, pair.second))
+        spaces.push_back(CSpace::build(model, model.parts[pair.first].name, model.parts[pair.second].name));
+    KinematicsResult kinematics = analyze_kinematics(model, k, spaces);
+    if (kinematics.jam) notes_.push_back("the nominal mechanism jams: " + kinematics.jam->description);
+    auto follower_index = [&](std::size_t part) {
+      auto it = std::find(kinematics.followers.begin(), kinematics.followers.end(), model.parts[part].name);
+      if (it == kinematics.followers.end())
+        throw GeometryError("the part '" + model.parts[part].name + "' is not moved by the driver over the range");
+      return static_cast<std::size_t>(it - kinematics.followers.begin());
+    };
+    progress(0.2);
+    // Each pair at the chain's positions.
+    for (std::size_t s = 1; s < parts.size(); ++s) {
+      const std::string& a = model.parts[parts[s - 1]].name;
+      const std::string& b = model.parts[parts[s]].name;
+      std::size_t fi = follower_index(parts[s]);
+      std::optional<std::size_t> di;
+      if (s > 1) di = follower_index(parts[s - 1]);
+      std::vector<StagePosition> path;
+      for (const KinematicSample& ks : kinematics.samples) {
+        StagePosition p;
+        p.driver = di ? ks.positions[*di] : ks.driver;
+        p.follower = ks.positions[fi];
+        p.contact = std::any_of(ks.contacts[fi].begin(), ks.contacts[fi].end(), [&](const ContactLabel& c) {
+          return !c.limit && (c.pair == a + ":" + b || c.pair == b + ":" + a);
+        });
+        path.push_back(p);
+      }
+      ToleranceOptions stage_options = options_;
+      stage_options.driver = a;
+      stage_options.follower = b;
+      stage_options.chain = false;
+      stage_options.progress = nullptr;
+      stages_.push_back(analyze_stage(text_, stage_options, path));
+      ChainStage summary;
+      summary.driver = a;
+      summary.follower = b;
+      summary.driver_rotates = stages_.back().result.driver_rotates;
+      summary.follower_rotates = stages_.back().result.follower_rotates;
+      for (const StageContact& c : stages_.back().contacts) summary.contact_positions += c.contact ? 1 : 0;
+      result_.chain.push_back(summary);
+      for (const std::string& note : stages_.back().result.notes) notes_.push_back("pair " + a + ":" + b + ": " + note);
+    }
+    const StageAnalysis& first = stages_.front();
+    const StageAnalysis& last = stages_.back();
+    result_.model_name = first.result.model_name;
+    result_.driver = first.result.driver;
+    result_.follower = last.result.follower;
+    result_.driver_rotates = first.result.driver_rotates;
+    result_.follower_rotates = last.result.follower_rotates;
+    result_.parameters = first.result.parameters;
+    result_.sigma = first.result.sigma;
+    result_.mean_shift = first.result.mean_shift;
+    compose();
+    result_.seconds_sensitivity = wall_since(t0);
+    progress(0.4);
+    auto t1 = std::chrono::steady_clock::now();
+    double c1 = cpu_now();
+    certified();
+    result_.seconds_certified = wall_since(t1);
+    result_.cpu_seconds_certified = cpu_now() - c1;
+    progress(0.6);
+    if (options_.monte_carlo > 0) monte_carlo();
+    result_.notes.insert(result_.notes.end(), notes_.begin(), notes_.end());
+    progress(1.0);
+    return std::move(result_);
+  }
+
+ private:
+  void progress(double fraction) const {
+    if (options_.progress) options_.progress(fraction);
+  }
+
+  std::size_t positions() const { return stages_.front().contacts.size(); }
+  bool held(std::size_t i) const {
+    return std::all_of(stages_.begin(), stages_.end(), [&](const StageAnalysis& s) { return s.contacts[i].contact; });
+  }
+
+  // The chain rule at every position where every pair holds its follower; bands and regions.
+  void compose() {
+    std::size_t n = result_.parameters.size();
+    const std::vector<Distribution>& dist = stages_.front().distributions;
+    per_.assign(positions(), std::vector<PositionStage>(stages_.size()));
+    for (std::size_t i = 0; i < positions(); ++i) {
+      VariationSample sample = stages_.back().result.samples[i];
+      sample.driver = stages_.front().result.samples[i].driver;
+      sample.region = no_index;
+      sample.contact = held(i);
+      if (!sample.contact) {
+        sample.linear_lower = sample.linear_upper = sample.rss_lower = sample.rss_upper = sample.nominal;
+        sample.certified = CertifiedRange{sample.nominal, sample.nominal};
+        result_.samples.push_back(sample);
+        continue;
+      }
+      std::vector<double> total(n, 0.0);
+      std::string label;
+      for (std::size_t s = 0; s < stages_.size(); ++s) {
+        const StageAnalysis& stage = stages_[s];
+        const StageContact& c = stage.contacts[i];
+        PositionStage& ps = per_[i][s];
+        double v = c.v;
+        std::vector<double> s_chart = stage.solver->sensitivities(c.curve, v, &ps.fixed_slope);
+        double follower_slope = chart_slope(c.v, stage.result.follower_rotates);
+        double t = c.curve.fixed_value.get_d();
+        ps.driver_factor = follower_slope * ps.fixed_slope / chart_slope(t, stage.result.driver_rotates);
+        ps.s_part.resize(n);
+        for (std::size_t p = 0; p < n; ++p) {
+          ps.s_part[p] = follower_slope * s_chart[p];
+          total[p] = ps.s_part[p] + (s == 0 ? 0.0 : ps.driver_factor * total[p]);
+        }
+        label += (s == 0 ? "" : " -> ") + c.label;
+      }
+      std::pair<double, double> band = linear_bands(sample, total, dist);
+      const CurveSlice& curve = stages_.back().contacts[i].curve;
+      result_.samples.push_back(sample);
+      extend_regions(result_, i, label, curve.first, curve.second, total, dist, 0.5 * (band.second - band.first));
+    }
+    rank_regions(result_);
+  }
+
+  // Per position, each pair's certified enclosure over the whole box, its driver ranging over
+  // the previous pair's enclosure (interval composition).
+  void certified() {
+    std::vector<std::size_t> boxes(positions() * stages_.size(), 0);
+    std::vector<char> ok(positions(), 0);
+    parallel_for(options_.threads, positions(), [&](std::size_t i) {
+      if (!result_.samples[i].contact) return;
+      Interval x;   // the previous pair's output, part units
+      for (std::size_t s = 0; s < stages_.size(); ++s) {
+        const StageAnalysis& stage = stages_[s];
+        const StageContact& c = stage.contacts[i];
+        PositionStage& ps = per_[i][s];
+        CurveSlice curve = c.curve;
+        std::vector<double> s_chart = c.s_chart;
+        if (s > 0) {
+          Interval t;
+          if (!part_to_chart(x, stage.result.driver_rotates, curve.fixed_half_turn, stages_[s - 1].result.samples[i].nominal, t))
+            return;
+          curve.fixed_range = t;
+          curve.fixed_spread = std::fabs(ps.fixed_slope) * t.width();
+        }
+        try {
+          ps.certified_chart = stage.solver->certified_range(curve, stage.box, c.v, s_chart, options_.relative_accuracy,
+                                                             options_.absolute_accuracy, boxes[i * stages_.size() + s]);
+        } catch (const NumericError&) {
+          return;
+        }
+        x = to_part(ps.certified_chart, stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
+      }
+      result_.samples[i].certified = CertifiedRange{x.lo, x.hi};
+      ok[i] = 1;
+    });
+    std::size_t uncertified = 0;
+    for (std::size_t i = 0; i < positions(); ++i) {
+      for (std::size_t s = 0; s < stages_.size(); ++s) {
+        result_.chain[s].certified_boxes += boxes[i * stages_.size() + s];
+        result_.certified_boxes += boxes[i * stages_.size() + s];
+      }
+      VariationSample& sample = result_.samples[i];
+      if (!sample.contact) continue;
+      if (!ok[i]) {
+        ++uncertified;
+        constexpr double inf = std::numeric_limits<double>::infinity();
+        sample.certified = CertifiedRange{-inf, inf};
+        for (PositionStage& ps : per_[i]) ps.certified_chart = Interval(-inf, inf);
+        continue;
+      }
+      double excess = (sample.certified.upper - sample.certified.lower) - (sample.linear_upper - sample.linear_lower);
+      result_.certified_excess = std::max(result_.certified_excess, excess);
+    }
+    if (uncertified > 0)
+      notes_.push_back("the certified band could not be computed at " + std::to_string(uncertified) +
+                       " driver position(s) (shown unbounded)");
+  }
+
+  void monte_carlo() {
+    auto start = std::chrono::steady_clock::now();
+    double cpu_start = cpu_now();
+    MonteCarloSummary summary;
+    summary.samples = options_.monte_carlo;
+    summary.seed = options_.seed;
+    std::vector<MonteCarloOutcome> outcomes(options_.monte_carlo);
+    const std::vector<Distribution>& dist = stages_.front().distributions;
+    parallel_for(options_.threads, outcomes.size(), [&](std::size_t index) {
+      MonteCarloOutcome& outcome = outcomes[index];
+      outcome.value.assign(positions(), std::nan(""));
+      std::vector<double> deviations = draw(dist, options_.seed, index);
+      std::vector<Interval> parameters = stages_.front().solver->point_parameters(deviations);
+      // Per pair: the contact curve's geometry at this vector, shared along one feature pair.
+      std::vector<std::optional<PairGeometry<Interval>>> geometry(stages_.size());
+      std::vector<const CurveSlice*> geometry_curve(stages_.size(), nullptr);
+      for (std::size_t i = 0; i < positions(); ++i) {
+        const VariationSample& sample = result_.samples[i];
+        // Not sampled where the band is unbounded (not certified): every value lies in it.
+        if (!sample.contact || !std::isfinite(sample.certified.upper - sample.certified.lower)) continue;
+        ++outcome.evaluations;
+        Interval x;
+        bool inside = true;
+        for (std::size_t s = 0; s < stages_.size() && inside; ++s) {
+          const StageAnalysis& stage = stages_[s];
+          const StageContact& c = stage.contacts[i];
+          const CurveSlice* key = geometry_curve[s];
+          if (!key || !(key->first == c.curve.first && key->second == c.curve.second)) {
+            geometry[s] = stage.solver->point_geometry(c.curve, parameters);
+            geometry_curve[s] = &c.curve;
+          }
+          CurveSlice curve = c.curve;
+          if (s > 0) {
+            Interval t;
+            if (!part_to_chart(x, stage.result.driver_rotates, curve.fixed_half_turn,
+                               stages_[s - 1].result.samples[i].nominal, t)) {
+              inside = false;
+              break;
+            }
+            curve.fixed_range = t;
+          }
+          Interval band = per_[i][s].certified_chart;
+          double w = band.width() + 1e-12 * (1 + std::fabs(c.v));
+          Interval root;
+          if (!std::isfinite(w) || !stage.solver->certified_point_root(curve, *geometry[s], Interval(band.lo - w, band.hi + w), root)) {
+            inside = false;
+            break;
+          }
+          x = to_part(root, stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
+        }
+        if (!inside) {
+          ++outcome.outside_certified;   // no root near the band: counted as outside it
+          continue;
+        }
+        outcome.record(i, x, sample);
+      }
+    });
+    merge_monte_carlo(outcomes, summary, result_);
+    summary.seconds = wall_since(start);
+    summary.cpu_seconds = cpu_now() - cpu_start;
+    result_.monte_carlo = summary;
+  }
+
+  std::string text_;
+  ToleranceOptions options_;
+  std::vector<StageAnalysis> stages_;
+  std::vector<std::vector<PositionStage>> per_;   // [position][pair]
+  ToleranceResult result_;
+  std::vector<std::string> notes_;
+};
+
+}  // namespace
+
+ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options) {
+  return ChainAnalysis(text, options).run();
+}
+
+}  // namespace hipair::tolerance_detail

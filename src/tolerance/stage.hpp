@@ -1,0 +1,94 @@
+// One pair of an assembly chain, analysed at driver positions given by the chain's nominal motion
+// (chain.cpp; docs/tolerance.md "Assembly chains"): the pair's part of the single-pair analysis
+// (analysis.cpp: the exact slice of the pair's nominal C-space at each position, the feature pair
+// holding the follower, its parametric contact curve and sensitivities). Internal to
+// src/tolerance/.
+#pragma once
+
+#include "tolerance/sampling.hpp"
+#include "tolerance/solver.hpp"
+
+#include <hipair/tolerance.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace hipair::tolerance_detail {
+
+/// The pair's two parts at one position of the chain's nominal motion (part coordinates, rad or
+/// mm, as KinematicSample::positions gives them).
+struct StagePosition {
+  double driver = 0, follower = 0;
+  bool contact = false;   ///< the exact kinematic engine found the follower touching the driver
+};
+
+/// The follower at one position: the contact curve holding it (its fixed_value the driver's
+/// exact chart coordinate) and dv/dp in chart units.
+struct StageContact {
+  bool contact = false;
+  CurveSlice curve;
+  std::string label;            ///< the feature pair's label
+  double v = 0;                 ///< follower chart coordinate on the curve
+  bool follower_half = false;   ///< the follower's chart is the half-turn one
+  std::vector<double> s_chart;
+};
+
+struct StageAnalysis {
+  ToleranceResult result;       ///< the pair's samples with linearised and RSS bands, regions
+  std::vector<StageContact> contacts;   ///< per position
+  std::shared_ptr<const CurveSolver> solver;
+  std::vector<Distribution> distributions;
+  Box box;                      ///< the tolerance box rounded outwards
+};
+
+/// Chart enclosure -> part coordinate enclosure (rad or mm), unwrapped near `near` (rotations).
+kernels::Interval to_part(const kernels::Interval& chart, bool rotates, bool half, double near);
+/// d part coordinate / d chart coordinate at chart value t.
+double chart_slope(double t, bool rotates);
+
+/// The linearised worst case and the mean -+ 3 sigma band of `sample` (about its nominal) from
+/// the sensitivities `s` (part units per parameter). Returns the worst case's (lower, upper)
+/// deviations.
+std::pair<double, double> linear_bands(VariationSample& sample, const std::vector<double>& s,
+                                       const std::vector<Distribution>& distributions);
+/// Sample k joins the last region of `result` (same label and feature pair, consecutive) or
+/// starts one; each parameter's contribution |s_i| x half its tolerance width is kept at its
+/// largest over the region.
+void extend_regions(ToleranceResult& result, std::size_t k, const std::string& label, const FeatureIdentity& first,
+                    const FeatureIdentity& second, const std::vector<double>& s,
+                    const std::vector<Distribution>& distributions, double half_width);
+/// Shares of the contributions, ranked (largest first), in every region.
+void rank_regions(ToleranceResult& result);
+/// One Monte Carlo vector's values along the path, counted against the bands.
+struct MonteCarloOutcome {
+  std::vector<double> value;   ///< part coordinate per driver position (NaN: not evaluated)
+  std::size_t outside_certified = 0, outside_linear = 0, evaluations = 0;
+  double excess = 0;           ///< largest excess beyond the linearised band
+  /// The value at position k (certified enclosure `value`, part units): outside the certified
+  /// band or beyond the linearised one.
+  void record(std::size_t k, const kernels::Interval& value, const VariationSample& sample);
+  /// The value at position k (part units), against the linearised band only.
+  void record_linear(std::size_t k, double value, const VariationSample& sample);
+};
+/// The outcomes into the summary and the samples' Monte Carlo envelopes (the first 12 curves
+/// kept).
+void merge_monte_carlo(const std::vector<MonteCarloOutcome>& outcomes, MonteCarloSummary& summary,
+                       ToleranceResult& result);
+
+/// task(0 .. count-1) on `threads` threads (0: hardware concurrency); each task writes its own
+/// slot, so results do not depend on the number of threads.
+void parallel_for(unsigned threads, std::size_t count, const std::function<void(std::size_t)>& task);
+
+/// The analysis of an assembly chain (ToleranceOptions::chain; chain.cpp).
+ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options);
+
+/// The pair (options.driver, options.follower) of the model `text` at `path`.
+/// \throws ModelError, GeometryError.
+StageAnalysis analyze_stage(std::string_view text, const ToleranceOptions& options,
+                            const std::vector<StagePosition>& path);
+
+}  // namespace hipair::tolerance_detail

@@ -1,0 +1,62 @@
+// Tolerance analysis of assembly chains (docs/performance.md "Issue 12, session 10: chains"):
+// generated lift chains (tests/unit/tolerance_chain_models.hpp: an eccentric cam under a chain of
+// lifters, each lifter's face on toleranced shims) with `pairs` pairs and `per_pair` toleranced
+// shims per pair (plus the cam's eccentricity), analysed over one turn at 360 positions on one
+// thread (no Monte Carlo). The paper claims time grows as pairs x parameters per pair; the
+// counters give the CPU time of the whole analysis and of its certified band.
+#include "tolerance_chain_models.hpp"
+
+#include <hipair/tolerance.hpp>
+
+#include <benchmark/benchmark.h>
+
+#include <ctime>
+
+namespace {
+
+double process_cpu() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// `pairs` pairs with `per_pair` shims each; chain = false: the peer, the single-pair analysis of
+// one pair carrying the same number of shims (pairs = 1, per_pair = their total).
+void run(benchmark::State& state, std::size_t pairs, std::size_t per_pair, bool chain) {
+  std::mt19937 rng(1);
+  std::string model = hipair::test_chain::lift_chain(pairs, per_pair, rng, false).json;
+  hipair::ToleranceOptions options;
+  options.driver = "cam";
+  options.chain = chain;
+  options.positions = 360;
+  options.threads = 1;
+  hipair::ToleranceResult result;
+  double cpu = 0;
+  for (auto _ : state) {
+    double c0 = process_cpu();
+    result = hipair::analyze_tolerances_text(model, options);
+    cpu = process_cpu() - c0;
+    benchmark::DoNotOptimize(result.samples.data());
+  }
+  state.counters["pairs"] = static_cast<double>(pairs);
+  state.counters["toleranced"] = static_cast<double>(pairs * per_pair + 1);
+  state.counters["cpu_ms"] = 1e3 * cpu;
+  state.counters["certified_cpu_ms"] = 1e3 * result.cpu_seconds_certified;
+}
+
+void BM_LiftChain(benchmark::State& state) {
+  run(state, static_cast<std::size_t>(state.range(0)), static_cast<std::size_t>(state.range(1)), true);
+}
+
+void BM_OnePairPeer(benchmark::State& state) { run(state, 1, static_cast<std::size_t>(state.range(0)), false); }
+
+BENCHMARK(BM_LiftChain)
+    ->ArgsProduct({{1, 2, 3, 4, 5}, {5, 10, 20}})
+    ->Args({4, 25})
+    ->Iterations(3)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OnePairPeer)->Arg(5)->Arg(20)->Arg(50)->Arg(100)->Iterations(3)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

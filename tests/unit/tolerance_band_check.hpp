@@ -1,0 +1,33 @@
+// Shared check of a tolerance analysis' certified band (tolerance_chain_test.cpp,
+// parametric_ratchet_test.cpp): at every position in contact the band is bounded, holds the
+// nominal value (the nominal vector is in the box) and every Monte Carlo value; none of the
+// Monte Carlo evaluations left it. Returns the number of positions in contact.
+#pragma once
+
+#include <hipair/tolerance.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace hipair::test_band {
+
+inline std::size_t expect_certified_band_holds(const ToleranceResult& result) {
+  std::size_t contact = 0;
+  for (const VariationSample& s : result.samples) {
+    if (!s.contact) continue;
+    ++contact;
+    EXPECT_TRUE(std::isfinite(s.certified.lower) && std::isfinite(s.certified.upper)) << s.driver;
+    EXPECT_LE(s.certified.lower, s.nominal) << s.driver;
+    EXPECT_GE(s.certified.upper, s.nominal) << s.driver;
+    if (s.has_monte_carlo) {
+      EXPECT_GE(s.monte_carlo_min, s.certified.lower) << s.driver;
+      EXPECT_LE(s.monte_carlo_max, s.certified.upper) << s.driver;
+    }
+  }
+  EXPECT_TRUE(result.monte_carlo.has_value());
+  if (result.monte_carlo) EXPECT_EQ(result.monte_carlo->outside_certified, 0u);
+  return contact;
+}
+
+}  // namespace hipair::test_band
