@@ -583,6 +583,22 @@ Rational root_bound(const Polynomial& p) {
 
 namespace {
 
+// The roots of a square-free p of degree >= 1 in [lo, hi] when lo = hi or p is linear (then
+// true); false otherwise (nothing appended).
+bool isolated_trivially(const Polynomial& p, const Rational& lo, const Rational& hi, std::vector<Real>& roots) {
+  if (lo == hi) {
+    if (sign_at(p, lo) == 0) roots.push_back(Real::from_rational(lo));
+    return true;
+  }
+  if (degree(p) == 1) {   // linear: the root is rational
+    Rational root(-p[0], p[1]);
+    root.canonicalize();
+    if (lo <= root && root <= hi) roots.push_back(Real::from_rational(root));
+    return true;
+  }
+  return false;
+}
+
 void isolate(const Polynomial& p, const SturmSequence& sturm, Rational a, Rational b, int n,
              std::vector<Real>& out) {
   // roots in (a, b], n of them, appended ascending
@@ -628,16 +644,7 @@ std::vector<Real> real_roots(const Polynomial& input, const Rational& lo, const 
   std::vector<Real> roots;
   Polynomial p = square_free_part(input);
   if (degree(p) < 1 || lo > hi) return roots;
-  if (lo == hi) {
-    if (sign_at(p, lo) == 0) roots.push_back(Real::from_rational(lo));
-    return roots;
-  }
-  if (degree(p) == 1) {   // linear: the root is rational
-    Rational root(-p[0], p[1]);
-    root.canonicalize();
-    if (lo <= root && root <= hi) roots.push_back(Real::from_rational(root));
-    return roots;
-  }
+  if (isolated_trivially(p, lo, hi, roots)) return roots;
   SturmSequence sturm(p);
   if (sign_at(p, lo) == 0) roots.push_back(Real::from_rational(lo));
   isolate(p, sturm, lo, hi, sturm.count(lo, hi), roots);
@@ -792,16 +799,7 @@ std::vector<Real> descartes_real_roots(const Polynomial& input, const Rational& 
   std::vector<Real> roots;
   if (degree(input) < 1 || lo > hi) return roots;
   Polynomial p = square_free_test(input);
-  if (lo == hi) {
-    if (sign_at(p, lo) == 0) roots.push_back(Real::from_rational(lo));
-    return roots;
-  }
-  if (degree(p) == 1) {   // linear: the root is rational
-    Rational root(-p[0], p[1]);
-    root.canonicalize();
-    if (lo <= root && root <= hi) roots.push_back(Real::from_rational(root));
-    return roots;
-  }
+  if (isolated_trivially(p, lo, hi, roots)) return roots;
   // q(t) = D^n p(lo + (hi - lo) t) with lo = a / b, hi - lo = c / e, D = b e:
   // sum p_i (a e + c b t)^i D^(n - i), by Horner's scheme on polynomials in t.
   DescartesIsolator isolator{p, lo, Rational(hi - lo), roots};
