@@ -474,8 +474,9 @@ struct CSpaceBuildOptions {
   bool quadratic_traits = true;
   /// The quadratic traits declines charts with a coefficient above this many bits (the
   /// algebraic traits takes them). 200 keeps the spur gears (247-653 bits) on the algebraic
-  /// traits, which is as fast or faster there (docs/performance.md, session 9); raise it to
-  /// build them on the quadratic traits (tests, measurements; about 10 % less memory).
+  /// traits; raised (1024, `hipair cspace --quadratic-max-bits`) they build on the quadratic
+  /// traits in 0.52-0.95 of the CPU time since its Descartes root isolation (docs/performance.md,
+  /// session 10: the default is to be raised once the suites have run with it).
   std::size_t quadratic_max_coefficient_bits = 200;
 };
 

@@ -3,6 +3,7 @@
 #include <hipair/error.hpp>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -582,6 +583,22 @@ Rational root_bound(const Polynomial& p) {
 
 namespace {
 
+// The roots of a square-free p of degree >= 1 in [lo, hi] when lo = hi or p is linear (then
+// true); false otherwise (nothing appended).
+bool isolated_trivially(const Polynomial& p, const Rational& lo, const Rational& hi, std::vector<Real>& roots) {
+  if (lo == hi) {
+    if (sign_at(p, lo) == 0) roots.push_back(Real::from_rational(lo));
+    return true;
+  }
+  if (degree(p) == 1) {   // linear: the root is rational
+    Rational root(-p[0], p[1]);
+    root.canonicalize();
+    if (lo <= root && root <= hi) roots.push_back(Real::from_rational(root));
+    return true;
+  }
+  return false;
+}
+
 void isolate(const Polynomial& p, const SturmSequence& sturm, Rational a, Rational b, int n,
              std::vector<Real>& out) {
   // roots in (a, b], n of them, appended ascending
@@ -627,16 +644,7 @@ std::vector<Real> real_roots(const Polynomial& input, const Rational& lo, const 
   std::vector<Real> roots;
   Polynomial p = square_free_part(input);
   if (degree(p) < 1 || lo > hi) return roots;
-  if (lo == hi) {
-    if (sign_at(p, lo) == 0) roots.push_back(Real::from_rational(lo));
-    return roots;
-  }
-  if (degree(p) == 1) {   // linear: the root is rational
-    Rational root(-p[0], p[1]);
-    root.canonicalize();
-    if (lo <= root && root <= hi) roots.push_back(Real::from_rational(root));
-    return roots;
-  }
+  if (isolated_trivially(p, lo, hi, roots)) return roots;
   SturmSequence sturm(p);
   if (sign_at(p, lo) == 0) roots.push_back(Real::from_rational(lo));
   isolate(p, sturm, lo, hi, sturm.count(lo, hi), roots);
@@ -648,6 +656,183 @@ std::vector<Real> real_roots(const Polynomial& input) {
   if (degree(p) < 1) return {};
   Rational bound = root_bound(p);
   return real_roots(p, -bound, bound);
+}
+
+// ---------------------------------------------------------------- Descartes' rule of signs
+
+namespace {
+
+// Arithmetic modulo a prime below 2^31: products fit in 64 bits.
+using Residues = std::vector<std::uint64_t>;
+
+std::uint64_t power_mod(std::uint64_t base, std::uint64_t exponent, std::uint64_t prime) {
+  std::uint64_t result = 1;
+  base %= prime;
+  while (exponent > 0) {
+    if (exponent & 1) result = result * base % prime;
+    base = base * base % prime;
+    exponent >>= 1;
+  }
+  return result;
+}
+
+void trim_residues(Residues& a) {
+  while (!a.empty() && a.back() == 0) a.pop_back();
+}
+
+// Degree of gcd(a, b) modulo the prime (Euclid); -1 when both are zero.
+int modular_gcd_degree(Residues a, Residues b, std::uint64_t prime) {
+  trim_residues(a);
+  trim_residues(b);
+  if (a.size() < b.size()) std::swap(a, b);
+  while (!b.empty()) {
+    // a <- a mod b
+    const std::uint64_t inverse = power_mod(b.back(), prime - 2, prime);
+    while (a.size() >= b.size()) {
+      const std::uint64_t factor = a.back() * inverse % prime;
+      const std::size_t shift = a.size() - b.size();
+      for (std::size_t i = 0; i < b.size(); ++i)
+        a[shift + i] = (a[shift + i] + (prime - factor) * b[i]) % prime;
+      trim_residues(a);   // the leading residue is now 0
+      if (a.empty()) break;
+    }
+    std::swap(a, b);
+  }
+  return static_cast<int>(a.size()) - 1;
+}
+
+// Sign variations of the coefficients, zeros skipped.
+int sign_variations(const Polynomial& q) {
+  int variations = 0, last = 0;
+  for (const mpz_class& c : q) {
+    const int s = sgn(c);
+    if (s == 0) continue;
+    if (last != 0 && s != last) ++variations;
+    last = s;
+  }
+  return variations;
+}
+
+// q(t) -> q(t + 1), in place (Horner's scheme, additions only).
+void taylor_shift_by_one(Polynomial& q) {
+  const std::size_t n = q.size();
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    for (std::size_t j = n - 1; j-- > i;) mpz_add(q[j].get_mpz_t(), q[j].get_mpz_t(), q[j + 1].get_mpz_t());
+}
+
+// Divides every coefficient by their common power of two (same roots, same signs).
+void remove_common_power_of_two(Polynomial& q) {
+  mp_bitcnt_t common = ~static_cast<mp_bitcnt_t>(0);
+  for (const mpz_class& c : q)
+    if (sgn(c) != 0) common = std::min(common, mpz_scan1(c.get_mpz_t(), 0));
+  if (common == 0 || common == ~static_cast<mp_bitcnt_t>(0)) return;
+  for (mpz_class& c : q) mpz_fdiv_q_2exp(c.get_mpz_t(), c.get_mpz_t(), common);
+}
+
+// Upper bound on the number of roots of q in the open interval (0, 1): the sign variations of
+// (1 + t)^n q(1 / (1 + t)) (Descartes' rule; exact when 0 or 1).
+int descartes_bound(const Polynomial& q) {
+  Polynomial m(q.rbegin(), q.rend());
+  taylor_shift_by_one(m);
+  return sign_variations(m);
+}
+
+struct DescartesIsolator {
+  const Polynomial& p;   // square-free, primitive
+  const Rational& lo;
+  Rational width;        // hi - lo
+  std::vector<Real>& out;
+
+  Rational at(const mpz_class& k, unsigned long level) const {
+    Rational t(k, mpz_class(1) << level);
+    t.canonicalize();
+    return lo + width * t;
+  }
+
+  // q(t) is a positive multiple of p(lo + width (k + t) / 2^level), t in (0, 1); the ends are
+  // roots of p when left_root / right_root. Appends the roots in the open part, ascending.
+  void isolate(Polynomial q, const mpz_class& k, unsigned long level, bool left_root, bool right_root) {
+    const int bound = descartes_bound(q);
+    if (bound == 0) return;
+    if (bound == 1 && !left_root && !right_root) {
+      Real r;
+      r.polynomial = p;
+      r.lower = at(k, level);
+      r.upper = at(k + 1, level);
+      out.push_back(std::move(r));
+      return;
+    }
+    // halves: 2^n q(t / 2) and 2^n q((t + 1) / 2)
+    const std::size_t n = q.size() - 1;
+    for (std::size_t i = 0; i < n; ++i) mpz_mul_2exp(q[i].get_mpz_t(), q[i].get_mpz_t(), n - i);
+    Polynomial right = q;
+    taylor_shift_by_one(right);
+    const bool middle_root = sgn(right[0]) == 0;   // 2^n q(1/2)
+    remove_common_power_of_two(q);
+    remove_common_power_of_two(right);
+    const mpz_class left_k = 2 * k;
+    isolate(std::move(q), left_k, level + 1, left_root, middle_root);
+    if (middle_root) out.push_back(Real::from_rational(at(left_k + 1, level + 1)));
+    isolate(std::move(right), left_k + 1, level + 1, middle_root, right_root);
+  }
+};
+
+}  // namespace
+
+Polynomial square_free_test(const Polynomial& input, bool* exact_needed) {
+  if (exact_needed) *exact_needed = false;
+  Polynomial p = primitive_part(input);
+  if (degree(p) <= 1) return p;
+  const Polynomial d = derivative(p);
+  for (std::uint64_t prime : {2147483647ULL, 2147483629ULL, 2147483587ULL}) {
+    if (mpz_fdiv_ui(p.back().get_mpz_t(), static_cast<unsigned long>(prime)) == 0) continue;
+    Residues a, b;
+    for (const mpz_class& c : p) a.push_back(mpz_fdiv_ui(c.get_mpz_t(), static_cast<unsigned long>(prime)));
+    for (const mpz_class& c : d) b.push_back(mpz_fdiv_ui(c.get_mpz_t(), static_cast<unsigned long>(prime)));
+    if (modular_gcd_degree(std::move(a), std::move(b), prime) == 0) return p;
+  }
+  if (exact_needed) *exact_needed = true;
+  return square_free_part(p);
+}
+
+std::vector<Real> descartes_real_roots(const Polynomial& input, const Rational& lo, const Rational& hi) {
+  std::vector<Real> roots;
+  if (degree(input) < 1 || lo > hi) return roots;
+  Polynomial p = square_free_test(input);
+  if (isolated_trivially(p, lo, hi, roots)) return roots;
+  // q(t) = D^n p(lo + (hi - lo) t) with lo = a / b, hi - lo = c / e, D = b e:
+  // sum p_i (a e + c b t)^i D^(n - i), by Horner's scheme on polynomials in t.
+  DescartesIsolator isolator{p, lo, Rational(hi - lo), roots};
+  const mpz_class shift = lo.get_num() * isolator.width.get_den();
+  const mpz_class scale = isolator.width.get_num() * lo.get_den();
+  const mpz_class denominator = lo.get_den() * isolator.width.get_den();
+  const int n = degree(p);
+  Polynomial q(static_cast<std::size_t>(n) + 1);
+  q[0] = p.back();
+  mpz_class denominator_power = 1;
+  for (int i = n - 1, size = 1; i >= 0; --i, ++size) {
+    // q <- q (shift + scale t) + p_i D^(n - i)
+    for (int j = size; j >= 1; --j) {
+      mpz_mul(q[static_cast<std::size_t>(j)].get_mpz_t(), q[static_cast<std::size_t>(j)].get_mpz_t(), shift.get_mpz_t());
+      mpz_addmul(q[static_cast<std::size_t>(j)].get_mpz_t(), q[static_cast<std::size_t>(j - 1)].get_mpz_t(), scale.get_mpz_t());
+    }
+    mpz_mul(q[0].get_mpz_t(), q[0].get_mpz_t(), shift.get_mpz_t());
+    mpz_mul(denominator_power.get_mpz_t(), denominator_power.get_mpz_t(), denominator.get_mpz_t());
+    mpz_addmul(q[0].get_mpz_t(), p[static_cast<std::size_t>(i)].get_mpz_t(), denominator_power.get_mpz_t());
+  }
+  {
+    mpz_class g = content(q);
+    if (g > 1)
+      for (auto& c : q) mpz_divexact(c.get_mpz_t(), c.get_mpz_t(), g.get_mpz_t());
+  }
+  const bool lo_root = sgn(q[0]) == 0;
+  mpz_class total = 0;
+  for (const auto& c : q) total += c;
+  const bool hi_root = sgn(total) == 0;
+  if (lo_root) roots.push_back(Real::from_rational(lo));
+  isolator.isolate(std::move(q), mpz_class(0), 0, lo_root, hi_root);
+  if (hi_root) roots.push_back(Real::from_rational(hi));
+  return roots;
 }
 
 Real nth_real_root(const Polynomial& p, int index) {

@@ -95,6 +95,22 @@ Rational simplest_between(const Rational& lo, const Rational& hi);
 std::vector<Real> real_roots(const Polynomial& p, const Rational& lo, const Rational& hi);
 /// All distinct real roots of p, ascending.
 std::vector<Real> real_roots(const Polynomial& p);
+/// The same roots as real_roots(p, lo, hi) (closed interval, ascending, distinct), isolated by
+/// Descartes' rule of signs with dyadic bisection of [lo, hi] (Vincent-Collins-Akritas: exact
+/// integer Taylor shifts at the halves of the interval), after square_free_test: no Sturm
+/// sequence. Every isolating interval is a dyadic part (lower, upper) of [lo, hi] holding
+/// exactly one root of the square-free part, certified by one sign variation of its
+/// Moebius-transformed coefficients, with non-zero opposite signs at its ends. The intervals
+/// lie on the same bisection grid as real_roots' but may be narrower (one sign variation can
+/// need more halvings than a Sturm count of one).
+std::vector<Real> descartes_real_roots(const Polynomial& p, const Rational& lo, const Rational& hi);
+/// Primitive square-free part of p with a positive leading coefficient, as square_free_part,
+/// but p itself (made primitive) without an exact gcd when gcd(p, p') is trivial modulo one of
+/// a few word-size primes not dividing the leading coefficient (which certifies that p is
+/// square-free over Q: the reduction of the true gcd divides the modular one and keeps its
+/// degree). `exact_needed`, when given, is set when the exact gcd was computed.
+Polynomial square_free_test(const Polynomial& p, bool* exact_needed = nullptr);
+
 /// The index-th (0-based, ascending) distinct real root of p. \throws NumericError if none.
 Real nth_real_root(const Polynomial& p, int index);
 /// The index-th (0-based, ascending, counted over the whole real line) distinct real root of

@@ -233,17 +233,18 @@ bool no_root_on(const std::vector<Interval>& c, double lo, double hi, int depth)
 }
 
 /// Certified: p has no real root in [lo, hi] (interval evaluation on a subdivision), so that
-/// the exact isolation (square-free part, Sturm sequence) is skipped for most polynomials of a
+/// the exact isolation (square-freeness test, Descartes bisection) is skipped for most polynomials of a
 /// small chart. False means "may have one".
 bool certainly_no_root(const Polynomial& p, const Rational& lo, const Rational& hi) {
   if (algebra::degree(p) < 1) return !p.empty();
   return no_root_on(enclose_scaled(p), algebra::lower_double(lo), algebra::upper_double(hi), 5);
 }
 
-/// algebra::real_roots(p, lo, hi) behind certainly_no_root.
+/// algebra::descartes_real_roots(p, lo, hi) (Descartes' rule, dyadic bisection, modular
+/// square-freeness test) behind certainly_no_root.
 std::vector<Real> roots_in(const Polynomial& p, const Rational& lo, const Rational& hi) {
   if (certainly_no_root(p, lo, hi)) return {};
-  return algebra::real_roots(p, lo, hi);
+  return algebra::descartes_real_roots(p, lo, hi);
 }
 
 // ------------------------------------------------------------------ multiple-precision intervals

@@ -38,6 +38,7 @@ struct CSpaceCommandOptions {
   bool spurious = false;
   bool aggregated = false;
   bool algebraic_traits = false;
+  std::size_t quadratic_max_bits = CSpaceBuildOptions{}.quadratic_max_coefficient_bits;
   std::vector<std::string> overrides;
   bool allow_out_of_tolerance = false;
   std::string rounding;
@@ -280,6 +281,7 @@ int run(const CSpaceCommandOptions& options) {
   build.progress = isatty(2);
   build.aggregated_insertion = options.aggregated;
   build.quadratic_traits = !options.algebraic_traits;
+  build.quadratic_max_coefficient_bits = options.quadratic_max_bits;
   build.operating_region = options.region == "operating";
   build.region_tiles = options.tiles;
   std::vector<CSpace> spaces;
@@ -409,6 +411,10 @@ void register_cspace(CLI::App& app, Action& action) {
   command->add_flag("--algebraic-traits", options->algebraic_traits,
                     "Build every chart on CGAL's algebraic traits, also those whose curves have degree <= 2 in y "
                     "(the filtered quadratic traits otherwise; for comparisons)");
+  command->add_option("--quadratic-max-bits", options->quadratic_max_bits,
+                      "The quadratic traits declines charts with a coefficient above this many bits (default 200; "
+                      "for measurements: the spur gears' coefficients have 247-653 bits)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}));
   command->add_option("--region", options->region,
                       "full: the whole C-space (default); operating: only the channel containing the initial "
                       "configuration, built tile by tile (gear pairs: linear in the tooth count)")

@@ -11,13 +11,27 @@ chains.
 Spurious edges, seams and the splitting of a chain by spurious edges may differ.
 Prints the differences; exit 1 if there is one.
 
-  python3 compare_cspace_json.py BEFORE.json AFTER.json
+  python3 compare_cspace_json.py [--up-to-sign] BEFORE.json AFTER.json
+
+--up-to-sign compares edge polynomials up to their overall sign (the quadratic traits exports a
+chart's curve as generated, CGAL's algebraic traits with a positive leading coefficient: the
+same curve and the same sides, see docs/performance.md).
 """
 import collections
 from fractions import Fraction
 import json
 import re
 import sys
+
+UP_TO_SIGN = False
+
+
+def polynomial_key(text):
+    """The polynomial text, with every term's sign flipped when UP_TO_SIGN and it starts with '-'."""
+    t = text.strip()
+    if not UP_TO_SIGN or not t.startswith("-"):
+        return t
+    return re.sub(r" ([+-]) ", lambda m: " - " if m.group(1) == "+" else " + ", t[1:])
 
 
 def coordinate(c):
@@ -75,7 +89,7 @@ def summary(d):
         if e["role"] not in ("contact", "touching"):
             continue
         sides = tuple(sorted([str(kind(e["left_cell"])), str(kind(e["right_cell"]))]))
-        groups[(e["chart"], e["role"], e["polynomial"], labels(e), sides)].append(i)
+        groups[(e["chart"], e["role"], polynomial_key(e["polynomial"]), labels(e), sides)].append(i)
     chains = collections.Counter()
     chain_of_edge = {}
     for key, edges in groups.items():
@@ -137,8 +151,13 @@ def matched(a, b):
 
 
 def main():
-    before = json.load(open(sys.argv[1]))
-    after = json.load(open(sys.argv[2]))
+    global UP_TO_SIGN
+    args = sys.argv[1:]
+    if args and args[0] == "--up-to-sign":
+        UP_TO_SIGN = True
+        args = args[1:]
+    before = json.load(open(args[0]))
+    after = json.load(open(args[1]))
     a_spaces, b_spaces = spaces(before), spaces(after)
     differ = len(a_spaces) != len(b_spaces)
     for a, b in zip(a_spaces, b_spaces):

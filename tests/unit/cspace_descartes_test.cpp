@@ -1,0 +1,263 @@
+// Descartes root isolation (algebra::descartes_real_roots, algebra::square_free_test) against
+// the Sturm isolation (algebra::real_roots) and against planted roots, on generated integer
+// polynomials: multiple roots, clusters 2^-200 apart, coefficients up to about 3000 bits, roots
+// at dyadic bisection points and at the ends of the interval, complex and irrational roots.
+#include "algebra/exact_real.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+namespace hipair::cspace::algebra {
+namespace {
+
+Polynomial multiply(const Polynomial& a, const Polynomial& b) {
+  if (a.empty() || b.empty()) return {};
+  Polynomial r(a.size() + b.size() - 1);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) r[i + j] += a[i] * b[j];
+  trim(r);
+  return r;
+}
+
+struct Generated {
+  Polynomial p;
+  std::vector<Rational> rational_roots;   // distinct planted rational roots
+  Rational lo, hi;
+};
+
+class Generator {
+ public:
+  explicit Generator(unsigned seed) : rng_(seed) {}
+
+  long uniform(long lo, long hi) { return std::uniform_int_distribution<long>(lo, hi)(rng_); }
+
+  mpz_class big(unsigned bits) {   // uniform in [0, 2^bits)
+    mpz_class r = 0;
+    for (unsigned b = 0; b < bits; b += 32) r = (r << 32) + static_cast<unsigned long>(rng_() & 0xffffffffu);
+    return r >> ((bits + 31) / 32 * 32 - bits);
+  }
+
+  Rational rational(unsigned denominator_bits) {
+    mpz_class den = big(denominator_bits) + 1;
+    mpz_class num = big(denominator_bits + 3) - (mpz_class(1) << (denominator_bits + 2));
+    Rational r(num, den);
+    r.canonicalize();
+    return r;
+  }
+
+  Generated next() {
+    Generated g;
+    g.p = Polynomial{1};
+    const int kind = static_cast<int>(uniform(0, 4));
+    const unsigned bits = kind == 4 ? static_cast<unsigned>(uniform(150, 300)) : static_cast<unsigned>(uniform(1, 40));
+    const int factors = static_cast<int>(uniform(1, kind == 4 ? 10 : 6));
+    std::vector<Rational> roots;
+    for (int f = 0; f < factors; ++f) {
+      Rational root;
+      switch (uniform(0, 3)) {
+        case 0:   // dyadic: on the bisection grid of [lo, hi] when the interval is dyadic too
+          root = Rational(mpz_class(uniform(-64, 64)), mpz_class(1) << uniform(0, 6));
+          break;
+        case 1:   // a cluster next to an earlier root
+          root = roots.empty() ? rational(bits) : roots.back() + Rational(mpz_class(1), mpz_class(1) << uniform(20, 200));
+          break;
+        default:
+          root = rational(bits);
+      }
+      root.canonicalize();
+      const int multiplicity = uniform(0, 3) == 0 ? static_cast<int>(uniform(2, 3)) : 1;
+      for (int m = 0; m < multiplicity; ++m)
+        g.p = multiply(g.p, Polynomial{-root.get_num(), root.get_den()});
+      if (std::find(roots.begin(), roots.end(), root) == roots.end()) roots.push_back(root);
+    }
+    // quadratic factors: complex pairs (x^2 + c) or irrational pairs (x^2 - c, c not a square)
+    for (int f = static_cast<int>(uniform(0, 2)); f > 0; --f) {
+      mpz_class c = big(bits) + 2;
+      if (mpz_perfect_square_p(c.get_mpz_t())) c += 1;
+      if (mpz_perfect_square_p(c.get_mpz_t())) c += 1;
+      g.p = multiply(g.p, Polynomial{uniform(0, 1) ? mpz_class(c) : mpz_class(-c), 0, mpz_class(1) << uniform(0, 8)});
+    }
+    // a random constant factor: coefficients of about 3000 bits on the big-coefficient kind
+    if (kind == 4) g.p = multiply(g.p, Polynomial{big(static_cast<unsigned>(uniform(100, 600))) + 1});
+    if (uniform(0, 1)) g.p = multiply(g.p, Polynomial{-1});
+    std::sort(roots.begin(), roots.end());
+    // the interval: around all roots, dyadic, or with a planted root as an end
+    switch (uniform(0, 3)) {
+      case 0:
+        g.lo = Rational(-65);
+        g.hi = Rational(65);
+        break;
+      case 1:
+        g.lo = Rational(mpz_class(uniform(-64, 0)));
+        g.hi = g.lo + Rational(mpz_class(1) << uniform(0, 7));
+        break;
+      case 2: {
+        const Rational& a = roots[static_cast<std::size_t>(uniform(0, static_cast<long>(roots.size()) - 1))];
+        const Rational& b = roots[static_cast<std::size_t>(uniform(0, static_cast<long>(roots.size()) - 1))];
+        g.lo = std::min(a, b);
+        g.hi = std::max(a, b);
+        if (g.lo == g.hi) g.hi = g.lo + Rational(1, 3);
+        break;
+      }
+      default:
+        g.lo = rational(bits);
+        g.hi = g.lo + rational(8) * rational(8) + Rational(1, 1000);
+    }
+    for (const Rational& r : roots)
+      if (g.lo <= r && r <= g.hi) g.rational_roots.push_back(r);
+    return g;
+  }
+
+ private:
+  std::mt19937_64 rng_;
+};
+
+// Every property of an isolation of the roots of p in [lo, hi] that does not depend on how it
+// was computed, checked exactly with a Sturm sequence of the square-free part.
+void expect_certified(const Polynomial& p, const Rational& lo, const Rational& hi, const std::vector<Real>& roots,
+                      const std::string& where) {
+  const Polynomial q = square_free_part(p);
+  const SturmSequence sturm(q);
+  for (std::size_t i = 0; i < roots.size(); ++i) {
+    const Real& r = roots[i];
+    SCOPED_TRACE(where + " root " + std::to_string(i));
+    ASSERT_TRUE(lo <= r.lower && r.upper <= hi);
+    if (r.exact) {
+      EXPECT_EQ(r.lower, r.upper);
+      EXPECT_EQ(sign_at(q, r.lower), 0);
+    } else {
+      ASSERT_LT(r.lower, r.upper);
+      const int sl = sign_at(r.polynomial, r.lower), su = sign_at(r.polynomial, r.upper);
+      EXPECT_NE(sl, 0);
+      EXPECT_EQ(sl, -su);
+      EXPECT_EQ(sturm.count(r.lower, r.upper), 1);   // exactly one root in (lower, upper]
+      EXPECT_EQ(degree(gcd(r.polynomial, q)), degree(q));   // the square-free part itself
+    }
+    if (i > 0) {   // ascending, disjoint
+      const Real& s = roots[i - 1];
+      EXPECT_LE(s.upper, r.lower);
+      if (s.exact || r.exact) EXPECT_LT(s.upper, r.upper);
+    }
+  }
+}
+
+TEST(CSpaceDescartes, SameRootsAsSturmOnGeneratedPolynomials) {
+  Generator generator(20261128);
+  int compared = 0, roots_seen = 0, end_roots = 0, exact_midpoints = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    Generated g = generator.next();
+    const std::string where = "trial " + std::to_string(trial);
+    SCOPED_TRACE(where);
+    const auto sturm = real_roots(g.p, g.lo, g.hi);
+    const auto descartes = descartes_real_roots(g.p, g.lo, g.hi);
+    ASSERT_EQ(descartes.size(), sturm.size());
+    expect_certified(g.p, g.lo, g.hi, descartes, where);
+    for (std::size_t i = 0; i < sturm.size(); ++i) {
+      EXPECT_EQ(compare(descartes[i], sturm[i]), 0);
+      // both enclose the same root: the intervals meet
+      EXPECT_TRUE(sturm[i].lower <= descartes[i].upper && descartes[i].lower <= sturm[i].upper);
+      if (descartes[i].exact) {   // (Sturm may stop before reaching a grid point that is the root)
+        if (descartes[i].lower == g.lo || descartes[i].lower == g.hi) ++end_roots;
+        else ++exact_midpoints;
+      }
+    }
+    // every planted rational root is found, and exactly
+    for (const Rational& r : g.rational_roots) {
+      int equal = 0;
+      for (const Real& x : descartes) equal += x.compare(r) == 0 ? 1 : 0;
+      EXPECT_EQ(equal, 1);
+    }
+    // refinement keeps the number: a narrow Descartes interval inside the first, same root
+    for (std::size_t i = 0; i < descartes.size(); ++i) {
+      Real narrow = descartes[i];
+      narrow.refine_to((descartes[i].upper - descartes[i].lower) / Rational(mpz_class(1) << 80));
+      EXPECT_TRUE(descartes[i].lower <= narrow.lower && narrow.upper <= descartes[i].upper);
+      EXPECT_EQ(compare(narrow, sturm[i]), 0);
+      if (i + 1 < descartes.size()) EXPECT_EQ(compare(narrow, descartes[i + 1]), -1);
+    }
+    roots_seen += static_cast<int>(descartes.size());
+    ++compared;
+  }
+  EXPECT_EQ(compared, 400);
+  // the generator does reach the cases it is for
+  EXPECT_GT(roots_seen, 800);
+  EXPECT_GT(end_roots, 20);
+  EXPECT_GT(exact_midpoints, 20);
+}
+
+TEST(CSpaceDescartes, SquareFreeTestMatchesTheExactSquareFreePart) {
+  Generator generator(7);
+  int modular = 0, exact = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    Generated g = generator.next();
+    bool exact_needed = false;
+    const Polynomial fast = square_free_test(g.p, &exact_needed);
+    EXPECT_EQ(fast, square_free_part(g.p));
+    const bool square_free = degree(gcd(g.p, derivative(g.p))) == 0;
+    if (exact_needed) {
+      ++exact;
+    } else {
+      EXPECT_TRUE(square_free || degree(g.p) <= 1);   // a modular certificate is never wrong
+      ++modular;
+    }
+    if (!square_free) EXPECT_TRUE(exact_needed);
+  }
+  EXPECT_GT(modular, 50);
+  EXPECT_GT(exact, 50);
+}
+
+TEST(CSpaceDescartes, RootsAtTheEndsAndAtBisectionPoints) {
+  // x (x - 1/2)(x - 1/4)(x - 1)(x^2 - 2) on [0, 1]: ends and midpoints are roots
+  Polynomial p = multiply(multiply(multiply(Polynomial{0, 1}, Polynomial{-1, 2}), Polynomial{-1, 4}),
+                          multiply(Polynomial{-1, 1}, Polynomial{-2, 0, 1}));
+  auto roots = descartes_real_roots(p, Rational(0), Rational(1));
+  ASSERT_EQ(roots.size(), 4u);
+  EXPECT_TRUE(roots[0].exact && roots[0].lower == 0);
+  EXPECT_TRUE(roots[1].exact && roots[1].lower == Rational(1, 4));
+  EXPECT_TRUE(roots[2].exact && roots[2].lower == Rational(1, 2));
+  EXPECT_TRUE(roots[3].exact && roots[3].lower == 1);
+  // on [-2, 2] the irrational roots +-sqrt(2) are isolated too, and a double root at 1 counts once
+  auto wide = descartes_real_roots(multiply(p, Polynomial{-1, 1}), Rational(-2), Rational(2));
+  ASSERT_EQ(wide.size(), 6u);
+  EXPECT_FALSE(wide[0].exact);
+  EXPECT_EQ(wide[0].compare(Rational(-141422, 100000)), 1);
+  EXPECT_EQ(wide[0].compare(Rational(-141421, 100000)), -1);
+  EXPECT_TRUE(wide[4].exact && wide[4].lower == 1);
+  EXPECT_FALSE(wide[5].exact);
+  // empty and degenerate intervals, constants, no root inside
+  EXPECT_TRUE(descartes_real_roots(p, Rational(2), Rational(3)).empty());
+  EXPECT_TRUE(descartes_real_roots(Polynomial{5}, Rational(-1), Rational(1)).empty());
+  EXPECT_EQ(descartes_real_roots(p, Rational(1, 2), Rational(1, 2)).size(), 1u);
+  EXPECT_TRUE(descartes_real_roots(p, Rational(1), Rational(0)).empty());
+}
+
+TEST(CSpaceDescartes, ClusteredRootsWithHugeCoefficients) {
+  // eight roots within 2^-1000 of each other around a 300-bit rational, a 2000-bit constant
+  Generator generator(3);
+  Rational centre = generator.rational(300);
+  Polynomial p{generator.big(2000) + 1};
+  std::vector<Rational> planted;
+  for (int k = 0; k < 8; ++k) {
+    Rational r = centre + Rational(mpz_class(k), mpz_class(1) << 1000);
+    planted.push_back(r);
+    p = multiply(p, Polynomial{-r.get_num(), r.get_den()});
+  }
+  p = multiply(p, Polynomial{1, 0, 1});   // and a complex pair
+  std::size_t bits = 0;
+  for (const auto& c : p) bits = std::max(bits, mpz_sizeinbase(c.get_mpz_t(), 2));
+  EXPECT_GT(bits, 3000u);
+  const Rational lo = centre - 1, hi = centre + 1;
+  auto roots = descartes_real_roots(p, lo, hi);
+  ASSERT_EQ(roots.size(), 8u);
+  expect_certified(p, lo, hi, roots, "cluster");
+  for (std::size_t i = 0; i < 8; ++i) EXPECT_EQ(roots[i].compare(planted[i]), 0);
+  auto sturm = real_roots(p, lo, hi);
+  ASSERT_EQ(sturm.size(), 8u);
+  for (std::size_t i = 0; i < 8; ++i) EXPECT_EQ(compare(roots[i], sturm[i]), 0);
+}
+
+}  // namespace
+}  // namespace hipair::cspace::algebra
