@@ -473,11 +473,11 @@ struct CSpaceBuildOptions {
   /// keep_arrangements (the raw CGAL access is for algebraic-traits arrangements).
   bool quadratic_traits = true;
   /// The quadratic traits declines charts with a coefficient above this many bits (the
-  /// algebraic traits takes them). 200 keeps the spur gears (247-653 bits) on the algebraic
-  /// traits; raised (1024, `hipair cspace --quadratic-max-bits`) they build on the quadratic
-  /// traits in 0.52-0.95 of the CPU time since its Descartes root isolation (docs/performance.md,
-  /// session 10: the default is to be raised once the suites have run with it).
-  std::size_t quadratic_max_coefficient_bits = 200;
+  /// algebraic traits takes them). Since its Descartes root isolation (docs/performance.md,
+  /// session 10) the spur gears (247-653 bits) build on the quadratic traits in 0.52-0.95 of
+  /// the algebraic traits' CPU time with the same C-spaces, so the default takes them (it was
+  /// 200 in session 9, which kept them on the algebraic traits).
+  std::size_t quadratic_max_coefficient_bits = 1024;
 };
 
 /// The exact C-space of one pair. Value semantics: copies share the immutable structure.

@@ -111,7 +111,7 @@ struct Options {
   /// instead of CGAL's lazy line (the same polynomial; false for tests of the general path).
   bool carry_line_supports = true;
   /// Quadratic stage: declines curves with a coefficient of more bits (CSpaceBuildOptions).
-  std::size_t quadratic_max_coefficient_bits = 200;
+  std::size_t quadratic_max_coefficient_bits = 1024;
 };
 
 /// Builds the arrangement of the curves (each square-free, non-zero) clipped to the box and,

@@ -412,8 +412,8 @@ void register_cspace(CLI::App& app, Action& action) {
                     "Build every chart on CGAL's algebraic traits, also those whose curves have degree <= 2 in y "
                     "(the filtered quadratic traits otherwise; for comparisons)");
   command->add_option("--quadratic-max-bits", options->quadratic_max_bits,
-                      "The quadratic traits declines charts with a coefficient above this many bits (default 200; "
-                      "for measurements: the spur gears' coefficients have 247-653 bits)")
+                      "The quadratic traits declines charts with a coefficient above this many bits (default 1024, "
+                      "which takes the spur gears' 247-653-bit coefficients; 200 keeps them on the algebraic traits)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}));
   command->add_option("--region", options->region,
                       "full: the whole C-space (default); operating: only the channel containing the initial "
