@@ -908,7 +908,7 @@ class OverlapAnalysis {
       if (quick && !*quick) continue;
       if (quick && *quick && !need_site_) return true;
       const Point& probe = part.edge(first).source;
-      if (locate(other, probe) == PointLocation::inside) {
+      if (locate(other, probe, !exact_only_) == PointLocation::inside) {
         site_ = Site{probe, true};
         material_hints(side, probe);
         return true;
