@@ -908,7 +908,7 @@ class OverlapAnalysis {
       if (quick && !*quick) continue;
       if (quick && *quick && !need_site_) return true;
       const Point& probe = part.edge(first).source;
-      if (locate(other, probe) == PointLocation::inside) {
+      if (locate(other, probe, !exact_only_) == PointLocation::inside) {
         site_ = Site{probe, true};
         material_hints(side, probe);
         return true;
@@ -942,8 +942,8 @@ class OverlapAnalysis {
     auto inside_both = [&](const Point& direction) {
       Point candidate{Rational(site_.point.x + step * direction.x),
                       Rational(site_.point.y + step * direction.y)};
-      if (locate(*parts_[0], candidate) == PointLocation::inside &&
-          locate(*parts_[1], candidate) == PointLocation::inside)
+      if (locate(*parts_[0], candidate, !exact_only_) == PointLocation::inside &&
+          locate(*parts_[1], candidate, !exact_only_) == PointLocation::inside)
         return std::optional<Point>(candidate);
       return std::optional<Point>();
     };
@@ -1002,11 +1002,18 @@ class OverlapAnalysis {
 
  public:
   // Exact location of p relative to a placed part (see locate_point).
-  static PointLocation locate(PlacedPart& part, const Point& p) {
+  // `filter`: the certified interval ray cast first (a certain answer implies p is on no edge:
+  // an edge through p gives an orientation or circle test whose interval contains 0), the
+  // exact ray cast only when some interval decision is uncertain.
+  static PointLocation locate(PlacedPart& part, const Point& p, bool filter = false) {
     double px = toward_zero(p.x);
     double py = toward_zero(p.y);
     const Box& total = part.total();
     if (!total.contains(px, py)) return PointLocation::outside;
+    if (filter && part.filtered()) {
+      std::optional<bool> quick = inside_by_intervals(part, Interval::enclose(p.x), Interval::enclose(p.y));
+      if (quick) return *quick ? PointLocation::inside : PointLocation::outside;
+    }
     for (std::size_t i = 0; i < part.size(); ++i)
       if (part.box(i).contains(px, py) && on_edge(part.edge(i), p)) return PointLocation::boundary;
     // Parity of crossings of the ray from p' = p + (eps^2, eps) towards +x.
