@@ -9,11 +9,15 @@
 #include "cspace_test_support.hpp"
 
 #include <hipair/cspace.hpp>
+#include <hipair/cspace_region.hpp>
 #include <hipair/model.hpp>
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
+#include <numbers>
+#include <tuple>
 #include <random>
 #include <set>
 
@@ -222,6 +226,93 @@ TEST(CSpaceRegion, GearChannelIsOneFreeCellAroundTheTorus) {
       ++free;
     } else if (location.kind == Location::Kind::blocked) {
       EXPECT_EQ(overlap, cspace::Overlap::overlapping) << "tile " << t << " at " << q.x << ", " << q.y;
+      ++blocked;
+    }
+  }
+  EXPECT_GT(free, 0);
+  EXPECT_GT(blocked, 0);
+}
+
+// build_operating_region_along (the picture `hipair analyze` draws of a large pair): of the
+// flooded region only the tiles a path runs through are built, and each of them is built as in
+// the whole region: the same tile boxes, the same contact edges (feature pairs) in each, every
+// path configuration inside the built tiles, and point location agreeing with the oracle.
+TEST(CSpaceRegion, AlongAPathBuildsTheRegionsTilesItRunsThrough) {
+  // 6 x 12 teeth: one pinion turn is half a gear turn, the channel closes after two pinion
+  // turns; the path is the first half turn of the pinion
+  ReadOptions read;
+  read.parameter_values["teeth-1"] = Rational(6);
+  read.parameter_values["teeth-2"] = Rational(12);
+  read.allow_out_of_tolerance = true;
+  Model model = read_model_file(example("spur-gears.json"), read);
+  CSpaceBuildOptions options;
+  options.operating_region = true;
+  CSpace region = CSpace::build(model, "pinion", "gear", options);
+  // the gears' centre line: gear angle = -pinion angle / 2 (the initial phases are on it)
+  std::vector<std::array<double, 2>> path;
+  for (int k = 0; k <= 180; ++k) {
+    double t = std::numbers::pi * k / 180;
+    path.push_back({t, -t / 2});
+  }
+  CSpace along = build_operating_region_along(model, "pinion", "gear", path);
+  ASSERT_FALSE(along.complete());
+  ASSERT_FALSE(region.complete());
+  EXPECT_EQ(along.statistics().region_tiles, along.charts().size());
+  EXPECT_LT(along.statistics().region_tiles, region.statistics().region_tiles);
+  EXPECT_GT(along.statistics().region_tiles, 0u);
+  // tile boxes of the along-build, and the contact edges' feature pairs in each
+  using Box = std::tuple<AxisKind, bool, Rational, Rational, AxisKind, bool, Rational, Rational>;
+  auto box_of = [](const CSpaceChart& c) {
+    return Box{c.x_kind, c.x_half_turn, c.x_lo, c.x_hi, c.y_kind, c.y_half_turn, c.y_lo, c.y_hi};
+  };
+  auto contact_edges = [](const CSpace& space) {
+    std::map<Box, std::multiset<std::string>> edges;
+    for (const CSpaceEdge& edge : space.edges()) {
+      if (edge.role != EdgeRole::contact && edge.role != EdgeRole::touching) continue;
+      std::string labels;
+      for (std::size_t k : edge.curves) labels += space.feature_pairs()[k].label + ";";
+      const CSpaceChart& c = space.charts()[edge.chart];
+      edges[Box{c.x_kind, c.x_half_turn, c.x_lo, c.x_hi, c.y_kind, c.y_half_turn, c.y_lo, c.y_hi}].insert(labels);
+    }
+    return edges;
+  };
+  std::set<Box> region_boxes;
+  for (const CSpaceChart& chart : region.charts()) region_boxes.insert(box_of(chart));
+  for (const CSpaceChart& chart : along.charts()) EXPECT_TRUE(region_boxes.count(box_of(chart))) << "a tile outside the region";
+  auto in_along = contact_edges(along), in_region = contact_edges(region);
+  std::size_t compared = 0;
+  for (const CSpaceChart& chart : along.charts()) {
+    Box box = box_of(chart);
+    EXPECT_EQ(in_along[box], in_region[box]) << "tile " << chart.x_lo << ".." << chart.x_hi << " x " << chart.y_lo
+                                             << ".." << chart.y_hi;
+    compared += in_along[box].size();
+  }
+  EXPECT_GT(compared, 20u);
+  // every configuration of the path lies in a built tile
+  for (const auto& point : path) {
+    // (a rational near the path's angle: the tile margin covers the difference)
+    auto exact = [](double angle) {
+      if (std::fabs(std::remainder(angle, 2 * std::numbers::pi)) > 3.1415)
+        return PartCoordinate{PartCoordinate::Kind::half_turn, Rational(0)};
+      return PartCoordinate{PartCoordinate::Kind::half_angle_tangent, Rational(std::tan(angle / 2))};
+    };
+    Location location = along.locate(exact(point[0]), exact(point[1]));
+    EXPECT_NE(location.kind, Location::Kind::outside) << point[0] << ", " << point[1];
+  }
+  // exact point location inside the built tiles against the oracle
+  cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part("pinion"), *model.find_part("gear"));
+  std::mt19937_64 random(29);
+  int free = 0, blocked = 0;
+  for (int i = 0; i < 300; ++i) {
+    ChartPoint q = random_tile_point(along, random);
+    Location location = along.locate(q);
+    cspace::Overlap overlap = oracle_at(model, axes, along, q);
+    EXPECT_NE(location.kind, Location::Kind::outside);
+    if (location.kind == Location::Kind::free) {
+      EXPECT_EQ(overlap, cspace::Overlap::apart) << q.x << ", " << q.y;
+      ++free;
+    } else if (location.kind == Location::Kind::blocked) {
+      EXPECT_EQ(overlap, cspace::Overlap::overlapping) << q.x << ", " << q.y;
       ++blocked;
     }
   }
