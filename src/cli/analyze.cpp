@@ -311,7 +311,7 @@ int run_analyze(const AnalyzeOptions& options) {
         if (!path.points.empty()) picture.marks.push_back({path.points.front().x, path.points.front().y, "start"});
         picture.title = "exact C-space of " + path.pair + " with the motion path";
         if (!exact->complete())
-          picture.title += " (built: the operating region along the path, " +
+          picture.title += " (built: operating region along the path, " +
                            std::to_string(exact->statistics().region_tiles) + " tiles)";
         files.push_back({name, render::cspace_svg(*exact, picture)});
       } else {
