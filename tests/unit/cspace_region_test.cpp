@@ -37,6 +37,45 @@ cspace::Overlap oracle_at(const Model& model, const cspace::PairAxes& axes, cons
                                   cspace::ChartPoint{q.x, q.y});
 }
 
+// The spur-gears example with z1 x z2 teeth.
+Model gears(long z1, long z2) {
+  ReadOptions read;
+  read.parameter_values["teeth-1"] = Rational(z1);
+  read.parameter_values["teeth-2"] = Rational(z2);
+  read.allow_out_of_tolerance = true;
+  return read_model_file(example("spur-gears.json"), read);
+}
+
+CSpaceBuildOptions region_options() {
+  CSpaceBuildOptions options;
+  options.operating_region = true;
+  return options;
+}
+
+// Exact point location at `count` random rational configurations of the built tiles against
+// the exact oracle: free is apart, blocked is overlapping, nothing in a built tile is outside,
+// and both kinds occur.
+void expect_tiles_agree_with_oracle(const Model& model, const cspace::PairAxes& axes, const CSpace& space,
+                                    unsigned seed, int count) {
+  std::mt19937_64 random(seed);
+  int free = 0, blocked = 0;
+  for (int i = 0; i < count; ++i) {
+    ChartPoint q = random_tile_point(space, random);
+    Location location = space.locate(q);
+    cspace::Overlap overlap = oracle_at(model, axes, space, q);
+    EXPECT_NE(location.kind, Location::Kind::outside) << "a point of a built tile is outside";
+    if (location.kind == Location::Kind::free) {
+      EXPECT_EQ(overlap, cspace::Overlap::apart) << "tile " << q.chart << " at " << q.x << ", " << q.y;
+      ++free;
+    } else if (location.kind == Location::Kind::blocked) {
+      EXPECT_EQ(overlap, cspace::Overlap::overlapping) << "tile " << q.chart << " at " << q.x << ", " << q.y;
+      ++blocked;
+    }
+  }
+  EXPECT_GT(free, 0);
+  EXPECT_GT(blocked, 0);
+}
+
 PartCoordinate initial_coordinate(const Model& model, const std::string& part_name) {
   const Part& part = model.parts[*model.find_part(part_name)];
   if (part.motion.kind == Motion::Kind::translation) return {PartCoordinate::Kind::offset, part.initial.offset};
@@ -188,14 +227,8 @@ TEST(CSpaceRegion, FirstCrossingThroughTilesAgreesWithWholeBuild) {
 
 TEST(CSpaceRegion, GearChannelIsOneFreeCellAroundTheTorus) {
   // 6 x 6 teeth: the whole torus holds 36 tooth encounters, the channel the gears run in six
-  ReadOptions read;
-  read.parameter_values["teeth-1"] = Rational(6);
-  read.parameter_values["teeth-2"] = Rational(6);
-  read.allow_out_of_tolerance = true;
-  Model model = read_model_file(example("spur-gears.json"), read);
-  CSpaceBuildOptions options;
-  options.operating_region = true;
-  CSpace region = CSpace::build(model, "pinion", "gear", options);
+  Model model = gears(6, 6);
+  CSpace region = CSpace::build(model, "pinion", "gear", region_options());
   ASSERT_FALSE(region.complete());
   PartCoordinate zero{PartCoordinate::Kind::half_angle_tangent, Rational(0)};
   Location start = region.locate(zero, zero);
@@ -214,23 +247,7 @@ TEST(CSpaceRegion, GearChannelIsOneFreeCellAroundTheTorus) {
   }
   // exact point location inside the tiles against the oracle
   cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part("pinion"), *model.find_part("gear"));
-  std::mt19937_64 random(23);
-  int free = 0, blocked = 0;
-  for (int i = 0; i < 400; ++i) {
-    ChartPoint q = random_tile_point(region, random);
-    std::size_t t = q.chart;
-    Location location = region.locate(q);
-    cspace::Overlap overlap = oracle_at(model, axes, region, q);
-    if (location.kind == Location::Kind::free) {
-      EXPECT_EQ(overlap, cspace::Overlap::apart) << "tile " << t << " at " << q.x << ", " << q.y;
-      ++free;
-    } else if (location.kind == Location::Kind::blocked) {
-      EXPECT_EQ(overlap, cspace::Overlap::overlapping) << "tile " << t << " at " << q.x << ", " << q.y;
-      ++blocked;
-    }
-  }
-  EXPECT_GT(free, 0);
-  EXPECT_GT(blocked, 0);
+  expect_tiles_agree_with_oracle(model, axes, region, 23, 400);
 }
 
 // build_operating_region_along (the picture `hipair analyze` draws of a large pair): of the
@@ -240,14 +257,8 @@ TEST(CSpaceRegion, GearChannelIsOneFreeCellAroundTheTorus) {
 TEST(CSpaceRegion, AlongAPathBuildsTheRegionsTilesItRunsThrough) {
   // 6 x 12 teeth: one pinion turn is half a gear turn, the channel closes after two pinion
   // turns; the path is the first half turn of the pinion
-  ReadOptions read;
-  read.parameter_values["teeth-1"] = Rational(6);
-  read.parameter_values["teeth-2"] = Rational(12);
-  read.allow_out_of_tolerance = true;
-  Model model = read_model_file(example("spur-gears.json"), read);
-  CSpaceBuildOptions options;
-  options.operating_region = true;
-  CSpace region = CSpace::build(model, "pinion", "gear", options);
+  Model model = gears(6, 12);
+  CSpace region = CSpace::build(model, "pinion", "gear", region_options());
   // the gears' centre line: gear angle = -pinion angle / 2 (the initial phases are on it)
   std::vector<std::array<double, 2>> path;
   for (int k = 0; k <= 180; ++k) {
@@ -301,23 +312,7 @@ TEST(CSpaceRegion, AlongAPathBuildsTheRegionsTilesItRunsThrough) {
   }
   // exact point location inside the built tiles against the oracle
   cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part("pinion"), *model.find_part("gear"));
-  std::mt19937_64 random(29);
-  int free = 0, blocked = 0;
-  for (int i = 0; i < 300; ++i) {
-    ChartPoint q = random_tile_point(along, random);
-    Location location = along.locate(q);
-    cspace::Overlap overlap = oracle_at(model, axes, along, q);
-    EXPECT_NE(location.kind, Location::Kind::outside);
-    if (location.kind == Location::Kind::free) {
-      EXPECT_EQ(overlap, cspace::Overlap::apart) << q.x << ", " << q.y;
-      ++free;
-    } else if (location.kind == Location::Kind::blocked) {
-      EXPECT_EQ(overlap, cspace::Overlap::overlapping) << q.x << ", " << q.y;
-      ++blocked;
-    }
-  }
-  EXPECT_GT(free, 0);
-  EXPECT_GT(blocked, 0);
+  expect_tiles_agree_with_oracle(model, axes, along, 29, 300);
 }
 
 }  // namespace
