@@ -10,6 +10,7 @@
 #include "render/kinematics_svg.hpp"
 
 #include <hipair/certificate.hpp>
+#include <hipair/cspace_region.hpp>
 #include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
@@ -176,10 +177,11 @@ std::size_t choose_driver(const Model& model, const std::string& requested) {
 
 // The exact C-space to draw a pair's path on: a whole space the analysis was given, or one
 // built now — the whole space when the pair is small (a few hundred boundary edges build in
-// about a second), else its operating region, the channel the path starts in (a gear pair's
-// z1 + z2 tooth encounters instead of z1 z2: the picture costs less than the analysis, where
-// slicing 240 columns of the whole space cost more than the analysis itself); nullopt: draw
-// the sampled picture instead (a pair the builder cannot handle).
+// about a second), else its operating region along the path: the tiles of the channel the
+// path starts in that the path runs through (a gear pair's z1 + z2 tooth encounters instead
+// of z1 z2, and of those only the ones the analysed turns meet, where slicing 240 columns of
+// the whole space cost more than the analysis itself); nullopt: draw the sampled picture
+// instead (a pair the builder cannot handle).
 std::optional<CSpace> exact_space_for_picture(const Model& model, const PairPath& path, const std::vector<CSpace>& spaces) {
   for (const CSpace& space : spaces)
     if (space.complete() && space.dimension() == 2 && space.x_part() == path.x_part && space.y_part() == path.y_part)
@@ -190,12 +192,13 @@ std::optional<CSpace> exact_space_for_picture(const Model& model, const PairPath
   for (std::size_t part : {*x, *y})
     for (const Loop& loop : model.parts[part].loops) edges += loop.edges.size();
   try {
+    std::vector<std::array<double, 2>> along;
+    for (const PathPoint& point : path.points) along.push_back({point.x, point.y});
     CSpaceBuildOptions options;
-    if (edges > 120) {
-      options.operating_region = true;
-      if (!path.points.empty()) options.region_seed = std::array<double, 2>{path.points.front().x, path.points.front().y};
-    }
-    CSpace space = CSpace::build(model, path.x_part, path.y_part, options);
+    options.operating_region = edges > 120;   // a path-less large pair: its whole flooded region
+    CSpace space = edges > 120 && !along.empty()
+                       ? build_operating_region_along(model, path.x_part, path.y_part, along)
+                       : CSpace::build(model, path.x_part, path.y_part, options);
     if (space.dimension() == 2 && space.x_part() == path.x_part && space.y_part() == path.y_part) return space;
   } catch (const GeometryError&) {   // a pair the builder cannot handle: the sampled picture
   } catch (const NumericError&) {
@@ -307,6 +310,9 @@ int run_analyze(const AnalyzeOptions& options) {
         for (const PathPoint& point : path.points) picture.path.push_back({point.x, point.y, point.contact});
         if (!path.points.empty()) picture.marks.push_back({path.points.front().x, path.points.front().y, "start"});
         picture.title = "exact C-space of " + path.pair + " with the motion path";
+        if (!exact->complete())
+          picture.title += " (built: operating region along the path, " +
+                           std::to_string(exact->statistics().region_tiles) + " tiles)";
         files.push_back({name, render::cspace_svg(*exact, picture)});
       } else {
         CSpaceRaster raster = sample_cspace(model, path.x_part, path.y_part, options.columns);

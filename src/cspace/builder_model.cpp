@@ -2,6 +2,7 @@
 // (generate_contact_curves, classify_overlap) into the model-free build, and builds all pairs
 // of a model in parallel.
 #include <hipair/cspace.hpp>
+#include <hipair/cspace_region.hpp>
 #include <hipair/error.hpp>
 
 #include "cspace/builder_impl.hpp"
@@ -42,6 +43,8 @@ std::size_t part_index(const Model& model, std::string_view name) {
 // channel of the seed lies inside the flooded cells. Tiles (coarse boxes of a chart) holding
 // a flooded cell are built exactly; the others are not built.
 
+using RegionPath = std::vector<std::array<double, 2>>;
+
 struct RegionTiles {
   std::size_t tiles = 0;                 // per chart axis
   std::vector<std::vector<char>> kept;   // per chart (x index * y charts + y index): tiles x * tiles + y
@@ -57,7 +60,8 @@ std::optional<double> chart_coordinate(const cspace::ChartAxis& axis, double val
 }
 
 RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const cspace::ChartLayout& layout,
-                         const cspace::BlockedTester& tester, const CSpaceBuildOptions& options) {
+                         const cspace::BlockedTester& tester, const CSpaceBuildOptions& options,
+                         const RegionPath* path) {
   using cspace::ChartAxis;
   RegionTiles region;
   unsigned tiles = options.region_tiles;
@@ -162,6 +166,28 @@ RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const
     }
   }
   region.cells = queue.size();
+  if (path && !path->empty()) {
+    // only the flooded tiles the path runs through, with a margin of one tile in its chart
+    std::vector<std::vector<char>> near(nx * ny, std::vector<char>(static_cast<std::size_t>(tiles) * tiles, 0));
+    for (const std::array<double, 2>& point : *path)
+      for (std::size_t ix = 0; ix < nx; ++ix)
+        for (std::size_t iy = 0; iy < ny; ++iy) {
+          auto tx = chart_coordinate(layout.x_charts[ix], point[0]);
+          auto ty = chart_coordinate(layout.y_charts[iy], point[1]);
+          if (!tx || !ty) continue;
+          if (*tx < lo_of(layout.x_charts[ix]) || *tx > hi_of(layout.x_charts[ix])) continue;
+          if (*ty < lo_of(layout.y_charts[iy]) || *ty > hi_of(layout.y_charts[iy])) continue;
+          std::size_t i = index_in(layout.x_charts[ix], *tx) / sub, j = index_in(layout.y_charts[iy], *ty) / sub;
+          for (std::size_t a = i > 0 ? i - 1 : 0; a <= std::min<std::size_t>(i + 1, tiles - 1); ++a)
+            for (std::size_t b = j > 0 ? j - 1 : 0; b <= std::min<std::size_t>(j + 1, tiles - 1); ++b)
+              near[chart_of(ix, iy)][a * tiles + b] = 1;
+        }
+    std::size_t kept = 0;
+    std::vector<std::vector<char>> restricted = region.kept;
+    for (std::size_t c = 0; c < restricted.size(); ++c)
+      for (std::size_t t = 0; t < restricted[c].size(); ++t) kept += (restricted[c][t] = restricted[c][t] && near[c][t]);
+    if (kept > 0) region.kept = std::move(restricted);   // a path outside the flood: the whole region
+  }
   return region;
 }
 
@@ -177,20 +203,23 @@ cspace::ChartAxis tile_axis(const cspace::ChartAxis& axis, std::size_t k, std::s
   return tile;
 }
 
-CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options);
+CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options,
+                        const RegionPath* path);
 
-CSpace build_pair(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options) {
+CSpace build_pair(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options,
+                  const RegionPath* path = nullptr) {
   // see core/model_scale.hpp: a rotation pair far outside the doubles' comfortable range is
   // built on an exactly rescaled copy (the same C-space)
   long shift = normalising_shift(model, {first, second});
-  if (shift == 0) return build_pair_as_is(model, first, second, options);
+  if (shift == 0) return build_pair_as_is(model, first, second, options, path);
   // the scaled copy lives through the build (the charts' overlap oracles read it); the built
   // space keeps no reference to it
   Model scaled = scaled_model(model, shift);
-  return build_pair_as_is(scaled, first, second, options);
+  return build_pair_as_is(scaled, first, second, options, path);
 }
 
-CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options) {
+CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options,
+                        const RegionPath* path) {
   using namespace cspace;
   PairAxes axes = pair_axes(model, first, second);
   if (axes.dimension() == 0)
@@ -240,7 +269,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
       throw GeometryError("operating region of '" + input.first_part + "' and '" + input.second_part +
                           "': a part has no interior disks to certify blocked space");
     auto region_start = Clock::now();
-    RegionTiles region = flood_region(model, axes, layout, *tester, options);
+    RegionTiles region = flood_region(model, axes, layout, *tester, options, path);
     input.seconds_region = std::chrono::duration<double>(Clock::now() - region_start).count();
     input.region_cells = region.cells;
     input.complete = false;
@@ -320,6 +349,15 @@ CSpace CSpace::build(const Model& model, std::string_view first_part, std::strin
   std::size_t first = part_index(model, first_part), second = part_index(model, second_part);
   if (first == second) throw ModelError("/pairs", "a pair needs two different parts");
   return build_pair(model, first, second, options);
+}
+
+CSpace build_operating_region_along(const Model& model, std::string_view first_part, std::string_view second_part,
+                                    const std::vector<std::array<double, 2>>& path, CSpaceBuildOptions options) {
+  std::size_t first = part_index(model, first_part), second = part_index(model, second_part);
+  if (first == second) throw ModelError("/pairs", "a pair needs two different parts");
+  options.operating_region = true;
+  if (!options.region_seed && !path.empty()) options.region_seed = path.front();
+  return build_pair(model, first, second, options, &path);
 }
 
 namespace {

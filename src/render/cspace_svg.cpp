@@ -54,6 +54,7 @@ class Painter {
         pairs_(space.feature_pairs()),
         dimension_(space.dimension()),
         complete_(space.complete()),
+        region_tiles_(space.statistics().region_tiles),
         options_(options) {}
 
   std::string run() {
@@ -495,7 +496,9 @@ class Painter {
     std::vector<io::SvgWriter::LegendEntry> entries;
     entries.push_back({io::SvgStyle{"#c8c8c8", "none"}, "blocked"});
     entries.push_back({io::SvgStyle{"white", "black"}, "free"});
-    if (!complete_) entries.push_back({io::SvgStyle{"url(#not-built)", "#b0b0b0"}, "not built (outside the operating region)"});
+    if (!complete_)
+      entries.push_back({io::SvgStyle{"url(#not-built)", "#b0b0b0"},
+                         "not built (outside the " + std::to_string(region_tiles_) + " tiles of the operating region)"});
     if (!touching_edges_.empty() || touching_vertices_ > 0) {
       io::SvgStyle swatch{"none", touching_colour};
       swatch.stroke_width = 2.2;
@@ -553,6 +556,7 @@ class Painter {
   const std::vector<FeaturePair>& pairs_;
   int dimension_ = 2;
   bool complete_ = true;
+  std::size_t region_tiles_ = 0;   // tiles built of an operating region
   const CSpaceSvgOptions& options_;
   Range x_range_, y_range_;   // the plotted window (display units)
   Range chart_x_, chart_y_;   // the charts' whole range

@@ -9,11 +9,15 @@
 #include "cspace_test_support.hpp"
 
 #include <hipair/cspace.hpp>
+#include <hipair/cspace_region.hpp>
 #include <hipair/model.hpp>
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
+#include <numbers>
+#include <tuple>
 #include <random>
 #include <set>
 
@@ -31,6 +35,45 @@ cspace::Overlap oracle_at(const Model& model, const cspace::PairAxes& axes, cons
   return cspace::classify_overlap(model, axes, axis_of(chart.x_kind, chart.x_half_turn, chart.x_lo, chart.x_hi),
                                   axis_of(chart.y_kind, chart.y_half_turn, chart.y_lo, chart.y_hi),
                                   cspace::ChartPoint{q.x, q.y});
+}
+
+// The spur-gears example with z1 x z2 teeth.
+Model gears(long z1, long z2) {
+  ReadOptions read;
+  read.parameter_values["teeth-1"] = Rational(z1);
+  read.parameter_values["teeth-2"] = Rational(z2);
+  read.allow_out_of_tolerance = true;
+  return read_model_file(example("spur-gears.json"), read);
+}
+
+CSpaceBuildOptions region_options() {
+  CSpaceBuildOptions options;
+  options.operating_region = true;
+  return options;
+}
+
+// Exact point location at `count` random rational configurations of the built tiles against
+// the exact oracle: free is apart, blocked is overlapping, nothing in a built tile is outside,
+// and both kinds occur.
+void expect_tiles_agree_with_oracle(const Model& model, const cspace::PairAxes& axes, const CSpace& space,
+                                    unsigned seed, int count) {
+  std::mt19937_64 random(seed);
+  int free = 0, blocked = 0;
+  for (int i = 0; i < count; ++i) {
+    ChartPoint q = random_tile_point(space, random);
+    Location location = space.locate(q);
+    cspace::Overlap overlap = oracle_at(model, axes, space, q);
+    EXPECT_NE(location.kind, Location::Kind::outside) << "a point of a built tile is outside";
+    if (location.kind == Location::Kind::free) {
+      EXPECT_EQ(overlap, cspace::Overlap::apart) << "tile " << q.chart << " at " << q.x << ", " << q.y;
+      ++free;
+    } else if (location.kind == Location::Kind::blocked) {
+      EXPECT_EQ(overlap, cspace::Overlap::overlapping) << "tile " << q.chart << " at " << q.x << ", " << q.y;
+      ++blocked;
+    }
+  }
+  EXPECT_GT(free, 0);
+  EXPECT_GT(blocked, 0);
 }
 
 PartCoordinate initial_coordinate(const Model& model, const std::string& part_name) {
@@ -184,14 +227,8 @@ TEST(CSpaceRegion, FirstCrossingThroughTilesAgreesWithWholeBuild) {
 
 TEST(CSpaceRegion, GearChannelIsOneFreeCellAroundTheTorus) {
   // 6 x 6 teeth: the whole torus holds 36 tooth encounters, the channel the gears run in six
-  ReadOptions read;
-  read.parameter_values["teeth-1"] = Rational(6);
-  read.parameter_values["teeth-2"] = Rational(6);
-  read.allow_out_of_tolerance = true;
-  Model model = read_model_file(example("spur-gears.json"), read);
-  CSpaceBuildOptions options;
-  options.operating_region = true;
-  CSpace region = CSpace::build(model, "pinion", "gear", options);
+  Model model = gears(6, 6);
+  CSpace region = CSpace::build(model, "pinion", "gear", region_options());
   ASSERT_FALSE(region.complete());
   PartCoordinate zero{PartCoordinate::Kind::half_angle_tangent, Rational(0)};
   Location start = region.locate(zero, zero);
@@ -210,23 +247,72 @@ TEST(CSpaceRegion, GearChannelIsOneFreeCellAroundTheTorus) {
   }
   // exact point location inside the tiles against the oracle
   cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part("pinion"), *model.find_part("gear"));
-  std::mt19937_64 random(23);
-  int free = 0, blocked = 0;
-  for (int i = 0; i < 400; ++i) {
-    ChartPoint q = random_tile_point(region, random);
-    std::size_t t = q.chart;
-    Location location = region.locate(q);
-    cspace::Overlap overlap = oracle_at(model, axes, region, q);
-    if (location.kind == Location::Kind::free) {
-      EXPECT_EQ(overlap, cspace::Overlap::apart) << "tile " << t << " at " << q.x << ", " << q.y;
-      ++free;
-    } else if (location.kind == Location::Kind::blocked) {
-      EXPECT_EQ(overlap, cspace::Overlap::overlapping) << "tile " << t << " at " << q.x << ", " << q.y;
-      ++blocked;
-    }
+  expect_tiles_agree_with_oracle(model, axes, region, 23, 400);
+}
+
+// build_operating_region_along (the picture `hipair analyze` draws of a large pair): of the
+// flooded region only the tiles a path runs through are built, and each of them is built as in
+// the whole region: the same tile boxes, the same contact edges (feature pairs) in each, every
+// path configuration inside the built tiles, and point location agreeing with the oracle.
+TEST(CSpaceRegion, AlongAPathBuildsTheRegionsTilesItRunsThrough) {
+  // 6 x 12 teeth: one pinion turn is half a gear turn, the channel closes after two pinion
+  // turns; the path is the first half turn of the pinion
+  Model model = gears(6, 12);
+  CSpace region = CSpace::build(model, "pinion", "gear", region_options());
+  // the gears' centre line: gear angle = -pinion angle / 2 (the initial phases are on it)
+  std::vector<std::array<double, 2>> path;
+  for (int k = 0; k <= 180; ++k) {
+    double t = std::numbers::pi * k / 180;
+    path.push_back({t, -t / 2});
   }
-  EXPECT_GT(free, 0);
-  EXPECT_GT(blocked, 0);
+  CSpace along = build_operating_region_along(model, "pinion", "gear", path);
+  ASSERT_FALSE(along.complete());
+  ASSERT_FALSE(region.complete());
+  EXPECT_EQ(along.statistics().region_tiles, along.charts().size());
+  EXPECT_LT(along.statistics().region_tiles, region.statistics().region_tiles);
+  EXPECT_GT(along.statistics().region_tiles, 0u);
+  // tile boxes of the along-build, and the contact edges' feature pairs in each
+  using Box = std::tuple<AxisKind, bool, Rational, Rational, AxisKind, bool, Rational, Rational>;
+  auto box_of = [](const CSpaceChart& c) {
+    return Box{c.x_kind, c.x_half_turn, c.x_lo, c.x_hi, c.y_kind, c.y_half_turn, c.y_lo, c.y_hi};
+  };
+  auto contact_edges = [](const CSpace& space) {
+    std::map<Box, std::multiset<std::string>> edges;
+    for (const CSpaceEdge& edge : space.edges()) {
+      if (edge.role != EdgeRole::contact && edge.role != EdgeRole::touching) continue;
+      std::string labels;
+      for (std::size_t k : edge.curves) labels += space.feature_pairs()[k].label + ";";
+      const CSpaceChart& c = space.charts()[edge.chart];
+      edges[Box{c.x_kind, c.x_half_turn, c.x_lo, c.x_hi, c.y_kind, c.y_half_turn, c.y_lo, c.y_hi}].insert(labels);
+    }
+    return edges;
+  };
+  std::set<Box> region_boxes;
+  for (const CSpaceChart& chart : region.charts()) region_boxes.insert(box_of(chart));
+  for (const CSpaceChart& chart : along.charts()) EXPECT_TRUE(region_boxes.count(box_of(chart))) << "a tile outside the region";
+  auto in_along = contact_edges(along), in_region = contact_edges(region);
+  std::size_t compared = 0;
+  for (const CSpaceChart& chart : along.charts()) {
+    Box box = box_of(chart);
+    EXPECT_EQ(in_along[box], in_region[box]) << "tile " << chart.x_lo << ".." << chart.x_hi << " x " << chart.y_lo
+                                             << ".." << chart.y_hi;
+    compared += in_along[box].size();
+  }
+  EXPECT_GT(compared, 20u);
+  // every configuration of the path lies in a built tile
+  for (const auto& point : path) {
+    // (a rational near the path's angle: the tile margin covers the difference)
+    auto exact = [](double angle) {
+      if (std::fabs(std::remainder(angle, 2 * std::numbers::pi)) > 3.1415)
+        return PartCoordinate{PartCoordinate::Kind::half_turn, Rational(0)};
+      return PartCoordinate{PartCoordinate::Kind::half_angle_tangent, Rational(std::tan(angle / 2))};
+    };
+    Location location = along.locate(exact(point[0]), exact(point[1]));
+    EXPECT_NE(location.kind, Location::Kind::outside) << point[0] << ", " << point[1];
+  }
+  // exact point location inside the built tiles against the oracle
+  cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part("pinion"), *model.find_part("gear"));
+  expect_tiles_agree_with_oracle(model, axes, along, 29, 300);
 }
 
 }  // namespace

@@ -339,6 +339,9 @@ TEST(CSpaceSvg, EveryContactEdgeOfTheBuiltSpaceIsDrawn) {
       drawn.insert((*it)[2].str());
     }
     EXPECT_EQ(drawn, expected) << test.model << (test.region ? " (operating region)" : "");
+    // an operating region's picture says what was built
+    std::string built = "outside the " + std::to_string(space.statistics().region_tiles) + " tiles of the operating region";
+    EXPECT_EQ(svg.find(built) != std::string::npos, test.region) << test.model;
   }
 }
 
