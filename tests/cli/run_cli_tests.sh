@@ -46,6 +46,18 @@ done
 grep -q "^hipair: error: " "$work/nodir.err" || fail "missing directory: unclear message: $(cat "$work/nodir.err")"
 
 # --rounding: the bound of every recorded rounding; out of range or malformed: one error line.
+# --quadratic-max-bits: every chart on CGAL's algebraic traits (1) or the default dispatch
+# gives the same cells (edge counts may differ by spurious edges only); 0 is refused.
+for bits in 1 1024; do
+  "$hipair" cspace "$source/examples/models/ratchet.json" --quadratic-max-bits "$bits" --stats \
+    >"$work/qbits-$bits.txt" 2>&1 || fail "cspace --quadratic-max-bits $bits failed: $(tail -c 300 "$work/qbits-$bits.txt")"
+done
+[ "$(grep -o 'cells [0-9]*' "$work/qbits-1.txt")" = "$(grep -o 'cells [0-9]*' "$work/qbits-1024.txt")" ] \
+  && grep -q 'cells [0-9]' "$work/qbits-1.txt" || fail "cspace --quadratic-max-bits: cells differ between the traits"
+if "$hipair" cspace "$source/examples/models/ratchet.json" --quadratic-max-bits 0 >/dev/null 2>"$work/qbits-bad.err"; then
+  fail "cspace --quadratic-max-bits 0 was accepted"
+fi
+grep -q "quadratic-max-bits" "$work/qbits-bad.err" || fail "cspace --quadratic-max-bits 0: the error does not name the option"
 "$hipair" validate --rounding 1e-6 "$source/examples/models/geneva.json" >"$work/rounding.txt" 2>&1 \
   || fail "validate --rounding 1e-6 fails: $(tail -n 2 "$work/rounding.txt")"
 grep -q "bound 1e-06" "$work/rounding.txt" || fail "--rounding 1e-6: roundings not recorded with bound 1e-6"
