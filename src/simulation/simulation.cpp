@@ -858,29 +858,114 @@ struct Simulation::Impl {
   // says free: the first trial is a few units in the last place of the coordinates (a
   // configuration computed in doubles on a contact curve lies on either side of it by rounding),
   // doubling up to 2^50 of them. Nothing is moved when the configuration is already free.
-  void nudge_free(std::size_t pair, const Vec& G) {
-    Vec dir(dofs.size(), 0.0);
-    double norm = 0, scale = 1;
-    for (std::size_t i = 0; i < dofs.size(); ++i) {
-      scale = std::max(scale, std::abs(q[i]));
-      if (!dofs[i].driven) {
-        dir[i] = G[i] / dofs[i].inertia;
-        norm = std::max(norm, std::abs(dir[i]));
-      }
-    }
+  void nudge_free(std::size_t pair, const Vec& G) { nudge_free(std::vector<std::pair<std::size_t, Vec>>{{pair, G}}); }
+
+  // The joint form: every pair of `set` (pair, C-space normal G over the dofs) is moved off
+  // contact space at once, and no other pair is pushed into it. Pairs that share a part are
+  // coupled: the escapement's anchor squeezed between a tooth (wheel/anchor) and the impulse pin
+  // (anchor/balance). Moving off one pair alone along its own M^-1 G moves the anchor into the
+  // other pair's contact by the same few ulps; that pair's own nudge then moved it back (the
+  // nudge jams at -612, -675, -800 and -1200 N.mm: a pair left inside blocked space, whose next
+  // crossing starts in contact with no contact row to move along). So after the pairs of the set
+  // are free, every other pair that the move touches is located exactly; one found not free joins
+  // the set with its contact normal (its held contacts', or its last impact's edge) and the move
+  // is redone from the start along M^-1 G^T mu, A mu = 1 (A = G M^-1 G^T): every contact of the
+  // set opens at the same rate.
+  void nudge_free(std::vector<std::pair<std::size_t, Vec>> set) {
+    const Vec start = q;
+    double scale = 1;
+    for (double x : q) scale = std::max(scale, std::abs(x));
     const double first = 4 * std::numeric_limits<double>::epsilon() * scale;
-    for (int k = 0; k < 50; ++k) {
+    auto free_at = [&](std::size_t pair) {
       MotionCrossing c = spaces[pair]->first_crossing(point_path(pair, q));
-      if (c.status == CrossingStatus::none) return;
       if (c.status == CrossingStatus::outside_region) outside(pair, t);
-      if (norm == 0) break;
-      double eps = first * std::ldexp(1.0, k);
-      for (std::size_t i = 0; i < dofs.size(); ++i) q[i] += eps * dir[i] / norm;
+      return c.status == CrossingStatus::none;
+    };
+    for (;;) {
+      Vec dir = nudge_direction(set);
+      double norm = 0;
+      for (double x : dir) norm = std::max(norm, std::abs(x));
+      q = start;
+      bool done = false;
+      for (int k = 0; k < 50 && !done; ++k) {
+        done = std::all_of(set.begin(), set.end(), [&](const auto& s) { return free_at(s.first); });
+        if (done || norm == 0) break;
+        double eps = first * std::ldexp(1.0, k);
+        for (std::size_t i = 0; i < dofs.size(); ++i) q[i] += eps * dir[i] / norm;
+      }
+      if (!done) jammed(set.front().first);
+      if (q == start) return;
+      // the other pairs the move touched must still be free
+      std::optional<std::pair<std::size_t, Vec>> pushed;
+      for (std::size_t pair = 0; pair < spaces.size() && !pushed; ++pair) {
+        if (!spaces[pair] || std::any_of(set.begin(), set.end(), [&](const auto& s) { return s.first == pair; })) continue;
+        int a = part_dof[model.pairs[pair].first], b = part_dof[model.pairs[pair].second];
+        if (!((a >= 0 && dir[a] != 0) || (b >= 0 && dir[b] != 0)) || free_at(pair)) continue;
+        q = start;   // its normal at the configuration the move started from
+        Vec G;
+        if (!nudge_normal(pair, G)) jammed(pair);
+        pushed.emplace(pair, G);
+      }
+      if (!pushed) return;
+      set.push_back(*pushed);
     }
+  }
+
+  [[noreturn]] void jammed(std::size_t pair) const {
     std::ostringstream out;
     out << "simulation: at t = " << t / time_scale << " " << time_unit << " " << pair_name(pair)
         << " cannot be moved off its contact (a jammed contact change)";
     throw NumericError(out.str());
+  }
+
+  // The C-space normal of a pair pushed into contact by another pair's nudge: the sum of its held
+  // contacts' rows (each scaled to 1), or its last impact's contact edge. False: none known.
+  bool nudge_normal(std::size_t pair, Vec& out) const {
+    out.assign(dofs.size(), 0.0);
+    auto add = [&](const Active& a) {
+      Vec G;
+      double h, gval;
+      if (!row(a, q, v, G, h, gval)) return;
+      double norm = 0;
+      for (double x : G) norm = std::max(norm, std::abs(x));
+      if (norm > 0)
+        for (std::size_t i = 0; i < dofs.size(); ++i) out[i] += G[i] / norm;
+    };
+    for (const Active& a : active)
+      if (a.pair == pair) add(a);
+    if (!in_active(pair) && pair < last_contact.size() && last_contact[pair]) add(*last_contact[pair]);
+    return std::any_of(out.begin(), out.end(), [](double x) { return x != 0; });
+  }
+
+  // The direction of a nudge: M^-1 G for one pair (as always); for several, M^-1 G^T mu with
+  // (G M^-1 G^T) mu = 1 over the rows scaled to 1 (complete orthogonal decomposition: minimum
+  // norm where the rows are dependent), so that every row's gap opens; where that fails (rows
+  // that cannot all open), the sum of the rows' M^-1 G.
+  Vec nudge_direction(const std::vector<std::pair<std::size_t, Vec>>& set) const {
+    const std::size_t n = dofs.size(), m = set.size();
+    Vec dir(n, 0.0);
+    if (m == 1) {
+      for (std::size_t i = 0; i < n; ++i)
+        if (!dofs[i].driven) dir[i] = set[0].second[i] / dofs[i].inertia;
+      return dir;
+    }
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(n));
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
+    for (std::size_t i = 0; i < n; ++i)
+      if (!dofs[i].driven) w[static_cast<Eigen::Index>(i)] = 1 / dofs[i].inertia;
+    for (std::size_t k = 0; k < m; ++k) {
+      double norm = 0;
+      for (double x : set[k].second) norm = std::max(norm, std::abs(x));
+      if (norm > 0)
+        for (std::size_t i = 0; i < n; ++i) G(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i)) = set[k].second[i] / norm;
+    }
+    Eigen::MatrixXd A = G * w.asDiagonal() * G.transpose();
+    Eigen::VectorXd mu = A.completeOrthogonalDecomposition().solve(Eigen::VectorXd::Ones(static_cast<Eigen::Index>(m)));
+    Eigen::VectorXd d = w.asDiagonal() * (G.transpose() * mu);
+    Eigen::VectorXd opens = G * d;
+    if (!(opens.minCoeff() > 0)) d = w.asDiagonal() * (G.transpose() * Eigen::VectorXd::Ones(static_cast<Eigen::Index>(m)));
+    for (std::size_t i = 0; i < n; ++i) dir[i] = d[static_cast<Eigen::Index>(i)];
+    return dir;
   }
 
   void project_active() {
