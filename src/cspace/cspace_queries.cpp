@@ -1042,7 +1042,7 @@ class MotionScanner {
     // the path's pieces at a (the subdivision visits [a, m] right after [a, b]: kept for the
     // last a)
     if (!start_ || start_->a != a) {
-      StartPieces at{a, {}, {}, false};
+      StartPieces at{a, {}, {}, false, {}};
       at.x = pieces(path_.x, a, a, at.wide, true);
       if (impl_.dimension == 2) at.y = pieces(path_.y, a, a, at.wide, true);
       else at.y = {AxisPiece{false, false, Rational(0), Rational(0)}};
@@ -1065,12 +1065,36 @@ class MotionScanner {
       const ChartData& chart = impl_.charts[p.chart];
       const Gradient& g = gradient(p.chart, p.curve);
       DInterval start = chart.interval_polynomials[p.curve].evaluate(x_at, y_at);
+      // a start within rounding of the curve (a motion leaving a contact from a configuration a
+      // few ulps off it): the double enclosure contains 0 at any depth, so take F over the
+      // start's exact (160-bit) box in rational intervals, cached per start and curve
+      if (start.contains_zero()) start = exact_start_value(p.chart, p.curve, *sx, *sy);
       DInterval rate = g.fx.evaluate(x, y) * dx + g.fy.evaluate(x, y) * dy;
       DInterval value = start + h * rate;
       // (a non-finite bound, from overflow, proves nothing)
       if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) kept.push_back(p);
     }
     possible.swap(kept);
+  }
+
+  // F of local curve `curve` of `chart` over the start's rational box, enclosed in doubles
+  // (outward): certified, and free of zero whenever the start lies off the curve by more than
+  // the box's width (2^-160 relative), however close.
+  DInterval exact_start_value(std::size_t chart, std::size_t curve, const AxisPiece& x, const AxisPiece& y) {
+    auto key = std::make_pair(chart, curve);
+    auto it = start_->exact.find(key);
+    if (it != start_->exact.end()) return it->second;
+    const cspace::IntegerPolynomial2& f = impl_.charts[chart].polynomials[curve];
+    RInterval X{x.lo, x.hi}, Y{y.lo, y.hi}, value = RInterval::point(Rational(0));
+    for (std::size_t i = f.coefficients.size(); i-- > 0;) {
+      RInterval row = RInterval::point(Rational(0));
+      for (std::size_t j = f.coefficients[i].size(); j-- > 0;)
+        row = row * Y + RInterval::point(Rational(f.coefficients[i][j]));
+      value = value * X + row;
+    }
+    DInterval result{cspace::algebra::lower_double(value.lo), cspace::algebra::upper_double(value.hi)};
+    start_->exact.emplace(key, result);
+    return result;
   }
 
   // Do the boxes of `charts` (same system) cover px x py? Grid of the boxes' sides.
@@ -1193,6 +1217,7 @@ class MotionScanner {
     Rational a;
     std::vector<AxisPiece> x, y;
     bool wide = false;
+    std::map<std::pair<std::size_t, std::size_t>, cspace::algebra::Interval> exact;   // exact_start_value
   };
   std::optional<StartPieces> start_;
   // per axis (x, y): the path's coefficients and those of its derivative, enclosed in doubles
