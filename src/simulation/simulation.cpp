@@ -887,9 +887,9 @@ struct Simulation::Impl {
       for (double x : dir) norm = std::max(norm, std::abs(x));
       q = start;
       bool done = false;
-      for (int k = 0; k < 50 && !done; ++k) {
+      for (int k = 0; k <= 50 && !done; ++k) {
         done = std::all_of(set.begin(), set.end(), [&](const auto& s) { return free_at(s.first); });
-        if (done || norm == 0) break;
+        if (done || norm == 0 || k == 50) break;
         double eps = first * std::ldexp(1.0, k);
         for (std::size_t i = 0; i < dofs.size(); ++i) q[i] += eps * dir[i] / norm;
       }
