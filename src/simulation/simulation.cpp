@@ -1809,17 +1809,8 @@ struct Simulation::Impl {
     }
     for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
       if (!spaces[pair] || !in_active(pair)) continue;
-      Vec sum(dofs.size(), 0.0);
-      for (const Active& a : active) {
-        if (a.pair != pair) continue;
-        Vec G;
-        double h, gval;
-        if (!row(a, q, v, G, h, gval)) continue;
-        double norm = 0;
-        for (double x : G) norm = std::max(norm, std::abs(x));
-        if (norm > 0)
-          for (std::size_t i = 0; i < dofs.size(); ++i) sum[i] += G[i] / norm;
-      }
+      Vec sum;
+      nudge_normal(pair, sum);   // the sum of its held contacts' rows, each scaled to 1
       nudge_free(pair, sum);
     }
   }
