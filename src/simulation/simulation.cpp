@@ -1621,6 +1621,14 @@ struct Simulation::Impl {
     auto violated = [&](double u, std::size_t& which) {
       Vec qs, vs, acc, lambda;
       path.at(u, qs, vs);
+      // the prescribed parts where their law puts them, as the state taken at a cut will have
+      // them (sync_driven): the path's polynomial of a driver differs from its law by rounding,
+      // which could put the cut's state past the edge's end (and its slack) the bisection found
+      for (std::size_t i = 0; i < dofs.size(); ++i)
+        if (dofs[i].driven) {
+          double ad;
+          driver_law(dofs[i], path.t0 + u * path.h, qs[i], vs[i], ad);
+        }
       for (std::size_t k = 0; k < active.size(); ++k) {
         Vec G;
         double h, gval;
