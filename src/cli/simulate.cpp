@@ -174,7 +174,25 @@ struct SweepRow {
   std::size_t steps = 0, events = 0;
   std::vector<double> advance;        // per moving part: final - initial position
   std::vector<std::size_t> swings;    // per moving part: sign changes of the velocity
+  std::vector<std::vector<double>> reversals;   // per moving part: times of those sign changes
 };
+
+// A part's periods over the second half of a run, [t_end / 2, t_end]: the times between every
+// other sign change of its velocity (an oscillation's full period), as {count, min, median, max};
+// count 0 when fewer than three sign changes fall in that half. The escapement's torque band is
+// judged on them (docs/simulation.md, "Torque band").
+nlohmann::json second_half_periods(const std::vector<double>& reversals, double t_end) {
+  std::vector<double> periods;
+  for (std::size_t i = 2; i < reversals.size(); ++i)
+    if (reversals[i - 2] >= t_end / 2) periods.push_back(reversals[i] - reversals[i - 2]);
+  nlohmann::json j{{"count", periods.size()}};
+  if (periods.empty()) return j;
+  std::sort(periods.begin(), periods.end());
+  j["min"] = periods.front();
+  j["median"] = periods[periods.size() / 2];
+  j["max"] = periods.back();
+  return j;
+}
 
 int run_sweep(const SimulateOptions& options) {
   // NAME=A:B:N
@@ -242,6 +260,7 @@ int run_sweep(const SimulateOptions& options) {
           last_velocity.push_back(simulation.state().velocity[p]);
         }
         row.swings.assign(moving.size(), 0);
+        row.reversals.assign(moving.size(), {});
         // the accuracy the simulation uses (as Simulation::create resolves it)
         double accuracy = 1e-9;
         if (sim_options.accuracy > 0)
@@ -265,7 +284,10 @@ int run_sweep(const SimulateOptions& options) {
             for (std::size_t k = 0; k < moving.size(); ++k) {
               double velocity = simulation.state().velocity[moving[k]];
               if (velocity != 0) {
-                if (last_velocity[k] != 0 && (velocity > 0) != (last_velocity[k] > 0)) ++row.swings[k];
+                if (last_velocity[k] != 0 && (velocity > 0) != (last_velocity[k] > 0)) {
+                  ++row.swings[k];
+                  row.reversals[k].push_back(simulation.state().time);
+                }
                 last_velocity[k] = velocity;
               }
             }
@@ -322,7 +344,8 @@ int run_sweep(const SimulateOptions& options) {
                                                    {"velocity_sign_changes", row.swings[k]},
                                                    {"rest_window_position_range", row.window_range[k]},
                                                    {"rest_window_max_speed", row.window_speed[k]},
-                                                   {"max_speed", row.top_speed[k]}};
+                                                   {"max_speed", row.top_speed[k]},
+                                                   {"second_half_periods", second_half_periods(row.reversals[k], options.t_end)}};
       }
     } else {
       std::cout << "\t" << row.error;
