@@ -381,6 +381,7 @@ grep -q "lift-off  corner / ladder  \[corner segment loop 0 edge 2 (floor)" "$wo
 # the cam is driven at a constant speed: it never stops
 [ "$(grep -cP "^\\S+\trunning\t" "$work/sweep.out")" -eq 2 ] || fail "simulate --sweep: not two running rows: $(cat "$work/sweep.out")"
 grep -q '"parameter": "cam-speed"' "$work/sweep/sweep.json" || fail "simulate --sweep: no sweep.json"
+grep -q '"second_half_periods": {' "$work/sweep/sweep.json" || fail "simulate --sweep: sweep.json has no second_half_periods"
 # sweep status (docs/simulation.md, "Sweep status"): the elastic bouncing bar keeps bouncing
 # (running); the same bar with restitution 0 and a constant torque instead of its spring
 # strikes the upper stop plastically at t ~ 0.025 s and rests pressed on it (stopped: over the
