@@ -7,15 +7,20 @@
 #include <hipair/overlap.hpp>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cstdint>
 #include <array>
 #include <functional>
+#include <map>
 #include <optional>
 #include <tuple>
 #include <type_traits>
 
 namespace hipair::sliced {
 namespace {
+long dbg_[16];
+struct DbgPrint { ~DbgPrint() { if (getenv("HIPAIR_DBG")) for (int i=0;i<16;++i) fprintf(stderr, "dbg%d %ld\n", i, dbg_[i]); } } dbg_print_;
 
 namespace algebra = cspace::algebra;
 using algebra::Real;
@@ -373,11 +378,22 @@ class Certifier {
       Rotation<Rational> r = half_turn ? Rotation<Rational>{Rational(-1), Rational(0)} : exact_rotation(root.lower);
       std::optional<Vec<Rational>> p = point_of(r);
       if (!p) return false;
+      ++dbg_[14];
+      // the same exact configuration recurs (an end of one curve against many others at one
+      // rational angle): the oracle's answer is remembered
+      std::array<Rational, 4> key{Rational(half_turn ? 1 : 0), half_turn ? Rational(0) : root.lower, p->x, p->y};
+      for (auto& q : key) q.canonicalize();
+      auto [it, fresh] = exact_answers_.try_emplace(std::move(key), false);
+      if (!fresh) return it->second;
+      ++dbg_[15];
       auto relation = part_overlap(fixed_, Placement{}, free_, placement_about(pivot_, r.c, r.s, Point{p->x, p->y}));
-      return relation.relation == PartRelation::overlapping;
+      it->second = relation.relation == PartRelation::overlapping;
+      return it->second;
     }
     Real t = root;
+    ++dbg_[0];
     for (int bits : {20, 52}) {
+      ++dbg_[bits == 20 ? 1 : 2];
       algebra::refine_dyadically(t, Rational(1) / Rational(mpz_class(1) << bits));
       if (t.exact) return certainly_blocked(t, false, point_of);
       Rotation<Box> rb = rotation_box(t.lower, t.upper, false);
@@ -393,19 +409,21 @@ class Certifier {
         if (box_inside(free_, rb.c * rel.x + rb.s * rel.y + Box(pivot_.x), rb.c * rel.y - rb.s * rel.x + Box(pivot_.y)))
           return true;
       }
+      ++dbg_[bits == 20 ? 3 : 4];
       Rotation<Rational> rm = exact_rotation(mid(Box{t.lower, t.upper}));
       Point d{mid(pb->x), mid(pb->y)};
       auto relation = part_overlap(fixed_, Placement{}, free_, placement_about(pivot_, rm.c, rm.s, d), true);
       // a configuration of the enclosure that is not overlapping: no certificate (kept)
-      if (relation.relation != PartRelation::overlapping) return false;
-      if (!relation.witness) continue;
+      if (relation.relation != PartRelation::overlapping) { ++dbg_[5]; return false; }
+      if (!relation.witness) { ++dbg_[6]; continue; }
       // the witness w (world) is inside the fixed part; in the free part's body it is
       // p + R^T (w - p - d) over every (c, s, d) of the enclosure
       Vec<Box> rel{Box(relation.witness->x - pivot_.x) - pb->x, Box(relation.witness->y - pivot_.y) - pb->y};
       Box bx = rb.c * rel.x + rb.s * rel.y + Box(pivot_.x);
       Box by = rb.c * rel.y - rb.s * rel.x + Box(pivot_.y);
-      if (box_inside(free_, bx, by)) return true;
+      if (box_inside(free_, bx, by)) { ++dbg_[bits == 20 ? 7 : 8]; return true; }
     }
+    ++dbg_[9];
     return false;
   }
 
@@ -442,6 +460,8 @@ class Certifier {
   const Part& free_;
   Point pivot_;
   std::vector<Point> probes_free_, probes_fixed_;
+  // exact oracle answers at rational configurations: (half turn?, u, x, y)
+  mutable std::map<std::array<Rational, 4>, bool> exact_answers_;
 };
 
 // Sorted counter-clockwise from -pi (t ascending, the half turn last); equal angles merged
@@ -1273,14 +1293,17 @@ class CurveFinder {
     skip_conditions_ = true;
     Event e = build(Rotation<TrigPoly>{poly_cos(false), poly_sin(false)});
     skip_conditions_ = false;
+    ++dbg_[10];
     if (!e.poly.zero()) {
       ++stats_.polynomials;
       algebra::Polynomial p = integer_numerator(e.poly);
       std::vector<Real> found = algebra::degree(p) >= 1 ? isolated(p) : std::vector<Real>{};
+      if (!found.empty()) { ++dbg_[11]; dbg_[12] += found.size(); }
       if (!found.empty()) e = build(Rotation<TrigPoly>{poly_cos(false), poly_sin(false)});
       for (Real root : found) {
           root.detect_rational();
           bool ok = std::all_of(e.conditions.begin(), e.conditions.end(), [&](const Condition& c) { return holds(c, root); });
+          if (ok) ++dbg_[13];
           if (ok && relevant(root, false)) found_.push_back(Critical{false, root, {kind}});
         }
     }
