@@ -2,6 +2,7 @@
 #include "sliced/critical_angles.hpp"
 
 #include "core/exact_sqrt.hpp"
+#include "kernels/interval.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/overlap.hpp>
@@ -153,6 +154,20 @@ std::optional<Box> divide(const Box& a, const Box& b) {
   return a * inverse;
 }
 Rational mid(const Box& b) { return (b.lo + b.hi) / 2; }
+
+// Certified double intervals (kernels::Interval, widened outwards by an ulp per operation): the
+// fourth arithmetic of the formulas, for the filter that proves an event polynomial has no
+// root in a range before its exact coefficients are formed.
+struct IV {
+  kernels::Interval v;
+  IV() = default;
+  IV(const Rational& r) : v(kernels::Interval::enclose(r)) {}   // NOLINT: implicit, as for the other number types
+  IV(kernels::Interval i) : v(i) {}                              // NOLINT
+};
+IV operator+(const IV& a, const IV& b) { return a.v + b.v; }
+IV operator-(const IV& a) { return -a.v; }
+IV operator-(const IV& a, const IV& b) { return a.v - b.v; }
+IV operator*(const IV& a, const IV& b) { return a.v * b.v; }
 
 template <class T>
 struct Vec {
@@ -1251,10 +1266,11 @@ class CurveFinder {
       if (m != c.ends[k].own) out.push_back(in_span(c.spans[m], w, r));
   }
   // The polynomial vanishing when num / den lies on the curve's supporting line or circle.
-  static TrigPoly on_support(const Curve& c, const Vec<TrigPoly>& num, const TrigPoly& den, const Rotation<TrigPoly>& r) {
+  template <class T>
+  static T on_support(const Curve& c, const Vec<T>& num, const T& den, const Rotation<T>& r) {
     if (c.circle) {
-      Vec<TrigPoly> w = num - scale(den, at(c.centre, r));
-      return dot(w, w) - TrigPoly(Rational(c.radius * c.radius)) * den * den;
+      Vec<T> w = num - scale(den, at(c.centre, r));
+      return dot(w, w) - T(Rational(c.radius * c.radius)) * den * den;
     }
     return cross(num - scale(den, at(c.p0, r)), at(c.d, r));
   }
@@ -1277,6 +1293,51 @@ class CurveFinder {
   // Records the roots of build(rotation).poly (in the chart about 0, and the half turn: u = 0 in
   // the chart about pi) that meet the conditions and are not certainly blocked at any of the
   // points point_of(rotation) (optional<Vec<T>> each, for T Rational and Box).
+  // The interval filter: true when value_of (the event polynomial's value as a function of
+  // (cos, sin), in certified double intervals) certainly has no zero for u in the whole
+  // restricted range. The range is covered by pieces with double ends (bisected up to 4 times
+  // where a piece's enclosure holds zero); cos and sin over a piece inside [-1, 1] are enclosed
+  // by their values at its ends (sin is increasing there, cos increasing up to 0, then
+  // decreasing). Then the exact polynomial (not identically zero: its value is non-zero
+  // somewhere) has no root in the range, and the exact path would record nothing.
+  template <class ValueOf>
+  bool certainly_no_root(ValueOf value_of) const {
+    if (!range_) return false;
+    const kernels::Interval lo = kernels::Interval::enclose(range_->first), hi = kernels::Interval::enclose(range_->second);
+    if (!(lo.lo >= -1.0 && hi.hi <= 1.0)) return false;
+    auto at_point = [](double u) {
+      const kernels::Interval x = kernels::Interval::point(u), one(1);
+      const kernels::Interval d = one + x * x;
+      return std::make_pair((one - x * x) / d, kernels::Interval(2) * x / d);
+    };
+    std::function<bool(double, double, int)> clear = [&](double a, double b, int depth) {
+      auto [ca, sa] = at_point(a);
+      auto [cb, sb] = at_point(b);
+      kernels::Interval c = b <= 0.0   ? kernels::Interval(ca.lo, cb.hi)
+                            : a >= 0.0 ? kernels::Interval(cb.lo, ca.hi)
+                                       : kernels::Interval(std::min(ca.lo, cb.lo), 1.0);
+      kernels::Interval sn(sa.lo, sb.hi);
+      if (c.hi > 1.0) c.hi = 1.0;
+      const int sign = value_of(Rotation<IV>{IV(c), IV(sn)}).v.sign();
+      if (sign == 1 || sign == -1) return true;
+      if (depth == 0) return false;
+      const double m = 0.5 * (a + b);
+      if (!(a < m && m < b)) return false;
+      return clear(a, m, depth - 1) && clear(m, b, depth - 1);
+    };
+    return clear(lo.lo, hi.hi, 4);
+  }
+
+  // roots() with the interval filter first (restricted ranges only: the pin-slot finder).
+  template <class Build, class PointsOf, class ValueOf>
+  void roots(Build build, CriticalEvent kind, std::uint64_t mask, PointsOf points_of, ValueOf value_of) {
+    if (certainly_no_root(value_of)) {
+      ++stats_.polynomials;   // certainly not identically zero; no root, nothing recorded
+      return;
+    }
+    roots(build, kind, mask, points_of);
+  }
+
   template <class Build, class PointsOf>
   void roots(Build build, CriticalEvent kind, std::uint64_t mask, PointsOf points_of) {
     const std::size_t count = points_of(Rotation<Rational>{Rational(1), Rational(0)}).size();
@@ -1388,7 +1449,8 @@ class CurveFinder {
       return e;
     };
     auto points = [&](auto rot) { return std::vector{std::optional(at(ci.ends[k].point, rot))}; };
-    roots(build, CriticalEvent::vertex_on_contact, mask(i, j), points);
+    auto value = [&](const Rotation<IV>& r) { return on_support(cj, at(ci.ends[k].point, r), IV(Rational(1)), r); };
+    roots(build, CriticalEvent::vertex_on_contact, mask(i, j), points, value);
   }
 
   // (num, den) of the tangency point of two curves (one a circle).
@@ -1502,7 +1564,17 @@ class CurveFinder {
       auto [num, den] = meet(rot);
       return std::vector{quotient(num, den)};
     };
-    roots(build, CriticalEvent::three_contacts, m, points);
+    if (lines < 2) {   // (radical axes may be parallel at every angle: no polynomial at all)
+      roots(build, CriticalEvent::three_contacts, m, points);
+      return;
+    }
+    // two lines not parallel at every angle: the exact polynomial is formed unless this
+    // certainly has no zero
+    auto value = [&](const Rotation<IV>& r) {
+      auto [num, den] = meet(r);
+      return on_support(check, num, den, r);
+    };
+    roots(build, CriticalEvent::three_contacts, m, points, value);
   }
 
   // A segment–arc contact appears or goes (the segment's normal at an end of the arc's span),
