@@ -980,15 +980,29 @@ class Finder {
 struct Aff {
   Vec<Rational> a{Rational(0), Rational(0)}, b{Rational(0), Rational(0)};
   mutable std::optional<std::array<IV, 4>> enclosed;   // a.x, a.y, b.x, b.y (see at<IV>)
+  mutable std::optional<Vec<TrigPoly>> polynomial;     // at the rotation (poly_cos, poly_sin) (see at<TrigPoly>)
 };
-Aff operator+(const Aff& x, const Aff& y) { return {x.a + y.a, x.b + y.b, {}}; }
-Aff operator-(const Aff& x, const Aff& y) { return {x.a - y.a, x.b - y.b, {}}; }
-Aff fixed_point(const Vec<Rational>& v) { return {v, {Rational(0), Rational(0)}, {}}; }
-Aff turning_point(const Vec<Rational>& v) { return {{Rational(0), Rational(0)}, v, {}}; }
+Aff operator+(const Aff& x, const Aff& y) { return {x.a + y.a, x.b + y.b, {}, {}}; }
+Aff operator-(const Aff& x, const Aff& y) { return {x.a - y.a, x.b - y.b, {}, {}}; }
+Aff fixed_point(const Vec<Rational>& v) { return {v, {Rational(0), Rational(0)}, {}, {}}; }
+Aff turning_point(const Vec<Rational>& v) { return {{Rational(0), Rational(0)}, v, {}, {}}; }
 
 template <class T>
 Vec<T> at(const Aff& p, const Rotation<T>& r) {
   return Vec<T>{T(p.a.x), T(p.a.y)} + r.apply(Vec<T>{T(p.b.x), T(p.b.y)});
+}
+// (the event polynomials are all formed at the rotation (poly_cos(false), poly_sin(false)): a
+// point's polynomial coordinates there are formed once per point)
+bool standard_rotation(const Rotation<TrigPoly>& r) {
+  static const TrigPoly c = poly_cos(false), s = poly_sin(false);
+  return r.c.w == c.w && r.s.w == s.w && r.c.den == c.den && r.s.den == s.den && r.c.c == c.c && r.s.c == s.c;
+}
+template <>
+Vec<TrigPoly> at(const Aff& p, const Rotation<TrigPoly>& r) {
+  auto form = [&] { return Vec<TrigPoly>{TrigPoly(p.a.x), TrigPoly(p.a.y)} + r.apply(Vec<TrigPoly>{TrigPoly(p.b.x), TrigPoly(p.b.y)}); };
+  if (!standard_rotation(r)) return form();
+  if (!p.polynomial) p.polynomial = form();
+  return *p.polynomial;
 }
 // (the interval filter: the enclosures of a point's rationals, formed once per point)
 template <>
@@ -1659,14 +1673,22 @@ class CurveFinder {
       lo.canonicalize();
       hi.canonicalize();
       Rotation<Box> rot = rotation_box(lo, hi, flip);
+      // at(p, rot) with the turned part R b formed once per distinct b in this range (many
+      // curves share the free part's vertex b): the same arithmetic, the same boxes
+      std::map<std::pair<Rational, Rational>, Vec<Box>> turned;
+      auto at_range = [&](const Aff& p) {
+        auto [it, fresh] = turned.try_emplace(std::make_pair(p.b.x, p.b.y));
+        if (fresh) it->second = rot.apply(Vec<Box>{Box(p.b.x), Box(p.b.y)});
+        return Vec<Box>{Box(p.a.x), Box(p.a.y)} + it->second;
+      };
       for (std::size_t i = 0; i < n; ++i) {
         const Curve& c = curves_[i];
         std::pair<Box, Box> b;
         if (c.circle) {
-          Vec<Box> p = at(c.centre, rot);
+          Vec<Box> p = at_range(c.centre);
           b = {p.x + Box(-c.radius, c.radius), p.y + Box(-c.radius, c.radius)};
         } else {
-          Vec<Box> p = at(c.p0, rot), q = at(c.p0 + c.d, rot);
+          Vec<Box> p = at_range(c.p0), q = at_range(c.p0 + c.d);
           b = {Box{std::min(p.x.lo, q.x.lo), std::max(p.x.hi, q.x.hi)}, Box{std::min(p.y.lo, q.y.lo), std::max(p.y.hi, q.y.hi)}};
         }
         boxes[i].push_back(b);
