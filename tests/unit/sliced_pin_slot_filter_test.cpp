@@ -7,6 +7,8 @@
 #include <hipair/model.hpp>
 #include <hipair/rational.hpp>
 
+#include "polygon_loop_json.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,18 +20,8 @@
 namespace hipair {
 namespace {
 
-using Points = std::vector<std::pair<Rational, Rational>>;
-
-std::string text(const Rational& q) { return "\"" + q.get_str() + "\""; }
-
-std::string loop_json(const Points& points) {
-  std::string out = "{ \"start\": [" + text(points[0].first) + ", " + text(points[0].second) + "], \"edges\": [";
-  for (std::size_t i = 1; i <= points.size(); ++i) {
-    const auto& p = points[i % points.size()];
-    out += std::string(i > 1 ? ", " : "") + "{ \"line_to\": [" + text(p.first) + ", " + text(p.second) + "] }";
-  }
-  return out + "] }";
-}
+using test_loops::loop_json;
+using test_loops::Points;
 
 // A star-shaped polygon about (cx, cy): n vertices at increasing angles (36 degrees apart at
 // least, so rounding to the 1/8 grid keeps their order), radii in [2, 2 + spread] (spread 0:
