@@ -2,6 +2,7 @@
 #include "sliced/critical_angles.hpp"
 
 #include "core/exact_sqrt.hpp"
+#include "kernels/interval.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/overlap.hpp>
@@ -10,6 +11,7 @@
 #include <cstdint>
 #include <array>
 #include <functional>
+#include <map>
 #include <optional>
 #include <tuple>
 #include <type_traits>
@@ -148,6 +150,19 @@ std::optional<Box> divide(const Box& a, const Box& b) {
   return a * inverse;
 }
 Rational mid(const Box& b) { return (b.lo + b.hi) / 2; }
+
+// Certified double intervals (kernels::Interval, widened outwards by an ulp per operation): the
+// fourth arithmetic of the formulas, for the filter that proves an event polynomial has no
+// root in a range before its exact coefficients are formed.
+struct IV {
+  kernels::Interval v;
+  IV() = default;
+  IV(const Rational& r) : v(kernels::Interval::enclose(r)) {}   // NOLINT: implicit, as for the other number types
+  IV(kernels::Interval i) : v(i) {}                              // NOLINT
+};
+IV operator+(const IV& a, const IV& b) { return a.v + b.v; }
+IV operator-(const IV& a, const IV& b) { return a.v - b.v; }
+IV operator*(const IV& a, const IV& b) { return a.v * b.v; }
 
 template <class T>
 struct Vec {
@@ -366,6 +381,9 @@ class Certifier {
     collect(fixed, probes_fixed_);
   }
 
+  // Whether exact answers are remembered (tests compare with and without).
+  void remember(bool on) { remember_ = on; }
+
   // Is the configuration (point(c, s), theta) certainly overlapping (inside blocked space)?
   template <class PointOf>
   bool certainly_blocked(const Real& root, bool half_turn, PointOf point_of) const {
@@ -373,8 +391,18 @@ class Certifier {
       Rotation<Rational> r = half_turn ? Rotation<Rational>{Rational(-1), Rational(0)} : exact_rotation(root.lower);
       std::optional<Vec<Rational>> p = point_of(r);
       if (!p) return false;
+      // the same exact configuration recurs (an end of one curve against many others at one
+      // rational angle): the oracle's answer is remembered
+      std::array<Rational, 4> key{Rational(half_turn ? 1 : 0), half_turn ? Rational(0) : root.lower, p->x, p->y};
+      for (auto& q : key) q.canonicalize();
+      if (remember_) {
+        auto found = exact_answers_.find(key);
+        if (found != exact_answers_.end()) return found->second;
+      }
       auto relation = part_overlap(fixed_, Placement{}, free_, placement_about(pivot_, r.c, r.s, Point{p->x, p->y}));
-      return relation.relation == PartRelation::overlapping;
+      const bool blocked = relation.relation == PartRelation::overlapping;
+      if (remember_) exact_answers_.emplace(std::move(key), blocked);
+      return blocked;
     }
     Real t = root;
     for (int bits : {20, 52}) {
@@ -442,6 +470,9 @@ class Certifier {
   const Part& free_;
   Point pivot_;
   std::vector<Point> probes_free_, probes_fixed_;
+  // exact oracle answers at rational configurations: (half turn?, u, x, y)
+  mutable std::map<std::array<Rational, 4>, bool> exact_answers_;
+  bool remember_ = true;
 };
 
 // Sorted counter-clockwise from -pi (t ascending, the half turn last); equal angles merged
@@ -948,15 +979,37 @@ class Finder {
 // A point a + R b.
 struct Aff {
   Vec<Rational> a{Rational(0), Rational(0)}, b{Rational(0), Rational(0)};
+  mutable std::optional<std::array<IV, 4>> enclosed;   // a.x, a.y, b.x, b.y (see at<IV>)
+  mutable std::optional<Vec<TrigPoly>> polynomial;     // at the rotation (poly_cos, poly_sin) (see at<TrigPoly>)
 };
-Aff operator+(const Aff& x, const Aff& y) { return {x.a + y.a, x.b + y.b}; }
-Aff operator-(const Aff& x, const Aff& y) { return {x.a - y.a, x.b - y.b}; }
-Aff fixed_point(const Vec<Rational>& v) { return {v, {Rational(0), Rational(0)}}; }
-Aff turning_point(const Vec<Rational>& v) { return {{Rational(0), Rational(0)}, v}; }
+Aff operator+(const Aff& x, const Aff& y) { return {x.a + y.a, x.b + y.b, {}, {}}; }
+Aff operator-(const Aff& x, const Aff& y) { return {x.a - y.a, x.b - y.b, {}, {}}; }
+Aff fixed_point(const Vec<Rational>& v) { return {v, {Rational(0), Rational(0)}, {}, {}}; }
+Aff turning_point(const Vec<Rational>& v) { return {{Rational(0), Rational(0)}, v, {}, {}}; }
 
 template <class T>
 Vec<T> at(const Aff& p, const Rotation<T>& r) {
   return Vec<T>{T(p.a.x), T(p.a.y)} + r.apply(Vec<T>{T(p.b.x), T(p.b.y)});
+}
+// (the event polynomials are all formed at the rotation (poly_cos(false), poly_sin(false)): a
+// point's polynomial coordinates there are formed once per point)
+bool standard_rotation(const Rotation<TrigPoly>& r) {
+  static const TrigPoly c = poly_cos(false), s = poly_sin(false);
+  return r.c.w == c.w && r.s.w == s.w && r.c.den == c.den && r.s.den == s.den && r.c.c == c.c && r.s.c == s.c;
+}
+template <>
+Vec<TrigPoly> at(const Aff& p, const Rotation<TrigPoly>& r) {
+  auto form = [&] { return Vec<TrigPoly>{TrigPoly(p.a.x), TrigPoly(p.a.y)} + r.apply(Vec<TrigPoly>{TrigPoly(p.b.x), TrigPoly(p.b.y)}); };
+  if (!standard_rotation(r)) return form();
+  if (!p.polynomial) p.polynomial = form();
+  return *p.polynomial;
+}
+// (the interval filter: the enclosures of a point's rationals, formed once per point)
+template <>
+Vec<IV> at(const Aff& p, const Rotation<IV>& r) {
+  if (!p.enclosed) p.enclosed = std::array<IV, 4>{IV(p.a.x), IV(p.a.y), IV(p.b.x), IV(p.b.y)};
+  const auto& e = *p.enclosed;
+  return Vec<IV>{e[0], e[1]} + r.apply(Vec<IV>{e[2], e[3]});
 }
 
 // Directions counter-clockwise from s to e of an arc of rational radius (|s| = |e| = radius).
@@ -990,11 +1043,13 @@ struct Curve {
 };
 
 // A sign condition at a root: every polynomial >= 0 (or, `any`, one of them; `strict`: > 0).
-struct Condition {
-  std::vector<TrigPoly> p;
+template <class T>
+struct ConditionOf {
+  std::vector<T> p;
   bool any = false;
   bool strict = false;
 };
+using Condition = ConditionOf<TrigPoly>;
 
 class CurveFinder {
  public:
@@ -1068,6 +1123,12 @@ class CurveFinder {
   // Only half-angle tangents in [lo, hi] matter (the pin-slot part's angle limits): masks over
   // that range, roots isolated in it, no half turn.
   void restrict_to(const Rational& lo, const Rational& hi) { range_ = std::make_pair(lo, hi); }
+
+  // The interval filter and the oracle's memory (on by default; off: the plain exact path).
+  void use_filters(bool on) {
+    filters_ = on;
+    cert_.remember(on);
+  }
 
   std::vector<Critical> run() {
     compute_masks();
@@ -1193,10 +1254,11 @@ class CurveFinder {
   }
 
   // ------------------------------------------------------------ conditions
-  static Condition in_span(const SpanCondition& sc, Vec<TrigPoly> w, const Rotation<TrigPoly>& r) {
+  template <class T>
+  static ConditionOf<T> in_span(const SpanCondition& sc, Vec<T> w, const Rotation<T>& r) {
     if (sc.span.mode == Span::full) return {};
-    if (sc.negate) w = scale(TrigPoly(Rational(-1)), w);
-    Vec<TrigPoly> s{TrigPoly(sc.span.s.x), TrigPoly(sc.span.s.y)}, e{TrigPoly(sc.span.e.x), TrigPoly(sc.span.e.y)};
+    if (sc.negate) w = scale(T(Rational(-1)), w);
+    Vec<T> s{T(sc.span.s.x), T(sc.span.s.y)}, e{T(sc.span.e.x), T(sc.span.e.y)};
     if (sc.turning) {
       s = r.apply(s);
       e = r.apply(e);
@@ -1206,35 +1268,38 @@ class CurveFinder {
   }
   // The conditions for the point num / den to lie on curve c's extent (given it lies on its
   // supporting line or circle).
-  void on_extent(const Curve& c, const Vec<TrigPoly>& num, const TrigPoly& den, const Rotation<TrigPoly>& r,
-                        std::vector<Condition>& out) {
+  template <class T>
+  void on_extent(const Curve& c, const Vec<T>& num, const T& den, const Rotation<T>& r,
+                        std::vector<ConditionOf<T>>& out) {
     if (skip_conditions_) return;
     if (c.circle) {
-      Vec<TrigPoly> w = scale(den, num - scale(den, at(c.centre, r)));
+      Vec<T> w = scale(den, num - scale(den, at(c.centre, r)));
       for (const auto& sc : c.spans) out.push_back(in_span(sc, w, r));
       return;
     }
-    Vec<TrigPoly> d = at(c.d, r);
-    TrigPoly l = dot(num - scale(den, at(c.p0, r)), d) * den;
+    Vec<T> d = at(c.d, r);
+    T l = dot(num - scale(den, at(c.p0, r)), d) * den;
     out.push_back({{l, den * den * dot(d, d) - l}, false});
     for (const auto& sc : c.spans) out.push_back(in_span(sc, at(c.dir, r), r));
   }
   // Is the curve's end k a true end (inside the curve's other span conditions)?
-  void end_valid(const Curve& c, std::size_t k, const Rotation<TrigPoly>& r, std::vector<Condition>& out) {
+  template <class T>
+  void end_valid(const Curve& c, std::size_t k, const Rotation<T>& r, std::vector<ConditionOf<T>>& out) {
     if (skip_conditions_) return;
     if (!c.circle) {
       for (const auto& sc : c.spans) out.push_back(in_span(sc, at(c.dir, r), r));
       return;
     }
-    Vec<TrigPoly> w = at(c.ends[k].point, r) - at(c.centre, r);
+    Vec<T> w = at(c.ends[k].point, r) - at(c.centre, r);
     for (std::size_t m = 0; m < c.spans.size(); ++m)
       if (m != c.ends[k].own) out.push_back(in_span(c.spans[m], w, r));
   }
   // The polynomial vanishing when num / den lies on the curve's supporting line or circle.
-  static TrigPoly on_support(const Curve& c, const Vec<TrigPoly>& num, const TrigPoly& den, const Rotation<TrigPoly>& r) {
+  template <class T>
+  static T on_support(const Curve& c, const Vec<T>& num, const T& den, const Rotation<T>& r) {
     if (c.circle) {
-      Vec<TrigPoly> w = num - scale(den, at(c.centre, r));
-      return dot(w, w) - TrigPoly(Rational(c.radius * c.radius)) * den * den;
+      Vec<T> w = num - scale(den, at(c.centre, r));
+      return dot(w, w) - T(Rational(c.radius * c.radius)) * den * den;
     }
     return cross(num - scale(den, at(c.p0, r)), at(c.d, r));
   }
@@ -1257,6 +1322,59 @@ class CurveFinder {
   // Records the roots of build(rotation).poly (in the chart about 0, and the half turn: u = 0 in
   // the chart about pi) that meet the conditions and are not certainly blocked at any of the
   // points point_of(rotation) (optional<Vec<T>> each, for T Rational and Box).
+  // The interval filter: true when value_of (the event polynomial's value as a function of
+  // (cos, sin), in certified double intervals, with the event's conditions) certainly has no
+  // zero at which every condition may hold, for u in the whole restricted range. The range is covered by pieces with double ends (bisected up to 4 times
+  // where a piece's enclosure holds zero); cos and sin over a piece inside [-1, 1] are enclosed
+  // by their values at its ends (sin is increasing there, cos increasing up to 0, then
+  // decreasing). Then the exact polynomial has no root in the range that meets its conditions
+  // (a condition certainly negative over a piece is negative at every root there), and the
+  // exact path would record nothing.
+  template <class ValueOf>
+  bool certainly_no_root(ValueOf value_of) const {
+    if (!range_ || !filters_) return false;
+    const kernels::Interval lo = kernels::Interval::enclose(range_->first), hi = kernels::Interval::enclose(range_->second);
+    if (!(lo.lo >= -1.0 && hi.hi <= 1.0)) return false;
+    auto at_point = [](double u) {
+      const kernels::Interval x = kernels::Interval::point(u), one(1);
+      const kernels::Interval d = one + x * x;
+      return std::make_pair((one - x * x) / d, kernels::Interval(2) * x / d);
+    };
+    std::function<bool(double, double, int)> clear = [&](double a, double b, int depth) {
+      auto [ca, sa] = at_point(a);
+      auto [cb, sb] = at_point(b);
+      kernels::Interval c = b <= 0.0   ? kernels::Interval(ca.lo, cb.hi)
+                            : a >= 0.0 ? kernels::Interval(cb.lo, ca.hi)
+                                       : kernels::Interval(std::min(ca.lo, cb.lo), 1.0);
+      kernels::Interval sn(sa.lo, sb.hi);
+      if (c.hi > 1.0) c.hi = 1.0;
+      const auto [value, conditions] = value_of(Rotation<IV>{IV(c), IV(sn)});
+      const int sign = value.v.sign();
+      if (sign == 1 || sign == -1) return true;
+      // or a condition of the event certainly fails throughout the piece (a root there would
+      // not be recorded)
+      auto negative = [](const IV& x) { return x.v.hi < 0.0; };
+      for (const auto& condition : conditions) {
+        if (condition.p.empty()) continue;
+        if (condition.any ? std::all_of(condition.p.begin(), condition.p.end(), negative)
+                          : std::any_of(condition.p.begin(), condition.p.end(), negative))
+          return true;
+      }
+      if (depth == 0) return false;
+      const double m = 0.5 * (a + b);
+      if (!(a < m && m < b)) return false;
+      return clear(a, m, depth - 1) && clear(m, b, depth - 1);
+    };
+    return clear(lo.lo, hi.hi, 8);
+  }
+
+  // roots() with the interval filter first (restricted ranges only: the pin-slot finder).
+  template <class Build, class PointsOf, class ValueOf>
+  void roots(Build build, CriticalEvent kind, std::uint64_t mask, PointsOf points_of, ValueOf value_of) {
+    if (certainly_no_root(value_of)) return;   // nothing would be recorded
+    roots(build, kind, mask, points_of);
+  }
+
   template <class Build, class PointsOf>
   void roots(Build build, CriticalEvent kind, std::uint64_t mask, PointsOf points_of) {
     const std::size_t count = points_of(Rotation<Rational>{Rational(1), Rational(0)}).size();
@@ -1312,23 +1430,24 @@ class CurveFinder {
   }
 
   // The conditions for the point num / den to lie in the pin-slot window (none without one).
-  void in_window(const Vec<TrigPoly>& num, const TrigPoly& den, const Rotation<TrigPoly>& r, std::vector<Condition>& out) const {
+  template <class T>
+  void in_window(const Vec<T>& num, const T& den, const Rotation<T>& r, std::vector<ConditionOf<T>>& out) const {
     if (!window_ || skip_conditions_) return;
     const Window& w = *window_;
-    Vec<TrigPoly> rd = at(turning_point(w.d), r);
-    const TrigPoly dd = den * den;
+    Vec<T> rd = at(turning_point(w.d), r);
+    const T dd = den * den;
     // lo <= v / m <= hi for v = value * m * den^2 and m^2 den^2 > 0: signs of v - lo m^2 den^2, hi m^2 den^2 - v
-    auto between = [&](const TrigPoly& v, const TrigPoly& m2, const Rational& lo, const Rational& hi) {
-      out.push_back({{v - TrigPoly(lo) * m2 * dd, TrigPoly(hi) * m2 * dd - v}, false});
+    auto between = [&](const T& v, const T& m2, const Rational& lo, const Rational& hi) {
+      out.push_back({{v - T(lo) * m2 * dd, T(hi) * m2 * dd - v}, false});
     };
     if (!w.translating) {
-      TrigPoly c = cross(rd, num);
-      out.push_back({{c, TrigPoly(Rational(0)) - c}, false});   // on the line: c = 0
-      between(dot(num, rd) * den, TrigPoly(Rational(1)), w.s_lo, w.s_hi);   // s = dot(X, R d), |d| = 1
+      T c = cross(rd, num);
+      out.push_back({{c, T(Rational(0)) - c}, false});   // on the line: c = 0
+      between(dot(num, rd) * den, T(Rational(1)), w.s_lo, w.s_hi);   // s = dot(X, R d), |d| = 1
       return;
     }
-    Vec<TrigPoly> f{TrigPoly(w.translating->first.x), TrigPoly(w.translating->first.y)};
-    const TrigPoly k = cross(rd, f);
+    Vec<T> f{T(w.translating->first.x), T(w.translating->first.y)};
+    const T k = cross(rd, f);
     // s = cross(X, f) / k, q = cross(X, R d) / k
     between(cross(num, f) * den * k, k * k, w.s_lo, w.s_hi);
     between(cross(num, rd) * den * k, k * k, w.translating->second.first, w.translating->second.second);
@@ -1365,7 +1484,16 @@ class CurveFinder {
       return e;
     };
     auto points = [&](auto rot) { return std::vector{std::optional(at(ci.ends[k].point, rot))}; };
-    roots(build, CriticalEvent::vertex_on_contact, mask(i, j), points);
+    auto value = [&](const Rotation<IV>& r) {   // the polynomial and conditions of `build`, in intervals
+      std::vector<ConditionOf<IV>> conditions;
+      Vec<IV> p = at(ci.ends[k].point, r);
+      IV one(Rational(1));
+      end_valid(ci, k, r, conditions);
+      on_extent(cj, p, one, r, conditions);
+      in_window(p, one, r, conditions);
+      return std::make_pair(on_support(cj, p, one, r), std::move(conditions));
+    };
+    roots(build, CriticalEvent::vertex_on_contact, mask(i, j), points, value);
   }
 
   // (num, den) of the tangency point of two curves (one a circle).
@@ -1479,7 +1607,20 @@ class CurveFinder {
       auto [num, den] = meet(rot);
       return std::vector{quotient(num, den)};
     };
-    roots(build, CriticalEvent::three_contacts, m, points);
+    if (lines < 2) {   // (radical axes may be parallel at every angle: no polynomial at all)
+      roots(build, CriticalEvent::three_contacts, m, points);
+      return;
+    }
+    // two lines not parallel at every angle: the exact polynomial is formed unless this
+    // certainly has no zero
+    auto value = [&](const Rotation<IV>& r) {   // the polynomial and conditions of `build`, in intervals
+      auto [num, den] = meet(r);
+      std::vector<ConditionOf<IV>> conditions;
+      for (const Curve* x : c) on_extent(*x, num, den, r, conditions);
+      in_window(num, den, r, conditions);
+      return std::make_pair(on_support(check, num, den, r), std::move(conditions));
+    };
+    roots(build, CriticalEvent::three_contacts, m, points, value);
   }
 
   // A segment–arc contact appears or goes (the segment's normal at an end of the arc's span),
@@ -1532,14 +1673,22 @@ class CurveFinder {
       lo.canonicalize();
       hi.canonicalize();
       Rotation<Box> rot = rotation_box(lo, hi, flip);
+      // at(p, rot) with the turned part R b formed once per distinct b in this range (many
+      // curves share the free part's vertex b): the same arithmetic, the same boxes
+      std::map<std::pair<Rational, Rational>, Vec<Box>> turned;
+      auto at_range = [&](const Aff& p) {
+        auto [it, fresh] = turned.try_emplace(std::make_pair(p.b.x, p.b.y));
+        if (fresh) it->second = rot.apply(Vec<Box>{Box(p.b.x), Box(p.b.y)});
+        return Vec<Box>{Box(p.a.x), Box(p.a.y)} + it->second;
+      };
       for (std::size_t i = 0; i < n; ++i) {
         const Curve& c = curves_[i];
         std::pair<Box, Box> b;
         if (c.circle) {
-          Vec<Box> p = at(c.centre, rot);
+          Vec<Box> p = at_range(c.centre);
           b = {p.x + Box(-c.radius, c.radius), p.y + Box(-c.radius, c.radius)};
         } else {
-          Vec<Box> p = at(c.p0, rot), q = at(c.p0 + c.d, rot);
+          Vec<Box> p = at_range(c.p0), q = at_range(c.p0 + c.d);
           b = {Box{std::min(p.x.lo, q.x.lo), std::max(p.x.hi, q.x.hi)}, Box{std::min(p.y.lo, q.y.lo), std::max(p.y.hi, q.y.hi)}};
         }
         boxes[i].push_back(b);
@@ -1612,6 +1761,7 @@ class CurveFinder {
   std::vector<std::size_t> outside_;   // curves never meeting the window's box
   bool only_extra_ = false;
   bool skip_conditions_ = false;   // while building an event's polynomial alone
+  bool filters_ = true;            // the interval filter (restricted ranges) before exact polynomials
   std::function<Event(const Rotation<TrigPoly>&)> degenerate_;
   Features a_, b_;
   std::vector<Curve> curves_;
@@ -1658,8 +1808,9 @@ std::vector<Critical> critical_angles_with_arcs(const Part& fixed, const Part& f
 std::vector<Critical> pin_slot_critical_values(const Part& other, const Part& pin, const Rational& s_lo, const Rational& s_hi,
                                                const std::optional<std::pair<Rational, Rational>>& q_range,
                                                const std::optional<std::pair<Rational, Rational>>& tau_range,
-                                               CriticalStatistics& statistics) {
+                                               CriticalStatistics& statistics, bool filters) {
   CurveFinder finder(other, pin, statistics);
+  finder.use_filters(filters);
   if (tau_range) finder.restrict_to(tau_range->first, tau_range->second);
   const Vec<Rational> d{pin.motion.direction.x, pin.motion.direction.y};
   std::optional<std::pair<Vec<Rational>, std::pair<Rational, Rational>>> translating;

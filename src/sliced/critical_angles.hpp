@@ -64,11 +64,15 @@ std::vector<Critical> critical_angles_with_arcs(const Part& fixed, const Part& f
 /// the 3-DOF slice): the events of critical_angles_with_arcs inside the window, those with the
 /// window's edges, and (translating) where R d is parallel to f. Same input class as
 /// critical_angles_with_arcs (polygonal parts included). With `tau_range`, only critical values
-/// in it (and not the half turn) are found.
+/// in it (and not the half turn) are found. `filters` (default): an event polynomial is formed
+/// exactly only when certified double intervals over the range do not prove that it has no
+/// root there meeting its conditions, and the exact overlap oracle's answers at rational
+/// configurations are remembered; the result is the same as without (`filters` false: the
+/// plain exact path, for tests). `statistics.polynomials` counts the polynomials formed.
 std::vector<Critical> pin_slot_critical_values(const Part& other, const Part& pin, const Rational& s_lo, const Rational& s_hi,
                                                const std::optional<std::pair<Rational, Rational>>& q_range,
                                                const std::optional<std::pair<Rational, Rational>>& tau_range,
-                                               CriticalStatistics& statistics);
+                                               CriticalStatistics& statistics, bool filters = true);
 
 /// An exact real (algebra) as the public AlgebraicNumber, and back.
 AlgebraicNumber algebraic_of(const cspace::algebra::Real& r);

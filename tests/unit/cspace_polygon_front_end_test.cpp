@@ -20,6 +20,8 @@
 #include <CGAL/Polygon_set_2.h>
 #include <CGAL/minkowski_sum_2.h>
 
+#include "polygon_loop_json.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -29,18 +31,8 @@ namespace hipair {
 namespace {
 
 using namespace minkowski_support;
-using Points = std::vector<std::pair<Rational, Rational>>;
-
-std::string text(const Rational& q) { return "\"" + q.get_str() + "\""; }
-
-std::string loop_json(const Points& points) {
-  std::string out = "{ \"start\": [" + text(points[0].first) + ", " + text(points[0].second) + "], \"edges\": [";
-  for (std::size_t i = 1; i <= points.size(); ++i) {
-    const auto& p = points[i % points.size()];
-    out += std::string(i > 1 ? ", " : "") + "{ \"line_to\": [" + text(p.first) + ", " + text(p.second) + "] }";
-  }
-  return out + "] }";
-}
+using test_loops::loop_json;
+using test_loops::Points;
 
 Model sliders(const Points& a, const Points& b, const std::string& da = "[1, 0]", const std::string& db = "[0, 1]") {
   std::string model = R"({ "hipair": 1, "name": "sliders", "parts": [
