@@ -263,55 +263,51 @@ struct Arithmetic<verify::Jet> {
 };
 
 
-// The same formulas with second-order jets (the witness test's Taylor form): each operation
-// carries f' and f'' enclosed over its argument's range.
-template <>
-struct Arithmetic<verify::Jet2> {
-  using J = verify::Jet2;
+// The same formulas with second-order jets (tolerance_check.hpp; the witness test's Taylor
+// form): each operation carries f' and f'' enclosed over its argument's range.
+using J2 = verify::Jet2;
+J2 Arithmetic<J2>::constant(const Rational& q) { return J2(Interval(q)); }
+J2 Arithmetic<J2>::pi() { return J2(Interval::pi()); }
+J2 Arithmetic<J2>::sqrt(const J2& x) {
   using I = Interval;
-  static J constant(const Rational& q) { return J(I(q)); }
-  static J pi() { return J(I::pi()); }
-  static J sqrt(const J& x) {
-    I r = verify::apply1(mpfi_sqrt, x.value);
-    I f1 = I(Rational(1)) / (I(Rational(2)) * r);   // 1 / (2 r)
-    return verify::chain2(x, r, f1, -(f1 / (I(Rational(2)) * x.value)));   // -1 / (4 r^3)
-  }
-  static J sin(const J& x) {
-    I s = verify::apply1(mpfi_sin, x.value);
-    return verify::chain2(x, s, verify::apply1(mpfi_cos, x.value), -s);
-  }
-  static J cos(const J& x) {
-    I c = verify::apply1(mpfi_cos, x.value);
-    return verify::chain2(x, c, -verify::apply1(mpfi_sin, x.value), -c);
-  }
-  static J tan(const J& x) { return sin(x) / cos(x); }
-  static J atan2(const J& y, const J& x) {
-    I r;
-    mpfi_atan2(r.get(), y.value.get(), x.value.get());
-    // The branch cut (y = 0, x <= 0) inside the range: atan2 jumps there, no Taylor form holds.
-    if (y.value.sign() == 0 && x.value.sign() <= 0) return verify::rough(y, x, r);
-    I r2 = x.value * x.value + y.value * y.value;
-    I r4 = r2 * r2;
-    I ty = x.value / r2, tx = -(y.value / r2);
-    I two_xy = I(Rational(2)) * x.value * y.value / r4;
-    I tyy = -two_xy, txy = (y.value * y.value - x.value * x.value) / r4;
-    return verify::combine2(y, x, r, &ty, &tx, &tyy, &two_xy, &txy);
-  }
-  static J abs(const J& x) {
-    int s = x.value.sign();
-    if (s > 0) return x;
-    if (s < 0) return -x;
-    return verify::rough(x, J(0), verify::apply1(mpfi_abs, x.value));
-  }
-  static J extremum(const J& a, const J& b, bool minimum) {
-    int s = (a.value - b.value).sign();
-    if (s < 0) return minimum ? a : b;
-    if (s > 0) return minimum ? b : a;
-    return verify::rough(a, b, verify::extremum(a.value, b.value, minimum));
-  }
-  static J min(const J& a, const J& b) { return extremum(a, b, true); }
-  static J max(const J& a, const J& b) { return extremum(a, b, false); }
-};
+  I r = verify::apply1(mpfi_sqrt, x.value);
+  I f1 = I(Rational(1)) / (I(Rational(2)) * r);   // 1 / (2 r)
+  return verify::chain2(x, r, f1, -(f1 / (I(Rational(2)) * x.value)));   // -1 / (4 r^3)
+}
+J2 Arithmetic<J2>::sin(const J2& x) {
+  Interval s = verify::apply1(mpfi_sin, x.value);
+  return verify::chain2(x, s, verify::apply1(mpfi_cos, x.value), -s);
+}
+J2 Arithmetic<J2>::cos(const J2& x) {
+  Interval c = verify::apply1(mpfi_cos, x.value);
+  return verify::chain2(x, c, -verify::apply1(mpfi_sin, x.value), -c);
+}
+J2 Arithmetic<J2>::tan(const J2& x) { return sin(x) / cos(x); }
+J2 Arithmetic<J2>::atan2(const J2& y, const J2& x) {
+  using I = Interval;
+  I r;
+  mpfi_atan2(r.get(), y.value.get(), x.value.get());
+  // The branch cut (y = 0, x <= 0) inside the range: atan2 jumps there, no Taylor form holds.
+  if (y.value.sign() == 0 && x.value.sign() <= 0) return verify::rough(y, x, r);
+  I r2 = x.value * x.value + y.value * y.value;
+  I r4 = r2 * r2;
+  I ty = x.value / r2, tx = -(y.value / r2);
+  I two_xy = I(Rational(2)) * x.value * y.value / r4;
+  I tyy = -two_xy, txy = (y.value * y.value - x.value * x.value) / r4;
+  return verify::combine2(y, x, r, &ty, &tx, &tyy, &two_xy, &txy);
+}
+J2 Arithmetic<J2>::abs(const J2& x) {
+  int s = x.value.sign();
+  if (s > 0) return x;
+  if (s < 0) return -x;
+  return verify::rough(x, J2(0), verify::apply1(mpfi_abs, x.value));
+}
+J2 Arithmetic<J2>::extremum(const J2& a, const J2& b, bool minimum) {
+  int s = (a.value - b.value).sign();
+  if (s < 0) return minimum ? a : b;
+  if (s > 0) return minimum ? b : a;
+  return verify::rough(a, b, verify::extremum(a.value, b.value, minimum));
+}
 
 }  // namespace hipair::model_detail
 
@@ -682,7 +678,7 @@ void ToleranceEvaluator::check_witness(const ToleranceLeaf& leaf, ToleranceGeome
              show(side.bracket));
     int inside = sign_over_leaf(leaf, side.pair, s == 0 ? side.bracket.hi : side.bracket.lo, over, at);
     if (!leaf.witness_margins.empty()) {
-      // Check 5: the second-order Taylor form keeps the sign of the channel-side end with at
+      // Check 6: the second-order Taylor form keeps the sign of the channel-side end with at
       // least the recorded margin (the verifier's own enclosure; the margin is only a claim).
       if (leaf.witness_margins.size() != 2) reject(where + ": the witness needs two second-order margins");
       const Rational& margin = leaf.witness_margins[static_cast<std::size_t>(s)];

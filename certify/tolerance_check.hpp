@@ -60,7 +60,7 @@ Interval enclose(const Rational& value);
 /// dimensions in `index` (increasing) have non-zero derivatives. `smooth` is false when a
 /// non-differentiable operation (abs, min, max of undecided order) was met: then no
 /// derivative is trusted. The second-order Taylor form of the witness test uses it
-/// (docs/certify.md "Tolerance", check 5).
+/// (docs/certify.md "Tolerance", check 6).
 struct Jet2 {
   Interval value;
   std::vector<std::size_t> index;
@@ -82,6 +82,29 @@ Jet2 operator-(const Jet2& a, const Jet2& b);
 Jet2 operator-(const Jet2& a);
 Jet2 operator*(const Jet2& a, const Jet2& b);
 Jet2 operator/(const Jet2& a, const Jet2& b);
+
+}  // namespace hipair::verify
+
+namespace hipair::model_detail {
+/// The parametric formulas over second-order jets (MPFI; tolerance_check.cpp).
+template <>
+struct Arithmetic<verify::Jet2> {
+  using J = verify::Jet2;
+  static J constant(const Rational& q);
+  static J pi();
+  static J sqrt(const J& x);
+  static J sin(const J& x);
+  static J cos(const J& x);
+  static J tan(const J& x);
+  static J atan2(const J& y, const J& x);
+  static J abs(const J& x);
+  static J extremum(const J& a, const J& b, bool minimum);
+  static J min(const J& a, const J& b) { return extremum(a, b, true); }
+  static J max(const J& a, const J& b) { return extremum(a, b, false); }
+};
+}  // namespace hipair::model_detail
+
+namespace hipair::verify {
 
 /// Geometry of the pair's two parts at one parameter set (edges evaluated on demand).
 template <class T>
@@ -161,8 +184,8 @@ class ToleranceEvaluator {
 
   /// The second-order Taylor form of side `lower` (or upper) 's contact function at the
   /// leaf's witness path, over the whole leaf: the value and gradient at the leaf's centre,
-  /// the Hessian enclosed over the leaf (docs/certify.md "Tolerance", check 5). Unbounded
-  /// when the function is not smooth over the leaf.
+  /// the Hessian enclosed over the leaf (docs/certify.md "Tolerance", check 6); the plain
+  /// enclosure over the leaf when the function is not smooth there.
   Interval second_order(const ToleranceLeaf& leaf, bool upper) const;
 
   /// Walks the subdivision tree: the leaves cover the box times the range (times the follower

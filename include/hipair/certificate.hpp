@@ -144,7 +144,7 @@ struct ToleranceLeaf {
   /// test. The verifier encloses each side's contact function at y* over the leaf in
   /// second-order Taylor form (value and gradient at the centre, Hessian over the leaf) and
   /// requires it to keep the sign of the bracket's channel-side end with at least this margin
-  /// (docs/certify.md "Tolerance", check 5). Without them the first-order forms are used.
+  /// (docs/certify.md "Tolerance", check 6). Without them the first-order forms are used.
   std::vector<Rational> witness_margins;
 };
 

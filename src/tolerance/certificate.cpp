@@ -500,7 +500,7 @@ class Producer {
         w.witness = grid(mid, false);
         w.witness_slopes = a;
         if (accept(w)) return true;
-        // The same witness with the second-order Taylor form (check 5): the margins are the
+        // The same witness with the second-order Taylor form (check 6): the margins are the
         // verifier's own enclosures at this leaf, rounded down to short rationals.
         if (second_order_margins(w) && accept(w)) {
           ++second_order_leaves_;
