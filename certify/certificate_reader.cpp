@@ -174,9 +174,13 @@ ToleranceClaim tolerance_of(const JsonValue& body) {
     leaf.lower = leaf_side_of(require(item, "lower"));
     leaf.upper = leaf_side_of(require(item, "upper"));
     if (const JsonValue* witness = item.find("witness")) {
-      check_keys(*witness, {"value", "slopes"});
+      check_keys(*witness, {"value", "slopes", "second_order_margins"});
       leaf.witness = rational(require(*witness, "value"));
       for (const JsonValue& slope : array(require(*witness, "slopes")).items) leaf.witness_slopes.push_back(rational(slope));
+      if (const JsonValue* margins = witness->find("second_order_margins")) {
+        for (const JsonValue& m : array(*margins).items) leaf.witness_margins.push_back(rational(m));
+        if (leaf.witness_margins.size() != 2) fail(*margins, "give two margins: the lower side's, then the upper side's");
+      }
     }
     t.leaves.push_back(std::move(leaf));
   }

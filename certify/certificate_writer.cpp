@@ -98,7 +98,13 @@ std::string tolerance(const ToleranceClaim& t) {
     if (leaf.witness) {
       out += ",\n       \"witness\": {\"value\": " + number(*leaf.witness) + ", \"slopes\": [";
       for (std::size_t j = 0; j < leaf.witness_slopes.size(); ++j) out += (j ? ", " : "") + number(leaf.witness_slopes[j]);
-      out += "]}";
+      out += "]";
+      if (!leaf.witness_margins.empty()) {
+        out += ", \"second_order_margins\": [";
+        for (std::size_t j = 0; j < leaf.witness_margins.size(); ++j) out += (j ? ", " : "") + number(leaf.witness_margins[j]);
+        out += "]";
+      }
+      out += "}";
     }
     out += "}";
   }

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <iterator>
 #include <set>
 
 namespace hipair::verify {
@@ -92,6 +93,118 @@ Jet operator/(const Jet& a, const Jet& b) {
   return Jet(q, combine(a, inverse, b, -(q * inverse)));
 }
 
+// ----------------------------------------------------------------------------- second-order jets
+
+namespace {
+
+// Row a of the upper triangle of an n x n matrix starts at a n - a (a - 1) / 2.
+std::size_t triangle(std::size_t a, std::size_t b, std::size_t n) { return a * n - a * (a - 1) / 2 + (b - a); }
+
+// x's gradient and Hessian spread over the dimensions u (a superset of x.index).
+void spread(const Jet2& x, const std::vector<std::size_t>& u, std::vector<Interval>& g, std::vector<Interval>& h) {
+  std::size_t n = u.size();
+  if (x.index == u) {
+    g = x.gradient;
+    h = x.hessian;
+    return;
+  }
+  g.assign(n, zero());
+  h.assign(n * (n + 1) / 2, zero());
+  std::vector<std::size_t> at;
+  for (std::size_t d : x.index) at.push_back(static_cast<std::size_t>(std::lower_bound(u.begin(), u.end(), d) - u.begin()));
+  std::size_t m = x.index.size();
+  for (std::size_t a = 0; a < m; ++a) {
+    g[at[a]] = x.gradient[a];
+    for (std::size_t b = a; b < m; ++b) h[triangle(at[a], at[b], n)] = x.hessian[triangle(a, b, m)];
+  }
+}
+
+// value; gradient fa ga + fb gb; Hessian fa Ha + fb Hb + faa ga ga' + fbb gb gb' + fab (ga gb' + gb ga')
+// (a null multiplier of a first-order term is 1, of a second-order term 0).
+Jet2 combine2(const Jet2& a, const Jet2& b, Interval value, const Interval* fa, const Interval* fb, const Interval* faa,
+              const Interval* fbb, const Interval* fab) {
+  Jet2 r(value);
+  r.smooth = a.smooth && b.smooth;
+  std::set_union(a.index.begin(), a.index.end(), b.index.begin(), b.index.end(), std::back_inserter(r.index));
+  std::size_t n = r.index.size();
+  if (n == 0) return r;
+  std::vector<Interval> ga, ha, gb, hb;
+  spread(a, r.index, ga, ha);
+  spread(b, r.index, gb, hb);
+  auto times = [](const Interval& x, const Interval* f) { return f ? x * *f : x; };
+  r.gradient.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) r.gradient.push_back(times(ga[i], fa) + times(gb[i], fb));
+  r.hessian.reserve(n * (n + 1) / 2);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      std::size_t t = triangle(i, j, n);
+      Interval v = times(ha[t], fa) + times(hb[t], fb);
+      if (faa) v = v + *faa * ga[i] * ga[j];
+      if (fbb) v = v + *fbb * gb[i] * gb[j];
+      if (fab) v = v + *fab * (ga[i] * gb[j] + gb[i] * ga[j]);
+      r.hessian.push_back(std::move(v));
+    }
+  return r;
+}
+
+// f(x) with f' = f1, f'' = f2 at x (enclosed over x's value).
+Jet2 chain2(const Jet2& x, Interval value, const Interval& f1, const Interval& f2) {
+  Jet2 r(value);
+  r.smooth = x.smooth;
+  r.index = x.index;
+  std::size_t n = x.index.size();
+  r.gradient.reserve(n);
+  for (const Interval& g : x.gradient) r.gradient.push_back(g * f1);
+  r.hessian.reserve(x.hessian.size());
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) r.hessian.push_back(x.hessian[triangle(i, j, n)] * f1 + f2 * x.gradient[i] * x.gradient[j]);
+  return r;
+}
+
+// A non-differentiable point may lie in the range: the value stands, no derivative does.
+Jet2 rough(const Jet2& a, const Jet2& b, Interval value) {
+  Jet2 r = combine2(a, b, std::move(value), nullptr, nullptr, nullptr, nullptr, nullptr);
+  r.smooth = false;
+  return r;
+}
+
+}  // namespace
+
+Jet2 Jet2::variable(const Interval& v, std::size_t dimension) {
+  Jet2 r(v);
+  r.index = {dimension};
+  r.gradient = {one()};
+  r.hessian = {zero()};
+  return r;
+}
+
+const Interval& Jet2::second(std::size_t a, std::size_t b) const {
+  return a <= b ? hessian[triangle(a, b, index.size())] : hessian[triangle(b, a, index.size())];
+}
+
+Jet2 operator+(const Jet2& a, const Jet2& b) {
+  return combine2(a, b, a.value + b.value, nullptr, nullptr, nullptr, nullptr, nullptr);
+}
+Jet2 operator-(const Jet2& a, const Jet2& b) {
+  Interval minus_one = -one();
+  return combine2(a, b, a.value - b.value, nullptr, &minus_one, nullptr, nullptr, nullptr);
+}
+Jet2 operator-(const Jet2& a) { return chain2(a, -a.value, -one(), zero()); }
+Jet2 operator*(const Jet2& a, const Jet2& b) {
+  if (a.index.empty()) return chain2(b, a.value * b.value, a.value, zero()) ;
+  if (b.index.empty()) return chain2(a, a.value * b.value, b.value, zero());
+  Interval unit = one();
+  return combine2(a, b, a.value * b.value, &b.value, &a.value, nullptr, nullptr, &unit);
+}
+Jet2 operator/(const Jet2& a, const Jet2& b) {
+  Interval inverse = one() / b.value;
+  if (b.index.empty()) return chain2(a, a.value * inverse, inverse, zero());
+  // 1/x: -1/x^2, 2/x^3
+  Interval square = inverse * inverse;
+  Jet2 reciprocal = chain2(b, inverse, -square, Interval(Rational(2)) * square * inverse);
+  return a * reciprocal;
+}
+
 Interval enclose(const Rational& value) { return Interval(value); }
 Interval enclose(const RationalInterval& range) {
   Interval r;
@@ -148,6 +261,53 @@ struct Arithmetic<verify::Jet> {
   static J min(const J& a, const J& b) { return extremum(a, b, true); }
   static J max(const J& a, const J& b) { return extremum(a, b, false); }
 };
+
+
+// The same formulas with second-order jets (tolerance_check.hpp; the witness test's Taylor
+// form): each operation carries f' and f'' enclosed over its argument's range.
+using J2 = verify::Jet2;
+J2 Arithmetic<J2>::constant(const Rational& q) { return J2(Interval(q)); }
+J2 Arithmetic<J2>::pi() { return J2(Interval::pi()); }
+J2 Arithmetic<J2>::sqrt(const J2& x) {
+  using I = Interval;
+  I r = verify::apply1(mpfi_sqrt, x.value);
+  I f1 = I(Rational(1)) / (I(Rational(2)) * r);   // 1 / (2 r)
+  return verify::chain2(x, r, f1, -(f1 / (I(Rational(2)) * x.value)));   // -1 / (4 r^3)
+}
+J2 Arithmetic<J2>::sin(const J2& x) {
+  Interval s = verify::apply1(mpfi_sin, x.value);
+  return verify::chain2(x, s, verify::apply1(mpfi_cos, x.value), -s);
+}
+J2 Arithmetic<J2>::cos(const J2& x) {
+  Interval c = verify::apply1(mpfi_cos, x.value);
+  return verify::chain2(x, c, -verify::apply1(mpfi_sin, x.value), -c);
+}
+J2 Arithmetic<J2>::tan(const J2& x) { return sin(x) / cos(x); }
+J2 Arithmetic<J2>::atan2(const J2& y, const J2& x) {
+  using I = Interval;
+  I r;
+  mpfi_atan2(r.get(), y.value.get(), x.value.get());
+  // The branch cut (y = 0, x <= 0) inside the range: atan2 jumps there, no Taylor form holds.
+  if (y.value.sign() == 0 && x.value.sign() <= 0) return verify::rough(y, x, r);
+  I r2 = x.value * x.value + y.value * y.value;
+  I r4 = r2 * r2;
+  I ty = x.value / r2, tx = -(y.value / r2);
+  I two_xy = I(Rational(2)) * x.value * y.value / r4;
+  I tyy = -two_xy, txy = (y.value * y.value - x.value * x.value) / r4;
+  return verify::combine2(y, x, r, &ty, &tx, &tyy, &two_xy, &txy);
+}
+J2 Arithmetic<J2>::abs(const J2& x) {
+  int s = x.value.sign();
+  if (s > 0) return x;
+  if (s < 0) return -x;
+  return verify::rough(x, J2(0), verify::apply1(mpfi_abs, x.value));
+}
+J2 Arithmetic<J2>::extremum(const J2& a, const J2& b, bool minimum) {
+  int s = (a.value - b.value).sign();
+  if (s < 0) return minimum ? a : b;
+  if (s > 0) return minimum ? b : a;
+  return verify::rough(a, b, verify::extremum(a.value, b.value, minimum));
+}
 
 }  // namespace hipair::model_detail
 
@@ -285,13 +445,19 @@ ToleranceGeometry ToleranceEvaluator::geometry(const std::vector<Interval>& devi
     all[varied_[i]] = gradient ? Jet::variable(deviations.at(i), i, variables()) : Jet(deviations.at(i));
   ToleranceGeometry g;
   g.parameters = model_->parameter_values(all);
-  model_->motion_value(driver_, g.parameters, g.driver_pivot, g.driver_direction);
-  model_->motion_value(follower_, g.parameters, g.follower_pivot, g.follower_direction);
+  pose_pivots(g);
   return g;
 }
 
-const model_detail::EdgeValue<Jet>& ToleranceEvaluator::edge(ToleranceGeometry& g, std::size_t part,
-                                                              const FeatureReference& f) const {
+template <class T>
+void ToleranceEvaluator::pose_pivots(GeometryOf<T>& g) const {
+  model_->motion_value(driver_, g.parameters, g.driver_pivot, g.driver_direction);
+  model_->motion_value(follower_, g.parameters, g.follower_pivot, g.follower_direction);
+}
+
+template <class T>
+const model_detail::EdgeValue<T>& ToleranceEvaluator::edge(GeometryOf<T>& g, std::size_t part,
+                                                            const FeatureReference& f) const {
   auto key = std::make_tuple(part, f.edge.loop, f.edge.edge);
   auto it = g.edges.find(key);
   if (it == g.edges.end())
@@ -299,23 +465,29 @@ const model_detail::EdgeValue<Jet>& ToleranceEvaluator::edge(ToleranceGeometry& 
   return it->second;
 }
 
-kernels::Vector<Jet> ToleranceEvaluator::posed(const ToleranceGeometry& g, bool driver_part,
-                                               const kernels::Vector<Jet>& point, const Jet& coordinate) const {
+template <class T>
+kernels::Vector<T> ToleranceEvaluator::posed(const GeometryOf<T>& g, bool driver_part, const kernels::Vector<T>& point,
+                                             const T& coordinate) const {
   bool rotates = driver_part ? driver_rotates_ : follower_rotates_;
-  const kernels::Vector<Jet>& pivot = driver_part ? g.driver_pivot : g.follower_pivot;
-  const kernels::Vector<Jet>& direction = driver_part ? g.driver_direction : g.follower_direction;
+  const kernels::Vector<T>& pivot = driver_part ? g.driver_pivot : g.follower_pivot;
+  const kernels::Vector<T>& direction = driver_part ? g.driver_direction : g.follower_direction;
   if (!rotates) return {point.x + coordinate * direction.x, point.y + coordinate * direction.y};
-  using A = model_detail::Arithmetic<Jet>;
-  Jet c = A::cos(coordinate), s = A::sin(coordinate);
-  Jet dx = point.x - pivot.x, dy = point.y - pivot.y;
+  using A = model_detail::Arithmetic<T>;
+  T c = A::cos(coordinate), s = A::sin(coordinate);
+  T dx = point.x - pivot.x, dy = point.y - pivot.y;
   return {pivot.x + (c * dx - s * dy), pivot.y + (s * dx + c * dy)};
 }
 
 Jet ToleranceEvaluator::contact(ToleranceGeometry& g, std::size_t pair, const Jet& driver, const Jet& follower) const {
+  return contact_of(g, pair, driver, follower);
+}
+
+template <class T>
+T ToleranceEvaluator::contact_of(GeometryOf<T>& g, std::size_t pair, const T& driver, const T& follower) const {
   const ContactSidePair& side = claim_.sides.at(pair);
-  const model_detail::EdgeValue<Jet>& ea = edge(g, driver_, side.driver);
-  const model_detail::EdgeValue<Jet>& eb = edge(g, follower_, side.follower);
-  using V = kernels::Vector<Jet>;
+  const model_detail::EdgeValue<T>& ea = edge(g, driver_, side.driver);
+  const model_detail::EdgeValue<T>& eb = edge(g, follower_, side.follower);
+  using V = kernels::Vector<T>;
   auto cross = [](const V& u, const V& v) { return u.x * v.y - u.y * v.x; };
   auto dot = [](const V& u, const V& v) { return u.x * v.x + u.y * v.y; };
   auto minus = [](const V& u, const V& v) { return V{u.x - v.x, u.y - v.y}; };
@@ -324,14 +496,14 @@ Jet ToleranceEvaluator::contact(ToleranceGeometry& g, std::size_t pair, const Je
   // vertex against a segment: the vertex on the segment's line.
   auto vertex_segment = [&](const V& v, const V& s, const V& t) { return cross(minus(t, s), minus(v, s)); };
   // vertex against an arc: the vertex on the arc's circle.
-  auto vertex_arc = [&](const V& v, const V& c, const Jet& r2) {
+  auto vertex_arc = [&](const V& v, const V& c, const T& r2) {
     V d = minus(v, c);
     return dot(d, d) - r2;
   };
   // arc (convex) against a segment: the circle tangent to the segment's line (either side).
-  auto arc_segment = [&](const V& c, const Jet& r2, const V& s, const V& t) {
+  auto arc_segment = [&](const V& c, const T& r2, const V& s, const V& t) {
     V d = minus(t, s);
-    Jet k = cross(d, minus(c, s));
+    T k = cross(d, minus(c, s));
     return k * k - r2 * dot(d, d);
   };
   bool a_vertex = side.driver.vertex, b_vertex = side.follower.vertex;
@@ -340,9 +512,9 @@ Jet ToleranceEvaluator::contact(ToleranceGeometry& g, std::size_t pair, const Je
   if (b_vertex && !ea.arc) return vertex_segment(pb(eb.source), pa(ea.source), pa(ea.target));
   if (b_vertex) return vertex_arc(pb(eb.source), pa(ea.center), ea.radius_squared);
   if (ea.arc && eb.arc) {
-    using A = model_detail::Arithmetic<Jet>;
-    Jet ra = A::sqrt(ea.radius_squared), rb = A::sqrt(eb.radius_squared);
-    Jet r = ea.ccw && eb.ccw ? ra + rb : ra - rb;   // external, or internal tangency
+    using A = model_detail::Arithmetic<T>;
+    T ra = A::sqrt(ea.radius_squared), rb = A::sqrt(eb.radius_squared);
+    T r = ea.ccw && eb.ccw ? ra + rb : ra - rb;   // external, or internal tangency
     V d = minus(pa(ea.center), pb(eb.center));
     return dot(d, d) - r * r;
   }
@@ -504,27 +676,43 @@ void ToleranceEvaluator::check_witness(const ToleranceLeaf& leaf, ToleranceGeome
     if (below.sign() <= 0 || above.sign() <= 0)
       reject(where + ": the witness " + show(value) + " is not certainly inside the " + name + " side's bracket " +
              show(side.bracket));
-    // The side's function at y*(p, d): mean-value form about the leaf's centre (chain rule
-    // through the jet), with the sign it has at the bracket's end on the channel's side.
-    Jet h = contact(over, side.pair, driver, witness);
-    Interval centred = contact(at, side.pair, driver_centre, Jet(enclose(*leaf.witness))).value;
-    for (std::size_t i = 0; i < k; ++i) centred = centred + h.partial(i) * offset(leaf.parameters[i]);
-    centred = centred + h.partial(k) * offset(leaf.driver);
-    int sign = meet(centred, h.value).sign();
     int inside = sign_over_leaf(leaf, side.pair, s == 0 ? side.bracket.hi : side.bracket.lo, over, at);
-    if (sign == 0 && inside != 0)
-      sign = monotone_sign(leaf, h, inside, [&](const ToleranceLeaf& face, ToleranceGeometry& g) {
-        // y* over the face: exact at its centre plus the slopes times the face's offsets.
-        Interval y = enclose(*leaf.witness);
-        for (std::size_t i = 0; i < k; ++i)
-          y = y + slopes[i] * enclose(RationalInterval{face.parameters[i].lo - middle(leaf.parameters[i]),
-                                                       face.parameters[i].hi - middle(leaf.parameters[i])});
-        y = y + slopes[k] * enclose(RationalInterval{face.driver.lo - middle(leaf.driver), face.driver.hi - middle(leaf.driver)});
-        return contact(g, side.pair, Jet::variable(enclose(face.driver), driver_variable(), variables()), Jet(y, slopes));
-      });
-    if (sign == 0 || sign != inside)
-      reject(where + ": the witness is not certainly " + (s == 0 ? "above the lower" : "below the upper") +
-             " side (its contact function there encloses to " + show(meet(centred, h.value)) + ")");
+    if (!leaf.witness_margins.empty()) {
+      // Check 6: the second-order Taylor form keeps the sign of the channel-side end with at
+      // least the recorded margin (the verifier's own enclosure; the margin is only a claim).
+      if (leaf.witness_margins.size() != 2) reject(where + ": the witness needs two second-order margins");
+      const Rational& margin = leaf.witness_margins[static_cast<std::size_t>(s)];
+      if (!(margin > 0)) reject(where + ": the " + name + " side's second-order margin " + to_exact_string(margin) + " is not positive");
+      if (inside == 0)
+        reject(where + ": the sign of the " + name + " side's contact function at its bracket's channel-side end is not certain");
+      Interval e = second_order(leaf, s == 1);
+      Interval beyond = inside > 0 ? e - enclose(margin) : enclose(-margin) - e;
+      if (!beyond.is_bounded() || beyond.lower() < 0)
+        reject(where + ": the witness is not certainly " + (s == 0 ? "above the lower" : "below the upper") +
+               " side with margin " + to_exact_string(margin) + " (second-order form of its contact function: " +
+               show(e) + ")");
+    } else {
+      // The side's function at y*(p, d): mean-value form about the leaf's centre (chain rule
+      // through the jet), with the sign it has at the bracket's end on the channel's side.
+      Jet h = contact(over, side.pair, driver, witness);
+      Interval centred = contact(at, side.pair, driver_centre, Jet(enclose(*leaf.witness))).value;
+      for (std::size_t i = 0; i < k; ++i) centred = centred + h.partial(i) * offset(leaf.parameters[i]);
+      centred = centred + h.partial(k) * offset(leaf.driver);
+      int sign = meet(centred, h.value).sign();
+      if (sign == 0 && inside != 0)
+        sign = monotone_sign(leaf, h, inside, [&](const ToleranceLeaf& face, ToleranceGeometry& g) {
+          // y* over the face: exact at its centre plus the slopes times the face's offsets.
+          Interval y = enclose(*leaf.witness);
+          for (std::size_t i = 0; i < k; ++i)
+            y = y + slopes[i] * enclose(RationalInterval{face.parameters[i].lo - middle(leaf.parameters[i]),
+                                                         face.parameters[i].hi - middle(leaf.parameters[i])});
+          y = y + slopes[k] * enclose(RationalInterval{face.driver.lo - middle(leaf.driver), face.driver.hi - middle(leaf.driver)});
+          return contact(g, side.pair, Jet::variable(enclose(face.driver), driver_variable(), variables()), Jet(y, slopes));
+        });
+      if (sign == 0 || sign != inside)
+        reject(where + ": the witness is not certainly " + (s == 0 ? "above the lower" : "below the upper") +
+               " side (its contact function there encloses to " + show(meet(centred, h.value)) + ")");
+    }
     // No root between y* and the bracket's end on the channel's side: the function is monotone
     // there (its follower derivative of one certain sign over the leaf, y* taking every value
     // of its enclosure) and has the same sign at both ends. So the side, the root nearest the
@@ -536,6 +724,52 @@ void ToleranceEvaluator::check_witness(const ToleranceLeaf& leaf, ToleranceGeome
       reject(where + ": the " + name + " side's contact function may be stationary in the follower between the witness and " +
              "the bracket's end " + show(between) + " (derivative " + show(fy) + "): another root may lie beyond the witness");
   }
+}
+
+Interval ToleranceEvaluator::second_order(const ToleranceLeaf& leaf, bool upper) const {
+  // h(x) = F(side, d, y*(x)) over the leaf's dimensions x = (p, d): Taylor's theorem with the
+  // Lagrange remainder about the centre c, h(x) in h(c) + grad h(c) (x - c) + (x - c)' H (x - c) / 2
+  // with H the Hessian enclosed over the whole leaf (the segment from c to x lies in it). The
+  // value and gradient at c are narrow (no width enters them); only H carries the dependency
+  // problem, and it is multiplied by the squared half-widths.
+  std::size_t k = varied_.size();
+  const LeafSide& side = upper ? leaf.upper : leaf.lower;
+  if (side.pair >= claim_.sides.size() || leaf.witness_slopes.size() != k + 1 || !leaf.witness)
+    reject("a second-order witness test needs the side and k + 1 witness slopes");
+  std::vector<RationalInterval> dims = leaf.parameters;
+  dims.push_back(leaf.driver);
+  auto evaluate = [&](bool at_centre) {
+    std::vector<Jet2> variable;
+    for (std::size_t i = 0; i <= k; ++i)
+      variable.push_back(Jet2::variable(at_centre ? enclose(middle(dims[i])) : enclose(dims[i]), i));
+    std::vector<Jet2> all(model_->parameter_count(), Jet2(0));
+    for (std::size_t i = 0; i < k; ++i) all[varied_[i]] = variable[i];
+    GeometryOf<Jet2> g;
+    g.parameters = model_->parameter_values(all);
+    pose_pivots(g);
+    Jet2 y(enclose(*leaf.witness));
+    for (std::size_t i = 0; i <= k; ++i)
+      if (leaf.witness_slopes[i] != 0)
+        y = y + Jet2(enclose(leaf.witness_slopes[i])) * (variable[i] - Jet2(enclose(middle(dims[i]))));
+    return contact_of(g, side.pair, variable[k], y);
+  };
+  Jet2 over = evaluate(false);
+  if (!over.smooth) return over.value;
+  Jet2 at = evaluate(true);
+  if (!at.smooth) return over.value;
+  std::vector<Interval> offsets;
+  for (const RationalInterval& r : dims) offsets.push_back(offset(r));
+  Interval bound = at.value;
+  for (std::size_t a = 0; a < at.index.size(); ++a) bound = bound + at.gradient[a] * offsets[at.index[a]];
+  Interval half(Rational(1, 2));
+  for (std::size_t a = 0; a < over.index.size(); ++a) {
+    const Interval& oa = offsets[over.index[a]];
+    Interval square;
+    mpfi_sqr(square.get(), oa.get());
+    bound = bound + half * over.second(a, a) * square;
+    for (std::size_t b = a + 1; b < over.index.size(); ++b) bound = bound + over.second(a, b) * (oa * offsets[over.index[b]]);
+  }
+  return meet(bound, over.value);
 }
 
 Interval ToleranceEvaluator::play(const ToleranceLeaf& leaf, const SideEnclosure& lower, const SideEnclosure& upper) const {

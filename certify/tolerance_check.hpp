@@ -55,12 +55,65 @@ Jet operator/(const Jet& a, const Jet& b);
 Interval enclose(const RationalInterval& range);
 Interval enclose(const Rational& value);
 
-/// Geometry of the pair's two parts at one parameter set (edges evaluated on demand).
-struct ToleranceGeometry {
-  std::vector<Jet> parameters;   ///< every parameter's value
-  std::map<std::tuple<std::size_t, std::size_t, std::size_t>, model_detail::EdgeValue<Jet>> edges;
-  kernels::Vector<Jet> driver_pivot, driver_direction, follower_pivot, follower_direction;
+/// A value with its gradient and Hessian with respect to the dimensions of a leaf (the varied
+/// parameters, then the driver), every component an MPFI enclosure; sparse: only the
+/// dimensions in `index` (increasing) have non-zero derivatives. `smooth` is false when a
+/// non-differentiable operation (abs, min, max of undecided order) was met: then no
+/// derivative is trusted. The second-order Taylor form of the witness test uses it
+/// (docs/certify.md "Tolerance", check 6).
+struct Jet2 {
+  Interval value;
+  std::vector<std::size_t> index;
+  std::vector<Interval> gradient;   ///< per entry of index
+  std::vector<Interval> hessian;    ///< upper triangle, row by row: (a, b), a <= b
+  bool smooth = true;
+
+  Jet2() : value(Rational(0)) {}
+  Jet2(int v) : value(Rational(v)) {}   // NOLINT(google-explicit-constructor): formulas use T(0)
+  explicit Jet2(const Interval& v) : value(v) {}
+  /// Dimension `dimension` ranging over `v`.
+  static Jet2 variable(const Interval& v, std::size_t dimension);
+  /// The Hessian entry of entries a, b of index.
+  const Interval& second(std::size_t a, std::size_t b) const;
 };
+
+Jet2 operator+(const Jet2& a, const Jet2& b);
+Jet2 operator-(const Jet2& a, const Jet2& b);
+Jet2 operator-(const Jet2& a);
+Jet2 operator*(const Jet2& a, const Jet2& b);
+Jet2 operator/(const Jet2& a, const Jet2& b);
+
+}  // namespace hipair::verify
+
+namespace hipair::model_detail {
+/// The parametric formulas over second-order jets (MPFI; tolerance_check.cpp).
+template <>
+struct Arithmetic<verify::Jet2> {
+  using J = verify::Jet2;
+  static J constant(const Rational& q);
+  static J pi();
+  static J sqrt(const J& x);
+  static J sin(const J& x);
+  static J cos(const J& x);
+  static J tan(const J& x);
+  static J atan2(const J& y, const J& x);
+  static J abs(const J& x);
+  static J extremum(const J& a, const J& b, bool minimum);
+  static J min(const J& a, const J& b) { return extremum(a, b, true); }
+  static J max(const J& a, const J& b) { return extremum(a, b, false); }
+};
+}  // namespace hipair::model_detail
+
+namespace hipair::verify {
+
+/// Geometry of the pair's two parts at one parameter set (edges evaluated on demand).
+template <class T>
+struct GeometryOf {
+  std::vector<T> parameters;   ///< every parameter's value
+  std::map<std::tuple<std::size_t, std::size_t, std::size_t>, model_detail::EdgeValue<T>> edges;
+  kernels::Vector<T> driver_pivot, driver_direction, follower_pivot, follower_direction;
+};
+using ToleranceGeometry = GeometryOf<Jet>;
 
 /// What one side of one leaf certifies: the side's root over the leaf lies in `bracket`, at
 /// the leaf's centre in `centre`, and its partial derivatives (varied parameters, then the
@@ -129,6 +182,12 @@ class ToleranceEvaluator {
   void check_witness(const ToleranceLeaf& leaf, ToleranceGeometry& over_box, ToleranceGeometry& at_centre,
                      const std::string& where) const;
 
+  /// The second-order Taylor form of side `lower` (or upper) 's contact function at the
+  /// leaf's witness path, over the whole leaf: the value and gradient at the leaf's centre,
+  /// the Hessian enclosed over the leaf (docs/certify.md "Tolerance", check 6); the plain
+  /// enclosure over the leaf when the function is not smooth there.
+  Interval second_order(const ToleranceLeaf& leaf, bool upper) const;
+
   /// Walks the subdivision tree: the leaves cover the box times the range (times the follower
   /// range for no_interference). \throws Rejection.
   void check_cover() const;
@@ -143,9 +202,15 @@ class ToleranceEvaluator {
   std::string apart_failure(const ToleranceLeaf& leaf) const;
 
  private:
-  kernels::Vector<Jet> posed(const ToleranceGeometry& g, bool driver_part, const kernels::Vector<Jet>& point,
-                             const Jet& coordinate) const;
-  const model_detail::EdgeValue<Jet>& edge(ToleranceGeometry& g, std::size_t part, const FeatureReference& f) const;
+  template <class T>
+  kernels::Vector<T> posed(const GeometryOf<T>& g, bool driver_part, const kernels::Vector<T>& point,
+                           const T& coordinate) const;
+  template <class T>
+  const model_detail::EdgeValue<T>& edge(GeometryOf<T>& g, std::size_t part, const FeatureReference& f) const;
+  template <class T>
+  T contact_of(GeometryOf<T>& g, std::size_t pair, const T& driver, const T& follower) const;
+  template <class T>
+  void pose_pivots(GeometryOf<T>& g) const;
 
   std::shared_ptr<const model_detail::ParametricModel> model_;
   const ToleranceClaim& claim_;

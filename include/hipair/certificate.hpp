@@ -140,6 +140,12 @@ struct ToleranceLeaf {
   /// sides over the whole leaf. Without it the play between the sides is enclosed instead.
   std::optional<Rational> witness;
   std::vector<Rational> witness_slopes;
+  /// Optional, with a witness: the lower and upper sides' margins m > 0 of the second-order
+  /// test. The verifier encloses each side's contact function at y* over the leaf in
+  /// second-order Taylor form (value and gradient at the centre, Hessian over the leaf) and
+  /// requires it to keep the sign of the bracket's channel-side end with at least this margin
+  /// (docs/certify.md "Tolerance", check 6). Without them the first-order forms are used.
+  std::vector<Rational> witness_margins;
 };
 
 /// A node of the subdivision tree in preorder: a split of the current region at `value` along

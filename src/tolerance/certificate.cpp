@@ -121,6 +121,7 @@ class Producer {
       status = solve(region, pieces[k], 0);
     }
     result.leaves = claim_.leaves.size();
+    result.second_order_leaves = second_order_leaves_;
     result.attempts = attempts_;
     result.seconds_produce = seconds_since(start);
     if (status == Status::jams) {
@@ -334,6 +335,35 @@ class Producer {
     return false;
   }
 
+  // x > 0 rounded down to 10 significant digits (a short exact rational); 0 when x <= 0.
+  static Rational short_below(const Rational& x) {
+    if (!(x > 0)) return Rational(0);
+    double v = x.get_d() * (1 - 1e-9);
+    if (!(v > 0) || !std::isfinite(v)) return Rational(0);
+    int exponent = static_cast<int>(std::floor(std::log10(v))) - 9;
+    mpz_class ten = 1;
+    mpz_ui_pow_ui(ten.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(exponent)));
+    Rational unit = exponent >= 0 ? Rational(ten) : Rational(mpz_class(1), ten);
+    Rational q = Rational(mpz_class(std::floor(v / unit.get_d()))) * unit;
+    q.canonicalize();
+    while (q > 0 && q > x) q -= unit;   // never above x (the double's rounding)
+    return q;
+  }
+
+  // Fills w's second-order margins from the verifier's second-order enclosure of each side's
+  // contact function at the witness; false when one of them contains 0.
+  bool second_order_margins(ToleranceLeaf& w) {
+    w.witness_margins.clear();
+    for (bool upper : {false, true}) {
+      Interval e = evaluator_->second_order(w, upper);
+      if (e.sign() == 0) return false;
+      Rational margin = short_below(e.sign() > 0 ? e.lower() : -e.upper());
+      if (!(margin > 0)) return false;
+      w.witness_margins.push_back(margin);
+    }
+    return true;
+  }
+
   // Per dimension (varied parameters, then the driver): the mean-value remainder that the
   // witness test of `w` adds for it (|partial| x half-width of each side's contact function at
   // the witness path, where the partial's sign is not certain), relative to the function's size
@@ -470,6 +500,13 @@ class Producer {
         w.witness = grid(mid, false);
         w.witness_slopes = a;
         if (accept(w)) return true;
+        // The same witness with the second-order Taylor form (check 6): the margins are the
+        // verifier's own enclosures at this leaf, rounded down to short rationals.
+        if (second_order_margins(w) && accept(w)) {
+          ++second_order_leaves_;
+          return true;
+        }
+        w.witness_margins.clear();
         // The most promising pair of sides so far (largest linearised margin relative to the
         // play at the centre) guides the split.
         double ratio = predicted / (gu.root - gl.root);
@@ -540,6 +577,7 @@ class Producer {
   ToleranceClaim claim_;
   std::unique_ptr<verify::ToleranceEvaluator> evaluator_;
   std::size_t attempts_ = 0;
+  std::size_t second_order_leaves_ = 0;
   std::vector<double> witness_score_;
   double witness_ratio_ = 0;
   std::string jam_reason_, undecided_reason_;

@@ -585,3 +585,171 @@ TEST(CertifyTolerance, SignOverGeneratedLeavesHoldsAtTheirPointsAndCorners) {
 
 }  // namespace
 }  // namespace hipair
+
+// ----------------------------------------------------------------------------- second order
+
+namespace hipair {
+namespace {
+
+// 0.9 x the linearised jamming threshold x 8.484 that `hipair tolerance --threshold` finds on
+// 2.2 .. 2.3 rad (docs/tolerance.md), rounded down to 4 digits: the whole range that the
+// first-order witness test could not close (its leaves piled up at the pin / slot-corner fold).
+const ToleranceResult& nine_tenths_of_the_threshold() {
+  static const ToleranceResult result = [] {
+    ToleranceOptions options = around_the_pin_entry();
+    options.certify = true;
+    options.certify_scale = Rational(1527, 200);
+    options.certify_max_leaves = 3000;
+    return analyze_tolerances(geneva(), options);
+  }();
+  return result;
+}
+
+TEST(CertifyTolerance, SecondOrderLeavesCertifyTheFullRangeAtNineTenthsOfTheThreshold) {
+  const ToleranceResult& result = nine_tenths_of_the_threshold();
+  ASSERT_TRUE(result.certification);
+  const ToleranceCertification& c = *result.certification;
+  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
+  ASSERT_TRUE(c.certificate && c.certificate->tolerance);
+  const ToleranceClaim& t = *c.certificate->tolerance;
+  EXPECT_EQ(t.range.lo, Rational(11, 5));
+  EXPECT_EQ(t.range.hi, Rational(23, 10));
+  EXPECT_EQ(t.scale, Rational(1527, 200));
+  EXPECT_GT(c.second_order_leaves, 0u);
+  std::size_t recorded = 0;
+  for (const ToleranceLeaf& leaf : t.leaves) recorded += leaf.witness_margins.size() == 2;
+  EXPECT_EQ(recorded, c.second_order_leaves);
+  // Through the file path hipair-verify uses (the verifier's own enclosures).
+  std::filesystem::path file = std::filesystem::temp_directory_path() / "hipair-tolerance-certificate-09-full-test.json";
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << write_certificate(*c.certificate);
+  }
+  VerificationResult v = verify_certificate_file(file, geneva());
+  std::filesystem::remove(file);
+  EXPECT_TRUE(v.valid) << v.reason;
+  // Independent oracle: the library's double-precision kernels at random points of every leaf
+  // (half of them at corners of the leaf's parameter box) find both sides in their brackets,
+  // no root between the witness and the channel-side ends, and an open channel.
+  EXPECT_EQ(check_leaves_with_kernels(t, 10, 33), 10 * t.leaves.size());
+}
+
+// The second-order enclosure of each side's contact function at the witness path holds at
+// random points of the leaf (the function evaluated there with point enclosures), and keeps the
+// sign and margin the certificate records.
+TEST(CertifyTolerance, SecondOrderEnclosuresHoldAtRandomPointsOfTheirLeaves) {
+  const ToleranceResult& result = nine_tenths_of_the_threshold();
+  ASSERT_TRUE(result.certification && result.certification->certificate);
+  const ToleranceClaim& t = *result.certification->certificate->tolerance;
+  auto parametric = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(read(geneva())));
+  verify::ToleranceEvaluator evaluator(parametric, t);
+  std::mt19937_64 random(5);
+  std::size_t checked = 0;
+  for (const ToleranceLeaf& leaf : t.leaves) {
+    if (leaf.witness_margins.size() != 2) continue;
+    for (bool upper : {false, true}) {
+      verify::Interval e = evaluator.second_order(leaf, upper);
+      ASSERT_TRUE(e.is_bounded());
+      ASSERT_NE(e.sign(), 0);
+      const Rational& margin = leaf.witness_margins[upper ? 1 : 0];
+      EXPECT_TRUE(e.sign() > 0 ? e.lower() >= margin : -e.upper() >= margin);
+      const LeafSide& side = upper ? leaf.upper : leaf.lower;
+      for (int trial = 0; trial < 12; ++trial) {
+        std::vector<verify::Interval> deviations;
+        Rational y = *leaf.witness;
+        auto draw = [&](const RationalInterval& r) {
+          std::uniform_int_distribution<int> k(0, 64);
+          Rational q = r.lo + (r.hi - r.lo) * Rational(trial % 2 == 0 ? 64 * (k(random) % 2) : k(random), 64);
+          return q;
+        };
+        for (std::size_t i = 0; i < t.varied.size(); ++i) {
+          Rational p = draw(leaf.parameters[i]);
+          deviations.push_back(verify::enclose(p));
+          y += leaf.witness_slopes[i] * (p - (leaf.parameters[i].lo + leaf.parameters[i].hi) / 2);
+        }
+        Rational d = draw(leaf.driver);
+        y += leaf.witness_slopes.back() * (d - (leaf.driver.lo + leaf.driver.hi) / 2);
+        verify::ToleranceGeometry g = evaluator.geometry(deviations, false);
+        verify::Interval f = evaluator.contact(g, side.pair, verify::Jet(verify::enclose(d)), verify::Jet(verify::enclose(y))).value;
+        ASSERT_TRUE(f.is_bounded());
+        EXPECT_LE(e.lower(), f.upper()) << "below the second-order enclosure";
+        EXPECT_GE(e.upper(), f.lower()) << "above the second-order enclosure";
+        EXPECT_EQ(f.sign(), e.sign());
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 0u);
+}
+
+// Second-order jets against closed-form gradients and Hessians (generated rational points):
+// x y + sin(x) y^2, atan2(y, x), sqrt(x^2 + y^2) and 1 / (x y). The jets' enclosures are
+// 256-bit MPFI; the closed forms are evaluated in the same arithmetic, so they must overlap.
+TEST(CertifyTolerance, SecondOrderJetsMatchClosedFormDerivatives) {
+  using J = verify::Jet2;
+  using A = model_detail::Arithmetic<J>;
+  using I = verify::Interval;
+  auto overlap = [](const I& a, const I& b) { return a.is_bounded() && b.is_bounded() && a.lower() <= b.upper() && b.lower() <= a.upper(); };
+  auto sin_i = [](const I& x) { return A::sin(J(x)).value; };
+  auto cos_i = [](const I& x) { return A::cos(J(x)).value; };
+  std::mt19937_64 random(8);
+  std::uniform_int_distribution<int> numerator(20, 400);
+  for (int trial = 0; trial < 40; ++trial) {
+    Rational qx(numerator(random), 100), qy(numerator(random), 100);
+    if (trial % 3 == 0) qy = -qy;
+    I x(qx), y(qy);
+    J X = J::variable(x, 0), Y = J::variable(y, 1);
+    I r2 = x * x + y * y;
+    I r = A::sqrt(J(r2)).value;
+    struct Case {
+      J jet;
+      I gx, gy, hxx, hxy, hyy;
+    };
+    I two(Rational(2)), unit(Rational(1));
+    std::vector<Case> cases{
+        {X * Y + A::sin(X) * Y * Y, y + cos_i(x) * y * y, x + two * sin_i(x) * y, -(sin_i(x) * y * y),
+         unit + two * cos_i(x) * y, two * sin_i(x)},
+        {A::atan2(Y, X), -(y / r2), x / r2, two * x * y / (r2 * r2), (y * y - x * x) / (r2 * r2), -(two * x * y / (r2 * r2))},
+        {A::sqrt(X * X + Y * Y), x / r, y / r, y * y / (r * r2), -(x * y / (r * r2)), x * x / (r * r2)},
+        {J(1) / (X * Y), -(unit / (x * x * y)), -(unit / (x * y * y)), two / (x * x * x * y), unit / (x * x * y * y),
+         two / (x * y * y * y)},
+    };
+    for (std::size_t c = 0; c < cases.size(); ++c) {
+      const Case& k = cases[c];
+      ASSERT_TRUE(k.jet.smooth);
+      ASSERT_EQ(k.jet.index, (std::vector<std::size_t>{0, 1})) << "case " << c;
+      EXPECT_TRUE(overlap(k.jet.gradient[0], k.gx)) << "case " << c << " d/dx at " << qx << ", " << qy;
+      EXPECT_TRUE(overlap(k.jet.gradient[1], k.gy)) << "case " << c << " d/dy";
+      EXPECT_TRUE(overlap(k.jet.second(0, 0), k.hxx)) << "case " << c << " d2/dx2";
+      EXPECT_TRUE(overlap(k.jet.second(0, 1), k.hxy)) << "case " << c << " d2/dxdy";
+      EXPECT_TRUE(overlap(k.jet.second(1, 0), k.hxy)) << "case " << c << " symmetric";
+      EXPECT_TRUE(overlap(k.jet.second(1, 1), k.hyy)) << "case " << c << " d2/dy2";
+      // tight: the jets carry no width at a point
+      EXPECT_LT((k.jet.second(0, 1).upper() - k.jet.second(0, 1).lower()), Rational(1, 1000000000));
+    }
+  }
+  // Across atan2's branch cut and at a kink of abs the jet is marked not smooth (no Taylor form).
+  I across;
+  mpfi_interv_si(across.get(), -1, 1);
+  EXPECT_FALSE(A::atan2(J::variable(across, 0), J(I(Rational(-1)))).smooth);
+  EXPECT_FALSE(A::abs(J::variable(across, 0)).smooth);
+  EXPECT_TRUE(A::abs(J::variable(I(Rational(-2)), 0)).smooth);
+}
+
+// At the threshold itself (x 8.488 >= the linearised x 8.484 on this range) the prover does not
+// certify: with a small budget it reports undecided (or a jam with its exact witness), never a
+// certificate.
+TEST(CertifyTolerance, AtTheThresholdTheProverRefusesRatherThanCertifying) {
+  ToleranceOptions options = around_the_pin_entry();
+  options.certify = true;
+  options.certify_scale = Rational(1061, 125);
+  options.certify_max_leaves = 60;
+  ToleranceResult result = analyze_tolerances(geneva(), options);
+  ASSERT_TRUE(result.certification);
+  EXPECT_NE(result.certification->outcome, ToleranceCertification::Outcome::certified);
+  EXPECT_FALSE(result.certification->certificate);
+  EXPECT_FALSE(result.certification->reason.empty());
+}
+
+}  // namespace
+}  // namespace hipair

@@ -23,6 +23,11 @@ tmp=$(mktemp -d)
 "$hipair" tolerance "$models/geneva.json" --range 2.2:2.3 --positions 720 --accuracy 0.5 --certify --certify-scale 2 \
   --quiet --out "$tmp/nojam" > /dev/null
 cp "$tmp/nojam/tolerance-certificate.json" "$out/geneva-tolerance-no-jam.json"
+# ... and at 0.9 x the jamming threshold (x 8.484 on this range): leaves proved by the
+# second-order witness test (docs/certify.md "Tolerance", check 6).
+"$hipair" tolerance "$models/geneva.json" --range 2.2:2.3 --positions 720 --accuracy 0.5 --certify \
+  --certify-scale 1527/200 --quiet --out "$tmp/nojam09" > /dev/null
+cp "$tmp/nojam09/tolerance-certificate.json" "$out/geneva-tolerance-no-jam-0.9-threshold.json"
 "$hipair" tolerance "$models/geneva.json" --certify-interference --pair driver:wheel --range 1:2.4 --follower-range 0 \
   --quiet --out "$tmp/noint" > /dev/null
 cp "$tmp/noint/interference-certificate.json" "$out/geneva-tolerance-no-interference.json"

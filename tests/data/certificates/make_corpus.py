@@ -49,6 +49,7 @@ bases = [
     ("film-claw-interference.json", "film-advance.json"),
     ("geneva-tolerance-no-jam.json", "geneva.json"),
     ("geneva-tolerance-no-interference.json", "geneva.json"),
+    ("geneva-tolerance-no-jam-0.9-threshold.json", "geneva.json"),
 ]
 for name, model in bases:
     expected.append((name, MODELS + model, "valid", name))
@@ -280,6 +281,72 @@ mutate(NOINT, "geneva.json", "t17-nointerference-wheel-turned-into-the-lock.json
        follower_moved("3/10"))
 mutate(NOINT, "geneva.json", "t18-nointerference-box-end-nearest-double.json", "wrong parameter box",
        nearest_double_box_end)
+
+# The second-order witness test (0.9 x the jamming threshold): the leaves' margins are claims the
+# verifier re-derives from its own Taylor enclosures.
+SECOND = "geneva-tolerance-no-jam-0.9-threshold.json"
+
+
+def second_order_leaf(c):
+    for index, leaf in enumerate(c["tolerance"]["leaves"]):
+        if "second_order_margins" in leaf.get("witness", {}):
+            return index, leaf
+    raise AssertionError("no second-order leaf")
+
+
+def margin_raised(c):
+    _, leaf = second_order_leaf(c)
+    leaf["witness"]["second_order_margins"][0] = rational(100 * fraction(leaf["witness"]["second_order_margins"][0]))
+
+
+def margin_zero(c):
+    _, leaf = second_order_leaf(c)
+    leaf["witness"]["second_order_margins"][1] = "0"
+
+
+def margins_dropped(c):
+    # Without its margins the leaf falls back to the first-order forms, which do not hold there.
+    _, leaf = second_order_leaf(c)
+    del leaf["witness"]["second_order_margins"]
+
+
+def driver_slope_flipped(c):
+    # The witness path's derivative in the driver angle with its sign flipped (scaled up, so the
+    # path leaves the channel within the leaf).
+    _, leaf = second_order_leaf(c)
+    slopes = leaf["witness"]["slopes"]
+    slopes[-1] = rational(-fraction(slopes[-1]) - 1)
+
+
+def leaf_driver_widened(c):
+    # A leaf's driver interval widened to the whole range: the box is still covered, but the
+    # leaf no longer holds over it.
+    index, leaf = second_order_leaf(c)
+    leaf["driver"] = list(c["tolerance"]["range"])
+
+
+def tolerance_changed(c):
+    # A consistent claim at a larger scale (box = scale x tolerances): the leaves do not cover it.
+    t = c["tolerance"]
+    old, new = fraction(t["scale"]), fraction(t["scale"]) * fraction("21/20")
+    t["scale"] = rational(new)
+    t["box"] = [[rational(fraction(lo) * new / old), rational(fraction(hi) * new / old)] for lo, hi in t["box"]]
+
+
+def range_shifted(c):
+    r = c["tolerance"]["range"]
+    c["tolerance"]["range"] = [rational(fraction(r[0]) + fraction("1/100")), rational(fraction(r[1]) + fraction("1/100"))]
+
+
+mutate(SECOND, "geneva.json", "t19-nojam-second-order-margin-raised.json", "second-order form", margin_raised)
+mutate(SECOND, "geneva.json", "t20-nojam-second-order-margin-zero.json", "is not positive", margin_zero)
+mutate(SECOND, "geneva.json", "t21-nojam-second-order-margins-dropped.json", "the witness is not certainly", margins_dropped)
+mutate(SECOND, "geneva.json", "t22-nojam-second-order-driver-slope-flipped.json", "is not certainly inside the lower side's bracket", driver_slope_flipped)
+mutate(SECOND, "geneva.json", "t23-nojam-second-order-leaf-driver-widened.json", "does not certainly change sign across the bracket", leaf_driver_widened)
+mutate(SECOND, "geneva.json", "t24-nojam-second-order-tolerance-changed.json", "coverage gap", tolerance_changed)
+mutate(SECOND, "geneva.json", "t25-nojam-second-order-scale-only-changed.json", "wrong parameter box",
+       set_path(["tolerance", "scale"], "8"))
+mutate(SECOND, "geneva.json", "t26-nojam-second-order-range-shifted.json", "coverage gap", range_shifted)
 
 with open(os.path.join(HERE, "EXPECTED.txt"), "w") as f:
     f.write("# certificate | model (relative to the repository) | expected: valid, or a substring of the reason | base\n")
