@@ -337,12 +337,17 @@ class ChainAnalysis {
         double linear = 0;
         for (std::size_t p = 0; p < n && p < total.size(); ++p) linear += std::fabs(total[p]) * (b.hi[p] - b.lo[p]);
         bool accurate = composed && out.width() <= linear * (1 + options_.relative_accuracy) + options_.absolute_accuracy;
-        if (!accurate && used + pending.size() + 2 <= max_shared_boxes) {
-          // a split along p narrows the composition by at most about loss_p x its width: only
-          // worth it when that is a fair part of the excess over the linearised width
+        if (composed && !accurate && used + pending.size() + 2 <= max_shared_boxes) {
+          // Bisection removes at most the independence loss, sum_p loss_p x width_p: split only
+          // when that explains at least half the excess over the linearised width (otherwise the
+          // excess is the pairs' own, e.g. gear meshes over a wide box, and splitting would cost
+          // up to max_shared_boxes compositions for nothing), along the largest term when it is
+          // at least a tenth of the excess.
+          double excess = out.width() - linear, explained = 0;
+          for (std::size_t p = 0; p < n; ++p) explained += loss[p] * (b.hi[p] - b.lo[p]);
           std::size_t split = n;
-          double best = composed ? 0.1 * (out.width() - linear) : 1e-12 * (linear + options_.absolute_accuracy);
-          for (std::size_t p = 0; p < n; ++p) {
+          double best = 0.1 * excess;
+          for (std::size_t p = 0; p < n && explained >= 0.5 * excess; ++p) {
             double score = loss[p] * (b.hi[p] - b.lo[p]);
             if (b.hi[p] > b.lo[p] && score > best) {
               best = score;
