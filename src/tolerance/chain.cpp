@@ -355,10 +355,7 @@ class ChainAnalysis {
             }
           }
           if (split < n) {
-            Box left = b, right = b;
-            double m = 0.5 * (b.lo[split] + b.hi[split]);
-            left.hi[split] = m;
-            right.lo[split] = m;
+            auto [left, right] = halves(b, split);
             pending.push_back(std::move(left));
             pending.push_back(std::move(right));
             continue;
