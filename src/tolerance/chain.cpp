@@ -7,7 +7,9 @@
 //     pair's driver) is the previous pair's output;
 //   - the linearised and RSS bands from the composed sensitivities;
 //   - the certified band by interval composition: each pair's certified enclosure over the whole
-//     tolerance box, its driver ranging over the previous pair's enclosure (no linearisation);
+//     tolerance box, its driver ranging over the previous pair's enclosure (no linearisation),
+//     the box bisected along parameters that act on several pairs (certified()) so that they
+//     vary together;
 //   - Monte Carlo: at each sampled vector, each pair's root certified (interval bisection) with
 //     its driver ranging over the previous pair's certified root at that vector.
 #include "model/parametric/parametric.hpp"
@@ -261,44 +263,122 @@ class ChainAnalysis {
     rank_regions(result_);
   }
 
-  // Per position, each pair's certified enclosure over the whole box, its driver ranging over
-  // the previous pair's enclosure (interval composition).
+  // One composition over the sub-box `box` (a part of the tolerance box): each pair's certified
+  // enclosure over it, its driver ranging over the previous pair's enclosure (interval
+  // composition). `charts` receives each pair's enclosure (chart units). False where a pair
+  // cannot be certified.
+  bool compose_over(std::size_t i, const Box& box, std::vector<Interval>& charts, Interval& out, std::size_t* boxes) const {
+    Interval x;   // the previous pair's output, part units
+    for (std::size_t s = 0; s < stages_.size(); ++s) {
+      const StageAnalysis& stage = stages_[s];
+      const StageContact& c = stage.contacts[i];
+      const PositionStage& ps = per_[i][s];
+      CurveSlice curve = c.curve;
+      if (s > 0) {
+        Interval t;
+        if (!part_to_chart(x, stage.result.driver_rotates, curve.fixed_half_turn, stages_[s - 1].result.samples[i].nominal, t))
+          return false;
+        curve.fixed_range = t;
+        curve.fixed_spread = std::fabs(ps.fixed_slope) * t.width();
+      }
+      try {
+        charts[s] = stage.solver->certified_range(curve, box, c.v, c.s_chart, options_.relative_accuracy,
+                                                  options_.absolute_accuracy, boxes[s]);
+      } catch (const NumericError&) {
+        return false;
+      }
+      x = to_part(charts[s], stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
+    }
+    out = x;
+    return true;
+  }
+
+  // Per position, the certified band of the output over the whole tolerance box. A parameter
+  // acting on several pairs (a shared dimension, or one that others are defined from) would enter
+  // the interval composition once per pair, independently (too wide, still sound); so the box is
+  // bisected along such parameters (branch and bound, up to `max_shared_boxes` sub-boxes per
+  // position) until each sub-box's composition is within the requested accuracy of the composed
+  // linearised width over it, and the band is the hull of the sub-boxes' compositions. Any
+  // partition of the box is sound; the choice of the shared parameters only steers the splits:
+  // those on which at least two pairs' outputs depend at the position (their share of the
+  // composed sensitivity, |d out / dp| summed over the pairs, exceeds |total d out / dp|: the
+  // independence loss), split where that loss times the sub-box's width is largest.
   void certified() {
     std::vector<std::size_t> boxes(positions() * stages_.size(), 0);
+    std::vector<std::size_t> shared_boxes(positions(), 0);
     std::vector<char> ok(positions(), 0);
+    std::size_t n = result_.parameters.size();
     parallel_for(options_.threads, positions(), [&](std::size_t i) {
       if (!result_.samples[i].contact) return;
-      Interval x;   // the previous pair's output, part units
-      for (std::size_t s = 0; s < stages_.size(); ++s) {
-        const StageAnalysis& stage = stages_[s];
-        const StageContact& c = stage.contacts[i];
-        PositionStage& ps = per_[i][s];
-        CurveSlice curve = c.curve;
-        std::vector<double> s_chart = c.s_chart;
-        if (s > 0) {
-          Interval t;
-          if (!part_to_chart(x, stage.result.driver_rotates, curve.fixed_half_turn, stages_[s - 1].result.samples[i].nominal, t))
-            return;
-          curve.fixed_range = t;
-          curve.fixed_spread = std::fabs(ps.fixed_slope) * t.width();
-        }
-        try {
-          ps.certified_chart = stage.solver->certified_range(curve, stage.box, c.v, s_chart, options_.relative_accuracy,
-                                                             options_.absolute_accuracy, boxes[i * stages_.size() + s]);
-        } catch (const NumericError&) {
-          return;
-        }
-        x = to_part(ps.certified_chart, stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
+      const std::vector<double>& total = result_.samples[i].sensitivities;
+      // each pair's share of d out / dp (output units): its own s_part times the later pairs' driver factors
+      std::vector<double> spread(n, 0.0);
+      double factor = 1;
+      for (std::size_t s = stages_.size(); s-- > 0;) {
+        for (std::size_t p = 0; p < n; ++p) spread[p] += std::fabs(factor * per_[i][s].s_part[p]);
+        factor *= per_[i][s].driver_factor;
       }
-      result_.samples[i].certified = CertifiedRange{x.lo, x.hi};
+      std::vector<double> loss(n, 0.0);
+      for (std::size_t p = 0; p < n && p < total.size(); ++p) loss[p] = spread[p] - std::fabs(total[p]);
+      std::vector<Interval> hull_charts(stages_.size());
+      std::vector<Interval> charts(stages_.size());
+      // breadth first: when the budget runs out, the sub-boxes left are the narrowest ones
+      // (depth first would leave the first halves whole)
+      std::deque<Box> pending{stages_.front().box};
+      bool have = false;
+      Interval band;
+      std::size_t used = 0;
+      while (!pending.empty()) {
+        Box b = std::move(pending.front());
+        pending.pop_front();
+        ++used;
+        Interval out;
+        bool composed = compose_over(i, b, charts, out, &boxes[i * stages_.size()]);
+        double linear = 0;
+        for (std::size_t p = 0; p < n && p < total.size(); ++p) linear += std::fabs(total[p]) * (b.hi[p] - b.lo[p]);
+        bool accurate = composed && out.width() <= linear * (1 + options_.relative_accuracy) + options_.absolute_accuracy;
+        if (composed && !accurate && used + pending.size() + 2 <= max_shared_boxes) {
+          // Bisection removes at most the independence loss, sum_p loss_p x width_p: split only
+          // when that explains at least half the excess over the linearised width (otherwise the
+          // excess is the pairs' own, e.g. gear meshes over a wide box, and splitting would cost
+          // up to max_shared_boxes compositions for nothing), along the largest term when it is
+          // at least a tenth of the excess.
+          double excess = out.width() - linear, explained = 0;
+          for (std::size_t p = 0; p < n; ++p) explained += loss[p] * (b.hi[p] - b.lo[p]);
+          std::size_t split = n;
+          double best = 0.1 * excess;
+          for (std::size_t p = 0; p < n && explained >= 0.5 * excess; ++p) {
+            double score = loss[p] * (b.hi[p] - b.lo[p]);
+            if (b.hi[p] > b.lo[p] && score > best) {
+              best = score;
+              split = p;
+            }
+          }
+          if (split < n) {
+            auto [left, right] = halves(b, split);
+            pending.push_back(std::move(left));
+            pending.push_back(std::move(right));
+            continue;
+          }
+        }
+        if (!composed) return;   // a sub-box that cannot be certified: the band is unbounded
+        band = have ? kernels::hull(band, out) : out;
+        for (std::size_t s = 0; s < stages_.size(); ++s) hull_charts[s] = have ? kernels::hull(hull_charts[s], charts[s]) : charts[s];
+        have = true;
+      }
+      for (std::size_t s = 0; s < stages_.size(); ++s) per_[i][s].certified_chart = hull_charts[s];
+      shared_boxes[i] = used;
+      result_.samples[i].certified = CertifiedRange{band.lo, band.hi};
       ok[i] = 1;
     });
-    std::size_t uncertified = 0;
+    std::size_t uncertified = 0, split_positions = 0, most = 0;
     for (std::size_t i = 0; i < positions(); ++i) {
       for (std::size_t s = 0; s < stages_.size(); ++s) {
         result_.chain[s].certified_boxes += boxes[i * stages_.size() + s];
         result_.certified_boxes += boxes[i * stages_.size() + s];
       }
+      split_positions += shared_boxes[i] > 1;
+      most = std::max(most, shared_boxes[i]);
       VariationSample& sample = result_.samples[i];
       if (!sample.contact) continue;
       if (!ok[i]) {
@@ -311,6 +391,10 @@ class ChainAnalysis {
       double excess = (sample.certified.upper - sample.certified.lower) - (sample.linear_upper - sample.linear_lower);
       result_.certified_excess = std::max(result_.certified_excess, excess);
     }
+    if (split_positions > 0)
+      notes_.push_back("the certified band was bisected along parameters acting on several pairs at " +
+                       std::to_string(split_positions) + " position(s) (at most " + std::to_string(most) +
+                       " sub-boxes of the tolerance box at one position)");
     if (uncertified > 0)
       notes_.push_back("the certified band could not be computed at " + std::to_string(uncertified) +
                        " driver position(s) (shown unbounded)");
@@ -378,6 +462,8 @@ class ChainAnalysis {
     summary.cpu_seconds = cpu_now() - cpu_start;
     result_.monte_carlo = summary;
   }
+
+  static constexpr std::size_t max_shared_boxes = 128;   // sub-boxes of the tolerance box per position
 
   std::string text_;
   ToleranceOptions options_;

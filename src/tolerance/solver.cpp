@@ -291,10 +291,7 @@ Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, d
         }
       }
       if (best > 0) {
-        Box left = b, right = b;
-        double m = 0.5 * (b.lo[split] + b.hi[split]);
-        left.hi[split] = m;
-        right.lo[split] = m;
+        auto [left, right] = halves(b, split);
         pending.push_back(std::move(left));
         pending.push_back(std::move(right));
         continue;

@@ -13,6 +13,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace hipair::tolerance_detail {
@@ -47,6 +48,15 @@ struct PairGeometry {
 struct Box {
   std::vector<double> lo, hi;
 };
+
+/// The two halves of `box` split at the middle of dimension `i` (lower half first).
+inline std::pair<Box, Box> halves(const Box& box, std::size_t i) {
+  std::pair<Box, Box> result{box, box};
+  double m = 0.5 * (box.lo[i] + box.hi[i]);
+  result.first.hi[i] = m;
+  result.second.lo[i] = m;
+  return result;
+}
 
 /// What the solver needs of the model, with geometry caches.
 class CurveSolver {

@@ -4,9 +4,11 @@
 
 #include "model/parametric/number_traits.hpp"
 #include "model/parametric/parametric.hpp"
+#include "tolerance/jet.hpp"
 
 #include <gtest/gtest.h>
 
+#include <utility>
 #include <vector>
 
 namespace hipair::test_generic {
@@ -48,6 +50,24 @@ inline void expect_generic_form_agrees(const model_detail::ParametricModel& mode
       }
     }
   }
+}
+
+/// Part 0's geometry as jets (values and derivatives over every parameter) at the nominal vector.
+inline model_detail::PartGeometry<tolerance_detail::Jet<double>> nominal_jets(const model_detail::ParametricModel& model) {
+  std::size_t n = model.parameter_count();
+  std::vector<tolerance_detail::Jet<double>> jets(n);
+  for (std::size_t i = 0; i < n; ++i) jets[i] = tolerance_detail::Jet<double>::variable(0.0, i, n);
+  return model.part_geometry<tolerance_detail::Jet<double>>(0, jets);
+}
+
+/// The exact forms at deviation +h and -h of parameter i (the others nominal), for central
+/// differences.
+inline std::pair<Model, Model> exact_models_around(const model_detail::ParametricModel& model, std::size_t i,
+                                                   const Rational& h) {
+  std::vector<Rational> plus(model.parameter_count(), Rational(0)), minus(model.parameter_count(), Rational(0));
+  plus[i] = h;
+  minus[i] = -h;
+  return {model.exact_model(plus), model.exact_model(minus)};
 }
 
 }  // namespace hipair::test_generic

@@ -76,18 +76,13 @@ TEST(ParametricRatchet, DerivativesEqualFiniteDifferencesOfExactExpansions) {
   for (int round = 0; round < 3; ++round) {
     ParametricModel model = ParametricModel::read(generated_ratchet(rng));
     std::size_t n = model.parameter_count();
-    std::vector<tolerance_detail::Jet<double>> jets(n);
-    for (std::size_t i = 0; i < n; ++i) jets[i] = tolerance_detail::Jet<double>::variable(0.0, i, n);
-    auto geometry = model.part_geometry<tolerance_detail::Jet<double>>(0, jets);
+    auto geometry = test_generic::nominal_jets(model);
     Rational h(1, 10000);
     double bound = 100 * h.get_d() * h.get_d() / 6 + 2e-9 / h.get_d();
     for (std::size_t i = 0; i < n; ++i) {
       const Parameter& p = model.nominal().parameters[i];
       if (p.range.lo == p.range.hi) continue;
-      std::vector<Rational> plus(n, Rational(0)), minus(n, Rational(0));
-      plus[i] = h;
-      minus[i] = -h;
-      Model a = model.exact_model(plus), b = model.exact_model(minus);
+      auto [a, b] = test_generic::exact_models_around(model, i, h);
       for (std::size_t e = 0; e < a.parts[0].loops[0].edges.size(); ++e) {
         double dx = Rational((a.parts[0].loops[0].edges[e].target.x - b.parts[0].loops[0].edges[e].target.x) / (2 * h)).get_d();
         double dy = Rational((a.parts[0].loops[0].edges[e].target.y - b.parts[0].loops[0].edges[e].target.y) / (2 * h)).get_d();

@@ -14,6 +14,7 @@
 //     kinematic engine).
 #include "tolerance_band_check.hpp"
 #include "tolerance_chain_models.hpp"
+#include "tolerance_chain_oracle.hpp"
 
 #include "model/parametric/parametric.hpp"
 
@@ -139,25 +140,6 @@ TEST(ToleranceChain, TwoPairChainEqualsTheCompositionOfItsPairs) {
   }
 }
 
-// The output part's position at driver position `theta` of the chain of `model` (the exact
-// kinematic engine sliced from the contact kernels and the exact overlap oracle, independently of
-// the C-spaces the analysis slices; the range's start is a sample).
-double chain_output(const Model& model, double theta, const std::string& output) {
-  KinematicsOptions k;
-  k.driver = "cam";
-  k.range = std::make_pair(Rational(theta), Rational(theta) + Rational(1, 100));
-  k.steps_per_cycle = 16;
-  k.reversal = false;
-  k.method = SliceMethod::kernels;
-  KinematicsResult r = analyze_kinematics(model, k);
-  std::size_t index = static_cast<std::size_t>(
-      std::find(r.followers.begin(), r.followers.end(), output) - r.followers.begin());
-  EXPECT_LT(index, r.followers.size());
-  // The first sample is the range's start (its double within a few ulps).
-  EXPECT_NEAR(r.samples.front().driver, theta, 4 * std::numeric_limits<double>::epsilon() * (1 + std::fabs(theta)));
-  return r.samples.front().positions.at(index);
-}
-
 // Every composed sensitivity of a toleranced parameter at three contact positions equals the
 // central difference of exact recomputations of the chain's output. Step h (rational); the
 // rebuilds' recorded roundings and the positions' doubles are below 1e-10, so a central
@@ -179,7 +161,7 @@ void expect_finite_differences(const std::string& text, const ToleranceResult& r
       auto rebuilt = [&](const Rational& delta) {
         std::vector<Rational> d(result.parameters.size(), Rational(0));
         d[i] = delta;
-        return chain_output(model->exact_model(d), s.driver, result.follower);
+        return test_chain::chain_output(model->exact_model(d), "cam", s.driver, result.follower);
       };
       double difference = (rebuilt(h) - rebuilt(-h)) / (2 * h.get_d());
       EXPECT_NEAR(s.sensitivities[i], difference, bound);
@@ -263,7 +245,7 @@ TEST(ToleranceChain, RotatingIntermediatePartKeepsEveryMonteCarloSampleAndMatche
     for (std::size_t k : {std::size_t{2}, std::size_t{13}, std::size_t{27}}) {
       const VariationSample& s = result.samples[k];
       ASSERT_TRUE(s.contact);
-      double out = chain_output(exact, s.driver, "lifter");
+      double out = test_chain::chain_output(exact, "cam", s.driver, "lifter");
       EXPECT_GE(out, s.certified.lower - 1e-10) << s.driver;
       EXPECT_LE(out, s.certified.upper + 1e-10) << s.driver;
     }

@@ -252,6 +252,27 @@ class RecipeBuilder {
     });
     return varies ? 0 : std::lround(value);
   }
+  // A spur_gear has the generic form with flank_radius (one arc per flank): the crossings of
+  // the flank circle with the tip and root circles that the exact template takes (the one
+  // nearer the pitch point) and the arc's turning sense, decided at nominal. The two-arc
+  // involute fit (no flank_radius) places its arcs through involute points computed in double
+  // and switches at the base circle: exact form only.
+  bool spur_gear_sides(FeatureRecipe& feature) {
+    if (!feature.arguments.count("flank_radius")) return false;
+    std::vector<double> p = model_.parameter_values<double>(std::vector<double>(model_.parameter_count(), 0.0));
+    auto nearer = [](const SpurFlank<double>& a, const SpurFlank<double>& b, bool tip) {
+      const kernels::Vector<double>& x = tip ? a.tip : a.root;
+      const kernels::Vector<double>& y = tip ? b.tip : b.root;
+      return parametric_detail::squared_distance(x, a.pitch_point) <= parametric_detail::squared_distance(y, a.pitch_point);
+    };
+    SpurFlank<double> plus = model_.spur_flank(feature, p, 1, 1), minus = model_.spur_flank(feature, p, -1, -1);
+    feature.tip_side = nearer(plus, minus, true) ? 1 : -1;
+    feature.root_side = nearer(plus, minus, false) ? 1 : -1;
+    SpurFlank<double> flank = model_.spur_flank(feature, p, feature.tip_side, feature.root_side);
+    kernels::Vector<double> a = flank.root - flank.centre, b = flank.tip - flank.centre;
+    feature.flank_ccw = a.x * b.y - a.y * b.x > 0;
+    return std::isfinite(flank.tip.x) && std::isfinite(flank.root.x);
+  }
   Slot angle_slot(const JsonValue& value) {
     Slot slot = raw_slot(value);
     slot.formula = angle_formula(slot);
@@ -322,9 +343,11 @@ class RecipeBuilder {
           }
           feature.arguments.emplace(argument.key, std::move(a));
         }
-        if (feature.name == "ratchet_wheel") feature.teeth = fixed_count(feature, "teeth");
+        if (feature.name == "ratchet_wheel" || feature.name == "spur_gear")
+          feature.teeth = fixed_count(feature, "teeth");
         bool generic = feature.name == "circle" || feature.name == "pin" ||
-                       (feature.name == "ratchet_wheel" && feature.teeth > 0);
+                       (feature.name == "ratchet_wheel" && feature.teeth > 0) ||
+                       (feature.name == "spur_gear" && feature.teeth > 0 && spur_gear_sides(feature));
         if (!generic && model_.generic_) {
           model_.generic_ = false;
           model_.exact_only_feature_ = feature.name + " (" + feature.pointer + ")";

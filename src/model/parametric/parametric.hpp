@@ -79,7 +79,20 @@ struct FeatureRecipe {
   };
   std::map<std::string, Argument> arguments;
   std::size_t loop_count = 0;   ///< loops it expanded to in the nominal model
-  long teeth = 0;               ///< ratchet_wheel: the tooth count (fixed: no toleranced parameter)
+  long teeth = 0;               ///< ratchet_wheel, spur_gear: the tooth count (fixed: no toleranced parameter)
+  /// spur_gear (flank_radius form): which crossing of the flank circle with the tip (root)
+  /// circle the exact template takes (+1 / -1 along perp(centre), decided at nominal), and the
+  /// flank arc's turning sense there.
+  int tip_side = 1, root_side = 1;
+  bool flank_ccw = true;
+};
+
+/// The canonical tooth's right flank of a spur_gear with flank_radius (axis along +x, the
+/// flank y < 0; templates_gears.cpp expand_spur_gear): the arc's centre and its ends on the
+/// root and tip circles.
+template <class T>
+struct SpurFlank {
+  kernels::Vector<T> centre, root, tip, pitch_point;
 };
 
 struct MotionRecipe {
@@ -158,9 +171,28 @@ class ParametricModel {
   /// Edge `edge` of a ratchet_wheel's loop in the template's own order (templates_gears.cpp:
   /// tip and root vertices centre + r u(phase + 2 pi k / teeth), the smooth form of the exact
   /// expansion's rounded unit vectors).
+  /// Edges of a generic feature template's loop (circle, pin: 1).
+  static std::size_t feature_edge_count(const FeatureRecipe& feature) {
+    if (feature.name == "ratchet_wheel") return 2 * static_cast<std::size_t>(feature.teeth);
+    if (feature.name == "spur_gear") return 4 * static_cast<std::size_t>(feature.teeth);
+    return 1;
+  }
   template <class T>
   void ratchet_edge(const FeatureRecipe& feature, std::size_t edge, const std::vector<T>& parameters,
                     EdgeValue<T>& value) const;
+
+  /// The canonical right flank of a spur_gear with flank_radius (the smooth form of the exact
+  /// expansion: its rounded unit vectors and the ends' rounding to exact points of the flank
+  /// circle are the recorded roundings), with the crossings `tip_side` / `root_side`.
+  template <class T>
+  SpurFlank<T> spur_flank(const FeatureRecipe& feature, const std::vector<T>& parameters, int tip_side,
+                          int root_side) const;
+  /// Edge `edge` of a spur_gear's loop (flank_radius form) in the template's order: per tooth
+  /// k, right flank (root -> tip), tip arc, left flank (mirror, tip -> root), root arc to tooth
+  /// k + 1, each placed by u(phase + 2 pi k / teeth) about the centre.
+  template <class T>
+  void spur_gear_edge(const FeatureRecipe& feature, std::size_t edge, const std::vector<T>& parameters,
+                      EdgeValue<T>& value) const;
 
   std::shared_ptr<const Model> nominal_;
   std::string text_;
@@ -228,8 +260,7 @@ PartGeometry<T> ParametricModel::part_geometry(std::size_t part, const std::vect
   std::size_t loops = recipe.loops.size() + recipe.features.size();
   for (std::size_t l = 0; l < loops; ++l) {
     std::size_t edges = l < recipe.loops.size() && !recipe.loops[l].circle ? recipe.loops[l].edges.size() : 1;
-    if (l >= recipe.loops.size() && recipe.features[l - recipe.loops.size()].name == "ratchet_wheel")
-      edges = 2 * static_cast<std::size_t>(recipe.features[l - recipe.loops.size()].teeth);
+    if (l >= recipe.loops.size()) edges = feature_edge_count(recipe.features[l - recipe.loops.size()]);
     std::vector<EdgeValue<T>> values;
     for (std::size_t e = 0; e < edges; ++e) values.push_back(edge_value(part, l, e, p));
     geometry.loops.push_back(std::move(values));
@@ -272,8 +303,11 @@ EdgeValue<T> ParametricModel::edge_value(std::size_t part, std::size_t loop, std
     }
   } else {
     const FeatureRecipe& feature = recipe.features.at(loop - recipe.loops.size());
+    std::size_t count = feature_edge_count(feature);
     if (feature.name == "ratchet_wheel") {
-      ratchet_edge(feature, reversed ? 2 * static_cast<std::size_t>(feature.teeth) - 1 - edge : edge, p, value);
+      ratchet_edge(feature, reversed ? count - 1 - edge : edge, p, value);
+    } else if (feature.name == "spur_gear") {
+      spur_gear_edge(feature, reversed ? count - 1 - edge : edge, p, value);
     } else {
       if (feature.name != "circle" && feature.name != "pin")
         throw ModelError(feature.pointer, "feature template '" + feature.name +
@@ -316,6 +350,87 @@ void ParametricModel::ratchet_edge(const FeatureRecipe& feature, std::size_t edg
     value.target = first ? vertex(k, root) : vertex(k + 1, tip);
   }
   value.arc = false;
+}
+
+template <class T>
+SpurFlank<T> ParametricModel::spur_flank(const FeatureRecipe& feature, const std::vector<T>& p, int tip_side,
+                                         int root_side) const {
+  using namespace parametric_detail;
+  using A = Arithmetic<T>;
+  auto number = [&](const char* key) { return slot_value(feature.arguments.at(key).number, p); };
+  T pitch = number("pitch_radius"), radius = number("flank_radius");
+  T tip_radius = T(pitch + number("addendum")), root_radius = T(pitch - number("dedendum"));
+  auto pressure = feature.arguments.find("pressure_angle");
+  T alpha = pressure != feature.arguments.end() ? slot_value(pressure->second.number, p)
+                                                : T(A::constant(Rational(1, 9)) * A::pi());
+  T beta = T(number("tooth_thickness") / T(pitch + pitch));
+  SpurFlank<T> flank;
+  flank.pitch_point = {T(pitch * A::cos(beta)), T(-(pitch * A::sin(beta)))};
+  // the flank normal u(pi/2 + alpha - beta) at the pitch point
+  T turn = T(alpha - beta);
+  flank.centre = {T(flank.pitch_point.x - radius * A::sin(turn)), T(flank.pitch_point.y + radius * A::cos(turn))};
+  // the flank circle's crossing with the circle of radius R about the gear's centre
+  const kernels::Vector<T>& c = flank.centre;
+  T d2 = T(c.x * c.x + c.y * c.y);
+  T d = A::sqrt(d2);
+  auto crossing = [&](const T& circle, int side) {
+    T along = T(T(circle * circle - radius * radius + d2) / T(d + d));
+    T across = A::sqrt(T(circle * circle - along * along));
+    T a = T(along / d), h = T(across / d);
+    if (side < 0) h = T(-h);
+    return kernels::Vector<T>{T(a * c.x - h * c.y), T(a * c.y + h * c.x)};
+  };
+  flank.tip = crossing(tip_radius, tip_side);
+  flank.root = crossing(root_radius, root_side);
+  return flank;
+}
+
+template <class T>
+void ParametricModel::spur_gear_edge(const FeatureRecipe& feature, std::size_t edge, const std::vector<T>& p,
+                                     EdgeValue<T>& value) const {
+  using namespace parametric_detail;
+  using A = Arithmetic<T>;
+  kernels::Vector<T> center = point_value(feature.arguments.at("center").point, p);
+  auto phase_argument = feature.arguments.find("phase");
+  T phase = phase_argument != feature.arguments.end() ? slot_value(phase_argument->second.number, p)
+                                                      : A::constant(Rational(0));
+  SpurFlank<T> flank = spur_flank(feature, p, feature.tip_side, feature.root_side);
+  long n = feature.teeth;
+  long k = static_cast<long>(edge / 4);
+  auto place = [&](long tooth, const kernels::Vector<T>& local, bool mirrored) {
+    T angle = T(phase + A::constant(Rational(2 * (tooth % n), n)) * A::pi());
+    T cs = A::cos(angle), sn = A::sin(angle);
+    T y = mirrored ? T(-local.y) : local.y;
+    return kernels::Vector<T>{T(center.x + T(local.x * cs - y * sn)), T(center.y + T(local.x * sn + y * cs))};
+  };
+  value.arc = true;
+  switch (edge % 4) {
+    case 0:   // right flank, root -> tip
+      value.source = place(k, flank.root, false);
+      value.target = place(k, flank.tip, false);
+      value.center = place(k, flank.centre, false);
+      value.ccw = feature.flank_ccw;
+      break;
+    case 1:   // tip arc about the centre
+      value.source = place(k, flank.tip, false);
+      value.target = place(k, flank.tip, true);
+      value.center = center;
+      value.ccw = true;
+      break;
+    case 2:   // left flank (the mirror image, run from the tip down: same turning sense)
+      value.source = place(k, flank.tip, true);
+      value.target = place(k, flank.root, true);
+      value.center = place(k, flank.centre, true);
+      value.ccw = feature.flank_ccw;
+      break;
+    default:  // root arc to the next tooth
+      value.source = place(k, flank.root, true);
+      value.target = place(k + 1, flank.root, false);
+      value.center = center;
+      value.ccw = true;
+      break;
+  }
+  value.radius_squared = squared_distance(value.source, value.center);
 }
 
 template <class T>
