@@ -1136,6 +1136,25 @@ bool PlanarSimulation::Impl::held_advance(double span) {
     }
     // none returned: every other feature pair is farther than the radius (>= D)
     const bool far = sweep && (!nearest_exact || *nearest_exact > *sweep) && nearest > 2 * travel + delta;
+    double cap = far ? std::numeric_limits<double>::infinity() : chord_cap(k0, kend);
+    if (!far) {
+      // conservative advancement as in free flight: a step short enough to be far, when that
+      // is longer than a chord (e.g. just after a lift-off, the contact left slowly); the sweep
+      // bound grows about linearly with the step, so the step is also scaled to half of it
+      double rate = travel / end;   // speed + gain x end, which only falls as the step does
+      double h_far = rate > 0 && nearest > delta ? 0.5 * (nearest - delta) / rate * (1 - 1e-6) : 0;
+      if (sweep && sgn(*sweep) > 0 && nearest_exact)
+        h_far = std::min(h_far, 0.5 * end * to_d(*nearest_exact) / to_d(*sweep));
+      if (!sweep) h_far = 0;
+      if (h_far > cap && h_far < end) {
+        h = step_guess = h_far;
+        continue;
+      }
+    }
+    if (end > cap * (1 + 1e-9)) {   // the chord would deviate more than delta: shorter
+      h = step_guess = cap;
+      continue;
+    }
     const SlicedConfiguration& q1 = q_end;
     // the held contacts at the new state: exactly apart from their segments' lines
     const Point& pivot = model.parts[part].motion.pivot;
