@@ -15,6 +15,7 @@
 
 #include "simulation_planar_support.hpp"
 #include "simulation/planar_bounds.hpp"
+#include "simulation/friction.hpp"
 
 #include <cmath>
 #include <iostream>
@@ -241,6 +242,17 @@ TEST(SimulationPlanarContact, BlockOnAnInclineAtExactlyTanAlphaEqualsMuIsDecided
     ASSERT_NE(decision, nullptr) << c << " mu " << mu_text << " g " << scene.gravity_text;
     EXPECT_TRUE(decision->exact_decision) << c;
     if (variant == 1) {
+      // the floating-point decision alone (friction.hpp on the same block, translation only:
+      // normal row (0, 1), tangent (-1, 0)) calls this case stick: the exact decision is needed
+      std::vector<simulation::Friction> friction(1);
+      friction[0].on = true;
+      friction[0].T = Eigen::Vector2d(-1, 0);
+      friction[0].mu_static = friction[0].mu_kinetic = std::stod(mu_text);
+      simulation::FrictionalSolution fp = simulation::solve_frictional(
+          Eigen::MatrixXd{{0.0, 1.0}}, Eigen::Vector2d(1 / scene.mass, 1 / scene.mass),
+          Eigen::Vector2d(scene.gx, scene.gy), Eigen::VectorXd::Zero(1), friction);
+      ASSERT_TRUE(fp.solved) << c;
+      EXPECT_EQ(fp.state[0], simulation::stick) << c << " (the floating-point decision)";
       EXPECT_EQ(decision->kind, SimulationEvent::Kind::slip) << c << " mu " << mu_text;
       // down the incline (+x): the sliding direction along the tangent (-normal.y, normal.x)
       EXPECT_EQ(decision->slip_direction * -decision->normal[1], 1.0) << c;
