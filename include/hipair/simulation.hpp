@@ -85,6 +85,10 @@ struct SimulationEvent {
   double normal_force = 0;
   double friction_force = 0;
   int slip_direction = 0;
+  /// stick / slip of a planar part: true when the decision was made by exact rational
+  /// arithmetic on the state (the rest class of docs/simulation.md, "Stick or slip, decided
+  /// exactly"); false: decided in floating point, to the integrator's stated accuracy.
+  bool exact_decision = false;
 };
 
 /// A sustained contact at the current state and its force from the contact complementarity

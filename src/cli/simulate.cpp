@@ -81,7 +81,7 @@ std::string event_line(const SimulationEvent& e, const std::string& time_unit, c
     out << ", tangential impulse " << number(e.tangential_impulse) << " " << force_unit << "·" << time_unit;
   if (e.kind == SimulationEvent::Kind::stick || e.kind == SimulationEvent::Kind::slip)
     out << "  normal force " << number(e.normal_force) << " " << force_unit << ", friction force "
-        << number(e.friction_force) << " " << force_unit;
+        << number(e.friction_force) << " " << force_unit << (e.exact_decision ? ", decided exactly" : ", decided approximately");
   return out.str();
 }
 
@@ -428,6 +428,8 @@ void add_event_files(std::vector<io::RunFile>& files, const Model& model, const 
       j["normal_force"] = e.normal_force;
       j["friction_force"] = e.friction_force;
       if (e.kind == SimulationEvent::Kind::slip) j["slip_direction"] = e.slip_direction;
+      // how stick vs slip was decided: exact rationals, or floating point to the stated accuracy
+      j["decision"] = e.exact_decision ? "exact" : "approximate";
     }
     if (e.kind == SimulationEvent::Kind::contact && e.normal_force != 0) j["normal_force"] = e.normal_force;
     log.push_back(j);

@@ -41,6 +41,7 @@
 #include "kernels/contact_geometry.hpp"
 #include "simulation/friction.hpp"
 #include "simulation/lcp.hpp"
+#include "simulation/planar_bounds.hpp"
 #include "simulation/units.hpp"
 
 #include <boost/numeric/odeint.hpp>
@@ -189,7 +190,9 @@ struct PlanarSimulation::Impl {
   double accel[2] = {0, 0};                         // g + F/m (mm/s^2)
   double alpha = 0;                                 // T / I (rad/s^2)
   double force[2] = {0, 0}, torque = 0, g[2] = {0, 0};
+  Rational load_x, load_y, load_torque;             // m g + F (mN) and T (mN mm), exact
   double reach = 0;                                 // max |q - pivot| over the part (mm)
+  Rational reach_bound;                             // a certified rational upper bound of it
   double delta = 0;                                 // chord deviation (mm)
   double rest_speed = 0;                            // impacts slower than this are plastic
   struct Pair {
@@ -198,6 +201,7 @@ struct PlanarSimulation::Impl {
     double restitution = 0;
     SlicedSpace space;
     double mu_static = 0, mu_kinetic = 0;   // Coulomb friction (0: frictionless)
+    Rational mu_static_exact;
   };
   std::vector<Pair> pairs;
   double t = 0;
@@ -320,7 +324,14 @@ struct PlanarSimulation::Impl {
     Eigen::VectorXd h, a0;
     simulation::FrictionalSolution solution;
   };
-  HeldProblem held_problem(const Kinematic& at, bool unilateral) const;
+  HeldProblem held_problem(const Kinematic& at, bool unilateral, std::optional<int> forced = std::nullopt) const;
+  // Stick or slip decided exactly (docs/simulation.md, "Stick or slip, decided exactly"): for a
+  // part at rest (slower than v_rest) on held contacts of one frictional pair with parallel normals,
+  // whose contact resultant balancing the loads (-(m g + F)) presses (N > 0) and passes between
+  // the extreme contacts (no tipping), the sign of mu_s N - |F_t| in rationals at the exact
+  // configuration and the model's exact loads: stick (0) at >= 0, else the slip direction of
+  // the loads. Empty outside that class (the floating-point decision stands, labelled so).
+  std::optional<int> exact_rest_state() const;
   // Splits the sticking friction of contacts with equal tangent rows (collinear contacts of one
   // pair: a face on a face, where the equations fix only the sum) in proportion to their normal
   // forces; the Coulomb condition of the sum is then that of each.
@@ -723,7 +734,8 @@ PlanarSimulation::Impl::HeldFrame PlanarSimulation::Impl::held_frame(const Held&
   return f;
 }
 
-PlanarSimulation::Impl::HeldProblem PlanarSimulation::Impl::held_problem(const Kinematic& at, bool unilateral) const {
+PlanarSimulation::Impl::HeldProblem PlanarSimulation::Impl::held_problem(const Kinematic& at, bool unilateral,
+                                                                         std::optional<int> forced) const {
   HeldProblem p;
   const auto m = static_cast<Eigen::Index>(held.size());
   p.G.resize(m, 3);
@@ -749,6 +761,10 @@ PlanarSimulation::Impl::HeldProblem PlanarSimulation::Impl::held_problem(const K
     // sliding: faster than the tangential tolerance, or still sliding the way it slid (a slide
     // ends where its velocity changes sign, located by bisection: then it is decided afresh)
     fr.decided = std::abs(vt) > tangential_tolerance() || (vt != 0 && c.state == fr.state);
+    if (forced && fr.on) {   // the exact decision (exact_rest_state)
+      fr.decided = true;
+      fr.state = *forced;
+    }
     p.friction.push_back(fr);
     states.push_back(fr.on ? c.state : simulation::frictionless);
   }
@@ -914,8 +930,64 @@ void PlanarSimulation::Impl::hold(double time, const Rows& rows) {
   (void)time;
 }
 
+std::optional<int> PlanarSimulation::Impl::exact_rest_state() const {
+  if (held.size() < 2) return std::nullopt;   // one vertex: no balance at rest in general
+  double speed = std::hypot(k.vx, k.vy) + std::abs(k.omega) * reach;
+  if (speed > rest_speed) return std::nullopt;
+  const Pair& pair = pairs[held.front().pair];
+  if (!(pair.mu_static > 0)) return std::nullopt;
+  const Point& pivot = model.parts[part].motion.pivot;
+  const kernels::Pose<Rational> pose = pose_of(pivot, q);
+  using V = kernels::Vector<Rational>;
+  std::vector<ContactGap<Rational>> gaps;
+  for (const Held& c : held) {
+    if (c.pair != held.front().pair) return std::nullopt;
+    gaps.push_back(contact_gap(model, c.feature, pose));
+    if (!gaps.back().defined) return std::nullopt;
+  }
+  const V n = gaps.front().normal, t{-n.y, n.x};
+  const V centre{pivot.x + q.x, pivot.y + q.y};
+  // a face on a face: the normals parallel and of one direction (exactly; the contact points
+  // lie on one line to the hold gap)
+  for (const ContactGap<Rational>& g : gaps)
+    if (sgn(g.normal.x * n.y - g.normal.y * n.x) != 0 || sgn(kernels::dot(g.normal, n)) <= 0) return std::nullopt;
+  // the contact resultant at rest balances the loads: C = -(m g + F); it presses
+  const V C{-load_x, -load_y};
+  const Rational normal = kernels::dot(C, n), tangential = kernels::dot(C, t);
+  if (sgn(normal) <= 0) return std::nullopt;
+  // no tipping: the torque balance puts C between the extreme contacts a, b along the line,
+  // sigma (r_a x C) + (1 - sigma) (r_b x C) = -T with 0 <= sigma <= 1
+  std::size_t a = 0, b = 0;
+  for (std::size_t i = 1; i < gaps.size(); ++i) {
+    if (kernels::dot(gaps[i].point, t) < kernels::dot(gaps[a].point, t)) a = i;
+    if (kernels::dot(gaps[i].point, t) > kernels::dot(gaps[b].point, t)) b = i;
+  }
+  auto cross = [](const V& u, const V& v) { return Rational(u.x * v.y - u.y * v.x); };
+  const V ra = gaps[a].point - centre, rb = gaps[b].point - centre;
+  const Rational den = cross(ra - rb, C), num = -load_torque - cross(rb, C);
+  if (sgn(den) == 0) return std::nullopt;
+  const Rational sigma = num / den;
+  if (sgn(sigma) < 0 || sigma > 1) return std::nullopt;
+  // the static cone (mu_s N - |F| scaled by the common positive |n| / m): exact
+  const Rational margin = pair.mu_static_exact * normal - abs(tangential);
+  if (sgn(margin) >= 0) return simulation::stick;
+  // slipping from rest: the contact point moves the way the loads push along t
+  return sgn(tangential) < 0 ? simulation::slip_positive : simulation::slip_negative;
+}
+
 bool PlanarSimulation::Impl::decide() {
   HeldProblem p = held_problem(k, true);
+  // stick or slip decided exactly where the state is in the rest class (else in floating point)
+  std::optional<int> exact = exact_rest_state();
+  if (exact) {
+    bool agree = p.solution.solved;
+    for (std::size_t c = 0; agree && c < held.size(); ++c) agree = p.solution.state[c] == *exact;
+    if (!agree) {
+      HeldProblem forced = held_problem(k, true, exact);
+      if (forced.solution.solved) p = std::move(forced);
+      else exact.reset();
+    }
+  }
   if (!p.solution.solved)
     throw NumericError(where(t) + ": the contact problem of its held contacts has no consistent solution "
                                   "(a Painlevé-type inconsistency of Coulomb friction, or more than 8 contacts)");
@@ -935,6 +1007,7 @@ bool PlanarSimulation::Impl::decide() {
       SimulationEvent e = held_event(state == simulation::stick ? SimulationEvent::Kind::stick : SimulationEvent::Kind::slip,
                                      h, p.frames[c], lambda, p.solution.f(r));
       if (state != simulation::stick) e.slip_direction = state;
+      e.exact_decision = exact.has_value();
       events.push_back(std::move(e));
       changed = true;
     }
@@ -954,6 +1027,7 @@ bool PlanarSimulation::Impl::decide() {
   double scale = std::hypot(accel[0], accel[1]) + std::abs(alpha) * reach;
   double residual = std::hypot(acc(0), acc(1)) + std::abs(acc(2)) * reach;
   if (speed > rest_speed || residual > 1e-9 * std::max(scale, 1e-300)) return changed;
+  if (exact && *exact != simulation::stick) return changed;   // slipping, decided exactly: not at rest
   resting = true;
   k.vx = k.vy = k.omega = 0;
   // one event per fixed part, with its total normal force and friction force (as try_rest)
@@ -1030,9 +1104,13 @@ bool PlanarSimulation::Impl::held_advance(double span) {
       kend = held_step(k0, hi);
       violated(kend, &bits);
     }
-    // Far from every other feature pair (features_near's certified distance beyond what the
-    // part's points can travel in the step: speed at the ends plus acceleration x step, in
-    // double): no chord needed. Otherwise the chord, within delta of the path, is tested.
+    // Far from every other feature pair: certified, the straight motion q0 -> q1 in (x, y, w)
+    // moves no point of the part farther than the exact sweep bound D (planar_bounds.hpp), and
+    // features_near's certified lower distance of every other feature pair exceeds D (compared
+    // in rationals). The integrated path between the two states is the integrator's (to its
+    // accuracy): it is also kept apart from them, in double, by twice the distance its points can
+    // travel in the step (speed at the ends plus acceleration x step) plus delta. Otherwise the
+    // chord, within delta of the path, is tested exactly.
     double travel = 0;
     for (const Kinematic* e : std::array<const Kinematic*, 2>{&k0, &kend}) {
       Eigen::VectorXd acc = held_problem(*e, false).solution.x;
@@ -1040,22 +1118,34 @@ bool PlanarSimulation::Impl::held_advance(double span) {
       double gain = std::hypot(acc(0), acc(1)) + std::abs(acc(2)) * reach;
       travel = std::max(travel, (speed + gain * end) * end);
     }
+    const SlicedConfiguration q_end = configuration_of(kend.x, kend.y, kend.theta);
+    const std::optional<Rational> sweep = simulation::motion_sweep_bound(q0, q_end, flip, reach_bound);
+    Rational radius(2 * travel + delta);
+    if (sweep && *sweep > radius) radius = *sweep;
     double nearest = std::numeric_limits<double>::infinity();
+    std::optional<Rational> nearest_exact;
     for (const Pair& pr : pairs) {
       ++stats.distance_queries;
-      for (const SlicedNearFeature& f : pr.space.features_near(q0, Rational(2 * travel + delta))) {
+      for (const SlicedNearFeature& f : pr.space.features_near(q0, radius)) {
         bool is_held = false;
         for (const Held& c : held) is_held = is_held || (c.feature.fixed == f.pair.fixed && c.feature.free == f.pair.free);
-        if (!is_held) nearest = std::min(nearest, to_d(f.distance_lower));
+        if (is_held) continue;
+        nearest = std::min(nearest, to_d(f.distance_lower));
+        if (!nearest_exact || f.distance_lower < *nearest_exact) nearest_exact = f.distance_lower;
       }
     }
-    const bool far = nearest > 2 * travel + delta;
+    // none returned: every other feature pair is farther than the radius (>= D)
+    const bool far = sweep && (!nearest_exact || *nearest_exact > *sweep) && nearest > 2 * travel + delta;
     double cap = far ? std::numeric_limits<double>::infinity() : chord_cap(k0, kend);
     if (!far) {
       // conservative advancement as in free flight: a step short enough to be far, when that
-      // is longer than a chord (e.g. just after a lift-off, the contact left slowly)
+      // is longer than a chord (e.g. just after a lift-off, the contact left slowly); the sweep
+      // bound grows about linearly with the step, so the step is also scaled to half of it
       double rate = travel / end;   // speed + gain x end, which only falls as the step does
       double h_far = rate > 0 && nearest > delta ? 0.5 * (nearest - delta) / rate * (1 - 1e-6) : 0;
+      if (sweep && sgn(*sweep) > 0 && nearest_exact)
+        h_far = std::min(h_far, 0.5 * end * to_d(*nearest_exact) / to_d(*sweep));
+      if (!sweep) h_far = 0;
       if (h_far > cap && h_far < end) {
         h = step_guess = h_far;
         continue;
@@ -1065,7 +1155,7 @@ bool PlanarSimulation::Impl::held_advance(double span) {
       h = step_guess = cap;
       continue;
     }
-    SlicedConfiguration q1 = configuration_of(kend.x, kend.y, kend.theta);
+    const SlicedConfiguration& q1 = q_end;
     // the held contacts at the new state: exactly apart from their segments' lines
     const Point& pivot = model.parts[part].motion.pivot;
     for (const Held& c : held)
@@ -1170,6 +1260,18 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
   if (dyn.torsional_spring) throw ModelError(at + "/torsional_spring", "a planar part has no spring to the frame");
   if (dyn.linear_spring) throw ModelError(at + "/linear_spring", "a planar part has no spring to the frame");
   s.mass = to_d(*dyn.mass);
+  {
+    // the loads in exact rationals (the unit factors are exact: 1 or 1/1000 s, 1000 or 1 mN)
+    const Rational ts_exact = spec.time_unit == "ms" ? Rational(1, 1000) : Rational(1);
+    const Rational fs_exact = spec.force_unit == "mN" ? Rational(1) : Rational(1000);
+    s.load_x = *dyn.mass * spec.gravity.x / (ts_exact * ts_exact);
+    s.load_y = *dyn.mass * spec.gravity.y / (ts_exact * ts_exact);
+    if (dyn.force) {
+      s.load_x += dyn.force->x * fs_exact;
+      s.load_y += dyn.force->y * fs_exact;
+    }
+    if (dyn.torque) s.load_torque = *dyn.torque * fs_exact;
+  }
   s.inertia = to_d(*dyn.moment_of_inertia);
   if (dyn.force) {
     s.force[0] = to_d(dyn.force->x) * fs;
@@ -1192,6 +1294,24 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
                                         std::sqrt(to_d(e.radius_squared)));
     }
   s.reach *= 1 + 1e-12;
+  // the certified reach (the far test's sweep bound): exact squared distances, rational square
+  // roots rounded up
+  {
+    Rational vertex_sq(0);
+    for (const Loop& loop : part.loops)
+      for (const Edge& e : loop.edges) {
+        Rational dx = e.source.x - part.motion.pivot.x, dy = e.source.y - part.motion.pivot.y;
+        Rational sq = dx * dx + dy * dy;
+        if (sq > vertex_sq) vertex_sq = sq;
+        if (e.is_arc()) {
+          Rational cx = e.center.x - part.motion.pivot.x, cy = e.center.y - part.motion.pivot.y;
+          Rational arc = simulation::sqrt_upper(cx * cx + cy * cy) + simulation::sqrt_upper(e.radius_squared);
+          if (arc > s.reach_bound) s.reach_bound = arc;
+        }
+      }
+    Rational vertex = simulation::sqrt_upper(vertex_sq);
+    if (vertex > s.reach_bound) s.reach_bound = vertex;
+  }
   double accuracy = options.accuracy > 0 ? options.accuracy : spec.accuracy ? to_d(*spec.accuracy) : 1e-9;
   s.delta = options.chord_deviation > 0 ? options.chord_deviation : accuracy * std::max(s.reach, 1.0);
   s.accuracy = accuracy;
@@ -1208,6 +1328,7 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
                  SlicedSpace::build(model, model.parts[other].name, part.name, SlicedBuildOptions{false, {}})};
     if (pair.friction) {
       p.mu_static = to_d(*pair.friction);
+      p.mu_static_exact = *pair.friction;
       p.mu_kinetic = pair.kinetic_friction ? to_d(*pair.kinetic_friction) : p.mu_static;
     }
     s.pairs.push_back(std::move(p));

@@ -373,6 +373,14 @@ grep -q "lift-off  corner / ladder  \[corner segment loop 0 edge 3 (wall)" "$wor
   || fail "simulate ladder: no lift-off from the wall: $(cat "$work/sim-ladder/events.txt")"
 grep -q "lift-off  corner / ladder  \[corner segment loop 0 edge 2 (floor)" "$work/sim-ladder/events.txt" \
   && fail "simulate ladder: the foot left the floor"
+# the block on an incline at tan(alpha) = mu_s exactly sticks, decided in exact rationals
+# (docs/simulation.md, "Stick or slip, decided exactly"), and the event log says so
+"$hipair" simulate "$source/examples/models/incline-limit.json" --t-end 0.02 --no-pictures --out "$work/sim-incline" \
+  >"$work/sim-incline.out" 2>&1 || fail "simulate incline-limit: $(tail -c 300 "$work/sim-incline.out")"
+grep -q "  stick  incline / block.*decided exactly" "$work/sim-incline/events.txt" \
+  || fail "simulate incline-limit: no exactly decided stick: $(cat "$work/sim-incline/events.txt")"
+grep -q '"decision": "exact"' "$work/sim-incline/events.json" || fail "simulate incline-limit: events.json has no exact decision"
+grep -q "(at rest)" "$work/sim-incline.out" || fail "simulate incline-limit: not at rest at the end"
 
 # hipair simulate --sweep: one row per value, in parallel; a malformed sweep is a usage error
 "$hipair" simulate "$source/examples/models/cam-drive.json" --t-end 0.03 --sweep cam-speed=183:220:2 \

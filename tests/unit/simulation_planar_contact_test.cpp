@@ -14,10 +14,15 @@
 #include <gtest/gtest.h>
 
 #include "simulation_planar_support.hpp"
+#include "simulation/planar_bounds.hpp"
+#include "simulation/friction.hpp"
 
 #include <cmath>
 #include <iostream>
 #include <cstdint>
+#include <iomanip>
+#include <optional>
+#include <array>
 #include <filesystem>
 #include <limits>
 #include <numbers>
@@ -42,6 +47,8 @@ struct Scene {
   double gx = 0, gy = -9810;
   double x = 0, y = 0, angle = 0, vx = 0, vy = 0, omega = 0;
   double mu_static = 0, mu_kinetic = 0;
+  // exact decimals written as given (override gx, gy and the friction coefficients)
+  std::string gravity_text, mu_text;
 
   std::string json() const {
     std::string base = table ? R"({ "start": [-1000, -500], "edges": [ { "line_to": [0, -500] }, { "line_to": [0, 0], "label": "side" },
@@ -56,7 +63,8 @@ struct Scene {
       const auto& p = body[i % body.size()];
       edges += std::string(i > 1 ? ", " : "") + "{ \"line_to\": [" + num(p[0]) + ", " + num(p[1]) + "] }";
     }
-    std::string friction = mu_static > 0 ? R"(, "friction": { "static": )" + num(mu_static) + R"(, "kinetic": )" +
+    std::string friction = !mu_text.empty() ? R"(, "friction": { "static": )" + mu_text + R"(, "kinetic": )" + mu_text + " }"
+                           : mu_static > 0 ? R"(, "friction": { "static": )" + num(mu_static) + R"(, "kinetic": )" +
                                                num(mu_kinetic) + " }"
                                          : "";
     return R"({ "hipair": 1, "name": "contact", "units": { "length": "mm", "angle": "rad" },
@@ -67,7 +75,7 @@ struct Scene {
           "dynamics": { "mass": )" + num(mass) + R"(, "moment_of_inertia": )" + num(inertia) + R"( },
           "loops": [ { "start": [)" + num(body[0][0]) + ", " + num(body[0][1]) + R"(], "edges": [ )" + edges + R"( ] } ] } ],
       "pairs": [ { "parts": ["base", "body"], "restitution": )" + num(e) + friction + R"( } ],
-      "simulation": { "gravity": [)" + num(gx) + ", " + num(gy) + R"(], "velocities": { "body": { "x": )" + num(vx) +
+      "simulation": { "gravity": [)" + (gravity_text.empty() ? num(gx) + ", " + num(gy) : gravity_text) + R"(], "velocities": { "body": { "x": )" + num(vx) +
            R"(, "y": )" + num(vy) + R"(, "angle": )" + num(omega) + R"( } } } })";
   }
   Model model() const { return read_model(json(), "<scene>"); }
@@ -153,7 +161,8 @@ TEST(SimulationPlanarContact, SlidingBlockDeceleratesAtMuGAndStopsAtTheClosedFor
 
 // Tilted gravity g = G (sin a, -cos a) on a flat floor is the incline of angle a. The block
 // falls a gap of 10^-3 mm, lands, and sticks iff tan a <= mu_s (cases 5 % either side of the
-// limit: stick/slip is decided in floating point, docs/simulation.md); sliding, its speed along
+// limit; since session 11 the landed block is in the exact rest class, docs/simulation.md, and
+// the exact case at the limit is the next test); sliding, its speed along
 // the floor grows at G (sin a - mu_k cos a).
 TEST(SimulationPlanarContact, BlockOnAnInclineSticksIffTanAlphaIsAtMostMuStatic) {
   Lcg rng{17};
@@ -192,6 +201,114 @@ TEST(SimulationPlanarContact, BlockOnAnInclineSticksIffTanAlphaIsAtMostMuStatic)
       EXPECT_NEAR((v2 - v1) / (t2 - t1), gt - scene.mu_kinetic * gn, 1e-9 * G) << c;
       EXPECT_EQ(count(s.events(), SimulationEvent::Kind::stick), 0u) << c;
     }
+  }
+}
+
+// The incline at the limit, tan a = mu_s exactly, in rationals: gravity (mu G, -G) with mu = k/100
+// and G an integer, written as exact decimals. At equality Coulomb's law sticks; mu_s lowered by
+// 10^-14 (relative ~3e-14, far inside the floating-point solver's 1e-9 margin, which calls it
+// stick) the block must slide; raised by 10^-14 it sticks. The decision is exact (the rest class,
+// docs/simulation.md): the stick / slip event says so, and the slide is down the incline.
+TEST(SimulationPlanarContact, BlockOnAnInclineAtExactlyTanAlphaEqualsMuIsDecidedExactly) {
+  Lcg rng{41};
+  for (int c = 0; c < 9; ++c) {
+    const int k = 15 + static_cast<int>(rng.uniform(0, 45));   // mu = k / 100
+    const long G = 9000 + static_cast<long>(rng.uniform(0, 1000));
+    const int variant = c % 3;   // 0: equal, 1: mu lowered, 2: mu raised
+    Scene scene = block_scene(10, 4, 1e-3);
+    std::ostringstream gravity, mu;
+    // mu G exactly: k G / 100 as a decimal
+    gravity << (k * G) / 100 << "." << std::setw(2) << std::setfill('0') << (k * G) % 100 << ", -" << G;
+    mu << "0." << std::setw(2) << std::setfill('0') << k << (variant == 0 ? "" : variant == 1 ? "" : "000000000001");
+    std::string mu_text = mu.str();
+    if (variant == 1) {   // k/100 - 10^-14
+      std::ostringstream lowered;
+      lowered << "0." << std::setw(2) << std::setfill('0') << k - 1 << "999999999999";
+      mu_text = lowered.str();
+    }
+    scene.gravity_text = gravity.str();
+    scene.mu_text = mu_text;
+    scene.gx = static_cast<double>(k * G) / 100;
+    scene.gy = -static_cast<double>(G);
+    PlanarSimulation s = PlanarSimulation::create(scene.model());
+    ASSERT_NE(run_to(s, SimulationEvent::Kind::impact, 1), std::string::npos) << c;
+    s.run_until(0.05);
+    const SimulationEvent* decision = nullptr;
+    for (const SimulationEvent& e : s.events())
+      if (e.kind == SimulationEvent::Kind::stick || e.kind == SimulationEvent::Kind::slip) {
+        decision = &e;
+        break;
+      }
+    ASSERT_NE(decision, nullptr) << c << " mu " << mu_text << " g " << scene.gravity_text;
+    EXPECT_TRUE(decision->exact_decision) << c;
+    if (variant == 1) {
+      // the floating-point decision alone (friction.hpp on the same block, translation only:
+      // normal row (0, 1), tangent (-1, 0)) calls this case stick: the exact decision is needed
+      std::vector<simulation::Friction> friction(1);
+      friction[0].on = true;
+      friction[0].T = Eigen::Vector2d(-1, 0);
+      friction[0].mu_static = friction[0].mu_kinetic = std::stod(mu_text);
+      simulation::FrictionalSolution fp = simulation::solve_frictional(
+          Eigen::MatrixXd{{0.0, 1.0}}, Eigen::Vector2d(1 / scene.mass, 1 / scene.mass),
+          Eigen::Vector2d(scene.gx, scene.gy), Eigen::VectorXd::Zero(1), friction);
+      ASSERT_TRUE(fp.solved) << c;
+      EXPECT_EQ(fp.state[0], simulation::stick) << c << " (the floating-point decision)";
+      EXPECT_EQ(decision->kind, SimulationEvent::Kind::slip) << c << " mu " << mu_text;
+      // down the incline (+x): the sliding direction along the tangent (-normal.y, normal.x)
+      EXPECT_EQ(decision->slip_direction * -decision->normal[1], 1.0) << c;
+      EXPECT_FALSE(s.state().resting) << c;
+      EXPECT_EQ(count(s.events(), SimulationEvent::Kind::stick), 0u) << c;
+    } else {
+      EXPECT_EQ(decision->kind, SimulationEvent::Kind::stick) << c << " mu " << mu_text;
+      EXPECT_TRUE(s.state().resting) << c;
+      EXPECT_EQ(count(s.events(), SimulationEvent::Kind::slip), 0u) << c;
+    }
+  }
+}
+
+// The far test's certified sweep bound (planar_bounds.hpp) against Monte Carlo: straight motions
+// in (x, y, w) between generated configurations, in both charts; points of a part within its reach
+// sampled along the motion never move from their start farther than the bound D. The sampled
+// distances are evaluated in double (relative error below 1e-14 of the coordinates' scale,
+// hence the 1e-12 margin); sqrt_upper is checked exactly.
+TEST(SimulationPlanarContact, SweepBoundOfAStraightMotionContainsEveryPointsPath) {
+  Lcg rng{53};
+  for (int c = 0; c < 200; ++c) {
+    const bool half = c % 2 == 1;
+    const double reach = rng.uniform(1, 50);
+    const Rational reach_q = simulation::sqrt_upper(Rational(reach * reach));
+    ASSERT_GE(reach_q * reach_q, Rational(reach * reach)) << c;
+    ASSERT_LE(reach_q.get_d(), reach * (1 + 1e-11)) << c;
+    SlicedConfiguration a, b;
+    a.x = Rational(rng.uniform(-10, 10));
+    a.y = Rational(rng.uniform(-10, 10));
+    b.x = a.x + Rational(rng.uniform(-1, 1));
+    b.y = a.y + Rational(rng.uniform(-1, 1));
+    // the chart coordinate w, then t (t = w without the half turn, -1/w with it)
+    double wa = rng.uniform(-1.5, 1.5), wb = wa + rng.uniform(-0.5, 0.5);
+    if (half && (wa == 0 || wb == 0)) continue;
+    a.angle.t = half ? Rational(-1) / Rational(wa) : Rational(wa);
+    b.angle.t = half ? Rational(-1) / Rational(wb) : Rational(wb);
+    std::optional<Rational> bound = simulation::motion_sweep_bound(a, b, half, reach_q);
+    ASSERT_TRUE(bound.has_value()) << c;
+    const double D = bound->get_d();
+    const double px = rng.uniform(-1, 1), py = rng.uniform(-1, 1), r = reach * rng.uniform(0.2, 1) / std::hypot(px, py);
+    const double bx = px * r, by = py * r;   // a body point at distance <= reach from the pivot
+    auto world = [&](double u) {
+      const double dx = Rational(b.x - a.x).get_d(), dy = Rational(b.y - a.y).get_d();
+      double x = a.x.get_d() + u * dx, y = a.y.get_d() + u * dy;
+      double w = wa + u * (wb - wa);
+      double theta = (half ? std::numbers::pi : 0.0) + 2 * std::atan(w);
+      return std::array<double, 2>{x + std::cos(theta) * bx - std::sin(theta) * by,
+                                   y + std::sin(theta) * bx + std::cos(theta) * by};
+    };
+    const auto p0 = world(0);
+    double farthest = 0;
+    for (int i = 1; i <= 64; ++i) {
+      const auto p = world(i / 64.0);
+      farthest = std::max(farthest, std::hypot(p[0] - p0[0], p[1] - p0[1]));
+    }
+    EXPECT_LE(farthest, D * (1 + 1e-12)) << c;
   }
 }
 
