@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <numbers>
 #include <numeric>
 #include <optional>
@@ -169,6 +171,10 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input
     chart.windows.push_back(std::move(windows));
     chart.interval_polynomials.push_back(std::move(f));
   }
+  static const bool debug = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
+  if (debug && input.blocked_cells)
+    std::fprintf(stderr, "  culling: %zu of %zu curves kept, %zu blocked tests, %zu candidate pairs tested\n", kept.size(),
+                 input.curves.size(), input.blocked_cells->tests(), input.blocked_cells->pairs_tested());
   return kept;
 }
 

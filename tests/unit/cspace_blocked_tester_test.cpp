@@ -21,7 +21,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <random>
 #include <string>
 #include <tuple>
@@ -319,6 +322,66 @@ TEST(BlockedTester, CachedAnswersEqualUncachedOnes) {
       }
   }
   std::cout << blocked << " of " << boxes << " boxes blocked\n";
+  EXPECT_GT(blocked, 100);
+}
+
+
+// The disk sweep bucketed by cell (BlockedCells: each cell tests only the candidate pairs its
+// nearest tested ancestor left, BlockedTester::blocked with `narrowed`) gives the answer of the
+// full sweep on every cell of a quadtree, tested depth first as the builder does (to depth 6,
+// every depth or every other depth), on the examples' charts; a cell's list is part of its
+// parent's.
+TEST(BlockedTester, CandidateListsOfEnclosingCellsGiveTheSweepsAnswers) {
+  int blocked = 0, cells = 0;
+  std::size_t pairs = 0;
+  for (const auto& [file, first, second] : {std::tuple{"geneva.json", "driver", "wheel"},
+                                            std::tuple{"ratchet.json", "wheel", "pawl"},
+                                            std::tuple{"escapement.json", "escape-wheel", "anchor"},
+                                            std::tuple{"scotch-yoke.json", "crank", "yoke"}}) {
+    std::filesystem::path path = std::filesystem::path(HIPAIR_EXAMPLES) / file;
+    if (!std::filesystem::exists(path)) continue;
+    Model model = read_model_file(path);
+    auto a = model.find_part(first), b = model.find_part(second);
+    if (!a || !b) continue;
+    cspace::PairAxes axes = cspace::pair_axes(model, *a, *b);
+    cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+    if (layout.y_charts.empty()) continue;
+    auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
+    for (int step : {1, 2})
+      for (const auto& x : layout.x_charts)
+        for (const auto& y : layout.y_charts) {
+          cspace::BlockedCells grid(tester, x, y, 2, 6);
+          cspace::BlockedTester::Cache cache;
+          // depth first over the quadtree, the cells of depths 1, 1 + step, ... tested
+          std::function<void(int, long, long, const std::vector<cspace::BlockedTester::DiskPair>*)> visit =
+              [&](int depth, long i, long j, const std::vector<cspace::BlockedTester::DiskPair>* parent_list) {
+                const Interval bx = grid.cell_x(depth, i), by = grid.cell_y(depth, j);
+                const bool plain = tester->blocked(x, y, bx, by);
+                const bool gridded = grid.blocked(depth, i, j);
+                ++cells;
+                // (no cell visited lies inside a blocked one: the grid tests each)
+                EXPECT_EQ(gridded, plain) << file << " cell " << depth << ", " << i << ", " << j;
+                std::vector<cspace::BlockedTester::DiskPair> list;
+                const bool listed = tester->blocked(x, y, bx, by, cache, parent_list, &list);
+                EXPECT_EQ(listed, plain) << file << " cell " << depth << ", " << i << ", " << j;
+                if (parent_list) {
+                  // every pair of this cell's list is in the parent's (narrowing only drops pairs)
+                  for (const auto& p : list)
+                    EXPECT_TRUE(std::any_of(parent_list->begin(), parent_list->end(), [&](const auto& q) {
+                      return q.first == p.first && q.second == p.second;
+                    }));
+                }
+                pairs += list.size();
+                blocked += plain;
+                if (plain || depth + step > 6) return;
+                for (long di = 0; di < (1L << step); ++di)
+                  for (long dj = 0; dj < (1L << step); ++dj) visit(depth + step, (i << step) + di, (j << step) + dj, &list);
+              };
+          for (long i = 0; i < 2; ++i)
+            for (long j = 0; j < 2; ++j) visit(1, i, j, nullptr);
+        }
+  }
+  std::cout << blocked << " of " << cells << " cells blocked, " << pairs << " candidate pairs kept\n";
   EXPECT_GT(blocked, 100);
 }
 
