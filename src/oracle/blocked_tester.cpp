@@ -392,6 +392,14 @@ bool may_certify_inside(const Disk& a, const Disk& b) {
   return dx * dx + dy * dy <= s * s * (1 + 0x1p-20) + 0x1p-1000;
 }
 
+// Do the disks overlap with their nominal radii (the middle of reach and outer)? Orders the
+// candidates only (decides nothing).
+template <class Disk>
+bool overlap_nominally(const Disk& a, const Disk& b) {
+  const double dx = a.x - b.x, dy = a.y - b.y, s = 0.5 * (a.outer + b.outer + a.reach + b.reach);
+  return s > 0 && dx * dx + dy * dy < s * s;
+}
+
 // The certified test of one pair of posed disks: they overlap at every configuration of the box.
 template <class Disk>
 bool certifies(const Disk& a, const Disk& b) {
@@ -421,14 +429,19 @@ bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, co
   const PoseBound* bounds[2] = {nullptr, nullptr};
   if (!pose_bounds(x_axis, y_axis, x, y, cache, bounds)) return false;
   PosedDisk a{}, b{};
+  // the narrowed list puts first the pairs whose nominal disks overlap (the likeliest to
+  // certify a sub-cell: a blocked cell's test stops at its first certifying pair)
+  thread_local std::vector<DiskPair> later;
+  later.clear();
   for (const DiskPair& pair : *candidates) {
     if (!pose_disk(0, *bounds[0], pair.first, a) || !pose_disk(1, *bounds[1], pair.second, b)) continue;
     if (certifies(a, b)) {
       if (narrowed) narrowed->clear();
       return true;
     }
-    if (narrowed && may_certify_inside(a, b)) narrowed->push_back(pair);
+    if (narrowed && may_certify_inside(a, b)) (overlap_nominally(a, b) ? *narrowed : later).push_back(pair);
   }
+  if (narrowed) narrowed->insert(narrowed->end(), later.begin(), later.end());
   return false;
 }
 
