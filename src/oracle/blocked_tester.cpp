@@ -338,39 +338,42 @@ bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, co
   return overlapping(*posed[0], *posed[1]);
 }
 
-bool BlockedTester::posed_parts(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
-                                const algebra::Interval& y, Cache& cache, const Posed* out[2]) const {
+// Calls f(k, axis, range, key) for each part k: the chart axis and interval its pose depends
+// on (the first moving part carries the chart's x axis, the second its y axis) and its cache
+// key (a fixed part's pose does not depend on the box: one entry). False when f is.
+template <class F>
+bool BlockedTester::each_part(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
+                              const algebra::Interval& y, F&& f) const {
   bool x_used = false;
   for (int k = 0; k < 2; ++k) {
     const bool use_x = !x_used;
     if (moves_[k]) x_used = true;
     const algebra::Interval& range = use_x ? x : y;
-    // a fixed part's posed disks do not depend on the box: one entry
-    std::pair<double, double> key = moves_[k] ? std::pair<double, double>{range.lo, range.hi}
-                                              : std::pair<double, double>{0.0, 0.0};
-    auto [it, inserted] = cache.posed_[k].try_emplace(key);
-    if (inserted) it->second.usable = pose_part(k, use_x ? x_axis : y_axis, range, it->second);
-    if (!it->second.usable) return false;
-    out[k] = &it->second;
+    const std::pair<double, double> key = moves_[k] ? std::pair<double, double>{range.lo, range.hi}
+                                                    : std::pair<double, double>{0.0, 0.0};
+    if (!f(k, use_x ? x_axis : y_axis, range, key)) return false;
   }
   return true;
 }
 
+bool BlockedTester::posed_parts(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
+                                const algebra::Interval& y, Cache& cache, const Posed* out[2]) const {
+  return each_part(x_axis, y_axis, x, y, [&](int k, const ChartAxis& axis, const algebra::Interval& range, const auto& key) {
+    auto [it, inserted] = cache.posed_[k].try_emplace(key);
+    if (inserted) it->second.usable = pose_part(k, axis, range, it->second);
+    out[k] = &it->second;
+    return it->second.usable;
+  });
+}
+
 bool BlockedTester::pose_bounds(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
                                 const algebra::Interval& y, Cache& cache, const PoseBound* out[2]) const {
-  bool x_used = false;
-  for (int k = 0; k < 2; ++k) {
-    const bool use_x = !x_used;
-    if (moves_[k]) x_used = true;
-    const algebra::Interval& range = use_x ? x : y;
-    std::pair<double, double> key = moves_[k] ? std::pair<double, double>{range.lo, range.hi}
-                                              : std::pair<double, double>{0.0, 0.0};
+  return each_part(x_axis, y_axis, x, y, [&](int k, const ChartAxis& axis, const algebra::Interval& range, const auto& key) {
     auto [it, inserted] = cache.bounds_[k].try_emplace(key);
-    if (inserted) it->second = pose_bound(k, use_x ? x_axis : y_axis, range);
-    if (!it->second.usable) return false;
+    if (inserted) it->second = pose_bound(k, axis, range);
     out[k] = &it->second;
-  }
-  return true;
+    return it->second.usable;
+  });
 }
 
 namespace {

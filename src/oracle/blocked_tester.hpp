@@ -120,6 +120,9 @@ class BlockedTester {
   bool pose_part(int k, const ChartAxis& axis, const algebra::Interval& range, Posed& out) const;
   PoseBound pose_bound(int k, const ChartAxis& axis, const algebra::Interval& range) const;
   bool pose_disk(int k, const PoseBound& pose, std::uint32_t index, PosedDisk& out) const;
+  template <class F>
+  bool each_part(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
+                 const algebra::Interval& y, F&& f) const;
   // the parts' cached posed disks (or pose bounds) over the box; false: nothing is blocked
   bool posed_parts(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
                    const algebra::Interval& y, Cache& cache, const Posed* out[2]) const;

@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <random>
 #include <string>
@@ -289,11 +290,10 @@ TEST(BlockedTester, CSpaceBesideAnArcJunctionAgreesWithTheOracle) {
 // it) gives the same answer as the uncached test on every box of a grid of nested boxes (the
 // quadtree's pattern: each column and row interval shared by many boxes), on the examples'
 // charts.
-TEST(BlockedTester, CachedAnswersEqualUncachedOnes) {
-  int blocked = 0, boxes = 0;
-  for (const auto& [file, first, second] : {std::tuple{"geneva.json", "driver", "wheel"},
-                                            std::tuple{"ratchet.json", "wheel", "pawl"},
-                                            std::tuple{"scotch-yoke.json", "crank", "yoke"}}) {
+// Calls f(file, model, axes, layout) for each example pair {file, first, second} with a 2-D C-space.
+template <class F>
+void for_each_two_d_pair(std::initializer_list<std::tuple<const char*, const char*, const char*>> pairs, F&& f) {
+  for (const auto& [file, first, second] : pairs) {
     std::filesystem::path path = std::filesystem::path(HIPAIR_EXAMPLES) / file;
     if (!std::filesystem::exists(path)) continue;
     Model model = read_model_file(path);
@@ -302,6 +302,16 @@ TEST(BlockedTester, CachedAnswersEqualUncachedOnes) {
     cspace::PairAxes axes = cspace::pair_axes(model, *a, *b);
     cspace::ChartLayout layout = cspace::chart_layout(model, axes);
     if (layout.y_charts.empty()) continue;
+    f(std::string(file), model, axes, layout);
+  }
+}
+
+TEST(BlockedTester, CachedAnswersEqualUncachedOnes) {
+  int blocked = 0, boxes = 0;
+  for_each_two_d_pair({{"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"},
+                       {"scotch-yoke.json", "crank", "yoke"}},
+                      [&](const std::string& file, const Model& model, const cspace::PairAxes& axes,
+                          const cspace::ChartLayout& layout) {
     cspace::BlockedTester tester(model, axes);
     for (const auto& x : layout.x_charts)
       for (const auto& y : layout.y_charts) {
@@ -320,7 +330,7 @@ TEST(BlockedTester, CachedAnswersEqualUncachedOnes) {
             }
         }
       }
-  }
+  });
   std::cout << blocked << " of " << boxes << " boxes blocked\n";
   EXPECT_GT(blocked, 100);
 }
@@ -334,18 +344,10 @@ TEST(BlockedTester, CachedAnswersEqualUncachedOnes) {
 TEST(BlockedTester, CandidateListsOfEnclosingCellsGiveTheSweepsAnswers) {
   int blocked = 0, cells = 0;
   std::size_t pairs = 0;
-  for (const auto& [file, first, second] : {std::tuple{"geneva.json", "driver", "wheel"},
-                                            std::tuple{"ratchet.json", "wheel", "pawl"},
-                                            std::tuple{"escapement.json", "escape-wheel", "anchor"},
-                                            std::tuple{"scotch-yoke.json", "crank", "yoke"}}) {
-    std::filesystem::path path = std::filesystem::path(HIPAIR_EXAMPLES) / file;
-    if (!std::filesystem::exists(path)) continue;
-    Model model = read_model_file(path);
-    auto a = model.find_part(first), b = model.find_part(second);
-    if (!a || !b) continue;
-    cspace::PairAxes axes = cspace::pair_axes(model, *a, *b);
-    cspace::ChartLayout layout = cspace::chart_layout(model, axes);
-    if (layout.y_charts.empty()) continue;
+  for_each_two_d_pair({{"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"},
+                       {"escapement.json", "escape-wheel", "anchor"}, {"scotch-yoke.json", "crank", "yoke"}},
+                      [&](const std::string& file, const Model& model, const cspace::PairAxes& axes,
+                          const cspace::ChartLayout& layout) {
     auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
     for (int step : {1, 2})
       for (const auto& x : layout.x_charts)
@@ -380,7 +382,7 @@ TEST(BlockedTester, CandidateListsOfEnclosingCellsGiveTheSweepsAnswers) {
           for (long i = 0; i < 2; ++i)
             for (long j = 0; j < 2; ++j) visit(1, i, j, nullptr);
         }
-  }
+  });
   std::cout << blocked << " of " << cells << " cells blocked, " << pairs << " candidate pairs kept\n";
   EXPECT_GT(blocked, 100);
 }
