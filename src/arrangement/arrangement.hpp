@@ -9,6 +9,7 @@
 
 #include <hipair/rational.hpp>
 
+#include <array>
 #include <cstddef>
 #include <limits>
 #include <memory>
@@ -112,6 +113,12 @@ struct Options {
   bool carry_line_supports = true;
   /// Quadratic stage: declines curves with a coefficient of more bits (CSpaceBuildOptions).
   std::size_t quadratic_max_coefficient_bits = 1024;
+  /// Quadratic stage, optional (one entry per curve, empty = no restriction; the other stages
+  /// ignore it): boxes {x_lo, x_hi, y_lo, y_hi} (closed, doubles) outside which the curve
+  /// certainly bounds nothing — the culling's surviving cells, whose x-ranges are the curve's
+  /// windows. A piece of a branch between two cuts is not inserted when its certified y
+  /// enclosure meets none of its group's boxes (see clip_common.hpp, branch_meets_cells).
+  const std::vector<std::vector<std::array<double, 4>>>* cells = nullptr;
 };
 
 /// Builds the arrangement of the curves (each square-free, non-zero) clipped to the box and,

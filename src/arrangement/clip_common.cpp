@@ -92,6 +92,31 @@ bool in_windows(const Rational& x, const std::vector<std::pair<Rational, Rationa
   return false;
 }
 
+bool group_cells(const std::vector<std::vector<std::array<double, 4>>>* cells, const std::vector<std::size_t>& members,
+                 CellBoxes& out) {
+  out.clear();
+  if (!cells) return false;
+  for (std::size_t member : members) {
+    if (member >= cells->size() || (*cells)[member].empty()) return false;
+    out.insert(out.end(), (*cells)[member].begin(), (*cells)[member].end());
+  }
+  std::sort(out.begin(), out.end());
+  return true;
+}
+
+bool branch_meets_cells(const CellBoxes& cells, double x_lo, double x_hi,
+                        const std::function<algebra::Interval(algebra::Interval)>& y_over) {
+  if (!(x_lo <= x_hi)) return true;
+  for (const auto& cell : cells) {
+    if (cell[0] > x_hi) break;   // sorted by x_lo: no later box reaches back
+    if (cell[1] < x_lo) continue;
+    const algebra::Interval y = y_over({std::max(cell[0], x_lo), std::min(cell[1], x_hi)});
+    if (!(y.lo == y.lo) || !(y.hi == y.hi)) return true;
+    if (!(y.hi < cell[2] || y.lo > cell[3])) return true;
+  }
+  return false;
+}
+
 void fill_edge_box(const std::vector<Vertex>& vertices, Edge& out) {
   const Vertex& a = vertices[out.min_vertex];
   const Vertex& b = vertices[out.max_vertex];

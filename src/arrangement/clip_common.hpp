@@ -6,6 +6,8 @@
 #include "arrangement/arrangement.hpp"
 #include "curves/contact_curves.hpp"
 
+#include <array>
+#include <functional>
 #include <utility>
 
 #include <cstddef>
@@ -33,6 +35,21 @@ bool clauses_hold(const std::vector<const std::vector<ValidityClause>*>& alterna
 
 /// Is x in one of the windows (none: no restriction)?
 bool in_windows(const Rational& x, const std::vector<std::pair<Rational, Rational>>* windows);
+
+/// Boxes {x_lo, x_hi, y_lo, y_hi} of the plane (closed, doubles), sorted by x_lo.
+using CellBoxes = std::vector<std::array<double, 4>>;
+
+/// The boxes of a group's members (Options::cells), sorted by x_lo; false when some member has
+/// none (the group is not restricted).
+bool group_cells(const std::vector<std::vector<std::array<double, 4>>>* cells, const std::vector<std::size_t>& members,
+                 CellBoxes& out);
+
+/// May a branch over the x-range [x_lo, x_hi] meet one of the boxes? `y_over(x)` encloses the
+/// branch's y for every x of the interval x where the branch is defined (an infinite or NaN
+/// enclosure: it may). False only when, over each box's x-range, the branch's enclosure misses
+/// the box's y-range: then every point of the branch there lies outside all boxes.
+bool branch_meets_cells(const CellBoxes& cells, double x_lo, double x_hi,
+                        const std::function<algebra::Interval(algebra::Interval)>& y_over);
 
 /// The edge's certified bounding box: the box of its ends (edges are monotone in x and y),
 /// widened by one ulp so that exact root brackets never end on a root.

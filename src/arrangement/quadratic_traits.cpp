@@ -1099,8 +1099,11 @@ class QuadraticBuilder {
         }
         group_windows.insert(group_windows.end(), windows[member].begin(), windows[member].end());
       }
+      // (the culling's surviving cells of the members, when every member has them)
+      cells_ = group_cells(options_.cells, groups[g], group_cells_) ? &group_cells_ : nullptr;
       clip(group_polynomials[g], alternatives, restricted ? &group_windows : nullptr, pieces, isolated);
     }
+    cells_ = nullptr;
     result_.times.curves_seconds = seconds_since(start);
 
     start = Clock::now();
@@ -1338,6 +1341,10 @@ class QuadraticBuilder {
       in_box[i] = strictly_between_sides(mx, expr);
       if ((!points[i] || !points[i + 1]) && in_box[i]) throw NotApplicable{"asymptote inside the box"};   // an asymptote inside the box
       if (!in_box[i] || !in_windows(m, windows)) continue;
+      // a piece whose certified y enclosure meets none of the culling's surviving cells bounds nothing
+      if (cells_ && !branch_meets_cells(*cells_, xs[i]->lower_bound(), xs[i + 1]->upper_bound(),
+                                        [&](Interval x) { return traits_.y_interval(expr, x); }))
+        continue;
       if (!any_clauses) {
         valid[i] = 1;
         continue;
@@ -1561,6 +1568,8 @@ class QuadraticBuilder {
   YExpr bottom_, top_;
   std::vector<XCurve> sides_;
   mutable Arrangement result_;
+  CellBoxes group_cells_;              // the group being clipped: its members' surviving cells
+  const CellBoxes* cells_ = nullptr;   // null: not restricted
 };
 
 }  // namespace

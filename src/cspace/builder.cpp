@@ -9,8 +9,11 @@
 #include <hipair/error.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <numbers>
 #include <numeric>
 #include <optional>
@@ -52,11 +55,24 @@ class CurveCuller {
  public:
   explicit CurveCuller(BlockedCells& grid) : grid_(grid) {}
 
-  // Windows of the curve (merged, ascending); empty when the curve bounds nothing.
+  // Windows of the curve (merged, ascending); empty when the curve bounds nothing. `cells`
+  // receives the surviving finest cells (merged along columns), sorted by x.
   std::vector<std::pair<double, double>> windows(const algebra::IntervalPolynomial2& f,
-                                                 const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses) {
+                                                 const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses,
+                                                 std::vector<std::array<double, 4>>& cells) {
+    std::vector<std::array<double, 4>> boxes;
+    visit(f, clauses, 0, 0, 0, boxes);
+    std::sort(boxes.begin(), boxes.end());
+    cells.clear();
+    for (const auto& b : boxes) {
+      // a cell just above the last one in the same column extends it
+      if (!cells.empty() && cells.back()[0] == b[0] && cells.back()[1] == b[1] && cells.back()[3] == b[2])
+        cells.back()[3] = b[3];
+      else
+        cells.push_back(b);
+    }
     std::vector<std::pair<double, double>> found;
-    visit(f, clauses, 0, 0, 0, found);
+    for (const auto& b : cells) found.emplace_back(b[0], b[1]);
     std::sort(found.begin(), found.end());
     std::vector<std::pair<double, double>> merged;
     for (const auto& w : found) {
@@ -70,7 +86,7 @@ class CurveCuller {
 
  private:
   void visit(const algebra::IntervalPolynomial2& f, const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses,
-             int depth, long i, long j, std::vector<std::pair<double, double>>& found) {
+             int depth, long i, long j, std::vector<std::array<double, 4>>& found) {
     algebra::Interval x = grid_.cell_x(depth, i), y = grid_.cell_y(depth, j);
     if (!f.evaluate(x, y).contains_zero()) return;
     for (const auto& clause : clauses) {
@@ -84,7 +100,7 @@ class CurveCuller {
     }
     if (depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && grid_.blocked(depth, i, j)) return;
     if (depth == grid_.depth()) {
-      found.emplace_back(x.lo, x.hi);
+      found.push_back({x.lo, x.hi, y.lo, y.hi});
       return;
     }
     for (long di = 0; di < 2; ++di)
@@ -144,6 +160,7 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input
     const ContactCurve& curve = input.curves[k];
     algebra::IntervalPolynomial2 f(curve.polynomial);
     std::vector<std::pair<Rational, Rational>> windows;
+    std::vector<std::array<double, 4>> cells;
     if (dimension == 2) {
       // (a line with an exact valid point in the box is kept without the quadtree)
       std::vector<std::pair<double, double>> found;
@@ -153,7 +170,7 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input
           clauses.emplace_back();
           for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
         }
-        found = culler.windows(f, clauses);
+        found = culler.windows(f, clauses, cells);
         if (found.empty()) continue;
       }
       if (blocked_test)
@@ -166,9 +183,16 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input
     kept.push_back(k);
     chart.polynomials.push_back(curve.polynomial);
     chart.validity.push_back(curve.validity);
+    // the cells restrict like the windows: only where the blocked test ran (else none)
+    if (!blocked_test || windows.empty()) cells.clear();
     chart.windows.push_back(std::move(windows));
+    chart.cells.push_back(std::move(cells));
     chart.interval_polynomials.push_back(std::move(f));
   }
+  static const bool debug = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
+  if (debug && input.blocked_cells)
+    std::fprintf(stderr, "  culling: %zu of %zu curves kept, %zu blocked tests, %zu candidate pairs tested\n", kept.size(),
+                 input.curves.size(), input.blocked_cells->tests(), input.blocked_cells->pairs_tested());
   return kept;
 }
 
@@ -999,6 +1023,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     raw_options.keep_cgal = options.keep_arrangements;
     raw_options.carry_line_supports = options.polygon_front_end;
     raw_options.quadratic_max_coefficient_bits = options.quadratic_max_coefficient_bits;
+    raw_options.cells = &chart.cells;
     // lines and circles (translating pairs): the circle–segment traits; else the algebraic ones
     const bool circle_segment = raw::circle_segment_applies(chart.polynomials, chart.validity);
     // curves of degree <= 2 in y: the filtered quadratic traits (nullopt: outside its class)

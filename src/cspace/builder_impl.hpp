@@ -87,6 +87,9 @@ struct ChartData {
   std::vector<std::vector<ValidityClause>> validity;   ///< per local curve
   /// per local curve: x-intervals outside which the curve certainly bounds nothing (empty: all)
   std::vector<std::vector<std::pair<Rational, Rational>>> windows;
+  /// per local curve: the culling's surviving finest cells {x_lo, x_hi, y_lo, y_hi} (empty: no
+  /// restriction), whose x-ranges are the windows; outside them the curve bounds nothing
+  std::vector<std::vector<std::array<double, 4>>> cells;
   std::vector<algebra::IntervalPolynomial2> interval_polynomials;
   raw::Arrangement arrangement;                ///< 2-D topology (empty for 1-D)
   std::vector<FaceData> faces;

@@ -334,20 +334,118 @@ bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, co
 bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
                             const algebra::Interval& y, Cache& cache) const {
   const Posed* posed[2] = {nullptr, nullptr};
+  if (!posed_parts(x_axis, y_axis, x, y, cache, posed)) return false;
+  return overlapping(*posed[0], *posed[1]);
+}
+
+// Calls f(k, axis, range, key) for each part k: the chart axis and interval its pose depends
+// on (the first moving part carries the chart's x axis, the second its y axis) and its cache
+// key (a fixed part's pose does not depend on the box: one entry). False when f is.
+template <class F>
+bool BlockedTester::each_part(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
+                              const algebra::Interval& y, F&& f) const {
   bool x_used = false;
   for (int k = 0; k < 2; ++k) {
     const bool use_x = !x_used;
     if (moves_[k]) x_used = true;
     const algebra::Interval& range = use_x ? x : y;
-    // a fixed part's posed disks do not depend on the box: one entry
-    std::pair<double, double> key = moves_[k] ? std::pair<double, double>{range.lo, range.hi}
-                                              : std::pair<double, double>{0.0, 0.0};
-    auto [it, inserted] = cache.posed_[k].try_emplace(key);
-    if (inserted) it->second.usable = pose_part(k, use_x ? x_axis : y_axis, range, it->second);
-    if (!it->second.usable) return false;
-    posed[k] = &it->second;
+    const std::pair<double, double> key = moves_[k] ? std::pair<double, double>{range.lo, range.hi}
+                                                    : std::pair<double, double>{0.0, 0.0};
+    if (!f(k, use_x ? x_axis : y_axis, range, key)) return false;
   }
-  return overlapping(*posed[0], *posed[1]);
+  return true;
+}
+
+bool BlockedTester::posed_parts(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
+                                const algebra::Interval& y, Cache& cache, const Posed* out[2]) const {
+  return each_part(x_axis, y_axis, x, y, [&](int k, const ChartAxis& axis, const algebra::Interval& range, const auto& key) {
+    auto [it, inserted] = cache.posed_[k].try_emplace(key);
+    if (inserted) it->second.usable = pose_part(k, axis, range, it->second);
+    out[k] = &it->second;
+    return it->second.usable;
+  });
+}
+
+bool BlockedTester::pose_bounds(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
+                                const algebra::Interval& y, Cache& cache, const PoseBound* out[2]) const {
+  return each_part(x_axis, y_axis, x, y, [&](int k, const ChartAxis& axis, const algebra::Interval& range, const auto& key) {
+    auto [it, inserted] = cache.bounds_[k].try_emplace(key);
+    if (inserted) it->second = pose_bound(k, axis, range);
+    out[k] = &it->second;
+    return it->second.usable;
+  });
+}
+
+namespace {
+using kernels::interval_detail::down;
+using kernels::interval_detail::up;
+
+// Can the pair certify some box inside the one its disks were posed over? Every pair that
+// certifies a sub-box has centres closer than the sum of the radii at each configuration of the
+// sub-box, and each posed centre lies within its movement and error bound (outer - radius) of
+// the true centre at every configuration of the box: so |centre_a - centre_b| < outer_a +
+// outer_b exactly. The double test below keeps every such pair (its margin, relative 2^-20 and
+// absolute 2^-1000, is far above the roundings of a few operations on doubles of size 1); it
+// keeps some more, which costs only work. The certified test (certifies()) implies it: rounding
+// is monotone and reach <= outer.
+template <class Disk>
+bool may_certify_inside(const Disk& a, const Disk& b) {
+  const double dx = a.x - b.x, dy = a.y - b.y, s = a.outer + b.outer;
+  if (!(s > 0)) return false;
+  return dx * dx + dy * dy <= s * s * (1 + 0x1p-20) + 0x1p-1000;
+}
+
+// Do the disks overlap with their nominal radii (the middle of reach and outer)? Orders the
+// candidates only (decides nothing).
+template <class Disk>
+bool overlap_nominally(const Disk& a, const Disk& b) {
+  const double dx = a.x - b.x, dy = a.y - b.y, s = 0.5 * (a.outer + b.outer + a.reach + b.reach);
+  return s > 0 && dx * dx + dy * dy < s * s;
+}
+
+// The certified test of one pair of posed disks: they overlap at every configuration of the box.
+template <class Disk>
+bool certifies(const Disk& a, const Disk& b) {
+  // a plain double test first (the certified one below implies it: skipping when it fails
+  // decides nothing), then certified: |centre_a - centre_b|^2 (rounded up) <
+  // (reach_a + reach_b)^2 (rounded down)
+  const double plain_dx = a.x - b.x, plain_dy = a.y - b.y, plain_reach = a.reach + b.reach;
+  if (!(plain_reach > 0) || !(plain_dx * plain_dx + plain_dy * plain_dy < plain_reach * plain_reach)) return false;
+  const double dx = up(std::fabs(plain_dx)), dy = up(std::fabs(plain_dy));
+  const double far2 = up(up(dx * dx) + up(dy * dy));
+  const double reach = down(a.reach + b.reach);
+  if (!(reach > 0)) return false;
+  return far2 < down(reach * reach);
+}
+}  // namespace
+
+bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
+                            const algebra::Interval& y, Cache& cache, const std::vector<DiskPair>* candidates,
+                            std::vector<DiskPair>* narrowed) const {
+  if (narrowed) narrowed->clear();
+  if (!candidates) {
+    const Posed* posed[2] = {nullptr, nullptr};
+    if (!posed_parts(x_axis, y_axis, x, y, cache, posed)) return false;
+    if (!narrowed) return overlapping(*posed[0], *posed[1]);
+    return gather(*posed[0], *posed[1], *narrowed);
+  }
+  const PoseBound* bounds[2] = {nullptr, nullptr};
+  if (!pose_bounds(x_axis, y_axis, x, y, cache, bounds)) return false;
+  PosedDisk a{}, b{};
+  // the narrowed list puts first the pairs whose nominal disks overlap (the likeliest to
+  // certify a sub-cell: a blocked cell's test stops at its first certifying pair)
+  thread_local std::vector<DiskPair> later;
+  later.clear();
+  for (const DiskPair& pair : *candidates) {
+    if (!pose_disk(0, *bounds[0], pair.first, a) || !pose_disk(1, *bounds[1], pair.second, b)) continue;
+    if (certifies(a, b)) {
+      if (narrowed) narrowed->clear();
+      return true;
+    }
+    if (narrowed && may_certify_inside(a, b)) (overlap_nominally(a, b) ? *narrowed : later).push_back(pair);
+  }
+  if (narrowed) narrowed->insert(narrowed->end(), later.begin(), later.end());
+  return false;
 }
 
 // Part k's disks posed over its axis interval `range`: the centre at the middle pose in
@@ -355,101 +453,14 @@ bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, co
 // movement and every error of the double centre), sorted by the centre's x. False when the
 // interval admits no claim (then nothing is blocked).
 bool BlockedTester::pose_part(int k, const ChartAxis& axis, const algebra::Interval& range, Posed& out) const {
-  using kernels::Interval;
-  using kernels::interval_detail::down;
-  using kernels::interval_detail::up;
-  // u = 2^-53 (unit roundoff); a bound of the rounding of a few operations on terms of size M
-  // is a small multiple of u M, plus an absolute term for underflow (each rounding below the
-  // normal range errs by at most 2^-1075).
-  constexpr double unit = 0x1p-53;
-  constexpr double underflow = 0x1p-1000;
-  constexpr double inflate = 1 + 0x1p-40;   // covers the rounding of the error terms' own sums
-  // The moving part's pose over its chart interval: the pose at a middle chart value m
-  // (certified cos/sin of its angle, or its offset) and a bound on how far a point at
-  // distance rho from the pivot moves from there: rho * |theta - theta_m| for rotations
-  // (the chord is shorter than the arc), the angle bound from the series of atan (side() below);
-  // |s - m| * |direction| for translations.
-  struct PoseBound {
-    double c = 1, s = 0;            // a point of the enclosure of cos, sin at m
-    double cs_error = 0;            // bound of |cos - c| + |sin - s|
-    double cs_size = 1;             // bound of |c| + |s|
-    double shift = 0;               // translations: m
-    double angle = 0;               // bound of |theta - theta_m|
-    double travel = 0;              // bound of the translation's travel from the middle
-  } pose_bound;
   out.interior.disks.clear();
   out.boundary.disks.clear();
-  if (moves_[k]) {
-    PoseBound& pose = pose_bound;
-    if (!std::isfinite(range.lo) || !std::isfinite(range.hi) || !(range.lo <= range.hi)) return false;
-    double lo = range.lo, hi = range.hi;
-    if (axis.kind == ChartAxis::Kind::translation) {
-      // chart offsets are in mm: into the tester's unit, outward (out of double range: no claim)
-      int shift = static_cast<int>(std::clamp<long>(-exponent_, -4000, 4000));
-      lo = down(std::ldexp(lo, shift));
-      hi = up(std::ldexp(hi, shift));
-      if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
-      double m = std::clamp(0.5 * lo + 0.5 * hi, lo, hi);
-      double half = std::max((Interval(m, m) - Interval(lo, lo)).hi, (Interval(hi, hi) - Interval(m, m)).hi);
-      pose.shift = m;
-      pose.travel = (Interval(half, half) * Interval(direction_length_[k], direction_length_[k])).hi;
-    } else {
-      // the middle of the angle range (any m in [lo, hi] is sound; this one balances the sides)
-      double m = std::clamp(std::tan(0.5 * (std::atan(lo) + std::atan(hi))), lo, hi);
-      if (!std::isfinite(m)) m = std::clamp(0.5 * lo + 0.5 * hi, lo, hi);
-      auto [c, s] = rotation_enclosure(axis.half_turn, Interval(m, m));
-      pose.c = c.lo;
-      pose.s = s.lo;
-      pose.cs_error = up(up(c.hi - c.lo) + up(s.hi - s.lo));
-      pose.cs_size = up(std::max(std::fabs(c.lo), std::fabs(c.hi)) + std::max(std::fabs(s.lo), std::fabs(s.hi)));
-      auto side = [](double a, double b) {   // bound of |2 atan b - 2 atan a|, a <= b
-        // atan b - atan a = atan z, z = (b - a)/(1 + ab), when 1 + ab > 0; atan z <= z - z^3/3 + z^5/5
-        // for 0 <= z <= 1 (alternating series), atan z < pi/2 < 1.5708
-        Interval width = Interval(b, b) - Interval(a, a);
-        Interval denominator = Interval(1) + Interval(a, a) * Interval(b, b);
-        if (!(denominator.lo > 0)) return (Interval(2) * width).hi;   // mean value theorem: slope <= 2
-        double z = (width / denominator).hi;
-        if (!(z <= 1)) return (Interval(2) * Interval(std::min(z, 1.5708), std::min(z, 1.5708))).hi;
-        Interval zi(z, z), z2 = zi * zi;
-        Interval series = zi * (Interval(1) - z2 / Interval(3) + z2 * z2 / Interval(5));
-        return (Interval(2) * series).hi;
-      };
-      pose.angle = std::max(side(lo, m), side(m, hi));
-    }
-  }
-  {
-    const PoseBound& p = pose_bound;
-    const bool rotates = moves_[k] && motion_[k] == Motion::Kind::rotation;
-    const bool translates = moves_[k] && motion_[k] == Motion::Kind::translation;
-    const double dx_m = direction_[k][0].lo, dy_m = direction_[k][1].lo;
-    const double direction_error =
-        up(std::max(direction_[k][0].hi - direction_[k][0].lo, direction_[k][1].hi - direction_[k][1].lo));
-    for (const CertifiedCore& d : disks_[k]) {
-      PosedDisk q;
-      double error = 0;
-      if (rotates) {
-        // world = pivot + R (centre - pivot); |R - R_m| <= cs_error entrywise, |R_m| <= cs_size
-        q.x = pivot_m_[k][0] + (p.c * d.rx_m - p.s * d.ry_m);
-        q.y = pivot_m_[k][1] + (p.s * d.rx_m + p.c * d.ry_m);
-        error = pivot_error_[k] + p.cs_error * d.magnitude + p.cs_size * d.r_error +
-                4 * unit * (pivot_magnitude_[k] + p.cs_size * d.magnitude) + d.rho * p.angle;
-      } else if (translates) {
-        q.x = d.cx + p.shift * dx_m;
-        q.y = d.cy + p.shift * dy_m;
-        double shift = std::fabs(p.shift);
-        error = shift * direction_error + 4 * unit * (std::max(std::fabs(d.cx), std::fabs(d.cy)) + 2 * shift) + p.travel +
-                d.centre_error;
-      } else {
-        q.x = d.cx;
-        q.y = d.cy;
-        error = d.centre_error;
-      }
-      error = error * inflate + underflow;
-      // may be negative: a pair is tested on the sum of its reaches
-      q.reach = down(d.r - error);
-      if (!std::isfinite(q.reach) || !std::isfinite(q.x) || !std::isfinite(q.y)) continue;
-      (d.r > 0 ? out.interior : out.boundary).disks.push_back(q);
-    }
+  const PoseBound pose = pose_bound(k, axis, range);
+  if (!pose.usable) return false;
+  for (std::size_t i = 0; i < disks_[k].size(); ++i) {
+    PosedDisk q;
+    if (!pose_disk(k, pose, static_cast<std::uint32_t>(i), q)) continue;
+    (disks_[k][i].r > 0 ? out.interior : out.boundary).disks.push_back(q);
   }
   for (PosedSet* set : {&out.interior, &out.boundary}) {
     std::sort(set->disks.begin(), set->disks.end(), [](const PosedDisk& a, const PosedDisk& b) { return a.x < b.x; });
@@ -463,6 +474,103 @@ bool BlockedTester::pose_part(int k, const ChartAxis& axis, const algebra::Inter
   return true;
 }
 
+// Part k's pose over its axis interval `range` (see PoseBound); not usable when the interval
+// admits no claim.
+BlockedTester::PoseBound BlockedTester::pose_bound(int k, const ChartAxis& axis, const algebra::Interval& range) const {
+  using kernels::Interval;
+  // The moving part's pose over its chart interval: the pose at a middle chart value m
+  // (certified cos/sin of its angle, or its offset) and a bound on how far a point at
+  // distance rho from the pivot moves from there: rho * |theta - theta_m| for rotations
+  // (the chord is shorter than the arc), the angle bound from the series of atan (side() below);
+  // |s - m| * |direction| for translations.
+  PoseBound pose;
+  pose.direction_error =
+      up(std::max(direction_[k][0].hi - direction_[k][0].lo, direction_[k][1].hi - direction_[k][1].lo));
+  if (!moves_[k]) return pose;
+  if (!std::isfinite(range.lo) || !std::isfinite(range.hi) || !(range.lo <= range.hi)) {
+    pose.usable = false;
+    return pose;
+  }
+  double lo = range.lo, hi = range.hi;
+  if (axis.kind == ChartAxis::Kind::translation) {
+    // chart offsets are in mm: into the tester's unit, outward (out of double range: no claim)
+    int shift = static_cast<int>(std::clamp<long>(-exponent_, -4000, 4000));
+    lo = down(std::ldexp(lo, shift));
+    hi = up(std::ldexp(hi, shift));
+    if (!std::isfinite(lo) || !std::isfinite(hi)) {
+      pose.usable = false;
+      return pose;
+    }
+    double m = std::clamp(0.5 * lo + 0.5 * hi, lo, hi);
+    double half = std::max((Interval(m, m) - Interval(lo, lo)).hi, (Interval(hi, hi) - Interval(m, m)).hi);
+    pose.shift = m;
+    pose.travel = (Interval(half, half) * Interval(direction_length_[k], direction_length_[k])).hi;
+  } else {
+    // the middle of the angle range (any m in [lo, hi] is sound; this one balances the sides)
+    double m = std::clamp(std::tan(0.5 * (std::atan(lo) + std::atan(hi))), lo, hi);
+    if (!std::isfinite(m)) m = std::clamp(0.5 * lo + 0.5 * hi, lo, hi);
+    auto [c, s] = rotation_enclosure(axis.half_turn, Interval(m, m));
+    pose.c = c.lo;
+    pose.s = s.lo;
+    pose.cs_error = up(up(c.hi - c.lo) + up(s.hi - s.lo));
+    pose.cs_size = up(std::max(std::fabs(c.lo), std::fabs(c.hi)) + std::max(std::fabs(s.lo), std::fabs(s.hi)));
+    auto side = [](double a, double b) {   // bound of |2 atan b - 2 atan a|, a <= b
+      // atan b - atan a = atan z, z = (b - a)/(1 + ab), when 1 + ab > 0; atan z <= z - z^3/3 + z^5/5
+      // for 0 <= z <= 1 (alternating series), atan z < pi/2 < 1.5708
+      Interval width = Interval(b, b) - Interval(a, a);
+      Interval denominator = Interval(1) + Interval(a, a) * Interval(b, b);
+      if (!(denominator.lo > 0)) return (Interval(2) * width).hi;   // mean value theorem: slope <= 2
+      double z = (width / denominator).hi;
+      if (!(z <= 1)) return (Interval(2) * Interval(std::min(z, 1.5708), std::min(z, 1.5708))).hi;
+      Interval zi(z, z), z2 = zi * zi;
+      Interval series = zi * (Interval(1) - z2 / Interval(3) + z2 * z2 / Interval(5));
+      return (Interval(2) * series).hi;
+    };
+    pose.angle = std::max(side(lo, m), side(m, hi));
+  }
+  return pose;
+}
+
+// Disk `index` of part k posed with `p`: the centre at the middle pose in doubles, a lower
+// bound of its radius over the whole interval (radius minus movement and every error of the
+// double centre) and an upper bound of radius plus the same. False when not finite.
+bool BlockedTester::pose_disk(int k, const PoseBound& p, std::uint32_t index, PosedDisk& q) const {
+  // u = 2^-53 (unit roundoff); a bound of the rounding of a few operations on terms of size M
+  // is a small multiple of u M, plus an absolute term for underflow (each rounding below the
+  // normal range errs by at most 2^-1075).
+  constexpr double unit = 0x1p-53;
+  constexpr double underflow = 0x1p-1000;
+  constexpr double inflate = 1 + 0x1p-40;   // covers the rounding of the error terms' own sums
+  const CertifiedCore& d = disks_[k][index];
+  const bool rotates = moves_[k] && motion_[k] == Motion::Kind::rotation;
+  const bool translates = moves_[k] && motion_[k] == Motion::Kind::translation;
+  double error = 0;
+  if (rotates) {
+    // world = pivot + R (centre - pivot); |R - R_m| <= cs_error entrywise, |R_m| <= cs_size
+    q.x = pivot_m_[k][0] + (p.c * d.rx_m - p.s * d.ry_m);
+    q.y = pivot_m_[k][1] + (p.s * d.rx_m + p.c * d.ry_m);
+    error = pivot_error_[k] + p.cs_error * d.magnitude + p.cs_size * d.r_error +
+            4 * unit * (pivot_magnitude_[k] + p.cs_size * d.magnitude) + d.rho * p.angle;
+  } else if (translates) {
+    const double dx_m = direction_[k][0].lo, dy_m = direction_[k][1].lo;
+    q.x = d.cx + p.shift * dx_m;
+    q.y = d.cy + p.shift * dy_m;
+    double shift = std::fabs(p.shift);
+    error = shift * p.direction_error + 4 * unit * (std::max(std::fabs(d.cx), std::fabs(d.cy)) + 2 * shift) + p.travel +
+            d.centre_error;
+  } else {
+    q.x = d.cx;
+    q.y = d.cy;
+    error = d.centre_error;
+  }
+  error = error * inflate + underflow;
+  // may be negative: a pair is tested on the sum of its reaches
+  q.reach = down(d.r - error);
+  q.outer = up(d.r + error);
+  q.index = index;
+  return std::isfinite(q.reach) && std::isfinite(q.x) && std::isfinite(q.y);
+}
+
 // Does some pair of posed disks certainly overlap (the box is blocked)? Pairs of two boundary
 // points (reach <= 0 both) never do.
 bool BlockedTester::overlapping(const Posed& first, const Posed& second) {
@@ -472,8 +580,6 @@ bool BlockedTester::overlapping(const Posed& first, const Posed& second) {
 
 // Does some pair of posed disks certainly overlap (the box is blocked)?
 bool BlockedTester::overlapping(const PosedSet& first, const PosedSet& second) {
-  using kernels::interval_detail::down;
-  using kernels::interval_detail::up;
   // sweep in x over both parts' disks sorted by their centre's x: only pairs with
   // |x_a - x_b| <= reach_a + (the widest reach of B) are tested (the window decides nothing:
   // leaving a pair out can only keep the answer "not blocked"). The window's left end moves
@@ -492,17 +598,37 @@ bool BlockedTester::overlapping(const PosedSet& first, const PosedSet& second) {
     const double left = a.x - span, right = a.x + span;
     for (std::size_t j = low; j < n && xs[j] <= right; ++j) {
       if (xs[j] < left) continue;
+      if (certifies(a, second.disks[j])) return true;
+    }
+  }
+  return false;
+}
+
+// The sweep of overlapping(), collecting the pairs that can certify a box inside this one
+// (may_certify_inside) until one certifies this box (then true, `out` incomplete).
+bool BlockedTester::gather(const Posed& first, const Posed& second, std::vector<DiskPair>& out) {
+  return gather(first.interior, second.interior, out) || gather(first.boundary, second.interior, out) ||
+         gather(first.interior, second.boundary, out);
+}
+
+bool BlockedTester::gather(const PosedSet& first, const PosedSet& second, std::vector<DiskPair>& out) {
+  // (`first` holds disks of part 0, `second` of part 1.) Every pair kept has |x_a - x_b| <=
+  // (outer_a + outer_b) (1 + 2^-21) + 2^-500 (the margins of the double test): the window in x
+  // is outer_a + (the widest outer of B), widened by more than that and the window ends' rounding
+  double widest = -std::numeric_limits<double>::infinity();
+  for (const PosedDisk& b : second.disks) widest = std::max(widest, b.outer);
+  if (second.disks.empty()) return false;
+  const std::vector<double>& xs = second.xs;
+  const std::size_t n = xs.size();
+  for (const PosedDisk& a : first.disks) {
+    const double span = (a.outer + widest) * (1 + 0x1p-18) + std::fabs(a.x) * 0x1p-40 + 0x1p-400;
+    if (!(span > 0)) continue;
+    const double left = a.x - span, right = a.x + span;
+    for (std::size_t j = static_cast<std::size_t>(std::lower_bound(xs.begin(), xs.end(), left) - xs.begin());
+         j < n && xs[j] <= right; ++j) {
       const PosedDisk& b = second.disks[j];
-      // a plain double test first (the certified one below implies it: skipping when it fails
-      // decides nothing), then certified: |centre_a - centre_b|^2 (rounded up) <
-      // (reach_a + reach_b)^2 (rounded down)
-      double plain_dx = a.x - b.x, plain_dy = a.y - b.y, plain_reach = a.reach + b.reach;
-      if (!(plain_reach > 0) || !(plain_dx * plain_dx + plain_dy * plain_dy < plain_reach * plain_reach)) continue;
-      double dx = up(std::fabs(plain_dx)), dy = up(std::fabs(plain_dy));
-      double far2 = up(up(dx * dx) + up(dy * dy));
-      double reach = down(a.reach + b.reach);
-      if (!(reach > 0)) continue;
-      if (far2 < down(reach * reach)) return true;
+      if (certifies(a, b)) return true;
+      if (may_certify_inside(a, b)) out.push_back(DiskPair{a.index, b.index});
     }
   }
   return false;
@@ -541,19 +667,36 @@ bool BlockedCells::blocked(int depth, long i, long j) {
   if (!tester_) return false;
   const long key = (static_cast<long>(depth) << 56) | (i << 28) | j;
   auto it = known_.find(key);
-  if (it != known_.end()) return it->second != 0;
+  if (it != known_.end()) return it->second.blocked;
   // a cell inside a cell already known to be blocked is blocked (no test); the parent is only
-  // looked up, never tested on the way
+  // looked up, never tested on the way. The nearest tested ancestor with a candidate list
+  // gives the pairs to test (every pair that can certify this cell is in it).
   bool result = false;
+  const std::vector<BlockedTester::DiskPair>* candidates = nullptr;
   for (int up = 1; up <= depth && !result; ++up) {
     auto parent = known_.find((static_cast<long>(depth - up) << 56) | ((i >> up) << 28) | (dimension_ == 2 ? j >> up : j));
-    if (parent != known_.end() && parent->second) result = true;
+    if (parent == known_.end()) continue;
+    if (parent->second.blocked) result = true;
+    else if (!candidates && parent->second.list >= 0) candidates = &lists_[static_cast<std::size_t>(parent->second.list)];
   }
+  Known known;
   if (!result) {
     ++tests_;
-    result = tester_->blocked(x_axis_, y_axis_, cell_x(depth, i), cell_y(depth, j), cache_);
+    if (candidates) pairs_tested_ += candidates->size();
+    // the cells below the finest depth any caller tests (the builder's windows, the curve
+    // generator's pairs to depth 9 at least) need no list
+    const bool keep_list = depth < std::max(depth_, 9);
+    std::vector<BlockedTester::DiskPair> narrowed;
+    result = tester_->blocked(x_axis_, y_axis_, cell_x(depth, i), cell_y(depth, j), cache_, candidates,
+                              keep_list ? &narrowed : nullptr);
+    if (!result && keep_list) {
+      known.list = static_cast<std::int32_t>(lists_.size());
+      narrowed.shrink_to_fit();
+      lists_.push_back(std::move(narrowed));
+    }
   }
-  known_.emplace(key, result ? 1 : 0);
+  known.blocked = result;
+  known_.emplace(key, known);
   return result;
 }
 

@@ -17,6 +17,7 @@
 
 #include <hipair/model.hpp>
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <unordered_map>
@@ -28,7 +29,9 @@ namespace hipair::cspace {
 class BlockedTester {
   struct PosedDisk {
     double x, y;
-    double reach;   // lower bound of the radius over the whole interval (may be negative)
+    double reach;         // lower bound of the radius over the whole interval (may be negative)
+    double outer;         // upper bound of the radius plus the centre's movement and errors
+    std::uint32_t index;  // of the certified disk in disks(part)
   };
   // Posed disks of one kind, sorted by the centre's x.
   struct PosedSet {
@@ -42,6 +45,18 @@ class BlockedTester {
     bool usable = true;   // false: the interval admits no claim (nothing is blocked)
     PosedSet interior, boundary;
   };
+  // The pose of one part over one interval of its axis, without its disks: the pose at a
+  // middle value and bounds of how far a point moves from there (see pose_bound()).
+  struct PoseBound {
+    bool usable = true;             // false: the interval admits no claim (nothing is blocked)
+    double c = 1, s = 0;            // a point of the enclosure of cos, sin at m
+    double cs_error = 0;            // bound of |cos - c| + |sin - s|
+    double cs_size = 1;             // bound of |c| + |s|
+    double shift = 0;               // translations: m
+    double angle = 0;               // bound of |theta - theta_m|
+    double travel = 0;              // bound of the translation's travel from the middle
+    double direction_error = 0;     // bound of the direction's enclosure width
+  };
 
  public:
   /// The parts' posed disks per interval of their axes, kept between calls for the boxes of
@@ -51,6 +66,12 @@ class BlockedTester {
   class Cache {
     friend class BlockedTester;
     std::map<std::pair<double, double>, Posed> posed_[2];
+    std::map<std::pair<double, double>, PoseBound> bounds_[2];
+  };
+
+  /// A pair of certified disks, indices into disks(0) and disks(1).
+  struct DiskPair {
+    std::uint32_t first, second;
   };
 
   BlockedTester(const Model& model, const PairAxes& axes);
@@ -64,6 +85,20 @@ class BlockedTester {
   /// at every call with one cache).
   bool blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
                const algebra::Interval& y, Cache& cache) const;
+
+  /// The same answer again, from a list of candidate pairs instead of a sweep over all disks:
+  /// `candidates` (null: every pair) must hold every pair of disks that can certify the box,
+  /// as the `narrowed` list of any box containing it does. When the box is not blocked and
+  /// `narrowed` is given, it receives the pairs that can certify some box inside this one
+  /// (the posed centres closer than the sum of both disks' radii plus both movement bounds
+  /// over this box: a pair certifying a sub-box is closer than the radii at every
+  /// configuration of the sub-box, and each posed centre is within its movement bound of the
+  /// true one). The answer does not depend on the candidates given (any pair certifying the
+  /// box is among them, and the same certified test decides each pair), so it is the answer
+  /// of the sweep; only the work differs.
+  bool blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
+               const algebra::Interval& y, Cache& cache, const std::vector<DiskPair>* candidates,
+               std::vector<DiskPair>* narrowed) const;
 
   /// A disk of a part's material in the tester's unit, certified once at construction (exact
   /// centre strictly inside the part, radius a certified lower bound of its clearance).
@@ -83,8 +118,20 @@ class BlockedTester {
 
  private:
   bool pose_part(int k, const ChartAxis& axis, const algebra::Interval& range, Posed& out) const;
+  PoseBound pose_bound(int k, const ChartAxis& axis, const algebra::Interval& range) const;
+  bool pose_disk(int k, const PoseBound& pose, std::uint32_t index, PosedDisk& out) const;
+  template <class F>
+  bool each_part(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
+                 const algebra::Interval& y, F&& f) const;
+  // the parts' cached posed disks (or pose bounds) over the box; false: nothing is blocked
+  bool posed_parts(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
+                   const algebra::Interval& y, Cache& cache, const Posed* out[2]) const;
+  bool pose_bounds(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
+                   const algebra::Interval& y, Cache& cache, const PoseBound* out[2]) const;
   static bool overlapping(const Posed& first, const Posed& second);
   static bool overlapping(const PosedSet& first, const PosedSet& second);
+  static bool gather(const Posed& first, const Posed& second, std::vector<DiskPair>& out);
+  static bool gather(const PosedSet& first, const PosedSet& second, std::vector<DiskPair>& out);
 
   PairAxes axes_;
   long exponent_;                        // lengths in units of 2^exponent_ mm
@@ -126,18 +173,30 @@ class BlockedCells {
   bool blocked(int depth, long i, long j);
   /// Tester calls made (each cell at most once).
   std::size_t tests() const { return tests_; }
-  /// Frees the tester's posed disks (kept for the next cells); the known cells stay.
+  /// Candidate pairs tested over all calls (the work of the tests).
+  std::size_t pairs_tested() const { return pairs_tested_; }
+  /// Frees the tester's posed disks (kept for the next cells); the known cells and their
+  /// candidate lists stay.
   void release_cache() { cache_ = BlockedTester::Cache{}; }
 
  private:
+  // A tested cell: blocked, and (not blocked, above the finest depth anyone tests) the index
+  // of its list of the disk pairs that can certify a cell inside it (BlockedTester::blocked
+  // with `narrowed`): the cells below test only those pairs (the disk sweep bucketed by cell).
+  struct Known {
+    bool blocked = false;
+    std::int32_t list = -1;
+  };
   std::shared_ptr<const BlockedTester> tester_;
   ChartAxis x_axis_, y_axis_;
   int dimension_;
   int depth_;
   algebra::Interval x_, y_;
   BlockedTester::Cache cache_;
-  std::unordered_map<long, char> known_;
+  std::unordered_map<long, Known> known_;
+  std::vector<std::vector<BlockedTester::DiskPair>> lists_;
   std::size_t tests_ = 0;
+  std::size_t pairs_tested_ = 0;
 };
 
 }  // namespace hipair::cspace

@@ -21,7 +21,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <filesystem>
+#include <functional>
+#include <initializer_list>
+#include <memory>
 #include <random>
 #include <string>
 #include <tuple>
@@ -286,11 +290,10 @@ TEST(BlockedTester, CSpaceBesideAnArcJunctionAgreesWithTheOracle) {
 // it) gives the same answer as the uncached test on every box of a grid of nested boxes (the
 // quadtree's pattern: each column and row interval shared by many boxes), on the examples'
 // charts.
-TEST(BlockedTester, CachedAnswersEqualUncachedOnes) {
-  int blocked = 0, boxes = 0;
-  for (const auto& [file, first, second] : {std::tuple{"geneva.json", "driver", "wheel"},
-                                            std::tuple{"ratchet.json", "wheel", "pawl"},
-                                            std::tuple{"scotch-yoke.json", "crank", "yoke"}}) {
+// Calls f(file, model, axes, layout) for each example pair {file, first, second} with a 2-D C-space.
+template <class F>
+void for_each_two_d_pair(std::initializer_list<std::tuple<const char*, const char*, const char*>> pairs, F&& f) {
+  for (const auto& [file, first, second] : pairs) {
     std::filesystem::path path = std::filesystem::path(HIPAIR_EXAMPLES) / file;
     if (!std::filesystem::exists(path)) continue;
     Model model = read_model_file(path);
@@ -299,6 +302,16 @@ TEST(BlockedTester, CachedAnswersEqualUncachedOnes) {
     cspace::PairAxes axes = cspace::pair_axes(model, *a, *b);
     cspace::ChartLayout layout = cspace::chart_layout(model, axes);
     if (layout.y_charts.empty()) continue;
+    f(std::string(file), model, axes, layout);
+  }
+}
+
+TEST(BlockedTester, CachedAnswersEqualUncachedOnes) {
+  int blocked = 0, boxes = 0;
+  for_each_two_d_pair({{"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"},
+                       {"scotch-yoke.json", "crank", "yoke"}},
+                      [&](const std::string& file, const Model& model, const cspace::PairAxes& axes,
+                          const cspace::ChartLayout& layout) {
     cspace::BlockedTester tester(model, axes);
     for (const auto& x : layout.x_charts)
       for (const auto& y : layout.y_charts) {
@@ -317,8 +330,60 @@ TEST(BlockedTester, CachedAnswersEqualUncachedOnes) {
             }
         }
       }
-  }
+  });
   std::cout << blocked << " of " << boxes << " boxes blocked\n";
+  EXPECT_GT(blocked, 100);
+}
+
+
+// The disk sweep bucketed by cell (BlockedCells: each cell tests only the candidate pairs its
+// nearest tested ancestor left, BlockedTester::blocked with `narrowed`) gives the answer of the
+// full sweep on every cell of a quadtree, tested depth first as the builder does (to depth 6,
+// every depth or every other depth), on the examples' charts; a cell's list is part of its
+// parent's.
+TEST(BlockedTester, CandidateListsOfEnclosingCellsGiveTheSweepsAnswers) {
+  int blocked = 0, cells = 0;
+  std::size_t pairs = 0;
+  for_each_two_d_pair({{"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"},
+                       {"escapement.json", "escape-wheel", "anchor"}, {"scotch-yoke.json", "crank", "yoke"}},
+                      [&](const std::string& file, const Model& model, const cspace::PairAxes& axes,
+                          const cspace::ChartLayout& layout) {
+    auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
+    for (int step : {1, 2})
+      for (const auto& x : layout.x_charts)
+        for (const auto& y : layout.y_charts) {
+          cspace::BlockedCells grid(tester, x, y, 2, 6);
+          cspace::BlockedTester::Cache cache;
+          // depth first over the quadtree, the cells of depths 1, 1 + step, ... tested
+          std::function<void(int, long, long, const std::vector<cspace::BlockedTester::DiskPair>*)> visit =
+              [&](int depth, long i, long j, const std::vector<cspace::BlockedTester::DiskPair>* parent_list) {
+                const Interval bx = grid.cell_x(depth, i), by = grid.cell_y(depth, j);
+                const bool plain = tester->blocked(x, y, bx, by);
+                const bool gridded = grid.blocked(depth, i, j);
+                ++cells;
+                // (no cell visited lies inside a blocked one: the grid tests each)
+                EXPECT_EQ(gridded, plain) << file << " cell " << depth << ", " << i << ", " << j;
+                std::vector<cspace::BlockedTester::DiskPair> list;
+                const bool listed = tester->blocked(x, y, bx, by, cache, parent_list, &list);
+                EXPECT_EQ(listed, plain) << file << " cell " << depth << ", " << i << ", " << j;
+                if (parent_list) {
+                  // every pair of this cell's list is in the parent's (narrowing only drops pairs)
+                  for (const auto& p : list)
+                    EXPECT_TRUE(std::any_of(parent_list->begin(), parent_list->end(), [&](const auto& q) {
+                      return q.first == p.first && q.second == p.second;
+                    }));
+                }
+                pairs += list.size();
+                blocked += plain;
+                if (plain || depth + step > 6) return;
+                for (long di = 0; di < (1L << step); ++di)
+                  for (long dj = 0; dj < (1L << step); ++dj) visit(depth + step, (i << step) + di, (j << step) + dj, &list);
+              };
+          for (long i = 0; i < 2; ++i)
+            for (long j = 0; j < 2; ++j) visit(1, i, j, nullptr);
+        }
+  });
+  std::cout << blocked << " of " << cells << " cells blocked, " << pairs << " candidate pairs kept\n";
   EXPECT_GT(blocked, 100);
 }
 

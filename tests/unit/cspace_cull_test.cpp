@@ -19,6 +19,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <map>
 #include <random>
@@ -218,14 +220,14 @@ void expect_culled_pieces_blocked(const Model& model, const std::string& first, 
   std::mt19937_64 random(seed);
   for (std::size_t c = 0; c < impl.charts.size(); ++c) {
     const cspace::ChartData& chart = impl.charts[c];
-    // the kept curves of the chart: feature pair -> windows
+    // the kept curves of the chart: feature pair -> local curve (its windows and surviving cells)
     std::map<std::tuple<std::size_t, std::size_t, std::size_t, int, std::size_t, std::size_t, std::size_t, int>,
-             const std::vector<std::pair<Rational, Rational>>*>
+             std::size_t>
         kept;
     for (std::size_t k = 0; k < chart.curve_global.size(); ++k) {
       const FeaturePair& pair = space.feature_pairs()[chart.curve_global[k]];
       kept[{pair.first.part, pair.first.loop, pair.first.edge, static_cast<int>(pair.first.kind), pair.second.part,
-            pair.second.loop, pair.second.edge, static_cast<int>(pair.second.kind)}] = &chart.windows[k];
+            pair.second.loop, pair.second.edge, static_cast<int>(pair.second.kind)}] = k;
     }
     for (const cspace::ContactCurve& curve : generator.generate(chart.x_axis, chart.y_axis)) {
       if (curve.polynomial.is_zero()) continue;
@@ -236,12 +238,16 @@ void expect_culled_pieces_blocked(const Model& model, const std::string& first, 
         u.canonicalize();
         Rational x = chart.box.x_lo + u * (chart.box.x_hi - chart.box.x_lo);
         bool culled = it == kept.end();
-        if (!culled && !it->second->empty()) {
+        if (!culled && !chart.windows[it->second].empty()) {
           culled = true;
-          for (const auto& [lo, hi] : *it->second)
+          for (const auto& [lo, hi] : chart.windows[it->second])
             if (lo <= x && x <= hi) culled = false;
         }
-        if (!culled) continue;
+        // inside a window, a point of a kept curve outside every surviving cell was not
+        // inserted either (the quadratic stage's pieces are restricted in x and y)
+        const std::vector<std::array<double, 4>>* cells =
+            culled || it == kept.end() || chart.cells[it->second].empty() ? nullptr : &chart.cells[it->second];
+        if (!culled && !cells) continue;
         cspace::algebra::Polynomial p = cspace::algebra::substitute_x(curve.polynomial, x);
         if (cspace::algebra::degree(p) < 1) continue;
         for (cspace::algebra::Real y : cspace::algebra::real_roots(p, chart.box.y_lo, chart.box.y_hi)) {
@@ -252,6 +258,11 @@ void expect_culled_pieces_blocked(const Model& model, const std::string& first, 
           });
           if (!valid) continue;
           y.refine_to(Rational(mpz_class(1), mpz_class(1) << 200) * (chart.box.y_hi - chart.box.y_lo));
+          if (cells && std::any_of(cells->begin(), cells->end(), [&](const std::array<double, 4>& b) {
+                return Rational(b[0]) <= x && x <= Rational(b[1]) && !(y.upper < Rational(b[2])) &&
+                       !(Rational(b[3]) < y.lower);
+              }))
+            continue;   // in a surviving cell (or not certainly outside): inserted
           for (const Rational& near : {y.exact ? Rational(y.lower - Rational(mpz_class(1), mpz_class(1) << 200)) : y.lower,
                                        y.exact ? Rational(y.upper + Rational(mpz_class(1), mpz_class(1) << 200)) : y.upper}) {
             if (near <= chart.box.y_lo || near >= chart.box.y_hi) continue;
