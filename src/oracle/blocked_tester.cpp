@@ -484,7 +484,15 @@ bool BlockedTester::overlapping(const PosedSet& first, const PosedSet& second) {
   const std::vector<double>& xs = second.xs;
   const std::size_t n = xs.size();
   std::size_t low = 0;
-  for (const PosedDisk& a : first.disks) {
+  if (n == 0) return false;
+  // only A's disks with x_a in [x_B min - reach_bound, x_B max + reach_bound] can have a B
+  // disk in their window (A's disks are sorted by x too): the others are skipped unseen
+  const auto a_begin = std::lower_bound(first.xs.begin(), first.xs.end(), xs.front() - reach_bound);
+  const auto a_end = std::upper_bound(a_begin, first.xs.end(), xs.back() + reach_bound);
+  const auto a_first = first.disks.begin() + (a_begin - first.xs.begin());
+  const auto a_last = first.disks.begin() + (a_end - first.xs.begin());
+  for (auto it = a_first; it != a_last; ++it) {
+    const PosedDisk& a = *it;
     const double span = a.reach + widest;
     if (!(span > 0)) continue;
     const double from = a.x - reach_bound;
