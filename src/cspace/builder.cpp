@@ -1061,6 +1061,9 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       find_touching(chart, chart_input.classify, sides ? &*sides : nullptr, options.check_face_classification, stats);
     }
     stats.seconds_classification += seconds_since(start);
+    // the chart's input curves are done with (its arrangement, polynomials and labels are
+    // kept): free them now rather than at the end, so a region's peak holds one copy
+    std::vector<ContactCurve>().swap(chart_input.curves);
   }
   stats.charts = impl->charts.size();
 

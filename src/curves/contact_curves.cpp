@@ -17,7 +17,9 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <mutex>
 #include <numbers>
+#include <unordered_map>
 
 namespace hipair::cspace {
 
@@ -818,10 +820,11 @@ using PolyVector = kernels::Vector<Polynomial>;
 
 // The contact table (kernels/contact_table.hpp) in exact polynomials of the chart coordinates:
 // body data are rationals, the radius products' roots taken when they are rational.
-std::optional<kernels::ContactFunction<Polynomial>> contact_of(const BodyFeature& fa, const BodyFeature& fb,
+std::optional<kernels::ContactFunction<Polynomial>> contact_of(const kernels::FeatureGeometry<Rational>& fa,
+                                                               const kernels::FeatureGeometry<Rational>& fb,
                                                                const kernels::Pose<Polynomial>& a,
                                                                const kernels::Pose<Polynomial>& b) {
-  return kernels::contact_function(a, feature_geometry(fa), b, feature_geometry(fb),
+  return kernels::contact_function(a, fa, b, fb,
                                    [](const Rational& r) { return Polynomial(r); },
                                    kernels::ExactRootOrSquared{[](const Rational& square) { return exact_square_root(square); }});
 }
@@ -1155,10 +1158,23 @@ struct CurveGenerator::Data {
   std::vector<Core> cores_a, cores_b;
   std::vector<SweptFeature> static_a, static_b;   // Culler::describe_static, chart independent
   bool polygons = true;   // every feature of both parts is a vertex or a segment
+  // The features' exact body-frame geometry, chart independent (formed once, not per tile).
+  std::vector<kernels::FeatureGeometry<Rational>> geometry_a, geometry_b;
+  // A feature pair's exact curve depends on the chart only through the half-turn flags of its
+  // two axes (the poses of pair_poses), not on the chart box: an operating region's tiles of
+  // one chart, and the charts of one kind, share it. Each pair's curve (or its absence:
+  // nullopt) is formed once, kept here for the next tiles, under the mutex (generate() may run
+  // on several threads). The key: pair index, then the two half-turn bits.
+  struct Formed {
+    bool kept = false;   // false: no curve (no contact kernel, a non-zero constant, never valid)
+    ContactCurve curve;
+  };
+  mutable std::mutex formed_mutex;
+  mutable std::unordered_map<std::uint64_t, std::shared_ptr<const Formed>> formed;
 };
 
 CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
-    : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}, true}) {
+    : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}, true, {}, {}, {}, {}}) {
   Data& d = *data_;
   d.features_a = part_features(model, axes.first, &d.reflex_vertices_skipped);
   d.features_b = part_features(model, axes.second, &d.reflex_vertices_skipped);
@@ -1174,6 +1190,8 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
     for (const BodyFeature& f : d.features_a) d.static_a.push_back(culler.describe_static(f));
     for (const BodyFeature& f : d.features_b) d.static_b.push_back(culler.describe_static(f));
   }
+  for (const BodyFeature& f : d.features_a) d.geometry_a.push_back(feature_geometry(f));
+  for (const BodyFeature& f : d.features_b) d.geometry_b.push_back(feature_geometry(f));
   if (options.cull_blocked_space) {
     for (const BodyFeature& f : d.features_a) d.disks_a.push_back(body_disk(f));
     for (const BodyFeature& f : d.features_b) d.disks_b.push_back(body_disk(f));
@@ -1312,11 +1330,8 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
   auto constant = [](const Rational& value) { return Polynomial(value); };
   PairPoses<Polynomial> poses = pair_poses(model, axes, x, y, Polynomial::variable(0),
                                            Polynomial::variable(1), constant);
-  std::vector<kernels::FeatureGeometry<Rational>> geometry_a, geometry_b;
-  geometry_a.reserve(features_a.size());
-  geometry_b.reserve(features_b.size());
-  for (const BodyFeature& f : features_a) geometry_a.push_back(feature_geometry(f));
-  for (const BodyFeature& f : features_b) geometry_b.push_back(feature_geometry(f));
+  const std::vector<kernels::FeatureGeometry<Rational>>& geometry_a = d.geometry_a;
+  const std::vector<kernels::FeatureGeometry<Rational>>& geometry_b = d.geometry_b;
   std::vector<FeatureDirections> directions_a, directions_b;
   if (translating) {
     for (const BodyFeature& f : features_a) directions_a.push_back(feature_directions(model, f));
@@ -1358,21 +1373,49 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
       ++stats.feature_pairs_in_blocked_space;
       continue;
     }
-    const BodyFeature& fa = features_a[static_cast<std::size_t>(pairs[k].first)];
-    const BodyFeature& fb = features_b[static_cast<std::size_t>(pairs[k].second)];
-    std::optional<kernels::ContactFunction<Polynomial>> kernel = contact_of(fa, fb, poses.first, poses.second);
-    if (!kernel) continue;
-    ContactCurve curve;
-    curve.first = fa.ref;
-    curve.second = fb.ref;
-    curve.type = kernel->type;
-    curve.polynomial = normalized_integer_polynomial(kernel->value);
-    curve.blocked_sign = kernels::blocked_sign;
-    bool zero = curve.polynomial.is_zero();
-    if (!zero && curve.polynomial.degree_x() == 0 && curve.polynomial.degree_y() == 0)
-      continue;  // a non-zero constant: these features never touch
-    if (!convert_validity(kernel->validity, curve.validity)) continue;  // never within both
-    keep(curves, std::move(curve), fa, fb);
+    const auto ui = static_cast<std::size_t>(pairs[k].first), uj = static_cast<std::size_t>(pairs[k].second);
+    const std::uint64_t key = ((static_cast<std::uint64_t>(ui) * features_b.size() + uj) << 2) |
+                              (x.half_turn ? 2u : 0u) | (y.half_turn ? 1u : 0u);
+    std::shared_ptr<const Data::Formed> formed;
+    {
+      std::lock_guard<std::mutex> lock(d.formed_mutex);
+      auto found = d.formed.find(key);
+      if (found != d.formed.end()) formed = found->second;
+    }
+    if (!formed) {
+      auto made = std::make_shared<Data::Formed>();
+      const BodyFeature& fa = features_a[ui];
+      const BodyFeature& fb = features_b[uj];
+      std::optional<kernels::ContactFunction<Polynomial>> kernel =
+          contact_of(geometry_a[ui], geometry_b[uj], poses.first, poses.second);
+      if (kernel) {
+        ContactCurve& curve = made->curve;
+        curve.first = fa.ref;
+        curve.second = fb.ref;
+        curve.type = kernel->type;
+        curve.polynomial = normalized_integer_polynomial(kernel->value);
+        curve.blocked_sign = kernels::blocked_sign;
+        const bool zero = curve.polynomial.is_zero();
+        // a non-zero constant: these features never touch; an empty validity: never within both
+        made->kept = (zero || curve.polynomial.degree_x() != 0 || curve.polynomial.degree_y() != 0) &&
+                     convert_validity(kernel->validity, curve.validity);
+        if (made->kept) {
+          curve.label = part_a.name + " " + fa.label + " / " + part_b.name + " " + fb.label + " (" +
+                        contact_word(curve.type) + ")";
+        } else {
+          made->curve = ContactCurve{};   // nothing kept but the answer
+        }
+      }
+      std::lock_guard<std::mutex> lock(d.formed_mutex);
+      formed = d.formed.try_emplace(key, std::move(made)).first->second;
+    }
+    if (!formed->kept) continue;
+    if (formed->curve.polynomial.is_zero()) {
+      ++stats.identically_zero;
+    } else {
+      ++stats.curves;
+    }
+    curves.push_back(formed->curve);
   }
   return curves;
 }

@@ -580,28 +580,36 @@ bool BlockedTester::overlapping(const Posed& first, const Posed& second) {
 
 // Does some pair of posed disks certainly overlap (the box is blocked)?
 bool BlockedTester::overlapping(const PosedSet& first, const PosedSet& second) {
-  // sweep in x over both parts' disks sorted by their centre's x: only pairs with
-  // |x_a - x_b| <= reach_a + (the widest reach of B) are tested (the window decides nothing:
-  // leaving a pair out can only keep the answer "not blocked"). The window's left end moves
-  // monotonically behind x_a - (widest of A + widest of B), which is at most x_a - span.
-  const double widest = second.widest;
-  const double reach_bound = first.widest + widest;
-  if (!(reach_bound > 0)) return false;
-  const std::vector<double>& xs = second.xs;
-  const std::size_t n = xs.size();
-  std::size_t low = 0;
-  for (const PosedDisk& a : first.disks) {
-    const double span = a.reach + widest;
-    if (!(span > 0)) continue;
-    const double from = a.x - reach_bound;
-    while (low < n && xs[low] < from) ++low;
-    const double left = a.x - span, right = a.x + span;
-    for (std::size_t j = low; j < n && xs[j] <= right; ++j) {
-      if (xs[j] < left) continue;
-      if (certifies(a, second.disks[j])) return true;
+  // A pair passes the certified test below only if |x_a - x_b| < reach_a + reach_b <=
+  // 2 max(reach_a, reach_b) (exactly). So every pair that can pass is met by one of two
+  // sweeps: each disk of A against the disks of B with |x_a - x_b| <= 2 reach_a, and each
+  // disk of B against the disks of A with |x_b - x_a| <= 2 reach_b (the windows, slightly
+  // widened, decide nothing: leaving a pair out can only keep the answer "not blocked"). A
+  // pair's test is symmetric in a and b (the same roundings), so the answer is that of testing
+  // every pair. (A window of reach_a + the widest reach of B, as before, let one large disk
+  // widen every window.)
+  if (!(first.widest + second.widest > 0)) return false;
+  auto sweep = [](const PosedSet& from, const PosedSet& to) {
+    const std::vector<double>& xs = to.xs;
+    if (xs.empty()) return false;
+    // (widened relatively to cover the roundings of the window ends)
+    const double magnitude = std::max(std::fabs(xs.front()), std::fabs(xs.back()));
+    const double reach_bound = 2 * (from.widest > 0 ? from.widest : 0) * (1 + 0x1p-40) + magnitude * 0x1p-40 + 0x1p-1000;
+    // only disks with x in [x_to min - reach_bound, x_to max + reach_bound] can meet one
+    const auto from_begin = std::lower_bound(from.xs.begin(), from.xs.end(), xs.front() - reach_bound);
+    const auto from_end = std::upper_bound(from_begin, from.xs.end(), xs.back() + reach_bound);
+    for (auto x = from_begin; x != from_end; ++x) {
+      const PosedDisk& a = from.disks[static_cast<std::size_t>(x - from.xs.begin())];
+      if (!(a.reach > 0)) continue;   // a pair with a larger partner is met from the partner
+      const double span = 2 * a.reach * (1 + 0x1p-40) + std::fabs(a.x) * 0x1p-40 + 0x1p-1000;
+      const double left = a.x - span, right = a.x + span;
+      for (auto y = std::lower_bound(xs.begin(), xs.end(), left); y != xs.end() && *y <= right; ++y) {
+        if (certifies(a, to.disks[static_cast<std::size_t>(y - xs.begin())])) return true;
+      }
     }
-  }
-  return false;
+    return false;
+  };
+  return sweep(first, second) || sweep(second, first);
 }
 
 // The sweep of overlapping(), collecting the pairs that can certify a box inside this one

@@ -27,6 +27,7 @@
 namespace hipair::cspace {
 
 class BlockedTester {
+  friend struct BlockedTesterProbe;   // tests: the disk sweep against every pair
   struct PosedDisk {
     double x, y;
     double reach;         // lower bound of the radius over the whole interval (may be negative)

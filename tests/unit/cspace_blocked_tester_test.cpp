@@ -20,8 +20,11 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
 #include <filesystem>
 #include <functional>
 #include <initializer_list>
@@ -30,8 +33,78 @@
 #include <string>
 #include <tuple>
 
+namespace hipair::cspace {
+// The tester's disk sweep (private) on generated posed disks, against the test of every pair.
+struct BlockedTesterProbe {
+  using Set = BlockedTester::PosedSet;
+  static Set make(std::vector<std::array<double, 3>> disks) {
+    std::sort(disks.begin(), disks.end());
+    Set set;
+    set.widest = -std::numeric_limits<double>::infinity();
+    for (const auto& [x, y, reach] : disks) {
+      set.disks.push_back(BlockedTester::PosedDisk{x, y, reach});
+      set.xs.push_back(x);
+      set.widest = std::max(set.widest, reach);
+    }
+    return set;
+  }
+  static bool sweep(const Set& a, const Set& b) { return BlockedTester::overlapping(a, b); }
+  // every pair, the certified test of the tester's definition
+  static bool all_pairs(const Set& first, const Set& second) {
+    using kernels::interval_detail::down;
+    using kernels::interval_detail::up;
+    for (const auto& a : first.disks)
+      for (const auto& b : second.disks) {
+        double dx = up(std::fabs(a.x - b.x)), dy = up(std::fabs(a.y - b.y));
+        double reach = down(a.reach + b.reach);
+        if (reach > 0 && up(up(dx * dx) + up(dy * dy)) < down(reach * reach)) return true;
+      }
+    return false;
+  }
+};
+}  // namespace hipair::cspace
+
 namespace hipair {
 namespace {
+
+// The sweep's windows (twice each disk's own reach, from either side) leave out no pair that
+// passes the certified test: the same answer as testing every pair, on generated sets with
+// reaches from tiny to one huge disk, negative reaches (boundary points), near-tangent pairs
+// and coordinates far from the origin.
+TEST(BlockedTester, DiskSweepAnswersAsEveryPair) {
+  using Probe = cspace::BlockedTesterProbe;
+  std::mt19937_64 random(20261128);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int overlapping = 0, apart = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const double offset = trial % 3 == 0 ? 0 : std::ldexp(unit(random) - 0.5, static_cast<int>(trial % 60));
+    const double scale = std::ldexp(1.0, static_cast<int>(trial % 40) - 20);
+    std::vector<std::array<double, 3>> sets[2];
+    for (auto& set : sets) {
+      const int count = 1 + static_cast<int>(unit(random) * 40);
+      for (int k = 0; k < count; ++k) {
+        double reach = scale * (unit(random) < 0.2 ? -unit(random) * 0.01 : unit(random) * 0.05);
+        if (unit(random) < 0.05) reach = scale * (1 + 4 * unit(random));   // a hub
+        set.push_back({offset + scale * 4 * unit(random), scale * 4 * unit(random), reach});
+      }
+    }
+    // a pair made nearly tangent: centre distance r_a + r_b times (1 +- 2^-40)
+    if (trial % 2 == 1 && sets[0][0][2] > 0 && sets[1][0][2] > 0) {
+      double distance = (sets[0][0][2] + sets[1][0][2]) * (1 + (trial % 4 == 1 ? 1 : -1) * 0x1p-40);
+      double angle = 6.283185307179586 * unit(random);
+      sets[1][0][0] = sets[0][0][0] + distance * std::cos(angle);
+      sets[1][0][1] = sets[0][0][1] + distance * std::sin(angle);
+    }
+    const auto a = Probe::make(sets[0]), b = Probe::make(sets[1]);
+    const bool expected = Probe::all_pairs(a, b);
+    ASSERT_EQ(Probe::sweep(a, b), expected) << "trial " << trial;
+    ASSERT_EQ(Probe::sweep(b, a), expected) << "trial " << trial;
+    (expected ? overlapping : apart) += 1;
+  }
+  EXPECT_GT(overlapping, 400);
+  EXPECT_GT(apart, 400);
+}
+
 
 using Random = std::mt19937_64;
 using cspace::algebra::Interval;
