@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cmath>
@@ -25,6 +26,7 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <thread>
 #include <ctime>
@@ -46,6 +48,9 @@ struct SimulateOptions {
   bool no_pictures = false;
   std::string sweep;
   unsigned jobs = 0;
+  std::string works_period;                 // --works-period PART[:TOL]
+  std::vector<std::string> works_advance;   // --works-advance PART=STEP[:TOL] (repeatable)
+  double works_max_decay = -1;              // --works-max-decay RATE; < 0: not given
   double fps = 25;                  // animation frames per second of playback
   double animation_duration = 0;    // playback seconds; 0: the simulated time (real time), at least 1 s
 };
@@ -175,6 +180,8 @@ struct SweepRow {
   std::vector<double> advance;        // per moving part: final - initial position
   std::vector<std::size_t> swings;    // per moving part: sign changes of the velocity
   std::vector<std::vector<double>> reversals;   // per moving part: times of those sign changes
+  // per moving part, per sign change: the positions of every moving part at that state
+  std::vector<std::vector<std::vector<double>>> reversal_positions;
 };
 
 // A part's periods over the second half of a run, [t_end / 2, t_end]: the times between every
@@ -192,6 +199,206 @@ nlohmann::json second_half_periods(const std::vector<double>& reversals, double 
   j["median"] = periods[periods.size() / 2];
   j["max"] = periods.back();
   return j;
+}
+
+// ------------------------------------------------------------------ works / fails verdict
+// The sweep's verdict per value (docs/simulation.md, "Sweep verdict"), from the criteria
+// --works-period PART[:TOL], --works-advance PART=STEP[:TOL] and --works-max-decay RATE; all
+// judged over the second half of the run, [t_end / 2, t_end], from the sign changes of the
+// period part's velocity (an oscillation's period: every other sign change).
+struct PeriodCriterion {
+  std::size_t part = 0;     // index among the moving parts
+  double tolerance = 0.02;  // relative to the median period
+};
+struct AdvanceCriterion {
+  std::size_t part = 0;
+  std::string name;
+  double step = 0;          // per period, signed, in the part's unit (rad or mm)
+  double tolerance = 0.5;   // in steps, over all the second half's periods
+};
+struct Verdict {
+  std::optional<PeriodCriterion> period;
+  std::vector<AdvanceCriterion> advance;
+  double max_decay = -1;    // relative amplitude decay per time unit; < 0: not checked
+  bool any() const { return period.has_value(); }
+};
+
+double parse_number(const std::string& text, const std::string& option, const std::string& what) {
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (text.empty() || used != text.size() || !std::isfinite(v))
+    throw ModelError("", option + ": " + what + " must be a number, got '" + text + "'");
+  return v;
+}
+
+std::size_t moving_part(const Model& model, const std::vector<std::size_t>& moving, const std::string& name,
+                        const std::string& option) {
+  for (std::size_t k = 0; k < moving.size(); ++k)
+    if (model.parts[moving[k]].name == name) return k;
+  throw ModelError("", option + ": '" + name + "' is not a moving part of the model");
+}
+
+// Checks the criteria's syntax and parts; throws a ModelError naming the option.
+Verdict parse_verdict(const SimulateOptions& options, const Model& model, const std::vector<std::size_t>& moving) {
+  Verdict verdict;
+  if (options.works_period.empty()) {
+    if (!options.works_advance.empty()) throw ModelError("", "--works-advance needs --works-period (its period)");
+    if (options.works_max_decay >= 0) throw ModelError("", "--works-max-decay needs --works-period (its part)");
+    return verdict;
+  }
+  const std::string period_option = "--works-period " + options.works_period;
+  PeriodCriterion period;
+  std::string part = options.works_period;
+  if (auto colon = part.find(':'); colon != std::string::npos) {
+    period.tolerance = parse_number(part.substr(colon + 1), period_option, "TOL");
+    part = part.substr(0, colon);
+    if (!(period.tolerance > 0 && period.tolerance < 1))
+      throw ModelError("", period_option + ": TOL must lie in (0, 1) (a fraction of the median period)");
+  }
+  period.part = moving_part(model, moving, part, period_option);
+  verdict.period = period;
+  for (const std::string& text : options.works_advance) {
+    const std::string option = "--works-advance " + text;
+    auto equals = text.find('=');
+    if (equals == std::string::npos || equals == 0) throw ModelError("", option + ": expected PART=STEP[:TOL]");
+    AdvanceCriterion advance;
+    advance.name = text.substr(0, equals);
+    advance.part = moving_part(model, moving, advance.name, option);
+    std::string step = text.substr(equals + 1);
+    if (auto colon = step.find(':'); colon != std::string::npos) {
+      advance.tolerance = parse_number(step.substr(colon + 1), option, "TOL");
+      step = step.substr(0, colon);
+      if (!(advance.tolerance > 0 && advance.tolerance < 1))
+        throw ModelError("", option + ": TOL must lie in (0, 1) (a fraction of STEP)");
+    }
+    bool degrees = step.size() > 3 && step.compare(step.size() - 3, 3, "deg") == 0;
+    if (degrees) {
+      if (model.parts[moving[advance.part]].motion.kind != Motion::Kind::rotation)
+        throw ModelError("", option + ": STEP in deg needs a rotating part");
+      step = step.substr(0, step.size() - 3);
+    }
+    advance.step = parse_number(step, option, "STEP");
+    if (degrees) advance.step *= M_PI / 180;
+    if (advance.step == 0) throw ModelError("", option + ": STEP must not be zero");
+    verdict.advance.push_back(advance);
+  }
+  if (options.works_max_decay >= 0) {
+    if (!std::isfinite(options.works_max_decay)) throw ModelError("", "--works-max-decay must be a finite number");
+    verdict.max_decay = options.works_max_decay;
+  }
+  return verdict;
+}
+
+// The period part's swings over the second half: half-swing amplitudes |x_i - x_{i-1}| / 2 at
+// its sign changes i with both in [t_end / 2, t_end]; their mean, and their least-squares
+// slope against time relative to that mean (per time unit). Also the first half's mean.
+struct Amplitudes {
+  std::size_t count = 0;
+  double first_half = 0, second_half = 0, trend = 0;
+};
+
+Amplitudes amplitudes(const SweepRow& row, std::size_t part, double t_end) {
+  Amplitudes out;
+  const auto& times = row.reversals[part];
+  const auto& positions = row.reversal_positions[part];
+  std::vector<double> t, a;
+  double first = 0;
+  std::size_t first_count = 0;
+  for (std::size_t i = 1; i < times.size(); ++i) {
+    double amplitude = std::abs(positions[i][part] - positions[i - 1][part]) / 2;
+    if (times[i - 1] >= t_end / 2) {
+      t.push_back(times[i]);
+      a.push_back(amplitude);
+    } else if (times[i] < t_end / 2) {
+      first += amplitude;
+      ++first_count;
+    }
+  }
+  if (first_count) out.first_half = first / static_cast<double>(first_count);
+  out.count = a.size();
+  if (a.empty()) return out;
+  double tm = 0, am = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) tm += t[i], am += a[i];
+  tm /= static_cast<double>(a.size());
+  am /= static_cast<double>(a.size());
+  out.second_half = am;
+  double stt = 0, sta = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) stt += (t[i] - tm) * (t[i] - tm), sta += (t[i] - tm) * (a[i] - am);
+  out.trend = stt > 0 && am > 0 ? sta / stt / am : 0;
+  return out;
+}
+
+// "works", or "fails (reasons)"; `details` gets the measured quantities for sweep.json.
+std::string judge(const Verdict& verdict, const SweepRow& row, double t_end, const Model& model,
+                  const std::vector<std::size_t>& moving, nlohmann::json& details) {
+  if (row.status == RunStatus::failed) return "fails (run failed)";
+  std::vector<std::string> reasons;
+  if (row.status == RunStatus::stopped) reasons.push_back("stopped");
+  const PeriodCriterion& period = *verdict.period;
+  const std::string& name = model.parts[moving[period.part]].name;
+  const auto& times = row.reversals[period.part];
+  // sign changes in the second half; periods between every other one
+  std::size_t first = 0;
+  while (first < times.size() && times[first] < t_end / 2) ++first;
+  std::vector<double> periods;
+  for (std::size_t i = first + 2; i < times.size(); ++i) periods.push_back(times[i] - times[i - 2]);
+  std::size_t whole = times.size() > first ? (times.size() - 1 - first) / 2 : 0;  // whole periods from `first`
+  char buffer[200];
+  if (periods.size() < 2) {
+    reasons.push_back(name + ": fewer than two periods in the second half");
+  } else {
+    std::vector<double> sorted = periods;
+    std::sort(sorted.begin(), sorted.end());
+    double median = sorted[sorted.size() / 2];
+    double spread = std::max(median - sorted.front(), sorted.back() - median) / median;
+    details["period"] = {{"part", name}, {"count", periods.size()}, {"median", median}, {"spread", spread},
+                         {"tolerance", period.tolerance}};
+    if (!(spread <= period.tolerance)) {
+      std::snprintf(buffer, sizeof buffer, "%s: periods %.4g-%.4g, %.2g %% off their median %.4g (tolerance %.2g %%)",
+                    name.c_str(), sorted.front(), sorted.back(), 100 * spread, median, 100 * period.tolerance);
+      reasons.push_back(buffer);
+    }
+  }
+  for (const AdvanceCriterion& advance : verdict.advance) {
+    if (whole == 0) {
+      reasons.push_back(advance.name + ": no whole period of " + name + " to measure its advance over");
+      continue;
+    }
+    const auto& positions = row.reversal_positions[period.part];
+    double moved = positions[first + 2 * whole][advance.part] - positions[first][advance.part];
+    double steps = moved / advance.step;
+    double periods_count = static_cast<double>(whole);
+    details["advance"][advance.name] = {{"step", advance.step}, {"steps", steps}, {"periods", whole},
+                                        {"tolerance", advance.tolerance}};
+    if (!(std::abs(steps - periods_count) <= advance.tolerance)) {
+      std::snprintf(buffer, sizeof buffer, "%s: %.3g steps in %zu periods (tolerance %.2g)", advance.name.c_str(),
+                    steps, whole, advance.tolerance);
+      reasons.push_back(buffer);
+    }
+  }
+  Amplitudes amplitude = amplitudes(row, period.part, t_end);
+  if (amplitude.count > 0)
+    details["amplitude"] = {{"part", name}, {"first_half_mean", amplitude.first_half},
+                            {"second_half_mean", amplitude.second_half}, {"second_half_swings", amplitude.count},
+                            {"trend_per_time_unit", amplitude.trend}};
+  if (verdict.max_decay >= 0) {
+    if (amplitude.count < 2) {
+      reasons.push_back(name + ": fewer than two swings in the second half for the amplitude trend");
+    } else if (!(amplitude.trend >= -verdict.max_decay)) {
+      std::snprintf(buffer, sizeof buffer, "%s: amplitude trend %.3g %% per time unit, below -%.3g %%", name.c_str(),
+                    100 * amplitude.trend, 100 * verdict.max_decay);
+      reasons.push_back(buffer);
+    }
+  }
+  if (reasons.empty()) return "works";
+  std::string out = "fails (";
+  for (std::size_t i = 0; i < reasons.size(); ++i) out += (i ? "; " : "") + reasons[i];
+  return out + ")";
 }
 
 int run_sweep(const SimulateOptions& options) {
@@ -238,6 +445,7 @@ int run_sweep(const SimulateOptions& options) {
   std::vector<std::size_t> moving;
   for (std::size_t p = 0; p < models.front().parts.size(); ++p)
     if (models.front().parts[p].motion.kind != Motion::Kind::fixed) moving.push_back(p);
+  const Verdict verdict = parse_verdict(options, models.front(), moving);
   std::vector<SweepRow> rows(values.size());
   std::mutex mutex;
   std::size_t next = 0;
@@ -261,6 +469,7 @@ int run_sweep(const SimulateOptions& options) {
         }
         row.swings.assign(moving.size(), 0);
         row.reversals.assign(moving.size(), {});
+        row.reversal_positions.assign(moving.size(), {});
         // the accuracy the simulation uses (as Simulation::create resolves it)
         double accuracy = 1e-9;
         if (sim_options.accuracy > 0)
@@ -287,6 +496,7 @@ int run_sweep(const SimulateOptions& options) {
                 if (last_velocity[k] != 0 && (velocity > 0) != (last_velocity[k] > 0)) {
                   ++row.swings[k];
                   row.reversals[k].push_back(simulation.state().time);
+                  row.reversal_positions[k].push_back(position);
                 }
                 last_velocity[k] = velocity;
               }
@@ -325,16 +535,31 @@ int run_sweep(const SimulateOptions& options) {
   std::cout << "sweep of " << name << " over " << values.size() << " values, t-end " << number(options.t_end) << "\n";
   std::cout << "status: failed (simulator error), stopped (over the last quarter of the run every moving part's speed "
                "stayed below sqrt(accuracy) times its top speed in the run), running (otherwise)\n";
-  std::cout << name << "\tstatus\tsteps\tevents\tcpu_s";
+  if (verdict.any())
+    std::cout << "verdict: works when " << model.parts[moving[verdict.period->part]].name
+              << " has at least two periods in the second half of the run, all within "
+              << number(100 * verdict.period->tolerance) << " % of their median"
+              << (verdict.advance.empty() ? "" : ", each --works-advance part advances one STEP per period")
+              << (verdict.max_decay >= 0 ? ", its swing amplitude does not decay faster than --works-max-decay" : "")
+              << "; a failed or stopped run fails\n";
+  std::cout << name << "\tstatus" << (verdict.any() ? "\tverdict" : "") << "\tsteps\tevents\tcpu_s";
   for (std::size_t p : moving) std::cout << "\t" << model.parts[p].name << "_advance\t" << model.parts[p].name << "_swings";
   std::cout << "\n";
   nlohmann::json doc = nlohmann::json::array();
   for (const SweepRow& row : rows) {
     bool completed = row.status != RunStatus::failed;
-    std::cout << number(row.value) << "\t" << to_string(row.status) << "\t" << row.steps << "\t" << row.events << "\t"
-              << number(row.cpu);
     nlohmann::json j{
         {"value", row.value}, {"status", to_string(row.status)}, {"completes", completed}, {"cpu_seconds", row.cpu}};
+    std::cout << number(row.value) << "\t" << to_string(row.status);
+    if (verdict.any()) {
+      nlohmann::json details = nlohmann::json::object();
+      std::string said = judge(verdict, row, options.t_end, model, moving, details);
+      std::cout << "\t" << said;
+      j["verdict"] = said;
+      j["works"] = said == "works";
+      if (!details.empty()) j["verdict_measures"] = details;
+    }
+    std::cout << "\t" << row.steps << "\t" << row.events << "\t" << number(row.cpu);
     j["steps"] = row.steps;    // a failed run: up to its failure
     j["events"] = row.events;
     if (completed) {
@@ -356,10 +581,13 @@ int run_sweep(const SimulateOptions& options) {
   }
   if (!options.out.empty()) {
     std::filesystem::path directory(options.out);
-    std::vector<io::RunFile> files{{"sweep.json", nlohmann::json{{"model", model.name}, {"parameter", name},
-                                                                  {"t_end", options.t_end}, {"runs", doc}}
-                                                           .dump(1) +
-                                                       "\n"}};
+    nlohmann::json sweep{{"model", model.name}, {"parameter", name}, {"t_end", options.t_end}, {"runs", doc}};
+    if (verdict.any()) {
+      sweep["works_period"] = options.works_period;
+      sweep["works_advance"] = options.works_advance;
+      if (verdict.max_decay >= 0) sweep["works_max_decay"] = verdict.max_decay;
+    }
+    std::vector<io::RunFile> files{{"sweep.json", sweep.dump(1) + "\n"}};
     std::vector<io::PlannedOutput> planned{{directory / "sweep.json", "--out"}};
     io::refuse_overwriting_inputs(planned, {options.model});
     io::publish_directory(directory, files, [](const std::string& file) { return file == "sweep.json"; },
@@ -591,6 +819,8 @@ int run(const SimulateOptions& options) {
       throw ModelError("", "--t-end must be a positive number of time units");
     return run_sweep(options);
   }
+  if (!options.works_period.empty() || !options.works_advance.empty() || options.works_max_decay >= 0)
+    throw ModelError("", "--works-period, --works-advance and --works-max-decay judge a --sweep's runs: give --sweep");
   Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
   if (!(options.t_end > 0) || !std::isfinite(options.t_end))
     throw ModelError("", "--t-end must be a positive number of time units");
@@ -758,6 +988,17 @@ void register_simulate(CLI::App& app, Action& action) {
                       "in parallel; report per value the run's status (running, stopped: every part at rest over "
                       "the last quarter of the run, failed: with the error), each part's advance and velocity sign "
                       "changes (--out: sweep.json)");
+  command->add_option("--works-period", options->works_period,
+                      "PART[:TOL]: a sweep's verdict per value: works when PART has at least two oscillation periods in "
+                      "the second half of the run, all within TOL (default 0.02) of their median; a failed or stopped "
+                      "run fails");
+  command->add_option("--works-advance", options->works_advance,
+                      "PART=STEP[:TOL]: with --works-period, PART must also advance STEP (rad or mm, signed; or Ndeg) "
+                      "per period, within TOL steps (default 0.5) over the second half's whole periods (repeatable)");
+  command->add_option("--works-max-decay", options->works_max_decay,
+                      "RATE: with --works-period, its part's swing amplitude must not decay faster than RATE "
+                      "(a fraction per time unit) over the second half")
+      ->check(CLI::Range(0.0, 1e6));
   command->add_option("--jobs", options->jobs, "Parallel runs of a sweep (default: the number of cores)")
       ->check(CLI::Range(1, 256));
   command->add_option("--set", options->overrides, "Override a parameter: NAME=VALUE (repeatable)");

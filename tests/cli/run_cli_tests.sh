@@ -416,6 +416,42 @@ for bad in "cam-speed=1:2" "cam-speed=1:2:0" "cam-speed=a:2:3" "=1:2:3" "cam-spe
 done
 "$hipair" simulate "$source/examples/models/cam-drive.json" --t-end 0.01 --sweep no-such=1:2:2 >/dev/null 2>"$work/sweep-unknown.err"
 [ $? -eq 2 ] || fail "simulate --sweep of an unknown parameter: not a model error"
+# sweep verdict (docs/simulation.md, "Sweep verdict"): the frictionless escapement inside its
+# torque band (-575 N mm) works over 1 s: the balance's periods in [0.5, 1] s agree to 0.06 %
+# and the escape wheel advances one tooth (-24 deg) per period; beyond it (-1000 N mm) the
+# balance is pressed on a fork horn from 0.49 s: stopped, fails (about 3 s CPU in all).
+"$hipair" simulate "$source/tests/data/simulation/escapement-frictionless.json" --t-end 1 \
+  --sweep drive-torque=-575:-1000:2 --allow-out-of-tolerance --jobs 2 --works-period balance:0.02 \
+  --works-advance escape-wheel=-24deg --out "$work/sweep-verdict" >"$work/sweep-verdict.out" 2>&1 \
+  || fail "simulate --sweep --works-period: $(tail -c 300 "$work/sweep-verdict.out")"
+grep -qP "^-575\trunning\tworks\t" "$work/sweep-verdict.out" \
+  || fail "simulate --sweep: the escapement at -575 N mm does not work: $(cat "$work/sweep-verdict.out")"
+grep -qP "^-1000\tstopped\tfails \(stopped; balance: fewer than two periods" "$work/sweep-verdict.out" \
+  || fail "simulate --sweep: the escapement at -1000 N mm does not fail as stopped: $(cat "$work/sweep-verdict.out")"
+grep -qP "^drive-torque\tstatus\tverdict\tsteps\tevents\tcpu_s\tescape-wheel_advance\t" "$work/sweep-verdict.out" \
+  || fail "simulate --sweep: verdict table header: $(cat "$work/sweep-verdict.out")"
+[ "$(grep -c '"works": true' "$work/sweep-verdict/sweep.json")" -eq 1 ] \
+  && grep -q '"verdict": "works"' "$work/sweep-verdict/sweep.json" \
+  && grep -q '"verdict": "fails (stopped' "$work/sweep-verdict/sweep.json" \
+  && grep -q '"trend_per_time_unit"' "$work/sweep-verdict/sweep.json" \
+  || fail "simulate --sweep: sweep.json lacks the verdicts: $(head -c 600 "$work/sweep-verdict/sweep.json")"
+# a bad criterion is refused before any run, naming its option, and writes nothing
+for bad in "--works-period no-such-part" "--works-period balance:2" "--works-period balance:x" \
+  "--works-period banking" "--works-advance escape-wheel=-24deg" \
+  "--works-period balance --works-advance escape-wheel=0" "--works-period balance --works-advance escape-wheel" \
+  "--works-period balance --works-advance escape-wheel=-24deg:1.5" "--works-period balance --works-advance escape-wheel=abc"; do
+  # shellcheck disable=SC2086
+  "$hipair" simulate "$source/tests/data/simulation/escapement-frictionless.json" --t-end 1 \
+    --sweep drive-torque=-575:-1000:2 --allow-out-of-tolerance $bad --out "$work/sweep-bad-verdict" \
+    >/dev/null 2>"$work/sweep-bad-verdict.err"
+  [ $? -eq 2 ] || fail "simulate --sweep $bad: not a usage error"
+  option="$(echo "$bad" | grep -oE -- '--works-[a-z]+' | tail -1)"
+  grep -q -- "$option" "$work/sweep-bad-verdict.err" \
+    || fail "simulate --sweep $bad: message does not name $option: $(cat "$work/sweep-bad-verdict.err")"
+  [ ! -e "$work/sweep-bad-verdict" ] || fail "simulate --sweep $bad: wrote output"
+done
+"$hipair" simulate "$source/examples/models/bouncing-bar.json" --t-end 0.1 --works-period bar >/dev/null 2>"$work/works-nosweep.err"
+[ $? -eq 2 ] && grep -q -- "--sweep" "$work/works-nosweep.err" || fail "simulate --works-period without --sweep: not refused"
 
 # 3-DOF pair (a planar peg against a fixed plate): a sliced C-space, a stack of slice panels
 # in the SVG and the cell structure in the JSON (12 critical angles: docs/cspace.md).
