@@ -435,6 +435,20 @@ grep -qP "^drive-torque\tstatus\tverdict\tsteps\tevents\tcpu_s\tescape-wheel_adv
   && grep -q '"verdict": "fails (stopped' "$work/sweep-verdict/sweep.json" \
   && grep -q '"trend_per_time_unit"' "$work/sweep-verdict/sweep.json" \
   || fail "simulate --sweep: sweep.json lacks the verdicts: $(head -c 600 "$work/sweep-verdict/sweep.json")"
+# the criteria themselves, on a running mechanism (0.1 s CPU): the elastic bouncing bar swings
+# between its stops with a constant period (0.2 s at speed 1, 0.1 s at 2) and a constant
+# amplitude: it works with regular periods and no decay; a required advance of 0.1 rad per
+# period fails on both rows with the measured steps (0: it does not advance)
+"$hipair" simulate "$source/examples/models/bouncing-bar.json" --t-end 2 --sweep speed=1:2:2 --allow-out-of-tolerance \
+  --jobs 1 --works-period bar --works-max-decay 0.01 >"$work/sweep-bar-works.out" 2>&1 \
+  || fail "simulate --sweep bouncing bar verdict: $(tail -c 300 "$work/sweep-bar-works.out")"
+[ "$(grep -cP "^\\S+\trunning\tworks\t" "$work/sweep-bar-works.out")" -eq 2 ] \
+  || fail "simulate --sweep: the bouncing bar does not work in both rows: $(cat "$work/sweep-bar-works.out")"
+"$hipair" simulate "$source/examples/models/bouncing-bar.json" --t-end 2 --sweep speed=1:2:2 --allow-out-of-tolerance \
+  --jobs 1 --works-period bar --works-advance bar=0.1 >"$work/sweep-bar-fails.out" 2>&1 \
+  || fail "simulate --sweep bouncing bar advance: $(tail -c 300 "$work/sweep-bar-fails.out")"
+[ "$(grep -cP "^\\S+\trunning\tfails \\(bar: \\S+ steps in \\d+ periods \\(tolerance 0.5\\)\\)\t" "$work/sweep-bar-fails.out")" -eq 2 ] \
+  || fail "simulate --sweep: the bouncing bar's advance criterion does not fail: $(cat "$work/sweep-bar-fails.out")"
 # a bad criterion is refused before any run, naming its option, and writes nothing
 for bad in "--works-period no-such-part" "--works-period balance:2" "--works-period balance:x" \
   "--works-period banking" "--works-advance escape-wheel=-24deg" \
