@@ -188,10 +188,18 @@ struct SweepRow {
 // other sign change of its velocity (an oscillation's full period), as {count, min, median, max};
 // count 0 when fewer than three sign changes fall in that half. The escapement's torque band is
 // judged on them (docs/simulation.md, "Torque band").
-nlohmann::json second_half_periods(const std::vector<double>& reversals, double t_end) {
+// `first`: the index of the first sign change in the second half (reversals.size() if none).
+std::vector<double> second_half_period_list(const std::vector<double>& reversals, double t_end, std::size_t& first) {
+  first = 0;
+  while (first < reversals.size() && reversals[first] < t_end / 2) ++first;
   std::vector<double> periods;
-  for (std::size_t i = 2; i < reversals.size(); ++i)
-    if (reversals[i - 2] >= t_end / 2) periods.push_back(reversals[i] - reversals[i - 2]);
+  for (std::size_t i = first + 2; i < reversals.size(); ++i) periods.push_back(reversals[i] - reversals[i - 2]);
+  return periods;
+}
+
+nlohmann::json second_half_periods(const std::vector<double>& reversals, double t_end) {
+  std::size_t first = 0;
+  std::vector<double> periods = second_half_period_list(reversals, t_end, first);
   nlohmann::json j{{"count", periods.size()}};
   if (periods.empty()) return j;
   std::sort(periods.begin(), periods.end());
@@ -344,9 +352,7 @@ std::string judge(const Verdict& verdict, const SweepRow& row, double t_end, con
   const auto& times = row.reversals[period.part];
   // sign changes in the second half; periods between every other one
   std::size_t first = 0;
-  while (first < times.size() && times[first] < t_end / 2) ++first;
-  std::vector<double> periods;
-  for (std::size_t i = first + 2; i < times.size(); ++i) periods.push_back(times[i] - times[i - 2]);
+  std::vector<double> periods = second_half_period_list(times, t_end, first);
   std::size_t whole = times.size() > first ? (times.size() - 1 - first) / 2 : 0;  // whole periods from `first`
   char buffer[200];
   if (periods.size() < 2) {
