@@ -464,6 +464,9 @@ for bad in "--works-period no-such-part" "--works-period balance:2" "--works-per
     || fail "simulate --sweep $bad: message does not name $option: $(cat "$work/sweep-bad-verdict.err")"
   [ ! -e "$work/sweep-bad-verdict" ] || fail "simulate --sweep $bad: wrote output"
 done
+"$hipair" simulate "$source/examples/models/bouncing-bar.json" --t-end 0.1 --sweep speed=1:2:2 --allow-out-of-tolerance \
+  --works-period bar --works-max-decay -1 >/dev/null 2>"$work/works-decay.err"
+[ $? -ne 0 ] && grep -q -- "--works-max-decay" "$work/works-decay.err" || fail "simulate --works-max-decay -1: not refused naming the option"
 "$hipair" simulate "$source/examples/models/bouncing-bar.json" --t-end 0.1 --works-period bar >/dev/null 2>"$work/works-nosweep.err"
 [ $? -eq 2 ] && grep -q -- "--sweep" "$work/works-nosweep.err" || fail "simulate --works-period without --sweep: not refused"
 
