@@ -61,6 +61,7 @@ std::vector<std::string> labels_of(const std::vector<std::int64_t>& n, int e, bo
   std::vector<std::string> out;
   for (std::int64_t v : n) {
     std::string text = decimal(v, e, fixed ? std::max(0, -e) : -1);
+    if (signed_offsets && v == 0) text = "0";   // the base itself
     if (signed_offsets && v > 0) text = "+" + text;
     out.push_back(text);
   }
