@@ -2,11 +2,10 @@
 #include "render/kinematics_svg.hpp"
 
 #include "io/svg.hpp"
-#include "render/plot_axis.hpp"
+#include "core/plot_axis.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numbers>
 

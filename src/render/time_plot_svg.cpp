@@ -1,11 +1,10 @@
 #include "render/time_plot_svg.hpp"
 
 #include "io/svg.hpp"
-#include "render/plot_axis.hpp"
+#include "core/plot_axis.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 namespace hipair::render {
 namespace {

@@ -1,6 +1,6 @@
 // Value axes of line plots (src/render/plot_axis): nice ticks and distinct labels at every
 // scale, for spans from 1e-15 of the values up to 1e15 times them, values up to 1e300.
-#include "render/plot_axis.hpp"
+#include "core/plot_axis.hpp"
 #include "render/time_plot_svg.hpp"
 
 #include <gtest/gtest.h>

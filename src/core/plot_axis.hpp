@@ -1,5 +1,6 @@
 // A line plot's value axis: its drawn range, "nice" tick values (1, 2 or 5 x 10^k) and tick
 // labels that tell the ticks apart at any scale. A picture only (nothing here is exact).
+// In core because every layer that draws a plot uses it (render, and tolerance's pictures).
 //
 // Labels. A tick value is k * step with k an integer and step = m x 10^e (m in {1, 2, 5}); its
 // label is written from the integers k * m and e, so it is exact and two ticks never share a
@@ -16,9 +17,10 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
-namespace hipair::render {
+namespace hipair {
 
 struct PlotAxis {
   long double lo = -1, hi = 1;          ///< drawn range; contains the data bounds given
@@ -42,4 +44,4 @@ PlotAxis plot_axis(double data_lo, double data_hi, const PlotAxisOptions& option
 /// Smallest and largest finite value of `values` ({NaN, NaN} when there is none).
 std::pair<double, double> finite_bounds(const std::vector<double>& values);
 
-}  // namespace hipair::render
+}  // namespace hipair

@@ -1,5 +1,5 @@
 // Value axes of line plots: nice ticks and labels that differ (see plot_axis.hpp).
-#include "render/plot_axis.hpp"
+#include "core/plot_axis.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <limits>
 #include <string>
 
-namespace hipair::render {
+namespace hipair {
 namespace {
 
 using Wide = long double;
@@ -173,4 +173,4 @@ PlotAxis plot_axis(double data_lo, double data_hi, const PlotAxisOptions& option
   return axis;
 }
 
-}  // namespace hipair::render
+}  // namespace hipair
