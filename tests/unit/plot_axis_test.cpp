@@ -3,6 +3,8 @@
 #include "core/plot_axis.hpp"
 #include "render/time_plot_svg.hpp"
 
+#include <hipair/tolerance.hpp>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +13,7 @@
 #include <cstdlib>
 #include <limits>
 #include <random>
+#include <regex>
 #include <set>
 #include <string>
 
@@ -164,6 +167,40 @@ TEST(PlotAxis, TimePlotOfTinySpanAndNonFiniteSeries) {
   EXPECT_NE(svg.find(">79 +<"), std::string::npos);
   EXPECT_EQ(svg.find("nan"), std::string::npos);
   EXPECT_EQ(svg.find("inf"), std::string::npos);
+}
+
+// The tolerance band picture (variation.svg) over a driver range of 1e-7 mm at 100 mm with
+// deviations of a few nm: every axis label of the picture is distinct.
+TEST(PlotAxis, ToleranceBandOfTinyRangesHasDistinctLabels) {
+  ToleranceResult r;
+  r.model_name = "tiny";
+  r.driver = "slider";
+  r.follower = "block";
+  r.driver_rotates = r.follower_rotates = false;
+  for (int i = 0; i <= 50; ++i) {
+    VariationSample s;
+    s.driver = 100 + i * 2e-9;
+    s.contact = true;
+    s.nominal = 79;
+    s.linear_lower = 79 - 1e-9 * (1 + i % 3);
+    s.linear_upper = 79 + 1e-9 * (1 + i % 3);
+    s.rss_lower = 79 - 5e-10;
+    s.rss_upper = 79 + 5e-10;
+    s.certified.lower = 79 - 2e-9 * (1 + i % 3);
+    s.certified.upper = 79 + 2e-9 * (1 + i % 3);
+    r.samples.push_back(s);
+  }
+  std::string svg = tolerance_band_svg(r);
+  for (std::string anchor : {"middle", "end"}) {   // x labels, y labels
+    std::regex label("text-anchor=\"" + anchor + "\" font-family=\"sans-serif\" font-size=\"11\">([^<]*)<");
+    std::vector<std::string> labels;
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), label); it != std::sregex_iterator(); ++it)
+      labels.push_back((*it)[1]);
+    std::set<std::string> distinct(labels.begin(), labels.end());
+    EXPECT_GE(labels.size(), 3u) << anchor;
+    EXPECT_EQ(distinct.size(), labels.size()) << anchor << ": " << ::testing::PrintToString(labels);
+  }
+  EXPECT_NE(svg.find(">100 +<"), std::string::npos);   // the driver axis labelled as offsets
 }
 
 }  // namespace
