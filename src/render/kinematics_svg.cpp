@@ -2,10 +2,10 @@
 #include "render/kinematics_svg.hpp"
 
 #include "io/svg.hpp"
+#include "core/plot_axis.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numbers>
 
@@ -14,48 +14,19 @@ namespace {
 
 constexpr double degrees = 180 / std::numbers::pi;
 
-std::string label_number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", std::abs(value) < 1e-12 ? 0.0 : value);
-  return text;
-}
-
-// A rectangular plot area in world units (y up) with data ranges.
+// A rectangular plot area in world units (y up) with its two axes.
 struct Panel {
   double left = 0, bottom = 0, width = 0, height = 0;
-  double x_min = 0, x_max = 1, y_min = 0, y_max = 1;
-  double x(double value) const { return left + (value - x_min) / (x_max - x_min) * width; }
-  double y(double value) const { return bottom + (value - y_min) / (y_max - y_min) * height; }
+  PlotAxis x_axis, y_axis;
+  double x(long double value) const { return left + x_axis.fraction(value) * width; }
+  double y(long double value) const { return bottom + y_axis.fraction(value) * height; }
 };
 
-// A range wide enough to be drawn: at least 1e-9 of its magnitude (a jammed run's driver may
-// move by less than a double's spacing at its position).
-void drawable_range(double& lo, double& hi) {
-  double middle = std::isfinite(lo) ? (std::isfinite(hi) ? lo / 2 + hi / 2 : lo) : (std::isfinite(hi) ? hi : 0);
-  double least = 1e-9 * std::max(1.0, std::fabs(middle));
-  if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi - lo >= least)) {
-    lo = middle - least;
-    hi = middle + least;
-  }
-}
-
-// Calls draw(v) for the multiples v of a nice step in [lo, hi] (at most 100 of them).
-template <class Draw>
-void for_each_tick(double lo, double hi, double parts, Draw draw) {
-  double step = io::nice_length((hi - lo) / parts);
-  double first = std::ceil(lo / step);
-  for (int i = 0; i <= 100; ++i) {
-    double v = (first + i) * step;
-    if (v > hi + 1e-9 * step) break;
-    draw(v);
-  }
-}
-
-void nice_range(double& lo, double& hi) {
-  drawable_range(lo, hi);
-  double step = io::nice_length((hi - lo) / 6);
-  lo = std::floor(lo / step) * step;
-  hi = std::ceil(hi / step) * step;
+// An axis over the data range itself (not extended), at most 9 ticks.
+PlotAxis range_axis(double lo, double hi) {
+  PlotAxisOptions options;
+  options.max_ticks = 9;
+  return plot_axis(lo, hi, options);
 }
 
 void draw_axes(io::SvgWriter& svg, const Panel& panel, const std::string& x_label, const std::string& y_label,
@@ -66,14 +37,20 @@ void draw_axes(io::SvgWriter& svg, const Panel& panel, const std::string& x_labe
   io::SvgStyle grid;
   grid.stroke = "#ddd";
   grid.stroke_width = 0.6;
-  for_each_tick(panel.x_min, panel.x_max, 8, [&](double v) {
-    svg.line(panel.x(v), panel.bottom, panel.x(v), panel.bottom + panel.height, grid);
-    svg.text(panel.x(v), panel.bottom - 14, label_number(v), 11);
-  });
-  for_each_tick(panel.y_min, panel.y_max, 6, [&](double v) {
-    svg.line(panel.left, panel.y(v), panel.left + panel.width, panel.y(v), grid);
-    svg.text(panel.left - 6, panel.y(v) - 4, label_number(v), 11, "end");
-  });
+  for (std::size_t i = 0; i < panel.x_axis.ticks.size(); ++i) {
+    double x = panel.x(panel.x_axis.ticks[i]);
+    svg.line(x, panel.bottom, x, panel.bottom + panel.height, grid);
+    svg.text(x, panel.bottom - 14, panel.x_axis.labels[i], 11);
+  }
+  if (!panel.x_axis.base_label.empty())
+    svg.text(panel.left, panel.bottom - 32, panel.x_axis.base_label, 11, "start");
+  for (std::size_t i = 0; i < panel.y_axis.ticks.size(); ++i) {
+    double y = panel.y(panel.y_axis.ticks[i]);
+    svg.line(panel.left, y, panel.left + panel.width, y, grid);
+    svg.text(panel.left - 6, y - 4, panel.y_axis.labels[i], 11, "end");
+  }
+  if (!panel.y_axis.base_label.empty())
+    svg.text(panel.left - 6, panel.bottom + panel.height + 8 + 14, panel.y_axis.base_label, 11, "end");
   svg.rectangle(panel.left, panel.bottom, panel.width, panel.height, frame);
   svg.text(panel.left + panel.width / 2, panel.bottom - 32, x_label, 12);
   svg.text(panel.left - 8, panel.bottom + panel.height + 8, y_label, 12, "end");
@@ -95,7 +72,7 @@ std::string kinematics_plot_svg(const KinematicsResult& result, double pixel_wid
     x_min = std::min(result.samples.front().driver, result.samples.back().driver) * driver_scale;
     x_max = std::max(result.samples.front().driver, result.samples.back().driver) * driver_scale;
   }
-  drawable_range(x_min, x_max);
+  PlotAxis x_axis = range_axis(x_min, x_max);
   std::string x_label = result.driver + (rot ? " angle (deg)" : " offset (mm)");
   double top = total - 70;
   for (std::size_t f = 0; f < followers; ++f) {
@@ -108,9 +85,8 @@ std::string kinematics_plot_svg(const KinematicsResult& result, double pixel_wid
       panel.height = panel_height;
       panel.bottom = top - panel_height;
       top -= panel_height + gap;
-      panel.x_min = x_min;
-      panel.x_max = x_max;
-      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      panel.x_axis = x_axis;
+      double lo = std::numeric_limits<double>::quiet_NaN(), hi = lo;
       auto value = [&](const KinematicSample& sample) {
         if (kind == 0) return sample.positions[f] * scale;
         return sample.velocity_ratios[f] * scale / driver_scale;
@@ -118,12 +94,12 @@ std::string kinematics_plot_svg(const KinematicsResult& result, double pixel_wid
       for (const KinematicSample& sample : result.samples) {
         double v = value(sample);
         if (!std::isfinite(v)) continue;
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
+        lo = std::isnan(lo) ? v : std::min(lo, v);
+        hi = std::isnan(hi) ? v : std::max(hi, v);
       }
-      nice_range(lo, hi);
-      panel.y_min = lo;
-      panel.y_max = hi;
+      PlotAxisOptions y_options;
+      y_options.snap = true;   // the range extended to the nearest ticks
+      panel.y_axis = plot_axis(lo, hi, y_options);
       // dwell periods shaded
       io::SvgStyle dwell;
       dwell.fill = "#eef3fb";
@@ -189,12 +165,9 @@ std::string cspace_path_svg(const CSpaceRaster& raster, const PairPath& path, co
   panel.bottom = bottom;
   panel.width = size;
   panel.height = size;
-  panel.x_min = raster.x_lo * xs;
-  panel.x_max = raster.x_hi * xs;
-  panel.y_min = raster.y_lo * ys;
-  panel.y_max = raster.y_hi * ys;
-  drawable_range(panel.x_min, panel.x_max);
-  drawable_range(panel.y_min, panel.y_max);
+  panel.x_axis = range_axis(raster.x_lo * xs, raster.x_hi * xs);
+  panel.y_axis = range_axis(raster.y_lo * ys, raster.y_hi * ys);
+  double y_min = static_cast<double>(panel.y_axis.lo), y_max = static_cast<double>(panel.y_axis.hi);
   io::SvgStyle blocked;
   blocked.fill = "#9a9a9a";
   blocked.stroke = "none";
@@ -202,7 +175,7 @@ std::string cspace_path_svg(const CSpaceRaster& raster, const PairPath& path, co
     double x0 = panel.x((raster.x[c] - raster.column_width / 2) * xs);
     double x1 = panel.x((raster.x[c] + raster.column_width / 2) * xs);
     for (auto [lo, hi] : raster.blocked[c]) {
-      double y0 = panel.y(std::max(lo * ys, panel.y_min)), y1 = panel.y(std::min(hi * ys, panel.y_max));
+      double y0 = panel.y(std::max(lo * ys, y_min)), y1 = panel.y(std::min(hi * ys, y_max));
       if (y1 > y0) svg.rectangle(x0, y0, x1 - x0 + 0.8, y1 - y0, blocked);
     }
   }

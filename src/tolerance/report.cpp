@@ -1,6 +1,8 @@
 // Reports of the tolerance analysis: text for designers, JSON, CSV, and two SVG pictures
 // (the variation band with the Monte Carlo envelope; a contact-zone detail like the paper's
 // Figure 5). Doubles here are for display only.
+#include "core/plot_axis.hpp"
+
 #include <hipair/tolerance.hpp>
 
 #include <nlohmann/json.hpp>
@@ -53,13 +55,23 @@ std::string distribution_text(const ToleranceResult& r, std::size_t i) {
   return "";
 }
 
-// A simple plot frame mapping data to a 900 x 420 picture.
+// A simple plot frame mapping data to a 900 x 420 picture, with nice ticks (core/plot_axis).
 struct Frame {
-  double x0, x1, y0, y1;
+  PlotAxis x, y;
   double left = 80, right = 880, top = 40, bottom = 380;
-  double px(double x) const { return left + (x - x0) / (x1 - x0) * (right - left); }
-  double py(double y) const { return bottom - (y - y0) / (y1 - y0) * (bottom - top); }
+  double px(long double v) const { return left + x.fraction(v) * (right - left); }
+  double py(long double v) const { return bottom - y.fraction(v) * (bottom - top); }
 };
+
+// The frame for x data from x_first to x_last and y data in [y_lo, y_hi], `pad` of the y span
+// added on each side.
+Frame frame_of(double x_first, double x_last, double y_lo, double y_hi, double pad) {
+  PlotAxisOptions x_options;
+  x_options.max_ticks = 9;
+  PlotAxisOptions y_options;
+  y_options.pad = pad;
+  return Frame{plot_axis(x_first, x_last, x_options), plot_axis(y_lo, y_hi, y_options)};
+}
 
 std::string polyline(const Frame& f, const std::vector<double>& x, const std::vector<double>& y, const std::string& style) {
   std::string out;
@@ -86,15 +98,22 @@ std::string axes(const Frame& f, const std::string& title, const std::string& x_
       << xml_escape(title) << "</text>\n";
   out << "<rect x=\"" << f.left << "\" y=\"" << f.top << "\" width=\"" << f.right - f.left << "\" height=\""
       << f.bottom - f.top << "\" fill=\"none\" stroke=\"#444\"/>\n";
-  for (int k = 0; k <= 4; ++k) {
-    double x = f.x0 + (f.x1 - f.x0) * k / 4, y = f.y0 + (f.y1 - f.y0) * k / 4;
-    out << "<text x=\"" << f.px(x) << "\" y=\"" << f.bottom + 16
-        << "\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"11\">" << number(x, 4) << "</text>\n";
-    out << "<text x=\"" << f.left - 6 << "\" y=\"" << f.py(y) + 4
-        << "\" text-anchor=\"end\" font-family=\"sans-serif\" font-size=\"11\">" << number(y, 3) << "</text>\n";
-    out << "<line x1=\"" << f.left << "\" x2=\"" << f.right << "\" y1=\"" << f.py(y) << "\" y2=\"" << f.py(y)
+  for (std::size_t k = 0; k < f.x.ticks.size(); ++k)
+    out << "<text x=\"" << f.px(f.x.ticks[k]) << "\" y=\"" << f.bottom + 16
+        << "\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"11\">" << f.x.labels[k] << "</text>\n";
+  if (!f.x.base_label.empty())
+    out << "<text x=\"" << f.left << "\" y=\"" << f.bottom + 30
+        << "\" text-anchor=\"start\" font-family=\"sans-serif\" font-size=\"11\">" << f.x.base_label << "</text>\n";
+  for (std::size_t k = 0; k < f.y.ticks.size(); ++k) {
+    double y = f.py(f.y.ticks[k]);
+    out << "<text x=\"" << f.left - 6 << "\" y=\"" << y + 4
+        << "\" text-anchor=\"end\" font-family=\"sans-serif\" font-size=\"11\">" << f.y.labels[k] << "</text>\n";
+    out << "<line x1=\"" << f.left << "\" x2=\"" << f.right << "\" y1=\"" << y << "\" y2=\"" << y
         << "\" stroke=\"#eee\"/>\n";
   }
+  if (!f.y.base_label.empty())
+    out << "<text x=\"" << f.left - 6 << "\" y=\"" << f.top - 6
+        << "\" text-anchor=\"end\" font-family=\"sans-serif\" font-size=\"11\">" << f.y.base_label << "</text>\n";
   out << "<text x=\"480\" y=\"412\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"12\">"
       << xml_escape(x_label) << "</text>\n";
   out << "<text x=\"16\" y=\"210\" transform=\"rotate(-90 16 210)\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"12\">"
@@ -405,9 +424,7 @@ std::string tolerance_band_svg(const ToleranceResult& r) {
     }
   }
   if (x.empty()) x = {0, 1};
-  double pad = 0.08 * (hi - lo + 1e-12);
-  Frame f{x.front(), x.back() == x.front() ? x.front() + 1 : x.back(), lo - pad, hi + pad};
-  if (f.x1 < f.x0) std::swap(f.x0, f.x1);
+  Frame f = frame_of(x.front(), x.back(), lo, hi, 0.08);
   std::ostringstream out;
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"960\" height=\"460\" viewBox=\"0 0 960 460\">\n";
   out << axes(f, "Variation of " + r.follower + " about its nominal motion (" + r.model_name + ")",
@@ -459,8 +476,7 @@ std::string tolerance_zone_svg(const ToleranceResult& r) {
     lo = std::min({lo, cl.back(), ll.back()});
     hi = std::max({hi, cu.back(), lu.back()});
   }
-  double pad = 0.1 * (hi - lo + 1e-12);
-  Frame f{x.front(), x.back() == x.front() ? x.front() + 1 : x.back(), lo - pad, hi + pad};
+  Frame f = frame_of(x.front(), x.back(), lo, hi, 0.1);
   out << axes(f, "Contact zone (Figure 5 detail): " + zone->contact,
               std::string("x part coordinate (") + unit_name(zone->x_rotates) + ")",
               std::string("zone boundary - nominal curve (") + unit_name(zone->y_rotates) + ")");
