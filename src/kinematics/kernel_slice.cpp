@@ -41,14 +41,6 @@ constexpr int follower_cells = 32;   // sub-intervals of the follower axis
 
 using cspace::public_kind;
 
-using FeatureKey = std::tuple<std::size_t, std::size_t, std::size_t, int, std::size_t, std::size_t, std::size_t, int, int>;
-
-FeatureKey key_of(const ContactCurve& curve) {
-  return {curve.first.part,  curve.first.loop,  curve.first.edge,  static_cast<int>(curve.first.kind),
-          curve.second.part, curve.second.loop, curve.second.edge, static_cast<int>(curve.second.kind),
-          static_cast<int>(curve.type)};
-}
-
 // Interval enclosure of an integer polynomial divided by a power of two, so that coefficients
 // of any size stay finite in double (the zero set and the signs are those of the polynomial).
 class ScaledIntervalPolynomial {
@@ -88,25 +80,43 @@ struct OrientedClause {
   std::vector<ScaledIntervalPolynomial> atoms;
 };
 
-// One curve of a chart pair, oriented (other, follower).
-struct OrientedCurve {
-  std::size_t feature = 0;
+// The exact data of one feature pair's curve in a chart pair, oriented (other, follower). It
+// depends on the chart pair only through its axes' half-turn flags (the generator's poses), so
+// every strip of a chart pair shares one copy.
+struct CurveData {
   IntegerPolynomial2 polynomial;
   ScaledIntervalPolynomial interval;
   std::vector<OrientedClause> validity;
-  // cells[i]: follower cells where the curve may vanish when the other part is in cell i
-  std::vector<std::uint32_t> cells;
+};
+
+// One curve of a strip of a chart pair: its feature and, per cell of the other axis in the
+// strip, the follower cells where it may vanish.
+struct StripCurve {
+  std::size_t feature = 0;
+  std::shared_ptr<const CurveData> data;
+  std::vector<std::uint32_t> cells;   // cells[c - strip first cell]
+};
+
+// The curves of a strip of the other axis, cells [first_cell, first_cell + width) (the whole
+// chart when the other part is fixed or the slicer generates whole chart pairs), ascending by
+// feature.
+struct Strip {
+  int first_cell = 0, width = 0;
+  std::vector<StripCurve> curves;
 };
 
 struct ChartPair {
   ChartAxis x_axis, y_axis;   // in the pair's own axis order (for the oracle)
-  std::vector<OrientedCurve> curves;
-  std::vector<const IntegerPolynomial2*> by_feature;   // feature -> polynomial or nullptr
+  std::vector<std::unique_ptr<Strip>> strips;                    // in the order generated
+  std::vector<int> strip_of_cell = std::vector<int>(cull_cells, -1);   // index into strips
+  int next_width = 1;   // cells of the next strip generated (doubles: 1, 2, 4, ... 64)
+  std::map<std::size_t, std::shared_ptr<const CurveData>> by_feature;   // of the strips generated
 };
 
 class KernelSlicer final : public PairSlicer {
  public:
-  KernelSlicer(const Model& model, std::size_t pair, std::size_t follower) : model_(model) {
+  KernelSlicer(const Model& model, std::size_t pair, std::size_t follower, const KernelSlicerOptions& options)
+      : model_(model), options_(options) {
     if (pair >= model.pairs.size()) throw GeometryError("no pair " + std::to_string(pair));
     const PairSpec& spec = model.pairs[pair];
     if (follower != spec.first && follower != spec.second)
@@ -128,48 +138,120 @@ class KernelSlicer final : public PairSlicer {
       other_moves_ = false;
       follower_charts_ = layout.x_charts;
     }
+    // canonical feature numbers: (feature of the first part, feature of the second part) in the
+    // order of the parts' boundaries, (loop, edge, vertex before the edge's curve) — the order in
+    // which the curve generator emits a chart's curves
+    for (std::size_t side = 0; side < 2; ++side) {
+      const Part& part = model.parts.at(side == 0 ? axes_.first : axes_.second);
+      std::size_t edges = 0;
+      for (const Loop& loop : part.loops) {
+        edge_offsets_[side].push_back(edges);
+        edges += loop.edges.size();
+      }
+      feature_count_[side] = 2 * edges;
+    }
     std::size_t other_count = std::max<std::size_t>(1, other_charts_.size());
     pairs_.resize(other_count * follower_charts_.size());
-    // the curves of a chart pair are generated when it is first sliced: a short driver range
-    // visits one or two of the four chart pairs of two rotations
+    // the curves of a chart pair are generated strip by strip of the other axis when first
+    // sliced: a short driver range visits one or two strips of one chart pair
   }
 
-  // The chart pair (o, f), its curves generated and culled on first use. Features are numbered
-  // in the order they are met (labels are looked up by number; numbers never change).
-  const ChartPair& chart_pair(std::size_t o, std::size_t f) const {
-    std::lock_guard<std::mutex> lock(build_mutex_);
-    std::unique_ptr<ChartPair>& slot = pairs_.at(o * follower_charts_.size() + f);
-    if (slot) return *slot;
-    auto chart = std::make_unique<ChartPair>();
-    ChartAxis dummy{ChartAxis::Kind::translation, false, Rational(0), Rational(0)};
-    const ChartAxis& other_axis = other_moves_ ? other_charts_[o] : dummy;
-    chart->x_axis = follower_is_x_ ? follower_charts_[f] : other_axis;
-    chart->y_axis = follower_is_x_ ? other_axis : follower_charts_[f];
-    // one generator per pair: the parts' features and disks are computed once, not per chart pair
+  // The canonical number of a curve's feature pair (see the constructor).
+  std::size_t feature_number(const ContactCurve& curve) const {
+    auto index = [&](const FeatureRef& ref, std::size_t side) {
+      const std::vector<std::size_t>& offsets = edge_offsets_[side];
+      if (ref.loop >= offsets.size()) throw GeometryError("internal: a contact curve names no loop of pair " + name_);
+      return 2 * (offsets[ref.loop] + ref.edge) + (ref.kind == FeatureRef::Kind::vertex ? 0 : 1);
+    };
+    return index(curve.first, 0) * feature_count_[1] + index(curve.second, 1);
+  }
+
+  // Generates the strip of the chart pair (o, f) holding other-axis cell `cell` (under
+  // build_mutex_). A chart pair's strips double in width as they are generated (1, 2, 4, ...
+  // cells, centred on the cell asked for, clipped to the cells not yet generated), so a short
+  // driver range pays for one 1/64 of the chart pair and a whole turn for at most about seven
+  // generator runs per chart pair. Per strip, the generator's blocked-space cull works on the
+  // strip's box; the follower cells each curve may vanish in are those of the whole chart's
+  // cull (the same leaf tests).
+  void generate_strip(ChartPair& chart, std::size_t o, std::size_t f, int cell) const {
+    auto result = std::make_unique<Strip>();
+    if (!other_moves_ || !options_.strips) {
+      result->first_cell = 0;
+      result->width = cull_cells;
+    } else {
+      int first = std::max(0, cell - chart.next_width / 2);
+      int end = std::min(cull_cells, first + chart.next_width);
+      for (int c = cell; c < end; ++c)
+        if (chart.strip_of_cell[static_cast<std::size_t>(c)] >= 0) {
+          end = c;
+          break;
+        }
+      for (int c = cell; c > first; --c)
+        if (chart.strip_of_cell[static_cast<std::size_t>(c - 1)] >= 0) {
+          first = c;
+          break;
+        }
+      result->first_cell = first;
+      result->width = end - first;
+      chart.next_width = std::min(cull_cells, 2 * chart.next_width);
+    }
+    ChartAxis strip_axis = other_moves_ ? other_charts_[o] : chart.y_axis;
+    if (other_moves_ && result->width < cull_cells) {
+      const ChartAxis& other_axis = other_charts_[o];
+      strip_axis.lo = other_axis.lo + (other_axis.hi - other_axis.lo) * result->first_cell / cull_cells;
+      strip_axis.hi = other_axis.lo + (other_axis.hi - other_axis.lo) * (result->first_cell + result->width) / cull_cells;
+    }
+    const ChartAxis& x_axis = follower_is_x_ ? chart.x_axis : strip_axis;
+    const ChartAxis& y_axis = follower_is_x_ ? strip_axis : chart.y_axis;
+    // one generator per pair: the parts' features and disks are computed once, not per strip
     if (!generator_) generator_ = std::make_unique<cspace::CurveGenerator>(model_, axes_);
-    std::vector<ContactCurve> curves = generator_->generate(chart->x_axis, chart->y_axis);
+    std::vector<ContactCurve> curves = generator_->generate(x_axis, y_axis);
     for (ContactCurve& curve : curves) {
       if (curve.polynomial.is_zero()) continue;
-      auto [it, added] = feature_index_.try_emplace(key_of(curve), features_.size());
-      if (added) features_.push_back(ContactFeature{curve.label, public_kind(curve.type)});
-      OrientedCurve oriented;
-      oriented.feature = it->second;
-      oriented.polynomial = follower_is_x_ ? transposed(curve.polynomial) : std::move(curve.polynomial);
-      oriented.interval = ScaledIntervalPolynomial(oriented.polynomial);
-      for (const cspace::ValidityClause& clause : curve.validity) {
-        OrientedClause oriented_clause;
-        for (const IntegerPolynomial2& atom : clause.atoms)
-          oriented_clause.atoms.emplace_back(follower_is_x_ ? transposed(atom) : atom);
-        oriented.validity.push_back(std::move(oriented_clause));
+      StripCurve entry;
+      entry.feature = feature_number(curve);
+      if (features_.size() <= entry.feature) features_.resize(entry.feature + 1);
+      if (features_[entry.feature].label.empty())
+        features_[entry.feature] = ContactFeature{curve.label, public_kind(curve.type)};
+      std::shared_ptr<const CurveData>& data = chart.by_feature[entry.feature];
+      if (!data) {
+        auto made = std::make_shared<CurveData>();
+        made->polynomial = follower_is_x_ ? transposed(curve.polynomial) : std::move(curve.polynomial);
+        made->interval = ScaledIntervalPolynomial(made->polynomial);
+        for (const cspace::ValidityClause& clause : curve.validity) {
+          OrientedClause oriented_clause;
+          for (const IntegerPolynomial2& atom : clause.atoms)
+            oriented_clause.atoms.emplace_back(follower_is_x_ ? transposed(atom) : atom);
+          made->validity.push_back(std::move(oriented_clause));
+        }
+        data = std::move(made);
       }
-      chart->curves.push_back(std::move(oriented));
+      entry.data = data;
+      result->curves.push_back(std::move(entry));
     }
-    cull(*chart, other_axis, follower_charts_[f], other_moves_);
-    for (const OrientedCurve& curve : chart->curves) {
-      if (chart->by_feature.size() <= curve.feature) chart->by_feature.resize(curve.feature + 1, nullptr);
-      chart->by_feature[curve.feature] = &curve.polynomial;
+    // the generator emits a chart's curves in feature order; the slices rely on it
+    std::stable_sort(result->curves.begin(), result->curves.end(),
+                     [](const StripCurve& a, const StripCurve& b) { return a.feature < b.feature; });
+    cull(*result, other_moves_ ? other_charts_[o] : strip_axis, follower_charts_[f], other_moves_);
+    for (int c = result->first_cell; c < result->first_cell + result->width; ++c)
+      chart.strip_of_cell[static_cast<std::size_t>(c)] = static_cast<int>(chart.strips.size());
+    chart.strips.push_back(std::move(result));
+  }
+
+  // The chart pair (o, f) with its strips holding cells [cell_lo, cell_hi] generated.
+  const ChartPair& chart_pair(std::size_t o, std::size_t f, std::size_t cell_lo, std::size_t cell_hi) const {
+    std::lock_guard<std::mutex> lock(build_mutex_);
+    std::unique_ptr<ChartPair>& slot = pairs_.at(o * follower_charts_.size() + f);
+    if (!slot) {
+      auto chart = std::make_unique<ChartPair>();
+      ChartAxis dummy{ChartAxis::Kind::translation, false, Rational(0), Rational(0)};
+      const ChartAxis& other_axis = other_moves_ ? other_charts_[o] : dummy;
+      chart->x_axis = follower_is_x_ ? follower_charts_[f] : other_axis;
+      chart->y_axis = follower_is_x_ ? other_axis : follower_charts_[f];
+      slot = std::move(chart);
     }
-    slot = std::move(chart);
+    for (std::size_t c = cell_lo; c <= cell_hi; ++c)
+      if (slot->strip_of_cell[c] < 0) generate_strip(*slot, o, f, static_cast<int>(c));
     return *slot;
   }
 
@@ -186,7 +268,44 @@ class KernelSlicer final : public PairSlicer {
     std::size_t o = other_moves_ ? other_chart : 0;
     if (o >= std::max<std::size_t>(1, other_charts_.size()) || follower_chart >= follower_charts_.size())
       throw GeometryError("slice outside the charts of pair " + name_);
-    const ChartPair& chart = chart_pair(o, follower_chart);
+    std::size_t cell_lo = 0, cell_hi = 0;   // other-axis cells holding the value
+    if (other_moves_) {
+      const ChartAxis& other_axis = other_charts_[o];
+      Rational position = (value - other_axis.lo) * cull_cells / (other_axis.hi - other_axis.lo);
+      long cell = std::clamp<long>(static_cast<long>(position.get_d()), 0, cull_cells - 1);
+      cell_lo = cell_hi = static_cast<std::size_t>(cell);
+      // a value on a cell border belongs to both cells
+      if (cell + 1 < cull_cells && position >= cell + 1) cell_hi = static_cast<std::size_t>(cell + 1);
+      if (cell > 0 && position <= cell) cell_lo = static_cast<std::size_t>(cell - 1);
+    }
+    const ChartPair& chart = chart_pair(o, follower_chart, cell_lo, cell_hi);
+    // the curves of the strips holding the value, ascending by feature, with the follower cells
+    // where each may vanish at the value
+    std::vector<std::pair<const StripCurve*, std::uint32_t>> candidates;
+    const int strip_lo = chart.strip_of_cell[cell_lo], strip_hi = chart.strip_of_cell[cell_hi];
+    for (int s : {strip_lo, strip_hi}) {
+      const Strip& strip = *chart.strips[static_cast<std::size_t>(s)];
+      const auto first = static_cast<std::size_t>(strip.first_cell), end = first + static_cast<std::size_t>(strip.width);
+      for (const StripCurve& curve : strip.curves) {
+        std::uint32_t mask = 0;
+        for (std::size_t c = std::max(cell_lo, first); c <= std::min(cell_hi, end - 1); ++c) mask |= curve.cells[c - first];
+        candidates.emplace_back(&curve, mask);
+      }
+      if (strip_lo == strip_hi) break;
+    }
+    if (strip_lo != strip_hi) {
+      // a value on a strip border: one candidate per feature, its cells those of both strips
+      std::stable_sort(candidates.begin(), candidates.end(),
+                       [](const auto& a, const auto& b) { return a.first->feature < b.first->feature; });
+      std::vector<std::pair<const StripCurve*, std::uint32_t>> merged;
+      for (const auto& candidate : candidates) {
+        if (!merged.empty() && merged.back().first->feature == candidate.first->feature)
+          merged.back().second |= candidate.second;
+        else
+          merged.push_back(candidate);
+      }
+      candidates = std::move(merged);
+    }
     const ChartAxis& axis = follower_charts_[follower_chart];
     Rational range_lo = window ? std::max(window->lo, axis.lo) : axis.lo;
     Rational range_hi = window ? std::min(window->hi, axis.hi) : axis.hi;
@@ -200,22 +319,11 @@ class KernelSlicer final : public PairSlicer {
         if (hi >= range_lo && lo <= range_hi) window_mask |= std::uint32_t(1) << cell;
       }
     }
-    std::size_t cell_lo = 0, cell_hi = 0;   // other-axis cells holding the value
-    if (other_moves_) {
-      const ChartAxis& other_axis = other_charts_[o];
-      Rational position = (value - other_axis.lo) * cull_cells / (other_axis.hi - other_axis.lo);
-      long cell = std::clamp<long>(static_cast<long>(position.get_d()), 0, cull_cells - 1);
-      cell_lo = cell_hi = static_cast<std::size_t>(cell);
-      // a value on a cell border belongs to both cells
-      if (cell + 1 < cull_cells && position >= cell + 1) cell_hi = static_cast<std::size_t>(cell + 1);
-      if (cell > 0 && position <= cell) cell_lo = static_cast<std::size_t>(cell - 1);
-    }
     algebra::Interval value_box = algebra::enclose(value);
     std::vector<SlicePoint> points;
-    for (const OrientedCurve& curve : chart.curves) {
-      std::uint32_t mask = 0;
-      for (std::size_t c = cell_lo; c <= cell_hi; ++c) mask |= curve.cells[c];
-      mask &= window_mask;
+    for (const auto& [strip_curve, cells] : candidates) {
+      const CurveData& curve = *strip_curve->data;
+      const std::uint32_t mask = cells & window_mask;
       if (!mask) continue;
       algebra::Polynomial p;
       bool substituted = false;
@@ -243,12 +351,13 @@ class KernelSlicer final : public PairSlicer {
         }
         for (Real& root : algebra::real_roots(p, lo, hi)) {
           if (!valid(curve, value_box, root)) continue;
-          points.push_back(SlicePoint{std::move(root), {curve.feature}});
+          points.push_back(SlicePoint{std::move(root), {strip_curve->feature}});
         }
       }
     }
-    std::sort(points.begin(), points.end(),
-              [](const SlicePoint& a, const SlicePoint& b) { return algebra::compare(a.value, b.value) < 0; });
+    // stable: the features of a point shared by several curves are listed ascending
+    std::stable_sort(points.begin(), points.end(),
+                     [](const SlicePoint& a, const SlicePoint& b) { return algebra::compare(a.value, b.value) < 0; });
     ChartSlice result;
     for (SlicePoint& point : points) {
       if (!result.points.empty() && algebra::compare(result.points.back().value, point.value) == 0) {
@@ -321,15 +430,22 @@ class KernelSlicer final : public PairSlicer {
                                        std::size_t feature) const override {
     std::size_t o = other_moves_ ? other_chart : 0;
     if (o >= std::max<std::size_t>(1, other_charts_.size()) || follower_chart >= follower_charts_.size()) return nullptr;
-    const ChartPair& chart = chart_pair(o, follower_chart);
-    return feature < chart.by_feature.size() ? chart.by_feature[feature] : nullptr;
+    // the curves of a chart pair are shared by its strips: any generated strip's copy (a contact
+    // the engine asks about was met in a slice, whose strips are generated)
+    std::lock_guard<std::mutex> lock(build_mutex_);
+    const std::unique_ptr<ChartPair>& chart = pairs_.at(o * follower_charts_.size() + follower_chart);
+    if (!chart) return nullptr;
+    auto found = chart->by_feature.find(feature);
+    return found == chart->by_feature.end() ? nullptr : &found->second->polynomial;
   }
 
  private:
-  // Marks, for every cell of the other axis, the follower cells where each curve may vanish.
-  // Boxes of cells are tested coarse to fine: a box whose interval value excludes zero
-  // excludes it in every sub-box (conservative, like the cell-by-cell test, but cheaper).
-  static void cull(ChartPair& chart, const ChartAxis& other_axis, const ChartAxis& follower_axis, bool other_moves) {
+  // Marks, for every cell of the other axis in the strip, the follower cells where each curve
+  // may vanish. Boxes of cells are tested coarse to fine: a box whose interval value excludes
+  // zero excludes it in every sub-box (interval evaluation is inclusion isotone), so a cell is
+  // marked exactly when its own box test contains zero, whatever the strip's width.
+  static void cull(Strip& strip, const ChartAxis& other_axis, const ChartAxis& follower_axis, bool other_moves) {
+    const int width = strip.width;
     // certified double bounds of the cell edges: a box from the lower bound of its first edge to
     // the upper bound of its last encloses its cells
     std::vector<double> follower_lows(follower_cells + 1), follower_highs(follower_cells + 1);
@@ -339,27 +455,28 @@ class KernelSlicer final : public PairSlicer {
       follower_lows[cell] = algebra::lower_double(at);
       follower_highs[cell] = algebra::upper_double(at);
     }
+    const int first = strip.first_cell;
     if (other_moves)
-      for (int cell = 0; cell <= cull_cells; ++cell) {
+      for (int cell = first; cell <= first + width; ++cell) {
         Rational at = other_axis.lo + (other_axis.hi - other_axis.lo) * cell / cull_cells;
         other_lows[cell] = algebra::lower_double(at);
         other_highs[cell] = algebra::upper_double(at);
       }
-    int other_count = other_moves ? cull_cells : 1;
-    for (OrientedCurve& curve : chart.curves) {
-      curve.cells.assign(cull_cells, 0);
+    int other_end = other_moves ? first + width : first + 1;
+    for (StripCurve& curve : strip.curves) {
+      curve.cells.assign(static_cast<std::size_t>(width), 0);
       // (other cells [o0, o1), follower cells [f0, f1))
       struct Box { int o0, o1, f0, f1; };
-      std::vector<Box> stack{{0, other_count, 0, follower_cells}};
+      std::vector<Box> stack{{first, other_end, 0, follower_cells}};
       while (!stack.empty()) {
         Box box = stack.back();
         stack.pop_back();
         algebra::Interval x{0, 0};
         if (other_moves) x = algebra::Interval{other_lows[box.o0], other_highs[box.o1]};
         algebra::Interval y{follower_lows[box.f0], follower_highs[box.f1]};
-        if (!curve.interval.evaluate(x, y).contains_zero()) continue;
+        if (!curve.data->interval.evaluate(x, y).contains_zero()) continue;
         if (box.o1 - box.o0 == 1 && box.f1 - box.f0 == 1) {
-          curve.cells[box.o0] |= std::uint32_t(1) << box.f0;
+          curve.cells[box.o0 - first] |= std::uint32_t(1) << box.f0;
           continue;
         }
         if (box.o1 - box.o0 >= box.f1 - box.f0) {
@@ -373,13 +490,13 @@ class KernelSlicer final : public PairSlicer {
         }
       }
       if (!other_moves)
-        for (int cell = 1; cell < cull_cells; ++cell) curve.cells[cell] = curve.cells[0];
+        for (int cell = 1; cell < width; ++cell) curve.cells[cell] = curve.cells[0];
     }
   }
 
   // False when the contact point of `curve` at (value, root) certainly lies outside one of its
   // features (a root of the supporting polynomial that is no contact of these features).
-  static bool valid(const OrientedCurve& curve, const algebra::Interval& value_box, const Real& root) {
+  static bool valid(const CurveData& curve, const algebra::Interval& value_box, const Real& root) {
     if (curve.validity.empty()) return true;
     Real refined = root;
     for (int bits : {24, 48}) {
@@ -403,11 +520,13 @@ class KernelSlicer final : public PairSlicer {
   }
 
   const Model& model_;
+  KernelSlicerOptions options_;
   cspace::PairAxes axes_;
   bool follower_is_x_ = true;
   mutable std::vector<std::unique_ptr<ChartPair>> pairs_;
   mutable std::unique_ptr<cspace::CurveGenerator> generator_;   // created with the first chart pair
-  mutable std::map<FeatureKey, std::size_t> feature_index_;
+  std::vector<std::size_t> edge_offsets_[2];   // per part of the pair: first edge of each loop
+  std::size_t feature_count_[2] = {0, 0};      // per part: 2 x its edges (a vertex and a curve each)
   mutable std::mutex build_mutex_;
   mutable std::mutex cache_mutex_;
   mutable std::map<std::size_t, ChartSlice> fixed_cache_;
@@ -415,8 +534,9 @@ class KernelSlicer final : public PairSlicer {
 
 }  // namespace
 
-std::unique_ptr<PairSlicer> make_kernel_slicer(const Model& model, std::size_t pair, std::size_t follower) {
-  return std::make_unique<KernelSlicer>(model, pair, follower);
+std::unique_ptr<PairSlicer> make_kernel_slicer(const Model& model, std::size_t pair, std::size_t follower,
+                                               const KernelSlicerOptions& options) {
+  return std::make_unique<KernelSlicer>(model, pair, follower, options);
 }
 
 }  // namespace hipair::kinematics_detail

@@ -96,11 +96,25 @@ class PairSlicer {
   mutable std::vector<ContactFeature> features_;
 };
 
+/// Options of the kernel slicer.
+struct KernelSlicerOptions {
+  /// Generate a chart pair's curves per strip of the other part's axis (1/64 of its chart) on
+  /// the strip's first slice, with the generator's blocked-space cull on the strip's box; false:
+  /// the whole chart pair on its first slice (the slicer before session 12; tests compare the
+  /// two). The slices agree except for points inside certified blocked space (blocked on both
+  /// sides, not touching), which a strip's finer cull may drop.
+  bool strips = true;
+};
+
 /// Slicer on the pair's contact kernels and the exact overlap oracle.
-/// `pair` indexes model.pairs; `follower` is one of its parts (it must move).
+/// `pair` indexes model.pairs; `follower` is one of its parts (it must move). Features are
+/// numbered canonically: (feature of the pair's first part, feature of its second part), each in
+/// the order of its part's boundary (loop, edge, the vertex before the edge's curve), so the
+/// numbers do not depend on which slices were taken first; features() holds an entry (empty
+/// label) for every number below the largest met.
 /// \throws GeometryError for pairs that are not fixed-axis pairs.
 std::unique_ptr<PairSlicer> make_kernel_slicer(const Model& model, std::size_t pair,
-                                               std::size_t follower);
+                                               std::size_t follower, const KernelSlicerOptions& options = {});
 
 /// Slicer on a built C-space of the same pair (src/cspace/slice.cpp). Falls back to nothing:
 /// \throws GeometryError when the C-space cannot be sliced along the requested axis.
