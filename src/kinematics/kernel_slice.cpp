@@ -15,7 +15,6 @@
 #include <mutex>
 #include <optional>
 #include <cmath>
-#include <tuple>
 
 namespace hipair::kinematics_detail {
 
