@@ -348,7 +348,7 @@ class KernelSlicer final : public PairSlicer {
           if (algebra::degree(p) <= 0) break;   // no root, or the whole line (a degenerate slice)
           // real_roots takes the square-free part itself
         }
-        for (Real& root : algebra::real_roots(p, lo, hi)) {
+        for (Real& root : algebra::descartes_real_roots(p, lo, hi)) {
           if (!valid(curve, value_box, root)) continue;
           points.push_back(SlicePoint{std::move(root), {strip_curve->feature}});
         }
