@@ -303,6 +303,55 @@ class SignFilter {
   std::vector<Interval> coefficients_;
 };
 
+// A certified double enclosure [lo, hi] of a non-exact Real, narrowed by bisection in double
+// arithmetic: a midpoint m certainly inside (lower, upper) (outside the enclosures of the
+// ends) where the sign filter decides p(m) != 0 lies below the root when p(m) has the sign of
+// p(lower) (the root is simple and the only one in the interval), else above. Bisection stops
+// for good where the filter cannot decide, near an end, or when lo and hi are adjacent
+// doubles. No exact arithmetic unless the filter cannot decide the sign at `lower` itself.
+class DoubleBisection {
+ public:
+  explicit DoubleBisection(const Real& r)
+      : filter_(r.polynomial), lower_box_(enclose(r.lower)), upper_box_(enclose(r.upper)) {
+    lo_ = lower_box_.lo;
+    hi_ = upper_box_.hi;
+    stuck_ = !std::isfinite(lower_box_.hi) || !std::isfinite(upper_box_.lo);
+    if (stuck_) return;
+    lower_sign_ = filter_.sign(lower_box_);
+    if (lower_sign_ == 0) lower_sign_ = sign_at(r.polynomial, r.lower);
+    stuck_ = lower_sign_ == 0;   // not an isolating interval as documented: decide exactly
+  }
+  /// At most `steps` more halvings; false when no further halving is possible.
+  bool advance(int steps) {
+    for (int i = 0; i < steps && !stuck_; ++i) {
+      double m = lo_ + (hi_ - lo_) / 2;
+      if (!(m > lo_ && m < hi_) || !(m > lower_box_.hi && m < upper_box_.lo)) {
+        stuck_ = true;
+        break;
+      }
+      int s = filter_.sign(Interval{m, m});
+      if (s == 0) {
+        stuck_ = true;
+        break;
+      }
+      if (s == lower_sign_)
+        lo_ = m;
+      else
+        hi_ = m;
+    }
+    return !stuck_;
+  }
+  double lo() const { return lo_; }
+  double hi() const { return hi_; }
+
+ private:
+  SignFilter filter_;
+  Interval lower_box_, upper_box_;
+  double lo_ = 0, hi_ = 0;
+  int lower_sign_ = 0;
+  bool stuck_ = false;
+};
+
 }  // namespace
 
 void Real::refine_to(const Rational& width) {
@@ -487,6 +536,27 @@ int compare(const Real& a, const Real& b) {
   if (b.exact) return a.compare(b.lower);
   if (a.upper <= b.lower) return -1;
   if (b.upper <= a.lower) return 1;
+  {
+    // certified double filter: bisect both enclosures in doubles, eight halvings at a time,
+    // until they separate or neither can be narrowed further
+    DoubleBisection x(a), y(b);
+    for (;;) {
+      if (x.hi() < y.lo()) return -1;
+      if (y.hi() < x.lo()) return 1;
+      bool x_moves = x.advance(8);
+      bool y_moves = y.advance(8);
+      if (!x_moves && !y_moves) break;
+    }
+  }
+  if (a.polynomial == b.polynomial) {
+    // one square-free polynomial, one simple root in each open interval, non-zero signs at
+    // the ends: the roots are equal iff the polynomial changes sign over the common part
+    // (which holds one root at most); distinct roots are ordered below
+    const Rational& lo = std::max(a.lower, b.lower);
+    const Rational& hi = std::min(a.upper, b.upper);
+    int s_lo = sign_at(a.polynomial, lo), s_hi = sign_at(a.polynomial, hi);
+    if (s_lo != 0 && s_hi != 0 && s_lo != s_hi) return 0;
+  }
   // Overlapping intervals: equal iff the gcd has a root in the common part.
   {
     // distinct numbers usually separate after a few halvings: try that before the gcd
