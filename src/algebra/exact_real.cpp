@@ -712,7 +712,9 @@ void isolate(const Polynomial& p, const SturmSequence& sturm, Rational a, Ration
 
 std::vector<Real> real_roots(const Polynomial& input, const Rational& lo, const Rational& hi) {
   std::vector<Real> roots;
-  Polynomial p = square_free_part(input);
+  // the same polynomial as square_free_part(input), without the exact gcd when a modular one
+  // certifies that there is no square factor
+  Polynomial p = square_free_test(input);
   if (degree(p) < 1 || lo > hi) return roots;
   if (isolated_trivially(p, lo, hi, roots)) return roots;
   SturmSequence sturm(p);
