@@ -256,6 +256,30 @@ void Real::refine() {
 
 namespace {
 
+// True when the denominator of r (positive) is a power of two, 1 included.
+bool power_of_two_denominator(const Rational& r) {
+  const mpz_srcptr den = r.get_den_mpz_t();
+  return mpz_scan1(den, 0) + 1 == mpz_sizeinbase(den, 2);
+}
+
+// r.canonicalize(), without a gcd when the denominator is a power of two (then the common
+// factor is the largest power of two dividing the numerator, up to the denominator).
+void canonicalize(Rational& r) {
+  if (!power_of_two_denominator(r)) {
+    r.canonicalize();
+    return;
+  }
+  mpz_ptr num = r.get_num_mpz_t();
+  mpz_ptr den = r.get_den_mpz_t();
+  if (mpz_sgn(num) == 0) {
+    mpz_set_ui(den, 1);
+    return;
+  }
+  mp_bitcnt_t shift = std::min(mpz_scan1(num, 0), mpz_sizeinbase(den, 2) - 1);
+  mpz_tdiv_q_2exp(num, num, shift);   // exact: 2^shift divides the numerator
+  mpz_tdiv_q_2exp(den, den, shift);
+}
+
 // A certified double filter for the sign of an integer polynomial at a point given by an
 // interval enclosure: the coefficients scaled by one power of two (so that large ones stay
 // finite; the sign does not change) and enclosed outwards, evaluated by interval Horner.
@@ -363,8 +387,14 @@ void Real::refine_to(const Rational& width) {
   // factors), and the ends are reduced once at the end: the same intervals, and the same exact
   // roots, as halving canonical rationals, without a gcd per step. The sign at the lower end
   // is evaluated once: it never changes (lower only moves to midpoints of the same sign).
-  const int lower_sign = sign_at(polynomial, lower);
+  // the sign at the lower end: by the certified filter where it decides, else exactly
+  const SignFilter filter(polynomial);
+  const Interval lower_box = enclose(lower);
+  int lower_sign = std::isfinite(lower_box.lo) && std::isfinite(lower_box.hi) ? filter.sign(lower_box) : 0;
+  if (lower_sign == 0) lower_sign = sign_at(polynomial, lower);
   auto reduced = [](const Rational& r) {
+    // a power-of-two denominator (bisection ends) is coprime to the numerator iff that is odd
+    if (power_of_two_denominator(r)) return mpz_cmp_ui(r.get_den_mpz_t(), 1) == 0 || mpz_odd_p(r.get_num_mpz_t());
     mpz_class g;
     mpz_gcd(g.get_mpz_t(), r.get_num_mpz_t(), r.get_den_mpz_t());
     return g == 1;
@@ -399,8 +429,7 @@ void Real::refine_to(const Rational& width) {
   unsigned long k = 0;
   // The certified double filter decides the sign at a midpoint lower + span m / 2^k while
   // m / 2^k is a double (k <= 52) and the value's enclosure excludes zero; else exactly.
-  const SignFilter filter(polynomial);
-  const Interval lower_box = enclose(lower), span_box = enclose(span);
+  const Interval span_box = enclose(span);
   bool filtering = std::isfinite(lower_box.lo) && std::isfinite(lower_box.hi) && std::isfinite(span_box.hi);
   while (limit_left > right) {
     mpz_class m = 2 * j + 1;
@@ -417,7 +446,7 @@ void Real::refine_to(const Rational& width) {
     }
     if (s == 0) {   // decided exactly (the filter never returns 0 as a sign)
       lower = Rational(numerator, scaled_denominator);
-      lower.canonicalize();
+      canonicalize(lower);
       upper = lower;
       exact = true;
       return;
@@ -429,11 +458,11 @@ void Real::refine_to(const Rational& width) {
   scaled_denominator = denominator << k;
   if (j != 0) {
     lower = Rational(mpz_class((base << k) + step * j), scaled_denominator);
-    lower.canonicalize();
+    canonicalize(lower);
   }
   if (j + 1 != mpz_class(1) << k) {
     upper = Rational(mpz_class((base << k) + step * (j + 1)), scaled_denominator);
-    upper.canonicalize();
+    canonicalize(upper);
   }
 }
 
