@@ -90,13 +90,27 @@ double thread_cpu_seconds() {
   return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
-void BM_RefineRoots(benchmark::State& state) {
-  const std::vector<algebra::Real> roots = quartic_roots();
-  bool halving = state.range(0) == 1;
+// Runs `work` once per iteration and records its mean thread CPU time: in `fast` for the
+// measured code (peer = false), as the counter `ratio` (peer / measured) for its peer.
+template <class Work>
+void side_by_side(benchmark::State& state, bool peer, double& fast, Work work) {
   double seconds = 0;
   std::size_t rounds = 0;
   for (auto _ : state) {
     double start = thread_cpu_seconds();
+    work();
+    seconds += thread_cpu_seconds() - start;
+    ++rounds;
+  }
+  double mean = seconds / static_cast<double>(rounds);
+  if (!peer) fast = mean;
+  if (peer && fast > 0) state.counters["ratio"] = mean / fast;
+}
+
+void BM_RefineRoots(benchmark::State& state) {
+  const std::vector<algebra::Real> roots = quartic_roots();
+  bool halving = state.range(0) == 1;
+  side_by_side(state, halving, fast_seconds, [&] {
     for (const algebra::Real& root : roots) {
       algebra::Real copy = root;
       Rational width = (abs(copy.lower) + abs(copy.upper)) / Rational(mpz_class(1) << 60);
@@ -106,12 +120,7 @@ void BM_RefineRoots(benchmark::State& state) {
         copy.refine_to(width);
       benchmark::DoNotOptimize(copy);
     }
-    seconds += thread_cpu_seconds() - start;
-    ++rounds;
-  }
-  double mean = seconds / static_cast<double>(rounds);
-  if (!halving) fast_seconds = mean;
-  if (halving && fast_seconds > 0) state.counters["ratio"] = mean / fast_seconds;
+  });
   state.SetLabel(halving ? "canonical halving (peer)" : "refine_to");
 }
 BENCHMARK(BM_RefineRoots)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
@@ -170,20 +179,12 @@ double filtered_compare_seconds = 0;
 void BM_CompareRoots(benchmark::State& state) {
   const std::vector<algebra::Real> roots = close_roots();
   bool unfiltered = state.range(0) == 1;
-  double seconds = 0;
-  std::size_t rounds = 0;
-  for (auto _ : state) {
-    double start = thread_cpu_seconds();
+  side_by_side(state, unfiltered, filtered_compare_seconds, [&] {
     int sum = 0;
     for (const algebra::Real& x : roots)
       for (const algebra::Real& y : roots) sum += unfiltered ? unfiltered_compare(x, y) : algebra::compare(x, y);
     benchmark::DoNotOptimize(sum);
-    seconds += thread_cpu_seconds() - start;
-    ++rounds;
-  }
-  double mean = seconds / static_cast<double>(rounds);
-  if (!unfiltered) filtered_compare_seconds = mean;
-  if (unfiltered && filtered_compare_seconds > 0) state.counters["ratio"] = mean / filtered_compare_seconds;
+  });
   state.SetLabel(unfiltered ? "unfiltered exact compare (peer)" : "compare with double filter");
 }
 BENCHMARK(BM_CompareRoots)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(2);
