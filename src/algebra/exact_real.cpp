@@ -330,7 +330,8 @@ class SignFilter {
 // A certified double enclosure [lo, hi] of a non-exact Real, narrowed by bisection in double
 // arithmetic: a midpoint m certainly inside (lower, upper) (outside the enclosures of the
 // ends) where the sign filter decides p(m) != 0 lies below the root when p(m) has the sign of
-// p(lower) (the root is simple and the only one in the interval), else above. Bisection stops
+// p(lower) (the root is simple and the only one in the interval; the filter must certify
+// opposite signs at the ends, else the exact path decides), else above. Bisection stops
 // for good where the filter cannot decide, near an end, or when lo and hi are adjacent
 // doubles. No exact arithmetic unless the filter cannot decide the sign at `lower` itself.
 class DoubleBisection {
@@ -343,7 +344,9 @@ class DoubleBisection {
     if (stuck_) return;
     lower_sign_ = filter_.sign(lower_box_);
     if (lower_sign_ == 0) lower_sign_ = sign_at(r.polynomial, r.lower);
-    stuck_ = lower_sign_ == 0;   // not an isolating interval as documented: decide exactly
+    // the signs at the ends must be certainly opposite (an isolating interval as documented,
+    // e.g. not a double root): otherwise the exact path decides
+    stuck_ = lower_sign_ == 0 || filter_.sign(upper_box_) != -lower_sign_;
   }
   /// At most `steps` more halvings; false when no further halving is possible.
   bool advance(int steps) {
