@@ -256,6 +256,30 @@ void Real::refine() {
 
 namespace {
 
+// True when the denominator of r (positive) is a power of two, 1 included.
+bool power_of_two_denominator(const Rational& r) {
+  const mpz_srcptr den = r.get_den_mpz_t();
+  return mpz_scan1(den, 0) + 1 == mpz_sizeinbase(den, 2);
+}
+
+// r.canonicalize(), without a gcd when the denominator is a power of two (then the common
+// factor is the largest power of two dividing the numerator, up to the denominator).
+void canonicalize(Rational& r) {
+  if (!power_of_two_denominator(r)) {
+    r.canonicalize();
+    return;
+  }
+  mpz_ptr num = r.get_num_mpz_t();
+  mpz_ptr den = r.get_den_mpz_t();
+  if (mpz_sgn(num) == 0) {
+    mpz_set_ui(den, 1);
+    return;
+  }
+  mp_bitcnt_t shift = std::min(mpz_scan1(num, 0), mpz_sizeinbase(den, 2) - 1);
+  mpz_tdiv_q_2exp(num, num, shift);   // exact: 2^shift divides the numerator
+  mpz_tdiv_q_2exp(den, den, shift);
+}
+
 // A certified double filter for the sign of an integer polynomial at a point given by an
 // interval enclosure: the coefficients scaled by one power of two (so that large ones stay
 // finite; the sign does not change) and enclosed outwards, evaluated by interval Horner.
@@ -303,6 +327,58 @@ class SignFilter {
   std::vector<Interval> coefficients_;
 };
 
+// A certified double enclosure [lo, hi] of a non-exact Real, narrowed by bisection in double
+// arithmetic: a midpoint m certainly inside (lower, upper) (outside the enclosures of the
+// ends) where the sign filter decides p(m) != 0 lies below the root when p(m) has the sign of
+// p(lower) (the root is simple and the only one in the interval; the filter must certify
+// opposite signs at the ends, else the exact path decides), else above. Bisection stops
+// for good where the filter cannot decide, near an end, or when lo and hi are adjacent
+// doubles. No exact arithmetic unless the filter cannot decide the sign at `lower` itself.
+class DoubleBisection {
+ public:
+  explicit DoubleBisection(const Real& r)
+      : filter_(r.polynomial), lower_box_(enclose(r.lower)), upper_box_(enclose(r.upper)) {
+    lo_ = lower_box_.lo;
+    hi_ = upper_box_.hi;
+    stuck_ = !std::isfinite(lower_box_.hi) || !std::isfinite(upper_box_.lo);
+    if (stuck_) return;
+    lower_sign_ = filter_.sign(lower_box_);
+    if (lower_sign_ == 0) lower_sign_ = sign_at(r.polynomial, r.lower);
+    // the signs at the ends must be certainly opposite (an isolating interval as documented,
+    // e.g. not a double root): otherwise the exact path decides
+    stuck_ = lower_sign_ == 0 || filter_.sign(upper_box_) != -lower_sign_;
+  }
+  /// At most `steps` more halvings; false when no further halving is possible.
+  bool advance(int steps) {
+    for (int i = 0; i < steps && !stuck_; ++i) {
+      double m = lo_ + (hi_ - lo_) / 2;
+      if (!(m > lo_ && m < hi_) || !(m > lower_box_.hi && m < upper_box_.lo)) {
+        stuck_ = true;
+        break;
+      }
+      int s = filter_.sign(Interval{m, m});
+      if (s == 0) {
+        stuck_ = true;
+        break;
+      }
+      if (s == lower_sign_)
+        lo_ = m;
+      else
+        hi_ = m;
+    }
+    return !stuck_;
+  }
+  double lo() const { return lo_; }
+  double hi() const { return hi_; }
+
+ private:
+  SignFilter filter_;
+  Interval lower_box_, upper_box_;
+  double lo_ = 0, hi_ = 0;
+  int lower_sign_ = 0;
+  bool stuck_ = false;
+};
+
 }  // namespace
 
 void Real::refine_to(const Rational& width) {
@@ -314,8 +390,14 @@ void Real::refine_to(const Rational& width) {
   // factors), and the ends are reduced once at the end: the same intervals, and the same exact
   // roots, as halving canonical rationals, without a gcd per step. The sign at the lower end
   // is evaluated once: it never changes (lower only moves to midpoints of the same sign).
-  const int lower_sign = sign_at(polynomial, lower);
+  // the sign at the lower end: by the certified filter where it decides, else exactly
+  const SignFilter filter(polynomial);
+  const Interval lower_box = enclose(lower);
+  int lower_sign = std::isfinite(lower_box.lo) && std::isfinite(lower_box.hi) ? filter.sign(lower_box) : 0;
+  if (lower_sign == 0) lower_sign = sign_at(polynomial, lower);
   auto reduced = [](const Rational& r) {
+    // a power-of-two denominator (bisection ends) is coprime to the numerator iff that is odd
+    if (power_of_two_denominator(r)) return mpz_cmp_ui(r.get_den_mpz_t(), 1) == 0 || mpz_odd_p(r.get_num_mpz_t());
     mpz_class g;
     mpz_gcd(g.get_mpz_t(), r.get_num_mpz_t(), r.get_den_mpz_t());
     return g == 1;
@@ -350,8 +432,7 @@ void Real::refine_to(const Rational& width) {
   unsigned long k = 0;
   // The certified double filter decides the sign at a midpoint lower + span m / 2^k while
   // m / 2^k is a double (k <= 52) and the value's enclosure excludes zero; else exactly.
-  const SignFilter filter(polynomial);
-  const Interval lower_box = enclose(lower), span_box = enclose(span);
+  const Interval span_box = enclose(span);
   bool filtering = std::isfinite(lower_box.lo) && std::isfinite(lower_box.hi) && std::isfinite(span_box.hi);
   while (limit_left > right) {
     mpz_class m = 2 * j + 1;
@@ -368,7 +449,7 @@ void Real::refine_to(const Rational& width) {
     }
     if (s == 0) {   // decided exactly (the filter never returns 0 as a sign)
       lower = Rational(numerator, scaled_denominator);
-      lower.canonicalize();
+      canonicalize(lower);
       upper = lower;
       exact = true;
       return;
@@ -380,11 +461,11 @@ void Real::refine_to(const Rational& width) {
   scaled_denominator = denominator << k;
   if (j != 0) {
     lower = Rational(mpz_class((base << k) + step * j), scaled_denominator);
-    lower.canonicalize();
+    canonicalize(lower);
   }
   if (j + 1 != mpz_class(1) << k) {
     upper = Rational(mpz_class((base << k) + step * (j + 1)), scaled_denominator);
-    upper.canonicalize();
+    canonicalize(upper);
   }
 }
 
@@ -487,6 +568,27 @@ int compare(const Real& a, const Real& b) {
   if (b.exact) return a.compare(b.lower);
   if (a.upper <= b.lower) return -1;
   if (b.upper <= a.lower) return 1;
+  {
+    // certified double filter: bisect both enclosures in doubles, eight halvings at a time,
+    // until they separate or neither can be narrowed further
+    DoubleBisection x(a), y(b);
+    for (;;) {
+      if (x.hi() < y.lo()) return -1;
+      if (y.hi() < x.lo()) return 1;
+      bool x_moves = x.advance(8);
+      bool y_moves = y.advance(8);
+      if (!x_moves && !y_moves) break;
+    }
+  }
+  if (a.polynomial == b.polynomial) {
+    // one square-free polynomial, one simple root in each open interval, non-zero signs at
+    // the ends: the roots are equal iff the polynomial changes sign over the common part
+    // (which holds one root at most); distinct roots are ordered below
+    const Rational& lo = std::max(a.lower, b.lower);
+    const Rational& hi = std::min(a.upper, b.upper);
+    int s_lo = sign_at(a.polynomial, lo), s_hi = sign_at(a.polynomial, hi);
+    if (s_lo != 0 && s_hi != 0 && s_lo != s_hi) return 0;
+  }
   // Overlapping intervals: equal iff the gcd has a root in the common part.
   {
     // distinct numbers usually separate after a few halvings: try that before the gcd
@@ -642,7 +744,9 @@ void isolate(const Polynomial& p, const SturmSequence& sturm, Rational a, Ration
 
 std::vector<Real> real_roots(const Polynomial& input, const Rational& lo, const Rational& hi) {
   std::vector<Real> roots;
-  Polynomial p = square_free_part(input);
+  // the same polynomial as square_free_part(input), without the exact gcd when a modular one
+  // certifies that there is no square factor
+  Polynomial p = square_free_test(input);
   if (degree(p) < 1 || lo > hi) return roots;
   if (isolated_trivially(p, lo, hi, roots)) return roots;
   SturmSequence sturm(p);

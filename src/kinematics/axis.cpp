@@ -108,7 +108,10 @@ int compare(const AxisPosition& a, const AxisPosition& b) {
 }
 
 double coordinate(const AxisLine& line, const AxisPosition& position) {
-  return line.coordinate(position.piece, position.value.approximate());
+  // the same double every time (approximate() is a function of the isolating interval):
+  // computed once per position and its copies
+  if (std::isnan(position.approximate)) position.approximate = position.value.approximate();
+  return line.coordinate(position.piece, position.approximate);
 }
 
 Rational rational_near(const Real& value, int bits) {

@@ -7,6 +7,7 @@
 #include <hipair/model.hpp>
 
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -42,6 +43,9 @@ AxisLine make_axis(const Model& model, std::size_t part, const std::vector<Chart
 struct AxisPosition {
   std::size_t piece = 0;
   Real value;
+  /// value.approximate(), computed on first use by coordinate() (NaN until then). Copies carry
+  /// it with the value; nothing changes `value` in place after construction.
+  mutable double approximate = std::numeric_limits<double>::quiet_NaN();
 };
 
 AxisPosition canonical(const AxisLine& line, AxisPosition position);

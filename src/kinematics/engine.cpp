@@ -622,6 +622,8 @@ ChainState step(const Chain& chain, const ChainState& state, std::size_t piece, 
       }
     }
   }
+  // known[k] was computed as rates() would (parts in chain order, part k final from then on)
+  next.known_rates = std::move(known);
   return next;
 }
 
@@ -755,6 +757,7 @@ Rates rate_of(const Chain& chain, const ChainState& state, std::size_t k, const 
 }
 
 std::vector<Rates> rates(const Chain& chain, const ChainState& state) {
+  if (state.known_rates.size() == chain.parts.size()) return state.known_rates;
   std::vector<Rates> result;
   for (std::size_t k = 0; k < chain.parts.size(); ++k) result.push_back(rate_of(chain, state, k, result));
   return result;

@@ -58,6 +58,12 @@ struct PartState {
   bool channel = false;
 };
 
+/// Velocity ratio and acceleration of chain part `k` with respect to the driver (double).
+struct Rates {
+  double ratio = 0;
+  double acceleration = 0;
+};
+
 /// State of the whole chain.
 struct ChainState {
   std::size_t driver_piece = 0;
@@ -69,6 +75,9 @@ struct ChainState {
   std::size_t jam_part = none;
   std::string jam_reason;
   std::vector<SliceContact> jam_contacts;
+  /// rates(chain, *this) when step() computed them on the way (a state it completed), else
+  /// empty: rates() then computes them.
+  std::vector<Rates> known_rates;
 };
 
 /// Moves the chain from `state` to the driver at (piece, value, unwrapped). When `strict`, a
@@ -85,11 +94,7 @@ ChainState initial_state(const Chain& chain, std::size_t piece, const Rational& 
 /// True when the contact situation of every part is the same.
 bool same_contacts(const ChainState& a, const ChainState& b);
 
-/// Velocity ratio and acceleration of chain part `k` with respect to the driver (double).
-struct Rates {
-  double ratio = 0;
-  double acceleration = 0;
-};
+/// Velocity ratios and accelerations of the chain parts (ChainState::known_rates when set).
 std::vector<Rates> rates(const Chain& chain, const ChainState& state);
 /// The same for chain part `k` when the parts before it are known.
 Rates rate_of(const Chain& chain, const ChainState& state, std::size_t k, const std::vector<Rates>& known);

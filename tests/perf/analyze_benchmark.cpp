@@ -6,6 +6,11 @@
 //                                        does) by Real::refine_to (/0) and by the halving of
 //                                        canonical rationals it replaced (/1, the peer); the
 //                                        counter `ratio` of /1 is its thread CPU time over /0's
+//   BM_CompareRoots/0 and /1             every ordered pair of 120 close roots (relative gaps down
+//                                        to 2^-80, equal ones from other polynomials) compared by
+//                                        algebra::compare (/0, with its double filter) and by the
+//                                        unfiltered exact comparison it had before (/1, the peer:
+//                                        refinement of copies by 2^-20, gcd and Sturm count)
 #include "algebra/exact_real.hpp"
 
 #include <hipair/kinematics.hpp>
@@ -13,6 +18,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <ctime>
 #include <filesystem>
 #include <string>
@@ -84,13 +90,27 @@ double thread_cpu_seconds() {
   return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
-void BM_RefineRoots(benchmark::State& state) {
-  const std::vector<algebra::Real> roots = quartic_roots();
-  bool halving = state.range(0) == 1;
+// Runs `work` once per iteration and records its mean thread CPU time: in `fast` for the
+// measured code (peer = false), as the counter `ratio` (peer / measured) for its peer.
+template <class Work>
+void side_by_side(benchmark::State& state, bool peer, double& fast, Work work) {
   double seconds = 0;
   std::size_t rounds = 0;
   for (auto _ : state) {
     double start = thread_cpu_seconds();
+    work();
+    seconds += thread_cpu_seconds() - start;
+    ++rounds;
+  }
+  double mean = seconds / static_cast<double>(rounds);
+  if (!peer) fast = mean;
+  if (peer && fast > 0) state.counters["ratio"] = mean / fast;
+}
+
+void BM_RefineRoots(benchmark::State& state) {
+  const std::vector<algebra::Real> roots = quartic_roots();
+  bool halving = state.range(0) == 1;
+  side_by_side(state, halving, fast_seconds, [&] {
     for (const algebra::Real& root : roots) {
       algebra::Real copy = root;
       Rational width = (abs(copy.lower) + abs(copy.upper)) / Rational(mpz_class(1) << 60);
@@ -100,14 +120,73 @@ void BM_RefineRoots(benchmark::State& state) {
         copy.refine_to(width);
       benchmark::DoNotOptimize(copy);
     }
-    seconds += thread_cpu_seconds() - start;
-    ++rounds;
-  }
-  double mean = seconds / static_cast<double>(rounds);
-  if (!halving) fast_seconds = mean;
-  if (halving && fast_seconds > 0) state.counters["ratio"] = mean / fast_seconds;
+  });
   state.SetLabel(halving ? "canonical halving (peer)" : "refine_to");
 }
 BENCHMARK(BM_RefineRoots)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// compare() as it was before its double filter (session 12).
+int unfiltered_compare(const algebra::Real& a, const algebra::Real& b) {
+  if (a.exact) return -b.compare(a.lower);
+  if (b.exact) return a.compare(b.lower);
+  if (a.upper <= b.lower) return -1;
+  if (b.upper <= a.lower) return 1;
+  {
+    algebra::Real x = a, y = b;
+    Rational width = std::max(Rational(x.upper - x.lower), Rational(y.upper - y.lower)) / 1048576;
+    x.refine_to(width);
+    y.refine_to(width);
+    if (x.exact || y.exact) return unfiltered_compare(x, y);
+    if (x.upper <= y.lower) return -1;
+    if (y.upper <= x.lower) return 1;
+  }
+  algebra::Polynomial g = algebra::gcd(a.polynomial, b.polynomial);
+  Rational lo = std::max(a.lower, b.lower), hi = std::min(a.upper, b.upper);
+  if (algebra::degree(g) >= 1) {
+    algebra::SturmSequence sturm(g);
+    if (sturm.count(lo, hi) - (algebra::sign_at(g, hi) == 0 ? 1 : 0) > 0) return 0;
+  }
+  algebra::Real x = a, y = b;
+  for (;;) {
+    Rational width = std::max(Rational(x.upper - x.lower), Rational(y.upper - y.lower)) / 65536;
+    x.refine_to(width);
+    y.refine_to(width);
+    if (x.exact || y.exact) return unfiltered_compare(x, y);
+    if (x.upper <= y.lower) return -1;
+    if (y.upper <= x.lower) return 1;
+  }
+}
+
+std::vector<algebra::Real> close_roots() {
+  gmp_randclass random(gmp_randinit_default);
+  random.seed(1428);
+  std::vector<algebra::Real> roots;
+  for (int i = 0; roots.size() < 120; ++i) {
+    mpz_class a = random.get_z_bits(30) + 2, b = random.get_z_bits(12) + 1;
+    mpz_class scale = mpz_class(1) << (i * 9 % 81);
+    // b x^2 - a, (b scale) x^2 - (a scale + a), and (x - 5) (b x^2 - a): close and equal roots
+    for (const algebra::Polynomial& p :
+         {algebra::Polynomial{-a, 0, b}, algebra::primitive_part(algebra::Polynomial{-(a * scale + a), 0, b * scale}),
+          algebra::Polynomial{5 * a, -a, -5 * b, b}})
+      for (algebra::Real& root : algebra::real_roots(p, Rational(0), Rational(a + 1, b) + 1))
+        if (!root.exact) roots.push_back(root);
+  }
+  return roots;
+}
+
+double filtered_compare_seconds = 0;
+
+void BM_CompareRoots(benchmark::State& state) {
+  const std::vector<algebra::Real> roots = close_roots();
+  bool unfiltered = state.range(0) == 1;
+  side_by_side(state, unfiltered, filtered_compare_seconds, [&] {
+    int sum = 0;
+    for (const algebra::Real& x : roots)
+      for (const algebra::Real& y : roots) sum += unfiltered ? unfiltered_compare(x, y) : algebra::compare(x, y);
+    benchmark::DoNotOptimize(sum);
+  });
+  state.SetLabel(unfiltered ? "unfiltered exact compare (peer)" : "compare with double filter");
+}
+BENCHMARK(BM_CompareRoots)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(2);
 
 }  // namespace

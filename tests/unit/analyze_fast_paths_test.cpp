@@ -1,0 +1,164 @@
+// The fast paths of the kinematic analysis against their exact or uncached forms, on generated
+// cases: compare() of real algebraic numbers (certified double bisection filter, equality of
+// two roots of one polynomial by two signs) against the unfiltered exact comparison, and the
+// engine's kept rates and coordinates against recomputing them.
+#include "algebra/exact_real.hpp"
+#include "kinematics/engine.hpp"
+
+#include <hipair/model.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace hipair {
+namespace {
+
+using cspace::algebra::Polynomial;
+using cspace::algebra::Real;
+namespace algebra = cspace::algebra;
+
+Polynomial multiply(const Polynomial& a, const Polynomial& b) {
+  Polynomial product(a.size() + b.size() - 1);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) product[i + j] += a[i] * b[j];
+  return product;
+}
+
+// compare() as it was before the filters: separated intervals, else refinement of copies by
+// exact canonical bisection, the gcd's Sturm count on the common part, and refinement until
+// the intervals separate.
+void bisect(Real& r) {
+  Rational middle = (r.lower + r.upper) / 2;
+  int s = algebra::sign_at(r.polynomial, middle);
+  if (s == 0) {
+    r.lower = r.upper = middle;
+    r.exact = true;
+  } else if (s == algebra::sign_at(r.polynomial, r.lower)) {
+    r.lower = middle;
+  } else {
+    r.upper = middle;
+  }
+}
+
+int reference_compare(const Real& a, const Real& b) {
+  if (a.exact && b.exact) return cmp(a.lower, b.lower) < 0 ? -1 : cmp(a.lower, b.lower) > 0 ? 1 : 0;
+  if (a.exact) return -b.compare(a.lower);
+  if (b.exact) return a.compare(b.lower);
+  if (a.upper <= b.lower) return -1;
+  if (b.upper <= a.lower) return 1;
+  Polynomial g = algebra::gcd(a.polynomial, b.polynomial);
+  Rational lo = std::max(a.lower, b.lower), hi = std::min(a.upper, b.upper);
+  if (algebra::degree(g) >= 1) {
+    algebra::SturmSequence sturm(g);
+    if (sturm.count(lo, hi) - (algebra::sign_at(g, hi) == 0 ? 1 : 0) > 0) return 0;
+  }
+  Real x = a, y = b;
+  for (;;) {
+    bisect(x);
+    bisect(y);
+    if (x.exact || y.exact) return reference_compare(x, y);
+    if (x.upper <= y.lower) return -1;
+    if (y.upper <= x.lower) return 1;
+  }
+}
+
+// Roots of (b x^2 - a) and of (b x^2 - a - d) with d from 1 down to 2^-120 of a (closer than
+// doubles resolve), of products sharing a factor (equal numbers from different polynomials),
+// and the same root with overlapping isolating intervals of one polynomial (equal) next to an
+// interval of a neighbouring root overlapping it (distinct): every pair compared both ways.
+TEST(AnalyzeFastPaths, CompareFilterAgreesWithExactComparison) {
+  gmp_randclass random(gmp_randinit_default);
+  random.seed(20261128);
+  std::size_t pairs = 0, equal = 0, beyond_doubles = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    std::vector<Real> numbers;
+    mpz_class a = random.get_z_bits(trial % 2 ? 64 : 12) + 2, b = random.get_z_bits(trial % 3 ? 20 : 8) + 1;
+    int gap_bits = (trial * 7) % 121;   // relative gap 2^-gap_bits
+    mpz_class scale = mpz_class(1) << gap_bits;
+    // b x^2 - a and (b scale) x^2 - (a scale + a): roots sqrt(a/b) and sqrt(a/b (1 + 2^-gap))
+    Polynomial p{-a, 0, b};
+    Polynomial q = algebra::primitive_part(Polynomial{-(a * scale + a), 0, b * scale});
+    Polynomial shared = multiply(p, Polynomial{mpz_class(trial + 3), mpz_class(-2)});   // (3 + t - 2 x) p
+    Rational top = Rational(a + 1, b) + 2 + trial;
+    for (const Polynomial& poly : {p, q, algebra::square_free_part(shared)})
+      for (Real& root : algebra::real_roots(poly, Rational(-top), top)) numbers.push_back(root);
+    // one polynomial, overlapping isolating intervals: the same positive root, and the
+    // negative root with an interval reaching up past zero towards the positive one
+    std::vector<Real> roots = algebra::real_roots(p, Rational(-top), top);
+    ASSERT_EQ(roots.size(), 2u);
+    Real negative = roots[0], positive = roots[1];
+    if (!positive.exact) {
+      Real narrow = positive;
+      narrow.refine_to((positive.upper - positive.lower) / 1024);
+      Real shifted = narrow;   // (lower of narrow, upper of positive): the same root
+      shifted.upper = positive.upper;
+      numbers.push_back(narrow);
+      numbers.push_back(shifted);
+      Real reaching = negative;   // (lower, midpoint of 0 and the positive root's lower end)
+      if (!negative.exact && narrow.lower > 0) {
+        reaching.upper = narrow.lower / 2;
+        if (algebra::sign_at(p, reaching.upper) != 0) numbers.push_back(reaching);
+      }
+    }
+    numbers.push_back(Real::from_rational(Rational(trial + 3, 2)));   // the rational root of `shared`
+    for (const Real& x : numbers)
+      for (const Real& y : numbers) {
+        int expected = reference_compare(x, y);
+        ASSERT_EQ(algebra::compare(x, y), expected) << x.description() << " vs " << y.description();
+        ASSERT_EQ(algebra::compare(y, x), -expected);
+        ++pairs;
+        equal += expected == 0;
+        beyond_doubles += expected != 0 && gap_bits > 60 && x.upper > y.lower && y.upper > x.lower;
+      }
+  }
+  EXPECT_GT(pairs, 2000u);
+  EXPECT_GT(equal, 400u);
+  EXPECT_GT(beyond_doubles, 10u);
+}
+
+// step() keeps the rates it computed: the same as rates() recomputes for that state; and the
+// cached coordinate of a position is the double of its value's approximate().
+TEST(AnalyzeFastPaths, KeptRatesAndCoordinatesAreTheRecomputedOnes) {
+  Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/ratchet.json");
+  std::size_t driver = *model.find_part("wheel");
+  using namespace kinematics_detail;
+  Chain chain = build_chain(model, driver, {}, SliceMethod::kernels, {});
+  std::vector<Interference> interference;
+  const AxisLine& line = chain.parts[0].line;
+  ChainState state = initial_state(chain, 0, Rational(0), 0.0, interference);
+  ASSERT_FALSE(state.jammed);
+  std::size_t kept = 0;
+  for (int i = 1; i <= 120; ++i) {
+    // t = tan(theta / 2) on the driver's first chart, theta up to 60 degrees in 0.5 degree steps
+    double theta = i * std::numbers::pi / 360;
+    Rational t(mpz_class(static_cast<long>(std::llround(std::tan(theta / 2) * 1048576.0))), mpz_class(1048576));
+    t.canonicalize();
+    ChainState next = step(chain, state, 0, t, theta);
+    if (next.jammed) break;
+    ASSERT_EQ(next.known_rates.size(), chain.parts.size());
+    ChainState fresh = next;
+    fresh.known_rates.clear();
+    std::vector<Rates> recomputed = rates(chain, fresh);
+    for (std::size_t k = 0; k < chain.parts.size(); ++k) {
+      // bitwise the same doubles (NaN for an undefined ratio)
+      EXPECT_EQ(std::isnan(recomputed[k].ratio), std::isnan(next.known_rates[k].ratio));
+      if (!std::isnan(recomputed[k].ratio)) EXPECT_EQ(recomputed[k].ratio, next.known_rates[k].ratio);
+      if (!std::isnan(recomputed[k].acceleration)) EXPECT_EQ(recomputed[k].acceleration, next.known_rates[k].acceleration);
+      const AxisPosition& position = next.parts[k].position;
+      const AxisLine& part_line = chain.parts[k].line;
+      double first = coordinate(part_line, position), again = coordinate(part_line, position);
+      EXPECT_EQ(first, part_line.coordinate(position.piece, position.value.approximate()));
+      EXPECT_EQ(again, first);
+    }
+    ++kept;
+    state = std::move(next);
+  }
+  EXPECT_GT(kept, 100u);
+  (void)line;
+}
+
+}  // namespace
+}  // namespace hipair
