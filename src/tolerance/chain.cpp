@@ -141,10 +141,19 @@ class ChainAnalysis {
     k.method = SliceMethod::automatic;
     // The exact C-space of every pair of two moving parts (the kinematic engine's slices, as for a
     // single pair); pairs with a fixed part are sliced from the contact kernels (exact too).
+    // Each is built once: the pairs' analyses below slice the same spaces.
     std::vector<CSpace> spaces;
+    std::vector<std::pair<std::size_t, std::size_t>> space_parts;
     for (const PairSpec& pair : model.pairs)
-      if (moving(model, pair.first) && moving(model, pair.second))
+      if (moving(model, pair.first) && moving(model, pair.second)) {
         spaces.push_back(CSpace::build(model, model.parts[pair.first].name, model.parts[pair.second].name));
+        space_parts.emplace_back(pair.first, pair.second);
+      }
+    auto space_of = [&](std::size_t a, std::size_t b) -> const CSpace* {
+      for (std::size_t k = 0; k < spaces.size(); ++k)
+        if (space_parts[k] == std::pair(a, b) || space_parts[k] == std::pair(b, a)) return &spaces[k];
+      return nullptr;
+    };
     KinematicsResult kinematics = analyze_kinematics(model, k, spaces);
     if (kinematics.jam) notes_.push_back("the nominal mechanism jams: " + kinematics.jam->description);
     auto follower_index = [&](std::size_t part) {
@@ -176,7 +185,7 @@ class ChainAnalysis {
       stage_options.follower = b;
       stage_options.chain = false;
       stage_options.progress = nullptr;
-      stages_.push_back(analyze_stage(text_, stage_options, path));
+      stages_.push_back(analyze_stage(text_, stage_options, path, space_of(parts[s - 1], parts[s])));
       ChainStage summary;
       summary.driver = a;
       summary.follower = b;
@@ -337,6 +346,27 @@ class ChainAnalysis {
         double linear = 0;
         for (std::size_t p = 0; p < n && p < total.size(); ++p) linear += std::fabs(total[p]) * (b.hi[p] - b.lo[p]);
         bool accurate = composed && out.width() <= linear * (1 + options_.relative_accuracy) + options_.absolute_accuracy;
+        if (!composed && used + pending.size() + 2 <= max_shared_boxes) {
+          // A sub-box whose composition cannot be certified (a pair's driver range so wide that
+          // its root is not certified unique, or a pair not certified over it): halve it along
+          // the parameter moving the output most over it (|total d out / dp| x width; every
+          // partition is sound), rather than give the position up.
+          std::size_t split = n;
+          double best = 0;
+          for (std::size_t p = 0; p < n && p < total.size(); ++p) {
+            double score = std::fabs(total[p]) * (b.hi[p] - b.lo[p]);
+            if (b.hi[p] > b.lo[p] && score > best) {
+              best = score;
+              split = p;
+            }
+          }
+          if (split < n) {
+            auto [left, right] = halves(b, split);
+            pending.push_back(std::move(left));
+            pending.push_back(std::move(right));
+            continue;
+          }
+        }
         if (composed && !accurate && used + pending.size() + 2 <= max_shared_boxes) {
           // Bisection removes at most the independence loss, sum_p loss_p x width_p: split only
           // when that explains at least half the excess over the linearised width (otherwise the
