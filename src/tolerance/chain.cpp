@@ -346,27 +346,6 @@ class ChainAnalysis {
         double linear = 0;
         for (std::size_t p = 0; p < n && p < total.size(); ++p) linear += std::fabs(total[p]) * (b.hi[p] - b.lo[p]);
         bool accurate = composed && out.width() <= linear * (1 + options_.relative_accuracy) + options_.absolute_accuracy;
-        if (!composed && used + pending.size() + 2 <= max_shared_boxes) {
-          // A sub-box whose composition cannot be certified (a pair's driver range so wide that
-          // its root is not certified unique, or a pair not certified over it): halve it along
-          // the parameter moving the output most over it (|total d out / dp| x width; every
-          // partition is sound), rather than give the position up.
-          std::size_t split = n;
-          double best = 0;
-          for (std::size_t p = 0; p < n && p < total.size(); ++p) {
-            double score = std::fabs(total[p]) * (b.hi[p] - b.lo[p]);
-            if (b.hi[p] > b.lo[p] && score > best) {
-              best = score;
-              split = p;
-            }
-          }
-          if (split < n) {
-            auto [left, right] = halves(b, split);
-            pending.push_back(std::move(left));
-            pending.push_back(std::move(right));
-            continue;
-          }
-        }
         if (composed && !accurate && used + pending.size() + 2 <= max_shared_boxes) {
           // Bisection removes at most the independence loss, sum_p loss_p x width_p: split only
           // when that explains at least half the excess over the linearised width (otherwise the
