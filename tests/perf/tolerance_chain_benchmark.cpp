@@ -93,9 +93,7 @@ BENCHMARK(BM_GearTrain)
     ->Args({2, 10})
     ->Args({3, 10})
     ->Args({4, 10})
-    ->Args({5, 10})
     ->Args({2, 20})
-    ->Args({2, 30})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
 

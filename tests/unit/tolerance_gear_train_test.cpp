@@ -86,5 +86,34 @@ TEST(ToleranceChainGear, TwoGearTrainKeepsEveryMonteCarloSampleAndExactRecomputa
   }
 }
 
+// Three gears (two meshes, 37 parameters; the idler's act on both meshes) over 0..0.2 rad: the
+// second mesh's driver ranges over the first mesh's enclosure. The band is bounded wherever both
+// meshes hold (session 11: unbounded at most positions of gear-train-3), and no Monte Carlo
+// sample leaves it.
+TEST(ToleranceChainGear, ThreeGearTrainBandIsBoundedAndKeepsEveryMonteCarloSample) {
+  ToleranceOptions options;
+  options.driver = "gear-A";
+  options.chain = true;
+  options.range = std::make_pair(Rational(0), Rational(1, 5));
+  options.positions = 120;
+  options.threads = 2;
+  options.monte_carlo = 100;
+  options.seed = 9;
+  ToleranceResult result = analyze_tolerances_text(test_gears::gear_train(3), options);
+  ASSERT_EQ(result.chain.size(), 2u);
+  ASSERT_TRUE(result.monte_carlo.has_value());
+  EXPECT_EQ(result.monte_carlo->outside_certified, 0u);
+  std::size_t held = 0;
+  for (const VariationSample& s : result.samples) {
+    if (!s.contact) continue;
+    ++held;
+    EXPECT_TRUE(std::isfinite(s.certified.upper - s.certified.lower)) << s.driver;
+    EXPECT_LE(s.certified.lower, s.nominal) << s.driver;
+    EXPECT_GE(s.certified.upper, s.nominal) << s.driver;
+  }
+  EXPECT_GE(held, 3u);
+  EXPECT_EQ(result.monte_carlo->evaluations, result.monte_carlo->samples * held);
+}
+
 }  // namespace
 }  // namespace hipair
