@@ -27,6 +27,19 @@ double process_cpu() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
+// The analysis of `model` once per iteration; `cpu`: the last one's process CPU seconds.
+hipair::ToleranceResult measure(benchmark::State& state, const std::string& model, const hipair::ToleranceOptions& options,
+                                double& cpu) {
+  hipair::ToleranceResult result;
+  for (auto _ : state) {
+    double c0 = process_cpu();
+    result = hipair::analyze_tolerances_text(model, options);
+    cpu = process_cpu() - c0;
+    benchmark::DoNotOptimize(result.samples.data());
+  }
+  return result;
+}
+
 // `pairs` pairs with `per_pair` shims each; chain = false: the peer, the single-pair analysis of
 // one pair carrying the same number of shims (pairs = 1, per_pair = their total).
 void run(benchmark::State& state, std::size_t pairs, std::size_t per_pair, bool chain) {
@@ -37,14 +50,8 @@ void run(benchmark::State& state, std::size_t pairs, std::size_t per_pair, bool 
   options.chain = chain;
   options.positions = 360;
   options.threads = 1;
-  hipair::ToleranceResult result;
   double cpu = 0;
-  for (auto _ : state) {
-    double c0 = process_cpu();
-    result = hipair::analyze_tolerances_text(model, options);
-    cpu = process_cpu() - c0;
-    benchmark::DoNotOptimize(result.samples.data());
-  }
+  hipair::ToleranceResult result = measure(state, model, options, cpu);
   state.counters["pairs"] = static_cast<double>(pairs);
   state.counters["toleranced"] = static_cast<double>(pairs * per_pair + 1);
   state.counters["cpu_ms"] = 1e3 * cpu;
@@ -67,14 +74,8 @@ void BM_GearTrain(benchmark::State& state) {
   options.range = std::pair(hipair::Rational(0), hipair::Rational(1, 10));
   options.positions = 120;
   options.threads = 1;
-  hipair::ToleranceResult result;
   double cpu = 0;
-  for (auto _ : state) {
-    double c0 = process_cpu();
-    result = hipair::analyze_tolerances_text(model, options);
-    cpu = process_cpu() - c0;
-    benchmark::DoNotOptimize(result.samples.data());
-  }
+  hipair::ToleranceResult result = measure(state, model, options, cpu);
   std::size_t bounded = 0, held = 0;
   for (const hipair::VariationSample& s : result.samples)
     if (s.contact) {

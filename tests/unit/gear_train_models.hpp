@@ -8,7 +8,11 @@
 // plus the module: 12 gears + 1 in all.
 #pragma once
 
+#include <hipair/model.hpp>
+
+#include <random>
 #include <string>
+#include <vector>
 
 namespace hipair::test_gears {
 
@@ -51,6 +55,18 @@ inline std::string gear_train(unsigned gears, unsigned even_teeth = 10, unsigned
   return "{\"hipair\": 1, \"name\": \"gear-train-" + std::to_string(gears) +
          "\", \"units\": {\"length\": \"mm\", \"angle\": \"rad\"}, \"parameters\": {" + params + "}, \"parts\": [" + parts +
          "], \"pairs\": [" + pairs + "]}";
+}
+
+/// A deviation vector (Model::parameters order) drawn uniformly on a grid of 1/1000 of each
+/// toleranced parameter's range (exact rationals); 0 for the others.
+inline std::vector<Rational> random_deviations(const std::vector<Parameter>& parameters, std::mt19937& rng) {
+  std::uniform_int_distribution<int> u(0, 1000);
+  std::vector<Rational> d(parameters.size(), Rational(0));
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const Parameter& p = parameters[i];
+    if (p.range.lo != p.range.hi) d[i] = p.range.lo - p.nominal + Rational(u(rng), 1000) * (p.range.hi - p.range.lo);
+  }
+  return d;
 }
 
 }  // namespace hipair::test_gears

@@ -30,6 +30,19 @@ nlohmann::json example(const char* name) {
   return nlohmann::json::parse(in);
 }
 
+// The chain from gear-A over [0, end] at 120 positions per turn, with Monte Carlo.
+ToleranceOptions chain_options(const Rational& end, std::size_t monte_carlo, unsigned seed) {
+  ToleranceOptions options;
+  options.driver = "gear-A";
+  options.chain = true;
+  options.range = std::make_pair(Rational(0), end);
+  options.positions = 120;
+  options.threads = 2;
+  options.monte_carlo = monte_carlo;
+  options.seed = seed;
+  return options;
+}
+
 TEST(GearTrainModels, GeneratedTrainsAreTheExamples) {
   for (auto [gears, name] : {std::pair(3u, "gear-train-3.json"), std::pair(9u, "gear-train.json")}) {
     SCOPED_TRACE(name);
@@ -45,14 +58,7 @@ TEST(GearTrainModels, GeneratedTrainsAreTheExamples) {
 // certified band, and exact recomputations at random vectors inside it where it is bounded.
 TEST(ToleranceChainGear, TwoGearTrainKeepsEveryMonteCarloSampleAndExactRecomputationInTheCertifiedBand) {
   std::string text = test_gears::gear_train(2);
-  ToleranceOptions options;
-  options.driver = "gear-A";
-  options.chain = true;
-  options.range = std::make_pair(Rational(0), Rational(3, 10));
-  options.positions = 120;
-  options.threads = 2;
-  options.monte_carlo = 200;
-  options.seed = 5;
+  ToleranceOptions options = chain_options(Rational(3, 10), 200, 5);
   ToleranceResult result = analyze_tolerances_text(text, options);
   ASSERT_TRUE(result.monte_carlo.has_value());
   EXPECT_EQ(result.monte_carlo->outside_certified, 0u);
@@ -68,14 +74,8 @@ TEST(ToleranceChainGear, TwoGearTrainKeepsEveryMonteCarloSampleAndExactRecomputa
   RecordProperty("bounded", static_cast<int>(bounded));
   auto model = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text));
   std::mt19937 rng(41);
-  std::uniform_int_distribution<int> u(0, 1000);
   for (int trial = 0; trial < 2; ++trial) {
-    std::vector<Rational> d(result.parameters.size(), Rational(0));
-    for (std::size_t i = 0; i < d.size(); ++i) {
-      const Parameter& p = result.parameters[i];
-      if (p.range.lo != p.range.hi) d[i] = p.range.lo - p.nominal + Rational(u(rng), 1000) * (p.range.hi - p.range.lo);
-    }
-    Model exact = model->exact_model(d);
+    Model exact = model->exact_model(test_gears::random_deviations(result.parameters, rng));
     for (std::size_t k = 0; k < result.samples.size(); k += 4) {
       const VariationSample& s = result.samples[k];
       if (!s.contact || !std::isfinite(s.certified.upper - s.certified.lower)) continue;
@@ -91,14 +91,7 @@ TEST(ToleranceChainGear, TwoGearTrainKeepsEveryMonteCarloSampleAndExactRecomputa
 // meshes hold (session 11: unbounded at most positions of gear-train-3), and no Monte Carlo
 // sample leaves it.
 TEST(ToleranceChainGear, ThreeGearTrainBandIsBoundedAndKeepsEveryMonteCarloSample) {
-  ToleranceOptions options;
-  options.driver = "gear-A";
-  options.chain = true;
-  options.range = std::make_pair(Rational(0), Rational(1, 5));
-  options.positions = 120;
-  options.threads = 2;
-  options.monte_carlo = 100;
-  options.seed = 9;
+  ToleranceOptions options = chain_options(Rational(1, 5), 100, 9);
   ToleranceResult result = analyze_tolerances_text(test_gears::gear_train(3), options);
   ASSERT_EQ(result.chain.size(), 2u);
   ASSERT_TRUE(result.monte_carlo.has_value());
