@@ -7,7 +7,8 @@
 //     pair's driver) is the previous pair's output;
 //   - the linearised and RSS bands from the composed sensitivities;
 //   - the certified band by interval composition: each pair's certified enclosure over the whole
-//     tolerance box, its driver ranging over the previous pair's enclosure (no linearisation),
+//     tolerance box, its driver ranging over the previous pair's enclosure (no linearisation;
+//     the driver's range enters the pair's mean-value form like a parameter: solver.cpp box_range),
 //     the box bisected along parameters that act on several pairs (certified()) so that they
 //     vary together;
 //   - Monte Carlo: at each sampled vector, each pair's root certified (interval bisection) with
