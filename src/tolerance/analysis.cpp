@@ -244,8 +244,11 @@ class Analysis {
 
   // One pair of an assembly chain at the chain's positions (stage.hpp): the nominal path is
   // given, and only the sensitivities and the linearised and RSS bands are computed here.
-  tolerance_detail::StageAnalysis stage(const std::vector<tolerance_detail::StagePosition>& path) {
-    start();
+  // `space`: the pair's C-space when the caller built it already (the chain's kinematics), else
+  // built here.
+  tolerance_detail::StageAnalysis stage(const std::vector<tolerance_detail::StagePosition>& path,
+                                        const CSpace* space = nullptr) {
+    start(space);
     for (const tolerance_detail::StagePosition& position : path)
       add_sample(position.driver, position.follower, position.contact);
     sensitivities();
@@ -270,7 +273,7 @@ class Analysis {
   }
 
   // What run() and stage() share: the parts, the distributions and box, the pair's C-space.
-  void start() {
+  void start(const CSpace* given = nullptr) {
     const Model& m = model_->nominal();
     result_.model_name = m.name;
     result_.parameters = m.parameters;
@@ -287,7 +290,7 @@ class Analysis {
       result_.sigma.push_back(dist_[i].sigma);
       result_.mean_shift.push_back(dist_[i].mean);
     }
-    space_ = std::make_unique<CSpace>(CSpace::build(m, pair_first_, pair_second_));
+    space_ = std::make_unique<CSpace>(given ? *given : CSpace::build(m, pair_first_, pair_second_));
     driver_is_x_ = space_->x_part() == result_.driver;
   }
 
@@ -1244,8 +1247,9 @@ class Analysis {
 
 namespace tolerance_detail {
 
-StageAnalysis analyze_stage(std::string_view text, const ToleranceOptions& options, const std::vector<StagePosition>& path) {
-  return Analysis(text, options).stage(path);
+StageAnalysis analyze_stage(std::string_view text, const ToleranceOptions& options, const std::vector<StagePosition>& path,
+                            const CSpace* space) {
+  return Analysis(text, options).stage(path, space);
 }
 
 }  // namespace tolerance_detail

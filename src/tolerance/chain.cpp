@@ -7,7 +7,8 @@
 //     pair's driver) is the previous pair's output;
 //   - the linearised and RSS bands from the composed sensitivities;
 //   - the certified band by interval composition: each pair's certified enclosure over the whole
-//     tolerance box, its driver ranging over the previous pair's enclosure (no linearisation),
+//     tolerance box, its driver ranging over the previous pair's enclosure (no linearisation;
+//     the driver's range enters the pair's mean-value form like a parameter: solver.cpp box_range),
 //     the box bisected along parameters that act on several pairs (certified()) so that they
 //     vary together;
 //   - Monte Carlo: at each sampled vector, each pair's root certified (interval bisection) with
@@ -141,10 +142,19 @@ class ChainAnalysis {
     k.method = SliceMethod::automatic;
     // The exact C-space of every pair of two moving parts (the kinematic engine's slices, as for a
     // single pair); pairs with a fixed part are sliced from the contact kernels (exact too).
+    // Each is built once: the pairs' analyses below slice the same spaces.
     std::vector<CSpace> spaces;
+    std::vector<std::pair<std::size_t, std::size_t>> space_parts;
     for (const PairSpec& pair : model.pairs)
-      if (moving(model, pair.first) && moving(model, pair.second))
+      if (moving(model, pair.first) && moving(model, pair.second)) {
         spaces.push_back(CSpace::build(model, model.parts[pair.first].name, model.parts[pair.second].name));
+        space_parts.emplace_back(pair.first, pair.second);
+      }
+    auto space_of = [&](std::size_t a, std::size_t b) -> const CSpace* {
+      for (std::size_t k = 0; k < spaces.size(); ++k)
+        if (space_parts[k] == std::pair(a, b) || space_parts[k] == std::pair(b, a)) return &spaces[k];
+      return nullptr;
+    };
     KinematicsResult kinematics = analyze_kinematics(model, k, spaces);
     if (kinematics.jam) notes_.push_back("the nominal mechanism jams: " + kinematics.jam->description);
     auto follower_index = [&](std::size_t part) {
@@ -176,7 +186,7 @@ class ChainAnalysis {
       stage_options.follower = b;
       stage_options.chain = false;
       stage_options.progress = nullptr;
-      stages_.push_back(analyze_stage(text_, stage_options, path));
+      stages_.push_back(analyze_stage(text_, stage_options, path, space_of(parts[s - 1], parts[s])));
       ChainStage summary;
       summary.driver = a;
       summary.follower = b;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace hipair::tolerance_detail {
 
@@ -150,11 +151,23 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   std::shared_ptr<const BoxGeometry> memo = box_geometry(curve, box, center);
   const std::vector<std::size_t>& active = memo->active;
   std::size_t k = active.size();   // the free coordinate's index
+  // A held coordinate ranging over an enclosure (assembly chains) enters in mean-value form too:
+  // the root is taken at its midpoint t_c, and F_t over the box times (range - t_c) is added
+  // (plain interval evaluation over the range would lose the dependence of the pose's sine and
+  // cosine on it).
+  CurveSlice at_mid = curve;
+  std::optional<Interval> held_offset;
+  if (curve.fixed_range) {
+    double mid = curve.fixed_range->middle();
+    at_mid.fixed_range = Interval::point(mid);
+    held_offset = Interval::point(curve.fixed_range->lo) - Interval::point(mid);
+    held_offset = kernels::hull(*held_offset, Interval::point(curve.fixed_range->hi) - Interval::point(mid));
+  }
   Interval root;
   double w0 = spread + slack;
   bool found = false;
   for (int attempt = 0; attempt < 4 && !found; ++attempt, w0 *= 4)
-    found = certified_point_root(curve, memo->at_center, Interval(free_value + shift - w0, free_value + shift + w0), root);
+    found = certified_point_root(at_mid, memo->at_center, Interval(free_value + shift - w0, free_value + shift + w0), root);
   if (!found) return false;
   // Geometry over the box as interval jets (values and partial derivatives over the box), and
   // at its centre as intervals. F over the box at a fixed v is enclosed in mean-value form:
@@ -162,14 +175,17 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   const PairGeometry<IntervalJet>& jet = memo->jet;
   const PairGeometry<Interval>& at_center = memo->at_center;
   Interval fixed = curve.fixed_range ? *curve.fixed_range : Interval::enclose(curve.fixed_value);
-  IntervalJet fixed_jet(fixed);
+  // the held coordinate is the jets' variable k + 1 when it ranges (its partial: F_t)
+  IntervalJet fixed_jet = held_offset ? IntervalJet::variable(fixed, k + 1, k + 2) : IntervalJet(fixed);
+  Interval fixed_at_mid = held_offset ? *at_mid.fixed_range : fixed;
   auto sign_over_box = [&](double v) {
-    Interval value = evaluate<Interval>(curve, at_center, fixed, Interval::point(v));
+    Interval value = evaluate<Interval>(curve, at_center, fixed_at_mid, Interval::point(v));
     IntervalJet f = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet(Interval::point(v)));
     for (std::size_t a = 0; a < k; ++a) {
       std::size_t i = active[a];
       value = value + f.partial(a) * Interval(box.lo[i] - center[i], box.hi[i] - center[i]);
     }
+    if (held_offset) value = value + f.partial(k + 1) * *held_offset;
     return value.sign();
   };
   auto offset = [&](std::size_t i) {   // B_i - c_i, outward rounded
@@ -182,7 +198,7 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     int s_lo = sign_over_box(y.lo);
     int s_hi = sign_over_box(y.hi);
     if (s_lo == 2 || s_hi == 2 || s_lo == 0 || s_hi == 0 || s_lo == s_hi) return false;
-    IntervalJet f = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, k + 1));
+    IntervalJet f = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
     Interval fv = f.partial(k);
     int s = fv.sign();
     if (s != 1 && s != -1) return false;
@@ -194,6 +210,7 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
       enclosure = enclosure + g * kernels::hull(offset(i), upper_offset(i));
       split_score[i] = g.width() * (box.hi[i] - box.lo[i]);
     }
+    if (held_offset) enclosure = enclosure + (-(f.partial(k + 1) / fv)) * *held_offset;
     out = Interval(std::max(enclosure.lo, y.lo), std::min(enclosure.hi, y.hi));
     return true;
   };

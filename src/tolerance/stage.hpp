@@ -86,9 +86,10 @@ void parallel_for(unsigned threads, std::size_t count, const std::function<void(
 /// The analysis of an assembly chain (ToleranceOptions::chain; chain.cpp).
 ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options);
 
-/// The pair (options.driver, options.follower) of the model `text` at `path`.
-/// \throws ModelError, GeometryError.
+/// The pair (options.driver, options.follower) of the model `text` at `path`; `space`, when
+/// given, is the pair's nominal C-space (built by the caller for the same model text), not built
+/// again. \throws ModelError, GeometryError.
 StageAnalysis analyze_stage(std::string_view text, const ToleranceOptions& options,
-                            const std::vector<StagePosition>& path);
+                            const std::vector<StagePosition>& path, const CSpace* space = nullptr);
 
 }  // namespace hipair::tolerance_detail

@@ -4,12 +4,19 @@
 // shims per pair (plus the cam's eccentricity), analysed over one turn at 360 positions on one
 // thread (no Monte Carlo). The paper claims time grows as pairs x parameters per pair; the
 // counters give the CPU time of the whole analysis and of its certified band.
+// Gear trains (BM_GearTrain; docs/performance.md "Issue 12, session 12: gear trains"): the idler
+// trains of examples/models/gear-train.py (tests/unit/gear_train_models.hpp), `gears` gears of
+// `z` and `z` + 2 teeth alternating (12 toleranced parameters per gear + the module), over
+// 0..0.1 rad of the first gear at 120 positions per turn, one thread, one iteration each (each
+// mesh's exact C-space is built: seconds per mesh).
+#include "gear_train_models.hpp"
 #include "tolerance_chain_models.hpp"
 
 #include <hipair/tolerance.hpp>
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <ctime>
 
 namespace {
@@ -18,6 +25,19 @@ double process_cpu() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// The analysis of `model` once per iteration; `cpu`: the last one's process CPU seconds.
+hipair::ToleranceResult measure(benchmark::State& state, const std::string& model, const hipair::ToleranceOptions& options,
+                                double& cpu) {
+  hipair::ToleranceResult result;
+  for (auto _ : state) {
+    double c0 = process_cpu();
+    result = hipair::analyze_tolerances_text(model, options);
+    cpu = process_cpu() - c0;
+    benchmark::DoNotOptimize(result.samples.data());
+  }
+  return result;
 }
 
 // `pairs` pairs with `per_pair` shims each; chain = false: the peer, the single-pair analysis of
@@ -30,14 +50,8 @@ void run(benchmark::State& state, std::size_t pairs, std::size_t per_pair, bool 
   options.chain = chain;
   options.positions = 360;
   options.threads = 1;
-  hipair::ToleranceResult result;
   double cpu = 0;
-  for (auto _ : state) {
-    double c0 = process_cpu();
-    result = hipair::analyze_tolerances_text(model, options);
-    cpu = process_cpu() - c0;
-    benchmark::DoNotOptimize(result.samples.data());
-  }
+  hipair::ToleranceResult result = measure(state, model, options, cpu);
   state.counters["pairs"] = static_cast<double>(pairs);
   state.counters["toleranced"] = static_cast<double>(pairs * per_pair + 1);
   state.counters["cpu_ms"] = 1e3 * cpu;
@@ -49,6 +63,40 @@ void BM_LiftChain(benchmark::State& state) {
 }
 
 void BM_OnePairPeer(benchmark::State& state) { run(state, 1, static_cast<std::size_t>(state.range(0)), false); }
+
+void BM_GearTrain(benchmark::State& state) {
+  auto gears = static_cast<unsigned>(state.range(0));
+  auto z = static_cast<unsigned>(state.range(1));
+  std::string model = hipair::test_gears::gear_train(gears, z, z + 2);
+  hipair::ToleranceOptions options;
+  options.driver = "gear-A";
+  options.chain = true;
+  options.range = std::pair(hipair::Rational(0), hipair::Rational(1, 10));
+  options.positions = 120;
+  options.threads = 1;
+  double cpu = 0;
+  hipair::ToleranceResult result = measure(state, model, options, cpu);
+  std::size_t bounded = 0, held = 0;
+  for (const hipair::VariationSample& s : result.samples)
+    if (s.contact) {
+      ++held;
+      bounded += std::isfinite(s.certified.upper - s.certified.lower) ? 1 : 0;
+    }
+  state.counters["meshes"] = gears - 1;
+  state.counters["toleranced"] = 12.0 * gears + 1;
+  state.counters["cpu_ms"] = 1e3 * cpu;
+  state.counters["certified_cpu_ms"] = 1e3 * result.cpu_seconds_certified;
+  state.counters["held"] = static_cast<double>(held);
+  state.counters["bounded"] = static_cast<double>(bounded);
+}
+
+BENCHMARK(BM_GearTrain)
+    ->Args({2, 10})
+    ->Args({3, 10})
+    ->Args({4, 10})
+    ->Args({2, 20})
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_LiftChain)
     ->ArgsProduct({{1, 2, 3, 4, 5}, {5, 10, 20}})
