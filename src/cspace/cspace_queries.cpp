@@ -10,6 +10,7 @@
 #include <hipair/edge_tracker.hpp>
 #include <hipair/error.hpp>
 
+#include "cspace/angle_filter.hpp"
 #include "cspace/builder_impl.hpp"
 #include "curves/pose.hpp"
 #include "kernels/contact_geometry.hpp"
@@ -21,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <utility>
@@ -834,6 +836,16 @@ std::vector<AxisPiece> angle_pieces(const RInterval& theta, mpfr_prec_t bits) {
   return pieces;
 }
 
+// angle_pieces(theta, 64)'s pieces through the double-interval filter (src/cspace/angle_filter.hpp);
+// nullopt where the filter cannot decide: the caller takes angle_pieces.
+std::optional<std::vector<AxisPiece>> angle_pieces_filtered(const RInterval& theta) {
+  std::optional<std::vector<cspace::AnglePiece>> filtered = cspace::filtered_angle_pieces(theta.lo, theta.hi);
+  if (!filtered) return std::nullopt;
+  std::vector<AxisPiece> pieces;
+  for (const cspace::AnglePiece& p : *filtered) pieces.push_back(AxisPiece{true, p.half_turn, p.lo, p.hi});
+  return pieces;
+}
+
 // The chart-coordinate pieces of a half-angle-tangent enclosure t0 (chart centred at 0): the
 // part within [-1, 1], and the parts beyond the seams mapped to the chart centred at pi by
 // t -> -1/t.
@@ -972,6 +984,8 @@ class MotionScanner {
           too_wide = true;
           return {};
         }
+        if (!fine)
+          if (std::optional<std::vector<AxisPiece>> filtered = angle_pieces_filtered(value)) return *filtered;
         return angle_pieces(value, fine ? precision : 64);
     }
     return {};
@@ -1040,11 +1054,12 @@ class MotionScanner {
   void mean_value_exclusion(const Rational& a, const Rational& b, const AxisPiece& px, const AxisPiece& py,
                             std::vector<Possible>& possible) {
     // the path's pieces at a (the subdivision visits [a, m] right after [a, b]: kept for the
-    // last a)
+    // last a), through the filter (the exact ones only where exact_start_value needs them)
     if (!start_ || start_->a != a) {
-      StartPieces at{a, {}, {}, false, {}};
-      at.x = pieces(path_.x, a, a, at.wide, true);
-      if (impl_.dimension == 2) at.y = pieces(path_.y, a, a, at.wide, true);
+      StartPieces at;
+      at.a = a;
+      at.x = pieces(path_.x, a, a, at.wide, false);
+      if (impl_.dimension == 2) at.y = pieces(path_.y, a, a, at.wide, false);
       else at.y = {AxisPiece{false, false, Rational(0), Rational(0)}};
       start_ = std::move(at);
     }
@@ -1068,7 +1083,11 @@ class MotionScanner {
       // a start within rounding of the curve (a motion leaving a contact from a configuration a
       // few ulps off it): the double enclosure contains 0 at any depth, so take F over the
       // start's exact (160-bit) box in rational intervals, cached per start and curve
-      if (start.contains_zero()) start = exact_start_value(p.chart, p.curve, *sx, *sy);
+      if (start.contains_zero()) start = exact_start_value(p.chart, p.curve, px, py);
+      if (start.contains_zero()) {
+        kept.push_back(p);
+        continue;
+      }
       DInterval rate = g.fx.evaluate(x, y) * dx + g.fy.evaluate(x, y) * dy;
       DInterval value = start + h * rate;
       // (a non-finite bound, from overflow, proves nothing)
@@ -1080,10 +1099,25 @@ class MotionScanner {
   // F of local curve `curve` of `chart` over the start's rational box, enclosed in doubles
   // (outward): certified, and free of zero whenever the start lies off the curve by more than
   // the box's width (2^-160 relative), however close.
-  DInterval exact_start_value(std::size_t chart, std::size_t curve, const AxisPiece& x, const AxisPiece& y) {
+  // `px`, `py`: the systems of the stretch's pieces; the start's exact pieces are computed on
+  // first use (a start not in those systems: the whole line, nothing proved).
+  DInterval exact_start_value(std::size_t chart, std::size_t curve, const AxisPiece& px, const AxisPiece& py) {
     auto key = std::make_pair(chart, curve);
     auto it = start_->exact.find(key);
     if (it != start_->exact.end()) return it->second;
+    if (!start_->fine_ready) {
+      start_->fine_ready = true;
+      start_->fine_x = pieces(path_.x, start_->a, start_->a, start_->fine_wide, true);
+      if (impl_.dimension == 2) start_->fine_y = pieces(path_.y, start_->a, start_->a, start_->fine_wide, true);
+      else start_->fine_y = {AxisPiece{false, false, Rational(0), Rational(0)}};
+    }
+    const DInterval everything{-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    auto same = [](const AxisPiece& p, const AxisPiece& q) { return p.rotation == q.rotation && p.half_turn == q.half_turn; };
+    auto sx = std::find_if(start_->fine_x.begin(), start_->fine_x.end(), [&](const AxisPiece& p) { return same(p, px); });
+    auto sy = std::find_if(start_->fine_y.begin(), start_->fine_y.end(), [&](const AxisPiece& p) { return same(p, py); });
+    if (start_->fine_wide || sx == start_->fine_x.end() || sy == start_->fine_y.end()) return everything;
+    const AxisPiece& x = *sx;
+    const AxisPiece& y = *sy;
     const cspace::IntegerPolynomial2& f = impl_.charts[chart].polynomials[curve];
     RInterval X{x.lo, x.hi}, Y{y.lo, y.hi}, value = RInterval::point(Rational(0));
     for (std::size_t i = f.coefficients.size(); i-- > 0;) {
@@ -1218,6 +1252,9 @@ class MotionScanner {
     std::vector<AxisPiece> x, y;
     bool wide = false;
     std::map<std::pair<std::size_t, std::size_t>, cspace::algebra::Interval> exact;   // exact_start_value
+    // the exact (160-bit) pieces at a, computed on first use by exact_start_value
+    bool fine_ready = false, fine_wide = false;
+    std::vector<AxisPiece> fine_x, fine_y;
   };
   std::optional<StartPieces> start_;
   // per axis (x, y): the path's coefficients and those of its derivative, enclosed in doubles

@@ -1,0 +1,136 @@
+// The double-interval filter of first_crossing's angle pieces (src/cspace/angle_filter.hpp)
+// against a 256-bit MPFR oracle, on generated angles and angle ranges.
+#include "cspace/angle_filter.hpp"
+
+#include <gtest/gtest.h>
+#include <mpfr.h>
+
+#include <random>
+
+namespace hipair {
+namespace {
+
+struct Big {
+  mpfr_t v;
+  Big() { mpfr_init2(v, 256); }
+  ~Big() { mpfr_clear(v); }
+  Big(const Big&) = delete;
+  Big& operator=(const Big&) = delete;
+};
+
+// tan(y) for an exact double y, to 256 bits, compared exactly with the rationals lo <= hi
+bool tan_within(double y, const Rational& lo, const Rational& hi) {
+  Big t;
+  mpfr_set_d(t.v, y, MPFR_RNDN);   // exact
+  mpfr_tan(t.v, t.v, MPFR_RNDN);
+  return mpfr_cmp_q(t.v, lo.get_mpq_t()) >= 0 && mpfr_cmp_q(t.v, hi.get_mpq_t()) <= 0;
+}
+
+TEST(CSpaceAngleFilter, TanEnclosureContainsTheMpfrValueAndIsTight) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> uniform(-0.8, 0.8);
+  std::uniform_int_distribution<int> exponent(-1060, 0);
+  int checked = 0;
+  for (int i = 0; i < 200000; ++i) {
+    double y = i % 4 == 0 ? std::ldexp(uniform(rng), exponent(rng)) : uniform(rng);   // tiny ones too
+    if (i == 0) y = 0;
+    if (i == 1) y = 0.8;
+    if (i == 2) y = -0.8;
+    if (i == 3) y = 0.5 * cspace::pi_below / 2;
+    std::optional<kernels::Interval> t = cspace::tan_enclosure(kernels::Interval::point(y));
+    ASSERT_TRUE(t) << y;
+    ASSERT_TRUE(tan_within(y, Rational(t->lo), Rational(t->hi)))
+        << "y = " << y << " [" << t->lo << ", " << t->hi << "]";
+    // width: at most 64 units in the last place of the value (or 2^-1060 near 0)
+    double ulp = std::max(std::abs(std::tan(y)) * 2.220446049250313e-16, 1e-300);
+    ASSERT_LE(t->hi - t->lo, 64 * ulp + 1e-318) << y;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 200000);
+  EXPECT_FALSE(cspace::tan_enclosure(kernels::Interval::point(0.81)));
+}
+
+// The oracle: for an angle phi (256 bits), every chart system with |phi - c (mod 2 pi)| <= pi/2
+// and its t = tan((phi - c)/2).
+struct Chart {
+  bool half_turn;
+  Big t;
+};
+
+TEST(CSpaceAngleFilter, PiecesCoverEveryAngleOfTheRangeAndAreTight) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> centre(-400.0, 400.0), unit(0.0, 1.0);
+  Big pi, two_pi, half_pi, phi, tau, t, k;
+  mpfr_const_pi(pi.v, MPFR_RNDN);
+  mpfr_mul_2ui(two_pi.v, pi.v, 1, MPFR_RNDN);
+  mpfr_div_2ui(half_pi.v, pi.v, 1, MPFR_RNDN);
+  std::size_t samples = 0, tight = 0, ends = 0;
+  for (int i = 0; i < 20000; ++i) {
+    // ranges: anywhere, and with an end next to a seam (+-pi/2, pi + 2 pi n) or a chart centre
+    double lo_d;
+    if (i % 3 == 0) {
+      double n = std::floor(centre(rng) / 6.28);
+      double anchor = (i % 2 ? 0.5 : 1.0) * cspace::pi_below + 2 * cspace::pi_below * n;
+      lo_d = anchor + std::ldexp(unit(rng) - 0.5, -(i % 50));
+    } else {
+      lo_d = centre(rng);
+    }
+    double width = i % 5 == 0 ? 0.0 : std::ldexp(unit(rng), -(i % 40)) * 1.99;
+    Rational lo(lo_d), hi = Rational(lo_d) + Rational(width);
+    if (i % 7 == 0) lo = Rational(lo_d) + Rational(1, 3);   // not dyadic
+    if (hi < lo) hi = lo;
+    std::optional<std::vector<cspace::AnglePiece>> pieces = cspace::filtered_angle_pieces(lo, hi);
+    ASSERT_TRUE(pieces) << lo << " " << hi;
+    for (int s = 0; s <= 8; ++s) {
+      // the ends exactly, then interior points
+      Rational a = s == 0 ? lo : s == 1 ? hi : lo + (hi - lo) * Rational(s - 1, 8);
+      mpfr_set_q(phi.v, a.get_mpq_t(), MPFR_RNDN);
+      for (bool half_turn : {false, true}) {
+        // tau = phi - c reduced to (-pi, pi]
+        mpfr_sub(tau.v, phi.v, half_turn ? pi.v : half_pi.v, MPFR_RNDN);
+        if (!half_turn) mpfr_add(tau.v, tau.v, half_pi.v, MPFR_RNDN);
+        mpfr_div(k.v, tau.v, two_pi.v, MPFR_RNDN);
+        mpfr_round(k.v, k.v);
+        mpfr_mul(k.v, k.v, two_pi.v, MPFR_RNDN);
+        mpfr_sub(tau.v, tau.v, k.v, MPFR_RNDN);
+        if (mpfr_cmpabs(tau.v, half_pi.v) > 0) continue;   // not in this chart
+        mpfr_div_2ui(t.v, tau.v, 1, MPFR_RNDN);
+        mpfr_tan(t.v, t.v, MPFR_RNDN);
+        ++samples;
+        bool inside = false;
+        for (const cspace::AnglePiece& p : *pieces)
+          if (p.half_turn == half_turn && mpfr_cmp_q(t.v, p.lo.get_mpq_t()) >= 0 &&
+              mpfr_cmp_q(t.v, p.hi.get_mpq_t()) <= 0)
+            inside = true;
+        ASSERT_TRUE(inside) << "angle " << a.get_d() << " (range " << lo.get_d() << " .. " << hi.get_d()
+                            << ") half_turn " << half_turn << " t " << mpfr_get_d(t.v, MPFR_RNDN);
+      }
+    }
+    // tightness: a piece's ends are within 1e-12 (angle 400 rad: its double carries 6e-14) of
+    // the t of the range's ends where they are inside the chart
+    for (const cspace::AnglePiece& p : *pieces) {
+      for (int end = 0; end < 2; ++end) {
+        const Rational& bound = end == 0 ? p.lo : p.hi;
+        if (bound == 1 || bound == -1) continue;
+        ++ends;
+        mpfr_set_q(phi.v, (end == 0 ? lo : hi).get_mpq_t(), MPFR_RNDN);
+        mpfr_sub(tau.v, phi.v, p.half_turn ? pi.v : half_pi.v, MPFR_RNDN);
+        if (!p.half_turn) mpfr_add(tau.v, tau.v, half_pi.v, MPFR_RNDN);
+        mpfr_div(k.v, tau.v, two_pi.v, MPFR_RNDN);
+        mpfr_round(k.v, k.v);
+        mpfr_mul(k.v, k.v, two_pi.v, MPFR_RNDN);
+        mpfr_sub(tau.v, tau.v, k.v, MPFR_RNDN);
+        mpfr_div_2ui(t.v, tau.v, 1, MPFR_RNDN);
+        mpfr_tan(t.v, t.v, MPFR_RNDN);
+        double diff = std::abs(mpfr_get_d(t.v, MPFR_RNDN) - bound.get_d());
+        if (diff <= 1e-12) ++tight;
+        else ADD_FAILURE() << "loose end " << diff << " at angle " << (end == 0 ? lo : hi).get_d();
+      }
+    }
+  }
+  EXPECT_GT(samples, 100000u);
+  EXPECT_EQ(tight, ends);
+}
+
+}  // namespace
+}  // namespace hipair
