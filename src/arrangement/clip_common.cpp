@@ -85,6 +85,34 @@ bool clauses_hold(const std::vector<const std::vector<ValidityClause>*>& alterna
   return false;
 }
 
+int clauses_hold_filter(const std::vector<const std::vector<ValidityClause>*>& alternatives, algebra::Interval x_i,
+                        algebra::Interval y_i) {
+  if (!(x_i.lo <= x_i.hi) || !(y_i.lo <= y_i.hi)) return -1;   // NaN ends: undecided
+  bool undecided = false;
+  for (const auto* clauses : alternatives) {
+    int alternative = 1;   // 1 holds, 0 fails, -1 undecided
+    for (const auto& clause : *clauses) {
+      int state = 0;   // 1 some atom certainly >= 0, 0 every atom certainly < 0, -1 else
+      for (const auto& atom : clause.atoms) {
+        const algebra::Interval v = algebra::IntervalPolynomial2(atom).evaluate(x_i, y_i);
+        if (v.lo >= 0) {   // (false for a NaN end)
+          state = 1;
+          break;
+        }
+        if (!(v.hi < 0)) state = -1;
+      }
+      if (state == 0) {
+        alternative = 0;
+        break;
+      }
+      if (state == -1) alternative = -1;
+    }
+    if (alternative == 1) return 1;
+    if (alternative == -1) undecided = true;
+  }
+  return undecided ? -1 : 0;
+}
+
 bool in_windows(const Rational& x, const std::vector<std::pair<Rational, Rational>>* windows) {
   if (!windows) return true;
   for (const auto& [lo, hi] : *windows)

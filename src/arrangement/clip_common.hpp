@@ -33,6 +33,14 @@ CurveGroups group_curves(const std::vector<IntegerPolynomial2>& curves);
 bool clauses_hold(const std::vector<const std::vector<ValidityClause>*>& alternatives, const Rational& x,
                   const algebra::Real& y);
 
+/// The certified double filter of clauses_hold: encloses every atom over the box x_i × y_i
+/// (which must contain the exact point) in interval arithmetic. Returns 1 when some
+/// alternative certainly holds there (in each of its clauses an atom's enclosure is >= 0),
+/// 0 when every alternative certainly fails (some clause with every atom's enclosure < 0),
+/// -1 when the enclosures do not decide (the caller decides exactly with clauses_hold).
+int clauses_hold_filter(const std::vector<const std::vector<ValidityClause>*>& alternatives, algebra::Interval x_i,
+                        algebra::Interval y_i);
+
 /// Is x in one of the windows (none: no restriction)?
 bool in_windows(const Rational& x, const std::vector<std::pair<Rational, Rational>>* windows);
 

@@ -724,9 +724,12 @@ class QuadraticTraits {
     return entry;
   }
 
-  Point make_point(const Real& x, const YExpr& y) const {
+  Point make_point(const Real& x, const YExpr& y) const { return make_point(canonical(x), y); }
+
+  /// The point of y over an x already made canonical (one entry shared by the cut's points).
+  Point make_point(std::shared_ptr<const XEntry> entry, const YExpr& y) const {
     auto rep = std::make_shared<PointRep>();
-    rep->entry = canonical(x);
+    rep->entry = std::move(entry);
     rep->y = y;
     rep->yi = y_interval(y, rep->entry->xi);
     return Point{std::move(rep)};
@@ -1195,6 +1198,9 @@ class QuadraticBuilder {
   struct Cut {
     Real x;
     CutKind kind;
+    /// x's canonical entry, made when a piece first ends at this cut (the branches of one
+    /// event interval share it; cuts where no piece ends never make one)
+    mutable std::shared_ptr<const XEntry> entry;
   };
 
   void clip(const IntegerPolynomial2& f, const ClauseAlternatives& alternatives, const Windows* windows,
@@ -1237,7 +1243,7 @@ class QuadraticBuilder {
       });
       for (auto& [index, x] : order) {
         if (!cuts.empty() && QuadraticTraits::compare_x(cuts.back().x, *x) == 0) continue;
-        cuts.push_back(Cut{*x, index < hard_count ? CutKind::hard : CutKind::soft});
+        cuts.push_back(Cut{*x, index < hard_count ? CutKind::hard : CutKind::soft, nullptr});
       }
     }
     // event intervals: [x_lo, e_1], ..., [e_k, x_hi]
@@ -1318,6 +1324,8 @@ class QuadraticBuilder {
                 const std::vector<const Cut*>& inside, const IntegerPolynomial2& f,
                 const ClauseAlternatives& alternatives, const Windows* windows, std::vector<XCurve>& pieces) {
     // the cut abscissae along the arc, its ends included (an infinite end keeps its x)
+    // (a cut's point is made only where a piece ends at it: most cuts bound culled or
+    // invalid stretches, and each point costs a canonical x)
     std::vector<const Real*> xs;
     std::vector<std::optional<Point>> points;
     std::vector<char> is_hard;
@@ -1326,20 +1334,29 @@ class QuadraticBuilder {
     is_hard.push_back(0);
     for (const Cut* cut : inside) {
       xs.push_back(&cut->x);
-      points.push_back(traits_.make_point(cut->x, expr));
+      points.emplace_back();
       is_hard.push_back(cut->kind == CutKind::hard);
     }
     xs.push_back(&x_last);
     points.push_back(last_end);
     is_hard.push_back(0);
     const std::size_t count = xs.size() - 1;
+    auto has_point = [&](std::size_t k) { return points[k].has_value() || (k > 0 && k < count); };
+    auto point_at = [&](std::size_t k) -> Point {
+      if (!points[k]) {
+        const Cut* cut = inside[k - 1];
+        if (!cut->entry) cut->entry = traits_.canonical(cut->x);
+        points[k] = traits_.make_point(cut->entry, expr);
+      }
+      return *points[k];
+    };
     std::vector<char> in_box(count, 0), valid(count, 0);
     const bool any_clauses = !unrestricted(alternatives);
     for (std::size_t i = 0; i < count; ++i) {
       Rational m = algebra::rational_between(*xs[i], *xs[i + 1]);
       Real mx = Real::from_rational(m);
       in_box[i] = strictly_between_sides(mx, expr);
-      if ((!points[i] || !points[i + 1]) && in_box[i]) throw NotApplicable{"asymptote inside the box"};   // an asymptote inside the box
+      if ((!has_point(i) || !has_point(i + 1)) && in_box[i]) throw NotApplicable{"asymptote inside the box"};   // an asymptote inside the box
       if (!in_box[i] || !in_windows(m, windows)) continue;
       // a piece whose certified y enclosure meets none of the culling's surviving cells bounds nothing
       if (cells_ && !branch_meets_cells(*cells_, xs[i]->lower_bound(), xs[i + 1]->upper_bound(),
@@ -1347,6 +1364,13 @@ class QuadraticBuilder {
         continue;
       if (!any_clauses) {
         valid[i] = 1;
+        continue;
+      }
+      // certified double filter first (the branch's y enclosure at m), exact fallback
+      const Interval mi = enclose(mx);
+      const int filtered = clauses_hold_filter(alternatives, mi, traits_.y_interval(expr, mi));
+      if (filtered >= 0) {
+        valid[i] = static_cast<char>(filtered);
         continue;
       }
       algebra::Polynomial fiber = algebra::substitute_x(f, m);
@@ -1368,9 +1392,8 @@ class QuadraticBuilder {
       }
       std::size_t start = i, end = i + 1;
       while (end < count && valid[end] && !is_hard[end]) ++end;
-      Point first = *points[start], last = *points[end];
-      if (start > 0 && in_box[start - 1] && !valid[start - 1]) first = near(start - 1, start);
-      if (end < count && in_box[end] && !valid[end]) last = near(end + 1, end);
+      Point first = start > 0 && in_box[start - 1] && !valid[start - 1] ? near(start - 1, start) : point_at(start);
+      Point last = end < count && in_box[end] && !valid[end] ? near(end + 1, end) : point_at(end);
       pieces.push_back(XCurve{first, last, id, false, expr});
       i = end;
     }

@@ -436,8 +436,20 @@ bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, co
   // certify a sub-cell: a blocked cell's test stops at its first certifying pair)
   thread_local std::vector<DiskPair> later;
   later.clear();
+  // (a disk is posed once per run of pairs that share it: the lists come from the sweep,
+  // grouped by disk; pose_disk depends only on the part, the pose and the index)
+  std::uint32_t posed_index[2] = {UINT32_MAX, UINT32_MAX};
+  bool posed_ok[2] = {false, false};
   for (const DiskPair& pair : *candidates) {
-    if (!pose_disk(0, *bounds[0], pair.first, a) || !pose_disk(1, *bounds[1], pair.second, b)) continue;
+    if (pair.first != posed_index[0]) {
+      posed_index[0] = pair.first;
+      posed_ok[0] = pose_disk(0, *bounds[0], pair.first, a);
+    }
+    if (pair.second != posed_index[1]) {
+      posed_index[1] = pair.second;
+      posed_ok[1] = pose_disk(1, *bounds[1], pair.second, b);
+    }
+    if (!posed_ok[0] || !posed_ok[1]) continue;
     if (certifies(a, b)) {
       if (narrowed) narrowed->clear();
       return true;
