@@ -142,9 +142,10 @@ void Reader::read_simulation(const JsonValue* value) {
         auto index = model_.find_part(name);
         if (!index) throw ModelError(names.items[k].pointer, "unknown part '" + name + "'");
         const Motion& motion = model_.parts[*index].motion;
-        if (motion.kind != Motion::Kind::fixed && motion.kind != Motion::Kind::rotation &&
-            motion.kind != Motion::Kind::translation)
-          throw ModelError(names.items[k].pointer, "part '" + name + "' is not a fixed-axis or fixed part");
+        if (motion.kind == Motion::Kind::pin_slot)
+          throw ModelError(names.items[k].pointer, "part '" + name +
+                                                       "' is a pin-slot part: a spring joins fixed, rotating, "
+                                                       "translating or planar parts");
         indices[k] = *index;
       }
       if (indices[0] == indices[1])

@@ -195,6 +195,22 @@ struct PlanarSimulation::Impl {
   Rational reach_bound;                             // a certified rational upper bound of it
   double delta = 0;                                 // chord deviation (mm)
   double rest_speed = 0;                            // impacts slower than this are plastic
+  // Springs and dampers (docs/simulation.md, "Springs on a planar part"): a torsional spring
+  // to the frame about the pivot, and linear springs/dampers ("simulation"/"springs") from a
+  // point of the part to a point of a fixed part. With any of them the free flight is no longer
+  // in closed form: it is integrated with error control (held_advance with no held contact).
+  struct LineSpring {
+    double body[2] = {0, 0};     // the part's attachment point relative to its pivot, zero configuration (mm)
+    double anchor[2] = {0, 0};   // the fixed part's attachment point, world (mm)
+    double k = 0, rest = 0, c = 0;   // mN/mm, mm, mN s/mm
+  };
+  std::vector<LineSpring> springs;
+  double torsion_k = 0, torsion_rest = 0;           // mN mm/rad, rad
+  bool integrated = false;                          // springs present: free flight integrated
+  // The acceleration of the free part at a state (loads, damping, springs), internal units.
+  Eigen::Vector3d free_acceleration(const Kinematic& at) const;
+  // The springs' potential at a state (mN mm).
+  double spring_potential(const Kinematic& at) const;
   struct Pair {
     std::size_t index = 0;                          // into Model::pairs
     std::size_t fixed = 0;
@@ -342,7 +358,11 @@ struct PlanarSimulation::Impl {
   Eigen::Vector3d inverse_mass() const { return Eigen::Vector3d(1 / mass, 1 / mass, 1 / inertia); }
   double tangential_tolerance() const { return rest_speed; }
   double force_tolerance() const {
-    return 1e-9 * (mass * std::hypot(accel[0], accel[1]) + std::abs(torque) / std::max(reach, 1.0) + 1e-300) *
+    Kinematic still = k;
+    still.vx = still.vy = still.omega = 0;
+    Eigen::Vector3d a = free_acceleration(still);   // loads and springs
+    return 1e-9 * (mass * (std::hypot(accel[0], accel[1]) + std::hypot(a(0), a(1))) +
+                   (std::abs(torque) + inertia * std::abs(a(2))) / std::max(reach, 1.0) + 1e-300) *
            static_cast<double>(1 + held.size());
   }
   // Projects a state onto the held contacts' surfaces (gap = hold_gap) and their velocities
@@ -367,6 +387,49 @@ struct PlanarSimulation::Impl {
   SimulationEvent held_event(SimulationEvent::Kind kind, const Held& c, const HeldFrame& f, double normal_force,
                              double friction_force) const;
 };
+
+Eigen::Vector3d PlanarSimulation::Impl::free_acceleration(const Kinematic& at) const {
+  Eigen::Vector3d a(accel[0] - damping_rate * at.vx, accel[1] - damping_rate * at.vy, alpha);
+  if (!integrated) return a;
+  double fx = 0, fy = 0, tau = -torsion_k * (at.theta - torsion_rest);
+  const double c = std::cos(at.theta), sn = std::sin(at.theta);
+  const double px = to_d(model.parts[part].motion.pivot.x) + at.x, py = to_d(model.parts[part].motion.pivot.y) + at.y;
+  for (const LineSpring& sp : springs) {
+    // the attachment point r (from the centre of mass), the line d from the anchor to it
+    const double rx = c * sp.body[0] - sn * sp.body[1], ry = sn * sp.body[0] + c * sp.body[1];
+    const double dx = px + rx - sp.anchor[0], dy = py + ry - sp.anchor[1], L = std::hypot(dx, dy);
+    double gx = 0, gy = 0;
+    if (sp.rest == 0) {   // zero rest length: F = -k d, defined at L = 0 too
+      gx = -sp.k * dx;
+      gy = -sp.k * dy;
+    } else if (L > 0) {
+      gx = -sp.k * (L - sp.rest) * dx / L;
+      gy = -sp.k * (L - sp.rest) * dy / L;
+    }
+    if (sp.c > 0 && L > 0) {   // along the line: -c dL/dt (undefined at L = 0: no force there)
+      const double ux = dx / L, uy = dy / L;
+      const double ldot = ux * (at.vx - at.omega * ry) + uy * (at.vy + at.omega * rx);
+      gx -= sp.c * ldot * ux;
+      gy -= sp.c * ldot * uy;
+    }
+    fx += gx;
+    fy += gy;
+    tau += rx * gy - ry * gx;
+  }
+  return a + Eigen::Vector3d(fx / mass, fy / mass, tau / inertia);
+}
+
+double PlanarSimulation::Impl::spring_potential(const Kinematic& at) const {
+  double e = 0.5 * torsion_k * (at.theta - torsion_rest) * (at.theta - torsion_rest);
+  const double c = std::cos(at.theta), sn = std::sin(at.theta);
+  const double px = to_d(model.parts[part].motion.pivot.x) + at.x, py = to_d(model.parts[part].motion.pivot.y) + at.y;
+  for (const LineSpring& sp : springs) {
+    const double rx = c * sp.body[0] - sn * sp.body[1], ry = sn * sp.body[0] + c * sp.body[1];
+    const double L = std::hypot(px + rx - sp.anchor[0], py + ry - sp.anchor[1]);
+    e += 0.5 * sp.k * (L - sp.rest) * (L - sp.rest);
+  }
+  return e;
+}
 
 const SlicedMotionCrossing& PlanarSimulation::Impl::earliest(
     const std::vector<std::pair<std::size_t, SlicedMotionCrossing>>& crossings,
@@ -688,13 +751,15 @@ bool PlanarSimulation::Impl::try_rest(const Rows& contact) {
   double speed = std::hypot(k.vx, k.vy) + std::abs(k.omega) * reach;
   if (speed > rest_speed) return false;
   Eigen::Vector3d minv(1 / mass, 1 / mass, 1 / inertia);
-  Eigen::Vector3d free_acc(accel[0], accel[1], alpha);   // at rest: no damping, no centripetal terms
+  Kinematic still = k;
+  still.vx = still.vy = still.omega = 0;
+  Eigen::Vector3d free_acc = free_acceleration(still);   // at rest: no damping, no centripetal terms
   Eigen::MatrixXd A = J * minv.asDiagonal() * J.transpose();
   Eigen::VectorXd b = J * free_acc;
   simulation::LcpSolution lcp = simulation::solve_lcp(A, b);
   if (!lcp.solved) return false;
   Eigen::Vector3d acc = free_acc + minv.asDiagonal() * (J.transpose() * lcp.lambda);
-  double scale = std::hypot(accel[0], accel[1]) + std::abs(alpha) * reach;
+  double scale = std::hypot(free_acc(0), free_acc(1)) + std::abs(free_acc(2)) * reach;
   double residual = std::hypot(acc(0), acc(1)) + std::abs(acc(2)) * reach;
   // balanced: the residual acceleration is round-off of the solve (its tolerance is 1e-10
   // relative, lcp_tolerance), not a motion
@@ -740,7 +805,13 @@ PlanarSimulation::Impl::HeldProblem PlanarSimulation::Impl::held_problem(const K
   const auto m = static_cast<Eigen::Index>(held.size());
   p.G.resize(m, 3);
   p.h.resize(m);
-  p.a0 = Eigen::Vector3d(accel[0] - damping_rate * at.vx, accel[1] - damping_rate * at.vy, alpha);
+  p.a0 = free_acceleration(at);
+  if (m == 0) {   // free flight (integrated: springs act)
+    p.solution.solved = true;
+    p.solution.x = p.a0;
+    p.solution.lambda = p.solution.w = p.solution.f = Eigen::VectorXd(0);
+    return p;
+  }
   Eigen::Vector3d v(at.vx, at.vy, at.omega);
   std::vector<int> states;
   for (Eigen::Index r = 0; r < m; ++r) {
@@ -932,6 +1003,7 @@ void PlanarSimulation::Impl::hold(double time, const Rows& rows) {
 
 std::optional<int> PlanarSimulation::Impl::exact_rest_state() const {
   if (held.size() < 2) return std::nullopt;   // one vertex: no balance at rest in general
+  if (integrated) return std::nullopt;        // spring forces are not exact rationals: labelled approximate
   double speed = std::hypot(k.vx, k.vy) + std::abs(k.omega) * reach;
   if (speed > rest_speed) return std::nullopt;
   const Pair& pair = pairs[held.front().pair];
@@ -976,6 +1048,7 @@ std::optional<int> PlanarSimulation::Impl::exact_rest_state() const {
 }
 
 bool PlanarSimulation::Impl::decide() {
+  if (held.empty()) return false;   // integrated free flight: nothing to decide
   HeldProblem p = held_problem(k, true);
   // stick or slip decided exactly where the state is in the rest class (else in floating point)
   std::optional<int> exact = exact_rest_state();
@@ -1024,7 +1097,7 @@ bool PlanarSimulation::Impl::decide() {
   // at rest: slower than the rest speed and the contact forces balance the loads
   double speed = std::hypot(k.vx, k.vy) + std::abs(k.omega) * reach;
   const Eigen::VectorXd& acc = p.solution.x;
-  double scale = std::hypot(accel[0], accel[1]) + std::abs(alpha) * reach;
+  double scale = std::hypot(p.a0(0), p.a0(1)) + std::abs(p.a0(2)) * reach;
   double residual = std::hypot(acc(0), acc(1)) + std::abs(acc(2)) * reach;
   if (speed > rest_speed || residual > 1e-9 * std::max(scale, 1e-300)) return changed;
   if (exact && *exact != simulation::stick) return changed;   // slipping, decided exactly: not at rest
@@ -1248,8 +1321,6 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
   s.part = *planar;
   const Part& part = model.parts[s.part];
   if (!spec.drivers.empty()) throw ModelError(spec.drivers.front().pointer, "the planar simulator has no drivers");
-  if (!spec.couplings.empty())
-    throw ModelError(spec.couplings.front().pointer, "the planar simulator has no springs between parts");
   const Dynamics dyn = part.dynamics.value_or(Dynamics{});
   const std::string at = part.pointer + "/dynamics";
   if (!dyn.mass || !(*dyn.mass > 0))
@@ -1257,8 +1328,9 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
   if (!dyn.moment_of_inertia || !(*dyn.moment_of_inertia > 0))
     throw ModelError(part.pointer, "planar part '" + part.name +
                                        "' needs a positive dynamics moment_of_inertia (about its pivot, its centre of mass)");
-  if (dyn.torsional_spring) throw ModelError(at + "/torsional_spring", "a planar part has no spring to the frame");
-  if (dyn.linear_spring) throw ModelError(at + "/linear_spring", "a planar part has no spring to the frame");
+  if (dyn.linear_spring)
+    throw ModelError(at + "/linear_spring", "a planar part has no single direction for a linear spring: give a spring "
+                                            "between points in \"simulation\"/\"springs\"");
   s.mass = to_d(*dyn.mass);
   {
     // the loads in exact rationals (the unit factors are exact: 1 or 1/1000 s, 1000 or 1 mN)
@@ -1284,6 +1356,28 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
   s.accel[0] = s.g[0] + s.force[0] / s.mass;
   s.accel[1] = s.g[1] + s.force[1] / s.mass;
   s.alpha = s.torque / s.inertia;
+  // springs: a torsional spring to the frame about the pivot; linear springs and dampers from a
+  // point of the part to a point of a fixed part (a spring between two fixed parts acts on nothing)
+  if (dyn.torsional_spring) {
+    s.torsion_k = to_d(dyn.torsional_spring->stiffness) * fs;
+    s.torsion_rest = to_d(dyn.torsional_spring->rest);
+  }
+  for (const auto& coupling : spec.couplings) {
+    if (coupling.first != s.part && coupling.second != s.part) continue;
+    const bool first = coupling.first == s.part;
+    const Point& body = first ? coupling.first_point : coupling.second_point;
+    const Point& anchor = first ? coupling.second_point : coupling.first_point;
+    Impl::LineSpring sp;
+    sp.body[0] = to_d(body.x - part.motion.pivot.x);
+    sp.body[1] = to_d(body.y - part.motion.pivot.y);
+    sp.anchor[0] = to_d(anchor.x);
+    sp.anchor[1] = to_d(anchor.y);
+    sp.k = to_d(coupling.stiffness) * fs;
+    sp.rest = to_d(coupling.rest_length);
+    sp.c = to_d(coupling.damping) * fs * ts;
+    s.springs.push_back(sp);
+  }
+  s.integrated = !s.springs.empty() || dyn.torsional_spring.has_value();
   // reach: the farthest boundary point from the pivot (an arc: its centre's distance + radius)
   double px = to_d(part.motion.pivot.x), py = to_d(part.motion.pivot.y);
   for (const Loop& loop : part.loops)
@@ -1319,7 +1413,17 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
   // (chord_cap): a chord never touches a held contact
   s.hold_gap = 0.75 * s.delta;
   // a bounce that would rise less than delta under the loads is plastic
-  s.rest_speed = std::sqrt(2 * (std::hypot(s.accel[0], s.accel[1]) + std::abs(s.alpha) * s.reach) * s.delta);
+  {
+    // the springs' scale of acceleration: their stiffness over the part's size and stretch
+    double spring_accel = s.torsion_k * std::numbers::pi / s.inertia * s.reach;
+    for (const Impl::LineSpring& sp : s.springs)
+      spring_accel += sp.k * (s.reach + std::hypot(sp.anchor[0] - to_d(part.motion.pivot.x) - to_d(part.initial.x),
+                                                   sp.anchor[1] - to_d(part.motion.pivot.y) - to_d(part.initial.y)) +
+                              sp.rest) *
+                      (1 / s.mass + s.reach * s.reach / s.inertia);
+    s.rest_speed = std::sqrt(
+        2 * (std::hypot(s.accel[0], s.accel[1]) + std::abs(s.alpha) * s.reach + spring_accel) * s.delta);
+  }
   for (std::size_t i = 0; i < model.pairs.size(); ++i) {
     const PairSpec& pair = model.pairs[i];
     std::size_t other = pair.first == s.part ? pair.second : pair.second == s.part ? pair.first : no_index;
@@ -1368,7 +1472,7 @@ void PlanarSimulation::step(double t_limit) {
   if (++s.steps > s.options.max_steps)
     throw NumericError(s.where(s.t) + ": more than " + std::to_string(s.options.max_steps) + " steps");
   // forces balanced and constant: a resting part stays
-  bool event = !s.resting && (s.held.empty() ? s.advance(span) : s.held_advance(span));
+  bool event = !s.resting && (s.held.empty() && !s.integrated ? s.advance(span) : s.held_advance(span));
   if (!event) s.t = span == limit - s.t ? limit : s.t + span;
   s.publish();
 }
@@ -1398,7 +1502,7 @@ double PlanarSimulation::energy() const {
   const Impl& s = *impl_;
   double kinetic = 0.5 * s.mass * (s.k.vx * s.k.vx + s.k.vy * s.k.vy) + 0.5 * s.inertia * s.k.omega * s.k.omega;
   double potential = -(s.mass * s.g[0] + s.force[0]) * s.k.x - (s.mass * s.g[1] + s.force[1]) * s.k.y -
-                     s.torque * s.k.theta;
+                     s.torque * s.k.theta + s.spring_potential(s.k);
   return (kinetic + potential) / s.force_scale;
 }
 
