@@ -1995,13 +1995,16 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
       if (s == 0) break;
     }
     if (!free_everywhere) throw NumericError(where(t) + ": no free state before the contact (an internal error)");
+    // how far the back-off moved any point (rate is twice the fastest point speed)
+    const double backed = 0.5 * rate * (u * end - s_contact);
     // every pair whose bracket meets the earliest, and feature pairs within 2 delta of touching
+    // the path there (a face meeting a face, tilted by round-off, meets all its corners at once)
     std::vector<std::pair<std::size_t, SlicedFeaturePair>> touching;
     for (const auto& [i, c] : crossings)
       if (c.u_lower <= crossings[best].second.u_upper)
         for (const SlicedFeaturePair& fp : c.features) touching.emplace_back(i, fp);
     for (std::size_t i = 0; i < pairs.size(); ++i)
-      for (const SlicedNearFeature& nf : pairs[i].space.features_near(relative(pairs[i], q_at), Rational(2 * delta))) {
+      for (const SlicedNearFeature& nf : pairs[i].space.features_near(relative(pairs[i], q_at), Rational(2 * delta + backed))) {
         bool listed = false;
         for (const auto& [j, fp] : touching) listed = listed || (j == i && fp.label == nf.pair.label);
         if (!listed) touching.emplace_back(i, nf.pair);
