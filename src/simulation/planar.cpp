@@ -178,6 +178,25 @@ kernels::Pose<Rational> pose_of(const Point& pivot, const SlicedConfiguration& c
   return pose;
 }
 
+// The force of a linear spring and damper on its end at offset d from the other end (relative
+// velocity dv): -(k (L - rest) + c dL/dt) d / L; rest 0: the vector spring -k d (defined at
+// L = 0); the damper acts along the line (nothing at L = 0, no direction).
+std::array<double, 2> spring_force(double k, double rest, double c, const double d[2], const double dv[2]) {
+  const double L = std::hypot(d[0], d[1]);
+  std::array<double, 2> f{0, 0};
+  if (rest == 0) {
+    f = {-k * d[0], -k * d[1]};
+  } else if (L > 0) {
+    f = {-k * (L - rest) * d[0] / L, -k * (L - rest) * d[1] / L};
+  }
+  if (c > 0 && L > 0) {
+    const double ux = d[0] / L, uy = d[1] / L, ldot = ux * dv[0] + uy * dv[1];
+    f[0] -= c * ldot * ux;
+    f[1] -= c * ldot * uy;
+  }
+  return f;
+}
+
 }  // namespace
 
 struct PlanarSimulation::Impl {
@@ -397,21 +416,9 @@ Eigen::Vector3d PlanarSimulation::Impl::free_acceleration(const Kinematic& at) c
   for (const LineSpring& sp : springs) {
     // the attachment point r (from the centre of mass), the line d from the anchor to it
     const double rx = c * sp.body[0] - sn * sp.body[1], ry = sn * sp.body[0] + c * sp.body[1];
-    const double dx = px + rx - sp.anchor[0], dy = py + ry - sp.anchor[1], L = std::hypot(dx, dy);
-    double gx = 0, gy = 0;
-    if (sp.rest == 0) {   // zero rest length: F = -k d, defined at L = 0 too
-      gx = -sp.k * dx;
-      gy = -sp.k * dy;
-    } else if (L > 0) {
-      gx = -sp.k * (L - sp.rest) * dx / L;
-      gy = -sp.k * (L - sp.rest) * dy / L;
-    }
-    if (sp.c > 0 && L > 0) {   // along the line: -c dL/dt (undefined at L = 0: no force there)
-      const double ux = dx / L, uy = dy / L;
-      const double ldot = ux * (at.vx - at.omega * ry) + uy * (at.vy + at.omega * rx);
-      gx -= sp.c * ldot * ux;
-      gy -= sp.c * ldot * uy;
-    }
+    const double d[2] = {px + rx - sp.anchor[0], py + ry - sp.anchor[1]};
+    const double dv[2] = {at.vx - at.omega * ry, at.vy + at.omega * rx};
+    const auto [gx, gy] = spring_force(sp.k, sp.rest, sp.c, d, dv);
     fx += gx;
     fy += gy;
     tau += rx * gy - ry * gx;
@@ -1293,6 +1300,73 @@ PlanarSimulation::PlanarSimulation(PlanarSimulation&&) noexcept = default;
 PlanarSimulation& PlanarSimulation::operator=(PlanarSimulation&&) noexcept = default;
 PlanarSimulation::~PlanarSimulation() = default;
 
+namespace {
+
+// A planar part's dynamics data, checked (at the part's pointer; a linear spring at its own).
+const Dynamics& checked_planar_dynamics(const Part& part) {
+  if (!part.dynamics || !part.dynamics->mass || !(*part.dynamics->mass > 0))
+    throw ModelError(part.pointer, "planar part '" + part.name + "' needs a positive dynamics mass");
+  const Dynamics& dyn = *part.dynamics;
+  if (!dyn.moment_of_inertia || !(*dyn.moment_of_inertia > 0))
+    throw ModelError(part.pointer, "planar part '" + part.name +
+                                       "' needs a positive dynamics moment_of_inertia (about its pivot, its centre of mass)");
+  if (dyn.linear_spring)
+    throw ModelError(part.pointer + "/dynamics/linear_spring",
+                     "a planar part has no single direction for a linear spring: give a spring between points in "
+                     "\"simulation\"/\"springs\"");
+  return dyn;
+}
+
+// A planar part's reach from its pivot: the farthest boundary point (an arc: its centre's
+// distance + radius) in double (with 1e-12 to spare), and a certified rational upper bound (the
+// far test's sweep bound: exact squared distances, rational square roots rounded up).
+struct PlanarReach {
+  double reach = 0;
+  Rational bound;
+};
+PlanarReach planar_reach(const Part& part) {
+  PlanarReach r;
+  const Point& pivot = part.motion.pivot;
+  const double px = to_d(pivot.x), py = to_d(pivot.y);
+  Rational vertex_sq(0);
+  for (const Loop& loop : part.loops)
+    for (const Edge& e : loop.edges) {
+      r.reach = std::max(r.reach, std::hypot(to_d(e.source.x) - px, to_d(e.source.y) - py));
+      Rational dx = e.source.x - pivot.x, dy = e.source.y - pivot.y;
+      Rational sq = dx * dx + dy * dy;
+      if (sq > vertex_sq) vertex_sq = sq;
+      if (e.is_arc()) {
+        r.reach = std::max(r.reach, std::hypot(to_d(e.center.x) - px, to_d(e.center.y) - py) +
+                                        std::sqrt(to_d(e.radius_squared)));
+        Rational cx = e.center.x - pivot.x, cy = e.center.y - pivot.y;
+        Rational arc = simulation::sqrt_upper(cx * cx + cy * cy) + simulation::sqrt_upper(e.radius_squared);
+        if (arc > r.bound) r.bound = arc;
+      }
+    }
+  r.reach *= 1 + 1e-12;
+  Rational vertex = simulation::sqrt_upper(vertex_sq);
+  if (vertex > r.bound) r.bound = vertex;
+  return r;
+}
+
+// A planar part's initial state: its initial configuration and its velocity, three entries
+// vx, vy, omega (SimulationSpec::Velocity), in internal units (ts: seconds per time unit).
+Kinematic initial_kinematic(const Model& model, std::size_t part, const SimulationSpec& spec, double ts) {
+  const Part& p = model.parts[part];
+  Kinematic k{to_d(p.initial.x), to_d(p.initial.y), to_d(p.initial.angle), 0, 0, 0};
+  std::vector<double> rates;
+  for (const auto& v : spec.velocities)
+    if (v.part == part) rates.push_back(to_d(v.value) / ts);
+  if (rates.size() == 3) {
+    k.vx = rates[0];
+    k.vy = rates[1];
+    k.omega = rates[2];
+  }
+  return k;
+}
+
+}  // namespace
+
 PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOptions& options) {
   auto impl = std::make_unique<Impl>();
   Impl& s = *impl;
@@ -1321,16 +1395,7 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
   s.part = *planar;
   const Part& part = model.parts[s.part];
   if (!spec.drivers.empty()) throw ModelError(spec.drivers.front().pointer, "the planar simulator has no drivers");
-  const Dynamics dyn = part.dynamics.value_or(Dynamics{});
-  const std::string at = part.pointer + "/dynamics";
-  if (!dyn.mass || !(*dyn.mass > 0))
-    throw ModelError(part.pointer, "planar part '" + part.name + "' needs a positive dynamics mass");
-  if (!dyn.moment_of_inertia || !(*dyn.moment_of_inertia > 0))
-    throw ModelError(part.pointer, "planar part '" + part.name +
-                                       "' needs a positive dynamics moment_of_inertia (about its pivot, its centre of mass)");
-  if (dyn.linear_spring)
-    throw ModelError(at + "/linear_spring", "a planar part has no single direction for a linear spring: give a spring "
-                                            "between points in \"simulation\"/\"springs\"");
+  const Dynamics& dyn = checked_planar_dynamics(part);
   s.mass = to_d(*dyn.mass);
   {
     // the loads in exact rationals (the unit factors are exact: 1 or 1/1000 s, 1000 or 1 mN)
@@ -1378,33 +1443,10 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
     s.springs.push_back(sp);
   }
   s.integrated = !s.springs.empty() || dyn.torsional_spring.has_value();
-  // reach: the farthest boundary point from the pivot (an arc: its centre's distance + radius)
-  double px = to_d(part.motion.pivot.x), py = to_d(part.motion.pivot.y);
-  for (const Loop& loop : part.loops)
-    for (const Edge& e : loop.edges) {
-      s.reach = std::max(s.reach, std::hypot(to_d(e.source.x) - px, to_d(e.source.y) - py));
-      if (e.is_arc())
-        s.reach = std::max(s.reach, std::hypot(to_d(e.center.x) - px, to_d(e.center.y) - py) +
-                                        std::sqrt(to_d(e.radius_squared)));
-    }
-  s.reach *= 1 + 1e-12;
-  // the certified reach (the far test's sweep bound): exact squared distances, rational square
-  // roots rounded up
   {
-    Rational vertex_sq(0);
-    for (const Loop& loop : part.loops)
-      for (const Edge& e : loop.edges) {
-        Rational dx = e.source.x - part.motion.pivot.x, dy = e.source.y - part.motion.pivot.y;
-        Rational sq = dx * dx + dy * dy;
-        if (sq > vertex_sq) vertex_sq = sq;
-        if (e.is_arc()) {
-          Rational cx = e.center.x - part.motion.pivot.x, cy = e.center.y - part.motion.pivot.y;
-          Rational arc = simulation::sqrt_upper(cx * cx + cy * cy) + simulation::sqrt_upper(e.radius_squared);
-          if (arc > s.reach_bound) s.reach_bound = arc;
-        }
-      }
-    Rational vertex = simulation::sqrt_upper(vertex_sq);
-    if (vertex > s.reach_bound) s.reach_bound = vertex;
+    PlanarReach r = planar_reach(part);
+    s.reach = r.reach;
+    s.reach_bound = r.bound;
   }
   double accuracy = options.accuracy > 0 ? options.accuracy : spec.accuracy ? to_d(*spec.accuracy) : 1e-9;
   s.delta = options.chord_deviation > 0 ? options.chord_deviation : accuracy * std::max(s.reach, 1.0);
@@ -1437,18 +1479,7 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
     }
     s.pairs.push_back(std::move(p));
   }
-  s.k.x = to_d(part.initial.x);
-  s.k.y = to_d(part.initial.y);
-  s.k.theta = to_d(part.initial.angle);
-  // a planar part's velocity: three entries vx, vy, omega (SimulationSpec::Velocity)
-  std::vector<double> rates;
-  for (const auto& v : spec.velocities)
-    if (v.part == s.part) rates.push_back(to_d(v.value) / ts);
-  if (rates.size() == 3) {
-    s.k.vx = rates[0];
-    s.k.vy = rates[1];
-    s.k.omega = rates[2];
-  }
+  s.k = initial_kinematic(model, s.part, spec, ts);
   s.q = configuration_of(s.k.x, s.k.y, s.k.theta);
   for (const Impl::Pair& p : s.pairs) {
     SlicedLocation where = p.space.locate(s.q);
@@ -1646,19 +1677,8 @@ struct PlanarSystemSimulation::Impl {
       double p0[2], v0[2], r0[2], p1[2], v1[2], r1[2];
       spring_end(sp, 0, ks, p0, v0, r0);
       spring_end(sp, 1, ks, p1, v1, r1);
-      double dx = p0[0] - p1[0], dy = p0[1] - p1[1], L = std::hypot(dx, dy), fx = 0, fy = 0;   // force on end 0
-      if (sp.rest == 0) {
-        fx = -sp.k * dx;
-        fy = -sp.k * dy;
-      } else if (L > 0) {
-        fx = -sp.k * (L - sp.rest) * dx / L;
-        fy = -sp.k * (L - sp.rest) * dy / L;
-      }
-      if (sp.c > 0 && L > 0) {
-        double ux = dx / L, uy = dy / L, ldot = ux * (v0[0] - v1[0]) + uy * (v0[1] - v1[1]);
-        fx -= sp.c * ldot * ux;
-        fy -= sp.c * ldot * uy;
-      }
+      const double d[2] = {p0[0] - p1[0], p0[1] - p1[1]}, dv[2] = {v0[0] - v1[0], v0[1] - v1[1]};
+      const auto [fx, fy] = spring_force(sp.k, sp.rest, sp.c, d, dv);   // on end 0
       const double* rr[2] = {r0, r1};
       for (int e = 0; e < 2; ++e) {
         if (sp.body[e] == no_index) continue;
@@ -2044,15 +2064,7 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
     if (part.motion.kind == Motion::Kind::fixed) continue;
     if (part.motion.kind != Motion::Kind::planar)
       throw ModelError(part.motion.pointer, "part '" + part.name + "': several planar parts move among fixed parts only");
-    const Dynamics dyn = part.dynamics.value_or(Dynamics{});
-    const std::string at = part.pointer + "/dynamics";
-    if (!dyn.mass || !(*dyn.mass > 0))
-      throw ModelError(part.pointer, "planar part '" + part.name + "' needs a positive dynamics mass");
-    if (!dyn.moment_of_inertia || !(*dyn.moment_of_inertia > 0))
-      throw ModelError(part.pointer, "planar part '" + part.name + "' needs a positive dynamics moment_of_inertia");
-    if (dyn.linear_spring)
-      throw ModelError(at + "/linear_spring", "a planar part has no single direction for a linear spring: give a "
-                                              "spring between points in \"simulation\"/\"springs\"");
+    const Dynamics& dyn = checked_planar_dynamics(part);
     Impl::Body b;
     b.part = p;
     b.mass = to_d(*dyn.mass);
@@ -2072,36 +2084,14 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
     b.alpha = b.torque / b.inertia;
     b.pivot[0] = to_d(part.motion.pivot.x);
     b.pivot[1] = to_d(part.motion.pivot.y);
-    Rational vertex_sq(0);
-    for (const Loop& loop : part.loops)
-      for (const Edge& e : loop.edges) {
-        b.reach = std::max(b.reach, std::hypot(to_d(e.source.x) - b.pivot[0], to_d(e.source.y) - b.pivot[1]));
-        Rational dx = e.source.x - part.motion.pivot.x, dy = e.source.y - part.motion.pivot.y;
-        if (dx * dx + dy * dy > vertex_sq) vertex_sq = dx * dx + dy * dy;
-        if (e.is_arc()) {
-          b.reach = std::max(b.reach, std::hypot(to_d(e.center.x) - b.pivot[0], to_d(e.center.y) - b.pivot[1]) +
-                                          std::sqrt(to_d(e.radius_squared)));
-          Rational cx = e.center.x - part.motion.pivot.x, cy = e.center.y - part.motion.pivot.y;
-          Rational arc = simulation::sqrt_upper(cx * cx + cy * cy) + simulation::sqrt_upper(e.radius_squared);
-          if (arc > b.reach_bound) b.reach_bound = arc;
-        }
-      }
-    Rational vertex = simulation::sqrt_upper(vertex_sq);
-    if (vertex > b.reach_bound) b.reach_bound = vertex;
-    b.reach *= 1 + 1e-12;
+    PlanarReach reach = planar_reach(part);
+    b.reach = reach.reach;
+    b.reach_bound = reach.bound;
     max_reach = std::max(max_reach, b.reach);
     max_accel = std::max(max_accel, std::hypot(b.accel[0], b.accel[1]) + std::abs(b.alpha) * b.reach);
     s.body_of[p] = s.bodies.size();
     s.bodies.push_back(b);
-    Kinematic kin{to_d(part.initial.x), to_d(part.initial.y), to_d(part.initial.angle), 0, 0, 0};
-    std::vector<double> rates;
-    for (const auto& v : spec.velocities)
-      if (v.part == p) rates.push_back(to_d(v.value) / ts);
-    if (rates.size() == 3) {
-      kin.vx = rates[0];
-      kin.vy = rates[1];
-      kin.omega = rates[2];
-    }
+    Kinematic kin = initial_kinematic(model, p, spec, ts);
     s.k.push_back(kin);
     s.q.push_back(configuration_of(kin.x, kin.y, kin.theta));
   }
