@@ -1394,7 +1394,9 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
   if (!planar) throw ModelError("", "the model has no planar part to simulate");
   s.part = *planar;
   const Part& part = model.parts[s.part];
-  if (!spec.drivers.empty()) throw ModelError(spec.drivers.front().pointer, "the planar simulator has no drivers");
+  if (!spec.drivers.empty())
+    throw ModelError(spec.drivers.front().pointer, "a driven planar part among fixed parts only would jam: drivers of "
+                                                   "planar parts are PlanarSystemSimulation's (several planar parts)");
   const Dynamics& dyn = checked_planar_dynamics(part);
   s.mass = to_d(*dyn.mass);
   {
@@ -1603,6 +1605,7 @@ struct PlanarSystemSimulation::Impl {
     double torsion_k = 0, torsion_rest = 0;
     double reach = 0;
     Rational reach_bound;
+    bool driven = false;   // moves at its driver's constant velocity (infinite inertia in impacts)
   };
   std::vector<Body> bodies;
   std::vector<std::size_t> body_of;   // model part -> body index (no_index: fixed)
@@ -1669,6 +1672,7 @@ struct PlanarSystemSimulation::Impl {
     std::vector<double> a(3 * bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       const Body& b = bodies[i];
+      if (b.driven) continue;
       a[3 * i] = b.mass * (b.accel[0] - b.damping_rate * ks[i].vx);
       a[3 * i + 1] = b.mass * (b.accel[1] - b.damping_rate * ks[i].vy);
       a[3 * i + 2] = b.torque - b.torsion_k * (ks[i].theta - b.torsion_rest);
@@ -1681,7 +1685,7 @@ struct PlanarSystemSimulation::Impl {
       const auto [fx, fy] = spring_force(sp.k, sp.rest, sp.c, d, dv);   // on end 0
       const double* rr[2] = {r0, r1};
       for (int e = 0; e < 2; ++e) {
-        if (sp.body[e] == no_index) continue;
+        if (sp.body[e] == no_index || bodies[sp.body[e]].driven) continue;
         double sx = e == 0 ? fx : -fx, sy = e == 0 ? fy : -fy;
         a[3 * sp.body[e]] += sx;
         a[3 * sp.body[e] + 1] += sy;
@@ -1856,13 +1860,21 @@ void PlanarSystemSimulation::Impl::impact(double time,
   for (Eigen::Index r = 0; r < m; ++r) J.row(r) = rows[static_cast<std::size_t>(r)].transpose();
   Eigen::VectorXd minv(n), v(n);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    minv.segment(static_cast<Eigen::Index>(3 * i), 3) << 1 / bodies[i].mass, 1 / bodies[i].mass, 1 / bodies[i].inertia;
+    const double free = bodies[i].driven ? 0.0 : 1.0;   // a driver: infinite inertia
+    minv.segment(static_cast<Eigen::Index>(3 * i), 3) << free / bodies[i].mass, free / bodies[i].mass,
+        free / bodies[i].inertia;
     v.segment(static_cast<Eigen::Index>(3 * i), 3) << k[i].vx, k[i].vy, k[i].omega;
   }
   Eigen::VectorXd before = J * v;
   Eigen::VectorXd b(m);
   for (Eigen::Index r = 0; r < m; ++r) b(r) = (1 + pairs[row_pair[static_cast<std::size_t>(r)]].restitution) * before(r);
   Eigen::MatrixXd A = J * minv.asDiagonal() * J.transpose();
+  for (Eigen::Index r = 0; r < m; ++r)
+    if (before(r) < 0 && !(A(r, r) > 0)) {   // a driver against a fixed part or another driver
+      const Pair& p = pairs[row_pair[static_cast<std::size_t>(r)]];
+      throw NumericError(where(time) + ": driven part '" + model.parts[p.second].name + "' runs into '" +
+                         model.parts[p.first].name + "': nothing there can give way (a jam)");
+    }
   simulation::LcpSolution lcp = simulation::solve_lcp(A, b);
   if (!lcp.solved) throw NumericError(where(time) + ": the impact problem has no solution");
   Eigen::VectorXd after_v = v + minv.asDiagonal() * (J.transpose() * lcp.lambda);
@@ -2064,7 +2076,11 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
     if (part.motion.kind == Motion::Kind::fixed) continue;
     if (part.motion.kind != Motion::Kind::planar)
       throw ModelError(part.motion.pointer, "part '" + part.name + "': several planar parts move among fixed parts only");
-    const Dynamics& dyn = checked_planar_dynamics(part);
+    // a driver needs no inertia (it never gives way): unit placeholders, no loads
+    bool driven = false;
+    for (const auto& d : spec.drivers) driven = driven || d.part == p;
+    static const Dynamics driver_dynamics{Rational(1), Rational(1), {}, {}, {}, {}, {}};
+    const Dynamics& dyn = driven ? driver_dynamics : checked_planar_dynamics(part);
     Impl::Body b;
     b.part = p;
     b.mass = to_d(*dyn.mass);
@@ -2096,7 +2112,17 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
     s.q.push_back(configuration_of(kin.x, kin.y, kin.theta));
   }
   if (s.bodies.empty()) throw ModelError("", "the model has no planar part to simulate");
-  if (!spec.drivers.empty()) throw ModelError(spec.drivers.front().pointer, "the planar simulator has no drivers");
+  // drivers of planar parts: a constant velocity, three entries vx, vy, omega (the reader's)
+  for (std::size_t d = 0; d < spec.drivers.size(); d += 3) {
+    const std::size_t body = s.body_of[spec.drivers[d].part];
+    if (body == no_index || d + 2 >= spec.drivers.size())
+      throw ModelError(spec.drivers[d].pointer, "the planar simulator drives planar parts only");
+    Impl::Body& b = s.bodies[body];
+    b.driven = true;
+    s.k[body].vx = to_d(spec.drivers[d].speed) / ts;
+    s.k[body].vy = to_d(spec.drivers[d + 1].speed) / ts;
+    s.k[body].omega = to_d(spec.drivers[d + 2].speed) / ts;
+  }
   for (const auto& coupling : spec.couplings) {
     Impl::Spring sp;
     const std::size_t ends[2] = {coupling.first, coupling.second};
@@ -2200,6 +2226,7 @@ double PlanarSystemSimulation::energy() const {
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     const Impl::Body& b = s.bodies[i];
     const Kinematic& k = s.k[i];
+    if (b.driven) continue;   // a driver's energy is its motor's (as the fixed-axis simulator)
     e += 0.5 * b.mass * (k.vx * k.vx + k.vy * k.vy) + 0.5 * b.inertia * k.omega * k.omega;
     e -= (b.mass * s.g[0] + b.force[0]) * k.x + (b.mass * s.g[1] + b.force[1]) * k.y + b.torque * k.theta;
     e += 0.5 * b.torsion_k * (k.theta - b.torsion_rest) * (k.theta - b.torsion_rest);

@@ -268,14 +268,31 @@ TEST(SimulationPlanarSpring, SpringsOfPlanarPartsAreValidatedWithTheirPointers) 
   SpringScene scene;
   scene.torsion = 2;
   EXPECT_NO_THROW(PlanarSimulation::create(scene.model()));
-  // a driver is refused for a planar part (at the driver's part)
+  // a planar part's driver is a velocity object (a number: refused at its speed), and among
+  // fixed parts only it would jam: PlanarSimulation refuses it at the driver
   std::string driven = scene.json();
   driven.replace(driven.find("\"velocities\""), 0, R"("drivers": [ { "part": "block", "speed": 1 } ], )");
   try {
     read_model(driven, "<driven>");
-    ADD_FAILURE() << "accepted a planar driver";
+    ADD_FAILURE() << "accepted a planar driver's number speed";
   } catch (const ModelError& e) {
-    EXPECT_NE(std::string(e.what()).find("/simulation/drivers/0/part"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("/simulation/drivers/0/speed"), std::string::npos) << e.what();
+  }
+  driven = scene.json();
+  driven.replace(driven.find("\"velocities\""), 0, R"("drivers": [ { "part": "block", "speed": { "x": 1 } } ], )");
+  try {
+    read_model(driven, "<driven>");   // the block is also given a velocity: refused there
+    ADD_FAILURE() << "accepted a velocity for a driven planar part";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("/simulation/velocities/block"), std::string::npos) << e.what();
+  }
+  std::size_t v = driven.find(", \"velocities\""), v_end = driven.find("} },", v);
+  driven.erase(v + 2, v_end + 4 - (v + 2));
+  try {
+    PlanarSimulation::create(read_model(driven, "<driven>"));
+    ADD_FAILURE() << "accepted a driven planar part among fixed parts";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("/simulation/drivers/0"), std::string::npos) << e.what();
   }
 }
 

@@ -228,6 +228,50 @@ TEST(SimulationPlanarSystem, ElasticBlocksBetweenWallsKeepEnergyAndTheirEventsWh
   }
 }
 
+// A driven pusher (constant velocity V, infinite inertia) strikes a block at rest: contact at
+// gap / V, the block leaves at (1 + e) V, the pusher keeps V; driven into a wall it jams.
+TEST(SimulationPlanarSystem, DrivenPusherStrikesABlockAtTheClosedFormSpeed) {
+  Lcg rng{101};
+  for (int c = 0; c < 5; ++c) {
+    TwoBlocks s;
+    s.sa = rng.uniform(4, 10);
+    s.sb = rng.uniform(1, 3.5);
+    s.xa = rng.uniform(-60, -10);
+    s.xb = rng.uniform(10, 60);
+    s.vb = 0;
+    s.e = rng.uniform(0.2, 1);
+    const double V = rng.uniform(10, 500);
+    std::string json = s.json();
+    // a's velocity becomes its driver
+    json.replace(json.find(R"("a": { "x": )"), std::string(R"("a": { "x": )" + num(s.va) + " }, ").size(), "");
+    json.replace(json.find(R"("velocities")"), 0, R"("drivers": [ { "part": "a", "speed": { "x": )" + num(V) + " } } ], ");
+    Model model = read_model(json, "<pusher>");
+    PlanarSystemSimulation sim = PlanarSystemSimulation::create(model);
+    const double t_star = ((s.xb - s.sb / 2) - (s.xa + s.sa / 2)) / V;
+    while (sim.events().empty() && sim.state().time < 10 * t_star) sim.step(10 * t_star);
+    ASSERT_EQ(sim.events().size(), 1u) << c;
+    EXPECT_NEAR(sim.events()[0].time, t_star, 2 * sim.chord_deviation() / V + t_star * std::ldexp(1.0, -40)) << c;
+    EXPECT_NEAR(sim.state().states[1].vx, (1 + s.e) * V, 1e-9 * (1 + s.e) * V) << c;
+    // the driver never gives way: its speed is the rational read from the text, within an ulp of V
+    EXPECT_DOUBLE_EQ(sim.state().states[0].vx, V) << c;
+    const double after = sim.state().time;
+    sim.run_until(after + t_star);
+    EXPECT_NEAR(sim.state().states[0].x, s.xa + V * (after + t_star), 1e-9 * (std::abs(s.xa) + V * (after + t_star))) << c;
+  }
+  TwoBlocks s;
+  s.wall = 40;
+  std::string json = s.json();
+  json.replace(json.find(R"("a": { "x": )"), std::string(R"("a": { "x": )" + num(s.va) + " }, ").size(), "");
+  json.replace(json.find(R"("velocities")"), 0, R"("drivers": [ { "part": "a", "speed": { "x": -100 } } ], )");
+  PlanarSystemSimulation sim = PlanarSystemSimulation::create(read_model(json, "<jam>"));
+  try {
+    sim.run_until(2);
+    ADD_FAILURE() << "a driver ran through a wall";
+  } catch (const NumericError& e) {
+    EXPECT_NE(std::string(e.what()).find("driven part 'a' runs into 'walls'"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SimulationPlanarSystem, OutsideTheClassItRefusesWithClearMessages) {
   TwoBlocks s;
   // friction between two moving parts: refused at the pair's friction
