@@ -1388,7 +1388,9 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
     if (planar)
       throw ModelError(part.motion.pointer, "part '" + part.name +
                                                 "': the planar simulator moves one planar part only ('" +
-                                                model.parts[*planar].name + "' is the other)");
+                                                model.parts[*planar].name +
+                                                "' is the other; several planar parts: the C++ API's "
+                                                "PlanarSystemSimulation, docs/simulation.md)");
     planar = p;
   }
   if (!planar) throw ModelError("", "the model has no planar part to simulate");

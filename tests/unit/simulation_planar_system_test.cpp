@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -270,6 +271,33 @@ TEST(SimulationPlanarSystem, DrivenPusherStrikesABlockAtTheClosedFormSpeed) {
   } catch (const NumericError& e) {
     EXPECT_NE(std::string(e.what()).find("driven part 'a' runs into 'walls'"), std::string::npos) << e.what();
   }
+}
+
+// examples/models/pusher-blocks.json: the pusher (200 mm/s) meets the block at 32/200 s, which
+// leaves at 1.9 x 200 and meets the small block 15 mm later; the small block leaves at
+// (m1 + e m1) v1 / (m1 + m2), the block keeps (m1 - e m2) v1 / (m1 + m2). Every state is exactly
+// free against the wall for both blocks.
+TEST(SimulationPlanarSystem, PusherBlocksExampleGivesTheClosedFormChainOfImpacts) {
+  Model model = read_model_file(std::filesystem::path(HIPAIR_SOURCE_DIR) / "examples/models/pusher-blocks.json");
+  PlanarSystemSimulation sim = PlanarSystemSimulation::create(model);
+  const SlicedSpace walls[2] = {SlicedSpace::build(model, "wall", "block", SlicedBuildOptions{false, {}}),
+                                SlicedSpace::build(model, "wall", "small", SlicedBuildOptions{false, {}})};
+  while (sim.events().size() < 2 && sim.state().time < 1) {
+    sim.step(1);
+    for (std::size_t i = 0; i < 2; ++i)
+      EXPECT_EQ(walls[i].locate(sim.state().states[i + 1].configuration).kind, SlicedLocation::Kind::free);
+  }
+  ASSERT_EQ(sim.events().size(), 2u);
+  const double v1 = 1.9 * 200, t1 = 32.0 / 200, t2 = t1 + 15 / v1;
+  const double delta = sim.chord_deviation();
+  EXPECT_EQ(sim.events()[0].first_part, "pusher");
+  EXPECT_NEAR(sim.events()[0].time, t1, 2 * delta / 200 + t1 * std::ldexp(1.0, -40));
+  EXPECT_EQ(sim.events()[1].first_part, "block");
+  EXPECT_EQ(sim.events()[1].second_part, "small");
+  // the second impact's time: the first's error plus its own (block speed within 1e-9 (1 + e))
+  EXPECT_NEAR(sim.events()[1].time, t2, 2 * delta / 200 + 2 * delta / v1 + 1e-9 * 1.9 * t2 + t2 * std::ldexp(1.0, -40));
+  EXPECT_NEAR(sim.state().states[2].vx, (0.02 + 0.9 * 0.02) * v1 / 0.03, 1e-9 * 1.9 * v1);
+  EXPECT_NEAR(sim.state().states[1].vx, (0.02 - 0.9 * 0.01) * v1 / 0.03, 1e-9 * 1.9 * v1);
 }
 
 TEST(SimulationPlanarSystem, OutsideTheClassItRefusesWithClearMessages) {
