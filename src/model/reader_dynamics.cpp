@@ -64,6 +64,29 @@ void Reader::read_simulation(const JsonValue* value) {
       check_keys(d, {"part", "law", "speed", "profile"});
       SimulationSpec::Driver driver;
       driver.pointer = d.pointer;
+      {
+        // a planar part: a constant velocity {"x": vx, "y": vy, "angle": omega}, three drivers
+        // of that part in the order vx, vy, omega (as its initial velocity, SimulationSpec::Velocity)
+        const JsonValue& named = require(d, "part");
+        auto index = named.is_string() ? model_.find_part(read_string(named, false)) : std::nullopt;
+        if (index && model_.parts[*index].motion.kind == Motion::Kind::planar) {
+          check_keys(d, {"part", "law", "speed"});
+          if (const JsonValue* law = d.find("law"); law && read_string(*law, false) != "constant_speed")
+            throw ModelError(law->pointer, "a planar part's driver moves at a constant velocity (\"constant_speed\")");
+          const JsonValue& speed = require(d, "speed");
+          expect_object(speed, "a planar part's velocity {\"x\": vx, \"y\": vy, \"angle\": omega}");
+          check_keys(speed, {"x", "y", "angle"});
+          if (!driven.insert(*index).second)
+            throw ModelError(d.pointer, "part '" + model_.parts[*index].name + "' is driven twice");
+          const JsonValue* vx = speed.find("x");
+          const JsonValue* vy = speed.find("y");
+          const JsonValue* omega = speed.find("angle");
+          for (Rational v : {vx ? number(*vx) : Rational(0), vy ? number(*vy) : Rational(0),
+                             omega ? angle(*omega) : Rational(0)})
+            spec.drivers.push_back(SimulationSpec::Driver{*index, v, d.pointer, {}});
+          continue;
+        }
+      }
       driver.part = moving_part(require(d, "part"));
       if (!driven.insert(driver.part).second)
         throw ModelError(d.pointer, "part '" + model_.parts[driver.part].name + "' is driven twice");
@@ -109,6 +132,8 @@ void Reader::read_simulation(const JsonValue* value) {
       const Motion& motion = model_.parts[*index].motion;
       if (motion.kind == Motion::Kind::planar) {
         // {"x": vx, "y": vy, "angle": omega}, each optional (0)
+        if (driven.count(*index))
+          throw ModelError(member.value.pointer, "part '" + member.key + "' is a driver: its velocity is the driver's");
         expect_object(member.value, "a planar part's velocity {\"x\": vx, \"y\": vy, \"angle\": omega}");
         check_keys(member.value, {"x", "y", "angle"});
         const JsonValue* vx = member.value.find("x");
@@ -142,9 +167,10 @@ void Reader::read_simulation(const JsonValue* value) {
         auto index = model_.find_part(name);
         if (!index) throw ModelError(names.items[k].pointer, "unknown part '" + name + "'");
         const Motion& motion = model_.parts[*index].motion;
-        if (motion.kind != Motion::Kind::fixed && motion.kind != Motion::Kind::rotation &&
-            motion.kind != Motion::Kind::translation)
-          throw ModelError(names.items[k].pointer, "part '" + name + "' is not a fixed-axis or fixed part");
+        if (motion.kind == Motion::Kind::pin_slot)
+          throw ModelError(names.items[k].pointer, "part '" + name +
+                                                       "' is a pin-slot part: a spring joins fixed, rotating, "
+                                                       "translating or planar parts");
         indices[k] = *index;
       }
       if (indices[0] == indices[1])

@@ -178,6 +178,25 @@ kernels::Pose<Rational> pose_of(const Point& pivot, const SlicedConfiguration& c
   return pose;
 }
 
+// The force of a linear spring and damper on its end at offset d from the other end (relative
+// velocity dv): -(k (L - rest) + c dL/dt) d / L; rest 0: the vector spring -k d (defined at
+// L = 0); the damper acts along the line (nothing at L = 0, no direction).
+std::array<double, 2> spring_force(double k, double rest, double c, const double d[2], const double dv[2]) {
+  const double L = std::hypot(d[0], d[1]);
+  std::array<double, 2> f{0, 0};
+  if (rest == 0) {
+    f = {-k * d[0], -k * d[1]};
+  } else if (L > 0) {
+    f = {-k * (L - rest) * d[0] / L, -k * (L - rest) * d[1] / L};
+  }
+  if (c > 0 && L > 0) {
+    const double ux = d[0] / L, uy = d[1] / L, ldot = ux * dv[0] + uy * dv[1];
+    f[0] -= c * ldot * ux;
+    f[1] -= c * ldot * uy;
+  }
+  return f;
+}
+
 }  // namespace
 
 struct PlanarSimulation::Impl {
@@ -195,6 +214,22 @@ struct PlanarSimulation::Impl {
   Rational reach_bound;                             // a certified rational upper bound of it
   double delta = 0;                                 // chord deviation (mm)
   double rest_speed = 0;                            // impacts slower than this are plastic
+  // Springs and dampers (docs/simulation.md, "Springs on a planar part"): a torsional spring
+  // to the frame about the pivot, and linear springs/dampers ("simulation"/"springs") from a
+  // point of the part to a point of a fixed part. With any of them the free flight is no longer
+  // in closed form: it is integrated with error control (held_advance with no held contact).
+  struct LineSpring {
+    double body[2] = {0, 0};     // the part's attachment point relative to its pivot, zero configuration (mm)
+    double anchor[2] = {0, 0};   // the fixed part's attachment point, world (mm)
+    double k = 0, rest = 0, c = 0;   // mN/mm, mm, mN s/mm
+  };
+  std::vector<LineSpring> springs;
+  double torsion_k = 0, torsion_rest = 0;           // mN mm/rad, rad
+  bool integrated = false;                          // springs present: free flight integrated
+  // The acceleration of the free part at a state (loads, damping, springs), internal units.
+  Eigen::Vector3d free_acceleration(const Kinematic& at) const;
+  // The springs' potential at a state (mN mm).
+  double spring_potential(const Kinematic& at) const;
   struct Pair {
     std::size_t index = 0;                          // into Model::pairs
     std::size_t fixed = 0;
@@ -342,7 +377,11 @@ struct PlanarSimulation::Impl {
   Eigen::Vector3d inverse_mass() const { return Eigen::Vector3d(1 / mass, 1 / mass, 1 / inertia); }
   double tangential_tolerance() const { return rest_speed; }
   double force_tolerance() const {
-    return 1e-9 * (mass * std::hypot(accel[0], accel[1]) + std::abs(torque) / std::max(reach, 1.0) + 1e-300) *
+    Kinematic still = k;
+    still.vx = still.vy = still.omega = 0;
+    Eigen::Vector3d a = free_acceleration(still);   // loads and springs
+    return 1e-9 * (mass * (std::hypot(accel[0], accel[1]) + std::hypot(a(0), a(1))) +
+                   (std::abs(torque) + inertia * std::abs(a(2))) / std::max(reach, 1.0) + 1e-300) *
            static_cast<double>(1 + held.size());
   }
   // Projects a state onto the held contacts' surfaces (gap = hold_gap) and their velocities
@@ -367,6 +406,37 @@ struct PlanarSimulation::Impl {
   SimulationEvent held_event(SimulationEvent::Kind kind, const Held& c, const HeldFrame& f, double normal_force,
                              double friction_force) const;
 };
+
+Eigen::Vector3d PlanarSimulation::Impl::free_acceleration(const Kinematic& at) const {
+  Eigen::Vector3d a(accel[0] - damping_rate * at.vx, accel[1] - damping_rate * at.vy, alpha);
+  if (!integrated) return a;
+  double fx = 0, fy = 0, tau = -torsion_k * (at.theta - torsion_rest);
+  const double c = std::cos(at.theta), sn = std::sin(at.theta);
+  const double px = to_d(model.parts[part].motion.pivot.x) + at.x, py = to_d(model.parts[part].motion.pivot.y) + at.y;
+  for (const LineSpring& sp : springs) {
+    // the attachment point r (from the centre of mass), the line d from the anchor to it
+    const double rx = c * sp.body[0] - sn * sp.body[1], ry = sn * sp.body[0] + c * sp.body[1];
+    const double d[2] = {px + rx - sp.anchor[0], py + ry - sp.anchor[1]};
+    const double dv[2] = {at.vx - at.omega * ry, at.vy + at.omega * rx};
+    const auto [gx, gy] = spring_force(sp.k, sp.rest, sp.c, d, dv);
+    fx += gx;
+    fy += gy;
+    tau += rx * gy - ry * gx;
+  }
+  return a + Eigen::Vector3d(fx / mass, fy / mass, tau / inertia);
+}
+
+double PlanarSimulation::Impl::spring_potential(const Kinematic& at) const {
+  double e = 0.5 * torsion_k * (at.theta - torsion_rest) * (at.theta - torsion_rest);
+  const double c = std::cos(at.theta), sn = std::sin(at.theta);
+  const double px = to_d(model.parts[part].motion.pivot.x) + at.x, py = to_d(model.parts[part].motion.pivot.y) + at.y;
+  for (const LineSpring& sp : springs) {
+    const double rx = c * sp.body[0] - sn * sp.body[1], ry = sn * sp.body[0] + c * sp.body[1];
+    const double L = std::hypot(px + rx - sp.anchor[0], py + ry - sp.anchor[1]);
+    e += 0.5 * sp.k * (L - sp.rest) * (L - sp.rest);
+  }
+  return e;
+}
 
 const SlicedMotionCrossing& PlanarSimulation::Impl::earliest(
     const std::vector<std::pair<std::size_t, SlicedMotionCrossing>>& crossings,
@@ -688,13 +758,15 @@ bool PlanarSimulation::Impl::try_rest(const Rows& contact) {
   double speed = std::hypot(k.vx, k.vy) + std::abs(k.omega) * reach;
   if (speed > rest_speed) return false;
   Eigen::Vector3d minv(1 / mass, 1 / mass, 1 / inertia);
-  Eigen::Vector3d free_acc(accel[0], accel[1], alpha);   // at rest: no damping, no centripetal terms
+  Kinematic still = k;
+  still.vx = still.vy = still.omega = 0;
+  Eigen::Vector3d free_acc = free_acceleration(still);   // at rest: no damping, no centripetal terms
   Eigen::MatrixXd A = J * minv.asDiagonal() * J.transpose();
   Eigen::VectorXd b = J * free_acc;
   simulation::LcpSolution lcp = simulation::solve_lcp(A, b);
   if (!lcp.solved) return false;
   Eigen::Vector3d acc = free_acc + minv.asDiagonal() * (J.transpose() * lcp.lambda);
-  double scale = std::hypot(accel[0], accel[1]) + std::abs(alpha) * reach;
+  double scale = std::hypot(free_acc(0), free_acc(1)) + std::abs(free_acc(2)) * reach;
   double residual = std::hypot(acc(0), acc(1)) + std::abs(acc(2)) * reach;
   // balanced: the residual acceleration is round-off of the solve (its tolerance is 1e-10
   // relative, lcp_tolerance), not a motion
@@ -740,7 +812,13 @@ PlanarSimulation::Impl::HeldProblem PlanarSimulation::Impl::held_problem(const K
   const auto m = static_cast<Eigen::Index>(held.size());
   p.G.resize(m, 3);
   p.h.resize(m);
-  p.a0 = Eigen::Vector3d(accel[0] - damping_rate * at.vx, accel[1] - damping_rate * at.vy, alpha);
+  p.a0 = free_acceleration(at);
+  if (m == 0) {   // free flight (integrated: springs act)
+    p.solution.solved = true;
+    p.solution.x = p.a0;
+    p.solution.lambda = p.solution.w = p.solution.f = Eigen::VectorXd(0);
+    return p;
+  }
   Eigen::Vector3d v(at.vx, at.vy, at.omega);
   std::vector<int> states;
   for (Eigen::Index r = 0; r < m; ++r) {
@@ -932,6 +1010,7 @@ void PlanarSimulation::Impl::hold(double time, const Rows& rows) {
 
 std::optional<int> PlanarSimulation::Impl::exact_rest_state() const {
   if (held.size() < 2) return std::nullopt;   // one vertex: no balance at rest in general
+  if (integrated) return std::nullopt;        // spring forces are not exact rationals: labelled approximate
   double speed = std::hypot(k.vx, k.vy) + std::abs(k.omega) * reach;
   if (speed > rest_speed) return std::nullopt;
   const Pair& pair = pairs[held.front().pair];
@@ -976,6 +1055,7 @@ std::optional<int> PlanarSimulation::Impl::exact_rest_state() const {
 }
 
 bool PlanarSimulation::Impl::decide() {
+  if (held.empty()) return false;   // integrated free flight: nothing to decide
   HeldProblem p = held_problem(k, true);
   // stick or slip decided exactly where the state is in the rest class (else in floating point)
   std::optional<int> exact = exact_rest_state();
@@ -1024,7 +1104,7 @@ bool PlanarSimulation::Impl::decide() {
   // at rest: slower than the rest speed and the contact forces balance the loads
   double speed = std::hypot(k.vx, k.vy) + std::abs(k.omega) * reach;
   const Eigen::VectorXd& acc = p.solution.x;
-  double scale = std::hypot(accel[0], accel[1]) + std::abs(alpha) * reach;
+  double scale = std::hypot(p.a0(0), p.a0(1)) + std::abs(p.a0(2)) * reach;
   double residual = std::hypot(acc(0), acc(1)) + std::abs(acc(2)) * reach;
   if (speed > rest_speed || residual > 1e-9 * std::max(scale, 1e-300)) return changed;
   if (exact && *exact != simulation::stick) return changed;   // slipping, decided exactly: not at rest
@@ -1220,6 +1300,73 @@ PlanarSimulation::PlanarSimulation(PlanarSimulation&&) noexcept = default;
 PlanarSimulation& PlanarSimulation::operator=(PlanarSimulation&&) noexcept = default;
 PlanarSimulation::~PlanarSimulation() = default;
 
+namespace {
+
+// A planar part's dynamics data, checked (at the part's pointer; a linear spring at its own).
+const Dynamics& checked_planar_dynamics(const Part& part) {
+  if (!part.dynamics || !part.dynamics->mass || !(*part.dynamics->mass > 0))
+    throw ModelError(part.pointer, "planar part '" + part.name + "' needs a positive dynamics mass");
+  const Dynamics& dyn = *part.dynamics;
+  if (!dyn.moment_of_inertia || !(*dyn.moment_of_inertia > 0))
+    throw ModelError(part.pointer, "planar part '" + part.name +
+                                       "' needs a positive dynamics moment_of_inertia (about its pivot, its centre of mass)");
+  if (dyn.linear_spring)
+    throw ModelError(part.pointer + "/dynamics/linear_spring",
+                     "a planar part has no single direction for a linear spring: give a spring between points in "
+                     "\"simulation\"/\"springs\"");
+  return dyn;
+}
+
+// A planar part's reach from its pivot: the farthest boundary point (an arc: its centre's
+// distance + radius) in double (with 1e-12 to spare), and a certified rational upper bound (the
+// far test's sweep bound: exact squared distances, rational square roots rounded up).
+struct PlanarReach {
+  double reach = 0;
+  Rational bound;
+};
+PlanarReach planar_reach(const Part& part) {
+  PlanarReach r;
+  const Point& pivot = part.motion.pivot;
+  const double px = to_d(pivot.x), py = to_d(pivot.y);
+  Rational vertex_sq(0);
+  for (const Loop& loop : part.loops)
+    for (const Edge& e : loop.edges) {
+      r.reach = std::max(r.reach, std::hypot(to_d(e.source.x) - px, to_d(e.source.y) - py));
+      Rational dx = e.source.x - pivot.x, dy = e.source.y - pivot.y;
+      Rational sq = dx * dx + dy * dy;
+      if (sq > vertex_sq) vertex_sq = sq;
+      if (e.is_arc()) {
+        r.reach = std::max(r.reach, std::hypot(to_d(e.center.x) - px, to_d(e.center.y) - py) +
+                                        std::sqrt(to_d(e.radius_squared)));
+        Rational cx = e.center.x - pivot.x, cy = e.center.y - pivot.y;
+        Rational arc = simulation::sqrt_upper(cx * cx + cy * cy) + simulation::sqrt_upper(e.radius_squared);
+        if (arc > r.bound) r.bound = arc;
+      }
+    }
+  r.reach *= 1 + 1e-12;
+  Rational vertex = simulation::sqrt_upper(vertex_sq);
+  if (vertex > r.bound) r.bound = vertex;
+  return r;
+}
+
+// A planar part's initial state: its initial configuration and its velocity, three entries
+// vx, vy, omega (SimulationSpec::Velocity), in internal units (ts: seconds per time unit).
+Kinematic initial_kinematic(const Model& model, std::size_t part, const SimulationSpec& spec, double ts) {
+  const Part& p = model.parts[part];
+  Kinematic k{to_d(p.initial.x), to_d(p.initial.y), to_d(p.initial.angle), 0, 0, 0};
+  std::vector<double> rates;
+  for (const auto& v : spec.velocities)
+    if (v.part == part) rates.push_back(to_d(v.value) / ts);
+  if (rates.size() == 3) {
+    k.vx = rates[0];
+    k.vy = rates[1];
+    k.omega = rates[2];
+  }
+  return k;
+}
+
+}  // namespace
+
 PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOptions& options) {
   auto impl = std::make_unique<Impl>();
   Impl& s = *impl;
@@ -1241,24 +1388,18 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
     if (planar)
       throw ModelError(part.motion.pointer, "part '" + part.name +
                                                 "': the planar simulator moves one planar part only ('" +
-                                                model.parts[*planar].name + "' is the other)");
+                                                model.parts[*planar].name +
+                                                "' is the other; several planar parts: the C++ API's "
+                                                "PlanarSystemSimulation, docs/simulation.md)");
     planar = p;
   }
   if (!planar) throw ModelError("", "the model has no planar part to simulate");
   s.part = *planar;
   const Part& part = model.parts[s.part];
-  if (!spec.drivers.empty()) throw ModelError(spec.drivers.front().pointer, "the planar simulator has no drivers");
-  if (!spec.couplings.empty())
-    throw ModelError(spec.couplings.front().pointer, "the planar simulator has no springs between parts");
-  const Dynamics dyn = part.dynamics.value_or(Dynamics{});
-  const std::string at = part.pointer + "/dynamics";
-  if (!dyn.mass || !(*dyn.mass > 0))
-    throw ModelError(part.pointer, "planar part '" + part.name + "' needs a positive dynamics mass");
-  if (!dyn.moment_of_inertia || !(*dyn.moment_of_inertia > 0))
-    throw ModelError(part.pointer, "planar part '" + part.name +
-                                       "' needs a positive dynamics moment_of_inertia (about its pivot, its centre of mass)");
-  if (dyn.torsional_spring) throw ModelError(at + "/torsional_spring", "a planar part has no spring to the frame");
-  if (dyn.linear_spring) throw ModelError(at + "/linear_spring", "a planar part has no spring to the frame");
+  if (!spec.drivers.empty())
+    throw ModelError(spec.drivers.front().pointer, "a driven planar part among fixed parts only would jam: drivers of "
+                                                   "planar parts are PlanarSystemSimulation's (several planar parts)");
+  const Dynamics& dyn = checked_planar_dynamics(part);
   s.mass = to_d(*dyn.mass);
   {
     // the loads in exact rationals (the unit factors are exact: 1 or 1/1000 s, 1000 or 1 mN)
@@ -1284,33 +1425,32 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
   s.accel[0] = s.g[0] + s.force[0] / s.mass;
   s.accel[1] = s.g[1] + s.force[1] / s.mass;
   s.alpha = s.torque / s.inertia;
-  // reach: the farthest boundary point from the pivot (an arc: its centre's distance + radius)
-  double px = to_d(part.motion.pivot.x), py = to_d(part.motion.pivot.y);
-  for (const Loop& loop : part.loops)
-    for (const Edge& e : loop.edges) {
-      s.reach = std::max(s.reach, std::hypot(to_d(e.source.x) - px, to_d(e.source.y) - py));
-      if (e.is_arc())
-        s.reach = std::max(s.reach, std::hypot(to_d(e.center.x) - px, to_d(e.center.y) - py) +
-                                        std::sqrt(to_d(e.radius_squared)));
-    }
-  s.reach *= 1 + 1e-12;
-  // the certified reach (the far test's sweep bound): exact squared distances, rational square
-  // roots rounded up
+  // springs: a torsional spring to the frame about the pivot; linear springs and dampers from a
+  // point of the part to a point of a fixed part (a spring between two fixed parts acts on nothing)
+  if (dyn.torsional_spring) {
+    s.torsion_k = to_d(dyn.torsional_spring->stiffness) * fs;
+    s.torsion_rest = to_d(dyn.torsional_spring->rest);
+  }
+  for (const auto& coupling : spec.couplings) {
+    if (coupling.first != s.part && coupling.second != s.part) continue;
+    const bool first = coupling.first == s.part;
+    const Point& body = first ? coupling.first_point : coupling.second_point;
+    const Point& anchor = first ? coupling.second_point : coupling.first_point;
+    Impl::LineSpring sp;
+    sp.body[0] = to_d(body.x - part.motion.pivot.x);
+    sp.body[1] = to_d(body.y - part.motion.pivot.y);
+    sp.anchor[0] = to_d(anchor.x);
+    sp.anchor[1] = to_d(anchor.y);
+    sp.k = to_d(coupling.stiffness) * fs;
+    sp.rest = to_d(coupling.rest_length);
+    sp.c = to_d(coupling.damping) * fs * ts;
+    s.springs.push_back(sp);
+  }
+  s.integrated = !s.springs.empty() || dyn.torsional_spring.has_value();
   {
-    Rational vertex_sq(0);
-    for (const Loop& loop : part.loops)
-      for (const Edge& e : loop.edges) {
-        Rational dx = e.source.x - part.motion.pivot.x, dy = e.source.y - part.motion.pivot.y;
-        Rational sq = dx * dx + dy * dy;
-        if (sq > vertex_sq) vertex_sq = sq;
-        if (e.is_arc()) {
-          Rational cx = e.center.x - part.motion.pivot.x, cy = e.center.y - part.motion.pivot.y;
-          Rational arc = simulation::sqrt_upper(cx * cx + cy * cy) + simulation::sqrt_upper(e.radius_squared);
-          if (arc > s.reach_bound) s.reach_bound = arc;
-        }
-      }
-    Rational vertex = simulation::sqrt_upper(vertex_sq);
-    if (vertex > s.reach_bound) s.reach_bound = vertex;
+    PlanarReach r = planar_reach(part);
+    s.reach = r.reach;
+    s.reach_bound = r.bound;
   }
   double accuracy = options.accuracy > 0 ? options.accuracy : spec.accuracy ? to_d(*spec.accuracy) : 1e-9;
   s.delta = options.chord_deviation > 0 ? options.chord_deviation : accuracy * std::max(s.reach, 1.0);
@@ -1319,7 +1459,17 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
   // (chord_cap): a chord never touches a held contact
   s.hold_gap = 0.75 * s.delta;
   // a bounce that would rise less than delta under the loads is plastic
-  s.rest_speed = std::sqrt(2 * (std::hypot(s.accel[0], s.accel[1]) + std::abs(s.alpha) * s.reach) * s.delta);
+  {
+    // the springs' scale of acceleration: their stiffness over the part's size and stretch
+    double spring_accel = s.torsion_k * std::numbers::pi / s.inertia * s.reach;
+    for (const Impl::LineSpring& sp : s.springs)
+      spring_accel += sp.k * (s.reach + std::hypot(sp.anchor[0] - to_d(part.motion.pivot.x) - to_d(part.initial.x),
+                                                   sp.anchor[1] - to_d(part.motion.pivot.y) - to_d(part.initial.y)) +
+                              sp.rest) *
+                      (1 / s.mass + s.reach * s.reach / s.inertia);
+    s.rest_speed = std::sqrt(
+        2 * (std::hypot(s.accel[0], s.accel[1]) + std::abs(s.alpha) * s.reach + spring_accel) * s.delta);
+  }
   for (std::size_t i = 0; i < model.pairs.size(); ++i) {
     const PairSpec& pair = model.pairs[i];
     std::size_t other = pair.first == s.part ? pair.second : pair.second == s.part ? pair.first : no_index;
@@ -1333,18 +1483,7 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
     }
     s.pairs.push_back(std::move(p));
   }
-  s.k.x = to_d(part.initial.x);
-  s.k.y = to_d(part.initial.y);
-  s.k.theta = to_d(part.initial.angle);
-  // a planar part's velocity: three entries vx, vy, omega (SimulationSpec::Velocity)
-  std::vector<double> rates;
-  for (const auto& v : spec.velocities)
-    if (v.part == s.part) rates.push_back(to_d(v.value) / ts);
-  if (rates.size() == 3) {
-    s.k.vx = rates[0];
-    s.k.vy = rates[1];
-    s.k.omega = rates[2];
-  }
+  s.k = initial_kinematic(model, s.part, spec, ts);
   s.q = configuration_of(s.k.x, s.k.y, s.k.theta);
   for (const Impl::Pair& p : s.pairs) {
     SlicedLocation where = p.space.locate(s.q);
@@ -1368,7 +1507,7 @@ void PlanarSimulation::step(double t_limit) {
   if (++s.steps > s.options.max_steps)
     throw NumericError(s.where(s.t) + ": more than " + std::to_string(s.options.max_steps) + " steps");
   // forces balanced and constant: a resting part stays
-  bool event = !s.resting && (s.held.empty() ? s.advance(span) : s.held_advance(span));
+  bool event = !s.resting && (s.held.empty() && !s.integrated ? s.advance(span) : s.held_advance(span));
   if (!event) s.t = span == limit - s.t ? limit : s.t + span;
   s.publish();
 }
@@ -1398,8 +1537,710 @@ double PlanarSimulation::energy() const {
   const Impl& s = *impl_;
   double kinetic = 0.5 * s.mass * (s.k.vx * s.k.vx + s.k.vy * s.k.vy) + 0.5 * s.inertia * s.k.omega * s.k.omega;
   double potential = -(s.mass * s.g[0] + s.force[0]) * s.k.x - (s.mass * s.g[1] + s.force[1]) * s.k.y -
-                     s.torque * s.k.theta;
+                     s.torque * s.k.theta + s.spring_potential(s.k);
   return (kinetic + potential) / s.force_scale;
+}
+
+}  // namespace hipair
+
+// ====================================================================== several planar parts
+// docs/simulation.md, "Several planar parts". Each pair's contacts are found in its own 3-DOF
+// C-space: a planar part B against a fixed part, or against another planar part A in A's frame
+// (the pair's SlicedSpace is built with A as the fixed part at its zero configuration, and B's
+// configuration relative to A is computed exactly from both world configurations).
+
+namespace hipair {
+namespace {
+
+// tan(theta/2) -> (cos, sin) exactly; the half turn (-1, 0)
+std::pair<Rational, Rational> cos_sin(const SlicedAngle& a) {
+  if (a.half_turn) return {Rational(-1), Rational(0)};
+  Rational d = 1 + a.t * a.t;
+  Rational c = (1 - a.t * a.t) / d, s = 2 * a.t / d;
+  c.canonicalize();
+  s.canonicalize();
+  return {c, s};
+}
+
+// The configuration of part B (pivot pb, world configuration b) relative to part A (pivot pa,
+// world configuration a) held at its zero configuration: A^-1 o B = pb + R(theta_b - theta_a)
+// (P - pb) + s with s = pa - pb + R(-theta_a)(pb - pa + t_b - t_a); exact.
+SlicedConfiguration relative_configuration(const Point& pa, const SlicedConfiguration& a, const Point& pb,
+                                           const SlicedConfiguration& b) {
+  SlicedConfiguration r;
+  auto [c, s] = cos_sin(a.angle);
+  Rational dx = pb.x - pa.x + b.x - a.x, dy = pb.y - pa.y + b.y - a.y;
+  r.x = pa.x - pb.x + c * dx + s * dy;
+  r.y = pa.y - pb.y - s * dx + c * dy;
+  r.x.canonicalize();
+  r.y.canonicalize();
+  // tan((theta_b - theta_a)/2)
+  const SlicedAngle &ta = a.angle, &tb = b.angle;
+  if (ta.half_turn && tb.half_turn) {
+    r.angle.t = 0;
+  } else if (ta.half_turn) {   // tan((theta_b - pi)/2) = -1/t_b
+    if (sgn(tb.t) == 0) r.angle.half_turn = true;
+    else r.angle.t = -1 / tb.t;
+  } else if (tb.half_turn) {   // tan((pi - theta_a)/2) = 1/t_a
+    if (sgn(ta.t) == 0) r.angle.half_turn = true;
+    else r.angle.t = 1 / ta.t;
+  } else {
+    Rational den = 1 + ta.t * tb.t;
+    if (sgn(den) == 0) r.angle.half_turn = true;
+    else r.angle.t = (tb.t - ta.t) / den;
+  }
+  r.angle.t.canonicalize();
+  return r;
+}
+
+}  // namespace
+
+struct PlanarSystemSimulation::Impl {
+  Model model;
+  SimulationOptions options;
+  double time_scale = 1, force_scale = 1000;
+  std::string time_unit = "s", force_unit = "N";
+  struct Body {
+    std::size_t part = 0;
+    double mass = 0, inertia = 0, damping_rate = 0, accel[2] = {0, 0}, alpha = 0, torque = 0, force[2] = {0, 0};
+    double pivot[2] = {0, 0};
+    double torsion_k = 0, torsion_rest = 0;
+    double reach = 0;
+    Rational reach_bound;
+    bool driven = false;   // moves at its driver's constant velocity (infinite inertia in impacts)
+  };
+  std::vector<Body> bodies;
+  std::vector<std::size_t> body_of;   // model part -> body index (no_index: fixed)
+  struct Spring {
+    std::size_t body[2] = {no_index, no_index};   // no_index: a fixed part
+    double point[2][2] = {{0, 0}, {0, 0}};        // relative to the body's pivot, or world (fixed)
+    double k = 0, rest = 0, c = 0;
+  };
+  std::vector<Spring> springs;
+  struct Pair {
+    std::size_t index = 0;                    // into Model::pairs
+    std::size_t first = 0, second = 0;        // model parts: first fixed (or held fixed), second planar
+    std::size_t body_a = no_index, body_b = 0;   // bodies (body_a no_index: a fixed part)
+    double restitution = 0;
+    std::shared_ptr<Model> frame_model;       // the model with `first` fixed (planar-planar pairs)
+    SlicedSpace space;
+  };
+  std::vector<Pair> pairs;
+  double g[2] = {0, 0};
+  double delta = 0, accuracy = 1e-9, rest_speed = 0, step_guess = 0;
+  double t = 0;
+  std::vector<Kinematic> k;
+  std::vector<SlicedConfiguration> q;   // world, exact, per body
+  std::vector<SimulationEvent> events;
+  std::size_t steps = 0;
+  PlanarStatistics stats;
+  PlanarSystemState public_state;
+
+  using StateN = std::vector<double>;
+  StateN pack(const std::vector<Kinematic>& ks) const {
+    StateN y;
+    for (const Kinematic& b : ks) {
+      State6 a = to_array(b);
+      y.insert(y.end(), a.begin(), a.end());
+    }
+    return y;
+  }
+  std::vector<Kinematic> unpack(const StateN& y) const {
+    std::vector<Kinematic> ks;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+      ks.push_back(Kinematic{y[6 * i], y[6 * i + 1], y[6 * i + 2], y[6 * i + 3], y[6 * i + 4], y[6 * i + 5]});
+    return ks;
+  }
+  // world point and velocity of a spring end
+  void spring_end(const Spring& sp, int e, const std::vector<Kinematic>& ks, double p[2], double v[2], double r[2]) const {
+    if (sp.body[e] == no_index) {
+      p[0] = sp.point[e][0];
+      p[1] = sp.point[e][1];
+      v[0] = v[1] = r[0] = r[1] = 0;
+      return;
+    }
+    const Body& b = bodies[sp.body[e]];
+    const Kinematic& s = ks[sp.body[e]];
+    double c = std::cos(s.theta), sn = std::sin(s.theta);
+    r[0] = c * sp.point[e][0] - sn * sp.point[e][1];
+    r[1] = sn * sp.point[e][0] + c * sp.point[e][1];
+    p[0] = b.pivot[0] + s.x + r[0];
+    p[1] = b.pivot[1] + s.y + r[1];
+    v[0] = s.vx - s.omega * r[1];
+    v[1] = s.vy + s.omega * r[0];
+  }
+  // accelerations of every body (3 per body)
+  std::vector<double> accelerations(const std::vector<Kinematic>& ks) const {
+    std::vector<double> a(3 * bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const Body& b = bodies[i];
+      if (b.driven) continue;
+      a[3 * i] = b.mass * (b.accel[0] - b.damping_rate * ks[i].vx);
+      a[3 * i + 1] = b.mass * (b.accel[1] - b.damping_rate * ks[i].vy);
+      a[3 * i + 2] = b.torque - b.torsion_k * (ks[i].theta - b.torsion_rest);
+    }
+    for (const Spring& sp : springs) {
+      double p0[2], v0[2], r0[2], p1[2], v1[2], r1[2];
+      spring_end(sp, 0, ks, p0, v0, r0);
+      spring_end(sp, 1, ks, p1, v1, r1);
+      const double d[2] = {p0[0] - p1[0], p0[1] - p1[1]}, dv[2] = {v0[0] - v1[0], v0[1] - v1[1]};
+      const auto [fx, fy] = spring_force(sp.k, sp.rest, sp.c, d, dv);   // on end 0
+      const double* rr[2] = {r0, r1};
+      for (int e = 0; e < 2; ++e) {
+        if (sp.body[e] == no_index || bodies[sp.body[e]].driven) continue;
+        double sx = e == 0 ? fx : -fx, sy = e == 0 ? fy : -fy;
+        a[3 * sp.body[e]] += sx;
+        a[3 * sp.body[e] + 1] += sy;
+        a[3 * sp.body[e] + 2] += rr[e][0] * sy - rr[e][1] * sx;
+      }
+    }
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      a[3 * i] /= bodies[i].mass;
+      a[3 * i + 1] /= bodies[i].mass;
+      a[3 * i + 2] /= bodies[i].inertia;
+    }
+    return a;
+  }
+  void rhs(const StateN& y, StateN& dy) const {
+    std::vector<Kinematic> ks = unpack(y);
+    std::vector<double> a = accelerations(ks);
+    dy.resize(y.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      dy[6 * i] = ks[i].vx;
+      dy[6 * i + 1] = ks[i].vy;
+      dy[6 * i + 2] = ks[i].omega;
+      dy[6 * i + 3] = a[3 * i];
+      dy[6 * i + 4] = a[3 * i + 1];
+      dy[6 * i + 5] = a[3 * i + 2];
+    }
+  }
+  std::vector<Kinematic> fixed_step(const std::vector<Kinematic>& from, double span) const {
+    boost::numeric::odeint::runge_kutta_dopri5<StateN> stepper;
+    StateN y = pack(from);
+    stepper.do_step([this](const StateN& x, StateN& dx, double) { rhs(x, dx); }, y, 0.0, span);
+    return unpack(y);
+  }
+  const Point& pivot_of(std::size_t part) const { return model.parts[part].motion.pivot; }
+  // the pair's configuration (second part relative to the first) from world configurations
+  SlicedConfiguration relative(const Pair& p, const std::vector<SlicedConfiguration>& qs) const {
+    if (p.body_a == no_index) return qs[p.body_b];
+    return relative_configuration(pivot_of(p.first), qs[p.body_a], pivot_of(p.second), qs[p.body_b]);
+  }
+  double relative_angle(const Pair& p, const std::vector<Kinematic>& ks) const {
+    return ks[p.body_b].theta - (p.body_a == no_index ? 0.0 : ks[p.body_a].theta);
+  }
+  std::string where(double time) const {
+    std::ostringstream out;
+    out << "simulation: at t = " << time / time_scale << " " << time_unit;
+    return out.str();
+  }
+  // The longest chord (s) of a pair's relative motion within delta/2 of its path, from the
+  // bounds at both ends (double accelerations, as the single-part simulator's chord_cap).
+  double chord_cap(const Pair& p, const std::vector<Kinematic>& k0, const std::vector<Kinematic>& k1) const {
+    const double pi = std::numbers::pi;
+    double bend_s = 0, wrel = 0, arel = 0;
+    for (const std::vector<Kinematic>* ks : {&k0, &k1}) {
+      std::vector<double> a = accelerations(*ks);
+      const Kinematic& B = (*ks)[p.body_b];
+      const Body& bb = bodies[p.body_b];
+      double ab[3] = {a[3 * p.body_b], a[3 * p.body_b + 1], a[3 * p.body_b + 2]};
+      double aa[3] = {0, 0, 0}, va[2] = {0, 0}, wa = 0, d = 0;
+      if (p.body_a != no_index) {
+        const Kinematic& A = (*ks)[p.body_a];
+        const Body& ba = bodies[p.body_a];
+        for (int i = 0; i < 3; ++i) aa[i] = a[3 * p.body_a + i];
+        va[0] = A.vx;
+        va[1] = A.vy;
+        wa = A.omega;
+        d = std::hypot(bb.pivot[0] + B.x - ba.pivot[0] - A.x, bb.pivot[1] + B.y - ba.pivot[1] - A.y);
+      }
+      double s2 = std::hypot(ab[0] - aa[0], ab[1] - aa[1]) + 2 * std::abs(wa) * std::hypot(B.vx - va[0], B.vy - va[1]) +
+                  (std::abs(aa[2]) + wa * wa) * d;
+      bend_s = std::max(bend_s, s2);
+      wrel = std::max(wrel, std::abs(B.omega - wa));
+      arel = std::max(arel, std::abs(ab[2] - aa[2]));
+    }
+    double phi = std::abs(wrap(relative_angle(p, k0)));
+    if (phi > pi / 2) phi = pi - phi;
+    double w_bound = std::tan((phi + pi / 4) / 2);
+    double wpp = 0.5 * (1 + w_bound * w_bound) * (arel + w_bound * wrel * wrel);
+    double bend = bend_s + 2 * bodies[p.body_b].reach * wpp;
+    double cap = wrel > 0 ? (pi / 4) / wrel : std::numeric_limits<double>::infinity();
+    if (bend > 0) cap = std::min(cap, std::sqrt(8 * 0.5 * delta / bend));
+    return cap;
+  }
+  // A bound (double) of how far any point of the pair's second part moves relative to the
+  // first over a step of length `end` (speeds at the ends plus acceleration x step).
+  double travel(const Pair& p, const std::vector<Kinematic>& k0, const std::vector<Kinematic>& k1, double end) const {
+    double out = 0;
+    for (const std::vector<Kinematic>* ks : {&k0, &k1}) {
+      std::vector<double> a = accelerations(*ks);
+      auto part_travel = [&](std::size_t body, double reach) {
+        const Kinematic& s = (*ks)[body];
+        double speed = std::hypot(s.vx, s.vy) + std::abs(s.omega) * reach;
+        double gain = std::hypot(a[3 * body], a[3 * body + 1]) + std::abs(a[3 * body + 2]) * reach + s.omega * s.omega * reach;
+        return (speed + gain * end) * end;
+      };
+      double tb = part_travel(p.body_b, bodies[p.body_b].reach);
+      if (p.body_a != no_index) {
+        const Kinematic &A = (*ks)[p.body_a], &B = (*ks)[p.body_b];
+        double d = std::hypot(bodies[p.body_b].pivot[0] + B.x - bodies[p.body_a].pivot[0] - A.x,
+                              bodies[p.body_b].pivot[1] + B.y - bodies[p.body_a].pivot[1] - A.y);
+        tb += part_travel(p.body_a, d + bodies[p.body_b].reach);
+      }
+      out = std::max(out, tb);
+    }
+    return out;
+  }
+  void publish() {
+    public_state.time = t / time_scale;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      PlanarState& s = public_state.states[i];
+      s.time = public_state.time;
+      s.x = k[i].x;
+      s.y = k[i].y;
+      s.angle = k[i].theta;
+      s.vx = k[i].vx * time_scale;
+      s.vy = k[i].vy * time_scale;
+      s.omega = k[i].omega * time_scale;
+      s.configuration = q[i];
+    }
+  }
+  void impact(double time, const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching);
+  bool advance(double span);
+};
+
+void PlanarSystemSimulation::Impl::impact(double time,
+                                          const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching) {
+  const auto n = static_cast<Eigen::Index>(3 * bodies.size());
+  std::vector<Eigen::VectorXd> rows;
+  std::vector<std::array<double, 4>> frames;
+  std::vector<std::size_t> row_pair;
+  std::vector<std::string> labels;
+  for (const auto& [i, f] : touching) {
+    const Pair& p = pairs[i];
+    SlicedConfiguration rel = relative(p, q);
+    SlicedContactFrame frame = sliced_contact_frame(p.frame_model ? *p.frame_model : model, f, rel);
+    if (!frame.defined) continue;
+    double px = to_d(frame.point.x), py = to_d(frame.point.y), nx = to_d(frame.normal.x), ny = to_d(frame.normal.y);
+    double nn = std::hypot(nx, ny);
+    if (!(nn > 0)) continue;
+    nx /= nn;
+    ny /= nn;
+    if (p.body_a != no_index) {   // from the first part's frame to the world
+      const Body& ba = bodies[p.body_a];
+      const Kinematic& A = k[p.body_a];
+      double c = std::cos(A.theta), s = std::sin(A.theta);
+      double rx = px - ba.pivot[0], ry = py - ba.pivot[1];
+      px = ba.pivot[0] + A.x + c * rx - s * ry;
+      py = ba.pivot[1] + A.y + s * rx + c * ry;
+      double mx = c * nx - s * ny, my = s * nx + c * ny;
+      nx = mx;
+      ny = my;
+    }
+    Eigen::VectorXd row = Eigen::VectorXd::Zero(n);
+    auto put = [&](std::size_t body, double sign) {
+      const Body& b = bodies[body];
+      double rx = px - (b.pivot[0] + k[body].x), ry = py - (b.pivot[1] + k[body].y);
+      row(static_cast<Eigen::Index>(3 * body)) += sign * nx;
+      row(static_cast<Eigen::Index>(3 * body + 1)) += sign * ny;
+      row(static_cast<Eigen::Index>(3 * body + 2)) += sign * (rx * ny - ry * nx);
+    };
+    put(p.body_b, 1);
+    if (p.body_a != no_index) put(p.body_a, -1);
+    bool repeated = false;
+    for (const Eigen::VectorXd& r : rows) repeated = repeated || (r - row).cwiseAbs().maxCoeff() < 1e-12 * (1 + row.cwiseAbs().maxCoeff());
+    if (repeated) continue;
+    rows.push_back(row);
+    frames.push_back({px, py, nx, ny});
+    row_pair.push_back(i);
+    labels.push_back(f.label);
+  }
+  if (rows.empty()) throw GeometryError(where(time) + ": parts touch only at vertex–vertex contacts: no contact normal");
+  const auto m = static_cast<Eigen::Index>(rows.size());
+  Eigen::MatrixXd J(m, n);
+  for (Eigen::Index r = 0; r < m; ++r) J.row(r) = rows[static_cast<std::size_t>(r)].transpose();
+  Eigen::VectorXd minv(n), v(n);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const double free = bodies[i].driven ? 0.0 : 1.0;   // a driver: infinite inertia
+    minv.segment(static_cast<Eigen::Index>(3 * i), 3) << free / bodies[i].mass, free / bodies[i].mass,
+        free / bodies[i].inertia;
+    v.segment(static_cast<Eigen::Index>(3 * i), 3) << k[i].vx, k[i].vy, k[i].omega;
+  }
+  Eigen::VectorXd before = J * v;
+  Eigen::VectorXd b(m);
+  for (Eigen::Index r = 0; r < m; ++r) b(r) = (1 + pairs[row_pair[static_cast<std::size_t>(r)]].restitution) * before(r);
+  Eigen::MatrixXd A = J * minv.asDiagonal() * J.transpose();
+  for (Eigen::Index r = 0; r < m; ++r)
+    if (before(r) < 0 && !(A(r, r) > 0)) {   // a driver against a fixed part or another driver
+      const Pair& p = pairs[row_pair[static_cast<std::size_t>(r)]];
+      throw NumericError(where(time) + ": driven part '" + model.parts[p.second].name + "' runs into '" +
+                         model.parts[p.first].name + "': nothing there can give way (a jam)");
+    }
+  simulation::LcpSolution lcp = simulation::solve_lcp(A, b);
+  if (!lcp.solved) throw NumericError(where(time) + ": the impact problem has no solution");
+  Eigen::VectorXd after_v = v + minv.asDiagonal() * (J.transpose() * lcp.lambda);
+  Eigen::VectorXd after = J * after_v;
+  // the class of inputs: every contact met separates (a sustained contact is not supported here)
+  for (Eigen::Index r = 0; r < m; ++r)
+    if (before(r) < 0 && after(r) < rest_speed) {
+      const Pair& p = pairs[row_pair[static_cast<std::size_t>(r)]];
+      throw NumericError(where(time) + ": '" + model.parts[p.first].name + "' and '" + model.parts[p.second].name +
+                         "' would stay in contact (an impact slower than the rest speed, or without restitution): "
+                         "sustained contact is not supported when several planar parts move (docs/simulation.md)");
+    }
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    k[i].vx = after_v(static_cast<Eigen::Index>(3 * i));
+    k[i].vy = after_v(static_cast<Eigen::Index>(3 * i + 1));
+    k[i].omega = after_v(static_cast<Eigen::Index>(3 * i + 2));
+  }
+  // one impact event per pair, at its row of largest impulse
+  std::vector<bool> done(pairs.size(), false);
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    std::size_t i = row_pair[r];
+    if (done[i]) continue;
+    done[i] = true;
+    SimulationEvent e;
+    e.kind = SimulationEvent::Kind::impact;
+    e.time = time / time_scale;
+    e.pair = pairs[i].index;
+    e.first_part = model.parts[pairs[i].first].name;
+    e.second_part = model.parts[pairs[i].second].name;
+    auto top = static_cast<Eigen::Index>(r);
+    double total = 0;
+    for (std::size_t s = 0; s < rows.size(); ++s)
+      if (row_pair[s] == i) {
+        auto row = static_cast<Eigen::Index>(s);
+        e.features.push_back(labels[s]);
+        total += lcp.lambda(row);
+        if (lcp.lambda(row) > lcp.lambda(top)) top = row;
+      }
+    e.impulse = total / (force_scale * time_scale);
+    e.normal_speed_before = before(top) * time_scale;
+    e.normal_speed_after = after(top) * time_scale;
+    const auto& fr = frames[static_cast<std::size_t>(top)];
+    e.point = {fr[0], fr[1]};
+    e.normal = {fr[2], fr[3]};
+    events.push_back(std::move(e));
+  }
+}
+
+bool PlanarSystemSimulation::Impl::advance(double span) {
+  using namespace boost::numeric::odeint;
+  const std::vector<Kinematic> k0 = k;
+  const std::vector<SlicedConfiguration> q0 = q;
+  auto f = [this](const StateN& x, StateN& dx, double) { rhs(x, dx); };
+  double h = step_guess > 0 ? std::min(step_guess, span) : span;
+  std::vector<SlicedConfiguration> rel0;
+  std::vector<bool> flip;
+  for (const Pair& p : pairs) {
+    rel0.push_back(relative(p, q0));
+    flip.push_back(std::abs(wrap(relative_angle(p, k0))) > std::numbers::pi / 2);
+  }
+  for (int attempt = 0; attempt < 200; ++attempt) {
+    auto stepper = make_controlled(accuracy, accuracy, runge_kutta_dopri5<StateN>());
+    StateN y = pack(k0);
+    double tt = 0, trial = h;
+    for (int tries = 0; stepper.try_step(f, y, tt, trial) == fail; ++tries)
+      if (tries > 200 || !(trial > 0)) throw NumericError(where(t) + ": the integration fails");
+    const double end = tt;
+    step_guess = trial;
+    const std::vector<Kinematic> k1 = unpack(y);
+    std::vector<SlicedConfiguration> q1;
+    for (const Kinematic& b : k1) q1.push_back(configuration_of(b.x, b.y, b.theta));
+    // far test per pair (certified for the chord: the exact sweep bound against features_near's
+    // certified distance; the integrated path kept apart by twice its travel bound plus delta)
+    std::vector<bool> far(pairs.size(), false);
+    std::vector<SlicedConfiguration> rel1;
+    double cap = std::numeric_limits<double>::infinity(), h_far = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const Pair& p = pairs[i];
+      rel1.push_back(relative(p, q1));
+      std::optional<Rational> sweep = simulation::motion_sweep_bound(rel0[i], rel1[i], flip[i], bodies[p.body_b].reach_bound);
+      double move = travel(p, k0, k1, end);
+      Rational radius(2 * move + delta);
+      if (sweep && *sweep > radius) radius = *sweep;
+      ++stats.distance_queries;
+      double nearest = std::numeric_limits<double>::infinity();
+      std::optional<Rational> nearest_exact;
+      for (const SlicedNearFeature& nf : p.space.features_near(rel0[i], radius)) {
+        nearest = std::min(nearest, to_d(nf.distance_lower));
+        if (!nearest_exact || nf.distance_lower < *nearest_exact) nearest_exact = nf.distance_lower;
+      }
+      far[i] = sweep && (!nearest_exact || *nearest_exact > *sweep) && nearest > 2 * move + delta;
+      if (!far[i]) {
+        cap = std::min(cap, chord_cap(p, k0, k1));
+        // a step short enough to be far (the travel grows about linearly with the step)
+        if (nearest > delta && move > 0) h_far = std::min(h_far, 0.5 * (nearest - delta) / move * end * (1 - 1e-6));
+      }
+    }
+    if (h_far > cap && h_far < end) {
+      h = step_guess = h_far;
+      continue;
+    }
+    if (end > cap * (1 + 1e-9)) {
+      h = step_guess = cap;
+      continue;
+    }
+    std::vector<std::pair<std::size_t, SlicedMotionCrossing>> crossings;
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      if (far[i]) continue;
+      ++stats.chord_tests;
+      SlicedMotionCrossing c = pairs[i].space.first_crossing(SlicedMotion{rel0[i], rel1[i], flip[i], {}},
+                                                             CrossingOptions{options.crossing_bits});
+      if (c.status == CrossingStatus::starts_in_contact)
+        throw NumericError(where(t) + " '" + model.parts[pairs[i].second].name + "' starts a chord in contact with '" +
+                           model.parts[pairs[i].first].name + "' (an internal error)");
+      if (c.status == CrossingStatus::crossing) crossings.emplace_back(i, std::move(c));
+    }
+    if (crossings.empty()) {
+      ++stats.advancement_steps;
+      t += end;
+      k = k1;
+      q = q1;
+      return false;
+    }
+    std::size_t best = 0;
+    for (std::size_t c = 1; c < crossings.size(); ++c)
+      if (crossings[c].second.u_lower < crossings[best].second.u_lower) best = c;
+    const double u = to_d(crossings[best].second.u_lower);
+    // the state at the contact, backed off in time until every pair is exactly free there
+    // (the path is within delta/2 of the chords)
+    std::vector<Kinematic> at;
+    std::vector<SlicedConfiguration> q_at;
+    double s_contact = u * end;
+    // back-off steps of 2^j delta / rate: the time in which no point moves farther than 2^j delta
+    double rate = 0;
+    for (const std::vector<Kinematic>* ks : {&k0, &k1})
+      for (std::size_t i = 0; i < bodies.size(); ++i)
+        rate = std::max(rate, std::hypot((*ks)[i].vx, (*ks)[i].vy) + std::abs((*ks)[i].omega) * bodies[i].reach);
+    rate = 2 * std::max(rate, std::numeric_limits<double>::min());
+    bool free_everywhere = false;
+    for (int back = 0; back < 80 && !free_everywhere; ++back) {
+      double s = back == 0 ? s_contact : s_contact - std::ldexp(delta / rate, back - 1);
+      if (s <= 0) s = 0;
+      at = s > 0 ? fixed_step(k0, s) : k0;
+      q_at.clear();
+      for (const Kinematic& b : at) q_at.push_back(s > 0 ? configuration_of(b.x, b.y, b.theta) : q0[&b - at.data()]);
+      free_everywhere = true;
+      for (const Pair& p : pairs)
+        free_everywhere = free_everywhere && p.space.locate(relative(p, q_at)).kind == SlicedLocation::Kind::free;
+      if (free_everywhere) s_contact = s;
+      if (s == 0) break;
+    }
+    if (!free_everywhere) throw NumericError(where(t) + ": no free state before the contact (an internal error)");
+    // how far the back-off moved any point (rate is twice the fastest point speed)
+    const double backed = 0.5 * rate * (u * end - s_contact);
+    // every pair whose bracket meets the earliest, and feature pairs within 2 delta of touching
+    // the path there (a face meeting a face, tilted by round-off, meets all its corners at once)
+    std::vector<std::pair<std::size_t, SlicedFeaturePair>> touching;
+    for (const auto& [i, c] : crossings)
+      if (c.u_lower <= crossings[best].second.u_upper)
+        for (const SlicedFeaturePair& fp : c.features) touching.emplace_back(i, fp);
+    for (std::size_t i = 0; i < pairs.size(); ++i)
+      for (const SlicedNearFeature& nf : pairs[i].space.features_near(relative(pairs[i], q_at), Rational(2 * delta + backed))) {
+        bool listed = false;
+        for (const auto& [j, fp] : touching) listed = listed || (j == i && fp.label == nf.pair.label);
+        if (!listed) touching.emplace_back(i, nf.pair);
+      }
+    t += s_contact;
+    k = at;
+    q = q_at;
+    step_guess = 0;
+    impact(t, touching);
+    return true;
+  }
+  throw NumericError(where(t) + ": no step could be certified");
+}
+
+PlanarSystemSimulation::PlanarSystemSimulation(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+PlanarSystemSimulation::PlanarSystemSimulation(PlanarSystemSimulation&&) noexcept = default;
+PlanarSystemSimulation& PlanarSystemSimulation::operator=(PlanarSystemSimulation&&) noexcept = default;
+PlanarSystemSimulation::~PlanarSystemSimulation() = default;
+
+PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const SimulationOptions& options) {
+  auto impl = std::make_unique<Impl>();
+  Impl& s = *impl;
+  s.model = model;
+  s.options = options;
+  SimulationSpec spec = model.simulation.value_or(SimulationSpec{});
+  s.time_unit = spec.time_unit;
+  s.force_unit = spec.force_unit;
+  s.time_scale = simulation::seconds_per(spec);
+  s.force_scale = simulation::millinewtons_per(spec);
+  const double fs = s.force_scale, ts = s.time_scale;
+  s.g[0] = to_d(spec.gravity.x) / (ts * ts);
+  s.g[1] = to_d(spec.gravity.y) / (ts * ts);
+  s.body_of.assign(model.parts.size(), no_index);
+  double max_reach = 0, max_accel = 0;
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const Part& part = model.parts[p];
+    if (part.motion.kind == Motion::Kind::fixed) continue;
+    if (part.motion.kind != Motion::Kind::planar)
+      throw ModelError(part.motion.pointer, "part '" + part.name + "': several planar parts move among fixed parts only");
+    // a driver needs no inertia (it never gives way): unit placeholders, no loads
+    bool driven = false;
+    for (const auto& d : spec.drivers) driven = driven || d.part == p;
+    static const Dynamics driver_dynamics{Rational(1), Rational(1), {}, {}, {}, {}, {}};
+    const Dynamics& dyn = driven ? driver_dynamics : checked_planar_dynamics(part);
+    Impl::Body b;
+    b.part = p;
+    b.mass = to_d(*dyn.mass);
+    b.inertia = to_d(*dyn.moment_of_inertia);
+    if (dyn.force) {
+      b.force[0] = to_d(dyn.force->x) * fs;
+      b.force[1] = to_d(dyn.force->y) * fs;
+    }
+    if (dyn.torque) b.torque = to_d(*dyn.torque) * fs;
+    if (dyn.damping) b.damping_rate = to_d(*dyn.damping) * fs * ts / b.mass;
+    if (dyn.torsional_spring) {
+      b.torsion_k = to_d(dyn.torsional_spring->stiffness) * fs;
+      b.torsion_rest = to_d(dyn.torsional_spring->rest);
+    }
+    b.accel[0] = s.g[0] + b.force[0] / b.mass;
+    b.accel[1] = s.g[1] + b.force[1] / b.mass;
+    b.alpha = b.torque / b.inertia;
+    b.pivot[0] = to_d(part.motion.pivot.x);
+    b.pivot[1] = to_d(part.motion.pivot.y);
+    PlanarReach reach = planar_reach(part);
+    b.reach = reach.reach;
+    b.reach_bound = reach.bound;
+    max_reach = std::max(max_reach, b.reach);
+    max_accel = std::max(max_accel, std::hypot(b.accel[0], b.accel[1]) + std::abs(b.alpha) * b.reach);
+    s.body_of[p] = s.bodies.size();
+    s.bodies.push_back(b);
+    Kinematic kin = initial_kinematic(model, p, spec, ts);
+    s.k.push_back(kin);
+    s.q.push_back(configuration_of(kin.x, kin.y, kin.theta));
+  }
+  if (s.bodies.empty()) throw ModelError("", "the model has no planar part to simulate");
+  // drivers of planar parts: a constant velocity, three entries vx, vy, omega (the reader's)
+  for (std::size_t d = 0; d < spec.drivers.size(); d += 3) {
+    const std::size_t body = s.body_of[spec.drivers[d].part];
+    if (body == no_index || d + 2 >= spec.drivers.size())
+      throw ModelError(spec.drivers[d].pointer, "the planar simulator drives planar parts only");
+    Impl::Body& b = s.bodies[body];
+    b.driven = true;
+    s.k[body].vx = to_d(spec.drivers[d].speed) / ts;
+    s.k[body].vy = to_d(spec.drivers[d + 1].speed) / ts;
+    s.k[body].omega = to_d(spec.drivers[d + 2].speed) / ts;
+  }
+  for (const auto& coupling : spec.couplings) {
+    Impl::Spring sp;
+    const std::size_t ends[2] = {coupling.first, coupling.second};
+    const Point* points[2] = {&coupling.first_point, &coupling.second_point};
+    for (int e = 0; e < 2; ++e) {
+      sp.body[e] = s.body_of[ends[e]];
+      const Point& pivot = model.parts[ends[e]].motion.pivot;
+      sp.point[e][0] = to_d(sp.body[e] == no_index ? points[e]->x : points[e]->x - pivot.x);
+      sp.point[e][1] = to_d(sp.body[e] == no_index ? points[e]->y : points[e]->y - pivot.y);
+    }
+    if (sp.body[0] == no_index && sp.body[1] == no_index) continue;   // two fixed parts: acts on nothing
+    sp.k = to_d(coupling.stiffness) * fs;
+    sp.rest = to_d(coupling.rest_length);
+    sp.c = to_d(coupling.damping) * fs * ts;
+    s.springs.push_back(sp);
+  }
+  s.accuracy = options.accuracy > 0 ? options.accuracy : spec.accuracy ? to_d(*spec.accuracy) : 1e-9;
+  s.delta = options.chord_deviation > 0 ? options.chord_deviation : s.accuracy * std::max(max_reach, 1.0);
+  s.rest_speed = std::sqrt(2 * max_accel * s.delta);
+  for (std::size_t i = 0; i < model.pairs.size(); ++i) {
+    const PairSpec& pair = model.pairs[i];
+    std::size_t a = s.body_of[pair.first], b = s.body_of[pair.second];
+    if (a == no_index && b == no_index) continue;
+    Impl::Pair p;
+    p.index = i;
+    p.restitution = pair.restitution ? to_d(*pair.restitution) : 0.0;
+    if (pair.friction && sgn(*pair.friction) > 0)
+      throw ModelError(pair.pointer + "/friction", "friction is not supported when several planar parts move "
+                                                   "(frictionless impacts only: docs/simulation.md)");
+    if (a == no_index || b == no_index) {
+      p.first = a == no_index ? pair.first : pair.second;
+      p.second = a == no_index ? pair.second : pair.first;
+      p.body_b = s.body_of[p.second];
+      p.space = SlicedSpace::build(model, model.parts[p.first].name, model.parts[p.second].name, SlicedBuildOptions{false, {}});
+    } else {
+      p.first = pair.first;
+      p.second = pair.second;
+      p.body_a = a;
+      p.body_b = b;
+      // the first part held fixed at its zero configuration: the pair's space in its frame
+      auto frame = std::make_shared<Model>(model);
+      frame->parts[p.first].motion.kind = Motion::Kind::fixed;
+      frame->parts[p.first].initial = PartConfiguration{};
+      p.space = SlicedSpace::build(*frame, model.parts[p.first].name, model.parts[p.second].name,
+                                   SlicedBuildOptions{false, {}});
+      p.frame_model = std::move(frame);
+    }
+    SlicedLocation where = p.space.locate(s.relative(p, s.q));
+    if (where.kind != SlicedLocation::Kind::free) {
+      const Part& part = model.parts[p.second];
+      throw ModelError(part.pointer + "/initial", "planar part '" + part.name + "' starts " +
+                                                      (where.kind == SlicedLocation::Kind::blocked ? "overlapping"
+                                                                                                   : "touching") +
+                                                      " part '" + model.parts[p.first].name + "': it must start apart");
+    }
+    s.pairs.push_back(std::move(p));
+  }
+  for (const Impl::Body& b : s.bodies) s.public_state.parts.push_back(b.part);
+  s.public_state.states.resize(s.bodies.size());
+  s.publish();
+  return PlanarSystemSimulation(std::move(impl));
+}
+
+void PlanarSystemSimulation::step(double t_limit) {
+  Impl& s = *impl_;
+  double limit = t_limit * s.time_scale;
+  double span = limit - s.t;
+  if (s.options.max_step > 0) span = std::min(span, s.options.max_step * s.time_scale);
+  if (!(span > 0)) return;
+  if (++s.steps > s.options.max_steps)
+    throw NumericError(s.where(s.t) + ": more than " + std::to_string(s.options.max_steps) + " steps");
+  double before = s.t;
+  bool event = s.advance(span);
+  // the last step of a run ends at its limit exactly (the integrator's sum may differ by an ulp)
+  if (!event && std::abs(s.t - limit) <= 1e-12 * std::max(std::abs(limit), 1e-300) && before + span >= limit) s.t = limit;
+  s.publish();
+}
+
+void PlanarSystemSimulation::run_until(double t_end, const std::function<void(double)>& progress) {
+  while (impl_->t < t_end * impl_->time_scale) {
+    double before = impl_->t;
+    std::size_t events = impl_->events.size();
+    step(t_end);
+    if (progress) progress(impl_->public_state.time);
+    if (impl_->t == before && impl_->events.size() == events) break;
+  }
+}
+
+const PlanarSystemState& PlanarSystemSimulation::state() const { return impl_->public_state; }
+const std::vector<SimulationEvent>& PlanarSystemSimulation::events() const { return impl_->events; }
+std::size_t PlanarSystemSimulation::steps() const { return impl_->steps; }
+const PlanarStatistics& PlanarSystemSimulation::statistics() const { return impl_->stats; }
+double PlanarSystemSimulation::chord_deviation() const { return impl_->delta; }
+const Model& PlanarSystemSimulation::model() const { return impl_->model; }
+const std::string& PlanarSystemSimulation::time_unit() const { return impl_->time_unit; }
+const std::string& PlanarSystemSimulation::force_unit() const { return impl_->force_unit; }
+
+double PlanarSystemSimulation::energy() const {
+  const Impl& s = *impl_;
+  double e = 0;
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    const Impl::Body& b = s.bodies[i];
+    const Kinematic& k = s.k[i];
+    if (b.driven) continue;   // a driver's energy is its motor's (as the fixed-axis simulator)
+    e += 0.5 * b.mass * (k.vx * k.vx + k.vy * k.vy) + 0.5 * b.inertia * k.omega * k.omega;
+    e -= (b.mass * s.g[0] + b.force[0]) * k.x + (b.mass * s.g[1] + b.force[1]) * k.y + b.torque * k.theta;
+    e += 0.5 * b.torsion_k * (k.theta - b.torsion_rest) * (k.theta - b.torsion_rest);
+  }
+  for (const Impl::Spring& sp : s.springs) {
+    double p0[2], v0[2], r0[2], p1[2], v1[2], r1[2];
+    s.spring_end(sp, 0, s.k, p0, v0, r0);
+    s.spring_end(sp, 1, s.k, p1, v1, r1);
+    double L = std::hypot(p0[0] - p1[0], p0[1] - p1[1]);
+    e += 0.5 * sp.k * (L - sp.rest) * (L - sp.rest);
+  }
+  return e / s.force_scale;
 }
 
 }  // namespace hipair

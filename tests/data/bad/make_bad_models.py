@@ -164,6 +164,11 @@ m = two_parts(); m["parts"][1]["dynamics"] = {"torsional_spring": {"stiffness": 
 add("negative_stiffness", m, "/parts/1/dynamics/torsional_spring/stiffness", "stiffness must not be negative", "negative spring rate")
 m = two_parts(); m["parts"][1]["dynamics"] = {"damping": -0.5}
 add("negative_damping", m, "/parts/1/dynamics/damping", "damping must not be negative", "negative damping")
+m = base()
+m["parts"].append({"name": "slider", "motion": {"pin_slot": {"pivot": [30, 0], "direction": [1, 0]}},
+                   "loops": [{"start": [20, 0], "edges": [{"line_to": [40, 0]}, {"line_to": [40, 2]}, {"line_to": [20, 2]}, {"line_to": [20, 0]}]}]})
+m["simulation"] = {"springs": [{"parts": ["plate", "slider"], "points": [[0, 0], [30, 0]], "stiffness": 1}]}
+add("spring_on_pin_slot_part", m, "/simulation/springs/0/parts/1", "is a pin-slot part", "a spring joins fixed, rotating, translating or planar parts only")
 m = base(); m["parts"][0]["features"] = [{"sprocket": {"teeth": 12}}]
 add("unknown_feature_template", m, "/parts/0/features/0/sprocket", "unknown feature template 'sprocket'", "no such template")
 m = base(); m["parts"][0]["features"] = [{"circle": {"center": [50, 50], "radius": 2, "colour": "red"}}]
