@@ -12,9 +12,6 @@
 #include <CGAL/Arr_segment_traits_2.h>
 #include <CGAL/Arrangement_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
-#include <CGAL/Filtered_kernel.h>
-#include <CGAL/Simple_cartesian.h>
-#include <CGAL/gmpxx.h>
 
 #include <algorithm>
 #include <chrono>
@@ -67,15 +64,18 @@ NT to_nt(const Rational& q) { return NT(exact_of<ET>(q)); }
 Rational to_rational(const NT& value) { return rational_of<ET>(CGAL::exact(value)); }
 
 // The two flavours of the stage. Circles: the circle–segment traits on Epeck (one-root
-// coordinates). Segments (every curve a line; see segments_apply): the segment traits on a
-// kernel with rational coordinates (mpq_class, filtered predicates, no lazy evaluation).
+// coordinates). Segments (every curve a line; see segments_apply): the segment traits on Epeck
+// (rational points, the kernel's filtered predicates directly: no one-root numbers). Measured
+// (docs/performance.md, session 12): CGAL's insertion 18 % -> 10 % of a 64/65-gon build;
+// Filtered_kernel<Simple_cartesian<mpq_class>> instead of Epeck was 13 % (its filter converts
+// every mpq through MPFR).
 struct CircleFlavour {
   using K = Kernel;
   using BaseTraits = CGAL::Arr_circle_segment_traits_2<K>;
   static constexpr bool segments = false;
 };
 struct SegmentFlavour {
-  using K = CGAL::Filtered_kernel<CGAL::Simple_cartesian<mpq_class>>;
+  using K = Kernel;
   using BaseTraits = CGAL::Arr_segment_traits_2<K>;
   static constexpr bool segments = true;
 };
