@@ -25,6 +25,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <random>
 
 namespace hipair {
@@ -39,6 +40,16 @@ Model sliders(const Points& a, const Points& b, const std::string& da = "[1, 0]"
     { "name": "a", "motion": { "translation": { "direction": )" + da + R"( } }, "loops": [ )" + loop_json(a) + R"( ] },
     { "name": "b", "motion": { "translation": { "direction": )" + db + R"( } }, "loops": [ )" + loop_json(b) + R"( ] } ] })";
   return read_model(model);
+}
+
+// The sliders model, or nullopt when rounding made a polygon degenerate (repeated vertex,
+// self-touching): not a case.
+std::optional<Model> sliders_or_none(const Points& a, const Points& b) {
+  try {
+    return sliders(a, b);
+  } catch (const ModelError&) {
+    return std::nullopt;
+  }
 }
 
 // A star-shaped polygon of k vertices around (cx, cy) on a 1/q grid; with `collinear`, the
@@ -242,12 +253,9 @@ TEST(CSpacePolygonFrontEnd, RandomNonConvexPolygonsEqualTheGeneralPathAndTheMink
       b = scaled(b, power_of_ten(40));
     }
     SCOPED_TRACE("instance " + std::to_string(instance));
-    Model model;
-    try {
-      model = sliders(a, b);
-    } catch (const ModelError&) {
-      continue;   // rounding made a polygon degenerate (repeated vertex, self-touching): not a case
-    }
+    std::optional<Model> built_model = sliders_or_none(a, b);
+    if (!built_model) continue;
+    const Model& model = *built_model;
     expect_same_curves(model);
     Built built = build_both(model, instance % 3 == 0);
     expect_same_space(built.fast, built.general);
@@ -360,12 +368,9 @@ TEST(CSpacePolygonFrontEnd, SegmentTraitsEqualTheCircleSegmentTraitsOnTouchingCo
         break;
     }
     SCOPED_TRACE("instance " + std::to_string(instance));
-    Model model;
-    try {
-      model = sliders(a, b);
-    } catch (const ModelError&) {
-      continue;   // rounding made a polygon degenerate (repeated vertex, self-touching): not a case
-    }
+    std::optional<Model> built_model = sliders_or_none(a, b);
+    if (!built_model) continue;
+    const Model& model = *built_model;
     Built built = build_both(model, instance % 3 == 0);
     expect_same_space(built.fast, built.general);
     expect_minkowski(built.fast, a, b);
