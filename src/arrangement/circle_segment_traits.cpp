@@ -9,6 +9,7 @@
 
 #include <CGAL/Arr_circle_segment_traits_2.h>
 #include <CGAL/Arr_curve_data_traits_2.h>
+#include <CGAL/Arr_segment_traits_2.h>
 #include <CGAL/Arrangement_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
@@ -32,14 +33,8 @@ constexpr std::size_t no_curve = static_cast<std::size_t>(-1);
 struct SmallerIndex {
   std::size_t operator()(std::size_t a, std::size_t b) const { return std::min(a, b); }
 };
-using Traits = CGAL::Arr_curve_data_traits_2<BaseTraits, std::size_t, SmallerIndex>;
 using NT = BaseTraits::NT;
 using CoordNT = BaseTraits::CoordNT;
-using Point = Traits::Point_2;
-using BaseCurve = BaseTraits::Curve_2;
-using Curve = Traits::Curve_2;
-using XCurve = Traits::X_monotone_curve_2;
-using Arrangement_2 = CGAL::Arrangement_2<Traits>;
 using ET = std::remove_cv_t<std::remove_reference_t<decltype(CGAL::exact(std::declval<NT>()))>>;
 using Clock = std::chrono::steady_clock;
 using algebra::Real;
@@ -67,6 +62,39 @@ Rational rational_of(const E& e) {
 
 NT to_nt(const Rational& q) { return NT(exact_of<ET>(q)); }
 Rational to_rational(const NT& value) { return rational_of<ET>(CGAL::exact(value)); }
+
+// The two flavours of the stage. Circles: the circle–segment traits on Epeck (one-root
+// coordinates). Segments (every curve a line; see segments_apply): the segment traits on Epeck
+// (rational points, the kernel's filtered predicates directly: no one-root numbers). Measured
+// (docs/performance.md, session 12): CGAL's insertion 18 % -> 10 % of a 64/65-gon build;
+// Filtered_kernel<Simple_cartesian<mpq_class>> instead of Epeck was 13 % (its filter converts
+// every mpq through MPFR).
+struct CircleFlavour {
+  using K = Kernel;
+  using BaseTraits = CGAL::Arr_circle_segment_traits_2<K>;
+  static constexpr bool segments = false;
+};
+struct SegmentFlavour {
+  using K = Kernel;
+  using BaseTraits = CGAL::Arr_segment_traits_2<K>;
+  static constexpr bool segments = true;
+};
+
+// A kernel number from a rational, and back (the segment kernel's numbers are rationals).
+template <class FT>
+FT ft_of(const Rational& q) {
+  if constexpr (std::is_same_v<FT, Rational>)
+    return q;
+  else
+    return FT(exact_of<ET>(q));
+}
+template <class FT>
+Rational rational_from(const FT& value) {
+  if constexpr (std::is_same_v<FT, Rational>)
+    return value;
+  else
+    return rational_of<ET>(CGAL::exact(value));
+}
 
 const mpz_class& coefficient(const IntegerPolynomial2& f, std::size_t i, std::size_t j) {
   static const mpz_class zero = 0;
@@ -172,13 +200,17 @@ Real to_real(const CoordNT& value) {
 }
 
 // The minimal polynomial of an exact y, in y alone, and y's index among its real roots.
-void fill_y(const CoordNT& value, Vertex& out) {
-  out.y = to_real(value);
+void fill_y(Real y, Vertex& out) {
+  out.y = std::move(y);
   out.y_exact = true;
   out.y_lower = out.y.lower;
   out.y_upper = out.y.upper;
   out.y_curve.coefficients = {out.y.polynomial};   // x^0 y^j
   out.y_branch = 0;
+}
+
+void fill_y(const CoordNT& value, Vertex& out) {
+  fill_y(to_real(value), out);
   if (!out.y.exact && algebra::degree(out.y.polynomial) == 2)
     out.y_branch = sgn(to_rational(value.a1())) > 0 ? 1 : 0;   // a0 + |a1| sqrt(c) is the larger root
 }
@@ -203,15 +235,23 @@ IntegerPolynomial2 integer_polynomial(const std::vector<std::vector<Rational>>& 
   return f;
 }
 
+template <class Line>
+IntegerPolynomial2 line_support(const Line& line) {
+  return integer_polynomial(
+      {{rational_from(line.c()), rational_from(line.b())}, {rational_from(line.a()), Rational(0)}});
+}
+
+template <bool Segments, class XCurve>
 IntegerPolynomial2 support_of(const XCurve& arc) {
-  if (arc.is_linear()) {
-    const auto& line = arc.supporting_line();
-    return integer_polynomial({{to_rational(line.c()), to_rational(line.b())}, {to_rational(line.a()), Rational(0)}});
-  }
+  if constexpr (Segments) {
+    return line_support(arc.line());
+  } else {
+    if (arc.is_linear()) return line_support(arc.supporting_line());
   const auto& circle = arc.supporting_circle();
   Rational cx = to_rational(circle.center().x()), cy = to_rational(circle.center().y());
   Rational r2 = to_rational(circle.squared_radius());
   return integer_polynomial({{cx * cx + cy * cy - r2, -2 * cy, Rational(1)}, {-2 * cx, Rational(0)}, {Rational(1)}});
+  }
 }
 
 // ---------------------------------------------------------------- sets of parameter values
@@ -275,7 +315,18 @@ Set unite(Set a, const Set& b) {
 
 // ---------------------------------------------------------------- the builder
 
+template <class Flavour>
 class Builder {
+  using K = typename Flavour::K;
+  using FT = typename K::FT;
+  using Traits = CGAL::Arr_curve_data_traits_2<typename Flavour::BaseTraits, std::size_t, SmallerIndex>;
+  using Point = typename Traits::Point_2;
+  using BaseCurve = typename Flavour::BaseTraits::Curve_2;
+  using Curve = typename Traits::Curve_2;
+  using XCurve = typename Traits::X_monotone_curve_2;
+  using Arrangement_2 = CGAL::Arrangement_2<Traits>;
+  static constexpr bool segments = Flavour::segments;
+
  public:
   Builder(const Box& box, const Options& options) : box_(box), options_(options) {}
 
@@ -283,7 +334,7 @@ class Builder {
                   const std::vector<std::vector<std::pair<Rational, Rational>>>& windows) {
     auto start = Clock::now();
     // the chart box
-    Kernel::Point_2 corners[4] = {point(box_.x_lo, box_.y_lo), point(box_.x_hi, box_.y_lo), point(box_.x_hi, box_.y_hi),
+    typename K::Point_2 corners[4] = {point(box_.x_lo, box_.y_lo), point(box_.x_hi, box_.y_lo), point(box_.x_hi, box_.y_hi),
                                   point(box_.x_lo, box_.y_hi)};
     for (int i = 0; i < 4; ++i) pieces_.emplace_back(BaseCurve(corners[i], corners[(i + 1) % 4]), no_curve);
     static const std::vector<ValidityClause> no_clauses;
@@ -298,10 +349,12 @@ class Builder {
         line_supports_.resize(curves.size());
         line_supports_[k] = oriented_line(curves[k]);
         clip_line(linear_of(curves[k]), clauses, curve_windows);
-      } else if (auto circle = circle_of(curves[k])) {
-        clip_circle(*circle, clauses, curve_windows);
-      }
-      else
+      } else if constexpr (!segments) {
+        if (auto circle = circle_of(curves[k]))
+          clip_circle(*circle, clauses, curve_windows);
+        else
+          throw GeometryError("internal: a contact curve is neither a line nor a circle");
+      } else
         throw GeometryError("internal: a contact curve is neither a line nor a circle");
     }
     result_.times.curves_seconds = seconds_since(start);
@@ -320,7 +373,9 @@ class Builder {
   }
 
  private:
-  static Kernel::Point_2 point(const Rational& x, const Rational& y) { return Kernel::Point_2(to_nt(x), to_nt(y)); }
+  static typename K::Point_2 point(const Rational& x, const Rational& y) {
+    return typename K::Point_2(ft_of<FT>(x), ft_of<FT>(y));
+  }
 
   // Clauses hold at a point where each atom's value is given by `value` (a sign).
   template <class SignOf>
@@ -570,8 +625,13 @@ class Builder {
     for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
       vertex_id[&*v] = result_.vertices.size();
       Vertex out;
-      out.x = to_real(v->point().x());
-      fill_y(v->point().y(), out);
+      if constexpr (segments) {
+        out.x = Real::from_rational(rational_from(v->point().x()));
+        fill_y(Real::from_rational(rational_from(v->point().y())), out);
+      } else {
+        out.x = to_real(v->point().x());
+        fill_y(v->point().y(), out);
+      }
       out.isolated = v->is_isolated();
       result_.vertices.push_back(std::move(out));
     }
@@ -593,7 +653,7 @@ class Builder {
       out.max_vertex = vertex_id.at(&*h->target());
       out.vertical = arc.is_vertical();
       out.support = support_for(arc);
-      if (options_.carry_line_supports && arc.is_linear() && arc.data() < line_supports_.size())
+      if (options_.carry_line_supports && is_linear(arc) && arc.data() < line_supports_.size())
         out.support_curve = arc.data();
       out.left_face = face_id.at(&*h->face());
       out.right_face = face_id.at(&*h->twin()->face());
@@ -605,7 +665,7 @@ class Builder {
       out.box[1] = std::nextafter(std::min(a.y_lower_bound(), b.y_lower_bound()), -inf);
       out.box[2] = std::nextafter(std::max(a.x.upper_bound(), b.x.upper_bound()), inf);
       out.box[3] = std::nextafter(std::max(a.y_upper_bound(), b.y_upper_bound()), inf);
-      if (arc.is_linear()) {
+      if (is_linear(arc)) {
         auto on = [](const Real& u, const Real& w, const Rational& q) { return u.compare(q) == 0 && w.compare(q) == 0; };
         if (out.vertical)
           out.box_side = on(a.x, b.x, box_.x_lo) ? 3 : on(a.x, b.x, box_.x_hi) ? 1 : -1;
@@ -614,9 +674,11 @@ class Builder {
       }
       if (!out.vertical) {
         int arcno = 0;
-        if (arc.is_circular()) {
-          const CoordNT cy(arc.supporting_circle().center().y());
-          arcno = CGAL::compare(arc.left().y(), cy) == CGAL::LARGER || CGAL::compare(arc.right().y(), cy) == CGAL::LARGER;
+        if constexpr (!segments) {
+          if (arc.is_circular()) {
+            const CoordNT cy(arc.supporting_circle().center().y());
+            arcno = CGAL::compare(arc.left().y(), cy) == CGAL::LARGER || CGAL::compare(arc.right().y(), cy) == CGAL::LARGER;
+          }
         }
         out.arc_numbers.between.push_back(arcno);
       }
@@ -629,7 +691,7 @@ class Builder {
         result_.faces[out.face_below].isolated_vertices.push_back(vertex_id.at(&*v));
         continue;
       }
-      std::vector<Arrangement_2::Halfedge_const_handle> around;
+      std::vector<typename Arrangement_2::Halfedge_const_handle> around;
       auto circulator = v->incident_halfedges();
       auto first = circulator;
       do {
@@ -651,7 +713,7 @@ class Builder {
     }
     for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
       Face& out = result_.faces[face_id.at(&*f)];
-      auto add_ccb = [&](Arrangement_2::Ccb_halfedge_const_circulator c) {
+      auto add_ccb = [&](typename Arrangement_2::Ccb_halfedge_const_circulator c) {
         out.component_starts.push_back(out.boundary.size());
         auto first = c;
         do {
@@ -665,7 +727,7 @@ class Builder {
 
   // Which wedge around the vertex contains the straight-down (below) or straight-up direction?
   // (As in algebraic_traits.cpp: angles clockwise from the reference direction.)
-  std::size_t wedge_containing(const std::vector<Arrangement_2::Halfedge_const_handle>& around,
+  std::size_t wedge_containing(const std::vector<typename Arrangement_2::Halfedge_const_handle>& around,
                                const std::vector<Incidence>& incidences, const Point& p, bool below) const {
     const std::size_t n = incidences.size();
     Direction reference = below ? Direction::down : Direction::up;
@@ -692,17 +754,33 @@ class Builder {
   // The support of an edge: for a piece of an input line, that line's primitive polynomial
   // with the sign CGAL's supporting line has (the same polynomial support_of computes from the
   // lazy line, without its exact conversion); else support_of.
+  static bool is_linear(const XCurve& arc) {
+    if constexpr (segments)
+      return true;
+    else
+      return arc.is_linear();
+  }
+
   IntegerPolynomial2 support_for(const XCurve& arc) const {
-    if (!options_.carry_line_supports || !arc.is_linear() || arc.data() >= line_supports_.size())
-      return support_of(arc);
+    if (!options_.carry_line_supports || !is_linear(arc) || arc.data() >= line_supports_.size())
+      return support_of<segments>(arc);
+    // segments: every piece of a contact line runs from its smaller to its larger end, and no
+    // contact line lies on a chart side that runs the other way (segments_apply), so CGAL's
+    // line of such an edge is oriented as oriented_line
+    if constexpr (segments) return line_supports_[arc.data()];
     IntegerPolynomial2 support = line_supports_[arc.data()];
     // oriented_line has y coefficient > 0, or x coefficient < 0 for a vertical line; CGAL's
     // line (a, b, c) has its own orientation: compare the signs of b (or a)
     const bool vertical = sgn(coefficient(support, 0, 1)) == 0;
     const int ours = vertical ? sgn(coefficient(support, 1, 0)) : sgn(coefficient(support, 0, 1));
-    const auto line = arc.supporting_line();
+    const auto line = [&] {
+      if constexpr (segments)
+        return arc.line();
+      else
+        return arc.supporting_line();
+    }();
     const int theirs = static_cast<int>(CGAL::sign(vertical ? line.a() : line.b()));
-    if (theirs == 0) return support_of(arc);   // (cannot happen: a line has a or b non-zero)
+    if (theirs == 0) return support_of<segments>(arc);   // (cannot happen: a line has a or b non-zero)
     if (ours != theirs)
       for (auto& row : support.coefficients)
         for (auto& z : row) z = -z;
@@ -735,6 +813,24 @@ class Builder {
   Arrangement result_;
 };
 
+// The segment flavour: every curve a line (or without points), line supports carried
+// (Options::carry_line_supports), and no line on the chart's top or left side (those sides are
+// inserted right to left and top to bottom: an edge where a contact line overlaps them would
+// take its orientation from whichever piece CGAL keeps, which the two traits choose
+// differently). Such charts give the same arrangement as the circle–segment flavour.
+bool segments_apply(const Box& box, const std::vector<IntegerPolynomial2>& curves, const Options& options) {
+  if (!options.carry_line_supports) return false;
+  for (const auto& f : curves) {
+    int degree = total_degree(f);
+    if (degree >= 2) return false;
+    if (degree < 1) continue;
+    Linear line = linear_of(f);
+    if (sgn(line.kx) == 0 && -line.k0 / line.ky == box.y_hi) return false;
+    if (sgn(line.ky) == 0 && -line.k0 / line.kx == box.x_lo) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 bool circle_segment_applies(const std::vector<IntegerPolynomial2>& curves,
@@ -759,7 +855,11 @@ Arrangement build_circle_segment_arrangement(const Box& box, const std::vector<I
   if (!circle_segment_applies(curves, validity))
     throw GeometryError("internal: the circle–segment arrangement needs lines and circles with linear validity");
   try {
-    Builder builder(box, options);
+    if (segments_apply(box, curves, options)) {
+      Builder<SegmentFlavour> builder(box, options);
+      return builder.run(curves, validity, windows);
+    }
+    Builder<CircleFlavour> builder(box, options);
     return builder.run(curves, validity, windows);
   } catch (const hipair::Error&) {
     throw;

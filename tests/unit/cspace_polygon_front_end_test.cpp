@@ -25,6 +25,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <random>
 
 namespace hipair {
@@ -39,6 +40,16 @@ Model sliders(const Points& a, const Points& b, const std::string& da = "[1, 0]"
     { "name": "a", "motion": { "translation": { "direction": )" + da + R"( } }, "loops": [ )" + loop_json(a) + R"( ] },
     { "name": "b", "motion": { "translation": { "direction": )" + db + R"( } }, "loops": [ )" + loop_json(b) + R"( ] } ] })";
   return read_model(model);
+}
+
+// The sliders model, or nullopt when rounding made a polygon degenerate (repeated vertex,
+// self-touching): not a case.
+std::optional<Model> sliders_or_none(const Points& a, const Points& b) {
+  try {
+    return sliders(a, b);
+  } catch (const ModelError&) {
+    return std::nullopt;
+  }
 }
 
 // A star-shaped polygon of k vertices around (cx, cy) on a 1/q grid; with `collinear`, the
@@ -242,12 +253,9 @@ TEST(CSpacePolygonFrontEnd, RandomNonConvexPolygonsEqualTheGeneralPathAndTheMink
       b = scaled(b, power_of_ten(40));
     }
     SCOPED_TRACE("instance " + std::to_string(instance));
-    Model model;
-    try {
-      model = sliders(a, b);
-    } catch (const ModelError&) {
-      continue;   // rounding made a polygon degenerate (repeated vertex, self-touching): not a case
-    }
+    std::optional<Model> built_model = sliders_or_none(a, b);
+    if (!built_model) continue;
+    const Model& model = *built_model;
     expect_same_curves(model);
     Built built = build_both(model, instance % 3 == 0);
     expect_same_space(built.fast, built.general);
@@ -297,6 +305,78 @@ TEST(CSpacePolygonFrontEnd, GeneralDirectionsEqualTheGeneralPath) {
     Built built = build_both(model);
     expect_same_space(built.fast, built.general);
   }
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// An axis-parallel staircase polygon on the integer grid: x from x0 to x0 + w, a floor at y0 and
+// a roof of `steps` integer heights (collinear edges and shared coordinates everywhere).
+Points random_staircase(std::mt19937_64& random, long x0, long y0, int steps) {
+  Points points{{Rational(x0), Rational(y0)}};
+  long x = x0;
+  std::vector<long> roof;
+  for (int i = 0; i < steps; ++i) roof.push_back(y0 + 1 + static_cast<long>(random() % 3));
+  points.emplace_back(Rational(x0 + steps), Rational(y0));
+  for (int i = steps - 1; i >= 0; --i) {
+    long h = roof[static_cast<std::size_t>(i)];
+    x = x0 + i + 1;
+    if (points.back().second != h) points.emplace_back(Rational(x), Rational(h));
+    points.emplace_back(Rational(x - 1), Rational(h));
+  }
+  return points;
+}
+
+// The segment traits (every contact curve of a polygon pair is a segment: the circle–segment
+// stage inserts them with Arr_segment_traits_2 on rational points) against the circle–segment
+// traits (polygon_front_end = false keeps them), field by field, and CGAL's minkowski_sum_2:
+// generated pairs on coarse grids where edges are collinear, vertices coincide and parts touch
+// at zero clearance (lattice stars of radius 1–3, staircases, and a part copied and shifted by a
+// lattice vector so that its edges lie on the other's).
+TEST(CSpacePolygonFrontEnd, SegmentTraitsEqualTheCircleSegmentTraitsOnTouchingCollinearGridPairs) {
+  std::mt19937_64 random(20261128);
+  int compared = 0;
+  for (int instance = 0; instance < 48; ++instance) {
+    Points a, b;
+    switch (instance % 4) {
+      case 0:
+        a = random_star(random, 3 + static_cast<int>(random() % 6), 0, 0, 1 + static_cast<double>(random() % 3), 1, false);
+        b = random_star(random, 3 + static_cast<int>(random() % 6), static_cast<double>(random() % 5) - 2,
+                        static_cast<double>(random() % 5) - 2, 1 + static_cast<double>(random() % 3), 1, instance % 8 == 0);
+        break;
+      case 1:
+        a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 4));
+        b = random_staircase(random, static_cast<long>(random() % 5) - 2, static_cast<long>(random() % 5) - 2,
+                             1 + static_cast<int>(random() % 4));
+        break;
+      case 2: {
+        a = random_star(random, 4 + static_cast<int>(random() % 5), 0, 0, 2, 2, true);
+        Rational dx(static_cast<long>(random() % 5) - 2), dy(static_cast<long>(random() % 5) - 2);
+        b = a;
+        for (auto& [x, y] : b) {
+          x += dx;
+          y += dy;
+        }
+        break;
+      }
+      default:
+        a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3));
+        b = random_star(random, 3 + static_cast<int>(random() % 4), 1, 1, 2, 1, true);
+        break;
+    }
+    SCOPED_TRACE("instance " + std::to_string(instance));
+    std::optional<Model> built_model = sliders_or_none(a, b);
+    if (!built_model) continue;
+    const Model& model = *built_model;
+    Built built = build_both(model, instance % 3 == 0);
+    expect_same_space(built.fast, built.general);
+    expect_minkowski(built.fast, a, b);
+    ++compared;
+  }
+  EXPECT_GE(compared, 36);
 }
 
 }  // namespace
