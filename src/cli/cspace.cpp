@@ -223,30 +223,33 @@ json edge_json(const CSpace& space, std::size_t e) {
   return j;
 }
 
-// Appends the array of `count` elements `make(i)` as dump(1) writes it at depth 1 of a document.
+// Writes the array of `count` elements `make(i)` as dump(1) writes it at depth 1 of a document.
 template <class Make>
-void append_streamed_array(std::string& text, std::size_t count, const Make& make) {
+void write_streamed_array(std::ostream& out, std::size_t count, const Make& make) {
   if (count == 0) {
-    text += "[]";
+    out << "[]";
     return;
   }
-  text += "[\n";
+  out << "[\n";
+  std::string indented;
   for (std::size_t i = 0; i < count; ++i) {
     const std::string element = make(i).dump(1);
-    text += "  ";
+    indented.assign("  ");
     for (char ch : element) {
-      text += ch;
-      if (ch == '\n') text += "  ";
+      indented += ch;
+      if (ch == '\n') indented += "  ";
     }
-    text += i + 1 < count ? ",\n" : "\n";
+    indented += i + 1 < count ? ",\n" : "\n";
+    out << indented;
   }
-  text += " ]";
+  out << " ]";
 }
 
-// space_json(space).dump(1) + "\n" with the vertices and edges in place, byte for byte as the
-// whole tree's dump, but each vertex and edge is a json object only while it is written: the
-// tree of a large space (an 80 x 80 gear pair's operating region) is several times its text.
-std::string space_json_text(const CSpace& space) {
+// Writes space_json(space).dump(1) + "\n" with the vertices and edges in place, byte for byte
+// as the whole tree's dump, but each vertex and edge is a json object only while it is
+// written and the text goes to `out` as it is made: the tree of a large space (an 80 x 80 gear
+// pair's operating region) is several times its text, which is itself 150 MB.
+void write_space_json(std::ostream& out, const CSpace& space) {
   const std::string skeleton = space_json(space).dump(1);
   // the placeholders' places (top-level keys: one space of indentation), in text order
   std::vector<std::pair<std::size_t, std::string>> places;
@@ -258,21 +261,19 @@ std::string space_json_text(const CSpace& space) {
     places.emplace_back(at + placeholder.size(), key);
   }
   std::sort(places.begin(), places.end());
-  std::string text;
   std::size_t from = 0;
   const std::size_t quoted_marker = std::strlen(streamed_marker) + 2;
   for (const auto& [end, key] : places) {
-    text.append(skeleton, from, end - quoted_marker - from);
+    out.write(skeleton.data() + from, static_cast<std::streamsize>(end - quoted_marker - from));
     if (key == "vertices")
-      append_streamed_array(text, space.vertices().size(),
-                            [&](std::size_t v) { return vertex_json(space, space.vertices()[v]); });
+      write_streamed_array(out, space.vertices().size(),
+                           [&](std::size_t v) { return vertex_json(space, space.vertices()[v]); });
     else
-      append_streamed_array(text, space.edges().size(), [&](std::size_t e) { return edge_json(space, e); });
+      write_streamed_array(out, space.edges().size(), [&](std::size_t e) { return edge_json(space, e); });
     from = end;
   }
-  text.append(skeleton, from, std::string::npos);
-  text += "\n";
-  return text;
+  out.write(skeleton.data() + from, static_cast<std::streamsize>(skeleton.size() - from));
+  out << "\n";
 }
 
 void print_statistics(const CSpace& space) {
@@ -442,7 +443,8 @@ int run(const CSpaceCommandOptions& options) {
       io::write_file_atomically(suffixed(options.svg, space, several), render::cspace_svg(space, svg));
     }
     if (!options.json.empty())
-      io::write_file_atomically(suffixed(options.json, space, several), space_json_text(space));
+      io::write_file_atomically(suffixed(options.json, space, several),
+                                [&](std::ostream& out) { write_space_json(out, space); });
   }
   for (const auto& [path, document] : sliced_documents) io::write_file_atomically(path, document);
   return 0;
