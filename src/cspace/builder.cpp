@@ -1055,9 +1055,6 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
                                                                chart.windows, raw_options)
         : quadratic    ? std::move(*quadratic)
                        : raw::build_arrangement(chart.box, chart.polynomials, chart.validity, chart.windows, raw_options);
-    // the windows and culling cells only restrict the insertion: done with
-    std::vector<std::vector<std::pair<Rational, Rational>>>().swap(chart.windows);
-    std::vector<std::vector<std::array<double, 4>>>().swap(chart.cells);
     stats.circle_segment_charts += circle_segment ? 1 : 0;
     stats.quadratic_charts += quadratic ? 1 : 0;
     stats.seconds_clipping += chart.arrangement.times.curves_seconds;
