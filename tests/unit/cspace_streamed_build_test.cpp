@@ -14,16 +14,12 @@
 namespace hipair::cspace {
 namespace {
 
-IntegerPolynomial2 polynomial(std::vector<std::vector<long>> rows) {
+// 20y - k (coefficients[i][j] of x^i y^j)
+IntegerPolynomial2 line(long k) {
   IntegerPolynomial2 f;
-  for (auto& row : rows) {
-    f.coefficients.emplace_back();
-    for (long c : row) f.coefficients.back().push_back(mpz_class(c));
-  }
+  f.coefficients = {{mpz_class(-k), mpz_class(20)}};
   return f;
 }
-
-Overlap by_sign(int sign) { return sign < 0 ? Overlap::apart : sign == 0 ? Overlap::touching : Overlap::overlapping; }
 
 // Horizontal lines 20y = k (k odd, inside the chart's y-range) with feature pairs drawn from
 // a few keys, in a grid of translation tiles; the lines with k = 1 (mod 4) are contact lines
@@ -44,7 +40,7 @@ Grid random_grid(unsigned seed) {
     for (long k = 20 * (row - 1) + 1; k < 20 * row; k += 2) {
       if (random() % 3 == 0) continue;
       ContactCurve curve;
-      curve.polynomial = polynomial({{-k, 20}});   // 20y - k
+      curve.polynomial = line(k);
       curve.first = FeatureRef{random() % 2, 0, random() % 3, FeatureKind::vertex};
       curve.second = FeatureRef{2, 0, random() % 2, FeatureKind::segment};
       curve.type = random() % 2 ? ContactType::vertex_segment : ContactType::segment_vertex;
@@ -72,7 +68,7 @@ ChartInput chart_of(const Grid& grid, std::size_t c) {
       if (line == q.y) return Overlap::touching;
       if (line < q.y) ++below;
     }
-    return by_sign(below % 2 == 1 ? 1 : -1);
+    return below % 2 == 1 ? Overlap::overlapping : Overlap::apart;
   };
   return chart;
 }
