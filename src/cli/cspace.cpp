@@ -19,8 +19,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -125,6 +127,9 @@ json statistics_json(const CSpaceStatistics& s) {
                 {"total", s.seconds_total}}}};
 }
 
+// Stands for an array that space_json_text writes element by element.
+constexpr const char* streamed_marker = "(streamed: hipair cspace --json)";
+
 json space_json(const CSpace& space) {
   json out;
   out["pair"] = {space.first_part(), space.second_part()};
@@ -170,51 +175,105 @@ json space_json(const CSpace& space) {
                                  {"x", to_exact_string(cell.sample_x)},
                                  {"y", to_exact_string(cell.sample_y)}}}});
   out["cells"] = cells;
-  json vertices = json::array();
-  for (const auto& vertex : space.vertices()) {
-    json v;
-    v["chart"] = vertex.chart;
-    v["x"] = exact(vertex.x, "x");
-    if (space.dimension() == 2) {
-      if (vertex.y_exact) {
-        v["y"] = exact(vertex.y, "y");
-      } else {
-        v["y"] = {{"exact", "real root number " + std::to_string(vertex.y_branch) + " (ascending, from 0) in y of " +
-                                polynomial_text(vertex.y_curve) + " at this x"},
-                  {"interval", {to_exact_string(vertex.y_lower), to_exact_string(vertex.y_upper)}},
-                  {"decimal", Rational((vertex.y_lower + vertex.y_upper) / 2).get_d()}};
-      }
-    }
-    v["edges"] = vertex.edges;
-    v["feature_pairs"] = vertex.curves;
-    v["contact_change"] = vertex.contact_change;
-    v["on_chart_boundary"] = vertex.on_chart_boundary;
-    v["touching"] = vertex.touching;
-    vertices.push_back(v);
-  }
-  out["vertices"] = vertices;
-  json edges = json::array();
-  for (std::size_t e = 0; e < space.edges().size(); ++e) {
-    const auto& edge = space.edges()[e];
-    json j;
-    j["chart"] = edge.chart;
-    j["source"] = edge.source;
-    j["target"] = edge.target;
-    j["role"] = role_name(edge.role);
-    j["real"] = edge.real;
-    j["feature_pairs"] = edge.curves;
-    j["left_cell"] = edge.left_cell == no_index ? json(nullptr) : json(edge.left_cell);
-    j["right_cell"] = edge.right_cell == no_index ? json(nullptr) : json(edge.right_cell);
-    j["vertical"] = edge.vertical;
-    j["polynomial"] = polynomial_text(space.edge_polynomial_coefficients(e));
-    j["extent_chart"] = {{"x", {edge.x_chart.lower, edge.x_chart.upper}}, {"y", {edge.y_chart.lower, edge.y_chart.upper}}};
-    j["extent_coordinates"] = {{"x", {edge.x_coordinate.lower, edge.x_coordinate.upper}},
-                               {"y", {edge.y_coordinate.lower, edge.y_coordinate.upper}}};
-    edges.push_back(j);
-  }
-  if (space.dimension() == 2) out["edges"] = edges;
+  // vertices and edges: streamed into the text by space_json_text (placeholders here)
+  out["vertices"] = streamed_marker;
+  if (space.dimension() == 2) out["edges"] = streamed_marker;
   out["statistics"] = statistics_json(space.statistics());
   return out;
+}
+
+json vertex_json(const CSpace& space, const CSpaceVertex& vertex) {
+  json v;
+  v["chart"] = vertex.chart;
+  v["x"] = exact(vertex.x, "x");
+  if (space.dimension() == 2) {
+    if (vertex.y_exact) {
+      v["y"] = exact(vertex.y, "y");
+    } else {
+      v["y"] = {{"exact", "real root number " + std::to_string(vertex.y_branch) + " (ascending, from 0) in y of " +
+                              polynomial_text(vertex.y_curve) + " at this x"},
+                {"interval", {to_exact_string(vertex.y_lower), to_exact_string(vertex.y_upper)}},
+                {"decimal", Rational((vertex.y_lower + vertex.y_upper) / 2).get_d()}};
+    }
+  }
+  v["edges"] = vertex.edges;
+  v["feature_pairs"] = vertex.curves;
+  v["contact_change"] = vertex.contact_change;
+  v["on_chart_boundary"] = vertex.on_chart_boundary;
+  v["touching"] = vertex.touching;
+  return v;
+}
+
+json edge_json(const CSpace& space, std::size_t e) {
+  const auto& edge = space.edges()[e];
+  json j;
+  j["chart"] = edge.chart;
+  j["source"] = edge.source;
+  j["target"] = edge.target;
+  j["role"] = role_name(edge.role);
+  j["real"] = edge.real;
+  j["feature_pairs"] = edge.curves;
+  j["left_cell"] = edge.left_cell == no_index ? json(nullptr) : json(edge.left_cell);
+  j["right_cell"] = edge.right_cell == no_index ? json(nullptr) : json(edge.right_cell);
+  j["vertical"] = edge.vertical;
+  j["polynomial"] = polynomial_text(space.edge_polynomial_coefficients(e));
+  j["extent_chart"] = {{"x", {edge.x_chart.lower, edge.x_chart.upper}}, {"y", {edge.y_chart.lower, edge.y_chart.upper}}};
+  j["extent_coordinates"] = {{"x", {edge.x_coordinate.lower, edge.x_coordinate.upper}},
+                             {"y", {edge.y_coordinate.lower, edge.y_coordinate.upper}}};
+  return j;
+}
+
+// Writes the array of `count` elements `make(i)` as dump(1) writes it at depth 1 of a document.
+template <class Make>
+void write_streamed_array(std::ostream& out, std::size_t count, const Make& make) {
+  if (count == 0) {
+    out << "[]";
+    return;
+  }
+  out << "[\n";
+  std::string indented;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::string element = make(i).dump(1);
+    indented.assign("  ");
+    for (char ch : element) {
+      indented += ch;
+      if (ch == '\n') indented += "  ";
+    }
+    indented += i + 1 < count ? ",\n" : "\n";
+    out << indented;
+  }
+  out << " ]";
+}
+
+// Writes space_json(space).dump(1) + "\n" with the vertices and edges in place, byte for byte
+// as the whole tree's dump, but each vertex and edge is a json object only while it is
+// written and the text goes to `out` as it is made: the tree of a large space (an 80 x 80 gear
+// pair's operating region) is several times its text, which is itself 150 MB.
+void write_space_json(std::ostream& out, const CSpace& space) {
+  const std::string skeleton = space_json(space).dump(1);
+  // the placeholders' places (top-level keys: one space of indentation), in text order
+  std::vector<std::pair<std::size_t, std::string>> places;
+  for (const std::string key : {"vertices", "edges"}) {
+    if (key == "edges" && space.dimension() != 2) continue;
+    const std::string placeholder = "\n \"" + key + "\": \"" + streamed_marker + "\"";
+    const std::size_t at = skeleton.find(placeholder);
+    if (at == std::string::npos) throw Error("cspace --json: internal: no place for the " + key);
+    places.emplace_back(at + placeholder.size(), key);
+  }
+  std::sort(places.begin(), places.end());
+  std::size_t from = 0;
+  const std::size_t quoted_marker = std::strlen(streamed_marker) + 2;
+  for (const auto& [end, key] : places) {
+    out.write(skeleton.data() + from, static_cast<std::streamsize>(end - quoted_marker - from));
+    if (key == "vertices")
+      write_streamed_array(out, space.vertices().size(),
+                           [&](std::size_t v) { return vertex_json(space, space.vertices()[v]); });
+    else
+      write_streamed_array(out, space.edges().size(), [&](std::size_t e) { return edge_json(space, e); });
+    from = end;
+  }
+  out.write(skeleton.data() + from, static_cast<std::streamsize>(skeleton.size() - from));
+  out << "\n";
 }
 
 void print_statistics(const CSpace& space) {
@@ -384,7 +443,8 @@ int run(const CSpaceCommandOptions& options) {
       io::write_file_atomically(suffixed(options.svg, space, several), render::cspace_svg(space, svg));
     }
     if (!options.json.empty())
-      io::write_file_atomically(suffixed(options.json, space, several), space_json(space).dump(1) + "\n");
+      io::write_file_atomically(suffixed(options.json, space, several),
+                                [&](std::ostream& out) { write_space_json(out, space); });
   }
   for (const auto& [path, document] : sliced_documents) io::write_file_atomically(path, document);
   return 0;

@@ -14,11 +14,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <numbers>
 #include <numeric>
 #include <optional>
 #include <set>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 
 namespace hipair::cspace {
@@ -269,7 +271,6 @@ void label_edges(ChartData& chart, bool by_support) {
     EdgeData& data = chart.edges[e];
     const raw::Vertex& low = arrangement.vertices[edge.min_vertex];
     const raw::Vertex& high = arrangement.vertices[edge.max_vertex];
-    data.interval_support = algebra::IntervalPolynomial2(edge.support);
     algebra::Interval x_box, y_box;
     if (edge.vertical) {
       data.vertical_x = low.x;
@@ -941,15 +942,17 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
   impl->y_part = input.y_part;
   impl->dimension = input.dimension;
   CSpaceStatistics& stats = impl->statistics;
-  stats.feature_pairs_considered = input.curve_statistics.feature_pairs_considered;
-  stats.feature_pairs_culled = input.curve_statistics.feature_pairs_culled;
-  stats.seconds_curves = input.seconds_curves;
   impl->complete = input.complete;
   impl->model = input.model;
   impl->axes = input.axes;
   stats.region_cells = input.region_cells;
   stats.seconds_region = input.seconds_region;
-  if (!input.complete) stats.region_tiles = input.charts.size();
+  // the charts come whole (`charts`) or one at a time from `make_chart`, whose curves are then
+  // generated, built into the chart's arrangement and released before the next chart's
+  const bool streamed = static_cast<bool>(input.make_chart);
+  const std::size_t chart_count = streamed ? input.chart_count : input.charts.size();
+  double seconds_streamed = 0;   // time in make_chart (curve generation), counted as curves
+  if (!input.complete) stats.region_tiles = chart_count;
 
   // feature pairs: one per contact curve of any chart, deduplicated by (first, second, type)
   auto feature_name = [&](const FeatureRef& f) -> std::string {
@@ -959,15 +962,33 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
   auto part_name = [&](std::size_t part) {
     return part < input.part_names.size() ? input.part_names[part] : "part " + std::to_string(part);
   };
-  struct Key {
-    FeatureRef first, second;
-    ContactType type;
+  // (first, second, type) -> index of the feature pair: an ordered index, so that matching a
+  // kept curve to its pair is logarithmic rather than a scan over every pair met so far
+  using Key = std::tuple<std::size_t, std::size_t, std::size_t, int, std::size_t, std::size_t, std::size_t, int, int>;
+  auto key_of = [](const ContactCurve& curve) {
+    return Key{curve.first.part,  curve.first.loop,  curve.first.edge,  static_cast<int>(curve.first.kind),
+               curve.second.part, curve.second.loop, curve.second.edge, static_cast<int>(curve.second.kind),
+               static_cast<int>(curve.type)};
   };
-  std::vector<Key> keys;
+  std::map<Key, std::size_t> keys;
 
-  impl->charts.resize(input.charts.size());
-  for (std::size_t c = 0; c < input.charts.size(); ++c) {
-    ChartInput& chart_input = input.charts[c];
+  impl->charts.resize(chart_count);
+  // Face classification runs once every chart's curves are known: whether it may propagate
+  // across contact edges depends on the curve statistics of all charts. What it needs of a
+  // chart's input (the kept curves' blocked sides, the oracle) is kept until then.
+  struct Deferred {
+    std::vector<int> signs;
+    Classifier classify;
+  };
+  std::vector<Deferred> deferred(chart_count);
+  for (std::size_t c = 0; c < chart_count; ++c) {
+    ChartInput streamed_input;
+    if (streamed) {
+      auto start = Clock::now();
+      streamed_input = input.make_chart(c, input);
+      seconds_streamed += seconds_since(start);
+    }
+    ChartInput& chart_input = streamed ? streamed_input : input.charts[c];
     ChartData& chart = impl->charts[c];
     chart.x_index = chart_input.x_index;
     chart.y_index = chart_input.y_index;
@@ -979,11 +1000,9 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     stats.curves += kept.size();
     for (std::size_t k : kept) {
       const ContactCurve& curve = chart_input.curves[k];
-      std::size_t index = keys.size();
-      for (std::size_t i = 0; i < keys.size(); ++i)
-        if (keys[i].first == curve.first && keys[i].second == curve.second && keys[i].type == curve.type) index = i;
-      if (index == keys.size()) {
-        keys.push_back(Key{curve.first, curve.second, curve.type});
+      auto [found, inserted] = keys.try_emplace(key_of(curve), impl->feature_pairs.size());
+      const std::size_t index = found->second;
+      if (inserted) {
         FeaturePair pair;
         pair.first_part = part_name(curve.first.part);
         pair.second_part = part_name(curve.second.part);
@@ -1045,27 +1064,33 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     auto start = Clock::now();
     label_edges(chart, circle_segment);
     stats.seconds_labelling += seconds_since(start);
-    start = Clock::now();
-    {
-      // kernel curves carry their blocked side; synthetic input (no model) is classified by the oracle only
-      std::optional<ContactSides> sides;
-      if (input.model) {
-        std::vector<int> signs;
-        for (std::size_t k : kept) signs.push_back(chart_input.curves[k].blocked_sign);
-        sides.emplace(chart, std::move(signs));
-      }
-      // propagation needs the kernels' curves (every touching configuration on a valid curve)
-      const bool propagate = sides && input.curve_statistics.identically_zero == 0;
-      classify_faces(chart, chart_input.classify, sides ? &*sides : nullptr, options.check_face_classification,
-                     propagate);
-      find_touching(chart, chart_input.classify, sides ? &*sides : nullptr, options.check_face_classification, stats);
-    }
-    stats.seconds_classification += seconds_since(start);
+    // kernel curves carry their blocked side; synthetic input (no model) is classified by the oracle only
+    if (input.model)
+      for (std::size_t k : kept) deferred[c].signs.push_back(chart_input.curves[k].blocked_sign);
+    deferred[c].classify = std::move(chart_input.classify);
     // the chart's input curves are done with (its arrangement, polynomials and labels are
     // kept): free them now rather than at the end, so a region's peak holds one copy
     std::vector<ContactCurve>().swap(chart_input.curves);
   }
   stats.charts = impl->charts.size();
+  stats.feature_pairs_considered = input.curve_statistics.feature_pairs_considered;
+  stats.feature_pairs_culled = input.curve_statistics.feature_pairs_culled;
+  stats.seconds_curves = input.seconds_curves;
+  if (input.dimension == 2) {
+    auto start = Clock::now();
+    for (std::size_t c = 0; c < chart_count; ++c) {
+      ChartData& chart = impl->charts[c];
+      std::optional<ContactSides> sides;
+      if (input.model) sides.emplace(chart, std::move(deferred[c].signs));
+      // propagation needs the kernels' curves (every touching configuration on a valid curve)
+      const bool propagate = sides && input.curve_statistics.identically_zero == 0;
+      classify_faces(chart, deferred[c].classify, sides ? &*sides : nullptr, options.check_face_classification,
+                     propagate);
+      find_touching(chart, deferred[c].classify, sides ? &*sides : nullptr, options.check_face_classification, stats);
+      deferred[c] = Deferred{};
+    }
+    stats.seconds_classification += seconds_since(start);
+  }
 
   auto cells_start = Clock::now();
   // global face numbering
@@ -1299,7 +1324,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
   stats.edges = impl->edges.size();
   stats.cells = impl->cells.size();
   stats.seconds_cells = seconds_since(cells_start);
-  stats.seconds_total = seconds_since(total_start) + stats.seconds_curves + stats.seconds_region;
+  stats.seconds_total = seconds_since(total_start) - seconds_streamed + stats.seconds_curves + stats.seconds_region;
   return make_cspace(impl);
 }
 

@@ -43,6 +43,12 @@ struct PairInput {
   std::vector<std::string> part_names;   ///< model part names, for FeatureRef::part
   int dimension = 2;
   std::vector<ChartInput> charts;
+  /// Instead of `charts`: chart `c` of `chart_count`, produced on demand (curves generated when
+  /// the builder reaches it), so that only one chart's input curves are alive at a time.
+  /// It adds to the `curve_statistics` and `seconds_curves` of the input it is given (the
+  /// builder's own).
+  std::size_t chart_count = 0;
+  std::function<ChartInput(std::size_t, PairInput&)> make_chart;
   CurveStatistics curve_statistics;
   double seconds_curves = 0;
   bool complete = true;          ///< false: the charts are tiles of an operating region
@@ -72,7 +78,6 @@ struct EdgeData {
   algebra::Real sample_y;
   algebra::Real vertical_x;       ///< vertical edges: the constant x
   std::vector<std::size_t> curves;   ///< local curve indices
-  algebra::IntervalPolynomial2 interval_support;
   /// Blocked on both sides, but the parts only touch along it (exact oracle at a rational
   /// point of the edge): a zero-clearance channel, EdgeRole::touching.
   bool touching = false;

@@ -298,7 +298,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
       for (std::size_t iy = 0; iy < y_charts.size(); ++iy)
         boxes.push_back({ix, iy, layout.x_charts[ix], y_charts[iy]});
   }
-  std::size_t total = boxes.size(), done = 0;
+  const std::size_t total = boxes.size();
   auto generator_start = Clock::now();
   CurveOptions curve_options;
   curve_options.cull_blocked_space = !polygon_translation && options.cull_blocked_space;
@@ -311,34 +311,36 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   const int grid_depth = input.dimension == 2 ? (cull_depth > 0 ? cull_depth : 9) : 10;
   CurveGenerator generator(model, axes, curve_options);
   input.seconds_curves += std::chrono::duration<double>(Clock::now() - generator_start).count();
-  for (const BoxToBuild& box : boxes) {
-    {
-      ChartInput chart;
-      chart.x_index = box.x_index;
-      chart.y_index = box.y_index;
-      chart.x = box.x;
-      chart.y = box.y;
-      chart.cull_depth = cull_depth;
-      auto start = Clock::now();
-      std::shared_ptr<BlockedCells> cells;
-      if (curve_options.blocked_grid)
-        cells = std::make_shared<BlockedCells>(tester, chart.x, chart.y, input.dimension, grid_depth);
-      std::vector<ContactCurve> curves = generator.generate(chart.x, chart.y, &input.curve_statistics, cells.get());
-      // the tester's posed disks are posed again when the builder culls the box, rather than
-      // kept for every box at once (the known cells stay)
-      if (cells) cells->release_cache();
-      input.seconds_curves += std::chrono::duration<double>(Clock::now() - start).count();
-      for (auto& curve : curves)
-        if (!curve.polynomial.is_zero()) chart.curves.push_back(std::move(curve));
-      ChartAxis x = chart.x, y = chart.y;
-      chart.classify = [&model, axes, x, y](const cspace::ChartPoint& q) { return classify_overlap(model, axes, x, y, q); };
-      if (input.dimension == 2 && cells && cells->usable()) chart.blocked_cells = std::move(cells);
-      input.charts.push_back(std::move(chart));
-      if (progress) std::cerr << "\rhipair: " << input.first_part << ":" << input.second_part << " curves for "
-                              << (input.complete ? "chart " : "tile ") << ++done << "/" << total << std::flush;
-    }
-  }
-  if (progress) std::cerr << "\rhipair: " << input.first_part << ":" << input.second_part << " building arrangements...\n";
+  // each box's curves are generated when the builder reaches it (PairInput::make_chart):
+  // the boxes are built one at a time, with one box's curves alive
+  input.chart_count = boxes.size();
+  input.make_chart = [&, done = std::size_t{0}](std::size_t c, PairInput& building) mutable {
+    const BoxToBuild& box = boxes[c];
+    ChartInput chart;
+    chart.x_index = box.x_index;
+    chart.y_index = box.y_index;
+    chart.x = box.x;
+    chart.y = box.y;
+    chart.cull_depth = cull_depth;
+    auto start = Clock::now();
+    std::shared_ptr<BlockedCells> cells;
+    if (curve_options.blocked_grid)
+      cells = std::make_shared<BlockedCells>(tester, chart.x, chart.y, building.dimension, grid_depth);
+    std::vector<ContactCurve> curves = generator.generate(chart.x, chart.y, &building.curve_statistics, cells.get());
+    // the tester's posed disks are posed again when the builder culls the box, rather than
+    // kept for every box at once (the known cells stay)
+    if (cells) cells->release_cache();
+    building.seconds_curves += std::chrono::duration<double>(Clock::now() - start).count();
+    for (auto& curve : curves)
+      if (!curve.polynomial.is_zero()) chart.curves.push_back(std::move(curve));
+    ChartAxis x = chart.x, y = chart.y;
+    chart.classify = [&model, axes, x, y](const cspace::ChartPoint& q) { return classify_overlap(model, axes, x, y, q); };
+    if (building.dimension == 2 && cells && cells->usable()) chart.blocked_cells = std::move(cells);
+    if (progress) std::cerr << "\rhipair: " << building.first_part << ":" << building.second_part << " "
+                            << (building.complete ? "chart " : "tile ") << ++done << "/" << total << std::flush;
+    if (progress && done == total) std::cerr << "\n";
+    return chart;
+  };
   return build_cspace(std::move(input), options);
 }
 

@@ -12,6 +12,12 @@
 namespace hipair::io {
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
+  write_file_atomically(path, [content](std::ostream& out) {
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+  });
+}
+
+void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write) {
   namespace fs = std::filesystem;
   fs::path target = path;
   fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
@@ -26,7 +32,13 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out)
       throw IoError("cannot write '" + path.string() + "': " + std::strerror(errno));
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+    try {
+      write(out);
+    } catch (...) {
+      out.close();
+      fs::remove(temporary, ec);
+      throw;
+    }
     out.flush();
     if (!out) {
       out.close();

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <ostream>
 #include <string_view>
 
 namespace hipair::io {
@@ -9,6 +11,10 @@ namespace hipair::io {
 /// Writes `content` to `path` atomically: either the whole new file appears or the old state
 /// is left untouched. \throws IoError.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
+/// The same, with the content written by `write` into the temporary file as it is produced (a
+/// large document need not be held in memory whole). An exception from `write` removes the
+/// temporary file and propagates. \throws IoError.
+void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);
 
 /// Reads a whole file. \throws IoError naming the path.
 std::string read_file(const std::filesystem::path& path);
