@@ -26,8 +26,11 @@ void write_file_atomically(const std::filesystem::path& path, const std::functio
     throw IoError("cannot write '" + path.string() + "': directory '" + directory.string() +
                   "' does not exist");
   std::random_device seed;
-  fs::path temporary =
-      directory / ("." + target.filename().string() + ".tmp" + std::to_string(seed()));
+  std::string temporary_name = ".";
+  temporary_name += target.filename().string();
+  temporary_name += ".tmp";
+  temporary_name += std::to_string(seed());
+  fs::path temporary = directory / temporary_name;
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out)
