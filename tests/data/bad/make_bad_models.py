@@ -157,11 +157,11 @@ add("restitution_above_one", m, "/pairs/0/restitution", "restitution must lie in
 m = two_parts(); m["pairs"] = [{"parts": ["plate", "arm"], "friction": -0.1}]
 add("negative_friction", m, "/pairs/0/friction", "friction must not be negative", "negative friction coefficient")
 m = two_parts(); m["pairs"] = [{"parts": ["plate", "arm"], "friction": {"static": 0.2, "kinetic": 0.3}}]
-add("kinetic_friction_above_static", m, "/pairs/0/friction/kinetic", "kinetic friction must not exceed static friction", "sliding grips harder than sticking")
+add("kinetic_friction_above_static", json.dumps(m, indent=2), "/pairs/0/friction/kinetic", "kinetic friction must not exceed static friction", "sliding grips harder than sticking")
 m = two_parts(); m["pairs"] = [{"parts": ["plate", "arm"], "friction": {"static": 0.2, "kinetic": -0.1}}]
-add("negative_kinetic_friction", m, "/pairs/0/friction/kinetic", "kinetic friction must not be negative", "negative kinetic coefficient")
+add("negative_kinetic_friction", json.dumps(m, indent=2), "/pairs/0/friction/kinetic", "kinetic friction must not be negative", "negative kinetic coefficient")
 m = two_parts(); m["pairs"] = [{"parts": ["plate", "arm"], "friction": {"static": 0.2}}]
-add("friction_without_kinetic", m, "/pairs/0/friction", "kinetic", "the object form names both coefficients")
+add("friction_without_kinetic", json.dumps(m, indent=2), "/pairs/0/friction", "kinetic", "the object form names both coefficients")
 m = two_parts(); m["parts"][1]["dynamics"] = {"mass": -1}
 add("negative_mass", m, "/parts/1/dynamics/mass", "mass must not be negative", "negative mass")
 m = two_parts(); m["parts"][1]["dynamics"] = {"moment_of_inertia": "-2"}
