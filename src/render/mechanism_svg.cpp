@@ -362,6 +362,19 @@ std::string draw(const Model& model, const std::vector<PartConfiguration>& confi
       extent.add(pivot.x, pivot.y);
     }
   }
+  // springs' attachment points (a fixed attachment may lie off every part), at every frame
+  if (model.simulation)
+    for (const SimulationSpec::Coupling& k : model.simulation->couplings) {
+      if (k.first >= model.parts.size() || k.second >= model.parts.size()) continue;
+      auto add_ends = [&](const std::vector<PartConfiguration>& cs) {
+        for (const PosedPoint& p : {pose_exact(model.parts[k.first].motion, cs[k.first], n, k.first_point),
+                                    pose_exact(model.parts[k.second].motion, cs[k.second], n, k.second_point)})
+          extent.add(p.x, p.y);
+      };
+      add_ends(configurations);
+      if (animation)
+        for (const MechanismFrame& frame : animation->frames) add_ends(frame.configurations);
+    }
   if (!extent.valid()) extent.add(0, 0), extent.add(1, 1);
   double size = std::max({extent.max_x - extent.min_x, extent.max_y - extent.min_y, 1e-6});
   double text_size = size / 40;
