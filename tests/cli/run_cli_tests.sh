@@ -431,6 +431,14 @@ json.dump(m, open(sys.argv[2], 'w'))" "$source/examples/models/pusher-blocks.jso
 "$hipair" simulate "$work/sim-pusher-overlap.json" --t-end 0.3 --out "$work/sim-pusher-bad" >/dev/null 2>"$work/sim-pusher-overlap.err"
 [ $? -eq 2 ] || fail "simulate pusher-blocks overlapping: not a model error"
 grep -q "/parts/3/initial" "$work/sim-pusher-overlap.err" || fail "simulate pusher-blocks overlapping: no pointer: $(cat "$work/sim-pusher-overlap.err")"
+# outside the class at run time: a plastic pair of moving parts would have to stay in contact:
+# exit 3 naming both parts, nothing written
+sed 's/"parts": \["block", "small"\], "restitution": 0.9/"parts": ["block", "small"], "restitution": 0/' \
+  "$source/examples/models/pusher-blocks.json" >"$work/sim-pusher-plastic.json"
+"$hipair" simulate "$work/sim-pusher-plastic.json" --t-end 0.3 --out "$work/sim-pusher-bad" >/dev/null 2>"$work/sim-pusher-plastic.err"
+[ $? -eq 3 ] || fail "simulate plastic pusher-blocks: not exit 3"
+grep -q "'block' and 'small' would stay in contact" "$work/sim-pusher-plastic.err" \
+  || fail "simulate plastic pusher-blocks: $(cat "$work/sim-pusher-plastic.err")"
 [ -e "$work/sim-pusher-bad" ] && fail "a refused pusher-blocks run wrote an output directory"
 
 # hipair simulate --sweep: one row per value, in parallel; a malformed sweep is a usage error
