@@ -705,36 +705,53 @@ void publish_run(const std::vector<io::RunFile>& files, const SimulateOptions& o
   std::cout << "\n";
 }
 
-// A model with a part free in the plane: PlanarSimulation (docs/simulation.md, "Parts free in
-// the plane"). Same outputs as the fixed-axis run except the C-space pictures (its C-space is
-// three-dimensional): trajectory.csv, events.json/.txt, positions.svg, velocities.svg,
-// animation.svg.
+// The planar parts a planar simulation moves and their states (model order of `parts`).
+std::vector<std::size_t> planar_parts(const PlanarSimulation& s) { return {s.part()}; }
+std::vector<std::size_t> planar_parts(const PlanarSystemSimulation& s) { return s.state().parts; }
+std::vector<PlanarState> planar_states(const PlanarSimulation& s) { return {s.state()}; }
+std::vector<PlanarState> planar_states(const PlanarSystemSimulation& s) { return s.state().states; }
+double state_time(const PlanarSimulation& s) { return s.state().time; }
+double state_time(const PlanarSystemSimulation& s) { return s.state().time; }
+
+// A model with parts free in the plane (docs/simulation.md, "Parts free in the plane" and
+// "Several planar parts"): PlanarSimulation for one planar part, PlanarSystemSimulation for
+// several. Same outputs as the fixed-axis run except the C-space pictures (a planar pair's
+// C-space is three-dimensional): trajectory.csv, events.json/.txt, positions.svg,
+// velocities.svg, animation.svg.
+template <class PlanarRun>
 int run_planar(const Model& model, const SimulateOptions& options) {
   SimulationOptions sim_options;
   sim_options.accuracy = options.accuracy;
   sim_options.max_step = options.max_step;
   if (options.region != "full") throw ModelError("", "--region: a planar part's C-space has no operating region");
-  PlanarSimulation simulation = PlanarSimulation::create(model, sim_options);
+  PlanarRun simulation = PlanarRun::create(model, sim_options);
   const std::string& tu = simulation.time_unit();
   const std::string& fu = simulation.force_unit();
-  const Part& part = model.parts[simulation.part()];
-  std::vector<PlanarState> samples{simulation.state()};
+  const std::vector<std::size_t> parts = planar_parts(simulation);
+  struct Sample {
+    double time;
+    std::vector<PlanarState> states;
+  };
+  std::vector<Sample> samples{{state_time(simulation), planar_states(simulation)}};
   double cpu_start = thread_cpu_seconds();
   ProgressLine line;
   auto progress = [&](double t) {
-    samples.push_back(simulation.state());
+    samples.push_back({state_time(simulation), planar_states(simulation)});
     line.show(t, options, tu, simulation.steps(), simulation.events().size());
   };
   std::vector<render::MechanismFrame> frames;
   double playback = 0;
   auto record_frame = [&] {
     render::MechanismFrame frame;
-    frame.time = simulation.state().time;
+    frame.time = state_time(simulation);
     for (const Part& p : model.parts) frame.configurations.push_back(p.initial);
-    PartConfiguration& c = frame.configurations[simulation.part()];
-    c.x = Rational(simulation.state().x);
-    c.y = Rational(simulation.state().y);
-    c.angle = Rational(simulation.state().angle);
+    std::vector<PlanarState> states = planar_states(simulation);
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      PartConfiguration& c = frame.configurations[parts[k]];
+      c.x = Rational(states[k].x);
+      c.y = Rational(states[k].y);
+      c.angle = Rational(states[k].angle);
+    }
     frames.push_back(std::move(frame));
   };
   std::vector<double> times = frame_times(options, tu, playback);
@@ -746,14 +763,16 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   simulation.run_until(options.t_end, progress);
   double seconds = thread_cpu_seconds() - cpu_start;
   if (line.terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
-  const PlanarState& end = simulation.state();
+  const std::vector<PlanarState> end = planar_states(simulation);
   const PlanarStatistics& stats = simulation.statistics();
-  std::cout << "simulated " << model.name << " to t = " << number(end.time) << " " << tu << " in "
+  std::cout << "simulated " << model.name << " to t = " << number(state_time(simulation)) << " " << tu << " in "
             << simulation.steps() << " steps, " << simulation.events().size() << " events, " << number(seconds)
             << " s CPU\n";
-  std::cout << "  " << part.name << ": x " << number(end.x) << " mm, y " << number(end.y) << " mm, angle "
-            << number(end.angle) << " rad; velocity (" << number(end.vx) << ", " << number(end.vy) << ") mm/" << tu
-            << ", " << number(end.omega) << " rad/" << tu << (end.resting ? " (at rest)" : "") << "\n";
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    std::cout << "  " << model.parts[parts[k]].name << ": x " << number(end[k].x) << " mm, y " << number(end[k].y)
+              << " mm, angle " << number(end[k].angle) << " rad; velocity (" << number(end[k].vx) << ", "
+              << number(end[k].vy) << ") mm/" << tu << ", " << number(end[k].omega) << " rad/" << tu
+              << (end[k].resting ? " (at rest)" : "") << "\n";
   std::cout << "  energy " << number(simulation.energy()) << " " << fu << "·mm\n";
   std::cout << "  collision tests: " << stats.advancement_steps << " advancement steps, " << stats.distance_queries
             << " distance queries, " << stats.chord_tests << " exact chord tests (chord deviation "
@@ -773,36 +792,41 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   {
     std::ostringstream csv;
     csv << "time_" << tu;
-    for (const char* n : names) csv << "," << part.name << "_" << n;
+    for (std::size_t p : parts)
+      for (const char* n : names) csv << "," << model.parts[p].name << "_" << n;
     csv << "\n";
-    for (const PlanarState& s : samples) {
+    for (const Sample& s : samples) {
       csv << number(s.time);
-      for (int i = 0; i < 6; ++i) csv << "," << number(column(s, i));
+      for (const PlanarState& state : s.states)
+        for (int i = 0; i < 6; ++i) csv << "," << number(column(state, i));
       csv << "\n";
     }
     files.push_back({"trajectory.csv", csv.str()});
   }
   add_event_files(files, model, simulation.events(), tu, fu,
-                  {{"t_end", end.time},
+                  {{"t_end", state_time(simulation)},
                    {"steps", simulation.steps()},
                    {"energy", simulation.energy()},
                    {"chord_deviation_mm", simulation.chord_deviation()}});
   if (!options.no_pictures) {
     std::vector<double> event_times;
     for (const SimulationEvent& e : simulation.events()) event_times.push_back(e.time);
+    std::string part_names;
+    for (std::size_t p : parts) part_names += (part_names.empty() ? "" : ", ") + model.parts[p].name;
     for (int which = 0; which < 2; ++which) {
       render::TimePlot plot;
-      plot.title = model.name + (which == 0 ? ": position of " : ": velocity of ") + part.name;
+      plot.title = model.name + (which == 0 ? ": position of " : ": velocity of ") + part_names;
       plot.x_label = "t (" + tu + ")";
       plot.y_label = which == 0 ? "mm or rad" : "mm or rad per " + tu;
       plot.event_times = event_times;
-      for (const PlanarState& s : samples) plot.times.push_back(s.time);
-      for (int i = 3 * which; i < 3 * which + 3; ++i) {
-        render::TimeSeries series;
-        series.label = part.name + " " + names[i];
-        for (const PlanarState& s : samples) series.values.push_back(column(s, i));
-        plot.series.push_back(series);
-      }
+      for (const Sample& s : samples) plot.times.push_back(s.time);
+      for (std::size_t k = 0; k < parts.size(); ++k)
+        for (int i = 3 * which; i < 3 * which + 3; ++i) {
+          render::TimeSeries series;
+          series.label = model.parts[parts[k]].name + " " + names[i];
+          for (const Sample& s : samples) series.values.push_back(column(s.states[k], i));
+          plot.series.push_back(series);
+        }
       files.push_back({which == 0 ? "positions.svg" : "velocities.svg", render::time_plot_svg(plot)});
     }
     render::MechanismAnimationOptions animation;
@@ -830,8 +854,11 @@ int run(const SimulateOptions& options) {
   Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
   if (!(options.t_end > 0) || !std::isfinite(options.t_end))
     throw ModelError("", "--t-end must be a positive number of time units");
-  for (const Part& part : model.parts)
-    if (part.motion.kind == Motion::Kind::planar) return run_planar(model, options);
+  // parts free in the plane: one (PlanarSimulation) or several (PlanarSystemSimulation)
+  std::size_t planar_count = 0;
+  for (const Part& part : model.parts) planar_count += part.motion.kind == Motion::Kind::planar;
+  if (planar_count == 1) return run_planar<PlanarSimulation>(model, options);
+  if (planar_count > 1) return run_planar<PlanarSystemSimulation>(model, options);
   bool terminal = isatty(2);
   SimulationOptions sim_options;
   sim_options.accuracy = options.accuracy;

@@ -305,6 +305,28 @@ std::string blink(double from, double to, double duration) {
          times + "\" dur=\"" + io::format_number(duration) + "s\" repeatCount=\"indefinite\"/>";
 }
 
+// A spring's (or damper's) zig-zag between two drawing points, as an SVG "points" value in
+// the writer's user units (y negated): straight leads of a sixth of the length at each end,
+// 12 zigs of half-width `amplitude` between them (the same number of points at any length, so
+// frames can be interpolated).
+std::string zigzag_points(PosedPoint a, PosedPoint b, double amplitude) {
+  double dx = b.x - a.x, dy = b.y - a.y, length = std::hypot(dx, dy);
+  double ux = length > 0 ? dx / length : 1, uy = length > 0 ? dy / length : 0;
+  const int zigs = 12;
+  std::string points;
+  auto add = [&](double along, double across) {
+    double x = a.x + ux * along - uy * across, y = a.y + uy * along + ux * across;
+    points += (points.empty() ? "" : " ") + io::format_number(x) + "," + io::format_number(-y);
+  };
+  add(0, 0);
+  double lead = length / 6, body = length - 2 * lead;
+  add(lead, 0);
+  for (int k = 0; k < zigs; ++k) add(lead + body * (k + 0.5) / zigs, k % 2 == 0 ? amplitude : -amplitude);
+  add(length - lead, 0);
+  add(length, 0);
+  return points;
+}
+
 struct Animation {
   const std::vector<MechanismFrame>& frames;
   const MechanismAnimationOptions& options;
@@ -340,6 +362,19 @@ std::string draw(const Model& model, const std::vector<PartConfiguration>& confi
       extent.add(pivot.x, pivot.y);
     }
   }
+  // springs' attachment points (a fixed attachment may lie off every part), at every frame
+  if (model.simulation)
+    for (const SimulationSpec::Coupling& k : model.simulation->couplings) {
+      if (k.first >= model.parts.size() || k.second >= model.parts.size()) continue;
+      auto add_ends = [&](const std::vector<PartConfiguration>& cs) {
+        for (const PosedPoint& p : {pose_exact(model.parts[k.first].motion, cs[k.first], n, k.first_point),
+                                    pose_exact(model.parts[k.second].motion, cs[k.second], n, k.second_point)})
+          extent.add(p.x, p.y);
+      };
+      add_ends(configurations);
+      if (animation)
+        for (const MechanismFrame& frame : animation->frames) add_ends(frame.configurations);
+    }
   if (!extent.valid()) extent.add(0, 0), extent.add(1, 1);
   double size = std::max({extent.max_x - extent.min_x, extent.max_y - extent.min_y, 1e-6});
   double text_size = size / 40;
@@ -429,6 +464,48 @@ std::string draw(const Model& model, const std::vector<PartConfiguration>& confi
       }
       svg.end_group();
     }
+  }
+
+  // Springs and dampers ("simulation"/"springs"): a zig-zag between the attachment points,
+  // moving with the parts in an animation (one <animate> of the points per coupling); a damper
+  // alone (no stiffness) is dashed.
+  if (model.simulation && !model.simulation->couplings.empty()) {
+    auto attachment = [&](std::size_t part, const Point& p, const PartConfiguration& c) {
+      return pose_exact(model.parts[part].motion, c, n, p);
+    };
+    svg.begin_group("springs", "springs");
+    for (std::size_t s = 0; s < model.simulation->couplings.size(); ++s) {
+      const SimulationSpec::Coupling& k = model.simulation->couplings[s];
+      if (k.first >= model.parts.size() || k.second >= model.parts.size()) continue;
+      double amplitude = text_size * 0.35;
+      std::string first = zigzag_points(attachment(k.first, k.first_point, configurations[k.first]),
+                                        attachment(k.second, k.second_point, configurations[k.second]), amplitude);
+      std::string dash = k.stiffness == 0 ? " stroke-dasharray=\"" + io::format_number(text_size * 0.3) + " " +
+                                                 io::format_number(text_size * 0.2) + "\""
+                                           : "";
+      std::string element = "<polyline class=\"spring\" points=\"" + first + "\" fill=\"none\" stroke=\"#222222\"" +
+                            dash + " stroke-width=\"" + io::format_number(size / 400) +
+                            "\" stroke-linejoin=\"round\"><title>" +
+                            io::escape_xml((k.stiffness == 0 ? "damper " : "spring ") + model.parts[k.first].name +
+                                           " - " + model.parts[k.second].name) +
+                            "</title>";
+      if (animation) {
+        const auto& frames = animation->frames;
+        double t0 = frames.front().time, span = frames.back().time - t0;
+        std::string values, times;
+        for (std::size_t f = 0; f < frames.size(); ++f) {
+          const auto& cf = frames[f].configurations;
+          values += (f ? ";" : "") + zigzag_points(attachment(k.first, k.first_point, cf[k.first]),
+                                                   attachment(k.second, k.second_point, cf[k.second]), amplitude);
+          times += (f ? ";" : "") + key_time(f + 1 == frames.size() ? 1.0 : (frames[f].time - t0) / span);
+        }
+        element += "<animate attributeName=\"points\" values=\"" + values + "\" keyTimes=\"" + times + "\" dur=\"" +
+                   io::format_number(animation->options.duration) +
+                   "s\" calcMode=\"linear\" repeatCount=\"indefinite\"/>";
+      }
+      svg.raw(element + "</polyline>\n");
+    }
+    svg.end_group();
   }
 
   // Motion marks: pivots and translation axes.

@@ -300,3 +300,70 @@ TEST(MechanismAnimation, BadFramesAreRefused) {
 
 }  // namespace
 }  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// The spring of spring-block.json (ceiling (0, 80) to the block's corner (10, 5)) drawn in every
+// frame: one polyline per spring whose <animate> has one points value per frame, each a
+// zig-zag of the same point count from the fixed attachment to the block's corner posed at that
+// frame. The drawing scale is a power of ten (normalisation); the coordinates are written to
+// four decimals, so the ends' differences match within two half units of the fourth decimal.
+TEST(MechanismAnimation, SpringIsDrawnBetweenItsAttachmentsInEveryFrame) {
+  Model model = example("spring-block.json");
+  ASSERT_EQ(model.simulation->couplings.size(), 1u);
+  std::vector<render::MechanismFrame> frames;
+  std::vector<std::array<double, 3>> poses;
+  for (int f = 0; f < 9; ++f) {
+    double x = -40 + 7.5 * f, y = 20 - 3.25 * f * f / 4, angle = 0.37 * f - 0.9 * std::sin(f);
+    poses.push_back({x, y, angle});
+    render::MechanismFrame frame;
+    frame.time = 0.05 * f;
+    frame.configurations = {model.parts[0].initial, model.parts[1].initial};
+    frame.configurations[1].x = Rational(x);
+    frame.configurations[1].y = Rational(y);
+    frame.configurations[1].angle = Rational(angle);
+    frames.push_back(frame);
+  }
+  render::MechanismAnimationOptions options;
+  options.duration = 2;
+  std::string svg = render::mechanism_animation_svg(model, frames, options);
+  std::vector<Element> elements;
+  ASSERT_TRUE(parse(svg, &elements));
+  std::vector<std::size_t> springs, animates;
+  for (std::size_t i = 0; i < elements.size(); ++i) {
+    if (elements[i].name == "polyline" && elements[i].attributes["class"] == "spring") springs.push_back(i);
+    if (elements[i].name == "animate" && !elements[i].ancestors.empty() &&
+        elements[elements[i].ancestors.back()].name == "polyline")
+      animates.push_back(i);
+  }
+  ASSERT_EQ(springs.size(), 1u);
+  ASSERT_EQ(animates.size(), 1u);
+  EXPECT_EQ(elements[animates[0]].attributes["attributeName"], "points");
+  std::vector<std::string> values = split(elements[animates[0]].attributes["values"], ';');
+  ASSERT_EQ(values.size(), frames.size());
+  EXPECT_EQ(values.front(), elements[springs[0]].attributes["points"]);  // unanimated: the first frame
+  const double tolerance = 1e-4 * (1 + 1e-9);
+  std::vector<double> first = numbers(values.front());
+  double scale = 0;
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    std::vector<double> p = numbers(values[f]);
+    ASSERT_EQ(p.size(), first.size()) << "frame " << f;
+    ASSERT_EQ(p.size(), 32u);   // 16 points: ends, lead ends, 12 zigs
+    // the fixed end (the ceiling's point) stays
+    EXPECT_EQ(p[30], first[30]);
+    EXPECT_EQ(p[31], first[31]);
+    auto [x, y, angle] = poses[f];
+    double wx = x + std::cos(angle) * 10 - std::sin(angle) * 5 - 0, wy = y + std::sin(angle) * 10 + std::cos(angle) * 5 - 80;
+    double dx = p[0] - p[30], dy = -(p[1] - p[31]);   // drawing y is negated
+    if (f == 0) scale = std::pow(10.0, std::round(std::log10(std::hypot(dx, dy) / std::hypot(wx, wy))));
+    EXPECT_NEAR(dx, scale * wx, tolerance) << "frame " << f;
+    EXPECT_NEAR(dy, scale * wy, tolerance) << "frame " << f;
+  }
+  // the still drawing (hipair show) draws it too
+  std::string still = render::mechanism_svg(model, frames.front().configurations);
+  EXPECT_NE(still.find("class=\"spring\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hipair

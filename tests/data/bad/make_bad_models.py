@@ -24,7 +24,7 @@ add("empty_file", "", "", "malformed JSON at line 1, column 1", "nothing at all"
 add("trailing_garbage", json.dumps(base()) + " {", "", "malformed JSON", "a second value after the model")
 add("infinity_literal", json.dumps(base()).replace('"start": [0, 0]', '"start": [0, Infinity]'), "", "malformed JSON", "Infinity is not JSON")
 add("nan_literal", json.dumps(base()).replace('"start": [0, 0]', '"start": [NaN, 0]'), "", "malformed JSON", "NaN is not JSON")
-add("huge_exponent", json.dumps(base()).replace('"start": [0, 0]', '"start": [0, 1e999999]'), "", "number overflow", "exponent beyond any double")
+add("huge_exponent", json.dumps(base()).replace('"start": [0, 0]', '"start": [0, 1e999999]'), "/parts/0/loops/0/start/1", "out of range", "exponent beyond the reader's limit, as a JSON number (named by its pointer)")
 m = base(); m["parts"][0]["loops"][0]["start"] = [0, "1e-5000"]
 add("huge_exponent_string", m, "/parts/0/loops/0/start/1", "out of range", "exponent beyond the reader's limit")
 m = base(); m["parts"][0]["loops"][0]["start"] = ["nan", 0]
@@ -156,6 +156,12 @@ m = two_parts(); m["pairs"] = [{"parts": ["plate", "arm"], "restitution": 1.5}]
 add("restitution_above_one", m, "/pairs/0/restitution", "restitution must lie in [0, 1]", "bouncier than elastic")
 m = two_parts(); m["pairs"] = [{"parts": ["plate", "arm"], "friction": -0.1}]
 add("negative_friction", m, "/pairs/0/friction", "friction must not be negative", "negative friction coefficient")
+m = two_parts(); m["pairs"] = [{"parts": ["plate", "arm"], "friction": {"static": 0.2, "kinetic": 0.3}}]
+add("kinetic_friction_above_static", json.dumps(m, indent=2), "/pairs/0/friction/kinetic", "kinetic friction must not exceed static friction", "sliding grips harder than sticking")
+m = two_parts(); m["pairs"] = [{"parts": ["plate", "arm"], "friction": {"static": 0.2, "kinetic": -0.1}}]
+add("negative_kinetic_friction", json.dumps(m, indent=2), "/pairs/0/friction/kinetic", "kinetic friction must not be negative", "negative kinetic coefficient")
+m = two_parts(); m["pairs"] = [{"parts": ["plate", "arm"], "friction": {"static": 0.2}}]
+add("friction_without_kinetic", json.dumps(m, indent=2), "/pairs/0/friction", "kinetic", "the object form names both coefficients")
 m = two_parts(); m["parts"][1]["dynamics"] = {"mass": -1}
 add("negative_mass", m, "/parts/1/dynamics/mass", "mass must not be negative", "negative mass")
 m = two_parts(); m["parts"][1]["dynamics"] = {"moment_of_inertia": "-2"}
