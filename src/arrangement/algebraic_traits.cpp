@@ -10,6 +10,7 @@
 
 #include <CGAL/Arr_algebraic_segment_traits_2.h>
 #include <CGAL/Arrangement_2.h>
+#include <CGAL/Random.h>
 
 #include <algorithm>
 #include <chrono>
@@ -784,6 +785,8 @@ class Builder {
 
 }  // namespace
 
+constexpr unsigned kCgalSeed = 20261128;
+
 Arrangement build_arrangement(const Box& box, const std::vector<IntegerPolynomial2>& curves,
                               const std::vector<std::vector<ValidityClause>>& validity,
                               const std::vector<std::vector<std::pair<Rational, Rational>>>& windows,
@@ -793,6 +796,11 @@ Arrangement build_arrangement(const Box& box, const std::vector<IntegerPolynomia
   // two vertices (docs/cspace.md), and the duplicate check below only sees that symptom, not an
   // arrangement wrong without a duplicate. The duplicate check stays as a guard, with the
   // incremental insertion as the fallback.
+  // CGAL's Bitstream Descartes isolation splits intervals at points drawn from the thread's
+  // CGAL::get_default_random(), which CGAL seeds from the clock: the isolating intervals (vertex
+  // y bounds, edge boxes) then changed from run to run (same C-space, different certified
+  // bounds in the output). A fixed seed for every chart makes the output a function of the input.
+  CGAL::get_default_random() = CGAL::Random(kCgalSeed);
   Options sweep = options;
   sweep.aggregated_insertion = true;
   auto with_other_insertion = [&]() {
