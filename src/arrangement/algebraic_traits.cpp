@@ -10,6 +10,7 @@
 
 #include <CGAL/Arr_algebraic_segment_traits_2.h>
 #include <CGAL/Arrangement_2.h>
+#include <CGAL/Random.h>
 
 #include <algorithm>
 #include <chrono>
@@ -89,6 +90,49 @@ algebra::Real to_real(const Algebraic_real_1& a) {
   auto roots = algebra::real_roots(p, lo, hi);
   if (roots.size() != 1) throw NumericError("internal: algebraic number from CGAL is not isolated");
   return roots.front();
+}
+
+// The same number with an isolating interval that depends on the number alone: the cell
+// [c, c + 2^-k] of the dyadic grid that contains it, for the first k = 64, 96, ... at which that
+// cell isolates it (p changes sign across it and has no other root in it). CGAL refines its
+// cached algebraic numbers in place, so the interval of p.x() at export depended on what an
+// earlier build in the same thread had asked (two builds in one process gave different extents).
+// Left as it is (still isolating, not canonical) if no k up to 256 gives such a cell.
+algebra::Real canonical_interval(algebra::Real r) {
+  if (r.exact) return r;
+  for (int k = 64; k <= 256; k += 32) {
+    const mpz_class scale = mpz_class(1) << k;
+    const Rational h(1, scale);
+    algebra::refine_dyadically(r, h / 2);
+    if (r.exact) return r;
+    // r within [g h, (g + 2) h]: the cell is [g h, (g + 1) h] or [(g + 1) h, (g + 2) h]
+    mpz_class g, scaled = r.lower.get_num() * scale;
+    mpz_fdiv_q(g.get_mpz_t(), scaled.get_mpz_t(), r.lower.get_den_mpz_t());
+    Rational middle(g + 1, scale);
+    middle.canonicalize();
+    mpz_class cell = g;
+    if (r.upper < middle) {
+      cell = g;
+    } else if (r.lower > middle) {
+      cell = g + 1;
+    } else {
+      const int at_middle = algebra::sign_at(r.polynomial, middle);
+      if (at_middle == 0) return algebra::Real::from_rational(middle);   // the number is the grid point
+      const int at_lower = algebra::sign_at(r.polynomial, r.lower);
+      if (at_lower == 0) continue;
+      cell = at_lower == at_middle ? g + 1 : g;
+    }
+    Rational lo(cell, scale), hi(cell + 1, scale);
+    lo.canonicalize();
+    hi.canonicalize();
+    const int s_lo = algebra::sign_at(r.polynomial, lo), s_hi = algebra::sign_at(r.polynomial, hi);
+    if (s_lo == 0 || s_hi == 0 || s_lo == s_hi) continue;
+    if (algebra::real_roots(r.polynomial, lo, hi).size() != 1) continue;
+    r.lower = std::move(lo);
+    r.upper = std::move(hi);
+    return r;
+  }
+  return r;
 }
 
 Algebraic_real_1 to_algebraic(const Rational& q) { return Algebraic_real_1(to_bound(q)); }
@@ -544,7 +588,7 @@ class Builder {
   // polynomial at that x), else isolated by CGAL's fiber interval, refined.
   void fill_vertex(Arrangement_2::Vertex_const_handle v, Vertex& out) {
     const Point& p = v->point();
-    out.x = to_real(p.x());
+    out.x = canonical_interval(to_real(p.x()));
     out.y_curve = from_cgal(p.curve().polynomial_2());
     out.y_branch = p.arcno();
     if (out.x.exact) {
@@ -784,6 +828,8 @@ class Builder {
 
 }  // namespace
 
+constexpr unsigned kCgalSeed = 20261128;
+
 Arrangement build_arrangement(const Box& box, const std::vector<IntegerPolynomial2>& curves,
                               const std::vector<std::vector<ValidityClause>>& validity,
                               const std::vector<std::vector<std::pair<Rational, Rational>>>& windows,
@@ -793,6 +839,11 @@ Arrangement build_arrangement(const Box& box, const std::vector<IntegerPolynomia
   // two vertices (docs/cspace.md), and the duplicate check below only sees that symptom, not an
   // arrangement wrong without a duplicate. The duplicate check stays as a guard, with the
   // incremental insertion as the fallback.
+  // CGAL's Bitstream Descartes isolation splits intervals at points drawn from the thread's
+  // CGAL::get_default_random(), which CGAL seeds from the clock: the isolating intervals (vertex
+  // y bounds, edge boxes) then changed from run to run (same C-space, different certified
+  // bounds in the output). A fixed seed for every chart makes the output a function of the input.
+  CGAL::get_default_random() = CGAL::Random(kCgalSeed);
   Options sweep = options;
   sweep.aggregated_insertion = true;
   auto with_other_insertion = [&]() {

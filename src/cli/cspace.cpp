@@ -97,8 +97,8 @@ std::string cell_kind_name(CellKind kind) {
   return kind == CellKind::free ? "free" : kind == CellKind::blocked ? "blocked" : "touching";
 }
 
-json statistics_json(const CSpaceStatistics& s) {
-  return json{{"feature_pairs_considered", s.feature_pairs_considered},
+json statistics_json(const CSpaceStatistics& s, bool with_seconds) {
+  json out{{"feature_pairs_considered", s.feature_pairs_considered},
               {"feature_pairs_culled", s.feature_pairs_culled},
               {"curves", s.curves},
               {"charts", s.charts},
@@ -125,12 +125,15 @@ json statistics_json(const CSpaceStatistics& s) {
                 {"classification", s.seconds_classification},
                 {"cells", s.seconds_cells},
                 {"total", s.seconds_total}}}};
+  // wall times differ from run to run: only with --stats, so that the same input gives the same bytes
+  if (!with_seconds) out.erase("seconds");
+  return out;
 }
 
 // Stands for an array that space_json_text writes element by element.
 constexpr const char* streamed_marker = "(streamed: hipair cspace --json)";
 
-json space_json(const CSpace& space) {
+json space_json(const CSpace& space, bool with_seconds) {
   json out;
   out["pair"] = {space.first_part(), space.second_part()};
   out["dimension"] = space.dimension();
@@ -178,7 +181,7 @@ json space_json(const CSpace& space) {
   // vertices and edges: streamed into the text by space_json_text (placeholders here)
   out["vertices"] = streamed_marker;
   if (space.dimension() == 2) out["edges"] = streamed_marker;
-  out["statistics"] = statistics_json(space.statistics());
+  out["statistics"] = statistics_json(space.statistics(), with_seconds);
   return out;
 }
 
@@ -245,12 +248,12 @@ void write_streamed_array(std::ostream& out, std::size_t count, const Make& make
   out << " ]";
 }
 
-// Writes space_json(space).dump(1) + "\n" with the vertices and edges in place, byte for byte
+// Writes space_json(space, with_seconds).dump(1) + "\n" with the vertices and edges in place, byte for byte
 // as the whole tree's dump, but each vertex and edge is a json object only while it is
 // written and the text goes to `out` as it is made: the tree of a large space (an 80 x 80 gear
 // pair's operating region) is several times its text, which is itself 150 MB.
-void write_space_json(std::ostream& out, const CSpace& space) {
-  const std::string skeleton = space_json(space).dump(1);
+void write_space_json(std::ostream& out, const CSpace& space, bool with_seconds) {
+  const std::string skeleton = space_json(space, with_seconds).dump(1);
   // the placeholders' places (top-level keys: one space of indentation), in text order
   std::vector<std::pair<std::size_t, std::string>> places;
   for (const std::string key : {"vertices", "edges"}) {
@@ -444,7 +447,7 @@ int run(const CSpaceCommandOptions& options) {
     }
     if (!options.json.empty())
       io::write_file_atomically(suffixed(options.json, space, several),
-                                [&](std::ostream& out) { write_space_json(out, space); });
+                                [&](std::ostream& out) { write_space_json(out, space, options.stats); });
   }
   for (const auto& [path, document] : sliced_documents) io::write_file_atomically(path, document);
   return 0;
