@@ -6,6 +6,8 @@
 
 #include "model/parametric/number_traits.hpp"
 
+#include <cmath>
+#include <type_traits>
 #include <vector>
 
 namespace hipair::tolerance_detail {
@@ -29,19 +31,49 @@ struct Jet {
 };
 
 namespace jet_detail {
+// Exact zeros of interval gradients (a partial derivative that is exactly 0: a variable the
+// quantity does not depend on) stay exact: 0 x f is exactly 0 for a finite f, and 0 + x is
+// exactly x, so neither needs the one-ulp outward widening, and the enclosures are the same
+// as before or tighter (by those widenings), never looser. Without it every zero became
+// [-denorm_min, denorm_min] after one operation and was multiplied on through every later one.
+template <class S>
+bool exact_zero(const S& x) {
+  if constexpr (std::is_same_v<S, kernels::Interval>) return x.lo == 0.0 && x.hi == 0.0;
+  else return false;
+}
+template <class S>
+bool finite(const S& x) {
+  if constexpr (std::is_same_v<S, kernels::Interval>) return std::isfinite(x.lo) && std::isfinite(x.hi);
+  else return false;
+}
+// x f, exactly 0 when x is an exact zero and f is finite
+template <class S>
+S times(const S& x, const S& f, bool f_finite) {
+  if (f_finite && exact_zero(x)) return S(0);
+  return x * f;
+}
+// x + y, exact when either is an exact zero
+template <class S>
+S plus(const S& x, const S& y) {
+  if (exact_zero(x)) return y;
+  if (exact_zero(y)) return x;
+  return x + y;
+}
 // a.gradient * fa + b.gradient * fb
 template <class S>
 std::vector<S> combine(const Jet<S>& a, const S& fa, const Jet<S>& b, const S& fb) {
   std::size_t n = std::max(a.gradient.size(), b.gradient.size());
   std::vector<S> g(n, S(0));
-  for (std::size_t i = 0; i < a.gradient.size(); ++i) g[i] = g[i] + a.gradient[i] * fa;
-  for (std::size_t i = 0; i < b.gradient.size(); ++i) g[i] = g[i] + b.gradient[i] * fb;
+  bool fa_finite = finite(fa), fb_finite = finite(fb);
+  for (std::size_t i = 0; i < a.gradient.size(); ++i) g[i] = times(a.gradient[i], fa, fa_finite);
+  for (std::size_t i = 0; i < b.gradient.size(); ++i) g[i] = plus(g[i], times(b.gradient[i], fb, fb_finite));
   return g;
 }
 template <class S>
 std::vector<S> scaled(const Jet<S>& a, const S& f) {
   std::vector<S> g(a.gradient.size());
-  for (std::size_t i = 0; i < g.size(); ++i) g[i] = a.gradient[i] * f;
+  bool f_finite = finite(f);
+  for (std::size_t i = 0; i < g.size(); ++i) g[i] = times(a.gradient[i], f, f_finite);
   return g;
 }
 }  // namespace jet_detail
@@ -51,7 +83,7 @@ Jet<S> operator+(const Jet<S>& a, const Jet<S>& b) {
   std::size_t n = std::max(a.gradient.size(), b.gradient.size());
   std::vector<S> g(n, S(0));
   for (std::size_t i = 0; i < a.gradient.size(); ++i) g[i] = a.gradient[i];
-  for (std::size_t i = 0; i < b.gradient.size(); ++i) g[i] = g[i] + b.gradient[i];
+  for (std::size_t i = 0; i < b.gradient.size(); ++i) g[i] = jet_detail::plus(g[i], b.gradient[i]);
   return Jet<S>(a.value + b.value, std::move(g));
 }
 template <class S>
