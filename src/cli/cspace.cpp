@@ -404,7 +404,7 @@ int run(const CSpaceCommandOptions& options) {
                   " free components)";
       sliced_documents.emplace_back(suffixed(options.svg, space, several), render::sliced_stack_svg(space, svg));
     }
-    if (!options.json.empty()) sliced_documents.emplace_back(suffixed(options.json, space, several), sliced_json(space));
+    if (!options.json.empty()) sliced_documents.emplace_back(suffixed(options.json, space, several), sliced_json(space, options.stats));
   }
   for (const PinSlotSpace& space : pin_spaces) {
     if (options.stats) print_pin_slot_statistics(space);
@@ -420,7 +420,7 @@ int run(const CSpaceCommandOptions& options) {
     }
     if (!options.json.empty())
       sliced_documents.emplace_back(suffixed(options.json, space.other_part(), space.pin_slot_part(), several),
-                                    pin_slot_json(space));
+                                    pin_slot_json(space, options.stats));
   }
   for (const CSpace& space : spaces) {
     if (options.stats) print_statistics(space);

@@ -27,7 +27,7 @@ PinSlotSpace build_pin_slot(const Model& model, const std::string& other, const 
 
 /// JSON of the stack: slices (tau exact, degrees), free cells (contacts, sample, group),
 /// connections with their witnesses, changes, groups, statistics.
-std::string pin_slot_json(const PinSlotSpace& space);
+std::string pin_slot_json(const PinSlotSpace& space, bool with_times);
 
 /// Counts and times, as `--stats` prints them.
 void print_pin_slot_statistics(const PinSlotSpace& space);

@@ -26,7 +26,7 @@ SlicedSpace build_sliced(const Model& model, const std::string& fixed, const std
 /// JSON of the cell structure: critical angles (isolating intervals, decimals), slices with
 /// their representative angle and free cells, connections across critical angles (with their
 /// exact witnesses: `witnesses`, parallel to `connections`), components.
-std::string sliced_json(const SlicedSpace& space);
+std::string sliced_json(const SlicedSpace& space, bool with_times);
 
 /// Counts and times, as `--stats` prints them.
 void print_sliced_statistics(const SlicedSpace& space);

@@ -61,6 +61,12 @@ twice geneva-template-analyze analyze "$models/geneva-template.json" --out OUT
 mkdir -p "$work/escapement-analyze-1" "$work/escapement-analyze-2"
 twice escapement-analyze analyze "$models/escapement.json" --out OUT
 
+# 3-DOF (sliced) and pin-in-slot pairs: their stage times too are written only with --stats
+mkdir -p "$work/peg-in-hole-cspace-1" "$work/peg-in-hole-cspace-2"
+twice peg-in-hole-cspace cspace "$models/peg-in-hole.json" --json OUT/space.json
+mkdir -p "$work/film-advance-cspace-1" "$work/film-advance-cspace-2"
+twice film-advance-cspace cspace "$models/film-advance.json" --json OUT/space.json
+
 twice lever-stop-certify certify "$models/lever-stop.json" --claim jam --out OUT
 twice geneva-tolerance tolerance "$models/geneva.json" --quiet --out OUT
 

@@ -46,7 +46,7 @@ SlicedConfiguration read_configuration(const json& j) {
 }
 
 void expect_witnesses_as_claimed(const SlicedSpace& space, std::size_t* checked, std::size_t* through_half_turn) {
-  json doc = json::parse(cli::sliced_json(space));
+  json doc = json::parse(cli::sliced_json(space, false));
   const json& crossings = doc.at("crossings");
   ASSERT_EQ(crossings.size(), space.crossings().size());
   for (const json& crossing : crossings) {
