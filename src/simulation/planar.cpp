@@ -197,6 +197,21 @@ std::array<double, 2> spring_force(double k, double rest, double c, const double
   return f;
 }
 
+
+// Steps until t_end (the model's time unit) for either planar simulator: `s` is its state (internal
+// time `t`, `time_scale`, `events`, `public_state`), `step` one step towards t_end.
+template <class State, class Step>
+void run_steps(State& s, double t_end, const std::function<void(double)>& progress, Step step) {
+  while (s.t < t_end * s.time_scale) {
+    double before = s.t;
+    std::size_t events = s.events.size();
+    step();
+    if (progress) progress(s.public_state.time);
+    // no progress possible (t_end reached in the internal unit)
+    if (s.t == before && s.events.size() == events) break;
+  }
+}
+
 }  // namespace
 
 struct PlanarSimulation::Impl {
@@ -1513,14 +1528,7 @@ void PlanarSimulation::step(double t_limit) {
 }
 
 void PlanarSimulation::run_until(double t_end, const std::function<void(double)>& progress) {
-  while (impl_->t < t_end * impl_->time_scale) {
-    double before = impl_->t;
-    std::size_t events = impl_->events.size();
-    step(t_end);
-    if (progress) progress(impl_->public_state.time);
-    // no progress possible (t_end reached in the internal unit)
-    if (impl_->t == before && impl_->events.size() == events) break;
-  }
+  run_steps(*impl_, t_end, progress, [&] { step(t_end); });
 }
 
 const PlanarState& PlanarSimulation::state() const { return impl_->public_state; }
@@ -2204,13 +2212,7 @@ void PlanarSystemSimulation::step(double t_limit) {
 }
 
 void PlanarSystemSimulation::run_until(double t_end, const std::function<void(double)>& progress) {
-  while (impl_->t < t_end * impl_->time_scale) {
-    double before = impl_->t;
-    std::size_t events = impl_->events.size();
-    step(t_end);
-    if (progress) progress(impl_->public_state.time);
-    if (impl_->t == before && impl_->events.size() == events) break;
-  }
+  run_steps(*impl_, t_end, progress, [&] { step(t_end); });
 }
 
 const PlanarSystemState& PlanarSystemSimulation::state() const { return impl_->public_state; }
