@@ -594,7 +594,36 @@ std::string draw(const Model& model, const std::vector<PartConfiguration>& confi
       }
     }
     placed.push_back(best_box);
+    // A part that moves its position (translating, planar) carries its name along: the name is
+    // placed at the drawn configuration and shifted by the part's displacement from it in each
+    // frame. A rotating part's name stays where it is (the part turns in place).
+    bool carried = animation && (part.motion.kind == Motion::Kind::translation ||
+                                 part.motion.kind == Motion::Kind::planar);
+    if (carried) {
+      const auto& frames = animation->frames;
+      double t0 = frames.front().time, span = frames.back().time - t0;
+      auto shift = [&](const PartConfiguration& c) {
+        const PartConfiguration& c0 = configurations[i];
+        if (part.motion.kind == Motion::Kind::planar)
+          return io::format_number(n.length(c.x) - n.length(c0.x)) + " " +
+                 io::format_number(n.length(c0.y) - n.length(c.y));
+        double s = n.length(c.offset) - n.length(c0.offset);
+        return io::format_number(s * to_number(part.motion.direction.x)) + " " +
+               io::format_number(-s * to_number(part.motion.direction.y));
+      };
+      std::string values, times;
+      for (std::size_t f = 0; f < frames.size(); ++f) {
+        values += (f ? ";" : "") + shift(frames[f].configurations[i]);
+        times += (f ? ";" : "") + key_time(f + 1 == frames.size() ? 1.0 : (frames[f].time - t0) / span);
+      }
+      svg.begin_transformed_group("translate(" + shift(frames.front().configurations[i]) + ")",
+                                  "name-" + part.name, "moving");
+      svg.raw("<animateTransform attributeName=\"transform\" type=\"translate\" values=\"" + values +
+              "\" keyTimes=\"" + times + "\" dur=\"" + io::format_number(animation->options.duration) +
+              "s\" calcMode=\"linear\" repeatCount=\"indefinite\"/>\n");
+    }
     svg.text(best_x, best_y, part.name, text_size, "middle", "#111111", "bold");
+    if (carried) svg.end_group();
   }
 
   // Feature labels on request.

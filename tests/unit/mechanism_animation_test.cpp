@@ -143,9 +143,38 @@ void check_animation(const Model& model, const std::vector<render::MechanismFram
   for (const Part& part : model.parts)
     moving += part.motion.kind == Motion::Kind::rotation || part.motion.kind == Motion::Kind::translation;
   std::vector<const Element*> animations;
+  std::map<std::string, const Element*> name_animations;  // by part name
   for (const Element& e : elements)
-    if (e.name == "animateTransform") animations.push_back(&e);
+    if (e.name == "animateTransform") {
+      std::string group = enclosing_id(elements, e);
+      if (group.rfind("name-", 0) == 0)
+        name_animations[group.substr(5)] = &e;
+      else
+        animations.push_back(&e);
+    }
   EXPECT_EQ(animations.size(), moving);
+  // A translating (or planar) part's name rides with it: its shift in every frame is the part's
+  // own displacement from the first frame; a rotating or fixed part's name does not move.
+  for (const Part& part : model.parts) {
+    bool carried = part.motion.kind == Motion::Kind::translation || part.motion.kind == Motion::Kind::planar;
+    EXPECT_EQ(name_animations.count(part.name), carried ? 1u : 0u) << part.name;
+  }
+  for (const Element* a : animations) {
+    std::string name = enclosing_id(elements, *a).substr(7);
+    auto it = name_animations.find(name);
+    if (it == name_animations.end() || a->attributes.at("type") != "translate") continue;
+    std::vector<std::string> part_values = split(a->attributes.at("values"), ';');
+    std::vector<std::string> name_values = split(it->second->attributes.at("values"), ';');
+    ASSERT_EQ(part_values.size(), name_values.size()) << name;
+    EXPECT_EQ(it->second->attributes.at("keyTimes"), a->attributes.at("keyTimes")) << name;
+    std::vector<double> first = numbers(part_values.front());
+    for (std::size_t f = 0; f < part_values.size(); ++f) {
+      std::vector<double> p = numbers(part_values[f]), q = numbers(name_values[f]);
+      ASSERT_EQ(q.size(), 2u);
+      EXPECT_NEAR(q[0], p[0] - first[0], 3 * printed) << name << " frame " << f;
+      EXPECT_NEAR(q[1], p[1] - first[1], 3 * printed) << name << " frame " << f;
+    }
+  }
   *animated = animations.size();
   double t0 = frames.front().time, span = frames.back().time - t0;
   for (const Element* a : animations) {
@@ -359,6 +388,28 @@ TEST(MechanismAnimation, SpringIsDrawnBetweenItsAttachmentsInEveryFrame) {
     if (f == 0) scale = std::pow(10.0, std::round(std::log10(std::hypot(dx, dy) / std::hypot(wx, wy))));
     EXPECT_NEAR(dx, scale * wx, tolerance) << "frame " << f;
     EXPECT_NEAR(dy, scale * wy, tolerance) << "frame " << f;
+  }
+  // the planar block's name rides with the block: shifted by the block's own shift from frame 0
+  const std::string block = model.parts[1].name;
+  const Element *shift = nullptr, *name_shift = nullptr;
+  for (const Element& e : elements) {
+    if (e.name != "animateTransform") continue;
+    std::string group = enclosing_id(elements, e);
+    if (group == "motion-" + block + "-shift") shift = &e;
+    if (group == "name-" + block) name_shift = &e;
+  }
+  ASSERT_NE(shift, nullptr);
+  ASSERT_NE(name_shift, nullptr);
+  std::vector<std::string> block_values = split(shift->attributes.at("values"), ';');
+  std::vector<std::string> name_values = split(name_shift->attributes.at("values"), ';');
+  ASSERT_EQ(name_values.size(), frames.size());
+  ASSERT_EQ(block_values.size(), frames.size());
+  std::vector<double> block_first = numbers(block_values.front());
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    std::vector<double> b = numbers(block_values[f]), q = numbers(name_values[f]);
+    ASSERT_EQ(q.size(), 2u);
+    EXPECT_NEAR(q[0], b[0] - block_first[0], 3 * printed) << "frame " << f;
+    EXPECT_NEAR(q[1], b[1] - block_first[1], 3 * printed) << "frame " << f;
   }
   // the still drawing (hipair show) draws it too
   std::string still = render::mechanism_svg(model, frames.front().configurations);
