@@ -116,7 +116,12 @@ class Producer {
     std::vector<Piece>& pieces = pieces_;
     // First the linearised worst corner of the box at each driver position of the nominal path:
     // above the jamming threshold the channel closes there, and a corner is an exact rational
-    // vector of the box — the witness.
+    // vector of the box — the witness. The driver is refined between the positions at the
+    // narrowest corner channel: the closing can lie between two positions (Geneva: at the
+    // switch of the lower side from the lock arc to the pin, 2.2542 rad), where a leaf may
+    // take a neighbouring piece's sides and the verifier would accept it (docs/tolerance.md
+    // "The threshold, bracketed").
+    refine_ = true;
     if (corner_jams(pieces, result)) {
       result.outcome = ToleranceCertification::Outcome::jams;
       result.reason = jam_reason_;
