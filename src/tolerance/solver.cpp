@@ -194,7 +194,7 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   std::optional<IntervalJet> over_y;
   Interval over_y_range;
   auto sign_over_box = [&](double v) {
-    if (over_y && over_y_range.lo <= v && v <= over_y_range.hi) {
+    if (reuse_y_jets_ && over_y && over_y_range.lo <= v && v <= over_y_range.hi) {
       int s = mean_value_sign(v, *over_y);
       if (s == 1 || s == -1) return s;
     }
@@ -207,12 +207,17 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   // The mean-value enclosure over B x Y when Y is certified to hold exactly one root for every
   // p in B (end signs opposite, F_v of one sign); false otherwise.
   auto enclose = [&](const Interval& y, Interval& out) {
-    IntervalJet f = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
-    over_y = f;   // its partials serve the end signs of Y itself first
-    over_y_range = y;
+    std::optional<IntervalJet> first;
+    if (reuse_y_jets_) {
+      first = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
+      over_y = first;   // its partials serve the end signs of Y itself first
+      over_y_range = y;
+    }
     int s_lo = sign_over_box(y.lo);
     int s_hi = sign_over_box(y.hi);
     if (s_lo == 2 || s_hi == 2 || s_lo == 0 || s_hi == 0 || s_lo == s_hi) return false;
+    IntervalJet f = first ? *first
+                          : evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
     Interval fv = f.partial(k);
     int s = fv.sign();
     if (s != 1 && s != -1) return false;
