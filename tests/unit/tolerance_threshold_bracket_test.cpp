@@ -109,5 +109,42 @@ TEST(ToleranceThresholdBracket, GeneratedParameterSubsetsGiveConfirmedBrackets) 
   EXPECT_GE(confirmed, 1);
 }
 
+// Session 11 produced a no-jam certificate at 4157/500 (0.98 x the linearised threshold) that
+// hipair-verify accepts, although the pair jams at 8.1300654 (docs/tolerance.md "The threshold,
+// bracketed"). The producer now refines the driver at the narrowest corner channel first and
+// reports the jam with its exact witness; independently, the model read at the witness is
+// blocked between the crossed roots and free there nominally.
+TEST(ToleranceThresholdBracket, AtNinetyEightHundredthsTheProducerReportsTheJamInsteadOfACertificate) {
+  ToleranceOptions options;
+  options.range = std::make_pair(Rational(11, 5), Rational(23, 10));
+  options.positions = 720;
+  options.relative_accuracy = 0.5;
+  options.certify = true;
+  options.certify_scale = Rational(4157, 500);
+  options.certify_max_leaves = 200;
+  ToleranceResult result = analyze_tolerances(geneva(), options);
+  ASSERT_TRUE(result.certification);
+  const ToleranceCertification& c = *result.certification;
+  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::jams) << c.reason;
+  EXPECT_FALSE(c.certificate);
+  ASSERT_TRUE(c.witness_coordinate && c.witness_lower && c.witness_upper);
+  EXPECT_TRUE(c.witness_upper->hi < c.witness_lower->lo);
+  Model nominal = read_model_file(geneva());
+  ReadOptions worst;
+  worst.allow_out_of_tolerance = true;
+  for (const auto& [name, deviation] : c.witness_parameters) {
+    const Parameter* p = nominal.find_parameter(name);
+    ASSERT_NE(p, nullptr);
+    worst.parameter_values[name] = p->nominal + deviation;
+  }
+  Rational between = (c.witness_upper->hi + c.witness_lower->lo) / 2;
+  auto locate = [&](const Model& model) {
+    CSpace space = CSpace::build(model, "driver", "wheel");
+    return space.locate(rotation(*c.witness_coordinate), rotation(between)).kind;
+  };
+  EXPECT_EQ(locate(read_model_file(geneva(), worst)), Location::Kind::blocked);
+  EXPECT_EQ(locate(nominal), Location::Kind::free);
+}
+
 }  // namespace
 }  // namespace hipair
