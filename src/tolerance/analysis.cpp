@@ -849,6 +849,18 @@ class Analysis {
     return request;
   }
 
+  // The slice of `space` (an exact C-space at other parameters) at the sample's driver chart
+  // coordinate, in the (last) chart with the nominal chart's half turns.
+  std::optional<Slice> slice_like(const CSpace& space, const SampleState& state) const {
+    const CSpaceChart& nominal_chart = space_->charts()[state.chart];
+    std::vector<Slice> slices = space.slice(driver_is_x_ ? SliceAxis::x : SliceAxis::y, state.driver_chart.t);
+    for (auto candidate = slices.rbegin(); candidate != slices.rend(); ++candidate) {
+      const CSpaceChart& c = space.charts()[candidate->chart];
+      if (c.x_half_turn == nominal_chart.x_half_turn && c.y_half_turn == nominal_chart.y_half_turn) return *candidate;
+    }
+    return std::nullopt;
+  }
+
   // docs/tolerance.md "The threshold, bracketed": the corner search bisected over the scale,
   // then the exact C-space at the jam witness, sliced at its driver position.
   void bracket_threshold(JammingThreshold& result) {
@@ -895,13 +907,7 @@ class Analysis {
       return;
     }
     CSpace space = CSpace::build(worst, pair_first_, pair_second_);
-    const CSpaceChart& nominal_chart = space_->charts()[state.chart];
-    std::vector<Slice> slices = space.slice(driver_is_x_ ? SliceAxis::x : SliceAxis::y, state.driver_chart.t);
-    const Slice* slice = nullptr;
-    for (const Slice& candidate : slices) {
-      const CSpaceChart& c = space.charts()[candidate.chart];
-      if (c.x_half_turn == nominal_chart.x_half_turn && c.y_half_turn == nominal_chart.y_half_turn) slice = &candidate;
-    }
+    std::optional<Slice> slice = slice_like(space, state);
     if (!slice) {
       result.bracket_evidence = "not confirmed: no slice of the witness' C-space at that driver position";
       return;
@@ -1022,13 +1028,7 @@ class Analysis {
         continue;
       }
       CSpace space = CSpace::build(worst, pair_first_, pair_second_);
-      const CSpaceChart& nominal_chart = space_->charts()[state.chart];
-      std::vector<Slice> slices = space.slice(driver_is_x_ ? SliceAxis::x : SliceAxis::y, state.driver_chart.t);
-      const Slice* slice = nullptr;
-      for (const Slice& candidate : slices) {
-        const CSpaceChart& c = space.charts()[candidate.chart];
-        if (c.x_half_turn == nominal_chart.x_half_turn && c.y_half_turn == nominal_chart.y_half_turn) slice = &candidate;
-      }
+      std::optional<Slice> slice = slice_like(space, state);
       if (!slice) continue;
       // Free intervals of the slice meeting the nominal channel (lower, upper).
       // Decided exactly against the nominal channel's exact sides (exact_order.hpp).

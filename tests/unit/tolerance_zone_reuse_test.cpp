@@ -9,6 +9,7 @@
 // certified root at random parameter vectors of the box (an independent isolation at a point).
 #include "model/parametric/parametric.hpp"
 #include "tolerance/solver.hpp"
+#include "tolerance_geneva_curve.hpp"
 
 #include <hipair/error.hpp>
 
@@ -23,7 +24,6 @@ namespace {
 using model_detail::ParametricModel;
 using tolerance_detail::Box;
 using tolerance_detail::CurveSolver;
-using tolerance_detail::CurveSlice;
 
 TEST(ToleranceZoneReuse, JetOverTheBracketGivesTheFormerEnclosuresOrTighterAndHoldsTheRoots) {
   auto model = std::make_shared<const ParametricModel>(
@@ -31,15 +31,7 @@ TEST(ToleranceZoneReuse, JetOverTheBracketGivesTheFormerEnclosuresOrTighterAndHo
   const Model& nominal = model->nominal();
   CurveSolver reuse(model), former(model);
   former.set_reuse_y_jets(false);
-  CurveSlice curve;
-  curve.first = FeatureIdentity{0, 0, 0, FeatureKind::arc};   // driver pin
-  for (std::size_t e = 0; e < nominal.parts[1].loops[0].edges.size(); ++e)
-    if (nominal.parts[1].loops[0].edges[e].label == "slot 1 wall R")
-      curve.second = FeatureIdentity{1, 0, e, FeatureKind::segment};
-  curve.fixed_part = 0;
-  curve.free_part = 1;
-  curve.fixed_half_turn = true;   // the driver near pi: the pin in slot 1
-  curve.free_half_turn = false;
+  tolerance_detail::CurveSlice curve = test::geneva_pin_wall_curve(nominal);
   std::size_t n = nominal.parameters.size();
   std::mt19937_64 random(13);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
