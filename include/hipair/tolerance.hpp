@@ -49,6 +49,10 @@ struct ToleranceOptions {
   std::uint64_t seed = 1;
   unsigned threads = 0;                ///< Monte Carlo, certified band, zones (0: hardware concurrency)
   bool threshold = false;              ///< search the jamming threshold
+  /// With `threshold` and > 0: bracket the threshold by bisection of the scale until the
+  /// bracket's relative width is at most this (docs/tolerance.md "The threshold, bracketed"):
+  /// an exact jam witness at the upper end, confirmed by an exact C-space there.
+  double threshold_bracket = 0;
   /// Parameters varied by the threshold search (empty: every toleranced parameter).
   std::vector<std::string> threshold_parameters;
   /// Certified band: subdivide the tolerance box until the certified enclosure is at most this
@@ -158,6 +162,19 @@ struct JammingThreshold {
   std::vector<std::pair<std::string, Rational>> worst_values;   ///< parameter values, exact
   bool confirmed = false;              ///< the exact C-space shows the closed channel
   std::string evidence;                ///< what the exact build shows
+  /// With ToleranceOptions::threshold_bracket: the corner search over the driver range found
+  /// no jam at tolerances x `bracket_below` and an exact jam witness at x `bracket_above` (the
+  /// varied parameters at `bracket_values`, the driver at `bracket_driver`; the upper side's
+  /// root in `bracket_upper`, below the lower side's in `bracket_lower`: certain sign changes).
+  /// `bracket_below` is not a proof; a no-jam certificate at that scale is (`--certify`).
+  bool bracketed = false;
+  Rational bracket_below, bracket_above, bracket_driver;
+  std::vector<std::pair<std::string, Rational>> bracket_values;
+  RationalInterval bracket_lower, bracket_upper;
+  double bracket_play_below = 0;       ///< narrowest corner channel at `bracket_below` (approximate)
+  std::size_t bracket_steps = 0;
+  bool bracket_confirmed = false;      ///< the exact C-space at the witness shows the closed channel
+  std::string bracket_evidence;
 };
 
 /// A contact that appears or disappears for some parameter vector of the tolerance box

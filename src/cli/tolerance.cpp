@@ -40,6 +40,7 @@ struct ToleranceCliOptions {
   std::uint64_t seed = 1;
   std::size_t positions = 360;
   bool threshold = false;
+  double threshold_bracket = 0;
   bool contact_changes = false;
   bool chain = false;
   std::vector<std::string> vary;
@@ -297,6 +298,8 @@ int run(const ToleranceCliOptions& options) {
   analysis.seed = options.seed;
   analysis.positions = options.positions;
   analysis.threshold = options.threshold;
+  analysis.threshold_bracket = options.threshold_bracket;
+  if (options.threshold_bracket > 0 && !options.threshold) throw ModelError("", "--threshold-bracket needs --threshold");
   analysis.threshold_parameters = options.vary;
   analysis.relative_accuracy = options.accuracy;
   analysis.threads = options.threads;
@@ -365,6 +368,10 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_option("--positions", options->positions, "driver positions per turn for a rotating driver, along the range for a translating one (default 360)")
       ->check(CLI::Range(std::size_t{16}, std::size_t{100000}));
   command->add_flag("--threshold", options->threshold, "find the jamming threshold and confirm it with an exact C-space");
+  command->add_option("--threshold-bracket", options->threshold_bracket,
+                      "with --threshold: bisect the scale until the bracket is this narrow (relative; e.g. 1e-6), "
+                      "an exact jam witness at its upper end confirmed by an exact C-space")
+      ->check(CLI::Range(1e-12, 1.0));
   command->add_flag("--chain", options->chain,
                     "analyse the assembly chain from the driver (--driver P, or --pair P:OUTPUT) to its output part: "
                     "the pairs' kinematic functions and sensitivities composed (docs/tolerance.md \"Assembly chains\")");

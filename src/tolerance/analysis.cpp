@@ -773,13 +773,7 @@ class Analysis {
   // The no-jam tolerance certificate (certificate.hpp): the nominal channel along the range,
   // then the branch-and-bound.
   void certify() {
-    const Model& m = model_->nominal();
-    tolerance_detail::CertifyRequest request;
-    request.model = model_;
-    request.model_text = text_;
-    request.model_file = source_name_;
-    request.driver = driver_;
-    request.follower = follower_;
+    tolerance_detail::CertifyRequest request = certify_request();
     request.scale = options_.certify_scale;
     if (options_.certify_relative_to_threshold) {
       if (!result_.threshold || !result_.threshold->found) {
@@ -792,8 +786,21 @@ class Analysis {
       Rational q(mpz_class(std::floor(value / unit)), 1);
       request.scale = unit >= 1 ? Rational(q * Rational(unit)) : Rational(q / Rational(static_cast<long>(std::llround(1 / unit))));
     }
-    request.max_leaves = options_.certify_max_leaves;
     if (!(request.scale > 0)) throw ModelError("", "the certificate's tolerance scale must be positive");
+    result_.certification = tolerance_detail::certify_no_jam(request);
+  }
+
+  // The certificate's request without its scale: the varied parameters, the driver range and
+  // the nominal channel's sides at every analysed position in it.
+  tolerance_detail::CertifyRequest certify_request() {
+    const Model& m = model_->nominal();
+    tolerance_detail::CertifyRequest request;
+    request.model = model_;
+    request.model_text = text_;
+    request.model_file = source_name_;
+    request.driver = driver_;
+    request.follower = follower_;
+    request.max_leaves = options_.certify_max_leaves;
     std::vector<bool> varied = varied_parameters();
     for (std::size_t i = 0; i < varied.size(); ++i)
       if (varied[i]) request.varied.push_back(i);
@@ -839,7 +846,98 @@ class Analysis {
       (void)m;
       request.samples.push_back(c);
     }
-    result_.certification = tolerance_detail::certify_no_jam(request);
+    return request;
+  }
+
+  // The slice of `space` (an exact C-space at other parameters) at the sample's driver chart
+  // coordinate, in the (last) chart with the nominal chart's half turns.
+  std::optional<Slice> slice_like(const CSpace& space, const SampleState& state) const {
+    const CSpaceChart& nominal_chart = space_->charts()[state.chart];
+    std::vector<Slice> slices = space.slice(driver_is_x_ ? SliceAxis::x : SliceAxis::y, state.driver_chart.t);
+    for (auto candidate = slices.rbegin(); candidate != slices.rend(); ++candidate) {
+      const CSpaceChart& c = space.charts()[candidate->chart];
+      if (c.x_half_turn == nominal_chart.x_half_turn && c.y_half_turn == nominal_chart.y_half_turn) return *candidate;
+    }
+    return std::nullopt;
+  }
+
+  // docs/tolerance.md "The threshold, bracketed": the corner search bisected over the scale,
+  // then the exact C-space at the jam witness, sliced at its driver position.
+  void bracket_threshold(JammingThreshold& result) {
+    const Model& m = model_->nominal();
+    tolerance_detail::CertifyRequest request = certify_request();
+    Rational below = Rational(0.9) * Rational(result.scale), above = Rational(1.1) * Rational(result.scale);
+    tolerance_detail::ThresholdBracket b =
+        tolerance_detail::bracket_threshold(request, below, above, options_.threshold_bracket);
+    result.bracket_steps = b.steps;
+    if (!b.found) {
+      result.bracket_evidence = "no bracket: the corner search " + std::string(b.steps == 1 ? "jams at 0.9 x the linearised threshold"
+                                                                                           : "found no jam up to 5 x it");
+      return;
+    }
+    result.bracketed = true;
+    result.bracket_below = b.below;
+    result.bracket_above = b.above;
+    result.bracket_play_below = b.below_play;
+    result.bracket_driver = b.witness.witness_coordinate.value_or(Rational(0));
+    result.bracket_lower = b.witness.witness_lower.value_or(RationalInterval{});
+    result.bracket_upper = b.witness.witness_upper.value_or(RationalInterval{});
+    std::vector<Rational> deviations(m.parameters.size(), Rational(0));
+    for (const auto& [name, deviation] : b.witness.witness_parameters) {
+      const Parameter* p = m.find_parameter(name);
+      deviations[static_cast<std::size_t>(p - m.parameters.data())] = deviation;
+      result.bracket_values.emplace_back(name, p->nominal + deviation);
+    }
+    // The exact confirmation: the C-space of the exact model at the witness, sliced at the
+    // chart coordinate nearest the witness' driver; the nominal channel's exact sides there
+    // come from the nominal C-space's slice at the same coordinate (the follower between the
+    // witness' two roots, which lie in the nominal channel's neighbourhood).
+    double d = result.bracket_driver.get_d();
+    double follower = 0.5 * (result.bracket_lower.lo.get_d() + result.bracket_upper.hi.get_d());
+    SampleState state = locate(d, follower, false);
+    if (!state.valid || !state.lower.present || !state.upper.present) {
+      result.bracket_evidence = "not confirmed: the nominal slice at the witness' driver position has no bounded channel there";
+      return;
+    }
+    Model worst;
+    try {
+      worst = model_->exact_model(deviations);
+    } catch (const ModelError& error) {
+      result.bracket_evidence = std::string("not confirmed: the witness geometry is invalid: ") + error.what();
+      return;
+    }
+    CSpace space = CSpace::build(worst, pair_first_, pair_second_);
+    std::optional<Slice> slice = slice_like(space, state);
+    if (!slice) {
+      result.bracket_evidence = "not confirmed: no slice of the witness' C-space at that driver position";
+      return;
+    }
+    // The nominal channel there: the follower between the witness' roots must lie in a free
+    // interval of the nominal slice (else its neighbours bound no channel).
+    std::vector<Slice> nominal_slices = space_->slice(driver_is_x_ ? SliceAxis::x : SliceAxis::y, state.driver_chart.t);
+    std::size_t nominal_open = 0;
+    for (const Slice& candidate : nominal_slices)
+      if (candidate.chart == state.chart)
+        nominal_open = tolerance_detail::free_intervals_in_channel(candidate, state.lower.exact, state.upper.exact);
+    if (nominal_open != 1) {
+      result.bracket_evidence = "not confirmed: the witness' follower position is not in a free channel of the nominal slice";
+      return;
+    }
+    std::size_t open = tolerance_detail::free_intervals_in_channel(*slice, state.lower.exact, state.upper.exact);
+    std::ostringstream points;   // for the reader only (approximate)
+    points.precision(9);
+    points << "; nominal channel (" << state.lower.exact.approximate() << ", " << state.upper.exact.approximate()
+           << "), the witness' slice points";
+    for (const Slice::Point& point : slice->points) points << " " << point.at.approximate();
+    points << ", intervals";
+    for (const Slice::Interval& interval : slice->intervals) points << (interval.kind == CellKind::free ? " free" : " blocked");
+    std::string where = "exact C-space at the witness (tolerances x " + to_exact_string(b.above) +
+                        "), sliced at driver chart coordinate " + to_exact_string(state.driver_chart.t);
+    result.bracket_confirmed = open == 0;
+    result.bracket_evidence = open == 0 ? where + ": no free interval between the two sides of the nominal channel (" +
+                                              std::to_string(slice->intervals.size()) + " intervals)"
+                                        : where + ": still " + std::to_string(open) + " free interval(s) in the channel";
+    result.bracket_evidence += points.str() + " (chart coordinates)";
   }
 
   void threshold() {
@@ -930,13 +1028,7 @@ class Analysis {
         continue;
       }
       CSpace space = CSpace::build(worst, pair_first_, pair_second_);
-      const CSpaceChart& nominal_chart = space_->charts()[state.chart];
-      std::vector<Slice> slices = space.slice(driver_is_x_ ? SliceAxis::x : SliceAxis::y, state.driver_chart.t);
-      const Slice* slice = nullptr;
-      for (const Slice& candidate : slices) {
-        const CSpaceChart& c = space.charts()[candidate.chart];
-        if (c.x_half_turn == nominal_chart.x_half_turn && c.y_half_turn == nominal_chart.y_half_turn) slice = &candidate;
-      }
+      std::optional<Slice> slice = slice_like(space, state);
       if (!slice) continue;
       // Free intervals of the slice meeting the nominal channel (lower, upper).
       // Decided exactly against the nominal channel's exact sides (exact_order.hpp).
@@ -955,6 +1047,7 @@ class Analysis {
       result.evidence = "exact C-space at tolerances x " + std::to_string(factor.get_d()) + ": still " +
                         std::to_string(open) + " free interval(s) in the channel";
     }
+    if (options_.threshold_bracket > 0) bracket_threshold(result);
     result_.threshold = result;
   }
 

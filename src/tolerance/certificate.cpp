@@ -47,9 +47,9 @@ class Producer {
  public:
   explicit Producer(const CertifyRequest& request) : request_(request) {}
 
-  ToleranceCertification run() {
-    auto start = std::chrono::steady_clock::now();
-    ToleranceCertification result;
+  // The claim, the pieces of constant sides along the range and the verifier's evaluator;
+  // false with result.reason set when the request cannot be certified.
+  bool prepare(ToleranceCertification& result) {
     result.scale = request_.scale;
     const Model& m = request_.model->nominal();
     claim_.driver = m.parts[request_.driver].name;
@@ -62,12 +62,12 @@ class Producer {
       claim_.box.push_back({request_.scale * (p.range.lo - p.nominal), request_.scale * (p.range.hi - p.nominal)});
     }
     // The channel's sides along the range, and the pieces of constant sides.
-    std::vector<Piece> pieces;
+    std::vector<Piece>& pieces = pieces_;
     for (const ChannelSample& s : request_.samples) {
       if (!s.bounded) {
         result.reason = "the follower's channel is not bounded on both sides at driver " + std::to_string(s.driver) +
                         " (nominal geometry): a no-jam certificate needs both sides";
-        return result;
+        return false;
       }
       std::size_t lower = side_index(m, s.lower_first, s.lower_second);
       std::size_t upper = side_index(m, s.upper_first, s.upper_second);
@@ -77,7 +77,7 @@ class Producer {
     }
     if (pieces.empty()) {
       result.reason = "no driver position of the nominal path lies in the range";
-      return result;
+      return false;
     }
     for (std::size_t k = 0; k < pieces.size(); ++k) {
       if (k > 0) pieces[k].previous = &pieces[k - 1];
@@ -87,11 +87,41 @@ class Producer {
       evaluator_ = std::make_unique<verify::ToleranceEvaluator>(request_.model, claim_);
     } catch (const verify::Rejection& rejection) {
       result.reason = rejection.reason;
-      return result;
+      return false;
     }
+    return true;
+  }
+
+  // The corner search alone (corner_jam_scan): at `scale`, is there an exact jam witness at the
+  // linearised worst corner, the driver refined between the nominal path's positions?
+  JamScan scan() {
+    JamScan out;
+    out.witness.scale = request_.scale;
+    if (!prepare(out.witness)) return out;
+    refine_ = true;
+    out.jams = corner_jams(pieces_, out.witness);
+    if (out.jams) {
+      out.witness.outcome = ToleranceCertification::Outcome::jams;
+      out.witness.reason = jam_reason_;
+    }
+    out.play = best_play_;
+    out.driver = best_driver_;
+    return out;
+  }
+
+  ToleranceCertification run() {
+    auto start = std::chrono::steady_clock::now();
+    ToleranceCertification result;
+    if (!prepare(result)) return result;
+    std::vector<Piece>& pieces = pieces_;
     // First the linearised worst corner of the box at each driver position of the nominal path:
     // above the jamming threshold the channel closes there, and a corner is an exact rational
-    // vector of the box — the witness.
+    // vector of the box — the witness. The driver is refined between the positions at the
+    // narrowest corner channel: the closing can lie between two positions (Geneva: at the
+    // switch of the lower side from the lock arc to the pin, 2.2542 rad), where a leaf may
+    // take a neighbouring piece's sides and the verifier would accept it (docs/tolerance.md
+    // "The threshold, bracketed").
+    refine_ = true;
     if (corner_jams(pieces, result)) {
       result.outcome = ToleranceCertification::Outcome::jams;
       result.reason = jam_reason_;
@@ -137,6 +167,7 @@ class Producer {
       result.reason = undecided_reason_;
       return result;
     }
+    const Model& m = request_.model->nominal();
     Certificate c;
     c.claim = ClaimKind::tolerance;
     c.model_name = m.name;
@@ -214,6 +245,24 @@ class Producer {
     bool monotone = false;       // ok, and the follower derivative has one sign over the bracket
   };
 
+  // Side `pair`'s root (follower coordinate) at driver d with the geometry `point`, by Newton
+  // from `start` (approximate: it only chooses); NaN when it fails or wanders to another branch.
+  double newton(verify::ToleranceGeometry& point, std::size_t pair, const Rational& d, double start) {
+    Jet driver(verify::enclose(d));
+    double y = start;
+    for (int iteration = 0; iteration < 40; ++iteration) {
+      Jet f = evaluator_->contact(point, pair, driver, Jet::variable(verify::enclose(Rational(y)), 0, 1));
+      double value = approx(f.value), slope = approx(f.partial(0));
+      if (!std::isfinite(value) || !std::isfinite(slope) || slope == 0) break;
+      double step = value / slope;
+      y -= step;
+      if (!std::isfinite(y)) break;
+      if (std::fabs(step) <= 1e-15 * (1 + std::fabs(y)))
+        return std::fabs(y - start) > 0.5 ? std::nan("") : y;   // wandered to another branch
+    }
+    return std::nan("");
+  }
+
   // Newton at the leaf's centre from the nominal side value, a certified centre interval, the
   // root's gradient (middle of its enclosure over the box), then bracket ends widened until the
   // contact function's sign over the whole leaf is certain at both.
@@ -222,21 +271,8 @@ class Producer {
     SideGuess g;
     Rational d0 = (leaf.driver.lo + leaf.driver.hi) / 2;
     Jet driver(verify::enclose(d0));
-    double y = start;
-    bool converged = false;
-    for (int iteration = 0; iteration < 40; ++iteration) {
-      Jet f = evaluator_->contact(point, pair, driver, Jet::variable(verify::enclose(Rational(y)), 0, 1));
-      double value = approx(f.value), slope = approx(f.partial(0));
-      if (!std::isfinite(value) || !std::isfinite(slope) || slope == 0) return g;
-      double step = value / slope;
-      y -= step;
-      if (!std::isfinite(y)) return g;
-      if (std::fabs(step) <= 1e-15 * (1 + std::fabs(y))) {
-        converged = true;
-        break;
-      }
-    }
-    if (!converged || std::fabs(y - start) > 0.5) return g;   // wandered to another branch
+    double y = newton(point, pair, d0, start);
+    if (!std::isfinite(y)) return g;
     g.root = y;
     double eps = 1e-12 * (1 + std::fabs(y));
     g.centre = {grid(y - eps, false), grid(y + eps, true)};
@@ -317,22 +353,95 @@ class Producer {
         verify::ToleranceGeometry corner_over = evaluator_->geometry(at, true);
         SideGuess cl = side_guess(piece.lower, s->lower, corner, corner_over, corner_point, std::vector<double>(k, 0), 0);
         SideGuess cu = side_guess(piece.upper, s->upper, corner, corner_over, corner_point, std::vector<double>(k, 0), 0);
-        if (!(cl.centre_certain && cu.centre_certain && cu.centre.hi < cl.centre.lo)) continue;
-        jam_reason_ = "the channel's sides cross at driver " + to_exact_string(d) + " (" + std::to_string(s->driver) +
-                      "): the upper side's root lies in [" + to_exact_string(cu.centre.lo) + ", " +
-                      to_exact_string(cu.centre.hi) + "], below the lower side's [" + to_exact_string(cl.centre.lo) +
-                      ", " + to_exact_string(cl.centre.hi) + "] (certain sign changes), at the corner of the box";
-        result.witness_parameters.clear();
-        for (std::size_t i = 0; i < k; ++i) {
-          result.witness_parameters.emplace_back(claim_.varied[i], corner.parameters[i].lo);
-          jam_reason_ += " " + claim_.varied[i] + "=" + to_exact_string(corner.parameters[i].lo);
+        if (cl.centre_certain && cu.centre_certain && cu.root - cl.root < best_play_) {
+          best_play_ = cu.root - cl.root;
+          best_driver_ = s->driver;
+          best_ = Best{&piece, s, corner.parameters, at, cl.root, cu.root};
         }
-        result.witness_coordinate = d;
-        result.witness_lower = cl.centre;
-        result.witness_upper = cu.centre;
+        if (!(cl.centre_certain && cu.centre_certain && cu.centre.hi < cl.centre.lo)) continue;
+        record_jam(d, corner, cl, cu, result);
         return true;
       }
-    return false;
+    return refine_ && refined_corner_jams(result);
+  }
+
+  void record_jam(const Rational& d, const ToleranceLeaf& corner, const SideGuess& cl, const SideGuess& cu,
+                  ToleranceCertification& result) {
+    std::size_t k = claim_.varied.size();
+    jam_reason_ = "the channel's sides cross at driver " + to_exact_string(d) + " (" + std::to_string(d.get_d()) +
+                  "): the upper side's root lies in [" + to_exact_string(cu.centre.lo) + ", " +
+                  to_exact_string(cu.centre.hi) + "], below the lower side's [" + to_exact_string(cl.centre.lo) +
+                  ", " + to_exact_string(cl.centre.hi) + "] (certain sign changes), at the corner of the box";
+    result.witness_parameters.clear();
+    for (std::size_t i = 0; i < k; ++i) {
+      result.witness_parameters.emplace_back(claim_.varied[i], corner.parameters[i].lo);
+      jam_reason_ += " " + claim_.varied[i] + "=" + to_exact_string(corner.parameters[i].lo);
+    }
+    result.witness_coordinate = d;
+    result.witness_lower = cl.centre;
+    result.witness_upper = cu.centre;
+  }
+
+  // The corner of the position with the narrowest corner channel (corner_jams), the driver
+  // moved to the smallest play between its neighbouring positions (golden section on the two
+  // sides' Newton roots: approximate, it only chooses), and there the same exact test.
+  bool refined_corner_jams(ToleranceCertification& result) {
+    if (!best_.piece) return false;
+    // Between the neighbouring positions, but not past the midpoint to a position of another
+    // piece (there the sides are other feature pairs: the certificate's pieces split there).
+    const auto& all = request_.samples;
+    std::size_t at = static_cast<std::size_t>(best_.sample - all.data());
+    const auto& own = best_.piece->samples;
+    auto end = [&](std::size_t j) {
+      bool same = std::find(own.begin(), own.end(), &all[j]) != own.end();
+      return same ? all[j].driver : 0.5 * (all[j].driver + best_.sample->driver);
+    };
+    double a = at > 0 ? end(at - 1) : best_.sample->driver;
+    double b = at + 1 < all.size() ? end(at + 1) : best_.sample->driver;
+    a = std::max(a, claim_.range.lo.get_d());
+    b = std::min(b, claim_.range.hi.get_d());
+    verify::ToleranceGeometry point = evaluator_->geometry(best_.at, false);
+    verify::ToleranceGeometry over = evaluator_->geometry(best_.at, true);
+    auto play = [&](double d) {
+      Rational q(d);
+      double l = newton(point, best_.piece->lower, q, best_.lower);
+      double u = newton(point, best_.piece->upper, q, best_.upper);
+      return std::isfinite(l) && std::isfinite(u) ? u - l : std::numeric_limits<double>::infinity();
+    };
+    const double golden = 0.5 * (std::sqrt(5.0) - 1);
+    double x1 = b - golden * (b - a), x2 = a + golden * (b - a);
+    double f1 = play(x1), f2 = play(x2);
+    for (int iteration = 0; iteration < 100 && b - a > 1e-15 * (1 + std::fabs(a)); ++iteration) {
+      if (f1 <= f2) {
+        b = x2;
+        x2 = x1;
+        f2 = f1;
+        x1 = b - golden * (b - a);
+        f1 = play(x1);
+      } else {
+        a = x1;
+        x1 = x2;
+        f1 = f2;
+        x2 = a + golden * (b - a);
+        f2 = play(x2);
+      }
+    }
+    double dm = f1 <= f2 ? x1 : x2;
+    double fm = std::min(f1, f2);
+    if (fm < best_play_) {
+      best_play_ = fm;
+      best_driver_ = dm;
+    }
+    Rational d = grid(dm, false);
+    ToleranceLeaf corner;
+    corner.driver = {d, d};
+    corner.parameters = best_.parameters;
+    std::size_t k = claim_.varied.size();
+    SideGuess cl = side_guess(best_.piece->lower, best_.lower, corner, over, point, std::vector<double>(k, 0), 0);
+    SideGuess cu = side_guess(best_.piece->upper, best_.upper, corner, over, point, std::vector<double>(k, 0), 0);
+    if (!(cl.centre_certain && cu.centre_certain && cu.centre.hi < cl.centre.lo)) return false;
+    record_jam(d, corner, cl, cu, result);
+    return true;
   }
 
   // x > 0 rounded down to 10 significant digits (a short exact rational); 0 when x <= 0.
@@ -573,7 +682,20 @@ class Producer {
     return solve(high, piece, depth + 1);
   }
 
+  struct Best {   // the narrowest corner channel met by corner_jams
+    const Piece* piece = nullptr;
+    const ChannelSample* sample = nullptr;
+    std::vector<RationalInterval> parameters;
+    std::vector<Interval> at;
+    double lower = 0, upper = 0;   // the sides' roots there
+  };
+
   const CertifyRequest& request_;
+  std::vector<Piece> pieces_;
+  bool refine_ = false;
+  Best best_;
+  double best_play_ = std::numeric_limits<double>::infinity();
+  double best_driver_ = 0;
   ToleranceClaim claim_;
   std::unique_ptr<verify::ToleranceEvaluator> evaluator_;
   std::size_t attempts_ = 0;
@@ -589,5 +711,52 @@ class Producer {
 }  // namespace
 
 ToleranceCertification certify_no_jam(const CertifyRequest& request) { return Producer(request).run(); }
+
+JamScan corner_jam_scan(const CertifyRequest& request) { return Producer(request).scan(); }
+
+ThresholdBracket bracket_threshold(const CertifyRequest& base, const Rational& below, const Rational& above,
+                                   double relative, std::size_t max_steps) {
+  ThresholdBracket out;
+  CertifyRequest request = base;
+  auto jams = [&](const Rational& scale, JamScan& scan) {
+    request.scale = scale;
+    scan = corner_jam_scan(request);
+    ++out.steps;
+    return scan.jams;
+  };
+  JamScan low, high;
+  Rational lo = below, hi = above;
+  if (jams(lo, low)) return out;   // no bracket: a corner jams already below
+  for (int grow = 0; !jams(hi, high); ++grow) {
+    if (grow >= 4) return out;
+    lo = hi;
+    hi = hi * Rational(3, 2);
+  }
+  out.witness = high.witness;
+  // Bisection on short rationals (12 significant digits of the midpoint, strictly inside).
+  while (out.steps < max_steps && Rational((hi - lo) / hi).get_d() > relative) {
+    double mid = Rational((lo + hi) / 2).get_d();
+    int digits = 12 - static_cast<int>(std::floor(std::log10(mid)));
+    mpz_class ten;
+    mpz_ui_pow_ui(ten.get_mpz_t(), 10, static_cast<unsigned long>(std::max(digits, 0)));
+    Rational q(mpz_class(std::floor(mid * ten.get_d())), ten);
+    q.canonicalize();
+    if (!(q > lo && q < hi)) q = (lo + hi) / 2;
+    JamScan scan;
+    if (jams(q, scan)) {
+      hi = q;
+      out.witness = scan.witness;
+    } else {
+      lo = q;
+      low = scan;
+    }
+  }
+  out.found = true;
+  out.below = lo;
+  out.above = hi;
+  out.below_play = low.play;
+  out.below_driver = low.driver;
+  return out;
+}
 
 }  // namespace hipair::tolerance_detail

@@ -35,6 +35,31 @@ struct CertifyRequest {
   std::size_t max_leaves = 20000;
 };
 
+/// The corner search of the jamming threshold at `request.scale`: at every driver position of
+/// the nominal path the linearised worst corner of the box, and at the narrowest one the driver
+/// refined between its neighbouring positions. `jams`: an exact witness (certain sign changes
+/// of both sides at that rational corner and driver, in reverse order) in `witness`.
+struct JamScan {
+  bool jams = false;
+  ToleranceCertification witness;   ///< outcome jams with its witness when `jams`
+  double play = 0;                  ///< the narrowest corner channel met (approximate)
+  double driver = 0;                ///< where (approximate)
+};
+JamScan corner_jam_scan(const CertifyRequest& request);
+
+/// Bisection of the scale between `below` and `above` (grown by 3/2 up to four times until
+/// the corner search jams) until (above - below) / above <= relative: at `above` an exact jam
+/// witness; at `below` the corner search found none (not a proof: the no-jam certificate is).
+struct ThresholdBracket {
+  bool found = false;
+  Rational below, above;
+  ToleranceCertification witness;   ///< the jam at `above`
+  double below_play = 0, below_driver = 0;   ///< the narrowest corner channel at `below`
+  std::size_t steps = 0;            ///< corner searches run
+};
+ThresholdBracket bracket_threshold(const CertifyRequest& request, const Rational& below, const Rational& above,
+                                   double relative, std::size_t max_steps = 80);
+
 /// Runs the branch-and-bound; a certificate it returns has been re-checked by the verifier's
 /// code. \throws GeometryError when a produced certificate fails the re-check (a bug).
 ToleranceCertification certify_no_jam(const CertifyRequest& request);

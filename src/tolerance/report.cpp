@@ -202,6 +202,15 @@ std::string tolerance_text_report(const ToleranceResult& r) {
       if (t.certified_open_scale > 0)
         out << "  certified open there up to scale " << number(t.certified_open_scale, 4) << "\n";
       out << "  exact check: " << (t.confirmed ? "CONFIRMED — " : "not confirmed — ") << t.evidence << "\n";
+      if (t.bracketed) {
+        out << "  bracket (corner search, " << t.bracket_steps << " steps): no jam found at scale "
+            << to_exact_string(t.bracket_below) << ", exact jam witness at scale " << to_exact_string(t.bracket_above)
+            << " (driver " << number(t.bracket_driver.get_d() * ud, 9) << " " << driver_unit(r.driver_rotates) << ")\n";
+        out << "  exact C-space at the witness: " << (t.bracket_confirmed ? "CONFIRMED — " : "not confirmed — ")
+            << t.bracket_evidence << "\n";
+      } else if (!t.bracket_evidence.empty()) {
+        out << "  bracket: " << t.bracket_evidence << "\n";
+      }
     }
   }
   if (r.contact_changes) {
@@ -316,6 +325,23 @@ std::string tolerance_json_report(const ToleranceResult& r) {
                       {"confirmed_scale", t.confirmed_scale},
                       {"worst_values", worst},
                       {"evidence", t.evidence}};
+    if (t.bracketed || !t.bracket_evidence.empty()) {
+      ordered_json values = ordered_json::object();
+      for (const auto& [name, value] : t.bracket_values) values[name] = value.get_str();
+      auto interval = [](const RationalInterval& x) { return ordered_json::array({x.lo.get_str(), x.hi.get_str()}); };
+      j["threshold"]["bracket"] = {{"found", t.bracketed},
+                                   {"steps", t.bracket_steps},
+                                   {"below", t.bracket_below.get_str()},
+                                   {"above", t.bracket_above.get_str()},
+                                   {"relative_width", t.bracketed ? Rational((t.bracket_above - t.bracket_below) / t.bracket_above).get_d() : 0.0},
+                                   {"play_below", t.bracket_play_below},
+                                   {"driver", t.bracket_driver.get_str()},
+                                   {"witness_values", values},
+                                   {"witness_lower", interval(t.bracket_lower)},
+                                   {"witness_upper", interval(t.bracket_upper)},
+                                   {"confirmed", t.bracket_confirmed},
+                                   {"evidence", t.bracket_evidence}};
+    }
   }
   if (r.certification) {
     const ToleranceCertification& c = *r.certification;

@@ -178,15 +178,27 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   // the held coordinate is the jets' variable k + 1 when it ranges (its partial: F_t)
   IntervalJet fixed_jet = held_offset ? IntervalJet::variable(fixed, k + 1, k + 2) : IntervalJet(fixed);
   Interval fixed_at_mid = held_offset ? *at_mid.fixed_range : fixed;
-  auto sign_over_box = [&](double v) {
+  // F(c, v) + sum_i F_i (B_i - c_i) with the partials of `f`, a jet containing F_i(B, v).
+  auto mean_value_sign = [&](double v, const IntervalJet& f) {
     Interval value = evaluate<Interval>(curve, at_center, fixed_at_mid, Interval::point(v));
-    IntervalJet f = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet(Interval::point(v)));
     for (std::size_t a = 0; a < k; ++a) {
       std::size_t i = active[a];
       value = value + f.partial(a) * Interval(box.lo[i] - center[i], box.hi[i] - center[i]);
     }
     if (held_offset) value = value + f.partial(k + 1) * *held_offset;
     return value.sign();
+  };
+  // The last jet over B x Y of `enclose`: its partials contain F_i(B, v) for every v in Y, so a
+  // sign over the box at an end of a narrower Y' inside Y is tried with them first (a certain
+  // sign there is certain); the jet at the point v only when that is undecided.
+  std::optional<IntervalJet> over_y;
+  Interval over_y_range;
+  auto sign_over_box = [&](double v) {
+    if (reuse_y_jets_ && over_y && over_y_range.lo <= v && v <= over_y_range.hi) {
+      int s = mean_value_sign(v, *over_y);
+      if (s == 1 || s == -1) return s;
+    }
+    return mean_value_sign(v, evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet(Interval::point(v))));
   };
   auto offset = [&](std::size_t i) {   // B_i - c_i, outward rounded
     return Interval::point(box.lo[i]) - Interval::point(center[i]);
@@ -195,10 +207,17 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   // The mean-value enclosure over B x Y when Y is certified to hold exactly one root for every
   // p in B (end signs opposite, F_v of one sign); false otherwise.
   auto enclose = [&](const Interval& y, Interval& out) {
+    std::optional<IntervalJet> first;
+    if (reuse_y_jets_) {
+      first = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
+      over_y = first;   // its partials serve the end signs of Y itself first
+      over_y_range = y;
+    }
     int s_lo = sign_over_box(y.lo);
     int s_hi = sign_over_box(y.hi);
     if (s_lo == 2 || s_hi == 2 || s_lo == 0 || s_hi == 0 || s_lo == s_hi) return false;
-    IntervalJet f = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
+    IntervalJet f = first ? *first
+                          : evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
     Interval fv = f.partial(k);
     int s = fv.sign();
     if (s != 1 && s != -1) return false;

@@ -91,6 +91,9 @@ class CurveSolver {
   /// For measurements only (ToleranceOptions::fast_paths): false makes the jets of
   /// certified_range range over every parameter varying in the box, as before session 8.
   void set_compact_jets(bool compact) { compact_jets_ = compact; }
+  /// For tests only: false tests every end sign of box_range with its own jet at the point,
+  /// as before session 13, instead of the jet over the last bracket first.
+  void set_reuse_y_jets(bool reuse) { reuse_y_jets_ = reuse; }
 
   /// Certified enclosure of {v(p) : p in box} (the root near the nominal `free_value`, unique
   /// in a neighbourhood certified along the way), subdividing the box until the enclosure is
@@ -140,6 +143,7 @@ class CurveSolver {
   /// which AutoDiffScalar's dynamic-size gradients do not reconcile.
   std::vector<Jet<double>> autodiff_;
   bool compact_jets_ = true;
+  bool reuse_y_jets_ = true;
 };
 
 /// Half-angle tangent chart value -> part coordinate (rad), certified: c + 2 atan(t).

@@ -227,7 +227,7 @@ tolerance_refused() {
 }
 for args in "--pair driver" "--pair driver:nosuch" "--driver nosuch" "--range 1:x" "--range 2:2" \
             "--pair driver:wheel --driver driver" "--certify --certify-scale -1" "--certify --certify-scale x" \
-            "--certify --certify-scale 0.9T"; do
+            "--certify --certify-scale 0.9T" "--threshold-bracket 1e-6"; do
   tolerance_refused "$geneva" "$args"
 done
 "$hipair" tolerance "$geneva" --range 2.4:4 --positions 90 --accuracy 0.5 --monte-carlo 20 --seed 3 --quiet \

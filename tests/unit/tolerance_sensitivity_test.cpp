@@ -6,6 +6,7 @@
 #include "model/parametric/number_traits.hpp"
 #include "model/parametric/parametric.hpp"
 #include "tolerance/solver.hpp"
+#include "tolerance_geneva_curve.hpp"
 
 #include <gtest/gtest.h>
 
@@ -47,15 +48,7 @@ TEST(ToleranceSensitivity, EveryGenevaSensitivityEqualsFiniteDifferencesOfExactR
       ParametricModel::read_file(std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json"));
   const Model& nominal = model->nominal();
   tolerance_detail::CurveSolver solver(model);
-  tolerance_detail::CurveSlice curve;
-  curve.first = FeatureIdentity{0, 0, 0, FeatureKind::arc};   // driver pin
-  for (std::size_t e = 0; e < nominal.parts[1].loops[0].edges.size(); ++e)
-    if (nominal.parts[1].loops[0].edges[e].label == "slot 1 wall R")
-      curve.second = FeatureIdentity{1, 0, e, FeatureKind::segment};
-  curve.fixed_part = 0;
-  curve.free_part = 1;
-  curve.fixed_half_turn = true;                      // the driver near pi: the pin in slot 1
-  curve.free_half_turn = false;
+  tolerance_detail::CurveSlice curve = test::geneva_pin_wall_curve(nominal);
   for (const char* driver : {"-1/5", "-1/20", "1/10"}) {   // chart t = tan((theta - pi)/2)
     SCOPED_TRACE(driver);
     curve.fixed_value = Rational(driver);
