@@ -172,6 +172,15 @@ class ChainAnalysis {
     // contact kernels (exact too). Each C-space is built once: the pairs' analyses below slice
     // the same spaces.
     const bool kernel = paths_.kernel_kinematics && rotations_without_limits(model, parts);
+    // The parametric model, read once for every pair (and a model without the generic form
+    // refused before any slicing).
+    std::shared_ptr<const model_detail::ParametricModel> parametric;
+    if (kernel) {
+      parametric = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text_));
+      if (!parametric->generic())
+        throw ModelError("", "tolerance analysis needs the generic parametric form; feature template " +
+                                 parametric->exact_only_feature() + " has an exact form only");
+    }
     k.method = kernel ? SliceMethod::kernels : SliceMethod::automatic;
     std::deque<CSpace> spaces;   // (a deque: pointers to built spaces stay valid)
     std::vector<std::pair<std::size_t, std::size_t>> space_parts;
@@ -195,13 +204,7 @@ class ChainAnalysis {
     };
     KinematicsResult kinematics =
         analyze_kinematics(model, k, kernel ? std::vector<CSpace>{} : std::vector<CSpace>(spaces.begin(), spaces.end()));
-    std::shared_ptr<const model_detail::ParametricModel> parametric;
-    if (kernel) {
-      parametric = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text_));
-      if (!parametric->generic())
-        throw ModelError("", "tolerance analysis needs the generic parametric form; feature template " +
-                                 parametric->exact_only_feature() + " has an exact form only");
-    }
+
     if (kinematics.jam) notes_.push_back("the nominal mechanism jams: " + kinematics.jam->description);
     auto follower_index = [&](std::size_t part) {
       auto it = std::find(kinematics.followers.begin(), kinematics.followers.end(), model.parts[part].name);
