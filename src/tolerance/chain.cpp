@@ -2,7 +2,10 @@
 // "Assembly chains"): driver -> pair 1 -> part -> pair 2 -> ... -> output. The nominal motion of
 // every part comes from the kinematic analysis of the whole model; each pair is then analysed at
 // the chain's positions like a single pair (stage.hpp: exact slices of its nominal C-space, the
-// feature pair holding its follower, the parametric contact curve), and the pairs are composed:
+// feature pair holding its follower, the parametric contact curve) or, on the kernel path
+// (chains of rotations without limits: gear trains), from the kinematics sliced from the contact
+// kernels and the touching feature pair the exact engine names (kernel_stage; no C-space built
+// unless that feature pair is not unique), and the pairs are composed:
 //   - sensitivities by the chain rule, d out/dp = df_k/dp + df_k/dx_k . d x_k/dp, where x_k (the
 //     pair's driver) is the previous pair's output;
 //   - the linearised and RSS bands from the composed sensitivities;
