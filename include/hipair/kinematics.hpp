@@ -84,6 +84,10 @@ struct ContactLabel {
   std::string label;     ///< "driver pin / wheel slot 2 wall R"
   ContactKind kind = ContactKind::vertex_segment;
   bool limit = false;    ///< a motion limit of the part rather than a contact
+  /// The feature pair's exact identity (the pair's first and second part, as the pair is
+  /// declared) when the slicer knows one feature pair for the label (the kernel slicer always
+  /// does); part == no_index otherwise and for limits. Not part of the comparison.
+  FeatureIdentity first, second;
   friend bool operator==(const ContactLabel& a, const ContactLabel& b) {
     return a.pair == b.pair && a.label == b.label && a.limit == b.limit;
   }

@@ -776,6 +776,8 @@ ContactLabel label_of(const Chain& chain, const SliceContact& contact, std::size
   label.pair = slicer.name();
   label.label = slicer.features()[contact.feature].label;
   label.kind = slicer.features()[contact.feature].kind;
+  label.first = slicer.features()[contact.feature].first;
+  label.second = slicer.features()[contact.feature].second;
   return label;
 }
 

@@ -211,7 +211,9 @@ class KernelSlicer final : public PairSlicer {
       entry.feature = feature_number(curve);
       if (features_.size() <= entry.feature) features_.resize(entry.feature + 1);
       if (features_[entry.feature].label.empty())
-        features_[entry.feature] = ContactFeature{curve.label, public_kind(curve.type)};
+        features_[entry.feature] = ContactFeature{curve.label, public_kind(curve.type),
+                                                  FeatureIdentity{curve.first.part, curve.first.loop, curve.first.edge, curve.first.kind},
+                                                  FeatureIdentity{curve.second.part, curve.second.loop, curve.second.edge, curve.second.kind}};
       std::shared_ptr<const CurveData>& data = chart.by_feature[entry.feature];
       if (!data) {
         auto made = std::make_shared<CurveData>();

@@ -33,6 +33,9 @@ using cspace::algebra::Real;
 struct ContactFeature {
   std::string label;             ///< "driver pin / wheel slot 2 wall"
   ContactKind kind = ContactKind::vertex_segment;
+  /// The exact feature pair (the pair's first and second part's features), when the slicer has
+  /// one for the label (the kernel slicer); part == no_index otherwise.
+  FeatureIdentity first, second;
 };
 
 /// Interval classes of a slice.

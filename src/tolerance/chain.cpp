@@ -2,7 +2,10 @@
 // "Assembly chains"): driver -> pair 1 -> part -> pair 2 -> ... -> output. The nominal motion of
 // every part comes from the kinematic analysis of the whole model; each pair is then analysed at
 // the chain's positions like a single pair (stage.hpp: exact slices of its nominal C-space, the
-// feature pair holding its follower, the parametric contact curve), and the pairs are composed:
+// feature pair holding its follower, the parametric contact curve) or, on the kernel path
+// (chains of rotations without limits: gear trains), from the kinematics sliced from the contact
+// kernels and the touching feature pair the exact engine names (kernel_stage; no C-space built
+// unless that feature pair is not unique), and the pairs are composed:
 //   - sensitivities by the chain rule, d out/dp = df_k/dp + df_k/dx_k . d x_k/dp, where x_k (the
 //     pair's driver) is the previous pair's output;
 //   - the linearised and RSS bands from the composed sensitivities;
@@ -114,6 +117,30 @@ bool part_to_chart(const Interval& x, bool rotates, bool half, double nominal, I
   return true;
 }
 
+// The chart value of a rotation's coordinate (rad) in the layout of a rotation without angle
+// limits (two charts, t in [-1, 1] about 0 and about pi, in that order): the first chart holding
+// it, as CSpace::to_chart chooses (src/cspace/cspace.cpp), and the same exact rational.
+struct RotationChart {
+  Rational t;
+  bool half = false;
+};
+RotationChart rotation_chart(double coordinate) {
+  double wrapped = std::remainder(coordinate, 2 * std::numbers::pi);
+  if (std::fabs(wrapped) == std::numbers::pi) return {Rational(0), true};
+  Rational t(std::tan(wrapped / 2));
+  t.canonicalize();
+  if (t >= -1 && t <= 1) return {t, false};
+  Rational u = -1 / t;   // tan((theta - pi)/2) = -cot(theta/2); |t| > 1 so u is in [-1, 1]
+  return {u, true};
+}
+
+// The class the kernel path handles: every part of the chain rotates without angle limits.
+bool rotations_without_limits(const Model& m, const std::vector<std::size_t>& parts) {
+  return std::all_of(parts.begin(), parts.end(), [&](std::size_t k) {
+    return m.parts[k].motion.kind == Motion::Kind::rotation && !m.parts[k].motion.angle_limits;
+  });
+}
+
 struct PositionStage {
   double fixed_slope = 0;            // dv/d(driver chart), chart units
   double driver_factor = 0;          // d follower / d driver, part units
@@ -123,7 +150,8 @@ struct PositionStage {
 
 class ChainAnalysis {
  public:
-  ChainAnalysis(std::string_view text, const ToleranceOptions& options) : text_(text), options_(options) {
+  ChainAnalysis(std::string_view text, const ToleranceOptions& options, const ChainPaths& paths)
+      : text_(text), options_(options), paths_(paths) {
     if (options.threshold || options.certify || options.contact_changes)
       throw ModelError("", "the jamming threshold, tolerance certificates and contact changes are analysed per pair "
                            "(--pair), not over an assembly chain");
@@ -139,23 +167,47 @@ class ChainAnalysis {
     k.range = options_.range;
     k.steps_per_cycle = static_cast<unsigned>(std::max<std::size_t>(8, options_.positions));
     k.reversal = false;
-    k.method = SliceMethod::automatic;
-    // The exact C-space of every pair of two moving parts (the kinematic engine's slices, as for a
-    // single pair); pairs with a fixed part are sliced from the contact kernels (exact too).
-    // Each is built once: the pairs' analyses below slice the same spaces.
-    std::vector<CSpace> spaces;
+    // Kernel path (ChainPaths::kernel_kinematics; rotations without limits): the whole model's
+    // kinematics sliced from the contact kernels, exact, with no C-space built; the engine names
+    // the feature pairs touching at each position exactly. Otherwise, and for a pair whose
+    // touching feature pair is not unique somewhere, the exact C-space of the pair (the kinematic
+    // engine's C-space slices, as for a single pair); pairs with a fixed part are sliced from the
+    // contact kernels (exact too). Each C-space is built once: the pairs' analyses below slice
+    // the same spaces.
+    const bool kernel = paths_.kernel_kinematics && rotations_without_limits(model, parts);
+    // The parametric model, read once for every pair (and a model without the generic form
+    // refused before any slicing).
+    std::shared_ptr<const model_detail::ParametricModel> parametric;
+    if (kernel) {
+      parametric = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text_));
+      if (!parametric->generic())
+        throw ModelError("", "tolerance analysis needs the generic parametric form; feature template " +
+                                 parametric->exact_only_feature() + " has an exact form only");
+    }
+    k.method = kernel ? SliceMethod::kernels : SliceMethod::automatic;
+    std::deque<CSpace> spaces;   // (a deque: pointers to built spaces stay valid)
     std::vector<std::pair<std::size_t, std::size_t>> space_parts;
-    for (const PairSpec& pair : model.pairs)
-      if (moving(model, pair.first) && moving(model, pair.second)) {
-        spaces.push_back(CSpace::build(model, model.parts[pair.first].name, model.parts[pair.second].name));
-        space_parts.emplace_back(pair.first, pair.second);
-      }
+    if (!kernel)
+      for (const PairSpec& pair : model.pairs)
+        if (moving(model, pair.first) && moving(model, pair.second)) {
+          spaces.push_back(CSpace::build(model, model.parts[pair.first].name, model.parts[pair.second].name));
+          space_parts.emplace_back(pair.first, pair.second);
+        }
     auto space_of = [&](std::size_t a, std::size_t b) -> const CSpace* {
       for (std::size_t k = 0; k < spaces.size(); ++k)
         if (space_parts[k] == std::pair(a, b) || space_parts[k] == std::pair(b, a)) return &spaces[k];
+      if (!kernel) return nullptr;
+      for (const PairSpec& pair : model.pairs)
+        if ((pair.first == a && pair.second == b) || (pair.first == b && pair.second == a)) {
+          spaces.push_back(CSpace::build(model, model.parts[pair.first].name, model.parts[pair.second].name));
+          space_parts.emplace_back(pair.first, pair.second);
+          return &spaces.back();
+        }
       return nullptr;
     };
-    KinematicsResult kinematics = analyze_kinematics(model, k, spaces);
+    KinematicsResult kinematics =
+        analyze_kinematics(model, k, kernel ? std::vector<CSpace>{} : std::vector<CSpace>(spaces.begin(), spaces.end()));
+
     if (kinematics.jam) notes_.push_back("the nominal mechanism jams: " + kinematics.jam->description);
     auto follower_index = [&](std::size_t part) {
       auto it = std::find(kinematics.followers.begin(), kinematics.followers.end(), model.parts[part].name);
@@ -172,13 +224,24 @@ class ChainAnalysis {
       std::optional<std::size_t> di;
       if (s > 1) di = follower_index(parts[s - 1]);
       std::vector<StagePosition> path;
+      std::vector<const ContactLabel*> touching;   // kernel path: the one feature pair holding the follower
+      std::vector<double> play;
+      std::size_t not_unique = 0;
       for (const KinematicSample& ks : kinematics.samples) {
         StagePosition p;
         p.driver = di ? ks.positions[*di] : ks.driver;
         p.follower = ks.positions[fi];
-        p.contact = std::any_of(ks.contacts[fi].begin(), ks.contacts[fi].end(), [&](const ContactLabel& c) {
-          return !c.limit && (c.pair == a + ":" + b || c.pair == b + ":" + a);
-        });
+        const ContactLabel* found = nullptr;
+        std::size_t count = 0;
+        for (const ContactLabel& c : ks.contacts[fi])
+          if (!c.limit && (c.pair == a + ":" + b || c.pair == b + ":" + a)) {
+            found = &c;
+            ++count;
+          }
+        p.contact = count > 0;
+        if (p.contact && (count > 1 || found->first.part == no_index || found->second.part == no_index)) ++not_unique;
+        touching.push_back(count == 1 ? found : nullptr);
+        play.push_back(std::isfinite(ks.play[fi]) ? ks.play[fi] : -1.0);
         path.push_back(p);
       }
       ToleranceOptions stage_options = options_;
@@ -186,7 +249,14 @@ class ChainAnalysis {
       stage_options.follower = b;
       stage_options.chain = false;
       stage_options.progress = nullptr;
-      stages_.push_back(analyze_stage(text_, stage_options, path, space_of(parts[s - 1], parts[s])));
+      if (kernel && not_unique == 0 && !paths_.cspace_lookup) {
+        stages_.push_back(kernel_stage(parametric, parts[s - 1], parts[s], path, touching, play, s - 1));
+      } else {
+        if (kernel && not_unique > 0)
+          notes_.push_back("pair " + a + ":" + b + ": the touching feature pair is not unique at " +
+                           std::to_string(not_unique) + " position(s): the pair's C-space was built");
+        stages_.push_back(analyze_stage(text_, stage_options, path, space_of(parts[s - 1], parts[s])));
+      }
       ChainStage summary;
       summary.driver = a;
       summary.follower = b;
@@ -224,6 +294,77 @@ class ChainAnalysis {
  private:
   void progress(double fraction) const {
     if (options_.progress) options_.progress(fraction);
+  }
+
+  // A pair of the chain on the kernel path (rotations without limits; every touching feature
+  // pair unique): what analyze_stage computes from the pair's C-space slices, from the exact
+  // kinematics instead. At each position where the engine found the follower touching, the
+  // feature pair it named holds the follower (exact: the kernel slicer's slice point at the
+  // follower's exact position, the only feature pair vanishing there); the charts are the ones
+  // CSpace::to_chart chooses, the chart values the same rationals, so the contact curve, its
+  // root and sensitivities are the C-space path's. `play`: the follower's free channel in the
+  // whole model (the kinematics'), -1 where unbounded.
+  StageAnalysis kernel_stage(const std::shared_ptr<const model_detail::ParametricModel>& parametric, std::size_t driver,
+                             std::size_t follower, const std::vector<StagePosition>& path,
+                             const std::vector<const ContactLabel*>& touching, const std::vector<double>& play,
+                             std::size_t stage) const {
+    const Model& m = parametric->nominal();
+    StageAnalysis out;
+    ToleranceResult& result = out.result;
+    result.model_name = m.name;
+    result.parameters = m.parameters;
+    result.driver = m.parts[driver].name;
+    result.follower = m.parts[follower].name;
+    result.driver_rotates = result.follower_rotates = true;
+    out.distributions = distributions(m);
+    for (const Distribution& d : out.distributions) {
+      out.box.lo.push_back(d.box_lo);
+      out.box.hi.push_back(d.box_hi);
+      result.sigma.push_back(d.sigma);
+      result.mean_shift.push_back(d.mean);
+    }
+    auto solver = std::make_shared<CurveSolver>(parametric);
+    solver->set_compact_jets(options_.fast_paths);
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      VariationSample sample;
+      sample.driver = path[i].driver;
+      sample.nominal = path[i].follower;
+      sample.play = play[i];
+      sample.linear_lower = sample.linear_upper = sample.rss_lower = sample.rss_upper = sample.nominal;
+      sample.certified = CertifiedRange{sample.nominal, sample.nominal};
+      StageContact c;
+      if (path[i].contact && touching[i]) {
+        RotationChart d = rotation_chart(path[i].driver), f = rotation_chart(path[i].follower);
+        c.curve.first = touching[i]->first;
+        c.curve.second = touching[i]->second;
+        c.curve.fixed_part = driver;
+        c.curve.free_part = follower;
+        c.curve.fixed_half_turn = d.half;
+        c.curve.free_half_turn = f.half;
+        c.curve.fixed_value = d.t;
+        if (paths_.mutate_lookup) paths_.mutate_lookup(stage, i, c.curve);
+        c.v = f.t.get_d();
+        c.follower_half = f.half;
+        try {
+          c.s_chart = solver->sensitivities(c.curve, c.v);
+          c.contact = true;
+          c.label = touching[i]->label;
+        } catch (const Error&) {
+          c = StageContact{};
+        }
+      }
+      sample.contact = c.contact;
+      if (c.contact) {
+        double slope = chart_slope(c.v, true);
+        std::vector<double> sp(c.s_chart.size());
+        for (std::size_t p = 0; p < sp.size(); ++p) sp[p] = c.s_chart[p] * slope;
+        linear_bands(sample, sp, out.distributions);
+      }
+      result.samples.push_back(std::move(sample));
+      out.contacts.push_back(std::move(c));
+    }
+    out.solver = std::move(solver);
+    return out;
   }
 
   std::size_t positions() const { return stages_.front().contacts.size(); }
@@ -477,6 +618,7 @@ class ChainAnalysis {
 
   std::string text_;
   ToleranceOptions options_;
+  ChainPaths paths_;
   std::vector<StageAnalysis> stages_;
   std::vector<std::vector<PositionStage>> per_;   // [position][pair]
   ToleranceResult result_;
@@ -485,8 +627,8 @@ class ChainAnalysis {
 
 }  // namespace
 
-ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options) {
-  return ChainAnalysis(text, options).run();
+ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options, const ChainPaths& paths) {
+  return ChainAnalysis(text, options, paths).run();
 }
 
 }  // namespace hipair::tolerance_detail

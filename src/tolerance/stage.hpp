@@ -83,8 +83,24 @@ void merge_monte_carlo(const std::vector<MonteCarloOutcome>& outcomes, MonteCarl
 /// slot, so results do not depend on the number of threads.
 void parallel_for(unsigned threads, std::size_t count, const std::function<void(std::size_t)>& task);
 
+/// How a chain finds each pair's nominal motion and touching feature pairs (chain.cpp).
+struct ChainPaths {
+  /// Chains whose parts all rotate without angle limits (gear trains): the whole model's
+  /// kinematics sliced from the contact kernels (no C-space build) and, per pair, the touching
+  /// feature pair named exactly by the kinematic engine at each position; a pair's C-space is
+  /// built (and the pair analysed as before) only where that feature pair is not unique. False:
+  /// every pair's C-space built (the path before session 13; tests compare the two).
+  bool kernel_kinematics = true;
+  /// Tests only, with kernel_kinematics: every pair analysed on its built C-space (analyze_stage)
+  /// at the kernel kinematics' positions: the C-space lookup on the same nominal motion.
+  bool cspace_lookup = false;
+  /// Tests only: applied to each contact the kernel path looked up (stage, position), so that a
+  /// test can check that a wrong lookup is caught.
+  std::function<void(std::size_t, std::size_t, CurveSlice&)> mutate_lookup;
+};
+
 /// The analysis of an assembly chain (ToleranceOptions::chain; chain.cpp).
-ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options);
+ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options, const ChainPaths& paths = {});
 
 /// The pair (options.driver, options.follower) of the model `text` at `path`; `space`, when
 /// given, is the pair's nominal C-space (built by the caller for the same model text), not built

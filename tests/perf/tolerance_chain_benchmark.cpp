@@ -6,11 +6,16 @@
 // counters give the CPU time of the whole analysis and of its certified band.
 // Gear trains (BM_GearTrain; docs/performance.md "Issue 12, session 12: gear trains"): the idler
 // trains of examples/models/gear-train.py (tests/unit/gear_train_models.hpp), `gears` gears of
-// `z` and `z` + 2 teeth alternating (12 toleranced parameters per gear + the module), over
-// 0..0.1 rad of the first gear at 120 positions per turn, one thread, one iteration each (each
-// mesh's exact C-space is built: seconds per mesh).
+// `z` and `z` + 2 teeth alternating (11 toleranced parameters per gear + the module), over
+// 0..0.1 rad of the first gear at 120 positions per turn, one thread, one iteration each. Third
+// argument: 1 the kernel path (session 13: kinematics sliced from the contact kernels, the touching
+// feature pair named by the exact engine, no C-space built), 0 its peer, every mesh's exact
+// C-space built (the path before session 13: seconds per mesh). 9 gears of 10/12 teeth are
+// examples/models/gear-train.json (100 toleranced parameters).
 #include "gear_train_models.hpp"
 #include "tolerance_chain_models.hpp"
+
+#include "tolerance/stage.hpp"
 
 #include <hipair/tolerance.hpp>
 
@@ -29,11 +34,12 @@ double process_cpu() {
 
 // The analysis of `model` once per iteration; `cpu`: the last one's process CPU seconds.
 hipair::ToleranceResult measure(benchmark::State& state, const std::string& model, const hipair::ToleranceOptions& options,
-                                double& cpu) {
+                                double& cpu, const hipair::tolerance_detail::ChainPaths* paths = nullptr) {
   hipair::ToleranceResult result;
   for (auto _ : state) {
     double c0 = process_cpu();
-    result = hipair::analyze_tolerances_text(model, options);
+    result = paths ? hipair::tolerance_detail::analyze_chain(model, options, *paths)
+                   : hipair::analyze_tolerances_text(model, options);
     cpu = process_cpu() - c0;
     benchmark::DoNotOptimize(result.samples.data());
   }
@@ -74,8 +80,10 @@ void BM_GearTrain(benchmark::State& state) {
   options.range = std::pair(hipair::Rational(0), hipair::Rational(1, 10));
   options.positions = 120;
   options.threads = 1;
+  hipair::tolerance_detail::ChainPaths paths;
+  paths.kernel_kinematics = state.range(2) != 0;
   double cpu = 0;
-  hipair::ToleranceResult result = measure(state, model, options, cpu);
+  hipair::ToleranceResult result = measure(state, model, options, cpu, &paths);
   std::size_t bounded = 0, held = 0;
   for (const hipair::VariationSample& s : result.samples)
     if (s.contact) {
@@ -83,7 +91,8 @@ void BM_GearTrain(benchmark::State& state) {
       bounded += std::isfinite(s.certified.upper - s.certified.lower) ? 1 : 0;
     }
   state.counters["meshes"] = gears - 1;
-  state.counters["toleranced"] = 12.0 * gears + 1;
+  state.counters["toleranced"] = 11.0 * gears + 1;   // 11 per gear + the module (gear-train.json: 100)
+  state.counters["kernel"] = static_cast<double>(state.range(2));
   state.counters["cpu_ms"] = 1e3 * cpu;
   state.counters["certified_cpu_ms"] = 1e3 * result.cpu_seconds_certified;
   state.counters["held"] = static_cast<double>(held);
@@ -91,10 +100,11 @@ void BM_GearTrain(benchmark::State& state) {
 }
 
 BENCHMARK(BM_GearTrain)
-    ->Args({2, 10})
-    ->Args({3, 10})
-    ->Args({4, 10})
-    ->Args({2, 20})
+    ->ArgsProduct({{2, 3, 4, 5, 6, 7, 8, 9}, {10}, {1}})
+    ->Args({2, 20, 1})
+    ->Args({2, 10, 0})
+    ->Args({3, 10, 0})
+    ->Args({2, 20, 0})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
 
