@@ -303,14 +303,6 @@ enum class CrossingStatus {
   outside_region       ///< it may leave the built space at u in [u_lower, u_upper] first
 };
 
-/// A configuration certified to lie in a free cell: a rational chart point and its cell. A
-/// first-crossing query returns one (MotionCrossing::anchor) for the next query on the same
-/// space to start from (CrossingOptions::start_anchor).
-struct FreeAnchor {
-  ChartPoint point;
-  CellId cell;
-};
-
 /// First contact along a motion (in the manner of Box2D's time-of-impact output).
 struct MotionCrossing {
   CrossingStatus status = CrossingStatus::none;
@@ -329,23 +321,12 @@ struct MotionCrossing {
   std::array<CertifiedRange, 2> chart_point;   ///< chart coordinates of the crossing, certified
   std::array<CertifiedRange, 2> point;  ///< world contact point of features.front(), certified
   std::array<CertifiedRange, 2> normal; ///< its unit normal (first part into second), certified
-  /// When the motion starts in a free cell: a rational configuration certified in `cell_left`
-  /// (inside a box that holds no contact curve and a point of the motion, as close to where the
-  /// certified free part of the motion ends as the subdivision found). Pass it as the next
-  /// query's CrossingOptions::start_anchor.
-  std::optional<FreeAnchor> anchor;
 };
 
 /// Resolution of the first-crossing query: the bounds [u_lower, u_upper] are at most
 /// (u_end - u_begin) / 2^resolution_bits wide.
 struct CrossingOptions {
   unsigned resolution_bits = 44;
-  /// Optional: a configuration certified in a free cell of this space (an earlier query's
-  /// MotionCrossing::anchor). When the box spanned by it and the motion's start is certified to
-  /// meet no contact curve (interval exclusion, as the query's own stretches), the start lies in
-  /// the anchor's cell and its exact point location is skipped; otherwise the start is located
-  /// exactly as without it. Every answer is the same with or without an anchor.
-  std::optional<FreeAnchor> start_anchor;
 };
 
 /// The axis of a slice: `x` fixes the chart abscissa, `y` the ordinate.
