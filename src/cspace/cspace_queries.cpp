@@ -905,6 +905,9 @@ class MotionScanner {
     };
     check(path.x, impl.public_charts.at(0).x_kind, "x");
     if (impl.dimension == 2) check(path.y, impl.public_charts.at(0).y_kind, "y");
+    carriers_.resize(impl.charts.size());
+    gradients_.resize(impl.charts.size());
+    validity_.resize(impl.charts.size());
     for (const CSpaceChart& chart : impl.public_charts)
       chart_boxes_.push_back({cspace::algebra::lower_double(chart.x_lo), cspace::algebra::upper_double(chart.x_hi),
                               cspace::algebra::lower_double(chart.y_lo), cspace::algebra::upper_double(chart.y_hi)});
@@ -1097,9 +1100,9 @@ class MotionScanner {
     cspace::algebra::IntervalPolynomial2 fx, fy;
   };
   const Gradient& gradient(std::size_t chart, std::size_t k) {
-    auto key = std::make_pair(chart, k);
-    auto it = gradients_.find(key);
-    if (it != gradients_.end()) return it->second;
+    std::vector<std::optional<Gradient>>& memo = gradients_[chart];
+    if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
+    if (memo[k]) return *memo[k];
     const cspace::IntegerPolynomial2& f = impl_.charts[chart].polynomials[k];
     cspace::IntegerPolynomial2 fx, fy;
     for (std::size_t i = 0; i < f.coefficients.size(); ++i)
@@ -1116,8 +1119,8 @@ class MotionScanner {
           fy.coefficients[i][j - 1] = f.coefficients[i][j] * static_cast<long>(j);
         }
       }
-    Gradient g{cspace::algebra::IntervalPolynomial2(fx), cspace::algebra::IntervalPolynomial2(fy)};
-    return gradients_.emplace(key, std::move(g)).first->second;
+    memo[k] = Gradient{cspace::algebra::IntervalPolynomial2(fx), cspace::algebra::IntervalPolynomial2(fy)};
+    return *memo[k];
   }
 
   // The mean-value exclusion (see evaluate): drops from `possible` every curve whose
@@ -1292,7 +1295,8 @@ class MotionScanner {
       x = {cspace::algebra::lower_double(box.x_lo), cspace::algebra::upper_double(box.x_hi)};
       y = {cspace::algebra::lower_double(box.y_lo), cspace::algebra::upper_double(box.y_hi)};
     }
-    std::vector<char> candidate(chart.polynomials.size(), impl_.dimension == 1 ? 1 : 0);
+    std::vector<char>& candidate = candidate_;
+    candidate.assign(chart.polynomials.size(), impl_.dimension == 1 ? 1 : 0);
     if (impl_.dimension == 2) {
       const ChartCarriers& known = carriers(box.chart);
       for (std::size_t k : known.everywhere) candidate[k] = 1;
@@ -1319,15 +1323,16 @@ class MotionScanner {
   }
 
   const std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>& validity(std::size_t chart, std::size_t k) {
-    auto key = std::make_pair(chart, k);
-    auto it = validity_.find(key);
-    if (it != validity_.end()) return it->second;
-    std::vector<std::vector<cspace::algebra::IntervalPolynomial2>> clauses;
+    std::vector<std::optional<Clauses>>& memo = validity_[chart];
+    if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
+    if (memo[k]) return *memo[k];
+    Clauses clauses;
     for (const auto& clause : impl_.charts[chart].validity[k]) {
       clauses.emplace_back();
       for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
     }
-    return validity_.emplace(key, std::move(clauses)).first->second;
+    memo[k] = std::move(clauses);
+    return *memo[k];
   }
 
   const CSpace::Impl& impl_;
@@ -1347,10 +1352,12 @@ class MotionScanner {
   std::optional<StartPieces> start_;
   // per axis (x, y): the path's coefficients and those of its derivative, enclosed in doubles
   std::vector<std::vector<KInterval>> enclosed_, enclosed_rate_;
-  std::map<std::size_t, ChartCarriers> carriers_;
-  std::map<std::pair<std::size_t, std::size_t>, Gradient> gradients_;
-  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>>
-      validity_;
+  // per chart (sized in the constructor), per local curve: memos filled on first use
+  using Clauses = std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>;
+  std::vector<ChartCarriers> carriers_;
+  std::vector<std::vector<std::optional<Gradient>>> gradients_;
+  std::vector<std::vector<std::optional<Clauses>>> validity_;
+  std::vector<char> candidate_;   // exclude()'s scratch
 };
 
 }  // namespace
