@@ -37,9 +37,15 @@ inline std::optional<kernels::Interval> tan_enclosure(const kernels::Interval& y
   Interval y2 = y * y;
   // sin y = y (1 - y^2/(2.3) (1 - y^2/(4.5) (... (1 - y^2/(18.19))))),
   // cos y = 1 - y^2/(1.2) (1 - y^2/(3.4) (... (1 - y^2/(19.20))))
+  // y2 / n for an integer n > 0: kernels' quotient with the divisor a point, two divisions
+  // instead of four (rounding to nearest is monotone, so lo / n and hi / n are its minimum and
+  // maximum: the same bounds)
+  auto over = [](const Interval& a, int n) {
+    return Interval(kernels::interval_detail::down(a.lo / n), kernels::interval_detail::up(a.hi / n));
+  };
   Interval s(1), c(1);
-  for (int k = 9; k >= 1; --k) s = Interval(1) - y2 / Interval(2 * k * (2 * k + 1)) * s;
-  for (int k = 10; k >= 1; --k) c = Interval(1) - y2 / Interval((2 * k - 1) * (2 * k)) * c;
+  for (int k = 9; k >= 1; --k) s = Interval(1) - over(y2, 2 * k * (2 * k + 1)) * s;
+  for (int k = 10; k >= 1; --k) c = Interval(1) - over(y2, (2 * k - 1) * (2 * k)) * c;
   s = y * s;
   double power = r;   // r^21, then r^22, rounded up
   for (int i = 2; i <= 21; ++i) power = up(power * r);
