@@ -21,6 +21,7 @@
 #include <mpfr.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -103,8 +104,7 @@ RInterval evaluate_path(const std::vector<Rational>& p, const Rational& a, const
 // The same enclosure in outward-rounded doubles, the filter in front of the exact one (a
 // certified enclosure a few units in the last place wider): Horner in h = u - m around a double m
 // near the midpoint, with p(m + h)'s coefficients enclosed. nullopt on overflow.
-std::optional<RInterval> evaluate_path_filtered(const std::vector<KInterval>& p, const Rational& a, const Rational& b) {
-  KInterval A = KInterval::enclose(a), B = KInterval::enclose(b);
+std::optional<KInterval> evaluate_path_filtered_d(const std::vector<KInterval>& p, const KInterval& A, const KInterval& B) {
   double m = 0.5 * A.lo + 0.5 * B.hi;
   KInterval M = KInterval::point(m);
   std::vector<KInterval> shifted = p;
@@ -114,7 +114,13 @@ std::optional<RInterval> evaluate_path_filtered(const std::vector<KInterval>& p,
   KInterval value(0);
   for (std::size_t i = shifted.size(); i-- > 0;) value = value * H + shifted[i];
   if (!std::isfinite(value.lo) || !std::isfinite(value.hi)) return std::nullopt;
-  return RInterval{Rational(value.lo), Rational(value.hi)};
+  return value;
+}
+
+std::optional<RInterval> evaluate_path_filtered(const std::vector<KInterval>& p, const Rational& a, const Rational& b) {
+  std::optional<KInterval> value = evaluate_path_filtered_d(p, KInterval::enclose(a), KInterval::enclose(b));
+  if (!value) return std::nullopt;
+  return RInterval{Rational(value->lo), Rational(value->hi)};
 }
 
 std::vector<KInterval> enclosed_coefficients(const std::vector<Rational>& p) {
@@ -768,7 +774,15 @@ struct AxisPiece {
   bool rotation = true;
   bool half_turn = false;
   Rational lo, hi;
+  // lower_double(lo), upper_double(hi), set once (with_doubles) and carried along
+  double dlo = 0, dhi = 0;
 };
+
+AxisPiece with_doubles(AxisPiece p) {
+  p.dlo = cspace::algebra::lower_double(p.lo);
+  p.dhi = cspace::algebra::upper_double(p.hi);
+  return p;
+}
 
 // tan(angle / 2), rounded down or up; \pre |angle| < pi.
 Rational tan_half(const mpfr_t angle, mpfr_rnd_t rounding, mpfr_prec_t bits) {
@@ -842,7 +856,7 @@ std::optional<std::vector<AxisPiece>> angle_pieces_filtered(const RInterval& the
   std::optional<std::vector<cspace::AnglePiece>> filtered = cspace::filtered_angle_pieces(theta.lo, theta.hi);
   if (!filtered) return std::nullopt;
   std::vector<AxisPiece> pieces;
-  for (const cspace::AnglePiece& p : *filtered) pieces.push_back(AxisPiece{true, p.half_turn, p.lo, p.hi});
+  for (const cspace::AnglePiece& p : *filtered) pieces.push_back(AxisPiece{true, p.half_turn, p.lo, p.hi, p.dlo, p.dhi});
   return pieces;
 }
 
@@ -869,6 +883,9 @@ std::vector<AxisPiece> tangent_pieces(const RInterval& t) {
 struct PieceBox {
   std::size_t chart = 0;
   Rational x_lo, x_hi, y_lo, y_hi;
+  // lower_double(x_lo), upper_double(x_hi), ... (carried: lower_double of a maximum is the
+  // maximum of the lower_doubles, upper_double of a minimum the minimum of the upper_doubles)
+  double dx_lo = 0, dx_hi = 0, dy_lo = 0, dy_hi = 0;
 };
 
 // A contact curve of a chart that is not excluded over a box.
@@ -888,6 +905,12 @@ class MotionScanner {
     };
     check(path.x, impl.public_charts.at(0).x_kind, "x");
     if (impl.dimension == 2) check(path.y, impl.public_charts.at(0).y_kind, "y");
+    carriers_.resize(impl.charts.size());
+    gradients_.resize(impl.charts.size());
+    validity_.resize(impl.charts.size());
+    for (const CSpaceChart& chart : impl.public_charts)
+      chart_boxes_.push_back({cspace::algebra::lower_double(chart.x_lo), cspace::algebra::upper_double(chart.x_hi),
+                              cspace::algebra::lower_double(chart.y_lo), cspace::algebra::upper_double(chart.y_hi)});
     for (const AxisPath* axis : {&path.x, &path.y}) {
       std::vector<Rational> d;
       for (std::size_t i = 1; i < axis->coefficients.size(); ++i) d.push_back(axis->coefficients[i] * static_cast<long>(i));
@@ -929,10 +952,14 @@ class MotionScanner {
         if (!covers(charts, px, py)) result.covered = false;
         for (std::size_t c : charts) {
           const CSpaceChart& chart = impl_.public_charts[c];
-          PieceBox box{c, std::max(px.lo, chart.x_lo), std::min(px.hi, chart.x_hi), py.lo, py.hi};
+          const std::array<double, 4>& side = chart_boxes_[c];
+          PieceBox box{c, std::max(px.lo, chart.x_lo), std::min(px.hi, chart.x_hi), py.lo, py.hi,
+                       std::max(px.dlo, side[0]), std::min(px.dhi, side[1]), py.dlo, py.dhi};
           if (impl_.dimension == 2) {
             box.y_lo = std::max(py.lo, chart.y_lo);
             box.y_hi = std::min(py.hi, chart.y_hi);
+            box.dy_lo = std::max(py.dlo, side[2]);
+            box.dy_hi = std::min(py.dhi, side[3]);
           }
           result.boxes.push_back(box);
           exclude(result.boxes.size() - 1, box, result.possible);
@@ -966,29 +993,75 @@ class MotionScanner {
   // point is located exactly); else in certified double intervals (exact where they overflow).
   RInterval path_value(const AxisPath& axis, const Rational& a, const Rational& b, bool fine) const {
     if (!fine)
-      if (std::optional<RInterval> value = evaluate_path_filtered(enclosed_[&axis == &path_.x ? 0 : 1], a, b))
-        return *value;
+      if (std::optional<KInterval> value = filtered_value(enclosed_[&axis == &path_.x ? 0 : 1], a, b))
+        return RInterval{Rational(value->lo), Rational(value->hi)};
     return evaluate_path(axis.coefficients, a, b);
+  }
+
+  // evaluate_path_filtered with the ends' enclosures memoised (a subdivision meets each end
+  // several times: both axes, their derivatives, the neighbouring stretches)
+  std::optional<KInterval> filtered_value(const std::vector<KInterval>& p, const Rational& a, const Rational& b) const {
+    if (!cspace::carried_bounds()) {
+      std::optional<RInterval> value = evaluate_path_filtered(p, a, b);
+      if (!value) return std::nullopt;
+      return KInterval(cspace::algebra::lower_double(value->lo), cspace::algebra::upper_double(value->hi));
+    }
+    return evaluate_path_filtered_d(p, enclosure(a), enclosure(b));
+  }
+  KInterval enclosure(const Rational& r) const {
+    for (std::size_t i = 0; i < filled_ends_; ++i)
+      if (ends_[i].first == r) return ends_[i].second;
+    KInterval value = KInterval::enclose(r);
+    ends_[next_end_] = {r, value};
+    next_end_ = (next_end_ + 1) % ends_.size();
+    filled_ends_ = std::min(filled_ends_ + 1, ends_.size());
+    return value;
   }
 
   // The chart pieces of the path over [a, b]; `fine`: the exact path and 160-bit tangents,
   // else the filtered path and 64-bit tangents (certified either way).
   std::vector<AxisPiece> pieces(const AxisPath& axis, const Rational& a, const Rational& b, bool& too_wide,
                                 bool fine) const {
+    if (!fine && axis.kind == AxisPath::Kind::angle && cspace::carried_bounds())
+      if (std::optional<KInterval> value = filtered_value(enclosed_[&axis == &path_.x ? 0 : 1], a, b)) {
+        // as below, without the rationals: Rational(d)'s enclosure is [d, d] widened by the
+        // one double away from 0 on its far side (kernels::Interval::enclose)
+        if (!(value->hi - value->lo < 1.5) && Rational(value->hi) - Rational(value->lo) >= 2) {
+          too_wide = true;
+          return {};
+        }
+        using kernels::interval_detail::down;
+        using kernels::interval_detail::up;
+        KInterval theta(value->lo < 0 ? down(value->lo) : value->lo, value->hi > 0 ? up(value->hi) : value->hi);
+        if (std::optional<std::vector<cspace::AnglePiece>> filtered = cspace::filtered_angle_pieces(theta)) {
+          std::vector<AxisPiece> result;
+          for (const cspace::AnglePiece& p : *filtered) result.push_back(AxisPiece{true, p.half_turn, p.lo, p.hi, p.dlo, p.dhi});
+          return result;
+        }
+        std::vector<AxisPiece> result = angle_pieces(RInterval{Rational(value->lo), Rational(value->hi)}, 64);
+        for (AxisPiece& p : result) p = with_doubles(std::move(p));
+        return result;
+      }
     RInterval value = path_value(axis, a, b, fine);
+    std::vector<AxisPiece> result;
     switch (axis.kind) {
-      case AxisPath::Kind::offset: return {AxisPiece{false, false, value.lo, value.hi}};
-      case AxisPath::Kind::half_tangent: return tangent_pieces(value);
+      case AxisPath::Kind::offset: result = {AxisPiece{false, false, value.lo, value.hi}}; break;
+      case AxisPath::Kind::half_tangent: result = tangent_pieces(value); break;
       case AxisPath::Kind::angle:
         if (value.hi - value.lo >= 2) {
           too_wide = true;
           return {};
         }
         if (!fine)
-          if (std::optional<std::vector<AxisPiece>> filtered = angle_pieces_filtered(value)) return *filtered;
-        return angle_pieces(value, fine ? precision : 64);
+          if (std::optional<std::vector<AxisPiece>> filtered = angle_pieces_filtered(value)) {
+            result = std::move(*filtered);
+            break;
+          }
+        result = angle_pieces(value, fine ? precision : 64);
+        break;
     }
-    return {};
+    for (AxisPiece& p : result) p = with_doubles(std::move(p));
+    return result;
   }
 
   using DInterval = cspace::algebra::Interval;
@@ -1002,16 +1075,17 @@ class MotionScanner {
     const std::vector<KInterval>& d = enclosed_rate_[&axis == &path_.x ? 0 : 1];
     DInterval rate{0, 0};
     if (!d.empty()) {
-      std::optional<RInterval> dv = evaluate_path_filtered(d, a, b);
-      if (!dv) {
+      if (std::optional<KInterval> dv = filtered_value(d, a, b)) {
+        rate = DInterval{dv->lo, dv->hi};
+      } else {
         std::vector<Rational> exact;
         for (std::size_t i = 1; i < axis.coefficients.size(); ++i)
           exact.push_back(axis.coefficients[i] * static_cast<long>(i));
-        dv = evaluate_path(exact, a, b);
+        RInterval v = evaluate_path(exact, a, b);
+        rate = enclose_range(v.lo, v.hi);
       }
-      rate = enclose_range(dv->lo, dv->hi);
     }
-    DInterval x = enclose_range(piece.lo, piece.hi);
+    DInterval x = cspace::carried_bounds() ? DInterval{piece.dlo, piece.dhi} : enclose_range(piece.lo, piece.hi);
     switch (axis.kind) {
       case AxisPath::Kind::offset: return rate;
       case AxisPath::Kind::angle:   // t = tan((theta - c) / 2): dt/du = (1 + t^2) / 2 theta'
@@ -1026,9 +1100,9 @@ class MotionScanner {
     cspace::algebra::IntervalPolynomial2 fx, fy;
   };
   const Gradient& gradient(std::size_t chart, std::size_t k) {
-    auto key = std::make_pair(chart, k);
-    auto it = gradients_.find(key);
-    if (it != gradients_.end()) return it->second;
+    std::vector<std::optional<Gradient>>& memo = gradients_[chart];
+    if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
+    if (memo[k]) return *memo[k];
     const cspace::IntegerPolynomial2& f = impl_.charts[chart].polynomials[k];
     cspace::IntegerPolynomial2 fx, fy;
     for (std::size_t i = 0; i < f.coefficients.size(); ++i)
@@ -1045,8 +1119,8 @@ class MotionScanner {
           fy.coefficients[i][j - 1] = f.coefficients[i][j] * static_cast<long>(j);
         }
       }
-    Gradient g{cspace::algebra::IntervalPolynomial2(fx), cspace::algebra::IntervalPolynomial2(fy)};
-    return gradients_.emplace(key, std::move(g)).first->second;
+    memo[k] = Gradient{cspace::algebra::IntervalPolynomial2(fx), cspace::algebra::IntervalPolynomial2(fy)};
+    return *memo[k];
   }
 
   // The mean-value exclusion (see evaluate): drops from `possible` every curve whose
@@ -1070,8 +1144,11 @@ class MotionScanner {
     auto sx = std::find_if(xa.begin(), xa.end(), [&](const AxisPiece& p) { return same(p, px); });
     auto sy = std::find_if(ya.begin(), ya.end(), [&](const AxisPiece& p) { return same(p, py); });
     if (sx == xa.end() || sy == ya.end()) return;
-    DInterval x_at = enclose_range(sx->lo, sx->hi), y_at = enclose_range(sy->lo, sy->hi);
-    DInterval x = enclose_range(px.lo, px.hi), y = enclose_range(py.lo, py.hi);
+    const bool carried = cspace::carried_bounds();
+    DInterval x_at = carried ? DInterval{sx->dlo, sx->dhi} : enclose_range(sx->lo, sx->hi);
+    DInterval y_at = carried ? DInterval{sy->dlo, sy->dhi} : enclose_range(sy->lo, sy->hi);
+    DInterval x = carried ? DInterval{px.dlo, px.dhi} : enclose_range(px.lo, px.hi);
+    DInterval y = carried ? DInterval{py.dlo, py.dhi} : enclose_range(py.lo, py.hi);
     DInterval dx = chart_derivative(path_.x, a, b, px);
     DInterval dy = impl_.dimension == 2 ? chart_derivative(path_.y, a, b, py) : DInterval{0, 0};
     DInterval h{0, cspace::algebra::upper_double(Rational(b - a))};
@@ -1133,6 +1210,14 @@ class MotionScanner {
 
   // Do the boxes of `charts` (same system) cover px x py? Grid of the boxes' sides.
   bool covers(const std::vector<std::size_t>& charts, const AxisPiece& px, const AxisPiece& py) const {
+    // one box holding px x py covers it (every grid cell below lies in it)
+    if (cspace::carried_bounds())
+      for (std::size_t c : charts) {
+        const CSpaceChart& chart = impl_.public_charts[c];
+        if (px.lo >= chart.x_lo && px.hi <= chart.x_hi &&
+            (impl_.dimension == 1 || (py.lo >= chart.y_lo && py.hi <= chart.y_hi)))
+          return true;
+      }
     auto cells = [](std::vector<Rational> cuts) {
       std::sort(cuts.begin(), cuts.end());
       cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
@@ -1205,9 +1290,13 @@ class MotionScanner {
   // Curves of the box's chart that may vanish (validly) in the box, on a contact edge's box.
   void exclude(std::size_t piece, const PieceBox& box, std::vector<Possible>& possible) {
     const ChartData& chart = impl_.charts[box.chart];
-    cspace::algebra::Interval x{cspace::algebra::lower_double(box.x_lo), cspace::algebra::upper_double(box.x_hi)};
-    cspace::algebra::Interval y{cspace::algebra::lower_double(box.y_lo), cspace::algebra::upper_double(box.y_hi)};
-    std::vector<char> candidate(chart.polynomials.size(), impl_.dimension == 1 ? 1 : 0);
+    cspace::algebra::Interval x{box.dx_lo, box.dx_hi}, y{box.dy_lo, box.dy_hi};
+    if (!cspace::carried_bounds()) {
+      x = {cspace::algebra::lower_double(box.x_lo), cspace::algebra::upper_double(box.x_hi)};
+      y = {cspace::algebra::lower_double(box.y_lo), cspace::algebra::upper_double(box.y_hi)};
+    }
+    std::vector<char>& candidate = candidate_;
+    candidate.assign(chart.polynomials.size(), impl_.dimension == 1 ? 1 : 0);
     if (impl_.dimension == 2) {
       const ChartCarriers& known = carriers(box.chart);
       for (std::size_t k : known.everywhere) candidate[k] = 1;
@@ -1234,19 +1323,23 @@ class MotionScanner {
   }
 
   const std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>& validity(std::size_t chart, std::size_t k) {
-    auto key = std::make_pair(chart, k);
-    auto it = validity_.find(key);
-    if (it != validity_.end()) return it->second;
-    std::vector<std::vector<cspace::algebra::IntervalPolynomial2>> clauses;
+    std::vector<std::optional<Clauses>>& memo = validity_[chart];
+    if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
+    if (memo[k]) return *memo[k];
+    Clauses clauses;
     for (const auto& clause : impl_.charts[chart].validity[k]) {
       clauses.emplace_back();
       for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
     }
-    return validity_.emplace(key, std::move(clauses)).first->second;
+    memo[k] = std::move(clauses);
+    return *memo[k];
   }
 
   const CSpace::Impl& impl_;
   const MotionPath& path_;
+  mutable std::array<std::pair<Rational, KInterval>, 4> ends_{};   // enclosure()'s memo
+  mutable std::size_t next_end_ = 0, filled_ends_ = 0;
+  std::vector<std::array<double, 4>> chart_boxes_;   // lower/upper doubles of the charts' sides
   struct StartPieces {
     Rational a;
     std::vector<AxisPiece> x, y;
@@ -1259,10 +1352,12 @@ class MotionScanner {
   std::optional<StartPieces> start_;
   // per axis (x, y): the path's coefficients and those of its derivative, enclosed in doubles
   std::vector<std::vector<KInterval>> enclosed_, enclosed_rate_;
-  std::map<std::size_t, ChartCarriers> carriers_;
-  std::map<std::pair<std::size_t, std::size_t>, Gradient> gradients_;
-  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>>
-      validity_;
+  // per chart (sized in the constructor), per local curve: memos filled on first use
+  using Clauses = std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>;
+  std::vector<ChartCarriers> carriers_;
+  std::vector<std::vector<std::optional<Gradient>>> gradients_;
+  std::vector<std::vector<std::optional<Clauses>>> validity_;
+  std::vector<char> candidate_;   // exclude()'s scratch
 };
 
 }  // namespace
