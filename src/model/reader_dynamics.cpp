@@ -6,6 +6,7 @@
 
 #include <hipair/error.hpp>
 
+#include <array>
 #include <map>
 #include <set>
 
@@ -70,20 +71,58 @@ void Reader::read_simulation(const JsonValue* value) {
         const JsonValue& named = require(d, "part");
         auto index = named.is_string() ? model_.find_part(read_string(named, false)) : std::nullopt;
         if (index && model_.parts[*index].motion.kind == Motion::Kind::planar) {
-          check_keys(d, {"part", "law", "speed"});
-          if (const JsonValue* law = d.find("law"); law && read_string(*law, false) != "constant_speed")
-            throw ModelError(law->pointer, "a planar part's driver moves at a constant velocity (\"constant_speed\")");
-          const JsonValue& speed = require(d, "speed");
-          expect_object(speed, "a planar part's velocity {\"x\": vx, \"y\": vy, \"angle\": omega}");
-          check_keys(speed, {"x", "y", "angle"});
+          // {"x": vx, "y": vy, "angle": omega} -> the three components
+          auto velocity = [&](const JsonValue& speed) {
+            expect_object(speed, "a planar part's velocity {\"x\": vx, \"y\": vy, \"angle\": omega}");
+            check_keys(speed, {"x", "y", "angle"});
+            const JsonValue* vx = speed.find("x");
+            const JsonValue* vy = speed.find("y");
+            const JsonValue* omega = speed.find("angle");
+            return std::array<Rational, 3>{vx ? number(*vx) : Rational(0), vy ? number(*vy) : Rational(0),
+                                           omega ? angle(*omega) : Rational(0)};
+          };
+          std::string law_name = "constant_speed";
+          if (const JsonValue* law = d.find("law")) {
+            law_name = read_string(*law, false);
+            if (law_name != "constant_speed" && law_name != "speed_profile")
+              throw ModelError(law->pointer,
+                               "unsupported motion law '" + law_name + "' (\"constant_speed\" or \"speed_profile\")");
+          }
           if (!driven.insert(*index).second)
             throw ModelError(d.pointer, "part '" + model_.parts[*index].name + "' is driven twice");
-          const JsonValue* vx = speed.find("x");
-          const JsonValue* vy = speed.find("y");
-          const JsonValue* omega = speed.find("angle");
-          for (Rational v : {vx ? number(*vx) : Rational(0), vy ? number(*vy) : Rational(0),
-                             omega ? angle(*omega) : Rational(0)})
-            spec.drivers.push_back(SimulationSpec::Driver{*index, v, d.pointer, {}});
+          std::array<SimulationSpec::Driver, 3> parts;
+          for (SimulationSpec::Driver& c : parts) {
+            c.part = *index;
+            c.pointer = d.pointer;
+          }
+          if (law_name == "constant_speed") {
+            if (const JsonValue* profile = d.find("profile"))
+              throw ModelError(profile->pointer, "a profile needs \"law\": \"speed_profile\"");
+            const std::array<Rational, 3> v = velocity(require(d, "speed"));
+            for (int c = 0; c < 3; ++c) parts[c].speed = v[c];
+          } else {
+            // [[t, {"x": vx, "y": vy, "angle": omega}], ...]: as a fixed-axis profile, per component
+            if (const JsonValue* speed = d.find("speed"))
+              throw ModelError(speed->pointer, "a speed profile gives its speeds in \"profile\"");
+            const JsonValue& profile = expect_array(require(d, "profile"), "an array of [time, velocity] points");
+            if (profile.items.empty()) throw ModelError(profile.pointer, "a speed profile needs at least one point");
+            for (const JsonValue& point : profile.items) {
+              expect_array(point, "a point [time, {\"x\": vx, \"y\": vy, \"angle\": omega}]");
+              if (point.items.size() != 2)
+                throw ModelError(point.pointer, "a profile point is [time, velocity]: expected 2 items, found " +
+                                                    std::to_string(point.items.size()));
+              Rational time = number(point.items[0]);
+              if (parts[0].profile.empty() && time != 0)
+                throw ModelError(point.items[0].pointer, "a speed profile starts at time 0");
+              if (!parts[0].profile.empty() && time <= parts[0].profile.back().first)
+                throw ModelError(point.items[0].pointer, "profile times must increase strictly");
+              const std::array<Rational, 3> v = velocity(point.items[1]);
+              for (int c = 0; c < 3; ++c) parts[c].profile.emplace_back(time, v[c]);
+            }
+            for (SimulationSpec::Driver& c : parts) c.speed = c.profile.front().second;
+          }
+          // three drivers of that part in the order vx, vy, omega (as its initial velocity)
+          for (SimulationSpec::Driver& c : parts) spec.drivers.push_back(std::move(c));
           continue;
         }
       }

@@ -1626,7 +1626,11 @@ struct PlanarSystemSimulation::Impl {
     double torsion_k = 0, torsion_rest = 0;
     double reach = 0;
     Rational reach_bound;
-    bool driven = false;   // moves at its driver's constant velocity (infinite inertia in impacts)
+    bool driven = false;   // moves at its driver's velocity (infinite inertia in impacts)
+    // a driver's speed profile (law "speed_profile"): points (t, vx, vy, omega), internal units;
+    // the velocity linear between them, constant after the last; empty: a constant velocity
+    std::vector<std::array<double, 4>> profile;
+    double drive_accel[3] = {0, 0, 0};   // the current profile segment's slope (set per step)
   };
   std::vector<Body> bodies;
   std::vector<std::size_t> body_of;   // model part -> body index (no_index: fixed)
@@ -1715,6 +1719,10 @@ struct PlanarSystemSimulation::Impl {
       }
     }
     for (std::size_t i = 0; i < bodies.size(); ++i) {
+      if (bodies[i].driven) {   // its law's acceleration (0 at a constant velocity)
+        for (int j = 0; j < 3; ++j) a[3 * i + j] = bodies[i].drive_accel[j];
+        continue;
+      }
       a[3 * i] /= bodies[i].mass;
       a[3 * i + 1] /= bodies[i].mass;
       a[3 * i + 2] /= bodies[i].inertia;
@@ -2089,7 +2097,8 @@ void PlanarSystemSimulation::Impl::held_rhs(const StateN& y, StateN& dy) const {
     dy[6 * i] = ks[i].vx;
     dy[6 * i + 1] = ks[i].vy;
     dy[6 * i + 2] = ks[i].omega;
-    for (int j = 0; j < 3; ++j) dy[6 * i + 3 + j] = bodies[i].driven ? 0.0 : a(static_cast<Eigen::Index>(3 * i + j));
+    for (int j = 0; j < 3; ++j)
+      dy[6 * i + 3 + j] = bodies[i].driven ? bodies[i].drive_accel[j] : a(static_cast<Eigen::Index>(3 * i + j));
   }
 }
 
@@ -2211,7 +2220,7 @@ bool PlanarSystemSimulation::Impl::decide() {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Kinematic& s = k[i];
     const double v = std::hypot(s.vx, s.vy) + std::abs(s.omega) * bodies[i].reach;
-    if (bodies[i].driven && v > 0) return changed;
+    if (bodies[i].driven && (v > 0 || !bodies[i].profile.empty())) return changed;
     if (bodies[i].driven) continue;
     const auto j = static_cast<Eigen::Index>(3 * i);
     speed = std::max(speed, v);
@@ -2418,6 +2427,30 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
     t += span;
     return false;
   }
+  // a driver's speed profile: the step ends at its next point; within it the velocity is linear
+  // (the segment's slope is the driver's acceleration) and set to the profile's value at its start
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    Body& b = bodies[i];
+    if (b.profile.empty()) continue;
+    std::size_t j = 0;
+    while (j + 1 < b.profile.size() && b.profile[j + 1][0] <= t + 1e-12 * std::max(1.0, std::abs(t))) ++j;
+    const std::array<double, 4>& p0 = b.profile[j];
+    double v[3] = {p0[1], p0[2], p0[3]};
+    for (double& a : b.drive_accel) a = 0;
+    if (j + 1 < b.profile.size()) {
+      const std::array<double, 4>& p1 = b.profile[j + 1];
+      const double dt = p1[0] - p0[0];
+      for (int c = 0; c < 3; ++c) {
+        b.drive_accel[c] = (p1[1 + c] - p0[1 + c]) / dt;
+        v[c] = p0[1 + c] + b.drive_accel[c] * (t - p0[0]);
+      }
+      span = std::min(span, std::max(p1[0] - t, 0.0));
+    }
+    k[i].vx = v[0];
+    k[i].vy = v[1];
+    k[i].omega = v[2];
+  }
+  if (!(span > 0)) return false;
   // a change of the held set or of a state is a step of its own (its events at its time)
   if (decide()) return true;
   if (resting) return true;
@@ -2669,7 +2702,7 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
     s.q.push_back(configuration_of(kin.x, kin.y, kin.theta));
   }
   if (s.bodies.empty()) throw ModelError("", "the model has no planar part to simulate");
-  // drivers of planar parts: a constant velocity, three entries vx, vy, omega (the reader's)
+  // drivers of planar parts: a constant velocity or a speed profile, three entries vx, vy, omega (the reader's)
   for (std::size_t d = 0; d < spec.drivers.size(); d += 3) {
     const std::size_t body = s.body_of[spec.drivers[d].part];
     if (body == no_index || d + 2 >= spec.drivers.size())
@@ -2679,6 +2712,9 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
     s.k[body].vx = to_d(spec.drivers[d].speed) / ts;
     s.k[body].vy = to_d(spec.drivers[d + 1].speed) / ts;
     s.k[body].omega = to_d(spec.drivers[d + 2].speed) / ts;
+    for (std::size_t p = 0; p < spec.drivers[d].profile.size(); ++p)   // the reader's three equal-length profiles
+      b.profile.push_back({to_d(spec.drivers[d].profile[p].first) * ts, to_d(spec.drivers[d].profile[p].second) / ts,
+                           to_d(spec.drivers[d + 1].profile[p].second) / ts, to_d(spec.drivers[d + 2].profile[p].second) / ts});
   }
   for (const auto& coupling : spec.couplings) {
     Impl::Spring sp;
