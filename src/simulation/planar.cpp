@@ -282,6 +282,109 @@ simulation::FrictionalSolution frictional_impact(const Eigen::MatrixXd& J, const
   return sol;
 }
 
+// ---- held contacts, shared by both planar simulators (docs/simulation.md, "Sustained contact
+// of a planar part", "Sustained contact between moving parts")
+
+// Projects a state onto its m held contacts: positions by Gauss–Newton onto gap = hold_gap
+// (mass-weighted, at most 4 iterations), then velocities onto J v = 0 and, for sticking
+// contacts, T v = 0. frame(c): contact c's frame (J, T, gap) at the current state; move(dq)
+// shifts the configuration; velocity() / set_velocity(v) read and write the velocities.
+template <class FrameOf, class Sticking, class Move, class GetV, class SetV>
+void project_held(std::size_t m, const Eigen::VectorXd& minv, double hold_gap, bool positions, FrameOf frame,
+                  Sticking sticking, Move move, GetV velocity, SetV set_velocity) {
+  if (m == 0) return;
+  const Eigen::Index n = minv.size(), rows_m = static_cast<Eigen::Index>(m);
+  for (int iteration = 0; positions && iteration < 4; ++iteration) {
+    Eigen::MatrixXd J(rows_m, n);
+    Eigen::VectorXd g(rows_m);
+    for (Eigen::Index r = 0; r < rows_m; ++r) {
+      const auto f = frame(static_cast<std::size_t>(r));
+      J.row(r) = f.J.transpose();
+      g(r) = f.gap - hold_gap;
+    }
+    if (g.cwiseAbs().maxCoeff() <= 1e-3 * hold_gap) break;
+    Eigen::MatrixXd MJt = minv.asDiagonal() * J.transpose();
+    move(Eigen::VectorXd(-MJt * (J * MJt).completeOrthogonalDecomposition().solve(g)));
+  }
+  std::vector<Eigen::VectorXd> rows;
+  for (std::size_t c = 0; c < m; ++c) {
+    const auto f = frame(c);
+    rows.push_back(f.J);
+    if (sticking(c)) rows.push_back(f.T);
+  }
+  Eigen::MatrixXd A(static_cast<Eigen::Index>(rows.size()), n);
+  for (std::size_t r = 0; r < rows.size(); ++r) A.row(static_cast<Eigen::Index>(r)) = rows[r].transpose();
+  Eigen::VectorXd v = velocity();
+  Eigen::MatrixXd MAt = minv.asDiagonal() * A.transpose();
+  v -= MAt * (A * MAt).completeOrthogonalDecomposition().solve(A * v);
+  set_velocity(v);
+}
+
+// The held conditions at a state integrated with fixed states (problem p: frames, friction,
+// bilateral solution; velocities v): 0 when all hold, else bits 1 lift-off (a force below 0),
+// 2 stick -> slip, 4 slip -> stick (the sliding velocity changes sign), 8 edge end (the foot
+// leaves the segment); per contact in `per_contact` when given.
+template <class Problem, class HeldT, class PairT>
+unsigned held_violations(const Problem& p, const std::vector<HeldT>& held, const std::vector<PairT>& pairs,
+                         const Eigen::VectorXd& v, double force_tolerance, std::vector<unsigned>* per_contact) {
+  unsigned all = 0;
+  if (per_contact) per_contact->assign(held.size(), 0);
+  for (std::size_t k = 0; k < held.size(); ++k) {
+    const auto r = static_cast<Eigen::Index>(k);
+    const HeldT& c = held[k];
+    unsigned bits = 0;
+    const double lambda = p.solution.lambda(r);
+    if (lambda < -force_tolerance) bits |= 1;
+    if (p.friction[k].on && c.state == simulation::stick) {
+      double limit = pairs[c.pair].mu_static * std::max(lambda, 0.0), f = std::abs(p.solution.f(r));
+      if (f > limit + 2e-9 * (limit + f) + force_tolerance) bits |= 2;
+    }
+    if (p.friction[k].on && (c.state == simulation::slip_positive || c.state == simulation::slip_negative))
+      if (c.state * p.frames[k].T.dot(v) < 0) bits |= 4;
+    if (p.frames[k].along < 0 || p.frames[k].along > 1) bits |= 8;
+    all |= bits;
+    if (per_contact) (*per_contact)[k] = bits;
+  }
+  return all;
+}
+
+// The friction data of a held contact (frame f: tangent row T, tangential curvature term h_t)
+// of a pair with coefficients mu_s, mu_k at velocities v, previously in state `was`: sliding
+// (decided) when faster than the tangential tolerance or still sliding the way it slid (a slide
+// ends where its velocity changes sign, located by bisection: then it is decided afresh).
+template <class Frame, class Velocity>
+simulation::Friction held_friction(const Frame& f, double mu_s, double mu_k, const Velocity& v, double tolerance, int was) {
+  simulation::Friction fr;
+  fr.on = mu_s > 0;
+  fr.T = f.T;
+  fr.bias = f.h_t;
+  fr.mu_static = mu_s;
+  fr.mu_kinetic = mu_k;
+  const double vt = f.T.dot(v);
+  fr.state = vt > 0 ? simulation::slip_positive : simulation::slip_negative;
+  fr.decided = std::abs(vt) > tolerance || (vt != 0 && was == fr.state);
+  return fr;
+}
+
+// An event of a held contact (contact, lift-off, stick, slip, edge-end) at its frame (point,
+// unit normal); forces in the internal unit (divided by force_scale).
+SimulationEvent held_contact_event(SimulationEvent::Kind kind, double time, std::size_t pair, const std::string& first,
+                                   const std::string& second, const std::string& label, const std::array<double, 4>& frame,
+                                   double normal_force, double friction_force, double force_scale) {
+  SimulationEvent e;
+  e.kind = kind;
+  e.time = time;
+  e.pair = pair;
+  e.first_part = first;
+  e.second_part = second;
+  e.features.push_back(label);
+  e.point = {frame[0], frame[1]};
+  e.normal = {frame[2], frame[3]};
+  e.normal_force = normal_force / force_scale;
+  e.friction_force = friction_force / force_scale;
+  return e;
+}
+
 // Steps until t_end (the model's time unit) for either planar simulator: `s` is its state (internal
 // time `t`, `time_scale`, `events`, `public_state`), `step` one step towards t_end.
 template <class State, class Step>
@@ -890,18 +993,8 @@ PlanarSimulation::Impl::HeldProblem PlanarSimulation::Impl::held_problem(const K
     const HeldFrame& f = p.frames.back();
     p.G.row(r) = f.J.transpose();
     p.h(r) = f.h;
-    simulation::Friction fr;
     const Pair& pair = pairs[c.pair];
-    fr.on = pair.mu_static > 0;
-    fr.T = f.T;
-    fr.bias = f.h_t;
-    fr.mu_static = pair.mu_static;
-    fr.mu_kinetic = pair.mu_kinetic;
-    double vt = f.T.dot(v);
-    fr.state = vt > 0 ? simulation::slip_positive : simulation::slip_negative;
-    // sliding: faster than the tangential tolerance, or still sliding the way it slid (a slide
-    // ends where its velocity changes sign, located by bisection: then it is decided afresh)
-    fr.decided = std::abs(vt) > tangential_tolerance() || (vt != 0 && c.state == fr.state);
+    simulation::Friction fr = held_friction(f, pair.mu_static, pair.mu_kinetic, v, tangential_tolerance(), c.state);
     if (forced && fr.on) {   // the exact decision (exact_rest_state)
       fr.decided = true;
       fr.state = *forced;
@@ -924,39 +1017,20 @@ PlanarSimulation::Impl::HeldProblem PlanarSimulation::Impl::held_problem(const K
 }
 
 void PlanarSimulation::Impl::project(Kinematic& at, bool positions) const {
-  if (held.empty()) return;
-  Eigen::Vector3d minv = inverse_mass();
-  const auto m = static_cast<Eigen::Index>(held.size());
-  for (int iteration = 0; positions && iteration < 4; ++iteration) {
-    Eigen::MatrixXd J(m, 3);
-    Eigen::VectorXd g(m);
-    for (Eigen::Index r = 0; r < m; ++r) {
-      HeldFrame f = held_frame(held[static_cast<std::size_t>(r)], at);
-      J.row(r) = f.J.transpose();
-      g(r) = f.gap - hold_gap;
-    }
-    if (g.cwiseAbs().maxCoeff() <= 1e-3 * hold_gap) break;
-    Eigen::MatrixXd MJt = minv.asDiagonal() * J.transpose();
-    Eigen::Vector3d dq = -MJt * (J * MJt).completeOrthogonalDecomposition().solve(g);
-    at.x += dq(0);
-    at.y += dq(1);
-    at.theta += dq(2);
-  }
-  // velocities: normal rows, and the tangent rows of sticking contacts
-  std::vector<Eigen::Vector3d> rows;
-  for (const Held& c : held) {
-    HeldFrame f = held_frame(c, at);
-    rows.push_back(f.J);
-    if (pairs[c.pair].mu_static > 0 && c.state == simulation::stick) rows.push_back(f.T);
-  }
-  Eigen::MatrixXd A(static_cast<Eigen::Index>(rows.size()), 3);
-  for (std::size_t r = 0; r < rows.size(); ++r) A.row(static_cast<Eigen::Index>(r)) = rows[r].transpose();
-  Eigen::Vector3d v(at.vx, at.vy, at.omega);
-  Eigen::MatrixXd MAt = minv.asDiagonal() * A.transpose();
-  v -= MAt * (A * MAt).completeOrthogonalDecomposition().solve(A * v);
-  at.vx = v(0);
-  at.vy = v(1);
-  at.omega = v(2);
+  project_held(
+      held.size(), Eigen::VectorXd(inverse_mass()), hold_gap, positions, [&](std::size_t c) { return held_frame(held[c], at); },
+      [&](std::size_t c) { return pairs[held[c].pair].mu_static > 0 && held[c].state == simulation::stick; },
+      [&](const Eigen::VectorXd& dq) {
+        at.x += dq(0);
+        at.y += dq(1);
+        at.theta += dq(2);
+      },
+      [&] { return Eigen::VectorXd(Eigen::Vector3d(at.vx, at.vy, at.omega)); },
+      [&](const Eigen::VectorXd& v) {
+        at.vx = v(0);
+        at.vy = v(1);
+        at.omega = v(2);
+      });
 }
 
 void PlanarSimulation::Impl::held_rhs(const State6& y, State6& dy) const {
@@ -975,44 +1049,14 @@ Kinematic PlanarSimulation::Impl::held_step(const Kinematic& from, double span) 
 }
 
 unsigned PlanarSimulation::Impl::violated(const Kinematic& at, std::vector<unsigned>* per_contact) const {
-  HeldProblem p = held_problem(at, false);
-  Eigen::Vector3d v(at.vx, at.vy, at.omega);
-  unsigned all = 0;
-  if (per_contact) per_contact->assign(held.size(), 0);
-  for (std::size_t k = 0; k < held.size(); ++k) {
-    const auto r = static_cast<Eigen::Index>(k);
-    const Held& c = held[k];
-    unsigned bits = 0;
-    double lambda = p.solution.lambda(r);
-    if (lambda < -force_tolerance()) bits |= 1;
-    if (p.friction[k].on && c.state == simulation::stick) {
-      double limit = pairs[c.pair].mu_static * std::max(lambda, 0.0), f = std::abs(p.solution.f(r));
-      if (f > limit + 2e-9 * (limit + f) + force_tolerance()) bits |= 2;
-    }
-    if (p.friction[k].on && (c.state == simulation::slip_positive || c.state == simulation::slip_negative)) {
-      if (c.state * p.frames[k].T.dot(v) < 0) bits |= 4;
-    }
-    if (p.frames[k].along < 0 || p.frames[k].along > 1) bits |= 8;
-    all |= bits;
-    if (per_contact) (*per_contact)[k] = bits;
-  }
-  return all;
+  return held_violations(held_problem(at, false), held, pairs, Eigen::VectorXd(Eigen::Vector3d(at.vx, at.vy, at.omega)),
+                         force_tolerance(), per_contact);
 }
 
 SimulationEvent PlanarSimulation::Impl::held_event(SimulationEvent::Kind kind, const Held& c, const HeldFrame& f,
                                                    double normal_force, double friction_force) const {
-  SimulationEvent e;
-  e.kind = kind;
-  e.time = t / time_scale;
-  e.pair = pairs[c.pair].index;
-  e.first_part = model.parts[pairs[c.pair].fixed].name;
-  e.second_part = model.parts[part].name;
-  e.features.push_back(c.feature.label);
-  e.point = {f.frame[0], f.frame[1]};
-  e.normal = {f.frame[2], f.frame[3]};
-  e.normal_force = normal_force / force_scale;
-  e.friction_force = friction_force / force_scale;
-  return e;
+  return held_contact_event(kind, t / time_scale, pairs[c.pair].index, model.parts[pairs[c.pair].fixed].name,
+                            model.parts[part].name, c.feature.label, f.frame, normal_force, friction_force, force_scale);
 }
 
 void PlanarSimulation::Impl::hold(double time, const Rows& rows) {
@@ -2038,19 +2082,9 @@ PlanarSystemSimulation::Impl::HeldProblem PlanarSystemSimulation::Impl::held_pro
     const HeldFrame& f = p.frames.back();
     p.G.row(r) = f.J.transpose();
     p.h(r) = f.h;
-    simulation::Friction fr;
     const Pair& pair = pairs[c.pair];
-    fr.on = pair.mu_static > 0;
-    fr.T = f.T;
-    fr.bias = f.h_t;
-    fr.mu_static = pair.mu_static;
-    fr.mu_kinetic = pair.mu_kinetic;
-    const double vt = f.T.dot(v);
-    fr.state = vt > 0 ? simulation::slip_positive : simulation::slip_negative;
-    // sliding: faster than the tangential tolerance, or still sliding the way it slid
-    fr.decided = std::abs(vt) > rest_speed || (vt != 0 && c.state == fr.state);
-    p.friction.push_back(fr);
-    states.push_back(fr.on ? c.state : simulation::frictionless);
+    p.friction.push_back(held_friction(f, pair.mu_static, pair.mu_kinetic, v, rest_speed, c.state));
+    states.push_back(p.friction.back().on ? c.state : simulation::frictionless);
     pair_of.push_back(c.pair);
   }
   if (m == 0) {
@@ -2103,80 +2137,28 @@ void PlanarSystemSimulation::Impl::held_rhs(const StateN& y, StateN& dy) const {
 }
 
 void PlanarSystemSimulation::Impl::project(std::vector<Kinematic>& ks, bool positions) const {
-  if (held.empty()) return;
-  const Eigen::VectorXd minv = inverse_mass();
-  const auto m = static_cast<Eigen::Index>(held.size());
-  const auto n3 = static_cast<Eigen::Index>(3 * bodies.size());
-  for (int iteration = 0; positions && iteration < 4; ++iteration) {
-    Eigen::MatrixXd J(m, n3);
-    Eigen::VectorXd g(m);
-    for (Eigen::Index r = 0; r < m; ++r) {
-      HeldFrame f = held_frame(held[static_cast<std::size_t>(r)], ks);
-      J.row(r) = f.J.transpose();
-      g(r) = f.gap - hold_gap;
-    }
-    if (g.cwiseAbs().maxCoeff() <= 1e-3 * hold_gap) break;
-    Eigen::MatrixXd MJt = minv.asDiagonal() * J.transpose();
-    Eigen::VectorXd dq = -MJt * (J * MJt).completeOrthogonalDecomposition().solve(g);
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      ks[i].x += dq(static_cast<Eigen::Index>(3 * i));
-      ks[i].y += dq(static_cast<Eigen::Index>(3 * i + 1));
-      ks[i].theta += dq(static_cast<Eigen::Index>(3 * i + 2));
-    }
-  }
-  // velocities: normal rows, and the tangent rows of sticking contacts
-  std::vector<Eigen::VectorXd> rows;
-  for (const Held& c : held) {
-    HeldFrame f = held_frame(c, ks);
-    rows.push_back(f.J);
-    if (pairs[c.pair].mu_static > 0 && c.state == simulation::stick) rows.push_back(f.T);
-  }
-  Eigen::MatrixXd A(static_cast<Eigen::Index>(rows.size()), n3);
-  for (std::size_t r = 0; r < rows.size(); ++r) A.row(static_cast<Eigen::Index>(r)) = rows[r].transpose();
-  Eigen::VectorXd v = velocity(ks);
-  Eigen::MatrixXd MAt = minv.asDiagonal() * A.transpose();
-  v -= MAt * (A * MAt).completeOrthogonalDecomposition().solve(A * v);
-  set_velocity(ks, v);
+  project_held(
+      held.size(), inverse_mass(), hold_gap, positions, [&](std::size_t c) { return held_frame(held[c], ks); },
+      [&](std::size_t c) { return pairs[held[c].pair].mu_static > 0 && held[c].state == simulation::stick; },
+      [&](const Eigen::VectorXd& dq) {
+        for (std::size_t i = 0; i < bodies.size(); ++i) {
+          ks[i].x += dq(static_cast<Eigen::Index>(3 * i));
+          ks[i].y += dq(static_cast<Eigen::Index>(3 * i + 1));
+          ks[i].theta += dq(static_cast<Eigen::Index>(3 * i + 2));
+        }
+      },
+      [&] { return velocity(ks); }, [&](const Eigen::VectorXd& v) { set_velocity(ks, v); });
 }
 
 unsigned PlanarSystemSimulation::Impl::violated(const std::vector<Kinematic>& ks, std::vector<unsigned>* per_contact) const {
-  HeldProblem p = held_problem(ks, false);
-  const Eigen::VectorXd v = velocity(ks);
-  unsigned all = 0;
-  if (per_contact) per_contact->assign(held.size(), 0);
-  for (std::size_t c = 0; c < held.size(); ++c) {
-    const auto r = static_cast<Eigen::Index>(c);
-    const Held& h = held[c];
-    unsigned bits = 0;
-    const double lambda = p.solution.lambda(r);
-    if (lambda < -force_tolerance()) bits |= 1;
-    if (p.friction[c].on && h.state == simulation::stick) {
-      double limit = pairs[h.pair].mu_static * std::max(lambda, 0.0), f = std::abs(p.solution.f(r));
-      if (f > limit + 2e-9 * (limit + f) + force_tolerance()) bits |= 2;
-    }
-    if (p.friction[c].on && (h.state == simulation::slip_positive || h.state == simulation::slip_negative))
-      if (h.state * p.frames[c].T.dot(v) < 0) bits |= 4;
-    if (p.frames[c].along < 0 || p.frames[c].along > 1) bits |= 8;
-    all |= bits;
-    if (per_contact) (*per_contact)[c] = bits;
-  }
-  return all;
+  return held_violations(held_problem(ks, false), held, pairs, velocity(ks), force_tolerance(), per_contact);
 }
 
 SimulationEvent PlanarSystemSimulation::Impl::held_event(SimulationEvent::Kind kind, const Held& c, const HeldFrame& f,
                                                          double normal_force, double friction_force) const {
-  SimulationEvent e;
-  e.kind = kind;
-  e.time = t / time_scale;
-  e.pair = pairs[c.pair].index;
-  e.first_part = model.parts[pairs[c.pair].first].name;
-  e.second_part = model.parts[pairs[c.pair].second].name;
-  e.features.push_back(c.feature.label);
-  e.point = {f.frame[0], f.frame[1]};
-  e.normal = {f.frame[2], f.frame[3]};
-  e.normal_force = normal_force / force_scale;
-  e.friction_force = friction_force / force_scale;
-  return e;
+  return held_contact_event(kind, t / time_scale, pairs[c.pair].index, model.parts[pairs[c.pair].first].name,
+                            model.parts[pairs[c.pair].second].name, c.feature.label, f.frame, normal_force, friction_force,
+                            force_scale);
 }
 
 bool PlanarSystemSimulation::Impl::decide() {
@@ -2401,9 +2383,10 @@ void PlanarSystemSimulation::Impl::impact(double time,
                          " (an arc): sustained contact on arcs is not supported when several planar parts move "
                          "(docs/simulation.md)");
     }
+    // its friction state is decided afresh by the next step's problem (as for a single part): a
+    // state kept from before the impact could contradict the velocities the impact leaves (a
+    // sticking contact made to slip), and the projection below would then mix inconsistent rows
     Held c{row_pair[r], contact.feature[r], simulation::frictionless};
-    for (const Held& h : held)   // a contact held before keeps its friction state
-      if (h.pair == c.pair && h.feature.fixed == c.feature.fixed && h.feature.free == c.feature.free) c.state = h.state;
     bool repeated = false;
     for (const Held& h : now)
       repeated = repeated || (h.pair == c.pair && h.feature.fixed == c.feature.fixed && h.feature.free == c.feature.free);

@@ -17,6 +17,7 @@
 #include "simulation_planar_support.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -269,6 +270,40 @@ TEST(SimulationPlanarStack, EventSequenceDoesNotDependOnTheStepSize) {
     }
   }
   EXPECT_EQ(count(runs[0], SimulationEvent::Kind::stick), 2u);   // both corners, at one instant
+}
+
+// examples/models/pushed-block.json: the pusher (profile 0 -> 50 mm/s in 0.1 s, 50 to 0.3 s, 0 at
+// 0.4 s) meets the block 1 mm ahead at sqrt(2 mm / 500 mm/s^2); the block then slides on the
+// ground with N = m g and friction mu_k m g in total, and rests 15 mm further (the profile's
+// integral) at the hold gap from the pusher's face, sticking when the pusher stops.
+TEST(SimulationPlanarStack, PushedBlockExampleFollowsItsProfileWithTheClosedFormForces) {
+  Model model = read_model_file(std::filesystem::path(HIPAIR_SOURCE_DIR) / "examples/models/pushed-block.json");
+  PlanarSystemSimulation sim = PlanarSystemSimulation::create(model);
+  sim.run_until(0.6);
+  const double m = 0.02, mu_k = 0.3, w = m * g_mm / 1000;   // N
+  const double t_meet = std::sqrt(2 * 1.0 / 500);
+  double normal = 0, friction = 0, slip_time = -1, stick_time = -1, meet = -1;
+  for (const SimulationEvent& e : sim.events()) {
+    if (e.kind == SimulationEvent::Kind::impact && e.first_part == "pusher" && meet < 0) meet = e.time;
+    if (e.kind == SimulationEvent::Kind::slip && e.first_part == "ground") {
+      if (slip_time < 0) slip_time = e.time;
+      if (e.time == slip_time) {
+        normal += e.normal_force;
+        friction += e.friction_force;
+      }
+    }
+    if (e.kind == SimulationEvent::Kind::stick && e.first_part == "ground" && e.time > 0.2) stick_time = e.time;
+  }
+  EXPECT_NEAR(meet, t_meet, 2 * sim.chord_deviation() / (500 * t_meet) + 1e-12);
+  EXPECT_EQ(slip_time, meet);
+  EXPECT_NEAR(normal, w, 1e-9 * w);
+  EXPECT_NEAR(friction, mu_k * w, 1e-9 * w);
+  EXPECT_NEAR(stick_time, 0.4, 1e-12);
+  const PlanarState &pusher = sim.state().states[0], &block = sim.state().states[1];
+  EXPECT_NEAR(pusher.x, -20 + 15, 1e-12 * 15);
+  EXPECT_NEAR(block.x - 5 - (pusher.x + 5), 0.0, sim.chord_deviation());   // faces at the hold gap
+  EXPECT_GE(block.x - 5 - (pusher.x + 5), 0.0);
+  EXPECT_NEAR(block.vx, 0.0, 1e-9);
 }
 
 }  // namespace

@@ -362,16 +362,22 @@ TEST(SimulationPlanarSystem, PlasticCollisionMovesOnTogetherAtTheCommonVelocity)
     EXPECT_NEAR(a.x, s.xa + s.va * t_star + common * (sim.state().time - t_star),
                 1e-9 * closing * 3 * t_star + 3 * sim.chord_deviation())
         << c;
-    std::size_t impacts = 0, lifts = 0;
+    std::size_t impacts = 0, lifts = 0, held = 0;
     for (const SimulationEvent& e : sim.events()) {
       impacts += e.kind == SimulationEvent::Kind::impact;
       lifts += e.kind == SimulationEvent::Kind::lift_off;
+      held += e.kind == SimulationEvent::Kind::contact;
     }
-    EXPECT_EQ(impacts, 1u) << c;
-    // nothing presses the faces together: the held contact carries no force and may be released
-    // (a lift-off at zero force, the relative acceleration 0 up to round-off); the blocks coast on
-    // together either way (the velocities above)
-    EXPECT_LE(lifts, 1u) << c;
+    std::string kinds;
+    for (const SimulationEvent& e : sim.events())
+      kinds += std::to_string(static_cast<int>(e.kind)) + "@" + std::to_string(e.time) + " ";
+    EXPECT_EQ(impacts, 1u) << c << ": " << kinds;
+    // (no loads: the rest speed sqrt(2 a delta) is 0, so a plastic contact is held only when its
+    // normal speed after the impact is not above 0 by round-off; either way no force joins them)
+    // nothing presses the faces together: a held contact carries no force and may be released
+    // (a lift-off at zero force, the relative acceleration 0 up to round-off), at most once each;
+    // the blocks coast on together either way (the velocities above)
+    EXPECT_LE(lifts, held) << c;
   }
 }
 
