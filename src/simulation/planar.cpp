@@ -366,6 +366,23 @@ simulation::Friction held_friction(const Frame& f, double mu_s, double mu_k, con
   return fr;
 }
 
+// Cuts a step of length `end` ending at state `at` at its first violated held condition, by
+// bisection to 2^-50 of the step: step(s) is the state after s, violated(state, bits) the
+// held conditions (held_violations); `bits` gets the violations per contact at the cut.
+template <class State, class Step, class Violated>
+void cut_at_first_violation(double& end, State& at, Step step, Violated violated, std::vector<unsigned>& bits) {
+  if (violated(at, nullptr) == 0) return;
+  double lo = 0, hi = end;
+  for (int i = 0; i < 50; ++i) {
+    double mid = 0.5 * (lo + hi);
+    if (violated(step(mid), nullptr) != 0) hi = mid;
+    else lo = mid;
+  }
+  end = hi;
+  at = step(hi);
+  violated(at, &bits);
+}
+
 // An event of a held contact (contact, lift-off, stick, slip, edge-end) at its frame (point,
 // unit normal); forces in the internal unit (divided by force_scale).
 SimulationEvent held_contact_event(SimulationEvent::Kind kind, double time, std::size_t pair, const std::string& first,
@@ -1241,19 +1258,10 @@ bool PlanarSimulation::Impl::held_advance(double span) {
     step_guess = trial;
     Kinematic kend = to_kinematic(y);
     project(kend, true);
-    std::vector<unsigned> bits;
-    if (violated(kend) != 0) {
-      // the first violated condition, by bisection to 2^-50 of the step
-      double lo = 0, hi = end;
-      for (int i = 0; i < 50; ++i) {
-        double mid = 0.5 * (lo + hi);
-        if (violated(held_step(k0, mid)) != 0) hi = mid;
-        else lo = mid;
-      }
-      end = hi;
-      kend = held_step(k0, hi);
-      violated(kend, &bits);
-    }
+    std::vector<unsigned> bits;   // the first violated condition, by bisection to 2^-50 of the step
+    cut_at_first_violation(
+        end, kend, [&](double s) { return held_step(k0, s); },
+        [&](const Kinematic& at, std::vector<unsigned>* b) { return violated(at, b); }, bits);
     // Far from every other feature pair: certified, the straight motion q0 -> q1 in (x, y, w)
     // moves no point of the part farther than the exact sweep bound D (planar_bounds.hpp), and
     // features_near's certified lower distance of every other feature pair exceeds D (compared
@@ -2462,17 +2470,9 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
     std::vector<unsigned> bits;
     if (!held.empty()) {
       project(k1, true);
-      if (violated(k1) != 0) {   // the first violated held condition, by bisection to 2^-50 of the step
-        double lo = 0, hi = end;
-        for (int i = 0; i < 50; ++i) {
-          double mid = 0.5 * (lo + hi);
-          if (violated(fixed_step(k0, mid)) != 0) hi = mid;
-          else lo = mid;
-        }
-        end = hi;
-        k1 = fixed_step(k0, hi);
-        violated(k1, &bits);
-      }
+      cut_at_first_violation(
+          end, k1, [&](double s) { return fixed_step(k0, s); },
+          [&](const std::vector<Kinematic>& at, std::vector<unsigned>* b) { return violated(at, b); }, bits);
     }
     std::vector<SlicedConfiguration> q1;
     for (const Kinematic& b : k1) q1.push_back(configuration_of(b.x, b.y, b.theta));
