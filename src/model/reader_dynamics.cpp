@@ -6,7 +6,10 @@
 
 #include <hipair/error.hpp>
 
+#include <array>
+#include <functional>
 #include <map>
+#include <optional>
 #include <set>
 
 namespace hipair::model_detail {
@@ -57,6 +60,40 @@ void Reader::read_simulation(const JsonValue* value) {
     return model_.parts[part].motion.kind == Motion::Kind::rotation ? angle(v) : number(v);
   };
   std::set<std::size_t> driven;
+  // a driver's law: "constant_speed" (the default; no profile) or "speed_profile"
+  auto law_of = [&](const JsonValue& d) {
+    std::string law_name = "constant_speed";
+    if (const JsonValue* law = d.find("law")) {
+      law_name = read_string(*law, false);
+      if (law_name != "constant_speed" && law_name != "speed_profile")
+        throw ModelError(law->pointer,
+                         "unsupported motion law '" + law_name + "' (\"constant_speed\" or \"speed_profile\")");
+    }
+    if (const JsonValue* profile = d.find("profile"); profile && law_name == "constant_speed")
+      throw ModelError(profile->pointer, "a profile needs \"law\": \"speed_profile\"");
+    return law_name;
+  };
+  // a speed profile [[t, v], ...]: times strictly increasing from 0, no "speed"; `point` reads
+  // each point's speed (the JSON value after its time), `items` names what a point holds
+  auto read_profile = [&](const JsonValue& d, const std::string& items,
+                          const std::function<void(const Rational&, const JsonValue&)>& point_speed) {
+    if (const JsonValue* speed = d.find("speed"))
+      throw ModelError(speed->pointer, "a speed profile gives its speeds in \"profile\"");
+    const JsonValue& profile = expect_array(require(d, "profile"), "an array of [time, speed] points");
+    if (profile.items.empty()) throw ModelError(profile.pointer, "a speed profile needs at least one point");
+    std::optional<Rational> last;
+    for (const JsonValue& point : profile.items) {
+      expect_array(point, "a point [time, speed]");
+      if (point.items.size() != 2)
+        throw ModelError(point.pointer, "a profile point is [time, speed]: expected 2 " + items + ", found " +
+                                            std::to_string(point.items.size()));
+      Rational time = number(point.items[0]);
+      if (!last && time != 0) throw ModelError(point.items[0].pointer, "a speed profile starts at time 0");
+      if (last && time <= *last) throw ModelError(point.items[0].pointer, "profile times must increase strictly");
+      point_speed(time, point.items[1]);
+      last = time;
+    }
+  };
   if (const JsonValue* drivers = value->find("drivers")) {
     expect_array(*drivers, "an array of drivers");
     for (const JsonValue& d : drivers->items) {
@@ -70,55 +107,48 @@ void Reader::read_simulation(const JsonValue* value) {
         const JsonValue& named = require(d, "part");
         auto index = named.is_string() ? model_.find_part(read_string(named, false)) : std::nullopt;
         if (index && model_.parts[*index].motion.kind == Motion::Kind::planar) {
-          check_keys(d, {"part", "law", "speed"});
-          if (const JsonValue* law = d.find("law"); law && read_string(*law, false) != "constant_speed")
-            throw ModelError(law->pointer, "a planar part's driver moves at a constant velocity (\"constant_speed\")");
-          const JsonValue& speed = require(d, "speed");
-          expect_object(speed, "a planar part's velocity {\"x\": vx, \"y\": vy, \"angle\": omega}");
-          check_keys(speed, {"x", "y", "angle"});
+          // {"x": vx, "y": vy, "angle": omega} -> the three components
+          auto velocity = [&](const JsonValue& speed) {
+            expect_object(speed, "a planar part's velocity {\"x\": vx, \"y\": vy, \"angle\": omega}");
+            check_keys(speed, {"x", "y", "angle"});
+            const JsonValue* vx = speed.find("x");
+            const JsonValue* vy = speed.find("y");
+            const JsonValue* omega = speed.find("angle");
+            return std::array<Rational, 3>{vx ? number(*vx) : Rational(0), vy ? number(*vy) : Rational(0),
+                                           omega ? angle(*omega) : Rational(0)};
+          };
+          const std::string law_name = law_of(d);
           if (!driven.insert(*index).second)
             throw ModelError(d.pointer, "part '" + model_.parts[*index].name + "' is driven twice");
-          const JsonValue* vx = speed.find("x");
-          const JsonValue* vy = speed.find("y");
-          const JsonValue* omega = speed.find("angle");
-          for (Rational v : {vx ? number(*vx) : Rational(0), vy ? number(*vy) : Rational(0),
-                             omega ? angle(*omega) : Rational(0)})
-            spec.drivers.push_back(SimulationSpec::Driver{*index, v, d.pointer, {}});
+          std::array<SimulationSpec::Driver, 3> parts;
+          for (SimulationSpec::Driver& c : parts) {
+            c.part = *index;
+            c.pointer = d.pointer;
+          }
+          if (law_name == "constant_speed") {
+            const std::array<Rational, 3> v = velocity(require(d, "speed"));
+            for (int c = 0; c < 3; ++c) parts[c].speed = v[c];
+          } else {   // [[t, {"x": vx, "y": vy, "angle": omega}], ...]: per component
+            read_profile(d, "items", [&](const Rational& time, const JsonValue& speed) {
+              const std::array<Rational, 3> v = velocity(speed);
+              for (int c = 0; c < 3; ++c) parts[c].profile.emplace_back(time, v[c]);
+            });
+            for (SimulationSpec::Driver& c : parts) c.speed = c.profile.front().second;
+          }
+          // three drivers of that part in the order vx, vy, omega (as its initial velocity)
+          for (SimulationSpec::Driver& c : parts) spec.drivers.push_back(std::move(c));
           continue;
         }
       }
       driver.part = moving_part(require(d, "part"));
       if (!driven.insert(driver.part).second)
         throw ModelError(d.pointer, "part '" + model_.parts[driver.part].name + "' is driven twice");
-      std::string law_name = "constant_speed";
-      if (const JsonValue* law = d.find("law")) {
-        law_name = read_string(*law, false);
-        if (law_name != "constant_speed" && law_name != "speed_profile")
-          throw ModelError(law->pointer,
-                           "unsupported motion law '" + law_name + "' (\"constant_speed\" or \"speed_profile\")");
-      }
-      if (law_name == "constant_speed") {
-        if (const JsonValue* profile = d.find("profile"))
-          throw ModelError(profile->pointer, "a profile needs \"law\": \"speed_profile\"");
+      if (law_of(d) == "constant_speed") {
         driver.speed = rate(require(d, "speed"), driver.part);
-      } else {
-        // [[t, v], ...]: times strictly increasing from 0, the speed linear between them
-        if (const JsonValue* speed = d.find("speed"))
-          throw ModelError(speed->pointer, "a speed profile gives its speeds in \"profile\"");
-        const JsonValue& profile = expect_array(require(d, "profile"), "an array of [time, speed] points");
-        if (profile.items.empty()) throw ModelError(profile.pointer, "a speed profile needs at least one point");
-        for (const JsonValue& point : profile.items) {
-          expect_array(point, "a point [time, speed]");
-          if (point.items.size() != 2)
-            throw ModelError(point.pointer, "a profile point is [time, speed]: expected 2 numbers, found " +
-                                                std::to_string(point.items.size()));
-          Rational time = number(point.items[0]);
-          if (driver.profile.empty() && time != 0)
-            throw ModelError(point.items[0].pointer, "a speed profile starts at time 0");
-          if (!driver.profile.empty() && time <= driver.profile.back().first)
-            throw ModelError(point.items[0].pointer, "profile times must increase strictly");
-          driver.profile.emplace_back(time, rate(point.items[1], driver.part));
-        }
+      } else {   // the speed linear between the points
+        read_profile(d, "numbers", [&](const Rational& time, const JsonValue& speed) {
+          driver.profile.emplace_back(time, rate(speed, driver.part));
+        });
         driver.speed = driver.profile.front().second;
       }
       spec.drivers.push_back(driver);

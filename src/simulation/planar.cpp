@@ -198,6 +198,210 @@ std::array<double, 2> spring_force(double k, double rest, double c, const double
 }
 
 
+// Collinear contacts of one pair (equal tangent rows: a face on a face, where the equations fix
+// only the sum of their sticking friction): groups, and the split of that friction in
+// proportion to the normal forces (the Coulomb condition of the sum is then that of each).
+std::vector<std::size_t> collinear_groups(const std::vector<simulation::Friction>& friction,
+                                          const std::vector<std::size_t>& pair_of) {
+  std::vector<std::size_t> group(friction.size());
+  for (std::size_t i = 0; i < friction.size(); ++i) {
+    group[i] = i;
+    for (std::size_t j = 0; j < i; ++j)
+      if (friction[i].on && friction[j].on && pair_of[i] == pair_of[j] &&
+          (friction[i].T - friction[j].T).cwiseAbs().maxCoeff() <= 1e-12 * (1 + friction[i].T.cwiseAbs().maxCoeff())) {
+        group[i] = group[j];
+        break;
+      }
+  }
+  return group;
+}
+
+void split_collinear(simulation::FrictionalSolution& s, const std::vector<simulation::Friction>& friction,
+                     const std::vector<std::size_t>& group) {
+  for (std::size_t g = 0; g < group.size(); ++g) {
+    double total = 0, normal = 0;
+    std::size_t members = 0;
+    for (std::size_t k = 0; k < group.size(); ++k)
+      if (group[k] == g && s.state[k] == simulation::stick) {
+        total += s.f(static_cast<Eigen::Index>(k));
+        normal += std::max(0.0, s.lambda(static_cast<Eigen::Index>(k)) / friction[k].s);
+        ++members;
+      }
+    if (members < 2) continue;
+    for (std::size_t k = 0; k < group.size(); ++k)
+      if (group[k] == g && s.state[k] == simulation::stick) {
+        double share = normal > 0 ? std::max(0.0, s.lambda(static_cast<Eigen::Index>(k)) / friction[k].s) / normal
+                                  : 1.0 / static_cast<double>(members);
+        s.f(static_cast<Eigen::Index>(k)) = total * share;
+      }
+  }
+}
+
+// Newton restitution with Coulomb-limited tangential impulses (the fixed-axis simulator's
+// frictional impulse problem, src/simulation/friction.hpp) over the coordinates of J: velocities
+// v before, h = e J v- (restitution), tangent rows in `friction`. Newton's restitution with
+// Coulomb friction can create energy where the normal and tangential rows are coupled
+// (J M^-1 T^T != 0: a corner of a turning part; Kane and Levinson). Where it would, the
+// restitution is scaled down to the largest factor (by bisection, 2^-30) whose impact creates
+// none (`limited` set). Coordinates with inverse mass 0 (drivers) carry no kinetic energy here.
+simulation::FrictionalSolution frictional_impact(const Eigen::MatrixXd& J, const Eigen::VectorXd& minv,
+                                                 const Eigen::VectorXd& v, const Eigen::VectorXd& h,
+                                                 const std::vector<simulation::Friction>& friction,
+                                                 const std::vector<std::size_t>& group, const std::string& where,
+                                                 bool& limited) {
+  auto solve = [&](double scale) {
+    simulation::FrictionalSolution sol = simulation::solve_frictional(
+        J, minv, v, scale * h, friction, [&](simulation::FrictionalSolution& s) { split_collinear(s, friction, group); });
+    if (!sol.solved)
+      throw NumericError(where + ": the frictional impact problem has no consistent solution (a Painlevé-type "
+                                 "inconsistency of Coulomb friction, or more than 8 contacts)");
+    return sol;
+  };
+  auto kinetic = [&](const Eigen::VectorXd& u) {
+    return 0.5 * (minv.array() > 0).select(u.array().square() / minv.array(), 0.0).sum();
+  };
+  const double k_before = kinetic(v);
+  simulation::FrictionalSolution sol = solve(1);
+  limited = false;
+  if (kinetic(sol.x) > k_before) {
+    double lo = 0, hi = 1;
+    simulation::FrictionalSolution best = solve(0);
+    for (int i = 0; i < 30; ++i) {
+      double mid = 0.5 * (lo + hi);
+      simulation::FrictionalSolution trial = solve(mid);
+      if (kinetic(trial.x) > k_before) {
+        hi = mid;
+      } else {
+        lo = mid;
+        best = std::move(trial);
+      }
+    }
+    sol = std::move(best);
+    limited = true;
+  }
+  return sol;
+}
+
+// ---- held contacts, shared by both planar simulators (docs/simulation.md, "Sustained contact
+// of a planar part", "Sustained contact between moving parts")
+
+// Projects a state onto its m held contacts: positions by Gauss–Newton onto gap = hold_gap
+// (mass-weighted, at most 4 iterations), then velocities onto J v = 0 and, for sticking
+// contacts, T v = 0. frame(c): contact c's frame (J, T, gap) at the current state; move(dq)
+// shifts the configuration; velocity() / set_velocity(v) read and write the velocities.
+template <class FrameOf, class Sticking, class Move, class GetV, class SetV>
+void project_held(std::size_t m, const Eigen::VectorXd& minv, double hold_gap, bool positions, FrameOf frame,
+                  Sticking sticking, Move move, GetV velocity, SetV set_velocity) {
+  if (m == 0) return;
+  const Eigen::Index n = minv.size(), rows_m = static_cast<Eigen::Index>(m);
+  for (int iteration = 0; positions && iteration < 4; ++iteration) {
+    Eigen::MatrixXd J(rows_m, n);
+    Eigen::VectorXd g(rows_m);
+    for (Eigen::Index r = 0; r < rows_m; ++r) {
+      const auto f = frame(static_cast<std::size_t>(r));
+      J.row(r) = f.J.transpose();
+      g(r) = f.gap - hold_gap;
+    }
+    if (g.cwiseAbs().maxCoeff() <= 1e-3 * hold_gap) break;
+    Eigen::MatrixXd MJt = minv.asDiagonal() * J.transpose();
+    move(Eigen::VectorXd(-MJt * (J * MJt).completeOrthogonalDecomposition().solve(g)));
+  }
+  std::vector<Eigen::VectorXd> rows;
+  for (std::size_t c = 0; c < m; ++c) {
+    const auto f = frame(c);
+    rows.push_back(f.J);
+    if (sticking(c)) rows.push_back(f.T);
+  }
+  Eigen::MatrixXd A(static_cast<Eigen::Index>(rows.size()), n);
+  for (std::size_t r = 0; r < rows.size(); ++r) A.row(static_cast<Eigen::Index>(r)) = rows[r].transpose();
+  Eigen::VectorXd v = velocity();
+  Eigen::MatrixXd MAt = minv.asDiagonal() * A.transpose();
+  v -= MAt * (A * MAt).completeOrthogonalDecomposition().solve(A * v);
+  set_velocity(v);
+}
+
+// The held conditions at a state integrated with fixed states (problem p: frames, friction,
+// bilateral solution; velocities v): 0 when all hold, else bits 1 lift-off (a force below 0),
+// 2 stick -> slip, 4 slip -> stick (the sliding velocity changes sign), 8 edge end (the foot
+// leaves the segment); per contact in `per_contact` when given.
+template <class Problem, class HeldT, class PairT>
+unsigned held_violations(const Problem& p, const std::vector<HeldT>& held, const std::vector<PairT>& pairs,
+                         const Eigen::VectorXd& v, double force_tolerance, std::vector<unsigned>* per_contact) {
+  unsigned all = 0;
+  if (per_contact) per_contact->assign(held.size(), 0);
+  for (std::size_t k = 0; k < held.size(); ++k) {
+    const auto r = static_cast<Eigen::Index>(k);
+    const HeldT& c = held[k];
+    unsigned bits = 0;
+    const double lambda = p.solution.lambda(r);
+    if (lambda < -force_tolerance) bits |= 1;
+    if (p.friction[k].on && c.state == simulation::stick) {
+      double limit = pairs[c.pair].mu_static * std::max(lambda, 0.0), f = std::abs(p.solution.f(r));
+      if (f > limit + 2e-9 * (limit + f) + force_tolerance) bits |= 2;
+    }
+    if (p.friction[k].on && (c.state == simulation::slip_positive || c.state == simulation::slip_negative))
+      if (c.state * p.frames[k].T.dot(v) < 0) bits |= 4;
+    if (p.frames[k].along < 0 || p.frames[k].along > 1) bits |= 8;
+    all |= bits;
+    if (per_contact) (*per_contact)[k] = bits;
+  }
+  return all;
+}
+
+// The friction data of a held contact (frame f: tangent row T, tangential curvature term h_t)
+// of a pair with coefficients mu_s, mu_k at velocities v, previously in state `was`: sliding
+// (decided) when faster than the tangential tolerance or still sliding the way it slid (a slide
+// ends where its velocity changes sign, located by bisection: then it is decided afresh).
+template <class Frame, class Velocity>
+simulation::Friction held_friction(const Frame& f, double mu_s, double mu_k, const Velocity& v, double tolerance, int was) {
+  simulation::Friction fr;
+  fr.on = mu_s > 0;
+  fr.T = f.T;
+  fr.bias = f.h_t;
+  fr.mu_static = mu_s;
+  fr.mu_kinetic = mu_k;
+  const double vt = f.T.dot(v);
+  fr.state = vt > 0 ? simulation::slip_positive : simulation::slip_negative;
+  fr.decided = std::abs(vt) > tolerance || (vt != 0 && was == fr.state);
+  return fr;
+}
+
+// Cuts a step of length `end` ending at state `at` at its first violated held condition, by
+// bisection to 2^-50 of the step: step(s) is the state after s, violated(state, bits) the
+// held conditions (held_violations); `bits` gets the violations per contact at the cut.
+template <class State, class Step, class Violated>
+void cut_at_first_violation(double& end, State& at, Step step, Violated violated, std::vector<unsigned>& bits) {
+  if (violated(at, nullptr) == 0) return;
+  double lo = 0, hi = end;
+  for (int i = 0; i < 50; ++i) {
+    double mid = 0.5 * (lo + hi);
+    if (violated(step(mid), nullptr) != 0) hi = mid;
+    else lo = mid;
+  }
+  end = hi;
+  at = step(hi);
+  violated(at, &bits);
+}
+
+// An event of a held contact (contact, lift-off, stick, slip, edge-end) at its frame (point,
+// unit normal); forces in the internal unit (divided by force_scale).
+SimulationEvent held_contact_event(SimulationEvent::Kind kind, double time, std::size_t pair, const std::string& first,
+                                   const std::string& second, const std::string& label, const std::array<double, 4>& frame,
+                                   double normal_force, double friction_force, double force_scale) {
+  SimulationEvent e;
+  e.kind = kind;
+  e.time = time;
+  e.pair = pair;
+  e.first_part = first;
+  e.second_part = second;
+  e.features.push_back(label);
+  e.point = {frame[0], frame[1]};
+  e.normal = {frame[2], frame[3]};
+  e.normal_force = normal_force / force_scale;
+  e.friction_force = friction_force / force_scale;
+  return e;
+}
+
 // Steps until t_end (the model's time unit) for either planar simulator: `s` is its state (internal
 // time `t`, `time_scale`, `events`, `public_state`), `step` one step towards t_end.
 template <class State, class Step>
@@ -382,13 +586,6 @@ struct PlanarSimulation::Impl {
   // configuration and the model's exact loads: stick (0) at >= 0, else the slip direction of
   // the loads. Empty outside that class (the floating-point decision stands, labelled so).
   std::optional<int> exact_rest_state() const;
-  // Splits the sticking friction of contacts with equal tangent rows (collinear contacts of one
-  // pair: a face on a face, where the equations fix only the sum) in proportion to their normal
-  // forces; the Coulomb condition of the sum is then that of each.
-  static void split_collinear(simulation::FrictionalSolution& s, const std::vector<simulation::Friction>& friction,
-                              const std::vector<std::size_t>& group);
-  std::vector<std::size_t> collinear_groups(const std::vector<simulation::Friction>& friction,
-                                            const std::vector<std::size_t>& pair_of) const;
   Eigen::Vector3d inverse_mass() const { return Eigen::Vector3d(1 / mass, 1 / mass, 1 / inertia); }
   double tangential_tolerance() const { return rest_speed; }
   double force_tolerance() const {
@@ -691,39 +888,10 @@ void PlanarSimulation::Impl::impact(double time, const Rows& contact) {
       f.mu_kinetic = pair.mu_kinetic;
     }
     Eigen::VectorXd h = b - before;   // e J v-
-    std::vector<std::size_t> group = collinear_groups(friction, rows_pair);
-    auto solve = [&](double scale) {
-      simulation::FrictionalSolution sol = simulation::solve_frictional(
-          J, Eigen::VectorXd(minv), v, scale * h, friction,
-          [&](simulation::FrictionalSolution& s) { split_collinear(s, friction, group); });
-      if (!sol.solved)
-        throw NumericError(where(time) + ": the frictional impact problem has no consistent solution (a Painlevé-type "
-                                         "inconsistency of Coulomb friction, or more than 8 contacts)");
-      return sol;
-    };
-    // Newton's restitution with Coulomb friction can create energy where the normal and
-    // tangential rows are coupled (J M^-1 T^T != 0: a corner of a turning part; Kane and
-    // Levinson). Where it would, the restitution is scaled down to the largest factor (by
-    // bisection, 2^-30) whose impact creates none.
-    auto kinetic = [&](const Eigen::Vector3d& u) { return 0.5 * (u.cwiseProduct(u).cwiseQuotient(minv)).sum(); };
-    const double k_before = kinetic(v);
-    simulation::FrictionalSolution sol = solve(1);
-    if (kinetic(sol.x) > k_before) {
-      double lo = 0, hi = 1;
-      simulation::FrictionalSolution best = solve(0);
-      for (int i = 0; i < 30; ++i) {
-        double mid = 0.5 * (lo + hi);
-        simulation::FrictionalSolution trial = solve(mid);
-        if (kinetic(trial.x) > k_before) {
-          hi = mid;
-        } else {
-          lo = mid;
-          best = std::move(trial);
-        }
-      }
-      sol = std::move(best);
-      ++stats.restitution_limited;
-    }
+    bool limited = false;
+    simulation::FrictionalSolution sol = frictional_impact(J, Eigen::VectorXd(minv), v, h, friction,
+                                                           collinear_groups(friction, rows_pair), where(time), limited);
+    if (limited) ++stats.restitution_limited;
     lcp.lambda = sol.lambda;
     lcp.solved = true;
     tangential = sol.f;
@@ -842,18 +1010,8 @@ PlanarSimulation::Impl::HeldProblem PlanarSimulation::Impl::held_problem(const K
     const HeldFrame& f = p.frames.back();
     p.G.row(r) = f.J.transpose();
     p.h(r) = f.h;
-    simulation::Friction fr;
     const Pair& pair = pairs[c.pair];
-    fr.on = pair.mu_static > 0;
-    fr.T = f.T;
-    fr.bias = f.h_t;
-    fr.mu_static = pair.mu_static;
-    fr.mu_kinetic = pair.mu_kinetic;
-    double vt = f.T.dot(v);
-    fr.state = vt > 0 ? simulation::slip_positive : simulation::slip_negative;
-    // sliding: faster than the tangential tolerance, or still sliding the way it slid (a slide
-    // ends where its velocity changes sign, located by bisection: then it is decided afresh)
-    fr.decided = std::abs(vt) > tangential_tolerance() || (vt != 0 && c.state == fr.state);
+    simulation::Friction fr = held_friction(f, pair.mu_static, pair.mu_kinetic, v, tangential_tolerance(), c.state);
     if (forced && fr.on) {   // the exact decision (exact_rest_state)
       fr.decided = true;
       fr.state = *forced;
@@ -875,77 +1033,21 @@ PlanarSimulation::Impl::HeldProblem PlanarSimulation::Impl::held_problem(const K
   return p;
 }
 
-std::vector<std::size_t> PlanarSimulation::Impl::collinear_groups(const std::vector<simulation::Friction>& friction,
-                                                                  const std::vector<std::size_t>& pair_of) const {
-  std::vector<std::size_t> group(friction.size());
-  for (std::size_t i = 0; i < friction.size(); ++i) {
-    group[i] = i;
-    for (std::size_t j = 0; j < i; ++j)
-      if (friction[i].on && friction[j].on && pair_of[i] == pair_of[j] &&
-          (friction[i].T - friction[j].T).cwiseAbs().maxCoeff() <= 1e-12 * (1 + friction[i].T.cwiseAbs().maxCoeff())) {
-        group[i] = group[j];
-        break;
-      }
-  }
-  return group;
-}
-
-void PlanarSimulation::Impl::split_collinear(simulation::FrictionalSolution& s,
-                                             const std::vector<simulation::Friction>& friction,
-                                             const std::vector<std::size_t>& group) {
-  for (std::size_t g = 0; g < group.size(); ++g) {
-    double total = 0, normal = 0;
-    std::size_t members = 0;
-    for (std::size_t k = 0; k < group.size(); ++k)
-      if (group[k] == g && s.state[k] == simulation::stick) {
-        total += s.f(static_cast<Eigen::Index>(k));
-        normal += std::max(0.0, s.lambda(static_cast<Eigen::Index>(k)) / friction[k].s);
-        ++members;
-      }
-    if (members < 2) continue;
-    for (std::size_t k = 0; k < group.size(); ++k)
-      if (group[k] == g && s.state[k] == simulation::stick) {
-        double share = normal > 0 ? std::max(0.0, s.lambda(static_cast<Eigen::Index>(k)) / friction[k].s) / normal
-                                  : 1.0 / static_cast<double>(members);
-        s.f(static_cast<Eigen::Index>(k)) = total * share;
-      }
-  }
-}
-
 void PlanarSimulation::Impl::project(Kinematic& at, bool positions) const {
-  if (held.empty()) return;
-  Eigen::Vector3d minv = inverse_mass();
-  const auto m = static_cast<Eigen::Index>(held.size());
-  for (int iteration = 0; positions && iteration < 4; ++iteration) {
-    Eigen::MatrixXd J(m, 3);
-    Eigen::VectorXd g(m);
-    for (Eigen::Index r = 0; r < m; ++r) {
-      HeldFrame f = held_frame(held[static_cast<std::size_t>(r)], at);
-      J.row(r) = f.J.transpose();
-      g(r) = f.gap - hold_gap;
-    }
-    if (g.cwiseAbs().maxCoeff() <= 1e-3 * hold_gap) break;
-    Eigen::MatrixXd MJt = minv.asDiagonal() * J.transpose();
-    Eigen::Vector3d dq = -MJt * (J * MJt).completeOrthogonalDecomposition().solve(g);
-    at.x += dq(0);
-    at.y += dq(1);
-    at.theta += dq(2);
-  }
-  // velocities: normal rows, and the tangent rows of sticking contacts
-  std::vector<Eigen::Vector3d> rows;
-  for (const Held& c : held) {
-    HeldFrame f = held_frame(c, at);
-    rows.push_back(f.J);
-    if (pairs[c.pair].mu_static > 0 && c.state == simulation::stick) rows.push_back(f.T);
-  }
-  Eigen::MatrixXd A(static_cast<Eigen::Index>(rows.size()), 3);
-  for (std::size_t r = 0; r < rows.size(); ++r) A.row(static_cast<Eigen::Index>(r)) = rows[r].transpose();
-  Eigen::Vector3d v(at.vx, at.vy, at.omega);
-  Eigen::MatrixXd MAt = minv.asDiagonal() * A.transpose();
-  v -= MAt * (A * MAt).completeOrthogonalDecomposition().solve(A * v);
-  at.vx = v(0);
-  at.vy = v(1);
-  at.omega = v(2);
+  project_held(
+      held.size(), Eigen::VectorXd(inverse_mass()), hold_gap, positions, [&](std::size_t c) { return held_frame(held[c], at); },
+      [&](std::size_t c) { return pairs[held[c].pair].mu_static > 0 && held[c].state == simulation::stick; },
+      [&](const Eigen::VectorXd& dq) {
+        at.x += dq(0);
+        at.y += dq(1);
+        at.theta += dq(2);
+      },
+      [&] { return Eigen::VectorXd(Eigen::Vector3d(at.vx, at.vy, at.omega)); },
+      [&](const Eigen::VectorXd& v) {
+        at.vx = v(0);
+        at.vy = v(1);
+        at.omega = v(2);
+      });
 }
 
 void PlanarSimulation::Impl::held_rhs(const State6& y, State6& dy) const {
@@ -964,44 +1066,14 @@ Kinematic PlanarSimulation::Impl::held_step(const Kinematic& from, double span) 
 }
 
 unsigned PlanarSimulation::Impl::violated(const Kinematic& at, std::vector<unsigned>* per_contact) const {
-  HeldProblem p = held_problem(at, false);
-  Eigen::Vector3d v(at.vx, at.vy, at.omega);
-  unsigned all = 0;
-  if (per_contact) per_contact->assign(held.size(), 0);
-  for (std::size_t k = 0; k < held.size(); ++k) {
-    const auto r = static_cast<Eigen::Index>(k);
-    const Held& c = held[k];
-    unsigned bits = 0;
-    double lambda = p.solution.lambda(r);
-    if (lambda < -force_tolerance()) bits |= 1;
-    if (p.friction[k].on && c.state == simulation::stick) {
-      double limit = pairs[c.pair].mu_static * std::max(lambda, 0.0), f = std::abs(p.solution.f(r));
-      if (f > limit + 2e-9 * (limit + f) + force_tolerance()) bits |= 2;
-    }
-    if (p.friction[k].on && (c.state == simulation::slip_positive || c.state == simulation::slip_negative)) {
-      if (c.state * p.frames[k].T.dot(v) < 0) bits |= 4;
-    }
-    if (p.frames[k].along < 0 || p.frames[k].along > 1) bits |= 8;
-    all |= bits;
-    if (per_contact) (*per_contact)[k] = bits;
-  }
-  return all;
+  return held_violations(held_problem(at, false), held, pairs, Eigen::VectorXd(Eigen::Vector3d(at.vx, at.vy, at.omega)),
+                         force_tolerance(), per_contact);
 }
 
 SimulationEvent PlanarSimulation::Impl::held_event(SimulationEvent::Kind kind, const Held& c, const HeldFrame& f,
                                                    double normal_force, double friction_force) const {
-  SimulationEvent e;
-  e.kind = kind;
-  e.time = t / time_scale;
-  e.pair = pairs[c.pair].index;
-  e.first_part = model.parts[pairs[c.pair].fixed].name;
-  e.second_part = model.parts[part].name;
-  e.features.push_back(c.feature.label);
-  e.point = {f.frame[0], f.frame[1]};
-  e.normal = {f.frame[2], f.frame[3]};
-  e.normal_force = normal_force / force_scale;
-  e.friction_force = friction_force / force_scale;
-  return e;
+  return held_contact_event(kind, t / time_scale, pairs[c.pair].index, model.parts[pairs[c.pair].fixed].name,
+                            model.parts[part].name, c.feature.label, f.frame, normal_force, friction_force, force_scale);
 }
 
 void PlanarSimulation::Impl::hold(double time, const Rows& rows) {
@@ -1186,19 +1258,10 @@ bool PlanarSimulation::Impl::held_advance(double span) {
     step_guess = trial;
     Kinematic kend = to_kinematic(y);
     project(kend, true);
-    std::vector<unsigned> bits;
-    if (violated(kend) != 0) {
-      // the first violated condition, by bisection to 2^-50 of the step
-      double lo = 0, hi = end;
-      for (int i = 0; i < 50; ++i) {
-        double mid = 0.5 * (lo + hi);
-        if (violated(held_step(k0, mid)) != 0) hi = mid;
-        else lo = mid;
-      }
-      end = hi;
-      kend = held_step(k0, hi);
-      violated(kend, &bits);
-    }
+    std::vector<unsigned> bits;   // the first violated condition, by bisection to 2^-50 of the step
+    cut_at_first_violation(
+        end, kend, [&](double s) { return held_step(k0, s); },
+        [&](const Kinematic& at, std::vector<unsigned>* b) { return violated(at, b); }, bits);
     // Far from every other feature pair: certified, the straight motion q0 -> q1 in (x, y, w)
     // moves no point of the part farther than the exact sweep bound D (planar_bounds.hpp), and
     // features_near's certified lower distance of every other feature pair exceeds D (compared
@@ -1615,7 +1678,11 @@ struct PlanarSystemSimulation::Impl {
     double torsion_k = 0, torsion_rest = 0;
     double reach = 0;
     Rational reach_bound;
-    bool driven = false;   // moves at its driver's constant velocity (infinite inertia in impacts)
+    bool driven = false;   // moves at its driver's velocity (infinite inertia in impacts)
+    // a driver's speed profile (law "speed_profile"): points (t, vx, vy, omega), internal units;
+    // the velocity linear between them, constant after the last; empty: a constant velocity
+    std::vector<std::array<double, 4>> profile;
+    double drive_accel[3] = {0, 0, 0};   // the current profile segment's slope (set per step)
   };
   std::vector<Body> bodies;
   std::vector<std::size_t> body_of;   // model part -> body index (no_index: fixed)
@@ -1630,6 +1697,7 @@ struct PlanarSystemSimulation::Impl {
     std::size_t first = 0, second = 0;        // model parts: first fixed (or held fixed), second planar
     std::size_t body_a = no_index, body_b = 0;   // bodies (body_a no_index: a fixed part)
     double restitution = 0;
+    double mu_static = 0, mu_kinetic = 0;     // Coulomb friction (0: frictionless)
     std::shared_ptr<Model> frame_model;       // the model with `first` fixed (planar-planar pairs)
     SlicedSpace space;
   };
@@ -1703,6 +1771,10 @@ struct PlanarSystemSimulation::Impl {
       }
     }
     for (std::size_t i = 0; i < bodies.size(); ++i) {
+      if (bodies[i].driven) {   // its law's acceleration (0 at a constant velocity)
+        for (int j = 0; j < 3; ++j) a[3 * i + j] = bodies[i].drive_accel[j];
+        continue;
+      }
       a[3 * i] /= bodies[i].mass;
       a[3 * i + 1] /= bodies[i].mass;
       a[3 * i + 2] /= bodies[i].inertia;
@@ -1725,8 +1797,10 @@ struct PlanarSystemSimulation::Impl {
   std::vector<Kinematic> fixed_step(const std::vector<Kinematic>& from, double span) const {
     boost::numeric::odeint::runge_kutta_dopri5<StateN> stepper;
     StateN y = pack(from);
-    stepper.do_step([this](const StateN& x, StateN& dx, double) { rhs(x, dx); }, y, 0.0, span);
-    return unpack(y);
+    stepper.do_step([this](const StateN& x, StateN& dx, double) { held_rhs(x, dx); }, y, 0.0, span);
+    std::vector<Kinematic> out = unpack(y);
+    project(out, true);
+    return out;
   }
   const Point& pivot_of(std::size_t part) const { return model.parts[part].motion.pivot; }
   // the pair's configuration (second part relative to the first) from world configurations
@@ -1748,7 +1822,7 @@ struct PlanarSystemSimulation::Impl {
     const double pi = std::numbers::pi;
     double bend_s = 0, wrel = 0, arel = 0;
     for (const std::vector<Kinematic>* ks : {&k0, &k1}) {
-      std::vector<double> a = accelerations(*ks);
+      std::vector<double> a = motion_accelerations(*ks);
       const Kinematic& B = (*ks)[p.body_b];
       const Body& bb = bodies[p.body_b];
       double ab[3] = {a[3 * p.body_b], a[3 * p.body_b + 1], a[3 * p.body_b + 2]};
@@ -1782,7 +1856,7 @@ struct PlanarSystemSimulation::Impl {
   double travel(const Pair& p, const std::vector<Kinematic>& k0, const std::vector<Kinematic>& k1, double end) const {
     double out = 0;
     for (const std::vector<Kinematic>* ks : {&k0, &k1}) {
-      std::vector<double> a = accelerations(*ks);
+      std::vector<double> a = motion_accelerations(*ks);
       auto part_travel = [&](std::size_t body, double reach) {
         const Kinematic& s = (*ks)[body];
         double speed = std::hypot(s.vx, s.vy) + std::abs(s.omega) * reach;
@@ -1812,19 +1886,365 @@ struct PlanarSystemSimulation::Impl {
       s.vy = k[i].vy * time_scale;
       s.omega = k[i].omega * time_scale;
       s.configuration = q[i];
+      s.resting = resting;
     }
   }
+  // ---- sustained contact between moving parts (docs/simulation.md, "Several planar parts")
+  struct Held {
+    std::size_t pair = 0;                   // into pairs
+    SlicedFeaturePair feature;
+    int state = simulation::frictionless;   // stick, slip +-1 (friction), frictionless
+  };
+  std::vector<Held> held;
+  double hold_gap = 0;     // the gap (mm) held contacts are projected to (3/4 delta)
+  bool resting = false;    // every part at rest on its held contacts (constant loads): stays
+  // The kernels' contact function of a vertex–segment feature pair at double states, in the
+  // world: the contact point (the vertex), the unit normal (first part into the second), the
+  // unit gap, the foot parameter along the segment and whether the second part owns the vertex.
+  struct WorldGap {
+    bool defined = false, free_vertex = false;
+    double point[2] = {0, 0}, normal[2] = {0, 0}, gap = 0, along = 0;
+  };
+  WorldGap world_gap(const Pair& p, const SlicedFeaturePair& f, const std::vector<Kinematic>& ks) const;
+  // A held contact's rows over all coordinates (3 per body): J (g' = J qdot), T (the sliding
+  // velocity), the curvature terms h, h_t (g'' = J qdd + h, (T qdot)' = T qdd + h_t), the gap and
+  // the foot parameter.
+  struct HeldFrame {
+    Eigen::VectorXd J, T;
+    double h = 0, h_t = 0, gap = 0, along = 0;
+    std::array<double, 4> frame{};   // point, unit normal (world)
+  };
+  HeldFrame held_frame(const Held& c, const std::vector<Kinematic>& ks) const;
+  struct HeldProblem {
+    std::vector<HeldFrame> frames;
+    std::vector<simulation::Friction> friction;
+    Eigen::MatrixXd G;
+    Eigen::VectorXd h, a0;
+    simulation::FrictionalSolution solution;
+  };
+  HeldProblem held_problem(const std::vector<Kinematic>& ks, bool unilateral) const;
+  Eigen::VectorXd inverse_mass() const {
+    Eigen::VectorXd minv(static_cast<Eigen::Index>(3 * bodies.size()));
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const double free = bodies[i].driven ? 0.0 : 1.0;   // a driver: infinite inertia
+      minv.segment(static_cast<Eigen::Index>(3 * i), 3) << free / bodies[i].mass, free / bodies[i].mass,
+          free / bodies[i].inertia;
+    }
+    return minv;
+  }
+  Eigen::VectorXd velocity(const std::vector<Kinematic>& ks) const {
+    Eigen::VectorXd v(static_cast<Eigen::Index>(3 * bodies.size()));
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+      v.segment(static_cast<Eigen::Index>(3 * i), 3) << ks[i].vx, ks[i].vy, ks[i].omega;
+    return v;
+  }
+  void set_velocity(std::vector<Kinematic>& ks, const Eigen::VectorXd& v) const {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      ks[i].vx = v(static_cast<Eigen::Index>(3 * i));
+      ks[i].vy = v(static_cast<Eigen::Index>(3 * i + 1));
+      ks[i].omega = v(static_cast<Eigen::Index>(3 * i + 2));
+    }
+  }
+  double force_tolerance() const;
+  // The accelerations of the motion: free, or with the held contacts' forces (their states fixed)
+  std::vector<double> motion_accelerations(const std::vector<Kinematic>& ks) const {
+    if (held.empty()) return accelerations(ks);
+    const Eigen::VectorXd& x = held_problem(ks, false).solution.x;
+    return std::vector<double>(x.data(), x.data() + x.size());
+  }
+  void held_rhs(const StateN& y, StateN& dy) const;
+  void project(std::vector<Kinematic>& ks, bool positions) const;
+  unsigned violated(const std::vector<Kinematic>& ks, std::vector<unsigned>* per_contact = nullptr) const;
+  bool is_held(std::size_t pair, const SlicedFeaturePair& f) const {
+    for (const Held& c : held)
+      if (c.pair == pair && c.feature.fixed == f.fixed && c.feature.free == f.free) return true;
+    return false;
+  }
+  SimulationEvent held_event(SimulationEvent::Kind kind, const Held& c, const HeldFrame& f, double normal_force,
+                             double friction_force) const;
+  bool decide();
+  // The impact rows of touching feature pairs at the state (k, q): rows over all coordinates.
+  struct Rows {
+    std::vector<Eigen::VectorXd> J, T;
+    std::vector<std::array<double, 4>> frames;
+    std::vector<std::size_t> pair;
+    std::vector<SlicedFeaturePair> feature;
+  };
+  Rows contact_rows(const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching) const;
   void impact(double time, const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching);
   bool advance(double span);
 };
 
-void PlanarSystemSimulation::Impl::impact(double time,
-                                          const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching) {
+PlanarSystemSimulation::Impl::WorldGap PlanarSystemSimulation::Impl::world_gap(
+    const Pair& p, const SlicedFeaturePair& f, const std::vector<Kinematic>& ks) const {
+  // the second part's pose relative to the first (held at its zero configuration), as
+  // relative_configuration: s = pa - pb + R(-theta_a)(pb - pa + t_b - t_a)
+  Kinematic rel = ks[p.body_b];
+  double c = 1, sn = 0;
+  const Body& bb = bodies[p.body_b];
+  if (p.body_a != no_index) {
+    const Body& ba = bodies[p.body_a];
+    const Kinematic &A = ks[p.body_a], &B = ks[p.body_b];
+    c = std::cos(A.theta);
+    sn = std::sin(A.theta);
+    const double dx = bb.pivot[0] + B.x - ba.pivot[0] - A.x, dy = bb.pivot[1] + B.y - ba.pivot[1] - A.y;
+    rel.x = ba.pivot[0] - bb.pivot[0] + c * dx + sn * dy;
+    rel.y = ba.pivot[1] - bb.pivot[1] - sn * dx + c * dy;
+    rel.theta = B.theta - A.theta;
+  }
+  ContactGap<double> g = contact_gap(p.frame_model ? *p.frame_model : model, f, pose_of(pivot_of(p.second), rel));
+  WorldGap w;
+  const double n = std::hypot(g.normal.x, g.normal.y);
+  if (!g.defined || !(n > 0)) return w;
+  w.defined = true;
+  w.free_vertex = g.free_vertex;
+  w.gap = g.gap / n;
+  w.along = g.along;
+  double px = g.point.x, py = g.point.y, nx = g.normal.x / n, ny = g.normal.y / n;
+  if (p.body_a != no_index) {   // the first part's frame to the world
+    const Body& ba = bodies[p.body_a];
+    const Kinematic& A = ks[p.body_a];
+    const double rx = px - ba.pivot[0], ry = py - ba.pivot[1];
+    px = ba.pivot[0] + A.x + c * rx - sn * ry;
+    py = ba.pivot[1] + A.y + sn * rx + c * ry;
+    const double mx = c * nx - sn * ny, my = sn * nx + c * ny;
+    nx = mx;
+    ny = my;
+  }
+  w.point[0] = px;
+  w.point[1] = py;
+  w.normal[0] = nx;
+  w.normal[1] = ny;
+  return w;
+}
+
+PlanarSystemSimulation::Impl::HeldFrame PlanarSystemSimulation::Impl::held_frame(
+    const Held& c, const std::vector<Kinematic>& ks) const {
+  const Pair& p = pairs[c.pair];
+  const WorldGap g = world_gap(p, c.feature, ks);
+  const auto n3 = static_cast<Eigen::Index>(3 * bodies.size());
+  HeldFrame f;
+  f.J = Eigen::VectorXd::Zero(n3);
+  f.T = Eigen::VectorXd::Zero(n3);
+  f.gap = g.gap;
+  f.along = g.along;
+  const double px = g.point[0], py = g.point[1], nx = g.normal[0], ny = g.normal[1];
+  f.frame = {px, py, nx, ny};
+  // per part of the pair: its centre's velocity, rate and the contact point's velocity
+  struct Side {
+    double v[2] = {0, 0}, w = 0, r[2] = {0, 0}, vp[2] = {0, 0};
+  } side[2];   // 0: the first part (fixed or A), 1: the second (B)
+  const std::size_t body_of_side[2] = {p.body_a, p.body_b};
+  for (int e = 0; e < 2; ++e) {
+    const std::size_t body = body_of_side[e];
+    if (body == no_index) continue;
+    const Kinematic& s = ks[body];
+    Side& sd = side[e];
+    sd.v[0] = s.vx;
+    sd.v[1] = s.vy;
+    sd.w = s.omega;
+    sd.r[0] = px - (bodies[body].pivot[0] + s.x);
+    sd.r[1] = py - (bodies[body].pivot[1] + s.y);
+    sd.vp[0] = s.vx - s.omega * sd.r[1];
+    sd.vp[1] = s.vy + s.omega * sd.r[0];
+    const double sign = e == 1 ? 1.0 : -1.0;
+    const auto at = static_cast<Eigen::Index>(3 * body);
+    f.J(at) = sign * nx;
+    f.J(at + 1) = sign * ny;
+    f.J(at + 2) = sign * (sd.r[0] * ny - sd.r[1] * nx);
+    f.T(at) = sign * -ny;
+    f.T(at + 1) = sign * nx;
+    f.T(at + 2) = sign * (sd.r[0] * nx + sd.r[1] * ny);
+  }
+  // curvature terms. V owns the vertex (the contact point is its material point), S the
+  // segment; n_S is the segment's normal towards V and t_S = k x n_S. Then (g' = J qdot)
+  //   g''       = J qdd - w_V^2 n_S.r_V + w_S t_S.(vp_V - v_S) + w_S t_S.(vp_V - vp_S)
+  //   (T qdot)' = T qdd - w_V^2 t_S.r_V - w_S n_S.(vp_V - v_S) - w_S n_S.(vp_V - vp_S)
+  // (the single-part formulas with a fixed S or a fixed V; J and T are the same for both roles)
+  const Side& V = g.free_vertex ? side[1] : side[0];
+  const Side& S = g.free_vertex ? side[0] : side[1];
+  const double sgn_n = g.free_vertex ? 1.0 : -1.0;
+  const double ns[2] = {sgn_n * nx, sgn_n * ny}, ts[2] = {-ns[1], ns[0]};
+  auto dot = [](const double a[2], double x, double y) { return a[0] * x + a[1] * y; };
+  const double dv_s[2] = {V.vp[0] - S.v[0], V.vp[1] - S.v[1]}, dv_p[2] = {V.vp[0] - S.vp[0], V.vp[1] - S.vp[1]};
+  f.h = -V.w * V.w * dot(ns, V.r[0], V.r[1]) + S.w * dot(ts, dv_s[0], dv_s[1]) + S.w * dot(ts, dv_p[0], dv_p[1]);
+  f.h_t = -V.w * V.w * dot(ts, V.r[0], V.r[1]) - S.w * dot(ns, dv_s[0], dv_s[1]) - S.w * dot(ns, dv_p[0], dv_p[1]);
+  return f;
+}
+
+PlanarSystemSimulation::Impl::HeldProblem PlanarSystemSimulation::Impl::held_problem(const std::vector<Kinematic>& ks,
+                                                                                     bool unilateral) const {
+  HeldProblem p;
+  const auto m = static_cast<Eigen::Index>(held.size());
+  const auto n3 = static_cast<Eigen::Index>(3 * bodies.size());
+  p.G.resize(m, n3);
+  p.h.resize(m);
+  std::vector<double> free = accelerations(ks);
+  p.a0 = Eigen::Map<const Eigen::VectorXd>(free.data(), n3);
+  const Eigen::VectorXd v = velocity(ks);
+  std::vector<int> states;
+  std::vector<std::size_t> pair_of;
+  for (Eigen::Index r = 0; r < m; ++r) {
+    const Held& c = held[static_cast<std::size_t>(r)];
+    p.frames.push_back(held_frame(c, ks));
+    const HeldFrame& f = p.frames.back();
+    p.G.row(r) = f.J.transpose();
+    p.h(r) = f.h;
+    const Pair& pair = pairs[c.pair];
+    p.friction.push_back(held_friction(f, pair.mu_static, pair.mu_kinetic, v, rest_speed, c.state));
+    states.push_back(p.friction.back().on ? c.state : simulation::frictionless);
+    pair_of.push_back(c.pair);
+  }
+  if (m == 0) {
+    p.solution.solved = true;
+    p.solution.x = p.a0;
+    p.solution.lambda = p.solution.w = p.solution.f = Eigen::VectorXd(0);
+    return p;
+  }
+  const Eigen::VectorXd minv = inverse_mass();
+  const std::vector<std::size_t> group = collinear_groups(p.friction, pair_of);
+  auto split = [&](simulation::FrictionalSolution& s) { split_collinear(s, p.friction, group); };
+  if (unilateral) {
+    p.solution = simulation::solve_frictional(p.G, minv, p.a0, p.h, p.friction, split);
+  } else {
+    p.solution = simulation::solve_bilateral(p.G, minv, p.a0, p.h, p.friction, states);
+    split(p.solution);
+  }
+  return p;
+}
+
+double PlanarSystemSimulation::Impl::force_tolerance() const {
+  std::vector<Kinematic> still = k;
+  for (Kinematic& s : still) s.vx = s.vy = s.omega = 0;
+  const std::vector<double> a = accelerations(still);   // loads and springs
+  double scale = 0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Body& b = bodies[i];
+    if (b.driven) continue;
+    scale += b.mass * (std::hypot(b.accel[0], b.accel[1]) + std::hypot(a[3 * i], a[3 * i + 1])) +
+             (std::abs(b.torque) + b.inertia * std::abs(a[3 * i + 2])) / std::max(b.reach, 1.0);
+  }
+  return 1e-9 * (scale + 1e-300) * static_cast<double>(1 + held.size());
+}
+
+void PlanarSystemSimulation::Impl::held_rhs(const StateN& y, StateN& dy) const {
+  if (held.empty()) {
+    rhs(y, dy);
+    return;
+  }
+  const std::vector<Kinematic> ks = unpack(y);
+  const Eigen::VectorXd& a = held_problem(ks, false).solution.x;
+  dy.resize(y.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    dy[6 * i] = ks[i].vx;
+    dy[6 * i + 1] = ks[i].vy;
+    dy[6 * i + 2] = ks[i].omega;
+    for (int j = 0; j < 3; ++j)
+      dy[6 * i + 3 + j] = bodies[i].driven ? bodies[i].drive_accel[j] : a(static_cast<Eigen::Index>(3 * i + j));
+  }
+}
+
+void PlanarSystemSimulation::Impl::project(std::vector<Kinematic>& ks, bool positions) const {
+  project_held(
+      held.size(), inverse_mass(), hold_gap, positions, [&](std::size_t c) { return held_frame(held[c], ks); },
+      [&](std::size_t c) { return pairs[held[c].pair].mu_static > 0 && held[c].state == simulation::stick; },
+      [&](const Eigen::VectorXd& dq) {
+        for (std::size_t i = 0; i < bodies.size(); ++i) {
+          ks[i].x += dq(static_cast<Eigen::Index>(3 * i));
+          ks[i].y += dq(static_cast<Eigen::Index>(3 * i + 1));
+          ks[i].theta += dq(static_cast<Eigen::Index>(3 * i + 2));
+        }
+      },
+      [&] { return velocity(ks); }, [&](const Eigen::VectorXd& v) { set_velocity(ks, v); });
+}
+
+unsigned PlanarSystemSimulation::Impl::violated(const std::vector<Kinematic>& ks, std::vector<unsigned>* per_contact) const {
+  return held_violations(held_problem(ks, false), held, pairs, velocity(ks), force_tolerance(), per_contact);
+}
+
+SimulationEvent PlanarSystemSimulation::Impl::held_event(SimulationEvent::Kind kind, const Held& c, const HeldFrame& f,
+                                                         double normal_force, double friction_force) const {
+  return held_contact_event(kind, t / time_scale, pairs[c.pair].index, model.parts[pairs[c.pair].first].name,
+                            model.parts[pairs[c.pair].second].name, c.feature.label, f.frame, normal_force, friction_force,
+                            force_scale);
+}
+
+bool PlanarSystemSimulation::Impl::decide() {
+  if (held.empty()) return false;
+  HeldProblem p = held_problem(k, true);
+  if (!p.solution.solved)
+    throw NumericError(where(t) + ": the contact problem of the held contacts has no consistent solution "
+                                  "(a Painlevé-type inconsistency of Coulomb friction, or more than 8 contacts)");
+  std::vector<Held> kept;
+  std::vector<HeldFrame> frames;
+  std::vector<Eigen::Index> rows;
+  bool changed = false;
+  for (std::size_t c = 0; c < held.size(); ++c) {
+    const auto r = static_cast<Eigen::Index>(c);
+    Held h = held[c];
+    const double lambda = p.solution.lambda(r), w = p.solution.w(r);
+    if (lambda <= force_tolerance() && w > 0) {   // no force and separating: lift-off
+      events.push_back(held_event(SimulationEvent::Kind::lift_off, h, p.frames[c], 0, 0));
+      continue;
+    }
+    const int state = p.friction[c].on ? p.solution.state[c] : simulation::frictionless;
+    if (state != h.state && p.friction[c].on) {
+      SimulationEvent e = held_event(state == simulation::stick ? SimulationEvent::Kind::stick : SimulationEvent::Kind::slip,
+                                     h, p.frames[c], lambda, p.solution.f(r));
+      if (state != simulation::stick) e.slip_direction = state;
+      events.push_back(std::move(e));   // decided in floating point (exact_decision false)
+      changed = true;
+    }
+    h.state = state;
+    kept.push_back(h);
+    frames.push_back(p.frames[c]);
+    rows.push_back(r);
+  }
+  const bool lifted = kept.size() != held.size();
+  held = std::move(kept);
+  if (changed) project(k, false);   // a contact that starts to stick keeps no sliding velocity
+  if (held.empty() || lifted) return true;
+  // at rest: every part slower than the rest speed, no driver moving, the forces balance the loads
+  double speed = 0, scale = 0, residual = 0;
+  const Eigen::VectorXd& acc = p.solution.x;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Kinematic& s = k[i];
+    const double v = std::hypot(s.vx, s.vy) + std::abs(s.omega) * bodies[i].reach;
+    if (bodies[i].driven && (v > 0 || !bodies[i].profile.empty())) return changed;
+    if (bodies[i].driven) continue;
+    const auto j = static_cast<Eigen::Index>(3 * i);
+    speed = std::max(speed, v);
+    scale = std::max(scale, std::hypot(p.a0(j), p.a0(j + 1)) + std::abs(p.a0(j + 2)) * bodies[i].reach);
+    residual = std::max(residual, std::hypot(acc(j), acc(j + 1)) + std::abs(acc(j + 2)) * bodies[i].reach);
+  }
+  if (speed > rest_speed || residual > 1e-9 * std::max(scale, 1e-300)) return changed;
+  resting = true;
+  for (Kinematic& s : k) s.vx = s.vy = s.omega = 0;
+  // one `contact` event per pair: its total normal and friction forces, at its largest force
+  std::vector<bool> done(pairs.size(), false);
+  for (std::size_t c = 0; c < held.size(); ++c) {
+    if (done[held[c].pair]) continue;
+    done[held[c].pair] = true;
+    double normal = 0, friction = 0;
+    std::size_t top = c;
+    for (std::size_t d = c; d < held.size(); ++d)
+      if (held[d].pair == held[c].pair) {
+        normal += p.solution.lambda(rows[d]);
+        friction += p.solution.f(rows[d]);
+        if (p.solution.lambda(rows[d]) > p.solution.lambda(rows[top])) top = d;
+      }
+    SimulationEvent e = held_event(SimulationEvent::Kind::contact, held[top], frames[top], normal, friction);
+    for (std::size_t d = c; d < held.size(); ++d)
+      if (held[d].pair == held[c].pair && d != top) e.features.push_back(held[d].feature.label);
+    events.push_back(std::move(e));
+  }
+  return true;
+}
+
+PlanarSystemSimulation::Impl::Rows PlanarSystemSimulation::Impl::contact_rows(
+    const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching) const {
   const auto n = static_cast<Eigen::Index>(3 * bodies.size());
-  std::vector<Eigen::VectorXd> rows;
-  std::vector<std::array<double, 4>> frames;
-  std::vector<std::size_t> row_pair;
-  std::vector<std::string> labels;
+  Rows out;
   for (const auto& [i, f] : touching) {
     const Pair& p = pairs[i];
     SlicedConfiguration rel = relative(p, q);
@@ -1846,38 +2266,53 @@ void PlanarSystemSimulation::Impl::impact(double time,
       nx = mx;
       ny = my;
     }
-    Eigen::VectorXd row = Eigen::VectorXd::Zero(n);
+    Eigen::VectorXd row = Eigen::VectorXd::Zero(n), tan = Eigen::VectorXd::Zero(n);
     auto put = [&](std::size_t body, double sign) {
       const Body& b = bodies[body];
       double rx = px - (b.pivot[0] + k[body].x), ry = py - (b.pivot[1] + k[body].y);
-      row(static_cast<Eigen::Index>(3 * body)) += sign * nx;
-      row(static_cast<Eigen::Index>(3 * body + 1)) += sign * ny;
-      row(static_cast<Eigen::Index>(3 * body + 2)) += sign * (rx * ny - ry * nx);
+      const auto at = static_cast<Eigen::Index>(3 * body);
+      row(at) += sign * nx;
+      row(at + 1) += sign * ny;
+      row(at + 2) += sign * (rx * ny - ry * nx);
+      tan(at) += sign * -ny;
+      tan(at + 1) += sign * nx;
+      tan(at + 2) += sign * (rx * nx + ry * ny);
     };
     put(p.body_b, 1);
     if (p.body_a != no_index) put(p.body_a, -1);
     bool repeated = false;
-    for (const Eigen::VectorXd& r : rows) repeated = repeated || (r - row).cwiseAbs().maxCoeff() < 1e-12 * (1 + row.cwiseAbs().maxCoeff());
+    for (const Eigen::VectorXd& r : out.J)
+      repeated = repeated || (r - row).cwiseAbs().maxCoeff() < 1e-12 * (1 + row.cwiseAbs().maxCoeff());
     if (repeated) continue;
-    rows.push_back(row);
-    frames.push_back({px, py, nx, ny});
-    row_pair.push_back(i);
-    labels.push_back(f.label);
+    out.J.push_back(row);
+    out.T.push_back(tan);
+    out.frames.push_back({px, py, nx, ny});
+    out.pair.push_back(i);
+    out.feature.push_back(f);
   }
-  if (rows.empty()) throw GeometryError(where(time) + ": parts touch only at vertex–vertex contacts: no contact normal");
-  const auto m = static_cast<Eigen::Index>(rows.size());
+  return out;
+}
+
+void PlanarSystemSimulation::Impl::impact(double time,
+                                          const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching) {
+  const auto n = static_cast<Eigen::Index>(3 * bodies.size());
+  Rows contact = contact_rows(touching);
+  if (contact.J.empty()) throw GeometryError(where(time) + ": parts touch only at vertex–vertex contacts: no contact normal");
+  const auto m = static_cast<Eigen::Index>(contact.J.size());
+  const std::vector<std::size_t>& row_pair = contact.pair;
+  const auto& frames = contact.frames;
   Eigen::MatrixXd J(m, n);
-  for (Eigen::Index r = 0; r < m; ++r) J.row(r) = rows[static_cast<std::size_t>(r)].transpose();
-  Eigen::VectorXd minv(n), v(n);
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const double free = bodies[i].driven ? 0.0 : 1.0;   // a driver: infinite inertia
-    minv.segment(static_cast<Eigen::Index>(3 * i), 3) << free / bodies[i].mass, free / bodies[i].mass,
-        free / bodies[i].inertia;
-    v.segment(static_cast<Eigen::Index>(3 * i), 3) << k[i].vx, k[i].vy, k[i].omega;
-  }
+  for (Eigen::Index r = 0; r < m; ++r) J.row(r) = contact.J[static_cast<std::size_t>(r)].transpose();
+  const Eigen::VectorXd minv = inverse_mass(), v = velocity(k);
   Eigen::VectorXd before = J * v;
+  // an impact slower than the rest speed is plastic, and so are the held contacts' rows
+  const bool plastic = std::max(0.0, -before.minCoeff()) < rest_speed;
   Eigen::VectorXd b(m);
-  for (Eigen::Index r = 0; r < m; ++r) b(r) = (1 + pairs[row_pair[static_cast<std::size_t>(r)]].restitution) * before(r);
+  for (Eigen::Index r = 0; r < m; ++r) {
+    const auto row = static_cast<std::size_t>(r);
+    const double e = plastic || is_held(row_pair[row], contact.feature[row]) ? 0.0 : pairs[row_pair[row]].restitution;
+    b(r) = (1 + e) * before(r);
+  }
   Eigen::MatrixXd A = J * minv.asDiagonal() * J.transpose();
   for (Eigen::Index r = 0; r < m; ++r)
     if (before(r) < 0 && !(A(r, r) > 0)) {   // a driver against a fixed part or another driver
@@ -1885,26 +2320,36 @@ void PlanarSystemSimulation::Impl::impact(double time,
       throw NumericError(where(time) + ": driven part '" + model.parts[p.second].name + "' runs into '" +
                          model.parts[p.first].name + "': nothing there can give way (a jam)");
     }
-  simulation::LcpSolution lcp = simulation::solve_lcp(A, b);
-  if (!lcp.solved) throw NumericError(where(time) + ": the impact problem has no solution");
-  Eigen::VectorXd after_v = v + minv.asDiagonal() * (J.transpose() * lcp.lambda);
-  Eigen::VectorXd after = J * after_v;
-  // the class of inputs: every contact met separates (a sustained contact is not supported here)
-  for (Eigen::Index r = 0; r < m; ++r)
-    if (before(r) < 0 && after(r) < rest_speed) {
-      const Pair& p = pairs[row_pair[static_cast<std::size_t>(r)]];
-      throw NumericError(where(time) + ": '" + model.parts[p.first].name + "' and '" + model.parts[p.second].name +
-                         "' would stay in contact (an impact slower than the rest speed, or without restitution): "
-                         "sustained contact is not supported when several planar parts move (docs/simulation.md)");
+  bool frictional = false;
+  for (std::size_t i : row_pair) frictional = frictional || pairs[i].mu_static > 0;
+  Eigen::VectorXd lambda, after_v, tangential = Eigen::VectorXd::Zero(m);
+  if (!frictional) {
+    simulation::LcpSolution lcp = simulation::solve_lcp(A, b);
+    if (!lcp.solved) throw NumericError(where(time) + ": the impact problem has no solution");
+    lambda = lcp.lambda;
+    after_v = v + minv.asDiagonal() * (J.transpose() * lcp.lambda);
+  } else {   // Coulomb-limited tangential impulses, as the single planar part's impacts
+    std::vector<simulation::Friction> friction(static_cast<std::size_t>(m));
+    for (std::size_t r = 0; r < friction.size(); ++r) {
+      const Pair& pair = pairs[row_pair[r]];
+      friction[r].on = pair.mu_static > 0;
+      friction[r].T = contact.T[r];
+      friction[r].mu_static = pair.mu_static;
+      friction[r].mu_kinetic = pair.mu_kinetic;
     }
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    k[i].vx = after_v(static_cast<Eigen::Index>(3 * i));
-    k[i].vy = after_v(static_cast<Eigen::Index>(3 * i + 1));
-    k[i].omega = after_v(static_cast<Eigen::Index>(3 * i + 2));
+    bool limited = false;
+    simulation::FrictionalSolution sol = frictional_impact(J, minv, v, b - before, friction,
+                                                           collinear_groups(friction, row_pair), where(time), limited);
+    if (limited) ++stats.restitution_limited;
+    lambda = sol.lambda;
+    tangential = sol.f;
+    after_v = sol.x;
   }
+  Eigen::VectorXd after = J * after_v;
+  set_velocity(k, after_v);
   // one impact event per pair, at its row of largest impulse
   std::vector<bool> done(pairs.size(), false);
-  for (std::size_t r = 0; r < rows.size(); ++r) {
+  for (std::size_t r = 0; r < row_pair.size(); ++r) {
     std::size_t i = row_pair[r];
     if (done[i]) continue;
     done[i] = true;
@@ -1916,12 +2361,13 @@ void PlanarSystemSimulation::Impl::impact(double time,
     e.second_part = model.parts[pairs[i].second].name;
     auto top = static_cast<Eigen::Index>(r);
     double total = 0;
-    for (std::size_t s = 0; s < rows.size(); ++s)
+    for (std::size_t s = 0; s < row_pair.size(); ++s)
       if (row_pair[s] == i) {
         auto row = static_cast<Eigen::Index>(s);
-        e.features.push_back(labels[s]);
-        total += lcp.lambda(row);
-        if (lcp.lambda(row) > lcp.lambda(top)) top = row;
+        e.features.push_back(contact.feature[s].label);
+        total += lambda(row);
+        e.tangential_impulse += tangential(row) / (force_scale * time_scale);
+        if (lambda(row) > lambda(top)) top = row;
       }
     e.impulse = total / (force_scale * time_scale);
     e.normal_speed_before = before(top) * time_scale;
@@ -1931,16 +2377,83 @@ void PlanarSystemSimulation::Impl::impact(double time,
     e.normal = {fr[2], fr[3]};
     events.push_back(std::move(e));
   }
+  // hold every contact left without separating speed (vertex–segment contacts); one involving
+  // an arc cannot be held between moving parts: the class of inputs ends there
+  std::vector<Held> now;
+  for (std::size_t r = 0; r < row_pair.size(); ++r) {
+    const auto row = static_cast<Eigen::Index>(r);
+    if (after(row) > rest_speed) continue;   // separating
+    const Pair& p = pairs[row_pair[r]];
+    if (!world_gap(p, contact.feature[r], k).defined) {
+      if (before(row) >= 0) continue;   // not approaching: the free search watches it
+      throw NumericError(where(time) + ": '" + model.parts[p.first].name + "' and '" + model.parts[p.second].name +
+                         "' would stay in contact at " + contact.feature[r].label +
+                         " (an arc): sustained contact on arcs is not supported when several planar parts move "
+                         "(docs/simulation.md)");
+    }
+    // its friction state is decided afresh by the next step's problem (as for a single part): a
+    // state kept from before the impact could contradict the velocities the impact leaves (a
+    // sticking contact made to slip), and the projection below would then mix inconsistent rows
+    Held c{row_pair[r], contact.feature[r], simulation::frictionless};
+    bool repeated = false;
+    for (const Held& h : now)
+      repeated = repeated || (h.pair == c.pair && h.feature.fixed == c.feature.fixed && h.feature.free == c.feature.free);
+    if (!repeated) now.push_back(c);
+  }
+  std::vector<Held> previous = std::move(held);
+  held = std::move(now);
+  if (held.empty()) return;
+  project(k, false);   // the plastic remainder of the normal speeds removed (mass-weighted)
+  for (const Held& c : held) {
+    bool was = false;
+    for (const Held& h : previous)
+      was = was || (h.pair == c.pair && h.feature.fixed == c.feature.fixed && h.feature.free == c.feature.free);
+    if (!was) events.push_back(held_event(SimulationEvent::Kind::contact, c, held_frame(c, k), 0, 0));
+  }
 }
 
 bool PlanarSystemSimulation::Impl::advance(double span) {
   using namespace boost::numeric::odeint;
+  if (resting) {   // every part at rest on its held contacts, the loads constant: it stays
+    t += span;
+    return false;
+  }
+  // a driver's speed profile: the step ends at its next point; within it the velocity is linear
+  // (the segment's slope is the driver's acceleration) and set to the profile's value at its start
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    Body& b = bodies[i];
+    if (b.profile.empty()) continue;
+    std::size_t j = 0;
+    while (j + 1 < b.profile.size() && b.profile[j + 1][0] <= t + 1e-12 * std::max(1.0, std::abs(t))) ++j;
+    const std::array<double, 4>& p0 = b.profile[j];
+    double v[3] = {p0[1], p0[2], p0[3]};
+    for (double& a : b.drive_accel) a = 0;
+    if (j + 1 < b.profile.size()) {
+      const std::array<double, 4>& p1 = b.profile[j + 1];
+      const double dt = p1[0] - p0[0];
+      for (int c = 0; c < 3; ++c) {
+        b.drive_accel[c] = (p1[1 + c] - p0[1 + c]) / dt;
+        v[c] = p0[1 + c] + b.drive_accel[c] * (t - p0[0]);
+      }
+      span = std::min(span, std::max(p1[0] - t, 0.0));
+    }
+    k[i].vx = v[0];
+    k[i].vy = v[1];
+    k[i].omega = v[2];
+  }
+  if (!(span > 0)) return false;
+  // a change of the held set or of a state is a step of its own (its events at its time)
+  if (decide()) return true;
+  if (resting) return true;
   const std::vector<Kinematic> k0 = k;
   const std::vector<SlicedConfiguration> q0 = q;
-  auto f = [this](const StateN& x, StateN& dx, double) { rhs(x, dx); };
+  auto f = [this](const StateN& x, StateN& dx, double) { held_rhs(x, dx); };
   double h = step_guess > 0 ? std::min(step_guess, span) : span;
   std::vector<SlicedConfiguration> rel0;
   std::vector<bool> flip;
+  // the held feature pairs of each pair: their own surface is what the motion follows
+  std::vector<std::vector<std::pair<FeatureIdentity, FeatureIdentity>>> ignored(pairs.size());
+  for (const Held& c : held) ignored[c.pair].emplace_back(c.feature.fixed, c.feature.free);
   for (const Pair& p : pairs) {
     rel0.push_back(relative(p, q0));
     flip.push_back(std::abs(wrap(relative_angle(p, k0))) > std::numbers::pi / 2);
@@ -1951,9 +2464,16 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
     double tt = 0, trial = h;
     for (int tries = 0; stepper.try_step(f, y, tt, trial) == fail; ++tries)
       if (tries > 200 || !(trial > 0)) throw NumericError(where(t) + ": the integration fails");
-    const double end = tt;
+    double end = tt;
     step_guess = trial;
-    const std::vector<Kinematic> k1 = unpack(y);
+    std::vector<Kinematic> k1 = unpack(y);
+    std::vector<unsigned> bits;
+    if (!held.empty()) {
+      project(k1, true);
+      cut_at_first_violation(
+          end, k1, [&](double s) { return fixed_step(k0, s); },
+          [&](const std::vector<Kinematic>& at, std::vector<unsigned>* b) { return violated(at, b); }, bits);
+    }
     std::vector<SlicedConfiguration> q1;
     for (const Kinematic& b : k1) q1.push_back(configuration_of(b.x, b.y, b.theta));
     // far test per pair (certified for the chord: the exact sweep bound against features_near's
@@ -1972,6 +2492,7 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
       double nearest = std::numeric_limits<double>::infinity();
       std::optional<Rational> nearest_exact;
       for (const SlicedNearFeature& nf : p.space.features_near(rel0[i], radius)) {
+        if (is_held(i, nf.pair)) continue;
         nearest = std::min(nearest, to_d(nf.distance_lower));
         if (!nearest_exact || nf.distance_lower < *nearest_exact) nearest_exact = nf.distance_lower;
       }
@@ -1990,11 +2511,18 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
       h = step_guess = cap;
       continue;
     }
+    // the held contacts at the new state: exactly apart from their segments' lines
+    for (const Held& c : held) {
+      const Pair& p = pairs[c.pair];
+      if (sgn(contact_gap(p.frame_model ? *p.frame_model : model, c.feature, pose_of(pivot_of(p.second), rel1[c.pair]))
+                  .gap) <= 0)
+        throw NumericError(where(t + end) + ": a held contact's projected state is not exactly apart (internal error)");
+    }
     std::vector<std::pair<std::size_t, SlicedMotionCrossing>> crossings;
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       if (far[i]) continue;
       ++stats.chord_tests;
-      SlicedMotionCrossing c = pairs[i].space.first_crossing(SlicedMotion{rel0[i], rel1[i], flip[i], {}},
+      SlicedMotionCrossing c = pairs[i].space.first_crossing(SlicedMotion{rel0[i], rel1[i], flip[i], ignored[i]},
                                                              CrossingOptions{options.crossing_bits});
       if (c.status == CrossingStatus::starts_in_contact)
         throw NumericError(where(t) + " '" + model.parts[pairs[i].second].name + "' starts a chord in contact with '" +
@@ -2006,7 +2534,19 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
       t += end;
       k = k1;
       q = q1;
-      return false;
+      // contacts reaching the end of their segment end; lift-offs and stick/slip changes are
+      // decided by the next step's problem
+      std::vector<Held> kept;
+      for (std::size_t c = 0; c < held.size(); ++c) {
+        if (!bits.empty() && (bits[c] & 8)) {
+          events.push_back(held_event(SimulationEvent::Kind::edge_end, held[c], held_frame(held[c], k), 0, 0));
+          continue;
+        }
+        kept.push_back(held[c]);
+      }
+      const bool ended = kept.size() != held.size();
+      held = std::move(kept);
+      return ended;
     }
     std::size_t best = 0;
     for (std::size_t c = 1; c < crossings.size(); ++c)
@@ -2019,7 +2559,7 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
     double s_contact = u * end;
     // back-off steps of 2^j delta / rate: the time in which no point moves farther than 2^j delta
     double rate = 0;
-    for (const std::vector<Kinematic>* ks : {&k0, &k1})
+    for (const std::vector<Kinematic>* ks : std::array<const std::vector<Kinematic>*, 2>{&k0, &k1})
       for (std::size_t i = 0; i < bodies.size(); ++i)
         rate = std::max(rate, std::hypot((*ks)[i].vx, (*ks)[i].vy) + std::abs((*ks)[i].omega) * bodies[i].reach);
     rate = 2 * std::max(rate, std::numeric_limits<double>::min());
@@ -2051,6 +2591,29 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
         for (const auto& [j, fp] : touching) listed = listed || (j == i && fp.label == nf.pair.label);
         if (!listed) touching.emplace_back(i, nf.pair);
       }
+    for (const Held& c : held) {   // the held contacts join the impact (plastic)
+      bool listed = false;
+      for (const auto& [j, fp] : touching) listed = listed || (j == c.pair && fp.label == c.feature.label);
+      if (!listed) touching.emplace_back(c.pair, c.feature);
+    }
+    if (!held.empty() && attempt < 40) {
+      // a contact the path leaves (the chord cut its corner): a shorter chord
+      const std::vector<Kinematic> keep = k;
+      const std::vector<SlicedConfiguration> keep_q = q;
+      k = at;
+      q = q_at;
+      Rows rows = contact_rows(touching);
+      const Eigen::VectorXd v_at = velocity(at);
+      double approach = 0;
+      for (std::size_t r = 0; r < rows.J.size(); ++r)
+        if (!is_held(rows.pair[r], rows.feature[r])) approach = std::min(approach, rows.J[r].dot(v_at));
+      k = keep;
+      q = keep_q;
+      if (approach >= 0) {
+        h = std::max(end / 4, 1e-300);
+        continue;
+      }
+    }
     t += s_contact;
     k = at;
     q = q_at;
@@ -2122,7 +2685,7 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
     s.q.push_back(configuration_of(kin.x, kin.y, kin.theta));
   }
   if (s.bodies.empty()) throw ModelError("", "the model has no planar part to simulate");
-  // drivers of planar parts: a constant velocity, three entries vx, vy, omega (the reader's)
+  // drivers of planar parts: a constant velocity or a speed profile, three entries vx, vy, omega (the reader's)
   for (std::size_t d = 0; d < spec.drivers.size(); d += 3) {
     const std::size_t body = s.body_of[spec.drivers[d].part];
     if (body == no_index || d + 2 >= spec.drivers.size())
@@ -2132,6 +2695,9 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
     s.k[body].vx = to_d(spec.drivers[d].speed) / ts;
     s.k[body].vy = to_d(spec.drivers[d + 1].speed) / ts;
     s.k[body].omega = to_d(spec.drivers[d + 2].speed) / ts;
+    for (std::size_t p = 0; p < spec.drivers[d].profile.size(); ++p)   // the reader's three equal-length profiles
+      b.profile.push_back({to_d(spec.drivers[d].profile[p].first) * ts, to_d(spec.drivers[d].profile[p].second) / ts,
+                           to_d(spec.drivers[d + 1].profile[p].second) / ts, to_d(spec.drivers[d + 2].profile[p].second) / ts});
   }
   for (const auto& coupling : spec.couplings) {
     Impl::Spring sp;
@@ -2152,6 +2718,7 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
   s.accuracy = options.accuracy > 0 ? options.accuracy : spec.accuracy ? to_d(*spec.accuracy) : 1e-9;
   s.delta = options.chord_deviation > 0 ? options.chord_deviation : s.accuracy * std::max(max_reach, 1.0);
   s.rest_speed = std::sqrt(2 * max_accel * s.delta);
+  s.hold_gap = 0.75 * s.delta;
   for (std::size_t i = 0; i < model.pairs.size(); ++i) {
     const PairSpec& pair = model.pairs[i];
     std::size_t a = s.body_of[pair.first], b = s.body_of[pair.second];
@@ -2159,9 +2726,10 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
     Impl::Pair p;
     p.index = i;
     p.restitution = pair.restitution ? to_d(*pair.restitution) : 0.0;
-    if (pair.friction && sgn(*pair.friction) > 0)
-      throw ModelError(pair.pointer + "/friction", "friction is not supported when several planar parts move "
-                                                   "(frictionless impacts only: docs/simulation.md)");
+    if (pair.friction) {
+      p.mu_static = to_d(*pair.friction);
+      p.mu_kinetic = pair.kinetic_friction ? to_d(*pair.kinetic_friction) : p.mu_static;
+    }
     if (a == no_index || b == no_index) {
       p.first = a == no_index ? pair.first : pair.second;
       p.second = a == no_index ? pair.second : pair.first;

@@ -175,6 +175,11 @@ m["parts"].append({"name": "slider", "motion": {"pin_slot": {"pivot": [30, 0], "
                    "loops": [{"start": [20, 0], "edges": [{"line_to": [40, 0]}, {"line_to": [40, 2]}, {"line_to": [20, 2]}, {"line_to": [20, 0]}]}]})
 m["simulation"] = {"springs": [{"parts": ["plate", "slider"], "points": [[0, 0], [30, 0]], "stiffness": 1}]}
 add("spring_on_pin_slot_part", m, "/simulation/springs/0/parts/1", "is a pin-slot part", "a spring joins fixed, rotating, translating or planar parts only")
+m = base()
+m["parts"].append({"name": "pusher", "motion": {"planar": {"pivot": [30, 0]}}, "initial": {"x": 0, "y": 0},
+                   "loops": [{"start": [20, 0], "edges": [{"line_to": [40, 0]}, {"line_to": [40, 2]}, {"line_to": [20, 2]}, {"line_to": [20, 0]}]}]})
+m["simulation"] = {"drivers": [{"part": "pusher", "law": "speed_profile", "profile": [[0, {"x": 1}], [0.5, {"x": 2, "angle": 1}], [0.5, {"y": 3}]]}]}
+add("planar_profile_time_not_increasing", m, "/simulation/drivers/0/profile/2/0", "profile times must increase strictly", "a planar driver's speed profile with two points at 0.5")
 m = base(); m["parts"][0]["features"] = [{"sprocket": {"teeth": 12}}]
 add("unknown_feature_template", m, "/parts/0/features/0/sprocket", "unknown feature template 'sprocket'", "no such template")
 m = base(); m["parts"][0]["features"] = [{"circle": {"center": [50, 50], "radius": 2, "colour": "red"}}]
