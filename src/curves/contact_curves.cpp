@@ -100,13 +100,21 @@ Interval radial_range(const BodyFeature& feature, const Point& center) {
   return Interval(near, far);
 }
 
+// Enclosure of u . p. For the axis directions (1, 0) and (0, 1) (every translating pair along
+// the axes, and every feature's box) u . p is the coordinate itself: the same rational, without
+// two products, a sum and their canonicalisations (the generator's construction spent 40 % of
+// its time here on polygon pairs).
+Interval enclose_dot(const Point& unit, const Point& p) {
+  if (sgn(unit.y) == 0 && unit.x == 1) return Interval::enclose(p.x);
+  if (sgn(unit.x) == 0 && unit.y == 1) return Interval::enclose(p.y);
+  return Interval::enclose(dot(unit, p));
+}
+
 // Certified [lo, hi] of u . p over the feature's points, u an exact unit vector.
 Interval projection_range(const BodyFeature& feature, const Point& unit) {
   const Edge& edge = *feature.edge;
-  if (feature.ref.kind == FeatureRef::Kind::vertex)
-    return Interval::enclose(dot(unit, feature.point));
-  Interval range = kernels::hull(Interval::enclose(dot(unit, edge.source)),
-                                 Interval::enclose(dot(unit, edge.target)));
+  if (feature.ref.kind == FeatureRef::Kind::vertex) return enclose_dot(unit, feature.point);
+  Interval range = kernels::hull(enclose_dot(unit, edge.source), enclose_dot(unit, edge.target));
   if (feature.ref.kind == FeatureRef::Kind::segment) return range;
   kernels::ArcSector<Rational> sector = arc_sector(edge);
   Interval centre = Interval::enclose(dot(unit, edge.center));
