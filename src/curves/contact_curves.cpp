@@ -1179,6 +1179,9 @@ struct CurveGenerator::Data {
   };
   mutable std::mutex formed_mutex;
   mutable std::unordered_map<std::uint64_t, std::shared_ptr<const Formed>> formed;
+  // generate() takes the polygon front end (a translating polygon pair without the blocked-space
+  // cull): the general path's feature geometry is not formed for it
+  bool front_end = false;
 };
 
 CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
@@ -1198,8 +1201,15 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
     for (const BodyFeature& f : d.features_a) d.static_a.push_back(culler.describe_static(f));
     for (const BodyFeature& f : d.features_b) d.static_b.push_back(culler.describe_static(f));
   }
-  for (const BodyFeature& f : d.features_a) d.geometry_a.push_back(feature_geometry(f));
-  for (const BodyFeature& f : d.features_b) d.geometry_b.push_back(feature_geometry(f));
+  auto without_rotation = [](const Part& part) {
+    return part.motion.kind == Motion::Kind::fixed || part.motion.kind == Motion::Kind::translation;
+  };
+  d.front_end = without_rotation(model.parts.at(axes.first)) && without_rotation(model.parts.at(axes.second)) &&
+                d.polygons && options.polygon_front_end && !options.cull_blocked_space;
+  if (!d.front_end) {
+    for (const BodyFeature& f : d.features_a) d.geometry_a.push_back(feature_geometry(f));
+    for (const BodyFeature& f : d.features_b) d.geometry_b.push_back(feature_geometry(f));
+  }
   if (options.cull_blocked_space) {
     for (const BodyFeature& f : d.features_a) d.disks_a.push_back(body_disk(f));
     for (const BodyFeature& f : d.features_b) d.disks_b.push_back(body_disk(f));
@@ -1262,7 +1272,7 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
     }
     out.push_back(std::move(curve));
   };
-  if (translating && d.polygons && options.polygon_front_end && !options.cull_blocked_space) {
+  if (d.front_end) {
     // The polygon front end: the reduced convolution's pairs by the angular walk (cone_pairs),
     // then the same broad-phase box test and swept-region cull as the general path (so the
     // same pairs, in the same order), and each curve written down from the vertices.
