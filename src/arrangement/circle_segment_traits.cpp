@@ -438,8 +438,7 @@ class Builder {
     if (single) {
       std::optional<Rational> lo, hi;
       bool empty = false;
-      auto bound = [&](const Linear& g) {   // p + q t >= 0
-        auto [p, q] = along(g);
+      auto bound_pq = [&](const Rational& p, const Rational& q) {   // p + q t >= 0
         if (sgn(q) == 0) {
           if (sgn(p) < 0) empty = true;
           return;
@@ -451,10 +450,24 @@ class Builder {
           hi = std::move(t);
         }
       };
-      bound(Linear{-box_.x_lo, 1, 0});
-      bound(Linear{box_.x_hi, -1, 0});
-      bound(Linear{-box_.y_lo, 0, 1});
-      bound(Linear{box_.y_hi, 0, -1});
+      auto bound = [&](const Linear& g) {
+        auto [p, q] = along(g);
+        bound_pq(p, q);
+      };
+      // the box sides x >= x_lo, x <= x_hi, y >= y_lo, y <= y_hi: along() of each written out
+      // (the same p and q without the products by 0 and 1)
+      static const Rational one(1), minus_one(-1);
+      if (vertical) {
+        bound_pq(Rational(x0 - box_.x_lo), Rational(0));
+        bound_pq(Rational(box_.x_hi - x0), Rational(0));
+        bound_pq(Rational(-box_.y_lo), one);
+        bound_pq(box_.y_hi, minus_one);
+      } else {
+        bound_pq(Rational(-box_.x_lo), one);
+        bound_pq(box_.x_hi, minus_one);
+        bound_pq(Rational(u - box_.y_lo), v);
+        bound_pq(Rational(box_.y_hi - u), Rational(-v));
+      }
       for (const auto& clause : clauses) bound(linear_of(clause.atoms[0]));
       if (empty || (lo && hi && *hi < *lo)) return;
       if (!lo || !hi) throw GeometryError("internal: a clipped contact segment is unbounded");
