@@ -373,8 +373,17 @@ class Builder {
   }
 
  private:
-  static typename K::Point_2 point(const Rational& x, const Rational& y) {
-    return typename K::Point_2(ft_of<FT>(x), ft_of<FT>(y));
+  // A kernel point from rationals. The segment flavour remembers the rationals of every point
+  // it makes (by the handle's identity; the handle is kept, so that its address is not reused):
+  // an arrangement vertex at an input piece's end shares that handle, and the export takes its
+  // coordinates from here instead of forcing the lazy point's exact value (only intersection
+  // points are converted).
+  typename K::Point_2 point(const Rational& x, const Rational& y) {
+    typename K::Point_2 p(ft_of<FT>(x), ft_of<FT>(y));
+    if constexpr (segments) {
+      if (known_.emplace(p.id(), known_points_.size()).second) known_points_.push_back({p, x, y});
+    }
+    return p;
   }
 
   // Clauses hold at a point where each atom's value is given by `value` (a sign).
@@ -429,8 +438,7 @@ class Builder {
     if (single) {
       std::optional<Rational> lo, hi;
       bool empty = false;
-      auto bound = [&](const Linear& g) {   // p + q t >= 0
-        auto [p, q] = along(g);
+      auto bound_pq = [&](const Rational& p, const Rational& q) {   // p + q t >= 0
         if (sgn(q) == 0) {
           if (sgn(p) < 0) empty = true;
           return;
@@ -442,10 +450,24 @@ class Builder {
           hi = std::move(t);
         }
       };
-      bound(Linear{-box_.x_lo, 1, 0});
-      bound(Linear{box_.x_hi, -1, 0});
-      bound(Linear{-box_.y_lo, 0, 1});
-      bound(Linear{box_.y_hi, 0, -1});
+      auto bound = [&](const Linear& g) {
+        auto [p, q] = along(g);
+        bound_pq(p, q);
+      };
+      // the box sides x >= x_lo, x <= x_hi, y >= y_lo, y <= y_hi: along() of each written out
+      // (the same p and q without the products by 0 and 1)
+      static const Rational one(1), minus_one(-1);
+      if (vertical) {
+        bound_pq(Rational(x0 - box_.x_lo), Rational(0));
+        bound_pq(Rational(box_.x_hi - x0), Rational(0));
+        bound_pq(Rational(-box_.y_lo), one);
+        bound_pq(box_.y_hi, minus_one);
+      } else {
+        bound_pq(Rational(-box_.x_lo), one);
+        bound_pq(box_.x_hi, minus_one);
+        bound_pq(Rational(u - box_.y_lo), v);
+        bound_pq(Rational(box_.y_hi - u), Rational(-v));
+      }
       for (const auto& clause : clauses) bound(linear_of(clause.atoms[0]));
       if (empty || (lo && hi && *hi < *lo)) return;
       if (!lo || !hi) throw GeometryError("internal: a clipped contact segment is unbounded");
@@ -622,12 +644,26 @@ class Builder {
   void export_topology(const Arrangement_2& arr) {
     std::unordered_map<const void*, std::size_t> vertex_id, face_id, edge_id;
     std::unordered_map<const void*, bool> forward;   // halfedge -> goes min -> max
+    vertex_id.reserve(arr.number_of_vertices());
+    face_id.reserve(arr.number_of_faces());
+    edge_id.reserve(2 * arr.number_of_edges());
+    forward.reserve(2 * arr.number_of_edges());
+    result_.vertices.reserve(arr.number_of_vertices());
+    result_.faces.reserve(arr.number_of_faces());
+    result_.edges.reserve(arr.number_of_edges());
     for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
       vertex_id[&*v] = result_.vertices.size();
       Vertex out;
       if constexpr (segments) {
-        out.x = Real::from_rational(rational_from(v->point().x()));
-        fill_y(Real::from_rational(rational_from(v->point().y())), out);
+        auto known = known_.find(v->point().id());
+        if (known != known_.end()) {
+          const KnownPoint& k = known_points_[known->second];
+          out.x = Real::from_rational(k.x);
+          fill_y(Real::from_rational(k.y), out);
+        } else {
+          out.x = Real::from_rational(rational_from(v->point().x()));
+          fill_y(Real::from_rational(rational_from(v->point().y())), out);
+        }
       } else {
         out.x = to_real(v->point().x());
         fill_y(v->point().y(), out);
@@ -635,6 +671,14 @@ class Builder {
       out.isolated = v->is_isolated();
       result_.vertices.push_back(std::move(out));
     }
+    // each vertex's certified double bounds, once (the edges' boxes below)
+    struct Bounds {
+      double x_lo, y_lo, x_hi, y_hi;
+    };
+    std::vector<Bounds> bounds;
+    bounds.reserve(result_.vertices.size());
+    for (const Vertex& v : result_.vertices)
+      bounds.push_back({v.x.lower_bound(), v.y_lower_bound(), v.x.upper_bound(), v.y_upper_bound()});
     for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
       face_id[&*f] = result_.faces.size();
       Face out;
@@ -659,12 +703,14 @@ class Builder {
       out.right_face = face_id.at(&*h->twin()->face());
       const Vertex& a = result_.vertices[out.min_vertex];
       const Vertex& b = result_.vertices[out.max_vertex];
+      const Bounds& ba = bounds[out.min_vertex];
+      const Bounds& bb = bounds[out.max_vertex];
       // certified box of the ends (every edge is monotone in x and in y), strictly around it
       constexpr double inf = std::numeric_limits<double>::infinity();
-      out.box[0] = std::nextafter(std::min(a.x.lower_bound(), b.x.lower_bound()), -inf);
-      out.box[1] = std::nextafter(std::min(a.y_lower_bound(), b.y_lower_bound()), -inf);
-      out.box[2] = std::nextafter(std::max(a.x.upper_bound(), b.x.upper_bound()), inf);
-      out.box[3] = std::nextafter(std::max(a.y_upper_bound(), b.y_upper_bound()), inf);
+      out.box[0] = std::nextafter(std::min(ba.x_lo, bb.x_lo), -inf);
+      out.box[1] = std::nextafter(std::min(ba.y_lo, bb.y_lo), -inf);
+      out.box[2] = std::nextafter(std::max(ba.x_hi, bb.x_hi), inf);
+      out.box[3] = std::nextafter(std::max(ba.y_hi, bb.y_hi), inf);
       if (is_linear(arc)) {
         auto on = [](const Real& u, const Real& w, const Rational& q) { return u.compare(q) == 0 && w.compare(q) == 0; };
         if (out.vertical)
@@ -810,6 +856,12 @@ class Builder {
   std::vector<IntegerPolynomial2> line_supports_;   // per input line curve (empty for others)
   std::vector<Curve> pieces_;
   std::vector<Point> isolated_;
+  struct KnownPoint {
+    Point handle;
+    Rational x, y;
+  };
+  std::unordered_map<std::size_t, std::size_t> known_;   // handle id -> index in known_points_
+  std::vector<KnownPoint> known_points_;
   Arrangement result_;
 };
 

@@ -6,7 +6,7 @@
 //   BM_MinkowskiHipair/n    HIPAIR C-space, counters peer_us (CGAL) and ratio (HIPAIR / CGAL)
 //   BM_MinkowskiCgal/n      CGAL minkowski_sum_2 alone
 // n = 0: triangle and square, n = 1: non-convex L and a triangle, n >= 3: two convex n-gons
-// with rational vertices on circles.
+// with rational vertices on circles (n = 256: the largest row).
 #include "peer_timing.hpp"
 
 #include <hipair/cspace.hpp>
@@ -31,13 +31,15 @@ using Polygon = CGAL::Polygon_2<Kernel>;
 using Points = std::vector<std::pair<Rational, Rational>>;
 
 // Convex n-gon with rational vertices on the circle of radius `radius` about `centre`:
-// (cos, sin) from rational half-angle tangents rounded to 1/64.
+// (cos, sin) from rational half-angle tangents rounded to 1/64 (1/(16 n) above 64 vertices,
+// so that neighbouring tangents stay distinct).
 Points rational_polygon(int n, const Rational& radius, const Rational& cx, const Rational& cy) {
   Points points;
   constexpr double pi = 3.14159265358979323846;
+  const long grid = n > 64 ? 16L * n : 64L;
   for (int k = -(n / 2) + 1; k < n - n / 2; ++k) {
     if (2 * k == n) break;
-    Rational t(static_cast<long>(std::lround(std::tan(pi * k / n) * 64)), 64);
+    Rational t(std::lround(std::tan(pi * k / n) * static_cast<double>(grid)), grid);
     t.canonicalize();
     Rational d = 1 + t * t;
     points.emplace_back(Rational(cx + radius * (1 - t * t) / d), Rational(cy + radius * 2 * t / d));
@@ -111,7 +113,7 @@ void BM_MinkowskiHipair(benchmark::State& state) {
   state.counters["vertices"] = static_cast<double>(space.statistics().vertices);
   state.counters["polygon_vertices"] = static_cast<double>(a.size() + b.size());
 }
-BENCHMARK(BM_MinkowskiHipair)->Arg(0)->Arg(1)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MinkowskiHipair)->Arg(0)->Arg(1)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
 
 void BM_MinkowskiCgal(benchmark::State& state) {
   auto [a, b] = polygons(static_cast<int>(state.range(0)));
@@ -119,6 +121,6 @@ void BM_MinkowskiCgal(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(size = cgal_sum(a, b));
   state.counters["sum_vertices"] = static_cast<double>(size);
 }
-BENCHMARK(BM_MinkowskiCgal)->Arg(0)->Arg(1)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MinkowskiCgal)->Arg(0)->Arg(1)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
 
 }  // namespace

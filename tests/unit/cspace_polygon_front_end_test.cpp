@@ -381,3 +381,56 @@ TEST(CSpacePolygonFrontEnd, SegmentTraitsEqualTheCircleSegmentTraitsOnTouchingCo
 
 }  // namespace
 }  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// Exact scales far from 1 (session 13): random stars and touching lattice pairs scaled by
+// 10^-100, 10^-60, 10^60 and 10^100 as exact rationals (main's CGAL sweep crashes on some
+// pairs at 10^200 and above and at 10^-300: not covered here, see docs/performance.md); the
+// front end (segment traits, input points' rationals taken by handle identity in the export)
+// equals the general path (circle–segment traits, every vertex converted from CGAL) field by
+// field, and the blocked region equals minkowski_sum_2. Scales the model or the chart layout
+// rejects with a clear error (10^400: a reach beyond 1e300 mm) are counted, not built.
+TEST(CSpacePolygonFrontEnd, ExtremeScalesEqualTheGeneralPathAndTheMinkowskiSum) {
+  std::mt19937_64 random(1313);
+  int compared = 0, rejected = 0;
+  const int exponents[] = {-100, -60, 60, 100, 400};
+  for (int instance = 0; instance < 20; ++instance) {
+    Points a, b;
+    if (instance % 2 == 0) {
+      a = random_star(random, 3 + static_cast<int>(random() % 8), 0, 0, 3, 8, instance % 4 == 0);
+      b = random_star(random, 3 + static_cast<int>(random() % 8), static_cast<double>(random() % 5) - 2,
+                      static_cast<double>(random() % 5) - 2, 2, 8, false);
+    } else {
+      a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3));
+      b = random_star(random, 3 + static_cast<int>(random() % 4), 1, 1, 2, 1, true);
+    }
+    const int exponent = exponents[instance % 5];
+    a = scaled(a, power_of_ten(exponent));
+    b = scaled(b, power_of_ten(exponent));
+    SCOPED_TRACE("instance " + std::to_string(instance) + ", scale 10^" + std::to_string(exponent));
+    std::optional<Model> built_model = sliders_or_none(a, b);
+    if (!built_model) {
+      ++rejected;
+      continue;
+    }
+    const Model& model = *built_model;
+    std::optional<Built> built;
+    try {
+      built = build_both(model, instance % 3 == 0);
+    } catch (const Error&) {
+      EXPECT_GE(exponent, 400) << "only scales beyond the doubles may be refused";
+      ++rejected;
+      continue;
+    }
+    expect_same_space(built->fast, built->general);
+    expect_minkowski(built->fast, a, b);
+    ++compared;
+  }
+  EXPECT_GE(compared, 16);
+  EXPECT_LE(rejected, 4);
+}
+
+}  // namespace
+}  // namespace hipair
