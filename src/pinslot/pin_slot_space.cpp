@@ -7,8 +7,7 @@
 #include <hipair/error.hpp>
 
 #include "algebra/exact_real.hpp"
-#include "kernels/interval.hpp"
-#include "pinslot/witness_filter.hpp"
+#include "sliced/witness_filter.hpp"
 #include "sliced/critical_angles.hpp"
 
 #include <algorithm>

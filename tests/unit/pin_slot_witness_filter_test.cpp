@@ -7,7 +7,7 @@
 #include <hipair/overlap.hpp>
 #include <hipair/pin_slot.hpp>
 
-#include "pinslot/witness_filter.hpp"
+#include "sliced/witness_filter.hpp"
 
 #include "polygon_loop_json.hpp"
 
@@ -22,23 +22,7 @@ namespace hipair {
 namespace {
 
 using test_loops::loop_json;
-using test_loops::Points;
-
-// A convex-ish polygon about (cx, cy): n vertices on radii in [r, r + spread], rounded to 1/8.
-Points polygon(std::mt19937_64& random, int n, double cx, double cy, double r, double spread) {
-  Points points;
-  const double pi = 3.14159265358979323846;
-  for (int k = 0; k < n; ++k) {
-    double angle = 2 * pi * (k + 0.3 * static_cast<double>(random() % 1000) / 1000.0) / n;
-    double radius = r + spread * static_cast<double>(random() % 1000) / 1000.0;
-    Rational x(static_cast<long>(std::lround((cx + radius * std::cos(angle)) * 8)), 8);
-    Rational y(static_cast<long>(std::lround((cy + radius * std::sin(angle)) * 8)), 8);
-    x.canonicalize();
-    y.canonicalize();
-    points.emplace_back(x, y);
-  }
-  return points;
-}
+using test_loops::star;
 
 std::size_t expect_same_stacks(const Model& model, const std::string& other, const std::string& pin, std::size_t slices) {
   PinSlotBuildOptions options;
@@ -77,8 +61,8 @@ TEST(PinSlotWitnessFilter, ConnectionsEqualTheExactWitnessSpaces) {
   for (int round = 0; round < 12; ++round) {
     SCOPED_TRACE("round " + std::to_string(round));
     // a block translating along y past a bar on a pin-slot motion (near and touching cases)
-    const std::string block = loop_json(polygon(random, 4 + static_cast<int>(random() % 4), 11 + 0.5 * (round % 3), 0, 2, 1.5));
-    const std::string bar = loop_json(polygon(random, 4 + static_cast<int>(random() % 3), 5, 0, 2, 1.0));
+    const std::string block = loop_json(star(random, 4 + static_cast<int>(random() % 4), 11 + 0.5 * (round % 3), 0, 1.5, false));
+    const std::string bar = loop_json(star(random, 4 + static_cast<int>(random() % 3), 5, 0, 1.0, false));
     Model model = read_model(R"({ "hipair": 1, "name": "generated", "parts": [
       { "name": "block", "motion": { "translation": { "direction": [0, 1], "limits": [-6, 6] } }, "loops": [ )" + block + R"( ] },
       { "name": "bar", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "angle_limits": [)" + std::string(round < 6 ? "-20, 20" : "-70, 70") + R"(],
@@ -99,8 +83,8 @@ TEST(PinSlotWitnessFilter, ApartMeansTheExactRelationIsConstant) {
   int claimed = 0, refused = 0;
   for (int round = 0; round < 300; ++round) {
     SCOPED_TRACE("round " + std::to_string(round));
-    const std::string fixed_loop = loop_json(polygon(random, 3 + static_cast<int>(random() % 5), 9, 0, 1.5, 1.5));
-    const std::string turning_loop = loop_json(polygon(random, 3 + static_cast<int>(random() % 5), 4, 0, 1.5, 1.5));
+    const std::string fixed_loop = loop_json(star(random, 3 + static_cast<int>(random() % 5), 9, 0, 1.5, random() % 4 == 0));
+    const std::string turning_loop = loop_json(star(random, 3 + static_cast<int>(random() % 5), 4, 0, 1.5, false));
     Model model = read_model(R"({ "hipair": 1, "name": "generated", "parts": [
       { "name": "a", "motion": "fixed", "loops": [ )" + fixed_loop + R"( ] },
       { "name": "b", "motion": "fixed", "loops": [ )" + turning_loop + R"( ] } ] })");

@@ -1,4 +1,4 @@
-// The pin-slot stack's witness filter (src/pinslot/pin_slot_space.cpp): a certified test that
+// The pin-slot stack's witness filter (src/pinslot/pin_slot_space.cpp; in the sliced layer for its certified intervals): a certified test that
 // a turning part's boundary stays apart from a fixed part's boundary over a range of tau.
 #pragma once
 

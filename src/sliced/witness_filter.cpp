@@ -1,5 +1,5 @@
 // The pin-slot stack's witness filter (see witness_filter.hpp).
-#include "pinslot/witness_filter.hpp"
+#include "sliced/witness_filter.hpp"
 
 #include "kernels/interval.hpp"
 
