@@ -124,15 +124,22 @@ struct PinSlotBuildOptions {
   /// Compute the exact critical values of tau (when the class allows: see
   /// PinSlotSpace::critical_values_exact) and put a slice in every interval between them.
   bool critical_values = true;
+  /// Decide a connection's witness segment free by a certified double-interval test of the two
+  /// boundaries (segments only) before building its exact 1-D C-space; the connections are
+  /// the same either way (false: always the exact space, for tests).
+  bool witness_filter = true;
   /// Called with the stage under way ("slice 3 of 16", "connections 5 of 15").
   std::function<void(const std::string&)> progress;
 };
 
 struct PinSlotStatistics {
   std::size_t slices_built = 0;          ///< 2-D (or 1-D) slices, including refinements and queries
-  std::size_t witness_spaces = 0;        ///< 1-D C-spaces built to certify witnesses
+  /// Witness segments certified free (each by an exact 1-D C-space, or `witness_filtered` of
+  /// them by the certified boundary test of PinSlotBuildOptions::witness_filter).
+  std::size_t witness_spaces = 0;
   std::size_t plane_spaces = 0;          ///< 2-D C-spaces built for plane witnesses
   std::size_t witness_candidates = 0;    ///< candidate witness points tried
+  std::size_t witness_filtered = 0;      ///< witness segments certified free without a 1-D C-space
   std::size_t critical_roots = 0;        ///< candidate roots of the critical-value events
   double seconds_critical = 0;
   double seconds_slices = 0;

@@ -374,15 +374,82 @@ Rotation<Rational> exact_rotation(Rational u) {
 // (a probe point of one part, a vertex, an edge midpoint or a circle's axis point, certainly
 // strictly inside the other part; or the exact overlap witness at a mid configuration
 // certainly inside both over the enclosure).
+// A part's edges in certified double intervals, for the probe filter below.
+struct IntervalEdge {
+  bool arc = false;
+  kernels::Interval px, py, qx, qy;   // segment ends; arc: the circle's centre in px, py
+  kernels::Interval r2;               // arc: squared radius
+  int dir = 0;                        // segment: sgn(q.y - p.y)
+};
+
+std::vector<IntervalEdge> interval_edges(const Part& part) {
+  using kernels::Interval;
+  std::vector<IntervalEdge> out;
+  for (const auto& loop : part.loops)
+    for (const auto& e : loop.edges) {
+      IntervalEdge ie;
+      ie.arc = e.is_arc();
+      if (ie.arc) {
+        ie.px = Interval::enclose(e.center.x);
+        ie.py = Interval::enclose(e.center.y);
+        ie.r2 = Interval::enclose(e.radius_squared);
+      } else {
+        ie.px = Interval::enclose(e.source.x);
+        ie.py = Interval::enclose(e.source.y);
+        ie.qx = Interval::enclose(e.target.x);
+        ie.qy = Interval::enclose(e.target.y);
+        ie.dir = sgn(Rational(e.target.y - e.source.y));
+      }
+      out.push_back(ie);
+    }
+  return out;
+}
+
+// Is every point of the box X x Y certainly not strictly inside the region (region_side <= 0
+// at each of them)? Decided by the crossing parity of region_side with every decision an
+// interval sign that excludes zero (then region_side at any point of the box makes the same
+// decisions and returns -1); false when any decision is uncertain (the caller then runs the
+// exact test). Arcs: only those whose circle certainly misses the height Y are decided.
+bool certainly_not_inside(const std::vector<IntervalEdge>& edges, const kernels::Interval& x, const kernels::Interval& y) {
+  bool inside = false;
+  for (const auto& e : edges) {
+    if (e.arc) {
+      const kernels::Interval dy = y - e.py;
+      if ((e.r2 - dy * dy).sign() == -1) continue;   // the line at height y misses the circle
+      return false;
+    }
+    const double lo_y = std::min(e.py.lo, e.qy.lo), hi_y = std::max(e.py.hi, e.qy.hi);
+    if (y.hi < lo_y || y.lo > hi_y) continue;   // certainly outside the edge's y-range
+    // certainly strictly between the ends' heights (then it straddles and is in range)
+    const bool between = e.dir > 0 ? (e.py.hi < y.lo && y.hi < e.qy.lo) : e.dir < 0 ? (e.qy.hi < y.lo && y.hi < e.py.lo) : false;
+    if (!between) return false;
+    const int side = ((e.qx - e.px) * (y - e.py) - (e.qy - e.py) * (x - e.px)).sign();
+    if (side != 1 && side != -1) return false;
+    if (side * e.dir > 0) inside = !inside;
+  }
+  return !inside;
+}
+
+kernels::Interval interval_of(const Box& b) {
+  return kernels::Interval(kernels::Interval::enclose(b.lo).lo, kernels::Interval::enclose(b.hi).hi);
+}
+
 class Certifier {
  public:
   Certifier(const Part& fixed, const Part& free, const Point& pivot) : fixed_(fixed), free_(free), pivot_(pivot) {
     collect(free, probes_free_);
     collect(fixed, probes_fixed_);
+    for (const auto& u : probes_free_) probes_free_iv_.push_back({kernels::Interval::enclose(u.x), kernels::Interval::enclose(u.y)});
+    for (const auto& a : probes_fixed_) probes_fixed_iv_.push_back({kernels::Interval::enclose(a.x), kernels::Interval::enclose(a.y)});
+    edges_fixed_ = interval_edges(fixed);
+    edges_free_ = interval_edges(free);
   }
 
-  // Whether exact answers are remembered (tests compare with and without).
+  // Whether exact answers are remembered and probes pass the interval filter first (tests
+  // compare with and without).
   void remember(bool on) { remember_ = on; }
+  // Where probes rejected by the interval filter are counted.
+  void count_filtered_into(std::size_t* counter) { filtered_ = counter; }
 
   // Is the configuration (point(c, s), theta) certainly overlapping (inside blocked space)?
   template <class PointOf>
@@ -411,12 +478,35 @@ class Certifier {
       Rotation<Box> rb = rotation_box(t.lower, t.upper, false);
       std::optional<Vec<Box>> pb = point_of(rb);
       if (!pb) continue;
-      // a vertex or edge midpoint of one part certainly strictly inside the other
-      for (const auto& u : probes_free_) {
+      // a vertex or edge midpoint of one part certainly strictly inside the other; with the
+      // filter, a probe whose box (enclosed in certified doubles: the exact box's corner lies in
+      // it) is certainly not inside is rejected without its exact box: box_inside would return
+      // false for it (its corner is not strictly inside), so the answer is the same
+      using kernels::Interval;
+      const Interval ic = interval_of(rb.c), is = interval_of(rb.s), ipx = interval_of(pb->x), ipy = interval_of(pb->y);
+      const Interval pvx = Interval::enclose(pivot_.x), pvy = Interval::enclose(pivot_.y);
+      for (std::size_t k = 0; k < probes_free_.size(); ++k) {
+        if (remember_) {
+          const auto& [ux, uy] = probes_free_iv_[k];
+          if (certainly_not_inside(edges_fixed_, ic * ux - is * uy + ipx + pvx, is * ux + ic * uy + ipy + pvy)) {
+            if (filtered_) ++*filtered_;
+            continue;
+          }
+        }
+        const auto& u = probes_free_[k];
         Vec<Box> w = rb.apply(Vec<Box>{Box(u.x), Box(u.y)});
         if (box_inside(fixed_, w.x + pb->x + Box(pivot_.x), w.y + pb->y + Box(pivot_.y))) return true;
       }
-      for (const auto& a : probes_fixed_) {
+      for (std::size_t k = 0; k < probes_fixed_.size(); ++k) {
+        if (remember_) {
+          const auto& [ax, ay] = probes_fixed_iv_[k];
+          const Interval rx = ax - ipx, ry = ay - ipy;
+          if (certainly_not_inside(edges_free_, ic * rx + is * ry + pvx, ic * ry - is * rx + pvy)) {
+            if (filtered_) ++*filtered_;
+            continue;
+          }
+        }
+        const auto& a = probes_fixed_[k];
         Vec<Box> rel{Box(a.x) - pb->x, Box(a.y) - pb->y};
         if (box_inside(free_, rb.c * rel.x + rb.s * rel.y + Box(pivot_.x), rb.c * rel.y - rb.s * rel.x + Box(pivot_.y)))
           return true;
@@ -470,6 +560,9 @@ class Certifier {
   const Part& free_;
   Point pivot_;
   std::vector<Point> probes_free_, probes_fixed_;
+  std::vector<std::pair<kernels::Interval, kernels::Interval>> probes_free_iv_, probes_fixed_iv_;
+  std::vector<IntervalEdge> edges_fixed_, edges_free_;
+  std::size_t* filtered_ = nullptr;
   // exact oracle answers at rational configurations: (half turn?, u, x, y)
   mutable std::map<std::array<Rational, 4>, bool> exact_answers_;
   bool remember_ = true;
@@ -1055,6 +1148,7 @@ class CurveFinder {
  public:
   CurveFinder(const Part& fixed, const Part& free, CriticalStatistics& stats)
       : stats_(stats), cert_(fixed, free, free.motion.pivot) {
+    cert_.count_filtered_into(&stats.probes_filtered);
     const Point& pivot = free.motion.pivot;
     auto rel = [&](const Point& p) { return Vec<Rational>{Rational(p.x - pivot.x), Rational(p.y - pivot.y)}; };
     auto features = [&](const Part& part, Features& f) {

@@ -47,6 +47,9 @@ struct CriticalStatistics {
   std::size_t polynomials = 0;
   std::size_t roots = 0;
   std::size_t irrelevant = 0;
+  /// Certificate probes (a vertex or midpoint of one part tested inside the other at a root's
+  /// enclosure) rejected by the certified double-interval test, without exact enclosures.
+  std::size_t probes_filtered = 0;
 };
 
 /// The critical angles, in counter-clockwise order from -pi (t ascending, the half turn last).

@@ -3,6 +3,8 @@
 
 #include <hipair/rational.hpp>
 
+#include <cmath>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,6 +22,29 @@ inline std::string loop_json(const Points& points) {
     out += std::string(i > 1 ? ", " : "") + "{ \"line_to\": [" + text(p.first) + ", " + text(p.second) + "] }";
   }
   return out + "] }";
+}
+
+// A star-shaped polygon about (cx, cy): n vertices at increasing angles (36 degrees apart at
+// least, so rounding to the 1/8 grid keeps their order), radii in [2, 2 + spread] (spread 0:
+// convex, on a circle up to rounding); with `collinear`, the exact midpoint of edge 0 added as a
+// vertex (a straight vertex between collinear edges).
+inline Points star(std::mt19937_64& random, int n, double cx, double cy, double spread, bool collinear) {
+  Points points;
+  const double pi = 3.14159265358979323846;
+  for (int k = 0; k < n; ++k) {
+    double angle = 2 * pi * (k + 0.3 * (static_cast<double>(random() % 1000) / 1000.0)) / n;
+    double radius = 2 + spread * static_cast<double>(random() % 1000) / 1000.0;
+    Rational x(static_cast<long>(std::lround((cx + radius * std::cos(angle)) * 8)), 8);
+    Rational y(static_cast<long>(std::lround((cy + radius * std::sin(angle)) * 8)), 8);
+    x.canonicalize();
+    y.canonicalize();
+    points.emplace_back(x, y);
+  }
+  if (collinear) {
+    Rational mx = (points[0].first + points[1].first) / 2, my = (points[0].second + points[1].second) / 2;
+    points.insert(points.begin() + 1, {mx, my});
+  }
+  return points;
 }
 
 }  // namespace hipair::test_loops
