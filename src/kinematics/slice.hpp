@@ -104,6 +104,9 @@ struct KernelSlicerOptions {
   /// two). The slices agree except for points inside certified blocked space (blocked on both
   /// sides, not touching), which a strip's finer cull may drop.
   bool strips = true;
+  /// Decide a root's validity clauses at its isolating interval before refining it (the same
+  /// verdict: interval evaluation is inclusion isotone); false: refine first (tests compare).
+  bool validity_prefilter = true;
 };
 
 /// Slicer on the pair's contact kernels and the exact overlap oracle.
