@@ -382,7 +382,7 @@ class KernelSlicer final : public PairSlicer {
         result.kinds.push_back(SliceKind::empty);
         continue;
       }
-      Rational sample = algebra::rational_between(a, b);
+      Rational sample = sample_between(a, b, options_.shared_end_samples);
       cspace::ChartPoint q;
       if (follower_is_x_) {
         q.x = sample;
@@ -516,6 +516,16 @@ class KernelSlicer final : public PairSlicer {
       if (verdict >= 0) return verdict == 1;   // 0: every atom of a clause certainly negative
     }
     return true;   // undecided at the finest precision: keep it (classification decides)
+  }
+
+  // A rational strictly between a < b, where the interval's class is read. The class is the same
+  // anywhere strictly between two consecutive points (no kept curve vanishes there: the premise
+  // of every slice), so the sample is free to choose: when the isolating intervals of two
+  // irrational neighbours meet end to end (roots isolated on one bisection grid), their shared
+  // end c satisfies a < c < b, and no refinement is needed; else rational_between.
+  static Rational sample_between(const Real& a, const Real& b, bool shared_ends) {
+    if (shared_ends && !a.exact && !b.exact && a.upper == b.lower) return a.upper;
+    return algebra::rational_between(a, b);
   }
 
   // The verdict of the validity clauses on a box of the follower coordinate: 1 every clause

@@ -1,10 +1,13 @@
-// The kernel slicer's exact shortcut of session 13 must not change a single slice: a root's
-// validity clauses are first evaluated on its isolating interval, and only an undecided verdict
-// refines it to 2^-24 and 2^-48 (interval evaluation is inclusion isotone, so a verdict taken
-// on the wider box is the one the narrower boxes give).
+// The kernel slicer's shortcuts of session 13 must not change a single slice:
+//   - a root's validity clauses are first evaluated on its isolating interval, and only an
+//     undecided verdict refines it to 2^-24 and 2^-48 (interval evaluation is inclusion
+//     isotone, so a verdict taken on the wider box is the one the narrower boxes give);
+//   - an interval's class is read at the shared end of its points' isolating intervals when
+//     they meet end to end, instead of at rational_between's sample (the class is constant
+//     strictly between consecutive points: the premise of every slice, checked here).
 // The test slices example pairs and generated gear pairs (random tooth counts) at generated
 // values and windows — each query asked twice, and earlier queries asked again later — with a
-// slicer that uses the shortcut and one that does not, and requires identical slices: the same
+// slicer that uses the shortcuts and one that does not, and requires identical slices: the same
 // points (the same isolating intervals and polynomials, features, zero-clearance flags), the
 // same interval classes, the same covered range.
 //
@@ -71,7 +74,7 @@ std::size_t compare_slicers(const Model& model, int values, std::uint64_t seed, 
     for (std::size_t follower : {model.pairs[pair].first, model.pairs[pair].second}) {
       std::unique_ptr<PairSlicer> plain, fast;
       try {
-        plain = make_kernel_slicer(model, pair, follower, KernelSlicerOptions{true, false});
+        plain = make_kernel_slicer(model, pair, follower, KernelSlicerOptions{true, false, false});
         fast = make_kernel_slicer(model, pair, follower, KernelSlicerOptions{});
       } catch (const GeometryError&) {
         continue;   // a fixed follower, or not a fixed-axis pair
