@@ -245,6 +245,10 @@ struct Sweep {
   std::vector<GridPoint> grid;
   std::vector<OpenPiece> open;
   double total_travel = 1;
+  /// The driver range is shorter than one grid step: the pictures' paths also pass through the
+  /// states on both sides of every event (with only the range's ends, a path would run straight
+  /// through a dwell).
+  bool path_at_events = false;
 
   Sweep(const Chain& c, const KinematicsOptions& o, KinematicsResult& r) : chain(c), options(o), result(r) {}
 
@@ -334,6 +338,10 @@ struct Sweep {
 
   void record_event(std::size_t segment, const Rational& ta, const Rational& tb, const ChainState& a, const ChainState& b) {
     DriverLocation at = locate(segment, ta, tb);
+    if (path_at_events) {
+      add_path_points(a);
+      add_path_points(b);
+    }
     for (std::size_t k = 0; k < chain.parts.size(); ++k) {
       const PartState& before = a.parts[k];
       const PartState& after = b.parts[k];
@@ -379,6 +387,7 @@ struct Sweep {
       if (std::find(event.before.begin(), event.before.end(), label) == event.before.end()) event.before.push_back(label);
     }
     event.position = a.parts[k].unwrapped;
+    if (path_at_events) add_path_points(a);
     event.description = (k == 0 ? "the driver cannot proceed: " : "the driver cannot proceed: " + event.part + ": ") + reason;
     result.events.push_back(event);
     result.jam = event;
@@ -498,7 +507,11 @@ struct Sweep {
       s.contacts.push_back(labels(part, k));
     }
     result.samples.push_back(std::move(s));
-    // paths of the 2-D pairs
+    add_path_points(state);
+  }
+
+  // The state's point on the path of every 2-D pair.
+  void add_path_points(const ChainState& state) {
     for (std::size_t p = 0; p < chain.slicers.size(); ++p) {
       const PairSlicer& slicer = *chain.slicers[p];
       if (!slicer.other_moves()) continue;
@@ -623,6 +636,7 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
   sweep.total_travel = std::abs(travel);
   double spacing = result.driver_rotates ? 2 * pi / std::max(8u, options.steps_per_cycle)
                                          : std::abs(travel) / std::max(8u, options.steps_per_cycle);
+  sweep.path_at_events = sweep.total_travel < spacing;
 
   ChainState state = initial_state(chain, sweep.segments[0].piece, sweep.segments[0].from,
                                    sweep.unwrapped(0, sweep.segments[0].from), result.initial_interference);

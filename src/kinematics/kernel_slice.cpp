@@ -151,6 +151,12 @@ class KernelSlicer final : public PairSlicer {
     }
     std::size_t other_count = std::max<std::size_t>(1, other_charts_.size());
     pairs_.resize(other_count * follower_charts_.size());
+    // the follower cells' edges, exact: every windowed slice compares them with its window
+    for (const ChartAxis& axis : follower_charts_) {
+      std::vector<Rational> edges;
+      for (int cell = 0; cell <= follower_cells; ++cell) edges.push_back(axis.lo + (axis.hi - axis.lo) * cell / follower_cells);
+      follower_edges_.push_back(std::move(edges));
+    }
     // the curves of a chart pair are generated strip by strip of the other axis when first
     // sliced: a short driver range visits one or two strips of one chart pair
   }
@@ -311,14 +317,12 @@ class KernelSlicer final : public PairSlicer {
     Rational range_lo = window ? std::max(window->lo, axis.lo) : axis.lo;
     Rational range_hi = window ? std::min(window->hi, axis.hi) : axis.hi;
     if (range_hi < range_lo) range_hi = range_lo;
+    const std::vector<Rational>& edges = follower_edges_[follower_chart];
     std::uint32_t window_mask = ~std::uint32_t(0);
     if (window) {
       window_mask = 0;
-      for (int cell = 0; cell < follower_cells; ++cell) {
-        Rational lo = axis.lo + (axis.hi - axis.lo) * cell / follower_cells;
-        Rational hi = axis.lo + (axis.hi - axis.lo) * (cell + 1) / follower_cells;
-        if (hi >= range_lo && lo <= range_hi) window_mask |= std::uint32_t(1) << cell;
-      }
+      for (int cell = 0; cell < follower_cells; ++cell)
+        if (edges[cell + 1] >= range_lo && edges[cell] <= range_hi) window_mask |= std::uint32_t(1) << cell;
     }
     algebra::Interval value_box = algebra::enclose(value);
     std::vector<SlicePoint> points;
@@ -336,8 +340,8 @@ class KernelSlicer final : public PairSlicer {
         }
         int last = first;
         while (last + 1 < follower_cells && (mask & (std::uint32_t(1) << (last + 1)))) ++last;
-        Rational lo = std::max(range_lo, Rational(axis.lo + (axis.hi - axis.lo) * first / follower_cells));
-        Rational hi = std::min(range_hi, Rational(axis.lo + (axis.hi - axis.lo) * (last + 1) / follower_cells));
+        Rational lo = std::max(range_lo, edges[first]);
+        Rational hi = std::min(range_hi, edges[last + 1]);
         first = last + 1;
         if (hi < lo) continue;
         if (!curve.interval.evaluate(value_box, algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)})
@@ -351,7 +355,7 @@ class KernelSlicer final : public PairSlicer {
           // real_roots takes the square-free part itself
         }
         for (Real& root : algebra::descartes_real_roots(p, lo, hi)) {
-          if (!valid(curve, value_box, root)) continue;
+          if (!valid(curve, value_box, root, options_.validity_prefilter)) continue;
           points.push_back(SlicePoint{std::move(root), {strip_curve->feature}});
         }
       }
@@ -380,7 +384,7 @@ class KernelSlicer final : public PairSlicer {
         result.kinds.push_back(SliceKind::empty);
         continue;
       }
-      Rational sample = algebra::rational_between(a, b);
+      Rational sample = sample_between(a, b, options_.shared_end_samples);
       cspace::ChartPoint q;
       if (follower_is_x_) {
         q.x = sample;
@@ -497,27 +501,53 @@ class KernelSlicer final : public PairSlicer {
 
   // False when the contact point of `curve` at (value, root) certainly lies outside one of its
   // features (a root of the supporting polynomial that is no contact of these features).
-  static bool valid(const CurveData& curve, const algebra::Interval& value_box, const Real& root) {
+  static bool valid(const CurveData& curve, const algebra::Interval& value_box, const Real& root, bool prefilter) {
     if (curve.validity.empty()) return true;
+    // First at the root's own isolating interval: the refined intervals below lie inside it, and
+    // outward-rounded interval evaluation is inclusion isotone, so a clause decided here (some
+    // atom certainly >= 0, or every atom certainly < 0) is decided the same way at 2^-24 and
+    // 2^-48; the verdict is then the one the refinements would give, without refining.
+    if (prefilter && !root.exact) {
+      int verdict = clauses_verdict(curve, value_box, algebra::Interval{root.lower_bound(), root.upper_bound()});
+      if (verdict >= 0) return verdict == 1;
+    }
     Real refined = root;
     for (int bits : {24, 48}) {
       refined.refine_to(Rational(1, mpz_class(1) << bits));
-      algebra::Interval root_box{refined.lower_bound(), refined.upper_bound()};
-      bool undecided = false;
-      for (const OrientedClause& clause : curve.validity) {
-        bool holds = false, unknown = false;
-        for (const auto& atom : clause.atoms) {
-          algebra::Interval sign = atom.evaluate(value_box, root_box);
-          if (sign.lo >= 0) holds = true;
-          else if (sign.hi >= 0) unknown = true;
-        }
-        if (holds) continue;
-        if (!unknown) return false;   // every atom certainly negative
-        undecided = true;
-      }
-      if (!undecided) return true;
+      int verdict = clauses_verdict(curve, value_box, algebra::Interval{refined.lower_bound(), refined.upper_bound()});
+      if (verdict >= 0) return verdict == 1;   // 0: every atom of a clause certainly negative
     }
     return true;   // undecided at the finest precision: keep it (classification decides)
+  }
+
+  // A rational strictly between a < b, where the interval's class is read. The class is the same
+  // anywhere strictly between two consecutive points (no kept curve vanishes there: the premise
+  // of every slice), so the sample is free to choose: when the isolating intervals of two
+  // irrational neighbours meet end to end (roots isolated on one bisection grid), their shared
+  // end c satisfies a < c < b, and no refinement is needed; else rational_between.
+  static Rational sample_between(const Real& a, const Real& b, bool shared_ends) {
+    if (shared_ends && !a.exact && !b.exact && a.upper == b.lower) return a.upper;
+    return algebra::rational_between(a, b);
+  }
+
+  // The verdict of the validity clauses on a box of the follower coordinate: 1 every clause
+  // holds (an atom certainly >= 0), 0 some clause certainly fails (every atom certainly < 0),
+  // -1 undecided.
+  static int clauses_verdict(const CurveData& curve, const algebra::Interval& value_box,
+                             const algebra::Interval& root_box) {
+    bool undecided = false;
+    for (const OrientedClause& clause : curve.validity) {
+      bool holds = false, unknown = false;
+      for (const auto& atom : clause.atoms) {
+        algebra::Interval sign = atom.evaluate(value_box, root_box);
+        if (sign.lo >= 0) holds = true;
+        else if (sign.hi >= 0) unknown = true;
+      }
+      if (holds) continue;
+      if (!unknown) return 0;
+      undecided = true;
+    }
+    return undecided ? -1 : 1;
   }
 
   const Model& model_;
@@ -531,6 +561,7 @@ class KernelSlicer final : public PairSlicer {
   mutable std::mutex build_mutex_;
   mutable std::mutex cache_mutex_;
   mutable std::map<std::size_t, ChartSlice> fixed_cache_;
+  std::vector<std::vector<Rational>> follower_edges_;   // per follower chart: its cells' edges
 };
 
 }  // namespace

@@ -107,6 +107,13 @@ struct KernelSlicerOptions {
   /// two). The slices agree except for points inside certified blocked space (blocked on both
   /// sides, not touching), which a strip's finer cull may drop.
   bool strips = true;
+  /// Decide a root's validity clauses at its isolating interval before refining it (the same
+  /// verdict: interval evaluation is inclusion isotone); false: refine first (tests compare).
+  bool validity_prefilter = true;
+  /// Read an interval's class at the shared end of its two points' isolating intervals when they
+  /// meet end to end, instead of refining both for rational_between's sample (the class is the
+  /// same anywhere inside the interval); false: rational_between always (tests compare).
+  bool shared_end_samples = true;
 };
 
 /// Slicer on the pair's contact kernels and the exact overlap oracle.

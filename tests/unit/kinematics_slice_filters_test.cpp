@@ -1,0 +1,188 @@
+// The kernel slicer's shortcuts of session 13 must not change a single slice:
+//   - a root's validity clauses are first evaluated on its isolating interval, and only an
+//     undecided verdict refines it to 2^-24 and 2^-48 (interval evaluation is inclusion
+//     isotone, so a verdict taken on the wider box is the one the narrower boxes give);
+//   - an interval's class is read at the shared end of its points' isolating intervals when
+//     they meet end to end, instead of at rational_between's sample (the class is constant
+//     strictly between consecutive points: the premise of every slice, checked here).
+// The test slices example pairs and generated gear pairs (random tooth counts) at generated
+// values and windows — each query asked twice, and earlier queries asked again later — with a
+// slicer that uses the shortcuts and one that does not, and requires identical slices: the same
+// points (the same isolating intervals and polynomials, features, zero-clearance flags), the
+// same interval classes, the same covered range.
+//
+// A short driver range (shorter than one grid step) draws its C-space path through the states
+// on both sides of every event, not straight from the range's start to its end.
+#include "kinematics/slice.hpp"
+
+#include <hipair/error.hpp>
+#include <hipair/kinematics.hpp>
+#include <hipair/model.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <optional>
+#include <random>
+#include <string>
+
+namespace hipair::kinematics_detail {
+namespace {
+
+namespace algebra = cspace::algebra;
+
+std::filesystem::path example(const std::string& name) { return std::filesystem::path(HIPAIR_EXAMPLES) / name; }
+
+Rational chart_value(const ChartAxis& axis, std::mt19937_64& random) {
+  Rational u(static_cast<long>(random() % (1u << 20)), 1L << 20);
+  u.canonicalize();
+  return Rational(axis.lo + (axis.hi - axis.lo) * u);
+}
+
+void expect_identical(const ChartSlice& a, const ChartSlice& b, const std::string& where) {
+  ASSERT_EQ(a.covered_lo, b.covered_lo) << where;
+  ASSERT_EQ(a.covered_hi, b.covered_hi) << where;
+  ASSERT_EQ(a.kinds, b.kinds) << where;
+  ASSERT_EQ(a.points.size(), b.points.size()) << where;
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    const Real& x = a.points[i].value;
+    const Real& y = b.points[i].value;
+    EXPECT_EQ(x.exact, y.exact) << where << ": point " << i;
+    EXPECT_EQ(x.lower, y.lower) << where << ": point " << i;
+    EXPECT_EQ(x.upper, y.upper) << where << ": point " << i;
+    EXPECT_TRUE(x.polynomial == y.polynomial) << where << ": point " << i;
+    EXPECT_EQ(a.points[i].features, b.points[i].features) << where << ": point " << i;
+    EXPECT_EQ(a.points[i].touching, b.points[i].touching) << where << ": point " << i;
+  }
+}
+
+struct Query {
+  std::size_t o = 0, f = 0;
+  Rational value;
+  std::optional<ChartWindow> window;
+};
+
+// Slices every chart pair of both followers of every pair of `model` at `values` generated
+// queries each; returns the number of points compared.
+std::size_t compare_slicers(const Model& model, int values, std::uint64_t seed, const std::string& name) {
+  std::mt19937_64 random(seed);
+  std::size_t compared = 0;
+  for (std::size_t pair = 0; pair < model.pairs.size(); ++pair)
+    for (std::size_t follower : {model.pairs[pair].first, model.pairs[pair].second}) {
+      std::unique_ptr<PairSlicer> plain, fast;
+      try {
+        plain = make_kernel_slicer(model, pair, follower, KernelSlicerOptions{true, false, false});
+        fast = make_kernel_slicer(model, pair, follower, KernelSlicerOptions{});
+      } catch (const GeometryError&) {
+        continue;   // a fixed follower, or not a fixed-axis pair
+      }
+      if (!plain->other_moves()) continue;
+      std::vector<Query> asked;
+      for (int k = 0; k < values; ++k) {
+        Query q;
+        if (!asked.empty() && k % 4 == 3) {
+          q = asked[random() % asked.size()];   // asked again, after other slices
+        } else {
+          q.o = random() % plain->other_charts().size();
+          q.f = random() % plain->follower_charts().size();
+          q.value = chart_value(plain->other_charts()[q.o], random);
+          const ChartAxis& axis = plain->follower_charts()[q.f];
+          if (k % 3 != 0) {
+            // windows like the engine's: narrow, around a point of the chart
+            Rational centre = chart_value(axis, random);
+            Rational half(static_cast<long>(1 + random() % 64), 1024);
+            q.window = ChartWindow{centre - half, centre + half};
+          }
+          asked.push_back(q);
+        }
+        const ChartWindow* window = q.window ? &*q.window : nullptr;
+        std::string where = name + " pair " + std::to_string(pair) + " follower " + std::to_string(follower) +
+                            " charts " + std::to_string(q.o) + "," + std::to_string(q.f) + " at " + q.value.get_str();
+        ChartSlice expected = plain->slice(q.o, q.value, q.f, window);
+        ChartSlice first = fast->slice(q.o, q.value, q.f, window);
+        ChartSlice second = fast->slice(q.o, q.value, q.f, window);   // asked again
+        expect_identical(expected, first, where);
+        expect_identical(expected, second, where + " (again)");
+        compared += expected.points.size();
+        if (::testing::Test::HasFailure()) return compared;
+      }
+    }
+  return compared;
+}
+
+class KinematicSliceFilters : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(KinematicSliceFilters, ValidityPrefilterGivesTheSlicesOfPlainSlicing) {
+  Model model = read_model_file(example(GetParam()));
+  EXPECT_GT(compare_slicers(model, 160, 20261128, GetParam()), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Examples, KinematicSliceFilters,
+                         ::testing::Values("geneva.json", "ratchet.json", "escapement.json", "cam-follower.json",
+                                           "cam-follower-lever.json", "cam-drive.json", "scotch-yoke.json"),
+                         [](const auto& info) {
+                           std::string name = info.param.substr(0, info.param.find('.'));
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
+
+// Generated spur-gear pairs: random tooth counts, the example's profile.
+TEST(KinematicSliceFilters, GeneratedGearPairsGiveTheSlicesOfPlainSlicing) {
+  std::mt19937_64 random(1313);
+  std::size_t compared = 0;
+  for (int trial = 0; trial < 3; ++trial) {
+    ReadOptions read;
+    long z1 = 7 + static_cast<long>(random() % 8), z2 = 7 + static_cast<long>(random() % 10);
+    read.parameter_values["teeth-1"] = Rational(z1);
+    read.parameter_values["teeth-2"] = Rational(z2);
+    read.allow_out_of_tolerance = true;
+    Model model = read_model_file(example("spur-gears.json"), read);
+    compared += compare_slicers(model, 60, random(), "gears " + std::to_string(z1) + "x" + std::to_string(z2));
+    if (HasFailure()) return;
+  }
+  EXPECT_GT(compared, 0u);
+}
+
+// Geneva over a range shorter than one grid step around the wheel's first contact start: the
+// path of the pair runs through the event (the wheel dwells up to it, then turns), so besides
+// the range's two ends it has the states on both sides of the event, and the wheel's
+// coordinate is unchanged up to the event.
+TEST(AnalyzeShortRange, PathPassesThroughTheEventsOfARangeShorterThanAGridStep) {
+  Model model = read_model_file(example("geneva.json"));
+  KinematicsOptions full;
+  full.reversal = false;
+  KinematicsResult whole = analyze_kinematics(model, full);
+  const KinematicEvent* start = nullptr;
+  for (const KinematicEvent& event : whole.events)
+    if (event.kind == KinematicEvent::Kind::contact_start) {
+      start = &event;
+      break;
+    }
+  ASSERT_NE(start, nullptr);
+  double at = 0.5 * (start->at.coordinate.lower + start->at.coordinate.upper);
+  double step = 2 * std::numbers::pi / full.steps_per_cycle;
+  KinematicsOptions options = full;
+  Rational lo(at - step / 4), hi(at + step / 4);
+  options.range = std::make_pair(lo, hi);
+  KinematicsResult result = analyze_kinematics(model, options);
+  ASSERT_FALSE(result.paths.empty());
+  const PairPath& path = result.paths.front();
+  ASSERT_GE(path.points.size(), 4u) << "the path has only the range's ends";
+  ASSERT_FALSE(result.events.empty());
+  // before the event the wheel dwells: the first points share the wheel's coordinate; after it,
+  // the wheel turns
+  bool driver_is_x = path.x_part == result.driver;
+  auto driver = [&](const PathPoint& p) { return driver_is_x ? p.x : p.y; };
+  auto wheel = [&](const PathPoint& p) { return driver_is_x ? p.y : p.x; };
+  EXPECT_EQ(wheel(path.points[0]), wheel(path.points[1]));
+  EXPECT_NE(wheel(path.points.front()), wheel(path.points.back()));
+  EXPECT_NE(driver(path.points[1]), driver(path.points[0]));
+  EXPECT_FALSE(path.points[0].contact);
+  EXPECT_TRUE(path.points.back().contact);
+}
+
+}  // namespace
+}  // namespace hipair::kinematics_detail
