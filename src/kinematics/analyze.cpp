@@ -222,7 +222,7 @@ std::vector<ContactLabel> wall_contacts(const Chain& chain, const ChainState& be
     for (const SlicePoint& point : slice.points) {
       if (point.value.compare(lo) < 0 || point.value.compare(hi) > 0) continue;
       for (std::size_t f : point.features) {
-        ContactLabel label{constraint.name(), slicer->features()[f].label, slicer->features()[f].kind, false};
+        ContactLabel label{constraint.name(), slicer->features()[f].label, slicer->features()[f].kind, false, {}, {}};
         if (std::find(labels.begin(), labels.end(), label) == labels.end()) labels.push_back(label);
       }
     }

@@ -77,7 +77,7 @@ class CSpaceSlicer final : public PairSlicer {
     std::map<std::string, std::size_t> by_label;
     for (const FeaturePair& pair_features : space_.feature_pairs()) {
       auto [it, inserted] = by_label.try_emplace(pair_features.label, features_.size());
-      if (inserted) features_.push_back(ContactFeature{pair_features.label, pair_features.kind});
+      if (inserted) features_.push_back(ContactFeature{pair_features.label, pair_features.kind, {}, {}});
       feature_of_pair_.push_back(it->second);
     }
   }

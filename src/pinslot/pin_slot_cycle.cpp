@@ -60,7 +60,7 @@ Model two_parts(const std::string& name, Part a, Part b) {
   a.dynamics.reset();
   b.dynamics.reset();
   m.parts = {std::move(a), std::move(b)};
-  m.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, ""});
+  m.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, "", std::nullopt});
   m.pairs_explicit = true;
   return m;
 }

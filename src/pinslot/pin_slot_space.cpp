@@ -163,7 +163,7 @@ struct PinSlotSpace::Impl {
     turned.dynamics.reset();
     derived.parts.push_back(std::move(turned));
     derived.parts[0].dynamics.reset();
-    derived.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, ""});
+    derived.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, "", std::nullopt});
     derived.pairs_explicit = true;
     std::shared_ptr<const CSpace> space;
     try {
@@ -306,7 +306,7 @@ struct PinSlotSpace::Impl {
     turning.initial = PartConfiguration{};
     turning.dynamics.reset();
     derived.parts = {fixed, turning};
-    derived.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, ""});
+    derived.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, "", std::nullopt});
     derived.pairs_explicit = true;
     CSpace space = CSpace::build(derived, other_name, pin_name);
     {
@@ -355,7 +355,7 @@ struct PinSlotSpace::Impl {
       turning.initial = PartConfiguration{};
       turning.dynamics.reset();
       derived.parts = {moving, turning};
-      derived.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, ""});
+      derived.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, "", std::nullopt});
       derived.pairs_explicit = true;
       space = std::make_shared<const CSpace>(CSpace::build(derived, other_name, pin_name));
       std::lock_guard<std::mutex> lock(mutex);

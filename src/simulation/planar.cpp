@@ -1553,7 +1553,8 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
     std::size_t other = pair.first == s.part ? pair.second : pair.second == s.part ? pair.first : no_index;
     if (other == no_index) continue;   // two fixed parts
     Impl::Pair p{i, other, pair.restitution ? to_d(*pair.restitution) : 0.0,
-                 SlicedSpace::build(model, model.parts[other].name, part.name, SlicedBuildOptions{false, {}})};
+                 SlicedSpace::build(model, model.parts[other].name, part.name, SlicedBuildOptions{false, {}}),
+                 0.0, 0.0, Rational(0)};
     if (pair.friction) {
       p.mu_static = to_d(*pair.friction);
       p.mu_static_exact = *pair.friction;
