@@ -870,13 +870,31 @@ class Builder {
 // inserted right to left and top to bottom: an edge where a contact line overlaps them would
 // take its orientation from whichever piece CGAL keeps, which the two traits choose
 // differently). Such charts give the same arrangement as the circle–segment flavour.
+// CGAL's Arr_segment_traits_2 on Epeck takes its interval filter's doubles from products of up
+// to four coordinates; far outside the doubles' range the filter overflows (infinite and NaN
+// bounds) and the sweep crashed (SIGSEGV) on translating polygon pairs at 10^150 mm. The
+// circle–segment traits builds the same arrangement there (checked at 10^200 and 10^300), so
+// the segment traits is taken only while the chart box and every line's coefficients are well
+// inside the range: |box| <= 2^200 and |coefficient| <= 2^400 (a line's constant term is a
+// product of two coordinates). Tiny scales need no guard (underflow only widens the filter).
+bool within_segment_filter_range(const Rational& value, double limit) {
+  return std::abs(to_double(value)) <= limit;
+}
+
 bool segments_apply(const Box& box, const std::vector<IntegerPolynomial2>& curves, const Options& options) {
   if (!options.carry_line_supports) return false;
+  const double box_limit = std::ldexp(1.0, 200), coefficient_limit = std::ldexp(1.0, 400);
+  for (const Rational* v : {&box.x_lo, &box.x_hi, &box.y_lo, &box.y_hi})
+    if (!within_segment_filter_range(*v, box_limit)) return false;
   for (const auto& f : curves) {
     int degree = total_degree(f);
     if (degree >= 2) return false;
     if (degree < 1) continue;
     Linear line = linear_of(f);
+    if (!within_segment_filter_range(line.k0, coefficient_limit) ||
+        !within_segment_filter_range(line.kx, coefficient_limit) ||
+        !within_segment_filter_range(line.ky, coefficient_limit))
+      return false;
     if (sgn(line.kx) == 0 && -line.k0 / line.ky == box.y_hi) return false;
     if (sgn(line.ky) == 0 && -line.k0 / line.kx == box.x_lo) return false;
   }
