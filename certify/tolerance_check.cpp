@@ -1220,8 +1220,8 @@ std::string check_tolerance(const Certificate& c, const Model& model, std::strin
   for (std::size_t i = 0; i < claim.leaves.size(); ++i) evaluator.check_leaf(claim.leaves[i], i);
   return "for every parameter vector within " + to_exact_string(claim.scale) + " x the tolerances of " +
          std::to_string(claim.varied.size()) + " parameters, driving '" + claim.driver + "' over " + show(claim.range) + unit +
-         ", the channel of '" + claim.follower + "' between its contact sides never closes (" +
-         std::to_string(claim.leaves.size()) + " leaves)";
+         ", the named contact sides of '" + claim.driver + "' and '" + claim.follower +
+         "' stay apart over every leaf of the box x range (" + std::to_string(claim.leaves.size()) + " leaves)";
 }
 
 }  // namespace hipair::verify

@@ -10,7 +10,9 @@ int main(int argc, char** argv) {
   if (argc != 3 || std::string(argv[1]) == "--help") {
     std::cerr << "usage: hipair-verify CERTIFICATE MODEL\n"
                  "Checks a HIPAIR certificate (interference, clearance, jam, free passage) against the model file.\n"
-                 "Exit status 0: valid; 1: invalid (the reason is printed); 2: usage.\n";
+                 "Exit status 0: valid (the claim holds); 1: invalid (the reason is printed); 2: usage;\n"
+                 "3: unproven (the evidence passes every check made, but the checks do not prove the claim:\n"
+                 "   no-jam tolerance certificates; what was and was not checked is printed; docs/certify.md).\n";
     return argc == 2 && std::string(argv[1]) == "--help" ? 0 : 2;
   }
   try {
@@ -18,6 +20,10 @@ int main(int argc, char** argv) {
     if (result.valid) {
       std::cout << "valid: " << result.summary << "\n";
       return 0;
+    }
+    if (result.unproven) {
+      std::cout << "unproven: " << result.summary << "\n";
+      return 3;
     }
     std::cout << "invalid: " << result.reason << "\n";
   } catch (const std::bad_alloc&) {

@@ -374,8 +374,13 @@ Certificate read_certificate(std::string_view json_text);
 
 /// The outcome of checking a certificate.
 struct VerificationResult {
-  bool valid = false;
-  std::string summary;   ///< valid: one line describing what was certified
+  bool valid = false;    ///< the claim holds (hipair-verify exit 0)
+  /// The evidence passes every check the verifier makes, but those checks do not prove the
+  /// claim (hipair-verify exit 3): tolerance claims with property no_jam (the verifier checks
+  /// that the named contact sides stay apart, not that they bound the follower's channel;
+  /// docs/certify.md). `valid` is false then.
+  bool unproven = false;
+  std::string summary;   ///< valid or unproven: one line describing what was checked
   std::string reason;    ///< invalid: the exact reason
 };
 

@@ -214,7 +214,10 @@ struct ContactChangeCheck {
 
 /// The outcome of the tolerance certificate's branch-and-bound.
 struct ToleranceCertification {
-  /// certified: `certificate` holds the no-jam certificate (re-checked by the verifier's code);
+  /// certified: `certificate` holds the certificate; its evidence passed the verifier's code
+  /// (re-checked from its JSON text). For a no-jam certificate that is not a proof: the
+  /// verifier's verdict is "unproven" (`unproven` below; docs/certify.md), it checks that the
+  /// named contact sides stay apart, not that they bound the follower's channel.
   /// jams: at a parameter vector of the box the two sides of the channel certainly cross
   /// (`reason` names it); undecided: neither (budget exhausted, a side not isolated, ...).
   /// interferes (no_interference certificates): at `witness` the exact model's parts overlap.
@@ -236,6 +239,8 @@ struct ToleranceCertification {
   std::size_t leaves = 0, attempts = 0;
   std::size_t second_order_leaves = 0;   ///< leaves proved by the second-order witness test
   double seconds_produce = 0, seconds_verify = 0;
+  /// certified: the verifier's verdict on the certificate is "unproven" (no_jam), not "valid".
+  bool unproven = false;
 };
 
 /// Everything the tolerance analysis found.

@@ -386,8 +386,9 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_option("--out", options->out, "directory for tolerance.json, variation.csv, sensitivity.csv, variation.svg, contact-zone.svg");
   command->add_flag("--quiet", options->quiet, "no progress bar");
   command->add_flag("--certify", options->certify,
-                    "prove by interval branch-and-bound that the pair never jams for any parameters in the box; "
-                    "writes tolerance-certificate.json (check it with hipair-verify)");
+                    "interval branch-and-bound showing that the channel's named contact sides stay apart for any "
+                    "parameters in the box; writes tolerance-certificate.json (hipair-verify answers 'unproven' for "
+                    "it: the sides are not checked to bound the channel, so no jam is not proved; docs/certify.md)");
   command->add_option("--certify-scale", options->certify_scale,
                       "the certificate's box: this times the varied tolerance ranges (default 1; --vary names them); "
                       "with a T suffix (0.95T), times the jamming threshold found by --threshold");

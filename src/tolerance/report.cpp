@@ -238,9 +238,15 @@ std::string tolerance_text_report(const ToleranceResult& r) {
     out << "\nTolerance certificate (no jam, tolerances x " << to_exact_string(c.scale) << "):\n";
     switch (c.outcome) {
       case ToleranceCertification::Outcome::certified:
-        out << "  CERTIFIED: " << c.leaves << " leaves (" << c.attempts << " boxes tried) in "
-            << number(c.seconds_produce, 3) << " s, re-checked by the verifier's code in " << number(c.seconds_verify, 3)
-            << " s\n";
+        if (c.unproven)
+          out << "  WRITTEN, NOT PROVED: " << c.leaves << " leaves (" << c.attempts << " boxes tried) in "
+              << number(c.seconds_produce, 3) << " s; the verifier's code (" << number(c.seconds_verify, 3)
+              << " s) checked that the named contact sides stay apart over every leaf, not that they bound the "
+                 "follower's channel: verdict unproven, the claim 'no jam' is not proved (docs/certify.md)\n";
+        else
+          out << "  CERTIFIED: " << c.leaves << " leaves (" << c.attempts << " boxes tried) in "
+              << number(c.seconds_produce, 3) << " s, re-checked by the verifier's code in " << number(c.seconds_verify, 3)
+              << " s\n";
         break;
       case ToleranceCertification::Outcome::jams:
         out << "  JAMS: " << c.reason << "\n";
@@ -349,6 +355,8 @@ std::string tolerance_json_report(const ToleranceResult& r) {
                           : c.outcome == ToleranceCertification::Outcome::jams ? "jams"
                           : c.outcome == ToleranceCertification::Outcome::interferes ? "interferes" : "undecided";
     j["certificate"] = {{"outcome", outcome},
+                        {"verifier_verdict", c.outcome != ToleranceCertification::Outcome::certified ? "none"
+                                             : c.unproven ? "unproven" : "valid"},
                         {"scale", to_exact_string(c.scale)},
                         {"leaves", c.leaves},
                         {"boxes_tried", c.attempts},

@@ -143,6 +143,18 @@ for mutation in "${mutations[@]}"; do
   code=$?
   [ $code -eq 1 ] || fail "hipair-verify does not reject the mutation $mutation (exit $code): $(head -c 300 "$work/noint-mutated.out")"
 done
+# A no-jam tolerance certificate is never "valid": its evidence passing every check gives
+# "unproven" (exit 3), since the verifier does not check that the named sides bound the channel.
+# The false fixture (the pair jams at this scale; tests/data/certificates/README.md) included.
+for nojam in geneva-tolerance-no-jam.json geneva-tolerance-no-jam-0.98-false.json; do
+  "$verify" "$source/tests/data/certificates/$nojam" "$geneva" >"$work/nojam.verify" 2>&1
+  code=$?
+  [ $code -eq 3 ] || fail "hipair-verify $nojam: exit $code, want 3 (unproven): $(head -c 300 "$work/nojam.verify")"
+  [ "$(wc -l <"$work/nojam.verify")" -eq 1 ] || fail "hipair-verify $nojam: not one line: $(head -c 300 "$work/nojam.verify")"
+  grep -q "^unproven: tolerance: .*stay apart over every leaf.*; not checked: that these sides bound the follower's channel" \
+    "$work/nojam.verify" || fail "hipair-verify $nojam: $(head -c 400 "$work/nojam.verify")"
+done
+"$verify" --help 2>&1 | grep -q "3: unproven" || fail "hipair-verify --help does not document exit status 3"
 # The certificate is for this model: another tolerance on one parameter is rejected.
 sed '0,/"tolerance": 0.02/s//"tolerance": 0.03/' "$geneva" >"$work/geneva-other.json"
 cmp -s "$geneva" "$work/geneva-other.json" && fail "the model mutation changed nothing"

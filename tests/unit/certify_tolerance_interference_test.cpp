@@ -74,6 +74,7 @@ TEST(CertifyToleranceInterference, GenevaLockedWheelNeverInterferesAndVerifies) 
   VerificationResult v = verify_certificate_file(file, geneva());
   std::filesystem::remove(file);
   EXPECT_TRUE(v.valid) << v.reason;
+  EXPECT_FALSE(v.unproven);
   EXPECT_NE(v.summary.find("never interfere"), std::string::npos) << v.summary;
 }
 
@@ -85,6 +86,7 @@ TEST(CertifyToleranceInterference, MutatedCertificatesAreRejected) {
   auto rejected = [&](const Certificate& c, const std::string& reason, const std::string& what) {
     VerificationResult v = check_certificate_text(read_certificate(write_certificate(c)), model_text, "geneva.json");
     EXPECT_FALSE(v.valid) << what;
+    EXPECT_FALSE(v.unproven) << what;
     EXPECT_NE(v.reason.find(reason), std::string::npos) << what << ": " << v.reason;
   };
   ASSERT_TRUE(check_certificate_text(base, model_text, "geneva.json").valid);
