@@ -884,7 +884,6 @@ bool positive(const Interval& x) { return x.sign() > 0; }
 Interval sq(const Interval& x) { return x * x; }
 Interval cross_iv(const IV& u, const IV& v) { return u.x * v.y - u.y * v.x; }
 IV minus_iv(const IV& u, const IV& v) { return {u.x - v.x, u.y - v.y}; }
-Interval norm2(const IV& u) { return u.x * u.x + u.y * u.y; }
 
 // A posed edge over a leaf (every coordinate an enclosure).
 struct Posed {

@@ -106,7 +106,7 @@ int run(const CertifyArguments& arguments) {
       angle = value_of(rest.substr(c2 + 1), true, "--at");
     }
     ExactPosition rotation = exact_position_from_angle(angle);
-    PlanarPose pose{planar->name, x, y, rotation.value, rotation.half_turn};
+    PlanarPose pose{planar->name, x, y, rotation.value, rotation.half_turn, std::nullopt};
     const std::string& fixed = planar == &a ? b.name : a.name;
     if (arguments.claim == "interference") {
       certificate = certify_planar_interference(model, fixed, pose, context);
@@ -139,7 +139,7 @@ int run(const CertifyArguments& arguments) {
       }
     }
     ExactPosition rotation = exact_position_from_angle(angle);
-    PlanarPose pose{pin_slot->name, 0, 0, rotation.value, rotation.half_turn};
+    PlanarPose pose{pin_slot->name, 0, 0, rotation.value, rotation.half_turn, std::nullopt};
     pose.slide = slide;
     std::map<std::string, ExactPosition> configuration;
     if (other.motion.kind != Motion::Kind::fixed)
