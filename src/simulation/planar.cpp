@@ -237,6 +237,22 @@ void split_collinear(simulation::FrictionalSolution& s, const std::vector<simula
   }
 }
 
+// The forces of a held-contact problem `p` (rows G, h, free accelerations a0, friction rows):
+// unilateral, the frictional complementarity problem; else bilateral at the given stick/slip
+// states. Collinear rows of one pair share their sticking friction (split_collinear).
+template <class Problem>
+void solve_held_forces(Problem& p, const Eigen::VectorXd& minv, const std::vector<std::size_t>& pair_of,
+                       bool unilateral, const std::vector<int>& states) {
+  const std::vector<std::size_t> group = collinear_groups(p.friction, pair_of);
+  auto split = [&](simulation::FrictionalSolution& s) { split_collinear(s, p.friction, group); };
+  if (unilateral) {
+    p.solution = simulation::solve_frictional(p.G, minv, p.a0, p.h, p.friction, split);
+  } else {
+    p.solution = simulation::solve_bilateral(p.G, minv, p.a0, p.h, p.friction, states);
+    split(p.solution);
+  }
+}
+
 // Newton restitution with Coulomb-limited tangential impulses (the fixed-axis simulator's
 // frictional impulse problem, src/simulation/friction.hpp) over the coordinates of J: velocities
 // v before, h = e J v- (restitution), tangent rows in `friction`. Newton's restitution with
@@ -1019,17 +1035,9 @@ PlanarSimulation::Impl::HeldProblem PlanarSimulation::Impl::held_problem(const K
     p.friction.push_back(fr);
     states.push_back(fr.on ? c.state : simulation::frictionless);
   }
-  Eigen::VectorXd minv = inverse_mass();
   std::vector<std::size_t> pair_of;
   for (const Held& c : held) pair_of.push_back(c.pair);
-  std::vector<std::size_t> group = collinear_groups(p.friction, pair_of);
-  auto split = [&](simulation::FrictionalSolution& s) { split_collinear(s, p.friction, group); };
-  if (unilateral) {
-    p.solution = simulation::solve_frictional(p.G, minv, p.a0, p.h, p.friction, split);
-  } else {
-    p.solution = simulation::solve_bilateral(p.G, minv, p.a0, p.h, p.friction, states);
-    split(p.solution);
-  }
+  solve_held_forces(p, inverse_mass(), pair_of, unilateral, states);
   return p;
 }
 
@@ -2102,15 +2110,7 @@ PlanarSystemSimulation::Impl::HeldProblem PlanarSystemSimulation::Impl::held_pro
     p.solution.lambda = p.solution.w = p.solution.f = Eigen::VectorXd(0);
     return p;
   }
-  const Eigen::VectorXd minv = inverse_mass();
-  const std::vector<std::size_t> group = collinear_groups(p.friction, pair_of);
-  auto split = [&](simulation::FrictionalSolution& s) { split_collinear(s, p.friction, group); };
-  if (unilateral) {
-    p.solution = simulation::solve_frictional(p.G, minv, p.a0, p.h, p.friction, split);
-  } else {
-    p.solution = simulation::solve_bilateral(p.G, minv, p.a0, p.h, p.friction, states);
-    split(p.solution);
-  }
+  solve_held_forces(p, inverse_mass(), pair_of, unilateral, states);
   return p;
 }
 
