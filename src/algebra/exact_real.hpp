@@ -163,17 +163,32 @@ namespace interval_detail {
 // Outward rounding without changing the rounding mode: a round-to-nearest result r of an exact
 // x satisfies |x - r| <= 2^-53 |r| (plus the smallest subnormal when underflowing), so
 // r -+ (2^-52 |r| + 2 denorm_min), itself rounded to nearest, still encloses x.
+// An overflowed bound (an enclosed coefficient beyond the doubles' range is [DBL_MAX, inf]) stays
+// a bound: +inf as a lower bound becomes DBL_MAX, -inf as an upper one -DBL_MAX (v - inf would be
+// NaN, and a NaN bound silently drops out of the comparisons); NaN widens to the whole line.
 inline double down(double v) {
+  if (!(v < __builtin_inf())) return v == v ? 1.7976931348623157e308 : -__builtin_inf();
   return v - (__builtin_fabs(v) * 2.220446049250313e-16 + 2 * 4.9406564584124654e-324);
 }
-inline double up(double v) { return v + (__builtin_fabs(v) * 2.220446049250313e-16 + 2 * 4.9406564584124654e-324); }
+inline double up(double v) {
+  if (!(v > -__builtin_inf())) return v == v ? -1.7976931348623157e308 : __builtin_inf();
+  return v + (__builtin_fabs(v) * 2.220446049250313e-16 + 2 * 4.9406564584124654e-324);
+}
+// An end product 0 * inf (a bound of 0 times an unbounded end) is 0: the hull of the products
+// of the real numbers in the two intervals, as in IEEE 1788.
+inline double end_product(double a, double b) {
+  double p = a * b;
+  return p == p ? p : 0.0;
+}
 }  // namespace interval_detail
 
 inline Interval operator+(Interval a, Interval b) {
   return {interval_detail::down(a.lo + b.lo), interval_detail::up(a.hi + b.hi)};
 }
 inline Interval operator*(Interval a, Interval b) {
-  double p1 = a.lo * b.lo, p2 = a.lo * b.hi, p3 = a.hi * b.lo, p4 = a.hi * b.hi;
+  using interval_detail::end_product;
+  double p1 = end_product(a.lo, b.lo), p2 = end_product(a.lo, b.hi), p3 = end_product(a.hi, b.lo),
+         p4 = end_product(a.hi, b.hi);
   double lo = p1 < p2 ? p1 : p2, hi = p1 < p2 ? p2 : p1;
   lo = lo < p3 ? lo : p3;
   hi = hi < p3 ? p3 : hi;

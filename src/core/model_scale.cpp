@@ -1,6 +1,10 @@
 #include "core/model_scale.hpp"
 
+#include <hipair/error.hpp>
+
 #include <gmp.h>
+
+#include <string>
 
 namespace hipair {
 
@@ -28,6 +32,39 @@ long normalising_shift(const Model& model, const std::vector<std::size_t>& parts
                   static_cast<long>(mpz_sizeinbase(largest.get_den_mpz_t(), 2));
   if (exponent >= -30 && exponent <= 60) return 0;   // about 1e-9 mm .. 1e18 mm: as is
   return exponent - 6;
+}
+
+void require_length_coordinates_in_range(const Model& model, const std::vector<std::size_t>& parts) {
+  bool lengths = false;
+  for (std::size_t index : parts) {
+    Motion::Kind kind = model.parts.at(index).motion.kind;
+    lengths = lengths || (kind != Motion::Kind::rotation && kind != Motion::Kind::fixed);
+  }
+  if (!lengths) return;
+  // |value| < 2^1016 exactly: the numerator has fewer bits than the denominator plus 1016
+  static const Rational limit(mpz_class(1) << 1016);
+  auto check = [&](const Rational& value, const Part& part) {
+    if (abs(value) < limit) return;
+    throw GeometryError("part '" + part.name + "' (" + part.pointer + ") has lengths beyond 2^1016 mm (about 7e305 mm) and "
+                        "a pair of it has lengths as C-space coordinates, which must stay within the range of doubles: "
+                        "scale the model down");
+  };
+  for (std::size_t index : parts) {
+    const Part& part = model.parts.at(index);
+    check(part.motion.pivot.x, part);
+    check(part.motion.pivot.y, part);
+    if (part.motion.translation_limits) {
+      check(part.motion.translation_limits->lo, part);
+      check(part.motion.translation_limits->hi, part);
+    }
+    for (const Rational* v : {&part.initial.offset, &part.initial.x, &part.initial.y}) check(*v, part);
+    for (const auto& loop : part.loops)
+      for (const auto& edge : loop.edges)
+        for (const Point* p : {&edge.source, &edge.target, &edge.center}) {
+          check(p->x, part);
+          check(p->y, part);
+        }
+  }
 }
 
 Model scaled_model(const Model& model, long shift) {

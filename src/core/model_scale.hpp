@@ -21,6 +21,14 @@ namespace hipair {
 /// 1e-9 mm and 1e18 mm; else the exponent that brings the largest coordinate near 2^6.
 long normalising_shift(const Model& model, const std::vector<std::size_t>& parts);
 
+/// Throws GeometryError when one of `parts` has a length coordinate (it translates, slides in a
+/// slot or moves in the plane) and a length of those parts (a point, a pivot, a translation
+/// limit, an initial offset) exceeds 2^1016 mm (about 7e305 mm) in magnitude: the pair's C-space
+/// coordinates are then lengths at the end of the doubles' range, where its certified double
+/// bounds (edge boxes, CertifiedRange) cannot be formed. Rotating and fixed parts are never
+/// refused (they are rescaled, above). Tiny lengths need no refusal.
+void require_length_coordinates_in_range(const Model& model, const std::vector<std::size_t>& parts);
+
 /// The model with every length (points, centres, pivots, offsets, limits) divided by 2^shift,
 /// exactly; radii squared by 4^shift.
 Model scaled_model(const Model& model, long shift);

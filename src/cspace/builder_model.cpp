@@ -211,6 +211,8 @@ CSpace build_pair(const Model& model, std::size_t first, std::size_t second, con
   // see core/model_scale.hpp: a rotation pair far outside the doubles' comfortable range is
   // built on an exactly rescaled copy (the same C-space)
   long shift = normalising_shift(model, {first, second});
+  // lengths as coordinates beyond the doubles' range: refused (a clear error, not a crash)
+  if (shift == 0) require_length_coordinates_in_range(model, {first, second});
   if (shift == 0) return build_pair_as_is(model, first, second, options, path);
   // the scaled copy lives through the build (the charts' overlap oracles read it); the built
   // space keeps no reference to it

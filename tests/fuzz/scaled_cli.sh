@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# Runs CLI commands on models scaled by extreme factors (tests/fuzz/scale_model.py) and checks
+# the command-line contract at every scale (docs/cli.md): each run either succeeds, or exits
+# non-zero with a clear "hipair: error: ..." line on stderr; never a crash (a signal: exit >= 128)
+# and never a half-written output (no atomic-write temporary left, every JSON written parses,
+# every SVG written is complete). A run that outlives TIMEOUT seconds is reported as TIMEOUT.
+#
+# usage: scaled_cli.sh HIPAIR SOURCE_DIR WORK_DIR TIMEOUT COMMANDS MODELS [SCALES]
+#   COMMANDS  comma-separated: validate,show,cspace,analyze,certify,tolerance,simulate
+#   MODELS    comma-separated example names (examples/models/NAME.json) or "all"
+#   SCALES    comma-separated factors (default 1e-300,1e-100,1e100,1e300,1e400)
+# exit: 0 every run kept the contract (timeouts allowed when ALLOW_TIMEOUT=1); 1 otherwise; 2 usage.
+set -uo pipefail
+if [ $# -lt 6 ]; then sed -n '2,13p' "$0" >&2; exit 2; fi
+hipair=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+source_dir=$(cd "$2" && pwd)
+work=$3 limit=$4 commands=$5 models=$6 scales=${7:-1e-300,1e-100,1e100,1e300,1e400}
+mkdir -p "$work" && work=$(cd "$work" && pwd)
+
+if [ "$models" = all ]; then
+  models=$(cd "$source_dir/examples/models" && ls *.json | sed 's/\.json$//' | paste -sd, -)
+fi
+
+failures=0 runs=0
+report() { echo "$1"; [ "${2:-}" = bad ] && failures=$((failures + 1)); }
+
+check_outputs() {  # DIR: every file complete, no temporary left
+  local dir=$1 file problem=""
+  while IFS= read -r -d '' file; do
+    case "$(basename "$file")" in
+      .*.tmp*) problem="temporary left: $file" ;;
+      *.json) python3 -c 'import json,sys; json.load(open(sys.argv[1]))' "$file" 2>/dev/null ||
+                problem="unparsable JSON: $file" ;;
+      *.svg) tail -c 64 "$file" | grep -q '</svg>' || problem="incomplete SVG: $file" ;;
+    esac
+  done < <(find "$dir" -type f -print0)
+  echo "$problem"
+}
+
+IFS=, read -ra command_list <<<"$commands"
+IFS=, read -ra model_list <<<"$models"
+IFS=, read -ra scale_list <<<"$scales"
+for name in "${model_list[@]}"; do
+  for scale in "${scale_list[@]}"; do
+    model="$work/models/$name@$scale.json"
+    mkdir -p "$work/models"
+    python3 "$source_dir/tests/fuzz/scale_model.py" "$source_dir/examples/models/$name.json" "$scale" "$model" ||
+      { report "GENERATOR $name@$scale" bad; continue; }
+    for command in "${command_list[@]}"; do
+      out="$work/out/$name@$scale/$command"
+      rm -rf "$out" && mkdir -p "$out"
+      case "$command" in
+        validate)  args=(validate "$model") ;;
+        show)      args=(show "$model" --svg "$out/show.svg") ;;
+        cspace)    args=(cspace "$model" --json "$out/cspace.json" --svg "$out/cspace.svg") ;;
+        analyze)   args=(analyze "$model" --out "$out") ;;
+        certify)   args=(certify "$model" --claim clearance --out "$out/certificate.json") ;;
+        tolerance) args=(tolerance "$model" --out "$out") ;;
+        simulate)  args=(simulate "$model" --t-end 0.01 --no-pictures --out "$out") ;;
+        *) echo "unknown command $command" >&2; exit 2 ;;
+      esac
+      runs=$((runs + 1))
+      start=$(date +%s.%N)
+      (cd "$out" && timeout -k 5 "$limit" "$hipair" "${args[@]}" >"$out/.stdout" 2>"$out/.stderr")
+      rc=$?
+      seconds=$(printf '%.1f' "$(echo "$(date +%s.%N) - $start" | bc)")
+      mv "$out/.stdout" "$work/out/$name@$scale/$command.stdout"
+      mv "$out/.stderr" "$work/out/$name@$scale/$command.stderr"
+      stderr="$work/out/$name@$scale/$command.stderr"
+      message=$(grep -m1 '^hipair: error:' "$stderr" | cut -c1-160)
+      problem=$(check_outputs "$out")
+      what="$command $name@$scale (${seconds}s)"
+      if [ "$rc" -eq 124 ] || [ "$rc" -eq 137 -a "$(echo "$seconds >= $limit" | bc)" = 1 ]; then
+        if [ "${ALLOW_TIMEOUT:-0}" = 1 ]; then report "TIMEOUT $what"; else report "TIMEOUT $what" bad; fi
+      elif [ "$rc" -ge 128 ]; then
+        report "CRASH rc=$rc $what: $(tail -c 300 "$stderr" | tr '\n' ' ')" bad
+      elif [ -n "$problem" ]; then
+        report "OUTPUT rc=$rc $what: $problem" bad
+      elif [ "$rc" -ne 0 ] && [ -z "$message" ] && ! { [ "$command" = certify ] && [ "$rc" -eq 1 ] && [ -s "$stderr" ]; }; then
+        report "UNCLEAR rc=$rc $what: $(tail -c 300 "$stderr" | tr '\n' ' ')" bad
+      elif [ "$rc" -ne 0 ]; then
+        report "ERROR rc=$rc $what: ${message:-$(head -c 160 "$stderr" | tr '\n' ' ')}"
+      else
+        report "OK $what"
+      fi
+    done
+  done
+done
+echo "scaled_cli: $runs runs, $failures broke the contract"
+[ "$failures" -eq 0 ]
