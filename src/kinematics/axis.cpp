@@ -216,6 +216,12 @@ std::optional<ChartWindow> window_on_piece(const AxisLine& line, std::size_t p, 
   auto chart_value = [&](double c, bool up) {
     double t = line.rotation ? std::tan((c - line.offsets[p]) / 2) : c;
     double scaled = (up ? std::ceil(t * 1099511627776.0) : std::floor(t * 1099511627776.0));
+    // beyond 2^984 the product overflows (no mpz from an infinity): such a t is an integer
+    // double itself, an infinite or NaN one leaves that side of the piece open
+    if (!std::isfinite(scaled)) {
+      if (!std::isfinite(t)) return (t == t && t < 0) || (t != t && !up) ? piece.lo : piece.hi;
+      return std::clamp(Rational(t), piece.lo, piece.hi);
+    }
     Rational value(mpz_class(scaled), mpz_class(1) << 40);
     value.canonicalize();
     return std::clamp(value, piece.lo, piece.hi);

@@ -67,6 +67,10 @@ double wrap(double theta) {
 }
 
 SlicedConfiguration configuration_of(double x, double y, double theta) {
+  // a state that overflowed (extreme scales, a diverging integration) has no exact configuration
+  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(theta))
+    throw NumericError("the simulated configuration of a planar part is not finite: the model's lengths or "
+                       "dynamics are beyond the range of doubles");
   SlicedConfiguration c;
   c.x = Rational(x);
   c.y = Rational(y);
