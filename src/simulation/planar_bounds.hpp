@@ -14,6 +14,12 @@ namespace hipair::simulation {
 /// A rational r >= sqrt(v) (v >= 0), within about 2^-40 relative of it.
 inline Rational sqrt_upper(const Rational& v) {
   if (sgn(v) <= 0) return Rational(0);
+  if (!std::isfinite(v.get_d())) {   // beyond the doubles (lengths of 1e154 mm and more): floor(sqrt(ceil v)) + 1
+    mpz_class c;
+    mpz_cdiv_q(c.get_mpz_t(), v.get_num_mpz_t(), v.get_den_mpz_t());
+    mpz_sqrt(c.get_mpz_t(), c.get_mpz_t());
+    return Rational(c + 1);
+  }
   Rational r(std::sqrt(v.get_d()));
   if (sgn(r) <= 0) r = Rational(1, 1 << 30);
   const Rational grow = 1 + Rational(1) / Rational(1099511627776.0);   // 1 + 2^-40
