@@ -8,6 +8,37 @@
 
 namespace hipair {
 
+namespace {
+
+// floor(log2 |value|) within one: bits of the numerator minus bits of the denominator.
+long binary_exponent(const Rational& value) {
+  return static_cast<long>(mpz_sizeinbase(value.get_num_mpz_t(), 2)) -
+         static_cast<long>(mpz_sizeinbase(value.get_den_mpz_t(), 2));
+}
+
+}  // namespace
+
+void require_kinematic_length_scale(const Model& model, const std::vector<std::size_t>& parts) {
+  Rational largest = 0;        // of the parts' points
+  bool length_coordinate = false;   // a part neither rotates nor stays fixed
+  for (std::size_t index : parts) {
+    const Part& part = model.parts.at(index);
+    if (part.motion.kind != Motion::Kind::rotation && part.motion.kind != Motion::Kind::fixed)
+      length_coordinate = true;
+    for (const auto& loop : part.loops)
+      for (const auto& edge : loop.edges)
+        for (const Point* p : {&edge.source, &edge.target, &edge.center})
+          for (const Rational* v : {&p->x, &p->y})
+            if (abs(*v) > largest) largest = abs(*v);
+  }
+  if (!length_coordinate || sgn(largest) == 0) return;
+  const long exponent = binary_exponent(largest);
+  if (exponent >= -30 && exponent <= 30) return;
+  throw GeometryError("the kinematic analysis of a mechanism with a translating part needs its lengths between about "
+                      "1e-9 mm and 1e9 mm (its positions are lengths and its resolutions absolute); this model's "
+                      "parts reach about 2^" + std::to_string(exponent) + " mm: scale the model");
+}
+
 long normalising_shift(const Model& model, const std::vector<std::size_t>& parts) {
   Rational largest = 0;
   auto see = [&](const Rational& value) {
@@ -28,8 +59,7 @@ long normalising_shift(const Model& model, const std::vector<std::size_t>& parts
         }
   }
   if (sgn(largest) == 0) return 0;
-  long exponent = static_cast<long>(mpz_sizeinbase(largest.get_num_mpz_t(), 2)) -
-                  static_cast<long>(mpz_sizeinbase(largest.get_den_mpz_t(), 2));
+  long exponent = binary_exponent(largest);
   if (exponent >= -30 && exponent <= 60) return 0;   // about 1e-9 mm .. 1e18 mm: as is
   return exponent - 6;
 }

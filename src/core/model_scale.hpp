@@ -29,6 +29,14 @@ long normalising_shift(const Model& model, const std::vector<std::size_t>& parts
 /// refused (they are rescaled, above). Tiny lengths need no refusal.
 void require_length_coordinates_in_range(const Model& model, const std::vector<std::size_t>& parts);
 
+/// Throws GeometryError when one of `parts` translates (or slides in a slot, or moves in the
+/// plane) and the largest length of `parts` lies outside [2^-30, 2^30] mm (about 1e-9 mm to
+/// 1e9 mm): the kinematic sweep's positions are then lengths, and its resolutions are absolute
+/// (exactly rescaled models gave different events: a false dwell at 1e-12, spurious snaps at
+/// 1e9, a false jam at 1e200 times two-pin-wedge.json). Rotation-only mechanisms are rescaled
+/// instead (normalising_shift) and never refused.
+void require_kinematic_length_scale(const Model& model, const std::vector<std::size_t>& parts);
+
 /// The model with every length (points, centres, pivots, offsets, limits) divided by 2^shift,
 /// exactly; radii squared by 4^shift.
 Model scaled_model(const Model& model, long shift);

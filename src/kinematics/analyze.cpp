@@ -545,7 +545,7 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
       Model scaled = scaled_model(model, shift);
       return analyze_kinematics(scaled, options, spaces);
     }
-    require_length_coordinates_in_range(model, parts);   // lengths as coordinates: the doubles' range
+    require_kinematic_length_scale(model, parts);   // lengths as coordinates: absolute resolutions
   }
   auto clock_start = std::chrono::steady_clock::now();
   KinematicsResult result;

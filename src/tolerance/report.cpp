@@ -80,7 +80,8 @@ std::string polyline(const Frame& f, const std::vector<double>& x, const std::ve
     if (!points.empty()) out += "<polyline fill=\"none\" " + style + " points=\"" + points + "\"/>\n";
     points.clear();
   };
-  for (std::size_t i = 0; i < x.size(); ++i) {
+  // (no samples: x is the placeholder {0, 1} and y is empty)
+  for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i) {
     if (std::isnan(y[i])) {
       flush();
       continue;
