@@ -19,7 +19,8 @@ namespace hipair::kernels {
 namespace interval_detail {
 // The next double above `value` (std::nextafter without the library call).
 inline double up(double value) {
-  if (!(value < std::numeric_limits<double>::infinity())) return value;  // +inf, nan
+  // +inf stays; NaN (an overflowed operation) bounds nothing: the whole line
+  if (!(value < std::numeric_limits<double>::infinity())) return value == value ? value : std::numeric_limits<double>::infinity();
   if (value == 0.0) return std::numeric_limits<double>::denorm_min();
   auto bits = std::bit_cast<std::uint64_t>(value);
   bits = value > 0.0 ? bits + 1 : bits - 1;
@@ -48,6 +49,10 @@ struct Interval {
     double truncated = value.get_d();
     int sign = sgn(value);
     if (sign == 0) return Interval(0.0, 0.0);
+    // beyond the doubles' range get_d gives an infinity: the value lies beyond the largest double
+    if (std::isinf(truncated))
+      return sign > 0 ? Interval(std::numeric_limits<double>::max(), truncated)
+                      : Interval(truncated, std::numeric_limits<double>::lowest());
     double away = sign > 0 ? interval_detail::up(truncated) : interval_detail::down(truncated);
     return sign > 0 ? Interval(truncated, away) : Interval(away, truncated);
   }
@@ -81,10 +86,16 @@ inline Interval operator-(const Interval& a, const Interval& b) {
 inline Interval operator-(const Interval& a) { return Interval(-a.hi, -a.lo); }
 
 inline Interval operator*(const Interval& a, const Interval& b) {
-  double p1 = a.lo * b.lo;
-  double p2 = a.lo * b.hi;
-  double p3 = a.hi * b.lo;
-  double p4 = a.hi * b.hi;
+  // an end product 0 * inf is 0 (a bound 0 times an unbounded end: the hull of the products of
+  // the reals in the two intervals, IEEE 1788), not a NaN that std::min/max would drop unevenly
+  auto end = [](double u, double v) {
+    double p = u * v;
+    return p == p ? p : 0.0;
+  };
+  double p1 = end(a.lo, b.lo);
+  double p2 = end(a.lo, b.hi);
+  double p3 = end(a.hi, b.lo);
+  double p4 = end(a.hi, b.hi);
   double low = std::min(std::min(p1, p2), std::min(p3, p4));
   double high = std::max(std::max(p1, p2), std::max(p3, p4));
   return Interval(interval_detail::down(low), interval_detail::up(high));
@@ -99,6 +110,8 @@ inline Interval operator/(const Interval& a, const Interval& b) {
   double q2 = a.lo / b.hi;
   double q3 = a.hi / b.lo;
   double q4 = a.hi / b.hi;
+  if (q1 != q1 || q2 != q2 || q3 != q3 || q4 != q4)   // inf / inf: no bound from these ends
+    return Interval(-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity());
   double low = std::min(std::min(q1, q2), std::min(q3, q4));
   double high = std::max(std::max(q1, q2), std::max(q3, q4));
   return Interval(interval_detail::down(low), interval_detail::up(high));

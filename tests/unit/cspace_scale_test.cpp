@@ -1,0 +1,395 @@
+// C-spaces of translating pairs at exact scales far from 1 (2^-1100 ... 2^700, 10^-400 ...
+// 10^300): the C-space of S x a pair is S x the C-space of the pair, field by field and exactly
+// (feature pairs, cells, vertex coordinates as algebraic numbers, edges, edge supports) for
+// polygon pairs, every certified double range holds the exact vertices, and the blocked region
+// equals CGAL's minkowski_sum_2 computed exactly at the scale itself; pairs with arcs locate
+// every grid point and vertex exactly alike at every scale. Both parts carry exact
+// translation limits scaled with them, so the charts are S x the charts (without limits the
+// chart margins are whole millimetres: not a scaled copy). Pairs: random rational star
+// polygons, and a star against a part with arcs (a pin, a rounded slot end).
+//
+// Before session 13's fix, 2^-1100 and 10^-400 gave one blocked cell (the interval prefilter
+// of the edge labels read NaN from an overflowed coefficient bound and dropped every contact
+// curve); beyond 2^1016 mm such pairs are refused with a clear error (SIGFPE before).
+#include "algebra/exact_real.hpp"
+#include "cspace/builder_impl.hpp"
+#include "cspace_minkowski_support.hpp"
+
+#include <hipair/cspace.hpp>
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+
+#include <CGAL/minkowski_sum_2.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace hipair {
+namespace {
+
+using namespace minkowski_support;
+using Points = std::vector<std::pair<Rational, Rational>>;
+
+Rational power(unsigned long base, int exponent) {
+  mpz_class p;
+  mpz_ui_pow_ui(p.get_mpz_t(), base, static_cast<unsigned long>(std::abs(exponent)));
+  return exponent >= 0 ? Rational(p) : Rational(mpz_class(1), p);
+}
+
+Rational power_of(const Rational& s, std::size_t n) {
+  Rational r(1);
+  for (std::size_t i = 0; i < n; ++i) r *= s;
+  return r;
+}
+
+std::string text(const Rational& r) { return "\"" + r.get_str() + "\""; }
+
+std::string point_json(const Rational& x, const Rational& y) { return "[" + text(x) + ", " + text(y) + "]"; }
+
+std::string polygon_loop(const Points& points, const Rational& s) {
+  std::string loop = "{ \"start\": " + point_json(points[0].first * s, points[0].second * s) + ", \"edges\": [";
+  for (std::size_t i = 1; i <= points.size(); ++i) {
+    const auto& p = points[i % points.size()];
+    loop += std::string(i > 1 ? ", " : "") + "{ \"line_to\": " + point_json(p.first * s, p.second * s) + " }";
+  }
+  return loop + "] }";
+}
+
+// A star-shaped polygon of k vertices around (cx, cy) on a 1/8 grid.
+Points random_star(std::mt19937_64& random, int k, double cx, double cy, double radius) {
+  Points points;
+  for (int i = 0; i < k; ++i) {
+    double angle = 2 * 3.141592653589793 * (i + 0.15 + 0.7 * static_cast<double>(random() % 1000) / 1000.0) / k;
+    double r = radius * (random() % 3 == 0 ? 1.0 : 0.35 + 0.65 * static_cast<double>(random() % 1000) / 1000.0);
+    Rational x(static_cast<long>(std::lround(8 * (cx + r * std::cos(angle)))), 8);
+    Rational y(static_cast<long>(std::lround(8 * (cy + r * std::sin(angle)))), 8);
+    x.canonicalize();
+    y.canonicalize();
+    points.emplace_back(x, y);
+  }
+  return points;
+}
+
+// Part a (loops `a`) along x, part b along y, both within [-20, 20] x s; `b_loops` JSON loops
+// already scaled.
+std::string sliders_json(const std::string& a_loops, const std::string& b_loops, const Rational& s) {
+  const std::string limits = "[" + text(Rational(-20 * s)) + ", " + text(Rational(20 * s)) + "]";
+  return R"({ "hipair": 1, "name": "scaled sliders", "parts": [
+    { "name": "a", "motion": { "translation": { "direction": [1, 0], "limits": )" + limits + R"( } }, "loops": [ )" +
+         a_loops + R"( ] },
+    { "name": "b", "motion": { "translation": { "direction": [0, 1], "limits": )" + limits + R"( } }, "loops": [ )" +
+         b_loops + R"( ] } ] })";
+}
+
+// A part with arcs: a pin (full circle) of radius 3/2 at (cx, cy), or a slot of width 2 with a
+// semicircular end, both scaled by s.
+std::string arc_loops(int kind, const Rational& cx, const Rational& cy, const Rational& s) {
+  if (kind == 0)
+    return R"({ "circle": { "center": )" + point_json(cx * s, cy * s) + R"(, "radius": )" + text(Rational(3, 2) * s) +
+           " } }";
+  // (cx-1, cy-3) -> (cx+1, cy-3) -> (cx+1, cy) -> arc about (cx, cy) to (cx-1, cy) -> back
+  auto p = [&](const Rational& dx, const Rational& dy) { return point_json((cx + dx) * s, (cy + dy) * s); };
+  return "{ \"start\": " + p(-1, -3) + ", \"edges\": [ { \"line_to\": " + p(1, -3) + " }, { \"line_to\": " + p(1, 0) +
+         " }, { \"arc_to\": " + p(-1, 0) + ", \"center\": " + p(0, 0) + ", \"dir\": \"ccw\" }, { \"line_to\": " +
+         p(-1, -3) + " } ] }";
+}
+
+// The real number s * a, as an isolated root: for s = n/m, p(y m / n) n^d has integer
+// coefficients p_i m^i n^(d-i).
+cspace::algebra::Real scaled_real(const AlgebraicNumber& a, const Rational& s) {
+  cspace::algebra::Real r;
+  r.exact = a.exact;
+  r.lower = a.lower * s;
+  r.upper = a.upper * s;
+  const std::size_t d = a.polynomial.empty() ? 0 : a.polynomial.size() - 1;
+  for (std::size_t i = 0; i < a.polynomial.size(); ++i) {
+    mpz_class m_i, n_rest;
+    mpz_pow_ui(m_i.get_mpz_t(), s.get_den_mpz_t(), i);
+    mpz_pow_ui(n_rest.get_mpz_t(), s.get_num_mpz_t(), d - i);
+    r.polynomial.push_back(a.polynomial[i] * m_i * n_rest);
+  }
+  return r;
+}
+
+cspace::algebra::Real real_of(const AlgebraicNumber& a) {
+  cspace::algebra::Real r;
+  r.exact = a.exact;
+  r.lower = a.lower;
+  r.upper = a.upper;
+  r.polynomial = a.polynomial;
+  return r;
+}
+
+void expect_scaled_number(const AlgebraicNumber& base, const AlgebraicNumber& scaled, const Rational& s) {
+  EXPECT_EQ(base.exact, scaled.exact);
+  EXPECT_EQ(cspace::algebra::compare(scaled_real(base, s), real_of(scaled)), 0)
+      << base.to_string() << " times " << s.get_str().substr(0, 40) << " is not " << scaled.to_string().substr(0, 200);
+}
+
+// A certified range holds every exact vertex of the edge (ranges in doubles: ends beyond the
+// doubles' range are infinite, tiny ones may be subnormal or zero, never wrong).
+void expect_holds(const CertifiedRange& range, const AlgebraicNumber& a, const AlgebraicNumber& b) {
+  for (const AlgebraicNumber* v : {&a, &b}) {
+    if (std::isfinite(range.lower)) EXPECT_LE(Rational(range.lower), v->lower);
+    if (std::isfinite(range.upper)) EXPECT_GE(Rational(range.upper), v->upper);
+  }
+}
+
+// g proportional to f(x / s, y / s): g_ij s^(i+j) f_kl == f_ij s^(k+l) g_kl for one nonzero f_kl.
+void expect_scaled_support(const cspace::IntegerPolynomial2& f, const cspace::IntegerPolynomial2& g, const Rational& s) {
+  std::optional<std::pair<std::size_t, std::size_t>> reference;
+  std::size_t rows = std::max(f.coefficients.size(), g.coefficients.size());
+  auto at = [](const cspace::IntegerPolynomial2& p, std::size_t i, std::size_t j) {
+    return i < p.coefficients.size() && j < p.coefficients[i].size() ? p.coefficients[i][j] : mpz_class(0);
+  };
+  for (std::size_t i = 0; i < f.coefficients.size() && !reference; ++i)
+    for (std::size_t j = 0; j < f.coefficients[i].size() && !reference; ++j)
+      if (sgn(f.coefficients[i][j]) != 0) reference = std::make_pair(i, j);
+  ASSERT_TRUE(reference.has_value());
+  const auto [k, l] = *reference;
+  for (std::size_t i = 0; i < rows; ++i)
+    for (std::size_t j = 0; j < 4; ++j) {
+      Rational left = Rational(at(g, i, j)) * power_of(s, i + j) * Rational(at(f, k, l));
+      Rational right = Rational(at(f, i, j)) * power_of(s, k + l) * Rational(at(g, k, l));
+      EXPECT_EQ(left, right) << "support coefficient x^" << i << " y^" << j;
+    }
+}
+
+void expect_scaled_space(const CSpace& base, const CSpace& scaled, const Rational& s) {
+  ASSERT_EQ(base.feature_pairs().size(), scaled.feature_pairs().size());
+  for (std::size_t i = 0; i < base.feature_pairs().size(); ++i) {
+    const FeaturePair &p = base.feature_pairs()[i], &q = scaled.feature_pairs()[i];
+    EXPECT_EQ(p.first_feature, q.first_feature);
+    EXPECT_EQ(p.second_feature, q.second_feature);
+    EXPECT_EQ(p.kind, q.kind);
+    EXPECT_EQ(p.blocked_sign, q.blocked_sign);
+  }
+  ASSERT_EQ(base.cells().size(), scaled.cells().size());
+  for (std::size_t i = 0; i < base.cells().size(); ++i) {
+    const CSpaceCell &p = base.cells()[i], &q = scaled.cells()[i];
+    EXPECT_EQ(p.kind, q.kind) << "cell " << i;
+    EXPECT_EQ(p.boundary, q.boundary);
+    EXPECT_EQ(p.neighbours, q.neighbours);
+    EXPECT_EQ(p.faces, q.faces);
+  }
+  ASSERT_EQ(base.vertices().size(), scaled.vertices().size());
+  for (std::size_t i = 0; i < base.vertices().size(); ++i) {
+    const CSpaceVertex &p = base.vertices()[i], &q = scaled.vertices()[i];
+    SCOPED_TRACE("vertex " + std::to_string(i));
+    expect_scaled_number(p.x, q.x, s);
+    EXPECT_EQ(p.y_exact, q.y_exact);
+    expect_scaled_number(p.y, q.y, s);
+    EXPECT_EQ(p.edges, q.edges);
+    EXPECT_EQ(p.curves, q.curves);
+    EXPECT_EQ(p.contact_change, q.contact_change);
+    EXPECT_EQ(p.on_chart_boundary, q.on_chart_boundary);
+    EXPECT_EQ(p.touching, q.touching);
+  }
+  ASSERT_EQ(base.edges().size(), scaled.edges().size());
+  for (std::size_t i = 0; i < base.edges().size(); ++i) {
+    const CSpaceEdge &p = base.edges()[i], &q = scaled.edges()[i];
+    SCOPED_TRACE("edge " + std::to_string(i));
+    EXPECT_EQ(p.source, q.source);
+    EXPECT_EQ(p.target, q.target);
+    EXPECT_EQ(p.vertical, q.vertical);
+    EXPECT_EQ(p.curves, q.curves);
+    EXPECT_EQ(p.role, q.role);
+    EXPECT_EQ(p.left_cell, q.left_cell);
+    EXPECT_EQ(p.right_cell, q.right_cell);
+    EXPECT_EQ(p.real, q.real);
+    const CSpaceVertex &a = scaled.vertices()[q.source], &b = scaled.vertices()[q.target];
+    expect_holds(q.x_coordinate, a.x, b.x);
+    expect_holds(q.y_coordinate, a.y, b.y);
+  }
+  const auto& base_charts = implementation(base).charts;
+  const auto& scaled_charts = implementation(scaled).charts;
+  ASSERT_EQ(base_charts.size(), scaled_charts.size());
+  for (std::size_t c = 0; c < base_charts.size(); ++c) {
+    const auto& p = base_charts[c].arrangement.edges;
+    const auto& q = scaled_charts[c].arrangement.edges;
+    ASSERT_EQ(p.size(), q.size());
+    for (std::size_t e = 0; e < p.size(); ++e) {
+      SCOPED_TRACE("support of arrangement edge " + std::to_string(e));
+      expect_scaled_support(p[e].support, q[e].support, s);
+    }
+  }
+  EXPECT_EQ(base.statistics().contact_edges, scaled.statistics().contact_edges);
+  EXPECT_EQ(base.statistics().faces, scaled.statistics().faces);
+}
+
+Polygon cgal_polygon(const Points& points, const Rational& s, bool negate) {
+  Polygon p;
+  for (const auto& [x, y] : points) {
+    Rational px = x * s, py = y * s;
+    if (negate) {
+      px = -px;
+      py = -py;
+    }
+    p.push_back(Point2(gmpq(px), gmpq(py)));
+  }
+  if (p.is_clockwise_oriented()) p.reverse_orientation();
+  return p;
+}
+
+// Part a along x by u, part b along y by v: blocked iff u e_x - v e_y in interior(B + (-A)).
+void expect_minkowski(const CSpace& space, const Points& a, const Points& b, const Rational& s) {
+  PolygonWithHoles sum = CGAL::minkowski_sum_2(cgal_polygon(b, s, false), cgal_polygon(a, s, true));
+  auto reflect = [](const Polygon& polygon) {
+    Polygon out;
+    for (auto it = polygon.vertices_begin(); it != polygon.vertices_end(); ++it) out.push_back(Point2(it->x(), -it->y()));
+    out.reverse_orientation();
+    return out;
+  };
+  PolygonWithHoles expected(reflect(sum.outer_boundary()));
+  for (auto hole = sum.holes_begin(); hole != sum.holes_end(); ++hole) expected.add_hole(reflect(*hole));
+  PolygonSet difference = blocked_region(space);
+  EXPECT_FALSE(difference.is_empty());
+  difference.symmetric_difference(expected);
+  EXPECT_TRUE(difference.is_empty()) << "blocked faces differ from the Minkowski sum";
+}
+
+struct Scale {
+  Rational factor;
+  std::string name;
+};
+
+std::vector<Scale> scales() {
+  return {{power(2, -1100), "2^-1100"}, {power(10, -400), "10^-400"}, {power(10, -300), "10^-300"},
+          {power(2, -700), "2^-700"},   {power(2, 700), "2^700"},       {power(10, 300), "10^300"}};
+}
+
+TEST(CSpaceScale, TranslatingPolygonPairsScaleExactlyAndEqualTheMinkowskiSum) {
+  std::mt19937_64 random(1709);
+  int compared = 0;
+  for (int instance = 0; instance < 4; ++instance) {
+    Points a = random_star(random, 3 + static_cast<int>(random() % 7), 0, 0, 3);
+    Points b = random_star(random, 3 + static_cast<int>(random() % 7), static_cast<double>(random() % 5) - 2,
+                           static_cast<double>(random() % 5) - 2, 2);
+    Model base_model = read_model(sliders_json(polygon_loop(a, 1), polygon_loop(b, 1), 1));
+    CSpace base = CSpace::build(base_model, "a", "b");
+    for (const Scale& scale : scales()) {
+      SCOPED_TRACE("instance " + std::to_string(instance) + ", scale " + scale.name);
+      const Rational& s = scale.factor;
+      Model model = read_model(sliders_json(polygon_loop(a, s), polygon_loop(b, s), s));
+      CSpace space = CSpace::build(model, "a", "b");
+      expect_scaled_space(base, space, s);
+      expect_minkowski(space, a, b, s);
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 24);
+}
+
+// What an exact point location says at a configuration: free, blocked, touching, or contact
+// (on a real edge or vertex); a point on a spurious piece takes its cell's kind.
+enum class Seen { free, blocked, touching, contact, outside };
+
+Seen seen(const CSpace& space, const Rational& x, const Rational& y) {
+  Location at = space.locate(PartCoordinate{PartCoordinate::Kind::offset, x}, PartCoordinate{PartCoordinate::Kind::offset, y});
+  auto cell_kind = [&](std::size_t cell) {
+    switch (space.cells()[cell].kind) {
+      case CellKind::free: return Seen::free;
+      case CellKind::blocked: return Seen::blocked;
+      case CellKind::touching: return Seen::touching;
+    }
+    return Seen::outside;
+  };
+  switch (at.kind) {
+    case Location::Kind::free: return Seen::free;
+    case Location::Kind::blocked: return Seen::blocked;
+    case Location::Kind::touching: return Seen::touching;
+    case Location::Kind::outside: return Seen::outside;
+    case Location::Kind::edge:
+    case Location::Kind::vertex: return at.cell == no_index ? Seen::contact : cell_kind(at.cell);
+  }
+  return Seen::outside;
+}
+
+// Pairs with arcs go through the quadratic traits, whose subdivision (cuts, spurious pieces)
+// and the blocked-space cull are steered by doubles whose squares overflow or underflow at these
+// scales (2^700: 56 vertices and 10 faces where scale 1 has 50 and 4): the same sets, not the
+// same lists. So the check is exact point location: on a 41 x 41 rational grid over the charts
+// and at every exact vertex of either space, S x the point is free, blocked, touching or in
+// contact in the scaled space exactly when the point is in the space at scale 1.
+// Some of these pairs fail at scale 1 already ("internal: contact curve root 0 is not in its
+// certified box": a triangle along x against a circle along y, found here, not a scale
+// problem; reported): such instances are counted and skipped.
+TEST(CSpaceScale, TranslatingPairsWithArcsLocateTheSameAtEveryScale) {
+  std::mt19937_64 random(2711);
+  int compared = 0, failing_at_scale_one = 0;
+  for (int instance = 0; instance < 8; ++instance) {
+    Points a = random_star(random, 3 + static_cast<int>(random() % 5), 0, 0, 3);
+    Rational cx(static_cast<long>(random() % 5) - 2), cy(static_cast<long>(random() % 5) - 2);
+    const int kind = instance % 2;
+    Model base_model = read_model(sliders_json(polygon_loop(a, 1), arc_loops(kind, cx, cy, 1), 1));
+    std::optional<CSpace> built;
+    try {
+      built = CSpace::build(base_model, "a", "b");
+    } catch (const NumericError&) {
+      ++failing_at_scale_one;
+      continue;
+    }
+    const CSpace& base = *built;
+    std::vector<std::pair<Rational, Rational>> points;
+    for (int i = 0; i <= 40; ++i)
+      for (int j = 0; j <= 40; ++j) points.emplace_back(Rational(i - 20, 2), Rational(j - 20, 2));
+    for (const CSpaceVertex& v : base.vertices())
+      if (v.x.exact && v.y_exact && v.y.exact) points.emplace_back(v.x.lower, v.y.lower);
+    for (const Scale& scale : scales()) {
+      SCOPED_TRACE("instance " + std::to_string(instance) + ", scale " + scale.name);
+      const Rational& s = scale.factor;
+      Model model = read_model(sliders_json(polygon_loop(a, s), arc_loops(kind, cx, cy, s), s));
+      std::optional<CSpace> space;
+      try {
+        space = CSpace::build(model, "a", "b");
+      } catch (const Error& e) {
+        ADD_FAILURE() << e.what();
+        continue;
+      }
+      std::vector<std::pair<Rational, Rational>> all = points;
+      for (const CSpaceVertex& v : space->vertices())
+        if (v.x.exact && v.y_exact && v.y.exact) all.emplace_back(v.x.lower / s, v.y.lower / s);
+      int contacts = 0;
+      int errors = 0;
+      for (const auto& [x, y] : all) {
+        try {
+          Seen expected = seen(base, x, y);
+          contacts += expected == Seen::contact;
+          EXPECT_EQ(static_cast<int>(seen(*space, x * s, y * s)), static_cast<int>(expected))
+              << "at (" << x.get_str() << ", " << y.get_str() << ") x scale";
+        } catch (const Error& e) {
+          if (++errors <= 3) ADD_FAILURE() << "at (" << x.get_str() << ", " << y.get_str() << "): " << e.what();
+        }
+      }
+      EXPECT_EQ(errors, 0);
+      EXPECT_GT(contacts, 0);
+      ++compared;
+    }
+  }
+  EXPECT_LE(failing_at_scale_one, 4);
+  EXPECT_GE(compared, 24);
+}
+
+// Beyond 2^1016 mm a pair with length coordinates is refused with one clear error (before:
+// SIGFPE converting an infinite edge box to a rational); a rotating pair there is rescaled.
+TEST(CSpaceScale, LengthCoordinatesBeyondTheDoublesAreRefusedClearly) {
+  std::mt19937_64 random(77);
+  Points a = random_star(random, 6, 0, 0, 3), b = random_star(random, 5, 1, 1, 2);
+  const Rational s = power(10, 400);
+  Model model = read_model(sliders_json(polygon_loop(a, s), polygon_loop(b, s), s));
+  try {
+    CSpace::build(model, "a", "b");
+    FAIL() << "a translating pair at 1e400 mm was built";
+  } catch (const GeometryError& e) {
+    EXPECT_NE(std::string(e.what()).find("beyond 2^1016 mm"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace hipair
