@@ -1392,8 +1392,12 @@ class QuadraticBuilder {
       }
       std::size_t start = i, end = i + 1;
       while (end < count && valid[end] && !is_hard[end]) ++end;
-      Point first = start > 0 && in_box[start - 1] && !valid[start - 1] ? near(start - 1, start) : point_at(start);
-      Point last = end < count && in_box[end] && !valid[end] ? near(end + 1, end) : point_at(end);
+      // a piece never reaches across a hard cut (a horizontal tangent): its edge box is the box
+      // of its ends, so it must stay y-monotone (a circle's lower branch stretched past its
+      // bottom point lost the bottom from its box, and evaluating the edge there failed)
+      Point first = start > 0 && in_box[start - 1] && !valid[start - 1] && !is_hard[start] ? near(start - 1, start)
+                                                                                          : point_at(start);
+      Point last = end < count && in_box[end] && !valid[end] && !is_hard[end] ? near(end + 1, end) : point_at(end);
       pieces.push_back(XCurve{first, last, id, false, expr});
       i = end;
     }

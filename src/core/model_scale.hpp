@@ -26,7 +26,8 @@ long normalising_shift(const Model& model, const std::vector<std::size_t>& parts
 /// limit, an initial offset) exceeds 2^1016 mm (about 7e305 mm) in magnitude: the pair's C-space
 /// coordinates are then lengths at the end of the doubles' range, where its certified double
 /// bounds (edge boxes, CertifiedRange) cannot be formed. Rotating and fixed parts are never
-/// refused (they are rescaled, above). Tiny lengths need no refusal.
+/// refused (they are rescaled, above). A pair with arcs whose every length lies below 2^-1000 mm
+/// is refused too (its double enclosures would be subnormal); tiny polygon pairs are built exactly.
 void require_length_coordinates_in_range(const Model& model, const std::vector<std::size_t>& parts);
 
 /// Throws GeometryError when one of `parts` translates (or slides in a slot, or moves in the

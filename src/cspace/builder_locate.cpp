@@ -43,6 +43,17 @@ Location on_edge(const CSpace::Impl& impl, std::size_t chart, std::size_t local_
   return location;
 }
 
+// The exact ordinate of a vertex that lies on the vertical line x = `x` (its x compares equal
+// to the rational x). A vertex at an irrational-looking x (a root of a reducible resultant, as
+// where a vertical contact line meets a circle: the side of a slot meeting its round end
+// tangentially) carries no algebraic `y`, only y_curve and its branch, and at a tangency
+// y_curve's fibre has a double root there, so a sign change cannot place a rational y. At the
+// rational x itself the fibre is a univariate polynomial and the branch is its exact root.
+Real ordinate_at(const raw::Vertex& vertex, const Rational& x) {
+  if (vertex.y_exact) return vertex.y;
+  return algebra::nth_real_root(algebra::substitute_x(vertex.y_curve, x), vertex.y_branch);
+}
+
 Location locate_2d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
   const ChartData& chart = impl.charts[q.chart];
   const auto& arrangement = chart.arrangement;
@@ -60,7 +71,8 @@ Location locate_2d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
     if (vertex.x.upper_bound() < xi.lo || vertex.x.lower_bound() > xi.hi) continue;
     if (vertex.y_upper_bound() < yi.lo) continue;
     if (vertex.x.compare(q.x) != 0) continue;
-    int c = vertex.y.compare(q.y);
+    Real vertex_y = ordinate_at(vertex, q.x);
+    int c = vertex_y.compare(q.y);
     if (c == 0) {
       Location at;
       at.chart = q.chart;
@@ -82,9 +94,9 @@ Location locate_2d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
       }
       return at;
     }
-    if (c > 0 && (!found || algebra::compare(vertex.y, best_y) < 0)) {
+    if (c > 0 && (!found || algebra::compare(vertex_y, best_y) < 0)) {
       found = true;
-      best_y = vertex.y;
+      best_y = std::move(vertex_y);
       best_vertex = v;
       best_edge = raw::none;
     }
@@ -96,8 +108,8 @@ Location locate_2d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
     if (edge.vertical) {
       if (edge.box[1] > yi.hi) continue;
       if (chart.edges[e].vertical_x.compare(q.x) != 0) continue;
-      if (arrangement.vertices[edge.min_vertex].y.compare(q.y) < 0 &&
-          arrangement.vertices[edge.max_vertex].y.compare(q.y) > 0)
+      if (ordinate_at(arrangement.vertices[edge.min_vertex], q.x).compare(q.y) < 0 &&
+          ordinate_at(arrangement.vertices[edge.max_vertex], q.x).compare(q.y) > 0)
         return on_edge(impl, q.chart, e);
       continue;
     }
