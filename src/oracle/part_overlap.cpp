@@ -22,13 +22,17 @@ Placement placement_about(const Point& pivot, const Rational& cos, const Rationa
 
 namespace {
 
+// Rationals built from (numerator, denominator) need not be canonical, and GMP's rational
+// arithmetic and comparisons assume canonical operands (Rational(12, 2) as an offset gave
+// "overlapping" where the parts touch): the door canonicalises what it is given.
 cspace::RigidMap rigid_of(const Placement& placement, const char* which) {
-  if (placement.cos * placement.cos + placement.sin * placement.sin != 1)
-    throw NumericError(std::string("part_overlap: the ") + which + " placement is not rigid (cos^2 + sin^2 != 1)");
   cspace::RigidMap map;
   map.c = placement.cos;
   map.s = placement.sin;
   map.offset = placement.offset;
+  for (Rational* value : {&map.c, &map.s, &map.offset.x, &map.offset.y}) value->canonicalize();
+  if (map.c * map.c + map.s * map.s != 1)
+    throw NumericError(std::string("part_overlap: the ") + which + " placement is not rigid (cos^2 + sin^2 != 1)");
   return map;
 }
 

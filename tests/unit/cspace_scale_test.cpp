@@ -403,6 +403,40 @@ TEST(CSpaceScale, TranslatingPairsWithArcsLocateTheSameAtEveryScale) {
   EXPECT_EQ(compared, 40);
 }
 
+// Rationals made from (numerator, denominator) pairs are not canonical until canonicalised;
+// the public doors (the overlap predicate, point location) must answer for them as for the
+// canonical value (the overlap predicate once said "overlapping" at an offset 12/2 where the
+// parts touch).
+TEST(CSpaceScale, NonCanonicalRationalsGiveTheCanonicalAnswer) {
+  std::mt19937_64 random(2711);
+  int touching = 0;
+  for (int instance = 0; instance < 6; ++instance) {
+    Points a = random_star(random, 3 + static_cast<int>(random() % 5), 0, 0, 3);
+    Rational cx(static_cast<long>(random() % 5) - 2), cy(static_cast<long>(random() % 5) - 2);
+    Model model = read_model(sliders_json(polygon_loop(a, 1), arc_loops(instance % 2, cx, cy, 1), 1));
+    CSpace space = CSpace::build(model, "a", "b");
+    for (int i = -16; i <= 16; ++i)
+      for (int j = -16; j <= 16; ++j) {
+        Rational x(6 * i, 12), y(6 * j, 12);   // i/2 and j/2, not canonical
+        Rational cx_(x), cy_(y);
+        cx_.canonicalize();
+        cy_.canonicalize();
+        Placement pa, pb, qa, qb;
+        pa.offset = Point{x, Rational(0)};
+        pb.offset = Point{Rational(0), y};
+        qa.offset = Point{cx_, Rational(0)};
+        qb.offset = Point{Rational(0), cy_};
+        const PartRelation raw = part_overlap(model.parts[0], pa, model.parts[1], pb).relation;
+        const PartRelation canonical = part_overlap(model.parts[0], qa, model.parts[1], qb).relation;
+        EXPECT_EQ(static_cast<int>(raw), static_cast<int>(canonical)) << "at (" << cx_ << ", " << cy_ << ")";
+        touching += canonical == PartRelation::touching;
+        EXPECT_EQ(static_cast<int>(seen(space, x, y)), static_cast<int>(seen(space, cx_, cy_)))
+            << "at (" << cx_ << ", " << cy_ << ")";
+      }
+  }
+  EXPECT_GT(touching, 0);
+}
+
 // Beyond 2^1016 mm a pair with length coordinates is refused with one clear error (before:
 // SIGFPE converting an infinite edge box to a rational); a rotating pair there is rescaled.
 TEST(CSpaceScale, LengthCoordinatesBeyondTheDoublesAreRefusedClearly) {
