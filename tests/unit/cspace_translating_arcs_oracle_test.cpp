@@ -1,0 +1,279 @@
+// Translating pairs bounded by segments AND arcs (pins, stadium slots, rounded rectangles, plates
+// with round holes, stars), generated at random on a rational grid, including the fits
+// designers make on purpose: a pin in a hole of exactly its radius, a pin in a slot of exactly
+// its width, a stadium in a stadium-shaped pocket. Every C-space is checked against the exact
+// overlap predicate (include/hipair/overlap.hpp) at random rational configurations, at every
+// exact vertex of the space, and at rational points ON its real edges (the exact ordinate of the
+// edge at a rational abscissa, where it is rational): point location must say free exactly where
+// the parts are apart, blocked exactly where they overlap, and contact/touching exactly where
+// they touch. Session 14 found with a narrower version of this test a triangle-against-circle
+// pair that failed to build and a whole vertical line of wrong locations at a slot's tangent joint.
+#include <hipair/cspace.hpp>
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+#include <hipair/overlap.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace hipair {
+namespace {
+
+Rational eighths(long n) {
+  Rational r(n, 8);
+  r.canonicalize();
+  return r;
+}
+
+std::string q(const Rational& r) { return "\"" + r.get_str() + "\""; }
+std::string at(const Rational& x, const Rational& y) { return "[" + q(x) + ", " + q(y) + "]"; }
+
+// One loop as JSON, from a start point and a list of edges already written.
+struct Loop {
+  Rational x0, y0;
+  std::vector<std::string> edges;
+  void line(const Rational& x, const Rational& y) { edges.push_back("{ \"line_to\": " + at(x, y) + " }"); }
+  void arc(const Rational& x, const Rational& y, const Rational& cx, const Rational& cy, bool ccw) {
+    edges.push_back("{ \"arc_to\": " + at(x, y) + ", \"center\": " + at(cx, cy) + ", \"dir\": \"" + (ccw ? "ccw" : "cw") + "\" }");
+  }
+  std::string json() const {
+    std::string s = "{ \"start\": " + at(x0, y0) + ", \"edges\": [";
+    for (std::size_t i = 0; i < edges.size(); ++i) s += (i ? ", " : "") + edges[i];
+    return s + "] }";
+  }
+};
+
+std::string circle(const Rational& cx, const Rational& cy, const Rational& r) {
+  return "{ \"circle\": { \"center\": " + at(cx, cy) + ", \"radius\": " + q(r) + " } }";
+}
+
+// A stadium (a slot's outline): the segment (x0, y) .. (x1, y) thickened by r.
+std::string stadium(const Rational& x0, const Rational& x1, const Rational& y, const Rational& r) {
+  Loop l{x0, y - r, {}};
+  l.line(x1, y - r);
+  l.arc(x1, y + r, x1, y, true);
+  l.line(x0, y + r);
+  l.arc(x0, y - r, x0, y, true);
+  return l.json();
+}
+
+// A rectangle [x0, x1] x [y0, y1] with corners rounded by r (tangent joints everywhere).
+std::string rounded_rectangle(const Rational& x0, const Rational& y0, const Rational& x1, const Rational& y1,
+                              const Rational& r) {
+  Loop l{x0 + r, y0, {}};
+  l.line(x1 - r, y0);
+  l.arc(x1, y0 + r, x1 - r, y0 + r, true);
+  l.line(x1, y1 - r);
+  l.arc(x1 - r, y1, x1 - r, y1 - r, true);
+  l.line(x0 + r, y1);
+  l.arc(x0, y1 - r, x0 + r, y1 - r, true);
+  l.line(x0, y0 + r);
+  l.arc(x0 + r, y0, x0 + r, y0 + r, true);
+  return l.json();
+}
+
+std::string square(const Rational& cx, const Rational& cy, const Rational& h) {
+  Loop l{cx - h, cy - h, {}};
+  l.line(cx + h, cy - h);
+  l.line(cx + h, cy + h);
+  l.line(cx - h, cy + h);
+  l.line(cx - h, cy - h);
+  return l.json();
+}
+
+std::string star(std::mt19937_64& random, int k, double radius) {
+  Loop l;
+  for (int i = 0; i < k; ++i) {
+    double angle = 2 * 3.141592653589793 * (i + 0.2 + 0.6 * static_cast<double>(random() % 1000) / 1000.0) / k;
+    double r = radius * (0.4 + 0.6 * static_cast<double>(random() % 1000) / 1000.0);
+    Rational x = eighths(std::lround(8 * r * std::cos(angle))), y = eighths(std::lround(8 * r * std::sin(angle)));
+    if (i == 0) {
+      l.x0 = x;
+      l.y0 = y;
+    } else {
+      l.line(x, y);
+    }
+  }
+  l.line(l.x0, l.y0);
+  return l.json();
+}
+
+// The pair: part "a" slides along x, part "b" along y, both within [-12, 12].
+std::string pair_json(const std::string& a_loops, const std::string& b_loops) {
+  const std::string limits = "[\"-12\", \"12\"]";
+  return R"({ "hipair": 1, "name": "translating arcs", "parts": [
+    { "name": "a", "motion": { "translation": { "direction": [1, 0], "limits": )" + limits + R"( } }, "loops": [ )" +
+         a_loops + R"( ] },
+    { "name": "b", "motion": { "translation": { "direction": [0, 1], "limits": )" + limits + R"( } }, "loops": [ )" +
+         b_loops + R"( ] } ] })";
+}
+
+struct Case {
+  std::string name, json;
+};
+
+std::vector<Case> cases() {
+  std::mt19937_64 random(14014);
+  auto coordinate = [&](int span) { return eighths(static_cast<long>(random() % (16 * span + 1)) - 8 * span); };
+  auto radius = [&](int lo8, int hi8) { return eighths(lo8 + static_cast<long>(random() % (hi8 - lo8 + 1))); };
+  std::vector<Case> out;
+  // deliberate fits: zero clearance
+  for (int i = 0; i < 3; ++i) {
+    Rational r = radius(6, 20), cx = coordinate(2), cy = coordinate(2);
+    // a plate (square) with a round hole of radius r, and a pin of radius r
+    out.push_back({"pin in a hole of its radius " + std::to_string(i),
+                   pair_json(square(cx, cy, r + 3) + ", " + circle(cx, cy, r), circle(Rational(0), Rational(0), r))});
+    // a pin of radius r in a stadium slot of half-width r (the slot cut into a plate)
+    Rational x0 = coordinate(2), len = radius(8, 40);
+    out.push_back({"pin in a slot of its width " + std::to_string(i),
+                   pair_json(square(x0 + len / 2, cy, len / 2 + r + 2) + ", " + stadium(x0, x0 + len, cy, r),
+                             circle(coordinate(1), coordinate(1), r))});
+    // a stadium in a stadium-shaped pocket of the same size
+    out.push_back({"stadium in its pocket " + std::to_string(i),
+                   pair_json(square(x0 + len / 2, cy, len / 2 + r + 2) + ", " + stadium(x0, x0 + len, cy, r),
+                             stadium(Rational(0), len, Rational(0), r))});
+  }
+  // random shapes against each other
+  for (int i = 0; i < 15; ++i) {
+    auto shape = [&](int which) -> std::string {
+      switch (which) {
+        case 0: return circle(coordinate(2), coordinate(2), radius(4, 24));
+        case 1: {
+          Rational x0 = coordinate(2);
+          return stadium(x0, x0 + radius(4, 32), coordinate(2), radius(3, 12));
+        }
+        case 2: {
+          Rational x0 = coordinate(3), y0 = coordinate(3), r = radius(2, 8);
+          return rounded_rectangle(x0, y0, x0 + 2 * r + radius(1, 24), y0 + 2 * r + radius(1, 24), r);
+        }
+        default: return star(random, 3 + static_cast<int>(random() % 5), 3);
+      }
+    };
+    int first = static_cast<int>(random() % 4), second = static_cast<int>(random() % 3);   // b has an arc
+    out.push_back({"random " + std::to_string(i), pair_json(shape(first), shape(second))});
+  }
+  return out;
+}
+
+enum class Seen { free, blocked, touching, contact, outside };
+
+Seen seen(const CSpace& space, const Rational& x, const Rational& y) {
+  Location l = space.locate(PartCoordinate{PartCoordinate::Kind::offset, x}, PartCoordinate{PartCoordinate::Kind::offset, y});
+  auto of_cell = [&](std::size_t cell) {
+    switch (space.cells()[cell].kind) {
+      case CellKind::free: return Seen::free;
+      case CellKind::blocked: return Seen::blocked;
+      case CellKind::touching: return Seen::touching;
+    }
+    return Seen::outside;
+  };
+  switch (l.kind) {
+    case Location::Kind::free: return Seen::free;
+    case Location::Kind::blocked: return Seen::blocked;
+    case Location::Kind::touching: return Seen::touching;
+    case Location::Kind::outside: return Seen::outside;
+    case Location::Kind::edge:
+    case Location::Kind::vertex: return l.cell == no_index ? Seen::contact : of_cell(l.cell);
+  }
+  return Seen::outside;
+}
+
+TEST(CSpaceTranslatingArcs, PointLocationEqualsTheExactOverlapPredicate) {
+  std::mt19937_64 random(2026);
+  int checked = 0, on_edges = 0, touching = 0;
+  for (const Case& c : cases()) {
+    SCOPED_TRACE(c.name);
+    Model model = read_model(c.json);
+    CSpace space = [&] {
+      try {
+        return CSpace::build(model, "a", "b");
+      } catch (const Error& e) {
+        ADD_FAILURE() << "build: " << e.what() << "\n" << c.json;
+        throw;
+      }
+    }();
+    std::vector<std::pair<Rational, Rational>> points;
+    for (int i = 0; i < 400; ++i) {
+      Rational x(static_cast<long>(random() % 385) - 192, 16), y(static_cast<long>(random() % 385) - 192, 16);
+      x.canonicalize();
+      y.canonicalize();
+      points.emplace_back(x, y);
+    }
+    for (const CSpaceVertex& v : space.vertices())
+      if (v.x.exact && v.y_exact && v.y.exact) points.emplace_back(v.x.lower, v.y.lower);
+    // rational points on real edges: the midpoint abscissa of the edge's certified extent,
+    // rounded to a short rational, where the edge's exact ordinate there is rational
+    const std::size_t first_edge_point = points.size();
+    for (std::size_t e = 0; e < space.edges().size(); ++e) {
+      const CSpaceEdge& edge = space.edges()[e];
+      if (!edge.real || edge.vertical) continue;
+      for (int k = 1; k <= 3; ++k) {
+        double lo = edge.x_chart.lower, hi = edge.x_chart.upper;
+        Rational x(std::lround(1024 * (lo + (hi - lo) * k / 4)), 1024);
+        x.canonicalize();
+        if (!(Rational(lo) < x && x < Rational(hi))) continue;
+        try {
+          AlgebraicNumber y = space.evaluate_exact(e, x);
+          if (y.exact) points.emplace_back(x, y.lower);
+        } catch (const GeometryError&) {
+          // x outside the edge's exact extent (the certified one is wider): no point
+        }
+      }
+    }
+    // points on vertical edges (a vertex of a part against a vertical side, and where a slot's
+    // side meets its round end tangentially): the edge's constant rational x, y across the edge
+    for (std::size_t e = 0; e < space.edges().size(); ++e) {
+      const CSpaceEdge& edge = space.edges()[e];
+      if (!edge.vertical) continue;
+      const auto& f = space.edge_polynomial_coefficients(e);   // f[i][j]: x^i y^j; c0 + c1 x
+      if (f.size() != 2 || f[1].empty() || f[1][0] == 0) continue;
+      Rational x(mpz_class(-f[0][0]), f[1][0]);
+      x.canonicalize();
+      for (int k = 0; k <= 8; ++k) {
+        Rational y(std::lround(64 * (edge.y_chart.lower + (edge.y_chart.upper - edge.y_chart.lower) * k / 8)), 64);
+        y.canonicalize();
+        points.emplace_back(x, y);
+      }
+    }
+    int wrong = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const auto& [x, y] = points[i];
+      Seen got;
+      try {
+        got = seen(space, x, y);
+      } catch (const Error& e) {
+        if (++wrong <= 3) ADD_FAILURE() << "locate (" << x << ", " << y << "): " << e.what();
+        continue;
+      }
+      if (got == Seen::outside) continue;
+      Placement pa, pb;
+      pa.offset = Point{x, Rational(0)};
+      pb.offset = Point{Rational(0), y};
+      const PartRelation relation = part_overlap(model.parts[0], pa, model.parts[1], pb).relation;
+      const bool agrees = relation == PartRelation::apart         ? got == Seen::free
+                          : relation == PartRelation::overlapping ? got == Seen::blocked
+                                                                  : got == Seen::contact || got == Seen::touching;
+      if (!agrees && ++wrong <= 3)
+        ADD_FAILURE() << "at (" << x << ", " << y << "): located " << static_cast<int>(got) << ", the parts are "
+                      << (relation == PartRelation::apart ? "apart" : relation == PartRelation::overlapping ? "overlapping" : "touching");
+      ++checked;
+      on_edges += i >= first_edge_point;
+      touching += relation == PartRelation::touching;
+    }
+    EXPECT_EQ(wrong, 0) << c.json;
+  }
+  std::cout << checked << " configurations checked, " << on_edges << " on edges, " << touching
+            << " where the parts touch\n";
+  EXPECT_GT(checked, 10000);
+  EXPECT_GT(on_edges, 100);
+  EXPECT_GT(touching, 200);
+}
+
+}  // namespace
+}  // namespace hipair
