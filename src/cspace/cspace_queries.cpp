@@ -372,12 +372,30 @@ int CSpace::compare_ordinate(VertexId id, const Rational& y_input) const {
   // changes sign across the interval, the sign at y tells on which side of the root y lies
   int lower = cspace::algebra::sign_at(vertex.y_curve, vertex.x, vertex.y_lower);
   int upper = cspace::algebra::sign_at(vertex.y_curve, vertex.x, vertex.y_upper);
-  if (lower == 0 || upper == 0 || lower == upper)
-    throw GeometryError("compare_ordinate: the ordinate of vertex " + std::to_string(index) +
-                        " is not a sign change of its curve's fibre (not decided)");
-  int at = cspace::algebra::sign_at(vertex.y_curve, vertex.x, y);
-  if (at == 0) return 0;
-  return at == lower ? -1 : 1;
+  if (lower != 0 && upper != 0 && lower != upper) {
+    int at = cspace::algebra::sign_at(vertex.y_curve, vertex.x, y);
+    if (at == 0) return 0;
+    return at == lower ? -1 : 1;
+  }
+  // no sign change: a double root of the fibre (the curve's vertical tangent meets another
+  // curve there, as where a slot's side meets its round end). For a fibre of degree 2 in y,
+  // a y0^2 + ... = a (y - y0)^2 and its y-derivative 2 a (y - y0) changes sign at y0 alone.
+  if (vertex.y_curve.degree_y() == 2) {
+    cspace::IntegerPolynomial2 derivative;
+    derivative.coefficients.resize(vertex.y_curve.coefficients.size());
+    for (std::size_t i = 0; i < vertex.y_curve.coefficients.size(); ++i)
+      for (std::size_t j = 1; j < vertex.y_curve.coefficients[i].size(); ++j)
+        derivative.coefficients[i].push_back(vertex.y_curve.coefficients[i][j] * static_cast<long>(j));
+    lower = cspace::algebra::sign_at(derivative, vertex.x, vertex.y_lower);
+    upper = cspace::algebra::sign_at(derivative, vertex.x, vertex.y_upper);
+    if (lower != 0 && upper != 0 && lower != upper) {
+      int at = cspace::algebra::sign_at(derivative, vertex.x, y);
+      if (at == 0) return 0;
+      return at == lower ? -1 : 1;
+    }
+  }
+  throw GeometryError("compare_ordinate: the ordinate of vertex " + std::to_string(index) +
+                      " is not a sign change of its curve's fibre (not decided)");
 }
 
 // ------------------------------------------------------------------ filtered derivatives

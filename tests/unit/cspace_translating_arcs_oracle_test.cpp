@@ -186,7 +186,7 @@ Seen seen(const CSpace& space, const Rational& x, const Rational& y) {
 
 TEST(CSpaceTranslatingArcs, PointLocationEqualsTheExactOverlapPredicate) {
   std::mt19937_64 random(2026);
-  int checked = 0, on_edges = 0, touching = 0;
+  int checked = 0, on_edges = 0, touching = 0, ordinates = 0;
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.name);
     Model model = read_model(c.json);
@@ -267,10 +267,29 @@ TEST(CSpaceTranslatingArcs, PointLocationEqualsTheExactOverlapPredicate) {
       touching += relation == PartRelation::touching;
     }
     EXPECT_EQ(wrong, 0) << c.json;
+    // the ordinate of every vertex compares with rationals below, above and far off it, also
+    // where it is a double root of its curve's fibre (a tangent joint)
+    for (std::size_t v = 0; v < space.vertices().size(); ++v) {
+      const CSpaceVertex& vertex = space.vertices()[v];
+      if (vertex.y_exact) continue;
+      try {
+        EXPECT_EQ(space.compare_ordinate(VertexId(v), vertex.y_lower - 1), -1);
+        EXPECT_EQ(space.compare_ordinate(VertexId(v), vertex.y_upper + 1), 1);
+        if (vertex.y_lower < vertex.y_upper) {
+          const int low = space.compare_ordinate(VertexId(v), vertex.y_lower);
+          const int high = space.compare_ordinate(VertexId(v), vertex.y_upper);
+          EXPECT_TRUE(low <= 0 && high >= 0 && low < high) << "vertex " << v;
+        }
+        ++ordinates;
+      } catch (const Error& e) {
+        ADD_FAILURE() << "compare_ordinate, vertex " << v << ": " << e.what();
+      }
+    }
   }
   std::cout << checked << " configurations checked, " << on_edges << " on edges, " << touching
             << " where the parts touch\n";
   EXPECT_GT(checked, 10000);
+  EXPECT_GT(ordinates, 20);
   EXPECT_GT(on_edges, 100);
   EXPECT_GT(touching, 200);
 }
