@@ -294,5 +294,112 @@ TEST(CSpaceTranslatingArcs, PointLocationEqualsTheExactOverlapPredicate) {
   EXPECT_GT(touching, 200);
 }
 
+
+// Rotating parts with arcs: a cam (a stadium or a rounded rectangle turning about a pivot)
+// against a translating follower with a round or flat end, and two rotating parts (a lever
+// against a lever or a pin wheel). Checked as above, with rotations at rational half-angle
+// tangents (exact rational rotations): random ones, the abscissae of every vertical edge
+// (the angles where a vertex meets a flank, or a tangent joint), at the vertices and on the
+// real edges.
+std::string rotating_pair_json(const std::string& a_loops, const std::string& a_pivot, const std::string& b_motion,
+                               const std::string& b_loops) {
+  return R"({ "hipair": 1, "name": "rotating arcs", "parts": [
+    { "name": "a", "motion": { "rotation": { "pivot": )" + a_pivot + R"( } }, "loops": [ )" + a_loops + R"( ] },
+    { "name": "b", "motion": )" + b_motion + R"(, "loops": [ )" + b_loops + R"( ] } ] })";
+}
+
+Placement turned(const Point& pivot, const Rational& t) {
+  const Rational d = 1 + t * t;
+  return placement_about(pivot, Rational((1 - t * t) / d), Rational(2 * t / d), Point{Rational(0), Rational(0)});
+}
+
+TEST(CSpaceRotatingArcs, PointLocationEqualsTheExactOverlapPredicate) {
+  std::mt19937_64 random(1414);
+  auto coordinate = [&](int span) { return eighths(static_cast<long>(random() % (16 * span + 1)) - 8 * span); };
+  auto radius = [&](int lo8, int hi8) { return eighths(lo8 + static_cast<long>(random() % (hi8 - lo8 + 1))); };
+  int checked = 0, touching = 0;
+  for (int instance = 0; instance < 12; ++instance) {
+    SCOPED_TRACE("instance " + std::to_string(instance));
+    // part a: a cam about (0, 0): a stadium through the pivot or a rounded rectangle around it
+    Rational r = radius(4, 12), len = radius(16, 40);
+    std::string cam = instance % 2 == 0 ? stadium(Rational(0), len, Rational(0), r)
+                                        : rounded_rectangle(-r - 1, -r - 1, len, r + 1, radius(2, 7));
+    const bool translating = instance % 3 != 2;
+    std::string b_motion, b_loops;
+    Point b_pivot{Rational(0), Rational(0)};
+    if (translating) {
+      // a follower sliding along y at x = c, its lower end a round nose or a flat
+      Rational c = coordinate(3), nose = radius(4, 16);
+      b_motion = R"({ "translation": { "direction": [0, 1], "limits": ["-20", "20"] } })";
+      b_loops = instance % 2 == 0 ? circle(c, nose + len + 2, nose) : square(c, len + 2 + nose, nose);
+    } else {
+      Rational px = len + radius(8, 24), py = coordinate(1);
+      b_pivot = Point{px, py};
+      b_motion = R"({ "rotation": { "pivot": )" + at(px, py) + " } }";
+      b_loops = stadium(px - len, px, py, r) + ", " + circle(px - len / 2, py + r + 2, radius(4, 10));
+    }
+    Model model = read_model(rotating_pair_json(cam, "[0, 0]", b_motion, b_loops));
+    CSpace space = CSpace::build(model, "a", "b");
+    auto second = [&](const Rational& v) {
+      return translating ? PartCoordinate{PartCoordinate::Kind::offset, v} : PartCoordinate{PartCoordinate::Kind::half_angle_tangent, v};
+    };
+    std::vector<std::pair<Rational, Rational>> points;   // (tangent of a, coordinate of b)
+    for (int i = 0; i < 600; ++i) {
+      Rational t(static_cast<long>(random() % 801) - 400, 100), v(static_cast<long>(random() % 641) - 320, translating ? 16 : 100);
+      t.canonicalize();
+      v.canonicalize();
+      points.emplace_back(t, v);
+    }
+    // vertical edges of chart 0 (whose coordinates are the half-angle tangent and the offset or
+    // the other tangent): their constant abscissa, ordinates across the edge
+    for (std::size_t e = 0; e < space.edges().size(); ++e) {
+      const CSpaceEdge& edge = space.edges()[e];
+      if (!edge.vertical || edge.chart != 0) continue;
+      const auto& f = space.edge_polynomial_coefficients(e);
+      if (f.size() != 2 || f[1].empty() || f[1][0] == 0) continue;
+      Rational x(mpz_class(-f[0][0]), f[1][0]);
+      x.canonicalize();
+      for (int k = 0; k <= 8; ++k) {
+        Rational y(std::lround(256 * (edge.y_chart.lower + (edge.y_chart.upper - edge.y_chart.lower) * k / 8)), 256);
+        y.canonicalize();
+        points.emplace_back(x, y);
+      }
+    }
+    int wrong = 0;
+    for (const auto& [t, v] : points) {
+      // chart 0 coordinates are the tangent and the offset (or the other tangent) themselves
+      Location l;
+      try {
+        l = space.locate(PartCoordinate{PartCoordinate::Kind::half_angle_tangent, t}, second(v));
+      } catch (const Error& e) {
+        if (++wrong <= 3) ADD_FAILURE() << "locate (" << t << ", " << v << "): " << e.what();
+        continue;
+      }
+      if (l.kind == Location::Kind::outside) continue;
+      Seen got = l.kind == Location::Kind::free      ? Seen::free
+                 : l.kind == Location::Kind::blocked ? Seen::blocked
+                 : l.kind == Location::Kind::touching
+                     ? Seen::touching
+                     : (l.cell == no_index ? Seen::contact
+                                           : (space.cells()[l.cell].kind == CellKind::free ? Seen::free : Seen::blocked));
+      Placement pa = turned(Point{Rational(0), Rational(0)}, t);
+      Placement pb = translating ? Placement{} : turned(b_pivot, v);
+      if (translating) pb.offset = Point{Rational(0), v};
+      const PartRelation relation = part_overlap(model.parts[0], pa, model.parts[1], pb).relation;
+      const bool agrees = relation == PartRelation::apart         ? got == Seen::free
+                          : relation == PartRelation::overlapping ? got == Seen::blocked
+                                                                  : got == Seen::contact || got == Seen::touching;
+      if (!agrees && ++wrong <= 3)
+        ADD_FAILURE() << "at (" << t << ", " << v << "): located " << static_cast<int>(got) << ", the parts are "
+                      << (relation == PartRelation::apart ? "apart" : relation == PartRelation::overlapping ? "overlapping" : "touching");
+      ++checked;
+      touching += relation == PartRelation::touching;
+    }
+    EXPECT_EQ(wrong, 0);
+  }
+  std::cout << checked << " rotating configurations checked, " << touching << " where the parts touch\n";
+  EXPECT_GT(checked, 6000);
+}
+
 }  // namespace
 }  // namespace hipair
