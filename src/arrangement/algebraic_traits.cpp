@@ -455,8 +455,10 @@ class Builder {
         while (end < count && valid[end] && !is_hard(end)) ++end;
         Point first = cuts[start], last = cuts[end];
         if (!arc.is_vertical()) {
-          if (start > 0 && in_box[start - 1] && !valid[start - 1]) first = near(start - 1, start);
-          if (end < count && in_box[end] && !valid[end]) last = near(end + 1, end);
+          // never across a horizontal tangent: the edge box is the box of the ends (at 1e300
+          // mm a circle's piece stretched past its bottom point and evaluating it there failed)
+          if (start > 0 && in_box[start - 1] && !valid[start - 1] && !is_hard(start)) first = near(start - 1, start);
+          if (end < count && in_box[end] && !valid[end] && !is_hard(end)) last = near(end + 1, end);
         }
         pieces.push_back(arc.trim(first, last));
         i = end;

@@ -7,7 +7,8 @@
 // edge at a rational abscissa, where it is rational): point location must say free exactly where
 // the parts are apart, blocked exactly where they overlap, and contact/touching exactly where
 // they touch. Session 14 found with a narrower version of this test a triangle-against-circle
-// pair that failed to build and a whole vertical line of wrong locations at a slot's tangent joint.
+// pair that failed to build and a whole vertical line of wrong locations at a slot's tangent joint;
+// this one, at 1e300 mm, a piece of the algebraic traits stretched past a circle's bottom point.
 #include <hipair/cspace.hpp>
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
@@ -31,7 +32,9 @@ Rational eighths(long n) {
   return r;
 }
 
-std::string q(const Rational& r) { return "\"" + r.get_str() + "\""; }
+// Every number written into a model is a length: scaled by `length_scale` (exactly).
+Rational length_scale(1);
+std::string q(const Rational& r) { return "\"" + Rational(r * length_scale).get_str() + "\""; }
 std::string at(const Rational& x, const Rational& y) { return "[" + q(x) + ", " + q(y) + "]"; }
 
 // One loop as JSON, from a start point and a list of edges already written.
@@ -106,7 +109,7 @@ std::string star(std::mt19937_64& random, int k, double radius) {
 
 // The pair: part "a" slides along x, part "b" along y, both within [-12, 12].
 std::string pair_json(const std::string& a_loops, const std::string& b_loops) {
-  const std::string limits = "[\"-12\", \"12\"]";
+  const std::string limits = "[" + q(Rational(-12)) + ", " + q(Rational(12)) + "]";
   return R"({ "hipair": 1, "name": "translating arcs", "parts": [
     { "name": "a", "motion": { "translation": { "direction": [1, 0], "limits": )" + limits + R"( } }, "loops": [ )" +
          a_loops + R"( ] },
@@ -184,10 +187,30 @@ Seen seen(const CSpace& space, const Rational& x, const Rational& y) {
   return Seen::outside;
 }
 
-TEST(CSpaceTranslatingArcs, PointLocationEqualsTheExactOverlapPredicate) {
+// A rational near v / scale on a 1/denominator grid, times scale (exact; v a double length).
+Rational near_scaled(double v, double scale_as_double, const Rational& scale, long denominator) {
+  Rational r(std::lround(static_cast<double>(denominator) * (v / scale_as_double)), denominator);
+  r.canonicalize();
+  return r * scale;
+}
+
+Rational power_of_ten(int exponent) {
+  mpz_class p;
+  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(exponent)));
+  return exponent >= 0 ? Rational(p) : Rational(mpz_class(1), p);
+}
+
+class CSpaceTranslatingArcs : public testing::TestWithParam<int> {};
+
+TEST_P(CSpaceTranslatingArcs, PointLocationEqualsTheExactOverlapPredicate) {
+  const Rational s = power_of_ten(GetParam());
+  const double sd = std::pow(10.0, GetParam());
+  length_scale = s;
   std::mt19937_64 random(2026);
   int checked = 0, on_edges = 0, touching = 0, ordinates = 0;
-  for (const Case& c : cases()) {
+  const std::vector<Case> all = cases();
+  length_scale = 1;
+  for (const Case& c : all) {
     SCOPED_TRACE(c.name);
     Model model = read_model(c.json);
     CSpace space = [&] {
@@ -203,7 +226,7 @@ TEST(CSpaceTranslatingArcs, PointLocationEqualsTheExactOverlapPredicate) {
       Rational x(static_cast<long>(random() % 385) - 192, 16), y(static_cast<long>(random() % 385) - 192, 16);
       x.canonicalize();
       y.canonicalize();
-      points.emplace_back(x, y);
+      points.emplace_back(x * s, y * s);
     }
     for (const CSpaceVertex& v : space.vertices())
       if (v.x.exact && v.y_exact && v.y.exact) points.emplace_back(v.x.lower, v.y.lower);
@@ -215,8 +238,7 @@ TEST(CSpaceTranslatingArcs, PointLocationEqualsTheExactOverlapPredicate) {
       if (!edge.real || edge.vertical) continue;
       for (int k = 1; k <= 3; ++k) {
         double lo = edge.x_chart.lower, hi = edge.x_chart.upper;
-        Rational x(std::lround(1024 * (lo + (hi - lo) * k / 4)), 1024);
-        x.canonicalize();
+        Rational x = near_scaled(lo + (hi - lo) * k / 4, sd, s, 1024);
         if (!(Rational(lo) < x && x < Rational(hi))) continue;
         try {
           AlgebraicNumber y = space.evaluate_exact(e, x);
@@ -236,9 +258,7 @@ TEST(CSpaceTranslatingArcs, PointLocationEqualsTheExactOverlapPredicate) {
       Rational x(mpz_class(-f[0][0]), f[1][0]);
       x.canonicalize();
       for (int k = 0; k <= 8; ++k) {
-        Rational y(std::lround(64 * (edge.y_chart.lower + (edge.y_chart.upper - edge.y_chart.lower) * k / 8)), 64);
-        y.canonicalize();
-        points.emplace_back(x, y);
+        points.emplace_back(x, near_scaled(edge.y_chart.lower + (edge.y_chart.upper - edge.y_chart.lower) * k / 8, sd, s, 64));
       }
     }
     int wrong = 0;
@@ -294,6 +314,13 @@ TEST(CSpaceTranslatingArcs, PointLocationEqualsTheExactOverlapPredicate) {
   EXPECT_GT(touching, 200);
 }
 
+
+// Scale 1, and the same pairs at 1e-300 mm and 1e300 mm (every length multiplied exactly).
+INSTANTIATE_TEST_SUITE_P(Scales, CSpaceTranslatingArcs, testing::Values(0, -300, 300),
+                         [](const testing::TestParamInfo<int>& info) {
+                           return info.param == 0 ? std::string("Scale1")
+                                                  : "Scale1e" + std::string(info.param < 0 ? "Minus" : "") + std::to_string(std::abs(info.param));
+                         });
 
 // Rotating parts with arcs: a cam (a stadium or a rounded rectangle turning about a pivot)
 // against a translating follower with a round or flat end, and two rotating parts (a lever
