@@ -10,6 +10,7 @@
 #include <CGAL/Cartesian.h>
 #include <CGAL/Gmpq.h>
 #include <CGAL/Polygon_set_2.h>
+#include <CGAL/minkowski_sum_2.h>
 
 #include <gtest/gtest.h>
 
@@ -71,6 +72,41 @@ inline PolygonSet blocked_region(const CSpace& space) {
     }
   }
   return region;
+}
+
+using Points = std::vector<std::pair<Rational, Rational>>;
+
+// The polygon of `points` times `scale` (negated: the reflection -P), counter-clockwise.
+inline Polygon cgal_polygon(const Points& points, const Rational& scale, bool negate) {
+  Polygon p;
+  for (const auto& [x, y] : points) {
+    Rational px = x * scale, py = y * scale;
+    if (negate) {
+      px = -px;
+      py = -py;
+    }
+    p.push_back(Point2(gmpq(px), gmpq(py)));
+  }
+  if (p.is_clockwise_oriented()) p.reverse_orientation();
+  return p;
+}
+
+// Part a (points `a` times scale) along x by u, part b along y by v: blocked iff
+// u e_x - v e_y lies in the interior of B + (-A); the space's blocked faces must equal it exactly.
+inline void expect_minkowski(const CSpace& space, const Points& a, const Points& b, const Rational& scale = Rational(1)) {
+  PolygonWithHoles sum = CGAL::minkowski_sum_2(cgal_polygon(b, scale, false), cgal_polygon(a, scale, true));
+  auto reflect = [](const Polygon& polygon) {
+    Polygon out;
+    for (auto it = polygon.vertices_begin(); it != polygon.vertices_end(); ++it) out.push_back(Point2(it->x(), -it->y()));
+    out.reverse_orientation();
+    return out;
+  };
+  PolygonWithHoles expected(reflect(sum.outer_boundary()));
+  for (auto hole = sum.holes_begin(); hole != sum.holes_end(); ++hole) expected.add_hole(reflect(*hole));
+  PolygonSet difference = blocked_region(space);
+  EXPECT_FALSE(difference.is_empty());
+  difference.symmetric_difference(expected);
+  EXPECT_TRUE(difference.is_empty()) << "blocked faces differ from the Minkowski sum";
 }
 
 }  // namespace hipair::minkowski_support

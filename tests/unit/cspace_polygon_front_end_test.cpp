@@ -163,32 +163,6 @@ void expect_same_space(const CSpace& fast, const CSpace& general) {
   EXPECT_EQ(s.faces, t.faces);
 }
 
-Polygon cgal_polygon(const Points& points, bool negate) {
-  Polygon p;
-  for (const auto& [x, y] : points) {
-    Rational px = negate ? Rational(-x) : x, py = negate ? Rational(-y) : y;
-    p.push_back(Point2(CGAL::Gmpq(px.get_mpq_t()), CGAL::Gmpq(py.get_mpq_t())));
-  }
-  if (p.is_clockwise_oriented()) p.reverse_orientation();
-  return p;
-}
-
-// Part a along x by s, part b along y by r: blocked iff s e_x - r e_y in interior(B + (-A)).
-void expect_minkowski(const CSpace& space, const Points& a, const Points& b) {
-  PolygonWithHoles sum = CGAL::minkowski_sum_2(cgal_polygon(b, false), cgal_polygon(a, true));
-  auto reflect = [](const Polygon& polygon) {
-    Polygon out;
-    for (auto it = polygon.vertices_begin(); it != polygon.vertices_end(); ++it) out.push_back(Point2(it->x(), -it->y()));
-    out.reverse_orientation();
-    return out;
-  };
-  PolygonWithHoles expected(reflect(sum.outer_boundary()));
-  for (auto hole = sum.holes_begin(); hole != sum.holes_end(); ++hole) expected.add_hole(reflect(*hole));
-  PolygonSet difference = blocked_region(space);
-  EXPECT_FALSE(difference.is_empty());
-  difference.symmetric_difference(expected);
-  EXPECT_TRUE(difference.is_empty()) << "blocked faces differ from the Minkowski sum";
-}
 
 struct Built {
   CSpace fast, general;

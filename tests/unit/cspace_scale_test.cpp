@@ -35,7 +35,6 @@ namespace hipair {
 namespace {
 
 using namespace minkowski_support;
-using Points = std::vector<std::pair<Rational, Rational>>;
 
 Rational power(unsigned long base, int exponent) {
   mpz_class p;
@@ -224,36 +223,6 @@ void expect_scaled_space(const CSpace& base, const CSpace& scaled, const Rationa
   EXPECT_EQ(base.statistics().faces, scaled.statistics().faces);
 }
 
-Polygon cgal_polygon(const Points& points, const Rational& s, bool negate) {
-  Polygon p;
-  for (const auto& [x, y] : points) {
-    Rational px = x * s, py = y * s;
-    if (negate) {
-      px = -px;
-      py = -py;
-    }
-    p.push_back(Point2(gmpq(px), gmpq(py)));
-  }
-  if (p.is_clockwise_oriented()) p.reverse_orientation();
-  return p;
-}
-
-// Part a along x by u, part b along y by v: blocked iff u e_x - v e_y in interior(B + (-A)).
-void expect_minkowski(const CSpace& space, const Points& a, const Points& b, const Rational& s) {
-  PolygonWithHoles sum = CGAL::minkowski_sum_2(cgal_polygon(b, s, false), cgal_polygon(a, s, true));
-  auto reflect = [](const Polygon& polygon) {
-    Polygon out;
-    for (auto it = polygon.vertices_begin(); it != polygon.vertices_end(); ++it) out.push_back(Point2(it->x(), -it->y()));
-    out.reverse_orientation();
-    return out;
-  };
-  PolygonWithHoles expected(reflect(sum.outer_boundary()));
-  for (auto hole = sum.holes_begin(); hole != sum.holes_end(); ++hole) expected.add_hole(reflect(*hole));
-  PolygonSet difference = blocked_region(space);
-  EXPECT_FALSE(difference.is_empty());
-  difference.symmetric_difference(expected);
-  EXPECT_TRUE(difference.is_empty()) << "blocked faces differ from the Minkowski sum";
-}
 
 struct Scale {
   Rational factor;
