@@ -9,7 +9,7 @@ PACKAGES=(
   build-essential cmake ccache git clang libclang-rt-14-dev
   libcgal-dev libgmp-dev libmpfr-dev libmpfi-dev libeigen3-dev libboost-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libbox2d-dev
-  libmujoco-dev libexpat1-dev librsvg2-bin libjemalloc-dev
+  libmujoco-dev libexpat1-dev librsvg2-bin libjemalloc-dev python3 python3-jsonschema
 )
 BUILD_DIR=${HIPAIR_BUILD_DIR:-build}
 JOBS=${HIPAIR_JOBS:-$(nproc)}
