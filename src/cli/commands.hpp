@@ -37,4 +37,9 @@ void add_rounding_option(CLI::App* command, std::string& text);
 /// range is checked by the reader).
 std::unique_ptr<model_detail::RoundingBoundScope> rounding_scope(const std::string& text);
 
+/// CLI::Range for real numbers, with the ends written as numbers ("in [1e-12, 1]"): CLI11's own
+/// message prints them with std::to_string, and "Value 0 not in range 0.000000 to 1.000000"
+/// names a range that seems to hold the value.
+CLI::Validator real_range(double lo, double hi);
+
 }  // namespace hipair::cli

@@ -152,7 +152,7 @@ void register_show(CLI::App& app, Action& action) {
       ->delimiter(',');
   command->add_flag("--labels", options->labels, "write the feature label of every edge");
   command->add_option("--width", options->width, "picture width in pixels (default 900)")
-      ->check(CLI::Range(100.0, 20000.0));
+      ->check(real_range(100.0, 20000.0));
   command->callback([&action, options] { action = [options] { return run_show(*options); }; });
 }
 

@@ -1002,7 +1002,7 @@ void register_simulate(CLI::App& app, Action& action) {
   command->add_option("--t-end", options->t_end, "End time, in the model's time unit")->required();
   command->add_option("--accuracy", options->accuracy,
                       "Relative and absolute error tolerance per step (default: the model's, or 1e-9)")
-      ->check(CLI::Range(1e-15, 0.1));
+      ->check(real_range(1e-15, 0.1));
   command->add_option("--max-step", options->max_step, "Largest integration step (time unit; default: none)")
       ->check(CLI::PositiveNumber);
   command->add_option("--out", options->out,
@@ -1012,10 +1012,10 @@ void register_simulate(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"full", "operating"}));
   command->add_flag("--no-pictures", options->no_pictures, "Write the CSV and the event log only");
   command->add_option("--fps", options->fps, "Frames per second of animation.svg's playback (default 25)")
-      ->check(CLI::Range(1.0, 240.0));
+      ->check(real_range(1.0, 240.0));
   command->add_option("--animation-duration", options->animation_duration,
                       "Playback time of animation.svg in seconds (default: the simulated time, at least 1 s)")
-      ->check(CLI::Range(0.01, 3600.0));
+      ->check(real_range(0.01, 3600.0));
   command->add_option("--sweep", options->sweep,
                       "NAME=A:B:N: run N simulations with parameter NAME from A to B (exact literals, mm or rad), "
                       "in parallel; report per value the run's status (running, stopped: every part at rest over "
@@ -1031,7 +1031,7 @@ void register_simulate(CLI::App& app, Action& action) {
   command->add_option("--works-max-decay", options->works_max_decay,
                       "RATE: with --works-period, its part's swing amplitude must not decay faster than RATE "
                       "(a fraction per time unit) over the second half")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(real_range(0.0, 1e6));
   command->add_option("--jobs", options->jobs, "Parallel runs of a sweep (default: the number of cores)")
       ->check(CLI::Range(1, 256));
   command->add_option("--set", options->overrides, "Override a parameter: NAME=VALUE (repeatable)");

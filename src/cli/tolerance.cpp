@@ -371,7 +371,7 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_option("--threshold-bracket", options->threshold_bracket,
                       "with --threshold: bisect the scale until the bracket is this narrow (relative; e.g. 1e-6), "
                       "an exact jam witness at its upper end confirmed by an exact C-space")
-      ->check(CLI::Range(1e-12, 1.0));
+      ->check(real_range(1e-12, 1.0));
   command->add_flag("--chain", options->chain,
                     "analyse the assembly chain from the driver (--driver P, or --pair P:OUTPUT) to its output part: "
                     "the pairs' kinematic functions and sensitivities composed (docs/tolerance.md \"Assembly chains\")");
@@ -381,7 +381,7 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_option("--vary", options->vary, "parameters the threshold search scales (default: every toleranced one)");
   command->add_option("--accuracy", options->accuracy,
                       "certified band: at most this much (relative) wider than the linearised one (default 0.1)")
-      ->check(CLI::Range(1e-6, 10.0));
+      ->check(real_range(1e-6, 10.0));
   command->add_option("--threads", options->threads, "threads for the Monte Carlo, the certified band and the zones (default: all cores)");
   command->add_option("--out", options->out, "directory for tolerance.json, variation.csv, sensitivity.csv, variation.svg, contact-zone.svg");
   command->add_flag("--quiet", options->quiet, "no progress bar");

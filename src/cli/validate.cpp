@@ -159,6 +159,23 @@ ReadOptions parameter_overrides(const std::vector<std::string>& assignments, boo
   return options;
 }
 
+CLI::Validator real_range(double lo, double hi) {
+  auto text = [](double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+  };
+  const std::string range = "[" + text(lo) + ", " + text(hi) + "]";
+  return CLI::Validator(
+      [lo, hi, range](std::string& input) -> std::string {
+        double value = 0;
+        if (!CLI::detail::lexical_cast(input, value)) return "Value " + input + " is not a number";
+        if (!(lo <= value && value <= hi)) return "Value " + input + " not in " + range;
+        return {};
+      },
+      "NUMBER in " + range);
+}
+
 void add_rounding_option(CLI::App* command, std::string& text) {
   command->add_option("--rounding", text,
                       "rounding bound B for values that cannot be exact (default: the model's \"rounding\", else "
