@@ -29,7 +29,9 @@
 // first contact is exact on its chord (bracketed to 2^-crossing_bits of the chord's time).
 //
 // Sustained contact (held_advance; docs/simulation.md, "Sustained contact of a planar part"):
-// vertex–segment contacts without separating speed after an impact are held; their forces come
+// vertex–segment contacts (and, for this single-part simulator, vertex–arc, arc–segment and
+// arc–arc contacts: docs/simulation.md, "Held contacts on arcs of a planar part") without
+// separating speed after an impact are held; their forces come
 // from the fixed-axis simulator's frictional complementarity problem (simulation/friction.hpp)
 // over (x, y, theta); the state is integrated by Dormand–Prince with error control, projected
 // onto the held gaps (3/4 delta) and J v = 0; lift-off, stick/slip changes and a vertex leaving

@@ -47,6 +47,17 @@ struct DiscScene {
   Model model() const { return read_model(json(), "<disc>"); }
 };
 
+// A disc of radius k/8 mm (k in [k0, k1], rounded) on an incline of a in [a0, a1] degrees
+// (tilted gravity of 9810 mm/s^2).
+DiscScene generated_disc(Lcg& rng, double k0, double k1, double a0, double a1) {
+  DiscScene scene;
+  scene.r = std::round(rng.uniform(k0, k1)) / 8;
+  const double a = rng.uniform(a0, a1) * std::numbers::pi / 180;
+  scene.gx = 9810 * std::sin(a);
+  scene.gy = -9810 * std::cos(a);
+  return scene;
+}
+
 std::size_t count(const std::vector<SimulationEvent>& events, SimulationEvent::Kind kind) {
   std::size_t n = 0;
   for (const auto& e : events) n += e.kind == kind;
@@ -62,11 +73,8 @@ std::size_t count(const std::vector<SimulationEvent>& events, SimulationEvent::K
 TEST(PlanarArcSimulation, DiscOnAnInclineSlidesAtGSinAAndRollsAtTwoThirdsGSinA) {
   Lcg rng{11};
   for (int c = 0; c < 8; ++c) {
-    DiscScene scene;
-    scene.r = std::round(rng.uniform(8, 160)) / 8;
-    const double a = rng.uniform(2, 30) * std::numbers::pi / 180, G = 9810;
-    scene.gx = G * std::sin(a);
-    scene.gy = -G * std::cos(a);
+    DiscScene scene = generated_disc(rng, 8, 160, 2, 30);
+    const double a = std::atan2(scene.gx, -scene.gy), G = 9810;
     scene.y = scene.r + 1e-3;
     const bool rolls = c % 2 == 1;
     if (rolls) {
@@ -115,11 +123,8 @@ TEST(PlanarArcSimulation, ThrownDiscNeverGainsEnergyAndNeverPenetrates) {
   Lcg rng{29};
   std::size_t held_cases = 0;
   for (int c = 0; c < 6; ++c) {
-    DiscScene scene;
-    scene.r = std::round(rng.uniform(16, 120)) / 8;
-    const double a = rng.uniform(0, 20) * std::numbers::pi / 180, G = 9810;
-    scene.gx = G * std::sin(a);
-    scene.gy = -G * std::cos(a);
+    DiscScene scene = generated_disc(rng, 16, 120, 0, 20);
+    const double G = 9810;
     scene.e = c < 2 ? 0.0 : rng.uniform(0, 1);
     if (c % 2 == 1) {
       scene.mu_static = rng.uniform(0.1, 0.8);
