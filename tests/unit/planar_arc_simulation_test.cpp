@@ -2,7 +2,9 @@
 // "Held contacts on arcs"): a disc on an incline slides at g sin a (frictionless) and rolls at
 // (2/3) g sin a (solid disc, mu_s >= tan(a) / 3) on generated radii and inclines; a disc at rest
 // on a floor stays at rest; a dropped spinning disc never gains energy (e <= 1); every recorded
-// state's exact configuration is not blocked (exact point location in the pair's C-space).
+// state's exact configuration is not blocked (exact point location in the pair's C-space); a disc
+// in a round socket, a ring on a fixed pin and a block on its corners in a round bowl swing with
+// their pendulum periods (complete elliptic integrals), sliding and rolling.
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 #include <hipair/simulation.hpp>
@@ -89,6 +91,8 @@ TEST(PlanarArcSimulation, DiscOnAnInclineSlidesAtGSinAAndRollsAtTwoThirdsGSinA) 
     const double t2 = s.state().time, v2 = s.state().vx;
     const double expected = rolls ? 2 * scene.gx / 3 : scene.gx;
     EXPECT_NEAR((v2 - v1) / (t2 - t1), expected, 1e-7 * G) << c << " r " << scene.r << " a " << a;
+    std::cerr << "incline case " << c << (rolls ? " rolling" : " sliding") << ": acceleration relative error "
+              << (v2 - v1) / (t2 - t1) / expected - 1 << "\n";
     EXPECT_NEAR(s.state().y, scene.r, s.chord_deviation()) << c;
     if (rolls) EXPECT_NEAR(s.state().omega, -s.state().vx / scene.r, 1e-7 * std::abs(s.state().vx) + 1e-9) << c;
     else EXPECT_NEAR(s.state().omega, 0.0, 1e-9) << c;
@@ -264,6 +268,44 @@ TEST(PlanarArcSimulation, BlockInARoundBowlSwingsAsAPhysicalPendulumOnItsCorners
     EXPECT_EQ(count(s.events(), SimulationEvent::Kind::lift_off), 0u) << c;
     std::cerr << "bowl case " << c << ": period " << measured << " s, closed form " << period << " s, relative error "
               << measured / period - 1 << ", energy drift " << s.energy() - e1 << " N mm\n";
+  }
+}
+
+// The reverse pair: a ring (a part with a round hole of radius R, outer radius R + 4, centre of
+// mass at the hole's centre, I given) hung on a fixed pin of radius r (a fixed convex arc inside
+// the part's concave arc). Frictionless it slides without turning: period 4 sqrt(rho / g) K(k);
+// rolling (the hole rolls on the pin, turning rho / R per radian of swing) the kinetic energy
+// is (m rho^2 + I rho^2 / R^2) phi'^2 / 2: period 4 sqrt(rho (1 + I / (m R^2)) / g) K(k).
+TEST(PlanarArcSimulation, RingOnAFixedPinSwingsWithThePendulumPeriodSlidingAndRolling) {
+  Lcg rng{23};
+  for (int c = 0; c < 4; ++c) {
+    const double r = std::round(rng.uniform(16, 80)) / 8, R = r + std::round(rng.uniform(40, 400)) / 8;
+    const double phi0 = rng.uniform(0.1, 1.0), g = 9810, m = 0.01, I = m * R * R * rng.uniform(0.5, 1.5);
+    const bool rolls = c % 2 == 1;
+    const double rho = R - r, start = rho - 1e-4;
+    const std::string friction = rolls ? R"(, "friction": { "static": 2, "kinetic": 2 })" : "";
+    const std::string json = R"({ "hipair": 1, "name": "ring", "units": { "length": "mm", "angle": "rad" },
+      "parts": [
+        { "name": "pin", "motion": "fixed", "loops": [ { "circle": { "center": [0, 0], "radius": )" + num(r) + R"( }, "label": "pin" } ] },
+        { "name": "ring", "motion": { "planar": { "pivot": [0, 0] } },
+          "initial": { "x": )" + num(start * std::sin(phi0)) + R"(, "y": )" + num(-start * std::cos(phi0)) + R"( },
+          "dynamics": { "mass": )" + num(m) + R"(, "moment_of_inertia": )" + num(I) + R"( },
+          "loops": [ { "circle": { "center": [0, 0], "radius": )" + num(R + 4) + R"( }, "label": "rim" },
+                     { "circle": { "center": [0, 0], "radius": )" + num(R) + R"( }, "label": "hole" } ] } ],
+      "pairs": [ { "parts": ["pin", "ring"], "restitution": 0)" + friction + R"( } ],
+      "simulation": { "gravity": [0, -9810], "accuracy": 1e-10 } })";
+    PlanarSimulation s = PlanarSimulation::create(read_model(json, "<ring>"));
+    const double period = 4 * std::sqrt(rho * (rolls ? 1 + I / (m * R * R) : 1.0) / g) * std::comp_ellint_1(std::sin(phi0 / 2));
+    const std::vector<double> at = swings(s, 2.2 * period);
+    ASSERT_GE(at.size(), 2u) << c;
+    ASSERT_GE(count(s.events(), SimulationEvent::Kind::contact), 1u) << c;
+    const double measured = (at.back() - at.front()) / static_cast<double>(at.size() - 1);
+    // as for the socket (amplitude error 10^-4 / rho, interpolation and integration 10^-6)
+    EXPECT_NEAR(measured / period, 1.0, 1e-4 / rho * phi0 / 4 + 1e-6) << c << " r " << r << " R " << R << " phi0 " << phi0;
+    EXPECT_EQ(count(s.events(), SimulationEvent::Kind::lift_off), 0u) << c;
+    if (!rolls) EXPECT_NEAR(s.state().angle, 0.0, 1e-9) << c;
+    std::cerr << "ring case " << c << (rolls ? " rolling" : " sliding") << ": period " << measured << " s, closed form " << period
+              << " s, relative error " << measured / period - 1 << "\n";
   }
 }
 
