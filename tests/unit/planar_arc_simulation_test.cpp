@@ -4,7 +4,8 @@
 // on a floor stays at rest; a dropped spinning disc never gains energy (e <= 1); every recorded
 // state's exact configuration is not blocked (exact point location in the pair's C-space); a disc
 // in a round socket, a ring on a fixed pin and a block on its corners in a round bowl swing with
-// their pendulum periods (complete elliptic integrals), sliding and rolling.
+// their pendulum periods (complete elliptic integrals), sliding and rolling; a disc sliding off a
+// round hump lifts off where its held force turns negative.
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 #include <hipair/simulation.hpp>
@@ -306,6 +307,43 @@ TEST(PlanarArcSimulation, RingOnAFixedPinSwingsWithThePendulumPeriodSlidingAndRo
     if (!rolls) EXPECT_NEAR(s.state().angle, 0.0, 1e-9) << c;
     std::cerr << "ring case " << c << (rolls ? " rolling" : " sliding") << ": period " << measured << " s, closed form " << period
               << " s, relative error " << measured / period - 1 << "\n";
+  }
+}
+
+// Lift-off: a disc (radius r) released near the top of a fixed round hump (radius R) slides
+// down it frictionless (not turning); its centre runs on the circle rho = R + r and the held
+// force m (g cos phi - v^2 / rho) turns negative at cos phi = (2/3) cos phi0 (energy:
+// v^2 = 2 g rho (cos phi0 - cos phi)), where the contact breaks (a lift_off event).
+TEST(PlanarArcSimulation, DiscSlidingOffARoundHumpLiftsOffAtTwoThirdsOfTheStartCosine) {
+  Lcg rng{31};
+  for (int c = 0; c < 4; ++c) {
+    const double r = std::round(rng.uniform(16, 80)) / 8, R = std::round(rng.uniform(40, 400)) / 8;
+    const double phi0 = rng.uniform(0.05, 0.5), rho = R + r, start = rho + 1e-4;
+    const std::string json = R"({ "hipair": 1, "name": "hump", "units": { "length": "mm", "angle": "rad" },
+      "parts": [
+        { "name": "hump", "motion": "fixed", "loops": [ { "circle": { "center": [0, 0], "radius": )" + num(R) + R"( }, "label": "hump" } ] },
+        { "name": "disc", "motion": { "planar": { "pivot": [0, 0] } },
+          "initial": { "x": )" + num(start * std::sin(phi0)) + R"(, "y": )" + num(start * std::cos(phi0)) + R"( },
+          "dynamics": { "mass": 0.01, "moment_of_inertia": )" + num(0.5 * 0.01 * r * r) + R"( },
+          "loops": [ { "circle": { "center": [0, 0], "radius": )" + num(r) + R"( }, "label": "rim" } ] } ],
+      "pairs": [ { "parts": ["hump", "disc"], "restitution": 0 } ],
+      "simulation": { "gravity": [0, -9810], "accuracy": 1e-10 } })";
+    PlanarSimulation s = PlanarSimulation::create(read_model(json, "<hump>"));
+    std::size_t lift = std::string::npos;
+    while (lift == std::string::npos && s.state().time < 2) {
+      s.step(2);
+      for (std::size_t i = 0; i < s.events().size(); ++i)
+        if (s.events()[i].kind == SimulationEvent::Kind::lift_off) lift = i;
+    }
+    ASSERT_NE(lift, std::string::npos) << c;
+    ASSERT_GE(count(s.events(), SimulationEvent::Kind::contact), 1u) << c;
+    const double cos_phi = s.state().y / std::hypot(s.state().x, s.state().y);
+    // the 10^-4 mm drop adds 2 g 10^-4 to v^2: cos phi lower by at most (2/3) 10^-4 / rho;
+    // the lift-off located by bisection on the force (relative tolerance 1e-9): 10^-6
+    EXPECT_NEAR(cos_phi, 2 * std::cos(phi0) / 3, 1e-4 / rho + 1e-6) << c << " r " << r << " R " << R << " phi0 " << phi0;
+    EXPECT_NEAR(s.state().omega, 0.0, 1e-9) << c;
+    std::cerr << "hump case " << c << ": lift-off at cos phi " << cos_phi << ", closed form " << 2 * std::cos(phi0) / 3
+              << ", error " << cos_phi - 2 * std::cos(phi0) / 3 << "\n";
   }
 }
 
