@@ -29,7 +29,9 @@
 // first contact is exact on its chord (bracketed to 2^-crossing_bits of the chord's time).
 //
 // Sustained contact (held_advance; docs/simulation.md, "Sustained contact of a planar part"):
-// vertex–segment contacts without separating speed after an impact are held; their forces come
+// vertex–segment contacts (and, for this single-part simulator, vertex–arc, arc–segment and
+// arc–arc contacts: docs/simulation.md, "Held contacts on arcs of a planar part") without
+// separating speed after an impact are held; their forces come
 // from the fixed-axis simulator's frictional complementarity problem (simulation/friction.hpp)
 // over (x, y, theta); the state is integrated by Dormand–Prince with error control, projected
 // onto the held gaps (3/4 delta) and J v = 0; lift-off, stick/slip changes and a vertex leaving
@@ -96,46 +98,109 @@ Kinematic to_kinematic(const State6& y) { return {y[0], y[1], y[2], y[3], y[4], 
 // ---- held contacts: the contact function of a vertex–segment feature pair, from the kernels
 // (kernels::contact_frame), for double (integration) and Rational (the exact sign at a state).
 
+// A forward-mode dual number (value, derivative along the motion): the kernels' contact frame
+// evaluated with it gives the contact point's and normal's time derivatives (held arc contacts).
+struct Dual {
+  double v = 0, d = 0;
+  Dual() = default;
+  Dual(double value) : v(value) {}   // NOLINT: constants of the kernels' formulas
+  Dual(double value, double rate) : v(value), d(rate) {}
+};
+inline Dual operator+(Dual a, Dual b) { return {a.v + b.v, a.d + b.d}; }
+inline Dual operator-(Dual a, Dual b) { return {a.v - b.v, a.d - b.d}; }
+inline Dual operator-(Dual a) { return {-a.v, -a.d}; }
+inline Dual operator*(Dual a, Dual b) { return {a.v * b.v, a.d * b.v + a.v * b.d}; }
+inline Dual operator/(Dual a, Dual b) { return {a.v / b.v, (a.d * b.v - a.v * b.d) / (b.v * b.v)}; }
+
 template <class T>
 T number(const Rational& r) {
   if constexpr (std::is_same_v<T, double>) return r.get_d();
+  else if constexpr (std::is_same_v<T, Dual>) return Dual(r.get_d());
   else return r;
 }
 
-// A polygon feature of the model in body coordinates (an arc is returned as an arc: its
-// contacts are not held).
+// A feature of the model in body coordinates (an arc with its centre, squared radius, side and
+// angular sector: the kernels' FeatureGeometry).
 template <class T>
 kernels::FeatureGeometry<T> feature_geometry(const Model& model, const FeatureIdentity& id) {
   const Edge& edge = model.parts.at(id.part).loops.at(id.loop).edges.at(id.edge);
   kernels::FeatureGeometry<T> f;
   f.shape = kernels::FeatureShape::arc;
-  if (id.kind == FeatureKind::arc) return f;
+  if (id.kind == FeatureKind::arc) {
+    f.center = kernels::Vector<T>{number<T>(edge.center.x), number<T>(edge.center.y)};
+    f.radius_squared = number<T>(edge.radius_squared);
+    f.convex = edge.ccw;
+    const Rational sx = edge.source.x - edge.center.x, sy = edge.source.y - edge.center.y;
+    const Rational tx = edge.target.x - edge.center.x, ty = edge.target.y - edge.center.y;
+    const bool full = edge.is_full_circle();
+    const Rational ax = full || edge.ccw ? sx : tx, ay = full || edge.ccw ? sy : ty;
+    const Rational bx = full || edge.ccw ? tx : sx, by = full || edge.ccw ? ty : sy;
+    f.sector.full = full;
+    f.sector.start = kernels::Vector<T>{number<T>(ax), number<T>(ay)};
+    f.sector.end = kernels::Vector<T>{number<T>(bx), number<T>(by)};
+    f.sector.large = !full && sgn(ax * by - ay * bx) < 0;
+    return f;
+  }
   f.shape = id.kind == FeatureKind::vertex ? kernels::FeatureShape::vertex : kernels::FeatureShape::segment;
   f.point = kernels::Vector<T>{number<T>(edge.source.x), number<T>(edge.source.y)};
   f.target = kernels::Vector<T>{number<T>(edge.target.x), number<T>(edge.target.y)};
   return f;
 }
 
-// The contact function of a held (vertex–segment) pair at a pose of the planar part: the
-// kernels' contact point and normal (fixed part into the planar part, not unit), the gap
-// g = normal . (free feature - fixed feature) (times |normal|: > 0 apart, 0 touching, < 0 the
-// vertex past the segment's line) and the vertex's foot parameter along the segment (the
-// contact is valid for 0 <= along <= 1).
+// The contact function of a held pair at a pose of the planar part: the kernels' contact point
+// and normal (fixed part into the planar part, not unit), the gap g (times |normal|: > 0 apart,
+// 0 touching, < 0 penetrating) and the foot parameter along the pair's segment (the contact is
+// valid for 0 <= along <= 1). Vertex–segment pairs always; pairs with an arc (vertex–arc,
+// arc–segment, arc–arc) when `arcs` (the single-part simulator): their gap is |normal| times
+// the signed distance (double), or a number of its exact sign (Rational, from squared radii
+// only); `along` is -1 when the contact point leaves an arc's sector (double only).
 template <class T>
 struct ContactGap {
   bool defined = false;
   bool free_vertex = false;   // the planar part's vertex on a fixed segment (else the reverse)
+  bool arc = false;           // a pair with an arc (its curvature terms from the kernels' derivatives)
   kernels::Vector<T> point{T(0), T(0)}, normal{T(0), T(0)};
   T gap{0}, along{0};
 };
 
+// sign(a - (b + c)) for a, b, c >= 0 given their squares A, B, C, exactly.
+inline int sign_of_difference(const Rational& A, const Rational& B, const Rational& C) {
+  const Rational x = A - B - C;   // a^2 - (b + c)^2 = x - 2 b c
+  if (sgn(x) < 0) return -1;
+  if (sgn(x) == 0) return sgn(B * C) == 0 ? 0 : -1;
+  return sgn(x * x - Rational(4) * B * C);
+}
+
+// The gap of an arc pair: `sign` (a - (b + c)) times |normal| (n2 = |normal|^2) for double;
+// its exact sign for Rational.
 template <class T>
-ContactGap<T> contact_gap(const Model& model, const SlicedFeaturePair& pair, const kernels::Pose<T>& free_pose) {
+T arc_gap(int sign, const T& A, const T& B, const T& C, const T& n2) {
+  if constexpr (std::is_same_v<T, double>)
+    return sign * (std::sqrt(std::max(A, 0.0)) - std::sqrt(std::max(B, 0.0)) - std::sqrt(std::max(C, 0.0))) *
+           std::sqrt(n2);
+  else return Rational(sign * sign_of_difference(A, B, C));
+}
+
+// Whether world direction `d` from an arc's centre lies in the arc's sector (pose: its part's).
+inline bool in_sector(const kernels::ArcSector<double>& sector, const kernels::Pose<double>& pose,
+                      const kernels::Vector<double>& d) {
+  if (sector.full) return true;
+  const double bx = pose.c * d.x + pose.s * d.y, by = -pose.s * d.x + pose.c * d.y;   // body direction
+  const bool after_start = sector.start.x * by - sector.start.y * bx >= 0;
+  const bool before_end = bx * sector.end.y - by * sector.end.x >= 0;
+  return sector.large ? after_start || before_end : after_start && before_end;
+}
+
+template <class T>
+ContactGap<T> contact_gap(const Model& model, const SlicedFeaturePair& pair, const kernels::Pose<T>& free_pose,
+                          bool arcs = false) {
   using S = kernels::FeatureShape;
   kernels::FeatureGeometry<T> fa = feature_geometry<T>(model, pair.fixed), fb = feature_geometry<T>(model, pair.free);
   ContactGap<T> g;
   kernels::Vector<T> s0, s1;
-  kernels::ContactFrame<T> frame = kernels::contact_frame(kernels::fixed_pose<T>(), fa, free_pose, fb);
+  const kernels::Pose<T> fixed = kernels::fixed_pose<T>();
+  kernels::ContactFrame<T> frame = kernels::contact_frame(fixed, fa, free_pose, fb);
+  bool segment = true;
   if (fa.shape == S::segment && fb.shape == S::vertex) {
     s0 = fa.point;
     s1 = fa.target;
@@ -145,7 +210,57 @@ ContactGap<T> contact_gap(const Model& model, const SlicedFeaturePair& pair, con
     s0 = kernels::world_point(free_pose, fb.point);
     s1 = kernels::world_point(free_pose, fb.target);
     g.gap = kernels::dot(frame.normal, s0 - frame.point);
+  } else if (!arcs || !frame.defined) {
+    return g;
   } else {
+    g.arc = true;
+    const T n2 = kernels::dot(frame.normal, frame.normal);
+    const T zero(0);
+    if (fa.shape == S::segment || fb.shape == S::segment) {   // a convex arc on a segment
+      const bool fixed_segment = fa.shape == S::segment;
+      const kernels::FeatureGeometry<T>& seg = fixed_segment ? fa : fb;
+      const kernels::FeatureGeometry<T>& arc = fixed_segment ? fb : fa;
+      if (!arc.convex) return g;   // a concave arc meets a segment at its ends only (vertex pairs)
+      const kernels::Pose<T>& seg_pose = fixed_segment ? fixed : free_pose;
+      s0 = kernels::world_point(seg_pose, seg.point);
+      s1 = kernels::world_point(seg_pose, seg.target);
+      const kernels::Vector<T> k = kernels::world_point(fixed_segment ? free_pose : fixed, arc.center);
+      // the centre's distance from the line along the normal (from the fixed part into the free)
+      const T s = fixed_segment ? kernels::dot(frame.normal, k - s0) : kernels::dot(frame.normal, s0 - k);
+      if constexpr (std::is_same_v<T, Rational>)
+        g.gap = sgn(s) <= 0 ? Rational(-1) : Rational(sgn(s * s - arc.radius_squared * n2));
+      else g.gap = s - std::sqrt(arc.radius_squared * n2);
+    } else {
+      segment = false;
+      if (fa.shape == S::arc && fb.shape == S::arc) {
+        const kernels::Vector<T> d = kernels::world_point(free_pose, fb.center) - kernels::world_point(fixed, fa.center);
+        const T D2 = kernels::dot(d, d);
+        if (fa.convex && fb.convex) g.gap = arc_gap(1, D2, fa.radius_squared, fb.radius_squared, n2);
+        else if (!fa.convex && fb.convex) g.gap = arc_gap(1, fa.radius_squared, fb.radius_squared, D2, n2);
+        else if (fa.convex && !fb.convex) g.gap = arc_gap(1, fb.radius_squared, fa.radius_squared, D2, n2);
+        else return g;
+      } else {   // a vertex on an arc
+        const bool fixed_arc = fa.shape == S::arc;
+        const kernels::FeatureGeometry<T>& arc = fixed_arc ? fa : fb;
+        const kernels::Vector<T> d = frame.point - kernels::world_point(fixed_arc ? fixed : free_pose, arc.center);
+        const T D2 = kernels::dot(d, d);
+        g.gap = arc.convex ? arc_gap(1, D2, arc.radius_squared, zero, n2) : arc_gap(1, arc.radius_squared, D2, zero, n2);
+      }
+      g.along = T(1) / T(2);
+    }
+    if constexpr (std::is_same_v<T, double>) {   // the contact point within the arcs' sectors
+      bool inside = true;
+      if (fa.shape == S::arc) inside = inside && in_sector(fa.sector, fixed, frame.point - fa.center);
+      if (fb.shape == S::arc)
+        inside = inside && in_sector(fb.sector, free_pose, frame.point - kernels::world_point(free_pose, fb.center));
+      if (!inside) g.along = -1;
+    }
+    g.defined = true;
+    g.point = frame.point;
+    g.normal = frame.normal;
+    if (!segment) return g;
+    kernels::Vector<T> dseg = s1 - s0;
+    if (!(g.along < T(0))) g.along = T(kernels::dot(frame.point - s0, dseg) / kernels::dot(dseg, dseg));
     return g;
   }
   g.defined = true;
@@ -163,6 +278,31 @@ kernels::Pose<double> pose_of(const Point& pivot, const Kinematic& k) {
   pose.shift = kernels::Vector<double>{k.x, k.y};
   pose.translates = true;
   return pose;
+}
+
+// The curvature terms of a held pair with an arc at state k (r = contact point - reference
+// point): the kernels' contact frame evaluated in dual numbers along the motion gives the
+// contact point's rate c' and the unit normal's rate n'; with the material velocity
+// V(c) = v + w J r of the planar part at the contact, d/dt (n . V(c)) = J qdd + h and
+// d/dt (t . V(c)) = T qdd + h_t, h = n' . V + w (c' - v) x n, h_t = t' . V + w (c' - v) x t.
+void held_arc_terms(const Model& model, const SlicedFeaturePair& pair, const Point& pivot, const Kinematic& k, double rx,
+                    double ry, double& h, double& h_t) {
+  const double cs = std::cos(k.theta), sn = std::sin(k.theta);
+  kernels::Pose<Dual> pose = kernels::rotation_pose_from_cos_sin(
+      kernels::Vector<Dual>{Dual(pivot.x.get_d()), Dual(pivot.y.get_d())}, Dual(cs, -sn * k.omega), Dual(sn, cs * k.omega));
+  pose.shift = kernels::Vector<Dual>{Dual(k.x, k.vx), Dual(k.y, k.vy)};
+  pose.translates = true;
+  kernels::ContactFrame<Dual> frame = kernels::contact_frame(kernels::fixed_pose<Dual>(), feature_geometry<Dual>(model, pair.fixed),
+                                                             pose, feature_geometry<Dual>(model, pair.free));
+  const double len = std::hypot(frame.normal.x.v, frame.normal.y.v);
+  const double nx = frame.normal.x.v / len, ny = frame.normal.y.v / len;
+  const double along = (nx * frame.normal.x.d + ny * frame.normal.y.d);
+  const double dnx = (frame.normal.x.d - nx * along) / len, dny = (frame.normal.y.d - ny * along) / len;
+  const double tx = -ny, ty = nx, dtx = -dny, dty = dnx;
+  const double w = k.omega, Vx = k.vx - w * ry, Vy = k.vy + w * rx;
+  const double ux = frame.point.x.d - k.vx, uy = frame.point.y.d - k.vy;   // c' - v
+  h = dnx * Vx + dny * Vy + w * (ux * ny - uy * nx);
+  h_t = dtx * Vx + dty * Vy + w * (ux * ty - uy * tx);
 }
 
 kernels::Pose<Rational> pose_of(const Point& pivot, const SlicedConfiguration& c) {
@@ -401,6 +541,24 @@ void cut_at_first_violation(double& end, State& at, Step step, Violated violated
   end = hi;
   at = step(hi);
   violated(at, &bits);
+}
+
+// Ends the held contacts whose foot left their feature at the end of a step (bit 8 of their
+// violations `bits`, empty: none), one edge-end event each (`ended(c)`: the event of contact c);
+// the same for both planar simulators. Returns true when one ended.
+template <class HeldT, class Ended>
+bool end_held_at_edges(std::vector<HeldT>& held, const std::vector<unsigned>& bits, Ended ended) {
+  std::vector<HeldT> kept;
+  for (std::size_t c = 0; c < held.size(); ++c) {
+    if (!bits.empty() && (bits[c] & 8)) {
+      ended(held[c]);
+      continue;
+    }
+    kept.push_back(held[c]);
+  }
+  const bool any = kept.size() != held.size();
+  held = std::move(kept);
+  return any;
 }
 
 // An event of a held contact (contact, lift-off, stick, slip, edge-end) at its frame (point,
@@ -987,7 +1145,7 @@ bool PlanarSimulation::Impl::try_rest(const Rows& contact) {
 
 PlanarSimulation::Impl::HeldFrame PlanarSimulation::Impl::held_frame(const Held& c, const Kinematic& at) const {
   const Point& pivot = model.parts[part].motion.pivot;
-  ContactGap<double> g = contact_gap(model, c.feature, pose_of(pivot, at));
+  ContactGap<double> g = contact_gap(model, c.feature, pose_of(pivot, at), true);
   double n = std::hypot(g.normal.x, g.normal.y);
   double nx = g.normal.x / n, ny = g.normal.y / n;
   double rx = g.point.x - (pivot.x.get_d() + at.x), ry = g.point.y - (pivot.y.get_d() + at.y);
@@ -1000,6 +1158,10 @@ PlanarSimulation::Impl::HeldFrame PlanarSimulation::Impl::held_frame(const Held&
   // curvature terms (d2g/dt2 - J qdd): a vertex of the part on a fixed segment: -w^2 (n . r);
   // a fixed vertex on a segment of the part: -2 w (v x n) + w^2 (r . n)
   double w = at.omega, rn = rx * nx + ry * ny;
+  if (g.arc) {   // a pair with an arc: the curvature terms from the kernels' frame differentiated
+    held_arc_terms(model, c.feature, pivot, at, rx, ry, f.h, f.h_t);
+    return f;
+  }
   f.h = g.free_vertex ? -w * w * rn : -2 * w * (at.vx * ny - at.vy * nx) + w * w * rn;
   // the same for the sliding velocity T qdot (a sticking contact keeps it 0): a vertex of the
   // part: -w^2 (t . r); a fixed vertex on the part's segment: -w (J qdot) - w (v x t)
@@ -1094,7 +1256,7 @@ void PlanarSimulation::Impl::hold(double time, const Rows& rows) {
   for (std::size_t r = 0; r < rows.pair.size(); ++r) {
     if (after(static_cast<Eigen::Index>(r)) > rest_speed) continue;   // separating
     Held c{rows.pair[r], rows.feature[r], simulation::frictionless};
-    if (!contact_gap(model, c.feature, pose_of(model.parts[part].motion.pivot, k)).defined) continue;   // not vertex–segment
+    if (!contact_gap(model, c.feature, pose_of(model.parts[part].motion.pivot, k), true).defined) continue;   // no contact of its own
     bool repeated = false;
     for (const Held& h : held) repeated = repeated || (h.feature.fixed == c.feature.fixed && h.feature.free == c.feature.free);
     if (!repeated) held.push_back(c);
@@ -1329,7 +1491,7 @@ bool PlanarSimulation::Impl::held_advance(double span) {
     // the held contacts at the new state: exactly apart from their segments' lines
     const Point& pivot = model.parts[part].motion.pivot;
     for (const Held& c : held)
-      if (sgn(contact_gap(model, c.feature, pose_of(pivot, q1)).gap) <= 0)
+      if (sgn(contact_gap(model, c.feature, pose_of(pivot, q1), true).gap) <= 0)
         throw NumericError(where(t + end) + ": a held contact's projected state is not exactly apart (internal error)");
     // every other feature pair: the chord q0 -> q1, certified
     SlicedMotion motion{q0, q1, flip, ignored};
@@ -1371,15 +1533,9 @@ bool PlanarSimulation::Impl::held_advance(double span) {
     q = q1;
     // contacts reaching the end of their segment end; lift-offs and stick/slip changes are
     // decided by the next step's problem
-    std::vector<Held> kept;
-    for (std::size_t c = 0; c < held.size(); ++c) {
-      if (!bits.empty() && (bits[c] & 8)) {
-        events.push_back(held_event(SimulationEvent::Kind::edge_end, held[c], held_frame(held[c], k), 0, 0));
-        continue;
-      }
-      kept.push_back(held[c]);
-    }
-    held = std::move(kept);
+    end_held_at_edges(held, bits, [&](const Held& c) {
+      events.push_back(held_event(SimulationEvent::Kind::edge_end, c, held_frame(c, k), 0, 0));
+    });
     return true;
   }
   throw NumericError(where(t) + ": no step in sustained contact could be certified");
@@ -2541,17 +2697,9 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
       q = q1;
       // contacts reaching the end of their segment end; lift-offs and stick/slip changes are
       // decided by the next step's problem
-      std::vector<Held> kept;
-      for (std::size_t c = 0; c < held.size(); ++c) {
-        if (!bits.empty() && (bits[c] & 8)) {
-          events.push_back(held_event(SimulationEvent::Kind::edge_end, held[c], held_frame(held[c], k), 0, 0));
-          continue;
-        }
-        kept.push_back(held[c]);
-      }
-      const bool ended = kept.size() != held.size();
-      held = std::move(kept);
-      return ended;
+      return end_held_at_edges(held, bits, [&](const Held& c) {
+        events.push_back(held_event(SimulationEvent::Kind::edge_end, c, held_frame(c, k), 0, 0));
+      });
     }
     std::size_t best = 0;
     for (std::size_t c = 1; c < crossings.size(); ++c)
