@@ -471,7 +471,14 @@ void Real::refine_to(const Rational& width) {
 
 void refine_dyadically(Real& r, const Rational& width) {
   if (r.exact || r.upper - r.lower <= width) return;
-  const int lower_sign = sign_at(r.polynomial, r.lower);
+  // Every sign below is decided first by the certified double filter (the polynomial's
+  // coefficients and the point enclosed outwards, interval Horner); exactly only when the
+  // enclosure of the value contains zero. The filter never returns a wrong sign and never 0,
+  // so the bisection takes the same steps, and ends at the same interval, as the exact one.
+  const SignFilter filter(r.polynomial);
+  const Interval lower_box = enclose(r.lower);
+  int lower_sign = std::isfinite(lower_box.lo) && std::isfinite(lower_box.hi) ? filter.sign(lower_box) : 0;
+  if (lower_sign == 0) lower_sign = sign_at(r.polynomial, r.lower);
   // inward dyadic ends a / 2^k >= lower and b / 2^k <= upper, 2^-k <= (upper - lower) / 4
   Rational gap = (r.upper - r.lower) / 4;
   unsigned long k = 0;
@@ -481,7 +488,29 @@ void refine_dyadically(Real& r, const Rational& width) {
   mpz_class scaled_lower = r.lower.get_num() * scale, scaled_upper = r.upper.get_num() * scale;
   mpz_cdiv_q(a.get_mpz_t(), scaled_lower.get_mpz_t(), r.lower.get_den_mpz_t());
   mpz_fdiv_q(b.get_mpz_t(), scaled_upper.get_mpz_t(), r.upper.get_den_mpz_t());
+  // the scale is 2^k throughout (doubled per step)
+  unsigned long scale_bits = k;
   auto sign = [&](const mpz_class& numerator, const mpz_class& denominator) {
+    // numerator / 2^scale_bits enclosed in doubles: mpz_get_d truncates towards zero, exact
+    // up to 53 bits, else the next double away from zero bounds the other side; the scaling
+    // by 2^-scale_bits is exact while the result stays normal (checked)
+    if (scale_bits <= 900) {
+      double d = mpz_get_d(numerator.get_mpz_t());
+      double lo = d, hi = d;
+      if (mpz_sizeinbase(numerator.get_mpz_t(), 2) > 53) {
+        if (sgn(numerator) > 0)
+          hi = std::nextafter(d, HUGE_VAL);
+        else
+          lo = std::nextafter(d, -HUGE_VAL);
+      }
+      lo = std::ldexp(lo, -static_cast<int>(scale_bits));
+      hi = std::ldexp(hi, -static_cast<int>(scale_bits));
+      const bool normal = (lo == 0 || std::fabs(lo) >= 0x1p-1000) && (hi == 0 || std::fabs(hi) >= 0x1p-1000);
+      if (normal && std::isfinite(lo) && std::isfinite(hi)) {
+        int s = filter.sign(Interval{lo, hi});
+        if (s != 0) return s;
+      }
+    }
     return sgn(homogeneous_value(r.polynomial, numerator, denominator));
   };
   auto settle_exact = [&](const mpz_class& numerator, const mpz_class& denominator) {
@@ -508,6 +537,7 @@ void refine_dyadically(Real& r, const Rational& width) {
     a <<= 1;
     b <<= 1;
     scale <<= 1;
+    ++scale_bits;
     int s = sign(middle, scale);
     if (s == 0) return settle_exact(middle, scale);
     if (s == lower_sign)
