@@ -209,6 +209,30 @@ TEST(CSpaceDescartes, SquareFreeTestMatchesTheExactSquareFreePart) {
   EXPECT_GT(exact, 50);
 }
 
+TEST(CSpaceDescartes, RememberedSquareFreePartsAreTheExactOnes) {
+  // square_free_test remembers the exact square-free parts it computed (per thread, emptied
+  // at 4,096 polynomials): asked again, in three passes over 2,500 generated polynomials (so
+  // the memo is emptied on the way) and with the same polynomial times -1 and times 3 (other
+  // keys, the same primitive part), it gives square_free_part's answer every time
+  Generator generator(21);
+  std::vector<Polynomial> polynomials;
+  for (int trial = 0; trial < 2500; ++trial) polynomials.push_back(generator.next().p);
+  std::vector<Polynomial> expected;
+  for (const Polynomial& p : polynomials) expected.push_back(square_free_part(p));
+  int exact = 0;
+  for (int pass = 0; pass < 3; ++pass)
+    for (std::size_t i = 0; i < polynomials.size(); ++i) {
+      SCOPED_TRACE("pass " + std::to_string(pass) + " polynomial " + std::to_string(i));
+      bool exact_needed = false;
+      Polynomial p = polynomials[i];
+      if (pass > 0)
+        for (auto& c : p) c *= pass == 1 ? -1 : 3;
+      EXPECT_EQ(square_free_test(p, &exact_needed), expected[i]);
+      if (exact_needed) ++exact;
+    }
+  EXPECT_GT(exact, 3 * 400);
+}
+
 TEST(CSpaceDescartes, RootsAtTheEndsAndAtBisectionPoints) {
   // x (x - 1/2)(x - 1/4)(x - 1)(x^2 - 2) on [0, 1]: ends and midpoints are roots
   Polynomial p = multiply(multiply(multiply(Polynomial{0, 1}, Polynomial{-1, 2}), Polynomial{-1, 4}),
