@@ -655,35 +655,58 @@ Rational simplest_between(const Rational& lo, const Rational& hi) {
   if (!(lo < hi))
     throw NumericError("internal: no rational strictly between " + to_exact_string(lo) + " and " +
                        to_exact_string(hi));
-  // Continued-fraction descent: smallest denominator in the open interval (lo, hi).
-  mpz_class floor_lo;
-  mpz_fdiv_q(floor_lo.get_mpz_t(), lo.get_num_mpz_t(), lo.get_den_mpz_t());
-  Rational candidate(floor_lo + 1);
-  if (candidate < hi) {
-    // an integer lies inside; prefer the one of smallest magnitude
-    if (lo < 0 && hi > 0) return Rational(0);
-    if (hi <= 0) {
-      mpz_class ceil_hi;
-      mpz_cdiv_q(ceil_hi.get_mpz_t(), hi.get_num_mpz_t(), hi.get_den_mpz_t());
-      Rational c(ceil_hi - 1);
-      if (c > lo) return c;
+  // Continued-fraction descent: smallest denominator in the open interval (lo, hi), on the
+  // integers a / b = lo, c / d = hi (b, d > 0): at each level, with f = floor(a / b), the
+  // answer is f + 1 when that is below c / d, else f + 1 / z with z the simplest rational in
+  // (d / (c - f d), b / (a - f b)) (z = floor(d / (c - f d)) + 1 when a / b = f). The answer
+  // f0 + 1 / (f1 + 1 / (... + 1 / z)) is composed bottom up, each step (f n + m, n) from
+  // (n, m), coprime with a positive denominator: canonical without a gcd.
+  mpz_class a = lo.get_num(), b = lo.get_den(), c = hi.get_num(), d = hi.get_den();
+  mpz_class f, r, t;
+  std::vector<mpz_class> quotients;
+  mpz_class last;   // the integer ending the descent
+  for (bool top = true;; top = false) {
+    mpz_fdiv_qr(f.get_mpz_t(), r.get_mpz_t(), a.get_mpz_t(), b.get_mpz_t());   // a = f b + r, 0 <= r < b
+    // f + 1 < c / d?
+    t = f + 1;
+    t *= d;
+    if (t < c) {
+      if (top) {
+        // an integer lies inside; prefer the one of smallest magnitude
+        if (sgn(a) < 0 && sgn(c) > 0) return Rational(0);
+        if (sgn(c) <= 0) {
+          mpz_class ceil_hi;
+          mpz_cdiv_q(ceil_hi.get_mpz_t(), c.get_mpz_t(), d.get_mpz_t());
+          ceil_hi -= 1;
+          if (Rational(ceil_hi) > lo) return Rational(ceil_hi);
+        }
+        return Rational(f + 1);
+      }
+      last = f + 1;
+      break;
     }
-    return candidate;
+    quotients.push_back(f);
+    mpz_submul(c.get_mpz_t(), f.get_mpz_t(), d.get_mpz_t());   // c - f d, in (0, d]
+    if (sgn(r) == 0) {
+      mpz_fdiv_q(last.get_mpz_t(), d.get_mpz_t(), c.get_mpz_t());
+      last += 1;
+      break;
+    }
+    // next interval: (d / (c - f d), b / r)
+    mpz_class next_a = d, next_b = c, next_c = b, next_d = r;
+    a = std::move(next_a);
+    b = std::move(next_b);
+    c = std::move(next_c);
+    d = std::move(next_d);
   }
-  Rational fl(floor_lo);
-  Rational low_gap = lo - fl;   // in [0, 1)
-  Rational high_gap = hi - fl;  // in (0, 1]
-  Rational z;
-  Rational z_low = 1 / high_gap;
-  if (sgn(low_gap) == 0) {
-    mpz_class f;
-    mpz_fdiv_q(f.get_mpz_t(), z_low.get_num_mpz_t(), z_low.get_den_mpz_t());
-    z = Rational(f + 1);
-  } else {
-    z = simplest_between(z_low, 1 / low_gap);
+  mpz_class n = last, m = 1;   // the value n / m, n > 0
+  for (auto q = quotients.rbegin(); q != quotients.rend(); ++q) {
+    // q + m / n = (q n + m) / n
+    mpz_class next = *q * n + m;
+    m = std::move(n);
+    n = std::move(next);
   }
-  Rational result = fl + 1 / z;
-  result.canonicalize();
+  Rational result(n, m);
   return result;
 }
 
