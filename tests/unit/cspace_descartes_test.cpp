@@ -209,6 +209,102 @@ TEST(CSpaceDescartes, SquareFreeTestMatchesTheExactSquareFreePart) {
   EXPECT_GT(exact, 50);
 }
 
+TEST(CSpaceDescartes, RememberedSquareFreePartsAreTheExactOnes) {
+  // square_free_test remembers the exact square-free parts it computed (per thread, emptied
+  // at 4,096 polynomials): asked again, in three passes over 2,500 generated polynomials (so
+  // the memo is emptied on the way) and with the same polynomial times -1 and times 3 (other
+  // keys, the same primitive part), it gives square_free_part's answer every time
+  Generator generator(21);
+  std::vector<Polynomial> polynomials;
+  for (int trial = 0; trial < 2500; ++trial) polynomials.push_back(generator.next().p);
+  std::vector<Polynomial> expected;
+  for (const Polynomial& p : polynomials) expected.push_back(square_free_part(p));
+  int exact = 0;
+  for (int pass = 0; pass < 3; ++pass)
+    for (std::size_t i = 0; i < polynomials.size(); ++i) {
+      SCOPED_TRACE("pass " + std::to_string(pass) + " polynomial " + std::to_string(i));
+      bool exact_needed = false;
+      Polynomial p = polynomials[i];
+      if (pass > 0)
+        for (auto& c : p) c *= pass == 1 ? -1 : 3;
+      EXPECT_EQ(square_free_test(p, &exact_needed), expected[i]);
+      if (exact_needed) ++exact;
+    }
+  EXPECT_GT(exact, 3 * 400);
+}
+
+// The continued-fraction descent on rationals (simplest_between before it ran on integers):
+// the oracle for the integer version.
+Rational simplest_between_on_rationals(const Rational& lo, const Rational& hi) {
+  mpz_class floor_lo;
+  mpz_fdiv_q(floor_lo.get_mpz_t(), lo.get_num_mpz_t(), lo.get_den_mpz_t());
+  Rational candidate(floor_lo + 1);
+  if (candidate < hi) {
+    if (lo < 0 && hi > 0) return Rational(0);
+    if (hi <= 0) {
+      mpz_class ceil_hi;
+      mpz_cdiv_q(ceil_hi.get_mpz_t(), hi.get_num_mpz_t(), hi.get_den_mpz_t());
+      Rational c(ceil_hi - 1);
+      if (c > lo) return c;
+    }
+    return candidate;
+  }
+  Rational fl(floor_lo);
+  Rational low_gap = lo - fl, high_gap = hi - fl;
+  Rational z;
+  Rational z_low = 1 / high_gap;
+  if (sgn(low_gap) == 0) {
+    mpz_class f;
+    mpz_fdiv_q(f.get_mpz_t(), z_low.get_num_mpz_t(), z_low.get_den_mpz_t());
+    z = Rational(f + 1);
+  } else {
+    z = simplest_between_on_rationals(z_low, 1 / low_gap);
+  }
+  Rational result = fl + 1 / z;
+  result.canonicalize();
+  return result;
+}
+
+TEST(CSpaceDescartes, SimplestBetweenOnIntegersIsTheRationalDescent) {
+  // 20,000 generated open intervals: integer ends, ends sharing a floor, negative, straddling
+  // zero, widths 2^-200 ... 2^10, ends of 1 ... 300 bits; the answer is canonical and the
+  // descent's, strictly inside, and no rational of smaller denominator lies inside (checked
+  // on the small ones)
+  Generator generator(5);
+  for (int trial = 0; trial < 20000; ++trial) {
+    Rational lo;
+    switch (generator.uniform(0, 3)) {
+      case 0: lo = Rational(mpz_class(generator.uniform(-20, 20))); break;
+      case 1: lo = Rational(mpz_class(generator.uniform(-1000, 1000)), mpz_class(1) << generator.uniform(0, 64)); break;
+      default: lo = generator.rational(static_cast<unsigned>(generator.uniform(1, 300)));
+    }
+    lo.canonicalize();
+    Rational width = generator.uniform(0, 4) == 0 ? Rational(mpz_class(generator.uniform(1, 5)))
+                                                  : Rational(mpz_class(generator.uniform(1, 1000)), mpz_class(1) << generator.uniform(0, 200));
+    width.canonicalize();
+    const Rational hi = lo + width;
+    SCOPED_TRACE("(" + lo.get_str() + ", " + hi.get_str() + ")");
+    const Rational s = simplest_between(lo, hi);
+    const Rational expected = simplest_between_on_rationals(lo, hi);
+    EXPECT_EQ(s, expected);
+    EXPECT_EQ(s.get_num(), expected.get_num());
+    EXPECT_EQ(s.get_den(), expected.get_den());
+    Rational canonical = s;
+    canonical.canonicalize();
+    EXPECT_EQ(canonical.get_den(), s.get_den());
+    EXPECT_TRUE(lo < s && s < hi);
+    if (s.get_den() < 200)
+      for (long q = 1; q < s.get_den(); ++q) {
+        mpz_class p;
+        mpz_class scaled = lo.get_num() * q;
+        mpz_fdiv_q(p.get_mpz_t(), scaled.get_mpz_t(), lo.get_den_mpz_t());
+        Rational above(p + 1, q);   // the first p / q above lo
+        above.canonicalize();
+        EXPECT_FALSE(above < hi) << "denominator " << q;
+      }
+  }
+}
+
 TEST(CSpaceDescartes, RootsAtTheEndsAndAtBisectionPoints) {
   // x (x - 1/2)(x - 1/4)(x - 1)(x^2 - 2) on [0, 1]: ends and midpoints are roots
   Polynomial p = multiply(multiply(multiply(Polynomial{0, 1}, Polynomial{-1, 2}), Polynomial{-1, 4}),
@@ -257,6 +353,97 @@ TEST(CSpaceDescartes, ClusteredRootsWithHugeCoefficients) {
   auto sturm = real_roots(p, lo, hi);
   ASSERT_EQ(sturm.size(), 8u);
   for (std::size_t i = 0; i < 8; ++i) EXPECT_EQ(compare(roots[i], sturm[i]), 0);
+}
+
+// refine_dyadically as documented, every sign exact (no double filter): the oracle for the
+// filtered one, which must take the same steps and end at the same interval.
+Real exact_dyadic_refinement(Real r, const Rational& width) {
+  if (r.exact || r.upper - r.lower <= width) return r;
+  const int lower_sign = sign_at(r.polynomial, r.lower);
+  const Rational gap = (r.upper - r.lower) / 4;
+  unsigned long k = 0;
+  while (Rational(1, mpz_class(1) << k) > gap) ++k;
+  mpz_class scale = mpz_class(1) << k, a, b;
+  mpz_class scaled_lower = r.lower.get_num() * scale, scaled_upper = r.upper.get_num() * scale;
+  mpz_cdiv_q(a.get_mpz_t(), scaled_lower.get_mpz_t(), r.lower.get_den_mpz_t());
+  mpz_fdiv_q(b.get_mpz_t(), scaled_upper.get_mpz_t(), r.upper.get_den_mpz_t());
+  auto at = [](const mpz_class& n, const mpz_class& d) {
+    Rational q(n, d);
+    q.canonicalize();
+    return q;
+  };
+  auto settle = [&](const Rational& root) {
+    r.lower = r.upper = root;
+    r.exact = true;
+    return r;
+  };
+  const int sa = sign_at(r.polynomial, at(a, scale)), sb = sign_at(r.polynomial, at(b, scale));
+  if (sa == 0) return settle(at(a, scale));
+  if (sb == 0) return settle(at(b, scale));
+  if (sa != lower_sign || sb == lower_sign) {
+    r.refine_to(width);
+    return r;
+  }
+  while (Rational(b - a, scale) > width) {
+    mpz_class middle = a + b;
+    a <<= 1;
+    b <<= 1;
+    scale <<= 1;
+    const int s = sign_at(r.polynomial, at(middle, scale));
+    if (s == 0) return settle(at(middle, scale));
+    (s == lower_sign ? a : b) = middle;
+  }
+  r.lower = at(a, scale);
+  r.upper = at(b, scale);
+  return r;
+}
+
+TEST(CSpaceDescartes, FilteredDyadicRefinementTakesTheExactSteps) {
+  // generated polynomials (small and 3000-bit coefficients, clustered roots), every isolated
+  // root refined to widths 2^-4 ... 2^-140; plus dyadic roots hit exactly by a bisection
+  // midpoint, behind non-dyadic isolating intervals
+  Generator generator(14);
+  int refined = 0, exact_hits = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Generated g = generator.next();
+    std::vector<Real> roots = descartes_real_roots(g.p, g.lo, g.hi);
+    for (const Real& root : roots) {
+      if (root.exact) continue;
+      const Rational width(1, mpz_class(1) << generator.uniform(4, 140));
+      Real filtered = root;
+      refine_dyadically(filtered, width);
+      const Real expected = exact_dyadic_refinement(root, width);
+      SCOPED_TRACE("trial " + std::to_string(trial) + " " + root.description());
+      EXPECT_EQ(filtered.exact, expected.exact);
+      EXPECT_EQ(filtered.lower, expected.lower);
+      EXPECT_EQ(filtered.upper, expected.upper);
+      ++refined;
+    }
+  }
+  for (int trial = 0; trial < 200; ++trial) {
+    Rational root(mpz_class(generator.uniform(-4096, 4096)), mpz_class(1) << generator.uniform(0, 40));
+    root.canonicalize();
+    Polynomial p = multiply(Polynomial{-root.get_num(), root.get_den()}, Polynomial{-2, 0, 1});   // and +-sqrt 2
+    p = multiply(p, Polynomial{generator.big(static_cast<unsigned>(generator.uniform(1, 400))) + 1});
+    Real r;
+    r.polynomial = square_free_part(p);
+    r.lower = root - Rational(1, 3 + generator.uniform(0, 1000)) / Rational(mpz_class(1) << 40);
+    r.upper = root + Rational(1, 5 + generator.uniform(0, 1000)) / Rational(mpz_class(1) << 40);
+    const Rational width(1, mpz_class(1) << generator.uniform(44, 100));
+    Real filtered = r;
+    refine_dyadically(filtered, width);
+    const Real expected = exact_dyadic_refinement(r, width);
+    SCOPED_TRACE("dyadic root " + root.get_str());
+    EXPECT_EQ(filtered.exact, expected.exact);
+    EXPECT_EQ(filtered.lower, expected.lower);
+    EXPECT_EQ(filtered.upper, expected.upper);
+    if (filtered.exact) {
+      EXPECT_EQ(filtered.lower, root);
+      ++exact_hits;
+    }
+  }
+  EXPECT_GT(refined, 300);
+  EXPECT_GT(exact_hits, 50);   // 86 of 200 with this seed (a bisection of [a, b] meets the root when it is a midpoint)
 }
 
 }  // namespace
