@@ -1232,9 +1232,11 @@ std::string to_string(const IntegerPolynomial2& f, const std::string& x, const s
       first = false;
       bool has_variable = i > 0 || j > 0;
       if (!has_variable || magnitude != 1) out << magnitude.get_str() << (has_variable ? "*" : "");
-      if (i > 0) out << x << (i > 1 ? "^" + std::to_string(i) : "");
+      if (i > 0) out << x;
+      if (i > 1) out << '^' << i;
       if (i > 0 && j > 0) out << "*";
-      if (j > 0) out << y << (j > 1 ? "^" + std::to_string(j) : "");
+      if (j > 0) out << y;
+      if (j > 1) out << '^' << j;
     }
   return first ? "0" : out.str();
 }
