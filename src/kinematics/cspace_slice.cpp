@@ -104,10 +104,15 @@ class CSpaceSlicer final : public PairSlicer {
     };
     const std::vector<CSpaceEdge>& edges = space_.edges();
     const std::vector<CSpaceVertex>& vertices = space_.vertices();
-    // the y of a vertex at x = value (rational x: y is an algebraic number)
+    // the y of a vertex at x = value: an algebraic number when the build knew x rational; else
+    // (x a root of a reducible resultant, as at a tangent joint of an outline) the vertex's
+    // branch of its curve's fibre at the rational x, exactly
     auto vertex_y = [&](const CSpaceVertex& vertex) {
-      if (!vertex.y_exact) throw GeometryError("C-space slicer: a vertex of pair " + name_ + " at a rational abscissa has no exact ordinate");
-      return to_real(vertex.y);
+      if (vertex.y_exact) return to_real(vertex.y);
+      const cspace::algebra::Polynomial fibre = cspace::algebra::substitute_x(IntegerPolynomial2{vertex.y_curve}, value);
+      if (cspace::algebra::degree(fibre) < 1)
+        throw GeometryError("C-space slicer: a vertex of pair " + name_ + " at a rational abscissa has no exact ordinate");
+      return cspace::algebra::nth_real_root(fibre, vertex.y_branch);
     };
     for (std::size_t e = 0; e < edges.size(); ++e) {
       const CSpaceEdge& edge = edges[e];
