@@ -76,8 +76,11 @@ const std::vector<CSpaceCell>& CSpace::cells() const { return implementation(*th
 const CSpaceStatistics& CSpace::statistics() const { return implementation(*this).statistics; }
 bool CSpace::complete() const { return implementation(*this).complete; }
 
-std::optional<ChartPoint> CSpace::to_chart(const PartCoordinate& x_input, const PartCoordinate& y_input) const {
-  const Impl& impl = implementation(*this);
+namespace {
+
+// The configuration in every chart that holds it (several: on a seam or a chart corner), in
+// chart order.
+std::vector<ChartPoint> chart_points(const CSpace::Impl& impl, const PartCoordinate& x_input, const PartCoordinate& y_input) {
   PartCoordinate x = x_input, y = y_input;
   x.value.canonicalize();
   y.value.canonicalize();
@@ -95,16 +98,34 @@ std::optional<ChartPoint> CSpace::to_chart(const PartCoordinate& x_input, const 
     Rational t = -1 / p.value;   // tan((theta - pi)/2) = -cot(theta/2)
     return t;
   };
+  std::vector<ChartPoint> points;
   for (std::size_t c = 0; c < impl.public_charts.size(); ++c) {
     const CSpaceChart& chart = impl.public_charts[c];
     auto cx = convert(x, chart.x_kind, chart.x_half_turn);
     if (!cx || *cx < chart.x_lo || *cx > chart.x_hi) continue;
-    if (impl.dimension == 1) return ChartPoint{c, *cx, Rational(0)};
+    if (impl.dimension == 1) {
+      points.push_back(ChartPoint{c, *cx, Rational(0)});
+      continue;
+    }
     auto cy = convert(y, chart.y_kind, chart.y_half_turn);
     if (!cy || *cy < chart.y_lo || *cy > chart.y_hi) continue;
-    return ChartPoint{c, *cx, *cy};
+    points.push_back(ChartPoint{c, *cx, *cy});
   }
-  return std::nullopt;
+  return points;
+}
+
+// The parts touch there: on a real edge or vertex, or in a touching cell.
+bool in_contact(const Location& l) {
+  return l.kind == Location::Kind::touching ||
+         ((l.kind == Location::Kind::edge || l.kind == Location::Kind::vertex) && l.cell == no_index);
+}
+
+}  // namespace
+
+std::optional<ChartPoint> CSpace::to_chart(const PartCoordinate& x, const PartCoordinate& y) const {
+  std::vector<ChartPoint> points = chart_points(implementation(*this), x, y);
+  if (points.empty()) return std::nullopt;
+  return points.front();
 }
 
 namespace {
@@ -117,14 +138,41 @@ ChartPoint canonical(ChartPoint p) {
 }
 }  // namespace
 
-Location CSpace::locate(const ChartPoint& point) const {
-  return cspace::locate_point(implementation(*this), canonical(point));
+Location CSpace::locate(const ChartPoint& point_input) const {
+  const Impl& impl = implementation(*this);
+  const ChartPoint point = canonical(point_input);
+  Location here = cspace::locate_point(impl, point);
+  if (in_contact(here) || point.chart >= impl.public_charts.size()) return here;
+  // on the chart's boundary: the configuration may lie on a contact curve that meets this chart
+  // there alone (see locate by part coordinates): ask the charts that share it
+  const CSpaceChart& chart = impl.public_charts[point.chart];
+  const bool on_x_side = point.x == chart.x_lo || point.x == chart.x_hi;
+  const bool on_y_side = impl.dimension == 2 && (point.y == chart.y_lo || point.y == chart.y_hi);
+  if (!on_x_side && !on_y_side) return here;
+  auto part_coordinate = [](AxisKind kind, bool half_turn, const Rational& v) {
+    if (kind == AxisKind::translation) return PartCoordinate{PartCoordinate::Kind::offset, v};
+    if (!half_turn) return PartCoordinate{PartCoordinate::Kind::half_angle_tangent, v};
+    if (sgn(v) == 0) return PartCoordinate{PartCoordinate::Kind::half_turn, Rational(0)};
+    return PartCoordinate{PartCoordinate::Kind::half_angle_tangent, Rational(-1 / v)};   // theta = pi + 2 atan(v)
+  };
+  const PartCoordinate x = part_coordinate(chart.x_kind, chart.x_half_turn, point.x);
+  const PartCoordinate y = impl.dimension == 2 ? part_coordinate(chart.y_kind, chart.y_half_turn, point.y) : PartCoordinate{};
+  for (const ChartPoint& other : chart_points(impl, x, y)) {
+    if (other.chart == point.chart) continue;
+    Location there = cspace::locate_point(impl, other);
+    if (in_contact(there)) return there;
+  }
+  return here;
 }
 
 Location CSpace::locate(const PartCoordinate& x, const PartCoordinate& y) const {
-  auto point = to_chart(x, y);
-  if (!point) return Location{};
-  return locate(*point);
+  std::vector<ChartPoint> points = chart_points(implementation(*this), x, y);
+  if (points.empty()) return Location{};
+  // On a seam or a chart corner the configuration lies in several charts; a contact curve may
+  // meet one of them only at that boundary point (it passes through a chart's corner from
+  // outside: found at theta = -90 deg, 90 deg, a pin tangent to a lever's side), where that
+  // chart's arrangement has only its box corner. The parts touch there if any chart says so.
+  return locate(points.front());   // which asks the other charts on a boundary
 }
 
 CertifiedValue CSpace::evaluate(std::size_t edge, double x) const {

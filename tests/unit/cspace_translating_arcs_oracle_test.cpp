@@ -444,5 +444,30 @@ INSTANTIATE_TEST_SUITE_P(Scales, CSpaceRotatingArcs, testing::Values(0, -300, 30
                                                   : "Scale1e" + std::string(info.param < 0 ? "Minus" : "") + std::to_string(std::abs(info.param));
                          });
 
+
+// A lever (a stadium about the origin) at -90 degrees and a second lever at +90 degrees whose pin
+// touches the first one's straight side: the configuration (t, u) = (-1, 1) is a corner of chart
+// 0 and of three other charts, and the contact curve meets chart 0 only at that corner. Point
+// location said "blocked" (chart 0's corner lies in a blocked wedge); on a chart's boundary it
+// asks every chart holding the configuration now (seed 11 of the rotating test found it).
+TEST(CSpaceRotatingArcs, ContactThroughAChartCornerIsContact) {
+  const Model model = read_model(R"json({ "hipair": 1, "name": "rotating arcs", "parts": [
+    { "name": "a", "motion": { "rotation": { "pivot": [0, 0] } }, "loops": [ { "start": ["0", "-3/2"], "edges": [{ "line_to": ["17/4", "-3/2"] }, { "arc_to": ["17/4", "3/2"], "center": ["17/4", "0"], "dir": "ccw" }, { "line_to": ["0", "3/2"] }, { "arc_to": ["0", "-3/2"], "center": ["0", "0"], "dir": "ccw" }] } ] },
+    { "name": "b", "motion": { "rotation": { "pivot": ["45/8", "1/8"] } }, "loops": [ { "start": ["11/8", "-11/8"], "edges": [{ "line_to": ["45/8", "-11/8"] }, { "arc_to": ["45/8", "13/8"], "center": ["45/8", "1/8"], "dir": "ccw" }, { "line_to": ["11/8", "13/8"] }, { "arc_to": ["11/8", "-11/8"], "center": ["11/8", "1/8"], "dir": "ccw" }] }, { "circle": { "center": ["7/2", "29/8"], "radius": "5/8" } } ] } ] })json");
+  const CSpace space = CSpace::build(model, "a", "b");
+  const PartCoordinate t{PartCoordinate::Kind::half_angle_tangent, Rational(-1)};
+  const PartCoordinate u{PartCoordinate::Kind::half_angle_tangent, Rational(1)};
+  Placement pa = turned(Point{Rational(0), Rational(0)}, Rational(-1));
+  Placement pb = turned(model.parts[1].motion.pivot, Rational(1));
+  ASSERT_EQ(part_overlap(model.parts[0], pa, model.parts[1], pb).relation, PartRelation::touching);
+  const Location l = space.locate(t, u);
+  EXPECT_TRUE((l.kind == Location::Kind::edge || l.kind == Location::Kind::vertex) && l.cell == no_index)
+      << "kind " << static_cast<int>(l.kind) << ", cell " << l.cell;
+  // the same through chart 0's own coordinates (its corner)
+  const Location c = space.locate(ChartPoint{0, Rational(-1), Rational(1)});
+  EXPECT_TRUE((c.kind == Location::Kind::edge || c.kind == Location::Kind::vertex) && c.cell == no_index)
+      << "kind " << static_cast<int>(c.kind) << ", cell " << c.cell;
+}
+
 }  // namespace
 }  // namespace hipair
