@@ -1123,6 +1123,7 @@ struct SpanCondition {
 struct Curve {
   bool circle = false;
   bool extra = false;  // a line of the slice window (pin-slot pairs), not a contact
+  int pins = 0;        // extra: the in_window conditions that hold at every point of its line (bits)
   Aff p0, d;          // line: p0 + lambda d, lambda in [0, 1]
   Aff centre;         // circle
   Rational radius;
@@ -1141,6 +1142,7 @@ struct ConditionOf {
   std::vector<T> p;
   bool any = false;
   bool strict = false;
+  bool guard = false;   // see CurveFinder::verdict_at
 };
 using Condition = ConditionOf<TrigPoly>;
 
@@ -1190,21 +1192,24 @@ class CurveFinder {
   void pin_slot_window(const Vec<Rational>& d, const Rational& s_lo, const Rational& s_hi,
                        const std::optional<std::pair<Vec<Rational>, std::pair<Rational, Rational>>>& translating) {
     window_ = Window{d, s_lo, s_hi, translating};
-    auto extra = [&](const Aff& p0, const Aff& dd) {
+    auto extra = [&](const Aff& p0, const Aff& dd, int pins) {
       add_line(p0, dd);
       curves_.back().extra = true;
+      curves_.back().pins = pins;
     };
+    // (pins: see in_window; the segment's line is the window's, the parallelogram's edges have
+    // s or q at a limit)
     if (!translating) {
       only_extra_ = true;
-      extra(turning_point(scale(s_lo, d)), turning_point(scale(Rational(s_hi - s_lo), d)));
+      extra(turning_point(scale(s_lo, d)), turning_point(scale(Rational(s_hi - s_lo), d)), 1);
       return;
     }
     const Vec<Rational>& f = translating->first;
     const auto& [q_lo, q_hi] = translating->second;
     for (const Rational& sv : {s_lo, s_hi})
-      extra(turning_point(scale(sv, d)) - fixed_point(scale(q_lo, f)), fixed_point(scale(Rational(q_lo - q_hi), f)));
+      extra(turning_point(scale(sv, d)) - fixed_point(scale(q_lo, f)), fixed_point(scale(Rational(q_lo - q_hi), f)), 1);
     for (const Rational& qv : {q_lo, q_hi})
-      extra(turning_point(scale(s_lo, d)) - fixed_point(scale(qv, f)), turning_point(scale(Rational(s_hi - s_lo), d)));
+      extra(turning_point(scale(s_lo, d)) - fixed_point(scale(qv, f)), turning_point(scale(Rational(s_hi - s_lo), d)), 2);
     // the window degenerates where R d is parallel to f
     auto build = [&](const Rotation<TrigPoly>& r) {
       Event e;
@@ -1413,6 +1418,79 @@ class CurveFinder {
     }
     return !c.any;
   }
+
+  // cos and sin of theta(u) = 2 atan(u) for u in [a, b] (doubles, -1 <= a <= b <= 1), in
+  // certified double intervals: enclosed by their values at the ends (sin is increasing there,
+  // cos increasing up to 0, then decreasing).
+  static Rotation<IV> rotation_over(double a, double b) {
+    auto at_point = [](double u) {
+      const kernels::Interval x = kernels::Interval::point(u), one(1);
+      const kernels::Interval d = one + x * x;
+      return std::make_pair((one - x * x) / d, kernels::Interval(2) * x / d);
+    };
+    auto [ca, sa] = at_point(a);
+    auto [cb, sb] = at_point(b);
+    kernels::Interval c = b <= 0.0   ? kernels::Interval(ca.lo, cb.hi)
+                          : a >= 0.0 ? kernels::Interval(cb.lo, ca.hi)
+                                     : kernels::Interval(std::min(ca.lo, cb.lo), 1.0);
+    kernels::Interval sn(sa.lo, sb.hi);
+    if (c.hi > 1.0) c.hi = 1.0;
+    return Rotation<IV>{IV(c), IV(sn)};
+  }
+
+  // The verdict of an event's conditions at a root without forming them as polynomials:
+  // `conditions_of(rotation)` gives them as functions of (cos, sin), for Rotation<IV> and
+  // Rotation<Rational>. A condition polynomial's exact sign at a root u is the sign of its value
+  // at the rotation of u (integer_numerator divides out only positive factors). At a rational
+  // root that value is computed exactly; at an irrational one it lies in the certified double
+  // interval over the rotation's enclosure (over the isolating interval, then over a copy
+  // refined to 2^-40), and an interval excluding 0 (or the point 0) gives its sign. `holds`
+  // when every condition holds, `fails` when one that is not a `guard` fails, else `unknown`
+  // (the caller decides exactly): a certain verdict is the exact one when the conditions are
+  // the event's or, as the callers prove, imply them (guards: conditions under which the
+  // others imply them, that the exact event does not have).
+  enum class Verdict { holds, fails, unknown };
+  template <class T>
+  static Verdict judge(const std::vector<ConditionOf<T>>& conditions) {
+    Verdict all = Verdict::holds;
+    for (const auto& condition : conditions) {
+      if (condition.p.empty()) continue;
+      int ok_count = 0, fail_count = 0;
+      for (const auto& x : condition.p) {
+        int sign;
+        if constexpr (std::is_same_v<T, IV>) {
+          sign = x.v.sign();
+          if (sign == 2) continue;
+        } else {
+          sign = sgn(x);
+        }
+        (condition.strict ? sign > 0 : sign >= 0) ? ++ok_count : ++fail_count;
+      }
+      const int n = static_cast<int>(condition.p.size());
+      const Verdict v = condition.any ? (ok_count > 0 ? Verdict::holds : fail_count == n ? Verdict::fails : Verdict::unknown)
+                                      : (fail_count > 0 ? Verdict::fails : ok_count == n ? Verdict::holds : Verdict::unknown);
+      if (v == Verdict::fails && !condition.guard) return Verdict::fails;
+      if (v != Verdict::holds) all = Verdict::unknown;
+    }
+    return all;
+  }
+  template <class ConditionsOf>
+  Verdict verdict_at(ConditionsOf conditions_of, const Real& root) const {
+    if (!range_ || !filters_) return Verdict::unknown;
+    if (root.exact) return judge(conditions_of(exact_rotation(root.lower)));
+    auto decide = [&](const Real& r) {
+      const double a = algebra::lower_double(r.lower), b = algebra::upper_double(r.upper);
+      if (!(a >= -1.0 && b <= 1.0 && a <= b)) return Verdict::unknown;
+      return judge(conditions_of(rotation_over(a, b)));
+    };
+    Verdict v = decide(root);
+    if (v != Verdict::unknown) return v;
+    Real narrow = root;
+    algebra::refine_dyadically(narrow, Rational(1, mpz_class(1) << 40));
+    if (narrow.exact) return judge(conditions_of(exact_rotation(narrow.lower)));
+    return decide(narrow);
+  }
+
   // Records the roots of build(rotation).poly (in the chart about 0, and the half turn: u = 0 in
   // the chart about pi) that meet the conditions and are not certainly blocked at any of the
   // points point_of(rotation) (optional<Vec<T>> each, for T Rational and Box).
@@ -1429,20 +1507,8 @@ class CurveFinder {
     if (!range_ || !filters_) return false;
     const kernels::Interval lo = kernels::Interval::enclose(range_->first), hi = kernels::Interval::enclose(range_->second);
     if (!(lo.lo >= -1.0 && hi.hi <= 1.0)) return false;
-    auto at_point = [](double u) {
-      const kernels::Interval x = kernels::Interval::point(u), one(1);
-      const kernels::Interval d = one + x * x;
-      return std::make_pair((one - x * x) / d, kernels::Interval(2) * x / d);
-    };
     std::function<bool(double, double, int)> clear = [&](double a, double b, int depth) {
-      auto [ca, sa] = at_point(a);
-      auto [cb, sb] = at_point(b);
-      kernels::Interval c = b <= 0.0   ? kernels::Interval(ca.lo, cb.hi)
-                            : a >= 0.0 ? kernels::Interval(cb.lo, ca.hi)
-                                       : kernels::Interval(std::min(ca.lo, cb.lo), 1.0);
-      kernels::Interval sn(sa.lo, sb.hi);
-      if (c.hi > 1.0) c.hi = 1.0;
-      const auto [value, conditions] = value_of(Rotation<IV>{IV(c), IV(sn)});
+      const auto [value, conditions] = value_of(rotation_over(a, b));
       const int sign = value.v.sign();
       if (sign == 1 || sign == -1) return true;
       // or a condition of the event certainly fails throughout the piece (a root there would
@@ -1466,11 +1532,27 @@ class CurveFinder {
   template <class Build, class PointsOf, class ValueOf>
   void roots(Build build, CriticalEvent kind, std::uint64_t mask, PointsOf points_of, ValueOf value_of) {
     if (certainly_no_root(value_of)) return;   // nothing would be recorded
-    roots(build, kind, mask, points_of);
+    auto verdict = [&](const Real& root) {
+      return verdict_at([&](const Rotation<IV>& r) { return value_of(r).second; }, root);
+    };
+    roots(build, kind, mask, points_of, verdict, 0);
+  }
+  // (the same, with the conditions at a root for verdict_at given apart)
+  template <class Build, class PointsOf, class ValueOf, class ConditionsOf>
+  void roots(Build build, CriticalEvent kind, std::uint64_t mask, PointsOf points_of, ValueOf value_of, ConditionsOf conditions_of) {
+    if (certainly_no_root(value_of)) return;   // nothing would be recorded
+    roots(build, kind, mask, points_of, [&](const Real& root) { return verdict_at(conditions_of, root); }, 0);
   }
 
   template <class Build, class PointsOf>
   void roots(Build build, CriticalEvent kind, std::uint64_t mask, PointsOf points_of) {
+    roots(build, kind, mask, points_of, [](const Real&) { return Verdict::unknown; }, 0);
+  }
+
+  // (`verdict`: the conditions at a root when certain, see verdict_at; the event's exact
+  // conditions are formed only when some root's verdict is unknown)
+  template <class Build, class PointsOf, class VerdictOf>
+  void roots(Build build, CriticalEvent kind, std::uint64_t mask, PointsOf points_of, VerdictOf verdict, int) {
     const std::size_t count = points_of(Rotation<Rational>{Rational(1), Rational(0)}).size();
     auto relevant = [&](const Real& root, bool half_turn) {
       ++stats_.roots;
@@ -1489,10 +1571,18 @@ class CurveFinder {
       ++stats_.polynomials;
       algebra::Polynomial p = integer_numerator(e.poly);
       std::vector<Real> found = algebra::degree(p) >= 1 ? isolated(p) : std::vector<Real>{};
-      if (!found.empty()) e = build(Rotation<TrigPoly>{poly_cos(false), poly_sin(false)});
+      bool formed = false;
       for (Real root : found) {
           root.detect_rational();
-          bool ok = std::all_of(e.conditions.begin(), e.conditions.end(), [&](const Condition& c) { return holds(c, root); });
+          bool ok;
+          const Verdict v = verdict(root);
+          if (v != Verdict::unknown) {
+            ok = v == Verdict::holds;
+          } else {
+            if (!formed) e = build(Rotation<TrigPoly>{poly_cos(false), poly_sin(false)});
+            formed = true;
+            ok = std::all_of(e.conditions.begin(), e.conditions.end(), [&](const Condition& c) { return holds(c, root); });
+          }
           if (ok && relevant(root, false)) found_.push_back(Critical{false, root, {kind}});
         }
     }
@@ -1524,8 +1614,14 @@ class CurveFinder {
   }
 
   // The conditions for the point num / den to lie in the pin-slot window (none without one).
+  // `skip` (bits 1, 2: the first, second condition) leaves out conditions that hold at the
+  // point: those of a window edge whose line the point lies on (`Curve::pins`; both at a corner).
+  // On the segment window's line c = 0 (bit 1); at its ends s is a limit (bit 2). On the
+  // parallelogram's edge s = s_lo or s_hi (bit 1), q = q_lo or q_hi (bit 2). At a limit, with
+  // v = value m^2 den^2 (k != 0), one of the two polynomials below is 0 and the other is
+  // (hi - lo) m^2 den^2 >= 0; with k = 0 or den = 0 both are 0: the condition holds.
   template <class T>
-  void in_window(const Vec<T>& num, const T& den, const Rotation<T>& r, std::vector<ConditionOf<T>>& out) const {
+  void in_window(const Vec<T>& num, const T& den, const Rotation<T>& r, std::vector<ConditionOf<T>>& out, int skip = 0) const {
     if (!window_ || skip_conditions_) return;
     const Window& w = *window_;
     Vec<T> rd = at(turning_point(w.d), r);
@@ -1536,15 +1632,15 @@ class CurveFinder {
     };
     if (!w.translating) {
       T c = cross(rd, num);
-      out.push_back({{c, T(Rational(0)) - c}, false});   // on the line: c = 0
-      between(dot(num, rd) * den, T(Rational(1)), w.s_lo, w.s_hi);   // s = dot(X, R d), |d| = 1
+      if (!(skip & 1)) out.push_back({{c, T(Rational(0)) - c}, false});   // on the line: c = 0
+      if (!(skip & 2)) between(dot(num, rd) * den, T(Rational(1)), w.s_lo, w.s_hi);   // s = dot(X, R d), |d| = 1
       return;
     }
     Vec<T> f{T(w.translating->first.x), T(w.translating->first.y)};
     const T k = cross(rd, f);
     // s = cross(X, f) / k, q = cross(X, R d) / k
-    between(cross(num, f) * den * k, k * k, w.s_lo, w.s_hi);
-    between(cross(num, rd) * den * k, k * k, w.translating->second.first, w.translating->second.second);
+    if (!(skip & 1)) between(cross(num, f) * den * k, k * k, w.s_lo, w.s_hi);
+    if (!(skip & 2)) between(cross(num, rd) * den * k, k * k, w.translating->second.first, w.translating->second.second);
   }
 
   // Where the translating window degenerates (R d parallel to f): critical, kept unfiltered.
@@ -1587,7 +1683,19 @@ class CurveFinder {
       in_window(p, one, r, conditions);
       return std::make_pair(on_support(cj, p, one, r), std::move(conditions));
     };
-    roots(build, CriticalEvent::vertex_on_contact, mask(i, j), points, value);
+    // at a root the end lies on cj's line, and a window edge's end is a corner of the window
+    const int pinned = (ci.extra ? 3 : 0) | cj.pins;
+    auto at_root = [&](const auto& r) {
+      using T = std::decay_t<decltype(r.c)>;
+      std::vector<ConditionOf<T>> conditions;
+      Vec<T> p = at(ci.ends[k].point, r);
+      T one(Rational(1));
+      end_valid(ci, k, r, conditions);
+      on_extent(cj, p, one, r, conditions);
+      in_window(p, one, r, conditions, pinned);
+      return conditions;
+    };
+    roots(build, CriticalEvent::vertex_on_contact, mask(i, j), points, value, at_root);
   }
 
   // (num, den) of the tangency point of two curves (one a circle).
@@ -1710,11 +1818,51 @@ class CurveFinder {
     auto value = [&](const Rotation<IV>& r) {   // the polynomial and conditions of `build`, in intervals
       auto [num, den] = meet(r);
       std::vector<ConditionOf<IV>> conditions;
+      conditions.push_back({{den, IV(Rational(0)) - den}, true, true});   // den != 0
       for (const Curve* x : c) on_extent(*x, num, den, r, conditions);
       in_window(num, den, r, conditions);
       return std::make_pair(on_support(check, num, den, r), std::move(conditions));
     };
-    roots(build, CriticalEvent::three_contacts, m, points, value);
+    // At a root with den != 0 the point X = num / den lies on the lines of all three curves.
+    // Two of them with a common end E (the same point a + R b; no span conditions) that are not
+    // parallel there meet only at E, so X = E, an end of both: their extent conditions hold
+    // (l = den^2 lambda |d|^2 with lambda 0 or 1: the pair l, den^2 |d|^2 - l is 0 and
+    // den^2 |d|^2). At a root with den = 0 the first condition fails either way. So for the
+    // interval verdict such a pair's extent conditions are replaced by "not parallel" (cross
+    // of their directions != 0), which stays away from 0 where the originals vanish; and the
+    // window conditions pinned by a window edge among the three are left out (see in_window).
+    const int pinned = c[0]->pins | c[1]->pins | c[2]->pins;
+    auto same_point = [](const Aff& x, const Aff& y) { return x.a.x == y.a.x && x.a.y == y.a.y && x.b.x == y.b.x && x.b.y == y.b.y; };
+    auto common_end = [&](const Curve* x, const Curve* y) {
+      if (x->circle || y->circle || !x->spans.empty() || !y->spans.empty()) return false;
+      for (const auto& ex : x->ends)
+        for (const auto& ey : y->ends)
+          if (same_point(ex.point, ey.point)) return true;
+      return false;
+    };
+    std::array<bool, 3> at_end{false, false, false};
+    std::vector<std::pair<const Curve*, const Curve*>> meeting;   // pairs with a common end
+    for (int x = 0; x < 3; ++x)
+      for (int y = x + 1; y < 3; ++y)
+        if (common_end(c[x], c[y])) {
+          at_end[x] = at_end[y] = true;
+          meeting.emplace_back(c[x], c[y]);
+        }
+    auto at_root = [&](const auto& r) {
+      using T = std::decay_t<decltype(r.c)>;
+      auto [num, den] = meet(r);
+      std::vector<ConditionOf<T>> conditions;
+      conditions.push_back({{den, T(Rational(0)) - den}, true, true});   // den != 0
+      for (const auto& [x, y] : meeting) {
+        const T cr = cross(at(x->d, r), at(y->d, r));
+        conditions.push_back({{cr, T(Rational(0)) - cr}, true, true, true});   // not parallel (a guard)
+      }
+      for (int x = 0; x < 3; ++x)
+        if (!at_end[x]) on_extent(*c[x], num, den, r, conditions);
+      in_window(num, den, r, conditions, pinned);
+      return conditions;
+    };
+    roots(build, CriticalEvent::three_contacts, m, points, value, at_root);
   }
 
   // A segment–arc contact appears or goes (the segment's normal at an end of the arc's span),
