@@ -511,9 +511,13 @@ class Certifier {
         if (box_inside(free_, rb.c * rel.x + rb.s * rel.y + Box(pivot_.x), rb.c * rel.y - rb.s * rel.x + Box(pivot_.y)))
           return true;
       }
-      Rotation<Rational> rm = exact_rotation(mid(Box{t.lower, t.upper}));
+      Rational um = mid(Box{t.lower, t.upper});
+      um.canonicalize();
+      Rotation<Rational> rm = exact_rotation(um);
       Point d{mid(pb->x), mid(pb->y)};
-      auto relation = part_overlap(fixed_, Placement{}, free_, placement_about(pivot_, rm.c, rm.s, d), true);
+      d.x.canonicalize();
+      d.y.canonicalize();
+      const PartOverlap relation = overlap_at(um, rm, d);
       // a configuration of the enclosure that is not overlapping: no certificate (kept)
       if (relation.relation != PartRelation::overlapping) return false;
       if (!relation.witness) continue;
@@ -556,6 +560,19 @@ class Certifier {
       }
   }
 
+  // The exact oracle (with a witness) at the rotation rm of u and the offset d, remembered:
+  // events found by different curves at one root name the same mid configuration (a pure
+  // function of (u, d): the same answer, the same witness).
+  PartOverlap overlap_at(const Rational& u, const Rotation<Rational>& rm, const Point& d) const {
+    if (!remember_) return part_overlap(fixed_, Placement{}, free_, placement_about(pivot_, rm.c, rm.s, d), true);
+    std::array<Rational, 3> key{u, d.x, d.y};
+    auto found = mid_answers_.find(key);
+    if (found != mid_answers_.end()) return found->second;
+    PartOverlap relation = part_overlap(fixed_, Placement{}, free_, placement_about(pivot_, rm.c, rm.s, d), true);
+    mid_answers_.emplace(std::move(key), relation);
+    return relation;
+  }
+
   const Part& fixed_;
   const Part& free_;
   Point pivot_;
@@ -565,6 +582,8 @@ class Certifier {
   std::size_t* filtered_ = nullptr;
   // exact oracle answers at rational configurations: (half turn?, u, x, y)
   mutable std::map<std::array<Rational, 4>, bool> exact_answers_;
+  // the oracle's answers at mid configurations: (u, x, y) (see overlap_at)
+  mutable std::map<std::array<Rational, 3>, PartOverlap> mid_answers_;
   bool remember_ = true;
 };
 
