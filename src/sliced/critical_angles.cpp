@@ -1515,21 +1515,29 @@ class CurveFinder {
   // points point_of(rotation) (optional<Vec<T>> each, for T Rational and Box).
   // The interval filter: true when value_of (the event polynomial's value as a function of
   // (cos, sin), in certified double intervals, with the event's conditions) certainly has no
-  // zero at which every condition may hold, for u in the whole restricted range. The range is covered by pieces with double ends (bisected up to 4 times
-  // where a piece's enclosure holds zero); cos and sin over a piece inside [-1, 1] are enclosed
-  // by their values at its ends (sin is increasing there, cos increasing up to 0, then
-  // decreasing). Then the exact polynomial has no root in the range that meets its conditions
-  // (a condition certainly negative over a piece is negative at every root there), and the
-  // exact path would record nothing.
+  // zero at which every condition may hold, for u in the whole restricted range. The range is
+  // one piece with double ends (`depth` bisections where a piece's enclosure holds zero; 0
+  // since the conditions at roots are decided in intervals too: session 15 measured 8 levels
+  // 1.33 s, 5 levels 1.22 s, 0 levels 1.12 s for the film advance, the exact path after a root
+  // found being cheaper than deep bisection); cos and sin over a piece inside [-1, 1] are
+  // enclosed by rotation_over. Then the exact polynomial has no root in the range that meets
+  // its conditions (a condition certainly negative over a piece is negative at every root
+  // there), and the exact path would record nothing.
   template <class ValueOf>
   bool certainly_no_root(ValueOf value_of) const {
     if (!range_ || !filters_) return false;
     const kernels::Interval lo = kernels::Interval::enclose(range_->first), hi = kernels::Interval::enclose(range_->second);
     if (!(lo.lo >= -1.0 && hi.hi <= 1.0)) return false;
-    std::function<bool(double, double, int)> clear = [&](double a, double b, int depth) {
-      const auto [value, conditions] = value_of(rotation_over(a, b));
-      const int sign = value.v.sign();
+    // (the pieces are the same for every event: their rotations' enclosures are formed once,
+    // by the piece's index in the bisection tree)
+    if (pieces_.empty()) pieces_.resize(std::size_t(1) << 10);
+    std::vector<ConditionOf<IV>> conditions;
+    std::function<bool(std::size_t, double, double, int)> clear = [&](std::size_t node, double a, double b, int depth) {
+      if (!pieces_[node]) pieces_[node] = rotation_over(a, b);
+      const int sign = value_of(*pieces_[node], nullptr).v.sign();
       if (sign == 1 || sign == -1) return true;
+      conditions.clear();
+      value_of(*pieces_[node], &conditions);
       // or a condition of the event certainly fails throughout the piece (a root there would
       // not be recorded)
       auto negative = [](const IV& x) { return x.v.hi < 0.0; };
@@ -1542,21 +1550,16 @@ class CurveFinder {
       if (depth == 0) return false;
       const double m = 0.5 * (a + b);
       if (!(a < m && m < b)) return false;
-      return clear(a, m, depth - 1) && clear(m, b, depth - 1);
+      return clear(2 * node, a, m, depth - 1) && clear(2 * node + 1, m, b, depth - 1);
     };
-    return clear(lo.lo, hi.hi, 8);
+    constexpr int depth = 0;
+    return clear(1, lo.lo, hi.hi, depth);
   }
 
   // roots() with the interval filter first (restricted ranges only: the pin-slot finder).
-  template <class Build, class PointsOf, class ValueOf>
-  void roots(Build build, CriticalEvent kind, std::uint64_t mask, PointsOf points_of, ValueOf value_of) {
-    if (certainly_no_root(value_of)) return;   // nothing would be recorded
-    auto verdict = [&](const Real& root) {
-      return verdict_at([&](const Rotation<IV>& r) { return value_of(r).second; }, root);
-    };
-    roots(build, kind, mask, points_of, verdict, 0);
-  }
-  // (the same, with the conditions at a root for verdict_at given apart)
+  // (`value_of(rotation, conditions)`: the polynomial's value in intervals, and when
+  // `conditions` is not null, the event's conditions appended there; `conditions_of`: the
+  // conditions at a root for verdict_at)
   template <class Build, class PointsOf, class ValueOf, class ConditionsOf>
   void roots(Build build, CriticalEvent kind, std::uint64_t mask, PointsOf points_of, ValueOf value_of, ConditionsOf conditions_of) {
     if (certainly_no_root(value_of)) return;   // nothing would be recorded
@@ -1693,14 +1696,15 @@ class CurveFinder {
       return e;
     };
     auto points = [&](auto rot) { return std::vector{std::optional(at(ci.ends[k].point, rot))}; };
-    auto value = [&](const Rotation<IV>& r) {   // the polynomial and conditions of `build`, in intervals
-      std::vector<ConditionOf<IV>> conditions;
+    auto value = [&](const Rotation<IV>& r, std::vector<ConditionOf<IV>>* conditions) {   // `build` in intervals
       Vec<IV> p = at(ci.ends[k].point, r);
       IV one(Rational(1));
-      end_valid(ci, k, r, conditions);
-      on_extent(cj, p, one, r, conditions);
-      in_window(p, one, r, conditions);
-      return std::make_pair(on_support(cj, p, one, r), std::move(conditions));
+      if (conditions) {
+        end_valid(ci, k, r, *conditions);
+        on_extent(cj, p, one, r, *conditions);
+        in_window(p, one, r, *conditions);
+      }
+      return on_support(cj, p, one, r);
     };
     // at a root the end lies on cj's line, and a window edge's end is a corner of the window
     const int pinned = (ci.extra ? 3 : 0) | cj.pins;
@@ -1834,13 +1838,14 @@ class CurveFinder {
     }
     // two lines not parallel at every angle: the exact polynomial is formed unless this
     // certainly has no zero
-    auto value = [&](const Rotation<IV>& r) {   // the polynomial and conditions of `build`, in intervals
+    auto value = [&](const Rotation<IV>& r, std::vector<ConditionOf<IV>>* conditions) {   // `build` in intervals
       auto [num, den] = meet(r);
-      std::vector<ConditionOf<IV>> conditions;
-      conditions.push_back({{den, IV(Rational(0)) - den}, true, true});   // den != 0
-      for (const Curve* x : c) on_extent(*x, num, den, r, conditions);
-      in_window(num, den, r, conditions);
-      return std::make_pair(on_support(check, num, den, r), std::move(conditions));
+      if (conditions) {
+        conditions->push_back({{den, IV(Rational(0)) - den}, true, true});   // den != 0
+        for (const Curve* x : c) on_extent(*x, num, den, r, *conditions);
+        in_window(num, den, r, *conditions);
+      }
+      return on_support(check, num, den, r);
     };
     // At a root with den != 0 the point X = num / den lies on the lines of all three curves.
     // Two of them with a common end E (the same point a + R b; no span conditions) that are not
@@ -2019,6 +2024,7 @@ class CurveFinder {
   Certifier cert_;
   std::optional<Window> window_;
   std::optional<std::pair<Rational, Rational>> range_;
+  mutable std::vector<std::optional<Rotation<IV>>> pieces_;   // see certainly_no_root
   std::vector<std::size_t> outside_;   // curves never meeting the window's box
   bool only_extra_ = false;
   bool skip_conditions_ = false;   // while building an event's polynomial alone
