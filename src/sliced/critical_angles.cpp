@@ -1926,7 +1926,10 @@ class CurveFinder {
   }
 
   // ------------------------------------------------------------ prefilter
+  // Bit r of a curve pair's mask: their boxes over angle range r meet (and, with a window, each
+  // meets the window's box: the hull of its edges').
   void compute_masks() {
+    if (range_ && filters_ && interval_masks()) return;
     const std::size_t n = curves_.size();
     std::vector<std::vector<std::pair<Box, Box>>> boxes(n);
     for (int r = 0; r < 64; ++r) {
@@ -1968,16 +1971,7 @@ class CurveFinder {
         near[i * 64 + r] = {algebra::lower_double(b.first.lo), algebra::upper_double(b.first.hi), algebra::lower_double(b.second.lo),
                             algebra::upper_double(b.second.hi)};
       }
-    masks_.assign(n * n, 0);
-    for (std::size_t a = 0; a < n; ++a)
-      for (std::size_t b = a + 1; b < n; ++b) {
-        std::uint64_t m = 0;
-        for (int r = 0; r < 64; ++r) {
-          const auto &x = near[a * 64 + r], &y = near[b * 64 + r];
-          if (!(x[1] < y[0] || y[1] < x[0] || x[3] < y[2] || y[3] < x[2])) m |= std::uint64_t(1) << r;
-        }
-        masks_[a * n + b] = masks_[b * n + a] = m;
-      }
+    masks_from(near);
     // with a window: a curve whose box never meets the window's (the hull of its edges') is out
     if (!window_) return;
     std::vector<std::pair<Box, Box>> window(64);
@@ -2013,6 +2007,85 @@ class CurveFinder {
     for (std::size_t a = 0; a < n; ++a)
       for (std::size_t b = 0; b < n; ++b) masks_[a * n + b] &= in_window[a] & in_window[b];
   }
+  // The pairwise masks of boxes given as doubles (x lo, x hi, y lo, y hi per curve and range).
+  void masks_from(const std::vector<std::array<double, 4>>& near) {
+    const std::size_t n = curves_.size();
+    masks_.assign(n * n, 0);
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = a + 1; b < n; ++b) {
+        std::uint64_t m = 0;
+        for (int r = 0; r < 64; ++r) {
+          const auto &x = near[a * 64 + r], &y = near[b * 64 + r];
+          if (!(x[1] < y[0] || y[1] < x[0] || x[3] < y[2] || y[3] < x[2])) m |= std::uint64_t(1) << r;
+        }
+        masks_[a * n + b] = masks_[b * n + a] = m;
+      }
+  }
+
+  // The masks from certified double boxes (pin-slot ranges inside [-1, 1], no curve with span
+  // conditions; false, nothing set, otherwise). A recorded event of curves i, j (k) at an angle
+  // of range r lies on their extents and in the window (its conditions), so in all their boxes
+  // of range r and in the window's: bit r is set in the masks of the exact boxes above and of
+  // any boxes enclosing them, as these do (cos and sin over the range by rotation_over, interval
+  // arithmetic). Wider masks only examine events that record nothing: the same critical values.
+  // `outside_` stays empty: it only skips appearing events, and without span conditions there
+  // are none.
+  bool interval_masks() {
+    if (std::any_of(curves_.begin(), curves_.end(), [](const Curve& c) { return !c.spans.empty(); })) return false;
+    const std::size_t n = curves_.size();
+    std::vector<Rotation<IV>> rotations;
+    for (int r = 0; r < 64; ++r) {
+      Rational lo = range_->first + (range_->second - range_->first) * Rational(r, 64);
+      Rational hi = range_->first + (range_->second - range_->first) * Rational(r + 1, 64);
+      const double a = algebra::lower_double(lo), b = algebra::upper_double(hi);
+      if (!(a >= -1.0 && b <= 1.0 && a <= b)) return false;
+      rotations.push_back(rotation_over(a, b));
+    }
+    std::vector<std::array<double, 4>> near(n * 64);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Curve& c = curves_[i];
+      for (int r = 0; r < 64; ++r) {
+        if (c.circle) {
+          const Vec<IV> p = at(c.centre, rotations[r]);
+          const kernels::Interval radius = kernels::Interval::enclose(c.radius);
+          near[i * 64 + r] = {(p.x.v - radius).lo, (p.x.v + radius).hi, (p.y.v - radius).lo, (p.y.v + radius).hi};
+        } else {
+          const Vec<IV> p = at(c.ends[0].point, rotations[r]), q = at(c.ends[1].point, rotations[r]);   // p0, p0 + d
+          near[i * 64 + r] = {std::min(p.x.v.lo, q.x.v.lo), std::max(p.x.v.hi, q.x.v.hi), std::min(p.y.v.lo, q.y.v.lo),
+                              std::max(p.y.v.hi, q.y.v.hi)};
+        }
+      }
+    }
+    masks_from(near);
+    if (!window_) return true;
+    std::array<std::array<double, 4>, 64> window;
+    bool set = false;
+    for (std::size_t i = 0; i < n; ++i)
+      if (curves_[i].extra) {
+        for (int r = 0; r < 64; ++r) {
+          const auto& b = near[i * 64 + r];
+          window[r] = set ? std::array<double, 4>{std::min(window[r][0], b[0]), std::max(window[r][1], b[1]), std::min(window[r][2], b[2]),
+                                                  std::max(window[r][3], b[3])}
+                          : b;
+        }
+        set = true;
+      }
+    if (!set) return false;
+    std::vector<std::uint64_t> in_window(n, ~std::uint64_t(0));
+    for (std::size_t i = 0; i < n; ++i) {
+      if (curves_[i].extra) continue;
+      std::uint64_t bits = 0;
+      for (int r = 0; r < 64; ++r) {
+        const auto &x = near[i * 64 + r], &y = window[r];
+        if (!(x[1] < y[0] || y[1] < x[0] || x[3] < y[2] || y[3] < x[2])) bits |= std::uint64_t(1) << r;
+      }
+      in_window[i] = bits;
+    }
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = 0; b < n; ++b) masks_[a * n + b] &= in_window[a] & in_window[b];
+    return true;
+  }
+
   std::uint64_t mask(std::size_t i, std::size_t j) const { return masks_[i * curves_.size() + j]; }
 
   struct Window {
