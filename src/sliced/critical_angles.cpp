@@ -1599,6 +1599,7 @@ class CurveFinder {
           bool ok;
           const Verdict v = verdict(root);
           if (v != Verdict::unknown) {
+            ++stats_.verdicts;
             ok = v == Verdict::holds;
           } else {
             if (!formed) e = build(Rotation<TrigPoly>{poly_cos(false), poly_sin(false)});

@@ -50,6 +50,9 @@ struct CriticalStatistics {
   /// Certificate probes (a vertex or midpoint of one part tested inside the other at a root's
   /// enclosure) rejected by the certified double-interval test, without exact enclosures.
   std::size_t probes_filtered = 0;
+  /// Roots whose event conditions were decided without forming them as polynomials (in
+  /// certified double intervals, or exactly at a rational root: CurveFinder::verdict_at).
+  std::size_t verdicts = 0;
 };
 
 /// The critical angles, in counter-clockwise order from -pi (t ascending, the half turn last).

@@ -42,17 +42,16 @@ struct Found {
   sliced::CriticalStatistics statistics;
 };
 
-Found find(const Model& model, bool translating, bool filters) {
-  const Part& other = model.parts[0];
-  const Part& pin = model.parts[1];
+Found find(const Part& other, const Part& pin, bool translating, bool filters, const Rational& tau_lo = Rational(-1, 4),
+           const Rational& tau_hi = Rational(1, 4)) {
   std::optional<std::pair<Rational, Rational>> q_range;
   if (translating) q_range.emplace(other.motion.translation_limits->lo, other.motion.translation_limits->hi);
   Found out;
   out.critical = sliced::pin_slot_critical_values(other, pin, pin.motion.translation_limits->lo, pin.motion.translation_limits->hi,
-                                                  q_range, std::make_pair(Rational(-1, 4), Rational(1, 4)), out.statistics,
-                                                  filters);
+                                                  q_range, std::make_pair(tau_lo, tau_hi), out.statistics, filters);
   return out;
 }
+Found find(const Model& model, bool translating, bool filters) { return find(model.parts[0], model.parts[1], translating, filters); }
 
 // Random star-shaped bars on a pin-slot motion against random star-shaped blocks, fixed or
 // translating, convex and not, with collinear edges; and a bar that touches a wall exactly
@@ -91,6 +90,65 @@ TEST(SlicedPinSlotFilter, GeneratedPairsGiveTheSameCriticalValuesAsTheExactPath)
   }
   EXPECT_GE(with_values, 5);                 // the cases are not vacuous
   EXPECT_LT(formed_filtered, formed_exact);  // and the filter does skip polynomials
+}
+
+// Session 15's cuts (the conditions at a root decided in certified intervals, or exactly at a
+// rational root, with the window conditions a window edge pins and the extent conditions of two
+// lines meeting at a common end left out; prefilter masks from certified double boxes) give the
+// critical values of the plain exact path: generated films (a translating strip of several
+// rectangular pieces, so that contact lines share ends and events fall on the window's edges
+// and corners) against generated pin-slot followers, and the film advance's own pair over its
+// slices' tau range. The verdicts decide most roots (the cases are not vacuous).
+TEST(SlicedPinSlotFilter, IntervalVerdictsAndMasksGiveTheExactCriticalValues) {
+  std::mt19937_64 random(1515);
+  std::size_t verdicts = 0, roots = 0;
+  for (int round = 0; round < 8; ++round) {
+    SCOPED_TRACE("round " + std::to_string(round));
+    // the strip: pieces 2 wide, 1 apart, along y, at x in [6, 8] (round 0: a piece at the
+    // pin-slot bar's reach exactly)
+    std::string loops;
+    const int pieces = 2 + static_cast<int>(random() % 3);
+    for (int k = 0; k < pieces; ++k) {
+      const Rational y0(3 * k - 4), x0 = round == 0 ? Rational(6) : Rational(static_cast<long>(44 + random() % 12), 8);
+      loops += std::string(k ? ", " : "") +
+               loop_json({{x0, y0}, {Rational(x0 + 2), y0}, {Rational(x0 + 2), Rational(y0 + 2)}, {x0, Rational(y0 + 2)}});
+    }
+    const std::string bar = round % 2 == 0 ? loop_json({{0, -1}, {6, -1}, {6, 1}, {0, 1}})
+                                           : loop_json(star(random, 4 + static_cast<int>(random() % 4), 4, 0, 1.5, round % 4 == 3));
+    Model model = read_model(R"({ "hipair": 1, "name": "generated", "parts": [
+      { "name": "strip", "motion": { "translation": { "direction": [0, 1], "limits": [-3, 3] } }, "loops": [ )" + loops + R"( ] },
+      { "name": "bar", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "angle_limits": [-30, 30],
+        "limits": [-1, 2] } }, "loops": [ )" + bar + R"( ] } ] })");
+    Found filtered = find(model, true, true);
+    Found exact = find(model, true, false);
+    expect_same(filtered.critical, exact.critical);
+    EXPECT_EQ(filtered.statistics.roots, exact.statistics.roots);
+    EXPECT_EQ(filtered.statistics.irrelevant, exact.statistics.irrelevant);
+    EXPECT_EQ(exact.statistics.verdicts, 0u);
+    verdicts += filtered.statistics.verdicts;
+    roots += filtered.statistics.roots;
+  }
+  {
+    SCOPED_TRACE("film advance, film:follower");
+    const Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/film-advance.json");
+    const Part* film = nullptr;
+    const Part* follower = nullptr;
+    for (const auto& part : model.parts) {
+      if (part.name == "film") film = &part;
+      if (part.name == "follower") follower = &part;
+    }
+    ASSERT_TRUE(film && follower);
+    // the tau range of the stack's slices (`hipair cspace ... --json`: tau_range)
+    Found filtered = find(*film, *follower, true, true, Rational(-67, 1024), Rational(67, 1024));
+    Found exact = find(*film, *follower, true, false, Rational(-67, 1024), Rational(67, 1024));
+    expect_same(filtered.critical, exact.critical);
+    EXPECT_EQ(filtered.statistics.roots, exact.statistics.roots);
+    EXPECT_EQ(filtered.statistics.irrelevant, exact.statistics.irrelevant);
+    EXPECT_GE(filtered.critical.size(), 20u);
+    verdicts += filtered.statistics.verdicts;
+    roots += filtered.statistics.roots;
+  }
+  EXPECT_GT(verdicts, roots / 2);   // most roots' conditions are decided without polynomials
 }
 
 }  // namespace
