@@ -15,7 +15,8 @@ namespace hipair::pinslot {
 // Certified double intervals: each turning edge over [a, b] lies in the hull of its ends'
 // enclosures (at each tau the edge is the segment between its ends); a fixed edge certainly
 // misses that box when their boxes are certainly disjoint or the box's four corners are
-// certainly strictly on one side of the edge's line. Undecided pairs bisect [a, b] (depth 4),
+// certainly strictly on one side of the edge's line, or the fixed edge's ends certainly strictly
+// on one side of the turning edge's line (its ends in their enclosures). Undecided pairs bisect [a, b] (depth 4),
 // then the answer is false (the caller takes the exact path). Segments only (arcs: false).
 bool boundaries_certainly_apart(const Part& fixed, const Part& turning, const Point& pivot, const Point& shift,
                                 const Rational& a, const Rational& b) {
@@ -61,6 +62,17 @@ bool boundaries_certainly_apart(const Part& fixed, const Part& turning, const Po
             side = k;
           }
         if (one_side) continue;
+        // or the fixed edge's two ends certainly strictly on one side of the turning edge's
+        // line, for every pair of ends (p, q) in their enclosures over the range (so at every tau
+        // of it): the fixed edge misses that line, hence the edge
+        {
+          const Interval ex0 = cx + c * m.px - s * m.py, ey0 = cy + s * m.px + c * m.py;
+          const Interval ex1 = cx + c * m.qx - s * m.qy, ey1 = cy + s * m.qx + c * m.qy;
+          const Interval mx = ex1 - ex0, my = ey1 - ey0;
+          const int k0 = (mx * (f.py - ey0) - my * (f.px - ex0)).sign();
+          const int k1 = (mx * (f.qy - ey0) - my * (f.qx - ex0)).sign();
+          if ((k0 == 1 || k0 == -1) && k0 == k1) continue;
+        }
         if (depth == 0) return false;
         const double mid = t.middle();
         if (!(t.lo < mid && mid < t.hi)) return false;

@@ -12,7 +12,8 @@ namespace hipair::pinslot {
 // Certified double intervals: each turning edge over [a, b] lies in the hull of its ends'
 // enclosures (at each tau the edge is the segment between its ends); a fixed edge certainly
 // misses that box when their boxes are certainly disjoint or the box's four corners are
-// certainly strictly on one side of the edge's line. Undecided pairs bisect [a, b] (depth 4),
+// certainly strictly on one side of the edge's line, or the fixed edge's ends certainly strictly
+// on one side of the turning edge's line (its ends in their enclosures). Undecided pairs bisect [a, b] (depth 4),
 // then the answer is false (the caller takes the exact path). Segments only (arcs: false).
 bool boundaries_certainly_apart(const Part& fixed, const Part& turning, const Point& pivot, const Point& shift,
                                 const Rational& a, const Rational& b);
