@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace hipair {
@@ -51,7 +52,17 @@ Found find(const Part& other, const Part& pin, bool translating, bool filters, c
                                                   q_range, std::make_pair(tau_lo, tau_hi), out.statistics, filters);
   return out;
 }
-Found find(const Model& model, bool translating, bool filters) { return find(model.parts[0], model.parts[1], translating, filters); }
+
+// Both paths, compared: the same critical values, roots and irrelevant roots.
+std::pair<Found, Found> with_and_without_filters(const Part& other, const Part& pin, bool translating,
+                                                 const Rational& tau_lo = Rational(-1, 4), const Rational& tau_hi = Rational(1, 4)) {
+  Found filtered = find(other, pin, translating, true, tau_lo, tau_hi);
+  Found exact = find(other, pin, translating, false, tau_lo, tau_hi);
+  expect_same(filtered.critical, exact.critical);
+  EXPECT_EQ(filtered.statistics.roots, exact.statistics.roots);
+  EXPECT_EQ(filtered.statistics.irrelevant, exact.statistics.irrelevant);
+  return {std::move(filtered), std::move(exact)};
+}
 
 // Random star-shaped bars on a pin-slot motion against random star-shaped blocks, fixed or
 // translating, convex and not, with collinear edges; and a bar that touches a wall exactly
@@ -78,11 +89,7 @@ TEST(SlicedPinSlotFilter, GeneratedPairsGiveTheSameCriticalValuesAsTheExactPath)
       { "name": "block", "motion": )" + motion + R"(, "loops": [ )" + block + R"( ] },
       { "name": "bar", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "angle_limits": [-30, 30],
         "limits": [-3, 4] } }, "loops": [ )" + bar + R"( ] } ] })");
-    Found filtered = find(model, translating, true);
-    Found exact = find(model, translating, false);
-    expect_same(filtered.critical, exact.critical);
-    EXPECT_EQ(filtered.statistics.roots, exact.statistics.roots);
-    EXPECT_EQ(filtered.statistics.irrelevant, exact.statistics.irrelevant);
+    const auto [filtered, exact] = with_and_without_filters(model.parts[0], model.parts[1], translating);
     EXPECT_LE(filtered.statistics.polynomials, exact.statistics.polynomials);
     formed_filtered += filtered.statistics.polynomials;
     formed_exact += exact.statistics.polynomials;
@@ -119,11 +126,7 @@ TEST(SlicedPinSlotFilter, IntervalVerdictsAndMasksGiveTheExactCriticalValues) {
       { "name": "strip", "motion": { "translation": { "direction": [0, 1], "limits": [-3, 3] } }, "loops": [ )" + loops + R"( ] },
       { "name": "bar", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "angle_limits": [-30, 30],
         "limits": [-1, 2] } }, "loops": [ )" + bar + R"( ] } ] })");
-    Found filtered = find(model, true, true);
-    Found exact = find(model, true, false);
-    expect_same(filtered.critical, exact.critical);
-    EXPECT_EQ(filtered.statistics.roots, exact.statistics.roots);
-    EXPECT_EQ(filtered.statistics.irrelevant, exact.statistics.irrelevant);
+    const auto [filtered, exact] = with_and_without_filters(model.parts[0], model.parts[1], true);
     EXPECT_EQ(exact.statistics.verdicts, 0u);
     verdicts += filtered.statistics.verdicts;
     roots += filtered.statistics.roots;
@@ -139,11 +142,7 @@ TEST(SlicedPinSlotFilter, IntervalVerdictsAndMasksGiveTheExactCriticalValues) {
     }
     ASSERT_TRUE(film && follower);
     // the tau range of the stack's slices (`hipair cspace ... --json`: tau_range)
-    Found filtered = find(*film, *follower, true, true, Rational(-67, 1024), Rational(67, 1024));
-    Found exact = find(*film, *follower, true, false, Rational(-67, 1024), Rational(67, 1024));
-    expect_same(filtered.critical, exact.critical);
-    EXPECT_EQ(filtered.statistics.roots, exact.statistics.roots);
-    EXPECT_EQ(filtered.statistics.irrelevant, exact.statistics.irrelevant);
+    const auto [filtered, exact] = with_and_without_filters(*film, *follower, true, Rational(-67, 1024), Rational(67, 1024));
     EXPECT_GE(filtered.critical.size(), 20u);
     verdicts += filtered.statistics.verdicts;
     roots += filtered.statistics.roots;
