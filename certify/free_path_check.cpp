@@ -123,11 +123,11 @@ enum class EventKind { first_vertex_on_second, second_vertex_on_first, tangency,
 template <class N>
 using Vec = kernels::Vector<N>;
 template <class N>
-Vec<N> minus(const Vec<N>& u, const Vec<N>& v) { return {u.x - v.x, u.y - v.y}; }
+Vec<N> difference(const Vec<N>& u, const Vec<N>& v) { return {u.x - v.x, u.y - v.y}; }
 template <class N>
-N cross(const Vec<N>& u, const Vec<N>& v) { return u.x * v.y - u.y * v.x; }
+N cross_of(const Vec<N>& u, const Vec<N>& v) { return u.x * v.y - u.y * v.x; }
 template <class N>
-N dot(const Vec<N>& u, const Vec<N>& v) { return u.x * v.x + u.y * v.y; }
+N dot_of(const Vec<N>& u, const Vec<N>& v) { return u.x * v.x + u.y * v.y; }
 
 // +1: a (certain) sign that puts a point on the arc's side of its chord; a ccw arc lies to the
 // right of its directed chord (cross < 0), a cw arc to its left.
@@ -147,18 +147,18 @@ template <class N, class Sign>
 bool excluded(EventKind kind, const Feature<N>& first, const Feature<N>& second, const Sign& sign, N* primary) {
   auto vertex_off = [&](const Vec<N>& v, const Feature<N>& g) {
     if (!g.e.arc) {
-      Vec<N> d = minus(g.e.t, g.e.s);
-      N f = cross(d, minus(v, g.e.s));
+      Vec<N> d = difference(g.e.t, g.e.s);
+      N f = cross_of(d, difference(v, g.e.s));
       if (primary) *primary = f;
       if (sign(f) != 0) return true;
-      return sign(dot(minus(v, g.e.s), d)) < 0 || sign(dot(minus(v, g.e.t), d)) > 0;
+      return sign(dot_of(difference(v, g.e.s), d)) < 0 || sign(dot_of(difference(v, g.e.t), d)) > 0;
     }
-    Vec<N> w = minus(v, g.e.c);
-    N f = dot(w, w) - g.e.r2;
+    Vec<N> w = difference(v, g.e.c);
+    N f = dot_of(w, w) - g.e.r2;
     if (primary) *primary = f;
     if (sign(f) != 0) return true;
     if (g.full) return false;
-    int side = sign(cross(minus(g.e.t, g.e.s), minus(v, g.e.s)));
+    int side = sign(cross_of(difference(g.e.t, g.e.s), difference(v, g.e.s)));
     return side != 0 && side != arc_side(g.e);
   };
   switch (kind) {
@@ -167,19 +167,19 @@ bool excluded(EventKind kind, const Feature<N>& first, const Feature<N>& second,
     case EventKind::tangency: {
       const Feature<N>& arc = first.e.arc ? first : second;
       const Feature<N>& seg = first.e.arc ? second : first;
-      Vec<N> d = minus(seg.e.t, seg.e.s);
-      Vec<N> cs = minus(arc.e.c, seg.e.s);
-      N k = cross(d, cs);
-      N den = dot(d, d);
+      Vec<N> d = difference(seg.e.t, seg.e.s);
+      Vec<N> cs = difference(arc.e.c, seg.e.s);
+      N k = cross_of(d, cs);
+      N den = dot_of(d, d);
       N f = k * k - arc.e.r2 * den;
       if (primary) *primary = f;
       if (sign(f) != 0) return true;
-      N num = dot(cs, d);
+      N num = dot_of(cs, d);
       if (sign(num) < 0 || sign(num - den) > 0) return true;   // the foot point beyond an end
       if (arc.full || sign(den) <= 0) return false;
       // den (q - arc.s) = den (seg.s - arc.s) + num d, with den > 0.
-      Vec<N> ch = minus(arc.e.t, arc.e.s);
-      int side = sign(den * cross(ch, minus(seg.e.s, arc.e.s)) + num * cross(ch, d));
+      Vec<N> ch = difference(arc.e.t, arc.e.s);
+      int side = sign(den * cross_of(ch, difference(seg.e.s, arc.e.s)) + num * cross_of(ch, d));
       return side != 0 && side != arc_side(arc.e);
     }
     case EventKind::external:
@@ -187,8 +187,8 @@ bool excluded(EventKind kind, const Feature<N>& first, const Feature<N>& second,
       const EdgeT<N>& a = first.e;
       const EdgeT<N>& b = second.e;
       N D = kind == EventKind::external ? a.r + b.r : a.r - b.r;
-      Vec<N> cc = minus(b.c, a.c);
-      N f = dot(cc, cc) - D * D;
+      Vec<N> cc = difference(b.c, a.c);
+      N f = dot_of(cc, cc) - D * D;
       if (primary) *primary = f;
       if (sign(f) != 0) return true;
       int sd = sign(D);
@@ -196,10 +196,10 @@ bool excluded(EventKind kind, const Feature<N>& first, const Feature<N>& second,
       // q = a.c + cc ra / D, so D (q - x.s) = D (a.c - x.s) + ra cc.
       for (const Feature<N>* x : {&first, &second}) {
         if (x->full) continue;
-        Vec<N> ch = minus(x->e.t, x->e.s);
-        Vec<N> w = minus(a.c, x->e.s);
+        Vec<N> ch = difference(x->e.t, x->e.s);
+        Vec<N> w = difference(a.c, x->e.s);
         Vec<N> scaled{D * w.x + a.r * cc.x, D * w.y + a.r * cc.y};
-        int side = sign(cross(ch, scaled)) * sd;
+        int side = sign(cross_of(ch, scaled)) * sd;
         if (side != 0 && side != arc_side(x->e)) return true;
       }
       return false;
