@@ -932,6 +932,55 @@ void bound(Posed& e) {
 bool less(const Interval& a, const Interval& b) { return positive(b - a); }   // every a < every b
 
 
+// The points where the supports of an arc and another edge meet (two circles, or a circle and a
+// line), each certainly outside one of the two edges' extents (beyond an arc's chord, or past a
+// segment's end): then the closed edges have no common point although their supports meet
+// (separated() only sees supports apart or nested; Geneva's lock arcs have intersecting circles
+// and disjoint arcs). A tangency of the supports, or a point not certainly outside: false.
+bool meets_outside(const Posed& a, const Posed& b) {
+  if (!a.arc && !b.arc) return false;   // separated() decides two segments
+  auto dot = [](const IV& u, const IV& v) { return u.x * v.x + u.y * v.y; };
+  auto outside = [&](const Posed& e, const IV& q) {   // q, on e's support, certainly not on e
+    if (e.arc) return chord_side(e, q) < 0;
+    IV d = minus_iv(e.t, e.s);
+    Interval along = dot(minus_iv(q, e.s), d);
+    return along.sign() < 0 || (along - dot(d, d)).sign() > 0;
+  };
+  // The meeting points foot +- h w, with h^2 = h2 (w: perp(cc) for two circles, d for a line).
+  IV foot, w;
+  Interval h2;
+  if (a.arc && b.arc) {
+    IV cc = minus_iv(b.c, a.c);
+    Interval d2 = dot(cc, cc);
+    if (d2.sign() <= 0) return false;
+    Interval m = (a.r2 - b.r2 + d2) / (Interval(Rational(2)) * d2);   // |q - a.c| = ra, |q - b.c| = rb
+    foot = {a.c.x + m * cc.x, a.c.y + m * cc.y};
+    w = {-cc.y, cc.x};
+    h2 = a.r2 / d2 - m * m;
+  } else {
+    const Posed& arc = a.arc ? a : b;
+    const Posed& seg = a.arc ? b : a;
+    IV d = minus_iv(seg.t, seg.s);
+    Interval dd = dot(d, d);
+    if (dd.sign() <= 0) return false;
+    Interval m = dot(minus_iv(arc.c, seg.s), d) / dd;   // the foot of the centre on the line
+    foot = {seg.s.x + m * d.x, seg.s.y + m * d.y};
+    IV fc = minus_iv(foot, arc.c);
+    w = d;
+    h2 = (arc.r2 - dot(fc, fc)) / dd;
+  }
+  int s = h2.sign();
+  if (s < 0) return true;   // the supports do not meet
+  if (s == 0) return false;
+  Interval h = model_detail::Arithmetic<Jet>::sqrt(Jet(h2)).value;
+  for (int k = 0; k < 2; ++k) {
+    Interval f = k == 0 ? h : -h;
+    IV q{foot.x + f * w.x, foot.y + f * w.y};
+    if (!outside(a, q) && !outside(b, q)) return false;
+  }
+  return true;
+}
+
 // Certainly no common point of the two closed edges (plain enclosures).
 bool apart(const Posed& a, const Posed& b) {
   if (less(a.bx, b.bx) || less(b.bx, a.bx) || less(a.by, b.by) || less(b.by, a.by)) return true;   // boxes
@@ -946,7 +995,7 @@ bool apart(const Posed& a, const Posed& b) {
     e.r = p.r;
     return e;
   };
-  return separated(edge(a), edge(b), [](const Interval& x) { return x.sign(); });
+  return separated(edge(a), edge(b), [](const Interval& x) { return x.sign(); }) || meets_outside(a, b);
 }
 
 
