@@ -384,6 +384,24 @@ class ToleranceEvaluator::FreePath {
     return p;
   }
 
+  // A feature of number type N from an edge posed over the piece (`over`) and at its centre
+  // (`at`), each coordinate combined by `pair`.
+  template <class N, class T, class Pair>
+  static Feature<N> combined(const PosedEdge<T>& over, const PosedEdge<Jet>& at, bool full, const Pair& pair) {
+    Feature<N> f;
+    f.full = full;
+    f.e.arc = over.arc;
+    f.e.ccw = over.ccw;
+    f.e.s = {pair(over.s.x, at.s.x), pair(over.s.y, at.s.y)};
+    f.e.t = {pair(over.t.x, at.t.x), pair(over.t.y, at.t.y)};
+    if (over.arc) {
+      f.e.c = {pair(over.c.x, at.c.x), pair(over.c.y, at.c.y)};
+      f.e.r2 = pair(over.r2, at.r2);
+      f.e.r = pair(over.r, at.r);
+    }
+    return f;
+  }
+
   // One evaluation level of the geometry over a box: every edge posed lazily.
   template <class N>
   struct Level {
@@ -504,21 +522,9 @@ class ToleranceEvaluator::FreePath {
     };
     Level<MeanValue> mean;
     mean.make = [&](bool driver, std::size_t index) {
-      const PosedEdge<Jet>& o = first(driver, index).first;
-      const PosedEdge<Jet>& a = first(driver, index).second;
-      Feature<MeanValue> f;
-      f.full = edge_ref(driver, index).full;
-      f.e.arc = o.arc;
-      f.e.ccw = o.ccw;
-      auto mv = [](const Jet& over, const Jet& at) { return MeanValue{over, at.value}; };
-      f.e.s = {mv(o.s.x, a.s.x), mv(o.s.y, a.s.y)};
-      f.e.t = {mv(o.t.x, a.t.x), mv(o.t.y, a.t.y)};
-      if (o.arc) {
-        f.e.c = {mv(o.c.x, a.c.x), mv(o.c.y, a.c.y)};
-        f.e.r2 = mv(o.r2, a.r2);
-        f.e.r = mv(o.r, a.r);
-      }
-      return f;
+      const auto& [o, a] = first(driver, index);
+      return combined<MeanValue>(o, a, edge_ref(driver, index).full,
+                                 [](const Jet& over, const Jet& at) { return MeanValue{over, at.value}; });
     };
     auto mean_sign = [&](const MeanValue& v) { return mean_value_sign(v, offsets); };
     std::vector<Pending> still;
@@ -538,20 +544,8 @@ class ToleranceEvaluator::FreePath {
     taylor.make = [&](bool driver, std::size_t index) {
       const EdgeRef& ref = edge_ref(driver, index);
       PosedEdge<Jet2> o = pose(second_g, ref, driver ? second_c.first : second_c.second);
-      const PosedEdge<Jet>& a = first(driver, index).second;
-      auto tv = [&](const Jet2& over, const Jet& at) { return make(over, at, &offsets); };
-      Feature<Taylor> f;
-      f.full = ref.full;
-      f.e.arc = o.arc;
-      f.e.ccw = o.ccw;
-      f.e.s = {tv(o.s.x, a.s.x), tv(o.s.y, a.s.y)};
-      f.e.t = {tv(o.t.x, a.t.x), tv(o.t.y, a.t.y)};
-      if (o.arc) {
-        f.e.c = {tv(o.c.x, a.c.x), tv(o.c.y, a.c.y)};
-        f.e.r2 = tv(o.r2, a.r2);
-        f.e.r = tv(o.r, a.r);
-      }
-      return f;
+      return combined<Taylor>(o, first(driver, index).second, ref.full,
+                              [&](const Jet2& over, const Jet& at) { return make(over, at, &offsets); });
     };
     auto taylor_sign = [](const Taylor& v) { return v.over.value.sign(); };
     for (const Pending& e : still) {

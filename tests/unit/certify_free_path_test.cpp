@@ -11,6 +11,7 @@
 #include <hipair/overlap.hpp>
 
 #include "model/parametric/parametric.hpp"
+#include "rotation_pair_oracle.hpp"
 
 #include <gtest/gtest.h>
 
@@ -35,26 +36,9 @@ std::string read(const std::filesystem::path& path) {
   return text.str();
 }
 
-// The exact relation of the Geneva parts at exact parameter deviations, the driver and the wheel
-// rotated by angles whose half-angle tangents are td and tw.
-struct Oracle {
-  std::shared_ptr<const model_detail::ParametricModel> model;
-  std::size_t driver = 0, wheel = 0;
-  Oracle() {
-    model = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(read(geneva())));
-    driver = *model->nominal().find_part("driver");
-    wheel = *model->nominal().find_part("wheel");
-  }
-  static Placement rotation(const Point& pivot, const Rational& t) {
-    Rational d = 1 + t * t;
-    return placement_about(pivot, (1 - t * t) / d, 2 * t / d, Point{Rational(0), Rational(0)});
-  }
-  PartRelation relation(const std::vector<Rational>& deviations, const Rational& td, const Rational& tw) const {
-    Model exact = model->exact_model(deviations);
-    return part_overlap(exact.parts[driver], rotation(exact.parts[driver].motion.pivot, td), exact.parts[wheel],
-                        rotation(exact.parts[wheel].motion.pivot, tw))
-        .relation;
-  }
+// The exact overlap predicate on the Geneva pair (tests/unit/rotation_pair_oracle.hpp).
+struct Oracle : test::RotationPairOracle {
+  Oracle() : test::RotationPairOracle(geneva().string(), "driver", "wheel") {}
 };
 
 // The rational half-angle tangent of an angle (1e-12 resolution: far below any margin the
