@@ -558,14 +558,18 @@ VerificationResult check_certificate_text(const Certificate& certificate, std::s
   try {
     verify::check_model(certificate, model);
     if (certificate.first == certificate.second) verify::reject("a pair needs two different parts");
-    result.summary = to_string(certificate.claim) + ": " + verify::check_tolerance(certificate, model, text);
-    if (certificate.tolerance && certificate.tolerance->property == "no_jam") {
-      // The checks passed, but they do not prove 'no jam': a feature of either part that
-      // enters the channel between the named sides is not looked at (docs/certify.md).
+    std::string not_proved;
+    result.summary = to_string(certificate.claim) + ": " + verify::check_tolerance(certificate, model, text, not_proved);
+    if (!not_proved.empty()) {
+      // Checks 1-6 passed (the named sides stay apart), but check 7 did not prove a free path
+      // for the follower across the range, so the claim 'no jam' is not proved (docs/certify.md).
       result.unproven = true;
-      result.summary += "; not checked: that these sides bound the follower's channel (a feature entering the channel "
-                        "is not covered), so the claim 'no jam' is not proved (docs/certify.md)";
+      result.summary += "; not proved: a free path for the follower across the driver range (" + not_proved +
+                        "), so the claim 'no jam' is not proved (docs/certify.md)";
     } else {
+      if (certificate.tolerance && certificate.tolerance->property == "no_jam")
+        result.summary += "; and a free path for the follower crosses the driver range for every parameter vector: "
+                          "no jam";
       result.valid = true;
     }
   } catch (const verify::Rejection& rejection) {

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # End to end: produces the corpus's base certificates with `hipair certify` (against the current
 # model reader), writes the mutations (make_corpus.py), and runs hipair-verify on every one:
-# the valid certificates must verify (exit 0), the no_jam tolerance bases must be answered
-# "unproven" (exit 3: their evidence passes, the claim is not proved; docs/certify.md), every
+# the valid certificates must verify (exit 0), the no_jam tolerance bases that check 7 does not
+# prove must be answered "unproven" (exit 3: their evidence passes checks 1-6, the free follower
+# path is not proved; docs/certify.md), every
 # mutation must be rejected (exit 1) with its reason. With WORK_DIR = tests/data/certificates it checks the committed snapshot instead.
 # usage: run_corpus.sh HIPAIR_VERIFY HIPAIR_CLI SOURCE_DIR WORK_DIR
 set -u
@@ -27,7 +28,7 @@ while IFS="|" read -r certificate model reason base; do
     [ $status -eq 0 ] && printf '%s' "$output" | grep -q '^valid: ' ||
       { echo "FAIL $certificate: expected valid, got $status: $output"; failures=$((failures + 1)); }
   elif [ "$reason" = unproven ]; then
-    [ $status -eq 3 ] && printf '%s' "$output" | grep -q '^unproven: .*; not checked: ' ||
+    [ $status -eq 3 ] && printf '%s' "$output" | grep -q '^unproven: .*; not proved: a free path for the follower' ||
       { echo "FAIL $certificate: expected exit 3 and 'unproven:', got $status: $output"; failures=$((failures + 1)); }
   elif [ $status -ne 1 ] || ! printf '%s' "$output" | grep -qF -- "$reason"; then
     echo "FAIL $certificate: expected exit 1 and '$reason', got $status: $output"

@@ -3,6 +3,8 @@
 // certain signs and exact comparisons.
 #include "certify/tolerance_check.hpp"
 
+#include "certify/tolerance_support.hpp"
+
 #include <hipair/error.hpp>
 
 #include <mpfr.h>
@@ -44,11 +46,6 @@ std::vector<Interval> combine(const Jet& a, const Interval& fa, const Jet& b, co
     else g.push_back(b.gradient[i] * fb);
   }
   return g;
-}
-Interval hull2(const Interval& a, const Interval& b) {
-  Interval r;
-  mpfi_union(r.get(), a.get(), b.get());
-  return r;
 }
 // The smaller (or larger) of two intervals, endpoint-wise.
 Interval extremum(const Interval& a, const Interval& b, bool minimum) {
@@ -212,55 +209,83 @@ Interval enclose(const RationalInterval& range) {
   return r;
 }
 
+Interval hull2(const Interval& a, const Interval& b) {
+  Interval r;
+  mpfi_union(r.get(), a.get(), b.get());
+  return r;
+}
+
+// An enclosure printed with 8 significant digits per end (for messages only).
+std::string show(const Interval& x) {
+  if (!x.is_bounded()) return "unbounded";
+  mpfr_t end;
+  mpfr_init2(end, model_detail::interval_bits);
+  char* lo = nullptr;
+  char* hi = nullptr;
+  mpfi_get_left(end, x.get());
+  mpfr_asprintf(&lo, "%.8RDg", end);
+  mpfi_get_right(end, x.get());
+  mpfr_asprintf(&hi, "%.8RUg", end);
+  std::string out = std::string("[") + lo + ", " + hi + "]";
+  mpfr_free_str(lo);
+  mpfr_free_str(hi);
+  mpfr_clear(end);
+  return out;
+}
+
+std::string show(const RationalInterval& r) { return "[" + to_exact_string(r.lo) + ", " + to_exact_string(r.hi) + "]"; }
+
+// x intersected with y (both enclose the same number).
+Interval meet(const Interval& x, const Interval& y) {
+  Interval r;
+  mpfi_intersect(r.get(), x.get(), y.get());
+  if (mpfi_is_empty(r.get())) return x;   // cannot happen for two enclosures of one number
+  return r;
+}
+
 }  // namespace hipair::verify
 
 namespace hipair::model_detail {
 
 // The verifier's own arithmetic for the parametric formulas: MPFI, outward rounded.
-template <>
-struct Arithmetic<verify::Jet> {
-  using J = verify::Jet;
-  using I = Interval;
-  static J constant(const Rational& q) { return J(I(q)); }
-  static J pi() { return J(I::pi()); }
-  static J sqrt(const J& x) {
-    I r = verify::apply1(mpfi_sqrt, x.value);
-    return J(r, verify::scaled(x.gradient, I(Rational(1)) / (I(Rational(2)) * r)));
-  }
-  static J sin(const J& x) {
-    return J(verify::apply1(mpfi_sin, x.value), verify::scaled(x.gradient, verify::apply1(mpfi_cos, x.value)));
-  }
-  static J cos(const J& x) {
-    return J(verify::apply1(mpfi_cos, x.value), verify::scaled(x.gradient, -verify::apply1(mpfi_sin, x.value)));
-  }
-  static J tan(const J& x) { return sin(x) / cos(x); }
-  static J atan2(const J& y, const J& x) {
-    I r;
-    mpfi_atan2(r.get(), y.value.get(), x.value.get());
-    I r2 = x.value * x.value + y.value * y.value;
-    return J(r, verify::combine(y, x.value / r2, x, -(y.value / r2)));
-  }
-  static J abs(const J& x) {
-    int s = x.value.sign();
-    if (s > 0) return x;
-    if (s < 0) return -x;
-    // Not differentiable at 0: the generalised gradient lies in [-1, 1] times the gradient.
-    I unit;
-    mpfi_interv_si(unit.get(), -1, 1);
-    return J(verify::apply1(mpfi_abs, x.value), verify::scaled(x.gradient, unit));
-  }
-  static J extremum(const J& a, const J& b, bool minimum) {
-    int s = (a.value - b.value).sign();
-    if (s < 0) return minimum ? a : b;
-    if (s > 0) return minimum ? b : a;
-    std::size_t n = std::max(a.gradient.size(), b.gradient.size());
-    std::vector<I> g;
-    for (std::size_t i = 0; i < n; ++i) g.push_back(verify::hull2(a.partial(i), b.partial(i)));
-    return J(verify::extremum(a.value, b.value, minimum), std::move(g));
-  }
-  static J min(const J& a, const J& b) { return extremum(a, b, true); }
-  static J max(const J& a, const J& b) { return extremum(a, b, false); }
-};
+using J1 = verify::Jet;
+J1 Arithmetic<J1>::constant(const Rational& q) { return J1(Interval(q)); }
+J1 Arithmetic<J1>::pi() { return J1(Interval::pi()); }
+J1 Arithmetic<J1>::sqrt(const J1& x) {
+  Interval r = verify::apply1(mpfi_sqrt, x.value);
+  return J1(r, verify::scaled(x.gradient, Interval(Rational(1)) / (Interval(Rational(2)) * r)));
+}
+J1 Arithmetic<J1>::sin(const J1& x) {
+  return J1(verify::apply1(mpfi_sin, x.value), verify::scaled(x.gradient, verify::apply1(mpfi_cos, x.value)));
+}
+J1 Arithmetic<J1>::cos(const J1& x) {
+  return J1(verify::apply1(mpfi_cos, x.value), verify::scaled(x.gradient, -verify::apply1(mpfi_sin, x.value)));
+}
+J1 Arithmetic<J1>::tan(const J1& x) { return sin(x) / cos(x); }
+J1 Arithmetic<J1>::atan2(const J1& y, const J1& x) {
+  Interval r;
+  mpfi_atan2(r.get(), y.value.get(), x.value.get());
+  Interval r2 = x.value * x.value + y.value * y.value;
+  return J1(r, verify::combine(y, x.value / r2, x, -(y.value / r2)));
+}
+J1 Arithmetic<J1>::abs(const J1& x) {
+  int s = x.value.sign();
+  if (s > 0) return x;
+  if (s < 0) return -x;
+  // Not differentiable at 0: the generalised gradient lies in [-1, 1] times the gradient.
+  Interval unit;
+  mpfi_interv_si(unit.get(), -1, 1);
+  return J1(verify::apply1(mpfi_abs, x.value), verify::scaled(x.gradient, unit));
+}
+J1 Arithmetic<J1>::extremum(const J1& a, const J1& b, bool minimum) {
+  int s = (a.value - b.value).sign();
+  if (s < 0) return minimum ? a : b;
+  if (s > 0) return minimum ? b : a;
+  std::size_t n = std::max(a.gradient.size(), b.gradient.size());
+  std::vector<Interval> g;
+  for (std::size_t i = 0; i < n; ++i) g.push_back(verify::hull2(a.partial(i), b.partial(i)));
+  return J1(verify::extremum(a.value, b.value, minimum), std::move(g));
+}
 
 
 // The same formulas with second-order jets (tolerance_check.hpp; the witness test's Taylor
@@ -316,38 +341,8 @@ namespace {
 
 [[noreturn]] void reject(const std::string& reason) { throw Rejection{reason}; }
 
-// An enclosure printed with 8 significant digits per end (for messages only).
-std::string show(const Interval& x) {
-  if (!x.is_bounded()) return "unbounded";
-  mpfr_t end;
-  mpfr_init2(end, model_detail::interval_bits);
-  char* lo = nullptr;
-  char* hi = nullptr;
-  mpfi_get_left(end, x.get());
-  mpfr_asprintf(&lo, "%.8RDg", end);
-  mpfi_get_right(end, x.get());
-  mpfr_asprintf(&hi, "%.8RUg", end);
-  std::string out = std::string("[") + lo + ", " + hi + "]";
-  mpfr_free_str(lo);
-  mpfr_free_str(hi);
-  mpfr_clear(end);
-  return out;
-}
-std::string show(const RationalInterval& r) { return "[" + to_exact_string(r.lo) + ", " + to_exact_string(r.hi) + "]"; }
 
-bool contains(const RationalInterval& outer, const RationalInterval& inner) {
-  return outer.lo <= inner.lo && inner.hi <= outer.hi;
-}
-Rational middle(const RationalInterval& r) { return (r.lo + r.hi) / 2; }
-Interval offset(const RationalInterval& r) { return enclose(RationalInterval{r.lo - middle(r), r.hi - middle(r)}); }
 
-// x intersected with y (both enclose the same number).
-Interval meet(const Interval& x, const Interval& y) {
-  Interval r;
-  mpfi_intersect(r.get(), x.get(), y.get());
-  if (mpfi_is_empty(r.get())) return x;   // cannot happen for two enclosures of one number
-  return r;
-}
 
 std::string feature_text(const FeatureReference& f) {
   return std::string(f.vertex ? "vertex at the start of " : "") + "'" + f.edge.label + "' (" + f.edge.part + " loop " +
@@ -477,6 +472,14 @@ kernels::Vector<T> ToleranceEvaluator::posed(const GeometryOf<T>& g, bool driver
   T dx = point.x - pivot.x, dy = point.y - pivot.y;
   return {pivot.x + (c * dx - s * dy), pivot.y + (s * dx + c * dy)};
 }
+
+// free_path_check.cpp poses parts with first- and second-order jets.
+template void ToleranceEvaluator::pose_pivots<Jet>(GeometryOf<Jet>&) const;
+template void ToleranceEvaluator::pose_pivots<Jet2>(GeometryOf<Jet2>&) const;
+template kernels::Vector<Jet> ToleranceEvaluator::posed<Jet>(const GeometryOf<Jet>&, bool, const kernels::Vector<Jet>&,
+                                                            const Jet&) const;
+template kernels::Vector<Jet2> ToleranceEvaluator::posed<Jet2>(const GeometryOf<Jet2>&, bool,
+                                                              const kernels::Vector<Jet2>&, const Jet2&) const;
 
 Jet ToleranceEvaluator::contact(ToleranceGeometry& g, std::size_t pair, const Jet& driver, const Jet& follower) const {
   return contact_of(g, pair, driver, follower);
@@ -813,7 +816,7 @@ void ToleranceEvaluator::check_leaf(const ToleranceLeaf& leaf, std::size_t index
            " over driver " + show(leaf.driver));
 }
 
-void ToleranceEvaluator::check_cover() const {
+std::vector<ToleranceEvaluator::Region> ToleranceEvaluator::check_cover() const {
   std::size_t k = varied_.size();
   bool interference = interference_claim();
   std::vector<RationalInterval> region = claim_.box;
@@ -834,6 +837,7 @@ void ToleranceEvaluator::check_cover() const {
     return d == k ? std::string("driver") : d == k + 1 ? std::string("follower") : claim_.varied[d];
   };
   // Iterative preorder walk (the tree can be deep).
+  std::vector<Region> regions;
   std::vector<std::vector<RationalInterval>> stack{region};
   while (!stack.empty()) {
     std::vector<RationalInterval> r = std::move(stack.back());
@@ -855,6 +859,7 @@ void ToleranceEvaluator::check_cover() const {
           reject("coverage gap: leaf " + std::to_string(node.index) + " covers " + name_of(d) + " " + show(have) +
                  " but its region of the box needs " + show(r[d]));
       }
+      regions.push_back(Region{node.index, std::move(r)});
       ++next;
       continue;
     }
@@ -872,6 +877,7 @@ void ToleranceEvaluator::check_cover() const {
   if (next != claim_.tree.size()) reject("the subdivision tree has " + std::to_string(claim_.tree.size() - next) + " extra nodes");
   for (std::size_t i = 0; i < used.size(); ++i)
     if (!used[i]) reject("leaf " + std::to_string(i) + " is not in the subdivision tree");
+  return regions;
 }
 
 // ----------------------------------------------------------------------------- no_interference
@@ -925,52 +931,54 @@ void bound(Posed& e) {
 
 bool less(const Interval& a, const Interval& b) { return positive(b - a); }   // every a < every b
 
-// The separation tests on two posed edges, for a number type N (plain enclosures, or the
-// mean-value pairs below) with `sign` its certain sign (+1, -1; 0 undecided).
-template <class N>
-struct EdgeT {
-  bool arc = false, ccw = false;
-  kernels::Vector<N> s, t, c;
-  N r2, r;
-};
 
-template <class N, class Sign>
-bool separated(const EdgeT<N>& a, const EdgeT<N>& b, const Sign& sign) {
-  using V = kernels::Vector<N>;
-  auto minus = [](const V& u, const V& v) { return V{u.x - v.x, u.y - v.y}; };
-  auto cross = [](const V& u, const V& v) { return u.x * v.y - u.y * v.x; };
-  auto dot = [](const V& u, const V& v) { return u.x * v.x + u.y * v.y; };
-  auto chord = [&](const EdgeT<N>& e, const V& q) {   // +1 on the arc's side of its chord, -1 the other
-    int side = sign(cross(minus(e.t, e.s), minus(q, e.s)));
-    return side == 0 ? 0 : (side == (e.ccw ? -1 : 1) ? 1 : -1);
+// The points where the supports of an arc and another edge meet (two circles, or a circle and a
+// line), each certainly outside one of the two edges' extents (beyond an arc's chord, or past a
+// segment's end): then the closed edges have no common point although their supports meet
+// (separated() only sees supports apart or nested; Geneva's lock arcs have intersecting circles
+// and disjoint arcs). A tangency of the supports, or a point not certainly outside: false.
+bool meets_outside(const Posed& a, const Posed& b) {
+  if (!a.arc && !b.arc) return false;   // separated() decides two segments
+  auto dot = [](const IV& u, const IV& v) { return u.x * v.x + u.y * v.y; };
+  auto outside = [&](const Posed& e, const IV& q) {   // q, on e's support, certainly not on e
+    if (e.arc) return chord_side(e, q) < 0;
+    IV d = minus_iv(e.t, e.s);
+    Interval along = dot(minus_iv(q, e.s), d);
+    return along.sign() < 0 || (along - dot(d, d)).sign() > 0;
   };
-  auto same_side_of_line = [&](const EdgeT<N>& line, const EdgeT<N>& e) {   // e's ends strictly on one side
-    V d = minus(line.t, line.s);
-    int s0 = sign(cross(d, minus(e.s, line.s))), s1 = sign(cross(d, minus(e.t, line.s)));
-    return s0 != 0 && s0 == s1;
-  };
-  if (!a.arc && !b.arc) return same_side_of_line(a, b) || same_side_of_line(b, a);
+  // The meeting points foot +- h w, with h^2 = h2 (w: perp(cc) for two circles, d for a line).
+  IV foot, w;
+  Interval h2;
   if (a.arc && b.arc) {
-    V cc = minus(a.c, b.c);
-    N d2 = dot(cc, cc);
-    N outer = a.r + b.r, inner = a.r - b.r;
-    if (sign(d2 - outer * outer) > 0) return true;   // circles apart
-    if (sign(inner * inner - d2) > 0) return true;   // one circle strictly inside the other
-    return false;
+    IV cc = minus_iv(b.c, a.c);
+    Interval d2 = dot(cc, cc);
+    if (d2.sign() <= 0) return false;
+    Interval m = (a.r2 - b.r2 + d2) / (Interval(Rational(2)) * d2);   // |q - a.c| = ra, |q - b.c| = rb
+    foot = {a.c.x + m * cc.x, a.c.y + m * cc.y};
+    w = {-cc.y, cc.x};
+    h2 = a.r2 / d2 - m * m;
+  } else {
+    const Posed& arc = a.arc ? a : b;
+    const Posed& seg = a.arc ? b : a;
+    IV d = minus_iv(seg.t, seg.s);
+    Interval dd = dot(d, d);
+    if (dd.sign() <= 0) return false;
+    Interval m = dot(minus_iv(arc.c, seg.s), d) / dd;   // the foot of the centre on the line
+    foot = {seg.s.x + m * d.x, seg.s.y + m * d.y};
+    IV fc = minus_iv(foot, arc.c);
+    w = d;
+    h2 = (arc.r2 - dot(fc, fc)) / dd;
   }
-  const EdgeT<N>& arc = a.arc ? a : b;
-  const EdgeT<N>& seg = a.arc ? b : a;
-  V d = minus(seg.t, seg.s);
-  N k = cross(d, minus(arc.c, seg.s));
-  if (sign(k * k - arc.r2 * dot(d, d)) > 0) return true;   // the segment's line misses the circle
-  V cs = minus(arc.c, seg.s), ct = minus(arc.c, seg.t);
-  int in_s = sign(arc.r2 - dot(cs, cs)), in_t = sign(arc.r2 - dot(ct, ct));
-  if (in_s > 0 && in_t > 0) return true;   // the segment strictly inside the disc
-  // Both ends strictly outside the disc, and the point of the line nearest the centre beyond
-  // one end: the segment's point nearest the centre is an end, outside.
-  if (in_s < 0 && in_t < 0 && (sign(dot(cs, d)) < 0 || sign(dot(ct, d)) > 0)) return true;
-  if (chord(arc, seg.s) < 0 && chord(arc, seg.t) < 0) return true;   // beyond the arc's chord
-  return false;
+  int s = h2.sign();
+  if (s < 0) return true;   // the supports do not meet
+  if (s == 0) return false;
+  Interval h = model_detail::Arithmetic<Jet>::sqrt(Jet(h2)).value;
+  for (int k = 0; k < 2; ++k) {
+    Interval f = k == 0 ? h : -h;
+    IV q{foot.x + f * w.x, foot.y + f * w.y};
+    if (!outside(a, q) && !outside(b, q)) return false;
+  }
+  return true;
 }
 
 // Certainly no common point of the two closed edges (plain enclosures).
@@ -987,19 +995,9 @@ bool apart(const Posed& a, const Posed& b) {
     e.r = p.r;
     return e;
   };
-  return separated(edge(a), edge(b), [](const Interval& x) { return x.sign(); });
+  return separated(edge(a), edge(b), [](const Interval& x) { return x.sign(); }) || meets_outside(a, b);
 }
 
-// A quantity over a leaf in mean-value form: `over` its jet over the whole leaf (gradient with
-// respect to the varied parameters, the driver and the follower), `at` its value at the
-// leaf's centre. Its certain sign is that of at + sum over_i' (X_i - c_i), met with over.
-struct MeanValue {
-  Jet over;
-  Interval at;
-};
-MeanValue operator+(const MeanValue& a, const MeanValue& b) { return {a.over + b.over, a.at + b.at}; }
-MeanValue operator-(const MeanValue& a, const MeanValue& b) { return {a.over - b.over, a.at - b.at}; }
-MeanValue operator*(const MeanValue& a, const MeanValue& b) { return {a.over * b.over, a.at * b.at}; }
 
 }  // namespace
 
@@ -1195,7 +1193,9 @@ void ToleranceEvaluator::check_apart(const ToleranceLeaf& leaf, std::size_t inde
   if (!failure.empty()) reject("leaf " + std::to_string(index) + ": the parts may interfere: " + failure);
 }
 
-std::string check_tolerance(const Certificate& c, const Model& model, std::string_view model_text) {
+std::string check_tolerance(const Certificate& c, const Model& model, std::string_view model_text,
+                            std::string& not_proved) {
+  not_proved.clear();
   if (!c.tolerance) reject("a tolerance certificate needs its 'tolerance' section");
   const ToleranceClaim& claim = *c.tolerance;
   for (const ParameterValue& value : c.parameters)
@@ -1217,6 +1217,9 @@ std::string check_tolerance(const Certificate& c, const Model& model, std::strin
            ", the two parts are apart: they never interfere (" + std::to_string(claim.leaves.size()) + " leaves)";
   }
   for (std::size_t i = 0; i < claim.leaves.size(); ++i) evaluator.check_leaf(claim.leaves[i], i);
+  // Check 7: checks 1-6 prove the named sides apart, not that they bound the channel; the free
+  // path proves the claim itself.
+  not_proved = evaluator.free_path_failure();
   return "for every parameter vector within " + to_exact_string(claim.scale) + " x the tolerances of " +
          std::to_string(claim.varied.size()) + " parameters, driving '" + claim.driver + "' over " + show(claim.range) + unit +
          ", the named contact sides of '" + claim.driver + "' and '" + claim.follower +

@@ -86,6 +86,23 @@ Jet2 operator/(const Jet2& a, const Jet2& b);
 }  // namespace hipair::verify
 
 namespace hipair::model_detail {
+/// The parametric formulas over first-order jets (MPFI; tolerance_check.cpp).
+template <>
+struct Arithmetic<verify::Jet> {
+  using J = verify::Jet;
+  static J constant(const Rational& q);
+  static J pi();
+  static J sqrt(const J& x);
+  static J sin(const J& x);
+  static J cos(const J& x);
+  static J tan(const J& x);
+  static J atan2(const J& y, const J& x);
+  static J abs(const J& x);
+  static J extremum(const J& a, const J& b, bool minimum);
+  static J min(const J& a, const J& b) { return extremum(a, b, true); }
+  static J max(const J& a, const J& b) { return extremum(a, b, false); }
+};
+
 /// The parametric formulas over second-order jets (MPFI; tolerance_check.cpp).
 template <>
 struct Arithmetic<verify::Jet2> {
@@ -188,9 +205,24 @@ class ToleranceEvaluator {
   /// enclosure over the leaf when the function is not smooth there.
   Interval second_order(const ToleranceLeaf& leaf, bool upper) const;
 
+  /// A region of the subdivision tree: the part of box x range (x follower range) that leaf
+  /// `leaf` is used for (inside the leaf's own box; the tree's regions partition the whole).
+  struct Region {
+    std::size_t leaf = 0;
+    std::vector<RationalInterval> box;   ///< the varied parameters, the driver (, the follower)
+  };
   /// Walks the subdivision tree: the leaves cover the box times the range (times the follower
-  /// range for no_interference). \throws Rejection.
-  void check_cover() const;
+  /// range for no_interference). Returns the regions in preorder. \throws Rejection.
+  std::vector<Region> check_cover() const;
+
+  /// no_jam, check 7 (docs/certify.md "Tolerance"): for every parameter vector of the box a
+  /// free follower path crosses the whole driver range. Over every region the follower on its
+  /// leaf's witness path y*(p, d), and at every driver value where one region ends and a
+  /// neighbouring one continues, the follower's move between the two witness paths, keep the
+  /// parts apart: apart at the region's centre (exact-rounded enclosures) and no first-contact
+  /// event over it (free_path_check.cpp), the region bisected while undecided, at most
+  /// `piece_budget` times in all. Returns "" when proved, otherwise what was not proved.
+  std::string free_path_failure(std::size_t piece_budget = 48) const;
 
   /// no_interference: the claim's property.
   bool interference_claim() const { return claim_.property == "no_interference"; }
@@ -211,6 +243,9 @@ class ToleranceEvaluator {
   T contact_of(GeometryOf<T>& g, std::size_t pair, const T& driver, const T& follower) const;
   template <class T>
   void pose_pivots(GeometryOf<T>& g) const;
+  // free_path_check.cpp
+  class FreePath;
+  friend class FreePath;
 
   std::shared_ptr<const model_detail::ParametricModel> model_;
   const ToleranceClaim& claim_;
@@ -221,6 +256,9 @@ class ToleranceEvaluator {
 
 /// Checks a tolerance certificate against the model text (its hash already checked).
 /// Returns the summary line. \throws Rejection.
-std::string check_tolerance(const Certificate& certificate, const Model& model, std::string_view model_text);
+/// A no_jam certificate whose checks 1-6 pass is proved only when check 7 (the free path) holds:
+/// otherwise `not_proved` receives what was not proved (empty: proved).
+std::string check_tolerance(const Certificate& certificate, const Model& model, std::string_view model_text,
+                            std::string& not_proved);
 
 }  // namespace hipair::verify

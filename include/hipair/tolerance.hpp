@@ -215,9 +215,9 @@ struct ContactChangeCheck {
 /// The outcome of the tolerance certificate's branch-and-bound.
 struct ToleranceCertification {
   /// certified: `certificate` holds the certificate; its evidence passed the verifier's code
-  /// (re-checked from its JSON text). For a no-jam certificate that is not a proof: the
-  /// verifier's verdict is "unproven" (`unproven` below; docs/certify.md), it checks that the
-  /// named contact sides stay apart, not that they bound the follower's channel.
+  /// (re-checked from its JSON text): the named contact sides stay apart. The claim "no jam" is
+  /// proved when the verifier's check 7 also proves a free follower path across the range
+  /// (verdict "valid"); otherwise `unproven` below is true and `reason` says what was not proved.
   /// jams: at a parameter vector of the box the two sides of the channel certainly cross
   /// (`reason` names it); undecided: neither (budget exhausted, a side not isolated, ...).
   /// interferes (no_interference certificates): at `witness` the exact model's parts overlap.
@@ -239,7 +239,8 @@ struct ToleranceCertification {
   std::size_t leaves = 0, attempts = 0;
   std::size_t second_order_leaves = 0;   ///< leaves proved by the second-order witness test
   double seconds_produce = 0, seconds_verify = 0;
-  /// certified: the verifier's verdict on the certificate is "unproven" (no_jam), not "valid".
+  /// certified: the verifier's verdict on the certificate is "unproven" (check 7 did not prove a
+  /// free follower path), not "valid".
   bool unproven = false;
 };
 

@@ -387,8 +387,8 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_flag("--quiet", options->quiet, "no progress bar");
   command->add_flag("--certify", options->certify,
                     "interval branch-and-bound showing that the channel's named contact sides stay apart for any "
-                    "parameters in the box; writes tolerance-certificate.json (hipair-verify answers 'unproven' for "
-                    "it: the sides are not checked to bound the channel, so no jam is not proved; docs/certify.md)");
+                    "parameters in the box; writes tolerance-certificate.json, which hipair-verify answers 'valid' "
+                    "when it also proves a free follower path across the range, else 'unproven' (docs/certify.md)");
   command->add_option("--certify-scale", options->certify_scale,
                       "the certificate's box: this times the varied tolerance ranges (default 1; --vary names them); "
                       "with a T suffix (0.95T), times the jamming threshold found by --threshold");

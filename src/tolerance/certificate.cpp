@@ -186,12 +186,16 @@ class Producer {
     VerificationResult check = check_certificate_text(read_certificate(write_certificate(c)), request_.model_text,
                                                       request_.model_file);
     result.seconds_verify = seconds_since(verify_start);
-    // A no_jam certificate's evidence passing every check is "unproven", not "valid": the
-    // verifier does not check that the named sides bound the channel (docs/certify.md).
+    // A no_jam certificate whose evidence passes checks 1-6 is "valid" when the verifier's check 7
+    // proves a free follower path across the range, otherwise "unproven" (docs/certify.md).
     if (!check.valid && !check.unproven)
       throw GeometryError("tolerance certificate failed its own check (a producer bug): " + check.reason);
     result.outcome = ToleranceCertification::Outcome::certified;
     result.unproven = check.unproven;
+    if (check.unproven) {
+      std::size_t at = check.summary.find("; not proved: ");
+      result.reason = at == std::string::npos ? check.summary : check.summary.substr(at + 2);
+    }
     result.certificate = std::move(c);
     return result;
   }

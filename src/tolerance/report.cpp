@@ -242,12 +242,13 @@ std::string tolerance_text_report(const ToleranceResult& r) {
         if (c.unproven)
           out << "  WRITTEN, NOT PROVED: " << c.leaves << " leaves (" << c.attempts << " boxes tried) in "
               << number(c.seconds_produce, 3) << " s; the verifier's code (" << number(c.seconds_verify, 3)
-              << " s) checked that the named contact sides stay apart over every leaf, not that they bound the "
-                 "follower's channel: verdict unproven, the claim 'no jam' is not proved (docs/certify.md)\n";
+              << " s) checked that the named contact sides stay apart over every leaf, but did not prove a free "
+                 "follower path across the range (check 7: "
+              << c.reason << "): verdict unproven, the claim 'no jam' is not proved (docs/certify.md)\n";
         else
           out << "  CERTIFIED: " << c.leaves << " leaves (" << c.attempts << " boxes tried) in "
               << number(c.seconds_produce, 3) << " s, re-checked by the verifier's code in " << number(c.seconds_verify, 3)
-              << " s\n";
+              << " s (the named sides apart over every leaf, and a free follower path across the range: no jam)\n";
         break;
       case ToleranceCertification::Outcome::jams:
         out << "  JAMS: " << c.reason << "\n";

@@ -56,10 +56,11 @@ TEST(CertifyCorpus, ValidCertificatesVerifyAndEveryMutationIsRejectedWithItsReas
         ++skipped;
         continue;
       }
-      if (expected == "unproven") {   // a no_jam tolerance certificate: evidence passes, claim not proved
+      if (expected == "unproven") {   // a no_jam tolerance certificate: checks 1-6 pass, check 7 does not prove it
         EXPECT_FALSE(result.valid) << certificate << ": " << result.summary;
         EXPECT_TRUE(result.unproven) << certificate << ": " << result.reason;
-        EXPECT_NE(result.summary.find("; not checked: "), std::string::npos) << certificate << ": " << result.summary;
+        EXPECT_NE(result.summary.find("; not proved: a free path for the follower"), std::string::npos)
+            << certificate << ": " << result.summary;
         unproven += result.unproven && !result.valid;
         continue;
       }
@@ -78,7 +79,7 @@ TEST(CertifyCorpus, ValidCertificatesVerifyAndEveryMutationIsRejectedWithItsReas
             << " skipped (stale snapshot)\n";
   EXPECT_GE(valid, 4);    // the lever-and-stop certificates depend on no template rounding
   EXPECT_GE(rejected, 20);
-  EXPECT_GE(unproven + skipped, 2);   // the no_jam tolerance bases (unless their snapshot is stale)
+  EXPECT_GE(unproven + skipped, 1);   // the 0.9 x no_jam base (unless its snapshot is stale)
 }
 
 TEST(CertifyFormat, ReaderIsStrict) {

@@ -9,6 +9,7 @@
 #include <hipair/tolerance.hpp>
 
 #include "model/parametric/parametric.hpp"
+#include "rotation_pair_oracle.hpp"
 
 #include <hipair/error.hpp>
 
@@ -140,27 +141,12 @@ TEST(CertifyToleranceInterference, MutatedCertificatesAreRejected) {
 }
 
 // The oracle: exact models at random rational parameter vectors of the box, parts placed by
-// rational rotations inside the claimed ranges, the exact overlap predicate. A certified box
-// must show the parts apart at every such point; an interfering outcome's witness must lie in
-// the claimed set and show the parts overlapping.
-struct Oracle {
-  std::shared_ptr<const model_detail::ParametricModel> model;
-  std::size_t driver = 0, wheel = 0;
-  Oracle() {
-    model = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(read(geneva())));
-    driver = *model->nominal().find_part("driver");
-    wheel = *model->nominal().find_part("wheel");
-  }
-  static Placement rotation(const Point& pivot, const Rational& t) {
-    Rational d = 1 + t * t;
-    return placement_about(pivot, (1 - t * t) / d, 2 * t / d, Point{Rational(0), Rational(0)});
-  }
-  PartRelation relation(const std::vector<Rational>& deviations, const Rational& td, const Rational& tf) const {
-    Model exact = model->exact_model(deviations);
-    return part_overlap(exact.parts[driver], rotation(exact.parts[driver].motion.pivot, td), exact.parts[wheel],
-                        rotation(exact.parts[wheel].motion.pivot, tf))
-        .relation;
-  }
+// rational rotations inside the claimed ranges, the exact overlap predicate
+// (tests/unit/rotation_pair_oracle.hpp). A certified box must show the parts apart at every such
+// point; an interfering outcome's witness must lie in the claimed set and show the parts
+// overlapping.
+struct Oracle : test::RotationPairOracle {
+  Oracle() : test::RotationPairOracle(geneva().string(), "driver", "wheel") {}
 };
 
 // A rational tangent of half an angle drawn inside [lo, hi] (1e-9 away from the ends, far more

@@ -1,0 +1,88 @@
+// Small pieces the tolerance checks share (tolerance_check.cpp: checks 1-6 and no_interference;
+// free_path_check.cpp: check 7): enclosure helpers, the separation test of two posed edges and
+// the mean-value pair. Verifier-internal: no floating-point type, MPFI enclosures with exact
+// rational ends.
+#pragma once
+
+#include "certify/tolerance_check.hpp"
+
+#include <string>
+
+namespace hipair::verify {
+
+/// An enclosure printed with 8 significant digits per end (for messages only).
+std::string show(const Interval& x);
+std::string show(const RationalInterval& r);
+/// x intersected with y (both enclose the same number).
+Interval meet(const Interval& x, const Interval& y);
+/// The hull of two enclosures.
+Interval hull2(const Interval& a, const Interval& b);
+
+inline bool contains(const RationalInterval& outer, const RationalInterval& inner) {
+  return outer.lo <= inner.lo && inner.hi <= outer.hi;
+}
+
+inline Rational middle(const RationalInterval& r) { return (r.lo + r.hi) / 2; }
+
+inline Interval offset(const RationalInterval& r) { return enclose(RationalInterval{r.lo - middle(r), r.hi - middle(r)}); }
+
+// The separation tests on two posed edges, for a number type N (plain enclosures, or the
+// mean-value pairs below) with `sign` its certain sign (+1, -1; 0 undecided).
+template <class N>
+struct EdgeT {
+  bool arc = false, ccw = false;
+  kernels::Vector<N> s, t, c;
+  N r2, r;
+};
+
+template <class N, class Sign>
+bool separated(const EdgeT<N>& a, const EdgeT<N>& b, const Sign& sign) {
+  using V = kernels::Vector<N>;
+  auto minus = [](const V& u, const V& v) { return V{u.x - v.x, u.y - v.y}; };
+  auto cross = [](const V& u, const V& v) { return u.x * v.y - u.y * v.x; };
+  auto dot = [](const V& u, const V& v) { return u.x * v.x + u.y * v.y; };
+  auto chord = [&](const EdgeT<N>& e, const V& q) {   // +1 on the arc's side of its chord, -1 the other
+    int side = sign(cross(minus(e.t, e.s), minus(q, e.s)));
+    return side == 0 ? 0 : (side == (e.ccw ? -1 : 1) ? 1 : -1);
+  };
+  auto same_side_of_line = [&](const EdgeT<N>& line, const EdgeT<N>& e) {   // e's ends strictly on one side
+    V d = minus(line.t, line.s);
+    int s0 = sign(cross(d, minus(e.s, line.s))), s1 = sign(cross(d, minus(e.t, line.s)));
+    return s0 != 0 && s0 == s1;
+  };
+  if (!a.arc && !b.arc) return same_side_of_line(a, b) || same_side_of_line(b, a);
+  if (a.arc && b.arc) {
+    V cc = minus(a.c, b.c);
+    N d2 = dot(cc, cc);
+    N outer = a.r + b.r, inner = a.r - b.r;
+    if (sign(d2 - outer * outer) > 0) return true;   // circles apart
+    if (sign(inner * inner - d2) > 0) return true;   // one circle strictly inside the other
+    return false;
+  }
+  const EdgeT<N>& arc = a.arc ? a : b;
+  const EdgeT<N>& seg = a.arc ? b : a;
+  V d = minus(seg.t, seg.s);
+  N k = cross(d, minus(arc.c, seg.s));
+  if (sign(k * k - arc.r2 * dot(d, d)) > 0) return true;   // the segment's line misses the circle
+  V cs = minus(arc.c, seg.s), ct = minus(arc.c, seg.t);
+  int in_s = sign(arc.r2 - dot(cs, cs)), in_t = sign(arc.r2 - dot(ct, ct));
+  if (in_s > 0 && in_t > 0) return true;   // the segment strictly inside the disc
+  // Both ends strictly outside the disc, and the point of the line nearest the centre beyond
+  // one end: the segment's point nearest the centre is an end, outside.
+  if (in_s < 0 && in_t < 0 && (sign(dot(cs, d)) < 0 || sign(dot(ct, d)) > 0)) return true;
+  if (chord(arc, seg.s) < 0 && chord(arc, seg.t) < 0) return true;   // beyond the arc's chord
+  return false;
+}
+
+// A quantity over a leaf in mean-value form: `over` its jet over the whole leaf (gradient with
+// respect to the varied parameters, the driver and the follower), `at` its value at the
+// leaf's centre. Its certain sign is that of at + sum over_i' (X_i - c_i), met with over.
+struct MeanValue {
+  Jet over;
+  Interval at;
+};
+inline MeanValue operator+(const MeanValue& a, const MeanValue& b) { return {a.over + b.over, a.at + b.at}; }
+inline MeanValue operator-(const MeanValue& a, const MeanValue& b) { return {a.over - b.over, a.at - b.at}; }
+inline MeanValue operator*(const MeanValue& a, const MeanValue& b) { return {a.over * b.over, a.at * b.at}; }
+
+}  // namespace hipair::verify
