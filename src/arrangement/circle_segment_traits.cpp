@@ -780,11 +780,11 @@ class Builder {
         auto known = known_.find(v->point().id());
         if (known != known_.end()) {
           const KnownPoint& k = known_points_[known->second];
-          out.x = Real::from_rational(k.x);
-          fill_y(Real::from_rational(k.y), out);
+          out.x = exact_real(k.x);
+          fill_y(exact_real(k.y), out);
         } else {
-          out.x = Real::from_rational(rational_from(v->point().x()));
-          fill_y(Real::from_rational(rational_from(v->point().y())), out);
+          out.x = exact_real(rational_from(v->point().x()));
+          fill_y(exact_real(rational_from(v->point().y())), out);
         }
       } else {
         out.x = to_real(v->point().x());
@@ -1024,6 +1024,26 @@ bool segments_apply(const Box& box, const std::vector<IntegerPolynomial2>& curve
 }
 
 }  // namespace
+
+algebra::Real exact_real(const Rational& value) {
+  const mpz_class& num = value.get_num();
+  const mpz_class& den = value.get_den();
+  if (sgn(den) <= 0) return Real::from_rational(value);
+  if (mpz_cmp_ui(den.get_mpz_t(), 1) != 0) {
+    thread_local mpz_class g;
+    mpz_gcd(g.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
+    if (mpz_cmp_ui(g.get_mpz_t(), 1) != 0) return Real::from_rational(value);
+  }
+  Real r;
+  r.polynomial.reserve(2);
+  r.polynomial.emplace_back(num);
+  mpz_neg(r.polynomial.back().get_mpz_t(), num.get_mpz_t());
+  r.polynomial.push_back(den);
+  r.lower = value;
+  r.upper = value;
+  r.exact = true;
+  return r;
+}
 
 bool circle_segment_applies(const std::vector<IntegerPolynomial2>& curves,
                             const std::vector<std::vector<ValidityClause>>& validity) {

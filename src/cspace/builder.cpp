@@ -12,6 +12,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -245,9 +246,13 @@ bool valid_at(const std::vector<ValidityClause>& clauses, const X& x, const Y& y
 }
 
 // A line or circle up to a non-zero factor: its non-zero integer coefficients, divided by their
-// gcd, with the sign that makes the first one (in x^i y^j order) positive.
+// gcd, with the sign that makes the first one (in x^i y^j order) positive, written as bytes
+// (per coefficient: i, j, the sign, the limb count and the limbs: an injective encoding, so
+// that equal keys are equal supports), without text conversion and without a division when
+// the gcd is 1.
 std::string support_key(const IntegerPolynomial2& f) {
-  mpz_class g = 0;
+  thread_local mpz_class g, q;
+  g = 0;
   int sign = 0;
   for (const auto& row : f.coefficients)
     for (const auto& c : row) {
@@ -257,13 +262,23 @@ std::string support_key(const IntegerPolynomial2& f) {
     }
   std::string key;
   if (sign == 0) return key;
+  const bool unit = mpz_cmp_ui(g.get_mpz_t(), 1) == 0;
+  auto append = [&](const void* data, std::size_t bytes) { key.append(static_cast<const char*>(data), bytes); };
   for (std::size_t i = 0; i < f.coefficients.size(); ++i)
     for (std::size_t j = 0; j < f.coefficients[i].size(); ++j) {
       const mpz_class& c = f.coefficients[i][j];
       if (sgn(c) == 0) continue;
-      mpz_class q = c / g;
-      if (sign < 0) q = -q;
-      key += std::to_string(i) + "," + std::to_string(j) + ":" + q.get_str(16) + ";";
+      const mpz_class* value = &c;
+      if (!unit) {
+        mpz_divexact(q.get_mpz_t(), c.get_mpz_t(), g.get_mpz_t());
+        value = &q;
+      }
+      const std::uint32_t header[3] = {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j),
+                                       static_cast<std::uint32_t>(sgn(*value) * sign > 0 ? 1 : 2)};
+      const std::size_t limbs = mpz_size(value->get_mpz_t());
+      append(header, sizeof header);
+      append(&limbs, sizeof limbs);
+      append(mpz_limbs_read(value->get_mpz_t()), limbs * sizeof(mp_limb_t));
     }
   return key;
 }
@@ -377,7 +392,7 @@ void label_edges(ChartData& chart, bool by_support) {
       y.canonicalize();
       for (std::size_t k : *candidates)
         if (valid_at_rational(chart.validity[k], data.sample_x, y)) data.curves.push_back(k);
-      data.sample_y = Real::from_rational(y);
+      data.sample_y = raw::exact_real(y);
     } else {
       data.sample_x = algebra::rational_between(low.x, high.x);
       data.sample_y = edge_y_at(chart, e, data.sample_x);
@@ -995,7 +1010,7 @@ algebra::Real edge_y_at(const ChartData& chart, std::size_t local_edge, const Ra
     root.canonicalize();
     if (!(Rational(edge.box[1]) < root && root < Rational(edge.box[3])))
       throw NumericError("internal: contact curve root 0 is not in its certified box");
-    return Real::from_rational(root);
+    return raw::exact_real(root);
   }
   const raw::ArcNumbers& numbers = edge.arc_numbers;
   int arcno = numbers.between.empty() ? 0 : numbers.between.back();
