@@ -121,6 +121,12 @@ struct Options {
   const std::vector<std::vector<std::array<double, 4>>>* cells = nullptr;
 };
 
+/// Real::from_rational(value), the same fields (polynomial {-num, den}, lower = upper = value,
+/// exact), formed directly when the rational is canonical (den > 0, gcd(num, den) = 1: then that
+/// is already the primitive polynomial with a positive leading coefficient) instead of through
+/// primitive_part's copies; from_rational otherwise.
+algebra::Real exact_real(const Rational& value);
+
 /// Builds the arrangement of the curves (each square-free, non-zero) clipped to the box and,
 /// when `validity` is not empty (one entry per curve, possibly empty), to the parts of each
 /// curve where its validity clauses hold.

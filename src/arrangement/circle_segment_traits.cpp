@@ -9,6 +9,7 @@
 
 #include <CGAL/Arr_circle_segment_traits_2.h>
 #include <CGAL/Arr_curve_data_traits_2.h>
+#include <CGAL/Arr_extended_dcel.h>
 #include <CGAL/Arr_segment_traits_2.h>
 #include <CGAL/Arrangement_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -324,7 +325,11 @@ class Builder {
   using BaseCurve = typename Flavour::BaseTraits::Curve_2;
   using Curve = typename Traits::Curve_2;
   using XCurve = typename Traits::X_monotone_curve_2;
-  using Arrangement_2 = CGAL::Arrangement_2<Traits>;
+  // Each vertex, halfedge and face carries its index in the export (set by export_topology:
+  // halfedges 2 edge + 1 when they run from the edge's smaller to its larger end), instead of
+  // hash maps from CGAL's addresses.
+  using Dcel = CGAL::Arr_extended_dcel<Traits, std::size_t, std::size_t, std::size_t>;
+  using Arrangement_2 = CGAL::Arrangement_2<Traits, Dcel>;
   static constexpr bool segments = Flavour::segments;
 
  public:
@@ -348,7 +353,10 @@ class Builder {
       if (degree == 1) {
         line_supports_.resize(curves.size());
         line_supports_[k] = oriented_line(curves[k]);
-        clip_line(linear_of(curves[k]), clauses, curve_windows);
+        // (the segment flavour only: the circle flavour keeps clip_line, the reference the
+        // tests compare it with)
+        if (!segments || !clip_line_in_integers(curves[k], clauses, curve_windows))
+          clip_line(linear_of(curves[k]), clauses, curve_windows);
       } else if constexpr (!segments) {
         if (auto circle = circle_of(curves[k]))
           clip_circle(*circle, clauses, curve_windows);
@@ -378,12 +386,37 @@ class Builder {
   // an arrangement vertex at an input piece's end shares that handle, and the export takes its
   // coordinates from here instead of forcing the lazy point's exact value (only intersection
   // points are converted).
+  // The segment flavour also makes each point once: pieces that share an end (consecutive
+  // segments of a convolution, a chart corner) get the same handle, so that the kernel converts
+  // the point and computes its exact value once (CGAL's sweep compares equal ends exactly).
+  // The same coordinates, hence the same arrangement.
   typename K::Point_2 point(const Rational& x, const Rational& y) {
-    typename K::Point_2 p(ft_of<FT>(x), ft_of<FT>(y));
     if constexpr (segments) {
-      if (known_.emplace(p.id(), known_points_.size()).second) known_points_.push_back({p, x, y});
+      const std::size_t h = point_hash(x, y);
+      auto range = by_value_.equal_range(h);
+      for (auto it = range.first; it != range.second; ++it) {
+        const KnownPoint& k = known_points_[it->second];
+        if (k.x == x && k.y == y) return k.handle;
+      }
+      typename K::Point_2 p(ft_of<FT>(x), ft_of<FT>(y));
+      if (known_.emplace(p.id(), known_points_.size()).second) {
+        by_value_.emplace(h, known_points_.size());
+        known_points_.push_back({p, x, y});
+      }
+      return p;
+    } else {
+      return typename K::Point_2(ft_of<FT>(x), ft_of<FT>(y));
     }
-    return p;
+  }
+
+  // A hash of two canonical rationals (their lowest limbs and signed sizes).
+  static std::size_t point_hash(const Rational& x, const Rational& y) {
+    std::size_t h = 0;
+    for (const mpz_srcptr z : {x.get_num_mpz_t(), x.get_den_mpz_t(), y.get_num_mpz_t(), y.get_den_mpz_t()}) {
+      const std::size_t limb = static_cast<std::size_t>(mpz_getlimbn(z, 0)) ^ (static_cast<std::size_t>(mpz_size(z)) << 48);
+      h ^= (mpz_sgn(z) < 0 ? ~limb : limb) + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
+    }
+    return h;
   }
 
   // Clauses hold at a point where each atom's value is given by `value` (a sign).
@@ -406,6 +439,99 @@ class Builder {
     for (const auto& [lo, hi] : windows)
       if (lo <= x && x <= hi) return true;
     return false;
+  }
+
+  // clip_line's one-interval case for a non-vertical line without windows whose every clause
+  // is one linear atom (every contact segment of a polygon pair), in integers: each constraint
+  // (a box side m x - n >= 0 for x_lo = n / m, ..., or an atom g0 + gx x + gy y >= 0) along the
+  // line y = -(k0 + kx x) / ky, times ky, is P + Q x with P = g0 ky - gy k0, Q = gx ky - gy kx;
+  // it holds where sgn(ky) (P + Q x) >= 0, a lower bound -P / Q of x when sgn(ky) Q > 0, an
+  // upper one when < 0. The bounds are compared as unreduced fractions (cross products) and
+  // only the two kept are canonicalised: the same ends, hence the same piece, as clip_line.
+  // False (nothing done) when the line is not of that kind.
+  bool clip_line_in_integers(const IntegerPolynomial2& f, const std::vector<ValidityClause>& clauses,
+                             const std::vector<std::pair<Rational, Rational>>& windows) {
+    const mpz_class &k0 = coefficient(f, 0, 0), &kx = coefficient(f, 1, 0), &ky = coefficient(f, 0, 1);
+    if (sgn(ky) == 0 || !windows.empty()) return false;
+    for (const auto& clause : clauses)
+      if (clause.atoms.size() != 1 || total_degree(clause.atoms[0]) > 1) return false;
+    const int sy = sgn(ky);
+    // the bounds so far as fractions num / den, den > 0
+    bool has_lo = false, has_hi = false, empty = false;
+    mpz_class lo_num, lo_den, hi_num, hi_den, P, Q, t1, t2;
+    auto bound = [&](const mpz_class& g0, const mpz_class& gx, const mpz_class& gy) {
+      P = g0 * ky;
+      P -= gy * k0;
+      Q = gx * ky;
+      Q -= gy * kx;
+      if (sy < 0) {
+        mpz_neg(P.get_mpz_t(), P.get_mpz_t());
+        mpz_neg(Q.get_mpz_t(), Q.get_mpz_t());
+      }
+      // P + Q x >= 0
+      const int sq = sgn(Q);
+      if (sq == 0) {
+        if (sgn(P) < 0) empty = true;
+        return;
+      }
+      // x = -P / Q as num / den with den > 0
+      if (sq > 0) {
+        mpz_neg(P.get_mpz_t(), P.get_mpz_t());
+      } else {
+        mpz_neg(Q.get_mpz_t(), Q.get_mpz_t());
+      }
+      if (sq > 0) {   // x >= P / Q
+        if (has_lo) {
+          t1 = P * lo_den;
+          t2 = lo_num * Q;
+          if (!(t2 < t1)) return;
+        }
+        has_lo = true;
+        mpz_swap(lo_num.get_mpz_t(), P.get_mpz_t());
+        mpz_swap(lo_den.get_mpz_t(), Q.get_mpz_t());
+      } else {        // x <= P / Q
+        if (has_hi) {
+          t1 = P * hi_den;
+          t2 = hi_num * Q;
+          if (!(t1 < t2)) return;
+        }
+        has_hi = true;
+        mpz_swap(hi_num.get_mpz_t(), P.get_mpz_t());
+        mpz_swap(hi_den.get_mpz_t(), Q.get_mpz_t());
+      }
+    };
+    static const mpz_class zero(0);
+    const mpz_class minus_x_lo_num(-box_.x_lo.get_num()), minus_y_lo_num(-box_.y_lo.get_num());
+    const mpz_class minus_x_hi_den(-box_.x_hi.get_den()), minus_y_hi_den(-box_.y_hi.get_den());
+    bound(minus_x_lo_num, box_.x_lo.get_den(), zero);   // x_lo.den x - x_lo.num >= 0
+    bound(box_.x_hi.get_num(), minus_x_hi_den, zero);   // x_hi.num - x_hi.den x >= 0
+    bound(minus_y_lo_num, zero, box_.y_lo.get_den());
+    bound(box_.y_hi.get_num(), zero, minus_y_hi_den);
+    for (const auto& clause : clauses) {
+      const IntegerPolynomial2& g = clause.atoms[0];
+      bound(coefficient(g, 0, 0), coefficient(g, 1, 0), coefficient(g, 0, 1));
+    }
+    if (empty || !has_lo || !has_hi) {
+      if (!empty && (!has_lo || !has_hi)) throw GeometryError("internal: a clipped contact segment is unbounded");
+      return true;
+    }
+    t1 = lo_num * hi_den;
+    t2 = hi_num * lo_den;
+    if (!(t1 < t2)) return true;   // empty, or a single valid point: no segment (as clip_line)
+    Rational lo(lo_num, lo_den), hi(hi_num, hi_den);
+    lo.canonicalize();
+    hi.canonicalize();
+    auto y_at = [&](const Rational& x) {
+      mpz_class num = kx * x.get_num();
+      num += k0 * x.get_den();
+      mpz_neg(num.get_mpz_t(), num.get_mpz_t());
+      Rational y(num, mpz_class(ky * x.get_den()));
+      y.canonicalize();
+      return y;
+    };
+    Rational y_lo = y_at(lo), y_hi = y_at(hi);
+    pieces_.emplace_back(BaseCurve(point(lo, y_lo), point(hi, y_hi)), current_);
+    return true;
   }
 
   // A line k0 + kx x + ky y = 0: the parameter set (x, or y for a vertical line) where it is
@@ -641,28 +767,24 @@ class Builder {
 
   // ---------------------------------------------------------------- export
 
-  void export_topology(const Arrangement_2& arr) {
-    std::unordered_map<const void*, std::size_t> vertex_id, face_id, edge_id;
-    std::unordered_map<const void*, bool> forward;   // halfedge -> goes min -> max
-    vertex_id.reserve(arr.number_of_vertices());
-    face_id.reserve(arr.number_of_faces());
-    edge_id.reserve(2 * arr.number_of_edges());
-    forward.reserve(2 * arr.number_of_edges());
+  void export_topology(Arrangement_2& arr) {
+    auto edge_id = [](const auto& h) { return h->data() / 2; };
+    auto forward = [](const auto& h) { return h->data() % 2 == 1; };   // goes min -> max
     result_.vertices.reserve(arr.number_of_vertices());
     result_.faces.reserve(arr.number_of_faces());
     result_.edges.reserve(arr.number_of_edges());
     for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
-      vertex_id[&*v] = result_.vertices.size();
+      v->set_data(result_.vertices.size());
       Vertex out;
       if constexpr (segments) {
         auto known = known_.find(v->point().id());
         if (known != known_.end()) {
           const KnownPoint& k = known_points_[known->second];
-          out.x = Real::from_rational(k.x);
-          fill_y(Real::from_rational(k.y), out);
+          out.x = exact_real(k.x);
+          fill_y(exact_real(k.y), out);
         } else {
-          out.x = Real::from_rational(rational_from(v->point().x()));
-          fill_y(Real::from_rational(rational_from(v->point().y())), out);
+          out.x = exact_real(rational_from(v->point().x()));
+          fill_y(exact_real(rational_from(v->point().y())), out);
         }
       } else {
         out.x = to_real(v->point().x());
@@ -680,7 +802,7 @@ class Builder {
     for (const Vertex& v : result_.vertices)
       bounds.push_back({v.x.lower_bound(), v.y_lower_bound(), v.x.upper_bound(), v.y_upper_bound()});
     for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
-      face_id[&*f] = result_.faces.size();
+      f->set_data(result_.faces.size());
       Face out;
       out.unbounded = f->is_unbounded();
       if (out.unbounded && result_.unbounded_face == none) result_.unbounded_face = result_.faces.size();
@@ -688,19 +810,18 @@ class Builder {
     }
     for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
       auto h = e->direction() == CGAL::ARR_LEFT_TO_RIGHT ? e : e->twin();
-      edge_id[&*h] = edge_id[&*h->twin()] = result_.edges.size();
-      forward[&*h] = true;
-      forward[&*h->twin()] = false;
+      h->set_data(2 * result_.edges.size() + 1);
+      h->twin()->set_data(2 * result_.edges.size());
       Edge out;
       const XCurve& arc = h->curve();
-      out.min_vertex = vertex_id.at(&*h->source());
-      out.max_vertex = vertex_id.at(&*h->target());
+      out.min_vertex = h->source()->data();
+      out.max_vertex = h->target()->data();
       out.vertical = arc.is_vertical();
       out.support = support_for(arc);
       if (options_.carry_line_supports && is_linear(arc) && arc.data() < line_supports_.size())
         out.support_curve = arc.data();
-      out.left_face = face_id.at(&*h->face());
-      out.right_face = face_id.at(&*h->twin()->face());
+      out.left_face = h->face()->data();
+      out.right_face = h->twin()->face()->data();
       const Vertex& a = result_.vertices[out.min_vertex];
       const Vertex& b = result_.vertices[out.max_vertex];
       const Bounds& ba = bounds[out.min_vertex];
@@ -731,10 +852,10 @@ class Builder {
       result_.edges.push_back(std::move(out));
     }
     for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
-      Vertex& out = result_.vertices[vertex_id.at(&*v)];
+      Vertex& out = result_.vertices[v->data()];
       if (v->is_isolated()) {
-        out.face_below = out.face_above = face_id.at(&*v->face());
-        result_.faces[out.face_below].isolated_vertices.push_back(vertex_id.at(&*v));
+        out.face_below = out.face_above = v->face()->data();
+        result_.faces[out.face_below].isolated_vertices.push_back(v->data());
         continue;
       }
       std::vector<typename Arrangement_2::Halfedge_const_handle> around;
@@ -745,25 +866,25 @@ class Builder {
       } while (++circulator != first);
       for (const auto& h : around) {
         Incidence incidence;
-        incidence.edge = edge_id.at(&*h);
+        incidence.edge = edge_id(h);
         bool source_is_smaller = h->direction() == CGAL::ARR_LEFT_TO_RIGHT;
         if (h->curve().is_vertical())
           incidence.direction = source_is_smaller ? Direction::down : Direction::up;
         else
           incidence.direction = source_is_smaller ? Direction::left : Direction::right;
-        incidence.wedge_face = face_id.at(&*h->face());
+        incidence.wedge_face = h->face()->data();
         out.around.push_back(incidence);
       }
       out.face_below = wedge_containing(around, out.around, v->point(), true);
       out.face_above = wedge_containing(around, out.around, v->point(), false);
     }
     for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
-      Face& out = result_.faces[face_id.at(&*f)];
+      Face& out = result_.faces[f->data()];
       auto add_ccb = [&](typename Arrangement_2::Ccb_halfedge_const_circulator c) {
         out.component_starts.push_back(out.boundary.size());
         auto first = c;
         do {
-          out.boundary.emplace_back(edge_id.at(&*c), forward.at(&*c));
+          out.boundary.emplace_back(edge_id(c), forward(c));
         } while (++c != first);
       };
       if (f->has_outer_ccb()) add_ccb(f->outer_ccb());
@@ -861,6 +982,7 @@ class Builder {
     Rational x, y;
   };
   std::unordered_map<std::size_t, std::size_t> known_;   // handle id -> index in known_points_
+  std::unordered_multimap<std::size_t, std::size_t> by_value_;   // point_hash -> index in known_points_
   std::vector<KnownPoint> known_points_;
   Arrangement result_;
 };
@@ -902,6 +1024,26 @@ bool segments_apply(const Box& box, const std::vector<IntegerPolynomial2>& curve
 }
 
 }  // namespace
+
+algebra::Real exact_real(const Rational& value) {
+  const mpz_class& num = value.get_num();
+  const mpz_class& den = value.get_den();
+  if (sgn(den) <= 0) return Real::from_rational(value);
+  if (mpz_cmp_ui(den.get_mpz_t(), 1) != 0) {
+    thread_local mpz_class g;
+    mpz_gcd(g.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
+    if (mpz_cmp_ui(g.get_mpz_t(), 1) != 0) return Real::from_rational(value);
+  }
+  Real r;
+  r.polynomial.reserve(2);
+  r.polynomial.emplace_back(num);
+  mpz_neg(r.polynomial.back().get_mpz_t(), num.get_mpz_t());
+  r.polynomial.push_back(den);
+  r.lower = value;
+  r.upper = value;
+  r.exact = true;
+  return r;
+}
 
 bool circle_segment_applies(const std::vector<IntegerPolynomial2>& curves,
                             const std::vector<std::vector<ValidityClause>>& validity) {

@@ -12,6 +12,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -127,19 +128,54 @@ bool valid_point_in_box(const ContactCurve& curve, const raw::Box& box) {
   const IntegerPolynomial2& f = curve.polynomial;
   if (f.degree_x() > 1 || f.degree_y() > 1 || sgn(coefficient_of(f, 1, 1)) != 0 || curve.validity.empty()) return false;
   const mpz_class &a = coefficient_of(f, 1, 0), &b = coefficient_of(f, 0, 1), &c = coefficient_of(f, 0, 0);
+  // The meeting point is (X / det, Y / det); every test below is the sign of an integer
+  // expression times sgn(det), so that no rational is formed (nor canonicalised) for linear
+  // atoms: x >= x_lo iff sgn(X m - n det) sgn(det) >= 0 for x_lo = n / m (m > 0), and a linear
+  // atom d' x + e' y + g' >= 0 iff sgn(d' X + e' Y + g' det) sgn(det) >= 0.
+  mpz_class det, x_num, y_num, t;
+  auto at_least = [&](const mpz_class& num, const Rational& bound, int s) {   // num / det >= bound
+    t = num * bound.get_den();
+    t -= bound.get_num() * det;
+    return sgn(t) * s >= 0;
+  };
+  auto linear_atom = [](const IntegerPolynomial2& p) {
+    return p.degree_x() <= 1 && p.degree_y() <= 1 && sgn(coefficient_of(p, 1, 1)) == 0;
+  };
   for (const auto& clause : curve.validity)
     for (const auto& atom : clause.atoms) {
-      if (atom.degree_x() > 1 || atom.degree_y() > 1 || sgn(coefficient_of(atom, 1, 1)) != 0) continue;
+      if (!linear_atom(atom)) continue;
       const mpz_class &d = coefficient_of(atom, 1, 0), &e = coefficient_of(atom, 0, 1), &g = coefficient_of(atom, 0, 0);
-      mpz_class det = a * e - b * d;
-      if (sgn(det) == 0) continue;
-      Rational x(mpz_class(b * g - c * e), det), y(mpz_class(c * d - a * g), det);
-      x.canonicalize();
-      y.canonicalize();
-      if (x < box.x_lo || x > box.x_hi || y < box.y_lo || y > box.y_hi) continue;
+      det = a * e;
+      det -= b * d;
+      const int s = sgn(det);
+      if (s == 0) continue;
+      x_num = b * g;
+      x_num -= c * e;
+      y_num = c * d;
+      y_num -= a * g;
+      // x_lo <= x <= x_hi and y_lo <= y <= y_hi (x <= hi iff -x >= -hi)
+      if (!at_least(x_num, box.x_lo, s) || !at_least(y_num, box.y_lo, s)) continue;
+      {
+        mpz_class neg_x = -x_num, neg_y = -y_num;
+        if (!at_least(neg_x, Rational(-box.x_hi), s) || !at_least(neg_y, Rational(-box.y_hi), s)) continue;
+      }
+      std::optional<Rational> x, y;   // the point as rationals, for a non-linear atom only
       bool valid = std::all_of(curve.validity.begin(), curve.validity.end(), [&](const ValidityClause& other) {
-        return std::any_of(other.atoms.begin(), other.atoms.end(),
-                           [&](const IntegerPolynomial2& p) { return sgn(evaluate(p, x, y)) >= 0; });
+        return std::any_of(other.atoms.begin(), other.atoms.end(), [&](const IntegerPolynomial2& p) {
+          if (linear_atom(p)) {
+            mpz_class value = coefficient_of(p, 1, 0) * x_num;
+            value += coefficient_of(p, 0, 1) * y_num;
+            value += coefficient_of(p, 0, 0) * det;
+            return sgn(value) * s >= 0;
+          }
+          if (!x) {
+            x.emplace(x_num, det);
+            y.emplace(y_num, det);
+            x->canonicalize();
+            y->canonicalize();
+          }
+          return sgn(evaluate(p, *x, *y)) >= 0;
+        });
       });
       if (valid) return true;
     }
@@ -148,7 +184,9 @@ bool valid_point_in_box(const ContactCurve& curve, const raw::Box& box) {
 
 // Keeps the curves that may bound free space somewhere in the chart box, with their windows;
 // returns the input indices of the kept curves.
-std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input, int dimension, bool shortcuts) {
+// The kept curves' polynomials and validity are moved into the chart (the input keeps each
+// curve's features, type, label and blocked side, which are all the builder reads of it after).
+std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int dimension, bool shortcuts) {
   chart.x_axis = input.x;
   chart.y_axis = input.y;
   chart.box = raw::Box{input.x.lo, input.x.hi, input.y.lo, input.y.hi};
@@ -159,7 +197,7 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input
   CurveCuller culler(input.blocked_cells ? *input.blocked_cells : *own);
   std::vector<std::size_t> kept;
   for (std::size_t k = 0; k < input.curves.size(); ++k) {
-    const ContactCurve& curve = input.curves[k];
+    ContactCurve& curve = input.curves[k];
     algebra::IntervalPolynomial2 f(curve.polynomial);
     std::vector<std::pair<Rational, Rational>> windows;
     std::vector<std::array<double, 4>> cells;
@@ -183,8 +221,8 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, const ChartInput& input
                                std::isfinite(hi) ? std::min(Rational(hi), input.x.hi) : input.x.hi);
     }
     kept.push_back(k);
-    chart.polynomials.push_back(curve.polynomial);
-    chart.validity.push_back(curve.validity);
+    chart.polynomials.push_back(std::move(curve.polynomial));
+    chart.validity.push_back(std::move(curve.validity));
     // the cells restrict like the windows: only where the blocked test ran (else none)
     if (!blocked_test || windows.empty()) cells.clear();
     chart.windows.push_back(std::move(windows));
@@ -208,9 +246,13 @@ bool valid_at(const std::vector<ValidityClause>& clauses, const X& x, const Y& y
 }
 
 // A line or circle up to a non-zero factor: its non-zero integer coefficients, divided by their
-// gcd, with the sign that makes the first one (in x^i y^j order) positive.
+// gcd, with the sign that makes the first one (in x^i y^j order) positive, written as bytes
+// (per coefficient: i, j, the sign, the limb count and the limbs: an injective encoding, so
+// that equal keys are equal supports), without text conversion and without a division when
+// the gcd is 1.
 std::string support_key(const IntegerPolynomial2& f) {
-  mpz_class g = 0;
+  thread_local mpz_class g, q;
+  g = 0;
   int sign = 0;
   for (const auto& row : f.coefficients)
     for (const auto& c : row) {
@@ -220,15 +262,61 @@ std::string support_key(const IntegerPolynomial2& f) {
     }
   std::string key;
   if (sign == 0) return key;
+  const bool unit = mpz_cmp_ui(g.get_mpz_t(), 1) == 0;
+  auto append = [&](const void* data, std::size_t bytes) { key.append(static_cast<const char*>(data), bytes); };
   for (std::size_t i = 0; i < f.coefficients.size(); ++i)
     for (std::size_t j = 0; j < f.coefficients[i].size(); ++j) {
       const mpz_class& c = f.coefficients[i][j];
       if (sgn(c) == 0) continue;
-      mpz_class q = c / g;
-      if (sign < 0) q = -q;
-      key += std::to_string(i) + "," + std::to_string(j) + ":" + q.get_str(16) + ";";
+      const mpz_class* value = &c;
+      if (!unit) {
+        mpz_divexact(q.get_mpz_t(), c.get_mpz_t(), g.get_mpz_t());
+        value = &q;
+      }
+      const std::uint32_t header[3] = {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j),
+                                       static_cast<std::uint32_t>(sgn(*value) * sign > 0 ? 1 : 2)};
+      const std::size_t limbs = mpz_size(value->get_mpz_t());
+      append(header, sizeof header);
+      append(&limbs, sizeof limbs);
+      append(mpz_limbs_read(value->get_mpz_t()), limbs * sizeof(mp_limb_t));
     }
   return key;
+}
+
+// The line a x + b y + c = 0 of a polynomial of total degree <= 1 (false: a curve of higher
+// degree, or a constant).
+bool line_of(const IntegerPolynomial2& f, const mpz_class*& a, const mpz_class*& b, const mpz_class*& c) {
+  for (std::size_t i = 0; i < f.coefficients.size(); ++i)
+    for (std::size_t j = 0; j < f.coefficients[i].size(); ++j)
+      if (i + j > 1 && sgn(f.coefficients[i][j]) != 0) return false;
+  a = &coefficient_of(f, 1, 0);
+  b = &coefficient_of(f, 0, 1);
+  c = &coefficient_of(f, 0, 0);
+  return sgn(*a) != 0 || sgn(*b) != 0;
+}
+
+// Sign of the line a x + b y + c at the rational point (x, y), exactly (integer arithmetic:
+// c dx dy + a nx dy + b ny dx, with x = nx / dx, y = ny / dy and dx, dy > 0).
+int sign_of_line_at(const mpz_class& a, const mpz_class& b, const mpz_class& c, const Rational& x, const Rational& y) {
+  mpz_class value = c * x.get_den();
+  value += a * x.get_num();
+  value *= y.get_den();
+  mpz_class term = b * y.get_num();
+  term *= x.get_den();
+  value += term;
+  return sgn(value);
+}
+
+// Every validity clause holds at the rational point (x, y): some atom >= 0 (valid_at, with the
+// linear atoms evaluated without a substitution polynomial).
+bool valid_at_rational(const std::vector<ValidityClause>& clauses, const Rational& x, const Rational& y) {
+  return std::all_of(clauses.begin(), clauses.end(), [&](const ValidityClause& clause) {
+    return std::any_of(clause.atoms.begin(), clause.atoms.end(), [&](const IntegerPolynomial2& atom) {
+      const mpz_class *a, *b, *c;
+      if (line_of(atom, a, b, c)) return sign_of_line_at(*a, *b, *c, x, y) >= 0;
+      return algebra::sign_at(atom, x, y) >= 0;
+    });
+  });
 }
 
 // Feature pairs along every edge: exact test at one interior point of the edge.
@@ -257,9 +345,9 @@ void label_edges(ChartData& chart, bool by_support) {
     for (std::size_t k = 0; k < chart.polynomials.size(); ++k) all_curves.push_back(k);
   for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
     const std::vector<std::size_t>* candidates = &all_curves;
+    // an edge along an input line has that line's support: its group, without a key
+    const std::size_t carried = by_support ? arrangement.edges[e].support_curve : raw::none;
     if (by_support) {
-      // an edge along an input line has that line's support: its group, without a key
-      const std::size_t carried = arrangement.edges[e].support_curve;
       if (carried < group_of.size()) {
         candidates = group_of[carried];
       } else {
@@ -286,6 +374,25 @@ void label_edges(ChartData& chart, bool by_support) {
         if (algebra::vanishes_at(chart.polynomials[k], x, y) && valid_at(chart.validity[k], x, y))
           data.curves.push_back(k);
       }
+    } else if (const mpz_class *a, *b, *c; carried < group_of.size() && low.x.exact && high.x.exact &&
+                                             line_of(edge.support, a, b, c) && sgn(*b) != 0) {
+      // The polygon front end (a line edge whose support was carried from its input curve,
+      // between rational abscissae): the same sample as below without root isolation
+      // (rational_between of two exact numbers is the simplest rational between them; edge_y_at
+      // of the line a x + b y + c is the rational -(a x + c) / b), and the same labels: every
+      // candidate has the edge's support up to a factor, so it vanishes along the whole edge
+      // (the filter and vanishes_at below hold), and only its validity at the sample decides,
+      // exactly in rationals. (The general path, without carried supports, takes the branch
+      // below: the tests compare the two.)
+      data.sample_x = algebra::simplest_between(low.x.lower, high.x.lower);
+      mpz_class numerator = *a * data.sample_x.get_num();
+      numerator += *c * data.sample_x.get_den();
+      mpz_class denominator = *b * data.sample_x.get_den();
+      Rational y(mpz_class(-numerator), denominator);
+      y.canonicalize();
+      for (std::size_t k : *candidates)
+        if (valid_at_rational(chart.validity[k], data.sample_x, y)) data.curves.push_back(k);
+      data.sample_y = raw::exact_real(y);
     } else {
       data.sample_x = algebra::rational_between(low.x, high.x);
       data.sample_y = edge_y_at(chart, e, data.sample_x);
@@ -893,6 +1000,18 @@ std::vector<SeamPiece> seam_pieces(const ChartData& chart, int side) {
 
 algebra::Real edge_y_at(const ChartData& chart, std::size_t local_edge, const Rational& x) {
   const raw::Edge& edge = chart.arrangement.edges[local_edge];
+  // a line a x + b y + c (b != 0): its one root -(a x + c) / b, the rational that the root
+  // isolation below returns (as an exact Real), without the substitution and square-free part
+  if (const mpz_class *a, *b, *c; line_of(edge.support, a, b, c) && sgn(*b) != 0) {
+    mpz_class numerator = *a * x.get_num();
+    numerator += *c * x.get_den();
+    mpz_neg(numerator.get_mpz_t(), numerator.get_mpz_t());
+    Rational root(numerator, mpz_class(*b * x.get_den()));
+    root.canonicalize();
+    if (!(Rational(edge.box[1]) < root && root < Rational(edge.box[3])))
+      throw NumericError("internal: contact curve root 0 is not in its certified box");
+    return raw::exact_real(root);
+  }
   const raw::ArcNumbers& numbers = edge.arc_numbers;
   int arcno = numbers.between.empty() ? 0 : numbers.between.back();
   for (std::size_t i = 0; i < numbers.events.size(); ++i) {

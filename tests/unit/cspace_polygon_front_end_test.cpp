@@ -153,6 +153,32 @@ void expect_same_space(const CSpace& fast, const CSpace& general) {
     for (std::size_t e = 0; e < p.size(); ++e)
       EXPECT_EQ(p[e].support.coefficients, q[e].support.coefficients) << "the support of edge " << e;
   }
+  // the builder's own per-chart data (edge samples and labels, face kinds and samples,
+  // zero-clearance flags): the point-location data behind the public fields
+  for (std::size_t c = 0; c < fast_impl.charts.size(); ++c) {
+    const cspace::ChartData& p = fast_impl.charts[c];
+    const cspace::ChartData& q = general_impl.charts[c];
+    ASSERT_EQ(p.edges.size(), q.edges.size());
+    for (std::size_t e = 0; e < p.edges.size(); ++e) {
+      SCOPED_TRACE("chart edge " + std::to_string(e));
+      EXPECT_EQ(p.edges[e].sample_x, q.edges[e].sample_x);
+      expect_same_numbers(cspace::to_public(p.edges[e].sample_y), cspace::to_public(q.edges[e].sample_y));
+      expect_same_numbers(cspace::to_public(p.edges[e].vertical_x), cspace::to_public(q.edges[e].vertical_x));
+      EXPECT_EQ(p.edges[e].curves, q.edges[e].curves);
+      EXPECT_EQ(p.edges[e].touching, q.edges[e].touching);
+    }
+    ASSERT_EQ(p.faces.size(), q.faces.size());
+    for (std::size_t f = 0; f < p.faces.size(); ++f) {
+      EXPECT_EQ(p.faces[f].kind, q.faces[f].kind);
+      EXPECT_EQ(p.faces[f].cell, q.faces[f].cell);
+      EXPECT_EQ(p.faces[f].sampled, q.faces[f].sampled);
+      EXPECT_EQ(p.faces[f].sample_x, q.faces[f].sample_x);
+      EXPECT_EQ(p.faces[f].sample_y, q.faces[f].sample_y);
+    }
+    EXPECT_EQ(p.touching_vertex, q.touching_vertex);
+    EXPECT_EQ(p.rational_vertex_x, q.rational_vertex_x);
+    EXPECT_EQ(p.curve_global, q.curve_global);
+  }
   const CSpaceStatistics &s = fast.statistics(), &t = general.statistics();
   EXPECT_EQ(s.feature_pairs_considered, t.feature_pairs_considered);
   EXPECT_EQ(s.feature_pairs_culled, t.feature_pairs_culled);
@@ -430,6 +456,123 @@ TEST(CSpacePolygonFrontEnd, ScalesBeyondTheSegmentFilterBuildTheSameSpace) {
     ++compared;
   }
   EXPECT_EQ(compared, 10);
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// Session 16 (mink3x): the front end labels a line edge from its carried support (no root
+// isolation, no vanishing test) and edge_y_at evaluates a line edge in rationals. Reference:
+// for every edge of every chart, the sample as the general labelling takes it (rational_between
+// of the ends, the root of the support substituted at the abscissa by Sturm isolation) and the
+// labels as every chart curve that vanishes at the sample and is valid there (exact algebra,
+// over all curves, not only those of the edge's support); edge_y_at at the sample and at other
+// rationals inside the edge against the same root isolation. Generated pairs: non-convex
+// stars, collinear and touching lattice pairs (a polygon and its shifted copy), staircases with
+// collinear steps, and zero-clearance slots.
+void expect_reference_labels(const CSpace& space) {
+  const auto& impl = implementation(space);
+  for (const cspace::ChartData& chart : impl.charts) {
+    const auto& arrangement = chart.arrangement;
+    ASSERT_EQ(chart.edges.size(), arrangement.edges.size());
+    for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
+      const cspace::raw::Edge& edge = arrangement.edges[e];
+      const cspace::EdgeData& data = chart.edges[e];
+      if (edge.vertical) continue;
+      SCOPED_TRACE("edge " + std::to_string(e));
+      const auto& low = arrangement.vertices[edge.min_vertex];
+      const auto& high = arrangement.vertices[edge.max_vertex];
+      const Rational x = cspace::algebra::rational_between(low.x, high.x);
+      EXPECT_EQ(data.sample_x, x);
+      auto reference_y = [&](const Rational& at) {
+        return cspace::algebra::nth_real_root_in(cspace::algebra::substitute_x(edge.support, at),
+                                                 edge.arc_numbers.between.back(), Rational(edge.box[1]),
+                                                 Rational(edge.box[3]));
+      };
+      const cspace::algebra::Real y = reference_y(x);
+      expect_same_numbers(cspace::to_public(data.sample_y), cspace::to_public(y));
+      std::vector<std::size_t> labels;
+      for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
+        if (!cspace::algebra::vanishes_at(chart.polynomials[k], x, y)) continue;
+        bool valid = true;
+        for (const auto& clause : chart.validity[k]) {
+          bool holds = false;
+          for (const auto& atom : clause.atoms) holds = holds || cspace::algebra::sign_at(atom, x, y) >= 0;
+          valid = valid && holds;
+        }
+        if (valid) labels.push_back(k);
+      }
+      EXPECT_EQ(data.curves, labels);
+      // edge_y_at at the sample and between it and the ends
+      const Rational left = cspace::algebra::rational_between(low.x, cspace::algebra::Real::from_rational(x));
+      const Rational right = cspace::algebra::rational_between(cspace::algebra::Real::from_rational(x), high.x);
+      for (const Rational& at : {x, left, right})
+        expect_same_numbers(cspace::to_public(cspace::edge_y_at(chart, e, at)), cspace::to_public(reference_y(at)));
+    }
+  }
+}
+
+TEST(CSpacePolygonFrontEnd, LineEdgeLabelsAndSamplesEqualTheReferenceOnGeneratedPairs) {
+  std::mt19937_64 random(16031);
+  int checked = 0, collinear_labels = 0;
+  for (int instance = 0; instance < 40; ++instance) {
+    Points a, b;
+    switch (instance % 5) {
+      case 0:   // non-convex stars on a coarse grid
+        a = random_star(random, 3 + static_cast<int>(random() % 8), 0, 0, 3, 2, instance % 2 == 0);
+        b = random_star(random, 3 + static_cast<int>(random() % 8), static_cast<double>(random() % 5) - 2,
+                        static_cast<double>(random() % 5) - 2, 2, 2, false);
+        break;
+      case 1: {   // a polygon and its shifted copy: collinear and touching edges everywhere
+        a = random_star(random, 4 + static_cast<int>(random() % 5), 0, 0, 2, 1, true);
+        b = a;
+        Rational dx(static_cast<long>(random() % 5) - 2), dy(static_cast<long>(random() % 5) - 2);
+        for (auto& [x, y] : b) {
+          x += dx;
+          y += dy;
+        }
+        break;
+      }
+      case 2:   // staircases: collinear steps, shared coordinates
+        a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 4));
+        b = random_staircase(random, static_cast<long>(random() % 5) - 2, static_cast<long>(random() % 5) - 2,
+                             1 + static_cast<int>(random() % 4));
+        break;
+      case 3: {   // zero clearance: a bar exactly as wide as a slot (random widths and depths)
+        long w = 1 + static_cast<long>(random() % 3), depth = 1 + static_cast<long>(random() % 4);
+        long wall = 1 + static_cast<long>(random() % 2);
+        a = {{Rational(0), Rational(0)}, {Rational(2 * wall + w), Rational(0)}, {Rational(2 * wall + w), Rational(depth + 1)},
+             {Rational(wall + w), Rational(depth + 1)}, {Rational(wall + w), Rational(1)}, {Rational(wall), Rational(1)},
+             {Rational(wall), Rational(depth + 1)}, {Rational(0), Rational(depth + 1)}};
+        b = {{Rational(wall), Rational(depth + 3)}, {Rational(wall + w), Rational(depth + 3)},
+             {Rational(wall + w), Rational(depth + 6)}, {Rational(wall), Rational(depth + 6)}};
+        break;
+      }
+      default:   // a staircase against a star with collinear edges
+        a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3));
+        b = random_star(random, 3 + static_cast<int>(random() % 4), 1, 1, 2, 1, true);
+        break;
+    }
+    SCOPED_TRACE("instance " + std::to_string(instance));
+    std::optional<Model> built_model = sliders_or_none(a, b);
+    if (!built_model) continue;
+    CSpace space = CSpace::build(*built_model, "a", "b");
+    expect_reference_labels(space);
+    for (const cspace::ChartData& chart : implementation(space).charts)
+      for (const cspace::EdgeData& data : chart.edges) collinear_labels += data.curves.size() >= 2;
+    if (instance % 5 == 3) {
+      Built built = build_both(*built_model, true);
+      expect_same_space(built.fast, built.general);
+      expect_minkowski(built.fast, a, b);
+      EXPECT_GT(built.fast.statistics().touching_edges + built.fast.statistics().touching_vertices, 0u);
+    }
+    ++checked;
+  }
+  EXPECT_GE(checked, 32);
+  EXPECT_GT(collinear_labels, 0) << "no edge with two collinear contacts: the cases test too little";
 }
 
 }  // namespace
