@@ -1163,7 +1163,9 @@ struct CurveGenerator::Data {
   std::vector<BodyFeature> features_a, features_b;
   std::size_t reflex_vertices_skipped = 0;
   std::vector<BodyDisk> disks_a, disks_b;
-  std::vector<Core> cores_a, cores_b;
+  // the parts' inscribed disks (the cull without a grid), computed on the first cull: a slicer
+  // that takes a congruent pair's selections never culls
+  mutable std::vector<Core> cores_a, cores_b;
   std::vector<SweptFeature> static_a, static_b;   // Culler::describe_static, chart independent
   bool polygons = true;   // every feature of both parts is a vertex or a segment
   // The features' exact body-frame geometry, chart independent (formed once, not per tile).
@@ -1182,6 +1184,7 @@ struct CurveGenerator::Data {
   // generate() takes the polygon front end (a translating polygon pair without the blocked-space
   // cull): the general path's feature geometry is not formed for it
   bool front_end = false;
+  mutable std::once_flag cores_once;
 };
 
 CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
@@ -1213,10 +1216,6 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
   if (options.cull_blocked_space) {
     for (const BodyFeature& f : d.features_a) d.disks_a.push_back(body_disk(f));
     for (const BodyFeature& f : d.features_b) d.disks_b.push_back(body_disk(f));
-  }
-  if (options.cull_blocked_space && !options.blocked_grid) {
-    d.cores_a = inscribed_disks(model.parts.at(axes.first));
-    d.cores_b = inscribed_disks(model.parts.at(axes.second));
   }
 }
 
@@ -1450,6 +1449,11 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
   std::vector<char> needed(pairs.size(), options.cull_blocked_space && !selected_in ? 0 : 1);
   if (options.cull_blocked_space && !selected_in) {
     // the merged cull's grid when the caller has one, else the parts' inscribed disks
+    if (!on_grid)
+      std::call_once(d.cores_once, [&] {
+        d.cores_a = inscribed_disks(part_a);
+        d.cores_b = inscribed_disks(part_b);
+      });
     BlockedSpaceCuller blocked(part_motion(part_a, axes.first_moves, x),
                                part_motion(part_b, axes.second_moves, second_axis), x, y, axes.dimension(),
                                d.disks_a, d.disks_b, on_grid ? std::vector<Core>{} : d.cores_a,
