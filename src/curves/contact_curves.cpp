@@ -1163,7 +1163,9 @@ struct CurveGenerator::Data {
   std::vector<BodyFeature> features_a, features_b;
   std::size_t reflex_vertices_skipped = 0;
   std::vector<BodyDisk> disks_a, disks_b;
-  std::vector<Core> cores_a, cores_b;
+  // the parts' inscribed disks (the cull without a grid), computed on the first cull: a slicer
+  // that takes a congruent pair's selections never culls
+  mutable std::vector<Core> cores_a, cores_b;
   std::vector<SweptFeature> static_a, static_b;   // Culler::describe_static, chart independent
   bool polygons = true;   // every feature of both parts is a vertex or a segment
   // The features' exact body-frame geometry, chart independent (formed once, not per tile).
@@ -1182,6 +1184,7 @@ struct CurveGenerator::Data {
   // generate() takes the polygon front end (a translating polygon pair without the blocked-space
   // cull): the general path's feature geometry is not formed for it
   bool front_end = false;
+  mutable std::once_flag cores_once;
 };
 
 CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
@@ -1214,16 +1217,79 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
     for (const BodyFeature& f : d.features_a) d.disks_a.push_back(body_disk(f));
     for (const BodyFeature& f : d.features_b) d.disks_b.push_back(body_disk(f));
   }
-  if (options.cull_blocked_space && !options.blocked_grid) {
-    d.cores_a = inscribed_disks(model.parts.at(axes.first));
-    d.cores_b = inscribed_disks(model.parts.at(axes.second));
-  }
 }
 
 CurveGenerator::~CurveGenerator() = default;
 
 std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const ChartAxis& y,
                                                    CurveStatistics* statistics, BlockedCells* grid) const {
+  return generate_impl(x, y, statistics, grid, nullptr, nullptr);
+}
+
+std::vector<CurveGenerator::FeaturePair> CurveGenerator::select(const ChartAxis& x, const ChartAxis& y) const {
+  if (data_->front_end || data_->options.blocked_grid)
+    throw GeometryError("internal: select() is for the general path of the curve generator without a grid");
+  std::vector<FeaturePair> selected;
+  generate_impl(x, y, nullptr, nullptr, nullptr, &selected);
+  return selected;
+}
+
+std::vector<ContactCurve> CurveGenerator::generate_selected(const ChartAxis& x, const ChartAxis& y,
+                                                            const std::vector<FeaturePair>& selected) const {
+  if (data_->front_end || data_->options.blocked_grid)
+    throw GeometryError("internal: generate_selected() is for the general path of the curve generator without a grid");
+  return generate_impl(x, y, nullptr, nullptr, &selected, nullptr);
+}
+
+std::string CurveGenerator::congruence_key() const {
+  const Data& d = *data_;
+  if (d.front_end) return {};
+  const Part& part_a = d.model.parts.at(d.axes.first);
+  const Part& part_b = d.model.parts.at(d.axes.second);
+  Point origin{Rational(0), Rational(0)};
+  if (!part_a.loops.empty() && !part_a.loops.front().edges.empty()) origin = part_a.loops.front().edges.front().source;
+  std::string key;
+  auto number = [&](const Rational& q) {
+    key += q.get_str();
+    key += ',';
+  };
+  auto point = [&](const Point& p) {
+    number(Rational(p.x - origin.x));
+    number(Rational(p.y - origin.y));
+  };
+  key += d.options.cull_blocked_space ? 'c' : '-';
+  key += d.options.blocked_grid ? 'g' : '-';
+  key += d.options.polygon_front_end ? 'p' : '-';
+  key += d.axes.first_moves ? '1' : '0';
+  key += d.axes.second_moves ? '1' : '0';
+  for (const Part* part : {&part_a, &part_b}) {
+    key += "|part:";
+    key += std::to_string(static_cast<int>(part->motion.kind));
+    key += ':';
+    point(part->motion.pivot);
+    number(part->motion.direction.x);
+    number(part->motion.direction.y);
+    for (const Loop& loop : part->loops) {
+      key += loop.is_hole ? "|hole:" : "|loop:";
+      for (const Edge& edge : loop.edges) {
+        key += edge.is_arc() ? (edge.ccw ? "a+" : "a-") : "s";
+        point(edge.source);
+        point(edge.target);
+        if (edge.is_arc()) {
+          point(edge.center);
+          number(edge.radius_squared);
+        }
+        key += ';';
+      }
+    }
+  }
+  return key;
+}
+
+std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, const ChartAxis& y,
+                                                        CurveStatistics* statistics, BlockedCells* grid,
+                                                        const std::vector<FeaturePair>* selected_in,
+                                                        std::vector<FeaturePair>* selected_out) const {
   const Data& d = *data_;
   const Model& model = d.model;
   const PairAxes& axes = d.axes;
@@ -1243,8 +1309,11 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
   std::vector<SweptFeature> swept_b;
   swept_a.reserve(features_a.size());
   swept_b.reserve(features_b.size());
-  for (const SweptFeature& f : d.static_a) swept_a.push_back(culler.travel(f, 0));
-  for (const SweptFeature& f : d.static_b) swept_b.push_back(culler.travel(f, 1));
+  // (a given selection needs no broad phase: the swept boxes stay empty)
+  if (!selected_in) {
+    for (const SweptFeature& f : d.static_a) swept_a.push_back(culler.travel(f, 0));
+    for (const SweptFeature& f : d.static_b) swept_b.push_back(culler.travel(f, 1));
+  }
 
   // Broad phase: world boxes of the features swept over the chart box (a rotation over the
   // box's angle range, not the whole turn), pairs whose boxes meet by a sweep in x; then the
@@ -1252,9 +1321,9 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
   std::vector<SweptBox> boxes_a, boxes_b;
   boxes_a.reserve(features_a.size());
   boxes_b.reserve(features_b.size());
-  for (std::size_t i = 0; i < features_a.size(); ++i)
+  for (std::size_t i = 0; i < swept_a.size(); ++i)
     boxes_a.push_back(swept_box(swept_a[i], 0, part_a, axes.first_moves, x, static_cast<int>(i)));
-  for (std::size_t j = 0; j < features_b.size(); ++j)
+  for (std::size_t j = 0; j < swept_b.size(); ++j)
     boxes_b.push_back(swept_box(swept_b[j], 1, part_b, axes.second_moves, second_axis, static_cast<int>(j)));
   std::vector<std::pair<int, int>> pairs;
   auto without_rotation = [](const Part& part) {
@@ -1351,10 +1420,11 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
   const std::vector<kernels::FeatureGeometry<Rational>>& geometry_a = d.geometry_a;
   const std::vector<kernels::FeatureGeometry<Rational>>& geometry_b = d.geometry_b;
   std::vector<FeatureDirections> directions_a, directions_b;
-  if (translating) {
+  if (translating && !selected_in) {
     for (const BodyFeature& f : features_a) directions_a.push_back(feature_directions(model, f));
     for (const BodyFeature& f : features_b) directions_b.push_back(feature_directions(model, f));
   }
+  // (a given selection: meeting_boxes of the empty box lists is empty)
   for (auto [i, j] : meeting_boxes(boxes_a, boxes_b)) {
     auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
     const bool enters = translating && (corner_enters_segment(directions_a[ui], directions_b[uj]) ||
@@ -1375,9 +1445,15 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
   const bool on_grid = grid != nullptr && options.cull_blocked_space && options.blocked_grid;
   if (options.blocked_grid && options.cull_blocked_space && !on_grid)
     throw GeometryError("internal: the curve generator of a merged cull was given no blocked-space grid");
-  std::vector<char> needed(pairs.size(), options.cull_blocked_space ? 0 : 1);
-  if (options.cull_blocked_space) {
+  if (selected_in) pairs = *selected_in;
+  std::vector<char> needed(pairs.size(), options.cull_blocked_space && !selected_in ? 0 : 1);
+  if (options.cull_blocked_space && !selected_in) {
     // the merged cull's grid when the caller has one, else the parts' inscribed disks
+    if (!on_grid)
+      std::call_once(d.cores_once, [&] {
+        d.cores_a = inscribed_disks(part_a);
+        d.cores_b = inscribed_disks(part_b);
+      });
     BlockedSpaceCuller blocked(part_motion(part_a, axes.first_moves, x),
                                part_motion(part_b, axes.second_moves, second_axis), x, y, axes.dimension(),
                                d.disks_a, d.disks_b, on_grid ? std::vector<Core>{} : d.cores_a,
@@ -1385,6 +1461,11 @@ std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const Cha
     blocked.run(pairs, needed);
   }
 
+  if (selected_out) {
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+      if (needed[k]) selected_out->push_back(pairs[k]);
+    return {};
+  }
   std::vector<ContactCurve> curves;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     if (!needed[k]) {

@@ -189,7 +189,31 @@ class CurveGenerator {
   std::vector<ContactCurve> generate(const ChartAxis& x, const ChartAxis& y,
                                      CurveStatistics* statistics = nullptr, BlockedCells* grid = nullptr) const;
 
+  /// A feature pair: indices into the two parts' feature lists (boundary order).
+  using FeaturePair = std::pair<int, int>;
+
+  /// generate(x, y) in two steps (the general path, no grid; not the polygon front end): the
+  /// feature pairs it keeps after the broad phase and the blocked-space cull, ascending, and
+  /// their curves. generate_selected(x, y, select(x, y)) == generate(x, y), curve for curve.
+  std::vector<FeaturePair> select(const ChartAxis& x, const ChartAxis& y) const;
+  std::vector<ContactCurve> generate_selected(const ChartAxis& x, const ChartAxis& y,
+                                              const std::vector<FeaturePair>& selected) const;
+
+  /// An exact description of what select() depends on: the options, the axes' motion flags and
+  /// both parts' motions and boundaries (kinds, orientation, rational coordinates) translated
+  /// so that the first part's first vertex is the origin; not names, labels or part indices.
+  /// Two generators with equal keys have exactly congruent pairs (one a translate of the
+  /// other, features in the same order), so a selection one certifies for a chart box (a pair
+  /// left out has no contact outside certified blocked space there) holds for the other: the
+  /// blocked-space statement is about exact configurations, which the translation maps one to
+  /// one. (The double roundings of the two culls may differ; either selection is certified.)
+  /// Empty when the generator takes the polygon front end (select() is not available).
+  std::string congruence_key() const;
+
  private:
+  std::vector<ContactCurve> generate_impl(const ChartAxis& x, const ChartAxis& y, CurveStatistics* statistics,
+                                          BlockedCells* grid, const std::vector<FeaturePair>* selected_in,
+                                          std::vector<FeaturePair>* selected_out) const;
   struct Data;
   std::unique_ptr<Data> data_;
 };
@@ -197,6 +221,27 @@ class CurveGenerator {
 /// Exact relation of the two parts posed at chart point `q` of chart (x, y): the oracle.
 Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x,
                          const ChartAxis& y, const ChartPoint& q);
+
+/// classify_overlap for one pair of a model (implemented with it, in src/oracle/overlap.cpp)
+/// with the pose-independent work done once: the enclosures of both parts' body coordinates, and the second part's whole placement (the
+/// analysis works in its body frame). The same answer as classify_overlap(model, axes, x, y, q)
+/// at every chart point (the same computation, on remembered inputs). `model` must outlive it
+/// and stay unchanged. Thread safe: classify only reads the prepared data.
+class PairOverlap {
+ public:
+  PairOverlap(const Model& model, const PairAxes& axes);
+  ~PairOverlap();
+  PairOverlap(const PairOverlap&) = delete;
+  PairOverlap& operator=(const PairOverlap&) = delete;
+
+  Overlap classify(const ChartAxis& x, const ChartAxis& y, const ChartPoint& q) const;
+
+ private:
+  struct Data;
+  const Model& model_;
+  PairAxes axes_;
+  std::unique_ptr<const Data> data_;
+};
 
 /// Certified lower bounds of the distance from a point to the boundary of a part (every edge):
 /// the edges' coordinates are enclosed once. Shared by the contact-curve generator's inscribed

@@ -154,6 +154,7 @@ Chain build_chain(const Model& model, std::size_t driver, const std::vector<CSpa
   chain.parts.resize(order.size());
   for (std::size_t k = 0; k < order.size(); ++k) chain.parts[k].part = order[k];
 
+  KernelSlicerOptions kernel_options;
   for (std::size_t p = 0; p < model.pairs.size(); ++p) {
     if (!usable[p]) continue;
     const PairSpec& spec = model.pairs[p];
@@ -186,7 +187,11 @@ Chain build_chain(const Model& model, std::size_t driver, const std::vector<CSpa
                             model.parts[spec.second].name);
       }
     }
-    if (!slicer) slicer = make_kernel_slicer(model, p, follower);
+    if (!slicer) {
+      // the kernel slicers of the chain share the selections of congruent pairs
+      if (!kernel_options.selections) kernel_options.selections = std::make_shared<SelectionMemo>();
+      slicer = make_kernel_slicer(model, p, follower, kernel_options);
+    }
     chain.parts[chain.chain_index[follower]].constraints.push_back(chain.slicers.size());
     chain.slicers.push_back(std::move(slicer));
     chain.slicer_methods.push_back(used);

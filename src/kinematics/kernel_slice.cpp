@@ -121,6 +121,7 @@ class KernelSlicer final : public PairSlicer {
     if (follower != spec.first && follower != spec.second)
       throw GeometryError("part is not in the pair");
     axes_ = cspace::pair_axes(model, spec.first, spec.second);
+    overlap_ = std::make_unique<cspace::PairOverlap>(model, axes_);
     name_ = model.parts[spec.first].name + ":" + model.parts[spec.second].name;
     follower_ = follower;
     other_ = follower == spec.first ? spec.second : spec.first;
@@ -209,8 +210,21 @@ class KernelSlicer final : public PairSlicer {
     const ChartAxis& x_axis = follower_is_x_ ? chart.x_axis : strip_axis;
     const ChartAxis& y_axis = follower_is_x_ ? strip_axis : chart.y_axis;
     // one generator per pair: the parts' features and disks are computed once, not per strip
-    if (!generator_) generator_ = std::make_unique<cspace::CurveGenerator>(model_, axes_);
-    std::vector<ContactCurve> curves = generator_->generate(x_axis, y_axis);
+    if (!generator_) {
+      generator_ = std::make_unique<cspace::CurveGenerator>(model_, axes_);
+      if (options_.selections) congruence_key_ = generator_->congruence_key();
+    }
+    std::vector<ContactCurve> curves;
+    if (options_.selections && !congruence_key_.empty()) {
+      // a congruent pair's selection for the same chart box, else this generator's own (then
+      // select + generate_selected is generate)
+      std::string key = congruence_key_ + axis_key(x_axis) + axis_key(y_axis);
+      std::shared_ptr<const SelectionMemo::Selection> selection = options_.selections->find(key);
+      if (!selection) selection = options_.selections->add(key, generator_->select(x_axis, y_axis));
+      curves = generator_->generate_selected(x_axis, y_axis, *selection);
+    } else {
+      curves = generator_->generate(x_axis, y_axis);
+    }
     for (ContactCurve& curve : curves) {
       if (curve.polynomial.is_zero()) continue;
       StripCurve entry;
@@ -393,7 +407,7 @@ class KernelSlicer final : public PairSlicer {
         q.x = value;
         q.y = sample;
       }
-      cspace::Overlap relation = cspace::classify_overlap(model_, axes_, chart.x_axis, chart.y_axis, q);
+      cspace::Overlap relation = overlap_->classify(chart.x_axis, chart.y_axis, q);
       result.kinds.push_back(relation == cspace::Overlap::apart       ? SliceKind::free
                              : relation == cspace::Overlap::overlapping ? SliceKind::blocked
                                                                         : SliceKind::touching);
@@ -422,7 +436,7 @@ class KernelSlicer final : public PairSlicer {
         q.y = *exact;
       }
       result.points[i].touching =
-          cspace::classify_overlap(model_, axes_, chart.x_axis, chart.y_axis, q) == cspace::Overlap::touching;
+          overlap_->classify(chart.x_axis, chart.y_axis, q) == cspace::Overlap::touching;
     }
     if (!other_moves_ && !window) {
       std::lock_guard<std::mutex> lock(cache_mutex_);
@@ -445,6 +459,12 @@ class KernelSlicer final : public PairSlicer {
   }
 
  private:
+  // A chart axis exactly, for the selection keys.
+  static std::string axis_key(const ChartAxis& axis) {
+    return "|axis:" + std::to_string(static_cast<int>(axis.kind)) + (axis.half_turn ? "h" : "-") + axis.lo.get_str() +
+           "," + axis.hi.get_str();
+  }
+
   // Marks, for every cell of the other axis in the strip, the follower cells where each curve
   // may vanish. Boxes of cells are tested coarse to fine: a box whose interval value excludes
   // zero excludes it in every sub-box (interval evaluation is inclusion isotone), so a cell is
@@ -556,6 +576,8 @@ class KernelSlicer final : public PairSlicer {
   bool follower_is_x_ = true;
   mutable std::vector<std::unique_ptr<ChartPair>> pairs_;
   mutable std::unique_ptr<cspace::CurveGenerator> generator_;   // created with the first chart pair
+  mutable std::string congruence_key_;   // the generator's, with options_.selections
+  std::unique_ptr<cspace::PairOverlap> overlap_;   // the exact oracle, both parts prepared once
   std::vector<std::size_t> edge_offsets_[2];   // per part of the pair: first edge of each loop
   std::size_t feature_count_[2] = {0, 0};      // per part: 2 x its edges (a vertex and a curve each)
   mutable std::mutex build_mutex_;
@@ -565,6 +587,26 @@ class KernelSlicer final : public PairSlicer {
 };
 
 }  // namespace
+
+std::shared_ptr<const SelectionMemo::Selection> SelectionMemo::find(const std::string& key) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto found = selections_.find(key);
+  if (found == selections_.end()) return nullptr;
+  ++hits_;
+  return found->second;
+}
+
+std::shared_ptr<const SelectionMemo::Selection> SelectionMemo::add(const std::string& key, Selection selection) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto [it, inserted] = selections_.try_emplace(key, nullptr);
+  if (inserted) it->second = std::make_shared<const Selection>(std::move(selection));
+  return it->second;
+}
+
+std::size_t SelectionMemo::hits() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return hits_;
+}
 
 std::unique_ptr<PairSlicer> make_kernel_slicer(const Model& model, std::size_t pair, std::size_t follower,
                                                const KernelSlicerOptions& options) {

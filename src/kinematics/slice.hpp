@@ -19,8 +19,11 @@
 #include <hipair/model.hpp>
 
 #include <cstddef>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace hipair::kinematics_detail {
@@ -100,6 +103,27 @@ class PairSlicer {
 };
 
 /// Options of the kernel slicer.
+/// The feature-pair selections (CurveGenerator::select) of the strips generated so far, shared
+/// by the kernel slicers of one analysis: a slicer whose pair is exactly congruent to one
+/// already sliced (equal CurveGenerator::congruence_key: one pair a translate of the other)
+/// reuses that pair's selection for the same chart box and forms only its own curves (the
+/// idler train's meshes: 8 meshes, 2 congruence classes). Keys are compared in full (exact
+/// strings, no hash decides). Thread safe.
+class SelectionMemo {
+ public:
+  using Selection = std::vector<std::pair<int, int>>;
+  /// The selection stored under `key`, or nullptr.
+  std::shared_ptr<const Selection> find(const std::string& key) const;
+  /// Stores `selection` under `key` (the first one stored stays) and returns the stored one.
+  std::shared_ptr<const Selection> add(const std::string& key, Selection selection);
+  std::size_t hits() const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<std::string, std::shared_ptr<const Selection>> selections_;
+  mutable std::size_t hits_ = 0;
+};
+
 struct KernelSlicerOptions {
   /// Generate a chart pair's curves per strip of the other part's axis (1/64 of its chart) on
   /// the strip's first slice, with the generator's blocked-space cull on the strip's box; false:
@@ -114,6 +138,9 @@ struct KernelSlicerOptions {
   /// meet end to end, instead of refining both for rational_between's sample (the class is the
   /// same anywhere inside the interval); false: rational_between always (tests compare).
   bool shared_end_samples = true;
+  /// Shared selections of congruent pairs (see SelectionMemo); nullptr: every slicer runs its
+  /// own generator's cull.
+  std::shared_ptr<SelectionMemo> selections;
 };
 
 /// Slicer on the pair's contact kernels and the exact overlap oracle.

@@ -186,103 +186,177 @@ struct IntervalEdge {
   }
 };
 
+// A part's pose-independent data: its edges in boundary order and certified enclosures of their
+// body coordinates (Interval::enclose of each rational: mpq_get_d is most of the cost of a
+// placement, and the enclosures do not depend on the pose). Immutable once built.
+struct PartEnclosure {
+  struct Body {
+    Interval sx, sy, tx, ty, cx, cy, radius_squared;
+  };
+  const Part* part = nullptr;
+  std::vector<std::pair<std::size_t, std::size_t>> refs;
+  std::vector<std::size_t> loop_begin;
+  std::vector<Body> body;
+
+  explicit PartEnclosure(const Part& source) : part(&source) {
+    for (std::size_t l = 0; l < source.loops.size(); ++l) {
+      loop_begin.push_back(refs.size());
+      for (std::size_t e = 0; e < source.loops[l].edges.size(); ++e) refs.push_back({l, e});
+    }
+    loop_begin.push_back(refs.size());
+    body.reserve(refs.size());
+    for (const auto& [l, e] : refs) {
+      const Edge& edge = source.loops[l].edges[e];
+      Body b;
+      b.sx = Interval::enclose(edge.source.x);
+      b.sy = Interval::enclose(edge.source.y);
+      if (!edge.is_full_circle()) {
+        b.tx = Interval::enclose(edge.target.x);
+        b.ty = Interval::enclose(edge.target.y);
+      }
+      if (edge.is_arc()) {
+        b.cx = Interval::enclose(edge.center.x);
+        b.cy = Interval::enclose(edge.center.y);
+        b.radius_squared = Interval::enclose(edge.radius_squared);
+      }
+      body.push_back(b);
+    }
+  }
+};
+
+// The interval geometry of a placed part: every edge's posed enclosure and box, each loop's box
+// and the whole part's.
+struct Placement {
+  std::vector<IntervalEdge> intervals;
+  std::vector<Box> boxes;
+  std::vector<Box> loop_boxes;
+  Box total;
+  bool filtered = true;
+};
+
 // A part placed in the common frame by a rigid map: certified interval geometry and boxes
 // for every edge, exact geometry computed lazily (the exact map itself is computed only
-// when first needed).
+// when first needed). A part at the identity (the second part, in whose body frame the
+// analysis works) can borrow a placement and its exact edges computed once (`IdentityPart`):
+// they do not depend on the pose.
 class PlacedPart {
  public:
   PlacedPart(const Part& part, const IntervalMap& map, std::function<RigidMap()> exact_map,
              bool identity)
-      : part_(part), exact_source_(std::move(exact_map)), identity_(identity) {
-    for (std::size_t l = 0; l < part.loops.size(); ++l) {
-      loop_begin_.push_back(refs_.size());
-      for (std::size_t e = 0; e < part.loops[l].edges.size(); ++e) refs_.push_back({l, e});
-    }
-    loop_begin_.push_back(refs_.size());
-    intervals_.resize(refs_.size());
-    boxes_.resize(refs_.size());
-    exact_.resize(refs_.size());
-    total_ = Box{1e300, -1e300, 1e300, -1e300};
-    loop_boxes_.assign(part.loops.size(), Box{1e300, -1e300, 1e300, -1e300});
-    filtered_ = map.tame();
-    for (std::size_t i = 0; i < refs_.size(); ++i) {
-      intervals_[i] = interval_edge(original(i), map);
-      filtered_ = filtered_ && intervals_[i].tame();
-    }
-    for (std::size_t i = 0; i < refs_.size(); ++i) {
-      boxes_[i] = filtered_ ? box_of(intervals_[i]) : Box::everything();
-      total_.add(boxes_[i].xlo, boxes_[i].ylo);
-      total_.add(boxes_[i].xhi, boxes_[i].yhi);
-      loop_boxes_[refs_[i].first].add(boxes_[i].xlo, boxes_[i].ylo);
-      loop_boxes_[refs_[i].first].add(boxes_[i].xhi, boxes_[i].yhi);
-    }
+      : PlacedPart(std::make_shared<const PartEnclosure>(part), map, std::move(exact_map), identity) {}
+
+  PlacedPart(std::shared_ptr<const PartEnclosure> enclosure, const IntervalMap& map,
+             std::function<RigidMap()> exact_map, bool identity)
+      : enclosure_(std::move(enclosure)), exact_source_(std::move(exact_map)), identity_(identity) {
+    place(*enclosure_, map, own_);
+    placement_ = &own_;
+    exact_.resize(enclosure_->refs.size());
   }
+
+  // At the identity, borrowing `placement` (placed at IntervalMap{}) and `exact` (every edge's
+  // exact geometry at the identity), both of `enclosure`'s part and alive while this is.
+  PlacedPart(std::shared_ptr<const PartEnclosure> enclosure, const Placement& placement,
+             const std::vector<PlacedEdge>& exact)
+      : enclosure_(std::move(enclosure)), identity_(true), placement_(&placement), borrowed_exact_(&exact) {}
+
+  PlacedPart(const PlacedPart&) = delete;
+  PlacedPart& operator=(const PlacedPart&) = delete;
 
   /// The interval enclosures (and the boxes from them) are usable: every one is tame. When
   /// false, every box is the whole plane and only exact tests decide.
-  bool filtered() const { return filtered_; }
+  bool filtered() const { return placement_->filtered; }
 
-  std::size_t size() const { return refs_.size(); }
-  std::size_t loops() const { return part_.loops.size(); }
-  std::size_t loop_begin(std::size_t loop) const { return loop_begin_[loop]; }
-  std::size_t loop_end(std::size_t loop) const { return loop_begin_[loop + 1]; }
-  const Box& box(std::size_t i) const { return boxes_[i]; }
-  const IntervalEdge& interval(std::size_t i) const { return intervals_[i]; }
-  const Box& total() const { return total_; }
-  const Box& loop_box(std::size_t loop) const { return loop_boxes_[loop]; }
+  std::size_t size() const { return enclosure_->refs.size(); }
+  std::size_t loops() const { return enclosure_->part->loops.size(); }
+  std::size_t loop_begin(std::size_t loop) const { return enclosure_->loop_begin[loop]; }
+  std::size_t loop_end(std::size_t loop) const { return enclosure_->loop_begin[loop + 1]; }
+  const Box& box(std::size_t i) const { return placement_->boxes[i]; }
+  const IntervalEdge& interval(std::size_t i) const { return placement_->intervals[i]; }
+  const Box& total() const { return placement_->total; }
+  const Box& loop_box(std::size_t loop) const { return placement_->loop_boxes[loop]; }
   const Edge& original(std::size_t i) const {
-    return part_.loops[refs_[i].first].edges[refs_[i].second];
+    const auto& ref = enclosure_->refs[i];
+    return enclosure_->part->loops[ref.first].edges[ref.second];
   }
 
   const PlacedEdge& edge(std::size_t i) {
+    if (borrowed_exact_) return (*borrowed_exact_)[i];
     if (!exact_[i]) {
       if (!identity_ && !exact_map_) exact_map_ = exact_source_();
-      const Edge& source = original(i);
-      PlacedEdge placed;
-      placed.arc = source.is_arc();
-      placed.full = source.is_full_circle();
-      placed.ccw = source.ccw;
-      placed.loop = refs_[i].first;
-      placed.index = refs_[i].second;
-      if (identity_) {
-        placed.source = source.source;
-        placed.target = source.target;
-      } else {
-        placed.source = exact_map_->apply(source.source);
-        placed.target = exact_map_->apply(source.target);
-      }
-      if (placed.arc) {
-        placed.center = identity_ ? source.center : exact_map_->apply(source.center);
-        placed.radius_squared = source.radius_squared;
-        Edge moved;
-        moved.kind = Edge::Kind::arc;
-        moved.source = placed.source;
-        moved.target = placed.target;
-        moved.center = placed.center;
-        moved.ccw = placed.ccw;
-        placed.sector = arc_sector(moved);
-      }
-      exact_[i] = std::move(placed);
+      exact_[i] = place_exact(i, identity_ ? nullptr : &*exact_map_);
     }
     return *exact_[i];
   }
 
+  // The interval placement of `enclosure`'s part by `map`.
+  static void place(const PartEnclosure& enclosure, const IntervalMap& map, Placement& out) {
+    const std::size_t n = enclosure.refs.size();
+    const Part& part = *enclosure.part;
+    out.intervals.resize(n);
+    out.boxes.resize(n);
+    out.total = Box{1e300, -1e300, 1e300, -1e300};
+    out.loop_boxes.assign(part.loops.size(), Box{1e300, -1e300, 1e300, -1e300});
+    out.filtered = map.tame();
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& ref = enclosure.refs[i];
+      out.intervals[i] = interval_edge(part.loops[ref.first].edges[ref.second], enclosure.body[i], map);
+      out.filtered = out.filtered && out.intervals[i].tame();
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      out.boxes[i] = out.filtered ? box_of(out.intervals[i]) : Box::everything();
+      out.total.add(out.boxes[i].xlo, out.boxes[i].ylo);
+      out.total.add(out.boxes[i].xhi, out.boxes[i].yhi);
+      out.loop_boxes[enclosure.refs[i].first].add(out.boxes[i].xlo, out.boxes[i].ylo);
+      out.loop_boxes[enclosure.refs[i].first].add(out.boxes[i].xhi, out.boxes[i].yhi);
+    }
+  }
+
+  // Edge i's exact geometry placed by `map` (nullptr: the identity).
+  PlacedEdge place_exact(std::size_t i, const RigidMap* map) const {
+    const Edge& source = original(i);
+    PlacedEdge placed;
+    placed.arc = source.is_arc();
+    placed.full = source.is_full_circle();
+    placed.ccw = source.ccw;
+    placed.loop = enclosure_->refs[i].first;
+    placed.index = enclosure_->refs[i].second;
+    if (!map) {
+      placed.source = source.source;
+      placed.target = source.target;
+    } else {
+      placed.source = map->apply(source.source);
+      placed.target = map->apply(source.target);
+    }
+    if (placed.arc) {
+      placed.center = !map ? source.center : map->apply(source.center);
+      placed.radius_squared = source.radius_squared;
+      Edge moved;
+      moved.kind = Edge::Kind::arc;
+      moved.source = placed.source;
+      moved.target = placed.target;
+      moved.center = placed.center;
+      moved.ccw = placed.ccw;
+      placed.sector = arc_sector(moved);
+    }
+    return placed;
+  }
+
  private:
-  static IntervalEdge interval_edge(const Edge& edge, const IntervalMap& map) {
+  static IntervalEdge interval_edge(const Edge& edge, const PartEnclosure::Body& body, const IntervalMap& map) {
     IntervalEdge e;
     e.arc = edge.is_arc();
     e.full = edge.is_full_circle();
     e.ccw = edge.ccw;
-    map.apply(Interval::enclose(edge.source.x), Interval::enclose(edge.source.y), e.sx, e.sy);
+    map.apply(body.sx, body.sy, e.sx, e.sy);
     if (e.full) {
       e.tx = e.sx;
       e.ty = e.sy;
     } else {
-      map.apply(Interval::enclose(edge.target.x), Interval::enclose(edge.target.y), e.tx, e.ty);
+      map.apply(body.tx, body.ty, e.tx, e.ty);
     }
     if (!e.arc) return e;
-    map.apply(Interval::enclose(edge.center.x), Interval::enclose(edge.center.y), e.cx, e.cy);
-    e.radius_squared = Interval::enclose(edge.radius_squared);
+    map.apply(body.cx, body.cy, e.cx, e.cy);
+    e.radius_squared = body.radius_squared;
     Interval ax = e.sx - e.cx, ay = e.sy - e.cy, bx = e.tx - e.cx, by = e.ty - e.cy;
     if (!e.ccw) {
       std::swap(ax, bx);
@@ -327,18 +401,29 @@ class PlacedPart {
     return box;
   }
 
-  const Part& part_;
+  std::shared_ptr<const PartEnclosure> enclosure_;
   std::function<RigidMap()> exact_source_;
   std::optional<RigidMap> exact_map_;
   bool identity_;
-  std::vector<std::pair<std::size_t, std::size_t>> refs_;
-  std::vector<std::size_t> loop_begin_;
-  std::vector<IntervalEdge> intervals_;
-  std::vector<Box> boxes_;
-  std::vector<Box> loop_boxes_;
+  Placement own_;
+  const Placement* placement_ = nullptr;
   std::vector<std::optional<PlacedEdge>> exact_;
-  Box total_;
-  bool filtered_ = true;
+  const std::vector<PlacedEdge>* borrowed_exact_ = nullptr;
+};
+
+// A part at the identity, placed once: the interval placement and every edge's exact geometry,
+// shared (read only) by the analyses that borrow them.
+struct IdentityPart {
+  std::shared_ptr<const PartEnclosure> enclosure;
+  Placement placement;
+  std::vector<PlacedEdge> exact;
+
+  explicit IdentityPart(const Part& part) : enclosure(std::make_shared<const PartEnclosure>(part)) {
+    PlacedPart placed(enclosure, IntervalMap{}, {}, true);
+    PlacedPart::place(*enclosure, IntervalMap{}, placement);
+    exact.reserve(placed.size());
+    for (std::size_t i = 0; i < placed.size(); ++i) exact.push_back(placed.place_exact(i, nullptr));
+  }
 };
 
 // ============================================================================ interval filter
@@ -1100,12 +1185,8 @@ namespace {
 
 // The analysis in the second part's body frame: the first part placed by `relative`
 // (interval enclosure now, exact map on demand); `second_world` maps results to the world.
-OverlapReport analyse(const Part& first, const Part& second, const IntervalMap& relative,
-                      std::function<RigidMap()> exact_relative,
-                      const std::function<RigidMap()>& second_world,
-                      const OverlapOptions& options) {
-  PlacedPart a(first, relative, std::move(exact_relative), false);
-  PlacedPart b(second, IntervalMap{}, {}, true);
+OverlapReport analyse_placed(PlacedPart& a, PlacedPart& b, const std::function<RigidMap()>& second_world,
+                             const OverlapOptions& options) {
   OverlapAnalysis analysis(a, b);
   if (options.want_witness) analysis.need_site();
   if (options.exact_only) analysis.exact_only();
@@ -1126,6 +1207,15 @@ OverlapReport analyse(const Part& first, const Part& second, const IntervalMap& 
     if (witness) report.witness = second_world().apply(*witness);
   }
   return report;
+}
+
+OverlapReport analyse(const Part& first, const Part& second, const IntervalMap& relative,
+                      std::function<RigidMap()> exact_relative,
+                      const std::function<RigidMap()>& second_world,
+                      const OverlapOptions& options) {
+  PlacedPart a(first, relative, std::move(exact_relative), false);
+  PlacedPart b(second, IntervalMap{}, {}, true);
+  return analyse_placed(a, b, second_world, options);
 }
 
 // Certified interval enclosure of a part's world map at a chart value.
@@ -1196,6 +1286,37 @@ OverlapReport analyse_overlap(const Model& model, const PairAxes& axes, const Ch
 Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x,
                          const ChartAxis& y, const ChartPoint& q) {
   return analyse_overlap(model, axes, x, y, q).relation;
+}
+
+struct PairOverlap::Data {
+  std::shared_ptr<const PartEnclosure> first;
+  IdentityPart second;
+  Data(const Part& a, const Part& b) : first(std::make_shared<const PartEnclosure>(a)), second(b) {}
+};
+
+PairOverlap::PairOverlap(const Model& model, const PairAxes& axes)
+    : model_(model), axes_(axes),
+      data_(std::make_unique<const Data>(model.parts.at(axes.first), model.parts.at(axes.second))) {}
+
+PairOverlap::~PairOverlap() = default;
+
+Overlap PairOverlap::classify(const ChartAxis& x, const ChartAxis& y, const ChartPoint& q) const {
+  // as analyse_overlap (the model's pair at chart point q), on the prepared parts
+  const Part& first = model_.parts.at(axes_.first);
+  const Part& second = model_.parts.at(axes_.second);
+  const ChartAxis& second_axis = axes_.first_moves ? y : x;
+  const Rational& second_value = axes_.first_moves ? q.y : q.x;
+  IntervalMap relative =
+      interval_relative(interval_world_map(first, axes_.first_moves, x, q.x),
+                        interval_world_map(second, axes_.second_moves, second_axis, second_value));
+  auto exact_relative = [&] {
+    return compose(inverse(world_map(second, axes_.second_moves, second_axis, second_value)),
+                   world_map(first, axes_.first_moves, x, q.x));
+  };
+  auto second_world = [&] { return world_map(second, axes_.second_moves, second_axis, second_value); };
+  PlacedPart a(data_->first, relative, exact_relative, false);
+  PlacedPart b(data_->second.enclosure, data_->second.placement, data_->second.exact);
+  return analyse_placed(a, b, second_world, OverlapOptions{}).relation;
 }
 
 std::optional<Point> interior_witness(const Model& model, const PairAxes& axes,
