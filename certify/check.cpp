@@ -280,7 +280,7 @@ std::string check_clearance(const Certificate& c, const Model& model) {
   const Part &a = part_named(model, c.first), &b = part_named(model, c.second);
   ExactMap map_a = exact_map(a, c.configuration), map_b = exact_map(b, c.configuration);
   std::string closest;
-  Rational bound = boundary_distance_lower_bound(place_over(a, to_interval_map(map_a)), place_over(b, to_interval_map(map_b)),
+  Rational bound = boundary_distance_lower_bound(shape_of(a), to_interval_map(map_a), shape_of(b), to_interval_map(map_b),
                                                  c.distance, &closest);
   if (bound < c.distance) {
     auto [found, claimed] = show_apart(bound, c.distance);
@@ -484,9 +484,7 @@ std::string check_free_passage(const Certificate& c, const Model& model) {
     }
     Rational needed = c.distance + reach_driver * driver_half + reach_other * other_half;
     std::string closest;
-    Rational bound = boundary_distance_lower_bound(
-        place_over(shape_driver, map_over(*r.driver, {driver_mid, driver_mid})),
-        place_over(shape_other, r.has_follower ? map_over(*r.other, {other_mid, other_mid}) : IntervalMap{}), needed, &closest);
+    Rational bound = boundary_distance_lower_bound(shape_driver, map_over(*r.driver, {driver_mid, driver_mid}), shape_other, r.has_follower ? map_over(*r.other, {other_mid, other_mid}) : IntervalMap{}, needed, &closest);
     if (bound < needed) {
       auto [found, required] = show_apart(bound, needed);
       reject(name + ": the certified distance lower bound at its centre, " + found + " (" + closest +

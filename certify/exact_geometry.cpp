@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 
 namespace hipair::verify {
 namespace {
@@ -84,7 +86,23 @@ bool in_box(const PlacedEdge& e, const Point& p) {
 }
 
 bool boxes_meet(const PlacedEdge& e, const PlacedEdge& g) {
+  // Screen: the outward double boxes are disjoint only if the exact boxes are (a strict
+  // inequality between outward bounds implies it between the exact bounds).
+  const auto &f = e.outer, &h = g.outer;
+  if (f[1] < h[0] || h[1] < f[0] || f[3] < h[2] || h[3] < f[2]) return false;
   return !(e.box[1] < g.box[0] || g.box[1] < e.box[0] || e.box[3] < g.box[2] || g.box[3] < e.box[2]);
+}
+
+// A double <= q (lower) or >= q (upper). mpq_get_d truncates towards zero (GMP's own rounding,
+// whatever the FPU mode), so one step outwards bounds q; beyond the double range it gives
+// +-infinity or +-DBL_MAX, and one step outwards still bounds q (nextafter(inf, -inf) is DBL_MAX,
+// below any q that rounded to inf). Below the normal range GMP may flush to zero: truncation
+// gives |d| < DBL_MIN only when |q| < DBL_MIN, so +-DBL_MIN bounds q there.
+double outward(const Rational& q, bool upper) {
+  constexpr double infinity = std::numeric_limits<double>::infinity(), tiny = std::numeric_limits<double>::min();
+  double d = q.get_d();
+  if (std::fabs(d) < tiny) return upper ? tiny : -tiny;
+  return std::nextafter(d, upper ? infinity : -infinity);
 }
 
 bool on_edge(const PlacedEdge& e, const Point& p) {
@@ -104,6 +122,24 @@ Rational sqrt_upper(Rational q) {
   mpz_class product = q.get_num() * q.get_den(), root;
   mpz_sqrt(root.get_mpz_t(), product.get_mpz_t());
   return Rational(root + 1, q.get_den());
+}
+
+// An exact box containing an arc: the box of its end points and of the circle's extreme points
+// (centre +- r along the axes, with a rational upper bound of r) whose directions lie in the
+// arc's closed sector. The box is only used to skip exact tests, so it may be larger than the
+// arc's, never smaller: an extreme point moved outwards along its axis only widens the box.
+std::array<Rational, 4> arc_box(const PlacedEdge& e) {
+  Rational radius = sqrt_upper(e.radius_squared);
+  std::array<Rational, 4> box{std::min(e.source.x, e.target.x), std::max(e.source.x, e.target.x),
+                              std::min(e.source.y, e.target.y), std::max(e.source.y, e.target.y)};
+  const Point axes[4] = {{Rational(-1), Rational(0)}, {Rational(1), Rational(0)}, {Rational(0), Rational(-1)},
+                         {Rational(0), Rational(1)}};
+  for (int k = 0; k < 4; ++k)
+    if (in_sector(e, sgn(cross(e.from, axes[k])), sgn(cross(axes[k], e.to)), false)) {
+      Rational extreme = (k < 2 ? e.center.x : e.center.y) + (k % 2 ? radius : Rational(-radius));
+      box[k] = k % 2 ? std::max(box[k], extreme) : std::min(box[k], extreme);
+    }
+  return box;
 }
 
 }  // namespace
@@ -127,13 +163,12 @@ PlacedPart place(const Part& part, const ExactMap& map) {
         e.from = minus(edge.ccw ? e.source : e.target, e.center);
         e.to = minus(edge.ccw ? e.target : e.source, e.center);
         e.reflex = sgn(cross(e.from, e.to)) < 0;
-        Rational radius = sqrt_upper(e.radius_squared);
-        e.box = {Rational(e.center.x - radius), Rational(e.center.x + radius), Rational(e.center.y - radius),
-                 Rational(e.center.y + radius)};
+        e.box = arc_box(e);
       } else {
         e.box = {std::min(e.source.x, e.target.x), std::max(e.source.x, e.target.x), std::min(e.source.y, e.target.y),
                  std::max(e.source.y, e.target.y)};
       }
+      for (int k = 0; k < 4; ++k) e.outer[k] = outward(e.box[k], k % 2 == 1);
       edges.push_back(std::move(e));
     }
   }
@@ -155,19 +190,28 @@ bool in_sector(const PlacedEdge& arc, int s1, int s2, bool open) {
 }
 
 int locate(const PlacedPart& part, const Point& p) {
+  const double px = outward(p.x, false), px_high = outward(p.x, true);
+  const double py_low = outward(p.y, false), py_high = outward(p.y, true);
   for (const auto& loop : part.loops)
-    for (const PlacedEdge& e : loop)
+    for (const PlacedEdge& e : loop) {
+      if (px_high < e.outer[0] || e.outer[1] < px || py_high < e.outer[2] || e.outer[3] < py_low) continue;   // p outside the box
       if (on_edge(e, p)) return 0;
+    }
   // Ray casting: the parity of the crossings of a ray with the boundary is 1 inside the
   // material (loops nest as outer / hole / island ...). Directions hitting a vertex or a
   // tangency are skipped.
+  // Screen: every ray points to +x and to +y or -y, so an edge whose box lies wholly below
+  // p.x, or wholly on the far side of p.y, is never met (the outward double bounds of box and
+  // p make each screen a strict exact inequality).
   for (int k = 0; k < 64; ++k) {
     Point v{Rational(7), Rational(2 * k - 63)};   // 64 distinct directions
+    const bool up = 2 * k - 63 > 0;
     int count = 0;
     bool degenerate = false;
     for (const auto& loop : part.loops)
       for (const PlacedEdge& e : loop) {
-        std::optional<int> crossings = degenerate ? std::optional<int>(0) : ray_crossings(e, p, v);
+        if (degenerate || e.outer[1] < px || (up ? e.outer[3] < py_low : e.outer[2] > py_high)) continue;
+        std::optional<int> crossings = ray_crossings(e, p, v);
         if (!crossings) degenerate = true;
         else count += *crossings;
       }

@@ -37,10 +37,13 @@ struct PlacedEdge {
   bool reflex = false;   ///< the sector spans more than a half turn
   Point source, target, center, from, to;
   Rational radius_squared;
-  /// An exact box containing the edge (x0, x1, y0, y1; an arc's box is its circle's, with a
-  /// rational upper bound of the radius): only used to skip exact tests that cannot succeed.
+  /// An exact box containing the edge (x0, x1, y0, y1; an arc's box is that of its end points
+  /// and of the circle's axis-extreme points within its sector, with a rational upper bound of
+  /// the radius): only used to skip exact tests that cannot succeed.
   /// Every comparison with it is exact.
   std::array<Rational, 4> box{};
+  /// `box` rounded outwards to doubles (a screen before the exact comparisons).
+  std::array<double, 4> outer{};
 };
 
 /// A part posed in the world: its edges loop by loop.

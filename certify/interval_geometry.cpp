@@ -262,48 +262,118 @@ IntervalPart shape_of(const Part& part) {
   return shape;
 }
 
+namespace {
+
+// Edge e of `shape` (body frame) posed by `map`, in place.
+void pose_edge(const IntervalPart& shape, const IntervalMap& map, IntervalEdge& e) {
+  e.source = apply(map, shape.pivot, e.source);
+  e.target = apply(map, shape.pivot, e.target);
+  e.disc_center = apply(map, shape.pivot, e.disc_center);
+  if (e.arc) {
+    e.center = apply(map, shape.pivot, e.center);
+    e.from = rotate(map, e.from);
+    e.to = rotate(map, e.to);
+  }
+}
+
+// The bound of boundary_distance_lower_bound over parts seen through `group_center(part, g)`
+// (a group's posed disc centre) and `edge(part, loop, i)` (a posed edge), part 0 = a, 1 = b.
+template <class GroupCenter, class Edge>
+Rational distance_bound(const IntervalPart& a, const IntervalPart& b, const Rational& enough, std::string* closest,
+                        GroupCenter&& group_center, Edge&& edge) {
+  // The bound is min(enough, min over edge pairs of max(edge gap, group gap, edge distance)),
+  // where each term is the exact lower end of an enclosure of the pair's distance (so the
+  // maximum is one too). Its value does not depend on the order of the pairs, and pairs are
+  // visited nearest first (by the lower end of their bounding discs' gap) so that the running
+  // minimum `best` falls early: once a gap is at least `best`, so is every later term.
+  Rational best = enough;
+  struct Candidate {
+    Rational gap;
+    std::size_t first, second;
+  };
+  auto by_gap = [](const Candidate& p, const Candidate& q) { return p.gap < q.gap; };
+  std::vector<P> centers_b;
+  for (std::size_t n = 0; n < b.groups.size(); ++n) centers_b.push_back(group_center(1, n));
+  std::vector<Candidate> groups;
+  for (std::size_t m = 0; m < a.groups.size(); ++m) {
+    P center_a = group_center(0, m);
+    for (std::size_t n = 0; n < b.groups.size(); ++n) {
+      Interval gap = disc_gap(center_a, a.groups[m].radius, centers_b[n], b.groups[n].radius);
+      if (certainly_at_least(gap, best)) continue;
+      groups.push_back({distance_lower(gap), m, n});
+    }
+  }
+  std::stable_sort(groups.begin(), groups.end(), by_gap);
+  std::vector<Candidate> edges;
+  for (const Candidate& group : groups) {
+    if (group.gap >= best) break;
+    const auto &ga = a.groups[group.first], &gb = b.groups[group.second];
+    edges.clear();
+    for (std::size_t i = ga.first; i < ga.last; ++i)
+      for (std::size_t j = gb.first; j < gb.last; ++j) {
+        const IntervalEdge& e = edge(0, ga.loop, i);
+        const IntervalEdge& g = edge(1, gb.loop, j);
+        Interval gap = disc_gap(e.disc_center, e.disc_radius, g.disc_center, g.disc_radius);
+        if (certainly_at_least(gap, best)) continue;
+        edges.push_back({std::max(distance_lower(gap), group.gap), i, j});
+      }
+    std::stable_sort(edges.begin(), edges.end(), by_gap);
+    for (const Candidate& pair : edges) {
+      if (pair.gap >= best) break;
+      Rational distance = std::max(edge_distance(edge(0, ga.loop, pair.first), edge(1, gb.loop, pair.second)), pair.gap);
+      if (distance < best) {
+        best = distance;
+        if (closest)
+          *closest = "loop " + std::to_string(ga.loop) + " edge " + std::to_string(pair.first) + " of '" + a.name +
+                     "' and loop " + std::to_string(gb.loop) + " edge " + std::to_string(pair.second) + " of '" + b.name + "'";
+      }
+      if (sgn(best) <= 0) return Rational(0);
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+IntervalPoint place_point(const IntervalPart& shape, const IntervalMap& map, const IntervalPoint& p) {
+  return apply(map, shape.pivot, p);
+}
+
 IntervalPart place_over(const IntervalPart& shape, const IntervalMap& map) {
   IntervalPart placed = shape;
   for (auto& loop : placed.loops)
-    for (IntervalEdge& e : loop) {
-      e.source = apply(map, shape.pivot, e.source);
-      e.target = apply(map, shape.pivot, e.target);
-      e.disc_center = apply(map, shape.pivot, e.disc_center);
-      if (e.arc) {
-        e.center = apply(map, shape.pivot, e.center);
-        e.from = rotate(map, e.from);
-        e.to = rotate(map, e.to);
-      }
-    }
+    for (IntervalEdge& e : loop) pose_edge(shape, map, e);
   for (auto& group : placed.groups) group.center = apply(map, shape.pivot, group.center);
   return placed;
 }
 
 Rational boundary_distance_lower_bound(const IntervalPart& a, const IntervalPart& b, const Rational& enough,
                                        std::string* closest) {
-  // Exact rational bounds throughout: `best` only decreases from the cap, each candidate is the
-  // exact lower end of an enclosure, and a pair is skipped only when its bounding discs are
-  // certainly at least `best` apart.
-  Rational best = enough;
-  for (const auto& ga : a.groups)
-    for (const auto& gb : b.groups) {
-      if (certainly_at_least(disc_gap(ga.center, ga.radius, gb.center, gb.radius), best)) continue;
-      for (std::size_t i = ga.first; i < ga.last; ++i)
-        for (std::size_t j = gb.first; j < gb.last; ++j) {
-          const IntervalEdge& e = a.loops[ga.loop][i];
-          const IntervalEdge& g = b.loops[gb.loop][j];
-          if (certainly_at_least(disc_gap(e.disc_center, e.disc_radius, g.disc_center, g.disc_radius), best)) continue;
-          Rational distance = edge_distance(e, g);
-          if (distance < best) {
-            best = distance;
-            if (closest)
-              *closest = "loop " + std::to_string(ga.loop) + " edge " + std::to_string(i) + " of '" + a.name +
-                         "' and loop " + std::to_string(gb.loop) + " edge " + std::to_string(j) + " of '" + b.name + "'";
-          }
-          if (sgn(best) <= 0) return Rational(0);
+  const IntervalPart* parts[2] = {&a, &b};
+  return distance_bound(
+      a, b, enough, closest, [&](int part, std::size_t g) { return parts[part]->groups[g].center; },
+      [&](int part, std::size_t loop, std::size_t i) -> const IntervalEdge& { return parts[part]->loops[loop][i]; });
+}
+
+Rational boundary_distance_lower_bound(const IntervalPart& shape_a, const IntervalMap& map_a, const IntervalPart& shape_b,
+                                       const IntervalMap& map_b, const Rational& enough, std::string* closest) {
+  // Edges are posed when first needed (most pairs are culled by their groups' discs).
+  const IntervalPart* shapes[2] = {&shape_a, &shape_b};
+  const IntervalMap* maps[2] = {&map_a, &map_b};
+  std::vector<std::vector<std::optional<IntervalEdge>>> posed[2];
+  for (int part = 0; part < 2; ++part)
+    for (const auto& loop : shapes[part]->loops) posed[part].emplace_back(loop.size());
+  return distance_bound(
+      shape_a, shape_b, enough, closest,
+      [&](int part, std::size_t g) { return apply(*maps[part], shapes[part]->pivot, shapes[part]->groups[g].center); },
+      [&](int part, std::size_t loop, std::size_t i) -> const IntervalEdge& {
+        std::optional<IntervalEdge>& e = posed[part][loop][i];
+        if (!e) {
+          e = shapes[part]->loops[loop][i];
+          pose_edge(*shapes[part], *maps[part], *e);
         }
-    }
-  return best;
+        return *e;
+      });
 }
 
 Rational reach(const IntervalPart& shape) {

@@ -63,13 +63,22 @@ IntervalPart shape_of(const Part& part);
 
 /// The shape posed by every map of `map` (rotations about the shape's pivot).
 IntervalPart place_over(const IntervalPart& shape, const IntervalMap& map);
+/// A point of the shape (body frame, relative to its pivot) posed by `map`.
+IntervalPoint place_point(const IntervalPart& shape, const IntervalMap& map, const IntervalPoint& p);
 inline IntervalPart place_over(const Part& part, const IntervalMap& map) { return place_over(shape_of(part), map); }
 
 /// A certified lower bound of the distance between the boundaries of the two posed parts,
-/// for every pose of their maps, capped at `enough` (pairs farther than `enough` are skipped).
+/// for every pose of their maps, capped at `enough` (pairs farther than `enough` are skipped):
+/// min(enough, min over edge pairs of the largest of three certified lower bounds of the
+/// pair's distance: its edges' disc gap, its groups' disc gap, its enclosed distance). The
+/// value does not depend on the order in which pairs are tried (nearest discs first).
 /// `closest` (optional) names the edge pair that gave the bound.
 Rational boundary_distance_lower_bound(const IntervalPart& a, const IntervalPart& b, const Rational& enough,
                                        std::string* closest = nullptr);
+/// The same bound for the shapes posed by `map_a` and `map_b` (equal to the bound of the
+/// place_over parts), posing only the edges whose groups' discs come near.
+Rational boundary_distance_lower_bound(const IntervalPart& shape_a, const IntervalMap& map_a, const IntervalPart& shape_b,
+                                       const IntervalMap& map_b, const Rational& enough, std::string* closest = nullptr);
 
 /// An upper bound of the distance of every point of a shape from its pivot.
 Rational reach(const IntervalPart& shape);

@@ -112,7 +112,7 @@ std::string check_planar(const Certificate& c, const Model& model) {
   }
   if (sgn(c.distance) <= 0) reject("the claimed clearance must be positive");
   std::string closest;
-  Rational bound = boundary_distance_lower_bound(place_over(fixed, to_interval_map(fixed_map)), place_over(free, to_interval_map(map)),
+  Rational bound = boundary_distance_lower_bound(shape_of(fixed), to_interval_map(fixed_map), shape_of(free), to_interval_map(map),
                                                  c.distance, &closest);
   if (bound < c.distance)
     reject("with " + where + " the certified distance lower bound of " + closest + " is " + to_decimal_string(bound) +

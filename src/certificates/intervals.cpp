@@ -70,17 +70,18 @@ struct Shapes {
 // boundary points: any magnitude, nothing is lost).
 Rational clearance_at(const PairRoles& r, const Shapes& shapes, const Rational& x, const Rational& y,
                       std::optional<Rational> enough = std::nullopt) {
-  IntervalPart driver = verify::place_over(shapes.driver, interval_map(*r.driver, {x, x}));
-  IntervalPart other = verify::place_over(shapes.other, r.has_follower ? interval_map(*r.other, {y, y}) : verify::IntervalMap{});
+  verify::IntervalMap driver = interval_map(*r.driver, {x, x});
+  verify::IntervalMap other = r.has_follower ? interval_map(*r.other, {y, y}) : verify::IntervalMap{};
   if (!enough) {
-    const verify::IntervalPoint &p = driver.loops.at(0).at(0).source, &q = other.loops.at(0).at(0).source;
+    const verify::IntervalPoint p = verify::place_point(shapes.driver, driver, shapes.driver.loops.at(0).at(0).source);
+    const verify::IntervalPoint q = verify::place_point(shapes.other, other, shapes.other.loops.at(0).at(0).source);
     Interval dx = p.x - q.x, dy = p.y - q.y, l1;
     mpfi_abs(dx.get(), dx.get());
     mpfi_abs(dy.get(), dy.get());
     l1 = dx + dy;
     enough = l1.is_bounded() ? l1.upper() : Rational(1);
   }
-  return verify::boundary_distance_lower_bound(driver, other, *enough);
+  return verify::boundary_distance_lower_bound(shapes.driver, driver, shapes.other, other, *enough);
 }
 
 Rational path_value(const std::vector<std::pair<Rational, Rational>>& path, const Rational& x) {

@@ -126,8 +126,7 @@ std::optional<Certificate> clearance(const Model& model, const std::string& fixe
   Point p = pair.fixed_map.apply(a.loops.at(0).edges.at(0).source), q = pair.map.apply(b.loops.at(0).edges.at(0).source);
   Rational cap = abs(p.x - q.x) + abs(p.y - q.y);
   if (distance && *distance > cap) return std::nullopt;
-  Rational bound = verify::boundary_distance_lower_bound(verify::place_over(a, verify::to_interval_map(pair.fixed_map)),
-                                                         verify::place_over(b, verify::to_interval_map(pair.map)), cap);
+  Rational bound = verify::boundary_distance_lower_bound(verify::shape_of(a), verify::to_interval_map(pair.fixed_map), verify::shape_of(b), verify::to_interval_map(pair.map), cap);
   if (sgn(bound) <= 0 || (distance && bound < *distance)) return std::nullopt;
   c.distance = distance ? *distance : round_down(bound, 6);
   c.statement = other_words(fixed, configuration) + " and " + pose_words(pose) + " are at least " + to_decimal_string(c.distance) +

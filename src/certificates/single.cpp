@@ -227,8 +227,7 @@ std::optional<Certificate> certify_clearance(const Model& model, const std::stri
   Point p = map_a.apply(a.loops.at(0).edges.at(0).source), q = map_b.apply(b.loops.at(0).edges.at(0).source);
   Rational cap = abs(p.x - q.x) + abs(p.y - q.y);
   if (distance && *distance > cap) return std::nullopt;
-  Rational bound = verify::boundary_distance_lower_bound(verify::place_over(a, verify::to_interval_map(map_a)),
-                                                         verify::place_over(b, verify::to_interval_map(map_b)), cap);
+  Rational bound = verify::boundary_distance_lower_bound(verify::shape_of(a), verify::to_interval_map(map_a), verify::shape_of(b), verify::to_interval_map(map_b), cap);
   if (sgn(bound) <= 0 || (distance && bound < *distance)) return std::nullopt;
   c.distance = distance ? *distance : round_down(bound, 6);
   c.statement = "Parts '" + first + "' and '" + second + "' are at least " + to_decimal_string(c.distance) + " mm apart with " +

@@ -1265,9 +1265,13 @@ OverlapReport analyse_overlap(const Part& first, const RigidMap& first_map, cons
                  [&second_map] { return second_map; }, options);
 }
 
-OverlapReport analyse_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x,
-                              const ChartAxis& y, const ChartPoint& q,
-                              const OverlapOptions& options) {
+namespace {
+
+// The model's pair at chart point q: `with(first, second, relative, exact_relative,
+// second_world)` with the relative map in intervals and the exact maps on demand.
+template <class With>
+auto at_chart_point(const Model& model, const PairAxes& axes, const ChartAxis& x, const ChartAxis& y,
+                    const ChartPoint& q, With&& with) {
   const Part& first = model.parts.at(axes.first);
   const Part& second = model.parts.at(axes.second);
   const ChartAxis& second_axis = axes.first_moves ? y : x;
@@ -1280,7 +1284,19 @@ OverlapReport analyse_overlap(const Model& model, const PairAxes& axes, const Ch
                    world_map(first, axes.first_moves, x, q.x));
   };
   auto second_world = [&] { return world_map(second, axes.second_moves, second_axis, second_value); };
-  return analyse(first, second, relative, exact_relative, second_world, options);
+  return with(first, second, relative, exact_relative, second_world);
+}
+
+}  // namespace
+
+OverlapReport analyse_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x,
+                              const ChartAxis& y, const ChartPoint& q,
+                              const OverlapOptions& options) {
+  return at_chart_point(model, axes, x, y, q,
+                        [&](const Part& first, const Part& second, const IntervalMap& relative,
+                            const auto& exact_relative, const auto& second_world) {
+                          return analyse(first, second, relative, exact_relative, second_world, options);
+                        });
 }
 
 Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x,
@@ -1302,21 +1318,13 @@ PairOverlap::~PairOverlap() = default;
 
 Overlap PairOverlap::classify(const ChartAxis& x, const ChartAxis& y, const ChartPoint& q) const {
   // as analyse_overlap (the model's pair at chart point q), on the prepared parts
-  const Part& first = model_.parts.at(axes_.first);
-  const Part& second = model_.parts.at(axes_.second);
-  const ChartAxis& second_axis = axes_.first_moves ? y : x;
-  const Rational& second_value = axes_.first_moves ? q.y : q.x;
-  IntervalMap relative =
-      interval_relative(interval_world_map(first, axes_.first_moves, x, q.x),
-                        interval_world_map(second, axes_.second_moves, second_axis, second_value));
-  auto exact_relative = [&] {
-    return compose(inverse(world_map(second, axes_.second_moves, second_axis, second_value)),
-                   world_map(first, axes_.first_moves, x, q.x));
-  };
-  auto second_world = [&] { return world_map(second, axes_.second_moves, second_axis, second_value); };
-  PlacedPart a(data_->first, relative, exact_relative, false);
-  PlacedPart b(data_->second.enclosure, data_->second.placement, data_->second.exact);
-  return analyse_placed(a, b, second_world, OverlapOptions{}).relation;
+  return at_chart_point(model_, axes_, x, y, q,
+                        [&](const Part&, const Part&, const IntervalMap& relative, const auto& exact_relative,
+                            const auto& second_world) {
+                          PlacedPart a(data_->first, relative, exact_relative, false);
+                          PlacedPart b(data_->second.enclosure, data_->second.placement, data_->second.exact);
+                          return analyse_placed(a, b, second_world, OverlapOptions{}).relation;
+                        });
 }
 
 std::optional<Point> interior_witness(const Model& model, const PairAxes& axes,

@@ -8,6 +8,7 @@
 // n = 0: triangle and square, n = 1: non-convex L and a triangle, n >= 3: two convex n-gons
 // with rational vertices on circles (n = 256: the largest row).
 #include "peer_timing.hpp"
+#include "polygon_models.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
@@ -28,60 +29,10 @@ namespace {
 using namespace hipair;
 using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
 using Polygon = CGAL::Polygon_2<Kernel>;
-using Points = std::vector<std::pair<Rational, Rational>>;
+using perf::minkowski_polygons;
+using perf::Points;
+using perf::sliders;
 
-// Convex n-gon with rational vertices on the circle of radius `radius` about `centre`:
-// (cos, sin) from rational half-angle tangents rounded to 1/64 (1/(16 n) above 64 vertices,
-// so that neighbouring tangents stay distinct).
-Points rational_polygon(int n, const Rational& radius, const Rational& cx, const Rational& cy) {
-  Points points;
-  constexpr double pi = 3.14159265358979323846;
-  const long grid = n > 64 ? 16L * n : 64L;
-  for (int k = -(n / 2) + 1; k < n - n / 2; ++k) {
-    if (2 * k == n) break;
-    Rational t(std::lround(std::tan(pi * k / n) * static_cast<double>(grid)), grid);
-    t.canonicalize();
-    Rational d = 1 + t * t;
-    points.emplace_back(Rational(cx + radius * (1 - t * t) / d), Rational(cy + radius * 2 * t / d));
-  }
-  if (n % 2 == 0) points.emplace_back(Rational(cx - radius), cy);
-  return points;
-}
-
-Points fixed_points(const std::vector<std::pair<std::string, std::string>>& text) {
-  Points points;
-  for (const auto& [x, y] : text) points.emplace_back(parse_rational(x), parse_rational(y));
-  return points;
-}
-
-std::pair<Points, Points> polygons(int n) {
-  if (n == 0)
-    return {fixed_points({{"0", "0"}, {"4", "0"}, {"1", "3"}}),
-            fixed_points({{"10", "10"}, {"12", "10"}, {"12", "12"}, {"10", "12"}})};
-  if (n == 1)
-    return {fixed_points({{"0", "0"}, {"6", "0"}, {"6", "1"}, {"1", "1"}, {"1", "5"}, {"0", "5"}}),
-            fixed_points({{"20", "-3"}, {"23.5", "-3"}, {"21", "1/7"}})};
-  return {rational_polygon(n, 5, 0, 0), rational_polygon(n + 1, 3, 20, 7)};
-}
-
-std::string loop_json(const Points& points) {
-  auto value = [](const Rational& q) { return "\"" + q.get_str() + "\""; };
-  std::string text = "{ \"start\": [" + value(points[0].first) + ", " + value(points[0].second) + "], \"edges\": [";
-  for (std::size_t i = 1; i <= points.size(); ++i) {
-    const auto& p = points[i % points.size()];
-    text += std::string(i > 1 ? ", " : "") + "{ \"line_to\": [" + value(p.first) + ", " + value(p.second) + "] }";
-  }
-  return text + "] }";
-}
-
-Model sliders(const Points& a, const Points& b) {
-  std::string text = R"({ "hipair": 1, "name": "sliders", "parts": [
-    { "name": "a", "motion": { "translation": { "direction": [1, 0] } }, "loops": [ )" +
-                     loop_json(a) + R"( ] },
-    { "name": "b", "motion": { "translation": { "direction": [0, 1] } }, "loops": [ )" +
-                     loop_json(b) + R"( ] } ] })";
-  return read_model(text);
-}
 
 Polygon cgal_polygon(const Points& points, bool negate) {
   Polygon polygon;
@@ -100,7 +51,7 @@ std::size_t cgal_sum(const Points& a, const Points& b) {
 }
 
 void BM_MinkowskiHipair(benchmark::State& state) {
-  auto [a, b] = polygons(static_cast<int>(state.range(0)));
+  auto [a, b] = minkowski_polygons(static_cast<int>(state.range(0)));
   Model model = sliders(a, b);
   CSpace space;
   hipair::bench::run_with_peer(
@@ -116,7 +67,7 @@ void BM_MinkowskiHipair(benchmark::State& state) {
 BENCHMARK(BM_MinkowskiHipair)->Arg(0)->Arg(1)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
 
 void BM_MinkowskiCgal(benchmark::State& state) {
-  auto [a, b] = polygons(static_cast<int>(state.range(0)));
+  auto [a, b] = minkowski_polygons(static_cast<int>(state.range(0)));
   std::size_t size = 0;
   for (auto _ : state) benchmark::DoNotOptimize(size = cgal_sum(a, b));
   state.counters["sum_vertices"] = static_cast<double>(size);

@@ -9,6 +9,7 @@
 // "overlapping"; Box2D counts the 0.01-unit polygon skin as contact, so a few touching or
 // nearly touching configurations differ by design).
 #include "peer_timing.hpp"
+#include "polygon_models.hpp"
 
 #include "curves/contact_curves.hpp"
 
@@ -29,36 +30,14 @@
 namespace {
 
 using namespace hipair;
-using Points = std::vector<std::pair<Rational, Rational>>;
+using perf::loop_json;
+using perf::Points;
 constexpr double pi = 3.14159265358979323846;
-
-Points rational_polygon(int n, const Rational& radius, const Rational& cx, const Rational& cy) {
-  Points points;
-  for (int k = -(n / 2) + 1; k < n - n / 2; ++k) {
-    if (2 * k == n) break;
-    Rational t(static_cast<long>(std::lround(std::tan(pi * k / n) * 64)), 64);
-    t.canonicalize();
-    Rational d = 1 + t * t;
-    points.emplace_back(Rational(cx + radius * (1 - t * t) / d), Rational(cy + radius * 2 * t / d));
-  }
-  if (n % 2 == 0) points.emplace_back(Rational(cx - radius), cy);
-  return points;
-}
 
 std::pair<Points, Points> polygons(int n) {
   if (n == 0)
     return {Points{{0, 0}, {4, 0}, {1, 3}}, Points{{6, -1}, {9, -1}, {9, 2}, {6, 2}}};
-  return {rational_polygon(n, 5, 2, 0), rational_polygon(n - 1, 4, 8, 1)};
-}
-
-std::string loop_json(const Points& points) {
-  auto value = [](const Rational& q) { return "\"" + q.get_str() + "\""; };
-  std::string text = "{ \"start\": [" + value(points[0].first) + ", " + value(points[0].second) + "], \"edges\": [";
-  for (std::size_t i = 1; i <= points.size(); ++i) {
-    const auto& p = points[i % points.size()];
-    text += std::string(i > 1 ? ", " : "") + "{ \"line_to\": [" + value(p.first) + ", " + value(p.second) + "] }";
-  }
-  return text + "] }";
+  return {perf::rational_polygon(n, 5, 2, 0, 64), perf::rational_polygon(n - 1, 4, 8, 1, 64)};
 }
 
 // Part a turns about (0, 0), part b about (pivot, 0): their swept disks overlap.

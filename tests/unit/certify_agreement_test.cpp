@@ -119,8 +119,7 @@ TEST_P(CertifyAgreement, VerifierGeometryAgreesWithTheLibraryOverlapPredicate) {
       } else if (report.relation == cspace::Overlap::apart) {
         ++apart;
         EXPECT_EQ(evidence, "") << name << " configuration " << i << ": the library says apart";
-        Rational bound = verify::boundary_distance_lower_bound(verify::place_over(shape_a, verify::to_interval_map(map_a)),
-                                                               verify::place_over(shape_b, verify::to_interval_map(map_b)),
+        Rational bound = verify::boundary_distance_lower_bound(shape_a, verify::to_interval_map(map_a), shape_b, verify::to_interval_map(map_b),
                                                                Rational(1000));
         EXPECT_GT(bound, 0) << name << " configuration " << i << ": apart, but no positive distance bound";
       } else {
@@ -141,6 +140,62 @@ std::string test_name(const ::testing::TestParamInfo<Shard>& info) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Examples, CertifyAgreement, ::testing::ValuesIn(example_shards()), test_name);
+
+// The distance bound from shapes and maps (edges posed lazily, pairs nearest first) equals the
+// bound of the posed parts, is 0 where two edges cross, and never exceeds the exact distance of
+// two boundary vertices; on every fixed-axis example pair, at exact poses and over rotation and
+// translation ranges.
+TEST(CertifyDistanceBound, ShapesAndMapsGiveTheBoundOfThePosedPartsAndStayBelowVertexDistances) {
+  std::mt19937_64 random(20261129);
+  int compared = 0, crossing = 0, positive = 0;
+  for (const std::string& file : example_files()) {
+    Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / file);
+    for (const PairSpec& pair : model.pairs) {
+      const Part &a = model.parts[pair.first], &b = model.parts[pair.second];
+      if (!fixed_axis(a) || !fixed_axis(b)) continue;
+      verify::IntervalPart shape_a = verify::shape_of(a), shape_b = verify::shape_of(b);
+      for (int i = 0; i < 12; ++i) {
+        SCOPED_TRACE(file + " " + a.name + ":" + b.name + " configuration " + std::to_string(i));
+        verify::ExactMap map_a = random_map(a, random), map_b = random_map(b, random);
+        verify::IntervalMap over_a = verify::to_interval_map(map_a), over_b = verify::to_interval_map(map_b);
+        if (i % 3 == 2) {   // a range of poses for a moving part
+          const Part& mover = a.motion.kind != Motion::Kind::fixed ? a : b;
+          verify::IntervalMap& over = &mover == &a ? over_a : over_b;
+          Rational lo(long(random() % 600) - 300, 100), width(1 + long(random() % 20), 1000);
+          if (mover.motion.kind == Motion::Kind::rotation) over = verify::rotation_over({lo, Rational(lo + width)});
+          else if (mover.motion.kind == Motion::Kind::translation)
+            over = verify::translation_over(mover.motion.direction, {Rational(10 * lo), Rational(10 * lo + width)});
+        }
+        Rational enough(1000);
+        Rational lazy = verify::boundary_distance_lower_bound(shape_a, over_a, shape_b, over_b, enough);
+        Rational posed = verify::boundary_distance_lower_bound(verify::place_over(shape_a, over_a),
+                                                               verify::place_over(shape_b, over_b), enough);
+        EXPECT_EQ(lazy, posed);
+        ++compared;
+        if (i % 3 == 2) continue;
+        verify::PlacedPart placed_a = verify::place(a, map_a), placed_b = verify::place(b, map_b);
+        std::string evidence = verify::overlap_evidence(placed_a, placed_b);
+        if (evidence.rfind("loop", 0) == 0) {   // two edges cross: the boundaries meet
+          EXPECT_EQ(lazy, 0) << evidence;
+          ++crossing;
+        }
+        Rational nearest2 = enough * enough;
+        for (const auto& loop_a : placed_a.loops)
+          for (const verify::PlacedEdge& e : loop_a)
+            for (const auto& loop_b : placed_b.loops)
+              for (const verify::PlacedEdge& g : loop_b) {
+                Rational dx = e.source.x - g.source.x, dy = e.source.y - g.source.y;
+                nearest2 = std::min(nearest2, Rational(dx * dx + dy * dy));
+              }
+        EXPECT_LE(Rational(lazy * lazy), nearest2);
+        positive += sgn(lazy) > 0;
+      }
+    }
+  }
+  EXPECT_GE(compared, 120);
+  EXPECT_GT(crossing, 10);
+  EXPECT_GT(positive, 10);
+}
 
 // The agreement above must cover the examples' fixed-axis pairs: at least ten of them.
 TEST(CertifyAgreementCoverage, AtLeastTenFixedAxisExamplePairs) {

@@ -33,6 +33,7 @@ void expect_verifies(const Certificate& certificate, const fs::path& model_path,
   fs::path file = fs::path(testing::TempDir()) / (std::string("hipair_certificate_") + std::to_string(::getpid()) + ".json");
   io::write_file_atomically(file, text);
   VerificationResult result = verify_certificate_file(file, model_path);
+  fs::remove(file);
   EXPECT_TRUE(result.valid) << what << ": " << result.reason << "\n" << text.substr(0, 3000);
   if (result.valid) ++verified;
 }
