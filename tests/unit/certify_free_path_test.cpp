@@ -81,12 +81,12 @@ TEST(CertifyFreePath, TheFalseCertificateIsNotProved) {
 // free, the exact overlap predicate must find the parts apart at random points of every region
 // along it (parameters and driver at corners of the region half of the time); whenever the
 // predicate finds them overlapping, check 7 must not have proved it. Both outcomes must occur.
-TEST(CertifyFreePath, ProvedPathsAreFreeUnderTheExactOverlapPredicate) {
+void expect_proved_paths_free(const std::string& name, unsigned seed, std::size_t budget) {
   Oracle oracle;
   const Model& m = oracle.model->nominal();
-  const Certificate base = read_certificate(read(fixture("geneva-tolerance-no-jam.json")));
+  const Certificate base = read_certificate(read(fixture(name)));
   ASSERT_TRUE(base.tolerance);
-  std::mt19937_64 random(7);
+  std::mt19937_64 random(seed);
   const double sizes[] = {1e-3, 1e-2, 3e-2, 0.1, 0.3, 1, 3, 10};
   std::size_t proved = 0, refused = 0, overlapping_seen = 0;
   for (int trial = 0; trial < 18; ++trial) {
@@ -112,7 +112,7 @@ TEST(CertifyFreePath, ProvedPathsAreFreeUnderTheExactOverlapPredicate) {
       mutation = "slope in '" + t.varied[i] + "' changed by " + to_exact_string(delta);
     }
     verify::ToleranceEvaluator evaluator(oracle.model, t);
-    std::string failure = evaluator.free_path_failure(2);
+    std::string failure = evaluator.free_path_failure(budget);
     bool ok = failure.empty();
     (ok ? proved : refused) += 1;
     SCOPED_TRACE("trial " + std::to_string(trial) + ": leaf " + std::to_string(leaf) + " " + mutation +
@@ -139,9 +139,59 @@ TEST(CertifyFreePath, ProvedPathsAreFreeUnderTheExactOverlapPredicate) {
     overlapping_seen += overlap;
     if (overlap) EXPECT_FALSE(ok);
   }
+  std::cout << "[ free path ] " << name << ": " << proved << " proved, " << refused << " not proved, "
+            << overlapping_seen << " seen overlapping\n";
   EXPECT_GT(proved, 0u);
   EXPECT_GT(refused, 0u);
   EXPECT_GT(overlapping_seen, 0u);
+}
+
+TEST(CertifyFreePath, ProvedPathsAreFreeUnderTheExactOverlapPredicate) {
+  expect_proved_paths_free("geneva-tolerance-no-jam.json", 7, 2);
+}
+
+// The same on the 4 x certificate whose leaves the producer chose with check 7
+// (free_path_leaves, session 17): its regions pass the lock/drive switch, where the lock arcs'
+// tangency (reduced variables) and the pin / slot corner events (monotone form) decide.
+TEST(CertifyFreePath, ProvedPathsOfTheFreePathCertificateAreFreeUnderTheExactOverlapPredicate) {
+  expect_proved_paths_free("geneva-tolerance-no-jam-4x-free-path.json", 13, 8);
+}
+
+TEST(CertifyFreePath, TheFreePathCertificateIsValid) {
+  VerificationResult v = verify_certificate_file(fixture("geneva-tolerance-no-jam-4x-free-path.json"), geneva());
+  EXPECT_TRUE(v.valid) << v.summary << v.reason;
+}
+
+// Why the plain producer's certificates near the threshold stay unproven (session 17): their
+// witness paths meet a part. The 0.9 x certificate's leaf 0 (lock arc sides, driver up to
+// 2.2375 rad) at a corner of the box, where check 7's monotone form ends with the pin on the
+// corner of slot 1's wall L: the exact overlap predicate finds the parts overlapping there, on
+// the witness path; check 7 does not prove the certificate.
+TEST(CertifyFreePath, TheNearThresholdWitnessPathMeetsThePin) {
+  Oracle oracle;
+  const Model& m = oracle.model->nominal();
+  Certificate c = read_certificate(read(fixture("geneva-tolerance-no-jam-0.9-threshold.json")));
+  ASSERT_TRUE(c.tolerance);
+  const ToleranceClaim& t = *c.tolerance;
+  std::size_t k = t.varied.size();
+  const Rational a(1527, 10000), b(1527, 400000);
+  // Per varied parameter (in the certificate's order): +a, -a, +b, -b or 0 (nominal).
+  const std::vector<Rational> corner{a,  a, -a, 0, b,  0, 0, 0, -a, -a, a, -a, -b,
+                                     a,  0, -a, 0, -a, -a, b, a, b,  b, 0, 0, 0};
+  ASSERT_EQ(corner.size(), k);
+  const ToleranceLeaf& l = t.leaves[0];
+  Rational d = l.driver.hi;   // 2.2375 rad, the region's end
+  for (std::size_t i = 0; i < k; ++i) ASSERT_TRUE(l.parameters[i].lo <= corner[i] && corner[i] <= l.parameters[i].hi);
+  std::vector<Rational> deviations(m.parameters.size(), Rational(0));
+  Rational y = *l.witness;
+  for (std::size_t i = 0; i < k; ++i) {
+    deviations[static_cast<std::size_t>(m.find_parameter(t.varied[i]) - m.parameters.data())] = corner[i];
+    y += l.witness_slopes[i] * (corner[i] - (l.parameters[i].lo + l.parameters[i].hi) / 2);
+  }
+  y += l.witness_slopes[k] * (d - (l.driver.lo + l.driver.hi) / 2);
+  EXPECT_EQ(oracle.relation(deviations, tangent_of(d), tangent_of(y)), PartRelation::overlapping);
+  verify::ToleranceEvaluator evaluator(oracle.model, t);
+  EXPECT_FALSE(evaluator.free_path_failure(8).empty());
 }
 
 
