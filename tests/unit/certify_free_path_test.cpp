@@ -195,6 +195,77 @@ TEST(CertifyFreePath, TheNearThresholdWitnessPathMeetsThePin) {
 }
 
 
+// The Geneva's lock arcs alone (session 17): the wheel held at 0 (witness 0, no slopes), the
+// driver over [0.5, 1] rad (the lock phase: the driver's outer lock arc inside the wheel's lock
+// arc 1, nearly concentric, 0.683 mm apart in radius), the driver's pivot (rotation-center-off-x)
+// and both radii varied at scales from 4 to 16 x the tolerances. From 12 x the driver's arc
+// reaches the wheel's inside both arcs' ranges: their first contact is the internal tangency,
+// which only the arc-tangency test in reduced variables decides (q's direction on the event).
+// Check 7 must prove only claims whose parts the exact overlap predicate finds apart at random
+// points (corners half of the time), never one where it finds them overlapping; both occur.
+TEST(CertifyFreePath, LockArcTangencyAgreesWithTheExactOverlapPredicate) {
+  Oracle oracle;
+  const Model& m = oracle.model->nominal();
+  const Certificate base = read_certificate(read(fixture("geneva-tolerance-no-jam.json")));
+  ASSERT_TRUE(base.tolerance);
+  std::mt19937_64 random(17);
+  const std::vector<std::string> varied{"rotation-center-off-x", "arc-radius", "outer-arc-radius"};
+  std::size_t proved = 0, refused = 0, overlapping_seen = 0;
+  // In 1/2: from 12 x (0.06 x 12 = 0.72 > 0.683 mm) the driver's arc reaches the wheel's near
+  // the direction of the wheel's centre (a narrow lens, within both arcs: only the tangency is a
+  // first contact there); from 13 x the lens reaches the ends of the wheel's arc.
+  for (int twice : {8, 16, 20, 22, 23, 24, 25, 26, 32}) {
+    Rational scale(twice, 2);
+    scale.canonicalize();
+    ToleranceClaim t;
+    t.property = "no_jam";
+    t.driver = "driver";
+    t.follower = "wheel";
+    t.range = {Rational(1, 2), Rational(1)};
+    t.scale = scale;
+    t.varied = varied;
+    Rational half = scale / 50;
+    for (std::size_t i = 0; i < varied.size(); ++i) t.box.push_back({-half, half});
+    t.sides = {base.tolerance->sides[0], base.tolerance->sides[1]};
+    ToleranceLeaf leaf;
+    leaf.parameters = t.box;
+    leaf.driver = t.range;
+    leaf.witness = Rational(0);
+    leaf.witness_slopes.assign(varied.size() + 1, Rational(0));
+    t.leaves.push_back(leaf);
+    ToleranceTreeNode node;
+    node.leaf = true;
+    t.tree.push_back(node);
+    std::optional<verify::ToleranceEvaluator> made;
+    try {
+      made.emplace(oracle.model, t);
+    } catch (const verify::Rejection& rejection) {
+      FAIL() << "the claim is refused: " << rejection.reason;
+    }
+    std::string failure = made->free_path_failure(8);
+    bool ok = failure.empty();
+    (ok ? proved : refused) += 1;
+    SCOPED_TRACE("scale " + to_exact_string(scale) + (ok ? ": proved" : ": not proved: " + failure));
+    bool overlap = false;
+    for (int point = 0; point < 24; ++point) {
+      std::vector<Rational> deviations(m.parameters.size(), Rational(0));
+      for (std::size_t i = 0; i < varied.size(); ++i)
+        deviations[static_cast<std::size_t>(m.find_parameter(varied[i]) - m.parameters.data())] =
+            inside(random, t.box[i], point % 2 == 0);
+      Rational d = inside(random, t.range, point % 2 == 0);
+      PartRelation r = oracle.relation(deviations, tangent_of(d), Rational(0));
+      if (ok) EXPECT_EQ(r, PartRelation::apart) << "point " << point;
+      overlap = overlap || r == PartRelation::overlapping;
+    }
+    overlapping_seen += overlap;
+    if (overlap) EXPECT_FALSE(ok);
+  }
+  std::cout << "[ free path ] lock arcs: " << proved << " proved, " << refused << " not proved, " << overlapping_seen
+            << " seen overlapping\n";
+  EXPECT_GT(proved, 1u);
+  EXPECT_GT(overlapping_seen, 1u);
+}
+
 // The scotch yoke (examples/models/scotch-yoke.json): the crank's pin (a full circle: no ends,
 // only tangencies) in the yoke's slot, 0.2 mm of play a side. Claims built here over random
 // crank ranges with the pin-in-slot witness y* = r (cos t_c - 1) linearised about the range's
