@@ -118,6 +118,9 @@ double magnitude(const Interval& x) {
 
 // ----------------------------------------------------------------------------- events
 
+// Sub-boxes of the reduced tangency test per call.
+constexpr std::size_t reduced_limit = 4096;
+
 enum class EventKind { first_vertex_on_second, second_vertex_on_first, tangency, external, internal };
 
 template <class N>
@@ -208,6 +211,80 @@ bool excluded(EventKind kind, const Feature<N>& first, const Feature<N>& second,
   return false;
 }
 
+// The tangency of two arcs in reduced variables (docs/certify.md "Tolerance", check 7): on the
+// event |cc| = |D| with D of the certain sign sd, so the common point is
+// q = a.c + sd ra cc / |cc| and, for each arc x with an end (chord ch = x.t - x.s),
+//   |cc| cross(ch, q - x.s) = |cc| k + sd (P cc.y - Q cc.x),
+//   k = cross(ch, a.c - x.s), P = ra ch.x, Q = ra ch.y,
+// whose sign is that of cross(ch, q - x.s) (|cc| = |D| > 0). These few quantities (cc, D, and k, P,
+// Q per arc) are enclosed over X in Taylor form; every event of X has its values inside these
+// enclosures and satisfies there |cc|^2 = D^2 and both arcs' chord conditions. The event is
+// excluded when no point of the box of quantities satisfies them: the plane of cc is bisected
+// (the other quantities range over their whole enclosures, so no relation between them is
+// assumed) and each sub-box is dropped when |cc|^2 - D^2 has a certain sign there, or one arc's
+// chord condition certainly fails (with |cc| enclosed by the root of the meet of |cc|^2 and D^2,
+// its value on the event). At most `limit` sub-boxes.
+bool tangency_excluded_reduced(EventKind kind, const Feature<Taylor>& first, const Feature<Taylor>& second,
+                               std::size_t limit) {
+  const EdgeT<Taylor>& a = first.e;
+  const EdgeT<Taylor>& b = second.e;
+  Taylor D = kind == EventKind::external ? a.r + b.r : a.r - b.r;
+  int sd = D.over.value.sign();
+  if (sd == 0) return false;
+  Vec<Taylor> cc = difference(b.c, a.c);
+  auto square = [](const Interval& x) {
+    Interval r;
+    mpfi_sqr(r.get(), x.get());
+    return r;
+  };
+  Interval D2 = square(D.over.value);
+  struct Chord {
+    Interval k, P, Q;
+    int side;
+  };
+  std::vector<Chord> chords;
+  for (const Feature<Taylor>* x : {&first, &second}) {
+    if (x->full) continue;
+    Vec<Taylor> ch = difference(x->e.t, x->e.s);
+    chords.push_back({cross_of(ch, difference(a.c, x->e.s)).over.value, (a.r * ch.x).over.value,
+                      (a.r * ch.y).over.value, arc_side(x->e)});
+  }
+  if (chords.empty()) return false;
+  const Interval sdi = enclose(Rational(sd));
+  auto bounds = [](const Interval& x) { return RationalInterval{x.lower(), x.upper()}; };
+  if (!cc.x.over.value.is_bounded() || !cc.y.over.value.is_bounded()) return false;
+  std::vector<std::pair<RationalInterval, RationalInterval>> stack{{bounds(cc.x.over.value), bounds(cc.y.over.value)}};
+  std::size_t boxes = 0;
+  while (!stack.empty()) {
+    auto [rx, ry] = stack.back();
+    stack.pop_back();
+    if (++boxes > limit) return false;
+    Interval X = enclose(rx), Y = enclose(ry);
+    Interval n2 = square(X) + square(Y);
+    if ((n2 - D2).sign() != 0) continue;
+    Interval n;
+    mpfi_sqrt(n.get(), meet(n2, D2).get());
+    bool out = false;
+    for (const Chord& c : chords) {
+      int side = (c.k * n + sdi * (c.P * Y - c.Q * X)).sign();
+      if (side != 0 && side != c.side) out = true;
+    }
+    if (out) continue;
+    bool along_x = rx.hi - rx.lo >= ry.hi - ry.lo;
+    RationalInterval& cut = along_x ? rx : ry;
+    Rational mid = middle(cut);
+    RationalInterval low{cut.lo, mid}, high{mid, cut.hi};
+    if (along_x) {
+      stack.push_back({low, ry});
+      stack.push_back({high, ry});
+    } else {
+      stack.push_back({rx, low});
+      stack.push_back({rx, high});
+    }
+  }
+  return true;
+}
+
 const char* event_text(EventKind kind) {
   switch (kind) {
     case EventKind::first_vertex_on_second: return "the start vertex of the first on the second";
@@ -238,6 +315,17 @@ class ToleranceEvaluator::FreePath {
                                  "'" + p.loops[l].edges[e].label + "' (" + p.name + " loop " + std::to_string(l) +
                                      " edge " + std::to_string(e) + ")"});
     }
+  }
+
+  // The path over one leaf's own box (the producer's test of a candidate leaf: a region is a
+  // part of its leaf's box, so what holds here holds over the region).
+  std::string leaf(std::size_t index) {
+    const ToleranceLeaf& l = claim_.leaves[index];
+    if (!l.witness) return "leaf " + std::to_string(index) + " has no witness path for the follower";
+    std::vector<RationalInterval> box = l.parameters;
+    box.push_back(l.driver);
+    Path path{false, index, index, Rational(0), "over leaf " + std::to_string(index)};
+    return prove(path, box);
   }
 
   std::string run() {
@@ -432,9 +520,11 @@ class ToleranceEvaluator::FreePath {
       std::string undecided;
       test_piece(path, piece, split, undecided);
       if (!split) continue;
-      if (splits_ >= budget_)
+      if (splits_ >= budget_) {
+        last_split_ = *split;
         return path.where + ": " + undecided + " is undecided after " + std::to_string(splits_) +
                " bisections (the check's budget)";
+      }
       ++splits_;
       Rational mid = middle(piece[*split]);
       std::vector<RationalInterval> low = piece, high = std::move(piece);
@@ -553,10 +643,78 @@ class ToleranceEvaluator::FreePath {
       const Feature<Taylor>& fb = taylor.get(false, e.b);
       Taylor primary;
       if (excluded<Taylor>(e.kind, fa, fb, taylor_sign, &primary)) continue;
+      if ((e.kind == EventKind::internal || e.kind == EventKind::external) &&
+          tangency_excluded_reduced(e.kind, fa, fb, reduced_limit))
+        continue;
+      if (monotone_excluded(path, box, e, primary)) continue;
       undecided = std::string(event_text(e.kind)) + " of " + driver_edges_[e.a].name + " and " + follower_edges_[e.b].name;
       split = split_dimension(box, primary);
       return;
     }
+  }
+
+  // The two features of an event in Taylor form over `box` (offsets: x - c per dimension, kept
+  // alive by the caller).
+  std::pair<Feature<Taylor>, Feature<Taylor>> taylor_features(const Path& path, const std::vector<RationalInterval>& box,
+                                                              const Pending& e, std::vector<Interval>& offsets) const {
+    std::size_t n = k_ + 1;
+    offsets.clear();
+    std::vector<Jet> at_x;
+    std::vector<Jet2> over_x;
+    for (std::size_t i = 0; i < n; ++i) {
+      offsets.push_back(offset(box[i]));
+      at_x.push_back(Jet::variable(enclose(middle(box[i])), i, n));
+      over_x.push_back(Jet2::variable(enclose(box[i]), i));
+    }
+    GeometryOf<Jet> at_g = geometry(at_x);
+    GeometryOf<Jet2> over_g = geometry(over_x);
+    std::pair<Jet, Jet> at_c = coordinates(path, at_x);
+    std::pair<Jet2, Jet2> over_c = coordinates(path, over_x);
+    auto feature = [&](bool driver, std::size_t index) {
+      const EdgeRef& ref = edge_ref(driver, index);
+      PosedEdge<Jet2> o = pose(over_g, ref, driver ? over_c.first : over_c.second);
+      PosedEdge<Jet> a = pose(at_g, ref, driver ? at_c.first : at_c.second);
+      return combined<Taylor>(o, a, ref.full, [&](const Jet2& over, const Jet& at) { return make(over, at, &offsets); });
+    };
+    return {feature(true, e.a), feature(false, e.b)};
+  }
+
+  // The monotone form of an event's contact function f (docs/certify.md "Tolerance", check 7):
+  // to show that f keeps over the piece X the sign `want` it has at X's centre, every dimension
+  // whose partial derivative has a certain sign over the current face is fixed at the end of its
+  // interval where f is nearest to 0 (for every x of the face, moving that coordinate to that end
+  // moves f towards 0 and stays in the face, a box), and f is enclosed again in Taylor form over
+  // the smaller face (up to four rounds). f of the certain sign `want` over the final face has
+  // that sign over X: f has no zero there, so the event does not happen. Only f counts here, never
+  // an extent test on a face (those hold on the face only).
+  bool monotone_excluded(const Path& path, const std::vector<RationalInterval>& box, const Pending& e,
+                         const Taylor& primary) const {
+    int want = primary.at.value.sign();
+    if (want == 0 || !primary.over.smooth) return false;
+    std::vector<RationalInterval> face = box;
+    Taylor f = primary;
+    for (int round = 0; round < 4; ++round) {
+      bool fixed = false;
+      for (std::size_t a = 0; a < f.over.index.size(); ++a) {
+        std::size_t i = f.over.index[a];
+        if (!(face[i].lo < face[i].hi)) continue;
+        int s = f.over.gradient[a].sign();
+        if (s == 0) continue;
+        Rational end = s == want ? face[i].lo : face[i].hi;
+        face[i] = {end, end};
+        fixed = true;
+      }
+      if (!fixed) return false;
+      std::vector<Interval> offsets;
+      auto [fa, fb] = taylor_features(path, face, e, offsets);
+      Taylor g;
+      excluded<Taylor>(e.kind, fa, fb, [](const Taylor& v) { return v.over.value.sign(); }, &g);
+      if (g.over.value.sign() == want) return true;
+      if (!g.over.smooth) return false;
+      f = std::move(g);
+      f.offsets = nullptr;   // the face's offsets end with this round; only over is read below
+    }
+    return false;
   }
 
   // The events a pair of edges can have (first: the driver's edge).
@@ -612,8 +770,20 @@ class ToleranceEvaluator::FreePath {
   std::size_t k_;
   std::size_t budget_;
   std::size_t splits_ = 0;
+
+ public:
+  /// The dimension the undecided piece would have been split along when the budget ran out.
+  std::optional<std::size_t> last_split_;
   std::vector<EdgeRef> driver_edges_, follower_edges_;
 };
+
+std::string ToleranceEvaluator::free_leaf_failure(std::size_t leaf, std::size_t piece_budget,
+                                                  std::optional<std::size_t>* split) const {
+  FreePath check(*this, piece_budget);
+  std::string failure = check.leaf(leaf);
+  if (split) *split = check.last_split_;
+  return failure;
+}
 
 std::string ToleranceEvaluator::free_path_failure(std::size_t piece_budget) const {
   if (claim_.property != "no_jam") return "";

@@ -21,6 +21,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -223,6 +224,12 @@ class ToleranceEvaluator {
   /// event over it (free_path_check.cpp), the region bisected while undecided, at most
   /// `piece_budget` times in all. Returns "" when proved, otherwise what was not proved.
   std::string free_path_failure(std::size_t piece_budget = 48) const;
+  /// Check 7's test over one leaf's whole box with the follower on its witness path (for the
+  /// producer, to choose leaves whose paths check 7 proves): "" when proved.
+  /// `split` receives the dimension (a varied parameter's index, or the driver's: k) along which
+  /// the undecided piece would have been bisected next, when the budget ran out.
+  std::string free_leaf_failure(std::size_t leaf, std::size_t piece_budget,
+                                std::optional<std::size_t>* split = nullptr) const;
 
   /// no_interference: the claim's property.
   bool interference_claim() const { return claim_.property == "no_interference"; }

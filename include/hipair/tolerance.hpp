@@ -71,6 +71,10 @@ struct ToleranceOptions {
   /// (rounded down to 4 significant digits).
   bool certify_relative_to_threshold = false;
   std::size_t certify_max_leaves = 20000;   ///< undecided beyond this many leaves
+  /// Accept a leaf only when the verifier's check 7 also proves its witness path free over the
+  /// leaf's box (else split it): certificates whose free path the verifier proves (`valid`)
+  /// where the plain search writes `unproven` ones (docs/tolerance.md, session 17).
+  bool certify_free_path = false;
   /// Look for contacts that appear or disappear under tolerance (ToleranceResult::contact_changes).
   bool contact_changes = false;
   /// Exact C-spaces built to confirm them (one per change, the largest linearised first).

@@ -51,6 +51,7 @@ struct ToleranceCliOptions {
   bool certify = false;
   std::string certify_scale = "1";
   std::size_t certify_leaves = 20000;
+  bool certify_free_path = false;
   bool certify_interference = false;
   std::string follower_range;
 };
@@ -319,6 +320,7 @@ int run(const ToleranceCliOptions& options) {
   }
   if (!(analysis.certify_scale > 0)) throw ModelError("", "--certify-scale: the scale must be positive");
   analysis.certify_max_leaves = options.certify_leaves;
+  analysis.certify_free_path = options.certify_free_path;
   bool terminal = isatty(2) && !options.quiet;
   if (terminal)
     analysis.progress = [](double fraction) {
@@ -394,6 +396,10 @@ void register_tolerance(CLI::App& app, Action& action) {
                       "with a T suffix (0.95T), times the jamming threshold found by --threshold");
   command->add_option("--certify-leaves", options->certify_leaves, "give up beyond this many leaves (default 20000)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{10000000}));
+  command->add_flag("--certify-free-path", options->certify_free_path,
+                    "with --certify: accept a leaf only when the verifier's check 7 also proves its witness path "
+                    "free (else split it), so that the certificate verifies 'valid' where the plain search writes "
+                    "an 'unproven' one");
   command->add_flag("--certify-interference", options->certify_interference,
                     "instead of the analysis: prove that the pair never interferes for any parameters in the box, "
                     "driver in --range and follower in --follower-range; writes interference-certificate.json "

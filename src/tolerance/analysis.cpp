@@ -801,6 +801,7 @@ class Analysis {
     request.driver = driver_;
     request.follower = follower_;
     request.max_leaves = options_.certify_max_leaves;
+    request.free_path_leaves = options_.certify_free_path;
     std::vector<bool> varied = varied_parameters();
     for (std::size_t i = 0; i < varied.size(); ++i)
       if (varied[i]) request.varied.push_back(i);

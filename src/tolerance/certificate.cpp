@@ -587,6 +587,17 @@ class Producer {
       } catch (const verify::Rejection&) {
         return false;
       }
+      if (request_.free_path_leaves && candidate.witness) {
+        // Check 7 over the leaf's box, with the candidate in place (the evaluator reads claim_).
+        claim_.leaves.push_back(candidate);
+        std::optional<std::size_t> split;
+        std::string failure = evaluator_->free_leaf_failure(claim_.leaves.size() - 1, request_.free_path_budget, &split);
+        claim_.leaves.pop_back();
+        if (!failure.empty()) {
+          if (split && !free_path_split_) free_path_split_ = split;   // where check 7 would split
+          return false;
+        }
+      }
       ToleranceTreeNode node;
       node.leaf = true;
       node.index = claim_.leaves.size();
@@ -640,6 +651,7 @@ class Producer {
     };
     std::vector<double> score(k + 1, 1.0);
     witness_score_.clear();
+    free_path_split_.reset();
     bool slopes = lower.slope.size() == k + 1 && upper.slope.size() == k + 1;
     if (slopes && (!lower.ok || !upper.ok)) {
       // A side not isolated over the leaf: split where that side varies most.
@@ -671,6 +683,12 @@ class Producer {
     // nothing to the play, yet its width widens every gradient enclosure).
     if (witness_score_.size() == k + 1 && *std::max_element(witness_score_.begin(), witness_score_.end()) > 0)
       score = witness_score_;
+    // A leaf that passed checks 1-6 but whose witness path check 7 did not prove (free_path_leaves):
+    // split where check 7's undecided event would have been split.
+    if (free_path_split_ && *free_path_split_ <= k) {
+      score.assign(k + 1, 0.0);
+      score[*free_path_split_] = 1.0;
+    }
     if (depth > 400) {
       undecided_reason_ = "the branch-and-bound reached depth 400 without certifying a box near driver " + std::to_string(dd);
       return Status::undecided;
@@ -708,6 +726,7 @@ class Producer {
   std::unique_ptr<verify::ToleranceEvaluator> evaluator_;
   std::size_t attempts_ = 0;
   std::size_t second_order_leaves_ = 0;
+  std::optional<std::size_t> free_path_split_;   ///< check 7's split choice for the current region
   std::vector<double> witness_score_;
   double witness_ratio_ = 0;
   std::string jam_reason_, undecided_reason_;

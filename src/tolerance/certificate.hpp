@@ -33,6 +33,10 @@ struct CertifyRequest {
   std::vector<std::size_t> varied;        ///< parameter indices
   std::vector<ChannelSample> samples;     ///< along the range, increasing driver
   std::size_t max_leaves = 20000;
+  /// Accept a leaf with a witness only when the verifier's check 7 also proves its witness path
+  /// free over the leaf's box (at most `free_path_budget` bisections per leaf); else split it.
+  bool free_path_leaves = false;
+  std::size_t free_path_budget = 8;
 };
 
 /// The corner search of the jamming threshold at `request.scale`: at every driver position of

@@ -143,6 +143,15 @@ for mutation in "${mutations[@]}"; do
   code=$?
   [ $code -eq 1 ] || fail "hipair-verify does not reject the mutation $mutation (exit $code): $(head -c 300 "$work/noint-mutated.out")"
 done
+# --certify-free-path (session 17): leaves whose witness paths check 7 proves free; the 4 x
+# certificate is CERTIFIED by the report and "valid" for hipair-verify (exit 0).
+"$hipair" tolerance "$geneva" --range 2.2:2.3 --positions 720 --accuracy 0.5 --certify --certify-scale 4 \
+  --certify-free-path --quiet --out "$work/nojam4f" >"$work/nojam4f.out" 2>&1 ||
+  fail "tolerance --certify --certify-free-path: $(tail -c 300 "$work/nojam4f.out")"
+grep -q "CERTIFIED: " "$work/nojam4f.out" || fail "tolerance --certify-free-path: not CERTIFIED: $(grep -A1 'Tolerance certificate' "$work/nojam4f.out")"
+"$verify" "$work/nojam4f/tolerance-certificate.json" "$geneva" >"$work/nojam4f.verify" 2>&1
+code=$?
+[ $code -eq 0 ] || fail "hipair-verify (4 x, free-path leaves): exit $code, want 0: $(head -c 400 "$work/nojam4f.verify")"
 # A no-jam tolerance certificate is "valid" only when check 7 proves a free follower path across
 # the range (the 2 x certificate); the false fixture (the pair jams at this scale;
 # tests/data/certificates/README.md) passes checks 1-6 and must stay "unproven" (exit 3).

@@ -81,12 +81,12 @@ TEST(CertifyFreePath, TheFalseCertificateIsNotProved) {
 // free, the exact overlap predicate must find the parts apart at random points of every region
 // along it (parameters and driver at corners of the region half of the time); whenever the
 // predicate finds them overlapping, check 7 must not have proved it. Both outcomes must occur.
-TEST(CertifyFreePath, ProvedPathsAreFreeUnderTheExactOverlapPredicate) {
+void expect_proved_paths_free(const std::string& name, unsigned seed, std::size_t budget) {
   Oracle oracle;
   const Model& m = oracle.model->nominal();
-  const Certificate base = read_certificate(read(fixture("geneva-tolerance-no-jam.json")));
+  const Certificate base = read_certificate(read(fixture(name)));
   ASSERT_TRUE(base.tolerance);
-  std::mt19937_64 random(7);
+  std::mt19937_64 random(seed);
   const double sizes[] = {1e-3, 1e-2, 3e-2, 0.1, 0.3, 1, 3, 10};
   std::size_t proved = 0, refused = 0, overlapping_seen = 0;
   for (int trial = 0; trial < 18; ++trial) {
@@ -112,7 +112,7 @@ TEST(CertifyFreePath, ProvedPathsAreFreeUnderTheExactOverlapPredicate) {
       mutation = "slope in '" + t.varied[i] + "' changed by " + to_exact_string(delta);
     }
     verify::ToleranceEvaluator evaluator(oracle.model, t);
-    std::string failure = evaluator.free_path_failure(2);
+    std::string failure = evaluator.free_path_failure(budget);
     bool ok = failure.empty();
     (ok ? proved : refused) += 1;
     SCOPED_TRACE("trial " + std::to_string(trial) + ": leaf " + std::to_string(leaf) + " " + mutation +
@@ -139,11 +139,132 @@ TEST(CertifyFreePath, ProvedPathsAreFreeUnderTheExactOverlapPredicate) {
     overlapping_seen += overlap;
     if (overlap) EXPECT_FALSE(ok);
   }
+  std::cout << "[ free path ] " << name << ": " << proved << " proved, " << refused << " not proved, "
+            << overlapping_seen << " seen overlapping\n";
   EXPECT_GT(proved, 0u);
   EXPECT_GT(refused, 0u);
   EXPECT_GT(overlapping_seen, 0u);
 }
 
+TEST(CertifyFreePath, ProvedPathsAreFreeUnderTheExactOverlapPredicate) {
+  expect_proved_paths_free("geneva-tolerance-no-jam.json", 7, 2);
+}
+
+// The same on the 4 x certificate whose leaves the producer chose with check 7
+// (free_path_leaves, session 17): its regions pass the lock/drive switch, where the lock arcs'
+// tangency (reduced variables) and the pin / slot corner events (monotone form) decide.
+TEST(CertifyFreePath, ProvedPathsOfTheFreePathCertificateAreFreeUnderTheExactOverlapPredicate) {
+  expect_proved_paths_free("geneva-tolerance-no-jam-4x-free-path.json", 13, 8);
+}
+
+TEST(CertifyFreePath, TheFreePathCertificateIsValid) {
+  VerificationResult v = verify_certificate_file(fixture("geneva-tolerance-no-jam-4x-free-path.json"), geneva());
+  EXPECT_TRUE(v.valid) << v.summary << v.reason;
+}
+
+// Why the plain producer's certificates near the threshold stay unproven (session 17): their
+// witness paths meet a part. The 0.9 x certificate's leaf 0 (lock arc sides, driver up to
+// 2.2375 rad) at a corner of the box, where check 7's monotone form ends with the pin on the
+// corner of slot 1's wall L: the exact overlap predicate finds the parts overlapping there, on
+// the witness path; check 7 does not prove the certificate.
+TEST(CertifyFreePath, TheNearThresholdWitnessPathMeetsThePin) {
+  Oracle oracle;
+  const Model& m = oracle.model->nominal();
+  Certificate c = read_certificate(read(fixture("geneva-tolerance-no-jam-0.9-threshold.json")));
+  ASSERT_TRUE(c.tolerance);
+  const ToleranceClaim& t = *c.tolerance;
+  std::size_t k = t.varied.size();
+  const Rational a(1527, 10000), b(1527, 400000);
+  // Per varied parameter (in the certificate's order): +a, -a, +b, -b or 0 (nominal).
+  const std::vector<Rational> corner{a,  a, -a, 0, b,  0, 0, 0, -a, -a, a, -a, -b,
+                                     a,  0, -a, 0, -a, -a, b, a, b,  b, 0, 0, 0};
+  ASSERT_EQ(corner.size(), k);
+  const ToleranceLeaf& l = t.leaves[0];
+  Rational d = l.driver.hi;   // 2.2375 rad, the region's end
+  for (std::size_t i = 0; i < k; ++i) ASSERT_TRUE(l.parameters[i].lo <= corner[i] && corner[i] <= l.parameters[i].hi);
+  std::vector<Rational> deviations(m.parameters.size(), Rational(0));
+  Rational y = *l.witness;
+  for (std::size_t i = 0; i < k; ++i) {
+    deviations[static_cast<std::size_t>(m.find_parameter(t.varied[i]) - m.parameters.data())] = corner[i];
+    y += l.witness_slopes[i] * (corner[i] - (l.parameters[i].lo + l.parameters[i].hi) / 2);
+  }
+  y += l.witness_slopes[k] * (d - (l.driver.lo + l.driver.hi) / 2);
+  EXPECT_EQ(oracle.relation(deviations, tangent_of(d), tangent_of(y)), PartRelation::overlapping);
+  verify::ToleranceEvaluator evaluator(oracle.model, t);
+  EXPECT_FALSE(evaluator.free_path_failure(8).empty());
+}
+
+
+// The Geneva's lock arcs alone (session 17): the wheel held at 0 (witness 0, no slopes), the
+// driver over [0.5, 1] rad (the lock phase: the driver's outer lock arc inside the wheel's lock
+// arc 1, nearly concentric, 0.683 mm apart in radius), the driver's pivot (rotation-center-off-x)
+// and both radii varied at scales from 4 to 16 x the tolerances. From 12 x the driver's arc
+// reaches the wheel's inside both arcs' ranges: their first contact is the internal tangency,
+// which only the arc-tangency test in reduced variables decides (q's direction on the event).
+// Check 7 must prove only claims whose parts the exact overlap predicate finds apart at random
+// points (corners half of the time), never one where it finds them overlapping; both occur.
+TEST(CertifyFreePath, LockArcTangencyAgreesWithTheExactOverlapPredicate) {
+  Oracle oracle;
+  const Model& m = oracle.model->nominal();
+  const Certificate base = read_certificate(read(fixture("geneva-tolerance-no-jam.json")));
+  ASSERT_TRUE(base.tolerance);
+  std::mt19937_64 random(17);
+  const std::vector<std::string> varied{"rotation-center-off-x", "arc-radius", "outer-arc-radius"};
+  std::size_t proved = 0, refused = 0, overlapping_seen = 0;
+  // In 1/2: from 12 x (0.06 x 12 = 0.72 > 0.683 mm) the driver's arc reaches the wheel's near
+  // the direction of the wheel's centre (a narrow lens, within both arcs: only the tangency is a
+  // first contact there); from 13 x the lens reaches the ends of the wheel's arc.
+  for (int twice : {8, 16, 20, 22, 23, 24, 25, 26, 32}) {
+    Rational scale(twice, 2);
+    scale.canonicalize();
+    ToleranceClaim t;
+    t.property = "no_jam";
+    t.driver = "driver";
+    t.follower = "wheel";
+    t.range = {Rational(1, 2), Rational(1)};
+    t.scale = scale;
+    t.varied = varied;
+    Rational half = scale / 50;
+    for (std::size_t i = 0; i < varied.size(); ++i) t.box.push_back({-half, half});
+    t.sides = {base.tolerance->sides[0], base.tolerance->sides[1]};
+    ToleranceLeaf leaf;
+    leaf.parameters = t.box;
+    leaf.driver = t.range;
+    leaf.witness = Rational(0);
+    leaf.witness_slopes.assign(varied.size() + 1, Rational(0));
+    t.leaves.push_back(leaf);
+    ToleranceTreeNode node;
+    node.leaf = true;
+    t.tree.push_back(node);
+    std::optional<verify::ToleranceEvaluator> made;
+    try {
+      made.emplace(oracle.model, t);
+    } catch (const verify::Rejection& rejection) {
+      FAIL() << "the claim is refused: " << rejection.reason;
+    }
+    std::string failure = made->free_path_failure(8);
+    bool ok = failure.empty();
+    (ok ? proved : refused) += 1;
+    SCOPED_TRACE("scale " + to_exact_string(scale) + (ok ? ": proved" : ": not proved: " + failure));
+    bool overlap = false;
+    for (int point = 0; point < 24; ++point) {
+      std::vector<Rational> deviations(m.parameters.size(), Rational(0));
+      for (std::size_t i = 0; i < varied.size(); ++i)
+        deviations[static_cast<std::size_t>(m.find_parameter(varied[i]) - m.parameters.data())] =
+            inside(random, t.box[i], point % 2 == 0);
+      Rational d = inside(random, t.range, point % 2 == 0);
+      PartRelation r = oracle.relation(deviations, tangent_of(d), Rational(0));
+      if (ok) EXPECT_EQ(r, PartRelation::apart) << "point " << point;
+      overlap = overlap || r == PartRelation::overlapping;
+    }
+    overlapping_seen += overlap;
+    if (overlap) EXPECT_FALSE(ok);
+  }
+  std::cout << "[ free path ] lock arcs: " << proved << " proved, " << refused << " not proved, " << overlapping_seen
+            << " seen overlapping\n";
+  EXPECT_GT(proved, 1u);
+  EXPECT_GT(overlapping_seen, 1u);
+}
 
 // The scotch yoke (examples/models/scotch-yoke.json): the crank's pin (a full circle: no ends,
 // only tangencies) in the yoke's slot, 0.2 mm of play a side. Claims built here over random

@@ -98,6 +98,32 @@ TEST(CertifyTolerance, GenevaNoJamCertificateVerifies) {
   EXPECT_FALSE(model_only.unproven);
 }
 
+// Session 17: with free_path_leaves the producer accepts a leaf only when check 7 also proves
+// its witness path free over the leaf's box, so the 4 x certificate is valid (the plain search's
+// 4 x certificate above has a witness path through the wheel's lock arc near the lock/drive
+// switch and is unproven, rightly: docs/certify.md "Tolerance", session 17).
+TEST(CertifyTolerance, FreePathLeavesMakeTheCertificateValid) {
+  ToleranceOptions options = around_the_pin_entry();
+  options.certify = true;
+  options.certify_scale = 4;
+  options.certify_free_path = true;
+  ToleranceResult result = analyze_tolerances(geneva(), options);
+  ASSERT_TRUE(result.certification);
+  const ToleranceCertification& c = *result.certification;
+  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
+  EXPECT_FALSE(c.unproven) << c.reason;
+  ASSERT_TRUE(c.certificate && c.certificate->tolerance);
+  std::filesystem::path file = std::filesystem::temp_directory_path() / "hipair-tolerance-certificate-free-path-test.json";
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << write_certificate(*c.certificate);
+  }
+  VerificationResult v = verify_certificate_file(file, geneva());
+  std::filesystem::remove(file);
+  expect_checks_pass(v);
+  EXPECT_TRUE(v.valid) << v.summary;
+}
+
 // The false fixture (docs/certify.md "What it proves, and what it does not"): at 4157/500 x the
 // tolerances the pair jams (tests/data/certificates/README.md), yet the named sides stay apart
 // over every leaf, so the evidence passes checks 1-6. Check 7 (the free follower path) must not

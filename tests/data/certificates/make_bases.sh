@@ -28,6 +28,11 @@ cp "$tmp/nojam/tolerance-certificate.json" "$out/geneva-tolerance-no-jam.json"
 "$hipair" tolerance "$models/geneva.json" --range 2.2:2.3 --positions 720 --accuracy 0.5 --certify \
   --certify-scale 1527/200 --quiet --out "$tmp/nojam09" > /dev/null
 cp "$tmp/nojam09/tolerance-certificate.json" "$out/geneva-tolerance-no-jam-0.9-threshold.json"
+# ... and at 4 x with leaves whose witness paths check 7 proves free (--certify-free-path, session 17):
+# valid, where the plain search's 4 x certificate is unproven (its path meets the wheel's lock arc).
+"$hipair" tolerance "$models/geneva.json" --range 2.2:2.3 --positions 720 --accuracy 0.5 --certify \
+  --certify-scale 4 --certify-free-path --quiet --out "$tmp/nojam4f" > /dev/null
+cp "$tmp/nojam4f/tolerance-certificate.json" "$out/geneva-tolerance-no-jam-4x-free-path.json"
 "$hipair" tolerance "$models/geneva.json" --certify-interference --pair driver:wheel --range 1:2.4 --follower-range 0 \
   --quiet --out "$tmp/noint" > /dev/null
 cp "$tmp/noint/interference-certificate.json" "$out/geneva-tolerance-no-interference.json"

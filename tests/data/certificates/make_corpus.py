@@ -51,11 +51,13 @@ bases = [
     ("geneva-tolerance-no-jam.json", "geneva.json"),
     ("geneva-tolerance-no-interference.json", "geneva.json"),
     ("geneva-tolerance-no-jam-0.9-threshold.json", "geneva.json"),
+    ("geneva-tolerance-no-jam-4x-free-path.json", "geneva.json"),
 ]
 # The no_jam bases whose free follower path check 7 proves (docs/certify.md "Tolerance"): the
-# 2 x certificate. The 0.9 x one passes checks 1-6, but check 7 leaves its lock-arc tangency
-# undecided within its budget: "unproven" (hipair-verify exit 3).
-PROVED_NO_JAM = {"geneva-tolerance-no-jam.json"}
+# 2 x certificate and the 4 x one produced with --certify-free-path. The 0.9 x one passes checks
+# 1-6, but its witness path meets the pin near the lock/drive switch (session 17): "unproven"
+# (hipair-verify exit 3).
+PROVED_NO_JAM = {"geneva-tolerance-no-jam.json", "geneva-tolerance-no-jam-4x-free-path.json"}
 
 
 def base_verdict(name):
