@@ -28,17 +28,63 @@ Polynomial derivative(const Polynomial& p) {
 
 namespace {
 
-// Sum a_i n^i d^(deg-i): the value times d^deg (d > 0), so its sign is the sign of p(n/d).
-mpz_class homogeneous_value(const Polynomial& p, const mpz_class& n, const mpz_class& d) {
-  if (p.empty()) return 0;
-  mpz_class result = p.back();
-  mpz_class d_power = 1;
-  for (int i = degree(p) - 1; i >= 0; --i) {   // in place: no temporaries
-    mpz_mul(d_power.get_mpz_t(), d_power.get_mpz_t(), d.get_mpz_t());
-    mpz_mul(result.get_mpz_t(), result.get_mpz_t(), n.get_mpz_t());
-    mpz_addmul(result.get_mpz_t(), p[static_cast<std::size_t>(i)].get_mpz_t(), d_power.get_mpz_t());
+// The sign of Sum a_i n^i d^(deg-i), the value times d^deg (d > 0): the sign of p(n/d).
+// Horner on integers held in per-thread scratch integers that keep their storage from call to
+// call (GMP grows them as needed; no allocation once they are large enough), products written
+// to a second integer (an aliased mpz_mul copies). When d is a power of two 2^e (the
+// bisections' midpoints, every dyadic end) the powers of d are shifts: a_i d^(deg-i) =
+// a_i << e (deg-i), no multiplication. The same integer either way, hence the same sign.
+struct HornerScratch {
+  mpz_t result, product, term, d_power;
+  HornerScratch() {
+    mpz_init(result);
+    mpz_init(product);
+    mpz_init(term);
+    mpz_init(d_power);
   }
-  return result;
+  ~HornerScratch() {
+    mpz_clear(result);
+    mpz_clear(product);
+    mpz_clear(term);
+    mpz_clear(d_power);
+  }
+  HornerScratch(const HornerScratch&) = delete;
+  HornerScratch& operator=(const HornerScratch&) = delete;
+};
+
+int homogeneous_sign(const Polynomial& p, const mpz_class& n, const mpz_class& d) {
+  if (p.empty()) return 0;
+  const int deg = degree(p);
+  if (deg == 0) return sgn(p.back());
+  thread_local HornerScratch scratch;
+  mpz_ptr result = scratch.result, product = scratch.product, term = scratch.term;
+  mpz_set(result, p.back().get_mpz_t());
+  const std::size_t d_bits = mpz_sizeinbase(d.get_mpz_t(), 2);
+  const bool dyadic = sgn(d) > 0 && mpz_scan1(d.get_mpz_t(), 0) == d_bits - 1;
+  if (dyadic) {
+    const mp_bitcnt_t e = d_bits - 1;
+    for (int i = deg - 1; i >= 0; --i) {
+      mpz_mul(product, result, n.get_mpz_t());
+      const mpz_class& a = p[static_cast<std::size_t>(i)];
+      if (sgn(a) == 0) {
+        mpz_swap(result, product);
+        continue;
+      }
+      mpz_mul_2exp(term, a.get_mpz_t(), e * static_cast<mp_bitcnt_t>(deg - i));
+      mpz_add(result, product, term);
+    }
+    return mpz_sgn(result);
+  }
+  mpz_ptr d_power = scratch.d_power;
+  mpz_set_ui(d_power, 1);
+  for (int i = deg - 1; i >= 0; --i) {
+    mpz_mul(term, d_power, d.get_mpz_t());
+    mpz_swap(d_power, term);
+    mpz_mul(product, result, n.get_mpz_t());
+    mpz_addmul(product, p[static_cast<std::size_t>(i)].get_mpz_t(), d_power);
+    mpz_swap(result, product);
+  }
+  return mpz_sgn(result);
 }
 
 mpz_class content(const Polynomial& p) {
@@ -72,7 +118,7 @@ Polynomial positive_pseudo_remainder(Polynomial a, const Polynomial& b) {
 }  // namespace
 
 int sign_at(const Polynomial& p, const Rational& x) {
-  return sgn(homogeneous_value(p, x.get_num(), x.get_den()));
+  return homogeneous_sign(p, x.get_num(), x.get_den());
 }
 
 Rational value_at(const Polynomial& p, const Rational& x) {
@@ -159,17 +205,58 @@ std::string to_string(const Polynomial& p, const std::string& variable) {
   return out.str();
 }
 
+namespace {
+
+// sign(r - d) for a finite double d, exact, without forming a rational from d (mpq_set_d
+// allocated and copied on every enclosure): d = m 2^e with an integer |m| < 2^53, and
+// r - d has the sign of num - m 2^e den (den > 0), compared after multiplying both sides by
+// 2^-e when e < 0. Per-thread scratch integers keep their storage.
+int compare_with_double(const Rational& r, double d) {
+  if (d == 0) return sgn(r);
+  int exponent = 0;
+  const double fraction = std::frexp(d, &exponent);   // d = fraction 2^exponent, 1/2 <= |fraction| < 1
+  const auto m = static_cast<long>(std::ldexp(fraction, 53));   // exact: 53 significant bits at most
+  const long e = static_cast<long>(exponent) - 53;
+  struct Scratch {
+    mpz_t left, right;
+    Scratch() {
+      mpz_init(left);
+      mpz_init(right);
+    }
+    ~Scratch() {
+      mpz_clear(left);
+      mpz_clear(right);
+    }
+    Scratch(const Scratch&) = delete;
+    Scratch& operator=(const Scratch&) = delete;
+  };
+  thread_local Scratch scratch;
+  static_assert(sizeof(long) >= 8, "m needs 53 bits");
+  mpz_mul_si(scratch.right, r.get_den_mpz_t(), m);   // m den
+  int c = 0;
+  if (e >= 0) {
+    mpz_mul_2exp(scratch.right, scratch.right, static_cast<mp_bitcnt_t>(e));   // m 2^e den
+    c = mpz_cmp(r.get_num_mpz_t(), scratch.right);
+  } else {
+    mpz_mul_2exp(scratch.left, r.get_num_mpz_t(), static_cast<mp_bitcnt_t>(-e));   // num 2^-e
+    c = mpz_cmp(scratch.left, scratch.right);
+  }
+  return c < 0 ? -1 : c > 0 ? 1 : 0;
+}
+
+}  // namespace
+
 double lower_double(const Rational& r) {
   double d = r.get_d();
   if (std::isinf(d)) return d > 0 ? std::numeric_limits<double>::max() : d;
-  if (Rational(d) > r) d = std::nextafter(d, -std::numeric_limits<double>::infinity());
+  if (compare_with_double(r, d) < 0) d = std::nextafter(d, -std::numeric_limits<double>::infinity());   // d > r
   return d;
 }
 
 double upper_double(const Rational& r) {
   double d = r.get_d();
   if (std::isinf(d)) return d < 0 ? std::numeric_limits<double>::lowest() : d;
-  if (Rational(d) < r) d = std::nextafter(d, std::numeric_limits<double>::infinity());
+  if (compare_with_double(r, d) > 0) d = std::nextafter(d, std::numeric_limits<double>::infinity());   // d < r
   return d;
 }
 
@@ -446,7 +533,7 @@ void Real::refine_to(const Rational& width) {
     if (s == 0) {
       numerator = (base << k) + step * m;
       scaled_denominator = denominator << k;
-      s = sgn(homogeneous_value(polynomial, numerator, scaled_denominator));
+      s = homogeneous_sign(polynomial, numerator, scaled_denominator);
     }
     if (s == 0) {   // decided exactly (the filter never returns 0 as a sign)
       lower = Rational(numerator, scaled_denominator);
@@ -512,7 +599,7 @@ void refine_dyadically(Real& r, const Rational& width) {
         if (s != 0) return s;
       }
     }
-    return sgn(homogeneous_value(r.polynomial, numerator, denominator));
+    return homogeneous_sign(r.polynomial, numerator, denominator);
   };
   auto settle_exact = [&](const mpz_class& numerator, const mpz_class& denominator) {
     Rational root(numerator, denominator);

@@ -7,7 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <random>
+#include <string>
 
 namespace hipair::cspace::algebra {
 namespace {
@@ -444,6 +447,131 @@ TEST(CSpaceDescartes, FilteredDyadicRefinementTakesTheExactSteps) {
   }
   EXPECT_GT(refined, 300);
   EXPECT_GT(exact_hits, 50);   // 86 of 200 with this seed (a bisection of [a, b] meets the root when it is a midpoint)
+}
+
+// sign_at(p, x) is the sign of an integer Horner value (shifts for power-of-two denominators,
+// per-thread scratch integers); here against the sign of p(x) evaluated in rationals.
+TEST(CSpaceDescartes, IntegerHornerSignsAreTheSignsOfTheRationalValues) {
+  Generator generator(17);
+  int zeros = 0, dyadic = 0, checked = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    // a point: a dyadic n / 2^k (k up to 300), a general rational, or an integer
+    Rational x;
+    switch (generator.uniform(0, 2)) {
+      case 0: {
+        mpz_class n = generator.big(static_cast<unsigned>(generator.uniform(1, 320)));
+        if (generator.uniform(0, 1)) n = -n;
+        x = Rational(n, mpz_class(1) << generator.uniform(0, 300));
+        break;
+      }
+      case 1:
+        x = generator.rational(static_cast<unsigned>(generator.uniform(1, 200)));
+        break;
+      default:
+        x = Rational(mpz_class(generator.uniform(-1000, 1000)));
+    }
+    x.canonicalize();
+    // a polynomial: degree 0..10, 0-600-bit coefficients, some zero; a third vanish at x
+    Polynomial p;
+    const long degree_wanted = generator.uniform(0, 10);
+    for (long i = 0; i <= degree_wanted; ++i) {
+      mpz_class c = generator.uniform(0, 3) == 0 ? mpz_class(0) : generator.big(static_cast<unsigned>(generator.uniform(1, 600)));
+      if (generator.uniform(0, 1)) c = -c;
+      p.push_back(c);
+    }
+    trim(p);
+    if (generator.uniform(0, 2) == 0) p = multiply(p, Polynomial{-x.get_num(), x.get_den()});
+    const int expected = sgn(value_at(p, x));
+    SCOPED_TRACE("trial " + std::to_string(trial) + " x = " + x.get_str());
+    EXPECT_EQ(sign_at(p, x), expected);
+    // an unreduced fraction of the same value (a common odd or even factor): the same sign
+    const mpz_class factor = generator.uniform(0, 1) ? mpz_class(mpz_class(1) << generator.uniform(1, 80))
+                                                   : mpz_class(generator.big(static_cast<unsigned>(generator.uniform(1, 90))) * 2 + 1);
+    const Rational unreduced(mpz_class(x.get_num() * factor), mpz_class(x.get_den() * factor));   // not canonicalized
+    EXPECT_EQ(sign_at(p, unreduced), expected);
+    zeros += expected == 0 && !p.empty();
+    dyadic += mpz_popcount(x.get_den_mpz_t()) == 1;
+    ++checked;
+  }
+  EXPECT_GT(zeros, 500);
+  EXPECT_GT(dyadic, 1000);
+  EXPECT_EQ(checked, 3000);
+}
+
+// lower_double / upper_double compare r with its double exactly on integers (d = m 2^e); here
+// against the former comparison with the rational of the double, and the enclosure is tight:
+// [lo, hi] contains r, lo == hi when r is a double, else they are adjacent doubles (or the
+// ends of the double range).
+TEST(CSpaceDescartes, DoubleEnclosuresOfRationalsAreTheFormerOnes) {
+  Generator generator(19);
+  auto former_lower = [](const Rational& r) {
+    double d = r.get_d();
+    if (std::isinf(d)) return d > 0 ? std::numeric_limits<double>::max() : d;
+    if (Rational(d) > r) d = std::nextafter(d, -std::numeric_limits<double>::infinity());
+    return d;
+  };
+  auto former_upper = [](const Rational& r) {
+    double d = r.get_d();
+    if (std::isinf(d)) return d < 0 ? std::numeric_limits<double>::lowest() : d;
+    if (Rational(d) < r) d = std::nextafter(d, std::numeric_limits<double>::infinity());
+    return d;
+  };
+  int exact = 0, inexact = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    Rational r;
+    switch (generator.uniform(0, 5)) {
+      case 0: {   // a double exactly (normal or subnormal, any exponent)
+        double d = std::ldexp(static_cast<double>(generator.uniform(1, (1L << 53) - 1)), static_cast<int>(generator.uniform(-1126, 970)));
+        if (generator.uniform(0, 1)) d = -d;
+        r = Rational(d);
+        break;
+      }
+      case 1: {   // a dyadic rational with more than 53 bits
+        mpz_class n = generator.big(static_cast<unsigned>(generator.uniform(54, 400))) + 1;
+        if (generator.uniform(0, 1)) n = -n;
+        r = Rational(n, mpz_class(1) << generator.uniform(0, 1200));
+        break;
+      }
+      case 2:   // general rationals
+        r = generator.rational(static_cast<unsigned>(generator.uniform(1, 300)));
+        break;
+      case 3: {   // beyond the double range, or below the smallest subnormal
+        mpz_class n = generator.big(static_cast<unsigned>(generator.uniform(1, 60))) + 1;
+        if (generator.uniform(0, 1)) n = -n;
+        r = generator.uniform(0, 1) ? Rational(mpz_class(n << 1100)) : Rational(n, mpz_class(mpz_class(1) << 1200));
+        break;
+      }
+      case 4: {   // unreduced fractions (not canonicalized: their values count)
+        mpz_class f = generator.big(static_cast<unsigned>(generator.uniform(1, 70))) + 1;
+        Rational c = generator.rational(static_cast<unsigned>(generator.uniform(1, 60)));
+        r = Rational(mpz_class(c.get_num() * f), mpz_class(c.get_den() * f));
+        break;
+      }
+      default:
+        r = Rational(mpz_class(generator.uniform(-5, 5)), mpz_class(generator.uniform(1, 3)));
+    }
+    if (generator.uniform(0, 4) != 4) r.canonicalize();
+    SCOPED_TRACE("trial " + std::to_string(trial) + " r = " + r.get_str());
+    const double lo = lower_double(r), hi = upper_double(r);
+    EXPECT_EQ(lo, former_lower(r));
+    EXPECT_EQ(hi, former_upper(r));
+    if (std::isfinite(lo) && std::isfinite(hi) && lo > std::numeric_limits<double>::lowest() &&
+        hi < std::numeric_limits<double>::max()) {
+      Rational value = r;   // GMP compares canonical fractions only
+      value.canonicalize();
+      EXPECT_LE(Rational(lo), value);
+      EXPECT_GE(Rational(hi), value);
+      if (lo == hi) {
+        EXPECT_EQ(Rational(lo), value);
+        ++exact;
+      } else {
+        EXPECT_EQ(std::nextafter(lo, HUGE_VAL), hi);
+        ++inexact;
+      }
+    }
+  }
+  EXPECT_GT(exact, 3000);
+  EXPECT_GT(inexact, 8000);
 }
 
 }  // namespace
