@@ -4,6 +4,7 @@
 // engine's kept rates and coordinates against recomputing them.
 #include "algebra/exact_real.hpp"
 #include "kinematics/engine.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/model.hpp>
 

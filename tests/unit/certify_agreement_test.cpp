@@ -7,6 +7,7 @@
 #include "certify/exact_geometry.hpp"
 #include "certify/interval_geometry.hpp"
 #include "oracle/overlap.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/model.hpp>
 

@@ -12,6 +12,8 @@
 #include <vector>
 #include <string>
 
+#include "test_paths.hpp"
+
 namespace {
 
 using namespace hipair;

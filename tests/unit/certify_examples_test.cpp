@@ -9,6 +9,7 @@
 #include "certify/exact_geometry.hpp"
 #include "oracle/overlap.hpp"
 #include "io/atomic_file.hpp"
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 

@@ -12,6 +12,7 @@
 
 #include "model/parametric/parametric.hpp"
 #include "rotation_pair_oracle.hpp"
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 

@@ -10,6 +10,7 @@
 
 #include "model/parametric/parametric.hpp"
 #include "rotation_pair_oracle.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/error.hpp>
 

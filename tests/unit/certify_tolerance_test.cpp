@@ -10,6 +10,7 @@
 #include "model/parametric/number_traits.hpp"
 #include "model/parametric/parametric.hpp"
 #include "tolerance/contact_function.hpp"
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 

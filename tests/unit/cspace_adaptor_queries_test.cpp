@@ -9,6 +9,7 @@
 
 #include "curves/contact_curves.hpp"
 #include "curves/pose.hpp"
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 

@@ -14,6 +14,7 @@
 #include "curves/contact_curves.hpp"
 #include "oracle/overlap.hpp"
 #include "kernels/interval.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>

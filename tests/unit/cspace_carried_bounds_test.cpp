@@ -6,6 +6,7 @@
 // starts in free space, starts within a few units in the last place of a contact curve, motions
 // along a curve's tangent (near-tangent passes), and starts on contact space.
 #include "cspace/angle_filter.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/error.hpp>

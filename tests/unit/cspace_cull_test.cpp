@@ -13,6 +13,7 @@
 #include "cspace/builder_impl.hpp"
 #include "curves/contact_curves.hpp"
 #include "cspace_test_support.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>

@@ -4,6 +4,7 @@
 // crash and exact point location agrees with the exact overlap oracle; special
 // configurations are checked exactly.
 #include "curves/contact_curves.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>

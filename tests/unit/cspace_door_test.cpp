@@ -8,6 +8,7 @@
 #include <hipair/overlap.hpp>
 
 #include "oracle/overlap.hpp"
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 

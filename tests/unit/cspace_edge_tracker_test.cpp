@@ -19,6 +19,8 @@
 #include <random>
 #include <string>
 
+#include "test_paths.hpp"
+
 namespace hipair {
 namespace {
 

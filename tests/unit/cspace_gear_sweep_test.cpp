@@ -8,6 +8,7 @@
 // run when HIPAIR_SLOW_TESTS is set (each takes minutes).
 #include "curves/contact_curves.hpp"
 #include "cspace_test_support.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>

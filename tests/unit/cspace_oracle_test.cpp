@@ -4,6 +4,7 @@
 // overlapping, and a configuration on an edge or a vertex is touching (on a real edge) or of
 // the class of the surrounding cell (on a spurious edge, whose curve may still touch there).
 #include "curves/contact_curves.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>

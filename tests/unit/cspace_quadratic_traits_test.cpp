@@ -12,6 +12,7 @@
 #include "arrangement/quadratic_traits.hpp"
 #include "cspace/builder_impl.hpp"
 #include "cspace_test_support.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>

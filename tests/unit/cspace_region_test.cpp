@@ -7,6 +7,7 @@
 //  - tiles not built are reported as outside, and the space says it is not complete.
 #include "curves/contact_curves.hpp"
 #include "cspace_test_support.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/cspace_region.hpp>

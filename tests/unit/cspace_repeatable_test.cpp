@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <string>
 
+#include "test_paths.hpp"
+
 namespace hipair {
 namespace {
 

@@ -7,6 +7,7 @@
 // slicer and the kinematic analysis follow them, and `analyze` reports a contact, not an
 // interference. Generated over random rational sizes and positions with a fixed seed.
 #include "curves/contact_curves.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/kinematics.hpp>

@@ -8,6 +8,7 @@
 #include "curves/pose.hpp"
 #include "kernels/contact.hpp"
 #include "kernels/interval.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>

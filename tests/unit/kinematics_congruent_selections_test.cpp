@@ -10,6 +10,7 @@
 //    congruent (the copy with its second gear moved 1/2 mm farther) shares nothing and keeps its own
 //    slices. And generate_selected(select()) is generate(), curve for curve.
 #include "kinematics/slice.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>

@@ -14,6 +14,8 @@
 #include <sstream>
 #include <string>
 
+#include "test_paths.hpp"
+
 namespace hipair {
 namespace {
 

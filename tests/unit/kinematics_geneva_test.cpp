@@ -23,6 +23,8 @@
 #include <numbers>
 #include <string>
 
+#include "test_paths.hpp"
+
 namespace {
 
 using namespace hipair;

@@ -12,6 +12,7 @@
 //   - the class of every interval is the class of each whole-chart interval inside it;
 //   - the feature labels agree.
 #include "kinematics/slice.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>

@@ -2,6 +2,7 @@
 // a flat follower, Scotch yoke, ratchet (indexes one way, blocks the other) and spur gears
 // (tooth ratio, backlash against centre distance, jamming).
 #include "kinematics_test_support.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>

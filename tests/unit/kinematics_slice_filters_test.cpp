@@ -14,6 +14,7 @@
 // A short driver range (shorter than one grid step) draws its C-space path through the states
 // on both sides of every event, not straight from the range's start to its end.
 #include "kinematics/slice.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>

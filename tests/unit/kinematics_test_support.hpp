@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "test_paths.hpp"
+
 namespace hipair::test {
 
 /// The text of an example model file (examples/models/NAME).

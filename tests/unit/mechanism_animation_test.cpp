@@ -5,6 +5,7 @@
 // configuration, a frame's transform must give what the still drawing (mechanism_svg) draws at
 // that frame's configuration: rotations about the part's pivot, translations along its axis.
 #include "render/mechanism_svg.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>

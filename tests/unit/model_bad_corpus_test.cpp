@@ -10,6 +10,8 @@
 #include <set>
 #include <sstream>
 
+#include "test_paths.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -2,6 +2,7 @@
 // feature template the reader knows with the same arguments, and accepts the key names the
 // reader accepts.
 #include "model/templates.hpp"
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

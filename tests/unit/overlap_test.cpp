@@ -1,6 +1,7 @@
 // Exact overlap predicate: hand cases with exact answers, including values a double cannot
 // hold (2^53 + 1, 10^-30 offsets), tangencies, coincident edges, holes and zero clearance.
 #include "oracle/overlap.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/model.hpp>
 

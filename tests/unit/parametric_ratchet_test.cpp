@@ -9,6 +9,7 @@
 #include "generic_form_check.hpp"
 #include "tolerance_band_check.hpp"
 #include "tolerance/jet.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/tolerance.hpp>
 

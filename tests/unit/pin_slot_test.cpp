@@ -11,6 +11,7 @@
 
 #include "algebra/exact_real.hpp"
 #include "sliced/critical_angles.hpp"
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 

@@ -10,6 +10,7 @@
 #include "sliced/witness_filter.hpp"
 
 #include "polygon_loop_json.hpp"
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 

@@ -10,6 +10,7 @@
 #include <hipair/simulation.hpp>
 
 #include "simulation/lcp.hpp"
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 

@@ -16,6 +16,7 @@
 #include "simulation_planar_support.hpp"
 #include "simulation/planar_bounds.hpp"
 #include "simulation/friction.hpp"
+#include "test_paths.hpp"
 
 #include <cmath>
 #include <iostream>

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "simulation_planar_support.hpp"
+#include "test_paths.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "simulation_planar_support.hpp"
+#include "test_paths.hpp"
 
 #include <cmath>
 #include <filesystem>

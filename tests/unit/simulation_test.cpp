@@ -18,6 +18,8 @@
 #include <sstream>
 #include <string>
 
+#include "test_paths.hpp"
+
 namespace hipair {
 namespace {
 

@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <numbers>
 
+#include "test_paths.hpp"
+
 namespace hipair {
 namespace {
 

@@ -8,6 +8,7 @@
 #include <hipair/rational.hpp>
 
 #include "polygon_loop_json.hpp"
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 

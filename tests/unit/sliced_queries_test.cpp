@@ -9,6 +9,7 @@
 #include <hipair/sliced.hpp>
 
 #include "algebra/exact_real.hpp"
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 

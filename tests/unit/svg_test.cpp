@@ -4,6 +4,7 @@
 #include "io/svg.hpp"
 #include "render/cspace_svg.hpp"
 #include "render/mechanism_svg.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/error.hpp>

@@ -17,6 +17,7 @@
 #include "tolerance_chain_oracle.hpp"
 
 #include "model/parametric/parametric.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>

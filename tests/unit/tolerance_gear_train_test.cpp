@@ -9,6 +9,7 @@
 #include "tolerance_chain_oracle.hpp"
 
 #include "model/parametric/parametric.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/tolerance.hpp>
 

@@ -8,6 +8,8 @@
 
 #include <filesystem>
 
+#include "test_paths.hpp"
+
 namespace hipair {
 namespace {
 

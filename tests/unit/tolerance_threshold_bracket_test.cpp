@@ -17,6 +17,8 @@
 #include <filesystem>
 #include <random>
 
+#include "test_paths.hpp"
+
 namespace hipair {
 namespace {
 

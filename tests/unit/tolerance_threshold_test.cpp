@@ -12,6 +12,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include "test_paths.hpp"
+
 namespace hipair {
 namespace {
 

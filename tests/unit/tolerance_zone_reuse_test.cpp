@@ -10,6 +10,7 @@
 #include "model/parametric/parametric.hpp"
 #include "tolerance/solver.hpp"
 #include "tolerance_geneva_curve.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/error.hpp>
 
