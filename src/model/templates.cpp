@@ -173,10 +173,19 @@ std::vector<Loop> expand_geneva_wheel(const Arguments& arguments,
                      "must be less than lock_center_radius (the locking arc would enclose the "
                      "wheel centre)");
 
-  // Slot frame: slot axis along +x. Walls at y = +-w/2 from the bottom to radius r_out.
-  Point wall_end_left = tg::point_on_circle_near(
-      Point{0, 0}, outer, Point{tg::approximate_sqrt(wall_end_squared), half}, pointer,
-      "slot wall end on slot_outer_radius", roundings);
+  // Slot frame: slot axis along +x. Walls at y = +-w/2 from the bottom to radius r_out, each of
+  // the rational length l, the simplest rational within b/2 of sqrt(r_out^2 - (w/2)^2) - r_in:
+  // a pin's tangency to a wall (rational pin radius times rational length) is then a contact
+  // curve of degree 2 in each half-angle tangent, where a wall ending exactly on the circle r_out
+  // (irrational length) squares it to degree 4 and leaves the quadratic traits
+  // (kernels/contact_table.hpp). The wall end lies within about b of that circle (recorded).
+  Rational wall_reach = tg::approximate_sqrt(wall_end_squared);
+  Rational wall_length = round_simplest(Rational(wall_reach - inner));
+  Point wall_end_left{Rational(inner + wall_length), half};
+  roundings.push_back(Rounding{pointer,
+                               "slot wall length (its end next to slot_outer_radius; bound: displacement of the "
+                               "end along the wall, mm)",
+                               wall_length, rounding_bound()});
   Point wall_end_right = tg::mirror(wall_end_left);
   Point bottom_center{inner, Rational(0)};
   Point bottom_left{inner, half};

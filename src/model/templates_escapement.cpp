@@ -262,12 +262,18 @@ std::vector<Loop> expand_balance(const Arguments& arguments, std::vector<Roundin
   Rational along =
       (pin_distance * pin_distance + radius * radius - pin_radius * pin_radius) / (2 * pin_distance);
   Rational across = tg::approximate_sqrt(Rational(radius * radius - along * along));
-  Point meet = tg::point_on_circle_near(Point{0, 0}, radius, Point{along, across}, pointer,
-                                        "impulse pin meets the disc (the pin circle passes "
-                                        "through this point)",
+  // The pin keeps its rational radius (its tangency to a segment of rational length is then a
+  // contact curve of degree 2 in each half-angle tangent, kernels/contact_table.hpp; through
+  // points of the disc circle its squared radius would be irrational and the curve of degree 4):
+  // the junctions are exact points of the pin circle next to the circles' crossings, mirror
+  // images in the pin's axis, and the rim is the arc about the centre through them (its radius
+  // within the recorded displacement of `radius`).
+  Point pin_center{pin_distance, Rational(0)};
+  Point meet = tg::point_on_circle_near(pin_center, pin_radius, Point{along, across}, pointer,
+                                        "impulse pin meets the disc (exact point of the pin circle; the rim "
+                                        "passes through it)",
                                         roundings);
   Point meet_below = tg::mirror(meet);
-  Point pin_center{pin_distance, Rational(0)};
   Point unit = exact_unit_vector(phase, arguments.at("phase"), "phase", roundings);
   auto at = [&](const Point& local) { return tg::add(center, tg::rotate(local, unit)); };
   tg::LoopBuilder loop(at(meet), pointer);

@@ -20,6 +20,30 @@ Point place(const Point& center, const Point& unit, const Point& local) {
 
 Rational dot(const Point& a, const Point& b) { return a.x * b.x + a.y * b.y; }
 
+// The root end of a flank's radial segment from `base_point` (the lower arc's end on the base
+// circle) down to the root circle: base_point - L w, with w an exact rational unit vector within
+// the rounding bound b of base_point's direction (half-angle tangent) and L the simplest rational
+// within b/2 of |base_point| - root_radius. The segment's length is then the rational L, so the
+// product of its length and a rational arc radius is rational: an arc's tangency to it is a
+// contact curve of degree 2 in each angle's half-angle tangent (kernels/contact_table.hpp,
+// ExactRootOrSquared), where an irrational length squares it to degree 4 (and the chart leaves
+// the quadratic traits for CGAL's algebraic one: a 7-tooth pair took a minute). The foot lies
+// within about (L + 1) b of the ideal point on the root circle (recorded).
+Point radial_foot(const Point& base_point, const Rational& root_radius, const std::string& pointer,
+                  std::vector<Rounding>& roundings) {
+  Rational base_radius = tg::approximate_sqrt(tg::squared_norm(base_point));
+  Point direction = tg::point_on_circle_near(Point{0, 0}, Rational(1), tg::scale(Rational(1 / base_radius), base_point),
+                                             pointer, "tooth flank radial direction", roundings);
+  Rational length = round_simplest(base_radius - root_radius);
+  Point foot = tg::subtract(base_point, tg::scale(length, direction));
+  Point ideal = tg::scale(Rational(root_radius / base_radius), base_point);
+  roundings.push_back(Rounding{pointer,
+                               "tooth flank end next to the root circle (radial below the base circle, rational "
+                               "length; bound: displacement from the ideal end, mm)",
+                               length, tg::upper_sqrt(tg::squared_distance(foot, ideal))});
+  return foot;
+}
+
 }  // namespace
 
 // One flank of the canonical tooth (axis along +x, the right flank y < 0), from the root
@@ -124,9 +148,6 @@ std::vector<Loop> expand_spur_gear(const Arguments& arguments, std::vector<Round
                ? first
                : second;
   };
-  auto exact_on = [&](const Rational& circle, const Point& near, const std::string& what) {
-    return tg::point_on_circle_near(Point{0, 0}, circle, near, pointer, what, roundings);
-  };
 
   Flank flank;
   if (arguments.has("flank_radius")) {
@@ -174,9 +195,7 @@ std::vector<Loop> expand_spur_gear(const Arguments& arguments, std::vector<Round
                                           "lower tooth flank arc (involute point on the base circle)", roundings);
       Point base_point = lower.end;
       Point lower_centre = lower.centre;
-      Rational scale_to_root = tg::approximate(root_radius) / low;
-      Point root = exact_on(root_radius, tg::scale(scale_to_root, base_point),
-                            "tooth flank end on the root circle (radial below the base circle)");
+      Point root = radial_foot(base_point, root_radius, pointer, roundings);
       flank.start = root;
       flank.ends = {base_point, pitch_point, tip};
       flank.centres = {Point{}, lower_centre, upper_centre};

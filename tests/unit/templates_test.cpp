@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <set>
 #include <sstream>
 
@@ -21,6 +22,7 @@ Point at(const std::string& x, const std::string& y) { return Point{q(x), q(y)};
 Rational squared_distance(const Point& a, const Point& b) {
   return (a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y);
 }
+Rational squared_norm(const Point& a) { return a.x * a.x + a.y * a.y; }
 // A decimal approximation as an exact rational (for test arguments computed in double).
 Rational decimal(double value) {
   std::ostringstream out;
@@ -84,6 +86,13 @@ Arguments spur_gear_arguments(int teeth) {
                    {"tooth_thickness", q("3.09")}};
 }
 
+// Whether a non-negative rational is the square of a rational (both parts perfect squares: the
+// rational is reduced).
+bool is_rational_square(const Rational& square) {
+  mpz_class n = square.get_num(), d = square.get_den();
+  return sgn(n) >= 0 && mpz_perfect_square_p(n.get_mpz_t()) && mpz_perfect_square_p(d.get_mpz_t());
+}
+
 // JSON of a one-part model whose only feature is `feature` (a JSON object text).
 std::string model_with_feature(const std::string& feature) {
   return R"({"hipair": 1, "name": "t", "parts": [{"name": "p", "motion": "fixed",
@@ -125,6 +134,70 @@ TEST(Templates, GenevaWheelIsExactForThreeToEightSlots) {
     for (const Edge& edge : loops[0].edges)
       if (edge.label.rfind("lock arc", 0) == 0)
         EXPECT_EQ(squared_distance(edge.center, Point{0, 0}), Rational(6400));
+  }
+}
+
+// A pin's tangency to a slot wall is a contact curve of degree 2 in each half-angle tangent only
+// when the pin's radius times the wall's length is rational (kernels/contact_table.hpp); the
+// walls have rational lengths (their ends within the recorded bound of slot_outer_radius) and the
+// same for generated wheel sizes; likewise the balance's impulse pin keeps its rational radius
+// (the rim passes through exact points of the pin circle).
+TEST(Templates, SlotWallsAndImpulsePinsGiveDegreeTwoTangencies) {
+  std::mt19937_64 random(2718);
+  for (int slots = 3; slots <= 8; ++slots) {
+    for (int trial = 0; trial < 4; ++trial) {
+      SCOPED_TRACE(std::to_string(slots) + " slots, trial " + std::to_string(trial));
+      Arguments a = geneva_wheel_arguments(slots);
+      // outer radius moved by a random number of thousandths (the fit stays workable)
+      Rational outer = std::get<Rational>(a["slot_outer_radius"]) + decimal(static_cast<double>(static_cast<long>(random() % 2001) - 1000) / 1000);
+      a["slot_outer_radius"] = outer;
+      std::vector<Rounding> roundings;
+      auto loops = expand_template("geneva_wheel", a, "/f", roundings);
+      expect_exact_loops(loops);
+      Rational bound = 0;
+      for (const Rounding& rounding : roundings)
+        if (rounding.expression.find("slot wall length") != std::string::npos) bound = std::max(bound, rounding.bound);
+      ASSERT_GT(bound, 0);
+      std::size_t walls = 0;
+      for (const Edge& edge : loops[0].edges) {
+        if (edge.label.find(" wall ") == std::string::npos) continue;
+        ++walls;
+        ASSERT_FALSE(edge.is_arc());
+        EXPECT_TRUE(is_rational_square(squared_distance(edge.source, edge.target))) << edge.label;
+        // the wall's outer end within the bound of the circle slot_outer_radius
+        const Point& end = squared_norm(edge.source) > squared_norm(edge.target) ? edge.source : edge.target;
+        EXPECT_GE(squared_norm(end), (outer - bound) * (outer - bound)) << edge.label;
+        EXPECT_LE(squared_norm(end), (outer + bound) * (outer + bound)) << edge.label;
+      }
+      EXPECT_EQ(walls, static_cast<std::size_t>(2 * slots));
+    }
+  }
+  for (int trial = 0; trial < 20; ++trial) {
+    SCOPED_TRACE("balance trial " + std::to_string(trial));
+    auto eighths = [&](long n) {
+      Rational r(n, 8);
+      r.canonicalize();
+      return r;
+    };
+    Rational radius = eighths(20 + static_cast<long>(random() % 21));                 // 2.5 .. 5
+    Rational pin_radius = eighths(4 + static_cast<long>(random() % 9));               // 0.5 .. 1.5
+    Rational pin_centre = radius + eighths(static_cast<long>(random() % 7) - 3);      // the pin sticks out
+    std::vector<Rounding> roundings;
+    auto balance = expand_template("balance",
+                                   {{"center", at("1", "48")}, {"radius", radius}, {"pin_radius", pin_radius},
+                                    {"pin_center_radius", pin_centre}, {"phase", decimal(static_cast<double>(random() % 629) / 100)}},
+                                   "/f", roundings);
+    expect_exact_loops(balance);
+    ASSERT_EQ(edge_count(balance), 2u);
+    for (const Edge& edge : balance[0].edges) {
+      ASSERT_TRUE(edge.is_arc());
+      if (edge.label == "impulse pin") EXPECT_EQ(edge.radius_squared, pin_radius * pin_radius);
+      if (edge.label == "rim") {
+        Rational slack(1, 1000000000);
+        EXPECT_GE(edge.radius_squared, (radius - slack) * (radius - slack));
+        EXPECT_LE(edge.radius_squared, (radius + slack) * (radius + slack));
+      }
+    }
   }
 }
 
@@ -203,7 +276,7 @@ TEST(Templates, SpurGearEdgeCounts) {
 // centre with both ends equidistant from it (mirror images), and each tip lies within its
 // recorded displacement bound (plus the double-precision construction of the ideal point,
 // 20 mm * 2^-52 * a few operations < 1e-13 mm) of the radius-20 tip circle.
-TEST(Templates, SpurGearVerticesLieExactlyOnTipAndRootCircles) {
+TEST(Templates, SpurGearTipAndRootVerticesLieWithinTheirRecordedDisplacementsOfTheirCircles) {
   std::vector<Rounding> roundings;
   auto loops = expand_template("spur_gear", spur_gear_arguments(18), "/f", roundings);
   Rational tip_bound = 0;
@@ -214,7 +287,12 @@ TEST(Templates, SpurGearVerticesLieExactlyOnTipAndRootCircles) {
   ASSERT_GT(tip_bound, 0);
   EXPECT_LT(tip_bound, Rational(1, 1000000000));   // a displacement of the order of 20 mm * b
   Rational slack = tip_bound + Rational(1, 10000000000000L);
-  std::size_t tips = 0;
+  Rational root_bound = 0;
+  for (const Rounding& rounding : roundings)
+    if (rounding.expression.find("radial below the base circle") != std::string::npos)
+      root_bound = std::max(root_bound, rounding.bound);
+  ASSERT_GT(root_bound, 0);
+  std::size_t tips = 0, roots = 0;
   for (const Edge& edge : loops[0].edges) {
     if (edge.label.find(" tip") != std::string::npos) {
       ++tips;
@@ -224,10 +302,58 @@ TEST(Templates, SpurGearVerticesLieExactlyOnTipAndRootCircles) {
       EXPECT_GE(edge.radius_squared, (20 - slack) * (20 - slack));
       EXPECT_LE(edge.radius_squared, (20 + slack) * (20 + slack));
     }
-    if (edge.label.find(" root") != std::string::npos)
-      EXPECT_EQ(squared_distance(edge.source, Point{0, 0}), q("15.5") * q("15.5"));
+    if (edge.label.find(" root") != std::string::npos) {
+      // the root arcs are exact arcs about the centre between the radial segments' feet, which
+      // lie within their recorded displacement of the root circle (rational segment lengths)
+      ++roots;
+      EXPECT_EQ(edge.center, at("0", "0"));
+      EXPECT_EQ(squared_distance(edge.source, edge.center), edge.radius_squared);
+      EXPECT_EQ(squared_distance(edge.target, edge.center), edge.radius_squared);
+      EXPECT_GE(edge.radius_squared, (q("15.5") - root_bound) * (q("15.5") - root_bound));
+      EXPECT_LE(edge.radius_squared, (q("15.5") + root_bound) * (q("15.5") + root_bound));
+    }
   }
   EXPECT_EQ(tips, 18u);
+  EXPECT_EQ(roots, 18u);
+}
+
+// Below the base circle each flank is a radial segment of rational length (the foot is moved
+// off the root circle by its recorded displacement instead), so that a rational arc radius times
+// its length is rational and an arc's tangency to it stays a contact curve of degree 2 in each
+// half-angle tangent (kernels/contact_table.hpp). Small tooth counts, whose tips reach the other
+// gear's radial segments, must therefore build every chart on the quadratic traits.
+TEST(Templates, SpurGearRadialSegmentsHaveRationalLengthsOnEveryToothCount) {
+  for (int teeth : {5, 6, 7, 9, 12, 17, 18, 27, 40, 41, 42, 80, 151}) {
+    SCOPED_TRACE("teeth " + std::to_string(teeth));
+    std::vector<Rounding> roundings;
+    auto loops = expand_template("spur_gear", spur_gear_arguments(teeth), "/f", roundings);
+    Rational bound = 0;
+    for (const Rounding& rounding : roundings)
+      if (rounding.expression.find("radial below the base circle") != std::string::npos)
+        bound = std::max(bound, rounding.bound);
+    std::size_t radials = 0;
+    for (const Edge& edge : loops[0].edges) {
+      if (edge.label.find(" radial") == std::string::npos) continue;
+      ++radials;
+      ASSERT_FALSE(edge.is_arc());
+      Rational length2 = squared_distance(edge.source, edge.target);
+      EXPECT_TRUE(is_rational_square(length2)) << edge.label << ": squared length " << length2;
+      // the foot (the end nearer the centre) within its recorded displacement of the root circle
+      const Point& foot = squared_distance(edge.source, Point{0, 0}) < squared_distance(edge.target, Point{0, 0})
+                              ? edge.source
+                              : edge.target;
+      Rational root = Rational(teeth) - q("2.5"), r2 = squared_distance(foot, Point{0, 0});
+      EXPECT_GE(r2, (root - bound) * (root - bound)) << edge.label;
+      EXPECT_LE(r2, (root + bound) * (root + bound)) << edge.label;
+    }
+    // a radial segment on both flanks of every tooth while the base circle (0.94 z) lies above
+    // the root circle (z - 2.5), i.e. below 42 teeth
+    EXPECT_EQ(radials, teeth < 42 ? static_cast<std::size_t>(2 * teeth) : 0u);
+    if (radials > 0) {
+      EXPECT_GT(bound, 0);
+      EXPECT_LT(bound, Rational(1, 1000000000));
+    }
+  }
 }
 
 TEST(Templates, SpurGearFlanksAreSymmetricAndTangentAtThePitchPoint) {
