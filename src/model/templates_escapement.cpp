@@ -207,6 +207,13 @@ std::vector<Loop> expand_anchor(const Arguments& arguments, std::vector<Rounding
       tg::point_on_circle_near(Point{0, 0}, outer, Point{half_fork, fork_base_y}, pointer,
                                "fork base on the pallet circle", roundings);
   Point fork_base_left{-fork_base_right.x, fork_base_right.y};
+  // The fork's outer sides run parallel to its axis from the pallet circle to the fork's end, at
+  // the abscissa of their exact base points (within the recorded displacement of fork_width / 2):
+  // their lengths fork_length - y are rational, so a pin's tangency to them is a contact curve of
+  // degree 2 in each half-angle tangent (kernels/contact_table.hpp), where a side to the exact
+  // (fork_width / 2, fork_length) from a point of the circle has an irrational length (degree 4).
+  Point fork_end_right{fork_base_right.x, fork_length};
+  Point fork_end_left{-fork_base_right.x, fork_length};
   Rational notch_depth = round_simplest(Rational((D - R) / 2));
   Point notch{Rational(0), Rational(-notch_depth)};
 
@@ -220,12 +227,12 @@ std::vector<Loop> expand_anchor(const Arguments& arguments, std::vector<Rounding
   tg::LoopBuilder loop(at(exit_discharge), pointer);
   loop.arc_to(at(exit_outer_end), origin, true, "exit pallet back");
   loop.arc_to(at(fork_base_right), origin, true, "arm R");
-  loop.line_to(at(Point{half_fork, fork_length}), "fork R outer");
+  loop.line_to(at(fork_end_right), "fork R outer");
   loop.line_to(at(Point{half_slot, fork_length}), "fork R tip");
   loop.line_to(at(Point{half_slot, Rational(fork_length - slot_depth)}), "fork slot wall R");
   loop.line_to(at(Point{-half_slot, Rational(fork_length - slot_depth)}), "fork slot bottom");
   loop.line_to(at(Point{-half_slot, fork_length}), "fork slot wall L");
-  loop.line_to(at(Point{-half_fork, fork_length}), "fork L tip");
+  loop.line_to(at(fork_end_left), "fork L tip");
   loop.line_to(at(fork_base_left), "fork L outer");
   loop.arc_to(at(entry_outer_end), origin, true, "arm L");
   loop.arc_to(at(entry_lock_corner), origin, true, "entry locking face");

@@ -415,6 +415,16 @@ TEST(Templates, AnchorAndBalanceAreExactAndSimple) {
   auto loops = expand_template("anchor", anchor, "/f", roundings);
   expect_exact_loops(loops);
   EXPECT_EQ(edge_count(loops), 17u);
+  // every side of the fork (which the balance's impulse pin touches) has a rational length, so
+  // the pin's tangencies are contact curves of degree 2 (kernels/contact_table.hpp)
+  std::size_t fork_sides = 0;
+  for (const Edge& edge : loops[0].edges)
+    if (edge.label.rfind("fork ", 0) == 0) {
+      ++fork_sides;
+      ASSERT_FALSE(edge.is_arc()) << edge.label;
+      EXPECT_TRUE(is_rational_square(squared_distance(edge.source, edge.target))) << edge.label;
+    }
+  EXPECT_EQ(fork_sides, 7u);
   auto balance = expand_template("balance",
                                  {{"center", at("0", "48")},
                                   {"radius", q("3")},
