@@ -31,6 +31,8 @@ namespace {
 
 struct AnalyzeOptions {
   std::string model;
+  std::vector<std::string> overrides;
+  bool allow_out_of_tolerance = false;
   std::string rounding;
   std::string driver;
   std::string direction;
@@ -214,7 +216,7 @@ int run_analyze(const AnalyzeOptions& options) {
       if (!options.no_pictures || std::string(name) != "kinematics.svg")
         io::refuse_overwriting_input(std::filesystem::path(options.out) / name, "--out", options.model);
   auto rounding = rounding_scope(options.rounding);
-  Model model = read_model_file(options.model);
+  Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
   // a pin-in-slot follower (the film advance): its work cycle (cli/analyze_pinslot.cpp)
   if (has_pin_slot_part(model))
     return run_pin_slot_cycle(model, PinSlotCycleRequest{options.driver, options.direction,
@@ -349,6 +351,7 @@ void register_analyze(CLI::App& app, Action& action) {
   CLI::App* command = app.add_subcommand(
       "analyze", "Kinematic analysis: drive one part and report how the others move (contacts, dwell, play, jamming)");
   command->add_option("model", options->model, "model file (JSON, see docs/model-format.md)")->required();
+  add_parameter_options(command, options->overrides, options->allow_out_of_tolerance);
   add_rounding_option(command, options->rounding);
   command->add_option("--driver", options->driver, "part to drive (default: the first moving part of the first pair)");
   command->add_option("--direction", options->direction, "cw, ccw (rotation) or +, - (default: the sense of the model's driving torque, else ccw / +)");

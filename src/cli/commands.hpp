@@ -29,6 +29,11 @@ void register_simulate(CLI::App& app, Action& action);
 /// `--allow-out-of-tolerance`. \throws ModelError naming the bad assignment.
 ReadOptions parameter_overrides(const std::vector<std::string>& assignments, bool allow_out_of_tolerance);
 
+/// Adds `--set NAME=VALUE` (repeatable) and `--allow-out-of-tolerance` to a command that reads
+/// one model, storing them in `assignments` and `allow_out_of_tolerance` (parameter_overrides
+/// turns them into reader options).
+void add_parameter_options(CLI::App* command, std::vector<std::string>& assignments, bool& allow_out_of_tolerance);
+
 /// Adds `--rounding B` (the model's rounding bound, docs/model-format.md) to a command; the
 /// text is stored in `text` (empty: the model's own bound).
 void add_rounding_option(CLI::App* command, std::string& text);

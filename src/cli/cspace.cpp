@@ -490,9 +490,7 @@ void register_cspace(CLI::App& app, Action& action) {
   command->add_flag("--plane-witnesses", options->plane_witnesses,
                     "Pin-in-slot pairs: also join cells of neighbouring slices through paths at constant slide "
                     "(one 2-D C-space per slide tried; slower, connects more)");
-  command->add_option("--set", options->overrides, "Override a parameter: NAME=VALUE (repeatable)");
-  command->add_flag("--allow-out-of-tolerance", options->allow_out_of_tolerance,
-                    "Accept --set values outside the parameter's tolerance range");
+  add_parameter_options(command, options->overrides, options->allow_out_of_tolerance);
   add_rounding_option(command, options->rounding);
   command->callback([options, &action] { action = [options] { return run(*options); }; });
 }

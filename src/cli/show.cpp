@@ -19,6 +19,9 @@ namespace {
 
 struct ShowOptions {
   std::string model;
+  std::vector<std::string> overrides;
+  bool allow_out_of_tolerance = false;
+  std::string rounding;
   std::string svg;
   std::vector<std::string> configuration;
   bool labels = false;
@@ -122,7 +125,8 @@ void apply_configuration(const Model& model, const std::vector<std::string>& ite
 
 int run_show(const ShowOptions& options) {
   io::refuse_overwriting_input(options.svg, "--svg", options.model);
-  Model model = read_model_file(options.model);
+  auto rounding = rounding_scope(options.rounding);
+  Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
   std::vector<PartConfiguration> configurations;
   for (const Part& part : model.parts) configurations.push_back(part.initial);
   apply_configuration(model, options.configuration, configurations);
@@ -144,6 +148,8 @@ void register_show(CLI::App& app, Action& action) {
       app.add_subcommand("show", "Draw a mechanism at its initial (or a given) configuration");
   command->add_option("model", options->model, "model file (JSON, see docs/model-format.md)")
       ->required();
+  add_parameter_options(command, options->overrides, options->allow_out_of_tolerance);
+  add_rounding_option(command, options->rounding);
   command->add_option("--svg", options->svg, "output SVG file (written atomically)")->required();
   command->add_option("--config", options->configuration,
                       "part configuration: part=value (angle in the model's angle unit, or with "

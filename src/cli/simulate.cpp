@@ -1034,9 +1034,7 @@ void register_simulate(CLI::App& app, Action& action) {
       ->check(real_range(0.0, 1e6));
   command->add_option("--jobs", options->jobs, "Parallel runs of a sweep (default: the number of cores)")
       ->check(CLI::Range(1, 256));
-  command->add_option("--set", options->overrides, "Override a parameter: NAME=VALUE (repeatable)");
-  command->add_flag("--allow-out-of-tolerance", options->allow_out_of_tolerance,
-                    "Accept --set values outside the parameter's tolerance range");
+  add_parameter_options(command, options->overrides, options->allow_out_of_tolerance);
   add_rounding_option(command, options->rounding);
   command->callback([options, &action] { action = [options] { return run(*options); }; });
 }

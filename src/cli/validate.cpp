@@ -125,10 +125,7 @@ void register_validate(CLI::App& app, Action& action) {
   auto arguments = std::make_shared<ValidateArguments>();
   CLI::App* command = app.add_subcommand("validate", "Read a model exactly, check it, and summarise it");
   command->add_option("model", arguments->path, "model file (JSON, see docs/model-format.md)")->required();
-  command->add_option("--set", arguments->overrides,
-                      "override a parameter: NAME=VALUE (exact literal in mm or rad; repeatable)");
-  command->add_flag("--allow-out-of-tolerance", arguments->allow_out_of_tolerance,
-                    "accept --set values outside the parameter's tolerance range");
+  add_parameter_options(command, arguments->overrides, arguments->allow_out_of_tolerance);
   add_rounding_option(command, arguments->rounding);
   command->callback([&action, arguments] {
     action = [arguments] {
@@ -141,6 +138,12 @@ void register_validate(CLI::App& app, Action& action) {
       return 0;
     };
   });
+}
+
+void add_parameter_options(CLI::App* command, std::vector<std::string>& assignments, bool& allow_out_of_tolerance) {
+  command->add_option("--set", assignments, "override a parameter: NAME=VALUE (exact literal in mm or rad; repeatable)");
+  command->add_flag("--allow-out-of-tolerance", allow_out_of_tolerance,
+                    "accept --set values outside the parameter's tolerance range");
 }
 
 ReadOptions parameter_overrides(const std::vector<std::string>& assignments, bool allow_out_of_tolerance) {

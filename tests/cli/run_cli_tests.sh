@@ -40,6 +40,38 @@ for model in "${bad_models[@]}"; do
   { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "validate exit code $code on bad model $name"
 done
 
+# --set NAME=VALUE and --allow-out-of-tolerance on every command that reads one model: show
+# draws, validate lists and analyze drives the overridden model (a 7 x 9 tooth gear pair from
+# the 18 x 27 example); a value outside the tolerance without the flag, an unknown parameter and a
+# malformed assignment are one error line each, and nothing is written.
+gears="$source/examples/models/spur-gears.json"
+"$hipair" show "$gears" --set teeth-1=7 --set teeth-2=9 --allow-out-of-tolerance --svg "$work/set-79.svg" \
+  >/dev/null 2>"$work/set-show.err" || fail "show --set failed: $(cat "$work/set-show.err")"
+grep -q "</svg>" "$work/set-79.svg" 2>/dev/null || fail "show --set wrote no complete SVG"
+cmp -s "$work/set-79.svg" "$work/spur-gears.svg" && fail "show --set drew the example's own 18 x 27 gears"
+"$hipair" validate "$gears" --set teeth-1=7 --set teeth-2=9 --allow-out-of-tolerance >"$work/set-validate.txt" 2>&1 \
+  || fail "validate --set failed: $(tail -n 3 "$work/set-validate.txt")"
+[ "$(grep -c 'teeth' "$work/set-validate.txt")" -ge 1 ] || fail "validate --set: no teeth in the summary"
+"$hipair" analyze "$gears" --set teeth-1=7 --set teeth-2=9 --allow-out-of-tolerance --range 0:0.2 --no-pictures --quiet \
+  >"$work/set-analyze.txt" 2>&1 || fail "analyze --set failed: $(tail -n 3 "$work/set-analyze.txt")"
+# the gear turns at the tooth ratio 7/9 of the pinion (the report's mean ratio line or its table)
+grep -q "gear" "$work/set-analyze.txt" || fail "analyze --set: the gear is not in the report"
+for command in show analyze validate cspace simulate; do
+  for bad in "--set teeth-1=7" "--set no-such-parameter=1" "--set teeth-1"; do
+    echo old >"$work/set-bad.svg"
+    extra=()
+    [ "$command" = show ] && extra=(--svg "$work/set-bad.svg")
+    [ "$command" = simulate ] && extra=(--t-end 0.01 --no-pictures)
+    # shellcheck disable=SC2086
+    "$hipair" "$command" "$gears" $bad "${extra[@]}" >/dev/null 2>"$work/set-bad.err"
+    code=$?
+    { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "$command $bad: exit code $code"
+    [ "$(wc -l <"$work/set-bad.err")" -eq 1 ] && grep -q "^hipair: error: " "$work/set-bad.err" \
+      || fail "$command $bad: not one error line: $(cat "$work/set-bad.err")"
+    [ "$(cat "$work/set-bad.svg")" = old ] || fail "$command $bad overwrote an output"
+  done
+done
+
 # Output into a directory that does not exist: clear error, nothing written.
 "$hipair" show "$source/examples/models/geneva.json" --svg "$work/no/such/dir/x.svg" >/dev/null 2>"$work/nodir.err"
 [ $? -ne 0 ] || fail "show into a missing directory succeeded"
