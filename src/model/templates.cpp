@@ -179,13 +179,15 @@ std::vector<Loop> expand_geneva_wheel(const Arguments& arguments,
   // curve of degree 2 in each half-angle tangent, where a wall ending exactly on the circle r_out
   // (irrational length) squares it to degree 4 and leaves the quadratic traits
   // (kernels/contact_table.hpp). The wall end lies within about b of that circle (recorded).
+  // (The length is rounded as a fraction of r_out, so the rounding is relative, like the angles'
+  // roundings, and the wall's rationals keep their size at every scale of the model.)
   Rational wall_reach = tg::approximate_sqrt(wall_end_squared);
-  Rational wall_length = round_simplest(Rational(wall_reach - inner));
+  Rational wall_length = Rational(outer * round_simplest(Rational((wall_reach - inner) / outer)));
   Point wall_end_left{Rational(inner + wall_length), half};
   roundings.push_back(Rounding{pointer,
                                "slot wall length (its end next to slot_outer_radius; bound: displacement of the "
                                "end along the wall, mm)",
-                               wall_length, rounding_bound()});
+                               wall_length, Rational(outer * rounding_bound())});
   Point wall_end_right = tg::mirror(wall_end_left);
   Point bottom_center{inner, Rational(0)};
   Point bottom_left{inner, half};

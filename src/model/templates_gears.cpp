@@ -22,19 +22,20 @@ Rational dot(const Point& a, const Point& b) { return a.x * b.x + a.y * b.y; }
 
 // The root end of a flank's radial segment from `base_point` (the lower arc's end on the base
 // circle) down to the root circle: base_point - L w, with w an exact rational unit vector within
-// the rounding bound b of base_point's direction (half-angle tangent) and L the simplest rational
-// within b/2 of |base_point| - root_radius. The segment's length is then the rational L, so the
+// the rounding bound b of base_point's direction (half-angle tangent) and L the root radius times
+// the simplest rational within b/2 of (|base_point| - root_radius) / root_radius (a relative
+// rounding, like the angles'). The segment's length is then the rational L, so the
 // product of its length and a rational arc radius is rational: an arc's tangency to it is a
 // contact curve of degree 2 in each angle's half-angle tangent (kernels/contact_table.hpp,
 // ExactRootOrSquared), where an irrational length squares it to degree 4 (and the chart leaves
 // the quadratic traits for CGAL's algebraic one: a 7-tooth pair took a minute). The foot lies
-// within about (L + 1) b of the ideal point on the root circle (recorded).
+// within about (L + root_radius) b of the ideal point on the root circle (recorded).
 Point radial_foot(const Point& base_point, const Rational& root_radius, const std::string& pointer,
                   std::vector<Rounding>& roundings) {
   Rational base_radius = tg::approximate_sqrt(tg::squared_norm(base_point));
   Point direction = tg::point_on_circle_near(Point{0, 0}, Rational(1), tg::scale(Rational(1 / base_radius), base_point),
                                              pointer, "tooth flank radial direction", roundings);
-  Rational length = round_simplest(base_radius - root_radius);
+  Rational length = Rational(root_radius * round_simplest(Rational((base_radius - root_radius) / root_radius)));
   Point foot = tg::subtract(base_point, tg::scale(length, direction));
   Point ideal = tg::scale(Rational(root_radius / base_radius), base_point);
   roundings.push_back(Rounding{pointer,
