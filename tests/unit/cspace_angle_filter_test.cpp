@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <mpfr.h>
 
+#include <bit>
+#include <cstdint>
 #include <random>
 
 namespace hipair {
@@ -56,6 +58,53 @@ struct Chart {
   bool half_turn;
   Big t;
 };
+
+// The signed fast path of tan_enclosure (session 18) gives the generic interval form's bounds
+// bit for bit: on generated point arguments as filtered_angle_pieces makes them (tau * 0.5
+// widened by an ulp), on wider intervals, at the fast path's borders (1e-150, 0.8) moved by
+// ulps, on both signs and across 0 (the generic form there).
+TEST(CSpaceAngleFilter, TanEnclosureFastPathEqualsTheGenericForm) {
+  using kernels::Interval;
+  using kernels::interval_detail::down;
+  using kernels::interval_detail::up;
+  std::mt19937_64 rng(18);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::size_t compared = 0, fast = 0;
+  auto check = [&](const Interval& y) {
+    std::optional<Interval> generic = cspace::tan_enclosure_generic(y);
+    std::optional<Interval> value = cspace::tan_enclosure(y);
+    if (cspace::tan_enclosure_signed(y)) ++fast;
+    ++compared;
+    ASSERT_EQ(generic.has_value(), value.has_value()) << y.lo << " " << y.hi;
+    if (!generic) return;
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(generic->lo), std::bit_cast<std::uint64_t>(value->lo))
+        << std::hexfloat << y.lo << " " << y.hi;
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(generic->hi), std::bit_cast<std::uint64_t>(value->hi))
+        << std::hexfloat << y.lo << " " << y.hi;
+  };
+  for (int i = 0; i < 200000; ++i) {
+    // half an angle of a chart piece: |tau| <= pi/2 (and a little beyond), as tan_half makes it
+    double tau = (2 * unit(rng) - 1) * 1.8;
+    if (i % 7 == 0) tau = std::ldexp(2 * unit(rng) - 1, -static_cast<int>(unit(rng) * 520));
+    check(Interval::point(tau) * Interval::point(0.5));
+    double w = std::ldexp(unit(rng), -static_cast<int>(unit(rng) * 60));
+    double lo = (2 * unit(rng) - 1) * 0.85;
+    check(Interval(lo, lo + w));
+  }
+  for (double edge : {1e-150, 0.8, 0.4, 1e-300, 0.0}) {
+    double v = edge;
+    for (int k = 0; k < 8; ++k) v = down(v);
+    for (int k = 0; k < 16; ++k, v = up(v)) {
+      check(Interval(v, v));
+      check(Interval(-v, -v));
+      check(Interval(v, 0.5));
+      check(Interval(-0.5, -v));
+      check(Interval(-v, v));
+      check(Interval(down(v), up(v)));
+    }
+  }
+  EXPECT_GT(fast, compared / 2);
+}
 
 TEST(CSpaceAngleFilter, PiecesCoverEveryAngleOfTheRangeAndAreTight) {
   std::mt19937_64 rng(12);
