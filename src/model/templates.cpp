@@ -7,6 +7,7 @@
 #include <hipair/error.hpp>
 
 #include <cmath>
+#include <optional>
 
 namespace hipair::model_detail {
 
@@ -141,6 +142,37 @@ Point place(const Point& center, const Point& unit, const Point& local) {
   return tg::add(center, tg::rotate(local, unit));
 }
 
+// The length of a slot wall from (inner, y) along the slot axis (+x, slot frame) whose end
+// W = (inner + L, y) lies at a rational distance from the mouth's other end `far`, with L within
+// half the rounding bound of `ideal` relative to `unit_length` (r_out): a pin's tangency to the
+// mouth is then a contact curve of degree 2 as well (kernels/contact_table.hpp). In units of
+// r_out, with a = far.x - inner and c = (y - far.y)^2, the mouth's squared length is
+// f(L) = (L - a)^2 + c, and for every rational s the length L = a + (c - s^2) / (2 s) gives
+// f(L) = (L - a + s)^2, a rational square: s is the simplest rational next to the one that
+// gives `ideal` (a double guess; the result is checked exactly). nullopt when no such s is
+// found within the bound (the caller keeps the rounded length; the mouth is then irrational).
+std::optional<Rational> wall_length_with_rational_mouth(const Rational& inner, const Rational& y, const Point& far,
+                                                        const Rational& ideal, const Rational& unit_length) {
+  const Rational a = (far.x - inner) / unit_length;
+  const Rational dy = (y - far.y) / unit_length;
+  const Rational c = dy * dy;
+  const Rational target = ideal / unit_length;
+  const Rational half_bound = rounding_bound() / 2;
+  if (sgn(c) == 0) return std::nullopt;   // the mouth continues the wall: any length is rational
+  const double d0 = Rational(target - a).get_d(), cd = c.get_d();
+  const double s0 = -d0 + std::sqrt(d0 * d0 + cd);   // the positive s with L(s) = target
+  if (!(s0 > 0) || !std::isfinite(s0)) return std::nullopt;
+  const double slope = (cd + s0 * s0) / (2 * s0 * s0);   // |dL/ds| at s0
+  Rational width = half_bound / Rational(4 * slope + 1);
+  for (int attempt = 0; attempt < 40; ++attempt, width /= 2) {
+    Rational s = simplest_rational_between(Rational(s0) - width, Rational(s0) + width);
+    if (sgn(s) <= 0) continue;
+    Rational length = a + (c - s * s) / (2 * s);
+    if (abs(Rational(length - target)) <= half_bound) return Rational(length * unit_length);
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::vector<Loop> expand_geneva_wheel(const Arguments& arguments,
@@ -234,17 +266,37 @@ std::vector<Loop> expand_geneva_wheel(const Arguments& arguments,
     slot_turn[k] = direction(phase, Rational(2 * k + 1, slots), pointer,
                              "slot " + std::to_string(k + 1) + " axis direction", roundings);
   }
+  // Each slot's walls get lengths (within the same bound) that also make both mouths rational:
+  // the rounded slot and lock directions are not exact mirror images, so each slot and side has
+  // its own (wall_length_with_rational_mouth).
+  auto in_slot_frame = [&](long k, const Point& local, const Point& turn) {
+    Point unit = slot_turn[k];
+    return tg::rotate(tg::rotate(local, turn), Point{unit.x, Rational(-unit.y)});
+  };
+  auto wall_end = [&](long k, bool right) {
+    const Point far = right ? in_slot_frame(k, lock_end, lock_turn[k]) : in_slot_frame(k, lock_start, lock_turn[(k + 1) % slots]);
+    const Rational y = right ? Rational(-half) : half;
+    std::optional<Rational> length = wall_length_with_rational_mouth(inner, y, far, Rational(wall_reach - inner), outer);
+    if (!length) return right ? wall_end_right : wall_end_left;
+    roundings.push_back(Rounding{pointer,
+                                 numbered("slot", k) + (right ? " wall R" : " wall L") +
+                                     " length (rational, and so is its mouth; bound: displacement of the end along "
+                                     "the wall, mm)",
+                                 *length, Rational(outer * rounding_bound() / 2)});
+    return Point{Rational(inner + *length), y};
+  };
   tg::LoopBuilder loop(place(center, lock_turn[0], lock_start), pointer);
   for (long k = 0; k < slots; ++k) {
     const Point& lock = lock_turn[k];
     const Point& slot = slot_turn[k];
+    const Point slot_wall_end_right = wall_end(k, true), slot_wall_end_left = wall_end(k, false);
     loop.arc_to(place(center, lock, lock_end), place(center, lock, lock_center), false,
                 numbered("lock arc", k));
-    loop.line_to(place(center, slot, wall_end_right), numbered("slot", k) + " mouth R");
+    loop.line_to(place(center, slot, slot_wall_end_right), numbered("slot", k) + " mouth R");
     loop.line_to(place(center, slot, bottom_right), numbered("slot", k) + " wall R");
     loop.arc_to(place(center, slot, bottom_left), place(center, slot, bottom_center), false,
                 numbered("slot", k) + " bottom");
-    loop.line_to(place(center, slot, wall_end_left), numbered("slot", k) + " wall L");
+    loop.line_to(place(center, slot, slot_wall_end_left), numbered("slot", k) + " wall L");
     loop.line_to(place(center, lock_turn[(k + 1) % slots], lock_start),
                  numbered("slot", k) + " mouth L");
   }

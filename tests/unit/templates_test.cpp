@@ -139,8 +139,8 @@ TEST(Templates, GenevaWheelIsExactForThreeToEightSlots) {
 
 // A pin's tangency to a slot wall is a contact curve of degree 2 in each half-angle tangent only
 // when the pin's radius times the wall's length is rational (kernels/contact_table.hpp); the
-// walls have rational lengths (their ends within the recorded bound of slot_outer_radius) and the
-// same for generated wheel sizes; likewise the balance's impulse pin keeps its rational radius
+// walls and the mouths have rational lengths (the walls' ends within the recorded bound of
+// slot_outer_radius) for generated wheel sizes; likewise the balance's impulse pin keeps its rational radius
 // (the rim passes through exact points of the pin circle).
 TEST(Templates, SlotWallsAndImpulsePinsGiveDegreeTwoTangencies) {
   std::mt19937_64 random(2718);
@@ -158,8 +158,13 @@ TEST(Templates, SlotWallsAndImpulsePinsGiveDegreeTwoTangencies) {
       for (const Rounding& rounding : roundings)
         if (rounding.expression.find("slot wall length") != std::string::npos) bound = std::max(bound, rounding.bound);
       ASSERT_GT(bound, 0);
-      std::size_t walls = 0;
+      std::size_t walls = 0, mouths = 0;
       for (const Edge& edge : loops[0].edges) {
+        if (edge.label.find(" mouth ") != std::string::npos) {
+          // the mouths (wall end to locking arc) too: the pin reaches them on three-slot wheels
+          ++mouths;
+          EXPECT_TRUE(is_rational_square(squared_distance(edge.source, edge.target))) << edge.label;
+        }
         if (edge.label.find(" wall ") == std::string::npos) continue;
         ++walls;
         ASSERT_FALSE(edge.is_arc());
@@ -170,6 +175,7 @@ TEST(Templates, SlotWallsAndImpulsePinsGiveDegreeTwoTangencies) {
         EXPECT_LE(squared_norm(end), (outer + bound) * (outer + bound)) << edge.label;
       }
       EXPECT_EQ(walls, static_cast<std::size_t>(2 * slots));
+      EXPECT_EQ(mouths, static_cast<std::size_t>(2 * slots));
     }
   }
   for (int trial = 0; trial < 20; ++trial) {
