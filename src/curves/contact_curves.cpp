@@ -963,53 +963,147 @@ std::vector<std::pair<int, int>> cone_pairs(const std::vector<DirectedFeature>& 
   return result;
 }
 
-// c + cx x + cy y exactly, as the normalised integer polynomial of the kernels' path.
-struct Affine {
-  Rational c, x, y;
-};
-
-IntegerPolynomial2 integer_affine(const Affine& f) {
-  mpz_class lcm = 1;
-  for (const Rational* q : {&f.c, &f.x, &f.y}) mpz_lcm(lcm.get_mpz_t(), lcm.get_mpz_t(), q->get_den_mpz_t());
-  auto scaled = [&](const Rational& q) { return mpz_class(q.get_num() * (lcm / q.get_den())); };
-  IntegerPolynomial2 p;
-  p.coefficients = {{scaled(f.c), scaled(f.y)}, {scaled(f.x)}};
-  normalize(p);
-  return p;
-}
-
 // The world shift of a translating part as an affine form of the chart coordinates.
 struct Shift {
   Point x, y;   // shift = x * chart_x + y * chart_y
 };
 
-// Vertex p of the part shifted by `vertex_shift` on segment q1 -> q2 (direction d) of the part
-// shifted by `segment_shift`: cross(P - Q1, d) with its validity 0 <= dot(P - Q1, d) <= |d|^2,
-// the kernels' vertex_segment for translation poses (weights 1, no rotation).
-struct LinearContact {
-  Affine value, along;
-  Rational length2;
+// ---------------------------------------------------------------- the front end in integers
+//
+// The curves of the kernels' vertex_segment for translation poses (weights 1, no rotation):
+// cross(P - Q1, d) with its validity 0 <= dot(P - Q1, d) <= |d|^2, in homogeneous integer
+// arithmetic. A point is (X, Y) / W with W = lcm of its coordinates' denominators > 0; a
+// segment's direction is carried as D, the primitive integer vector along target - source (a
+// positive multiple of it). The contact and both atoms are positive multiples of the rational
+// forms: with the vertex P = (X, Y) / W, the source Q1 = (X1, Y1) / W1, the target
+// Q2 = (X2, Y2) / W2 and the chart shifts' cross and dot products with D over a common K > 0,
+//   value  = cross(P - Q1, d) + ...   ~ K (cross((X, Y), D) W1 - cross((X1, Y1), D) W) + x kx W W1 + y ky W W1
+//   along  = dot(P - Q1, d) + ...     ~ K (dot((X, Y), D) W1 - dot((X1, Y1), D) W) + x gx W W1 + y gy W W1
+//   |d|^2 - along = dot(Q2 - P, d) - ...
+//                                     ~ K (dot((X2, Y2), D) W - dot((X, Y), D) W2) - x gx W W2 - y gy W W2
+// (cross(Q2 - Q1, d) = 0 and |d|^2 - dot(P - Q1, d) = dot(Q2 - P, d); every factor is positive).
+// Normalising (dividing by the positive content) makes each the polynomial integer_affine
+// would write from the rationals (normalized_integer_polynomial): the primitive integer form is
+// unique up to a positive factor.
+struct HomogeneousPoint {
+  mpz_class x, y, w;
 };
 
-LinearContact vertex_on_segment(const Point& p, const Shift& vertex_shift, const Point& q1, const Point& d,
-                                const Shift& segment_shift) {
-  Point base = difference(p, q1);
-  Point ux = difference(vertex_shift.x, segment_shift.x), uy = difference(vertex_shift.y, segment_shift.y);
-  LinearContact c;
-  c.value = Affine{cross(base, d), cross(ux, d), cross(uy, d)};
-  c.along = Affine{dot(base, d), dot(ux, d), dot(uy, d)};
-  c.length2 = dot(d, d);
-  return c;
+HomogeneousPoint homogeneous(const Point& p) {
+  HomogeneousPoint h;
+  mpz_lcm(h.w.get_mpz_t(), p.x.get_den_mpz_t(), p.y.get_den_mpz_t());
+  mpz_divexact(h.x.get_mpz_t(), h.w.get_mpz_t(), p.x.get_den_mpz_t());
+  h.x *= p.x.get_num();
+  mpz_divexact(h.y.get_mpz_t(), h.w.get_mpz_t(), p.y.get_den_mpz_t());
+  h.y *= p.y.get_num();
+  return h;
 }
 
-// Validity clauses of the linear contact (as convert_validity): false when one never holds.
-bool linear_validity(const LinearContact& c, std::vector<ValidityClause>& clauses) {
-  for (const Affine& atom : {c.along, Affine{Rational(c.length2 - c.along.c), Rational(-c.along.x), Rational(-c.along.y)}}) {
-    if (sgn(atom.x) == 0 && sgn(atom.y) == 0) {
-      if (sgn(atom.c) >= 0) continue;   // always holds
-      return false;
-    }
-    clauses.push_back(ValidityClause{{integer_affine(atom)}});
+// A vertex feature: its point and D-independent products are formed per pair.
+struct FrontVertex {
+  HomogeneousPoint p;
+};
+
+// A segment feature: the homogeneous ends, the primitive direction D, cross((X1, Y1), D) (equal
+// to cross((X2, Y2), D) times W1 / W2, not needed), dot((X1, Y1), D), dot((X2, Y2), D), and the
+// chart shifts' products kx, ky, gx, gy (integers over k > 0) for the other part's vertices.
+struct FrontSegment {
+  HomogeneousPoint q1, q2;
+  mpz_class dx, dy, cross1, dot1, dot2;
+  mpz_class kx, ky, gx, gy, k;
+};
+
+// ux, uy: the vertex part's shift minus the segment part's shift (chart x and y coefficients).
+FrontSegment front_segment(const Edge& edge, const Point& ux, const Point& uy) {
+  FrontSegment s;
+  s.q1 = homogeneous(edge.source);
+  s.q2 = homogeneous(edge.target);
+  s.dx = s.q2.x * s.q1.w - s.q1.x * s.q2.w;
+  s.dy = s.q2.y * s.q1.w - s.q1.y * s.q2.w;
+  mpz_class g;
+  mpz_gcd(g.get_mpz_t(), s.dx.get_mpz_t(), s.dy.get_mpz_t());
+  if (g > 1) {
+    mpz_divexact(s.dx.get_mpz_t(), s.dx.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(s.dy.get_mpz_t(), s.dy.get_mpz_t(), g.get_mpz_t());
+  }
+  s.cross1 = s.q1.x * s.dy - s.q1.y * s.dx;
+  s.dot1 = s.q1.x * s.dx + s.q1.y * s.dy;
+  s.dot2 = s.q2.x * s.dx + s.q2.y * s.dy;
+  const Point d{Rational(s.dx), Rational(s.dy)};
+  const Rational kx = cross(ux, d), ky = cross(uy, d), gx = dot(ux, d), gy = dot(uy, d);
+  s.k = 1;
+  for (const Rational* q : {&kx, &ky, &gx, &gy}) mpz_lcm(s.k.get_mpz_t(), s.k.get_mpz_t(), q->get_den_mpz_t());
+  auto scaled = [&](const Rational& q) { return mpz_class(q.get_num() * (s.k / q.get_den())); };
+  s.kx = scaled(kx);
+  s.ky = scaled(ky);
+  s.gx = scaled(gx);
+  s.gy = scaled(gy);
+  return s;
+}
+
+// c + cx x + cy y divided by its content, trimmed as normalize() leaves it.
+IntegerPolynomial2 primitive_affine(mpz_class& c, mpz_class& cx, mpz_class& cy, mpz_class& scratch) {
+  IntegerPolynomial2 p;
+  mpz_gcd(scratch.get_mpz_t(), c.get_mpz_t(), cx.get_mpz_t());
+  mpz_gcd(scratch.get_mpz_t(), scratch.get_mpz_t(), cy.get_mpz_t());
+  if (sgn(scratch) == 0) return p;   // the zero polynomial: no coefficients
+  if (scratch > 1)
+    for (mpz_class* v : {&c, &cx, &cy}) mpz_divexact(v->get_mpz_t(), v->get_mpz_t(), scratch.get_mpz_t());
+  if (sgn(cx) != 0) {
+    p.coefficients.resize(2);
+    p.coefficients[1].push_back(cx);
+  } else {
+    p.coefficients.resize(1);
+  }
+  auto& row = p.coefficients[0];
+  if (sgn(cy) != 0) {
+    row.push_back(c);
+    row.push_back(cy);
+  } else if (sgn(c) != 0) {
+    row.push_back(c);
+  }
+  return p;
+}
+
+// The contact of `vertex` on `segment` and its validity clauses (a constant atom that holds is
+// left out, as convert_validity does): false when the features never touch within both (the curve is then not
+// kept; `curve` is left partly written).
+bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurve& curve) {
+  const HomogeneousPoint& p = vertex.p;
+  mpz_class c, cx, cy, scratch, ww1, pd;
+  // value
+  mpz_mul(ww1.get_mpz_t(), p.w.get_mpz_t(), s.q1.w.get_mpz_t());
+  pd = p.x * s.dy - p.y * s.dx;
+  c = pd * s.q1.w - s.cross1 * p.w;
+  c *= s.k;
+  mpz_mul(cx.get_mpz_t(), s.kx.get_mpz_t(), ww1.get_mpz_t());
+  mpz_mul(cy.get_mpz_t(), s.ky.get_mpz_t(), ww1.get_mpz_t());
+  curve.polynomial = primitive_affine(c, cx, cy, scratch);
+  const IntegerPolynomial2& value = curve.polynomial;
+  if (!value.is_zero() && value.degree_x() == 0 && value.degree_y() == 0) return false;   // a non-zero constant
+  // along >= 0, then |d|^2 - along >= 0 (in this order; constant atoms tested, not kept)
+  const bool constant_atoms = sgn(s.gx) == 0 && sgn(s.gy) == 0;
+  pd = p.x * s.dx + p.y * s.dy;
+  c = pd * s.q1.w - s.dot1 * p.w;
+  c *= s.k;
+  if (constant_atoms) {
+    if (sgn(c) < 0) return false;
+  } else {
+    mpz_mul(cx.get_mpz_t(), s.gx.get_mpz_t(), ww1.get_mpz_t());
+    mpz_mul(cy.get_mpz_t(), s.gy.get_mpz_t(), ww1.get_mpz_t());
+    curve.validity.push_back(ValidityClause{{primitive_affine(c, cx, cy, scratch)}});
+  }
+  c = s.dot2 * p.w - pd * s.q2.w;
+  c *= s.k;
+  if (constant_atoms) {
+    if (sgn(c) < 0) return false;
+  } else {
+    mpz_mul(ww1.get_mpz_t(), p.w.get_mpz_t(), s.q2.w.get_mpz_t());   // now W W2
+    mpz_mul(cx.get_mpz_t(), s.gx.get_mpz_t(), ww1.get_mpz_t());
+    mpz_mul(cy.get_mpz_t(), s.gy.get_mpz_t(), ww1.get_mpz_t());
+    cx = -cx;
+    cy = -cy;
+    curve.validity.push_back(ValidityClause{{primitive_affine(c, cx, cy, scratch)}});
   }
   return true;
 }
@@ -1185,10 +1279,16 @@ struct CurveGenerator::Data {
   // cull): the general path's feature geometry is not formed for it
   bool front_end = false;
   mutable std::once_flag cores_once;
+  // The front end's chart-independent data: the features' directions (cone_pairs) and their
+  // homogeneous integer forms (front_contact), indexed through front_index by feature index.
+  std::vector<DirectedFeature> vertices_a, segments_a, vertices_b, segments_b;
+  std::vector<std::size_t> front_index_a, front_index_b;
+  std::vector<FrontVertex> front_vertices_a, front_vertices_b;
+  std::vector<FrontSegment> front_segments_a, front_segments_b;
 };
 
 CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
-    : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}, true, {}, {}, {}, {}}) {
+    : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}, true, {}, {}, {}, {}, false, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}) {
   Data& d = *data_;
   d.features_a = part_features(model, axes.first, &d.reflex_vertices_skipped);
   d.features_b = part_features(model, axes.second, &d.reflex_vertices_skipped);
@@ -1212,6 +1312,40 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
   if (!d.front_end) {
     for (const BodyFeature& f : d.features_a) d.geometry_a.push_back(feature_geometry(f));
     for (const BodyFeature& f : d.features_b) d.geometry_b.push_back(feature_geometry(f));
+  } else {
+    // the parts' world shifts as affine forms of the chart coordinates
+    auto shift_of = [&](const Part& part, bool moves, int variable) {
+      Shift shift{Point{Rational(0), Rational(0)}, Point{Rational(0), Rational(0)}};
+      if (moves && part.motion.kind == Motion::Kind::translation) (variable == 0 ? shift.x : shift.y) = part.motion.direction;
+      return shift;
+    };
+    const Shift shift_a = shift_of(model.parts.at(axes.first), axes.first_moves, 0);
+    const Shift shift_b = shift_of(model.parts.at(axes.second), axes.second_moves, axes.first_moves ? 1 : 0);
+    // segments of one part meet the other part's vertices: u = vertex shift - segment shift
+    auto prepare = [&](const std::vector<BodyFeature>& features, const Shift& own, const Shift& other,
+                       std::vector<DirectedFeature>& vertices, std::vector<DirectedFeature>& segments,
+                       std::vector<std::size_t>& index, std::vector<FrontVertex>& front_vertices,
+                       std::vector<FrontSegment>& front_segments) {
+      const Point ux = difference(other.x, own.x), uy = difference(other.y, own.y);
+      index.resize(features.size());
+      for (std::size_t i = 0; i < features.size(); ++i) {
+        FeatureDirections fd = feature_directions(model, features[i]);
+        (fd.vertex ? vertices : segments)
+            .push_back(DirectedFeature{static_cast<int>(i), Direction{fd.out, fd.out_x, fd.out_y},
+                                       Direction{fd.in, fd.in_x, fd.in_y}});
+        if (fd.vertex) {
+          index[i] = front_vertices.size();
+          front_vertices.push_back(FrontVertex{homogeneous(features[i].point)});
+        } else {
+          index[i] = front_segments.size();
+          front_segments.push_back(front_segment(*features[i].edge, ux, uy));
+        }
+      }
+    };
+    prepare(d.features_a, shift_a, shift_b, d.vertices_a, d.segments_a, d.front_index_a, d.front_vertices_a,
+            d.front_segments_a);
+    prepare(d.features_b, shift_b, shift_a, d.vertices_b, d.segments_b, d.front_index_b, d.front_vertices_b,
+            d.front_segments_b);
   }
   if (options.cull_blocked_space) {
     for (const BodyFeature& f : d.features_a) d.disks_a.push_back(body_disk(f));
@@ -1345,18 +1479,10 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
     // The polygon front end: the reduced convolution's pairs by the angular walk (cone_pairs),
     // then the same broad-phase box test and swept-region cull as the general path (so the
     // same pairs, in the same order), and each curve written down from the vertices.
-    std::vector<DirectedFeature> vertices_a, segments_a, vertices_b, segments_b;
-    auto directed = [&](const std::vector<BodyFeature>& features, std::vector<DirectedFeature>& vertices,
-                        std::vector<DirectedFeature>& segments) {
-      for (std::size_t i = 0; i < features.size(); ++i) {
-        FeatureDirections fd = feature_directions(model, features[i]);
-        (fd.vertex ? vertices : segments)
-            .push_back(DirectedFeature{static_cast<int>(i), Direction{fd.out, fd.out_x, fd.out_y},
-                                       Direction{fd.in, fd.in_x, fd.in_y}});
-      }
-    };
-    directed(features_a, vertices_a, segments_a);
-    directed(features_b, vertices_b, segments_b);
+    const std::vector<DirectedFeature>& vertices_a = d.vertices_a;
+    const std::vector<DirectedFeature>& segments_a = d.segments_a;
+    const std::vector<DirectedFeature>& vertices_b = d.vertices_b;
+    const std::vector<DirectedFeature>& segments_b = d.segments_b;
     std::vector<std::pair<int, int>> reduced = cone_pairs(vertices_a, segments_b);
     for (auto [j, i] : cone_pairs(vertices_b, segments_a)) reduced.emplace_back(i, j);
     std::sort(reduced.begin(), reduced.end());
@@ -1381,35 +1507,21 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
       pairs.emplace_back(i, j);
     }
     stats.feature_pairs_in_blocked_space += considered - kept;
-    // the parts' world shifts as affine forms of the chart coordinates
-    auto shift_of = [&](const Part& part, bool moves, int variable) {
-      Shift shift{Point{Rational(0), Rational(0)}, Point{Rational(0), Rational(0)}};
-      if (moves && part.motion.kind == Motion::Kind::translation) (variable == 0 ? shift.x : shift.y) = part.motion.direction;
-      return shift;
-    };
-    const Shift shift_a = shift_of(part_a, axes.first_moves, 0);
-    const Shift shift_b = shift_of(part_b, axes.second_moves, axes.first_moves ? 1 : 0);
     std::vector<ContactCurve> curves;
     curves.reserve(pairs.size());
     for (auto [i, j] : pairs) {
-      const BodyFeature& fa = features_a[static_cast<std::size_t>(i)];
-      const BodyFeature& fb = features_b[static_cast<std::size_t>(j)];
+      const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+      const BodyFeature& fa = features_a[ui];
+      const BodyFeature& fb = features_b[uj];
       const bool vertex_first = fa.ref.kind == FeatureRef::Kind::vertex;
-      const BodyFeature& vertex = vertex_first ? fa : fb;
-      const BodyFeature& segment = vertex_first ? fb : fa;
-      const Point d_segment = difference(segment.edge->target, segment.edge->source);
-      LinearContact contact = vertex_on_segment(vertex.point, vertex_first ? shift_a : shift_b, segment.edge->source,
-                                                d_segment, vertex_first ? shift_b : shift_a);
+      const FrontVertex& vertex = vertex_first ? d.front_vertices_a[d.front_index_a[ui]] : d.front_vertices_b[d.front_index_b[uj]];
+      const FrontSegment& segment = vertex_first ? d.front_segments_b[d.front_index_b[uj]] : d.front_segments_a[d.front_index_a[ui]];
       ContactCurve curve;
       curve.first = fa.ref;
       curve.second = fb.ref;
       curve.type = vertex_first ? ContactType::vertex_segment : ContactType::segment_vertex;
-      curve.polynomial = integer_affine(contact.value);
       curve.blocked_sign = kernels::blocked_sign;
-      bool zero = curve.polynomial.is_zero();
-      if (!zero && curve.polynomial.degree_x() == 0 && curve.polynomial.degree_y() == 0)
-        continue;  // a non-zero constant: these features never touch
-      if (!linear_validity(contact, curve.validity)) continue;  // never within both
+      if (!front_contact(vertex, segment, curve)) continue;   // a non-zero constant, or never within both
       keep(curves, std::move(curve), fa, fb);
     }
     return curves;
