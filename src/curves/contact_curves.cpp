@@ -999,45 +999,73 @@ HomogeneousPoint homogeneous(const Point& p) {
   return h;
 }
 
-// A vertex feature: its point and D-independent products are formed per pair.
+// A vertex feature: its point.
 struct FrontVertex {
   HomogeneousPoint p;
 };
 
-// A segment feature: the homogeneous ends, the primitive direction D, cross((X1, Y1), D) (equal
-// to cross((X2, Y2), D) times W1 / W2, not needed), dot((X1, Y1), D), dot((X2, Y2), D), and the
-// chart shifts' products kx, ky, gx, gy (integers over k > 0) for the other part's vertices.
+// A segment feature: the ends' denominators W1, W2, the primitive direction D,
+// cross((X1, Y1), D), dot((X1, Y1), D), dot((X2, Y2), D), and the chart shifts' products kx, ky,
+// gx, gy (integers over k > 0) for the other part's vertices.
 struct FrontSegment {
-  HomogeneousPoint q1, q2;
-  mpz_class dx, dy, cross1, dot1, dot2;
+  mpz_class w1, w2, dx, dy, cross1, dot1, dot2;
   mpz_class kx, ky, gx, gy, k;
 };
 
-// ux, uy: the vertex part's shift minus the segment part's shift (chart x and y coefficients).
-FrontSegment front_segment(const Edge& edge, const Point& ux, const Point& uy) {
-  FrontSegment s;
-  s.q1 = homogeneous(edge.source);
-  s.q2 = homogeneous(edge.target);
-  s.dx = s.q2.x * s.q1.w - s.q1.x * s.q2.w;
-  s.dy = s.q2.y * s.q1.w - s.q1.y * s.q2.w;
+// The chart shifts' difference u = (vertex part's shift) - (segment part's shift) as integers
+// over a common denominator k > 0: ux = (x1, x2) / k, uy = (y1, y2) / k.
+struct IntegerShift {
+  mpz_class x1, x2, y1, y2, k;
+};
+
+IntegerShift integer_shift(const Point& ux, const Point& uy) {
+  IntegerShift u;
+  u.k = 1;
+  for (const Rational* q : {&ux.x, &ux.y, &uy.x, &uy.y}) mpz_lcm(u.k.get_mpz_t(), u.k.get_mpz_t(), q->get_den_mpz_t());
+  auto scaled = [&](const Rational& q) { return mpz_class(q.get_num() * (u.k / q.get_den())); };
+  u.x1 = scaled(ux.x);
+  u.x2 = scaled(ux.y);
+  u.y1 = scaled(uy.x);
+  u.y2 = scaled(uy.y);
+  return u;
+}
+
+// An edge of a polygon loop: its homogeneous ends and primitive direction D (a positive
+// multiple of target - source: every sign the front end takes of it is the same).
+struct FrontEdge {
+  HomogeneousPoint q1, q2;
+  mpz_class dx, dy;
+};
+
+FrontEdge front_edge(HomogeneousPoint q1, HomogeneousPoint q2) {
+  FrontEdge e{std::move(q1), std::move(q2), {}, {}};
+  e.dx = e.q2.x * e.q1.w - e.q1.x * e.q2.w;
+  e.dy = e.q2.y * e.q1.w - e.q1.y * e.q2.w;
   mpz_class g;
-  mpz_gcd(g.get_mpz_t(), s.dx.get_mpz_t(), s.dy.get_mpz_t());
+  mpz_gcd(g.get_mpz_t(), e.dx.get_mpz_t(), e.dy.get_mpz_t());
   if (g > 1) {
-    mpz_divexact(s.dx.get_mpz_t(), s.dx.get_mpz_t(), g.get_mpz_t());
-    mpz_divexact(s.dy.get_mpz_t(), s.dy.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(e.dx.get_mpz_t(), e.dx.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(e.dy.get_mpz_t(), e.dy.get_mpz_t(), g.get_mpz_t());
   }
-  s.cross1 = s.q1.x * s.dy - s.q1.y * s.dx;
-  s.dot1 = s.q1.x * s.dx + s.q1.y * s.dy;
-  s.dot2 = s.q2.x * s.dx + s.q2.y * s.dy;
-  const Point d{Rational(s.dx), Rational(s.dy)};
-  const Rational kx = cross(ux, d), ky = cross(uy, d), gx = dot(ux, d), gy = dot(uy, d);
-  s.k = 1;
-  for (const Rational* q : {&kx, &ky, &gx, &gy}) mpz_lcm(s.k.get_mpz_t(), s.k.get_mpz_t(), q->get_den_mpz_t());
-  auto scaled = [&](const Rational& q) { return mpz_class(q.get_num() * (s.k / q.get_den())); };
-  s.kx = scaled(kx);
-  s.ky = scaled(ky);
-  s.gx = scaled(gx);
-  s.gy = scaled(gy);
+  return e;
+}
+
+// The shifts' products with D are integers over u.k (any positive common factor: the forms are
+// made primitive afterwards).
+FrontSegment front_segment(const FrontEdge& e, const IntegerShift& u) {
+  FrontSegment s;
+  s.w1 = e.q1.w;
+  s.w2 = e.q2.w;
+  s.dx = e.dx;
+  s.dy = e.dy;
+  s.cross1 = e.q1.x * e.dy - e.q1.y * e.dx;
+  s.dot1 = e.q1.x * e.dx + e.q1.y * e.dy;
+  s.dot2 = e.q2.x * e.dx + e.q2.y * e.dy;
+  s.kx = u.x1 * e.dy - u.x2 * e.dx;
+  s.ky = u.y1 * e.dy - u.y2 * e.dx;
+  s.gx = u.x1 * e.dx + u.x2 * e.dy;
+  s.gy = u.y1 * e.dx + u.y2 * e.dy;
+  s.k = u.k;
   return s;
 }
 
@@ -1072,9 +1100,9 @@ bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurv
   const HomogeneousPoint& p = vertex.p;
   mpz_class c, cx, cy, scratch, ww1, pd;
   // value
-  mpz_mul(ww1.get_mpz_t(), p.w.get_mpz_t(), s.q1.w.get_mpz_t());
+  mpz_mul(ww1.get_mpz_t(), p.w.get_mpz_t(), s.w1.get_mpz_t());
   pd = p.x * s.dy - p.y * s.dx;
-  c = pd * s.q1.w - s.cross1 * p.w;
+  c = pd * s.w1 - s.cross1 * p.w;
   c *= s.k;
   mpz_mul(cx.get_mpz_t(), s.kx.get_mpz_t(), ww1.get_mpz_t());
   mpz_mul(cy.get_mpz_t(), s.ky.get_mpz_t(), ww1.get_mpz_t());
@@ -1084,7 +1112,7 @@ bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurv
   // along >= 0, then |d|^2 - along >= 0 (in this order; constant atoms tested, not kept)
   const bool constant_atoms = sgn(s.gx) == 0 && sgn(s.gy) == 0;
   pd = p.x * s.dx + p.y * s.dy;
-  c = pd * s.q1.w - s.dot1 * p.w;
+  c = pd * s.w1 - s.dot1 * p.w;
   c *= s.k;
   if (constant_atoms) {
     if (sgn(c) < 0) return false;
@@ -1093,12 +1121,12 @@ bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurv
     mpz_mul(cy.get_mpz_t(), s.gy.get_mpz_t(), ww1.get_mpz_t());
     curve.validity.push_back(ValidityClause{{primitive_affine(c, cx, cy, scratch)}});
   }
-  c = s.dot2 * p.w - pd * s.q2.w;
+  c = s.dot2 * p.w - pd * s.w2;
   c *= s.k;
   if (constant_atoms) {
     if (sgn(c) < 0) return false;
   } else {
-    mpz_mul(ww1.get_mpz_t(), p.w.get_mpz_t(), s.q2.w.get_mpz_t());   // now W W2
+    mpz_mul(ww1.get_mpz_t(), p.w.get_mpz_t(), s.w2.get_mpz_t());   // now W W2
     mpz_mul(cx.get_mpz_t(), s.gx.get_mpz_t(), ww1.get_mpz_t());
     mpz_mul(cy.get_mpz_t(), s.gy.get_mpz_t(), ww1.get_mpz_t());
     cx = -cx;
@@ -1322,29 +1350,55 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
     const Shift shift_a = shift_of(model.parts.at(axes.first), axes.first_moves, 0);
     const Shift shift_b = shift_of(model.parts.at(axes.second), axes.second_moves, axes.first_moves ? 1 : 0);
     // segments of one part meet the other part's vertices: u = vertex shift - segment shift
-    auto prepare = [&](const std::vector<BodyFeature>& features, const Shift& own, const Shift& other,
-                       std::vector<DirectedFeature>& vertices, std::vector<DirectedFeature>& segments,
+    auto prepare = [&](std::size_t part_index, const std::vector<BodyFeature>& features, const Shift& own,
+                       const Shift& other, std::vector<DirectedFeature>& vertices, std::vector<DirectedFeature>& segments,
                        std::vector<std::size_t>& index, std::vector<FrontVertex>& front_vertices,
                        std::vector<FrontSegment>& front_segments) {
-      const Point ux = difference(other.x, own.x), uy = difference(other.y, own.y);
+      const IntegerShift u = integer_shift(difference(other.x, own.x), difference(other.y, own.y));
+      // every edge of the part once: its homogeneous ends (a closed loop's target is the next
+      // edge's source) and its direction
+      const Part& part = model.parts.at(part_index);
+      std::vector<std::size_t> loop_start;
+      std::vector<FrontEdge> edges;
+      std::vector<Direction> directions;
+      for (const Loop& loop : part.loops) {
+        loop_start.push_back(edges.size());
+        const std::size_t n = loop.edges.size();
+        std::vector<HomogeneousPoint> sources;
+        sources.reserve(n);
+        for (const Edge& edge : loop.edges) sources.push_back(homogeneous(edge.source));
+        for (std::size_t e = 0; e < n; ++e) {
+          const Edge& edge = loop.edges[e];
+          const bool closes = edge.target == loop.edges[(e + 1) % n].source;
+          edges.push_back(front_edge(sources[e], closes ? sources[(e + 1) % n] : homogeneous(edge.target)));
+          directions.push_back(Direction::of(Point{Rational(edges.back().dx), Rational(edges.back().dy)}));
+        }
+      }
       index.resize(features.size());
+      vertices.reserve(features.size());
+      segments.reserve(features.size());
+      front_vertices.reserve(features.size());
+      front_segments.reserve(features.size());
       for (std::size_t i = 0; i < features.size(); ++i) {
-        FeatureDirections fd = feature_directions(model, features[i]);
-        (fd.vertex ? vertices : segments)
-            .push_back(DirectedFeature{static_cast<int>(i), Direction{fd.out, fd.out_x, fd.out_y},
-                                       Direction{fd.in, fd.in_x, fd.in_y}});
-        if (fd.vertex) {
+        const FeatureRef& ref = features[i].ref;
+        const std::size_t n = part.loops.at(ref.loop).edges.size();
+        const std::size_t e = loop_start[ref.loop] + ref.edge;
+        if (ref.kind == FeatureRef::Kind::vertex) {
+          // tangents: out along this edge, in along the previous one (feature_directions)
+          const std::size_t previous = loop_start[ref.loop] + (ref.edge + n - 1) % n;
+          vertices.push_back(DirectedFeature{static_cast<int>(i), directions[e], directions[previous]});
           index[i] = front_vertices.size();
-          front_vertices.push_back(FrontVertex{homogeneous(features[i].point)});
+          front_vertices.push_back(FrontVertex{edges[e].q1});
         } else {
+          segments.push_back(DirectedFeature{static_cast<int>(i), directions[e], Direction::of(Point{Rational(0), Rational(0)})});
           index[i] = front_segments.size();
-          front_segments.push_back(front_segment(*features[i].edge, ux, uy));
+          front_segments.push_back(front_segment(edges[e], u));
         }
       }
     };
-    prepare(d.features_a, shift_a, shift_b, d.vertices_a, d.segments_a, d.front_index_a, d.front_vertices_a,
+    prepare(axes.first, d.features_a, shift_a, shift_b, d.vertices_a, d.segments_a, d.front_index_a, d.front_vertices_a,
             d.front_segments_a);
-    prepare(d.features_b, shift_b, shift_a, d.vertices_b, d.segments_b, d.front_index_b, d.front_vertices_b,
+    prepare(axes.second, d.features_b, shift_b, shift_a, d.vertices_b, d.segments_b, d.front_index_b, d.front_vertices_b,
             d.front_segments_b);
   }
   if (options.cull_blocked_space) {
