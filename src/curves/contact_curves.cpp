@@ -982,9 +982,9 @@ struct Shift {
 //   |d|^2 - along = dot(Q2 - P, d) - ...
 //                                     ~ K (dot((X2, Y2), D) W - dot((X, Y), D) W2) - x gx W W2 - y gy W W2
 // (cross(Q2 - Q1, d) = 0 and |d|^2 - dot(P - Q1, d) = dot(Q2 - P, d); every factor is positive).
-// Normalising (dividing by the positive content) makes each the polynomial integer_affine
-// would write from the rationals (normalized_integer_polynomial): the primitive integer form is
-// unique up to a positive factor.
+// Normalising (dividing by the positive content) makes each the polynomial that
+// normalized_integer_polynomial writes from the kernels' rational forms (the general path): the
+// primitive integer form is unique up to a positive factor.
 struct HomogeneousPoint {
   mpz_class x, y, w;
 };
