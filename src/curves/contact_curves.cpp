@@ -963,53 +963,175 @@ std::vector<std::pair<int, int>> cone_pairs(const std::vector<DirectedFeature>& 
   return result;
 }
 
-// c + cx x + cy y exactly, as the normalised integer polynomial of the kernels' path.
-struct Affine {
-  Rational c, x, y;
-};
-
-IntegerPolynomial2 integer_affine(const Affine& f) {
-  mpz_class lcm = 1;
-  for (const Rational* q : {&f.c, &f.x, &f.y}) mpz_lcm(lcm.get_mpz_t(), lcm.get_mpz_t(), q->get_den_mpz_t());
-  auto scaled = [&](const Rational& q) { return mpz_class(q.get_num() * (lcm / q.get_den())); };
-  IntegerPolynomial2 p;
-  p.coefficients = {{scaled(f.c), scaled(f.y)}, {scaled(f.x)}};
-  normalize(p);
-  return p;
-}
-
 // The world shift of a translating part as an affine form of the chart coordinates.
 struct Shift {
   Point x, y;   // shift = x * chart_x + y * chart_y
 };
 
-// Vertex p of the part shifted by `vertex_shift` on segment q1 -> q2 (direction d) of the part
-// shifted by `segment_shift`: cross(P - Q1, d) with its validity 0 <= dot(P - Q1, d) <= |d|^2,
-// the kernels' vertex_segment for translation poses (weights 1, no rotation).
-struct LinearContact {
-  Affine value, along;
-  Rational length2;
+// ---------------------------------------------------------------- the front end in integers
+//
+// The curves of the kernels' vertex_segment for translation poses (weights 1, no rotation):
+// cross(P - Q1, d) with its validity 0 <= dot(P - Q1, d) <= |d|^2, in homogeneous integer
+// arithmetic. A point is (X, Y) / W with W = lcm of its coordinates' denominators > 0; a
+// segment's direction is carried as D, the primitive integer vector along target - source (a
+// positive multiple of it). The contact and both atoms are positive multiples of the rational
+// forms: with the vertex P = (X, Y) / W, the source Q1 = (X1, Y1) / W1, the target
+// Q2 = (X2, Y2) / W2 and the chart shifts' cross and dot products with D over a common K > 0,
+//   value  = cross(P - Q1, d) + ...   ~ K (cross((X, Y), D) W1 - cross((X1, Y1), D) W) + x kx W W1 + y ky W W1
+//   along  = dot(P - Q1, d) + ...     ~ K (dot((X, Y), D) W1 - dot((X1, Y1), D) W) + x gx W W1 + y gy W W1
+//   |d|^2 - along = dot(Q2 - P, d) - ...
+//                                     ~ K (dot((X2, Y2), D) W - dot((X, Y), D) W2) - x gx W W2 - y gy W W2
+// (cross(Q2 - Q1, d) = 0 and |d|^2 - dot(P - Q1, d) = dot(Q2 - P, d); every factor is positive).
+// Normalising (dividing by the positive content) makes each the polynomial that
+// normalized_integer_polynomial writes from the kernels' rational forms (the general path): the
+// primitive integer form is unique up to a positive factor.
+struct HomogeneousPoint {
+  mpz_class x, y, w;
 };
 
-LinearContact vertex_on_segment(const Point& p, const Shift& vertex_shift, const Point& q1, const Point& d,
-                                const Shift& segment_shift) {
-  Point base = difference(p, q1);
-  Point ux = difference(vertex_shift.x, segment_shift.x), uy = difference(vertex_shift.y, segment_shift.y);
-  LinearContact c;
-  c.value = Affine{cross(base, d), cross(ux, d), cross(uy, d)};
-  c.along = Affine{dot(base, d), dot(ux, d), dot(uy, d)};
-  c.length2 = dot(d, d);
-  return c;
+HomogeneousPoint homogeneous(const Point& p) {
+  HomogeneousPoint h;
+  mpz_lcm(h.w.get_mpz_t(), p.x.get_den_mpz_t(), p.y.get_den_mpz_t());
+  mpz_divexact(h.x.get_mpz_t(), h.w.get_mpz_t(), p.x.get_den_mpz_t());
+  h.x *= p.x.get_num();
+  mpz_divexact(h.y.get_mpz_t(), h.w.get_mpz_t(), p.y.get_den_mpz_t());
+  h.y *= p.y.get_num();
+  return h;
 }
 
-// Validity clauses of the linear contact (as convert_validity): false when one never holds.
-bool linear_validity(const LinearContact& c, std::vector<ValidityClause>& clauses) {
-  for (const Affine& atom : {c.along, Affine{Rational(c.length2 - c.along.c), Rational(-c.along.x), Rational(-c.along.y)}}) {
-    if (sgn(atom.x) == 0 && sgn(atom.y) == 0) {
-      if (sgn(atom.c) >= 0) continue;   // always holds
-      return false;
-    }
-    clauses.push_back(ValidityClause{{integer_affine(atom)}});
+// A vertex feature: its point.
+struct FrontVertex {
+  HomogeneousPoint p;
+};
+
+// A segment feature: the ends' denominators W1, W2, the primitive direction D,
+// cross((X1, Y1), D), dot((X1, Y1), D), dot((X2, Y2), D), and the chart shifts' products kx, ky,
+// gx, gy (integers over k > 0) for the other part's vertices.
+struct FrontSegment {
+  mpz_class w1, w2, dx, dy, cross1, dot1, dot2;
+  mpz_class kx, ky, gx, gy, k;
+};
+
+// The chart shifts' difference u = (vertex part's shift) - (segment part's shift) as integers
+// over a common denominator k > 0: ux = (x1, x2) / k, uy = (y1, y2) / k.
+struct IntegerShift {
+  mpz_class x1, x2, y1, y2, k;
+};
+
+IntegerShift integer_shift(const Point& ux, const Point& uy) {
+  IntegerShift u;
+  u.k = 1;
+  for (const Rational* q : {&ux.x, &ux.y, &uy.x, &uy.y}) mpz_lcm(u.k.get_mpz_t(), u.k.get_mpz_t(), q->get_den_mpz_t());
+  auto scaled = [&](const Rational& q) { return mpz_class(q.get_num() * (u.k / q.get_den())); };
+  u.x1 = scaled(ux.x);
+  u.x2 = scaled(ux.y);
+  u.y1 = scaled(uy.x);
+  u.y2 = scaled(uy.y);
+  return u;
+}
+
+// An edge of a polygon loop: its homogeneous ends and primitive direction D (a positive
+// multiple of target - source: every sign the front end takes of it is the same).
+struct FrontEdge {
+  HomogeneousPoint q1, q2;
+  mpz_class dx, dy;
+};
+
+FrontEdge front_edge(HomogeneousPoint q1, HomogeneousPoint q2) {
+  FrontEdge e{std::move(q1), std::move(q2), {}, {}};
+  e.dx = e.q2.x * e.q1.w - e.q1.x * e.q2.w;
+  e.dy = e.q2.y * e.q1.w - e.q1.y * e.q2.w;
+  mpz_class g;
+  mpz_gcd(g.get_mpz_t(), e.dx.get_mpz_t(), e.dy.get_mpz_t());
+  if (g > 1) {
+    mpz_divexact(e.dx.get_mpz_t(), e.dx.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(e.dy.get_mpz_t(), e.dy.get_mpz_t(), g.get_mpz_t());
+  }
+  return e;
+}
+
+// The shifts' products with D are integers over u.k (any positive common factor: the forms are
+// made primitive afterwards).
+FrontSegment front_segment(const FrontEdge& e, const IntegerShift& u) {
+  FrontSegment s;
+  s.w1 = e.q1.w;
+  s.w2 = e.q2.w;
+  s.dx = e.dx;
+  s.dy = e.dy;
+  s.cross1 = e.q1.x * e.dy - e.q1.y * e.dx;
+  s.dot1 = e.q1.x * e.dx + e.q1.y * e.dy;
+  s.dot2 = e.q2.x * e.dx + e.q2.y * e.dy;
+  s.kx = u.x1 * e.dy - u.x2 * e.dx;
+  s.ky = u.y1 * e.dy - u.y2 * e.dx;
+  s.gx = u.x1 * e.dx + u.x2 * e.dy;
+  s.gy = u.y1 * e.dx + u.y2 * e.dy;
+  s.k = u.k;
+  return s;
+}
+
+// c + cx x + cy y divided by its content, trimmed as normalize() leaves it.
+IntegerPolynomial2 primitive_affine(mpz_class& c, mpz_class& cx, mpz_class& cy, mpz_class& scratch) {
+  IntegerPolynomial2 p;
+  mpz_gcd(scratch.get_mpz_t(), c.get_mpz_t(), cx.get_mpz_t());
+  mpz_gcd(scratch.get_mpz_t(), scratch.get_mpz_t(), cy.get_mpz_t());
+  if (sgn(scratch) == 0) return p;   // the zero polynomial: no coefficients
+  if (scratch > 1)
+    for (mpz_class* v : {&c, &cx, &cy}) mpz_divexact(v->get_mpz_t(), v->get_mpz_t(), scratch.get_mpz_t());
+  if (sgn(cx) != 0) {
+    p.coefficients.resize(2);
+    p.coefficients[1].push_back(cx);
+  } else {
+    p.coefficients.resize(1);
+  }
+  auto& row = p.coefficients[0];
+  if (sgn(cy) != 0) {
+    row.push_back(c);
+    row.push_back(cy);
+  } else if (sgn(c) != 0) {
+    row.push_back(c);
+  }
+  return p;
+}
+
+// The contact of `vertex` on `segment` and its validity clauses (a constant atom that holds is
+// left out, as convert_validity does): false when the features never touch within both (the curve is then not
+// kept; `curve` is left partly written).
+bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurve& curve) {
+  const HomogeneousPoint& p = vertex.p;
+  mpz_class c, cx, cy, scratch, ww1, pd;
+  // value
+  mpz_mul(ww1.get_mpz_t(), p.w.get_mpz_t(), s.w1.get_mpz_t());
+  pd = p.x * s.dy - p.y * s.dx;
+  c = pd * s.w1 - s.cross1 * p.w;
+  c *= s.k;
+  mpz_mul(cx.get_mpz_t(), s.kx.get_mpz_t(), ww1.get_mpz_t());
+  mpz_mul(cy.get_mpz_t(), s.ky.get_mpz_t(), ww1.get_mpz_t());
+  curve.polynomial = primitive_affine(c, cx, cy, scratch);
+  const IntegerPolynomial2& value = curve.polynomial;
+  if (!value.is_zero() && value.degree_x() == 0 && value.degree_y() == 0) return false;   // a non-zero constant
+  // along >= 0, then |d|^2 - along >= 0 (in this order; constant atoms tested, not kept)
+  const bool constant_atoms = sgn(s.gx) == 0 && sgn(s.gy) == 0;
+  pd = p.x * s.dx + p.y * s.dy;
+  c = pd * s.w1 - s.dot1 * p.w;
+  c *= s.k;
+  if (constant_atoms) {
+    if (sgn(c) < 0) return false;
+  } else {
+    mpz_mul(cx.get_mpz_t(), s.gx.get_mpz_t(), ww1.get_mpz_t());
+    mpz_mul(cy.get_mpz_t(), s.gy.get_mpz_t(), ww1.get_mpz_t());
+    curve.validity.push_back(ValidityClause{{primitive_affine(c, cx, cy, scratch)}});
+  }
+  c = s.dot2 * p.w - pd * s.w2;
+  c *= s.k;
+  if (constant_atoms) {
+    if (sgn(c) < 0) return false;
+  } else {
+    mpz_mul(ww1.get_mpz_t(), p.w.get_mpz_t(), s.w2.get_mpz_t());   // now W W2
+    mpz_mul(cx.get_mpz_t(), s.gx.get_mpz_t(), ww1.get_mpz_t());
+    mpz_mul(cy.get_mpz_t(), s.gy.get_mpz_t(), ww1.get_mpz_t());
+    cx = -cx;
+    cy = -cy;
+    curve.validity.push_back(ValidityClause{{primitive_affine(c, cx, cy, scratch)}});
   }
   return true;
 }
@@ -1185,10 +1307,16 @@ struct CurveGenerator::Data {
   // cull): the general path's feature geometry is not formed for it
   bool front_end = false;
   mutable std::once_flag cores_once;
+  // The front end's chart-independent data: the features' directions (cone_pairs) and their
+  // homogeneous integer forms (front_contact), indexed through front_index by feature index.
+  std::vector<DirectedFeature> vertices_a, segments_a, vertices_b, segments_b;
+  std::vector<std::size_t> front_index_a, front_index_b;
+  std::vector<FrontVertex> front_vertices_a, front_vertices_b;
+  std::vector<FrontSegment> front_segments_a, front_segments_b;
 };
 
 CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
-    : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}, true, {}, {}, {}, {}}) {
+    : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}, true, {}, {}, {}, {}, false, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}) {
   Data& d = *data_;
   d.features_a = part_features(model, axes.first, &d.reflex_vertices_skipped);
   d.features_b = part_features(model, axes.second, &d.reflex_vertices_skipped);
@@ -1212,6 +1340,66 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
   if (!d.front_end) {
     for (const BodyFeature& f : d.features_a) d.geometry_a.push_back(feature_geometry(f));
     for (const BodyFeature& f : d.features_b) d.geometry_b.push_back(feature_geometry(f));
+  } else {
+    // the parts' world shifts as affine forms of the chart coordinates
+    auto shift_of = [&](const Part& part, bool moves, int variable) {
+      Shift shift{Point{Rational(0), Rational(0)}, Point{Rational(0), Rational(0)}};
+      if (moves && part.motion.kind == Motion::Kind::translation) (variable == 0 ? shift.x : shift.y) = part.motion.direction;
+      return shift;
+    };
+    const Shift shift_a = shift_of(model.parts.at(axes.first), axes.first_moves, 0);
+    const Shift shift_b = shift_of(model.parts.at(axes.second), axes.second_moves, axes.first_moves ? 1 : 0);
+    // segments of one part meet the other part's vertices: u = vertex shift - segment shift
+    auto prepare = [&](std::size_t part_index, const std::vector<BodyFeature>& features, const Shift& own,
+                       const Shift& other, std::vector<DirectedFeature>& vertices, std::vector<DirectedFeature>& segments,
+                       std::vector<std::size_t>& index, std::vector<FrontVertex>& front_vertices,
+                       std::vector<FrontSegment>& front_segments) {
+      const IntegerShift u = integer_shift(difference(other.x, own.x), difference(other.y, own.y));
+      // every edge of the part once: its homogeneous ends (a closed loop's target is the next
+      // edge's source) and its direction
+      const Part& part = model.parts.at(part_index);
+      std::vector<std::size_t> loop_start;
+      std::vector<FrontEdge> edges;
+      std::vector<Direction> directions;
+      for (const Loop& loop : part.loops) {
+        loop_start.push_back(edges.size());
+        const std::size_t n = loop.edges.size();
+        std::vector<HomogeneousPoint> sources;
+        sources.reserve(n);
+        for (const Edge& edge : loop.edges) sources.push_back(homogeneous(edge.source));
+        for (std::size_t e = 0; e < n; ++e) {
+          const Edge& edge = loop.edges[e];
+          const bool closes = edge.target == loop.edges[(e + 1) % n].source;
+          edges.push_back(front_edge(sources[e], closes ? sources[(e + 1) % n] : homogeneous(edge.target)));
+          directions.push_back(Direction::of(Point{Rational(edges.back().dx), Rational(edges.back().dy)}));
+        }
+      }
+      index.resize(features.size());
+      vertices.reserve(features.size());
+      segments.reserve(features.size());
+      front_vertices.reserve(features.size());
+      front_segments.reserve(features.size());
+      for (std::size_t i = 0; i < features.size(); ++i) {
+        const FeatureRef& ref = features[i].ref;
+        const std::size_t n = part.loops.at(ref.loop).edges.size();
+        const std::size_t e = loop_start[ref.loop] + ref.edge;
+        if (ref.kind == FeatureRef::Kind::vertex) {
+          // tangents: out along this edge, in along the previous one (feature_directions)
+          const std::size_t previous = loop_start[ref.loop] + (ref.edge + n - 1) % n;
+          vertices.push_back(DirectedFeature{static_cast<int>(i), directions[e], directions[previous]});
+          index[i] = front_vertices.size();
+          front_vertices.push_back(FrontVertex{edges[e].q1});
+        } else {
+          segments.push_back(DirectedFeature{static_cast<int>(i), directions[e], Direction::of(Point{Rational(0), Rational(0)})});
+          index[i] = front_segments.size();
+          front_segments.push_back(front_segment(edges[e], u));
+        }
+      }
+    };
+    prepare(axes.first, d.features_a, shift_a, shift_b, d.vertices_a, d.segments_a, d.front_index_a, d.front_vertices_a,
+            d.front_segments_a);
+    prepare(axes.second, d.features_b, shift_b, shift_a, d.vertices_b, d.segments_b, d.front_index_b, d.front_vertices_b,
+            d.front_segments_b);
   }
   if (options.cull_blocked_space) {
     for (const BodyFeature& f : d.features_a) d.disks_a.push_back(body_disk(f));
@@ -1345,18 +1533,10 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
     // The polygon front end: the reduced convolution's pairs by the angular walk (cone_pairs),
     // then the same broad-phase box test and swept-region cull as the general path (so the
     // same pairs, in the same order), and each curve written down from the vertices.
-    std::vector<DirectedFeature> vertices_a, segments_a, vertices_b, segments_b;
-    auto directed = [&](const std::vector<BodyFeature>& features, std::vector<DirectedFeature>& vertices,
-                        std::vector<DirectedFeature>& segments) {
-      for (std::size_t i = 0; i < features.size(); ++i) {
-        FeatureDirections fd = feature_directions(model, features[i]);
-        (fd.vertex ? vertices : segments)
-            .push_back(DirectedFeature{static_cast<int>(i), Direction{fd.out, fd.out_x, fd.out_y},
-                                       Direction{fd.in, fd.in_x, fd.in_y}});
-      }
-    };
-    directed(features_a, vertices_a, segments_a);
-    directed(features_b, vertices_b, segments_b);
+    const std::vector<DirectedFeature>& vertices_a = d.vertices_a;
+    const std::vector<DirectedFeature>& segments_a = d.segments_a;
+    const std::vector<DirectedFeature>& vertices_b = d.vertices_b;
+    const std::vector<DirectedFeature>& segments_b = d.segments_b;
     std::vector<std::pair<int, int>> reduced = cone_pairs(vertices_a, segments_b);
     for (auto [j, i] : cone_pairs(vertices_b, segments_a)) reduced.emplace_back(i, j);
     std::sort(reduced.begin(), reduced.end());
@@ -1381,35 +1561,21 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
       pairs.emplace_back(i, j);
     }
     stats.feature_pairs_in_blocked_space += considered - kept;
-    // the parts' world shifts as affine forms of the chart coordinates
-    auto shift_of = [&](const Part& part, bool moves, int variable) {
-      Shift shift{Point{Rational(0), Rational(0)}, Point{Rational(0), Rational(0)}};
-      if (moves && part.motion.kind == Motion::Kind::translation) (variable == 0 ? shift.x : shift.y) = part.motion.direction;
-      return shift;
-    };
-    const Shift shift_a = shift_of(part_a, axes.first_moves, 0);
-    const Shift shift_b = shift_of(part_b, axes.second_moves, axes.first_moves ? 1 : 0);
     std::vector<ContactCurve> curves;
     curves.reserve(pairs.size());
     for (auto [i, j] : pairs) {
-      const BodyFeature& fa = features_a[static_cast<std::size_t>(i)];
-      const BodyFeature& fb = features_b[static_cast<std::size_t>(j)];
+      const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+      const BodyFeature& fa = features_a[ui];
+      const BodyFeature& fb = features_b[uj];
       const bool vertex_first = fa.ref.kind == FeatureRef::Kind::vertex;
-      const BodyFeature& vertex = vertex_first ? fa : fb;
-      const BodyFeature& segment = vertex_first ? fb : fa;
-      const Point d_segment = difference(segment.edge->target, segment.edge->source);
-      LinearContact contact = vertex_on_segment(vertex.point, vertex_first ? shift_a : shift_b, segment.edge->source,
-                                                d_segment, vertex_first ? shift_b : shift_a);
+      const FrontVertex& vertex = vertex_first ? d.front_vertices_a[d.front_index_a[ui]] : d.front_vertices_b[d.front_index_b[uj]];
+      const FrontSegment& segment = vertex_first ? d.front_segments_b[d.front_index_b[uj]] : d.front_segments_a[d.front_index_a[ui]];
       ContactCurve curve;
       curve.first = fa.ref;
       curve.second = fb.ref;
       curve.type = vertex_first ? ContactType::vertex_segment : ContactType::segment_vertex;
-      curve.polynomial = integer_affine(contact.value);
       curve.blocked_sign = kernels::blocked_sign;
-      bool zero = curve.polynomial.is_zero();
-      if (!zero && curve.polynomial.degree_x() == 0 && curve.polynomial.degree_y() == 0)
-        continue;  // a non-zero constant: these features never touch
-      if (!linear_validity(contact, curve.validity)) continue;  // never within both
+      if (!front_contact(vertex, segment, curve)) continue;   // a non-zero constant, or never within both
       keep(curves, std::move(curve), fa, fb);
     }
     return curves;

@@ -577,3 +577,113 @@ TEST(CSpacePolygonFrontEnd, LineEdgeLabelsAndSamplesEqualTheReferenceOnGenerated
 
 }  // namespace
 }  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// A convex polygon with vertices on the circle of radius r about (cx, cy) at rational half-angle
+// tangents k / q (every vertex its own denominator, as the benchmark's polygons), or its
+// reverse order.
+Points circle_polygon(std::mt19937_64& random, int n, const Rational& r, const Rational& cx, const Rational& cy,
+                      long q) {
+  Points points;
+  std::vector<long> tangents;
+  for (int i = 0; i < n; ++i) {
+    double angle = -3.141592653589793 + 2 * 3.141592653589793 * (i + 0.2 + 0.6 * static_cast<double>(random() % 1000) / 1000.0) / n;
+    tangents.push_back(std::lround(std::tan(angle / 2) * static_cast<double>(q)));
+  }
+  for (long k : tangents) {
+    Rational t(k, q);
+    t.canonicalize();
+    Rational d = 1 + t * t;
+    points.emplace_back(Rational(cx + r * (1 - t * t) / d), Rational(cy + r * 2 * t / d));
+  }
+  return points;
+}
+
+// The generator of the front end in homogeneous integers against the kernels' general path,
+// curve for curve, and the built spaces field by field, on generated pairs that exercise what it
+// forms from the integers: vertices with distinct coprime denominators (on circles), a part with
+// a hole (the edges of several loops), rational translation directions with denominators,
+// parallel edges (constant validity atoms), a fixed part (a 1-D space), and scales 10^-40 and
+// 10^40 (several limbs).
+TEST(CSpacePolygonFrontEnd, HomogeneousIntegerCurvesEqualTheGeneralPathOnGeneratedPairs) {
+  std::mt19937_64 random(20261129);
+  auto curves_of = [](const Model& model, bool front_end, cspace::CurveStatistics& stats) {
+    cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+    cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+    cspace::CurveOptions options;
+    options.cull_blocked_space = false;
+    options.polygon_front_end = front_end;
+    cspace::ChartAxis y = layout.y_charts.empty() ? cspace::ChartAxis{} : layout.y_charts[0];
+    return cspace::CurveGenerator(model, axes, options).generate(layout.x_charts[0], y, &stats);
+  };
+  const std::vector<std::pair<std::string, std::string>> directions{
+      {"[1, 0]", "[0, 1]"}, {"[\"1/3\", \"2/7\"]", "[\"-5/11\", \"3/4\"]"}, {"[3, 4]", "[\"1/6\", 0]"}, {"fixed", "[0, \"2/3\"]"}};
+  int cases = 0, with_constant_atoms = 0;
+  for (int instance = 0; instance < 24; ++instance) {
+    SCOPED_TRACE("instance " + std::to_string(instance));
+    const Rational scale = instance % 6 == 4 ? power_of_ten(-40) : instance % 6 == 5 ? power_of_ten(40) : Rational(1);
+    const long q = 8 + static_cast<long>(random() % 40);
+    Points outer = scaled(circle_polygon(random, 5 + static_cast<int>(random() % 6), 9, 0, 0, q), scale);
+    Points hole = scaled(circle_polygon(random, 3 + static_cast<int>(random() % 5), 5, Rational(1, 3), 0, q + 3), scale);
+    Points peg = instance % 3 == 0 ? scaled(Points{{Rational(-1), Rational(-1)}, {Rational(2), Rational(-1)},
+                                                   {Rational(2), Rational(1, 2)}, {Rational(-1), Rational(1, 2)}},
+                                            scale)
+                                   : scaled(circle_polygon(random, 3 + static_cast<int>(random() % 6), Rational(3, 2),
+                                                           Rational(1, 2), Rational(-1, 5), q + 7),
+                                            scale);
+    Points frame_box = scaled(Points{{Rational(-12), Rational(-12)}, {Rational(12), Rational(-12)},
+                                     {Rational(12), Rational(12)}, {Rational(-12), Rational(12)}},
+                              scale);
+    const auto& [da, db] = directions[static_cast<std::size_t>(instance) % directions.size()];
+    auto motion = [](const std::string& d) {
+      return d == "fixed" ? std::string("\"fixed\"") : "{ \"translation\": { \"direction\": " + d + " } }";
+    };
+    // the frame: a square or a circle polygon with a polygonal hole; the peg inside the hole
+    const bool square_frame = instance % 2 == 0;
+    std::string text = R"({ "hipair": 1, "name": "frame", "parts": [
+      { "name": "a", "motion": )" + motion(da) + R"(, "loops": [ )" +
+                       loop_json(square_frame ? frame_box : outer) + ", " + loop_json(hole) + R"( ] },
+      { "name": "b", "motion": )" + motion(db) + R"(, "loops": [ )" + loop_json(peg) + R"( ] } ] })";
+    Model model;
+    try {
+      model = read_model(text);
+    } catch (const ModelError&) {
+      continue;   // rounding made a polygon degenerate: not a case
+    }
+    ++cases;
+    cspace::CurveStatistics fast_stats, general_stats;
+    auto p = curves_of(model, true, fast_stats);
+    auto g = curves_of(model, false, general_stats);
+    ASSERT_EQ(p.size(), g.size());
+    ASSERT_FALSE(p.empty());
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      EXPECT_EQ(p[k].first, g[k].first);
+      EXPECT_EQ(p[k].second, g[k].second);
+      EXPECT_EQ(p[k].type, g[k].type);
+      EXPECT_EQ(p[k].polynomial.coefficients, g[k].polynomial.coefficients);
+      EXPECT_EQ(p[k].label, g[k].label);
+      ASSERT_EQ(p[k].validity.size(), g[k].validity.size());
+      if (p[k].validity.size() < 2) ++with_constant_atoms;
+      for (std::size_t c = 0; c < p[k].validity.size(); ++c) {
+        ASSERT_EQ(p[k].validity[c].atoms.size(), g[k].validity[c].atoms.size());
+        for (std::size_t i = 0; i < p[k].validity[c].atoms.size(); ++i)
+          EXPECT_EQ(p[k].validity[c].atoms[i].coefficients, g[k].validity[c].atoms[i].coefficients);
+      }
+    }
+    EXPECT_EQ(fast_stats.curves, general_stats.curves);
+    EXPECT_EQ(fast_stats.feature_pairs_considered, general_stats.feature_pairs_considered);
+    EXPECT_EQ(fast_stats.feature_pairs_in_blocked_space, general_stats.feature_pairs_in_blocked_space);
+    if (instance % 4 == 1 && scale == 1) {   // the whole space on some (the 2-D ones)
+      Built built = build_both(model);
+      expect_same_space(built.fast, built.general);
+    }
+  }
+  EXPECT_GE(cases, 16);
+  // a part moving perpendicular to edges (the 1-D cases): some curves keep fewer than two clauses
+  EXPECT_GT(with_constant_atoms, 0);
+}
+
+}  // namespace
+}  // namespace hipair
