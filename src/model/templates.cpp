@@ -205,21 +205,18 @@ std::vector<Loop> expand_geneva_wheel(const Arguments& arguments,
                      "must be less than lock_center_radius (the locking arc would enclose the "
                      "wheel centre)");
 
-  // Slot frame: slot axis along +x. Walls at y = +-w/2 from the bottom to radius r_out, each of
-  // the rational length l, the simplest rational within b/2 of sqrt(r_out^2 - (w/2)^2) - r_in:
-  // a pin's tangency to a wall (rational pin radius times rational length) is then a contact
-  // curve of degree 2 in each half-angle tangent, where a wall ending exactly on the circle r_out
+  // Slot frame: slot axis along +x. Walls at y = +-w/2 from the bottom towards radius r_out, of
+  // rational lengths within b r_out of sqrt(r_out^2 - (w/2)^2) - r_in (a relative rounding, like
+  // the angles', so that the rationals keep their size at every scale of the model): a pin's
+  // tangency to a wall (rational pin radius times rational length) is then a contact curve of
+  // degree 2 in each half-angle tangent, where a wall ending exactly on the circle r_out
   // (irrational length) squares it to degree 4 and leaves the quadratic traits
-  // (kernels/contact_table.hpp). The wall end lies within about b of that circle (recorded).
-  // (The length is rounded as a fraction of r_out, so the rounding is relative, like the angles'
-  // roundings, and the wall's rationals keep their size at every scale of the model.)
+  // (kernels/contact_table.hpp). Each slot's walls are chosen below (wall_length_with_rational_mouth)
+  // so that its mouths are rational too; this canonical wall, r_out times the simplest rational
+  // within b/2 of the ideal ratio, is the fallback and the fit checks' geometry.
   Rational wall_reach = tg::approximate_sqrt(wall_end_squared);
   Rational wall_length = Rational(outer * round_simplest(Rational((wall_reach - inner) / outer)));
   Point wall_end_left{Rational(inner + wall_length), half};
-  roundings.push_back(Rounding{pointer,
-                               "slot wall length (its end next to slot_outer_radius; bound: displacement of the "
-                               "end along the wall, mm)",
-                               wall_length, Rational(outer * rounding_bound())});
   Point wall_end_right = tg::mirror(wall_end_left);
   Point bottom_center{inner, Rational(0)};
   Point bottom_left{inner, half};
@@ -277,11 +274,17 @@ std::vector<Loop> expand_geneva_wheel(const Arguments& arguments,
     const Point far = right ? in_slot_frame(k, lock_end, lock_turn[k]) : in_slot_frame(k, lock_start, lock_turn[(k + 1) % slots]);
     const Rational y = right ? Rational(-half) : half;
     std::optional<Rational> length = wall_length_with_rational_mouth(inner, y, far, Rational(wall_reach - inner), outer);
-    if (!length) return right ? wall_end_right : wall_end_left;
+    const std::string what = numbered("slot", k) + (right ? " wall R" : " wall L");
+    if (!length) {
+      roundings.push_back(Rounding{pointer,
+                                   what + " length (rational; its end next to slot_outer_radius; bound: displacement "
+                                          "of the end along the wall, mm)",
+                                   wall_length, Rational(outer * rounding_bound() / 2)});
+      return right ? wall_end_right : wall_end_left;
+    }
     roundings.push_back(Rounding{pointer,
-                                 numbered("slot", k) + (right ? " wall R" : " wall L") +
-                                     " length (rational, and so is its mouth; bound: displacement of the end along "
-                                     "the wall, mm)",
+                                 what + " length (rational, and so is its mouth; its end next to slot_outer_radius; "
+                                        "bound: displacement of the end along the wall, mm)",
                                  *length, Rational(outer * rounding_bound() / 2)});
     return Point{Rational(inner + *length), y};
   };

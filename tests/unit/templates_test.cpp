@@ -156,7 +156,7 @@ TEST(Templates, SlotWallsAndImpulsePinsGiveDegreeTwoTangencies) {
       expect_exact_loops(loops);
       Rational bound = 0;
       for (const Rounding& rounding : roundings)
-        if (rounding.expression.find("slot wall length") != std::string::npos) bound = std::max(bound, rounding.bound);
+        if (rounding.expression.find(" length (rational") != std::string::npos) bound = std::max(bound, rounding.bound);
       ASSERT_GT(bound, 0);
       std::size_t walls = 0, mouths = 0;
       for (const Edge& edge : loops[0].edges) {
