@@ -1,5 +1,7 @@
 #include "model/exact_trig.hpp"
 
+#include "model/expression.hpp"
+
 #include <mpfr.h>
 
 namespace hipair::model_detail {
@@ -127,7 +129,8 @@ Rational round_half_tangent(const Rational& tangent) {
 }
 
 Rational round_simplest(const Rational& value) {
-  return simplest_rational_between(value - half_bound(), value + half_bound());
+  Rational half = rounding_bound_near(abs(value)) / 2;
+  return simplest_rational_between(value - half, value + half);
 }
 
 Point exact_unit_vector(const Rational& angle, const std::string& pointer,

@@ -6,6 +6,7 @@
 #include <hipair/error.hpp>
 
 #include <cctype>
+#include <cmath>
 #include <mpfi.h>
 
 namespace hipair::model_detail {
@@ -73,6 +74,10 @@ class Evaluator {
   }
   [[noreturn]] void fail(const std::string& reason, const Token& at) const {
     fail(reason + " at character " + std::to_string(at.position + 1));
+  }
+  // A decision the current precision could not take (read_model retries at a higher one).
+  [[noreturn]] void undecided(const std::string& reason) const {
+    throw PrecisionExhausted(context_.pointer, reason + " in expression " + quoted_expression(text_));
   }
 
   // ------------------------------------------------------------------ tokens
@@ -339,7 +344,7 @@ class Evaluator {
   static Quantity enclose_extremum(const Quantity& a, const Quantity& b, bool minimum) {
     Interval x = a.to_interval(), y = b.to_interval();
     mpfr_t lo_x, hi_x, lo_y, hi_y;
-    mpfr_inits2(interval_bits, lo_x, hi_x, lo_y, hi_y, static_cast<mpfr_ptr>(nullptr));
+    mpfr_inits2(working_interval_bits(), lo_x, hi_x, lo_y, hi_y, static_cast<mpfr_ptr>(nullptr));
     mpfi_get_left(lo_x, x.get());
     mpfi_get_right(hi_x, x.get());
     mpfi_get_left(lo_y, y.get());
@@ -458,7 +463,7 @@ class Evaluator {
     if (a.exact && b.exact && a.rational == 0 && b.rational == 0)  // (p pi) / (q pi), q != 0
       return checked(Quantity::of(a.pi_multiple / b.pi_multiple, angle));
     Interval denominator = b.to_interval();
-    if (denominator.sign() == 0) fail("division by zero (or by a value too close to zero to decide)");
+    if (denominator.sign() == 0) undecided("division by zero (or by a value too close to zero to decide)");
     return checked(Quantity::approximate(a.to_interval() / denominator, angle));
   }
 
@@ -494,7 +499,7 @@ class Evaluator {
       if (magnitude > 0) factor = factor * factor;
     }
     if (exponent < 0) {
-      if (result.sign() == 0) fail("division by zero (or by a value too close to zero to decide)");
+      if (result.sign() == 0) undecided("division by zero (or by a value too close to zero to decide)");
       result = Interval(Rational(1)) / result;
     }
     return checked(Quantity::approximate(result));
@@ -507,7 +512,7 @@ class Evaluator {
       if (rational_sign == 0 || rational_sign == pi_sign) return pi_sign;
     }
     int s = value.to_interval().sign();
-    if (s == 0) fail("cannot decide the sign of a value too close to zero (in " + what + ")");
+    if (s == 0) undecided("cannot decide the sign of a value too close to zero (in " + what + ")");
     return s;
   }
 
@@ -525,7 +530,7 @@ class Evaluator {
     Interval argument = value.to_interval();
     if (argument.sign() < 0) fail("square root of a negative number");
     if (!argument.is_bounded() || argument.lower() < 0)
-      fail("cannot decide whether the argument of sqrt is negative: it is too close to zero");
+      undecided("cannot decide whether the argument of sqrt is negative: it is too close to zero");
     Interval result;
     mpfi_sqrt(result.get(), argument.get());
     return checked(Quantity::approximate(result));
@@ -577,7 +582,7 @@ class Evaluator {
       fail("cannot decide whether the argument of tan is at a pole (an odd multiple of 90 degrees): "
            "it is known only approximately and too close to one");
     constexpr mpfr_prec_t most_bits = 32768;
-    for (mpfr_prec_t bits = 2 * interval_bits; bits <= most_bits; bits *= 2) {
+    for (mpfr_prec_t bits = 2 * working_interval_bits(); bits <= most_bits; bits *= 2) {
       mpfi_t pi, x, tangent;
       mpfi_init2(pi, bits);
       mpfi_init2(x, bits);
@@ -588,7 +593,7 @@ class Evaluator {
       mpfi_tan(tangent, x);
       bool bounded = !mpfi_nan_p(tangent) && mpfi_bounded_p(tangent);
       Interval result;
-      if (bounded) mpfi_set(result.get(), tangent);  // outward to 256 bits
+      if (bounded) mpfi_set(result.get(), tangent);  // outward to the working precision
       mpfi_clear(pi);
       mpfi_clear(x);
       mpfi_clear(tangent);
@@ -709,9 +714,18 @@ int sign_of(const Quantity& value, const std::string& pointer, std::string_view 
   }
   int s = value.to_interval().sign();
   if (s == 0)
-    throw ModelError(pointer, "cannot decide the sign of " + quoted_expression(expression) +
-                                  ": too close to zero");
+    throw PrecisionExhausted(pointer, "cannot decide the sign of " + quoted_expression(expression) +
+                                          ": too close to zero");
   return s;
+}
+
+Rational rounding_bound_near(const Rational& magnitude) {
+  const Rational& bound = rounding_bound();
+  static const Rational small(1, mpz_class(1) << 20);
+  static const Rational relative(1, mpz_class(1) << 44);
+  if (magnitude <= 0 || magnitude >= small) return bound;
+  Rational proportional = magnitude * relative;
+  return proportional < bound ? proportional : bound;
 }
 
 Rational to_rational(const Quantity& value, const std::string& pointer,
@@ -724,12 +738,37 @@ Rational to_rational(const Quantity& value, const std::string& pointer,
   // Every value within the bound of each end of the enclosure is within the bound of the exact
   // value: the simplest rational of [upper - bound, lower + bound] (small denominators keep the
   // downstream polynomials' coefficients small).
-  const Rational& bound = rounding_bound();
+  // A value that is certainly not 0 is rounded within a bound that respects its own size.
+  Rational magnitude;
+  if (enclosure.sign() != 0) magnitude = lower > 0 ? lower : Rational(-upper);
+  Rational bound = rounding_bound_near(magnitude);
   Rational from = upper - bound, to = lower + bound;
   if (from > to)
-    throw ModelError(pointer, "cannot evaluate " + quoted_expression(expression) + " to within the rounding bound " +
-                                  to_decimal_string(bound, 3) + " (the value is too large for 256-bit precision)");
-  Rational rounded = simplest_rational_between(from, to);
+    throw PrecisionExhausted(pointer, "cannot evaluate " + quoted_expression(expression) + " to within the rounding bound " +
+                                          to_decimal_string(bound, 3) + " (the value is too large for " +
+                                          std::to_string(working_interval_bits()) + "-bit precision)");
+  Rational rounded;
+  if (bound == rounding_bound()) {
+    rounded = simplest_rational_between(from, to);
+  } else {
+    // A value rounded relative to its size (rounding_bound_near): the simplest rational in units
+    // of a power of ten near it, so that a model written at 10^-300 mm gets the rationals it has
+    // at 1 mm times 10^-300 (the literals' own denominators), not unrelated ones of 1000 bits.
+    // The unit is 10^e with 10^e <= magnitude < 10^(e+1), exactly (so that every scale of the
+    // same value picks the same digits).
+    long bits = static_cast<long>(mpz_sizeinbase(magnitude.get_num_mpz_t(), 2)) -
+                static_cast<long>(mpz_sizeinbase(magnitude.get_den_mpz_t(), 2));
+    long exponent = static_cast<long>(std::floor(static_cast<double>(bits) * 0.30102999566398));
+    auto power_of_ten = [](long e) {
+      mpz_class power;
+      mpz_ui_pow_ui(power.get_mpz_t(), 10, static_cast<unsigned long>(e < 0 ? -e : e));
+      return e < 0 ? Rational(mpz_class(1), power) : Rational(power);
+    };
+    Rational unit = power_of_ten(exponent);
+    while (unit > magnitude) unit = power_of_ten(--exponent);
+    while (power_of_ten(exponent + 1) <= magnitude) unit = power_of_ten(++exponent);
+    rounded = Rational(unit * simplest_rational_between(Rational(from / unit), Rational(to / unit)));
+  }
   roundings.push_back(Rounding{pointer, expression, rounded, bound});
   return rounded;
 }

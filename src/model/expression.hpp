@@ -8,6 +8,7 @@
 
 #include "model/interval.hpp"
 
+#include <hipair/error.hpp>
 #include <hipair/geometry.hpp>
 #include <hipair/model.hpp>
 
@@ -61,6 +62,22 @@ Quantity evaluate_expression(std::string_view text, const ExpressionContext& con
 /// \throws ModelError(pointer, ...) for a plain value computed with pi in a degree file.
 Quantity as_angle(const Quantity& value, bool degrees, const std::string& pointer,
                   std::string_view expression);
+
+/// A value the current precision (working_interval_bits()) could neither decide (a sign, a
+/// divisor, a square root's argument too close to zero) nor round within its bound: read_model
+/// reads the model again at doubled precision, up to most_interval_bits, and reports this
+/// error only there.
+class PrecisionExhausted : public ModelError {
+ public:
+  using ModelError::ModelError;
+};
+
+/// The bound within which a value of magnitude `magnitude` (> 0; 0 when unknown or zero) is
+/// rounded: the thread's rounding bound b (rounding_bound()), and for a value smaller than
+/// 2^-20 (about 10^-6, in the value's unit) the smaller of b and 2^-44 times the value, so that
+/// a part drawn at 10^-300 mm keeps its shape instead of rounding to 0 (docs/model-format.md
+/// "Exactness and rounding").
+Rational rounding_bound_near(const Rational& magnitude);
 
 /// Largest decimal exponent accepted in a literal ("1e1000").
 inline constexpr long max_literal_exponent = 1000;

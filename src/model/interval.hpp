@@ -1,4 +1,5 @@
-// Certified enclosures: a small value-semantics wrapper of an MPFI interval at 256 bits.
+// Certified enclosures: a small value-semantics wrapper of an MPFI interval (256 bits unless a
+// PrecisionScope asks for more).
 // Used where a value cannot be exact (sqrt(3), sin(1), pi) so that every decision taken on it
 // is certified (the exact value lies inside) and every rounding has a proven bound.
 #pragma once
@@ -11,13 +12,39 @@
 
 namespace hipair::model_detail {
 
-/// Working precision of every enclosure.
+/// Default working precision of every enclosure.
 inline constexpr mpfr_prec_t interval_bits = 256;
+/// The most precision the reader escalates to (PrecisionScope): a value that needs more to be
+/// rounded within its bound is larger than the reader's 4096-bit rationals can hold anyway.
+inline constexpr mpfr_prec_t most_interval_bits = 8192;
+
+namespace interval_detail {
+inline thread_local mpfr_prec_t working_bits = interval_bits;
+}
+
+/// The precision of the enclosures made on this thread now.
+inline mpfr_prec_t working_interval_bits() { return interval_detail::working_bits; }
+
+/// Raises the precision of the enclosures made on this thread for its lifetime (the reader
+/// re-reads a model at doubled precision when a value cannot be rounded within its bound at the
+/// current one: a model drawn at 10^100 mm needs more than 256 bits for a 10^-12 mm bound).
+class PrecisionScope {
+ public:
+  explicit PrecisionScope(mpfr_prec_t bits) : previous_(interval_detail::working_bits) {
+    interval_detail::working_bits = bits;
+  }
+  ~PrecisionScope() { interval_detail::working_bits = previous_; }
+  PrecisionScope(const PrecisionScope&) = delete;
+  PrecisionScope& operator=(const PrecisionScope&) = delete;
+
+ private:
+  mpfr_prec_t previous_;
+};
 
 /// A closed interval [lower, upper] of reals with MPFR endpoints (outward rounded).
 class Interval {
  public:
-  Interval() { mpfi_init2(value_, interval_bits); }
+  Interval() { mpfi_init2(value_, working_interval_bits()); }
   explicit Interval(const Rational& exact) : Interval() { mpfi_set_q(value_, exact.get_mpq_t()); }
   Interval(const Interval& other) : Interval() { mpfi_set(value_, other.value_); }
   Interval(Interval&& other) noexcept : Interval() { mpfi_swap(value_, other.value_); }
@@ -75,7 +102,7 @@ class Interval {
   }
   Rational endpoint(bool lower_end) const {
     mpfr_t bound;
-    mpfr_init2(bound, interval_bits);
+    mpfr_init2(bound, mpfi_get_prec(value_));
     if (lower_end)
       mpfi_get_left(bound, value_);
     else

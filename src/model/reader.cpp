@@ -8,6 +8,7 @@
 
 #include <hipair/error.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -217,8 +218,29 @@ Model read_model_root(const JsonValue& root, std::string_view source_name) {
 
 }  // namespace model_detail
 
+namespace model_detail {
+
+Model read_model_escalating(std::string_view json_text, std::string_view source_name, const ReadOptions& options,
+                            mpfr_prec_t* bits_used) {
+  // Most models read at the default precision; a value that it cannot decide or round within its
+  // bound (a model drawn at 10^100 mm against a 10^-12 mm bound) reads the whole model again at
+  // doubled precision, so every value of one model is evaluated at one precision.
+  for (mpfr_prec_t bits = std::max(interval_bits, working_interval_bits());; bits *= 2) {
+    PrecisionScope precision(bits);
+    try {
+      Model model = Reader(json_text, source_name, options).read();
+      if (bits_used) *bits_used = bits;
+      return model;
+    } catch (const PrecisionExhausted&) {
+      if (2 * bits > most_interval_bits) throw;
+    }
+  }
+}
+
+}  // namespace model_detail
+
 Model read_model(std::string_view json_text, std::string_view source_name, const ReadOptions& options) {
-  return model_detail::Reader(json_text, source_name, options).read();
+  return model_detail::read_model_escalating(json_text, source_name, options, nullptr);
 }
 
 Model read_model_file(const std::filesystem::path& path, const ReadOptions& options) {

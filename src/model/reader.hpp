@@ -48,6 +48,11 @@ inline Rational squared_distance(const Point& a, const Point& b) {
   return dx * dx + dy * dy;
 }
 
+/// read_model, and the precision (bits) at which it read: the default 256, or the doubled one
+/// that every value of this model needed (PrecisionExhausted).
+Model read_model_escalating(std::string_view json_text, std::string_view source_name, const ReadOptions& options,
+                            mpfr_prec_t* bits_used);
+
 /// Reads one model document into an exact, validated Model; every error is a ModelError
 /// naming the JSON pointer of the offending value.
 class Reader {

@@ -24,6 +24,16 @@ mpz_class scaled_integer_sqrt(const Rational& q, unsigned digits) {
   return root;
 }
 
+// Decimal digits after the point: `absolute`, and for a tiny q (below about 2^-40, sqrt(q) below
+// about 10^-6) enough more to keep `absolute` significant digits of sqrt(q) (about half of q's
+// negative decimal exponent more; the size test is on the numbers' bit lengths, so it is exact).
+unsigned digits_for(const Rational& q, unsigned absolute) {
+  long bits = static_cast<long>(mpz_sizeinbase(q.get_den_mpz_t(), 2)) -
+              static_cast<long>(mpz_sizeinbase(q.get_num_mpz_t(), 2));
+  if (bits < 40) return absolute;
+  return absolute + static_cast<unsigned>(bits * 0.30103 / 2) + 2;  // 10^-more <= sqrt(q) / 10
+}
+
 }  // namespace
 
 Point add(const Point& a, const Point& b) { return Point{a.x + b.x, a.y + b.y}; }
@@ -39,19 +49,56 @@ Rational squared_distance(const Point& a, const Point& b) { return squared_norm(
 
 Rational approximate_sqrt(const Rational& q) {
   if (q <= 0) return Rational(0);
-  Rational result(scaled_integer_sqrt(q, 30), power_of_ten(30));
+  unsigned digits = digits_for(q, 30);
+  Rational result(scaled_integer_sqrt(q, digits), power_of_ten(digits));
   result.canonicalize();
   return result;
 }
 
 Rational upper_sqrt(const Rational& q) {
   if (q <= 0) return Rational(0);
-  Rational result(scaled_integer_sqrt(q, 15) + 1, power_of_ten(15));
+  unsigned digits = digits_for(q, 15);
+  Rational result(scaled_integer_sqrt(q, digits) + 1, power_of_ten(digits));
   result.canonicalize();
   return result;
 }
 
+
 double approximate(const Rational& q) { return q.get_d(); }
+
+namespace {
+thread_local Rational length_scale(1);
+}  // namespace
+
+LengthScaleScope::LengthScaleScope(const Rational& largest) : previous_(length_scale) {
+  static const Rational low(1, mpz_class(1) << 20), high(mpz_class(1) << 40);
+  length_scale = largest > 0 && (largest < low || largest > high) ? largest : Rational(1);
+}
+
+LengthScaleScope::~LengthScaleScope() { length_scale = previous_; }
+
+double approximate_length(const Rational& length) {
+  if (length_scale == 1) return length.get_d();
+  return Rational(length / length_scale).get_d();
+}
+
+double approximate_squared_length(const Rational& squared_length) {
+  if (length_scale == 1) return squared_length.get_d();
+  return Rational(squared_length / (length_scale * length_scale)).get_d();
+}
+
+Rational length_from(double value) { return Rational(Rational(value) * length_scale); }
+
+const Rational& length_unit() { return length_scale; }
+
+Rational round_length(const Rational& length) {
+  if (length_scale == 1) return round_simplest(length);
+  Rational half = rounding_bound() / 2;
+  Rational relative = length / length_scale;
+  return Rational(length_scale * simplest_rational_between(relative - half, relative + half));
+}
+
+Rational length_rounding_bound() { return Rational(rounding_bound() * length_scale); }
 
 Point point_on_circle_near(const Point& center, const Rational& radius, const Point& near,
                            const std::string& pointer, const std::string& what,

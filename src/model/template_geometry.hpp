@@ -29,13 +29,51 @@ Rational squared_distance(const Point& a, const Point& b);
 /// |a|^2, exact.
 Rational squared_norm(const Point& a);
 
-/// sqrt(q) for q >= 0 to within 10^-30 (truncated), as a rational. For constructions whose
-/// results are rounded afterwards (round_simplest, point_on_circle_near); never for decisions.
+/// sqrt(q) for q >= 0 to within 10^-30 (truncated), and to 30 significant digits when
+/// sqrt(q) < 1 (parts drawn at 10^-300 mm), as a rational. For constructions whose results are
+/// rounded afterwards (round_simplest, point_on_circle_near); never for decisions.
 Rational approximate_sqrt(const Rational& q);
-/// A rational >= sqrt(q), within 10^-15 of it: for error bounds.
+/// A rational >= sqrt(q), within 10^-15 of it (and within 10^-15 of it relatively when
+/// sqrt(q) < 1): for error bounds.
 Rational upper_sqrt(const Rational& q);
-/// Nearest double, as a plain number for coarse validity messages.
+/// Nearest double of a dimensionless value or an angle, as a plain number for constructions and
+/// coarse validity messages.
 double approximate(const Rational& q);
+
+/// A template's unit of length U: 1 (mm) for templates whose largest length argument lies in
+/// [2^-20, 2^40] mm, else that largest length itself, so that a part drawn at 10^-300 or
+/// 10^400 mm is constructed as at unit size: lengths in doubles are taken in units of U (squares
+/// of 10^-300 are 0 in double, 10^400 is infinite), and lengths are rounded relative to U
+/// (round_length), which keeps the construction exactly covariant with the part's scale and the
+/// rationals as small as at 1 mm. Set by expand_template for the template's expansion.
+class LengthScaleScope {
+ public:
+  /// The unit for a template whose largest length argument is `largest` (> 0; 0: none).
+  explicit LengthScaleScope(const Rational& largest);
+  ~LengthScaleScope();
+  LengthScaleScope(const LengthScaleScope&) = delete;
+  LengthScaleScope& operator=(const LengthScaleScope&) = delete;
+
+ private:
+  Rational previous_;
+};
+
+/// The template's unit of length U (1 outside expand_template).
+const Rational& length_unit();
+
+/// A constructed length rounded to a rational: the simplest within half the rounding bound b of
+/// `length` (round_simplest) when U = 1, else U times the simplest within b/2 of length / U (a
+/// bound of b U mm).
+Rational round_length(const Rational& length);
+/// The bound of round_length, mm.
+Rational length_rounding_bound();
+
+/// The nearest double of length / U.
+double approximate_length(const Rational& length);
+/// The nearest double of a squared length / U^2.
+double approximate_squared_length(const Rational& squared_length);
+/// The exact length of a double in units of U: Rational(value) * U.
+Rational length_from(double value);
 
 /// An exact rational point on the circle of radius `radius` about `center` whose polar angle
 /// is within the rounding bound b (rad) of the polar angle of `near` (a point on or very near

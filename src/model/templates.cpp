@@ -102,6 +102,15 @@ std::vector<Loop> expand_template(const std::string& name,
                        "unknown argument '" + key + "' of template '" + name + "'");
   }
   Arguments typed(arguments, pointer);
+  // Doubles of the construction in units of the template's own size (tg::approximate_length).
+  Rational largest(0);
+  for (const ArgumentSpec& argument : spec->arguments) {
+    auto found = arguments.find(argument.key);
+    if (found == arguments.end()) continue;
+    if (argument.kind == ArgumentKind::length)
+      if (const Rational* value = std::get_if<Rational>(&found->second)) largest = std::max(largest, Rational(abs(*value)));
+  }
+  tg::LengthScaleScope length_scale(largest);
   for (const ArgumentSpec& argument : spec->arguments)
     if (argument.required && !typed.has(argument.key))
       throw ModelError(pointer + "/" + argument.key,
@@ -231,9 +240,9 @@ std::vector<Loop> expand_geneva_wheel(const Arguments& arguments,
 
   // Coarse fit checks for clear messages; the reader's exact loop checks back them up.
   double sector = M_PI / static_cast<double>(slots);
-  double wall_angle = std::asin(tg::approximate(half) / tg::approximate(outer));
+  double wall_angle = std::asin(tg::approximate(Rational(half / outer)));
   double lock_end_angle =
-      std::atan2(tg::approximate(lock_end.y), tg::approximate(lock_end.x));
+      std::atan2(tg::approximate_length(lock_end.y), tg::approximate_length(lock_end.x));
   if (lock_start.x <= 0)
     throw ModelError(arguments.at("lock_span"),
                      "the locking arc ends behind the wheel centre: lock_span is too large");
@@ -246,11 +255,11 @@ std::vector<Loop> expand_geneva_wheel(const Arguments& arguments,
                      "the locking arcs run into the slots: reduce lock_span or slot_width");
   {
     // The next slot's right wall end, seen in the lock frame, must lie outside the lock circle.
-    double wx = tg::approximate(wall_end_right.x), wy = tg::approximate(wall_end_right.y);
+    double wx = tg::approximate_length(wall_end_right.x), wy = tg::approximate_length(wall_end_right.y);
     double x = wx * std::cos(sector) - wy * std::sin(sector);
     double y = wx * std::sin(sector) + wy * std::cos(sector);
-    double distance = std::hypot(x - tg::approximate(lock_distance), y);
-    if (distance <= tg::approximate(lock_radius) + 1e-9)
+    double distance = std::hypot(x - tg::approximate_length(lock_distance), y);
+    if (distance <= tg::approximate_length(lock_radius) + 1e-9)
       throw ModelError(arguments.at("lock_radius"),
                        "the locking arcs cut into the slot walls: reduce lock_radius or "
                        "slot_outer_radius");
@@ -342,11 +351,11 @@ std::vector<Loop> expand_geneva_driver(const Arguments& arguments,
     double start_angle = std::atan2(tg::approximate(start.y), tg::approximate(start.x));
     double relative = std::remainder(pin_angle - start_angle, 2 * M_PI);
     if (relative < 0) relative += 2 * M_PI;
-    double distance = tg::approximate(pin_distance);
-    double rp = tg::approximate(pin_radius);
+    double distance = tg::approximate_length(pin_distance);
+    double rp = tg::approximate_length(pin_radius);
     bool within_span = relative <= tg::approximate(span);
-    if (within_span && distance + rp > tg::approximate(inner) &&
-        distance - rp < tg::approximate(outer))
+    if (within_span && distance + rp > tg::approximate_length(inner) &&
+        distance - rp < tg::approximate_length(outer))
       throw ModelError(arguments.at("pin_center_radius"),
                        "the pin overlaps the locking crescent (check phase and lock_offset)");
   }

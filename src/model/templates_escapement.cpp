@@ -149,12 +149,12 @@ std::vector<Loop> expand_anchor(const Arguments& arguments, std::vector<Rounding
   Rational distance_squared = tg::squared_norm(axis);
   if (distance_squared <= wheel_radius * wheel_radius)
     throw ModelError(arguments.at("center"), "the anchor pivot must lie outside the escape wheel");
-  double D = std::sqrt(tg::approximate(distance_squared));
-  double R = tg::approximate(wheel_radius);
-  Rational tangent = round_simplest(tg::approximate_sqrt(distance_squared - wheel_radius * wheel_radius));
+  double D = std::sqrt(tg::approximate_squared_length(distance_squared));
+  double R = tg::approximate_length(wheel_radius);
+  Rational tangent = tg::round_length(tg::approximate_sqrt(distance_squared - wheel_radius * wheel_radius));
   roundings.push_back(Rounding{pointer, "anchor tangent length sqrt(|center - wheel_center|^2 - "
                                         "wheel_radius^2)",
-                               tangent, rounding_bound()});
+                               tangent, tg::length_rounding_bound()});
   Rational inner = tangent - width / 2;
   Rational outer = tangent + width / 2;
   if (inner <= 0)
@@ -167,8 +167,7 @@ std::vector<Loop> expand_anchor(const Arguments& arguments, std::vector<Rounding
     throw ModelError(arguments.at("fork_width"), "is wider than the anchor's pallet circle");
   if (slot_width >= fork_width)
     throw ModelError(arguments.at("fork_slot_width"), "must be less than fork_width");
-  if (slot_depth >= fork_length ||
-      tg::approximate(fork_length - slot_depth) <= tg::approximate(outer))
+  if (slot_depth >= fork_length || fork_length - slot_depth <= outer)
     throw ModelError(arguments.at("fork_slot_depth"),
                      "the fork slot must end outside the pallet circle (fork_length - "
                      "fork_slot_depth > tangent length + pallet_width/2)");
@@ -179,7 +178,7 @@ std::vector<Loop> expand_anchor(const Arguments& arguments, std::vector<Rounding
     return std::acos(std::max(-1.0, std::min(1.0, c)));
   };
   double down = 1.5 * M_PI;
-  double rho_in = tg::approximate(inner), rho_out = tg::approximate(outer);
+  double rho_in = tg::approximate_length(inner), rho_out = tg::approximate_length(outer);
   double lift_d = tg::approximate(lift), lock_d = tg::approximate(lock);
   double extent_d = tg::approximate(extent);
   double entry_corner = down - path_angle(rho_out) - lift_d / 2 + lock_d / 2;
@@ -189,8 +188,8 @@ std::vector<Loop> expand_anchor(const Arguments& arguments, std::vector<Rounding
                                            "or pallet_width");
 
   auto polar = [&](const Rational& radius, double angle, const std::string& what) {
-    double r = tg::approximate(radius);
-    Point near{Rational(r * std::cos(angle)), Rational(r * std::sin(angle))};
+    double r = tg::approximate_length(radius);
+    Point near{tg::length_from(r * std::cos(angle)), tg::length_from(r * std::sin(angle))};
     return tg::point_on_circle_near(Point{0, 0}, radius, near, pointer, what, roundings);
   };
   Point entry_lock_corner = polar(outer, entry_corner, "entry pallet locking corner");
@@ -214,7 +213,7 @@ std::vector<Loop> expand_anchor(const Arguments& arguments, std::vector<Rounding
   // (fork_width / 2, fork_length) from a point of the circle has an irrational length (degree 4).
   Point fork_end_right{fork_base_right.x, fork_length};
   Point fork_end_left{-fork_base_right.x, fork_length};
-  Rational notch_depth = round_simplest(Rational((D - R) / 2));
+  Rational notch_depth = tg::round_length(tg::length_from((D - R) / 2));
   Point notch{Rational(0), Rational(-notch_depth)};
 
   // Canonical +y is the direction from the wheel to the pivot.

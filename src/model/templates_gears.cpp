@@ -72,7 +72,7 @@ TangentArc tangent_arc_near(const Point& a, const Point& normal, const Point& id
                             const std::string& what, std::vector<Rounding>& roundings) {
   Point d = tg::subtract(ideal_end, a);
   Rational exact_s = dot(d, d) / (2 * dot(d, normal));
-  Rational s = round_simplest(exact_s);
+  Rational s = tg::round_length(exact_s);
   Point centre = tg::add(a, tg::scale(s, normal));
   roundings.push_back(Rounding{pointer, what + " centre on the normal at the pitch point, distance rounded (bound: centre "
                                                "displacement, mm)",
@@ -169,27 +169,27 @@ std::vector<Loop> expand_spur_gear(const Arguments& arguments, std::vector<Round
     flank.is_arc = {true};
     flank.names = {""};
   } else {
-    double rp = tg::approximate(pitch), beta = tg::approximate(half_angle);
+    double rp = tg::approximate_length(pitch), beta = tg::approximate(half_angle);
     double base = rp * std::cos(alpha);
-    double low = std::max(base, tg::approximate(root_radius));
+    double low = std::max(base, tg::approximate_length(root_radius));
     auto involute_function = [](double angle) { return std::tan(angle) - angle; };
     auto involute_point = [&](double r) {
       double pressure_at_r = std::acos(std::min(1.0, base / r));
       double angle = -beta + involute_function(pressure_at_r) - involute_function(alpha);
-      return Point{Rational(r * std::cos(angle)), Rational(r * std::sin(angle))};
+      return Point{tg::length_from(r * std::cos(angle)), tg::length_from(r * std::sin(angle))};
     };
-    if (tg::approximate(tip_radius) <= base)
+    if (tg::approximate_length(tip_radius) <= base)
       throw ModelError(arguments.at("addendum"),
                        "the tip circle lies inside the base circle: no involute to follow");
     // Each arc's centre lies on the normal at P at a rounded distance (tangent_arc_near), and
     // its far end is an exact point of that circle next to the involute's point; the tip need
     // not lie on the tip circle exactly (the tip arc is centred on the gear's centre and runs
     // between mirror images).
-    TangentArc upper = tangent_arc_near(pitch_point, normal, involute_point(tg::approximate(tip_radius)), pointer,
+    TangentArc upper = tangent_arc_near(pitch_point, normal, involute_point(tg::approximate_length(tip_radius)), pointer,
                                         "upper tooth flank arc (involute point on the tip circle)", roundings);
     Point tip = upper.end;
     Point upper_centre = upper.centre;
-    if (low > tg::approximate(root_radius)) {
+    if (low > tg::approximate_length(root_radius)) {
       // Below the base circle the involute does not exist: a radial segment down to the root
       // circle; the lower arc runs from the involute's start on the base circle to P.
       TangentArc lower = tangent_arc_near(pitch_point, normal, involute_point(low), pointer,
@@ -225,7 +225,7 @@ std::vector<Loop> expand_spur_gear(const Arguments& arguments, std::vector<Round
     throw ModelError(arguments.at("addendum"),
                      "the teeth are pointed: the flanks cross before the tip circle (reduce the "
                      "addendum or increase tooth_thickness)");
-  double root_angle = std::atan2(tg::approximate(root.y), tg::approximate(root.x));
+  double root_angle = std::atan2(tg::approximate_length(root.y), tg::approximate_length(root.x));
   if (root.y >= 0 || root_angle <= -M_PI / static_cast<double>(teeth))
     throw ModelError(arguments.at("dedendum"),
                      "the flanks of neighbouring teeth meet above the root circle (reduce the "

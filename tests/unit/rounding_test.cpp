@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -355,5 +356,93 @@ TEST(ModelRounding, PhasePlusPiMultipleKeepsQuarterTurnsExact) {
       hipair::Point unit = exact_unit_vector_sum(quarter, Rational(twice, 2), "/test", "axis", roundings);
       EXPECT_EQ(abs(unit.x) + abs(unit.y), Rational(1)) << twice << " 1e-" << exponent;
     }
+  }
+}
+
+// Session 19: values far from 1 mm. A value below 2^-20 (in its unit) is rounded within
+// min(b, 2^-44 |v|), as the simplest rational in units of the power of ten below it, so that the
+// same value written at another decimal scale gets the same digits (a model drawn at 10^-300 mm
+// keeps its shape and the rationals it has at 1 mm); a value too large for the 256-bit
+// enclosure to be rounded within b signals PrecisionExhausted, and read_model then reads the
+// whole model at doubled precision.
+TEST(ModelRounding, TinyValuesAreRoundedRelativeToTheirSizeAndAlikeAtEveryDecimalScale) {
+  using namespace hipair::model_detail;
+  const Rational bound = power_of_ten(-12);
+  RoundingBoundScope scope(bound);
+  const Rational relative(1, mpz_class(1) << 44);
+  int checked = 0;
+  for (long n = 2; n < 160; ++n) {
+    long root = static_cast<long>(std::sqrt(static_cast<double>(n)));
+    if (root * root == n) continue;
+    std::optional<Rational> digits;  // v / 10^k, the same at every scale k
+    for (int k : {-300, -250, -120, -45, -31, -25, -9}) {
+      std::string text = "sqrt(" + std::to_string(n) + ")*1e" + std::to_string(k);
+      ExpressionContext context;
+      context.pointer = "/test";
+      Quantity q = evaluate_expression(text, context);
+      std::vector<hipair::Rounding> roundings;
+      Rational v = to_rational(q, "/test", text, roundings);
+      ASSERT_EQ(roundings.size(), 1u);
+      const Rational& b = roundings[0].bound;
+      Rational scale = power_of_ten(k);
+      // |v - sqrt(n) 10^k| <= b, decided exactly by squaring in units of 10^k.
+      ASSERT_TRUE(within_sqrt(Rational(v / scale), n, Rational(b / scale))) << text << " -> " << v;
+      // The bound is at most b and at most 2^-44 of the value: (b 2^44 / 10^k)^2 <= n.
+      EXPECT_LE(b, bound) << text;
+      Rational proportional = b / (relative * scale);
+      EXPECT_LE(proportional * proportional, Rational(n)) << text;
+      Rational at_unit = v / scale;
+      if (!digits) digits = at_unit;
+      EXPECT_EQ(at_unit, *digits) << text << ": other digits than at 1e-300";
+      // Small: the digits' denominator is about that of a 10^-13 relative rounding at 1 mm.
+      EXPECT_LE(mpz_sizeinbase(at_unit.get_den_mpz_t(), 2), static_cast<std::size_t>(64))
+          << text;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 1000);
+}
+
+TEST(ModelRounding, LargeValuesAreRoundedWithinTheAbsoluteBoundAtAHigherPrecision) {
+  using namespace hipair::model_detail;
+  const Rational bound = power_of_ten(-12);
+  // At 256 bits pi 10^100 cannot be rounded within 1e-12: the evaluator says so by type.
+  {
+    RoundingBoundScope scope(bound);
+    ExpressionContext context;
+    context.pointer = "/test";
+    Quantity q = evaluate_expression("pi*1e100", context);
+    std::vector<hipair::Rounding> roundings;
+    EXPECT_THROW(to_rational(q, "/test", "pi*1e100", roundings), PrecisionExhausted);
+  }
+  // A model with such values reads (the reader escalates), and each lies within the bound of
+  // the exact value, checked against an 8192-bit enclosure.
+  for (int k : {30, 100, 250, 400}) {
+    std::string radius = "pi*1e" + std::to_string(k);
+    std::string text = R"({"hipair": 1, "name": "big", "units": {"length": "mm", "angle": "rad"},
+      "parts": [{"name": "a", "motion": "fixed", "loops": [{"circle": {"center": [0, 0], "radius": ")" +
+                       radius + R"("}}]}]})";
+    hipair::Model model = hipair::read_model(text, "big");
+    ASSERT_EQ(model.roundings.size(), 1u) << radius;
+    const hipair::Rounding& rounding = model.roundings[0];
+    EXPECT_EQ(rounding.bound, bound) << radius;
+    mpfi_t exact;
+    mpfi_init2(exact, 8192);
+    mpfi_const_pi(exact);
+    mpfi_mul_q(exact, exact, power_of_ten(k).get_mpq_t());
+    mpfr_t end;
+    mpfr_init2(end, 8192);
+    Rational lower, upper;
+    mpfi_get_left(end, exact);
+    mpfr_get_q(lower.get_mpq_t(), end);
+    mpfi_get_right(end, exact);
+    mpfr_get_q(upper.get_mpq_t(), end);
+    mpfr_clear(end);
+    mpfi_clear(exact);
+    EXPECT_LE(Rational(rounding.value - bound), lower) << radius;
+    EXPECT_GE(Rational(rounding.value + bound), upper) << radius;
+    // The circle's radius is the rounded value.
+    const hipair::Edge& edge = model.parts[0].loops[0].edges[0];
+    EXPECT_EQ(edge.radius_squared, Rational(rounding.value * rounding.value)) << radius;
   }
 }

@@ -7,6 +7,7 @@
 #include "model/expression.hpp"
 #include "model/json_document.hpp"
 #include "model/profile_tolerance.hpp"
+#include "model/reader.hpp"
 #include "model/validate_geometry.hpp"
 
 #include <cmath>
@@ -396,7 +397,10 @@ class RecipeBuilder {
 
 ParametricModel ParametricModel::read(std::string_view json_text, std::string_view source_name) {
   ParametricModel model;
-  model.nominal_ = std::make_shared<const Model>(read_model(json_text, source_name));
+  mpfr_prec_t bits = interval_bits;
+  model.nominal_ = std::make_shared<const Model>(read_model_escalating(json_text, source_name, ReadOptions{}, &bits));
+  model.precision_bits_ = bits;
+  PrecisionScope precision(bits);  // every exact evaluation repeats the reader's at its precision
   model.text_ = std::string(json_text);
   JsonValue root = parse_json(json_text);
   RoundingBoundScope rounding_scope(model_rounding_bound(root));  // the file's bound
@@ -448,6 +452,7 @@ Model ParametricModel::exact_model(const std::vector<Rational>& deviations) cons
   Model model = *nominal_;
   model.roundings.clear();
   RoundingBoundScope rounding_scope(model_rounding_bound(parse_json(text_)));
+  PrecisionScope precision(precision_bits_);
   // Callers may pass mpq_class(a, b), which is not canonical: GMP's arithmetic needs canonical
   // operands (the rounding's continued fractions gave wrong results on such input).
   std::vector<Rational> canonical = deviations;

@@ -196,6 +196,7 @@ class ParametricModel {
 
   std::shared_ptr<const Model> nominal_;
   std::string text_;
+  long precision_bits_ = 256;  ///< the reader's working precision for this model (read_model_escalating)
   bool degrees_ = false;
   std::vector<Slot> parameter_nominals_;
   std::vector<bool> derived_;
