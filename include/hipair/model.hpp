@@ -207,6 +207,10 @@ struct ReadOptions {
   /// parameter's tolerance range unless `allow_out_of_tolerance`.
   std::map<std::string, Rational> parameter_values;
   bool allow_out_of_tolerance = false;
+  /// The overrides replace the parameters' nominal values, not only the values the geometry is
+  /// built at (tolerance analysis of a changed design: `hipair tolerance --set`): a parameter's
+  /// `tolerance` is then about the new nominal, a `range` stays where it is and must hold it.
+  bool overrides_set_nominal = false;
 };
 
 /// Reads and validates a model from JSON text. \throws ModelError naming the JSON pointer.

@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -36,6 +37,13 @@ namespace hipair {
 
 /// Options of a tolerance analysis.
 struct ToleranceOptions {
+  /// Parameters whose nominal values are replaced before the analysis (`hipair tolerance --set`):
+  /// the design as changed, each `tolerance` about the new nominal and a `range` where it is
+  /// (ReadOptions::overrides_set_nominal). A value outside the parameter's tolerance range needs
+  /// `allow_out_of_tolerance`. Tolerance certificates are not produced with overrides (they are
+  /// checked against the model file as written, about its nominal values).
+  std::map<std::string, Rational> parameter_values;
+  bool allow_out_of_tolerance = false;
   std::string driver;                  ///< driven part ("" = the first moving part of the pair)
   std::string follower;                ///< "" = the other part of the driver's first pair
   /// Driver range (rad or mm); absent: one full turn from the initial angle.

@@ -54,6 +54,8 @@ struct ToleranceCliOptions {
   bool certify_free_path = false;
   bool certify_interference = false;
   std::string follower_range;
+  std::vector<std::string> overrides;   // --set NAME=VALUE: the design's new nominal values
+  bool allow_out_of_tolerance = false;
 };
 
 std::string trim(const std::string& text) {
@@ -279,9 +281,18 @@ int run(const ToleranceCliOptions& options) {
   if (!options.pair.empty() && !options.driver.empty())
     throw ModelError("", "give either --pair or --driver, not both");
   if (options.certify_interference && options.chain) throw ModelError("", "--certify-interference is per pair: drop --chain");
+  ReadOptions overrides = parameter_overrides(options.overrides, options.allow_out_of_tolerance);
+  if (options.certify_interference && !overrides.parameter_values.empty())
+    throw ModelError("", "--certify-interference certifies the model file as written (hipair-verify checks the "
+                         "certificate against it): drop --set, or write the changed nominal values into the model");
   if (options.certify_interference) return run_interference(options);
   if (!options.follower_range.empty()) throw ModelError("", "--follower-range is for --certify-interference");
   ToleranceOptions analysis;
+  analysis.parameter_values = overrides.parameter_values;
+  analysis.allow_out_of_tolerance = overrides.allow_out_of_tolerance;
+  if ((options.certify || options.certify_free_path) && !analysis.parameter_values.empty())
+    throw ModelError("", "--certify: tolerance certificates are about the model file as written (hipair-verify "
+                         "checks them against it): drop --set, or write the changed nominal values into the model");
   if (!options.pair.empty() && !options.driver.empty())
     throw ModelError("", "give either --pair or --driver, not both");
   if (!options.pair.empty()) {
@@ -387,6 +398,11 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_option("--threads", options->threads, "threads for the Monte Carlo, the certified band and the zones (default: all cores)");
   command->add_option("--out", options->out, "directory for tolerance.json, variation.csv, sensitivity.csv, variation.svg, contact-zone.svg");
   command->add_flag("--quiet", options->quiet, "no progress bar");
+  command->add_option("--set", options->overrides,
+                      "change a parameter's nominal value: NAME=VALUE (exact literal in mm or rad; repeatable); its "
+                      "tolerance moves with it (a range stays)");
+  command->add_flag("--allow-out-of-tolerance", options->allow_out_of_tolerance,
+                    "accept --set values outside the parameter's tolerance range");
   command->add_flag("--certify", options->certify,
                     "interval branch-and-bound showing that the channel's named contact sides stay apart for any "
                     "parameters in the box; writes tolerance-certificate.json, which hipair-verify answers 'valid' "

@@ -27,7 +27,7 @@ bool has_profile_tolerances(const JsonValue& root);
 std::vector<ProfileTolerance> translate_profile_tolerances(JsonValue& root, const Model& nominal);
 
 /// The model of a parsed document that has no profile tolerances (reader.cpp).
-Model read_model_root(const JsonValue& root, std::string_view source_name);
+Model read_model_root(const JsonValue& root, std::string_view source_name, const ReadOptions& options = {});
 /// The rounding bound a document asks for (its "rounding" key, a --rounding override in force,
 /// else the default; reader.cpp). \throws ModelError for a bad key.
 Rational model_rounding_bound(const JsonValue& root);

@@ -211,8 +211,7 @@ void Reader::read_pairs(const JsonValue* pairs) {
   }
 }
 
-Model read_model_root(const JsonValue& root, std::string_view source_name) {
-  ReadOptions options;
+Model read_model_root(const JsonValue& root, std::string_view source_name, const ReadOptions& options) {
   return Reader("", source_name, options).read_root(root);
 }
 

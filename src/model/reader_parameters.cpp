@@ -178,6 +178,22 @@ Parameter Reader::read_parameter(const std::string& name, const JsonValue& defin
                                                " of parameter '" + name + "' lies outside its tolerance range " +
                                                outside(v, parameter.range.lo, parameter.range.hi).second);
     value = Quantity::of(v, parameter.is_angle);
+    if (options_.overrides_set_nominal) {
+      // The design changes: the nominal is v, a relative tolerance moves with it.
+      if (definition.find("tolerance")) {
+        Rational shift = v - parameter.nominal;
+        parameter.range = RationalInterval{parameter.range.lo + shift, parameter.range.hi + shift};
+      } else if (const JsonValue* range = definition.find("range")) {
+        if (v < parameter.range.lo || v > parameter.range.hi)
+          throw ModelError(range->pointer, "the new nominal value " + outside(v, parameter.range.lo, parameter.range.hi).first +
+                                               " of parameter '" + name + "' lies outside its range " +
+                                               outside(v, parameter.range.lo, parameter.range.hi).second +
+                                               " (a range is absolute: widen it in the model)");
+      } else {
+        parameter.range = RationalInterval{v, v};
+      }
+      parameter.nominal = v;
+    }
   }
   return parameter;
 }

@@ -234,7 +234,11 @@ class Analysis {
  public:
   Analysis(std::string_view text, const ToleranceOptions& options, std::string source_name = "<string>")
       : options_(options), text_(text), source_name_(std::move(source_name)) {
-    model_ = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text));
+    if (!options_.parameter_values.empty() && (options_.certify || options_.certify_free_path))
+      throw ModelError("", "tolerance certificates are about the model file as written (hipair-verify checks them "
+                           "against it): write the changed nominal values into the model instead of --set");
+    model_ = std::make_shared<const model_detail::ParametricModel>(
+        model_detail::ParametricModel::read(text, "<string>", tolerance_detail::design_read_options(options_)));
     if (!model_->generic())
       throw ModelError("", "tolerance analysis needs the generic parametric form; feature template " +
                                model_->exact_only_feature() + " has an exact form only");

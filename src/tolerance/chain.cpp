@@ -159,7 +159,7 @@ class ChainAnalysis {
 
   ToleranceResult run() {
     auto t0 = std::chrono::steady_clock::now();
-    Model model = read_model(text_);
+    Model model = read_model(text_, "<string>", design_read_options(options_));
     std::vector<std::size_t> parts = chain_parts(model, options_);
     progress(0.05);
     KinematicsOptions k;
@@ -179,7 +179,8 @@ class ChainAnalysis {
     // refused before any slicing).
     std::shared_ptr<const model_detail::ParametricModel> parametric;
     if (kernel) {
-      parametric = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text_));
+      parametric = std::make_shared<const model_detail::ParametricModel>(
+          model_detail::ParametricModel::read(text_, "<string>", design_read_options(options_)));
       if (!parametric->generic())
         throw ModelError("", "tolerance analysis needs the generic parametric form; feature template " +
                                  parametric->exact_only_feature() + " has an exact form only");

@@ -8,6 +8,7 @@
 #include "tolerance/sampling.hpp"
 #include "tolerance/solver.hpp"
 
+#include <hipair/model.hpp>
 #include <hipair/tolerance.hpp>
 
 #include <functional>
@@ -18,6 +19,15 @@
 #include <vector>
 
 namespace hipair::tolerance_detail {
+
+/// How the analysis reads the model: with the options' nominal overrides (the changed design).
+inline ReadOptions design_read_options(const ToleranceOptions& options) {
+  ReadOptions read;
+  read.parameter_values = options.parameter_values;
+  read.allow_out_of_tolerance = options.allow_out_of_tolerance;
+  read.overrides_set_nominal = true;
+  return read;
+}
 
 /// The pair's two parts at one position of the chain's nominal motion (part coordinates, rad or
 /// mm, as KinematicSample::positions gives them).

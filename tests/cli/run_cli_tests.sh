@@ -72,6 +72,40 @@ for command in show analyze validate cspace simulate; do
   done
 done
 
+# tolerance --set: the design with a changed nominal (its tolerance moves with it); the
+# summary names the new nominal; out of tolerance, unknown names, and with --certify: one error
+# line, nothing written.
+geneva_model="$source/examples/models/geneva.json"
+"$hipair" tolerance "$geneva_model" --set pin-radius=4.51 --range 2:2.3 --positions 90 --quiet \
+  --out "$work/tolerance-set" >"$work/tolerance-set.txt" 2>&1 || fail "tolerance --set failed: $(tail -n 3 "$work/tolerance-set.txt")"
+python3 - "$work/tolerance-set/tolerance.json" <<'PY' || fail "tolerance --set: the new nominal is not in tolerance.json"
+import json, sys
+report = json.load(open(sys.argv[1]))
+def find(value):
+    if isinstance(value, dict):
+        if value.get("name") == "pin-radius" and "nominal" in value:
+            yield value
+        for v in value.values():
+            yield from find(v)
+    elif isinstance(value, list):
+        for v in value:
+            yield from find(v)
+entries = list(find(report))
+assert entries, "no pin-radius entry"
+assert any(abs(float(e["nominal"]) - 4.51) < 1e-12 for e in entries), entries[:2]
+PY
+for bad in "--set pin-radius=4.6" "--set no-such-parameter=1" "--set pin-radius=4.51 --certify"; do
+  rm -rf "$work/tolerance-set-bad"
+  # shellcheck disable=SC2086
+  "$hipair" tolerance "$geneva_model" $bad --range 2:2.3 --positions 90 --quiet --out "$work/tolerance-set-bad" \
+    >/dev/null 2>"$work/tolerance-set-bad.err"
+  code=$?
+  { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "tolerance $bad: exit code $code"
+  [ "$(wc -l <"$work/tolerance-set-bad.err")" -eq 1 ] && grep -q "^hipair: error: " "$work/tolerance-set-bad.err" \
+    || fail "tolerance $bad: not one error line: $(cat "$work/tolerance-set-bad.err")"
+  [ ! -e "$work/tolerance-set-bad" ] || fail "tolerance $bad wrote its output directory"
+done
+
 # Output into a directory that does not exist: clear error, nothing written.
 "$hipair" show "$source/examples/models/geneva.json" --svg "$work/no/such/dir/x.svg" >/dev/null 2>"$work/nodir.err"
 [ $? -ne 0 ] || fail "show into a missing directory succeeded"

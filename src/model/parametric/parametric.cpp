@@ -205,6 +205,16 @@ class RecipeBuilder {
     for (std::size_t i = 0; i < n && parameters; ++i) {
       const JsonValue& nominal_value = *parameters->find(nominal.parameters[i].name)->find("nominal");
       model_.parameter_nominals_[i] = raw_slot(nominal_value);
+      auto overridden = model_.nominal_overrides_.find(nominal.parameters[i].name);
+      if (overridden == model_.nominal_overrides_.end()) continue;
+      // An overridden nominal is the exact value given, in mm or rad (an angle's is marked rad,
+      // so that a degree file does not convert it).
+      Slot& slot = model_.parameter_nominals_[i];
+      slot.text = overridden->second.get_str() + (nominal.parameters[i].is_angle ? " rad" : "");
+      slot.literal = false;
+      slot.formula = parse_formula(slot.text, slot.pointer, [&](const std::string& name) -> std::size_t {
+        throw ModelError(slot.pointer, "unknown parameter '" + name + "'");
+      });
     }
     for (std::size_t i = 0; i < n && parameters; ++i) {
       Slot& slot = model_.parameter_nominals_[i];
@@ -395,10 +405,17 @@ class RecipeBuilder {
   std::unique_ptr<ExactEvaluator> exact_;
 };
 
-ParametricModel ParametricModel::read(std::string_view json_text, std::string_view source_name) {
+ParametricModel ParametricModel::read(std::string_view json_text, std::string_view source_name,
+                                      const ReadOptions& options) {
   ParametricModel model;
   mpfr_prec_t bits = interval_bits;
-  model.nominal_ = std::make_shared<const Model>(read_model_escalating(json_text, source_name, ReadOptions{}, &bits));
+  ReadOptions design = options;
+  design.overrides_set_nominal = true;  // the parametric form varies parameters about their nominals
+  model.nominal_ = std::make_shared<const Model>(read_model_escalating(json_text, source_name, design, &bits));
+  for (auto [name, value] : options.parameter_values) {
+    value.canonicalize();
+    model.nominal_overrides_[name] = value;
+  }
   model.precision_bits_ = bits;
   PrecisionScope precision(bits);  // every exact evaluation repeats the reader's at its precision
   model.text_ = std::string(json_text);
@@ -406,7 +423,11 @@ ParametricModel ParametricModel::read(std::string_view json_text, std::string_vi
   RoundingBoundScope rounding_scope(model_rounding_bound(root));  // the file's bound
   if (root.is_object() && has_profile_tolerances(root)) {
     // The same translation as the reader's: offset parameters and rewritten loop points.
-    Model plain = read_model_root(strip_profile_tolerances(root), source_name);
+    ReadOptions plain_options = design;  // as the reader's: overrides of declared parameters only
+    const JsonValue* declared = root.find("parameters");
+    std::erase_if(plain_options.parameter_values,
+                  [&](const auto& entry) { return !declared || !declared->find(entry.first); });
+    Model plain = read_model_root(strip_profile_tolerances(root), source_name, plain_options);
     translate_profile_tolerances(root, plain);
   }
   RecipeBuilder(model, root).build();

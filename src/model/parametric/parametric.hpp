@@ -132,7 +132,10 @@ struct PartGeometry {
 class ParametricModel {
  public:
   /// Reads the model (read_model) and records its formulas. \throws as read_model.
-  static ParametricModel read(std::string_view json_text, std::string_view source_name = "<string>");
+  /// With `options.parameter_values`, those parameters' nominal values are replaced
+  /// (ReadOptions::overrides_set_nominal: the design as changed, its tolerances about it).
+  static ParametricModel read(std::string_view json_text, std::string_view source_name = "<string>",
+                              const ReadOptions& options = {});
   static ParametricModel read_file(const std::filesystem::path& path);
 
   const Model& nominal() const { return *nominal_; }
@@ -196,7 +199,8 @@ class ParametricModel {
 
   std::shared_ptr<const Model> nominal_;
   std::string text_;
-  long precision_bits_ = 256;  ///< the reader's working precision for this model (read_model_escalating)
+  long precision_bits_ = 256;
+  std::map<std::string, Rational> nominal_overrides_;  ///< ReadOptions::parameter_values as read  ///< the reader's working precision for this model (read_model_escalating)
   bool degrees_ = false;
   std::vector<Slot> parameter_nominals_;
   std::vector<bool> derived_;
