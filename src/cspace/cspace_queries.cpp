@@ -925,15 +925,19 @@ class MotionScanner {
     if (impl.dimension == 2) check(path.y, impl.public_charts.at(0).y_kind, "y");
     carriers_.resize(impl.charts.size());
     gradients_.resize(impl.charts.size());
+    hessians_.resize(impl.charts.size());
     validity_.resize(impl.charts.size());
     for (const CSpaceChart& chart : impl.public_charts)
       chart_boxes_.push_back({cspace::algebra::lower_double(chart.x_lo), cspace::algebra::upper_double(chart.x_hi),
                               cspace::algebra::lower_double(chart.y_lo), cspace::algebra::upper_double(chart.y_hi)});
     for (const AxisPath* axis : {&path.x, &path.y}) {
-      std::vector<Rational> d;
+      std::vector<Rational> d, dd;
       for (std::size_t i = 1; i < axis->coefficients.size(); ++i) d.push_back(axis->coefficients[i] * static_cast<long>(i));
+      for (std::size_t i = 2; i < axis->coefficients.size(); ++i)
+        dd.push_back(axis->coefficients[i] * static_cast<long>(i * (i - 1)));
       enclosed_.push_back(enclosed_coefficients(axis->coefficients));
       enclosed_rate_.push_back(enclosed_coefficients(d));
+      enclosed_acceleration_.push_back(enclosed_coefficients(dd));
     }
   }
 
@@ -1114,14 +1118,8 @@ class MotionScanner {
     return rate;
   }
 
-  struct Gradient {
-    cspace::algebra::IntervalPolynomial2 fx, fy;
-  };
-  const Gradient& gradient(std::size_t chart, std::size_t k) {
-    std::vector<std::optional<Gradient>>& memo = gradients_[chart];
-    if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
-    if (memo[k]) return *memo[k];
-    const cspace::IntegerPolynomial2& f = impl_.charts[chart].polynomials[k];
+  // The partial derivatives d/dx and d/dy of f (exact integer coefficients).
+  static std::pair<cspace::IntegerPolynomial2, cspace::IntegerPolynomial2> partials(const cspace::IntegerPolynomial2& f) {
     cspace::IntegerPolynomial2 fx, fy;
     for (std::size_t i = 0; i < f.coefficients.size(); ++i)
       for (std::size_t j = 0; j < f.coefficients[i].size(); ++j) {
@@ -1137,8 +1135,72 @@ class MotionScanner {
           fy.coefficients[i][j - 1] = f.coefficients[i][j] * static_cast<long>(j);
         }
       }
+    return {std::move(fx), std::move(fy)};
+  }
+
+  struct Gradient {
+    cspace::algebra::IntervalPolynomial2 fx, fy;
+  };
+  const Gradient& gradient(std::size_t chart, std::size_t k) {
+    std::vector<std::optional<Gradient>>& memo = gradients_[chart];
+    if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
+    if (memo[k]) return *memo[k];
+    auto [fx, fy] = partials(impl_.charts[chart].polynomials[k]);
     memo[k] = Gradient{cspace::algebra::IntervalPolynomial2(fx), cspace::algebra::IntervalPolynomial2(fy)};
     return *memo[k];
+  }
+
+  // The second partial derivatives F_xx, F_xy, F_yy of a local curve (memoised like gradient()).
+  struct Hessian {
+    cspace::algebra::IntervalPolynomial2 fxx, fxy, fyy;
+  };
+  const Hessian& hessian(std::size_t chart, std::size_t k) {
+    std::vector<std::optional<Hessian>>& memo = hessians_[chart];
+    if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
+    if (memo[k]) return *memo[k];
+    auto [fx, fy] = partials(impl_.charts[chart].polynomials[k]);
+    auto [fxx, fxy] = partials(fx);
+    cspace::IntegerPolynomial2 fyy = partials(fy).second;
+    memo[k] = Hessian{cspace::algebra::IntervalPolynomial2(fxx), cspace::algebra::IntervalPolynomial2(fxy),
+                      cspace::algebra::IntervalPolynomial2(fyy)};
+    return *memo[k];
+  }
+
+  // Enclosure of d^2(chart coordinate)/du^2 over [a, b] on the piece `piece` (one system), from
+  // the piece's coordinate enclosure `x` and its first derivative's enclosure `dx` over [a, b]:
+  //   offset:                X'' = p''
+  //   angle, t = tan((theta - c)/2):  t'' = t t' theta' + (1 + t^2)/2 theta''
+  //   half-tangent t:        t'' = p'';  beyond the seam s = -1/t: s' = t' s^2, s'' = t'' s^2 + 2 t'^2 s^3
+  DInterval chart_acceleration(const AxisPath& axis, const Rational& a, const Rational& b, const AxisPiece& piece,
+                               const DInterval& x, const DInterval& dx) const {
+    const std::size_t i = &axis == &path_.x ? 0 : 1;
+    auto enclosed = [&](const std::vector<KInterval>& p) -> std::optional<DInterval> {
+      if (p.empty()) return DInterval{0, 0};
+      std::optional<KInterval> v = evaluate_path_filtered_d(p, enclosure(a), enclosure(b));
+      if (!v) return std::nullopt;
+      return DInterval{v->lo, v->hi};
+    };
+    std::optional<DInterval> acceleration = enclosed(enclosed_acceleration_[i]);
+    if (!acceleration) return everything();
+    switch (axis.kind) {
+      case AxisPath::Kind::offset: return *acceleration;
+      case AxisPath::Kind::angle: {
+        std::optional<DInterval> rate = enclosed(enclosed_rate_[i]);
+        if (!rate) return everything();
+        return x * dx * *rate + (DInterval{1, 1} + x * x) * DInterval{0.5, 0.5} * *acceleration;
+      }
+      case AxisPath::Kind::half_tangent: {
+        if (!piece.half_turn) return *acceleration;
+        std::optional<DInterval> rate = enclosed(enclosed_rate_[i]);
+        if (!rate) return everything();
+        DInterval x2 = x * x;
+        return *acceleration * x2 + DInterval{2, 2} * (*rate * *rate) * (x2 * x);
+      }
+    }
+    return everything();
+  }
+  static DInterval everything() {
+    return DInterval{-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   }
 
   // The mean-value exclusion (see evaluate): drops from `possible` every curve whose
@@ -1186,9 +1248,43 @@ class MotionScanner {
       DInterval rate = g.fx.evaluate(x, y) * dx + g.fy.evaluate(x, y) * dy;
       DInterval value = start + h * rate;
       // (a non-finite bound, from overflow, proves nothing)
-      if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) kept.push_back(p);
+      if (std::isfinite(value.lo) && std::isfinite(value.hi) && !value.contains_zero()) continue;
+      if (!second_order_excludes(p, a, b, start, x_at, y_at, *sx, *sy, x, y, dx, dy, px, py, h)) kept.push_back(p);
     }
     possible.swap(kept);
+  }
+
+  // The second-order (Taylor) exclusion, tried where the mean-value form fails: a motion that
+  // starts next to a contact curve and slides along it (a sustained contact just released, the
+  // Geneva wheel's locking arc on the driver's disc) has f'(a) near 0 while the enclosure of
+  // F_x X' + F_y Y' over the stretch's box is as wide as |Hessian| |X'|^2 (b - a): only stretches of
+  // about sqrt(f(a) / |Hessian|) were excluded, thousands of them. Taylor with the Lagrange
+  // remainder: for u in [a, b], f(u) = f(a) + f'(a) (u - a) + f''(xi) (u - a)^2 / 2 with xi in
+  // [a, b], so f([a, b]) lies in f(a) + [0, h] f'(a) + [0, h^2 / 2] f''([a, b]), f'(a) at the point
+  // (the start pieces), f'' = F_xx X'^2 + 2 F_xy X' Y' + F_yy Y'^2 + F_x X'' + F_y Y'' over the
+  // stretch's box (one chart system on [a, b], as the mean-value form). Certified like it.
+  bool second_order_excludes(const Possible& p, const Rational& a, const Rational& b, const DInterval& start,
+                             const DInterval& x_at, const DInterval& y_at, const AxisPiece& sx, const AxisPiece& sy,
+                             const DInterval& x, const DInterval& y, const DInterval& dx, const DInterval& dy,
+                             const AxisPiece& px, const AxisPiece& py, const DInterval& h) {
+    if (!cspace::second_order()) return false;
+    const Gradient& g = gradient(p.chart, p.curve);
+    const Hessian& hs = hessian(p.chart, p.curve);
+    const bool planar = impl_.dimension == 2;
+    DInterval dx_at = chart_derivative(path_.x, a, a, sx);
+    DInterval dy_at = planar ? chart_derivative(path_.y, a, a, sy) : DInterval{0, 0};
+    DInterval rate_at = g.fx.evaluate(x_at, y_at) * dx_at + g.fy.evaluate(x_at, y_at) * dy_at;
+    DInterval ddx = chart_acceleration(path_.x, a, b, px, x, dx);
+    DInterval ddy = planar ? chart_acceleration(path_.y, a, b, py, y, dy) : DInterval{0, 0};
+    DInterval curvature = hs.fxx.evaluate(x, y) * (dx * dx) + g.fx.evaluate(x, y) * ddx;
+    if (planar)
+      curvature = curvature + DInterval{2, 2} * hs.fxy.evaluate(x, y) * (dx * dy) + hs.fyy.evaluate(x, y) * (dy * dy) +
+                  g.fy.evaluate(x, y) * ddy;
+    DInterval half_square = DInterval{0, 0.5} * (h * h);
+    DInterval value = start + h * rate_at + half_square * curvature;
+    if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) return false;
+    ++cspace::second_order_exclusions();
+    return true;
   }
 
   // F of local curve `curve` of `chart` over the start's rational box, enclosed in doubles
@@ -1368,12 +1464,14 @@ class MotionScanner {
     std::vector<AxisPiece> fine_x, fine_y;
   };
   std::optional<StartPieces> start_;
-  // per axis (x, y): the path's coefficients and those of its derivative, enclosed in doubles
-  std::vector<std::vector<KInterval>> enclosed_, enclosed_rate_;
+  // per axis (x, y): the path's coefficients and those of its first and second derivatives,
+  // enclosed in doubles
+  std::vector<std::vector<KInterval>> enclosed_, enclosed_rate_, enclosed_acceleration_;
   // per chart (sized in the constructor), per local curve: memos filled on first use
   using Clauses = std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>;
   std::vector<ChartCarriers> carriers_;
   std::vector<std::vector<std::optional<Gradient>>> gradients_;
+  std::vector<std::vector<std::optional<Hessian>>> hessians_;
   std::vector<std::vector<std::optional<Clauses>>> validity_;
   std::vector<char> candidate_;   // exclude()'s scratch
 };
