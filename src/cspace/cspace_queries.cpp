@@ -12,6 +12,7 @@
 
 #include "cspace/angle_filter.hpp"
 #include "cspace/builder_impl.hpp"
+#include "cspace/cspace_access.hpp"
 #include "curves/pose.hpp"
 #include "kernels/contact_geometry.hpp"
 #include "kernels/implicit_curve.hpp"
@@ -25,6 +26,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <utility>
 
@@ -911,6 +913,42 @@ struct Possible {
   std::size_t chart, curve, piece;
 };
 
+// A box of one chart certified inside one face of its free cell `cell`: no curve of the chart
+// vanishes on it (interval enclosure; the arrangement's edges and vertices lie on these curves),
+// and a path that stayed in `cell` passed through it. A rational point in it and strictly inside
+// the chart's box lies in that face's interior: point location answers free, `cell`, `chart`.
+// Kept per thread and per space (a weak_ptr: a space freed and another built at its address is
+// never matched), one per space.
+struct StartAnchor {
+  std::weak_ptr<const CSpace::Impl> owner;
+  std::size_t chart = 0, cell = 0;
+  Rational x_lo, x_hi, y_lo, y_hi;
+};
+
+std::vector<StartAnchor>& start_anchor_list() {
+  thread_local std::vector<StartAnchor> list;
+  return list;
+}
+
+bool same_owner(const std::weak_ptr<const CSpace::Impl>& a, const std::shared_ptr<const CSpace::Impl>& b) {
+  return !a.owner_before(b) && !b.owner_before(a);
+}
+
+const StartAnchor* find_anchor(const std::shared_ptr<const CSpace::Impl>& owner) {
+  if (!cspace::start_anchors()) return nullptr;
+  for (const StartAnchor& anchor : start_anchor_list())
+    if (!anchor.owner.expired() && same_owner(anchor.owner, owner)) return &anchor;
+  return nullptr;
+}
+
+void remember_anchor(StartAnchor anchor, const std::shared_ptr<const CSpace::Impl>& owner) {
+  std::vector<StartAnchor>& list = start_anchor_list();
+  std::erase_if(list, [&](const StartAnchor& a) { return a.owner.expired() || same_owner(a.owner, owner); });
+  if (list.size() >= 16) list.erase(list.begin());
+  anchor.owner = owner;
+  list.push_back(std::move(anchor));
+}
+
 class MotionScanner {
  public:
   MotionScanner(const CSpace::Impl& impl, const MotionPath& path) : impl_(impl), path_(path) {
@@ -944,6 +982,7 @@ class MotionScanner {
   struct Evaluation {
     bool too_wide = false;
     bool covered = true;
+    bool box_clear = false;   // `possible` empty from the boxes' enclosures alone (no mean-value form)
     std::vector<PieceBox> boxes;
     std::vector<Possible> possible;
   };
@@ -992,17 +1031,55 @@ class MotionScanner {
     // f(a) + [0, b - a] f'([a, b]) with f' = F_x X' + F_y Y'. It excludes a curve near which the
     // path passes transversally (or leaves it: a motion that starts next to a contact curve and
     // moves away) at a subdivision depth set by the distance, not by the resolution.
+    result.box_clear = result.possible.empty();
     if (a < b && xs.size() == 1 && ys.size() == 1 && !result.possible.empty())
       mean_value_exclusion(a, b, xs.front(), ys.front(), result.possible);
     return result;
   }
 
-  // Exact location of a rational point inside a box with no contact curve.
-  Location locate_inside(const PieceBox& box) const {
+  // Exact location of a rational point inside a box with no contact curve; inside `anchor`'s box
+  // (and strictly inside the chart's), the anchor's face (see StartAnchor).
+  Location locate_inside(const PieceBox& box, const StartAnchor* anchor = nullptr) const {
     Rational x = (box.x_lo + box.x_hi) / 2, y = (box.y_lo + box.y_hi) / 2;
     x.canonicalize();
     y.canonicalize();
+    if (anchor && anchor->chart == box.chart && x >= anchor->x_lo && x <= anchor->x_hi && y >= anchor->y_lo &&
+        y <= anchor->y_hi) {
+      const cspace::raw::Box& side = impl_.charts[box.chart].box;
+      if (x > side.x_lo && x < side.x_hi && (impl_.dimension == 1 || (y > side.y_lo && y < side.y_hi))) {
+        ++cspace::anchored_starts();
+        Location location;
+        location.kind = Location::Kind::free;
+        location.cell = anchor->cell;
+        location.chart = box.chart;
+        return location;
+      }
+    }
     return cspace::locate_point(impl_, ChartPoint{box.chart, x, y});
+  }
+
+  // A StartAnchor from the last stretch of a motion that stayed in the free cell `cell`: its one
+  // box, when no curve of the chart (not only the cell-bounding ones) vanishes on it.
+  std::optional<StartAnchor> anchor_from(const Evaluation& last, std::size_t cell) const {
+    if (!last.box_clear || last.boxes.size() != 1) return std::nullopt;
+    const PieceBox& box = last.boxes.front();
+    cspace::algebra::Interval x{box.dx_lo, box.dx_hi}, y{box.dy_lo, box.dy_hi};
+    if (!cspace::carried_bounds()) {
+      x = {cspace::algebra::lower_double(box.x_lo), cspace::algebra::upper_double(box.x_hi)};
+      y = {cspace::algebra::lower_double(box.y_lo), cspace::algebra::upper_double(box.y_hi)};
+    }
+    for (const auto& f : impl_.charts[box.chart].interval_polynomials) {
+      cspace::algebra::Interval value = f.evaluate(x, y);
+      if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) return std::nullopt;
+    }
+    StartAnchor anchor;
+    anchor.chart = box.chart;
+    anchor.cell = cell;
+    anchor.x_lo = box.x_lo;
+    anchor.x_hi = box.x_hi;
+    anchor.y_lo = box.y_lo;
+    anchor.y_hi = box.y_hi;
+    return anchor;
   }
 
  private:
@@ -1556,8 +1633,9 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
   bool point_exact = std::all_of(start.boxes.begin(), start.boxes.end(), [](const PieceBox& b) {
     return b.x_lo == b.x_hi && b.y_lo == b.y_hi;
   });
+  const std::shared_ptr<const Impl>& owner = CSpaceAccess::shared(*this);
   if (start.possible.empty() || point_exact) {
-    where = scanner.locate_inside(start.boxes.front());
+    where = scanner.locate_inside(start.boxes.front(), find_anchor(owner));
   } else {
     // an irrational start within the resolution of a contact curve: in contact, conservatively
     result.status = CrossingStatus::starts_in_contact;
@@ -1578,6 +1656,7 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
   Rational resolution = (path.u_end - path.u_begin) / Rational(mpz_class(1) << options.resolution_bits);
   resolution.canonicalize();
   std::vector<std::pair<Rational, Rational>> stack{{path.u_begin, path.u_end}};
+  std::optional<MotionScanner::Evaluation> last;   // the excluded stretch ending at u_end
   while (!stack.empty()) {
     auto [a, b] = stack.back();
     stack.pop_back();
@@ -1604,7 +1683,10 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
       result.u_upper = b;
       return result;
     }
-    if (at.possible.empty()) continue;
+    if (at.possible.empty()) {
+      if (b == path.u_end) last = std::move(at);
+      continue;
+    }
     if (wide) {
       split();
       continue;
@@ -1658,6 +1740,9 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
     return result;
   }
   result.u_lower = result.u_upper = path.u_end;
+  if (last && cspace::start_anchors())
+    if (std::optional<StartAnchor> anchor = scanner.anchor_from(*last, result.cell_left.index()))
+      remember_anchor(std::move(*anchor), owner);
   return result;
 }
 
