@@ -109,12 +109,23 @@ RInterval evaluate_path(const std::vector<Rational>& p, const Rational& a, const
 std::optional<KInterval> evaluate_path_filtered_d(const std::vector<KInterval>& p, const KInterval& A, const KInterval& B) {
   double m = 0.5 * A.lo + 0.5 * B.hi;
   KInterval M = KInterval::point(m);
-  std::vector<KInterval> shifted = p;
-  for (std::size_t i = 0; i + 1 < shifted.size(); ++i)
-    for (std::size_t j = shifted.size() - 1; j > i; --j) shifted[j - 1] = shifted[j - 1] + M * shifted[j];
+  // the shifted coefficients on the stack for the simulator's low degrees (no allocation per
+  // call; the same operations in the same order)
+  const std::size_t n = p.size();
+  std::array<KInterval, 8> local;
+  std::vector<KInterval> heap;
+  KInterval* shifted = local.data();
+  if (n > local.size()) {
+    heap = p;
+    shifted = heap.data();
+  } else {
+    std::copy(p.begin(), p.end(), local.begin());
+  }
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    for (std::size_t j = n - 1; j > i; --j) shifted[j - 1] = shifted[j - 1] + M * shifted[j];
   KInterval H(kernels::interval_detail::down(A.lo - m), kernels::interval_detail::up(B.hi - m));
   KInterval value(0);
-  for (std::size_t i = shifted.size(); i-- > 0;) value = value * H + shifted[i];
+  for (std::size_t i = n; i-- > 0;) value = value * H + shifted[i];
   if (!std::isfinite(value.lo) || !std::isfinite(value.hi)) return std::nullopt;
   return value;
 }
