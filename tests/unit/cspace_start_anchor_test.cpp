@@ -172,5 +172,128 @@ TEST(CSpaceStartAnchor, ChainsOfMotionsGiveTheAnswersOfExactStartLocation) {
   EXPECT_GE(none, 1500u);
 }
 
+// The anchor's box must hold no curve at all, not only none that the path meets: a motion that
+// leaves a contact curve (excluded by the mean-value form, one stretch) has a box that the
+// curve crosses beside the path, near its start corner. Generated: a random motion up to its
+// first crossing; from a point just before it, a motion away from the curve (back and
+// sideways); then a start at a corner of that motion's box (or of its last halves' boxes), which
+// for many of the cases lies on the other side of the curve (blocked, or another free cell).
+// Each such start must be answered as with the anchors off (exact location), and none of those
+// on the other side may be anchored.
+TEST(CSpaceStartAnchor, StartsBesideACurveCrossingTheLastBoxAreLocatedExactly) {
+  Model geneva = read_model_file(example("geneva-drive.json"));
+  Model escapement = read_model_file(example("escapement.json"));
+  Model cam = read_model_file(example("cam-follower.json"));
+  std::vector<std::unique_ptr<CSpace>> owned;
+  owned.push_back(std::make_unique<CSpace>(CSpace::build(geneva, "driver", "wheel")));
+  for (const PairBuild& pair : CSpace::build_pairs(escapement))
+    if (pair.status == PairBuild::Status::built) owned.push_back(std::make_unique<CSpace>(*pair.space));
+  owned.push_back(std::make_unique<CSpace>(CSpace::build(cam, "cam", "follower")));
+  std::mt19937_64 random(19);
+  std::uniform_real_distribution<double> unit(0, 1), sym(-1, 1);
+  std::size_t cases = 0, other_side = 0, anchored_other_side = 0;
+  for (const auto& owned_space : owned) {
+    const CSpace& space = *owned_space;
+    if (space.dimension() != 2) continue;
+    const CSpaceChart& chart0 = space.charts().front();
+    auto line = [&](std::array<double, 2> from, std::array<double, 2> by) {
+      MotionPath path;
+      path.x = axis_path(chart0.x_kind, {from[0], by[0]});
+      path.y = axis_path(chart0.y_kind, {from[1], by[1]});
+      return path;
+    };
+    auto point = [&](std::array<double, 2> at) {
+      MotionPath path;
+      path.x = axis_path(chart0.x_kind, {at[0]});
+      path.y = axis_path(chart0.y_kind, {at[1]});
+      return path;
+    };
+    auto ask = [&](const MotionPath& path, bool anchors) {
+      Switch use(anchors);
+      try {
+        return describe(space, space.first_crossing(path));
+      } catch (const Error& e) {
+        return std::string("error: ") + e.what();
+      }
+    };
+    for (int attempt = 0; attempt < 400; ++attempt) {
+      // a random motion to its first crossing
+      const CSpaceChart& chart = space.charts()[random() % space.charts().size()];
+      auto part = [&](AxisKind kind, bool half_turn, const Rational& lo, const Rational& hi) {
+        double t = lo.get_d() + (hi.get_d() - lo.get_d()) * unit(random);
+        return kind == AxisKind::translation ? t : (half_turn ? std::numbers::pi : 0.0) + 2 * std::atan(t);
+      };
+      std::array<double, 2> from{part(chart.x_kind, chart.x_half_turn, chart.x_lo, chart.x_hi),
+                                 part(chart.y_kind, chart.y_half_turn, chart.y_lo, chart.y_hi)};
+      double scale = std::pow(10.0, -1 + 1.3 * unit(random));
+      std::array<double, 2> v{scale * sym(random), scale * sym(random)};
+      MotionCrossing hit;
+      {
+        Switch off(false);
+        try {
+          // longer until it crosses
+          for (int longer = 0; longer < 4; ++longer, v = {4 * v[0], 4 * v[1]}) {
+            hit = space.first_crossing(line(from, v));
+            if (hit.status != CrossingStatus::none) break;
+          }
+        } catch (const Error&) {
+          continue;
+        }
+      }
+      if (hit.status != CrossingStatus::crossing || hit.u_lower <= 0) continue;
+      // a point just before the crossing (a little back along the motion), in doubles
+      double u = hit.u_lower.get_d() * (1 - std::pow(10.0, -6 + 5 * unit(random)));
+      std::array<double, 2> p{from[0] + v[0] * u, from[1] + v[1] * u};
+      // away from the curve: back along the motion, and sideways
+      double length = std::hypot(v[0], v[1]) * std::pow(10.0, -4 + 3 * unit(random));
+      double phi = 1.4 * sym(random), n = std::hypot(v[0], v[1]);
+      std::array<double, 2> back{-v[0] / n, -v[1] / n}, side{-back[1], back[0]};
+      std::array<double, 2> d{length * (std::cos(phi) * back[0] + std::sin(phi) * side[0]),
+                              length * (std::cos(phi) * back[1] + std::sin(phi) * side[1])};
+      MotionPath away = line(p, d);
+      std::string away_off = ask(away, false);
+      if (away_off.rfind("status 0 ", 0) != 0) continue;   // only motions answered `none`
+      MotionCrossing away_crossing;
+      {
+        Switch off(false);
+        away_crossing = space.first_crossing(away);
+      }
+      // starts at the corners of the box of the motion's last 2^-k (k = 0..3), a little inside
+      for (int k = 0; k < 4; ++k)
+        for (int corner = 0; corner < 2; ++corner) {
+          double lo = 1 - std::ldexp(1.0, -k);
+          double near = lo + (1 - lo) * 0.001, far = lo + (1 - lo) * 0.999;
+          std::array<double, 2> q{p[0] + d[0] * (corner ? near : far), p[1] + d[1] * (corner ? far : near)};
+          MotionPath start = point(q);
+          std::string exact = ask(start, false);
+          MotionCrossing located;
+          {
+            Switch off(false);
+            try {
+              located = space.first_crossing(start);
+            } catch (const Error&) {
+              continue;
+            }
+          }
+          bool beyond = located.status != CrossingStatus::none || located.cell_left != away_crossing.cell_left;
+          // the motion again with the anchors on (it leaves, or not, its anchor), then the start
+          ASSERT_EQ(ask(away, true), away_off) << "attempt " << attempt;
+          std::size_t before = cspace::anchored_starts();
+          std::string anchored = ask(start, true);
+          std::size_t used = cspace::anchored_starts() - before;
+          ++cases;
+          other_side += beyond;
+          if (beyond) anchored_other_side += used;
+          ASSERT_EQ(anchored, exact) << "attempt " << attempt << " k " << k << " corner " << corner << " at (" << q[0]
+                                     << ", " << q[1] << ")";
+        }
+    }
+  }
+  std::printf("corner starts %zu, on the other side of a curve %zu, anchored there %zu\n", cases, other_side,
+              anchored_other_side);
+  EXPECT_EQ(anchored_other_side, 0u);
+  EXPECT_GE(other_side, 50u);   // the case is exercised: starts beside a curve inside the box
+}
+
 }  // namespace
 }  // namespace hipair
