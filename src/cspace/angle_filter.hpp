@@ -142,6 +142,33 @@ inline bool& carried_bounds() {
   return on;
 }
 
+// first_crossing's second-order (Taylor) exclusion of the stretches next to a sliding start
+// (cspace_queries.cpp, MotionScanner::second_order_excludes), tried where the mean-value form
+// fails. On by default; tests switch it off per thread to compare the answers with and without
+// (CSpaceSecondOrder.*) and the speed benchmark runs both.
+inline bool& second_order() {
+  thread_local bool on = true;
+  return on;
+}
+// How many curves over a stretch the second-order form has excluded on this thread (tests).
+inline std::size_t& second_order_exclusions() {
+  thread_local std::size_t count = 0;
+  return count;
+}
+
+// first_crossing's start anchors (cspace_queries.cpp): a query answering `none` whose last
+// stretch's box holds no curve of its chart remembers that box and its free cell (per thread,
+// per space); a later start inside the box is located there without the exact ray shooting.
+// On by default; tests switch it off to compare, and count the starts it located.
+inline bool& start_anchors() {
+  thread_local bool on = true;
+  return on;
+}
+inline std::size_t& anchored_starts() {
+  thread_local std::size_t count = 0;
+  return count;
+}
+
 // The t-ranges of every chart system that an angle in [theta_lo, theta_hi] (width < 2) may be
 // in, as angle_pieces computes them; nullopt where the filter cannot decide (an angle beyond
 // 2^40 turns, a non-finite bound).

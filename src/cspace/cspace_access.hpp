@@ -11,6 +11,9 @@ namespace hipair {
 struct CSpaceAccess {
   static const CSpace::Impl& implementation(const CSpace& space);
   static CSpace make(std::shared_ptr<const CSpace::Impl> impl);
+  /// The owning pointer (an identity that outlives reuse of the address: first_crossing's
+  /// per-thread start anchors keep a weak_ptr to it).
+  static const std::shared_ptr<const CSpace::Impl>& shared(const CSpace& space) { return space.impl_; }
 };
 
 /// The internals of a built space. \throws GeometryError for an empty (default) CSpace.

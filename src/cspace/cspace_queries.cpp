@@ -12,6 +12,7 @@
 
 #include "cspace/angle_filter.hpp"
 #include "cspace/builder_impl.hpp"
+#include "cspace/cspace_access.hpp"
 #include "curves/pose.hpp"
 #include "kernels/contact_geometry.hpp"
 #include "kernels/implicit_curve.hpp"
@@ -25,6 +26,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <utility>
 
@@ -107,12 +109,23 @@ RInterval evaluate_path(const std::vector<Rational>& p, const Rational& a, const
 std::optional<KInterval> evaluate_path_filtered_d(const std::vector<KInterval>& p, const KInterval& A, const KInterval& B) {
   double m = 0.5 * A.lo + 0.5 * B.hi;
   KInterval M = KInterval::point(m);
-  std::vector<KInterval> shifted = p;
-  for (std::size_t i = 0; i + 1 < shifted.size(); ++i)
-    for (std::size_t j = shifted.size() - 1; j > i; --j) shifted[j - 1] = shifted[j - 1] + M * shifted[j];
+  // the shifted coefficients on the stack for the simulator's low degrees (no allocation per
+  // call; the same operations in the same order)
+  const std::size_t n = p.size();
+  std::array<KInterval, 8> local;
+  std::vector<KInterval> heap;
+  KInterval* shifted = local.data();
+  if (n > local.size()) {
+    heap = p;
+    shifted = heap.data();
+  } else {
+    std::copy(p.begin(), p.end(), local.begin());
+  }
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    for (std::size_t j = n - 1; j > i; --j) shifted[j - 1] = shifted[j - 1] + M * shifted[j];
   KInterval H(kernels::interval_detail::down(A.lo - m), kernels::interval_detail::up(B.hi - m));
   KInterval value(0);
-  for (std::size_t i = shifted.size(); i-- > 0;) value = value * H + shifted[i];
+  for (std::size_t i = n; i-- > 0;) value = value * H + shifted[i];
   if (!std::isfinite(value.lo) || !std::isfinite(value.hi)) return std::nullopt;
   return value;
 }
@@ -911,6 +924,42 @@ struct Possible {
   std::size_t chart, curve, piece;
 };
 
+// A box of one chart certified inside one face of its free cell `cell`: no curve of the chart
+// vanishes on it (interval enclosure; the arrangement's edges and vertices lie on these curves),
+// and a path that stayed in `cell` passed through it. A rational point in it and strictly inside
+// the chart's box lies in that face's interior: point location answers free, `cell`, `chart`.
+// Kept per thread and per space (a weak_ptr: a space freed and another built at its address is
+// never matched), one per space.
+struct StartAnchor {
+  std::weak_ptr<const CSpace::Impl> owner;
+  std::size_t chart = 0, cell = 0;
+  Rational x_lo, x_hi, y_lo, y_hi;
+};
+
+std::vector<StartAnchor>& start_anchor_list() {
+  thread_local std::vector<StartAnchor> list;
+  return list;
+}
+
+bool same_owner(const std::weak_ptr<const CSpace::Impl>& a, const std::shared_ptr<const CSpace::Impl>& b) {
+  return !a.owner_before(b) && !b.owner_before(a);
+}
+
+const StartAnchor* find_anchor(const std::shared_ptr<const CSpace::Impl>& owner) {
+  if (!cspace::start_anchors()) return nullptr;
+  for (const StartAnchor& anchor : start_anchor_list())
+    if (!anchor.owner.expired() && same_owner(anchor.owner, owner)) return &anchor;
+  return nullptr;
+}
+
+void remember_anchor(StartAnchor anchor, const std::shared_ptr<const CSpace::Impl>& owner) {
+  std::vector<StartAnchor>& list = start_anchor_list();
+  std::erase_if(list, [&](const StartAnchor& a) { return a.owner.expired() || same_owner(a.owner, owner); });
+  if (list.size() >= 16) list.erase(list.begin());
+  anchor.owner = owner;
+  list.push_back(std::move(anchor));
+}
+
 class MotionScanner {
  public:
   MotionScanner(const CSpace::Impl& impl, const MotionPath& path) : impl_(impl), path_(path) {
@@ -925,21 +974,26 @@ class MotionScanner {
     if (impl.dimension == 2) check(path.y, impl.public_charts.at(0).y_kind, "y");
     carriers_.resize(impl.charts.size());
     gradients_.resize(impl.charts.size());
+    hessians_.resize(impl.charts.size());
     validity_.resize(impl.charts.size());
     for (const CSpaceChart& chart : impl.public_charts)
       chart_boxes_.push_back({cspace::algebra::lower_double(chart.x_lo), cspace::algebra::upper_double(chart.x_hi),
                               cspace::algebra::lower_double(chart.y_lo), cspace::algebra::upper_double(chart.y_hi)});
     for (const AxisPath* axis : {&path.x, &path.y}) {
-      std::vector<Rational> d;
+      std::vector<Rational> d, dd;
       for (std::size_t i = 1; i < axis->coefficients.size(); ++i) d.push_back(axis->coefficients[i] * static_cast<long>(i));
+      for (std::size_t i = 2; i < axis->coefficients.size(); ++i)
+        dd.push_back(axis->coefficients[i] * static_cast<long>(i * (i - 1)));
       enclosed_.push_back(enclosed_coefficients(axis->coefficients));
       enclosed_rate_.push_back(enclosed_coefficients(d));
+      enclosed_acceleration_.push_back(enclosed_coefficients(dd));
     }
   }
 
   struct Evaluation {
     bool too_wide = false;
     bool covered = true;
+    bool box_clear = false;   // `possible` empty from the boxes' enclosures alone (no mean-value form)
     std::vector<PieceBox> boxes;
     std::vector<Possible> possible;
   };
@@ -988,17 +1042,55 @@ class MotionScanner {
     // f(a) + [0, b - a] f'([a, b]) with f' = F_x X' + F_y Y'. It excludes a curve near which the
     // path passes transversally (or leaves it: a motion that starts next to a contact curve and
     // moves away) at a subdivision depth set by the distance, not by the resolution.
+    result.box_clear = result.possible.empty();
     if (a < b && xs.size() == 1 && ys.size() == 1 && !result.possible.empty())
       mean_value_exclusion(a, b, xs.front(), ys.front(), result.possible);
     return result;
   }
 
-  // Exact location of a rational point inside a box with no contact curve.
-  Location locate_inside(const PieceBox& box) const {
+  // Exact location of a rational point inside a box with no contact curve; inside `anchor`'s box
+  // (and strictly inside the chart's), the anchor's face (see StartAnchor).
+  Location locate_inside(const PieceBox& box, const StartAnchor* anchor = nullptr) const {
     Rational x = (box.x_lo + box.x_hi) / 2, y = (box.y_lo + box.y_hi) / 2;
     x.canonicalize();
     y.canonicalize();
+    if (anchor && anchor->chart == box.chart && x >= anchor->x_lo && x <= anchor->x_hi && y >= anchor->y_lo &&
+        y <= anchor->y_hi) {
+      const cspace::raw::Box& side = impl_.charts[box.chart].box;
+      if (x > side.x_lo && x < side.x_hi && (impl_.dimension == 1 || (y > side.y_lo && y < side.y_hi))) {
+        ++cspace::anchored_starts();
+        Location location;
+        location.kind = Location::Kind::free;
+        location.cell = anchor->cell;
+        location.chart = box.chart;
+        return location;
+      }
+    }
     return cspace::locate_point(impl_, ChartPoint{box.chart, x, y});
+  }
+
+  // A StartAnchor from the last stretch of a motion that stayed in the free cell `cell`: its one
+  // box, when no curve of the chart (not only the cell-bounding ones) vanishes on it.
+  std::optional<StartAnchor> anchor_from(const Evaluation& last, std::size_t cell) const {
+    if (!last.box_clear || last.boxes.size() != 1) return std::nullopt;
+    const PieceBox& box = last.boxes.front();
+    cspace::algebra::Interval x{box.dx_lo, box.dx_hi}, y{box.dy_lo, box.dy_hi};
+    if (!cspace::carried_bounds()) {
+      x = {cspace::algebra::lower_double(box.x_lo), cspace::algebra::upper_double(box.x_hi)};
+      y = {cspace::algebra::lower_double(box.y_lo), cspace::algebra::upper_double(box.y_hi)};
+    }
+    for (const auto& f : impl_.charts[box.chart].interval_polynomials) {
+      cspace::algebra::Interval value = f.evaluate(x, y);
+      if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) return std::nullopt;
+    }
+    StartAnchor anchor;
+    anchor.chart = box.chart;
+    anchor.cell = cell;
+    anchor.x_lo = box.x_lo;
+    anchor.x_hi = box.x_hi;
+    anchor.y_lo = box.y_lo;
+    anchor.y_hi = box.y_hi;
+    return anchor;
   }
 
  private:
@@ -1114,14 +1206,8 @@ class MotionScanner {
     return rate;
   }
 
-  struct Gradient {
-    cspace::algebra::IntervalPolynomial2 fx, fy;
-  };
-  const Gradient& gradient(std::size_t chart, std::size_t k) {
-    std::vector<std::optional<Gradient>>& memo = gradients_[chart];
-    if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
-    if (memo[k]) return *memo[k];
-    const cspace::IntegerPolynomial2& f = impl_.charts[chart].polynomials[k];
+  // The partial derivatives d/dx and d/dy of f (exact integer coefficients).
+  static std::pair<cspace::IntegerPolynomial2, cspace::IntegerPolynomial2> partials(const cspace::IntegerPolynomial2& f) {
     cspace::IntegerPolynomial2 fx, fy;
     for (std::size_t i = 0; i < f.coefficients.size(); ++i)
       for (std::size_t j = 0; j < f.coefficients[i].size(); ++j) {
@@ -1137,8 +1223,72 @@ class MotionScanner {
           fy.coefficients[i][j - 1] = f.coefficients[i][j] * static_cast<long>(j);
         }
       }
+    return {std::move(fx), std::move(fy)};
+  }
+
+  struct Gradient {
+    cspace::algebra::IntervalPolynomial2 fx, fy;
+  };
+  const Gradient& gradient(std::size_t chart, std::size_t k) {
+    std::vector<std::optional<Gradient>>& memo = gradients_[chart];
+    if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
+    if (memo[k]) return *memo[k];
+    auto [fx, fy] = partials(impl_.charts[chart].polynomials[k]);
     memo[k] = Gradient{cspace::algebra::IntervalPolynomial2(fx), cspace::algebra::IntervalPolynomial2(fy)};
     return *memo[k];
+  }
+
+  // The second partial derivatives F_xx, F_xy, F_yy of a local curve (memoised like gradient()).
+  struct Hessian {
+    cspace::algebra::IntervalPolynomial2 fxx, fxy, fyy;
+  };
+  const Hessian& hessian(std::size_t chart, std::size_t k) {
+    std::vector<std::optional<Hessian>>& memo = hessians_[chart];
+    if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
+    if (memo[k]) return *memo[k];
+    auto [fx, fy] = partials(impl_.charts[chart].polynomials[k]);
+    auto [fxx, fxy] = partials(fx);
+    cspace::IntegerPolynomial2 fyy = partials(fy).second;
+    memo[k] = Hessian{cspace::algebra::IntervalPolynomial2(fxx), cspace::algebra::IntervalPolynomial2(fxy),
+                      cspace::algebra::IntervalPolynomial2(fyy)};
+    return *memo[k];
+  }
+
+  // Enclosure of d^2(chart coordinate)/du^2 over [a, b] on the piece `piece` (one system), from
+  // the piece's coordinate enclosure `x` and its first derivative's enclosure `dx` over [a, b]:
+  //   offset:                X'' = p''
+  //   angle, t = tan((theta - c)/2):  t'' = t t' theta' + (1 + t^2)/2 theta''
+  //   half-tangent t:        t'' = p'';  beyond the seam s = -1/t: s' = t' s^2, s'' = t'' s^2 + 2 t'^2 s^3
+  DInterval chart_acceleration(const AxisPath& axis, const Rational& a, const Rational& b, const AxisPiece& piece,
+                               const DInterval& x, const DInterval& dx) const {
+    const std::size_t i = &axis == &path_.x ? 0 : 1;
+    auto enclosed = [&](const std::vector<KInterval>& p) -> std::optional<DInterval> {
+      if (p.empty()) return DInterval{0, 0};
+      std::optional<KInterval> v = evaluate_path_filtered_d(p, enclosure(a), enclosure(b));
+      if (!v) return std::nullopt;
+      return DInterval{v->lo, v->hi};
+    };
+    std::optional<DInterval> acceleration = enclosed(enclosed_acceleration_[i]);
+    if (!acceleration) return everything();
+    switch (axis.kind) {
+      case AxisPath::Kind::offset: return *acceleration;
+      case AxisPath::Kind::angle: {
+        std::optional<DInterval> rate = enclosed(enclosed_rate_[i]);
+        if (!rate) return everything();
+        return x * dx * *rate + (DInterval{1, 1} + x * x) * DInterval{0.5, 0.5} * *acceleration;
+      }
+      case AxisPath::Kind::half_tangent: {
+        if (!piece.half_turn) return *acceleration;
+        std::optional<DInterval> rate = enclosed(enclosed_rate_[i]);
+        if (!rate) return everything();
+        DInterval x2 = x * x;
+        return *acceleration * x2 + DInterval{2, 2} * (*rate * *rate) * (x2 * x);
+      }
+    }
+    return everything();
+  }
+  static DInterval everything() {
+    return DInterval{-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   }
 
   // The mean-value exclusion (see evaluate): drops from `possible` every curve whose
@@ -1186,9 +1336,43 @@ class MotionScanner {
       DInterval rate = g.fx.evaluate(x, y) * dx + g.fy.evaluate(x, y) * dy;
       DInterval value = start + h * rate;
       // (a non-finite bound, from overflow, proves nothing)
-      if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) kept.push_back(p);
+      if (std::isfinite(value.lo) && std::isfinite(value.hi) && !value.contains_zero()) continue;
+      if (!second_order_excludes(p, a, b, start, x_at, y_at, *sx, *sy, x, y, dx, dy, px, py, h)) kept.push_back(p);
     }
     possible.swap(kept);
+  }
+
+  // The second-order (Taylor) exclusion, tried where the mean-value form fails: a motion that
+  // starts next to a contact curve and slides along it (a sustained contact just released, the
+  // Geneva wheel's locking arc on the driver's disc) has f'(a) near 0 while the enclosure of
+  // F_x X' + F_y Y' over the stretch's box is as wide as |Hessian| |X'|^2 (b - a): only stretches of
+  // about sqrt(f(a) / |Hessian|) were excluded, thousands of them. Taylor with the Lagrange
+  // remainder: for u in [a, b], f(u) = f(a) + f'(a) (u - a) + f''(xi) (u - a)^2 / 2 with xi in
+  // [a, b], so f([a, b]) lies in f(a) + [0, h] f'(a) + [0, h^2 / 2] f''([a, b]), f'(a) at the point
+  // (the start pieces), f'' = F_xx X'^2 + 2 F_xy X' Y' + F_yy Y'^2 + F_x X'' + F_y Y'' over the
+  // stretch's box (one chart system on [a, b], as the mean-value form). Certified like it.
+  bool second_order_excludes(const Possible& p, const Rational& a, const Rational& b, const DInterval& start,
+                             const DInterval& x_at, const DInterval& y_at, const AxisPiece& sx, const AxisPiece& sy,
+                             const DInterval& x, const DInterval& y, const DInterval& dx, const DInterval& dy,
+                             const AxisPiece& px, const AxisPiece& py, const DInterval& h) {
+    if (!cspace::second_order()) return false;
+    const Gradient& g = gradient(p.chart, p.curve);
+    const Hessian& hs = hessian(p.chart, p.curve);
+    const bool planar = impl_.dimension == 2;
+    DInterval dx_at = chart_derivative(path_.x, a, a, sx);
+    DInterval dy_at = planar ? chart_derivative(path_.y, a, a, sy) : DInterval{0, 0};
+    DInterval rate_at = g.fx.evaluate(x_at, y_at) * dx_at + g.fy.evaluate(x_at, y_at) * dy_at;
+    DInterval ddx = chart_acceleration(path_.x, a, b, px, x, dx);
+    DInterval ddy = planar ? chart_acceleration(path_.y, a, b, py, y, dy) : DInterval{0, 0};
+    DInterval curvature = hs.fxx.evaluate(x, y) * (dx * dx) + g.fx.evaluate(x, y) * ddx;
+    if (planar)
+      curvature = curvature + DInterval{2, 2} * hs.fxy.evaluate(x, y) * (dx * dy) + hs.fyy.evaluate(x, y) * (dy * dy) +
+                  g.fy.evaluate(x, y) * ddy;
+    DInterval half_square = DInterval{0, 0.5} * (h * h);
+    DInterval value = start + h * rate_at + half_square * curvature;
+    if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) return false;
+    ++cspace::second_order_exclusions();
+    return true;
   }
 
   // F of local curve `curve` of `chart` over the start's rational box, enclosed in doubles
@@ -1368,12 +1552,14 @@ class MotionScanner {
     std::vector<AxisPiece> fine_x, fine_y;
   };
   std::optional<StartPieces> start_;
-  // per axis (x, y): the path's coefficients and those of its derivative, enclosed in doubles
-  std::vector<std::vector<KInterval>> enclosed_, enclosed_rate_;
+  // per axis (x, y): the path's coefficients and those of its first and second derivatives,
+  // enclosed in doubles
+  std::vector<std::vector<KInterval>> enclosed_, enclosed_rate_, enclosed_acceleration_;
   // per chart (sized in the constructor), per local curve: memos filled on first use
   using Clauses = std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>;
   std::vector<ChartCarriers> carriers_;
   std::vector<std::vector<std::optional<Gradient>>> gradients_;
+  std::vector<std::vector<std::optional<Hessian>>> hessians_;
   std::vector<std::vector<std::optional<Clauses>>> validity_;
   std::vector<char> candidate_;   // exclude()'s scratch
 };
@@ -1458,8 +1644,9 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
   bool point_exact = std::all_of(start.boxes.begin(), start.boxes.end(), [](const PieceBox& b) {
     return b.x_lo == b.x_hi && b.y_lo == b.y_hi;
   });
+  const std::shared_ptr<const Impl>& owner = CSpaceAccess::shared(*this);
   if (start.possible.empty() || point_exact) {
-    where = scanner.locate_inside(start.boxes.front());
+    where = scanner.locate_inside(start.boxes.front(), find_anchor(owner));
   } else {
     // an irrational start within the resolution of a contact curve: in contact, conservatively
     result.status = CrossingStatus::starts_in_contact;
@@ -1480,6 +1667,7 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
   Rational resolution = (path.u_end - path.u_begin) / Rational(mpz_class(1) << options.resolution_bits);
   resolution.canonicalize();
   std::vector<std::pair<Rational, Rational>> stack{{path.u_begin, path.u_end}};
+  std::optional<MotionScanner::Evaluation> last;   // the excluded stretch ending at u_end
   while (!stack.empty()) {
     auto [a, b] = stack.back();
     stack.pop_back();
@@ -1506,7 +1694,10 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
       result.u_upper = b;
       return result;
     }
-    if (at.possible.empty()) continue;
+    if (at.possible.empty()) {
+      if (b == path.u_end) last = std::move(at);
+      continue;
+    }
     if (wide) {
       split();
       continue;
@@ -1560,6 +1751,9 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
     return result;
   }
   result.u_lower = result.u_upper = path.u_end;
+  if (last && cspace::start_anchors())
+    if (std::optional<StartAnchor> anchor = scanner.anchor_from(*last, result.cell_left.index()))
+      remember_anchor(std::move(*anchor), owner);
   return result;
 }
 

@@ -1,0 +1,263 @@
+// CSpace::first_crossing's second-order (Taylor) exclusion of the stretches next to a sliding
+// start (src/cspace/cspace_queries.cpp, MotionScanner::second_order_excludes; switch
+// cspace::second_order() in src/cspace/angle_filter.hpp). It only adds certified exclusions,
+// so on generated sliding starts — a point a few units in the last place (or 1e-15 ... 1e-9) off
+// a contact edge, moving along the edge's tangent with the edge's curvature plus a margin toward
+// either side, over 1e-6 ... 0.1 of a chart unit — every answer must be the one of the query
+// without it (the exact path of the subdivision), field for field; and the free stretch it
+// reports is checked against exact point locations along the path.
+#include "cspace/angle_filter.hpp"
+#include "test_paths.hpp"
+
+#include <hipair/cspace.hpp>
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace hipair {
+namespace {
+
+std::filesystem::path example(const std::string& name) { return std::filesystem::path(HIPAIR_EXAMPLES) / name; }
+std::filesystem::path degenerate(const std::string& name) {
+  return std::filesystem::path(HIPAIR_TEST_DATA) / "degenerate" / name;
+}
+
+struct Switch {
+  explicit Switch(bool on) : old(cspace::second_order()) { cspace::second_order() = on; }
+  ~Switch() { cspace::second_order() = old; }
+  bool old;
+};
+
+// Every field of the answer, printed exactly (rationals, doubles to 17 digits).
+std::string describe(const CSpace& space, const MotionCrossing& c) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "status " << static_cast<int>(c.status) << " u [" << c.u_lower << ", " << c.u_upper << "] grazing " << c.grazing
+      << " edge " << (c.edge.valid() ? static_cast<long>(c.edge.index()) : -1L) << " left "
+      << (c.cell_left.valid() ? static_cast<long>(c.cell_left.index()) : -1L) << " entered "
+      << (c.cell_entered.valid() ? static_cast<long>(c.cell_entered.index()) : -1L) << " chart "
+      << static_cast<long>(c.chart == no_index ? -1 : static_cast<long>(c.chart)) << " features";
+  for (FeatureId f : c.features) out << " " << space.feature_pair(f).label;
+  for (const auto* ranges : {&c.chart_point, &c.point, &c.normal})
+    for (const CertifiedRange& r : *ranges) out << " [" << r.lower << ", " << r.upper << "]";
+  return out.str();
+}
+
+struct Tally {
+  std::map<int, int> status;
+  int motions = 0, helped = 0, sampled = 0, decided = 0;
+  std::size_t exclusions = 0;
+};
+
+// The part coordinate's polynomial (ascending, degree 3) of a chart path t0 + t1 u + t2 u^2:
+// angle = phase + 2 atan(t) to third order in u, or the offset itself.
+std::vector<double> part_polynomial(AxisKind kind, bool half_turn, double t0, double t1, double t2) {
+  if (kind == AxisKind::translation) return {t0, t1, t2, 0};
+  double w = 1 + t0 * t0;
+  double g1 = 2 / w, g2 = -4 * t0 / (w * w), g3 = (12 * t0 * t0 - 4) / (w * w * w);
+  return {(half_turn ? std::numbers::pi : 0.0) + 2 * std::atan(t0), g1 * t1, g1 * t2 + g2 * t1 * t1 / 2,
+          g2 * t1 * t2 + g3 * t1 * t1 * t1 / 6};
+}
+
+AxisPath axis_path(AxisKind kind, const std::vector<double>& c) {
+  AxisPath a;
+  a.kind = kind == AxisKind::rotation ? AxisPath::Kind::angle : AxisPath::Kind::offset;
+  for (double x : c) a.coefficients.push_back(Rational(x));
+  return a;
+}
+
+// The path's configuration at u, exactly (a point query's path).
+MotionPath point_of(const MotionPath& path, const Rational& u) {
+  MotionPath point;
+  for (auto [from, to] : {std::pair{&path.x, &point.x}, std::pair{&path.y, &point.y}}) {
+    to->kind = from->kind;
+    Rational v(0);
+    for (std::size_t i = from->coefficients.size(); i-- > 0;) v = v * u + from->coefficients[i];
+    v.canonicalize();
+    to->coefficients = {v};
+  }
+  return point;
+}
+
+// With and without the second-order form: the same answer (both or neither throw). Where the
+// motion is reported free up to u_lower (none: u_end), exact point locations at eight places of
+// [u_begin, u_lower] must not contradict it: each one is in the start cell or undecided (a
+// point within the resolution of a curve, reported as a grazing start in contact).
+void compare(const CSpace& space, const MotionPath& path, const std::string& what, Tally& tally) {
+  std::string with, without;
+  MotionCrossing answer;
+  std::size_t before = cspace::second_order_exclusions();
+  {
+    Switch on(true);
+    try {
+      answer = space.first_crossing(path);
+      with = describe(space, answer);
+    } catch (const Error& e) {
+      with = std::string("error: ") + e.what();
+    }
+  }
+  std::size_t used = cspace::second_order_exclusions() - before;
+  {
+    Switch off(false);
+    try {
+      without = describe(space, space.first_crossing(path));
+    } catch (const Error& e) {
+      without = std::string("error: ") + e.what();
+    }
+  }
+  ASSERT_EQ(with, without) << what;
+  ASSERT_EQ(cspace::second_order_exclusions() - before, used) << "the switch must turn the form off";
+  ++tally.motions;
+  ++tally.status[static_cast<int>(answer.status)];
+  tally.exclusions += used;
+  tally.helped += used > 0;
+  if (used == 0 || (answer.status != CrossingStatus::none && answer.status != CrossingStatus::crossing)) return;
+  for (int k = 1; k <= 8; ++k) {
+    Rational u = path.u_begin + (answer.u_lower - path.u_begin) * Rational(k, 8);
+    MotionCrossing at = space.first_crossing(point_of(path, u));
+    ++tally.sampled;
+    if (at.status == CrossingStatus::starts_in_contact && at.grazing) continue;
+    ++tally.decided;
+    ASSERT_EQ(static_cast<int>(at.status), static_cast<int>(CrossingStatus::none)) << what << " at u = " << u;
+    ASSERT_EQ(at.cell_left.index(), answer.cell_left.index()) << what << " at u = " << u;
+  }
+}
+
+// Generated sliding starts on one space (see the file comment). 2-D: along a real edge's
+// tangent with its certified curvature plus a margin; 1-D: from next to a contact value with a
+// tiny velocity and an acceleration either way (f' near 0 at the start as well).
+// `along`: also accelerate along the edge (x'' != 0; not on the degenerate spaces, where a motion
+// along a straight contact edge at zero clearance keeps the first-order subdivision at its finest
+// stretches over the whole step: millions of them, too slow for the comparison).
+void sliding_starts(const CSpace& space, int count, std::uint64_t seed, Tally& tally, bool along = true) {
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> unit(0, 1), sym(-1, 1);
+  const std::vector<CSpaceChart>& charts = space.charts();
+  std::vector<std::size_t> real_edges;
+  for (std::size_t e = 0; e < space.edges().size(); ++e)
+    if (space.edges()[e].real) real_edges.push_back(e);
+  if (real_edges.empty()) return;
+  const bool two = space.dimension() == 2;
+  for (int i = 0; i < count; ++i) {
+    std::size_t e = real_edges[random() % real_edges.size()];
+    const CSpaceEdge& edge = space.edges()[e];
+    const CSpaceChart& chart = charts[edge.chart];
+    double scale = std::pow(10.0, -6 + 5 * unit(random));
+    // a few ulps off, either way, or 1e-15 ... 1e-9 off
+    auto moved = [&](double v) {
+      if (random() % 2 == 0) {
+        int k = static_cast<int>(random() % 13) - 6;
+        for (int j = 0; j < std::abs(k); ++j) v = std::nextafter(v, k > 0 ? 1e300 : -1e300);
+        return v;
+      }
+      return v + sym(random) * std::pow(10.0, -15 + 6 * unit(random));
+    };
+    MotionPath path;
+    if (two) {
+      double xa = edge.x_chart.lower, xb = edge.x_chart.upper;
+      double x0 = xa + (xb - xa) * (0.02 + 0.96 * unit(random));
+      double y0 = 0, slope = 0, bend = 0;
+      try {
+        y0 = space.evaluate(e, x0).value;
+        EdgeDerivatives d = space.derivatives(EdgeId(e), Rational(x0));
+        slope = 0.5 * (d.dy.lower + d.dy.upper);
+        bend = 0.5 * (d.d2y.lower + d.d2y.upper);
+      } catch (const GeometryError&) {
+        continue;
+      }
+      if (!std::isfinite(slope) || !std::isfinite(bend)) continue;
+      y0 = moved(y0);
+      double direction = random() % 2 == 0 ? 1 : -1;
+      // the edge's own second-order term plus a margin toward either side (or none)
+      double margin = random() % 4 == 0 ? 0.0 : sym(random) * std::pow(10.0, -3 + 4 * unit(random)) * (1 + std::abs(bend));
+      // x = x0 + t1 u + c u^2 (c: an acceleration along the edge, or none), y along the edge to
+      // second order: y0 + slope (t1 u + c u^2) + (bend / 2 + margin) t1^2 u^2
+      double t1 = direction * scale;
+      double c = !along || random() % 2 == 0 ? 0.0 : sym(random) * scale;
+      path.x = axis_path(chart.x_kind, part_polynomial(chart.x_kind, chart.x_half_turn, x0, t1, c));
+      path.y = axis_path(chart.y_kind, part_polynomial(chart.y_kind, chart.y_half_turn, y0, slope * t1,
+                                                       slope * c + (bend / 2 + margin) * t1 * t1));
+    } else {
+      double x0 = moved(random() % 2 == 0 ? edge.x_chart.lower : edge.x_chart.upper);
+      double v = sym(random) * scale * std::pow(10.0, -8 * unit(random));
+      double w = sym(random) * scale;
+      path.x = axis_path(chart.x_kind, part_polynomial(chart.x_kind, chart.x_half_turn, x0, v, w));
+    }
+    std::ostringstream what;
+    what.precision(17);
+    what << space.first_part() << ":" << space.second_part() << " motion " << i << " edge " << e << " chart "
+         << edge.chart << " scale " << scale;
+    compare(space, path, what.str(), tally);
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+}
+
+void report(Tally tally) {
+  std::printf("motions %d (second-order exclusions in %d, %zu curves) crossing %d none %d in contact %d; "
+              "sampled %d, decided %d\n",
+              tally.motions, tally.helped, tally.exclusions, tally.status[1], tally.status[0], tally.status[2],
+              tally.sampled, tally.decided);
+  ::testing::Test::RecordProperty("motions", tally.motions);
+  ::testing::Test::RecordProperty("helped", tally.helped);
+  ::testing::Test::RecordProperty("decided_samples", tally.decided);
+}
+
+TEST(CSpaceSecondOrder, SlidingStartsGiveTheAnswersOfTheFirstOrderSubdivision) {
+  Tally tally;
+  {
+    Model model = read_model_file(example("geneva-drive.json"));
+    CSpace space = CSpace::build(model, "driver", "wheel");
+    sliding_starts(space, 1000, 19, tally);
+    ASSERT_FALSE(HasFatalFailure());
+  }
+  {
+    Model model = read_model_file(example("escapement.json"));
+    for (const PairBuild& pair : CSpace::build_pairs(model)) {
+      if (pair.status != PairBuild::Status::built) continue;
+      sliding_starts(*pair.space, 500, 23, tally);
+      ASSERT_FALSE(HasFatalFailure());
+    }
+  }
+  {
+    Model model = read_model_file(example("cam-follower.json"));
+    CSpace space = CSpace::build(model, "cam", "follower");
+    sliding_starts(space, 300, 29, tally);
+    ASSERT_FALSE(HasFatalFailure());
+  }
+  report(tally);
+  EXPECT_GE(tally.motions, 2000);
+  EXPECT_GE(tally.helped, 320);   // the form is exercised
+  EXPECT_GE(tally.status[static_cast<int>(CrossingStatus::crossing)], 200);
+  EXPECT_GE(tally.status[static_cast<int>(CrossingStatus::none)], 200);
+  EXPECT_GE(tally.decided, 2500);
+}
+
+TEST(CSpaceSecondOrder, SlidingStartsOnDegenerateSpaces) {
+  Tally tally;
+  for (const char* name : {"zero-clearance.json", "tangent-circles.json", "concentric-arcs.json", "coincident-edges.json",
+                           "collinear-edges.json", "interval-contact.json", "vertex-on-vertex.json"}) {
+    Model model = read_model_file(degenerate(name));
+    for (const PairBuild& pair : CSpace::build_pairs(model)) {
+      if (pair.status != PairBuild::Status::built) continue;
+      sliding_starts(*pair.space, 200, 31, tally, false);
+      ASSERT_FALSE(HasFatalFailure()) << name;
+    }
+  }
+  report(tally);
+  EXPECT_GE(tally.motions, 650);
+  EXPECT_GE(tally.helped, 45);
+}
+
+}  // namespace
+}  // namespace hipair
