@@ -1193,6 +1193,16 @@ class QuadraticBuilder {
         }
   }
 
+  /// The signs of a support's a, disc and b at one bound of its event intervals, each exact
+  /// and computed on first use (2: not yet).
+  struct BoundSigns {
+    int a = 2, disc = 2, b = 2;
+    int of(int& slot, const Polynomial& p, const Real& x) {
+      if (slot == 2) slot = algebra::sign_at(p, x);
+      return slot;
+    }
+  };
+
   enum class CutKind { soft = 0, hard = 1 };
 
   struct Cut {
@@ -1211,8 +1221,7 @@ class QuadraticBuilder {
     if (algebra::degree(s.content) >= 1) {
       std::vector<Real> lines;
       roots_inside(s.content, lines);
-      for (const Real& r : lines)
-        pieces.push_back(XCurve{traits_.make_point(r, bottom_), traits_.make_point(r, top_), id, true, {}});
+      for (const Real& r : lines) vertical_pieces(r, id, pieces);
     }
     if (s.degree == 0) return;
     // cuts strictly inside the box's x-range that are not events of the curve
@@ -1262,6 +1271,8 @@ class QuadraticBuilder {
       branches[i] = algebra::sign_at(s.disc, m) > 0 ? 2 : 0;
       a_sign[i] = algebra::sign_at(s.a, m);
     }
+    // the signs at the bounds, each computed once (a bound ends up to four branch ends)
+    std::vector<BoundSigns> bound_signs(bounds.size());
     std::size_t next_cut = 0;
     for (std::size_t i = 0; i + 1 < bounds.size(); ++i) {
       // cuts strictly inside (bounds[i], bounds[i + 1])
@@ -1271,8 +1282,8 @@ class QuadraticBuilder {
         inside.push_back(&cuts[c]);
       for (int k = 0; k < branches[i]; ++k) {
         YExpr expr = s.degree == 1 ? YExpr{id, 2, 0} : YExpr{id, 0, k == 0 ? -a_sign[i] : a_sign[i]};
-        std::optional<Point> first = end_point(s, id, expr, bounds[i]);
-        std::optional<Point> last = end_point(s, id, expr, bounds[i + 1]);
+        std::optional<Point> first = end_point(s, id, expr, bounds[i], bound_signs[i]);
+        std::optional<Point> last = end_point(s, id, expr, bounds[i + 1], bound_signs[i + 1]);
         clip_arc(s, id, expr, first, last, bounds[i], bounds[i + 1], inside, f, alternatives, windows, pieces);
       }
     }
@@ -1281,7 +1292,7 @@ class QuadraticBuilder {
       for (std::size_t e = 1; e + 1 < bounds.size(); ++e) {
         if (branches[e - 1] != 0 || branches[e] != 0) continue;
         const Real& x = bounds[e];
-        if (algebra::sign_at(s.a, x) == 0 || algebra::sign_at(s.disc, x) != 0 ||
+        if (bound_signs[e].of(bound_signs[e].a, s.a, x) == 0 || bound_signs[e].of(bound_signs[e].disc, s.disc, x) != 0 ||
             algebra::sign_at(s.content, x) == 0)
           continue;
         YExpr expr{id, 1, 0};
@@ -1295,19 +1306,64 @@ class QuadraticBuilder {
       }
   }
 
+  // A vertical line x = r of the group being clipped: the whole box height when the group is not
+  // restricted; otherwise only its stretches inside the culling's surviving cells (the line
+  // bounds nothing outside them, as a branch piece meeting none of them): the y-ranges of the
+  // cells whose closed x-range meets r's certified enclosure, merged where they overlap or
+  // touch, clipped to the box, each a piece between points at those rational y.
+  void vertical_pieces(const Real& r, int id, std::vector<XCurve>& pieces) {
+    if (!cells_) {
+      pieces.push_back(XCurve{traits_.make_point(r, bottom_), traits_.make_point(r, top_), id, true, {}});
+      return;
+    }
+    const double lo = r.lower_bound(), hi = r.upper_bound();
+    std::vector<std::pair<double, double>> ys;
+    for (const auto& cell : *cells_) {
+      if (cell[0] > hi) break;   // sorted by x_lo
+      if (cell[1] < lo) continue;
+      ys.emplace_back(cell[2], cell[3]);
+    }
+    std::sort(ys.begin(), ys.end());
+    std::vector<std::pair<double, double>> merged;
+    for (const auto& y : ys) {
+      if (!merged.empty() && !(y.first > merged.back().second))
+        merged.back().second = std::max(merged.back().second, y.second);
+      else
+        merged.push_back(y);
+    }
+    for (const auto& [y0, y1] : merged) {
+      // (a side beyond the doubles' range or the box's: the box side)
+      const bool from_bottom = !std::isfinite(y0) || Rational(y0) <= box_.y_lo;
+      const bool to_top = !std::isfinite(y1) || Rational(y1) >= box_.y_hi;
+      if (!from_bottom && Rational(y0) >= box_.y_hi) continue;
+      if (!to_top && Rational(y1) <= box_.y_lo) continue;
+      if (!from_bottom && !to_top && !(Rational(y0) < Rational(y1))) continue;
+      const YExpr low = from_bottom ? bottom_ : horizontal(Rational(y0));
+      const YExpr high = to_top ? top_ : horizontal(Rational(y1));
+      pieces.push_back(XCurve{traits_.make_point(r, low), traits_.make_point(r, high), id, true, {}});
+    }
+  }
+
+  // The line y = c as a y expression (one support per value).
+  YExpr horizontal(const Rational& c) {
+    auto it = horizontals_.find(c);
+    if (it == horizontals_.end()) it = horizontals_.emplace(c, YExpr{traits_.add_support(horizontal_line(c)), 2, 0}).first;
+    return it->second;
+  }
+
   // The end of a branch at a bound of its event interval; nullopt when the branch goes to
   // infinity there (a vertical asymptote).
-  std::optional<Point> end_point(const Support& s, int id, const YExpr& expr, const Real& x) const {
+  std::optional<Point> end_point(const Support& s, int id, const YExpr& expr, const Real& x, BoundSigns& signs) const {
     if (s.degree == 1) {
-      if (algebra::sign_at(s.b, x) == 0) return std::nullopt;
+      if (signs.of(signs.b, s.b, x) == 0) return std::nullopt;
       return traits_.make_point(x, expr);
     }
-    int a = algebra::sign_at(s.a, x);
+    int a = signs.of(signs.a, s.a, x);
     if (a != 0) {
-      if (algebra::sign_at(s.disc, x) == 0) return traits_.make_point(x, YExpr{id, 1, 0});
+      if (signs.of(signs.disc, s.disc, x) == 0) return traits_.make_point(x, YExpr{id, 1, 0});
       return traits_.make_point(x, expr);
     }
-    int b = algebra::sign_at(s.b, x);
+    int b = signs.of(signs.b, s.b, x);
     if (b == 0 || b != expr.s) return std::nullopt;
     return traits_.make_point(x, YExpr{id, 2, 0});
   }
@@ -1597,6 +1653,7 @@ class QuadraticBuilder {
   mutable Arrangement result_;
   CellBoxes group_cells_;              // the group being clipped: its members' surviving cells
   const CellBoxes* cells_ = nullptr;   // null: not restricted
+  std::map<Rational, YExpr> horizontals_;   // supports of the lines y = c ending vertical pieces
 };
 
 }  // namespace
