@@ -1173,9 +1173,29 @@ class QuadraticBuilder {
       if (r.compare(box_.x_lo) > 0 && r.compare(box_.x_hi) < 0) out.push_back(std::move(r));
   }
 
+  // Cut abscissae: the roots of p strictly inside the box's x-range, and when the group has
+  // windows only those in the (merged, closed) windows. A cut outside every window separates
+  // two stretches outside every window, which bound nothing (clip_arc inserts no piece there,
+  // and the windows' own bounds are cuts), so it changes no piece; isolating roots only in
+  // the windows skips most of a curve's cuts in a finely culled chart.
+  void cut_roots(const Polynomial& p, std::vector<Real>& out) const {
+    if (!cut_windows_) {
+      roots_inside(p, out);
+      return;
+    }
+    if (algebra::degree(p) < 1) return;
+    for (const auto& [lo, hi] : *cut_windows_) {
+      const Rational& a = lo < box_.x_lo ? box_.x_lo : lo;
+      const Rational& b = box_.x_hi < hi ? box_.x_hi : hi;
+      if (!(a < b)) continue;
+      for (auto& r : roots_in(p, a, b))
+        if (r.compare(box_.x_lo) > 0 && r.compare(box_.x_hi) < 0) out.push_back(std::move(r));
+    }
+  }
+
   // Abscissae where an atom may change sign along the curve (a superset of the roots of the
   // resultant in y of the curve and the atom; none when they share a component, as in the
-  // algebraic stage).
+  // algebraic stage), in the windows (cut_roots).
   void validity_breaks(const Support& s, const ClauseAlternatives& alternatives, std::vector<Real>& out) const {
     for (const auto* clauses : alternatives)
       for (const auto& clause : *clauses)
@@ -1185,11 +1205,11 @@ class QuadraticBuilder {
           if (g.size() > s.part_columns.size()) {
             g = pseudo_remainder(std::move(g), s.part_columns);
             if (g.empty()) continue;
-            roots_inside(s.part_columns.back(), out);
+            cut_roots(s.part_columns.back(), out);
           }
           Polynomial r = resultant_y(s.part_columns, g);
           if (r.empty()) continue;
-          roots_inside(r, out);
+          cut_roots(r, out);
         }
   }
 
@@ -1226,7 +1246,22 @@ class QuadraticBuilder {
     if (s.degree == 0) return;
     // cuts strictly inside the box's x-range that are not events of the curve
     std::vector<Real> soft, hard;
-    for (const Rational& y : {box_.y_lo, box_.y_hi}) roots_inside(algebra::substitute_y(f, y), soft);
+    Windows merged_windows;
+    if (windows) {
+      merged_windows = *windows;
+      std::sort(merged_windows.begin(), merged_windows.end());
+      std::size_t n = 0;
+      for (std::size_t w = 0; w < merged_windows.size(); ++w) {
+        if (n > 0 && merged_windows[w].first <= merged_windows[n - 1].second) {
+          if (merged_windows[n - 1].second < merged_windows[w].second) merged_windows[n - 1].second = merged_windows[w].second;
+        } else {
+          merged_windows[n++] = merged_windows[w];
+        }
+      }
+      merged_windows.resize(n);
+    }
+    cut_windows_ = windows ? &merged_windows : nullptr;
+    for (const Rational& y : {box_.y_lo, box_.y_hi}) cut_roots(algebra::substitute_y(f, y), soft);
     validity_breaks(s, alternatives, soft);
     if (windows)
       for (const auto& [lo, hi] : *windows)
@@ -1236,8 +1271,9 @@ class QuadraticBuilder {
       std::vector<Polynomial> cols = columns(f), f_x;
       for (const auto& c : cols) f_x.push_back(algebra::derivative(c));
       while (!f_x.empty() && f_x.back().empty()) f_x.pop_back();
-      if (!f_x.empty()) roots_inside(resultant_y(cols, f_x), hard);
+      if (!f_x.empty()) cut_roots(resultant_y(cols, f_x), hard);
     }
+    cut_windows_ = nullptr;
     std::vector<Cut> cuts;
     {
       std::vector<Real> h = traits_.sorted_unique(std::move(hard)), all = std::move(h);
@@ -1412,12 +1448,15 @@ class QuadraticBuilder {
       Rational m = algebra::rational_between(*xs[i], *xs[i + 1]);
       Real mx = Real::from_rational(m);
       in_box[i] = strictly_between_sides(mx, expr);
-      if ((!has_point(i) || !has_point(i + 1)) && in_box[i]) throw NotApplicable{"asymptote inside the box"};   // an asymptote inside the box
       if (!in_box[i] || !in_windows(m, windows)) continue;
       // a piece whose certified y enclosure meets none of the culling's surviving cells bounds nothing
       if (cells_ && !branch_meets_cells(*cells_, xs[i]->lower_bound(), xs[i + 1]->upper_bound(),
                                         [&](Interval x) { return traits_.y_interval(expr, x); }))
         continue;
+      // an asymptote inside the box, where a piece may be inserted (a stretch outside the windows
+      // or the cells is never inserted: its missing end is never a piece's end; a cut outside
+      // the windows no longer separates such a stretch from the part of the branch in the box)
+      if (!has_point(i) || !has_point(i + 1)) throw NotApplicable{"asymptote inside the box"};
       if (!any_clauses) {
         valid[i] = 1;
         continue;
@@ -1654,6 +1693,7 @@ class QuadraticBuilder {
   CellBoxes group_cells_;              // the group being clipped: its members' surviving cells
   const CellBoxes* cells_ = nullptr;   // null: not restricted
   std::map<Rational, YExpr> horizontals_;   // supports of the lines y = c ending vertical pieces
+  const Windows* cut_windows_ = nullptr;     // the group's merged windows while its cuts are found
 };
 
 }  // namespace
