@@ -429,6 +429,24 @@ class QuadraticTraits {
 
   const Support& support(int i) const { return st_->supports[static_cast<std::size_t>(i)]; }
 
+  /// Extends support k's hull (State::hulls) to hold [lo, hi] (the bounds of isolating intervals).
+  void extend_hull(int k, const Real& lo, const Real& hi) {
+    auto& hulls = st_->hulls;
+    if (hulls.size() <= static_cast<std::size_t>(k)) hulls.resize(static_cast<std::size_t>(k) + 1);
+    auto& hull = hulls[static_cast<std::size_t>(k)];
+    if (!hull) {
+      hull.emplace(lo.lower, hi.upper);
+      return;
+    }
+    if (lo.lower < hull->first) hull->first = lo.lower;
+    if (hull->second < hi.upper) hull->second = hi.upper;
+  }
+
+  /// From here on a support's resultant roots are isolated only over its hull (called once
+  /// every piece and point is made, before the insertion). Roots memoised earlier (over the
+  /// whole box) stay: a superset.
+  void restrict_roots() { st_->restricted = true; }
+
   std::vector<Real> sorted_unique(std::vector<Real> xs) const {
     for (auto& x : xs) refine(x);
     std::sort(xs.begin(), xs.end(), [&](const Real& p, const Real& q) { return compare_x(p, q) < 0; });
@@ -774,8 +792,25 @@ class QuadraticTraits {
     if (it != st_->roots.end()) return it->second;
     Polynomial r = resultant_y(support(i).part_columns, support(j).part_columns);
     if (r.empty()) throw NotApplicable{"common component"};   // a common component of two supports
+    // the roots over the common part of the two supports' hulls (restrict_roots): every point
+    // of the arrangement on both supports lies there, and every pair of arcs the insertion
+    // compares or intersects overlaps in x there
+    Rational lo = st_->box.x_lo, hi = st_->box.x_hi;
+    for (int k : {i, j}) {
+      if (!st_->restricted) break;
+      const auto& hull = static_cast<std::size_t>(k) < st_->hulls.size() ? st_->hulls[static_cast<std::size_t>(k)]
+                                                                          : std::optional<std::pair<Rational, Rational>>{};
+      if (!hull) continue;
+      if (lo < hull->first) lo = hull->first;
+      if (hull->second < hi) hi = hull->second;
+    }
     std::vector<Real> xs;
-    if (algebra::degree(r) >= 1) xs = roots_in(r, st_->box.x_lo, st_->box.x_hi);
+    if (algebra::degree(r) >= 1) {
+      if (lo < hi)
+        xs = roots_in(r, lo, hi);
+      else if (lo == hi && algebra::sign_at(r, lo) == 0)
+        xs.push_back(Real::from_rational(lo));
+    }
     std::vector<std::shared_ptr<const XEntry>> out;
     for (const Real& x : sorted_unique(std::move(xs))) out.push_back(canonical(x));
     return st_->roots.emplace(key, std::move(out)).first->second;
@@ -1056,6 +1091,10 @@ class QuadraticTraits {
     std::multimap<double, std::shared_ptr<const XEntry>> by_lower;
     std::map<std::tuple<const void*, int, int, int, int, int, int>, int> exact_cache;
     std::map<std::pair<int, int>, CommonRoot> common;
+    /// per support: a closed rational x-range holding every piece and point inserted on it
+    /// (unset: the whole box), set before the insertion (see restrict_roots)
+    std::vector<std::optional<std::pair<Rational, Rational>>> hulls;
+    bool restricted = false;
     std::size_t exact_comparisons = 0, subresultant_equalities = 0, intersections_filtered = 0;
     std::array<std::size_t, mp_levels> mp_decided{};
   };
@@ -1107,6 +1146,12 @@ class QuadraticBuilder {
       clip(group_polynomials[g], alternatives, restricted ? &group_windows : nullptr, pieces, isolated);
     }
     cells_ = nullptr;
+    // every piece and isolated point is known: each support's resultant roots are needed only
+    // over the x-range its pieces and points span (a support without any, such as a line
+    // y = c ending vertical pieces, keeps the whole box)
+    for (const auto& piece : pieces) traits_.extend_hull(piece.support, piece.left.x(), piece.right.x());
+    for (const auto& point : isolated) traits_.extend_hull(point.rep->y.support, point.x(), point.x());
+    traits_.restrict_roots();
     result_.times.curves_seconds = seconds_since(start);
 
     start = Clock::now();
