@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -1085,7 +1086,7 @@ class QuadraticTraits {
   // CGAL copies traits objects (adaptors): the supports and caches are shared by the copies.
   struct State {
     Box box;
-    std::vector<Support> supports;
+    std::deque<Support> supports;   ///< (references stay valid while supports are added during clipping)
     std::map<std::pair<int, int>, std::vector<std::shared_ptr<const XEntry>>> roots;
     std::unordered_map<const Real*, std::shared_ptr<const XEntry>> entries;
     std::multimap<double, std::shared_ptr<const XEntry>> by_lower;
@@ -1392,11 +1393,12 @@ class QuadraticBuilder {
   // bounds nothing outside them, as a branch piece meeting none of them): the y-ranges of the
   // cells whose closed x-range meets r's certified enclosure, merged where they overlap or
   // touch, clipped to the box, each a piece between points at those rational y.
-  void vertical_pieces(const Real& r, int id, std::vector<XCurve>& pieces) {
+  void vertical_pieces(Real r, int id, std::vector<XCurve>& pieces) {
     if (!cells_) {
       pieces.push_back(XCurve{traits_.make_point(r, bottom_), traits_.make_point(r, top_), id, true, {}});
       return;
     }
+    QuadraticTraits::refine(r);   // (an isolating interval may span many columns)
     const double lo = r.lower_bound(), hi = r.upper_bound();
     std::vector<std::pair<double, double>> ys;
     for (const auto& cell : *cells_) {
