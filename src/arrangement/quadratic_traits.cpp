@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -429,6 +430,24 @@ class QuadraticTraits {
 
   const Support& support(int i) const { return st_->supports[static_cast<std::size_t>(i)]; }
 
+  /// Extends support k's hull (State::hulls) to hold [lo, hi] (the bounds of isolating intervals).
+  void extend_hull(int k, const Real& lo, const Real& hi) {
+    auto& hulls = st_->hulls;
+    if (hulls.size() <= static_cast<std::size_t>(k)) hulls.resize(static_cast<std::size_t>(k) + 1);
+    auto& hull = hulls[static_cast<std::size_t>(k)];
+    if (!hull) {
+      hull.emplace(lo.lower, hi.upper);
+      return;
+    }
+    if (lo.lower < hull->first) hull->first = lo.lower;
+    if (hull->second < hi.upper) hull->second = hi.upper;
+  }
+
+  /// From here on a support's resultant roots are isolated only over its hull (called once
+  /// every piece and point is made, before the insertion). Roots memoised earlier (over the
+  /// whole box) stay: a superset.
+  void restrict_roots() { st_->restricted = true; }
+
   std::vector<Real> sorted_unique(std::vector<Real> xs) const {
     for (auto& x : xs) refine(x);
     std::sort(xs.begin(), xs.end(), [&](const Real& p, const Real& q) { return compare_x(p, q) < 0; });
@@ -774,8 +793,25 @@ class QuadraticTraits {
     if (it != st_->roots.end()) return it->second;
     Polynomial r = resultant_y(support(i).part_columns, support(j).part_columns);
     if (r.empty()) throw NotApplicable{"common component"};   // a common component of two supports
+    // the roots over the common part of the two supports' hulls (restrict_roots): every point
+    // of the arrangement on both supports lies there, and every pair of arcs the insertion
+    // compares or intersects overlaps in x there
+    Rational lo = st_->box.x_lo, hi = st_->box.x_hi;
+    for (int k : {i, j}) {
+      if (!st_->restricted) break;
+      const auto& hull = static_cast<std::size_t>(k) < st_->hulls.size() ? st_->hulls[static_cast<std::size_t>(k)]
+                                                                          : std::optional<std::pair<Rational, Rational>>{};
+      if (!hull) continue;
+      if (lo < hull->first) lo = hull->first;
+      if (hull->second < hi) hi = hull->second;
+    }
     std::vector<Real> xs;
-    if (algebra::degree(r) >= 1) xs = roots_in(r, st_->box.x_lo, st_->box.x_hi);
+    if (algebra::degree(r) >= 1) {
+      if (lo < hi)
+        xs = roots_in(r, lo, hi);
+      else if (lo == hi && algebra::sign_at(r, lo) == 0)
+        xs.push_back(Real::from_rational(lo));
+    }
     std::vector<std::shared_ptr<const XEntry>> out;
     for (const Real& x : sorted_unique(std::move(xs))) out.push_back(canonical(x));
     return st_->roots.emplace(key, std::move(out)).first->second;
@@ -1050,12 +1086,16 @@ class QuadraticTraits {
   // CGAL copies traits objects (adaptors): the supports and caches are shared by the copies.
   struct State {
     Box box;
-    std::vector<Support> supports;
+    std::deque<Support> supports;   ///< (references stay valid while supports are added during clipping)
     std::map<std::pair<int, int>, std::vector<std::shared_ptr<const XEntry>>> roots;
     std::unordered_map<const Real*, std::shared_ptr<const XEntry>> entries;
     std::multimap<double, std::shared_ptr<const XEntry>> by_lower;
     std::map<std::tuple<const void*, int, int, int, int, int, int>, int> exact_cache;
     std::map<std::pair<int, int>, CommonRoot> common;
+    /// per support: a closed rational x-range holding every piece and point inserted on it
+    /// (unset: the whole box), set before the insertion (see restrict_roots)
+    std::vector<std::optional<std::pair<Rational, Rational>>> hulls;
+    bool restricted = false;
     std::size_t exact_comparisons = 0, subresultant_equalities = 0, intersections_filtered = 0;
     std::array<std::size_t, mp_levels> mp_decided{};
   };
@@ -1107,6 +1147,12 @@ class QuadraticBuilder {
       clip(group_polynomials[g], alternatives, restricted ? &group_windows : nullptr, pieces, isolated);
     }
     cells_ = nullptr;
+    // every piece and isolated point is known: each support's resultant roots are needed only
+    // over the x-range its pieces and points span (a support without any, such as a line
+    // y = c ending vertical pieces, keeps the whole box)
+    for (const auto& piece : pieces) traits_.extend_hull(piece.support, piece.left.x(), piece.right.x());
+    for (const auto& point : isolated) traits_.extend_hull(point.rep->y.support, point.x(), point.x());
+    traits_.restrict_roots();
     result_.times.curves_seconds = seconds_since(start);
 
     start = Clock::now();
@@ -1173,9 +1219,29 @@ class QuadraticBuilder {
       if (r.compare(box_.x_lo) > 0 && r.compare(box_.x_hi) < 0) out.push_back(std::move(r));
   }
 
+  // Cut abscissae: the roots of p strictly inside the box's x-range, and when the group has
+  // windows only those in the (merged, closed) windows. A cut outside every window separates
+  // two stretches outside every window, which bound nothing (clip_arc inserts no piece there,
+  // and the windows' own bounds are cuts), so it changes no piece; isolating roots only in
+  // the windows skips most of a curve's cuts in a finely culled chart.
+  void cut_roots(const Polynomial& p, std::vector<Real>& out) const {
+    if (!cut_windows_) {
+      roots_inside(p, out);
+      return;
+    }
+    if (algebra::degree(p) < 1) return;
+    for (const auto& [lo, hi] : *cut_windows_) {
+      const Rational& a = lo < box_.x_lo ? box_.x_lo : lo;
+      const Rational& b = box_.x_hi < hi ? box_.x_hi : hi;
+      if (!(a < b)) continue;
+      for (auto& r : roots_in(p, a, b))
+        if (r.compare(box_.x_lo) > 0 && r.compare(box_.x_hi) < 0) out.push_back(std::move(r));
+    }
+  }
+
   // Abscissae where an atom may change sign along the curve (a superset of the roots of the
   // resultant in y of the curve and the atom; none when they share a component, as in the
-  // algebraic stage).
+  // algebraic stage), in the windows (cut_roots).
   void validity_breaks(const Support& s, const ClauseAlternatives& alternatives, std::vector<Real>& out) const {
     for (const auto* clauses : alternatives)
       for (const auto& clause : *clauses)
@@ -1185,13 +1251,23 @@ class QuadraticBuilder {
           if (g.size() > s.part_columns.size()) {
             g = pseudo_remainder(std::move(g), s.part_columns);
             if (g.empty()) continue;
-            roots_inside(s.part_columns.back(), out);
+            cut_roots(s.part_columns.back(), out);
           }
           Polynomial r = resultant_y(s.part_columns, g);
           if (r.empty()) continue;
-          roots_inside(r, out);
+          cut_roots(r, out);
         }
   }
+
+  /// The signs of a support's a, disc and b at one bound of its event intervals, each exact
+  /// and computed on first use (2: not yet).
+  struct BoundSigns {
+    int a = 2, disc = 2, b = 2;
+    int of(int& slot, const Polynomial& p, const Real& x) {
+      if (slot == 2) slot = algebra::sign_at(p, x);
+      return slot;
+    }
+  };
 
   enum class CutKind { soft = 0, hard = 1 };
 
@@ -1211,13 +1287,27 @@ class QuadraticBuilder {
     if (algebra::degree(s.content) >= 1) {
       std::vector<Real> lines;
       roots_inside(s.content, lines);
-      for (const Real& r : lines)
-        pieces.push_back(XCurve{traits_.make_point(r, bottom_), traits_.make_point(r, top_), id, true, {}});
+      for (const Real& r : lines) vertical_pieces(r, id, pieces);
     }
     if (s.degree == 0) return;
     // cuts strictly inside the box's x-range that are not events of the curve
     std::vector<Real> soft, hard;
-    for (const Rational& y : {box_.y_lo, box_.y_hi}) roots_inside(algebra::substitute_y(f, y), soft);
+    Windows merged_windows;
+    if (windows) {
+      merged_windows = *windows;
+      std::sort(merged_windows.begin(), merged_windows.end());
+      std::size_t n = 0;
+      for (std::size_t w = 0; w < merged_windows.size(); ++w) {
+        if (n > 0 && merged_windows[w].first <= merged_windows[n - 1].second) {
+          if (merged_windows[n - 1].second < merged_windows[w].second) merged_windows[n - 1].second = merged_windows[w].second;
+        } else {
+          merged_windows[n++] = merged_windows[w];
+        }
+      }
+      merged_windows.resize(n);
+    }
+    cut_windows_ = windows ? &merged_windows : nullptr;
+    for (const Rational& y : {box_.y_lo, box_.y_hi}) cut_roots(algebra::substitute_y(f, y), soft);
     validity_breaks(s, alternatives, soft);
     if (windows)
       for (const auto& [lo, hi] : *windows)
@@ -1227,8 +1317,9 @@ class QuadraticBuilder {
       std::vector<Polynomial> cols = columns(f), f_x;
       for (const auto& c : cols) f_x.push_back(algebra::derivative(c));
       while (!f_x.empty() && f_x.back().empty()) f_x.pop_back();
-      if (!f_x.empty()) roots_inside(resultant_y(cols, f_x), hard);
+      if (!f_x.empty()) cut_roots(resultant_y(cols, f_x), hard);
     }
+    cut_windows_ = nullptr;
     std::vector<Cut> cuts;
     {
       std::vector<Real> h = traits_.sorted_unique(std::move(hard)), all = std::move(h);
@@ -1262,6 +1353,8 @@ class QuadraticBuilder {
       branches[i] = algebra::sign_at(s.disc, m) > 0 ? 2 : 0;
       a_sign[i] = algebra::sign_at(s.a, m);
     }
+    // the signs at the bounds, each computed once (a bound ends up to four branch ends)
+    std::vector<BoundSigns> bound_signs(bounds.size());
     std::size_t next_cut = 0;
     for (std::size_t i = 0; i + 1 < bounds.size(); ++i) {
       // cuts strictly inside (bounds[i], bounds[i + 1])
@@ -1271,8 +1364,8 @@ class QuadraticBuilder {
         inside.push_back(&cuts[c]);
       for (int k = 0; k < branches[i]; ++k) {
         YExpr expr = s.degree == 1 ? YExpr{id, 2, 0} : YExpr{id, 0, k == 0 ? -a_sign[i] : a_sign[i]};
-        std::optional<Point> first = end_point(s, id, expr, bounds[i]);
-        std::optional<Point> last = end_point(s, id, expr, bounds[i + 1]);
+        std::optional<Point> first = end_point(s, id, expr, bounds[i], bound_signs[i]);
+        std::optional<Point> last = end_point(s, id, expr, bounds[i + 1], bound_signs[i + 1]);
         clip_arc(s, id, expr, first, last, bounds[i], bounds[i + 1], inside, f, alternatives, windows, pieces);
       }
     }
@@ -1281,7 +1374,7 @@ class QuadraticBuilder {
       for (std::size_t e = 1; e + 1 < bounds.size(); ++e) {
         if (branches[e - 1] != 0 || branches[e] != 0) continue;
         const Real& x = bounds[e];
-        if (algebra::sign_at(s.a, x) == 0 || algebra::sign_at(s.disc, x) != 0 ||
+        if (bound_signs[e].of(bound_signs[e].a, s.a, x) == 0 || bound_signs[e].of(bound_signs[e].disc, s.disc, x) != 0 ||
             algebra::sign_at(s.content, x) == 0)
           continue;
         YExpr expr{id, 1, 0};
@@ -1295,19 +1388,65 @@ class QuadraticBuilder {
       }
   }
 
+  // A vertical line x = r of the group being clipped: the whole box height when the group is not
+  // restricted; otherwise only its stretches inside the culling's surviving cells (the line
+  // bounds nothing outside them, as a branch piece meeting none of them): the y-ranges of the
+  // cells whose closed x-range meets r's certified enclosure, merged where they overlap or
+  // touch, clipped to the box, each a piece between points at those rational y.
+  void vertical_pieces(Real r, int id, std::vector<XCurve>& pieces) {
+    if (!cells_) {
+      pieces.push_back(XCurve{traits_.make_point(r, bottom_), traits_.make_point(r, top_), id, true, {}});
+      return;
+    }
+    QuadraticTraits::refine(r);   // (an isolating interval may span many columns)
+    const double lo = r.lower_bound(), hi = r.upper_bound();
+    std::vector<std::pair<double, double>> ys;
+    for (const auto& cell : *cells_) {
+      if (cell[0] > hi) break;   // sorted by x_lo
+      if (cell[1] < lo) continue;
+      ys.emplace_back(cell[2], cell[3]);
+    }
+    std::sort(ys.begin(), ys.end());
+    std::vector<std::pair<double, double>> merged;
+    for (const auto& y : ys) {
+      if (!merged.empty() && !(y.first > merged.back().second))
+        merged.back().second = std::max(merged.back().second, y.second);
+      else
+        merged.push_back(y);
+    }
+    for (const auto& [y0, y1] : merged) {
+      // (a side beyond the doubles' range or the box's: the box side)
+      const bool from_bottom = !std::isfinite(y0) || Rational(y0) <= box_.y_lo;
+      const bool to_top = !std::isfinite(y1) || Rational(y1) >= box_.y_hi;
+      if (!from_bottom && Rational(y0) >= box_.y_hi) continue;
+      if (!to_top && Rational(y1) <= box_.y_lo) continue;
+      if (!from_bottom && !to_top && !(Rational(y0) < Rational(y1))) continue;
+      const YExpr low = from_bottom ? bottom_ : horizontal(Rational(y0));
+      const YExpr high = to_top ? top_ : horizontal(Rational(y1));
+      pieces.push_back(XCurve{traits_.make_point(r, low), traits_.make_point(r, high), id, true, {}});
+    }
+  }
+
+  // The line y = c as a y expression (one support per value).
+  YExpr horizontal(const Rational& c) {
+    auto it = horizontals_.find(c);
+    if (it == horizontals_.end()) it = horizontals_.emplace(c, YExpr{traits_.add_support(horizontal_line(c)), 2, 0}).first;
+    return it->second;
+  }
+
   // The end of a branch at a bound of its event interval; nullopt when the branch goes to
   // infinity there (a vertical asymptote).
-  std::optional<Point> end_point(const Support& s, int id, const YExpr& expr, const Real& x) const {
+  std::optional<Point> end_point(const Support& s, int id, const YExpr& expr, const Real& x, BoundSigns& signs) const {
     if (s.degree == 1) {
-      if (algebra::sign_at(s.b, x) == 0) return std::nullopt;
+      if (signs.of(signs.b, s.b, x) == 0) return std::nullopt;
       return traits_.make_point(x, expr);
     }
-    int a = algebra::sign_at(s.a, x);
+    int a = signs.of(signs.a, s.a, x);
     if (a != 0) {
-      if (algebra::sign_at(s.disc, x) == 0) return traits_.make_point(x, YExpr{id, 1, 0});
+      if (signs.of(signs.disc, s.disc, x) == 0) return traits_.make_point(x, YExpr{id, 1, 0});
       return traits_.make_point(x, expr);
     }
-    int b = algebra::sign_at(s.b, x);
+    int b = signs.of(signs.b, s.b, x);
     if (b == 0 || b != expr.s) return std::nullopt;
     return traits_.make_point(x, YExpr{id, 2, 0});
   }
@@ -1356,12 +1495,15 @@ class QuadraticBuilder {
       Rational m = algebra::rational_between(*xs[i], *xs[i + 1]);
       Real mx = Real::from_rational(m);
       in_box[i] = strictly_between_sides(mx, expr);
-      if ((!has_point(i) || !has_point(i + 1)) && in_box[i]) throw NotApplicable{"asymptote inside the box"};   // an asymptote inside the box
       if (!in_box[i] || !in_windows(m, windows)) continue;
       // a piece whose certified y enclosure meets none of the culling's surviving cells bounds nothing
       if (cells_ && !branch_meets_cells(*cells_, xs[i]->lower_bound(), xs[i + 1]->upper_bound(),
                                         [&](Interval x) { return traits_.y_interval(expr, x); }))
         continue;
+      // an asymptote inside the box, where a piece may be inserted (a stretch outside the windows
+      // or the cells is never inserted: its missing end is never a piece's end; a cut outside
+      // the windows no longer separates such a stretch from the part of the branch in the box)
+      if (!has_point(i) || !has_point(i + 1)) throw NotApplicable{"asymptote inside the box"};
       if (!any_clauses) {
         valid[i] = 1;
         continue;
@@ -1597,6 +1739,8 @@ class QuadraticBuilder {
   mutable Arrangement result_;
   CellBoxes group_cells_;              // the group being clipped: its members' surviving cells
   const CellBoxes* cells_ = nullptr;   // null: not restricted
+  std::map<Rational, YExpr> horizontals_;   // supports of the lines y = c ending vertical pieces
+  const Windows* cut_windows_ = nullptr;     // the group's merged windows while its cuts are found
 };
 
 }  // namespace

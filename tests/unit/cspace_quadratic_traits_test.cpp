@@ -469,6 +469,160 @@ TEST(QuadraticTraitsGenerated, DegenerateConfigurations) {
 
 // ------------------------------------------------------------------ examples
 
+// ------------------------------------------------------------------ culled vertical lines, windowed roots
+
+IntegerPolynomial2 times(const IntegerPolynomial2& f, const IntegerPolynomial2& g) {
+  IntegerPolynomial2 out;
+  out.coefficients.assign(f.coefficients.size() + g.coefficients.size() - 1, {});
+  for (std::size_t i = 0; i < f.coefficients.size(); ++i)
+    for (std::size_t j = 0; j < f.coefficients[i].size(); ++j)
+      for (std::size_t k = 0; k < g.coefficients.size(); ++k)
+        for (std::size_t l = 0; l < g.coefficients[k].size(); ++l) {
+          auto& row = out.coefficients[i + k];
+          if (row.size() < j + l + 1) row.resize(j + l + 1);
+          row[j + l] += f.coefficients[i][j] * g.coefficients[k][l];
+        }
+  return out;
+}
+
+// Random dyadic boxes {x_lo, x_hi, y_lo, y_hi} inside the unit box, sorted by x_lo, some
+// sharing a column (the culling's cells: merged along columns, several per column).
+std::vector<std::array<double, 4>> random_cells(std::mt19937& random) {
+  std::vector<std::array<double, 4>> cells;
+  const int columns = 1 + static_cast<int>(random() % 4);
+  for (int c = 0; c < columns; ++c) {
+    const double x0 = -2 + static_cast<double>(random() % 64) / 16;
+    const double x1 = x0 + static_cast<double>(1 + random() % 24) / 16;
+    const int stacked = 1 + static_cast<int>(random() % 3);
+    for (int k = 0; k < stacked; ++k) {
+      const double y0 = -2 + static_cast<double>(random() % 64) / 16;
+      cells.push_back({x0, std::min(x1, 2.0), y0, std::min(y0 + static_cast<double>(1 + random() % 24) / 16, 2.0)});
+    }
+  }
+  std::sort(cells.begin(), cells.end());
+  return cells;
+}
+
+// A vertical line of the quadratic stage ends where the culling's surviving cells end: built
+// with the cells (every curve the same boxes), its vertical edges lie inside the union of the
+// boxes over their x, and every stretch of the unculled build's vertical lines strictly inside
+// a box is on a vertical edge of the culled build. Curves: random ones times a factor in x
+// alone (lines x = p/q, pairs of lines 4x^2 - k), pure vertical lines, random curves.
+TEST(QuadraticTraitsGenerated, VerticalLinesEndWithTheCulledCells) {
+  std::size_t vertical_checked = 0, inside_checked = 0;
+  for (unsigned seed = 1; seed <= 40; ++seed) {
+    std::mt19937 random(900 + seed);
+    std::vector<IntegerPolynomial2> curves = random_curves(seed);
+    const long p = static_cast<long>(random() % 7) - 3, q = 1 + static_cast<long>(random() % 3);
+    curves[0] = times(poly({{-p}, {q}}), curves[0]);                      // (q x - p) g
+    curves.push_back(poly({{-static_cast<long>(1 + random() % 12)}, {0}, {4}}));   // 4x^2 - k
+    if (seed % 2 == 0) curves[1] = times(poly({{-static_cast<long>(random() % 9)}, {0}, {4}}), curves[1]);
+    const std::vector<std::array<double, 4>> boxes = random_cells(random);
+    std::vector<std::vector<std::array<double, 4>>> cells(curves.size(), boxes);
+    raw::Options culled, whole;
+    culled.cells = &cells;
+    const std::string what = "vertical seed " + std::to_string(seed);
+    std::optional<raw::Arrangement> a = raw::build_quadratic_arrangement(unit_box, curves, {}, {}, culled);
+    std::optional<raw::Arrangement> b = raw::build_quadratic_arrangement(unit_box, curves, {}, {}, whole);
+    ASSERT_EQ(a.has_value(), b.has_value()) << what;
+    if (!a) continue;   // common components: declined
+    EXPECT_FALSE(has_duplicate_vertices(*a)) << what;
+    // the y-ranges (closed, merged) of the boxes whose closed x-range may hold x
+    auto covered = [&](const algebra::Real& x) {
+      std::vector<std::pair<Rational, Rational>> ys;
+      for (const auto& c : boxes)
+        if (Rational(c[0]) <= x.upper && x.lower <= Rational(c[1])) ys.emplace_back(Rational(c[2]), Rational(c[3]));
+      std::sort(ys.begin(), ys.end());
+      std::vector<std::pair<Rational, Rational>> merged;
+      for (const auto& y : ys)
+        if (!merged.empty() && y.first <= merged.back().second)
+          merged.back().second = std::max(merged.back().second, y.second);
+        else
+          merged.push_back(y);
+      return merged;
+    };
+    for (const auto& e : a->edges) {
+      if (!e.vertical || e.box_side >= 0) continue;
+      const raw::Vertex &low = a->vertices[e.min_vertex], &high = a->vertices[e.max_vertex];
+      bool inside = false;
+      // (an end at a cell's side y = c over an irrational x has certified bounds around c)
+      for (const auto& [y0, y1] : covered(low.x)) inside = inside || (y0 <= low.y_upper && high.y_lower <= y1);
+      EXPECT_TRUE(inside) << what << ": a vertical edge at x ~ " << low.x.approximate() << ", y ~ ["
+                          << low.y_lower_bound() << ", " << high.y_upper_bound() << "] outside the cells";
+      ++vertical_checked;
+    }
+    for (const auto& e : b->edges) {
+      if (!e.vertical || e.box_side >= 0) continue;
+      const raw::Vertex &low = b->vertices[e.min_vertex], &high = b->vertices[e.max_vertex];
+      const Rational y = (low.y_upper + high.y_lower) / 2;   // strictly inside the edge
+      const algebra::Real& x = low.x;
+      bool in_a_box = false;
+      for (const auto& c : boxes)
+        in_a_box = in_a_box || (Rational(c[0]) < x.lower && x.upper < Rational(c[1]) && Rational(c[2]) < y && y < Rational(c[3]));
+      if (!in_a_box) continue;
+      ++inside_checked;
+      bool found = false;
+      for (const auto& f : a->edges) {
+        if (!f.vertical || f.box_side >= 0) continue;
+        const raw::Vertex &fl = a->vertices[f.min_vertex], &fh = a->vertices[f.max_vertex];
+        if (fl.y_upper <= y && y <= fh.y_lower && algebra::compare(fl.x, x) == 0) found = true;
+      }
+      EXPECT_TRUE(found) << what << ": the line x ~ " << x.approximate() << " at y = " << y.get_d()
+                         << " lies in a cell but is not built";
+    }
+  }
+  EXPECT_GT(vertical_checked, 40u);
+  EXPECT_GT(inside_checked, 20u);
+}
+
+// Windows restrict where a curve's cuts and the resultant roots of two curves are isolated
+// (only inside the windows, and over the common x-range of two curves' pieces): every crossing
+// of two pieces strictly inside a window is a vertex of both the quadratic and the algebraic
+// build (which isolates every root over the whole box), with the same windows for every curve.
+TEST(QuadraticTraitsGenerated, CrossingsInsideWindowsAgreeWithTheAlgebraicStage) {
+  std::size_t crossings = 0;
+  for (unsigned seed = 1; seed <= 40; ++seed) {
+    std::vector<IntegerPolynomial2> curves = random_curves(seed);
+    std::mt19937 random(1300 + seed);
+    std::vector<std::pair<Rational, Rational>> w;
+    Rational at(-2);
+    const int count = 1 + static_cast<int>(random() % 3);
+    for (int k = 0; k < count; ++k) {
+      Rational lo = at + Rational(static_cast<long>(random() % 16), 16);
+      Rational hi = lo + Rational(static_cast<long>(1 + random() % 24), 16);
+      if (hi > Rational(2)) hi = Rational(2);
+      if (!(lo < hi)) break;
+      w.emplace_back(lo, hi);
+      at = hi + Rational(1, 16);
+    }
+    std::vector<std::vector<std::pair<Rational, Rational>>> windows(curves.size(), w);
+    const std::string what = "windows seed " + std::to_string(seed);
+    raw::Options options;
+    std::optional<raw::Arrangement> fast = raw::build_quadratic_arrangement(unit_box, curves, {}, windows, options);
+    if (!fast) continue;   // common components: declined
+    raw::Arrangement reference = raw::build_arrangement(unit_box, curves, {}, windows, options);
+    EXPECT_FALSE(has_duplicate_vertices(*fast)) << what;
+    auto strictly_inside = [&](const raw::Vertex& v) {
+      for (const auto& [lo, hi] : w)
+        if (lo < v.x.lower && v.x.upper < hi && Rational(-2) < v.y_lower && v.y_upper < Rational(2)) return true;
+      return false;
+    };
+    auto expect_in = [&](const raw::Arrangement& from, const raw::Arrangement& in, const char* side) {
+      for (const auto& p : from.vertices) {
+        if (p.around.size() < 4 || !strictly_inside(p)) continue;
+        ++crossings;
+        bool found = false;
+        for (const auto& q : in.vertices) found = found || (q.around.size() >= 4 && same_point(p, q));
+        EXPECT_TRUE(found) << what << ": crossing at x ~ " << p.x.approximate() << ", y ~ " << p.y_lower_bound()
+                           << " only in the " << side << " build";
+      }
+    };
+    expect_in(*fast, reference, "quadratic");
+    expect_in(reference, *fast, "algebraic");
+  }
+  EXPECT_GT(crossings, 20u);
+}
+
 void expect_same_space(const CSpace& fast, const CSpace& reference, const std::string& what) {
   ASSERT_EQ(fast.feature_pairs().size(), reference.feature_pairs().size()) << what;
   for (std::size_t i = 0; i < fast.feature_pairs().size(); ++i) {
