@@ -7,6 +7,7 @@
 // without it (the exact path of the subdivision), field for field; and the free stretch it
 // reports is checked against exact point locations along the path.
 #include "cspace/angle_filter.hpp"
+#include "cspace_test_support.hpp"
 #include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
@@ -33,26 +34,9 @@ std::filesystem::path degenerate(const std::string& name) {
   return std::filesystem::path(HIPAIR_TEST_DATA) / "degenerate" / name;
 }
 
-struct Switch {
-  explicit Switch(bool on) : old(cspace::second_order()) { cspace::second_order() = on; }
-  ~Switch() { cspace::second_order() = old; }
-  bool old;
-};
+using Switch = test::FlagSwitch<&cspace::second_order>;
+using test::describe_crossing;
 
-// Every field of the answer, printed exactly (rationals, doubles to 17 digits).
-std::string describe(const CSpace& space, const MotionCrossing& c) {
-  std::ostringstream out;
-  out.precision(17);
-  out << "status " << static_cast<int>(c.status) << " u [" << c.u_lower << ", " << c.u_upper << "] grazing " << c.grazing
-      << " edge " << (c.edge.valid() ? static_cast<long>(c.edge.index()) : -1L) << " left "
-      << (c.cell_left.valid() ? static_cast<long>(c.cell_left.index()) : -1L) << " entered "
-      << (c.cell_entered.valid() ? static_cast<long>(c.cell_entered.index()) : -1L) << " chart "
-      << static_cast<long>(c.chart == no_index ? -1 : static_cast<long>(c.chart)) << " features";
-  for (FeatureId f : c.features) out << " " << space.feature_pair(f).label;
-  for (const auto* ranges : {&c.chart_point, &c.point, &c.normal})
-    for (const CertifiedRange& r : *ranges) out << " [" << r.lower << ", " << r.upper << "]";
-  return out.str();
-}
 
 struct Tally {
   std::map<int, int> status;
@@ -102,7 +86,7 @@ void compare(const CSpace& space, const MotionPath& path, const std::string& wha
     Switch on(true);
     try {
       answer = space.first_crossing(path);
-      with = describe(space, answer);
+      with = describe_crossing(space, answer);
     } catch (const Error& e) {
       with = std::string("error: ") + e.what();
     }
@@ -111,7 +95,7 @@ void compare(const CSpace& space, const MotionPath& path, const std::string& wha
   {
     Switch off(false);
     try {
-      without = describe(space, space.first_crossing(path));
+      without = describe_crossing(space, space.first_crossing(path));
     } catch (const Error& e) {
       without = std::string("error: ") + e.what();
     }

@@ -7,6 +7,7 @@
 // configuration, a move of one coordinate, or to another space) must give, query by query, the answers of the same chain
 // with the anchors off (every start located exactly).
 #include "cspace/angle_filter.hpp"
+#include "cspace_test_support.hpp"
 #include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
@@ -31,24 +32,21 @@ namespace {
 
 std::filesystem::path example(const std::string& name) { return std::filesystem::path(HIPAIR_EXAMPLES) / name; }
 
-struct Switch {
-  explicit Switch(bool on) : old(cspace::start_anchors()) { cspace::start_anchors() = on; }
-  ~Switch() { cspace::start_anchors() = old; }
-  bool old;
-};
+using Switch = test::FlagSwitch<&cspace::start_anchors>;
+using test::describe_crossing;
 
-std::string describe(const CSpace& space, const MotionCrossing& c) {
-  std::ostringstream out;
-  out.precision(17);
-  out << "status " << static_cast<int>(c.status) << " u [" << c.u_lower << ", " << c.u_upper << "] grazing " << c.grazing
-      << " edge " << (c.edge.valid() ? static_cast<long>(c.edge.index()) : -1L) << " left "
-      << (c.cell_left.valid() ? static_cast<long>(c.cell_left.index()) : -1L) << " entered "
-      << (c.cell_entered.valid() ? static_cast<long>(c.cell_entered.index()) : -1L) << " chart "
-      << static_cast<long>(c.chart == no_index ? -1 : static_cast<long>(c.chart)) << " features";
-  for (FeatureId f : c.features) out << " " << space.feature_pair(f).label;
-  for (const auto* ranges : {&c.chart_point, &c.point, &c.normal})
-    for (const CertifiedRange& r : *ranges) out << " [" << r.lower << ", " << r.upper << "]";
-  return out.str();
+
+// The spaces the chains run on: the Geneva drive, the escapement's built pairs, the cam.
+std::vector<std::unique_ptr<CSpace>> example_spaces() {
+  Model geneva = read_model_file(example("geneva-drive.json"));
+  Model escapement = read_model_file(example("escapement.json"));
+  Model cam = read_model_file(example("cam-follower.json"));
+  std::vector<std::unique_ptr<CSpace>> owned;
+  owned.push_back(std::make_unique<CSpace>(CSpace::build(geneva, "driver", "wheel")));
+  for (const PairBuild& pair : CSpace::build_pairs(escapement))
+    if (pair.status == PairBuild::Status::built) owned.push_back(std::make_unique<CSpace>(*pair.space));
+  owned.push_back(std::make_unique<CSpace>(CSpace::build(cam, "cam", "follower")));
+  return owned;
 }
 
 AxisPath axis_path(AxisKind kind, const std::vector<double>& c) {
@@ -120,7 +118,7 @@ std::vector<std::string> answers(const std::vector<Query>& queries, bool anchors
   std::vector<std::string> result;
   for (const Query& q : queries) {
     try {
-      result.push_back(describe(*q.space, q.space->first_crossing(q.path)));
+      result.push_back(describe_crossing(*q.space, q.space->first_crossing(q.path)));
     } catch (const Error& e) {
       result.push_back(std::string("error: ") + e.what());
     }
@@ -145,13 +143,8 @@ void check(const std::vector<Query>& queries, std::size_t& anchored_total, std::
 TEST(CSpaceStartAnchor, ChainsOfMotionsGiveTheAnswersOfExactStartLocation) {
   std::size_t anchored = 0, none = 0;
   Model geneva = read_model_file(example("geneva-drive.json"));
-  Model escapement = read_model_file(example("escapement.json"));
   Model cam = read_model_file(example("cam-follower.json"));
-  std::vector<std::unique_ptr<CSpace>> owned;
-  owned.push_back(std::make_unique<CSpace>(CSpace::build(geneva, "driver", "wheel")));
-  for (const PairBuild& pair : CSpace::build_pairs(escapement))
-    if (pair.status == PairBuild::Status::built) owned.push_back(std::make_unique<CSpace>(*pair.space));
-  owned.push_back(std::make_unique<CSpace>(CSpace::build(cam, "cam", "follower")));
+  std::vector<std::unique_ptr<CSpace>> owned = example_spaces();
   std::vector<const CSpace*> spaces;
   for (const auto& s : owned) spaces.push_back(s.get());
   for (std::uint64_t seed : {3u, 5u, 7u}) {
@@ -181,14 +174,7 @@ TEST(CSpaceStartAnchor, ChainsOfMotionsGiveTheAnswersOfExactStartLocation) {
 // Each such start must be answered as with the anchors off (exact location), and none of those
 // on the other side may be anchored.
 TEST(CSpaceStartAnchor, StartsBesideACurveCrossingTheLastBoxAreLocatedExactly) {
-  Model geneva = read_model_file(example("geneva-drive.json"));
-  Model escapement = read_model_file(example("escapement.json"));
-  Model cam = read_model_file(example("cam-follower.json"));
-  std::vector<std::unique_ptr<CSpace>> owned;
-  owned.push_back(std::make_unique<CSpace>(CSpace::build(geneva, "driver", "wheel")));
-  for (const PairBuild& pair : CSpace::build_pairs(escapement))
-    if (pair.status == PairBuild::Status::built) owned.push_back(std::make_unique<CSpace>(*pair.space));
-  owned.push_back(std::make_unique<CSpace>(CSpace::build(cam, "cam", "follower")));
+  std::vector<std::unique_ptr<CSpace>> owned = example_spaces();
   std::mt19937_64 random(19);
   std::uniform_real_distribution<double> unit(0, 1), sym(-1, 1);
   std::size_t cases = 0, other_side = 0, anchored_other_side = 0;
@@ -211,7 +197,7 @@ TEST(CSpaceStartAnchor, StartsBesideACurveCrossingTheLastBoxAreLocatedExactly) {
     auto ask = [&](const MotionPath& path, bool anchors) {
       Switch use(anchors);
       try {
-        return describe(space, space.first_crossing(path));
+        return describe_crossing(space, space.first_crossing(path));
       } catch (const Error& e) {
         return std::string("error: ") + e.what();
       }

@@ -7,6 +7,8 @@
 #include <hipair/cspace.hpp>
 
 #include <random>
+#include <sstream>
+#include <string>
 
 namespace hipair::test {
 
@@ -35,5 +37,32 @@ inline ChartPoint random_tile_point(const CSpace& space, std::mt19937_64& random
   Rational y = space.dimension() == 2 ? pick(chart.y_lo, chart.y_hi) : Rational(0);
   return ChartPoint{t, x, y};
 }
+
+// Every field of a first-crossing answer, printed exactly (rationals, doubles to 17 digits): two
+// answers are the same when their descriptions are equal.
+inline std::string describe_crossing(const CSpace& space, const MotionCrossing& c) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "status " << static_cast<int>(c.status) << " u [" << c.u_lower << ", " << c.u_upper << "] grazing " << c.grazing
+      << " edge " << (c.edge.valid() ? static_cast<long>(c.edge.index()) : -1L) << " left "
+      << (c.cell_left.valid() ? static_cast<long>(c.cell_left.index()) : -1L) << " entered "
+      << (c.cell_entered.valid() ? static_cast<long>(c.cell_entered.index()) : -1L) << " chart "
+      << static_cast<long>(c.chart == no_index ? -1 : static_cast<long>(c.chart)) << " features";
+  for (FeatureId f : c.features) out << " " << space.feature_pair(f).label;
+  for (const auto* ranges : {&c.chart_point, &c.point, &c.normal})
+    for (const CertifiedRange& r : *ranges) out << " [" << r.lower << ", " << r.upper << "]";
+  return out.str();
+}
+
+// Sets one of the C-space queries' switches (cspace/angle_filter.hpp: carried_bounds,
+// second_order, start_anchors) for its lifetime.
+template <bool& (*Flag)()>
+struct FlagSwitch {
+  explicit FlagSwitch(bool on) : old(Flag()) { Flag() = on; }
+  ~FlagSwitch() { Flag() = old; }
+  FlagSwitch(const FlagSwitch&) = delete;
+  FlagSwitch& operator=(const FlagSwitch&) = delete;
+  bool old;
+};
 
 }  // namespace hipair::test
