@@ -817,13 +817,14 @@ class Builder {
       out.min_vertex = h->source()->data();
       out.max_vertex = h->target()->data();
       out.vertical = arc.is_vertical();
-      out.support = support_for(arc);
+      const Vertex& a = result_.vertices[out.min_vertex];
+      const Vertex& b = result_.vertices[out.max_vertex];
+      const int side = chart_side_of(arc, a, b);
+      out.support = side >= 0 ? chart_side_support(side) : support_for(arc);
       if (options_.carry_line_supports && is_linear(arc) && arc.data() < line_supports_.size())
         out.support_curve = arc.data();
       out.left_face = h->face()->data();
       out.right_face = h->twin()->face()->data();
-      const Vertex& a = result_.vertices[out.min_vertex];
-      const Vertex& b = result_.vertices[out.max_vertex];
       const Bounds& ba = bounds[out.min_vertex];
       const Bounds& bb = bounds[out.max_vertex];
       // certified box of the ends (every edge is monotone in x and in y), strictly around it
@@ -952,6 +953,48 @@ class Builder {
       for (auto& row : support.coefficients)
         for (auto& z : row) z = -z;
     return support;
+  }
+
+  // A piece of a chart side only (no input curve overlaps it: an overlapping curve's smaller
+  // index would be its data), with carried supports in the segment flavour: the side, 0 bottom,
+  // 1 right, 2 top, 3 left, from its ends; -1 for every other edge. The box was inserted as the
+  // segments corner i -> corner i + 1 (run), and a piece of a segment keeps that segment's
+  // orientation (CGAL splits a segment by moving its ends, and a line through two of its points
+  // in the same order is the same line up to a positive factor).
+  int chart_side_of(const XCurve& arc, const Vertex& a, const Vertex& b) const {
+    if constexpr (!segments) return -1;
+    if (!options_.carry_line_supports || arc.data() != no_curve) return -1;
+    auto on = [](const Real& u, const Real& w, const Rational& q) { return u.compare(q) == 0 && w.compare(q) == 0; };
+    if (on(a.y, b.y, box_.y_lo)) return 0;
+    if (on(a.x, b.x, box_.x_hi)) return 1;
+    if (on(a.y, b.y, box_.y_hi)) return 2;
+    if (on(a.x, b.x, box_.x_lo)) return 3;
+    throw GeometryError("internal: a chart side piece off the chart's sides");
+  }
+
+  // The support of chart side `side` as support_of computes it from CGAL's line of the side's
+  // segment corner i -> corner i + 1 (a, b, c) = (y_i - y_i+1, x_i+1 - x_i, x_i y_i+1 - y_i x_i+1),
+  // made primitive with its sign kept: bottom (x_lo, y_lo) -> (x_hi, y_lo): (x_hi - x_lo)(y - y_lo);
+  // right (x_hi, y_lo) -> (x_hi, y_hi): (y_hi - y_lo)(x_hi - x); top (x_hi, y_hi) -> (x_lo, y_hi):
+  // (x_hi - x_lo)(y_hi - y); left (x_lo, y_hi) -> (x_lo, y_lo): (y_hi - y_lo)(x - x_lo). Without
+  // the lazy line's exact coefficients.
+  IntegerPolynomial2 chart_side_support(int side) const {
+    const Rational& q = side == 0 ? box_.y_lo : side == 1 ? box_.x_hi : side == 2 ? box_.y_hi : box_.x_lo;
+    const int s = side == 0 || side == 3 ? 1 : -1;   // the sign of the variable's coefficient
+    mpz_class num = q.get_num(), den = q.get_den(), g;
+    mpz_gcd(g.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
+    if (g != 1) {
+      num /= g;
+      den /= g;
+    }
+    if (s < 0) den = -den;
+    else num = -num;
+    IntegerPolynomial2 out;
+    if (side == 0 || side == 2)
+      out.coefficients = {{num, den}, {mpz_class(0), mpz_class(0)}};
+    else
+      out.coefficients = {{num, mpz_class(0)}, {den, mpz_class(0)}};
+    return out;
   }
 
   // The primitive integer polynomial of a line (total degree 1) oriented as CGAL orients a

@@ -1318,8 +1318,9 @@ struct CurveGenerator::Data {
 CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
     : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}, true, {}, {}, {}, {}, false, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}) {
   Data& d = *data_;
-  d.features_a = part_features(model, axes.first, &d.reflex_vertices_skipped);
-  d.features_b = part_features(model, axes.second, &d.reflex_vertices_skipped);
+  // labels only for the kept curves (feature_label): most feature pairs are never kept
+  d.features_a = part_features(model, axes.first, &d.reflex_vertices_skipped, false);
+  d.features_b = part_features(model, axes.second, &d.reflex_vertices_skipped, false);
   for (const auto* features : {&d.features_a, &d.features_b})
     for (const BodyFeature& f : *features)
       if (f.ref.kind != FeatureRef::Kind::vertex && f.ref.kind != FeatureRef::Kind::segment) d.polygons = false;
@@ -1520,8 +1521,8 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
   const bool translating = without_rotation(part_a) && without_rotation(part_b);
   // A curve that passed the constant and validity tests: labelled, counted and kept.
   auto keep = [&](std::vector<ContactCurve>& out, ContactCurve&& curve, const BodyFeature& fa, const BodyFeature& fb) {
-    curve.label = part_a.name + " " + fa.label + " / " + part_b.name + " " + fb.label + " (" +
-                  contact_word(curve.type) + ")";
+    curve.label = part_a.name + " " + feature_label(model, fa.ref) + " / " + part_b.name + " " +
+                  feature_label(model, fb.ref) + " (" + contact_word(curve.type) + ")";
     if (curve.polynomial.is_zero()) {
       ++stats.identically_zero;
     } else {
@@ -1665,8 +1666,8 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
         made->kept = (zero || curve.polynomial.degree_x() != 0 || curve.polynomial.degree_y() != 0) &&
                      convert_validity(kernel->validity, curve.validity);
         if (made->kept) {
-          curve.label = part_a.name + " " + fa.label + " / " + part_b.name + " " + fb.label + " (" +
-                        contact_word(curve.type) + ")";
+          curve.label = part_a.name + " " + feature_label(model, fa.ref) + " / " + part_b.name + " " +
+                        feature_label(model, fb.ref) + " (" + contact_word(curve.type) + ")";
         } else {
           made->curve = ContactCurve{};   // nothing kept but the answer
         }

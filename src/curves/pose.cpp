@@ -125,8 +125,18 @@ kernels::FeatureGeometry<Rational> feature_geometry(const BodyFeature& feature) 
   return feature_geometry<Rational>(*feature.edge, feature.ref.kind, [](const Rational& r) { return r; });
 }
 
-std::vector<BodyFeature> part_features(const Model& model, std::size_t part_index,
-                                       std::size_t* reflex_skipped) {
+std::string feature_label(const Model& model, const FeatureRef& ref) {
+  const Loop& loop = model.parts.at(ref.part).loops.at(ref.loop);
+  const std::size_t n = loop.edges.size();
+  std::string name = edge_name(loop.edges.at(ref.edge), ref.loop, ref.edge);
+  if (ref.kind != FeatureRef::Kind::vertex) return name;
+  const std::size_t p = (ref.edge + n - 1) % n;
+  std::string previous_name = edge_name(loop.edges[p], ref.loop, p);
+  return previous_name == name ? "corner of " + name : "corner of " + previous_name + " and " + name;
+}
+
+std::vector<BodyFeature> part_features(const Model& model, std::size_t part_index, std::size_t* reflex_skipped,
+                                       bool labels) {
   const Part& part = model.parts.at(part_index);
   std::vector<BodyFeature> features;
   for (std::size_t l = 0; l < part.loops.size(); ++l) {
@@ -134,7 +144,6 @@ std::vector<BodyFeature> part_features(const Model& model, std::size_t part_inde
     std::size_t n = loop.edges.size();
     for (std::size_t e = 0; e < n; ++e) {
       const Edge& edge = loop.edges[e];
-      std::string name = edge_name(edge, l, e);
       if (!edge.is_full_circle()) {
         const Edge& previous = loop.edges[(e + n - 1) % n];
         Point incoming = edge_tangent(previous, edge.source);
@@ -142,13 +151,11 @@ std::vector<BodyFeature> part_features(const Model& model, std::size_t part_inde
         if (kernels::strictly_reflex(to_kernel(incoming), to_kernel(outgoing), [](const Rational& r) { return sgn(r); })) {
           if (reflex_skipped) ++*reflex_skipped;
         } else {
-          std::string previous_name = edge_name(previous, l, (e + n - 1) % n);
           BodyFeature vertex;
           vertex.ref = FeatureRef{part_index, l, e, FeatureRef::Kind::vertex};
           vertex.edge = &edge;
           vertex.point = edge.source;
-          vertex.label = previous_name == name ? "corner of " + name
-                                               : "corner of " + previous_name + " and " + name;
+          if (labels) vertex.label = feature_label(model, vertex.ref);
           features.push_back(std::move(vertex));
         }
       }
@@ -157,7 +164,7 @@ std::vector<BodyFeature> part_features(const Model& model, std::size_t part_inde
                              edge.is_arc() ? FeatureRef::Kind::arc : FeatureRef::Kind::segment};
       curve.edge = &edge;
       curve.point = edge.source;
-      curve.label = name;
+      if (labels) curve.label = edge_name(edge, l, e);
       features.push_back(std::move(curve));
     }
   }

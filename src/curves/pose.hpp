@@ -98,8 +98,12 @@ struct BodyFeature {
 /// and every vertex except those of full circles and strictly reflex vertices (interior
 /// angle > pi: such a vertex can never be the only contact point of a non-overlapping
 /// configuration, see docs/contact-kernels.md). `reflex_skipped` counts the latter.
+/// `labels` false: every label is left empty (feature_label gives it when needed).
 std::vector<BodyFeature> part_features(const Model& model, std::size_t part_index,
-                                       std::size_t* reflex_skipped = nullptr);
+                                       std::size_t* reflex_skipped = nullptr, bool labels = true);
+
+/// The label part_features gives the feature `ref` of `model`.
+std::string feature_label(const Model& model, const FeatureRef& ref);
 
 /// The feature's exact body geometry for the kernels' contact table and contact frames
 /// (kernels/contact_table.hpp, kernels/contact_geometry.hpp).
