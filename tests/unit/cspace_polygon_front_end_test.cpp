@@ -679,5 +679,121 @@ TEST(CSpacePolygonFrontEnd, HomogeneousIntegerCurvesEqualTheGeneralPathOnGenerat
   EXPECT_GT(with_constant_atoms, 0);
 }
 
+// Session 20 (mink20): two cuts of the front end's fixed cost, each against an independent
+// reference on generated pairs. (1) The supports of chart-side pieces are written from the box
+// (no exact conversion of CGAL's lazy line): every arrangement edge on a chart side that carries
+// no input curve is compared with the primitive integer form, sign kept, of the exact rational
+// line (a, b, c) through the side's segment corner i -> corner i + 1 (the segment the builder
+// inserts), and the whole space with the general path's (circle–segment traits, supports from
+// CGAL's exact lines). (2) Feature labels are made only for kept curves (feature_label): every
+// feature pair's label is compared with the former part_features text, written out here
+// (edge labels or "loop l edge e"; a vertex is "corner of P and E", or "corner of E" when the
+// previous edge has the same name), on parts with labelled loops, labelled edges and unnamed
+// edges.
+TEST(CSpacePolygonFrontEnd, ChartSideSupportsAndLazyLabelsEqualTheirReferencesOnGeneratedPairs) {
+  std::mt19937_64 random(2020);
+  // a loop's JSON with, by `style`, no labels (0), a loop label (1) or labels on some edges (2)
+  auto labelled_loop = [&](const Points& points, int style, const std::string& prefix) {
+    auto value = [](const Rational& q) { return "\"" + q.get_str() + "\""; };
+    std::string text = "{ \"start\": [" + value(points[0].first) + ", " + value(points[0].second) + "], ";
+    if (style == 1) text += "\"label\": \"" + prefix + " rim\", ";
+    text += "\"edges\": [";
+    for (std::size_t i = 1; i <= points.size(); ++i) {
+      const auto& p = points[i % points.size()];
+      text += std::string(i > 1 ? ", " : "") + "{ \"line_to\": [" + value(p.first) + ", " + value(p.second) + "]";
+      if (style == 2 && i % 3 != 0) text += ", \"label\": \"" + prefix + " side " + std::to_string(i % 2) + "\"";
+      text += " }";
+    }
+    return text + "] }";
+  };
+  // the former part_features label of a feature
+  auto edge_name = [](const Edge& edge, std::size_t loop, std::size_t index) {
+    return edge.label.empty() ? "loop " + std::to_string(loop) + " edge " + std::to_string(index) : edge.label;
+  };
+  auto reference_label = [&](const Model& model, const FeatureIdentity& id) {
+    const Loop& loop = model.parts.at(id.part).loops.at(id.loop);
+    const std::size_t n = loop.edges.size();
+    std::string name = edge_name(loop.edges.at(id.edge), id.loop, id.edge);
+    if (id.kind != FeatureKind::vertex) return name;
+    std::string previous = edge_name(loop.edges[(id.edge + n - 1) % n], id.loop, (id.edge + n - 1) % n);
+    return previous == name ? "corner of " + name : "corner of " + previous + " and " + name;
+  };
+  int compared = 0, side_edges = 0, corners_of_two = 0, corners_of_one = 0;
+  for (int instance = 0; instance < 24; ++instance) {
+    SCOPED_TRACE("instance " + std::to_string(instance));
+    int ka = 3 + static_cast<int>(random() % 8), kb = 3 + static_cast<int>(random() % 8);
+    long q = instance % 2 == 0 ? 4 : 37;
+    Points a = random_star(random, ka, 0, 0, 2 + static_cast<double>(random() % 4), q, instance % 3 == 1);
+    Points b = random_star(random, kb, static_cast<double>(random() % 9) - 4, static_cast<double>(random() % 9) - 4,
+                           1 + static_cast<double>(random() % 4), q, instance % 3 == 2);
+    if (instance % 4 == 3) {
+      a = scaled(a, power_of_ten(-20));
+      b = scaled(b, power_of_ten(-20));
+    }
+    std::optional<Model> built_model;
+    try {
+      built_model = read_model(R"({ "hipair": 1, "name": "sliders", "parts": [
+        { "name": "a", "motion": { "translation": { "direction": [1, 0] } }, "loops": [ )" +
+                               labelled_loop(a, instance % 3, "a") + R"( ] },
+        { "name": "b", "motion": { "translation": { "direction": [0, 1] } }, "loops": [ )" +
+                               labelled_loop(b, (instance + 1) % 3, "b") + R"( ] } ] })");
+    } catch (const ModelError&) {
+      continue;   // rounding made a polygon degenerate: not a case
+    }
+    const Model& model = *built_model;
+    Built built = build_both(model);
+    expect_same_space(built.fast, built.general);
+    expect_minkowski(built.fast, a, b);
+    // (1) chart sides
+    for (const cspace::ChartData& chart : implementation(built.fast).charts) {
+      const cspace::raw::Box& box = chart.box;
+      const Point2 corners[4] = {Point2(gmpq(box.x_lo), gmpq(box.y_lo)), Point2(gmpq(box.x_hi), gmpq(box.y_lo)),
+                                 Point2(gmpq(box.x_hi), gmpq(box.y_hi)), Point2(gmpq(box.x_lo), gmpq(box.y_hi))};
+      for (const cspace::raw::Edge& edge : chart.arrangement.edges) {
+        if (edge.support_curve != cspace::raw::none) continue;   // an input line's piece
+        const cspace::raw::Vertex& u = chart.arrangement.vertices.at(edge.min_vertex);
+        const cspace::raw::Vertex& w = chart.arrangement.vertices.at(edge.max_vertex);
+        auto on = [](const cspace::raw::Vertex& v, bool x, const Rational& value) {
+          return (x ? v.x : v.y).compare(value) == 0;
+        };
+        int side = on(u, false, box.y_lo) && on(w, false, box.y_lo)   ? 0
+                   : on(u, true, box.x_hi) && on(w, true, box.x_hi)   ? 1
+                   : on(u, false, box.y_hi) && on(w, false, box.y_hi) ? 2
+                   : on(u, true, box.x_lo) && on(w, true, box.x_lo)   ? 3
+                                                                      : -1;
+        ASSERT_GE(side, 0) << "an edge without an input line off the chart's sides";
+        const Kernel::Line_2 line(corners[side], corners[(side + 1) % 4]);
+        // (c + b y + a x) times the lcm of the denominators, divided by the content (> 0)
+        std::vector<Rational> abc{Rational(line.c().mpq()), Rational(line.b().mpq()), Rational(line.a().mpq())};
+        mpz_class lcm = 1, content = 0;
+        for (const Rational& r : abc) mpz_lcm(lcm.get_mpz_t(), lcm.get_mpz_t(), r.get_den_mpz_t());
+        std::vector<mpz_class> z;
+        for (const Rational& r : abc) {
+          z.push_back(r.get_num() * (lcm / r.get_den()));
+          mpz_gcd(content.get_mpz_t(), content.get_mpz_t(), z.back().get_mpz_t());
+        }
+        for (auto& v : z) v /= content;
+        const std::vector<std::vector<mpz_class>> expected{{z[0], z[1]}, {z[2], mpz_class(0)}};
+        EXPECT_EQ(edge.support.coefficients, expected) << "chart side " << side;
+        EXPECT_EQ(edge.box_side, side);
+        ++side_edges;
+      }
+    }
+    // (2) labels
+    for (const FeaturePair& pair : built.fast.feature_pairs()) {
+      const std::string expected = "a " + reference_label(model, pair.first) + " / b " + reference_label(model, pair.second) + " (";
+      EXPECT_EQ(pair.label.substr(0, expected.size()), expected);
+      for (const FeatureIdentity* id : {&pair.first, &pair.second})
+        if (id->kind == FeatureKind::vertex)
+          ++(reference_label(model, *id).find(" and ") != std::string::npos ? corners_of_two : corners_of_one);
+    }
+    ++compared;
+  }
+  EXPECT_GE(compared, 18);
+  EXPECT_GE(side_edges, 4 * compared);
+  EXPECT_GT(corners_of_two, 0);
+  EXPECT_GT(corners_of_one, 0);
+}
+
 }  // namespace
 }  // namespace hipair
