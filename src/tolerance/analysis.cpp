@@ -692,6 +692,9 @@ class Analysis {
         }
         const VariationSample& sample = result_.samples[k];
         Interval c = state.certified_chart;
+        // Not sampled where the band is unbounded (not certified): every value lies in it, and
+        // there is no band to bracket the root with (as for assembly chains).
+        if (!std::isfinite(c.lo) || !std::isfinite(c.hi)) continue;
         double w = c.width() + 1e-12 * (1 + std::fabs(state.v));
         Interval root;
         ++outcome.evaluations;
