@@ -252,6 +252,7 @@ class Analysis {
   // built here.
   tolerance_detail::StageAnalysis stage(const std::vector<tolerance_detail::StagePosition>& path,
                                         const CSpace* space = nullptr) {
+    solver_->set_second_order(false);   // as the kernel path's stages (chain.cpp)
     start(space);
     for (const tolerance_detail::StagePosition& position : path)
       add_sample(position.driver, position.follower, position.contact);

@@ -137,7 +137,7 @@ std::vector<bool> CurveSolver::dependencies(const CurveSlice& curve) const {
 }
 
 bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free_value,
-                            const std::vector<double>& sensitivity, Interval& result,
+                            const std::vector<double>& sensitivity, double target, Interval& result,
                             std::vector<double>& split_score) const {
   std::vector<double> center(n_);
   double spread = 0, shift = 0;
@@ -254,11 +254,12 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
       y = narrower;
       result = next;
     }
-    // Second order (once the first-order contraction has settled): the partial derivatives over
+    // Second order (once the first-order contraction has settled, and only when its enclosure is
+    // wider than `target`, the accuracy certified_range asks for): the partial derivatives over
     // the box from their values at the centre and the second derivatives over the box, which
     // the box's width multiplies; each of a dozen wide parameters widens every first-order
     // partial (the dependency problem), far less so their second-order forms.
-    if (memo->second_order) {
+    if (memo->second_order && result.width() > target) {
       use_second = true;
       for (int contraction = 0; contraction < 2; ++contraction) {
         Interval next;
@@ -405,11 +406,12 @@ Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, d
     ++used;
     Interval range;
     std::vector<double> score;
-    bool ok = box_range(curve, b, free_value, sensitivity, range, score);
     double linear = 0;
     for (std::size_t i = 0; i < n_; ++i) linear += std::fabs(sensitivity[i]) * (b.hi[i] - b.lo[i]);
     linear += curve.fixed_spread;
-    bool accurate = ok && range.width() <= linear * (1 + relative_accuracy) + absolute_accuracy;
+    double target = linear * (1 + relative_accuracy) + absolute_accuracy;
+    bool ok = box_range(curve, b, free_value, sensitivity, target, range, score);
+    bool accurate = ok && range.width() <= target;
     if (!accurate && used + pending.size() + 2 <= max_boxes) {
       std::size_t split = 0;
       double best = -1;
