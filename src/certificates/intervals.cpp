@@ -343,21 +343,7 @@ std::optional<JamQuery> find_jam(const Model& model, const std::string& first, c
   if (overlapping_at(r, x, f)) throw GeometryError("the parts overlap at the start");
   const auto& limits = o.motion.kind == Motion::Kind::rotation ? o.motion.angle_limits : o.motion.translation_limits;
   Rational follower_step = step / 4, follower_span = o.motion.kind == Motion::Kind::rotation ? Rational(1) : Rational(10);
-  // The free run of follower positions around y at driver x, on the grid of follower_step.
-  auto channel = [&](const Rational& at, const Rational& y) {
-    RationalInterval run{y, y};
-    for (int side = -1; side <= 1; side += 2) {
-      Rational& end = side < 0 ? run.lo : run.hi;
-      while (true) {
-        Rational next = end + side * follower_step;
-        if (limits && (next < limits->lo || next > limits->hi)) { end = side < 0 ? limits->lo : limits->hi; break; }
-        if (abs(next - y) > follower_span) break;
-        end = next;
-        if (overlapping_at(r, at, next)) break;
-      }
-    }
-    return run;   // its ends are blocked (or at a limit, or follower_span away)
-  };
+  int last_side = 1;   // the follower's last move: 0 down, 1 up
   for (Rational moved = 0; moved < travel; moved += step) {
     Rational next = x + direction * step;
     if (!r.has_follower) {
@@ -366,16 +352,56 @@ std::optional<JamQuery> find_jam(const Model& model, const std::string& first, c
         return query;
       }
     } else if (overlapping_at(r, next, f)) {
-      RationalInterval band = channel(x, f);
-      bool moved_on = false;
-      for (Rational y = band.lo; y <= band.hi && !moved_on; y += follower_step / 2)
-        if (!overlapping_at(r, next, y)) {
-          f = y;
-          moved_on = true;
+      // The follower's position nearest f, on the half-step grid about f within the free run
+      // around f at x (channel's run, extended only as far as the search needs it), that is free
+      // at the next driver position. A cam pushing its follower moves it a few steps each time:
+      // extending the whole run first (up to follower_span on either side, an exact test per
+      // step) made every driver step cost tens of thousands of tests.
+      Rational half = follower_step / 2;
+      Rational end[2] = {f, f};          // the run's ends so far (lower, upper)
+      bool stopped[2] = {false, false};  // ... reached: blocked, at a limit, or follower_span away
+      bool end_tested[2] = {false, false};
+      auto extend = [&](int side) {      // channel's step, one at a time
+        int sign = side == 0 ? -1 : 1;
+        Rational step_to = end[side] + sign * follower_step;
+        if (limits && (step_to < limits->lo || step_to > limits->hi)) {
+          end[side] = side == 0 ? limits->lo : limits->hi;
+          stopped[side] = true;
+          return;
         }
+        if (abs(step_to - f) > follower_span) {
+          stopped[side] = true;
+          return;
+        }
+        end[side] = step_to;
+        if (overlapping_at(r, x, step_to)) stopped[side] = true;
+      };
+      bool moved_on = false;
+      for (long k = 1; !moved_on && !(stopped[0] && stopped[1] && end_tested[0] && end_tested[1]); ++k) {
+        for (int turn = 0; turn < 2 && !moved_on; ++turn) {
+          int side = turn == 0 ? last_side : 1 - last_side;   // the way it moved last, first
+          int sign = side == 0 ? -1 : 1;
+          Rational y = f + sign * k * half;
+          while (!stopped[side] && (side == 0 ? y < end[side] : y > end[side])) extend(side);
+          bool inside = side == 0 ? y >= end[side] : y <= end[side];
+          if (!inside) {
+            // beyond the run: its end (a limit off the grid, say) is the last candidate this side
+            if (end_tested[side]) continue;
+            y = end[side];
+            end_tested[side] = true;
+          } else if (y == end[side] && stopped[side]) {
+            end_tested[side] = true;
+          }
+          if (!overlapping_at(r, next, y)) {
+            last_side = y < f ? 0 : 1;
+            f = y;
+            moved_on = true;
+          }
+        }
+      }
       if (!moved_on) {
         query.trap.driver = direction > 0 ? RationalInterval{x, next} : RationalInterval{next, x};
-        query.trap.follower = band;
+        query.trap.follower = RationalInterval{end[0], end[1]};
         return query;
       }
     }

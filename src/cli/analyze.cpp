@@ -75,7 +75,7 @@ Rational coordinate_value(const std::string& text, bool angle, const std::string
   } catch (const Error&) {
     throw ModelError("", what + ": '" + text + "' is not a number");
   }
-  if (angle && suffix == "deg") return Rational(value.get_d() * std::numbers::pi / 180);
+  if (angle && suffix == "deg") return degrees_to_radians(value);
   if (!angle && suffix != "mm") throw ModelError("", what + ": a translating driver takes mm");
   return value;
 }

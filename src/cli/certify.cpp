@@ -33,14 +33,8 @@ int direction_of(const std::string& text) {
 // An exact literal; angles may end in "deg" (then converted to rad, rounded to 1e-18).
 Rational value_of(const std::string& text, bool angle, const std::string& option) {
   try {
-    if (angle && text.size() > 3 && text.compare(text.size() - 3, 3, "deg") == 0) {
-      using model_detail::Interval;
-      Interval radians = Interval(parse_rational(text.substr(0, text.size() - 3))) * Interval::pi() / Interval(Rational(180));
-      Rational grid(1, 1000000000000000000ul), steps = radians.middle() / grid;
-      mpz_class whole;
-      mpz_fdiv_q(whole.get_mpz_t(), steps.get_num_mpz_t(), steps.get_den_mpz_t());
-      return Rational(whole) * grid;
-    }
+    if (angle && text.size() > 3 && text.compare(text.size() - 3, 3, "deg") == 0)
+      return degrees_to_radians(parse_rational(text.substr(0, text.size() - 3)));
     return parse_rational(text);
   } catch (const NumericError& error) {
     throw ModelError("", option + " " + text + ": " + error.what() + " (exact literal; angles in rad or with 'deg')");
@@ -69,7 +63,9 @@ const Part& part_named(const Model& model, const std::string& name) {
 RationalInterval range_of(const std::string& text, bool angle, const std::string& option) {
   auto colon = text.find(':');
   if (colon == std::string::npos) throw ModelError("", option + " expects LO:HI, got '" + text + "'");
-  return {value_of(text.substr(0, colon), angle, option), value_of(text.substr(colon + 1), angle, option)};
+  RationalInterval range{value_of(text.substr(0, colon), angle, option), value_of(text.substr(colon + 1), angle, option)};
+  if (!(range.lo < range.hi)) throw ModelError("", option + " " + text + ": LO must be below HI");
+  return range;
 }
 
 int run(const CertifyArguments& arguments) {
@@ -85,7 +81,10 @@ int run(const CertifyArguments& arguments) {
   auto [first, second] = pair_of(model, arguments.pair);
   const Part &a = part_named(model, first), &b = part_named(model, second);
   std::optional<Rational> distance;
-  if (!arguments.distance.empty()) distance = value_of(arguments.distance, false, "--distance");
+  if (!arguments.distance.empty()) {
+    distance = value_of(arguments.distance, false, "--distance");
+    if (sgn(*distance) <= 0) throw ModelError("", "--distance " + arguments.distance + ": the clearance must be positive (mm)");
+  }
   std::optional<Certificate> certificate;
   std::string failure;
   const Part* planar = a.motion.kind == Motion::Kind::planar ? &a : b.motion.kind == Motion::Kind::planar ? &b : nullptr;

@@ -53,8 +53,7 @@ Rational angle_value(const std::string& text, const std::string& unit, const std
     throw ModelError("", "--config " + item + ": '" + text + "' is not a number");
   }
   if (suffix != "deg") return value;
-  // Degrees to radians: a picture, so a double conversion is enough.
-  return Rational(value.get_d() * M_PI / 180);
+  return degrees_to_radians(value);
 }
 
 Rational length_value(const std::string& text, const std::string& item) {

@@ -90,7 +90,7 @@ Rational coordinate(const std::string& text, const std::string& option) {
   } catch (const Error&) {
     throw ModelError("", option + ": '" + text + "' is not a number");
   }
-  if (degrees) return Rational(value.get_d() * std::numbers::pi / 180);
+  if (degrees) return degrees_to_radians(value);
   return value;
 }
 

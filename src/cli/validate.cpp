@@ -2,6 +2,7 @@
 // and, when valid, prints a summary including every value that had to be rounded.
 #include "cli/commands.hpp"
 #include "core/decimal_text.hpp"
+#include "model/interval.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
@@ -144,6 +145,15 @@ void add_parameter_options(CLI::App* command, std::vector<std::string>& assignme
   command->add_option("--set", assignments, "override a parameter: NAME=VALUE (exact literal in mm or rad; repeatable)");
   command->add_flag("--allow-out-of-tolerance", allow_out_of_tolerance,
                     "accept --set values outside the parameter's tolerance range");
+}
+
+Rational degrees_to_radians(const Rational& degrees) {
+  using model_detail::Interval;
+  Interval radians = Interval(degrees) * Interval::pi() / Interval(Rational(180));
+  Rational grid(1, 1000000000000000000ul), steps = radians.middle() / grid;
+  mpz_class whole;
+  mpz_fdiv_q(whole.get_mpz_t(), steps.get_num_mpz_t(), steps.get_den_mpz_t());
+  return Rational(whole) * grid;
 }
 
 ReadOptions parameter_overrides(const std::vector<std::string>& assignments, bool allow_out_of_tolerance) {

@@ -252,6 +252,7 @@ class Analysis {
   // built here.
   tolerance_detail::StageAnalysis stage(const std::vector<tolerance_detail::StagePosition>& path,
                                         const CSpace* space = nullptr) {
+    solver_->set_second_order(false);   // as the kernel path's stages (chain.cpp)
     start(space);
     for (const tolerance_detail::StagePosition& position : path)
       add_sample(position.driver, position.follower, position.contact);
@@ -692,6 +693,9 @@ class Analysis {
         }
         const VariationSample& sample = result_.samples[k];
         Interval c = state.certified_chart;
+        // Not sampled where the band is unbounded (not certified): every value lies in it, and
+        // there is no band to bracket the root with (as for assembly chains).
+        if (!std::isfinite(c.lo) || !std::isfinite(c.hi)) continue;
         double w = c.width() + 1e-12 * (1 + std::fabs(state.v));
         Interval root;
         ++outcome.evaluations;

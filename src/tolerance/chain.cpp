@@ -326,6 +326,7 @@ class ChainAnalysis {
     }
     auto solver = std::make_shared<CurveSolver>(parametric);
     solver->set_compact_jets(options_.fast_paths);
+    solver->set_second_order(false);
     for (std::size_t i = 0; i < path.size(); ++i) {
       VariationSample sample;
       sample.driver = path[i].driver;

@@ -6,6 +6,8 @@
 
 #include "model/parametric/number_traits.hpp"
 
+#include <hipair/error.hpp>
+
 #include <cmath>
 #include <type_traits>
 #include <vector>
@@ -31,6 +33,12 @@ struct Jet {
 };
 
 namespace jet_detail {
+// The enclosure of a (possibly nested) jet's value.
+inline kernels::Interval enclosure(const kernels::Interval& x) { return x; }
+template <class S>
+kernels::Interval enclosure(const Jet<S>& x) {
+  return enclosure(x.value);
+}
 // Exact zeros of interval gradients (a partial derivative that is exactly 0: a variable the
 // quantity does not depend on) stay exact: 0 x f is exactly 0 for a finite f, and 0 + x is
 // exactly x, so neither needs the one-ulp outward widening, and the enclosures are the same
@@ -130,6 +138,12 @@ struct Arithmetic<tolerance_detail::Jet<S>> {
   static J abs(const J& x) {
     if constexpr (std::is_same_v<S, double>) {
       return x.value < 0 ? J(-x) : x;
+    } else if constexpr (!std::is_same_v<S, kernels::Interval>) {
+      // second-order jets: |x| has no second derivative where x may vanish
+      kernels::Interval e = tolerance_detail::jet_detail::enclosure(x.value);
+      if (e.lo >= 0) return x;
+      if (e.hi <= 0) return -x;
+      throw NumericError("|x| is not twice differentiable over the box");
     } else {
       if (x.value.lo >= 0) return x;
       if (x.value.hi <= 0) return -x;
@@ -139,6 +153,13 @@ struct Arithmetic<tolerance_detail::Jet<S>> {
   static J extremum(const J& a, const J& b, bool minimum) {
     if constexpr (std::is_same_v<S, double>) {
       return (a.value <= b.value) == minimum ? a : b;
+    } else if constexpr (!std::is_same_v<S, kernels::Interval>) {
+      // second-order jets: min/max has no second derivative where the two may cross
+      kernels::Interval ea = tolerance_detail::jet_detail::enclosure(a.value);
+      kernels::Interval eb = tolerance_detail::jet_detail::enclosure(b.value);
+      if (ea.hi <= eb.lo) return minimum ? a : b;
+      if (eb.hi <= ea.lo) return minimum ? b : a;
+      throw NumericError("min/max is not twice differentiable over the box");
     } else {
       if (a.value.hi <= b.value.lo) return minimum ? a : b;
       if (b.value.hi <= a.value.lo) return minimum ? b : a;

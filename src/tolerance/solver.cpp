@@ -137,7 +137,7 @@ std::vector<bool> CurveSolver::dependencies(const CurveSlice& curve) const {
 }
 
 bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free_value,
-                            const std::vector<double>& sensitivity, Interval& result,
+                            const std::vector<double>& sensitivity, double target, Interval& result,
                             std::vector<double>& split_score) const {
   std::vector<double> center(n_);
   double spread = 0, shift = 0;
@@ -166,7 +166,11 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   Interval root;
   double w0 = spread + slack;
   bool found = false;
-  for (int attempt = 0; attempt < 4 && !found; ++attempt, w0 *= 4)
+  // Where the linearised spread vanishes (a position where no parameter moves the follower to
+  // first order: an eccentric cam at its dead centre) the root still moves to second order,
+  // so the brackets keep growing up to `cap` rather than four or six times from the slack.
+  const double cap = 1e-3 * (1 + std::fabs(free_value));
+  for (int attempt = 0; (attempt < 4 || w0 <= cap) && !found; ++attempt, w0 *= 4)
     found = certified_point_root(at_mid, memo->at_center, Interval(free_value + shift - w0, free_value + shift + w0), root);
   if (!found) return false;
   // Geometry over the box as interval jets (values and partial derivatives over the box), and
@@ -206,6 +210,7 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   auto upper_offset = [&](std::size_t i) { return Interval::point(box.hi[i]) - Interval::point(center[i]); };
   // The mean-value enclosure over B x Y when Y is certified to hold exactly one root for every
   // p in B (end signs opposite, F_v of one sign); false otherwise.
+  bool use_second = false;
   auto enclose = [&](const Interval& y, Interval& out) {
     std::optional<IntervalJet> first;
     if (reuse_y_jets_) {
@@ -218,6 +223,7 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     if (s_lo == 2 || s_hi == 2 || s_lo == 0 || s_hi == 0 || s_lo == s_hi) return false;
     IntervalJet f = first ? *first
                           : evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
+    if (use_second) tighten_partials(curve, *memo, box, center, fixed, held_offset, y, f);
     Interval fv = f.partial(k);
     int s = fv.sign();
     if (s != 1 && s != -1) return false;
@@ -234,7 +240,7 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     return true;
   };
   double r = 0.75 * spread + slack;
-  for (int attempt = 0; attempt < 6; ++attempt, r *= 3) {
+  for (int attempt = 0; attempt < 6 || r <= cap; ++attempt, r *= 3) {
     Interval y(root.lo - r, root.hi + r);
     if (!enclose(y, result)) continue;
     // Contract: the enclosure itself (slightly widened) as the next Y gives tighter derivative
@@ -247,6 +253,29 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
       if (!enclose(narrower, next)) break;
       y = narrower;
       result = next;
+    }
+    // Second order (once the first-order contraction has settled, and only when its enclosure is
+    // wider than `target`, the accuracy certified_range asks for): the partial derivatives over
+    // the box from their values at the centre and the second derivatives over the box, which
+    // the box's width multiplies; each of a dozen wide parameters widens every first-order
+    // partial (the dependency problem), far less so their second-order forms.
+    if (memo->second_order && result.width() > target) {
+      use_second = true;
+      for (int contraction = 0; contraction < 2; ++contraction) {
+        Interval next;
+        if (!enclose(y, next)) break;
+        Interval narrower_result(std::max(result.lo, next.lo), std::min(result.hi, next.hi));
+        if (!(narrower_result.lo <= narrower_result.hi)) break;
+        bool progress = narrower_result.width() < 0.9 * result.width();
+        result = narrower_result;
+        double pad = 1e-3 * result.width() + slack;
+        Interval narrower(result.lo - pad, result.hi + pad);
+        if (!progress || !(narrower.width() < 0.9 * y.width())) break;
+        Interval check;
+        if (!enclose(narrower, check)) break;   // the narrower Y must hold the root for the box too
+        y = narrower;
+        result = Interval(std::max(result.lo, check.lo), std::min(result.hi, check.hi));
+      }
     }
     return true;
   }
@@ -289,12 +318,78 @@ std::shared_ptr<const CurveSolver::BoxGeometry> CurveSolver::box_geometry(const 
   }
   for (std::size_t a = 0; a < k; ++a)
     jets[active[a]] = IntervalJet::variable(Interval(box.lo[active[a]], box.hi[active[a]]), a, k + 1);
+  if (second_order_) {
+    std::vector<IntervalJet> at_center(n_);
+    std::vector<IntervalJet2> jets2(n_);
+    for (std::size_t i = 0; i < n_; ++i) {
+      at_center[i] = IntervalJet(center_deviations[i]);
+      jets2[i] = IntervalJet2(jets[i]);
+    }
+    for (std::size_t a = 0; a < k; ++a) {
+      std::size_t i = active[a];
+      at_center[i] = IntervalJet::variable(Interval::point(center[i]), a, k + 1);
+      jets2[i] = IntervalJet2::variable(IntervalJet::variable(Interval(box.lo[i], box.hi[i]), a, k + 1), a, k + 1);
+    }
+    try {
+      g->jet_at_center = geometry(curve, model_->parameter_values(at_center));
+      g->jet2 = geometry(curve, model_->parameter_values(jets2));
+      g->second_order = true;
+    } catch (const NumericError&) {
+      // a construction that is not twice differentiable over the box: first order only
+    }
+  }
   g->center_parameters = model_->parameter_values(center_deviations);
   g->jet = geometry(curve, model_->parameter_values(jets));
   g->at_center = geometry(curve, g->center_parameters);
   std::lock_guard<std::mutex> lock(memo_->mutex);
   if (memo_->entries.size() >= BoxGeometryMemo::max_entries) memo_->entries.clear();
   return memo_->entries.emplace(std::move(key), std::move(g)).first->second;
+}
+
+void CurveSolver::tighten_partials(const CurveSlice& curve, const BoxGeometry& memo, const Box& box,
+                                   const std::vector<double>& center, const Interval& fixed,
+                                   const std::optional<Interval>& held_offset, const Interval& y, IntervalJet& f) const {
+  try {
+    tighten_partials_or_throw(curve, memo, box, center, fixed, held_offset, y, f);
+  } catch (const NumericError&) {
+    // not twice differentiable over this region: the first-order partials stand
+  }
+}
+
+void CurveSolver::tighten_partials_or_throw(const CurveSlice& curve, const BoxGeometry& memo, const Box& box,
+                                            const std::vector<double>& center, const Interval& fixed,
+                                            const std::optional<Interval>& held_offset, const Interval& y,
+                                            IntervalJet& f) const {
+  const std::vector<std::size_t>& active = memo.active;
+  std::size_t k = active.size();
+  std::size_t size = held_offset ? k + 2 : k + 1;
+  double yc = y.middle();
+  double tc = held_offset ? fixed.middle() : 0.0;
+  // first order at the centre (c, y_c, t_c)
+  IntervalJet fixed_c = held_offset ? IntervalJet::variable(Interval::point(tc), k + 1, size) : IntervalJet(fixed);
+  IntervalJet fc = evaluate<IntervalJet>(curve, memo.jet_at_center, fixed_c, IntervalJet::variable(Interval::point(yc), k, size));
+  // second order over the box
+  IntervalJet2 fixed2 = held_offset ? IntervalJet2::variable(IntervalJet::variable(fixed, k + 1, size), k + 1, size)
+                                    : IntervalJet2(IntervalJet(fixed));
+  IntervalJet2 f2 = evaluate<IntervalJet2>(curve, memo.jet2, fixed2,
+                                           IntervalJet2::variable(IntervalJet::variable(y, k, size), k, size));
+  std::vector<Interval> offsets(size);
+  for (std::size_t a = 0; a < k; ++a) {
+    std::size_t i = active[a];
+    offsets[a] = kernels::hull(Interval::point(box.lo[i]) - Interval::point(center[i]),
+                               Interval::point(box.hi[i]) - Interval::point(center[i]));
+  }
+  offsets[k] = kernels::hull(Interval::point(y.lo) - Interval::point(yc), Interval::point(y.hi) - Interval::point(yc));
+  if (held_offset) offsets[k + 1] = kernels::hull(Interval::point(fixed.lo) - Interval::point(tc), Interval::point(fixed.hi) - Interval::point(tc));
+  if (f.gradient.size() < size) f.gradient.resize(size, Interval(0));
+  for (std::size_t a = 0; a < size; ++a) {
+    Interval t = fc.partial(a);
+    IntervalJet second = f2.partial(a);
+    for (std::size_t b = 0; b < size; ++b) t = t + second.partial(b) * offsets[b];
+    Interval& current = f.gradient[a];
+    Interval narrower(std::max(current.lo, t.lo), std::min(current.hi, t.hi));
+    if (narrower.lo <= narrower.hi) current = narrower;
+  }
 }
 
 Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, double free_value,
@@ -311,11 +406,12 @@ Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, d
     ++used;
     Interval range;
     std::vector<double> score;
-    bool ok = box_range(curve, b, free_value, sensitivity, range, score);
     double linear = 0;
     for (std::size_t i = 0; i < n_; ++i) linear += std::fabs(sensitivity[i]) * (b.hi[i] - b.lo[i]);
     linear += curve.fixed_spread;
-    bool accurate = ok && range.width() <= linear * (1 + relative_accuracy) + absolute_accuracy;
+    double target = linear * (1 + relative_accuracy) + absolute_accuracy;
+    bool ok = box_range(curve, b, free_value, sensitivity, target, range, score);
+    bool accurate = ok && range.width() <= target;
     if (!accurate && used + pending.size() + 2 <= max_boxes) {
       std::size_t split = 0;
       double best = -1;

@@ -20,6 +20,9 @@ namespace hipair::tolerance_detail {
 
 using Interval = kernels::Interval;
 using IntervalJet = Jet<Interval>;
+/// Second-order jets: a jet whose value and partial derivatives are interval jets (their
+/// gradients: the second partial derivatives).
+using IntervalJet2 = Jet<IntervalJet>;
 
 /// A contact curve with one coordinate held: F(fixed, free; p) = 0 solved for `free`.
 struct CurveSlice {
@@ -94,6 +97,11 @@ class CurveSolver {
   /// For tests only: false tests every end sign of box_range with its own jet at the point,
   /// as before session 13, instead of the jet over the last bracket first.
   void set_reuse_y_jets(bool reuse) { reuse_y_jets_ = reuse; }
+  /// Whether certified_range narrows its partial derivatives by their second-order form
+  /// (default: yes). Assembly chains turn it off: their gear meshes exhaust the subdivision
+  /// budget either way, and each second-order sub-box costs ~15 x a first-order one
+  /// (docs/performance.md, session 20).
+  void set_second_order(bool second_order) { second_order_ = second_order; }
 
   /// Certified enclosure of {v(p) : p in box} (the root near the nominal `free_value`, unique
   /// in a neighbourhood certified along the way), subdividing the box until the enclosure is
@@ -112,7 +120,7 @@ class CurveSolver {
   /// partial derivative with respect to it at the nominal vector.
   std::vector<bool> dependencies(const CurveSlice& curve) const;
   bool box_range(const CurveSlice& curve, const Box& box, double free_value, const std::vector<double>& sensitivity,
-                 Interval& result, std::vector<double>& split_score) const;
+                 double target, Interval& result, std::vector<double>& split_score) const;
 
   /// What box_range needs of the geometry over one box: it depends on the two features, the
   /// two parts and the box only, not on the held coordinate, so the positions of a zone or of
@@ -123,6 +131,11 @@ class CurveSolver {
     std::vector<Interval> center_parameters;
     PairGeometry<IntervalJet> jet;     ///< over the box, gradients over `active`
     PairGeometry<Interval> at_center;
+    /// For the second-order partials (second_order_): the geometry at the centre with its
+    /// gradient over `active`, and over the box with gradients and second derivatives.
+    PairGeometry<IntervalJet> jet_at_center;
+    PairGeometry<IntervalJet2> jet2;
+    bool second_order = false;   ///< jet_at_center and jet2 hold
   };
   std::shared_ptr<const BoxGeometry> box_geometry(const CurveSlice& curve, const Box& box,
                                                   const std::vector<double>& center) const;
@@ -134,6 +147,14 @@ class CurveSolver {
     std::mutex mutex;
     std::map<std::vector<double>, std::shared_ptr<const BoxGeometry>> entries;
   };
+  /// Narrows the partial derivatives in `f` (a jet over the box x y x the held range) by their
+  /// second-order form: F_a(c, y_c, t_c) + sum_b F_ab(box, y, range) (x_b - c_b).
+  void tighten_partials(const CurveSlice& curve, const BoxGeometry& memo, const Box& box,
+                        const std::vector<double>& center, const Interval& fixed,
+                        const std::optional<Interval>& held_offset, const Interval& y, IntervalJet& f) const;
+  void tighten_partials_or_throw(const CurveSlice& curve, const BoxGeometry& memo, const Box& box,
+                                 const std::vector<double>& center, const Interval& fixed,
+                                 const std::optional<Interval>& held_offset, const Interval& y, IntervalJet& f) const;
   std::shared_ptr<BoxGeometryMemo> memo_ = std::make_shared<BoxGeometryMemo>();
 
   std::shared_ptr<const model_detail::ParametricModel> model_;
@@ -144,6 +165,7 @@ class CurveSolver {
   std::vector<Jet<double>> autodiff_;
   bool compact_jets_ = true;
   bool reuse_y_jets_ = true;
+  bool second_order_ = true;
 };
 
 /// Half-angle tangent chart value -> part coordinate (rad), certified: c + 2 atan(t).

@@ -217,6 +217,14 @@ certify_refused film-beyond-angle 3 "is not certainly within its limits" "$film"
 certify_refused film-beyond-slide 3 "is outside its limits" "$film" --claim clearance --pair pin:follower --at follower=7,0
 certify_refused film-at-fixed 2 "--at expects follower=SLIDE,ANGLE, got 'pin=3'" "$film" --claim clearance --pair pin:follower --at pin=3
 certify_refused film-at-incomplete 2 "--at expects follower=SLIDE,ANGLE for the pin-slot part" "$film" --claim clearance --pair pin:follower --at follower=3
+# a reversed trap and a clearance that is not positive: input errors naming the option (they
+# reached the certificate's self-check or a failed search before session 20)
+lever=$source/examples/models/lever-stop.json
+certify_refused lever-trap-reversed 2 "--trap 1:0: LO must be below HI" "$lever" --claim jam --trap 1:0
+certify_refused lever-distance-negative 2 "--distance -1: the clearance must be positive" "$lever" --claim clearance --distance -1
+certify_refused lever-distance-zero 2 "--distance 0: the clearance must be positive" "$lever" --claim free --to 0.04 --distance 0
+# an angle in degrees beyond the double range: one message, not a floating-point exception
+certify_refused lever-huge-degrees 3 "is too large to reduce to a turn" "$lever" --claim interference --at lever=1e400deg
 # hipair-verify: the follower's tangent edited beyond its 8 deg limit (2 atan(0.0701) = 8.02 deg)
 sed 's|"tangent": "0"|"tangent": "701/10000"|' "$work/film-pin-clear.json" >"$work/film-pin-turned.json"
 cmp -s "$work/film-pin-clear.json" "$work/film-pin-turned.json" && fail "the tangent edit changed nothing"

@@ -282,6 +282,16 @@ grep -q "</svg>" "$work/geneva-closed/cspace-driver-wheel.svg" 2>/dev/null || fa
 # --- hipair tolerance (docs/tolerance.md): bad options are one clear error line, no output;
 # a run writes its whole directory; an output that is the model is refused.
 geneva="$source/examples/models/geneva.json"
+# A driver range in degrees beyond the double range (1e400 deg): one error line, an ordinary exit
+# (the degree conversion went through a double: an infinite value, then SIGFPE in GMP).
+for range in "1e400:1e401" "0:1e400deg"; do
+  "$hipair" analyze "$source/examples/models/cam-follower.json" --range "$range" --quiet --no-pictures \
+    --out "$work/analyze-huge" >/dev/null 2>"$work/analyze-huge.err"
+  code=$?
+  { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "analyze --range $range: exit $code"
+  [ "$(wc -l <"$work/analyze-huge.err")" -eq 1 ] || fail "analyze --range $range: not one error line: $(cat "$work/analyze-huge.err")"
+  [ -e "$work/analyze-huge" ] && fail "analyze --range $range wrote output"
+done
 # tolerance_refused MODEL ARGS: one error line, an ordinary non-zero exit, nothing written.
 tolerance_refused() {
   # shellcheck disable=SC2086
@@ -291,7 +301,7 @@ tolerance_refused() {
   [ "$(wc -l <"$work/tol-bad.err")" -eq 1 ] || fail "tolerance $2: not one error line: $(cat "$work/tol-bad.err")"
   [ -e "$work/tol-bad" ] && fail "tolerance $2 wrote output"
 }
-for args in "--pair driver" "--pair driver:nosuch" "--driver nosuch" "--range 1:x" "--range 2:2" \
+for args in "--pair driver" "--pair driver:nosuch" "--driver nosuch" "--range 1:x" "--range 2:2" "--range 1e400deg:1e401deg" \
             "--pair driver:wheel --driver driver" "--certify --certify-scale -1" "--certify --certify-scale x" \
             "--certify --certify-scale 0.9T" "--threshold-bracket 1e-6"; do
   tolerance_refused "$geneva" "$args"

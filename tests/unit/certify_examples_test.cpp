@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 #include <filesystem>
 #include <random>
 #include <string>
@@ -227,6 +229,43 @@ TEST(CertifyExamples, JamsOfTheLeverAndTheRatchetVerify) {
   expect_verifies(*jam, ratchet_path, "ratchet jam");
   // Forward, the pawl rides up the tooth backs: no jam over a tooth pitch (30 deg).
   EXPECT_FALSE(find_jam(ratchet, "wheel", "pawl", "wheel", 0, 0, +1, Rational(1, 500), Rational(1, 2)));
+}
+
+// A cam pushes its follower at every step of the search: the follower's new position is sought
+// nearest its last one (session 20: the search extended the whole free run of the follower first,
+// some 40 000 exact tests per driver step, so `hipair certify --claim jam` on the cam-follower ran
+// for minutes without an answer). Over a turn it is not trapped; with the follower's travel
+// limited to 4 mm the cam drives it onto the limit, and that jam is certified and verifies.
+TEST(CertifyExamples, CamPushingItsFollowerIsTrackedAndItsLimitJamVerifies) {
+  fs::path path = fs::path(HIPAIR_EXAMPLES) / "cam-follower.json";
+  Model model = read_model_file(path);
+  EXPECT_FALSE(find_jam(model, "cam", "follower", "cam", 0, Rational(1, 2), +1, Rational(1, 500), Rational(6283, 1000)));
+  std::string text = io::read_file(path);
+  auto at = text.find("\"limits\": [-12, 12]");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 20, "\"limits\": [-12, 4]");
+  fs::path limited = fs::path(testing::TempDir()) / ("hipair_cam_limited_" + std::to_string(::getpid()) + ".json");
+  io::write_file_atomically(limited, text);
+  Model stopped = read_model_file(limited);
+  auto query = find_jam(stopped, "cam", "follower", "cam", 0, Rational(1, 2), +1, Rational(1, 500), Rational(6283, 1000));
+  ASSERT_TRUE(query);
+  ASSERT_TRUE(query->trap.follower);
+  // The face sits at the cam's radius, so the cam holds the follower at s = 8 sin(theta): it
+  // reaches the 4 mm limit at theta = pi/6, within one search step of the trap.
+  double pi_6 = std::numbers::pi / 6;
+  EXPECT_LE(query->trap.driver.lo.get_d(), pi_6);
+  EXPECT_GE(query->trap.driver.hi.get_d(), pi_6);
+  EXPECT_EQ(query->trap.driver.hi - query->trap.driver.lo, Rational(1, 500));
+  EXPECT_EQ(query->trap.follower->hi, Rational(4));
+  EXPECT_LT(query->trap.follower->lo, Rational(4));
+  // A trap about it (the search's own, one step wide, is not certified: session 20's note)
+  JamQuery wider = *query;
+  wider.trap.driver = RationalInterval{Rational(1, 2), Rational(53, 100)};
+  wider.trap.follower = RationalInterval{Rational(35, 10), Rational(4)};
+  auto certificate = certify_jam(stopped, "cam", "follower", wider);
+  ASSERT_TRUE(certificate);
+  expect_verifies(*certificate, limited, "cam onto the follower's limit");
+  fs::remove(limited);
 }
 
 TEST(CertifyExamples, ParameterValuesInsideTheTolerancesAreCertified) {

@@ -6,6 +6,10 @@
 
 #include <hipair/model.hpp>
 
+#include <cmath>
+#include <random>
+#include <vector>
+
 namespace hipair::test {
 
 inline tolerance_detail::CurveSlice geneva_pin_wall_curve(const Model& nominal) {
@@ -19,6 +23,42 @@ inline tolerance_detail::CurveSlice geneva_pin_wall_curve(const Model& nominal) 
   curve.fixed_half_turn = true;   // the driver near pi: the pin in slot 1
   curve.free_half_turn = false;
   return curve;
+}
+
+/// One generated case of the pin / slot 1 wall R curve: a random driver position (chart value
+/// in [-0.25, 0.1]), the wheel's nominal root there and its sensitivities, and a random
+/// sub-box of 1/4 ... 64 x the tolerance box. False when the nominal root is not found.
+struct GenevaBoxCase {
+  tolerance_detail::CurveSlice curve;
+  double v = 0;
+  std::vector<double> sensitivity;
+  tolerance_detail::Box box;
+};
+inline bool generate_geneva_box_case(const tolerance_detail::CurveSolver& solver, const Model& nominal,
+                                     std::mt19937_64& random, GenevaBoxCase& out) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  out.curve = geneva_pin_wall_curve(nominal);
+  out.curve.fixed_value = Rational(static_cast<long>(std::floor(-2500 + 3500 * unit(random))), 10000);
+  std::size_t n = nominal.parameters.size();
+  // The wheel on the curve: the first certified sign change of the nominal contact function.
+  std::vector<double> zero(n, 0.0);
+  tolerance_detail::Interval root;
+  bool found = false;
+  for (int j = -60; j < 60 && !found; ++j)
+    found = solver.certified_point_root(out.curve, zero, tolerance_detail::Interval(j / 100.0, (j + 1) / 100.0), root);
+  if (!found) return false;
+  out.v = root.middle();
+  out.sensitivity = solver.sensitivities(out.curve, out.v);
+  double scale = std::pow(2.0, static_cast<int>(unit(random) * 9) - 2);   // 1/4 .. 64
+  out.box = tolerance_detail::Box{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
+  for (std::size_t i = 0; i < n; ++i) {
+    const Parameter& p = nominal.parameters[i];
+    double lo = Rational(p.range.lo - p.nominal).get_d(), hi = Rational(p.range.hi - p.nominal).get_d();
+    double a = unit(random), b = unit(random);   // a random sub-interval of the scaled range
+    out.box.lo[i] = scale * (lo + (hi - lo) * std::min(a, b));
+    out.box.hi[i] = scale * (lo + (hi - lo) * std::max(a, b));
+  }
+  return true;
 }
 
 }  // namespace hipair::test

@@ -32,32 +32,22 @@ TEST(ToleranceZoneReuse, JetOverTheBracketGivesTheFormerEnclosuresOrTighterAndHo
   const Model& nominal = model->nominal();
   CurveSolver reuse(model), former(model);
   former.set_reuse_y_jets(false);
-  tolerance_detail::CurveSlice curve = test::geneva_pin_wall_curve(nominal);
+  // first order on both: this compares the end-sign tests (the second-order narrowing after them
+  // is tested in tolerance_second_order_test.cpp)
+  reuse.set_second_order(false);
+  former.set_second_order(false);
   std::size_t n = nominal.parameters.size();
   std::mt19937_64 random(13);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::size_t cases = 0, identical = 0, tighter = 0, points = 0;
   for (int trial = 0; trial < 200; ++trial) {
     SCOPED_TRACE("trial " + std::to_string(trial));
-    curve.fixed_value = Rational(static_cast<long>(std::floor(-2500 + 3500 * unit(random))), 10000);
-    // The wheel on the curve: the first certified sign change of the nominal contact function.
-    std::vector<double> zero(n, 0.0);
-    tolerance_detail::Interval root;
-    bool found = false;
-    for (int j = -60; j < 60 && !found; ++j)
-      found = reuse.certified_point_root(curve, zero, tolerance_detail::Interval(j / 100.0, (j + 1) / 100.0), root);
-    if (!found) continue;
-    double v = root.middle();
-    std::vector<double> s = reuse.sensitivities(curve, v);
-    double scale = std::pow(2.0, static_cast<int>(unit(random) * 9) - 2);   // 1/4 .. 64
-    Box box{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
-    for (std::size_t i = 0; i < n; ++i) {
-      const Parameter& p = nominal.parameters[i];
-      double lo = Rational(p.range.lo - p.nominal).get_d(), hi = Rational(p.range.hi - p.nominal).get_d();
-      double a = unit(random), b = unit(random);   // a random sub-interval of the scaled range
-      box.lo[i] = scale * (lo + (hi - lo) * std::min(a, b));
-      box.hi[i] = scale * (lo + (hi - lo) * std::max(a, b));
-    }
+    test::GenevaBoxCase c;
+    if (!test::generate_geneva_box_case(reuse, nominal, random, c)) continue;
+    const tolerance_detail::CurveSlice& curve = c.curve;
+    const Box& box = c.box;
+    double v = c.v;
+    const std::vector<double>& s = c.sensitivity;
     std::size_t boxes_new = 0, boxes_old = 0;
     tolerance_detail::Interval a, b;
     bool ok_new = true, ok_old = true;
