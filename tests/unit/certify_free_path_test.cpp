@@ -389,7 +389,7 @@ namespace {
 // witness test passed in the same evaluator. Here every leaf of the valid 4 x certificate passes
 // its check (so its sides' events are excluded, and the whole path is proved); then leaf 1's
 // witness is tilted in the driver after its check, so that at the region's end (the box's centre
-// in the parameters) it lies 0.001 rad past the lower side into the pin — found by bisection on
+// in the parameters) it lies 10⁻⁵ rad past the lower side into the pin — found by bisection on
 // the exact overlap predicate — while it stays where it was at the region's start. The tilted leaf was never
 // checked, so its named side's event is not excluded: check 7 must not prove the path.
 TEST(CertifyFreePath, SideEventsAreExcludedOnlyForTheLeafWhoseWitnessTestPassed) {
@@ -418,7 +418,7 @@ TEST(CertifyFreePath, SideEventsAreExcludedOnlyForTheLeafWhoseWitnessTestPassed)
     Rational mid = (free + blocked) / 2;
     (relation(mid) == PartRelation::apart ? free : blocked) = mid;
   }
-  Rational y_new = blocked - Rational(1, 1000);
+  Rational y_new = blocked - Rational(1, 100000);
   ASSERT_EQ(relation(y_new), PartRelation::overlapping);
   // y*(x) + (y_new - y_old) (x - d0) / (d - d0): unchanged at the region's start, half-way at
   // its centre (still in the channel), y_new at its end.

@@ -888,7 +888,7 @@ TEST(CertifyTolerance, EnvelopeWitnessesMakeTheFreePathCertificateValid) {
   const Model& m = oracle.model->nominal();
   std::size_t k = t.varied.size();
   std::mt19937_64 random(20);
-  auto inside = [&](const RationalInterval& r, bool corner) {
+  auto inside = [&](const RationalInterval& r, bool corner) -> Rational {   // not a GMP expression template
     long n = corner ? (std::uniform_int_distribution<int>(0, 1)(random) ? 1000 : 0)
                     : std::uniform_int_distribution<long>(0, 1000)(random);
     return r.lo + (r.hi - r.lo) * Rational(n, 1000);
