@@ -593,7 +593,7 @@ class Producer {
           for (std::size_t j = 0; j < lo.size(); ++j) ql[j] += (std::fabs(b - lo[j]->slope[i]) - std::fabs(a[i] - lo[j]->slope[i])) * h;
           for (std::size_t j = 0; j < up.size(); ++j) qu[j] += (std::fabs(b - up[j]->slope[i]) - std::fabs(a[i] - up[j]->slope[i])) * h;
           double v = margin(ql, qu).first;
-          if (v > best_value * (1 + 1e-12) + 1e-300) {
+          if (v > best_value + 1e-12 * std::fabs(best_value)) {   // a strict gain only
             best_value = v;
             best_a = b;
           }
