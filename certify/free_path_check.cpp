@@ -585,7 +585,8 @@ class ToleranceEvaluator::FreePath {
         const Feature<Interval>& fb = plain.get(false, b);
         if (separated(fa.e, fb.e, plain_sign)) continue;
         for (EventKind kind : events(fa, fb))
-          if (!excluded<Interval>(kind, fa, fb, plain_sign, nullptr)) pending.push_back({a, b, kind});
+          if (!side_excluded(path, a, b, kind, fa.e, fb.e) && !excluded<Interval>(kind, fa, fb, plain_sign, nullptr))
+            pending.push_back({a, b, kind});
       }
     if (pending.empty()) return;
 
@@ -648,6 +649,7 @@ class ToleranceEvaluator::FreePath {
         continue;
       if (monotone_excluded(path, box, e, primary)) continue;
       undecided = std::string(event_text(e.kind)) + " of " + driver_edges_[e.a].name + " and " + follower_edges_[e.b].name;
+      last_event_ = side_of(e);
       split = split_dimension(box, primary);
       return;
     }
@@ -717,6 +719,63 @@ class ToleranceEvaluator::FreePath {
     return false;
   }
 
+  // An event that a side of the region's leaf excludes (session 20): checks 4 or 6 have proved,
+  // in this evaluator and for this very leaf (witness_proved), that the side's contact
+  // function F(side, d, y*(p, d)) has one certain sign over the whole leaf box, which holds the
+  // region and every piece of it. F is zero wherever the side's two features touch: a vertex on
+  // the other edge's line or circle, two circles tangent externally (both arcs ccw: |c1 - c2| =
+  // r1 + r2) or internally (|c1 - c2| = |r1 - r2|), a circle tangent to a segment's line. The
+  // matching event (the same edges, the same vertex, the same tangency) has its point on that
+  // line or circle, so it is a zero of F: it cannot happen on the region's path. Not on a move
+  // (the follower between two witnesses is not on the leaf's witness path).
+  template <class E>
+  bool side_excluded(const Path& path, std::size_t a, std::size_t b, EventKind kind, const E& ea, const E& eb) const {
+    if (path.move) return false;
+    const ToleranceLeaf& leaf = claim_.leaves[path.first];
+    if (!leaf.witness || !ev_.witness_proved(path.first, leaf)) return false;
+    const EdgeRef& da = driver_edges_[a];
+    const EdgeRef& fb = follower_edges_[b];
+    for (const LeafSide* side : {&leaf.lower, &leaf.upper}) {
+      if (side->pair >= claim_.sides.size()) continue;
+      const ContactSidePair& pair = claim_.sides[side->pair];
+      if (pair.driver.edge.loop != da.loop || pair.driver.edge.edge != da.edge) continue;
+      if (pair.follower.edge.loop != fb.loop || pair.follower.edge.edge != fb.edge) continue;
+      EventKind matching;
+      if (pair.driver.vertex && pair.follower.vertex) continue;
+      if (pair.driver.vertex)
+        matching = EventKind::first_vertex_on_second;
+      else if (pair.follower.vertex)
+        matching = EventKind::second_vertex_on_first;
+      else {
+        // The arcs' kinds and orientations as the contact function reads them (the parametric
+        // edge values: ToleranceEvaluator::contact_of).
+        bool a_arc = ea.arc, b_arc = eb.arc;
+        if (a_arc && b_arc)
+          matching = ea.ccw && eb.ccw ? EventKind::external : EventKind::internal;
+        else if (a_arc != b_arc)
+          matching = EventKind::tangency;
+        else
+          continue;
+      }
+      if (matching == kind) return true;
+    }
+    return false;
+  }
+
+  // An undecided vertex event as the contact side of its two features (nullopt for tangencies).
+  std::optional<ContactSidePair> side_of(const Pending& e) const {
+    if (e.kind != EventKind::first_vertex_on_second && e.kind != EventKind::second_vertex_on_first) return std::nullopt;
+    const Model& m = ev_.model_->nominal();
+    auto reference = [&](const EdgeRef& r, bool vertex) {
+      FeatureReference f;
+      f.edge = EdgeReference{m.parts[r.part].name, r.loop, r.edge, m.parts[r.part].loops[r.loop].edges[r.edge].label};
+      f.vertex = vertex;
+      return f;
+    };
+    bool driver_vertex = e.kind == EventKind::first_vertex_on_second;
+    return ContactSidePair{reference(driver_edges_[e.a], driver_vertex), reference(follower_edges_[e.b], !driver_vertex)};
+  }
+
   // The events a pair of edges can have (first: the driver's edge).
   template <class N>
   static std::vector<EventKind> events(const Feature<N>& a, const Feature<N>& b) {
@@ -774,14 +833,18 @@ class ToleranceEvaluator::FreePath {
  public:
   /// The dimension the undecided piece would have been split along when the budget ran out.
   std::optional<std::size_t> last_split_;
+  /// The last undecided event as a contact side, when it is a vertex on an edge.
+  std::optional<ContactSidePair> last_event_;
   std::vector<EdgeRef> driver_edges_, follower_edges_;
 };
 
 std::string ToleranceEvaluator::free_leaf_failure(std::size_t leaf, std::size_t piece_budget,
-                                                  std::optional<std::size_t>* split) const {
+                                                  std::optional<std::size_t>* split,
+                                                  std::optional<ContactSidePair>* event) const {
   FreePath check(*this, piece_budget);
   std::string failure = check.leaf(leaf);
   if (split) *split = check.last_split_;
+  if (event) *event = check.last_event_;
   return failure;
 }
 

@@ -808,12 +808,30 @@ void ToleranceEvaluator::check_leaf(const ToleranceLeaf& leaf, std::size_t index
   SideEnclosure upper = check_side(leaf, leaf.upper, over, at, where + " (upper side)", monotone);
   if (leaf.witness) {
     check_witness(leaf, over, at, where);
+    if (witness_proved_.size() <= index) witness_proved_.resize(index + 1);
+    witness_proved_[index] = leaf;
     return;
   }
   Interval gap = play(leaf, lower, upper);
   if (gap.sign() <= 0)
     reject(where + ": the channel is not certainly open: the play between the sides encloses to " + show(gap) +
            " over driver " + show(leaf.driver));
+}
+
+bool ToleranceEvaluator::witness_proved(std::size_t index, const ToleranceLeaf& leaf) const {
+  if (index >= witness_proved_.size() || !witness_proved_[index]) return false;
+  const ToleranceLeaf& p = *witness_proved_[index];
+  auto same = [](const RationalInterval& a, const RationalInterval& b) { return a.lo == b.lo && a.hi == b.hi; };
+  auto same_side = [&](const LeafSide& a, const LeafSide& b) {
+    return a.pair == b.pair && same(a.bracket, b.bracket) && same(a.centre, b.centre);
+  };
+  if (p.parameters.size() != leaf.parameters.size() || !same(p.driver, leaf.driver) || bool(p.follower) != bool(leaf.follower) ||
+      !same_side(p.lower, leaf.lower) || !same_side(p.upper, leaf.upper) || p.witness != leaf.witness ||
+      p.witness_slopes != leaf.witness_slopes || p.witness_margins != leaf.witness_margins)
+    return false;
+  for (std::size_t i = 0; i < p.parameters.size(); ++i)
+    if (!same(p.parameters[i], leaf.parameters[i])) return false;
+  return true;
 }
 
 std::vector<ToleranceEvaluator::Region> ToleranceEvaluator::check_cover() const {

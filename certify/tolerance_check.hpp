@@ -229,7 +229,11 @@ class ToleranceEvaluator {
   /// `split` receives the dimension (a varied parameter's index, or the driver's: k) along which
   /// the undecided piece would have been bisected next, when the budget ran out.
   std::string free_leaf_failure(std::size_t leaf, std::size_t piece_budget,
-                                std::optional<std::size_t>* split = nullptr) const;
+                                std::optional<std::size_t>* split = nullptr,
+                                std::optional<ContactSidePair>* event = nullptr) const;
+  /// (`event`, when the undecided first-contact event is a vertex of one part on an edge of the
+  /// other: that feature pair as a contact side — a candidate side for the producer to keep the
+  /// witness path away from.)
 
   /// no_interference: the claim's property.
   bool interference_claim() const { return claim_.property == "no_interference"; }
@@ -259,6 +263,11 @@ class ToleranceEvaluator {
   std::size_t driver_ = 0, follower_ = 0;
   bool driver_rotates_ = true, follower_rotates_ = true;
   std::vector<std::size_t> varied_;   ///< model parameter index per varied parameter
+  /// Per leaf index: a copy of the leaf whose witness test (checks 4 or 6) this evaluator has
+  /// passed, so that check 7 may use what it proved (its sides' contact functions of one certain
+  /// sign along the witness path over the leaf) — only for that very leaf (every field compared).
+  mutable std::vector<std::optional<ToleranceLeaf>> witness_proved_;
+  bool witness_proved(std::size_t index, const ToleranceLeaf& leaf) const;
 };
 
 /// Checks a tolerance certificate against the model text (its hash already checked).

@@ -253,6 +253,23 @@ class Producer {
     bool monotone = false;       // ok, and the follower derivative has one sign over the bracket
   };
 
+  // A side that check 7 found undecided over a candidate leaf (a vertex of one part on an edge
+  // of the other): kept as a candidate for the envelope witness of later leaves.
+  void learn(const ContactSidePair& pair) {
+    for (std::size_t i = 0; i < claim_.sides.size(); ++i) {
+      const ContactSidePair& s = claim_.sides[i];
+      if (s.driver.edge.loop == pair.driver.edge.loop && s.driver.edge.edge == pair.driver.edge.edge &&
+          s.driver.vertex == pair.driver.vertex && s.follower.edge.loop == pair.follower.edge.loop &&
+          s.follower.edge.edge == pair.follower.edge.edge && s.follower.vertex == pair.follower.vertex) {
+        if (std::find(learned_.begin(), learned_.end(), i) == learned_.end() && learned_.size() < 16) learned_.push_back(i);
+        return;
+      }
+    }
+    if (learned_.size() >= 16) return;
+    claim_.sides.push_back(pair);
+    learned_.push_back(claim_.sides.size() - 1);
+  }
+
   // Side `pair`'s root (follower coordinate) at driver d with the geometry `point`, by Newton
   // from `start` (approximate: it only chooses); NaN when it fails or wanders to another branch.
   double newton(verify::ToleranceGeometry& point, std::size_t pair, const Rational& d, double start) {
@@ -518,6 +535,83 @@ class Producer {
     return score;
   }
 
+  // A linear witness y* = w + sum a_i (x_i - c_i) for the channel between the envelopes of
+  // all candidate sides over the leaf (session 20): by each candidate's linearisation about the
+  // centre (root R_j, slopes s_j), y* stays above a lower candidate over the leaf when
+  // w - R_j - sum |a_i - s_ji| h_i > 0 and below an upper one when R_j - w - sum |a_i - s_ji| h_i
+  // > 0. The smallest of these margins is concave and piecewise linear in each a_i with its
+  // breakpoints at the candidates' slopes: a few rounds of coordinate ascent over those, then w
+  // in the middle. Nullopt when there are no more than the two sides of the piece or the
+  // linearised channel closes. Approximate (doubles): it only chooses; the verifier decides.
+  template <class Candidates>
+  std::optional<std::pair<double, std::vector<double>>> envelope_witness(const Candidates& lowers,
+                                                                         const Candidates& uppers,
+                                                                         const std::vector<double>& half,
+                                                                         double half_driver) const {
+    std::size_t k = half.size();
+    std::vector<const SideGuess*> lo, up;
+    for (const auto& c : lowers)
+      if (std::isfinite(c.second.root) && c.second.slope.size() == k + 1) lo.push_back(&c.second);
+    for (const auto& c : uppers)
+      if (std::isfinite(c.second.root) && c.second.slope.size() == k + 1) up.push_back(&c.second);
+    if (lo.empty() || up.empty() || lo.size() + up.size() <= 2) return std::nullopt;
+    auto width = [&](std::size_t i) { return i < k ? half[i] : half_driver; };
+    std::vector<double> a(k + 1, 0.0);
+    double lo_best = -1e300, up_best = 1e300;
+    for (const SideGuess* g : lo) lo_best = std::max(lo_best, g->root);
+    for (const SideGuess* g : up) up_best = std::min(up_best, g->root);
+    for (std::size_t i = 0; i <= k; ++i) {   // start: the middle of the binding pair's slopes
+      const SideGuess* gl = lo.front();
+      const SideGuess* gu = up.front();
+      for (const SideGuess* g : lo) if (g->root == lo_best) gl = g;
+      for (const SideGuess* g : up) if (g->root == up_best) gu = g;
+      a[i] = 0.5 * (gl->slope[i] + gu->slope[i]);
+    }
+    // penalty sums per candidate, kept up to date
+    std::vector<double> pl(lo.size(), 0.0), pu(up.size(), 0.0);
+    for (std::size_t i = 0; i <= k; ++i) {
+      for (std::size_t j = 0; j < lo.size(); ++j) pl[j] += std::fabs(a[i] - lo[j]->slope[i]) * width(i);
+      for (std::size_t j = 0; j < up.size(); ++j) pu[j] += std::fabs(a[i] - up[j]->slope[i]) * width(i);
+    }
+    auto margin = [&](const std::vector<double>& ql, const std::vector<double>& qu) {
+      double top = -1e300, bottom = 1e300;
+      for (std::size_t j = 0; j < lo.size(); ++j) top = std::max(top, lo[j]->root + ql[j]);
+      for (std::size_t j = 0; j < up.size(); ++j) bottom = std::min(bottom, up[j]->root - qu[j]);
+      return std::make_pair(bottom - top, 0.5 * (top + bottom));
+    };
+    for (int round = 0; round < 4; ++round) {
+      bool moved = false;
+      for (std::size_t i = 0; i <= k; ++i) {
+        double h = width(i);
+        if (!(h > 0)) continue;
+        std::vector<double> breaks;
+        for (const SideGuess* g : lo) breaks.push_back(g->slope[i]);
+        for (const SideGuess* g : up) breaks.push_back(g->slope[i]);
+        double best_value = margin(pl, pu).first, best_a = a[i];
+        for (double b : breaks) {
+          std::vector<double> ql = pl, qu = pu;
+          for (std::size_t j = 0; j < lo.size(); ++j) ql[j] += (std::fabs(b - lo[j]->slope[i]) - std::fabs(a[i] - lo[j]->slope[i])) * h;
+          for (std::size_t j = 0; j < up.size(); ++j) qu[j] += (std::fabs(b - up[j]->slope[i]) - std::fabs(a[i] - up[j]->slope[i])) * h;
+          double v = margin(ql, qu).first;
+          if (v > best_value + 1e-12 * std::fabs(best_value)) {   // a strict gain only
+            best_value = v;
+            best_a = b;
+          }
+        }
+        if (best_a != a[i]) {
+          for (std::size_t j = 0; j < lo.size(); ++j) pl[j] += (std::fabs(best_a - lo[j]->slope[i]) - std::fabs(a[i] - lo[j]->slope[i])) * h;
+          for (std::size_t j = 0; j < up.size(); ++j) pu[j] += (std::fabs(best_a - up[j]->slope[i]) - std::fabs(a[i] - up[j]->slope[i])) * h;
+          a[i] = best_a;
+          moved = true;
+        }
+      }
+      if (!moved) break;
+    }
+    auto [value, middle] = margin(pl, pu);
+    if (!(value > 0)) return std::nullopt;
+    return std::make_pair(middle, a);
+  }
+
   Status solve(const std::vector<RationalInterval>& region, const Piece& piece, int depth) {
     if (attempts_ >= 4 * request_.max_leaves || claim_.leaves.size() >= request_.max_leaves) {
       undecided_reason_ = "the branch-and-bound gave up after " + std::to_string(attempts_) + " boxes (" +
@@ -559,6 +653,27 @@ class Producer {
       return out;
     };
     auto lowers = candidates(false), uppers = candidates(true);
+    std::size_t own_lowers = lowers.size(), own_uppers = uppers.size();
+    // The sides check 7 found undecided on earlier leaves (learn): candidates too, lower or upper
+    // by where their root nearest the channel's middle lies.
+    std::size_t learned_seen = 0;
+    auto add_learned = [&]() {
+      double middle = 0.5 * (lowers.front().second.root + uppers.front().second.root);
+      if (!std::isfinite(middle)) middle = 0.5 * (guess(piece, false, dd) + guess(piece, true, dd));
+      for (; learned_seen < learned_.size(); ++learned_seen) {
+        std::size_t p = learned_[learned_seen];
+        bool seen = false;
+        for (const auto& o : lowers) seen = seen || o.first == p;
+        for (const auto& o : uppers) seen = seen || o.first == p;
+        if (seen) continue;
+        double y = newton(point, p, d0, middle);
+        if (!std::isfinite(y)) continue;
+        SideGuess g = side_guess(p, y, leaf, over, point, half, half_driver);
+        if (!std::isfinite(g.root) || g.slope.size() != k + 1) continue;
+        (g.root < middle ? lowers : uppers).emplace_back(p, std::move(g));
+      }
+    };
+    add_learned();
     std::size_t lower_pair = lowers.front().first, upper_pair = uppers.front().first;
     SideGuess lower = lowers.front().second, upper = uppers.front().second;
     if (lower.centre_certain && upper.centre_certain && upper.centre.hi < lower.centre.lo) {
@@ -581,7 +696,9 @@ class Producer {
     // A leaf with these two sides: first with a witness follower path between them (a linear
     // function of the parameters and the driver, so that what moves both sides alike cancels),
     // then with the play enclosed from the sides' slopes.
+    bool free_path_failed = false;   // the last candidate passed checks 1-6, check 7 did not prove it
     auto accept = [&](ToleranceLeaf candidate) {
+      free_path_failed = false;
       try {
         evaluator_->check_leaf(candidate, claim_.leaves.size(), over, point);
       } catch (const verify::Rejection&) {
@@ -591,9 +708,13 @@ class Producer {
         // Check 7 over the leaf's box, with the candidate in place (the evaluator reads claim_).
         claim_.leaves.push_back(candidate);
         std::optional<std::size_t> split;
-        std::string failure = evaluator_->free_leaf_failure(claim_.leaves.size() - 1, request_.free_path_budget, &split);
+        std::optional<ContactSidePair> event;
+        std::string failure =
+            evaluator_->free_leaf_failure(claim_.leaves.size() - 1, request_.free_path_budget, &split, &event);
         claim_.leaves.pop_back();
         if (!failure.empty()) {
+          free_path_failed = true;
+          if (event) learn(*event);
           if (split && !free_path_split_) free_path_split_ = split;   // where check 7 would split
           return false;
         }
@@ -605,18 +726,22 @@ class Producer {
       claim_.leaves.push_back(std::move(candidate));
       return true;
     };
-    auto attempt = [&](std::size_t lp, const SideGuess& gl, std::size_t up, const SideGuess& gu) {
+    // `path`: a witness (value at the centre, slopes) chosen for the channel between all the
+    // candidate sides (envelope_witness); without it, the middle of the two named sides.
+    auto attempt = [&](std::size_t lp, const SideGuess& gl, std::size_t up, const SideGuess& gu,
+                       const std::pair<double, std::vector<double>>* path = nullptr) {
       if (!gl.ok || !gu.ok || !(gu.root > gl.root)) return false;
-      double mid = 0.5 * (gl.root + gu.root), spread = 0, predicted = gu.root - gl.root;
+      double mid = path ? path->first : 0.5 * (gl.root + gu.root), spread = 0, predicted = gu.root - gl.root;
       std::vector<Rational> a;
       for (std::size_t i = 0; i <= k; ++i) {
         double h = i < k ? half[i] : half_driver;
-        double slope = 0.5 * (gl.slope[i] + gu.slope[i]);
+        double slope = path ? path->second[i] : 0.5 * (gl.slope[i] + gu.slope[i]);
         a.push_back(grid(slope, false));
         spread += std::fabs(slope) * h;
         predicted -= std::fabs(gu.slope[i] - gl.slope[i]) * h;
       }
       if (predicted <= 0) return false;
+      if (path && !(mid > gl.root && mid < gu.root)) return false;
       Rational top = grid(mid + 1.05 * spread + 1e-12, true), bottom = grid(mid - 1.05 * spread - 1e-12, false);
       RationalInterval bl = gl.bracket, bu = gu.bracket;
       if (bl.hi < top) bl.hi = top;
@@ -629,8 +754,9 @@ class Producer {
         w.witness_slopes = a;
         if (accept(w)) return true;
         // The same witness with the second-order Taylor form (check 6): the margins are the
-        // verifier's own enclosures at this leaf, rounded down to short rationals.
-        if (second_order_margins(w) && accept(w)) {
+        // verifier's own enclosures at this leaf, rounded down to short rationals. (Not when
+        // only check 7 failed: the margins do not change the path.)
+        if (!free_path_failed && second_order_margins(w) && accept(w)) {
           ++second_order_leaves_;
           return true;
         }
@@ -674,9 +800,49 @@ class Producer {
       }
       score[k] = Rational((region[k].hi - region[k].lo) / (claim_.range.hi - claim_.range.lo)).get_d();
     }
+    // Near a switch of sides (session 20): the witness between the envelopes of all the
+    // candidates — above every lower one and below every upper one by their linearisations over
+    // the leaf — so that the path stays in the channel whichever side binds at a corner of the
+    // box; the leaf then names the pair of sides nearest to it at the centre (checks 3-6 prove
+    // them, check 7 the others).
+    bool envelope_feasible = false;
+    for (int round = 0; round < 3 && request_.free_path_leaves && lower.slope.size() == k + 1 &&
+                        upper.slope.size() == k + 1;
+         ++round) {
+      std::size_t known = learned_.size();
+      if (auto path = envelope_witness(lowers, uppers, half, half_driver)) {
+        std::vector<std::size_t> lo_order, up_order;
+        for (std::size_t a = 0; a < lowers.size(); ++a) lo_order.push_back(a);
+        for (std::size_t b = 0; b < uppers.size(); ++b) up_order.push_back(b);
+        auto nearest = [&](bool is_upper, std::size_t x, std::size_t y) {
+          const SideGuess& gx = (is_upper ? uppers : lowers)[x].second;
+          const SideGuess& gy = (is_upper ? uppers : lowers)[y].second;
+          double dx = std::isfinite(gx.root) ? std::fabs(gx.root - path->first) : 1e300;
+          double dy = std::isfinite(gy.root) ? std::fabs(gy.root - path->first) : 1e300;
+          return dx < dy;
+        };
+        std::sort(lo_order.begin(), lo_order.end(), [&](std::size_t x, std::size_t y) { return nearest(false, x, y); });
+        std::sort(up_order.begin(), up_order.end(), [&](std::size_t x, std::size_t y) { return nearest(true, x, y); });
+        // The nearest pair whose checks 1-6 pass decides: another pair would give check 7 the
+        // same path.
+        bool tried = false;
+        for (std::size_t a : lo_order) {
+          for (std::size_t b : up_order) {
+            if (attempt(lowers[a].first, lowers[a].second, uppers[b].first, uppers[b].second, &*path)) {
+              return Status::ok;
+            }
+            if ((tried = free_path_failed)) break;
+          }
+          if (tried) break;
+        }
+        envelope_feasible = true;
+      }
+      if (learned_.size() == known) break;
+      add_learned();   // check 7 named a new side: try again with it
+    }
     // The neighbouring sides (near a switch of sides).
-    for (std::size_t a = 0; a < lowers.size(); ++a)
-      for (std::size_t b = 0; b < uppers.size(); ++b)
+    for (std::size_t a = 0; a < own_lowers && !envelope_feasible; ++a)
+      for (std::size_t b = 0; b < own_uppers; ++b)
         if ((a || b) && attempt(lowers[a].first, lowers[a].second, uppers[b].first, uppers[b].second)) return Status::ok;
     // A pair of sides whose linearised play stays positive but whose witness test failed: split
     // where the test's mean-value remainder is largest (a dimension moving both sides alike adds
@@ -726,6 +892,7 @@ class Producer {
   std::unique_ptr<verify::ToleranceEvaluator> evaluator_;
   std::size_t attempts_ = 0;
   std::size_t second_order_leaves_ = 0;
+  std::vector<std::size_t> learned_;   ///< sides named by check 7's undecided events (learn)   ///< leaves whose witness lies between all candidates' envelopes
   std::optional<std::size_t> free_path_split_;   ///< check 7's split choice for the current region
   std::vector<double> witness_score_;
   double witness_ratio_ = 0;

@@ -380,3 +380,55 @@ TEST(CertifyFreePath, PinInSlotPathsAgreeWithTheExactOverlapPredicate) {
 
 }  // namespace
 }  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// Session 20: check 7 excludes the events of a region's named sides (their contact functions
+// proved of one sign along the witness path by checks 4 or 6) only for the very leaf whose
+// witness test passed in the same evaluator. Here every leaf of the valid 4 x certificate passes
+// its check (so its sides' events are excluded, and the whole path is proved); then leaf 1's
+// witness is tilted in the driver after its check, so that at the region's end (the box's centre
+// in the parameters) it lies 10⁻⁵ rad past the lower side into the pin — found by bisection on
+// the exact overlap predicate — while it stays where it was at the region's start. The tilted leaf was never
+// checked, so its named side's event is not excluded: check 7 must not prove the path.
+TEST(CertifyFreePath, SideEventsAreExcludedOnlyForTheLeafWhoseWitnessTestPassed) {
+  Oracle oracle;
+  const Model& m = oracle.model->nominal();
+  Certificate c = read_certificate(read(fixture("geneva-tolerance-no-jam-4x-free-path.json")));
+  ASSERT_TRUE(c.tolerance);
+  ToleranceClaim& t = *c.tolerance;
+  std::size_t k = t.varied.size();
+  verify::ToleranceEvaluator evaluator(oracle.model, t);
+  for (std::size_t i = 0; i < t.leaves.size(); ++i) evaluator.check_leaf(t.leaves[i], i);
+  EXPECT_EQ(evaluator.free_path_failure(48), "");
+
+  ToleranceLeaf& l = t.leaves[2];
+  std::vector<Rational> deviations(m.parameters.size(), Rational(0));
+  for (std::size_t i = 0; i < k; ++i)
+    deviations[static_cast<std::size_t>(m.find_parameter(t.varied[i]) - m.parameters.data())] =
+        (l.parameters[i].lo + l.parameters[i].hi) / 2;
+  Rational d = l.driver.hi, dc = (l.driver.lo + l.driver.hi) / 2;
+  Rational y_old = *l.witness + l.witness_slopes[k] * (d - dc);
+  auto relation = [&](const Rational& y) { return oracle.relation(deviations, tangent_of(d), tangent_of(y)); };
+  ASSERT_EQ(relation(y_old), PartRelation::apart);
+  Rational free = y_old, blocked = l.lower.bracket.lo;
+  ASSERT_EQ(relation(blocked), PartRelation::overlapping);
+  for (int i = 0; i < 24; ++i) {
+    Rational mid = (free + blocked) / 2;
+    (relation(mid) == PartRelation::apart ? free : blocked) = mid;
+  }
+  Rational y_new = blocked - Rational(1, 100000);
+  ASSERT_EQ(relation(y_new), PartRelation::overlapping);
+  // y*(x) + (y_new - y_old) (x - d0) / (d - d0): unchanged at the region's start, half-way at
+  // its centre (still in the channel), y_new at its end.
+  Rational shift = y_new - y_old;
+  *l.witness += shift / 2;
+  l.witness_slopes[k] += shift / (d - l.driver.lo);
+  std::string failure = evaluator.free_path_failure(48);
+  EXPECT_NE(failure, "") << "check 7 proved a path through the pin";
+  std::cout << "[ side events ] " << failure << "\n";
+}
+
+}  // namespace
+}  // namespace hipair

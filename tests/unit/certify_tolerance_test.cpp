@@ -10,6 +10,7 @@
 #include "model/parametric/number_traits.hpp"
 #include "model/parametric/parametric.hpp"
 #include "tolerance/contact_function.hpp"
+#include "rotation_pair_oracle.hpp"
 #include "test_paths.hpp"
 
 #include <gtest/gtest.h>
@@ -820,6 +821,97 @@ TEST(CertifyTolerance, AtTheThresholdTheProverRefusesRatherThanCertifying) {
   EXPECT_NE(result.certification->outcome, ToleranceCertification::Outcome::certified);
   EXPECT_FALSE(result.certification->certificate);
   EXPECT_FALSE(result.certification->reason.empty());
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// Session 20: free-path leaves with envelope witnesses. On driver 2.2 .. 2.3 rad (the pin's
+// entry, the lock/drive switch of the lower side at 2.2375 .. 2.2542 rad, the threshold's
+// position 2.2504 rad inside) at SCALE x the declared tolerances — where session 17's
+// free-path producer did not finish in 7 min — the producer with free_path_leaves chooses each
+// leaf's witness between the envelopes of all candidate sides (the pieces' own and those that
+// check 7 named on earlier leaves), so that the follower's path stays in the channel whichever
+// side binds at a corner of the box. The certificate is `valid` through the file (check 7 proves
+// the free path); every leaf's named sides keep the channel open by the library's double kernels
+// at random points; and the witness path is free by the exact overlap predicate (exact models
+// rebuilt at rational parameter vectors, parts placed by rational rotations) at random points
+// and corners of every leaf.
+constexpr long free_path_scale = 5;
+const ToleranceResult& envelope_certified() {
+  static const ToleranceResult result = [] {
+    ToleranceOptions options = around_the_pin_entry();
+    options.certify = true;
+    options.certify_scale = free_path_scale;
+    options.certify_free_path = true;
+    options.certify_max_leaves = 3000;
+    return analyze_tolerances(geneva(), options);
+  }();
+  return result;
+}
+
+// The rational half-angle tangent of an angle on a 1e-12 grid.
+Rational half_angle_tangent(const Rational& angle) {
+  Rational t(mpz_class(static_cast<long>(std::llround(std::tan(angle.get_d() / 2) * 1e12))), mpz_class("1000000000000"));
+  t.canonicalize();
+  return t;
+}
+
+TEST(CertifyTolerance, EnvelopeWitnessesMakeTheFreePathCertificateValid) {
+  const ToleranceResult& result = envelope_certified();
+  ASSERT_TRUE(result.certification);
+  const ToleranceCertification& c = *result.certification;
+  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
+  EXPECT_FALSE(c.unproven) << c.reason;
+  ASSERT_TRUE(c.certificate && c.certificate->tolerance);
+  const ToleranceClaim& t = *c.certificate->tolerance;
+  EXPECT_EQ(t.scale, Rational(free_path_scale));
+  EXPECT_EQ(t.varied.size(), 26u);
+  EXPECT_EQ(t.range.lo, Rational(11, 5));
+  EXPECT_EQ(t.range.hi, Rational(23, 10));
+  std::filesystem::path file = std::filesystem::temp_directory_path() / "hipair-tolerance-certificate-envelope-test.json";
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << write_certificate(*c.certificate);
+  }
+  VerificationResult v = verify_certificate_file(file, geneva());
+  std::filesystem::remove(file);
+  expect_checks_pass(v);
+  EXPECT_TRUE(v.valid) << v.summary;
+  EXPECT_EQ(check_leaves_with_kernels(t, 20, 20), 20 * t.leaves.size());
+
+  // The witness path against the exact overlap predicate.
+  test::RotationPairOracle oracle(geneva().string(), "driver", "wheel");
+  const Model& m = oracle.model->nominal();
+  std::size_t k = t.varied.size();
+  std::mt19937_64 random(20);
+  auto inside = [&](const RationalInterval& r, bool corner) -> Rational {   // not a GMP expression template
+    long n = corner ? (std::uniform_int_distribution<int>(0, 1)(random) ? 1000 : 0)
+                    : std::uniform_int_distribution<long>(0, 1000)(random);
+    return r.lo + (r.hi - r.lo) * Rational(n, 1000);
+  };
+  std::size_t apart = 0;
+  for (const ToleranceLeaf& l : t.leaves) {
+    ASSERT_TRUE(l.witness);
+    for (int point = 0; point < 8; ++point) {
+      std::vector<Rational> deviations(m.parameters.size(), Rational(0));
+      Rational y = *l.witness;
+      for (std::size_t i = 0; i < k; ++i) {
+        Rational p = inside(l.parameters[i], point % 2 == 0);
+        deviations[static_cast<std::size_t>(m.find_parameter(t.varied[i]) - m.parameters.data())] = p;
+        y += l.witness_slopes[i] * (p - (l.parameters[i].lo + l.parameters[i].hi) / 2);
+      }
+      Rational d = inside(l.driver, point % 2 == 0);
+      y += l.witness_slopes[k] * (d - (l.driver.lo + l.driver.hi) / 2);
+      PartRelation r = oracle.relation(deviations, half_angle_tangent(d), half_angle_tangent(y));
+      EXPECT_EQ(r, PartRelation::apart) << "leaf driver " << to_exact_string(l.driver.lo) << " point " << point;
+      apart += r == PartRelation::apart;
+    }
+  }
+  EXPECT_EQ(apart, 8 * t.leaves.size());
 }
 
 }  // namespace
