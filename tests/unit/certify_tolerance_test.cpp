@@ -53,6 +53,20 @@ void expect_checks_pass(const VerificationResult& v) {
         << v.summary;
   EXPECT_EQ(v.summary.find("never closes"), std::string::npos) << v.summary;
 }
+
+// The certificate written to a file and checked through the path hipair-verify uses (the
+// verifier's own enclosures), its checks passing (expect_checks_pass).
+VerificationResult verify_through_file(const Certificate& certificate, const std::string& name) {
+  std::filesystem::path file = std::filesystem::temp_directory_path() / name;
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << write_certificate(certificate);
+  }
+  VerificationResult v = verify_certificate_file(file, geneva());
+  std::filesystem::remove(file);
+  expect_checks_pass(v);
+  return v;
+}
 bool checks_pass(const VerificationResult& v) { return (v.valid || v.unproven) && v.reason.empty(); }
 
 ToleranceOptions around_the_pin_entry() {
@@ -86,14 +100,7 @@ TEST(CertifyTolerance, GenevaNoJamCertificateVerifies) {
   EXPECT_GT(c.leaves, 0u);
 
   // Through the file, as hipair-verify does.
-  std::filesystem::path file = std::filesystem::temp_directory_path() / "hipair-tolerance-certificate-test.json";
-  {
-    std::ofstream out(file, std::ios::binary);
-    out << write_certificate(*c.certificate);
-  }
-  VerificationResult v = verify_certificate_file(file, geneva());
-  std::filesystem::remove(file);
-  expect_checks_pass(v);
+  VerificationResult v = verify_through_file(*c.certificate, "hipair-tolerance-certificate-test.json");
   // The Model-only entry point cannot check it (it needs the parametric form from the text).
   VerificationResult model_only = check_certificate(*c.certificate, read_model_file(geneva()));
   EXPECT_FALSE(model_only.valid);
@@ -115,14 +122,7 @@ TEST(CertifyTolerance, FreePathLeavesMakeTheCertificateValid) {
   ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
   EXPECT_FALSE(c.unproven) << c.reason;
   ASSERT_TRUE(c.certificate && c.certificate->tolerance);
-  std::filesystem::path file = std::filesystem::temp_directory_path() / "hipair-tolerance-certificate-free-path-test.json";
-  {
-    std::ofstream out(file, std::ios::binary);
-    out << write_certificate(*c.certificate);
-  }
-  VerificationResult v = verify_certificate_file(file, geneva());
-  std::filesystem::remove(file);
-  expect_checks_pass(v);
+  VerificationResult v = verify_through_file(*c.certificate, "hipair-tolerance-certificate-free-path-test.json");
   EXPECT_TRUE(v.valid) << v.summary;
 }
 
@@ -457,14 +457,7 @@ TEST(CertifyTolerance, JustBelowTheThresholdTheCertificateVerifies) {
   const ToleranceClaim& t = *c.certificate->tolerance;
   EXPECT_EQ(t.scale, Rational(3791, 500));
   EXPECT_EQ(t.varied.size(), 26u);
-  std::filesystem::path file = std::filesystem::temp_directory_path() / "hipair-tolerance-certificate-09-test.json";
-  {
-    std::ofstream out(file, std::ios::binary);
-    out << write_certificate(*c.certificate);
-  }
-  VerificationResult v = verify_certificate_file(file, geneva());
-  std::filesystem::remove(file);
-  expect_checks_pass(v);
+  VerificationResult v = verify_through_file(*c.certificate, "hipair-tolerance-certificate-09-test.json");
   EXPECT_EQ(check_leaves_with_kernels(t, 10, 21), 10 * t.leaves.size());
 }
 
@@ -692,14 +685,7 @@ TEST(CertifyTolerance, SecondOrderLeavesCertifyTheFullRangeAtNineTenthsOfTheThre
   for (const ToleranceLeaf& leaf : t.leaves) recorded += leaf.witness_margins.size() == 2;
   EXPECT_EQ(recorded, c.second_order_leaves);
   // Through the file path hipair-verify uses (the verifier's own enclosures).
-  std::filesystem::path file = std::filesystem::temp_directory_path() / "hipair-tolerance-certificate-09-full-test.json";
-  {
-    std::ofstream out(file, std::ios::binary);
-    out << write_certificate(*c.certificate);
-  }
-  VerificationResult v = verify_certificate_file(file, geneva());
-  std::filesystem::remove(file);
-  expect_checks_pass(v);
+  VerificationResult v = verify_through_file(*c.certificate, "hipair-tolerance-certificate-09-full-test.json");
   // Independent oracle: the library's double-precision kernels at random points of every leaf
   // (half of them at corners of the leaf's parameter box) find both sides in their brackets,
   // no root between the witness and the channel-side ends, and an open channel.
@@ -872,14 +858,7 @@ TEST(CertifyTolerance, EnvelopeWitnessesMakeTheFreePathCertificateValid) {
   EXPECT_EQ(t.varied.size(), 26u);
   EXPECT_EQ(t.range.lo, Rational(11, 5));
   EXPECT_EQ(t.range.hi, Rational(23, 10));
-  std::filesystem::path file = std::filesystem::temp_directory_path() / "hipair-tolerance-certificate-envelope-test.json";
-  {
-    std::ofstream out(file, std::ios::binary);
-    out << write_certificate(*c.certificate);
-  }
-  VerificationResult v = verify_certificate_file(file, geneva());
-  std::filesystem::remove(file);
-  expect_checks_pass(v);
+  VerificationResult v = verify_through_file(*c.certificate, "hipair-tolerance-certificate-envelope-test.json");
   EXPECT_TRUE(v.valid) << v.summary;
   EXPECT_EQ(check_leaves_with_kernels(t, 20, 20), 20 * t.leaves.size());
 
