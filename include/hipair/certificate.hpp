@@ -350,6 +350,16 @@ std::optional<JamQuery> find_jam(const Model& model, const std::string& first,
                                  const Rational& start, const Rational& follower_start,
                                  int direction, const Rational& step, const Rational& travel);
 
+/// Certifies a trap find_jam found, searched with driver steps of `step`: the trap itself, or,
+/// where its cut is too shallow to certify (the channel closes within a rounding of the step's
+/// end: at the cut the parts overlap by next to nothing), the same trap with its far end moved
+/// on by 1, 2, 4 or 8 further steps (its walls must then hold over the longer range).
+/// \returns nullopt when none of them is certified.
+std::optional<Certificate> certify_found_jam(const Model& model, const std::string& first,
+                                             const std::string& second, const JamQuery& query,
+                                             const Rational& step, const CertifyContext& context = {},
+                                             const IntervalSearchOptions& options = {});
+
 struct KinematicsResult;
 
 /// A finding of an analysis with its certificate, or why it has none.

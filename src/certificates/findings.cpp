@@ -77,7 +77,7 @@ std::vector<CertifiedFinding> certify_kinematic_findings(const Model& model, con
       try {
         auto query = find_jam(model, a.name, b.name, driver.name, start, rational_of(*position), result.direction, step,
                               Rational(3) * rational_of(margin));
-        if (query) finding.certificate = certify_jam(model, a.name, b.name, *query, context);
+        if (query) finding.certificate = certify_found_jam(model, a.name, b.name, *query, step, context);
       } catch (const std::bad_alloc&) {
         throw;
       } catch (const std::exception& error) {

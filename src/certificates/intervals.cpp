@@ -45,17 +45,6 @@ Rational power_of_ten(int exponent) {
   mpz_ui_pow_ui(power.get_mpz_t(), 10, unsigned(std::abs(exponent)));
   return exponent >= 0 ? Rational(power) : Rational(1) / Rational(power);
 }
-// The sign of the middle of an enclosure (a search heuristic: never a bound). Unlike mid(), it
-// survives magnitudes beyond double range (1e-400 is not 0, 1e400 is not infinite).
-int middle_sign(const Interval& value) {
-  if (mpfi_nan_p(value.get())) return 0;
-  mpfr_t middle;
-  mpfr_init2(middle, model_detail::interval_bits);
-  mpfi_mid(middle, value.get());
-  int sign = mpfr_sgn(middle);
-  mpfr_clear(middle);
-  return sign;
-}
 Rational middle(const RationalInterval& range) { return (range.lo + range.hi) / 2; }
 Rational reach_of(const Part& part) {
   return part.motion.kind == Motion::Kind::rotation ? verify::reach(verify::shape_of(part)) : Rational(1);
@@ -118,22 +107,52 @@ Placed place_box(const Part& part, const std::optional<RationalInterval>& range)
   return Placed{verify::place_over(shape, interval_map(part, *range)), verify::place_over(shape, interval_map(part, {c, c}))};
 }
 
+// The middle of an enclosure as sign, binary exponent and mantissa: ordered like the middle
+// itself at any magnitude (1e-400 is not 0, 1e400 is not infinite, unlike mid()), for the
+// search below: a heuristic, never a bound.
+struct MiddleValue {
+  int sign = 0;
+  long exponent = 0;
+  double mantissa = 0;   // in [0.5, 1)
+};
+MiddleValue middle_value(const Interval& value) {
+  MiddleValue m;
+  if (mpfi_nan_p(value.get())) return m;
+  mpfr_t middle;
+  mpfr_init2(middle, model_detail::interval_bits);
+  mpfi_mid(middle, value.get());
+  m.sign = mpfr_sgn(middle);
+  if (m.sign != 0) m.mantissa = std::abs(mpfr_get_d_2exp(&m.exponent, middle, MPFR_RNDN));
+  mpfr_clear(middle);
+  return m;
+}
+// a < b as numbers
+bool less(const MiddleValue& a, const MiddleValue& b) {
+  if (a.sign != b.sign) return a.sign < b.sign;
+  if (a.sign == 0) return false;
+  bool magnitude_less = a.exponent != b.exponent ? a.exponent < b.exponent : a.mantissa < b.mantissa;
+  bool magnitude_greater = a.exponent != b.exponent ? a.exponent > b.exponent : a.mantissa > b.mantissa;
+  return a.sign > 0 ? magnitude_less : magnitude_greater;
+}
+MiddleValue negated(MiddleValue a) {
+  a.sign = -a.sign;
+  return a;
+}
+
 // A piece of edge e (posed at the centre: ec, over the box: eo) crossing g, for every pose.
+// The search is a heuristic (the piece is then proved by crossing_certain): the side of g along
+// e at 32 samples, each sign change bisected; where no sample changes sign, a shallow crossing
+// (an arc dipping through a line by less than the samples' spacing shows: a cam pushing its
+// follower just past a limit) is sought by minimising the side value about every sample where
+// it comes locally closest to the other side.
 std::optional<RationalInterval> crossing_piece(const IntervalEdge& ec, const IntervalEdge& eo, const IntervalEdge& gc,
                                                const IntervalEdge& go) {
   double end = ec.arc ? mid(ec.sweep) : 1.0;   // a fraction or an angle (at most 2 pi)
-  auto side = [&](double u) { return middle_sign(verify::side_of(gc, verify::point_on(ec, Interval(approximate(u))))); };
-  constexpr int samples = 32;
-  int previous = side(0);
-  for (int i = 1; i <= samples; ++i) {
-    double u0 = end * (i - 1) / samples, u1 = end * i / samples;
-    int value = side(u1);
-    if (previous == value || previous == 0 || value == 0) {
-      previous = value;
-      continue;
-    }
+  auto side_value = [&](double u) { return middle_value(verify::side_of(gc, verify::point_on(ec, Interval(approximate(u))))); };
+  auto side = [&](double u) { return side_value(u).sign; };
+  // The piece about the sign change between u0 (sign lo_value) and u1 (the other sign), if certain.
+  auto piece_about = [&](double u0, double u1, int lo_value) -> std::optional<RationalInterval> {
     double lo = u0, hi = u1;
-    int lo_value = previous;
     for (int k = 0; k < 50; ++k) {
       double m = 0.5 * (lo + hi);
       if (side(m) == lo_value) lo = m;
@@ -146,7 +165,47 @@ std::optional<RationalInterval> crossing_piece(const IntervalEdge& ec, const Int
       RationalInterval along{approximate(a), approximate(b)};
       if (verify::crossing_certain(eo, along, go, nullptr)) return along;
     }
-    previous = value;
+    return std::nullopt;
+  };
+  constexpr int samples = 32;
+  std::vector<MiddleValue> values(samples + 1);
+  for (int i = 0; i <= samples; ++i) values[i] = side_value(end * i / samples);
+  bool changed = false;
+  for (int i = 1; i <= samples; ++i) {
+    int previous = values[i - 1].sign, value = values[i].sign;
+    if (previous == value || previous == 0 || value == 0) continue;
+    changed = true;
+    if (auto along = piece_about(end * (i - 1) / samples, end * i / samples, previous)) return along;
+  }
+  if (changed || values[0].sign == 0) return std::nullopt;
+  int sign = values[0].sign;   // every sample's (or 0)
+  auto toward_other_side = [&](const MiddleValue& v) { return sign > 0 ? v : negated(v); };   // less: closer to it
+  for (int i = 1; i < samples; ++i) {
+    MiddleValue here = toward_other_side(values[i]);
+    if (values[i].sign != sign || less(toward_other_side(values[i - 1]), here) || less(toward_other_side(values[i + 1]), here))
+      continue;
+    // golden-section search for the least side value on the samples' neighbours
+    constexpr double ratio = 0.6180339887498949;
+    double a = end * (i - 1) / samples, b = end * (i + 1) / samples;
+    double c = b - ratio * (b - a), d = a + ratio * (b - a);
+    MiddleValue fc = toward_other_side(side_value(c)), fd = toward_other_side(side_value(d));
+    for (int k = 0; k < 80 && fc.sign == sign && fd.sign == sign; ++k) {
+      if (less(fc, fd)) {
+        b = d, d = c, fd = fc;
+        c = b - ratio * (b - a);
+        fc = toward_other_side(side_value(c));
+      } else {
+        a = c, c = d, fc = fd;
+        d = a + ratio * (b - a);
+        fd = toward_other_side(side_value(d));
+      }
+    }
+    double beyond = fc.sign != sign ? c : fd.sign != sign ? d : -1;
+    if (beyond < 0 || side(beyond) != -sign) continue;   // no dip to the other side here
+    double before = end * (i - 1) / samples;             // the dip's entry lies between them
+    if (auto along = piece_about(before, beyond, sign)) return along;
+    double after = end * (i + 1) / samples;              // ... and its exit (from the other side)
+    if (auto along = piece_about(beyond, after, -sign)) return along;
   }
   return std::nullopt;
 }
@@ -322,6 +381,19 @@ std::optional<Certificate> certify_jam(const Model& model, const std::string& fi
                 to_decimal_string(far) + unit + ".";
   self_check(c, model);
   return c;
+}
+
+std::optional<Certificate> certify_found_jam(const Model& model, const std::string& first, const std::string& second,
+                                             const JamQuery& query, const Rational& step, const CertifyContext& context,
+                                             const IntervalSearchOptions& options) {
+  if (auto certificate = certify_jam(model, first, second, query, context, options)) return certificate;
+  for (int further : {1, 2, 4, 8}) {
+    JamQuery longer = query;
+    Rational& far = query.direction > 0 ? longer.trap.driver.hi : longer.trap.driver.lo;
+    far += query.direction * further * step;
+    if (auto certificate = certify_jam(model, first, second, longer, context, options)) return certificate;
+  }
+  return std::nullopt;
 }
 
 std::optional<JamQuery> find_jam(const Model& model, const std::string& first, const std::string& second,

@@ -201,6 +201,7 @@ int run(const CertifyArguments& arguments) {
           if (comma == std::string::npos) throw ModelError("", "--trap needs DRIVER_LO:HI,FOLLOWER_LO:HI for a moving follower");
           query->trap.follower = range_of(arguments.trap.substr(comma + 1), rotates(other), "--trap");
         }
+        certificate = certify_jam(model, first, second, *query, context);
       } else {
         Rational start = arguments.start.empty() ? coordinate(driver) : value_of(arguments.start, rotates(driver), "--start");
         Rational follower = arguments.follower_start.empty() ? coordinate(other)
@@ -214,8 +215,8 @@ int run(const CertifyArguments& arguments) {
           std::cerr << "hipair: cannot certify: no jam found: the motion was not blocked within the travel\n";
           return 1;
         }
+        certificate = certify_found_jam(model, first, second, *query, step, context);
       }
-      certificate = certify_jam(model, first, second, *query, context);
       failure = "some configuration of the trap's cut or walls is not certainly blocked";
     }
   } else {

@@ -119,6 +119,16 @@ code=$?
 { [ $code -eq 0 ] || [ $code -eq 1 ]; } || fail "--direction -1: exit $code: $(cat "$work/jam.out")"
 [ $code -eq 1 ] && { grep -q "no jam found" "$work/jam.out" || fail "--direction -1: $(cat "$work/jam.out")"; }
 
+# ------------------------------------------------------------------ a cam pushing its follower onto a limit
+# The eccentric cam holds the follower at s = 8 sin(theta); with the follower's travel stopped at
+# 4 mm the search's trap is the 1/500 rad step holding pi/6, where at the cut the cam stands less
+# than 0.014 mm above the limit: a certified jam (session 20 could not certify it).
+sed 's/"limits": \[-12, 12\]/"limits": [-12, 4]/' "$source/examples/models/cam-follower.json" >"$work/cam-limited.json"
+"$hipair" certify "$work/cam-limited.json" --claim jam --out "$work/cam-jam.json" >"$work/cam-jam.out" 2>&1 \
+  || fail "the cam pushing its follower onto its limit is not certified: $(cat "$work/cam-jam.out")"
+"$verify" "$work/cam-jam.json" "$work/cam-limited.json" | grep -q "^valid: jam: driving 'cam' forward from within \[0.522, 0.524\] rad" \
+  || fail "the cam's jam at its follower's limit does not verify as the 1/500 rad step about pi/6"
+
 ls -a "$work" | grep -q '\.tmp' && fail "temporary files left behind"
 # ------------------------------------------------------------------ never-interferes tolerance certificate
 # `hipair tolerance --certify-interference` on the Geneva: the wheel held at 0 while the pin enters

@@ -258,14 +258,84 @@ TEST(CertifyExamples, CamPushingItsFollowerIsTrackedAndItsLimitJamVerifies) {
   EXPECT_EQ(query->trap.driver.hi - query->trap.driver.lo, Rational(1, 500));
   EXPECT_EQ(query->trap.follower->hi, Rational(4));
   EXPECT_LT(query->trap.follower->lo, Rational(4));
-  // A trap about it (the search's own, one step wide, is not certified: session 20's note)
+  // The search's own trap, one step wide: at its cut the cam's top is above the limit by
+  // less than 8 cos(pi/6) / 500 mm, a dip the crossing search's samples do not see.
+  auto certificate = certify_jam(stopped, "cam", "follower", *query);
+  ASSERT_TRUE(certificate);
+  expect_verifies(*certificate, limited, "cam onto the follower's limit");
+  // and a wider trap about it
   JamQuery wider = *query;
   wider.trap.driver = RationalInterval{Rational(1, 2), Rational(53, 100)};
   wider.trap.follower = RationalInterval{Rational(35, 10), Rational(4)};
-  auto certificate = certify_jam(stopped, "cam", "follower", wider);
+  certificate = certify_jam(stopped, "cam", "follower", wider);
   ASSERT_TRUE(certificate);
-  expect_verifies(*certificate, limited, "cam onto the follower's limit");
+  expect_verifies(*certificate, limited, "cam onto the follower's limit, wider trap");
   fs::remove(limited);
+}
+
+// Generated cams pushing their followers onto a travel limit: eccentricity, cam radius, the
+// limit and the search's step at random. The cam holds the follower at s = e sin(theta), so the
+// search's trap is the step holding theta* = asin(L / e), and at its cut the cam's top stands
+// above the limit by e cos(theta*) x (a random fraction of the step): from a fraction of a
+// micrometre to tens. Every trap the search finds is certified and verifies.
+TEST(CertifyExamples, GeneratedCamsPushingFollowersOntoTheirLimitsJamCertifiably) {
+  fs::path path = fs::path(HIPAIR_EXAMPLES) / "cam-follower.json";
+  const std::string original = io::read_file(path);
+  std::mt19937_64 random(20261129);
+  int certified = 0;
+  for (int trial = 0; trial < 10; ++trial) {
+    long e = 3 + long(random() % 10);                              // eccentricity 3 .. 12 mm
+    long radius = e + 10 + long(random() % 30);                    // cam radius
+    long thousandths = e * long(100 + random() % 899);              // the limit, in [e/10, e)
+    Rational limit(thousandths, 1000);
+    limit.canonicalize();
+    std::string digits = std::to_string(1000 + thousandths % 1000).substr(1);
+    std::string limit_text = std::to_string(thousandths / 1000) + "." + digits;
+    Rational step = std::vector<Rational>{Rational(1, 500), Rational(1, 2000), Rational(1, 10000), Rational(3, 1000)}[random() % 4];
+    std::string text = original;
+    auto replace = [&](const std::string& from, const std::string& to) {
+      auto at = text.find(from);
+      ASSERT_NE(at, std::string::npos) << from;
+      text.replace(at, from.size(), to);
+    };
+    replace("\"limits\": [-12, 12]", "\"limits\": [-" + std::to_string(e + 4) + ", " + limit_text + "]");
+    replace("\"offset\": 0.5", "\"offset\": 0.1");
+    replace("\"cam-radius\": { \"nominal\": 25", "\"cam-radius\": { \"nominal\": " + std::to_string(radius));
+    replace("\"eccentricity\": { \"nominal\": 8", "\"eccentricity\": { \"nominal\": " + std::to_string(e));
+    fs::path file = fs::path(testing::TempDir()) / ("hipair_cam_generated_" + std::to_string(::getpid()) + ".json");
+    io::write_file_atomically(file, text);
+    Model model = read_model_file(file);
+    double theta = std::asin(limit.get_d() / double(e));
+    // the cut lands (1 - u) of a step past theta*: from 5 % to 95 % of a step
+    double u = 0.05 + 0.9 * double(random() % 1000) / 1000;
+    Rational start = Rational(theta - (20 + u) * step.get_d());
+    Rational follower = Rational(double(e) * std::sin(start.get_d()) + 0.001);
+    SCOPED_TRACE("e " + std::to_string(e) + ", radius " + std::to_string(radius) + ", limit " + limit.get_str() + ", step " +
+                 step.get_str());
+    auto query = find_jam(model, "cam", "follower", "cam", start, follower, +1, step, 60 * step);
+    ASSERT_TRUE(query);
+    ASSERT_TRUE(query->trap.follower);
+    EXPECT_EQ(query->trap.follower->hi, limit);
+    EXPECT_LE(query->trap.driver.lo.get_d(), theta + 1e-9);
+    EXPECT_GE(query->trap.driver.hi.get_d(), theta - 1e-9);
+    auto certificate = certify_jam(model, "cam", "follower", *query);
+    ASSERT_TRUE(certificate) << "trap [" << query->trap.driver.lo.get_d() << ", " << query->trap.driver.hi.get_d() << "]";
+    expect_verifies(*certificate, file, "generated cam onto its limit");
+    ++certified;
+    // The search started so that the cut lands within a rounding past theta*: there the one-step
+    // trap's cut is a touch, and the trap certified is the one whose far end moved on.
+    start = Rational(theta - 20 * step.get_d());
+    follower = Rational(double(e) * std::sin(start.get_d()) + 0.001);
+    query = find_jam(model, "cam", "follower", "cam", start, follower, +1, step, 60 * step);
+    ASSERT_TRUE(query);
+    certificate = certify_found_jam(model, "cam", "follower", *query, step);
+    ASSERT_TRUE(certificate) << "touching cut at " << query->trap.driver.hi.get_d();
+    EXPECT_LE(certificate->trap.driver.hi - query->trap.driver.hi, 8 * step);
+    expect_verifies(*certificate, file, "generated cam onto its limit, touching cut");
+    ++certified;
+    fs::remove(file);
+  }
+  EXPECT_EQ(certified, 20);
 }
 
 TEST(CertifyExamples, ParameterValuesInsideTheTolerancesAreCertified) {
