@@ -3,6 +3,7 @@
 // Figure 5). Doubles here are for display only.
 #include "core/plot_axis.hpp"
 
+#include <hipair/error.hpp>
 #include <hipair/tolerance.hpp>
 
 #include <nlohmann/json.hpp>
@@ -134,6 +135,22 @@ std::string legend(const std::vector<std::pair<std::string, std::string>>& entri
   return out.str();
 }
 
+// The bracket's certified lower end: the scale of a valid no-jam certificate (its named sides
+// apart and a free follower path proved: the verifier's verdict "valid") from the same run, hence
+// over the same driver range and the same varied parameters, below the exact jam witness. The
+// threshold then lies between the two, each end proved: no jam at or below it (the certificate,
+// checked by hipair-verify), a jam at the upper end (the exact witness and its C-space).
+std::optional<Rational> certified_lower_end(const ToleranceResult& r) {
+  if (!r.threshold || !r.threshold->bracketed || !r.threshold->bracket_confirmed || !r.certification) return std::nullopt;
+  const ToleranceCertification& c = *r.certification;
+  if (c.outcome != ToleranceCertification::Outcome::certified || c.unproven || !c.certificate) return std::nullopt;
+  if (!(c.scale < r.threshold->bracket_above))
+    throw NumericError("a valid no-jam certificate at scale " + to_exact_string(c.scale) +
+                       " is not below the exact jam witness at scale " + to_exact_string(r.threshold->bracket_above) +
+                       ": the two proofs contradict each other");
+  return c.scale;
+}
+
 }  // namespace
 
 std::string tolerance_text_report(const ToleranceResult& r) {
@@ -209,6 +226,15 @@ std::string tolerance_text_report(const ToleranceResult& r) {
             << " (driver " << number(t.bracket_driver.get_d() * ud, 9) << " " << driver_unit(r.driver_rotates) << ")\n";
         out << "  exact C-space at the witness: " << (t.bracket_confirmed ? "CONFIRMED — " : "not confirmed — ")
             << t.bracket_evidence << "\n";
+        if (auto lower = certified_lower_end(r))
+          out << "  certified bracket: the threshold lies in [" << to_exact_string(*lower) << ", "
+              << to_exact_string(t.bracket_above) << "] (lower end " << number(Rational(*lower / t.bracket_above).get_d(), 3)
+              << " of the upper): no jam up to " << to_exact_string(*lower)
+              << " (the tolerance certificate below, verdict valid), a jam at " << to_exact_string(t.bracket_above)
+              << " (the exact witness)\n";
+        else
+          out << "  certified bracket: only the upper end is proved (a valid no-jam certificate below it would prove "
+                 "the lower end: --certify --certify-free-path with --certify-scale below the bracket)\n";
       } else if (!t.bracket_evidence.empty()) {
         out << "  bracket: " << t.bracket_evidence << "\n";
       }
@@ -349,6 +375,8 @@ std::string tolerance_json_report(const ToleranceResult& r) {
                                    {"witness_upper", interval(t.bracket_upper)},
                                    {"confirmed", t.bracket_confirmed},
                                    {"evidence", t.bracket_evidence}};
+      auto lower = certified_lower_end(r);
+      j["threshold"]["bracket"]["certified_lower"] = lower ? ordered_json(lower->get_str()) : ordered_json(nullptr);
     }
   }
   if (r.certification) {

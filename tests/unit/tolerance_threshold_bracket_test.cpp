@@ -7,15 +7,22 @@
 // whole Geneva box and random subsets of its toleranced parameters (`threshold_parameters`);
 // on a subset the corner search's crossing may be refuted by the exact C-space, and the
 // bracket must then say "not confirmed" (never a confirmation the independent check denies).
+#include <hipair/certificate.hpp>
 #include <hipair/cspace.hpp>
+#include <hipair/error.hpp>
 #include <hipair/model.hpp>
 #include <hipair/tolerance.hpp>
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <random>
+
+#include <unistd.h>
 
 #include "test_paths.hpp"
 
@@ -146,6 +153,62 @@ TEST(ToleranceThresholdBracket, AtNinetyEightHundredthsTheProducerReportsTheJamI
   };
   EXPECT_EQ(locate(read_model_file(geneva(), worst)), Location::Kind::blocked);
   EXPECT_EQ(locate(nominal), Location::Kind::free);
+}
+
+// The bracket's certified lower end (session 21): with a no-jam certificate from the same run
+// (same range, same varied parameters) whose free follower path is proved (verdict "valid"),
+// the report states the threshold between the certificate's scale and the exact jam witness.
+// Independently: the certificate, written to a file, is valid under hipair-verify's path, its
+// scale is below the witness, and the JSON's certified_lower is that scale exactly. The same
+// result with the certificate's verdict "unproven" states that only the upper end is proved,
+// and a valid certificate above the witness (two proofs that contradict each other) is an error.
+TEST(ToleranceThresholdBracket, AValidNoJamCertificateBelowTheWitnessIsTheBracketsCertifiedLowerEnd) {
+  ToleranceOptions options;
+  options.range = std::make_pair(Rational(11, 5), Rational(23, 10));
+  options.positions = 720;
+  options.relative_accuracy = 0.5;
+  options.threshold = true;
+  options.threshold_bracket = 1e-6;
+  options.certify = true;
+  options.certify_relative_to_threshold = true;
+  options.certify_scale = Rational(2, 5);
+  options.certify_free_path = true;
+  options.certify_max_leaves = 2000;
+  ToleranceResult result = analyze_tolerances(geneva(), options);
+  ASSERT_TRUE(result.threshold && result.threshold->bracketed && result.threshold->bracket_confirmed);
+  ASSERT_TRUE(result.certification);
+  const ToleranceCertification& c = *result.certification;
+  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
+  ASSERT_TRUE(c.certificate);
+  EXPECT_FALSE(c.unproven);
+  EXPECT_TRUE(c.scale < result.threshold->bracket_above);
+  std::filesystem::path file = std::filesystem::temp_directory_path() /
+                               ("hipair-bracket-lower-" + std::to_string(::getpid()) + ".json");
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << write_certificate(*c.certificate);
+  }
+  VerificationResult v = verify_certificate_file(file, geneva());
+  std::filesystem::remove(file);
+  EXPECT_TRUE(v.valid) << v.reason;
+
+  nlohmann::json j = nlohmann::json::parse(tolerance_json_report(result));
+  const nlohmann::json& lower = j["threshold"]["bracket"]["certified_lower"];
+  ASSERT_TRUE(lower.is_string());
+  EXPECT_EQ(Rational(lower.get<std::string>()), c.scale);
+  std::string text = tolerance_text_report(result);
+  EXPECT_NE(text.find("certified bracket: the threshold lies in [" + c.scale.get_str() + ", "), std::string::npos) << text;
+
+  ToleranceResult unproven = result;
+  unproven.certification->unproven = true;
+  EXPECT_TRUE(nlohmann::json::parse(tolerance_json_report(unproven))["threshold"]["bracket"]["certified_lower"].is_null());
+  text = tolerance_text_report(unproven);
+  EXPECT_NE(text.find("certified bracket: only the upper end is proved"), std::string::npos) << text;
+
+  ToleranceResult contradiction = result;
+  contradiction.certification->scale = result.threshold->bracket_above;
+  EXPECT_THROW(tolerance_text_report(contradiction), NumericError);
+  EXPECT_THROW(tolerance_json_report(contradiction), NumericError);
 }
 
 }  // namespace
