@@ -215,6 +215,7 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     std::optional<IntervalJet> first;
     if (reuse_y_jets_) {
       first = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
+      if (memo->has_taylor) taylor_partials(curve, *memo, fixed, held_offset, y, *first);
       over_y = first;   // its partials serve the end signs of Y itself first
       over_y_range = y;
     }
@@ -223,6 +224,7 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     if (s_lo == 2 || s_hi == 2 || s_lo == 0 || s_hi == 0 || s_lo == s_hi) return false;
     IntervalJet f = first ? *first
                           : evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
+    if (!first && memo->has_taylor) taylor_partials(curve, *memo, fixed, held_offset, y, f);
     if (use_second) tighten_partials(curve, *memo, box, center, fixed, held_offset, y, f);
     Interval fv = f.partial(k);
     int s = fv.sign();
@@ -338,6 +340,21 @@ std::shared_ptr<const CurveSolver::BoxGeometry> CurveSolver::box_geometry(const 
       // a construction that is not twice differentiable over the box: first order only
     }
   }
+  if (taylor_) {
+    std::vector<TaylorJet> tjets(n_);
+    for (std::size_t i = 0; i < n_; ++i) tjets[i] = TaylorJet(TaylorModel1(jets[i].value));
+    for (std::size_t a = 0; a < k; ++a) {
+      std::size_t i = active[a];
+      tjets[i] = TaylorJet::variable(TaylorModel1::over(box.lo[i], box.hi[i], a), a, k + 1);
+    }
+    try {
+      g->taylor = geometry(curve, model_->parameter_values(tjets));
+      g->has_taylor = true;
+    } catch (const NumericError&) {
+      // a construction the Taylor models cannot follow over this box (a square root or atan2
+      // whose argument's range reaches its singularity, an undecided |x|): interval jets only
+    }
+  }
   g->center_parameters = model_->parameter_values(center_deviations);
   g->jet = geometry(curve, model_->parameter_values(jets));
   g->at_center = geometry(curve, g->center_parameters);
@@ -389,6 +406,28 @@ void CurveSolver::tighten_partials_or_throw(const CurveSlice& curve, const BoxGe
     Interval& current = f.gradient[a];
     Interval narrower(std::max(current.lo, t.lo), std::min(current.hi, t.hi));
     if (narrower.lo <= narrower.hi) current = narrower;
+  }
+}
+
+void CurveSolver::taylor_partials(const CurveSlice& curve, const BoxGeometry& memo, const Interval& fixed,
+                                  const std::optional<Interval>& held_offset, const Interval& y, IntervalJet& f) const {
+  std::size_t k = memo.active.size();
+  std::size_t size = held_offset ? k + 2 : k + 1;
+  try {
+    TaylorJet fixed_t = held_offset ? TaylorJet::variable(TaylorModel1::over(fixed.lo, fixed.hi, k + 1), k + 1, size)
+                                    : TaylorJet(TaylorModel1(fixed));
+    TaylorJet ft = evaluate<TaylorJet>(curve, memo.taylor, fixed_t,
+                                       TaylorJet::variable(TaylorModel1::over(y.lo, y.hi, k), k, size));
+    if (f.gradient.size() < size) f.gradient.resize(size, Interval(0));
+    for (std::size_t a = 0; a < size; ++a) {
+      Interval t = ft.partial(a).range();
+      Interval& current = f.gradient[a];
+      Interval narrower(std::max(current.lo, t.lo), std::min(current.hi, t.hi));
+      if (narrower.lo <= narrower.hi) current = narrower;
+    }
+  } catch (const NumericError&) {
+    // the Taylor models cannot follow the contact function over this region: the interval
+    // jets' partials stand
   }
 }
 

@@ -23,6 +23,10 @@ using IntervalJet = Jet<Interval>;
 /// Second-order jets: a jet whose value and partial derivatives are interval jets (their
 /// gradients: the second partial derivatives).
 using IntervalJet2 = Jet<IntervalJet>;
+/// Jets whose value and partial derivatives are first-order Taylor models over a box
+/// (taylor_model.hpp): the partial derivatives over the box keep the correlation between the
+/// parameters that interval jets lose (docs/tolerance.md "Taylor-model partial derivatives").
+using TaylorJet = Jet<TaylorModel1>;
 
 /// A contact curve with one coordinate held: F(fixed, free; p) = 0 solved for `free`.
 struct CurveSlice {
@@ -102,6 +106,10 @@ class CurveSolver {
   /// budget either way, and each second-order sub-box costs ~15 x a first-order one
   /// (docs/performance.md, session 20).
   void set_second_order(bool second_order) { second_order_ = second_order; }
+  /// Whether certified_range narrows its partial derivatives over the box by their first-order
+  /// Taylor models (TaylorJet), intersected with the interval jets' (default: no; assembly
+  /// chains turn it on: docs/performance.md, session 21).
+  void set_taylor_partials(bool taylor) { taylor_ = taylor; }
 
   /// Certified enclosure of {v(p) : p in box} (the root near the nominal `free_value`, unique
   /// in a neighbourhood certified along the way), subdividing the box until the enclosure is
@@ -136,6 +144,11 @@ class CurveSolver {
     PairGeometry<IntervalJet> jet_at_center;
     PairGeometry<IntervalJet2> jet2;
     bool second_order = false;   ///< jet_at_center and jet2 hold
+    /// For the Taylor-model partials (taylor_): the geometry over the box as jets of Taylor
+    /// models in the box's active parameters (variables 0..k-1; the free coordinate is k, the
+    /// held one k + 1).
+    PairGeometry<TaylorJet> taylor;
+    bool has_taylor = false;   ///< `taylor` holds
   };
   std::shared_ptr<const BoxGeometry> box_geometry(const CurveSlice& curve, const Box& box,
                                                   const std::vector<double>& center) const;
@@ -155,6 +168,10 @@ class CurveSolver {
   void tighten_partials_or_throw(const CurveSlice& curve, const BoxGeometry& memo, const Box& box,
                                  const std::vector<double>& center, const Interval& fixed,
                                  const std::optional<Interval>& held_offset, const Interval& y, IntervalJet& f) const;
+  /// Narrows the partial derivatives in `f` (a jet over the box x y x the held range) to the
+  /// ranges of their Taylor models over the same region, where those are narrower.
+  void taylor_partials(const CurveSlice& curve, const BoxGeometry& memo, const Interval& fixed,
+                       const std::optional<Interval>& held_offset, const Interval& y, IntervalJet& f) const;
   std::shared_ptr<BoxGeometryMemo> memo_ = std::make_shared<BoxGeometryMemo>();
 
   std::shared_ptr<const model_detail::ParametricModel> model_;
@@ -166,6 +183,7 @@ class CurveSolver {
   bool compact_jets_ = true;
   bool reuse_y_jets_ = true;
   bool second_order_ = true;
+  bool taylor_ = false;
 };
 
 /// Half-angle tangent chart value -> part coordinate (rad), certified: c + 2 atan(t).
