@@ -211,11 +211,12 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   // The mean-value enclosure over B x Y when Y is certified to hold exactly one root for every
   // p in B (end signs opposite, F_v of one sign); false otherwise.
   bool use_second = false;
+  bool use_taylor = false;
   auto enclose = [&](const Interval& y, Interval& out) {
     std::optional<IntervalJet> first;
     if (reuse_y_jets_) {
       first = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
-      if (memo->has_taylor) taylor_partials(curve, *memo, fixed, held_offset, y, *first);
+      if (use_taylor) taylor_partials(curve, *memo, fixed, held_offset, y, *first);
       over_y = first;   // its partials serve the end signs of Y itself first
       over_y_range = y;
     }
@@ -224,7 +225,7 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     if (s_lo == 2 || s_hi == 2 || s_lo == 0 || s_hi == 0 || s_lo == s_hi) return false;
     IntervalJet f = first ? *first
                           : evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
-    if (!first && memo->has_taylor) taylor_partials(curve, *memo, fixed, held_offset, y, f);
+    if (!first && use_taylor) taylor_partials(curve, *memo, fixed, held_offset, y, f);
     if (use_second) tighten_partials(curve, *memo, box, center, fixed, held_offset, y, f);
     Interval fv = f.partial(k);
     int s = fv.sign();
@@ -255,6 +256,25 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
       if (!enclose(narrower, next)) break;
       y = narrower;
       result = next;
+    }
+    // Taylor models (assembly chains; once the first-order contraction has settled, and only
+    // when its enclosure is wider than `target`): the partial derivatives over B x Y narrowed to
+    // the ranges of their first-order Taylor models, which keep the correlation between the
+    // parameters that the interval jets lose; then contracted again.
+    if (taylor_ && result.width() > target && taylor_geometry(curve, *memo, box)) {
+      use_taylor = true;
+      Interval next;
+      if (enclose(y, next)) {
+        result = Interval(std::max(result.lo, next.lo), std::min(result.hi, next.hi));
+        for (int contraction = 0; contraction < 3; ++contraction) {
+          double pad = 1e-3 * result.width() + slack;
+          Interval narrower(result.lo - pad, result.hi + pad);
+          if (!(narrower.width() < 0.9 * y.width())) break;
+          if (!enclose(narrower, next)) break;
+          y = narrower;
+          result = Interval(std::max(result.lo, next.lo), std::min(result.hi, next.hi));
+        }
+      }
     }
     // Second order (once the first-order contraction has settled, and only when its enclosure is
     // wider than `target`, the accuracy certified_range asks for): the partial derivatives over
@@ -340,21 +360,6 @@ std::shared_ptr<const CurveSolver::BoxGeometry> CurveSolver::box_geometry(const 
       // a construction that is not twice differentiable over the box: first order only
     }
   }
-  if (taylor_) {
-    std::vector<TaylorJet> tjets(n_);
-    for (std::size_t i = 0; i < n_; ++i) tjets[i] = TaylorJet(TaylorModel1(jets[i].value));
-    for (std::size_t a = 0; a < k; ++a) {
-      std::size_t i = active[a];
-      tjets[i] = TaylorJet::variable(TaylorModel1::over(box.lo[i], box.hi[i], a), a, k + 1);
-    }
-    try {
-      g->taylor = geometry(curve, model_->parameter_values(tjets));
-      g->has_taylor = true;
-    } catch (const NumericError&) {
-      // a construction the Taylor models cannot follow over this box (a square root or atan2
-      // whose argument's range reaches its singularity, an undecided |x|): interval jets only
-    }
-  }
   g->center_parameters = model_->parameter_values(center_deviations);
   g->jet = geometry(curve, model_->parameter_values(jets));
   g->at_center = geometry(curve, g->center_parameters);
@@ -409,6 +414,31 @@ void CurveSolver::tighten_partials_or_throw(const CurveSlice& curve, const BoxGe
   }
 }
 
+bool CurveSolver::taylor_geometry(const CurveSlice& curve, const BoxGeometry& memo, const Box& box) const {
+  std::call_once(memo.taylor_once, [&] {
+    const std::vector<std::size_t>& active = memo.active;
+    std::size_t k = active.size();
+    std::vector<TaylorJet> jets(n_);
+    for (std::size_t i = 0; i < n_; ++i) {
+      // a parameter varying in the box that the curve does not depend on enters as its range
+      bool varies = box.hi[i] > box.lo[i];
+      jets[i] = TaylorJet(TaylorModel1(varies ? Interval(box.lo[i], box.hi[i]) : Interval::point(box.lo[i])));
+    }
+    for (std::size_t a = 0; a < k; ++a) {
+      std::size_t i = active[a];
+      jets[i] = TaylorJet::variable(TaylorModel1::over(box.lo[i], box.hi[i], a), a, k + 1);
+    }
+    try {
+      memo.taylor = geometry(curve, model_->parameter_values(jets));
+      memo.has_taylor = true;
+    } catch (const NumericError&) {
+      // a construction the Taylor models cannot follow over this box (a square root or atan2
+      // whose argument's range reaches its singularity, an undecided |x|): interval jets only
+    }
+  });
+  return memo.has_taylor;
+}
+
 void CurveSolver::taylor_partials(const CurveSlice& curve, const BoxGeometry& memo, const Interval& fixed,
                                   const std::optional<Interval>& held_offset, const Interval& y, IntervalJet& f) const {
   std::size_t k = memo.active.size();
@@ -434,7 +464,10 @@ void CurveSolver::taylor_partials(const CurveSlice& curve, const BoxGeometry& me
 Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, double free_value,
                                       const std::vector<double>& sensitivity, double relative_accuracy,
                                       double absolute_accuracy, std::size_t& boxes) const {
-  constexpr std::size_t max_boxes = 256;
+  // With the Taylor-model partials, subdivision gains little where one box misses the accuracy
+  // (gear-train-3: the widest band +-1.235 deg with 16 sub-boxes per enclosure as with 256, the
+  // total width 2 % more) and each sub-box costs more: 16 (docs/performance.md, session 21).
+  const std::size_t max_boxes = taylor_ ? 16 : 256;
   std::vector<Box> pending{box};
   bool have = false;
   Interval hull_of_all;

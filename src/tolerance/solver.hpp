@@ -147,9 +147,14 @@ class CurveSolver {
     /// For the Taylor-model partials (taylor_): the geometry over the box as jets of Taylor
     /// models in the box's active parameters (variables 0..k-1; the free coordinate is k, the
     /// held one k + 1).
-    PairGeometry<TaylorJet> taylor;
-    bool has_taylor = false;   ///< `taylor` holds
+    /// Filled on first use (taylor_geometry), once, by whichever thread needs it first.
+    mutable std::once_flag taylor_once;
+    mutable PairGeometry<TaylorJet> taylor;
+    mutable bool has_taylor = false;   ///< `taylor` holds
   };
+  /// The Taylor-model geometry of `memo`'s box (computed on first use); false when the Taylor
+  /// models cannot follow the construction over the box.
+  bool taylor_geometry(const CurveSlice& curve, const BoxGeometry& memo, const Box& box) const;
   std::shared_ptr<const BoxGeometry> box_geometry(const CurveSlice& curve, const Box& box,
                                                   const std::vector<double>& center) const;
   /// The memo of box_geometry, shared by the threads of the band and the zones (a pure
