@@ -138,7 +138,7 @@ std::vector<bool> CurveSolver::dependencies(const CurveSlice& curve) const {
 
 bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free_value,
                             const std::vector<double>& sensitivity, double target, Interval& result,
-                            std::vector<double>& split_score) const {
+                            std::vector<double>& split_score, bool& taylor_used) const {
   std::vector<double> center(n_);
   double spread = 0, shift = 0;
   for (std::size_t i = 0; i < n_; ++i) {
@@ -263,6 +263,7 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     // parameters that the interval jets lose; then contracted again.
     if (taylor_ && result.width() > target && taylor_geometry(curve, *memo, box)) {
       use_taylor = true;
+      taylor_used = true;
       Interval next;
       if (enclose(y, next)) {
         result = Interval(std::max(result.lo, next.lo), std::min(result.hi, next.hi));
@@ -464,10 +465,12 @@ void CurveSolver::taylor_partials(const CurveSlice& curve, const BoxGeometry& me
 Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, double free_value,
                                       const std::vector<double>& sensitivity, double relative_accuracy,
                                       double absolute_accuracy, std::size_t& boxes) const {
-  // With the Taylor-model partials, subdivision gains little where one box misses the accuracy
-  // (gear-train-3: the widest band +-1.235 deg with 16 sub-boxes per enclosure as with 256, the
-  // total width 2 % more) and each sub-box costs more: 16 (docs/performance.md, session 21).
-  const std::size_t max_boxes = taylor_ ? 16 : 256;
+  // Once a box has needed the Taylor-model partials, subdivision gains little (gear-train-3: the
+  // widest band +-1.235 deg with 16 sub-boxes per enclosure as with 256, the total width 2 %
+  // more) and each sub-box costs more: then 16 (docs/performance.md, session 21). Enclosures that
+  // never need them (first order meets the accuracy, or the Taylor models cannot follow the
+  // construction) keep 256.
+  bool taylor_used = false;
   std::vector<Box> pending{box};
   bool have = false;
   Interval hull_of_all;
@@ -482,8 +485,9 @@ Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, d
     for (std::size_t i = 0; i < n_; ++i) linear += std::fabs(sensitivity[i]) * (b.hi[i] - b.lo[i]);
     linear += curve.fixed_spread;
     double target = linear * (1 + relative_accuracy) + absolute_accuracy;
-    bool ok = box_range(curve, b, free_value, sensitivity, target, range, score);
+    bool ok = box_range(curve, b, free_value, sensitivity, target, range, score, taylor_used);
     bool accurate = ok && range.width() <= target;
+    const std::size_t max_boxes = taylor_used ? 16 : 256;
     if (!accurate && used + pending.size() + 2 <= max_boxes) {
       std::size_t split = 0;
       double best = -1;

@@ -128,7 +128,7 @@ class CurveSolver {
   /// partial derivative with respect to it at the nominal vector.
   std::vector<bool> dependencies(const CurveSlice& curve) const;
   bool box_range(const CurveSlice& curve, const Box& box, double free_value, const std::vector<double>& sensitivity,
-                 double target, Interval& result, std::vector<double>& split_score) const;
+                 double target, Interval& result, std::vector<double>& split_score, bool& taylor_used) const;
 
   /// What box_range needs of the geometry over one box: it depends on the two features, the
   /// two parts and the box only, not on the held coordinate, so the positions of a zone or of
