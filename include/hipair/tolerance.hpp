@@ -91,6 +91,11 @@ struct ToleranceOptions {
   /// session 7 (interval jets over every parameter varying in the box; the contact curve's
   /// geometry evaluated again at every Monte Carlo position). Same results either way.
   bool fast_paths = true;
+  /// Assembly chains: each pair's certified enclosure over a box narrows its partial
+  /// derivatives over the box by first-order Taylor models of the parametric geometry
+  /// (docs/tolerance.md "Taylor-model partial derivatives"). false: interval jets only, as
+  /// before session 21 (for measurements and tests). Sound either way.
+  bool taylor_partials = true;
   /// Assembly chain (docs/tolerance.md "Assembly chains"): analyse the output of the chain of
   /// pairs driver -> part -> ... -> `follower` (or the chain's last moving part) instead of one
   /// pair; the per-pair kinematic functions and sensitivities are composed by the chain rule.

@@ -253,6 +253,7 @@ class Analysis {
   tolerance_detail::StageAnalysis stage(const std::vector<tolerance_detail::StagePosition>& path,
                                         const CSpace* space = nullptr) {
     solver_->set_second_order(false);   // as the kernel path's stages (chain.cpp)
+    solver_->set_taylor_partials(options_.taylor_partials);
     start(space);
     for (const tolerance_detail::StagePosition& position : path)
       add_sample(position.driver, position.follower, position.contact);

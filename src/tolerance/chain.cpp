@@ -327,6 +327,7 @@ class ChainAnalysis {
     auto solver = std::make_shared<CurveSolver>(parametric);
     solver->set_compact_jets(options_.fast_paths);
     solver->set_second_order(false);
+    solver->set_taylor_partials(options_.taylor_partials);
     for (std::size_t i = 0; i < path.size(); ++i) {
       VariationSample sample;
       sample.driver = path[i].driver;

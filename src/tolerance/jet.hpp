@@ -5,6 +5,7 @@
 #pragma once
 
 #include "model/parametric/number_traits.hpp"
+#include "tolerance/taylor_model.hpp"
 
 #include <hipair/error.hpp>
 
@@ -35,6 +36,7 @@ struct Jet {
 namespace jet_detail {
 // The enclosure of a (possibly nested) jet's value.
 inline kernels::Interval enclosure(const kernels::Interval& x) { return x; }
+inline kernels::Interval enclosure(const TaylorModel1& x) { return x.range(); }
 template <class S>
 kernels::Interval enclosure(const Jet<S>& x) {
   return enclosure(x.value);
@@ -47,12 +49,16 @@ kernels::Interval enclosure(const Jet<S>& x) {
 template <class S>
 bool exact_zero(const S& x) {
   if constexpr (std::is_same_v<S, kernels::Interval>) return x.lo == 0.0 && x.hi == 0.0;
+  else if constexpr (std::is_same_v<S, TaylorModel1>) return x.exact_zero();
   else return false;
 }
 template <class S>
 bool finite(const S& x) {
   if constexpr (std::is_same_v<S, kernels::Interval>) return std::isfinite(x.lo) && std::isfinite(x.hi);
-  else return false;
+  else if constexpr (std::is_same_v<S, TaylorModel1>) {
+    kernels::Interval r = x.range();
+    return std::isfinite(r.lo) && std::isfinite(r.hi);
+  } else return false;
 }
 // x f, exactly 0 when x is an exact zero and f is finite
 template <class S>

@@ -138,7 +138,7 @@ std::vector<bool> CurveSolver::dependencies(const CurveSlice& curve) const {
 
 bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free_value,
                             const std::vector<double>& sensitivity, double target, Interval& result,
-                            std::vector<double>& split_score) const {
+                            std::vector<double>& split_score, bool& taylor_used) const {
   std::vector<double> center(n_);
   double spread = 0, shift = 0;
   for (std::size_t i = 0; i < n_; ++i) {
@@ -211,10 +211,12 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   // The mean-value enclosure over B x Y when Y is certified to hold exactly one root for every
   // p in B (end signs opposite, F_v of one sign); false otherwise.
   bool use_second = false;
+  bool use_taylor = false;
   auto enclose = [&](const Interval& y, Interval& out) {
     std::optional<IntervalJet> first;
     if (reuse_y_jets_) {
       first = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
+      if (use_taylor) taylor_partials(curve, *memo, fixed, held_offset, y, *first);
       over_y = first;   // its partials serve the end signs of Y itself first
       over_y_range = y;
     }
@@ -223,6 +225,7 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     if (s_lo == 2 || s_hi == 2 || s_lo == 0 || s_hi == 0 || s_lo == s_hi) return false;
     IntervalJet f = first ? *first
                           : evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
+    if (!first && use_taylor) taylor_partials(curve, *memo, fixed, held_offset, y, f);
     if (use_second) tighten_partials(curve, *memo, box, center, fixed, held_offset, y, f);
     Interval fv = f.partial(k);
     int s = fv.sign();
@@ -253,6 +256,26 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
       if (!enclose(narrower, next)) break;
       y = narrower;
       result = next;
+    }
+    // Taylor models (assembly chains; once the first-order contraction has settled, and only
+    // when its enclosure is wider than `target`): the partial derivatives over B x Y narrowed to
+    // the ranges of their first-order Taylor models, which keep the correlation between the
+    // parameters that the interval jets lose; then contracted again.
+    if (taylor_ && result.width() > target && taylor_geometry(curve, *memo, box)) {
+      use_taylor = true;
+      taylor_used = true;
+      Interval next;
+      if (enclose(y, next)) {
+        result = Interval(std::max(result.lo, next.lo), std::min(result.hi, next.hi));
+        for (int contraction = 0; contraction < 3; ++contraction) {
+          double pad = 1e-3 * result.width() + slack;
+          Interval narrower(result.lo - pad, result.hi + pad);
+          if (!(narrower.width() < 0.9 * y.width())) break;
+          if (!enclose(narrower, next)) break;
+          y = narrower;
+          result = Interval(std::max(result.lo, next.lo), std::min(result.hi, next.hi));
+        }
+      }
     }
     // Second order (once the first-order contraction has settled, and only when its enclosure is
     // wider than `target`, the accuracy certified_range asks for): the partial derivatives over
@@ -392,10 +415,62 @@ void CurveSolver::tighten_partials_or_throw(const CurveSlice& curve, const BoxGe
   }
 }
 
+bool CurveSolver::taylor_geometry(const CurveSlice& curve, const BoxGeometry& memo, const Box& box) const {
+  std::call_once(memo.taylor_once, [&] {
+    const std::vector<std::size_t>& active = memo.active;
+    std::size_t k = active.size();
+    std::vector<TaylorJet> jets(n_);
+    for (std::size_t i = 0; i < n_; ++i) {
+      // a parameter varying in the box that the curve does not depend on enters as its range
+      bool varies = box.hi[i] > box.lo[i];
+      jets[i] = TaylorJet(TaylorModel1(varies ? Interval(box.lo[i], box.hi[i]) : Interval::point(box.lo[i])));
+    }
+    for (std::size_t a = 0; a < k; ++a) {
+      std::size_t i = active[a];
+      jets[i] = TaylorJet::variable(TaylorModel1::over(box.lo[i], box.hi[i], a), a, k + 1);
+    }
+    try {
+      memo.taylor = geometry(curve, model_->parameter_values(jets));
+      memo.has_taylor = true;
+    } catch (const NumericError&) {
+      // a construction the Taylor models cannot follow over this box (a square root or atan2
+      // whose argument's range reaches its singularity, an undecided |x|): interval jets only
+    }
+  });
+  return memo.has_taylor;
+}
+
+void CurveSolver::taylor_partials(const CurveSlice& curve, const BoxGeometry& memo, const Interval& fixed,
+                                  const std::optional<Interval>& held_offset, const Interval& y, IntervalJet& f) const {
+  std::size_t k = memo.active.size();
+  std::size_t size = held_offset ? k + 2 : k + 1;
+  try {
+    TaylorJet fixed_t = held_offset ? TaylorJet::variable(TaylorModel1::over(fixed.lo, fixed.hi, k + 1), k + 1, size)
+                                    : TaylorJet(TaylorModel1(fixed));
+    TaylorJet ft = evaluate<TaylorJet>(curve, memo.taylor, fixed_t,
+                                       TaylorJet::variable(TaylorModel1::over(y.lo, y.hi, k), k, size));
+    if (f.gradient.size() < size) f.gradient.resize(size, Interval(0));
+    for (std::size_t a = 0; a < size; ++a) {
+      Interval t = ft.partial(a).range();
+      Interval& current = f.gradient[a];
+      Interval narrower(std::max(current.lo, t.lo), std::min(current.hi, t.hi));
+      if (narrower.lo <= narrower.hi) current = narrower;
+    }
+  } catch (const NumericError&) {
+    // the Taylor models cannot follow the contact function over this region: the interval
+    // jets' partials stand
+  }
+}
+
 Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, double free_value,
                                       const std::vector<double>& sensitivity, double relative_accuracy,
                                       double absolute_accuracy, std::size_t& boxes) const {
-  constexpr std::size_t max_boxes = 256;
+  // Once a box has needed the Taylor-model partials, subdivision gains little (gear-train-3: the
+  // widest band +-1.235 deg with 16 sub-boxes per enclosure as with 256, the total width 2 %
+  // more) and each sub-box costs more: then 16 (docs/performance.md, session 21). Enclosures that
+  // never need them (first order meets the accuracy, or the Taylor models cannot follow the
+  // construction) keep 256.
+  bool taylor_used = false;
   std::vector<Box> pending{box};
   bool have = false;
   Interval hull_of_all;
@@ -410,8 +485,9 @@ Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, d
     for (std::size_t i = 0; i < n_; ++i) linear += std::fabs(sensitivity[i]) * (b.hi[i] - b.lo[i]);
     linear += curve.fixed_spread;
     double target = linear * (1 + relative_accuracy) + absolute_accuracy;
-    bool ok = box_range(curve, b, free_value, sensitivity, target, range, score);
+    bool ok = box_range(curve, b, free_value, sensitivity, target, range, score, taylor_used);
     bool accurate = ok && range.width() <= target;
+    const std::size_t max_boxes = taylor_used ? 16 : 256;
     if (!accurate && used + pending.size() + 2 <= max_boxes) {
       std::size_t split = 0;
       double best = -1;

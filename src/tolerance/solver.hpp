@@ -23,6 +23,10 @@ using IntervalJet = Jet<Interval>;
 /// Second-order jets: a jet whose value and partial derivatives are interval jets (their
 /// gradients: the second partial derivatives).
 using IntervalJet2 = Jet<IntervalJet>;
+/// Jets whose value and partial derivatives are first-order Taylor models over a box
+/// (taylor_model.hpp): the partial derivatives over the box keep the correlation between the
+/// parameters that interval jets lose (docs/tolerance.md "Taylor-model partial derivatives").
+using TaylorJet = Jet<TaylorModel1>;
 
 /// A contact curve with one coordinate held: F(fixed, free; p) = 0 solved for `free`.
 struct CurveSlice {
@@ -102,6 +106,10 @@ class CurveSolver {
   /// budget either way, and each second-order sub-box costs ~15 x a first-order one
   /// (docs/performance.md, session 20).
   void set_second_order(bool second_order) { second_order_ = second_order; }
+  /// Whether certified_range narrows its partial derivatives over the box by their first-order
+  /// Taylor models (TaylorJet), intersected with the interval jets' (default: no; assembly
+  /// chains turn it on: docs/performance.md, session 21).
+  void set_taylor_partials(bool taylor) { taylor_ = taylor; }
 
   /// Certified enclosure of {v(p) : p in box} (the root near the nominal `free_value`, unique
   /// in a neighbourhood certified along the way), subdividing the box until the enclosure is
@@ -120,7 +128,7 @@ class CurveSolver {
   /// partial derivative with respect to it at the nominal vector.
   std::vector<bool> dependencies(const CurveSlice& curve) const;
   bool box_range(const CurveSlice& curve, const Box& box, double free_value, const std::vector<double>& sensitivity,
-                 double target, Interval& result, std::vector<double>& split_score) const;
+                 double target, Interval& result, std::vector<double>& split_score, bool& taylor_used) const;
 
   /// What box_range needs of the geometry over one box: it depends on the two features, the
   /// two parts and the box only, not on the held coordinate, so the positions of a zone or of
@@ -136,7 +144,17 @@ class CurveSolver {
     PairGeometry<IntervalJet> jet_at_center;
     PairGeometry<IntervalJet2> jet2;
     bool second_order = false;   ///< jet_at_center and jet2 hold
+    /// For the Taylor-model partials (taylor_): the geometry over the box as jets of Taylor
+    /// models in the box's active parameters (variables 0..k-1; the free coordinate is k, the
+    /// held one k + 1).
+    /// Filled on first use (taylor_geometry), once, by whichever thread needs it first.
+    mutable std::once_flag taylor_once;
+    mutable PairGeometry<TaylorJet> taylor;
+    mutable bool has_taylor = false;   ///< `taylor` holds
   };
+  /// The Taylor-model geometry of `memo`'s box (computed on first use); false when the Taylor
+  /// models cannot follow the construction over the box.
+  bool taylor_geometry(const CurveSlice& curve, const BoxGeometry& memo, const Box& box) const;
   std::shared_ptr<const BoxGeometry> box_geometry(const CurveSlice& curve, const Box& box,
                                                   const std::vector<double>& center) const;
   /// The memo of box_geometry, shared by the threads of the band and the zones (a pure
@@ -155,6 +173,10 @@ class CurveSolver {
   void tighten_partials_or_throw(const CurveSlice& curve, const BoxGeometry& memo, const Box& box,
                                  const std::vector<double>& center, const Interval& fixed,
                                  const std::optional<Interval>& held_offset, const Interval& y, IntervalJet& f) const;
+  /// Narrows the partial derivatives in `f` (a jet over the box x y x the held range) to the
+  /// ranges of their Taylor models over the same region, where those are narrower.
+  void taylor_partials(const CurveSlice& curve, const BoxGeometry& memo, const Interval& fixed,
+                       const std::optional<Interval>& held_offset, const Interval& y, IntervalJet& f) const;
   std::shared_ptr<BoxGeometryMemo> memo_ = std::make_shared<BoxGeometryMemo>();
 
   std::shared_ptr<const model_detail::ParametricModel> model_;
@@ -166,6 +188,7 @@ class CurveSolver {
   bool compact_jets_ = true;
   bool reuse_y_jets_ = true;
   bool second_order_ = true;
+  bool taylor_ = false;
 };
 
 /// Half-angle tangent chart value -> part coordinate (rad), certified: c + 2 atan(t).
