@@ -4,7 +4,7 @@
 // enclosure of its root (quadratic_root_enclosure) or the exact sign of the quadratic at the
 // point's ordinate (QuadraticOrdinate::compare), not by root isolation. Oracles: the exact
 // algebraic numbers (nth_real_root, Real::compare) for the two pieces on generated quadratics,
-// and point location with the filter off on the six example spaces for the whole query.
+// and point location with the filter off on the example spaces for the whole query.
 #include "algebra/exact_real.hpp"
 #include "cspace/angle_filter.hpp"
 #include "cspace/builder_impl.hpp"
@@ -132,8 +132,8 @@ std::string locate(const CSpace& space, const ChartPoint& p, bool filter) {
   }
 }
 
-// Points near and on the edges of the six spaces (the Geneva drive, the escapement's pairs, the
-// cam; the 2-D ones): at a random abscissa inside a random edge's extent (also at doubles a few
+// Points near and on the edges of the example spaces (the Geneva drive, the escapement's pairs;
+// the cam's is 1-D): at a random abscissa inside a random edge's extent (also at doubles a few
 // ulps inside its ends), the edge's ordinate rounded to a double and moved by -8..8 ulps, or by
 // 10^-15..10^-3 of the chart up or down, or a random ordinate in the chart; also the rational
 // vertices and the cells' sample points. Each location with the filter on equals the exact one.
