@@ -169,6 +169,22 @@ inline std::size_t& anchored_starts() {
   return count;
 }
 
+// Point location's filter (builder_locate.cpp, locate_2d): an edge whose support is quadratic
+// in y at the point's rational abscissa is placed above or below the point by a certified double
+// enclosure of its root, or the exact sign of the quadratic at the point's ordinate, instead of
+// the exact root isolation; ordinates the enclosures cannot order are compared exactly. On by
+// default; tests switch it off per thread to compare every location with the exact one.
+inline bool& locate_filter() {
+  thread_local bool on = true;
+  return on;
+}
+
+// How many edges the filter placed on this thread (quadratic_ordinate's answers: tests).
+inline std::size_t& locate_filter_edges() {
+  thread_local std::size_t count = 0;
+  return count;
+}
+
 // The t-ranges of every chart system that an angle in [theta_lo, theta_hi] (width < 2) may be
 // in, as angle_pieces computes them; nullopt where the filter cannot decide (an angle beyond
 // 2^40 turns, a non-finite bound).

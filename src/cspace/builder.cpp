@@ -2,6 +2,7 @@
 // with feature pairs, every face gets an exact rational sample point classified by the
 // overlap oracle, and charts are glued along seams into cells.
 #include "cspace/builder_impl.hpp"
+#include "cspace/angle_filter.hpp"
 #include "arrangement/circle_segment_traits.hpp"
 #include "arrangement/quadratic_traits.hpp"
 #include "oracle/blocked_tester.hpp"
@@ -1012,22 +1013,106 @@ algebra::Real edge_y_at(const ChartData& chart, std::size_t local_edge, const Ra
       throw NumericError("internal: contact curve root 0 is not in its certified box");
     return raw::exact_real(root);
   }
-  const raw::ArcNumbers& numbers = edge.arc_numbers;
+  algebra::Polynomial p = algebra::substitute_x(edge.support, x);
+  Rational lo(edge.box[1]), hi(edge.box[3]);
+  return algebra::nth_real_root_in(p, edge_arc_at(chart, local_edge, x), lo, hi);
+}
+
+int edge_arc_at(const ChartData& chart, std::size_t local_edge, const Rational& x) {
+  const raw::ArcNumbers& numbers = chart.arrangement.edges[local_edge].arc_numbers;
   int arcno = numbers.between.empty() ? 0 : numbers.between.back();
   for (std::size_t i = 0; i < numbers.events.size(); ++i) {
     int c = numbers.events[i].compare(x);
-    if (c > 0) {
-      arcno = numbers.between[i];
-      break;
-    }
-    if (c == 0) {
-      arcno = numbers.at_event[i];
-      break;
-    }
+    if (c > 0) return numbers.between[i];
+    if (c == 0) return numbers.at_event[i];
   }
+  return arcno;
+}
+
+namespace {
+
+algebra::Interval negated(algebra::Interval a) { return {-a.hi, -a.lo}; }
+
+// a / b for b not containing 0: the hull of the four end quotients, each rounded to nearest
+// (within half a unit in the last place) and widened outward by down/up.
+algebra::Interval quotient(algebra::Interval a, algebra::Interval b) {
+  double q[4] = {a.lo / b.lo, a.lo / b.hi, a.hi / b.lo, a.hi / b.hi};
+  double lo = q[0], hi = q[0];
+  for (double v : q) {
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  return {algebra::interval_detail::down(lo), algebra::interval_detail::up(hi)};
+}
+
+bool finite(algebra::Interval a) { return std::isfinite(a.lo) && std::isfinite(a.hi) && a.lo <= a.hi; }
+
+}  // namespace
+
+std::optional<QuadraticOrdinate> quadratic_ordinate(const ChartData& chart, std::size_t local_edge, const Rational& x) {
+  const raw::Edge& edge = chart.arrangement.edges[local_edge];
+  if (edge.vertical) return std::nullopt;
+  if (const mpz_class *a, *b, *c; line_of(edge.support, a, b, c)) return std::nullopt;   // exact and cheap already
   algebra::Polynomial p = algebra::substitute_x(edge.support, x);
-  Rational lo(edge.box[1]), hi(edge.box[3]);
-  return algebra::nth_real_root_in(p, arcno, lo, hi);
+  if (p.size() != 3 || sgn(p[2]) == 0) return std::nullopt;
+  QuadraticOrdinate q;
+  q.a = p[2];
+  q.b = p[1];
+  q.c = p[0];
+  mpz_class discriminant = q.b * q.b - 4 * q.a * q.c;
+  if (sgn(discriminant) <= 0) return std::nullopt;   // a double root or none: the exact path
+  q.index = edge_arc_at(chart, local_edge, x);
+  if (q.index < 0 || q.index > 1) return std::nullopt;   // no such root: the exact path reports it
+  if (std::optional<algebra::Interval> y = quadratic_root_enclosure(q.a, q.b, q.c, q.index)) {
+    q.enclosed = true;
+    q.y = *y;
+  }
+  ++locate_filter_edges();
+  return q;
+}
+
+std::optional<algebra::Interval> quadratic_root_enclosure(const mpz_class& a, const mpz_class& b, const mpz_class& c,
+                                                          int index) {
+  // the two roots q_b / a and c / q_b with q_b = -(b + sign(b) sqrt(D)) / 2 where b's sign is
+  // certain (no cancellation), else (-b -+ sqrt(D)) / (2 a); all with outward rounding
+  using algebra::Interval;
+  if (index < 0 || index > 1) return std::nullopt;
+  Interval A = algebra::enclose(a), B = algebra::enclose(b), C = algebra::enclose(c);
+  Interval D = algebra::enclose(mpz_class(b * b - 4 * a * c));
+  if (!finite(A) || !finite(B) || !finite(C) || !finite(D) || D.lo <= 0 || A.contains_zero()) return std::nullopt;
+  Interval root_d{algebra::interval_detail::down(std::sqrt(D.lo)), algebra::interval_detail::up(std::sqrt(D.hi))};
+  Interval r0, r1;
+  if (!B.contains_zero()) {
+    Interval sum = B.lo > 0 ? B + root_d : B + negated(root_d);
+    Interval qb = quotient(negated(sum), Interval{2, 2});
+    if (qb.contains_zero()) return std::nullopt;
+    r0 = quotient(qb, A);
+    r1 = quotient(C, qb);
+  } else {
+    Interval two_a = A * Interval{2, 2};
+    r0 = quotient(negated(B) + negated(root_d), two_a);
+    r1 = quotient(negated(B) + root_d, two_a);
+  }
+  if (!finite(r0) || !finite(r1)) return std::nullopt;
+  if (r1.hi < r0.lo) std::swap(r0, r1);
+  if (!(r0.hi < r1.lo)) return std::nullopt;   // the enclosures do not separate the two roots
+  return index == 0 ? r0 : r1;
+}
+
+int QuadraticOrdinate::compare(const Rational& v) const {
+  // the sign of root - v, exactly: p(v) d^2 = a n^2 + b n d + c d^2 (v = n / d, d > 0) is zero
+  // at a root, of a's sign outside [r0, r1] and of the other sign between; v against the
+  // roots' midpoint -b / (2 a) tells r0 from r1 and below from above: sign(2 a n + b d) sign(a)
+  const mpz_class& n = v.get_num();
+  const mpz_class& d = v.get_den();
+  mpz_class value = (a * n + b * d) * n + c * d * d;
+  int side = sgn(2 * a * n + b * d) * sgn(a);   // sign of v - midpoint
+  int s = sgn(value) * sgn(a);
+  if (s < 0) return index == 0 ? -1 : 1;   // r0 < v < r1
+  if (s > 0) return side < 0 ? 1 : -1;     // v < r0 (left of the midpoint) or v > r1
+  // v is a root: r0 left of the midpoint, r1 right of it
+  int which = side < 0 ? 0 : 1;
+  return which == index ? 0 : (index > which ? 1 : -1);
 }
 
 AlgebraicNumber to_public(const algebra::Real& r) {

@@ -12,6 +12,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -146,6 +147,30 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options);
 
 /// Exact y of a non-vertical edge at rational x strictly inside its x-range.
 algebra::Real edge_y_at(const ChartData& chart, std::size_t local_edge, const Rational& x);
+/// The arc number (the index of the edge's root among the support's distinct real roots at x,
+/// counted from below over the whole line) of a non-vertical edge at rational x.
+int edge_arc_at(const ChartData& chart, std::size_t local_edge, const Rational& x);
+/// A non-vertical edge whose support is quadratic in y at a rational x strictly inside the
+/// edge's x-range, with two distinct real roots (b^2 - 4ac > 0 exactly): p(y) = a y^2 + b y + c
+/// (the exact substitution), the edge's root `index` (0 or 1) and, where the double interval
+/// filter separates the two roots, a certified enclosure `y` of the edge's ordinate. Point
+/// location's filter (builder_locate.cpp): no root isolation for such edges.
+struct QuadraticOrdinate {
+  mpz_class a, b, c;
+  int index = 0;
+  bool enclosed = false;
+  algebra::Interval y;
+  /// The exact sign of (the edge's ordinate - v): -1, 0, +1.
+  int compare(const Rational& v) const;
+};
+/// nullopt: a line, a vertical edge, a support not quadratic in y at x, a double or no real
+/// root, an arc number other than 0 or 1 (the exact edge_y_at decides those).
+std::optional<QuadraticOrdinate> quadratic_ordinate(const ChartData& chart, std::size_t local_edge, const Rational& x);
+/// A certified double enclosure of the index-th (0 or 1, ascending) root of a y^2 + b y + c
+/// with b^2 - 4ac > 0, separated from the other root's; nullopt where the double intervals
+/// cannot separate them (or overflow).
+std::optional<algebra::Interval> quadratic_root_enclosure(const mpz_class& a, const mpz_class& b, const mpz_class& c,
+                                                          int index);
 /// Queries (builder_locate.cpp).
 Location locate_point(const CSpace::Impl& impl, const hipair::ChartPoint& q);
 CertifiedValue evaluate_edge(const CSpace::Impl& impl, std::size_t edge, double x);

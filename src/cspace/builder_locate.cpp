@@ -1,6 +1,7 @@
 // Exact queries on a built C-space: point location, edge evaluation, first contact crossing.
 // CGAL-free: only the exported topology and the exact univariate algebra are used.
 #include "cspace/builder_impl.hpp"
+#include "cspace/angle_filter.hpp"
 
 #include <hipair/error.hpp>
 
@@ -62,10 +63,22 @@ Location locate_2d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
   location.chart = q.chart;
   if (q.x < chart.box.x_lo || q.x > chart.box.x_hi || q.y < chart.box.y_lo || q.y > chart.box.y_hi) return location;
 
-  // best hit straight above q: a vertex or the interior of a non-vertical edge
+  // best hit straight above q: a vertex or the interior of a non-vertical edge. The best
+  // ordinate is known exactly (`best_y`, a vertex's or an edge's exact root) or, for an edge
+  // whose support is quadratic in y, by a certified double enclosure [best_lo, best_hi] until
+  // an exact comparison needs it (then `best_y` is made from the edge).
   bool found = false;
+  bool best_exact = false;
   Real best_y;
+  double best_lo = 0, best_hi = 0;
   std::size_t best_vertex = raw::none, best_edge = raw::none;
+  auto exact_best = [&]() -> const Real& {
+    if (!best_exact) {
+      best_y = edge_y_at(chart, best_edge, q.x);
+      best_exact = true;
+    }
+    return best_y;
+  };
   for (std::size_t v = 0; v < arrangement.vertices.size(); ++v) {
     const raw::Vertex& vertex = arrangement.vertices[v];
     if (vertex.x.upper_bound() < xi.lo || vertex.x.lower_bound() > xi.hi) continue;
@@ -96,7 +109,10 @@ Location locate_2d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
     }
     if (c > 0 && (!found || algebra::compare(vertex_y, best_y) < 0)) {
       found = true;
+      best_exact = true;
       best_y = std::move(vertex_y);
+      best_lo = best_y.lower_bound();
+      best_hi = best_y.upper_bound();
       best_vertex = v;
       best_edge = raw::none;
     }
@@ -116,19 +132,58 @@ Location locate_2d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
     candidates.emplace_back(edge.box[1], e);
   }
   std::sort(candidates.begin(), candidates.end());
+  const bool filter = locate_filter();
   for (const auto& [low, e] : candidates) {
-    if (found && low > best_y.upper_bound()) break;
+    // (a candidate whose box starts above the best's upper bound lies strictly above the best)
+    if (found && low > best_hi) break;
     const raw::Edge& edge = arrangement.edges[e];
     if (arrangement.vertices[edge.min_vertex].x.compare(q.x) >= 0 ||
         arrangement.vertices[edge.max_vertex].x.compare(q.x) <= 0)
       continue;
+    // the filter (support quadratic in y: the edge's root by its certified double enclosure,
+    // its side of q by the exact sign of the quadratic at q.y; no root isolation), else the
+    // exact ordinate; a comparison of two ordinates that the enclosures cannot separate is exact
+    std::optional<QuadraticOrdinate> quadratic;
+    if (filter) quadratic = quadratic_ordinate(chart, e, q.x);
+    if (quadratic) {
+      const algebra::Interval& y = quadratic->y;
+      int c = quadratic->enclosed && y.hi < yi.lo ? -1 : quadratic->enclosed && y.lo > yi.hi ? 1 : quadratic->compare(q.y);
+      if (c == 0) return on_edge(impl, q.chart, e);
+      if (c < 0) continue;
+      // the ordinate's enclosure: the filter's, or the edge's certified box above q
+      double lo = quadratic->enclosed ? y.lo : std::max(edge.box[1], yi.lo);
+      double hi = quadratic->enclosed ? y.hi : edge.box[3];
+      std::optional<Real> exact;
+      bool better;
+      if (!found || hi < best_lo) {
+        better = true;
+      } else if (lo > best_hi) {
+        better = false;
+      } else {
+        exact = edge_y_at(chart, e, q.x);
+        better = algebra::compare(*exact, exact_best()) < 0;
+      }
+      if (better) {
+        found = true;
+        best_edge = e;
+        best_vertex = raw::none;
+        best_exact = exact.has_value();
+        if (exact) best_y = std::move(*exact);
+        best_lo = lo;
+        best_hi = hi;
+      }
+      continue;
+    }
     Real y = edge_y_at(chart, e, q.x);
     int c = y.compare(q.y);
     if (c == 0) return on_edge(impl, q.chart, e);
     if (c < 0) continue;
-    if (!found || algebra::compare(y, best_y) < 0) {
+    if (!found || algebra::compare(y, exact_best()) < 0) {
       found = true;
+      best_exact = true;
       best_y = std::move(y);
+      best_lo = best_y.lower_bound();
+      best_hi = best_y.upper_bound();
       best_edge = e;
       best_vertex = raw::none;
     }
