@@ -7,6 +7,7 @@
 // intervals at the crossing of a motion. Every decision is exact (GMP) or certified (MPFI/MPFR
 // with directed rounding, outward-rounded double intervals).
 #include <hipair/cspace.hpp>
+#include <hipair/cspace_slice.hpp>
 #include <hipair/edge_tracker.hpp>
 #include <hipair/error.hpp>
 
@@ -576,6 +577,60 @@ std::optional<EdgeSlopes> track_derivatives(const CSpace& space, EdgeId id, doub
 
 // ------------------------------------------------------------------ slices and polylines
 
+namespace {
+
+// The real roots of every curve of a chart at the slice `value` (the chart's box open ends
+// excluded), ascending and merged (one root per distinct value, with all its curves' features).
+struct SliceRoot {
+  Real at;
+  std::vector<FeatureId> features;
+};
+std::vector<SliceRoot> slice_roots(const ChartData& chart, bool along_x, const Rational& value, const Rational& lower,
+                                   const Rational& upper) {
+  std::vector<SliceRoot> roots;
+  for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
+    cspace::algebra::Polynomial p = along_x ? cspace::algebra::substitute_x(chart.polynomials[k], value)
+                                            : cspace::algebra::substitute_y(chart.polynomials[k], value);
+    if (p.empty()) continue;   // the slice runs along the curve: located below
+    for (Real& r : cspace::algebra::real_roots(p, lower, upper)) {
+      if (r.compare(lower) == 0 || r.compare(upper) == 0) continue;
+      FeatureId id(chart.curve_global[k]);
+      auto it = std::find_if(roots.begin(), roots.end(),
+                             [&](const SliceRoot& o) { return cspace::algebra::compare(o.at, r) == 0; });
+      if (it == roots.end()) {
+        roots.push_back(SliceRoot{std::move(r), {id}});
+      } else if (std::find(it->features.begin(), it->features.end(), id) == it->features.end()) {
+        it->features.push_back(id);
+      }
+    }
+  }
+  std::sort(roots.begin(), roots.end(),
+            [](const SliceRoot& a, const SliceRoot& b) { return cspace::algebra::compare(a.at, b.at) < 0; });
+  return roots;
+}
+
+}  // namespace
+
+namespace {
+
+// The interval of a slice holding the chart point (c; value along the fixed axis, t along the
+// free one): its cell and kind by exact point location.
+Slice::Interval slice_interval(const CSpace& space, const CSpace::Impl& impl, std::size_t c, SliceAxis axis,
+                               const Rational& value, const Rational& t) {
+  ChartPoint q = axis == SliceAxis::x ? ChartPoint{c, value, t} : ChartPoint{c, t, value};
+  Location where = space.locate(q);
+  Slice::Interval interval;
+  interval.sample = t;
+  interval.cell = CellId(where.cell);
+  if (where.kind == Location::Kind::blocked) interval.kind = CellKind::blocked;
+  else if (where.kind == Location::Kind::free) interval.kind = CellKind::free;
+  else interval.kind = contact_location(impl, where) ? CellKind::touching : CellKind::free;
+  if (where.kind == Location::Kind::touching) interval.kind = CellKind::touching;
+  return interval;
+}
+
+}  // namespace
+
 std::vector<Slice> CSpace::slice(SliceAxis axis, const Rational& value_input) const {
   const Impl& impl = checked(*this);
   if (impl.dimension != 2) throw GeometryError("slice: a 1-D C-space is its own slice (use cells and vertices)");
@@ -584,7 +639,6 @@ std::vector<Slice> CSpace::slice(SliceAxis axis, const Rational& value_input) co
   std::vector<Slice> slices;
   for (std::size_t c = 0; c < impl.charts.size(); ++c) {
     const CSpaceChart& box = impl.public_charts[c];
-    const ChartData& chart = impl.charts[c];
     bool along_x = axis == SliceAxis::x;
     const Rational& fixed_lo = along_x ? box.x_lo : box.y_lo;
     const Rational& fixed_hi = along_x ? box.x_hi : box.y_hi;
@@ -595,46 +649,12 @@ std::vector<Slice> CSpace::slice(SliceAxis axis, const Rational& value_input) co
     s.value = value;
     s.lower = along_x ? box.y_lo : box.x_lo;
     s.upper = along_x ? box.y_hi : box.x_hi;
-    struct Root {
-      Real at;
-      std::vector<FeatureId> features;
-    };
-    std::vector<Root> roots;
-    for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
-      cspace::algebra::Polynomial p = along_x ? cspace::algebra::substitute_x(chart.polynomials[k], value)
-                                              : cspace::algebra::substitute_y(chart.polynomials[k], value);
-      if (p.empty()) continue;   // the slice runs along the curve: located below
-      for (Real& r : cspace::algebra::real_roots(p, s.lower, s.upper)) {
-        if (r.compare(s.lower) == 0 || r.compare(s.upper) == 0) continue;
-        FeatureId id(chart.curve_global[k]);
-        auto it = std::find_if(roots.begin(), roots.end(),
-                               [&](const Root& o) { return cspace::algebra::compare(o.at, r) == 0; });
-        if (it == roots.end()) {
-          roots.push_back(Root{std::move(r), {id}});
-        } else if (std::find(it->features.begin(), it->features.end(), id) == it->features.end()) {
-          it->features.push_back(id);
-        }
-      }
-    }
-    std::sort(roots.begin(), roots.end(),
-              [](const Root& a, const Root& b) { return cspace::algebra::compare(a.at, b.at) < 0; });
-    auto interval_at = [&](const Rational& t) {
-      ChartPoint q = along_x ? ChartPoint{c, value, t} : ChartPoint{c, t, value};
-      Location where = locate(q);
-      Slice::Interval interval;
-      interval.sample = t;
-      interval.cell = CellId(where.cell);
-      if (where.kind == Location::Kind::blocked) interval.kind = CellKind::blocked;
-      else if (where.kind == Location::Kind::free) interval.kind = CellKind::free;
-      else interval.kind = contact_location(impl, where) ? CellKind::touching : CellKind::free;
-      if (where.kind == Location::Kind::touching) interval.kind = CellKind::touching;
-      return interval;
-    };
+    std::vector<SliceRoot> roots = slice_roots(impl.charts[c], along_x, value, s.lower, s.upper);
     Real previous = Real::from_rational(s.lower);
     std::vector<Slice::Interval> intervals;
     for (std::size_t i = 0; i <= roots.size(); ++i) {
       Real next = i < roots.size() ? roots[i].at : Real::from_rational(s.upper);
-      intervals.push_back(interval_at(cspace::algebra::rational_between(previous, next)));
+      intervals.push_back(slice_interval(*this, impl, c, axis, value, cspace::algebra::rational_between(previous, next)));
       previous = next;
     }
     // keep the boundaries between different cells only
@@ -649,6 +669,68 @@ std::vector<Slice> CSpace::slice(SliceAxis axis, const Rational& value_input) co
     slices.push_back(std::move(s));
   }
   return slices;
+}
+
+std::optional<Slice> slice_near(const CSpace& space, std::size_t chart, SliceAxis axis, const Rational& value_input,
+                                const Rational& at_input, std::size_t boundaries) {
+  const CSpace::Impl& impl = checked(space);
+  if (impl.dimension != 2) throw GeometryError("slice_near: a 1-D C-space is its own slice (use cells and vertices)");
+  if (chart >= impl.charts.size()) throw GeometryError("slice_near: no chart " + std::to_string(chart));
+  if (boundaries == 0) throw GeometryError("slice_near: at least one boundary on either side");
+  Rational value = value_input, at = at_input;
+  value.canonicalize();
+  at.canonicalize();
+  const CSpaceChart& box = impl.public_charts[chart];
+  bool along_x = axis == SliceAxis::x;
+  const Rational& fixed_lo = along_x ? box.x_lo : box.y_lo;
+  const Rational& fixed_hi = along_x ? box.x_hi : box.y_hi;
+  if (value < fixed_lo || value > fixed_hi) return std::nullopt;
+  Slice s;
+  s.chart = chart;
+  s.axis = axis;
+  s.value = value;
+  s.lower = along_x ? box.y_lo : box.x_lo;
+  s.upper = along_x ? box.y_hi : box.x_hi;
+  if (at < s.lower || at > s.upper) return std::nullopt;
+  std::vector<SliceRoot> roots = slice_roots(impl.charts[chart], along_x, value, s.lower, s.upper);
+  // Sub-interval i lies between roots i - 1 and i (the box's ends beyond the first and last),
+  // located lazily: only those from `at` outward to the `boundaries`-th cell change each way.
+  std::size_t n = roots.size();
+  std::vector<std::optional<Slice::Interval>> located(n + 1);
+  auto interval = [&](std::size_t i) -> const Slice::Interval& {
+    if (!located[i]) {
+      Real below = i == 0 ? Real::from_rational(s.lower) : roots[i - 1].at;
+      Real above = i == n ? Real::from_rational(s.upper) : roots[i].at;
+      located[i] = slice_interval(space, impl, chart, axis, value, cspace::algebra::rational_between(below, above));
+    }
+    return *located[i];
+  };
+  auto differ = [&](std::size_t i) {   // a cell boundary at root i (between sub-intervals i and i + 1)
+    const Slice::Interval &a = interval(i), &b = interval(i + 1);
+    return !(a.cell == b.cell && a.kind == b.kind);
+  };
+  // Roots below `at`; `at` may lie on root `first` itself.
+  std::size_t first = 0;
+  while (first < n && roots[first].at.compare(at) < 0) ++first;
+  bool on_root = first < n && roots[first].at.compare(at) == 0;
+  std::vector<std::size_t> kept;   // cell boundaries (root indices), found outward from `at`
+  for (std::size_t i = first; i-- > 0 && kept.size() < boundaries;)
+    if (differ(i)) kept.push_back(i);
+  std::reverse(kept.begin(), kept.end());
+  if (on_root && differ(first)) kept.push_back(first);
+  std::size_t found_up = 0;
+  for (std::size_t i = on_root ? first + 1 : first; i < n && found_up < boundaries; ++i)
+    if (differ(i)) {
+      kept.push_back(i);
+      ++found_up;
+    }
+  // Between consecutive boundaries every sub-interval has the boundary's upper cell and kind.
+  s.intervals.push_back(interval(kept.empty() ? first : kept.front()));
+  for (std::size_t i : kept) {
+    s.points.push_back(Slice::Point{cspace::to_public(roots[i].at), roots[i].features});
+    s.intervals.push_back(interval(i + 1));
+  }
+  return s;
 }
 
 std::vector<CSpaceFace> CSpace::faces(std::size_t chart_index) const {

@@ -12,6 +12,7 @@
 #include "tolerance/solver.hpp"
 #include "tolerance/stage.hpp"
 
+#include <hipair/cspace_slice.hpp>
 #include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>
 
@@ -439,11 +440,12 @@ class Analysis {
     bool follower_half = driver_is_x_ ? chart.y_half_turn : chart.x_half_turn;
     s.driver_chart = ChartValue{driver_is_x_ ? point->x : point->y, driver_half};
     s.follower_chart = ChartValue{driver_is_x_ ? point->y : point->x, follower_half};
-    std::vector<Slice> slices = space_->slice(driver_is_x_ ? SliceAxis::x : SliceAxis::y, s.driver_chart.t);
-    const Slice* slice = nullptr;
-    for (const Slice& candidate : slices)
-      if (candidate.chart == point->chart) slice = &candidate;
-    if (!slice) return s;
+    // The slice around the follower only: its channel's sides and the points next to them (two
+    // cell boundaries each way: the point holding a contact and its neighbours beyond).
+    std::optional<Slice> near = slice_near(*space_, point->chart, driver_is_x_ ? SliceAxis::x : SliceAxis::y,
+                                                   s.driver_chart.t, s.follower_chart.t, 2);
+    if (!near) return s;
+    const Slice* slice = &*near;
     s.valid = true;
     double v = s.follower_chart.t.get_d();
     // Exact: the points below the follower's chart coordinate, and (in contact) the slice point
