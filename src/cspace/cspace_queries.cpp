@@ -1708,11 +1708,13 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
     };
     // The Newton proposal (see crossing_shrink.hpp). The subdivision's stretches are the nodes
     // of the binary tree over [u_begin, u_end] whose leaves are the resolution's cells; a stretch
-    // of n = 2^m cells that would be halved is instead tiled, in path order, by [a, c_lo], the
-    // smallest node [c_lo, c_hi] of its subtree holding the root's proposed bounds (widened by a
-    // cell either way), and [c_hi, b], when that node has at most half the cells. Each tile is
-    // then evaluated (excluded or subdivided) like any stretch, and the node is halved as before:
-    // the final bracket is one of the tree's cells, as with the halving alone.
+    // of n = 2^m cells that would be halved goes straight to the smallest node [c_lo, c_hi] of
+    // its subtree holding the root's proposed bounds (widened by a cell either way, and inside
+    // [a, b]), when that node has at most half the cells: the nodes between are skipped (the
+    // curve vanishes inside each, so the halving would not have excluded them, only halved them),
+    // their siblings are evaluated in path order as the halving would (excluded or subdivided).
+    // The stretches evaluated are the halving's minus those nodes: the same answer (see
+    // crossing_shrink.hpp).
     auto shrink = [&, a = a, b = b] {
       if (cspace::newton_shrink() && at.newton) {
         Rational cells = (b - a) / resolution;
@@ -1721,9 +1723,10 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
           const long n = cells.get_num().get_si();
           double lo = std::floor(at.newton_lo / resolution_d * (1 - 0x1p-48)) - 1;
           double hi = std::ceil(at.newton_hi / resolution_d * (1 + 0x1p-48)) + 1;
-          if ((n & (n - 1)) == 0 && std::isfinite(lo) && std::isfinite(hi)) {
-            long k_lo = lo <= 0 ? 0 : lo >= static_cast<double>(n) ? n - 1 : static_cast<long>(lo);
-            long k_hi = hi <= 1 ? 1 : hi >= static_cast<double>(n) ? n : static_cast<long>(hi);
+          // only where the widened bounds lie inside [a, b] (not clipped): then the curve
+          // vanishes inside every node between [a, b] and the node proposed
+          if ((n & (n - 1)) == 0 && lo >= 0 && hi <= static_cast<double>(n)) {
+            long k_lo = static_cast<long>(lo), k_hi = static_cast<long>(hi);
             if (k_lo < k_hi) {
               // the smallest node holding cells k_lo ... k_hi - 1: 2^j cells from k_lo's multiple
               unsigned long diff = static_cast<unsigned long>(k_lo ^ (k_hi - 1));
@@ -1731,13 +1734,29 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
               while (j < 63 && (diff >> j) != 0) ++j;
               long size = 1L << j, first = (k_lo >> j) << j;
               if (2 * size <= n) {
-                Rational c_lo = a + resolution * first, c_hi = a + resolution * (first + size);
-                c_lo.canonicalize();
-                c_hi.canonicalize();
+                // the path from [a, b] down to the node: the siblings left of it are the
+                // stretches the halving evaluates (and excludes) before reaching it, those right
+                // of it the ones it would evaluate after; pushed so that they pop in path order
                 ++cspace::newton_steps();
-                if (first + size < n) stack.emplace_back(c_hi, b);
-                stack.emplace_back(c_lo, c_hi);
-                if (first > 0) stack.emplace_back(a, c_lo);
+                auto at_cell = [&](long k) {
+                  Rational u = a + resolution * k;
+                  u.canonicalize();
+                  return u;
+                };
+                std::vector<std::pair<long, long>> left;
+                long lo = 0, length = n;
+                while (length > size) {
+                  long half = length / 2;
+                  if (first < lo + half) {
+                    stack.emplace_back(at_cell(lo + half), at_cell(lo + length));
+                  } else {
+                    left.emplace_back(lo, lo + half);
+                    lo += half;
+                  }
+                  length = half;
+                }
+                stack.emplace_back(at_cell(first), at_cell(first + size));
+                for (auto it = left.rbegin(); it != left.rend(); ++it) stack.emplace_back(at_cell(it->first), at_cell(it->second));
                 return;
               }
             }
