@@ -3,7 +3,9 @@
 // A proposal only re-tiles a stretch that would have been halved (every tile is still excluded or
 // subdivided by the same tests, in path order), so on generated motions — crossings aimed through
 // a contact edge from anywhere in a chart, starts a few units in the last place (or 1e-15 ... 1e-3)
-// off a contact curve, along random directions or the curve's tangent — the answer with it must
+// off a contact curve, along random directions or the curve's tangent, and each crossing motion
+// again over parameter intervals that put its crossing a few cells after a node boundary of the
+// subdivision's tree — the answer with it must
 // be the halving's, field for field (the proposed stretches are nodes of the halving's tree, so
 // the final bracket is one of its cells; the status, grazing flag, cell left, a bracket that
 // meets the halving's and is no wider are asserted first, for the message), and the bracket's
@@ -41,7 +43,7 @@ using Switch = test::FlagSwitch<&cspace::newton_shrink>;
 using test::describe_crossing;
 
 struct Tally {
-  int motions = 0, crossings = 0, identical = 0, narrower = 0, helped = 0, ends_checked = 0;
+  int motions = 0, crossings = 0, identical = 0, narrower = 0, helped = 0, ends_checked = 0, shifted_from = 0;
   std::size_t steps = 0;
 };
 
@@ -58,7 +60,37 @@ MotionPath point_of(const MotionPath& path, const Rational& u) {
   return point;
 }
 
-void compare(const CSpace& space, const MotionPath& path, const std::string& what, Tally& tally) {
+void compare(const CSpace& space, const MotionPath& path, const std::string& what, Tally& tally, bool shifted = false);
+
+// The same motion over other parameter intervals [u_begin, u_begin + w], placed so that the
+// crossing found falls k = -3 ... 4 cells of the new resolution after a node boundary
+// u_begin + (j / 2^r) w of the subdivision's tree (r = 1 ... 24): a root just past a node's end
+// is where a proposal must not skip nodes that do not hold it.
+void shifted_motions(const CSpace& space, const MotionPath& path, const MotionCrossing& crossing,
+                     const std::string& what, Tally& tally, std::mt19937_64& random) {
+  Rational l = crossing.u_lower;
+  Rational w = std::min(Rational(l - path.u_begin), Rational(path.u_end - l));
+  if (w <= 0) return;
+  const Rational cells = Rational(mpz_class(1) << 44);
+  for (int trial = 0; trial < 6; ++trial) {
+    int r = 1 + static_cast<int>(random() % 24);
+    long j = 2 * static_cast<long>(random() % (1UL << std::min(r - 1, 20))) + 1;
+    if (j >= (1L << r)) j = 1;
+    int k = static_cast<int>(random() % 8) - 3;
+    MotionPath moved = path;
+    Rational width = w / 2;
+    Rational at = Rational(j) / Rational(mpz_class(1) << r);
+    moved.u_begin = l - at * width - Rational(k) * width / cells;
+    moved.u_end = moved.u_begin + width;
+    moved.u_begin.canonicalize();
+    moved.u_end.canonicalize();
+    if (moved.u_begin < path.u_begin || moved.u_end > path.u_end) continue;
+    compare(space, moved, what + " shifted r " + std::to_string(r) + " k " + std::to_string(k), tally, true);
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+}
+
+void compare(const CSpace& space, const MotionPath& path, const std::string& what, Tally& tally, bool shifted) {
   MotionCrossing with, without;
   bool with_error = false, without_error = false;
   std::size_t before = cspace::newton_steps();
@@ -103,6 +135,12 @@ void compare(const CSpace& space, const MotionPath& path, const std::string& wha
   Rational width = with.u_upper - with.u_lower, old_width = without.u_upper - without.u_lower;
   ASSERT_LE(width, old_width) << what << "\n" << describe_crossing(space, with) << "\n" << describe_crossing(space, without);
   tally.narrower += width < old_width;
+  if (!shifted && !with.grazing) {
+    std::mt19937_64 random(tally.motions);
+    shifted_motions(space, path, with, what, tally, random);
+    if (::testing::Test::HasFatalFailure()) return;
+    ++tally.shifted_from;
+  }
   if (used == 0) return;
   // the ends by exact point location
   MotionCrossing at = space.first_crossing(point_of(path, with.u_lower));
@@ -218,8 +256,9 @@ void generated_motions(const CSpace& space, int count, std::uint64_t seed, Tally
 }
 
 void report(const Tally& tally) {
-  std::printf("motions %d crossings %d identical %d narrower %d helped %d steps %zu ends checked %d\n", tally.motions,
-              tally.crossings, tally.identical, tally.narrower, tally.helped, tally.steps, tally.ends_checked);
+  std::printf("motions %d crossings %d identical %d narrower %d helped %d steps %zu ends checked %d shifted from %d\n",
+              tally.motions, tally.crossings, tally.identical, tally.narrower, tally.helped, tally.steps, tally.ends_checked,
+              tally.shifted_from);
   ::testing::Test::RecordProperty("motions", tally.motions);
   ::testing::Test::RecordProperty("crossings", tally.crossings);
   ::testing::Test::RecordProperty("helped", tally.helped);
@@ -248,11 +287,11 @@ TEST(CSpaceCrossingShrink, AnswersEqualTheHalvingsOnGeneratedMotions) {
     ASSERT_FALSE(HasFatalFailure());
   }
   report(tally);
-  EXPECT_GE(tally.motions, 2000);
-  EXPECT_GE(tally.crossings, 250);
-  EXPECT_GE(tally.helped, 250);   // the shrink is exercised
-  EXPECT_GE(tally.steps, 1100);
-  EXPECT_GE(tally.ends_checked, 450);
+  EXPECT_GE(tally.motions, 4000);
+  EXPECT_GE(tally.crossings, 1800);
+  EXPECT_GE(tally.helped, 1700);   // the shrink is exercised
+  EXPECT_GE(tally.steps, 5500);
+  EXPECT_GE(tally.ends_checked, 3000);
 }
 
 TEST(CSpaceCrossingShrink, AnswersEqualTheHalvingsOnDegenerateSpaces) {
@@ -267,8 +306,8 @@ TEST(CSpaceCrossingShrink, AnswersEqualTheHalvingsOnDegenerateSpaces) {
     }
   }
   report(tally);
-  EXPECT_GE(tally.motions, 900);
-  EXPECT_GE(tally.helped, 50);
+  EXPECT_GE(tally.motions, 1500);
+  EXPECT_GE(tally.helped, 300);
 }
 
 }  // namespace
