@@ -1,7 +1,8 @@
 // CSpace::first_crossing's Newton shrink of the crossing bracket (src/cspace/cspace_queries.cpp,
 // first_crossing's `shrink`; switch cspace::newton_shrink() in src/cspace/crossing_shrink.hpp).
-// A proposal only re-tiles a stretch that would have been halved (every tile is still excluded or
-// subdivided by the same tests, in path order), so on generated motions — crossings aimed through
+// A proposal only skips nodes of the halving's tree that hold a root of the one curve left (the
+// halving would only have halved them); their siblings are evaluated by the same tests, in path
+// order. So on generated motions — crossings aimed through
 // a contact edge from anywhere in a chart, starts a few units in the last place (or 1e-15 ... 1e-3)
 // off a contact curve, along random directions or the curve's tangent, and each crossing motion
 // again over parameter intervals that put its crossing a few cells after a node boundary of the
