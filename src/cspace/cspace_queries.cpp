@@ -13,6 +13,7 @@
 
 #include "cspace/angle_filter.hpp"
 #include "cspace/builder_impl.hpp"
+#include "cspace/crossing_shrink.hpp"
 #include "cspace/cspace_access.hpp"
 #include "curves/pose.hpp"
 #include "kernels/contact_geometry.hpp"
@@ -1078,6 +1079,11 @@ class MotionScanner {
     bool box_clear = false;   // `possible` empty from the boxes' enclosures alone (no mean-value form)
     std::vector<PieceBox> boxes;
     std::vector<Possible> possible;
+    // where `possible` is one curve whose value at a and rate over [a, b] exclude 0 with
+    // opposite signs: the u - a where the rate's bounds bring that value to 0, smaller and larger
+    // (doubles, not certified: a proposal for the subdivision, see newton_shrink)
+    bool newton = false;
+    double newton_lo = 0, newton_hi = 0;
   };
 
   Evaluation evaluate(const Rational& a, const Rational& b) {
@@ -1126,7 +1132,7 @@ class MotionScanner {
     // moves away) at a subdivision depth set by the distance, not by the resolution.
     result.box_clear = result.possible.empty();
     if (a < b && xs.size() == 1 && ys.size() == 1 && !result.possible.empty())
-      mean_value_exclusion(a, b, xs.front(), ys.front(), result.possible);
+      mean_value_exclusion(a, b, xs.front(), ys.front(), result.possible, &result);
     return result;
   }
 
@@ -1376,7 +1382,7 @@ class MotionScanner {
   // The mean-value exclusion (see evaluate): drops from `possible` every curve whose
   // f(a) + [0, b - a] (F_x X' + F_y Y') over the path's enclosure on [a, b] excludes zero.
   void mean_value_exclusion(const Rational& a, const Rational& b, const AxisPiece& px, const AxisPiece& py,
-                            std::vector<Possible>& possible) {
+                            std::vector<Possible>& possible, Evaluation* proposal = nullptr) {
     // the path's pieces at a (the subdivision visits [a, m] right after [a, b]: kept for the
     // last a), through the filter (the exact ones only where exact_start_value needs them)
     if (!start_ || start_->a != a) {
@@ -1403,6 +1409,8 @@ class MotionScanner {
     DInterval dy = impl_.dimension == 2 ? chart_derivative(path_.y, a, b, py) : DInterval{0, 0};
     DInterval h{0, cspace::algebra::upper_double(Rational(b - a))};
     std::vector<Possible> kept;
+    bool newton = false;
+    double newton_lo = 0, newton_hi = 0;
     for (const Possible& p : possible) {
       const ChartData& chart = impl_.charts[p.chart];
       const Gradient& g = gradient(p.chart, p.curve);
@@ -1419,9 +1427,26 @@ class MotionScanner {
       DInterval value = start + h * rate;
       // (a non-finite bound, from overflow, proves nothing)
       if (std::isfinite(value.lo) && std::isfinite(value.hi) && !value.contains_zero()) continue;
-      if (!second_order_excludes(p, a, b, start, x_at, y_at, *sx, *sy, x, y, dx, dy, px, py, h)) kept.push_back(p);
+      if (second_order_excludes(p, a, b, start, x_at, y_at, *sx, *sy, x, y, dx, dy, px, py, h)) continue;
+      kept.push_back(p);
+      // f moves toward 0 at a rate within `rate` (one sign): f(a + t) = 0 needs
+      // t >= |f(a)|min / |rate|max, and happens by t = |f(a)|max / |rate|min if in [a, b]
+      bool toward = (start.lo > 0 && rate.hi < 0) || (start.hi < 0 && rate.lo > 0);
+      if (toward && std::isfinite(start.lo) && std::isfinite(start.hi) && std::isfinite(rate.lo) &&
+          std::isfinite(rate.hi) && kept.size() == 1) {
+        double s_min = start.lo > 0 ? start.lo : -start.hi, s_max = start.lo > 0 ? start.hi : -start.lo;
+        double r_min = rate.lo > 0 ? rate.lo : -rate.hi, r_max = rate.lo > 0 ? rate.hi : -rate.lo;
+        newton = true;
+        newton_lo = s_min / r_max;
+        newton_hi = s_max / r_min;
+      }
     }
     possible.swap(kept);
+    if (proposal && newton && possible.size() == 1) {
+      proposal->newton = true;
+      proposal->newton_lo = newton_lo;
+      proposal->newton_hi = newton_hi;
+    }
   }
 
   // The second-order (Taylor) exclusion, tried where the mean-value form fails: a motion that
@@ -1750,6 +1775,7 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
   resolution.canonicalize();
   std::vector<std::pair<Rational, Rational>> stack{{path.u_begin, path.u_end}};
   std::optional<MotionScanner::Evaluation> last;   // the excluded stretch ending at u_end
+  const double resolution_d = resolution.get_d();
   while (!stack.empty()) {
     auto [a, b] = stack.back();
     stack.pop_back();
@@ -1761,6 +1787,65 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
       m.canonicalize();
       stack.emplace_back(m, b);
       stack.emplace_back(a, m);
+    };
+    // The Newton proposal (see crossing_shrink.hpp). The subdivision's stretches are the nodes
+    // of the binary tree over [u_begin, u_end] whose leaves are the resolution's cells; a stretch
+    // of n = 2^m cells that would be halved goes straight to the smallest node [c_lo, c_hi] of
+    // its subtree holding the root's proposed bounds (widened by a cell either way, and inside
+    // [a, b]), when that node has at most half the cells: the nodes between are skipped (the
+    // curve vanishes inside each, so the halving would not have excluded them, only halved them),
+    // their siblings are evaluated in path order as the halving would (excluded or subdivided).
+    // The stretches evaluated are the halving's minus those nodes: the same answer (see
+    // crossing_shrink.hpp).
+    auto shrink = [&, a = a, b = b] {
+      if (cspace::newton_shrink() && at.newton) {
+        Rational cells = (b - a) / resolution;
+        cells.canonicalize();
+        if (cells.get_den() == 1 && cells.get_num() > 2 && cells.get_num().fits_slong_p()) {
+          const long n = cells.get_num().get_si();
+          double lo = std::floor(at.newton_lo / resolution_d * (1 - 0x1p-48)) - 1;
+          double hi = std::ceil(at.newton_hi / resolution_d * (1 + 0x1p-48)) + 1;
+          // only where the widened bounds lie inside [a, b] (not clipped): then the curve
+          // vanishes inside every node between [a, b] and the node proposed
+          if ((n & (n - 1)) == 0 && lo >= 0 && hi <= static_cast<double>(n)) {
+            long k_lo = static_cast<long>(lo), k_hi = static_cast<long>(hi);
+            if (k_lo < k_hi) {
+              // the smallest node holding cells k_lo ... k_hi - 1: 2^j cells from k_lo's multiple
+              unsigned long diff = static_cast<unsigned long>(k_lo ^ (k_hi - 1));
+              int j = 0;
+              while (j < 63 && (diff >> j) != 0) ++j;
+              long size = 1L << j, first = (k_lo >> j) << j;
+              if (2 * size <= n) {
+                // the path from [a, b] down to the node: the siblings left of it are the
+                // stretches the halving evaluates (and excludes) before reaching it, those right
+                // of it the ones it would evaluate after; pushed so that they pop in path order
+                ++cspace::newton_steps();
+                auto at_cell = [&](long k) {
+                  Rational u = a + resolution * k;
+                  u.canonicalize();
+                  return u;
+                };
+                std::vector<std::pair<long, long>> left;
+                long lo = 0, length = n;
+                while (length > size) {
+                  long half = length / 2;
+                  if (first < lo + half) {
+                    stack.emplace_back(at_cell(lo + half), at_cell(lo + length));
+                  } else {
+                    left.emplace_back(lo, lo + half);
+                    lo += half;
+                  }
+                  length = half;
+                }
+                stack.emplace_back(at_cell(first), at_cell(first + size));
+                for (auto it = left.rbegin(); it != left.rend(); ++it) stack.emplace_back(at_cell(it->first), at_cell(it->second));
+                return;
+              }
+            }
+          }
+        }
+      }
+      split();
     };
     if (at.too_wide) {
       split();
@@ -1781,7 +1866,7 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
       continue;
     }
     if (wide) {
-      split();
+      shrink();
       continue;
     }
     // a stretch within the resolution that may touch contact space: decide where the motion

@@ -1,0 +1,26 @@
+#pragma once
+
+#include <cstddef>
+
+namespace hipair::cspace {
+
+// first_crossing's Newton shrink of the crossing bracket (cspace_queries.cpp): where a stretch
+// that must be subdivided keeps a single contact curve whose value at the stretch's start and
+// whose rate along the stretch both exclude 0, with opposite signs, the root's interval-Newton
+// bounds (widened by a cell, inside the stretch) name the smallest node of the subdivision's
+// binary tree holding them; the nodes between the stretch and that one are skipped (the curve
+// vanishes inside each: the halving would only have halved them) and their siblings are
+// evaluated in path order. Nothing is decided by a proposal: every stretch evaluated is one the
+// halving evaluates, by the same tests, so the answers are the halving's. On by default; tests
+// switch it off per thread to compare (CSpaceCrossingShrink.*).
+inline bool& newton_shrink() {
+  thread_local bool on = true;
+  return on;
+}
+// How many proposals have replaced a halving on this thread (tests).
+inline std::size_t& newton_steps() {
+  thread_local std::size_t count = 0;
+  return count;
+}
+
+}  // namespace hipair::cspace
