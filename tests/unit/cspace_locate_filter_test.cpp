@@ -105,18 +105,6 @@ TEST(CSpaceLocateFilter, QuadraticRootsAgreeWithTheExactAlgebraicNumbers) {
   EXPECT_GE(on_root, 3000u);
 }
 
-std::vector<std::unique_ptr<CSpace>> example_spaces() {
-  Model geneva = read_model_file(example("geneva-drive.json"));
-  Model escapement = read_model_file(example("escapement.json"));
-  Model cam = read_model_file(example("cam-follower.json"));
-  std::vector<std::unique_ptr<CSpace>> owned;
-  owned.push_back(std::make_unique<CSpace>(CSpace::build(geneva, "driver", "wheel")));
-  for (const PairBuild& pair : CSpace::build_pairs(escapement))
-    if (pair.status == PairBuild::Status::built) owned.push_back(std::make_unique<CSpace>(*pair.space));
-  owned.push_back(std::make_unique<CSpace>(CSpace::build(cam, "cam", "follower")));
-  return owned;
-}
-
 std::string describe(const Location& l) {
   return std::to_string(static_cast<int>(l.kind)) + " cell " + std::to_string(static_cast<long>(l.cell)) + " edge " +
          std::to_string(static_cast<long>(l.edge)) + " vertex " + std::to_string(static_cast<long>(l.vertex)) +
@@ -138,7 +126,7 @@ std::string locate(const CSpace& space, const ChartPoint& p, bool filter) {
 // 10^-15..10^-3 of the chart up or down, or a random ordinate in the chart; also the rational
 // vertices and the cells' sample points. Each location with the filter on equals the exact one.
 TEST(CSpaceLocateFilter, PointsNearAndOnEdgesAreLocatedAsExactly) {
-  std::vector<std::unique_ptr<CSpace>> owned = example_spaces();
+  std::vector<std::unique_ptr<CSpace>> owned = test::example_spaces();
   std::mt19937_64 random(2111);
   std::uniform_real_distribution<double> unit(0, 1);
   std::size_t points = 0, on_contact = 0, spaces = 0;

@@ -12,6 +12,7 @@
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 
+#include "cspace_test_support.hpp"
 #include "test_paths.hpp"
 #include "tolerance/exact_order.hpp"
 
@@ -28,15 +29,6 @@ namespace {
 
 std::filesystem::path example(const std::string& name) { return std::filesystem::path(HIPAIR_EXAMPLES) / name; }
 
-std::vector<std::unique_ptr<CSpace>> example_spaces() {
-  std::vector<std::unique_ptr<CSpace>> owned;
-  owned.push_back(std::make_unique<CSpace>(CSpace::build(read_model_file(example("geneva-drive.json")), "driver", "wheel")));
-  for (const PairBuild& pair : CSpace::build_pairs(read_model_file(example("escapement.json"))))
-    if (pair.status == PairBuild::Status::built) owned.push_back(std::make_unique<CSpace>(*pair.space));
-  owned.push_back(std::make_unique<CSpace>(CSpace::build(read_model_file(example("cam-follower.json")), "cam", "follower")));
-  owned.push_back(std::make_unique<CSpace>(CSpace::build(read_model_file(example("ratchet.json")), "wheel", "pawl")));
-  return owned;
-}
 
 Rational random_in(std::mt19937_64& random, const Rational& lo, const Rational& hi) {
   Rational u(static_cast<long>(random() % 1000003), 1000003);
@@ -91,7 +83,8 @@ void expect_window(const CSpace& space, const Slice& full, const Rational& at, s
 }
 
 TEST(CSpaceSliceNear, WindowsAreTheWholeSlicesPointsAndCellsAroundTheCoordinate) {
-  auto spaces = example_spaces();
+  auto spaces = test::example_spaces();
+  spaces.push_back(std::make_unique<CSpace>(CSpace::build(read_model_file(example("ratchet.json")), "wheel", "pawl")));
   ASSERT_GE(spaces.size(), 4u);
   std::mt19937_64 random(2111);
   Counts counts;

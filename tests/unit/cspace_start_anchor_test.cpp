@@ -36,19 +36,6 @@ using Switch = test::FlagSwitch<&cspace::start_anchors>;
 using test::describe_crossing;
 
 
-// The spaces the chains run on: the Geneva drive, the escapement's built pairs, the cam.
-std::vector<std::unique_ptr<CSpace>> example_spaces() {
-  Model geneva = read_model_file(example("geneva-drive.json"));
-  Model escapement = read_model_file(example("escapement.json"));
-  Model cam = read_model_file(example("cam-follower.json"));
-  std::vector<std::unique_ptr<CSpace>> owned;
-  owned.push_back(std::make_unique<CSpace>(CSpace::build(geneva, "driver", "wheel")));
-  for (const PairBuild& pair : CSpace::build_pairs(escapement))
-    if (pair.status == PairBuild::Status::built) owned.push_back(std::make_unique<CSpace>(*pair.space));
-  owned.push_back(std::make_unique<CSpace>(CSpace::build(cam, "cam", "follower")));
-  return owned;
-}
-
 AxisPath axis_path(AxisKind kind, const std::vector<double>& c) {
   AxisPath a;
   a.kind = kind == AxisKind::rotation ? AxisPath::Kind::angle : AxisPath::Kind::offset;
@@ -144,7 +131,7 @@ TEST(CSpaceStartAnchor, ChainsOfMotionsGiveTheAnswersOfExactStartLocation) {
   std::size_t anchored = 0, none = 0;
   Model geneva = read_model_file(example("geneva-drive.json"));
   Model cam = read_model_file(example("cam-follower.json"));
-  std::vector<std::unique_ptr<CSpace>> owned = example_spaces();
+  std::vector<std::unique_ptr<CSpace>> owned = test::example_spaces();
   std::vector<const CSpace*> spaces;
   for (const auto& s : owned) spaces.push_back(s.get());
   for (std::uint64_t seed : {3u, 5u, 7u}) {
@@ -174,7 +161,7 @@ TEST(CSpaceStartAnchor, ChainsOfMotionsGiveTheAnswersOfExactStartLocation) {
 // Each such start must be answered as with the anchors off (exact location), and none of those
 // on the other side may be anchored.
 TEST(CSpaceStartAnchor, StartsBesideACurveCrossingTheLastBoxAreLocatedExactly) {
-  std::vector<std::unique_ptr<CSpace>> owned = example_spaces();
+  std::vector<std::unique_ptr<CSpace>> owned = test::example_spaces();
   std::mt19937_64 random(19);
   std::uniform_real_distribution<double> unit(0, 1), sym(-1, 1);
   std::size_t cases = 0, other_side = 0, anchored_other_side = 0;

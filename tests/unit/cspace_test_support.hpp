@@ -1,14 +1,20 @@
-// Shared helpers of the C-space tests: the oracle's chart axis of a public chart, and a
-// random rational configuration inside a random built chart or tile.
+// Shared helpers of the C-space tests: the oracle's chart axis of a public chart, a random
+// rational configuration inside a random built chart or tile, the example spaces the query
+// tests run on, exact descriptions of crossing answers, and the queries' switches.
 #pragma once
 
 #include "curves/contact_curves.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
+#include <hipair/model.hpp>
 
+#include <filesystem>
+#include <memory>
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace hipair::test {
 
@@ -20,6 +26,18 @@ inline cspace::ChartAxis axis_of(AxisKind kind, bool half_turn, const Rational& 
   axis.lo = lo;
   axis.hi = hi;
   return axis;
+}
+
+// The example spaces the C-space query tests run on: the Geneva drive, the escapement's built
+// pairs, the cam and its flat-faced follower.
+inline std::vector<std::unique_ptr<CSpace>> example_spaces() {
+  auto example = [](const char* name) { return std::filesystem::path(HIPAIR_EXAMPLES) / name; };
+  std::vector<std::unique_ptr<CSpace>> owned;
+  owned.push_back(std::make_unique<CSpace>(CSpace::build(read_model_file(example("geneva-drive.json")), "driver", "wheel")));
+  for (const PairBuild& pair : CSpace::build_pairs(read_model_file(example("escapement.json"))))
+    if (pair.status == PairBuild::Status::built) owned.push_back(std::make_unique<CSpace>(*pair.space));
+  owned.push_back(std::make_unique<CSpace>(CSpace::build(read_model_file(example("cam-follower.json")), "cam", "follower")));
+  return owned;
 }
 
 // A random rational configuration inside a random built chart or tile (y = 0 in a 1-D space).
