@@ -282,22 +282,23 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     // the box from their values at the centre and the second derivatives over the box, which
     // the box's width multiplies; each of a dozen wide parameters widens every first-order
     // partial (the dependency problem), far less so their second-order forms.
+    // One contraction: a second pass would evaluate the checked, narrower Y again, the same
+    // enclosure as the check's (already intersected), and stop for want of progress.
     if (memo->second_order && result.width() > target) {
       use_second = true;
-      for (int contraction = 0; contraction < 2; ++contraction) {
-        Interval next;
-        if (!enclose(y, next)) break;
+      Interval next;
+      if (enclose(y, next)) {
         Interval narrower_result(std::max(result.lo, next.lo), std::min(result.hi, next.hi));
-        if (!(narrower_result.lo <= narrower_result.hi)) break;
-        bool progress = narrower_result.width() < 0.9 * result.width();
-        result = narrower_result;
-        double pad = 1e-3 * result.width() + slack;
-        Interval narrower(result.lo - pad, result.hi + pad);
-        if (!progress || !(narrower.width() < 0.9 * y.width())) break;
-        Interval check;
-        if (!enclose(narrower, check)) break;   // the narrower Y must hold the root for the box too
-        y = narrower;
-        result = Interval(std::max(result.lo, check.lo), std::min(result.hi, check.hi));
+        if (narrower_result.lo <= narrower_result.hi) {
+          bool progress = narrower_result.width() < 0.9 * result.width();
+          result = narrower_result;
+          double pad = 1e-3 * result.width() + slack;
+          Interval narrower(result.lo - pad, result.hi + pad);
+          Interval check;
+          // the narrower Y must hold the root for the box too
+          if (progress && narrower.width() < 0.9 * y.width() && enclose(narrower, check))
+            result = Interval(std::max(result.lo, check.lo), std::min(result.hi, check.hi));
+        }
       }
     }
     return true;
@@ -343,15 +344,15 @@ std::shared_ptr<const CurveSolver::BoxGeometry> CurveSolver::box_geometry(const 
     jets[active[a]] = IntervalJet::variable(Interval(box.lo[active[a]], box.hi[active[a]]), a, k + 1);
   if (second_order_) {
     std::vector<IntervalJet> at_center(n_);
-    std::vector<IntervalJet2> jets2(n_);
+    std::vector<HessianJet> jets2(n_);
     for (std::size_t i = 0; i < n_; ++i) {
       at_center[i] = IntervalJet(center_deviations[i]);
-      jets2[i] = IntervalJet2(jets[i]);
+      jets2[i] = HessianJet(jets[i]);
     }
     for (std::size_t a = 0; a < k; ++a) {
       std::size_t i = active[a];
       at_center[i] = IntervalJet::variable(Interval::point(center[i]), a, k + 1);
-      jets2[i] = IntervalJet2::variable(IntervalJet::variable(Interval(box.lo[i], box.hi[i]), a, k + 1), a, k + 1);
+      jets2[i] = HessianJet::variable(Interval(box.lo[i], box.hi[i]), a, k + 1);
     }
     try {
       g->jet_at_center = geometry(curve, model_->parameter_values(at_center));
@@ -392,10 +393,8 @@ void CurveSolver::tighten_partials_or_throw(const CurveSlice& curve, const BoxGe
   IntervalJet fixed_c = held_offset ? IntervalJet::variable(Interval::point(tc), k + 1, size) : IntervalJet(fixed);
   IntervalJet fc = evaluate<IntervalJet>(curve, memo.jet_at_center, fixed_c, IntervalJet::variable(Interval::point(yc), k, size));
   // second order over the box
-  IntervalJet2 fixed2 = held_offset ? IntervalJet2::variable(IntervalJet::variable(fixed, k + 1, size), k + 1, size)
-                                    : IntervalJet2(IntervalJet(fixed));
-  IntervalJet2 f2 = evaluate<IntervalJet2>(curve, memo.jet2, fixed2,
-                                           IntervalJet2::variable(IntervalJet::variable(y, k, size), k, size));
+  HessianJet fixed2 = held_offset ? HessianJet::variable(fixed, k + 1, size) : HessianJet(fixed);
+  HessianJet f2 = evaluate<HessianJet>(curve, memo.jet2, fixed2, HessianJet::variable(y, k, size));
   std::vector<Interval> offsets(size);
   for (std::size_t a = 0; a < k; ++a) {
     std::size_t i = active[a];
@@ -407,8 +406,7 @@ void CurveSolver::tighten_partials_or_throw(const CurveSlice& curve, const BoxGe
   if (f.gradient.size() < size) f.gradient.resize(size, Interval(0));
   for (std::size_t a = 0; a < size; ++a) {
     Interval t = fc.partial(a);
-    IntervalJet second = f2.partial(a);
-    for (std::size_t b = 0; b < size; ++b) t = t + second.partial(b) * offsets[b];
+    for (std::size_t b = 0; b < size; ++b) t = t + f2.second(a, b) * offsets[b];
     Interval& current = f.gradient[a];
     Interval narrower(std::max(current.lo, t.lo), std::min(current.hi, t.hi));
     if (narrower.lo <= narrower.hi) current = narrower;

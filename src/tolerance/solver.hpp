@@ -5,6 +5,7 @@
 #pragma once
 
 #include "tolerance/contact_function.hpp"
+#include "tolerance/hessian_jet.hpp"
 #include "tolerance/jet.hpp"
 
 #include <hipair/cspace.hpp>
@@ -22,7 +23,6 @@ using Interval = kernels::Interval;
 using IntervalJet = Jet<Interval>;
 /// Second-order jets: a jet whose value and partial derivatives are interval jets (their
 /// gradients: the second partial derivatives).
-using IntervalJet2 = Jet<IntervalJet>;
 /// Jets whose value and partial derivatives are first-order Taylor models over a box
 /// (taylor_model.hpp): the partial derivatives over the box keep the correlation between the
 /// parameters that interval jets lose (docs/tolerance.md "Taylor-model partial derivatives").
@@ -142,7 +142,7 @@ class CurveSolver {
     /// For the second-order partials (second_order_): the geometry at the centre with its
     /// gradient over `active`, and over the box with gradients and second derivatives.
     PairGeometry<IntervalJet> jet_at_center;
-    PairGeometry<IntervalJet2> jet2;
+    PairGeometry<HessianJet> jet2;
     bool second_order = false;   ///< jet_at_center and jet2 hold
     /// For the Taylor-model partials (taylor_): the geometry over the box as jets of Taylor
     /// models in the box's active parameters (variables 0..k-1; the free coordinate is k, the
