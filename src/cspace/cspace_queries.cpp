@@ -15,6 +15,7 @@
 #include "cspace/builder_impl.hpp"
 #include "cspace/crossing_shrink.hpp"
 #include "cspace/cspace_access.hpp"
+#include "cspace/frame_memo.hpp"
 #include "curves/pose.hpp"
 #include "kernels/contact_geometry.hpp"
 #include "kernels/implicit_curve.hpp"
@@ -31,6 +32,7 @@
 #include <memory>
 #include <optional>
 #include <utility>
+#include <vector>
 
 namespace hipair {
 
@@ -165,6 +167,54 @@ kernels::ContactFrame<T> frame_at(const CSpace::Impl& impl, std::size_t c, const
                                 feature_geometry<T>(*impl.model, pair.second, convert));
 }
 
+// The contact frame of feature pair `pair` at chart values (x, y) of chart `c`, in T, from the
+// pair's body geometries `first` and `second` (feature_geometry of pair.first and pair.second).
+template <class T, class Convert>
+kernels::ContactFrame<T> frame_with(const CSpace::Impl& impl, std::size_t c, const FeaturePair& pair, const T& x,
+                                    const T& y, Convert&& convert, const kernels::FeatureGeometry<T>& first,
+                                    const kernels::FeatureGeometry<T>& second) {
+  const ChartData& chart = impl.charts[c];
+  cspace::PairPoses<T> poses =
+      cspace::pair_poses<T>(*impl.model, impl.axes, chart.x_axis, chart.y_axis, x, y, convert);
+  const kernels::Pose<T>& a = pair.first.part == impl.axes.first ? poses.first : poses.second;
+  const kernels::Pose<T>& b = pair.second.part == impl.axes.first ? poses.first : poses.second;
+  return kernels::contact_frame(a, first, b, second);
+}
+
+// frame_memo (cspace/frame_memo.hpp): per thread, per space, the enclosed body geometries of
+// the feature pairs met so far.
+struct FrameMemo {
+  std::weak_ptr<const CSpace::Impl> owner;
+  std::vector<std::optional<std::array<kernels::FeatureGeometry<KInterval>, 2>>> pairs;
+};
+
+// The enclosed body geometries of feature pair `index` of `space` (from the memo, or made and
+// remembered).
+const std::array<kernels::FeatureGeometry<KInterval>, 2>& enclosed_geometries(const CSpace& space, std::size_t index) {
+  thread_local std::vector<FrameMemo> memos;
+  const std::shared_ptr<const CSpace::Impl>& owner = CSpaceAccess::shared(space);
+  const CSpace::Impl& impl = *owner;
+  auto same = [&](const FrameMemo& m) { return !m.owner.owner_before(owner) && !owner.owner_before(m.owner); };
+  auto it = std::find_if(memos.begin(), memos.end(), [&](const FrameMemo& m) { return !m.owner.expired() && same(m); });
+  if (it == memos.end()) {
+    std::erase_if(memos, [](const FrameMemo& m) { return m.owner.expired(); });
+    if (memos.size() >= 16) memos.erase(memos.begin());
+    memos.push_back(FrameMemo{owner, {}});
+    it = std::prev(memos.end());
+  }
+  if (it->pairs.size() < impl.feature_pairs.size()) it->pairs.resize(impl.feature_pairs.size());
+  std::optional<std::array<kernels::FeatureGeometry<KInterval>, 2>>& slot = it->pairs[index];
+  if (slot) {
+    ++cspace::frame_memo_hits();
+    return *slot;
+  }
+  auto enclose = [](const Rational& r) { return KInterval::enclose(r); };
+  const FeaturePair& pair = impl.feature_pairs[index];
+  slot = std::array<kernels::FeatureGeometry<KInterval>, 2>{feature_geometry<KInterval>(*impl.model, pair.first, enclose),
+                                                            feature_geometry<KInterval>(*impl.model, pair.second, enclose)};
+  return *slot;
+}
+
 std::array<CertifiedRange, 2> unit_normal(const kernels::Vector<KInterval>& n) {
   kernels::Vector<KInterval> u = kernels::unit(n, [](const KInterval& v) { return kernels::sqrt(v); });
   return {range_of(u.x), range_of(u.y)};
@@ -277,8 +327,15 @@ std::optional<Contact> CSpace::contact_frame(FeatureId feature, const PartCoordi
   if (!point) throw GeometryError("contact_frame: the configuration is outside every chart");
   if (impl.dimension == 1) point->y = 0;
   auto enclose = [](const Rational& r) { return KInterval::enclose(r); };
-  kernels::ContactFrame<KInterval> frame = frame_at<KInterval>(impl, point->chart, impl.feature_pairs[index],
-                                                               enclose(point->x), enclose(point->y), enclose);
+  kernels::ContactFrame<KInterval> frame;
+  if (cspace::frame_memo()) {
+    const std::array<kernels::FeatureGeometry<KInterval>, 2>& g = enclosed_geometries(*this, index);
+    frame = frame_with<KInterval>(impl, point->chart, impl.feature_pairs[index], enclose(point->x), enclose(point->y),
+                                  enclose, g[0], g[1]);
+  } else {
+    frame = frame_at<KInterval>(impl, point->chart, impl.feature_pairs[index], enclose(point->x), enclose(point->y),
+                                enclose);
+  }
   if (!frame.defined) return std::nullopt;
   Contact contact;
   contact.feature = feature;
