@@ -1350,14 +1350,57 @@ IntervalPolynomial2::IntervalPolynomial2(const IntegerPolynomial2& f) {
   total_degree_ = dx + dy;
 }
 
-Interval IntervalPolynomial2::evaluate(Interval x, Interval y) const {
+namespace {
+
+// The sign of a variable's interval: the product by it in two end products where it is known.
+enum class SignKind { nonnegative, nonpositive, mixed };
+
+SignKind sign_kind(Interval v) {
+  return v.lo >= 0 ? SignKind::nonnegative : v.hi <= 0 ? SignKind::nonpositive : SignKind::mixed;
+}
+
+template <SignKind S>
+Interval times(Interval a, Interval b) {
+  if constexpr (S == SignKind::nonnegative)
+    return interval_detail::times_nonnegative(a, b);
+  else if constexpr (S == SignKind::nonpositive)
+    return interval_detail::times_nonpositive(a, b);
+  else
+    return a * b;
+}
+
+// Nested Horner (rows in x, each row in y), the same operations in the same order for every
+// sign of x and y: the products by x and y are those of operator*, bound for bound.
+template <SignKind SX, SignKind SY>
+Interval horner(const std::vector<std::vector<Interval>>& rows, Interval x, Interval y) {
   Interval result{0, 0};
-  for (auto row = rows_.rbegin(); row != rows_.rend(); ++row) {
+  for (auto row = rows.rbegin(); row != rows.rend(); ++row) {
     Interval inner{0, 0};
-    for (auto c = row->rbegin(); c != row->rend(); ++c) inner = inner * y + *c;
-    result = result * x + inner;
+    for (auto c = row->rbegin(); c != row->rend(); ++c) inner = times<SY>(inner, y) + *c;
+    result = times<SX>(result, x) + inner;
   }
   return result;
+}
+
+template <SignKind SX>
+Interval horner_x(const std::vector<std::vector<Interval>>& rows, Interval x, Interval y) {
+  switch (sign_kind(y)) {
+    case SignKind::nonnegative: return horner<SX, SignKind::nonnegative>(rows, x, y);
+    case SignKind::nonpositive: return horner<SX, SignKind::nonpositive>(rows, x, y);
+    case SignKind::mixed: break;
+  }
+  return horner<SX, SignKind::mixed>(rows, x, y);
+}
+
+}  // namespace
+
+Interval IntervalPolynomial2::evaluate(Interval x, Interval y) const {
+  switch (sign_kind(x)) {
+    case SignKind::nonnegative: return horner_x<SignKind::nonnegative>(rows_, x, y);
+    case SignKind::nonpositive: return horner_x<SignKind::nonpositive>(rows_, x, y);
+    case SignKind::mixed: break;
+  }
+  return horner_x<SignKind::mixed>(rows_, x, y);
 }
 
 double IntervalPolynomial2::evaluate(double x, double y, double* error_bound) const {

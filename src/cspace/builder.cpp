@@ -326,6 +326,17 @@ bool valid_at_rational(const std::vector<ValidityClause>& clauses, const Rationa
 // factor, so only the curves with the edge's support are tested (a curve crossing the edge
 // at its sample point alone would be a vertex there, unless its piece there was culled as
 // certainly blocked: such a crossing is no contact along the edge and is not listed).
+//
+// The sample's algebraic coordinate is refined only for the interval filter in front of the
+// exact test (vanishes_at and valid_at decide every label, at any width of the enclosure):
+// to 2^-48, which the bisection reaches with its double filter on the charts' coordinates
+// (the exact signs it needs below 2^-52 cost more than the exact tests that a slightly wider
+// enclosure lets through; the labels are the same).
+const Rational& label_filter_width() {
+  static const Rational width(1, mpz_class(1) << 48);
+  return width;
+}
+
 void label_edges(ChartData& chart, bool by_support) {
   const auto& arrangement = chart.arrangement;
   chart.edges.resize(arrangement.edges.size());
@@ -367,7 +378,7 @@ void label_edges(ChartData& chart, bool by_support) {
                                               : algebra::simplest_between(low.y_upper, high.y_lower);
       data.sample_y = Real::from_rational(y);
       Real x = low.x;
-      x.refine_to(Rational(1, mpz_class(1) << 80));
+      x.refine_to(label_filter_width());
       x_box = {x.lower_bound(), x.upper_bound()};
       y_box = algebra::enclose(y);
       for (std::size_t k : *candidates) {
@@ -398,7 +409,7 @@ void label_edges(ChartData& chart, bool by_support) {
       data.sample_x = algebra::rational_between(low.x, high.x);
       data.sample_y = edge_y_at(chart, e, data.sample_x);
       Real y = data.sample_y;
-      y.refine_to(Rational(1, mpz_class(1) << 80));
+      y.refine_to(label_filter_width());
       x_box = algebra::enclose(data.sample_x);
       y_box = {y.lower_bound(), y.upper_bound()};
       for (std::size_t k : *candidates) {
