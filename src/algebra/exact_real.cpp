@@ -1392,7 +1392,43 @@ Interval horner_x(const std::vector<std::vector<Interval>>& rows, Interval x, In
   return horner<SX, SignKind::mixed>(rows, x, y);
 }
 
+// The two halves of horner: the rows at y, then the outer Horner in x over them.
+template <SignKind SY>
+void rows_of(const std::vector<std::vector<Interval>>& rows, Interval y, std::vector<Interval>& out) {
+  out.resize(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    Interval inner{0, 0};
+    for (auto c = rows[i].rbegin(); c != rows[i].rend(); ++c) inner = times<SY>(inner, y) + *c;
+    out[i] = inner;
+  }
+}
+
+template <SignKind SX>
+Interval outer_horner(const std::vector<Interval>& inner, Interval x) {
+  Interval result{0, 0};
+  for (auto row = inner.rbegin(); row != inner.rend(); ++row) result = times<SX>(result, x) + *row;
+  return result;
+}
+
 }  // namespace
+
+void IntervalPolynomial2::rows_at(Interval y, std::vector<Interval>& rows) const {
+  switch (sign_kind(y)) {
+    case SignKind::nonnegative: return rows_of<SignKind::nonnegative>(rows_, y, rows);
+    case SignKind::nonpositive: return rows_of<SignKind::nonpositive>(rows_, y, rows);
+    case SignKind::mixed: break;
+  }
+  rows_of<SignKind::mixed>(rows_, y, rows);
+}
+
+Interval IntervalPolynomial2::evaluate_rows(Interval x, const std::vector<Interval>& rows) const {
+  switch (sign_kind(x)) {
+    case SignKind::nonnegative: return outer_horner<SignKind::nonnegative>(rows, x);
+    case SignKind::nonpositive: return outer_horner<SignKind::nonpositive>(rows, x);
+    case SignKind::mixed: break;
+  }
+  return outer_horner<SignKind::mixed>(rows, x);
+}
 
 Interval IntervalPolynomial2::evaluate(Interval x, Interval y) const {
   switch (sign_kind(x)) {

@@ -240,6 +240,11 @@ class IntervalPolynomial2 {
   IntervalPolynomial2() = default;
   explicit IntervalPolynomial2(const IntegerPolynomial2& f);
   Interval evaluate(Interval x, Interval y) const;
+  /// The rows of f at y (row i: the sum over j of c_ij y^j, enclosed), and f at x from them:
+  /// evaluate_rows(x, rows) with `rows` from rows_at(y, rows) is evaluate(x, y) bound for bound
+  /// (the same operations in the same order), so that boxes sharing their y share the rows.
+  void rows_at(Interval y, std::vector<Interval>& rows) const;
+  Interval evaluate_rows(Interval x, const std::vector<Interval>& rows) const;
   /// f at doubles with a certified bound on |value - exact f(x, y)|: returns value and bound.
   double evaluate(double x, double y, double* error_bound) const;
   bool empty() const { return rows_.empty(); }

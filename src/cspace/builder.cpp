@@ -65,7 +65,7 @@ class CurveCuller {
                                                  const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses,
                                                  std::vector<std::array<double, 4>>& cells) {
     std::vector<std::array<double, 4>> boxes;
-    visit(f, clauses, 0, 0, 0, boxes);
+    visit(f, clauses, 0, 0, 0, boxes, f.evaluate(grid_.cell_x(0, 0), grid_.cell_y(0, 0)));
     std::sort(boxes.begin(), boxes.end());
     cells.clear();
     for (const auto& b : boxes) {
@@ -89,10 +89,12 @@ class CurveCuller {
   }
 
  private:
+  // `value`: f over the cell (its parent evaluates the four children's, the two of a row of
+  // cells from the same rows of f at the row's y: the enclosures of evaluate, bound for bound).
   void visit(const algebra::IntervalPolynomial2& f, const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses,
-             int depth, long i, long j, std::vector<std::array<double, 4>>& found) {
+             int depth, long i, long j, std::vector<std::array<double, 4>>& found, algebra::Interval value) {
+    if (!value.contains_zero()) return;
     algebra::Interval x = grid_.cell_x(depth, i), y = grid_.cell_y(depth, j);
-    if (!f.evaluate(x, y).contains_zero()) return;
     for (const auto& clause : clauses) {
       bool can_hold = false;
       for (const auto& atom : clause)
@@ -107,11 +109,17 @@ class CurveCuller {
       found.push_back({x.lo, x.hi, y.lo, y.hi});
       return;
     }
+    algebra::Interval values[2][2];
+    for (long dj = 0; dj < 2; ++dj) {
+      f.rows_at(grid_.cell_y(depth + 1, 2 * j + dj), rows_);
+      for (long di = 0; di < 2; ++di) values[di][dj] = f.evaluate_rows(grid_.cell_x(depth + 1, 2 * i + di), rows_);
+    }
     for (long di = 0; di < 2; ++di)
-      for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found);
+      for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found, values[di][dj]);
   }
 
   BlockedCells& grid_;
+  std::vector<algebra::Interval> rows_;   // scratch of visit (used before it recurses)
 };
 
 const mpz_class& coefficient_of(const IntegerPolynomial2& f, std::size_t i, std::size_t j) {
