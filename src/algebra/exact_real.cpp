@@ -1350,14 +1350,93 @@ IntervalPolynomial2::IntervalPolynomial2(const IntegerPolynomial2& f) {
   total_degree_ = dx + dy;
 }
 
-Interval IntervalPolynomial2::evaluate(Interval x, Interval y) const {
+namespace {
+
+// The sign of a variable's interval: the product by it in two end products where it is known.
+enum class SignKind { nonnegative, nonpositive, mixed };
+
+SignKind sign_kind(Interval v) {
+  return v.lo >= 0 ? SignKind::nonnegative : v.hi <= 0 ? SignKind::nonpositive : SignKind::mixed;
+}
+
+template <SignKind S>
+Interval times(Interval a, Interval b) {
+  if constexpr (S == SignKind::nonnegative)
+    return interval_detail::times_nonnegative(a, b);
+  else if constexpr (S == SignKind::nonpositive)
+    return interval_detail::times_nonpositive(a, b);
+  else
+    return a * b;
+}
+
+// Nested Horner (rows in x, each row in y), the same operations in the same order for every
+// sign of x and y: the products by x and y are those of operator*, bound for bound.
+template <SignKind SX, SignKind SY>
+Interval horner(const std::vector<std::vector<Interval>>& rows, Interval x, Interval y) {
   Interval result{0, 0};
-  for (auto row = rows_.rbegin(); row != rows_.rend(); ++row) {
+  for (auto row = rows.rbegin(); row != rows.rend(); ++row) {
     Interval inner{0, 0};
-    for (auto c = row->rbegin(); c != row->rend(); ++c) inner = inner * y + *c;
-    result = result * x + inner;
+    for (auto c = row->rbegin(); c != row->rend(); ++c) inner = times<SY>(inner, y) + *c;
+    result = times<SX>(result, x) + inner;
   }
   return result;
+}
+
+template <SignKind SX>
+Interval horner_x(const std::vector<std::vector<Interval>>& rows, Interval x, Interval y) {
+  switch (sign_kind(y)) {
+    case SignKind::nonnegative: return horner<SX, SignKind::nonnegative>(rows, x, y);
+    case SignKind::nonpositive: return horner<SX, SignKind::nonpositive>(rows, x, y);
+    case SignKind::mixed: break;
+  }
+  return horner<SX, SignKind::mixed>(rows, x, y);
+}
+
+// The two halves of horner: the rows at y, then the outer Horner in x over them.
+template <SignKind SY>
+void rows_of(const std::vector<std::vector<Interval>>& rows, Interval y, std::vector<Interval>& out) {
+  out.resize(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    Interval inner{0, 0};
+    for (auto c = rows[i].rbegin(); c != rows[i].rend(); ++c) inner = times<SY>(inner, y) + *c;
+    out[i] = inner;
+  }
+}
+
+template <SignKind SX>
+Interval outer_horner(const std::vector<Interval>& inner, Interval x) {
+  Interval result{0, 0};
+  for (auto row = inner.rbegin(); row != inner.rend(); ++row) result = times<SX>(result, x) + *row;
+  return result;
+}
+
+}  // namespace
+
+void IntervalPolynomial2::rows_at(Interval y, std::vector<Interval>& rows) const {
+  switch (sign_kind(y)) {
+    case SignKind::nonnegative: return rows_of<SignKind::nonnegative>(rows_, y, rows);
+    case SignKind::nonpositive: return rows_of<SignKind::nonpositive>(rows_, y, rows);
+    case SignKind::mixed: break;
+  }
+  rows_of<SignKind::mixed>(rows_, y, rows);
+}
+
+Interval IntervalPolynomial2::evaluate_rows(Interval x, const std::vector<Interval>& rows) const {
+  switch (sign_kind(x)) {
+    case SignKind::nonnegative: return outer_horner<SignKind::nonnegative>(rows, x);
+    case SignKind::nonpositive: return outer_horner<SignKind::nonpositive>(rows, x);
+    case SignKind::mixed: break;
+  }
+  return outer_horner<SignKind::mixed>(rows, x);
+}
+
+Interval IntervalPolynomial2::evaluate(Interval x, Interval y) const {
+  switch (sign_kind(x)) {
+    case SignKind::nonnegative: return horner_x<SignKind::nonnegative>(rows_, x, y);
+    case SignKind::nonpositive: return horner_x<SignKind::nonpositive>(rows_, x, y);
+    case SignKind::mixed: break;
+  }
+  return horner_x<SignKind::mixed>(rows_, x, y);
 }
 
 double IntervalPolynomial2::evaluate(double x, double y, double* error_bound) const {

@@ -196,6 +196,41 @@ inline Interval operator*(Interval a, Interval b) {
   hi = hi < p4 ? p4 : hi;
   return {interval_detail::down(lo), interval_detail::up(hi)};
 }
+namespace interval_detail {
+// a * b when b's sign is known, with the same bounds as operator* in two products instead of
+// four: rounding to nearest is monotone in each factor (and end_product's 0 * inf = 0 keeps
+// that order), so of the four end products the least and the greatest are these two.
+// times_nonnegative needs b.lo >= 0, times_nonpositive b.hi <= 0.
+inline Interval times_nonnegative(Interval a, Interval b) {
+  double lo, hi;
+  if (a.lo >= 0) {
+    lo = end_product(a.lo, b.lo);
+    hi = end_product(a.hi, b.hi);
+  } else if (a.hi <= 0) {
+    lo = end_product(a.lo, b.hi);
+    hi = end_product(a.hi, b.lo);
+  } else {
+    lo = end_product(a.lo, b.hi);
+    hi = end_product(a.hi, b.hi);
+  }
+  return {down(lo), up(hi)};
+}
+inline Interval times_nonpositive(Interval a, Interval b) {
+  double lo, hi;
+  if (a.lo >= 0) {
+    lo = end_product(a.hi, b.lo);
+    hi = end_product(a.lo, b.hi);
+  } else if (a.hi <= 0) {
+    lo = end_product(a.hi, b.hi);
+    hi = end_product(a.lo, b.lo);
+  } else {
+    lo = end_product(a.hi, b.lo);
+    hi = end_product(a.lo, b.lo);
+  }
+  return {down(lo), up(hi)};
+}
+}  // namespace interval_detail
+
 Interval enclose(const Rational& r);
 Interval enclose(const mpz_class& z);
 
@@ -205,6 +240,11 @@ class IntervalPolynomial2 {
   IntervalPolynomial2() = default;
   explicit IntervalPolynomial2(const IntegerPolynomial2& f);
   Interval evaluate(Interval x, Interval y) const;
+  /// The rows of f at y (row i: the sum over j of c_ij y^j, enclosed), and f at x from them:
+  /// evaluate_rows(x, rows) with `rows` from rows_at(y, rows) is evaluate(x, y) bound for bound
+  /// (the same operations in the same order), so that boxes sharing their y share the rows.
+  void rows_at(Interval y, std::vector<Interval>& rows) const;
+  Interval evaluate_rows(Interval x, const std::vector<Interval>& rows) const;
   /// f at doubles with a certified bound on |value - exact f(x, y)|: returns value and bound.
   double evaluate(double x, double y, double* error_bound) const;
   bool empty() const { return rows_.empty(); }

@@ -65,7 +65,7 @@ class CurveCuller {
                                                  const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses,
                                                  std::vector<std::array<double, 4>>& cells) {
     std::vector<std::array<double, 4>> boxes;
-    visit(f, clauses, 0, 0, 0, boxes);
+    visit(f, clauses, 0, 0, 0, boxes, f.evaluate(grid_.cell_x(0, 0), grid_.cell_y(0, 0)));
     std::sort(boxes.begin(), boxes.end());
     cells.clear();
     for (const auto& b : boxes) {
@@ -89,10 +89,12 @@ class CurveCuller {
   }
 
  private:
+  // `value`: f over the cell (its parent evaluates the four children's, the two of a row of
+  // cells from the same rows of f at the row's y: the enclosures of evaluate, bound for bound).
   void visit(const algebra::IntervalPolynomial2& f, const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses,
-             int depth, long i, long j, std::vector<std::array<double, 4>>& found) {
+             int depth, long i, long j, std::vector<std::array<double, 4>>& found, algebra::Interval value) {
+    if (!value.contains_zero()) return;
     algebra::Interval x = grid_.cell_x(depth, i), y = grid_.cell_y(depth, j);
-    if (!f.evaluate(x, y).contains_zero()) return;
     for (const auto& clause : clauses) {
       bool can_hold = false;
       for (const auto& atom : clause)
@@ -107,11 +109,17 @@ class CurveCuller {
       found.push_back({x.lo, x.hi, y.lo, y.hi});
       return;
     }
+    algebra::Interval values[2][2];
+    for (long dj = 0; dj < 2; ++dj) {
+      f.rows_at(grid_.cell_y(depth + 1, 2 * j + dj), rows_);
+      for (long di = 0; di < 2; ++di) values[di][dj] = f.evaluate_rows(grid_.cell_x(depth + 1, 2 * i + di), rows_);
+    }
     for (long di = 0; di < 2; ++di)
-      for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found);
+      for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found, values[di][dj]);
   }
 
   BlockedCells& grid_;
+  std::vector<algebra::Interval> rows_;   // scratch of visit (used before it recurses)
 };
 
 const mpz_class& coefficient_of(const IntegerPolynomial2& f, std::size_t i, std::size_t j) {
@@ -326,6 +334,17 @@ bool valid_at_rational(const std::vector<ValidityClause>& clauses, const Rationa
 // factor, so only the curves with the edge's support are tested (a curve crossing the edge
 // at its sample point alone would be a vertex there, unless its piece there was culled as
 // certainly blocked: such a crossing is no contact along the edge and is not listed).
+//
+// The sample's algebraic coordinate is refined only for the interval filter in front of the
+// exact test (vanishes_at and valid_at decide every label, at any width of the enclosure):
+// to 2^-48, which the bisection reaches with its double filter on the charts' coordinates
+// (the exact signs it needs below 2^-52 cost more than the exact tests that a slightly wider
+// enclosure lets through; the labels are the same).
+const Rational& label_filter_width() {
+  static const Rational width(1, mpz_class(1) << 48);
+  return width;
+}
+
 void label_edges(ChartData& chart, bool by_support) {
   const auto& arrangement = chart.arrangement;
   chart.edges.resize(arrangement.edges.size());
@@ -367,7 +386,7 @@ void label_edges(ChartData& chart, bool by_support) {
                                               : algebra::simplest_between(low.y_upper, high.y_lower);
       data.sample_y = Real::from_rational(y);
       Real x = low.x;
-      x.refine_to(Rational(1, mpz_class(1) << 80));
+      x.refine_to(label_filter_width());
       x_box = {x.lower_bound(), x.upper_bound()};
       y_box = algebra::enclose(y);
       for (std::size_t k : *candidates) {
@@ -398,7 +417,7 @@ void label_edges(ChartData& chart, bool by_support) {
       data.sample_x = algebra::rational_between(low.x, high.x);
       data.sample_y = edge_y_at(chart, e, data.sample_x);
       Real y = data.sample_y;
-      y.refine_to(Rational(1, mpz_class(1) << 80));
+      y.refine_to(label_filter_width());
       x_box = algebra::enclose(data.sample_x);
       y_box = {y.lower_bound(), y.upper_bound()};
       for (std::size_t k : *candidates) {

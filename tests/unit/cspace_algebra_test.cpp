@@ -7,6 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
 namespace hipair::cspace::algebra {
 namespace {
 
@@ -225,6 +229,148 @@ TEST(CSpaceAlgebra, CertifiedDoubleEvaluation) {
       EXPECT_LE(Rational(box.lo), exact);
       EXPECT_GE(Rational(box.hi), exact);
     }
+}
+
+// The products by a variable of known sign (two end products) against operator* (four), bound
+// for bound and bit for bit, on generated intervals: random magnitudes 2^-70..2^70 and both
+// signs, zeros of either sign, infinities, the largest double and the smallest subnormal, in
+// every order of signs of both factors (the other factor's sign fixed as each product needs).
+namespace interval_products {
+
+std::uint64_t next_state(std::uint64_t& state) {
+  state = state * 6364136223846793005ull + 1442695040888963407ull;
+  return state >> 11;
+}
+
+double random_end(std::uint64_t& state) {
+  const std::uint64_t r = next_state(state);
+  switch (r % 16) {
+    case 0: return 0.0;
+    case 1: return -0.0;
+    case 2: return __builtin_inf();
+    case 3: return -__builtin_inf();
+    case 4: return 1.7976931348623157e308;
+    case 5: return 4.9406564584124654e-324;
+    default: break;
+  }
+  const double mantissa = static_cast<double>(next_state(state) % (1ull << 52)) / 0x1p52 + 1;
+  const int exponent = static_cast<int>(next_state(state) % 141) - 70;
+  return (r & 32 ? -1 : 1) * std::ldexp(mantissa, exponent);
+}
+
+Interval random_interval(std::uint64_t& state) {
+  double a = random_end(state), b = random_end(state);
+  if (next_state(state) % 8 == 0) b = a;   // a point
+  if (b < a) std::swap(a, b);
+  if (a == b && std::isinf(a)) {          // no interval of infinity alone: the whole line
+    a = -__builtin_inf();
+    b = __builtin_inf();
+  }
+  return {a, b};
+}
+
+bool same_bits(Interval a, Interval b) {
+  return std::memcmp(&a.lo, &b.lo, sizeof(double)) == 0 && std::memcmp(&a.hi, &b.hi, sizeof(double)) == 0;
+}
+
+// f over the box by nested Horner with operator* and operator+ only (the evaluation as it was
+// written before the products by a known sign): the oracle of the fast evaluation.
+Interval reference_evaluate(const IntegerPolynomial2& f, Interval x, Interval y) {
+  Interval result{0, 0};
+  for (auto row = f.coefficients.rbegin(); row != f.coefficients.rend(); ++row) {
+    Interval inner{0, 0};
+    for (auto c = row->rbegin(); c != row->rend(); ++c) inner = inner * y + enclose(*c);
+    result = result * x + inner;
+  }
+  return result;
+}
+
+}  // namespace interval_products
+
+TEST(CSpaceAlgebra, ProductsByAKnownSignAreTheGenericProducts) {
+  using namespace interval_products;
+  std::uint64_t state = 0x2545f4914f6cdd1dull;
+  int nonnegative = 0, nonpositive = 0;
+  for (int trial = 0; trial < 200000; ++trial) {
+    const Interval a = random_interval(state);
+    Interval b = random_interval(state);
+    if (b.lo >= 0) {
+      ++nonnegative;
+      const Interval fast = interval_detail::times_nonnegative(a, b), generic = a * b;
+      ASSERT_TRUE(same_bits(fast, generic)) << "[" << a.lo << ", " << a.hi << "] * [" << b.lo << ", " << b.hi
+                                            << "]: " << fast.lo << " " << fast.hi << " against " << generic.lo << " "
+                                            << generic.hi;
+    }
+    if (b.hi <= 0) {
+      ++nonpositive;
+      const Interval fast = interval_detail::times_nonpositive(a, b), generic = a * b;
+      ASSERT_TRUE(same_bits(fast, generic)) << "[" << a.lo << ", " << a.hi << "] * [" << b.lo << ", " << b.hi
+                                            << "]: " << fast.lo << " " << fast.hi << " against " << generic.lo << " "
+                                            << generic.hi;
+    }
+  }
+  // every sign case of both factors was met many times
+  EXPECT_GT(nonnegative, 40000);
+  EXPECT_GT(nonpositive, 40000);
+}
+
+// IntervalPolynomial2::evaluate (products by x and y of known sign where the box allows) and
+// rows_at / evaluate_rows against the generic nested Horner, bit for bit, on generated polynomials (bidegree up to
+// (4, 4), coefficients up to 2^1100, beyond the doubles' range) over boxes on either side of
+// and across the axes; and against the exact value of f at rational points of the box.
+TEST(CSpaceAlgebra, IntervalPolynomialEvaluationIsTheGenericHorner) {
+  using namespace interval_products;
+  std::uint64_t state = 0x9e3779b97f4a7c15ull;
+  for (int trial = 0; trial < 3000; ++trial) {
+    IntegerPolynomial2 f;
+    const std::size_t rows = 1 + next_state(state) % 5, columns = 1 + next_state(state) % 5;
+    f.coefficients.assign(rows, std::vector<mpz_class>(columns));
+    for (auto& row : f.coefficients)
+      for (auto& c : row) {
+        const std::uint64_t r = next_state(state);
+        if (r % 5 == 0) continue;   // some zeros
+        c = mpz_class(static_cast<unsigned long>(next_state(state) % 100000));
+        if (r % 97 == 1) c <<= 1100;   // beyond the doubles: an unbounded enclosure
+        else if (r % 7 == 1) c <<= static_cast<unsigned long>(next_state(state) % 80);
+        if (r & 64) c = -c;
+      }
+    const IntervalPolynomial2 g(f);
+    for (int box = 0; box < 20; ++box) {
+      // ends: small dyadic rationals of either sign (so the exact value is at hand), and zero
+      auto end = [&] {
+        const std::uint64_t r = next_state(state);
+        if (r % 6 == 0) return Rational(0);
+        Rational v(mpz_class(static_cast<unsigned long>(next_state(state) % 4096)), mpz_class(1) << (r % 9));
+        return r & 16 ? Rational(-v) : v;
+      };
+      Rational x0 = end(), x1 = end(), y0 = end(), y1 = end();
+      if (x1 < x0) std::swap(x0, x1);
+      if (y1 < y0) std::swap(y0, y1);
+      const Interval x{enclose(x0).lo, enclose(x1).hi}, y{enclose(y0).lo, enclose(y1).hi};
+      const Interval fast = g.evaluate(x, y), reference = reference_evaluate(f, x, y);
+      ASSERT_TRUE(same_bits(fast, reference)) << "trial " << trial << " box " << box << ": [" << fast.lo << ", "
+                                              << fast.hi << "] against [" << reference.lo << ", " << reference.hi
+                                              << "]";
+      // the rows at y, shared by boxes of the same y (the culling quadtree's sibling cells)
+      std::vector<Interval> rows_at_y;
+      g.rows_at(y, rows_at_y);
+      const Interval from_rows = g.evaluate_rows(x, rows_at_y);
+      ASSERT_TRUE(same_bits(from_rows, reference)) << "trial " << trial << " box " << box << ": rows give ["
+                                                   << from_rows.lo << ", " << from_rows.hi << "] against ["
+                                                   << reference.lo << ", " << reference.hi << "]";
+      for (const Rational& px : {x0, x1, Rational((x0 + x1) / 2)})
+        for (const Rational& py : {y0, y1, Rational((y0 + y1) / 2)}) {
+          Rational exact = 0;
+          for (std::size_t i = rows; i-- > 0;) {
+            Rational inner = 0;
+            for (std::size_t j = columns; j-- > 0;) inner = inner * py + Rational(f.coefficients[i][j]);
+            exact = exact * px + inner;
+          }
+          if (std::isfinite(fast.lo)) ASSERT_LE(Rational(fast.lo), exact);
+          if (std::isfinite(fast.hi)) ASSERT_GE(Rational(fast.hi), exact);
+        }
+    }
+  }
 }
 
 // GMP's rational functions expect canonical operands and mpq_equal compares numerators and
