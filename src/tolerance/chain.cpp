@@ -487,7 +487,13 @@ class ChainAnalysis {
     const StageContact& c = stage.contacts[i];
     std::vector<Interval> dp;
     Interval dt;
-    if (!stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt)) return false;
+    // Interval jets first; the Taylor models (dearer: the geometry over the box as Taylor models)
+    // where F_v's sign is not certain without them or the form misses the accuracy asked for.
+    bool taylor = false;
+    if (!stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt, taylor)) {
+      taylor = true;
+      if (!stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt, taylor)) return false;
+    }
     CurveSlice at_center = c.curve;
     Interval factor(0);   // phi_s' over the region
     if (s > 0) {
@@ -509,9 +515,24 @@ class ChainAnalysis {
     // over the box), while that narrows Y_s by a tenth or more.
     std::vector<Interval> next;
     for (int contraction = 0; contraction < 3; ++contraction) {
-      if (contraction > 0 && !stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt)) break;
+      if (contraction > 0 && !stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt, taylor)) break;
       std::vector<Interval> trial = chain_rule(dp, dt, factor, s > 0 ? &d : nullptr);
       Interval form = mean_value_form(vc, trial, offsets);
+      if (!taylor && options_.taylor_partials) {
+        double linear = 0;   // the form's width with every D at its midpoint
+        for (std::size_t p = 0; p < trial.size(); ++p) linear += std::fabs(trial[p].middle()) * offsets[p].width();
+        if (!(form.width() <= linear * (1 + options_.relative_accuracy) + options_.absolute_accuracy)) {
+          taylor = true;
+          std::vector<Interval> dp_t;
+          Interval dt_t;
+          if (stage.solver->root_partials(curve, box, stage.box, charts[s], dp_t, dt_t, taylor)) {
+            dp.swap(dp_t);
+            dt = dt_t;
+            trial = chain_rule(dp, dt, factor, s > 0 ? &d : nullptr);
+            form = mean_value_form(vc, trial, offsets);
+          }
+        }
+      }
       if (!std::isfinite(form.lo) || !std::isfinite(form.hi)) {
         if (contraction == 0) return false;
         break;

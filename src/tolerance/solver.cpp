@@ -532,7 +532,7 @@ std::vector<bool> CurveSolver::inert(const CurveSlice& curve, const Box& whole) 
 }
 
 bool CurveSolver::root_partials(const CurveSlice& curve, const Box& box, const Box& whole, const Interval& y,
-                                std::vector<Interval>& dp, Interval& dt) const {
+                                std::vector<Interval>& dp, Interval& dt, bool taylor) const {
   std::vector<double> center(n_);
   for (std::size_t i = 0; i < n_; ++i) center[i] = 0.5 * (box.lo[i] + box.hi[i]);
   std::shared_ptr<const BoxGeometry> memo = box_geometry(curve, box, center);
@@ -559,7 +559,7 @@ bool CurveSolver::root_partials(const CurveSlice& curve, const Box& box, const B
     return false;
   }
   std::optional<TaylorJet> ft;
-  if (taylor_ && taylor_geometry(curve, *memo, box)) {
+  if (taylor && taylor_ && taylor_geometry(curve, *memo, box)) {
     try {
       TaylorJet fixed_t = held ? TaylorJet::variable(TaylorModel1::over(fixed.lo, fixed.hi, k + 1), k + 1, size)
                                : TaylorJet(TaylorModel1(fixed));

@@ -129,10 +129,11 @@ class CurveSolver {
   /// Taylor models when set_taylor_partials). A parameter varying in the box that the jets leave
   /// out (compact jets: no partial derivative at nominal) gets dp = 0 only when the geometry's
   /// partial derivatives with respect to it are exactly 0 over `whole` (a box containing `box`:
-  /// interval jets over it, memoised per feature pair). False when F_v's sign is not certain or
-  /// such a parameter is not proven inert.
+  /// interval jets over it, memoised per feature pair). `taylor` false: interval jets only
+  /// (cheaper: no Taylor-model geometry). False when F_v's sign is not certain or such a
+  /// parameter is not proven inert.
   bool root_partials(const CurveSlice& curve, const Box& box, const Box& whole, const Interval& y,
-                     std::vector<Interval>& dp, Interval& dt) const;
+                     std::vector<Interval>& dp, Interval& dt, bool taylor = true) const;
 
  private:
   template <class T>
