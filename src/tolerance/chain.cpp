@@ -13,7 +13,10 @@
 //     tolerance box, its driver ranging over the previous pair's enclosure (no linearisation;
 //     the driver's range enters the pair's mean-value form like a parameter: solver.cpp box_range),
 //     the box bisected along parameters that act on several pairs (certified()) so that they
-//     vary together;
+//     vary together; and (session 22, ToleranceOptions::mean_value_chain) in mean-value form,
+//     each pair's output at the box's centre plus its total derivatives over the box (the chain
+//     rule over the pairs' -F_p/F_v and -F_t/F_v) times the box, intersected with the interval
+//     composition (compose_over; a box so composed through the last pair is not bisected);
 //   - Monte Carlo: at each sampled vector, each pair's root certified (interval bisection) with
 //     its driver ranging over the previous pair's certified root at that vector.
 #include "model/parametric/parametric.hpp"
