@@ -96,6 +96,12 @@ struct ToleranceOptions {
   /// (docs/tolerance.md "Taylor-model partial derivatives"). false: interval jets only, as
   /// before session 21 (for measurements and tests). Sound either way.
   bool taylor_partials = true;
+  /// Assembly chains: the certified band's composition over a box is also done in mean-value
+  /// form, the output at the box's centre plus its total derivatives over the box (the chain
+  /// rule over each pair's -F_p/F_v and -F_t/F_v) times the box's half widths, intersected with
+  /// the interval composition (docs/tolerance.md "Assembly chains", session 22). false: the
+  /// interval composition only, as before (for measurements and tests). Sound either way.
+  bool mean_value_chain = true;
   /// Assembly chain (docs/tolerance.md "Assembly chains"): analyse the output of the chain of
   /// pairs driver -> part -> ... -> `follower` (or the chain's last moving part) instead of one
   /// pair; the per-pair kinematic functions and sensitivities are composed by the chain rule.

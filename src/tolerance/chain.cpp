@@ -13,10 +13,14 @@
 //     tolerance box, its driver ranging over the previous pair's enclosure (no linearisation;
 //     the driver's range enters the pair's mean-value form like a parameter: solver.cpp box_range),
 //     the box bisected along parameters that act on several pairs (certified()) so that they
-//     vary together;
+//     vary together; and (session 22, ToleranceOptions::mean_value_chain) in mean-value form,
+//     each pair's output at the box's centre plus its total derivatives over the box (the chain
+//     rule over the pairs' -F_p/F_v and -F_t/F_v) times the box, intersected with the interval
+//     composition (compose_over; a box so composed through the last pair is not bisected);
 //   - Monte Carlo: at each sampled vector, each pair's root certified (interval bisection) with
 //     its driver ranging over the previous pair's certified root at that vector.
 #include "model/parametric/parametric.hpp"
+#include "tolerance/mean_value.hpp"
 #include "tolerance/stage.hpp"
 
 #include <hipair/error.hpp>
@@ -421,17 +425,45 @@ class ChainAnalysis {
   // enclosure over it, its driver ranging over the previous pair's enclosure (interval
   // composition). `charts` receives each pair's enclosure (chart units). False where a pair
   // cannot be certified.
-  bool compose_over(std::size_t i, const Box& box, std::vector<Interval>& charts, Interval& out, std::size_t* boxes) const {
-    Interval x;   // the previous pair's output, part units
+  //
+  // With ToleranceOptions::mean_value_chain, also in mean-value form (session 22): V_k(p), pair
+  // k's follower chart coordinate as a function of the parameters alone (its driver moved by
+  // pair k-1), is enclosed over the box as V_k(c) + sum_i D_k,i [box_i - c_i], where V_k(c) is
+  // the chain's certified root at the box's centre c (pair by pair, each driver ranging over
+  // the previous pair's root there, each root bracketed by the pair's interval enclosure Y_k)
+  // and D_k,i encloses dV_k/dp_i over the box by the chain rule,
+  //   D_k,i = G_k,i + G_k,t . phi_k' . D_k-1,i,
+  // G_k,i and G_k,t enclosing -F_i/F_v and -F_t/F_v over box x Y_k x T_k (T_k: the driver's
+  // chart range; CurveSolver::root_partials, which also checks F_v's sign there: one root in Y_k
+  // for every (p, t), a differentiable function of them) and phi_k' = (1 + t^2)/(1 + v^2) the
+  // derivative of the driver's chart coordinate t with respect to the previous follower's v (1
+  // for a translation). By the mean-value theorem on the segment from c to p (V_k(xi) in Y_k and
+  // its driver in T_k for every xi in the box) V_k(p) lies in that form for every p in the box;
+  // it is intersected with Y_k, and the intersection is the next pair's driver range. Where the
+  // form is not available (F_v's sign uncertain, a parameter left out of the jets not proven
+  // inert, no certified root at the centre) the pair and those after it keep the interval
+  // composition.
+  bool compose_over(std::size_t i, const Box& box, std::vector<Interval>& charts, Interval& out, std::size_t* boxes,
+                    bool* mean_value_through = nullptr) const {
+    bool mean_value = options_.mean_value_chain;
+    std::vector<double> center;
+    std::vector<Interval> offsets, d;   // B - c; D of the last pair
+    std::vector<Interval> center_parameters;
+    if (mean_value) {
+      box_offsets(box, center, offsets);
+      center_parameters = stages_.front().solver->point_parameters(center);
+    }
+    Interval x;    // the previous pair's output over the box, part units
+    Interval xc;   // the same at the box's centre
     for (std::size_t s = 0; s < stages_.size(); ++s) {
       const StageAnalysis& stage = stages_[s];
       const StageContact& c = stage.contacts[i];
       const PositionStage& ps = per_[i][s];
       CurveSlice curve = c.curve;
+      double previous_nominal = s > 0 ? stages_[s - 1].result.samples[i].nominal : 0.0;
       if (s > 0) {
         Interval t;
-        if (!part_to_chart(x, stage.result.driver_rotates, curve.fixed_half_turn, stages_[s - 1].result.samples[i].nominal, t))
-          return false;
+        if (!part_to_chart(x, stage.result.driver_rotates, curve.fixed_half_turn, previous_nominal, t)) return false;
         curve.fixed_range = t;
         curve.fixed_spread = std::fabs(ps.fixed_slope) * t.width();
       }
@@ -441,9 +473,84 @@ class ChainAnalysis {
       } catch (const NumericError&) {
         return false;
       }
+      if (mean_value) mean_value = mean_value_step(i, s, box, curve, center_parameters, offsets, previous_nominal, charts, xc, d);
       x = to_part(charts[s], stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
     }
     out = x;
+    if (mean_value_through) *mean_value_through = mean_value;
+    return true;
+  }
+
+  // Pair s's step of compose_over's mean-value form: D_s from D_s-1 (in `d`, replaced), V_s(c)
+  // (its part coordinate into `xc`, replacing pair s-1's), charts[s] intersected with the form.
+  // False when the form is not available from this pair on.
+  bool mean_value_step(std::size_t i, std::size_t s, const Box& box, const CurveSlice& curve,
+                       const std::vector<Interval>& center_parameters, const std::vector<Interval>& offsets,
+                       double previous_nominal, std::vector<Interval>& charts, Interval& xc,
+                       std::vector<Interval>& d) const {
+    const StageAnalysis& stage = stages_[s];
+    const StageContact& c = stage.contacts[i];
+    std::vector<Interval> dp;
+    Interval dt;
+    // Interval jets first; the Taylor models (dearer: the geometry over the box as Taylor models)
+    // where F_v's sign is not certain without them or the form misses the accuracy asked for.
+    bool taylor = false;
+    if (!stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt, taylor)) {
+      taylor = true;
+      if (!stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt, taylor)) return false;
+    }
+    CurveSlice at_center = c.curve;
+    Interval factor(0);   // phi_s' over the region
+    if (s > 0) {
+      if (stage.result.driver_rotates) {
+        const Interval& t = *curve.fixed_range;
+        const Interval& v = charts[s - 1];
+        factor = (Interval(1) + t * t) / (Interval(1) + v * v);
+      } else {
+        factor = Interval(1);
+      }
+      Interval tc;
+      if (!part_to_chart(xc, stage.result.driver_rotates, curve.fixed_half_turn, previous_nominal, tc)) return false;
+      at_center.fixed_range = tc;
+    }
+    Interval vc;
+    if (!stage.solver->certified_point_root(at_center, stage.solver->point_geometry(at_center, center_parameters), charts[s], vc))
+      return false;
+    // The form, then contracted: the partials again over the narrower Y_s (it still holds V_s
+    // over the box), while that narrows Y_s by a tenth or more.
+    std::vector<Interval> next;
+    for (int contraction = 0; contraction < 3; ++contraction) {
+      if (contraction > 0 && !stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt, taylor)) break;
+      std::vector<Interval> trial = chain_rule(dp, dt, factor, s > 0 ? &d : nullptr);
+      Interval form = mean_value_form(vc, trial, offsets);
+      if (!taylor && options_.taylor_partials) {
+        double linear = 0;   // the form's width with every D at its midpoint
+        for (std::size_t p = 0; p < trial.size(); ++p) linear += std::fabs(trial[p].middle()) * offsets[p].width();
+        if (!(form.width() <= linear * (1 + options_.relative_accuracy) + options_.absolute_accuracy)) {
+          taylor = true;
+          std::vector<Interval> dp_t;
+          Interval dt_t;
+          if (stage.solver->root_partials(curve, box, stage.box, charts[s], dp_t, dt_t, taylor)) {
+            dp.swap(dp_t);
+            dt = dt_t;
+            trial = chain_rule(dp, dt, factor, s > 0 ? &d : nullptr);
+            form = mean_value_form(vc, trial, offsets);
+          }
+        }
+      }
+      if (!std::isfinite(form.lo) || !std::isfinite(form.hi)) {
+        if (contraction == 0) return false;
+        break;
+      }
+      next.swap(trial);
+      Interval narrower(std::max(charts[s].lo, form.lo), std::min(charts[s].hi, form.hi));
+      if (!(narrower.lo <= narrower.hi)) return false;   // (both enclose V_s over the box: cannot happen)
+      bool progress = narrower.width() < 0.9 * charts[s].width();
+      charts[s] = narrower;
+      if (!progress) break;
+    }
+    d.swap(next);
+    xc = to_part(vc, stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
     return true;
   }
 
@@ -487,11 +594,15 @@ class ChainAnalysis {
         pending.pop_front();
         ++used;
         Interval out;
-        bool composed = compose_over(i, b, charts, out, &boxes[i * stages_.size()]);
+        bool mean_value_through = false;
+        bool composed = compose_over(i, b, charts, out, &boxes[i * stages_.size()], &mean_value_through);
         double linear = 0;
         for (std::size_t p = 0; p < n && p < total.size(); ++p) linear += std::fabs(total[p]) * (b.hi[p] - b.lo[p]);
         bool accurate = composed && out.width() <= linear * (1 + options_.relative_accuracy) + options_.absolute_accuracy;
-        if (composed && !accurate && used + pending.size() + 2 <= max_shared_boxes) {
+        // A composition in mean-value form through the last pair loses no independence (the chain
+        // rule carries each parameter through every pair): bisecting for it would spend the budget
+        // for nothing (a 4-gear train: 248 -> 4 634 sub-boxes, 10 x the CPU).
+        if (composed && !accurate && !mean_value_through && used + pending.size() + 2 <= max_shared_boxes) {
           // Bisection removes at most the independence loss, sum_p loss_p x width_p: split only
           // when that explains at least half the excess over the linearised width (otherwise the
           // excess is the pairs' own, e.g. gear meshes over a wide box, and splitting would cost

@@ -242,66 +242,78 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     out = Interval(std::max(enclosure.lo, y.lo), std::min(enclosure.hi, y.hi));
     return true;
   };
-  double r = 0.75 * spread + slack;
-  for (int attempt = 0; attempt < 6 || r <= cap; ++attempt, r *= 3) {
-    Interval y(root.lo - r, root.hi + r);
-    if (!enclose(y, result)) continue;
-    // Contract: the enclosure itself (slightly widened) as the next Y gives tighter derivative
-    // bounds; keep the last certified enclosure.
-    for (int contraction = 0; contraction < 3; ++contraction) {
-      double pad = 1e-3 * result.width() + slack;
-      Interval narrower(result.lo - pad, result.hi + pad);
-      if (!(narrower.width() < 0.9 * y.width())) break;
-      Interval next;
-      if (!enclose(narrower, next)) break;
-      y = narrower;
-      result = next;
-    }
-    // Taylor models (assembly chains; once the first-order contraction has settled, and only
-    // when its enclosure is wider than `target`): the partial derivatives over B x Y narrowed to
-    // the ranges of their first-order Taylor models, which keep the correlation between the
-    // parameters that the interval jets lose; then contracted again.
-    if (taylor_ && result.width() > target && taylor_geometry(curve, *memo, box)) {
+  // Taylor models from the start (assembly chains): when no bracket Y is certified with the
+  // interval jets' partials (an end's sign over the box or F_v's sign undecided: a wide held
+  // range, the chain's seventh gear mesh; docs/performance.md session 22), the same brackets
+  // again with the partials narrowed by the Taylor models. Enclosures certified at first order
+  // are as before.
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+      if (use_taylor || !taylor_ || !taylor_geometry(curve, *memo, box)) break;
       use_taylor = true;
       taylor_used = true;
-      Interval next;
-      if (enclose(y, next)) {
-        result = Interval(std::max(result.lo, next.lo), std::min(result.hi, next.hi));
-        for (int contraction = 0; contraction < 3; ++contraction) {
-          double pad = 1e-3 * result.width() + slack;
-          Interval narrower(result.lo - pad, result.hi + pad);
-          if (!(narrower.width() < 0.9 * y.width())) break;
-          if (!enclose(narrower, next)) break;
-          y = narrower;
+    }
+    double r = 0.75 * spread + slack;
+    for (int attempt = 0; attempt < 6 || r <= cap; ++attempt, r *= 3) {
+      Interval y(root.lo - r, root.hi + r);
+      if (!enclose(y, result)) continue;
+      // Contract: the enclosure itself (slightly widened) as the next Y gives tighter derivative
+      // bounds; keep the last certified enclosure.
+      for (int contraction = 0; contraction < 3; ++contraction) {
+        double pad = 1e-3 * result.width() + slack;
+        Interval narrower(result.lo - pad, result.hi + pad);
+        if (!(narrower.width() < 0.9 * y.width())) break;
+        Interval next;
+        if (!enclose(narrower, next)) break;
+        y = narrower;
+        result = next;
+      }
+      // Taylor models (assembly chains; once the first-order contraction has settled, and only
+      // when its enclosure is wider than `target`): the partial derivatives over B x Y narrowed to
+      // the ranges of their first-order Taylor models, which keep the correlation between the
+      // parameters that the interval jets lose; then contracted again.
+      if (taylor_ && result.width() > target && taylor_geometry(curve, *memo, box)) {
+        use_taylor = true;
+        taylor_used = true;
+        Interval next;
+        if (enclose(y, next)) {
           result = Interval(std::max(result.lo, next.lo), std::min(result.hi, next.hi));
+          for (int contraction = 0; contraction < 3; ++contraction) {
+            double pad = 1e-3 * result.width() + slack;
+            Interval narrower(result.lo - pad, result.hi + pad);
+            if (!(narrower.width() < 0.9 * y.width())) break;
+            if (!enclose(narrower, next)) break;
+            y = narrower;
+            result = Interval(std::max(result.lo, next.lo), std::min(result.hi, next.hi));
+          }
         }
       }
-    }
-    // Second order (once the first-order contraction has settled, and only when its enclosure is
-    // wider than `target`, the accuracy certified_range asks for): the partial derivatives over
-    // the box from their values at the centre and the second derivatives over the box, which
-    // the box's width multiplies; each of a dozen wide parameters widens every first-order
-    // partial (the dependency problem), far less so their second-order forms.
-    // One contraction: a second pass would evaluate the checked, narrower Y again, the same
-    // enclosure as the check's (already intersected), and stop for want of progress.
-    if (memo->second_order && result.width() > target) {
-      use_second = true;
-      Interval next;
-      if (enclose(y, next)) {
-        Interval narrower_result(std::max(result.lo, next.lo), std::min(result.hi, next.hi));
-        if (narrower_result.lo <= narrower_result.hi) {
-          bool progress = narrower_result.width() < 0.9 * result.width();
-          result = narrower_result;
-          double pad = 1e-3 * result.width() + slack;
-          Interval narrower(result.lo - pad, result.hi + pad);
-          Interval check;
-          // the narrower Y must hold the root for the box too
-          if (progress && narrower.width() < 0.9 * y.width() && enclose(narrower, check))
-            result = Interval(std::max(result.lo, check.lo), std::min(result.hi, check.hi));
+      // Second order (once the first-order contraction has settled, and only when its enclosure is
+      // wider than `target`, the accuracy certified_range asks for): the partial derivatives over
+      // the box from their values at the centre and the second derivatives over the box, which
+      // the box's width multiplies; each of a dozen wide parameters widens every first-order
+      // partial (the dependency problem), far less so their second-order forms.
+      // One contraction: a second pass would evaluate the checked, narrower Y again, the same
+      // enclosure as the check's (already intersected), and stop for want of progress.
+      if (memo->second_order && result.width() > target) {
+        use_second = true;
+        Interval next;
+        if (enclose(y, next)) {
+          Interval narrower_result(std::max(result.lo, next.lo), std::min(result.hi, next.hi));
+          if (narrower_result.lo <= narrower_result.hi) {
+            bool progress = narrower_result.width() < 0.9 * result.width();
+            result = narrower_result;
+            double pad = 1e-3 * result.width() + slack;
+            Interval narrower(result.lo - pad, result.hi + pad);
+            Interval check;
+            // the narrower Y must hold the root for the box too
+            if (progress && narrower.width() < 0.9 * y.width() && enclose(narrower, check))
+              result = Interval(std::max(result.lo, check.lo), std::min(result.hi, check.hi));
+          }
         }
       }
+      return true;
     }
-    return true;
   }
   return false;
 }
@@ -458,6 +470,133 @@ void CurveSolver::taylor_partials(const CurveSlice& curve, const BoxGeometry& me
     // the Taylor models cannot follow the contact function over this region: the interval
     // jets' partials stand
   }
+}
+
+std::vector<bool> CurveSolver::inert(const CurveSlice& curve, const Box& whole) const {
+  std::vector<double> key{static_cast<double>(curve.first.part),  static_cast<double>(curve.first.loop),
+                          static_cast<double>(curve.first.edge),  static_cast<double>(curve.second.part),
+                          static_cast<double>(curve.second.loop), static_cast<double>(curve.second.edge),
+                          static_cast<double>(curve.fixed_part),  static_cast<double>(curve.free_part)};
+  key.insert(key.end(), whole.lo.begin(), whole.lo.end());
+  key.insert(key.end(), whole.hi.begin(), whole.hi.end());
+  {
+    std::lock_guard<std::mutex> lock(inert_->mutex);
+    auto found = inert_->entries.find(key);
+    if (found != inert_->entries.end()) return found->second;
+  }
+  // The parameters varying over `whole` that the geometry has no partial derivative with respect
+  // to at nominal are the candidates; the geometry as interval jets over `whole` in them (the
+  // others at their ranges): a partial that is exactly 0 there (exact zeros stay exact through
+  // the jets' operations, jet.hpp) is 0 over the whole box.
+  std::vector<bool> depends = dependencies(curve);
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < n_; ++i)
+    if (whole.hi[i] > whole.lo[i] && !depends[i]) candidates.push_back(i);
+  std::vector<bool> result(n_, false);
+  if (!candidates.empty()) {
+    std::vector<IntervalJet> jets(n_);
+    for (std::size_t i = 0; i < n_; ++i) jets[i] = IntervalJet(Interval(whole.lo[i], whole.hi[i]));
+    for (std::size_t a = 0; a < candidates.size(); ++a)
+      jets[candidates[a]] = IntervalJet::variable(Interval(whole.lo[candidates[a]], whole.hi[candidates[a]]), a, candidates.size());
+    std::vector<bool> zero(candidates.size(), true);
+    try {
+      PairGeometry<IntervalJet> g = geometry(curve, model_->parameter_values(jets));
+      auto mark = [&](const IntervalJet& x) {
+        for (std::size_t a = 0; a < candidates.size(); ++a) {
+          Interval d = x.partial(a);
+          if (!(d.lo == 0.0 && d.hi == 0.0)) zero[a] = false;
+        }
+      };
+      auto mark_vector = [&](const kernels::Vector<IntervalJet>& v) {
+        mark(v.x);
+        mark(v.y);
+      };
+      for (const model_detail::EdgeValue<IntervalJet>* e : {&g.first, &g.second}) {
+        mark_vector(e->source);
+        mark_vector(e->target);
+        mark_vector(e->center);
+        mark(e->radius_squared);
+      }
+      for (const kernels::Vector<IntervalJet>* v : {&g.fixed_pivot, &g.fixed_direction, &g.free_pivot, &g.free_direction})
+        mark_vector(*v);
+    } catch (const NumericError&) {
+      zero.assign(candidates.size(), false);   // not evaluable over the box: nothing proven
+    }
+    for (std::size_t a = 0; a < candidates.size(); ++a) result[candidates[a]] = zero[a];
+  }
+  std::lock_guard<std::mutex> lock(inert_->mutex);
+  if (inert_->entries.size() >= BoxGeometryMemo::max_entries) inert_->entries.clear();
+  return inert_->entries.emplace(std::move(key), std::move(result)).first->second;
+}
+
+bool CurveSolver::root_partials(const CurveSlice& curve, const Box& box, const Box& whole, const Interval& y,
+                                std::vector<Interval>& dp, Interval& dt, bool taylor) const {
+  std::vector<double> center(n_);
+  for (std::size_t i = 0; i < n_; ++i) center[i] = 0.5 * (box.lo[i] + box.hi[i]);
+  std::shared_ptr<const BoxGeometry> memo = box_geometry(curve, box, center);
+  const std::vector<std::size_t>& active = memo->active;
+  std::size_t k = active.size();   // the free coordinate's index; the held one's k + 1
+  // every parameter varying in the box: a jet variable, or proven inert over `whole`
+  std::vector<bool> in_jets(n_, false);
+  for (std::size_t i : active) in_jets[i] = true;
+  std::vector<bool> proven;
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (!(box.hi[i] > box.lo[i]) || in_jets[i]) continue;
+    if (proven.empty()) proven = inert(curve, whole);
+    if (!proven[i] || box.lo[i] < whole.lo[i] || box.hi[i] > whole.hi[i]) return false;
+  }
+  std::optional<Interval> held;
+  if (curve.fixed_range) held = *curve.fixed_range;
+  Interval fixed = held ? *held : Interval::enclose(curve.fixed_value);
+  std::size_t size = held ? k + 2 : k + 1;
+  IntervalJet fixed_jet = held ? IntervalJet::variable(fixed, k + 1, size) : IntervalJet(fixed);
+  IntervalJet f;
+  try {
+    f = evaluate<IntervalJet>(curve, memo->jet, fixed_jet, IntervalJet::variable(y, k, size));
+  } catch (const NumericError&) {
+    return false;
+  }
+  std::optional<TaylorJet> ft;
+  if (taylor && taylor_ && taylor_geometry(curve, *memo, box)) {
+    try {
+      TaylorJet fixed_t = held ? TaylorJet::variable(TaylorModel1::over(fixed.lo, fixed.hi, k + 1), k + 1, size)
+                               : TaylorJet(TaylorModel1(fixed));
+      ft = evaluate<TaylorJet>(curve, memo->taylor, fixed_t, TaylorJet::variable(TaylorModel1::over(y.lo, y.hi, k), k, size));
+      if (f.gradient.size() < size) f.gradient.resize(size, Interval(0));
+      for (std::size_t a = 0; a < size; ++a) {
+        Interval t = ft->partial(a).range();
+        Interval& current = f.gradient[a];
+        Interval narrower(std::max(current.lo, t.lo), std::min(current.hi, t.hi));
+        if (narrower.lo <= narrower.hi) current = narrower;
+      }
+    } catch (const NumericError&) {
+      ft.reset();   // the Taylor models cannot follow the contact function here: interval jets
+    }
+  }
+  Interval fv = f.partial(k);
+  int s = fv.sign();
+  if (s != 1 && s != -1) return false;   // no implicit function certified over the region
+  // -F_a/F_v, and where the Taylor models hold, also as a quotient of Taylor models (which keeps
+  // the correlation of F_a and F_v over the region), intersected
+  auto ratio = [&](std::size_t a) {
+    Interval r = -(f.partial(a) / fv);
+    if (ft) {
+      try {
+        Interval q = (-(ft->partial(a) / ft->partial(k))).range();
+        Interval narrower(std::max(r.lo, q.lo), std::min(r.hi, q.hi));
+        if (narrower.lo <= narrower.hi) r = narrower;
+      } catch (const NumericError&) {
+        // F_v's Taylor model reaches 0 somewhere: the interval quotient stands
+      }
+    }
+    return r;
+  };
+  dp.assign(n_, Interval(0));
+  for (std::size_t a = 0; a < k; ++a) dp[active[a]] = ratio(a);
+  dt = held ? ratio(k + 1) : Interval(0);
+  for (const Interval& d : dp)
+    if (!std::isfinite(d.lo) || !std::isfinite(d.hi)) return false;
+  return std::isfinite(dt.lo) && std::isfinite(dt.hi);
 }
 
 Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, double free_value,

@@ -119,6 +119,22 @@ class CurveSolver {
                            const std::vector<double>& sensitivity, double relative_accuracy,
                            double absolute_accuracy, std::size_t& boxes) const;
 
+  /// The root's partial derivatives over a region, for the mean-value composition of an
+  /// assembly chain (chain.cpp; docs/tolerance.md "Assembly chains"): with F_v's sign certain
+  /// over `box` x `y` (x the held range `curve.fixed_range`, when it ranges), F(p, t, .) has at
+  /// most one root in `y` for every (p, t) there, and where it has one, v(p, t), the implicit
+  /// function theorem gives dv/dp_i = -F_i/F_v and dv/dt = -F_t/F_v. `dp` (one per parameter)
+  /// and `dt` (0 when the held coordinate is a point) enclose them over the region, chart units;
+  /// the contact function's partials as in certified_range (interval jets, narrowed by the
+  /// Taylor models when set_taylor_partials). A parameter varying in the box that the jets leave
+  /// out (compact jets: no partial derivative at nominal) gets dp = 0 only when the geometry's
+  /// partial derivatives with respect to it are exactly 0 over `whole` (a box containing `box`:
+  /// interval jets over it, memoised per feature pair). `taylor` false: interval jets only
+  /// (cheaper: no Taylor-model geometry). False when F_v's sign is not certain or such a
+  /// parameter is not proven inert.
+  bool root_partials(const CurveSlice& curve, const Box& box, const Box& whole, const Interval& y,
+                     std::vector<Interval>& dp, Interval& dt, bool taylor = true) const;
+
  private:
   template <class T>
   PairGeometry<T> geometry(const CurveSlice& curve, const std::vector<T>& parameters) const;
@@ -178,6 +194,14 @@ class CurveSolver {
   void taylor_partials(const CurveSlice& curve, const BoxGeometry& memo, const Interval& fixed,
                        const std::optional<Interval>& held_offset, const Interval& y, IntervalJet& f) const;
   std::shared_ptr<BoxGeometryMemo> memo_ = std::make_shared<BoxGeometryMemo>();
+  /// Per feature pair and box (root_partials' `whole`): the parameters whose partial
+  /// derivatives of the curve's geometry are exactly 0 over the box (interval jets).
+  std::vector<bool> inert(const CurveSlice& curve, const Box& whole) const;
+  struct InertMemo {
+    std::mutex mutex;
+    std::map<std::vector<double>, std::vector<bool>> entries;
+  };
+  std::shared_ptr<InertMemo> inert_ = std::make_shared<InertMemo>();
 
   std::shared_ptr<const model_detail::ParametricModel> model_;
   std::size_t n_ = 0;

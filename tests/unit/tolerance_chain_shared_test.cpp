@@ -32,8 +32,12 @@ const char* const kSharedChain = R"({"hipair": 1, "name": "shared-chain", "units
      "dynamics": {"mass": 0.1, "force": [0, -10]}}],
   "pairs": [{"parts": ["cam", "lifter1"]}, {"parts": ["lifter1", "lifter2"]}]})";
 
-ToleranceResult analyse(double relative_accuracy) {
+// mean_value false: the interval composition alone (session 11's shared-parameter bisection,
+// which these first two tests are about); the mean-value composition (session 22, the default)
+// keeps d's effect through both pairs without it (the third test).
+ToleranceResult analyse(double relative_accuracy, bool mean_value = false) {
   ToleranceOptions options;
+  options.mean_value_chain = mean_value;
   options.driver = "cam";
   options.chain = true;
   options.positions = 36;
@@ -82,6 +86,26 @@ TEST(ToleranceChainShared, WithoutBisectionTheSharedParameterCountsTwice) {
     EXPECT_GE(s.certified.upper - s.certified.lower, 2 * exact_half_width(s.driver) + 0.0195) << s.driver;
   }
   EXPECT_GE(checked, 30u);
+}
+
+// The mean-value composition (default since session 22) over the whole box in one composition
+// (accuracy 1000 %: no bisection): d's effects on the two pairs cancel through the chain rule,
+// so the band holds the exact range and is within 10 % of it (+ 1e-9), where the interval
+// composition above is 2 x 2 x 0.005 wider.
+TEST(ToleranceChainShared, MeanValueCompositionCancelsTheSharedParameterWithoutBisection) {
+  ToleranceResult result = analyse(10.0, true);
+  std::size_t checked = 0;
+  for (const VariationSample& s : result.samples) {
+    if (!s.contact) continue;
+    ++checked;
+    SCOPED_TRACE("driver " + std::to_string(s.driver));
+    double nominal = 5 * std::sin(s.driver), half = exact_half_width(s.driver);
+    EXPECT_LE(s.certified.lower, nominal - half + 1e-10);
+    EXPECT_GE(s.certified.upper, nominal + half - 1e-10);
+    EXPECT_LE(s.certified.upper - s.certified.lower, 1.1 * 2 * half + 1e-9 + 1e-10);
+  }
+  EXPECT_GE(checked, 30u);
+  for (const std::string& note : result.notes) EXPECT_EQ(note.find("several pairs"), std::string::npos) << note;
 }
 
 }  // namespace

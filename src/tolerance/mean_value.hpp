@@ -1,0 +1,57 @@
+// The mean-value composition of an assembly chain's certified band (chain.cpp compose_over;
+// docs/tolerance.md "Assembly chains", session 22): the arithmetic on the enclosures, apart
+// from where they come from, so that tests can drive it with chains of their own.
+//
+// V_k(p), pair k's output as a function of the parameters alone, its driver t_k = phi_k(V_k-1(p))
+// moved by the pair before: over a box B with centre c,
+//   V_k(p) in V_k(c) + sum_i D_k,i [B_i - c_i],
+//   D_k,i = G_k,i + G_k,t phi_k' D_k-1,i   (D_1,i = G_1,i),
+// with G_k,i, G_k,t enclosing dv_k/dp_i and dv_k/dt_k over B x Y_k x T_k (any region holding
+// (p, V_k(p), t_k(p)) for every p in B) and phi_k' enclosing phi_k' over Y_k-1: the chain rule
+// gives D_k,i as an enclosure of dV_k/dp_i over B, and the mean-value theorem on the segment
+// from c to p the form. Every operation is outward rounded (kernels::Interval).
+#pragma once
+
+#include "tolerance/solver.hpp"
+
+#include <vector>
+
+namespace hipair::tolerance_detail {
+
+/// The box's centre (a double inside it) and B_i - c_i per parameter, outward rounded (exactly
+/// 0 for a parameter that does not vary in the box).
+inline void box_offsets(const Box& box, std::vector<double>& center, std::vector<Interval>& offsets) {
+  std::size_t n = box.lo.size();
+  center.assign(n, 0.0);
+  offsets.assign(n, Interval(0));
+  for (std::size_t p = 0; p < n; ++p) {
+    center[p] = 0.5 * (box.lo[p] + box.hi[p]);
+    if (!(center[p] >= box.lo[p] && center[p] <= box.hi[p])) center[p] = box.lo[p];   // overflow of lo + hi
+    if (box.hi[p] > box.lo[p])
+      offsets[p] = kernels::hull(Interval::point(box.lo[p]) - Interval::point(center[p]),
+                                 Interval::point(box.hi[p]) - Interval::point(center[p]));
+  }
+}
+
+/// D_k from the pair's own partials `g` (dv_k/dp_i), `g_t` (dv_k/dt_k), the driver's chart
+/// derivative `factor` (phi_k') and D_k-1 (`previous`; null for the chain's first pair).
+inline std::vector<Interval> chain_rule(const std::vector<Interval>& g, const Interval& g_t, const Interval& factor,
+                                        const std::vector<Interval>* previous) {
+  std::vector<Interval> d(g);
+  if (previous) {
+    Interval through = g_t * factor;
+    for (std::size_t p = 0; p < d.size(); ++p) d[p] = d[p] + through * (*previous)[p];
+  }
+  return d;
+}
+
+/// V_k(c) + sum_i D_k,i [B_i - c_i].
+inline Interval mean_value_form(const Interval& at_center, const std::vector<Interval>& d,
+                                const std::vector<Interval>& offsets) {
+  Interval form = at_center;
+  for (std::size_t p = 0; p < d.size(); ++p)
+    if (!(offsets[p].lo == 0.0 && offsets[p].hi == 0.0)) form = form + d[p] * offsets[p];
+  return form;
+}
+
+}  // namespace hipair::tolerance_detail

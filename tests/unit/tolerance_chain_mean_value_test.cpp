@@ -1,0 +1,271 @@
+// The mean-value composition of an assembly chain's certified band (session 22;
+// src/tolerance/mean_value.hpp, chain.cpp compose_over; docs/tolerance.md "Assembly chains").
+//
+// (1) Generated chains of explicit maps v_k = f_k(p, t_k), t_k = phi(v_k-1) (affine terms plus
+//     sin, cos and products of parameters with the driver), over random boxes: each stage's
+//     partials over the box x the driver's range as interval jets, composed by the same
+//     functions the chain uses (chain_rule, mean_value_form) and intersected with the interval
+//     evaluation, as compose_over does. At sampled points of the box (its corners among them)
+//     the chain evaluated at the point (outward-rounded intervals a few ulps wide) meets every
+//     stage's mean-value form; on the affine chains (the form exact but for rounding) it is far
+//     narrower than the interval composition, which adds each stage's driver range independently.
+// (2) The real chains: gear-train.json over 0..0.1 rad (8 meshes; unbounded before session 22)
+//     and gear-train-3 over 0..0.6 rad, 300 Monte Carlo vectors each: bounded wherever every
+//     mesh holds, no sample outside the band, the band no wider than the interval composition's
+//     (ToleranceOptions::mean_value_chain = false); gear-train.json also against exact
+//     recomputations of the train at random vectors of the box.
+#include "gear_train_models.hpp"
+#include "tolerance_chain_oracle.hpp"
+
+#include "model/parametric/parametric.hpp"
+#include "tolerance/jet.hpp"
+#include "tolerance/mean_value.hpp"
+#include "test_paths.hpp"
+
+#include <hipair/tolerance.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace hipair {
+namespace {
+
+using kernels::Interval;
+using model_detail::Arithmetic;
+using tolerance_detail::Box;
+using IJet = tolerance_detail::Jet<Interval>;
+
+bool meets(const Interval& a, const Interval& b) { return a.lo <= b.hi && b.lo <= a.hi; }
+
+// f(p, t) = alpha t + sum_i beta_i p_i + gamma sin(p_a t + p_b) + delta p_c t + epsilon cos(t)
+//           + zeta p_a p_b   (coefficients n/8; gamma = delta = epsilon = zeta = 0: affine)
+struct Map {
+  int alpha = 0, gamma = 0, delta = 0, epsilon = 0, zeta = 0;
+  std::vector<int> beta;
+  std::size_t a = 0, b = 0, c = 0;
+};
+
+template <class T>
+T constant(int numerator) {
+  return Arithmetic<T>::constant(Rational(numerator, 8));
+}
+
+template <class T>
+T apply(const Map& f, const std::vector<T>& p, const T& t) {
+  using A = Arithmetic<T>;
+  T v = constant<T>(f.alpha) * t;
+  for (std::size_t i = 0; i < p.size(); ++i) v = v + constant<T>(f.beta[i]) * p[i];
+  v = v + constant<T>(f.gamma) * A::sin(T(p[f.a] * t + p[f.b]));
+  v = v + constant<T>(f.delta) * p[f.c] * t;
+  v = v + constant<T>(f.epsilon) * A::cos(t);
+  v = v + constant<T>(f.zeta) * p[f.a] * p[f.b];
+  return v;
+}
+
+// the driver's chart from the previous output: phi(v) = 2 v + sin(v), phi'(v) = 2 + cos(v)
+template <class T>
+T phi(const T& v) {
+  return T(v + v) + Arithmetic<T>::sin(v);
+}
+Interval phi_slope(const Interval& v) { return Interval(2) + Arithmetic<Interval>::cos(v); }
+
+TEST(ChainMeanValue, GeneratedChainsOfMapsStayInTheirMeanValueForms) {
+  std::mt19937_64 random(2222);
+  std::uniform_int_distribution<int> coefficient(-12, 12), small(-4, 4);
+  double width_form = 0, width_interval = 0;
+  std::size_t points = 0, chains = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    SCOPED_TRACE("chain " + std::to_string(trial));
+    std::size_t n = std::uniform_int_distribution<std::size_t>(2, 6)(random);
+    std::size_t stages = std::uniform_int_distribution<std::size_t>(2, 8)(random);
+    bool affine = trial % 4 == 0;
+    std::vector<Map> maps(stages);
+    for (Map& f : maps) {
+      f.alpha = small(random);
+      if (f.alpha == 0) f.alpha = 3;
+      for (std::size_t i = 0; i < n; ++i) f.beta.push_back(coefficient(random));
+      if (!affine) {
+        f.gamma = coefficient(random);
+        f.delta = coefficient(random);
+        f.epsilon = small(random);
+        f.zeta = coefficient(random);
+      }
+      std::uniform_int_distribution<std::size_t> pick(0, n - 1);
+      f.a = pick(random);
+      f.b = pick(random);
+      f.c = pick(random);
+    }
+    // a box of half widths 2^-9 .. 2^-4 about centres in [-1/2, 1/2]; the driver at 1/4
+    Box box;
+    for (std::size_t i = 0; i < n; ++i) {
+      double c = std::uniform_real_distribution<double>(-0.5, 0.5)(random);
+      double h = std::ldexp(std::uniform_real_distribution<double>(0.5, 1.0)(random),
+                            std::uniform_int_distribution<int>(-9, -4)(random));
+      box.lo.push_back(c - h);
+      box.hi.push_back(c + h);
+    }
+    std::vector<double> center;
+    std::vector<Interval> offsets;
+    tolerance_detail::box_offsets(box, center, offsets);
+    std::vector<Interval> range_p(n), center_p(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      range_p[i] = Interval(box.lo[i], box.hi[i]);
+      center_p[i] = Interval::point(center[i]);
+    }
+    const Interval driver = Interval::point(0.25);
+    // the composition, as compose_over: stage by stage, Y_k = interval evaluation over B x T_k
+    // intersected with the mean-value form
+    std::vector<Interval> forms(stages), enclosures(stages);
+    std::vector<Interval> d;
+    Interval y, vc;   // previous stage's enclosure and value at the centre
+    bool bounded = true;
+    for (std::size_t k = 0; k < stages && bounded; ++k) {
+      Interval t = k == 0 ? driver : phi(y), tc = k == 0 ? driver : phi(vc);
+      Interval plain = apply(maps[k], range_p, t);
+      std::vector<IJet> jp(n);
+      for (std::size_t i = 0; i < n; ++i) jp[i] = IJet::variable(range_p[i], i, n + 1);
+      IJet jt = k == 0 ? IJet(t) : IJet::variable(t, n, n + 1);
+      IJet g = apply(maps[k], jp, jt);
+      std::vector<Interval> gp(n);
+      for (std::size_t i = 0; i < n; ++i) gp[i] = g.partial(i);
+      Interval factor = k == 0 ? Interval(0) : phi_slope(y);
+      d = tolerance_detail::chain_rule(gp, g.partial(n), factor, k == 0 ? nullptr : &d);
+      vc = apply(maps[k], center_p, tc);
+      forms[k] = tolerance_detail::mean_value_form(vc, d, offsets);
+      bounded = std::isfinite(forms[k].width()) && std::isfinite(plain.width());
+      y = Interval(std::max(plain.lo, forms[k].lo), std::min(plain.hi, forms[k].hi));
+      ASSERT_LE(y.lo, y.hi) << "stage " << k;   // both enclose the stage's output
+      enclosures[k] = y;
+      if (bounded && affine) {
+        width_form += forms[k].width();
+        width_interval += plain.width();
+      }
+    }
+    if (!bounded) continue;
+    ++chains;
+    // sampled points: the corners first (up to 2^n), then uniform
+    for (int s = 0; s < 64 + (1 << n); ++s) {
+      std::vector<Interval> p(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        double x = s < (1 << n) ? ((s >> i) & 1 ? box.hi[i] : box.lo[i])
+                                : std::uniform_real_distribution<double>(box.lo[i], box.hi[i])(random);
+        p[i] = Interval::point(std::min(std::max(x, box.lo[i]), box.hi[i]));
+      }
+      Interval v;
+      for (std::size_t k = 0; k < stages; ++k) {
+        v = apply(maps[k], p, k == 0 ? driver : phi(v));
+        ++points;
+        ASSERT_TRUE(meets(v, forms[k])) << "stage " << k << " point " << s << ": value [" << v.lo << ", " << v.hi
+                                        << "], form [" << forms[k].lo << ", " << forms[k].hi << "]";
+        ASSERT_TRUE(meets(v, enclosures[k])) << "stage " << k << " point " << s;
+      }
+    }
+  }
+  std::printf("%zu generated chains, %zu sampled stage values; affine chains: mean-value forms' total width %.4g "
+              "against the interval composition's %.4g (ratio %.3g)\n",
+              chains, points, width_form, width_interval, width_form / width_interval);
+  EXPECT_GE(chains, 250u);
+  EXPECT_LT(width_form, 0.9 * width_interval);   // 0.757 (phi is not affine)
+}
+
+std::string example_text(const char* name) {
+  std::ifstream in(std::filesystem::path(HIPAIR_EXAMPLES) / name);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+ToleranceResult chain_band(const std::string& text, const Rational& end, std::size_t monte_carlo, bool mean_value) {
+  ToleranceOptions options;
+  options.driver = "gear-A";
+  options.chain = true;
+  options.range = std::make_pair(Rational(0), end);
+  options.positions = 120;
+  options.threads = 2;
+  options.monte_carlo = monte_carlo;
+  options.seed = 22;
+  options.mean_value_chain = mean_value;
+  return analyze_tolerances_text(text, options);
+}
+
+// Per position of `with` where every pair holds: bounded, no wider than `without`'s band
+// (when bounded); returns the number of held positions and the widest half band of each.
+struct BandSummary {
+  std::size_t held = 0, bounded = 0;
+  double widest = 0, widest_without = 0;
+};
+BandSummary compare(const ToleranceResult& with, const ToleranceResult& without) {
+  BandSummary s;
+  EXPECT_EQ(with.samples.size(), without.samples.size());
+  for (std::size_t i = 0; i < with.samples.size() && i < without.samples.size(); ++i) {
+    const VariationSample& a = with.samples[i];
+    const VariationSample& b = without.samples[i];
+    if (!a.contact) continue;
+    ++s.held;
+    double wa = a.certified.upper - a.certified.lower, wb = b.certified.upper - b.certified.lower;
+    EXPECT_TRUE(std::isfinite(wa)) << "driver " << a.driver;
+    if (!std::isfinite(wa)) continue;
+    ++s.bounded;
+    EXPECT_LE(a.certified.lower, a.nominal);
+    EXPECT_GE(a.certified.upper, a.nominal);
+    s.widest = std::max(s.widest, 0.5 * wa);
+    if (std::isfinite(wb)) s.widest_without = std::max(s.widest_without, 0.5 * wb);
+    if (std::isfinite(wb)) EXPECT_LE(wa, wb * (1 + 1e-9)) << "driver " << a.driver;
+  }
+  return s;
+}
+
+TEST(ChainMeanValue, GearTrainBandIsBoundedAndHoldsMonteCarloAndExactRecomputations) {
+  std::string text = example_text("gear-train.json");
+  ToleranceResult with = chain_band(text, Rational(1, 10), 300, true);
+  ToleranceResult without = chain_band(text, Rational(1, 10), 0, false);
+  ASSERT_EQ(with.chain.size(), 8u);
+  ASSERT_TRUE(with.monte_carlo.has_value());
+  BandSummary s = compare(with, without);
+  EXPECT_GE(s.held, 1u);
+  EXPECT_EQ(s.bounded, s.held);
+  EXPECT_EQ(with.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(with.monte_carlo->evaluations, with.monte_carlo->samples * s.held);
+  std::printf("gear-train.json, 0..0.1 rad: %zu held position(s), all bounded; widest half band %.4g deg (interval "
+              "composition: unbounded)\n",
+              s.held, s.widest * 180 / std::numbers::pi);
+  // exact recomputations of the train at random vectors of the box
+  auto model = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text));
+  std::mt19937 rng(2222);
+  for (int trial = 0; trial < 2; ++trial) {
+    Model exact = model->exact_model(test_gears::random_deviations(with.parameters, rng));
+    for (const VariationSample& sample : with.samples) {
+      if (!sample.contact) continue;
+      double out = test_chain::chain_output(exact, "gear-A", sample.driver, "gear-I");
+      EXPECT_GE(out, sample.certified.lower - 1e-10) << sample.driver;
+      EXPECT_LE(out, sample.certified.upper + 1e-10) << sample.driver;
+    }
+  }
+}
+
+TEST(ChainMeanValue, ThreeGearTrainBandHoldsMonteCarloAndIsNoWiderThanTheIntervalComposition) {
+  std::string text = example_text("gear-train-3.json");
+  ToleranceResult with = chain_band(text, Rational(3, 5), 300, true);
+  ToleranceResult without = chain_band(text, Rational(3, 5), 0, false);
+  ASSERT_TRUE(with.monte_carlo.has_value());
+  BandSummary s = compare(with, without);
+  EXPECT_GE(s.held, 10u);
+  EXPECT_EQ(s.bounded, s.held);
+  EXPECT_EQ(with.monte_carlo->outside_certified, 0u);
+  std::printf("gear-train-3, 0..0.6 rad: %zu held positions; widest half band %.4g deg (interval composition %.4g)\n",
+              s.held, s.widest * 180 / std::numbers::pi, s.widest_without * 180 / std::numbers::pi);
+  EXPECT_LT(s.widest, s.widest_without);
+}
+
+}  // namespace
+}  // namespace hipair
