@@ -65,7 +65,7 @@ TEST(CSpaceLocateFilterVertices, LocationsEqualTheDoublePrefilters) {
     for (const CSpaceVertex& vertex : space.vertices()) {
       const CSpaceChart& chart = space.charts()[vertex.chart];
       const double x0 = vertex.x.approximate(), y0 = vertex.y_exact ? vertex.y.approximate()
-                                                                     : (Rational(vertex.y_lower + vertex.y_upper) / 2).get_d();
+                                                                     : Rational((vertex.y_lower + vertex.y_upper) / 2).get_d();
       Rational x_mid = (vertex.x.lower + vertex.x.upper) / 2;
       x_mid.canonicalize();
       std::vector<Rational> xs{vertex.x.lower, vertex.x.upper, x_mid};
