@@ -2,6 +2,7 @@
 // CGAL-free: only the exported topology and the exact univariate algebra are used.
 #include "cspace/builder_impl.hpp"
 #include "cspace/angle_filter.hpp"
+#include "cspace/locate_prefilter.hpp"
 
 #include <hipair/error.hpp>
 
@@ -79,10 +80,16 @@ Location locate_2d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
     }
     return best_y;
   };
+  // (the vertices away from q by their rational bounds: see locate_prefilter.hpp)
+  const bool exact_prefilter = locate_exact_prefilter();
   for (std::size_t v = 0; v < arrangement.vertices.size(); ++v) {
     const raw::Vertex& vertex = arrangement.vertices[v];
-    if (vertex.x.upper_bound() < xi.lo || vertex.x.lower_bound() > xi.hi) continue;
-    if (vertex.y_upper_bound() < yi.lo) continue;
+    if (exact_prefilter) {
+      if (vertex.x.upper < q.x || vertex.x.lower > q.x || vertex.y_upper < q.y) continue;
+    } else {
+      if (vertex.x.upper_bound() < xi.lo || vertex.x.lower_bound() > xi.hi) continue;
+      if (vertex.y_upper_bound() < yi.lo) continue;
+    }
     if (vertex.x.compare(q.x) != 0) continue;
     Real vertex_y = ordinate_at(vertex, q.x);
     int c = vertex_y.compare(q.y);
