@@ -9,6 +9,7 @@
 #pragma once
 
 #include <hipair/model.hpp>
+#include <hipair/tolerance.hpp>
 
 #include <random>
 #include <string>
@@ -67,6 +68,20 @@ inline std::vector<Rational> random_deviations(const std::vector<Parameter>& par
     if (p.range.lo != p.range.hi) d[i] = p.range.lo - p.nominal + Rational(u(rng), 1000) * (p.range.hi - p.range.lo);
   }
   return d;
+}
+
+// The chain from gear-A over [0, end] at 120 positions per turn, on 2 threads, with
+// `monte_carlo` Monte Carlo samples from `seed`.
+inline ToleranceOptions chain_options(const Rational& end, std::size_t monte_carlo, unsigned seed) {
+  ToleranceOptions options;
+  options.driver = "gear-A";
+  options.chain = true;
+  options.range = std::make_pair(Rational(0), end);
+  options.positions = 120;
+  options.threads = 2;
+  options.monte_carlo = monte_carlo;
+  options.seed = seed;
+  return options;
 }
 
 }  // namespace hipair::test_gears

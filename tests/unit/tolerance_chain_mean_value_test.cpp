@@ -186,14 +186,7 @@ std::string example_text(const char* name) {
 }
 
 ToleranceResult chain_band(const std::string& text, const Rational& end, std::size_t monte_carlo, bool mean_value) {
-  ToleranceOptions options;
-  options.driver = "gear-A";
-  options.chain = true;
-  options.range = std::make_pair(Rational(0), end);
-  options.positions = 120;
-  options.threads = 2;
-  options.monte_carlo = monte_carlo;
-  options.seed = 22;
+  ToleranceOptions options = test_gears::chain_options(end, monte_carlo, 22);
   options.mean_value_chain = mean_value;
   return analyze_tolerances_text(text, options);
 }

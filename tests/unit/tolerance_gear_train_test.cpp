@@ -31,18 +31,6 @@ nlohmann::json example(const char* name) {
   return nlohmann::json::parse(in);
 }
 
-// The chain from gear-A over [0, end] at 120 positions per turn, with Monte Carlo.
-ToleranceOptions chain_options(const Rational& end, std::size_t monte_carlo, unsigned seed) {
-  ToleranceOptions options;
-  options.driver = "gear-A";
-  options.chain = true;
-  options.range = std::make_pair(Rational(0), end);
-  options.positions = 120;
-  options.threads = 2;
-  options.monte_carlo = monte_carlo;
-  options.seed = seed;
-  return options;
-}
 
 TEST(GearTrainModels, GeneratedTrainsAreTheExamples) {
   for (auto [gears, name] : {std::pair(3u, "gear-train-3.json"), std::pair(9u, "gear-train.json")}) {
@@ -59,7 +47,7 @@ TEST(GearTrainModels, GeneratedTrainsAreTheExamples) {
 // certified band, and exact recomputations at random vectors inside it where it is bounded.
 TEST(ToleranceChainGear, TwoGearTrainKeepsEveryMonteCarloSampleAndExactRecomputationInTheCertifiedBand) {
   std::string text = test_gears::gear_train(2);
-  ToleranceOptions options = chain_options(Rational(3, 10), 200, 5);
+  ToleranceOptions options = test_gears::chain_options(Rational(3, 10), 200, 5);
   ToleranceResult result = analyze_tolerances_text(text, options);
   ASSERT_TRUE(result.monte_carlo.has_value());
   EXPECT_EQ(result.monte_carlo->outside_certified, 0u);
@@ -92,7 +80,7 @@ TEST(ToleranceChainGear, TwoGearTrainKeepsEveryMonteCarloSampleAndExactRecomputa
 // meshes hold (session 11: unbounded at most positions of gear-train-3), and no Monte Carlo
 // sample leaves it.
 TEST(ToleranceChainGear, ThreeGearTrainBandIsBoundedAndKeepsEveryMonteCarloSample) {
-  ToleranceOptions options = chain_options(Rational(1, 5), 100, 9);
+  ToleranceOptions options = test_gears::chain_options(Rational(1, 5), 100, 9);
   ToleranceResult result = analyze_tolerances_text(test_gears::gear_train(3), options);
   ASSERT_EQ(result.chain.size(), 2u);
   ASSERT_TRUE(result.monte_carlo.has_value());
