@@ -35,6 +35,8 @@ std::filesystem::path degenerate(const std::string& name) {
 
 using Switch = test::FlagSwitch<&cspace::carried_bounds>;
 using test::describe_crossing;
+using test::axis_path;
+using test::part_value;
 
 
 struct Tally {
@@ -67,19 +69,6 @@ void compare(const CSpace& space, const MotionPath& path, const std::string& wha
   ++tally.motions;
   ++tally.status[static_cast<int>(answer.status)];
   tally.grazing += answer.grazing;
-}
-
-AxisPath axis_path(AxisKind kind, const std::vector<double>& c) {
-  AxisPath a;
-  a.kind = kind == AxisKind::rotation ? AxisPath::Kind::angle : AxisPath::Kind::offset;
-  for (double x : c) a.coefficients.push_back(Rational(x));
-  return a;
-}
-
-// A chart coordinate back to the part's coordinate (angle or offset), in double.
-double part_value(AxisKind kind, bool half_turn, double chart_value) {
-  if (kind == AxisKind::translation) return chart_value;
-  return (half_turn ? std::numbers::pi : 0.0) + 2 * std::atan(chart_value);
 }
 
 // Generated motions on one space: quintic-like paths (the simulator's step polynomials) from

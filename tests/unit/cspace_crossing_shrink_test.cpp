@@ -42,6 +42,8 @@ std::filesystem::path degenerate(const std::string& name) {
 
 using Switch = test::FlagSwitch<&cspace::newton_shrink>;
 using test::describe_crossing;
+using test::axis_path;
+using test::part_value;
 
 struct Tally {
   int motions = 0, crossings = 0, identical = 0, narrower = 0, helped = 0, ends_checked = 0, shifted_from = 0;
@@ -156,19 +158,6 @@ void compare(const CSpace& space, const MotionPath& path, const std::string& wha
         << what << " at u_upper: still in the start cell";
     ++tally.ends_checked;
   }
-}
-
-AxisPath axis_path(AxisKind kind, const std::vector<double>& c) {
-  AxisPath a;
-  a.kind = kind == AxisKind::rotation ? AxisPath::Kind::angle : AxisPath::Kind::offset;
-  for (double x : c) a.coefficients.push_back(Rational(x));
-  return a;
-}
-
-// A chart coordinate back to the part's coordinate (angle or offset), in double.
-double part_value(AxisKind kind, bool half_turn, double chart_value) {
-  if (kind == AxisKind::translation) return chart_value;
-  return (half_turn ? std::numbers::pi : 0.0) + 2 * std::atan(chart_value);
 }
 
 // Generated motions on one space. Kind 0: from a random point of a real edge's chart toward a

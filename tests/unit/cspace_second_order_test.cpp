@@ -36,6 +36,7 @@ std::filesystem::path degenerate(const std::string& name) {
 
 using Switch = test::FlagSwitch<&cspace::second_order>;
 using test::describe_crossing;
+using test::axis_path;
 
 
 struct Tally {
@@ -52,13 +53,6 @@ std::vector<double> part_polynomial(AxisKind kind, bool half_turn, double t0, do
   double g1 = 2 / w, g2 = -4 * t0 / (w * w), g3 = (12 * t0 * t0 - 4) / (w * w * w);
   return {(half_turn ? std::numbers::pi : 0.0) + 2 * std::atan(t0), g1 * t1, g1 * t2 + g2 * t1 * t1 / 2,
           g2 * t1 * t2 + g3 * t1 * t1 * t1 / 6};
-}
-
-AxisPath axis_path(AxisKind kind, const std::vector<double>& c) {
-  AxisPath a;
-  a.kind = kind == AxisKind::rotation ? AxisPath::Kind::angle : AxisPath::Kind::offset;
-  for (double x : c) a.coefficients.push_back(Rational(x));
-  return a;
 }
 
 // The path's configuration at u, exactly (a point query's path).

@@ -34,14 +34,8 @@ std::filesystem::path example(const std::string& name) { return std::filesystem:
 
 using Switch = test::FlagSwitch<&cspace::start_anchors>;
 using test::describe_crossing;
+using test::axis_path;
 
-
-AxisPath axis_path(AxisKind kind, const std::vector<double>& c) {
-  AxisPath a;
-  a.kind = kind == AxisKind::rotation ? AxisPath::Kind::angle : AxisPath::Kind::offset;
-  for (double x : c) a.coefficients.push_back(Rational(x));
-  return a;
-}
 
 double end_value(const std::vector<double>& c) {
   Rational v(0);

@@ -9,7 +9,9 @@
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
 
+#include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -82,5 +84,19 @@ struct FlagSwitch {
   FlagSwitch& operator=(const FlagSwitch&) = delete;
   bool old;
 };
+
+// A motion's axis as a polynomial in u with the given double coefficients (exact rationals).
+inline AxisPath axis_path(AxisKind kind, const std::vector<double>& c) {
+  AxisPath a;
+  a.kind = kind == AxisKind::rotation ? AxisPath::Kind::angle : AxisPath::Kind::offset;
+  for (double x : c) a.coefficients.push_back(Rational(x));
+  return a;
+}
+
+// A chart coordinate back to the part's coordinate (angle or offset), in double.
+inline double part_value(AxisKind kind, bool half_turn, double chart_value) {
+  if (kind == AxisKind::translation) return chart_value;
+  return (half_turn ? std::numbers::pi : 0.0) + 2 * std::atan(chart_value);
+}
 
 }  // namespace hipair::test
