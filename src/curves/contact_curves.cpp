@@ -1162,18 +1162,6 @@ bool convert_validity(const kernels::Validity<Polynomial>& validity,
   return true;
 }
 
-const char* contact_word(ContactType type) {
-  switch (type) {
-    case ContactType::vertex_segment: return "vertex on segment";
-    case ContactType::segment_vertex: return "segment on vertex";
-    case ContactType::vertex_arc: return "vertex on arc";
-    case ContactType::arc_vertex: return "arc on vertex";
-    case ContactType::arc_arc: return "arc tangent to arc";
-    case ContactType::arc_segment: return "arc tangent to segment";
-    case ContactType::segment_arc: return "segment tangent to arc";
-  }
-  return "";
-}
 
 }  // namespace
 
@@ -1521,8 +1509,7 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
   const bool translating = without_rotation(part_a) && without_rotation(part_b);
   // A curve that passed the constant and validity tests: labelled, counted and kept.
   auto keep = [&](std::vector<ContactCurve>& out, ContactCurve&& curve, const BodyFeature& fa, const BodyFeature& fb) {
-    curve.label = part_a.name + " " + feature_label(model, fa.ref) + " / " + part_b.name + " " +
-                  feature_label(model, fb.ref) + " (" + contact_word(curve.type) + ")";
+    curve.label = curve_label(model, fa.ref, fb.ref, curve.type);
     if (curve.polynomial.is_zero()) {
       ++stats.identically_zero;
     } else {
@@ -1666,8 +1653,7 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
         made->kept = (zero || curve.polynomial.degree_x() != 0 || curve.polynomial.degree_y() != 0) &&
                      convert_validity(kernel->validity, curve.validity);
         if (made->kept) {
-          curve.label = part_a.name + " " + feature_label(model, fa.ref) + " / " + part_b.name + " " +
-                        feature_label(model, fb.ref) + " (" + contact_word(curve.type) + ")";
+          curve.label = curve_label(model, fa.ref, fb.ref, curve.type);
         } else {
           made->curve = ContactCurve{};   // nothing kept but the answer
         }

@@ -135,6 +135,24 @@ std::string feature_label(const Model& model, const FeatureRef& ref) {
   return previous_name == name ? "corner of " + name : "corner of " + previous_name + " and " + name;
 }
 
+const char* contact_word(ContactType type) {
+  switch (type) {
+    case ContactType::vertex_segment: return "vertex on segment";
+    case ContactType::segment_vertex: return "segment on vertex";
+    case ContactType::vertex_arc: return "vertex on arc";
+    case ContactType::arc_vertex: return "arc on vertex";
+    case ContactType::arc_arc: return "arc tangent to arc";
+    case ContactType::arc_segment: return "arc tangent to segment";
+    case ContactType::segment_arc: return "segment tangent to arc";
+  }
+  return "";
+}
+
+std::string curve_label(const Model& model, const FeatureRef& first, const FeatureRef& second, ContactType type) {
+  return model.parts.at(first.part).name + " " + feature_label(model, first) + " / " + model.parts.at(second.part).name +
+         " " + feature_label(model, second) + " (" + contact_word(type) + ")";
+}
+
 std::vector<BodyFeature> part_features(const Model& model, std::size_t part_index, std::size_t* reflex_skipped,
                                        bool labels) {
   const Part& part = model.parts.at(part_index);

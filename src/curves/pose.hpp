@@ -105,6 +105,15 @@ std::vector<BodyFeature> part_features(const Model& model, std::size_t part_inde
 /// The label part_features gives the feature `ref` of `model`.
 std::string feature_label(const Model& model, const FeatureRef& ref);
 
+/// How two features touch, for people: "vertex on segment", "arc tangent to arc", ...
+const char* contact_word(ContactType type);
+
+/// A contact curve's label for people, "driver pin / wheel slot 2 wall (vertex on segment)":
+/// the parts' names and feature_label of each feature (`first.part`, `second.part` index
+/// model.parts), and how they touch (the curve generator's labels, and a kernel slicer's for a
+/// strip a congruent pair generated).
+std::string curve_label(const Model& model, const FeatureRef& first, const FeatureRef& second, ContactType type);
+
 /// The feature's exact body geometry for the kernels' contact table and contact frames
 /// (kernels/contact_table.hpp, kernels/contact_geometry.hpp).
 kernels::FeatureGeometry<Rational> feature_geometry(const BodyFeature& feature);

@@ -7,6 +7,7 @@
 // sample point classified by the overlap oracle (exact). Roots where the class does not change
 // are kept (the engine ignores them); roots shared by several curves carry all their features.
 #include "kinematics/slice.hpp"
+#include "curves/pose.hpp"
 
 #include <hipair/error.hpp>
 
@@ -90,23 +91,33 @@ struct CurveData {
 
 // One curve of a strip of a chart pair: its feature and, per cell of the other axis in the
 // strip, the follower cells where it may vanish.
+// Its feature pair (parts: the pair's first and second part as generated) and contact type
+// give its label in any congruent pair that shares the strip.
 struct StripCurve {
   std::size_t feature = 0;
   std::shared_ptr<const CurveData> data;
   std::vector<std::uint32_t> cells;   // cells[c - strip first cell]
+  FeatureRef first, second;
+  cspace::ContactType type = cspace::ContactType::vertex_segment;
 };
+
+}  // namespace
 
 // The curves of a strip of the other axis, cells [first_cell, first_cell + width) (the whole
 // chart when the other part is fixed or the slicer generates whole chart pairs), ascending by
-// feature.
-struct Strip {
+// feature. Immutable once generated: congruent pairs share it (SelectionMemo).
+struct KernelStrip {
   int first_cell = 0, width = 0;
   std::vector<StripCurve> curves;
 };
 
+namespace {
+
+using Strip = KernelStrip;
+
 struct ChartPair {
   ChartAxis x_axis, y_axis;   // in the pair's own axis order (for the oracle)
-  std::vector<std::unique_ptr<Strip>> strips;                    // in the order generated
+  std::vector<std::shared_ptr<const Strip>> strips;              // in the order generated
   std::vector<int> strip_of_cell = std::vector<int>(cull_cells, -1);   // index into strips
   int next_width = 1;   // cells of the next strip generated (doubles: 1, 2, 4, ... 64)
   std::map<std::size_t, std::shared_ptr<const CurveData>> by_feature;   // of the strips generated
@@ -214,6 +225,23 @@ class KernelSlicer final : public PairSlicer {
       generator_ = std::make_unique<cspace::CurveGenerator>(model_, axes_);
       if (options_.selections) congruence_key_ = generator_->congruence_key();
     }
+    // a congruent pair's whole strip for the same chart pair, cells and follower
+    std::string strip_key;
+    if (options_.selections && !congruence_key_.empty()) {
+      strip_key = congruence_key_ + (follower_is_x_ ? "|fx" : "|fy") + axis_key(other_moves_ ? other_charts_[o] : strip_axis) +
+                  axis_key(follower_charts_[f]) + "|" + std::to_string(result->first_cell) + "+" + std::to_string(result->width);
+      if (std::shared_ptr<const Strip> shared = options_.selections->find_strip(strip_key)) {
+        for (const StripCurve& curve : shared->curves) {
+          FeatureRef first = curve.first, second = curve.second;
+          first.part = axes_.first;
+          second.part = axes_.second;
+          note_feature(curve.feature, first, second, curve.type);
+          chart.by_feature.try_emplace(curve.feature, curve.data);
+        }
+        push_strip(chart, std::move(shared));
+        return;
+      }
+    }
     std::vector<ContactCurve> curves;
     if (options_.selections && !congruence_key_.empty()) {
       // a congruent pair's selection for the same chart box, else this generator's own (then
@@ -229,11 +257,10 @@ class KernelSlicer final : public PairSlicer {
       if (curve.polynomial.is_zero()) continue;
       StripCurve entry;
       entry.feature = feature_number(curve);
-      if (features_.size() <= entry.feature) features_.resize(entry.feature + 1);
-      if (features_[entry.feature].label.empty())
-        features_[entry.feature] = ContactFeature{curve.label, public_kind(curve.type),
-                                                  FeatureIdentity{curve.first.part, curve.first.loop, curve.first.edge, curve.first.kind},
-                                                  FeatureIdentity{curve.second.part, curve.second.loop, curve.second.edge, curve.second.kind}};
+      entry.first = curve.first;
+      entry.second = curve.second;
+      entry.type = curve.type;
+      note_feature(entry.feature, curve.first, curve.second, curve.type, &curve.label);
       std::shared_ptr<const CurveData>& data = chart.by_feature[entry.feature];
       if (!data) {
         auto made = std::make_shared<CurveData>();
@@ -254,9 +281,26 @@ class KernelSlicer final : public PairSlicer {
     std::stable_sort(result->curves.begin(), result->curves.end(),
                      [](const StripCurve& a, const StripCurve& b) { return a.feature < b.feature; });
     cull(*result, other_moves_ ? other_charts_[o] : strip_axis, follower_charts_[f], other_moves_);
-    for (int c = result->first_cell; c < result->first_cell + result->width; ++c)
+    std::shared_ptr<const Strip> strip = std::move(result);
+    if (!strip_key.empty()) strip = options_.selections->add_strip(strip_key, std::move(strip));
+    push_strip(chart, std::move(strip));
+  }
+
+  static void push_strip(ChartPair& chart, std::shared_ptr<const Strip> strip) {
+    for (int c = strip->first_cell; c < strip->first_cell + strip->width; ++c)
       chart.strip_of_cell[static_cast<std::size_t>(c)] = static_cast<int>(chart.strips.size());
-    chart.strips.push_back(std::move(result));
+    chart.strips.push_back(std::move(strip));
+  }
+
+  // Names feature number `feature` (features_) on first meeting it: `label` when the curve
+  // generator gave one, else written from the feature pair (the generator's own spelling).
+  void note_feature(std::size_t feature, const FeatureRef& first, const FeatureRef& second, cspace::ContactType type,
+                    const std::string* label = nullptr) const {
+    if (features_.size() <= feature) features_.resize(feature + 1);
+    if (!features_[feature].label.empty()) return;
+    features_[feature] = ContactFeature{label ? *label : cspace::curve_label(model_, first, second, type), public_kind(type),
+                                        FeatureIdentity{first.part, first.loop, first.edge, first.kind},
+                                        FeatureIdentity{second.part, second.loop, second.edge, second.kind}};
   }
 
   // The chart pair (o, f) with its strips holding cells [cell_lo, cell_hi] generated.
@@ -606,6 +650,25 @@ std::shared_ptr<const SelectionMemo::Selection> SelectionMemo::add(const std::st
 std::size_t SelectionMemo::hits() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return hits_;
+}
+
+std::shared_ptr<const KernelStrip> SelectionMemo::find_strip(const std::string& key) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto found = strips_.find(key);
+  if (found == strips_.end()) return nullptr;
+  ++strip_hits_;
+  return found->second;
+}
+
+std::shared_ptr<const KernelStrip> SelectionMemo::add_strip(const std::string& key, std::shared_ptr<const KernelStrip> strip) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto [it, inserted] = strips_.try_emplace(key, std::move(strip));
+  return it->second;
+}
+
+std::size_t SelectionMemo::strip_hits() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return strip_hits_;
 }
 
 std::unique_ptr<PairSlicer> make_kernel_slicer(const Model& model, std::size_t pair, std::size_t follower,

@@ -109,6 +109,13 @@ class PairSlicer {
 /// reuses that pair's selection for the same chart box and forms only its own curves (the
 /// idler train's meshes: 8 meshes, 2 congruence classes). Keys are compared in full (exact
 /// strings, no hash decides). Thread safe.
+///
+/// Whole strips too (session 23): a strip's curves in chart coordinates (the contact
+/// polynomials and validity clauses, integer polynomials made primitive) and the follower cells
+/// where each may vanish depend on the pair only through its congruence key, so a congruent
+/// pair's strip for the same chart pair, the same cells and the same follower takes that strip
+/// as it is (its labels are its own: written from the strip's feature pairs and its own parts).
+struct KernelStrip;   // kernel_slice.cpp
 class SelectionMemo {
  public:
   using Selection = std::vector<std::pair<int, int>>;
@@ -117,11 +124,17 @@ class SelectionMemo {
   /// Stores `selection` under `key` (the first one stored stays) and returns the stored one.
   std::shared_ptr<const Selection> add(const std::string& key, Selection selection);
   std::size_t hits() const;
+  /// The strip stored under `key`, or nullptr.
+  std::shared_ptr<const KernelStrip> find_strip(const std::string& key) const;
+  /// Stores `strip` under `key` (the first one stored stays) and returns the stored one.
+  std::shared_ptr<const KernelStrip> add_strip(const std::string& key, std::shared_ptr<const KernelStrip> strip);
+  std::size_t strip_hits() const;
 
  private:
   mutable std::mutex mutex_;
   std::map<std::string, std::shared_ptr<const Selection>> selections_;
-  mutable std::size_t hits_ = 0;
+  std::map<std::string, std::shared_ptr<const KernelStrip>> strips_;
+  mutable std::size_t hits_ = 0, strip_hits_ = 0;
 };
 
 struct KernelSlicerOptions {

@@ -8,7 +8,9 @@
 //    generated gear pairs and a translated copy of each (a random rational shift), the copy's
 //    slices with the shared selection equal its slices with its own cull; a pair that is not
 //    congruent (the copy with its second gear moved 1/2 mm farther) shares nothing and keeps its own
-//    slices. And generate_selected(select()) is generate(), curve for curve.
+//    slices. And generate_selected(select()) is generate(), curve for curve. Since session 23
+//    the memo shares whole strips too: the copy's features (labels, kinds, feature pairs of its
+//    own parts) equal those of its own generation.
 #include "kinematics/slice.hpp"
 #include "test_paths.hpp"
 
@@ -214,11 +216,32 @@ TEST(KernelSlicerCongruent, TranslatedGearPairsShareSelectionsWithTheSameSlices)
           ASSERT_NE(q, nullptr);
           EXPECT_EQ(p->coefficients, q->coefficients) << where;
         }
+      const std::size_t selection_hits = memo->hits(), strip_hits = memo->strip_hits();
       expect_equal(moved_own->slice(o, value, f), moved_shared->slice(o, value, f), "moved " + where);
+      EXPECT_EQ(memo->hits(), selection_hits) << "moved " << where;
+      EXPECT_EQ(memo->strip_hits(), strip_hits) << "moved " << where;
+      for (const SlicePoint& point : moved_shared->slice(o, value, f).points)
+        for (std::size_t feature : point.features) {
+          const ContactFeature& a = moved_shared->features().at(feature);
+          const ContactFeature& b = moved_own->features().at(feature);
+          EXPECT_EQ(a.label, b.label) << "moved " << where;
+          EXPECT_TRUE(a.first == b.first && a.second == b.second) << "moved " << where;
+        }
     }
     EXPECT_GT(points, 0u);
-    // the copy took the original's selections (its strips are the original's), the moved pair none
-    EXPECT_GT(memo->hits(), 0u) << "trial " << trial;
+    // the copy took the original's whole strips (session 23: the strips' curves, cells and the
+    // labels written for the copy's own parts), the moved pair none
+    // (a strip taken whole takes its selection with it: no separate selection hit)
+    EXPECT_GT(memo->strip_hits(), 0u) << "trial " << trial;
+    for (std::size_t feature = 0; feature < copy_own->features().size(); ++feature) {
+      if (copy_own->features()[feature].label.empty()) continue;
+      ASSERT_LT(feature, copy_shared->features().size()) << "trial " << trial;
+      const ContactFeature& a = copy_shared->features()[feature];
+      const ContactFeature& b = copy_own->features()[feature];
+      EXPECT_EQ(a.label, b.label) << "trial " << trial << " feature " << feature;
+      EXPECT_EQ(a.kind, b.kind) << "trial " << trial << " feature " << feature;
+      EXPECT_TRUE(a.first == b.first && a.second == b.second) << "trial " << trial << " feature " << feature;
+    }
   }
 }
 
