@@ -17,6 +17,7 @@
 #include "cspace/cspace_access.hpp"
 #include "cspace/frame_memo.hpp"
 #include "cspace/scan_memo.hpp"
+#include "cspace/start_filter.hpp"
 #include "curves/pose.hpp"
 #include "kernels/contact_geometry.hpp"
 #include "kernels/implicit_curve.hpp"
@@ -1198,16 +1199,22 @@ class MotionScanner {
     double newton_lo = 0, newton_hi = 0;
   };
 
-  Evaluation evaluate(const Rational& a, const Rational& b) {
+  // `filtered_point` (a == b): the point through the stretches' filter, its angle pieces widened
+  // by a double either way (see start_filter.hpp), instead of to the full precision.
+  Evaluation evaluate(const Rational& a, const Rational& b, bool filtered_point = false) {
     Evaluation result;
     // a point of the path (a start, an end: located exactly) to the full precision; a stretch
     // through the filter
-    const bool fine = a == b;
+    const bool fine = a == b && !filtered_point;
     std::vector<AxisPiece> xs = pieces(path_.x, a, b, result.too_wide, fine);
     std::vector<AxisPiece> ys;
     if (impl_.dimension == 2) ys = pieces(path_.y, a, b, result.too_wide, fine);
     else ys = {AxisPiece{false, false, Rational(0), Rational(0)}};
     if (result.too_wide) return result;
+    if (filtered_point) {
+      widen(path_.x, xs);
+      if (impl_.dimension == 2) widen(path_.y, ys);
+    }
     for (const AxisPiece& px : xs)
       for (const AxisPiece& py : ys) {
         std::vector<std::size_t> charts;
@@ -1246,6 +1253,26 @@ class MotionScanner {
     if (a < b && xs.size() == 1 && ys.size() == 1 && !result.possible.empty())
       mean_value_exclusion(a, b, xs.front(), ys.front(), result.possible, &result);
     return result;
+  }
+
+  // An angle's filtered pieces widened by one double either way, within the chart system's
+  // [-1, 1] (the 160-bit pieces lie in it): the result holds the double box of the 160-bit
+  // pieces of the same point (their width is far below a double's spacing, so that box sticks
+  // out of the filtered piece by at most one double). Offsets and half-angle tangents are exact
+  // rationals at a point: the filtered enclosure's doubles already hold theirs.
+  static void widen(const AxisPath& axis, std::vector<AxisPiece>& pieces) {
+    if (axis.kind != AxisPath::Kind::angle) return;
+    const double inf = std::numeric_limits<double>::infinity();
+    for (AxisPiece& p : pieces) {
+      if (p.dlo > -1) {
+        p.dlo = std::max(-1.0, std::nextafter(p.dlo, -inf));
+        p.lo = Rational(p.dlo);
+      }
+      if (p.dhi < 1) {
+        p.dhi = std::min(1.0, std::nextafter(p.dhi, inf));
+        p.hi = Rational(p.dhi);
+      }
+    }
   }
 
   // Exact location of a rational point inside a box with no contact curve; inside `anchor`'s box
@@ -1839,31 +1866,49 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
   };
 
   // ---- the start
-  MotionScanner::Evaluation start = scanner.evaluate(path.u_begin, path.u_begin);
   result.u_lower = result.u_upper = path.u_begin;
-  if (!start.covered || start.boxes.empty()) {
-    result.status = CrossingStatus::outside_region;
-    return result;
-  }
   Location where;
-  bool point_exact = std::all_of(start.boxes.begin(), start.boxes.end(), [](const PieceBox& b) {
-    return b.x_lo == b.x_hi && b.y_lo == b.y_hi;
-  });
-  if (start.possible.empty() || point_exact) {
-    where = scanner.locate_inside(start.boxes.front(), find_anchor(owner));
-  } else {
-    // an irrational start within the resolution of a contact curve: in contact, conservatively
-    result.status = CrossingStatus::starts_in_contact;
-    result.grazing = true;
-    describe(start, no_index);
-    return result;
+  bool located = false;
+  // the filtered start (start_filter.hpp): a rotating axis's start through the double filter,
+  // located there when its boxes are covered, meet no contact curve and their front midpoint is
+  // free; otherwise the 160-bit start below, as without the filter
+  if (cspace::start_filter() &&
+      (path.x.kind == AxisPath::Kind::angle || (impl.dimension == 2 && path.y.kind == AxisPath::Kind::angle))) {
+    MotionScanner::Evaluation quick = scanner.evaluate(path.u_begin, path.u_begin, true);
+    if (!quick.too_wide && quick.covered && !quick.boxes.empty() && quick.possible.empty()) {
+      Location there = scanner.locate_inside(quick.boxes.front(), find_anchor(owner));
+      if (there.kind == Location::Kind::free && !contact_location(impl, there)) {
+        ++cspace::filtered_starts();
+        where = there;
+        located = true;
+      }
+    }
   }
-  if (where.kind != Location::Kind::free || contact_location(impl, where)) {
-    result.status = CrossingStatus::starts_in_contact;
-    result.cell_left = CellId(where.cell);
-    if (where.edge != no_index) result.edge = EdgeId(where.edge);
-    describe(start, no_index);
-    return result;
+  if (!located) {
+    MotionScanner::Evaluation start = scanner.evaluate(path.u_begin, path.u_begin);
+    if (!start.covered || start.boxes.empty()) {
+      result.status = CrossingStatus::outside_region;
+      return result;
+    }
+    bool point_exact = std::all_of(start.boxes.begin(), start.boxes.end(), [](const PieceBox& b) {
+      return b.x_lo == b.x_hi && b.y_lo == b.y_hi;
+    });
+    if (start.possible.empty() || point_exact) {
+      where = scanner.locate_inside(start.boxes.front(), find_anchor(owner));
+    } else {
+      // an irrational start within the resolution of a contact curve: in contact, conservatively
+      result.status = CrossingStatus::starts_in_contact;
+      result.grazing = true;
+      describe(start, no_index);
+      return result;
+    }
+    if (where.kind != Location::Kind::free || contact_location(impl, where)) {
+      result.status = CrossingStatus::starts_in_contact;
+      result.cell_left = CellId(where.cell);
+      if (where.edge != no_index) result.edge = EdgeId(where.edge);
+      describe(start, no_index);
+      return result;
+    }
   }
   result.cell_left = CellId(where.cell);
 
