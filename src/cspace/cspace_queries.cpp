@@ -1870,15 +1870,24 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
   Location where;
   bool located = false;
   // the filtered start (start_filter.hpp): a rotating axis's start through the double filter,
-  // located there when its boxes are covered, meet no contact curve and their front midpoint is
-  // free; otherwise the 160-bit start below, as without the filter
+  // located there when its boxes are covered, meet no contact curve and their front midpoint
+  // lies inside a free or a blocked cell's face; otherwise the 160-bit start below, as without
+  // the filter
   if (cspace::start_filter() &&
       (path.x.kind == AxisPath::Kind::angle || (impl.dimension == 2 && path.y.kind == AxisPath::Kind::angle))) {
     MotionScanner::Evaluation quick = scanner.evaluate(path.u_begin, path.u_begin, true);
     if (!quick.too_wide && quick.covered && !quick.boxes.empty() && quick.possible.empty()) {
       Location there = scanner.locate_inside(quick.boxes.front(), find_anchor(owner));
-      if (there.kind == Location::Kind::free && !contact_location(impl, there)) {
+      if (there.kind == Location::Kind::free || there.kind == Location::Kind::blocked) {
         ++cspace::filtered_starts();
+        if (there.kind == Location::Kind::blocked) {
+          // in a blocked cell: the 160-bit start's answer (its boxes meet no curve either, so
+          // describe adds nothing to it)
+          result.status = CrossingStatus::starts_in_contact;
+          result.cell_left = CellId(there.cell);
+          if (there.edge != no_index) result.edge = EdgeId(there.edge);
+          return result;
+        }
         where = there;
         located = true;
       }
