@@ -1,7 +1,7 @@
 // CSpace::first_crossing's filtered start (src/cspace/cspace_queries.cpp, switch
 // cspace::start_filter() in src/cspace/start_filter.hpp): a rotating axis's start located from
-// the double-filtered pieces (widened by a double) where they meet no contact curve, else from
-// the 160-bit pieces as before. Generated motions and point paths on the example spaces and the
+// the double-filtered pieces (widened by a double) where they meet no contact curve and their
+// midpoint lies in a free or a blocked cell's face, else from the 160-bit pieces as before. Generated motions and point paths on the example spaces and the
 // degenerate ones, with starts anywhere, a few ulps (or 1e-15 ... 1e-3) off a real edge on
 // either side, and on a chart's side: every answer, every field (test::describe_crossing),
 // equals the answer without the filter.
