@@ -16,6 +16,8 @@
 #include "cspace/crossing_shrink.hpp"
 #include "cspace/cspace_access.hpp"
 #include "cspace/frame_memo.hpp"
+#include "cspace/scan_memo.hpp"
+#include "cspace/start_filter.hpp"
 #include "curves/pose.hpp"
 #include "kernels/contact_geometry.hpp"
 #include "kernels/implicit_curve.hpp"
@@ -1100,9 +1102,70 @@ void remember_anchor(StartAnchor anchor, const std::shared_ptr<const CSpace::Imp
   list.push_back(std::move(anchor));
 }
 
+// The scanner's data derived from the space alone, filled on first use: per chart (sized by
+// scan_memo_of), per local curve. Shared by the first_crossing calls of a space on one thread
+// (scan_memo, cspace/scan_memo.hpp), or made for one call when the switch is off.
+struct ScanMemo {
+  std::weak_ptr<const CSpace::Impl> owner;
+  // the curves of a chart that can bound a cell: those carried by an edge between different
+  // cells (contact edges), with the edges' certified boxes, and those through an isolated vertex
+  struct Carrier {
+    double box[4];
+    std::vector<std::size_t> curves;
+  };
+  struct ChartCarriers {
+    bool ready = false;
+    std::vector<Carrier> edges;
+    std::vector<std::size_t> everywhere;
+  };
+  struct Gradient {
+    cspace::algebra::IntervalPolynomial2 fx, fy;
+  };
+  struct Hessian {
+    cspace::algebra::IntervalPolynomial2 fxx, fxy, fyy;
+  };
+  using Clauses = std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>;
+  std::vector<ChartCarriers> carriers;
+  std::vector<std::vector<std::optional<Gradient>>> gradients;
+  std::vector<std::vector<std::optional<Hessian>>> hessians;
+  std::vector<std::vector<std::optional<Clauses>>> validity;
+  std::vector<std::array<double, 4>> chart_boxes;   // lower/upper doubles of the public charts' sides
+};
+
+std::shared_ptr<ScanMemo> fresh_scan_memo(const CSpace::Impl& impl) {
+  auto memo = std::make_shared<ScanMemo>();
+  memo->carriers.resize(impl.charts.size());
+  memo->gradients.resize(impl.charts.size());
+  memo->hessians.resize(impl.charts.size());
+  memo->validity.resize(impl.charts.size());
+  for (const CSpaceChart& chart : impl.public_charts)
+    memo->chart_boxes.push_back({cspace::algebra::lower_double(chart.x_lo), cspace::algebra::upper_double(chart.x_hi),
+                                 cspace::algebra::lower_double(chart.y_lo), cspace::algebra::upper_double(chart.y_hi)});
+  return memo;
+}
+
+// The scan memo of the space `owner` on this thread (made on first use), or a fresh one when
+// the switch is off. Held by shared_ptr: a scanner keeps its memo even if the list drops it.
+std::shared_ptr<ScanMemo> scan_memo_of(const std::shared_ptr<const CSpace::Impl>& owner) {
+  if (!cspace::scan_memo()) return fresh_scan_memo(*owner);
+  thread_local std::vector<std::shared_ptr<ScanMemo>> memos;
+  for (const std::shared_ptr<ScanMemo>& m : memos)
+    if (!m->owner.expired() && !m->owner.owner_before(owner) && !owner.owner_before(m->owner)) {
+      ++cspace::scan_memo_hits();
+      return m;
+    }
+  std::erase_if(memos, [](const std::shared_ptr<ScanMemo>& m) { return m->owner.expired(); });
+  if (memos.size() >= 16) memos.erase(memos.begin());
+  std::shared_ptr<ScanMemo> memo = fresh_scan_memo(*owner);
+  memo->owner = owner;
+  memos.push_back(memo);
+  return memo;
+}
+
 class MotionScanner {
  public:
-  MotionScanner(const CSpace::Impl& impl, const MotionPath& path) : impl_(impl), path_(path) {
+  MotionScanner(const CSpace::Impl& impl, const MotionPath& path, std::shared_ptr<ScanMemo> memo)
+      : impl_(impl), path_(path), memo_(std::move(memo)) {
     auto check = [&](const AxisPath& axis, AxisKind kind, const char* which) {
       bool rotation = axis.kind != AxisPath::Kind::offset;
       if (rotation != (kind == AxisKind::rotation))
@@ -1112,13 +1175,6 @@ class MotionScanner {
     };
     check(path.x, impl.public_charts.at(0).x_kind, "x");
     if (impl.dimension == 2) check(path.y, impl.public_charts.at(0).y_kind, "y");
-    carriers_.resize(impl.charts.size());
-    gradients_.resize(impl.charts.size());
-    hessians_.resize(impl.charts.size());
-    validity_.resize(impl.charts.size());
-    for (const CSpaceChart& chart : impl.public_charts)
-      chart_boxes_.push_back({cspace::algebra::lower_double(chart.x_lo), cspace::algebra::upper_double(chart.x_hi),
-                              cspace::algebra::lower_double(chart.y_lo), cspace::algebra::upper_double(chart.y_hi)});
     for (const AxisPath* axis : {&path.x, &path.y}) {
       std::vector<Rational> d, dd;
       for (std::size_t i = 1; i < axis->coefficients.size(); ++i) d.push_back(axis->coefficients[i] * static_cast<long>(i));
@@ -1143,16 +1199,22 @@ class MotionScanner {
     double newton_lo = 0, newton_hi = 0;
   };
 
-  Evaluation evaluate(const Rational& a, const Rational& b) {
+  // `filtered_point` (a == b): the point through the stretches' filter, its angle pieces widened
+  // by a double either way (see start_filter.hpp), instead of to the full precision.
+  Evaluation evaluate(const Rational& a, const Rational& b, bool filtered_point = false) {
     Evaluation result;
     // a point of the path (a start, an end: located exactly) to the full precision; a stretch
     // through the filter
-    const bool fine = a == b;
+    const bool fine = a == b && !filtered_point;
     std::vector<AxisPiece> xs = pieces(path_.x, a, b, result.too_wide, fine);
     std::vector<AxisPiece> ys;
     if (impl_.dimension == 2) ys = pieces(path_.y, a, b, result.too_wide, fine);
     else ys = {AxisPiece{false, false, Rational(0), Rational(0)}};
     if (result.too_wide) return result;
+    if (filtered_point) {
+      widen(path_.x, xs);
+      if (impl_.dimension == 2) widen(path_.y, ys);
+    }
     for (const AxisPiece& px : xs)
       for (const AxisPiece& py : ys) {
         std::vector<std::size_t> charts;
@@ -1169,7 +1231,7 @@ class MotionScanner {
         if (!covers(charts, px, py)) result.covered = false;
         for (std::size_t c : charts) {
           const CSpaceChart& chart = impl_.public_charts[c];
-          const std::array<double, 4>& side = chart_boxes_[c];
+          const std::array<double, 4>& side = memo_->chart_boxes[c];
           PieceBox box{c, std::max(px.lo, chart.x_lo), std::min(px.hi, chart.x_hi), py.lo, py.hi,
                        std::max(px.dlo, side[0]), std::min(px.dhi, side[1]), py.dlo, py.dhi};
           if (impl_.dimension == 2) {
@@ -1191,6 +1253,26 @@ class MotionScanner {
     if (a < b && xs.size() == 1 && ys.size() == 1 && !result.possible.empty())
       mean_value_exclusion(a, b, xs.front(), ys.front(), result.possible, &result);
     return result;
+  }
+
+  // An angle's filtered pieces widened by one double either way, within the chart system's
+  // [-1, 1] (the 160-bit pieces lie in it): the result holds the double box of the 160-bit
+  // pieces of the same point (their width is far below a double's spacing, so that box sticks
+  // out of the filtered piece by at most one double). Offsets and half-angle tangents are exact
+  // rationals at a point: the filtered enclosure's doubles already hold theirs.
+  static void widen(const AxisPath& axis, std::vector<AxisPiece>& pieces) {
+    if (axis.kind != AxisPath::Kind::angle) return;
+    const double inf = std::numeric_limits<double>::infinity();
+    for (AxisPiece& p : pieces) {
+      if (p.dlo > -1) {
+        p.dlo = std::max(-1.0, std::nextafter(p.dlo, -inf));
+        p.lo = Rational(p.dlo);
+      }
+      if (p.dhi < 1) {
+        p.dhi = std::min(1.0, std::nextafter(p.dhi, inf));
+        p.hi = Rational(p.dhi);
+      }
+    }
   }
 
   // Exact location of a rational point inside a box with no contact curve; inside `anchor`'s box
@@ -1371,11 +1453,9 @@ class MotionScanner {
     return {std::move(fx), std::move(fy)};
   }
 
-  struct Gradient {
-    cspace::algebra::IntervalPolynomial2 fx, fy;
-  };
+  using Gradient = ScanMemo::Gradient;
   const Gradient& gradient(std::size_t chart, std::size_t k) {
-    std::vector<std::optional<Gradient>>& memo = gradients_[chart];
+    std::vector<std::optional<Gradient>>& memo = memo_->gradients[chart];
     if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
     if (memo[k]) return *memo[k];
     auto [fx, fy] = partials(impl_.charts[chart].polynomials[k]);
@@ -1384,11 +1464,9 @@ class MotionScanner {
   }
 
   // The second partial derivatives F_xx, F_xy, F_yy of a local curve (memoised like gradient()).
-  struct Hessian {
-    cspace::algebra::IntervalPolynomial2 fxx, fxy, fyy;
-  };
+  using Hessian = ScanMemo::Hessian;
   const Hessian& hessian(std::size_t chart, std::size_t k) {
-    std::vector<std::optional<Hessian>>& memo = hessians_[chart];
+    std::vector<std::optional<Hessian>>& memo = memo_->hessians[chart];
     if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
     if (memo[k]) return *memo[k];
     auto [fx, fy] = partials(impl_.charts[chart].polynomials[k]);
@@ -1619,18 +1697,11 @@ class MotionScanner {
   // The curves of a chart that can bound the start cell: those carried by an edge between
   // different cells (contact edges), with the edges' certified boxes, and those through an
   // isolated vertex (tested everywhere). A first crossing lies on such an edge or vertex.
-  struct Carrier {
-    double box[4];
-    std::vector<std::size_t> curves;
-  };
-  struct ChartCarriers {
-    bool ready = false;
-    std::vector<Carrier> edges;
-    std::vector<std::size_t> everywhere;
-  };
+  using Carrier = ScanMemo::Carrier;
+  using ChartCarriers = ScanMemo::ChartCarriers;
 
   const ChartCarriers& carriers(std::size_t c) {
-    ChartCarriers& result = carriers_[c];
+    ChartCarriers& result = memo_->carriers[c];
     if (result.ready) return result;
     result.ready = true;
     const ChartData& chart = impl_.charts[c];
@@ -1689,7 +1760,7 @@ class MotionScanner {
   }
 
   const std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>& validity(std::size_t chart, std::size_t k) {
-    std::vector<std::optional<Clauses>>& memo = validity_[chart];
+    std::vector<std::optional<Clauses>>& memo = memo_->validity[chart];
     if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
     if (memo[k]) return *memo[k];
     Clauses clauses;
@@ -1705,7 +1776,6 @@ class MotionScanner {
   const MotionPath& path_;
   mutable std::array<std::pair<Rational, KInterval>, 4> ends_{};   // enclosure()'s memo
   mutable std::size_t next_end_ = 0, filled_ends_ = 0;
-  std::vector<std::array<double, 4>> chart_boxes_;   // lower/upper doubles of the charts' sides
   struct StartPieces {
     Rational a;
     std::vector<AxisPiece> x, y;
@@ -1719,12 +1789,9 @@ class MotionScanner {
   // per axis (x, y): the path's coefficients and those of its first and second derivatives,
   // enclosed in doubles
   std::vector<std::vector<KInterval>> enclosed_, enclosed_rate_, enclosed_acceleration_;
-  // per chart (sized in the constructor), per local curve: memos filled on first use
-  using Clauses = std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>;
-  std::vector<ChartCarriers> carriers_;
-  std::vector<std::vector<std::optional<Gradient>>> gradients_;
-  std::vector<std::vector<std::optional<Hessian>>> hessians_;
-  std::vector<std::vector<std::optional<Clauses>>> validity_;
+  // per chart, per local curve: memos filled on first use, shared by the space's queries
+  using Clauses = ScanMemo::Clauses;
+  std::shared_ptr<ScanMemo> memo_;
   std::vector<char> candidate_;   // exclude()'s scratch
 };
 
@@ -1738,7 +1805,8 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
   path.u_begin.canonicalize();
   path.u_end.canonicalize();
   if (path.u_end < path.u_begin) throw GeometryError("first_crossing: u_end < u_begin");
-  MotionScanner scanner(impl, path);
+  const std::shared_ptr<const Impl>& owner = CSpaceAccess::shared(*this);
+  MotionScanner scanner(impl, path, scan_memo_of(owner));
   MotionCrossing result;
 
   // a real edge of `possible` curves near the crossing, its feature pairs, chart point and frame
@@ -1798,32 +1866,58 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
   };
 
   // ---- the start
-  MotionScanner::Evaluation start = scanner.evaluate(path.u_begin, path.u_begin);
   result.u_lower = result.u_upper = path.u_begin;
-  if (!start.covered || start.boxes.empty()) {
-    result.status = CrossingStatus::outside_region;
-    return result;
-  }
   Location where;
-  bool point_exact = std::all_of(start.boxes.begin(), start.boxes.end(), [](const PieceBox& b) {
-    return b.x_lo == b.x_hi && b.y_lo == b.y_hi;
-  });
-  const std::shared_ptr<const Impl>& owner = CSpaceAccess::shared(*this);
-  if (start.possible.empty() || point_exact) {
-    where = scanner.locate_inside(start.boxes.front(), find_anchor(owner));
-  } else {
-    // an irrational start within the resolution of a contact curve: in contact, conservatively
-    result.status = CrossingStatus::starts_in_contact;
-    result.grazing = true;
-    describe(start, no_index);
-    return result;
+  bool located = false;
+  // the filtered start (start_filter.hpp): a rotating axis's start through the double filter,
+  // located there when its boxes are covered, meet no contact curve and their front midpoint
+  // lies inside a free or a blocked cell's face; otherwise the 160-bit start below, as without
+  // the filter
+  if (cspace::start_filter() &&
+      (path.x.kind == AxisPath::Kind::angle || (impl.dimension == 2 && path.y.kind == AxisPath::Kind::angle))) {
+    MotionScanner::Evaluation quick = scanner.evaluate(path.u_begin, path.u_begin, true);
+    if (!quick.too_wide && quick.covered && !quick.boxes.empty() && quick.possible.empty()) {
+      Location there = scanner.locate_inside(quick.boxes.front(), find_anchor(owner));
+      if (there.kind == Location::Kind::free || there.kind == Location::Kind::blocked) {
+        ++cspace::filtered_starts();
+        if (there.kind == Location::Kind::blocked) {
+          // in a blocked cell: the 160-bit start's answer (its boxes meet no curve either, so
+          // describe adds nothing to it)
+          result.status = CrossingStatus::starts_in_contact;
+          result.cell_left = CellId(there.cell);
+          if (there.edge != no_index) result.edge = EdgeId(there.edge);
+          return result;
+        }
+        where = there;
+        located = true;
+      }
+    }
   }
-  if (where.kind != Location::Kind::free || contact_location(impl, where)) {
-    result.status = CrossingStatus::starts_in_contact;
-    result.cell_left = CellId(where.cell);
-    if (where.edge != no_index) result.edge = EdgeId(where.edge);
-    describe(start, no_index);
-    return result;
+  if (!located) {
+    MotionScanner::Evaluation start = scanner.evaluate(path.u_begin, path.u_begin);
+    if (!start.covered || start.boxes.empty()) {
+      result.status = CrossingStatus::outside_region;
+      return result;
+    }
+    bool point_exact = std::all_of(start.boxes.begin(), start.boxes.end(), [](const PieceBox& b) {
+      return b.x_lo == b.x_hi && b.y_lo == b.y_hi;
+    });
+    if (start.possible.empty() || point_exact) {
+      where = scanner.locate_inside(start.boxes.front(), find_anchor(owner));
+    } else {
+      // an irrational start within the resolution of a contact curve: in contact, conservatively
+      result.status = CrossingStatus::starts_in_contact;
+      result.grazing = true;
+      describe(start, no_index);
+      return result;
+    }
+    if (where.kind != Location::Kind::free || contact_location(impl, where)) {
+      result.status = CrossingStatus::starts_in_contact;
+      result.cell_left = CellId(where.cell);
+      if (where.edge != no_index) result.edge = EdgeId(where.edge);
+      describe(start, no_index);
+      return result;
+    }
   }
   result.cell_left = CellId(where.cell);
 

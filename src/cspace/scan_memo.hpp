@@ -1,0 +1,27 @@
+#pragma once
+
+#include <cstddef>
+
+namespace hipair::cspace {
+
+// CSpace::first_crossing's per-space memo of its scanner's derived curve data
+// (cspace_queries.cpp: ScanMemo, scan_memo_of): per chart, the interval forms of every local
+// curve's first and second partial derivatives and of its validity clauses, the carriers
+// (contact edges' certified boxes with their curves) and the chart's double sides. All are pure
+// functions of the immutable space; they were made anew by every first_crossing call (its
+// MotionScanner's memos), and converting the integer polynomials to interval ones was about 5 %
+// of the simulator's loop on the escapement. Kept per thread and per space (a weak_ptr: a space
+// freed and another built at its address is never matched; at most 16 spaces per thread), filled
+// on first use; the values are the same ones, so every answer is the same. On by default; tests
+// switch it off per thread to compare (CSpaceScanMemo.*).
+inline bool& scan_memo() {
+  thread_local bool on = true;
+  return on;
+}
+// How many first_crossing calls on this thread took a memo already made for their space (tests).
+inline std::size_t& scan_memo_hits() {
+  thread_local std::size_t count = 0;
+  return count;
+}
+
+}  // namespace hipair::cspace

@@ -1,0 +1,28 @@
+#pragma once
+
+#include <cstddef>
+
+namespace hipair::cspace {
+
+// first_crossing's filtered start (cspace_queries.cpp, CSpace::first_crossing and
+// MotionScanner::evaluate's `filtered_point`): a start on a rotating axis is first enclosed by
+// the certified double-interval pieces of the path's angle (the stretches' filter, each piece
+// widened by one double either way so that it holds the 160-bit pieces' double box), not by
+// the 160-bit MPFR pieces. Where those boxes are covered by the charts, no contact curve may
+// vanish on them and the exact location of the front box's midpoint is inside a face (of a
+// free cell, or of a blocked one: the simulator's nudge asks about many blocked points), the
+// start is located there: the box holds the start and meets no cell boundary, so the cell is
+// the 160-bit box's. Anything else (a start near a curve, near the built region's border, a
+// midpoint on an edge) falls back to the 160-bit evaluation and its answer, unchanged. On by
+// default; tests switch it off per thread to compare (CSpaceStartFilter.*).
+inline bool& start_filter() {
+  thread_local bool on = true;
+  return on;
+}
+// How many starts the filter located on this thread (tests).
+inline std::size_t& filtered_starts() {
+  thread_local std::size_t count = 0;
+  return count;
+}
+
+}  // namespace hipair::cspace
