@@ -614,25 +614,28 @@ void refine_dyadically(Real& r, const Rational& width) {
     r.refine_to(width);
     return;
   }
-  // invariant: the root is in (a / 2^k, b / 2^k), p(a / 2^k) has the sign lower_sign
+  // invariant: the root is in (a / 2^k, b / 2^k), p(a / 2^k) has the sign lower_sign.
+  // A step doubles a, b and the scale and makes a or b the old a + b, so b - a is the same at
+  // every step: b = a + difference throughout, and the width test (b - a) w_den <= w_num 2^k
+  // compares a constant with a number doubled per step (no product, no temporary per step;
+  // the same steps and ends as halving [a, b] with both ends kept).
   const mpz_class& width_num = width.get_num();
   const mpz_class& width_den = width.get_den();
-  mpz_class middle, difference;
-  for (;;) {
-    difference = b - a;
-    if (difference * width_den <= width_num * scale) break;
-    middle = a + b;
-    a <<= 1;
-    b <<= 1;
-    scale <<= 1;
+  const mpz_class difference = b - a;
+  const mpz_class needed = difference * width_den;
+  mpz_class reached = width_num * scale;
+  mpz_class middle;
+  while (needed > reached) {
+    mpz_mul_2exp(a.get_mpz_t(), a.get_mpz_t(), 1);
+    mpz_add(middle.get_mpz_t(), a.get_mpz_t(), difference.get_mpz_t());   // old a + old b
+    mpz_mul_2exp(scale.get_mpz_t(), scale.get_mpz_t(), 1);
+    mpz_mul_2exp(reached.get_mpz_t(), reached.get_mpz_t(), 1);
     ++scale_bits;
     int s = sign(middle, scale);
     if (s == 0) return settle_exact(middle, scale);
-    if (s == lower_sign)
-      a = middle;
-    else
-      b = middle;
+    if (s == lower_sign) mpz_swap(a.get_mpz_t(), middle.get_mpz_t());   // else b = middle = a + difference
   }
+  b = a + difference;
   r.lower = Rational(a, scale);
   r.upper = Rational(b, scale);
   r.lower.canonicalize();
