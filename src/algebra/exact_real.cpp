@@ -740,6 +740,36 @@ int compare(const Real& a, const Real& b) {
   }
 }
 
+bool equal(const Real& a, const Real& b) {
+  if (a.exact) return b.compare(a.lower) == 0;
+  if (b.exact) return a.compare(b.lower) == 0;
+  if (a.upper <= b.lower || b.upper <= a.lower) return false;
+  {
+    // the certified double filter of compare()
+    DoubleBisection x(a), y(b);
+    for (;;) {
+      if (x.hi() < y.lo() || y.hi() < x.lo()) return false;
+      bool x_moves = x.advance(8);
+      bool y_moves = y.advance(8);
+      if (!x_moves && !y_moves) break;
+    }
+  }
+  if (a.polynomial == b.polynomial) {
+    // as in compare(): a sign change over the common part is the one root of both
+    const Rational& lo = std::max(a.lower, b.lower);
+    const Rational& hi = std::min(a.upper, b.upper);
+    int s_lo = sign_at(a.polynomial, lo), s_hi = sign_at(a.polynomial, hi);
+    if (s_lo != 0 && s_hi != 0 && s_lo != s_hi) return true;
+  }
+  // each interval isolates its number's root: equal iff the gcd has a root in the common part
+  // (compare()'s test, on the same intervals)
+  Polynomial g = gcd(a.polynomial, b.polynomial);
+  if (degree(g) < 1) return false;
+  Rational lo = std::max(a.lower, b.lower), hi = std::min(a.upper, b.upper);
+  SturmSequence sturm(g);
+  return sturm.count(lo, hi) - (sign_at(g, hi) == 0 ? 1 : 0) > 0;
+}
+
 Rational simplest_between(const Rational& lo, const Rational& hi) {
   // an empty interval is a caller's bug: say so instead of dividing by zero below
   if (!(lo < hi))
