@@ -516,14 +516,16 @@ void Real::refine_to(const Rational& width) {
   const mpz_class denominator = lower.get_den() * q;   // b q
   const mpz_class limit_left = p * width.get_den();    // the interval is wider than width while
   const mpz_class& limit_right = width.get_num();      // p w_den > w_num q 2^k
-  mpz_class j = 0, numerator, scaled_denominator, right = limit_right * q;
+  mpz_class j = 0, m, numerator, scaled_denominator, right = limit_right * q;
   unsigned long k = 0;
   // The certified double filter decides the sign at a midpoint lower + span m / 2^k while
   // m / 2^k is a double (k <= 52) and the value's enclosure excludes zero; else exactly.
   const Interval span_box = enclose(span);
   bool filtering = std::isfinite(lower_box.lo) && std::isfinite(lower_box.hi) && std::isfinite(span_box.hi);
   while (limit_left > right) {
-    mpz_class m = 2 * j + 1;
+    // m = 2 j + 1 in place (no temporaries per step; the same numbers)
+    mpz_mul_2exp(m.get_mpz_t(), j.get_mpz_t(), 1);
+    mpz_add_ui(m.get_mpz_t(), m.get_mpz_t(), 1);
     ++k;
     int s = 0;
     if (filtering && k <= 52) {
@@ -531,8 +533,9 @@ void Real::refine_to(const Rational& width) {
       s = filter.sign(lower_box + span_box * Interval{t, t});
     }
     if (s == 0) {
-      numerator = (base << k) + step * m;
-      scaled_denominator = denominator << k;
+      mpz_mul_2exp(numerator.get_mpz_t(), base.get_mpz_t(), k);   // (base << k) + step m
+      mpz_addmul(numerator.get_mpz_t(), step.get_mpz_t(), m.get_mpz_t());
+      mpz_mul_2exp(scaled_denominator.get_mpz_t(), denominator.get_mpz_t(), k);
       s = homogeneous_sign(polynomial, numerator, scaled_denominator);
     }
     if (s == 0) {   // decided exactly (the filter never returns 0 as a sign)
@@ -542,8 +545,11 @@ void Real::refine_to(const Rational& width) {
       exact = true;
       return;
     }
-    j = s == lower_sign ? m : mpz_class(2 * j);
-    right <<= 1;
+    if (s == lower_sign)
+      mpz_swap(j.get_mpz_t(), m.get_mpz_t());
+    else
+      mpz_mul_2exp(j.get_mpz_t(), j.get_mpz_t(), 1);
+    mpz_mul_2exp(right.get_mpz_t(), right.get_mpz_t(), 1);
   }
   // an end that never moved keeps its representation (as halving did), a moved one is reduced
   scaled_denominator = denominator << k;
@@ -614,25 +620,28 @@ void refine_dyadically(Real& r, const Rational& width) {
     r.refine_to(width);
     return;
   }
-  // invariant: the root is in (a / 2^k, b / 2^k), p(a / 2^k) has the sign lower_sign
+  // invariant: the root is in (a / 2^k, b / 2^k), p(a / 2^k) has the sign lower_sign.
+  // A step doubles a, b and the scale and makes a or b the old a + b, so b - a is the same at
+  // every step: b = a + difference throughout, and the width test (b - a) w_den <= w_num 2^k
+  // compares a constant with a number doubled per step (no product, no temporary per step;
+  // the same steps and ends as halving [a, b] with both ends kept).
   const mpz_class& width_num = width.get_num();
   const mpz_class& width_den = width.get_den();
-  mpz_class middle, difference;
-  for (;;) {
-    difference = b - a;
-    if (difference * width_den <= width_num * scale) break;
-    middle = a + b;
-    a <<= 1;
-    b <<= 1;
-    scale <<= 1;
+  const mpz_class difference = b - a;
+  const mpz_class needed = difference * width_den;
+  mpz_class reached = width_num * scale;
+  mpz_class middle;
+  while (needed > reached) {
+    mpz_mul_2exp(a.get_mpz_t(), a.get_mpz_t(), 1);
+    mpz_add(middle.get_mpz_t(), a.get_mpz_t(), difference.get_mpz_t());   // old a + old b
+    mpz_mul_2exp(scale.get_mpz_t(), scale.get_mpz_t(), 1);
+    mpz_mul_2exp(reached.get_mpz_t(), reached.get_mpz_t(), 1);
     ++scale_bits;
     int s = sign(middle, scale);
     if (s == 0) return settle_exact(middle, scale);
-    if (s == lower_sign)
-      a = middle;
-    else
-      b = middle;
+    if (s == lower_sign) mpz_swap(a.get_mpz_t(), middle.get_mpz_t());   // else b = middle = a + difference
   }
+  b = a + difference;
   r.lower = Rational(a, scale);
   r.upper = Rational(b, scale);
   r.lower.canonicalize();
@@ -735,6 +744,36 @@ int compare(const Real& a, const Real& b) {
     if (x.upper <= y.lower) return -1;
     if (y.upper <= x.lower) return 1;
   }
+}
+
+bool equal(const Real& a, const Real& b) {
+  if (a.exact) return b.compare(a.lower) == 0;
+  if (b.exact) return a.compare(b.lower) == 0;
+  if (a.upper <= b.lower || b.upper <= a.lower) return false;
+  {
+    // the certified double filter of compare()
+    DoubleBisection x(a), y(b);
+    for (;;) {
+      if (x.hi() < y.lo() || y.hi() < x.lo()) return false;
+      bool x_moves = x.advance(8);
+      bool y_moves = y.advance(8);
+      if (!x_moves && !y_moves) break;
+    }
+  }
+  if (a.polynomial == b.polynomial) {
+    // as in compare(): a sign change over the common part is the one root of both
+    const Rational& lo = std::max(a.lower, b.lower);
+    const Rational& hi = std::min(a.upper, b.upper);
+    int s_lo = sign_at(a.polynomial, lo), s_hi = sign_at(a.polynomial, hi);
+    if (s_lo != 0 && s_hi != 0 && s_lo != s_hi) return true;
+  }
+  // each interval isolates its number's root: equal iff the gcd has a root in the common part
+  // (compare()'s test, on the same intervals)
+  Polynomial g = gcd(a.polynomial, b.polynomial);
+  if (degree(g) < 1) return false;
+  Rational lo = std::max(a.lower, b.lower), hi = std::min(a.upper, b.upper);
+  SturmSequence sturm(g);
+  return sturm.count(lo, hi) - (sign_at(g, hi) == 0 ? 1 : 0) > 0;
 }
 
 Rational simplest_between(const Rational& lo, const Rational& hi) {

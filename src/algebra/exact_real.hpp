@@ -85,6 +85,11 @@ struct Real {
 
 /// Exact comparison of two real algebraic numbers: -1, 0, +1.
 int compare(const Real& a, const Real& b);
+/// compare(a, b) == 0, exactly, for callers that need only equality: overlapping enclosures
+/// that the double filter cannot separate go straight to the gcd's roots in the common part
+/// (compare first refines both copies by 2^-20 in case they are distinct; for equality that
+/// refinement only adds work when they are equal).
+bool equal(const Real& a, const Real& b);
 /// A rational strictly between a < b, as simple as cheaply possible. \pre a < b.
 Rational rational_between(const Real& a, const Real& b);
 /// The simplest rational (smallest denominator) in the open interval (lo, hi). \pre lo < hi.

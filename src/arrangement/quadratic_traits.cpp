@@ -733,7 +733,7 @@ class QuadraticTraits {
     Interval xi = enclose(refined);
     for (auto it = st_->by_lower.lower_bound(xi.lo - (1e-14 * (1 + std::fabs(xi.lo)))); it != st_->by_lower.end(); ++it) {
       if (it->first > xi.hi) break;
-      if (!disjoint(it->second->xi, xi) && algebra::compare(it->second->x, refined) == 0) return it->second;
+      if (!disjoint(it->second->xi, xi) && algebra::equal(it->second->x, refined)) return it->second;
     }
     auto entry = std::make_shared<XEntry>();
     entry->x = std::move(refined);

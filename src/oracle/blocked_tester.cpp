@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <mutex>
 #include <numbers>
 #include <limits>
 #include <tuple>
@@ -217,14 +219,168 @@ std::vector<Disk> inscribed_disks(const Part& part, std::size_t limit, long expo
   return chosen;
 }
 
-// The two parts with every length divided by 2^exponent (exact).
-Model scaled_parts(const Model& model, const PairAxes& axes, long exponent) {
-  Model two;
-  two.parts = {model.parts[axes.first], model.parts[axes.second]};
-  return scaled_model(two, exponent);
+// A rational divided by 2^exponent (exact), as scaled_model() scales a length.
+Rational scaled_exactly(const Rational& value, long exponent) {
+  Rational q = value;
+  if (exponent >= 0)
+    mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(exponent));
+  else
+    mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(-exponent));
+  return q;
+}
+
+// One part's certified disks in the unit of 2^exponent mm: its interior disks first, then its
+// boundary points (radius 0). A function of the part's loops, its pivot and the exponent only.
+struct PartDisks {
+  std::vector<BlockedTester::CertifiedCore> disks;
+  std::size_t interior = 0;
+};
+
+PartDisks certify_part(const Part& part, long exponent) {
+  using kernels::Interval;
+  using kernels::interval_detail::up;
+  Model one;
+  one.parts = {part};
+  const Model scaled = scaled_model(one, exponent);
+  const Part& exact = scaled.parts.front();
+  const Interval pivot[2] = {Interval::enclose(exact.motion.pivot.x), Interval::enclose(exact.motion.pivot.y)};
+  PartDisks out;
+  // enough disks that every tooth of a many-toothed part gets some (the operating
+  // region's flood must see blocked space between neighbouring channels)
+  std::size_t edges = 0;
+  for (const Loop& loop : part.loops) edges += loop.edges.size();
+  std::vector<Disk> guess = inscribed_disks(part, std::max<std::size_t>(150, 2 * edges), exponent);
+  const ClearanceBound clearance(exact);
+  for (const Disk& d : guess) {
+    auto disk = certify_disk(exact, clearance, Rational(d.x), Rational(d.y));
+    if (!disk) continue;
+    BlockedTester::CertifiedCore core;
+    core.x = disk->x;
+    core.y = disk->y;
+    // never larger than the guess: the tester claims no more than the guess would
+    core.r = std::min(disk->radius, d.r);
+    if (!(core.r > 0)) continue;
+    core.rx = core.x - pivot[0];
+    core.ry = core.y - pivot[1];
+    core.rho = kernels::sqrt(core.rx * core.rx + core.ry * core.ry).hi;
+    if (!std::isfinite(core.rho)) continue;
+    // the double evaluation of blocked(): the centre (an exact double), its offset from the
+    // pivot as a double and a bound of that double's error, and a bound of the magnitudes
+    core.cx = d.x;
+    core.cy = d.y;
+    core.rx_m = core.rx.lo;
+    core.ry_m = core.ry.lo;
+    core.r_error = up(std::max(core.rx.hi - core.rx.lo, core.ry.hi - core.ry.lo));
+    core.magnitude = up(up(std::fabs(core.rx_m) + std::fabs(core.ry_m)) + core.r_error);
+    if (!std::isfinite(core.magnitude) || !std::isfinite(core.cx) || !std::isfinite(core.cy)) continue;
+    out.disks.push_back(core);
+  }
+  out.interior = out.disks.size();
+  // Points of the part's boundary as disks of radius 0: a point of the part's closure
+  // strictly inside a disk of the other part's material makes the interiors overlap (the
+  // part is the closure of its interior, so every neighbourhood of the point holds interior
+  // points of the part). A pair of posed disks is tested on the sum of its reaches, so such
+  // a point certifies a box only where it lies in the other part's disk by more than every
+  // error. The points are the loops' vertices (exact; the double centre's error is carried in
+  // centre_error and in the offset's r_error): where a part's corners reach deepest into the
+  // other part. Points along the edges certified no further box of the examples' charts.
+  for (const Loop& loop : exact.loops)
+    for (const Edge& edge : loop.edges) {
+      const Point& point = edge.source;
+      BlockedTester::CertifiedCore core;
+      core.x = Interval::enclose(point.x);
+      core.y = Interval::enclose(point.y);
+      core.r = 0;
+      core.rx = core.x - pivot[0];
+      core.ry = core.y - pivot[1];
+      core.rho = kernels::sqrt(core.rx * core.rx + core.ry * core.ry).hi;
+      core.cx = core.x.lo;
+      core.cy = core.y.lo;
+      core.centre_error = up(std::max(core.x.hi - core.x.lo, core.y.hi - core.y.lo));
+      core.rx_m = core.rx.lo;
+      core.ry_m = core.ry.lo;
+      core.r_error = up(std::max(core.rx.hi - core.rx.lo, core.ry.hi - core.ry.lo));
+      core.magnitude = up(up(std::fabs(core.rx_m) + std::fabs(core.ry_m)) + core.r_error);
+      if (!std::isfinite(core.rho) || !std::isfinite(core.magnitude) || !std::isfinite(core.cx) ||
+          !std::isfinite(core.cy) || !std::isfinite(core.centre_error))
+        continue;
+      out.disks.push_back(core);
+    }
+  return out;
+}
+
+// The memo of certified part disks (part_disk_memo()): an entry is keyed by everything
+// certify_part() reads — the loops' exact geometry (each edge's kind, ends, centre, direction
+// and squared radius, each loop's hole flag), the pivot and the exponent — and filled once
+// (the first caller computes, a concurrent caller of the same key waits). The last
+// `memo_capacity` keys are kept.
+struct MemoEntry {
+  long exponent = 0;
+  Point pivot;
+  std::vector<Loop> loops;
+  std::once_flag once;
+  std::shared_ptr<const PartDisks> value;
+};
+
+bool same_edge(const Edge& a, const Edge& b) {
+  return a.kind == b.kind && a.source == b.source && a.target == b.target && a.center == b.center && a.ccw == b.ccw &&
+         a.radius_squared == b.radius_squared;
+}
+
+bool same_key(const MemoEntry& entry, const Part& part, long exponent) {
+  if (entry.exponent != exponent || !(entry.pivot == part.motion.pivot) || entry.loops.size() != part.loops.size())
+    return false;
+  for (std::size_t i = 0; i < part.loops.size(); ++i) {
+    const Loop& a = entry.loops[i];
+    const Loop& b = part.loops[i];
+    if (a.is_hole != b.is_hole || a.edges.size() != b.edges.size()) return false;
+    for (std::size_t j = 0; j < a.edges.size(); ++j)
+      if (!same_edge(a.edges[j], b.edges[j])) return false;
+  }
+  return true;
+}
+
+constexpr std::size_t memo_capacity = 64;
+
+std::shared_ptr<const PartDisks> part_disks(const Part& part, long exponent) {
+  if (!part_disk_memo().load(std::memory_order_relaxed))
+    return std::make_shared<const PartDisks>(certify_part(part, exponent));
+  static std::mutex mutex;
+  static std::deque<std::shared_ptr<MemoEntry>> entries;
+  std::shared_ptr<MemoEntry> entry;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& e : entries)
+      if (same_key(*e, part, exponent)) {
+        entry = e;
+        break;
+      }
+    if (entry) {
+      part_disk_memo_hits().fetch_add(1, std::memory_order_relaxed);
+    } else {
+      entry = std::make_shared<MemoEntry>();
+      entry->exponent = exponent;
+      entry->pivot = part.motion.pivot;
+      entry->loops = part.loops;
+      entries.push_back(entry);
+      if (entries.size() > memo_capacity) entries.pop_front();
+    }
+  }
+  std::call_once(entry->once, [&] { entry->value = std::make_shared<const PartDisks>(certify_part(part, exponent)); });
+  return entry->value;
 }
 
 }  // namespace
+
+std::atomic<bool>& part_disk_memo() {
+  static std::atomic<bool> on{true};
+  return on;
+}
+
+std::atomic<std::size_t>& part_disk_memo_hits() {
+  static std::atomic<std::size_t> hits{0};
+  return hits;
+}
 
 // blocked() decides with certified bounds only: the disks are certified once (exact centre
 // strictly inside the part, radius a certified lower bound of its clearance), the parts' poses
@@ -232,85 +388,25 @@ Model scaled_parts(const Model& model, const PairAxes& axes, long exponent) {
 // the movement from there over the box is bounded by a certified angle or travel bound, and
 // every rounding of the double evaluation of a posed centre is covered by an a-priori bound
 // (each term below is at least the error it stands for). The doubles of inscribed_disks()
-// only guess where to put the disks.
+// only guess where to put the disks. A part's disks are certified once per process for its
+// geometry, pivot and the pair's exponent (part_disks(): the anchor of the escapement, in
+// three pairs, once).
 BlockedTester::BlockedTester(const Model& model, const PairAxes& axes)
     : axes_(axes), exponent_(scale_exponent({&model.parts[axes.first], &model.parts[axes.second]})) {
   using kernels::Interval;
   using kernels::interval_detail::up;
-  const Model scaled = scaled_parts(model, axes, exponent_);
   for (int k = 0; k < 2; ++k) {
     const Part& part = model.parts[k == 0 ? axes.first : axes.second];
-    const Part& exact = scaled.parts[static_cast<std::size_t>(k)];
     motion_[k] = part.motion.kind;
     moves_[k] = k == 0 ? axes.first_moves : axes.second_moves;
-    pivot_[k][0] = Interval::enclose(exact.motion.pivot.x);
-    pivot_[k][1] = Interval::enclose(exact.motion.pivot.y);
+    pivot_[k][0] = Interval::enclose(scaled_exactly(part.motion.pivot.x, exponent_));
+    pivot_[k][1] = Interval::enclose(scaled_exactly(part.motion.pivot.y, exponent_));
     direction_[k][0] = Interval::enclose(part.motion.direction.x);
     direction_[k][1] = Interval::enclose(part.motion.direction.y);
     direction_length_[k] = kernels::sqrt(direction_[k][0] * direction_[k][0] + direction_[k][1] * direction_[k][1]).hi;
-    // enough disks that every tooth of a many-toothed part gets some (the operating
-    // region's flood must see blocked space between neighbouring channels)
-    std::size_t edges = 0;
-    for (const Loop& loop : part.loops) edges += loop.edges.size();
-    std::vector<Disk> guess = inscribed_disks(part, std::max<std::size_t>(150, 2 * edges), exponent_);
-    const ClearanceBound clearance(exact);
-    for (const Disk& d : guess) {
-      auto disk = certify_disk(exact, clearance, Rational(d.x), Rational(d.y));
-      if (!disk) continue;
-      CertifiedCore core;
-      core.x = disk->x;
-      core.y = disk->y;
-      // never larger than the guess: the tester claims no more than the guess would
-      core.r = std::min(disk->radius, d.r);
-      if (!(core.r > 0)) continue;
-      core.rx = core.x - pivot_[k][0];
-      core.ry = core.y - pivot_[k][1];
-      core.rho = kernels::sqrt(core.rx * core.rx + core.ry * core.ry).hi;
-      if (!std::isfinite(core.rho)) continue;
-      // the double evaluation of blocked(): the centre (an exact double), its offset from the
-      // pivot as a double and a bound of that double's error, and a bound of the magnitudes
-      core.cx = d.x;
-      core.cy = d.y;
-      core.rx_m = core.rx.lo;
-      core.ry_m = core.ry.lo;
-      core.r_error = up(std::max(core.rx.hi - core.rx.lo, core.ry.hi - core.ry.lo));
-      core.magnitude = up(up(std::fabs(core.rx_m) + std::fabs(core.ry_m)) + core.r_error);
-      if (!std::isfinite(core.magnitude) || !std::isfinite(core.cx) || !std::isfinite(core.cy)) continue;
-      disks_[k].push_back(core);
-    }
-    interior_disks_[k] = disks_[k].size();
-    // Points of the part's boundary as disks of radius 0: a point of the part's closure
-    // strictly inside a disk of the other part's material makes the interiors overlap (the
-    // part is the closure of its interior, so every neighbourhood of the point holds interior
-    // points of the part). A pair of posed disks is tested on the sum of its reaches, so such
-    // a point certifies a box only where it lies in the other part's disk by more than every
-    // error. The points are the loops' vertices (exact; the double centre's error is carried in
-    // centre_error and in the offset's r_error): where a part's corners reach deepest into the
-    // other part. Points along the edges certified no further box of the examples' charts.
-    for (const Loop& loop : exact.loops)
-      for (const Edge& edge : loop.edges) {
-        {
-          const Point& point = edge.source;
-          CertifiedCore core;
-          core.x = Interval::enclose(point.x);
-          core.y = Interval::enclose(point.y);
-          core.r = 0;
-          core.rx = core.x - pivot_[k][0];
-          core.ry = core.y - pivot_[k][1];
-          core.rho = kernels::sqrt(core.rx * core.rx + core.ry * core.ry).hi;
-          core.cx = core.x.lo;
-          core.cy = core.y.lo;
-          core.centre_error = up(std::max(core.x.hi - core.x.lo, core.y.hi - core.y.lo));
-          core.rx_m = core.rx.lo;
-          core.ry_m = core.ry.lo;
-          core.r_error = up(std::max(core.rx.hi - core.rx.lo, core.ry.hi - core.ry.lo));
-          core.magnitude = up(up(std::fabs(core.rx_m) + std::fabs(core.ry_m)) + core.r_error);
-          if (!std::isfinite(core.rho) || !std::isfinite(core.magnitude) || !std::isfinite(core.cx) ||
-              !std::isfinite(core.cy) || !std::isfinite(core.centre_error))
-            continue;
-          disks_[k].push_back(core);
-        }
-      }
+    const std::shared_ptr<const PartDisks> cores = part_disks(part, exponent_);
+    disks_[k] = cores->disks;
+    interior_disks_[k] = cores->interior;
     pivot_m_[k][0] = pivot_[k][0].lo;
     pivot_m_[k][1] = pivot_[k][1].lo;
     pivot_error_[k] = up(std::max(pivot_[k][0].hi - pivot_[k][0].lo, pivot_[k][1].hi - pivot_[k][1].lo));

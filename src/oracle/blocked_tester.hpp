@@ -17,6 +17,8 @@
 
 #include <hipair/model.hpp>
 
+#include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -25,6 +27,15 @@
 #include <vector>
 
 namespace hipair::cspace {
+
+/// BlockedTester's memo of certified part disks: a part's disks (and boundary points) depend
+/// only on its loops' exact geometry, its pivot and the pair's scale exponent, so they are
+/// certified once per process for each such key (the escapement's anchor, in three pairs,
+/// once) and shared by every tester constructed later, on any thread. The disks are the same
+/// as without the memo. On by default; tests turn it off to compare.
+std::atomic<bool>& part_disk_memo();
+/// Testers that took a part's disks from the memo (tests).
+std::atomic<std::size_t>& part_disk_memo_hits();
 
 class BlockedTester {
   friend struct BlockedTesterProbe;   // tests: the disk sweep against every pair

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <random>
 #include <string>
@@ -447,6 +448,65 @@ TEST(CSpaceDescartes, FilteredDyadicRefinementTakesTheExactSteps) {
   }
   EXPECT_GT(refined, 300);
   EXPECT_GT(exact_hits, 50);   // 86 of 200 with this seed (a bisection of [a, b] meets the root when it is a midpoint)
+}
+
+// equal(a, b), the equality test that skips compare()'s 2^-20 refinement, is compare(a, b) == 0
+// on generated numbers: the roots of p against the roots of p times more factors (the same
+// numbers with other polynomials and other isolating intervals; irrational ones from p's
+// quadratic factors), of p times a factor with a root 2^-100 from a planted root or
+// x^2 - (c + 1) beside x^2 - c (distinct numbers whose enclosures overlap), and copies of p's
+// roots refined to random widths (the same polynomial, nested intervals).
+TEST(CSpaceDescartes, EqualityIsCompareZero) {
+  Generator generator(23);
+  int pairs = 0, equal_other_polynomial = 0, overlapping_distinct = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Generated g = generator.next();
+    Polynomial q = g.p;
+    switch (generator.uniform(0, 2)) {
+      case 0: {   // an irrational pair beside every quadratic factor's: x^2 - (c + 1) for x^2 - c
+        mpz_class c = generator.big(static_cast<unsigned>(generator.uniform(2, 40))) + 2;
+        q = multiply(q, Polynomial{mpz_class(-c), 0, 1});
+        q = multiply(q, Polynomial{mpz_class(-c - 1), 0, 1});
+        break;
+      }
+      case 1:   // a root 2^-100 beside a planted one
+        if (!g.rational_roots.empty()) {
+          Rational near = g.rational_roots[static_cast<std::size_t>(
+                              generator.uniform(0, static_cast<long>(g.rational_roots.size()) - 1))] +
+                          Rational(mpz_class(1), mpz_class(1) << 100);
+          near.canonicalize();
+          q = multiply(q, Polynomial{-near.get_num(), near.get_den()});
+        }
+        break;
+      default:   // another constant and a far factor: the same roots, other coefficients
+        q = multiply(q, Polynomial{mpz_class(3), mpz_class(7)});
+        q = multiply(q, Polynomial{mpz_class(-5), 0, 1});
+    }
+    std::vector<Real> a = descartes_real_roots(g.p, g.lo, g.hi);
+    const std::vector<Real> b = descartes_real_roots(q, g.lo, g.hi);
+    const std::size_t plain = a.size();
+    for (std::size_t i = 0; i < plain; ++i) {
+      if (a[i].exact) continue;
+      Real refined = a[i];
+      refined.refine_to(Rational(1, mpz_class(1) << generator.uniform(1, 80)));
+      a.push_back(refined);
+    }
+    for (const Real& x : a)
+      for (const Real& y : b) {
+        const bool expected = compare(x, y) == 0;
+        SCOPED_TRACE("trial " + std::to_string(trial) + ": " + x.description() + " and " + y.description());
+        EXPECT_EQ(equal(x, y), expected);
+        EXPECT_EQ(equal(y, x), expected);
+        ++pairs;
+        const bool overlapping = !x.exact && !y.exact && x.lower < y.upper && y.lower < x.upper;
+        if (expected && overlapping && x.polynomial != y.polynomial) ++equal_other_polynomial;
+        if (!expected && overlapping) ++overlapping_distinct;
+      }
+  }
+  std::cout << pairs << " pairs, " << equal_other_polynomial << " equal with other polynomials, "
+            << overlapping_distinct << " distinct with overlapping intervals\n";
+  EXPECT_GT(equal_other_polynomial, 50);
+  EXPECT_GT(overlapping_distinct, 10);
 }
 
 // sign_at(p, x) is the sign of an integer Horner value (shifts for power-of-two denominators,
