@@ -16,6 +16,7 @@
 #include "cspace/crossing_shrink.hpp"
 #include "cspace/cspace_access.hpp"
 #include "cspace/frame_memo.hpp"
+#include "cspace/partial_terms.hpp"
 #include "cspace/scan_memo.hpp"
 #include "cspace/start_filter.hpp"
 #include "curves/pose.hpp"
@@ -491,6 +492,9 @@ struct TrackerData {
   std::vector<std::vector<double>> nearest;
   std::vector<std::vector<TrackInterval>> enclosed;
   cspace::algebra::IntervalPolynomial2 value;
+  cspace::PartialTerms<double> nearest_terms;         // `nearest` and `enclosed`, their partials premultiplied
+  cspace::PartialTerms<TrackInterval> enclosed_terms;  // (bit-for-bit polynomial_partials'; partial_terms.hpp)
+  bool terms = false;                                 // cspace::partial_terms() when the tracker was placed
   double x_min = 0, x_max = 0;   // an abscissa in (x_min, x_max) is strictly inside the edge's extent
   bool x_rotation = false, y_rotation = false;
 };
@@ -512,9 +516,9 @@ std::optional<EdgeSlopes> slopes_from(const TrackerData& data, double x, double 
   // 1. the ordinate by Newton's method in doubles from the last certified point
   double y = 0.5 * (y0.lower + y0.upper);
   for (int i = 0; i < 8; ++i) {
-    kernels::Partials<double> p = kernels::polynomial_partials(data.nearest, x, y, identity);
+    double fy = data.terms ? data.nearest_terms.fy(x, y) : kernels::polynomial_partials(data.nearest, x, y, identity).fy;
     double error = 0;
-    double step = data.value.evaluate(x, y, &error) / p.fy;
+    double step = data.value.evaluate(x, y, &error) / fy;
     if (!std::isfinite(step)) return std::nullopt;
     y -= step;
     if (std::abs(step) <= 1e-16 * std::max(1.0, std::abs(y))) break;
@@ -544,9 +548,15 @@ std::optional<EdgeSlopes> slopes_from(const TrackerData& data, double x, double 
   for (int attempt = 0; attempt < 4 && !certified; ++attempt) {
     TrackInterval Y(KInterval(detail::down(std::min(y0.lower, y1.lo) - margin),
                               detail::up(std::max(y0.upper, y1.hi) + margin)));
-    kernels::Partials<TrackInterval> box = kernels::polynomial_partials(data.enclosed, X, Y, identity);
-    if (box.fy.sign() == 2 || box.fy.sign() == 0) return std::nullopt;
-    KInterval q = box.fx / box.fy;
+    std::pair<TrackInterval, TrackInterval> box;   // F_x, F_y on X x Y
+    if (data.terms) {
+      box = data.enclosed_terms.first(X, Y);
+    } else {
+      kernels::Partials<TrackInterval> all = kernels::polynomial_partials(data.enclosed, X, Y, identity);
+      box = {all.fx, all.fy};
+    }
+    if (box.second.sign() == 2 || box.second.sign() == 0) return std::nullopt;
+    KInterval q = box.first / box.second;
     double slope = std::max(std::abs(q.lo), std::abs(q.hi));
     if (!std::isfinite(slope)) return std::nullopt;
     double reach = detail::up(detail::up(slope) * dx);
@@ -557,7 +567,8 @@ std::optional<EdgeSlopes> slopes_from(const TrackerData& data, double x, double 
   if (!certified) return std::nullopt;
   // 4. the slopes on {x} x Y1
   const TrackInterval X1(KInterval::point(x)), Y1(y1);
-  kernels::Partials<TrackInterval> at = kernels::polynomial_partials(data.enclosed, X1, Y1, identity);
+  kernels::Partials<TrackInterval> at =
+      data.terms ? data.enclosed_terms.all(X1, Y1) : kernels::polynomial_partials(data.enclosed, X1, Y1, identity);
   if (at.fy.sign() == 2 || at.fy.sign() == 0) return std::nullopt;
   kernels::Slopes<TrackInterval> chart_slopes = kernels::implicit_slopes(at.fx, at.fy, at.fxx, at.fxy, at.fyy);
   auto axis_slopes = [](bool rotation, const TrackInterval& t) {
@@ -610,6 +621,12 @@ std::optional<EdgeSlopes> track_derivatives(const CSpace& space, EdgeId id, doub
         data->enclosed[i].push_back(KInterval::enclose(mpq_class(coefficient)));
       }
     data->value = cspace::algebra::IntervalPolynomial2(raw_edge.support);
+    data->terms = cspace::partial_terms();
+    if (data->terms) {
+      auto identity = [](const auto& v) { return v; };
+      data->nearest_terms = cspace::PartialTerms<double>(data->nearest, identity);
+      data->enclosed_terms = cspace::PartialTerms<TrackInterval>(data->enclosed, identity);
+    }
     data->x_rotation = chart.x_axis.kind != cspace::ChartAxis::Kind::translation;
     data->y_rotation = chart.y_axis.kind != cspace::ChartAxis::Kind::translation;
     tracker.space_ = &impl;
