@@ -207,6 +207,12 @@ class Culler {
       travel_x_[side] = kernels::hull(Interval::enclose(x1), Interval::enclose(x2));
       travel_y_[side] = kernels::hull(Interval::enclose(y1), Interval::enclose(y2));
     }
+    auto on_axis = [](const Point& u) {
+      return (sgn(u.y) == 0 && (u.x == 1 || u.x == -1)) || (sgn(u.x) == 0 && (u.y == 1 || u.y == -1));
+    };
+    axis_normals_ = first.kind != MotionKind::rotation && second.kind != MotionKind::rotation &&
+                    (first.kind != MotionKind::translation || on_axis(first.normal)) &&
+                    (second.kind != MotionKind::translation || on_axis(second.normal));
     if (first.kind == MotionKind::rotation && second.kind == MotionKind::rotation) {
       Rational d2 = squared_length(difference(first.pivot, second.pivot));
       same_pivot_ = sgn(d2) == 0;
@@ -224,6 +230,27 @@ class Culler {
   /// the feature's static box).
   SweptFeature describe_static(const BodyFeature& feature) const {
     SweptFeature swept;
+    if (axis_normals_ && feature.ref.kind != FeatureRef::Kind::arc) {
+      // every projection on an axis: projection_range's enclose_dot is +-enclose of a
+      // coordinate, and a segment's range the hull over its ends (the hull of negated
+      // enclosures is the negated hull), so each point's two enclosures are taken once
+      const bool vertex = feature.ref.kind == FeatureRef::Kind::vertex;
+      const Point& p = vertex ? feature.point : feature.edge->source;
+      Interval x = Interval::enclose(p.x), y = Interval::enclose(p.y);
+      if (!vertex) {
+        x = kernels::hull(x, Interval::enclose(feature.edge->target.x));
+        y = kernels::hull(y, Interval::enclose(feature.edge->target.y));
+      }
+      auto along = [&](const Point& unit) {
+        if (sgn(unit.y) == 0) return unit.x == 1 ? x : -x;
+        return unit.y == 1 ? y : -y;
+      };
+      for (int k = 0; k < 2; ++k)
+        if (motion_[k].kind == MotionKind::translation) swept.normal[k] = along(motion_[k].normal);
+      swept.box_x = x;
+      swept.box_y = y;
+      return swept;
+    }
     for (int k = 0; k < 2; ++k) {
       if (motion_[k].kind == MotionKind::rotation)
         swept.radial[k] = radial_range(feature, motion_[k].pivot);
@@ -286,6 +313,7 @@ class Culler {
 
   PartMotion motion_[2];
   Interval travel_x_[2], travel_y_[2];   // a translating side's travel (travel())
+  bool axis_normals_ = false;             // no rotation, every translation normal +-(1, 0) or +-(0, 1)
   bool same_pivot_ = false;
   bool parallel_ = false;
   Interval pivot_distance_;
@@ -943,7 +971,10 @@ bool angle_before(const Direction& a, const Direction& b) {
 // tangents, `segments` with their directions (indices into the parts' feature lists).
 struct DirectedFeature {
   int index;
-  Direction out, in;   // vertex: tangents; segment: out = direction
+  // into the generator's per-edge directions (no copies of their rationals): vertex: its two
+  // tangents; segment: out = its direction, in unused (null)
+  const Direction* out;
+  const Direction* in;
 };
 
 std::vector<std::pair<int, int>> cone_pairs(const std::vector<DirectedFeature>& vertices,
@@ -951,33 +982,35 @@ std::vector<std::pair<int, int>> cone_pairs(const std::vector<DirectedFeature>& 
   std::vector<std::pair<int, int>> result;
   if (segments.empty()) return result;
   std::sort(segments.begin(), segments.end(),
-            [](const DirectedFeature& a, const DirectedFeature& b) { return angle_before(a.out, b.out); });
+            [](const DirectedFeature& a, const DirectedFeature& b) { return angle_before(*a.out, *b.out); });
   const std::size_t n = segments.size();
   for (const DirectedFeature& v : vertices) {
-    auto inside = [&](const Direction& t) { return cross_sign(v.out, t) >= 0 && cross_sign(v.in, t) <= 0; };
+    const Direction& out = *v.out;
+    const Direction& in = *v.in;
+    auto inside = [&](const Direction& t) { return cross_sign(out, t) >= 0 && cross_sign(in, t) <= 0; };
     // walk cyclically from the first direction at or after `start` while inside the arc
     auto walk = [&](const Direction& start) {
       std::size_t first = static_cast<std::size_t>(
           std::lower_bound(segments.begin(), segments.end(), start,
-                           [](const DirectedFeature& s, const Direction& u) { return angle_before(s.out, u); }) -
+                           [](const DirectedFeature& s, const Direction& u) { return angle_before(*s.out, u); }) -
           segments.begin());
       for (std::size_t k = 0; k < n; ++k) {
         const DirectedFeature& s = segments[(first + k) % n];
-        if (!inside(s.out)) break;
+        if (!inside(*s.out)) break;
         result.emplace_back(v.index, s.index);
       }
     };
-    int turn = cross_sign(v.in, v.out);
+    int turn = cross_sign(in, out);
     if (turn > 0) {
-      walk(v.in.negated());   // the cone from -in counter-clockwise to -out
-    } else if (turn == 0 && sgn(dot(v.in.p, v.out.p)) > 0) {
-      walk(v.in.negated());   // a straight vertex: the directions -out and +out
-      walk(v.out);
+      walk(in.negated());   // the cone from -in counter-clockwise to -out
+    } else if (turn == 0 && sgn(dot(in.p, out.p)) > 0) {
+      walk(in.negated());   // a straight vertex: the directions -out and +out
+      walk(out);
     } else if (turn == 0) {
-      walk(v.out);            // a spike (in = -out): the half-plane from out to -out
+      walk(out);            // a spike (in = -out): the half-plane from out to -out
     } else {
       for (const DirectedFeature& s : segments)   // (no feature: strictly reflex vertices are skipped)
-        if (inside(s.out)) result.emplace_back(v.index, s.index);
+        if (inside(*s.out)) result.emplace_back(v.index, s.index);
     }
   }
   return result;
@@ -1330,6 +1363,7 @@ struct CurveGenerator::Data {
   // The front end's chart-independent data: the features' directions (cone_pairs) and their
   // homogeneous integer forms (front_contact), indexed through front_index by feature index.
   std::vector<DirectedFeature> vertices_a, segments_a, vertices_b, segments_b;
+  std::vector<Direction> directions_a, directions_b;   // per edge of the part: what the above point to
   std::vector<std::size_t> front_index_a, front_index_b;
   std::vector<FrontVertex> front_vertices_a, front_vertices_b;
   std::vector<FrontSegment> front_segments_a, front_segments_b;
@@ -1372,7 +1406,8 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
     const Shift shift_b = shift_of(model.parts.at(axes.second), axes.second_moves, axes.first_moves ? 1 : 0);
     // segments of one part meet the other part's vertices: u = vertex shift - segment shift
     auto prepare = [&](std::size_t part_index, const std::vector<BodyFeature>& features, const Shift& own,
-                       const Shift& other, std::vector<DirectedFeature>& vertices, std::vector<DirectedFeature>& segments,
+                       const Shift& other, std::vector<Direction>& directions, std::vector<DirectedFeature>& vertices,
+                       std::vector<DirectedFeature>& segments,
                        std::vector<std::size_t>& index, std::vector<FrontVertex>& front_vertices,
                        std::vector<FrontSegment>& front_segments) {
       const IntegerShift u = integer_shift(difference(other.x, own.x), difference(other.y, own.y));
@@ -1381,7 +1416,6 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
       const Part& part = model.parts.at(part_index);
       std::vector<std::size_t> loop_start;
       std::vector<FrontEdge> edges;
-      std::vector<Direction> directions;
       std::size_t edge_count = 0;
       for (const Loop& loop : part.loops) edge_count += loop.edges.size();
       edges.reserve(edge_count);
@@ -1411,19 +1445,19 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
         if (ref.kind == FeatureRef::Kind::vertex) {
           // tangents: out along this edge, in along the previous one (feature_directions)
           const std::size_t previous = loop_start[ref.loop] + (ref.edge + n - 1) % n;
-          vertices.push_back(DirectedFeature{static_cast<int>(i), directions[e], directions[previous]});
+          vertices.push_back(DirectedFeature{static_cast<int>(i), &directions[e], &directions[previous]});
           index[i] = front_vertices.size();
           front_vertices.push_back(FrontVertex{edges[e].q1});
         } else {
-          segments.push_back(DirectedFeature{static_cast<int>(i), directions[e], Direction::of(Point{Rational(0), Rational(0)})});
+          segments.push_back(DirectedFeature{static_cast<int>(i), &directions[e], nullptr});
           index[i] = front_segments.size();
           front_segments.push_back(front_segment(edges[e], u));
         }
       }
     };
-    prepare(axes.first, d.features_a, shift_a, shift_b, d.vertices_a, d.segments_a, d.front_index_a, d.front_vertices_a,
+    prepare(axes.first, d.features_a, shift_a, shift_b, d.directions_a, d.vertices_a, d.segments_a, d.front_index_a, d.front_vertices_a,
             d.front_segments_a);
-    prepare(axes.second, d.features_b, shift_b, shift_a, d.vertices_b, d.segments_b, d.front_index_b, d.front_vertices_b,
+    prepare(axes.second, d.features_b, shift_b, shift_a, d.directions_b, d.vertices_b, d.segments_b, d.front_index_b, d.front_vertices_b,
             d.front_segments_b);
   }
   if (options.cull_blocked_space) {

@@ -168,21 +168,16 @@ std::vector<BodyFeature> part_features(const Model& model, std::size_t part_inde
         if (reflex) {
           if (reflex_skipped) ++*reflex_skipped;
         } else {
-          BodyFeature vertex;
-          vertex.ref = FeatureRef{part_index, l, e, FeatureRef::Kind::vertex};
-          vertex.edge = &edge;
-          vertex.point = edge.source;
+          // built in place (a moved Point re-initialises its rationals)
+          BodyFeature& vertex = features.emplace_back(FeatureRef{part_index, l, e, FeatureRef::Kind::vertex}, &edge,
+                                                      edge.source, std::string{});
           if (labels) vertex.label = feature_label(model, vertex.ref);
-          features.push_back(std::move(vertex));
         }
       }
-      BodyFeature curve;
-      curve.ref = FeatureRef{part_index, l, e,
-                             edge.is_arc() ? FeatureRef::Kind::arc : FeatureRef::Kind::segment};
-      curve.edge = &edge;
-      curve.point = edge.source;
+      BodyFeature& curve = features.emplace_back(
+          FeatureRef{part_index, l, e, edge.is_arc() ? FeatureRef::Kind::arc : FeatureRef::Kind::segment}, &edge,
+          edge.source, std::string{});
       if (labels) curve.label = edge_name(edge, l, e);
-      features.push_back(std::move(curve));
     }
   }
   return features;
