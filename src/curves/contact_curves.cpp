@@ -1846,10 +1846,10 @@ std::vector<ChartAxis> rotation_charts(const Motion& motion) {
 template <class Visit>
 void for_each_curve_feature(const Model& model, std::size_t part_index, Visit&& visit) {
   const Part& part = model.parts.at(part_index);
+  BodyFeature feature;   // one, re-assigned: its point keeps its allocation
   for (std::size_t l = 0; l < part.loops.size(); ++l)
     for (std::size_t e = 0; e < part.loops[l].edges.size(); ++e) {
       const Edge& edge = part.loops[l].edges[e];
-      BodyFeature feature;
       feature.ref = FeatureRef{part_index, l, e, edge.is_arc() ? FeatureRef::Kind::arc : FeatureRef::Kind::segment};
       feature.edge = &edge;
       feature.point = edge.source;
