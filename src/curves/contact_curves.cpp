@@ -100,6 +100,8 @@ Interval radial_range(const BodyFeature& feature, const Point& center) {
   return Interval(near, far);
 }
 
+}  // namespace
+
 // Enclosure of u . p. For the axis directions (1, 0) and (0, 1) (every translating pair along
 // the axes, and every feature's box) u . p is the coordinate itself: the same rational, without
 // two products, a sum and their canonicalisations (the generator's construction spent 40 % of
@@ -119,7 +121,6 @@ Interval enclose_dot(const Point& unit, const Point& p) {
   return Interval::enclose(dot(unit, p));
 }
 
-// Certified [lo, hi] of u . p over the feature's points, u an exact unit vector.
 Interval projection_range(const BodyFeature& feature, const Point& unit) {
   const Edge& edge = *feature.edge;
   if (feature.ref.kind == FeatureRef::Kind::vertex) return enclose_dot(unit, feature.point);
@@ -133,6 +134,28 @@ Interval projection_range(const BodyFeature& feature, const Point& unit) {
     range.lo = std::min(range.lo, (centre - radius).lo);
   return range;
 }
+
+AxisRanges axis_ranges(const BodyFeature& feature) {
+  if (feature.ref.kind == FeatureRef::Kind::arc) throw GeometryError("internal: axis_ranges takes vertices and segments");
+  const bool vertex = feature.ref.kind == FeatureRef::Kind::vertex;
+  const Point& p = vertex ? feature.point : feature.edge->source;
+  AxisRanges ranges{Interval::enclose(p.x), Interval::enclose(p.y)};
+  if (!vertex) {
+    ranges.x = kernels::hull(ranges.x, Interval::enclose(feature.edge->target.x));
+    ranges.y = kernels::hull(ranges.y, Interval::enclose(feature.edge->target.y));
+  }
+  return ranges;
+}
+
+Interval axis_projection(const AxisRanges& ranges, const Point& unit) {
+  if (sgn(unit.y) == 0 && unit.x == 1) return ranges.x;
+  if (sgn(unit.y) == 0 && unit.x == -1) return -ranges.x;
+  if (sgn(unit.x) == 0 && unit.y == 1) return ranges.y;
+  if (sgn(unit.x) == 0 && unit.y == -1) return -ranges.y;
+  throw GeometryError("internal: axis_projection takes the units +-(1, 0) and +-(0, 1)");
+}
+
+namespace {
 
 bool disjoint(const Interval& a, const Interval& b) { return a.hi < b.lo || b.hi < a.lo; }
 
@@ -231,24 +254,13 @@ class Culler {
   SweptFeature describe_static(const BodyFeature& feature) const {
     SweptFeature swept;
     if (axis_normals_ && feature.ref.kind != FeatureRef::Kind::arc) {
-      // every projection on an axis: projection_range's enclose_dot is +-enclose of a
-      // coordinate, and a segment's range the hull over its ends (the hull of negated
-      // enclosures is the negated hull), so each point's two enclosures are taken once
-      const bool vertex = feature.ref.kind == FeatureRef::Kind::vertex;
-      const Point& p = vertex ? feature.point : feature.edge->source;
-      Interval x = Interval::enclose(p.x), y = Interval::enclose(p.y);
-      if (!vertex) {
-        x = kernels::hull(x, Interval::enclose(feature.edge->target.x));
-        y = kernels::hull(y, Interval::enclose(feature.edge->target.y));
-      }
-      auto along = [&](const Point& unit) {
-        if (sgn(unit.y) == 0) return unit.x == 1 ? x : -x;
-        return unit.y == 1 ? y : -y;
-      };
+      // every projection on an axis: each point's two enclosures once (axis_ranges), the same
+      // intervals as projection_range
+      const AxisRanges ranges = axis_ranges(feature);
       for (int k = 0; k < 2; ++k)
-        if (motion_[k].kind == MotionKind::translation) swept.normal[k] = along(motion_[k].normal);
-      swept.box_x = x;
-      swept.box_y = y;
+        if (motion_[k].kind == MotionKind::translation) swept.normal[k] = axis_projection(ranges, motion_[k].normal);
+      swept.box_x = ranges.x;
+      swept.box_y = ranges.y;
       return swept;
     }
     for (int k = 0; k < 2; ++k) {
