@@ -72,9 +72,11 @@ void require_length_coordinates_in_range(const Model& model, const std::vector<s
   }
   if (!lengths) return;
   // |value| < 2^1016 exactly: the numerator has fewer bits than the denominator plus 1016
+  // (comparisons with +-bound: no absolute value copied per coordinate)
   static const Rational limit(mpz_class(1) << 1016);
+  static const Rational negative_limit(-limit);
   auto check = [&](const Rational& value, const Part& part) {
-    if (abs(value) < limit) return;
+    if (value < limit && value > negative_limit) return;
     throw GeometryError("part '" + part.name + "' (" + part.pointer + ") has lengths beyond 2^1016 mm (about 7e305 mm) and "
                         "a pair of it has lengths as C-space coordinates, which must stay within the range of doubles: "
                         "scale the model down");
@@ -84,10 +86,11 @@ void require_length_coordinates_in_range(const Model& model, const std::vector<s
   // it gave a wrong cell (free where the parts overlap) and a failed self-check: refused.
   // Polygon pairs are built by exact CGAL traits and stay correct there (tests/unit/cspace_scale_test.cpp).
   static const Rational tiny(mpz_class(1), mpz_class(1) << 1000);
-  Rational largest(0);
+  static const Rational negative_tiny(-tiny);
+  bool below_tiny = true;   // every noted |value| < tiny (the largest below it)
   bool arcs = false;
   auto note = [&](const Rational& value) {
-    if (abs(value) > largest) largest = abs(value);
+    if (below_tiny && !(value < tiny && value > negative_tiny)) below_tiny = false;
   };
   for (std::size_t index : parts) {
     const Part& part = model.parts.at(index);
@@ -104,7 +107,7 @@ void require_length_coordinates_in_range(const Model& model, const std::vector<s
         }
       }
   }
-  if (arcs && largest < tiny) {
+  if (arcs && below_tiny) {
     const Part& part = model.parts.at(parts.front());
     throw GeometryError("part '" + part.name + "' (" + part.pointer + ") and the part it is paired with have all their lengths "
                         "below 2^-1000 mm (about 9e-302 mm), have arcs, and a pair of them has lengths as C-space "

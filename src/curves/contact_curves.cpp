@@ -100,17 +100,27 @@ Interval radial_range(const BodyFeature& feature, const Point& center) {
   return Interval(near, far);
 }
 
+}  // namespace
+
 // Enclosure of u . p. For the axis directions (1, 0) and (0, 1) (every translating pair along
 // the axes, and every feature's box) u . p is the coordinate itself: the same rational, without
 // two products, a sum and their canonicalisations (the generator's construction spent 40 % of
 // its time here on polygon pairs).
+// The negated axes (the normal (-1, 0) of a translation along (0, 1)) take the negated
+// enclosure: Interval::enclose truncates toward zero and widens away from it by one ulp, both
+// symmetric under negation, so enclose(-q) is exactly -enclose(q) (enclose_dot_axis_fast_path
+// in the tests compares the two).
 Interval enclose_dot(const Point& unit, const Point& p) {
-  if (sgn(unit.y) == 0 && unit.x == 1) return Interval::enclose(p.x);
-  if (sgn(unit.x) == 0 && unit.y == 1) return Interval::enclose(p.y);
+  if (sgn(unit.y) == 0) {
+    if (unit.x == 1) return Interval::enclose(p.x);
+    if (unit.x == -1) return -Interval::enclose(p.x);
+  } else if (sgn(unit.x) == 0) {
+    if (unit.y == 1) return Interval::enclose(p.y);
+    if (unit.y == -1) return -Interval::enclose(p.y);
+  }
   return Interval::enclose(dot(unit, p));
 }
 
-// Certified [lo, hi] of u . p over the feature's points, u an exact unit vector.
 Interval projection_range(const BodyFeature& feature, const Point& unit) {
   const Edge& edge = *feature.edge;
   if (feature.ref.kind == FeatureRef::Kind::vertex) return enclose_dot(unit, feature.point);
@@ -124,6 +134,28 @@ Interval projection_range(const BodyFeature& feature, const Point& unit) {
     range.lo = std::min(range.lo, (centre - radius).lo);
   return range;
 }
+
+AxisRanges axis_ranges(const BodyFeature& feature) {
+  if (feature.ref.kind == FeatureRef::Kind::arc) throw GeometryError("internal: axis_ranges takes vertices and segments");
+  const bool vertex = feature.ref.kind == FeatureRef::Kind::vertex;
+  const Point& p = vertex ? feature.point : feature.edge->source;
+  AxisRanges ranges{Interval::enclose(p.x), Interval::enclose(p.y)};
+  if (!vertex) {
+    ranges.x = kernels::hull(ranges.x, Interval::enclose(feature.edge->target.x));
+    ranges.y = kernels::hull(ranges.y, Interval::enclose(feature.edge->target.y));
+  }
+  return ranges;
+}
+
+Interval axis_projection(const AxisRanges& ranges, const Point& unit) {
+  if (sgn(unit.y) == 0 && unit.x == 1) return ranges.x;
+  if (sgn(unit.y) == 0 && unit.x == -1) return -ranges.x;
+  if (sgn(unit.x) == 0 && unit.y == 1) return ranges.y;
+  if (sgn(unit.x) == 0 && unit.y == -1) return -ranges.y;
+  throw GeometryError("internal: axis_projection takes the units +-(1, 0) and +-(0, 1)");
+}
+
+namespace {
 
 bool disjoint(const Interval& a, const Interval& b) { return a.hi < b.lo || b.hi < a.lo; }
 
@@ -187,6 +219,23 @@ PartMotion part_motion(const Part& part, bool moves, const ChartAxis& axis) {
 class Culler {
  public:
   Culler(const PartMotion& first, const PartMotion& second) : motion_{first, second} {
+    // a translating part's travel over the chart box, the same for each of its features
+    for (int side = 0; side < 2; ++side) {
+      const PartMotion& own = motion_[side];
+      if (own.kind != MotionKind::translation) continue;
+      Rational x1 = own.lo * own.direction.x;
+      Rational x2 = own.hi * own.direction.x;
+      Rational y1 = own.lo * own.direction.y;
+      Rational y2 = own.hi * own.direction.y;
+      travel_x_[side] = kernels::hull(Interval::enclose(x1), Interval::enclose(x2));
+      travel_y_[side] = kernels::hull(Interval::enclose(y1), Interval::enclose(y2));
+    }
+    auto on_axis = [](const Point& u) {
+      return (sgn(u.y) == 0 && (u.x == 1 || u.x == -1)) || (sgn(u.x) == 0 && (u.y == 1 || u.y == -1));
+    };
+    axis_normals_ = first.kind != MotionKind::rotation && second.kind != MotionKind::rotation &&
+                    (first.kind != MotionKind::translation || on_axis(first.normal)) &&
+                    (second.kind != MotionKind::translation || on_axis(second.normal));
     if (first.kind == MotionKind::rotation && second.kind == MotionKind::rotation) {
       Rational d2 = squared_length(difference(first.pivot, second.pivot));
       same_pivot_ = sgn(d2) == 0;
@@ -204,6 +253,16 @@ class Culler {
   /// the feature's static box).
   SweptFeature describe_static(const BodyFeature& feature) const {
     SweptFeature swept;
+    if (axis_normals_ && feature.ref.kind != FeatureRef::Kind::arc) {
+      // every projection on an axis: each point's two enclosures once (axis_ranges), the same
+      // intervals as projection_range
+      const AxisRanges ranges = axis_ranges(feature);
+      for (int k = 0; k < 2; ++k)
+        if (motion_[k].kind == MotionKind::translation) swept.normal[k] = axis_projection(ranges, motion_[k].normal);
+      swept.box_x = ranges.x;
+      swept.box_y = ranges.y;
+      return swept;
+    }
     for (int k = 0; k < 2; ++k) {
       if (motion_[k].kind == MotionKind::rotation)
         swept.radial[k] = radial_range(feature, motion_[k].pivot);
@@ -217,14 +276,9 @@ class Culler {
 
   /// Adds a translating part's travel over the chart box to a static description.
   SweptFeature travel(SweptFeature swept, int side) const {
-    const PartMotion& own = motion_[side];
-    if (own.kind == MotionKind::translation) {
-      Rational x1 = own.lo * own.direction.x;
-      Rational x2 = own.hi * own.direction.x;
-      Rational y1 = own.lo * own.direction.y;
-      Rational y2 = own.hi * own.direction.y;
-      swept.box_x = swept.box_x + kernels::hull(Interval::enclose(x1), Interval::enclose(x2));
-      swept.box_y = swept.box_y + kernels::hull(Interval::enclose(y1), Interval::enclose(y2));
+    if (motion_[side].kind == MotionKind::translation) {
+      swept.box_x = swept.box_x + travel_x_[side];
+      swept.box_y = swept.box_y + travel_y_[side];
     }
     return swept;
   }
@@ -270,6 +324,8 @@ class Culler {
   }
 
   PartMotion motion_[2];
+  Interval travel_x_[2], travel_y_[2];   // a translating side's travel (travel())
+  bool axis_normals_ = false;             // no rotation, every translation normal +-(1, 0) or +-(0, 1)
   bool same_pivot_ = false;
   bool parallel_ = false;
   Interval pivot_distance_;
@@ -901,6 +957,10 @@ struct Direction {
   Point p;
   Interval x, y;
   static Direction of(const Point& p) { return Direction{p, Interval::enclose(p.x), Interval::enclose(p.y)}; }
+  static Direction of(Point&& p) {
+    Interval x = Interval::enclose(p.x), y = Interval::enclose(p.y);
+    return Direction{std::move(p), x, y};
+  }
   Direction negated() const { return Direction{Point{Rational(-p.x), Rational(-p.y)}, -x, -y}; }
 };
 
@@ -923,7 +983,10 @@ bool angle_before(const Direction& a, const Direction& b) {
 // tangents, `segments` with their directions (indices into the parts' feature lists).
 struct DirectedFeature {
   int index;
-  Direction out, in;   // vertex: tangents; segment: out = direction
+  // into the generator's per-edge directions (no copies of their rationals): vertex: its two
+  // tangents; segment: out = its direction, in unused (null)
+  const Direction* out;
+  const Direction* in;
 };
 
 std::vector<std::pair<int, int>> cone_pairs(const std::vector<DirectedFeature>& vertices,
@@ -931,33 +994,35 @@ std::vector<std::pair<int, int>> cone_pairs(const std::vector<DirectedFeature>& 
   std::vector<std::pair<int, int>> result;
   if (segments.empty()) return result;
   std::sort(segments.begin(), segments.end(),
-            [](const DirectedFeature& a, const DirectedFeature& b) { return angle_before(a.out, b.out); });
+            [](const DirectedFeature& a, const DirectedFeature& b) { return angle_before(*a.out, *b.out); });
   const std::size_t n = segments.size();
   for (const DirectedFeature& v : vertices) {
-    auto inside = [&](const Direction& t) { return cross_sign(v.out, t) >= 0 && cross_sign(v.in, t) <= 0; };
+    const Direction& out = *v.out;
+    const Direction& in = *v.in;
+    auto inside = [&](const Direction& t) { return cross_sign(out, t) >= 0 && cross_sign(in, t) <= 0; };
     // walk cyclically from the first direction at or after `start` while inside the arc
     auto walk = [&](const Direction& start) {
       std::size_t first = static_cast<std::size_t>(
           std::lower_bound(segments.begin(), segments.end(), start,
-                           [](const DirectedFeature& s, const Direction& u) { return angle_before(s.out, u); }) -
+                           [](const DirectedFeature& s, const Direction& u) { return angle_before(*s.out, u); }) -
           segments.begin());
       for (std::size_t k = 0; k < n; ++k) {
         const DirectedFeature& s = segments[(first + k) % n];
-        if (!inside(s.out)) break;
+        if (!inside(*s.out)) break;
         result.emplace_back(v.index, s.index);
       }
     };
-    int turn = cross_sign(v.in, v.out);
+    int turn = cross_sign(in, out);
     if (turn > 0) {
-      walk(v.in.negated());   // the cone from -in counter-clockwise to -out
-    } else if (turn == 0 && sgn(dot(v.in.p, v.out.p)) > 0) {
-      walk(v.in.negated());   // a straight vertex: the directions -out and +out
-      walk(v.out);
+      walk(in.negated());   // the cone from -in counter-clockwise to -out
+    } else if (turn == 0 && sgn(dot(in.p, out.p)) > 0) {
+      walk(in.negated());   // a straight vertex: the directions -out and +out
+      walk(out);
     } else if (turn == 0) {
-      walk(v.out);            // a spike (in = -out): the half-plane from out to -out
+      walk(out);            // a spike (in = -out): the half-plane from out to -out
     } else {
       for (const DirectedFeature& s : segments)   // (no feature: strictly reflex vertices are skipped)
-        if (inside(s.out)) result.emplace_back(v.index, s.index);
+        if (inside(*s.out)) result.emplace_back(v.index, s.index);
     }
   }
   return result;
@@ -1298,6 +1363,7 @@ struct CurveGenerator::Data {
   // The front end's chart-independent data: the features' directions (cone_pairs) and their
   // homogeneous integer forms (front_contact), indexed through front_index by feature index.
   std::vector<DirectedFeature> vertices_a, segments_a, vertices_b, segments_b;
+  std::vector<Direction> directions_a, directions_b;   // per edge of the part: what the above point to
   std::vector<std::size_t> front_index_a, front_index_b;
   std::vector<FrontVertex> front_vertices_a, front_vertices_b;
   std::vector<FrontSegment> front_segments_a, front_segments_b;
@@ -1340,7 +1406,8 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
     const Shift shift_b = shift_of(model.parts.at(axes.second), axes.second_moves, axes.first_moves ? 1 : 0);
     // segments of one part meet the other part's vertices: u = vertex shift - segment shift
     auto prepare = [&](std::size_t part_index, const std::vector<BodyFeature>& features, const Shift& own,
-                       const Shift& other, std::vector<DirectedFeature>& vertices, std::vector<DirectedFeature>& segments,
+                       const Shift& other, std::vector<Direction>& directions, std::vector<DirectedFeature>& vertices,
+                       std::vector<DirectedFeature>& segments,
                        std::vector<std::size_t>& index, std::vector<FrontVertex>& front_vertices,
                        std::vector<FrontSegment>& front_segments) {
       const IntegerShift u = integer_shift(difference(other.x, own.x), difference(other.y, own.y));
@@ -1349,7 +1416,10 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
       const Part& part = model.parts.at(part_index);
       std::vector<std::size_t> loop_start;
       std::vector<FrontEdge> edges;
-      std::vector<Direction> directions;
+      std::size_t edge_count = 0;
+      for (const Loop& loop : part.loops) edge_count += loop.edges.size();
+      edges.reserve(edge_count);
+      directions.reserve(edge_count);
       for (const Loop& loop : part.loops) {
         loop_start.push_back(edges.size());
         const std::size_t n = loop.edges.size();
@@ -1375,19 +1445,19 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
         if (ref.kind == FeatureRef::Kind::vertex) {
           // tangents: out along this edge, in along the previous one (feature_directions)
           const std::size_t previous = loop_start[ref.loop] + (ref.edge + n - 1) % n;
-          vertices.push_back(DirectedFeature{static_cast<int>(i), directions[e], directions[previous]});
+          vertices.push_back(DirectedFeature{static_cast<int>(i), &directions[e], &directions[previous]});
           index[i] = front_vertices.size();
           front_vertices.push_back(FrontVertex{edges[e].q1});
         } else {
-          segments.push_back(DirectedFeature{static_cast<int>(i), directions[e], Direction::of(Point{Rational(0), Rational(0)})});
+          segments.push_back(DirectedFeature{static_cast<int>(i), &directions[e], nullptr});
           index[i] = front_segments.size();
           front_segments.push_back(front_segment(edges[e], u));
         }
       }
     };
-    prepare(axes.first, d.features_a, shift_a, shift_b, d.vertices_a, d.segments_a, d.front_index_a, d.front_vertices_a,
+    prepare(axes.first, d.features_a, shift_a, shift_b, d.directions_a, d.vertices_a, d.segments_a, d.front_index_a, d.front_vertices_a,
             d.front_segments_a);
-    prepare(axes.second, d.features_b, shift_b, shift_a, d.vertices_b, d.segments_b, d.front_index_b, d.front_vertices_b,
+    prepare(axes.second, d.features_b, shift_b, shift_a, d.directions_b, d.vertices_b, d.segments_b, d.front_index_b, d.front_vertices_b,
             d.front_segments_b);
   }
   if (options.cull_blocked_space) {
@@ -1774,10 +1844,10 @@ std::vector<ChartAxis> rotation_charts(const Motion& motion) {
 template <class Visit>
 void for_each_curve_feature(const Model& model, std::size_t part_index, Visit&& visit) {
   const Part& part = model.parts.at(part_index);
+  BodyFeature feature;   // one, re-assigned: its point keeps its allocation
   for (std::size_t l = 0; l < part.loops.size(); ++l)
     for (std::size_t e = 0; e < part.loops[l].edges.size(); ++e) {
       const Edge& edge = part.loops[l].edges[e];
-      BodyFeature feature;
       feature.ref = FeatureRef{part_index, l, e, edge.is_arc() ? FeatureRef::Kind::arc : FeatureRef::Kind::segment};
       feature.edge = &edge;
       feature.point = edge.source;

@@ -288,4 +288,23 @@ std::pair<kernels::Interval, kernels::Interval> rotation_enclosure(bool half_tur
 /// double, for drawing and reports: theta = c + 2 atan(t).
 double chart_to_coordinate(const ChartAxis& axis, double chart_value);
 
+struct BodyFeature;   // curves/pose.hpp
+
+/// Certified enclosure of unit . p (unit exact): on the axes +-(1, 0), +-(0, 1) the coordinate's
+/// enclosure, negated on the negative ones (Interval::enclose is symmetric under negation), else
+/// the enclosure of the exact rational dot product.
+kernels::Interval enclose_dot(const Point& unit, const Point& p);
+/// Certified [lo, hi] of unit . p over the points of a feature (the curve generator's swept
+/// ranges and chart extents).
+kernels::Interval projection_range(const BodyFeature& feature, const Point& unit);
+
+/// A vertex's or segment's ranges on (1, 0) and (0, 1), each of its points enclosed once.
+struct AxisRanges {
+  kernels::Interval x, y;
+};
+AxisRanges axis_ranges(const BodyFeature& feature);
+/// The range on the axis unit +-(1, 0) or +-(0, 1) from axis_ranges: the same interval as
+/// projection_range(feature, unit).
+kernels::Interval axis_projection(const AxisRanges& ranges, const Point& unit);
+
 }  // namespace hipair::cspace

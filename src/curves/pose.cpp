@@ -157,33 +157,45 @@ std::vector<BodyFeature> part_features(const Model& model, std::size_t part_inde
                                        bool labels) {
   const Part& part = model.parts.at(part_index);
   std::vector<BodyFeature> features;
+  std::size_t most = 0;   // a vertex and a curve per edge at most (no feature moved by a regrowth)
+  for (const Loop& loop : part.loops) most += 2 * loop.edges.size();
+  features.reserve(most);
   for (std::size_t l = 0; l < part.loops.size(); ++l) {
     const Loop& loop = part.loops[l];
     std::size_t n = loop.edges.size();
+    // each edge's tangent at its source once: a straight edge's is also its tangent at the next
+    // vertex (the incoming one there); an arc's incoming tangent is taken at its target
+    std::vector<kernels::Vector<Rational>> outgoing(n);
+    for (std::size_t e = 0; e < n; ++e) {
+      Point t = edge_tangent(loop.edges[e], loop.edges[e].source);
+      outgoing[e] = kernels::Vector<Rational>{std::move(t.x), std::move(t.y)};
+    }
     for (std::size_t e = 0; e < n; ++e) {
       const Edge& edge = loop.edges[e];
       if (!edge.is_full_circle()) {
-        const Edge& previous = loop.edges[(e + n - 1) % n];
-        Point incoming = edge_tangent(previous, edge.source);
-        Point outgoing = edge_tangent(edge, edge.source);
-        if (kernels::strictly_reflex(to_kernel(incoming), to_kernel(outgoing), [](const Rational& r) { return sgn(r); })) {
+        const std::size_t p = (e + n - 1) % n;
+        const Edge& previous = loop.edges[p];
+        bool reflex;
+        if (previous.is_arc()) {
+          Point t = edge_tangent(previous, edge.source);
+          reflex = kernels::strictly_reflex(kernels::Vector<Rational>{std::move(t.x), std::move(t.y)}, outgoing[e],
+                                            [](const Rational& r) { return sgn(r); });
+        } else {
+          reflex = kernels::strictly_reflex(outgoing[p], outgoing[e], [](const Rational& r) { return sgn(r); });
+        }
+        if (reflex) {
           if (reflex_skipped) ++*reflex_skipped;
         } else {
-          BodyFeature vertex;
-          vertex.ref = FeatureRef{part_index, l, e, FeatureRef::Kind::vertex};
-          vertex.edge = &edge;
-          vertex.point = edge.source;
+          // built in place (a moved Point re-initialises its rationals)
+          BodyFeature& vertex = features.emplace_back(FeatureRef{part_index, l, e, FeatureRef::Kind::vertex}, &edge,
+                                                      edge.source, std::string{});
           if (labels) vertex.label = feature_label(model, vertex.ref);
-          features.push_back(std::move(vertex));
         }
       }
-      BodyFeature curve;
-      curve.ref = FeatureRef{part_index, l, e,
-                             edge.is_arc() ? FeatureRef::Kind::arc : FeatureRef::Kind::segment};
-      curve.edge = &edge;
-      curve.point = edge.source;
+      BodyFeature& curve = features.emplace_back(
+          FeatureRef{part_index, l, e, edge.is_arc() ? FeatureRef::Kind::arc : FeatureRef::Kind::segment}, &edge,
+          edge.source, std::string{});
       if (labels) curve.label = edge_name(edge, l, e);
-      features.push_back(std::move(curve));
     }
   }
   return features;
