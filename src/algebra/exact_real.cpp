@@ -690,32 +690,52 @@ std::string Real::description(const std::string& variable) const {
          ", " + to_exact_string(upper) + ")";
 }
 
+namespace {
+
+// The certified double filter of compare() and equal(): bisect both enclosures in doubles,
+// eight halvings at a time, until they separate (-1: a < b, 1: a > b) or neither can be
+// narrowed further (0: undecided).
+int separated_in_doubles(const Real& a, const Real& b) {
+  DoubleBisection x(a), y(b);
+  for (;;) {
+    if (x.hi() < y.lo()) return -1;
+    if (y.hi() < x.lo()) return 1;
+    bool x_moves = x.advance(8);
+    bool y_moves = y.advance(8);
+    if (!x_moves && !y_moves) return 0;
+  }
+}
+
+// Overlapping isolating intervals of one square-free polynomial (one simple root in each open
+// interval, non-zero signs at the ends): true when the polynomial changes sign over the common
+// part, which then holds the one root of both (false: undecided here).
+bool one_polynomial_one_root(const Real& a, const Real& b) {
+  if (!(a.polynomial == b.polynomial)) return false;
+  const Rational& lo = std::max(a.lower, b.lower);
+  const Rational& hi = std::min(a.upper, b.upper);
+  int s_lo = sign_at(a.polynomial, lo), s_hi = sign_at(a.polynomial, hi);
+  return s_lo != 0 && s_hi != 0 && s_lo != s_hi;
+}
+
+// Overlapping isolating intervals: the numbers are equal iff the gcd of their polynomials has a
+// root in the common part.
+bool common_root_in_overlap(const Real& a, const Real& b) {
+  Polynomial g = gcd(a.polynomial, b.polynomial);
+  if (degree(g) < 1) return false;
+  Rational lo = std::max(a.lower, b.lower), hi = std::min(a.upper, b.upper);
+  SturmSequence sturm(g);
+  return sturm.count(lo, hi) - (sign_at(g, hi) == 0 ? 1 : 0) > 0;
+}
+
+}  // namespace
+
 int compare(const Real& a, const Real& b) {
   if (a.exact) return -b.compare(a.lower);
   if (b.exact) return a.compare(b.lower);
   if (a.upper <= b.lower) return -1;
   if (b.upper <= a.lower) return 1;
-  {
-    // certified double filter: bisect both enclosures in doubles, eight halvings at a time,
-    // until they separate or neither can be narrowed further
-    DoubleBisection x(a), y(b);
-    for (;;) {
-      if (x.hi() < y.lo()) return -1;
-      if (y.hi() < x.lo()) return 1;
-      bool x_moves = x.advance(8);
-      bool y_moves = y.advance(8);
-      if (!x_moves && !y_moves) break;
-    }
-  }
-  if (a.polynomial == b.polynomial) {
-    // one square-free polynomial, one simple root in each open interval, non-zero signs at
-    // the ends: the roots are equal iff the polynomial changes sign over the common part
-    // (which holds one root at most); distinct roots are ordered below
-    const Rational& lo = std::max(a.lower, b.lower);
-    const Rational& hi = std::min(a.upper, b.upper);
-    int s_lo = sign_at(a.polynomial, lo), s_hi = sign_at(a.polynomial, hi);
-    if (s_lo != 0 && s_hi != 0 && s_lo != s_hi) return 0;
-  }
+  if (int s = separated_in_doubles(a, b)) return s;
+  if (one_polynomial_one_root(a, b)) return 0;
   // Overlapping intervals: equal iff the gcd has a root in the common part.
   {
     // distinct numbers usually separate after a few halvings: try that before the gcd
@@ -727,13 +747,7 @@ int compare(const Real& a, const Real& b) {
     if (x.upper <= y.lower) return -1;
     if (y.upper <= x.lower) return 1;
   }
-  Polynomial g = gcd(a.polynomial, b.polynomial);
-  Rational lo = std::max(a.lower, b.lower), hi = std::min(a.upper, b.upper);
-  if (degree(g) >= 1) {
-    SturmSequence sturm(g);
-    int roots = sturm.count(lo, hi) - (sign_at(g, hi) == 0 ? 1 : 0);
-    if (roots > 0) return 0;
-  }
+  if (common_root_in_overlap(a, b)) return 0;
   // distinct numbers: refine copies until their intervals separate (sixteen halvings a round)
   Real x = a, y = b;
   for (;;) {
@@ -750,30 +764,9 @@ bool equal(const Real& a, const Real& b) {
   if (a.exact) return b.compare(a.lower) == 0;
   if (b.exact) return a.compare(b.lower) == 0;
   if (a.upper <= b.lower || b.upper <= a.lower) return false;
-  {
-    // the certified double filter of compare()
-    DoubleBisection x(a), y(b);
-    for (;;) {
-      if (x.hi() < y.lo() || y.hi() < x.lo()) return false;
-      bool x_moves = x.advance(8);
-      bool y_moves = y.advance(8);
-      if (!x_moves && !y_moves) break;
-    }
-  }
-  if (a.polynomial == b.polynomial) {
-    // as in compare(): a sign change over the common part is the one root of both
-    const Rational& lo = std::max(a.lower, b.lower);
-    const Rational& hi = std::min(a.upper, b.upper);
-    int s_lo = sign_at(a.polynomial, lo), s_hi = sign_at(a.polynomial, hi);
-    if (s_lo != 0 && s_hi != 0 && s_lo != s_hi) return true;
-  }
-  // each interval isolates its number's root: equal iff the gcd has a root in the common part
-  // (compare()'s test, on the same intervals)
-  Polynomial g = gcd(a.polynomial, b.polynomial);
-  if (degree(g) < 1) return false;
-  Rational lo = std::max(a.lower, b.lower), hi = std::min(a.upper, b.upper);
-  SturmSequence sturm(g);
-  return sturm.count(lo, hi) - (sign_at(g, hi) == 0 ? 1 : 0) > 0;
+  // compare()'s tests without its refinement before the gcd (which only sorts distinct numbers)
+  if (separated_in_doubles(a, b) != 0) return false;
+  return one_polynomial_one_root(a, b) || common_root_in_overlap(a, b);
 }
 
 Rational simplest_between(const Rational& lo, const Rational& hi) {

@@ -140,7 +140,6 @@ TEST(CSpacePartialTerms, EqualPolynomialPartialsBitForBit) {
   std::printf("%zu polynomials, %zu terms, %zu points and boxes\n", polynomials, terms, evaluations);
 }
 
-using Switch = test::FlagSwitch<&cspace::partial_terms>;
 
 bool same(const CertifiedRange& a, const CertifiedRange& b) { return same(a.lower, b.lower) && same(a.upper, b.upper); }
 
@@ -173,14 +172,8 @@ TEST(CSpacePartialTerms, TrackDerivativesEqualTheirAnswersWithoutTheTerms) {
         std::uniform_real_distribution<double> step(-width * 1e-3, width * 1e-3);
         x = i % 7 == 6 ? anywhere(random) : x + step(random);
         if (i % 17 == 16) x = random() % 2 ? hi + width * 1e-12 : lo - width * 1e-12;
-        std::optional<EdgeSlopes> a, b;
-        if (random() % 2 == 0) {
-          { Switch flag(true); a = track_derivatives(space, EdgeId(e), x, with); }
-          { Switch flag(false); b = track_derivatives(space, EdgeId(e), x, without); }
-        } else {
-          { Switch flag(false); b = track_derivatives(space, EdgeId(e), x, without); }
-          { Switch flag(true); a = track_derivatives(space, EdgeId(e), x, with); }
-        }
+        auto [a, b] = test::on_and_off<&cspace::partial_terms>(
+            random, [&](bool on) { return track_derivatives(space, EdgeId(e), x, on ? with : without); });
         const std::string where = std::string(file) + " edge " + std::to_string(e) + " x " + show(x);
         ASSERT_EQ(a.has_value(), b.has_value()) << where;
         ++compared;

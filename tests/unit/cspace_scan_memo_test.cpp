@@ -24,8 +24,6 @@
 namespace hipair {
 namespace {
 
-using Switch = test::FlagSwitch<&cspace::scan_memo>;
-
 // The answer to `path` on `space`, described exactly ("throws: ..." where it throws).
 std::string answer(const CSpace& space, const MotionPath& path) {
   try {
@@ -105,14 +103,7 @@ TEST(CSpaceScanMemo, AnswersEqualTheAnswersWithoutTheMemo) {
       std::size_t chart = 0;
       MotionPath path = random_motion(space, random, kind, chart);
       // with the memo and without it, in a random order
-      std::string on, off;
-      if (random() % 2 == 0) {
-        { Switch flag(true); on = answer(space, path); }
-        { Switch flag(false); off = answer(space, path); }
-      } else {
-        { Switch flag(false); off = answer(space, path); }
-        { Switch flag(true); on = answer(space, path); }
-      }
+      auto [on, off] = test::on_and_off<&cspace::scan_memo>(random, [&](bool) { return answer(space, path); });
       ASSERT_EQ(on, off) << "round " << round << " query " << query << " space " << s << " (" << space.first_part() << ":"
                          << space.second_part() << ") kind " << kind << " chart " << chart;
       ++compared;

@@ -28,8 +28,6 @@
 namespace hipair {
 namespace {
 
-using Switch = test::FlagSwitch<&cspace::start_filter>;
-
 struct Tally {
   std::size_t compared = 0, free_starts = 0, contact_starts = 0, filtered = 0;
 };
@@ -43,15 +41,8 @@ std::string answer(const CSpace& space, const MotionPath& path) {
 }
 
 void compare(const CSpace& space, const MotionPath& path, const std::string& what, Tally& tally, std::mt19937_64& random) {
-  std::string on, off;
   const std::size_t before = cspace::filtered_starts();
-  if (random() % 2 == 0) {
-    { Switch flag(true); on = answer(space, path); }
-    { Switch flag(false); off = answer(space, path); }
-  } else {
-    { Switch flag(false); off = answer(space, path); }
-    { Switch flag(true); on = answer(space, path); }
-  }
+  auto [on, off] = test::on_and_off<&cspace::start_filter>(random, [&](bool) { return answer(space, path); });
   ASSERT_EQ(on, off) << what;
   tally.filtered += cspace::filtered_starts() - before;
   ++tally.compared;

@@ -16,6 +16,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace hipair::test {
@@ -84,6 +85,22 @@ struct FlagSwitch {
   FlagSwitch& operator=(const FlagSwitch&) = delete;
   bool old;
 };
+
+// f(true) with the switch Flag on and f(false) with it off, in a random order (what a memo or
+// filter answers must not depend on what ran before): {on, off}.
+template <bool& (*Flag)(), class F>
+auto on_and_off(std::mt19937_64& random, const F& f) {
+  using Answer = decltype(f(true));
+  Answer on{}, off{};
+  if (random() % 2 == 0) {
+    { FlagSwitch<Flag> flag(true); on = f(true); }
+    { FlagSwitch<Flag> flag(false); off = f(false); }
+  } else {
+    { FlagSwitch<Flag> flag(false); off = f(false); }
+    { FlagSwitch<Flag> flag(true); on = f(true); }
+  }
+  return std::pair<Answer, Answer>(std::move(on), std::move(off));
+}
 
 // A motion's axis as a polynomial in u with the given double coefficients (exact rationals).
 inline AxisPath axis_path(AxisKind kind, const std::vector<double>& c) {
