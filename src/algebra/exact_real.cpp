@@ -1363,13 +1363,28 @@ std::string to_string(const IntegerPolynomial2& f, const std::string& x, const s
 // ---------------------------------------------------------------- intervals
 
 Interval enclose(const Rational& r) { return {lower_double(r), upper_double(r)}; }
-Interval enclose(const mpz_class& z) { return enclose(Rational(z)); }
+// The bounds of enclose(Rational(z)) bit for bit, without the rational copy (an allocation, and
+// mpq_get_d's division): mpz_get_d truncates toward zero as mpq_get_d does (the same double, and
+// the same infinity beyond the doubles' range), and mpz_cmp_d compares z with a finite double
+// exactly, as compare_with_double does. So lower_double and upper_double take the same branches.
+Interval enclose(const mpz_class& z) {
+  const double d = z.get_d();
+  if (std::isinf(d))
+    return {d > 0 ? std::numeric_limits<double>::max() : d, d < 0 ? std::numeric_limits<double>::lowest() : d};
+  const int c = mpz_cmp_d(z.get_mpz_t(), d);   // sign(z - d)
+  return {c < 0 ? std::nextafter(d, -std::numeric_limits<double>::infinity()) : d,
+          c > 0 ? std::nextafter(d, std::numeric_limits<double>::infinity()) : d};
+}
 
 IntervalPolynomial2::IntervalPolynomial2(const IntegerPolynomial2& f) {
   int dx = 0, dy = 0;
+  rows_.reserve(f.coefficients.size());
+  nearest_.reserve(f.coefficients.size());
   for (std::size_t i = 0; i < f.coefficients.size(); ++i) {
     rows_.emplace_back();
     nearest_.emplace_back();
+    rows_.back().reserve(f.coefficients[i].size());
+    nearest_.back().reserve(f.coefficients[i].size());
     for (std::size_t j = 0; j < f.coefficients[i].size(); ++j) {
       rows_.back().push_back(enclose(f.coefficients[i][j]));
       nearest_.back().push_back(f.coefficients[i][j].get_d());

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
+#include <vector>
 
 namespace hipair::cspace::algebra {
 namespace {
@@ -371,6 +373,71 @@ TEST(CSpaceAlgebra, IntervalPolynomialEvaluationIsTheGenericHorner) {
         }
     }
   }
+}
+
+// enclose(mpz_class) bounds an integer straight from it (mpz_get_d, mpz_cmp_d); it must give the
+// bounds of the rational path enclose(Rational(z)) bit for bit, and both must be the tightest
+// doubles around z, checked exactly: lo is the greatest double (or -inf) not above z, hi the least
+// double (or +inf) not below it, except that beyond the doubles' range a lower bound is DBL_MAX
+// and an upper one -DBL_MAX (the overflowed bounds interval_detail::down and up keep). Generated
+// integers of 0 to 1,100 bits of either sign: powers of two and their neighbours, 53- and 54-bit
+// values (the first inexact conversions), the doubles' largest finite value and its neighbours,
+// 2^1024 and beyond.
+TEST(CSpaceAlgebra, IntegerEnclosureIsTheRationalEnclosureAndTight) {
+  using namespace interval_products;
+  const double inf = std::numeric_limits<double>::infinity(), largest = std::numeric_limits<double>::max();
+  std::vector<mpz_class> values{mpz_class(0), mpz_class(1), mpz_class(-1)};
+  const mpz_class largest_integer(largest);
+  for (const mpz_class& base : {largest_integer, mpz_class(mpz_class(1) << 1024), mpz_class(mpz_class(1) << 53), mpz_class(mpz_class(1) << 54)})
+    for (long delta = -3; delta <= 3; ++delta) values.push_back(base + delta);
+  values.push_back(largest_integer + (mpz_class(1) << 969) - 1);   // truncates to DBL_MAX, rounds to 2^1024
+  values.push_back(largest_integer + (mpz_class(1) << 970));       // 2^1024 + ...: infinite conversion
+  std::uint64_t state = 0x5851f42d4c957f2dull;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const unsigned long bits = next_state(state) % 1101;
+    mpz_class z = 0;
+    if (next_state(state) % 4 == 0) {
+      z = mpz_class(1) << bits;   // a power of two and a neighbour
+      z += static_cast<long>(next_state(state) % 5) - 2;
+    } else {
+      for (unsigned long done = 0; done < bits; done += 32) z = (z << 32) + static_cast<unsigned long>(next_state(state) & 0xffffffffu);
+      z >>= static_cast<unsigned long>((bits + 31) / 32 * 32 - bits);
+    }
+    values.push_back(next_state(state) % 2 ? mpz_class(-z) : z);
+  }
+  int finite = 0, inexact = 0, unbounded = 0;
+  for (const mpz_class& z : values) {
+    const Interval direct = enclose(z), rational = enclose(Rational(z));
+    ASSERT_TRUE(same_bits(direct, rational)) << z.get_str(16) << ": [" << direct.lo << ", " << direct.hi
+                                             << "] against [" << rational.lo << ", " << rational.hi << "]";
+    // the exact oracle
+    const Rational exact(z);
+    if (std::isfinite(direct.lo)) {
+      ASSERT_LE(Rational(direct.lo), exact) << z.get_str(16);
+      const double next = std::nextafter(direct.lo, inf);
+      if (std::isfinite(next)) ASSERT_GT(Rational(next), exact) << z.get_str(16);
+      else ASSERT_EQ(direct.lo, largest) << z.get_str(16);
+    } else {
+      ASSERT_EQ(direct.lo, -inf);
+      ASSERT_LT(exact, Rational(-largest)) << z.get_str(16);
+    }
+    if (std::isfinite(direct.hi)) {
+      ASSERT_GE(Rational(direct.hi), exact) << z.get_str(16);
+      const double previous = std::nextafter(direct.hi, -inf);
+      if (std::isfinite(previous)) ASSERT_LT(Rational(previous), exact) << z.get_str(16);
+      else ASSERT_EQ(direct.hi, -largest) << z.get_str(16);
+    } else {
+      ASSERT_EQ(direct.hi, inf);
+      ASSERT_GT(exact, Rational(largest)) << z.get_str(16);
+    }
+    if (std::isfinite(direct.lo) && std::isfinite(direct.hi)) ++finite;
+    else ++unbounded;
+    if (direct.lo != direct.hi) ++inexact;
+  }
+  // every kind was met
+  EXPECT_GT(finite, 1000);
+  EXPECT_GT(inexact, 1000);
+  EXPECT_GT(unbounded, 100);
 }
 
 // GMP's rational functions expect canonical operands and mpq_equal compares numerators and
