@@ -734,7 +734,7 @@ std::optional<ChartPoint> rational_point_on_edge(const ChartData& chart, std::si
   const raw::Vertex& high = chart.arrangement.vertices[edge.max_vertex];
   if (edge.vertical) {
     // sample_y is rational; the edge's x is one number
-    auto x = rational_value(data.vertical_x, thorough);
+    auto x = rational_value(*data.vertical_x, thorough);
     if (x && data.sample_y.exact) return ChartPoint{*x, data.sample_y.lower};
     return std::nullopt;
   }

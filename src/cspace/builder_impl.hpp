@@ -77,7 +77,9 @@ struct EdgeData {
   std::size_t global = no_index;
   Rational sample_x;              ///< interior point (vertical edges: sample_y is rational)
   algebra::Real sample_y;
-  algebra::Real vertical_x;       ///< vertical edges: the constant x
+  /// vertical edges only (read only for them): the constant x. Unset elsewhere, so that the
+  /// other edges construct no rationals for it.
+  std::optional<algebra::Real> vertical_x;
   std::vector<std::size_t> curves;   ///< local curve indices
   /// Blocked on both sides, but the parts only touch along it (exact oracle at a rational
   /// point of the edge): a zero-clearance channel, EdgeRole::touching.

@@ -130,7 +130,7 @@ Location locate_2d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
     if (edge.box[0] > xi.hi || edge.box[2] < xi.lo || edge.box[3] < yi.lo) continue;
     if (edge.vertical) {
       if (edge.box[1] > yi.hi) continue;
-      if (chart.edges[e].vertical_x.compare(q.x) != 0) continue;
+      if (chart.edges[e].vertical_x->compare(q.x) != 0) continue;
       if (ordinate_at(arrangement.vertices[edge.min_vertex], q.x).compare(q.y) < 0 &&
           ordinate_at(arrangement.vertices[edge.max_vertex], q.x).compare(q.y) > 0)
         return on_edge(impl, q.chart, e);
@@ -237,7 +237,7 @@ CertifiedValue evaluate_edge(const CSpace::Impl& impl, std::size_t edge, double 
   const ChartData& chart = impl.charts[c];
   const raw::Edge& raw_edge = chart.arrangement.edges[e];
   if (raw_edge.vertical) {
-    Real v = chart.edges[e].vertical_x;
+    Real v = *chart.edges[e].vertical_x;
     v.refine_to(Rational(1, mpz_class(1) << 64));
     double value = v.approximate();
     return {value, std::max(std::fabs(v.upper_bound() - value), std::fabs(value - v.lower_bound()))};
@@ -269,7 +269,7 @@ AlgebraicNumber evaluate_edge_exact(const CSpace::Impl& impl, std::size_t edge, 
   auto [c, e] = impl.edge_local[edge];
   const ChartData& chart = impl.charts[c];
   const raw::Edge& raw_edge = chart.arrangement.edges[e];
-  if (raw_edge.vertical) return to_public(chart.edges[e].vertical_x);
+  if (raw_edge.vertical) return to_public(*chart.edges[e].vertical_x);
   const raw::Vertex& low = chart.arrangement.vertices[raw_edge.min_vertex];
   const raw::Vertex& high = chart.arrangement.vertices[raw_edge.max_vertex];
   int cl = low.x.compare(x), ch = high.x.compare(x);
