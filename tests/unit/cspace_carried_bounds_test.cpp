@@ -78,9 +78,7 @@ void generated_motions(const CSpace& space, int count, std::uint64_t seed, Tally
   std::mt19937_64 random(seed);
   std::uniform_real_distribution<double> unit(0, 1), sym(-1, 1);
   const std::vector<CSpaceChart>& charts = space.charts();
-  std::vector<std::size_t> real_edges;
-  for (std::size_t e = 0; e < space.edges().size(); ++e)
-    if (space.edges()[e].real) real_edges.push_back(e);
+  const std::vector<std::size_t> real_edges = test::real_edges(space);
   const bool two = space.dimension() == 2;
   for (int i = 0; i < count; ++i) {
     double x0 = 0, y0 = 0, dx = 0, dy = 0;

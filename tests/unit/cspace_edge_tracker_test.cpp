@@ -19,6 +19,7 @@
 #include <random>
 #include <string>
 
+#include "cspace_test_support.hpp"
 #include "test_paths.hpp"
 
 namespace hipair {
@@ -46,11 +47,9 @@ TEST(CSpaceEdgeTracker, FilteredDerivativesMeetTheExactOnesAlongWalks) {
     Model model = read_model_file(example(c.file));
     CSpace space = CSpace::build(model, c.first, c.second);
     for (std::size_t e = 0; e < space.edges().size(); ++e) {
-      const CSpaceEdge& edge = space.edges()[e];
-      if (!edge.real || edge.vertical) continue;
-      double lo = space.vertices()[edge.source].x.approximate(), hi = space.vertices()[edge.target].x.approximate();
-      if (lo > hi) std::swap(lo, hi);
-      if (!(hi - lo > 1e-9)) continue;
+      std::optional<std::pair<double, double>> range = test::edge_x_range(space, e);
+      if (!range) continue;
+      const auto [lo, hi] = *range;
       ++edges;
       EdgeTracker tracker;
       std::uniform_real_distribution<double> anywhere(lo, hi);

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <optional>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -114,6 +115,25 @@ inline AxisPath axis_path(AxisKind kind, const std::vector<double>& c) {
 inline double part_value(AxisKind kind, bool half_turn, double chart_value) {
   if (kind == AxisKind::translation) return chart_value;
   return (half_turn ? std::numbers::pi : 0.0) + 2 * std::atan(chart_value);
+}
+
+// The indices of the space's real edges (contact edges, not chart sides or seams).
+inline std::vector<std::size_t> real_edges(const CSpace& space) {
+  std::vector<std::size_t> edges;
+  for (std::size_t e = 0; e < space.edges().size(); ++e)
+    if (space.edges()[e].real) edges.push_back(e);
+  return edges;
+}
+
+// A real, non-vertical edge's x range in doubles (its end vertices' approximations, ordered), or
+// nothing for another edge or one narrower than 1e-9 (too short to sample inside).
+inline std::optional<std::pair<double, double>> edge_x_range(const CSpace& space, std::size_t e) {
+  const CSpaceEdge& edge = space.edges()[e];
+  if (!edge.real || edge.vertical) return std::nullopt;
+  double lo = space.vertices()[edge.source].x.approximate(), hi = space.vertices()[edge.target].x.approximate();
+  if (lo > hi) std::swap(lo, hi);
+  if (!(hi - lo > 1e-9)) return std::nullopt;
+  return std::pair<double, double>(lo, hi);
 }
 
 }  // namespace hipair::test
