@@ -212,7 +212,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
 // space only reads its model, so an equal copy still held by a live space built on this thread
 // is shared instead of copied again (same_model: every field, exactly): repeated builds of one
 // model, and the pairs of one model that build_all gives a worker thread, keep one copy. The
-// thread keeps only a weak reference: the copy lives as long as some space holds it.
+// thread keeps only a weak reference: the copy is destroyed with the last space that holds it.
 std::shared_ptr<const Model> model_copy(const Model& model) {
   thread_local std::weak_ptr<const Model> last;
   if (std::shared_ptr<const Model> held = last.lock(); held && same_model(*held, model)) return held;
