@@ -830,6 +830,11 @@ Rational simplest_between(const Rational& lo, const Rational& hi) {
 }
 
 Rational rational_between(const Real& a, const Real& b) {
+  // the loop's first pass on the numbers themselves (no copies, which the refinement below
+  // needs): separated enclosures, or two exact numbers (every sample of a polygon pair's edge
+  // and face between rational vertices) — the same answers
+  if (a.upper < b.lower) return simplest_between(a.upper, b.lower);
+  if (a.exact && b.exact) return simplest_between(a.lower, b.lower);
   Real x = a, y = b;
   for (;;) {
     const Rational& hi_x = x.upper;  // x <= hi_x

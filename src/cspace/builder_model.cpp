@@ -8,6 +8,7 @@
 #include "cspace/builder_impl.hpp"
 #include "oracle/blocked_tester.hpp"
 #include "curves/contact_curves.hpp"
+#include "core/model_equal.hpp"
 #include "core/model_scale.hpp"
 #include "kernels/interval.hpp"
 
@@ -15,6 +16,7 @@
 #include <atomic>
 #include <cmath>
 #include <numbers>
+#include <memory>
 #include <optional>
 #include <chrono>
 #include <exception>
@@ -206,6 +208,19 @@ cspace::ChartAxis tile_axis(const cspace::ChartAxis& axis, std::size_t k, std::s
 CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options,
                         const RegionPath* path);
 
+// The copy of the model that a built space keeps (its contact geometry queries read it). A
+// space only reads its model, so an equal copy still held by a live space built on this thread
+// is shared instead of copied again (same_model: every field, exactly): repeated builds of one
+// model, and the pairs of one model that build_all gives a worker thread, keep one copy. The
+// thread keeps only a weak reference: the copy is destroyed with the last space that holds it.
+std::shared_ptr<const Model> model_copy(const Model& model) {
+  thread_local std::weak_ptr<const Model> last;
+  if (std::shared_ptr<const Model> held = last.lock(); held && same_model(*held, model)) return held;
+  auto copy = std::make_shared<const Model>(model);
+  last = copy;
+  return copy;
+}
+
 CSpace build_pair(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options,
                   const RegionPath* path = nullptr) {
   // see core/model_scale.hpp: a rotation pair far outside the doubles' comfortable range is
@@ -236,7 +251,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   input.y_part = axes.dimension() == 2 ? model.parts[axes.second].name : std::string();
   for (const auto& part : model.parts) input.part_names.push_back(part.name);
   input.dimension = axes.dimension();
-  input.model = std::make_shared<const Model>(model);
+  input.model = model_copy(model);
   input.axes = axes;
   std::vector<ChartAxis> y_charts = layout.y_charts;
   if (input.dimension == 1) y_charts = {ChartAxis{ChartAxis::Kind::translation, false, Rational(0), Rational(0)}};

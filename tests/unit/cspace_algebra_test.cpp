@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <random>
 #include <vector>
 
 namespace hipair::cspace::algebra {
@@ -184,6 +185,91 @@ TEST(CSpaceAlgebra, SimplestRationalBetween) {
   Rational s = simplest_between(lo, hi);
   EXPECT_TRUE(lo < s && s < hi);
   EXPECT_LE(s.get_den(), 100000);
+}
+
+// rational_between as it was written before its first pass on the numbers themselves: copies
+// refined until their enclosures separate or both are exact.
+Rational reference_rational_between(const Real& a, const Real& b) {
+  Real x = a, y = b;
+  for (;;) {
+    const Rational& hi_x = x.upper;
+    const Rational& lo_y = y.lower;
+    if (hi_x < lo_y) return simplest_between(hi_x, lo_y);
+    if (x.exact && y.exact) return simplest_between(x.lower, y.lower);
+    if (x.exact && hi_x == lo_y && !y.exact) {
+      y.refine();
+      continue;
+    }
+    x.refine();
+    y.refine();
+  }
+}
+
+// Generated ordered pairs a < b of exact rationals and algebraic roots (square roots, roots of
+// cubics), with enclosures apart, overlapping, touching an exact end, and rationals 2^-200 apart: the same rational as the reference, strictly between.
+TEST(CSpaceAlgebra, RationalBetweenIsTheReferenceOnGeneratedPairs) {
+  std::mt19937_64 random(20261130);
+  auto rational = [&](int bits) {
+    mpz_class n = static_cast<long>(random() % 2000001) - 1000000;
+    mpz_class d = static_cast<long>(random() % 999) + 1;
+    Rational q(n << (random() % 3 == 0 ? bits : 0), d);
+    q.canonicalize();
+    return q;
+  };
+  // q itself, a root of x^2 - m (m = q^2 + 1/k: next to |q|, of q's sign), or the least real root
+  // of a cubic whose coefficients are q's numerator and denominator
+  auto real_near = [&](const Rational& q, int kind) -> Real {
+    if (kind == 0) return Real::from_rational(q);
+    if (kind == 1 && sgn(q) != 0) {
+      // sqrt(m) with m = q^2 + 1/k, the positive (or negative) root
+      Rational m = q * q + Rational(1, static_cast<long>(random() % 97) + 3);
+      m.canonicalize();
+      Polynomial p{mpz_class(-m.get_num()), mpz_class(0), mpz_class(m.get_den())};
+      return nth_real_root(p, sgn(q) > 0 ? 1 : 0);
+    }
+    Polynomial p{mpz_class(-q.get_num() + 1), mpz_class(q.get_den()), mpz_class(-q.get_num() * q.get_den()),
+                 mpz_class(q.get_den() * q.get_den())};
+    trim(p);
+    std::vector<Real> roots = real_roots(p);
+    return roots.empty() ? Real::from_rational(q) : roots.front();
+  };
+  std::size_t exact_pairs = 0, algebraic_pairs = 0, overlapping = 0, separated = 0;
+  for (int i = 0; i < 3000; ++i) {
+    Rational p = rational(i % 5 == 0 ? 200 : 0), q = rational(0);
+    if (i % 7 == 0) q = p + Rational(1, mpz_class(1) << 200);
+    if (i % 11 == 0) q = p + Rational(1, 3);
+    q.canonicalize();
+    if (p == q) continue;
+    if (q < p) std::swap(p, q);
+    Real a = real_near(p, static_cast<int>(random() % 3)), b = real_near(q, static_cast<int>(random() % 3));
+    if (random() % 4 == 0) a.refine_to(Rational(1, 1024));
+    if (random() % 4 == 0) b.refine();
+    if (random() % 5 == 0 && b.exact) {
+      // an enclosure of a whose upper end touches the exact b
+      if (!a.exact && a.upper > b.lower && a.lower < b.lower && sign_at(a.polynomial, b.lower) != 0) {
+        Real c = a;
+        if (compare(c, b) < 0) {
+          c.upper = b.lower;
+          a = c;
+        }
+      }
+    }
+    const int order = compare(a, b);
+    if (order == 0) continue;
+    const Real& lo = order < 0 ? a : b;
+    const Real& hi = order < 0 ? b : a;
+    (lo.exact && hi.exact ? exact_pairs : algebraic_pairs) += 1;
+    (lo.upper < hi.lower ? separated : overlapping) += 1;
+    const Rational expected = reference_rational_between(lo, hi);
+    const Rational got = rational_between(lo, hi);
+    EXPECT_EQ(got, expected) << i;
+    EXPECT_EQ(lo.compare(got), -1) << i;
+    EXPECT_EQ(hi.compare(got), 1) << i;
+  }
+  EXPECT_GE(exact_pairs, 200u);
+  EXPECT_GE(algebraic_pairs, 1000u);
+  EXPECT_GE(overlapping, 200u);
+  EXPECT_GE(separated, 200u);
 }
 
 TEST(CSpaceAlgebra, NthRootInBracket) {
