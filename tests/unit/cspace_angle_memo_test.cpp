@@ -8,6 +8,7 @@
 // share its angle path on one axis (the nudge's trials: the driver's angle fixed, the other axis
 // moved), and by itself again (a hit on both axes).
 #include "cspace/angle_memo.hpp"
+#include "cspace_motion_support.hpp"
 #include "cspace_test_support.hpp"
 
 #include <hipair/cspace.hpp>
@@ -28,18 +29,10 @@
 namespace hipair {
 namespace {
 
-std::string answer(const CSpace& space, const MotionPath& path) {
-  try {
-    return test::describe_crossing(space, space.first_crossing(path));
-  } catch (const GeometryError& e) {
-    return std::string("throws: ") + e.what();
-  }
-}
-
 // A start (chart values) on `space`: anywhere, a few ulps or 1e-15 ... 1e-3 off a real edge, or
 // on a chart's side.
 void pick_start(const CSpace& space, std::mt19937_64& random, std::size_t& c, double& x0, double& y0) {
-  std::uniform_real_distribution<double> unit(0, 1), sym(-1, 1);
+  std::uniform_real_distribution<double> unit(0, 1);
   const std::vector<CSpaceChart>& charts = space.charts();
   const bool two = space.dimension() == 2;
   c = random() % charts.size();
@@ -57,18 +50,9 @@ void pick_start(const CSpace& space, std::mt19937_64& random, std::size_t& c, do
     } catch (const GeometryError&) {
       return;
     }
-    double* moved = random() % 2 == 0 ? &y0 : &x0;
-    if (random() % 2 == 0) {
-      int k = static_cast<int>(random() % 9) - 4;
-      for (int j = 0; j < std::abs(k); ++j) *moved = std::nextafter(*moved, k > 0 ? 1e300 : -1e300);
-    } else {
-      *moved += sym(random) * std::pow(10.0, -15 + 12 * unit(random));
-    }
+    test::move_off(random() % 2 == 0 ? y0 : x0, random);
   } else if (kind == 2) {
-    const CSpaceChart& chart = charts[c];
-    bool on_x = !two || random() % 2 == 0;
-    double side = (random() % 2 == 0) ? (on_x ? chart.x_lo : chart.y_lo).get_d() : (on_x ? chart.x_hi : chart.y_hi).get_d();
-    (on_x ? x0 : y0) = side;
+    test::to_chart_side(charts[c], two, x0, y0, random);
   }
 }
 
@@ -78,7 +62,7 @@ struct Tally {
 
 void compare(const CSpace& space, const MotionPath& path, const std::string& what, std::mt19937_64& random, Tally& tally) {
   const std::size_t before = cspace::angle_memo_hits();
-  auto [on, off] = test::on_and_off<&cspace::angle_memo>(random, [&](bool) { return answer(space, path); });
+  auto [on, off] = test::on_and_off<&cspace::angle_memo>(random, [&](bool) { return test::crossing_answer(space, path); });
   ASSERT_EQ(on, off) << what;
   tally.hits += cspace::angle_memo_hits() - before;
   ++tally.compared;
@@ -104,10 +88,7 @@ TEST(CSpaceAngleMemo, AnswersEqualTheAnswersWithoutTheMemo) {
     const double scale = std::pow(10.0, -4 + 4 * unit(random));
     const double vx = point ? 0 : sym(random) * scale, vy = point ? 0 : sym(random) * scale;
     const double bend = (point || random() % 3 == 0) ? 0.0 : 0.3 * sym(random);
-    MotionPath path;
-    path.x = test::axis_path(chart.x_kind, {qx0, vx * (1 - bend), vx * bend, 0});
-    if (two) path.y = test::axis_path(chart.y_kind, {qy0, vy * (1 + bend), -vy * bend * 0.5, -vy * bend * 0.5});
-    if (point) path.u_end = path.u_begin;
+    MotionPath path = test::bent_motion(chart, two, qx0, qy0, vx, vy, bend, point);
     std::ostringstream what;
     what.precision(17);
     what << space.first_part() << ":" << space.second_part() << " motion " << i << " chart " << c << " from " << qx0
