@@ -14,6 +14,7 @@
 
 #include <hipair/cspace.hpp>
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 
@@ -41,6 +42,13 @@ class EdgeTracker {
   double x_ = 0;
   CertifiedRange y_;
   std::shared_ptr<const void> data_;
+  // the last slopes computed from a certified root bracket (x, [y_lo, y_hi]) of this placement
+  // (bit patterns; a pure function of them): the simulator asks twice at each state
+  struct Memo {
+    bool set = false;
+    std::uint64_t x = 0, y_lo = 0, y_hi = 0;
+    std::optional<EdgeSlopes> slopes;
+  } memo_;
 };
 
 /// y, y', y'' of the non-vertical edge `edge` at the double abscissa `x` (chart coordinates),

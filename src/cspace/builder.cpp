@@ -1547,6 +1547,16 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
   stats.edges = impl->edges.size();
   stats.cells = impl->cells.size();
   stats.seconds_cells = seconds_since(cells_start);
+  // point location's vertex bounds (locate_prefilter.hpp): certified doubles of each vertex's
+  // algebraic coordinates, from its rational bounds as they are now (any later isolating
+  // interval holds the same number)
+  if (input.dimension == 2)
+    for (ChartData& chart : impl->charts) {
+      chart.vertex_bounds.clear();
+      chart.vertex_bounds.reserve(chart.arrangement.vertices.size());
+      for (const raw::Vertex& v : chart.arrangement.vertices)
+        chart.vertex_bounds.push_back({v.x.lower_bound(), v.x.upper_bound(), v.y_upper_bound()});
+    }
   stats.seconds_total = seconds_since(total_start) - seconds_streamed + stats.seconds_curves + stats.seconds_region;
   return make_cspace(impl);
 }

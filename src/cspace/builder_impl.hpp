@@ -10,6 +10,7 @@
 #include "arrangement/arrangement.hpp"
 #include "curves/contact_curves.hpp"
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -107,6 +108,10 @@ struct ChartData {
   /// touch there; exact oracle at the rational vertex)
   std::vector<char> touching_vertex;
   std::vector<Rational> rational_vertex_x;     ///< sorted: rational x of vertices (sampling avoids them)
+  /// per vertex (2-D, set when the space is complete): certified doubles {x_lo, x_hi, y_hi} with
+  /// x_lo <= x <= x_hi and y <= y_hi for the vertex's algebraic x and y (point location's
+  /// vertex bounds, locate_prefilter.hpp); empty or of another size: not used
+  std::vector<std::array<double, 3>> vertex_bounds;
   // 1-D: contact points (ascending) and the intervals between them (faces[i] is the interval
   // before point i; faces.back() after the last).
   std::vector<algebra::Real> points;

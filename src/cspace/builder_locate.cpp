@@ -82,7 +82,12 @@ Location locate_2d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
   };
   // (the vertices away from q by their rational bounds: see locate_prefilter.hpp)
   const bool exact_prefilter = locate_exact_prefilter();
+  const bool vertex_bounds = locate_vertex_bounds() && chart.vertex_bounds.size() == arrangement.vertices.size();
   for (std::size_t v = 0; v < arrangement.vertices.size(); ++v) {
+    if (vertex_bounds) {
+      const std::array<double, 3>& b = chart.vertex_bounds[v];
+      if (b[1] < xi.lo || b[0] > xi.hi || b[2] < yi.lo) continue;
+    }
     const raw::Vertex& vertex = arrangement.vertices[v];
     if (exact_prefilter) {
       if (vertex.x.upper < q.x || vertex.x.lower > q.x || vertex.y_upper < q.y) continue;

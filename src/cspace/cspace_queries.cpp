@@ -12,12 +12,14 @@
 #include <hipair/error.hpp>
 
 #include "cspace/angle_filter.hpp"
+#include "cspace/angle_memo.hpp"
 #include "cspace/builder_impl.hpp"
 #include "cspace/crossing_shrink.hpp"
 #include "cspace/cspace_access.hpp"
 #include "cspace/frame_memo.hpp"
 #include "cspace/partial_terms.hpp"
 #include "cspace/scan_memo.hpp"
+#include "cspace/slopes_memo.hpp"
 #include "cspace/start_filter.hpp"
 #include "curves/pose.hpp"
 #include "kernels/contact_geometry.hpp"
@@ -29,6 +31,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -507,9 +511,31 @@ int certified_sign(const TrackerData& data, double x, double y) {
   return v > error ? 1 : v < -error ? -1 : 0;
 }
 
+// Step 4 of slopes_from: the slopes on {x} x Y1, Y1 a certified bracket of the edge's root at x
+// (a pure function of the tracker's data, x and Y1).
+std::optional<EdgeSlopes> slopes_at(const TrackerData& data, double x, const KInterval& y1) {
+  auto identity = [](const auto& v) { return v; };
+  const TrackInterval X1(KInterval::point(x)), Y1(y1);
+  kernels::Partials<TrackInterval> at =
+      data.terms ? data.enclosed_terms.all(X1, Y1) : kernels::polynomial_partials(data.enclosed, X1, Y1, identity);
+  if (at.fy.sign() == 2 || at.fy.sign() == 0) return std::nullopt;
+  kernels::Slopes<TrackInterval> chart_slopes = kernels::implicit_slopes(at.fx, at.fy, at.fxx, at.fxy, at.fyy);
+  auto axis_slopes = [](bool rotation, const TrackInterval& t) {
+    return rotation ? kernels::half_angle_slopes(t) : kernels::offset_slopes<TrackInterval>();
+  };
+  kernels::Slopes<TrackInterval> part =
+      kernels::part_slopes(chart_slopes, axis_slopes(data.x_rotation, X1), axis_slopes(data.y_rotation, Y1));
+  for (const KInterval* v : {&chart_slopes.first, &chart_slopes.second, &part.first, &part.second})
+    if (!std::isfinite(v->lo) || !std::isfinite(v->hi)) return std::nullopt;
+  return EdgeSlopes{range_of(y1), range_of(chart_slopes.first), range_of(chart_slopes.second), range_of(part.first),
+                    range_of(part.second)};
+}
+
 // The filter proper (track_derivatives): y, y', y'' at x from the certified point (x0, Y0) of
-// the same edge, or nullopt.
-std::optional<EdgeSlopes> slopes_from(const TrackerData& data, double x, double x0, CertifiedRange y0) {
+// the same edge, or nullopt. `memo` (slopes_memo.hpp): step 4's last answer, taken again for the
+// same x and Y1 (bit patterns).
+template <class Memo>
+std::optional<EdgeSlopes> slopes_from(const TrackerData& data, double x, double x0, CertifiedRange y0, Memo* memo) {
   namespace detail = kernels::interval_detail;
   auto identity = [](const auto& v) { return v; };
 
@@ -566,20 +592,19 @@ std::optional<EdgeSlopes> slopes_from(const TrackerData& data, double x, double 
   }
   if (!certified) return std::nullopt;
   // 4. the slopes on {x} x Y1
-  const TrackInterval X1(KInterval::point(x)), Y1(y1);
-  kernels::Partials<TrackInterval> at =
-      data.terms ? data.enclosed_terms.all(X1, Y1) : kernels::polynomial_partials(data.enclosed, X1, Y1, identity);
-  if (at.fy.sign() == 2 || at.fy.sign() == 0) return std::nullopt;
-  kernels::Slopes<TrackInterval> chart_slopes = kernels::implicit_slopes(at.fx, at.fy, at.fxx, at.fxy, at.fyy);
-  auto axis_slopes = [](bool rotation, const TrackInterval& t) {
-    return rotation ? kernels::half_angle_slopes(t) : kernels::offset_slopes<TrackInterval>();
-  };
-  kernels::Slopes<TrackInterval> part =
-      kernels::part_slopes(chart_slopes, axis_slopes(data.x_rotation, X1), axis_slopes(data.y_rotation, Y1));
-  for (const KInterval* v : {&chart_slopes.first, &chart_slopes.second, &part.first, &part.second})
-    if (!std::isfinite(v->lo) || !std::isfinite(v->hi)) return std::nullopt;
-  return EdgeSlopes{range_of(y1), range_of(chart_slopes.first), range_of(chart_slopes.second), range_of(part.first),
-                    range_of(part.second)};
+  if (!memo || !cspace::slopes_memo()) return slopes_at(data, x, y1);
+  const auto bx = std::bit_cast<std::uint64_t>(x), blo = std::bit_cast<std::uint64_t>(y1.lo),
+             bhi = std::bit_cast<std::uint64_t>(y1.hi);
+  if (memo->set && memo->x == bx && memo->y_lo == blo && memo->y_hi == bhi) {
+    ++cspace::slopes_memo_hits();
+    return memo->slopes;
+  }
+  memo->slopes = slopes_at(data, x, y1);
+  memo->x = bx;
+  memo->y_lo = blo;
+  memo->y_hi = bhi;
+  memo->set = true;
+  return memo->slopes;
 }
 
 // A certified enclosure of the edge's ordinate at x, exactly (the edge's arc number).
@@ -634,16 +659,17 @@ std::optional<EdgeSlopes> track_derivatives(const CSpace& space, EdgeId id, doub
     tracker.x_ = x;
     tracker.y_ = exact_ordinate(chart, e, x);
     tracker.data_ = std::move(data);
+    tracker.memo_ = EdgeTracker::Memo{};   // its answers were of the edge placed before
   }
   const TrackerData& data = *static_cast<const TrackerData*>(tracker.data_.get());
   if (!(x > data.x_min && x < data.x_max)) return std::nullopt;
-  std::optional<EdgeSlopes> result = slopes_from(data, x, tracker.x_, tracker.y_);
+  std::optional<EdgeSlopes> result = slopes_from(data, x, tracker.x_, tracker.y_, &tracker.memo_);
   if (!result && x != tracker.x_) {
     // a jump the a-priori box cannot bridge: one exact point of the edge at x, and the filter
     // from there
     tracker.x_ = x;
     tracker.y_ = exact_ordinate(chart, e, x);
-    result = slopes_from(data, x, x, tracker.y_);
+    result = slopes_from(data, x, x, tracker.y_, &tracker.memo_);
   }
   if (result) {
     tracker.x_ = x;
@@ -1040,6 +1066,58 @@ std::vector<AxisPiece> angle_pieces(const RInterval& theta, mpfr_prec_t bits) {
   return pieces;
 }
 
+// cspace::filtered_angle_pieces(theta) through the per-thread memo of angle_memo.hpp: a
+// direct-mapped table keyed by the bit patterns of theta's ends; a hit is a copy of the pieces
+// filtered_angle_pieces made for that same theta (a pure function of it).
+std::optional<std::vector<cspace::AnglePiece>> memo_filtered_angle_pieces(const KInterval& theta) {
+  if (!cspace::angle_memo()) return cspace::filtered_angle_pieces(theta);
+  struct Entry {
+    std::uint64_t lo = 0, hi = 0;
+    bool used = false;
+    std::optional<std::vector<cspace::AnglePiece>> pieces;
+  };
+  constexpr std::size_t size = 64;
+  thread_local std::array<Entry, size> table;
+  const auto lo = std::bit_cast<std::uint64_t>(theta.lo), hi = std::bit_cast<std::uint64_t>(theta.hi);
+  std::uint64_t mix = (lo ^ (hi * 0x9E3779B97F4A7C15ull)) * 0xC2B2AE3D27D4EB4Full;
+  Entry& entry = table[static_cast<std::size_t>(mix >> 58) % size];
+  if (entry.used && entry.lo == lo && entry.hi == hi) {
+    ++cspace::angle_memo_hits();
+    return entry.pieces;
+  }
+  entry.pieces = cspace::filtered_angle_pieces(theta);
+  entry.lo = lo;
+  entry.hi = hi;
+  entry.used = true;
+  return entry.pieces;
+}
+
+// angle_pieces(theta, bits) through the same memo (angle_memo.hpp): the last few exact thetas
+// and their pieces, compared exactly (the nudge's trials move the free part only, so a driven
+// part's start angle recurs in every trial that falls back to the 160-bit pieces).
+std::vector<AxisPiece> memo_angle_pieces(const RInterval& theta, mpfr_prec_t bits) {
+  if (!cspace::angle_memo()) return angle_pieces(theta, bits);
+  struct Entry {
+    RInterval theta;
+    mpfr_prec_t bits = 0;
+    std::vector<AxisPiece> pieces;
+  };
+  constexpr std::size_t size = 8;
+  thread_local std::array<Entry, size> table;
+  thread_local std::size_t next = 0;
+  for (const Entry& entry : table)
+    if (entry.bits == bits && entry.theta.lo == theta.lo && entry.theta.hi == theta.hi) {
+      ++cspace::angle_memo_hits();
+      return entry.pieces;
+    }
+  Entry& entry = table[next];
+  next = (next + 1) % size;
+  entry.pieces = angle_pieces(theta, bits);
+  entry.theta = theta;
+  entry.bits = bits;
+  return entry.pieces;
+}
+
 // angle_pieces(theta, 64)'s pieces through the double-interval filter (src/cspace/angle_filter.hpp);
 // nullopt where the filter cannot decide: the caller takes angle_pieces.
 std::optional<std::vector<AxisPiece>> angle_pieces_filtered(const RInterval& theta) {
@@ -1387,9 +1465,11 @@ class MotionScanner {
         using kernels::interval_detail::down;
         using kernels::interval_detail::up;
         KInterval theta(value->lo < 0 ? down(value->lo) : value->lo, value->hi > 0 ? up(value->hi) : value->hi);
-        if (std::optional<std::vector<cspace::AnglePiece>> filtered = cspace::filtered_angle_pieces(theta)) {
+        if (std::optional<std::vector<cspace::AnglePiece>> filtered = memo_filtered_angle_pieces(theta)) {
           std::vector<AxisPiece> result;
-          for (const cspace::AnglePiece& p : *filtered) result.push_back(AxisPiece{true, p.half_turn, p.lo, p.hi, p.dlo, p.dhi});
+          result.reserve(filtered->size());
+          for (cspace::AnglePiece& p : *filtered)
+            result.push_back(AxisPiece{true, p.half_turn, std::move(p.lo), std::move(p.hi), p.dlo, p.dhi});
           return result;
         }
         std::vector<AxisPiece> result = angle_pieces(RInterval{Rational(value->lo), Rational(value->hi)}, 64);
@@ -1411,7 +1491,7 @@ class MotionScanner {
             result = std::move(*filtered);
             break;
           }
-        result = angle_pieces(value, fine ? precision : 64);
+        result = memo_angle_pieces(value, fine ? precision : 64);
         break;
     }
     for (AxisPiece& p : result) p = with_doubles(std::move(p));

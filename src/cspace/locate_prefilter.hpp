@@ -17,4 +17,20 @@ inline bool& locate_exact_prefilter() {
   return on;
 }
 
+// Point location's vertex bounds (builder_locate.cpp, locate_2d; ChartData::vertex_bounds, made
+// once when the space is built): before the exact rational comparisons above, a vertex is passed
+// over when certified doubles of its algebraic coordinates (x_lo <= x <= x_hi, y <= y_hi,
+// outward-rounded from its rational bounds) place it away from the point's double enclosure
+// [xi.lo, xi.hi] x [yi.lo, yi.hi]: x_hi < xi.lo or x_lo > xi.hi (then x != the point's x) or
+// y_hi < yi.lo (then the vertex lies below the point). Such a vertex contributes nothing to the
+// location (the loop's exact comparisons pass over a vertex with another x, and one below the
+// point), whatever its bounds are now, so every location is the same; a vertex the doubles
+// cannot place goes through the exact comparisons as before. Session 23's Geneva spent 16 M of
+// its 212 M instructions in mpq_cmp here (96,646 calls, about 184 per location). On by
+// default; tests switch it off per thread to compare (CSpaceLocateVertexBounds.*).
+inline bool& locate_vertex_bounds() {
+  thread_local bool on = true;
+  return on;
+}
+
 }  // namespace hipair::cspace

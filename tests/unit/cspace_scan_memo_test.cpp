@@ -6,6 +6,7 @@
 // a freed space's successor): every answer, every field (test::describe_crossing), equals the
 // answer made without the memo (the scanner's data made anew by the call).
 #include "cspace/scan_memo.hpp"
+#include "cspace_motion_support.hpp"
 #include "cspace_test_support.hpp"
 
 #include <hipair/cspace.hpp>
@@ -23,15 +24,6 @@
 
 namespace hipair {
 namespace {
-
-// The answer to `path` on `space`, described exactly ("throws: ..." where it throws).
-std::string answer(const CSpace& space, const MotionPath& path) {
-  try {
-    return test::describe_crossing(space, space.first_crossing(path));
-  } catch (const GeometryError& e) {
-    return std::string("throws: ") + e.what();
-  }
-}
 
 // A motion on `space`: from a random point of a random chart, either toward a random point of a
 // real edge and past it (kind 0, two thirds: a crossing from a free start), or in a random
@@ -103,7 +95,7 @@ TEST(CSpaceScanMemo, AnswersEqualTheAnswersWithoutTheMemo) {
       std::size_t chart = 0;
       MotionPath path = random_motion(space, random, kind, chart);
       // with the memo and without it, in a random order
-      auto [on, off] = test::on_and_off<&cspace::scan_memo>(random, [&](bool) { return answer(space, path); });
+      auto [on, off] = test::on_and_off<&cspace::scan_memo>(random, [&](bool) { return test::crossing_answer(space, path); });
       ASSERT_EQ(on, off) << "round " << round << " query " << query << " space " << s << " (" << space.first_part() << ":"
                          << space.second_part() << ") kind " << kind << " chart " << chart;
       ++compared;

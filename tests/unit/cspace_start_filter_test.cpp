@@ -7,6 +7,7 @@
 // equals the answer without the filter.
 #include "cspace/angle_filter.hpp"
 #include "cspace/start_filter.hpp"
+#include "cspace_motion_support.hpp"
 #include "cspace_test_support.hpp"
 #include "test_paths.hpp"
 
@@ -32,17 +33,9 @@ struct Tally {
   std::size_t compared = 0, free_starts = 0, contact_starts = 0, filtered = 0;
 };
 
-std::string answer(const CSpace& space, const MotionPath& path) {
-  try {
-    return test::describe_crossing(space, space.first_crossing(path));
-  } catch (const GeometryError& e) {
-    return std::string("throws: ") + e.what();
-  }
-}
-
 void compare(const CSpace& space, const MotionPath& path, const std::string& what, Tally& tally, std::mt19937_64& random) {
   const std::size_t before = cspace::filtered_starts();
-  auto [on, off] = test::on_and_off<&cspace::start_filter>(random, [&](bool) { return answer(space, path); });
+  auto [on, off] = test::on_and_off<&cspace::start_filter>(random, [&](bool) { return test::crossing_answer(space, path); });
   ASSERT_EQ(on, off) << what;
   tally.filtered += cspace::filtered_starts() - before;
   ++tally.compared;
@@ -81,18 +74,9 @@ void generated(const CSpace& space, int count, std::uint64_t seed, const std::st
       } else {
         x0 = edge.x_chart.lower;
       }
-      double* moved = two && random() % 2 == 0 ? &y0 : &x0;
-      if (random() % 2 == 0) {
-        int k = static_cast<int>(random() % 9) - 4;
-        for (int j = 0; j < std::abs(k); ++j) *moved = std::nextafter(*moved, k > 0 ? 1e300 : -1e300);
-      } else {
-        *moved += sym(random) * std::pow(10.0, -15 + 12 * unit(random));
-      }
+      test::move_off(two && random() % 2 == 0 ? y0 : x0, random);
     } else if (kind == 2) {
-      const CSpaceChart& chart = charts[c];
-      bool on_x = !two || random() % 2 == 0;
-      double side = (random() % 2 == 0) ? (on_x ? chart.x_lo : chart.y_lo).get_d() : (on_x ? chart.x_hi : chart.y_hi).get_d();
-      (on_x ? x0 : y0) = side;
+      test::to_chart_side(charts[c], two, x0, y0, random);
     }
     const CSpaceChart& chart = charts[c];
     bool point = random() % 3 == 0;
@@ -104,10 +88,7 @@ void generated(const CSpace& space, int count, std::uint64_t seed, const std::st
     double qy1 = two ? test::part_value(chart.y_kind, chart.y_half_turn, y1) : 0;
     double bend = (point || random() % 3 == 0) ? 0.0 : 0.3 * sym(random);
     double vx = qx1 - qx0, vy = qy1 - qy0;
-    MotionPath path;
-    path.x = test::axis_path(chart.x_kind, {qx0, vx * (1 - bend), vx * bend, 0});
-    if (two) path.y = test::axis_path(chart.y_kind, {qy0, vy * (1 + bend), -vy * bend * 0.5, -vy * bend * 0.5});
-    if (point) path.u_end = path.u_begin;
+    MotionPath path = test::bent_motion(chart, two, qx0, qy0, vx, vy, bend, point);
     std::ostringstream what;
     what.precision(17);
     what << name << " " << space.first_part() << ":" << space.second_part() << " motion " << i << " kind " << kind

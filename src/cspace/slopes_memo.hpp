@@ -1,0 +1,27 @@
+#pragma once
+
+#include <cstddef>
+
+namespace hipair::cspace {
+
+// track_derivatives' memo of its last slopes (cspace_queries.cpp, slopes_from's step 4: the
+// partials on {x} x Y1, the implicit and the part slopes). Step 4 is a pure function of the
+// tracker's edge data, the abscissa x and the certified root bracket Y1 (double intervals); the
+// tracker keeps its last (x, Y1) by their bit patterns and the answer, and a call that reaches
+// step 4 with the same ones returns that answer (cleared when the tracker is placed on another
+// edge). The simulator asks twice at every state of its contact bisection (the watch of each
+// held contact's row, then the accelerations' rows at the same state): the second call's Newton
+// and bracket land on the same Y1, and its steps 1-3 (the bracket and the certificate) still
+// run. Every answer is the same. On by default; tests switch it off per thread to compare
+// (CSpaceSlopesMemo.*).
+inline bool& slopes_memo() {
+  thread_local bool on = true;
+  return on;
+}
+// How many track_derivatives answers on this thread came from the memo (tests, profiling).
+inline std::size_t& slopes_memo_hits() {
+  thread_local std::size_t count = 0;
+  return count;
+}
+
+}  // namespace hipair::cspace

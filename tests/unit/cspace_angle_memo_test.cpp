@@ -1,0 +1,118 @@
+// first_crossing's per-thread memo of the stretches' filtered angle pieces
+// (src/cspace/cspace_queries.cpp, memo_filtered_angle_pieces; switch cspace::angle_memo() in
+// src/cspace/angle_memo.hpp). Oracle: the same queries with the memo off. Motions on the example
+// spaces (the Geneva drive, the escapement's pairs, the cam), interleaved at random so that the
+// memo holds thetas from other spaces and other motions: starts anywhere in a chart, on a real
+// edge a few ulps (or 1e-15 ... 1e-3) off it, on a chart's side (the seams t = +-1, where an angle
+// splits into two pieces), and at part angles near +-pi; each motion is followed by motions that
+// share its angle path on one axis (the nudge's trials: the driver's angle fixed, the other axis
+// moved), and by itself again (a hit on both axes).
+#include "cspace/angle_memo.hpp"
+#include "cspace_motion_support.hpp"
+#include "cspace_test_support.hpp"
+
+#include <hipair/cspace.hpp>
+#include <hipair/error.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace hipair {
+namespace {
+
+// A start (chart values) on `space`: anywhere, a few ulps or 1e-15 ... 1e-3 off a real edge, or
+// on a chart's side.
+void pick_start(const CSpace& space, std::mt19937_64& random, std::size_t& c, double& x0, double& y0) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  const std::vector<CSpaceChart>& charts = space.charts();
+  const bool two = space.dimension() == 2;
+  c = random() % charts.size();
+  x0 = charts[c].x_lo.get_d() + (charts[c].x_hi.get_d() - charts[c].x_lo.get_d()) * unit(random);
+  y0 = two ? charts[c].y_lo.get_d() + (charts[c].y_hi.get_d() - charts[c].y_lo.get_d()) * unit(random) : 0;
+  const int kind = static_cast<int>(random() % 3);
+  if (kind == 1 && two) {
+    std::size_t e = random() % space.edges().size();
+    const CSpaceEdge& edge = space.edges()[e];
+    if (!edge.real || edge.vertical) return;
+    c = edge.chart;
+    x0 = edge.x_chart.lower + (edge.x_chart.upper - edge.x_chart.lower) * (0.02 + 0.96 * unit(random));
+    try {
+      y0 = space.evaluate(e, x0).value;
+    } catch (const GeometryError&) {
+      return;
+    }
+    test::move_off(random() % 2 == 0 ? y0 : x0, random);
+  } else if (kind == 2) {
+    test::to_chart_side(charts[c], two, x0, y0, random);
+  }
+}
+
+struct Tally {
+  std::size_t compared = 0, hits = 0, shared_axis = 0;
+};
+
+void compare(const CSpace& space, const MotionPath& path, const std::string& what, std::mt19937_64& random, Tally& tally) {
+  const std::size_t before = cspace::angle_memo_hits();
+  auto [on, off] = test::on_and_off<&cspace::angle_memo>(random, [&](bool) { return test::crossing_answer(space, path); });
+  ASSERT_EQ(on, off) << what;
+  tally.hits += cspace::angle_memo_hits() - before;
+  ++tally.compared;
+}
+
+TEST(CSpaceAngleMemo, AnswersEqualTheAnswersWithoutTheMemo) {
+  std::vector<std::unique_ptr<CSpace>> spaces = test::example_spaces();
+  std::mt19937_64 random(2424);
+  std::uniform_real_distribution<double> unit(0, 1), sym(-1, 1);
+  Tally tally;
+  for (int i = 0; i < 1500; ++i) {
+    const CSpace& space = *spaces[random() % spaces.size()];
+    std::size_t c = 0;
+    double x0 = 0, y0 = 0;
+    pick_start(space, random, c, x0, y0);
+    const CSpaceChart& chart = space.charts()[c];
+    const bool two = space.dimension() == 2;
+    double qx0 = test::part_value(chart.x_kind, chart.x_half_turn, x0);
+    double qy0 = two ? test::part_value(chart.y_kind, chart.y_half_turn, y0) : 0;
+    if (random() % 8 == 0 && chart.x_kind == AxisKind::rotation)   // near +-pi: the angle's reduction
+      qx0 = (random() % 2 ? 1 : -1) * std::nextafter(std::numbers::pi, static_cast<double>(random() % 2) * 8);
+    const bool point = random() % 3 == 0;
+    const double scale = std::pow(10.0, -4 + 4 * unit(random));
+    const double vx = point ? 0 : sym(random) * scale, vy = point ? 0 : sym(random) * scale;
+    const double bend = (point || random() % 3 == 0) ? 0.0 : 0.3 * sym(random);
+    MotionPath path = test::bent_motion(chart, two, qx0, qy0, vx, vy, bend, point);
+    std::ostringstream what;
+    what.precision(17);
+    what << space.first_part() << ":" << space.second_part() << " motion " << i << " chart " << c << " from " << qx0
+         << ", " << qy0 << " by " << vx << ", " << vy << (point ? " (point)" : "");
+    compare(space, path, what.str(), random, tally);
+    ASSERT_FALSE(HasFatalFailure());
+    // the same x path with y moved (as a nudge moves the driven wheel, not the driver), and the
+    // motion itself again
+    for (int k = 0; k < 3 && two; ++k) {
+      MotionPath moved = path;
+      double dy = std::ldexp(4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(qy0)), 3 * k);
+      moved.y = test::axis_path(chart.y_kind, {qy0 + dy, vy * (1 + bend), -vy * bend * 0.5, -vy * bend * 0.5});
+      compare(space, moved, what.str() + " y moved by " + std::to_string(dy), random, tally);
+      ASSERT_FALSE(HasFatalFailure());
+      ++tally.shared_axis;
+    }
+    compare(space, path, what.str() + " again", random, tally);
+    ASSERT_FALSE(HasFatalFailure());
+  }
+  std::printf("angle memo: %zu queries compared (%zu sharing an axis path), %zu stretches from the memo\n",
+              tally.compared, tally.shared_axis, tally.hits);
+  EXPECT_GT(tally.compared, 5000u);
+  EXPECT_GT(tally.hits, tally.compared);   // the memo is used
+}
+
+}  // namespace
+}  // namespace hipair
