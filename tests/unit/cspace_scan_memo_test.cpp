@@ -32,9 +32,7 @@ namespace {
 MotionPath random_motion(const CSpace& space, std::mt19937_64& random, int& kind, std::size_t& chart_index) {
   std::uniform_real_distribution<double> unit(0, 1), sym(-1, 1);
   const bool two = space.dimension() == 2;
-  std::vector<std::size_t> real_edges;
-  for (std::size_t e = 0; e < space.edges().size(); ++e)
-    if (space.edges()[e].real) real_edges.push_back(e);
+  const std::vector<std::size_t> real_edges = test::real_edges(space);
   kind = real_edges.empty() || random() % 3 == 0 ? 1 : 0;
   std::size_t c = random() % space.charts().size();
   double x1 = 0, y1 = 0;
