@@ -247,17 +247,18 @@ TEST(ChainMeanValue, GearTrainBandIsBoundedAndHoldsMonteCarloAndExactRecomputati
   }
 }
 
-// Session 24 (band24): over 0.83-1.53 rad, where the band was unbounded at every held position
-// (the sixth or seventh mesh's root not certified with its driver over the previous mesh's whole
-// enclosure; now split by held_pieces), every held position is bounded, and the band holds the
-// Monte Carlo samples and the exact train rebuilt at random rational vectors of the box and at
-// corners of it (each deviation at an end of its tolerance), its kinematics recomputed over the
-// same range and grid by the kernel-sliced engine (the same start, so the same assembly).
+// Session 24 (band24): over 0-1.53 rad at 60 positions per turn (16 held positions, 7 of them,
+// 0.92-1.53 rad, unbounded on main 386f33c: the seventh or eighth mesh's root not certified with
+// its driver over the previous mesh's whole enclosure; now split by held_pieces), every held
+// position is bounded, and the band holds the Monte Carlo samples and the exact train rebuilt at
+// random rational vectors of the box and at corners of it (each deviation at an end of its
+// tolerance), its kinematics recomputed over the same range and grid by the kernel-sliced engine
+// (the same start, so the same assembly: the train's assembly depends on where the range starts).
 TEST(ChainMeanValue, GearTrainBandIsBoundedWhereTheHeldDriverRangeMustBeSplit) {
   std::string text = example_text("gear-train.json");
-  const std::pair<Rational, Rational> range(Rational(83, 100), Rational(153, 100));
+  const std::pair<Rational, Rational> range(Rational(0), Rational(153, 100));
   ToleranceOptions options = test_gears::chain_options(range.second, 100, 24);
-  options.range = range;
+  options.positions = 60;
   ToleranceResult r = analyze_tolerances_text(text, options);
   ASSERT_EQ(r.chain.size(), 8u);
   ASSERT_TRUE(r.monte_carlo.has_value());
@@ -269,7 +270,7 @@ TEST(ChainMeanValue, GearTrainBandIsBoundedWhereTheHeldDriverRangeMustBeSplit) {
     EXPECT_LE(sample.certified.lower, sample.nominal);
     EXPECT_GE(sample.certified.upper, sample.nominal);
   }
-  EXPECT_GE(held, 12u);
+  EXPECT_GE(held, 15u);
   EXPECT_EQ(r.monte_carlo->outside_certified, 0u);
   EXPECT_EQ(r.monte_carlo->evaluations, r.monte_carlo->samples * held);
   auto model = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text));
@@ -285,7 +286,7 @@ TEST(ChainMeanValue, GearTrainBandIsBoundedWhereTheHeldDriverRangeMustBeSplit) {
     KinematicsOptions k;
     k.driver = "gear-A";
     k.range = range;
-    k.steps_per_cycle = 120;
+    k.steps_per_cycle = 60;
     k.reversal = false;
     k.method = SliceMethod::kernels;
     KinematicsResult exact = analyze_kinematics(model->exact_model(deviations), k);
@@ -304,7 +305,7 @@ TEST(ChainMeanValue, GearTrainBandIsBoundedWhereTheHeldDriverRangeMustBeSplit) {
     }
   }
   EXPECT_EQ(checked, 4 * held);
-  std::printf("gear-train.json over 0.83..1.53 rad: %zu held positions, all bounded; %zu exact recomputations inside\n",
+  std::printf("gear-train.json over 0..1.53 rad: %zu held positions, all bounded; %zu exact recomputations inside\n",
               held, checked);
 }
 
