@@ -247,7 +247,7 @@ TEST(ChainMeanValue, GearTrainBandIsBoundedAndHoldsMonteCarloAndExactRecomputati
   }
 }
 
-// Session 24 (band24): over 0-1.53 rad at 60 positions per turn (16 held positions, 7 of them,
+// Session 24 (band24): over 0-1.53 rad at 60 positions per turn (15 held positions, 7 of them,
 // 0.92-1.53 rad, unbounded on main 386f33c: the seventh or eighth mesh's root not certified with
 // its driver over the previous mesh's whole enclosure; now split by held_pieces), every held
 // position is bounded, and the band holds the Monte Carlo samples and the exact train rebuilt at
