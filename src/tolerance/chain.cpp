@@ -471,7 +471,8 @@ class ChainAnalysis {
         charts[s] = stage.solver->certified_range(curve, box, c.v, c.s_chart, options_.relative_accuracy,
                                                   options_.absolute_accuracy, boxes[s]);
       } catch (const NumericError&) {
-        return false;
+        // the driver's range too wide for one enclosure: split it (held_pieces)
+        if (s == 0 || !held_pieces(i, s, box, curve, charts[s], boxes[s])) return false;
       }
       if (mean_value) mean_value = mean_value_step(i, s, box, curve, center_parameters, offsets, previous_nominal, charts, xc, d);
       x = to_part(charts[s], stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
@@ -479,6 +480,49 @@ class ChainAnalysis {
     out = x;
     if (mean_value_through) *mean_value_through = mean_value;
     return true;
+  }
+
+  // Pair s's enclosure over `box` when certified_range cannot certify it with the driver over
+  // its whole range T (curve.fixed_range: the previous pair's enclosure): T split into 2, 4, ...
+  // up to max_held_pieces equal pieces (adjacent pieces share their double end, the first starts
+  // at T.lo and the last ends at T.hi, so they cover T), each piece's enclosure over the box
+  // certified on its own (its root bracketed about the nominal root moved by the chart slope to
+  // the piece's middle), the hull of the pieces. The driver's value over the box lies in T, so in
+  // some piece: the hull holds pair s's follower for every parameter vector of the box. False
+  // when some piece of the finest split is not certified either.
+  bool held_pieces(std::size_t i, std::size_t s, const Box& box, const CurveSlice& curve, Interval& chart,
+                   std::size_t& boxes) const {
+    const StageAnalysis& stage = stages_[s];
+    const StageContact& c = stage.contacts[i];
+    const Interval whole = *curve.fixed_range;
+    const double slope = per_[i][s].fixed_slope;
+    const double nominal_t = c.curve.fixed_value.get_d();
+    for (std::size_t pieces = 2; pieces <= max_held_pieces; pieces *= 2) {
+      bool all = true;
+      Interval hull;
+      double lo = whole.lo;
+      for (std::size_t j = 0; j < pieces && all; ++j) {
+        double hi = j + 1 == pieces ? whole.hi : whole.lo + (whole.hi - whole.lo) * static_cast<double>(j + 1) / static_cast<double>(pieces);
+        hi = std::max(hi, lo);
+        CurveSlice piece = curve;
+        piece.fixed_range = Interval(lo, hi);
+        piece.fixed_spread = std::fabs(slope) * (hi - lo);
+        double guess = c.v + slope * (0.5 * (lo + hi) - nominal_t);
+        try {
+          Interval y = stage.solver->certified_range(piece, box, guess, c.s_chart, options_.relative_accuracy,
+                                                     options_.absolute_accuracy, boxes);
+          hull = j == 0 ? y : kernels::hull(hull, y);
+        } catch (const NumericError&) {
+          all = false;
+        }
+        lo = hi;
+      }
+      if (all) {
+        chart = hull;
+        return true;
+      }
+    }
+    return false;
   }
 
   // Pair s's step of compose_over's mean-value form: D_s from D_s-1 (in `d`, replaced), V_s(c)
@@ -729,6 +773,7 @@ class ChainAnalysis {
   }
 
   static constexpr std::size_t max_shared_boxes = 128;   // sub-boxes of the tolerance box per position
+  static constexpr std::size_t max_held_pieces = 16;     // pieces of a held driver range (held_pieces)
 
   std::string text_;
   ToleranceOptions options_;
