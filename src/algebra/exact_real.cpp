@@ -1077,15 +1077,24 @@ struct PolynomialHash {
   }
 };
 
-Polynomial memoised_square_free_part(Polynomial p) {
+using PolynomialMemo = std::unordered_map<Polynomial, Polynomial, PolynomialHash>;
+
+// compute()'s value for `key`, looked up in `memo` first and remembered there (emptied when it
+// holds 4,096 polynomials). compute must be a pure function of key.
+template <class Compute>
+Polynomial remembered(PolynomialMemo& memo, const Polynomial& key, Compute compute) {
   constexpr std::size_t capacity = 4096;
-  thread_local std::unordered_map<Polynomial, Polynomial, PolynomialHash> memo;
-  auto found = memo.find(p);
+  auto found = memo.find(key);
   if (found != memo.end()) return found->second;
-  Polynomial part = square_free_part(p);
+  Polynomial value = compute();
   if (memo.size() >= capacity) memo.clear();
-  memo.emplace(std::move(p), part);
-  return part;
+  memo.emplace(key, value);
+  return value;
+}
+
+Polynomial memoised_square_free_part(const Polynomial& p) {
+  thread_local PolynomialMemo memo;
+  return remembered(memo, p, [&] { return square_free_part(p); });
 }
 
 }  // namespace
@@ -1103,7 +1112,7 @@ Polynomial square_free_test(const Polynomial& input, bool* exact_needed) {
     if (modular_gcd_degree(std::move(a), std::move(b), prime) == 0) return p;
   }
   if (exact_needed) *exact_needed = true;
-  return memoised_square_free_part(std::move(p));
+  return memoised_square_free_part(p);
 }
 
 namespace {
@@ -1116,14 +1125,8 @@ namespace {
 // coefficient by coefficient), so a hit returns exactly what square_free_test would. Bounded:
 // emptied when it holds `capacity` polynomials.
 Polynomial remembered_square_free_test(const Polynomial& input) {
-  constexpr std::size_t capacity = 4096;
-  thread_local std::unordered_map<Polynomial, Polynomial, PolynomialHash> memo;
-  auto found = memo.find(input);
-  if (found != memo.end()) return found->second;
-  Polynomial p = square_free_test(input);
-  if (memo.size() >= capacity) memo.clear();
-  memo.emplace(input, p);
-  return p;
+  thread_local PolynomialMemo memo;
+  return remembered(memo, input, [&] { return square_free_test(input); });
 }
 
 }  // namespace
