@@ -1082,15 +1082,24 @@ struct PolynomialHash {
   }
 };
 
-Polynomial memoised_square_free_part(Polynomial p) {
+using PolynomialMemo = std::unordered_map<Polynomial, Polynomial, PolynomialHash>;
+
+// compute()'s value for `key`, looked up in `memo` first and remembered there (emptied when it
+// holds 4,096 polynomials). compute must be a pure function of key.
+template <class Compute>
+Polynomial remembered(PolynomialMemo& memo, const Polynomial& key, Compute compute) {
   constexpr std::size_t capacity = 4096;
-  thread_local std::unordered_map<Polynomial, Polynomial, PolynomialHash> memo;
-  auto found = memo.find(p);
+  auto found = memo.find(key);
   if (found != memo.end()) return found->second;
-  Polynomial part = square_free_part(p);
+  Polynomial value = compute();
   if (memo.size() >= capacity) memo.clear();
-  memo.emplace(std::move(p), part);
-  return part;
+  memo.emplace(key, value);
+  return value;
+}
+
+Polynomial memoised_square_free_part(const Polynomial& p) {
+  thread_local PolynomialMemo memo;
+  return remembered(memo, p, [&] { return square_free_part(p); });
 }
 
 }  // namespace
@@ -1108,13 +1117,29 @@ Polynomial square_free_test(const Polynomial& input, bool* exact_needed) {
     if (modular_gcd_degree(std::move(a), std::move(b), prime) == 0) return p;
   }
   if (exact_needed) *exact_needed = true;
-  return memoised_square_free_part(std::move(p));
+  return memoised_square_free_part(p);
 }
+
+namespace {
+
+// square_free_test's answers for descartes_real_roots' inputs, remembered per thread. The
+// quadratic traits isolates the same resultants, discriminants and leading coefficients in
+// every tile a curve crosses (a chart's curves do not depend on the tile's box), and the test's
+// primitive part (a gcd of every coefficient) and modular gcds cost more than the isolation of
+// a tile's few roots. The answer is a pure function of the input polynomial (compared
+// coefficient by coefficient), so a hit returns exactly what square_free_test would. Bounded:
+// emptied when it holds `capacity` polynomials.
+Polynomial remembered_square_free_test(const Polynomial& input) {
+  thread_local PolynomialMemo memo;
+  return remembered(memo, input, [&] { return square_free_test(input); });
+}
+
+}  // namespace
 
 std::vector<Real> descartes_real_roots(const Polynomial& input, const Rational& lo, const Rational& hi) {
   std::vector<Real> roots;
   if (degree(input) < 1 || lo > hi) return roots;
-  Polynomial p = square_free_test(input);
+  Polynomial p = remembered_square_free_test(input);
   if (isolated_trivially(p, lo, hi, roots)) return roots;
   // q(t) = D^n p(lo + (hi - lo) t) with lo = a / b, hi - lo = c / e, D = b e:
   // sum p_i (a e + c b t)^i D^(n - i), by Horner's scheme on polynomials in t.

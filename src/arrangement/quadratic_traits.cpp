@@ -144,6 +144,42 @@ Polynomial resultant_y(const std::vector<Polynomial>& f, const std::vector<Polyn
   return sub(mul(af_cd, af_cd), mul(sub(mul(a, e), mul(b, d)), sub(mul(b, ff), mul(c, e))));
 }
 
+/// A hash of a column list (every coefficient's size and lowest limb).
+std::size_t column_hash(const std::vector<Polynomial>& cols) {
+  std::size_t h = cols.size();
+  for (const Polynomial& column : cols) {
+    h = h * 131u + column.size();
+    for (const mpz_class& c : column) {
+      const mpz_srcptr z = c.get_mpz_t();
+      h = (h ^ static_cast<std::size_t>(z->_mp_size)) * 0x100000001b3ULL;
+      if (z->_mp_size != 0) h = (h ^ static_cast<std::size_t>(z->_mp_d[0])) * 0x100000001b3ULL;
+    }
+  }
+  return h;
+}
+
+/// resultant_y, remembered per thread. A chart's curves do not depend on the tile's box, so
+/// the tiles a curve crosses ask again for the same resultants (its horizontal tangents, its
+/// validity atoms, each other curve of the tile it meets). The value is a pure function of the
+/// two column lists (compared coefficient by coefficient), so a hit returns exactly what
+/// resultant_y would. Bounded: emptied when it holds `capacity` resultants.
+Polynomial remembered_resultant_y(const std::vector<Polynomial>& f, const std::vector<Polynomial>& g) {
+  constexpr std::size_t capacity = 4096;
+  struct Entry {
+    std::vector<Polynomial> f, g;
+    Polynomial resultant;
+  };
+  thread_local std::unordered_multimap<std::size_t, Entry> memo;
+  const std::size_t key = column_hash(f) * 0x9e3779b97f4a7c15ULL + column_hash(g);
+  auto [first, last] = memo.equal_range(key);
+  for (auto it = first; it != last; ++it)
+    if (it->second.f == f && it->second.g == g) return it->second.resultant;
+  Polynomial r = resultant_y(f, g);
+  if (memo.size() >= capacity) memo.clear();
+  memo.emplace(key, Entry{f, g, r});
+  return r;
+}
+
 /// Pseudo-remainder of g by f in y (deg_y f >= 1): degree < deg_y f, same common roots
 /// where f's leading coefficient does not vanish.
 std::vector<Polynomial> pseudo_remainder(std::vector<Polynomial> g, const std::vector<Polynomial>& f) {
@@ -374,7 +410,18 @@ class QuadraticTraits {
 
   // ---------------------------------------------------------------- state
 
-  int add_support(const IntegerPolynomial2& full) {
+  /// A support without its events (everything that does not depend on the box), remembered
+  /// per thread: a chart's curves do not depend on the tile's box, so every tile a curve
+  /// crosses asks again for the same content, columns, discriminant and enclosures. The value is
+  /// a pure function of `full` (compared coefficient by coefficient), so a hit is exactly what
+  /// the computation gives. Bounded: emptied when it holds `capacity` supports.
+  static Support box_free_support(const IntegerPolynomial2& full) {
+    constexpr std::size_t capacity = 2048;
+    thread_local std::unordered_multimap<std::size_t, Support> memo;
+    const std::size_t key = column_hash(full.coefficients);
+    auto [first, last] = memo.equal_range(key);
+    for (auto it = first; it != last; ++it)
+      if (it->second.full.coefficients == full.coefficients) return it->second;
     Support s;
     s.full = full;
     std::vector<Polynomial> cols = columns(full);
@@ -408,6 +455,13 @@ class QuadraticTraits {
     s.i_two_a = enclose(s.two_a);
     s.i_neg_b = enclose(s.neg_b);
     s.i_neg_c = enclose(s.neg_c);
+    if (memo.size() >= capacity) memo.clear();
+    memo.emplace(key, s);
+    return s;
+  }
+
+  int add_support(const IntegerPolynomial2& full) {
+    Support s = box_free_support(full);
     // events: x-only factors, leading coefficient and discriminant (the x where CGAL's curve
     // analysis has its status lines with events)
     std::vector<Real> events;
@@ -416,7 +470,7 @@ class QuadraticTraits {
       for (auto& r : roots_in(p, st_->box.x_lo, st_->box.x_hi))
         if (r.compare(st_->box.x_lo) > 0 && r.compare(st_->box.x_hi) < 0) events.push_back(std::move(r));
     };
-    add_roots(content);
+    add_roots(s.content);
     if (s.degree == 2) {
       add_roots(s.a);
       add_roots(s.disc);
@@ -791,7 +845,7 @@ class QuadraticTraits {
     auto key = std::make_pair(std::min(i, j), std::max(i, j));
     auto it = st_->roots.find(key);
     if (it != st_->roots.end()) return it->second;
-    Polynomial r = resultant_y(support(i).part_columns, support(j).part_columns);
+    Polynomial r = remembered_resultant_y(support(i).part_columns, support(j).part_columns);
     if (r.empty()) throw NotApplicable{"common component"};   // a common component of two supports
     // the roots over the common part of the two supports' hulls (restrict_roots): every point
     // of the arrangement on both supports lies there, and every pair of arcs the insertion
@@ -1253,7 +1307,7 @@ class QuadraticBuilder {
             if (g.empty()) continue;
             cut_roots(s.part_columns.back(), out);
           }
-          Polynomial r = resultant_y(s.part_columns, g);
+          Polynomial r = remembered_resultant_y(s.part_columns, g);
           if (r.empty()) continue;
           cut_roots(r, out);
         }
@@ -1317,7 +1371,7 @@ class QuadraticBuilder {
       std::vector<Polynomial> cols = columns(f), f_x;
       for (const auto& c : cols) f_x.push_back(algebra::derivative(c));
       while (!f_x.empty() && f_x.back().empty()) f_x.pop_back();
-      if (!f_x.empty()) cut_roots(resultant_y(cols, f_x), hard);
+      if (!f_x.empty()) cut_roots(remembered_resultant_y(cols, f_x), hard);
     }
     cut_windows_ = nullptr;
     std::vector<Cut> cuts;
