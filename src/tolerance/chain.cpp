@@ -707,6 +707,10 @@ class ChainAnalysis {
     if (uncertified > 0)
       notes_.push_back("the certified band could not be computed at " + std::to_string(uncertified) +
                        " driver position(s) (shown unbounded)");
+    // What the band assumes (docs/tolerance.md "Assembly chains" step 4), said where it is read.
+    notes_.push_back("the certified band follows, in each pair, the feature pair touching at the nominal position "
+                     "over the whole tolerance box; a change of the touching feature pair inside the box (another "
+                     "tooth or flank taking over near a contact change) is not enclosed");
   }
 
   void monte_carlo() {
