@@ -34,16 +34,10 @@ bool meet(const CertifiedRange& a, const CertifiedRange& b) {
 }
 
 TEST(CSpaceEdgeTracker, FilteredDerivativesMeetTheExactOnesAlongWalks) {
-  struct Case {
-    const char* file;
-    const char* first;
-    const char* second;
-  };
   std::mt19937_64 random(8);
   int answered = 0, asked = 0, edges = 0;
   double widest = 0;   // reported (docs/simulation.md): the enclosures' relative width
-  for (const Case& c : {Case{"geneva-drive.json", "driver", "wheel"}, Case{"cam-follower.json", "cam", "follower"},
-                        Case{"scotch-yoke.json", "crank", "yoke"}}) {
+  for (const test::SlidingPair& c : test::sliding_pairs) {
     Model model = read_model_file(example(c.file));
     CSpace space = CSpace::build(model, c.first, c.second);
     for (std::size_t e = 0; e < space.edges().size(); ++e) {

@@ -148,13 +148,7 @@ bool same(const CertifiedRange& a, const CertifiedRange& b) { return same(a.lowe
 TEST(CSpacePartialTerms, TrackDerivativesEqualTheirAnswersWithoutTheTerms) {
   std::mt19937_64 random(2312);
   std::size_t compared = 0, answered = 0;
-  struct Case {
-    const char* file;
-    const char* first;
-    const char* second;
-  };
-  for (const Case& c : {Case{"geneva-drive.json", "driver", "wheel"}, Case{"cam-follower.json", "cam", "follower"},
-                        Case{"scotch-yoke.json", "crank", "yoke"}}) {
+  for (const test::SlidingPair& c : test::sliding_pairs) {
     const char* file = c.file;
     Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / file);
     CSpace space = CSpace::build(model, c.first, c.second);

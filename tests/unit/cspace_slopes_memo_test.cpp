@@ -46,13 +46,7 @@ TEST(CSpaceSlopesMemo, TrackDerivativesEqualTheirAnswersWithoutTheMemo) {
   std::mt19937_64 random(2424);
   std::size_t compared = 0, answered = 0, moved = 0;
   const std::size_t hits_before = cspace::slopes_memo_hits();
-  struct Case {
-    const char* file;
-    const char* first;
-    const char* second;
-  };
-  for (const Case& c : {Case{"geneva-drive.json", "driver", "wheel"}, Case{"cam-follower.json", "cam", "follower"},
-                        Case{"scotch-yoke.json", "crank", "yoke"}}) {
+  for (const test::SlidingPair& c : test::sliding_pairs) {
     Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / c.file);
     CSpace space = CSpace::build(model, c.first, c.second);
     std::vector<std::size_t> edges;

@@ -32,6 +32,16 @@ inline cspace::ChartAxis axis_of(AxisKind kind, bool half_turn, const Rational& 
   return axis;
 }
 
+// The example pairs whose sliding contacts the derivative tests walk edge by edge (the Geneva
+// drive, the cam and its follower, the Scotch yoke): model file and the pair's two parts.
+struct SlidingPair {
+  const char* file;
+  const char* first;
+  const char* second;
+};
+inline constexpr SlidingPair sliding_pairs[] = {
+    {"geneva-drive.json", "driver", "wheel"}, {"cam-follower.json", "cam", "follower"}, {"scotch-yoke.json", "crank", "yoke"}};
+
 // The example spaces the C-space query tests run on: the Geneva drive, the escapement's built
 // pairs, the cam and its flat-faced follower.
 inline std::vector<std::unique_ptr<CSpace>> example_spaces() {
