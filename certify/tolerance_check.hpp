@@ -235,6 +235,10 @@ class ToleranceEvaluator {
   /// other: that feature pair as a contact side — a candidate side for the producer to keep the
   /// witness path away from.)
 
+  /// Whether this evaluator's check_leaf passed the witness test (checks 4 or 6) of exactly
+  /// `leaf` (every field equal) at index `index`: what check 7 may then use of that leaf.
+  bool witness_proved(std::size_t index, const ToleranceLeaf& leaf) const;
+
   /// no_interference: the claim's property.
   bool interference_claim() const { return claim_.property == "no_interference"; }
   /// no_interference: checks one leaf — every edge of the driver certainly apart from every
@@ -267,7 +271,6 @@ class ToleranceEvaluator {
   /// passed, so that check 7 may use what it proved (its sides' contact functions of one certain
   /// sign along the witness path over the leaf) — only for that very leaf (every field compared).
   mutable std::vector<std::optional<ToleranceLeaf>> witness_proved_;
-  bool witness_proved(std::size_t index, const ToleranceLeaf& leaf) const;
 };
 
 /// Checks a tolerance certificate against the model text (its hash already checked).

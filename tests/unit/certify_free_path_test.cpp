@@ -19,6 +19,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <random>
 #include <sstream>
@@ -428,6 +429,81 @@ TEST(CertifyFreePath, SideEventsAreExcludedOnlyForTheLeafWhoseWitnessTestPassed)
   std::string failure = evaluator.free_path_failure(48);
   EXPECT_NE(failure, "") << "check 7 proved a path through the pin";
   std::cout << "[ side events ] " << failure << "\n";
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// Check 7 may use a leaf's witness test only for the very leaf that passed it in the same
+// evaluator (ToleranceEvaluator::witness_proved; session 20). The scenario test above fails for
+// another event too, so it cannot see this comparison; here every single-field change of every
+// checked leaf (each bound of each parameter, driver and side interval, the side pairs, the
+// witness value, each slope and margin, the vectors' lengths, the follower interval) must make it
+// answer no, an equal copy yes, and another index no. Mutation: witness_proved answering yes once
+// the index was checked (without the comparison) fails it on every change.
+TEST(CertifyFreePath, WitnessProvedHoldsOnlyForTheVeryLeafThatPassed) {
+  Oracle oracle;
+  Certificate c = read_certificate(read(fixture("geneva-tolerance-no-jam-4x-free-path.json")));
+  ASSERT_TRUE(c.tolerance);
+  const ToleranceClaim& t = *c.tolerance;
+  verify::ToleranceEvaluator evaluator(oracle.model, t);
+  for (std::size_t i = 0; i < t.leaves.size(); ++i) EXPECT_FALSE(evaluator.witness_proved(i, t.leaves[i]));
+  for (std::size_t i = 0; i < t.leaves.size(); ++i) evaluator.check_leaf(t.leaves[i], i);
+
+  const Rational tiny = Rational(1, 1000000007) / Rational(1000000009);
+  std::size_t witnesses = 0, changes = 0;
+  for (std::size_t i = 0; i < t.leaves.size(); ++i) {
+    const ToleranceLeaf& leaf = t.leaves[i];
+    if (!leaf.witness) {
+      EXPECT_FALSE(evaluator.witness_proved(i, leaf)) << "leaf " << i << " has no witness";
+      continue;
+    }
+    ++witnesses;
+    ToleranceLeaf copy = leaf;
+    EXPECT_TRUE(evaluator.witness_proved(i, copy)) << "leaf " << i;
+    EXPECT_FALSE(evaluator.witness_proved(t.leaves.size() + i, copy)) << "leaf " << i << " at an index never checked";
+    for (std::size_t j = 0; j < t.leaves.size(); ++j)
+      if (j != i) EXPECT_FALSE(evaluator.witness_proved(j, copy)) << "leaf " << i << " at index " << j;
+
+    std::vector<std::pair<std::string, std::function<void(ToleranceLeaf&)>>> edits;
+    auto interval = [&](const std::string& name, auto member) {
+      edits.push_back({name + ".lo", [=](ToleranceLeaf& l) { member(l).lo -= tiny; }});
+      edits.push_back({name + ".hi", [=](ToleranceLeaf& l) { member(l).hi += tiny; }});
+    };
+    for (std::size_t p = 0; p < leaf.parameters.size(); ++p)
+      interval("parameter " + std::to_string(p), [p](ToleranceLeaf& l) -> RationalInterval& { return l.parameters[p]; });
+    interval("driver", [](ToleranceLeaf& l) -> RationalInterval& { return l.driver; });
+    for (bool upper : {false, true}) {
+      std::string side = upper ? "upper" : "lower";
+      auto of = [upper](ToleranceLeaf& l) -> LeafSide& { return upper ? l.upper : l.lower; };
+      interval(side + " bracket", [of](ToleranceLeaf& l) -> RationalInterval& { return of(l).bracket; });
+      interval(side + " centre", [of](ToleranceLeaf& l) -> RationalInterval& { return of(l).centre; });
+      edits.push_back({side + " pair", [of](ToleranceLeaf& l) { of(l).pair += 1; }});
+    }
+    edits.push_back({"witness", [&](ToleranceLeaf& l) { *l.witness += tiny; }});
+    edits.push_back({"no witness", [](ToleranceLeaf& l) { l.witness.reset(); }});
+    for (std::size_t s = 0; s < leaf.witness_slopes.size(); ++s)
+      edits.push_back({"slope " + std::to_string(s), [&, s](ToleranceLeaf& l) { l.witness_slopes[s] -= tiny; }});
+    for (std::size_t s = 0; s < leaf.witness_margins.size(); ++s)
+      edits.push_back({"margin " + std::to_string(s), [&, s](ToleranceLeaf& l) { l.witness_margins[s] += tiny; }});
+    edits.push_back({"one slope fewer", [](ToleranceLeaf& l) { l.witness_slopes.pop_back(); }});
+    edits.push_back({"one slope more", [](ToleranceLeaf& l) { l.witness_slopes.push_back(Rational(0)); }});
+    edits.push_back({"one margin more", [](ToleranceLeaf& l) { l.witness_margins.push_back(Rational(1)); }});
+    edits.push_back({"one parameter fewer", [](ToleranceLeaf& l) { l.parameters.pop_back(); }});
+    edits.push_back({"a follower interval", [](ToleranceLeaf& l) { l.follower = l.driver; }});
+    for (const auto& [name, edit] : edits) {
+      ToleranceLeaf changed = leaf;
+      edit(changed);
+      EXPECT_FALSE(evaluator.witness_proved(i, changed)) << "leaf " << i << ", changed " << name;
+      ++changes;
+    }
+  }
+  std::cout << "[ witness proved ] " << witnesses << " leaves with witnesses, " << changes << " single-field changes\n";
+  EXPECT_GE(witnesses, 2u);
+  EXPECT_GE(changes, 100u);
 }
 
 }  // namespace
