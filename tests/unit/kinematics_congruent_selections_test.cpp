@@ -22,7 +22,9 @@
 #include <filesystem>
 #include <memory>
 #include <random>
+#include <set>
 #include <string>
+#include <utility>
 
 namespace hipair::kinematics_detail {
 namespace {
@@ -193,6 +195,7 @@ TEST(KernelSlicerCongruent, TranslatedGearPairsShareSelectionsWithTheSameSlices)
     auto moved_shared = make_kernel_slicer(model, moved, model.pairs[moved].second, shared);
     auto moved_own = make_kernel_slicer(model, moved, model.pairs[moved].second, KernelSlicerOptions{});
     std::size_t points = 0;
+    std::set<std::pair<std::size_t, std::size_t>> first_slices;
     for (int k = 0; k < 5; ++k) {
       const std::size_t o = random() % original->other_charts().size();
       const std::size_t f = random() % original->follower_charts().size();
@@ -200,12 +203,14 @@ TEST(KernelSlicerCongruent, TranslatedGearPairsShareSelectionsWithTheSameSlices)
       const std::string where = "trial " + std::to_string(trial) + " charts " + std::to_string(o) + "," +
                                 std::to_string(f) + " at " + value.get_str();
       original->slice(o, value, f);   // the original pair's selections first
-      const std::size_t hits = memo->hits();
+      const std::size_t taken = memo->hits() + memo->strip_hits();
       ChartSlice a = copy_own->slice(o, value, f);
       ChartSlice b = copy_shared->slice(o, value, f);
       expect_equal(a, b, "copy " + where);
       points += a.points.size();
-      ASSERT_GE(memo->hits(), hits) << where;
+      // the copy's first slice of a chart pair takes what the original just built there (a
+      // selection or the whole strip); later slices of the pair may find their strip taken already
+      if (first_slices.insert({o, f}).second) EXPECT_GT(memo->hits() + memo->strip_hits(), taken) << where;
       for (const SlicePoint& point : b.points)
         for (std::size_t feature : point.features) {
           ASSERT_LT(feature, copy_shared->features().size());
