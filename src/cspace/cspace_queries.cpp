@@ -8,6 +8,7 @@
 // with directed rounding, outward-rounded double intervals).
 #include <hipair/cspace.hpp>
 #include <hipair/cspace_slice.hpp>
+#include <hipair/blocked_walk.hpp>
 #include <hipair/edge_tracker.hpp>
 #include <hipair/error.hpp>
 
@@ -1239,6 +1240,31 @@ std::shared_ptr<ScanMemo> fresh_scan_memo(const CSpace::Impl& impl) {
   return memo;
 }
 
+// The curves of chart c that can bound a cell (ScanMemo::carriers), made on first use.
+const ScanMemo::ChartCarriers& chart_carriers(const CSpace::Impl& impl, ScanMemo& memo, std::size_t c) {
+  ScanMemo::ChartCarriers& result = memo.carriers[c];
+  if (result.ready) return result;
+  result.ready = true;
+  const ChartData& chart = impl.charts[c];
+  for (std::size_t e = 0; e < chart.edges.size(); ++e) {
+    const CSpaceEdge& edge = impl.edges[chart.edges[e].global];
+    if (!edge.real && edge.left_cell == edge.right_cell) continue;
+    if (chart.edges[e].curves.empty()) continue;
+    ScanMemo::Carrier carrier;
+    std::copy(std::begin(chart.arrangement.edges[e].box), std::end(chart.arrangement.edges[e].box), carrier.box);
+    carrier.curves = chart.edges[e].curves;
+    result.edges.push_back(std::move(carrier));
+  }
+  for (std::size_t v = 0; v < chart.arrangement.vertices.size(); ++v) {
+    if (!chart.arrangement.vertices[v].isolated) continue;
+    const CSpaceVertex& vertex = impl.vertices[chart.vertex_global[v]];
+    for (std::size_t k = 0; k < chart.curve_global.size(); ++k)
+      if (std::find(vertex.curves.begin(), vertex.curves.end(), chart.curve_global[k]) != vertex.curves.end())
+        result.everywhere.push_back(k);
+  }
+  return result;
+}
+
 // The scan memo of the space `owner` on this thread (made on first use), or a fresh one when
 // the switch is off. Held by shared_ptr: a scanner keeps its memo even if the list drops it.
 std::shared_ptr<ScanMemo> scan_memo_of(const std::shared_ptr<const CSpace::Impl>& owner) {
@@ -1797,29 +1823,7 @@ class MotionScanner {
   using Carrier = ScanMemo::Carrier;
   using ChartCarriers = ScanMemo::ChartCarriers;
 
-  const ChartCarriers& carriers(std::size_t c) {
-    ChartCarriers& result = memo_->carriers[c];
-    if (result.ready) return result;
-    result.ready = true;
-    const ChartData& chart = impl_.charts[c];
-    for (std::size_t e = 0; e < chart.edges.size(); ++e) {
-      const CSpaceEdge& edge = impl_.edges[chart.edges[e].global];
-      if (!edge.real && edge.left_cell == edge.right_cell) continue;
-      if (chart.edges[e].curves.empty()) continue;
-      Carrier carrier;
-      std::copy(std::begin(chart.arrangement.edges[e].box), std::end(chart.arrangement.edges[e].box), carrier.box);
-      carrier.curves = chart.edges[e].curves;
-      result.edges.push_back(std::move(carrier));
-    }
-    for (std::size_t v = 0; v < chart.arrangement.vertices.size(); ++v) {
-      if (!chart.arrangement.vertices[v].isolated) continue;
-      const CSpaceVertex& vertex = impl_.vertices[chart.vertex_global[v]];
-      for (std::size_t k = 0; k < chart.curve_global.size(); ++k)
-        if (std::find(vertex.curves.begin(), vertex.curves.end(), chart.curve_global[k]) != vertex.curves.end())
-          result.everywhere.push_back(k);
-    }
-    return result;
-  }
+  const ChartCarriers& carriers(std::size_t c) { return chart_carriers(impl_, *memo_, c); }
 
   // Curves of the box's chart that may vanish (validly) in the box, on a contact edge's box.
   void exclude(std::size_t piece, const PieceBox& box, std::vector<Possible>& possible) {
@@ -2170,6 +2174,113 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
     if (std::optional<StartAnchor> anchor = scanner.anchor_from(*last, result.cell_left.index()))
       remember_anchor(std::move(*anchor), owner);
   return result;
+}
+
+// ------------------------------------------------------------------ blocked walks
+
+namespace {
+
+// One axis of a configuration for certainly_blocked: the double enclosure of its chart
+// coordinate t at u = u_begin (the certified angle filter on the exact path angle), when it lies
+// in one chart system; nullopt otherwise (an axis that does not rotate, an angle near a seam,
+// the filter undecided).
+struct WalkAxis {
+  bool half_turn = false;
+  cspace::algebra::Interval t;
+};
+
+std::optional<WalkAxis> walk_axis(const AxisPath& axis, const Rational& u) {
+  if (axis.kind != AxisPath::Kind::angle) return std::nullopt;
+  KInterval theta;
+  if (sgn(u) == 0) {
+    theta = axis.coefficients.empty() ? KInterval(0) : KInterval::enclose(axis.coefficients.front());
+  } else {
+    Rational value(0);
+    for (std::size_t i = axis.coefficients.size(); i-- > 0;) value = value * u + axis.coefficients[i];
+    theta = KInterval::enclose(value);
+  }
+  std::optional<cspace::AngleRanges> ranges = cspace::filtered_angle_ranges(theta);
+  if (!ranges || ranges->size != 1) return std::nullopt;
+  return WalkAxis{ranges->half_turn[0], {ranges->lo[0], ranges->hi[0]}};
+}
+
+// No curve of chart c that can bound a cell (the scanner's carriers: those of the edges whose
+// certified boxes meet x * y, and those through an isolated vertex) vanishes on x * y
+// (outward-rounded interval evaluation).
+bool no_boundary_on(const CSpace::Impl& impl, ScanMemo& memo, std::size_t c, const cspace::algebra::Interval& x,
+                    const cspace::algebra::Interval& y) {
+  const ChartData& chart = impl.charts[c];
+  auto vanishes = [&](std::size_t k) {
+    cspace::algebra::Interval value = chart.interval_polynomials[k].evaluate(x, y);
+    return !std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero();
+  };
+  const ScanMemo::ChartCarriers& known = chart_carriers(impl, memo, c);
+  for (std::size_t k : known.everywhere)
+    if (vanishes(k)) return false;
+  for (const ScanMemo::Carrier& carrier : known.edges) {
+    if (x.hi < carrier.box[0] || x.lo > carrier.box[2] || y.hi < carrier.box[1] || y.lo > carrier.box[3]) continue;
+    for (std::size_t k : carrier.curves)
+      if (vanishes(k)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+// See blocked_walk.hpp for the proof. Every point of contact space or of a boundary between
+// two cells in the chart (a real edge, an edge between different cells, a vertex of one, an
+// isolated vertex) lies on a curve that the scanner's carriers test where that point can be
+// (the edge's certified box; an isolated vertex's curves everywhere): where none of them vanishes
+// on the hull H, H meets no such point, and H (connected, strictly inside the chart) lies in
+// one cell: the last box's. That is the test first_crossing's own exclusion makes (exclude).
+bool certainly_blocked(const CSpace& space, const MotionPath& point, BlockedWalk& walk) {
+  const CSpace::Impl& impl = checked(space);
+  if (!cspace::blocked_walks() || walk.spent_) return false;
+  walk.spent_ = true;   // until this call certifies the configuration
+  if (impl.dimension != 2 || !impl.complete) return false;
+  std::optional<WalkAxis> px = walk_axis(point.x, point.u_begin);
+  if (!px) return false;
+  std::optional<WalkAxis> py = walk_axis(point.y, point.u_begin);
+  if (!py) return false;
+  std::shared_ptr<ScanMemo> memo = scan_memo_of(CSpaceAccess::shared(space));
+  if (walk.space_) {
+    // the walk's next configuration: certified from the last box, or the walk ends
+    const CSpaceChart& system = impl.public_charts[walk.chart_];
+    if (walk.space_ != &impl || px->half_turn != system.x_half_turn || py->half_turn != system.y_half_turn) return false;
+    if (!(px->t.lo > walk.side_[0] && px->t.hi < walk.side_[1] && py->t.lo > walk.side_[2] && py->t.hi < walk.side_[3]))
+      return false;
+    cspace::algebra::Interval x{std::min(walk.box_[0], px->t.lo), std::max(walk.box_[1], px->t.hi)};
+    cspace::algebra::Interval y{std::min(walk.box_[2], py->t.lo), std::max(walk.box_[3], py->t.hi)};
+    if (!no_boundary_on(impl, *memo, walk.chart_, x, y)) return false;
+    ++cspace::blocked_walk_steps();
+  } else {
+    // the walk's first configuration: in the chart that holds its box strictly inside, where no
+    // carrier vanishes on the box, located exactly (its rational midpoint)
+    std::size_t chart = no_index;
+    std::array<double, 4> side{};
+    for (std::size_t c = 0; c < impl.charts.size() && chart == no_index; ++c) {
+      const CSpaceChart& system = impl.public_charts[c];
+      if (system.x_kind != AxisKind::rotation || system.y_kind != AxisKind::rotation ||
+          system.x_half_turn != px->half_turn || system.y_half_turn != py->half_turn)
+        continue;
+      // the sides rounded inward: a double beyond one is beyond the side
+      const cspace::raw::Box& box = impl.charts[c].box;
+      side = {cspace::algebra::upper_double(box.x_lo), cspace::algebra::lower_double(box.x_hi),
+              cspace::algebra::upper_double(box.y_lo), cspace::algebra::lower_double(box.y_hi)};
+      if (px->t.lo > side[0] && px->t.hi < side[1] && py->t.lo > side[2] && py->t.hi < side[3]) chart = c;
+    }
+    if (chart == no_index || !no_boundary_on(impl, *memo, chart, px->t, py->t)) return false;
+    Rational x = (Rational(px->t.lo) + Rational(px->t.hi)) / 2, y = (Rational(py->t.lo) + Rational(py->t.hi)) / 2;
+    x.canonicalize();
+    y.canonicalize();
+    if (cspace::locate_point(impl, ChartPoint{chart, x, y}).kind != Location::Kind::blocked) return false;
+    walk.space_ = &impl;
+    walk.chart_ = chart;
+    walk.side_ = side;
+  }
+  walk.box_ = {px->t.lo, px->t.hi, py->t.lo, py->t.hi};
+  walk.spent_ = false;
+  return true;
 }
 
 }  // namespace hipair
