@@ -42,6 +42,14 @@ class BlockedWalk {
   std::size_t chart_ = 0;
   std::array<double, 4> side_{};   // the chart's sides {x_lo, x_hi, y_lo, y_hi}, rounded inward
   std::array<double, 4> box_{};    // the last configuration's box {x_lo, x_hi, y_lo, y_hi}
+  // per axis, the last exact angle and its chart range (a pure function of it): a nudge moves
+  // only the free parts, so a driven part's angle recurs in every trial
+  struct Axis {
+    bool set = false, half_turn = false;
+    Rational theta;
+    double lo = 0, hi = 0;
+  };
+  std::array<Axis, 2> axes_;
 };
 
 /// True: certified that the configuration of `point` at u = point.u_begin lies inside a blocked

@@ -2189,19 +2189,26 @@ struct WalkAxis {
   cspace::algebra::Interval t;
 };
 
-std::optional<WalkAxis> walk_axis(const AxisPath& axis, const Rational& u) {
+template <class Memo>
+std::optional<WalkAxis> walk_axis(const AxisPath& axis, const Rational& u, Memo& memo) {
   if (axis.kind != AxisPath::Kind::angle) return std::nullopt;
-  KInterval theta;
+  // the exact angle at u (at u = 0 the constant coefficient itself, not a copy)
+  Rational value(0);
+  const Rational* theta = &value;
   if (sgn(u) == 0) {
-    theta = axis.coefficients.empty() ? KInterval(0) : KInterval::enclose(axis.coefficients.front());
+    if (!axis.coefficients.empty()) theta = &axis.coefficients.front();
   } else {
-    Rational value(0);
     for (std::size_t i = axis.coefficients.size(); i-- > 0;) value = value * u + axis.coefficients[i];
-    theta = KInterval::enclose(value);
   }
-  std::optional<cspace::AngleRanges> ranges = cspace::filtered_angle_ranges(theta);
+  if (memo.set && memo.theta == *theta) return WalkAxis{memo.half_turn, {memo.lo, memo.hi}};
+  std::optional<cspace::AngleRanges> ranges = cspace::filtered_angle_ranges(KInterval::enclose(*theta));
   if (!ranges || ranges->size != 1) return std::nullopt;
-  return WalkAxis{ranges->half_turn[0], {ranges->lo[0], ranges->hi[0]}};
+  memo.set = true;
+  memo.half_turn = ranges->half_turn[0];
+  memo.theta = *theta;
+  memo.lo = ranges->lo[0];
+  memo.hi = ranges->hi[0];
+  return WalkAxis{memo.half_turn, {memo.lo, memo.hi}};
 }
 
 // No curve of chart c that can bound a cell (the scanner's carriers: those of the edges whose
@@ -2238,9 +2245,9 @@ bool certainly_blocked(const CSpace& space, const MotionPath& point, BlockedWalk
   if (!cspace::blocked_walks() || walk.spent_) return false;
   walk.spent_ = true;   // until this call certifies the configuration
   if (impl.dimension != 2 || !impl.complete) return false;
-  std::optional<WalkAxis> px = walk_axis(point.x, point.u_begin);
+  std::optional<WalkAxis> px = walk_axis(point.x, point.u_begin, walk.axes_[0]);
   if (!px) return false;
-  std::optional<WalkAxis> py = walk_axis(point.y, point.u_begin);
+  std::optional<WalkAxis> py = walk_axis(point.y, point.u_begin, walk.axes_[1]);
   if (!py) return false;
   std::shared_ptr<ScanMemo> memo = scan_memo_of(CSpaceAccess::shared(space));
   if (walk.space_) {
