@@ -44,16 +44,7 @@ void walks(const CSpace& space, int count, std::uint64_t seed, const std::string
     double x0 = charts[c].x_lo.get_d() + (charts[c].x_hi.get_d() - charts[c].x_lo.get_d()) * unit(random);
     double y0 = charts[c].y_lo.get_d() + (charts[c].y_hi.get_d() - charts[c].y_lo.get_d()) * unit(random);
     if (random() % 3 != 0 && !real_edges.empty()) {
-      std::size_t e = real_edges[random() % real_edges.size()];
-      const CSpaceEdge& edge = space.edges()[e];
-      if (edge.vertical) continue;
-      c = edge.chart;
-      x0 = edge.x_chart.lower + (edge.x_chart.upper - edge.x_chart.lower) * (0.02 + 0.96 * unit(random));
-      try {
-        y0 = space.evaluate(e, x0).value;
-      } catch (const GeometryError&) {
-        continue;
-      }
+      if (!test::onto_edge(space, real_edges[random() % real_edges.size()], random, c, x0, y0)) continue;
       test::move_off(y0, random);
     }
     const CSpaceChart& chart = charts[c];
