@@ -436,6 +436,52 @@ EdgeDerivatives CSpace::derivatives(EdgeId id, const Rational& x_input) const {
 
 // ------------------------------------------------------------------ compare_ordinate
 
+namespace {
+
+// compare_ordinate's decision data for a vertex with an inexact ordinate: which polynomial
+// changes sign across its isolating interval [y_lower, y_upper] (the fibre y_curve(x, .), or
+// for a fibre of degree 2 its y-derivative; nothing: undecided), and that polynomial's sign at
+// y_lower. A pure function of the vertex (exact signs at its algebraic x).
+struct FibreSigns {
+  enum class Decides : signed char { curve, derivative, nothing };
+  Decides decides = Decides::nothing;
+  int lower = 0;
+};
+
+// The y-derivative of a curve's integer polynomial.
+cspace::IntegerPolynomial2 y_derivative(const cspace::IntegerPolynomial2& f) {
+  cspace::IntegerPolynomial2 derivative;
+  derivative.coefficients.resize(f.coefficients.size());
+  for (std::size_t i = 0; i < f.coefficients.size(); ++i)
+    for (std::size_t j = 1; j < f.coefficients[i].size(); ++j)
+      derivative.coefficients[i].push_back(f.coefficients[i][j] * static_cast<long>(j));
+  return derivative;
+}
+
+FibreSigns fibre_signs_of(const cspace::raw::Vertex& vertex) {
+  FibreSigns result;
+  int lower = cspace::algebra::sign_at(vertex.y_curve, vertex.x, vertex.y_lower);
+  int upper = cspace::algebra::sign_at(vertex.y_curve, vertex.x, vertex.y_upper);
+  if (lower != 0 && upper != 0 && lower != upper) {
+    result.decides = FibreSigns::Decides::curve;
+    result.lower = lower;
+  } else if (vertex.y_curve.degree_y() == 2) {
+    const cspace::IntegerPolynomial2 derivative = y_derivative(vertex.y_curve);
+    lower = cspace::algebra::sign_at(derivative, vertex.x, vertex.y_lower);
+    upper = cspace::algebra::sign_at(derivative, vertex.x, vertex.y_upper);
+    if (lower != 0 && upper != 0 && lower != upper) {
+      result.decides = FibreSigns::Decides::derivative;
+      result.lower = lower;
+    }
+  }
+  return result;
+}
+
+// fibre_signs_of(vertex `index`) through the space's scan memo (defined below it).
+FibreSigns fibre_signs(const CSpace& space, std::size_t index);
+
+}  // namespace
+
 int CSpace::compare_ordinate(VertexId id, const Rational& y_input) const {
   const Impl& impl = checked(*this);
   std::size_t index = index_in(id, impl.vertices.size(), "vertex");
@@ -449,30 +495,19 @@ int CSpace::compare_ordinate(VertexId id, const Rational& y_input) const {
   if (y < vertex.y_lower) return -1;
   if (y > vertex.y_upper) return 1;
   // the vertex's y is the only root of y_curve(x, .) in [y_lower, y_upper]: where y_curve
-  // changes sign across the interval, the sign at y tells on which side of the root y lies
-  int lower = cspace::algebra::sign_at(vertex.y_curve, vertex.x, vertex.y_lower);
-  int upper = cspace::algebra::sign_at(vertex.y_curve, vertex.x, vertex.y_upper);
-  if (lower != 0 && upper != 0 && lower != upper) {
-    int at = cspace::algebra::sign_at(vertex.y_curve, vertex.x, y);
-    if (at == 0) return 0;
-    return at == lower ? -1 : 1;
-  }
-  // no sign change: a double root of the fibre (the curve's vertical tangent meets another
-  // curve there, as where a slot's side meets its round end). For a fibre of degree 2 in y,
+  // changes sign across the interval, the sign at y tells on which side of the root y lies.
+  // Otherwise a double root of the fibre (the curve's vertical tangent meets another curve
+  // there, as where a slot's side meets its round end): for a fibre of degree 2 in y,
   // a y0^2 + ... = a (y - y0)^2 and its y-derivative 2 a (y - y0) changes sign at y0 alone.
-  if (vertex.y_curve.degree_y() == 2) {
-    cspace::IntegerPolynomial2 derivative;
-    derivative.coefficients.resize(vertex.y_curve.coefficients.size());
-    for (std::size_t i = 0; i < vertex.y_curve.coefficients.size(); ++i)
-      for (std::size_t j = 1; j < vertex.y_curve.coefficients[i].size(); ++j)
-        derivative.coefficients[i].push_back(vertex.y_curve.coefficients[i][j] * static_cast<long>(j));
-    lower = cspace::algebra::sign_at(derivative, vertex.x, vertex.y_lower);
-    upper = cspace::algebra::sign_at(derivative, vertex.x, vertex.y_upper);
-    if (lower != 0 && upper != 0 && lower != upper) {
-      int at = cspace::algebra::sign_at(derivative, vertex.x, y);
-      if (at == 0) return 0;
-      return at == lower ? -1 : 1;
-    }
+  // Which of the two decides, and its sign at y_lower, are the vertex's alone (fibre_signs,
+  // remembered per space and thread).
+  const FibreSigns signs = fibre_signs(*this, index);
+  if (signs.decides != FibreSigns::Decides::nothing) {
+    const cspace::IntegerPolynomial2 derivative =
+        signs.decides == FibreSigns::Decides::derivative ? y_derivative(vertex.y_curve) : cspace::IntegerPolynomial2{};
+    int at = cspace::algebra::sign_at(signs.decides == FibreSigns::Decides::curve ? vertex.y_curve : derivative, vertex.x, y);
+    if (at == 0) return 0;
+    return at == signs.lower ? -1 : 1;
   }
   throw GeometryError("compare_ordinate: the ordinate of vertex " + std::to_string(index) +
                       " is not a sign change of its curve's fibre (not decided)");
@@ -1226,6 +1261,8 @@ struct ScanMemo {
   std::vector<std::vector<std::optional<Hessian>>> hessians;
   std::vector<std::vector<std::optional<Clauses>>> validity;
   std::vector<std::array<double, 4>> chart_boxes;   // lower/upper doubles of the public charts' sides
+  // per global vertex: compare_ordinate's fibre signs, once made
+  std::vector<std::optional<FibreSigns>> fibre_signs;
 };
 
 std::shared_ptr<ScanMemo> fresh_scan_memo(const CSpace::Impl& impl) {
@@ -1281,6 +1318,17 @@ std::shared_ptr<ScanMemo> scan_memo_of(const std::shared_ptr<const CSpace::Impl>
   memo->owner = owner;
   memos.push_back(memo);
   return memo;
+}
+
+FibreSigns fibre_signs(const CSpace& space, std::size_t index) {
+  const CSpace::Impl& impl = implementation(space);
+  auto [c, v] = impl.vertex_local[index];
+  const cspace::raw::Vertex& vertex = impl.charts[c].arrangement.vertices[v];
+  std::shared_ptr<ScanMemo> memo = scan_memo_of(CSpaceAccess::shared(space));
+  if (memo->fibre_signs.empty()) memo->fibre_signs.resize(impl.vertices.size());
+  std::optional<FibreSigns>& signs = memo->fibre_signs[index];
+  if (!signs) signs = fibre_signs_of(vertex);
+  return *signs;
 }
 
 class MotionScanner {
