@@ -54,8 +54,9 @@ class BlockedWalk {
 
 /// True: certified that the configuration of `point` at u = point.u_begin lies inside a blocked
 /// cell of the 2-D space (first_crossing from there reports starts_in_contact). False: unknown
-/// (a 1-D space, an axis that does not rotate, a box near a contact curve or a chart side, a
-/// free cell; any configuration after the walk's first `false`). Moves `walk` to the
+/// (a 1-D space, an operating region rather than the whole space, an axis that does not rotate,
+/// a box near a contact curve or a chart side, a free cell; any configuration after the walk's
+/// first `false`). Moves `walk` to the
 /// configuration when true, ends it otherwise.
 bool certainly_blocked(const CSpace& space, const MotionPath& point, BlockedWalk& walk);
 
