@@ -194,8 +194,15 @@ inline std::optional<std::vector<AnglePiece>> filtered_angle_pieces(const Ration
   return filtered_angle_pieces(Interval(Interval::enclose(theta_lo).lo, Interval::enclose(theta_hi).hi));
 }
 
-// The same from the angle's double enclosure.
-inline std::optional<std::vector<AnglePiece>> filtered_angle_pieces(const kernels::Interval& theta) {
+// The chart systems' t-ranges of an angle enclosure as doubles alone (filtered_angle_pieces'
+// bounds, without their rationals): at most three, `size` of them.
+struct AngleRanges {
+  std::size_t size = 0;
+  bool half_turn[3] = {false, false, false};
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+};
+
+inline std::optional<AngleRanges> filtered_angle_ranges(const kernels::Interval& theta) {
   using kernels::Interval;
   const Interval pi = pi_enclosure();
   Interval angle = theta;
@@ -205,7 +212,7 @@ inline std::optional<std::vector<AnglePiece>> filtered_angle_pieces(const kernel
   if (!(std::abs(k) <= 1099511627776.0)) return std::nullopt;
   angle = angle - Interval::point(2 * k) * pi;
   const Interval half_pi(0.5 * pi.lo, 0.5 * pi.hi);   // exact halvings
-  std::vector<AnglePiece> pieces;
+  AngleRanges ranges;
   bool failed = false;
   auto tan_half = [&](double tau, bool upper) {
     std::optional<Interval> t = tan_enclosure(Interval::point(tau) * Interval::point(0.5));
@@ -218,19 +225,28 @@ inline std::optional<std::vector<AnglePiece>> filtered_angle_pieces(const kernel
   auto piece = [&](const Interval& tau, bool half_turn) {
     // certainly below -pi/2 or certainly above pi/2: not in this chart
     if (tau.hi < -half_pi.hi || tau.lo > half_pi.hi) return;
-    AnglePiece p;
-    p.half_turn = half_turn;
-    p.dlo = tau.lo <= -half_pi.lo ? -1.0 : tan_half(tau.lo, false);
-    p.dhi = tau.hi >= half_pi.lo ? 1.0 : tan_half(tau.hi, true);
-    if (failed || p.dlo > p.dhi) return;
-    p.lo = Rational(p.dlo);
-    p.hi = Rational(p.dhi);
-    pieces.push_back(std::move(p));
+    double lo = tau.lo <= -half_pi.lo ? -1.0 : tan_half(tau.lo, false);
+    double hi = tau.hi >= half_pi.lo ? 1.0 : tan_half(tau.hi, true);
+    if (failed || lo > hi) return;
+    ranges.half_turn[ranges.size] = half_turn;
+    ranges.lo[ranges.size] = lo;
+    ranges.hi[ranges.size] = hi;
+    ++ranges.size;
   };
   piece(angle, false);
   piece(angle - pi, true);
   piece(angle + pi, true);
   if (failed) return std::nullopt;
+  return ranges;
+}
+
+// The same from the angle's double enclosure.
+inline std::optional<std::vector<AnglePiece>> filtered_angle_pieces(const kernels::Interval& theta) {
+  std::optional<AngleRanges> ranges = filtered_angle_ranges(theta);
+  if (!ranges) return std::nullopt;
+  std::vector<AnglePiece> pieces;
+  for (std::size_t i = 0; i < ranges->size; ++i)
+    pieces.push_back(AnglePiece{ranges->half_turn[i], Rational(ranges->lo[i]), Rational(ranges->hi[i]), ranges->lo[i], ranges->hi[i]});
   return pieces;
 }
 

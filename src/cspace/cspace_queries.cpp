@@ -8,6 +8,7 @@
 // with directed rounding, outward-rounded double intervals).
 #include <hipair/cspace.hpp>
 #include <hipair/cspace_slice.hpp>
+#include <hipair/blocked_walk.hpp>
 #include <hipair/edge_tracker.hpp>
 #include <hipair/error.hpp>
 
@@ -435,6 +436,52 @@ EdgeDerivatives CSpace::derivatives(EdgeId id, const Rational& x_input) const {
 
 // ------------------------------------------------------------------ compare_ordinate
 
+namespace {
+
+// compare_ordinate's decision data for a vertex with an inexact ordinate: which polynomial
+// changes sign across its isolating interval [y_lower, y_upper] (the fibre y_curve(x, .), or
+// for a fibre of degree 2 its y-derivative; nothing: undecided), and that polynomial's sign at
+// y_lower. A pure function of the vertex (exact signs at its algebraic x).
+struct FibreSigns {
+  enum class Decides : signed char { curve, derivative, nothing };
+  Decides decides = Decides::nothing;
+  int lower = 0;
+};
+
+// The y-derivative of a curve's integer polynomial.
+cspace::IntegerPolynomial2 y_derivative(const cspace::IntegerPolynomial2& f) {
+  cspace::IntegerPolynomial2 derivative;
+  derivative.coefficients.resize(f.coefficients.size());
+  for (std::size_t i = 0; i < f.coefficients.size(); ++i)
+    for (std::size_t j = 1; j < f.coefficients[i].size(); ++j)
+      derivative.coefficients[i].push_back(f.coefficients[i][j] * static_cast<long>(j));
+  return derivative;
+}
+
+FibreSigns fibre_signs_of(const cspace::raw::Vertex& vertex) {
+  FibreSigns result;
+  int lower = cspace::algebra::sign_at(vertex.y_curve, vertex.x, vertex.y_lower);
+  int upper = cspace::algebra::sign_at(vertex.y_curve, vertex.x, vertex.y_upper);
+  if (lower != 0 && upper != 0 && lower != upper) {
+    result.decides = FibreSigns::Decides::curve;
+    result.lower = lower;
+  } else if (vertex.y_curve.degree_y() == 2) {
+    const cspace::IntegerPolynomial2 derivative = y_derivative(vertex.y_curve);
+    lower = cspace::algebra::sign_at(derivative, vertex.x, vertex.y_lower);
+    upper = cspace::algebra::sign_at(derivative, vertex.x, vertex.y_upper);
+    if (lower != 0 && upper != 0 && lower != upper) {
+      result.decides = FibreSigns::Decides::derivative;
+      result.lower = lower;
+    }
+  }
+  return result;
+}
+
+// fibre_signs_of(vertex `index`) through the space's scan memo (defined below it).
+FibreSigns fibre_signs(const CSpace& space, std::size_t index);
+
+}  // namespace
+
 int CSpace::compare_ordinate(VertexId id, const Rational& y_input) const {
   const Impl& impl = checked(*this);
   std::size_t index = index_in(id, impl.vertices.size(), "vertex");
@@ -448,30 +495,19 @@ int CSpace::compare_ordinate(VertexId id, const Rational& y_input) const {
   if (y < vertex.y_lower) return -1;
   if (y > vertex.y_upper) return 1;
   // the vertex's y is the only root of y_curve(x, .) in [y_lower, y_upper]: where y_curve
-  // changes sign across the interval, the sign at y tells on which side of the root y lies
-  int lower = cspace::algebra::sign_at(vertex.y_curve, vertex.x, vertex.y_lower);
-  int upper = cspace::algebra::sign_at(vertex.y_curve, vertex.x, vertex.y_upper);
-  if (lower != 0 && upper != 0 && lower != upper) {
-    int at = cspace::algebra::sign_at(vertex.y_curve, vertex.x, y);
-    if (at == 0) return 0;
-    return at == lower ? -1 : 1;
-  }
-  // no sign change: a double root of the fibre (the curve's vertical tangent meets another
-  // curve there, as where a slot's side meets its round end). For a fibre of degree 2 in y,
+  // changes sign across the interval, the sign at y tells on which side of the root y lies.
+  // Otherwise a double root of the fibre (the curve's vertical tangent meets another curve
+  // there, as where a slot's side meets its round end): for a fibre of degree 2 in y,
   // a y0^2 + ... = a (y - y0)^2 and its y-derivative 2 a (y - y0) changes sign at y0 alone.
-  if (vertex.y_curve.degree_y() == 2) {
-    cspace::IntegerPolynomial2 derivative;
-    derivative.coefficients.resize(vertex.y_curve.coefficients.size());
-    for (std::size_t i = 0; i < vertex.y_curve.coefficients.size(); ++i)
-      for (std::size_t j = 1; j < vertex.y_curve.coefficients[i].size(); ++j)
-        derivative.coefficients[i].push_back(vertex.y_curve.coefficients[i][j] * static_cast<long>(j));
-    lower = cspace::algebra::sign_at(derivative, vertex.x, vertex.y_lower);
-    upper = cspace::algebra::sign_at(derivative, vertex.x, vertex.y_upper);
-    if (lower != 0 && upper != 0 && lower != upper) {
-      int at = cspace::algebra::sign_at(derivative, vertex.x, y);
-      if (at == 0) return 0;
-      return at == lower ? -1 : 1;
-    }
+  // Which of the two decides, and its sign at y_lower, are the vertex's alone (fibre_signs,
+  // remembered per space and thread).
+  const FibreSigns signs = fibre_signs(*this, index);
+  if (signs.decides != FibreSigns::Decides::nothing) {
+    const cspace::IntegerPolynomial2 derivative =
+        signs.decides == FibreSigns::Decides::derivative ? y_derivative(vertex.y_curve) : cspace::IntegerPolynomial2{};
+    int at = cspace::algebra::sign_at(signs.decides == FibreSigns::Decides::curve ? vertex.y_curve : derivative, vertex.x, y);
+    if (at == 0) return 0;
+    return at == signs.lower ? -1 : 1;
   }
   throw GeometryError("compare_ordinate: the ordinate of vertex " + std::to_string(index) +
                       " is not a sign change of its curve's fibre (not decided)");
@@ -1225,6 +1261,8 @@ struct ScanMemo {
   std::vector<std::vector<std::optional<Hessian>>> hessians;
   std::vector<std::vector<std::optional<Clauses>>> validity;
   std::vector<std::array<double, 4>> chart_boxes;   // lower/upper doubles of the public charts' sides
+  // per global vertex: compare_ordinate's fibre signs, once made
+  std::vector<std::optional<FibreSigns>> fibre_signs;
 };
 
 std::shared_ptr<ScanMemo> fresh_scan_memo(const CSpace::Impl& impl) {
@@ -1237,6 +1275,31 @@ std::shared_ptr<ScanMemo> fresh_scan_memo(const CSpace::Impl& impl) {
     memo->chart_boxes.push_back({cspace::algebra::lower_double(chart.x_lo), cspace::algebra::upper_double(chart.x_hi),
                                  cspace::algebra::lower_double(chart.y_lo), cspace::algebra::upper_double(chart.y_hi)});
   return memo;
+}
+
+// The curves of chart c that can bound a cell (ScanMemo::carriers), made on first use.
+const ScanMemo::ChartCarriers& chart_carriers(const CSpace::Impl& impl, ScanMemo& memo, std::size_t c) {
+  ScanMemo::ChartCarriers& result = memo.carriers[c];
+  if (result.ready) return result;
+  result.ready = true;
+  const ChartData& chart = impl.charts[c];
+  for (std::size_t e = 0; e < chart.edges.size(); ++e) {
+    const CSpaceEdge& edge = impl.edges[chart.edges[e].global];
+    if (!edge.real && edge.left_cell == edge.right_cell) continue;
+    if (chart.edges[e].curves.empty()) continue;
+    ScanMemo::Carrier carrier;
+    std::copy(std::begin(chart.arrangement.edges[e].box), std::end(chart.arrangement.edges[e].box), carrier.box);
+    carrier.curves = chart.edges[e].curves;
+    result.edges.push_back(std::move(carrier));
+  }
+  for (std::size_t v = 0; v < chart.arrangement.vertices.size(); ++v) {
+    if (!chart.arrangement.vertices[v].isolated) continue;
+    const CSpaceVertex& vertex = impl.vertices[chart.vertex_global[v]];
+    for (std::size_t k = 0; k < chart.curve_global.size(); ++k)
+      if (std::find(vertex.curves.begin(), vertex.curves.end(), chart.curve_global[k]) != vertex.curves.end())
+        result.everywhere.push_back(k);
+  }
+  return result;
 }
 
 // The scan memo of the space `owner` on this thread (made on first use), or a fresh one when
@@ -1255,6 +1318,17 @@ std::shared_ptr<ScanMemo> scan_memo_of(const std::shared_ptr<const CSpace::Impl>
   memo->owner = owner;
   memos.push_back(memo);
   return memo;
+}
+
+FibreSigns fibre_signs(const CSpace& space, std::size_t index) {
+  const CSpace::Impl& impl = implementation(space);
+  auto [c, v] = impl.vertex_local[index];
+  const cspace::raw::Vertex& vertex = impl.charts[c].arrangement.vertices[v];
+  std::shared_ptr<ScanMemo> memo = scan_memo_of(CSpaceAccess::shared(space));
+  if (memo->fibre_signs.empty()) memo->fibre_signs.resize(impl.vertices.size());
+  std::optional<FibreSigns>& signs = memo->fibre_signs[index];
+  if (!signs) signs = fibre_signs_of(vertex);
+  return *signs;
 }
 
 class MotionScanner {
@@ -1797,29 +1871,7 @@ class MotionScanner {
   using Carrier = ScanMemo::Carrier;
   using ChartCarriers = ScanMemo::ChartCarriers;
 
-  const ChartCarriers& carriers(std::size_t c) {
-    ChartCarriers& result = memo_->carriers[c];
-    if (result.ready) return result;
-    result.ready = true;
-    const ChartData& chart = impl_.charts[c];
-    for (std::size_t e = 0; e < chart.edges.size(); ++e) {
-      const CSpaceEdge& edge = impl_.edges[chart.edges[e].global];
-      if (!edge.real && edge.left_cell == edge.right_cell) continue;
-      if (chart.edges[e].curves.empty()) continue;
-      Carrier carrier;
-      std::copy(std::begin(chart.arrangement.edges[e].box), std::end(chart.arrangement.edges[e].box), carrier.box);
-      carrier.curves = chart.edges[e].curves;
-      result.edges.push_back(std::move(carrier));
-    }
-    for (std::size_t v = 0; v < chart.arrangement.vertices.size(); ++v) {
-      if (!chart.arrangement.vertices[v].isolated) continue;
-      const CSpaceVertex& vertex = impl_.vertices[chart.vertex_global[v]];
-      for (std::size_t k = 0; k < chart.curve_global.size(); ++k)
-        if (std::find(vertex.curves.begin(), vertex.curves.end(), chart.curve_global[k]) != vertex.curves.end())
-          result.everywhere.push_back(k);
-    }
-    return result;
-  }
+  const ChartCarriers& carriers(std::size_t c) { return chart_carriers(impl_, *memo_, c); }
 
   // Curves of the box's chart that may vanish (validly) in the box, on a contact edge's box.
   void exclude(std::size_t piece, const PieceBox& box, std::vector<Possible>& possible) {
@@ -2170,6 +2222,120 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
     if (std::optional<StartAnchor> anchor = scanner.anchor_from(*last, result.cell_left.index()))
       remember_anchor(std::move(*anchor), owner);
   return result;
+}
+
+// ------------------------------------------------------------------ blocked walks
+
+namespace {
+
+// One axis of a configuration for certainly_blocked: the double enclosure of its chart
+// coordinate t at u = u_begin (the certified angle filter on the exact path angle), when it lies
+// in one chart system; nullopt otherwise (an axis that does not rotate, an angle near a seam,
+// the filter undecided).
+struct WalkAxis {
+  bool half_turn = false;
+  cspace::algebra::Interval t;
+};
+
+template <class Memo>
+std::optional<WalkAxis> walk_axis(const AxisPath& axis, const Rational& u, Memo& memo) {
+  if (axis.kind != AxisPath::Kind::angle) return std::nullopt;
+  // the exact angle at u (at u = 0 the constant coefficient itself, not a copy)
+  Rational value(0);
+  const Rational* theta = &value;
+  if (sgn(u) == 0) {
+    if (!axis.coefficients.empty()) theta = &axis.coefficients.front();
+  } else {
+    for (std::size_t i = axis.coefficients.size(); i-- > 0;) value = value * u + axis.coefficients[i];
+  }
+  if (memo.set && memo.theta == *theta) return WalkAxis{memo.half_turn, {memo.lo, memo.hi}};
+  std::optional<cspace::AngleRanges> ranges = cspace::filtered_angle_ranges(KInterval::enclose(*theta));
+  if (!ranges || ranges->size != 1) return std::nullopt;
+  memo.set = true;
+  memo.half_turn = ranges->half_turn[0];
+  memo.theta = *theta;
+  memo.lo = ranges->lo[0];
+  memo.hi = ranges->hi[0];
+  return WalkAxis{memo.half_turn, {memo.lo, memo.hi}};
+}
+
+// No curve of chart c that can bound a cell (the scanner's carriers: those of the edges whose
+// certified boxes meet x * y, and those through an isolated vertex) vanishes on x * y
+// (outward-rounded interval evaluation).
+bool no_boundary_on(const CSpace::Impl& impl, ScanMemo& memo, std::size_t c, const cspace::algebra::Interval& x,
+                    const cspace::algebra::Interval& y) {
+  const ChartData& chart = impl.charts[c];
+  auto vanishes = [&](std::size_t k) {
+    cspace::algebra::Interval value = chart.interval_polynomials[k].evaluate(x, y);
+    return !std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero();
+  };
+  const ScanMemo::ChartCarriers& known = chart_carriers(impl, memo, c);
+  for (std::size_t k : known.everywhere)
+    if (vanishes(k)) return false;
+  for (const ScanMemo::Carrier& carrier : known.edges) {
+    if (x.hi < carrier.box[0] || x.lo > carrier.box[2] || y.hi < carrier.box[1] || y.lo > carrier.box[3]) continue;
+    for (std::size_t k : carrier.curves)
+      if (vanishes(k)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+// See blocked_walk.hpp for the proof. Every point of contact space or of a boundary between
+// two cells in the chart (a real edge, an edge between different cells, a vertex of one, an
+// isolated vertex) lies on a curve that the scanner's carriers test where that point can be
+// (the edge's certified box; an isolated vertex's curves everywhere): where none of them vanishes
+// on the hull H, H meets no such point, and H (connected, strictly inside the chart) lies in
+// one cell: the last box's. That is the test first_crossing's own exclusion makes (exclude).
+bool certainly_blocked(const CSpace& space, const MotionPath& point, BlockedWalk& walk) {
+  const CSpace::Impl& impl = checked(space);
+  if (!cspace::blocked_walks() || walk.spent_) return false;
+  walk.spent_ = true;   // until this call certifies the configuration
+  if (impl.dimension != 2 || !impl.complete) return false;
+  std::optional<WalkAxis> px = walk_axis(point.x, point.u_begin, walk.axes_[0]);
+  if (!px) return false;
+  std::optional<WalkAxis> py = walk_axis(point.y, point.u_begin, walk.axes_[1]);
+  if (!py) return false;
+  std::shared_ptr<ScanMemo> memo = scan_memo_of(CSpaceAccess::shared(space));
+  if (walk.space_) {
+    // the walk's next configuration: certified from the last box, or the walk ends
+    const CSpaceChart& system = impl.public_charts[walk.chart_];
+    if (walk.space_ != &impl || px->half_turn != system.x_half_turn || py->half_turn != system.y_half_turn) return false;
+    if (!(px->t.lo > walk.side_[0] && px->t.hi < walk.side_[1] && py->t.lo > walk.side_[2] && py->t.hi < walk.side_[3]))
+      return false;
+    cspace::algebra::Interval x{std::min(walk.box_[0], px->t.lo), std::max(walk.box_[1], px->t.hi)};
+    cspace::algebra::Interval y{std::min(walk.box_[2], py->t.lo), std::max(walk.box_[3], py->t.hi)};
+    if (!no_boundary_on(impl, *memo, walk.chart_, x, y)) return false;
+    ++cspace::blocked_walk_steps();
+  } else {
+    // the walk's first configuration: in the chart that holds its box strictly inside, where no
+    // carrier vanishes on the box, located exactly (its rational midpoint)
+    std::size_t chart = no_index;
+    std::array<double, 4> side{};
+    for (std::size_t c = 0; c < impl.charts.size() && chart == no_index; ++c) {
+      const CSpaceChart& system = impl.public_charts[c];
+      if (system.x_kind != AxisKind::rotation || system.y_kind != AxisKind::rotation ||
+          system.x_half_turn != px->half_turn || system.y_half_turn != py->half_turn)
+        continue;
+      // the sides rounded inward: a double beyond one is beyond the side
+      const cspace::raw::Box& box = impl.charts[c].box;
+      side = {cspace::algebra::upper_double(box.x_lo), cspace::algebra::lower_double(box.x_hi),
+              cspace::algebra::upper_double(box.y_lo), cspace::algebra::lower_double(box.y_hi)};
+      if (px->t.lo > side[0] && px->t.hi < side[1] && py->t.lo > side[2] && py->t.hi < side[3]) chart = c;
+    }
+    if (chart == no_index || !no_boundary_on(impl, *memo, chart, px->t, py->t)) return false;
+    Rational x = (Rational(px->t.lo) + Rational(px->t.hi)) / 2, y = (Rational(py->t.lo) + Rational(py->t.hi)) / 2;
+    x.canonicalize();
+    y.canonicalize();
+    if (cspace::locate_point(impl, ChartPoint{chart, x, y}).kind != Location::Kind::blocked) return false;
+    walk.space_ = &impl;
+    walk.chart_ = chart;
+    walk.side_ = side;
+  }
+  walk.box_ = {px->t.lo, px->t.hi, py->t.lo, py->t.hi};
+  walk.spent_ = false;
+  return true;
 }
 
 }  // namespace hipair

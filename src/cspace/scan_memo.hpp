@@ -7,7 +7,9 @@ namespace hipair::cspace {
 // CSpace::first_crossing's per-space memo of its scanner's derived curve data
 // (cspace_queries.cpp: ScanMemo, scan_memo_of): per chart, the interval forms of every local
 // curve's first and second partial derivatives and of its validity clauses, the carriers
-// (contact edges' certified boxes with their curves) and the chart's double sides. All are pure
+// (contact edges' certified boxes with their curves) and the chart's double sides, and per vertex
+// compare_ordinate's fibre signs (which polynomial decides the vertex's side, and its sign at the
+// isolating interval's lower end: two exact signs at the vertex's algebraic x). All are pure
 // functions of the immutable space; they were made anew by every first_crossing call (its
 // MotionScanner's memos), and converting the integer polynomials to interval ones was about 5 %
 // of the simulator's loop on the escapement. Kept per thread and per space (a weak_ptr: a space

@@ -25,4 +25,18 @@ inline std::size_t& filtered_starts() {
   return count;
 }
 
+// certainly_blocked's walks (hipair/blocked_walk.hpp, cspace_queries.cpp): the simulator's
+// nudge trials inside the blocked cell they start in, certified by a chain of boxes on which no
+// contact curve vanishes instead of a point query each. On by default; tests switch it off per
+// thread to compare (CSpaceBlockedWalk.*, the simulation's outputs).
+inline bool& blocked_walks() {
+  thread_local bool on = true;
+  return on;
+}
+// How many configurations a walk certified from its last box (without a location) on this thread.
+inline std::size_t& blocked_walk_steps() {
+  thread_local std::size_t count = 0;
+  return count;
+}
+
 }  // namespace hipair::cspace

@@ -12,6 +12,7 @@
 // contacts are the other curves through its edge's end vertex (vertex_contacts).
 #include <hipair/simulation.hpp>
 
+#include <hipair/blocked_walk.hpp>
 #include <hipair/edge_tracker.hpp>
 #include <hipair/error.hpp>
 
@@ -876,19 +877,38 @@ struct Simulation::Impl {
     double scale = 1;
     for (double x : q) scale = std::max(scale, std::abs(x));
     const double first = 4 * std::numeric_limits<double>::epsilon() * scale;
-    auto free_at = [&](std::size_t pair) {
+    auto free_at = [&](std::size_t pair, bool* blocked = nullptr) {
       MotionCrossing c = spaces[pair]->first_crossing(point_path(pair, q));
       if (c.status == CrossingStatus::outside_region) outside(pair, t);
+      if (blocked) *blocked = c.status == CrossingStatus::starts_in_contact && !c.grazing;
       return c.status == CrossingStatus::none;
     };
+    // After a trial of a pair of the set that the query found inside a cell, not near a curve
+    // (starts_in_contact, not grazing), the next ones are first offered to a walk
+    // (certainly_blocked): a trial it certifies inside the blocked cell it started in is not
+    // free (first_crossing would say starts_in_contact); the others are asked. The query's
+    // answer only chooses when to try; the walk places itself by its own exact location.
+    std::vector<BlockedWalk> walks;
+    std::vector<bool> try_walk;
+    auto trial_free = [&](std::size_t k) {
+      std::size_t pair = set[k].first;
+      if (try_walk[k] && certainly_blocked(*spaces[pair], point_path(pair, q), walks[k])) return false;
+      bool blocked = false;
+      bool free = free_at(pair, &blocked);
+      try_walk[k] = blocked && spaces[pair]->dimension() == 2;
+      return free;
+    };
     for (;;) {
+      walks.assign(set.size(), BlockedWalk{});
+      try_walk.assign(set.size(), false);
       Vec dir = nudge_direction(set);
       double norm = 0;
       for (double x : dir) norm = std::max(norm, std::abs(x));
       q = start;
       bool done = false;
       for (int k = 0; k <= 50 && !done; ++k) {
-        done = std::all_of(set.begin(), set.end(), [&](const auto& s) { return free_at(s.first); });
+        done = true;
+        for (std::size_t i = 0; i < set.size() && done; ++i) done = trial_free(i);
         if (done || norm == 0 || k == 50) break;
         double eps = first * std::ldexp(1.0, k);
         for (std::size_t i = 0; i < dofs.size(); ++i) q[i] += eps * dir[i] / norm;

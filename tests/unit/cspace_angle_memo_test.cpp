@@ -41,15 +41,7 @@ void pick_start(const CSpace& space, std::mt19937_64& random, std::size_t& c, do
   const int kind = static_cast<int>(random() % 3);
   if (kind == 1 && two) {
     std::size_t e = random() % space.edges().size();
-    const CSpaceEdge& edge = space.edges()[e];
-    if (!edge.real || edge.vertical) return;
-    c = edge.chart;
-    x0 = edge.x_chart.lower + (edge.x_chart.upper - edge.x_chart.lower) * (0.02 + 0.96 * unit(random));
-    try {
-      y0 = space.evaluate(e, x0).value;
-    } catch (const GeometryError&) {
-      return;
-    }
+    if (!space.edges()[e].real || !test::onto_edge(space, e, random, c, x0, y0)) return;
     test::move_off(random() % 2 == 0 ? y0 : x0, random);
   } else if (kind == 2) {
     test::to_chart_side(charts[c], two, x0, y0, random);

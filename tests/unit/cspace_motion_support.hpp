@@ -35,6 +35,22 @@ inline void move_off(double& value, std::mt19937_64& random) {
   }
 }
 
+// A point (chart values) of the edge e's interior, x at 2 % ... 98 % of its x-range: false where
+// the edge is vertical (nothing changed) or its ordinate cannot be evaluated there (c and x0 set).
+inline bool onto_edge(const CSpace& space, std::size_t e, std::mt19937_64& random, std::size_t& c, double& x0, double& y0) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  const CSpaceEdge& edge = space.edges()[e];
+  if (edge.vertical) return false;
+  c = edge.chart;
+  x0 = edge.x_chart.lower + (edge.x_chart.upper - edge.x_chart.lower) * (0.02 + 0.96 * unit(random));
+  try {
+    y0 = space.evaluate(e, x0).value;
+  } catch (const GeometryError&) {
+    return false;
+  }
+  return true;
+}
+
 // x or y (chart values) put on one of the chart's sides (x only in a 1-D space).
 inline void to_chart_side(const CSpaceChart& chart, bool two, double& x, double& y, std::mt19937_64& random) {
   bool on_x = !two || random() % 2 == 0;
