@@ -99,6 +99,23 @@ std::vector<Rates> rates(const Chain& chain, const ChainState& state);
 /// The same for chain part `k` when the parts before it are known.
 Rates rate_of(const Chain& chain, const ChainState& state, std::size_t k, const std::vector<Rates>& known);
 
+/// The slopes of a contact curve P(u, v) = 0 (c[i][j] of u^i v^j; u the other part's chart
+/// coordinate, v the follower's) at the rational point (u, v), in part coordinates (rad through
+/// the half-angle chart when the part rotates, mm otherwise): dY/dX and d^2Y/dX^2 as doubles,
+/// each the double of the exact rational (mpq_get_d). `singular`: P_v = 0 there (no slope).
+struct CurveSlopes {
+  bool singular = false;
+  double first = 0, second = 0;
+};
+/// Fraction-free: the partials and the chain rule on integer numerators and denominators,
+/// one canonicalisation per result (rate_of's arithmetic).
+CurveSlopes contact_slopes(const IntegerPolynomial2& polynomial, const Rational& u, const Rational& v,
+                           bool other_rotates, bool part_rotates);
+/// The same by rational arithmetic (kernels/implicit_curve.hpp), canonical at every operation:
+/// the reference the tests compare contact_slopes with.
+CurveSlopes contact_slopes_rational(const IntegerPolynomial2& polynomial, const Rational& u, const Rational& v,
+                                    bool other_rotates, bool part_rotates);
+
 /// Labels of contacts for reports.
 ContactLabel label_of(const Chain& chain, const SliceContact& contact, std::size_t part);
 

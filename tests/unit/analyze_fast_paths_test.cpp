@@ -11,7 +11,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
+#include <random>
 #include <string>
 
 namespace hipair {
@@ -159,6 +161,104 @@ TEST(AnalyzeFastPaths, KeptRatesAndCoordinatesAreTheRecomputedOnes) {
   }
   EXPECT_GT(kept, 100u);
   (void)line;
+}
+
+// rate_of's fraction-free slopes (integer numerators and denominators, one canonicalisation per
+// result) against the rational chain rule canonical at every operation, bitwise, on generated
+// polynomials and points: bidegrees up to (4, 4), coefficients up to 2^120, points from
+// integers to 200-bit rationals, dyadic 60-bit ones as rational_near gives, points where P_v
+// vanishes, and the ratchet's own contact polynomials.
+TEST(AnalyzeFastPaths, FractionFreeSlopesAreTheRationalOnes) {
+  using namespace kinematics_detail;
+  std::mt19937_64 random(20261130);
+  auto integer = [&](int bits) {
+    mpz_class value = 0;
+    for (int b = 0; b < bits; b += 32) value = (value << 32) + static_cast<unsigned long>(random() & 0xffffffffu);
+    if (bits > 0) value >>= (32 * ((bits + 31) / 32) - bits);
+    return random() % 2 ? value : mpz_class(-value);
+  };
+  auto rational = [&]() {
+    switch (random() % 5) {
+      case 0: return Rational(integer(static_cast<int>(random() % 4)));   // small integers, zero
+      case 1: {   // dyadic, as rational_near(., 60) gives
+        Rational r(integer(61), mpz_class(1) << 60);
+        r.canonicalize();
+        return r;
+      }
+      default: {
+        mpz_class den = integer(1 + static_cast<int>(random() % 200));
+        if (den == 0) den = 7;
+        Rational r(integer(1 + static_cast<int>(random() % 200)), den);
+        r.canonicalize();
+        return r;
+      }
+    }
+  };
+  auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  auto check = [&](const IntegerPolynomial2& p, const Rational& u, const Rational& v, bool other_rotates, bool part_rotates,
+                   std::size_t& singular) {
+    CurveSlopes fast = contact_slopes(p, u, v, other_rotates, part_rotates);
+    CurveSlopes exact = contact_slopes_rational(p, u, v, other_rotates, part_rotates);
+    ASSERT_EQ(fast.singular, exact.singular) << "u=" << u << " v=" << v;
+    if (exact.singular) {
+      ++singular;
+      return;
+    }
+    EXPECT_TRUE(same(fast.first, exact.first)) << fast.first << " vs " << exact.first << " u=" << u << " v=" << v;
+    EXPECT_TRUE(same(fast.second, exact.second)) << fast.second << " vs " << exact.second << " u=" << u << " v=" << v;
+  };
+  std::size_t cases = 0, singular = 0;
+  for (int n = 0; n < 600; ++n) {
+    IntegerPolynomial2 p;
+    std::size_t rows = 1 + random() % 5, columns = 1 + random() % 5;
+    int bits = 1 + static_cast<int>(random() % 120);
+    p.coefficients.assign(rows, std::vector<mpz_class>(columns));
+    for (auto& row : p.coefficients)
+      for (mpz_class& c : row)
+        if (random() % 4) c = integer(bits);
+    for (int k = 0; k < 6; ++k) {
+      check(p, rational(), rational(), random() % 2, random() % 2, singular);
+      ++cases;
+    }
+  }
+  // P_v = 0 at the point: (v - v0)^2 q(u) + r(u) has P_v(u, v0) = 0
+  for (int n = 0; n < 60; ++n) {
+    Rational v0 = rational();
+    mpz_class vn = v0.get_num(), vd = v0.get_den();
+    IntegerPolynomial2 p;
+    p.coefficients.assign(3, std::vector<mpz_class>(3));
+    for (std::size_t i = 0; i < 3; ++i) {
+      mpz_class qi = integer(40), ri = integer(40);
+      // (vd v - vn)^2 qi u^i + ri u^i
+      p.coefficients[i][2] = vd * vd * qi;
+      p.coefficients[i][1] = -2 * vd * vn * qi;
+      p.coefficients[i][0] = vn * vn * qi + ri;
+    }
+    check(p, rational(), v0, random() % 2, random() % 2, singular);
+    ++cases;
+  }
+  // the ratchet's contact polynomials at points of their chart pairs
+  Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/ratchet.json");
+  Chain chain = build_chain(model, *model.find_part("wheel"), {}, SliceMethod::kernels, {});
+  const PairSlicer& slicer = *chain.slicers.at(0);
+  slicer.slice(0, Rational(0), 0);   // generates the chart pair's first strip
+  std::size_t real = 0;
+  for (std::size_t o = 0; o < std::max<std::size_t>(1, slicer.other_charts().size()); ++o)
+    for (std::size_t f = 0; f < slicer.follower_charts().size(); ++f)
+      for (std::size_t feature = 0; feature < slicer.features().size(); ++feature) {
+        const IntegerPolynomial2* p = slicer.polynomial(o, f, feature);
+        if (!p) continue;
+        for (int k = 0; k < 4; ++k) {
+          Rational u(integer(61), mpz_class(1) << 60), v(integer(61), mpz_class(1) << 60);
+          u.canonicalize();
+          v.canonicalize();
+          check(*p, u, v, true, true, singular);
+          ++real;
+        }
+      }
+  EXPECT_GT(singular, 60u);
+  EXPECT_GT(real, 20u);
+  EXPECT_GT(cases, 3600u);
 }
 
 }  // namespace
