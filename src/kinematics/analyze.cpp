@@ -415,20 +415,26 @@ struct Sweep {
       }
       ChainState a = left, b = right;
       Rational ta = t_left, tb = t_right;
+      // b is step_to(a, segment, tb) for the current a (strict or not): a strict step that was
+      // not stopped as too coarse took every branch the non-strict one takes (max_push only
+      // stops it), on the same slices (no strip is generated between the two calls)
+      bool b_from_a = true;
       while (abs(tb - ta) > epsilon) {
         Rational tm = (ta + tb) / 2;
         ChainState m = step_to(a, segment, tm);
         if (!differs(a, m)) {
           a = std::move(m);
           ta = tm;
+          b_from_a = false;
         } else {
           b = std::move(m);
           tb = tm;
+          b_from_a = true;
         }
       }
       // the state right of the event, reached from the left one by the smallest step (a state
       // reached by a longer step may show a change that a finer step does not)
-      b = step_to(a, segment, tb, false);
+      if (!b_from_a || b.coarse) b = step_to(a, segment, tb, false);
       if (!differs(a, b)) {
         left = std::move(b);
         t_left = tb;
@@ -573,6 +579,7 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
   result.driver_rotates = driver_part.motion.kind == Motion::Kind::rotation;
 
   Chain chain = build_chain(model, driver, spaces, options.method, options.loads);
+  chain.accelerations = options.accelerations;   // sampled only when asked for
   if (!options.model_loads)
     for (std::size_t k = 1; k < chain.parts.size(); ++k)
       if (!options.loads.count(model.parts[chain.parts[k].part].name)) chain.parts[k].load = FollowerLoad{};

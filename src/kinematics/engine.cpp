@@ -742,7 +742,8 @@ Rates rate_of(const Chain& chain, const ChainState& state, std::size_t k, const 
   Rational u = rational_near(other.position.value, 60), v = rational_near(part.position.value, 60);
   // implicit differentiation of the contact curve P(u, v) = 0, exact at the rational point:
   // dv/du, d2v/du2, then in part coordinates (rad or mm)
-  CurveSlopes slopes = contact_slopes(*polynomial, u, v, chain.parts[q].line.rotation, line.rotation);
+  CurveSlopes slopes =
+      contact_slopes(*polynomial, u, v, chain.parts[q].line.rotation, line.rotation, chain.accelerations);
   if (slopes.singular) {
     result.ratio = std::numeric_limits<double>::quiet_NaN();
     return result;
@@ -750,7 +751,8 @@ Rates rate_of(const Chain& chain, const ChainState& state, std::size_t k, const 
   double derivative = slopes.first;    // d(follower coordinate) / d(other coordinate)
   double curvature = slopes.second;
   result.ratio = derivative * known[q].ratio;
-  result.acceleration = curvature * known[q].ratio * known[q].ratio + derivative * known[q].acceleration;
+  if (chain.accelerations)
+    result.acceleration = curvature * known[q].ratio * known[q].ratio + derivative * known[q].acceleration;
   return result;
 }
 
@@ -789,7 +791,7 @@ std::pair<Fraction, Fraction> axis_slopes(bool rotates, const mpz_class& n, cons
 }  // namespace
 
 CurveSlopes contact_slopes(const IntegerPolynomial2& polynomial, const Rational& u, const Rational& v,
-                           bool other_rotates, bool part_rotates) {
+                           bool other_rotates, bool part_rotates, bool second_derivative) {
   // u = a / b, v = c / d (canonical: b, d > 0). With M >= deg_u P, N >= deg_v P (both >= 2),
   // the partials scaled to integers: FX = b^(M-1) d^N P_u, FY = b^M d^(N-1) P_v,
   // FXX = b^(M-2) d^N P_uu, FXY = b^(M-1) d^(N-1) P_uv, FYY = b^M d^(N-2) P_vv; the term of
@@ -817,6 +819,7 @@ CurveSlopes contact_slopes(const IntegerPolynomial2& polynomial, const Rational&
       long ii = static_cast<long>(i), jj = static_cast<long>(j);
       if (i >= 1) FX += ii * g * ap[i - 1] * cp[j];
       if (j >= 1) FY += jj * g * ap[i] * cp[j - 1];
+      if (!second_derivative) continue;
       if (i >= 2) FXX += ii * (ii - 1) * g * ap[i - 2] * cp[j];
       if (i >= 1 && j >= 1) FXY += ii * jj * g * ap[i - 1] * cp[j - 1];
       if (j >= 2) FYY += jj * (jj - 1) * g * ap[i] * cp[j - 2];
@@ -830,14 +833,15 @@ CurveSlopes contact_slopes(const IntegerPolynomial2& polynomial, const Rational&
   // v'' = -(P_uu + 2 P_uv v' + P_vv v'^2) / P_v = -(FXX b^2 q^2 + 2 FXY b d p q + FYY d^2 p^2) / (FY^3 d^3)
   mpz_class p = -FX * b, q = FY * d;
   Fraction first{p, q};
-  Fraction second{-(FXX * b * b * q * q + 2 * FXY * b * d * p * q + FYY * d * d * p * p), FY * FY * FY * d * d * d};
   // part coordinates: dY/dX = Y' v' / X', d^2Y/dX^2 = (Y'' v'^2 + Y' v'' - (dY/dX) X'') / X'^2
   auto [x1, x2] = axis_slopes(other_rotates, a, b);
   auto [y1, y2] = axis_slopes(part_rotates, cv, d);
   Fraction ratio = y1 * first / x1;
+  out.first = to_double(ratio);
+  if (!second_derivative) return out;
+  Fraction second{-(FXX * b * b * q * q + 2 * FXY * b * d * p * q + FYY * d * d * p * p), FY * FY * FY * d * d * d};
   Fraction minus_one{-1, 1};
   Fraction acceleration = (y2 * first * first + y1 * second + minus_one * ratio * x2) / (x1 * x1);
-  out.first = to_double(ratio);
   out.second = to_double(acceleration);
   return out;
 }

@@ -36,6 +36,9 @@ struct Chain {
   std::vector<std::vector<std::size_t>> other_chart_of_piece;
   std::vector<std::string> unconnected;
   std::vector<std::string> warnings;
+  /// Rates::acceleration is computed (false: left 0 — the analysis samples accelerations only
+  /// when asked, and nothing else reads them; the velocity ratios are the same either way).
+  bool accelerations = true;
 };
 
 /// Builds the chain of `driver` (model part index).
@@ -103,6 +106,7 @@ Rates rate_of(const Chain& chain, const ChainState& state, std::size_t k, const 
 /// coordinate, v the follower's) at the rational point (u, v), in part coordinates (rad through
 /// the half-angle chart when the part rotates, mm otherwise): dY/dX and d^2Y/dX^2 as doubles,
 /// each the double of the exact rational (mpq_get_d). `singular`: P_v = 0 there (no slope).
+/// Without `second_derivative`, `second` is left 0 (not computed).
 struct CurveSlopes {
   bool singular = false;
   double first = 0, second = 0;
@@ -110,7 +114,7 @@ struct CurveSlopes {
 /// Fraction-free: the partials and the chain rule on integer numerators and denominators,
 /// one canonicalisation per result (rate_of's arithmetic).
 CurveSlopes contact_slopes(const IntegerPolynomial2& polynomial, const Rational& u, const Rational& v,
-                           bool other_rotates, bool part_rotates);
+                           bool other_rotates, bool part_rotates, bool second_derivative = true);
 /// The same by rational arithmetic (kernels/implicit_curve.hpp), canonical at every operation:
 /// the reference the tests compare contact_slopes with.
 CurveSlopes contact_slopes_rational(const IntegerPolynomial2& polynomial, const Rational& u, const Rational& v,

@@ -206,6 +206,11 @@ TEST(AnalyzeFastPaths, FractionFreeSlopesAreTheRationalOnes) {
     }
     EXPECT_TRUE(same(fast.first, exact.first)) << fast.first << " vs " << exact.first << " u=" << u << " v=" << v;
     EXPECT_TRUE(same(fast.second, exact.second)) << fast.second << " vs " << exact.second << " u=" << u << " v=" << v;
+    // without the second derivative: the same first one, the second left 0
+    CurveSlopes first_only = contact_slopes(p, u, v, other_rotates, part_rotates, false);
+    EXPECT_FALSE(first_only.singular);
+    EXPECT_TRUE(same(first_only.first, exact.first)) << first_only.first << " vs " << exact.first;
+    EXPECT_EQ(first_only.second, 0.0);
   };
   std::size_t cases = 0, singular = 0;
   for (int n = 0; n < 600; ++n) {
