@@ -415,9 +415,8 @@ struct Sweep {
       }
       ChainState a = left, b = right;
       Rational ta = t_left, tb = t_right;
-      // b is step_to(a, segment, tb) for the current a (strict or not): a strict step that was
-      // not stopped as too coarse took every branch the non-strict one takes (max_push only
-      // stops it), on the same slices (no strip is generated between the two calls)
+      // b is step_to(a, segment, tb) for the current a (strict or not; no strip is generated
+      // between that step and the state right of the event below, which then reuses it)
       bool b_from_a = true;
       while (abs(tb - ta) > epsilon) {
         Rational tm = (ta + tb) / 2;
@@ -434,7 +433,7 @@ struct Sweep {
       }
       // the state right of the event, reached from the left one by the smallest step (a state
       // reached by a longer step may show a change that a finer step does not)
-      if (!b_from_a || b.coarse) b = step_to(a, segment, tb, false);
+      b = non_strict_step(chain, a, segments[segment].piece, tb, unwrapped(segment, tb), b_from_a ? &b : nullptr);
       if (!differs(a, b)) {
         left = std::move(b);
         t_left = tb;

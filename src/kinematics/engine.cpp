@@ -632,6 +632,12 @@ ChainState step(const Chain& chain, const ChainState& state, std::size_t piece, 
   return next;
 }
 
+ChainState non_strict_step(const Chain& chain, const ChainState& state, std::size_t piece, const Rational& value,
+                           double unwrapped, ChainState* strict) {
+  if (strict && !strict->coarse) return std::move(*strict);
+  return step(chain, state, piece, value, unwrapped, false);
+}
+
 ChainState initial_state(const Chain& chain, std::size_t piece, const Rational& value, double unwrapped,
                          std::vector<Interference>& interference) {
   const Model& model = *chain.model;

@@ -89,6 +89,13 @@ struct ChainState {
 ChainState step(const Chain& chain, const ChainState& state, std::size_t piece, const Rational& value,
                 double unwrapped, bool strict = true);
 
+/// step(chain, state, piece, value, unwrapped, false), given `strict`: the strict step from the
+/// same state to the same driver value, or nullptr. A strict step that was not stopped as too
+/// coarse took every branch of the non-strict one (max_push only stops a step) on the same
+/// slices, so it is that step and is returned (moved from); otherwise the step is taken.
+ChainState non_strict_step(const Chain& chain, const ChainState& state, std::size_t piece, const Rational& value,
+                           double unwrapped, ChainState* strict);
+
 /// The initial state: every part at its initial configuration (rounded to rational chart
 /// values), pushed out of blocked space if needed. `interference` receives the overlaps found.
 ChainState initial_state(const Chain& chain, std::size_t piece, const Rational& value, double unwrapped,

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <numbers>
 #include <random>
@@ -264,6 +265,122 @@ TEST(AnalyzeFastPaths, FractionFreeSlopesAreTheRationalOnes) {
   EXPECT_GT(singular, 60u);
   EXPECT_GT(real, 20u);
   EXPECT_GT(cases, 3600u);
+}
+
+// The state right of an event: non_strict_step reuses the bisection's strict step from the same
+// state only when it was not stopped as coarse, and is then the non-strict step itself, field
+// for field. Generated steps along the first chart of three examples' drivers: from states of a
+// walk, and from those states with the followers moved by up to 0.05 rad, to driver values from
+// 10^-6 to 0.6 rad ahead (strict steps that are and are not coarse).
+void expect_same_real(const Real& a, const Real& b, const std::string& where) {
+  EXPECT_EQ(a.exact, b.exact) << where;
+  EXPECT_EQ(a.lower, b.lower) << where;
+  EXPECT_EQ(a.upper, b.upper) << where;
+  EXPECT_TRUE(a.polynomial == b.polynomial) << where;
+}
+
+void expect_same_state(const kinematics_detail::ChainState& a, const kinematics_detail::ChainState& b,
+                       const std::string& where) {
+  using namespace kinematics_detail;
+  auto bits = [](double x) {
+    std::uint64_t u;
+    std::memcpy(&u, &x, sizeof u);
+    return u;
+  };
+  auto same_bound = [&](const Bound& x, const Bound& y, const std::string& what) {
+    EXPECT_EQ(x.exists, y.exists) << what;
+    EXPECT_EQ(x.limit, y.limit) << what;
+    EXPECT_EQ(x.at.piece, y.at.piece) << what;
+    expect_same_real(x.at.value, y.at.value, what);
+    EXPECT_EQ(x.contacts, y.contacts) << what;
+  };
+  EXPECT_EQ(a.driver_piece, b.driver_piece) << where;
+  EXPECT_EQ(a.driver_value, b.driver_value) << where;
+  EXPECT_EQ(bits(a.driver_unwrapped), bits(b.driver_unwrapped)) << where;
+  EXPECT_EQ(a.jammed, b.jammed) << where;
+  EXPECT_EQ(a.coarse, b.coarse) << where;
+  EXPECT_EQ(a.jam_part, b.jam_part) << where;
+  EXPECT_EQ(a.jam_reason, b.jam_reason) << where;
+  EXPECT_EQ(a.jam_contacts, b.jam_contacts) << where;
+  ASSERT_EQ(a.known_rates.size(), b.known_rates.size()) << where;
+  for (std::size_t k = 0; k < a.known_rates.size(); ++k) {
+    EXPECT_EQ(bits(a.known_rates[k].ratio), bits(b.known_rates[k].ratio)) << where;
+    EXPECT_EQ(bits(a.known_rates[k].acceleration), bits(b.known_rates[k].acceleration)) << where;
+  }
+  ASSERT_EQ(a.parts.size(), b.parts.size()) << where;
+  for (std::size_t k = 0; k < a.parts.size(); ++k) {
+    const PartState &x = a.parts[k], &y = b.parts[k];
+    std::string part = where + " part " + std::to_string(k);
+    EXPECT_EQ(x.position.piece, y.position.piece) << part;
+    expect_same_real(x.position.value, y.position.value, part);
+    EXPECT_EQ(bits(x.unwrapped), bits(y.unwrapped)) << part;
+    EXPECT_EQ(x.side, y.side) << part;
+    EXPECT_EQ(x.contacts, y.contacts) << part;
+    same_bound(x.lower, y.lower, part + " lower");
+    same_bound(x.upper, y.upper, part + " upper");
+    EXPECT_EQ(x.kind, y.kind) << part;
+    EXPECT_EQ(x.pushed, y.pushed) << part;
+    EXPECT_EQ(bits(x.push_distance), bits(y.push_distance)) << part;
+    EXPECT_EQ(x.blocked_by, y.blocked_by) << part;
+    EXPECT_EQ(x.channel, y.channel) << part;
+  }
+}
+
+TEST(AnalyzeFastPaths, NonStrictStepReusesOnlyAStrictStepThatWasNotCoarse) {
+  using namespace kinematics_detail;
+  std::mt19937_64 random(25);
+  std::size_t coarse = 0, fine = 0;
+  for (const char* name : {"ratchet.json", "geneva.json", "escapement.json"}) {
+    Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/" + name);
+    std::size_t driver = model.pairs.front().first;
+    for (std::size_t candidate : {model.pairs.front().first, model.pairs.front().second})
+      if (model.parts[candidate].motion.kind == Motion::Kind::rotation) {
+        driver = candidate;
+        break;
+      }
+    Chain chain = build_chain(model, driver, {}, SliceMethod::kernels, {});
+    ASSERT_TRUE(chain.parts[0].line.rotation) << name;
+    auto chart_value = [](double theta) {
+      Rational t(mpz_class(static_cast<long>(std::llround(std::tan(theta / 2) * 1048576.0))), mpz_class(1048576));
+      t.canonicalize();
+      return t;
+    };
+    std::vector<Interference> interference;
+    ChainState state = initial_state(chain, 0, Rational(0), 0.0, interference);
+    double theta = 0;
+    for (int i = 0; i < 40 && !state.jammed; ++i) {
+      for (int k = 0; k < 4; ++k) {
+        // from the walk's state, or from it with the followers moved by up to 0.05 rad (into
+        // blocked space, some: a short strict step must then push them further than it allows)
+        ChainState from = state;
+        if (k % 2 == 1)
+          for (std::size_t part = 1; part < from.parts.size(); ++part) {
+            double shift = (static_cast<double>(random() % 1000) / 1000.0 - 0.5) * 0.1;
+            double to_coordinate = from.parts[part].unwrapped + shift;
+            if (!chain.parts[part].line.rotation) continue;
+            from.parts[part].position = position_of_coordinate(chain.parts[part].line, Rational(to_coordinate));
+            from.parts[part].unwrapped = to_coordinate;
+            from.known_rates.clear();
+          }
+        double ahead = std::pow(10.0, -6.0 + (k % 2 ? 4.0 : 5.8) * static_cast<double>(random() % 1000) / 1000.0);
+        double to = std::min(theta + ahead, 1.5);
+        Rational t = chart_value(to);
+        std::string where = std::string(name) + " from " + std::to_string(theta) + " to " + std::to_string(to);
+        ChainState expected = step(chain, from, 0, t, to, false);
+        ChainState strict = step(chain, from, 0, t, to, true);
+        (strict.coarse ? coarse : fine) += 1;
+        ChainState reused = non_strict_step(chain, from, 0, t, to, &strict);
+        expect_same_state(reused, expected, where);
+        ChainState taken = non_strict_step(chain, from, 0, t, to, nullptr);
+        expect_same_state(taken, expected, where + " (no strict step)");
+        if (HasFailure()) return;
+      }
+      theta += 0.03;
+      state = step(chain, state, 0, chart_value(theta), theta, false);
+    }
+  }
+  EXPECT_GT(coarse, 5u);
+  EXPECT_GT(fine, 100u);
 }
 
 }  // namespace
