@@ -522,6 +522,31 @@ void Real::refine_to(const Rational& width) {
   // m / 2^k is a double (k <= 52) and the value's enclosure excludes zero; else exactly.
   const Interval span_box = enclose(span);
   bool filtering = std::isfinite(lower_box.lo) && std::isfinite(lower_box.hi) && std::isfinite(span_box.hi);
+  if (filtering && limit_left > right) {
+    // The loop's first steps with j and m = 2 j + 1 as machine integers (k < 52): the number of
+    // halvings is counted once (the smallest n with limit_left <= right 2^n), and the steps the
+    // filter decides take no mpz arithmetic; the first it cannot decide, and every step from
+    // k = 52 on, is the loop below's (the same steps, the same j).
+    std::size_t left_bits = mpz_sizeinbase(limit_left.get_mpz_t(), 2), right_bits = mpz_sizeinbase(right.get_mpz_t(), 2);
+    unsigned long halvings = left_bits > right_bits + 1 ? static_cast<unsigned long>(left_bits - right_bits - 1) : 0;
+    mpz_class shifted = right << halvings;   // right 2^halvings < 2^(left_bits - 1) <= limit_left
+    while (limit_left > shifted) {
+      mpz_mul_2exp(shifted.get_mpz_t(), shifted.get_mpz_t(), 1);
+      ++halvings;
+    }
+    std::uint64_t small_j = 0;
+    while (k < 52 && k < halvings) {
+      std::uint64_t small_m = 2 * small_j + 1;
+      double t = std::ldexp(static_cast<double>(small_m), -static_cast<int>(k + 1));   // exact: m < 2^52
+      int s = filter.sign(lower_box + span_box * Interval{t, t});
+      if (s == 0) break;   // undecided: the loop below takes this step exactly
+      ++k;
+      small_j = s == lower_sign ? small_m : 2 * small_j;
+    }
+    static_assert(sizeof(unsigned long) >= sizeof(std::uint64_t), "mpz_set_ui takes the 64-bit j");
+    mpz_set_ui(j.get_mpz_t(), static_cast<unsigned long>(small_j));
+    mpz_mul_2exp(right.get_mpz_t(), right.get_mpz_t(), k);
+  }
   while (limit_left > right) {
     // m = 2 j + 1 in place (no temporaries per step; the same numbers)
     mpz_mul_2exp(m.get_mpz_t(), j.get_mpz_t(), 1);

@@ -415,20 +415,25 @@ struct Sweep {
       }
       ChainState a = left, b = right;
       Rational ta = t_left, tb = t_right;
+      // b is step_to(a, segment, tb) for the current a (strict or not; no strip is generated
+      // between that step and the state right of the event below, which then reuses it)
+      bool b_from_a = true;
       while (abs(tb - ta) > epsilon) {
         Rational tm = (ta + tb) / 2;
         ChainState m = step_to(a, segment, tm);
         if (!differs(a, m)) {
           a = std::move(m);
           ta = tm;
+          b_from_a = false;
         } else {
           b = std::move(m);
           tb = tm;
+          b_from_a = true;
         }
       }
       // the state right of the event, reached from the left one by the smallest step (a state
       // reached by a longer step may show a change that a finer step does not)
-      b = step_to(a, segment, tb, false);
+      b = non_strict_step(chain, a, segments[segment].piece, tb, unwrapped(segment, tb), b_from_a ? &b : nullptr);
       if (!differs(a, b)) {
         left = std::move(b);
         t_left = tb;
@@ -573,6 +578,7 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
   result.driver_rotates = driver_part.motion.kind == Motion::Kind::rotation;
 
   Chain chain = build_chain(model, driver, spaces, options.method, options.loads);
+  chain.accelerations = options.accelerations;   // sampled only when asked for
   if (!options.model_loads)
     for (std::size_t k = 1; k < chain.parts.size(); ++k)
       if (!options.loads.count(model.parts[chain.parts[k].part].name)) chain.parts[k].load = FollowerLoad{};

@@ -632,6 +632,12 @@ ChainState step(const Chain& chain, const ChainState& state, std::size_t piece, 
   return next;
 }
 
+ChainState non_strict_step(const Chain& chain, const ChainState& state, std::size_t piece, const Rational& value,
+                           double unwrapped, ChainState* strict) {
+  if (strict && !strict->coarse) return std::move(*strict);
+  return step(chain, state, piece, value, unwrapped, false);
+}
+
 ChainState initial_state(const Chain& chain, std::size_t piece, const Rational& value, double unwrapped,
                          std::vector<Interference>& interference) {
   const Model& model = *chain.model;
@@ -740,25 +746,129 @@ Rates rate_of(const Chain& chain, const ChainState& state, std::size_t k, const 
   const IntegerPolynomial2* polynomial = slicer.polynomial(other_chart, follower_chart, contact->feature);
   if (!polynomial) return result;
   Rational u = rational_near(other.position.value, 60), v = rational_near(part.position.value, 60);
-  // implicit differentiation of the contact curve P(u, v) = 0 (kernels/implicit_curve.hpp),
-  // exact at the rational point: dv/du, d2v/du2, then in part coordinates (rad or mm)
-  kernels::Partials<Rational> d =
-      kernels::polynomial_partials(polynomial->coefficients, u, v, [](const mpz_class& c) { return Rational(c); });
-  if (d.fy == 0) {
+  // implicit differentiation of the contact curve P(u, v) = 0, exact at the rational point:
+  // dv/du, d2v/du2, then in part coordinates (rad or mm)
+  CurveSlopes slopes =
+      contact_slopes(*polynomial, u, v, chain.parts[q].line.rotation, line.rotation, chain.accelerations);
+  if (slopes.singular) {
     result.ratio = std::numeric_limits<double>::quiet_NaN();
     return result;
   }
-  kernels::Slopes<Rational> chart = kernels::implicit_slopes(d.fx, d.fy, d.fxx, d.fxy, d.fyy);
-  const AxisLine& other_line = chain.parts[q].line;
-  kernels::Slopes<Rational> part_axis = line.rotation ? kernels::half_angle_slopes(v) : kernels::offset_slopes<Rational>();
-  kernels::Slopes<Rational> other_axis =
-      other_line.rotation ? kernels::half_angle_slopes(u) : kernels::offset_slopes<Rational>();
-  kernels::Slopes<Rational> slopes = kernels::part_slopes(chart, other_axis, part_axis);
-  double derivative = slopes.first.get_d();    // d(follower coordinate) / d(other coordinate)
-  double curvature = slopes.second.get_d();
+  double derivative = slopes.first;    // d(follower coordinate) / d(other coordinate)
+  double curvature = slopes.second;
   result.ratio = derivative * known[q].ratio;
-  result.acceleration = curvature * known[q].ratio * known[q].ratio + derivative * known[q].acceleration;
+  if (chain.accelerations)
+    result.acceleration = curvature * known[q].ratio * known[q].ratio + derivative * known[q].acceleration;
   return result;
+}
+
+namespace {
+
+// An unreduced fraction of integers (denominator nonzero, of either sign): products and sums
+// without gcds; the value is canonicalised once, where a double is taken.
+struct Fraction {
+  mpz_class num, den;
+};
+
+Fraction operator*(const Fraction& a, const Fraction& b) { return {a.num * b.num, a.den * b.den}; }
+
+Fraction operator+(const Fraction& a, const Fraction& b) {
+  if (a.den == b.den) return {a.num + b.num, a.den};
+  return {a.num * b.den + b.num * a.den, a.den * b.den};
+}
+
+Fraction operator/(const Fraction& a, const Fraction& b) { return {a.num * b.den, a.den * b.num}; }
+
+double to_double(const Fraction& f) {
+  Rational value(f.num, f.den);
+  value.canonicalize();
+  return value.get_d();   // mpq_get_d: a function of the value, truncated towards zero
+}
+
+// X' and X'' of a part coordinate X in its chart coordinate t = n / d (d > 0): the half-angle
+// chart's 2 / (1 + t^2) = 2 d^2 / w and -4 t / (1 + t^2)^2 = -4 n d^3 / w^2 (w = n^2 + d^2),
+// a translation's 1 and 0.
+std::pair<Fraction, Fraction> axis_slopes(bool rotates, const mpz_class& n, const mpz_class& d) {
+  if (!rotates) return {Fraction{1, 1}, Fraction{0, 1}};
+  mpz_class d2 = d * d, w = n * n + d2;
+  return {Fraction{2 * d2, w}, Fraction{-4 * n * d * d2, w * w}};
+}
+
+}  // namespace
+
+CurveSlopes contact_slopes(const IntegerPolynomial2& polynomial, const Rational& u, const Rational& v,
+                           bool other_rotates, bool part_rotates, bool second_derivative) {
+  // u = a / b, v = c / d (canonical: b, d > 0). With M >= deg_u P, N >= deg_v P (both >= 2),
+  // the partials scaled to integers: FX = b^(M-1) d^N P_u, FY = b^M d^(N-1) P_v,
+  // FXX = b^(M-2) d^N P_uu, FXY = b^(M-1) d^(N-1) P_uv, FYY = b^M d^(N-2) P_vv; the term of
+  // c_ij carries g = c_ij b^(M-i) d^(N-j) times powers of a and c.
+  const auto& c = polynomial.coefficients;
+  std::size_t degree_u = c.empty() ? 0 : c.size() - 1, degree_v = 0;
+  for (const auto& row : c)
+    if (!row.empty()) degree_v = std::max(degree_v, row.size() - 1);
+  std::size_t M = std::max<std::size_t>(degree_u, 2), N = std::max<std::size_t>(degree_v, 2);
+  const mpz_class &a = u.get_num(), &b = u.get_den(), &cv = v.get_num(), &d = v.get_den();
+  std::vector<mpz_class> ap(M + 1, 1), bp(M + 1, 1), cp(N + 1, 1), dp(N + 1, 1);
+  for (std::size_t k = 1; k <= M; ++k) {
+    ap[k] = ap[k - 1] * a;
+    bp[k] = bp[k - 1] * b;
+  }
+  for (std::size_t k = 1; k <= N; ++k) {
+    cp[k] = cp[k - 1] * cv;
+    dp[k] = dp[k - 1] * d;
+  }
+  mpz_class FX, FY, FXX, FXY, FYY, g;
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (std::size_t j = 0; j < c[i].size(); ++j) {
+      if (sgn(c[i][j]) == 0) continue;
+      g = c[i][j] * bp[M - i] * dp[N - j];
+      long ii = static_cast<long>(i), jj = static_cast<long>(j);
+      if (i >= 1) FX += ii * g * ap[i - 1] * cp[j];
+      if (j >= 1) FY += jj * g * ap[i] * cp[j - 1];
+      if (!second_derivative) continue;
+      if (i >= 2) FXX += ii * (ii - 1) * g * ap[i - 2] * cp[j];
+      if (i >= 1 && j >= 1) FXY += ii * jj * g * ap[i - 1] * cp[j - 1];
+      if (j >= 2) FYY += jj * (jj - 1) * g * ap[i] * cp[j - 2];
+    }
+  CurveSlopes out;
+  if (sgn(FY) == 0) {
+    out.singular = true;
+    return out;
+  }
+  // chart slopes: v' = -P_u / P_v = p / q with p = -FX b, q = FY d;
+  // v'' = -(P_uu + 2 P_uv v' + P_vv v'^2) / P_v = -(FXX b^2 q^2 + 2 FXY b d p q + FYY d^2 p^2) / (FY^3 d^3)
+  mpz_class p = -FX * b, q = FY * d;
+  Fraction first{p, q};
+  // part coordinates: dY/dX = Y' v' / X', d^2Y/dX^2 = (Y'' v'^2 + Y' v'' - (dY/dX) X'') / X'^2
+  auto [x1, x2] = axis_slopes(other_rotates, a, b);
+  auto [y1, y2] = axis_slopes(part_rotates, cv, d);
+  Fraction ratio = y1 * first / x1;
+  out.first = to_double(ratio);
+  if (!second_derivative) return out;
+  Fraction second{-(FXX * b * b * q * q + 2 * FXY * b * d * p * q + FYY * d * d * p * p), FY * FY * FY * d * d * d};
+  Fraction minus_one{-1, 1};
+  Fraction acceleration = (y2 * first * first + y1 * second + minus_one * ratio * x2) / (x1 * x1);
+  out.second = to_double(acceleration);
+  return out;
+}
+
+CurveSlopes contact_slopes_rational(const IntegerPolynomial2& polynomial, const Rational& u, const Rational& v,
+                                    bool other_rotates, bool part_rotates) {
+  kernels::Partials<Rational> d =
+      kernels::polynomial_partials(polynomial.coefficients, u, v, [](const mpz_class& c) { return Rational(c); });
+  CurveSlopes out;
+  if (d.fy == 0) {
+    out.singular = true;
+    return out;
+  }
+  kernels::Slopes<Rational> chart = kernels::implicit_slopes(d.fx, d.fy, d.fxx, d.fxy, d.fyy);
+  kernels::Slopes<Rational> part_axis = part_rotates ? kernels::half_angle_slopes(v) : kernels::offset_slopes<Rational>();
+  kernels::Slopes<Rational> other_axis =
+      other_rotates ? kernels::half_angle_slopes(u) : kernels::offset_slopes<Rational>();
+  kernels::Slopes<Rational> slopes = kernels::part_slopes(chart, other_axis, part_axis);
+  out.first = slopes.first.get_d();
+  out.second = slopes.second.get_d();
+  return out;
 }
 
 std::vector<Rates> rates(const Chain& chain, const ChainState& state) {

@@ -36,6 +36,9 @@ struct Chain {
   std::vector<std::vector<std::size_t>> other_chart_of_piece;
   std::vector<std::string> unconnected;
   std::vector<std::string> warnings;
+  /// Rates::acceleration is computed (false: left 0 — the analysis samples accelerations only
+  /// when asked, and nothing else reads them; the velocity ratios are the same either way).
+  bool accelerations = true;
 };
 
 /// Builds the chain of `driver` (model part index).
@@ -86,6 +89,13 @@ struct ChainState {
 ChainState step(const Chain& chain, const ChainState& state, std::size_t piece, const Rational& value,
                 double unwrapped, bool strict = true);
 
+/// step(chain, state, piece, value, unwrapped, false), given `strict`: the strict step from the
+/// same state to the same driver value, or nullptr. A strict step that was not stopped as too
+/// coarse took every branch of the non-strict one (max_push only stops a step) on the same
+/// slices, so it is that step and is returned (moved from); otherwise the step is taken.
+ChainState non_strict_step(const Chain& chain, const ChainState& state, std::size_t piece, const Rational& value,
+                           double unwrapped, ChainState* strict);
+
 /// The initial state: every part at its initial configuration (rounded to rational chart
 /// values), pushed out of blocked space if needed. `interference` receives the overlaps found.
 ChainState initial_state(const Chain& chain, std::size_t piece, const Rational& value, double unwrapped,
@@ -98,6 +108,24 @@ bool same_contacts(const ChainState& a, const ChainState& b);
 std::vector<Rates> rates(const Chain& chain, const ChainState& state);
 /// The same for chain part `k` when the parts before it are known.
 Rates rate_of(const Chain& chain, const ChainState& state, std::size_t k, const std::vector<Rates>& known);
+
+/// The slopes of a contact curve P(u, v) = 0 (c[i][j] of u^i v^j; u the other part's chart
+/// coordinate, v the follower's) at the rational point (u, v), in part coordinates (rad through
+/// the half-angle chart when the part rotates, mm otherwise): dY/dX and d^2Y/dX^2 as doubles,
+/// each the double of the exact rational (mpq_get_d). `singular`: P_v = 0 there (no slope).
+/// Without `second_derivative`, `second` is left 0 (not computed).
+struct CurveSlopes {
+  bool singular = false;
+  double first = 0, second = 0;
+};
+/// Fraction-free: the partials and the chain rule on integer numerators and denominators,
+/// one canonicalisation per result (rate_of's arithmetic).
+CurveSlopes contact_slopes(const IntegerPolynomial2& polynomial, const Rational& u, const Rational& v,
+                           bool other_rotates, bool part_rotates, bool second_derivative = true);
+/// The same by rational arithmetic (kernels/implicit_curve.hpp), canonical at every operation:
+/// the reference the tests compare contact_slopes with.
+CurveSlopes contact_slopes_rational(const IntegerPolynomial2& polynomial, const Rational& u, const Rational& v,
+                                    bool other_rotates, bool part_rotates);
 
 /// Labels of contacts for reports.
 ContactLabel label_of(const Chain& chain, const SliceContact& contact, std::size_t part);

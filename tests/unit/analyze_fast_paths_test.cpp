@@ -11,7 +11,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <numbers>
+#include <random>
 #include <string>
 
 namespace hipair {
@@ -159,6 +162,225 @@ TEST(AnalyzeFastPaths, KeptRatesAndCoordinatesAreTheRecomputedOnes) {
   }
   EXPECT_GT(kept, 100u);
   (void)line;
+}
+
+// rate_of's fraction-free slopes (integer numerators and denominators, one canonicalisation per
+// result) against the rational chain rule canonical at every operation, bitwise, on generated
+// polynomials and points: bidegrees up to (4, 4), coefficients up to 2^120, points from
+// integers to 200-bit rationals, dyadic 60-bit ones as rational_near gives, points where P_v
+// vanishes, and the ratchet's own contact polynomials.
+TEST(AnalyzeFastPaths, FractionFreeSlopesAreTheRationalOnes) {
+  using namespace kinematics_detail;
+  std::mt19937_64 random(20261130);
+  auto integer = [&](int bits) {
+    mpz_class value = 0;
+    for (int b = 0; b < bits; b += 32) value = (value << 32) + static_cast<unsigned long>(random() & 0xffffffffu);
+    if (bits > 0) value >>= (32 * ((bits + 31) / 32) - bits);
+    return random() % 2 ? value : mpz_class(-value);
+  };
+  auto rational = [&]() {
+    switch (random() % 5) {
+      case 0: return Rational(integer(static_cast<int>(random() % 4)));   // small integers, zero
+      case 1: {   // dyadic, as rational_near(., 60) gives
+        Rational r(integer(61), mpz_class(1) << 60);
+        r.canonicalize();
+        return r;
+      }
+      default: {
+        mpz_class den = integer(1 + static_cast<int>(random() % 200));
+        if (den == 0) den = 7;
+        Rational r(integer(1 + static_cast<int>(random() % 200)), den);
+        r.canonicalize();
+        return r;
+      }
+    }
+  };
+  auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  auto check = [&](const IntegerPolynomial2& p, const Rational& u, const Rational& v, bool other_rotates, bool part_rotates,
+                   std::size_t& singular) {
+    CurveSlopes fast = contact_slopes(p, u, v, other_rotates, part_rotates);
+    CurveSlopes exact = contact_slopes_rational(p, u, v, other_rotates, part_rotates);
+    ASSERT_EQ(fast.singular, exact.singular) << "u=" << u << " v=" << v;
+    if (exact.singular) {
+      ++singular;
+      return;
+    }
+    EXPECT_TRUE(same(fast.first, exact.first)) << fast.first << " vs " << exact.first << " u=" << u << " v=" << v;
+    EXPECT_TRUE(same(fast.second, exact.second)) << fast.second << " vs " << exact.second << " u=" << u << " v=" << v;
+    // without the second derivative: the same first one, the second left 0
+    CurveSlopes first_only = contact_slopes(p, u, v, other_rotates, part_rotates, false);
+    EXPECT_FALSE(first_only.singular);
+    EXPECT_TRUE(same(first_only.first, exact.first)) << first_only.first << " vs " << exact.first;
+    EXPECT_EQ(first_only.second, 0.0);
+  };
+  std::size_t cases = 0, singular = 0;
+  for (int n = 0; n < 600; ++n) {
+    IntegerPolynomial2 p;
+    std::size_t rows = 1 + random() % 5, columns = 1 + random() % 5;
+    int bits = 1 + static_cast<int>(random() % 120);
+    p.coefficients.assign(rows, std::vector<mpz_class>(columns));
+    for (auto& row : p.coefficients)
+      for (mpz_class& c : row)
+        if (random() % 4) c = integer(bits);
+    for (int k = 0; k < 6; ++k) {
+      check(p, rational(), rational(), random() % 2, random() % 2, singular);
+      ++cases;
+    }
+  }
+  // P_v = 0 at the point: (v - v0)^2 q(u) + r(u) has P_v(u, v0) = 0
+  for (int n = 0; n < 60; ++n) {
+    Rational v0 = rational();
+    mpz_class vn = v0.get_num(), vd = v0.get_den();
+    IntegerPolynomial2 p;
+    p.coefficients.assign(3, std::vector<mpz_class>(3));
+    for (std::size_t i = 0; i < 3; ++i) {
+      mpz_class qi = integer(40), ri = integer(40);
+      // (vd v - vn)^2 qi u^i + ri u^i
+      p.coefficients[i][2] = vd * vd * qi;
+      p.coefficients[i][1] = -2 * vd * vn * qi;
+      p.coefficients[i][0] = vn * vn * qi + ri;
+    }
+    check(p, rational(), v0, random() % 2, random() % 2, singular);
+    ++cases;
+  }
+  // the ratchet's contact polynomials at points of their chart pairs
+  Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/ratchet.json");
+  Chain chain = build_chain(model, *model.find_part("wheel"), {}, SliceMethod::kernels, {});
+  const PairSlicer& slicer = *chain.slicers.at(0);
+  slicer.slice(0, Rational(0), 0);   // generates the chart pair's first strip
+  std::size_t real = 0;
+  for (std::size_t o = 0; o < std::max<std::size_t>(1, slicer.other_charts().size()); ++o)
+    for (std::size_t f = 0; f < slicer.follower_charts().size(); ++f)
+      for (std::size_t feature = 0; feature < slicer.features().size(); ++feature) {
+        const IntegerPolynomial2* p = slicer.polynomial(o, f, feature);
+        if (!p) continue;
+        for (int k = 0; k < 4; ++k) {
+          Rational u(integer(61), mpz_class(1) << 60), v(integer(61), mpz_class(1) << 60);
+          u.canonicalize();
+          v.canonicalize();
+          check(*p, u, v, true, true, singular);
+          ++real;
+        }
+      }
+  EXPECT_GT(singular, 60u);
+  EXPECT_GT(real, 20u);
+  EXPECT_GT(cases, 3600u);
+}
+
+// The state right of an event: non_strict_step reuses the bisection's strict step from the same
+// state only when it was not stopped as coarse, and is then the non-strict step itself, field
+// for field. Generated steps along the first chart of three examples' drivers: from states of a
+// walk, and from those states with the followers moved by up to 0.05 rad, to driver values from
+// 10^-6 to 0.6 rad ahead (strict steps that are and are not coarse).
+void expect_same_real(const Real& a, const Real& b, const std::string& where) {
+  EXPECT_EQ(a.exact, b.exact) << where;
+  EXPECT_EQ(a.lower, b.lower) << where;
+  EXPECT_EQ(a.upper, b.upper) << where;
+  EXPECT_TRUE(a.polynomial == b.polynomial) << where;
+}
+
+void expect_same_state(const kinematics_detail::ChainState& a, const kinematics_detail::ChainState& b,
+                       const std::string& where) {
+  using namespace kinematics_detail;
+  auto bits = [](double x) {
+    std::uint64_t u;
+    std::memcpy(&u, &x, sizeof u);
+    return u;
+  };
+  auto same_bound = [&](const Bound& x, const Bound& y, const std::string& what) {
+    EXPECT_EQ(x.exists, y.exists) << what;
+    EXPECT_EQ(x.limit, y.limit) << what;
+    EXPECT_EQ(x.at.piece, y.at.piece) << what;
+    expect_same_real(x.at.value, y.at.value, what);
+    EXPECT_EQ(x.contacts, y.contacts) << what;
+  };
+  EXPECT_EQ(a.driver_piece, b.driver_piece) << where;
+  EXPECT_EQ(a.driver_value, b.driver_value) << where;
+  EXPECT_EQ(bits(a.driver_unwrapped), bits(b.driver_unwrapped)) << where;
+  EXPECT_EQ(a.jammed, b.jammed) << where;
+  EXPECT_EQ(a.coarse, b.coarse) << where;
+  EXPECT_EQ(a.jam_part, b.jam_part) << where;
+  EXPECT_EQ(a.jam_reason, b.jam_reason) << where;
+  EXPECT_EQ(a.jam_contacts, b.jam_contacts) << where;
+  ASSERT_EQ(a.known_rates.size(), b.known_rates.size()) << where;
+  for (std::size_t k = 0; k < a.known_rates.size(); ++k) {
+    EXPECT_EQ(bits(a.known_rates[k].ratio), bits(b.known_rates[k].ratio)) << where;
+    EXPECT_EQ(bits(a.known_rates[k].acceleration), bits(b.known_rates[k].acceleration)) << where;
+  }
+  ASSERT_EQ(a.parts.size(), b.parts.size()) << where;
+  for (std::size_t k = 0; k < a.parts.size(); ++k) {
+    const PartState &x = a.parts[k], &y = b.parts[k];
+    std::string part = where + " part " + std::to_string(k);
+    EXPECT_EQ(x.position.piece, y.position.piece) << part;
+    expect_same_real(x.position.value, y.position.value, part);
+    EXPECT_EQ(bits(x.unwrapped), bits(y.unwrapped)) << part;
+    EXPECT_EQ(x.side, y.side) << part;
+    EXPECT_EQ(x.contacts, y.contacts) << part;
+    same_bound(x.lower, y.lower, part + " lower");
+    same_bound(x.upper, y.upper, part + " upper");
+    EXPECT_EQ(x.kind, y.kind) << part;
+    EXPECT_EQ(x.pushed, y.pushed) << part;
+    EXPECT_EQ(bits(x.push_distance), bits(y.push_distance)) << part;
+    EXPECT_EQ(x.blocked_by, y.blocked_by) << part;
+    EXPECT_EQ(x.channel, y.channel) << part;
+  }
+}
+
+TEST(AnalyzeFastPaths, NonStrictStepReusesOnlyAStrictStepThatWasNotCoarse) {
+  using namespace kinematics_detail;
+  std::mt19937_64 random(25);
+  std::size_t coarse = 0, fine = 0;
+  for (const char* name : {"ratchet.json", "geneva.json", "escapement.json"}) {
+    Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/" + name);
+    std::size_t driver = model.pairs.front().first;
+    for (std::size_t candidate : {model.pairs.front().first, model.pairs.front().second})
+      if (model.parts[candidate].motion.kind == Motion::Kind::rotation) {
+        driver = candidate;
+        break;
+      }
+    Chain chain = build_chain(model, driver, {}, SliceMethod::kernels, {});
+    ASSERT_TRUE(chain.parts[0].line.rotation) << name;
+    auto chart_value = [](double theta) {
+      Rational t(mpz_class(static_cast<long>(std::llround(std::tan(theta / 2) * 1048576.0))), mpz_class(1048576));
+      t.canonicalize();
+      return t;
+    };
+    std::vector<Interference> interference;
+    ChainState state = initial_state(chain, 0, Rational(0), 0.0, interference);
+    double theta = 0;
+    for (int i = 0; i < 40 && !state.jammed; ++i) {
+      for (int k = 0; k < 4; ++k) {
+        // from the walk's state, or from it with the followers moved by up to 0.05 rad (into
+        // blocked space, some: a short strict step must then push them further than it allows)
+        ChainState from = state;
+        if (k % 2 == 1)
+          for (std::size_t part = 1; part < from.parts.size(); ++part) {
+            double shift = (static_cast<double>(random() % 1000) / 1000.0 - 0.5) * 0.1;
+            double to_coordinate = from.parts[part].unwrapped + shift;
+            if (!chain.parts[part].line.rotation) continue;
+            from.parts[part].position = position_of_coordinate(chain.parts[part].line, Rational(to_coordinate));
+            from.parts[part].unwrapped = to_coordinate;
+            from.known_rates.clear();
+          }
+        double ahead = std::pow(10.0, -6.0 + (k % 2 ? 4.0 : 5.8) * static_cast<double>(random() % 1000) / 1000.0);
+        double to = std::min(theta + ahead, 1.5);
+        Rational t = chart_value(to);
+        std::string where = std::string(name) + " from " + std::to_string(theta) + " to " + std::to_string(to);
+        ChainState expected = step(chain, from, 0, t, to, false);
+        ChainState strict = step(chain, from, 0, t, to, true);
+        (strict.coarse ? coarse : fine) += 1;
+        ChainState reused = non_strict_step(chain, from, 0, t, to, &strict);
+        expect_same_state(reused, expected, where);
+        ChainState taken = non_strict_step(chain, from, 0, t, to, nullptr);
+        expect_same_state(taken, expected, where + " (no strict step)");
+        if (HasFailure()) return;
+      }
+      theta += 0.03;
+      state = step(chain, state, 0, chart_value(theta), theta, false);
+    }
+  }
+  EXPECT_GT(coarse, 5u);
+  EXPECT_GT(fine, 100u);
 }
 
 }  // namespace
