@@ -370,6 +370,7 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     return Interval(a, std::max(a, b));
   };
   double envelope_end = start;
+  std::string furthest_label;   // the candidate reaching furthest
   for (const Key& key : keys) {
     CurveSlice c = curve;
     c.first = identity(first_part, std::get<0>(key), std::get<1>(key), std::get<2>(key));
@@ -423,12 +424,22 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
       end = r ? *r : start;
     }
     if (sigma > 0 ? *end > start : *end < start) out.extended = true;
+    if (further(envelope_end, *end, sigma) != envelope_end || furthest_label.empty()) {
+      auto name = [&](const FeatureIdentity& f) {
+        const Part& part = m.parts[f.part];
+        std::string edge = part.loops.at(f.loop).edges.at(f.edge).label;
+        if (edge.empty()) edge = "loop " + std::to_string(f.loop) + " edge " + std::to_string(f.edge);
+        return part.name + " " + (f.kind == FeatureKind::vertex ? "vertex of " : "") + edge;
+      };
+      furthest_label = name(c.first) + " / " + name(c.second) + (root ? "" : " (not enclosed)");
+    }
     envelope_end = further(envelope_end, *end, sigma);
   }
   // 4. The envelope, unless it may reach the window's far end.
   double margin = reach / 8;
   if (sigma > 0 ? envelope_end > window.hi - margin : envelope_end < window.lo + margin) {
-    out.why = "a feature pair other than the holding one may hold the follower further than the search reaches";
+    out.why = "a feature pair other than the holding one may hold the follower further than the search reaches (" +
+              furthest_label + ")";
     return out;
   }
   out.chart = sigma > 0 ? Interval(holder.lo, std::max(holder.hi, envelope_end))
