@@ -86,7 +86,7 @@ std::vector<Rational> corner(const std::vector<Parameter>& parameters, const std
 }
 
 struct Check {
-  std::size_t bounded = 0, outside = 0;
+  std::size_t bounded = 0, outside = 0, skipped = 0;
 };
 
 // The exact output at `d` and driver sample k against the band (where bounded).
@@ -113,7 +113,14 @@ Check check_band(const std::string& text, const ToleranceResult& result, std::si
   std::mt19937 rng(seed);
   Check c;
   for (std::size_t k = 0; k < result.samples.size(); ++k) {
-    if (!result.samples[k].contact) continue;
+    const VariationSample& s = result.samples[k];
+    if (!s.contact || !std::isfinite(s.certified.upper - s.certified.lower)) continue;
+    // The oracle starts the train at the driver position, not at the range's start: where that
+    // meshes another tooth than the analysed motion at nominal, its answers are not comparable.
+    if (std::fabs(test_chain::chain_output(model.nominal(), "gear-A", s.driver, result.follower) - s.nominal) > 1e-9) {
+      ++c.skipped;
+      continue;
+    }
     for (std::size_t j : {k == 0 ? k : k - 1, k, k + 1 < result.samples.size() ? k + 1 : k}) {
       if (j != k && (!result.samples[j].contact || result.samples[j].region == result.samples[k].region)) continue;
       if (j == k && k % stride != 0) continue;
@@ -177,7 +184,8 @@ TEST(ToleranceChainHandover, GeneratedTrainsStayInTheCertifiedBand) {
     Check c = check_band(text, result, 1, g.seed, 3);
     EXPECT_EQ(c.outside, 0u);
     bounded += c.bounded;
-    std::cout << "[ handover ] case seed " << g.seed << ": " << c.bounded << " exact checks in bounded bands\n";
+    std::cout << "[ handover ] case seed " << g.seed << ": " << c.bounded << " exact checks in bounded bands, " << c.skipped
+              << " position(s) skipped\n";
   }
   EXPECT_GT(bounded, 0u);
   RecordProperty("bounded_checks", static_cast<int>(bounded));
