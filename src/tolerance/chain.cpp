@@ -20,6 +20,7 @@
 //   - Monte Carlo: at each sampled vector, each pair's root certified (interval bisection) with
 //     its driver ranging over the previous pair's certified root at that vector.
 #include "model/parametric/parametric.hpp"
+#include "tolerance/handover.hpp"
 #include "tolerance/mean_value.hpp"
 #include "tolerance/stage.hpp"
 
@@ -33,6 +34,7 @@
 #include <deque>
 #include <limits>
 #include <map>
+#include <memory>
 #include <numbers>
 
 namespace hipair::tolerance_detail {
@@ -144,6 +146,12 @@ bool rotations_without_limits(const Model& m, const std::vector<std::size_t>& pa
     return m.parts[k].motion.kind == Motion::Kind::rotation && !m.parts[k].motion.angle_limits;
   });
 }
+
+// What the hand-over envelopes did at one position (over all its sub-boxes).
+struct HandoverNote {
+  bool extended = false;   // some pair's band widened by another feature pair taking over
+  std::string why;         // why a pair's envelope was not bounded
+};
 
 struct PositionStage {
   double fixed_slope = 0;            // dv/d(driver chart), chart units
@@ -270,6 +278,10 @@ class ChainAnalysis {
       for (const StageContact& c : stages_.back().contacts) summary.contact_positions += c.contact ? 1 : 0;
       result_.chain.push_back(summary);
       for (const std::string& note : stages_.back().result.notes) notes_.push_back("pair " + a + ":" + b + ": " + note);
+    }
+    for (std::size_t s = 1; s < parts.size(); ++s) {
+      handovers_.push_back(std::make_unique<HandoverSearch>(stages_[s - 1].solver, parts[s - 1], parts[s]));
+      handovers_.back()->set_disabled(!paths_.handover_envelope);
     }
     const StageAnalysis& first = stages_.front();
     const StageAnalysis& last = stages_.back();
@@ -444,7 +456,7 @@ class ChainAnalysis {
   // inert, no certified root at the centre) the pair and those after it keep the interval
   // composition.
   bool compose_over(std::size_t i, const Box& box, std::vector<Interval>& charts, Interval& out, std::size_t* boxes,
-                    bool* mean_value_through = nullptr) const {
+                    bool* mean_value_through = nullptr, HandoverNote* handover = nullptr) const {
     bool mean_value = options_.mean_value_chain;
     std::vector<double> center;
     std::vector<Interval> offsets, d;   // B - c; D of the last pair
@@ -475,6 +487,21 @@ class ChainAnalysis {
         if (s == 0 || !held_pieces(i, s, box, curve, charts[s], boxes[s])) return false;
       }
       if (mean_value) mean_value = mean_value_step(i, s, box, curve, center_parameters, offsets, previous_nominal, charts, xc, d);
+      // Another feature pair may take over inside the box (handover.cpp): the envelope. The
+      // holder's mean-value form above stays sound for the holder's root; where another feature
+      // pair may hold the follower, the follower's position is not differentiable across the
+      // change, so the later pairs keep the interval composition.
+      HandoverEnvelope envelope = handovers_[s]->envelope(curve, box, charts[s], options_.relative_accuracy,
+                                                          options_.absolute_accuracy, boxes[s]);
+      if (!envelope.bounded) {
+        if (handover) handover->why = "pair " + stage.result.driver + ":" + stage.result.follower + ": " + envelope.why;
+        return false;
+      }
+      if (envelope.extended) {
+        charts[s] = envelope.chart;
+        mean_value = false;
+        if (handover) handover->extended = true;
+      }
       x = to_part(charts[s], stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
     }
     out = x;
@@ -612,6 +639,7 @@ class ChainAnalysis {
     std::vector<std::size_t> boxes(positions() * stages_.size(), 0);
     std::vector<std::size_t> shared_boxes(positions(), 0);
     std::vector<char> ok(positions(), 0);
+    std::vector<HandoverNote> handover(positions());
     std::size_t n = result_.parameters.size();
     parallel_for(options_.threads, positions(), [&](std::size_t i) {
       if (!result_.samples[i].contact) return;
@@ -639,7 +667,7 @@ class ChainAnalysis {
         ++used;
         Interval out;
         bool mean_value_through = false;
-        bool composed = compose_over(i, b, charts, out, &boxes[i * stages_.size()], &mean_value_through);
+        bool composed = compose_over(i, b, charts, out, &boxes[i * stages_.size()], &mean_value_through, &handover[i]);
         double linear = 0;
         for (std::size_t p = 0; p < n && p < total.size(); ++p) linear += std::fabs(total[p]) * (b.hi[p] - b.lo[p]);
         bool accurate = composed && out.width() <= linear * (1 + options_.relative_accuracy) + options_.absolute_accuracy;
@@ -707,10 +735,20 @@ class ChainAnalysis {
     if (uncertified > 0)
       notes_.push_back("the certified band could not be computed at " + std::to_string(uncertified) +
                        " driver position(s) (shown unbounded)");
-    // What the band assumes (docs/tolerance.md "Assembly chains" step 4), said where it is read.
-    notes_.push_back("the certified band follows, in each pair, the feature pair touching at the nominal position "
-                     "over the whole tolerance box; a change of the touching feature pair inside the box (another "
-                     "tooth or flank taking over near a contact change) is not enclosed");
+    // Hand-overs (docs/tolerance.md "Assembly chains" step 4, "Hand-overs"), said where the band is read.
+    std::size_t widened = 0;
+    std::map<std::string, std::size_t> reasons;
+    for (std::size_t i = 0; i < positions(); ++i) {
+      if (!result_.samples[i].contact) continue;
+      widened += ok[i] && handover[i].extended;
+      if (!ok[i] && !handover[i].why.empty()) ++reasons[handover[i].why];
+    }
+    if (paths_.handover_envelope)
+      notes_.push_back("the certified band encloses a change of the touching feature pair inside the tolerance box "
+                       "(another tooth or flank taking over): widened for it at " + std::to_string(widened) +
+                       " position(s)");
+    for (const auto& [why, count] : reasons)
+      notes_.push_back("the certified band is unbounded at " + std::to_string(count) + " position(s): " + why);
   }
 
   void monte_carlo() {
@@ -783,6 +821,7 @@ class ChainAnalysis {
   ToleranceOptions options_;
   ChainPaths paths_;
   std::vector<StageAnalysis> stages_;
+  std::vector<std::unique_ptr<HandoverSearch>> handovers_;   // per pair
   std::vector<std::vector<PositionStage>> per_;   // [position][pair]
   ToleranceResult result_;
   std::vector<std::string> notes_;

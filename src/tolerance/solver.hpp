@@ -72,6 +72,7 @@ class CurveSolver {
 
   std::size_t parameters() const { return n_; }
   const Model& nominal() const { return model_->nominal(); }
+  const model_detail::ParametricModel& model() const { return *model_; }
 
   /// dv/dp_i (chart units) at the nominal parameters, at the curve point near `free_value`;
   /// also the refined free value (Newton in double); with `fixed_slope`, also dv/d fixed there

@@ -1,0 +1,195 @@
+// The certified band of an assembly chain at a tooth hand-over (docs/tolerance.md "Assembly
+// chains", step 4, "Hand-overs"; src/tolerance/handover.cpp): inside the tolerance box another
+// tooth pair can take over from the one holding the follower at nominal and hold it further in
+// the direction it is pushed. Oracle: the exact kinematic engine on the exact model rebuilt at
+// rational parameter vectors (tolerance_chain_oracle.hpp), independent of the band's code.
+//
+// The gear pair of gear_train(2) with gear A's flank profile toleranced wide (pitch radius
+// +-0.05 mm, flank radius +-0.2 mm, pressure angle +-0.02 rad) and nothing else: the two tooth
+// pairs meeting at the hand-over near driver 0.18 rad depend on them differently (the leaving
+// pair touches near A's tip, the entering one near its root), so at the box's corner that moves
+// the other tooth pair furthest (the linearised witness, from that pair's sensitivities at the
+// neighbouring position where it holds) the exact train leaves the band of the holder alone:
+// at 0.181 rad the exact output is -0.14756 rad, the holder's band [-0.14631, -0.13436]
+// (before session 25, and with the envelope dropped: ChainPaths::handover_envelope).
+#include "gear_train_models.hpp"
+#include "tolerance_chain_oracle.hpp"
+
+#include "model/parametric/parametric.hpp"
+#include "tolerance/stage.hpp"
+
+#include <hipair/tolerance.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace hipair {
+namespace {
+
+// `text` with every parameter's tolerance replaced: those named in `tolerances` get theirs,
+// the others none.
+std::string retoleranced(const std::string& text, const std::map<std::string, double>& tolerances) {
+  nlohmann::json j = nlohmann::json::parse(text);
+  for (auto& [name, body] : j["parameters"].items()) {
+    if (!body.contains("tolerance")) continue;
+    auto it = tolerances.find(name);
+    if (it == tolerances.end())
+      body.erase("tolerance");
+    else
+      body["tolerance"] = it->second;
+  }
+  return j.dump();
+}
+
+// `text` with every tolerance multiplied by `scale`.
+std::string scaled(const std::string& text, double scale) {
+  nlohmann::json j = nlohmann::json::parse(text);
+  for (auto& [name, body] : j["parameters"].items())
+    if (body.contains("tolerance")) body["tolerance"] = body["tolerance"].get<double>() * scale;
+  return j.dump();
+}
+
+std::string handover_model() {
+  return retoleranced(test_gears::gear_train(2),
+                      {{"A-pitch-radius", 0.05}, {"A-flank-radius", 0.2}, {"A-pressure-angle", 0.02}});
+}
+
+ToleranceOptions pair_options(const Rational& from, const Rational& to, std::size_t positions) {
+  ToleranceOptions options;
+  options.driver = "gear-A";
+  options.chain = true;
+  options.range = std::make_pair(from, to);
+  options.positions = positions;
+  options.threads = 2;
+  return options;
+}
+
+// The exact box corner that the linearisation with sensitivities `s` says moves the output
+// furthest down (`down`) or up.
+std::vector<Rational> corner(const std::vector<Parameter>& parameters, const std::vector<double>& s, bool down) {
+  std::vector<Rational> d(parameters.size(), Rational(0));
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const Parameter& p = parameters[i];
+    if (s[i] == 0 || !(p.range.lo < p.range.hi)) continue;
+    d[i] = ((s[i] > 0) == down ? p.range.lo : p.range.hi) - p.nominal;
+  }
+  return d;
+}
+
+struct Check {
+  std::size_t bounded = 0, outside = 0, skipped = 0;
+};
+
+// The exact output at `d` and driver sample k against the band (where bounded).
+void check(const model_detail::ParametricModel& model, const ToleranceResult& result, std::size_t k,
+           const std::vector<Rational>& d, Check& c) {
+  const VariationSample& s = result.samples[k];
+  if (!s.contact || !std::isfinite(s.certified.upper - s.certified.lower)) return;
+  ++c.bounded;
+  double out = test_chain::chain_output(model.exact_model(d), "gear-A", s.driver, result.follower);
+  // (the oracle's position is a double of the exact engine's: 1e-10 covers its rounding)
+  if (out < s.certified.lower - 1e-10 || out > s.certified.upper + 1e-10) {
+    ++c.outside;
+    ADD_FAILURE() << "driver " << s.driver << ": exact output " << out << " outside the certified band ["
+                  << s.certified.lower << ", " << s.certified.upper << "]";
+  }
+}
+
+// Witnesses at every `stride`-th contact position: both linearised corners of its own
+// sensitivities, and where the holder changes next to it (a hand-over) those of the neighbour's
+// (another tooth pair holds there), and `random` vectors.
+Check check_band(const std::string& text, const ToleranceResult& result, std::size_t random, unsigned seed,
+                 std::size_t stride = 1) {
+  model_detail::ParametricModel model = model_detail::ParametricModel::read(text);
+  std::mt19937 rng(seed);
+  Check c;
+  for (std::size_t k = 0; k < result.samples.size(); ++k) {
+    const VariationSample& s = result.samples[k];
+    if (!s.contact || !std::isfinite(s.certified.upper - s.certified.lower)) continue;
+    // The oracle starts the train at the driver position, not at the range's start: where that
+    // meshes another tooth than the analysed motion at nominal, its answers are not comparable.
+    if (std::fabs(test_chain::chain_output(model.nominal(), "gear-A", s.driver, result.follower) - s.nominal) > 1e-9) {
+      ++c.skipped;
+      continue;
+    }
+    for (std::size_t j : {k == 0 ? k : k - 1, k, k + 1 < result.samples.size() ? k + 1 : k}) {
+      if (j != k && (!result.samples[j].contact || result.samples[j].region == result.samples[k].region)) continue;
+      if (j == k && k % stride != 0) continue;
+      for (bool down : {true, false}) check(model, result, k, corner(result.parameters, result.samples[j].sensitivities, down), c);
+    }
+    if (k % stride == 0)
+      for (std::size_t r = 0; r < random; ++r) check(model, result, k, test_gears::random_deviations(result.parameters, rng), c);
+  }
+  return c;
+}
+
+TEST(ToleranceChainHandover, ExactTrainAtATeethHandOverStaysInTheCertifiedBand) {
+  std::string text = handover_model();
+  ToleranceResult result = analyze_tolerances_text(text, pair_options(Rational(16, 100), Rational(19, 100), 2000));
+  ASSERT_EQ(result.chain.size(), 1u);
+  std::size_t regions = 0;
+  for (std::size_t k = 1; k < result.samples.size(); ++k) regions += result.samples[k].region != result.samples[k - 1].region;
+  EXPECT_GE(regions, 1u) << "the range holds a hand-over";
+  Check c = check_band(text, result, 1, 7);
+  std::cout << "[ handover ] " << c.bounded << " exact checks in bounded bands\n";
+  EXPECT_EQ(c.outside, 0u);
+  for (const std::string& note : result.notes) EXPECT_EQ(note.find("is not enclosed"), std::string::npos) << note;
+  RecordProperty("bounded_checks", static_cast<int>(c.bounded));
+}
+
+// The gap the envelope closes, shown by the same oracle: the holder's band alone (the named
+// mutation, ChainPaths::handover_envelope = false) is left by the exact train at the hand-over.
+TEST(ToleranceChainHandover, TheHolderAloneIsLeftByTheExactTrainAtTheHandOver) {
+  std::string text = handover_model();
+  tolerance_detail::ChainPaths paths;
+  paths.handover_envelope = false;
+  ToleranceResult result = tolerance_detail::analyze_chain(text, pair_options(Rational(16, 100), Rational(19, 100), 2000), paths);
+  model_detail::ParametricModel model = model_detail::ParametricModel::read(text);
+  std::size_t outside = 0;
+  for (std::size_t k = 1; k < result.samples.size(); ++k) {
+    if (result.samples[k].region == result.samples[k - 1].region) continue;
+    // the first position of the new holder, at the old holder's linearised lowest corner
+    const VariationSample& s = result.samples[k];
+    double out = test_chain::chain_output(model.exact_model(corner(result.parameters, result.samples[k - 1].sensitivities, true)),
+                                          "gear-A", s.driver, "gear-B");
+    outside += out < s.certified.lower - 1e-10;
+  }
+  EXPECT_GE(outside, 1u);
+}
+
+// Generated cases: the gear pair with the declared tolerances and half of them, over
+// more than a tooth period (a hand-over in each), contact positions checked at the linearised
+// corners (their own, every third; their neighbours' at a hand-over) and at a random vector.
+TEST(ToleranceChainHandover, GeneratedTrainsStayInTheCertifiedBand) {
+  struct Case {
+    unsigned gears, even, odd;
+    double scale;
+    unsigned seed;
+  };
+  std::size_t bounded = 0;
+  for (const Case& g : {Case{2, 10, 12, 1.0, 1}, Case{2, 10, 12, 0.5, 5}}) {
+    SCOPED_TRACE("gears " + std::to_string(g.gears) + " teeth " + std::to_string(g.even) + "/" + std::to_string(g.odd) +
+                 " scale " + std::to_string(g.scale));
+    std::string text = scaled(test_gears::gear_train(g.gears, g.even, g.odd), g.scale);
+    ToleranceResult result = analyze_tolerances_text(text, pair_options(Rational(0), Rational(7, 10), 90));
+    Check c = check_band(text, result, 1, g.seed, 3);
+    EXPECT_EQ(c.outside, 0u);
+    bounded += c.bounded;
+    std::cout << "[ handover ] case seed " << g.seed << ": " << c.bounded << " exact checks in bounded bands, " << c.skipped
+              << " position(s) skipped\n";
+  }
+  EXPECT_GT(bounded, 0u);
+  RecordProperty("bounded_checks", static_cast<int>(bounded));
+}
+
+}  // namespace
+}  // namespace hipair
