@@ -107,6 +107,14 @@ struct ToleranceOptions {
   /// pair; the per-pair kinematic functions and sensitivities are composed by the chain rule.
   /// Not combined with `threshold`, `certify` or `contact_changes` (ModelError); no zones.
   bool chain = false;
+  /// Assembly chains: follow, in each pair, the feature pair touching at the nominal position
+  /// over the whole tolerance box, without the hand-over envelope (docs/tolerance.md
+  /// "Hand-overs"). The band is then certified only under that assumption, which the result's
+  /// notes state: another feature pair taking over inside the box (the next tooth pair of a gear
+  /// mesh near a hand-over) is not enclosed. Off by default: the certified band encloses every
+  /// feature pair that may hold the follower inside the box, and is unbounded where one cannot
+  /// be enclosed or excluded (today: every gear mesh).
+  bool chain_assume_nominal_holder = false;
 };
 
 /// One pair of an assembly chain (ToleranceResult::chain).

@@ -43,6 +43,7 @@ struct ToleranceCliOptions {
   double threshold_bracket = 0;
   bool contact_changes = false;
   bool chain = false;
+  bool assume_nominal_contact = false;
   std::vector<std::string> vary;
   double accuracy = 0.1;
   unsigned threads = 0;
@@ -306,6 +307,8 @@ int run(const ToleranceCliOptions& options) {
     analysis.range = std::make_pair(coordinate(a, "--range"), coordinate(b, "--range"));
     if (analysis.range->first == analysis.range->second) throw ModelError("", "--range: the range is empty");
   }
+  if (options.assume_nominal_contact && !options.chain) throw ModelError("", "--assume-nominal-contact is for --chain");
+  analysis.chain_assume_nominal_holder = options.assume_nominal_contact;
   analysis.monte_carlo = options.monte_carlo;
   analysis.seed = options.seed;
   analysis.positions = options.positions;
@@ -388,6 +391,9 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_flag("--chain", options->chain,
                     "analyse the assembly chain from the driver (--driver P, or --pair P:OUTPUT) to its output part: "
                     "the pairs' kinematic functions and sensitivities composed (docs/tolerance.md \"Assembly chains\")");
+  command->add_flag("--assume-nominal-contact", options->assume_nominal_contact,
+                    "with --chain: follow each pair's nominal touching feature pair over the whole box (no hand-over "
+                    "envelope); the band is then certified only under that assumption (docs/tolerance.md \"Hand-overs\")");
   command->add_flag("--contact-changes", options->contact_changes,
                     "look for contacts that appear or disappear for some parameters in the tolerance box; "
                     "confirm each with an exact C-space at a witness vector");

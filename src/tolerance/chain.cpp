@@ -281,7 +281,7 @@ class ChainAnalysis {
     }
     for (std::size_t s = 1; s < parts.size(); ++s) {
       handovers_.push_back(std::make_unique<HandoverSearch>(stages_[s - 1].solver, parts[s - 1], parts[s]));
-      handovers_.back()->set_disabled(!paths_.handover_envelope);
+      handovers_.back()->set_disabled(!envelope_on());
     }
     const StageAnalysis& first = stages_.front();
     const StageAnalysis& last = stages_.back();
@@ -743,10 +743,15 @@ class ChainAnalysis {
       widened += ok[i] && handover[i].extended;
       if (!ok[i] && !handover[i].why.empty()) ++reasons[handover[i].why];
     }
-    if (paths_.handover_envelope)
+    if (envelope_on())
       notes_.push_back("the certified band encloses a change of the touching feature pair inside the tolerance box "
                        "(another tooth or flank taking over): widened for it at " + std::to_string(widened) +
                        " position(s)");
+    else
+      notes_.push_back("the band assumes (as asked: --assume-nominal-contact) that each pair's follower is held by the "
+                       "feature pair touching at the nominal position over the whole tolerance box; a change of the "
+                       "touching feature pair inside the box (another tooth or flank taking over near a contact "
+                       "change) is not enclosed, so the band is certified only under that assumption");
     for (const auto& [why, count] : reasons)
       notes_.push_back("the certified band is unbounded at " + std::to_string(count) + " position(s): " + why);
   }
@@ -820,6 +825,8 @@ class ChainAnalysis {
   std::string text_;
   ToleranceOptions options_;
   ChainPaths paths_;
+  // The hand-over envelope (handover.cpp): on unless the caller assumes the nominal holders.
+  bool envelope_on() const { return paths_.handover_envelope && !options_.chain_assume_nominal_holder; }
   std::vector<StageAnalysis> stages_;
   std::vector<std::unique_ptr<HandoverSearch>> handovers_;   // per pair
   std::vector<std::vector<PositionStage>> per_;   // [position][pair]

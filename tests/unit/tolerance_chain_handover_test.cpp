@@ -164,6 +164,20 @@ TEST(ToleranceChainHandover, TheHolderAloneIsLeftByTheExactTrainAtTheHandOver) {
     outside += out < s.certified.lower - 1e-10;
   }
   EXPECT_GE(outside, 1u);
+
+  // The user's way to that band (--assume-nominal-contact): the same band, and the result says
+  // what it assumes.
+  ToleranceOptions assumed = pair_options(Rational(16, 100), Rational(19, 100), 2000);
+  assumed.chain_assume_nominal_holder = true;
+  ToleranceResult asked = analyze_tolerances_text(text, assumed);
+  ASSERT_EQ(asked.samples.size(), result.samples.size());
+  for (std::size_t k = 0; k < result.samples.size(); ++k) {
+    EXPECT_EQ(asked.samples[k].certified.lower, result.samples[k].certified.lower) << k;
+    EXPECT_EQ(asked.samples[k].certified.upper, result.samples[k].certified.upper) << k;
+  }
+  bool stated = false;
+  for (const std::string& note : asked.notes) stated = stated || note.find("certified only under that assumption") != std::string::npos;
+  EXPECT_TRUE(stated) << "the band's assumption is not stated";
 }
 
 // Generated cases: the gear pair with the declared tolerances and half of them, over
