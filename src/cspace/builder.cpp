@@ -51,20 +51,29 @@ CellKind cell_kind(FaceKind kind) {
 // ---------------------------------------------------------------- per-chart stages
 
 // Quadtree over a chart: where can a curve bound free space? A cell is dropped when the curve
-// cannot vanish in it (interval evaluation), when a validity clause certainly fails in it, or
-// when the whole cell is certainly blocked (the chart box's grid, BlockedCells: the merged
-// cull's cells, memoised and shared with the curve generator). The x-ranges of the surviving
-// finest cells are the curve's windows.
+// cannot vanish in it (interval evaluation), when a validity clause certainly fails in it, when
+// the whole cell is certainly blocked (the chart box's grid, BlockedCells: the merged cull's
+// cells, memoised and shared with the curve generator), or when a vertex contact's corner
+// certainly enters the other part there: some corner-entry atom (ContactCurve::corner_entry)
+// is < 0 and every validity clause holds strictly (some atom > 0) over the whole closed cell,
+// so every configuration of the curve in the cell has the parts' interiors overlapping (the
+// argument at corner_entry_atoms, contact_curves.cpp) and lies inside blocked space. That test
+// follows the curve itself, finer than the disks' grid, which cannot certify configurations
+// next to the boundary of free space. The x-ranges of the surviving finest cells are the
+// curve's windows.
 class CurveCuller {
  public:
   explicit CurveCuller(BlockedCells& grid) : grid_(grid) {}
 
   // Windows of the curve (merged, ascending); empty when the curve bounds nothing. `cells`
   // receives the surviving finest cells (merged along columns), sorted by x.
+  // `entry`: the curve's corner-entry atoms (empty: no such test).
   std::vector<std::pair<double, double>> windows(const algebra::IntervalPolynomial2& f,
                                                  const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses,
+                                                 const std::vector<algebra::IntervalPolynomial2>& entry,
                                                  std::vector<std::array<double, 4>>& cells) {
     std::vector<std::array<double, 4>> boxes;
+    entry_ = &entry;
     visit(f, clauses, 0, 0, 0, boxes, f.evaluate(grid_.cell_x(0, 0), grid_.cell_y(0, 0)));
     std::sort(boxes.begin(), boxes.end());
     cells.clear();
@@ -95,15 +104,21 @@ class CurveCuller {
              int depth, long i, long j, std::vector<std::array<double, 4>>& found, algebra::Interval value) {
     if (!value.contains_zero()) return;
     algebra::Interval x = grid_.cell_x(depth, i), y = grid_.cell_y(depth, j);
+    bool strict = !entry_->empty();   // every clause holds strictly over the cell (so far)
     for (const auto& clause : clauses) {
-      bool can_hold = false;
-      for (const auto& atom : clause)
-        if (atom.evaluate(x, y).hi >= 0) {
-          can_hold = true;
-          break;
-        }
+      bool can_hold = false, holds = false;
+      for (const auto& atom : clause) {
+        const algebra::Interval value = atom.evaluate(x, y);
+        can_hold = can_hold || value.hi >= 0;
+        holds = holds || value.lo > 0;
+        if (holds || (can_hold && !strict)) break;
+      }
       if (!can_hold) return;
+      strict = strict && holds;
     }
+    if (strict && std::any_of(entry_->begin(), entry_->end(),
+                              [&](const algebra::IntervalPolynomial2& atom) { return atom.evaluate(x, y).hi < 0; }))
+      return;
     if (depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && grid_.blocked(depth, i, j)) return;
     if (depth == grid_.depth()) {
       found.push_back({x.lo, x.hi, y.lo, y.hi});
@@ -119,6 +134,7 @@ class CurveCuller {
   }
 
   BlockedCells& grid_;
+  const std::vector<algebra::IntervalPolynomial2>* entry_ = nullptr;   // the current curve's (windows)
   std::vector<algebra::Interval> rows_;   // scratch of visit (used before it recurses)
 };
 
@@ -219,7 +235,8 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int 
           clauses.emplace_back();
           for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
         }
-        found = culler.windows(f, clauses, cells);
+        std::vector<algebra::IntervalPolynomial2> entry(curve.corner_entry.begin(), curve.corner_entry.end());
+        found = culler.windows(f, clauses, entry, cells);
         if (found.empty()) continue;
       }
       if (blocked_test)
