@@ -119,8 +119,11 @@ class CurveCuller {
     if (strict && std::any_of(entry_->begin(), entry_->end(),
                               [&](const algebra::IntervalPolynomial2& atom) { return atom.evaluate(x, y).hi < 0; }))
       return;
-    if (depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && grid_.blocked(depth, i, j)) return;
-    if (depth == grid_.depth()) {
+    if (depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && depth <= grid_.depth() && grid_.blocked(depth, i, j))
+      return;
+    // a curve with corner-entry atoms is followed entry_depth levels below the grid's finest
+    // cells (its own test only: the disks certify nothing more there, next to the channel)
+    if (depth == grid_.depth() + (entry_->empty() ? 0 : entry_depth)) {
       found.push_back({x.lo, x.hi, y.lo, y.hi});
       return;
     }
@@ -133,6 +136,7 @@ class CurveCuller {
       for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found, values[di][dj]);
   }
 
+  static constexpr int entry_depth = 3;
   BlockedCells& grid_;
   const std::vector<algebra::IntervalPolynomial2>* entry_ = nullptr;   // the current curve's (windows)
   std::vector<algebra::Interval> rows_;   // scratch of visit (used before it recurses)

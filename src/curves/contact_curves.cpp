@@ -1799,8 +1799,10 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
                      convert_validity(kernel->validity, curve.validity);
         if (made->kept) {
           curve.label = curve_label(model, fa.ref, fb.ref, curve.type);
-          curve.corner_entry =
-              corner_entry_atoms(model, fa, fb, geometry_a[ui], geometry_b[uj], poses.first, poses.second, kernel->validity);
+          // (a blocked-space cull: not without it, so that tests compare against builds without)
+          if (options.cull_blocked_space)
+            curve.corner_entry =
+                corner_entry_atoms(model, fa, fb, geometry_a[ui], geometry_b[uj], poses.first, poses.second, kernel->validity);
         } else {
           made->curve = ContactCurve{};   // nothing kept but the answer
         }
