@@ -74,7 +74,7 @@ class CurveCuller {
                                                  std::vector<std::array<double, 4>>& cells) {
     std::vector<std::array<double, 4>> boxes;
     entry_ = &entry;
-    visit(f, clauses, 0, 0, 0, boxes, f.evaluate(grid_.cell_x(0, 0), grid_.cell_y(0, 0)));
+    visit(f, clauses, 0, 0, 0, boxes, f.evaluate(grid_.cell_x(0, 0), grid_.cell_y(0, 0)), 0);
     std::sort(boxes.begin(), boxes.end());
     cells.clear();
     for (const auto& b : boxes) {
@@ -100,12 +100,17 @@ class CurveCuller {
  private:
   // `value`: f over the cell (its parent evaluates the four children's, the two of a row of
   // cells from the same rows of f at the row's y: the enclosures of evaluate, bound for bound).
+  // `settled`: bit k set when clause k (k < 64) holds strictly over an enclosing cell (an atom's
+  // enclosure there is > 0), hence over this one: it is not evaluated again.
   void visit(const algebra::IntervalPolynomial2& f, const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses,
-             int depth, long i, long j, std::vector<std::array<double, 4>>& found, algebra::Interval value) {
+             int depth, long i, long j, std::vector<std::array<double, 4>>& found, algebra::Interval value,
+             std::uint64_t settled) {
     if (!value.contains_zero()) return;
     algebra::Interval x = grid_.cell_x(depth, i), y = grid_.cell_y(depth, j);
     bool strict = !entry_->empty();   // every clause holds strictly over the cell (so far)
-    for (const auto& clause : clauses) {
+    for (std::size_t k = 0; k < clauses.size(); ++k) {
+      if (k < 64 && (settled >> k & 1u)) continue;
+      const auto& clause = clauses[k];
       bool can_hold = false, holds = false;
       for (const auto& atom : clause) {
         const algebra::Interval value = atom.evaluate(x, y);
@@ -115,6 +120,7 @@ class CurveCuller {
       }
       if (!can_hold) return;
       strict = strict && holds;
+      if (holds && k < 64) settled |= std::uint64_t{1} << k;
     }
     if (strict && std::any_of(entry_->begin(), entry_->end(),
                               [&](const algebra::IntervalPolynomial2& atom) { return atom.evaluate(x, y).hi < 0; }))
@@ -133,7 +139,7 @@ class CurveCuller {
       for (long di = 0; di < 2; ++di) values[di][dj] = f.evaluate_rows(grid_.cell_x(depth + 1, 2 * i + di), rows_);
     }
     for (long di = 0; di < 2; ++di)
-      for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found, values[di][dj]);
+      for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found, values[di][dj], settled);
   }
 
   static constexpr int entry_depth = 3;
