@@ -51,21 +51,30 @@ CellKind cell_kind(FaceKind kind) {
 // ---------------------------------------------------------------- per-chart stages
 
 // Quadtree over a chart: where can a curve bound free space? A cell is dropped when the curve
-// cannot vanish in it (interval evaluation), when a validity clause certainly fails in it, or
-// when the whole cell is certainly blocked (the chart box's grid, BlockedCells: the merged
-// cull's cells, memoised and shared with the curve generator). The x-ranges of the surviving
-// finest cells are the curve's windows.
+// cannot vanish in it (interval evaluation), when a validity clause certainly fails in it, when
+// the whole cell is certainly blocked (the chart box's grid, BlockedCells: the merged cull's
+// cells, memoised and shared with the curve generator), or when a vertex contact's corner
+// certainly enters the other part there: some corner-entry atom (ContactCurve::corner_entry)
+// is < 0 and every validity clause holds strictly (some atom > 0) over the whole closed cell,
+// so every configuration of the curve in the cell has the parts' interiors overlapping (the
+// argument at corner_entry_atoms, contact_curves.cpp) and lies inside blocked space. That test
+// follows the curve itself, finer than the disks' grid, which cannot certify configurations
+// next to the boundary of free space. The x-ranges of the surviving finest cells are the
+// curve's windows.
 class CurveCuller {
  public:
   explicit CurveCuller(BlockedCells& grid) : grid_(grid) {}
 
   // Windows of the curve (merged, ascending); empty when the curve bounds nothing. `cells`
   // receives the surviving finest cells (merged along columns), sorted by x.
+  // `entry`: the curve's corner-entry atoms (empty: no such test).
   std::vector<std::pair<double, double>> windows(const algebra::IntervalPolynomial2& f,
                                                  const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses,
+                                                 const std::vector<algebra::IntervalPolynomial2>& entry,
                                                  std::vector<std::array<double, 4>>& cells) {
     std::vector<std::array<double, 4>> boxes;
-    visit(f, clauses, 0, 0, 0, boxes, f.evaluate(grid_.cell_x(0, 0), grid_.cell_y(0, 0)));
+    entry_ = &entry;
+    visit(f, clauses, 0, 0, 0, boxes, f.evaluate(grid_.cell_x(0, 0), grid_.cell_y(0, 0)), 0);
     std::sort(boxes.begin(), boxes.end());
     cells.clear();
     for (const auto& b : boxes) {
@@ -91,21 +100,36 @@ class CurveCuller {
  private:
   // `value`: f over the cell (its parent evaluates the four children's, the two of a row of
   // cells from the same rows of f at the row's y: the enclosures of evaluate, bound for bound).
+  // `settled`: bit k set when clause k (k < 64) holds strictly over an enclosing cell (an atom's
+  // enclosure there is > 0), hence over this one: it is not evaluated again.
   void visit(const algebra::IntervalPolynomial2& f, const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses,
-             int depth, long i, long j, std::vector<std::array<double, 4>>& found, algebra::Interval value) {
+             int depth, long i, long j, std::vector<std::array<double, 4>>& found, algebra::Interval value,
+             std::uint64_t settled) {
     if (!value.contains_zero()) return;
     algebra::Interval x = grid_.cell_x(depth, i), y = grid_.cell_y(depth, j);
-    for (const auto& clause : clauses) {
-      bool can_hold = false;
-      for (const auto& atom : clause)
-        if (atom.evaluate(x, y).hi >= 0) {
-          can_hold = true;
-          break;
-        }
+    bool strict = !entry_->empty();   // every clause holds strictly over the cell (so far)
+    for (std::size_t k = 0; k < clauses.size(); ++k) {
+      if (k < 64 && (settled >> k & 1u)) continue;
+      const auto& clause = clauses[k];
+      bool can_hold = false, holds = false;
+      for (const auto& atom : clause) {
+        const algebra::Interval value = atom.evaluate(x, y);
+        can_hold = can_hold || value.hi >= 0;
+        holds = holds || value.lo > 0;
+        if (holds || (can_hold && !strict)) break;
+      }
       if (!can_hold) return;
+      strict = strict && holds;
+      if (holds && k < 64) settled |= std::uint64_t{1} << k;
     }
-    if (depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && grid_.blocked(depth, i, j)) return;
-    if (depth == grid_.depth()) {
+    if (strict && std::any_of(entry_->begin(), entry_->end(),
+                              [&](const algebra::IntervalPolynomial2& atom) { return atom.evaluate(x, y).hi < 0; }))
+      return;
+    if (depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && depth <= grid_.depth() && grid_.blocked(depth, i, j))
+      return;
+    // a curve with corner-entry atoms is followed entry_depth levels below the grid's finest
+    // cells (its own test only: the disks certify nothing more there, next to the channel)
+    if (depth == grid_.depth() + (entry_->empty() ? 0 : entry_depth)) {
       found.push_back({x.lo, x.hi, y.lo, y.hi});
       return;
     }
@@ -115,10 +139,12 @@ class CurveCuller {
       for (long di = 0; di < 2; ++di) values[di][dj] = f.evaluate_rows(grid_.cell_x(depth + 1, 2 * i + di), rows_);
     }
     for (long di = 0; di < 2; ++di)
-      for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found, values[di][dj]);
+      for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found, values[di][dj], settled);
   }
 
+  static constexpr int entry_depth = 3;
   BlockedCells& grid_;
+  const std::vector<algebra::IntervalPolynomial2>* entry_ = nullptr;   // the current curve's (windows)
   std::vector<algebra::Interval> rows_;   // scratch of visit (used before it recurses)
 };
 
@@ -219,7 +245,8 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int 
           clauses.emplace_back();
           for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
         }
-        found = culler.windows(f, clauses, cells);
+        std::vector<algebra::IntervalPolynomial2> entry(curve.corner_entry.begin(), curve.corner_entry.end());
+        found = culler.windows(f, clauses, entry, cells);
         if (found.empty()) continue;
       }
       if (blocked_test)

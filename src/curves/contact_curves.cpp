@@ -1227,6 +1227,81 @@ bool convert_validity(const kernels::Validity<Polynomial>& validity,
   return true;
 }
 
+// Corner-entry atoms of a vertex contact (ContactCurve::corner_entry): vertex v of one part
+// (tangents `out` along the edge it starts, `in` along the edge it ends, forward, body frame)
+// against a segment or arc b of the other part, whose outward normal at the contact point is n.
+// The atoms are w (out . n) and -w (in . n) in world coordinates (w > 0: the pair's weights).
+//
+// Why an atom < 0 with every validity clause strict proves the interiors overlap, at every
+// configuration of the curve where that holds (the generalisation of corner_enters_segment to
+// rotating parts, where the directions turn with the configuration):
+// - On the curve the vertex lies on b's support; validity holds strictly, so the contact point
+//   lies in b's relative interior (the foot strictly inside the segment, the direction strictly
+//   inside the arc's sector). Near it the other part is the open side of b's curve against n:
+//   a point z near the contact point with (z - v) . n < 0 of first order is in its interior
+//   (b is a line or circle, whose deviation from its tangent is of second order).
+// - The vertex is not a spike (checked exactly below), so the part's interior near v contains,
+//   for every small enough rotation of `out` to its left (the material side of the edge it
+//   starts) and of -in to its right, the points v + e d for small e > 0 (edges are segments or
+//   circular arcs: second-order deviation from their tangents).
+// - out . n < 0 (or -in . n < 0): a small rotation d of out (or -in) into the part keeps
+//   d . n < 0, so v + e d lies in both interiors for small e.
+// Interior overlap is an open condition of the configuration: such a configuration lies in the
+// interior of blocked space, and a piece of the curve made of such configurations bounds
+// nothing. Empty (no claim) for other contact types, for a spike, and when a validity clause
+// was dropped as holding everywhere only because an atom is identically zero (not strict).
+std::vector<IntegerPolynomial2> corner_entry_atoms(const Model& model, const BodyFeature& fa, const BodyFeature& fb,
+                                                   const kernels::FeatureGeometry<Rational>& ga,
+                                                   const kernels::FeatureGeometry<Rational>& gb,
+                                                   const kernels::Pose<Polynomial>& a, const kernels::Pose<Polynomial>& b,
+                                                   const kernels::Validity<Polynomial>& validity) {
+  using Shape = kernels::FeatureShape;
+  using PairVector = kernels::PairVector<Polynomial>;
+  const bool vertex_first = ga.shape == Shape::vertex;
+  if (vertex_first == (gb.shape == Shape::vertex)) return {};
+  const kernels::FeatureGeometry<Rational>& other = vertex_first ? gb : ga;
+  if (other.shape != Shape::segment && other.shape != Shape::arc) return {};
+  for (const auto& clause : validity.clauses) {
+    bool strict = false, zero = false;
+    for (int i = 0; i < clause.count; ++i) {
+      // (classified as convert_validity classifies it)
+      const IntegerPolynomial2 atom = normalized_integer_polynomial(clause.atoms[static_cast<std::size_t>(i)]);
+      if (atom.degree_x() > 0 || atom.degree_y() > 0) continue;
+      const int s = atom.is_zero() ? 0 : sgn(atom.coefficients[0][0]);
+      strict = strict || s > 0;
+      zero = zero || s == 0;
+    }
+    if (zero && !strict) return {};
+  }
+  const FeatureDirections corner = feature_directions(model, vertex_first ? fa : fb);
+  if (sgn(cross(corner.in, corner.out)) == 0 && sgn(dot(corner.in, corner.out)) < 0) return {};   // a spike
+  auto constant = [](const Rational& x, const Rational& y) { return PolyVector{Polynomial(x), Polynomial(y)}; };
+  auto on_vertex_part = [&](const Point& u) {
+    return vertex_first ? kernels::first_direction(constant(u.x, u.y)) : kernels::second_direction(constant(u.x, u.y));
+  };
+  PairVector normal;
+  if (other.shape == Shape::segment) {
+    const kernels::Vector<Rational> d = other.target - other.point;
+    const PolyVector n = constant(d.y, Rational(-d.x));   // right normal: out of the material
+    normal = vertex_first ? kernels::second_direction(n) : kernels::first_direction(n);
+  } else {
+    // the contact point minus the arc's centre (out of a convex arc's material)
+    normal = vertex_first ? kernels::point_difference(a, constant(ga.point.x, ga.point.y), b, constant(gb.center.x, gb.center.y))
+                          : kernels::detail::negated(kernels::point_difference(a, constant(ga.center.x, ga.center.y), b,
+                                                                               constant(gb.point.x, gb.point.y)));
+    if (!other.convex) normal = kernels::detail::negated(normal);
+  }
+  std::vector<IntegerPolynomial2> atoms;
+  for (int k = 0; k < 2; ++k) {
+    Polynomial value = kernels::dot_homogeneous(on_vertex_part(k == 0 ? corner.out : corner.in), normal, a, b);
+    IntegerPolynomial2 atom = normalized_integer_polynomial(k == 0 ? value : Polynomial(-value));
+    // a constant >= 0 never certifies
+    if (atom.degree_x() <= 0 && atom.degree_y() <= 0 && (atom.is_zero() || sgn(atom.coefficients[0][0]) >= 0)) continue;
+    atoms.push_back(std::move(atom));
+  }
+  return atoms;
+}
+
 
 }  // namespace
 
@@ -1724,6 +1799,10 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
                      convert_validity(kernel->validity, curve.validity);
         if (made->kept) {
           curve.label = curve_label(model, fa.ref, fb.ref, curve.type);
+          // (a blocked-space cull: not without it, so that tests compare against builds without)
+          if (options.cull_blocked_space)
+            curve.corner_entry =
+                corner_entry_atoms(model, fa, fb, geometry_a[ui], geometry_b[uj], poses.first, poses.second, kernel->validity);
         } else {
           made->curve = ContactCurve{};   // nothing kept but the answer
         }

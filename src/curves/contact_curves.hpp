@@ -97,6 +97,13 @@ struct ContactCurve {
   /// Added by the kernels: the contact point lies within both features iff every clause
   /// holds (optional for the builder: clipping only; see ValidityClause).
   std::vector<ValidityClause> validity;
+  /// Added by the kernels, vertex contacts only (optional for the builder: culling only):
+  /// corner-entry atoms. Wherever one atom is < 0 and every validity clause holds strictly
+  /// (some atom > 0), a configuration on the curve has the vertex strictly inside the other
+  /// feature with one of the vertex's edge tangents pointing into the other part's material,
+  /// so the parts' interiors overlap there: the curve lies in the interior of blocked space
+  /// and bounds nothing (the argument at corner_entry_atoms in contact_curves.cpp).
+  std::vector<IntegerPolynomial2> corner_entry;
 };
 
 /// A configuration of the pair in chart coordinates of a given chart.

@@ -208,10 +208,13 @@ TEST(CSpaceCull, CulledBuildEqualsTheUnculledOneOnLeversWithArcsZeroClearanceAnd
   }
 }
 
-// Every valid point of a culled curve piece has blocked space just above and below it.
+// Every valid point of a culled curve piece has blocked space just above and below it
+// (`options`: of the build; `chart_step`: every chart_step-th chart or tile is looked at, with
+// `samples` abscissae per curve).
 void expect_culled_pieces_blocked(const Model& model, const std::string& first, const std::string& second,
-                                  std::uint64_t seed, int* checked) {
-  CSpace space = CSpace::build(model, first, second);
+                                  std::uint64_t seed, int* checked, const CSpaceBuildOptions& options = {},
+                                  std::size_t chart_step = 1, int samples = 12) {
+  CSpace space = CSpace::build(model, first, second, options);
   const auto& impl = cspace::impl_of(space);
   ASSERT_EQ(space.dimension(), 2);
   cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part(first), *model.find_part(second));
@@ -219,7 +222,7 @@ void expect_culled_pieces_blocked(const Model& model, const std::string& first, 
   all.cull_blocked_space = false;
   cspace::CurveGenerator generator(model, axes, all);
   std::mt19937_64 random(seed);
-  for (std::size_t c = 0; c < impl.charts.size(); ++c) {
+  for (std::size_t c = 0; c < impl.charts.size(); c += chart_step) {
     const cspace::ChartData& chart = impl.charts[c];
     // the kept curves of the chart: feature pair -> local curve (its windows and surviving cells)
     std::map<std::tuple<std::size_t, std::size_t, std::size_t, int, std::size_t, std::size_t, std::size_t, int>,
@@ -234,7 +237,7 @@ void expect_culled_pieces_blocked(const Model& model, const std::string& first, 
       if (curve.polynomial.is_zero()) continue;
       auto it = kept.find({curve.first.part, curve.first.loop, curve.first.edge, static_cast<int>(curve.first.kind),
                            curve.second.part, curve.second.loop, curve.second.edge, static_cast<int>(curve.second.kind)});
-      for (int s = 0; s < 12; ++s) {
+      for (int s = 0; s < samples; ++s) {
         Rational u(mpz_class(static_cast<unsigned long>(random() % 1000003)), 1000003);
         u.canonicalize();
         Rational x = chart.box.x_lo + u * (chart.box.x_hi - chart.box.x_lo);
@@ -292,6 +295,107 @@ TEST(CSpaceCull, NoCulledPieceBoundsFreeSpace) {
                                "crank", "rocker", 30, &checked);
   // culled pieces exist and were looked at
   EXPECT_GT(checked, 100);
+}
+
+// A spur-gear pair of module 1 and 0.1 mm backlash (examples/models/spur-gears.json).
+Model gear_pair(int z1, int z2) {
+  ReadOptions read;
+  read.parameter_values["module"] = Rational(1);
+  read.parameter_values["teeth-1"] = Rational(z1);
+  read.parameter_values["teeth-2"] = Rational(z2);
+  read.parameter_values["backlash"] = Rational(1, 10);
+  read.allow_out_of_tolerance = true;
+  return read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "spur-gears.json", read);
+}
+
+// The gears' operating regions: their vertex contacts' curves are culled by the corner-entry
+// test along the curve, next to the channel (where the disks' grid certifies nothing); every
+// culled piece, sampled (every 12th tile), has blocked space on both sides.
+TEST(CSpaceCull, NoCornerEntryCulledPieceOfTheGearsBoundsFreeSpace) {
+  CSpaceBuildOptions region;
+  region.operating_region = true;
+  int checked = 0;
+  const std::pair<int, int> teeth[] = {{8, 9}, {10, 10}, {7, 13}};
+  for (std::size_t n = 0; n < std::size(teeth); ++n) {
+    SCOPED_TRACE(std::to_string(teeth[n].first) + ":" + std::to_string(teeth[n].second));
+    expect_culled_pieces_blocked(gear_pair(teeth[n].first, teeth[n].second), "pinion", "gear", 40 + n, &checked, region,
+                                 12, 3);
+  }
+  EXPECT_GT(checked, 500);
+}
+
+// The argument of the corner-entry atoms (corner_entry_atoms, contact_curves.cpp) against the
+// exact overlap oracle: at every sampled exact point of a vertex contact's curve where some
+// corner-entry atom is < 0 and every validity clause holds strictly (exact signs), the parts'
+// interiors overlap — at rational configurations 2^-200 (of the chart's height) above and
+// below it the oracle says overlapping. A proper contact (no overlap at the point) has free
+// space on one side. Returns the points checked; `curve_step`: every curve_step-th curve.
+int expect_corner_entries_overlap(const Model& model, const std::string& first, const std::string& second,
+                                  std::uint64_t seed, std::size_t curve_step, int samples) {
+  const cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part(first), *model.find_part(second));
+  const cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+  cspace::CurveGenerator generator(model, axes);
+  std::mt19937_64 random(seed);
+  int checked = 0, with_atoms = 0;
+  for (const cspace::ChartAxis& x_axis : layout.x_charts)
+    for (const cspace::ChartAxis& y_axis : layout.y_charts) {
+      std::vector<cspace::ContactCurve> curves = generator.generate(x_axis, y_axis);
+      for (std::size_t k = 0; k < curves.size(); k += curve_step) {
+        const cspace::ContactCurve& curve = curves[k];
+        if (curve.corner_entry.empty() || curve.polynomial.is_zero()) continue;
+        ++with_atoms;
+        for (int s = 0; s < samples; ++s) {
+          Rational u(mpz_class(static_cast<unsigned long>(random() % 1000003)), 1000003);
+          u.canonicalize();
+          const Rational x = x_axis.lo + u * (x_axis.hi - x_axis.lo);
+          cspace::algebra::Polynomial p = cspace::algebra::substitute_x(curve.polynomial, x);
+          if (cspace::algebra::degree(p) < 1) continue;
+          for (cspace::algebra::Real y : cspace::algebra::real_roots(p, y_axis.lo, y_axis.hi)) {
+            const bool strict = std::all_of(curve.validity.begin(), curve.validity.end(), [&](const cspace::ValidityClause& clause) {
+              return std::any_of(clause.atoms.begin(), clause.atoms.end(),
+                                 [&](const auto& atom) { return cspace::algebra::sign_at(atom, x, y) > 0; });
+            });
+            const bool enters = std::any_of(curve.corner_entry.begin(), curve.corner_entry.end(),
+                                            [&](const auto& atom) { return cspace::algebra::sign_at(atom, x, y) < 0; });
+            if (!strict || !enters) continue;
+            const Rational step = Rational(mpz_class(1), mpz_class(1) << 200) * (y_axis.hi - y_axis.lo);
+            y.refine_to(step);
+            for (const Rational& near : {y.exact ? Rational(y.lower - step) : y.lower, y.exact ? Rational(y.upper + step) : y.upper}) {
+              if (near <= y_axis.lo || near >= y_axis.hi) continue;
+              EXPECT_EQ(cspace::classify_overlap(model, axes, x_axis, y_axis, cspace::ChartPoint{x, near}),
+                        cspace::Overlap::overlapping)
+                  << curve.label << " at " << x << ", " << near;
+              ++checked;
+            }
+          }
+        }
+      }
+    }
+  EXPECT_GT(with_atoms, 0);
+  return checked;
+}
+
+TEST(CSpaceCull, CornerEntryPointsAreOverlapsByTheOracle) {
+  int checked = 0;
+  std::mt19937_64 random(1405);
+  for (int n = 0; n < 4; ++n) {
+    SCOPED_TRACE("stars " + std::to_string(n));
+    checked += expect_corner_entries_overlap(star_pair(random, Rational(1)), "a", "b", 50 + static_cast<std::uint64_t>(n), 1, 6);
+  }
+  for (int n = 0; n < 3; ++n) {
+    SCOPED_TRACE("levers " + std::to_string(n));
+    Rational w = random_rational(random, 0.6, 1.0, 16);
+    Rational a = random_rational(random, 2.0, 4.0, 16);
+    Rational width = n == 0 ? Rational(2 * w) : n == 1 ? Rational(2 * w + Rational(1, 4)) : Rational(2 * w - Rational(1, 8));
+    checked += expect_corner_entries_overlap(lever_pair(w, Rational(10), a, Rational(a + width), random_rational(random, 0.5, 1.5, 8), Rational(1)),
+                                             "crank", "rocker", 60 + static_cast<std::uint64_t>(n), 1, 6);
+  }
+  const std::pair<int, int> teeth[] = {{6, 7}, {9, 10}, {8, 13}};
+  for (std::size_t n = 0; n < std::size(teeth); ++n) {
+    SCOPED_TRACE(std::to_string(teeth[n].first) + ":" + std::to_string(teeth[n].second));
+    checked += expect_corner_entries_overlap(gear_pair(teeth[n].first, teeth[n].second), "pinion", "gear", 70 + n, 3, 2);
+  }
+  EXPECT_GT(checked, 1000);
 }
 
 }  // namespace
