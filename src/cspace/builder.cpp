@@ -63,7 +63,9 @@ CellKind cell_kind(FaceKind kind) {
 // curve's windows.
 class CurveCuller {
  public:
-  explicit CurveCuller(BlockedCells& grid) : grid_(grid) {}
+  // `entry_depth`: levels below the grid's finest cells to which a curve with corner-entry
+  // atoms is followed (its own test only).
+  CurveCuller(BlockedCells& grid, int entry_depth) : entry_depth_(entry_depth), grid_(grid) {}
 
   // Windows of the curve (merged, ascending); empty when the curve bounds nothing. `cells`
   // receives the surviving finest cells (merged along columns), sorted by x.
@@ -127,9 +129,9 @@ class CurveCuller {
       return;
     if (depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && depth <= grid_.depth() && grid_.blocked(depth, i, j))
       return;
-    // a curve with corner-entry atoms is followed entry_depth levels below the grid's finest
+    // a curve with corner-entry atoms is followed entry_depth_ levels below the grid's finest
     // cells (its own test only: the disks certify nothing more there, next to the channel)
-    if (depth == grid_.depth() + (entry_->empty() ? 0 : entry_depth)) {
+    if (depth == grid_.depth() + (entry_->empty() ? 0 : entry_depth_)) {
       found.push_back({x.lo, x.hi, y.lo, y.hi});
       return;
     }
@@ -142,7 +144,7 @@ class CurveCuller {
       for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found, values[di][dj], settled);
   }
 
-  static constexpr int entry_depth = 3;
+  int entry_depth_ = 0;
   BlockedCells& grid_;
   const std::vector<algebra::IntervalPolynomial2>* entry_ = nullptr;   // the current curve's (windows)
   std::vector<algebra::Interval> rows_;   // scratch of visit (used before it recurses)
@@ -221,7 +223,13 @@ bool valid_point_in_box(const ContactCurve& curve, const raw::Box& box) {
 // returns the input indices of the kept curves.
 // The kept curves' polynomials and validity are moved into the chart (the input keeps each
 // curve's features, type, label and blocked side, which are all the builder reads of it after).
-std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int dimension, bool shortcuts) {
+// `entry_depth`: CurveCuller's. Three levels for the tiles of an operating region (the gears:
+// there the vertex contacts' curves next to the channel are most of what is inserted; 18 x 27
+// spurious edges 20 268 -> 5 912), none for a whole space, where following them deeper cost more
+// than it saved (Geneva: 1.35 x the build's instructions with three levels, 0.97 x with none;
+// docs/performance.md "Session 25 (integrator)").
+std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int dimension, bool shortcuts,
+                                       int entry_depth) {
   chart.x_axis = input.x;
   chart.y_axis = input.y;
   chart.box = raw::Box{input.x.lo, input.x.hi, input.y.lo, input.y.hi};
@@ -229,7 +237,7 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int 
   const bool blocked_test = input.blocked_cells && input.blocked_cells->usable();
   std::optional<BlockedCells> own;
   if (!input.blocked_cells) own.emplace(nullptr, input.x, input.y, dimension, input.cull_depth > 0 ? input.cull_depth : 6);
-  CurveCuller culler(input.blocked_cells ? *input.blocked_cells : *own);
+  CurveCuller culler(input.blocked_cells ? *input.blocked_cells : *own, entry_depth);
   std::vector<std::size_t> kept;
   for (std::size_t k = 0; k < input.curves.size(); ++k) {
     ContactCurve& curve = input.curves[k];
@@ -1243,7 +1251,8 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     chart.x_index = chart_input.x_index;
     chart.y_index = chart_input.y_index;
     auto culling_start = Clock::now();
-    std::vector<std::size_t> kept = prepare_chart(chart, chart_input, input.dimension, options.polygon_front_end);
+    std::vector<std::size_t> kept =
+        prepare_chart(chart, chart_input, input.dimension, options.polygon_front_end, input.complete ? 0 : 3);
     // the culling's blocked test is done with: release what it keeps (posed disks per interval)
     chart_input.blocked_cells.reset();
     stats.seconds_culling += seconds_since(culling_start);
