@@ -201,6 +201,19 @@ TEST(PlotAxis, ToleranceBandOfTinyRangesHasDistinctLabels) {
     EXPECT_EQ(distinct.size(), labels.size()) << anchor << ": " << ::testing::PrintToString(labels);
   }
   EXPECT_NE(svg.find(">100 +<"), std::string::npos);   // the driver axis labelled as offsets
+  EXPECT_EQ(svg.find("unbounded"), std::string::npos);
+
+  // Positions without a certified band (an infinite end) are a gap in the picture; a line under
+  // the title counts them among the positions in contact (one out of contact is not counted).
+  for (std::size_t i = 0; i < r.samples.size(); i += 7) r.samples[i].certified.upper = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 3; i < r.samples.size(); i += 7) r.samples[i].certified.lower = -std::numeric_limits<double>::infinity();
+  r.samples[1].contact = false;
+  r.samples[2].contact = false;
+  r.samples[2].certified.upper = std::numeric_limits<double>::infinity();
+  svg = tolerance_band_svg(r);
+  EXPECT_NE(svg.find(">certified band unbounded at 15 of 49 positions in contact (gaps in the red curves; the notes say why)<"),
+            std::string::npos)
+      << svg;
 }
 
 }  // namespace
