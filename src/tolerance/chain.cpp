@@ -826,7 +826,7 @@ class ChainAnalysis {
   ToleranceOptions options_;
   ChainPaths paths_;
   // The hand-over envelope (handover.cpp): on unless the caller assumes the nominal holders.
-  bool envelope_on() const { return paths_.handover_envelope && !options_.chain_assume_nominal_holder; }
+  bool envelope_on() const { return !options_.chain_assume_nominal_holder; }
   std::vector<StageAnalysis> stages_;
   std::vector<std::unique_ptr<HandoverSearch>> handovers_;   // per pair
   std::vector<std::vector<PositionStage>> per_;   // [position][pair]

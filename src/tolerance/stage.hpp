@@ -107,9 +107,6 @@ struct ChainPaths {
   /// Tests only: applied to each contact the kernel path looked up (stage, position), so that a
   /// test can check that a wrong lookup is caught.
   std::function<void(std::size_t, std::size_t, CurveSlice&)> mutate_lookup;
-  /// Tests only (a named mutation): false drops the hand-over envelope (each pair's enclosure is
-  /// its nominal holder's alone, as before session 25; handover.hpp).
-  bool handover_envelope = true;
 };
 
 /// The analysis of an assembly chain (ToleranceOptions::chain; chain.cpp).

@@ -11,12 +11,11 @@
 // the other tooth pair furthest (the linearised witness, from that pair's sensitivities at the
 // neighbouring position where it holds) the exact train leaves the band of the holder alone:
 // at 0.181 rad the exact output is -0.14756 rad, the holder's band [-0.14631, -0.13436]
-// (before session 25, and with the envelope dropped: ChainPaths::handover_envelope).
+// (before session 25, and with the envelope dropped: ToleranceOptions::chain_assume_nominal_holder).
 #include "gear_train_models.hpp"
 #include "tolerance_chain_oracle.hpp"
 
 #include "model/parametric/parametric.hpp"
-#include "tolerance/stage.hpp"
 
 #include <hipair/tolerance.hpp>
 
@@ -146,13 +145,14 @@ TEST(ToleranceChainHandover, ExactTrainAtATeethHandOverStaysInTheCertifiedBand) 
   RecordProperty("bounded_checks", static_cast<int>(c.bounded));
 }
 
-// The gap the envelope closes, shown by the same oracle: the holder's band alone (the named
-// mutation, ChainPaths::handover_envelope = false) is left by the exact train at the hand-over.
+// The gap the envelope closes, shown by the same oracle: the holder's band alone (the user's
+// --assume-nominal-contact, and the named mutation of the envelope) is left by the exact train at
+// the hand-over, and the result says what that band assumes.
 TEST(ToleranceChainHandover, TheHolderAloneIsLeftByTheExactTrainAtTheHandOver) {
   std::string text = handover_model();
-  tolerance_detail::ChainPaths paths;
-  paths.handover_envelope = false;
-  ToleranceResult result = tolerance_detail::analyze_chain(text, pair_options(Rational(16, 100), Rational(19, 100), 2000), paths);
+  ToleranceOptions assumed = pair_options(Rational(16, 100), Rational(19, 100), 2000);
+  assumed.chain_assume_nominal_holder = true;
+  ToleranceResult result = analyze_tolerances_text(text, assumed);
   model_detail::ParametricModel model = model_detail::ParametricModel::read(text);
   std::size_t outside = 0;
   for (std::size_t k = 1; k < result.samples.size(); ++k) {
@@ -164,19 +164,8 @@ TEST(ToleranceChainHandover, TheHolderAloneIsLeftByTheExactTrainAtTheHandOver) {
     outside += out < s.certified.lower - 1e-10;
   }
   EXPECT_GE(outside, 1u);
-
-  // The user's way to that band (--assume-nominal-contact): the same band, and the result says
-  // what it assumes.
-  ToleranceOptions assumed = pair_options(Rational(16, 100), Rational(19, 100), 2000);
-  assumed.chain_assume_nominal_holder = true;
-  ToleranceResult asked = analyze_tolerances_text(text, assumed);
-  ASSERT_EQ(asked.samples.size(), result.samples.size());
-  for (std::size_t k = 0; k < result.samples.size(); ++k) {
-    EXPECT_EQ(asked.samples[k].certified.lower, result.samples[k].certified.lower) << k;
-    EXPECT_EQ(asked.samples[k].certified.upper, result.samples[k].certified.upper) << k;
-  }
   bool stated = false;
-  for (const std::string& note : asked.notes) stated = stated || note.find("certified only under that assumption") != std::string::npos;
+  for (const std::string& note : result.notes) stated = stated || note.find("certified only under that assumption") != std::string::npos;
   EXPECT_TRUE(stated) << "the band's assumption is not stated";
 }
 
