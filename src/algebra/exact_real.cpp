@@ -1,4 +1,5 @@
 #include "algebra/exact_real.hpp"
+#include "algebra/real_filters.hpp"
 
 #include <hipair/error.hpp>
 
@@ -783,6 +784,43 @@ int compare(const Real& a, const Real& b) {
     if (x.upper <= y.lower) return -1;
     if (y.upper <= x.lower) return 1;
   }
+}
+
+std::optional<Rational> double_between(const Real& a, const Real& b) {
+  if (a.exact && b.exact) return std::nullopt;
+  // a's certified upper end and b's lower end; an exact number's double bounds stay as they are
+  std::optional<DoubleBisection> x, y;
+  if (!a.exact) x.emplace(a);
+  if (!b.exact) y.emplace(b);
+  const double a_hi_exact = a.exact ? upper_double(a.lower) : 0;
+  const double b_lo_exact = b.exact ? lower_double(b.lower) : 0;
+  for (int round = 0; round < 8; ++round) {
+    // a < a_hi and b_lo < b strictly for a bisected number (its ends have certified non-zero
+    // signs); an exact number's double bounds may equal it
+    double a_hi = x ? x->hi() : a_hi_exact, b_lo = y ? y->lo() : b_lo_exact;
+    if (a_hi < b_lo) {
+      double middle = a_hi + (b_lo - a_hi) / 2;
+      if (middle > a_hi && middle < b_lo) return Rational(middle);
+      if (x) return Rational(a_hi);
+      if (y) return Rational(b_lo);
+      return std::nullopt;
+    }
+    bool moved = false;
+    if (x) moved = x->advance(8) || moved;
+    if (y) moved = y->advance(8) || moved;
+    if (!moved) return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+int compare_filtered(const Real& x, const Rational& r) {
+  if (x.exact || r <= x.lower || r >= x.upper) return x.compare(r);
+  SignFilter filter(x.polynomial);
+  int at = filter.sign(enclose(r));
+  if (at == 0) return x.compare(r);
+  int low = filter.sign(enclose(x.lower));
+  if (low == 0) low = sign_at(x.polynomial, x.lower);
+  return at == low ? 1 : -1;
 }
 
 bool equal(const Real& a, const Real& b) {

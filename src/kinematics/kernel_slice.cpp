@@ -8,10 +8,12 @@
 // are kept (the engine ignores them); roots shared by several curves carry all their features.
 #include "kinematics/slice.hpp"
 #include "curves/pose.hpp"
+#include "algebra/real_filters.hpp"
 
 #include <hipair/error.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -163,6 +165,7 @@ class KernelSlicer final : public PairSlicer {
     }
     std::size_t other_count = std::max<std::size_t>(1, other_charts_.size());
     pairs_.resize(other_count * follower_charts_.size());
+    previous_.resize(pairs_.size());
     // the follower cells' edges, exact: every windowed slice compares them with its window
     for (const ChartAxis& axis : follower_charts_) {
       std::vector<Rational> edges;
@@ -320,6 +323,22 @@ class KernelSlicer final : public PairSlicer {
     return *slot;
   }
 
+  // The other-axis cells holding `value` of other chart o (two on a cell border; 0 when the
+  // other part is fixed).
+  std::pair<std::size_t, std::size_t> cells_holding(std::size_t o, const Rational& value) const {
+    std::size_t cell_lo = 0, cell_hi = 0;
+    if (other_moves_) {
+      const ChartAxis& other_axis = other_charts_[o];
+      Rational position = (value - other_axis.lo) * cull_cells / (other_axis.hi - other_axis.lo);
+      long cell = std::clamp<long>(static_cast<long>(position.get_d()), 0, cull_cells - 1);
+      cell_lo = cell_hi = static_cast<std::size_t>(cell);
+      // a value on a cell border belongs to both cells
+      if (cell + 1 < cull_cells && position >= cell + 1) cell_hi = static_cast<std::size_t>(cell + 1);
+      if (cell > 0 && position <= cell) cell_lo = static_cast<std::size_t>(cell - 1);
+    }
+    return {cell_lo, cell_hi};
+  }
+
   ChartSlice slice(std::size_t other_chart, const Rational& value, std::size_t follower_chart,
                    const ChartWindow* window) const override {
     if (window && follower_chart < follower_charts_.size() && window->lo <= follower_charts_[follower_chart].lo &&
@@ -333,16 +352,7 @@ class KernelSlicer final : public PairSlicer {
     std::size_t o = other_moves_ ? other_chart : 0;
     if (o >= std::max<std::size_t>(1, other_charts_.size()) || follower_chart >= follower_charts_.size())
       throw GeometryError("slice outside the charts of pair " + name_);
-    std::size_t cell_lo = 0, cell_hi = 0;   // other-axis cells holding the value
-    if (other_moves_) {
-      const ChartAxis& other_axis = other_charts_[o];
-      Rational position = (value - other_axis.lo) * cull_cells / (other_axis.hi - other_axis.lo);
-      long cell = std::clamp<long>(static_cast<long>(position.get_d()), 0, cull_cells - 1);
-      cell_lo = cell_hi = static_cast<std::size_t>(cell);
-      // a value on a cell border belongs to both cells
-      if (cell + 1 < cull_cells && position >= cell + 1) cell_hi = static_cast<std::size_t>(cell + 1);
-      if (cell > 0 && position <= cell) cell_lo = static_cast<std::size_t>(cell - 1);
-    }
+    auto [cell_lo, cell_hi] = cells_holding(o, value);   // other-axis cells holding the value
     const ChartPair& chart = chart_pair(o, follower_chart, cell_lo, cell_hi);
     // the curves of the strips holding the value, ascending by feature, with the follower cells
     // where each may vanish at the value
@@ -435,6 +445,9 @@ class KernelSlicer final : public PairSlicer {
     result.covered_lo = range_lo;
     result.covered_hi = range_hi;
     Real low = Real::from_rational(range_lo), high = Real::from_rational(range_hi);
+    const std::size_t memo_index = o * follower_charts_.size() + follower_chart;
+    std::optional<Transfer> transfer;
+    if (options_.transfer_classes) transfer = transfer_from_previous(memo_index, o, value);
     for (std::size_t i = 0; i <= result.points.size(); ++i) {
       const Real& a = i == 0 ? low : result.points[i - 1].value;
       const Real& b = i == result.points.size() ? high : result.points[i].value;
@@ -442,6 +455,18 @@ class KernelSlicer final : public PairSlicer {
         result.kinds.push_back(SliceKind::empty);
         continue;
       }
+      if (transfer) {
+        std::optional<Rational> quick = separated_sample(a, b);
+        SliceKind carried = SliceKind::empty;
+        if (carried_kind(*transfer, follower_chart, quick ? *quick : sample_between(a, b, options_.shared_end_samples),
+                         carried)) {
+          ++transferred_;
+          result.kinds.push_back(carried);
+          continue;
+        }
+      }
+      ++classified_;
+      // the oracle's sample as without a transfer
       Rational sample = sample_between(a, b, options_.shared_end_samples);
       cspace::ChartPoint q;
       if (follower_is_x_) {
@@ -486,8 +511,15 @@ class KernelSlicer final : public PairSlicer {
       std::lock_guard<std::mutex> lock(cache_mutex_);
       fixed_cache_[follower_chart] = result;
     }
+    if (options_.transfer_classes) {
+      auto stored = std::make_shared<const PreviousSlice>(PreviousSlice{value, result});
+      std::lock_guard<std::mutex> lock(memo_mutex_);
+      previous_[memo_index] = std::move(stored);
+    }
     return result;
   }
+
+  SliceClassCounts class_counts() const { return SliceClassCounts{classified_.load(), transferred_.load()}; }
 
   const IntegerPolynomial2* polynomial(std::size_t other_chart, std::size_t follower_chart,
                                        std::size_t feature) const override {
@@ -503,6 +535,100 @@ class KernelSlicer final : public PairSlicer {
   }
 
  private:
+  // The last slice of a chart pair: the source of the classes carried over to the next one.
+  struct PreviousSlice {
+    Rational value;
+    ChartSlice slice;
+  };
+
+  // What carries classes from the previous slice (at u0) to a slice at u1: that slice, the
+  // driver interval's certified enclosure, and every curve of the strips covering it that may
+  // vanish there, with the follower cells where it may (OR over the interval's cells).
+  struct Transfer {
+    std::shared_ptr<const PreviousSlice> previous;
+    algebra::Interval drivers{0, 0};
+    std::vector<std::pair<const CurveData*, std::uint32_t>> curves;
+  };
+
+  // The transfer from the previous slice of chart pair (o, f) (memo index) to `value`, or
+  // nothing when there is none, or when the driver interval leaves the generated strips or
+  // spans more than a few cull cells (the proof would be weak: the oracle is cheaper).
+  std::optional<Transfer> transfer_from_previous(std::size_t memo_index, std::size_t o, const Rational& value) const {
+    Transfer transfer;
+    {
+      std::lock_guard<std::mutex> lock(memo_mutex_);
+      transfer.previous = previous_[memo_index];
+    }
+    if (!transfer.previous) return std::nullopt;
+    const Rational& u0 = transfer.previous->value;
+    const Rational& u_min = u0 < value ? u0 : value;
+    const Rational& u_max = u0 < value ? value : u0;
+    std::size_t cell_lo = cells_holding(o, u_min).first, cell_hi = cells_holding(o, u_max).second;
+    if (cell_hi > cell_lo + 3) return std::nullopt;
+    if (other_moves_) transfer.drivers = algebra::Interval{algebra::lower_double(u_min), algebra::upper_double(u_max)};
+    std::lock_guard<std::mutex> lock(build_mutex_);
+    const std::unique_ptr<ChartPair>& chart = pairs_.at(memo_index);
+    if (!chart) return std::nullopt;
+    std::vector<int> strips;
+    for (std::size_t c = cell_lo; c <= cell_hi; ++c) {
+      int strip = chart->strip_of_cell[c];
+      if (strip < 0) return std::nullopt;   // a curve of an ungenerated strip could cross
+      if (std::find(strips.begin(), strips.end(), strip) == strips.end()) strips.push_back(strip);
+    }
+    for (int s : strips) {
+      const Strip& strip = *chart->strips[static_cast<std::size_t>(s)];
+      const auto first = static_cast<std::size_t>(strip.first_cell), end = first + static_cast<std::size_t>(strip.width);
+      for (const StripCurve& curve : strip.curves) {
+        std::uint32_t mask = 0;
+        for (std::size_t c = std::max(cell_lo, first); c <= std::min(cell_hi, end - 1); ++c) mask |= curve.cells[c - first];
+        if (!mask) continue;
+        auto same = std::find_if(transfer.curves.begin(), transfer.curves.end(),
+                                 [&](const auto& entry) { return entry.first == curve.data.get(); });
+        if (same != transfer.curves.end()) same->second |= mask;
+        else transfer.curves.emplace_back(curve.data.get(), mask);
+      }
+    }
+    return transfer;
+  }
+
+  // True, with `kind`, when the class at (u1, s) is proven to be the previous slice's class at
+  // (u0, s): s lies strictly between two consecutive points of the previous slice, inside its
+  // covered range (exact comparisons), and no curve that may vanish in s's follower cells has
+  // a zero on the segment [u0, u1] x {s} (interval enclosure). Every contact configuration lies
+  // on a curve of the strips (the cull drops curves only inside certified blocked space), so
+  // the segment holds none: free and blocked are then open in it and its class is constant.
+  bool carried_kind(const Transfer& transfer, std::size_t follower_chart, const Rational& s, SliceKind& kind) const {
+    const ChartSlice& old = transfer.previous->slice;
+    if (!(old.covered_lo < s && s < old.covered_hi)) return false;
+    std::size_t lo = 0, hi = old.points.size();   // the first point above s
+    while (lo < hi) {
+      std::size_t middle = (lo + hi) / 2;
+      int side = algebra::compare_filtered(old.points[middle].value, s);
+      if (side == 0) return false;
+      if (side < 0) lo = middle + 1;
+      else hi = middle;
+    }
+    if (old.kinds[lo] == SliceKind::empty) return false;
+    // the follower cells holding s (two on a cell border: the cull's boxes are closed)
+    const std::vector<Rational>& edges = follower_edges_[follower_chart];
+    std::uint32_t bits = 0;
+    for (int cell = 0; cell < follower_cells; ++cell)
+      if (edges[cell] <= s && s <= edges[cell + 1]) bits |= std::uint32_t(1) << cell;
+    algebra::Interval at = algebra::enclose(s);
+    for (const auto& [curve, cells] : transfer.curves)
+      if ((cells & bits) && curve->interval.evaluate(transfer.drivers, at).contains_zero()) return false;
+    kind = old.kinds[lo];
+    return true;
+  }
+
+  // A rational strictly between a < b read off their isolating intervals when they are
+  // separated, else off certified double enclosures (no exact refinement), else nothing.
+  static std::optional<Rational> separated_sample(const Real& a, const Real& b) {
+    if (!a.exact && (b.exact ? a.upper < b.lower : a.upper <= b.lower)) return a.upper;
+    if (!b.exact && a.exact && a.lower < b.lower) return b.lower;
+    return algebra::double_between(a, b);
+  }
+
   // A chart axis exactly, for the selection keys.
   static std::string axis_key(const ChartAxis& axis) {
     return "|axis:" + std::to_string(static_cast<int>(axis.kind)) + (axis.half_turn ? "h" : "-") + axis.lo.get_str() +
@@ -627,6 +753,9 @@ class KernelSlicer final : public PairSlicer {
   mutable std::mutex build_mutex_;
   mutable std::mutex cache_mutex_;
   mutable std::map<std::size_t, ChartSlice> fixed_cache_;
+  mutable std::mutex memo_mutex_;
+  mutable std::vector<std::shared_ptr<const PreviousSlice>> previous_;   // per chart pair (o, f)
+  mutable std::atomic<std::size_t> classified_{0}, transferred_{0};
   std::vector<std::vector<Rational>> follower_edges_;   // per follower chart: its cells' edges
 };
 
@@ -669,6 +798,11 @@ std::shared_ptr<const KernelStrip> SelectionMemo::add_strip(const std::string& k
 std::size_t SelectionMemo::strip_hits() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return strip_hits_;
+}
+
+SliceClassCounts kernel_slice_class_counts(const PairSlicer& slicer) {
+  const auto* kernel = dynamic_cast<const KernelSlicer*>(&slicer);
+  return kernel ? kernel->class_counts() : SliceClassCounts{};
 }
 
 std::unique_ptr<PairSlicer> make_kernel_slicer(const Model& model, std::size_t pair, std::size_t follower,

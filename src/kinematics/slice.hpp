@@ -154,7 +154,23 @@ struct KernelSlicerOptions {
   /// Shared selections of congruent pairs (see SelectionMemo); nullptr: every slicer runs its
   /// own generator's cull.
   std::shared_ptr<SelectionMemo> selections;
+  /// Carry an interval's class over from the previous slice of the same chart pair instead of
+  /// asking the overlap oracle, when it is proven the same: the interval's sample s lies
+  /// strictly inside an interval of the previous slice (exact comparisons), and no curve of the
+  /// strips covering the driver interval between the two slices' values can vanish on the
+  /// segment {driver in that interval} x {s} (certified interval enclosures, with the strips'
+  /// cull cells). The segment then meets no contact configuration, so its class is constant.
+  /// When the proof fails the oracle decides as before. false: the oracle always (tests compare).
+  bool transfer_classes = true;
 };
+
+/// How a kernel slicer decided its interval classes so far: by the overlap oracle, or carried
+/// over from the previous slice (KernelSlicerOptions::transfer_classes). For tests.
+struct SliceClassCounts {
+  std::size_t classified = 0, transferred = 0;
+};
+/// Zero counts for a slicer that is not a kernel slicer.
+SliceClassCounts kernel_slice_class_counts(const PairSlicer& slicer);
 
 /// Slicer on the pair's contact kernels and the exact overlap oracle.
 /// `pair` indexes model.pairs; `follower` is one of its parts (it must move). Features are

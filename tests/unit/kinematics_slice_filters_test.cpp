@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <numbers>
 #include <optional>
 #include <random>
@@ -145,6 +146,135 @@ TEST(KinematicSliceFilters, GeneratedGearPairsGiveTheSlicesOfPlainSlicing) {
     if (HasFailure()) return;
   }
   EXPECT_GT(compared, 0u);
+}
+
+// Session 26: a slice's interval classes carried over from the previous slice of the same chart
+// pair (KernelSlicerOptions::transfer_classes) must be the overlap oracle's. Walks of the
+// driver with steps from 10^-7 to 1/10 of its chart (the engine's grid steps, bisections and
+// jumps), windows like the engine's and whole charts, charts switched now and then: every
+// slice of the transferring slicer equals the oracle-only slicer's. The walks must include
+// intervals whose class differs from the previous slice's class at the same follower value
+// (the cases a proof that misses a curve gets wrong) and many transferred classes.
+struct TransferCounts {
+  std::size_t slices = 0, transferred = 0, classified = 0, changed = 0;
+};
+
+TransferCounts compare_transfers(const Model& model, int walks, int steps, std::uint64_t seed, const std::string& name) {
+  std::mt19937_64 random(seed);
+  TransferCounts counts;
+  for (std::size_t pair = 0; pair < model.pairs.size(); ++pair)
+    for (std::size_t follower : {model.pairs[pair].first, model.pairs[pair].second}) {
+      std::unique_ptr<PairSlicer> plain, fast;
+      try {
+        KernelSlicerOptions oracle_only;
+        oracle_only.transfer_classes = false;
+        plain = make_kernel_slicer(model, pair, follower, oracle_only);
+        fast = make_kernel_slicer(model, pair, follower, KernelSlicerOptions{});
+      } catch (const GeometryError&) {
+        continue;   // a fixed follower, or not a fixed-axis pair
+      }
+      if (!plain->other_moves()) continue;
+      for (int walk = 0; walk < walks; ++walk) {
+        std::size_t o = random() % plain->other_charts().size(), f = random() % plain->follower_charts().size();
+        const ChartAxis& other_axis = plain->other_charts()[o];
+        Rational u = chart_value(other_axis, random);
+        Rational centre = chart_value(plain->follower_charts()[f], random);
+        std::optional<ChartSlice> last;   // the oracle's previous slice of chart pair (o, f)
+        for (int k = 0; k < steps; ++k) {
+          if (random() % 16 == 0) {   // another follower chart: the memo of (o, f) waits
+            f = random() % plain->follower_charts().size();
+            centre = chart_value(plain->follower_charts()[f], random);
+            last.reset();
+          }
+          static const long scales[] = {10000000, 1000000, 100000, 10000, 1000, 100, 10};
+          Rational delta(static_cast<long>(random() % 1000) - 500, 500L * scales[random() % 7]);
+          delta.canonicalize();
+          u = std::clamp(Rational(u + delta * (other_axis.hi - other_axis.lo)), other_axis.lo, other_axis.hi);
+          const ChartAxis& axis = plain->follower_charts()[f];
+          centre = std::clamp(Rational(centre + delta * (axis.hi - axis.lo) / 4), axis.lo, axis.hi);
+          std::optional<ChartWindow> window;
+          if (random() % 4 != 0) {
+            Rational half(static_cast<long>(1 + random() % 64), 1024);
+            window = ChartWindow{centre - half, centre + half};
+          }
+          const ChartWindow* w = window ? &*window : nullptr;
+          std::string where = name + " pair " + std::to_string(pair) + " follower " + std::to_string(follower) +
+                              " charts " + std::to_string(o) + "," + std::to_string(f) + " at " + u.get_str();
+          ChartSlice expected = plain->slice(o, u, f, w);
+          ChartSlice got = fast->slice(o, u, f, w);
+          expect_identical(expected, got, where);
+          if (::testing::Test::HasFailure()) return counts;
+          ++counts.slices;
+          // intervals whose class differs from the previous slice's at the same follower value
+          if (last)
+            for (std::size_t i = 0; i <= expected.points.size(); ++i) {
+              if (expected.kinds[i] == SliceKind::empty) continue;
+              Real a = i == 0 ? Real::from_rational(expected.covered_lo) : expected.points[i - 1].value;
+              Real b = i == expected.points.size() ? Real::from_rational(expected.covered_hi) : expected.points[i].value;
+              Rational s = algebra::rational_between(a, b);
+              if (!(last->covered_lo < s && s < last->covered_hi)) continue;
+              std::size_t j = 0;
+              while (j < last->points.size() && last->points[j].value.compare(s) < 0) ++j;
+              if (j < last->points.size() && last->points[j].value.compare(s) == 0) continue;
+              if (last->kinds[j] != expected.kinds[i]) ++counts.changed;
+            }
+          last = std::move(expected);
+        }
+      }
+      SliceClassCounts used = kernel_slice_class_counts(*fast);
+      counts.transferred += used.transferred;
+      counts.classified += used.classified;
+      EXPECT_EQ(kernel_slice_class_counts(*plain).transferred, 0u);
+    }
+  return counts;
+}
+
+class KinematicClassTransfer : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(KinematicClassTransfer, CarriedClassesAreTheOraclesOnDriverWalks) {
+  Model model = read_model_file(example(GetParam()));
+  TransferCounts counts = compare_transfers(model, 6, 60, 20261130, GetParam());
+  if (HasFailure()) return;
+  EXPECT_GT(counts.slices, 0u);
+  EXPECT_GT(counts.transferred, counts.classified / 4) << "transferred " << counts.transferred << ", oracle " << counts.classified;
+  EXPECT_GT(counts.changed, 0u) << "no interval changed its class between consecutive slices";
+  std::cout << GetParam() << ": " << counts.slices << " slices, " << counts.transferred << " classes carried over, "
+            << counts.classified << " by the oracle, " << counts.changed << " intervals whose class changed since the previous slice\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(Examples, KinematicClassTransfer,
+                         ::testing::Values("geneva.json", "ratchet.json", "escapement.json", "cam-follower.json",
+                                           "cam-follower-lever.json", "cam-drive.json", "scotch-yoke.json",
+                                           "two-pin-wedge.json", "lift-chain.json"),
+                         [](const auto& info) {
+                           std::string name = info.param.substr(0, info.param.find('.'));
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
+
+// Generated spur-gear pairs (random tooth counts): many curves per strip, neighbouring teeth's
+// curves close to the active one.
+TEST(KinematicClassTransfer, GeneratedGearPairsCarryTheOraclesClasses) {
+  std::mt19937_64 random(2611);
+  TransferCounts counts;
+  for (int trial = 0; trial < 2; ++trial) {
+    ReadOptions read;
+    long z1 = 7 + static_cast<long>(random() % 6), z2 = 7 + static_cast<long>(random() % 6);
+    read.parameter_values["teeth-1"] = Rational(z1);
+    read.parameter_values["teeth-2"] = Rational(z2);
+    read.allow_out_of_tolerance = true;
+    Model model = read_model_file(example("spur-gears.json"), read);
+    TransferCounts one = compare_transfers(model, 2, 30, random(), "gears " + std::to_string(z1) + "x" + std::to_string(z2));
+    if (HasFailure()) return;
+    counts.slices += one.slices;
+    counts.transferred += one.transferred;
+    counts.classified += one.classified;
+    counts.changed += one.changed;
+  }
+  EXPECT_GT(counts.transferred, 0u);
+  EXPECT_GT(counts.changed, 0u);
+  std::cout << "gears: " << counts.slices << " slices, " << counts.transferred << " carried over, " << counts.classified
+            << " by the oracle, " << counts.changed << " changed\n";
 }
 
 // Geneva over a range shorter than one grid step around the wheel's first contact start: the
