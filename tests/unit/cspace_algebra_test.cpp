@@ -2,6 +2,7 @@
 // comparison of algebraic numbers, simplest rationals, substitutions and signs at algebraic
 // points. Values are chosen where doubles fail (2^53 + 1, roots 10^-20 apart).
 #include "algebra/exact_real.hpp"
+#include "algebra/real_filters.hpp"
 
 #include <hipair/error.hpp>
 
@@ -10,7 +11,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iostream>
 #include <limits>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -47,6 +50,64 @@ void reference_refine_to(Real& r, const Rational& width) {
 
 // Random square-free products of linear and quadratic factors with integer coefficients (up to
 // 2^70, beyond doubles), some with rational roots hit exactly by a dyadic midpoint.
+// Session 26: double_between gives a rational strictly between two distinct real algebraic
+// numbers (or nothing), and compare_filtered is Real::compare, on generated roots: products of
+// linear and quadratic factors with roots up to 2^-60 apart (isolating intervals that overlap
+// and double enclosures that touch), exact rationals among them, every ordered pair.
+TEST(CSpaceAlgebra, DoubleFilteredSampleAndLocationAreExact) {
+  gmp_randclass random(gmp_randinit_default);
+  random.seed(20261130);
+  std::size_t samples = 0, none = 0, located = 0;
+  for (int trial = 0; trial < 120; ++trial) {
+    std::vector<Real> numbers;
+    for (int q = 0; q < 3; ++q) {
+      // (b x - a)(b x - a - e) (x^2 - c): two roots e / b apart, and +-sqrt(c)
+      mpz_class a = random.get_z_bits(40) - (mpz_class(1) << 39), b = random.get_z_bits(20) + 1;
+      mpz_class e = mpz_class(1) << (trial % 4 == 0 ? 0 : static_cast<int>(mpz_class(random.get_z_range(40)).get_si()));
+      mpz_class c = random.get_z_bits(30) + 1;
+      Polynomial p{1};
+      for (const Polynomial& factor : {Polynomial{-a, b}, Polynomial{-a - e, b}, Polynomial{-c, mpz_class(0), mpz_class(1)}}) {
+        Polynomial product(p.size() + factor.size() - 1);
+        for (std::size_t i = 0; i < p.size(); ++i)
+          for (std::size_t j = 0; j < factor.size(); ++j) product[i + j] += p[i] * factor[j];
+        p = product;
+      }
+      if (q == 0) p = Polynomial{-a, b};   // a rational root, kept as an isolated root
+      p = square_free_part(p);
+      Rational bound = 1;
+      for (const mpz_class& coefficient : p) bound += Rational(abs(coefficient), abs(p.back()));
+      for (Real& root : real_roots(p, -bound, bound)) numbers.push_back(std::move(root));
+      Rational value(a, b);
+      value.canonicalize();
+      numbers.push_back(Real::from_rational(value));   // exact, and equal to a root above
+    }
+    for (const Real& x : numbers)
+      for (const Real& y : numbers) {
+        int order = compare(x, y);
+        if (order < 0) {
+          std::optional<Rational> s = double_between(x, y);
+          if (!s) {
+            ++none;
+          } else {
+            ++samples;
+            ASSERT_LT(x.compare(*s), 0) << x.description() << " < " << *s << " < " << y.description();
+            ASSERT_GT(y.compare(*s), 0) << x.description() << " < " << *s << " < " << y.description();
+          }
+        }
+        // compare_filtered at the other number's ends, its midpoint, a rational 2^-70 next to it
+        Real fine = y;
+        fine.refine_to(Rational(1, mpz_class(1) << 70));
+        for (const Rational& r : {y.lower, y.upper, Rational((y.lower + y.upper) / 2), fine.lower, fine.upper}) {
+          ASSERT_EQ(compare_filtered(x, r), x.compare(r)) << x.description() << " vs " << r;
+          ++located;
+        }
+      }
+  }
+  EXPECT_GT(samples, 1000u);
+  EXPECT_GT(located, 10000u);
+  std::cout << samples << " samples, " << none << " pairs the filter could not separate, " << located << " locations\n";
+}
+
 TEST(CSpaceAlgebra, RefineToGivesTheIntervalsOfCanonicalBisection) {
   gmp_randclass random(gmp_randinit_default);
   random.seed(20261127);
