@@ -451,7 +451,9 @@ class KernelSlicer final : public PairSlicer {
     for (std::size_t i = 0; i <= result.points.size(); ++i) {
       const Real& a = i == 0 ? low : result.points[i - 1].value;
       const Real& b = i == result.points.size() ? high : result.points[i].value;
-      if (algebra::compare(a, b) >= 0) {
+      // consecutive points are distinct and ascending (sorted, equal ones merged above): only
+      // the chart box's ends can meet a point
+      if ((i == 0 || i == result.points.size()) && algebra::compare(a, b) >= 0) {
         result.kinds.push_back(SliceKind::empty);
         continue;
       }
