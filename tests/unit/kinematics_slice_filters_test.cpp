@@ -61,6 +61,25 @@ void expect_identical(const ChartSlice& a, const ChartSlice& b, const std::strin
   }
 }
 
+// The example spur gears with 7 + random() % spread_1 and 7 + random() % spread_2 teeth (in that
+// order); `name` receives "gears Z1xZ2".
+Model random_gear_pair(std::mt19937_64& random, long spread_1, long spread_2, std::string& name) {
+  ReadOptions read;
+  long z1 = 7 + static_cast<long>(random() % spread_1), z2 = 7 + static_cast<long>(random() % spread_2);
+  read.parameter_values["teeth-1"] = Rational(z1);
+  read.parameter_values["teeth-2"] = Rational(z2);
+  read.allow_out_of_tolerance = true;
+  name = "gears " + std::to_string(z1) + "x" + std::to_string(z2);
+  return read_model_file(example("spur-gears.json"), read);
+}
+
+// Test names from model file names: "cam-drive.json" -> cam_drive.
+std::string model_param_name(const ::testing::TestParamInfo<std::string>& info) {
+  std::string name = info.param.substr(0, info.param.find('.'));
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
+
 struct Query {
   std::size_t o = 0, f = 0;
   Rational value;
@@ -125,24 +144,16 @@ TEST_P(KinematicSliceFilters, ValidityPrefilterGivesTheSlicesOfPlainSlicing) {
 INSTANTIATE_TEST_SUITE_P(Examples, KinematicSliceFilters,
                          ::testing::Values("geneva.json", "ratchet.json", "escapement.json", "cam-follower.json",
                                            "cam-follower-lever.json", "cam-drive.json", "scotch-yoke.json"),
-                         [](const auto& info) {
-                           std::string name = info.param.substr(0, info.param.find('.'));
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
-                         });
+                         model_param_name);
 
 // Generated spur-gear pairs: random tooth counts, the example's profile.
 TEST(KinematicSliceFilters, GeneratedGearPairsGiveTheSlicesOfPlainSlicing) {
   std::mt19937_64 random(1313);
   std::size_t compared = 0;
   for (int trial = 0; trial < 3; ++trial) {
-    ReadOptions read;
-    long z1 = 7 + static_cast<long>(random() % 8), z2 = 7 + static_cast<long>(random() % 10);
-    read.parameter_values["teeth-1"] = Rational(z1);
-    read.parameter_values["teeth-2"] = Rational(z2);
-    read.allow_out_of_tolerance = true;
-    Model model = read_model_file(example("spur-gears.json"), read);
-    compared += compare_slicers(model, 60, random(), "gears " + std::to_string(z1) + "x" + std::to_string(z2));
+    std::string name;
+    Model model = random_gear_pair(random, 8, 10, name);
+    compared += compare_slicers(model, 60, random(), name);
     if (HasFailure()) return;
   }
   EXPECT_GT(compared, 0u);
@@ -246,11 +257,7 @@ INSTANTIATE_TEST_SUITE_P(Examples, KinematicClassTransfer,
                          ::testing::Values("geneva.json", "ratchet.json", "escapement.json", "cam-follower.json",
                                            "cam-follower-lever.json", "cam-drive.json", "scotch-yoke.json",
                                            "two-pin-wedge.json", "lift-chain.json"),
-                         [](const auto& info) {
-                           std::string name = info.param.substr(0, info.param.find('.'));
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
-                         });
+                         model_param_name);
 
 // Generated spur-gear pairs (random tooth counts): many curves per strip, neighbouring teeth's
 // curves close to the active one.
@@ -258,13 +265,9 @@ TEST(KinematicClassTransfer, GeneratedGearPairsCarryTheOraclesClasses) {
   std::mt19937_64 random(2611);
   TransferCounts counts;
   for (int trial = 0; trial < 2; ++trial) {
-    ReadOptions read;
-    long z1 = 7 + static_cast<long>(random() % 6), z2 = 7 + static_cast<long>(random() % 6);
-    read.parameter_values["teeth-1"] = Rational(z1);
-    read.parameter_values["teeth-2"] = Rational(z2);
-    read.allow_out_of_tolerance = true;
-    Model model = read_model_file(example("spur-gears.json"), read);
-    TransferCounts one = compare_transfers(model, 2, 30, random(), "gears " + std::to_string(z1) + "x" + std::to_string(z2));
+    std::string name;
+    Model model = random_gear_pair(random, 6, 6, name);
+    TransferCounts one = compare_transfers(model, 2, 30, random(), name);
     if (HasFailure()) return;
     counts.slices += one.slices;
     counts.transferred += one.transferred;
