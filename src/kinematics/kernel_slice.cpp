@@ -114,6 +114,10 @@ struct StripCurve {
 struct KernelStrip {
   int first_cell = 0, width = 0;
   std::vector<StripCurve> curves;
+  /// A feature pair's polynomial vanished identically (skipped: every configuration satisfies
+  /// it, and its contacts are bounded by validity clauses, not by a curve): no class of the
+  /// strip is carried over (KernelSlicerOptions::transfer_classes).
+  bool zero_curve = false;
 };
 
 namespace {
@@ -260,7 +264,10 @@ class KernelSlicer final : public PairSlicer {
       curves = generator_->generate(x_axis, y_axis);
     }
     for (ContactCurve& curve : curves) {
-      if (curve.polynomial.is_zero()) continue;
+      if (curve.polynomial.is_zero()) {
+        result->zero_curve = true;
+        continue;
+      }
       StripCurve entry;
       entry.feature = feature_number(curve);
       entry.first = curve.first;
@@ -582,6 +589,7 @@ class KernelSlicer final : public PairSlicer {
     }
     for (int s : strips) {
       const Strip& strip = *chart->strips[static_cast<std::size_t>(s)];
+      if (strip.zero_curve) return std::nullopt;
       const auto first = static_cast<std::size_t>(strip.first_cell), end = first + static_cast<std::size_t>(strip.width);
       for (const StripCurve& curve : strip.curves) {
         std::uint32_t mask = 0;
