@@ -9,6 +9,7 @@
 #include <hipair/cspace.hpp>
 #include <hipair/cspace_slice.hpp>
 #include <hipair/blocked_walk.hpp>
+#include <hipair/crossing_before.hpp>
 #include <hipair/edge_tracker.hpp>
 #include <hipair/error.hpp>
 
@@ -1946,15 +1947,21 @@ class MotionScanner {
 
 }  // namespace
 
-MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOptions& options) const {
-  const Impl& impl = checked(*this);
+namespace {
+
+// CSpace::first_crossing's query; with `stop`, first_crossing_before's (crossing_before.hpp):
+// it stops at the first stretch [a, b] of the subdivision with a > *stop.
+MotionCrossing first_crossing_until(const CSpace& space, const MotionPath& input, const CrossingOptions& options,
+                                    const Rational* stop, bool* stopped) {
+  using Impl = CSpace::Impl;
+  const Impl& impl = checked(space);
   MotionPath path = input;
   for (auto* axis : {&path.x, &path.y})
     for (auto& c : axis->coefficients) c.canonicalize();
   path.u_begin.canonicalize();
   path.u_end.canonicalize();
   if (path.u_end < path.u_begin) throw GeometryError("first_crossing: u_end < u_begin");
-  const std::shared_ptr<const Impl>& owner = CSpaceAccess::shared(*this);
+  const std::shared_ptr<const Impl>& owner = CSpaceAccess::shared(space);
   MotionScanner scanner(impl, path, scan_memo_of(owner));
   MotionCrossing result;
 
@@ -2080,6 +2087,12 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
     auto [a, b] = stack.back();
     stack.pop_back();
     if (a == b) continue;
+    if (stop && a > *stop) {
+      // every stretch before a excluded: the motion is in its starting free cell on [u_begin, a]
+      *stopped = true;
+      result.u_lower = result.u_upper = a;
+      return result;
+    }
     MotionScanner::Evaluation at = scanner.evaluate(a, b);
     bool wide = b - a > resolution;
     auto split = [&, a = a, b = b] {
@@ -2222,6 +2235,21 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
     if (std::optional<StartAnchor> anchor = scanner.anchor_from(*last, result.cell_left.index()))
       remember_anchor(std::move(*anchor), owner);
   return result;
+}
+
+}  // namespace
+
+MotionCrossing CSpace::first_crossing(const MotionPath& path, const CrossingOptions& options) const {
+  return first_crossing_until(*this, path, options, nullptr, nullptr);
+}
+
+CrossingBefore first_crossing_before(const CSpace& space, const MotionPath& path, const CrossingOptions& options,
+                                     const Rational& u_stop) {
+  CrossingBefore answer;
+  Rational stop = u_stop;
+  stop.canonicalize();
+  answer.crossing = first_crossing_until(space, path, options, &stop, &answer.stopped);
+  return answer;
 }
 
 // ------------------------------------------------------------------ blocked walks
