@@ -14,6 +14,7 @@
 
 #include <hipair/blocked_walk.hpp>
 #include <hipair/crossing_before.hpp>
+#include <hipair/edge_slope.hpp>
 #include <hipair/edge_tracker.hpp>
 #include <hipair/error.hpp>
 
@@ -831,9 +832,11 @@ struct Simulation::Impl {
       tx = to_chart(chart->x_kind, chart->x_half_turn, q[a.xdof]);
       if (tx < a.x_lo || tx > a.x_hi) return std::nullopt;
     }
-    EdgeDerivatives d;
+    // the edge's slope in part coordinates (hipair/edge_slope.hpp: derivatives()'s coordinate_dy
+    // without the second derivatives, the same range and the same throws)
+    CertifiedRange slope;
     try {
-      d = space.derivatives(a.edge, Rational(tx));
+      slope = edge_coordinate_slope(space, a.edge, Rational(tx));
     } catch (const GeometryError&) {
       // exactly past the end of the edge (its ends are algebraic; x_lo, x_hi are double
       // bounds): the contact continues on the edge that meets this one here, the same feature
@@ -845,12 +848,12 @@ struct Simulation::Impl {
       chart = &space.charts()[a.chart];
       tx = to_chart(chart->x_kind, chart->x_half_turn, q[a.xdof]);
       try {
-        d = space.derivatives(a.edge, Rational(tx));
+        slope = edge_coordinate_slope(space, a.edge, Rational(tx));
       } catch (const GeometryError&) {
         return std::nullopt;
       }
     }
-    double y1 = mid(d.coordinate_dy);
+    double y1 = mid(slope);
     // orient so that the C-space normal (-sigma Y', sigma) agrees with the physical normal
     double dot = -y1 * G[a.xdof] + G[a.ydof];
     a.sigma = dot >= 0 ? 1 : -1;
