@@ -1758,6 +1758,14 @@ struct Simulation::Impl {
     std::vector<char> limited(spaces.size(), 0);
     {
       const bool limits = simulation::crossing_limits();
+      // a crossing's bracket in doubles as the loop below takes it (a start in contact: 0);
+      // false for an answer without one
+      auto bracket = [](const MotionCrossing& c, double& lower, double& upper) {
+        if (c.status != CrossingStatus::crossing && c.status != CrossingStatus::starts_in_contact) return false;
+        lower = c.status == CrossingStatus::starts_in_contact ? 0.0 : to_d(c.u_lower);
+        upper = c.status == CrossingStatus::starts_in_contact ? 0.0 : to_d(c.u_upper);
+        return true;
+      };
       double first_lower = u_end, first_upper = u_end;
       bool found = false;
       for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
@@ -1771,10 +1779,8 @@ struct Simulation::Impl {
         } else {
           answers[pair] = spaces[pair]->first_crossing(motion, crossing_options);
         }
-        const MotionCrossing& c = answers[pair];
-        if (c.status == CrossingStatus::crossing || c.status == CrossingStatus::starts_in_contact) {
-          double lower = c.status == CrossingStatus::starts_in_contact ? 0.0 : to_d(c.u_lower);
-          double upper = c.status == CrossingStatus::starts_in_contact ? 0.0 : to_d(c.u_upper);
+        double lower, upper;
+        if (bracket(answers[pair], lower, upper)) {
           if (!found || lower < first_lower) {
             first_lower = lower;
             first_upper = upper;
@@ -1785,11 +1791,8 @@ struct Simulation::Impl {
       // the step's earliest crossing from the complete answers (as the loop below finds it)
       double final_lower = u_end, final_upper = u_end;
       for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
-        const MotionCrossing& c = answers[pair];
-        if (limited[pair] || !(c.status == CrossingStatus::crossing || c.status == CrossingStatus::starts_in_contact))
-          continue;
-        double lower = c.status == CrossingStatus::starts_in_contact ? 0.0 : to_d(c.u_lower);
-        double upper = c.status == CrossingStatus::starts_in_contact ? 0.0 : to_d(c.u_upper);
+        double lower, upper;
+        if (limited[pair] || !bracket(answers[pair], lower, upper)) continue;
         if (lower < final_lower) {
           final_lower = lower;
           final_upper = upper;
