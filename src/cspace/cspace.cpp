@@ -80,7 +80,10 @@ namespace {
 
 // The configuration in every chart that holds it (several: on a seam or a chart corner), in
 // chart order.
-std::vector<ChartPoint> chart_points(const CSpace::Impl& impl, const PartCoordinate& x_input, const PartCoordinate& y_input) {
+// The configuration's point in every chart that holds it (chart order); with `first_only`, the
+// first of them alone (the loop stops there: the same point as the full list's front).
+std::vector<ChartPoint> chart_points(const CSpace::Impl& impl, const PartCoordinate& x_input, const PartCoordinate& y_input,
+                                     bool first_only = false) {
   PartCoordinate x = x_input, y = y_input;
   x.value.canonicalize();
   y.value.canonicalize();
@@ -105,11 +108,13 @@ std::vector<ChartPoint> chart_points(const CSpace::Impl& impl, const PartCoordin
     if (!cx || *cx < chart.x_lo || *cx > chart.x_hi) continue;
     if (impl.dimension == 1) {
       points.push_back(ChartPoint{c, *cx, Rational(0)});
+      if (first_only) break;
       continue;
     }
     auto cy = convert(y, chart.y_kind, chart.y_half_turn);
     if (!cy || *cy < chart.y_lo || *cy > chart.y_hi) continue;
     points.push_back(ChartPoint{c, *cx, *cy});
+    if (first_only) break;
   }
   return points;
 }
@@ -123,9 +128,9 @@ bool in_contact(const Location& l) {
 }  // namespace
 
 std::optional<ChartPoint> CSpace::to_chart(const PartCoordinate& x, const PartCoordinate& y) const {
-  std::vector<ChartPoint> points = chart_points(implementation(*this), x, y);
+  std::vector<ChartPoint> points = chart_points(implementation(*this), x, y, true);
   if (points.empty()) return std::nullopt;
-  return points.front();
+  return std::move(points.front());
 }
 
 namespace {

@@ -9,7 +9,9 @@
 #include <hipair/cspace.hpp>
 #include <hipair/cspace_slice.hpp>
 #include <hipair/blocked_walk.hpp>
+#include <hipair/crossing_before.hpp>
 #include <hipair/edge_tracker.hpp>
+#include <hipair/edge_slope.hpp>
 #include <hipair/error.hpp>
 
 #include "cspace/angle_filter.hpp"
@@ -386,8 +388,12 @@ kernels::Slopes<RInterval> coordinate_slopes(const cspace::ChartAxis& axis, cons
 
 }  // namespace
 
-EdgeDerivatives CSpace::derivatives(EdgeId id, const Rational& x_input) const {
-  const Impl& impl = checked(*this);
+namespace {
+
+// CSpace::derivatives (second_order) or edge_coordinate_slope (not: only coordinate_dy, by the
+// same rational interval operations as the first components of kernels::implicit_slopes,
+// half_angle_slopes and part_slopes, so the same bits; the same checks, so the same throws).
+EdgeDerivatives derivatives_of(const CSpace::Impl& impl, EdgeId id, const Rational& x_input, bool second_order) {
   std::size_t index = index_in(id, impl.edges.size(), "edge");
   if (impl.dimension != 2) throw GeometryError("derivatives: a 1-D C-space has no contact edges");
   auto [c, e] = impl.edge_local[index];
@@ -403,9 +409,10 @@ EdgeDerivatives CSpace::derivatives(EdgeId id, const Rational& x_input) const {
   Real y = cl == 0 ? low.y : ch == 0 ? high.y : cspace::edge_y_at(chart, e, x);
   const cspace::IntegerPolynomial2& f = raw_edge.support;
   std::vector<Rational> fx = partial_in_y(f, x, 1, 0), fy = partial_in_y(f, x, 0, 1);
-  std::vector<Rational> fxx = partial_in_y(f, x, 2, 0), fxy = partial_in_y(f, x, 1, 1), fyy = partial_in_y(f, x, 0, 2);
+  std::vector<Rational> fxx, fxy, fyy;
+  if (second_order) fxx = partial_in_y(f, x, 2, 0), fxy = partial_in_y(f, x, 1, 1), fyy = partial_in_y(f, x, 0, 2);
   EdgeDerivatives result;
-  result.y = cspace::to_public(y);
+  if (second_order) result.y = cspace::to_public(y);
   for (int bits = 64;; bits *= 2) {
     Real refined = y;
     if (!refined.exact) refined.refine_to(Rational(1, mpz_class(1) << bits));
@@ -417,6 +424,20 @@ EdgeDerivatives CSpace::derivatives(EdgeId id, const Rational& x_input) const {
         throw GeometryError("derivatives: the curve of edge " + std::to_string(index) +
                             " is singular or vertical at this abscissa (F_y = 0)");
       continue;
+    }
+    if (!second_order) {
+      // the first components: chart y' = -(F_x / F_y); a rotating axis's d theta / dt = 2 / (1 + t^2)
+      // (a translation's 1); dY/dX = Y' y' / X'
+      auto first_slope = [](const cspace::ChartAxis& axis, const RInterval& t) {
+        if (axis.kind == cspace::ChartAxis::Kind::translation) return RInterval::point(Rational(1));
+        RInterval w = RInterval(RInterval(1) + t * t);
+        return RInterval(RInterval(2) / w);
+      };
+      RInterval dy = RInterval(-(horner(fx, Y) / Fy));
+      RInterval ratio = RInterval(first_slope(chart.y_axis, Y) * dy / first_slope(chart.x_axis, RInterval::point(x)));
+      result.dy = range_of(dy.lo, dy.hi);
+      result.coordinate_dy = range_of(ratio.lo, ratio.hi);
+      return result;
     }
     kernels::Slopes<RInterval> chart_slopes =
         kernels::implicit_slopes(horner(fx, Y), Fy, horner(fxx, Y), horner(fxy, Y), horner(fyy, Y));
@@ -432,6 +453,16 @@ EdgeDerivatives CSpace::derivatives(EdgeId id, const Rational& x_input) const {
     result.coordinate_d2y = range_of(acceleration.lo, acceleration.hi);
     return result;
   }
+}
+
+}  // namespace
+
+EdgeDerivatives CSpace::derivatives(EdgeId id, const Rational& x_input) const {
+  return derivatives_of(checked(*this), id, x_input, true);
+}
+
+CertifiedRange edge_coordinate_slope(const CSpace& space, EdgeId id, const Rational& x) {
+  return derivatives_of(checked(space), id, x, false).coordinate_dy;
 }
 
 // ------------------------------------------------------------------ compare_ordinate
@@ -1946,15 +1977,21 @@ class MotionScanner {
 
 }  // namespace
 
-MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOptions& options) const {
-  const Impl& impl = checked(*this);
+namespace {
+
+// CSpace::first_crossing's query; with `stop`, first_crossing_before's (crossing_before.hpp):
+// it stops at the first stretch [a, b] of the subdivision with a > *stop.
+MotionCrossing first_crossing_until(const CSpace& space, const MotionPath& input, const CrossingOptions& options,
+                                    const Rational* stop, bool* stopped) {
+  using Impl = CSpace::Impl;
+  const Impl& impl = checked(space);
   MotionPath path = input;
   for (auto* axis : {&path.x, &path.y})
     for (auto& c : axis->coefficients) c.canonicalize();
   path.u_begin.canonicalize();
   path.u_end.canonicalize();
   if (path.u_end < path.u_begin) throw GeometryError("first_crossing: u_end < u_begin");
-  const std::shared_ptr<const Impl>& owner = CSpaceAccess::shared(*this);
+  const std::shared_ptr<const Impl>& owner = CSpaceAccess::shared(space);
   MotionScanner scanner(impl, path, scan_memo_of(owner));
   MotionCrossing result;
 
@@ -2080,6 +2117,12 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
     auto [a, b] = stack.back();
     stack.pop_back();
     if (a == b) continue;
+    if (stop && a > *stop) {
+      // every stretch before a excluded: the motion is in its starting free cell on [u_begin, a]
+      *stopped = true;
+      result.u_lower = result.u_upper = a;
+      return result;
+    }
     MotionScanner::Evaluation at = scanner.evaluate(a, b);
     bool wide = b - a > resolution;
     auto split = [&, a = a, b = b] {
@@ -2222,6 +2265,21 @@ MotionCrossing CSpace::first_crossing(const MotionPath& input, const CrossingOpt
     if (std::optional<StartAnchor> anchor = scanner.anchor_from(*last, result.cell_left.index()))
       remember_anchor(std::move(*anchor), owner);
   return result;
+}
+
+}  // namespace
+
+MotionCrossing CSpace::first_crossing(const MotionPath& path, const CrossingOptions& options) const {
+  return first_crossing_until(*this, path, options, nullptr, nullptr);
+}
+
+CrossingBefore first_crossing_before(const CSpace& space, const MotionPath& path, const CrossingOptions& options,
+                                     const Rational& u_stop) {
+  CrossingBefore answer;
+  Rational stop = u_stop;
+  stop.canonicalize();
+  answer.crossing = first_crossing_until(space, path, options, &stop, &answer.stopped);
+  return answer;
 }
 
 // ------------------------------------------------------------------ blocked walks

@@ -13,9 +13,12 @@
 #include <hipair/simulation.hpp>
 
 #include <hipair/blocked_walk.hpp>
+#include <hipair/crossing_before.hpp>
+#include <hipair/edge_slope.hpp>
 #include <hipair/edge_tracker.hpp>
 #include <hipair/error.hpp>
 
+#include "simulation/crossing_limit.hpp"
 #include "simulation/friction.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/units.hpp"
@@ -829,9 +832,11 @@ struct Simulation::Impl {
       tx = to_chart(chart->x_kind, chart->x_half_turn, q[a.xdof]);
       if (tx < a.x_lo || tx > a.x_hi) return std::nullopt;
     }
-    EdgeDerivatives d;
+    // the edge's slope in part coordinates (hipair/edge_slope.hpp: derivatives()'s coordinate_dy
+    // without the second derivatives, the same range and the same throws)
+    CertifiedRange slope;
     try {
-      d = space.derivatives(a.edge, Rational(tx));
+      slope = edge_coordinate_slope(space, a.edge, Rational(tx));
     } catch (const GeometryError&) {
       // exactly past the end of the edge (its ends are algebraic; x_lo, x_hi are double
       // bounds): the contact continues on the edge that meets this one here, the same feature
@@ -843,12 +848,12 @@ struct Simulation::Impl {
       chart = &space.charts()[a.chart];
       tx = to_chart(chart->x_kind, chart->x_half_turn, q[a.xdof]);
       try {
-        d = space.derivatives(a.edge, Rational(tx));
+        slope = edge_coordinate_slope(space, a.edge, Rational(tx));
       } catch (const GeometryError&) {
         return std::nullopt;
       }
     }
-    double y1 = mid(d.coordinate_dy);
+    double y1 = mid(slope);
     // orient so that the C-space normal (-sigma Y', sigma) agrees with the physical normal
     double dot = -y1 * G[a.xdof] + G[a.ydof];
     a.sigma = dot >= 0 ? 1 : -1;
@@ -1740,9 +1745,69 @@ struct Simulation::Impl {
     std::vector<std::pair<std::size_t, MotionCrossing>> crossings;
     CrossingOptions crossing_options;
     crossing_options.resolution_bits = options.crossing_bits;
+    // Each free pair's query; with crossing_limits() (simulation/crossing_limit.hpp), a query
+    // after a crossing was found stops where its subdivision passes the earliest crossing's
+    // u_upper so far: certified free up to a stretch start a beyond it, its own crossing (if
+    // any) has u_lower >= a. Such a crossing is discarded below (u_lower > u_hit_upper) unless
+    // a's double is not above the final u_hit_upper: then the pair is asked again without the
+    // limit, which is first_crossing's query. A stopped pair's crossing (or exit from the built
+    // space) would have u_lower >= a, its double >= a's > u_hit_upper >= u_hit: never the
+    // earliest, never simultaneous, never before u_hit; so the loop below, which treats it as
+    // free, takes the same crossings, rows and ends as with every query complete.
+    std::vector<MotionCrossing> answers(spaces.size());
+    std::vector<char> limited(spaces.size(), 0);
+    {
+      const bool limits = simulation::crossing_limits();
+      // a crossing's bracket in doubles as the loop below takes it (a start in contact: 0);
+      // false for an answer without one
+      auto bracket = [](const MotionCrossing& c, double& lower, double& upper) {
+        if (c.status != CrossingStatus::crossing && c.status != CrossingStatus::starts_in_contact) return false;
+        lower = c.status == CrossingStatus::starts_in_contact ? 0.0 : to_d(c.u_lower);
+        upper = c.status == CrossingStatus::starts_in_contact ? 0.0 : to_d(c.u_upper);
+        return true;
+      };
+      double first_lower = u_end, first_upper = u_end;
+      bool found = false;
+      for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
+        if (!spaces[pair] || in_active(pair)) continue;
+        MotionPath motion = pair_path(pair, path, 0, u_end);
+        if (limits && found) {
+          CrossingBefore c = first_crossing_before(*spaces[pair], motion, crossing_options, Rational(first_upper));
+          answers[pair] = std::move(c.crossing);
+          limited[pair] = c.stopped;
+          if (c.stopped) ++simulation::limited_queries();
+        } else {
+          answers[pair] = spaces[pair]->first_crossing(motion, crossing_options);
+        }
+        double lower, upper;
+        if (bracket(answers[pair], lower, upper)) {
+          if (!found || lower < first_lower) {
+            first_lower = lower;
+            first_upper = upper;
+          }
+          found = true;
+        }
+      }
+      // the step's earliest crossing from the complete answers (as the loop below finds it)
+      double final_lower = u_end, final_upper = u_end;
+      for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
+        double lower, upper;
+        if (limited[pair] || !bracket(answers[pair], lower, upper)) continue;
+        if (lower < final_lower) {
+          final_lower = lower;
+          final_upper = upper;
+        }
+      }
+      for (std::size_t pair = 0; pair < spaces.size(); ++pair)
+        if (limited[pair] && !(to_d(answers[pair].u_lower) > final_upper)) {
+          ++simulation::requeried_limits();
+          answers[pair] = spaces[pair]->first_crossing(pair_path(pair, path, 0, u_end), crossing_options);
+          limited[pair] = 0;
+        }
+    }
     for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
-      if (!spaces[pair] || in_active(pair)) continue;
-      MotionCrossing c = spaces[pair]->first_crossing(pair_path(pair, path, 0, u_end), crossing_options);
+      if (!spaces[pair] || in_active(pair) || limited[pair]) continue;
+      MotionCrossing c = std::move(answers[pair]);
       if (c.status == CrossingStatus::none) continue;
       if (c.status == CrossingStatus::outside_region) {
         // leaving the built space is an error only when it comes first; its bracket is

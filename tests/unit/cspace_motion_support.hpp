@@ -1,5 +1,5 @@
 // Shared pieces of the first_crossing tests that compare a switch's answers (start filter, scan
-// memo, angle memo): the exact description of an answer, and the starts they generate near
+// memo, angle memo, the stopped query): the exact description of an answer, and the starts they generate near
 // contact edges and on chart sides.
 #pragma once
 
@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace hipair::test {
 
@@ -66,6 +67,60 @@ inline MotionPath bent_motion(const CSpaceChart& chart, bool two, double qx0, do
   path.x = axis_path(chart.x_kind, {qx0, vx * (1 - bend), vx * bend, 0});
   if (two) path.y = axis_path(chart.y_kind, {qy0, vy * (1 + bend), -vy * bend * 0.5, -vy * bend * 0.5});
   if (point) path.u_end = path.u_begin;
+  return path;
+}
+
+// A motion on `space`: from a random point of a random chart, either toward a random point of a
+// real edge and past it (kind 0, two thirds: a crossing from a free start), or in a random
+// direction by 10^-3 ... 1 (kind 1);
+// a cubic in u through both ends with a random bend.
+inline MotionPath random_motion(const CSpace& space, std::mt19937_64& random, int& kind, std::size_t& chart_index) {
+  std::uniform_real_distribution<double> unit(0, 1), sym(-1, 1);
+  const bool two = space.dimension() == 2;
+  const std::vector<std::size_t> real_edges = test::real_edges(space);
+  kind = real_edges.empty() || random() % 3 == 0 ? 1 : 0;
+  std::size_t c = random() % space.charts().size();
+  double x1 = 0, y1 = 0;
+  if (kind == 0) {
+    const std::size_t e = real_edges[random() % real_edges.size()];
+    const CSpaceEdge& edge = space.edges()[e];
+    c = edge.chart;
+    double x = edge.x_chart.lower + (edge.x_chart.upper - edge.x_chart.lower) * (0.02 + 0.96 * unit(random));
+    double y = 0;
+    if (two) {
+      try {
+        y = space.evaluate(e, x).value;
+      } catch (const GeometryError&) {
+        kind = 1;
+      }
+    } else {
+      x = edge.x_chart.lower;
+    }
+    x1 = x;
+    y1 = y;
+  }
+  const CSpaceChart& chart = space.charts()[c];
+  double x0 = chart.x_lo.get_d() + (chart.x_hi.get_d() - chart.x_lo.get_d()) * unit(random);
+  double y0 = two ? chart.y_lo.get_d() + (chart.y_hi.get_d() - chart.y_lo.get_d()) * unit(random) : 0;
+  if (kind == 0) {
+    double past = 1 + 0.5 * unit(random);
+    x1 = x0 + (x1 - x0) * past;
+    y1 = y0 + (y1 - y0) * past;
+  } else {
+    double scale = std::pow(10.0, -3 + 3 * unit(random));
+    x1 = x0 + sym(random) * scale;
+    y1 = y0 + sym(random) * scale;
+  }
+  double qx0 = part_value(chart.x_kind, chart.x_half_turn, x0);
+  double qx1 = part_value(chart.x_kind, chart.x_half_turn, x1);
+  double qy0 = two ? part_value(chart.y_kind, chart.y_half_turn, y0) : 0;
+  double qy1 = two ? part_value(chart.y_kind, chart.y_half_turn, y1) : 0;
+  double bend = (random() % 3 == 0) ? 0.0 : 0.3 * sym(random);
+  double vx = qx1 - qx0, vy = qy1 - qy0;
+  MotionPath path;
+  path.x = axis_path(chart.x_kind, {qx0, vx * (1 - bend), vx * bend, 0});
+  if (two) path.y = axis_path(chart.y_kind, {qy0, vy * (1 + bend), -vy * bend * 0.5, -vy * bend * 0.5});
+  chart_index = c;
   return path;
 }
 

@@ -1,0 +1,38 @@
+// HIPAIR — the certified first-crossing query for a caller that needs a crossing only when it
+// comes no later than a known parameter (the simulator: once one pair's motion is known to
+// reach contact space at u in [u_lower, u_upper], another pair's crossing matters only where its
+// bracket could start at or before that u_upper; a later one is discarded by the step).
+//
+// first_crossing_before runs CSpace::first_crossing's own query — the same start, the same
+// subdivision tree in the same (path) order, the same exclusions — and stops at the first
+// stretch [a, b] the subdivision would evaluate with a > u_stop. Why the answers are the query's:
+// the subdivision evaluates its stretches in path order, and a stretch is evaluated only after
+// every stretch before it was excluded (certified in the starting free cell) or subdivided, and
+// the query returns at the first stretch within the resolution that may meet a contact curve or
+// leave the built space. So:
+//   - not stopped: every step taken was first_crossing's, and so is the answer (bit for bit);
+//   - stopped at a: the motion is certified in its starting free cell on [u_begin, a], and
+//     first_crossing's answer is `none`, or a crossing (or outside_region) whose u_lower is the
+//     start of a later stretch, so u_lower >= a > u_stop.
+// A query that stops leaves no start anchor (first_crossing remembers one after a motion that
+// stays free to u_end; anchors only spare later point locations their exact work).
+#pragma once
+
+#include <hipair/cspace.hpp>
+
+namespace hipair {
+
+/// What first_crossing_before found.
+struct CrossingBefore {
+  /// stopped == false: first_crossing's answer. stopped == true: status none, and
+  /// u_lower == u_upper == the stretch start a > u_stop where the query stopped; the motion is in
+  /// its starting free cell on [u_begin, a] (first_crossing's u_lower, if any, is >= a).
+  MotionCrossing crossing;
+  bool stopped = false;
+};
+
+/// CSpace::first_crossing(path, options), stopped where its subdivision passes u_stop (see above).
+CrossingBefore first_crossing_before(const CSpace& space, const MotionPath& path, const CrossingOptions& options,
+                                     const Rational& u_stop);
+
+}  // namespace hipair
