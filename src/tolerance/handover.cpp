@@ -14,26 +14,32 @@
 // sigma-most end of the candidates' enclosures (each candidate's enclosure holds its roots;
 // a candidate whose roots lie certainly on the -sigma side of Y's sigma end changes nothing).
 // The candidates are sought in a window W beyond Y's sigma end (of width 2 |Y| plus the
-// absolute accuracy): y(t, p), a continuous function on the connected (range x box) equal to
-// the nominal follower (inside Y) at the nominal vector, can only leave Y's sigma end through
-// W; a position of W where the follower can be held is a zero of some feature pair's contact
-// function, that feature pair's edges meeting there. So:
+// absolute accuracy). y(t, p) is continuous on the connected (range x box) and equals the
+// nominal follower (inside Y) at the nominal vector, so its image is an interval holding a point
+// of Y; a value where the follower can be held is a zero of some feature pair's contact function
+// that pushes it, that feature pair's edges meeting there. So if no feature pair has a pushing
+// zero in a leaf (E, E + h] of W (E at or beyond Y's sigma end), y never passes E: E bounds the
+// envelope, whatever the candidates do further on. So:
 //   1. Edges: every edge of each part posed over box x range x W (outward-rounded intervals);
 //      an edge pair certainly apart there (the verifier's separation test on two posed edges,
 //      certify/tolerance_support.hpp, or their bounding discs apart) cannot touch in W. The
 //      feature pairs of the others (curve / curve, each end vertex / the other curve) are the
 //      candidates, with the holder.
-//   2. Exclusion: a candidate's contact function certainly non-zero over box x range x a piece
-//      of W, or its F_v certainly of sign -sigma there (a contact blocking the follower from
-//      ahead, the channel's other side: not a push), has no pushing zero in that piece; a
-//      candidate with none in any piece is excluded.
-//   3. Enclosure: the others' roots enclosed over the box (CurveSolver::certified_range, from
-//      the root Newton finds in the first piece left), and beyond that enclosure no pushing
-//      zero in W (F_v of sign sigma over the enclosure and beyond: one zero; or the pieces
-//      beyond tested as in 2); where it cannot be enclosed, the pieces of W bisected (six
-//      times) and the sigma-most piece left is the candidate's end. Both sound.
-//   4. The envelope reaches the sigma-most candidate end; if that comes within an eighth of
-//      W's far end, y could leave W: unbounded.
+//   2. Exclusion from a leaf y, over box x t x y for each piece t of the driver's range (halved
+//      up to three times where undecided): the two features certainly apart; F_v certainly of
+//      sign -sigma (a contact blocking the follower from ahead, the channel's other side: not a
+//      push); F certainly non-zero (F as a first-order Taylor model in the box's parameters,
+//      t and v: its range, met with the interval enclosure); F_v of sign sigma (F monotone in
+//      v) and F certainly positive at y's -sigma end or negative at its sigma end; a clause of
+//      the pair's validity certainly false (the contact point off a feature: the vertex outside
+//      the arc's angular range, ...; kernels/contact.hpp, closed conditions every touching
+//      meets); or its root over box x t (CurveSolver::certified_range; the holder's over the
+//      whole range: Y) on the -sigma side of y (up to y's -sigma end) or beyond it, with F_v of
+//      one sign over their hull (F monotone there, its one zero in the root's enclosure).
+//   3. The walk: E from Y's sigma end; the leaf [E, E + h] (h from |W| / 8 halved up to four
+//      times) with no candidate pushing in it ends the walk at E; where one may push in the
+//      finest leaf, E moves to its far end. E is the envelope's sigma end.
+//   4. If E reaches W's far end, y could leave W: unbounded.
 // Assumption (stated in docs/tolerance.md): quasi-static pushing, the follower held by a
 // contact at every vector of the box, its position continuous in (driver, parameters), as the
 // chain's kinematics assumes at nominal.
@@ -55,7 +61,14 @@
 namespace hipair::tolerance_detail {
 
 struct HandoverSearch::BoxParts {
+  // over the box: each number's first-order Taylor model's range met with its plain enclosure
   model_detail::PartGeometry<Interval> fixed, free;
+  // over the box: first-order Taylor models (taylor_model.hpp) in the box's parameters that
+  // either part depends on (`variables` of them, numbered 0 ..; a parameter whose coefficients
+  // are exactly 0 in every number of both parts is left out)
+  model_detail::PartGeometry<TaylorModel1> fixed_taylor, free_taylor;
+  std::size_t variables = 0;
+  bool taylor = false;   // the Taylor models could follow the construction over the box
   // per loop and edge: an arc certainly of at most a half turn (decided in the part's frame,
   // where the box alone blurs it: a rigid motion does not change it)
   std::vector<std::vector<char>> fixed_minor, free_minor;
@@ -135,19 +148,59 @@ model_detail::EdgeValue<IntervalJet> lift(const model_detail::EdgeValue<Interval
   return out;
 }
 
+// An arc's angular range for the kernels' validity (curves/pose.cpp arc_sector); an arc not
+// certainly of at most a half turn gets none (`full`: no requirement, never an exclusion).
+template <class N>
+kernels::ArcSector<N> sector_of(const model_detail::EdgeValue<N>& e, bool minor) {
+  kernels::ArcSector<N> s;
+  if (!minor) {
+    s.full = true;
+    return s;
+  }
+  kernels::Vector<N> from_source = e.source - e.center, from_target = e.target - e.center;
+  s.start = e.ccw ? from_source : from_target;
+  s.end = e.ccw ? from_target : from_source;
+  return s;
+}
+
+// The validity of a feature pair's contact (kernels/contact.hpp: the contact point on both
+// features; closed conditions, so every touching of the two features satisfies them), with
+// the same dispatch as contact_function. Empty (always valid) where it has none.
+template <class N>
+kernels::Validity<N> validity_of(const model_detail::EdgeValue<N>& ea, const FeatureIdentity& fa, const kernels::Pose<N>& a,
+                                 bool minor_a, const model_detail::EdgeValue<N>& eb, const FeatureIdentity& fb,
+                                 const kernels::Pose<N>& b, bool minor_b) {
+  using K = FeatureKind;
+  if (fa.kind == K::vertex && fb.kind == K::segment) return kernels::vertex_segment_validity(a, ea.source, b, eb.source, eb.target);
+  if (fa.kind == K::segment && fb.kind == K::vertex) return kernels::segment_vertex_validity(a, ea.source, ea.target, b, eb.source);
+  if (fa.kind == K::vertex && fb.kind == K::arc) return kernels::vertex_arc_validity(a, ea.source, b, eb.center, sector_of(eb, minor_b));
+  if (fa.kind == K::arc && fb.kind == K::vertex) return kernels::arc_vertex_validity(a, ea.center, sector_of(ea, minor_a), b, eb.source);
+  if (fa.kind == K::arc && fb.kind == K::arc && (ea.ccw || eb.ccw)) {
+    kernels::Tangency tangency = ea.ccw && eb.ccw ? kernels::Tangency::external
+                                 : ea.ccw         ? kernels::Tangency::first_inside_second
+                                                  : kernels::Tangency::second_inside_first;
+    return kernels::arc_arc_validity(a, ea.center, sector_of(ea, minor_a), ea.radius_squared, b, eb.center,
+                                     sector_of(eb, minor_b), eb.radius_squared, tangency);
+  }
+  if (fa.kind == K::arc && fb.kind == K::segment && ea.ccw)
+    return kernels::arc_segment_validity(a, ea.center, sector_of(ea, minor_a), b, eb.source, eb.target);
+  if (fa.kind == K::segment && fb.kind == K::arc && eb.ccw)
+    return kernels::segment_arc_validity(a, ea.source, ea.target, b, eb.center, sector_of(eb, minor_b));
+  return {};
+}
+
 double end_of(const Interval& y, int sigma) { return sigma > 0 ? y.hi : y.lo; }
-// The sigma-most of two values.
-double further(double a, double b, int sigma) { return sigma > 0 ? std::max(a, b) : std::min(a, b); }
 
 }  // namespace
 
 HandoverSearch::HandoverSearch(std::shared_ptr<const CurveSolver> solver, std::size_t fixed_part, std::size_t free_part)
     : solver_(std::move(solver)), fixed_part_(fixed_part), free_part_(free_part) {}
 
-// The two parts' geometry over the box, each number in mean-value form (its value at the box's
-// centre plus its gradient over the box times the box's offsets: the spur gear's construction
-// in plain interval arithmetic over the box overestimates by millimetres), intersected with
-// the plain enclosure. Memoised per box (the positions composing over the same box share it).
+// The two parts' geometry over the box as first-order Taylor models (constant, linear part in
+// the box's parameters, remainder: the spur gear's construction in plain interval arithmetic
+// over the box overestimates by millimetres, and a mean-value form with interval gradients by
+// tenths), and as intervals: the models' ranges met with the plain enclosures. Memoised per box
+// (the positions composing over the same box share it).
 std::shared_ptr<const HandoverSearch::BoxParts> HandoverSearch::box_parts(const Box& box) const {
   std::vector<double> key = box.lo;
   key.insert(key.end(), box.hi.begin(), box.hi.end());
@@ -158,52 +211,77 @@ std::shared_ptr<const HandoverSearch::BoxParts> HandoverSearch::box_parts(const 
   }
   const std::size_t n = box.lo.size();
   std::vector<std::size_t> active;
-  for (std::size_t i = 0; i < n; ++i)
-    if (box.hi[i] > box.lo[i]) active.push_back(i);
-  std::vector<Interval> whole(n), center(n), offsets;
-  std::vector<IntervalJet> jets(n);
+  std::vector<Interval> whole(n);
+  std::vector<TaylorModel1> models(n);
   for (std::size_t i = 0; i < n; ++i) {
     whole[i] = Interval(box.lo[i], box.hi[i]);
-    double c = 0.5 * (box.lo[i] + box.hi[i]);
-    center[i] = Interval::point(c);
-    jets[i] = IntervalJet(box.hi[i] > box.lo[i] ? whole[i] : Interval::point(box.lo[i]));
+    if (box.hi[i] > box.lo[i]) {
+      models[i] = TaylorModel1::over(box.lo[i], box.hi[i], active.size());
+      active.push_back(i);
+    } else {
+      models[i] = TaylorModel1(Interval::point(box.lo[i]));
+    }
   }
-  for (std::size_t a = 0; a < active.size(); ++a) {
-    std::size_t i = active[a];
-    jets[i] = IntervalJet::variable(whole[i], a, active.size());
-    offsets.push_back(Interval::point(box.lo[i]) - center[i] + Interval(0, box.hi[i] - box.lo[i]));
-  }
-  auto form = [&](const IntervalJet& over, const Interval& at, const Interval& plain) {
-    Interval v = at;
-    for (std::size_t a = 0; a < active.size(); ++a) v = v + over.partial(a) * offsets[a];
-    Interval r(std::max(v.lo, plain.lo), std::min(v.hi, plain.hi));
-    return r.lo <= r.hi ? r : plain;
-  };
-  auto vector = [&](const kernels::Vector<IntervalJet>& over, const V& at, const V& plain) {
-    return V{form(over.x, at.x, plain.x), form(over.y, at.y, plain.y)};
-  };
-  auto part = [&](std::size_t k) {
-    const model_detail::ParametricModel& model = solver_->model();
-    model_detail::PartGeometry<Interval> plain = model.part_geometry(k, whole);
-    model_detail::PartGeometry<Interval> at = model.part_geometry(k, center);
-    model_detail::PartGeometry<IntervalJet> over = model.part_geometry(k, jets);
-    for (std::size_t l = 0; l < plain.loops.size(); ++l)
-      for (std::size_t e = 0; e < plain.loops[l].size(); ++e) {
-        auto& p = plain.loops[l][e];
-        const auto& a = at.loops[l][e];
-        const auto& o = over.loops[l][e];
-        p.source = vector(o.source, a.source, p.source);
-        p.target = vector(o.target, a.target, p.target);
-        p.center = vector(o.center, a.center, p.center);
-        p.radius_squared = form(o.radius_squared, a.radius_squared, p.radius_squared);
-      }
-    plain.pivot = vector(over.pivot, at.pivot, plain.pivot);
-    plain.direction = vector(over.direction, at.direction, plain.direction);
-    return plain;
-  };
+  const model_detail::ParametricModel& model = solver_->model();
   auto parts = std::make_shared<BoxParts>();
-  parts->fixed = part(fixed_part_);
-  parts->free = part(free_part_);
+  parts->fixed = model.part_geometry(fixed_part_, whole);
+  parts->free = model.part_geometry(free_part_, whole);
+  try {
+    parts->fixed_taylor = model.part_geometry(fixed_part_, models);
+    parts->free_taylor = model.part_geometry(free_part_, models);
+    parts->taylor = true;
+  } catch (const NumericError&) {
+  }
+  auto numbers = [](auto& g, auto&& visit) {
+    for (auto& loop : g.loops)
+      for (auto& e : loop) {
+        for (auto* v : {&e.source, &e.target, &e.center}) {
+          visit(v->x);
+          visit(v->y);
+        }
+        visit(e.radius_squared);
+      }
+    for (auto* v : {&g.pivot, &g.direction}) {
+      visit(v->x);
+      visit(v->y);
+    }
+  };
+  if (parts->taylor) {
+    // the variables: the active parameters either part depends on over the box
+    std::vector<char> used(active.size(), 0);
+    auto mark = [&](const TaylorModel1& x) {
+      for (std::size_t a = 0; a < x.coefficients.size(); ++a)
+        if (!(x.coefficients[a].lo == 0.0 && x.coefficients[a].hi == 0.0)) used[a] = 1;
+    };
+    numbers(parts->fixed_taylor, mark);
+    numbers(parts->free_taylor, mark);
+    std::vector<std::size_t> keep;
+    for (std::size_t a = 0; a < active.size(); ++a)
+      if (used[a]) keep.push_back(a);
+    parts->variables = keep.size();
+    auto compact = [&](TaylorModel1& x) {
+      std::vector<Interval> coefficients(keep.size(), Interval(0));
+      for (std::size_t b = 0; b < keep.size(); ++b)
+        if (keep[b] < x.coefficients.size()) coefficients[b] = x.coefficients[keep[b]];
+      x.coefficients = std::move(coefficients);
+    };
+    numbers(parts->fixed_taylor, compact);
+    numbers(parts->free_taylor, compact);
+    // the intervals: the models' ranges met with the plain enclosures
+    auto meet = [&](model_detail::PartGeometry<Interval>& plain, model_detail::PartGeometry<TaylorModel1>& taylor) {
+      std::vector<Interval*> p;
+      std::vector<const TaylorModel1*> t;
+      numbers(plain, [&](Interval& x) { p.push_back(&x); });
+      numbers(taylor, [&](TaylorModel1& x) { t.push_back(&x); });
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        Interval r = t[i]->range();
+        Interval both(std::max(r.lo, p[i]->lo), std::min(r.hi, p[i]->hi));
+        if (both.lo <= both.hi) *p[i] = both;
+      }
+    };
+    meet(parts->fixed, parts->fixed_taylor);
+    meet(parts->free, parts->free_taylor);
+  }
   auto minors = [](const model_detail::PartGeometry<Interval>& g) {
     std::vector<std::vector<char>> out;
     for (const auto& loop : g.loops) {
@@ -230,30 +308,109 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   const Model& m = solver_->nominal();
   std::shared_ptr<const BoxParts> parts = box_parts(box);
   const Interval fixed = curve.fixed_range ? *curve.fixed_range : Interval::enclose(curve.fixed_value);
-  const Motion& fixed_motion = m.parts[fixed_part_].motion;
-  const Motion& free_motion = m.parts[free_part_].motion;
+  auto half = [&](std::size_t part) { return part == fixed_part_ ? curve.fixed_half_turn : curve.free_half_turn; };
   auto geometry_of = [&](std::size_t part) -> const model_detail::PartGeometry<Interval>& {
     return part == fixed_part_ ? parts->fixed : parts->free;
   };
-  // F and F_v of a feature pair over box x range x y (F_v: the jet's one partial).
-  auto contact = [&](const FeatureIdentity& first, const FeatureIdentity& second, const Interval& y) {
-    auto pose = [&](std::size_t part, const IntervalJet& chart) {
-      const model_detail::PartGeometry<Interval>& g = geometry_of(part);
-      kernels::Vector<IntervalJet> pivot{IntervalJet(g.pivot.x), IntervalJet(g.pivot.y)};
-      kernels::Vector<IntervalJet> direction{IntervalJet(g.direction.x), IntervalJet(g.direction.y)};
-      bool half = part == fixed_part_ ? curve.fixed_half_turn : curve.free_half_turn;
-      return pose_of(part == fixed_part_ ? fixed_motion : free_motion, pivot, direction, chart, half);
-    };
-    IntervalJet t(fixed), v = IntervalJet::variable(y, 0, 1);
-    auto a = pose(first.part, first.part == fixed_part_ ? t : v);
-    auto b = pose(second.part, second.part == fixed_part_ ? t : v);
-    return contact_function(lift(geometry_of(first.part).loops.at(first.loop).at(first.edge)), first, a,
-                            lift(geometry_of(second.part).loops.at(second.loop).at(second.edge)), second, b);
+  auto minor_of = [&](const FeatureIdentity& f) {
+    return (f.part == fixed_part_ ? parts->fixed_minor : parts->free_minor)[f.loop][f.edge] != 0;
   };
-  // 0. The holder's free side.
+  auto centre = [](const Interval& x) {
+    double c = x.middle();
+    return c >= x.lo && c <= x.hi ? c : x.lo;
+  };
+  auto edge_of = [](const auto& g, const FeatureIdentity& f) -> const auto& { return g.loops.at(f.loop).at(f.edge); };
+  // The candidate's two parts posed over box x t x y: as intervals with the follower's chart
+  // coordinate an interval jet (F_v), and as Taylor models in the box's variables, t (variable
+  // k) and v (variable k + 1).
+  const std::size_t k = parts->variables;
+  auto jet_pose = [&](std::size_t part, const Interval& t, const Interval& y) {
+    const model_detail::PartGeometry<Interval>& g = geometry_of(part);
+    kernels::Vector<IntervalJet> pivot{IntervalJet(g.pivot.x), IntervalJet(g.pivot.y)};
+    kernels::Vector<IntervalJet> direction{IntervalJet(g.direction.x), IntervalJet(g.direction.y)};
+    IntervalJet chart = part == fixed_part_ ? IntervalJet(t) : IntervalJet::variable(y, 0, 1);
+    return pose_of(m.parts[part].motion, pivot, direction, chart, half(part));
+  };
+  auto taylor_geometry = [&](std::size_t part) -> const model_detail::PartGeometry<TaylorModel1>& {
+    return part == fixed_part_ ? parts->fixed_taylor : parts->free_taylor;
+  };
+  auto taylor_pose = [&](std::size_t part, const Interval& t, const Interval& y) {
+    const model_detail::PartGeometry<TaylorModel1>& g = taylor_geometry(part);
+    TaylorModel1 chart = part == fixed_part_ ? TaylorModel1::over(t.lo, t.hi, k) : TaylorModel1::over(y.lo, y.hi, k + 1);
+    return pose_of(m.parts[part].motion, g.pivot, g.direction, chart, half(part));
+  };
+  // F of a feature pair over box x t x y (its Taylor model's range met with the interval
+  // enclosure) and F_v there.
+  struct Value {
+    Interval f, f_v;
+  };
+  auto contact = [&](const CurveSlice& c, const Interval& t, const Interval& y) {
+    IntervalJet plain = contact_function(lift(edge_of(geometry_of(c.first.part), c.first)), c.first, jet_pose(c.first.part, t, y),
+                                         lift(edge_of(geometry_of(c.second.part), c.second)), c.second, jet_pose(c.second.part, t, y));
+    Value out{plain.value, plain.partial(0)};
+    if (!parts->taylor) return out;
+    try {
+      Interval r = contact_function(taylor_geometry(c.first.part), c.first, taylor_pose(c.first.part, t, y),
+                                    taylor_geometry(c.second.part), c.second, taylor_pose(c.second.part, t, y))
+                       .range();
+      Interval both(std::max(r.lo, out.f.lo), std::min(r.hi, out.f.hi));
+      if (both.lo <= both.hi) out.f = both;
+    } catch (const NumericError&) {
+    }
+    return out;
+  };
+  // Whether the feature pair's contact point certainly lies off one of its features over
+  // box x t x y (a clause of its validity certainly false: e.g. the vertex outside the arc's
+  // angular range), so that no zero of F there is a touching of the features.
+  auto off_features = [&](const CurveSlice& c, const Interval& t, const Interval& y) {
+    auto false_clause = [&](const auto& validity, auto&& range) {
+      for (const auto& clause : validity.clauses) {
+        bool all = true;
+        for (int j = 0; j < clause.count && all; ++j) all = sign_of(range(clause.atoms[static_cast<std::size_t>(j)])) < 0;
+        if (all) return true;
+      }
+      return false;
+    };
+    auto pose = [&](std::size_t part) {
+      return pose_of(m.parts[part].motion, geometry_of(part).pivot, geometry_of(part).direction,
+                     part == fixed_part_ ? t : y, half(part));
+    };
+    if (false_clause(validity_of(edge_of(geometry_of(c.first.part), c.first), c.first, pose(c.first.part), minor_of(c.first),
+                                 edge_of(geometry_of(c.second.part), c.second), c.second, pose(c.second.part), minor_of(c.second)),
+                     [](const Interval& x) { return x; }))
+      return true;
+    if (!parts->taylor) return false;
+    try {
+      return false_clause(validity_of(edge_of(taylor_geometry(c.first.part), c.first), c.first, taylor_pose(c.first.part, t, y),
+                                      minor_of(c.first), edge_of(taylor_geometry(c.second.part), c.second), c.second,
+                                      taylor_pose(c.second.part, t, y), minor_of(c.second)),
+                          [](const TaylorModel1& x) { return x.range(); });
+    } catch (const NumericError&) {
+      return false;
+    }
+  };
+  // 0. The holder's free side: F_v's sign over box x T x Y, certain over each piece of T x Y
+  // (each halved up to three times where undecided) and the same on all.
+  auto slope_sign = [&](const Interval& t, const Interval& y, int depth, auto& self) -> int {
+    int s = sign_of(contact(curve, t, y).f_v);
+    if (s != 0 || depth == 0) return s;
+    double tm = centre(t), ym = centre(y);
+    std::vector<Interval> ts{t}, ys{y};
+    if (tm > t.lo && tm < t.hi) ts = {Interval(t.lo, tm), Interval(tm, t.hi)};
+    if (ym > y.lo && ym < y.hi) ys = {Interval(y.lo, ym), Interval(ym, y.hi)};
+    if (ts.size() == 1 && ys.size() == 1) return 0;
+    int common = 2;
+    for (const Interval& a : ts)
+      for (const Interval& b : ys) {
+        int piece = self(a, b, depth - 1, self);
+        if (piece == 0 || (common != 2 && piece != common)) return 0;
+        common = piece;
+      }
+    return common;
+  };
   int sigma = 0;
   try {
-    sigma = sign_of(contact(curve.first, curve.second, holder).partial(0));
+    sigma = slope_sign(fixed, holder, 3, slope_sign);
   } catch (const Error&) {
   }
   if (sigma == 0) {
@@ -266,8 +423,7 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   // 1. The edges over box x range x window.
   auto pose_part = [&](std::size_t part, const Interval& chart) {
     const model_detail::PartGeometry<Interval>& g = geometry_of(part);
-    bool half = part == fixed_part_ ? curve.fixed_half_turn : curve.free_half_turn;
-    kernels::Pose<Interval> pose = pose_of(m.parts[part].motion, g.pivot, g.direction, chart, half);
+    kernels::Pose<Interval> pose = pose_of(m.parts[part].motion, g.pivot, g.direction, chart, half(part));
     const auto& minor = part == fixed_part_ ? parts->fixed_minor : parts->free_minor;
     std::vector<std::vector<Posed>> loops;
     for (std::size_t l = 0; l < g.loops.size(); ++l) {
@@ -299,26 +455,32 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
           if (!apart(a, point(b.edge.s))) keys.insert({la, ea, ka, lb, eb, vertex});
           if (!apart(a, point(b.edge.t))) keys.insert({la, ea, ka, lb, nb, vertex});
         }
-  auto identity = [](std::size_t part, std::size_t loop, std::size_t edge, int k) {
+  auto identity = [](std::size_t part, std::size_t loop, std::size_t edge, int kind) {
     FeatureIdentity f;
     f.part = part;
     f.loop = loop;
     f.edge = edge;
-    f.kind = static_cast<FeatureKind>(k);
+    f.kind = static_cast<FeatureKind>(kind);
     return f;
   };
+  std::vector<CurveSlice> candidates;
+  for (const Key& key : keys) {
+    CurveSlice c = curve;
+    c.first = identity(first_part, std::get<0>(key), std::get<1>(key), std::get<2>(key));
+    c.second = identity(second_part, std::get<3>(key), std::get<4>(key), std::get<5>(key));
+    candidates.push_back(c);
+  }
+  out.candidates = candidates.size();
   // 2. Whether a candidate may push the follower somewhere in y.
   // The candidate's two features (an edge, or a vertex: its edge's source) posed with the
   // follower over y: certainly apart, they do not touch there.
   auto features_apart = [&](const CurveSlice& c, const Interval& y) {
     auto posed = [&](const FeatureIdentity& f) {
       const model_detail::PartGeometry<Interval>& g = geometry_of(f.part);
-      bool half = f.part == fixed_part_ ? curve.fixed_half_turn : curve.free_half_turn;
-      kernels::Pose<Interval> pose = pose_of(m.parts[f.part].motion, g.pivot, g.direction, f.part == fixed_part_ ? fixed : y, half);
+      kernels::Pose<Interval> pose = pose_of(m.parts[f.part].motion, g.pivot, g.direction, f.part == fixed_part_ ? fixed : y, half(f.part));
       const auto& e = g.loops.at(f.loop).at(f.edge);
       if (f.kind == FeatureKind::vertex) return point(kernels::world_point(pose, e.source));
-      const auto& minor = f.part == fixed_part_ ? parts->fixed_minor : parts->free_minor;
-      return pose_edge(e, pose, minor[f.loop][f.edge]);
+      return pose_edge(e, pose, minor_of(f));
     };
     Posed a = posed(c.first), b = posed(c.second);
     if (apart(a, b)) return true;
@@ -342,108 +504,151 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
         }
         return true;
       };
-      auto minor = [&](const FeatureIdentity& f) {
-        return (f.part == fixed_part_ ? parts->fixed_minor : parts->free_minor)[f.loop][f.edge] != 0;
-      };
-      if (off_arc(a, minor(c.first)) || off_arc(b, minor(c.second))) return true;
+      if (off_arc(a, minor_of(c.first)) || off_arc(b, minor_of(c.second))) return true;
     }
     return false;
   };
-  auto may_push = [&](const CurveSlice& c, const Interval& y) {
-    if (features_apart(c, y)) return false;
-    IntervalJet f = contact(c.first, c.second, y);
-    return sign_of(f.value) == 0 && sign_of(f.partial(0)) != -sigma;
+  auto is_holder = [&](const CurveSlice& c) { return c.first == curve.first && c.second == curve.second; };
+  // A candidate's root over box x t (t a piece of T; CurveSolver::certified_range about the
+  // root Newton finds at nominal next to the first leaf that asks, moved along the driver by
+  // its slope; the holder's over T: Y), computed once per piece: for every (p, t) there, F has
+  // a zero in it.
+  struct Nominal {
+    bool tried = false, found = false;
+    double v = 0, slope = 0;
+    std::vector<double> s;
   };
-  // The sigma end of the sigma-most piece of y (bisected `depth` times) where it may push.
-  auto furthest = [&](const CurveSlice& c, const Interval& y, int depth, auto& self) -> std::optional<double> {
-    if (!may_push(c, y)) return std::nullopt;
-    if (depth == 0) return end_of(y, sigma);
-    double mid = y.middle();
-    Interval near_half(y.lo, mid), far_half(mid, y.hi);
-    if (sigma < 0) std::swap(near_half, far_half);
-    if (auto r = self(c, far_half, depth - 1, self)) return r;
-    return self(c, near_half, depth - 1, self);
-  };
-  constexpr int pieces = 8;
-  auto piece = [&](int k) {
-    double a = window.lo + window.width() * k / pieces, b = k + 1 == pieces ? window.hi : window.lo + window.width() * (k + 1) / pieces;
-    return Interval(a, std::max(a, b));
-  };
-  double envelope_end = start;
-  std::string furthest_label;   // the candidate reaching furthest
-  for (const Key& key : keys) {
-    CurveSlice c = curve;
-    c.first = identity(first_part, std::get<0>(key), std::get<1>(key), std::get<2>(key));
-    c.second = identity(second_part, std::get<3>(key), std::get<4>(key), std::get<5>(key));
-    bool is_holder = c.first == curve.first && c.second == curve.second;
-    ++out.candidates;
-    std::optional<int> first_piece;
-    try {
-      for (int k = 0; k < pieces && !first_piece; ++k)
-        if (may_push(c, piece(k))) first_piece = k;
-    } catch (const GeometryError&) {
-      // no contact of its own (a concave arc on a segment, two vertices): its touchings are its
-      // vertex candidates'
-      ++out.excluded;
-      continue;
-    }
-    if (!first_piece) {
-      ++out.excluded;
-      continue;
-    }
-    // 3. Enclosed: its root over the box, then nothing pushing beyond.
-    std::optional<Interval> root;
-    if (is_holder) {
-      root = holder;
-    } else {
+  std::vector<Nominal> nominals(candidates.size());
+  std::map<std::tuple<std::size_t, double, double>, std::optional<Interval>> roots;
+  const double t_nominal = curve.fixed_value.get_d();
+  auto root_of = [&](std::size_t i, const Interval& t, const Interval& y) -> std::optional<Interval> {
+    const CurveSlice& c = candidates[i];
+    if (is_holder(c) && t.lo == fixed.lo && t.hi == fixed.hi) return holder;
+    auto key = std::make_tuple(i, t.lo, t.hi);
+    auto it = roots.find(key);
+    if (it != roots.end()) return it->second;
+    std::optional<Interval>& root = roots[key];
+    Nominal& n = nominals[i];
+    if (!n.tried) {
+      n.tried = true;
       try {
-        double v = piece(*first_piece).middle();
-        CurveSlice at = c;
-        std::vector<double> s = solver_->sensitivities(at, v);
-        root = solver_->certified_range(c, box, v, s, relative_accuracy, absolute_accuracy, boxes);
+        n.v = y.middle();
+        n.s = solver_->sensitivities(c, n.v, &n.slope);
+        n.found = true;
       } catch (const Error&) {
       }
     }
-    // (a root Newton found beyond the window is of no use: the window's pieces decide)
-    if (root && !is_holder && (sigma > 0 ? end_of(*root, sigma) >= window.hi : end_of(*root, sigma) <= window.lo)) root.reset();
-    std::optional<double> end;
-    if (root) {
-      double root_end = end_of(*root, sigma);
-      {
-        Interval beyond = sigma > 0 ? Interval(std::max(root_end, window.lo), window.hi) : Interval(window.lo, std::min(root_end, window.hi));
-        Interval through = kernels::hull(*root, beyond);
-        if (sign_of(contact(c.first, c.second, through).partial(0)) == sigma) {
-          end = root_end;   // monotone over the root's enclosure and beyond: its only zero
-        } else {
-          std::optional<double> r = furthest(c, beyond, 6, furthest);
-          end = r ? further(*r, root_end, sigma) : root_end;
-        }
+    if (!n.found) return root;
+    CurveSlice piece = c;
+    if (curve.fixed_range) {
+      piece.fixed_range = t;
+      piece.fixed_spread = std::fabs(n.slope) * t.width();
+    }
+    try {
+      root = solver_->certified_range(piece, box, n.v + n.slope * (centre(t) - t_nominal), n.s, relative_accuracy,
+                                      absolute_accuracy, boxes);
+    } catch (const Error&) {
+    }
+    return root;
+  };
+  // Over box x t x y (t a piece of T).
+  auto may_push_over = [&](std::size_t i, const Interval& t, const Interval& y) {
+    const CurveSlice& c = candidates[i];
+    Value f = contact(c, t, y);
+    int slope = sign_of(f.f_v);
+    if (slope == -sigma || sign_of(f.f) != 0) return false;
+    if (slope == sigma) {
+      // F monotone along y for each (p, t), increasing towards the sigma side: a zero in y only
+      // where F <= 0 at y's -sigma end and >= 0 at its sigma end
+      double near = sigma > 0 ? y.lo : y.hi, far = sigma > 0 ? y.hi : y.lo;
+      if (sign_of(contact(c, t, Interval::point(near)).f) > 0) return false;
+      if (sign_of(contact(c, t, Interval::point(far)).f) < 0) return false;
+    }
+    if (off_features(c, t, y)) return false;
+    // Its root R over the box on the -sigma side of y (touching y's -sigma end at most: a zero
+    // there is the follower's position the walk has reached) or beyond y's sigma end, and F_v
+    // of one sign over their hull: F is monotone there for each (p, t), its one zero in R.
+    if (std::optional<Interval> r = root_of(i, t, y)) {
+      bool before = sigma > 0 ? r->hi <= y.lo : r->lo >= y.hi;
+      bool after = sigma > 0 ? r->lo > y.hi : r->hi < y.lo;
+      if ((before || after) && sign_of(contact(c, t, kernels::hull(*r, y)).f_v) != 0) return false;
+    }
+    return true;
+  };
+  // Over box x T x y: T halved where a piece is undecided, at most `t_levels` times.
+  constexpr int t_levels = 3;
+  auto may_push_in = [&](std::size_t i, const Interval& t, const Interval& y, int level, auto& self) -> bool {
+    if (!may_push_over(i, t, y)) return false;
+    double mid = t.middle();
+    if (level >= t_levels || !(mid > t.lo && mid < t.hi)) return true;
+    return self(i, Interval(t.lo, mid), y, level + 1, self) || self(i, Interval(mid, t.hi), y, level + 1, self);
+  };
+  auto may_push = [&](std::size_t i, const Interval& y) {
+    try {
+      if (features_apart(candidates[i], y)) return false;
+      return may_push_in(i, fixed, y, 0, may_push_in);
+    } catch (const GeometryError&) {
+      // no contact of its own (a concave arc on a segment, two vertices): its touchings are its
+      // vertex candidates'
+      return false;
+    }
+  };
+  // 3. The walk: from Y's sigma end E, a leaf [E, E + h] of W (sigma-wards) where no candidate
+  // may push bounds the follower at E; a leaf where one may (at the finest size) moves E to its
+  // far end.
+  constexpr int levels = 4;   // a leaf is W / 8 halved at most this many times
+  const double coarse = reach / 8;
+  auto leaf = [&](double from, double h) {
+    double to = sigma > 0 ? std::min(from + h, window.hi) : std::max(from - h, window.lo);
+    return sigma > 0 ? Interval(from, std::max(from, to)) : Interval(std::min(from, to), from);
+  };
+  std::vector<char> occupying(candidates.size(), 0);
+  std::size_t last = candidates.size();   // the candidate found pushing last: tried first
+  auto free_leaf = [&](const Interval& y) {
+    if (last < candidates.size() && may_push(last, y)) return false;
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+      if (i != last && may_push(i, y)) {
+        last = i;
+        return false;
       }
-    } else {
-      std::optional<double> r = furthest(c, window, 6, furthest);
-      end = r ? *r : start;
+    return true;
+  };
+  double edge_reached = start;
+  int level = 0;
+  bool bounded = false;
+  while (true) {
+    double h = coarse;
+    for (int i = 0; i < level; ++i) h *= 0.5;
+    Interval y = leaf(edge_reached, h);
+    if (free_leaf(y)) {
+      bounded = true;
+      break;
     }
-    if (sigma > 0 ? *end > start : *end < start) out.extended = true;
-    if (further(envelope_end, *end, sigma) != envelope_end || furthest_label.empty()) {
-      auto name = [&](const FeatureIdentity& f) {
-        const Part& part = m.parts[f.part];
-        std::string edge = part.loops.at(f.loop).edges.at(f.edge).label;
-        if (edge.empty()) edge = "loop " + std::to_string(f.loop) + " edge " + std::to_string(f.edge);
-        return part.name + " " + (f.kind == FeatureKind::vertex ? "vertex of " : "") + edge;
-      };
-      furthest_label = name(c.first) + " / " + name(c.second) + (root ? "" : " (not enclosed)");
+    if (level < levels) {
+      ++level;
+      continue;
     }
-    envelope_end = further(envelope_end, *end, sigma);
+    occupying[last] = 1;
+    double next = end_of(y, sigma);
+    if (next == edge_reached || next == end_of(window, sigma)) break;
+    edge_reached = next;
   }
-  // 4. The envelope, unless it may reach the window's far end.
-  double margin = reach / 8;
-  if (sigma > 0 ? envelope_end > window.hi - margin : envelope_end < window.lo + margin) {
+  out.occupying = static_cast<std::size_t>(std::count(occupying.begin(), occupying.end(), 1));
+  if (!bounded) {
+    auto name = [&](const FeatureIdentity& f) {
+      const Part& part = m.parts[f.part];
+      std::string edge = part.loops.at(f.loop).edges.at(f.edge).label;
+      if (edge.empty()) edge = "loop " + std::to_string(f.loop) + " edge " + std::to_string(f.edge);
+      return part.name + " " + (f.kind == FeatureKind::vertex ? "vertex of " : "") + edge;
+    };
+    const CurveSlice& c = candidates[last];
     out.why = "a feature pair other than the holding one may hold the follower further than the search reaches (" +
-              furthest_label + ")";
+              name(c.first) + " / " + name(c.second) + ")";
     return out;
   }
-  out.chart = sigma > 0 ? Interval(holder.lo, std::max(holder.hi, envelope_end))
-                        : Interval(std::min(holder.lo, envelope_end), holder.hi);
+  out.extended = edge_reached != start;
+  out.chart = sigma > 0 ? Interval(holder.lo, std::max(holder.hi, edge_reached))
+                        : Interval(std::min(holder.lo, edge_reached), holder.hi);
   out.bounded = true;
   return out;
 }

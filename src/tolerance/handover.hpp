@@ -23,7 +23,7 @@ struct HandoverEnvelope {
   Interval chart;            ///< the holder's enclosure widened in the direction the follower is pushed
   bool extended = false;     ///< a feature pair other than the holder may hold the follower beyond it
   std::size_t candidates = 0;   ///< feature pairs whose edges may meet in the window
-  std::size_t excluded = 0;     ///< of which certainly unable to hold the follower there
+  std::size_t occupying = 0;    ///< of which found possibly pushing in a leaf the walk passed
   std::string why;
 };
 
@@ -33,14 +33,15 @@ class HandoverSearch {
   HandoverSearch(std::shared_ptr<const CurveSolver> solver, std::size_t fixed_part, std::size_t free_part);
 
   /// `curve` is the holding feature pair's (its fixed_range the driver's range when it ranges),
-  /// `holder` the certified enclosure of its root over `box` (chart units). Every feature pair
+  /// `holder` the certified enclosure of its root over `box` (chart units). The feature pairs
   /// of the two parts whose edges may meet with the follower in the window beyond `holder`, in
-  /// the direction the follower is free to move (the holder's F_v sign), is either certainly
-  /// unable to hold the follower there (no zero of its contact function there, or only zeros
-  /// where the follower's free side is the other one: a contact blocking it from ahead) or
-  /// enclosed over the box; the envelope reaches the furthest candidate. Unbounded when the
-  /// holder's free side is not certain, a candidate cannot be enclosed or may reach the
-  /// window's far end.
+  /// the direction the follower is free to move (the holder's F_v sign), are the candidates;
+  /// the envelope ends at the first leaf of the window (from the holder's enclosure on) where
+  /// every candidate is certainly unable to hold the follower (no zero of its contact function
+  /// there, only zeros where the follower's free side is the other one, or only zeros off its
+  /// features). Unbounded when the holder's free side is not certain or no such leaf is found
+  /// in the window. Candidates' roots are enclosed by CurveSolver::certified_range (with
+  /// `relative_accuracy`, `absolute_accuracy`; its sub-boxes counted in `boxes`).
   HandoverEnvelope envelope(const CurveSlice& curve, const Box& box, const Interval& holder,
                             double relative_accuracy, double absolute_accuracy, std::size_t& boxes) const;
 

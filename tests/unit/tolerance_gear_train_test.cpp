@@ -81,10 +81,6 @@ TEST(ToleranceChainGear, TwoGearTrainKeepsEveryMonteCarloSampleAndExactRecomputa
 // sample leaves it.
 TEST(ToleranceChainGear, ThreeGearTrainBandIsBoundedAndKeepsEveryMonteCarloSample) {
   ToleranceOptions options = test_gears::chain_options(Rational(1, 5), 100, 9);
-  // The composition under test is the nominal holders' (session 25: the default band also
-  // encloses hand-overs, and on gear meshes its candidate tests cannot yet bound it; the
-  // composition's own checks are unchanged, under the assumption the band then states).
-  options.chain_assume_nominal_holder = true;
   ToleranceResult result = analyze_tolerances_text(test_gears::gear_train(3), options);
   ASSERT_EQ(result.chain.size(), 2u);
   ASSERT_TRUE(result.monte_carlo.has_value());

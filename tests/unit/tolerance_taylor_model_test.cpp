@@ -291,10 +291,6 @@ TEST(ToleranceTaylorModel, ChainBandWithTaylorPartialsHoldsMonteCarloAndIsNarrow
     options.monte_carlo = monte_carlo;
     options.seed = 21;
     options.taylor_partials = taylor;
-    // The composition under test is the nominal holders' (session 25: the default band also
-    // encloses hand-overs, and on gear meshes its candidate tests cannot yet bound it; the
-    // composition's own checks are unchanged, under the assumption the band then states).
-    options.chain_assume_nominal_holder = true;
     return analyze_tolerances_text(text, options);
   };
   ToleranceResult with = band(true, 300), without = band(false, 0);
