@@ -257,6 +257,13 @@ class ChainAnalysis {
         play.push_back(std::isfinite(ks.play[fi]) ? ks.play[fi] : -1.0);
         path.push_back(p);
       }
+      // The Monte Carlo's start (monte_carlo): an unloaded follower keeps its position while
+      // free, so where the train starts with it free (the backlash not yet taken up) it waits
+      // there until a contact meets it.
+      bool unloaded = fi < kinematics.loads.size() && kinematics.loads[fi].kind == FollowerLoad::Kind::none;
+      free_start_.push_back(unloaded && !path.empty() && !path.front().contact ? std::optional<double>(path.front().follower)
+                                                                                 : std::nullopt);
+      unloaded_.push_back(unloaded);
       ToleranceOptions stage_options = options_;
       stage_options.driver = a;
       stage_options.follower = b;
@@ -799,7 +806,7 @@ class ChainAnalysis {
     std::optional<PairGeometry<Interval>> geometry;
   };
   bool actual_root(const CurveSolver& solver, std::vector<Candidate>& candidates, double guess, double width,
-                   Interval& value, bool& handed_over) const {
+                   Interval& value, bool& handed_over, int& sigma) const {
     handed_over = false;
     auto sign_at = [&](Candidate& c, double v) { return solver.point_sign(c.curve, *c.geometry, v); };
     // A root of candidate c with certain end signs in a bracket about `at` (widened up to 12
@@ -814,7 +821,7 @@ class ChainAnalysis {
       }
       return false;
     };
-    int sigma = 0;
+    sigma = 0;
     if (!bracket(candidates.front(), guess, width, value, sigma)) return false;
     auto further_end = [&](const Interval& y) { return sigma > 0 ? y.hi : y.lo; };
     std::size_t holder = 0;
@@ -827,16 +834,19 @@ class ChainAnalysis {
         int here = sign_at(c, x);
         if (here == 1) continue;   // apart at the value: it does not push the follower beyond it
         if (here == -1) {
-          // it penetrates: its root on the sigma side (its function turning positive)
+          // it penetrates: its root on the sigma side (its function turning positive), bracketed
+          // by doubling steps from the last point where it certainly still penetrates
           double w = std::max(value.width(), 1e-9 * (1 + std::fabs(x)));
+          double inside = 0;   // offset of that point from x
           int there = -1;
           for (int step = 0; step < 60 && w < 1 && there != 1; ++step) {
             there = sign_at(c, x + sigma * w);
+            if (there == -1) inside = w;
             if (there != 1) w *= 2;
           }
           if (there != 1) return false;
           Interval root;
-          Interval range = sigma > 0 ? Interval(x, x + w) : Interval(x - w, x);
+          Interval range = sigma > 0 ? Interval(x + inside, x + w) : Interval(x - w, x - inside);
           if (!solver.certified_point_root(c.curve, *c.geometry, range, root)) return false;
           value = root;
           holder = k;
@@ -891,6 +901,11 @@ class ChainAnalysis {
         PairGeometry<Interval> geometry;
       };
       std::vector<std::vector<Cached>> geometry(stages_.size());
+      // Per pair: where its follower is (part units; an unloaded follower stays there while no
+      // contact meets it), from its free start.
+      std::vector<std::optional<Interval>> where(stages_.size());
+      for (std::size_t s = 0; s < stages_.size(); ++s)
+        if (free_start_[s]) where[s] = Interval::point(*free_start_[s]);
       for (std::size_t i = 0; i < positions(); ++i) {
         const VariationSample& sample = result_.samples[i];
         if (!sample.contact) continue;
@@ -932,12 +947,20 @@ class ChainAnalysis {
           }
           Interval root;
           bool handed_over = false;
-          if (!actual_root(*stage.solver, candidates, guess, 0.25 * linear + 1e-9 * (1 + std::fabs(guess)), root, handed_over)) {
+          int sigma = 0;
+          if (!actual_root(*stage.solver, candidates, guess, 0.25 * linear + 1e-9 * (1 + std::fabs(guess)), root,
+                           handed_over, sigma)) {
             ok = false;
             break;
           }
           handed[index] += handed_over;
           x = to_part(root, stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
+          // An unloaded follower not yet met (still beyond the contact on its free side, e.g. in
+          // the backlash at the train's start) stays where it is: the sigma-further of both.
+          if (unloaded_[s] && where[s])
+            x = sigma > 0 ? Interval(std::max(x.lo, where[s]->lo), std::max(x.hi, where[s]->hi))
+                          : Interval(std::min(x.lo, where[s]->lo), std::min(x.hi, where[s]->hi));
+          if (unloaded_[s]) where[s] = x;
         }
         if (!ok) {
           // no certified root: outside a bounded band (counted so); elsewhere not evaluated
@@ -1029,6 +1052,8 @@ class ChainAnalysis {
   // The hand-over envelope (handover.cpp): on unless the caller assumes the nominal holders.
   bool envelope_on() const { return !options_.chain_assume_nominal_holder; }
   std::vector<StageAnalysis> stages_;
+  std::vector<char> unloaded_;                       // per pair: its follower has no load
+  std::vector<std::optional<double>> free_start_;    // per pair: an unloaded follower's free start (part units)
   std::vector<std::unique_ptr<HandoverSearch>> handovers_;   // per pair
   std::vector<std::vector<PositionStage>> per_;   // [position][pair]
   ToleranceResult result_;

@@ -12,17 +12,25 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace hipair::test_chain {
 
-/// Part `output`'s position at every sample of the exact engine driving `driver` over `range`
-/// on a grid of `steps` per turn, as the analysis' kinematics samples it: (driver, output).
-inline std::vector<std::pair<double, double>> chain_path(const Model& model, const std::string& driver,
-                                                         const std::pair<Rational, Rational>& range,
-                                                         const std::string& output, unsigned steps) {
+/// One sample of the exact train: the driver, the output part's position, and every follower's
+/// touching feature pairs ("pair: label", motion limits left out).
+struct TrainSample {
+  double driver = 0, output = 0;
+  std::set<std::string> touching;
+};
+
+/// The exact engine driving `driver` over `range` on a grid of `steps` per turn, as the
+/// analysis' kinematics samples it.
+inline std::vector<TrainSample> chain_path(const Model& model, const std::string& driver,
+                                           const std::pair<Rational, Rational>& range, const std::string& output,
+                                           unsigned steps) {
   KinematicsOptions k;
   k.driver = driver;
   k.range = range;
@@ -33,9 +41,16 @@ inline std::vector<std::pair<double, double>> chain_path(const Model& model, con
   std::size_t index = static_cast<std::size_t>(
       std::find(r.followers.begin(), r.followers.end(), output) - r.followers.begin());
   EXPECT_LT(index, r.followers.size());
-  std::vector<std::pair<double, double>> path;
-  for (const KinematicSample& sample : r.samples)
-    path.emplace_back(sample.driver, index < r.followers.size() ? sample.positions.at(index) : std::nan(""));
+  std::vector<TrainSample> path;
+  for (const KinematicSample& sample : r.samples) {
+    TrainSample t;
+    t.driver = sample.driver;
+    t.output = index < r.followers.size() ? sample.positions.at(index) : std::nan("");
+    for (const std::vector<ContactLabel>& contacts : sample.contacts)
+      for (const ContactLabel& c : contacts)
+        if (!c.limit) t.touching.insert(c.pair + ": " + c.label);
+    path.push_back(std::move(t));
+  }
   return path;
 }
 
@@ -49,10 +64,10 @@ inline double chain_output(const Model& model, const std::string& driver, double
   bool at_start = Rational(theta) == from;
   auto path = chain_path(model, driver, std::make_pair(from, at_start ? from + Rational(1, 100) : Rational(theta)),
                          output, steps);
-  const std::pair<double, double>& sample = at_start ? path.front() : path.back();
+  const TrainSample& sample = at_start ? path.front() : path.back();
   // The range's end (or start) is a sample (its double within a few ulps).
-  EXPECT_NEAR(sample.first, theta, 4 * std::numeric_limits<double>::epsilon() * (1 + std::fabs(theta)));
-  return sample.second;
+  EXPECT_NEAR(sample.driver, theta, 4 * std::numeric_limits<double>::epsilon() * (1 + std::fabs(theta)));
+  return sample.output;
 }
 
 }  // namespace hipair::test_chain
