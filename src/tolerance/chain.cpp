@@ -17,8 +17,10 @@
 //     each pair's output at the box's centre plus its total derivatives over the box (the chain
 //     rule over the pairs' -F_p/F_v and -F_t/F_v) times the box, intersected with the interval
 //     composition (compose_over; a box so composed through the last pair is not bisected);
-//   - Monte Carlo: at each sampled vector, each pair's root certified (interval bisection) with
-//     its driver ranging over the previous pair's certified root at that vector.
+//   - Monte Carlo: at each sampled vector, each pair's follower where the actual contact puts
+//     it (the first contact it meets among its nominal holder and the neighbouring holders along
+//     the path: a tooth hand-over inside the box followed; monte_carlo, actual_root), certified
+//     (interval bisection), its driver ranging over the previous pair's certified value there.
 #include "model/parametric/parametric.hpp"
 #include "tolerance/handover.hpp"
 #include "tolerance/mean_value.hpp"
@@ -764,7 +766,7 @@ class ChainAnalysis {
   }
 
   // The feature pairs that may hold pair s's follower at position i at a sampled vector (the
-  // Monte Carlo's candidates): the nominal holder first, then the nearest other feature pair
+  // Monte Carlo's candidates; docs/tolerance.md "Assembly chains", step 5): the nominal holder first, then the nearest other feature pair
   // holding the follower along the nominal path before position i and the nearest after it (the
   // tooth pairs handing over there), each as a slice at position i (its charts and driver).
   std::vector<CurveSlice> holders_near(std::size_t s, std::size_t i) const {
@@ -799,8 +801,8 @@ class ChainAnalysis {
   // that candidate's root on the sigma side (where its function turns positive), and the
   // candidates are tried again there; one whose sign is undecided there touches within the
   // enclosure's rounding: the value becomes the sigma-most of both enclosures. Every enclosure
-  // is certified (interval bisection with certain end signs). `geometry[c]` caches candidate
-  // c's geometry at the vector (by feature pair). False when a root cannot be bracketed.
+  // is certified (interval bisection with certain end signs); each candidate carries its
+  // geometry at the vector. False when a root cannot be bracketed.
   struct Candidate {
     CurveSlice curve;
     std::optional<PairGeometry<Interval>> geometry;
@@ -867,7 +869,7 @@ class ChainAnalysis {
     return false;   // the candidates did not settle
   }
 
-  // Monte Carlo (docs/tolerance.md "Monte Carlo"): at each sampled vector, pair by pair, the
+  // Monte Carlo (docs/tolerance.md "Assembly chains", step 5): at each sampled vector, pair by pair, the
   // follower's actual position (actual_root, its driver the previous pair's value there), the
   // output's enclosure against the bands. Positions where every pair holds its follower at
   // nominal are evaluated, with or without a bounded certified band.
