@@ -17,8 +17,10 @@
 //     each pair's output at the box's centre plus its total derivatives over the box (the chain
 //     rule over the pairs' -F_p/F_v and -F_t/F_v) times the box, intersected with the interval
 //     composition (compose_over; a box so composed through the last pair is not bisected);
-//   - Monte Carlo: at each sampled vector, each pair's root certified (interval bisection) with
-//     its driver ranging over the previous pair's certified root at that vector.
+//   - Monte Carlo: at each sampled vector, each pair's follower where the actual contact puts
+//     it (the first contact it meets among its nominal holder and the neighbouring holders along
+//     the path: a tooth hand-over inside the box followed; monte_carlo, actual_root), certified
+//     (interval bisection), its driver ranging over the previous pair's certified value there.
 #include "model/parametric/parametric.hpp"
 #include "tolerance/handover.hpp"
 #include "tolerance/mean_value.hpp"
@@ -257,6 +259,13 @@ class ChainAnalysis {
         play.push_back(std::isfinite(ks.play[fi]) ? ks.play[fi] : -1.0);
         path.push_back(p);
       }
+      // The Monte Carlo's start (monte_carlo): an unloaded follower keeps its position while
+      // free, so where the train starts with it free (the backlash not yet taken up) it waits
+      // there until a contact meets it.
+      bool unloaded = fi < kinematics.loads.size() && kinematics.loads[fi].kind == FollowerLoad::Kind::none;
+      free_start_.push_back(unloaded && !path.empty() && !path.front().contact ? std::optional<double>(path.front().follower)
+                                                                                 : std::nullopt);
+      unloaded_.push_back(unloaded);
       ToleranceOptions stage_options = options_;
       stage_options.driver = a;
       stage_options.follower = b;
@@ -756,6 +765,114 @@ class ChainAnalysis {
       notes_.push_back("the certified band is unbounded at " + std::to_string(count) + " position(s): " + why);
   }
 
+  // The feature pairs that may hold pair s's follower at position i at a sampled vector (the
+  // Monte Carlo's candidates; docs/tolerance.md "Assembly chains", step 5): the nominal holder first, then the nearest other feature pair
+  // holding the follower along the nominal path before position i and the nearest after it (the
+  // tooth pairs handing over there), each as a slice at position i (its charts and driver).
+  std::vector<CurveSlice> holders_near(std::size_t s, std::size_t i) const {
+    const std::vector<StageContact>& contacts = stages_[s].contacts;
+    const CurveSlice& own = contacts[i].curve;
+    std::vector<CurveSlice> out{own};
+    auto differs = [&](const CurveSlice& c) {
+      return std::none_of(out.begin(), out.end(), [&](const CurveSlice& o) { return o.first == c.first && o.second == c.second; });
+    };
+    auto add = [&](std::size_t j) {
+      if (!contacts[j].contact || !differs(contacts[j].curve)) return false;
+      CurveSlice c = own;
+      c.first = contacts[j].curve.first;
+      c.second = contacts[j].curve.second;
+      out.push_back(c);
+      return true;
+    };
+    for (std::size_t j = i; j-- > 0;)
+      if (add(j)) break;
+    for (std::size_t j = i + 1; j < contacts.size(); ++j)
+      if (add(j)) break;
+    return out;
+  }
+
+  // Pair s's follower at one sampled vector and position (the Monte Carlo's value, chart
+  // units): the first contact it meets among the candidates (holders_near), as the kinematic
+  // engine places a pushed follower (src/kinematics/engine.cpp: at the end of the blocked range
+  // its old position fell into). The holder's root is bracketed about its linearised value;
+  // sigma, the side its contact function is positive on, is the side the follower is free to
+  // move to. A candidate whose features penetrate certainly at the current value's sigma end
+  // (its contact function negative there) holds the follower beyond it: the follower moves to
+  // that candidate's root on the sigma side (where its function turns positive), and the
+  // candidates are tried again there; one whose sign is undecided there touches within the
+  // enclosure's rounding: the value becomes the sigma-most of both enclosures. Every enclosure
+  // is certified (interval bisection with certain end signs); each candidate carries its
+  // geometry at the vector. False when a root cannot be bracketed.
+  struct Candidate {
+    CurveSlice curve;
+    std::optional<PairGeometry<Interval>> geometry;
+  };
+  bool actual_root(const CurveSolver& solver, std::vector<Candidate>& candidates, double guess, double width,
+                   Interval& value, bool& handed_over, int& sigma) const {
+    handed_over = false;
+    auto sign_at = [&](Candidate& c, double v) { return solver.point_sign(c.curve, *c.geometry, v); };
+    // A root of candidate c with certain end signs in a bracket about `at` (widened up to 12
+    // times by 4); `sigma` receives the sign at its upper end.
+    auto bracket = [&](Candidate& c, double at, double w, Interval& root, int& sigma) {
+      for (int k = 0; k < 12 && w < 1; ++k, w *= 4) {
+        int lo = sign_at(c, at - w), hi = sign_at(c, at + w);
+        if ((lo == 1 || lo == -1) && (hi == 1 || hi == -1) && lo != hi) {
+          sigma = hi;
+          return solver.certified_point_root(c.curve, *c.geometry, Interval(at - w, at + w), root);
+        }
+      }
+      return false;
+    };
+    sigma = 0;
+    if (!bracket(candidates.front(), guess, width, value, sigma)) return false;
+    auto further_end = [&](const Interval& y) { return sigma > 0 ? y.hi : y.lo; };
+    std::size_t holder = 0;
+    for (std::size_t round = 0; round <= candidates.size(); ++round) {
+      bool moved = false;
+      for (std::size_t k = 0; k < candidates.size() && !moved; ++k) {
+        if (k == holder) continue;
+        Candidate& c = candidates[k];
+        const double x = further_end(value);
+        int here = sign_at(c, x);
+        if (here == 1) continue;   // apart at the value: it does not push the follower beyond it
+        if (here == -1) {
+          // it penetrates: its root on the sigma side (its function turning positive), bracketed
+          // by doubling steps from the last point where it certainly still penetrates
+          double w = std::max(value.width(), 1e-9 * (1 + std::fabs(x)));
+          double inside = 0;   // offset of that point from x
+          int there = -1;
+          for (int step = 0; step < 60 && w < 1 && there != 1; ++step) {
+            there = sign_at(c, x + sigma * w);
+            if (there == -1) inside = w;
+            if (there != 1) w *= 2;
+          }
+          if (there != 1) return false;
+          Interval root;
+          Interval range = sigma > 0 ? Interval(x + inside, x + w) : Interval(x - w, x - inside);
+          if (!solver.certified_point_root(c.curve, *c.geometry, range, root)) return false;
+          value = root;
+          holder = k;
+          handed_over = true;
+          moved = true;
+          continue;
+        }
+        // undecided: it touches within the rounding; the sigma-most of both when it pushes
+        Interval root;
+        int side = 0;
+        if (!bracket(c, x, std::max(value.width(), 1e-12 * (1 + std::fabs(x))), root, side)) return false;
+        if (side != sigma) continue;   // a contact blocking the follower from ahead, not a push
+        value = sigma > 0 ? Interval(std::max(value.lo, root.lo), std::max(value.hi, root.hi))
+                          : Interval(std::min(value.lo, root.lo), std::min(value.hi, root.hi));
+      }
+      if (!moved) return true;
+    }
+    return false;   // the candidates did not settle
+  }
+
+  // Monte Carlo (docs/tolerance.md "Assembly chains", step 5): at each sampled vector, pair by pair, the
+  // follower's actual position (actual_root, its driver the previous pair's value there), the
+  // output's enclosure against the bands. Positions where every pair holds its follower at
+  // nominal are evaluated, with or without a bounded certified band.
   void monte_carlo() {
     auto start = std::chrono::steady_clock::now();
     double cpu_start = cpu_now();
@@ -763,60 +880,169 @@ class ChainAnalysis {
     summary.samples = options_.monte_carlo;
     summary.seed = options_.seed;
     std::vector<MonteCarloOutcome> outcomes(options_.monte_carlo);
+    std::vector<std::size_t> handed(outcomes.size(), 0), failed(outcomes.size(), 0);
+    std::vector<std::vector<std::size_t>> left(outcomes.size());   // positions outside the certified band
     const std::vector<Distribution>& dist = stages_.front().distributions;
-    parallel_for(options_.threads, outcomes.size(), [&](std::size_t index) {
+    // per pair and position: the candidates (the same for every vector)
+    std::vector<std::vector<std::vector<CurveSlice>>> near(stages_.size());
+    for (std::size_t s = 0; s < stages_.size(); ++s) {
+      near[s].resize(positions());
+      for (std::size_t i = 0; i < positions(); ++i)
+        if (result_.samples[i].contact)
+          near[s][i] = envelope_on() ? holders_near(s, i) : std::vector<CurveSlice>{stages_[s].contacts[i].curve};
+    }
+    auto evaluate = [&](std::size_t index) {
       MonteCarloOutcome& outcome = outcomes[index];
       outcome.value.assign(positions(), std::nan(""));
-      std::vector<double> deviations = draw(dist, options_.seed, index);
+      std::vector<double> deviations =
+          paths_.monte_carlo_vector ? paths_.monte_carlo_vector(index) : draw(dist, options_.seed, index);
       std::vector<Interval> parameters = stages_.front().solver->point_parameters(deviations);
-      // Per pair: the contact curve's geometry at this vector, shared along one feature pair.
-      std::vector<std::optional<PairGeometry<Interval>>> geometry(stages_.size());
-      std::vector<const CurveSlice*> geometry_curve(stages_.size(), nullptr);
+      // Per pair: each feature pair's geometry at this vector (it does not depend on the position).
+      struct Cached {
+        FeatureIdentity first, second;
+        PairGeometry<Interval> geometry;
+      };
+      std::vector<std::vector<Cached>> geometry(stages_.size());
+      // Per pair: where its follower is (part units; an unloaded follower stays there while no
+      // contact meets it), from its free start.
+      std::vector<std::optional<Interval>> where(stages_.size());
+      for (std::size_t s = 0; s < stages_.size(); ++s)
+        if (free_start_[s]) where[s] = Interval::point(*free_start_[s]);
       for (std::size_t i = 0; i < positions(); ++i) {
         const VariationSample& sample = result_.samples[i];
-        // Not sampled where the band is unbounded (not certified): every value lies in it.
-        if (!sample.contact || !std::isfinite(sample.certified.upper - sample.certified.lower)) continue;
+        if (!sample.contact) continue;
         ++outcome.evaluations;
         Interval x;
-        bool inside = true;
-        for (std::size_t s = 0; s < stages_.size() && inside; ++s) {
+        bool ok = true;
+        for (std::size_t s = 0; s < stages_.size() && ok; ++s) {
           const StageAnalysis& stage = stages_[s];
           const StageContact& c = stage.contacts[i];
-          const CurveSlice* key = geometry_curve[s];
-          if (!key || !(key->first == c.curve.first && key->second == c.curve.second)) {
-            geometry[s] = stage.solver->point_geometry(c.curve, parameters);
-            geometry_curve[s] = &c.curve;
+          std::vector<Candidate> candidates;
+          for (const CurveSlice& slice : near[s][i]) {
+            Candidate candidate{slice, std::nullopt};
+            auto it = std::find_if(geometry[s].begin(), geometry[s].end(),
+                                   [&](const Cached& g) { return g.first == slice.first && g.second == slice.second; });
+            if (it == geometry[s].end()) {
+              geometry[s].push_back(Cached{slice.first, slice.second, stage.solver->point_geometry(slice, parameters)});
+              it = geometry[s].end() - 1;
+            }
+            candidate.geometry = it->geometry;
+            candidates.push_back(std::move(candidate));
           }
-          CurveSlice curve = c.curve;
+          // the holder's linearised value: its driver moved to the previous pair's value
+          double guess = c.v, linear = 0;
+          for (std::size_t p = 0; p < deviations.size() && p < c.s_chart.size(); ++p) {
+            guess += c.s_chart[p] * deviations[p];
+            linear += std::fabs(c.s_chart[p] * deviations[p]);
+          }
           if (s > 0) {
             Interval t;
-            if (!part_to_chart(x, stage.result.driver_rotates, curve.fixed_half_turn,
+            if (!part_to_chart(x, stage.result.driver_rotates, c.curve.fixed_half_turn,
                                stages_[s - 1].result.samples[i].nominal, t)) {
-              inside = false;
+              ok = false;
               break;
             }
-            curve.fixed_range = t;
+            for (Candidate& candidate : candidates) candidate.curve.fixed_range = t;
+            double shift = per_[i][s].fixed_slope * (t.middle() - c.curve.fixed_value.get_d());
+            guess += shift;
+            linear += std::fabs(shift) + std::fabs(per_[i][s].fixed_slope) * t.width();
           }
-          Interval band = per_[i][s].certified_chart;
-          double w = band.width() + 1e-12 * (1 + std::fabs(c.v));
           Interval root;
-          if (!std::isfinite(w) || !stage.solver->certified_point_root(curve, *geometry[s], Interval(band.lo - w, band.hi + w), root)) {
-            inside = false;
+          bool handed_over = false;
+          int sigma = 0;
+          if (!actual_root(*stage.solver, candidates, guess, 0.25 * linear + 1e-9 * (1 + std::fabs(guess)), root,
+                           handed_over, sigma)) {
+            ok = false;
             break;
           }
+          handed[index] += handed_over;
           x = to_part(root, stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
+          // An unloaded follower not yet met (still beyond the contact on its free side, e.g. in
+          // the backlash at the train's start) stays where it is: the sigma-further of both.
+          if (unloaded_[s] && where[s])
+            x = sigma > 0 ? Interval(std::max(x.lo, where[s]->lo), std::max(x.hi, where[s]->hi))
+                          : Interval(std::min(x.lo, where[s]->lo), std::min(x.hi, where[s]->hi));
+          if (unloaded_[s]) where[s] = x;
         }
-        if (!inside) {
-          ++outcome.outside_certified;   // no root near the band: counted as outside it
+        if (!ok) {
+          // no certified root: outside a bounded band (counted so); elsewhere not evaluated
+          if (std::isfinite(sample.certified.upper - sample.certified.lower)) {
+            ++outcome.outside_certified;
+            left[index].push_back(i);
+          } else {
+            --outcome.evaluations;
+            ++failed[index];
+          }
           continue;
         }
+        std::size_t before = outcome.outside_certified;
         outcome.record(i, x, sample);
+        if (outcome.outside_certified > before) left[index].push_back(i);
+        if (paths_.monte_carlo_value) paths_.monte_carlo_value(index, i, x);
       }
-    });
+    };
+    // in chunks, the progress bar advanced between them (each vector writes its own slot)
+    const std::size_t chunk = std::max<std::size_t>(1, outcomes.size() / 20);
+    for (std::size_t from = 0; from < outcomes.size(); from += chunk) {
+      std::size_t count = std::min(chunk, outcomes.size() - from);
+      parallel_for(options_.threads, count, [&](std::size_t k) { evaluate(from + k); });
+      progress(0.6 + 0.4 * static_cast<double>(from + count) / static_cast<double>(outcomes.size()));
+    }
     merge_monte_carlo(outcomes, summary, result_);
     summary.seconds = wall_since(start);
     summary.cpu_seconds = cpu_now() - cpu_start;
     result_.monte_carlo = summary;
+    monte_carlo_notes(outcomes, handed, failed, left);
+  }
+
+  // What the Monte Carlo found, said where the report is read: hand-overs it followed, values
+  // outside the certified band (where, and what that means), beyond the linearised band.
+  void monte_carlo_notes(const std::vector<MonteCarloOutcome>& outcomes, const std::vector<std::size_t>& handed,
+                         const std::vector<std::size_t>& failed, const std::vector<std::vector<std::size_t>>& left) {
+    std::size_t handed_total = 0, failed_total = 0, unbounded = 0, evaluations = 0;
+    for (std::size_t k = 0; k < outcomes.size(); ++k) {
+      handed_total += handed[k];
+      failed_total += failed[k];
+      evaluations += outcomes[k].evaluations;
+    }
+    std::vector<std::size_t> where;
+    for (const auto& l : left) where.insert(where.end(), l.begin(), l.end());
+    std::sort(where.begin(), where.end());
+    where.erase(std::unique(where.begin(), where.end()), where.end());
+    for (const VariationSample& sample : result_.samples)
+      unbounded += sample.contact && !std::isfinite(sample.certified.upper - sample.certified.lower);
+    notes_.push_back(
+        (envelope_on()
+             ? "Monte Carlo: each pair's follower placed by the first contact it meets among the feature pairs holding "
+               "it along the nominal path next to the position (its nominal holder and the nearest other holder before "
+               "and after it), each value certified; another feature pair than the nominal holder held a follower " +
+                   std::to_string(handed_total) + " time(s) over "
+             : std::string("Monte Carlo under --assume-nominal-contact: each pair's follower on its nominal holder, as the "
+                           "band assumes (hand-overs inside the tolerance box not followed), each value certified; ")) +
+        std::to_string(evaluations) + " evaluated output position(s)" +
+                     (unbounded > 0 ? " (" + std::to_string(unbounded) +
+                                          " position(s) without a certified band: compared with the linearised band only)"
+                                    : std::string()));
+    if (failed_total > 0)
+      notes_.push_back("Monte Carlo: " + std::to_string(failed_total) +
+                       " output position(s) not evaluated (a follower's root could not be bracketed; no certified band there)");
+    if (!where.empty()) {
+      std::string drivers;
+      for (std::size_t k = 0; k < where.size() && k < 8; ++k)
+        drivers += (k ? ", " : "") + std::to_string(result_.samples[where[k]].driver);
+      if (where.size() > 8) drivers += ", ...";
+      notes_.push_back(
+          "Monte Carlo values outside the certified band at " + std::to_string(where.size()) +
+          " driver position(s) (" + drivers + ")" +
+          (envelope_on() ? ": a defect of the band (it must never happen)"
+                         : ": where the nominal holder assumed by --assume-nominal-contact is not the actual one for the "
+                           "sampled parameters (another tooth or flank taking over)"));
+    }
+    if (result_.monte_carlo && result_.monte_carlo->outside_linear > 0)
+      notes_.push_back("Monte Carlo values beyond the linearised band: " +
+                       std::to_string(result_.monte_carlo->outside_linear) + " of " + std::to_string(evaluations) +
+                       ", by up to " + std::to_string(result_.monte_carlo->linearisation_error) +
+                       " (rad or mm): the linearisation error, hand-overs inside the tolerance box included");
   }
 
   static constexpr std::size_t max_shared_boxes = 128;   // sub-boxes of the tolerance box per position
@@ -828,6 +1054,8 @@ class ChainAnalysis {
   // The hand-over envelope (handover.cpp): on unless the caller assumes the nominal holders.
   bool envelope_on() const { return !options_.chain_assume_nominal_holder; }
   std::vector<StageAnalysis> stages_;
+  std::vector<char> unloaded_;                       // per pair: its follower has no load
+  std::vector<std::optional<double>> free_start_;    // per pair: an unloaded follower's free start (part units)
   std::vector<std::unique_ptr<HandoverSearch>> handovers_;   // per pair
   std::vector<std::vector<PositionStage>> per_;   // [position][pair]
   ToleranceResult result_;

@@ -77,6 +77,11 @@ bool CurveSolver::certified_point_root(const CurveSlice& curve, const std::vecto
   return certified_point_root(curve, geometry(curve, parameters), bracket, root);
 }
 
+int CurveSolver::point_sign(const CurveSlice& curve, const PairGeometry<Interval>& geometry, double free) const {
+  Interval fixed = curve.fixed_range ? *curve.fixed_range : Interval::enclose(curve.fixed_value);
+  return evaluate<Interval>(curve, geometry, fixed, Interval::point(free)).sign();
+}
+
 bool CurveSolver::certified_point_root(const CurveSlice& curve, const PairGeometry<Interval>& geometry,
                                        Interval bracket, Interval& root) const {
   Interval fixed = curve.fixed_range ? *curve.fixed_range : Interval::enclose(curve.fixed_value);

@@ -90,6 +90,10 @@ class CurveSolver {
   /// depend on the held coordinate, so positions along one feature pair share it.
   bool certified_point_root(const CurveSlice& curve, const PairGeometry<Interval>& geometry, Interval bracket,
                             Interval& root) const;
+  /// The sign of F at the free chart value `free` (the held coordinate `curve.fixed_value`, or
+  /// `curve.fixed_range` when it ranges), the geometry evaluated (point_geometry): +1 or -1 when
+  /// certain (-1: the features penetrate there), 0 for an exact zero, 2 when undecided.
+  int point_sign(const CurveSlice& curve, const PairGeometry<Interval>& geometry, double free) const;
   /// The curve's geometry (both features, both axes) at parameter values (enclosures).
   PairGeometry<Interval> point_geometry(const CurveSlice& curve, const std::vector<Interval>& parameters) const {
     return geometry(curve, parameters);

@@ -107,6 +107,12 @@ struct ChainPaths {
   /// Tests only: applied to each contact the kernel path looked up (stage, position), so that a
   /// test can check that a wrong lookup is caught.
   std::function<void(std::size_t, std::size_t, CurveSlice&)> mutate_lookup;
+  /// Tests only: the Monte Carlo's parameter vector `index` (deviations, each in the tolerance
+  /// box) instead of draw(seed, index), so that a test can place vectors at the box's corners.
+  std::function<std::vector<double>(std::size_t)> monte_carlo_vector;
+  /// Tests only: each Monte Carlo value (vector index, driver position, the output's certified
+  /// enclosure in part units).
+  std::function<void(std::size_t, std::size_t, const kernels::Interval&)> monte_carlo_value;
 };
 
 /// The analysis of an assembly chain (ToleranceOptions::chain; chain.cpp).

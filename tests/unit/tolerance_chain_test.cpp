@@ -146,7 +146,7 @@ TEST(ToleranceChain, TwoPairChainEqualsTheCompositionOfItsPairs) {
 // rebuilds' recorded roundings and the positions' doubles are below 1e-10, so a central
 // difference is within h^2 |f'''| / 6 + 2e-10 / h of the derivative; |f'''| <= 6 on these
 // chains' scale (mm, rad).
-void expect_finite_differences(const std::string& text, const ToleranceResult& result) {
+void expect_finite_differences(const std::string& text, const ToleranceResult& result, unsigned steps) {
   auto model = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text));
   Rational h(1, 10000);
   double bound = h.get_d() * h.get_d() + 2e-10 / h.get_d();
@@ -162,7 +162,8 @@ void expect_finite_differences(const std::string& text, const ToleranceResult& r
       auto rebuilt = [&](const Rational& delta) {
         std::vector<Rational> d(result.parameters.size(), Rational(0));
         d[i] = delta;
-        return test_chain::chain_output(model->exact_model(d), "cam", s.driver, result.follower);
+        return test_chain::chain_output(model->exact_model(d), "cam", s.driver, result.follower,
+                                        Rational(result.samples.front().driver), steps);
       };
       double difference = (rebuilt(h) - rebuilt(-h)) / (2 * h.get_d());
       EXPECT_NEAR(s.sensitivities[i], difference, bound);
@@ -190,7 +191,7 @@ TEST(ToleranceChain, ChainSensitivitiesEqualFiniteDifferencesOfExactRecomputatio
   ToleranceResult result = analyze_tolerances_text(text, options);
   ASSERT_EQ(result.chain.size(), 2u);
   EXPECT_EQ(result.follower, "lever");
-  expect_finite_differences(text, result);
+  expect_finite_differences(text, result, 24);
 }
 
 // A rotating part inside the chain: cam -> rocker (pivoted, held on the cam by a torque) ->
@@ -229,7 +230,7 @@ TEST(ToleranceChain, RotatingIntermediatePartKeepsEveryMonteCarloSampleAndMatche
   EXPECT_GE(contact, 30u);
   ASSERT_TRUE(result.monte_carlo);
   EXPECT_EQ(result.monte_carlo->evaluations, 40 * contact);
-  expect_finite_differences(text, result);
+  expect_finite_differences(text, result, 36);
   // Independently of the composition: the exact chain (the model rebuilt exactly at random
   // vectors of the box, its motion recomputed by the kernel-sliced engine) lies in the certified
   // band, up to the positions' doubles (1e-10, as above).
@@ -246,7 +247,7 @@ TEST(ToleranceChain, RotatingIntermediatePartKeepsEveryMonteCarloSampleAndMatche
     for (std::size_t k : {std::size_t{2}, std::size_t{13}, std::size_t{27}}) {
       const VariationSample& s = result.samples[k];
       ASSERT_TRUE(s.contact);
-      double out = test_chain::chain_output(exact, "cam", s.driver, "lifter");
+      double out = test_chain::chain_output(exact, "cam", s.driver, "lifter", Rational(result.samples.front().driver), 36);
       EXPECT_GE(out, s.certified.lower - 1e-10) << s.driver;
       EXPECT_LE(out, s.certified.upper + 1e-10) << s.driver;
     }

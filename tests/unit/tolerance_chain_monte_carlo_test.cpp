@@ -1,0 +1,207 @@
+// The assembly chain's Monte Carlo follows tooth hand-overs (src/tolerance/chain.cpp,
+// monte_carlo and actual_root; docs/tolerance.md "Monte Carlo"): at each sampled parameter
+// vector and driver position the output's value is the one the actual contact gives (the first
+// contact each follower meets), not its nominal holder's root, and it is certified. Oracle: the
+// exact kinematic engine on the exact model rebuilt at the vector (its deviations are doubles:
+// exact rationals), the train followed from the range's start as the analysis does
+// (tolerance_chain_oracle.hpp), independent of the Monte Carlo's code.
+//
+// Vectors: the box corners that the linearisation moves furthest down and up at every position
+// next to a change of the nominal holder (a hand-over; the neighbour's sensitivities, as the
+// hand-over tests' witnesses), the same at the position's own sensitivities, and the Monte
+// Carlo's own draws (draw(seed, index)). Named mutation: the Monte Carlo following each pair's
+// nominal holder only (as before session 26) fails ExactTrainAtAHandOver (at driver 0.181 rad
+// a corner's exact train is -0.14756 rad, the holder's root above -0.14631).
+#include "gear_train_models.hpp"
+#include "kinematics_test_support.hpp"
+#include "gear_train_tolerances.hpp"
+#include "tolerance_chain_oracle.hpp"
+
+#include "model/parametric/parametric.hpp"
+#include "tolerance/sampling.hpp"
+#include "tolerance/stage.hpp"
+
+#include <hipair/tolerance.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <mutex>
+#include <regex>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace hipair {
+namespace {
+
+using tolerance_detail::ChainPaths;
+using tolerance_detail::Distribution;
+
+// The deviations (doubles in the box: each distribution's sample range) that the linearisation
+// with sensitivities `s` moves furthest down (`down`) or up.
+std::vector<double> corner(const std::vector<Distribution>& d, const std::vector<double>& s, bool down) {
+  std::vector<double> v(d.size(), 0.0);
+  for (std::size_t i = 0; i < v.size() && i < s.size(); ++i)
+    if (s[i] != 0 && d[i].sample_lo < d[i].sample_hi) v[i] = (s[i] > 0) == down ? d[i].sample_lo : d[i].sample_hi;
+  return v;
+}
+
+struct Case {
+  std::string name, text;
+  std::pair<Rational, Rational> range;
+  unsigned positions = 360;
+  std::size_t draws = 4;   // Monte Carlo draws besides the corners
+  std::size_t max_corners = 64;   // corners kept (evenly over the hand-over positions' corners)
+};
+
+struct Outcome {
+  std::size_t checked = 0, handed_over = 0;
+  // values where the exact train is held by a feature pair that holds no follower anywhere along
+  // the analysed nominal path (outside the Monte Carlo's candidates: not compared, counted)
+  std::size_t off_path = 0;
+  double widest = 0;   // widest certified enclosure of a value (output units)
+};
+
+// The case's chain analysed with the corners and draws as its Monte Carlo vectors; every value
+// checked against the exact train at its vector.
+Outcome check_case(const Case& c) {
+  SCOPED_TRACE(c.name);
+  ToleranceOptions options;
+  options.driver = "gear-A";
+  options.chain = true;
+  options.range = c.range;
+  options.positions = c.positions;
+  options.threads = 2;
+  options.seed = 26;
+  // (the corners need the sensitivities only: the band under the nominal holders is cheaper)
+  ToleranceOptions nominal_holders = options;
+  nominal_holders.chain_assume_nominal_holder = true;
+  ToleranceResult plain = tolerance_detail::analyze_chain(c.text, nominal_holders);
+  model_detail::ParametricModel model = model_detail::ParametricModel::read(c.text);
+  std::vector<Distribution> dist = tolerance_detail::distributions(model.nominal());
+  std::vector<std::vector<double>> vectors;
+  for (std::size_t k = 0; k < plain.samples.size(); ++k) {
+    const VariationSample& s = plain.samples[k];
+    if (!s.contact) continue;
+    for (std::size_t j : {k == 0 ? k : k - 1, k + 1 < plain.samples.size() ? k + 1 : k}) {
+      if (j == k || !plain.samples[j].contact || plain.samples[j].region == s.region) continue;
+      for (bool down : {true, false}) {
+        vectors.push_back(corner(dist, plain.samples[j].sensitivities, down));
+        vectors.push_back(corner(dist, s.sensitivities, down));
+      }
+    }
+  }
+  if (vectors.size() > c.max_corners) {
+    std::vector<std::vector<double>> kept;
+    for (std::size_t k = 0; k < c.max_corners; ++k) kept.push_back(vectors[k * vectors.size() / c.max_corners]);
+    vectors.swap(kept);
+  }
+  const std::size_t corners = vectors.size();
+  for (std::size_t r = 0; r < c.draws; ++r) vectors.push_back(tolerance_detail::draw(dist, options.seed, corners + r));
+  ChainPaths paths;
+  paths.monte_carlo_vector = [&](std::size_t index) { return vectors.at(index); };
+  std::mutex mutex;
+  std::map<std::pair<std::size_t, std::size_t>, kernels::Interval> values;
+  paths.monte_carlo_value = [&](std::size_t index, std::size_t k, const kernels::Interval& x) {
+    std::lock_guard<std::mutex> lock(mutex);
+    values[{index, k}] = x;
+  };
+  options.monte_carlo = vectors.size();
+  ToleranceResult result = tolerance_detail::analyze_chain(c.text, options, paths);
+  Outcome out;
+  std::size_t held = 0;
+  for (const VariationSample& s : result.samples) held += s.contact;
+  EXPECT_EQ(values.size(), vectors.size() * held) << "every held position evaluated at every vector";
+  EXPECT_EQ(result.monte_carlo->evaluations, vectors.size() * held);
+  EXPECT_EQ(result.monte_carlo->outside_certified, 0u);
+  for (const std::string& note : result.notes) {
+    std::smatch m;
+    if (std::regex_search(note, m, std::regex("held a follower ([0-9]+) time"))) out.handed_over = std::stoul(m[1]);
+  }
+  // the feature pairs holding the followers anywhere along the nominal path
+  std::set<std::string> holders;
+  for (const test_chain::TrainSample& t :
+       test_chain::chain_path(model.nominal(), "gear-A", c.range, result.follower, c.positions))
+    holders.insert(t.touching.begin(), t.touching.end());
+  for (std::size_t v = 0; v < vectors.size(); ++v) {
+    std::vector<Rational> d;
+    for (double x : vectors[v]) d.emplace_back(x);
+    auto path = test_chain::chain_path(model.exact_model(d), "gear-A", c.range, result.follower, c.positions);
+    for (std::size_t k = 0; k < result.samples.size(); ++k) {
+      auto it = values.find({v, k});
+      if (it == values.end()) continue;
+      const double driver = result.samples[k].driver;
+      auto at = std::find_if(path.begin(), path.end(), [&](const auto& p) { return p.driver == driver; });
+      if (at == path.end()) {
+        ADD_FAILURE() << "driver " << driver << " is not a sample of the exact train";
+        continue;
+      }
+      if (!std::includes(holders.begin(), holders.end(), at->touching.begin(), at->touching.end())) {
+        ++out.off_path;
+        continue;
+      }
+      ++out.checked;
+      out.widest = std::max(out.widest, it->second.width());
+      // (the oracle's position is a double of the exact engine's: 1e-10 covers its rounding)
+      EXPECT_GE(at->output, it->second.lo - 1e-10) << "vector " << v << (v < corners ? " (corner)" : " (draw)")
+                                                     << ", driver " << driver << ": [" << it->second.lo << ", "
+                                                     << it->second.hi << "]";
+      EXPECT_LE(at->output, it->second.hi + 1e-10) << "vector " << v << (v < corners ? " (corner)" : " (draw)")
+                                                     << ", driver " << driver << ": [" << it->second.lo << ", "
+                                                     << it->second.hi << "]";
+    }
+  }
+  std::printf("[ monte carlo ] %s: %zu vectors (%zu corners), %zu values = exact train, %zu hand-over(s) followed, "
+              "widest enclosure %.3g; %zu value(s) held off the nominal path's holders (not compared)\n",
+              c.name.c_str(), vectors.size(), corners, out.checked, out.handed_over, out.widest, out.off_path);
+  return out;
+}
+
+TEST(ToleranceChainMonteCarlo, ExactTrainAtAHandOver) {
+  Case c{"gear pair, flank toleranced wide, 0.16..0.19 rad",
+         test_gears::handover_model(test_gears::gear_train(2)),
+         {Rational(16, 100), Rational(19, 100)},
+         2000,
+         6};
+  Outcome o = check_case(c);
+  EXPECT_GE(o.checked, 50u);
+  EXPECT_EQ(o.off_path, 0u) << "the hand-over lies inside the range: every holder is on the nominal path";
+  EXPECT_GE(o.handed_over, 1u) << "the vectors reach the hand-over";
+}
+
+// Generated trains over more than a tooth period (hand-overs in each).
+TEST(ToleranceChainMonteCarlo, ExactTrainOnGeneratedTrains) {
+  std::vector<Case> cases{
+      {"2 gears 10/12", test_gears::gear_train(2, 10, 12), {Rational(0), Rational(7, 10)}, 90, 3},
+      {"3 gears 9/11, tolerances x2", test_gears::scaled(test_gears::gear_train(3, 9, 11), 2.0),
+       {Rational(1, 10), Rational(8, 10)}, 90, 3},
+  };
+  std::size_t checked = 0, handed_over = 0;
+  for (const Case& c : cases) {
+    Outcome o = check_case(c);
+    checked += o.checked;
+    handed_over += o.handed_over;
+  }
+  EXPECT_GE(checked, 150u);
+  EXPECT_GE(handed_over, 1u);
+}
+
+// The example trains over a range of several hand-overs (the exact engine on 3 and 9 gears:
+// a few corners and one draw each).
+TEST(ToleranceChainMonteCarlo, ExactTrainOnExampleTrains) {
+  std::vector<Case> cases{
+      {"gear-train-3.json", test::example_text("gear-train-3.json"), {Rational(0), Rational(3, 10)}, 360, 1, 6},
+      {"gear-train.json", test::example_text("gear-train.json"), {Rational(15, 100), Rational(25, 100)}, 360, 1, 4},
+  };
+  std::size_t checked = 0;
+  for (const Case& c : cases) checked += check_case(c).checked;
+  EXPECT_GE(checked, 40u);
+}
+
+}  // namespace
+}  // namespace hipair
