@@ -230,7 +230,7 @@ TEST(ToleranceChainHandover, ThreeGearTrainStaysInTheEnvelopeAtRandomVectorsAndN
   std::size_t bounded = 0;
   {
     ToleranceResult result = analyze_tolerances_text(text, pair_options(Rational(0), Rational(6, 10), 120));
-    Check c = check_band(text, result, 1, 3, 3);
+    Check c = check_band(text, result, Path{Rational(0), 120}, 1, 3, 3);
     EXPECT_EQ(c.outside, 0u);
     bounded += c.bounded;
   }
@@ -239,7 +239,7 @@ TEST(ToleranceChainHandover, ThreeGearTrainStaysInTheEnvelopeAtRandomVectorsAndN
     Rational from(handover + offset(rng), 10000);
     SCOPED_TRACE("from " + std::to_string(from.get_d()));
     ToleranceResult result = analyze_tolerances_text(text, pair_options(from, from + Rational(1, 50), 1500));
-    Check c = check_band(text, result, 1, 5 + static_cast<unsigned>(handover), 2);
+    Check c = check_band(text, result, Path{from, 1500}, 1, 5 + static_cast<unsigned>(handover), 2);
     EXPECT_EQ(c.outside, 0u);
     bounded += c.bounded;
   }
