@@ -6,6 +6,7 @@
 // models with several free pairs and with one, at two accuracies, and every state (time,
 // positions, velocities: bit patterns) and every event (kind, pair, features, time, impulse)
 // must be equal.
+#include "cspace_test_support.hpp"
 #include "simulation/crossing_limit.hpp"
 
 #include <hipair/error.hpp>
@@ -25,13 +26,7 @@
 namespace hipair {
 namespace {
 
-struct LimitSwitch {
-  explicit LimitSwitch(bool on) : old(simulation::crossing_limits()) { simulation::crossing_limits() = on; }
-  ~LimitSwitch() { simulation::crossing_limits() = old; }
-  LimitSwitch(const LimitSwitch&) = delete;
-  LimitSwitch& operator=(const LimitSwitch&) = delete;
-  bool old;
-};
+using LimitSwitch = test::FlagSwitch<simulation::crossing_limits>;
 
 std::string describe(const SimulationEvent& e) {
   char buffer[160];
