@@ -45,8 +45,8 @@ class HandoverSearch {
   HandoverEnvelope envelope(const CurveSlice& curve, const Box& box, const Interval& holder,
                             double relative_accuracy, double absolute_accuracy, std::size_t& boxes) const;
 
-  /// For tests only (a named mutation): the holder's enclosure returned as the envelope, as
-  /// before session 25.
+  /// Off under `--assume-nominal-contact` (ToleranceOptions::chain_assume_nominal_holder,
+  /// chain.cpp): the holder's enclosure returned as the envelope, as before session 25.
   void set_disabled(bool disabled) { disabled_ = disabled; }
 
  private:
