@@ -9,6 +9,7 @@
 // CSpaceAngleFilter.* compares it with a 256-bit MPFR oracle on generated angles.
 #pragma once
 
+#include "core/thread_switch.hpp"
 #include <hipair/rational.hpp>
 
 #include "kernels/interval.hpp"
@@ -137,53 +138,39 @@ struct AnglePiece {
 // piece, box and path value carried along with its rational instead of converted back from it,
 // the same doubles either way). On by default; tests switch it off per thread to compare every
 // answer with the conversions' (CSpaceCarriedBounds.*).
-inline bool& carried_bounds() {
-  thread_local bool on = true;
-  return on;
-}
+struct CarriedBoundsTag;
+inline bool& carried_bounds() { return thread_switch<CarriedBoundsTag>(); }
 
 // first_crossing's second-order (Taylor) exclusion of the stretches next to a sliding start
 // (cspace_queries.cpp, MotionScanner::second_order_excludes), tried where the mean-value form
 // fails. On by default; tests switch it off per thread to compare the answers with and without
 // (CSpaceSecondOrder.*) and the speed benchmark runs both.
-inline bool& second_order() {
-  thread_local bool on = true;
-  return on;
-}
+struct SecondOrderTag;
+inline bool& second_order() { return thread_switch<SecondOrderTag>(); }
 // How many curves over a stretch the second-order form has excluded on this thread (tests).
-inline std::size_t& second_order_exclusions() {
-  thread_local std::size_t count = 0;
-  return count;
-}
+struct SecondOrderExclusionsTag;
+inline std::size_t& second_order_exclusions() { return thread_counter<SecondOrderExclusionsTag>(); }
 
 // first_crossing's start anchors (cspace_queries.cpp): a query answering `none` whose last
 // stretch's box holds no curve of its chart remembers that box and its free cell (per thread,
 // per space); a later start inside the box is located there without the exact ray shooting.
 // On by default; tests switch it off to compare, and count the starts it located.
-inline bool& start_anchors() {
-  thread_local bool on = true;
-  return on;
-}
-inline std::size_t& anchored_starts() {
-  thread_local std::size_t count = 0;
-  return count;
-}
+struct StartAnchorsTag;
+inline bool& start_anchors() { return thread_switch<StartAnchorsTag>(); }
+struct AnchoredStartsTag;
+inline std::size_t& anchored_starts() { return thread_counter<AnchoredStartsTag>(); }
 
 // Point location's filter (builder_locate.cpp, locate_2d): an edge whose support is quadratic
 // in y at the point's rational abscissa is placed above or below the point by a certified double
 // enclosure of its root, or the exact sign of the quadratic at the point's ordinate, instead of
 // the exact root isolation; ordinates the enclosures cannot order are compared exactly. On by
 // default; tests switch it off per thread to compare every location with the exact one.
-inline bool& locate_filter() {
-  thread_local bool on = true;
-  return on;
-}
+struct LocateFilterTag;
+inline bool& locate_filter() { return thread_switch<LocateFilterTag>(); }
 
 // How many edges the filter placed on this thread (quadratic_ordinate's answers: tests).
-inline std::size_t& locate_filter_edges() {
-  thread_local std::size_t count = 0;
-  return count;
-}
+struct LocateFilterEdgesTag;
+inline std::size_t& locate_filter_edges() { return thread_counter<LocateFilterEdgesTag>(); }
 
 // The t-ranges of every chart system that an angle in [theta_lo, theta_hi] (width < 2) may be
 // in, as angle_pieces computes them; nullopt where the filter cannot decide (an angle beyond

@@ -1,5 +1,7 @@
 #pragma once
 
+#include "core/thread_switch.hpp"
+
 #include <cstddef>
 
 namespace hipair::cspace {
@@ -15,14 +17,10 @@ namespace hipair::cspace {
 // thetas, compared exactly: the nudge's trials move only the free parts, so a driven part's start
 // angle recurs in every trial whose start falls back to the 160-bit pieces. On by default;
 // tests switch it off per thread to compare (CSpaceAngleMemo.*).
-inline bool& angle_memo() {
-  thread_local bool on = true;
-  return on;
-}
+struct AngleMemoTag;
+inline bool& angle_memo() { return thread_switch<AngleMemoTag>(); }
 // How many stretches' pieces on this thread came from the memo (tests, profiling).
-inline std::size_t& angle_memo_hits() {
-  thread_local std::size_t count = 0;
-  return count;
-}
+struct AngleMemoHitsTag;
+inline std::size_t& angle_memo_hits() { return thread_counter<AngleMemoHitsTag>(); }
 
 }  // namespace hipair::cspace

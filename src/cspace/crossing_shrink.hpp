@@ -1,5 +1,7 @@
 #pragma once
 
+#include "core/thread_switch.hpp"
+
 #include <cstddef>
 
 namespace hipair::cspace {
@@ -13,14 +15,10 @@ namespace hipair::cspace {
 // evaluated in path order. Nothing is decided by a proposal: every stretch evaluated is one the
 // halving evaluates, by the same tests, so the answers are the halving's. On by default; tests
 // switch it off per thread to compare (CSpaceCrossingShrink.*).
-inline bool& newton_shrink() {
-  thread_local bool on = true;
-  return on;
-}
+struct NewtonShrinkTag;
+inline bool& newton_shrink() { return thread_switch<NewtonShrinkTag>(); }
 // How many proposals have replaced a halving on this thread (tests).
-inline std::size_t& newton_steps() {
-  thread_local std::size_t count = 0;
-  return count;
-}
+struct NewtonStepsTag;
+inline std::size_t& newton_steps() { return thread_counter<NewtonStepsTag>(); }
 
 }  // namespace hipair::cspace

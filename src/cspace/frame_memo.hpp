@@ -1,5 +1,7 @@
 #pragma once
 
+#include "core/thread_switch.hpp"
+
 #include <cstddef>
 
 namespace hipair::cspace {
@@ -12,14 +14,10 @@ namespace hipair::cspace {
 // and another built at its address is never matched), filled on first use; the frames are the
 // same bit for bit. On by default; tests switch it off per thread to compare
 // (CSpaceFrameMemo.*).
-inline bool& frame_memo() {
-  thread_local bool on = true;
-  return on;
-}
+struct FrameMemoTag;
+inline bool& frame_memo() { return thread_switch<FrameMemoTag>(); }
 // How many contact_frame calls took their geometries from the memo on this thread (tests).
-inline std::size_t& frame_memo_hits() {
-  thread_local std::size_t count = 0;
-  return count;
-}
+struct FrameMemoHitsTag;
+inline std::size_t& frame_memo_hits() { return thread_counter<FrameMemoHitsTag>(); }
 
 }  // namespace hipair::cspace

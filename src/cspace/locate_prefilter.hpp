@@ -1,5 +1,6 @@
 #pragma once
 
+#include "core/thread_switch.hpp"
 namespace hipair::cspace {
 
 // Point location's vertex prefilter (builder_locate.cpp, locate_2d): a vertex is passed over
@@ -12,10 +13,8 @@ namespace hipair::cspace {
 // too, and a vertex only the exact one passes over has x != the point's x or lies below it: one
 // the loop's exact comparisons pass over as well. So every location is the same. On by default;
 // tests switch it off per thread to compare (CSpaceLocateFilterVertices.*).
-inline bool& locate_exact_prefilter() {
-  thread_local bool on = true;
-  return on;
-}
+struct LocateExactPrefilterTag;
+inline bool& locate_exact_prefilter() { return thread_switch<LocateExactPrefilterTag>(); }
 
 // Point location's vertex bounds (builder_locate.cpp, locate_2d; ChartData::vertex_bounds, made
 // once when the space is built): before the exact rational comparisons above, a vertex is passed
@@ -28,9 +27,7 @@ inline bool& locate_exact_prefilter() {
 // cannot place goes through the exact comparisons as before. Session 23's Geneva spent 16 M of
 // its 212 M instructions in mpq_cmp here (96,646 calls, about 184 per location). On by
 // default; tests switch it off per thread to compare (CSpaceLocateVertexBounds.*).
-inline bool& locate_vertex_bounds() {
-  thread_local bool on = true;
-  return on;
-}
+struct LocateVertexBoundsTag;
+inline bool& locate_vertex_bounds() { return thread_switch<LocateVertexBoundsTag>(); }
 
 }  // namespace hipair::cspace

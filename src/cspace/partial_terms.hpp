@@ -14,6 +14,7 @@
 // track_derivatives calls polynomial_partials as before.
 #pragma once
 
+#include "core/thread_switch.hpp"
 #include "kernels/implicit_curve.hpp"
 
 #include <boost/container/small_vector.hpp>
@@ -24,10 +25,8 @@
 
 namespace hipair::cspace {
 
-inline bool& partial_terms() {
-  thread_local bool on = true;
-  return on;
-}
+struct PartialTermsTag;
+inline bool& partial_terms() { return thread_switch<PartialTermsTag>(); }
 
 template <class T>
 class PartialTerms {

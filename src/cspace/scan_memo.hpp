@@ -1,5 +1,7 @@
 #pragma once
 
+#include "core/thread_switch.hpp"
+
 #include <cstddef>
 
 namespace hipair::cspace {
@@ -16,14 +18,10 @@ namespace hipair::cspace {
 // freed and another built at its address is never matched; at most 16 spaces per thread), filled
 // on first use; the values are the same ones, so every answer is the same. On by default; tests
 // switch it off per thread to compare (CSpaceScanMemo.*).
-inline bool& scan_memo() {
-  thread_local bool on = true;
-  return on;
-}
+struct ScanMemoTag;
+inline bool& scan_memo() { return thread_switch<ScanMemoTag>(); }
 // How many first_crossing calls on this thread took a memo already made for their space (tests).
-inline std::size_t& scan_memo_hits() {
-  thread_local std::size_t count = 0;
-  return count;
-}
+struct ScanMemoHitsTag;
+inline std::size_t& scan_memo_hits() { return thread_counter<ScanMemoHitsTag>(); }
 
 }  // namespace hipair::cspace

@@ -1,5 +1,7 @@
 #pragma once
 
+#include "core/thread_switch.hpp"
+
 #include <cstddef>
 
 namespace hipair::cspace {
@@ -14,14 +16,10 @@ namespace hipair::cspace {
 // and bracket land on the same Y1, and its steps 1-3 (the bracket and the certificate) still
 // run. Every answer is the same. On by default; tests switch it off per thread to compare
 // (CSpaceSlopesMemo.*).
-inline bool& slopes_memo() {
-  thread_local bool on = true;
-  return on;
-}
+struct SlopesMemoTag;
+inline bool& slopes_memo() { return thread_switch<SlopesMemoTag>(); }
 // How many track_derivatives answers on this thread came from the memo (tests, profiling).
-inline std::size_t& slopes_memo_hits() {
-  thread_local std::size_t count = 0;
-  return count;
-}
+struct SlopesMemoHitsTag;
+inline std::size_t& slopes_memo_hits() { return thread_counter<SlopesMemoHitsTag>(); }
 
 }  // namespace hipair::cspace

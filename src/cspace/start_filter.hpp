@@ -1,5 +1,7 @@
 #pragma once
 
+#include "core/thread_switch.hpp"
+
 #include <cstddef>
 
 namespace hipair::cspace {
@@ -15,28 +17,20 @@ namespace hipair::cspace {
 // the 160-bit box's. Anything else (a start near a curve, near the built region's border, a
 // midpoint on an edge) falls back to the 160-bit evaluation and its answer, unchanged. On by
 // default; tests switch it off per thread to compare (CSpaceStartFilter.*).
-inline bool& start_filter() {
-  thread_local bool on = true;
-  return on;
-}
+struct StartFilterTag;
+inline bool& start_filter() { return thread_switch<StartFilterTag>(); }
 // How many starts the filter located on this thread (tests).
-inline std::size_t& filtered_starts() {
-  thread_local std::size_t count = 0;
-  return count;
-}
+struct FilteredStartsTag;
+inline std::size_t& filtered_starts() { return thread_counter<FilteredStartsTag>(); }
 
 // certainly_blocked's walks (hipair/blocked_walk.hpp, cspace_queries.cpp): the simulator's
 // nudge trials inside the blocked cell they start in, certified by a chain of boxes on which no
 // contact curve vanishes instead of a point query each. On by default; tests switch it off per
 // thread to compare (CSpaceBlockedWalk.*, the simulation's outputs).
-inline bool& blocked_walks() {
-  thread_local bool on = true;
-  return on;
-}
+struct BlockedWalksTag;
+inline bool& blocked_walks() { return thread_switch<BlockedWalksTag>(); }
 // How many configurations a walk certified from its last box (without a location) on this thread.
-inline std::size_t& blocked_walk_steps() {
-  thread_local std::size_t count = 0;
-  return count;
-}
+struct BlockedWalkStepsTag;
+inline std::size_t& blocked_walk_steps() { return thread_counter<BlockedWalkStepsTag>(); }
 
 }  // namespace hipair::cspace

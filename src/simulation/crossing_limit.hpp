@@ -1,5 +1,7 @@
 #pragma once
 
+#include "core/thread_switch.hpp"
+
 #include <cstddef>
 
 namespace hipair::simulation {
@@ -11,18 +13,12 @@ namespace hipair::simulation {
 // stretch start a that might still be simultaneous (a's double not above the step's final
 // u_upper) is asked again without the limit. The step's crossings, rows and ends are the same.
 // On by default; tests switch it off per thread to compare (SimulationCrossingLimit.*).
-inline bool& crossing_limits() {
-  thread_local bool on = true;
-  return on;
-}
+struct CrossingLimitsTag;
+inline bool& crossing_limits() { return thread_switch<CrossingLimitsTag>(); }
 // How many step queries stopped at their limit, and how many of those were asked again (tests).
-inline std::size_t& limited_queries() {
-  thread_local std::size_t count = 0;
-  return count;
-}
-inline std::size_t& requeried_limits() {
-  thread_local std::size_t count = 0;
-  return count;
-}
+struct LimitedQueriesTag;
+inline std::size_t& limited_queries() { return thread_counter<LimitedQueriesTag>(); }
+struct RequeriedLimitsTag;
+inline std::size_t& requeried_limits() { return thread_counter<RequeriedLimitsTag>(); }
 
 }  // namespace hipair::simulation
