@@ -16,9 +16,19 @@
 //     start of a later stretch, so u_lower >= a > u_stop.
 // A query that stops leaves no start anchor (first_crossing remembers one after a motion that
 // stays free to u_end; anchors only spare later point locations their exact work).
+//
+// CrossingQuery is the same query as an object that can be stopped and resumed: it takes the
+// query's steps one at a time (the start's point query, then one stretch of the subdivision
+// each), tells the start a of the next stretch, and goes on from where it stopped. Run to the
+// end it has taken first_crossing's every step in first_crossing's order and gives its answer bit
+// for bit, however often it was stopped on the way (the stretches left on its stack are exactly
+// those the uninterrupted query would evaluate next). The simulator runs its free pairs' queries
+// side by side this way, always the one whose next stretch starts first (simulation.cpp, step).
 #pragma once
 
 #include <hipair/cspace.hpp>
+
+#include <memory>
 
 namespace hipair {
 
@@ -29,6 +39,34 @@ struct CrossingBefore {
   /// its starting free cell on [u_begin, a] (first_crossing's u_lower, if any, is >= a).
   MotionCrossing crossing;
   bool stopped = false;
+};
+
+/// CSpace::first_crossing's query, one step at a time (see above). The space must outlive it.
+class CrossingQuery {
+ public:
+  /// Checks the path as first_crossing does (the same throws); evaluates nothing yet.
+  CrossingQuery(const CSpace& space, const MotionPath& path, const CrossingOptions& options);
+  CrossingQuery(CrossingQuery&&) noexcept;
+  CrossingQuery& operator=(CrossingQuery&&) noexcept;
+  ~CrossingQuery();
+
+  /// The answer is known (first_crossing's).
+  bool finished() const;
+  /// Where the query goes on: u_begin before the start's point query, then the start a of the
+  /// next stretch its subdivision evaluates; the motion is certified in its starting free cell on
+  /// [u_begin, next()] once the start is done. Only while not finished.
+  const Rational& next() const;
+  /// One step: the start's point query, or one stretch (excluded, split or answered).
+  void step();
+  /// Steps until finished or, with `stop` and the start done, next() > *stop.
+  void run(const Rational* stop = nullptr);
+  /// Finished: first_crossing's answer. Not finished (after the start): status none,
+  /// u_lower == u_upper == next(), the starting cell (first_crossing's u_lower, if any, >= next()).
+  MotionCrossing answer() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
 };
 
 /// CSpace::first_crossing(path, options), stopped where its subdivision passes u_stop (see above).

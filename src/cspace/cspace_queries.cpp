@@ -1979,24 +1979,78 @@ class MotionScanner {
 
 namespace {
 
-// CSpace::first_crossing's query; with `stop`, first_crossing_before's (crossing_before.hpp):
-// it stops at the first stretch [a, b] of the subdivision with a > *stop.
-MotionCrossing first_crossing_until(const CSpace& space, const MotionPath& input, const CrossingOptions& options,
-                                    const Rational* stop, bool* stopped) {
+// CSpace::first_crossing's query as an object taking one step at a time (CrossingQuery,
+// crossing_before.hpp): the start's point query, then one stretch of the subdivision per step.
+// run() to the end takes the uninterrupted query's steps in its order; stopping between steps
+// leaves the stretches still to evaluate on the stack, in path order, so that resuming goes on
+// with exactly the steps the uninterrupted query would take next.
+class CrossingRun {
+ public:
   using Impl = CSpace::Impl;
-  const Impl& impl = checked(space);
-  MotionPath path = input;
-  for (auto* axis : {&path.x, &path.y})
-    for (auto& c : axis->coefficients) c.canonicalize();
-  path.u_begin.canonicalize();
-  path.u_end.canonicalize();
-  if (path.u_end < path.u_begin) throw GeometryError("first_crossing: u_end < u_begin");
-  const std::shared_ptr<const Impl>& owner = CSpaceAccess::shared(space);
-  MotionScanner scanner(impl, path, scan_memo_of(owner));
-  MotionCrossing result;
+
+  CrossingRun(const CSpace& space, const MotionPath& input, const CrossingOptions& options)
+      : impl(checked(space)),
+        path(canonical(input)),
+        owner(CSpaceAccess::shared(space)),
+        scanner(impl, path, scan_memo_of(owner)),
+        options(options) {}
+
+  bool finished() const { return done; }
+
+  const Rational& next() const { return started ? stack.back().first : path.u_begin; }
+
+  void step() {
+    if (!started) {
+      started = true;
+      start();
+      if (done) return;
+      // ---- subdivision: intervals in path order, excluded ones certified in the starting cell
+      resolution = (path.u_end - path.u_begin) / Rational(mpz_class(1) << options.resolution_bits);
+      resolution.canonicalize();
+      resolution_d = resolution.get_d();
+      stack.emplace_back(path.u_begin, path.u_end);
+    } else {
+      auto [a, b] = stack.back();
+      stack.pop_back();
+      stretch(a, b);
+      if (done) return;
+    }
+    settle();
+  }
+
+  // steps until the answer is known or, after the start, the next stretch starts past *stop
+  void run(const Rational* stop) {
+    while (!done) {
+      if (started && stop && next() > *stop) return;
+      step();
+    }
+  }
+
+  // finished: the query's answer; stopped: none at the next stretch's start
+  MotionCrossing answer() const {
+    MotionCrossing copy = result;
+    if (!done) copy.u_lower = copy.u_upper = next();
+    return copy;
+  }
+
+  MotionCrossing take_answer() && {
+    if (!done) result.u_lower = result.u_upper = next();
+    return std::move(result);
+  }
+
+ private:
+  static MotionPath canonical(const MotionPath& input) {
+    MotionPath path = input;
+    for (auto* axis : {&path.x, &path.y})
+      for (auto& c : axis->coefficients) c.canonicalize();
+    path.u_begin.canonicalize();
+    path.u_end.canonicalize();
+    if (path.u_end < path.u_begin) throw GeometryError("first_crossing: u_end < u_begin");
+    return path;
+  }
 
   // a real edge of `possible` curves near the crossing, its feature pairs, chart point and frame
-  auto describe = [&](const MotionScanner::Evaluation& at, std::size_t entered) {
+  void describe(const MotionScanner::Evaluation& at, std::size_t entered) {
     for (const Possible& p : at.possible) {
       FeatureId id(impl.charts[p.chart].curve_global[p.curve]);
       if (std::find(result.features.begin(), result.features.end(), id) == result.features.end())
@@ -2049,168 +2103,174 @@ MotionCrossing first_crossing_until(const CSpace& space, const MotionPath& input
         result.normal = unit_normal(frame.normal);
       }
     }
-  };
+  }
 
   // ---- the start
-  result.u_lower = result.u_upper = path.u_begin;
-  Location where;
-  bool located = false;
-  // the filtered start (start_filter.hpp): a rotating axis's start through the double filter,
-  // located there when its boxes are covered, meet no contact curve and their front midpoint
-  // lies inside a free or a blocked cell's face; otherwise the 160-bit start below, as without
-  // the filter
-  if (cspace::start_filter() &&
-      (path.x.kind == AxisPath::Kind::angle || (impl.dimension == 2 && path.y.kind == AxisPath::Kind::angle))) {
-    MotionScanner::Evaluation quick = scanner.evaluate(path.u_begin, path.u_begin, true);
-    if (!quick.too_wide && quick.covered && !quick.boxes.empty() && quick.possible.empty()) {
-      Location there = scanner.locate_inside(quick.boxes.front(), find_anchor(owner));
-      if (there.kind == Location::Kind::free || there.kind == Location::Kind::blocked) {
-        ++cspace::filtered_starts();
-        if (there.kind == Location::Kind::blocked) {
-          // in a blocked cell: the 160-bit start's answer (its boxes meet no curve either, so
-          // describe adds nothing to it)
-          result.status = CrossingStatus::starts_in_contact;
-          result.cell_left = CellId(there.cell);
-          if (there.edge != no_index) result.edge = EdgeId(there.edge);
-          return result;
+  void start() {
+    result.u_lower = result.u_upper = path.u_begin;
+    Location where;
+    bool located = false;
+    // the filtered start (start_filter.hpp): a rotating axis's start through the double filter,
+    // located there when its boxes are covered, meet no contact curve and their front midpoint
+    // lies inside a free or a blocked cell's face; otherwise the 160-bit start below, as without
+    // the filter
+    if (cspace::start_filter() &&
+        (path.x.kind == AxisPath::Kind::angle || (impl.dimension == 2 && path.y.kind == AxisPath::Kind::angle))) {
+      MotionScanner::Evaluation quick = scanner.evaluate(path.u_begin, path.u_begin, true);
+      if (!quick.too_wide && quick.covered && !quick.boxes.empty() && quick.possible.empty()) {
+        Location there = scanner.locate_inside(quick.boxes.front(), find_anchor(owner));
+        if (there.kind == Location::Kind::free || there.kind == Location::Kind::blocked) {
+          ++cspace::filtered_starts();
+          if (there.kind == Location::Kind::blocked) {
+            // in a blocked cell: the 160-bit start's answer (its boxes meet no curve either, so
+            // describe adds nothing to it)
+            result.status = CrossingStatus::starts_in_contact;
+            result.cell_left = CellId(there.cell);
+            if (there.edge != no_index) result.edge = EdgeId(there.edge);
+            done = true;
+            return;
+          }
+          where = there;
+          located = true;
         }
-        where = there;
-        located = true;
       }
     }
+    if (!located) {
+      MotionScanner::Evaluation start = scanner.evaluate(path.u_begin, path.u_begin);
+      if (!start.covered || start.boxes.empty()) {
+        result.status = CrossingStatus::outside_region;
+        done = true;
+        return;
+      }
+      bool point_exact = std::all_of(start.boxes.begin(), start.boxes.end(), [](const PieceBox& b) {
+        return b.x_lo == b.x_hi && b.y_lo == b.y_hi;
+      });
+      if (start.possible.empty() || point_exact) {
+        where = scanner.locate_inside(start.boxes.front(), find_anchor(owner));
+      } else {
+        // an irrational start within the resolution of a contact curve: in contact, conservatively
+        result.status = CrossingStatus::starts_in_contact;
+        result.grazing = true;
+        describe(start, no_index);
+        done = true;
+        return;
+      }
+      if (where.kind != Location::Kind::free || contact_location(impl, where)) {
+        result.status = CrossingStatus::starts_in_contact;
+        result.cell_left = CellId(where.cell);
+        if (where.edge != no_index) result.edge = EdgeId(where.edge);
+        describe(start, no_index);
+        done = true;
+        return;
+      }
+    }
+    result.cell_left = CellId(where.cell);
   }
-  if (!located) {
-    MotionScanner::Evaluation start = scanner.evaluate(path.u_begin, path.u_begin);
-    if (!start.covered || start.boxes.empty()) {
-      result.status = CrossingStatus::outside_region;
-      return result;
-    }
-    bool point_exact = std::all_of(start.boxes.begin(), start.boxes.end(), [](const PieceBox& b) {
-      return b.x_lo == b.x_hi && b.y_lo == b.y_hi;
-    });
-    if (start.possible.empty() || point_exact) {
-      where = scanner.locate_inside(start.boxes.front(), find_anchor(owner));
-    } else {
-      // an irrational start within the resolution of a contact curve: in contact, conservatively
-      result.status = CrossingStatus::starts_in_contact;
-      result.grazing = true;
-      describe(start, no_index);
-      return result;
-    }
-    if (where.kind != Location::Kind::free || contact_location(impl, where)) {
-      result.status = CrossingStatus::starts_in_contact;
-      result.cell_left = CellId(where.cell);
-      if (where.edge != no_index) result.edge = EdgeId(where.edge);
-      describe(start, no_index);
-      return result;
-    }
-  }
-  result.cell_left = CellId(where.cell);
 
-  // ---- subdivision: intervals in path order, excluded ones certified in the starting cell
-  Rational resolution = (path.u_end - path.u_begin) / Rational(mpz_class(1) << options.resolution_bits);
-  resolution.canonicalize();
-  std::vector<std::pair<Rational, Rational>> stack{{path.u_begin, path.u_end}};
-  std::optional<MotionScanner::Evaluation> last;   // the excluded stretch ending at u_end
-  const double resolution_d = resolution.get_d();
-  while (!stack.empty()) {
-    auto [a, b] = stack.back();
-    stack.pop_back();
-    if (a == b) continue;
-    if (stop && a > *stop) {
-      // every stretch before a excluded: the motion is in its starting free cell on [u_begin, a]
-      *stopped = true;
-      result.u_lower = result.u_upper = a;
-      return result;
-    }
-    MotionScanner::Evaluation at = scanner.evaluate(a, b);
-    bool wide = b - a > resolution;
-    auto split = [&, a = a, b = b] {
-      Rational m = (a + b) / 2;
-      m.canonicalize();
-      stack.emplace_back(m, b);
-      stack.emplace_back(a, m);
-    };
-    // The Newton proposal (see crossing_shrink.hpp). The subdivision's stretches are the nodes
-    // of the binary tree over [u_begin, u_end] whose leaves are the resolution's cells; a stretch
-    // of n = 2^m cells that would be halved goes straight to the smallest node [c_lo, c_hi] of
-    // its subtree holding the root's proposed bounds (widened by a cell either way, and inside
-    // [a, b]), when that node has at most half the cells: the nodes between are skipped (the
-    // curve vanishes inside each, so the halving would not have excluded them, only halved them),
-    // their siblings are evaluated in path order as the halving would (excluded or subdivided).
-    // The stretches evaluated are the halving's minus those nodes: the same answer (see
-    // crossing_shrink.hpp).
-    auto shrink = [&, a = a, b = b] {
-      if (cspace::newton_shrink() && at.newton) {
-        Rational cells = (b - a) / resolution;
-        cells.canonicalize();
-        if (cells.get_den() == 1 && cells.get_num() > 2 && cells.get_num().fits_slong_p()) {
-          const long n = cells.get_num().get_si();
-          double lo = std::floor(at.newton_lo / resolution_d * (1 - 0x1p-48)) - 1;
-          double hi = std::ceil(at.newton_hi / resolution_d * (1 + 0x1p-48)) + 1;
-          // only where the widened bounds lie inside [a, b] (not clipped): then the curve
-          // vanishes inside every node between [a, b] and the node proposed
-          if ((n & (n - 1)) == 0 && lo >= 0 && hi <= static_cast<double>(n)) {
-            long k_lo = static_cast<long>(lo), k_hi = static_cast<long>(hi);
-            if (k_lo < k_hi) {
-              // the smallest node holding cells k_lo ... k_hi - 1: 2^j cells from k_lo's multiple
-              unsigned long diff = static_cast<unsigned long>(k_lo ^ (k_hi - 1));
-              int j = 0;
-              while (j < 63 && (diff >> j) != 0) ++j;
-              long size = 1L << j, first = (k_lo >> j) << j;
-              if (2 * size <= n) {
-                // the path from [a, b] down to the node: the siblings left of it are the
-                // stretches the halving evaluates (and excludes) before reaching it, those right
-                // of it the ones it would evaluate after; pushed so that they pop in path order
-                ++cspace::newton_steps();
-                auto at_cell = [&](long k) {
-                  Rational u = a + resolution * k;
-                  u.canonicalize();
-                  return u;
-                };
-                std::vector<std::pair<long, long>> left;
-                long lo = 0, length = n;
-                while (length > size) {
-                  long half = length / 2;
-                  if (first < lo + half) {
-                    stack.emplace_back(at_cell(lo + half), at_cell(lo + length));
-                  } else {
-                    left.emplace_back(lo, lo + half);
-                    lo += half;
-                  }
-                  length = half;
+  // empty stretches dropped; at an empty stack the motion stays in its start cell to u_end
+  void settle() {
+    while (!stack.empty() && stack.back().first == stack.back().second) stack.pop_back();
+    if (!stack.empty()) return;
+    done = true;
+    result.u_lower = result.u_upper = path.u_end;
+    if (last && cspace::start_anchors())
+      if (std::optional<StartAnchor> anchor = scanner.anchor_from(*last, result.cell_left.index()))
+        remember_anchor(std::move(*anchor), owner);
+  }
+
+  void split(const Rational& a, const Rational& b) {
+    Rational m = (a + b) / 2;
+    m.canonicalize();
+    stack.emplace_back(m, b);
+    stack.emplace_back(a, m);
+  }
+
+  // The Newton proposal (see crossing_shrink.hpp). The subdivision's stretches are the nodes
+  // of the binary tree over [u_begin, u_end] whose leaves are the resolution's cells; a stretch
+  // of n = 2^m cells that would be halved goes straight to the smallest node [c_lo, c_hi] of
+  // its subtree holding the root's proposed bounds (widened by a cell either way, and inside
+  // [a, b]), when that node has at most half the cells: the nodes between are skipped (the
+  // curve vanishes inside each, so the halving would not have excluded them, only halved them),
+  // their siblings are evaluated in path order as the halving would (excluded or subdivided).
+  // The stretches evaluated are the halving's minus those nodes: the same answer (see
+  // crossing_shrink.hpp).
+  void shrink(const Rational& a, const Rational& b, const MotionScanner::Evaluation& at) {
+    if (cspace::newton_shrink() && at.newton) {
+      Rational cells = (b - a) / resolution;
+      cells.canonicalize();
+      if (cells.get_den() == 1 && cells.get_num() > 2 && cells.get_num().fits_slong_p()) {
+        const long n = cells.get_num().get_si();
+        double lo = std::floor(at.newton_lo / resolution_d * (1 - 0x1p-48)) - 1;
+        double hi = std::ceil(at.newton_hi / resolution_d * (1 + 0x1p-48)) + 1;
+        // only where the widened bounds lie inside [a, b] (not clipped): then the curve
+        // vanishes inside every node between [a, b] and the node proposed
+        if ((n & (n - 1)) == 0 && lo >= 0 && hi <= static_cast<double>(n)) {
+          long k_lo = static_cast<long>(lo), k_hi = static_cast<long>(hi);
+          if (k_lo < k_hi) {
+            // the smallest node holding cells k_lo ... k_hi - 1: 2^j cells from k_lo's multiple
+            unsigned long diff = static_cast<unsigned long>(k_lo ^ (k_hi - 1));
+            int j = 0;
+            while (j < 63 && (diff >> j) != 0) ++j;
+            long size = 1L << j, first = (k_lo >> j) << j;
+            if (2 * size <= n) {
+              // the path from [a, b] down to the node: the siblings left of it are the
+              // stretches the halving evaluates (and excludes) before reaching it, those right
+              // of it the ones it would evaluate after; pushed so that they pop in path order
+              ++cspace::newton_steps();
+              auto at_cell = [&](long k) {
+                Rational u = a + resolution * k;
+                u.canonicalize();
+                return u;
+              };
+              std::vector<std::pair<long, long>> left;
+              long lo = 0, length = n;
+              while (length > size) {
+                long half = length / 2;
+                if (first < lo + half) {
+                  stack.emplace_back(at_cell(lo + half), at_cell(lo + length));
+                } else {
+                  left.emplace_back(lo, lo + half);
+                  lo += half;
                 }
-                stack.emplace_back(at_cell(first), at_cell(first + size));
-                for (auto it = left.rbegin(); it != left.rend(); ++it) stack.emplace_back(at_cell(it->first), at_cell(it->second));
-                return;
+                length = half;
               }
+              stack.emplace_back(at_cell(first), at_cell(first + size));
+              for (auto it = left.rbegin(); it != left.rend(); ++it) stack.emplace_back(at_cell(it->first), at_cell(it->second));
+              return;
             }
           }
         }
       }
-      split();
-    };
+    }
+    split(a, b);
+  }
+
+  // one stretch [a, b] of the subdivision: excluded, split, or the answer
+  void stretch(const Rational& a, const Rational& b) {
+    MotionScanner::Evaluation at = scanner.evaluate(a, b);
+    bool wide = b - a > resolution;
     if (at.too_wide) {
-      split();
-      continue;
+      split(a, b);
+      return;
     }
     if (!at.covered) {
       if (wide) {
-        split();
-        continue;
+        split(a, b);
+        return;
       }
       result.status = CrossingStatus::outside_region;
       result.u_lower = a;
       result.u_upper = b;
-      return result;
+      done = true;
+      return;
     }
     if (at.possible.empty()) {
       if (b == path.u_end) last = std::move(at);
-      continue;
+      return;
     }
     if (wide) {
-      shrink();
-      continue;
+      shrink(a, b, at);
+      return;
     }
     // a stretch within the resolution that may touch contact space: decide where the motion
     // is after it. A rational configuration (offset and half-tangent motions) is located
@@ -2224,7 +2284,7 @@ MotionCrossing first_crossing_until(const CSpace& space, const MotionPath& input
     result.u_upper = b;
     std::size_t entered = no_index;
     bool left_start = false;
-    Rational step = b - a;
+    Rational reach = b - a;
     Rational end_u = b;
     for (int attempt = 0; attempt < 24; ++attempt) {
       MotionScanner::Evaluation end = scanner.evaluate(end_u, end_u);
@@ -2246,8 +2306,8 @@ MotionCrossing first_crossing_until(const CSpace& space, const MotionPath& input
           break;
         }
       }
-      step *= 2;
-      end_u = b + step;
+      reach *= 2;
+      end_u = b + reach;
       if (end_u > path.u_end) break;
     }
     result.grazing = !left_start;
@@ -2258,19 +2318,43 @@ MotionCrossing first_crossing_until(const CSpace& space, const MotionPath& input
       describe(at, entered);
     }
     result.u_upper.canonicalize();
-    return result;
+    done = true;
   }
-  result.u_lower = result.u_upper = path.u_end;
-  if (last && cspace::start_anchors())
-    if (std::optional<StartAnchor> anchor = scanner.anchor_from(*last, result.cell_left.index()))
-      remember_anchor(std::move(*anchor), owner);
-  return result;
-}
+
+  const Impl& impl;
+  MotionPath path;
+  std::shared_ptr<const Impl> owner;
+  MotionScanner scanner;
+  CrossingOptions options;
+  MotionCrossing result;
+  bool started = false, done = false;
+  Rational resolution;
+  double resolution_d = 0;
+  std::vector<std::pair<Rational, Rational>> stack;
+  std::optional<MotionScanner::Evaluation> last;   // the excluded stretch ending at u_end
+};
 
 }  // namespace
 
+struct CrossingQuery::State : CrossingRun {
+  using CrossingRun::CrossingRun;
+};
+
+CrossingQuery::CrossingQuery(const CSpace& space, const MotionPath& path, const CrossingOptions& options)
+    : state_(std::make_unique<State>(space, path, options)) {}
+CrossingQuery::CrossingQuery(CrossingQuery&&) noexcept = default;
+CrossingQuery& CrossingQuery::operator=(CrossingQuery&&) noexcept = default;
+CrossingQuery::~CrossingQuery() = default;
+bool CrossingQuery::finished() const { return state_->finished(); }
+const Rational& CrossingQuery::next() const { return state_->next(); }
+void CrossingQuery::step() { state_->step(); }
+void CrossingQuery::run(const Rational* stop) { state_->run(stop); }
+MotionCrossing CrossingQuery::answer() const { return state_->answer(); }
+
 MotionCrossing CSpace::first_crossing(const MotionPath& path, const CrossingOptions& options) const {
-  return first_crossing_until(*this, path, options, nullptr, nullptr);
+  CrossingRun query(*this, path, options);
+  query.run(nullptr);
+  return std::move(query).take_answer();
 }
 
 CrossingBefore first_crossing_before(const CSpace& space, const MotionPath& path, const CrossingOptions& options,
@@ -2278,7 +2362,10 @@ CrossingBefore first_crossing_before(const CSpace& space, const MotionPath& path
   CrossingBefore answer;
   Rational stop = u_stop;
   stop.canonicalize();
-  answer.crossing = first_crossing_until(space, path, options, &stop, &answer.stopped);
+  CrossingRun query(space, path, options);
+  query.run(&stop);
+  answer.stopped = !query.finished();
+  answer.crossing = std::move(query).take_answer();
   return answer;
 }
 

@@ -13,12 +13,12 @@
 #include <hipair/simulation.hpp>
 
 #include <hipair/blocked_walk.hpp>
-#include <hipair/crossing_before.hpp>
 #include <hipair/edge_slope.hpp>
 #include <hipair/edge_tracker.hpp>
 #include <hipair/error.hpp>
 
 #include "simulation/crossing_limit.hpp"
+#include "simulation/crossing_sweep.hpp"
 #include "simulation/friction.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/units.hpp"
@@ -1745,65 +1745,28 @@ struct Simulation::Impl {
     std::vector<std::pair<std::size_t, MotionCrossing>> crossings;
     CrossingOptions crossing_options;
     crossing_options.resolution_bits = options.crossing_bits;
-    // Each free pair's query; with crossing_limits() (simulation/crossing_limit.hpp), a query
-    // after a crossing was found stops where its subdivision passes the earliest crossing's
-    // u_upper so far: certified free up to a stretch start a beyond it, its own crossing (if
-    // any) has u_lower >= a. Such a crossing is discarded below (u_lower > u_hit_upper) unless
-    // a's double is not above the final u_hit_upper: then the pair is asked again without the
-    // limit, which is first_crossing's query. A stopped pair's crossing (or exit from the built
-    // space) would have u_lower >= a, its double >= a's > u_hit_upper >= u_hit: never the
-    // earliest, never simultaneous, never before u_hit; so the loop below, which treats it as
-    // free, takes the same crossings, rows and ends as with every query complete.
+    // The free pairs' queries: complete, or with crossing_limits() side by side with a limit
+    // and resumed where they might matter (simulation/crossing_sweep.hpp): the same crossings,
+    // rows and ends; a pair whose query stayed stopped is certainly not among them.
     std::vector<MotionCrossing> answers(spaces.size());
     std::vector<char> limited(spaces.size(), 0);
-    {
-      const bool limits = simulation::crossing_limits();
-      // a crossing's bracket in doubles as the loop below takes it (a start in contact: 0);
-      // false for an answer without one
-      auto bracket = [](const MotionCrossing& c, double& lower, double& upper) {
-        if (c.status != CrossingStatus::crossing && c.status != CrossingStatus::starts_in_contact) return false;
-        lower = c.status == CrossingStatus::starts_in_contact ? 0.0 : to_d(c.u_lower);
-        upper = c.status == CrossingStatus::starts_in_contact ? 0.0 : to_d(c.u_upper);
-        return true;
-      };
-      double first_lower = u_end, first_upper = u_end;
-      bool found = false;
-      for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
-        if (!spaces[pair] || in_active(pair)) continue;
-        MotionPath motion = pair_path(pair, path, 0, u_end);
-        if (limits && found) {
-          CrossingBefore c = first_crossing_before(*spaces[pair], motion, crossing_options, Rational(first_upper));
-          answers[pair] = std::move(c.crossing);
-          limited[pair] = c.stopped;
-          if (c.stopped) ++simulation::limited_queries();
-        } else {
-          answers[pair] = spaces[pair]->first_crossing(motion, crossing_options);
-        }
-        double lower, upper;
-        if (bracket(answers[pair], lower, upper)) {
-          if (!found || lower < first_lower) {
-            first_lower = lower;
-            first_upper = upper;
-          }
-          found = true;
-        }
-      }
-      // the step's earliest crossing from the complete answers (as the loop below finds it)
-      double final_lower = u_end, final_upper = u_end;
-      for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
-        double lower, upper;
-        if (limited[pair] || !bracket(answers[pair], lower, upper)) continue;
-        if (lower < final_lower) {
-          final_lower = lower;
-          final_upper = upper;
-        }
-      }
+    if (!simulation::crossing_limits()) {
       for (std::size_t pair = 0; pair < spaces.size(); ++pair)
-        if (limited[pair] && !(to_d(answers[pair].u_lower) > final_upper)) {
-          ++simulation::requeried_limits();
+        if (spaces[pair] && !in_active(pair))
           answers[pair] = spaces[pair]->first_crossing(pair_path(pair, path, 0, u_end), crossing_options);
-          limited[pair] = 0;
+    } else {
+      std::vector<const CSpace*> asked(spaces.size(), nullptr);
+      std::vector<MotionPath> motions(spaces.size());
+      for (std::size_t pair = 0; pair < spaces.size(); ++pair)
+        if (spaces[pair] && !in_active(pair)) {
+          asked[pair] = spaces[pair].get();
+          motions[pair] = pair_path(pair, path, 0, u_end);
         }
+      simulation::SweptCrossings swept = simulation::sweep_crossings(asked, motions, crossing_options, u_end);
+      simulation::limited_queries() += swept.limited;
+      simulation::requeried_limits() += swept.resumed;
+      answers = std::move(swept.answers);
+      limited = std::move(swept.stopped);
     }
     for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
       if (!spaces[pair] || in_active(pair) || limited[pair]) continue;
