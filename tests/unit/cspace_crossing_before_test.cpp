@@ -31,17 +31,12 @@ TEST(CSpaceCrossingBefore, AnswersAreTheQuerysOrCertifiedStops) {
   std::size_t asked = 0, stopped = 0, same = 0, crossings = 0, at_lower = 0;
   const Rational cell = Rational(1) / Rational(mpz_class(1) << CrossingOptions{}.resolution_bits);
   for (int query = 0; query < 600; ++query) {
-    std::size_t s = random() % spaces.size();
+    test::GeneratedQuery g;
+    if (!test::random_query(spaces, random, g)) continue;
+    const std::size_t s = g.s;
     const CSpace& space = *spaces[s];
-    int kind = 0;
-    std::size_t chart = 0;
-    MotionPath path = test::random_motion(space, random, kind, chart);
-    MotionCrossing full;
-    try {
-      full = space.first_crossing(path);
-    } catch (const GeometryError&) {
-      continue;
-    }
+    const MotionPath& path = g.path;
+    const MotionCrossing& full = g.answer;
     const std::string oracle = test::describe_crossing(space, full);
     const bool bracket = full.status == CrossingStatus::crossing || full.status == CrossingStatus::outside_region;
     crossings += full.status == CrossingStatus::crossing;
@@ -57,7 +52,7 @@ TEST(CSpaceCrossingBefore, AnswersAreTheQuerysOrCertifiedStops) {
       Rational u_stop = limits[l];
       u_stop.canonicalize();
       const std::string where = "query " + std::to_string(query) + " space " + std::to_string(s) + " (" +
-                                space.first_part() + ":" + space.second_part() + ") kind " + std::to_string(kind) +
+                                space.first_part() + ":" + space.second_part() + ") kind " + std::to_string(g.kind) +
                                 " limit " + std::to_string(l) + " u_stop " + u_stop.get_str() + "; oracle " + oracle;
       CrossingBefore answer = first_crossing_before(space, path, CrossingOptions{}, u_stop);
       ++asked;

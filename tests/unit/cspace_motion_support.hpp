@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -122,6 +123,27 @@ inline MotionPath random_motion(const CSpace& space, std::mt19937_64& random, in
   if (two) path.y = axis_path(chart.y_kind, {qy0, vy * (1 + bend), -vy * bend * 0.5, -vy * bend * 0.5});
   chart_index = c;
   return path;
+}
+
+// A generated motion (random_motion) on a random one of `spaces` (index s), and first_crossing's
+// answer to it (the oracle of the tests that stop or limit the query).
+struct GeneratedQuery {
+  std::size_t s = 0;
+  int kind = 0;
+  MotionPath path;
+  MotionCrossing answer;
+};
+// false where the query throws
+inline bool random_query(const std::vector<std::unique_ptr<CSpace>>& spaces, std::mt19937_64& random, GeneratedQuery& q) {
+  q.s = random() % spaces.size();
+  std::size_t chart = 0;
+  q.path = random_motion(*spaces[q.s], random, q.kind, chart);
+  try {
+    q.answer = spaces[q.s]->first_crossing(q.path);
+  } catch (const GeometryError&) {
+    return false;
+  }
+  return true;
 }
 
 }  // namespace hipair::test

@@ -43,22 +43,15 @@ TEST(CSpaceCrossingQuery, ResumedAnswerIsTheQuerys) {
   std::vector<std::unique_ptr<CSpace>> spaces = test::example_spaces();
   std::size_t queries = 0, stops = 0, crossings = 0;
   for (int query = 0; query < 300; ++query) {
-    std::size_t s = random() % spaces.size();
-    const CSpace& space = *spaces[s];
-    int kind = 0;
-    std::size_t chart = 0;
-    MotionPath path = test::random_motion(space, random, kind, chart);
-    MotionCrossing full;
-    try {
-      full = space.first_crossing(path);
-    } catch (const GeometryError&) {
-      continue;
-    }
-    const std::string oracle = test::describe_crossing(space, full);
+    test::GeneratedQuery g;
+    if (!test::random_query(spaces, random, g)) continue;
+    const CSpace& space = *spaces[g.s];
+    const MotionCrossing& full = g.answer;
     crossings += full.status == CrossingStatus::crossing;
-    CrossingQuery q(space, path, CrossingOptions{});
-    const std::string where = "query " + std::to_string(query) + " space " + std::to_string(s) + " (" +
-                              space.first_part() + ":" + space.second_part() + ") kind " + std::to_string(kind) +
+    const std::string oracle = test::describe_crossing(space, full);
+    CrossingQuery q(space, g.path, CrossingOptions{});
+    const std::string where = "query " + std::to_string(query) + " space " + std::to_string(g.s) + " (" +
+                              space.first_part() + ":" + space.second_part() + ") kind " + std::to_string(g.kind) +
                               "; oracle " + oracle;
     ++queries;
     // limits from just past the start toward the end, in random small increments (the stretch
