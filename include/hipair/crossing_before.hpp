@@ -23,7 +23,8 @@
 // end it has taken first_crossing's every step in first_crossing's order and gives its answer bit
 // for bit, however often it was stopped on the way (the stretches left on its stack are exactly
 // those the uninterrupted query would evaluate next). The simulator runs its free pairs' queries
-// side by side this way, always the one whose next stretch starts first (simulation.cpp, step).
+// side by side this way, always the one whose next stretch starts first
+// (src/simulation/crossing_sweep.hpp).
 #pragma once
 
 #include <hipair/cspace.hpp>
@@ -54,9 +55,10 @@ class CrossingQuery {
   bool finished() const;
   /// Where the query goes on: u_begin before the start's point query, then the start a of the
   /// next stretch its subdivision evaluates; the motion is certified in its starting free cell on
-  /// [u_begin, next()] once the start is done. Only while not finished.
+  /// [u_begin, next()] once the start is done. Finished: the answer's u_lower.
   const Rational& next() const;
-  /// One step: the start's point query, or one stretch (excluded, split or answered).
+  /// One step: the start's point query, or one stretch (excluded, split or answered); nothing
+  /// once finished.
   void step();
   /// Steps until finished or, with `stop` and the start done, next() > *stop.
   void run(const Rational* stop = nullptr);

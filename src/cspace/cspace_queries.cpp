@@ -1997,9 +1997,10 @@ class CrossingRun {
 
   bool finished() const { return done; }
 
-  const Rational& next() const { return started ? stack.back().first : path.u_begin; }
+  const Rational& next() const { return done ? result.u_lower : started ? stack.back().first : path.u_begin; }
 
   void step() {
+    if (done) return;
     if (!started) {
       started = true;
       start();
