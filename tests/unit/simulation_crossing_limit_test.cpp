@@ -1,7 +1,8 @@
 // The step's crossing queries with a limit (src/simulation/crossing_limit.hpp, switch
-// simulation::crossing_limits()): once a free pair's crossing is found, the later pairs' queries
-// stop past its u_upper (hipair/crossing_before.hpp) and a stopped pair that might still be
-// simultaneous is asked again in full. The oracle is the same simulation with every query
+// simulation::crossing_limits()): the free pairs' queries run side by side
+// (src/simulation/crossing_sweep.hpp), once a crossing is found they stop past its u_upper
+// (hipair/crossing_before.hpp), and a stopped query that might still be simultaneous is resumed
+// to its end. The oracle is the same simulation with every query
 // complete: the two run side by side, step for step (the switch set per step), on the example
 // models with several free pairs and with one, at two accuracies, and every state (time,
 // positions, velocities: bit patterns) and every event (kind, pair, features, time, impulse)
@@ -77,7 +78,7 @@ TEST(SimulationCrossingLimit, RunsEqualTheRunsWithCompleteQueries) {
   }
   const std::size_t limited_queries = simulation::limited_queries() - limited_before;
   const std::size_t requeried = simulation::requeried_limits() - requeried_before;
-  std::printf("crossing limits: %zu steps, %zu events equal; %zu queries stopped at their limit, %zu of them asked again\n",
+  std::printf("crossing limits: %zu steps, %zu events equal; %zu queries stopped at their limit, %zu of them resumed\n",
               steps, events, limited_queries, requeried);
   EXPECT_GT(limited_queries, 20u);
 }
