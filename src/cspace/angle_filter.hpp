@@ -15,7 +15,10 @@
 #include "kernels/interval.hpp"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -172,6 +175,40 @@ inline bool& locate_filter() { return thread_switch<LocateFilterTag>(); }
 struct LocateFilterEdgesTag;
 inline std::size_t& locate_filter_edges() { return thread_counter<LocateFilterEdgesTag>(); }
 
+// filtered_angle_ranges' half-angle tangents through a per-thread memo: tan_enclosure(tau / 2)
+// is a pure function of the double tau, and a subdivision's stretches share their ends' tau (a
+// stretch [a, b] and its first half [a, m] enclose a monotone angle from the same double at a),
+// so a direct-mapped table of recent taus (bit patterns) and their enclosures (both ends, or
+// none where tan_enclosure has none) returns the same bits without the Taylor polynomials. On by
+// default; tests switch it off per thread to compare (CSpaceAngleFilter.TanMemo*).
+struct TanMemoTag;
+inline bool& tan_memo() { return thread_switch<TanMemoTag>(); }
+// How many half-angle tangents on this thread came from the memo (tests, profiling).
+struct TanMemoHitsTag;
+inline std::size_t& tan_memo_hits() { return thread_counter<TanMemoHitsTag>(); }
+
+inline std::optional<kernels::Interval> half_angle_tan(double tau) {
+  using kernels::Interval;
+  if (!tan_memo()) return tan_enclosure(Interval::point(tau) * Interval::point(0.5));
+  struct Entry {
+    std::uint64_t key = 0;
+    bool used = false;
+    std::optional<Interval> value;
+  };
+  constexpr std::size_t size = 256;
+  thread_local std::array<Entry, size> table;
+  const std::uint64_t key = std::bit_cast<std::uint64_t>(tau);
+  Entry& entry = table[static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 56) % size];
+  if (entry.used && entry.key == key) {
+    ++tan_memo_hits();
+    return entry.value;
+  }
+  entry.value = tan_enclosure(Interval::point(tau) * Interval::point(0.5));
+  entry.key = key;
+  entry.used = true;
+  return entry.value;
+}
+
 // The t-ranges of every chart system that an angle in [theta_lo, theta_hi] (width < 2) may be
 // in, as angle_pieces computes them; nullopt where the filter cannot decide (an angle beyond
 // 2^40 turns, a non-finite bound).
@@ -202,7 +239,7 @@ inline std::optional<AngleRanges> filtered_angle_ranges(const kernels::Interval&
   AngleRanges ranges;
   bool failed = false;
   auto tan_half = [&](double tau, bool upper) {
-    std::optional<Interval> t = tan_enclosure(Interval::point(tau) * Interval::point(0.5));
+    std::optional<Interval> t = half_angle_tan(tau);
     if (!t) {
       failed = true;
       return 0.0;
