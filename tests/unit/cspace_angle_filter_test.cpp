@@ -6,8 +6,11 @@
 #include <mpfr.h>
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <random>
+#include <vector>
 
 namespace hipair {
 namespace {
@@ -179,6 +182,75 @@ TEST(CSpaceAngleFilter, PiecesCoverEveryAngleOfTheRangeAndAreTight) {
   }
   EXPECT_GT(samples, 100000u);
   EXPECT_EQ(tight, ends);
+}
+
+// The half-angle tangents' memo (half_angle_tan, tan_memo()): on generated angle ranges whose ends
+// recur as a subdivision's do (a stretch, its halves, their halves) and ends one double apart
+// (which a memo comparing fewer bits would confuse), filtered_angle_ranges with the memo (warm:
+// every range asked twice) gives the bits it gives with the memo off, and half_angle_tan the
+// bits of tan_enclosure itself, on the same thread.
+TEST(CSpaceAngleFilter, TanMemoGivesTheUnmemoisedBits) {
+  std::mt19937_64 rng(27);
+  std::uniform_real_distribution<double> centre(-400.0, 400.0), unit(0.0, 1.0);
+  struct Off {
+    Off() { cspace::tan_memo() = false; }
+    ~Off() { cspace::tan_memo() = true; }
+  };
+  auto bits = [](double d) { return std::bit_cast<std::uint64_t>(d); };
+  auto same = [&](const std::optional<cspace::AngleRanges>& p, const std::optional<cspace::AngleRanges>& q) {
+    if (p.has_value() != q.has_value()) return false;
+    if (!p) return true;
+    if (p->size != q->size) return false;
+    for (std::size_t i = 0; i < p->size; ++i)
+      if (p->half_turn[i] != q->half_turn[i] || bits(p->lo[i]) != bits(q->lo[i]) || bits(p->hi[i]) != bits(q->hi[i]))
+        return false;
+    return true;
+  };
+  const std::size_t hits_before = cspace::tan_memo_hits();
+  std::size_t ranges = 0;
+  for (int i = 0; i < 3000; ++i) {
+    double lo = centre(rng), width = std::ldexp(unit(rng), -(i % 30)) * 1.5;
+    // ends: the stretch, its first and second halves and their halves, and ranges one double
+    // off at either end
+    std::vector<std::pair<double, double>> asked;
+    double hi = lo + width;
+    for (int level = 0; level < 3; ++level) {
+      double step = (hi - lo) / (1 << level);
+      for (int k = 0; k < (1 << level); ++k) asked.emplace_back(lo + step * k, lo + step * (k + 1));
+    }
+    asked.emplace_back(std::nextafter(lo, -1e300), hi);
+    asked.emplace_back(lo, std::nextafter(hi, 1e300));
+    asked.emplace_back(std::nextafter(lo, 1e300), std::nextafter(hi, -1e300));
+    for (int round = 0; round < 2; ++round)
+      for (auto [a, b] : asked) {
+        if (b < a) continue;
+        kernels::Interval theta(a, b);
+        std::optional<cspace::AngleRanges> memoised = cspace::filtered_angle_ranges(theta);
+        std::optional<cspace::AngleRanges> plain;
+        {
+          Off off;
+          plain = cspace::filtered_angle_ranges(theta);
+        }
+        ASSERT_TRUE(same(memoised, plain)) << "range " << a << " .. " << b << " round " << round;
+        ++ranges;
+        const double reduced = a - 2 * cspace::pi_below * std::round(a / 6.28), small = std::nextafter(a, 0.0) * 1e-3;
+        for (double tau : {reduced, std::nextafter(reduced, -1e300), std::nextafter(reduced, 1e300), small,
+                           std::nextafter(small, 1e300)}) {
+          std::optional<kernels::Interval> t = cspace::half_angle_tan(tau);
+          std::optional<kernels::Interval> oracle =
+              cspace::tan_enclosure(kernels::Interval::point(tau) * kernels::Interval::point(0.5));
+          ASSERT_EQ(t.has_value(), oracle.has_value()) << tau;
+          if (t) {
+            ASSERT_EQ(bits(t->lo), bits(oracle->lo)) << tau;
+            ASSERT_EQ(bits(t->hi), bits(oracle->hi)) << tau;
+          }
+        }
+      }
+  }
+  EXPECT_EQ(ranges, 60000u);
+  // the memo answered (most of the second rounds and the shared ends)
+  std::printf("tan memo hits %zu\n", cspace::tan_memo_hits() - hits_before);
+  EXPECT_GT(cspace::tan_memo_hits() - hits_before, 50000u);
 }
 
 }  // namespace
