@@ -512,14 +512,15 @@ class ChainAnalysis {
         // the driver's range too wide for one enclosure: split it (held_pieces)
         if (s == 0 || !held_pieces(i, s, box, curve, charts[s], boxes[s])) return false;
       }
+      int side = 0;   // the holder's free side, where the mean-value step proves it
       if (mean_value)
-        mean_value = mean_value_step(i, s, box, curve, center_parameters, offsets, previous_nominal, charts, xc, d, r);
+        mean_value = mean_value_step(i, s, box, curve, center_parameters, offsets, previous_nominal, charts, xc, d, r, side);
       // Another feature pair may take over inside the box (handover.cpp): the envelope. The
       // holder's mean-value form above stays sound for the holder's root; where another feature
       // pair may hold the follower, the follower's distance beyond the holder's root joins the
       // remainder R (above).
       HandoverEnvelope envelope = handovers_[s]->envelope(curve, box, charts[s], options_.relative_accuracy,
-                                                          options_.absolute_accuracy, boxes[s]);
+                                                          options_.absolute_accuracy, boxes[s], side);
       if (!envelope.bounded) {
         if (handover) handover->why = "pair " + stage.result.driver + ":" + stage.result.follower + ": " + envelope.why;
         return false;
@@ -539,7 +540,9 @@ class ChainAnalysis {
       x = to_part(charts[s], stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
     }
     out = x;
-    if (mean_value_through) *mean_value_through = mean_value;
+    // (through a widened pair the remainder R shrinks with the sub-box, so bisection may still
+    // pay: not counted as through)
+    if (mean_value_through) *mean_value_through = mean_value && r.lo == 0.0 && r.hi == 0.0;
     return true;
   }
 
@@ -589,10 +592,12 @@ class ChainAnalysis {
   // Pair s's step of compose_over's mean-value form: D_s from D_s-1 (in `d`, replaced), R_s from
   // R_s-1 (in `r`, replaced), H_s(c) (its part coordinate into `xc`, replacing pair s-1's),
   // charts[s] intersected with the form. False when the form is not available from this pair on.
+  // `side` receives F_v's sign over box x T_s x Y_s once root_partials has made it certain (over
+  // the enclosure before the form narrows it: so over the narrower one too), else stays 0.
   bool mean_value_step(std::size_t i, std::size_t s, const Box& box, const CurveSlice& curve,
                        const std::vector<Interval>& center_parameters, const std::vector<Interval>& offsets,
                        double previous_nominal, std::vector<Interval>& charts, Interval& xc,
-                       std::vector<Interval>& d, Interval& r) const {
+                       std::vector<Interval>& d, Interval& r, int& side) const {
     const StageAnalysis& stage = stages_[s];
     const StageContact& c = stage.contacts[i];
     std::vector<Interval> dp;
@@ -600,9 +605,9 @@ class ChainAnalysis {
     // Interval jets first; the Taylor models (dearer: the geometry over the box as Taylor models)
     // where F_v's sign is not certain without them or the form misses the accuracy asked for.
     bool taylor = false;
-    if (!stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt, taylor)) {
+    if (!stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt, taylor, &side)) {
       taylor = true;
-      if (!stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt, taylor)) return false;
+      if (!stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt, taylor, &side)) return false;
     }
     CurveSlice at_center = c.curve;
     Interval factor(0);   // phi_s' over the region

@@ -298,7 +298,8 @@ std::shared_ptr<const HandoverSearch::BoxParts> HandoverSearch::box_parts(const 
 }
 
 HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& box, const Interval& holder,
-                                          double relative_accuracy, double absolute_accuracy, std::size_t& boxes) const {
+                                          double relative_accuracy, double absolute_accuracy, std::size_t& boxes,
+                                          int side) const {
   HandoverEnvelope out;
   out.chart = holder;
   if (disabled_) {
@@ -408,10 +409,12 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
       }
     return common;
   };
-  int sigma = 0;
-  try {
-    sigma = slope_sign(fixed, holder, 3, slope_sign);
-  } catch (const Error&) {
+  int sigma = side == 1 || side == -1 ? side : 0;   // the caller's proof, or ours
+  if (sigma == 0) {
+    try {
+      sigma = slope_sign(fixed, holder, 3, slope_sign);
+    } catch (const Error&) {
+    }
   }
   if (sigma == 0) {
     out.why = "the holding feature pair's free side is not certain over the box";

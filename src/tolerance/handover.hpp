@@ -110,9 +110,11 @@ class HandoverSearch {
   /// there, only zeros where the follower's free side is the other one, or only zeros off its
   /// features). Unbounded when the holder's free side is not certain or no such leaf is found
   /// in the window. Candidates' roots are enclosed by CurveSolver::certified_range (with
-  /// `relative_accuracy`, `absolute_accuracy`; its sub-boxes counted in `boxes`).
+  /// `relative_accuracy`, `absolute_accuracy`; its sub-boxes counted in `boxes`). `side`: the
+  /// holder's free side when the caller has proven it (F_v's sign, certain over box x the
+  /// driver's range x `holder`: CurveSolver::root_partials), 0 to have it computed here.
   HandoverEnvelope envelope(const CurveSlice& curve, const Box& box, const Interval& holder,
-                            double relative_accuracy, double absolute_accuracy, std::size_t& boxes) const;
+                            double relative_accuracy, double absolute_accuracy, std::size_t& boxes, int side = 0) const;
 
   /// Off under `--assume-nominal-contact` (ToleranceOptions::chain_assume_nominal_holder,
   /// chain.cpp): the holder's enclosure returned as the envelope, as before session 25.
