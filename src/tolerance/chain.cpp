@@ -464,11 +464,28 @@ class ChainAnalysis {
   // form is not available (F_v's sign uncertain, a parameter left out of the jets not proven
   // inert, no certified root at the centre) the pair and those after it keep the interval
   // composition.
+  //
+  // Through a widened pair (session 27; its follower y_k possibly held by another feature pair:
+  // handover.cpp) the form carries a remainder R_k: V_k(p) in H_k(c) + sum_i D_k,i [box_i - c_i]
+  // + R_k, where H_k(p) is the value the pairs' nominal holders would give (each pair's holder
+  // driven by the previous pair's H: differentiable, D_k encloses its gradient as above) and
+  // R_k encloses V_k(p) - H_k(p) (0 until a pair widens). At a widened pair the follower is on
+  // the pushed side sigma of its holder's root h_k(p) (handover.hpp `side`) and within the
+  // envelope C_k, h_k(p) in the holder's enclosure Y_k; so y_k(p) - h_k(p) lies in
+  // [0, C_k.hi - Y_k.lo] (sigma = +1) or [C_k.lo - Y_k.hi, 0] (sigma = -1), added to R_k. At the
+  // pair after it, V_k+1(p) - H_k+1(p) = f(p, phi(V_k(p))) - f(p, phi(H_k(p))) = G_t phi' R_k by
+  // the mean-value theorem in the driver alone (H_k(p) and V_k(p) both in C_k, the driver's
+  // values between them in T_k+1, the roots there in Y_k+1): R_k+1 = G_k+1,t phi_k+1' R_k
+  // (+ its own widening). The form then encloses V_k+1(p), and H_k+1 at every point of the box
+  // and every root between them, so intersecting Y_k+1 with it keeps G valid over the narrower
+  // Y_k+1. H_k(c) is enclosed as before (the holders' roots at c, each driven by the previous
+  // one's), so the composition stays in mean-value form through the chain.
   bool compose_over(std::size_t i, const Box& box, std::vector<Interval>& charts, Interval& out, std::size_t* boxes,
                     bool* mean_value_through = nullptr, HandoverNote* handover = nullptr) const {
     bool mean_value = options_.mean_value_chain;
     std::vector<double> center;
     std::vector<Interval> offsets, d;   // B - c; D of the last pair
+    Interval r(0);   // R of the last pair (chart units)
     std::vector<Interval> center_parameters;
     if (mean_value) {
       box_offsets(box, center, offsets);
@@ -495,26 +512,37 @@ class ChainAnalysis {
         // the driver's range too wide for one enclosure: split it (held_pieces)
         if (s == 0 || !held_pieces(i, s, box, curve, charts[s], boxes[s])) return false;
       }
-      if (mean_value) mean_value = mean_value_step(i, s, box, curve, center_parameters, offsets, previous_nominal, charts, xc, d);
+      int side = 0;   // the holder's free side, where the mean-value step proves it
+      if (mean_value)
+        mean_value = mean_value_step(i, s, box, curve, center_parameters, offsets, previous_nominal, charts, xc, d, r, side);
       // Another feature pair may take over inside the box (handover.cpp): the envelope. The
       // holder's mean-value form above stays sound for the holder's root; where another feature
-      // pair may hold the follower, the follower's position is not differentiable across the
-      // change, so the later pairs keep the interval composition.
+      // pair may hold the follower, the follower's distance beyond the holder's root joins the
+      // remainder R (above).
       HandoverEnvelope envelope = handovers_[s]->envelope(curve, box, charts[s], options_.relative_accuracy,
-                                                          options_.absolute_accuracy, boxes[s]);
+                                                          options_.absolute_accuracy, boxes[s], side);
       if (!envelope.bounded) {
         if (handover) handover->why = "pair " + stage.result.driver + ":" + stage.result.follower + ": " + envelope.why;
         return false;
       }
       if (envelope.extended) {
+        if (mean_value) {
+          if (envelope.side > 0)
+            r = r + Interval(0.0, (Interval::point(envelope.chart.hi) - Interval::point(charts[s].lo)).hi);
+          else if (envelope.side < 0)
+            r = r + Interval((Interval::point(envelope.chart.lo) - Interval::point(charts[s].hi)).lo, 0.0);
+          else
+            mean_value = false;
+        }
         charts[s] = envelope.chart;
-        mean_value = false;
         if (handover) handover->extended = true;
       }
       x = to_part(charts[s], stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
     }
     out = x;
-    if (mean_value_through) *mean_value_through = mean_value;
+    // (through a widened pair the remainder R shrinks with the sub-box, so bisection may still
+    // pay: not counted as through)
+    if (mean_value_through) *mean_value_through = mean_value && r.lo == 0.0 && r.hi == 0.0;
     return true;
   }
 
@@ -561,13 +589,15 @@ class ChainAnalysis {
     return false;
   }
 
-  // Pair s's step of compose_over's mean-value form: D_s from D_s-1 (in `d`, replaced), V_s(c)
-  // (its part coordinate into `xc`, replacing pair s-1's), charts[s] intersected with the form.
-  // False when the form is not available from this pair on.
+  // Pair s's step of compose_over's mean-value form: D_s from D_s-1 (in `d`, replaced), R_s from
+  // R_s-1 (in `r`, replaced), H_s(c) (its part coordinate into `xc`, replacing pair s-1's),
+  // charts[s] intersected with the form. False when the form is not available from this pair on.
+  // `side` receives F_v's sign over box x T_s x Y_s once root_partials has made it certain (over
+  // the enclosure before the form narrows it: so over the narrower one too), else stays 0.
   bool mean_value_step(std::size_t i, std::size_t s, const Box& box, const CurveSlice& curve,
                        const std::vector<Interval>& center_parameters, const std::vector<Interval>& offsets,
                        double previous_nominal, std::vector<Interval>& charts, Interval& xc,
-                       std::vector<Interval>& d) const {
+                       std::vector<Interval>& d, Interval& r, int& side) const {
     const StageAnalysis& stage = stages_[s];
     const StageContact& c = stage.contacts[i];
     std::vector<Interval> dp;
@@ -575,9 +605,9 @@ class ChainAnalysis {
     // Interval jets first; the Taylor models (dearer: the geometry over the box as Taylor models)
     // where F_v's sign is not certain without them or the form misses the accuracy asked for.
     bool taylor = false;
-    if (!stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt, taylor)) {
+    if (!stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt, taylor, &side)) {
       taylor = true;
-      if (!stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt, taylor)) return false;
+      if (!stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt, taylor, &side)) return false;
     }
     CurveSlice at_center = c.curve;
     Interval factor(0);   // phi_s' over the region
@@ -599,12 +629,19 @@ class ChainAnalysis {
     // The form, then contracted: the partials again over the narrower Y_s (it still holds V_s
     // over the box), while that narrows Y_s by a tenth or more.
     std::vector<Interval> next;
+    Interval next_r(0);
+    // R_s = G_s,t phi_s' R_s-1, exactly 0 while no pair before has widened (then not added: an
+    // outward-rounded sum would widen the form by an ulp)
+    const bool carried = s > 0 && !(r.lo == 0.0 && r.hi == 0.0);
+    auto remainder = [&](const Interval& g_t) { return carried ? g_t * factor * r : Interval(0); };
+    auto plus_remainder = [&](const Interval& form, const Interval& trial_r) { return carried ? form + trial_r : form; };
     for (int contraction = 0; contraction < 3; ++contraction) {
       if (contraction > 0 && !stage.solver->root_partials(curve, box, stage.box, charts[s], dp, dt, taylor)) break;
       std::vector<Interval> trial = chain_rule(dp, dt, factor, s > 0 ? &d : nullptr);
-      Interval form = mean_value_form(vc, trial, offsets);
+      Interval trial_r = remainder(dt);
+      Interval form = plus_remainder(mean_value_form(vc, trial, offsets), trial_r);
       if (!taylor && options_.taylor_partials) {
-        double linear = 0;   // the form's width with every D at its midpoint
+        double linear = carried ? trial_r.width() : 0.0;   // the form's width with every D at its midpoint (and R)
         for (std::size_t p = 0; p < trial.size(); ++p) linear += std::fabs(trial[p].middle()) * offsets[p].width();
         if (!(form.width() <= linear * (1 + options_.relative_accuracy) + options_.absolute_accuracy)) {
           taylor = true;
@@ -614,7 +651,8 @@ class ChainAnalysis {
             dp.swap(dp_t);
             dt = dt_t;
             trial = chain_rule(dp, dt, factor, s > 0 ? &d : nullptr);
-            form = mean_value_form(vc, trial, offsets);
+            trial_r = remainder(dt);
+            form = plus_remainder(mean_value_form(vc, trial, offsets), trial_r);
           }
         }
       }
@@ -623,6 +661,7 @@ class ChainAnalysis {
         break;
       }
       next.swap(trial);
+      next_r = trial_r;
       Interval narrower(std::max(charts[s].lo, form.lo), std::min(charts[s].hi, form.hi));
       if (!(narrower.lo <= narrower.hi)) return false;   // (both enclose V_s over the box: cannot happen)
       bool progress = narrower.width() < 0.9 * charts[s].width();
@@ -630,6 +669,7 @@ class ChainAnalysis {
       if (!progress) break;
     }
     d.swap(next);
+    r = next_r;
     xc = to_part(vc, stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
     return true;
   }

@@ -298,7 +298,8 @@ std::shared_ptr<const HandoverSearch::BoxParts> HandoverSearch::box_parts(const 
 }
 
 HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& box, const Interval& holder,
-                                          double relative_accuracy, double absolute_accuracy, std::size_t& boxes) const {
+                                          double relative_accuracy, double absolute_accuracy, std::size_t& boxes,
+                                          int side) const {
   HandoverEnvelope out;
   out.chart = holder;
   if (disabled_) {
@@ -408,10 +409,12 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
       }
     return common;
   };
-  int sigma = 0;
-  try {
-    sigma = slope_sign(fixed, holder, 3, slope_sign);
-  } catch (const Error&) {
+  int sigma = side == 1 || side == -1 ? side : 0;   // the caller's proof, or ours
+  if (sigma == 0) {
+    try {
+      sigma = slope_sign(fixed, holder, 3, slope_sign);
+    } catch (const Error&) {
+    }
   }
   if (sigma == 0) {
     out.why = "the holding feature pair's free side is not certain over the box";
@@ -557,13 +560,11 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     Value f = contact(c, t, y);
     int slope = sign_of(f.f_v);
     if (slope == -sigma || sign_of(f.f) != 0) return false;
-    if (slope == sigma) {
-      // F monotone along y for each (p, t), increasing towards the sigma side: a zero in y only
-      // where F <= 0 at y's -sigma end and >= 0 at its sigma end
-      double near = sigma > 0 ? y.lo : y.hi, far = sigma > 0 ? y.hi : y.lo;
-      if (sign_of(contact(c, t, Interval::point(near)).f) > 0) return false;
-      if (sign_of(contact(c, t, Interval::point(far)).f) < 0) return false;
-    }
+    // F monotone along y for each (p, t), increasing towards the sigma side: a zero in y only
+    // where F <= 0 at y's -sigma end and >= 0 at its sigma end
+    if (slope == sigma &&
+        monotone_without_zero(sigma, y, [&](double v) { return sign_of(contact(c, t, Interval::point(v)).f); }))
+      return false;
     if (off_features(c, t, y)) return false;
     // Its root R over the box on the -sigma side of y (touching y's -sigma end at most: a zero
     // there is the follower's position the walk has reached) or beyond y's sigma end, and F_v
@@ -597,42 +598,11 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   // may push bounds the follower at E; a leaf where one may (at the finest size) moves E to its
   // far end.
   constexpr int levels = 4;   // a leaf is W / 8 halved at most this many times
-  const double coarse = reach / 8;
-  auto leaf = [&](double from, double h) {
-    double to = sigma > 0 ? std::min(from + h, window.hi) : std::max(from - h, window.lo);
-    return sigma > 0 ? Interval(from, std::max(from, to)) : Interval(std::min(from, to), from);
-  };
-  std::vector<char> occupying(candidates.size(), 0);
-  std::size_t last = candidates.size();   // the candidate found pushing last: tried first
-  auto free_leaf = [&](const Interval& y) {
-    if (last < candidates.size() && may_push(last, y)) return false;
-    for (std::size_t i = 0; i < candidates.size(); ++i)
-      if (i != last && may_push(i, y)) {
-        last = i;
-        return false;
-      }
-    return true;
-  };
-  double edge_reached = start;
-  int level = 0;
-  bool bounded = false;
-  while (true) {
-    double h = coarse;
-    for (int i = 0; i < level; ++i) h *= 0.5;
-    Interval y = leaf(edge_reached, h);
-    if (free_leaf(y)) {
-      bounded = true;
-      break;
-    }
-    if (level < levels) {
-      ++level;
-      continue;
-    }
-    occupying[last] = 1;
-    double next = end_of(y, sigma);
-    if (next == edge_reached || next == end_of(window, sigma)) break;
-    edge_reached = next;
-  }
+  WindowWalk walk = walk_window(start, window, sigma, reach / 8, levels, candidates.size(), may_push);
+  const double edge_reached = walk.edge;
+  const std::size_t last = walk.last;
+  const bool bounded = walk.bounded;
+  const std::vector<char>& occupying = walk.occupying;
   out.occupying = static_cast<std::size_t>(std::count(occupying.begin(), occupying.end(), 1));
   if (!bounded) {
     auto name = [&](const FeatureIdentity& f) {
@@ -647,6 +617,7 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     return out;
   }
   out.extended = edge_reached != start;
+  out.side = sigma;
   out.chart = sigma > 0 ? Interval(holder.lo, std::max(holder.hi, edge_reached))
                         : Interval(std::min(holder.lo, edge_reached), holder.hi);
   out.bounded = true;

@@ -8,6 +8,7 @@
 
 #include "tolerance/solver.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <map>
 #include <memory>
@@ -22,10 +23,78 @@ struct HandoverEnvelope {
   bool bounded = false;      ///< false: no enclosure (why says why); the band is then unbounded
   Interval chart;            ///< the holder's enclosure widened in the direction the follower is pushed
   bool extended = false;     ///< a feature pair other than the holder may hold the follower beyond it
+  /// The side the follower is pushed to (the holder's F_v sign over the box, +1 or -1; 0 when
+  /// not computed): for every parameter vector the follower is on this side of the holder's
+  /// root, by at most the chart's extent beyond the holder's enclosure (chain.cpp uses it to
+  /// carry the mean-value composition through a widened pair).
+  int side = 0;
   std::size_t candidates = 0;   ///< feature pairs whose edges may meet in the window
   std::size_t occupying = 0;    ///< of which found possibly pushing in a leaf the walk passed
   std::string why;
 };
+
+/// Over a leaf y of the window where F_v is certainly of sign `sigma` (F increasing towards the
+/// sigma side for each parameter vector and driver value): F has no zero in y when it is
+/// certainly positive at y's -sigma end or certainly negative at its sigma end. `sign_at(v)`:
+/// F's certain sign at the point v over the box (0 when not certain).
+template <typename SignAt>
+bool monotone_without_zero(int sigma, const Interval& y, SignAt&& sign_at) {
+  double near = sigma > 0 ? y.lo : y.hi, far = sigma > 0 ? y.hi : y.lo;
+  return sign_at(near) > 0 || sign_at(far) < 0;
+}
+
+/// The envelope's walk (handover.cpp, step 3) over `window` (of chart units, beyond the
+/// holder's enclosure on its sigma side, `start` its near end): from E = start, the leaf
+/// [E, E + h] (sigma-wards; h from `coarse` halved up to `levels` times) in which no candidate
+/// may push (`may_push(i, leaf)` false for every i < `candidates`) ends the walk at E; a leaf
+/// of the finest size where one may push moves E to its far end. The candidate found pushing
+/// last is tried first.
+struct WindowWalk {
+  bool bounded = false;          ///< a free leaf was found before E reached the window's far end
+  double edge = 0;               ///< E: the follower's bound on the sigma side
+  std::size_t last = 0;          ///< the candidate found pushing last (`candidates`: none)
+  std::vector<char> occupying;   ///< per candidate: found pushing in a finest leaf the walk passed
+};
+template <typename MayPush>
+WindowWalk walk_window(double start, const Interval& window, int sigma, double coarse, int levels,
+                       std::size_t candidates, MayPush&& may_push) {
+  WindowWalk out;
+  out.occupying.assign(candidates, 0);
+  out.last = candidates;
+  auto leaf = [&](double from, double h) {
+    double to = sigma > 0 ? std::min(from + h, window.hi) : std::max(from - h, window.lo);
+    return sigma > 0 ? Interval(from, std::max(from, to)) : Interval(std::min(from, to), from);
+  };
+  auto free_leaf = [&](const Interval& y) {
+    if (out.last < candidates && may_push(out.last, y)) return false;
+    for (std::size_t i = 0; i < candidates; ++i)
+      if (i != out.last && may_push(i, y)) {
+        out.last = i;
+        return false;
+      }
+    return true;
+  };
+  out.edge = start;
+  int level = 0;
+  while (true) {
+    double h = coarse;
+    for (int i = 0; i < level; ++i) h *= 0.5;
+    Interval y = leaf(out.edge, h);
+    if (free_leaf(y)) {
+      out.bounded = true;
+      break;
+    }
+    if (level < levels) {
+      ++level;
+      continue;
+    }
+    out.occupying[out.last] = 1;
+    double next = sigma > 0 ? y.hi : y.lo;
+    if (next == out.edge || next == (sigma > 0 ? window.hi : window.lo)) break;
+    out.edge = next;
+  }
+  return out;
+}
 
 /// The candidates' search for one pair of the chain (one per pair: its parts are fixed).
 class HandoverSearch {
@@ -41,9 +110,11 @@ class HandoverSearch {
   /// there, only zeros where the follower's free side is the other one, or only zeros off its
   /// features). Unbounded when the holder's free side is not certain or no such leaf is found
   /// in the window. Candidates' roots are enclosed by CurveSolver::certified_range (with
-  /// `relative_accuracy`, `absolute_accuracy`; its sub-boxes counted in `boxes`).
+  /// `relative_accuracy`, `absolute_accuracy`; its sub-boxes counted in `boxes`). `side`: the
+  /// holder's free side when the caller has proven it (F_v's sign, certain over box x the
+  /// driver's range x `holder`: CurveSolver::root_partials), 0 to have it computed here.
   HandoverEnvelope envelope(const CurveSlice& curve, const Box& box, const Interval& holder,
-                            double relative_accuracy, double absolute_accuracy, std::size_t& boxes) const;
+                            double relative_accuracy, double absolute_accuracy, std::size_t& boxes, int side = 0) const;
 
   /// Off under `--assume-nominal-contact` (ToleranceOptions::chain_assume_nominal_holder,
   /// chain.cpp): the holder's enclosure returned as the envelope, as before session 25.

@@ -535,7 +535,7 @@ std::vector<bool> CurveSolver::inert(const CurveSlice& curve, const Box& whole) 
 }
 
 bool CurveSolver::root_partials(const CurveSlice& curve, const Box& box, const Box& whole, const Interval& y,
-                                std::vector<Interval>& dp, Interval& dt, bool taylor) const {
+                                std::vector<Interval>& dp, Interval& dt, bool taylor, int* sign) const {
   std::vector<double> center(n_);
   for (std::size_t i = 0; i < n_; ++i) center[i] = 0.5 * (box.lo[i] + box.hi[i]);
   std::shared_ptr<const BoxGeometry> memo = box_geometry(curve, box, center);
@@ -581,6 +581,7 @@ bool CurveSolver::root_partials(const CurveSlice& curve, const Box& box, const B
   Interval fv = f.partial(k);
   int s = fv.sign();
   if (s != 1 && s != -1) return false;   // no implicit function certified over the region
+  if (sign) *sign = s;
   // -F_a/F_v, and where the Taylor models hold, also as a quotient of Taylor models (which keeps
   // the correlation of F_a and F_v over the region), intersected
   auto ratio = [&](std::size_t a) {

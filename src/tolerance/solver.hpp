@@ -136,9 +136,10 @@ class CurveSolver {
   /// partial derivatives with respect to it are exactly 0 over `whole` (a box containing `box`:
   /// interval jets over it, memoised per feature pair). `taylor` false: interval jets only
   /// (cheaper: no Taylor-model geometry). False when F_v's sign is not certain or such a
-  /// parameter is not proven inert.
+  /// parameter is not proven inert. `sign`, when given, receives F_v's sign over the region
+  /// (+1 or -1) once it is certain.
   bool root_partials(const CurveSlice& curve, const Box& box, const Box& whole, const Interval& y,
-                     std::vector<Interval>& dp, Interval& dt, bool taylor = true) const;
+                     std::vector<Interval>& dp, Interval& dt, bool taylor = true, int* sign = nullptr) const;
 
  private:
   template <class T>
