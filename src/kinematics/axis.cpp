@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace hipair::kinematics_detail {
@@ -108,18 +109,65 @@ int compare(const AxisPosition& a, const AxisPosition& b) {
 }
 
 double coordinate(const AxisLine& line, const AxisPosition& position) {
-  // the same double every time (approximate() is a function of the isolating interval):
-  // computed once per position and its copies
-  if (std::isnan(position.approximate)) position.approximate = position.value.approximate();
+  // canonical (a function of the number, not of its isolating interval): computed once per
+  // position and its copies
+  if (std::isnan(position.approximate)) position.approximate = truncated_double(position.value);
   return line.coordinate(position.piece, position.approximate);
+}
+
+double truncated_double(const Real& value) {
+  if (value.exact) return value.lower.get_d();   // mpq_get_d: truncated towards zero
+  Real copy = value;
+  // first the width Real::approximate refines to (relative 2^-60): then one double boundary at
+  // most lies inside the interval, and usually none. The result does not depend on the
+  // interval, so the cheaper dyadic bisection (its own interval) serves.
+  Rational width = abs(copy.upper) + abs(copy.lower);
+  width /= Rational(mpz_class(1) << 60);
+  if (width == 0) width = Rational(1, mpz_class(1) << 60);
+  algebra::refine_dyadically(copy, width);
+  for (;;) {
+    if (copy.exact) return copy.lower.get_d();
+    // trunc is non-decreasing and value lies in (lower, upper): trunc(value) is between these
+    const double a = copy.lower.get_d(), b = copy.upper.get_d();
+    if (a == b) return a;
+    if (std::nextafter(a, std::numeric_limits<double>::infinity()) == b) {
+      // one boundary between the two truncation cells: positive cells start at their double
+      // ([b, next b) truncates to b), non-positive ones end at theirs ((prev a, a] to a)
+      if (b > 0) return value.compare(Rational(b)) >= 0 ? b : a;
+      return value.compare(Rational(a)) <= 0 ? a : b;
+    }
+    copy.refine();
+  }
 }
 
 Rational rational_near(const Real& value, int bits) {
   if (value.exact) return value.lower;
+  // the midpoint of the cell [k, k + 1) 2^-bits holding the value (a function of the number,
+  // not of its isolating interval), or the value itself on a cell edge
   Real copy = value;
-  copy.refine_to(Rational(1, mpz_class(1) << bits));
-  if (copy.exact) return copy.lower;
-  Rational middle = (copy.lower + copy.upper) / 2;
+  const mpz_class scale = mpz_class(1) << bits;
+  algebra::refine_dyadically(copy, Rational(1, scale));   // any interval serves (see above)
+  mpz_class cell, upper_cell;
+  for (;;) {
+    if (copy.exact) return copy.lower;
+    Rational scaled = copy.lower * scale;
+    mpz_fdiv_q(cell.get_mpz_t(), scaled.get_num_mpz_t(), scaled.get_den_mpz_t());
+    scaled = copy.upper * scale;
+    mpz_cdiv_q(upper_cell.get_mpz_t(), scaled.get_num_mpz_t(), scaled.get_den_mpz_t());
+    // the value lies in (lower, upper), inside [cell, upper_cell] 2^-bits
+    if (upper_cell == cell + 1) break;
+    if (upper_cell == cell + 2) {
+      Rational edge(mpz_class(cell + 1), scale);
+      edge.canonicalize();
+      int side = value.compare(edge);
+      if (side == 0) return edge;
+      if (side > 0) cell += 1;
+      break;
+    }
+    copy.refine();
+  }
+  Rational middle(mpz_class(2 * cell + 1), mpz_class(2 * scale));
+  middle.canonicalize();
   return middle;
 }
 

@@ -46,6 +46,17 @@ constexpr int max_proof_curves = 32;
 
 using cspace::public_kind;
 
+// d/dy of c[i][j] x^i y^j (y: the second index, the follower in a CurveData's orientation).
+IntegerPolynomial2 follower_derivative(const IntegerPolynomial2& polynomial) {
+  IntegerPolynomial2 result;
+  for (const auto& row : polynomial.coefficients) {
+    std::vector<mpz_class> out;
+    for (std::size_t j = 1; j < row.size(); ++j) out.push_back(row[j] * static_cast<unsigned long>(j));
+    result.coefficients.push_back(std::move(out));
+  }
+  return result;
+}
+
 // Interval enclosure of an integer polynomial divided by a power of two, so that coefficients
 // of any size stay finite in double (the zero set and the signs are those of the polynomial).
 class ScaledIntervalPolynomial {
@@ -91,6 +102,9 @@ struct OrientedClause {
 struct CurveData {
   IntegerPolynomial2 polynomial;
   ScaledIntervalPolynomial interval;
+  /// The polynomial's partial derivative in the follower coordinate: where its enclosure
+  /// excludes zero the curve is a graph over the follower axis there (KernelSlicerOptions::monotone_runs).
+  ScaledIntervalPolynomial follower_slope;
   std::vector<OrientedClause> validity;
 };
 
@@ -279,6 +293,7 @@ class KernelSlicer final : public PairSlicer {
         auto made = std::make_shared<CurveData>();
         made->polynomial = follower_is_x_ ? transposed(curve.polynomial) : std::move(curve.polynomial);
         made->interval = ScaledIntervalPolynomial(made->polynomial);
+        made->follower_slope = ScaledIntervalPolynomial(follower_derivative(made->polynomial));
         for (const cspace::ValidityClause& clause : curve.validity) {
           OrientedClause oriented_clause;
           for (const IntegerPolynomial2& atom : clause.atoms)
@@ -409,6 +424,7 @@ class KernelSlicer final : public PairSlicer {
       const std::uint32_t mask = cells & window_mask;
       if (!mask) continue;
       algebra::Polynomial p;
+      std::optional<algebra::Polynomial> square_free;   // of p, for monotone runs' roots
       bool substituted = false;
       // maximal runs of follower cells where the curve may vanish
       for (int first = 0; first < follower_cells;) {
@@ -425,13 +441,46 @@ class KernelSlicer final : public PairSlicer {
         if (!curve.interval.evaluate(value_box, algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)})
                  .contains_zero())
           continue;
-        if (!substituted) {
+        auto substitute = [&]() {
+          if (substituted) return;
           p = algebra::substitute_x(curve.polynomial, value);
           algebra::trim(p);
           substituted = true;
-          if (algebra::degree(p) <= 0) break;   // no root, or the whole line (a degenerate slice)
-          // real_roots takes the square-free part itself
+        };
+        if (options_.monotone_runs && lo < hi &&
+            !curve.follower_slope.evaluate(value_box, algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)})
+                 .contains_zero()) {
+          // P(value, y) is strictly monotone on [lo, hi] (its y-derivative's enclosure over the
+          // box excludes zero): one simple root there exactly when the signs at the ends differ,
+          // isolated by (lo, hi) itself. The ends' signs from certified enclosures, exactly when
+          // an enclosure holds zero (substitute_x scales by a positive factor: the same signs).
+          auto end_sign = [&](const Rational& y) {
+            algebra::Interval at = curve.interval.evaluate(value_box, algebra::enclose(y));
+            if (at.lo > 0) return 1;
+            if (at.hi < 0) return -1;
+            substitute();
+            return algebra::sign_at(p, y);
+          };
+          const int sign_lo = end_sign(lo), sign_hi = end_sign(hi);
+          if (sign_lo == sign_hi) continue;   // both non-zero: monotone, no root
+          Real root;
+          if (sign_lo == 0 || sign_hi == 0) {
+            root = Real::from_rational(sign_lo == 0 ? lo : hi);
+          } else {
+            substitute();
+            if (!square_free) square_free = algebra::square_free_test(p);
+            root.polynomial = *square_free;
+            root.lower = lo;
+            root.upper = hi;
+          }
+          ++monotone_roots_;
+          if (valid(curve, value_box, root, options_.validity_prefilter))
+            points.push_back(SlicePoint{std::move(root), {strip_curve->feature}});
+          continue;
         }
+        substitute();
+        if (algebra::degree(p) <= 0) break;   // no root, or the whole line (a degenerate slice)
+        // real_roots takes the square-free part itself
         for (Real& root : algebra::descartes_real_roots(p, lo, hi)) {
           if (!valid(curve, value_box, root, options_.validity_prefilter)) continue;
           points.push_back(SlicePoint{std::move(root), {strip_curve->feature}});
@@ -531,7 +580,7 @@ class KernelSlicer final : public PairSlicer {
     return result;
   }
 
-  SliceClassCounts class_counts() const { return SliceClassCounts{classified_.load(), transferred_.load()}; }
+  SliceClassCounts class_counts() const { return SliceClassCounts{classified_.load(), transferred_.load(), monotone_roots_.load()}; }
 
   const IntegerPolynomial2* polynomial(std::size_t other_chart, std::size_t follower_chart,
                                        std::size_t feature) const override {
@@ -781,6 +830,7 @@ class KernelSlicer final : public PairSlicer {
   mutable std::mutex memo_mutex_;
   mutable std::vector<std::shared_ptr<const PreviousSlice>> previous_;   // per chart pair (o, f)
   mutable std::atomic<std::size_t> classified_{0}, transferred_{0};
+  mutable std::atomic<std::size_t> monotone_roots_{0};   // roots isolated by a monotone run
   std::vector<std::vector<Rational>> follower_edges_;   // per follower chart: its cells' edges
 };
 
