@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <numbers>
 
@@ -115,29 +117,64 @@ double coordinate(const AxisLine& line, const AxisPosition& position) {
   return line.coordinate(position.piece, position.approximate);
 }
 
+namespace {
+
+// Doubles in their order as 64-bit integers (finite doubles; -0 and +0 both 0).
+std::int64_t ordered_key(double d) {
+  std::int64_t bits = 0;
+  std::memcpy(&bits, &d, sizeof bits);
+  return bits >= 0 ? bits : -(bits & std::numeric_limits<std::int64_t>::max());
+}
+
+double from_ordered_key(std::int64_t key) {
+  std::int64_t bits = key >= 0 ? key : (-key) | std::numeric_limits<std::int64_t>::min();
+  double d = 0;
+  std::memcpy(&d, &bits, sizeof d);
+  return d;
+}
+
+}  // namespace
+
 double truncated_double(const Real& value) {
   if (value.exact) return value.lower.get_d();   // mpq_get_d: truncated towards zero
+  // The result does not depend on the interval, so the cheap filtered dyadic bisection (its own
+  // interval) narrows it to a relative 2^-44, where the filter still decides most signs; then
+  // trunc(lower) <= trunc(value) <= trunc(upper) (trunc is non-decreasing), a few hundred doubles
+  // apart at most, and a binary search over them with exact signs finds trunc(value).
   Real copy = value;
-  // first the width Real::approximate refines to (relative 2^-60): then one double boundary at
-  // most lies inside the interval, and usually none. The result does not depend on the
-  // interval, so the cheaper dyadic bisection (its own interval) serves.
   Rational width = abs(copy.upper) + abs(copy.lower);
-  width /= Rational(mpz_class(1) << 60);
-  if (width == 0) width = Rational(1, mpz_class(1) << 60);
+  width /= Rational(mpz_class(1) << 44);
   algebra::refine_dyadically(copy, width);
-  for (;;) {
-    if (copy.exact) return copy.lower.get_d();
-    // trunc is non-decreasing and value lies in (lower, upper): trunc(value) is between these
-    const double a = copy.lower.get_d(), b = copy.upper.get_d();
-    if (a == b) return a;
-    if (std::nextafter(a, std::numeric_limits<double>::infinity()) == b) {
-      // one boundary between the two truncation cells: positive cells start at their double
-      // ([b, next b) truncates to b), non-positive ones end at theirs ((prev a, a] to a)
-      if (b > 0) return value.compare(Rational(b)) >= 0 ? b : a;
-      return value.compare(Rational(a)) <= 0 ? a : b;
+  if (copy.exact) return copy.lower.get_d();
+  const int lower_sign = algebra::sign_at(copy.polynomial, copy.lower);
+  // -1, 0, +1: value against the double d (exact)
+  auto against = [&](double d) {
+    Rational at(d);
+    if (at <= copy.lower) return 1;
+    if (at >= copy.upper) return -1;
+    int sign = algebra::sign_at(copy.polynomial, at);
+    if (sign == 0) return 0;
+    // value in (lower, upper): narrow the copy to the side holding it (the same number)
+    if (sign == lower_sign) {
+      copy.lower = at;
+      return 1;
     }
-    copy.refine();
+    copy.upper = at;
+    return -1;
+  };
+  // trunc(value) >= d: positive cells start at their double ([d, next d) truncates to d),
+  // non-positive ones end at theirs ((previous d, d] truncates to d)
+  auto at_least = [&](double d) {
+    if (d > 0) return against(d) >= 0;
+    return against(std::nextafter(d, -std::numeric_limits<double>::infinity())) > 0;
+  };
+  std::int64_t low = ordered_key(copy.lower.get_d()), high = ordered_key(copy.upper.get_d());
+  while (low < high) {
+    const std::int64_t middle = low + (high - low + 1) / 2;
+    if (at_least(from_ordered_key(middle))) low = middle;
+    else high = middle - 1;
   }
+  return from_ordered_key(low);
 }
 
 Rational rational_near(const Real& value, int bits) {

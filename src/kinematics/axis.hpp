@@ -53,9 +53,10 @@ AxisPosition canonical(const AxisLine& line, AxisPosition position);
 int compare(const AxisPosition& a, const AxisPosition& b);
 /// Double part coordinate.
 double coordinate(const AxisLine& line, const AxisPosition& position);
-/// The value itself when it is rational, else the midpoint of the cell [k, k + 1) 2^-bits that
-/// holds it (within 2^-(bits + 1)). A function of the number, not of its isolating interval:
-/// slices and rates read at it do not depend on how a root was isolated.
+/// The value itself when it is exact (Real::exact) or lies on a cell edge k 2^-bits, else the
+/// midpoint of the cell [k, k + 1) 2^-bits that holds it (within 2^-(bits + 1)). Not a function
+/// of the isolating interval: slices and rates read at it do not depend on how a root was
+/// isolated (unless a rational root off the grid is exact in one isolation and not in another).
 Rational rational_near(const Real& value, int bits = 64);
 /// The double nearest the value towards zero (mpq_get_d's truncation of the exact number; the
 /// value itself when it is a rational double). A function of the number, not of its isolating

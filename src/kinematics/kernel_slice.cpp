@@ -150,6 +150,7 @@ class KernelSlicer final : public PairSlicer {
  public:
   KernelSlicer(const Model& model, std::size_t pair, std::size_t follower, const KernelSlicerOptions& options)
       : model_(model), options_(options) {
+    options_.monotone_runs = options_.monotone_runs && monotone_runs_switch();
     if (pair >= model.pairs.size()) throw GeometryError("no pair " + std::to_string(pair));
     const PairSpec& spec = model.pairs[pair];
     if (follower != spec.first && follower != spec.second)
@@ -472,6 +473,7 @@ class KernelSlicer final : public PairSlicer {
             root.polynomial = *square_free;
             root.lower = lo;
             root.upper = hi;
+            narrow_in_doubles(curve, value_box, root, sign_lo);
           }
           ++monotone_roots_;
           if (valid(curve, value_box, root, options_.validity_prefilter))
@@ -693,6 +695,29 @@ class KernelSlicer final : public PairSlicer {
     }
     kind = old.kinds[lo];
     return true;
+  }
+
+  // Narrows the isolating interval (lower, upper) of a root of `curve` at the driver value (in
+  // value_box) by halvings at double points whose sign the curve's certified enclosure decides
+  // (the sign at lower is `lower_sign`): at most 24, stopping at the first undecided point. The
+  // polynomial's square-free part has the curve's sign pattern on the run (the rest of the
+  // polynomial has no root there), so the ends keep non-zero opposite signs.
+  static void narrow_in_doubles(const CurveData& curve, const algebra::Interval& value_box, Real& root, int lower_sign) {
+    double lo = algebra::upper_double(root.lower), hi = algebra::lower_double(root.upper);
+    for (int step = 0; step < 24 && lo < hi; ++step) {
+      const double middle = lo + (hi - lo) / 2;
+      if (!(middle > lo && middle < hi)) break;
+      const algebra::Interval at = curve.interval.evaluate(value_box, algebra::Interval{middle, middle});
+      const int sign = at.lo > 0 ? 1 : at.hi < 0 ? -1 : 0;
+      if (sign == 0) break;
+      if (sign == lower_sign) {
+        lo = middle;
+        root.lower = Rational(middle);
+      } else {
+        hi = middle;
+        root.upper = Rational(middle);
+      }
+    }
   }
 
   // A rational strictly between a < b read off their isolating intervals when they are

@@ -13,6 +13,7 @@
 #pragma once
 
 #include "algebra/exact_real.hpp"
+#include "core/thread_switch.hpp"
 #include "curves/contact_curves.hpp"
 
 #include <hipair/cspace.hpp>
@@ -171,6 +172,11 @@ struct KernelSlicerOptions {
   /// on every run (tests compare).
   bool monotone_runs = true;
 };
+
+/// Per-thread switch of KernelSlicerOptions::monotone_runs for the slicers constructed on this
+/// thread (on by default; tests turn it off to compare whole analyses with and without it).
+struct MonotoneRunsTag;
+inline bool& monotone_runs_switch() { return thread_switch<MonotoneRunsTag>(); }
 
 /// How a kernel slicer decided its interval classes so far: by the overlap oracle, or carried
 /// over from the previous slice (KernelSlicerOptions::transfer_classes). For tests.
