@@ -1,6 +1,8 @@
 // Axes of moving parts, exact positions on them, and slices along them.
 #include "kinematics/axis.hpp"
 
+#include "algebra/real_filters.hpp"
+
 #include <hipair/error.hpp>
 
 #include <algorithm>
@@ -137,15 +139,21 @@ double from_ordered_key(std::int64_t key) {
 
 double truncated_double(const Real& value) {
   if (value.exact) return value.lower.get_d();   // mpq_get_d: truncated towards zero
-  // The result does not depend on the interval, so the cheap filtered dyadic bisection (its own
-  // interval) narrows it to a relative 2^-44, where the filter still decides most signs; then
-  // trunc(lower) <= trunc(value) <= trunc(upper) (trunc is non-decreasing), a few hundred doubles
-  // apart at most, and a binary search over them with exact signs finds trunc(value).
+  // Certified double bounds lo < value < hi by the double bisection (no exact arithmetic; a few
+  // units in the last place apart for a well-conditioned root), then trunc(lo) = lo <=
+  // trunc(value) <= hi (trunc is non-decreasing), and a binary search over the doubles between
+  // with exact signs finds trunc(value). The result does not depend on the interval.
   Real copy = value;
-  Rational width = abs(copy.upper) + abs(copy.lower);
-  width /= Rational(mpz_class(1) << 44);
-  algebra::refine_dyadically(copy, width);
-  if (copy.exact) return copy.lower.get_d();
+  auto [lo, hi] = algebra::double_bounds(copy);
+  if (!(std::isfinite(lo) && std::isfinite(hi))) {
+    // beyond the filter's range: exact dyadic bisection to a relative 2^-60 first
+    Rational width = abs(copy.upper) + abs(copy.lower);
+    width /= Rational(mpz_class(1) << 60);
+    algebra::refine_dyadically(copy, width);
+    if (copy.exact) return copy.lower.get_d();
+    lo = copy.lower.get_d();
+    hi = copy.upper.get_d();
+  }
   const int lower_sign = algebra::sign_at(copy.polynomial, copy.lower);
   // -1, 0, +1: value against the double d (exact)
   auto against = [&](double d) {
@@ -168,7 +176,7 @@ double truncated_double(const Real& value) {
     if (d > 0) return against(d) >= 0;
     return against(std::nextafter(d, -std::numeric_limits<double>::infinity())) > 0;
   };
-  std::int64_t low = ordered_key(copy.lower.get_d()), high = ordered_key(copy.upper.get_d());
+  std::int64_t low = ordered_key(lo), high = ordered_key(hi);
   while (low < high) {
     const std::int64_t middle = low + (high - low + 1) / 2;
     if (at_least(from_ordered_key(middle))) low = middle;
