@@ -86,6 +86,23 @@ class ScaledIntervalPolynomial {
     if (!(result.lo <= result.hi)) return algebra::Interval{-HUGE_VAL, HUGE_VAL};
     return result;
   }
+  /// The enclosure's coefficients in y at x (c[j] of y^j), for repeated evaluation at one x.
+  std::vector<algebra::Interval> at_x(algebra::Interval x) const {
+    std::vector<algebra::Interval> result;
+    for (auto row = rows_.rbegin(); row != rows_.rend(); ++row) {
+      if (result.size() < row->size()) result.resize(row->size(), algebra::Interval{0, 0});
+      for (std::size_t j = 0; j < result.size(); ++j)
+        result[j] = result[j] * x + (j < row->size() ? (*row)[j] : algebra::Interval{0, 0});
+    }
+    return result;
+  }
+  /// A polynomial of at_x at y: an enclosure of the polynomial at (x, y).
+  static algebra::Interval evaluate_y(const std::vector<algebra::Interval>& coefficients, algebra::Interval y) {
+    algebra::Interval result{0, 0};
+    for (auto c = coefficients.rbegin(); c != coefficients.rend(); ++c) result = result * y + *c;
+    if (!(result.lo <= result.hi)) return algebra::Interval{-HUGE_VAL, HUGE_VAL};
+    return result;
+  }
 
  private:
   std::vector<std::vector<algebra::Interval>> rows_;
@@ -704,20 +721,26 @@ class KernelSlicer final : public PairSlicer {
   // polynomial has no root there), so the ends keep non-zero opposite signs.
   static void narrow_in_doubles(const CurveData& curve, const algebra::Interval& value_box, Real& root, int lower_sign) {
     double lo = algebra::upper_double(root.lower), hi = algebra::lower_double(root.upper);
-    for (int step = 0; step < 24 && lo < hi; ++step) {
+    if (!(lo < hi)) return;
+    // the curve's enclosure at the driver value, once: each halving evaluates a polynomial in y
+    const std::vector<algebra::Interval> at_value = curve.interval.at_x(value_box);
+    bool moved_lo = false, moved_hi = false;
+    for (int step = 0; step < 24; ++step) {
       const double middle = lo + (hi - lo) / 2;
       if (!(middle > lo && middle < hi)) break;
-      const algebra::Interval at = curve.interval.evaluate(value_box, algebra::Interval{middle, middle});
+      const algebra::Interval at = ScaledIntervalPolynomial::evaluate_y(at_value, algebra::Interval{middle, middle});
       const int sign = at.lo > 0 ? 1 : at.hi < 0 ? -1 : 0;
       if (sign == 0) break;
       if (sign == lower_sign) {
         lo = middle;
-        root.lower = Rational(middle);
+        moved_lo = true;
       } else {
         hi = middle;
-        root.upper = Rational(middle);
+        moved_hi = true;
       }
     }
+    if (moved_lo) root.lower = Rational(lo);
+    if (moved_hi) root.upper = Rational(hi);
   }
 
   // A rational strictly between a < b read off their isolating intervals when they are
