@@ -745,10 +745,22 @@ class KernelSlicer final : public PairSlicer {
 
   // A rational strictly between a < b read off their isolating intervals when they are
   // separated, else off certified double enclosures (no exact refinement), else nothing.
+  // Separated intervals give the middle of the gap between them when a double lies strictly
+  // inside it: a sample far from both points, so that the carried class's proof (no curve
+  // vanishes at the sample) holds for narrow isolating intervals too; else a gap end.
   static std::optional<Rational> separated_sample(const Real& a, const Real& b) {
-    if (!a.exact && (b.exact ? a.upper < b.lower : a.upper <= b.lower)) return a.upper;
-    if (!b.exact && a.exact && a.lower < b.lower) return b.lower;
-    return algebra::double_between(a, b);
+    std::optional<Rational> end;
+    if (!a.exact && (b.exact ? a.upper < b.lower : a.upper <= b.lower)) end = a.upper;
+    else if (!b.exact && a.exact && a.lower < b.lower) end = b.lower;
+    else return algebra::double_between(a, b);
+    // a < a_end < s < b_end <= b (a_end: a's upper end, or a itself when exact)
+    const Rational& a_end = a.exact ? a.lower : a.upper;
+    const double middle = 0.5 * a_end.get_d() + 0.5 * b.lower.get_d();
+    if (std::isfinite(middle)) {
+      Rational s(middle);
+      if (a_end < s && s < b.lower) return s;
+    }
+    return end;
   }
 
   // A chart axis exactly, for the selection keys.
