@@ -813,6 +813,12 @@ std::optional<Rational> double_between(const Real& a, const Real& b) {
   return std::nullopt;
 }
 
+std::pair<double, double> double_bounds(const Real& x, int halvings) {
+  DoubleBisection bisection(x);
+  bisection.advance(halvings);
+  return {bisection.lo(), bisection.hi()};
+}
+
 int compare_filtered(const Real& x, const Rational& r) {
   if (x.exact || r <= x.lower || r >= x.upper) return x.compare(r);
   SignFilter filter(x.polynomial);

@@ -1,10 +1,15 @@
 // Axes of moving parts, exact positions on them, and slices along them.
 #include "kinematics/axis.hpp"
 
+#include "algebra/real_filters.hpp"
+
 #include <hipair/error.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 #include <numbers>
 
 namespace hipair::kinematics_detail {
@@ -108,18 +113,106 @@ int compare(const AxisPosition& a, const AxisPosition& b) {
 }
 
 double coordinate(const AxisLine& line, const AxisPosition& position) {
-  // the same double every time (approximate() is a function of the isolating interval):
-  // computed once per position and its copies
-  if (std::isnan(position.approximate)) position.approximate = position.value.approximate();
+  // canonical (a function of the number, not of its isolating interval): computed once per
+  // position and its copies
+  if (std::isnan(position.approximate)) position.approximate = truncated_double(position.value);
   return line.coordinate(position.piece, position.approximate);
+}
+
+namespace {
+
+// Doubles in their order as 64-bit integers (finite doubles; -0 and +0 both 0).
+std::int64_t ordered_key(double d) {
+  std::int64_t bits = 0;
+  std::memcpy(&bits, &d, sizeof bits);
+  return bits >= 0 ? bits : -(bits & std::numeric_limits<std::int64_t>::max());
+}
+
+double from_ordered_key(std::int64_t key) {
+  std::int64_t bits = key >= 0 ? key : (-key) | std::numeric_limits<std::int64_t>::min();
+  double d = 0;
+  std::memcpy(&d, &bits, sizeof d);
+  return d;
+}
+
+}  // namespace
+
+double truncated_double(const Real& value) {
+  if (value.exact) return value.lower.get_d();   // mpq_get_d: truncated towards zero
+  // Certified double bounds lo < value < hi by the double bisection (no exact arithmetic; a few
+  // units in the last place apart for a well-conditioned root), then trunc(lo) = lo <=
+  // trunc(value) <= hi (trunc is non-decreasing), and a binary search over the doubles between
+  // with exact signs finds trunc(value). The result does not depend on the interval.
+  Real copy = value;
+  auto [lo, hi] = algebra::double_bounds(copy);
+  if (!(std::isfinite(lo) && std::isfinite(hi))) {
+    // beyond the filter's range: exact dyadic bisection to a relative 2^-60 first
+    Rational width = abs(copy.upper) + abs(copy.lower);
+    width /= Rational(mpz_class(1) << 60);
+    algebra::refine_dyadically(copy, width);
+    if (copy.exact) return copy.lower.get_d();
+    lo = copy.lower.get_d();
+    hi = copy.upper.get_d();
+  }
+  const int lower_sign = algebra::sign_at(copy.polynomial, copy.lower);
+  // -1, 0, +1: value against the double d (exact)
+  auto against = [&](double d) {
+    Rational at(d);
+    if (at <= copy.lower) return 1;
+    if (at >= copy.upper) return -1;
+    int sign = algebra::sign_at(copy.polynomial, at);
+    if (sign == 0) return 0;
+    // value in (lower, upper): narrow the copy to the side holding it (the same number)
+    if (sign == lower_sign) {
+      copy.lower = at;
+      return 1;
+    }
+    copy.upper = at;
+    return -1;
+  };
+  // trunc(value) >= d: positive cells start at their double ([d, next d) truncates to d),
+  // non-positive ones end at theirs ((previous d, d] truncates to d)
+  auto at_least = [&](double d) {
+    if (d > 0) return against(d) >= 0;
+    return against(std::nextafter(d, -std::numeric_limits<double>::infinity())) > 0;
+  };
+  std::int64_t low = ordered_key(lo), high = ordered_key(hi);
+  while (low < high) {
+    const std::int64_t middle = low + (high - low + 1) / 2;
+    if (at_least(from_ordered_key(middle))) low = middle;
+    else high = middle - 1;
+  }
+  return from_ordered_key(low);
 }
 
 Rational rational_near(const Real& value, int bits) {
   if (value.exact) return value.lower;
+  // the midpoint of the cell [k, k + 1) 2^-bits holding the value (a function of the number,
+  // not of its isolating interval), or the value itself on a cell edge
   Real copy = value;
-  copy.refine_to(Rational(1, mpz_class(1) << bits));
-  if (copy.exact) return copy.lower;
-  Rational middle = (copy.lower + copy.upper) / 2;
+  const mpz_class scale = mpz_class(1) << bits;
+  algebra::refine_dyadically(copy, Rational(1, scale));   // any interval serves (see above)
+  mpz_class cell, upper_cell;
+  for (;;) {
+    if (copy.exact) return copy.lower;
+    Rational scaled = copy.lower * scale;
+    mpz_fdiv_q(cell.get_mpz_t(), scaled.get_num_mpz_t(), scaled.get_den_mpz_t());
+    scaled = copy.upper * scale;
+    mpz_cdiv_q(upper_cell.get_mpz_t(), scaled.get_num_mpz_t(), scaled.get_den_mpz_t());
+    // the value lies in (lower, upper), inside [cell, upper_cell] 2^-bits
+    if (upper_cell == cell + 1) break;
+    if (upper_cell == cell + 2) {
+      Rational edge(mpz_class(cell + 1), scale);
+      edge.canonicalize();
+      int side = value.compare(edge);
+      if (side == 0) return edge;
+      if (side > 0) cell += 1;
+      break;
+    }
+    copy.refine();
+  }
+  Rational middle(mpz_class(2 * cell + 1), mpz_class(2 * scale));
+  middle.canonicalize();
   return middle;
 }
 

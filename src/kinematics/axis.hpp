@@ -43,8 +43,8 @@ AxisLine make_axis(const Model& model, std::size_t part, const std::vector<Chart
 struct AxisPosition {
   std::size_t piece = 0;
   Real value;
-  /// value.approximate(), computed on first use by coordinate() (NaN until then). Copies carry
-  /// it with the value; nothing changes `value` in place after construction.
+  /// truncated_double(value), computed on first use by coordinate() (NaN until then). Copies
+  /// carry it with the value; nothing changes `value` in place after construction.
   mutable double approximate = std::numeric_limits<double>::quiet_NaN();
 };
 
@@ -53,8 +53,16 @@ AxisPosition canonical(const AxisLine& line, AxisPosition position);
 int compare(const AxisPosition& a, const AxisPosition& b);
 /// Double part coordinate.
 double coordinate(const AxisLine& line, const AxisPosition& position);
-/// A rational inside the isolating interval of the position's value, within 2^-bits.
+/// The value itself when it is exact (Real::exact) or lies on a cell edge k 2^-bits, else the
+/// midpoint of the cell [k, k + 1) 2^-bits that holds it (within 2^-(bits + 1)). Not a function
+/// of the isolating interval: slices and rates read at it do not depend on how a root was
+/// isolated (unless a rational root off the grid is exact in one isolation and not in another).
 Rational rational_near(const Real& value, int bits = 64);
+/// The double nearest the value towards zero (mpq_get_d's truncation of the exact number; the
+/// value itself when it is a rational double). A function of the number, not of its isolating
+/// interval; Real::approximate truncates a point of a narrow interval instead, and may differ by
+/// one unit in the last place.
+double truncated_double(const Real& value);
 
 /// A contact (slicer, feature) or a motion limit on an axis slice.
 struct SliceContact {

@@ -46,6 +46,17 @@ constexpr int max_proof_curves = 32;
 
 using cspace::public_kind;
 
+// d/dy of c[i][j] x^i y^j (y: the second index, the follower in a CurveData's orientation).
+IntegerPolynomial2 follower_derivative(const IntegerPolynomial2& polynomial) {
+  IntegerPolynomial2 result;
+  for (const auto& row : polynomial.coefficients) {
+    std::vector<mpz_class> out;
+    for (std::size_t j = 1; j < row.size(); ++j) out.push_back(row[j] * static_cast<unsigned long>(j));
+    result.coefficients.push_back(std::move(out));
+  }
+  return result;
+}
+
 // Interval enclosure of an integer polynomial divided by a power of two, so that coefficients
 // of any size stay finite in double (the zero set and the signs are those of the polynomial).
 class ScaledIntervalPolynomial {
@@ -75,6 +86,23 @@ class ScaledIntervalPolynomial {
     if (!(result.lo <= result.hi)) return algebra::Interval{-HUGE_VAL, HUGE_VAL};
     return result;
   }
+  /// The enclosure's coefficients in y at x (c[j] of y^j), for repeated evaluation at one x.
+  std::vector<algebra::Interval> at_x(algebra::Interval x) const {
+    std::vector<algebra::Interval> result;
+    for (auto row = rows_.rbegin(); row != rows_.rend(); ++row) {
+      if (result.size() < row->size()) result.resize(row->size(), algebra::Interval{0, 0});
+      for (std::size_t j = 0; j < result.size(); ++j)
+        result[j] = result[j] * x + (j < row->size() ? (*row)[j] : algebra::Interval{0, 0});
+    }
+    return result;
+  }
+  /// A polynomial of at_x at y: an enclosure of the polynomial at (x, y).
+  static algebra::Interval evaluate_y(const std::vector<algebra::Interval>& coefficients, algebra::Interval y) {
+    algebra::Interval result{0, 0};
+    for (auto c = coefficients.rbegin(); c != coefficients.rend(); ++c) result = result * y + *c;
+    if (!(result.lo <= result.hi)) return algebra::Interval{-HUGE_VAL, HUGE_VAL};
+    return result;
+  }
 
  private:
   std::vector<std::vector<algebra::Interval>> rows_;
@@ -91,6 +119,9 @@ struct OrientedClause {
 struct CurveData {
   IntegerPolynomial2 polynomial;
   ScaledIntervalPolynomial interval;
+  /// The polynomial's partial derivative in the follower coordinate: where its enclosure
+  /// excludes zero the curve is a graph over the follower axis there (KernelSlicerOptions::monotone_runs).
+  ScaledIntervalPolynomial follower_slope;
   std::vector<OrientedClause> validity;
 };
 
@@ -136,6 +167,7 @@ class KernelSlicer final : public PairSlicer {
  public:
   KernelSlicer(const Model& model, std::size_t pair, std::size_t follower, const KernelSlicerOptions& options)
       : model_(model), options_(options) {
+    options_.monotone_runs = options_.monotone_runs && monotone_runs_switch();
     if (pair >= model.pairs.size()) throw GeometryError("no pair " + std::to_string(pair));
     const PairSpec& spec = model.pairs[pair];
     if (follower != spec.first && follower != spec.second)
@@ -279,6 +311,7 @@ class KernelSlicer final : public PairSlicer {
         auto made = std::make_shared<CurveData>();
         made->polynomial = follower_is_x_ ? transposed(curve.polynomial) : std::move(curve.polynomial);
         made->interval = ScaledIntervalPolynomial(made->polynomial);
+        made->follower_slope = ScaledIntervalPolynomial(follower_derivative(made->polynomial));
         for (const cspace::ValidityClause& clause : curve.validity) {
           OrientedClause oriented_clause;
           for (const IntegerPolynomial2& atom : clause.atoms)
@@ -409,6 +442,7 @@ class KernelSlicer final : public PairSlicer {
       const std::uint32_t mask = cells & window_mask;
       if (!mask) continue;
       algebra::Polynomial p;
+      std::optional<algebra::Polynomial> square_free;   // of p, for monotone runs' roots
       bool substituted = false;
       // maximal runs of follower cells where the curve may vanish
       for (int first = 0; first < follower_cells;) {
@@ -425,13 +459,47 @@ class KernelSlicer final : public PairSlicer {
         if (!curve.interval.evaluate(value_box, algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)})
                  .contains_zero())
           continue;
-        if (!substituted) {
+        auto substitute = [&]() {
+          if (substituted) return;
           p = algebra::substitute_x(curve.polynomial, value);
           algebra::trim(p);
           substituted = true;
-          if (algebra::degree(p) <= 0) break;   // no root, or the whole line (a degenerate slice)
-          // real_roots takes the square-free part itself
+        };
+        if (options_.monotone_runs && lo < hi &&
+            !curve.follower_slope.evaluate(value_box, algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)})
+                 .contains_zero()) {
+          // P(value, y) is strictly monotone on [lo, hi] (its y-derivative's enclosure over the
+          // box excludes zero): one simple root there exactly when the signs at the ends differ,
+          // isolated by (lo, hi) itself. The ends' signs from certified enclosures, exactly when
+          // an enclosure holds zero (substitute_x scales by a positive factor: the same signs).
+          auto end_sign = [&](const Rational& y) {
+            algebra::Interval at = curve.interval.evaluate(value_box, algebra::enclose(y));
+            if (at.lo > 0) return 1;
+            if (at.hi < 0) return -1;
+            substitute();
+            return algebra::sign_at(p, y);
+          };
+          const int sign_lo = end_sign(lo), sign_hi = end_sign(hi);
+          if (sign_lo == sign_hi) continue;   // both non-zero: monotone, no root
+          Real root;
+          if (sign_lo == 0 || sign_hi == 0) {
+            root = Real::from_rational(sign_lo == 0 ? lo : hi);
+          } else {
+            substitute();
+            if (!square_free) square_free = algebra::square_free_test(p);
+            root.polynomial = *square_free;
+            root.lower = lo;
+            root.upper = hi;
+            narrow_in_doubles(curve, value_box, root, sign_lo);
+          }
+          ++monotone_roots_;
+          if (valid(curve, value_box, root, options_.validity_prefilter))
+            points.push_back(SlicePoint{std::move(root), {strip_curve->feature}});
+          continue;
         }
+        substitute();
+        if (algebra::degree(p) <= 0) break;   // no root, or the whole line (a degenerate slice)
+        // real_roots takes the square-free part itself
         for (Real& root : algebra::descartes_real_roots(p, lo, hi)) {
           if (!valid(curve, value_box, root, options_.validity_prefilter)) continue;
           points.push_back(SlicePoint{std::move(root), {strip_curve->feature}});
@@ -531,7 +599,7 @@ class KernelSlicer final : public PairSlicer {
     return result;
   }
 
-  SliceClassCounts class_counts() const { return SliceClassCounts{classified_.load(), transferred_.load()}; }
+  SliceClassCounts class_counts() const { return SliceClassCounts{classified_.load(), transferred_.load(), monotone_roots_.load()}; }
 
   const IntegerPolynomial2* polynomial(std::size_t other_chart, std::size_t follower_chart,
                                        std::size_t feature) const override {
@@ -646,12 +714,53 @@ class KernelSlicer final : public PairSlicer {
     return true;
   }
 
+  // Narrows the isolating interval (lower, upper) of a root of `curve` at the driver value (in
+  // value_box) by halvings at double points whose sign the curve's certified enclosure decides
+  // (the sign at lower is `lower_sign`): at most 24, stopping at the first undecided point. The
+  // polynomial's square-free part has the curve's sign pattern on the run (the rest of the
+  // polynomial has no root there), so the ends keep non-zero opposite signs.
+  static void narrow_in_doubles(const CurveData& curve, const algebra::Interval& value_box, Real& root, int lower_sign) {
+    double lo = algebra::upper_double(root.lower), hi = algebra::lower_double(root.upper);
+    if (!(lo < hi)) return;
+    // the curve's enclosure at the driver value, once: each halving evaluates a polynomial in y
+    const std::vector<algebra::Interval> at_value = curve.interval.at_x(value_box);
+    bool moved_lo = false, moved_hi = false;
+    for (int step = 0; step < 24; ++step) {
+      const double middle = lo + (hi - lo) / 2;
+      if (!(middle > lo && middle < hi)) break;
+      const algebra::Interval at = ScaledIntervalPolynomial::evaluate_y(at_value, algebra::Interval{middle, middle});
+      const int sign = at.lo > 0 ? 1 : at.hi < 0 ? -1 : 0;
+      if (sign == 0) break;
+      if (sign == lower_sign) {
+        lo = middle;
+        moved_lo = true;
+      } else {
+        hi = middle;
+        moved_hi = true;
+      }
+    }
+    if (moved_lo) root.lower = Rational(lo);
+    if (moved_hi) root.upper = Rational(hi);
+  }
+
   // A rational strictly between a < b read off their isolating intervals when they are
   // separated, else off certified double enclosures (no exact refinement), else nothing.
+  // Separated intervals give the middle of the gap between them when a double lies strictly
+  // inside it: a sample far from both points, so that the carried class's proof (no curve
+  // vanishes at the sample) holds for narrow isolating intervals too; else a gap end.
   static std::optional<Rational> separated_sample(const Real& a, const Real& b) {
-    if (!a.exact && (b.exact ? a.upper < b.lower : a.upper <= b.lower)) return a.upper;
-    if (!b.exact && a.exact && a.lower < b.lower) return b.lower;
-    return algebra::double_between(a, b);
+    std::optional<Rational> end;
+    if (!a.exact && (b.exact ? a.upper < b.lower : a.upper <= b.lower)) end = a.upper;
+    else if (!b.exact && a.exact && a.lower < b.lower) end = b.lower;
+    else return algebra::double_between(a, b);
+    // a < a_end < s < b_end <= b (a_end: a's upper end, or a itself when exact)
+    const Rational& a_end = a.exact ? a.lower : a.upper;
+    const double middle = 0.5 * a_end.get_d() + 0.5 * b.lower.get_d();
+    if (std::isfinite(middle)) {
+      Rational s(middle);
+      if (a_end < s && s < b.lower) return s;
+    }
+    return end;
   }
 
   // A chart axis exactly, for the selection keys.
@@ -781,6 +890,7 @@ class KernelSlicer final : public PairSlicer {
   mutable std::mutex memo_mutex_;
   mutable std::vector<std::shared_ptr<const PreviousSlice>> previous_;   // per chart pair (o, f)
   mutable std::atomic<std::size_t> classified_{0}, transferred_{0};
+  mutable std::atomic<std::size_t> monotone_roots_{0};   // roots isolated by a monotone run
   std::vector<std::vector<Rational>> follower_edges_;   // per follower chart: its cells' edges
 };
 

@@ -13,6 +13,7 @@
 #pragma once
 
 #include "algebra/exact_real.hpp"
+#include "core/thread_switch.hpp"
 #include "curves/contact_curves.hpp"
 
 #include <hipair/cspace.hpp>
@@ -162,12 +163,26 @@ struct KernelSlicerOptions {
   /// cull cells). The segment then meets no contact configuration, so its class is constant.
   /// When the proof fails the oracle decides as before. false: the oracle always (tests compare).
   bool transfer_classes = true;
+  /// Isolate the roots of a curve on a run of follower cells without Descartes when the
+  /// enclosure of its follower derivative over (value, run) excludes zero: the curve is then
+  /// strictly monotone there, so it has a root exactly when its signs at the run's ends differ
+  /// (certified enclosures first, exact signs when they hold zero), and the run isolates it.
+  /// The same roots with other isolating intervals (the engine reads nothing that depends on
+  /// them: rational_near and truncated_double are functions of the number). false: Descartes
+  /// on every run (tests compare).
+  bool monotone_runs = true;
 };
+
+/// Per-thread switch of KernelSlicerOptions::monotone_runs for the slicers constructed on this
+/// thread (on by default; tests turn it off to compare whole analyses with and without it).
+struct MonotoneRunsTag;
+inline bool& monotone_runs_switch() { return thread_switch<MonotoneRunsTag>(); }
 
 /// How a kernel slicer decided its interval classes so far: by the overlap oracle, or carried
 /// over from the previous slice (KernelSlicerOptions::transfer_classes). For tests.
 struct SliceClassCounts {
   std::size_t classified = 0, transferred = 0;
+  std::size_t monotone_roots = 0;   ///< roots isolated by a monotone run (KernelSlicerOptions::monotone_runs)
 };
 /// Zero counts for a slicer that is not a kernel slicer.
 SliceClassCounts kernel_slice_class_counts(const PairSlicer& slicer);

@@ -30,6 +30,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace hipair::kinematics_detail {
 namespace {
@@ -44,11 +45,22 @@ Rational chart_value(const ChartAxis& axis, std::mt19937_64& random) {
   return Rational(axis.lo + (axis.hi - axis.lo) * u);
 }
 
-void expect_identical(const ChartSlice& a, const ChartSlice& b, const std::string& where) {
+// What every comparison of two slices requires: the same covered range, classes, number of
+// points, and per point the same features and zero-clearance flag.
+void expect_same_structure(const ChartSlice& a, const ChartSlice& b, const std::string& where) {
   ASSERT_EQ(a.covered_lo, b.covered_lo) << where;
   ASSERT_EQ(a.covered_hi, b.covered_hi) << where;
   ASSERT_EQ(a.kinds, b.kinds) << where;
   ASSERT_EQ(a.points.size(), b.points.size()) << where;
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    EXPECT_EQ(a.points[i].features, b.points[i].features) << where << ": point " << i;
+    EXPECT_EQ(a.points[i].touching, b.points[i].touching) << where << ": point " << i;
+  }
+}
+
+void expect_identical(const ChartSlice& a, const ChartSlice& b, const std::string& where) {
+  expect_same_structure(a, b, where);
+  if (::testing::Test::HasFatalFailure()) return;
   for (std::size_t i = 0; i < a.points.size(); ++i) {
     const Real& x = a.points[i].value;
     const Real& y = b.points[i].value;
@@ -56,8 +68,23 @@ void expect_identical(const ChartSlice& a, const ChartSlice& b, const std::strin
     EXPECT_EQ(x.lower, y.lower) << where << ": point " << i;
     EXPECT_EQ(x.upper, y.upper) << where << ": point " << i;
     EXPECT_TRUE(x.polynomial == y.polynomial) << where << ": point " << i;
-    EXPECT_EQ(a.points[i].features, b.points[i].features) << where << ": point " << i;
-    EXPECT_EQ(a.points[i].touching, b.points[i].touching) << where << ": point " << i;
+  }
+}
+
+// The same slices as numbers: points equal exactly (algebra::compare), each a valid isolating
+// interval (non-zero opposite signs of its polynomial at its ends); the isolating intervals may
+// differ.
+void expect_same_numbers(const ChartSlice& a, const ChartSlice& b, const std::string& where) {
+  expect_same_structure(a, b, where);
+  if (::testing::Test::HasFatalFailure()) return;
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    const Real& x = a.points[i].value;
+    const Real& y = b.points[i].value;
+    if (!y.exact) {
+      int at_lower = algebra::sign_at(y.polynomial, y.lower), at_upper = algebra::sign_at(y.polynomial, y.upper);
+      ASSERT_TRUE(y.lower < y.upper && at_lower != 0 && at_upper == -at_lower) << where << ": point " << i;
+    }
+    EXPECT_EQ(algebra::compare(x, y), 0) << where << ": point " << i;
   }
 }
 
@@ -88,14 +115,18 @@ struct Query {
 
 // Slices every chart pair of both followers of every pair of `model` at `values` generated
 // queries each; returns the number of points compared.
-std::size_t compare_slicers(const Model& model, int values, std::uint64_t seed, const std::string& name) {
+// `plain_options` is the reference slicer's; with `same_intervals` the points must have the same
+// isolating intervals, else the same numbers (exact comparison) with valid isolating intervals.
+std::size_t compare_slicers(const Model& model, int values, std::uint64_t seed, const std::string& name,
+                            const KernelSlicerOptions& plain_options = KernelSlicerOptions{true, false, false},
+                            bool same_intervals = true, std::size_t* monotone_roots = nullptr) {
   std::mt19937_64 random(seed);
   std::size_t compared = 0;
   for (std::size_t pair = 0; pair < model.pairs.size(); ++pair)
     for (std::size_t follower : {model.pairs[pair].first, model.pairs[pair].second}) {
       std::unique_ptr<PairSlicer> plain, fast;
       try {
-        plain = make_kernel_slicer(model, pair, follower, KernelSlicerOptions{true, false, false});
+        plain = make_kernel_slicer(model, pair, follower, plain_options);
         fast = make_kernel_slicer(model, pair, follower, KernelSlicerOptions{});
       } catch (const GeometryError&) {
         continue;   // a fixed follower, or not a fixed-axis pair
@@ -125,11 +156,13 @@ std::size_t compare_slicers(const Model& model, int values, std::uint64_t seed, 
         ChartSlice expected = plain->slice(q.o, q.value, q.f, window);
         ChartSlice first = fast->slice(q.o, q.value, q.f, window);
         ChartSlice second = fast->slice(q.o, q.value, q.f, window);   // asked again
-        expect_identical(expected, first, where);
-        expect_identical(expected, second, where + " (again)");
+        const auto expect = same_intervals ? expect_identical : expect_same_numbers;
+        expect(expected, first, where);
+        expect(expected, second, where + " (again)");
         compared += expected.points.size();
         if (::testing::Test::HasFailure()) return compared;
       }
+      if (monotone_roots) *monotone_roots += kernel_slice_class_counts(*fast).monotone_roots;
     }
   return compared;
 }
@@ -240,6 +273,11 @@ TransferCounts compare_transfers(const Model& model, int walks, int steps, std::
   return counts;
 }
 
+// The examples the class-transfer and monotone-run tests slice.
+const std::vector<std::string> walk_examples = {"geneva.json",        "ratchet.json",     "escapement.json",
+                                                "cam-follower.json",  "cam-follower-lever.json", "cam-drive.json",
+                                                "scotch-yoke.json",   "two-pin-wedge.json", "lift-chain.json"};
+
 class KinematicClassTransfer : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(KinematicClassTransfer, CarriedClassesAreTheOraclesOnDriverWalks) {
@@ -254,9 +292,7 @@ TEST_P(KinematicClassTransfer, CarriedClassesAreTheOraclesOnDriverWalks) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Examples, KinematicClassTransfer,
-                         ::testing::Values("geneva.json", "ratchet.json", "escapement.json", "cam-follower.json",
-                                           "cam-follower-lever.json", "cam-drive.json", "scotch-yoke.json",
-                                           "two-pin-wedge.json", "lift-chain.json"),
+                         ::testing::ValuesIn(walk_examples),
                          model_param_name);
 
 // Generated spur-gear pairs (random tooth counts): many curves per strip, neighbouring teeth's
@@ -278,6 +314,92 @@ TEST(KinematicClassTransfer, GeneratedGearPairsCarryTheOraclesClasses) {
   EXPECT_GT(counts.changed, 0u);
   std::cout << "gears: " << counts.slices << " slices, " << counts.transferred << " carried over, " << counts.classified
             << " by the oracle, " << counts.changed << " changed\n";
+}
+
+// Session 27: a curve's root on a run of follower cells where the curve is certified monotone
+// (KernelSlicerOptions::monotone_runs) is isolated by the run itself, from the signs at its ends,
+// without Descartes. The slices must hold the same points as numbers as Descartes' (the same
+// features, flags and classes), on the example pairs and generated gear pairs at generated
+// values and windows; the isolating intervals differ, so they are only checked to isolate.
+KernelSlicerOptions descartes_only() {
+  KernelSlicerOptions options;
+  options.monotone_runs = false;
+  return options;
+}
+
+class KinematicMonotoneRuns : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(KinematicMonotoneRuns, SlicesHoldDescartesRootsAsNumbers) {
+  Model model = read_model_file(example(GetParam()));
+  std::size_t monotone = 0;
+  std::size_t compared = compare_slicers(model, 160, 20261130, GetParam(), descartes_only(), false, &monotone);
+  if (HasFailure()) return;
+  EXPECT_GT(compared, 0u);
+  EXPECT_GT(monotone, compared / 10) << "the monotone runs isolated few roots";
+  std::cout << GetParam() << ": " << compared << " points compared, " << monotone << " isolated by monotone runs\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(Examples, KinematicMonotoneRuns,
+                         ::testing::ValuesIn(walk_examples),
+                         model_param_name);
+
+TEST(KinematicMonotoneRuns, GeneratedGearPairsHoldDescartesRootsAsNumbers) {
+  std::mt19937_64 random(2711);
+  std::size_t compared = 0, monotone = 0;
+  for (int trial = 0; trial < 2; ++trial) {
+    std::string name;
+    Model model = random_gear_pair(random, 8, 10, name);
+    compared += compare_slicers(model, 30, random(), name, descartes_only(), false, &monotone);
+    if (HasFailure()) return;
+  }
+  EXPECT_GT(compared, 0u);
+  EXPECT_GT(monotone, compared / 10);
+  std::cout << "gears: " << compared << " points compared, " << monotone << " isolated by monotone runs\n";
+}
+
+// Whole analyses with and without monotone runs: the report and the samples byte-identical (the
+// engine reads no isolating interval: positions and rates are taken at canonical
+// approximations), on the examples and on generated gear pairs over a short range.
+std::pair<std::string, std::string> analysis_outputs(const Model& model, const KinematicsOptions& options, bool monotone) {
+  monotone_runs_switch() = monotone;
+  KinematicsResult result = analyze_kinematics(model, options);
+  monotone_runs_switch() = true;
+  result.seconds = 0;
+  return {kinematics_json_report(result), kinematics_csv(result)};
+}
+
+class KinematicMonotoneAnalyses : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(KinematicMonotoneAnalyses, ReportsAreTheSameWithoutMonotoneRuns) {
+  Model model = read_model_file(example(GetParam()));
+  KinematicsOptions options;
+  options.accelerations = true;
+  auto with = analysis_outputs(model, options, true);
+  auto without = analysis_outputs(model, options, false);
+  EXPECT_FALSE(with.first.empty());
+  EXPECT_TRUE(with.first == without.first) << GetParam() << ": report.json differs";
+  EXPECT_TRUE(with.second == without.second) << GetParam() << ": kinematics.csv differs";
+}
+
+INSTANTIATE_TEST_SUITE_P(Examples, KinematicMonotoneAnalyses,
+                         ::testing::Values("geneva.json", "ratchet.json", "cam-follower.json", "cam-drive.json",
+                                           "scotch-yoke.json", "two-pin-wedge.json", "lift-chain.json"),
+                         model_param_name);
+
+TEST(KinematicMonotoneAnalyses, GeneratedGearPairsOverShortRanges) {
+  std::mt19937_64 random(2712);
+  for (int trial = 0; trial < 3; ++trial) {
+    std::string name;
+    Model model = random_gear_pair(random, 10, 10, name);
+    KinematicsOptions options;
+    double start = static_cast<double>(random() % 1000) / 1000;
+    options.range = std::make_pair(Rational(start), Rational(start + 0.25));
+    options.steps_per_cycle = 360;
+    auto with = analysis_outputs(model, options, true);
+    auto without = analysis_outputs(model, options, false);
+    EXPECT_TRUE(with.first == without.first) << name << ": report.json differs";
+    EXPECT_TRUE(with.second == without.second) << name << ": kinematics.csv differs";
+  }
 }
 
 // Geneva over a range shorter than one grid step around the wheel's first contact start: the
