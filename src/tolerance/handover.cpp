@@ -653,4 +653,98 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   return out;
 }
 
+std::vector<CurveSlice> HandoverSearch::candidates(const CurveSlice& curve, const Box& box, const Interval& window) const {
+  const Model& m = solver_->nominal();
+  std::shared_ptr<const BoxParts> parts = box_parts(box);
+  const Interval fixed = curve.fixed_range ? *curve.fixed_range : Interval::enclose(curve.fixed_value);
+  // each part's edges posed over box x (driver range or follower window)
+  auto posed_part = [&](std::size_t part) {
+    const bool held = part == fixed_part_;
+    const model_detail::PartGeometry<Interval>& g = held ? parts->fixed : parts->free;
+    const auto& minor = held ? parts->fixed_minor : parts->free_minor;
+    kernels::Pose<Interval> pose = pose_of(m.parts[part].motion, g.pivot, g.direction, held ? fixed : window,
+                                           held ? curve.fixed_half_turn : curve.free_half_turn);
+    std::vector<std::vector<Posed>> loops(g.loops.size());
+    for (std::size_t l = 0; l < g.loops.size(); ++l)
+      for (std::size_t e = 0; e < g.loops[l].size(); ++e) loops[l].push_back(pose_edge(g.loops[l][e], pose, minor[l][e] != 0));
+    return std::make_pair(&g, loops);
+  };
+  auto [ga, a] = posed_part(curve.first.part);
+  auto [gb, b] = posed_part(curve.second.part);
+  auto feature = [](std::size_t part, std::size_t loop, std::size_t edge, FeatureKind kind) {
+    FeatureIdentity f;
+    f.part = part;
+    f.loop = loop;
+    f.edge = edge;
+    f.kind = kind;
+    return f;
+  };
+  auto kind = [](const model_detail::EdgeValue<Interval>& e) { return e.arc ? FeatureKind::arc : FeatureKind::segment; };
+  std::vector<CurveSlice> out{curve};
+  auto add = [&](const FeatureIdentity& first, const FeatureIdentity& second) {
+    if (first == curve.first && second == curve.second) return;
+    // a feature pair without a contact of its own (contact_function's dispatch: two segments, a
+    // segment on a concave arc, two concave arcs): its touchings are its vertex pairs'
+    const bool convex_a = first.kind == FeatureKind::arc && ga->loops[first.loop][first.edge].ccw;
+    const bool convex_b = second.kind == FeatureKind::arc && gb->loops[second.loop][second.edge].ccw;
+    if (first.kind != FeatureKind::vertex && second.kind != FeatureKind::vertex && !convex_a && !convex_b) return;
+    CurveSlice c = curve;
+    c.first = first;
+    c.second = second;
+    out.push_back(c);
+  };
+  for (std::size_t la = 0; la < a.size(); ++la)
+    for (std::size_t ea = 0; ea < a[la].size(); ++ea)
+      for (std::size_t lb = 0; lb < b.size(); ++lb)
+        for (std::size_t eb = 0; eb < b[lb].size(); ++eb) {
+          const Posed& x = a[la][ea];
+          const Posed& y = b[lb][eb];
+          if (apart(x, y)) continue;
+          const std::size_t na = (ea + 1) % a[la].size(), nb = (eb + 1) % b[lb].size();
+          const FeatureKind ka = kind(ga->loops[la][ea]), kb = kind(gb->loops[lb][eb]);
+          const FeatureIdentity fa = feature(curve.first.part, la, ea, ka), fb = feature(curve.second.part, lb, eb, kb);
+          add(fa, fb);
+          if (!apart(point(x.edge.s), y)) add(feature(curve.first.part, la, ea, FeatureKind::vertex), fb);
+          if (!apart(point(x.edge.t), y)) add(feature(curve.first.part, la, na, FeatureKind::vertex), fb);
+          if (!apart(x, point(y.edge.s))) add(fa, feature(curve.second.part, lb, eb, FeatureKind::vertex));
+          if (!apart(x, point(y.edge.t))) add(fa, feature(curve.second.part, lb, nb, FeatureKind::vertex));
+        }
+  // (an end vertex shared by two edges is met twice: once each)
+  std::sort(out.begin() + 1, out.end(), [](const CurveSlice& x, const CurveSlice& y) {
+    auto key = [](const CurveSlice& c) {
+      return std::make_tuple(c.first.loop, c.first.edge, static_cast<int>(c.first.kind), c.second.loop, c.second.edge,
+                             static_cast<int>(c.second.kind));
+    };
+    return key(x) < key(y);
+  });
+  out.erase(std::unique(out.begin() + 1, out.end(),
+                        [](const CurveSlice& x, const CurveSlice& y) { return x.first == y.first && x.second == y.second; }),
+            out.end());
+  return out;
+}
+
+int contact_validity(const Model& nominal, const CurveSlice& curve, const PairGeometry<Interval>& g, const Interval& free) {
+  const Interval fixed = curve.fixed_range ? *curve.fixed_range : Interval::enclose(curve.fixed_value);
+  kernels::Pose<Interval> fixed_pose =
+      pose_of(nominal.parts[curve.fixed_part].motion, g.fixed_pivot, g.fixed_direction, fixed, curve.fixed_half_turn);
+  kernels::Pose<Interval> free_pose =
+      pose_of(nominal.parts[curve.free_part].motion, g.free_pivot, g.free_direction, free, curve.free_half_turn);
+  const kernels::Pose<Interval>& a = curve.first.part == curve.fixed_part ? fixed_pose : free_pose;
+  const kernels::Pose<Interval>& b = curve.second.part == curve.fixed_part ? fixed_pose : free_pose;
+  kernels::Validity<Interval> validity = validity_of(g.first, curve.first, a, minor_arc(g.first), g.second, curve.second, b,
+                                                     minor_arc(g.second));
+  int out = 1;
+  for (const auto& clause : validity.clauses) {
+    bool holds = false, fails = true;
+    for (int j = 0; j < clause.count; ++j) {
+      const Interval& atom = clause.atoms[static_cast<std::size_t>(j)];
+      holds = holds || atom.lo >= 0;
+      fails = fails && atom.hi < 0;
+    }
+    if (fails) return -1;
+    if (!holds) out = 0;
+  }
+  return out;
+}
+
 }  // namespace hipair::tolerance_detail

@@ -57,13 +57,20 @@ struct Case {
   unsigned positions = 360;
   std::size_t draws = 4;   // Monte Carlo draws besides the corners
   std::size_t max_corners = 64;   // corners kept (evenly over the hand-over positions' corners)
+  // also the corners of the first `first_corners` held positions' own sensitivities (the
+  // train's start; every held position's with a large value)
+  std::size_t first_corners = 0;
 };
 
 struct Outcome {
   std::size_t checked = 0, handed_over = 0;
   // values where the exact train is held by a feature pair that holds no follower anywhere along
-  // the analysed nominal path (outside the Monte Carlo's candidates: not compared, counted)
+  // the analysed nominal path (compared like the others; counted: the candidates the Monte Carlo
+  // took from the nominal path before session 27 missed them)
   std::size_t off_path = 0;
+  // values where an unloaded follower still waited at its free start in the exact train (the
+  // exact output further than the Monte Carlo's nominal-holder linearisation would put it)
+  std::size_t waiting = 0;
   double widest = 0;   // widest certified enclosure of a value (output units)
 };
 
@@ -100,6 +107,11 @@ Outcome check_case(const Case& c) {
     std::vector<std::vector<double>> kept;
     for (std::size_t k = 0; k < c.max_corners; ++k) kept.push_back(vectors[k * vectors.size() / c.max_corners]);
     vectors.swap(kept);
+  }
+  for (std::size_t k = 0, held = 0; k < plain.samples.size() && held < c.first_corners; ++k) {
+    if (!plain.samples[k].contact) continue;
+    ++held;
+    for (bool down : {true, false}) vectors.push_back(corner(dist, plain.samples[k].sensitivities, down));
   }
   const std::size_t corners = vectors.size();
   for (std::size_t r = 0; r < c.draws; ++r) vectors.push_back(tolerance_detail::draw(dist, options.seed, corners + r));
@@ -141,10 +153,8 @@ Outcome check_case(const Case& c) {
         ADD_FAILURE() << "driver " << driver << " is not a sample of the exact train";
         continue;
       }
-      if (!std::includes(holders.begin(), holders.end(), at->touching.begin(), at->touching.end())) {
-        ++out.off_path;
-        continue;
-      }
+      if (!std::includes(holders.begin(), holders.end(), at->touching.begin(), at->touching.end())) ++out.off_path;
+      if (at->touching.empty() || at->touching.size() < result.chain.size()) ++out.waiting;
       ++out.checked;
       out.widest = std::max(out.widest, it->second.width());
       // (the oracle's position is a double of the exact engine's: 1e-10 covers its rounding)
@@ -157,8 +167,9 @@ Outcome check_case(const Case& c) {
     }
   }
   std::printf("[ monte carlo ] %s: %zu vectors (%zu corners), %zu values = exact train, %zu hand-over(s) followed, "
-              "widest enclosure %.3g; %zu value(s) held off the nominal path's holders (not compared)\n",
-              c.name.c_str(), vectors.size(), corners, out.checked, out.handed_over, out.widest, out.off_path);
+              "widest enclosure %.3g; %zu value(s) held off the nominal path's holders, %zu with a follower untouched\n",
+              c.name.c_str(), vectors.size(), corners, out.checked, out.handed_over, out.widest, out.off_path,
+              out.waiting);
   return out;
 }
 
@@ -201,6 +212,55 @@ TEST(ToleranceChainMonteCarlo, ExactTrainOnExampleTrains) {
   std::size_t checked = 0;
   for (const Case& c : cases) checked += check_case(c).checked;
   EXPECT_GE(checked, 40u);
+}
+
+// A feature pair holding the follower only off the analysed nominal path (session 27): the
+// hand-over pair's range ended just before its nominal hand-over, so the next tooth pair holds
+// nowhere along the analysed path; the vectors (each held position's box corners) that advance
+// the hand-over put it in charge inside the range. The Monte Carlo's candidates are every
+// feature pair that may touch in the pair's certified enclosure (HandoverSearch::candidates),
+// so its value is still the exact train's. Mutation: the candidates limited to the feature
+// pairs holding along the nominal path (as session 26's were) fails it.
+TEST(ToleranceChainMonteCarlo, ExactTrainWhereAnOffPathToothTakesOver) {
+  const std::string text = test_gears::handover_model(test_gears::gear_train(2));
+  ToleranceOptions options;
+  options.driver = "gear-A";
+  options.chain = true;
+  options.range = {Rational(16, 100), Rational(19, 100)};
+  options.positions = 2000;
+  options.threads = 2;
+  options.chain_assume_nominal_holder = true;
+  ToleranceResult nominal = tolerance_detail::analyze_chain(text, options);
+  // the last position before the nominal hand-over
+  std::size_t last = nominal.samples.size();
+  for (std::size_t k = 1; k < nominal.samples.size() && last == nominal.samples.size(); ++k)
+    if (nominal.samples[k].contact && nominal.samples[k - 1].contact &&
+        nominal.samples[k].region != nominal.samples[k - 1].region)
+      last = k - 1;
+  ASSERT_LT(last, nominal.samples.size()) << "the nominal hand-over lies in 0.16..0.19 rad";
+  Case c{"gear pair, flank toleranced wide, up to the nominal hand-over", text,
+         {Rational(16, 100), Rational(nominal.samples[last].driver)}, 2000, 4};
+  c.first_corners = last + 1;
+  c.max_corners = 0;
+  Outcome o = check_case(c);
+  EXPECT_GE(o.checked, 50u);
+  EXPECT_GE(o.off_path, 1u) << "some vector hands over to the tooth pair that holds only beyond the range";
+}
+
+// The train's free start (session 27): over 0..0.25 rad the generated 2-gear train starts in
+// its backlash (the follower, unloaded, free), the driver taking it up a few positions in; at
+// the box corners of the first held positions that move the contact back, the contact has not
+// met the follower yet there and it still waits where it started (the exact train's value).
+// Mutation: the Monte Carlo dropping that rule (the follower on the contact's root wherever it
+// is) fails it.
+TEST(ToleranceChainMonteCarlo, UnloadedFollowerWaitsAtTheFreeStart) {
+  Case c{"2 gears 10/12, the backlash taken up", test_gears::gear_train(2, 10, 12), {Rational(0), Rational(25, 100)},
+         360, 2};
+  c.first_corners = 6;
+  c.max_corners = 0;
+  Outcome o = check_case(c);
+  EXPECT_GE(o.checked, 50u);
+  EXPECT_GE(o.waiting, 1u) << "some vector's follower has not been met yet at a nominally held position";
 }
 
 }  // namespace
