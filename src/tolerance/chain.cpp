@@ -969,6 +969,34 @@ class ChainAnalysis {
                    static_cast<int>(c.second.kind)};
       };
       std::vector<std::map<Key, PairGeometry<Interval>>> geometry(stages_.size());
+      // ... built from each edge's and each part's axis at this vector, evaluated once each (the
+      // same values as CurveSolver::point_geometry: the same ParametricModel calls)
+      const model_detail::ParametricModel& pm = stages_.front().solver->model();
+      std::map<std::tuple<std::size_t, std::size_t, std::size_t>, model_detail::EdgeValue<Interval>> edges;
+      std::map<std::size_t, std::pair<kernels::Vector<Interval>, kernels::Vector<Interval>>> axes;
+      auto edge_at = [&](const FeatureIdentity& f) -> const model_detail::EdgeValue<Interval>& {
+        auto k = std::make_tuple(f.part, f.loop, f.edge);
+        auto it = edges.find(k);
+        if (it == edges.end()) it = edges.emplace(k, pm.edge_value(f.part, f.loop, f.edge, parameters)).first;
+        return it->second;
+      };
+      auto axis_at = [&](std::size_t part) -> const std::pair<kernels::Vector<Interval>, kernels::Vector<Interval>>& {
+        auto it = axes.find(part);
+        if (it == axes.end()) {
+          std::pair<kernels::Vector<Interval>, kernels::Vector<Interval>> a;
+          pm.motion_value(part, parameters, a.first, a.second);
+          it = axes.emplace(part, a).first;
+        }
+        return it->second;
+      };
+      auto pair_geometry = [&](const CurveSlice& c) {
+        PairGeometry<Interval> g;
+        g.first = edge_at(c.first);
+        g.second = edge_at(c.second);
+        std::tie(g.fixed_pivot, g.fixed_direction) = axis_at(c.fixed_part);
+        std::tie(g.free_pivot, g.free_direction) = axis_at(c.free_part);
+        return g;
+      };
       // Per pair: where its follower is (part units; an unloaded follower stays there while no
       // contact meets it), from its free start.
       std::vector<std::optional<Interval>> where(stages_.size());
@@ -1015,7 +1043,7 @@ class ChainAnalysis {
             for (const CurveSlice& slice : slices) {
               auto it = geometry[s].find(key(slice));
               if (it == geometry[s].end())
-                it = geometry[s].emplace(key(slice), stage.solver->point_geometry(slice, parameters)).first;
+                it = geometry[s].emplace(key(slice), pair_geometry(slice)).first;
               Candidate candidate{slice, &it->second};
               candidate.curve.fixed_range = driver;
               candidates.push_back(std::move(candidate));
