@@ -18,9 +18,9 @@
 //     rule over the pairs' -F_p/F_v and -F_t/F_v) times the box, intersected with the interval
 //     composition (compose_over; a box so composed through the last pair is not bisected);
 //   - Monte Carlo: at each sampled vector, each pair's follower where the actual contact puts
-//     it (the first valid contact it meets among every feature pair that may touch it: a tooth
-//     hand-over inside the box followed; monte_carlo, actual_root), certified (interval
-//     bisection), its driver ranging over the previous pair's certified value there.
+//     it (the first contact it meets among its nominal holder and the neighbouring holders along
+//     the path: a tooth hand-over inside the box followed; monte_carlo, actual_root), certified
+//     (interval bisection), its driver ranging over the previous pair's certified value there.
 #include "model/parametric/parametric.hpp"
 #include "tolerance/handover.hpp"
 #include "tolerance/mean_value.hpp"
@@ -38,7 +38,6 @@
 #include <map>
 #include <memory>
 #include <numbers>
-#include <tuple>
 
 namespace hipair::tolerance_detail {
 namespace {
@@ -766,83 +765,52 @@ class ChainAnalysis {
       notes_.push_back("the certified band is unbounded at " + std::to_string(count) + " position(s): " + why);
   }
 
-  // The feature pairs that may hold pair s's follower at position i (the Monte Carlo's
-  // candidates; docs/tolerance.md "Assembly chains", step 5), the nominal holder first: every
-  // feature pair of the two parts whose features may touch for some vector of `box` with the
-  // driver's chart in `driver` and the follower's in `window` (HandoverSearch::candidates), each
-  // as a slice at position i. A feature pair holding the follower there with it in `window` is
-  // one of them.
-  std::vector<CurveSlice> candidates_at(std::size_t s, std::size_t i, const Box& box, const std::optional<Interval>& driver,
-                                        const Interval& window) const {
-    CurveSlice curve = stages_[s].contacts[i].curve;
-    if (driver) curve.fixed_range = *driver;
-    std::vector<CurveSlice> out = handovers_[s]->candidates(curve, box, window);
-    for (CurveSlice& c : out) c.fixed_range = stages_[s].contacts[i].curve.fixed_range;
+  // The feature pairs that may hold pair s's follower at position i at a sampled vector (the
+  // Monte Carlo's candidates; docs/tolerance.md "Assembly chains", step 5): the nominal holder first, then the nearest other feature pair
+  // holding the follower along the nominal path before position i and the nearest after it (the
+  // tooth pairs handing over there), each as a slice at position i (its charts and driver).
+  std::vector<CurveSlice> holders_near(std::size_t s, std::size_t i) const {
+    const std::vector<StageContact>& contacts = stages_[s].contacts;
+    const CurveSlice& own = contacts[i].curve;
+    std::vector<CurveSlice> out{own};
+    auto differs = [&](const CurveSlice& c) {
+      return std::none_of(out.begin(), out.end(), [&](const CurveSlice& o) { return o.first == c.first && o.second == c.second; });
+    };
+    auto add = [&](std::size_t j) {
+      if (!contacts[j].contact || !differs(contacts[j].curve)) return false;
+      CurveSlice c = own;
+      c.first = contacts[j].curve.first;
+      c.second = contacts[j].curve.second;
+      out.push_back(c);
+      return true;
+    };
+    for (std::size_t j = i; j-- > 0;)
+      if (add(j)) break;
+    for (std::size_t j = i + 1; j < contacts.size(); ++j)
+      if (add(j)) break;
     return out;
   }
 
-  // Pair s's window at position i over the whole box, for its candidates: where the band is
-  // bounded, the driver's chart range is the previous pair's certified enclosure and the
-  // follower's window its own (every vector's value lies in it); elsewhere (`bounded` false) the
-  // nominal values widened by 4 x the linearised half-widths over the box, pair by pair (the
-  // driver's range the previous pair's window), and a vector's value is checked to lie in them.
-  // `driver` is left empty for the first pair (its driver is the exact position). False where a
-  // range reaches a chart's pole.
-  bool position_window(std::size_t i, std::size_t s, const std::vector<Interval>& previous_window,
-                       std::optional<Interval>& driver, Interval& window, bool& bounded) const {
-    const StageContact& c = stages_[s].contacts[i];
-    window = per_[i][s].certified_chart;
-    bounded = std::isfinite(window.lo) && std::isfinite(window.hi);
-    driver.reset();
-    if (s > 0) {
-      const StageAnalysis& previous = stages_[s - 1];
-      Interval x = to_part(previous_window[s - 1], previous.result.follower_rotates, previous.contacts[i].follower_half,
-                           previous.result.samples[i].nominal);
-      Interval t;
-      if (!part_to_chart(x, stages_[s].result.driver_rotates, c.curve.fixed_half_turn, previous.result.samples[i].nominal, t))
-        return false;
-      driver = t;
-    }
-    if (bounded) return true;
-    const Box& box = stages_[s].box;
-    double half = 0;
-    for (std::size_t p = 0; p < c.s_chart.size() && p < box.lo.size(); ++p)
-      half += std::fabs(c.s_chart[p]) * 0.5 * (box.hi[p] - box.lo[p]);
-    if (driver) half += std::fabs(per_[i][s].fixed_slope) * 0.5 * driver->width();
-    double reach = 4 * half + 1e-9 * (1 + std::fabs(c.v));
-    window = Interval(c.v - reach, c.v + reach);
-    return true;
-  }
-
   // Pair s's follower at one sampled vector and position (the Monte Carlo's value, chart
-  // units): the first contact it meets among the candidates (candidates_at: every feature pair
-  // that may touch in the window), as the kinematic engine places a pushed follower
-  // (src/kinematics/engine.cpp: at the end of the blocked range its old position fell into).
-  // The holder's root is bracketed about its linearised value; sigma, the side its contact
-  // function is positive on, is the side the follower is free to move to. A candidate whose
-  // function is certainly negative at the current value's sigma end has its root on the sigma
-  // side (where its function turns positive) enclosed; where its contact is valid there (the
-  // contact point on both features: contact_validity) it holds the follower beyond the value:
-  // the follower moves there and the candidates are tried again; where it is certainly not
-  // valid, the root is no touching of the features and the candidate is passed over. One whose
-  // sign is undecided at the value touches within the enclosure's rounding: when it pushes and
-  // its contact is not certainly invalid, the value becomes the sigma-most of both enclosures
-  // (their hull when the validity is undecided). Every enclosure is certified (interval
-  // bisection with certain end signs); each candidate carries its geometry at the vector.
-  // Failed::root when a root cannot be bracketed; Failed::validity when the holder's contact is
-  // certainly not valid at its root or a candidate's validity at a root beyond the value is
-  // undecided (which of the two holds is then not decided).
+  // units): the first contact it meets among the candidates (holders_near), as the kinematic
+  // engine places a pushed follower (src/kinematics/engine.cpp: at the end of the blocked range
+  // its old position fell into). The holder's root is bracketed about its linearised value;
+  // sigma, the side its contact function is positive on, is the side the follower is free to
+  // move to. A candidate whose features penetrate certainly at the current value's sigma end
+  // (its contact function negative there) holds the follower beyond it: the follower moves to
+  // that candidate's root on the sigma side (where its function turns positive), and the
+  // candidates are tried again there; one whose sign is undecided there touches within the
+  // enclosure's rounding: the value becomes the sigma-most of both enclosures. Every enclosure
+  // is certified (interval bisection with certain end signs); each candidate carries its
+  // geometry at the vector. False when a root cannot be bracketed.
   struct Candidate {
     CurveSlice curve;
-    const PairGeometry<Interval>* geometry = nullptr;
+    std::optional<PairGeometry<Interval>> geometry;
   };
-  enum class Failed { none, root, validity };
-  Failed actual_root(const CurveSolver& solver, std::vector<Candidate>& candidates, double guess, double width,
-                     Interval& value, bool& handed_over, int& sigma) const {
+  bool actual_root(const CurveSolver& solver, std::vector<Candidate>& candidates, double guess, double width,
+                   Interval& value, bool& handed_over, int& sigma) const {
     handed_over = false;
-    const Model& nominal = solver.nominal();
     auto sign_at = [&](Candidate& c, double v) { return solver.point_sign(c.curve, *c.geometry, v); };
-    auto valid_at = [&](Candidate& c, const Interval& v) { return contact_validity(nominal, c.curve, *c.geometry, v); };
     // A root of candidate c with certain end signs in a bracket about `at` (widened up to 12
     // times by 4); `sigma` receives the sign at its upper end.
     auto bracket = [&](Candidate& c, double at, double w, Interval& root, int& sigma) {
@@ -856,8 +824,7 @@ class ChainAnalysis {
       return false;
     };
     sigma = 0;
-    if (!bracket(candidates.front(), guess, width, value, sigma)) return Failed::root;
-    if (valid_at(candidates.front(), value) < 0) return Failed::validity;
+    if (!bracket(candidates.front(), guess, width, value, sigma)) return false;
     auto further_end = [&](const Interval& y) { return sigma > 0 ? y.hi : y.lo; };
     std::size_t holder = 0;
     for (std::size_t round = 0; round <= candidates.size(); ++round) {
@@ -868,12 +835,9 @@ class ChainAnalysis {
         const double x = further_end(value);
         int here = sign_at(c, x);
         if (here == 1) continue;   // apart at the value: it does not push the follower beyond it
-        // its contact point certainly off its features at the value: a negative function there
-        // is no overlap of its features (and an exact zero no touching)
-        if (valid_at(c, Interval::point(x)) < 0) continue;
         if (here == -1) {
-          // its root on the sigma side (its function turning positive), bracketed by doubling
-          // steps from the last point where it certainly still is negative
+          // it penetrates: its root on the sigma side (its function turning positive), bracketed
+          // by doubling steps from the last point where it certainly still penetrates
           double w = std::max(value.width(), 1e-9 * (1 + std::fabs(x)));
           double inside = 0;   // offset of that point from x
           int there = -1;
@@ -882,13 +846,10 @@ class ChainAnalysis {
             if (there == -1) inside = w;
             if (there != 1) w *= 2;
           }
-          if (there != 1) return Failed::root;
+          if (there != 1) return false;
           Interval root;
           Interval range = sigma > 0 ? Interval(x + inside, x + w) : Interval(x - w, x - inside);
-          if (!solver.certified_point_root(c.curve, *c.geometry, range, root)) return Failed::root;
-          int valid = valid_at(c, root);
-          if (valid < 0) continue;   // no touching of its features there
-          if (valid == 0) return Failed::validity;
+          if (!solver.certified_point_root(c.curve, *c.geometry, range, root)) return false;
           value = root;
           holder = k;
           handed_over = true;
@@ -898,19 +859,14 @@ class ChainAnalysis {
         // undecided: it touches within the rounding; the sigma-most of both when it pushes
         Interval root;
         int side = 0;
-        if (!bracket(c, x, std::max(value.width(), 1e-12 * (1 + std::fabs(x))), root, side)) return Failed::root;
+        if (!bracket(c, x, std::max(value.width(), 1e-12 * (1 + std::fabs(x))), root, side)) return false;
         if (side != sigma) continue;   // a contact blocking the follower from ahead, not a push
-        int valid = valid_at(c, root);
-        if (valid < 0) continue;
-        if (valid == 0)
-          value = kernels::hull(value, root);
-        else
-          value = sigma > 0 ? Interval(std::max(value.lo, root.lo), std::max(value.hi, root.hi))
-                            : Interval(std::min(value.lo, root.lo), std::min(value.hi, root.hi));
+        value = sigma > 0 ? Interval(std::max(value.lo, root.lo), std::max(value.hi, root.hi))
+                          : Interval(std::min(value.lo, root.lo), std::min(value.hi, root.hi));
       }
-      if (!moved) return Failed::none;
+      if (!moved) return true;
     }
-    return Failed::root;   // the candidates did not settle
+    return false;   // the candidates did not settle
   }
 
   // Monte Carlo (docs/tolerance.md "Assembly chains", step 5): at each sampled vector, pair by pair, the
@@ -924,79 +880,29 @@ class ChainAnalysis {
     summary.samples = options_.monte_carlo;
     summary.seed = options_.seed;
     std::vector<MonteCarloOutcome> outcomes(options_.monte_carlo);
-    std::vector<std::size_t> handed(outcomes.size(), 0), failed(outcomes.size(), 0), off(outcomes.size(), 0);
+    std::vector<std::size_t> handed(outcomes.size(), 0), failed(outcomes.size(), 0);
     std::vector<std::vector<std::size_t>> left(outcomes.size());   // positions outside the certified band
     const std::vector<Distribution>& dist = stages_.front().distributions;
-    const Box& whole = stages_.front().box;
-    // Per pair and position: the candidates (the same for every vector: every feature pair that
-    // may touch over the box, the driver and the follower in the pair's window; position_window)
-    // and that window; a vector whose driver or value leaves it has its candidates found at the
-    // vector.
-    struct Listed {
-      std::vector<CurveSlice> candidates;
-      std::optional<Interval> driver, window;
-      bool bounded = false;
-    };
-    std::vector<std::vector<Listed>> listed(stages_.size(), std::vector<Listed>(positions()));
-    parallel_for(options_.threads, positions(), [&](std::size_t i) {
-      if (!result_.samples[i].contact) return;
-      std::vector<Interval> windows(stages_.size());
-      for (std::size_t s = 0; s < stages_.size(); ++s) {
-        Listed& l = listed[s][i];
-        if (!envelope_on()) {
-          l.candidates = {stages_[s].contacts[i].curve};
-          continue;
-        }
-        if (!position_window(i, s, windows, l.driver, windows[s], l.bounded)) {
-          l.bounded = false;
-          break;
-        }
-        l.candidates = candidates_at(s, i, whole, l.driver, windows[s]);
-        l.window = windows[s];
-      }
-    });
+    // per pair and position: the candidates (the same for every vector)
+    std::vector<std::vector<std::vector<CurveSlice>>> near(stages_.size());
+    for (std::size_t s = 0; s < stages_.size(); ++s) {
+      near[s].resize(positions());
+      for (std::size_t i = 0; i < positions(); ++i)
+        if (result_.samples[i].contact)
+          near[s][i] = envelope_on() ? holders_near(s, i) : std::vector<CurveSlice>{stages_[s].contacts[i].curve};
+    }
     auto evaluate = [&](std::size_t index) {
       MonteCarloOutcome& outcome = outcomes[index];
       outcome.value.assign(positions(), std::nan(""));
       std::vector<double> deviations =
           paths_.monte_carlo_vector ? paths_.monte_carlo_vector(index) : draw(dist, options_.seed, index);
       std::vector<Interval> parameters = stages_.front().solver->point_parameters(deviations);
-      const Box point{deviations, deviations};
       // Per pair: each feature pair's geometry at this vector (it does not depend on the position).
-      using Key = std::tuple<std::size_t, std::size_t, int, std::size_t, std::size_t, int>;
-      auto key = [](const CurveSlice& c) {
-        return Key{c.first.loop, c.first.edge, static_cast<int>(c.first.kind), c.second.loop, c.second.edge,
-                   static_cast<int>(c.second.kind)};
+      struct Cached {
+        FeatureIdentity first, second;
+        PairGeometry<Interval> geometry;
       };
-      std::vector<std::map<Key, PairGeometry<Interval>>> geometry(stages_.size());
-      // ... built from each edge's and each part's axis at this vector, evaluated once each (the
-      // same values as CurveSolver::point_geometry: the same ParametricModel calls)
-      const model_detail::ParametricModel& pm = stages_.front().solver->model();
-      std::map<std::tuple<std::size_t, std::size_t, std::size_t>, model_detail::EdgeValue<Interval>> edges;
-      std::map<std::size_t, std::pair<kernels::Vector<Interval>, kernels::Vector<Interval>>> axes;
-      auto edge_at = [&](const FeatureIdentity& f) -> const model_detail::EdgeValue<Interval>& {
-        auto k = std::make_tuple(f.part, f.loop, f.edge);
-        auto it = edges.find(k);
-        if (it == edges.end()) it = edges.emplace(k, pm.edge_value(f.part, f.loop, f.edge, parameters)).first;
-        return it->second;
-      };
-      auto axis_at = [&](std::size_t part) -> const std::pair<kernels::Vector<Interval>, kernels::Vector<Interval>>& {
-        auto it = axes.find(part);
-        if (it == axes.end()) {
-          std::pair<kernels::Vector<Interval>, kernels::Vector<Interval>> a;
-          pm.motion_value(part, parameters, a.first, a.second);
-          it = axes.emplace(part, a).first;
-        }
-        return it->second;
-      };
-      auto pair_geometry = [&](const CurveSlice& c) {
-        PairGeometry<Interval> g;
-        g.first = edge_at(c.first);
-        g.second = edge_at(c.second);
-        std::tie(g.fixed_pivot, g.fixed_direction) = axis_at(c.fixed_part);
-        std::tie(g.free_pivot, g.free_direction) = axis_at(c.free_part);
-        return g;
-      };
+      std::vector<std::vector<Cached>> geometry(stages_.size());
       // Per pair: where its follower is (part units; an unloaded follower stays there while no
       // contact meets it), from its free start.
       std::vector<std::optional<Interval>> where(stages_.size());
@@ -1007,70 +913,47 @@ class ChainAnalysis {
         if (!sample.contact) continue;
         ++outcome.evaluations;
         Interval x;
-        Failed why = Failed::none;
-        bool beyond = false;   // a pair's value outside the window its candidates were found in
-        for (std::size_t s = 0; s < stages_.size() && why == Failed::none && !beyond; ++s) {
+        bool ok = true;
+        for (std::size_t s = 0; s < stages_.size() && ok; ++s) {
           const StageAnalysis& stage = stages_[s];
           const StageContact& c = stage.contacts[i];
+          std::vector<Candidate> candidates;
+          for (const CurveSlice& slice : near[s][i]) {
+            Candidate candidate{slice, std::nullopt};
+            auto it = std::find_if(geometry[s].begin(), geometry[s].end(),
+                                   [&](const Cached& g) { return g.first == slice.first && g.second == slice.second; });
+            if (it == geometry[s].end()) {
+              geometry[s].push_back(Cached{slice.first, slice.second, stage.solver->point_geometry(slice, parameters)});
+              it = geometry[s].end() - 1;
+            }
+            candidate.geometry = it->geometry;
+            candidates.push_back(std::move(candidate));
+          }
           // the holder's linearised value: its driver moved to the previous pair's value
           double guess = c.v, linear = 0;
           for (std::size_t p = 0; p < deviations.size() && p < c.s_chart.size(); ++p) {
             guess += c.s_chart[p] * deviations[p];
             linear += std::fabs(c.s_chart[p] * deviations[p]);
           }
-          std::optional<Interval> driver;
           if (s > 0) {
             Interval t;
             if (!part_to_chart(x, stage.result.driver_rotates, c.curve.fixed_half_turn,
                                stages_[s - 1].result.samples[i].nominal, t)) {
-              why = Failed::root;
+              ok = false;
               break;
             }
-            driver = t;
+            for (Candidate& candidate : candidates) candidate.curve.fixed_range = t;
             double shift = per_[i][s].fixed_slope * (t.middle() - c.curve.fixed_value.get_d());
             guess += shift;
             linear += std::fabs(shift) + std::fabs(per_[i][s].fixed_slope) * t.width();
           }
-          const double width = 0.25 * linear + 1e-9 * (1 + std::fabs(guess));
-          const Listed& l = listed[s][i];
-          // the pair's value from a list of candidates complete for a value in `window`
           Interval root;
           bool handed_over = false;
           int sigma = 0;
-          auto follow = [&](const std::vector<CurveSlice>& slices) {
-            std::vector<Candidate> candidates;
-            candidates.reserve(slices.size());
-            for (const CurveSlice& slice : slices) {
-              auto it = geometry[s].find(key(slice));
-              if (it == geometry[s].end())
-                it = geometry[s].emplace(key(slice), pair_geometry(slice)).first;
-              Candidate candidate{slice, &it->second};
-              candidate.curve.fixed_range = driver;
-              candidates.push_back(std::move(candidate));
-            }
-            return actual_root(*stage.solver, candidates, guess, width, root, handed_over, sigma);
-          };
-          auto inside = [](const Interval& y, const std::optional<Interval>& w) { return !w || (w->lo <= y.lo && y.hi <= w->hi); };
-          const bool listed_here = !l.candidates.empty() && (!driver || !l.driver || inside(*driver, l.driver));
-          if (listed_here) why = follow(l.candidates);
-          if (why != Failed::none) break;
-          if (!listed_here || !inside(root, l.window)) {
-            if (l.bounded) {
-              beyond = true;   // outside the pair's certified enclosure
-              break;
-            }
-            // the candidates at this vector, in a window about the holder's linearised value of
-            // 4 x the pair's linearised half-width over the box
-            double reach = 4 * width + 1e-9 * (1 + std::fabs(guess));
-            for (std::size_t p = 0; p < c.s_chart.size() && p < whole.lo.size(); ++p)
-              reach += 2 * std::fabs(c.s_chart[p]) * (whole.hi[p] - whole.lo[p]);
-            const Interval window(guess - reach, guess + reach);
-            why = follow(candidates_at(s, i, point, driver, window));
-            if (why != Failed::none) break;
-            if (!inside(root, window)) {
-              beyond = true;
-              break;
-            }
+          if (!actual_root(*stage.solver, candidates, guess, 0.25 * linear + 1e-9 * (1 + std::fabs(guess)), root,
+                           handed_over, sigma)) {
+            ok = false;
+            break;
           }
           handed[index] += handed_over;
           x = to_part(root, stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
@@ -1081,15 +964,14 @@ class ChainAnalysis {
                           : Interval(std::min(x.lo, where[s]->lo), std::min(x.hi, where[s]->hi));
           if (unloaded_[s]) where[s] = x;
         }
-        if (why != Failed::none || beyond) {
-          // outside a bounded band: a root not found, or a value outside a pair's certified
-          // enclosure (counted so); otherwise not evaluated (counted)
-          if (std::isfinite(sample.certified.upper - sample.certified.lower) && why != Failed::validity) {
+        if (!ok) {
+          // no certified root: outside a bounded band (counted so); elsewhere not evaluated
+          if (std::isfinite(sample.certified.upper - sample.certified.lower)) {
             ++outcome.outside_certified;
             left[index].push_back(i);
           } else {
             --outcome.evaluations;
-            ++(why == Failed::validity ? off : failed)[index];
+            ++failed[index];
           }
           continue;
         }
@@ -1110,19 +992,17 @@ class ChainAnalysis {
     summary.seconds = wall_since(start);
     summary.cpu_seconds = cpu_now() - cpu_start;
     result_.monte_carlo = summary;
-    monte_carlo_notes(outcomes, handed, failed, off, left);
+    monte_carlo_notes(outcomes, handed, failed, left);
   }
 
   // What the Monte Carlo found, said where the report is read: hand-overs it followed, values
   // outside the certified band (where, and what that means), beyond the linearised band.
   void monte_carlo_notes(const std::vector<MonteCarloOutcome>& outcomes, const std::vector<std::size_t>& handed,
-                         const std::vector<std::size_t>& failed, const std::vector<std::size_t>& off,
-                         const std::vector<std::vector<std::size_t>>& left) {
-    std::size_t handed_total = 0, failed_total = 0, off_total = 0, unbounded = 0, evaluations = 0;
+                         const std::vector<std::size_t>& failed, const std::vector<std::vector<std::size_t>>& left) {
+    std::size_t handed_total = 0, failed_total = 0, unbounded = 0, evaluations = 0;
     for (std::size_t k = 0; k < outcomes.size(); ++k) {
       handed_total += handed[k];
       failed_total += failed[k];
-      off_total += off[k];
       evaluations += outcomes[k].evaluations;
     }
     std::vector<std::size_t> where;
@@ -1133,10 +1013,9 @@ class ChainAnalysis {
       unbounded += sample.contact && !std::isfinite(sample.certified.upper - sample.certified.lower);
     notes_.push_back(
         (envelope_on()
-             ? "Monte Carlo: each pair's follower placed by the first valid contact it meets among every feature pair "
-               "that may touch it (over the box and the pair's certified enclosure where the band is bounded, else in a "
-               "window about the value at the vector), each value certified; another feature pair than the nominal "
-               "holder held a follower " +
+             ? "Monte Carlo: each pair's follower placed by the first contact it meets among the feature pairs holding "
+               "it along the nominal path next to the position (its nominal holder and the nearest other holder before "
+               "and after it), each value certified; another feature pair than the nominal holder held a follower " +
                    std::to_string(handed_total) + " time(s) over "
              : std::string("Monte Carlo under --assume-nominal-contact: each pair's follower on its nominal holder, as the "
                            "band assumes (hand-overs inside the tolerance box not followed), each value certified; ")) +
@@ -1146,12 +1025,7 @@ class ChainAnalysis {
                                     : std::string()));
     if (failed_total > 0)
       notes_.push_back("Monte Carlo: " + std::to_string(failed_total) +
-                       " output position(s) not evaluated (a follower's root could not be bracketed, or it left the window "
-                       "its candidates were found in; no certified band there)");
-    if (off_total > 0)
-      notes_.push_back("Monte Carlo: " + std::to_string(off_total) +
-                       " output position(s) not evaluated (whether a contact's point lies on its features was not decided "
-                       "at the vector, or the nominal holder's was certainly not)");
+                       " output position(s) not evaluated (a follower's root could not be bracketed; no certified band there)");
     if (!where.empty()) {
       std::string drivers;
       for (std::size_t k = 0; k < where.size() && k < 8; ++k)

@@ -45,14 +45,6 @@ class HandoverSearch {
   HandoverEnvelope envelope(const CurveSlice& curve, const Box& box, const Interval& holder,
                             double relative_accuracy, double absolute_accuracy, std::size_t& boxes) const;
 
-  /// The Monte Carlo's candidates (chain.cpp, monte_carlo; docs/tolerance.md "Assembly chains",
-  /// step 5): the holder `curve` first, then every other feature pair of the two parts whose
-  /// features may touch for some parameter vector of `box` with the driver's chart in
-  /// curve.fixed_range (or at fixed_value) and the follower's in `window` (step 1 of envelope,
-  /// over that window; feature pairs without a contact of their own left out). Any feature pair
-  /// touching there with the follower in `window` is one of them.
-  std::vector<CurveSlice> candidates(const CurveSlice& curve, const Box& box, const Interval& window) const;
-
   /// Off under `--assume-nominal-contact` (ToleranceOptions::chain_assume_nominal_holder,
   /// chain.cpp): the holder's enclosure returned as the envelope, as before session 25.
   void set_disabled(bool disabled) { disabled_ = disabled; }
@@ -67,14 +59,5 @@ class HandoverSearch {
   mutable std::mutex mutex_;
   mutable std::map<std::vector<double>, std::shared_ptr<const BoxParts>> memo_;
 };
-
-/// The validity of `curve`'s contact (kernels/contact.hpp: the contact point on both features;
-/// closed conditions every touching of the two features meets) at one parameter vector
-/// (`geometry`: CurveSolver::point_geometry there), the driver's chart at curve.fixed_range (or
-/// fixed_value) and the follower's in `free`: +1 when every clause certainly holds, -1 when a
-/// clause certainly fails (no touching of the features there), 0 when undecided. An arc not
-/// certainly of at most a half turn puts no requirement on its angular range.
-int contact_validity(const Model& nominal, const CurveSlice& curve, const PairGeometry<Interval>& geometry,
-                     const Interval& free);
 
 }  // namespace hipair::tolerance_detail
