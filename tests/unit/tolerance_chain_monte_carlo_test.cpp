@@ -57,6 +57,9 @@ struct Case {
   unsigned positions = 360;
   std::size_t draws = 4;   // Monte Carlo draws besides the corners
   std::size_t max_corners = 64;   // corners kept (evenly over the hand-over positions' corners)
+  // also the box corners of the first `first_corners` held positions' own sensitivities (the
+  // train's start)
+  std::size_t first_corners = 0;
 };
 
 struct Outcome {
@@ -64,6 +67,9 @@ struct Outcome {
   // values where the exact train is held by a feature pair that holds no follower anywhere along
   // the analysed nominal path (outside the Monte Carlo's candidates: not compared, counted)
   std::size_t off_path = 0;
+  // values where some follower is untouched in the exact train (an unloaded follower waiting
+  // where it started: the Monte Carlo's value is then where it waits, not the contact's root)
+  std::size_t waiting = 0;
   double widest = 0;   // widest certified enclosure of a value (output units)
 };
 
@@ -100,6 +106,11 @@ Outcome check_case(const Case& c) {
     std::vector<std::vector<double>> kept;
     for (std::size_t k = 0; k < c.max_corners; ++k) kept.push_back(vectors[k * vectors.size() / c.max_corners]);
     vectors.swap(kept);
+  }
+  for (std::size_t k = 0, held = 0; k < plain.samples.size() && held < c.first_corners; ++k) {
+    if (!plain.samples[k].contact) continue;
+    ++held;
+    for (bool down : {true, false}) vectors.push_back(corner(dist, plain.samples[k].sensitivities, down));
   }
   const std::size_t corners = vectors.size();
   for (std::size_t r = 0; r < c.draws; ++r) vectors.push_back(tolerance_detail::draw(dist, options.seed, corners + r));
@@ -145,6 +156,7 @@ Outcome check_case(const Case& c) {
         ++out.off_path;
         continue;
       }
+      if (at->touching.size() < result.chain.size()) ++out.waiting;
       ++out.checked;
       out.widest = std::max(out.widest, it->second.width());
       // (the oracle's position is a double of the exact engine's: 1e-10 covers its rounding)
@@ -157,8 +169,10 @@ Outcome check_case(const Case& c) {
     }
   }
   std::printf("[ monte carlo ] %s: %zu vectors (%zu corners), %zu values = exact train, %zu hand-over(s) followed, "
-              "widest enclosure %.3g; %zu value(s) held off the nominal path's holders (not compared)\n",
-              c.name.c_str(), vectors.size(), corners, out.checked, out.handed_over, out.widest, out.off_path);
+              "widest enclosure %.3g; %zu value(s) held off the nominal path's holders (not compared), %zu with a follower "
+              "untouched\n",
+              c.name.c_str(), vectors.size(), corners, out.checked, out.handed_over, out.widest, out.off_path,
+              out.waiting);
   return out;
 }
 
@@ -201,6 +215,22 @@ TEST(ToleranceChainMonteCarlo, ExactTrainOnExampleTrains) {
   std::size_t checked = 0;
   for (const Case& c : cases) checked += check_case(c).checked;
   EXPECT_GE(checked, 40u);
+}
+
+// The train's free start (session 27): over 0..0.25 rad the generated 2-gear train starts in
+// its backlash (the follower, unloaded, free), the driver taking it up a few positions in; at
+// the box corners of the first held positions that move the contact back, the contact has not
+// met the follower yet there and it still waits where it started (the exact train's value).
+// Mutation: the Monte Carlo dropping that rule (the follower on the contact's root wherever it
+// is) fails it.
+TEST(ToleranceChainMonteCarlo, UnloadedFollowerWaitsAtTheFreeStart) {
+  Case c{"2 gears 10/12, the backlash taken up", test_gears::gear_train(2, 10, 12), {Rational(0), Rational(25, 100)},
+         360, 2};
+  c.first_corners = 6;
+  c.max_corners = 0;
+  Outcome o = check_case(c);
+  EXPECT_GE(o.checked, 50u);
+  EXPECT_GE(o.waiting, 1u) << "some vector's follower has not been met yet at a nominally held position";
 }
 
 }  // namespace
