@@ -487,10 +487,18 @@ class KernelSlicer final : public PairSlicer {
           } else {
             substitute();
             if (!square_free) square_free = algebra::square_free_test(p);
-            root.polynomial = *square_free;
-            root.lower = lo;
-            root.upper = hi;
-            narrow_in_doubles(curve, value_box, root, sign_lo);
+            if (algebra::degree(*square_free) == 1) {
+              // a linear factor's root is rational: exact, as Descartes' isolation gives it (the
+              // zero-clearance test and the slices' consumers read `exact`)
+              Rational r((*square_free)[0], (*square_free)[1]);
+              r.canonicalize();
+              root = Real::from_rational(Rational(-r));
+            } else {
+              root.polynomial = *square_free;
+              root.lower = lo;
+              root.upper = hi;
+              narrow_in_doubles(curve, value_box, root, sign_lo);
+            }
           }
           ++monotone_roots_;
           if (valid(curve, value_box, root, options_.validity_prefilter))
