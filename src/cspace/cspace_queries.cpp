@@ -19,6 +19,7 @@
 #include "cspace/builder_impl.hpp"
 #include "cspace/crossing_shrink.hpp"
 #include "cspace/cspace_access.hpp"
+#include "cspace/exact_bound.hpp"
 #include "cspace/frame_memo.hpp"
 #include "cspace/partial_terms.hpp"
 #include "cspace/scan_memo.hpp"
@@ -1051,20 +1052,33 @@ Rational to_rational(const mpfr_t value) {
   return r;
 }
 
+using cspace::ExactBound;
+using cspace::Side;
+
 // One axis's position over a stretch of the path in one chart system: a rotation chart
 // centred at 0 or pi, or a translation; [lo, hi] in chart coordinates, exact.
 struct AxisPiece {
   bool rotation = true;
   bool half_turn = false;
-  Rational lo, hi;
+  ExactBound lo, hi;
   // lower_double(lo), upper_double(hi), set once (with_doubles) and carried along
   double dlo = 0, dhi = 0;
 };
 
 AxisPiece with_doubles(AxisPiece p) {
-  p.dlo = cspace::algebra::lower_double(p.lo);
-  p.dhi = cspace::algebra::upper_double(p.hi);
+  p.dlo = cspace::algebra::lower_double(p.lo.rational());
+  p.dhi = cspace::algebra::upper_double(p.hi.rational());
   return p;
+}
+
+// The pieces of filtered_angle_ranges' t-ranges: their bounds are the doubles themselves.
+std::vector<AxisPiece> range_pieces(const cspace::AngleRanges& ranges) {
+  std::vector<AxisPiece> pieces;
+  pieces.reserve(ranges.size);
+  for (std::size_t i = 0; i < ranges.size; ++i)
+    pieces.push_back(AxisPiece{true, ranges.half_turn[i], ExactBound::of_double(ranges.lo[i]),
+                               ExactBound::of_double(ranges.hi[i]), ranges.lo[i], ranges.hi[i]});
+  return pieces;
 }
 
 // tan(angle / 2), rounded down or up; \pre |angle| < pi.
@@ -1133,15 +1147,15 @@ std::vector<AxisPiece> angle_pieces(const RInterval& theta, mpfr_prec_t bits) {
   return pieces;
 }
 
-// cspace::filtered_angle_pieces(theta) through the per-thread memo of angle_memo.hpp: a
-// direct-mapped table keyed by the bit patterns of theta's ends; a hit is a copy of the pieces
-// filtered_angle_pieces made for that same theta (a pure function of it).
-std::optional<std::vector<cspace::AnglePiece>> memo_filtered_angle_pieces(const KInterval& theta) {
-  if (!cspace::angle_memo()) return cspace::filtered_angle_pieces(theta);
+// cspace::filtered_angle_ranges(theta) through the per-thread memo of angle_memo.hpp: a
+// direct-mapped table keyed by the bit patterns of theta's ends; a hit is a copy of the ranges
+// filtered_angle_ranges made for that same theta (a pure function of it).
+std::optional<cspace::AngleRanges> memo_filtered_angle_ranges(const KInterval& theta) {
+  if (!cspace::angle_memo()) return cspace::filtered_angle_ranges(theta);
   struct Entry {
     std::uint64_t lo = 0, hi = 0;
     bool used = false;
-    std::optional<std::vector<cspace::AnglePiece>> pieces;
+    std::optional<cspace::AngleRanges> ranges;
   };
   constexpr std::size_t size = 64;
   thread_local std::array<Entry, size> table;
@@ -1150,13 +1164,13 @@ std::optional<std::vector<cspace::AnglePiece>> memo_filtered_angle_pieces(const 
   Entry& entry = table[static_cast<std::size_t>(mix >> 58) % size];
   if (entry.used && entry.lo == lo && entry.hi == hi) {
     ++cspace::angle_memo_hits();
-    return entry.pieces;
+    return entry.ranges;
   }
-  entry.pieces = cspace::filtered_angle_pieces(theta);
+  entry.ranges = cspace::filtered_angle_ranges(theta);
   entry.lo = lo;
   entry.hi = hi;
   entry.used = true;
-  return entry.pieces;
+  return entry.ranges;
 }
 
 // angle_pieces(theta, bits) through the same memo (angle_memo.hpp): the last few exact thetas
@@ -1188,11 +1202,10 @@ std::vector<AxisPiece> memo_angle_pieces(const RInterval& theta, mpfr_prec_t bit
 // angle_pieces(theta, 64)'s pieces through the double-interval filter (src/cspace/angle_filter.hpp);
 // nullopt where the filter cannot decide: the caller takes angle_pieces.
 std::optional<std::vector<AxisPiece>> angle_pieces_filtered(const RInterval& theta) {
-  std::optional<std::vector<cspace::AnglePiece>> filtered = cspace::filtered_angle_pieces(theta.lo, theta.hi);
-  if (!filtered) return std::nullopt;
-  std::vector<AxisPiece> pieces;
-  for (const cspace::AnglePiece& p : *filtered) pieces.push_back(AxisPiece{true, p.half_turn, p.lo, p.hi, p.dlo, p.dhi});
-  return pieces;
+  std::optional<cspace::AngleRanges> ranges = cspace::filtered_angle_ranges(
+      KInterval(KInterval::enclose(theta.lo).lo, KInterval::enclose(theta.hi).hi));
+  if (!ranges) return std::nullopt;
+  return range_pieces(*ranges);
 }
 
 // The chart-coordinate pieces of a half-angle-tangent enclosure t0 (chart centred at 0): the
@@ -1217,7 +1230,7 @@ std::vector<AxisPiece> tangent_pieces(const RInterval& t) {
 // A box of one chart where the path may be.
 struct PieceBox {
   std::size_t chart = 0;
-  Rational x_lo, x_hi, y_lo, y_hi;
+  ExactBound x_lo, x_hi, y_lo, y_hi;
   // lower_double(x_lo), upper_double(x_hi), ... (carried: lower_double of a maximum is the
   // maximum of the lower_doubles, upper_double of a minimum the minimum of the upper_doubles)
   double dx_lo = 0, dx_hi = 0, dy_lo = 0, dy_hi = 0;
@@ -1292,6 +1305,8 @@ struct ScanMemo {
   std::vector<std::vector<std::optional<Hessian>>> hessians;
   std::vector<std::vector<std::optional<Clauses>>> validity;
   std::vector<std::array<double, 4>> chart_boxes;   // lower/upper doubles of the public charts' sides
+  // per public chart: lower_double and upper_double of x_lo, x_hi, y_lo, y_hi (MotionScanner::side)
+  std::vector<std::array<double, 8>> chart_sides;
   // per global vertex: compare_ordinate's fibre signs, once made
   std::vector<std::optional<FibreSigns>> fibre_signs;
 };
@@ -1302,6 +1317,15 @@ std::shared_ptr<ScanMemo> fresh_scan_memo(const CSpace::Impl& impl) {
   memo->gradients.resize(impl.charts.size());
   memo->hessians.resize(impl.charts.size());
   memo->validity.resize(impl.charts.size());
+  for (const CSpaceChart& chart : impl.public_charts) {
+    std::array<double, 8> sides{};
+    const Rational* r[4] = {&chart.x_lo, &chart.x_hi, &chart.y_lo, &chart.y_hi};
+    for (int k = 0; k < 4; ++k) {
+      sides[2 * k] = cspace::algebra::lower_double(*r[k]);
+      sides[2 * k + 1] = cspace::algebra::upper_double(*r[k]);
+    }
+    memo->chart_sides.push_back(sides);
+  }
   for (const CSpaceChart& chart : impl.public_charts)
     memo->chart_boxes.push_back({cspace::algebra::lower_double(chart.x_lo), cspace::algebra::upper_double(chart.x_hi),
                                  cspace::algebra::lower_double(chart.y_lo), cspace::algebra::upper_double(chart.y_hi)});
@@ -1409,7 +1433,7 @@ class MotionScanner {
     std::vector<AxisPiece> xs = pieces(path_.x, a, b, result.too_wide, fine);
     std::vector<AxisPiece> ys;
     if (impl_.dimension == 2) ys = pieces(path_.y, a, b, result.too_wide, fine);
-    else ys = {AxisPiece{false, false, Rational(0), Rational(0)}};
+    else ys = {AxisPiece{false, false, ExactBound(), ExactBound()}};
     if (result.too_wide) return result;
     if (filtered_point) {
       widen(path_.x, xs);
@@ -1421,22 +1445,21 @@ class MotionScanner {
         for (std::size_t c = 0; c < impl_.public_charts.size(); ++c) {
           const CSpaceChart& chart = impl_.public_charts[c];
           if (!same_system(chart.x_kind, chart.x_half_turn, px)) continue;
-          if (px.hi < chart.x_lo || px.lo > chart.x_hi) continue;
+          if (px.hi < side(c, 0) || px.lo > side(c, 1)) continue;
           if (impl_.dimension == 2) {
             if (!same_system(chart.y_kind, chart.y_half_turn, py)) continue;
-            if (py.hi < chart.y_lo || py.lo > chart.y_hi) continue;
+            if (py.hi < side(c, 2) || py.lo > side(c, 3)) continue;
           }
           charts.push_back(c);
         }
         if (!covers(charts, px, py)) result.covered = false;
         for (std::size_t c : charts) {
-          const CSpaceChart& chart = impl_.public_charts[c];
           const std::array<double, 4>& side = memo_->chart_boxes[c];
-          PieceBox box{c, std::max(px.lo, chart.x_lo), std::min(px.hi, chart.x_hi), py.lo, py.hi,
+          PieceBox box{c, max_with(px.lo, this->side(c, 0)), min_with(px.hi, this->side(c, 1)), py.lo, py.hi,
                        std::max(px.dlo, side[0]), std::min(px.dhi, side[1]), py.dlo, py.dhi};
           if (impl_.dimension == 2) {
-            box.y_lo = std::max(py.lo, chart.y_lo);
-            box.y_hi = std::min(py.hi, chart.y_hi);
+            box.y_lo = max_with(py.lo, this->side(c, 2));
+            box.y_hi = min_with(py.hi, this->side(c, 3));
             box.dy_lo = std::max(py.dlo, side[2]);
             box.dy_hi = std::min(py.dhi, side[3]);
           }
@@ -1466,11 +1489,11 @@ class MotionScanner {
     for (AxisPiece& p : pieces) {
       if (p.dlo > -1) {
         p.dlo = std::max(-1.0, std::nextafter(p.dlo, -inf));
-        p.lo = Rational(p.dlo);
+        p.lo = ExactBound::of_double(p.dlo);
       }
       if (p.dhi < 1) {
         p.dhi = std::min(1.0, std::nextafter(p.dhi, inf));
-        p.hi = Rational(p.dhi);
+        p.hi = ExactBound::of_double(p.dhi);
       }
     }
   }
@@ -1478,7 +1501,7 @@ class MotionScanner {
   // Exact location of a rational point inside a box with no contact curve; inside `anchor`'s box
   // (and strictly inside the chart's), the anchor's face (see StartAnchor).
   Location locate_inside(const PieceBox& box, const StartAnchor* anchor = nullptr) const {
-    Rational x = (box.x_lo + box.x_hi) / 2, y = (box.y_lo + box.y_hi) / 2;
+    Rational x = (box.x_lo.rational() + box.x_hi.rational()) / 2, y = (box.y_lo.rational() + box.y_hi.rational()) / 2;
     x.canonicalize();
     y.canonicalize();
     if (anchor && anchor->chart == box.chart && x >= anchor->x_lo && x <= anchor->x_hi && y >= anchor->y_lo &&
@@ -1503,8 +1526,8 @@ class MotionScanner {
     const PieceBox& box = last.boxes.front();
     cspace::algebra::Interval x{box.dx_lo, box.dx_hi}, y{box.dy_lo, box.dy_hi};
     if (!cspace::carried_bounds()) {
-      x = {cspace::algebra::lower_double(box.x_lo), cspace::algebra::upper_double(box.x_hi)};
-      y = {cspace::algebra::lower_double(box.y_lo), cspace::algebra::upper_double(box.y_hi)};
+      x = {cspace::algebra::lower_double(box.x_lo.rational()), cspace::algebra::upper_double(box.x_hi.rational())};
+      y = {cspace::algebra::lower_double(box.y_lo.rational()), cspace::algebra::upper_double(box.y_hi.rational())};
     }
     for (const auto& f : impl_.charts[box.chart].interval_polynomials) {
       cspace::algebra::Interval value = f.evaluate(x, y);
@@ -1513,14 +1536,22 @@ class MotionScanner {
     StartAnchor anchor;
     anchor.chart = box.chart;
     anchor.cell = cell;
-    anchor.x_lo = box.x_lo;
-    anchor.x_hi = box.x_hi;
-    anchor.y_lo = box.y_lo;
-    anchor.y_hi = box.y_hi;
+    anchor.x_lo = box.x_lo.rational();
+    anchor.x_hi = box.x_hi.rational();
+    anchor.y_lo = box.y_lo.rational();
+    anchor.y_hi = box.y_hi.rational();
     return anchor;
   }
 
  private:
+  // public chart c's side k (0: x_lo, 1: x_hi, 2: y_lo, 3: y_hi) with its doubles
+  Side side(std::size_t c, int k) const {
+    const CSpaceChart& chart = impl_.public_charts[c];
+    const Rational* r[4] = {&chart.x_lo, &chart.x_hi, &chart.y_lo, &chart.y_hi};
+    const std::array<double, 8>& d = memo_->chart_sides[c];
+    return Side{*r[k], d[2 * k], d[2 * k + 1]};
+  }
+
   static bool same_system(AxisKind kind, bool half_turn, const AxisPiece& piece) {
     if ((kind == AxisKind::rotation) != piece.rotation) return false;
     return kind == AxisKind::translation || half_turn == piece.half_turn;
@@ -1570,13 +1601,7 @@ class MotionScanner {
         using kernels::interval_detail::down;
         using kernels::interval_detail::up;
         KInterval theta(value->lo < 0 ? down(value->lo) : value->lo, value->hi > 0 ? up(value->hi) : value->hi);
-        if (std::optional<std::vector<cspace::AnglePiece>> filtered = memo_filtered_angle_pieces(theta)) {
-          std::vector<AxisPiece> result;
-          result.reserve(filtered->size());
-          for (cspace::AnglePiece& p : *filtered)
-            result.push_back(AxisPiece{true, p.half_turn, std::move(p.lo), std::move(p.hi), p.dlo, p.dhi});
-          return result;
-        }
+        if (std::optional<cspace::AngleRanges> ranges = memo_filtered_angle_ranges(theta)) return range_pieces(*ranges);
         std::vector<AxisPiece> result = angle_pieces(RInterval{Rational(value->lo), Rational(value->hi)}, 64);
         for (AxisPiece& p : result) p = with_doubles(std::move(p));
         return result;
@@ -1624,7 +1649,7 @@ class MotionScanner {
         rate = enclose_range(v.lo, v.hi);
       }
     }
-    DInterval x = cspace::carried_bounds() ? DInterval{piece.dlo, piece.dhi} : enclose_range(piece.lo, piece.hi);
+    DInterval x = cspace::carried_bounds() ? DInterval{piece.dlo, piece.dhi} : enclose_range(piece.lo.rational(), piece.hi.rational());
     switch (axis.kind) {
       case AxisPath::Kind::offset: return rate;
       case AxisPath::Kind::angle:   // t = tan((theta - c) / 2): dt/du = (1 + t^2) / 2 theta'
@@ -1727,7 +1752,7 @@ class MotionScanner {
       at.a = a;
       at.x = pieces(path_.x, a, a, at.wide, false);
       if (impl_.dimension == 2) at.y = pieces(path_.y, a, a, at.wide, false);
-      else at.y = {AxisPiece{false, false, Rational(0), Rational(0)}};
+      else at.y = {AxisPiece{false, false, ExactBound(), ExactBound()}};
       start_ = std::move(at);
     }
     if (start_->wide) return;
@@ -1738,10 +1763,10 @@ class MotionScanner {
     auto sy = std::find_if(ya.begin(), ya.end(), [&](const AxisPiece& p) { return same(p, py); });
     if (sx == xa.end() || sy == ya.end()) return;
     const bool carried = cspace::carried_bounds();
-    DInterval x_at = carried ? DInterval{sx->dlo, sx->dhi} : enclose_range(sx->lo, sx->hi);
-    DInterval y_at = carried ? DInterval{sy->dlo, sy->dhi} : enclose_range(sy->lo, sy->hi);
-    DInterval x = carried ? DInterval{px.dlo, px.dhi} : enclose_range(px.lo, px.hi);
-    DInterval y = carried ? DInterval{py.dlo, py.dhi} : enclose_range(py.lo, py.hi);
+    DInterval x_at = carried ? DInterval{sx->dlo, sx->dhi} : enclose_range(sx->lo.rational(), sx->hi.rational());
+    DInterval y_at = carried ? DInterval{sy->dlo, sy->dhi} : enclose_range(sy->lo.rational(), sy->hi.rational());
+    DInterval x = carried ? DInterval{px.dlo, px.dhi} : enclose_range(px.lo.rational(), px.hi.rational());
+    DInterval y = carried ? DInterval{py.dlo, py.dhi} : enclose_range(py.lo.rational(), py.hi.rational());
     DInterval dx = chart_derivative(path_.x, a, b, px);
     DInterval dy = impl_.dimension == 2 ? chart_derivative(path_.y, a, b, py) : DInterval{0, 0};
     DInterval h{0, cspace::algebra::upper_double(Rational(b - a))};
@@ -1832,7 +1857,7 @@ class MotionScanner {
       start_->fine_ready = true;
       start_->fine_x = pieces(path_.x, start_->a, start_->a, start_->fine_wide, true);
       if (impl_.dimension == 2) start_->fine_y = pieces(path_.y, start_->a, start_->a, start_->fine_wide, true);
-      else start_->fine_y = {AxisPiece{false, false, Rational(0), Rational(0)}};
+      else start_->fine_y = {AxisPiece{false, false, ExactBound(), ExactBound()}};
     }
     const DInterval everything{-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
     auto same = [](const AxisPiece& p, const AxisPiece& q) { return p.rotation == q.rotation && p.half_turn == q.half_turn; };
@@ -1842,7 +1867,7 @@ class MotionScanner {
     const AxisPiece& x = *sx;
     const AxisPiece& y = *sy;
     const cspace::IntegerPolynomial2& f = impl_.charts[chart].polynomials[curve];
-    RInterval X{x.lo, x.hi}, Y{y.lo, y.hi}, value = RInterval::point(Rational(0));
+    RInterval X{x.lo.rational(), x.hi.rational()}, Y{y.lo.rational(), y.hi.rational()}, value = RInterval::point(Rational(0));
     for (std::size_t i = f.coefficients.size(); i-- > 0;) {
       RInterval row = RInterval::point(Rational(0));
       for (std::size_t j = f.coefficients[i].size(); j-- > 0;)
@@ -1858,12 +1883,10 @@ class MotionScanner {
   bool covers(const std::vector<std::size_t>& charts, const AxisPiece& px, const AxisPiece& py) const {
     // one box holding px x py covers it (every grid cell below lies in it)
     if (cspace::carried_bounds())
-      for (std::size_t c : charts) {
-        const CSpaceChart& chart = impl_.public_charts[c];
-        if (px.lo >= chart.x_lo && px.hi <= chart.x_hi &&
-            (impl_.dimension == 1 || (py.lo >= chart.y_lo && py.hi <= chart.y_hi)))
+      for (std::size_t c : charts)
+        if (px.lo >= side(c, 0) && px.hi <= side(c, 1) &&
+            (impl_.dimension == 1 || (py.lo >= side(c, 2) && py.hi <= side(c, 3))))
           return true;
-      }
     auto cells = [](std::vector<Rational> cuts) {
       std::sort(cuts.begin(), cuts.end());
       cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
@@ -1872,7 +1895,7 @@ class MotionScanner {
       for (std::size_t i = 0; i + 1 < cuts.size(); ++i) middles.push_back((cuts[i] + cuts[i + 1]) / 2);
       return middles;
     };
-    std::vector<Rational> xcuts{px.lo, px.hi}, ycuts{py.lo, py.hi};
+    std::vector<Rational> xcuts{px.lo.rational(), px.hi.rational()}, ycuts{py.lo.rational(), py.hi.rational()};
     for (std::size_t c : charts) {
       const CSpaceChart& chart = impl_.public_charts[c];
       for (const Rational& v : {chart.x_lo, chart.x_hi})
@@ -1909,8 +1932,8 @@ class MotionScanner {
     const ChartData& chart = impl_.charts[box.chart];
     cspace::algebra::Interval x{box.dx_lo, box.dx_hi}, y{box.dy_lo, box.dy_hi};
     if (!cspace::carried_bounds()) {
-      x = {cspace::algebra::lower_double(box.x_lo), cspace::algebra::upper_double(box.x_hi)};
-      y = {cspace::algebra::lower_double(box.y_lo), cspace::algebra::upper_double(box.y_hi)};
+      x = {cspace::algebra::lower_double(box.x_lo.rational()), cspace::algebra::upper_double(box.x_hi.rational())};
+      y = {cspace::algebra::lower_double(box.y_lo.rational()), cspace::algebra::upper_double(box.y_hi.rational())};
     }
     std::vector<char>& candidate = candidate_;
     candidate.assign(chart.polynomials.size(), impl_.dimension == 1 ? 1 : 0);
@@ -1979,6 +2002,8 @@ class MotionScanner {
 
 namespace {
 
+using cspace::StretchStack;
+
 // CSpace::first_crossing's query as an object taking one step at a time (CrossingQuery,
 // crossing_before.hpp): the start's point query, then one stretch of the subdivision per step.
 // run() to the end takes the uninterrupted query's steps in its order; stopping between steps
@@ -2011,9 +2036,11 @@ class CrossingRun {
       resolution_d = resolution.get_d();
       stack.emplace_back(path.u_begin, path.u_end);
     } else {
-      auto [a, b] = stack.back();
+      // copied into kept rationals (their limbs reused) before the stretch pushes onto its slot
+      stretch_a = stack.back().first;
+      stretch_b = stack.back().second;
       stack.pop_back();
-      stretch(a, b);
+      stretch(stretch_a, stretch_b);
       if (done) return;
     }
     settle();
@@ -2061,7 +2088,7 @@ class CrossingRun {
     const Possible& first = at.possible.front();
     const PieceBox& box = at.boxes[first.piece];
     result.chart = box.chart;
-    result.chart_point = {range_of(box.x_lo, box.x_hi), range_of(box.y_lo, box.y_hi)};
+    result.chart_point = {range_of(box.x_lo.rational(), box.x_hi.rational()), range_of(box.y_lo.rational(), box.y_hi.rational())};
     // the real edge crossed: among the real edges of the charts met whose certified boxes meet
     // the bracket's, prefer one between the start cell and the cell entered carrying a
     // possible curve, then one between the two cells, then one carrying a possible curve
@@ -2070,8 +2097,8 @@ class CrossingRun {
     for (std::size_t i = 0; i < at.boxes.size() && best < 3; ++i) {
       const PieceBox& piece = at.boxes[i];
       const ChartData& chart = impl.charts[piece.chart];
-      double bx[4] = {cspace::algebra::lower_double(piece.x_lo), cspace::algebra::lower_double(piece.y_lo),
-                      cspace::algebra::upper_double(piece.x_hi), cspace::algebra::upper_double(piece.y_hi)};
+      double bx[4] = {cspace::algebra::lower_double(piece.x_lo.rational()), cspace::algebra::lower_double(piece.y_lo.rational()),
+                      cspace::algebra::upper_double(piece.x_hi.rational()), cspace::algebra::upper_double(piece.y_hi.rational())};
       for (std::size_t e = 0; e < chart.edges.size() && best < 3; ++e) {
         const CSpaceEdge& edge = impl.edges[chart.edges[e].global];
         if (!edge.real) continue;
@@ -2095,8 +2122,8 @@ class CrossingRun {
     }
     if (impl.model && !result.features.empty()) {
       auto enclose = [](const Rational& r) { return KInterval::enclose(r); };
-      KInterval x(cspace::algebra::lower_double(box.x_lo), cspace::algebra::upper_double(box.x_hi));
-      KInterval y(cspace::algebra::lower_double(box.y_lo), cspace::algebra::upper_double(box.y_hi));
+      KInterval x(cspace::algebra::lower_double(box.x_lo.rational()), cspace::algebra::upper_double(box.x_hi.rational()));
+      KInterval y(cspace::algebra::lower_double(box.y_lo.rational()), cspace::algebra::upper_double(box.y_hi.rational()));
       kernels::ContactFrame<KInterval> frame =
           frame_at<KInterval>(impl, box.chart, impl.feature_pairs[result.features.front().index()], x, y, enclose);
       if (frame.defined) {
@@ -2331,7 +2358,8 @@ class CrossingRun {
   bool started = false, done = false;
   Rational resolution;
   double resolution_d = 0;
-  std::vector<std::pair<Rational, Rational>> stack;
+  StretchStack stack;
+  Rational stretch_a, stretch_b;   // the stretch being evaluated (step())
   std::optional<MotionScanner::Evaluation> last;   // the excluded stretch ending at u_end
 };
 
