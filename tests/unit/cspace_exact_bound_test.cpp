@@ -107,8 +107,8 @@ TEST(CSpaceExactBound, ComparesAsItsRational) {
     ASSERT_EQ(b.rational(), value) << where;
     const int expected = sign(cmp(value, r));
     ASSERT_EQ(sign(compare(b, r)), expected) << where;
-    ASSERT_EQ(r < b, expected < 0) << where;
-    ASSERT_EQ(r > b, expected > 0) << where;
+    ASSERT_EQ(r < b, expected > 0) << where;
+    ASSERT_EQ(r > b, expected < 0) << where;
     // a second bound in any form
     const double e = random() % 3 ? r.get_d() : d;
     const Rational keep_e(e);
