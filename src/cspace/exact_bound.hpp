@@ -18,9 +18,10 @@
 
 namespace hipair::cspace {
 
-// The lazy bounds below (ExactBound's doubles and borrowed sides). On by default; off on a
-// thread, every bound is made an owned rational at once, as first_crossing did before them
-// (tests compare the answers: CSpaceExactBound.*).
+// The lazy bounds below (ExactBound's doubles and borrowed sides) and StretchStack's kept slots.
+// On by default; off on a thread, every bound is made an owned rational at once and every
+// stretch pushed gets a new slot, as first_crossing did before them (tests compare the answers:
+// CSpaceExactBound.*).
 struct LazyBoundsTag;
 inline bool& lazy_bounds() { return thread_switch<LazyBoundsTag>(); }
 
@@ -106,7 +107,10 @@ class StretchStack {
  public:
   bool empty() const { return size_ == 0; }
   const std::pair<Rational, Rational>& back() const { return slots_[size_ - 1]; }
-  void pop_back() { --size_; }
+  void pop_back() {
+    --size_;
+    if (!lazy_bounds()) slots_.resize(size_);   // switched off: no slot kept, every push a new one
+  }
   void emplace_back(const Rational& a, const Rational& b) {
     if (size_ == slots_.size()) slots_.emplace_back();
     slots_[size_].first = a;
