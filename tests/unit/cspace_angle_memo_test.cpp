@@ -1,5 +1,5 @@
 // first_crossing's per-thread memo of the stretches' filtered angle pieces
-// (src/cspace/cspace_queries.cpp, memo_filtered_angle_pieces; switch cspace::angle_memo() in
+// (src/cspace/cspace_queries.cpp, memo_filtered_angle_ranges; switch cspace::angle_memo() in
 // src/cspace/angle_memo.hpp). Oracle: the same queries with the memo off. Motions on the example
 // spaces (the Geneva drive, the escapement's pairs, the cam), interleaved at random so that the
 // memo holds thetas from other spaces and other motions: starts anywhere in a chart, on a real
