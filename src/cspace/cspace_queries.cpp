@@ -512,6 +512,17 @@ FibreSigns fibre_signs_of(const cspace::raw::Vertex& vertex) {
 // fibre_signs_of(vertex `index`) through the space's scan memo (defined below it).
 FibreSigns fibre_signs(const CSpace& space, std::size_t index);
 
+// What compare_ordinate has proved of a vertex's ordinate y_v from the ordinates it compared
+// (per space and thread, in the scan memo): below < y_v < above, or y_v == equal. An ordinate at
+// or below `below` (at or above `above`) is then decided by a rational comparison, without the
+// exact sign of the fibre at the vertex's algebraic abscissa.
+struct OrdinateBounds {
+  std::optional<Rational> below, above, equal;
+};
+OrdinateBounds ordinate_bounds(const CSpace& space, std::size_t index);
+// records compare_ordinate's answer `side` (the sign of y - y_v) for the ordinate y
+void remember_ordinate(const CSpace& space, std::size_t index, const Rational& y, int side);
+
 }  // namespace
 
 int CSpace::compare_ordinate(VertexId id, const Rational& y_input) const {
@@ -533,13 +544,29 @@ int CSpace::compare_ordinate(VertexId id, const Rational& y_input) const {
   // a y0^2 + ... = a (y - y0)^2 and its y-derivative 2 a (y - y0) changes sign at y0 alone.
   // Which of the two decides, and its sign at y_lower, are the vertex's alone (fibre_signs,
   // remembered per space and thread).
+  // Ordinates compared before bound the vertex's (ordinate_bounds): a rational comparison
+  // decides where y lies beyond them.
+  const OrdinateBounds known = ordinate_bounds(*this, index);
+  if (known.equal) {
+    ++cspace::ordinate_memo_hits();
+    return y < *known.equal ? -1 : y > *known.equal ? 1 : 0;
+  }
+  if (known.below && y <= *known.below) {
+    ++cspace::ordinate_memo_hits();
+    return -1;
+  }
+  if (known.above && y >= *known.above) {
+    ++cspace::ordinate_memo_hits();
+    return 1;
+  }
   const FibreSigns signs = fibre_signs(*this, index);
   if (signs.decides != FibreSigns::Decides::nothing) {
     const cspace::IntegerPolynomial2 derivative =
         signs.decides == FibreSigns::Decides::derivative ? y_derivative(vertex.y_curve) : cspace::IntegerPolynomial2{};
     int at = cspace::algebra::sign_at(signs.decides == FibreSigns::Decides::curve ? vertex.y_curve : derivative, vertex.x, y);
-    if (at == 0) return 0;
-    return at == signs.lower ? -1 : 1;
+    const int side = at == 0 ? 0 : at == signs.lower ? -1 : 1;
+    remember_ordinate(*this, index, y, side);
+    return side;
   }
   throw GeometryError("compare_ordinate: the ordinate of vertex " + std::to_string(index) +
                       " is not a sign change of its curve's fibre (not decided)");
@@ -1309,6 +1336,8 @@ struct ScanMemo {
   std::vector<std::array<double, 8>> chart_sides;
   // per global vertex: compare_ordinate's fibre signs, once made
   std::vector<std::optional<FibreSigns>> fibre_signs;
+  // per global vertex: the bounds compare_ordinate has proved on its ordinate (OrdinateBounds)
+  std::vector<OrdinateBounds> ordinates;
 };
 
 std::shared_ptr<ScanMemo> fresh_scan_memo(const CSpace::Impl& impl) {
@@ -1373,6 +1402,23 @@ std::shared_ptr<ScanMemo> scan_memo_of(const std::shared_ptr<const CSpace::Impl>
   memo->owner = owner;
   memos.push_back(memo);
   return memo;
+}
+
+OrdinateBounds ordinate_bounds(const CSpace& space, std::size_t index) {
+  if (!cspace::ordinate_memo()) return {};
+  std::shared_ptr<ScanMemo> memo = scan_memo_of(CSpaceAccess::shared(space));
+  if (memo->ordinates.empty()) return {};
+  return memo->ordinates[index];
+}
+
+void remember_ordinate(const CSpace& space, std::size_t index, const Rational& y, int side) {
+  if (!cspace::ordinate_memo()) return;
+  std::shared_ptr<ScanMemo> memo = scan_memo_of(CSpaceAccess::shared(space));
+  if (memo->ordinates.empty()) memo->ordinates.resize(implementation(space).vertices.size());
+  OrdinateBounds& known = memo->ordinates[index];
+  if (side == 0) known.equal = y;
+  if (side < 0 && (!known.below || y > *known.below)) known.below = y;
+  if (side > 0 && (!known.above || y < *known.above)) known.above = y;
 }
 
 FibreSigns fibre_signs(const CSpace& space, std::size_t index) {

@@ -20,6 +20,19 @@ namespace hipair::cspace {
 // switch it off per thread to compare (CSpaceScanMemo.*).
 struct ScanMemoTag;
 inline bool& scan_memo() { return thread_switch<ScanMemoTag>(); }
+// CSpace::compare_ordinate's memo of what it proved (cspace_queries.cpp: OrdinateBounds, in the
+// scan memo, so per thread and per space): every ordinate y it compared exactly bounds the
+// vertex's ordinate y_v (y < y_v, y > y_v or y == y_v), and an ordinate at or beyond the
+// nearest such bound is decided by a rational comparison instead of the exact sign of the
+// fibre at the vertex's algebraic abscissa (≈ 200 k instructions each on the escapement's
+// vertical edges). The answers are the same (each bound a proved inequality). On by default;
+// tests switch it off per thread to compare (CSpaceOrdinateMemo.*).
+struct OrdinateMemoTag;
+inline bool& ordinate_memo() { return thread_switch<OrdinateMemoTag>(); }
+// How many ordinates on this thread the memo's bounds decided (tests, profiling).
+struct OrdinateMemoHitsTag;
+inline std::size_t& ordinate_memo_hits() { return thread_counter<OrdinateMemoHitsTag>(); }
+
 // How many first_crossing calls on this thread took a memo already made for their space (tests).
 struct ScanMemoHitsTag;
 inline std::size_t& scan_memo_hits() { return thread_counter<ScanMemoHitsTag>(); }
