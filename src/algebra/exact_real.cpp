@@ -974,11 +974,14 @@ std::optional<std::vector<Rational>> rational_roots(const Polynomial& polynomial
     }
     return v;
   };
-  mpz_class prime = 257;
-  for (int attempt = 0; attempt < 40; ++attempt, mpz_nextprime(prime.get_mpz_t(), prime.get_mpz_t())) {
+  // Up to 6 usable primes (not dividing a_n, every root modulo it simple) among 40 from 257 on:
+  // none of them with a root modulo it proves that p has no rational root (the common case,
+  // without lifting); else the one with the fewest roots is lifted.
+  mpz_class prime = 257, best_prime;
+  std::vector<unsigned long> best_residues;
+  int usable = 0;
+  for (int attempt = 0; attempt < 40 && usable < 6; ++attempt, mpz_nextprime(prime.get_mpz_t(), prime.get_mpz_t())) {
     if (mpz_divisible_p(bound_den.get_mpz_t(), prime.get_mpz_t())) continue;
-    // the roots modulo l, every one simple (p'(a) != 0 mod l): each then lifts to exactly one
-    // l-adic root (Hensel), so every rational root is met; else the next prime
     const unsigned long l = prime.get_ui();
     std::vector<unsigned long> reduced, reduced_derivative;
     for (const mpz_class& c : p) reduced.push_back(mpz_fdiv_ui(c.get_mpz_t(), l));
@@ -996,38 +999,44 @@ std::optional<std::vector<Rational>> rational_roots(const Polynomial& polynomial
       residues.push_back(x);
     }
     if (!simple) continue;
-    for (unsigned long residue : residues) {
-      // quadratic Hensel lifting: a <- a - p(a) / p'(a) modulo l^(2^k), until l^(2^k) > needed
-      mpz_class a = residue, modulus = prime;
-      while (modulus <= needed) {
-        modulus *= modulus;
-        mpz_class inverse = value_mod(dp, a, modulus);
-        if (!mpz_invert(inverse.get_mpz_t(), inverse.get_mpz_t(), modulus.get_mpz_t()))
-          throw NumericError("internal: a simple root modulo a prime lost its derivative");
-        a -= value_mod(p, a, modulus) * inverse;
-        mpz_mod(a.get_mpz_t(), a.get_mpz_t(), modulus.get_mpz_t());
-      }
-      // rational reconstruction: the extended Euclidean remainders of (modulus, a) down to the
-      // first one <= |a_0| give num = r1, den = t1 (up to sign)
-      mpz_class r0 = modulus, r1 = a, t0 = 0, t1 = 1, quotient, next;
-      while (r1 > bound_num) {
-        mpz_fdiv_q(quotient.get_mpz_t(), r0.get_mpz_t(), r1.get_mpz_t());
-        next = r0 - quotient * r1;
-        r0 = std::move(r1);
-        r1 = std::move(next);
-        next = t0 - quotient * t1;
-        t0 = std::move(t1);
-        t1 = std::move(next);
-      }
-      if (t1 == 0 || abs(t1) > bound_den) continue;
-      Rational candidate(r1, t1);
-      candidate.canonicalize();
-      if (sign_at(p, candidate) == 0) roots.push_back(candidate);
+    if (residues.empty()) return roots;   // no root modulo l: no rational root but 0
+    if (usable++ == 0 || residues.size() < best_residues.size()) {
+      best_prime = prime;
+      best_residues = std::move(residues);
     }
-    std::sort(roots.begin(), roots.end());
-    return roots;
   }
-  return std::nullopt;   // every prime tried has a multiple root modulo it (or divides a_n)
+  if (usable == 0) return std::nullopt;   // every prime tried has a multiple root modulo it (or divides a_n)
+  // each simple root modulo l lifts to exactly one l-adic root (Hensel): every rational root is met
+  for (unsigned long residue : best_residues) {
+    // quadratic Hensel lifting: a <- a - p(a) / p'(a) modulo l^(2^k), until l^(2^k) > needed
+    mpz_class a = residue, modulus = best_prime;
+    while (modulus <= needed) {
+      modulus *= modulus;
+      mpz_class inverse = value_mod(dp, a, modulus);
+      if (!mpz_invert(inverse.get_mpz_t(), inverse.get_mpz_t(), modulus.get_mpz_t()))
+        throw NumericError("internal: a simple root modulo a prime lost its derivative");
+      a -= value_mod(p, a, modulus) * inverse;
+      mpz_mod(a.get_mpz_t(), a.get_mpz_t(), modulus.get_mpz_t());
+    }
+    // rational reconstruction: the extended Euclidean remainders of (modulus, a) down to the
+    // first one <= |a_0| give num = r1, den = t1 (up to sign)
+    mpz_class r0 = modulus, r1 = a, t0 = 0, t1 = 1, quotient, next;
+    while (r1 > bound_num) {
+      mpz_fdiv_q(quotient.get_mpz_t(), r0.get_mpz_t(), r1.get_mpz_t());
+      next = r0 - quotient * r1;
+      r0 = std::move(r1);
+      r1 = std::move(next);
+      next = t0 - quotient * t1;
+      t0 = std::move(t1);
+      t1 = std::move(next);
+    }
+    if (t1 == 0 || abs(t1) > bound_den) continue;
+    Rational candidate(r1, t1);
+    candidate.canonicalize();
+    if (sign_at(p, candidate) == 0) roots.push_back(candidate);
+  }
+  std::sort(roots.begin(), roots.end());
+  return roots;
 }
 
 std::optional<Rational> rational_root(const Real& r) {
