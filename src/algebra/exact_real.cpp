@@ -957,10 +957,10 @@ std::optional<std::vector<Rational>> rational_roots(const Polynomial& polynomial
     roots.push_back(Rational(0));
     p.erase(p.begin(), p.begin() + static_cast<std::ptrdiff_t>(zeros));
   }
-  p = primitive_part(p);
   const int n = degree(p);
   if (n < 1) return roots;
-  // A root num/den (lowest terms) has |num| <= |a_0| and den <= |a_n| (num | a_0, den | a_n):
+  // A root num/den (lowest terms) has |num| <= |a_0| and den <= |a_n| (num | a_0, den | a_n, for
+  // any integer polynomial: no content needs dividing out, which would cost gcds of the coefficients):
   // it is the unique such fraction congruent to a modulo M > 2 |a_0| |a_n|, where a is its
   // image modulo a power of a prime l not dividing a_n (den is invertible), a root of p there.
   const mpz_class bound_num = abs(p.front()), bound_den = abs(p.back());

@@ -573,9 +573,9 @@ class KernelSlicer final : public PairSlicer {
     // zero-clearance fits: a point with blocked space on both sides may be a touching
     // configuration (a channel of zero width) or a curve through blocked space. When the root is
     // rational (decided completely: algebra::rational_root) it is held exactly and the oracle
-    // decides at it. An irrational root of one contact whose polynomial changes sign there
-    // (odd multiplicity) is no touching configuration: were the parts only touching, that
-    // contact would be their only one (every feature pair touching at the point has a valid
+    // decides at it; but first, a root (not exact, not linear) of one contact whose polynomial
+    // changes sign there (odd multiplicity) is no touching configuration, rational or not (and
+    // stays as it is): were the parts only touching, that contact would be their only one (every feature pair touching at the point has a valid
     // curve through it; culled curves vanish only in certainly blocked space), and moving to the
     // side where it opens would separate them, a free side. Any other irrational point (two or
     // more contacts, or a root of even multiplicity) stays blocked but undecided: counted
@@ -583,6 +583,11 @@ class KernelSlicer final : public PairSlicer {
     for (std::size_t i = 0; i < result.points.size(); ++i) {
       if (result.kinds[i] != SliceKind::blocked || result.kinds[i + 1] != SliceKind::blocked) continue;
       SlicePoint& point = result.points[i];
+      // the one-contact sign change first (most such points: curves through blocked space), but
+      // an exact or linear root goes to the oracle as before
+      if (!point.value.exact && algebra::degree(point.value.polynomial) >= 2 && point.features.size() == 1 &&
+          changes_sign(candidates, point.features[0], value, point.value))
+        continue;
       std::optional<Rational> exact = algebra::rational_root(point.value);
       if (exact) {
         if (!point.value.exact) point.value = Real::from_rational(*exact);
@@ -597,7 +602,6 @@ class KernelSlicer final : public PairSlicer {
         point.touching = overlap_->classify(chart.x_axis, chart.y_axis, q) == cspace::Overlap::touching;
         continue;
       }
-      if (point.features.size() == 1 && changes_sign(candidates, point.features[0], value, point.value)) continue;
       ++touching_undecided_;
     }
     if (!other_moves_ && !window) {
