@@ -11,12 +11,18 @@
 //    configurations the slicer cannot ask the oracle about): it must not claim them touching,
 //    and must count them undecided (SliceClassCounts::touching_undecided), which the analysis
 //    reports as a warning.
+//  - on generated spur-gear pairs (no zero-clearance fit, many contact curves through blocked
+//    space): no point is undecided (the one-contact sign test decides them), none is touching,
+//    and where such a point is rational the exact oracle says the parts overlap there.
 #include "kinematics/slice.hpp"
+#include "algebra/rational_root.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/model.hpp>
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <memory>
 #include <random>
 #include <string>
@@ -124,6 +130,43 @@ TEST(KernelSlicerZeroClearance, RationalRootsOfQuadraticChannelFactorsAreDecided
       EXPECT_GE(kernel_slice_class_counts(*slicer).touching_undecided, undecided_before + 2) << "s " << s.get_str();
     }
   }
+}
+
+TEST(KernelSlicerZeroClearance, GearMeshesCurvesThroughBlockedSpaceAreDecidedBlocked) {
+  std::mt19937_64 random(2829);
+  std::size_t blocked_both = 0, rational_checked = 0;
+  for (int trial = 0; trial < 2; ++trial) {
+    ReadOptions read;
+    read.parameter_values["teeth-1"] = Rational(7 + static_cast<long>(random() % 5));
+    read.parameter_values["teeth-2"] = Rational(8 + static_cast<long>(random() % 6));
+    read.allow_out_of_tolerance = true;
+    Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "spur-gears.json", read);
+    cspace::PairAxes axes = cspace::pair_axes(model, model.pairs[0].first, model.pairs[0].second);
+    std::unique_ptr<PairSlicer> slicer = make_kernel_slicer(model, 0, model.pairs[0].second);
+    for (int k = 0; k < 12; ++k) {
+      const std::size_t o = random() % std::max<std::size_t>(1, slicer->other_charts().size());
+      const ChartAxis& other = slicer->other_charts().at(o);
+      Rational value = other.lo + (other.hi - other.lo) * Rational(static_cast<long>(random() % 997), 997);
+      value.canonicalize();
+      for (std::size_t f = 0; f < slicer->follower_charts().size(); ++f) {
+        ChartSlice slice = slicer->slice(o, value, f);
+        for (std::size_t i = 0; i < slice.points.size(); ++i) {
+          const SlicePoint& point = slice.points[i];
+          EXPECT_FALSE(point.touching);
+          if (slice.kinds[i] != SliceKind::blocked || slice.kinds[i + 1] != SliceKind::blocked) continue;
+          ++blocked_both;
+          std::optional<Rational> exact = algebra::rational_root(point.value);
+          if (!exact) continue;
+          ++rational_checked;
+          // the pair's first part is the other one: (other, follower)
+          EXPECT_EQ(cspace::classify_overlap(model, axes, other, slicer->follower_charts()[f], cspace::ChartPoint{value, *exact}),
+                    cspace::Overlap::overlapping);
+        }
+      }
+    }
+    EXPECT_EQ(kernel_slice_class_counts(*slicer).touching_undecided, 0u);
+  }
+  EXPECT_GT(blocked_both, 20u);
 }
 
 }  // namespace
