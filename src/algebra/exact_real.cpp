@@ -1,4 +1,5 @@
 #include "algebra/exact_real.hpp"
+#include "algebra/rational_root.hpp"
 #include "algebra/real_filters.hpp"
 
 #include <hipair/error.hpp>
@@ -917,6 +918,143 @@ Rational rational_between(const Real& a, const Real& b) {
     x.refine();
     y.refine();
   }
+}
+
+std::optional<Rational> rational_root_by_refinement(const Real& r) {
+  if (r.exact) return r.lower;
+  const Polynomial& p = r.polynomial;
+  if (degree(p) < 1) throw NumericError("internal: an isolated real root of a constant polynomial");
+  // Q = |a_n| / content: the denominator of a rational root divides it
+  mpz_class content = 0;
+  for (const mpz_class& c : p) mpz_gcd(content.get_mpz_t(), content.get_mpz_t(), c.get_mpz_t());
+  const mpz_class q_bound = abs(p.back()) / content;
+  const Rational final_width(1, q_bound * q_bound);
+  Real copy = r;
+  const Rational start_width = copy.upper - copy.lower;
+  // stages: 2^-16, 2^-32, 2^-64, ... of the starting width, then 1/Q^2
+  for (unsigned long bits = 16;; bits *= 2) {
+    if (copy.exact) return copy.lower;   // the bisection met the root
+    Rational candidate = simplest_between(copy.lower, copy.upper);
+    if (candidate.get_den() > q_bound) return std::nullopt;   // no denominator <= Q inside
+    if (mpz_divisible_p(q_bound.get_mpz_t(), candidate.get_den_mpz_t()) && sign_at(p, candidate) == 0)
+      return candidate;
+    if (copy.upper - copy.lower <= final_width) return std::nullopt;   // the only candidate failed
+    Rational width = start_width / Rational(mpz_class(1) << bits);
+    if (width < final_width) width = final_width;
+    refine_dyadically(copy, width);
+  }
+}
+
+std::optional<std::vector<Rational>> rational_roots(const Polynomial& polynomial) {
+  Polynomial p = polynomial;
+  trim(p);
+  if (degree(p) < 1) return std::vector<Rational>{};
+  std::vector<Rational> roots;
+  // the root 0: divide out y
+  std::size_t zeros = 0;
+  while (zeros < p.size() && p[zeros] == 0) ++zeros;
+  if (zeros > 0) {
+    roots.push_back(Rational(0));
+    p.erase(p.begin(), p.begin() + static_cast<std::ptrdiff_t>(zeros));
+  }
+  const int n = degree(p);
+  if (n < 1) return roots;
+  // A root num/den (lowest terms) has |num| <= |a_0| and den <= |a_n| (num | a_0, den | a_n, for
+  // any integer polynomial: no content needs dividing out, which would cost gcds of the coefficients):
+  // it is the unique such fraction congruent to a modulo M > 2 |a_0| |a_n|, where a is its
+  // image modulo a power of a prime l not dividing a_n (den is invertible), a root of p there.
+  const mpz_class bound_num = abs(p.front()), bound_den = abs(p.back());
+  const mpz_class needed = 2 * bound_num * bound_den;
+  const Polynomial dp = derivative(p);
+  auto value_mod = [](const Polynomial& q, const mpz_class& x, const mpz_class& m) {
+    mpz_class v = 0;
+    for (auto c = q.rbegin(); c != q.rend(); ++c) {
+      v = v * x + *c;
+      mpz_mod(v.get_mpz_t(), v.get_mpz_t(), m.get_mpz_t());
+    }
+    return v;
+  };
+  // Up to 6 usable primes (not dividing a_n, every root modulo it simple) among 40 from 257 on:
+  // none of them with a root modulo it proves that p has no rational root (the common case,
+  // without lifting); else the one with the fewest roots is lifted.
+  mpz_class prime = 257, best_prime;
+  std::vector<unsigned long> best_residues;
+  int usable = 0;
+  for (int attempt = 0; attempt < 40 && usable < 6; ++attempt, mpz_nextprime(prime.get_mpz_t(), prime.get_mpz_t())) {
+    if (mpz_divisible_p(bound_den.get_mpz_t(), prime.get_mpz_t())) continue;
+    const unsigned long l = prime.get_ui();
+    std::vector<unsigned long> reduced, reduced_derivative;
+    for (const mpz_class& c : p) reduced.push_back(mpz_fdiv_ui(c.get_mpz_t(), l));
+    for (const mpz_class& c : dp) reduced_derivative.push_back(mpz_fdiv_ui(c.get_mpz_t(), l));
+    auto small_value = [l](const std::vector<unsigned long>& q, unsigned long x) {
+      unsigned long v = 0;
+      for (auto c = q.rbegin(); c != q.rend(); ++c) v = (v * x + *c) % l;
+      return v;
+    };
+    std::vector<unsigned long> residues;
+    bool simple = true;
+    for (unsigned long x = 0; x < l && simple; ++x) {
+      if (small_value(reduced, x) != 0) continue;
+      if (small_value(reduced_derivative, x) == 0) simple = false;
+      residues.push_back(x);
+    }
+    if (!simple) continue;
+    if (residues.empty()) return roots;   // no root modulo l: no rational root but 0
+    if (usable++ == 0 || residues.size() < best_residues.size()) {
+      best_prime = prime;
+      best_residues = std::move(residues);
+    }
+  }
+  if (usable == 0) return std::nullopt;   // every prime tried has a multiple root modulo it (or divides a_n)
+  // each simple root modulo l lifts to exactly one l-adic root (Hensel): every rational root is met
+  for (unsigned long residue : best_residues) {
+    // quadratic Hensel lifting: a <- a - p(a) / p'(a) modulo l^(2^k), until l^(2^k) > needed
+    mpz_class a = residue, modulus = best_prime;
+    while (modulus <= needed) {
+      modulus *= modulus;
+      mpz_class inverse = value_mod(dp, a, modulus);
+      if (!mpz_invert(inverse.get_mpz_t(), inverse.get_mpz_t(), modulus.get_mpz_t()))
+        throw NumericError("internal: a simple root modulo a prime lost its derivative");
+      a -= value_mod(p, a, modulus) * inverse;
+      mpz_mod(a.get_mpz_t(), a.get_mpz_t(), modulus.get_mpz_t());
+    }
+    // rational reconstruction: the extended Euclidean remainders of (modulus, a) down to the
+    // first one <= |a_0| give num = r1, den = t1 (up to sign)
+    mpz_class r0 = modulus, r1 = a, t0 = 0, t1 = 1, quotient, next;
+    while (r1 > bound_num) {
+      mpz_fdiv_q(quotient.get_mpz_t(), r0.get_mpz_t(), r1.get_mpz_t());
+      next = r0 - quotient * r1;
+      r0 = std::move(r1);
+      r1 = std::move(next);
+      next = t0 - quotient * t1;
+      t0 = std::move(t1);
+      t1 = std::move(next);
+    }
+    if (t1 == 0 || abs(t1) > bound_den) continue;
+    Rational candidate(r1, t1);
+    candidate.canonicalize();
+    if (sign_at(p, candidate) == 0) roots.push_back(candidate);
+  }
+  std::sort(roots.begin(), roots.end());
+  return roots;
+}
+
+std::optional<Rational> rational_root(const Real& r) {
+  if (r.exact) return r.lower;
+  const Polynomial& p = r.polynomial;
+  const int n = degree(p);
+  if (n < 1) throw NumericError("internal: an isolated real root of a constant polynomial");
+  if (n == 1) {
+    Rational value(p[0], p[1]);
+    value.canonicalize();
+    return Rational(-value);
+  }
+  if (std::optional<std::vector<Rational>> roots = rational_roots(p)) {
+    for (const Rational& root : *roots)
+      if (r.compare(root) == 0) return root;
+    return std::nullopt;
+  }
+  return rational_root_by_refinement(r);
 }
 
 Rational root_bound(const Polynomial& p) {

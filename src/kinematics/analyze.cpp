@@ -801,6 +801,15 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
     }
     result.play.push_back(play);
   }
+  // zero-clearance fits the kernel slicers could not decide (SliceClassCounts::touching_undecided)
+  for (const auto& slicer : chain.slicers) {
+    const std::size_t undecided = kernel_slice_class_counts(*slicer).touching_undecided;
+    if (undecided > 0)
+      result.warnings.push_back("pair " + slicer->name() + ": " + std::to_string(undecided) +
+                                " slice point(s) with blocked space on both sides at an irrational root of two or more"
+                                " contacts (or of one contact of even multiplicity) were not decided: reported as"
+                                " blocked, though they may be zero-clearance fits (touching)");
+  }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return result;
 }

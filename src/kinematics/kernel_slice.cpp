@@ -8,6 +8,7 @@
 // are kept (the engine ignores them); roots shared by several curves carry all their features.
 #include "kinematics/slice.hpp"
 #include "curves/pose.hpp"
+#include "algebra/rational_root.hpp"
 #include "algebra/real_filters.hpp"
 
 #include <hipair/error.hpp>
@@ -570,30 +571,38 @@ class KernelSlicer final : public PairSlicer {
                                                                         : SliceKind::touching);
     }
     // zero-clearance fits: a point with blocked space on both sides may be a touching
-    // configuration (a channel of zero width) or a curve through blocked space; the oracle
-    // decides at the point when it is rational (an exact root, or the root of a linear factor)
+    // configuration (a channel of zero width) or a curve through blocked space. When the root is
+    // rational (decided completely: algebra::rational_root) it is held exactly and the oracle
+    // decides at it; but first, a root (not exact, not linear) of one contact whose polynomial
+    // changes sign there (odd multiplicity) is no touching configuration, rational or not (and
+    // stays as it is): were the parts only touching, that contact would be their only one (every feature pair touching at the point has a valid
+    // curve through it; culled curves vanish only in certainly blocked space), and moving to the
+    // side where it opens would separate them, a free side. Any other irrational point (two or
+    // more contacts, or a root of even multiplicity) stays blocked but undecided: counted
+    // (SliceClassCounts::touching_undecided), and the analysis says so.
     for (std::size_t i = 0; i < result.points.size(); ++i) {
       if (result.kinds[i] != SliceKind::blocked || result.kinds[i + 1] != SliceKind::blocked) continue;
-      const Real& root = result.points[i].value;
-      std::optional<Rational> exact;
-      if (root.exact) {
-        exact = root.lower;
-      } else if (algebra::degree(root.polynomial) == 1) {
-        Rational v(root.polynomial[0], root.polynomial[1]);
-        v.canonicalize();
-        exact = Rational(-v);
+      SlicePoint& point = result.points[i];
+      // the one-contact sign change first (most such points: curves through blocked space), but
+      // an exact or linear root goes to the oracle as before
+      if (!point.value.exact && algebra::degree(point.value.polynomial) >= 2 && point.features.size() == 1 &&
+          changes_sign(candidates, point.features[0], value, point.value))
+        continue;
+      std::optional<Rational> exact = algebra::rational_root(point.value);
+      if (exact) {
+        if (!point.value.exact) point.value = Real::from_rational(*exact);
+        cspace::ChartPoint q;
+        if (follower_is_x_) {
+          q.x = *exact;
+          q.y = other_moves_ ? value : Rational(0);
+        } else {
+          q.x = value;
+          q.y = *exact;
+        }
+        point.touching = overlap_->classify(chart.x_axis, chart.y_axis, q) == cspace::Overlap::touching;
+        continue;
       }
-      if (!exact) continue;
-      cspace::ChartPoint q;
-      if (follower_is_x_) {
-        q.x = *exact;
-        q.y = other_moves_ ? value : Rational(0);
-      } else {
-        q.x = value;
-        q.y = *exact;
-      }
-      result.points[i].touching =
-          overlap_->classify(chart.x_axis, chart.y_axis, q) == cspace::Overlap::touching;
+      ++touching_undecided_;
     }
     if (!other_moves_ && !window) {
       std::lock_guard<std::mutex> lock(cache_mutex_);
@@ -607,7 +616,9 @@ class KernelSlicer final : public PairSlicer {
     return result;
   }
 
-  SliceClassCounts class_counts() const { return SliceClassCounts{classified_.load(), transferred_.load(), monotone_roots_.load()}; }
+  SliceClassCounts class_counts() const {
+    return SliceClassCounts{classified_.load(), transferred_.load(), monotone_roots_.load(), touching_undecided_.load()};
+  }
 
   const IntegerPolynomial2* polynomial(std::size_t other_chart, std::size_t follower_chart,
                                        std::size_t feature) const override {
@@ -831,6 +842,22 @@ class KernelSlicer final : public PairSlicer {
     }
   }
 
+  // Does the contact polynomial of `feature` (one of `candidates`) at the other part's `value`
+  // change sign at the irrational `root`, a root of odd multiplicity? Decided when the root is
+  // isolated among the roots of that polynomial: its polynomial is the square-free part of it
+  // (the point's only feature gave it), which is non-zero at the interval's ends; false else.
+  static bool changes_sign(const std::vector<std::pair<const StripCurve*, std::uint32_t>>& candidates,
+                           std::size_t feature, const Rational& value, const Real& root) {
+    for (const auto& candidate : candidates) {
+      if (candidate.first->feature != feature) continue;
+      algebra::Polynomial p = algebra::substitute_x(candidate.first->data->polynomial, value);
+      algebra::trim(p);
+      if (algebra::degree(p) < 1 || algebra::square_free_test(p) != algebra::primitive_part(root.polynomial)) return false;
+      return algebra::sign_at(p, root.lower) * algebra::sign_at(p, root.upper) < 0;
+    }
+    return false;
+  }
+
   // False when the contact point of `curve` at (value, root) certainly lies outside one of its
   // features (a root of the supporting polynomial that is no contact of these features).
   static bool valid(const CurveData& curve, const algebra::Interval& value_box, const Real& root, bool prefilter) {
@@ -899,6 +926,7 @@ class KernelSlicer final : public PairSlicer {
   mutable std::vector<std::shared_ptr<const PreviousSlice>> previous_;   // per chart pair (o, f)
   mutable std::atomic<std::size_t> classified_{0}, transferred_{0};
   mutable std::atomic<std::size_t> monotone_roots_{0};   // roots isolated by a monotone run
+  mutable std::atomic<std::size_t> touching_undecided_{0};   // SliceClassCounts::touching_undecided
   std::vector<std::vector<Rational>> follower_edges_;   // per follower chart: its cells' edges
 };
 

@@ -51,7 +51,9 @@ struct SlicePoint {
   std::vector<std::size_t> features;   ///< indices into PairSlicer::features()
   /// Blocked on both sides, but the parts only touch at the point itself (decided exactly): a
   /// zero-clearance fit, the follower's whole free range there. Other points with the same
-  /// class on both sides are curves through blocked (or free) space, not contacts.
+  /// class on both sides are curves through blocked (or free) space, not contacts, except the
+  /// kernel slicer's undecided ones (SliceClassCounts::touching_undecided). A point blocked on
+  /// both sides whose value is rational is held exact by the kernel slicer.
   bool touching = false;
 };
 
@@ -183,6 +185,10 @@ inline bool& monotone_runs_switch() { return thread_switch<MonotoneRunsTag>(); }
 struct SliceClassCounts {
   std::size_t classified = 0, transferred = 0;
   std::size_t monotone_roots = 0;   ///< roots isolated by a monotone run (KernelSlicerOptions::monotone_runs)
+  /// Slice points with blocked space on both sides whose touching was not decided: an irrational
+  /// root of two or more contacts, or of one contact whose polynomial keeps its sign there (the
+  /// point is reported blocked, SlicePoint::touching false; the analysis warns).
+  std::size_t touching_undecided = 0;
 };
 /// Zero counts for a slicer that is not a kernel slicer.
 SliceClassCounts kernel_slice_class_counts(const PairSlicer& slicer);

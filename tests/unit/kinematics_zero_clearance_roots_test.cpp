@@ -1,0 +1,173 @@
+// Zero-clearance fits at kernel slice points (session 28): a crank carrying a pin of radius p at
+// (R, 0) turns in the slot of a yoke that translates along y, the slot exactly 2p wide. With the
+// yoke fixed at s (the other part) and the crank the follower, the pin fits exactly where
+// R sin(theta) = s: in the chart t = tan(theta / 2), s t^2 - 2 R t + s = 0 (and in the chart
+// around theta = pi its image), a square-free quadratic factor of the walls' contact polynomials,
+// blocked space on both sides of each root. Generated over random R, p and t0 with a fixed seed:
+//  - at s = 2 R t0 / (1 + t0^2) the roots t0 and 1/t0 are rational roots of a degree-2 factor;
+//    the slicer must hold t0 exactly and mark it touching, and every exact point with blocked
+//    space on both sides must be touching exactly when the exact oracle says so there;
+//  - at a rational s with R^2 - s^2 no square the roots are irrational (true touching
+//    configurations the slicer cannot ask the oracle about): it must not claim them touching,
+//    and must count them undecided (SliceClassCounts::touching_undecided), which the analysis
+//    reports as a warning.
+//  - on generated spur-gear pairs (no zero-clearance fit, many contact curves through blocked
+//    space): no point is undecided (the one-contact sign test decides them), none is touching,
+//    and where such a point is rational the exact oracle says the parts overlap there.
+#include "kinematics/slice.hpp"
+#include "algebra/rational_root.hpp"
+#include "test_paths.hpp"
+
+#include <hipair/model.hpp>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+#include <random>
+#include <string>
+
+namespace hipair::kinematics_detail {
+namespace {
+
+namespace algebra = cspace::algebra;
+
+std::string quoted(const Rational& r) { return "\"" + r.get_str() + "\""; }
+
+// The axis-parallel rectangle [x0, x1] x [y0, y1] as a model loop.
+std::string rectangle(const Rational& x0, const Rational& y0, const Rational& x1, const Rational& y1) {
+  auto point = [](const Rational& x, const Rational& y) { return "[" + quoted(x) + ", " + quoted(y) + "]"; };
+  return "{ \"start\": " + point(x0, y0) + ", \"edges\": [ { \"line_to\": " + point(x1, y0) + " }, { \"line_to\": " +
+         point(x1, y1) + " }, { \"line_to\": " + point(x0, y1) + " }, { \"line_to\": " + point(x0, y0) + " } ] }";
+}
+
+std::string crank_in_yoke(const Rational& R, const Rational& p) {
+  const Rational half = R + p + 2, margin = p + 4;
+  return R"({ "hipair": 1, "name": "crank-pin-in-exact-slot", "parts": [
+      { "name": "crank", "motion": { "rotation": { "pivot": [0, 0] } },
+        "loops": [ { "circle": { "center": [)" + quoted(R) + ", 0], \"radius\": " + quoted(p) + R"( } } ] },
+      { "name": "yoke", "motion": { "translation": { "direction": [0, 1], "limits": [)" + quoted(-R - p - 1) + ", " +
+         quoted(R + p + 1) + R"(] } },
+        "loops": [ )" + rectangle(-half - 3, -margin, half + 3, margin) + ", " + rectangle(-half, -p, half, p) + R"( ] } ],
+    "pairs": [ { "parts": ["crank", "yoke"] } ] })";
+}
+
+Rational random_rational(std::mt19937_64& random, long lo, long hi, long den) {
+  Rational r(std::uniform_int_distribution<long>(lo * den, hi * den)(random), den);
+  r.canonicalize();
+  return r;
+}
+
+bool is_square(const Rational& r) {
+  return r >= 0 && mpz_perfect_square_p(r.get_num_mpz_t()) && mpz_perfect_square_p(r.get_den_mpz_t());
+}
+
+struct Verdicts {
+  int exact_touching = 0;    // exact points blocked on both sides that the oracle calls touching
+  bool met_t0 = false;       // the point t0 of the chart around 0: exact and touching
+  int claimed_touching = 0;  // points marked touching
+};
+
+// Every slice point of the crank's charts at the yoke's offset s; exact points with blocked space
+// on both sides are checked against the exact oracle.
+Verdicts check_slices(const Model& model, const PairSlicer& slicer, const Rational& s, const Rational* t0) {
+  Verdicts verdicts;
+  cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+  const ChartAxis& yoke_chart = slicer.other_charts().at(0);
+  for (std::size_t f = 0; f < slicer.follower_charts().size(); ++f) {
+    const ChartAxis& crank_chart = slicer.follower_charts()[f];
+    ChartSlice slice = slicer.slice(0, s, f);
+    for (std::size_t i = 0; i < slice.points.size(); ++i) {
+      const SlicePoint& point = slice.points[i];
+      const std::string where = "s " + s.get_str() + " chart " + std::to_string(f) + " point " + point.value.description("t");
+      verdicts.claimed_touching += point.touching;
+      if (slice.kinds[i] != SliceKind::blocked || slice.kinds[i + 1] != SliceKind::blocked) {
+        EXPECT_FALSE(point.touching) << where;
+        continue;
+      }
+      if (!point.value.exact) {
+        EXPECT_FALSE(point.touching) << where;
+        continue;
+      }
+      cspace::Overlap truth =
+          cspace::classify_overlap(model, axes, crank_chart, yoke_chart, cspace::ChartPoint{point.value.lower, s});
+      EXPECT_EQ(point.touching, truth == cspace::Overlap::touching) << where;
+      verdicts.exact_touching += truth == cspace::Overlap::touching;
+      if (t0 && !crank_chart.half_turn && point.value.lower == *t0 && point.touching) verdicts.met_t0 = true;
+    }
+  }
+  return verdicts;
+}
+
+TEST(KernelSlicerZeroClearance, RationalRootsOfQuadraticChannelFactorsAreDecidedTouching) {
+  std::mt19937_64 random(2828);
+  for (int instance = 0; instance < 6; ++instance) {
+    const Rational R = random_rational(random, 5, 40, 7), p = random_rational(random, 1, 2, 5);
+    SCOPED_TRACE("R " + R.get_str() + " p " + p.get_str());
+    Model model = read_model(crank_in_yoke(R, p));
+    std::unique_ptr<PairSlicer> slicer = make_kernel_slicer(model, 0, 0);
+    ASSERT_TRUE(slicer->other_moves());
+    for (int k = 0; k < 8; ++k) {
+      // t0 in (-1, 1) \ {0}, not dyadic in general
+      Rational t0 = random_rational(random, -1, 1, 3 + static_cast<long>(random() % 90));
+      if (t0 == 0 || t0 == 1 || t0 == -1) continue;
+      Rational s = 2 * R * t0 / (1 + t0 * t0);
+      s.canonicalize();
+      const std::size_t undecided_before = kernel_slice_class_counts(*slicer).touching_undecided;
+      Verdicts verdicts = check_slices(model, *slicer, s, &t0);
+      EXPECT_TRUE(verdicts.met_t0) << "t0 " << t0.get_str() << " s " << s.get_str();
+      EXPECT_GE(verdicts.exact_touching, 2) << "t0 " << t0.get_str();   // t0 and 1/t0 (in the chart around pi)
+      EXPECT_EQ(kernel_slice_class_counts(*slicer).touching_undecided, undecided_before) << "t0 " << t0.get_str();
+    }
+    // irrational roots: touching in truth, undecided for the slicer (never claimed either way)
+    for (int k = 0; k < 4; ++k) {
+      Rational s = random_rational(random, 0, 1, 101) * R * Rational(9, 10);
+      s.canonicalize();
+      if (is_square(R * R - s * s)) continue;
+      const std::size_t undecided_before = kernel_slice_class_counts(*slicer).touching_undecided;
+      Verdicts verdicts = check_slices(model, *slicer, s, nullptr);
+      EXPECT_EQ(verdicts.claimed_touching, 0) << "s " << s.get_str();
+      EXPECT_GE(kernel_slice_class_counts(*slicer).touching_undecided, undecided_before + 2) << "s " << s.get_str();
+    }
+  }
+}
+
+TEST(KernelSlicerZeroClearance, GearMeshesCurvesThroughBlockedSpaceAreDecidedBlocked) {
+  std::mt19937_64 random(2829);
+  std::size_t blocked_both = 0, rational_checked = 0;
+  for (int trial = 0; trial < 2; ++trial) {
+    ReadOptions read;
+    read.parameter_values["teeth-1"] = Rational(7 + static_cast<long>(random() % 5));
+    read.parameter_values["teeth-2"] = Rational(8 + static_cast<long>(random() % 6));
+    read.allow_out_of_tolerance = true;
+    Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "spur-gears.json", read);
+    cspace::PairAxes axes = cspace::pair_axes(model, model.pairs[0].first, model.pairs[0].second);
+    std::unique_ptr<PairSlicer> slicer = make_kernel_slicer(model, 0, model.pairs[0].second);
+    for (int k = 0; k < 12; ++k) {
+      const std::size_t o = random() % std::max<std::size_t>(1, slicer->other_charts().size());
+      const ChartAxis& other = slicer->other_charts().at(o);
+      Rational value = other.lo + (other.hi - other.lo) * Rational(static_cast<long>(random() % 997), 997);
+      value.canonicalize();
+      for (std::size_t f = 0; f < slicer->follower_charts().size(); ++f) {
+        ChartSlice slice = slicer->slice(o, value, f);
+        for (std::size_t i = 0; i < slice.points.size(); ++i) {
+          const SlicePoint& point = slice.points[i];
+          EXPECT_FALSE(point.touching);
+          if (slice.kinds[i] != SliceKind::blocked || slice.kinds[i + 1] != SliceKind::blocked) continue;
+          ++blocked_both;
+          std::optional<Rational> exact = algebra::rational_root(point.value);
+          if (!exact) continue;
+          ++rational_checked;
+          // the pair's first part is the other one: (other, follower)
+          EXPECT_EQ(cspace::classify_overlap(model, axes, other, slicer->follower_charts()[f], cspace::ChartPoint{value, *exact}),
+                    cspace::Overlap::overlapping);
+        }
+      }
+    }
+    EXPECT_EQ(kernel_slice_class_counts(*slicer).touching_undecided, 0u);
+  }
+  EXPECT_GT(blocked_both, 20u);
+}
+
+}  // namespace
+}  // namespace hipair::kinematics_detail
