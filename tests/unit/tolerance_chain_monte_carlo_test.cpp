@@ -4,7 +4,10 @@
 // contact each follower meets), not its nominal holder's root, and it is certified. Oracle: the
 // exact kinematic engine on the exact model rebuilt at the vector (its deviations are doubles:
 // exact rationals), the train followed from the range's start as the analysis does
-// (tolerance_chain_oracle.hpp), independent of the Monte Carlo's code.
+// (tolerance_chain_oracle.hpp), independent of the Monte Carlo's code; on one-mesh trains also
+// each value's configuration by the exact overlap predicate (a contact: overlapping just beyond
+// its enclosure on exactly one side). Mutation (session 28): the nominal holder only fails the
+// overlap check at 49 values of ExactTrainAtAHandOver ("overlapping on both sides").
 //
 // Vectors: the box corners that the linearisation moves furthest down and up at every position
 // next to a change of the nominal holder (a hand-over; the neighbour's sensitivities, as the
@@ -17,7 +20,9 @@
 #include "gear_train_tolerances.hpp"
 #include "tolerance_chain_oracle.hpp"
 
+#include "curves/pose.hpp"
 #include "model/parametric/parametric.hpp"
+#include "oracle/overlap.hpp"
 #include "tolerance/sampling.hpp"
 #include "tolerance/stage.hpp"
 
@@ -29,6 +34,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <numbers>
 #include <mutex>
 #include <regex>
 #include <set>
@@ -64,6 +70,9 @@ struct Case {
 
 struct Outcome {
   std::size_t checked = 0, handed_over = 0;
+  // one-mesh trains: values whose claimed configuration the exact overlap predicate confirmed
+  // as a contact (overlapping just on one side of the enclosure, not on the other)
+  std::size_t contacts = 0;
   // values where the exact train is held by a feature pair that holds no follower anywhere along
   // the analysed nominal path (outside the Monte Carlo's candidates: not compared, counted)
   std::size_t off_path = 0;
@@ -73,8 +82,33 @@ struct Outcome {
   double widest = 0;   // widest certified enclosure of a value (output units)
 };
 
+std::size_t index_of(const Model& m, const std::string& name) {
+  for (std::size_t k = 0; k < m.parts.size(); ++k)
+    if (m.parts[k].name == name) return k;
+  ADD_FAILURE() << "no part " << name;
+  return 0;
+}
+
+// The exact overlap predicate on the two parts of model `m`, `a` rotated to `ta` and `b` to
+// `tb` (rad; each angle's half-angle tangent taken as the double's exact rational, the chart
+// about pi beyond a quarter turn).
+cspace::Overlap posed_relation(const Model& m, std::size_t a, double ta, std::size_t b, double tb) {
+  auto map = [&](std::size_t k, double theta) {
+    const double th = std::remainder(theta, 2 * std::numbers::pi);
+    cspace::ChartAxis axis;
+    axis.kind = cspace::ChartAxis::Kind::rotation;
+    axis.half_turn = std::fabs(th) > std::numbers::pi / 2;
+    const double t = std::tan((axis.half_turn ? std::remainder(th - std::numbers::pi, 2 * std::numbers::pi) : th) / 2);
+    return cspace::world_map(m.parts[k], true, axis, Rational(t));
+  };
+  return cspace::analyse_overlap(m.parts[a], map(a, ta), m.parts[b], map(b, tb)).relation;
+}
+
 // The case's chain analysed with the corners and draws as its Monte Carlo vectors; every value
-// checked against the exact train at its vector.
+// checked against the exact train at its vector, and on a one-mesh train (the output's driver
+// is the chain's driver, at the sample's position) every value's configuration by the exact
+// overlap predicate: a follower held by a contact overlaps the driver just beyond the
+// enclosure on one side (10^-9 rad) and not on the other, whatever the kinematic engine does.
 Outcome check_case(const Case& c) {
   SCOPED_TRACE(c.name);
   ToleranceOptions options;
@@ -142,7 +176,8 @@ Outcome check_case(const Case& c) {
   for (std::size_t v = 0; v < vectors.size(); ++v) {
     std::vector<Rational> d;
     for (double x : vectors[v]) d.emplace_back(x);
-    auto path = test_chain::chain_path(model.exact_model(d), "gear-A", c.range, result.follower, c.positions);
+    const Model exact = model.exact_model(d);
+    auto path = test_chain::chain_path(exact, "gear-A", c.range, result.follower, c.positions);
     for (std::size_t k = 0; k < result.samples.size(); ++k) {
       auto it = values.find({v, k});
       if (it == values.end()) continue;
@@ -166,13 +201,23 @@ Outcome check_case(const Case& c) {
       EXPECT_LE(at->output, it->second.hi + 1e-10) << "vector " << v << (v < corners ? " (corner)" : " (draw)")
                                                      << ", driver " << driver << ": [" << it->second.lo << ", "
                                                      << it->second.hi << "]";
+      if (result.chain.size() == 1 && at->touching.size() == result.chain.size()) {
+        const std::size_t a = index_of(exact, "gear-A"), b = index_of(exact, result.follower);
+        const bool below = posed_relation(exact, a, driver, b, it->second.lo - 1e-9) == cspace::Overlap::overlapping;
+        const bool above = posed_relation(exact, a, driver, b, it->second.hi + 1e-9) == cspace::Overlap::overlapping;
+        EXPECT_NE(below, above) << "vector " << v << ", driver " << driver << ": the claimed value [" << it->second.lo
+                                << ", " << it->second.hi << "] is no contact (overlapping " << (below ? "on both sides"
+                                                                                                      : "on neither side")
+                                << ")";
+        out.contacts += below != above;
+      }
     }
   }
   std::printf("[ monte carlo ] %s: %zu vectors (%zu corners), %zu values = exact train, %zu hand-over(s) followed, "
               "widest enclosure %.3g; %zu value(s) held off the nominal path's holders (not compared), %zu with a follower "
-              "untouched\n",
+              "untouched; %zu configuration(s) a contact by the exact overlap predicate\n",
               c.name.c_str(), vectors.size(), corners, out.checked, out.handed_over, out.widest, out.off_path,
-              out.waiting);
+              out.waiting, out.contacts);
   return out;
 }
 
@@ -186,6 +231,7 @@ TEST(ToleranceChainMonteCarlo, ExactTrainAtAHandOver) {
   EXPECT_GE(o.checked, 50u);
   EXPECT_EQ(o.off_path, 0u) << "the hand-over lies inside the range: every holder is on the nominal path";
   EXPECT_GE(o.handed_over, 1u) << "the vectors reach the hand-over";
+  EXPECT_EQ(o.contacts, o.checked) << "every value's configuration checked by the exact overlap predicate";
 }
 
 // Generated trains over more than a tooth period (hand-overs in each).
