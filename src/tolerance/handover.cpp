@@ -36,6 +36,13 @@
 //      meets); or its root over box x t (CurveSolver::certified_range; the holder's over the
 //      whole range: Y) on the -sigma side of y (up to y's -sigma end) or beyond it, with F_v of
 //      one sign over their hull (F monotone there, its one zero in the root's enclosure).
+//      Where the chain gives the driver as the previous pair's mean-value form (DriverForm,
+//      session 28), a candidate that these tests leave possible over the pieces of T is tried
+//      again with the driver as that form: its terms in the parameters the two parts depend on
+//      as the Taylor models' linear part (correlated with the parts' geometry), the rest (the
+//      earlier pairs' parameters, the form's value and remainder) one more variable, whose
+//      range is halved as T's; the driver's interval there is the form's range met with T.
+//      Both hold the driver at every vector of the box, so an exclusion by either is sound.
 //   3. The walk: E from Y's sigma end; the leaf [E, E + h] (h from |W| / 8 halved up to four
 //      times) with no candidate pushing in it ends the walk at E; where one may push in the
 //      finest leaf, E moves to its far end. E is the envelope's sigma end.
@@ -451,7 +458,8 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   }
   const double reach = 2 * holder.width() + absolute_accuracy + 1e-12 * (1 + std::fabs(holder.middle()));
   const double start = end_of(holder, sigma);
-  // 1. The edges over box x range x window (the candidates of a window).
+  const Interval window = sigma > 0 ? Interval(start, start + reach) : Interval(start - reach, start);
+  // 1. The edges over box x range x window.
   auto pose_part = [&](std::size_t part, const Interval& chart) {
     const model_detail::PartGeometry<Interval>& g = geometry_of(part);
     kernels::Pose<Interval> pose = pose_of(m.parts[part].motion, g.pivot, g.direction, chart, half(part));
@@ -464,47 +472,44 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     return loops;
   };
   const std::size_t first_part = curve.first.part, second_part = curve.second.part;
-  auto candidates_over = [&](const Interval& window) {
-    auto first_edges = pose_part(first_part, first_part == fixed_part_ ? fixed : window);
-    auto second_edges = pose_part(second_part, second_part == fixed_part_ ? fixed : window);
-    using Key = std::tuple<std::size_t, std::size_t, int, std::size_t, std::size_t, int>;
-    std::set<Key> keys;
-    auto kind = [](const model_detail::EdgeValue<Interval>& e) { return e.arc ? FeatureKind::arc : FeatureKind::segment; };
-    for (std::size_t la = 0; la < first_edges.size(); ++la)
-      for (std::size_t ea = 0; ea < first_edges[la].size(); ++ea)
-        for (std::size_t lb = 0; lb < second_edges.size(); ++lb)
-          for (std::size_t eb = 0; eb < second_edges[lb].size(); ++eb) {
-            if (apart(first_edges[la][ea], second_edges[lb][eb])) continue;
-            std::size_t na = (ea + 1) % first_edges[la].size(), nb = (eb + 1) % second_edges[lb].size();
-            int ka = static_cast<int>(kind(geometry_of(first_part).loops[la][ea]));
-            int kb = static_cast<int>(kind(geometry_of(second_part).loops[lb][eb]));
-            constexpr int vertex = static_cast<int>(FeatureKind::vertex);
-            const Posed& a = first_edges[la][ea];
-            const Posed& b = second_edges[lb][eb];
-            keys.insert({la, ea, ka, lb, eb, kb});
-            if (!apart(point(a.edge.s), b)) keys.insert({la, ea, vertex, lb, eb, kb});
-            if (!apart(point(a.edge.t), b)) keys.insert({la, na, vertex, lb, eb, kb});
-            if (!apart(a, point(b.edge.s))) keys.insert({la, ea, ka, lb, eb, vertex});
-            if (!apart(a, point(b.edge.t))) keys.insert({la, ea, ka, lb, nb, vertex});
-          }
-    auto identity = [](std::size_t part, std::size_t loop, std::size_t edge, int kind) {
-      FeatureIdentity f;
-      f.part = part;
-      f.loop = loop;
-      f.edge = edge;
-      f.kind = static_cast<FeatureKind>(kind);
-      return f;
-    };
-    std::vector<CurveSlice> candidates;
-    for (const Key& key : keys) {
-      CurveSlice c = curve;
-      c.first = identity(first_part, std::get<0>(key), std::get<1>(key), std::get<2>(key));
-      c.second = identity(second_part, std::get<3>(key), std::get<4>(key), std::get<5>(key));
-      candidates.push_back(c);
-    }
-    return candidates;
+  auto first_edges = pose_part(first_part, first_part == fixed_part_ ? fixed : window);
+  auto second_edges = pose_part(second_part, second_part == fixed_part_ ? fixed : window);
+  using Key = std::tuple<std::size_t, std::size_t, int, std::size_t, std::size_t, int>;
+  std::set<Key> keys;
+  auto kind = [](const model_detail::EdgeValue<Interval>& e) { return e.arc ? FeatureKind::arc : FeatureKind::segment; };
+  for (std::size_t la = 0; la < first_edges.size(); ++la)
+    for (std::size_t ea = 0; ea < first_edges[la].size(); ++ea)
+      for (std::size_t lb = 0; lb < second_edges.size(); ++lb)
+        for (std::size_t eb = 0; eb < second_edges[lb].size(); ++eb) {
+          if (apart(first_edges[la][ea], second_edges[lb][eb])) continue;
+          std::size_t na = (ea + 1) % first_edges[la].size(), nb = (eb + 1) % second_edges[lb].size();
+          int ka = static_cast<int>(kind(geometry_of(first_part).loops[la][ea]));
+          int kb = static_cast<int>(kind(geometry_of(second_part).loops[lb][eb]));
+          constexpr int vertex = static_cast<int>(FeatureKind::vertex);
+          const Posed& a = first_edges[la][ea];
+          const Posed& b = second_edges[lb][eb];
+          keys.insert({la, ea, ka, lb, eb, kb});
+          if (!apart(point(a.edge.s), b)) keys.insert({la, ea, vertex, lb, eb, kb});
+          if (!apart(point(a.edge.t), b)) keys.insert({la, na, vertex, lb, eb, kb});
+          if (!apart(a, point(b.edge.s))) keys.insert({la, ea, ka, lb, eb, vertex});
+          if (!apart(a, point(b.edge.t))) keys.insert({la, ea, ka, lb, nb, vertex});
+        }
+  auto identity = [](std::size_t part, std::size_t loop, std::size_t edge, int kind) {
+    FeatureIdentity f;
+    f.part = part;
+    f.loop = loop;
+    f.edge = edge;
+    f.kind = static_cast<FeatureKind>(kind);
+    return f;
   };
-  std::vector<CurveSlice> candidates;   // the current window's
+  std::vector<CurveSlice> candidates;
+  for (const Key& key : keys) {
+    CurveSlice c = curve;
+    c.first = identity(first_part, std::get<0>(key), std::get<1>(key), std::get<2>(key));
+    c.second = identity(second_part, std::get<3>(key), std::get<4>(key), std::get<5>(key));
+    candidates.push_back(c);
+  }
+  out.candidates = candidates.size();
   // 2. Whether a candidate may push the follower somewhere in y.
   // The candidate's two features (an edge, or a vertex: its edge's source) posed with the
   // follower over y: certainly apart, they do not touch there.
@@ -552,7 +557,7 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     double v = 0, slope = 0;
     std::vector<double> s;
   };
-  std::vector<Nominal> nominals;
+  std::vector<Nominal> nominals(candidates.size());
   std::map<std::tuple<std::size_t, double, double>, std::optional<Interval>> roots;
   const double t_nominal = curve.fixed_value.get_d();
   auto root_of = [&](std::size_t i, const Interval& cut, bool form, const Interval& t, const Interval& y) -> std::optional<Interval> {
@@ -586,7 +591,7 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     }
     return root;
   };
-  // Over box x t x y (t a piece of T).
+  // Over box x t x y (t a piece of T, or of the form's lumped term).
   auto may_push_over = [&](std::size_t i, const Interval& piece, bool form, const Interval& y) {
     const CurveSlice& c = candidates[i];
     const Driver t = driver_over(piece, form);
@@ -636,21 +641,12 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   // may push bounds the follower at E; a leaf where one may (at the finest size) moves E to its
   // far end.
   constexpr int levels = 4;   // a leaf is W / 8 halved at most this many times
-  // 4. Where E reaches W's far end, the walk goes on from E through a further window of the
-  // same width, its candidates enumerated anew, up to `extensions` times (session 28: a
-  // competitor's zeros over box x T reach past W where the driver's range is wide; the band is
-  // then wide, but bounded).
-  constexpr int extensions = 3;
-  auto enumerate = [&](const Interval& window) {
-    candidates = candidates_over(window);
-    nominals.assign(candidates.size(), Nominal{});
-    roots.clear();
-    return candidates.size();
-  };
-  WindowWalk walk = walk_windows(start, reach, sigma, levels, extensions, enumerate, may_push, out.candidates, out.occupying);
+  WindowWalk walk = walk_window(start, window, sigma, reach / 8, levels, candidates.size(), may_push);
   const double edge_reached = walk.edge;
   const std::size_t last = walk.last;
   const bool bounded = walk.bounded;
+  const std::vector<char>& occupying = walk.occupying;
+  out.occupying = static_cast<std::size_t>(std::count(occupying.begin(), occupying.end(), 1));
   if (!bounded) {
     auto name = [&](const FeatureIdentity& f) {
       const Part& part = m.parts[f.part];

@@ -97,32 +97,6 @@ WindowWalk walk_window(double start, const Interval& window, int sigma, double c
   return out;
 }
 
-/// The walk through up to 1 + `extensions` windows of width `reach`, the first from `start`
-/// (session 28): where E reaches a window's far end unbounded, the walk goes on from E through
-/// the next window (the argument holds from any E at or beyond the holder's sigma end: a free
-/// leaf (E, E + h] bounds the follower at E however E was reached). `enumerate(window)` is
-/// called first for each window and returns the count of its candidates, about which
-/// `may_push(i, leaf)` then answers. `candidates` and `occupying` receive the totals over the
-/// windows walked.
-template <typename Enumerate, typename MayPush>
-WindowWalk walk_windows(double start, double reach, int sigma, int levels, int extensions, Enumerate&& enumerate,
-                        MayPush&& may_push, std::size_t& candidates, std::size_t& occupying) {
-  auto window_from = [&](double from) { return sigma > 0 ? Interval(from, from + reach) : Interval(from - reach, from); };
-  candidates = occupying = 0;
-  WindowWalk walk;
-  double from = start;
-  for (int window = 0; window <= extensions; ++window) {
-    const Interval w = window_from(from);
-    const std::size_t count = enumerate(w);
-    candidates += count;
-    walk = walk_window(from, w, sigma, reach / 8, levels, count, may_push);
-    occupying += static_cast<std::size_t>(std::count(walk.occupying.begin(), walk.occupying.end(), 1));
-    if (walk.bounded) break;
-    from = walk.edge;
-  }
-  return walk;
-}
-
 /// The pair's driver (chart units) over the box as the previous pair's mean-value form carried
 /// through the chart change (chain.cpp compose_over): for every parameter vector p of the box,
 ///   t(p) in value + sum_i gradient_i (p_i - c_i),   c the box's centre (box_offsets),
