@@ -542,10 +542,8 @@ class ChainAnalysis {
       }
       if (envelope.extended) {
         if (mean_value) {
-          if (envelope.side > 0)
-            r = r + Interval(0.0, (Interval::point(envelope.chart.hi) - Interval::point(charts[s].lo)).hi);
-          else if (envelope.side < 0)
-            r = r + Interval((Interval::point(envelope.chart.lo) - Interval::point(charts[s].hi)).lo, 0.0);
+          if (envelope.side == 1 || envelope.side == -1)
+            r = widened_remainder(r, envelope.chart, charts[s], envelope.side);
           else
             mean_value = false;
         }

@@ -179,6 +179,132 @@ TEST(ChainMeanValue, GeneratedChainsOfMapsStayInTheirMeanValueForms) {
   EXPECT_LT(width_form, 0.9 * width_interval);   // 0.757 (phi is not affine)
 }
 
+// Session 28: the remainder through a widened pair (compose_over, widened_remainder; session 27
+// found that dropping its widening term failed no test). Generated chains of maps as above, one
+// stage k0 handing over: its follower is the sigma-most of the holder's value f and a
+// competitor's f + kappa (p_a - c_a) (so the competitor takes over on half of the box, by up to
+// |kappa| h_a), every later stage driven by it. The composition as compose_over: the holders'
+// mean-value form H with the remainder R (R = widened_remainder at k0, with the envelope the
+// holder's enclosure widened to the competitor's interval enclosure; G_t phi' R after),
+// intersected with the interval evaluation over the widened driver ranges. At the box's corners
+// and sampled points the chain's values meet every later stage's form. Mutation that fails it:
+// widened_remainder returning R unchanged.
+TEST(ChainMeanValue, RemainderCarriesAFollowerPushedBeyondItsHolderThroughLaterStages) {
+  std::mt19937_64 random(2828);
+  std::uniform_int_distribution<int> coefficient(-12, 12), small(-4, 4);
+  std::size_t points = 0, chains = 0, beyond = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    SCOPED_TRACE("chain " + std::to_string(trial));
+    const std::size_t n = std::uniform_int_distribution<std::size_t>(2, 5)(random);
+    const std::size_t stages = std::uniform_int_distribution<std::size_t>(2, 6)(random);
+    const std::size_t k0 = std::uniform_int_distribution<std::size_t>(0, stages - 2)(random);
+    const int sigma = (random() & 1) ? 1 : -1;
+    const bool affine = trial % 2 == 0;
+    std::vector<Map> maps(stages);
+    for (Map& f : maps) {
+      f.alpha = small(random);
+      if (f.alpha == 0) f.alpha = 3;
+      for (std::size_t i = 0; i < n; ++i) f.beta.push_back(coefficient(random));
+      if (!affine) {
+        f.gamma = coefficient(random);
+        f.delta = coefficient(random);
+        f.epsilon = small(random);
+        f.zeta = coefficient(random);
+      }
+      std::uniform_int_distribution<std::size_t> pick(0, n - 1);
+      f.a = pick(random);
+      f.b = pick(random);
+      f.c = pick(random);
+    }
+    const std::size_t a = std::uniform_int_distribution<std::size_t>(0, n - 1)(random);
+    const double kappa = (random() & 1 ? 1 : -1) * std::uniform_real_distribution<double>(0.5, 4.0)(random);
+    Box box;
+    for (std::size_t i = 0; i < n; ++i) {
+      double c = std::uniform_real_distribution<double>(-0.5, 0.5)(random);
+      double h = std::ldexp(std::uniform_real_distribution<double>(0.5, 1.0)(random),
+                            std::uniform_int_distribution<int>(-9, -4)(random));
+      box.lo.push_back(c - h);
+      box.hi.push_back(c + h);
+    }
+    std::vector<double> center;
+    std::vector<Interval> offsets;
+    tolerance_detail::box_offsets(box, center, offsets);
+    std::vector<Interval> range_p(n), center_p(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      range_p[i] = Interval(box.lo[i], box.hi[i]);
+      center_p[i] = Interval::point(center[i]);
+    }
+    // the competitor's value at stage k0 over p (a point or the box) and the driver t
+    auto competitor = [&](const std::vector<Interval>& p, const Interval& t) {
+      return apply(maps[k0], p, t) + Interval::point(kappa) * (p[a] - Interval::point(center[a]));
+    };
+    const Interval driver = Interval::point(0.25);
+    std::vector<Interval> forms(stages), enclosures(stages);
+    std::vector<Interval> d;
+    Interval y, vc, r(0);   // previous stage's enclosure (widened), H at the centre, R
+    bool bounded = true;
+    for (std::size_t k = 0; k < stages && bounded; ++k) {
+      Interval t = k == 0 ? driver : phi(y), tc = k == 0 ? driver : phi(vc);
+      Interval plain = apply(maps[k], range_p, t);
+      std::vector<IJet> jp(n);
+      for (std::size_t i = 0; i < n; ++i) jp[i] = IJet::variable(range_p[i], i, n + 1);
+      IJet jt = k == 0 ? IJet(t) : IJet::variable(t, n, n + 1);
+      IJet g = apply(maps[k], jp, jt);
+      std::vector<Interval> gp(n);
+      for (std::size_t i = 0; i < n; ++i) gp[i] = g.partial(i);
+      Interval factor = k == 0 ? Interval(0) : phi_slope(y);
+      d = tolerance_detail::chain_rule(gp, g.partial(n), factor, k == 0 ? nullptr : &d);
+      vc = apply(maps[k], center_p, tc);
+      const bool carried = !(r.lo == 0.0 && r.hi == 0.0);
+      if (carried) r = g.partial(n) * factor * r;
+      forms[k] = tolerance_detail::mean_value_form(vc, d, offsets);
+      if (carried) forms[k] = forms[k] + r;
+      bounded = std::isfinite(forms[k].width()) && std::isfinite(plain.width());
+      y = Interval(std::max(plain.lo, forms[k].lo), std::min(plain.hi, forms[k].hi));
+      ASSERT_LE(y.lo, y.hi) << "stage " << k;   // both enclose the holder's value
+      if (k == k0) {
+        // the envelope: the holder's enclosure widened to the competitor's on the sigma side
+        Interval other = competitor(range_p, t);
+        Interval envelope = sigma > 0 ? Interval(y.lo, std::max(y.hi, other.hi)) : Interval(std::min(y.lo, other.lo), y.hi);
+        r = tolerance_detail::widened_remainder(r, envelope, y, sigma);
+        y = envelope;
+      }
+      enclosures[k] = y;
+    }
+    if (!bounded) continue;
+    ++chains;
+    for (int s = 0; s < 64 + (1 << n); ++s) {
+      std::vector<Interval> p(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        double x = s < (1 << n) ? ((s >> i) & 1 ? box.hi[i] : box.lo[i])
+                                : std::uniform_real_distribution<double>(box.lo[i], box.hi[i])(random);
+        p[i] = Interval::point(std::min(std::max(x, box.lo[i]), box.hi[i]));
+      }
+      Interval v;
+      for (std::size_t k = 0; k < stages; ++k) {
+        Interval t = k == 0 ? driver : phi(v);
+        v = apply(maps[k], p, t);
+        if (k == k0) {
+          Interval other = competitor(p, t);
+          bool taken = sigma > 0 ? other.lo > v.hi : other.hi < v.lo;
+          beyond += taken;
+          v = sigma > 0 ? Interval(std::max(v.lo, other.lo), std::max(v.hi, other.hi))
+                        : Interval(std::min(v.lo, other.lo), std::min(v.hi, other.hi));
+        }
+        ++points;
+        ASSERT_TRUE(meets(v, enclosures[k])) << "stage " << k << " (hand-over at " << k0 << ") point " << s;
+        if (k > k0)
+          ASSERT_TRUE(meets(v, forms[k])) << "stage " << k << " (hand-over at " << k0 << ") point " << s << ": value ["
+                                          << v.lo << ", " << v.hi << "], form [" << forms[k].lo << ", " << forms[k].hi << "]";
+      }
+    }
+  }
+  std::printf("%zu generated chains with a hand-over, %zu sampled stage values, %zu where the competitor held\n", chains,
+              points, beyond);
+  EXPECT_GE(chains, 250u);
+  EXPECT_GE(beyond, 5000u);
+}
+
 std::string example_text(const char* name) {
   std::ifstream in(std::filesystem::path(HIPAIR_EXAMPLES) / name);
   std::stringstream s;
