@@ -38,6 +38,7 @@
 #include <map>
 #include <memory>
 #include <numbers>
+#include <optional>
 
 namespace hipair::tolerance_detail {
 namespace {
@@ -512,6 +513,19 @@ class ChainAnalysis {
         // the driver's range too wide for one enclosure: split it (held_pieces)
         if (s == 0 || !held_pieces(i, s, box, curve, charts[s], boxes[s])) return false;
       }
+      // The driver as the previous pair's form (before the step below replaces D, R and H(c)):
+      // the envelope's walk keeps its correlation with the parameters (handover.hpp DriverForm).
+      std::optional<DriverForm> driver;
+      if (mean_value && s > 0) {
+        DriverForm form;
+        Interval factor;
+        if (driver_chart(s, curve, charts, xc, previous_nominal, form.value, factor)) {
+          form.gradient = d;
+          for (Interval& g : form.gradient) g = factor * g;
+          if (!(r.lo == 0.0 && r.hi == 0.0)) form.value = form.value + factor * r;
+          driver = std::move(form);
+        }
+      }
       int side = 0;   // the holder's free side, where the mean-value step proves it
       if (mean_value)
         mean_value = mean_value_step(i, s, box, curve, center_parameters, offsets, previous_nominal, charts, xc, d, r, side);
@@ -520,17 +534,16 @@ class ChainAnalysis {
       // pair may hold the follower, the follower's distance beyond the holder's root joins the
       // remainder R (above).
       HandoverEnvelope envelope = handovers_[s]->envelope(curve, box, charts[s], options_.relative_accuracy,
-                                                          options_.absolute_accuracy, boxes[s], side);
+                                                          options_.absolute_accuracy, boxes[s], side,
+                                                          driver ? &*driver : nullptr);
       if (!envelope.bounded) {
         if (handover) handover->why = "pair " + stage.result.driver + ":" + stage.result.follower + ": " + envelope.why;
         return false;
       }
       if (envelope.extended) {
         if (mean_value) {
-          if (envelope.side > 0)
-            r = r + Interval(0.0, (Interval::point(envelope.chart.hi) - Interval::point(charts[s].lo)).hi);
-          else if (envelope.side < 0)
-            r = r + Interval((Interval::point(envelope.chart.lo) - Interval::point(charts[s].hi)).lo, 0.0);
+          if (envelope.side == 1 || envelope.side == -1)
+            r = widened_remainder(r, envelope.chart, charts[s], envelope.side);
           else
             mean_value = false;
         }
@@ -589,6 +602,23 @@ class ChainAnalysis {
     return false;
   }
 
+  // Pair s's driver chart at the box's centre (`xc`, H_s-1(c) in part units, through the chart
+  // change, into `tc`) and phi_s' over the region (`factor`: (1 + t^2)/(1 + v^2) with t over
+  // the driver's range and v over the previous pair's enclosure; 1 for a translation). False
+  // when the centre's value reaches the chart's pole.
+  bool driver_chart(std::size_t s, const CurveSlice& curve, const std::vector<Interval>& charts, const Interval& xc,
+                    double previous_nominal, Interval& tc, Interval& factor) const {
+    const StageAnalysis& stage = stages_[s];
+    if (stage.result.driver_rotates) {
+      const Interval& t = *curve.fixed_range;
+      const Interval& v = charts[s - 1];
+      factor = (Interval(1) + t * t) / (Interval(1) + v * v);
+    } else {
+      factor = Interval(1);
+    }
+    return part_to_chart(xc, stage.result.driver_rotates, curve.fixed_half_turn, previous_nominal, tc);
+  }
+
   // Pair s's step of compose_over's mean-value form: D_s from D_s-1 (in `d`, replaced), R_s from
   // R_s-1 (in `r`, replaced), H_s(c) (its part coordinate into `xc`, replacing pair s-1's),
   // charts[s] intersected with the form. False when the form is not available from this pair on.
@@ -612,15 +642,8 @@ class ChainAnalysis {
     CurveSlice at_center = c.curve;
     Interval factor(0);   // phi_s' over the region
     if (s > 0) {
-      if (stage.result.driver_rotates) {
-        const Interval& t = *curve.fixed_range;
-        const Interval& v = charts[s - 1];
-        factor = (Interval(1) + t * t) / (Interval(1) + v * v);
-      } else {
-        factor = Interval(1);
-      }
       Interval tc;
-      if (!part_to_chart(xc, stage.result.driver_rotates, curve.fixed_half_turn, previous_nominal, tc)) return false;
+      if (!driver_chart(s, curve, charts, xc, previous_nominal, tc, factor)) return false;
       at_center.fixed_range = tc;
     }
     Interval vc;

@@ -36,6 +36,13 @@
 //      meets); or its root over box x t (CurveSolver::certified_range; the holder's over the
 //      whole range: Y) on the -sigma side of y (up to y's -sigma end) or beyond it, with F_v of
 //      one sign over their hull (F monotone there, its one zero in the root's enclosure).
+//      Where the chain gives the driver as the previous pair's mean-value form (DriverForm,
+//      session 28), a candidate that these tests leave possible over the pieces of T is tried
+//      again with the driver as that form: its terms in the parameters the two parts depend on
+//      as the Taylor models' linear part (correlated with the parts' geometry), the rest (the
+//      earlier pairs' parameters, the form's value and remainder) one more variable, whose
+//      range is halved as T's; the driver's interval there is the form's range met with T.
+//      Both hold the driver at every vector of the box, so an exclusion by either is sound.
 //   3. The walk: E from Y's sigma end; the leaf [E, E + h] (h from |W| / 8 halved up to four
 //      times) with no candidate pushing in it ends the walk at E; where one may push in the
 //      finest leaf, E moves to its far end. E is the envelope's sigma end.
@@ -68,6 +75,7 @@ struct HandoverSearch::BoxParts {
   // are exactly 0 in every number of both parts is left out)
   model_detail::PartGeometry<TaylorModel1> fixed_taylor, free_taylor;
   std::size_t variables = 0;
+  std::vector<std::size_t> parameter_of;   // the box's parameter of each variable
   bool taylor = false;   // the Taylor models could follow the construction over the box
   // per loop and edge: an arc certainly of at most a half turn (decided in the part's frame,
   // where the box alone blurs it: a rigid motion does not change it)
@@ -259,6 +267,7 @@ std::shared_ptr<const HandoverSearch::BoxParts> HandoverSearch::box_parts(const 
     for (std::size_t a = 0; a < active.size(); ++a)
       if (used[a]) keep.push_back(a);
     parts->variables = keep.size();
+    for (std::size_t a : keep) parts->parameter_of.push_back(active[a]);
     auto compact = [&](TaylorModel1& x) {
       std::vector<Interval> coefficients(keep.size(), Interval(0));
       for (std::size_t b = 0; b < keep.size(); ++b)
@@ -299,7 +308,7 @@ std::shared_ptr<const HandoverSearch::BoxParts> HandoverSearch::box_parts(const 
 
 HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& box, const Interval& holder,
                                           double relative_accuracy, double absolute_accuracy, std::size_t& boxes,
-                                          int side) const {
+                                          int side, const DriverForm* driver) const {
   HandoverEnvelope out;
   out.chart = holder;
   if (disabled_) {
@@ -335,9 +344,36 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   auto taylor_geometry = [&](std::size_t part) -> const model_detail::PartGeometry<TaylorModel1>& {
     return part == fixed_part_ ? parts->fixed_taylor : parts->free_taylor;
   };
-  auto taylor_pose = [&](std::size_t part, const Interval& t, const Interval& y) {
+  // The driver over a piece: its chart range (t) and its Taylor model (variable k, or the
+  // driver's form: DriverForm, split_driver). A piece is a part of the driver's range T, or
+  // with the form a part of its lumped term; `none`: the form's range misses T there (no
+  // parameter vector of the box drives the pair from that piece).
+  struct Driver {
+    Interval t;
+    TaylorModel1 model;
+    bool none = false;
+  };
+  std::optional<DriverSplit> split;
+  if (driver && parts->taylor && curve.fixed_range) {
+    split = split_driver(*driver, box, parts->parameter_of);
+    bool finite = std::isfinite(split->lumped.lo) && std::isfinite(split->lumped.hi);
+    for (const Interval& a : split->coefficients) finite = finite && std::isfinite(a.lo) && std::isfinite(a.hi);
+    if (!finite) split.reset();
+  }
+  auto plain_driver = [&](const Interval& t) { return Driver{t, TaylorModel1::over(t.lo, t.hi, k)}; };
+  // `form`: the piece is one of the form's lumped term (else of T)
+  auto driver_over = [&](const Interval& piece, bool form) {
+    Driver d = plain_driver(piece);
+    if (!form) return d;
+    d.model = d.model + TaylorModel1(Interval(0), split->coefficients, Interval(0));
+    Interval r = d.model.range();
+    d.t = Interval(std::max(r.lo, fixed.lo), std::min(r.hi, fixed.hi));
+    d.none = !(d.t.lo <= d.t.hi);
+    return d;
+  };
+  auto taylor_pose = [&](std::size_t part, const Driver& t, const Interval& y) {
     const model_detail::PartGeometry<TaylorModel1>& g = taylor_geometry(part);
-    TaylorModel1 chart = part == fixed_part_ ? TaylorModel1::over(t.lo, t.hi, k) : TaylorModel1::over(y.lo, y.hi, k + 1);
+    TaylorModel1 chart = part == fixed_part_ ? t.model : TaylorModel1::over(y.lo, y.hi, k + 1);
     return pose_of(m.parts[part].motion, g.pivot, g.direction, chart, half(part));
   };
   // F of a feature pair over box x t x y (its Taylor model's range met with the interval
@@ -345,9 +381,9 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   struct Value {
     Interval f, f_v;
   };
-  auto contact = [&](const CurveSlice& c, const Interval& t, const Interval& y) {
-    IntervalJet plain = contact_function(lift(edge_of(geometry_of(c.first.part), c.first)), c.first, jet_pose(c.first.part, t, y),
-                                         lift(edge_of(geometry_of(c.second.part), c.second)), c.second, jet_pose(c.second.part, t, y));
+  auto contact = [&](const CurveSlice& c, const Driver& t, const Interval& y) {
+    IntervalJet plain = contact_function(lift(edge_of(geometry_of(c.first.part), c.first)), c.first, jet_pose(c.first.part, t.t, y),
+                                         lift(edge_of(geometry_of(c.second.part), c.second)), c.second, jet_pose(c.second.part, t.t, y));
     Value out{plain.value, plain.partial(0)};
     if (!parts->taylor) return out;
     try {
@@ -363,7 +399,7 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   // Whether the feature pair's contact point certainly lies off one of its features over
   // box x t x y (a clause of its validity certainly false: e.g. the vertex outside the arc's
   // angular range), so that no zero of F there is a touching of the features.
-  auto off_features = [&](const CurveSlice& c, const Interval& t, const Interval& y) {
+  auto off_features = [&](const CurveSlice& c, const Driver& t, const Interval& y) {
     auto false_clause = [&](const auto& validity, auto&& range) {
       for (const auto& clause : validity.clauses) {
         bool all = true;
@@ -374,7 +410,7 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     };
     auto pose = [&](std::size_t part) {
       return pose_of(m.parts[part].motion, geometry_of(part).pivot, geometry_of(part).direction,
-                     part == fixed_part_ ? t : y, half(part));
+                     part == fixed_part_ ? t.t : y, half(part));
     };
     if (false_clause(validity_of(edge_of(geometry_of(c.first.part), c.first), c.first, pose(c.first.part), minor_of(c.first),
                                  edge_of(geometry_of(c.second.part), c.second), c.second, pose(c.second.part), minor_of(c.second)),
@@ -393,7 +429,7 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   // 0. The holder's free side: F_v's sign over box x T x Y, certain over each piece of T x Y
   // (each halved up to three times where undecided) and the same on all.
   auto slope_sign = [&](const Interval& t, const Interval& y, int depth, auto& self) -> int {
-    int s = sign_of(contact(curve, t, y).f_v);
+    int s = sign_of(contact(curve, plain_driver(t), y).f_v);
     if (s != 0 || depth == 0) return s;
     double tm = centre(t), ym = centre(y);
     std::vector<Interval> ts{t}, ys{y};
@@ -524,9 +560,10 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   std::vector<Nominal> nominals(candidates.size());
   std::map<std::tuple<std::size_t, double, double>, std::optional<Interval>> roots;
   const double t_nominal = curve.fixed_value.get_d();
-  auto root_of = [&](std::size_t i, const Interval& t, const Interval& y) -> std::optional<Interval> {
+  auto root_of = [&](std::size_t i, const Interval& cut, bool form, const Interval& t, const Interval& y) -> std::optional<Interval> {
     const CurveSlice& c = candidates[i];
-    if (is_holder(c) && t.lo == fixed.lo && t.hi == fixed.hi) return holder;
+    const Interval& whole = form ? split->lumped : fixed;
+    if (is_holder(c) && cut.lo == whole.lo && cut.hi == whole.hi) return holder;
     auto key = std::make_tuple(i, t.lo, t.hi);
     auto it = roots.find(key);
     if (it != roots.end()) return it->second;
@@ -554,9 +591,11 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     }
     return root;
   };
-  // Over box x t x y (t a piece of T).
-  auto may_push_over = [&](std::size_t i, const Interval& t, const Interval& y) {
+  // Over box x t x y (t a piece of T, or of the form's lumped term).
+  auto may_push_over = [&](std::size_t i, const Interval& piece, bool form, const Interval& y) {
     const CurveSlice& c = candidates[i];
+    const Driver t = driver_over(piece, form);
+    if (t.none) return false;
     Value f = contact(c, t, y);
     int slope = sign_of(f.f_v);
     if (slope == -sigma || sign_of(f.f) != 0) return false;
@@ -569,25 +608,29 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     // Its root R over the box on the -sigma side of y (touching y's -sigma end at most: a zero
     // there is the follower's position the walk has reached) or beyond y's sigma end, and F_v
     // of one sign over their hull: F is monotone there for each (p, t), its one zero in R.
-    if (std::optional<Interval> r = root_of(i, t, y)) {
+    if (std::optional<Interval> r = root_of(i, piece, form, t.t, y)) {
       bool before = sigma > 0 ? r->hi <= y.lo : r->lo >= y.hi;
       bool after = sigma > 0 ? r->lo > y.hi : r->hi < y.lo;
       if ((before || after) && sign_of(contact(c, t, kernels::hull(*r, y)).f_v) != 0) return false;
     }
     return true;
   };
-  // Over box x T x y: T halved where a piece is undecided, at most `t_levels` times.
+  // Over box x T x y: T (or the driver form's lumped term) halved where a piece is undecided,
+  // at most `t_levels` times.
   constexpr int t_levels = 3;
-  auto may_push_in = [&](std::size_t i, const Interval& t, const Interval& y, int level, auto& self) -> bool {
-    if (!may_push_over(i, t, y)) return false;
+  auto may_push_in = [&](std::size_t i, const Interval& t, bool form, const Interval& y, int level, auto& self) -> bool {
+    if (!may_push_over(i, t, form, y)) return false;
     double mid = t.middle();
     if (level >= t_levels || !(mid > t.lo && mid < t.hi)) return true;
-    return self(i, Interval(t.lo, mid), y, level + 1, self) || self(i, Interval(mid, t.hi), y, level + 1, self);
+    return self(i, Interval(t.lo, mid), form, y, level + 1, self) || self(i, Interval(mid, t.hi), form, y, level + 1, self);
   };
+  // Excluded by either driver (both hold the actual driver for every vector of the box): first
+  // the interval T, then the form's pieces where T's pieces left the candidate possible.
   auto may_push = [&](std::size_t i, const Interval& y) {
     try {
       if (features_apart(candidates[i], y)) return false;
-      return may_push_in(i, fixed, y, 0, may_push_in);
+      if (!may_push_in(i, fixed, false, y, 0, may_push_in)) return false;
+      return !split || may_push_in(i, split->lumped, true, y, 0, may_push_in);
     } catch (const GeometryError&) {
       // no contact of its own (a concave arc on a segment, two vertices): its touchings are its
       // vertex candidates'

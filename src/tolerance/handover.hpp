@@ -6,6 +6,7 @@
 // src/tolerance/.
 #pragma once
 
+#include "tolerance/mean_value.hpp"
 #include "tolerance/solver.hpp"
 
 #include <algorithm>
@@ -96,6 +97,46 @@ WindowWalk walk_window(double start, const Interval& window, int sigma, double c
   return out;
 }
 
+/// The pair's driver (chart units) over the box as the previous pair's mean-value form carried
+/// through the chart change (chain.cpp compose_over): for every parameter vector p of the box,
+///   t(p) in value + sum_i gradient_i (p_i - c_i),   c the box's centre (box_offsets),
+/// the product gradient_i (p_i - c_i) an interval times a number. Given to the envelope's walk,
+/// it keeps the correlation of the driver with the parameters the pair's own geometry depends
+/// on (an idler's tooth phase turns its body back by what it turns its teeth: the driver and
+/// the contact function move together), where an interval driver would let them vary apart.
+struct DriverForm {
+  Interval value;
+  std::vector<Interval> gradient;   ///< per parameter of the box
+};
+
+/// A DriverForm split for the Taylor models of the walk: with xi_b = (p_q - c_q) / h_q for the
+/// b-th variable (q = parameter_of[b], c_q and h_q TaylorModel1::over's centre and half width
+/// over the box: p_q - c_q in h_q [-1, 1]), for every p of the box some l in `lumped` has
+///   t(p) in l + sum_b coefficients_b xi_b(p),
+/// coefficients_b = gradient_q h_q, lumped = value + sum over the other parameters of
+/// gradient_i [B_i - c_i] (those the pair's geometry does not depend on: their effect on t is
+/// independent of everything else the contact function sees).
+struct DriverSplit {
+  std::vector<Interval> coefficients;
+  Interval lumped;
+};
+inline DriverSplit split_driver(const DriverForm& form, const Box& box, const std::vector<std::size_t>& parameter_of) {
+  std::vector<double> center;
+  std::vector<Interval> offsets;
+  box_offsets(box, center, offsets);
+  std::vector<char> variable(offsets.size(), 0);
+  DriverSplit out;
+  for (std::size_t q : parameter_of) {
+    variable.at(q) = 1;
+    double h = TaylorModel1::over(box.lo[q], box.hi[q], 0).coefficients[0].hi;
+    out.coefficients.push_back(form.gradient.at(q) * Interval::point(h));
+  }
+  out.lumped = form.value;
+  for (std::size_t i = 0; i < offsets.size(); ++i)
+    if (!variable[i] && !(offsets[i].lo == 0.0 && offsets[i].hi == 0.0)) out.lumped = out.lumped + form.gradient.at(i) * offsets[i];
+  return out;
+}
+
 /// The candidates' search for one pair of the chain (one per pair: its parts are fixed).
 class HandoverSearch {
  public:
@@ -113,8 +154,12 @@ class HandoverSearch {
   /// `relative_accuracy`, `absolute_accuracy`; its sub-boxes counted in `boxes`). `side`: the
   /// holder's free side when the caller has proven it (F_v's sign, certain over box x the
   /// driver's range x `holder`: CurveSolver::root_partials), 0 to have it computed here.
+  /// `driver`: the driver's chart coordinate as a form in the parameters (null: an interval,
+  /// its fixed_range, independent of the parameters); the walk's exclusions then hold over
+  /// the box with the driver given by the form, its range still met with fixed_range.
   HandoverEnvelope envelope(const CurveSlice& curve, const Box& box, const Interval& holder,
-                            double relative_accuracy, double absolute_accuracy, std::size_t& boxes, int side = 0) const;
+                            double relative_accuracy, double absolute_accuracy, std::size_t& boxes, int side = 0,
+                            const DriverForm* driver = nullptr) const;
 
   /// Off under `--assume-nominal-contact` (ToleranceOptions::chain_assume_nominal_holder,
   /// chain.cpp): the holder's enclosure returned as the envelope, as before session 25.

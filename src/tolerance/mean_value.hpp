@@ -54,4 +54,13 @@ inline Interval mean_value_form(const Interval& at_center, const std::vector<Int
   return form;
 }
 
+/// R_k's own widening at a widened pair (session 27; chain.cpp compose_over): the follower
+/// y_k(p) on the pushed side `side` (+1 or -1) of its holder's root h_k(p), within the
+/// envelope, h_k(p) within the holder's enclosure, so y_k(p) - h_k(p) lies in
+/// [0, envelope.hi - holder.lo] (side +1) or [envelope.lo - holder.hi, 0] (side -1): added to R.
+inline Interval widened_remainder(const Interval& r, const Interval& envelope, const Interval& holder, int side) {
+  if (side > 0) return r + Interval(0.0, (Interval::point(envelope.hi) - Interval::point(holder.lo)).hi);
+  return r + Interval((Interval::point(envelope.lo) - Interval::point(holder.hi)).lo, 0.0);
+}
+
 }  // namespace hipair::tolerance_detail

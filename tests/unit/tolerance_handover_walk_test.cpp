@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <random>
 #include <vector>
@@ -151,6 +152,74 @@ TEST(HandoverWalk, MonotoneExclusionOnlyWhereTheRootsMissTheLeaf) {
   }
   EXPECT_GE(excluded, 5000u);
   EXPECT_GE(straddling, 2000u);
+}
+
+// The driver's form split for the walk's Taylor models (split_driver, session 28): generated
+// quadratic maps t(p) = a_0 + sum_i a_i p_i + b_i p_i^2 + e p_0 p_1 over boxes with dyadic
+// centres and half widths (some parameters fixed), their mean-value form t(c) + sum_i D_i
+// [B_i - c_i] (D_i: the gradient enclosed over the box in interval arithmetic) plus a remainder
+// holding 0, and a random subset of the parameters as the Taylor models' variables. The oracle:
+// at vectors p = c + h xi of the box (xi on a dyadic grid and at the corners, so xi is exact),
+// t(p) enclosed in interval arithmetic must meet lumped + sum_b coefficients_b xi_b. Mutations
+// that fail it: the other parameters' terms left out of `lumped`; a coefficient without its
+// half width h.
+TEST(HandoverDriverForm, SplitHoldsTheDriverAtEveryVectorOfTheBox) {
+  std::mt19937 rng(2828);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::size_t checked = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    const std::size_t n = 2 + rng() % 6;
+    tolerance_detail::Box box;
+    std::vector<double> c(n), h(n), a(n), b(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      c[i] = std::ldexp(static_cast<double>(static_cast<int>(rng() % 2049) - 1024), -8);
+      h[i] = rng() % 5 == 0 ? 0.0 : std::ldexp(static_cast<double>(1 + rng() % 64), -static_cast<int>(4 + rng() % 8));
+      box.lo.push_back(c[i] - h[i]);
+      box.hi.push_back(c[i] + h[i]);
+      a[i] = 4 * unit(rng) - 2;
+      b[i] = unit(rng) < 0.5 ? 0.0 : 2 * unit(rng) - 1;
+    }
+    const double a0 = 2 * unit(rng) - 1, e = unit(rng) < 0.5 ? 0.0 : 2 * unit(rng) - 1;
+    auto t_of = [&](const std::vector<Interval>& p) {
+      Interval t = Interval::point(a0) + Interval::point(e) * p[0] * p[1];
+      for (std::size_t i = 0; i < n; ++i) t = t + Interval::point(a[i]) * p[i] + Interval::point(b[i]) * p[i] * p[i];
+      return t;
+    };
+    std::vector<Interval> whole(n), at_center(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      whole[i] = Interval(box.lo[i], box.hi[i]);
+      at_center[i] = Interval::point(c[i]);
+    }
+    tolerance_detail::DriverForm form;
+    const double r = unit(rng) < 0.5 ? 0.0 : 0.01 * unit(rng);
+    form.value = t_of(at_center) + Interval(-r, r);
+    for (std::size_t i = 0; i < n; ++i) {
+      Interval g = Interval::point(a[i]) + Interval(2) * Interval::point(b[i]) * whole[i];
+      if (i == 0) g = g + Interval::point(e) * whole[1];
+      if (i == 1) g = g + Interval::point(e) * whole[0];
+      form.gradient.push_back(g);
+    }
+    std::vector<std::size_t> variables;
+    for (std::size_t i = 0; i < n; ++i)
+      if (h[i] > 0 && (rng() & 1)) variables.push_back(i);
+    tolerance_detail::DriverSplit split = tolerance_detail::split_driver(form, box, variables);
+    ASSERT_EQ(split.coefficients.size(), variables.size());
+    for (int sample = 0; sample < 40; ++sample) {
+      std::vector<double> xi(n);
+      for (std::size_t i = 0; i < n; ++i)
+        xi[i] = sample < 8 ? ((rng() & 1) ? 1.0 : -1.0) : std::ldexp(static_cast<double>(static_cast<int>(rng() % 17) - 8), -3);
+      std::vector<Interval> p(n);
+      for (std::size_t i = 0; i < n; ++i) p[i] = Interval::point(c[i] + h[i] * xi[i]);   // exact: dyadic
+      Interval truth = t_of(p);
+      Interval s = split.lumped;
+      for (std::size_t v = 0; v < variables.size(); ++v) s = s + split.coefficients[v] * Interval::point(xi[variables[v]]);
+      EXPECT_TRUE(s.lo <= truth.hi && truth.lo <= s.hi)
+          << "t(p) in [" << truth.lo << ", " << truth.hi << "], the split gives [" << s.lo << ", " << s.hi << "]";
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 80000u);
 }
 
 }  // namespace
