@@ -690,6 +690,12 @@ void Real::detect_rational() {
       return;
     }
   }
+  // complete: a rational root of larger denominator (the refinement above is a fast path for
+  // the small ones), decided by rational_roots of the polynomial (primes and Hensel lifting)
+  if (std::optional<Rational> value = rational_root(*this)) {
+    lower = upper = *value;
+    exact = true;
+  }
 }
 
 double Real::approximate() const {
