@@ -675,20 +675,31 @@ void refine_dyadically(Real& r, const Rational& width) {
   r.upper.canonicalize();
 }
 
-void Real::detect_rational() {
-  if (exact) return;
+bool detect_small_rational(Real& r) {
+  if (r.exact) return true;
   // a root p/q with q^2 < 1/(2 width) is the only rational of denominator <= q in the interval
-  Rational scale = 1 + abs(lower) + abs(upper);
+  Rational scale = 1 + abs(r.lower) + abs(r.upper);
   for (int bits : {8, 24, 64}) {
     Rational width = scale / Rational(mpz_class(1) << bits);
-    refine_to(width);
-    if (exact) return;
-    Rational candidate = simplest_between(lower, upper);
-    if (sign_at(polynomial, candidate) == 0) {
-      lower = upper = candidate;
-      exact = true;
-      return;
+    r.refine_to(width);
+    if (r.exact) return true;
+    Rational candidate = simplest_between(r.lower, r.upper);
+    if (sign_at(r.polynomial, candidate) == 0) {
+      r.lower = r.upper = candidate;
+      r.exact = true;
+      return true;
     }
+  }
+  return false;
+}
+
+void Real::detect_rational() {
+  if (detect_small_rational(*this)) return;
+  // complete: a rational root of larger denominator (the refinement above is a fast path for
+  // the small ones), decided by rational_roots of the polynomial (primes and Hensel lifting)
+  if (std::optional<Rational> value = rational_root(*this)) {
+    lower = upper = *value;
+    exact = true;
   }
 }
 

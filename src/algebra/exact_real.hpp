@@ -74,8 +74,8 @@ struct Real {
   double lower_bound() const { return lower_double(lower); }
   double upper_bound() const { return upper_double(upper); }
   double approximate() const;
-  /// Makes the number exact when it is a rational with a denominator below about 2^31 (the
-  /// simplest rational of a narrow isolating interval is then the root itself).
+  /// Makes the number exact exactly when it is rational (complete: narrow-interval refinement
+  /// first for denominators below about 2^31, then algebra::rational_root, rational_root.hpp).
   void detect_rational();
   /// Exact comparison with a rational: -1, 0, +1.
   int compare(const Rational& r) const;

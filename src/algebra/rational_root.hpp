@@ -25,6 +25,12 @@ std::optional<std::vector<Rational>> rational_roots(const Polynomial& p);
 /// r itself is not changed.
 std::optional<Rational> rational_root(const Real& r);
 
+/// Real::detect_rational's fast path alone, for callers to which exactness is only a saving (the
+/// sliced critical angles): makes r exact when it is a rational of denominator below about 2^31
+/// (three refinements, to 2^-8, 2^-24, 2^-64 of its size, each tried with the simplest rational
+/// of the interval); true when r is exact. Not complete: Real::detect_rational is.
+bool detect_small_rational(Real& r);
+
 /// rational_root by refinement (the fallback). A rational root p/q (lowest terms) of the integer
 /// polynomial P = r.polynomial has q | Q = |a_n| / content(P), and two distinct rationals of
 /// denominators <= Q differ by >= 1/Q^2. A copy of r is refined (dyadic bisection, exact signs

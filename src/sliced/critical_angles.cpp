@@ -1,6 +1,7 @@
 // Critical angles of a free polygonal part against a fixed one (see critical_angles.hpp).
 #include "sliced/critical_angles.hpp"
 
+#include "algebra/rational_root.hpp"   // detect_small_rational: exact angles are a saving here
 #include "core/exact_sqrt.hpp"
 #include "kernels/interval.hpp"
 
@@ -712,7 +713,7 @@ class Finder {
     algebra::Polynomial p = integer_numerator(poly);
     if (algebra::degree(p) >= 1) {
       for (Real root : algebra::real_roots(algebra::square_free_part(p))) {
-        root.detect_rational();
+        algebra::detect_small_rational(root);
         if (!accept(root)) continue;
         ++stats_.roots;
         if (certainly_blocked(root, false, point_of)) {
@@ -779,7 +780,7 @@ class Finder {
         };
         if (algebra::degree(p) >= 1)
           for (Real root : algebra::real_roots(algebra::square_free_part(p))) {
-            root.detect_rational();
+            algebra::detect_small_rational(root);
             if (accept(root)) consider(root, false);
           }
         // half turn: R = -I
@@ -844,7 +845,7 @@ class Finder {
         algebra::Polynomial p = integer_numerator(poly);
         if (algebra::degree(p) >= 1)
           for (Real root : algebra::real_roots(algebra::square_free_part(p))) {
-            root.detect_rational();
+            algebra::detect_small_rational(root);
             std::vector<bool> inside(10, true);
             bool any = false;
             for (std::size_t k = 0; k < 10; ++k) {
@@ -1595,7 +1596,7 @@ class CurveFinder {
       std::vector<Real> found = algebra::degree(p) >= 1 ? isolated(p) : std::vector<Real>{};
       bool formed = false;
       for (Real root : found) {
-          root.detect_rational();
+          algebra::detect_small_rational(root);
           bool ok;
           const Verdict v = verdict(root);
           if (v != Verdict::unknown) {
@@ -1674,7 +1675,7 @@ class CurveFinder {
     algebra::Polynomial p = integer_numerator(e.poly);
     if (algebra::degree(p) >= 1)
       for (Real root : isolated(p)) {
-        root.detect_rational();
+        algebra::detect_small_rational(root);
         ++stats_.roots;
         found_.push_back(Critical{false, root, {CriticalEvent::antiparallel_edges}});
       }

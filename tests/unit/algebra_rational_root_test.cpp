@@ -173,6 +173,42 @@ TEST(AlgebraRationalRoot, EveryRootOfGeneratedProductsIsRationalExactlyWhenPlant
   EXPECT_GT(huge, 20u);   // beyond Real::detect_rational's reach (denominators below 2^31)
 }
 
+// Real::detect_rational (session 28, zc28b) is complete: the root becomes exact exactly when it
+// is a planted rational, with that value; an irrational root keeps an isolating interval of it.
+// Many planted rationals have denominators > 2^64, beyond the old refinement-only detection.
+TEST(AlgebraRationalRoot, DetectRationalMakesExactlyThePlantedRationalsExact) {
+  Generator generator(2812);
+  std::size_t rational = 0, irrational = 0, huge = 0;
+  for (int trial = 0; trial < 160; ++trial) {
+    Planted g = generator.next();
+    if (degree(g.p) > 9) continue;
+    const Rational bound = root_bound(g.p);
+    for (const Real& root : descartes_real_roots(g.p, -bound, bound)) {
+      const std::string where = "trial " + std::to_string(trial) + ": " + root.description("y");
+      const std::optional<Rational> expected = planted_value(g, root);
+      Real detected = root;
+      detected.detect_rational();
+      ASSERT_EQ(detected.exact, expected.has_value()) << where;
+      if (expected) {
+        EXPECT_EQ(detected.lower, *expected) << where;
+        EXPECT_EQ(detected.upper, *expected) << where;
+        ++rational;
+        huge += !root.exact && degree(root.polynomial) >= 2 && mpz_sizeinbase(expected->get_den_mpz_t(), 2) > 64;
+      } else {
+        // still an isolating interval of the same root: the polynomial changes sign over it
+        EXPECT_TRUE(detected.lower < detected.upper) << where;
+        EXPECT_NE(sign_at(detected.polynomial, detected.lower), 0) << where;
+        EXPECT_EQ(sign_at(detected.polynomial, detected.lower), -sign_at(detected.polynomial, detected.upper)) << where;
+        EXPECT_TRUE(root.lower <= detected.lower && detected.upper <= root.upper) << where;
+        ++irrational;
+      }
+    }
+  }
+  EXPECT_GT(rational, 50u);
+  EXPECT_GT(irrational, 50u);
+  EXPECT_GT(huge, 10u);
+}
+
 TEST(AlgebraRationalRoot, ExactLinearAndTheSimplestCases) {
   EXPECT_EQ(rational_root(Real::from_rational(Rational(-7, 3))), Rational(-7, 3));
   // (3y - 1)(y^2 - 2): the root 1/3 in an interval that is no bisection point of it

@@ -17,8 +17,10 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace hipair {
 namespace {
@@ -44,6 +46,8 @@ cspace::Overlap oracle(const Model& model, const CSpace& space, const ChartPoint
   std::size_t first = *model.find_part(space.first_part()), second = *model.find_part(space.second_part());
   cspace::PairAxes axes = cspace::pair_axes(model, first, second);
   cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+  // a 1-D space: the builder's one y chart, a translation fixed at 0
+  if (axes.dimension() == 1) layout.y_charts = {cspace::ChartAxis{cspace::ChartAxis::Kind::translation, false, Rational(0), Rational(0)}};
   std::size_t y_count = layout.y_charts.size();
   return cspace::classify_overlap(model, axes, layout.x_charts[q.chart / y_count], layout.y_charts[q.chart % y_count],
                                   cspace::ChartPoint{q.x, q.y});
@@ -357,6 +361,59 @@ TEST(CSpaceZeroClearance, SquarePegInAnExactSquareHoleIsAnIsolatedTouchingConfig
 }
 
 // Ordinary clearance: no touching element appears (the C-space is unchanged).
+// A square peg turning about its centre in a fixed plate whose square hole of exactly its size
+// is turned by phi, tan(phi / 2) = t0 a rational of denominator > 2^64: the peg fits only at
+// theta = phi + k 90 degrees (blocked on both sides). Those points are roots of the contact
+// polynomials of degree 2 in T = tan(theta / 2) (a peg corner on a hole edge's line), beyond the
+// reach of refinement alone (denominators below 2^31): the 1-D C-space must hold them as exact
+// vertices (session 28, zc28b: Real::detect_rational complete), touching by the oracle.
+TEST(CSpaceZeroClearance, PegInAHoleTurnedByALargeDenominatorAngleHasExactTouchingVertices) {
+  Random random(2828);
+  for (int instance = 0; instance < 4; ++instance) {
+    mpz_class q = (mpz_class(1) << 70) + mpz_class(static_cast<unsigned long>(random() >> 1));
+    mpz_class p = mpz_class(static_cast<unsigned long>(random() >> 1)) % (q / 2);
+    Rational t0(p, q);
+    t0.canonicalize();
+    const Rational a = random_rational(random, Rational(1), Rational(10)), e = a / 2, outer = 2 * a + 3;
+    const Rational c = (1 - t0 * t0) / (1 + t0 * t0), s = 2 * t0 / (1 + t0 * t0);
+    auto corner = [&](const Rational& x, const Rational& y) {   // R(phi) (x, y)
+      return "[" + text(Rational(c * x - s * y)) + ", " + text(Rational(s * x + c * y)) + "]";
+    };
+    auto square = [](const std::string& start, const std::vector<std::string>& to) {
+      std::string loop = "{ \"start\": " + start + ", \"edges\": [ ";
+      for (std::size_t i = 0; i < to.size(); ++i) loop += std::string(i ? ", " : "") + "{ \"line_to\": " + to[i] + " }";
+      return loop + " ] }";
+    };
+    auto plain = [](const Rational& x, const Rational& y) { return "[" + text(x) + ", " + text(y) + "]"; };
+    const std::string json = R"({ "hipair": 1, "name": "turned-peg-in-hole",
+      "parts": [
+        { "name": "peg", "motion": { "rotation": { "pivot": [0, 0] } }, "loops": [ )" +
+        square(plain(-e, -e), {plain(e, -e), plain(e, e), plain(-e, e), plain(-e, -e)}) + R"( ] },
+        { "name": "plate", "motion": "fixed", "loops": [ )" +
+        square(plain(-outer, -outer), {plain(outer, -outer), plain(outer, outer), plain(-outer, outer), plain(-outer, -outer)}) +
+        ", " + square(corner(-e, -e), {corner(e, -e), corner(e, e), corner(-e, e), corner(-e, -e)}) + R"( ] } ],
+      "pairs": [ { "parts": ["peg", "plate"] } ] })";
+    SCOPED_TRACE("t0 " + t0.get_str() + " a " + a.get_str());
+    Model model = read_model(json);
+    CSpace space = CSpace::build(model, "peg", "plate");
+    ASSERT_EQ(space.dimension(), 1);
+    // the fit at theta = phi itself: a vertex, exact, touching
+    auto at = space.to_chart(PartCoordinate{PartCoordinate::Kind::half_angle_tangent, t0});
+    ASSERT_TRUE(at);
+    EXPECT_EQ(oracle(model, space, *at), cspace::Overlap::touching);
+    std::size_t exact_touching = 0, at_t0 = 0;
+    for (const CSpaceVertex& vertex : space.vertices()) {
+      if (vertex.chart == at->chart && vertex.x.exact && vertex.x.lower == at->x) ++at_t0;
+      if (!vertex.x.exact) continue;
+      cspace::Overlap truth = oracle(model, space, ChartPoint{vertex.chart, vertex.x.lower, Rational(0)});
+      EXPECT_NE(truth, cspace::Overlap::apart) << vertex.x.lower.get_str();   // blocked on both sides: no free point
+      exact_touching += truth == cspace::Overlap::touching;
+    }
+    EXPECT_GE(at_t0, 1u);
+    EXPECT_GE(exact_touching, 4u);   // theta = phi + k 90 degrees, k = 0 ... 3
+  }
+}
+
 TEST(CSpaceZeroClearance, APositiveClearanceHasNoTouchingElements) {
   CrankFit crank{Rational(20), Rational(4)};
   std::string text_model = crank.json();
