@@ -141,6 +141,47 @@ Interval stage_partials(const Map& f, const std::vector<Interval>& range_p, cons
   return g.partial(n);
 }
 
+// A random box (random_box), its centre's offsets as box_offsets gives them, and the box and
+// its centre as interval vectors.
+struct BoxForms {
+  Box box;
+  std::vector<double> center;
+  std::vector<Interval> offsets, range_p, center_p;
+};
+BoxForms box_forms(std::mt19937_64& random, std::size_t n) {
+  BoxForms f;
+  f.box = random_box(random, n);
+  tolerance_detail::box_offsets(f.box, f.center, f.offsets);
+  f.range_p.resize(n);
+  f.center_p.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    f.range_p[i] = Interval(f.box.lo[i], f.box.hi[i]);
+    f.center_p[i] = Interval::point(f.center[i]);
+  }
+  return f;
+}
+
+// One stage of the composition, as compose_over: the driver enclosure t (phi of the previous
+// stage's enclosure y), the interval evaluation over B x t, the partials chained into d, the value
+// at the centre vc (updated from the previous one), and phi's slope over y.
+struct StageStep {
+  Interval t, plain, g_t, factor;
+};
+StageStep compose_stage(const Map& f, const std::vector<Interval>& range_p, const std::vector<Interval>& center_p,
+                        const Interval& driver, std::size_t k, const Interval& y, Interval& vc,
+                        std::vector<Interval>& d) {
+  StageStep step;
+  step.t = k == 0 ? driver : phi(y);
+  const Interval tc = k == 0 ? driver : phi(vc);
+  step.plain = apply(f, range_p, step.t);
+  std::vector<Interval> gp;
+  step.g_t = stage_partials(f, range_p, step.t, k == 0, gp);
+  step.factor = k == 0 ? Interval(0) : phi_slope(y);
+  d = tolerance_detail::chain_rule(gp, step.g_t, step.factor, k == 0 ? nullptr : &d);
+  vc = apply(f, center_p, tc);
+  return step;
+}
+
 TEST(ChainMeanValue, GeneratedChainsOfMapsStayInTheirMeanValueForms) {
   std::mt19937_64 random(2222);
   double width_form = 0, width_interval = 0;
@@ -152,15 +193,10 @@ TEST(ChainMeanValue, GeneratedChainsOfMapsStayInTheirMeanValueForms) {
     bool affine = trial % 4 == 0;
     std::vector<Map> maps = random_maps(random, n, stages, affine);
     // a box of half widths 2^-9 .. 2^-4 about centres in [-1/2, 1/2]; the driver at 1/4
-    Box box = random_box(random, n);
-    std::vector<double> center;
-    std::vector<Interval> offsets;
-    tolerance_detail::box_offsets(box, center, offsets);
-    std::vector<Interval> range_p(n), center_p(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      range_p[i] = Interval(box.lo[i], box.hi[i]);
-      center_p[i] = Interval::point(center[i]);
-    }
+    const BoxForms forms_of_box = box_forms(random, n);
+    const Box& box = forms_of_box.box;
+    const std::vector<Interval>& offsets = forms_of_box.offsets, &range_p = forms_of_box.range_p,
+                               &center_p = forms_of_box.center_p;
     const Interval driver = Interval::point(0.25);
     // the composition, as compose_over: stage by stage, Y_k = interval evaluation over B x T_k
     // intersected with the mean-value form
@@ -169,13 +205,8 @@ TEST(ChainMeanValue, GeneratedChainsOfMapsStayInTheirMeanValueForms) {
     Interval y, vc;   // previous stage's enclosure and value at the centre
     bool bounded = true;
     for (std::size_t k = 0; k < stages && bounded; ++k) {
-      Interval t = k == 0 ? driver : phi(y), tc = k == 0 ? driver : phi(vc);
-      Interval plain = apply(maps[k], range_p, t);
-      std::vector<Interval> gp;
-      const Interval g_t = stage_partials(maps[k], range_p, t, k == 0, gp);
-      Interval factor = k == 0 ? Interval(0) : phi_slope(y);
-      d = tolerance_detail::chain_rule(gp, g_t, factor, k == 0 ? nullptr : &d);
-      vc = apply(maps[k], center_p, tc);
+      const StageStep step = compose_stage(maps[k], range_p, center_p, driver, k, y, vc, d);
+      const Interval& plain = step.plain;
       forms[k] = tolerance_detail::mean_value_form(vc, d, offsets);
       bounded = std::isfinite(forms[k].width()) && std::isfinite(plain.width());
       y = Interval(std::max(plain.lo, forms[k].lo), std::min(plain.hi, forms[k].hi));
@@ -231,18 +262,13 @@ TEST(ChainMeanValue, RemainderCarriesAFollowerPushedBeyondItsHolderThroughLaterS
     std::vector<Map> maps = random_maps(random, n, stages, affine);
     const std::size_t a = std::uniform_int_distribution<std::size_t>(0, n - 1)(random);
     const double kappa = (random() & 1 ? 1 : -1) * std::uniform_real_distribution<double>(0.5, 4.0)(random);
-    Box box = random_box(random, n);
-    std::vector<double> center;
-    std::vector<Interval> offsets;
-    tolerance_detail::box_offsets(box, center, offsets);
-    std::vector<Interval> range_p(n), center_p(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      range_p[i] = Interval(box.lo[i], box.hi[i]);
-      center_p[i] = Interval::point(center[i]);
-    }
+    const BoxForms forms_of_box = box_forms(random, n);
+    const Box& box = forms_of_box.box;
+    const std::vector<Interval>& offsets = forms_of_box.offsets, &range_p = forms_of_box.range_p,
+                               &center_p = forms_of_box.center_p;
     // the competitor's value at stage k0 over p (a point or the box) and the driver t
     auto competitor = [&](const std::vector<Interval>& p, const Interval& t) {
-      return apply(maps[k0], p, t) + Interval::point(kappa) * (p[a] - Interval::point(center[a]));
+      return apply(maps[k0], p, t) + Interval::point(kappa) * (p[a] - Interval::point(forms_of_box.center[a]));
     };
     const Interval driver = Interval::point(0.25);
     std::vector<Interval> forms(stages), enclosures(stages);
@@ -250,13 +276,8 @@ TEST(ChainMeanValue, RemainderCarriesAFollowerPushedBeyondItsHolderThroughLaterS
     Interval y, vc, r(0);   // previous stage's enclosure (widened), H at the centre, R
     bool bounded = true;
     for (std::size_t k = 0; k < stages && bounded; ++k) {
-      Interval t = k == 0 ? driver : phi(y), tc = k == 0 ? driver : phi(vc);
-      Interval plain = apply(maps[k], range_p, t);
-      std::vector<Interval> gp;
-      const Interval g_t = stage_partials(maps[k], range_p, t, k == 0, gp);
-      Interval factor = k == 0 ? Interval(0) : phi_slope(y);
-      d = tolerance_detail::chain_rule(gp, g_t, factor, k == 0 ? nullptr : &d);
-      vc = apply(maps[k], center_p, tc);
+      const StageStep step = compose_stage(maps[k], range_p, center_p, driver, k, y, vc, d);
+      const Interval &t = step.t, &plain = step.plain, &g_t = step.g_t, &factor = step.factor;
       const bool carried = !(r.lo == 0.0 && r.hi == 0.0);
       if (carried) r = g_t * factor * r;
       forms[k] = tolerance_detail::mean_value_form(vc, d, offsets);
