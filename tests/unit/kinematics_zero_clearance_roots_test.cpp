@@ -18,6 +18,7 @@
 #include "algebra/rational_root.hpp"
 #include "test_paths.hpp"
 
+#include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
 
 #include <gtest/gtest.h>
@@ -167,6 +168,35 @@ TEST(KernelSlicerZeroClearance, GearMeshesCurvesThroughBlockedSpaceAreDecidedBlo
     EXPECT_EQ(kernel_slice_class_counts(*slicer).touching_undecided, 0u);
   }
   EXPECT_GT(blocked_both, 20u);
+}
+
+// What the analysis says about them: the yoke driving the crank pin in its exact slot meets
+// irrational touching points (R^2 - s^2 no square at most slices), so the report warns that they
+// were not decided; the same crank with a pin 1/10 narrower than the slot has no such point and
+// no such warning.
+TEST(KernelSlicerZeroClearance, AnalysisWarnsOfUndecidedPointsOnlyWhereThereAreAny) {
+  for (const Rational& shrink : {Rational(0), Rational(1, 10)}) {
+    SCOPED_TRACE("pin narrower by " + shrink.get_str());
+    const Rational R(5), p(1);
+    std::string text = crank_in_yoke(R, p);
+    // the pin's radius alone: the slot keeps its width 2p
+    const std::string pin = "\"radius\": " + quoted(p);
+    ASSERT_NE(text.find(pin), std::string::npos);
+    text.replace(text.find(pin), pin.size(), "\"radius\": " + quoted(Rational(p - shrink)));
+    Model model = read_model(text);
+    KinematicsOptions options;
+    options.driver = "yoke";
+    options.range = std::make_pair(Rational(0), Rational(2));
+    options.steps_per_cycle = 40;
+    options.reversal = false;
+    KinematicsResult result = analyze_kinematics(model, options);
+    std::size_t undecided = 0;
+    for (const std::string& w : result.warnings) undecided += w.find("were not decided") != std::string::npos;
+    if (shrink == 0)
+      EXPECT_EQ(undecided, 1u);
+    else
+      EXPECT_EQ(undecided, 0u);
+  }
 }
 
 }  // namespace
