@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cfenv>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -61,7 +62,37 @@ Rational rational_of(const E& e) {
     return Rational(e);
 }
 
-NT to_nt(const Rational& q) { return NT(exact_of<ET>(q)); }
+// A kernel number whose interval is given (it is CGAL's own: kernel_interval) with its exact
+// value: CGAL's Lazy_exact_Ex_Cst, without its MPFR conversion of the exact value.
+struct KnownIntervalConstant final : CGAL::Lazy_exact_nt_rep<ET> {
+  KnownIntervalConstant(const CGAL::Interval_nt<false>& interval, ET&& exact)
+      : CGAL::Lazy_exact_nt_rep<ET>(interval, std::move(exact)) {}
+  void update_exact() const override {}
+};
+
+// kernel_interval's fast case: numerator and denominator of at most 53 bits (exact doubles n,
+// d), the current rounding to nearest. q = n / d rounded to nearest; the remainder n - q d is
+// then a double, computed exactly by one fma, whose sign says on which side of q the value lies.
+std::optional<std::pair<double, double>> small_kernel_interval(const Rational& value) {
+  const mpz_srcptr num = value.get_num_mpz_t(), den = value.get_den_mpz_t();
+  if (mpz_sgn(den) <= 0) return std::nullopt;
+  if (mpz_sgn(num) == 0) return std::pair<double, double>(0.0, 0.0);
+  if (mpz_sizeinbase(num, 2) > 53 || mpz_sizeinbase(den, 2) > 53) return std::nullopt;
+  if (std::fegetround() != FE_TONEAREST) return std::nullopt;
+  const double n = mpz_get_d(num), d = mpz_get_d(den);   // exact
+  const double q = n / d;
+  const double excess = std::fma(q, d, -n);   // q d - n, exact; its sign is that of q - n / d
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  if (excess == 0) return std::pair<double, double>(q, q);
+  if (excess > 0) return std::pair<double, double>(std::nextafter(q, -inf), q);
+  return std::pair<double, double>(q, std::nextafter(q, inf));
+}
+
+NT to_nt(const Rational& q) {
+  if (auto interval = small_kernel_interval(q))
+    return NT(new KnownIntervalConstant(CGAL::Interval_nt<false>(interval->first, interval->second), exact_of<ET>(q)));
+  return NT(exact_of<ET>(q));
+}
 Rational to_rational(const NT& value) { return rational_of<ET>(CGAL::exact(value)); }
 
 // The two flavours of the stage. Circles: the circle–segment traits on Epeck (one-root
@@ -86,6 +117,8 @@ template <class FT>
 FT ft_of(const Rational& q) {
   if constexpr (std::is_same_v<FT, Rational>)
     return q;
+  else if constexpr (std::is_same_v<FT, NT>)
+    return to_nt(q);
   else
     return FT(exact_of<ET>(q));
 }
@@ -338,6 +371,12 @@ class Builder {
   Arrangement run(const std::vector<IntegerPolynomial2>& curves, const std::vector<std::vector<ValidityClause>>& validity,
                   const std::vector<std::vector<std::pair<Rational, Rational>>>& windows) {
     auto start = Clock::now();
+    if constexpr (segments) {
+      // room for the corners and two ends per curve (one piece each, the usual case), so that
+      // the known points are not copied as the vector grows (a KnownPoint's rationals copy)
+      known_points_.reserve(4 + 2 * curves.size());
+      pieces_.reserve(4 + curves.size());
+    }
     // the chart box
     typename K::Point_2 corners[4] = {point(box_.x_lo, box_.y_lo), point(box_.x_hi, box_.y_lo), point(box_.x_hi, box_.y_hi),
                                   point(box_.x_lo, box_.y_hi)};
@@ -1042,13 +1081,9 @@ class Builder {
 // the segment traits is taken only while the chart box and every line's coefficients are well
 // inside the range: |box| <= 2^200 and |coefficient| <= 2^400 (a line's constant term is a
 // product of two coordinates). Tiny scales need no guard (underflow only widens the filter).
-bool within_segment_filter_range(const Rational& value, double limit) {
-  return std::abs(to_double(value)) <= limit;
-}
-
 bool segments_apply(const Box& box, const std::vector<IntegerPolynomial2>& curves, const Options& options) {
   if (!options.carry_line_supports) return false;
-  const double box_limit = std::ldexp(1.0, 200), coefficient_limit = std::ldexp(1.0, 400);
+  const int box_limit = 200, coefficient_limit = 400;
   for (const Rational* v : {&box.x_lo, &box.x_hi, &box.y_lo, &box.y_hi})
     if (!within_segment_filter_range(*v, box_limit)) return false;
   for (const auto& f : curves) {
@@ -1067,6 +1102,24 @@ bool segments_apply(const Box& box, const std::vector<IntegerPolynomial2>& curve
 }
 
 }  // namespace
+
+std::pair<double, double> kernel_interval(const Rational& value) {
+  if (auto interval = small_kernel_interval(value)) return *interval;
+  return CGAL::to_interval(exact_of<ET>(value));
+}
+
+bool within_segment_filter_range(const Rational& value, int exponent) {
+  // |num| in [2^(nb-1), 2^nb), den in [2^(db-1), 2^db): 2^(nb-db-1) < |value| < 2^(nb-db+1).
+  // Below 2^exponent the rounded value is at most 2^exponent; above 2^(exponent+1) it is more.
+  if (sgn(value) == 0) return true;
+  if (sgn(value.get_den()) > 0) {
+    const long nb = static_cast<long>(mpz_sizeinbase(value.get_num_mpz_t(), 2));
+    const long db = static_cast<long>(mpz_sizeinbase(value.get_den_mpz_t(), 2));
+    if (nb - db + 1 <= exponent) return true;
+    if (nb - db - 1 >= exponent + 1) return false;
+  }
+  return std::abs(to_double(value)) <= std::ldexp(1.0, exponent);
+}
 
 algebra::Real exact_real(const Rational& value) {
   const mpz_class& num = value.get_num();

@@ -8,6 +8,7 @@
 
 #include "arrangement/arrangement.hpp"
 
+#include <utility>
 #include <vector>
 
 namespace hipair::cspace::raw {
@@ -26,6 +27,17 @@ bool circle_segment_applies(const std::vector<IntegerPolynomial2>& curves,
 /// minimal polynomial of y, in y alone). `options.keep_cgal` keeps nothing (the raw CGAL
 /// access of hipair/cgal/arrangement.hpp is for algebraic-traits arrangements).
 /// \throws GeometryError when the curves do not fit (see circle_segment_applies).
+/// CGAL's interval of an exact rational, as its kernel numbers carry it (`CGAL::to_interval`:
+/// the value itself when it is a double, else its two neighbouring doubles). The stage makes
+/// its kernel numbers with it; when numerator and denominator have at most 53 bits it is
+/// computed without MPFR (one division and one fma). Exposed for its test.
+std::pair<double, double> kernel_interval(const Rational& value);
+
+/// |value rounded to the nearest double| <= 2^exponent: the segment traits' range guard (the
+/// segment flavour is taken while the box and the lines' coefficients pass it), decided from the
+/// bit sizes of numerator and denominator where they decide it. Exposed for its test.
+bool within_segment_filter_range(const Rational& value, int exponent);
+
 Arrangement build_circle_segment_arrangement(const Box& box, const std::vector<IntegerPolynomial2>& curves,
                                              const std::vector<std::vector<ValidityClause>>& validity,
                                              const std::vector<std::vector<std::pair<Rational, Rational>>>& windows,

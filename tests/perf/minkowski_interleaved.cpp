@@ -7,7 +7,14 @@
 //   c++ -O3 -DNDEBUG -frounding-math -std=c++20 -DCGAL_USE_GMP -DCGAL_USE_GMPXX=1 -DCGAL_USE_MPFI \
 //     -DCGAL_USE_MPFR -Isrc -Iinclude -I. -isystem /usr/include/eigen3 tests/perf/minkowski_interleaved.cpp \
 //     -o minkowski_interleaved build/libhipair.a -lmpfi -lmpfr -lgmpxx -lgmp -lpthread
-//   ./minkowski_interleaved N ROUNDS BATCH     (N as BM_MinkowskiHipair/N; e.g. 64 11 5)
+//   ./minkowski_interleaved N ROUNDS BATCH [locate]    (N as BM_MinkowskiHipair/N; e.g. 64 11 5)
+// What "ours" times: CSpace::build (eager: every cell classified, the blocked region's boundary
+// edges, vertices, samples and labels all built; everything `hipair cspace --json` writes is
+// read from it without further computation) and the destruction of the previous space; with
+// `locate`, also one exact point location at the chart's centre after each build (a user's
+// first query). "cgal": minkowski_sum_2 of the two exact polygons, their construction included.
+// The allocator is the one linked (glibc's malloc unless -ljemalloc is added to the command
+// above; the hipair command line links jemalloc): the same for both sides in one process.
 #include "polygon_models.hpp"
 
 #include <hipair/cspace.hpp>
@@ -38,22 +45,31 @@ __attribute__((noinline)) std::size_t run_cgal(const Points& a, const Points& b,
   for (int i = 0; i < reps; ++i) s += CGAL::minkowski_sum_2(cgal_polygon(b, false), cgal_polygon(a, true)).outer_boundary().size();
   return s;
 }
-__attribute__((noinline)) std::size_t run_ours(const Model& model, CSpace& space, int reps) {
-  for (int i = 0; i < reps; ++i) space = CSpace::build(model, "a", "b");
-  return space.statistics().vertices;
+__attribute__((noinline)) std::size_t run_ours(const Model& model, CSpace& space, int reps, bool locate) {
+  std::size_t located = 0;
+  for (int i = 0; i < reps; ++i) {
+    space = CSpace::build(model, "a", "b");
+    if (locate) {
+      const CSpaceChart& chart = space.charts().front();
+      Rational x = (chart.x_lo + chart.x_hi) / 2, y = (chart.y_lo + chart.y_hi) / 2;
+      located += static_cast<std::size_t>(space.locate(ChartPoint{0, x, y}).kind);
+    }
+  }
+  return space.statistics().vertices + located;
 }
 int main(int argc, char** argv) {
   int n = std::atoi(argv[1]), rounds = std::atoi(argv[2]), batch = std::atoi(argv[3]);
+  const bool locate = argc > 4 && std::string(argv[4]) == "locate";
   auto [a, b] = perf::minkowski_polygons(n);
   Model model = perf::sliders(a, b);
   CSpace space;
-  run_ours(model, space, 1); run_cgal(a, b, 1);   // warm-up
+  run_ours(model, space, 1, locate); run_cgal(a, b, 1);   // warm-up
   std::vector<double> ours, theirs, ratios;
   for (int r = 0; r < rounds; ++r) {
-    double t0 = cpu(); run_ours(model, space, batch); double t1 = cpu(); run_cgal(a, b, batch); double t2 = cpu();
+    double t0 = cpu(); run_ours(model, space, batch, locate); double t1 = cpu(); run_cgal(a, b, batch); double t2 = cpu();
     ours.push_back((t1 - t0) / batch); theirs.push_back((t2 - t1) / batch); ratios.push_back((t1 - t0) / (t2 - t1));
   }
   auto median = [](std::vector<double> v) { std::sort(v.begin(), v.end()); return v[v.size() / 2]; };
-  std::printf("n=%d ours %.3f ms cgal %.3f ms ratio(medians) %.2f median-of-round-ratios %.2f min-ratio %.2f\n", n, 1e3 * median(ours),
+  std::printf("n=%d%s ours %.3f ms cgal %.3f ms ratio(medians) %.2f median-of-round-ratios %.2f min-ratio %.2f\n", n, locate ? " (+locate)" : "", 1e3 * median(ours),
               1e3 * median(theirs), median(ours) / median(theirs), median(ratios), *std::min_element(ratios.begin(), ratios.end()));
 }
