@@ -839,7 +839,8 @@ class Builder {
     std::vector<Bounds> bounds;
     bounds.reserve(result_.vertices.size());
     for (const Vertex& v : result_.vertices)
-      bounds.push_back({v.x.lower_bound(), v.y_lower_bound(), v.x.upper_bound(), v.y_upper_bound()});
+      bounds.push_back({double_bounds(v.x.lower).first, double_bounds(v.y_lower).first, double_bounds(v.x.upper).second,
+                        double_bounds(v.y_upper).second});
     for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
       f->set_data(result_.faces.size());
       Face out;
@@ -1106,6 +1107,11 @@ bool segments_apply(const Box& box, const std::vector<IntegerPolynomial2>& curve
 std::pair<double, double> kernel_interval(const Rational& value) {
   if (auto interval = small_kernel_interval(value)) return *interval;
   return CGAL::to_interval(exact_of<ET>(value));
+}
+
+std::pair<double, double> double_bounds(const Rational& value) {
+  if (auto interval = small_kernel_interval(value)) return *interval;
+  return {algebra::lower_double(value), algebra::upper_double(value)};
 }
 
 bool within_segment_filter_range(const Rational& value, int exponent) {

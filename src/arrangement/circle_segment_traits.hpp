@@ -33,6 +33,11 @@ bool circle_segment_applies(const std::vector<IntegerPolynomial2>& curves,
 /// computed without MPFR (one division and one fma). Exposed for its test.
 std::pair<double, double> kernel_interval(const Rational& value);
 
+/// {algebra::lower_double(value), algebra::upper_double(value)} (the largest double <= value and
+/// the smallest >= value), through kernel_interval's fast case where it applies (the same two
+/// doubles) instead of two conversions with exact comparisons.
+std::pair<double, double> double_bounds(const Rational& value);
+
 /// |value rounded to the nearest double| <= 2^exponent: the segment traits' range guard (the
 /// segment flavour is taken while the box and the lines' coefficients pass it), decided from the
 /// bit sizes of numerator and denominator where they decide it. Exposed for its test.

@@ -1590,8 +1590,9 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     for (ChartData& chart : impl->charts) {
       chart.vertex_bounds.clear();
       chart.vertex_bounds.reserve(chart.arrangement.vertices.size());
-      for (const raw::Vertex& v : chart.arrangement.vertices)
-        chart.vertex_bounds.push_back({v.x.lower_bound(), v.x.upper_bound(), v.y_upper_bound()});
+      for (const raw::Vertex& v : chart.arrangement.vertices)   // (double_bounds: lower_double, upper_double)
+        chart.vertex_bounds.push_back(
+            {raw::double_bounds(v.x.lower).first, raw::double_bounds(v.x.upper).second, raw::double_bounds(v.y_upper).second});
     }
   stats.seconds_total = seconds_since(total_start) - seconds_streamed + stats.seconds_curves + stats.seconds_region;
   return make_cspace(impl);

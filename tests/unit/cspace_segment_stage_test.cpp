@@ -1,8 +1,10 @@
 // The circle–segment stage's kernel numbers and range guard (docs/performance.md, session 29):
 // kernel_interval (the interval a kernel number of the stage carries, computed without MPFR
 // for numerators and denominators of at most 53 bits) against CGAL's own to_interval of the
-// exact rational, and within_segment_filter_range (decided from bit sizes where they decide
+// exact rational, double_bounds against lower_double and upper_double, and
+// within_segment_filter_range (decided from bit sizes where they decide
 // it) against the rounded comparison it replaces, on generated rationals.
+#include "algebra/exact_real.hpp"
 #include "arrangement/circle_segment_traits.hpp"
 
 #include <hipair/rational.hpp>
@@ -76,6 +78,24 @@ TEST(CSpaceSegmentStage, KernelIntervalIsCgalsIntervalOnGeneratedRationals) {
   EXPECT_GE(fast_exact, 300u);
   EXPECT_GE(fast_inexact, 2000u);
   EXPECT_GE(other, 1000u);
+}
+
+TEST(CSpaceSegmentStage, DoubleBoundsAreLowerAndUpperDoubleOnGeneratedRationals) {
+  std::mt19937_64 random(292);
+  std::vector<Rational> values = generated_rationals(random);
+  for (int i = 0; i < 200; ++i) {   // beyond the doubles' range: lower_double's clamping
+    mpz_class huge = random_integer(random, 1100 + static_cast<int>(random() % 200), true);
+    values.push_back(canonical(huge, 1));
+    values.push_back(canonical(1, abs(huge)));
+  }
+  std::size_t apart = 0;
+  for (const Rational& q : values) {
+    const auto [lo, hi] = cspace::raw::double_bounds(q);
+    ASSERT_EQ(lo, cspace::algebra::lower_double(q)) << q.get_str();
+    ASSERT_EQ(hi, cspace::algebra::upper_double(q)) << q.get_str();
+    if (lo != hi) ++apart;
+  }
+  EXPECT_GE(apart, 3000u);
 }
 
 TEST(CSpaceSegmentStage, RangeGuardIsTheRoundedComparisonOnGeneratedRationals) {
