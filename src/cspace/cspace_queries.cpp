@@ -1467,6 +1467,9 @@ class MotionScanner {
     // (doubles, not certified: a proposal for the subdivision, see newton_shrink)
     bool newton = false;
     double newton_lo = 0, newton_hi = 0;
+    // and the certified bounds behind it: |f(a)| >= newton_s_min and |rate| <= newton_r_max over
+    // [a, b] (ends of outward-rounded enclosures), so f(u) != 0 for (u - a) newton_r_max < newton_s_min
+    double newton_s_min = 0, newton_r_max = 0;
   };
 
   // `filtered_point` (a == b): the point through the stretches' filter, its angle pieces widened
@@ -1818,7 +1821,7 @@ class MotionScanner {
     DInterval h{0, cspace::algebra::upper_double(Rational(b - a))};
     std::vector<Possible> kept;
     bool newton = false;
-    double newton_lo = 0, newton_hi = 0;
+    double newton_lo = 0, newton_hi = 0, newton_s_min = 0, newton_r_max = 0;
     for (const Possible& p : possible) {
       const ChartData& chart = impl_.charts[p.chart];
       const Gradient& g = gradient(p.chart, p.curve);
@@ -1847,6 +1850,8 @@ class MotionScanner {
         newton = true;
         newton_lo = s_min / r_max;
         newton_hi = s_max / r_min;
+        newton_s_min = s_min;
+        newton_r_max = r_max;
       }
     }
     possible.swap(kept);
@@ -1854,6 +1859,8 @@ class MotionScanner {
       proposal->newton = true;
       proposal->newton_lo = newton_lo;
       proposal->newton_hi = newton_hi;
+      proposal->newton_s_min = newton_s_min;
+      proposal->newton_r_max = newton_r_max;
     }
   }
 
@@ -2309,6 +2316,12 @@ class CrossingRun {
                 length = half;
               }
               stack.emplace_back(at_cell(first), at_cell(first + size));
+              // the siblings left of the node, [a, a + first cells), certified free when the
+              // curve's mean-value bound keeps it off 0 there (crossing_shrink.hpp, skip_left)
+              if (!left.empty() && cspace::skip_left() && free_before(resolution * first, at)) {
+                cspace::skipped_left() += left.size();
+                return;
+              }
               for (auto it = left.rbegin(); it != left.rend(); ++it) stack.emplace_back(at_cell(it->first), at_cell(it->second));
               return;
             }
@@ -2316,7 +2329,29 @@ class CrossingRun {
         }
       }
     }
+    // a halving whose first half the curve's certified bound keeps free: only the second half
+    if (cspace::newton_shrink() && at.newton && cspace::skip_left()) {
+      Rational m = (a + b) / 2;
+      m.canonicalize();
+      if (free_before(m - a, at)) {
+        ++cspace::skipped_left();
+        stack.emplace_back(m, b);
+        return;
+      }
+    }
     split(a, b);
+  }
+
+  // Whether the one curve left over the stretch [a, b] just evaluated (`at`: every other curve
+  // excluded on [a, b], this one's f(a) and rate over [a, b] of opposite signs) certainly does
+  // not vanish on [a, a + offset] (offset <= b - a): f(u) lies in f(a) + (u - a) rate (the
+  // mean-value form over the stretch's box, one chart system), so |f(u)| >= s_min - (u - a) r_max
+  // > 0 there. Exact: offset * r_max < s_min in rationals (the doubles are the enclosures' ends).
+  bool free_before(const Rational& offset, const MotionScanner::Evaluation& at) {
+    if (!(at.newton_s_min > 0) || !std::isfinite(at.newton_r_max) || !(at.newton_r_max >= 0)) return false;
+    skip_bound = offset;
+    skip_bound *= Rational(at.newton_r_max);
+    return cmp(skip_bound, Rational(at.newton_s_min)) < 0;
   }
 
   // one stretch [a, b] of the subdivision: excluded, split, or the answer
@@ -2406,6 +2441,7 @@ class CrossingRun {
   double resolution_d = 0;
   StretchStack stack;
   Rational stretch_a, stretch_b;   // the stretch being evaluated (step())
+  Rational skip_bound;              // free_before's product (kept: its limbs reused)
   std::optional<MotionScanner::Evaluation> last;   // the excluded stretch ending at u_end
 };
 
