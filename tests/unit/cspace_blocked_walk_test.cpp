@@ -103,15 +103,20 @@ void walks(const CSpace& space, int count, std::uint64_t seed, const std::string
   }
 }
 
-TEST(CSpaceBlockedWalk, CertifiedConfigurationsStartInContact) {
-  Tally tally;
-  std::uint64_t seed = 251;
+// `count` walks on each 2-D example space, seeds from `seed` on.
+void example_walks(int count, std::uint64_t seed, Tally& tally, bool constant) {
   std::vector<std::unique_ptr<CSpace>> spaces = test::example_spaces();
   for (const auto& space : spaces) {
     if (space->dimension() != 2) continue;
-    walks(*space, 150, seed++, "example", tally);
-    ASSERT_FALSE(HasFatalFailure());
+    walks(*space, count, seed++, "example", tally, constant);
+    ASSERT_FALSE(::testing::Test::HasFatalFailure());
   }
+}
+
+TEST(CSpaceBlockedWalk, CertifiedConfigurationsStartInContact) {
+  Tally tally;
+  example_walks(150, 251, tally, false);
+  ASSERT_FALSE(HasFatalFailure());
   std::printf("blocked walks: %zu trials, %zu certified blocked (%zu from the last box), %zu free after a certified one\n",
               tally.trials, tally.certified, tally.chained, tally.free_after);
   EXPECT_GT(tally.certified, tally.trials / 10);
@@ -127,13 +132,8 @@ TEST(CSpaceBlockedWalk, CertifiedConfigurationsStartInContact) {
 // the same.
 TEST(CSpaceBlockedWalk, PointQueriesAnswerAsConstantPaths) {
   Tally tally;
-  std::uint64_t seed = 907;
-  std::vector<std::unique_ptr<CSpace>> spaces = test::example_spaces();
-  for (const auto& space : spaces) {
-    if (space->dimension() != 2) continue;
-    walks(*space, 40, seed++, "example", tally, true);
-    ASSERT_FALSE(HasFatalFailure());
-  }
+  example_walks(40, 907, tally, true);
+  ASSERT_FALSE(HasFatalFailure());
   std::printf("point queries against constant paths: %zu compared, %zu free, %zu starting in contact\n", tally.compared,
               tally.compared_free, tally.compared_contact);
   EXPECT_GT(tally.compared, 2000u);
