@@ -21,4 +21,16 @@ inline bool& newton_shrink() { return thread_switch<NewtonShrinkTag>(); }
 struct NewtonStepsTag;
 inline std::size_t& newton_steps() { return thread_counter<NewtonStepsTag>(); }
 
+// The siblings left of a proposed node skipped (not evaluated) where the one curve's certified
+// mean-value bound over the stretch proves it nonzero up to the node: every other curve is
+// excluded on the whole stretch, so the motion stays in its start cell there. The halving would
+// evaluate them and, but for an enclosure too wide to exclude one, exclude them: the answer is
+// the halving's wherever it excludes them, and otherwise a bracket the halving's lies before
+// (no crossing lies in a skipped stretch). On by default; tests switch it off per thread.
+struct SkipLeftTag;
+inline bool& skip_left() { return thread_switch<SkipLeftTag>(); }
+// How many sibling stretches were skipped on this thread (tests, profiles).
+struct SkippedLeftTag;
+inline std::size_t& skipped_left() { return thread_counter<SkippedLeftTag>(); }
+
 }  // namespace hipair::cspace

@@ -1467,6 +1467,11 @@ class MotionScanner {
     // (doubles, not certified: a proposal for the subdivision, see newton_shrink)
     bool newton = false;
     double newton_lo = 0, newton_hi = 0;
+    // and the certified bounds behind it: newton_s_min <= |f(a)| <= newton_s_max and newton_r_min
+    // <= |rate| <= newton_r_max over [a, b] (ends of outward-rounded enclosures), so f(u) != 0 for
+    // (u - a) newton_r_max < newton_s_min, and f(u) has the sign opposite to f(a)'s for
+    // (u - a) newton_r_min > newton_s_max
+    double newton_s_min = 0, newton_s_max = 0, newton_r_min = 0, newton_r_max = 0;
   };
 
   // `filtered_point` (a == b): the point through the stretches' filter, its angle pieces widened
@@ -1818,7 +1823,7 @@ class MotionScanner {
     DInterval h{0, cspace::algebra::upper_double(Rational(b - a))};
     std::vector<Possible> kept;
     bool newton = false;
-    double newton_lo = 0, newton_hi = 0;
+    double newton_lo = 0, newton_hi = 0, newton_s_min = 0, newton_s_max = 0, newton_r_min = 0, newton_r_max = 0;
     for (const Possible& p : possible) {
       const ChartData& chart = impl_.charts[p.chart];
       const Gradient& g = gradient(p.chart, p.curve);
@@ -1847,6 +1852,10 @@ class MotionScanner {
         newton = true;
         newton_lo = s_min / r_max;
         newton_hi = s_max / r_min;
+        newton_s_min = s_min;
+        newton_s_max = s_max;
+        newton_r_min = r_min;
+        newton_r_max = r_max;
       }
     }
     possible.swap(kept);
@@ -1854,6 +1863,10 @@ class MotionScanner {
       proposal->newton = true;
       proposal->newton_lo = newton_lo;
       proposal->newton_hi = newton_hi;
+      proposal->newton_s_min = newton_s_min;
+      proposal->newton_s_max = newton_s_max;
+      proposal->newton_r_min = newton_r_min;
+      proposal->newton_r_max = newton_r_max;
     }
   }
 
@@ -2280,6 +2293,13 @@ class CrossingRun {
         // vanishes inside every node between [a, b] and the node proposed
         if ((n & (n - 1)) == 0 && lo >= 0 && hi <= static_cast<double>(n)) {
           long k_lo = static_cast<long>(lo), k_hi = static_cast<long>(hi);
+          // the widening by a cell dropped where the certified bounds allow it: the curve
+          // certainly nonzero up to cell k_lo + 1, certainly past its sign change from k_hi - 1
+          // (so a sign change, which no stretch's exclusion can pass, lies between)
+          if (cspace::skip_left() && k_lo + 2 < k_hi) {
+            if (free_before(resolution * (k_lo + 1), at)) ++k_lo;
+            if (past_change(resolution * (k_hi - 1), at)) --k_hi;
+          }
           if (k_lo < k_hi) {
             // the smallest node holding cells k_lo ... k_hi - 1: 2^j cells from k_lo's multiple
             unsigned long diff = static_cast<unsigned long>(k_lo ^ (k_hi - 1));
@@ -2309,6 +2329,12 @@ class CrossingRun {
                 length = half;
               }
               stack.emplace_back(at_cell(first), at_cell(first + size));
+              // the siblings left of the node, [a, a + first cells), certified free when the
+              // curve's mean-value bound keeps it off 0 there (crossing_shrink.hpp, skip_left)
+              if (!left.empty() && cspace::skip_left() && free_before(resolution * first, at)) {
+                cspace::skipped_left() += left.size();
+                return;
+              }
               for (auto it = left.rbegin(); it != left.rend(); ++it) stack.emplace_back(at_cell(it->first), at_cell(it->second));
               return;
             }
@@ -2316,7 +2342,39 @@ class CrossingRun {
         }
       }
     }
+    // a halving whose first half the curve's certified bound keeps free: only the second half
+    if (cspace::newton_shrink() && at.newton && cspace::skip_left()) {
+      Rational m = (a + b) / 2;
+      m.canonicalize();
+      if (free_before(m - a, at)) {
+        ++cspace::skipped_left();
+        stack.emplace_back(m, b);
+        return;
+      }
+    }
     split(a, b);
+  }
+
+  // Whether the one curve left over the stretch [a, b] just evaluated (`at`: every other curve
+  // excluded on [a, b], this one's f(a) and rate over [a, b] of opposite signs) certainly does
+  // not vanish on [a, a + offset] (offset <= b - a): f(u) lies in f(a) + (u - a) rate (the
+  // mean-value form over the stretch's box, one chart system), so |f(u)| >= s_min - (u - a) r_max
+  // > 0 there. Exact: offset * r_max < s_min in rationals (the doubles are the enclosures' ends).
+  bool free_before(const Rational& offset, const MotionScanner::Evaluation& at) {
+    if (!(at.newton_s_min > 0) || !std::isfinite(at.newton_r_max) || !(at.newton_r_max >= 0)) return false;
+    skip_bound = offset;
+    skip_bound *= Rational(at.newton_r_max);
+    return cmp(skip_bound, Rational(at.newton_s_min)) < 0;
+  }
+
+  // Whether that curve's value certainly has the sign opposite to f(a)'s at a + offset (offset
+  // <= b - a): f(u) - f(a) lies in (u - a) rate, of the other sign and at least (u - a) r_min in
+  // magnitude, so past s_max >= |f(a)| it has changed sign. Exact: offset * r_min > s_max.
+  bool past_change(const Rational& offset, const MotionScanner::Evaluation& at) {
+    if (!(at.newton_r_min > 0) || !std::isfinite(at.newton_s_max) || !(at.newton_s_max > 0)) return false;
+    skip_bound = offset;
+    skip_bound *= Rational(at.newton_r_min);
+    return cmp(skip_bound, Rational(at.newton_s_max)) > 0;
   }
 
   // one stretch [a, b] of the subdivision: excluded, split, or the answer
@@ -2406,6 +2464,7 @@ class CrossingRun {
   double resolution_d = 0;
   StretchStack stack;
   Rational stretch_a, stretch_b;   // the stretch being evaluated (step())
+  Rational skip_bound;              // free_before's product (kept: its limbs reused)
   std::optional<MotionScanner::Evaluation> last;   // the excluded stretch ending at u_end
 };
 

@@ -883,7 +883,12 @@ struct Simulation::Impl {
     for (double x : q) scale = std::max(scale, std::abs(x));
     const double first = 4 * std::numeric_limits<double>::epsilon() * scale;
     auto free_at = [&](std::size_t pair, bool* blocked = nullptr) {
-      MotionCrossing c = spaces[pair]->first_crossing(point_path(pair, q));
+      // the configuration alone (u_end = u_begin): the start's exact location is the answer; a
+      // constant path over [0, 1] made the query also evaluate (and exclude) the stretch [0, 1]
+      // of a motion that does not move
+      MotionPath at = point_path(pair, q);
+      at.u_end = at.u_begin;
+      MotionCrossing c = spaces[pair]->first_crossing(at);
       if (c.status == CrossingStatus::outside_region) outside(pair, t);
       if (blocked) *blocked = c.status == CrossingStatus::starts_in_contact && !c.grazing;
       return c.status == CrossingStatus::none;

@@ -29,12 +29,17 @@ namespace {
 
 struct Tally {
   std::size_t trials = 0, certified = 0, chained = 0, free_after = 0;
+  std::size_t compared = 0, compared_free = 0, compared_contact = 0;
 };
 
 // `count` walks on one 2-D space. The start: on a real edge moved a few ulps (or 1e-15 ... 1e-3)
 // off it (two in three walks), or anywhere in a chart. The direction: one part alone (either),
 // or both. The trials: the start and the start + 4 ulps * 2^k * direction, k = 0 ... 40.
-void walks(const CSpace& space, int count, std::uint64_t seed, const std::string& name, Tally& tally) {
+// `constant`: each trial's point query (u_end = u_begin, as the nudge asks since session 29) is
+// also checked against the same configuration as a constant path over [0, 1] (as the nudge asked
+// before): the same status and start cell, and the same description where not free.
+void walks(const CSpace& space, int count, std::uint64_t seed, const std::string& name, Tally& tally,
+           bool constant = false) {
   std::mt19937_64 random(seed);
   std::uniform_real_distribution<double> unit(0, 1), sym(-1, 1);
   const std::vector<CSpaceChart>& charts = space.charts();
@@ -65,6 +70,22 @@ void walks(const CSpace& space, int count, std::uint64_t seed, const std::string
       const bool blocked = certainly_blocked(space, path, walk);
       const MotionCrossing answer = space.first_crossing(path);
       ++tally.trials;
+      if (constant) {
+        const MotionCrossing still = space.first_crossing(test::bent_motion(chart, true, qx, qy, 0, 0, 0, false));
+        std::ostringstream what;
+        what.precision(17);
+        what << name << " " << space.first_part() << ":" << space.second_part() << " walk " << i << " trial " << k
+             << " part values " << qx << ", " << qy << ": point " << test::describe_crossing(space, answer)
+             << "; constant path " << test::describe_crossing(space, still);
+        ASSERT_EQ(answer.status, still.status) << what.str();
+        ASSERT_EQ(answer.cell_left.valid(), still.cell_left.valid()) << what.str();
+        if (answer.cell_left.valid()) ASSERT_EQ(answer.cell_left.index(), still.cell_left.index()) << what.str();
+        if (answer.status != CrossingStatus::none)
+          ASSERT_EQ(test::describe_crossing(space, answer), test::describe_crossing(space, still)) << what.str();
+        ++tally.compared;
+        tally.compared_free += answer.status == CrossingStatus::none;
+        tally.compared_contact += answer.status == CrossingStatus::starts_in_contact;
+      }
       if (blocked) {
         std::ostringstream what;
         what.precision(17);
@@ -82,20 +103,42 @@ void walks(const CSpace& space, int count, std::uint64_t seed, const std::string
   }
 }
 
-TEST(CSpaceBlockedWalk, CertifiedConfigurationsStartInContact) {
-  Tally tally;
-  std::uint64_t seed = 251;
+// `count` walks on each 2-D example space, seeds from `seed` on.
+void example_walks(int count, std::uint64_t seed, Tally& tally, bool constant) {
   std::vector<std::unique_ptr<CSpace>> spaces = test::example_spaces();
   for (const auto& space : spaces) {
     if (space->dimension() != 2) continue;
-    walks(*space, 150, seed++, "example", tally);
-    ASSERT_FALSE(HasFatalFailure());
+    walks(*space, count, seed++, "example", tally, constant);
+    ASSERT_FALSE(::testing::Test::HasFatalFailure());
   }
+}
+
+TEST(CSpaceBlockedWalk, CertifiedConfigurationsStartInContact) {
+  Tally tally;
+  example_walks(150, 251, tally, false);
+  ASSERT_FALSE(HasFatalFailure());
   std::printf("blocked walks: %zu trials, %zu certified blocked (%zu from the last box), %zu free after a certified one\n",
               tally.trials, tally.certified, tally.chained, tally.free_after);
   EXPECT_GT(tally.certified, tally.trials / 10);
   EXPECT_GT(tally.chained, tally.certified / 2);
   EXPECT_GT(tally.free_after, 100u);
+}
+
+// The nudge's free test (simulation's nudge_free) asks a configuration as a point (u_end =
+// u_begin): the start's exact location answers. Before, it asked a constant path over [0, 1],
+// whose query also evaluated the stretch [0, 1] of a motion that does not move. On the walks'
+// configurations (next to contact edges, a few ulps to 1e-3 off them, stepped by 4 ulps * 2^k
+// along a direction, into and past the free cell; and anywhere in a chart): both answers are
+// the same.
+TEST(CSpaceBlockedWalk, PointQueriesAnswerAsConstantPaths) {
+  Tally tally;
+  example_walks(40, 907, tally, true);
+  ASSERT_FALSE(HasFatalFailure());
+  std::printf("point queries against constant paths: %zu compared, %zu free, %zu starting in contact\n", tally.compared,
+              tally.compared_free, tally.compared_contact);
+  EXPECT_GT(tally.compared, 2000u);
+  EXPECT_GT(tally.compared_free, tally.compared / 4);
+  EXPECT_GT(tally.compared_contact, tally.compared / 10);
 }
 
 // The switch off: nothing is certified.

@@ -1,5 +1,5 @@
 // CSpace::first_crossing's Newton shrink of the crossing bracket (src/cspace/cspace_queries.cpp,
-// first_crossing's `shrink`; switch cspace::newton_shrink() in src/cspace/crossing_shrink.hpp).
+// first_crossing's `shrink`; switches cspace::newton_shrink() and cspace::skip_left() in src/cspace/crossing_shrink.hpp).
 // A proposal only skips nodes of the halving's tree that hold a root of the one curve left (the
 // halving would only have halved them); their siblings are evaluated by the same tests, in path
 // order. So on generated motions — crossings aimed through
@@ -40,7 +40,28 @@ std::filesystem::path degenerate(const std::string& name) {
   return std::filesystem::path(HIPAIR_TEST_DATA) / "degenerate" / name;
 }
 
-using Switch = test::FlagSwitch<&cspace::newton_shrink>;
+// What `compare` switches on and off: the whole Newton shrink (the oracle is the plain halving),
+// or only its skipping of the siblings the curve's certified bound keeps free (cspace::skip_left;
+// the oracle is the shrink evaluating them), with the counter of what the switch does.
+struct Toggled {
+  bool& (*flag)();
+  std::size_t& (*counter)();
+};
+Toggled toggled{&cspace::newton_shrink, &cspace::newton_steps};
+struct Switch {
+  explicit Switch(bool on) : old(toggled.flag()) { toggled.flag() = on; }
+  ~Switch() { toggled.flag() = old; }
+  Switch(const Switch&) = delete;
+  Switch& operator=(const Switch&) = delete;
+  bool old;
+};
+struct Toggling {
+  explicit Toggling(Toggled t) : old(toggled) { toggled = t; }
+  ~Toggling() { toggled = old; }
+  Toggling(const Toggling&) = delete;
+  Toggling& operator=(const Toggling&) = delete;
+  Toggled old;
+};
 using test::describe_crossing;
 using test::axis_path;
 using test::part_value;
@@ -96,7 +117,7 @@ void shifted_motions(const CSpace& space, const MotionPath& path, const MotionCr
 void compare(const CSpace& space, const MotionPath& path, const std::string& what, Tally& tally, bool shifted) {
   MotionCrossing with, without;
   bool with_error = false, without_error = false;
-  std::size_t before = cspace::newton_steps();
+  std::size_t before = toggled.counter();
   {
     Switch on(true);
     try {
@@ -105,7 +126,7 @@ void compare(const CSpace& space, const MotionPath& path, const std::string& wha
       with_error = true;
     }
   }
-  std::size_t used = cspace::newton_steps() - before;
+  std::size_t used = toggled.counter() - before;
   {
     Switch off(false);
     try {
@@ -114,7 +135,7 @@ void compare(const CSpace& space, const MotionPath& path, const std::string& wha
       without_error = true;
     }
   }
-  ASSERT_EQ(cspace::newton_steps() - before, used) << "the switch must turn the shrink off";
+  ASSERT_EQ(toggled.counter() - before, used) << "the switch must turn the shrink (or its skip) off";
   ASSERT_EQ(with_error, without_error) << what;
   ++tally.motions;
   if (with_error) return;
@@ -252,29 +273,52 @@ void report(const Tally& tally) {
   ::testing::Test::RecordProperty("helped", tally.helped);
 }
 
-TEST(CSpaceCrossingShrink, AnswersEqualTheHalvingsOnGeneratedMotions) {
-  Tally tally;
+void generated_on_examples(Tally& tally) {
   {
     Model model = read_model_file(example("geneva-drive.json"));
     CSpace space = CSpace::build(model, "driver", "wheel");
     generated_motions(space, 900, 41, tally);
-    ASSERT_FALSE(HasFatalFailure());
+    ASSERT_FALSE(::testing::Test::HasFatalFailure());
   }
   {
     Model model = read_model_file(example("escapement.json"));
     for (const PairBuild& pair : CSpace::build_pairs(model)) {
       if (pair.status != PairBuild::Status::built) continue;
       generated_motions(*pair.space, 400, 43, tally);
-      ASSERT_FALSE(HasFatalFailure());
+      ASSERT_FALSE(::testing::Test::HasFatalFailure());
     }
   }
   {
     Model model = read_model_file(example("cam-follower.json"));
     CSpace space = CSpace::build(model, "cam", "follower");
     generated_motions(space, 300, 47, tally);
-    ASSERT_FALSE(HasFatalFailure());
+    ASSERT_FALSE(::testing::Test::HasFatalFailure());
   }
-  report(tally);
+}
+
+void generated_on_degenerate_spaces(Tally& tally) {
+  for (const char* name : {"zero-clearance.json", "tangent-circles.json", "concentric-arcs.json", "coincident-edges.json",
+                           "collinear-edges.json", "interval-contact.json", "vertex-on-vertex.json"}) {
+    Model model = read_model_file(degenerate(name));
+    for (const PairBuild& pair : CSpace::build_pairs(model)) {
+      if (pair.status != PairBuild::Status::built) continue;
+      generated_motions(*pair.space, 120, 53, tally);
+      ASSERT_FALSE(::testing::Test::HasFatalFailure()) << name;
+    }
+  }
+}
+
+// The generated motions of `generate` compared and reported.
+Tally compared(void (*generate)(Tally&)) {
+  Tally tally;
+  generate(tally);
+  if (!::testing::Test::HasFatalFailure()) report(tally);
+  return tally;
+}
+
+TEST(CSpaceCrossingShrink, AnswersEqualTheHalvingsOnGeneratedMotions) {
+  Tally tally = compared(generated_on_examples);
+  ASSERT_FALSE(HasFatalFailure());
   EXPECT_GE(tally.motions, 4000);
   EXPECT_GE(tally.crossings, 1800);
   EXPECT_GE(tally.helped, 1700);   // the shrink is exercised
@@ -283,19 +327,29 @@ TEST(CSpaceCrossingShrink, AnswersEqualTheHalvingsOnGeneratedMotions) {
 }
 
 TEST(CSpaceCrossingShrink, AnswersEqualTheHalvingsOnDegenerateSpaces) {
-  Tally tally;
-  for (const char* name : {"zero-clearance.json", "tangent-circles.json", "concentric-arcs.json", "coincident-edges.json",
-                           "collinear-edges.json", "interval-contact.json", "vertex-on-vertex.json"}) {
-    Model model = read_model_file(degenerate(name));
-    for (const PairBuild& pair : CSpace::build_pairs(model)) {
-      if (pair.status != PairBuild::Status::built) continue;
-      generated_motions(*pair.space, 120, 53, tally);
-      ASSERT_FALSE(HasFatalFailure()) << name;
-    }
-  }
-  report(tally);
+  Tally tally = compared(generated_on_degenerate_spaces);
+  ASSERT_FALSE(HasFatalFailure());
   EXPECT_GE(tally.motions, 1500);
   EXPECT_GE(tally.helped, 300);
+}
+
+// The skip alone (cspace::skip_left, on by default in the tests above): the siblings left of a
+// proposed node, and a halving's first half, that the one curve's certified mean-value bound
+// keeps free are not evaluated. Against the shrink that evaluates them, on the same generated
+// motions: the same answer field for field (no crossing lies in a skipped stretch, and the
+// shrink's evaluation excludes every one of them here), the brackets' ends located exactly.
+TEST(CSpaceCrossingShrink, SkippedSiblingsLeaveTheAnswerOnGeneratedMotions) {
+  Toggling skip(Toggled{&cspace::skip_left, &cspace::skipped_left});
+  Tally tally;
+  generated_on_examples(tally);
+  ASSERT_FALSE(HasFatalFailure());
+  generated_on_degenerate_spaces(tally);
+  ASSERT_FALSE(HasFatalFailure());
+  report(tally);
+  EXPECT_GE(tally.motions, 5500);
+  EXPECT_GE(tally.crossings, 2500);
+  EXPECT_GE(tally.helped, 1000);   // motions with a stretch skipped
+  EXPECT_GE(tally.steps, 3000);    // stretches skipped
 }
 
 }  // namespace
