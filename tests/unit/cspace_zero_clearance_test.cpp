@@ -411,6 +411,20 @@ TEST(CSpaceZeroClearance, PegInAHoleTurnedByALargeDenominatorAngleHasExactTouchi
     }
     EXPECT_GE(at_t0, 1u);
     EXPECT_GE(exact_touching, 4u);   // theta = phi + k 90 degrees, k = 0 ... 3
+    // session 29: the 1-D vertices carry the touching flag (exactly the oracle's touching points
+    // with blocked space on both sides, here every exact touching vertex), and no point is left
+    // undecided
+    std::size_t flagged = 0;
+    for (const CSpaceVertex& vertex : space.vertices()) {
+      flagged += vertex.touching;
+      if (vertex.touching) {
+        ASSERT_TRUE(vertex.x.exact);
+        EXPECT_EQ(oracle(model, space, ChartPoint{vertex.chart, vertex.x.lower, Rational(0)}), cspace::Overlap::touching);
+      }
+    }
+    EXPECT_EQ(flagged, exact_touching);
+    EXPECT_EQ(space.statistics().touching_vertices, exact_touching);
+    EXPECT_EQ(space.statistics().touching_undecided, 0u);
   }
 }
 
