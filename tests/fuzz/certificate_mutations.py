@@ -7,7 +7,10 @@ hipair-verify.  Oracles:
     malformed / NaN / infinite / huge, a string made a number, a field dropped) must not be
     `valid`; any run must exit 1, 2 or 3 with one line, never a signal, an abort or a time-out.
 usage: certificate_mutations.py HIPAIR_VERIFY REPO OUTDIR SEED N"""
-import json, os, random, subprocess, sys, re, copy
+import json, os, random, sys, re, copy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from hunt_common import run, crash_problems
 
 verify, repo, outdir, seed, n = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), int(sys.argv[5])
 rng = random.Random(seed)
@@ -131,12 +134,6 @@ def corrupt(text, tree):
     # trailing garbage / a second document
     return 'trailing content', text + rng.choice(['x', '{}', ',', '\0', ' ]', '\n{"hipair_certificate": 1}'])
 
-def run(args, timeout=120):
-    try:
-        p = subprocess.run(args, capture_output=True, text=True, timeout=timeout, errors='replace')
-        return p.returncode, p.stdout, p.stderr
-    except subprocess.TimeoutExpired:
-        return 'timeout', '', ''
 
 findings = 0
 count = {'equivalent': 0, 'corrupt': 0, 'neutral': 0}
@@ -157,15 +154,7 @@ for case in range(n):
     path = os.path.join(outdir, 'c%05d.json' % case)
     open(path, 'w', newline='').write(new)
     rc, out, err = run([verify, path, os.path.join(repo, model)])
-    problems = []
-    if rc == 'timeout':
-        problems.append('timeout')
-    elif rc < 0 or rc >= 128:
-        problems.append('signal/abort rc=%s' % rc)
-    text_out = out + err
-    for bad in ('terminate called', 'Assertion', 'Segmentation', 'Sanitizer', 'what():', 'CGAL ERROR'):
-        if bad in text_out:
-            problems.append('text: ' + bad)
+    problems = crash_problems(rc, out + err)
     if kind == 'equivalent' and rc != 0:
         problems.append('equivalent rewrite not valid: rc=%s %s' % (rc, (out + err).strip()[:200]))
     if kind == 'corrupt' and rc == 0:

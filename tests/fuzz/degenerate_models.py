@@ -7,7 +7,10 @@ or one part twice, a negative or zero mass or inertia, a loop of one edge), each
 with exit 2 (or 3 for geometry HIPAIR declines), never a signal, an abort, a time-out, a crash
 text, or an output file left by a failed run.
 usage: degenerate_models.py HIPAIR MODELS_DIR OUTDIR SEED N"""
-import copy, json, os, random, subprocess, sys
+import copy, json, os, random, sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from hunt_common import run, crash_problems
 
 hipair, models_dir, outdir, seed, n = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), int(sys.argv[5])
 rng = random.Random(seed)
@@ -93,12 +96,6 @@ COMMANDS = [
     ['certify', '{m}', '--claim', 'clearance', '--out', '{o}/cert.json'],
 ]
 
-def run(args, timeout):
-    try:
-        p = subprocess.run(args, capture_output=True, text=True, timeout=timeout, errors='replace')
-        return p.returncode, p.stdout, p.stderr
-    except subprocess.TimeoutExpired:
-        return 'timeout', '', ''
 
 findings = 0
 kinds = {}
@@ -116,14 +113,9 @@ for case in range(n):
     for args in (['validate', m], [c.format(m=m, o=cdir) for c in rng.choice(COMMANDS)]):
         before = set(os.listdir(cdir))
         rc, out, err = run([hipair] + args, 120)
-        problems = []
-        if rc == 'timeout':
-            problems.append('timeout')
-        elif rc < 0 or rc >= 128 or rc == 5:
-            problems.append('signal/abort/internal rc=%s' % rc)
-        for bad in ('terminate called', 'Assertion', 'Segmentation', 'Sanitizer', 'what():', 'CGAL ERROR', 'internal'):
-            if bad in out + err:
-                problems.append('text: ' + bad)
+        problems = crash_problems(rc, out + err)
+        if rc == 5 or 'internal' in out + err:
+            problems.append('internal error rc=%s' % rc)
         if rc not in (0, 'timeout'):
             lines = err.strip().splitlines()
             if len(lines) != 1 or not lines[0].startswith('hipair: '):
