@@ -84,6 +84,8 @@ def mutate(tree):
     if kind == 9:                                   # a loop not closed
         e = edges[-1]
         key = 'line_to' if 'line_to' in e else 'arc_to'
+        if not isinstance(e.get(key), list):
+            return None
         e[key] = ['(%s) + 1/3' % e[key][0], e[key][1]]
         return 'loop not closed /parts/%d/loops/%d' % (i, j)
     # the whole part's loops duplicated (coincident boundaries)
@@ -98,6 +100,7 @@ COMMANDS = [
 
 
 findings = 0
+reached = 0
 kinds = {}
 for case in range(n):
     name = rng.choice(models)
@@ -105,7 +108,9 @@ for case in range(n):
     what = mutate(tree)
     if what is None:
         continue
-    kinds[what.split(' /')[0]] = kinds.get(what.split(' /')[0], 0) + 1
+    label = what.split(' /')[0].split(' in')[0].split(' {')[0].split(' =')[0]
+    label = 'ends swapped' if label.startswith('ends of edges') else label
+    kinds[label] = kinds.get(label, 0) + 1
     cdir = os.path.join(outdir, 'case%04d' % case)
     os.makedirs(cdir, exist_ok=True)
     m = os.path.join(cdir, 'model.json')
@@ -128,4 +133,6 @@ for case in range(n):
             print('case %d %s %s (%s): %s\n  stderr: %s' % (case, name, args[0], what, problems, err.strip()[:300]), flush=True)
         if rc != 0:
             break
-print('%s; %d findings' % (kinds, findings))
+        if args[0] != 'validate':
+            reached += 1
+print('%s; %d cases reached their command; %d findings' % (kinds, reached, findings))
