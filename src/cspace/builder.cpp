@@ -1460,7 +1460,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       for (std::size_t i = 0; i < chart.points.size(); ++i) {
         FaceKind a = chart.faces[i].kind, b = chart.faces[i + 1].kind;
         if (a == FaceKind::outside || b == FaceKind::outside) continue;
-        if (a == b && !chart.touching_vertex[i])
+        if (a == b && !(i < chart.touching_vertex.size() && chart.touching_vertex[i]))
           components.join(face_offset[c] + i, face_offset[c] + i + 1, {0, 0});
         else
           real_face_pairs.emplace_back(face_offset[c] + i, face_offset[c] + i + 1);
@@ -1536,7 +1536,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
         std::sort(vertex.curves.begin(), vertex.curves.end());
         vertex.curves.erase(std::unique(vertex.curves.begin(), vertex.curves.end()), vertex.curves.end());
         vertex.contact_change = vertex.curves.size() >= 2;
-        vertex.touching = chart.touching_vertex[i] != 0;
+        vertex.touching = i < chart.touching_vertex.size() && chart.touching_vertex[i] != 0;
         vertex.on_chart_boundary = chart.points[i].compare(chart.box.x_lo) == 0 || chart.points[i].compare(chart.box.x_hi) == 0;
         chart.vertex_global.push_back(impl->vertices.size());
         impl->vertex_local.emplace_back(c, i);
