@@ -111,7 +111,12 @@ std::string to_decimal_string(const Rational& value, int digits) {
   bool negative = mantissa[0] == '-';
   if (negative) mantissa.erase(0, 1);
   std::string out;
-  if (exponent <= 0) {
+  if (exponent < -20 || exponent > 30) {
+    // tiny or huge (below 1e-21, 1e30 and above): an exponent, not hundreds of zeros (a
+    // 1e-300 mm offset was written with 300 zeros until session 29)
+    out = mantissa.substr(0, 1) + (mantissa.size() > 1 ? "." + mantissa.substr(1) : std::string()) + "e" +
+          std::to_string(static_cast<long>(exponent) - 1);
+  } else if (exponent <= 0) {
     out = "0." + std::string(static_cast<size_t>(-exponent), '0') + mantissa;
   } else if (static_cast<size_t>(exponent) >= mantissa.size()) {
     out = mantissa + std::string(static_cast<size_t>(exponent) - mantissa.size(), '0');

@@ -910,7 +910,40 @@ void find_touching(ChartData& chart, const Classifier& classify, ContactSides* s
 
 // ---------------------------------------------------------------- 1-D charts
 
-void build_interval_chart(ChartData& chart, const ChartInput& input) {
+// Zero-clearance points of a 1-D chart (session 29): a contact point with blocked intervals on
+// both sides is a configuration where the parts only touch (a peg of exactly its hole's length:
+// touching, a separate blocked cell on each side, like a 2-D touching edge) or a curve through
+// blocked space, decided as the 2-D find_touching decides: a rational point by the exact
+// oracle; a point of one contact whose polynomial changes sign there is blocked (were the parts
+// only touching, that contact would be their only one and the side where it opens would be
+// free); any other irrational point stays blocked and is counted undecided.
+void find_touching_points(ChartData& chart, const Classifier& classify, CSpaceStatistics& stats) {
+  chart.touching_vertex.assign(chart.points.size(), 0);
+  for (std::size_t i = 0; i < chart.points.size(); ++i) {
+    if (chart.faces[i].kind != FaceKind::blocked || chart.faces[i + 1].kind != FaceKind::blocked) continue;
+    const Real& point = chart.points[i];
+    if (!point.exact && chart.point_curves[i].size() == 1) {
+      algebra::Polynomial p = algebra::univariate_x(chart.polynomials[chart.point_curves[i][0]]);
+      if (algebra::square_free_test(p) == algebra::primitive_part(point.polynomial) &&
+          algebra::sign_at(p, point.lower) * algebra::sign_at(p, point.upper) < 0)
+        continue;
+    }
+    auto x = rational_value(point);
+    if (!x) {
+      ++stats.touching_undecided;
+      continue;
+    }
+    Overlap relation = classify(ChartPoint{*x, Rational(0)});
+    if (relation == Overlap::apart)
+      throw GeometryError("internal: the parts are apart at " + x->get_str() + " between blocked intervals");
+    if (relation == Overlap::touching) {
+      chart.touching_vertex[i] = 1;
+      ++stats.touching_vertices;
+    }
+  }
+}
+
+void build_interval_chart(ChartData& chart, const ChartInput& input, CSpaceStatistics& stats) {
   struct Point {
     Real x;
     std::vector<std::size_t> curves;
@@ -954,6 +987,7 @@ void build_interval_chart(ChartData& chart, const ChartInput& input) {
     face.sampled = true;
     face.kind = kind_of(input.classify(ChartPoint{face.sample_x, Rational(0)}));
   }
+  find_touching_points(chart, input.classify, stats);
 }
 
 // ---------------------------------------------------------------- cells
@@ -1292,7 +1326,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
 
     if (input.dimension == 1) {
       auto start = Clock::now();
-      build_interval_chart(chart, chart_input);
+      build_interval_chart(chart, chart_input, stats);
       stats.seconds_classification += seconds_since(start);
       continue;
     }
@@ -1426,7 +1460,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       for (std::size_t i = 0; i < chart.points.size(); ++i) {
         FaceKind a = chart.faces[i].kind, b = chart.faces[i + 1].kind;
         if (a == FaceKind::outside || b == FaceKind::outside) continue;
-        if (a == b)
+        if (a == b && !(i < chart.touching_vertex.size() && chart.touching_vertex[i]))
           components.join(face_offset[c] + i, face_offset[c] + i + 1, {0, 0});
         else
           real_face_pairs.emplace_back(face_offset[c] + i, face_offset[c] + i + 1);
@@ -1502,6 +1536,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
         std::sort(vertex.curves.begin(), vertex.curves.end());
         vertex.curves.erase(std::unique(vertex.curves.begin(), vertex.curves.end()), vertex.curves.end());
         vertex.contact_change = vertex.curves.size() >= 2;
+        vertex.touching = i < chart.touching_vertex.size() && chart.touching_vertex[i] != 0;
         vertex.on_chart_boundary = chart.points[i].compare(chart.box.x_lo) == 0 || chart.points[i].compare(chart.box.x_hi) == 0;
         chart.vertex_global.push_back(impl->vertices.size());
         impl->vertex_local.emplace_back(c, i);

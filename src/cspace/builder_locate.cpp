@@ -221,7 +221,10 @@ Location locate_1d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
       // a point of a contact curve with the same cell on both sides is no contact boundary
       const FaceData& before = chart.faces[i];
       const FaceData& after = chart.faces[i + 1];
-      if (before.kind != FaceKind::outside && after.kind != FaceKind::outside && before.cell == after.cell) location.cell = before.cell;
+      // (a touching point is a contact configuration even where its two sides join round the circle)
+      if (before.kind != FaceKind::outside && after.kind != FaceKind::outside && before.cell == after.cell &&
+          !(i < chart.touching_vertex.size() && chart.touching_vertex[i]))
+        location.cell = before.cell;
       return location;
     }
     if (c > 0) break;

@@ -19,9 +19,23 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 
 void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write) {
   namespace fs = std::filesystem;
-  fs::path target = path;
-  fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code ec;
+  // A symbolic link is written through (its final target is replaced, the link stays); a target
+  // that exists and is no regular file (a device such as /dev/full, a FIFO, a socket) is refused
+  // before anything is written: the rename below would replace the node itself.
+  fs::path target = path;
+  for (int hops = 0; fs::is_symlink(fs::symlink_status(target, ec)); ++hops) {
+    if (hops == 40) throw IoError("cannot write '" + path.string() + "': too many levels of symbolic links");
+    fs::path link = fs::read_symlink(target, ec);
+    if (ec) throw IoError("cannot write '" + path.string() + "': " + ec.message());
+    target = link.is_absolute() ? link : target.parent_path() / link;
+  }
+  fs::file_status status = fs::status(target, ec);
+  if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_directory(status))
+    throw IoError("cannot write '" + path.string() + "': " +
+                  (target == path ? std::string("it") : "its target '" + target.string() + "'") +
+                  " is not a regular file (a device, FIFO or socket): nothing was written");
+  fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (!fs::is_directory(directory, ec))
     throw IoError("cannot write '" + path.string() + "': directory '" + directory.string() +
                   "' does not exist");

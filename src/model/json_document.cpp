@@ -235,6 +235,13 @@ const JsonValue* JsonValue::find(std::string_view key) const {
 }
 
 JsonValue parse_json(std::string_view text) {
+  // The parser's lexer takes a NUL byte for the end of the input, so a document followed by a
+  // NUL and anything at all would be accepted (session 29): no JSON text holds a NUL byte.
+  if (std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
+    std::string reason = "malformed JSON: a NUL byte at offset ";
+    reason += std::to_string(nul);
+    throw ModelError("", reason);
+  }
   DocumentBuilder builder(text);
   bool ok = ExactJson::sax_parse(text.begin(), text.end(), &builder, ExactJson::input_format_t::json, true);
   if (!ok) throw ModelError("", "malformed JSON");

@@ -411,6 +411,20 @@ TEST(CSpaceZeroClearance, PegInAHoleTurnedByALargeDenominatorAngleHasExactTouchi
     }
     EXPECT_GE(at_t0, 1u);
     EXPECT_GE(exact_touching, 4u);   // theta = phi + k 90 degrees, k = 0 ... 3
+    // session 29: the 1-D vertices carry the touching flag (exactly the oracle's touching points
+    // with blocked space on both sides, here every exact touching vertex), and no point is left
+    // undecided
+    std::size_t flagged = 0;
+    for (const CSpaceVertex& vertex : space.vertices()) {
+      flagged += vertex.touching;
+      if (vertex.touching) {
+        ASSERT_TRUE(vertex.x.exact);
+        EXPECT_EQ(oracle(model, space, ChartPoint{vertex.chart, vertex.x.lower, Rational(0)}), cspace::Overlap::touching);
+      }
+    }
+    EXPECT_EQ(flagged, exact_touching);
+    EXPECT_EQ(space.statistics().touching_vertices, exact_touching);
+    EXPECT_EQ(space.statistics().touching_undecided, 0u);
   }
 }
 
@@ -465,6 +479,102 @@ TEST(CSpaceZeroClearance, AnalyzeReportsTheExactFitAsAContactNotAnInterference) 
       if (piece.part == "yoke" && piece.mode != KinematicPiece::Mode::free) contact = true;
     EXPECT_TRUE(contact);
   }
+}
+
+// ------------------------------------------------------------------ 1-D pairs (session 29)
+
+// A block or a disc translating along x in a fixed plate's rectangular hole of exactly its
+// length (the fit at offset s0: blocked on both sides, the parts only touch), or of its length
+// plus a clearance (a free interval, no touching point). Generated sizes and positions, rational
+// and irrational-but-exact (a parameter sqrt(m), rounded once, the same rational on both parts), at scales
+// 10^-300, 1 and 10^300 (10^400 is refused for a translating pair's C-space: its offsets
+// must stay doubles, a documented limit). Every exact vertex of the 1-D space is touching exactly when the exact
+// oracle says the parts touch there with blocked space on both sides; point location says
+// touching at the fit and blocked just beside it. Before session 29 a 1-D vertex was never
+// touching: the fit was reported inside one blocked cell.
+TEST(CSpaceZeroClearance, OneDofFitsHaveTouchingVerticesExactlyWhereTheOracleSaysTouching) {
+  Random random(2929);
+  const std::vector<Rational> scales{Rational(1), Rational(mpz_class(1), mpz_class("1" + std::string(300, '0'))),
+                                     Rational(mpz_class("1" + std::string(300, '0')))};
+  std::size_t touching_seen = 0, cases = 0;
+  for (int instance = 0; instance < 24; ++instance) {
+    const Rational& k = scales[static_cast<std::size_t>(instance) % 3];
+    const bool disc = instance % 2 == 1, clearance = instance % 4 == 3, irrational = instance % 3 == 0 && instance % 9 != 0;
+    const Rational L = random_rational(random, Rational(1), Rational(9)), H = L + random_rational(random, Rational(1), Rational(5));
+    // the irrational fits centred at 0: the hole's walls and the peg's sides are then the same
+    // expressions (w/2, -w/2), rounded to the same rationals (each expression is rounded once)
+    const Rational s0 = irrational ? Rational(0) : random_rational(random, Rational(-1, 2), Rational(1, 2));
+    const Rational gap = clearance ? random_rational(random, Rational(1, 1000), Rational(1, 10)) : Rational(0);
+    const int m = 2 + static_cast<int>(random() % 5) * 2 + 1;   // 3, 5, ..., 11: no square
+    auto at = [&](const Rational& v) { return text(Rational(v * k)); };
+    auto point = [](const std::string& x, const std::string& y) { return "[" + x + ", " + y + "]"; };
+    auto loop = [&](const std::vector<std::string>& corners) {
+      std::string out = "{ \"start\": " + corners.back() + ", \"edges\": [ ";
+      for (std::size_t i = 0; i < corners.size(); ++i) out += std::string(i ? ", " : "") + "{ \"line_to\": " + corners[i] + " }";
+      return out + " ] }";
+    };
+    // the hole: x from s0 - (L + gap)/2 to s0 + (L + gap)/2 (an expression in the irrational case)
+    const std::string lo = irrational ? (clearance ? "\"-w/2 - " + Rational(gap / 2).get_str() + "\"" : "\"-w/2\"")
+                                      : text(Rational((s0 - L / 2 - gap / 2) * k));
+    const std::string hi = irrational ? (clearance ? "\"w/2 + " + Rational(gap / 2).get_str() + "\"" : "\"w/2\"")
+                                      : text(Rational((s0 + L / 2 + gap / 2) * k));
+    const Rational outer = (L + H + 8) * 2;
+    std::string plate = loop({point(at(-outer), at(-outer)), point(at(outer), at(-outer)), point(at(outer), at(outer)),
+                              point(at(-outer), at(outer))}) +
+                        ", " + loop({point(lo, at(-H)), point(lo, at(H)), point(hi, at(H)), point(hi, at(-H))});
+    const std::string half = irrational ? "\"w/2\"" : text(Rational(L * k / 2));
+    const std::string minus_half = irrational ? "\"-w/2\"" : text(Rational(-L * k / 2));
+    std::string body = disc ? "{ \"start\": [" + minus_half + ", 0], \"edges\": [ { \"arc_to\": [" + half +
+                                  ", 0], \"center\": [0, 0], \"dir\": \"ccw\" }, { \"arc_to\": [" + minus_half +
+                                  ", 0], \"center\": [0, 0], \"dir\": \"ccw\" } ] }"
+                            : loop({point(minus_half, at(-L / 2)), point(half, at(-L / 2)), point(half, at(L / 2)),
+                                    point(minus_half, at(L / 2))});
+    const std::string json = "{ \"hipair\": 1, \"name\": \"fit-1d\", \"parameters\": { \"w\": { \"nominal\": \"sqrt(" +
+                             std::to_string(m) + ")\" } }," + R"( "parts": [
+        { "name": "plate", "motion": "fixed", "loops": [ )" + plate + R"( ] },
+        { "name": "peg", "motion": { "translation": { "direction": [1, 0], "limits": [)" + at(s0 - 1) + ", " + at(s0 + 1) +
+                             R"(] } }, "loops": [ )" + body + R"( ] } ],
+      "pairs": [ { "parts": ["plate", "peg"] } ] })";
+    SCOPED_TRACE("instance " + std::to_string(instance) + (disc ? " disc" : " block") + (clearance ? " with clearance" : " exact fit") +
+                 (irrational ? " sqrt(" + std::to_string(m) + ")" : " L " + L.get_str()) + " s0 " + s0.get_str() + " scale 10^" +
+                 std::to_string(instance % 3 == 0 ? 0 : instance % 3 == 1 ? -300 : 300));
+    if (irrational && k != 1) continue;
+    Model model = read_model(json);
+    CSpace space = CSpace::build(model, "plate", "peg");
+    ASSERT_EQ(space.dimension(), 1);
+    ++cases;
+    auto fit = space.to_chart(PartCoordinate{PartCoordinate::Kind::offset, Rational(s0 * k)});
+    ASSERT_TRUE(fit);
+    const cspace::Overlap at_fit = oracle(model, space, *fit);
+    EXPECT_EQ(at_fit, clearance ? cspace::Overlap::apart : cspace::Overlap::touching);
+    EXPECT_EQ(located_touching(space, space.locate(*fit)), !clearance);
+    if (!clearance) {
+      ++touching_seen;
+      const Rational beside = Rational(k / 1000000);
+      for (const Rational& x : {Rational(fit->x - beside), Rational(fit->x + beside)})
+        EXPECT_TRUE(located_blocked(space, space.locate(ChartPoint{fit->chart, x, Rational(0)}))) << x.get_str();
+    } else {
+      EXPECT_EQ(space.locate(*fit).kind, Location::Kind::free);
+    }
+    std::size_t touching_vertices = 0;
+    for (std::size_t v = 0; v < space.vertices().size(); ++v) {
+      const CSpaceVertex& vertex = space.vertices()[v];
+      touching_vertices += vertex.touching;
+      ASSERT_TRUE(vertex.x.exact);   // the walls' contacts: rational offsets
+      const Rational x = vertex.x.lower;
+      const Rational eps = Rational(k / 1000000000);
+      auto blocked_at = [&](const Rational& q) {
+        return located_blocked(space, space.locate(ChartPoint{vertex.chart, q, Rational(0)}));
+      };
+      const bool enclosed = blocked_at(x - eps) && blocked_at(x + eps);
+      const bool truth = oracle(model, space, ChartPoint{vertex.chart, x, Rational(0)}) == cspace::Overlap::touching;
+      EXPECT_EQ(vertex.touching, truth && enclosed) << "vertex at " << x.get_str();
+    }
+    EXPECT_EQ(touching_vertices, clearance ? 0u : 1u);
+    EXPECT_EQ(space.statistics().touching_vertices, clearance ? 0u : 1u);
+  }
+  EXPECT_GE(cases, 20u);
+  EXPECT_GE(touching_seen, 15u);
 }
 
 }  // namespace

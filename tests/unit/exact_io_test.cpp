@@ -7,8 +7,13 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <vector>
+#include <random>
 
 namespace {
 
@@ -73,6 +78,64 @@ TEST(AtomicFile, FailureLeavesNoFileAndKeepsTheOldOne) {
   EXPECT_EQ(hipair::io::read_file(dir / "a.txt"), "second");
   EXPECT_THROW(hipair::io::write_file_atomically(dir / "missing" / "b.txt", "x"), hipair::IoError);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+  fs::remove_all(dir);
+}
+
+// Session 29 (hunt29): an output path that is a symbolic link, or a chain of them (relative and
+// absolute, across directories), is written through: the links stay links and the final target
+// gets the content; a path that is (or leads to) a FIFO is refused with IoError and stays a FIFO
+// (before, the rename replaced the link, the FIFO, or as root a device such as /dev/full, with a
+// regular file); a symlink loop is refused. Nothing else in the directories changes. Generated
+// chains with a fixed seed.
+TEST(AtomicFile, LinksAreWrittenThroughAndSpecialFilesRefused) {
+  namespace fs = std::filesystem;
+  fs::path dir = fs::temp_directory_path() / "hipair_atomic_links_test";
+  fs::remove_all(dir);
+  std::mt19937 random(29);
+  auto listing = [&] {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::recursive_directory_iterator(dir)) names.push_back(entry.path().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  for (int instance = 0; instance < 60; ++instance) {
+    SCOPED_TRACE("instance " + std::to_string(instance));
+    fs::create_directories(dir / "a" / "b");
+    const fs::path dirs[] = {dir, dir / "a", dir / "a" / "b"};
+    const bool fifo = instance % 3 == 2;
+    fs::path end = dirs[random() % 3] / (fifo ? "end.fifo" : "end.txt");
+    if (fifo)
+      ASSERT_EQ(::mkfifo(end.c_str(), 0644), 0);
+    else
+      hipair::io::write_file_atomically(end, "old");
+    // a chain of 0 to 4 links ending at `end`, each in a random directory, relative or absolute
+    fs::path head = end;
+    const int hops = static_cast<int>(random() % 5);
+    for (int h = 0; h < hops; ++h) {
+      fs::path link = dirs[random() % 3] / ("link" + std::to_string(h));
+      fs::path to = random() % 2 ? head : fs::relative(head, link.parent_path());
+      fs::create_symlink(to, link);
+      head = link;
+    }
+    std::vector<std::string> before = listing();
+    const std::string content = "content " + std::to_string(instance);
+    if (fifo) {
+      EXPECT_THROW(hipair::io::write_file_atomically(head, content), hipair::IoError);
+      EXPECT_TRUE(fs::is_fifo(fs::symlink_status(end)));
+    } else {
+      hipair::io::write_file_atomically(head, content);
+      EXPECT_EQ(hipair::io::read_file(end), content);
+      EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(end)));
+    }
+    if (hops > 0) EXPECT_TRUE(fs::is_symlink(fs::symlink_status(head)));
+    EXPECT_EQ(listing(), before);   // no temporary left, no link replaced
+    fs::remove_all(dir);
+  }
+  fs::create_directories(dir);
+  fs::create_symlink("loop-b", dir / "loop-a");
+  fs::create_symlink("loop-a", dir / "loop-b");
+  EXPECT_THROW(hipair::io::write_file_atomically(dir / "loop-a", "x"), hipair::IoError);
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir / "loop-a")));
   fs::remove_all(dir);
 }
 

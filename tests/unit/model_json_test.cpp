@@ -1,12 +1,21 @@
 // The reader's JSON layer: numbers keep their text, duplicate keys are errors, pointers are
 // RFC 6901, malformed input names its line and column; and the content hash is SHA-256.
 #include "core/sha256.hpp"
+#include "io/atomic_file.hpp"
 #include "model/json_document.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/rational.hpp>
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iterator>
+#include <random>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -74,6 +83,37 @@ TEST(JsonDocument, MalformedInputNamesLineAndColumn) {
   EXPECT_EQ(error_of("{\"a\": \"\xff\"}").find('\xff'), std::string::npos) << "raw bytes in the message";
   std::string deep(200, '[');
   EXPECT_NE(error_of(deep).find("nested too deeply"), std::string::npos);
+}
+
+// Session 29 (hunt29): the parser's lexer took a NUL byte for the end of the input, so a whole
+// document followed by a NUL and anything at all (a model, or a certificate for hipair-verify)
+// was accepted. Every example model and every certificate of the corpus, with a NUL inserted at
+// a random offset or appended before random bytes, is malformed JSON naming the offset.
+TEST(JsonDocument, ANulByteAnywhereIsMalformed) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> files;
+  for (const fs::path& dir : {fs::path(HIPAIR_EXAMPLES), fs::path(HIPAIR_TEST_DATA) / "certificates"})
+    for (const auto& entry : fs::directory_iterator(dir))
+      if (entry.path().extension() == ".json") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  ASSERT_GE(files.size(), 60u);
+  std::mt19937_64 random(29);
+  const std::string tails[] = {"", "x", "{}", "\n{\"hipair\": 1}", "]]]", std::string(1, '\0')};
+  std::size_t cases = 0;
+  for (const fs::path& file : files) {
+    SCOPED_TRACE(file.string());
+    std::string text = hipair::io::read_file(file);
+    ASSERT_NO_THROW(parse_json(text));
+    for (int k = 0; k < 4; ++k) {
+      std::string changed = text;
+      std::size_t at = k < 2 ? text.size() : static_cast<std::size_t>(random() % (text.size() + 1));
+      changed.insert(at, 1, '\0');
+      if (k == 1) changed += tails[random() % std::size(tails)];
+      EXPECT_NE(error_of(changed).find("NUL byte at offset " + std::to_string(at)), std::string::npos);
+      ++cases;
+    }
+  }
+  EXPECT_GE(cases, 240u);
 }
 
 TEST(Sha256, KnownVectors) {

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+#include <string>
+
 #include <sys/resource.h>
 
 #include <cstdlib>
@@ -43,6 +46,35 @@ TEST(Rational, TextForms) {
   EXPECT_EQ(hipair::to_decimal_string(Rational(1, 3), 5), "0.33333");
   EXPECT_EQ(hipair::to_decimal_string(Rational(1234), 12), "1234");
   EXPECT_EQ(hipair::to_decimal_string(Rational(0), 12), "0");
+}
+
+// Session 29 (hunt29): values from 10^-400 to 10^400 are written with an exponent beyond
+// [1e-21, 1e30) (statements and messages held 300 zeros for a 1e-300 mm offset), fixed inside it;
+// either way the text reads back (parse_rational) within the digits asked for. Generated values.
+TEST(Rational, DecimalTextsAtEveryScaleAreShortAndReadBack) {
+  std::mt19937_64 random(29);
+  for (int instance = 0; instance < 2000; ++instance) {
+    const int digits = 5 + static_cast<int>(random() % 16);
+    const long e = static_cast<long>(random() % 801) - 400;
+    mpz_class p = mpz_class(static_cast<unsigned long>(random() % 999999999 + 1));
+    mpz_class ten;
+    mpz_ui_pow_ui(ten.get_mpz_t(), 10, static_cast<unsigned long>(e < 0 ? -e : e));
+    Rational value = e < 0 ? Rational(p, ten * 1000) : Rational(p * ten, 1000);
+    value.canonicalize();
+    if (random() % 2) value = -value;
+    const std::string text = hipair::to_decimal_string(value, digits);
+    SCOPED_TRACE(value.get_str() + " at " + std::to_string(digits) + " digits: " + text);
+    EXPECT_LE(text.size(), static_cast<std::size_t>(digits) + 34);
+    const Rational magnitude = abs(value);
+    const bool fixed = magnitude >= Rational(1, mpz_class("1" + std::string(21, '0'))) &&
+                       magnitude < Rational(mpz_class("1" + std::string(30, '0')));
+    EXPECT_EQ(text.find('e') == std::string::npos, fixed);
+    Rational back = parse_rational(text);
+    Rational error = abs(Rational(back - value)) / magnitude;
+    mpz_class bound;
+    mpz_ui_pow_ui(bound.get_mpz_t(), 10, static_cast<unsigned long>(digits - 1));
+    EXPECT_LE(error, Rational(1, bound));
+  }
 }
 
 TEST(Rational, ToDoubleRoundsToNearestEven) {
