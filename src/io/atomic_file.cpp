@@ -2,6 +2,9 @@
 
 #include <hipair/error.hpp>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -10,6 +13,39 @@
 #include <string>
 
 namespace hipair::io {
+
+namespace {
+
+// Writes `content` to an existing non-regular node (device, FIFO): opened without blocking (a FIFO
+// without a reader fails with ENXIO instead of hanging), then written whole, every failure (e.g.
+// ENOSPC from /dev/full) an IoError naming the path.
+void write_to_node(const std::filesystem::path& path, const std::string& content) {
+  int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0) {
+    int error = errno;
+    throw IoError("cannot write '" + path.string() + "': " +
+                  (error == ENXIO ? std::string("it is a FIFO or socket with no reader") : std::strerror(error)) +
+                  ": nothing was written");
+  }
+  int flags = ::fcntl(fd, F_GETFL);
+  if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+  std::size_t done = 0;
+  while (done < content.size()) {
+    ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      int error = n < 0 ? errno : EIO;
+      ::close(fd);
+      throw IoError("cannot write '" + path.string() + "': " + std::strerror(error) +
+                    (done == 0 ? ": nothing was written" : ": written only in part"));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::close(fd) != 0 && errno != EINTR)
+    throw IoError("cannot write '" + path.string() + "': " + std::strerror(errno));
+}
+
+}  // namespace
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
   write_file_atomically(path, [content](std::ostream& out) {
@@ -20,9 +56,19 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  // A symbolic link is written through (its final target is replaced, the link stays); a target
-  // that exists and is no regular file (a device such as /dev/full, a FIFO, a socket) is refused
-  // before anything is written: the rename below would replace the node itself.
+  // A path that leads (through links, /proc's included) to an existing node that is no regular
+  // file and no directory (a device such as /dev/null or /dev/full, a FIFO, /dev/stdout) cannot
+  // be replaced by a rename without destroying the node: the content is produced whole first (a
+  // failing producer writes nothing) and then written to the node itself. A FIFO without a
+  // reader is refused rather than waited for.
+  fs::file_status followed = fs::status(path, ec);
+  if (!ec && fs::exists(followed) && !fs::is_regular_file(followed) && !fs::is_directory(followed)) {
+    std::ostringstream buffer;
+    write(buffer);
+    write_to_node(path, buffer.str());
+    return;
+  }
+  // A symbolic link is written through (its final target is replaced, the link stays).
   fs::path target = path;
   for (int hops = 0; fs::is_symlink(fs::symlink_status(target, ec)); ++hops) {
     if (hops == 40) throw IoError("cannot write '" + path.string() + "': too many levels of symbolic links");
@@ -30,11 +76,6 @@ void write_file_atomically(const std::filesystem::path& path, const std::functio
     if (ec) throw IoError("cannot write '" + path.string() + "': " + ec.message());
     target = link.is_absolute() ? link : target.parent_path() / link;
   }
-  fs::file_status status = fs::status(target, ec);
-  if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_directory(status))
-    throw IoError("cannot write '" + path.string() + "': " +
-                  (target == path ? std::string("it") : "its target '" + target.string() + "'") +
-                  " is not a regular file (a device, FIFO or socket): nothing was written");
   fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (!fs::is_directory(directory, ec))
     throw IoError("cannot write '" + path.string() + "': directory '" + directory.string() +

@@ -14,6 +14,11 @@
 #include <filesystem>
 #include <vector>
 #include <random>
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
 
 namespace {
 
@@ -83,9 +88,9 @@ TEST(AtomicFile, FailureLeavesNoFileAndKeepsTheOldOne) {
 
 // Session 29 (hunt29): an output path that is a symbolic link, or a chain of them (relative and
 // absolute, across directories), is written through: the links stay links and the final target
-// gets the content; a path that is (or leads to) a FIFO is refused with IoError and stays a FIFO
-// (before, the rename replaced the link, the FIFO, or as root a device such as /dev/full, with a
-// regular file); a symlink loop is refused. Nothing else in the directories changes. Generated
+// gets the content; a path that is (or leads to) a FIFO without a reader is refused with IoError
+// and stays a FIFO (before, the rename replaced the link, the FIFO, or as root a device such as
+// /dev/full, with a regular file); a symlink loop is refused. Nothing else in the directories changes. Generated
 // chains with a fixed seed.
 TEST(AtomicFile, LinksAreWrittenThroughAndSpecialFilesRefused) {
   namespace fs = std::filesystem;
@@ -136,6 +141,71 @@ TEST(AtomicFile, LinksAreWrittenThroughAndSpecialFilesRefused) {
   fs::create_symlink("loop-a", dir / "loop-b");
   EXPECT_THROW(hipair::io::write_file_atomically(dir / "loop-a", "x"), hipair::IoError);
   EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir / "loop-a")));
+  fs::remove_all(dir);
+}
+
+// Session 29 (integrator): an existing node that is no regular file is written to, not replaced:
+// /dev/null takes the content, /dev/full fails with IoError (no space) and stays a device, a FIFO
+// with a reader receives the content whole (the same for 0 to 3 links in front of it), and a
+// producer that throws writes nothing to the node.
+TEST(AtomicFile, DevicesAndFifosWithAReaderAreWrittenToNotReplaced) {
+  namespace fs = std::filesystem;
+  if (fs::is_character_file(fs::status("/dev/null"))) {
+    EXPECT_NO_THROW(hipair::io::write_file_atomically("/dev/null", "discarded"));
+    EXPECT_TRUE(fs::is_character_file(fs::symlink_status("/dev/null")));
+  }
+  if (fs::is_character_file(fs::status("/dev/full"))) {
+    EXPECT_THROW(hipair::io::write_file_atomically("/dev/full", std::string(1 << 16, 'x')), hipair::IoError);
+    EXPECT_TRUE(fs::is_character_file(fs::symlink_status("/dev/full")));
+  }
+  fs::path dir = fs::temp_directory_path() / "hipair_atomic_fifo_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::mt19937 random(2929);
+  for (int instance = 0; instance < 12; ++instance) {
+    SCOPED_TRACE("instance " + std::to_string(instance));
+    fs::path fifo = dir / ("f" + std::to_string(instance));
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+    fs::path head = fifo;
+    for (int h = 0, hops = static_cast<int>(random() % 4); h < hops; ++h) {
+      fs::path link = dir / ("l" + std::to_string(instance) + "_" + std::to_string(h));
+      fs::create_symlink(head.filename(), link);
+      head = link;
+    }
+    // content up to 256 KB: beyond a pipe's buffer, so the writer must wait for the reader
+    std::string content(static_cast<std::size_t>(random() % (1 << 18)) + 1, 'a');
+    for (char& c : content) c = static_cast<char>('a' + random() % 26);
+    std::string received;
+    std::thread reader([&] {
+      std::ifstream in(fifo, std::ios::binary);   // blocks until the writer opens
+      std::ostringstream all;
+      all << in.rdbuf();
+      received = all.str();
+    });
+    // the writer's non-blocking open fails while the reader has not opened yet: retry briefly
+    bool written = false;
+    for (int attempt = 0; attempt < 2000 && !written; ++attempt) {
+      try {
+        hipair::io::write_file_atomically(head, content);
+        written = true;
+      } catch (const hipair::IoError&) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
+    }
+    if (!written) {   // unblock the reader before failing
+      std::ofstream unblock(fifo);
+    }
+    reader.join();
+    ASSERT_TRUE(written);
+    EXPECT_EQ(received, content);
+    EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
+  }
+  // a producer that throws leaves the node untouched (nothing opened: no reader needed)
+  fs::path fifo = dir / "thrown";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  EXPECT_THROW(hipair::io::write_file_atomically(fifo, [](std::ostream&) { throw hipair::IoError("producer"); }),
+               hipair::IoError);
+  EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
   fs::remove_all(dir);
 }
 
