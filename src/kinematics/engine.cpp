@@ -276,10 +276,6 @@ bool non_blocked(const AxisSlice& slice, std::size_t interval) { return slice.ki
 
 enum class Outcome { moved, jammed, widen, coarse };
 
-// The farthest a contact point may have moved from the follower's old position to be taken for
-// the same contact (update_part's only reads of a slice that are not bounded by the free range
-// and the interval it ends in).
-constexpr double same_contact_reach = pi / 8;
 
 // Moves part k of `next` given its old state and its free space `slice`. `widen`: the decision
 // needs the slice beyond its window.
@@ -343,7 +339,7 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
         best_offset = offset;
       }
     }
-    if (nearest != none && best <= same_contact_reach) {
+    if (nearest != none && best <= pi / 8) {
       if (best > max_push) return Outcome::coarse;
       return settle(nearest, best_offset);
     }
@@ -374,7 +370,7 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
         followed_offset = offset;
       }
     }
-    if (followed != none && best > same_contact_reach) followed = none;   // too far to be the same contact
+    if (followed != none && best > pi / 8) followed = none;   // too far to be the same contact
   }
   if (followed != none) {
     // the contact point moved to `offset` from y: it pushes when it moved into the free side
@@ -562,23 +558,15 @@ Outcome update_windowed(const Chain& chain, std::size_t k, const PartState& old,
   double full = line.rotation ? 4.0 : Rational(line.pieces.front().hi - line.pieces.front().lo).get_d();
   double width = initial ? full : line.rotation ? 0.06 : 0.1 * full;
   // The windows asked are width, 4 width, 16 width, ... until a decision does not need the
-  // slice beyond the window (the same decision at every wider window). A decision needs both
-  // ends of the free range it ends in (and the followed contact), which lie near the old free
-  // range's ends. So the window that holds the old free range is sliced first, and the narrower
-  // ones asked before it are read off that slice (ChartSliceMemo): the same windows asked in the
-  // same order, on the same slices, without slicing each.
-  //
-  // That window need not be one of the widths asked: a window wider than same_contact_reach
-  // (plus a margin for the window's rounding, far below it) whose decision does not widen gives
-  // the decision of every wider window. update_part reads a slice only at the followed or
-  // channel contact (the nearest point with a shared contact, taken only within
-  // same_contact_reach: beyond this window none is taken, inside it the wider window has the
-  // same points), at the ends of the interval its decision ends in and of the intervals it
-  // crosses (each a window edge, hence a widening, unless a point inside the window), and at the
-  // classes next to them (the true classes in any window). So when the widths asked below it
-  // widen, it gives the decision of the first width asked above it, without slicing that.
+  // slice beyond the window. A decision needs both ends of the free range it ends in (and the
+  // followed contact), which lie near the old free range's ends. So the first of those windows
+  // that holds the old free range is sliced first, and the narrower ones asked before it are
+  // read off that slice (ChartSliceMemo): the same windows asked in the same order, each the
+  // slice its slicer would give (restrict_chart_slice), the same decisions, without slicing
+  // each. (A window between two widths, just holding the old free range, was tried: on the
+  // ratchet it cost as much as the wider width, and its undecided points would not be the
+  // wider width's.)
   ChartSliceMemo memo;
-  double between = 0;   // the half-width of such a window, or 0
   if (!initial && window_reading_switch()) {
     double needed = 0;
     for (const Bound* bound : {&old.lower, &old.upper}) {
@@ -591,32 +579,14 @@ Outcome update_windowed(const Chain& chain, std::size_t k, const PartState& old,
     }
     double ahead = width;
     while (ahead < full && ahead < needed) ahead *= 4;
-    const double reach = same_contact_reach + 1e-6;
-    const double holding = std::max(needed * 1.05, reach);
-    if (ahead > width && holding < std::min(ahead, full)) between = holding;
     if (ahead > width) {
-      double read = between > 0 ? between : ahead;
-      AxisWindow window{old.position, read};
+      AxisWindow window{old.position, ahead};
       memo.reading_ahead = true;
-      constraint_slice(chain, next, k, read < full ? &window : nullptr, &memo);
+      constraint_slice(chain, next, k, ahead < full ? &window : nullptr, &memo);
       memo.reading_ahead = false;
     }
   }
   for (;;) {
-    if (between > 0 && width > between) {
-      // the window between the width asked below (which widened) and this one
-      AxisWindow window{old.position, between};
-      between = 0;
-      const PartState before = next.parts[k];
-      AxisSlice slice = constraint_slice(chain, next, k, &window, &memo);
-      Outcome outcome = update_part(chain, k, old, slice, next, initial, max_push);
-      if (outcome != Outcome::widen) {
-        memo.apply(chain.slicers);
-        return outcome;
-      }
-      next.parts[k] = before;   // as the width asked below left it
-      next.jammed = false;
-    }
     AxisWindow window{old.position, width};
     bool windowed = width < full;
     AxisSlice slice = constraint_slice(chain, next, k, windowed ? &window : nullptr, &memo);
