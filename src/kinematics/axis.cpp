@@ -390,9 +390,13 @@ ChartSlice memo_slice(ChartSliceMemo& memo, const PairSlicer& slicer, std::size_
     return std::move(*read);
   }
   ChartSlice taken = slicer.slice(other_chart, value, follower_chart, window);
-  // the slicer counted its undecided points; a slice read ahead counts them when read
-  if (memo.reading_ahead) add_undecided(memo, slicer_index, -undecided_points(taken));
-  memo.entries.push_back(ChartSliceMemo::Entry{slicer_index, other_chart, follower_chart, value, taken});
+  // A slice read ahead is kept, and its undecided points (which the slicer counted) count when
+  // a window asked reads them. A window asked and not read off (wider than the slice read
+  // ahead) is asked once and is the widest yet: nothing narrower is read off it.
+  if (memo.reading_ahead) {
+    add_undecided(memo, slicer_index, -undecided_points(taken));
+    memo.entries.push_back(ChartSliceMemo::Entry{slicer_index, other_chart, follower_chart, value, taken});
+  }
   return taken;
 }
 

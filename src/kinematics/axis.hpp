@@ -146,8 +146,8 @@ inline std::size_t& window_reads() { return thread_counter<WindowReadingTag>(); 
 /// One pair's contribution: the follower chart slices of `slicer` (index `slicer_index`) with
 /// the other part at (other_chart, value), placed on the follower's axis. With a window, only
 /// the window is sliced: the rest is marked blocked, bounded by contacts flagged `window`.
-/// With `memo`, a chart slice is read off an entry when one covers its range, and every chart
-/// slice taken is added to the memo.
+/// With `memo`, a chart slice is read off an entry when one covers its range; a chart slice
+/// taken while the memo is reading ahead is added to it.
 AxisSlice slice_on_axis(const AxisLine& line, const PairSlicer& slicer, std::size_t slicer_index,
                         std::size_t other_chart, const Rational& value, const AxisWindow* window = nullptr,
                         ChartSliceMemo* memo = nullptr);
