@@ -324,8 +324,87 @@ std::optional<ChartWindow> window_on_piece(const AxisLine& line, std::size_t p, 
 
 }  // namespace
 
+std::optional<ChartSlice> restrict_chart_slice(const ChartSlice& wide, const ChartAxis& chart,
+                                               const ChartWindow* window) {
+  // the range as the slicers compute it
+  Rational lo = window ? std::max(window->lo, chart.lo) : chart.lo;
+  Rational hi = window ? std::min(window->hi, chart.hi) : chart.hi;
+  if (!(lo < hi) || lo < wide.covered_lo || hi > wide.covered_hi) return std::nullopt;
+  // the first point at or above `bound`; nullopt when one equals it
+  auto first_not_below = [&](const Rational& bound) -> std::optional<std::size_t> {
+    std::size_t a = 0, b = wide.points.size();
+    while (a < b) {
+      std::size_t middle = (a + b) / 2;
+      int side = algebra::compare_filtered(wide.points[middle].value, bound);
+      if (side == 0) return std::nullopt;
+      if (side < 0) a = middle + 1;
+      else b = middle;
+    }
+    return a;
+  };
+  std::optional<std::size_t> first = first_not_below(lo), end = first_not_below(hi);
+  if (!first || !end) return std::nullopt;
+  // (lo, points[first]) lies in wide's interval before points[first], (points[end - 1], hi) in
+  // the one after points[end - 1]: non-empty intervals of wide (lo and hi are strictly between
+  // its points), whose classes hold anywhere inside them
+  ChartSlice out;
+  out.covered_lo = std::move(lo);
+  out.covered_hi = std::move(hi);
+  out.kinds.push_back(wide.kinds[*first]);
+  for (std::size_t i = *first; i < *end; ++i) {
+    out.points.push_back(wide.points[i]);
+    out.kinds.push_back(wide.kinds[i + 1]);
+  }
+  return out;
+}
+
+namespace {
+
+long undecided_points(const ChartSlice& slice) {
+  return static_cast<long>(std::count_if(slice.points.begin(), slice.points.end(),
+                                         [](const SlicePoint& point) { return point.undecided; }));
+}
+
+void add_undecided(ChartSliceMemo& memo, std::size_t slicer_index, long delta) {
+  for (auto& [index, count] : memo.undecided)
+    if (index == slicer_index) {
+      count += delta;
+      return;
+    }
+  memo.undecided.emplace_back(slicer_index, delta);
+}
+
+// A chart slice read off an entry of the memo covering its range, else taken (and added).
+ChartSlice memo_slice(ChartSliceMemo& memo, const PairSlicer& slicer, std::size_t slicer_index, std::size_t other_chart,
+                      const Rational& value, std::size_t follower_chart, const ChartWindow* window) {
+  const ChartAxis& chart = slicer.follower_charts()[follower_chart];
+  for (const ChartSliceMemo::Entry& entry : memo.entries) {
+    if (entry.slicer != slicer_index || entry.other_chart != other_chart || entry.follower_chart != follower_chart ||
+        entry.value != value)
+      continue;
+    std::optional<ChartSlice> read = restrict_chart_slice(entry.slice, chart, window);
+    if (!read) continue;
+    ++memo.restricted;
+    ++window_reads();
+    if (!memo.reading_ahead) add_undecided(memo, slicer_index, undecided_points(*read));
+    return std::move(*read);
+  }
+  ChartSlice taken = slicer.slice(other_chart, value, follower_chart, window);
+  // A slice read ahead is kept, and its undecided points (which the slicer counted) count when
+  // a window asked reads them. A window asked and not read off (wider than the slice read
+  // ahead) is asked once and is the widest yet: nothing narrower is read off it.
+  if (memo.reading_ahead) {
+    add_undecided(memo, slicer_index, -undecided_points(taken));
+    memo.entries.push_back(ChartSliceMemo::Entry{slicer_index, other_chart, follower_chart, value, taken});
+  }
+  return taken;
+}
+
+}  // namespace
+
 AxisSlice slice_on_axis(const AxisLine& line, const PairSlicer& slicer, std::size_t slicer_index,
-                        std::size_t other_chart, const Rational& value, const AxisWindow* window) {
+                        std::size_t other_chart, const Rational& value, const AxisWindow* window,
+                        ChartSliceMemo* memo) {
   std::vector<Item> items;
   auto emit = [&](std::size_t piece, Real at, std::vector<SliceContact> contacts, SliceKind after, bool channel = false) {
     items.push_back(Item{canonical(line, AxisPosition{piece, std::move(at)}), std::move(contacts), after, channel});
@@ -361,7 +440,9 @@ AxisSlice slice_on_axis(const AxisLine& line, const PairSlicer& slicer, std::siz
       continue;
     }
     const ChartAxis& chart = slicer.follower_charts()[*chart_index];
-    ChartSlice chart_slice = slicer.slice(other_chart, value, *chart_index, part ? &*part : nullptr);
+    ChartSlice chart_slice = memo ? memo_slice(*memo, slicer, slicer_index, other_chart, value, *chart_index,
+                                               part ? &*part : nullptr)
+                                  : slicer.slice(other_chart, value, *chart_index, part ? &*part : nullptr);
     const Rational& covered_lo = chart_slice.covered_lo;
     const Rational& covered_hi = chart_slice.covered_hi;
     bool cut_lo = part && covered_lo > chart.lo, cut_hi = part && covered_hi < chart.hi;

@@ -99,11 +99,58 @@ struct AxisWindow {
   double half_width = 0;
 };
 
+/// The slice a slicer returns for follower chart `chart` with `window` (nullptr: the whole
+/// chart), read off `wide`: a slice of the same slicer, chart and other-part value whose covered
+/// range holds the window's range. Its points inside that range, and the classes of the
+/// intervals around them (a class is the same anywhere between two consecutive points of a
+/// slice). nullopt when `wide` does not cover the range, when the range is a single value, or
+/// when a point of `wide` lies on an end of the range (the slicer gives an empty interval there).
+std::optional<ChartSlice> restrict_chart_slice(const ChartSlice& wide, const ChartAxis& chart,
+                                               const ChartWindow* window);
+
+/// The chart slices slice_on_axis took for one follower at one chain state, kept so that a
+/// narrower window at the same other-part values is read off them (restrict_chart_slice)
+/// instead of being sliced again: the engine slices first the window its part's old free range
+/// needs, then asks the narrower windows it asks anyway, in the same order, on the same slices.
+/// A kernel slicer's count of undecided zero-clearance points (SliceClassCounts) is kept as if
+/// every window asked had been sliced: apply() settles it.
+struct ChartSliceMemo {
+  struct Entry {
+    std::size_t slicer = 0, other_chart = 0, follower_chart = 0;
+    Rational value;
+    ChartSlice slice;
+  };
+  std::vector<Entry> entries;
+  /// Slices taken only to be read off (the wider window's): their undecided points are not
+  /// counted until a window asked reads them.
+  bool reading_ahead = false;
+  std::vector<std::pair<std::size_t, long>> undecided;   ///< (slicer index, count to add)
+  std::size_t restricted = 0;                             ///< chart slices read off an entry (tests)
+  /// Adds the undecided counts to the slicers (`slicers[slicer index]`).
+  template <class Slicers>
+  void apply(const Slicers& slicers) {
+    for (const auto& [index, delta] : undecided)
+      if (delta != 0) add_touching_undecided(*slicers[index], delta);
+    undecided.clear();
+  }
+};
+
+/// Per-thread switch of the engine's reading ahead (the window a part's old free range needs
+/// sliced first, the narrower windows asked before it read off that slice: ChartSliceMemo); on
+/// by default, tests turn it off to compare whole analyses with and without it.
+struct WindowReadingTag;
+inline bool& window_reading_switch() { return thread_switch<WindowReadingTag>(); }
+/// Chart slices read off a wider one (ChartSliceMemo) on this thread: tests.
+inline std::size_t& window_reads() { return thread_counter<WindowReadingTag>(); }
+
 /// One pair's contribution: the follower chart slices of `slicer` (index `slicer_index`) with
 /// the other part at (other_chart, value), placed on the follower's axis. With a window, only
 /// the window is sliced: the rest is marked blocked, bounded by contacts flagged `window`.
+/// With `memo`, a chart slice is read off an entry when one covers its range; a chart slice
+/// taken while the memo is reading ahead is added to it.
 AxisSlice slice_on_axis(const AxisLine& line, const PairSlicer& slicer, std::size_t slicer_index,
-                        std::size_t other_chart, const Rational& value, const AxisWindow* window = nullptr);
+                        std::size_t other_chart, const Rational& value, const AxisWindow* window = nullptr,
+                        ChartSliceMemo* memo = nullptr);
 /// True when one of the contacts is a window edge.
 bool has_window_edge(const std::vector<SliceContact>& contacts);
 /// Intersection of free space: blocked where any is blocked, free where all are free.

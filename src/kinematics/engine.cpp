@@ -239,7 +239,7 @@ Chain build_chain(const Model& model, std::size_t driver, const std::vector<CSpa
 namespace {
 
 AxisSlice constraint_slice(const Chain& chain, const ChainState& state, std::size_t k,
-                           const AxisWindow* window = nullptr) {
+                           const AxisWindow* window = nullptr, ChartSliceMemo* memo = nullptr) {
   const AxisLine& line = chain.parts[k].line;
   AxisSlice result;
   bool first = true;
@@ -255,7 +255,9 @@ AxisSlice constraint_slice(const Chain& chain, const ChainState& state, std::siz
       const ChartAxis& chart = slicer.other_charts()[other_chart];
       if (value < chart.lo || value > chart.hi) continue;   // beyond any contact of this pair
     }
-    AxisSlice slice = slice_on_axis(line, slicer, s, other_chart, value, slicer.other_moves() ? window : nullptr);
+    // a pair with a fixed part is sliced whole (and kept by its slicer): no memo
+    AxisSlice slice = slicer.other_moves() ? slice_on_axis(line, slicer, s, other_chart, value, window, memo)
+                                           : slice_on_axis(line, slicer, s, other_chart, value);
     result = first ? std::move(slice) : intersect(line, result, slice);
     first = false;
   }
@@ -273,6 +275,7 @@ void jam(ChainState& state, std::size_t part, std::string reason, std::vector<Sl
 bool non_blocked(const AxisSlice& slice, std::size_t interval) { return slice.kind(interval) != SliceKind::blocked; }
 
 enum class Outcome { moved, jammed, widen, coarse };
+
 
 // Moves part k of `next` given its old state and its free space `slice`. `widen`: the decision
 // needs the slice beyond its window.
@@ -554,12 +557,44 @@ Outcome update_windowed(const Chain& chain, std::size_t k, const PartState& old,
   const AxisLine& line = chain.parts[k].line;
   double full = line.rotation ? 4.0 : Rational(line.pieces.front().hi - line.pieces.front().lo).get_d();
   double width = initial ? full : line.rotation ? 0.06 : 0.1 * full;
+  // The windows asked are width, 4 width, 16 width, ... until a decision does not need the
+  // slice beyond the window. A decision needs both ends of the free range it ends in (and the
+  // followed contact), which lie near the old free range's ends. So the first of those windows
+  // that holds the old free range is sliced first, and the narrower ones asked before it are
+  // read off that slice (ChartSliceMemo): the same windows asked in the same order, each the
+  // slice its slicer would give (restrict_chart_slice), the same decisions, without slicing
+  // each. (A window between two widths, just holding the old free range, was tried: on the
+  // ratchet it cost as much as the wider width, and its undecided points would not be the
+  // wider width's.)
+  ChartSliceMemo memo;
+  if (!initial && window_reading_switch()) {
+    double needed = 0;
+    for (const Bound* bound : {&old.lower, &old.upper}) {
+      if (!bound->exists) {
+        needed = full;   // an end beyond every window but the whole axis
+        break;
+      }
+      needed = std::max(needed, bound == &old.lower ? distance_down(line, old.position, bound->at)
+                                                    : distance_up(line, old.position, bound->at));
+    }
+    double ahead = width;
+    while (ahead < full && ahead < needed) ahead *= 4;
+    if (ahead > width) {
+      AxisWindow window{old.position, ahead};
+      memo.reading_ahead = true;
+      constraint_slice(chain, next, k, ahead < full ? &window : nullptr, &memo);
+      memo.reading_ahead = false;
+    }
+  }
   for (;;) {
     AxisWindow window{old.position, width};
     bool windowed = width < full;
-    AxisSlice slice = constraint_slice(chain, next, k, windowed ? &window : nullptr);
+    AxisSlice slice = constraint_slice(chain, next, k, windowed ? &window : nullptr, &memo);
     Outcome outcome = update_part(chain, k, old, slice, next, initial, max_push);
-    if (outcome != Outcome::widen || !windowed) return outcome == Outcome::widen ? Outcome::jammed : outcome;
+    if (outcome != Outcome::widen || !windowed) {
+      memo.apply(chain.slicers);
+      return outcome == Outcome::widen ? Outcome::jammed : outcome;
+    }
     next.jammed = false;
     width *= 4;
   }

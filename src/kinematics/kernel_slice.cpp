@@ -603,6 +603,7 @@ class KernelSlicer final : public PairSlicer {
         continue;
       }
       ++touching_undecided_;
+      point.undecided = true;
     }
     if (!other_moves_ && !window) {
       std::lock_guard<std::mutex> lock(cache_mutex_);
@@ -619,6 +620,9 @@ class KernelSlicer final : public PairSlicer {
   SliceClassCounts class_counts() const {
     return SliceClassCounts{classified_.load(), transferred_.load(), monotone_roots_.load(), touching_undecided_.load()};
   }
+
+  // unsigned wrap-around: a negative delta subtracts
+  void add_touching_undecided(long delta) const { touching_undecided_ += static_cast<std::size_t>(delta); }
 
   const IntegerPolynomial2* polynomial(std::size_t other_chart, std::size_t follower_chart,
                                        std::size_t feature) const override {
@@ -974,6 +978,10 @@ std::size_t SelectionMemo::strip_hits() const {
 SliceClassCounts kernel_slice_class_counts(const PairSlicer& slicer) {
   const auto* kernel = dynamic_cast<const KernelSlicer*>(&slicer);
   return kernel ? kernel->class_counts() : SliceClassCounts{};
+}
+
+void add_touching_undecided(const PairSlicer& slicer, long delta) {
+  if (const auto* kernel = dynamic_cast<const KernelSlicer*>(&slicer)) kernel->add_touching_undecided(delta);
 }
 
 std::unique_ptr<PairSlicer> make_kernel_slicer(const Model& model, std::size_t pair, std::size_t follower,

@@ -55,6 +55,9 @@ struct SlicePoint {
   /// kernel slicer's undecided ones (SliceClassCounts::touching_undecided). A point blocked on
   /// both sides whose value is rational is held exact by the kernel slicer.
   bool touching = false;
+  /// Blocked on both sides and its touching not decided (the kernel slicer counted it in
+  /// SliceClassCounts::touching_undecided): a slice read off a wider one counts its own.
+  bool undecided = false;
 };
 
 /// The slice of one follower chart over [covered_lo, covered_hi] (the whole chart unless a
@@ -192,6 +195,11 @@ struct SliceClassCounts {
 };
 /// Zero counts for a slicer that is not a kernel slicer.
 SliceClassCounts kernel_slice_class_counts(const PairSlicer& slicer);
+/// Adds `delta` (of either sign) to a kernel slicer's SliceClassCounts::touching_undecided (no
+/// effect on another slicer): a slice read off a wider one instead of being taken counts its
+/// undecided points as the slicer would have, and a wider slice taken only to be read off does
+/// not count its own (kinematics_detail::ChartSliceMemo).
+void add_touching_undecided(const PairSlicer& slicer, long delta);
 
 /// Slicer on the pair's contact kernels and the exact overlap oracle.
 /// `pair` indexes model.pairs; `follower` is one of its parts (it must move). Features are

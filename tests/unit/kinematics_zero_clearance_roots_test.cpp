@@ -14,7 +14,7 @@
 //  - on generated spur-gear pairs (no zero-clearance fit, many contact curves through blocked
 //    space): no point is undecided (the one-contact sign test decides them), none is touching,
 //    and where such a point is rational the exact oracle says the parts overlap there.
-#include "kinematics/slice.hpp"
+#include "kinematics/axis.hpp"
 #include "algebra/rational_root.hpp"
 #include "test_paths.hpp"
 
@@ -23,8 +23,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -197,6 +199,48 @@ TEST(KernelSlicerZeroClearance, AnalysisWarnsOfUndecidedPointsOnlyWhereThereAreA
     else
       EXPECT_EQ(undecided, 0u);
   }
+}
+
+// The engine's reading ahead (session 29: narrower windows read off a wider slice instead of
+// being sliced) keeps the analysis' count of undecided points as if each window had been
+// sliced: a read slice flags exactly the undecided points the slicer counts when it slices that
+// window itself. At irrational channel points of the exact slot, wide slices (whole charts and
+// windows) and narrow windows around and between their points.
+TEST(KernelSlicerZeroClearance, SlicesReadOffWiderOnesFlagTheUndecidedPointsTheSlicerCounts) {
+  std::mt19937_64 random(2929);
+  std::size_t undecided = 0, reads = 0;
+  for (int instance = 0; instance < 3; ++instance) {
+    const Rational R = random_rational(random, 5, 40, 7), p = random_rational(random, 1, 2, 5);
+    Model model = read_model(crank_in_yoke(R, p));
+    std::unique_ptr<PairSlicer> slicer = make_kernel_slicer(model, 0, 0);
+    for (int k = 0; k < 6; ++k) {
+      Rational s = random_rational(random, 0, 1, 101) * R * Rational(9, 10);
+      s.canonicalize();
+      for (std::size_t f = 0; f < slicer->follower_charts().size(); ++f) {
+        const ChartAxis& chart = slicer->follower_charts()[f];
+        ChartSlice wide = slicer->slice(0, s, f);
+        for (int w = 0; w < 8; ++w) {
+          Rational a = chart.lo + (chart.hi - chart.lo) * random_rational(random, 0, 1, 1 + static_cast<long>(random() % 500));
+          Rational b = chart.lo + (chart.hi - chart.lo) * random_rational(random, 0, 1, 1 + static_cast<long>(random() % 500));
+          if (b < a) std::swap(a, b);
+          const ChartWindow window{a, b};
+          std::optional<ChartSlice> read = restrict_chart_slice(wide, chart, &window);
+          if (!read) continue;
+          ++reads;
+          const std::size_t before = kernel_slice_class_counts(*slicer).touching_undecided;
+          ChartSlice direct = slicer->slice(0, s, f, &window);
+          const std::size_t counted = kernel_slice_class_counts(*slicer).touching_undecided - before;
+          const auto flagged = static_cast<std::size_t>(std::count_if(
+              read->points.begin(), read->points.end(), [](const SlicePoint& point) { return point.undecided; }));
+          EXPECT_EQ(flagged, counted) << "s " << s.get_str() << " window " << a.get_str() << " .. " << b.get_str();
+          ASSERT_EQ(read->points.size(), direct.points.size());
+          undecided += counted;
+        }
+      }
+    }
+  }
+  EXPECT_GT(reads, 50u);
+  EXPECT_GT(undecided, 10u);
 }
 
 }  // namespace
