@@ -18,13 +18,18 @@
 // Mutations (each run and reverted, session 29): a failed search counted as outside (the rule
 // before session 29) fails A, D, E; the outside search without the equal-signs condition at the
 // band's ends fails A; the band's own grid skipped (straight to the outside search) fails B, F.
+#include "gear_train_models.hpp"
 #include "tolerance/root_search.hpp"
+#include "tolerance/stage.hpp"
+
+#include <hipair/tolerance.hpp>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace {
@@ -193,6 +198,56 @@ TEST(ToleranceMonteCarloRootSearch, NearestSignChangeHoldsTheNearestRoot) {
   }
   EXPECT_EQ(failures, 0u);
   EXPECT_GT(found_count, 3000u);
+}
+
+// The chain's counts end to end (chain.cpp monte_carlo), on the generated 2-gear train over a
+// range where its certified band is bounded, with three vectors placed by the test hook: the
+// nominal one (a value certified in the band at every held position); the follower's phase
+// moved 60 tolerances (a value certified outside the band: what the band's defect would look
+// like, here because the vector is outside the box the band is for); the follower's bearing
+// moved 10 mm away (the gears apart: no contact, no value anywhere, even by the wider search).
+// Mutation: the rule before session 29 (a failure at a bounded position counted as outside)
+// fails it (outside 2 x held, not certified 0).
+TEST(ToleranceMonteCarloRootSearch, ChainCountsCertifiedInsideOutsideAndNotCertified) {
+  const std::string text = hipair::test_gears::gear_train(2, 10, 12);
+  hipair::ToleranceOptions options;
+  options.driver = "gear-A";
+  options.chain = true;
+  options.range = std::make_pair(hipair::Rational(30, 100), hipair::Rational(34, 100));
+  options.positions = 360;
+  options.threads = 2;
+  hipair::ToleranceResult probe = hipair::tolerance_detail::analyze_chain(text, options);
+  options.monte_carlo = 3;
+  std::size_t phase = probe.parameters.size(), pivot = probe.parameters.size();
+  for (std::size_t i = 0; i < probe.parameters.size(); ++i) {
+    if (probe.parameters[i].name == "gear-B-phase") phase = i;
+    if (probe.parameters[i].name == "gear-B-pivot-x") pivot = i;
+  }
+  ASSERT_LT(phase, probe.parameters.size());
+  ASSERT_LT(pivot, probe.parameters.size());
+  hipair::tolerance_detail::ChainPaths paths;
+  paths.monte_carlo_vector = [&](std::size_t index) {
+    std::vector<double> v(probe.parameters.size(), 0.0);
+    if (index == 1) v[phase] = 0.06;
+    if (index == 2) v[pivot] = 10;
+    return v;
+  };
+  hipair::ToleranceResult r = hipair::tolerance_detail::analyze_chain(text, options, paths);
+  std::size_t held = 0;
+  for (const hipair::VariationSample& s : r.samples) {
+    if (!s.contact) continue;
+    ++held;
+    ASSERT_TRUE(std::isfinite(s.certified.upper - s.certified.lower)) << "the band is bounded at driver " << s.driver;
+  }
+  ASSERT_GE(held, 2u);
+  ASSERT_TRUE(r.monte_carlo);
+  EXPECT_EQ(r.monte_carlo->evaluations, 2 * held);
+  EXPECT_EQ(r.monte_carlo->outside_certified, held);
+  EXPECT_EQ(r.monte_carlo->not_certified, held);
+  bool noted = false;
+  for (const std::string& note : r.notes)
+    noted = noted || note.find("no value certified at " + std::to_string(held) + " output position(s)") != std::string::npos;
+  EXPECT_TRUE(noted) << "a note counts the positions not certified";
 }
 
 }  // namespace
