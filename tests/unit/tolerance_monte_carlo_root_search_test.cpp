@@ -161,7 +161,8 @@ TEST(ToleranceMonteCarloRootSearch, EachFailedBracketLandsInTheRightCount) {
 
 // The chain's retry (chain.cpp actual_root with `wider`): the certain sign change nearest to
 // the linearised guess. Generated functions: a root at distance d from the guess, 0-3 others at
-// least 3 d from it (rounding 1e-12 about each): the change found brackets an odd number of
+// least 3 d from it (rounding 1e-12 about each), the first window no wider than d (a wider one
+// sees the roots at its own grid's resolution only): the change found brackets an odd number of
 // roots, the nearest among them, and its upper sign is the function's sign at its upper end;
 // none is found only when the nearest root lies beyond the last window.
 TEST(ToleranceMonteCarloRootSearch, NearestSignChangeHoldsTheNearestRoot) {
@@ -172,8 +173,8 @@ TEST(ToleranceMonteCarloRootSearch, NearestSignChangeHoldsTheNearestRoot) {
     Function f;
     f.s0 = rng() % 2 ? 1 : -1;
     double at = dyadic(rng, -0.3, 0.3);
-    double start = std::ldexp(1.0, -static_cast<int>(10 + rng() % 25));
     double d = std::ldexp(1.0, -static_cast<int>(rng() % 30)) * (0.25 + 0.7 * u(rng)) + 2e-12;
+    double start = d * std::ldexp(0.5 + 0.5 * u(rng), -static_cast<int>(rng() % 20));   // the bracket's first width
     double nearest = at + (rng() % 2 ? d : -d);
     f.simple.push_back(nearest);
     f.simple_eps.push_back(1e-12);
@@ -220,8 +221,8 @@ TEST(ToleranceMonteCarloRootSearch, ChainCountsCertifiedInsideOutsideAndNotCerti
   options.monte_carlo = 3;
   std::size_t phase = probe.parameters.size(), pivot = probe.parameters.size();
   for (std::size_t i = 0; i < probe.parameters.size(); ++i) {
-    if (probe.parameters[i].name == "gear-B-phase") phase = i;
-    if (probe.parameters[i].name == "gear-B-pivot-x") pivot = i;
+    if (probe.parameters[i].name == "B-phase") phase = i;
+    if (probe.parameters[i].name == "B-pivot-x") pivot = i;
   }
   ASSERT_LT(phase, probe.parameters.size());
   ASSERT_LT(pivot, probe.parameters.size());
