@@ -15,9 +15,10 @@
 //  D. a tangency in the band (no sign change, nothing else near): not certified;
 //  E. no root at all (the contact lost): not certified;
 //  F. two roots inside the band: inside.
-// Mutations (each run and reverted, session 29): a failed search counted as outside (the rule
-// before session 29) fails A, D, E; the outside search without the equal-signs condition at the
-// band's ends fails A; the band's own grid skipped (straight to the outside search) fails B, F.
+// Mutations (each run and reverted, session 29): a search that finds nothing counted as outside
+// (the rule before session 29) fails D (379 of 1000) and E (1000); the outside search without
+// the equal-signs condition at the band's ends fails A (977); the band's own grid skipped
+// (straight to the outside search) fails B and F (1000 each, not certified).
 #include "gear_train_models.hpp"
 #include "tolerance/root_search.hpp"
 #include "tolerance/stage.hpp"
@@ -164,7 +165,8 @@ TEST(ToleranceMonteCarloRootSearch, EachFailedBracketLandsInTheRightCount) {
 // least 3 d from it (rounding 1e-12 about each), the first window no wider than d (a wider one
 // sees the roots at its own grid's resolution only): the change found brackets an odd number of
 // roots, the nearest among them, and its upper sign is the function's sign at its upper end;
-// none is found only when the nearest root lies beyond the last window.
+// none is found only when the nearest root lies beyond the last window. Mutation: the first
+// change on the grid taken instead of the nearest fails it.
 TEST(ToleranceMonteCarloRootSearch, NearestSignChangeHoldsTheNearestRoot) {
   std::mt19937_64 rng(2929);
   std::size_t failures = 0, found_count = 0;
@@ -208,7 +210,7 @@ TEST(ToleranceMonteCarloRootSearch, NearestSignChangeHoldsTheNearestRoot) {
 // like, here because the vector is outside the box the band is for); the follower's bearing
 // moved 10 mm away (the gears apart: no contact, no value anywhere, even by the wider search).
 // Mutation: the rule before session 29 (a failure at a bounded position counted as outside)
-// fails it (outside 2 x held, not certified 0).
+// fails it (4 held positions: evaluations 12 not 8, outside 8 not 4, not certified 0 not 4).
 TEST(ToleranceMonteCarloRootSearch, ChainCountsCertifiedInsideOutsideAndNotCertified) {
   const std::string text = hipair::test_gears::gear_train(2, 10, 12);
   hipair::ToleranceOptions options;
