@@ -710,8 +710,8 @@ class Analysis {
           auto refine = [&](Interval bracket, Interval& r) {
             return solver_->certified_point_root(state.curve, *pair_geometry, bracket, r);
           };
-          tolerance_detail::BandedRoot found =
-              tolerance_detail::search_band_root(sign, refine, c, 4 * w, 1.0);   // windows up to 1 chart unit, as the chain's brackets
+          // (windows up to 1 chart unit, as the chain's brackets)
+          tolerance_detail::BandedRoot found = tolerance_detail::search_band_root(sign, refine, c, 4 * w, 1.0);
           if (found.kind == tolerance_detail::BandedRootKind::not_certified) {
             ++outcome.not_certified;
             continue;
