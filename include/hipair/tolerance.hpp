@@ -175,7 +175,12 @@ struct MonteCarloSummary {
   std::size_t samples = 0;
   std::uint64_t seed = 0;
   std::size_t evaluations = 0;         ///< follower positions computed (certified each)
-  std::size_t outside_certified = 0;   ///< must be 0
+  /// Certified values outside the certified band: a defect of the band, must be 0.
+  std::size_t outside_certified = 0;
+  /// Positions where no value could be certified (no certain sign change of the follower's
+  /// contact function found, even by the wider search): the Monte Carlo's own failure, not a
+  /// value outside the band; not among `evaluations` (docs/tolerance.md "Monte Carlo").
+  std::size_t not_certified = 0;
   std::size_t outside_linear = 0;      ///< positions beyond the linearised band
   double linearisation_error = 0;      ///< largest excess beyond the linearised band (part units)
   double seconds = 0;

@@ -8,6 +8,7 @@
 #include "model/parametric/parametric.hpp"
 #include "tolerance/certificate.hpp"
 #include "tolerance/exact_order.hpp"
+#include "tolerance/root_search.hpp"
 #include "tolerance/sampling.hpp"
 #include "tolerance/solver.hpp"
 #include "tolerance/stage.hpp"
@@ -126,6 +127,7 @@ void merge_monte_carlo(const std::vector<MonteCarloOutcome>& outcomes, MonteCarl
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const MonteCarloOutcome& o = outcomes[i];
     summary.outside_certified += o.outside_certified;
+    summary.not_certified += o.not_certified;
     summary.outside_linear += o.outside_linear;
     summary.evaluations += o.evaluations;
     summary.linearisation_error = std::max(summary.linearisation_error, o.excess);
@@ -701,11 +703,22 @@ class Analysis {
         if (!std::isfinite(c.lo) || !std::isfinite(c.hi)) continue;
         double w = c.width() + 1e-12 * (1 + std::fabs(state.v));
         Interval root;
-        ++outcome.evaluations;
         if (!solver_->certified_point_root(state.curve, *pair_geometry, Interval(c.lo - w, c.hi + w), root)) {
-          ++outcome.outside_certified;   // no root near the band: counted as outside it
-          continue;
+          // The bracket failed (an end sign undecided or both alike): the wider search, then a
+          // value certified in the band, certified outside it (a defect), or not certified.
+          auto sign = [&](double v) { return solver_->point_sign(state.curve, *pair_geometry, v); };
+          auto refine = [&](Interval bracket, Interval& r) {
+            return solver_->certified_point_root(state.curve, *pair_geometry, bracket, r);
+          };
+          // (windows up to 1 chart unit, as the chain's brackets)
+          tolerance_detail::BandedRoot found = tolerance_detail::search_band_root(sign, refine, c, 4 * w, 1.0);
+          if (found.kind == tolerance_detail::BandedRootKind::not_certified) {
+            ++outcome.not_certified;
+            continue;
+          }
+          root = found.root;
         }
+        ++outcome.evaluations;
         // Outside the certified band: decided on the chart enclosure (the band's own units).
         if (root.lo < c.lo || root.hi > c.hi) ++outcome.outside_certified;
         Interval part = to_part(root, result_.follower_rotates, state.follower_chart.half, sample.nominal);
@@ -728,6 +741,12 @@ class Analysis {
       worker.get();
     }
     tolerance_detail::merge_monte_carlo(outcomes, summary, result_);
+    if (summary.not_certified > 0)
+      result_.notes.push_back(
+          "Monte Carlo: no value certified at " + std::to_string(summary.not_certified) +
+          " sampled position(s) (the contact's root bracketed neither about the band nor by the wider search: no "
+          "certain sign change found, e.g. a tangency or a band narrower than the function's rounding); counted as "
+          "not certified, neither inside nor outside the certified band");
     summary.seconds = seconds_since(start);
     summary.cpu_seconds = cpu_seconds(true) - cpu_start;
     result_.monte_carlo = summary;

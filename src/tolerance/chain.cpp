@@ -24,6 +24,7 @@
 #include "model/parametric/parametric.hpp"
 #include "tolerance/handover.hpp"
 #include "tolerance/mean_value.hpp"
+#include "tolerance/root_search.hpp"
 #include "tolerance/stage.hpp"
 
 #include <hipair/error.hpp>
@@ -870,21 +871,30 @@ class ChainAnalysis {
     CurveSlice curve;
     std::optional<PairGeometry<Interval>> geometry;
   };
+  // With `wider` (the retry after a failure, docs/tolerance.md "Assembly chains", step 5), a
+  // bracket that fails is searched again on grids of points over the same windows: the certain
+  // sign change nearest to its centre (root_search.hpp).
   bool actual_root(const CurveSolver& solver, std::vector<Candidate>& candidates, double guess, double width,
-                   Interval& value, bool& handed_over, int& sigma) const {
+                   Interval& value, bool& handed_over, int& sigma, bool wider = false) const {
     handed_over = false;
     auto sign_at = [&](Candidate& c, double v) { return solver.point_sign(c.curve, *c.geometry, v); };
     // A root of candidate c with certain end signs in a bracket about `at` (widened up to 12
     // times by 4); `sigma` receives the sign at its upper end.
     auto bracket = [&](Candidate& c, double at, double w, Interval& root, int& sigma) {
+      const double w0 = w;
       for (int k = 0; k < 12 && w < 1; ++k, w *= 4) {
         int lo = sign_at(c, at - w), hi = sign_at(c, at + w);
         if ((lo == 1 || lo == -1) && (hi == 1 || hi == -1) && lo != hi) {
           sigma = hi;
-          return solver.certified_point_root(c.curve, *c.geometry, Interval(at - w, at + w), root);
+          if (solver.certified_point_root(c.curve, *c.geometry, Interval(at - w, at + w), root)) return true;
+          break;
         }
       }
-      return false;
+      if (!wider) return false;
+      std::optional<SignChange> near = nearest_sign_change([&](double v) { return sign_at(c, v); }, at, w0, 1.0);
+      if (!near) return false;
+      sigma = near->upper;
+      return solver.certified_point_root(c.curve, *c.geometry, Interval(near->lo, near->hi), root);
     };
     sigma = 0;
     if (!bracket(candidates.front(), guess, width, value, sigma)) return false;
@@ -943,7 +953,7 @@ class ChainAnalysis {
     summary.samples = options_.monte_carlo;
     summary.seed = options_.seed;
     std::vector<MonteCarloOutcome> outcomes(options_.monte_carlo);
-    std::vector<std::size_t> handed(outcomes.size(), 0), failed(outcomes.size(), 0);
+    std::vector<std::size_t> handed(outcomes.size(), 0), failed(outcomes.size(), 0);   // failed: not certified where the band is bounded
     std::vector<std::vector<std::size_t>> left(outcomes.size());   // positions outside the certified band
     const std::vector<Distribution>& dist = stages_.front().distributions;
     // per pair and position: the candidates (the same for every vector)
@@ -1013,8 +1023,9 @@ class ChainAnalysis {
           Interval root;
           bool handed_over = false;
           int sigma = 0;
-          if (!actual_root(*stage.solver, candidates, guess, 0.25 * linear + 1e-9 * (1 + std::fabs(guess)), root,
-                           handed_over, sigma)) {
+          const double width = 0.25 * linear + 1e-9 * (1 + std::fabs(guess));
+          if (!actual_root(*stage.solver, candidates, guess, width, root, handed_over, sigma) &&
+              !actual_root(*stage.solver, candidates, guess, width, root, handed_over, sigma, true)) {
             ok = false;
             break;
           }
@@ -1028,14 +1039,11 @@ class ChainAnalysis {
           if (unloaded_[s]) where[s] = x;
         }
         if (!ok) {
-          // no certified root: outside a bounded band (counted so); elsewhere not evaluated
-          if (std::isfinite(sample.certified.upper - sample.certified.lower)) {
-            ++outcome.outside_certified;
-            left[index].push_back(i);
-          } else {
-            --outcome.evaluations;
-            ++failed[index];
-          }
+          // no certified value, even by the wider search: not certified (neither inside nor
+          // outside the band), not an evaluation
+          --outcome.evaluations;
+          ++outcome.not_certified;
+          if (std::isfinite(sample.certified.upper - sample.certified.lower)) ++failed[index];
           continue;
         }
         std::size_t before = outcome.outside_certified;
@@ -1062,11 +1070,12 @@ class ChainAnalysis {
   // outside the certified band (where, and what that means), beyond the linearised band.
   void monte_carlo_notes(const std::vector<MonteCarloOutcome>& outcomes, const std::vector<std::size_t>& handed,
                          const std::vector<std::size_t>& failed, const std::vector<std::vector<std::size_t>>& left) {
-    std::size_t handed_total = 0, failed_total = 0, unbounded = 0, evaluations = 0;
+    std::size_t handed_total = 0, failed_total = 0, unbounded = 0, evaluations = 0, not_certified = 0;
     for (std::size_t k = 0; k < outcomes.size(); ++k) {
       handed_total += handed[k];
       failed_total += failed[k];
       evaluations += outcomes[k].evaluations;
+      not_certified += outcomes[k].not_certified;
     }
     std::vector<std::size_t> where;
     for (const auto& l : left) where.insert(where.end(), l.begin(), l.end());
@@ -1086,9 +1095,12 @@ class ChainAnalysis {
                      (unbounded > 0 ? " (" + std::to_string(unbounded) +
                                           " position(s) without a certified band: compared with the linearised band only)"
                                     : std::string()));
-    if (failed_total > 0)
-      notes_.push_back("Monte Carlo: " + std::to_string(failed_total) +
-                       " output position(s) not evaluated (a follower's root could not be bracketed; no certified band there)");
+    if (not_certified > 0)
+      notes_.push_back("Monte Carlo: no value certified at " + std::to_string(not_certified) + " output position(s), " +
+                       std::to_string(failed_total) +
+                       " of them with a bounded certified band (a follower's root bracketed neither about its "
+                       "linearised value nor by the wider search over grids of points: no certain sign change found); "
+                       "counted as not certified, neither inside nor outside the band");
     if (!where.empty()) {
       std::string drivers;
       for (std::size_t k = 0; k < where.size() && k < 8; ++k)

@@ -204,6 +204,11 @@ std::string tolerance_text_report(const ToleranceResult& r) {
     out << "\nMonte Carlo: " << mc.samples << " parameter vectors (seed " << mc.seed << "), " << mc.evaluations
         << " certified follower positions in " << number(mc.seconds, 3) << " s\n";
     out << "  outside the certified band: " << mc.outside_certified << (mc.outside_certified == 0 ? " (as it must be)" : " (A DEFECT)") << "\n";
+    out << "  not certified: " << mc.not_certified
+        << (mc.not_certified == 0 ? "" : " (positions where no value could be certified, even by the wider search: the Monte "
+                                          "Carlo's own failures, neither inside nor outside the band; not among the "
+                                          "certified positions)")
+        << "\n";
     out << "  outside the linearised band: " << mc.outside_linear << " (linearisation error up to "
         << number(mc.linearisation_error * uf, 3) << " " << u << ")\n";
   }
@@ -339,6 +344,7 @@ std::string tolerance_json_report(const ToleranceResult& r) {
                         {"seed", mc.seed},
                         {"evaluations", mc.evaluations},
                         {"outside_certified", mc.outside_certified},
+                        {"not_certified", mc.not_certified},
                         {"outside_linear", mc.outside_linear},
                         {"linearisation_error", mc.linearisation_error},
                         {"seconds", mc.seconds},

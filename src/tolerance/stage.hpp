@@ -77,6 +77,7 @@ void rank_regions(ToleranceResult& result);
 struct MonteCarloOutcome {
   std::vector<double> value;   ///< part coordinate per driver position (NaN: not evaluated)
   std::size_t outside_certified = 0, outside_linear = 0, evaluations = 0;
+  std::size_t not_certified = 0;   ///< positions without a certified value (not among evaluations)
   double excess = 0;           ///< largest excess beyond the linearised band
   /// The value at position k (certified enclosure `value`, part units): outside the certified
   /// band or beyond the linearised one.

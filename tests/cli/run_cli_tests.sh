@@ -312,6 +312,7 @@ for file in report.txt tolerance.json variation.csv sensitivity.csv variation.sv
   [ -s "$work/tol/$file" ] || fail "tolerance: no $file"
 done
 grep -q '"outside_certified": 0' "$work/tol/tolerance.json" || fail "tolerance: Monte Carlo left the certified band"
+grep -q '"not_certified": 0' "$work/tol/tolerance.json" || fail "tolerance: a Monte Carlo value was not certified"
 grep -q "</svg>" "$work/tol/variation.svg" 2>/dev/null || fail "tolerance: variation.svg incomplete"
 # --chain: the assembly chain's output (docs/tolerance.md "Assembly chains"); per-pair options refused.
 lift="$source/examples/models/lift-chain.json"
@@ -321,6 +322,7 @@ grep -q "Assembly chain of 4 pairs: cam -> lifter1 -> lifter2 -> lifter3 -> lift
   || fail "tolerance --chain: no chain in the report"
 grep -q '"chain"' "$work/tol-chain/tolerance.json" || fail "tolerance --chain: no chain in tolerance.json"
 grep -q '"outside_certified": 0' "$work/tol-chain/tolerance.json" || fail "tolerance --chain: Monte Carlo left the certified band"
+grep -q '"not_certified": 0' "$work/tol-chain/tolerance.json" || fail "tolerance --chain: a Monte Carlo value was not certified"
 for args in "--chain --threshold" "--chain --pair cam:nosuch" "--chain --certify-interference --range 0:1 --follower-range 0"; do
   tolerance_refused "$lift" "$args"
 done

@@ -41,6 +41,7 @@ void run(benchmark::State& state, bool fast, std::size_t positions, std::size_t 
     // on 2 cores: twice the single-core rate the CPU time gives (the machine is shared)
     state.counters["mc_functions_per_s_2cores_cpu"] = 2 * static_cast<double>(mc.samples) / mc.cpu_seconds;
     state.counters["mc_outside_certified"] = static_cast<double>(mc.outside_certified);
+    state.counters["mc_not_certified"] = static_cast<double>(mc.not_certified);
   }
 }
 

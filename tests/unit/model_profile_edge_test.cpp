@@ -129,6 +129,7 @@ TEST(ModelProfileEdge, FaceBandReachesTheFollowerAsTheClosedForm) {
   EXPECT_TRUE(found);
   ASSERT_TRUE(result.monte_carlo);
   EXPECT_EQ(result.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(result.monte_carlo->not_certified, 0u);
 }
 
 TEST(ModelProfileEdge, BadEdgesNameWhere) {

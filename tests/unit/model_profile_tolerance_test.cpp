@@ -298,6 +298,7 @@ TEST(ModelProfileTolerance, CamProfileBandsReachTheFollowerAsTheClosedForm) {
   EXPECT_GE(checked, 20u);
   ASSERT_TRUE(result.monte_carlo.has_value());
   EXPECT_EQ(result.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(result.monte_carlo->not_certified, 0u);
   ASSERT_FALSE(result.regions.empty());
   bool cam = false, follower = false;
   for (const ParameterContribution& c : result.regions.front().ranked) {

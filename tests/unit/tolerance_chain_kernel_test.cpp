@@ -123,6 +123,7 @@ TEST(ToleranceChainKernel, KernelChainEqualsCSpaceChainOnGeneratedGearTrains) {
     positions_total += kernel.samples.size();
     ASSERT_TRUE(kernel.monte_carlo.has_value());
     EXPECT_EQ(kernel.monte_carlo->outside_certified, 0u);
+    EXPECT_EQ(kernel.monte_carlo->not_certified, 0u);
     // sampled at every held position, the band bounded or not (session 26)
     EXPECT_EQ(kernel.monte_carlo->evaluations, 30 * held);
 

@@ -373,6 +373,7 @@ TEST(ChainMeanValue, GearTrainBandIsBoundedAndHoldsMonteCarloAndExactRecomputati
   EXPECT_GE(s.held, 1u);
   EXPECT_EQ(s.bounded, s.held);
   EXPECT_EQ(with.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(with.monte_carlo->not_certified, 0u);
   EXPECT_EQ(with.monte_carlo->evaluations, with.monte_carlo->samples * s.held);
   std::printf("gear-train.json, 0..0.1 rad: %zu held position(s), all bounded; widest half band %.4g deg (interval "
               "composition: unbounded)\n",
@@ -460,6 +461,7 @@ TEST(ChainMeanValue, GearTrainBandIsBoundedWhereTheHeldDriverRangeMustBeSplit) {
   }
   EXPECT_GE(held, 15u);
   EXPECT_EQ(r.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(r.monte_carlo->not_certified, 0u);
   EXPECT_EQ(r.monte_carlo->evaluations, r.monte_carlo->samples * held);
   std::size_t checked = 0;
   exact_trains_inside(text, r, range, 4, 2424, checked);
@@ -477,6 +479,7 @@ TEST(ChainMeanValue, ThreeGearTrainBandHoldsMonteCarloAndIsNoWiderThanTheInterva
   EXPECT_GE(s.held, 10u);
   EXPECT_EQ(s.bounded, s.held);
   EXPECT_EQ(with.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(with.monte_carlo->not_certified, 0u);
   std::printf("gear-train-3, 0..0.6 rad: %zu held positions; widest half band %.4g deg (interval composition %.4g)\n",
               s.held, s.widest * 180 / std::numbers::pi, s.widest_without * 180 / std::numbers::pi);
   EXPECT_LT(s.widest, s.widest_without);
@@ -497,6 +500,7 @@ TEST(ChainMeanValue, GearTrainBandWithTheDriverFormHoldsTheExactTrain) {
   ASSERT_EQ(r.chain.size(), 8u);
   ASSERT_TRUE(r.monte_carlo.has_value());
   EXPECT_EQ(r.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(r.monte_carlo->not_certified, 0u);
   std::size_t held = 0, narrow = 0;
   for (const VariationSample& sample : r.samples) {
     if (!sample.contact) continue;

@@ -164,6 +164,7 @@ Outcome check_case(const Case& c) {
   EXPECT_EQ(values.size(), vectors.size() * held) << "every held position evaluated at every vector";
   EXPECT_EQ(result.monte_carlo->evaluations, vectors.size() * held);
   EXPECT_EQ(result.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(result.monte_carlo->not_certified, 0u);
   for (const std::string& note : result.notes) {
     std::smatch m;
     if (std::regex_search(note, m, std::regex("held a follower ([0-9]+) time"))) out.handed_over = std::stoul(m[1]);

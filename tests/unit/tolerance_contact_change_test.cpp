@@ -257,7 +257,9 @@ TEST(TolerancePerformancePaths, FastPathsAgreeWithTheFormerOnes) {
   }
   ASSERT_TRUE(fast.monte_carlo && former.monte_carlo);
   EXPECT_EQ(fast.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(fast.monte_carlo->not_certified, 0u);
   EXPECT_EQ(former.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(former.monte_carlo->not_certified, 0u);
   EXPECT_EQ(fast.monte_carlo->evaluations, former.monte_carlo->evaluations);
 }
 

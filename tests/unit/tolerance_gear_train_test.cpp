@@ -51,6 +51,7 @@ TEST(ToleranceChainGear, TwoGearTrainKeepsEveryMonteCarloSampleAndExactRecomputa
   ToleranceResult result = analyze_tolerances_text(text, options);
   ASSERT_TRUE(result.monte_carlo.has_value());
   EXPECT_EQ(result.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(result.monte_carlo->not_certified, 0u);
   std::size_t held = 0, bounded = 0;
   for (const VariationSample& s : result.samples) {
     if (!s.contact) continue;
@@ -85,6 +86,7 @@ TEST(ToleranceChainGear, ThreeGearTrainBandIsBoundedAndKeepsEveryMonteCarloSampl
   ASSERT_EQ(result.chain.size(), 2u);
   ASSERT_TRUE(result.monte_carlo.has_value());
   EXPECT_EQ(result.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(result.monte_carlo->not_certified, 0u);
   std::size_t held = 0;
   for (const VariationSample& s : result.samples) {
     if (!s.contact) continue;

@@ -31,6 +31,7 @@ TEST(ToleranceGeneva, CertifiedBandContainsEveryMonteCarloSample) {
   ASSERT_TRUE(result.monte_carlo);
   const MonteCarloSummary& mc = *result.monte_carlo;
   EXPECT_EQ(mc.outside_certified, 0u);
+  EXPECT_EQ(mc.not_certified, 0u);
   std::size_t contact = 0;
   for (const VariationSample& s : result.samples) contact += s.contact;
   ASSERT_GE(contact, 30u);

@@ -110,6 +110,7 @@ TEST(ToleranceLinear, DerivedParameterVariesWithItsExpression) {
   EXPECT_GT(widest_excess, 0.01);
   ASSERT_TRUE(result.monte_carlo.has_value());
   EXPECT_EQ(result.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(result.monte_carlo->not_certified, 0u);
   ASSERT_FALSE(result.regions.empty());
   for (const ParameterContribution& c : result.regions.front().ranked)
     if (c.parameter == "R" || c.parameter == "Rc") EXPECT_NEAR(c.sensitivity, 1.0, 1e-9) << c.parameter;

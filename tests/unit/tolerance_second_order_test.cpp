@@ -140,6 +140,7 @@ TEST(ToleranceSecondOrder, BandIsBoundedWhereNoParameterActsToFirstOrder) {
   EXPECT_GE(dead_centres, 2u);
   ASSERT_TRUE(result.monte_carlo.has_value());
   EXPECT_EQ(result.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(result.monte_carlo->not_certified, 0u);
 }
 
 }  // namespace

@@ -296,6 +296,7 @@ TEST(ToleranceTaylorModel, ChainBandWithTaylorPartialsHoldsMonteCarloAndIsNarrow
   ToleranceResult with = band(true, 300), without = band(false, 0);
   ASSERT_TRUE(with.monte_carlo.has_value());
   EXPECT_EQ(with.monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(with.monte_carlo->not_certified, 0u);
   ASSERT_EQ(with.samples.size(), without.samples.size());
   double width_with = 0, width_without = 0;
   std::size_t bounded = 0;
