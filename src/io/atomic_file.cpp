@@ -19,8 +19,8 @@ namespace {
 // Writes `content` to an existing non-regular node (device, FIFO): opened without blocking (a FIFO
 // without a reader fails with ENXIO instead of hanging), then written whole, every failure (e.g.
 // ENOSPC from /dev/full) an IoError naming the path.
-void write_to_node(const std::filesystem::path& path, const std::string& content) {
-  int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+void write_to_node(const std::filesystem::path& path, const std::string& content, bool append = false) {
+  int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC | (append ? O_APPEND : 0));
   if (fd < 0) {
     int error = errno;
     throw IoError("cannot write '" + path.string() + "': " +
@@ -70,11 +70,23 @@ void write_file_atomically(const std::filesystem::path& path, const std::functio
   }
   // A symbolic link is written through (its final target is replaced, the link stays).
   fs::path target = path;
+  bool descriptor = false;   // the chain passes through a process's open descriptor
   for (int hops = 0; fs::is_symlink(fs::symlink_status(target, ec)); ++hops) {
     if (hops == 40) throw IoError("cannot write '" + path.string() + "': too many levels of symbolic links");
+    const std::string at = target.lexically_normal().string();
+    descriptor = descriptor || at.rfind("/proc/", 0) == 0 || at.rfind("/dev/fd/", 0) == 0;
     fs::path link = fs::read_symlink(target, ec);
     if (ec) throw IoError("cannot write '" + path.string() + "': " + ec.message());
     target = link.is_absolute() ? link : target.parent_path() / link;
+  }
+  // /dev/stdout, /dev/fd/N or /proc/self/fd/N on a regular file (`> log`, `>> log`): the file
+  // a descriptor has open is appended to through the descriptor's path, not replaced by a new
+  // file of the same name (the shell's descriptor would keep the old, unlinked one).
+  if (descriptor && fs::exists(fs::status(path, ec))) {
+    std::ostringstream buffer;
+    write(buffer);
+    write_to_node(path, buffer.str(), true);
+    return;
   }
   fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (!fs::is_directory(directory, ec))

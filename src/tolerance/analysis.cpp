@@ -707,11 +707,12 @@ class Analysis {
           // The bracket failed (an end sign undecided or both alike): the wider search, then a
           // value certified in the band, certified outside it (a defect), or not certified.
           auto sign = [&](double v) { return solver_->point_sign(state.curve, *pair_geometry, v); };
+          auto range_sign = [&](Interval y) { return solver_->range_sign(state.curve, *pair_geometry, y); };
           auto refine = [&](Interval bracket, Interval& r) {
             return solver_->certified_point_root(state.curve, *pair_geometry, bracket, r);
           };
           // (windows up to 1 chart unit, as the chain's brackets)
-          tolerance_detail::BandedRoot found = tolerance_detail::search_band_root(sign, refine, c, 4 * w, 1.0);
+          tolerance_detail::BandedRoot found = tolerance_detail::search_band_root(sign, range_sign, refine, c, 4 * w, 1.0);
           if (found.kind == tolerance_detail::BandedRootKind::not_certified) {
             ++outcome.not_certified;
             continue;

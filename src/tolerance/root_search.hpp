@@ -80,15 +80,33 @@ struct BandedRoot {
   kernels::Interval root;
 };
 
+/// Whether the function certainly has no zero on [band.lo, band.hi]: `range_sign` (the sign of
+/// an interval enclosure of the function over an interval: +1 or -1 when certain, else 0 or 2)
+/// equal to `expected` on every piece of a bisection of the band, at most 2^depth pieces.
+inline bool certainly_no_zero(const std::function<int(kernels::Interval)>& range_sign, kernels::Interval band,
+                              int expected, int depth = 8) {
+  int s = range_sign(band);
+  if (s == expected) return true;
+  if ((s == 1 || s == -1) || depth == 0) return false;   // the other sign: impossible if the ends agree
+  double m = 0.5 * (band.lo + band.hi);
+  if (!(m > band.lo && m < band.hi)) return false;
+  return certainly_no_zero(range_sign, kernels::Interval(band.lo, m), expected, depth - 1) &&
+         certainly_no_zero(range_sign, kernels::Interval(m, band.hi), expected, depth - 1);
+}
+
 /// A single pair's value at one vector after its first bracket failed (analysis.cpp): the
-/// holder's contact function (`sign`; `refine` encloses its root in a bracket with certain
-/// opposite end signs, false if it cannot) against the certified band `band` (chart units).
+/// holder's contact function (`sign`; `range_sign` its sign over an interval; `refine` encloses
+/// its root in a bracket with certain opposite end signs, false if it cannot) against the
+/// certified band `band` (chart units).
 /// In the band: a certain sign change (or an exact zero) among `points` + 1 points of the band.
-/// Outside: the function of one certain sign at both ends of the band (so it does not cross
-/// between them as the band says its root does) and a certain sign change beyond an end, the
-/// nearest one found in windows of `start`, 4 x `start`, ... up to `cap` on either side. Else
-/// not certified.
+/// Outside: the function certainly without a zero on the whole band (one certain sign over
+/// every piece of a bisection of it: equal end signs alone leave two roots, or a double one,
+/// possible between the grid's points) and a certain sign change beyond an end, the nearest one
+/// found in windows of `start`, 4 x `start`, ... up to `cap` on either side. Else not certified
+/// (session 29's review: with end signs alone a sound band with two roots inside was reported
+/// as a defect).
 inline BandedRoot search_band_root(const std::function<int(double)>& sign,
+                                   const std::function<int(kernels::Interval)>& range_sign,
                                    const std::function<bool(kernels::Interval, kernels::Interval&)>& refine,
                                    kernels::Interval band, double start, double cap, std::size_t points = 16) {
   using kernels::Interval;
@@ -109,6 +127,7 @@ inline BandedRoot search_band_root(const std::function<int(double)>& sign,
     if (settle(change, BandedRootKind::in_band)) return result;
   int s_lo = sign(band.lo), s_hi = sign(band.hi);
   if (!((s_lo == 1 || s_lo == -1) && s_lo == s_hi)) return result;
+  if (!certainly_no_zero(range_sign, band, s_lo)) return result;
   for (double w = start; w <= cap; w *= 4) {
     std::vector<SignChange> above = sign_changes(sign, band.hi, band.hi + w, points);
     std::vector<SignChange> below = sign_changes(sign, band.lo - w, band.lo, points);

@@ -82,6 +82,11 @@ int CurveSolver::point_sign(const CurveSlice& curve, const PairGeometry<Interval
   return evaluate<Interval>(curve, geometry, fixed, Interval::point(free)).sign();
 }
 
+int CurveSolver::range_sign(const CurveSlice& curve, const PairGeometry<Interval>& geometry, Interval free) const {
+  Interval fixed = curve.fixed_range ? *curve.fixed_range : Interval::enclose(curve.fixed_value);
+  return evaluate<Interval>(curve, geometry, fixed, free).sign();
+}
+
 bool CurveSolver::certified_point_root(const CurveSlice& curve, const PairGeometry<Interval>& geometry,
                                        Interval bracket, Interval& root) const {
   Interval fixed = curve.fixed_range ? *curve.fixed_range : Interval::enclose(curve.fixed_value);

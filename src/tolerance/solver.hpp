@@ -94,6 +94,9 @@ class CurveSolver {
   /// `curve.fixed_range` when it ranges), the geometry evaluated (point_geometry): +1 or -1 when
   /// certain (-1: the features penetrate there), 0 for an exact zero, 2 when undecided.
   int point_sign(const CurveSlice& curve, const PairGeometry<Interval>& geometry, double free) const;
+  /// The sign of the interval enclosure of the contact function over the free coordinates
+  /// `free` (the held one as point_sign): +1 or -1 when certain over all of it, else 0 or 2.
+  int range_sign(const CurveSlice& curve, const PairGeometry<Interval>& geometry, Interval free) const;
   /// The curve's geometry (both features, both axes) at parameter values (enclosures).
   PairGeometry<Interval> point_geometry(const CurveSlice& curve, const std::vector<Interval>& parameters) const {
     return geometry(curve, parameters);

@@ -7,7 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -199,6 +201,25 @@ TEST(AtomicFile, DevicesAndFifosWithAReaderAreWrittenToNotReplaced) {
     ASSERT_TRUE(written);
     EXPECT_EQ(received, content);
     EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
+  }
+  // a regular file open on a descriptor, written through /dev/fd/N or /proc/self/fd/N (as
+  // `--out /dev/stdout > log` does): appended to, the same file (inode) afterwards
+  for (const char* prefix : {"/dev/fd/", "/proc/self/fd/"}) {
+    if (!fs::exists(prefix)) continue;
+    fs::path log = dir / "log.txt";
+    fs::remove(log);
+    int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND, 0644);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::write(fd, "head ", 5), 5);
+    struct stat before {};
+    ASSERT_EQ(::stat(log.c_str(), &before), 0);
+    hipair::io::write_file_atomically(std::string(prefix) + std::to_string(fd), "tail");
+    ASSERT_EQ(::write(fd, " more", 5), 5);
+    ::close(fd);
+    struct stat after {};
+    ASSERT_EQ(::stat(log.c_str(), &after), 0);
+    EXPECT_EQ(before.st_ino, after.st_ino) << prefix;
+    EXPECT_EQ(hipair::io::read_file(log), "head tail more") << prefix;
   }
   // a producer that throws leaves the node untouched (nothing opened: no reader needed)
   fs::path fifo = dir / "thrown";
