@@ -919,7 +919,19 @@ void find_touching(ChartData& chart, const Classifier& classify, ContactSides* s
 // free); any other irrational point stays blocked and is counted undecided.
 void find_touching_points(ChartData& chart, const Classifier& classify, CSpaceStatistics& stats) {
   chart.touching_vertex.assign(chart.points.size(), 0);
+  chart.seam_relation.assign(chart.points.size(), -1);
   for (std::size_t i = 0; i < chart.points.size(); ++i) {
+    // a point on the chart's end (its outer face empty) with blocked space inside: the relation
+    // of the parts there, for the seam decision in `build` (the other side is another chart's)
+    const bool low_empty = chart.faces[i].kind == FaceKind::outside, high_empty = chart.faces[i + 1].kind == FaceKind::outside;
+    if (low_empty != high_empty) {
+      if ((low_empty ? chart.faces[i + 1] : chart.faces[i]).kind != FaceKind::blocked) continue;
+      if (auto x = rational_value(chart.points[i])) {
+        Overlap relation = classify(ChartPoint{*x, Rational(0)});
+        if (relation != Overlap::apart) chart.seam_relation[i] = relation == Overlap::touching ? 1 : 0;
+      }
+      continue;
+    }
     if (chart.faces[i].kind != FaceKind::blocked || chart.faces[i + 1].kind != FaceKind::blocked) continue;
     const Real& point = chart.points[i];
     if (!point.exact && chart.point_curves[i].size() == 1) {
@@ -1469,13 +1481,44 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     // seams of a circle: a chart's high end meets another's low end
     for (std::size_t a = 0; a < impl->charts.size(); ++a)
       for (std::size_t b = 0; b < impl->charts.size(); ++b) {
-        const ChartData& A = impl->charts[a];
-        const ChartData& B = impl->charts[b];
+        ChartData& A = impl->charts[a];
+        ChartData& B = impl->charts[b];
         if (!same_coordinate(A.x_axis, A.box.x_hi, B.x_axis, B.box.x_lo)) continue;
         std::size_t fa = A.faces.size() - 1, fb = 0;
-        // a contact point exactly on the seam separates the two ends
-        if (A.faces[fa].kind == FaceKind::outside || B.faces[fb].kind == FaceKind::outside) continue;
         long winding = winding_between(A.x_axis, A.box.x_hi, B.x_axis, B.box.x_lo);
+        // A contact point exactly on the seam (A's last point at its x_hi, or B's first at its
+        // x_lo: the face beyond it empty) separates the two ends, except between two blocked
+        // faces (session 29): there it is decided as inside a chart — the parts overlapping at
+        // the (rational) seam point: one blocked cell across it; only touching: a touching
+        // vertex, a separate blocked cell on each side; not decided: counted undecided.
+        const bool a_point = A.faces[fa].kind == FaceKind::outside && fa >= 1;
+        const bool b_point = B.faces[fb].kind == FaceKind::outside && B.faces.size() >= 2;
+        if (a_point || b_point) {
+          const std::size_t ia = A.points.size() - 1;   // (valid when a_point)
+          if (a_point) --fa;
+          if (b_point) ++fb;
+          if (A.faces[fa].kind != FaceKind::blocked || B.faces[fb].kind != FaceKind::blocked) continue;
+          auto relation = [](const ChartData& chart, std::size_t i) {
+            return i < chart.seam_relation.size() ? chart.seam_relation[i] : static_cast<signed char>(-1);
+          };
+          const signed char ra = a_point ? relation(A, ia) : -1, rb = b_point ? relation(B, 0) : -1;
+          if (ra == 1 || rb == 1) {
+            if (a_point && ia < A.touching_vertex.size() && !A.touching_vertex[ia]) {
+              A.touching_vertex[ia] = 1;
+              ++stats.touching_vertices;
+            }
+            if (b_point && !B.touching_vertex.empty() && !B.touching_vertex[0]) {
+              B.touching_vertex[0] = 1;
+              ++stats.touching_vertices;
+            }
+            real_face_pairs.emplace_back(face_offset[a] + fa, face_offset[b] + fb);
+          } else if (ra == 0 || rb == 0) {
+            components.join(face_offset[a] + fa, face_offset[b] + fb, {winding, 0});
+          } else {
+            ++stats.touching_undecided;
+          }
+          continue;
+        }
         if (A.faces[fa].kind == B.faces[fb].kind)
           components.join(face_offset[a] + fa, face_offset[b] + fb, {winding, 0});
         else

@@ -107,6 +107,10 @@ struct ChartData {
   /// per vertex: an isolated touching configuration (blocked all around, the parts only
   /// touch there; exact oracle at the rational vertex)
   std::vector<char> touching_vertex;
+  /// 1-D, per point on the chart's end (x_lo or x_hi) with blocked space on its inner side (a
+  /// contact point on a seam): 1 the parts only touch there, 0 they overlap, -1 not decided (the
+  /// exact oracle at the rational seam point); the seams are decided in `build` (session 29)
+  std::vector<signed char> seam_relation;
   std::vector<Rational> rational_vertex_x;     ///< sorted: rational x of vertices (sampling avoids them)
   /// per vertex (2-D, set when the space is complete): certified doubles {x_lo, x_hi, y_hi} with
   /// x_lo <= x <= x_hi and y <= y_hi for the vertex's algebraic x and y (point location's

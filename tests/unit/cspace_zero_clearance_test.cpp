@@ -577,5 +577,76 @@ TEST(CSpaceZeroClearance, OneDofFitsHaveTouchingVerticesExactlyWhereTheOracleSay
   EXPECT_GE(touching_seen, 15u);
 }
 
+// A square peg of half-size e turning about its centre in a fixed plate's axis-aligned square
+// hole of exactly its size: fits at 0, 90, 180 and 270 degrees, blocked between them (session
+// 29, integrator). The rotating charts meet at seams (t = +-1: 90 and 270 degrees here), and a
+// contact point exactly on a seam was kept as a separation of the two ends without a decision:
+// those two fits were reported blocked (touching false, not counted, no warning). Now every
+// vertex is touching exactly where the exact oracle says the parts touch, the statistics count
+// them, nothing is undecided, and each of the four blocked cells has its two neighbours (across
+// the seams too). With a clearance there is no touching vertex. Generated half-sizes at scales
+// 10^-300, 1 and 10^300. Mutation: the seam decision removed (the former `continue`) fails it.
+TEST(CSpaceZeroClearance, SquarePegFitsOnTheRotationChartsSeamsAreTouching) {
+  Random random(2930);
+  const std::vector<Rational> scales{Rational(1), Rational(mpz_class(1), mpz_class("1" + std::string(300, '0'))),
+                                     Rational(mpz_class("1" + std::string(300, '0')))};
+  std::size_t seam_fits = 0;
+  for (int instance = 0; instance < 12; ++instance) {
+    const Rational& k = scales[static_cast<std::size_t>(instance) % 3];
+    const bool clearance = instance % 4 == 3;
+    const Rational e = random_rational(random, Rational(1, 2), Rational(5)) * k;
+    const Rational hole = clearance ? Rational(e + random_rational(random, Rational(1, 1000), Rational(1, 10)) * k) : e;
+    const Rational outer = e * 10;
+    auto square = [](const Rational& h) {
+      auto p = [](const Rational& x, const Rational& y) { return "[" + text(x) + ", " + text(y) + "]"; };
+      return "{ \"start\": " + p(-h, -h) + ", \"edges\": [ { \"line_to\": " + p(h, -h) + " }, { \"line_to\": " + p(h, h) +
+             " }, { \"line_to\": " + p(-h, h) + " }, { \"line_to\": " + p(-h, -h) + " } ] }";
+    };
+    const std::string json = R"({ "hipair": 1, "name": "square-peg-seams", "parts": [
+        { "name": "peg", "motion": { "rotation": { "pivot": [0, 0] } }, "loops": [ )" + square(e) + R"( ] },
+        { "name": "plate", "motion": "fixed", "loops": [ )" + square(outer) + ", " + square(hole) + R"( ] } ],
+      "pairs": [ { "parts": ["peg", "plate"] } ] })";
+    SCOPED_TRACE("instance " + std::to_string(instance) + (clearance ? " with clearance" : " exact fit") + " e " +
+                 e.get_str().substr(0, 40));
+    Model model = read_model(json);
+    CSpace space = CSpace::build(model, "peg", "plate");
+    ASSERT_EQ(space.dimension(), 1);
+    std::size_t flagged = 0, truth_count = 0;
+    for (const CSpaceVertex& vertex : space.vertices()) {
+      if (!vertex.x.exact) {   // with a clearance: a corner meeting a wall at an irrational angle
+        EXPECT_TRUE(clearance);
+        EXPECT_FALSE(vertex.touching);
+        continue;
+      }
+      const bool truth = oracle(model, space, ChartPoint{vertex.chart, vertex.x.lower, Rational(0)}) == cspace::Overlap::touching;
+      EXPECT_EQ(vertex.touching, truth && !clearance) << "chart " << vertex.chart << " t " << vertex.x.lower.get_str();
+      flagged += vertex.touching;
+      truth_count += truth;
+      if (vertex.touching && vertex.on_chart_boundary) ++seam_fits;
+    }
+    EXPECT_EQ(space.statistics().touching_vertices, flagged);
+    EXPECT_EQ(space.statistics().touching_undecided, 0u);
+    if (clearance) {
+      EXPECT_EQ(flagged, 0u);
+      continue;
+    }
+    EXPECT_EQ(flagged, truth_count);
+    for (const Rational& t : {Rational(0), Rational(1), Rational(-1)}) {   // 0, 90 and -90 degrees
+      auto at = space.to_chart(PartCoordinate{PartCoordinate::Kind::half_angle_tangent, t});
+      ASSERT_TRUE(at);
+      bool found = false;
+      for (const CSpaceVertex& vertex : space.vertices())
+        if (vertex.chart == at->chart && vertex.x.exact && vertex.x.lower == at->x) found = found || vertex.touching;
+      EXPECT_TRUE(found) << "no touching vertex at t = " << t.get_str();
+    }
+    ASSERT_EQ(space.cells().size(), 4u);
+    for (const CSpaceCell& cell : space.cells()) {
+      EXPECT_EQ(cell.kind, CellKind::blocked);
+      EXPECT_EQ(cell.neighbours.size(), 2u);
+    }
+  }
+  EXPECT_GE(seam_fits, 12u);   // 9 exact fits x 2 seam fits x (1 or 2 charts' vertices)
+}
+
 }  // namespace
 }  // namespace hipair
