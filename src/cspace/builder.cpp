@@ -169,11 +169,18 @@ bool valid_point_in_box(const ContactCurve& curve, const raw::Box& box) {
   // expression times sgn(det), so that no rational is formed (nor canonicalised) for linear
   // atoms: x >= x_lo iff sgn(X m - n det) sgn(det) >= 0 for x_lo = n / m (m > 0), and a linear
   // atom d' x + e' y + g' >= 0 iff sgn(d' X + e' Y + g' det) sgn(det) >= 0.
+  // (products accumulated in place with mpz_addmul / mpz_submul: no temporary integer is
+  // allocated per atom)
   mpz_class det, x_num, y_num, t;
   auto at_least = [&](const mpz_class& num, const Rational& bound, int s) {   // num / det >= bound
-    t = num * bound.get_den();
-    t -= bound.get_num() * det;
+    mpz_mul(t.get_mpz_t(), num.get_mpz_t(), bound.get_den_mpz_t());
+    mpz_submul(t.get_mpz_t(), bound.get_num_mpz_t(), det.get_mpz_t());
     return sgn(t) * s >= 0;
+  };
+  auto at_most = [&](const mpz_class& num, const Rational& bound, int s) {   // num / det <= bound
+    mpz_mul(t.get_mpz_t(), num.get_mpz_t(), bound.get_den_mpz_t());
+    mpz_submul(t.get_mpz_t(), bound.get_num_mpz_t(), det.get_mpz_t());
+    return sgn(t) * s <= 0;
   };
   auto linear_atom = [](const IntegerPolynomial2& p) {
     return p.degree_x() <= 1 && p.degree_y() <= 1 && sgn(coefficient_of(p, 1, 1)) == 0;
@@ -182,28 +189,25 @@ bool valid_point_in_box(const ContactCurve& curve, const raw::Box& box) {
     for (const auto& atom : clause.atoms) {
       if (!linear_atom(atom)) continue;
       const mpz_class &d = coefficient_of(atom, 1, 0), &e = coefficient_of(atom, 0, 1), &g = coefficient_of(atom, 0, 0);
-      det = a * e;
-      det -= b * d;
+      mpz_mul(det.get_mpz_t(), a.get_mpz_t(), e.get_mpz_t());
+      mpz_submul(det.get_mpz_t(), b.get_mpz_t(), d.get_mpz_t());
       const int s = sgn(det);
       if (s == 0) continue;
-      x_num = b * g;
-      x_num -= c * e;
-      y_num = c * d;
-      y_num -= a * g;
-      // x_lo <= x <= x_hi and y_lo <= y <= y_hi (x <= hi iff -x >= -hi)
+      mpz_mul(x_num.get_mpz_t(), b.get_mpz_t(), g.get_mpz_t());
+      mpz_submul(x_num.get_mpz_t(), c.get_mpz_t(), e.get_mpz_t());
+      mpz_mul(y_num.get_mpz_t(), c.get_mpz_t(), d.get_mpz_t());
+      mpz_submul(y_num.get_mpz_t(), a.get_mpz_t(), g.get_mpz_t());
+      // x_lo <= x <= x_hi and y_lo <= y <= y_hi
       if (!at_least(x_num, box.x_lo, s) || !at_least(y_num, box.y_lo, s)) continue;
-      {
-        mpz_class neg_x = -x_num, neg_y = -y_num;
-        if (!at_least(neg_x, Rational(-box.x_hi), s) || !at_least(neg_y, Rational(-box.y_hi), s)) continue;
-      }
+      if (!at_most(x_num, box.x_hi, s) || !at_most(y_num, box.y_hi, s)) continue;
       std::optional<Rational> x, y;   // the point as rationals, for a non-linear atom only
       bool valid = std::all_of(curve.validity.begin(), curve.validity.end(), [&](const ValidityClause& other) {
         return std::any_of(other.atoms.begin(), other.atoms.end(), [&](const IntegerPolynomial2& p) {
           if (linear_atom(p)) {
-            mpz_class value = coefficient_of(p, 1, 0) * x_num;
-            value += coefficient_of(p, 0, 1) * y_num;
-            value += coefficient_of(p, 0, 0) * det;
-            return sgn(value) * s >= 0;
+            mpz_mul(t.get_mpz_t(), coefficient_of(p, 1, 0).get_mpz_t(), x_num.get_mpz_t());
+            mpz_addmul(t.get_mpz_t(), coefficient_of(p, 0, 1).get_mpz_t(), y_num.get_mpz_t());
+            mpz_addmul(t.get_mpz_t(), coefficient_of(p, 0, 0).get_mpz_t(), det.get_mpz_t());
+            return sgn(t) * s >= 0;
           }
           if (!x) {
             x.emplace(x_num, det);
@@ -341,13 +345,15 @@ bool line_of(const IntegerPolynomial2& f, const mpz_class*& a, const mpz_class*&
 
 // Sign of the line a x + b y + c at the rational point (x, y), exactly (integer arithmetic:
 // c dx dy + a nx dy + b ny dx, with x = nx / dx, y = ny / dy and dx, dy > 0).
+// (Accumulated in place in this thread's two scratch integers: no integer allocated per call
+// once they have grown.)
 int sign_of_line_at(const mpz_class& a, const mpz_class& b, const mpz_class& c, const Rational& x, const Rational& y) {
-  mpz_class value = c * x.get_den();
-  value += a * x.get_num();
-  value *= y.get_den();
-  mpz_class term = b * y.get_num();
-  term *= x.get_den();
-  value += term;
+  thread_local mpz_class value, term;
+  mpz_mul(value.get_mpz_t(), c.get_mpz_t(), x.get_den_mpz_t());
+  mpz_addmul(value.get_mpz_t(), a.get_mpz_t(), x.get_num_mpz_t());
+  mpz_mul(value.get_mpz_t(), value.get_mpz_t(), y.get_den_mpz_t());
+  mpz_mul(term.get_mpz_t(), b.get_mpz_t(), y.get_num_mpz_t());
+  mpz_addmul(value.get_mpz_t(), term.get_mpz_t(), x.get_den_mpz_t());
   return sgn(value);
 }
 

@@ -218,7 +218,12 @@ PartMotion part_motion(const Part& part, bool moves, const ChartAxis& axis) {
 
 class Culler {
  public:
-  Culler(const PartMotion& first, const PartMotion& second) : motion_{first, second} {
+  // The two parts' motions (part_motion) built in place: no PartMotion (eight rationals) copied.
+  Culler(const Part& first_part, bool first_moves, const ChartAxis& first_axis, const Part& second_part,
+         bool second_moves, const ChartAxis& second_axis)
+      : motion_{part_motion(first_part, first_moves, first_axis), part_motion(second_part, second_moves, second_axis)} {
+    const PartMotion& first = motion_[0];
+    const PartMotion& second = motion_[1];
     // a translating part's travel over the chart box, the same for each of its features
     for (int side = 0; side < 2; ++side) {
       const PartMotion& own = motion_[side];
@@ -664,12 +669,14 @@ WorldBox world_box(const PoseBox& pose, const Interval& x, const Interval& y, do
 // depth 10).
 class BlockedSpaceCuller {
  public:
-  BlockedSpaceCuller(const PartMotion& first, const PartMotion& second, const ChartAxis& x,
-                     const ChartAxis& y, int dimension, std::vector<BodyDisk> disks_a,
-                     std::vector<BodyDisk> disks_b, std::vector<Core> cores_a,
-                     std::vector<Core> cores_b, BlockedCells* grid = nullptr)
-      : motion_{first, second}, x_(x), y_(y), dimension_(dimension),
-        disks_{std::move(disks_a), std::move(disks_b)}, cores_{std::move(cores_a), std::move(cores_b)}, grid_(grid) {}
+  // The two parts' motions (part_motion) built in place, the disks and cores read where they
+  // are (they outlive the culler): nothing copied.
+  BlockedSpaceCuller(const Part& first_part, bool first_moves, const Part& second_part, bool second_moves,
+                     const ChartAxis& x, const ChartAxis& y, int dimension, const std::vector<BodyDisk>& disks_a,
+                     const std::vector<BodyDisk>& disks_b, const std::vector<Core>& cores_a,
+                     const std::vector<Core>& cores_b, BlockedCells* grid = nullptr)
+      : motion_{part_motion(first_part, first_moves, x), part_motion(second_part, second_moves, first_moves ? y : x)},
+        x_(x), y_(y), dimension_(dimension), disks_{&disks_a, &disks_b}, cores_{&cores_a, &cores_b}, grid_(grid) {}
 
   // needed[k] set for the candidate pairs that survive.
   void run(const std::vector<std::pair<int, int>>& pairs, std::vector<char>& needed) {
@@ -712,10 +719,10 @@ class BlockedSpaceCuller {
     std::array<std::vector<Extent>, 2> extents;
     for (int side = 0; side < 2; ++side) {
       const PoseBox& pose = side == 0 ? pa : pb;
-      for (std::size_t i = 0; i < cores_[side].size(); ++i) {
+      for (std::size_t i = 0; i < cores_[side]->size(); ++i) {
         Interval u, v;
-        pose.apply(cores_[side][i].x, cores_[side][i].y, u, v);
-        double r = cores_[side][i].radius;
+        pose.apply((*cores_[side])[i].x, (*cores_[side])[i].y, u, v);
+        double r = (*cores_[side])[i].radius;
         // grown outward by a relative margin far above double rounding
         double margin = 1e-9 * (1 + std::fabs(u.lo) + std::fabs(u.hi) + std::fabs(v.lo) + std::fabs(v.hi) + r);
         extents[side].push_back({u.lo - r - margin, u.hi + r + margin, v.lo - r - margin, v.hi + r + margin,
@@ -758,11 +765,11 @@ class BlockedSpaceCuller {
     auto& caches = caches_[side];
     auto [it, inserted] = caches.try_emplace({interval.lo, interval.hi});
     if (inserted) {
-      it->second.boxes.resize(disks_[side].size());
-      it->second.box_done.assign(disks_[side].size(), 0);
-      it->second.core_x.resize(cores_[side].size());
-      it->second.core_y.resize(cores_[side].size());
-      it->second.core_done.assign(cores_[side].size(), 0);
+      it->second.boxes.resize(disks_[side]->size());
+      it->second.box_done.assign(disks_[side]->size(), 0);
+      it->second.core_x.resize(cores_[side]->size());
+      it->second.core_y.resize(cores_[side]->size());
+      it->second.core_done.assign(cores_[side]->size(), 0);
     }
     return it->second;
   }
@@ -796,17 +803,17 @@ class BlockedSpaceCuller {
     for (const auto& [ci, cj] : core_pairs) {
       auto ui = static_cast<std::size_t>(ci), uj = static_cast<std::size_t>(cj);
       if (!cache_a.core_done[ui]) {
-        pa.apply(cores_[0][ui].x, cores_[0][ui].y, cache_a.core_x[ui], cache_a.core_y[ui]);
+        pa.apply((*cores_[0])[ui].x, (*cores_[0])[ui].y, cache_a.core_x[ui], cache_a.core_y[ui]);
         cache_a.core_done[ui] = 1;
       }
       if (!cache_b.core_done[uj]) {
-        pb.apply(cores_[1][uj].x, cores_[1][uj].y, cache_b.core_x[uj], cache_b.core_y[uj]);
+        pb.apply((*cores_[1])[uj].x, (*cores_[1])[uj].y, cache_b.core_x[uj], cache_b.core_y[uj]);
         cache_b.core_done[uj] = 1;
       }
       Interval dx = cache_a.core_x[ui] - cache_b.core_x[uj];
       Interval dy = cache_a.core_y[ui] - cache_b.core_y[uj];
       Interval distance2 = dx * dx + dy * dy;
-      double ra = cores_[0][ui].radius, rb = cores_[1][uj].radius;
+      double ra = (*cores_[0])[ui].radius, rb = (*cores_[1])[uj].radius;
       Interval reach = Interval(ra, ra) + Interval(rb, rb);
       Interval reach2 = reach * reach;
       if (distance2.hi < reach2.lo) return;  // blocked everywhere in the cell
@@ -818,11 +825,11 @@ class BlockedSpaceCuller {
       auto [i, j] = (*pairs_)[static_cast<std::size_t>(k)];
       auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
       if (!cache_a.box_done[ui]) {
-        cache_a.boxes[ui] = world_box(pa, disks_[0][ui].x, disks_[0][ui].y, disks_[0][ui].radius);
+        cache_a.boxes[ui] = world_box(pa, (*disks_[0])[ui].x, (*disks_[0])[ui].y, (*disks_[0])[ui].radius);
         cache_a.box_done[ui] = 1;
       }
       if (!cache_b.box_done[uj]) {
-        cache_b.boxes[uj] = world_box(pb, disks_[1][uj].x, disks_[1][uj].y, disks_[1][uj].radius);
+        cache_b.boxes[uj] = world_box(pb, (*disks_[1])[uj].x, (*disks_[1])[uj].y, (*disks_[1])[uj].radius);
         cache_b.box_done[uj] = 1;
       }
       if (cache_a.boxes[ui].meets(cache_b.boxes[uj])) meeting.push_back(k);
@@ -868,8 +875,8 @@ class BlockedSpaceCuller {
   ChartAxis x_;
   ChartAxis y_;
   int dimension_;
-  std::vector<BodyDisk> disks_[2];
-  std::vector<Core> cores_[2];
+  const std::vector<BodyDisk>* disks_[2];
+  const std::vector<Core>* cores_[2];
   const std::vector<std::pair<int, int>>* pairs_ = nullptr;
   std::vector<char>* needed_ = nullptr;
   std::size_t cells_ = 0;
@@ -1104,8 +1111,11 @@ struct FrontEdge {
 
 FrontEdge front_edge(HomogeneousPoint q1, HomogeneousPoint q2) {
   FrontEdge e{std::move(q1), std::move(q2), {}, {}};
-  e.dx = e.q2.x * e.q1.w - e.q1.x * e.q2.w;
-  e.dy = e.q2.y * e.q1.w - e.q1.y * e.q2.w;
+  // (products accumulated in place with mpz_addmul / mpz_submul: no temporary integers)
+  mpz_mul(e.dx.get_mpz_t(), e.q2.x.get_mpz_t(), e.q1.w.get_mpz_t());
+  mpz_submul(e.dx.get_mpz_t(), e.q1.x.get_mpz_t(), e.q2.w.get_mpz_t());
+  mpz_mul(e.dy.get_mpz_t(), e.q2.y.get_mpz_t(), e.q1.w.get_mpz_t());
+  mpz_submul(e.dy.get_mpz_t(), e.q1.y.get_mpz_t(), e.q2.w.get_mpz_t());
   mpz_class g;
   mpz_gcd(g.get_mpz_t(), e.dx.get_mpz_t(), e.dy.get_mpz_t());
   if (g > 1) {
@@ -1123,13 +1133,20 @@ FrontSegment front_segment(const FrontEdge& e, const IntegerShift& u) {
   s.w2 = e.q2.w;
   s.dx = e.dx;
   s.dy = e.dy;
-  s.cross1 = e.q1.x * e.dy - e.q1.y * e.dx;
-  s.dot1 = e.q1.x * e.dx + e.q1.y * e.dy;
-  s.dot2 = e.q2.x * e.dx + e.q2.y * e.dy;
-  s.kx = u.x1 * e.dy - u.x2 * e.dx;
-  s.ky = u.y1 * e.dy - u.y2 * e.dx;
-  s.gx = u.x1 * e.dx + u.x2 * e.dy;
-  s.gy = u.y1 * e.dx + u.y2 * e.dy;
+  // a b + sign c d in place (no temporary integers)
+  auto combine = [](mpz_class& out, const mpz_class& a, const mpz_class& b, int sign, const mpz_class& c,
+                    const mpz_class& d) {
+    mpz_mul(out.get_mpz_t(), a.get_mpz_t(), b.get_mpz_t());
+    if (sign < 0) mpz_submul(out.get_mpz_t(), c.get_mpz_t(), d.get_mpz_t());
+    else mpz_addmul(out.get_mpz_t(), c.get_mpz_t(), d.get_mpz_t());
+  };
+  combine(s.cross1, e.q1.x, e.dy, -1, e.q1.y, e.dx);
+  combine(s.dot1, e.q1.x, e.dx, 1, e.q1.y, e.dy);
+  combine(s.dot2, e.q2.x, e.dx, 1, e.q2.y, e.dy);
+  combine(s.kx, u.x1, e.dy, -1, u.x2, e.dx);
+  combine(s.ky, u.y1, e.dy, -1, u.y2, e.dx);
+  combine(s.gx, u.x1, e.dx, 1, u.x2, e.dy);
+  combine(s.gy, u.y1, e.dx, 1, u.y2, e.dy);
   s.k = u.k;
   return s;
 }
@@ -1150,6 +1167,7 @@ IntegerPolynomial2 primitive_affine(mpz_class& c, mpz_class& cx, mpz_class& cy, 
   }
   auto& row = p.coefficients[0];
   if (sgn(cy) != 0) {
+    row.reserve(2);
     row.push_back(c);
     row.push_back(cy);
   } else if (sgn(c) != 0) {
@@ -1163,11 +1181,15 @@ IntegerPolynomial2 primitive_affine(mpz_class& c, mpz_class& cx, mpz_class& cy, 
 // kept; `curve` is left partly written).
 bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurve& curve) {
   const HomogeneousPoint& p = vertex.p;
-  mpz_class c, cx, cy, scratch, ww1, pd;
+  // (this thread's scratch integers, products accumulated in place with mpz_addmul /
+  // mpz_submul: no integer allocated per call once they have grown)
+  thread_local mpz_class c, cx, cy, scratch, ww1, pd;
   // value
   mpz_mul(ww1.get_mpz_t(), p.w.get_mpz_t(), s.w1.get_mpz_t());
-  pd = p.x * s.dy - p.y * s.dx;
-  c = pd * s.w1 - s.cross1 * p.w;
+  mpz_mul(pd.get_mpz_t(), p.x.get_mpz_t(), s.dy.get_mpz_t());
+  mpz_submul(pd.get_mpz_t(), p.y.get_mpz_t(), s.dx.get_mpz_t());
+  mpz_mul(c.get_mpz_t(), pd.get_mpz_t(), s.w1.get_mpz_t());
+  mpz_submul(c.get_mpz_t(), s.cross1.get_mpz_t(), p.w.get_mpz_t());
   c *= s.k;
   mpz_mul(cx.get_mpz_t(), s.kx.get_mpz_t(), ww1.get_mpz_t());
   mpz_mul(cy.get_mpz_t(), s.ky.get_mpz_t(), ww1.get_mpz_t());
@@ -1176,17 +1198,21 @@ bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurv
   if (!value.is_zero() && value.degree_x() == 0 && value.degree_y() == 0) return false;   // a non-zero constant
   // along >= 0, then |d|^2 - along >= 0 (in this order; constant atoms tested, not kept)
   const bool constant_atoms = sgn(s.gx) == 0 && sgn(s.gy) == 0;
-  pd = p.x * s.dx + p.y * s.dy;
-  c = pd * s.w1 - s.dot1 * p.w;
+  mpz_mul(pd.get_mpz_t(), p.x.get_mpz_t(), s.dx.get_mpz_t());
+  mpz_addmul(pd.get_mpz_t(), p.y.get_mpz_t(), s.dy.get_mpz_t());
+  mpz_mul(c.get_mpz_t(), pd.get_mpz_t(), s.w1.get_mpz_t());
+  mpz_submul(c.get_mpz_t(), s.dot1.get_mpz_t(), p.w.get_mpz_t());
   c *= s.k;
   if (constant_atoms) {
     if (sgn(c) < 0) return false;
   } else {
     mpz_mul(cx.get_mpz_t(), s.gx.get_mpz_t(), ww1.get_mpz_t());
     mpz_mul(cy.get_mpz_t(), s.gy.get_mpz_t(), ww1.get_mpz_t());
-    curve.validity.push_back(ValidityClause{{primitive_affine(c, cx, cy, scratch)}});
+    curve.validity.reserve(2);
+    curve.validity.emplace_back().atoms.push_back(primitive_affine(c, cx, cy, scratch));   // (no initializer_list copy)
   }
-  c = s.dot2 * p.w - pd * s.w2;
+  mpz_mul(c.get_mpz_t(), s.dot2.get_mpz_t(), p.w.get_mpz_t());
+  mpz_submul(c.get_mpz_t(), pd.get_mpz_t(), s.w2.get_mpz_t());
   c *= s.k;
   if (constant_atoms) {
     if (sgn(c) < 0) return false;
@@ -1194,9 +1220,9 @@ bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurv
     mpz_mul(ww1.get_mpz_t(), p.w.get_mpz_t(), s.w2.get_mpz_t());   // now W W2
     mpz_mul(cx.get_mpz_t(), s.gx.get_mpz_t(), ww1.get_mpz_t());
     mpz_mul(cy.get_mpz_t(), s.gy.get_mpz_t(), ww1.get_mpz_t());
-    cx = -cx;
-    cy = -cy;
-    curve.validity.push_back(ValidityClause{{primitive_affine(c, cx, cy, scratch)}});
+    mpz_neg(cx.get_mpz_t(), cx.get_mpz_t());
+    mpz_neg(cy.get_mpz_t(), cy.get_mpz_t());
+    curve.validity.emplace_back().atoms.push_back(primitive_affine(c, cx, cy, scratch));
   }
   return true;
 }
@@ -1457,8 +1483,7 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
     // the pivots and directions of the motions do not depend on the chart
     ChartAxis any;
     any.kind = ChartAxis::Kind::translation;
-    Culler culler(part_motion(model.parts.at(axes.first), axes.first_moves, any),
-                  part_motion(model.parts.at(axes.second), axes.second_moves, any));
+    Culler culler(model.parts.at(axes.first), axes.first_moves, any, model.parts.at(axes.second), axes.second_moves, any);
     for (const BodyFeature& f : d.features_a) d.static_a.push_back(culler.describe_static(f));
     for (const BodyFeature& f : d.features_b) d.static_b.push_back(culler.describe_static(f));
   }
@@ -1625,8 +1650,7 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
   stats.reflex_vertices_skipped += d.reflex_vertices_skipped;
 
   const ChartAxis& second_axis = axes.first_moves ? y : x;
-  Culler culler(part_motion(part_a, axes.first_moves, x),
-                part_motion(part_b, axes.second_moves, second_axis));
+  Culler culler(part_a, axes.first_moves, x, part_b, axes.second_moves, second_axis);
   std::vector<SweptFeature> swept_a;
   std::vector<SweptFeature> swept_b;
   swept_a.reserve(features_a.size());
@@ -1753,10 +1777,10 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
         d.cores_a = inscribed_disks(part_a);
         d.cores_b = inscribed_disks(part_b);
       });
-    BlockedSpaceCuller blocked(part_motion(part_a, axes.first_moves, x),
-                               part_motion(part_b, axes.second_moves, second_axis), x, y, axes.dimension(),
-                               d.disks_a, d.disks_b, on_grid ? std::vector<Core>{} : d.cores_a,
-                               on_grid ? std::vector<Core>{} : d.cores_b, on_grid ? grid : nullptr);
+    static const std::vector<Core> no_cores;
+    BlockedSpaceCuller blocked(part_a, axes.first_moves, part_b, axes.second_moves, x, y, axes.dimension(), d.disks_a,
+                               d.disks_b, on_grid ? no_cores : d.cores_a, on_grid ? no_cores : d.cores_b,
+                               on_grid ? grid : nullptr);
     blocked.run(pairs, needed);
   }
 
