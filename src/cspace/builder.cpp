@@ -3,6 +3,7 @@
 // overlap oracle, and charts are glued along seams into cells.
 #include "cspace/builder_impl.hpp"
 #include "cspace/angle_filter.hpp"
+#include "cspace/valid_point.hpp"
 #include "arrangement/circle_segment_traits.hpp"
 #include "arrangement/quadratic_traits.hpp"
 #include "oracle/blocked_tester.hpp"
@@ -156,6 +157,8 @@ const mpz_class& coefficient_of(const IntegerPolynomial2& f, std::size_t i, std:
   return f.coefficients[i][j];
 }
 
+}  // namespace
+
 // An exact witness that the culling quadtree keeps a line: a point of the line inside the
 // closed chart box where every validity clause holds (some atom >= 0), found where the line
 // meets the line of one of its linear atoms. The quadtree's interval enclosures contain the
@@ -222,6 +225,8 @@ bool valid_point_in_box(const ContactCurve& curve, const raw::Box& box) {
     }
   return false;
 }
+
+namespace {
 
 // Keeps the curves that may bound free space somewhere in the chart box, with their windows;
 // returns the input indices of the kept curves.

@@ -1,0 +1,127 @@
+// The polygon front end's exact shortcut in front of the culling quadtree
+// (`valid_point_in_box`, src/cspace/builder.cpp: integer signs of the meeting point's
+// homogeneous coordinates, accumulated in place) against a reference in rationals on
+// generated lines, validity clauses and boxes: the meeting point of the line with each linear
+// atom's line by Cramer's rule as rationals, the closed box by rational comparisons, every
+// clause by evaluating its atoms exactly at that point.
+#include "cspace/valid_point.hpp"
+#include "algebra/polynomial.hpp"
+#include <hipair/rational.hpp>
+#include <gtest/gtest.h>
+#include <optional>
+#include <random>
+#include <vector>
+
+namespace hipair::cspace {
+namespace {
+
+// a x + b y + c, trimmed as the generator leaves its polynomials
+IntegerPolynomial2 line(long a, long b, long c) {
+  IntegerPolynomial2 p;
+  if (a == 0 && b == 0 && c == 0) return p;
+  p.coefficients.resize(a != 0 ? 2 : 1);
+  if (a != 0) p.coefficients[1].push_back(mpz_class(a));
+  if (b != 0) p.coefficients[0] = {mpz_class(c), mpz_class(b)};
+  else p.coefficients[0] = {mpz_class(c)};
+  return p;
+}
+
+// x^2 + y^2 - r (a non-linear atom: the shortcut evaluates it at the rational point)
+IntegerPolynomial2 circle(long r) {
+  IntegerPolynomial2 p;
+  p.coefficients = {{mpz_class(-r), mpz_class(0), mpz_class(1)}, {mpz_class(0)}, {mpz_class(1)}};
+  return p;
+}
+
+const mpz_class& coefficient(const IntegerPolynomial2& f, std::size_t i, std::size_t j) {
+  static const mpz_class zero = 0;
+  if (i >= f.coefficients.size() || j >= f.coefficients[i].size()) return zero;
+  return f.coefficients[i][j];
+}
+
+bool linear(const IntegerPolynomial2& p) {
+  return p.degree_x() <= 1 && p.degree_y() <= 1 && sgn(coefficient(p, 1, 1)) == 0;
+}
+
+// The reference, in rationals.
+bool reference(const ContactCurve& curve, const raw::Box& box) {
+  const IntegerPolynomial2& f = curve.polynomial;
+  if (f.degree_x() > 1 || f.degree_y() > 1 || sgn(coefficient(f, 1, 1)) != 0 || curve.validity.empty()) return false;
+  const Rational a(coefficient(f, 1, 0)), b(coefficient(f, 0, 1)), c(coefficient(f, 0, 0));
+  for (const auto& clause : curve.validity)
+    for (const auto& atom : clause.atoms) {
+      if (!linear(atom)) continue;
+      const Rational d(coefficient(atom, 1, 0)), e(coefficient(atom, 0, 1)), g(coefficient(atom, 0, 0));
+      const Rational det = a * e - b * d;
+      if (det == 0) continue;
+      const Rational x = (b * g - c * e) / det, y = (c * d - a * g) / det;
+      if (x < box.x_lo || x > box.x_hi || y < box.y_lo || y > box.y_hi) continue;
+      bool all = true;
+      for (const auto& other : curve.validity) {
+        bool any = false;
+        for (const auto& p : other.atoms) any = any || evaluate(p, x, y) >= 0;
+        all = all && any;
+      }
+      if (all) return true;
+    }
+  return false;
+}
+
+TEST(CSpaceValidPoint, ShortcutEqualsTheRationalReferenceOnGeneratedLinesClausesAndBoxes) {
+  std::mt19937_64 random(2026);
+  auto small = [&](int range) { return static_cast<long>(random() % (2 * range + 1)) - range; };
+  auto fraction = [](long n, long d) {
+    Rational q{mpz_class(n), mpz_class(d)};
+    q.canonicalize();
+    return q;
+  };
+  int found = 0, not_found = 0, on_the_box = 0;
+  for (int instance = 0; instance < 40000; ++instance) {
+    ContactCurve curve;
+    const long a = small(4), b = small(4), c = small(12);
+    curve.polynomial = line(a, b, c);
+    const int clauses = static_cast<int>(random() % 4);   // 0: no validity (false)
+    for (int k = 0; k < clauses; ++k) {
+      ValidityClause clause;
+      const int atoms = 1 + static_cast<int>(random() % 2);
+      for (int m = 0; m < atoms; ++m)
+        clause.atoms.push_back(random() % 6 == 0 ? circle(1 + static_cast<long>(random() % 20))
+                                                  : line(small(5), small(5), small(15)));
+      curve.validity.push_back(std::move(clause));
+    }
+    raw::Box box;
+    const long den = 1 + static_cast<long>(random() % 6);
+    box.x_lo = fraction(small(10), den);
+    box.y_lo = fraction(small(10), den);
+    box.x_hi = box.x_lo + fraction(1 + static_cast<long>(random() % 12), 1 + static_cast<long>(random() % 3));
+    box.y_hi = box.y_lo + fraction(1 + static_cast<long>(random() % 12), 1 + static_cast<long>(random() % 3));
+    // a third of the boxes get a side exactly through a meeting point (the closed box's ends)
+    if (random() % 3 == 0 && !curve.validity.empty() && !curve.validity[0].atoms.empty() &&
+        linear(curve.validity[0].atoms[0]) && curve.polynomial.degree_x() <= 1) {
+      const IntegerPolynomial2& atom = curve.validity[0].atoms[0];
+      const Rational fa(coefficient(curve.polynomial, 1, 0)), fb(coefficient(curve.polynomial, 0, 1)),
+          fc(coefficient(curve.polynomial, 0, 0));
+      const Rational d(coefficient(atom, 1, 0)), e(coefficient(atom, 0, 1)), g(coefficient(atom, 0, 0));
+      const Rational det = fa * e - fb * d;
+      if (det != 0) {
+        const Rational x = (fb * g - fc * e) / det, y = (fc * d - fa * g) / det;
+        switch (random() % 4) {
+          case 0: box.x_hi = x; box.x_lo = x - 3; break;
+          case 1: box.x_lo = x; box.x_hi = x + 3; break;
+          case 2: box.y_hi = y; box.y_lo = y - 3; break;
+          default: box.y_lo = y; box.y_hi = y + 3; break;
+        }
+        ++on_the_box;
+      }
+    }
+    const bool expected = reference(curve, box);
+    ASSERT_EQ(valid_point_in_box(curve, box), expected) << "instance " << instance;
+    (expected ? found : not_found) += 1;
+  }
+  EXPECT_GE(found, 2500);
+  EXPECT_GE(not_found, 2000);
+  EXPECT_GE(on_the_box, 4000);
+}
+
+}  // namespace
+}  // namespace hipair::cspace
