@@ -761,7 +761,8 @@ class BlockedSpaceCuller {
   // World boxes of one part's features and core centres over one interval of its axis,
   // computed once per interval and shared by all cells using it.
   struct AxisCache {
-    std::vector<WorldBox> boxes;
+    // (not value-initialised: a box is read only after box_done marks it computed)
+    std::unique_ptr<WorldBox[]> boxes;
     std::vector<char> box_done;
     std::vector<Interval> core_x, core_y;
     std::vector<char> core_done;
@@ -771,7 +772,7 @@ class BlockedSpaceCuller {
     auto& caches = caches_[side];
     auto [it, inserted] = caches.try_emplace({interval.lo, interval.hi});
     if (inserted) {
-      it->second.boxes.resize(slots_[side]);
+      it->second.boxes.reset(new WorldBox[slots_[side]]);
       it->second.box_done.assign(slots_[side], 0);
       it->second.core_x.resize(cores_[side].size());
       it->second.core_y.resize(cores_[side].size());
