@@ -24,6 +24,7 @@
 #include <mutex>
 #include <thread>
 #include <tuple>
+#include <unordered_map>
 #include <unistd.h>
 
 namespace hipair {
@@ -129,10 +130,36 @@ RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const
   std::vector<std::vector<char>> seen(nx * ny, std::vector<char>(grid * grid, 0));
   std::vector<std::array<std::size_t, 3>> queue;
   std::vector<cspace::BlockedTester::Cache> caches(nx * ny);   // per chart: its axes are fixed
+  // The disk pairs that can certify a cell, gathered once per block of block_side x block_side
+  // cells (BlockedTester::blocked's `narrowed` list of the block's box, which contains each of
+  // its cells' boxes: the cells' ends are monotone in the index). A cell is then tested on its
+  // block's list only, with the same answer as the sweep over every disk (the list holds every
+  // pair that can certify a box inside the block; BlockedTester::blocked). A block certified
+  // blocked as a whole leaves no list: its cells are tested by the sweep, as before (a cell's
+  // own test is what decides it, so the flood is the same cell for cell).
+  constexpr std::size_t block_side = 8;
+  struct Block {
+    bool listed = false;
+    std::vector<cspace::BlockedTester::DiskPair> pairs;
+  };
+  const std::size_t blocks = (grid + block_side - 1) / block_side;
+  std::vector<std::unordered_map<std::size_t, Block>> block_lists(nx * ny);
   auto blocked = [&](std::size_t c, std::size_t i, std::size_t j) {
     const ChartAxis& x = layout.x_charts[c / ny];
     const ChartAxis& y = layout.y_charts[c % ny];
-    return tester.blocked(x, y, cell_interval(x, i), cell_interval(y, j), caches[c]);
+    const std::size_t bi = i / block_side, bj = j / block_side;
+    auto [it, inserted] = block_lists[c].try_emplace(bi * blocks + bj);
+    Block& block = it->second;
+    if (inserted) {
+      const std::size_t i_last = std::min(grid, (bi + 1) * block_side) - 1;
+      const std::size_t j_last = std::min(grid, (bj + 1) * block_side) - 1;
+      const cspace::algebra::Interval bx{cell_interval(x, bi * block_side).lo, cell_interval(x, i_last).hi};
+      const cspace::algebra::Interval by{cell_interval(y, bj * block_side).lo, cell_interval(y, j_last).hi};
+      block.listed = !tester.blocked(x, y, bx, by, caches[c], nullptr, &block.pairs);
+      if (!block.listed) block.pairs.clear();
+    }
+    if (!block.listed) return tester.blocked(x, y, cell_interval(x, i), cell_interval(y, j), caches[c]);
+    return tester.blocked(x, y, cell_interval(x, i), cell_interval(y, j), caches[c], &block.pairs, nullptr);
   };
   auto push = [&](std::size_t c, std::size_t i, std::size_t j) {
     char& mark = seen[c][i * grid + j];

@@ -684,6 +684,18 @@ class BlockedSpaceCuller {
     for (std::size_t k = 0; k < pairs.size(); ++k) indices[k] = static_cast<int>(k);
     pairs_ = &pairs;
     needed_ = &needed;
+    // the features of some candidate pair get a slot in the per-interval world-box caches (a
+    // chart box's pairs use few of the parts' features: the caches are that much smaller)
+    for (int side = 0; side < 2; ++side) {
+      slot_[side].assign(disks_[side]->size(), -1);
+      slots_[side] = 0;
+    }
+    for (const auto& [i, j] : pairs) {
+      for (auto [side, feature] : {std::pair{0, i}, std::pair{1, j}}) {
+        int& slot = slot_[side][static_cast<std::size_t>(feature)];
+        if (slot < 0) slot = static_cast<int>(slots_[side]++);
+      }
+    }
     if (grid_) {
       visit(grid_cell_x(0, 0), grid_cell_y(0, 0), 0, 0, 0, indices, {});
       return;
@@ -755,7 +767,8 @@ class BlockedSpaceCuller {
   // World boxes of one part's features and core centres over one interval of its axis,
   // computed once per interval and shared by all cells using it.
   struct AxisCache {
-    std::vector<WorldBox> boxes;
+    // (not value-initialised: a box is read only after box_done marks it computed)
+    std::unique_ptr<WorldBox[]> boxes;
     std::vector<char> box_done;
     std::vector<Interval> core_x, core_y;
     std::vector<char> core_done;
@@ -765,8 +778,8 @@ class BlockedSpaceCuller {
     auto& caches = caches_[side];
     auto [it, inserted] = caches.try_emplace({interval.lo, interval.hi});
     if (inserted) {
-      it->second.boxes.resize(disks_[side]->size());
-      it->second.box_done.assign(disks_[side]->size(), 0);
+      it->second.boxes.reset(new WorldBox[slots_[side]]);
+      it->second.box_done.assign(slots_[side], 0);
       it->second.core_x.resize(cores_[side]->size());
       it->second.core_y.resize(cores_[side]->size());
       it->second.core_done.assign(cores_[side]->size(), 0);
@@ -824,15 +837,18 @@ class BlockedSpaceCuller {
     for (int k : open) {
       auto [i, j] = (*pairs_)[static_cast<std::size_t>(k)];
       auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
-      if (!cache_a.box_done[ui]) {
-        cache_a.boxes[ui] = world_box(pa, (*disks_[0])[ui].x, (*disks_[0])[ui].y, (*disks_[0])[ui].radius);
-        cache_a.box_done[ui] = 1;
+      auto sa = static_cast<std::size_t>(slot_[0][ui]), sb = static_cast<std::size_t>(slot_[1][uj]);
+      if (!cache_a.box_done[sa]) {
+        const BodyDisk& disk = (*disks_[0])[ui];
+        cache_a.boxes[sa] = world_box(pa, disk.x, disk.y, disk.radius);
+        cache_a.box_done[sa] = 1;
       }
-      if (!cache_b.box_done[uj]) {
-        cache_b.boxes[uj] = world_box(pb, (*disks_[1])[uj].x, (*disks_[1])[uj].y, (*disks_[1])[uj].radius);
-        cache_b.box_done[uj] = 1;
+      if (!cache_b.box_done[sb]) {
+        const BodyDisk& disk = (*disks_[1])[uj];
+        cache_b.boxes[sb] = world_box(pb, disk.x, disk.y, disk.radius);
+        cache_b.box_done[sb] = 1;
       }
-      if (cache_a.boxes[ui].meets(cache_b.boxes[uj])) meeting.push_back(k);
+      if (cache_a.boxes[sa].meets(cache_b.boxes[sb])) meeting.push_back(k);
     }
     if (meeting.empty()) return;
     // the grid's blocked test (memoised, shared with the builder) after the cheap box tests
@@ -876,6 +892,8 @@ class BlockedSpaceCuller {
   ChartAxis y_;
   int dimension_;
   const std::vector<BodyDisk>* disks_[2];
+  std::vector<int> slot_[2];       // feature -> its slot in AxisCache::boxes (-1: in no pair)
+  std::size_t slots_[2] = {0, 0};
   const std::vector<Core>* cores_[2];
   const std::vector<std::pair<int, int>>* pairs_ = nullptr;
   std::vector<char>* needed_ = nullptr;

@@ -728,25 +728,42 @@ bool BlockedTester::gather(const Posed& first, const Posed& second, std::vector<
 }
 
 bool BlockedTester::gather(const PosedSet& first, const PosedSet& second, std::vector<DiskPair>& out) {
-  // (`first` holds disks of part 0, `second` of part 1.) Every pair kept has |x_a - x_b| <=
-  // (outer_a + outer_b) (1 + 2^-21) + 2^-500 (the margins of the double test): the window in x
-  // is outer_a + (the widest outer of B), widened by more than that and the window ends' rounding
-  double widest = -std::numeric_limits<double>::infinity();
-  for (const PosedDisk& b : second.disks) widest = std::max(widest, b.outer);
-  if (second.disks.empty()) return false;
-  const std::vector<double>& xs = second.xs;
-  const std::size_t n = xs.size();
-  for (const PosedDisk& a : first.disks) {
-    const double span = (a.outer + widest) * (1 + 0x1p-18) + std::fabs(a.x) * 0x1p-40 + 0x1p-400;
-    if (!(span > 0)) continue;
-    const double left = a.x - span, right = a.x + span;
-    for (std::size_t j = static_cast<std::size_t>(std::lower_bound(xs.begin(), xs.end(), left) - xs.begin());
-         j < n && xs[j] <= right; ++j) {
-      const PosedDisk& b = second.disks[j];
-      if (certifies(a, b)) return true;
-      if (may_certify_inside(a, b)) out.push_back(DiskPair{a.index, b.index});
+  // (`first` holds disks of part 0, `second` of part 1.) Every pair kept (may_certify_inside)
+  // or certifying has |x_a - x_b| <= (outer_a + outer_b) (1 + 2^-21) + 2^-500 (the margins of
+  // the double tests; outer >= 0) <= 2 max(outer_a, outer_b) (1 + 2^-21) + 2^-500. So two
+  // sweeps meet every such pair exactly once: each disk a of A against the disks b of B with
+  // outer_b <= outer_a in the window 2 outer_a, and each disk b of B against the disks a of A
+  // with outer_a < outer_b in the window 2 outer_b (windows widened by more than the margins
+  // and the window ends' rounding). (A window of outer_a + the widest outer of B, as before,
+  // let one large disk — a gear's hub — widen every window to the whole part.) The pairs kept
+  // are the same set; they are sorted by (first, second), so a list runs over the disks of A in
+  // groups (BlockedTester::blocked poses a disk once per run of pairs that share it).
+  if (first.disks.empty() || second.disks.empty()) return false;
+  const std::size_t start = out.size();
+  auto sweep = [&](const PosedSet& from, const PosedSet& to, bool from_first) {
+    const std::vector<double>& xs = to.xs;
+    const std::size_t n = xs.size();
+    for (const PosedDisk& p : from.disks) {
+      const double span = 2 * p.outer * (1 + 0x1p-18) + std::fabs(p.x) * 0x1p-40 + 0x1p-400;
+      if (!(span > 0)) continue;
+      const double left = p.x - span, right = p.x + span;
+      for (std::size_t j = static_cast<std::size_t>(std::lower_bound(xs.begin(), xs.end(), left) - xs.begin());
+           j < n && xs[j] <= right; ++j) {
+        const PosedDisk& q = to.disks[j];
+        // each pair in one sweep only: the disk with the larger outer (ties: A's) sweeps
+        if (from_first ? q.outer > p.outer : q.outer >= p.outer) continue;
+        const PosedDisk& a = from_first ? p : q;
+        const PosedDisk& b = from_first ? q : p;
+        if (certifies(a, b)) return true;
+        if (may_certify_inside(a, b)) out.push_back(DiskPair{a.index, b.index});
+      }
     }
-  }
+    return false;
+  };
+  if (sweep(first, second, true) || sweep(second, first, false)) return true;
+  std::sort(out.begin() + static_cast<std::ptrdiff_t>(start), out.end(), [](const DiskPair& p, const DiskPair& q) {
+    return p.first != q.first ? p.first < q.first : p.second < q.second;
+  });
   return false;
 }
 

@@ -50,6 +50,24 @@ struct BlockedTesterProbe {
     return set;
   }
   static bool sweep(const Set& a, const Set& b) { return BlockedTester::overlapping(a, b); }
+  // disks {x, y, reach, outer}, numbered in the order given
+  static Set make_posed(const std::vector<std::array<double, 4>>& disks) {
+    std::vector<BlockedTester::PosedDisk> sorted;
+    for (std::size_t k = 0; k < disks.size(); ++k)
+      sorted.push_back({disks[k][0], disks[k][1], disks[k][2], disks[k][3], static_cast<std::uint32_t>(k)});
+    std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.x < b.x; });
+    Set set;
+    set.widest = -std::numeric_limits<double>::infinity();
+    for (const auto& d : sorted) {
+      set.disks.push_back(d);
+      set.xs.push_back(d.x);
+      set.widest = std::max(set.widest, d.reach);
+    }
+    return set;
+  }
+  static bool gather(const Set& a, const Set& b, std::vector<BlockedTester::DiskPair>& out) {
+    return BlockedTester::gather(a, b, out);
+  }
   // every pair, the certified test of the tester's definition
   static bool all_pairs(const Set& first, const Set& second) {
     using kernels::interval_detail::down;
@@ -106,6 +124,85 @@ TEST(BlockedTester, DiskSweepAnswersAsEveryPair) {
   EXPECT_GT(apart, 400);
 }
 
+// The gathered candidate list of a box (BlockedTester::blocked with `narrowed`, no candidates:
+// the two sweeps of gather, each pair from the side of its larger outer bound) against every
+// pair: "blocked" exactly when some pair passes the certified test, and otherwise exactly the
+// pairs whose posed centres are closer than the sum of their outer bounds (the double test of
+// the tester's definition, may_certify_inside), each once, sorted by (first, second). Generated
+// sets: outer bounds from tiny to a hub's, equal outer bounds across the parts (ties), pairs
+// nearly at the kept distance (1 +- 2^-30 of the outer sum), coordinates far from the origin.
+TEST(BlockedTester, GatheredCandidatesAreEveryPairThatMayCertifyInside) {
+  using Probe = cspace::BlockedTesterProbe;
+  using kernels::interval_detail::down;
+  using kernels::interval_detail::up;
+  using Pair = cspace::BlockedTester::DiskPair;
+  std::mt19937_64 random(20261130);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int certified = 0, listed = 0, ties = 0, near = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const double offset = trial % 3 == 0 ? 0 : std::ldexp(unit(random) - 0.5, static_cast<int>(trial % 60));
+    const double scale = std::ldexp(1.0, static_cast<int>(trial % 40) - 20);
+    std::vector<std::array<double, 4>> sets[2];
+    for (auto& set : sets) {
+      const int count = 1 + static_cast<int>(unit(random) * 40);
+      for (int k = 0; k < count; ++k) {
+        const double r = scale * (unit(random) < 0.2 ? 0 : unit(random) * 0.05);
+        const double error = scale * unit(random) * (trial % 2 ? 0.002 : 0.04);
+        double reach = r - error, outer = r + error;
+        if (unit(random) < 0.05) reach = outer = scale * (1 + 4 * unit(random));   // a hub
+        set.push_back({offset + scale * 4 * unit(random), scale * 4 * unit(random), reach, outer});
+      }
+    }
+    if (trial % 4 == 1) {   // ties: outer bounds equal across the parts
+      for (std::size_t k = 0; k < std::min(sets[0].size(), sets[1].size()); k += 2)
+        if (sets[1][k][2] <= sets[0][k][3]) sets[1][k][3] = sets[0][k][3];   // (reach <= outer kept)
+    }
+    if (trial % 4 == 3) {   // a pair at the kept distance, times 1 +- 2^-30
+      const double distance = (sets[0][0][3] + sets[1][0][3]) * (1 + (trial % 8 == 3 ? 1 : -1) * 0x1p-30);
+      const double angle = 6.283185307179586 * unit(random);
+      sets[1][0][0] = sets[0][0][0] + distance * std::cos(angle);
+      sets[1][0][1] = sets[0][0][1] + distance * std::sin(angle);
+    }
+    const auto a = Probe::make_posed(sets[0]), b = Probe::make_posed(sets[1]);
+    bool expected_blocked = false;
+    std::vector<Pair> expected;
+    for (const auto& p : a.disks)
+      for (const auto& q : b.disks) {
+        ties += p.outer == q.outer;
+        // the certified test (certifies) and the kept test (may_certify_inside) of blocked_tester.cpp
+        const double plain_dx = p.x - q.x, plain_dy = p.y - q.y, plain_reach = p.reach + q.reach;
+        if (plain_reach > 0 && plain_dx * plain_dx + plain_dy * plain_dy < plain_reach * plain_reach) {
+          const double dx = up(std::fabs(plain_dx)), dy = up(std::fabs(plain_dy));
+          const double reach = down(p.reach + q.reach);
+          if (reach > 0 && up(up(dx * dx) + up(dy * dy)) < down(reach * reach)) expected_blocked = true;
+        }
+        const double s = p.outer + q.outer;
+        if (s > 0 && plain_dx * plain_dx + plain_dy * plain_dy <= s * s * (1 + 0x1p-20) + 0x1p-1000)
+          expected.push_back({p.index, q.index});
+      }
+    std::sort(expected.begin(), expected.end(),
+              [](const Pair& p, const Pair& q) { return p.first != q.first ? p.first < q.first : p.second < q.second; });
+    near += trial % 4 == 3;
+    std::vector<Pair> got;
+    const bool got_blocked = Probe::gather(a, b, got);
+    ASSERT_EQ(got_blocked, expected_blocked) << "trial " << trial;
+    if (got_blocked) {
+      ++certified;
+      continue;
+    }
+    ASSERT_EQ(got.size(), expected.size()) << "trial " << trial;
+    for (std::size_t k = 0; k < got.size(); ++k) {
+      ASSERT_EQ(got[k].first, expected[k].first) << "trial " << trial << " pair " << k;
+      ASSERT_EQ(got[k].second, expected[k].second) << "trial " << trial << " pair " << k;
+    }
+    listed += !got.empty();
+  }
+  std::cout << certified << " blocked, " << listed << " with candidates, " << ties << " tied pairs\n";
+  EXPECT_GT(certified, 400);
+  EXPECT_GT(listed, 150);
+  EXPECT_GT(ties, 1000);
+  EXPECT_GT(near, 500);
+}
 
 using Random = std::mt19937_64;
 using cspace::algebra::Interval;

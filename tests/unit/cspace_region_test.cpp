@@ -6,6 +6,7 @@
 //    bounded by the same feature pairs, wrapping the same way;
 //  - tiles not built are reported as outside, and the space says it is not complete.
 #include "curves/contact_curves.hpp"
+#include "oracle/blocked_tester.hpp"
 #include "cspace_test_support.hpp"
 #include "test_paths.hpp"
 
@@ -15,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <numbers>
@@ -249,6 +251,97 @@ TEST(CSpaceRegion, GearChannelIsOneFreeCellAroundTheTorus) {
   // exact point location inside the tiles against the oracle
   cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part("pinion"), *model.find_part("gear"));
   expect_tiles_agree_with_oracle(model, axes, region, 23, 400);
+}
+
+// The operating region's flood as it was built before session 30 (the reference): every fine
+// cell decided by BlockedTester's sweep over every disk pair, breadth first from the seed's
+// cell, across the rotation charts' glued ends; returns the flooded cells.
+std::size_t reference_flood(const Model& model, unsigned tiles) {
+  using cspace::ChartAxis;
+  const cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part("pinion"), *model.find_part("gear"));
+  const cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+  const cspace::BlockedTester tester(model, axes);
+  const std::size_t grid = tiles * std::max<std::size_t>(4, 512 / tiles);
+  const std::size_t nx = layout.x_charts.size(), ny = layout.y_charts.size();
+  auto lo_of = [](const ChartAxis& a) { return a.lo.get_d(); };
+  auto hi_of = [](const ChartAxis& a) { return a.hi.get_d(); };
+  auto cell = [&](const ChartAxis& a, std::size_t i) {
+    const double lo = lo_of(a), width = (hi_of(a) - lo) / static_cast<double>(grid);
+    const double l = i == 0 ? cspace::algebra::lower_double(a.lo) : lo + width * static_cast<double>(i);
+    const double h = i + 1 == grid ? cspace::algebra::upper_double(a.hi) : lo + width * static_cast<double>(i + 1);
+    return cspace::algebra::Interval{std::nextafter(l, -1e300), std::nextafter(h, 1e300)};
+  };
+  auto glued = [](const ChartAxis& a, const Rational& ta, const ChartAxis& b, const Rational& tb) {
+    return a.half_turn == b.half_turn ? ta == tb : ta * tb == -1;
+  };
+  // the seed: both parts' initial angles, in the first chart pair holding them
+  const double seed[2] = {model.parts[axes.first].initial.angle.get_d(), model.parts[axes.second].initial.angle.get_d()};
+  std::vector<std::array<std::size_t, 3>> queue;
+  std::vector<std::vector<char>> seen(nx * ny, std::vector<char>(grid * grid, 0));
+  auto push = [&](std::size_t c, std::size_t i, std::size_t j) {
+    char& mark = seen[c][i * grid + j];
+    if (mark) return;
+    mark = 1;
+    if (tester.blocked(layout.x_charts[c / ny], layout.y_charts[c % ny], cell(layout.x_charts[c / ny], i),
+                       cell(layout.y_charts[c % ny], j)))
+      return;
+    queue.push_back({c, i, j});
+  };
+  for (std::size_t ix = 0; ix < nx && queue.empty(); ++ix)
+    for (std::size_t iy = 0; iy < ny && queue.empty(); ++iy) {
+      double t[2];
+      bool inside = true;
+      for (int k = 0; k < 2; ++k) {
+        const ChartAxis& a = k == 0 ? layout.x_charts[ix] : layout.y_charts[iy];
+        const double local = std::remainder(seed[k] - (a.half_turn ? std::numbers::pi : 0.0), 2 * std::numbers::pi);
+        t[k] = std::tan(0.5 * local);
+        inside = inside && std::fabs(local) <= 0.5 * std::numbers::pi + 1e-12 && t[k] >= lo_of(a) && t[k] <= hi_of(a);
+      }
+      if (!inside) continue;
+      auto index = [&](const ChartAxis& a, double v) {
+        const double f = (v - lo_of(a)) / (hi_of(a) - lo_of(a)) * static_cast<double>(grid);
+        return std::min<std::size_t>(grid - 1, static_cast<std::size_t>(std::max(0.0, f)));
+      };
+      push(ix * ny + iy, index(layout.x_charts[ix], t[0]), index(layout.y_charts[iy], t[1]));
+    }
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const auto [c, i, j] = queue[head];
+    const std::size_t ix = c / ny, iy = c % ny;
+    if (i > 0) push(c, i - 1, j);
+    if (i + 1 < grid) push(c, i + 1, j);
+    if (j > 0) push(c, i, j - 1);
+    if (j + 1 < grid) push(c, i, j + 1);
+    for (std::size_t o = 0; o < nx; ++o) {
+      const ChartAxis &a = layout.x_charts[ix], &b = layout.x_charts[o];
+      if (i + 1 == grid && glued(a, a.hi, b, b.lo)) push(o * ny + iy, 0, j);
+      if (i == 0 && glued(b, b.hi, a, a.lo)) push(o * ny + iy, grid - 1, j);
+    }
+    for (std::size_t o = 0; o < ny; ++o) {
+      const ChartAxis &a = layout.y_charts[iy], &b = layout.y_charts[o];
+      if (j + 1 == grid && glued(a, a.hi, b, b.lo)) push(ix * ny + o, i, 0);
+      if (j == 0 && glued(b, b.hi, a, a.lo)) push(ix * ny + o, i, grid - 1);
+    }
+  }
+  return queue.size();
+}
+
+// The flood tests each fine cell on its block's candidate pairs (session 30): the same cells
+// as the reference flood's sweep over every pair, on a sweep of gear pairs (tooth counts 6 to
+// 17, unequal and equal, 4 to 16 tiles per axis). Only the tiles at the seed are built (a path
+// of one configuration); the flooded cells are counted over the whole region.
+TEST(CSpaceRegion, FloodedCellsAreTheSweepsOnGeneratedGearPairs) {
+  for (auto [z1, z2, tiles] : std::vector<std::tuple<long, long, unsigned>>{
+           {6, 7, 8}, {7, 13, 8}, {8, 9, 16}, {10, 10, 4}, {9, 14, 16}, {12, 17, 8}, {11, 11, 8}}) {
+    Model model = gears(z1, z2);
+    CSpaceBuildOptions options = region_options();
+    options.region_tiles = tiles;
+    const std::vector<std::array<double, 2>> path{std::array<double, 2>{
+        model.parts[*model.find_part("pinion")].initial.angle.get_d(), model.parts[*model.find_part("gear")].initial.angle.get_d()}};
+    CSpace along = build_operating_region_along(model, "pinion", "gear", path, options);
+    const std::size_t expected = reference_flood(model, tiles);
+    EXPECT_GT(expected, 100u) << z1 << " x " << z2;
+    EXPECT_EQ(along.statistics().region_cells, expected) << z1 << " x " << z2 << ", " << tiles << " tiles";
+  }
 }
 
 // build_operating_region_along (the picture `hipair analyze` draws of a large pair): of the
