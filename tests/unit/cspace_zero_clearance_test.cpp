@@ -41,6 +41,12 @@ Rational random_rational(Random& random, const Rational& lo, const Rational& hi,
 // The model text of a rational: "p/q" is an exact expression.
 std::string text(const Rational& r) { return "\"" + r.get_str() + "\""; }
 
+// The scales 1, 10^-300 and 10^300 of the generated sizes.
+std::vector<Rational> one_tiny_huge() {
+  const mpz_class huge("1" + std::string(300, '0'));
+  return {Rational(1), Rational(mpz_class(1), huge), Rational(huge)};
+}
+
 // The exact oracle at a public chart point of `space`.
 cspace::Overlap oracle(const Model& model, const CSpace& space, const ChartPoint& q) {
   std::size_t first = *model.find_part(space.first_part()), second = *model.find_part(space.second_part());
@@ -494,8 +500,7 @@ TEST(CSpaceZeroClearance, AnalyzeReportsTheExactFitAsAContactNotAnInterference) 
 // touching: the fit was reported inside one blocked cell.
 TEST(CSpaceZeroClearance, OneDofFitsHaveTouchingVerticesExactlyWhereTheOracleSaysTouching) {
   Random random(2929);
-  const std::vector<Rational> scales{Rational(1), Rational(mpz_class(1), mpz_class("1" + std::string(300, '0'))),
-                                     Rational(mpz_class("1" + std::string(300, '0')))};
+  const std::vector<Rational> scales = one_tiny_huge();
   std::size_t touching_seen = 0, cases = 0;
   for (int instance = 0; instance < 24; ++instance) {
     const Rational& k = scales[static_cast<std::size_t>(instance) % 3];
@@ -588,8 +593,7 @@ TEST(CSpaceZeroClearance, OneDofFitsHaveTouchingVerticesExactlyWhereTheOracleSay
 // 10^-300, 1 and 10^300. Mutation: the seam decision removed (the former `continue`) fails it.
 TEST(CSpaceZeroClearance, SquarePegFitsOnTheRotationChartsSeamsAreTouching) {
   Random random(2930);
-  const std::vector<Rational> scales{Rational(1), Rational(mpz_class(1), mpz_class("1" + std::string(300, '0'))),
-                                     Rational(mpz_class("1" + std::string(300, '0')))};
+  const std::vector<Rational> scales = one_tiny_huge();
   std::size_t seam_fits = 0;
   for (int instance = 0; instance < 12; ++instance) {
     const Rational& k = scales[static_cast<std::size_t>(instance) % 3];
@@ -660,8 +664,7 @@ TEST(CSpaceZeroClearance, SquarePegFitsOnTheRotationChartsSeamsAreTouching) {
 // they touch. Sizes generated at scales 10^-300, 1 and 10^300.
 TEST(CSpaceZeroClearance, RotatingPairsAreLocatedAsTheOracleSaysAtTheChartsSeams) {
   Random random(3030);
-  const std::vector<Rational> scales{Rational(1), Rational(mpz_class(1), mpz_class("1" + std::string(300, '0'))),
-                                     Rational(mpz_class("1" + std::string(300, '0')))};
+  const std::vector<Rational> scales = one_tiny_huge();
   std::size_t seam_points = 0, seam_overlaps = 0, seam_touches = 0, grazes = 0;
   for (int instance = 0; instance < 20; ++instance) {
     const Rational& k = scales[static_cast<std::size_t>(instance) % 3];
@@ -750,8 +753,7 @@ TEST(CSpaceZeroClearance, RotatingPairsAreLocatedAsTheOracleSaysAtTheChartsSeams
 // Sizes generated at scales 10^-300, 1 and 10^300.
 TEST(CSpaceZeroClearance, ADoubleEndedArmGrazingItsStopTurnsAllTheWayRound) {
   Random random(3031);
-  const std::vector<Rational> scales{Rational(1), Rational(mpz_class(1), mpz_class("1" + std::string(300, '0'))),
-                                     Rational(mpz_class("1" + std::string(300, '0')))};
+  const std::vector<Rational> scales = one_tiny_huge();
   std::size_t grazes = 0;
   for (int instance = 0; instance < 12; ++instance) {
     const Rational& k = scales[static_cast<std::size_t>(instance) % 3];
