@@ -931,16 +931,27 @@ void find_touching(ChartData& chart, const Classifier& classify, ContactSides* s
 void find_touching_points(ChartData& chart, const Classifier& classify, CSpaceStatistics& stats) {
   chart.touching_vertex.assign(chart.points.size(), 0);
   chart.seam_relation.assign(chart.points.size(), -1);
+  chart.grazing_point.assign(chart.points.size(), 0);
   for (std::size_t i = 0; i < chart.points.size(); ++i) {
-    // a point on the chart's end (its outer face empty) with blocked space inside: the relation
-    // of the parts there, for the seam decision in `build` (the other side is another chart's)
+    // a point on the chart's end (its outer face empty) with blocked or free space inside: the
+    // relation of the parts there, for the seam decision in `build` (the other side is another
+    // chart's)
     const bool low_empty = chart.faces[i].kind == FaceKind::outside, high_empty = chart.faces[i + 1].kind == FaceKind::outside;
     if (low_empty != high_empty) {
-      if ((low_empty ? chart.faces[i + 1] : chart.faces[i]).kind != FaceKind::blocked) continue;
+      const FaceKind inner = (low_empty ? chart.faces[i + 1] : chart.faces[i]).kind;
+      if (inner != FaceKind::blocked && inner != FaceKind::free) continue;
       if (auto x = rational_value(chart.points[i])) {
         Overlap relation = classify(ChartPoint{*x, Rational(0)});
         if (relation != Overlap::apart) chart.seam_relation[i] = relation == Overlap::touching ? 1 : 0;
       }
+      continue;
+    }
+    // a contact point with free space on both sides: a grazing contact where the parts touch,
+    // or no contact at all; a rational point is decided by the exact oracle (an irrational one
+    // stays inside its free cell: not decided, docs/performance.md, session 30)
+    if (chart.faces[i].kind == FaceKind::free && chart.faces[i + 1].kind == FaceKind::free) {
+      if (auto x = rational_value(chart.points[i]))
+        chart.grazing_point[i] = classify(ChartPoint{*x, Rational(0)}) == Overlap::touching;
       continue;
     }
     if (chart.faces[i].kind != FaceKind::blocked || chart.faces[i + 1].kind != FaceKind::blocked) continue;
@@ -1508,11 +1519,19 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
           const std::size_t ia = A.points.size() - 1;   // (valid when a_point)
           if (a_point) --fa;
           if (b_point) ++fb;
-          if (A.faces[fa].kind != FaceKind::blocked || B.faces[fb].kind != FaceKind::blocked) continue;
           auto relation = [](const ChartData& chart, std::size_t i) {
             return i < chart.seam_relation.size() ? chart.seam_relation[i] : static_cast<signed char>(-1);
           };
           const signed char ra = a_point ? relation(A, ia) : -1, rb = b_point ? relation(B, 0) : -1;
+          if (A.faces[fa].kind == FaceKind::free && B.faces[fb].kind == FaceKind::free) {
+            // a contact point on the seam between free intervals (session 30): one free cell
+            // across it, as inside a chart; where the parts touch there, a grazing contact
+            components.join(face_offset[a] + fa, face_offset[b] + fb, {winding, 0});
+            if (a_point && ra == 1) A.grazing_point[ia] = 1;
+            if (b_point && rb == 1) B.grazing_point[0] = 1;
+            continue;
+          }
+          if (A.faces[fa].kind != FaceKind::blocked || B.faces[fb].kind != FaceKind::blocked) continue;
           if (ra == 1 || rb == 1) {
             if (a_point && ia < A.touching_vertex.size() && !A.touching_vertex[ia]) {
               A.touching_vertex[ia] = 1;

@@ -111,6 +111,10 @@ struct ChartData {
   /// contact point on a seam): 1 the parts only touch there, 0 they overlap, -1 not decided (the
   /// exact oracle at the rational seam point); the seams are decided in `build` (session 29)
   std::vector<signed char> seam_relation;
+  /// 1-D, per point: a contact point with free space on both sides where the parts touch (a
+  /// grazing contact; the exact oracle at the rational point, session 30): point location
+  /// answers the contact there, not the free cell it lies in
+  std::vector<char> grazing_point;
   std::vector<Rational> rational_vertex_x;     ///< sorted: rational x of vertices (sampling avoids them)
   /// per vertex (2-D, set when the space is complete): certified doubles {x_lo, x_hi, y_hi} with
   /// x_lo <= x <= x_hi and y <= y_hi for the vertex's algebraic x and y (point location's

@@ -222,8 +222,9 @@ Location locate_1d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
       const FaceData& before = chart.faces[i];
       const FaceData& after = chart.faces[i + 1];
       // (a touching point is a contact configuration even where its two sides join round the circle)
+      // (nor is a grazing contact between free intervals, where the parts touch: session 30)
       if (before.kind != FaceKind::outside && after.kind != FaceKind::outside && before.cell == after.cell &&
-          !(i < chart.touching_vertex.size() && chart.touching_vertex[i]))
+          !(i < chart.touching_vertex.size() && chart.touching_vertex[i]) && !(i < chart.grazing_point.size() && chart.grazing_point[i]))
         location.cell = before.cell;
       return location;
     }

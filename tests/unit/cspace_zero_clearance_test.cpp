@@ -41,6 +41,12 @@ Rational random_rational(Random& random, const Rational& lo, const Rational& hi,
 // The model text of a rational: "p/q" is an exact expression.
 std::string text(const Rational& r) { return "\"" + r.get_str() + "\""; }
 
+// The scales 1, 10^-300 and 10^300 of the generated sizes.
+std::vector<Rational> one_tiny_huge() {
+  const mpz_class huge("1" + std::string(300, '0'));
+  return {Rational(1), Rational(mpz_class(1), huge), Rational(huge)};
+}
+
 // The exact oracle at a public chart point of `space`.
 cspace::Overlap oracle(const Model& model, const CSpace& space, const ChartPoint& q) {
   std::size_t first = *model.find_part(space.first_part()), second = *model.find_part(space.second_part());
@@ -494,8 +500,7 @@ TEST(CSpaceZeroClearance, AnalyzeReportsTheExactFitAsAContactNotAnInterference) 
 // touching: the fit was reported inside one blocked cell.
 TEST(CSpaceZeroClearance, OneDofFitsHaveTouchingVerticesExactlyWhereTheOracleSaysTouching) {
   Random random(2929);
-  const std::vector<Rational> scales{Rational(1), Rational(mpz_class(1), mpz_class("1" + std::string(300, '0'))),
-                                     Rational(mpz_class("1" + std::string(300, '0')))};
+  const std::vector<Rational> scales = one_tiny_huge();
   std::size_t touching_seen = 0, cases = 0;
   for (int instance = 0; instance < 24; ++instance) {
     const Rational& k = scales[static_cast<std::size_t>(instance) % 3];
@@ -588,8 +593,7 @@ TEST(CSpaceZeroClearance, OneDofFitsHaveTouchingVerticesExactlyWhereTheOracleSay
 // 10^-300, 1 and 10^300. Mutation: the seam decision removed (the former `continue`) fails it.
 TEST(CSpaceZeroClearance, SquarePegFitsOnTheRotationChartsSeamsAreTouching) {
   Random random(2930);
-  const std::vector<Rational> scales{Rational(1), Rational(mpz_class(1), mpz_class("1" + std::string(300, '0'))),
-                                     Rational(mpz_class("1" + std::string(300, '0')))};
+  const std::vector<Rational> scales = one_tiny_huge();
   std::size_t seam_fits = 0;
   for (int instance = 0; instance < 12; ++instance) {
     const Rational& k = scales[static_cast<std::size_t>(instance) % 3];
@@ -646,6 +650,162 @@ TEST(CSpaceZeroClearance, SquarePegFitsOnTheRotationChartsSeamsAreTouching) {
     }
   }
   EXPECT_GE(seam_fits, 12u);   // 9 exact fits x 2 seam fits x (1 or 2 charts' vertices)
+}
+
+// Point location of a rotating 1-D pair against the exact oracle at the rotation charts' seams
+// (session 30, hunt30). An arm of length L and half-width w turns about the origin; a fixed
+// frame holds a stop whose lower edge y = L (+ a clearance) the arm's tip meets exactly at 90
+// or 270 degrees, the seams t = +-1 of the two rotation charts (the tip corner's contact
+// polynomial (L + w) t^2 - 2 L t + (L - w) has the root t = 1). Half the frames also hold a
+// block across the arm's path just before the stop, so that at the seam the parts overlap with
+// a contact point there. Every chart's ends, every exact vertex and random rational t of both
+// charts are located and compared with the oracle: free exactly where the parts are apart,
+// blocked (a blocked cell, or a point inside one) where they overlap, a touching location where
+// they touch. Sizes generated at scales 10^-300, 1 and 10^300.
+TEST(CSpaceZeroClearance, RotatingPairsAreLocatedAsTheOracleSaysAtTheChartsSeams) {
+  Random random(3030);
+  const std::vector<Rational> scales = one_tiny_huge();
+  std::size_t seam_points = 0, seam_overlaps = 0, seam_touches = 0, grazes = 0;
+  for (int instance = 0; instance < 20; ++instance) {
+    const Rational& k = scales[static_cast<std::size_t>(instance) % 3];
+    const bool block = (instance / 2) % 2 == 1, clearance = instance % 8 == 7, down = instance % 4 >= 2, graze = instance >= 16;
+    Rational w = random_rational(random, Rational(1, 2), Rational(2)) * k;
+    Rational L = random_rational(random, Rational(8), Rational(20)) * k;
+    Rational gap = clearance ? Rational(random_rational(random, Rational(1, 100), Rational(1, 10)) * k) : Rational(0);
+    if (graze) {   // a Pythagorean arm: its tip corner's circle, of radius m^2 + n^2, grazes the stop
+      const long m = 4 + instance % 4;
+      const Rational unit = random_rational(random, Rational(1, 2), Rational(2)) * k;
+      L = Rational(m * m - 1) * unit;
+      w = Rational(2 * m) * unit;
+      gap = Rational(m * m + 1) * unit - L;
+    }
+    const Rational a = w + random_rational(random, Rational(1), Rational(4)) * k;   // stop's half-width
+    const Rational sign = down ? Rational(-1) : Rational(1);
+    auto p = [](const Rational& x, const Rational& y) { return "[" + text(x) + ", " + text(y) + "]"; };
+    auto box = [&](const Rational& x0, const Rational& from, const Rational& x1, const Rational& to) {   // counter-clockwise
+      const Rational y0 = std::min(Rational(sign * from), Rational(sign * to)), y1 = std::max(Rational(sign * from), Rational(sign * to));
+      return "{ \"start\": " + p(x0, y0) + ", \"edges\": [ { \"line_to\": " + p(x1, y0) + " }, { \"line_to\": " + p(x1, y1) +
+             " }, { \"line_to\": " + p(x0, y1) + " }, { \"line_to\": " + p(x0, y0) + " } ] }";
+    };
+    std::string frame = box(-a, L + gap, a, L + gap + 3 * k);
+    if (block) frame += ", " + box(-a, L / 3, a, L / 2);
+    const std::string json = R"({ "hipair": 1, "name": "arm-at-the-seam", "parts": [
+        { "name": "arm", "motion": { "rotation": { "pivot": [0, 0] } }, "loops": [ { "start": [0, )" + text(-w) +
+                             R"(], "edges": [ { "line_to": [)" + text(L) + ", " + text(-w) + R"(] }, { "line_to": [)" + text(L) + ", " +
+                             text(w) + R"(] }, { "line_to": [0, )" + text(w) + R"(] }, { "line_to": [0, )" + text(-w) + R"(] } ] } ] },
+        { "name": "frame", "motion": "fixed", "loops": [ )" + frame + R"( ] } ],
+      "pairs": [ { "parts": ["arm", "frame"] } ] })";
+    SCOPED_TRACE("instance " + std::to_string(instance) + (block ? " with a block" : "") + (clearance ? " with clearance" : "") +
+                 (down ? " at 270 degrees" : " at 90 degrees") + " w " + w.get_str().substr(0, 30));
+    Model model = read_model(json);
+    CSpace space = CSpace::build(model, "arm", "frame");
+    ASSERT_EQ(space.dimension(), 1);
+    auto check = [&](const ChartPoint& q, const std::string& where) {
+      Location location = space.locate(q);
+      cspace::Overlap truth = oracle(model, space, q);
+      if (truth == cspace::Overlap::overlapping) {
+        EXPECT_TRUE(located_blocked(space, location)) << where << " kind " << static_cast<int>(location.kind);
+      } else if (truth == cspace::Overlap::touching) {
+        // (a 1-D vertex outside every cell is a contact point: the parts touch there)
+        const bool contact = location.kind == Location::Kind::vertex && location.cell == no_index;
+        EXPECT_TRUE(contact || located_touching(space, location)) << where << " kind " << static_cast<int>(location.kind);
+      } else {
+        const bool free = location.kind == Location::Kind::free ||
+                          (location.cell != no_index && space.cells()[location.cell].kind == CellKind::free);
+        EXPECT_TRUE(free) << where << " kind " << static_cast<int>(location.kind);
+      }
+      return truth;
+    };
+    for (std::size_t c = 0; c < space.charts().size(); ++c) {
+      const CSpaceChart& chart = space.charts()[c];
+      for (const Rational& end : {chart.x_lo, chart.x_hi}) {
+        cspace::Overlap truth = check(ChartPoint{c, end, Rational(0)}, "chart " + std::to_string(c) + " end " + end.get_str());
+        if (end == Rational(1) || end == Rational(-1)) {
+          ++seam_points;
+          seam_overlaps += truth == cspace::Overlap::overlapping;
+          seam_touches += truth == cspace::Overlap::touching;
+        }
+      }
+      for (int i = 0; i < 40; ++i) {
+        Rational t = random_rational(random, chart.x_lo, chart.x_hi, 1000);
+        check(ChartPoint{c, t, Rational(0)}, "chart " + std::to_string(c) + " t " + t.get_str());
+      }
+    }
+    for (const CSpaceVertex& vertex : space.vertices())
+      if (vertex.x.exact && check(ChartPoint{vertex.chart, vertex.x.lower, Rational(0)},
+                                  "vertex of chart " + std::to_string(vertex.chart) + " t " + vertex.x.lower.get_str()) ==
+                                cspace::Overlap::touching)
+        grazes += graze;
+  }
+  EXPECT_GE(seam_overlaps, 4u);
+  EXPECT_GE(seam_touches, 4u);
+  EXPECT_GE(seam_points, 32u);
+  EXPECT_GE(grazes, 4u);
+}
+
+// A double-ended pointed arm (tips (+-(L + h), 0)) turning about the origin grazes a fixed stop
+// with its tips: the stop's edge lies at exactly the tips' radius, on the right (grazes at 0 and
+// 180 degrees, inside the rotation charts) or above (at 90 and 270 degrees, exactly on their
+// seams). The arm turns all the way round, touching the stop twice a turn (session 30): one free
+// cell that wraps, wherever the grazes fall, and each grazing point located as a contact (the
+// exact oracle says touching), free space just beside it. On the seams the free intervals were
+// left unjoined (two free cells, neither wrapping) and the seam points kept as separations.
+// Sizes generated at scales 10^-300, 1 and 10^300.
+TEST(CSpaceZeroClearance, ADoubleEndedArmGrazingItsStopTurnsAllTheWayRound) {
+  Random random(3031);
+  const std::vector<Rational> scales = one_tiny_huge();
+  std::size_t grazes = 0;
+  for (int instance = 0; instance < 12; ++instance) {
+    const Rational& k = scales[static_cast<std::size_t>(instance) % 3];
+    const bool above = instance % 2 == 1;
+    const Rational w = random_rational(random, Rational(1, 2), Rational(2)) * k;
+    const Rational L = random_rational(random, Rational(8), Rational(20)) * k;
+    const Rational h = w + random_rational(random, Rational(1, 10), Rational(3)) * k;   // tips beyond the corners' circle
+    const Rational R = L + h, a = random_rational(random, Rational(1), Rational(4)) * k;
+    auto p = [](const Rational& x, const Rational& y) { return "[" + text(x) + ", " + text(y) + "]"; };
+    const std::string arm = "{ \"start\": " + p(-L, -w) + ", \"edges\": [ { \"line_to\": " + p(L, -w) + " }, { \"line_to\": " +
+                            p(R, 0) + " }, { \"line_to\": " + p(L, w) + " }, { \"line_to\": " + p(-L, w) + " }, { \"line_to\": " +
+                            p(-R, 0) + " }, { \"line_to\": " + p(-L, -w) + " } ] }";
+    const Rational x0 = above ? Rational(-a) : R, x1 = above ? a : Rational(R + 3 * k);
+    const Rational y0 = above ? R : Rational(-a), y1 = above ? Rational(R + 3 * k) : a;
+    const std::string stop = "{ \"start\": " + p(x0, y0) + ", \"edges\": [ { \"line_to\": " + p(x1, y0) + " }, { \"line_to\": " +
+                             p(x1, y1) + " }, { \"line_to\": " + p(x0, y1) + " }, { \"line_to\": " + p(x0, y0) + " } ] }";
+    const std::string json = R"({ "hipair": 1, "name": "grazing-arm", "parts": [
+        { "name": "arm", "motion": { "rotation": { "pivot": [0, 0] } }, "loops": [ )" + arm + R"( ] },
+        { "name": "stop", "motion": "fixed", "loops": [ )" + stop + R"( ] } ],
+      "pairs": [ { "parts": ["arm", "stop"] } ] })";
+    SCOPED_TRACE("instance " + std::to_string(instance) + (above ? " stop above" : " stop on the right") + " L " +
+                 L.get_str().substr(0, 30));
+    Model model = read_model(json);
+    CSpace space = CSpace::build(model, "arm", "stop");
+    ASSERT_EQ(space.dimension(), 1);
+    ASSERT_EQ(space.cells().size(), 1u);
+    EXPECT_EQ(space.cells()[0].kind, CellKind::free);
+    EXPECT_TRUE(space.cells()[0].wraps_x);
+    std::size_t seen = 0;
+    for (std::size_t c = 0; c < space.charts().size(); ++c) {
+      const CSpaceChart& chart = space.charts()[c];
+      const Rational graze = above ? (chart.x_half_turn ? Rational(-1) : Rational(1)) : Rational(0);
+      std::vector<Rational> at{graze};
+      if (above) at.push_back(chart.x_half_turn ? chart.x_hi : chart.x_lo);   // the chart's other seam
+      for (const Rational& t : at) {
+        if (t < chart.x_lo || t > chart.x_hi) continue;
+        const ChartPoint q{c, t, Rational(0)};
+        ASSERT_EQ(oracle(model, space, q), cspace::Overlap::touching) << "chart " << c << " t " << t.get_str();
+        Location location = space.locate(q);
+        EXPECT_EQ(location.kind, Location::Kind::vertex) << "chart " << c << " t " << t.get_str();
+        EXPECT_EQ(location.cell, no_index) << "chart " << c << " t " << t.get_str();
+        const Rational eps = Rational(1, 1000000);
+        for (const Rational& beside : {Rational(t - eps), Rational(t + eps)})
+          if (beside >= chart.x_lo && beside <= chart.x_hi)
+            EXPECT_EQ(space.locate(ChartPoint{c, beside, Rational(0)}).kind, Location::Kind::free) << "beside " << t.get_str();
+        ++seen;
+      }
+    }
+    EXPECT_GE(seen, 2u);
+    grazes += seen;
+  }
+  EXPECT_GE(grazes, 24u);
 }
 
 }  // namespace
