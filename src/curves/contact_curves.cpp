@@ -17,6 +17,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <cstdint>
 #include <mutex>
 #include <numbers>
 #include <unordered_map>
@@ -745,26 +746,56 @@ class BlockedSpaceCuller {
     return result;
   }
 
+  // A core centre's posed enclosure.
+  struct PosedCore {
+    double x_lo, x_hi, y_lo, y_hi;
+  };
+
   // World boxes of one part's features and core centres over one interval of its axis,
-  // computed once per interval and shared by all cells using it.
+  // computed once per interval and shared by all cells using it. A cell reads few of a part's
+  // features: the values computed are stored densely in the order asked, `*_slot` saying where
+  // (`no_slot`: not computed yet). Before session 30 every interval's cache held a zeroed slot
+  // per feature and core, and zeroing and faulting in those pages was a fifth of the gear
+  // train's tolerance run.
+  static constexpr std::uint32_t no_slot = 0xffffffffu;
   struct AxisCache {
+    std::vector<std::uint32_t> box_slot;
     std::vector<WorldBox> boxes;
-    std::vector<char> box_done;
-    std::vector<Interval> core_x, core_y;
-    std::vector<char> core_done;
+    std::vector<std::uint32_t> core_slot;
+    std::vector<PosedCore> cores;
   };
 
   AxisCache& cache_for(int side, const Interval& interval) {
     auto& caches = caches_[side];
     auto [it, inserted] = caches.try_emplace({interval.lo, interval.hi});
     if (inserted) {
-      it->second.boxes.resize(disks_[side].size());
-      it->second.box_done.assign(disks_[side].size(), 0);
-      it->second.core_x.resize(cores_[side].size());
-      it->second.core_y.resize(cores_[side].size());
-      it->second.core_done.assign(cores_[side].size(), 0);
+      it->second.box_slot.assign(disks_[side].size(), no_slot);
+      it->second.core_slot.assign(cores_[side].size(), no_slot);
     }
     return it->second;
+  }
+
+  // The world box of feature `index` of `side` over the cache's interval.
+  const WorldBox& world_box_of(AxisCache& cache, const PoseBox& pose, int side, std::size_t index) const {
+    std::uint32_t& slot = cache.box_slot[index];
+    if (slot == no_slot) {
+      const BodyDisk& disk = disks_[side][index];
+      slot = static_cast<std::uint32_t>(cache.boxes.size());
+      cache.boxes.push_back(world_box(pose, disk.x, disk.y, disk.radius));
+    }
+    return cache.boxes[slot];
+  }
+
+  // The posed enclosure of core `index` of `side` over the cache's interval.
+  const PosedCore& posed_core(AxisCache& cache, const PoseBox& pose, int side, std::size_t index) const {
+    std::uint32_t& slot = cache.core_slot[index];
+    if (slot == no_slot) {
+      Interval x, y;
+      pose.apply(cores_[side][index].x, cores_[side][index].y, x, y);
+      slot = static_cast<std::uint32_t>(cache.cores.size());
+      cache.cores.push_back(PosedCore{x.lo, x.hi, y.lo, y.hi});
+    }
+    return cache.cores[slot];
   }
 
   Interval grid_cell_x(int depth, long i) const {
@@ -795,16 +826,10 @@ class BlockedSpaceCuller {
     std::vector<std::pair<int, int>> near_cores;
     for (const auto& [ci, cj] : core_pairs) {
       auto ui = static_cast<std::size_t>(ci), uj = static_cast<std::size_t>(cj);
-      if (!cache_a.core_done[ui]) {
-        pa.apply(cores_[0][ui].x, cores_[0][ui].y, cache_a.core_x[ui], cache_a.core_y[ui]);
-        cache_a.core_done[ui] = 1;
-      }
-      if (!cache_b.core_done[uj]) {
-        pb.apply(cores_[1][uj].x, cores_[1][uj].y, cache_b.core_x[uj], cache_b.core_y[uj]);
-        cache_b.core_done[uj] = 1;
-      }
-      Interval dx = cache_a.core_x[ui] - cache_b.core_x[uj];
-      Interval dy = cache_a.core_y[ui] - cache_b.core_y[uj];
+      const PosedCore& core_a = posed_core(cache_a, pa, 0, ui);
+      const PosedCore& core_b = posed_core(cache_b, pb, 1, uj);
+      Interval dx = Interval(core_a.x_lo, core_a.x_hi) - Interval(core_b.x_lo, core_b.x_hi);
+      Interval dy = Interval(core_a.y_lo, core_a.y_hi) - Interval(core_b.y_lo, core_b.y_hi);
       Interval distance2 = dx * dx + dy * dy;
       double ra = cores_[0][ui].radius, rb = cores_[1][uj].radius;
       Interval reach = Interval(ra, ra) + Interval(rb, rb);
@@ -817,15 +842,8 @@ class BlockedSpaceCuller {
     for (int k : open) {
       auto [i, j] = (*pairs_)[static_cast<std::size_t>(k)];
       auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
-      if (!cache_a.box_done[ui]) {
-        cache_a.boxes[ui] = world_box(pa, disks_[0][ui].x, disks_[0][ui].y, disks_[0][ui].radius);
-        cache_a.box_done[ui] = 1;
-      }
-      if (!cache_b.box_done[uj]) {
-        cache_b.boxes[uj] = world_box(pb, disks_[1][uj].x, disks_[1][uj].y, disks_[1][uj].radius);
-        cache_b.box_done[uj] = 1;
-      }
-      if (cache_a.boxes[ui].meets(cache_b.boxes[uj])) meeting.push_back(k);
+      WorldBox box_a = world_box_of(cache_a, pa, 0, ui);
+      if (box_a.meets(world_box_of(cache_b, pb, 1, uj))) meeting.push_back(k);
     }
     if (meeting.empty()) return;
     // the grid's blocked test (memoised, shared with the builder) after the cheap box tests
