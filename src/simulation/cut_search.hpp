@@ -71,7 +71,7 @@ CutBracket bracket_cut(double hi, const CutProbe& upper, double width, Probe pro
   }
   // ITP (interpolate, truncate, project; Oliveira and Takahashi 2020): the regula falsi point,
   // moved toward the midpoint by delta = kappa (hi - lo)^2 (so that both ends move), and kept
-  // within r of the midpoint, r shrinking as a bisection would: never more than
+  // within r of the midpoint, r shrinking as a bisection would: not more than about
   // n_half + 1 probes (n_half: the bisection's halvings to the width), superlinear where the
   // indicator is smooth
   const double epsilon = 0.5 * width;

@@ -5,7 +5,7 @@
 // bracket must have the bisection's property — lo is 0 or a probe the predicate holds at, hi a
 // probe it fails at (or the given upper end), hi - lo <= width — and, for a single change, hold
 // the change as the bisection's bracket (the oracle) does; with consistent indicators it takes
-// far fewer probes than 50.
+// far fewer probes than 50, and with misleading ones never more than 53.
 #include "simulation/cut_search.hpp"
 
 #include <gtest/gtest.h>
@@ -137,6 +137,30 @@ TEST(SimulationCutSearch, InconsistentMissingAndNoisyIndicatorsStillBracketTheCh
       return (root - u) + 1e-3 * std::sin(1e6 * u);                       // noisy
     };
     check_bracket(c, hi, "inconsistent", index);
+    std::size_t calls = 0;
+    CutBracket b = bracket_cut(hi, probe_of(c, hi, calls), std::ldexp(hi, -50),
+                               [&](double u) { return probe_of(c, u, calls); });
+    EXPECT_TRUE(b.lo <= root && root <= b.hi) << index;
+  }
+}
+
+// Indicators with the right signs but misleading values (the interpolation would crawl toward one
+// end): never more probes than the bisection's 50 halvings and 3 (u = 0, ITP's spare, rounding).
+TEST(SimulationCutSearch, MisleadingIndicatorsCostNoMoreThanTheBisection) {
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int index = 0; index < 200; ++index) {
+    const double hi = 0.5 + unit(random);
+    const double root = hi * (0.001 + 0.998 * unit(random));
+    const bool high = index % 2 == 0;
+    Condition c;
+    c.bad = {{root, INFINITY}};
+    c.indicator = [=](double u) {
+      if (high) return u < root ? 1e300 : -(u - root) * 1e-300;
+      return u < root ? (root - u) * 1e-300 : -1e300;
+    };
+    int probes = check_bracket(c, hi, "misleading", index);
+    EXPECT_LE(probes, 53) << index;
     std::size_t calls = 0;
     CutBracket b = bracket_cut(hi, probe_of(c, hi, calls), std::ldexp(hi, -50),
                                [&](double u) { return probe_of(c, u, calls); });
