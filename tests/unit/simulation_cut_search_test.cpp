@@ -63,8 +63,8 @@ std::pair<double, double> bisection(const Condition& c, double hi) {
   return {lo, hi};
 }
 
-// the bracket's property; returns the probes made
-int check_bracket(const Condition& c, double hi, const char* what, int index) {
+// the bracket's property; returns the bracket
+CutBracket check_bracket(const Condition& c, double hi, const char* what, int index) {
   std::size_t calls = 0;
   CutProbe upper = probe_of(c, hi, calls);
   EXPECT_NE(upper.kind, 0) << what << " " << index;
@@ -79,7 +79,7 @@ int check_bracket(const Condition& c, double hi, const char* what, int index) {
   EXPECT_TRUE(c.violated(b.hi)) << what << " " << index << " hi " << b.hi;
   EXPECT_EQ(b.at_hi.kind, 1) << what << " " << index;
   EXPECT_EQ(b.at_hi.which, 7u) << what << " " << index;
-  return b.probes;
+  return b;
 }
 
 TEST(SimulationCutSearch, OneChangeIsBracketedAsTheBisectionDoesWithFewProbes) {
@@ -101,16 +101,14 @@ TEST(SimulationCutSearch, OneChangeIsBracketedAsTheBisectionDoesWithFewProbes) {
       if (shape == 1) return scale * x * (1 + curve * x * x) / (1 + std::abs(curve));
       return scale * std::expm1(3 * x);
     };
-    int probes = check_bracket(c, hi, "one change", index);
+    CutBracket b = check_bracket(c, hi, "one change", index);
+    int probes = b.probes;
     total += probes;
     most = std::max(most, probes);
     ++cases;
     // the oracle: the bisection's bracket holds the change, and so does this one (one change)
     auto [blo, bhi] = bisection(c, hi);
     ASSERT_TRUE(blo <= root && root <= bhi) << index;
-    std::size_t calls = 0;
-    CutBracket b = bracket_cut(hi, probe_of(c, hi, calls), std::ldexp(hi, -50),
-                               [&](double u) { return probe_of(c, u, calls); });
     EXPECT_TRUE(b.lo <= root && root <= b.hi) << index << " root " << root << " [" << b.lo << ", " << b.hi << "]";
   }
   // the point of the search: about a fifth of the bisection's probes
@@ -136,10 +134,7 @@ TEST(SimulationCutSearch, InconsistentMissingAndNoisyIndicatorsStillBracketTheCh
       if (kind == 2) return u < root ? 1.0 : -1.0;                        // signs only
       return (root - u) + 1e-3 * std::sin(1e6 * u);                       // noisy
     };
-    check_bracket(c, hi, "inconsistent", index);
-    std::size_t calls = 0;
-    CutBracket b = bracket_cut(hi, probe_of(c, hi, calls), std::ldexp(hi, -50),
-                               [&](double u) { return probe_of(c, u, calls); });
+    CutBracket b = check_bracket(c, hi, "inconsistent", index);
     EXPECT_TRUE(b.lo <= root && root <= b.hi) << index;
   }
 }
@@ -159,11 +154,8 @@ TEST(SimulationCutSearch, MisleadingIndicatorsCostNoMoreThanTheBisection) {
       if (high) return u < root ? 1e300 : -(u - root) * 1e-300;
       return u < root ? (root - u) * 1e-300 : -1e300;
     };
-    int probes = check_bracket(c, hi, "misleading", index);
-    EXPECT_LE(probes, 53) << index;
-    std::size_t calls = 0;
-    CutBracket b = bracket_cut(hi, probe_of(c, hi, calls), std::ldexp(hi, -50),
-                               [&](double u) { return probe_of(c, u, calls); });
+    CutBracket b = check_bracket(c, hi, "misleading", index);
+    EXPECT_LE(b.probes, 53) << index;
     EXPECT_TRUE(b.lo <= root && root <= b.hi) << index;
   }
 }
@@ -194,12 +186,9 @@ TEST(SimulationCutSearch, AViolationFromTheStartGivesTheBisectionsBracket) {
     Condition c;
     c.bad = {{0, INFINITY}};
     c.indicator = [](double u) { return -38767.3 - u; };
-    int probes = check_bracket(c, hi, "from the start", index);
-    EXPECT_LE(probes, 2) << index;
+    CutBracket b = check_bracket(c, hi, "from the start", index);
+    EXPECT_LE(b.probes, 2) << index;
     auto [blo, bhi] = bisection(c, hi);
-    std::size_t calls = 0;
-    CutBracket b = bracket_cut(hi, probe_of(c, hi, calls), std::ldexp(hi, -50),
-                               [&](double u) { return probe_of(c, u, calls); });
     EXPECT_EQ(b.lo, blo) << index;
     EXPECT_EQ(b.hi, bhi) << index;
   }
