@@ -1,7 +1,7 @@
 // HIPAIR — the step's cut at a sustained contact's first violated condition (simulation.cpp's
 // step): a bracket [lo, hi] of the change of a boolean predicate along the step's path, found
-// with the violated condition's continuous indicator proposing the probes (docs/simulation.md,
-// "Cutting a step at a sustained contact's change").
+// with the violated condition's continuous indicator proposing the probes (docs/performance.md,
+// "Session 30 (sim30)").
 //
 // The predicate decides every end: lo is a probe at which it holds no violation (or 0), hi one at
 // which it does (or the given upper end, already found violated), and hi - lo <= width. The
