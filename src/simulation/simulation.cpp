@@ -19,6 +19,7 @@
 
 #include "simulation/crossing_limit.hpp"
 #include "simulation/crossing_sweep.hpp"
+#include "simulation/cut_search.hpp"
 #include "simulation/friction.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/units.hpp"
@@ -385,6 +386,22 @@ struct Simulation::Impl {
       if (back && *back == outside) return false;
     }
     return true;
+  }
+
+  // How far held contact `a` at qs is inside its edge's extent (with its slack), in the chart
+  // coordinate row() watches: < 0 where row() fails for being past an end; NaN for a contact
+  // whose extent is not watched. Only a proposal for the step's cut search (cut_search.hpp).
+  double edge_room(const Active& a, const Vec& qs) const {
+    if (a.point && !a.bounded_y) return std::nan("");
+    const CSpaceChart& chart = chart_of(a);
+    if (a.point) {
+      // past the exact end vertex by more than on_vertical_edge's limit (none off a vertex)
+      double ty = to_chart(chart.y_kind, chart.y_half_turn, qs[a.ydof]);
+      double beyond = a.at_vertex ? std::min(a.slack, strict_rows ? 1e-12 : a.slack) : 0.0;
+      return std::min(ty - (a.y_lo - beyond), (a.y_hi + beyond) - ty);
+    }
+    double tx = to_chart(chart.x_kind, chart.x_half_turn, qs[a.xdof]);
+    return std::min(tx - (a.x_lo - a.slack), (a.x_hi + a.slack) - tx);
   }
 
   // the constraint's gradient over dofs, its bias h (g'' = G q'' + h) and its value g
@@ -1648,7 +1665,20 @@ struct Simulation::Impl {
     // (bilateral) forces can differ by round-off where a contact is at its limit, and a change
     // present at u = 0 would cut every step there)
     std::vector<bool> coulomb_ignored;
-    auto violated = [&](double u, std::size_t& which) {
+    // (each probe also gives every held condition's continuous indicator — each edge's room,
+    // each multiplier, each Coulomb condition's slack — which only proposes the cut search's
+    // next probe; the returned kind decides. Indicator k: contact k's room; n + k: its
+    // multiplier; 2n + k: its Coulomb condition; 3n: none, the forces not computed)
+    auto violated = [&](double u) {
+      const std::size_t n = active.size();
+      simulation::CutProbe p;
+      p.margins.assign(3 * n + 1, std::numeric_limits<double>::quiet_NaN());
+      auto found = [&p](int kind, std::size_t which, std::size_t indicator) {
+        p.kind = kind;
+        p.which = which;
+        p.indicator = indicator;
+        return p;
+      };
       Vec qs, vs, acc, lambda;
       path.at(u, qs, vs);
       // the prescribed parts where their law puts them, as the state taken at a cut will have
@@ -1659,21 +1689,24 @@ struct Simulation::Impl {
           double ad;
           driver_law(dofs[i], path.t0 + u * path.h, qs[i], vs[i], ad);
         }
-      for (std::size_t k = 0; k < active.size(); ++k) {
+      for (std::size_t k = 0; k < n; ++k) {
         Vec G;
         double h, gval;
+        double room = edge_room(active[k], qs);
         if (!row(active[k], qs, vs, G, h, gval)) {
-          which = k;
-          return 2;
+          // (failed for another reason than the end: no indicator)
+          if (room < 0) p.margins[k] = room;
+          return found(2, k, k);
         }
+        p.margins[k] = room;
       }
       ContactForces cf;
-      if (!accelerations(path.t0 + u * path.h, qs, vs, acc, lambda, nullptr, &cf)) return 2;
-      for (std::size_t k = 0; k < lambda.size(); ++k)
-        if (lambda[k] < 0) {
-          which = k;
-          return 1;
-        }
+      if (!accelerations(path.t0 + u * path.h, qs, vs, acc, lambda, nullptr, &cf))
+        return found(2, 0, 3 * n);   // (no contact named, as before)
+      for (std::size_t k = 0; k < lambda.size(); ++k) {
+        if (k < n) p.margins[n + k] = lambda[k];
+        if (lambda[k] < 0) return found(1, k, n + k);
+      }
       if (cf.friction && start.friction)
         for (std::size_t k = 0; k < cf.state.size() && k < start.vt.size(); ++k) {
           if (k < coulomb_ignored.size() && coulomb_ignored[k]) continue;
@@ -1682,20 +1715,16 @@ struct Simulation::Impl {
             // stick -> slip: the static limit reached (with a margin of 2e-9 over the 1e-9 the
             // step-start decision allows, so that the next step does not stick again)
             double limit = cf.mu_static[k] * cf.normal[k];
-            if (std::abs(cf.tangential[k]) > limit * (1 + 2e-9) + 1e-300) {
-              which = k;
-              return 3;
-            }
+            if (k < n) p.margins[2 * n + k] = limit * (1 + 2e-9) + 1e-300 - std::abs(cf.tangential[k]);
+            if (std::abs(cf.tangential[k]) > limit * (1 + 2e-9) + 1e-300) return found(3, k, 2 * n + k);
           } else if (st == simulation::slip_positive || st == simulation::slip_negative) {
             // slip -> stick (or reversal): the relative tangential velocity crosses zero
             double threshold = std::min(0.0, st * start.vt[k]);
-            if (st * cf.vt[k] < threshold) {
-              which = k;
-              return 3;
-            }
+            if (k < n) p.margins[2 * n + k] = st * cf.vt[k] - threshold;
+            if (st * cf.vt[k] < threshold) return found(3, k, 2 * n + k);
           }
         }
-      return 0;
+      return p;
     };
     if (!active.empty()) {
       strict_rows = true;
@@ -1711,26 +1740,21 @@ struct Simulation::Impl {
       double u_probe = 1;
       for (const Active& a : active) u_probe = std::min(u_probe, edge_watch_end(a, path));
       for (std::size_t pass = 0; pass <= active.size(); ++pass) {
-        int kind = violated(u_probe, which);
-        if (kind == 0) {
+        simulation::CutProbe upper = violated(u_probe);
+        if (upper.kind == 0) {
           // the path came near an edge's end and did not pass it: the step ends there (no
           // event) and the next one watches on from that state
           if (u_probe < 1) u_end = u_probe;
           break;
         }
-        double lo = 0, hi = u_probe;
-        for (int i = 0; i < 50; ++i) {
-          double m = 0.5 * (lo + hi);
-          std::size_t w = 0;
-          int k = violated(m, w);
-          if (k != 0) {
-            hi = m;
-            which = w;
-            kind = k;
-          } else {
-            lo = m;
-          }
-        }
+        // the change bracketed to 2^-50 of the probed path, as the former bisection's 50
+        // halvings did (cut_search.hpp)
+        simulation::CutBracket bracket =
+            simulation::bracket_cut(u_probe, upper, std::ldexp(u_probe, -50), violated);
+        simulation::cut_probes() += static_cast<std::size_t>(bracket.probes);
+        double lo = bracket.lo;
+        int kind = bracket.at_hi.kind;
+        which = bracket.at_hi.which;
         if (kind == 3 && lo == 0 && which < coulomb_ignored.size()) {
           // a Coulomb change right at the step's start: not a change along the step (see above)
           coulomb_ignored[which] = true;
