@@ -500,8 +500,9 @@ bool overlap_nominally(const Disk& a, const Disk& b) {
 }
 
 // The certified test of one pair of posed disks: they overlap at every configuration of the box.
+// (Inlined: it runs in the innermost loops of blocked() and gather(); a call costs ≈ 1 % of a build.)
 template <class Disk>
-bool certifies(const Disk& a, const Disk& b) {
+[[gnu::always_inline]] inline bool certifies(const Disk& a, const Disk& b) {
   // a plain double test first (the certified one below implies it: skipping when it fails
   // decides nothing), then certified: |centre_a - centre_b|^2 (rounded up) <
   // (reach_a + reach_b)^2 (rounded down)
@@ -738,8 +739,38 @@ bool BlockedTester::gather(const PosedSet& first, const PosedSet& second, std::v
   // let one large disk — a gear's hub — widen every window to the whole part.) The pairs kept
   // are the same set; they are sorted by (first, second), so a list runs over the disks of A in
   // groups (BlockedTester::blocked poses a disk once per run of pairs that share it).
+  // Where no disk is much wider than the rest (Geneva, escapement: the two sweeps would scan
+  // about every pair twice), one sweep of A's disks in the window outer_a + the widest outer of
+  // B meets the same pairs with less work; which sweep runs is chosen by the windows' summed
+  // widths times the disks they scan, and decides only the work: the set, then sorted, is the same.
   if (first.disks.empty() || second.disks.empty()) return false;
   const std::size_t start = out.size();
+  double widest_b = 0, sum_a = 0, sum_b = 0;
+  for (const PosedDisk& a : first.disks) sum_a += a.outer;
+  for (const PosedDisk& b : second.disks) sum_b += b.outer, widest_b = std::max(widest_b, b.outer);
+  const auto count_a = static_cast<double>(first.disks.size()), count_b = static_cast<double>(second.disks.size());
+  const double one_sweep = (sum_a + count_a * widest_b) * count_b;
+  const double two_sweeps = 2 * (sum_a * count_b + sum_b * count_a);
+  auto by_pair = [](const DiskPair& p, const DiskPair& q) {
+    return p.first != q.first ? p.first < q.first : p.second < q.second;
+  };
+  if (one_sweep <= two_sweeps) {
+    const std::vector<double>& xs = second.xs;
+    const std::size_t n = xs.size();
+    for (const PosedDisk& a : first.disks) {
+      const double span = (a.outer + widest_b) * (1 + 0x1p-18) + std::fabs(a.x) * 0x1p-40 + 0x1p-400;
+      if (!(span > 0)) continue;
+      const double left = a.x - span, right = a.x + span;
+      for (std::size_t j = static_cast<std::size_t>(std::lower_bound(xs.begin(), xs.end(), left) - xs.begin());
+           j < n && xs[j] <= right; ++j) {
+        const PosedDisk& b = second.disks[j];
+        if (certifies(a, b)) return true;
+        if (may_certify_inside(a, b)) out.push_back(DiskPair{a.index, b.index});
+      }
+    }
+    std::sort(out.begin() + static_cast<std::ptrdiff_t>(start), out.end(), by_pair);
+    return false;
+  }
   auto sweep = [&](const PosedSet& from, const PosedSet& to, bool from_first) {
     const std::vector<double>& xs = to.xs;
     const std::size_t n = xs.size();
@@ -761,9 +792,7 @@ bool BlockedTester::gather(const PosedSet& first, const PosedSet& second, std::v
     return false;
   };
   if (sweep(first, second, true) || sweep(second, first, false)) return true;
-  std::sort(out.begin() + static_cast<std::ptrdiff_t>(start), out.end(), [](const DiskPair& p, const DiskPair& q) {
-    return p.first != q.first ? p.first < q.first : p.second < q.second;
-  });
+  std::sort(out.begin() + static_cast<std::ptrdiff_t>(start), out.end(), by_pair);
   return false;
 }
 
