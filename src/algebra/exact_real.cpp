@@ -382,6 +382,20 @@ class SignFilter {
     for (const mpz_class& c : p)
       if (sgn(c) != 0) bits = std::max(bits, mpz_sizeinbase(c.get_mpz_t(), 2));
     std::size_t shift = bits > 900 ? bits - 900 : 0;
+    coefficients_.reserve(p.size());
+    if (shift == 0) {
+      // the bounds below for shift 0 (f = c), from one conversion and without a copy of c
+      for (const mpz_class& c : p) {
+        const double d = mpz_get_d(c.get_mpz_t());   // towards zero
+        if (mpz_sizeinbase(c.get_mpz_t(), 2) <= 53)
+          coefficients_.push_back({d, d});
+        else if (sgn(c) > 0)
+          coefficients_.push_back({d, std::nextafter(d, HUGE_VAL)});
+        else
+          coefficients_.push_back({std::nextafter(d, -HUGE_VAL), d});
+      }
+      return;
+    }
     mpz_class floor_value;
     for (const mpz_class& c : p) {
       // c / 2^shift lies in [f, f + 1] for f = floor(c / 2^shift); mpz_get_d truncates
@@ -745,14 +759,30 @@ int separated_in_doubles(const Real& a, const Real& b) {
 }
 
 // Overlapping isolating intervals of one square-free polynomial (one simple root in each open
-// interval, non-zero signs at the ends): true when the polynomial changes sign over the common
-// part, which then holds the one root of both (false: undecided here).
-bool one_polynomial_one_root(const Real& a, const Real& b) {
-  if (!(a.polynomial == b.polynomial)) return false;
+// interval, non-zero opposite signs at the ends): the order of the two roots, read off the signs
+// at the ends of the common part (lo, hi) — the signs by the certified double filter, exactly
+// where it cannot decide. A sign change there: the common part holds one root, which is both
+// (equal). None: it holds none (at most one root of either lies in it), so the root of the interval
+// starting lower lies below lo and the other above hi: when a.lower < b.lower, b's root lies
+// above hi, which must then be a.upper (it is below b.upper), so a < b; symmetrically a > b.
+// nullopt when the polynomials differ, or when the premise does not hold (an end's sign is 0,
+// or no sign change with equal lower ends): compare() and equal() decide as without this test.
+std::optional<int> one_polynomial_order(const Real& a, const Real& b) {
+  if (!(a.polynomial == b.polynomial)) return std::nullopt;
   const Rational& lo = std::max(a.lower, b.lower);
   const Rational& hi = std::min(a.upper, b.upper);
-  int s_lo = sign_at(a.polynomial, lo), s_hi = sign_at(a.polynomial, hi);
-  return s_lo != 0 && s_hi != 0 && s_lo != s_hi;
+  const SignFilter filter(a.polynomial);
+  auto sign = [&](const Rational& x) {
+    const Interval box = enclose(x);
+    int s = std::isfinite(box.lo) && std::isfinite(box.hi) ? filter.sign(box) : 0;
+    return s != 0 ? s : sign_at(a.polynomial, x);
+  };
+  const int s_lo = sign(lo), s_hi = sign(hi);
+  if (s_lo == 0 || s_hi == 0) return std::nullopt;
+  if (s_lo != s_hi) return 0;
+  const int lowers = cmp(a.lower, b.lower);
+  if (lowers == 0) return std::nullopt;
+  return lowers < 0 ? -1 : 1;
 }
 
 // Overlapping isolating intervals: the numbers are equal iff the gcd of their polynomials has a
@@ -772,8 +802,10 @@ int compare(const Real& a, const Real& b) {
   if (b.exact) return a.compare(b.lower);
   if (a.upper <= b.lower) return -1;
   if (b.upper <= a.lower) return 1;
+  // one polynomial (the same root met in two slices, two roots of one slice): two signs decide,
+  // before the double bisection of both numbers (which cannot separate equal ones)
+  if (std::optional<int> order = one_polynomial_order(a, b)) return *order;
   if (int s = separated_in_doubles(a, b)) return s;
-  if (one_polynomial_one_root(a, b)) return 0;
   // Overlapping intervals: equal iff the gcd has a root in the common part.
   {
     // distinct numbers usually separate after a few halvings: try that before the gcd
@@ -846,8 +878,9 @@ bool equal(const Real& a, const Real& b) {
   if (b.exact) return a.compare(b.lower) == 0;
   if (a.upper <= b.lower || b.upper <= a.lower) return false;
   // compare()'s tests without its refinement before the gcd (which only sorts distinct numbers)
+  if (std::optional<int> order = one_polynomial_order(a, b)) return *order == 0;
   if (separated_in_doubles(a, b) != 0) return false;
-  return one_polynomial_one_root(a, b) || common_root_in_overlap(a, b);
+  return common_root_in_overlap(a, b);
 }
 
 Rational simplest_between(const Rational& lo, const Rational& hi) {
@@ -1610,7 +1643,27 @@ std::string to_string(const IntegerPolynomial2& f, const std::string& x, const s
 
 // ---------------------------------------------------------------- intervals
 
-Interval enclose(const Rational& r) { return {lower_double(r), upper_double(r)}; }
+// The bounds of {lower_double(r), upper_double(r)} bit for bit, in one pass: both take the same
+// nearest-towards-zero double d = r.get_d() and the same exact sign of r - d, which moves one of
+// them to the next double outwards. A rational with a power-of-two denominator 2^k (every
+// bisection end, every double) and a numerator of at most 53 bits is that double itself when
+// k <= 1022 (no subnormal): then d is exact and both bounds are d, without the division and the
+// comparison.
+Interval enclose(const Rational& r) {
+  const mpz_srcptr num = r.get_num_mpz_t(), den = r.get_den_mpz_t();
+  if (mpz_sgn(num) == 0) return {0.0, 0.0};
+  const std::size_t den_bits = mpz_sizeinbase(den, 2);
+  if (mpz_sizeinbase(num, 2) <= 53 && den_bits <= 1023 && mpz_scan1(den, 0) == den_bits - 1) {
+    const double d = std::ldexp(mpz_get_d(num), -static_cast<int>(den_bits - 1));   // exact
+    return {d, d};
+  }
+  const double d = r.get_d();
+  if (std::isinf(d))
+    return {d > 0 ? std::numeric_limits<double>::max() : d, d < 0 ? std::numeric_limits<double>::lowest() : d};
+  const int c = compare_with_double(r, d);   // sign(r - d)
+  return {c < 0 ? std::nextafter(d, -std::numeric_limits<double>::infinity()) : d,
+          c > 0 ? std::nextafter(d, std::numeric_limits<double>::infinity()) : d};
+}
 // The bounds of enclose(Rational(z)) bit for bit, without the rational copy (an allocation, and
 // mpq_get_d's division): mpz_get_d truncates toward zero as mpq_get_d does (the same double, and
 // the same infinity beyond the doubles' range), and mpz_cmp_d compares z with a finite double

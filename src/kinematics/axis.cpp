@@ -1,5 +1,6 @@
 // Axes of moving parts, exact positions on them, and slices along them.
 #include "kinematics/axis.hpp"
+#include "kinematics/slice_cells.hpp"
 
 #include "algebra/real_filters.hpp"
 
@@ -109,6 +110,10 @@ AxisPosition canonical(const AxisLine& line, AxisPosition position) {
 
 int compare(const AxisPosition& a, const AxisPosition& b) {
   if (a.piece != b.piece) return a.piece < b.piece ? -1 : 1;
+  // both truncated doubles known (coordinate() keeps them): truncation towards zero is
+  // non-decreasing, so trunc(a) < trunc(b) implies a < b, exactly (equal ones decide nothing)
+  if (!std::isnan(a.approximate) && !std::isnan(b.approximate) && a.approximate != b.approximate)
+    return a.approximate < b.approximate ? -1 : 1;
   return algebra::compare(a.value, b.value);
 }
 
@@ -330,19 +335,9 @@ std::optional<ChartSlice> restrict_chart_slice(const ChartSlice& wide, const Cha
   Rational lo = window ? std::max(window->lo, chart.lo) : chart.lo;
   Rational hi = window ? std::min(window->hi, chart.hi) : chart.hi;
   if (!(lo < hi) || lo < wide.covered_lo || hi > wide.covered_hi) return std::nullopt;
-  // the first point at or above `bound`; nullopt when one equals it
-  auto first_not_below = [&](const Rational& bound) -> std::optional<std::size_t> {
-    std::size_t a = 0, b = wide.points.size();
-    while (a < b) {
-      std::size_t middle = (a + b) / 2;
-      int side = algebra::compare_filtered(wide.points[middle].value, bound);
-      if (side == 0) return std::nullopt;
-      if (side < 0) a = middle + 1;
-      else b = middle;
-    }
-    return a;
-  };
-  std::optional<std::size_t> first = first_not_below(lo), end = first_not_below(hi);
+  // the first points at or above lo and hi; nullopt when one equals them
+  std::optional<std::size_t> first = slice_cells::first_point_not_below(wide.points, lo),
+                             end = slice_cells::first_point_not_below(wide.points, hi);
   if (!first || !end) return std::nullopt;
   // (lo, points[first]) lies in wide's interval before points[first], (points[end - 1], hi) in
   // the one after points[end - 1]: non-empty intervals of wide (lo and hi are strictly between

@@ -7,6 +7,7 @@
 // sample point classified by the overlap oracle (exact). Roots where the class does not change
 // are kept (the engine ignores them); roots shared by several curves carry all their features.
 #include "kinematics/slice.hpp"
+#include "kinematics/slice_cells.hpp"
 #include "curves/pose.hpp"
 #include "algebra/rational_root.hpp"
 #include "algebra/real_filters.hpp"
@@ -430,12 +431,8 @@ class KernelSlicer final : public PairSlicer {
     Rational range_hi = window ? std::min(window->hi, axis.hi) : axis.hi;
     if (range_hi < range_lo) range_hi = range_lo;
     const std::vector<Rational>& edges = follower_edges_[follower_chart];
-    std::uint32_t window_mask = ~std::uint32_t(0);
-    if (window) {
-      window_mask = 0;
-      for (int cell = 0; cell < follower_cells; ++cell)
-        if (edges[cell + 1] >= range_lo && edges[cell] <= range_hi) window_mask |= std::uint32_t(1) << cell;
-    }
+    // the follower cells the range meets (binary searches over the ascending edges)
+    const std::uint32_t window_mask = window ? slice_cells::cells_meeting(edges, range_lo, range_hi) : ~std::uint32_t(0);
     algebra::Interval value_box = algebra::enclose(value);
     std::vector<SlicePoint> points;
     for (const auto& [strip_curve, cells] : candidates) {
@@ -710,20 +707,12 @@ class KernelSlicer final : public PairSlicer {
   bool carried_kind(const Transfer& transfer, std::size_t follower_chart, const Rational& s, SliceKind& kind) const {
     const ChartSlice& old = transfer.previous->slice;
     if (!(old.covered_lo < s && s < old.covered_hi)) return false;
-    std::size_t lo = 0, hi = old.points.size();   // the first point above s
-    while (lo < hi) {
-      std::size_t middle = (lo + hi) / 2;
-      int side = algebra::compare_filtered(old.points[middle].value, s);
-      if (side == 0) return false;
-      if (side < 0) lo = middle + 1;
-      else hi = middle;
-    }
+    const std::optional<std::size_t> above = slice_cells::first_point_not_below(old.points, s);   // the first point above s
+    if (!above) return false;   // s is a point of the previous slice
+    const std::size_t lo = *above;
     if (old.kinds[lo] == SliceKind::empty) return false;
     // the follower cells holding s (two on a cell border: the cull's boxes are closed)
-    const std::vector<Rational>& edges = follower_edges_[follower_chart];
-    std::uint32_t bits = 0;
-    for (int cell = 0; cell < follower_cells; ++cell)
-      if (edges[cell] <= s && s <= edges[cell + 1]) bits |= std::uint32_t(1) << cell;
+    const std::uint32_t bits = slice_cells::cells_holding(follower_edges_[follower_chart], s);
     algebra::Interval at = algebra::enclose(s);
     int evaluations = 0;
     for (const auto& [curve, cells] : transfer.curves) {

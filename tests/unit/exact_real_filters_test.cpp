@@ -1,0 +1,332 @@
+// The certified double filters of exact_real.cpp against the exact paths they stand in front of:
+// enclose(Rational) in one pass against the two-pass bounds (nearest-towards-zero double, moved
+// outwards by the exact sign of the difference), the sign filter's coefficients through
+// compare_filtered and refine_to, and compare()/equal() with the one-polynomial test before the
+// double bisection against the closed-form order of roots ±sqrt(q) and rationals. Generated
+// values: random rationals of 1 to 1,200 bits, scales 2^-1000..2^1000, dyadic and subnormal
+// values, equal numbers from different polynomials, numbers differing in the last bit.
+#include "algebra/exact_real.hpp"
+#include "algebra/real_filters.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <limits>
+#include <random>
+#include <vector>
+
+namespace hipair::cspace::algebra {
+namespace {
+
+// The enclosure as it was computed before the one-pass form: d = r.get_d() (towards zero), the
+// exact sign of r - d (the double as an exact rational), the bound on the far side moved to the
+// next double; beyond the doubles' range the largest finite double.
+Interval reference_enclose(const Rational& r) {
+  const double d = r.get_d();
+  if (std::isinf(d))
+    return {d > 0 ? std::numeric_limits<double>::max() : d, d < 0 ? std::numeric_limits<double>::lowest() : d};
+  const int c = cmp(r, Rational(d));
+  return {c < 0 ? std::nextafter(d, -HUGE_VAL) : d, c > 0 ? std::nextafter(d, HUGE_VAL) : d};
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+mpz_class random_integer(std::mt19937_64& random, unsigned bits) {
+  mpz_class z = 0;
+  for (unsigned done = 0; done < bits; done += 64) {
+    z <<= 64;
+    z += mpz_class(static_cast<unsigned long>(random()));
+  }
+  if (bits % 64 != 0) z >>= 64 - bits % 64;
+  return z;
+}
+
+std::vector<Rational> generated_rationals(std::mt19937_64& random, int count) {
+  std::vector<Rational> values;
+  auto sign = [&](Rational r) { return random() % 2 ? r : Rational(-r); };
+  for (int i = 0; i < count; ++i) {
+    const unsigned num_bits = 1 + static_cast<unsigned>(random() % 1200), den_bits = 1 + static_cast<unsigned>(random() % 1200);
+    mpz_class num = random_integer(random, num_bits), den = random_integer(random, den_bits);
+    if (den == 0) den = 1;
+    Rational r(num, den);
+    r.canonicalize();
+    values.push_back(sign(r));
+    // dyadic: a numerator of 40..60 bits over 2^k, k up to 1,100 (normal, subnormal, beyond)
+    const unsigned k = static_cast<unsigned>(random() % 1101);
+    mpz_class odd = random_integer(random, 40 + static_cast<unsigned>(random() % 21));
+    mpz_setbit(odd.get_mpz_t(), 0);
+    Rational dyadic(odd, mpz_class(1) << k);
+    dyadic.canonicalize();
+    values.push_back(sign(dyadic));
+    // an exact double of any exponent (subnormals included), and its neighbours' rationals
+    std::uint64_t bits = random() & 0x7FEFFFFFFFFFFFFFull;
+    double d = 0;
+    std::memcpy(&d, &bits, sizeof d);
+    values.push_back(sign(Rational(d)));
+    values.push_back(sign(Rational(Rational(d) + Rational(1, mpz_class(1) << 1200))));
+    values.push_back(sign(Rational(Rational(d) - Rational(1, mpz_class(1) << 1200))));
+    // 2^53 +- 1 and friends over small denominators
+    const long offset = static_cast<long>(random() % 5) - 2;
+    Rational near(mpz_class(1) << (53 + random() % 3), mpz_class(1 + random() % 7));
+    near += offset;
+    near.canonicalize();
+    values.push_back(sign(near));
+  }
+  values.push_back(Rational(0));
+  values.push_back(Rational(mpz_class(1) << 1100));
+  values.push_back(Rational(-Rational(mpz_class(1) << 1100)));
+  values.push_back(Rational(mpz_class(1), mpz_class(1) << 1100));
+  values.push_back(Rational(mpz_class(1), mpz_class(1) << 1074));
+  values.push_back(Rational(mpz_class(1), mpz_class(1) << 1022));
+  values.push_back(Rational(mpz_class(3), mpz_class(1) << 1023));
+  return values;
+}
+
+TEST(ExactRealFilters, EncloseIsTheReferenceBoundsBitForBit) {
+  std::mt19937_64 random(20261201);
+  const std::vector<Rational> values = generated_rationals(random, 20000);
+  ASSERT_GT(values.size(), 100000u);
+  for (const Rational& r : values) {
+    const Interval got = enclose(r), want = reference_enclose(r);
+    ASSERT_TRUE(same_bits(got.lo, want.lo) && same_bits(got.hi, want.hi))
+        << r.get_str() << ": [" << got.lo << ", " << got.hi << "] against [" << want.lo << ", " << want.hi << "]";
+    // certified: lo <= r <= hi whenever the bound is finite
+    if (std::isfinite(got.lo) && got.lo != std::numeric_limits<double>::max()) ASSERT_LE(Rational(got.lo), r);
+    if (std::isfinite(got.hi) && got.hi != std::numeric_limits<double>::lowest()) ASSERT_GE(Rational(got.hi), r);
+  }
+}
+
+// ---------------------------------------------------------------- roots with a closed-form order
+
+// s sqrt(q): s in {-1, 0, 1}, q > 0 (q = 0 when s = 0); rational when q is a square.
+struct Known {
+  int s = 0;
+  Rational q;
+};
+
+int order(const Known& a, const Known& b) {
+  if (a.s != b.s) return a.s < b.s ? -1 : 1;
+  if (a.s == 0) return 0;
+  const int c = cmp(a.q, b.q);
+  return a.s > 0 ? (c > 0) - (c < 0) : (c < 0) - (c > 0);
+}
+
+Polynomial times(const Polynomial& a, const Polynomial& b) {
+  Polynomial r(a.size() + b.size() - 1);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) r[i + j] += a[i] * b[j];
+  return r;
+}
+
+// A factor with its known roots: den x - num (root num / den), or den x^2 - num (roots +- sqrt).
+struct Factor {
+  Polynomial p;
+  std::vector<Known> roots;
+};
+
+Factor linear(const Rational& r) {
+  Factor f;
+  f.p = {-r.get_num(), r.get_den()};
+  f.roots.push_back(Known{sgn(r), r * r});
+  return f;
+}
+
+Factor square_root_pair(const Rational& q) {   // x^2 - q, q > 0 not a square
+  Factor f;
+  f.p = {-q.get_num(), mpz_class(0), q.get_den()};
+  f.roots.push_back(Known{-1, q});
+  f.roots.push_back(Known{1, q});
+  return f;
+}
+
+// A non-square positive rational near `magnitude` squared: (2 m + 1) / 2 times a square scale.
+Rational non_square(std::mt19937_64& random, int exponent) {
+  Rational q(mpz_class(2 * (1 + random() % 1000) + 1), mpz_class(2));   // (2m + 1)/2: never a square
+  if (exponent >= 0) q *= Rational(mpz_class(1) << (2 * exponent));
+  else q /= Rational(mpz_class(1) << (-2 * exponent));
+  q.canonicalize();
+  return q;
+}
+
+struct Numbers {
+  std::vector<Real> reals;
+  std::vector<Known> known;
+};
+
+// The roots of the product of `factors` (distinct: square-free), isolated, with their known values,
+// each in several versions of its isolating interval (as isolated, refined to random widths,
+// dyadically, narrowed at random inner rationals).
+void add_roots(const std::vector<Factor>& factors, std::mt19937_64& random, Numbers& out) {
+  Polynomial p{mpz_class(1)};
+  std::vector<Known> known;
+  for (const Factor& f : factors) {
+    p = times(p, f.p);
+    known.insert(known.end(), f.roots.begin(), f.roots.end());
+  }
+  std::sort(known.begin(), known.end(), [](const Known& a, const Known& b) { return order(a, b) < 0; });
+  std::vector<Real> roots = real_roots(p);
+  ASSERT_EQ(roots.size(), known.size());
+  for (std::size_t i = 0; i < roots.size(); ++i) {
+    out.reals.push_back(roots[i]);
+    out.known.push_back(known[i]);
+    if (roots[i].exact) continue;
+    Real refined = roots[i];
+    refined.refine_to((roots[i].upper - roots[i].lower) / Rational(mpz_class(1) << (1 + random() % 80)));
+    out.reals.push_back(refined);
+    out.known.push_back(known[i]);
+    Real dyadic = roots[i];
+    refine_dyadically(dyadic, (roots[i].upper - roots[i].lower) / Rational(mpz_class(1) << (1 + random() % 40)));
+    out.reals.push_back(dyadic);
+    out.known.push_back(known[i]);
+    Real narrowed = roots[i];
+    for (int step = 0; step < 6 && !narrowed.exact; ++step) {
+      Rational t(mpz_class(1 + random() % 1023), mpz_class(1024));
+      Rational m = narrowed.lower + (narrowed.upper - narrowed.lower) * t;
+      m.canonicalize();
+      const int s = sign_at(narrowed.polynomial, m);
+      if (s == 0) narrowed = Real::from_rational(m);
+      else if (s == sign_at(narrowed.polynomial, narrowed.lower)) narrowed.lower = m;
+      else narrowed.upper = m;
+    }
+    out.reals.push_back(narrowed);
+    out.known.push_back(known[i]);
+  }
+}
+
+Rational power_of_two(int e) {
+  return e >= 0 ? Rational(mpz_class(1) << e) : Rational(mpz_class(1), mpz_class(1) << -e);
+}
+
+// floor(sqrt(q) 2^t) / 2^t with 2^t = 2^60 / 2^exponent (sqrt(q) is about 2^exponent), exactly:
+// a rational within the last bit (a relative 2^-60) of sqrt(q).
+Rational below_square_root(const Rational& q, int exponent) {
+  const int t = 60 - exponent;
+  Rational scaled = q * power_of_two(2 * t);
+  mpz_class whole = scaled.get_num() / scaled.get_den(), root;
+  mpz_sqrt(root.get_mpz_t(), whole.get_mpz_t());
+  Rational r = Rational(root) / power_of_two(t);
+  r.canonicalize();
+  return r;
+}
+
+// Groups of three polynomials at one scale (2^-1000 .. 2^1000: 1e-300 .. 1e300) sharing the
+// square roots +-sqrt(q) (equal numbers from different polynomials), each with other factors:
+// rationals a last bit beside sqrt(q) on both sides, small rationals, a second square root.
+Numbers generated_numbers(std::mt19937_64& random, int groups) {
+  Numbers numbers;
+  for (int g = 0; g < groups; ++g) {
+    const int exponent = static_cast<int>(random() % 2001) - 1000;
+    const Rational q = non_square(random, exponent);
+    const Rational below = below_square_root(q, exponent);
+    Rational above = below + power_of_two(exponent - 60);
+    above.canonicalize();
+    for (int n = 0; n < 3; ++n) {
+      std::vector<Factor> factors{square_root_pair(q)};
+      if (n != 1 && sgn(below) != 0) factors.push_back(linear(below));
+      if (n != 0) factors.push_back(linear(Rational(-above)));
+      if (n == 2) {
+        factors.push_back(linear(Rational(mpz_class(1 + random() % 50), mpz_class(51 + random() % 50))));
+        Rational other = non_square(random, exponent + 1 + static_cast<int>(random() % 2));
+        factors.push_back(square_root_pair(other));
+      }
+      add_roots(factors, random, numbers);
+    }
+  }
+  return numbers;
+}
+
+TEST(ExactRealFilters, CompareAndEqualAreTheClosedFormOrder) {
+  std::mt19937_64 random(31);
+  const Numbers numbers = generated_numbers(random, 6);
+  ASSERT_GT(numbers.reals.size(), 150u);
+  std::size_t equal_pairs = 0, same_polynomial_distinct = 0, other_polynomial_equal = 0;
+  const std::size_t n = numbers.reals.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    // the numbers of the same group (neighbours in the list: close values, shared roots) and a
+    // few from anywhere
+    std::vector<std::size_t> partners;
+    for (std::size_t j = i < 20 ? 0 : i - 20; j < std::min(n, i + 20); ++j) partners.push_back(j);
+    for (int k = 0; k < 3; ++k) partners.push_back(static_cast<std::size_t>(random() % n));
+    for (std::size_t j : partners) {
+      const Real &a = numbers.reals[i], &b = numbers.reals[j];
+      const int want = order(numbers.known[i], numbers.known[j]);
+      ASSERT_EQ(compare(a, b), want) << a.description() << " against " << b.description();
+      ASSERT_EQ(equal(a, b), want == 0) << a.description() << " against " << b.description();
+      const bool same = a.polynomial == b.polynomial && !a.exact && !b.exact;
+      if (want == 0) ++equal_pairs;
+      if (want == 0 && !same && !a.exact && !b.exact) ++other_polynomial_equal;
+      if (want != 0 && same) ++same_polynomial_distinct;
+    }
+  }
+  std::cout << n << " numbers: " << equal_pairs << " equal pairs (" << other_polynomial_equal
+            << " of different polynomials), " << same_polynomial_distinct << " distinct of one polynomial\n";
+  EXPECT_GT(equal_pairs, n);
+  EXPECT_GT(other_polynomial_equal, 100u);
+  EXPECT_GT(same_polynomial_distinct, 300u);
+}
+
+TEST(ExactRealFilters, FilteredComparisonWithRationalsIsTheExactOne) {
+  std::mt19937_64 random(7);
+  const Numbers numbers = generated_numbers(random, 5);
+  std::size_t inside = 0;
+  for (const Real& x : numbers.reals) {
+    if (x.exact) continue;
+    // rationals inside the isolating interval (most decided by the filter), its ends, outside,
+    // and the roots' neighbours in the last bit
+    std::vector<Rational> probes{x.lower, x.upper, Rational(x.lower - 1), Rational(x.upper + 1)};
+    for (int k = 0; k < 12; ++k) {
+      Rational t(mpz_class(1 + random() % 4095), mpz_class(4096));
+      Rational m = x.lower + (x.upper - x.lower) * t;
+      m.canonicalize();
+      probes.push_back(m);
+    }
+    Real tight = x;
+    refine_dyadically(tight, (x.upper - x.lower) / Rational(mpz_class(1) << 70));
+    probes.push_back(tight.lower);
+    probes.push_back(tight.upper);
+    for (const Rational& r : probes) {
+      ASSERT_EQ(compare_filtered(x, r), x.compare(r)) << x.description() << " at " << r.get_str();
+      if (x.lower < r && r < x.upper) ++inside;
+    }
+  }
+  std::cout << inside << " rationals inside isolating intervals\n";
+  EXPECT_GT(inside, 1000u);
+}
+
+// Coefficients beyond 53 bits (the sign filter's outward-moved bounds) and beyond 900 bits (its
+// scaled path): refine_to's filtered bisection gives the canonical bisection's intervals.
+TEST(ExactRealFilters, RefinementWithLargeCoefficientsIsTheExactBisection) {
+  std::mt19937_64 random(99);
+  for (int n = 0; n < 200; ++n) {
+    const unsigned bits = n % 2 ? 60 + static_cast<unsigned>(random() % 800) : 900 + static_cast<unsigned>(random() % 300);
+    // (x^2 - q) times a big linear factor: coefficients of about `bits` bits
+    const Rational q = non_square(random, static_cast<int>(random() % 20) - 10);
+    mpz_class big = random_integer(random, bits);
+    mpz_setbit(big.get_mpz_t(), 0);
+    Polynomial p = times({-q.get_num(), mpz_class(0), q.get_den()}, {-big, big + 1});
+    for (Real root : real_roots(p)) {
+      if (root.exact) continue;
+      Real reference = root;
+      const Rational width = (root.upper - root.lower) / Rational(mpz_class(1) << 70);
+      // the reference: canonical halving with exact signs
+      const int lower_sign = sign_at(reference.polynomial, reference.lower);
+      while (!reference.exact && reference.upper - reference.lower > width) {
+        Rational middle = (reference.lower + reference.upper) / 2;
+        const int s = sign_at(reference.polynomial, middle);
+        if (s == 0) reference = Real::from_rational(middle);
+        else if (s == lower_sign) reference.lower = middle;
+        else reference.upper = middle;
+      }
+      root.refine_to(width);
+      ASSERT_EQ(root.exact, reference.exact);
+      ASSERT_EQ(root.lower, reference.lower);
+      ASSERT_EQ(root.upper, reference.upper);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hipair::cspace::algebra
