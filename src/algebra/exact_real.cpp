@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -485,8 +486,23 @@ class DoubleBisection {
 
 }  // namespace
 
+namespace {
+
+// 2^-n exactly, 0 <= n <= 1022 (a normal double): its exponent field written directly (what
+// std::ldexp(1.0, -n) returns, without the library call).
+double negative_power_of_two(unsigned long n) {
+  const std::uint64_t bits = static_cast<std::uint64_t>(1023 - n) << 52;
+  double d = 0;
+  std::memcpy(&d, &bits, sizeof d);
+  return d;
+}
+
+}  // namespace
+
 void Real::refine_to(const Rational& width) {
-  if (exact || upper - lower <= width) return;
+  if (exact) return;
+  Rational span = upper - lower;   // once: the width test here and the bisection below
+  if (span <= width) return;
   // The bisection of refine(), on integers: after k halvings the interval is
   // [lower + j w / 2^k, lower + (j + 1) w / 2^k] with w = upper - lower, so every midpoint is
   // (a q 2^k + p b m) / (b q 2^k) for lower = a / b, w = p / q and an odd m. Signs are taken
@@ -524,7 +540,6 @@ void Real::refine_to(const Rational& width) {
     }
     return;
   }
-  Rational span = upper - lower;
   const mpz_class& p = span.get_num();
   const mpz_class& q = span.get_den();
   const mpz_class base = lower.get_num() * q;   // a q
@@ -553,7 +568,7 @@ void Real::refine_to(const Rational& width) {
     std::uint64_t small_j = 0;
     while (k < 52 && k < halvings) {
       std::uint64_t small_m = 2 * small_j + 1;
-      double t = std::ldexp(static_cast<double>(small_m), -static_cast<int>(k + 1));   // exact: m < 2^52
+      double t = static_cast<double>(small_m) * negative_power_of_two(k + 1);   // exact: m < 2^52
       int s = filter.sign(lower_box + span_box * Interval{t, t});
       if (s == 0) break;   // undecided: the loop below takes this step exactly
       ++k;
@@ -570,7 +585,7 @@ void Real::refine_to(const Rational& width) {
     ++k;
     int s = 0;
     if (filtering && k <= 52) {
-      double t = std::ldexp(m.get_d(), -static_cast<int>(k));   // exact: m < 2^k <= 2^52
+      double t = m.get_d() * negative_power_of_two(k);   // exact: m < 2^k <= 2^52
       s = filter.sign(lower_box + span_box * Interval{t, t});
     }
     if (s == 0) {

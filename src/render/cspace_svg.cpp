@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <set>
 
 namespace hipair::render {
@@ -215,14 +216,13 @@ class Painter {
     if (it != samples_.end()) return it->second;
     const CSpaceEdge& edge = edges_[edge_index];
     const CSpaceChart& chart = charts_[edge.chart];
-    const CSpaceVertex& a = vertices_[edge.source];
-    const CSpaceVertex& b = vertices_[edge.target];
     std::vector<std::pair<double, double>> points;
-    double xa = a.x.approximate(), xb = b.x.approximate();
-    points.emplace_back(xa, vertex_y(a));
+    const auto [xa, ya] = vertex_point(edge.source);
+    const auto [xb, yb] = vertex_point(edge.target);
+    points.emplace_back(xa, ya);
     if (!edge.vertical) {
-      auto [wa_x, wa_y] = world(chart, xa, vertex_y(a));
-      auto [wb_x, wb_y] = world(chart, xb, vertex_y(b));
+      auto [wa_x, wa_y] = world(chart, xa, ya);
+      auto [wb_x, wb_y] = world(chart, xb, yb);
       double length = std::hypot(wb_x - wa_x, wb_y - wa_y);
       int n = std::clamp(static_cast<int>(length / 3), 1, 24);
       for (int i = 1; i < n; ++i) {
@@ -233,8 +233,17 @@ class Painter {
         }
       }
     }
-    points.emplace_back(xb, vertex_y(b));
+    points.emplace_back(xb, yb);
     return samples_.emplace(edge_index, std::move(points)).first->second;
+  }
+
+  // A vertex's drawing coordinates (x approximated, vertex_y), computed once per vertex: the
+  // edges meeting at it draw the same doubles.
+  std::pair<double, double> vertex_point(std::size_t v) {
+    if (vertex_points_.empty()) vertex_points_.resize(vertices_.size());
+    std::optional<std::pair<double, double>>& point = vertex_points_[v];
+    if (!point) point = std::pair<double, double>{vertices_[v].x.approximate(), vertex_y(vertices_[v])};
+    return *point;
   }
 
   void draw_2d(io::SvgWriter& svg) {
@@ -244,36 +253,17 @@ class Painter {
     }
     // blocked (and touching) faces
     for (std::size_t c = 0; c < charts_.size(); ++c) {
-      const CSpaceChart& chart = charts_[c];
-      for (const CSpaceFace& face : space_.faces(c)) {
+      const std::vector<CSpaceFace> faces = space_.faces(c);
+      for (std::size_t k = 0; k < faces.size(); ++k) {
+        const CSpaceFace& face = faces[k];
         if (!face.classified || (face.kind == CellKind::free && complete_)) continue;
-        io::SvgPath path;
-        Range fx, fy;   // the face's extent (world), to leave out faces outside the window
-        for (const auto& component : face.boundary) {
-          bool first = true;
-          for (auto [e, forward] : component) {
-            const auto& points = samples(e.index());
-            for (std::size_t j = 0; j < points.size(); ++j) {
-              const auto& p = forward ? points[j] : points[points.size() - 1 - j];
-              auto [wx, wy] = world(chart, p.first, p.second);
-              fx.add(wx);
-              fy.add(wy);
-              if (first) {
-                path.move_to(wx, wy);
-                first = false;
-              } else {
-                path.line_to(wx, wy);
-              }
-            }
-          }
-          if (!first) path.close();
-        }
-        if (fx.hi < 0 || fx.lo > plot_size || fy.hi < 0 || fy.lo > plot_height_) continue;
+        const io::SvgPath* path = face_path(c, k, face);
+        if (!path) continue;
         std::string colour = face.kind == CellKind::blocked ? "#c8c8c8" : face.kind == CellKind::touching ? "#f4d35e" : "white";
         io::SvgStyle style{colour, colour};   // stroked too, to hide seams between faces
         style.stroke_width = 0.35;
         style.fill_rule = "evenodd";
-        svg.path(path, style);
+        svg.path(*path, style);
       }
     }
     // edges: contact edges coloured by feature pair, seams dashed, limits black
@@ -314,8 +304,47 @@ class Painter {
     draw_touching(svg);
   }
 
-  // An edge as a drawing path through its samples.
-  io::SvgPath edge_path(std::size_t e) {
+  // Face k of chart c as a drawing path through its boundary's samples, or nullptr when it lies
+  // outside the plotted window. Made once: run() draws twice (the first time to learn the
+  // legend), and the second drawing writes the same paths.
+  const io::SvgPath* face_path(std::size_t c, std::size_t k, const CSpaceFace& face) {
+    auto [slot, made] = face_paths_.try_emplace({c, k});
+    if (!made) return slot->second ? &*slot->second : nullptr;
+    const CSpaceChart& chart = charts_[c];
+    io::SvgPath path;
+    Range fx, fy;   // the face's extent (world), to leave out faces outside the window
+    for (const auto& component : face.boundary) {
+      bool first = true;
+      for (auto [e, forward] : component) {
+        const auto& points = samples(e.index());
+        for (std::size_t j = 0; j < points.size(); ++j) {
+          const auto& p = forward ? points[j] : points[points.size() - 1 - j];
+          auto [wx, wy] = world(chart, p.first, p.second);
+          fx.add(wx);
+          fy.add(wy);
+          if (first) {
+            path.move_to(wx, wy);
+            first = false;
+          } else {
+            path.line_to(wx, wy);
+          }
+        }
+      }
+      if (!first) path.close();
+    }
+    if (fx.hi < 0 || fx.lo > plot_size || fy.hi < 0 || fy.lo > plot_height_) return nullptr;
+    slot->second = std::move(path);
+    return &*slot->second;
+  }
+
+  // An edge as a drawing path through its samples (made once, as face_path).
+  const io::SvgPath& edge_path(std::size_t e) {
+    auto [slot, made] = edge_paths_.try_emplace(e);
+    if (made) slot->second = make_edge_path(e);
+    return slot->second;
+  }
+
+  io::SvgPath make_edge_path(std::size_t e) {
     const CSpaceChart& chart = charts_[edges_[e].chart];
     io::SvgPath path;
     bool first = true;
@@ -338,7 +367,7 @@ class Painter {
       const CSpaceEdge& edge = edges_[e];
       std::string title = "touching (zero clearance): ";
       for (std::size_t k = 0; k < edge.curves.size(); ++k) title += (k ? "; " : "") + pairs_[edge.curves[k]].label;
-      io::SvgPath path = edge_path(e);
+      const io::SvgPath& path = edge_path(e);
       io::SvgStyle band{"none", touching_colour};
       band.stroke_width = 2.2;
       svg.path(path, band, title);
@@ -346,11 +375,12 @@ class Painter {
       core.stroke_width = 0.7;
       svg.path(path, core);
     }
-    for (const CSpaceVertex& vertex : vertices_) {
+    for (std::size_t v = 0; v < vertices_.size(); ++v) {
+      const CSpaceVertex& vertex = vertices_[v];
       if (!vertex.touching) continue;
       const CSpaceChart& chart = charts_[vertex.chart];
-      double y = vertex.y_exact ? vertex.y.approximate() : Rational((vertex.y_lower + vertex.y_upper) / 2).get_d();
-      auto [wx, wy] = world(chart, vertex.x.approximate(), y);
+      const auto [x, y] = vertex_point(v);
+      auto [wx, wy] = world(chart, x, y);
       if (wx < 0 || wx > plot_size || wy < 0 || wy > plot_height_) continue;
       io::SvgStyle dot{"white", touching_colour};
       dot.stroke_width = 1.2;
@@ -562,6 +592,9 @@ class Painter {
   Range chart_x_, chart_y_;   // the charts' whole range
   double plot_height_ = plot_size;
   std::map<std::size_t, std::vector<std::pair<double, double>>> samples_;   // per edge
+  std::vector<std::optional<std::pair<double, double>>> vertex_points_;   // per vertex, once drawn
+  std::map<std::pair<std::size_t, std::size_t>, std::optional<io::SvgPath>> face_paths_;   // (chart, face): nullopt outside
+  std::map<std::size_t, io::SvgPath> edge_paths_;
   std::set<std::size_t> visible_pairs_;   // feature pairs of the contact curves drawn
   std::vector<std::size_t> touching_edges_;   // edges
   std::size_t touching_vertices_ = 0;
