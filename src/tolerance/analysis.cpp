@@ -242,11 +242,14 @@ class Analysis {
                            "against it): write the changed nominal values into the model instead of --set");
     model_ = std::make_shared<const model_detail::ParametricModel>(
         model_detail::ParametricModel::read(text, "<string>", tolerance_detail::design_read_options(options_)));
-    if (!model_->generic())
-      throw ModelError("", "tolerance analysis needs the generic parametric form; feature template " +
-                               model_->exact_only_feature() + " has an exact form only");
-    solver_ = std::make_shared<CurveSolver>(model_);
-    solver_->set_compact_jets(options_.fast_paths);
+    start_solver();
+  }
+  // On `model`, the parametric form of `text` read with design_read_options(options) (an
+  // assembly chain's, recorded once for all its pairs).
+  Analysis(std::string_view text, std::shared_ptr<const model_detail::ParametricModel> model,
+           const ToleranceOptions& options)
+      : options_(options), text_(text), source_name_("<string>"), model_(std::move(model)) {
+    start_solver();
   }
 
   // One pair of an assembly chain at the chain's positions (stage.hpp): the nominal path is
@@ -1354,6 +1357,15 @@ class Analysis {
     result_.contact_changes = check;
   }
 
+  // The generic form refused when a template has none; the curve solver on the model.
+  void start_solver() {
+    if (!model_->generic())
+      throw ModelError("", "tolerance analysis needs the generic parametric form; feature template " +
+                               model_->exact_only_feature() + " has an exact form only");
+    solver_ = std::make_shared<CurveSolver>(model_);
+    solver_->set_compact_jets(options_.fast_paths);
+  }
+
   ToleranceOptions options_;
   std::string text_, source_name_;
   std::shared_ptr<const model_detail::ParametricModel> model_;
@@ -1375,6 +1387,12 @@ namespace tolerance_detail {
 StageAnalysis analyze_stage(std::string_view text, const ToleranceOptions& options, const std::vector<StagePosition>& path,
                             const CSpace* space) {
   return Analysis(text, options).stage(path, space);
+}
+
+StageAnalysis analyze_stage(std::string_view text, std::shared_ptr<const model_detail::ParametricModel> model,
+                            const ToleranceOptions& options, const std::vector<StagePosition>& path,
+                            const CSpace* space) {
+  return Analysis(text, std::move(model), options).stage(path, space);
 }
 
 }  // namespace tolerance_detail

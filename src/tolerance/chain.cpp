@@ -175,7 +175,11 @@ class ChainAnalysis {
 
   ToleranceResult run() {
     auto t0 = std::chrono::steady_clock::now();
-    Model model = read_model(text_, "<string>", design_read_options(options_));
+    // The model is read once: the kinematics, the C-spaces and the parametric form (every
+    // pair's) take this one.
+    model_detail::ParametricModel::Nominal nominal =
+        model_detail::ParametricModel::read_nominal(text_, "<string>", design_read_options(options_));
+    const Model& model = *nominal.model;
     std::vector<std::size_t> parts = chain_parts(model, options_);
     progress(0.05);
     KinematicsOptions k;
@@ -191,16 +195,20 @@ class ChainAnalysis {
     // contact kernels (exact too). Each C-space is built once: the pairs' analyses below slice
     // the same spaces.
     const bool kernel = paths_.kernel_kinematics && rotations_without_limits(model, parts);
-    // The parametric model, read once for every pair (and a model without the generic form
-    // refused before any slicing).
+    // The parametric model, recorded once for every pair from the model read (on the kernel
+    // path here, and a model without the generic form refused before any slicing; otherwise
+    // when the first pair is analysed).
     std::shared_ptr<const model_detail::ParametricModel> parametric;
-    if (kernel) {
+    auto parametric_model = [&]() {
+      if (parametric) return parametric;
       parametric = std::make_shared<const model_detail::ParametricModel>(
-          model_detail::ParametricModel::read(text_, "<string>", design_read_options(options_)));
+          model_detail::ParametricModel::read(text_, "<string>", design_read_options(options_), nominal));
       if (!parametric->generic())
         throw ModelError("", "tolerance analysis needs the generic parametric form; feature template " +
                                  parametric->exact_only_feature() + " has an exact form only");
-    }
+      return parametric;
+    };
+    if (kernel) parametric_model();
     k.method = kernel ? SliceMethod::kernels : SliceMethod::automatic;
     std::deque<CSpace> spaces;   // (a deque: pointers to built spaces stay valid)
     std::vector<std::pair<std::size_t, std::size_t>> space_parts;
@@ -279,7 +287,8 @@ class ChainAnalysis {
         if (kernel && not_unique > 0)
           notes_.push_back("pair " + a + ":" + b + ": the touching feature pair is not unique at " +
                            std::to_string(not_unique) + " position(s): the pair's C-space was built");
-        stages_.push_back(analyze_stage(text_, stage_options, path, space_of(parts[s - 1], parts[s])));
+        stages_.push_back(
+            analyze_stage(text_, parametric_model(), stage_options, path, space_of(parts[s - 1], parts[s])));
       }
       ChainStage summary;
       summary.driver = a;

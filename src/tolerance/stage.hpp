@@ -124,5 +124,10 @@ ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& opt
 /// again. \throws ModelError, GeometryError.
 StageAnalysis analyze_stage(std::string_view text, const ToleranceOptions& options,
                             const std::vector<StagePosition>& path, const CSpace* space = nullptr);
+/// analyze_stage on `model`, the parametric form of `text` read with design_read_options(options)
+/// (the chain's, recorded once for all its pairs): the model not read again.
+StageAnalysis analyze_stage(std::string_view text, std::shared_ptr<const model_detail::ParametricModel> model,
+                            const ToleranceOptions& options, const std::vector<StagePosition>& path,
+                            const CSpace* space = nullptr);
 
 }  // namespace hipair::tolerance_detail

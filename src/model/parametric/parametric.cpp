@@ -2,6 +2,7 @@
 // exact evaluation at a parameter vector (ExactEvaluator), which repeats the reader's steps on
 // the recorded slots. See parametric.hpp.
 #include "model/parametric/parametric.hpp"
+#include "model/parametric/self_check.hpp"
 
 #include "model/exact_trig.hpp"
 #include "model/expression.hpp"
@@ -384,18 +385,19 @@ class RecipeBuilder {
         }
       }
     }
-    // Orientation: which loops the reader reversed (compare the first edge's end and sense).
-    std::vector<Loop> loops = exact_loops(recipe, *exact_);
+    // The exact form at the nominal vector is the part read, each loop as written or reversed
+    // by the reader's orientation (self_check.hpp): which one is recorded.
     const Part& read = model_.nominal_->parts[index];
-    if (loops.size() != read.loops.size())
+    Part mine;
+    mine.loops = exact_loops(recipe, *exact_);
+    if (mine.loops.size() != read.loops.size())
       throw ModelError(read.pointer, "internal error: the parametric form of the part has " +
-                                         std::to_string(loops.size()) + " loops, the model " +
+                                         std::to_string(mine.loops.size()) + " loops, the model " +
                                          std::to_string(read.loops.size()));
-    for (std::size_t l = 0; l < loops.size(); ++l) {
-      const Edge& mine = loops[l].edges.front();
-      const Edge& theirs = read.loops[l].edges.front();
-      recipe.reversed.push_back(!(mine.target == theirs.target && mine.ccw == theirs.ccw));
-    }
+    mine.motion = read.motion;
+    if (recipe.motion.has_pivot) mine.motion.pivot = exact_->point(recipe.motion.pivot);
+    if (recipe.motion.has_direction) mine.motion.direction = exact_->direction(recipe.motion);
+    recipe.reversed = checked_loop_reversals(mine, read);
     return recipe;
   }
 
@@ -405,19 +407,35 @@ class RecipeBuilder {
   std::unique_ptr<ExactEvaluator> exact_;
 };
 
-ParametricModel ParametricModel::read(std::string_view json_text, std::string_view source_name,
-                                      const ReadOptions& options) {
-  ParametricModel model;
+ParametricModel::Nominal ParametricModel::read_nominal(std::string_view json_text, std::string_view source_name,
+                                                       const ReadOptions& options) {
   mpfr_prec_t bits = interval_bits;
   ReadOptions design = options;
   design.overrides_set_nominal = true;  // the parametric form varies parameters about their nominals
-  model.nominal_ = std::make_shared<const Model>(read_model_escalating(json_text, source_name, design, &bits));
+  Nominal nominal;
+  nominal.model = std::make_shared<const Model>(read_model_escalating(json_text, source_name, design, &bits));
+  nominal.precision_bits = bits;
+  return nominal;
+}
+
+ParametricModel ParametricModel::read(std::string_view json_text, std::string_view source_name,
+                                      const ReadOptions& options) {
+  return read(json_text, source_name, options, read_nominal(json_text, source_name, options));
+}
+
+ParametricModel ParametricModel::read(std::string_view json_text, std::string_view source_name,
+                                      const ReadOptions& options, Nominal nominal) {
+  if (!nominal.model) throw ModelError("", "internal error: no model read for the parametric form");
+  ParametricModel model;
+  ReadOptions design = options;
+  design.overrides_set_nominal = true;
+  model.nominal_ = std::move(nominal.model);
   for (auto [name, value] : options.parameter_values) {
     value.canonicalize();
     model.nominal_overrides_[name] = value;
   }
-  model.precision_bits_ = bits;
-  PrecisionScope precision(bits);  // every exact evaluation repeats the reader's at its precision
+  model.precision_bits_ = nominal.precision_bits;
+  PrecisionScope precision(model.precision_bits_);  // every exact evaluation repeats the reader's at its precision
   model.text_ = std::string(json_text);
   JsonValue root = parse_json(json_text);
   RoundingBoundScope rounding_scope(model_rounding_bound(root));  // the file's bound
@@ -430,27 +448,9 @@ ParametricModel ParametricModel::read(std::string_view json_text, std::string_vi
     Model plain = read_model_root(strip_profile_tolerances(root), source_name, plain_options);
     translate_profile_tolerances(root, plain);
   }
+  // The builder checks each part as it records it (self_check.hpp): the exact form at the
+  // nominal vector is the part that was read (its loops as read or reversed).
   RecipeBuilder(model, root).build();
-  // Self-check: the exact form at the nominal vector is the model that was read.
-  Model again = model.exact_model(std::vector<Rational>(model.parameter_count(), Rational(0)));
-  for (std::size_t k = 0; k < again.parts.size(); ++k) {
-    const Part& a = again.parts[k];
-    const Part& b = model.nominal_->parts[k];
-    bool same = a.loops.size() == b.loops.size() && a.motion.pivot == b.motion.pivot &&
-                a.motion.direction == b.motion.direction;
-    for (std::size_t l = 0; same && l < a.loops.size(); ++l) {
-      same = a.loops[l].edges.size() == b.loops[l].edges.size();
-      for (std::size_t e = 0; same && e < a.loops[l].edges.size(); ++e) {
-        const Edge& x = a.loops[l].edges[e];
-        const Edge& y = b.loops[l].edges[e];
-        same = x.kind == y.kind && x.source == y.source && x.target == y.target && x.ccw == y.ccw &&
-               (!x.is_arc() || (x.center == y.center && x.radius_squared == y.radius_squared));
-      }
-    }
-    if (!same)
-      throw ModelError(b.pointer, "internal error: the parametric form of part '" + b.name +
-                                      "' does not reproduce the geometry read");
-  }
   return model;
 }
 

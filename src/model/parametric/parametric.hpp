@@ -136,6 +136,20 @@ class ParametricModel {
   /// (ReadOptions::overrides_set_nominal: the design as changed, its tolerances about it).
   static ParametricModel read(std::string_view json_text, std::string_view source_name = "<string>",
                               const ReadOptions& options = {});
+  /// A model read as read() reads it (ReadOptions::overrides_set_nominal set), with the
+  /// precision its reader needed: for a caller that needs the model itself as well as its
+  /// parametric form, so that the file is read and validated once.
+  struct Nominal {
+    std::shared_ptr<const Model> model;
+    long precision_bits = 256;
+  };
+  static Nominal read_nominal(std::string_view json_text, std::string_view source_name = "<string>",
+                              const ReadOptions& options = {});
+  /// read() on a model `nominal` that read_nominal gave for the same text, source and options:
+  /// the formulas recorded without reading the model again. The self-check (self_check.hpp)
+  /// compares the parametric form's exact geometry at the nominal vector with `nominal`'s parts.
+  static ParametricModel read(std::string_view json_text, std::string_view source_name, const ReadOptions& options,
+                              Nominal nominal);
   static ParametricModel read_file(const std::filesystem::path& path);
 
   const Model& nominal() const { return *nominal_; }
