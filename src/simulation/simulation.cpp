@@ -20,14 +20,17 @@
 #include "simulation/crossing_limit.hpp"
 #include "simulation/crossing_sweep.hpp"
 #include "simulation/cut_search.hpp"
+#include "simulation/frame_cache.hpp"
 #include "simulation/friction.hpp"
 #include "simulation/lcp.hpp"
+#include "simulation/ordinate_filter.hpp"
 #include "simulation/units.hpp"
 
 #include <Eigen/Dense>
 #include <boost/numeric/odeint.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -163,6 +166,12 @@ struct Simulation::Impl {
   SimulationState public_state;
   std::size_t steps = 0;
   double dt = 0;                      // next trial step, seconds
+  // the end time of the last step whose impacts struck nothing (step()); NaN: none since
+  double last_touch_end = std::numeric_limits<double>::quiet_NaN();
+  // steps in a row that left the time where it was (step_and_free)
+  std::size_t steps_in_place = 0;
+  // friction_of's contact frames at the configurations of this step (frame_cache.hpp)
+  mutable simulation::FrameCache frames;
 
   // ---------------------------------------------------------------- kinematics and forces
   void world_point(const Dof* d, double qd, const double p0[2], double p[2], double J[2]) const {
@@ -357,6 +366,24 @@ struct Simulation::Impl {
   // 1e-12), a contact taken up at a vertex still holds (as derivatives_near()). Where the exact
   // comparison does not decide (a vertex whose fibre does not change sign), the certified
   // extent already tested by row() stands.
+  // Doubles lo <= y_lower and y_upper <= hi of each vertex's isolating interval, per pair
+  // (filled on first use; NaN: not yet): on_vertical_edge's ordinate below lo or above hi is
+  // below or above the interval exactly, as the rational comparison finds it
+  // (simulation/ordinate_filter.hpp).
+  mutable std::vector<std::vector<std::array<double, 2>>> vertex_bounds;
+
+  const std::array<double, 2>& ordinate_bounds(std::size_t pair, std::size_t vertex) const {
+    if (vertex_bounds.size() != spaces.size()) vertex_bounds.resize(spaces.size());
+    std::vector<std::array<double, 2>>& bounds = vertex_bounds[pair];
+    if (bounds.empty()) bounds.assign(spaces[pair]->vertices().size(), {std::nan(""), std::nan("")});
+    std::array<double, 2>& b = bounds.at(vertex);
+    if (std::isnan(b[0])) {
+      const CSpaceVertex& p = spaces[pair]->vertex(VertexId(vertex));
+      b = {simulation::double_below(p.y_lower), simulation::double_above(p.y_upper)};
+    }
+    return b;
+  }
+
   bool on_vertical_edge(const Active& a, double ty) const {
     const CSpace& space = *spaces[a.pair];
     const CSpaceEdge& edge = space.edge(a.edge);
@@ -371,18 +398,31 @@ struct Simulation::Impl {
         return std::nullopt;
       }
     };
-    const Rational y(ty);
+    std::optional<Rational> y;   // made where the doubles do not decide
+    const bool filter = simulation::ordinate_filter();
     // source: the lower end (same x, smaller y); target: the upper end
     for (int end = 0; end < 2; ++end) {
       std::size_t vertex = end == 0 ? edge.source : edge.target;
       if (vertex == no_index) continue;
       const int outside = end == 0 ? -1 : 1;   // the side of the vertex off the edge
-      std::optional<int> side = side_of(vertex, y);
+      const std::array<double, 2> bounds = filter ? ordinate_bounds(a.pair, vertex) : std::array<double, 2>{};
+      std::optional<int> side;
+      if (filter && ty < bounds[0]) {
+        side = -1;
+        ++simulation::ordinate_filter_decided();
+      } else if (filter && ty > bounds[1]) {
+        side = 1;
+        ++simulation::ordinate_filter_decided();
+      } else {
+        if (!y) y.emplace(ty);
+        side = side_of(vertex, *y);
+      }
       if (!side || *side != outside) continue;
       if (!a.at_vertex) return false;
+      if (!y) y.emplace(ty);
       // within `limit` of the vertex: y moved back by limit is not off the edge
       const double limit = strict_rows ? 1e-12 : a.slack;
-      std::optional<int> back = side_of(vertex, y - outside * Rational(limit));
+      std::optional<int> back = side_of(vertex, *y - outside * Rational(limit));
       if (back && *back == outside) return false;
     }
     return true;
@@ -1074,28 +1114,45 @@ struct Simulation::Impl {
     simulation::Friction c;
     if (mu_static[pair] <= 0 || features.empty()) return c;
     const CSpace& space = *spaces[pair];
-    PartCoordinate x = coordinate(part_dof[*model.find_part(space.x_part())], qs), y;
-    if (space.dimension() == 2) y = coordinate(part_dof[*model.find_part(space.y_part())], qs);
+    const int xdof = part_dof[*model.find_part(space.x_part())];
+    const int ydof = space.dimension() == 2 ? part_dof[*model.find_part(space.y_part())] : -1;
+    // the part coordinates, made on the first frame not remembered (frame_cache.hpp)
+    std::optional<std::pair<PartCoordinate, PartCoordinate>> xy;
     double p[2] = {0, 0}, n[2] = {0, 0};
     int count = 0;
     std::size_t first = 0, second = 0;
     for (FeatureId f : features) {
-      std::optional<Contact> frame;
-      try {
-        frame = space.contact_frame(f, x, y);
-      } catch (const GeometryError&) {
-        continue;
-      }
-      if (!frame) continue;
+      simulation::FrameSample frame =
+          frames.get(pair, f.index(), qs[xdof], ydof < 0 ? 0.0 : qs[ydof], [&]() {
+            simulation::FrameSample sample;
+            if (!xy) {
+              xy.emplace(coordinate(xdof, qs), PartCoordinate{});
+              if (ydof >= 0) xy->second = coordinate(ydof, qs);
+            }
+            std::optional<Contact> c;
+            try {
+              c = space.contact_frame(f, xy->first, xy->second);
+            } catch (const GeometryError&) {
+              return sample;
+            }
+            if (!c) return sample;
+            sample.defined = true;
+            sample.normal[0] = mid(c->normal[0]);
+            sample.normal[1] = mid(c->normal[1]);
+            sample.point[0] = mid(c->point_range[0]);
+            sample.point[1] = mid(c->point_range[1]);
+            return sample;
+          });
+      if (!frame.defined) continue;
       if (count == 0) {
-        n[0] = mid(frame->normal[0]);
-        n[1] = mid(frame->normal[1]);
+        n[0] = frame.normal[0];
+        n[1] = frame.normal[1];
         const FeaturePair& fp = space.feature_pair(f);
         first = fp.first.part;
         second = fp.second.part;
       }
-      p[0] += mid(frame->point_range[0]);
-      p[1] += mid(frame->point_range[1]);
+      p[0] += frame.point[0];
+      p[1] += frame.point[1];
       ++count;
     }
     if (count == 0) return c;
@@ -1598,6 +1655,7 @@ struct Simulation::Impl {
 
   void step(double t_limit) {
     if (++steps > options.max_steps) throw NumericError("simulation: more than max_steps steps");
+    frames.clear();
     using namespace boost::numeric::odeint;
     Vec x = pack();
     Vec q0 = q, v0 = v, a0, l0;
@@ -1849,7 +1907,39 @@ struct Simulation::Impl {
         rows.push_back(r);
       }
       project_active();
+      const std::size_t events_before = events.size();
       handle_contacts(rows);
+      // A step that struck nothing at its very start: every event an impact without impulse
+      // (a departing motion the query reports as a grazing touch, within its resolution of a
+      // curve, at [0, u_upper]), at the time where the step before ended with such a touch: the
+      // state has not changed, and the next step would ask the same query. The ratchet's tooth
+      // tip leaving the pawl's nose corner at 424 mm/s repeated it without end (docs/simulation.md,
+      // "The endless corner touch"). The touch is already an event: the state moves on along the
+      // path to the bracket's end u_upper (the motion is certified free before u_lower = 0 and
+      // within the touch's resolution up to u_upper), this step's events (the same touch again)
+      // are dropped, and the pairs are certified free there (nudge_free). A bracket that ends
+      // where it starts cannot move the state: an error.
+      const bool touch_only = std::all_of(events.begin() + static_cast<std::ptrdiff_t>(events_before), events.end(),
+                                          [](const SimulationEvent& e) {
+                                            return e.kind == SimulationEvent::Kind::impact && e.impulse == 0 &&
+                                                   e.tangential_impulse == 0;
+                                          });
+      const bool again = touch_only && t == path.t0 && last_touch_end == path.t0;
+      last_touch_end = touch_only ? t : std::numeric_limits<double>::quiet_NaN();
+      if (!again) return;
+      events.resize(events_before);
+      path.at(u_hit_upper, q, v);
+      t = path.t0 + u_hit_upper * path.h;
+      if (!(t > path.t0)) {
+        std::ostringstream out;
+        out << "simulation: at t = " << t / time_scale << " " << time_unit << " " << pair_name(rows.front().pair)
+            << " touches again and again without an impulse, and its crossing bracket does not move the time on";
+        throw NumericError(out.str());
+      }
+      sync_driven();
+      project_active();
+      for (const ContactRow& r : rows)
+        if (r.crossing && !in_active(r.pair)) nudge_free(r.pair, r.g);
       return;
     }
     path.at(u_end, q, v);
@@ -1900,9 +1990,22 @@ struct Simulation::Impl {
     }
   }
 
+  // A run of steps that do not move the time on ends: a contact change repeats without
+  // progress (the endless corner touch was one). Lift-offs, edge ends and contact changes at
+  // one time are a handful of steps; 10 000 in a row is an error.
+  static constexpr std::size_t max_steps_in_place = 10000;
+
   void step_and_free(double t_limit) {
+    const double before = t;
     step(t_limit);
     free_active();
+    steps_in_place = t > before ? 0 : steps_in_place + 1;
+    if (steps_in_place >= max_steps_in_place) {
+      std::ostringstream out;
+      out << "simulation: at t = " << t / time_scale << " " << time_unit << " " << steps_in_place
+          << " steps in a row did not move the time on (a contact change that repeats without progress)";
+      throw NumericError(out.str());
+    }
   }
 
   std::vector<SimulationContact> contacts() const {

@@ -1,0 +1,144 @@
+// Every step moves the time on or reports an error (docs/simulation.md, "The endless corner
+// touch", session 32). The ratchet driven counter-clockwise from a generated state
+// (tests/data/simulation/ratchet-corner-touch.json): at 0.3276653889948 s the tip corner of
+// tooth 3 leaves the pawl's nose corner at 424 mm/s, and the crossing query reports the
+// departing motion as a grazing touch at [0, 2^-44] of the step (a C-space vertex within its
+// resolution). Before, the simulator struck it with impulse 0, the state stayed where it was, and
+// the next step asked the same query: 35 000 steps a minute at the same time, without end (the
+// ratchet's "more than 20 CPU minutes" of session 31). Now the touch is one event and the state
+// moves on along the path past the bracket. Under a cap of 3000 steps the run failed before
+// ("more than max_steps steps" at 0.3277 s). The bundled ratchet at accuracy 1e-3 did the same at
+// 0.264022 s.
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+#include <hipair/simulation.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <random>
+#include <string>
+
+#include "test_paths.hpp"
+
+namespace hipair {
+namespace {
+
+// The pair's exact point location at the state: free (first_crossing of a motion standing still).
+bool certainly_free(const Simulation& s, std::size_t pair) {
+  const CSpace& space = *s.spaces().at(pair);
+  MotionPath still;
+  still.x.kind = AxisPath::Kind::angle;
+  still.x.coefficients = {Rational(s.state().position[*s.model().find_part(space.x_part())])};
+  still.y.kind = AxisPath::Kind::angle;
+  still.y.coefficients = {Rational(s.state().position[*s.model().find_part(space.y_part())])};
+  still.u_end = still.u_begin;
+  return space.first_crossing(still).status == CrossingStatus::none;
+}
+
+TEST(SimulationRatchetTouch, DepartingCornerTouchMovesOn) {
+  Model model = read_model_file(std::filesystem::path(HIPAIR_TEST_DATA) / "simulation" / "ratchet-corner-touch.json");
+  SimulationOptions options;
+  options.max_steps = 3000;
+  Simulation s = Simulation::create(model, options);
+  std::size_t in_place = 0, longest_in_place = 0;
+  while (s.state().time < 0.5) {
+    const double before = s.state().time;
+    ASSERT_NO_THROW(s.step()) << "at t = " << before;
+    in_place = s.state().time > before ? 0 : in_place + 1;
+    longest_in_place = std::max(longest_in_place, in_place);
+    ASSERT_TRUE(certainly_free(s, 0)) << s.state().time;
+  }
+  EXPECT_LE(longest_in_place, 2u);
+  // the touch: one impact without impulse, the tooth's face on the nose's corner, at 0.32766538899 s
+  std::size_t touches = 0;
+  for (const SimulationEvent& e : s.events()) {
+    if (std::abs(e.time - 0.3276653889948297) > 1e-12) continue;
+    if (e.kind != SimulationEvent::Kind::impact || e.impulse != 0) continue;
+    ASSERT_EQ(e.features.size(), 1u);
+    EXPECT_EQ(e.features[0], "wheel tooth 3 face / pawl corner of nose face and nose underside (segment on vertex)");
+    EXPECT_GT(e.normal_speed_before, 400);
+    ++touches;
+  }
+  EXPECT_EQ(touches, 1u);
+  // the wheel turned on counter-clockwise past the pawl (a tooth further)
+  EXPECT_GT(s.state().position[0], 5.3);
+}
+
+// The bundled ratchet itself (+20 N mm) at accuracy 1e-3: the same endless touch at 0.264022 s
+// (a tooth tip leaving the nose's corner) before; now it clicks on over the teeth to 1.2 s, and
+// every step moves the time on but for single steps at one time (a touch, a lift-off).
+TEST(SimulationRatchetTouch, BundledRatchetAtCoarseAccuracyClicksOn) {
+  Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "ratchet.json");
+  SimulationOptions options;
+  options.accuracy = 1e-3;
+  options.max_steps = 3000;
+  Simulation s = Simulation::create(model, options);
+  std::size_t in_place = 0, longest_in_place = 0;
+  while (s.state().time < 1.2) {
+    const double before = s.state().time;
+    ASSERT_NO_THROW(s.step()) << "at t = " << before;
+    in_place = s.state().time > before ? 0 : in_place + 1;
+    longest_in_place = std::max(longest_in_place, in_place);
+    ASSERT_TRUE(certainly_free(s, 0)) << s.state().time;
+  }
+  EXPECT_LE(longest_in_place, 2u);
+  std::size_t impacts = 0;
+  for (const SimulationEvent& e : s.events()) impacts += e.kind == SimulationEvent::Kind::impact && e.impulse > 0;
+  EXPECT_GT(impacts, 40u);   // the nose dropping onto the teeth it passes
+  EXPECT_GT(s.state().position[0], 2 * std::acos(-1.0));   // more than a turn
+}
+
+// Generated states of the ratchet (wheel over a turn, pawl within its limits, velocities up to
+// +-10 deg/s, torques +-5..50 N mm, accuracies 1e-3, 1e-6, 1e-9): every run ends within 3000
+// steps, at 0.5 s or with a reported error (a pair leaving its built space at the pawl's limit,
+// a jam), and never stays at one time for more than a handful of steps.
+TEST(SimulationRatchetTouch, GeneratedRunsEndWithoutStepsInPlace) {
+  const Model base = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "ratchet.json");
+  std::mt19937_64 random(3276653889);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const double degree = std::acos(-1.0) / 180;
+  int ran = 0, finished = 0;
+  for (int trial = 0; trial < 24; ++trial) {
+    Model model = base;
+    model.parts[0].initial.angle = Rational(180 * degree * unit(random));
+    model.parts[1].initial.angle = Rational((-5 + 14 * unit(random)) * degree);
+    const double torques[] = {-50, -20, -5, 5, 20, 50};
+    model.parts[0].dynamics->torque = Rational(torques[random() % 6]);
+    SimulationSpec spec;
+    for (std::size_t p = 0; p < 2; ++p) spec.velocities.push_back({p, Rational(10 * degree * unit(random)), ""});
+    model.simulation = spec;
+    SimulationOptions options;
+    options.accuracy = trial % 3 == 0 ? 1e-3 : trial % 3 == 1 ? 1e-6 : 1e-9;
+    options.max_steps = 3000;
+    std::optional<Simulation> s;
+    try {
+      s.emplace(Simulation::create(model, options));
+    } catch (const ModelError&) {
+      continue;   // not a free initial state
+    }
+    ++ran;
+    std::size_t in_place = 0;
+    try {
+      while (s->state().time < 0.5) {
+        const double before = s->state().time;
+        s->step();
+        in_place = s->state().time > before ? 0 : in_place + 1;
+        ASSERT_LE(in_place, 8u) << "trial " << trial << " at t = " << before;
+      }
+      ++finished;
+    } catch (const Error& error) {
+      const std::string what = error.what();
+      ASSERT_EQ(what.find("max_steps"), std::string::npos) << "trial " << trial << ": " << what;
+    }
+  }
+  std::printf("ratchet: %d generated runs, %d to 0.5 s, the others stopped with a reported error\n", ran, finished);
+  EXPECT_GE(ran, 8);
+}
+
+}  // namespace
+}  // namespace hipair
