@@ -270,16 +270,17 @@ AxisSlice compress(const AxisLine& line, std::vector<Item> items) {
   SliceKind start = first < items.size() ? items[first].after : SliceKind::free;
   slice.start_kind = start;
   SliceKind current = start;
+  // items[i], i >= 1, is read once here: its position and contacts move into the breakpoint
   for (std::size_t i = 1; i < items.size(); ++i) {
-    const Item& item = items[i];
+    Item& item = items[i];
     // a zero-clearance channel is kept although blocked space continues across it
     bool channel = item.channel && current == SliceKind::blocked && item.after == SliceKind::blocked;
     if (item.after == SliceKind::empty || (item.after == current && !channel)) continue;
-    slice.points.push_back(Breakpoint{item.at, item.contacts, item.after, channel});
+    slice.points.push_back(Breakpoint{std::move(item.at), std::move(item.contacts), item.after, channel});
     current = item.after;
   }
   if (line.cyclic && current != start)   // the class changes at the start itself
-    slice.points.insert(slice.points.begin(), Breakpoint{items.front().at, items.front().contacts, start});
+    slice.points.insert(slice.points.begin(), Breakpoint{std::move(items.front().at), std::move(items.front().contacts), start});
   return slice;
 }
 
@@ -448,7 +449,9 @@ AxisSlice slice_on_axis(const AxisLine& line, const PairSlicer& slicer, std::siz
     for (std::size_t i = 0; i < chart_slice.points.size(); ++i) {
       std::vector<SliceContact> contacts;
       for (std::size_t feature : chart_slice.points[i].features) contacts.push_back(SliceContact{slicer_index, feature, false});
-      emit(p, chart_slice.points[i].value, std::move(contacts), chart_slice.kinds[i + 1], chart_slice.points[i].touching);
+      // the slice is this call's own copy: its points' values move onto the axis
+      emit(p, std::move(chart_slice.points[i].value), std::move(contacts), chart_slice.kinds[i + 1],
+           chart_slice.points[i].touching);
     }
     if (cut_hi) emit(p, Real::from_rational(covered_hi), {edge}, SliceKind::blocked);
     else if (chart.hi < piece.hi) emit(p, Real::from_rational(chart.hi), {}, SliceKind::free);
