@@ -1813,8 +1813,13 @@ struct Simulation::Impl {
         double lo = bracket.lo;
         int kind = bracket.at_hi.kind;
         which = bracket.at_hi.which;
-        if (kind == 3 && lo == 0 && which < coulomb_ignored.size()) {
-          // a Coulomb change right at the step's start: not a change along the step (see above)
+        if (kind == 3 && (lo == 0 || path.t0 + lo * path.h == path.t0) && which < coulomb_ignored.size()) {
+          // a Coulomb change right at the step's start: not a change along the step (see above).
+          // Also one bracketed so close to the start that the cut's time is the start's time
+          // (lo h below half a unit in the last place of t): a cut there would leave the time
+          // where it was, and the next step would find the same change again — the scotch yoke
+          // at 1e-6 from 0.39554 s, a slip change at u = 4.4e-16 of every step, without end
+          // (docs/simulation.md, "Session 32").
           coulomb_ignored[which] = true;
           continue;
         }

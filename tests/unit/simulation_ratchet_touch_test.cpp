@@ -93,6 +93,37 @@ TEST(SimulationRatchetTouch, BundledRatchetAtCoarseAccuracyClicksOn) {
   EXPECT_GT(s.state().position[0], 2 * std::acos(-1.0));   // more than a turn
 }
 
+// The scotch yoke (examples/models/scotch-yoke.json) at accuracy 1e-6: from 0.39554 s the crank
+// pin's held contact on slot wall R changed its Coulomb state at u = 4.4e-16 of every step — a cut
+// whose time is the step's start time (lo h below half a unit in the last place of t) — and the
+// next step found the same change again: main ran on to max_steps (2 000 000 by default, minutes).
+// Now such a change counts as at the step's start (decided by the next step-start problem); the
+// yoke runs on, lifts off wall R and strikes wall L before 0.5 s. Under a cap of 30 000 steps main
+// stopped with "more than max_steps steps" at 0.39554 s.
+TEST(SimulationRatchetTouch, ScotchYokeSlipChangeAtTheStepStartMovesOn) {
+  Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "scotch-yoke.json");
+  SimulationOptions options;
+  options.accuracy = 1e-6;
+  options.max_steps = 30000;
+  Simulation s = Simulation::create(model, options);
+  std::size_t in_place = 0, longest_in_place = 0;
+  while (s.state().time < 0.5) {
+    const double before = s.state().time;
+    ASSERT_NO_THROW(s.step()) << "at t = " << before;
+    in_place = s.state().time > before ? 0 : in_place + 1;
+    longest_in_place = std::max(longest_in_place, in_place);
+  }
+  EXPECT_LE(longest_in_place, 2u);
+  bool lift_off_r = false, impact_l = false;
+  for (const SimulationEvent& e : s.events()) {
+    if (e.time < 0.3955 || e.features.empty()) continue;
+    lift_off_r = lift_off_r || (e.kind == SimulationEvent::Kind::lift_off && e.features[0].find("wall R") != std::string::npos);
+    impact_l = impact_l || (e.kind == SimulationEvent::Kind::impact && e.features[0].find("wall L") != std::string::npos);
+  }
+  EXPECT_TRUE(lift_off_r);
+  EXPECT_TRUE(impact_l);
+}
+
 // Generated states of the ratchet (wheel over a turn, pawl within its limits, velocities up to
 // +-10 deg/s, torques +-5..50 N mm, accuracies 1e-3, 1e-6, 1e-9): every run ends within 3000
 // steps, at 0.5 s or with a reported error (a pair leaving its built space at the pawl's limit,
