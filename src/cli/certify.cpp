@@ -197,6 +197,9 @@ int run(const CertifyArguments& arguments) {
       if (!arguments.to.empty()) path.range.hi = value_of(arguments.to, rotates(driver), "--to");
       else if (rotates(driver)) path.range.hi = path.range.lo + Rational(6283185307179586, 1000000000000000);
       else throw ModelError("", "give --to for a translating driver");
+      if (!(path.range.lo < path.range.hi))
+        throw ModelError("", "--from/--to: the driver range [" + to_decimal_string(path.range.lo) + ", " +
+                                 to_decimal_string(path.range.hi) + "] is empty or reversed (give --to above --from)");
       if (follows) {
         Rational at = arguments.follower_at.empty() ? coordinate(other) : value_of(arguments.follower_at, rotates(other), "--follower-at");
         Rational ratio = arguments.ratio.empty() ? Rational(0) : value_of(arguments.ratio, false, "--ratio");
@@ -223,6 +226,8 @@ int run(const CertifyArguments& arguments) {
                                                : value_of(arguments.step, rotates(driver), "--step");
         Rational travel = arguments.travel.empty() ? Rational(rotates(driver) ? Rational(6283, 1000) : Rational(100))
                                                    : value_of(arguments.travel, rotates(driver), "--travel");
+        if (sgn(step) <= 0) throw ModelError("", "--step " + arguments.step + ": the step must be positive");
+        if (sgn(travel) <= 0) throw ModelError("", "--travel " + arguments.travel + ": the travel must be positive");
         query = find_jam(model, first, second, driver.name, start, follower, direction, step, travel);
         if (!query) {
           std::cerr << "hipair: cannot certify: no jam found: the motion was not blocked within the travel\n";

@@ -290,6 +290,12 @@ fi
 # beyond the motion limits (lever-stop: -30deg .. 120deg): one error line naming the part and its limits
 certify_refused lever-beyond-limits 2 "the angle of 'lever' (2 atan(0) + pi rad) is not certainly within its motion limits [-0.523598775599, 2.09439510239] rad" \
   "$lever" --claim interference --at lever=180deg
+# a jam search's step or travel that is not positive, a free path's range reversed: input errors
+# naming the option (exit 3 "the step must be positive" / "the driver range must have start < end")
+certify_refused lever-step-zero 2 "--step 0: the step must be positive" "$lever" --claim jam --step 0
+certify_refused lever-step-negative 2 "--step -1: the step must be positive" "$lever" --claim jam --step -1
+certify_refused lever-travel-negative 2 "--travel -1deg: the travel must be positive" "$lever" --claim jam --travel -1deg
+certify_refused lever-free-reversed 2 "--from/--to: the driver range [1, 0] is empty or reversed" "$lever" --claim free --from 1 --to 0
 certify_refused lever-beyond-limits-clearance 2 "is not certainly within its motion limits" "$lever" --claim clearance --at lever=-45deg
 
 if [ $failures -ne 0 ]; then
