@@ -249,10 +249,10 @@ ExactPosition exact_position_from_angle(const Rational& angle);
 
 /// Certifies that parts `first` and `second` overlap at `positions` (every moving part of the
 /// pair; rotations by ExactPosition). Witness: a rational point strictly inside both (from the
-/// exact overlap predicate), else a transversal crossing of two boundary edges. The result is
-/// re-checked with the verifier's own code before it is returned.
-/// \returns nullopt when the parts do not overlap there (apart or only touching).
-/// \throws ModelError for unknown parts, GeometryError for parts that are not fixed-axis parts.
+/// exact overlap predicate), else a transversal crossing of two boundary edges, re-checked with
+/// the verifier's own code. \returns nullopt when the parts do not overlap there (apart or only
+/// touching). \throws ModelError for unknown parts or a position beyond the part's motion limits
+/// (so does certify_clearance), GeometryError for parts that are not fixed-axis parts.
 std::optional<Certificate> certify_interference(const Model& model, const std::string& first,
                                                 const std::string& second,
                                                 const std::map<std::string, ExactPosition>& positions,

@@ -220,13 +220,13 @@ struct PartCoordinate {
   Rational value;
 };
 
-/// Result of exact point location.
+/// Result of exact point location; in a 1-D space every contact point is a `vertex`.
 struct Location {
-  /// `touching`: inside a touching cell (degenerate: contact throughout a region).
-  /// `edge` / `vertex`: on contact space. The parts touch there (`cell` is no_index) when the
-  /// edge is real (a free/blocked boundary, or EdgeRole::touching: a zero-clearance channel
-  /// between blocked faces), or the vertex is one of a real edge or CSpaceVertex::touching;
-  /// otherwise the point lies on a spurious piece inside `cell`.
+  /// `touching`: inside a touching cell. `edge` / `vertex`: on contact space; the parts touch
+  /// there (`cell` no_index) on a real edge (free/blocked boundary or EdgeRole::touching), at its
+  /// vertices, at CSpaceVertex::touching, and in 1-D between different cells, on a chart's end,
+  /// or at a rational grazing point (free both sides, oracle: touching; not flagged touching);
+  /// otherwise on a spurious piece (or an undecided irrational grazing point) inside `cell`.
   enum class Kind { free, blocked, edge, vertex, outside, touching };
   Kind kind = Kind::outside;
   std::size_t cell = no_index;     ///< free / blocked / touching (and edges or vertices inside one cell)

@@ -1,6 +1,7 @@
 // Certificates for single configurations: interference and clearance, and the helpers shared by
 // every producer (model identity, exact maps, self-check).
 #include "certificates/producer.hpp"
+#include "certify/planar_check.hpp"
 
 #include <hipair/overlap.hpp>
 
@@ -116,6 +117,31 @@ const ExactPosition* position_of(const std::map<std::string, ExactPosition>& pos
   return found == positions.end() ? nullptr : &found->second;
 }
 
+// "0.5 rad", "2 atan(1) + pi rad" (no angle recorded: an exact tangent), "-3 mm".
+std::string position_text(const ExactPosition& position) {
+  if (position.is_offset) return to_decimal_string(position.value) + " mm";
+  return (position.angle ? to_decimal_string(*position.angle)
+                         : "2 atan(" + to_exact_string(position.value) + ")" + (position.half_turn ? " + pi" : "")) +
+         " rad";
+}
+
+// A position beyond the part's motion limits is an input error naming the part and its limits,
+// decided by the verifier's own test (an angle must be certainly within them: a tangent at a
+// limit's irrational neighbourhood is refused too). Until session 32 it reached the self-check
+// ("does not pass its own check", exit 3).
+void require_within_limits(const Part& part, const ExactPosition& position) {
+  bool rotating = part.motion.kind == Motion::Kind::rotation;
+  const std::optional<RationalInterval>& limits = rotating ? part.motion.angle_limits : part.motion.translation_limits;
+  if (!limits) return;
+  bool within = rotating ? verify::certainly_within(limits, verify::angle_of_tangent(position.value, position.half_turn), true)
+                         : limits->lo <= position.value && position.value <= limits->hi;
+  if (!within)
+    throw ModelError(part.pointer, std::string("the ") + (rotating ? "angle" : "offset") + " of '" + part.name + "' (" +
+                                       position_text(position) + ") is " + (rotating ? "not certainly within" : "outside") +
+                                       " its motion limits [" + to_decimal_string(limits->lo) + ", " +
+                                       to_decimal_string(limits->hi) + "]" + (rotating ? " rad" : " mm"));
+}
+
 // Only the moving parts of the pair keep a position.
 std::map<std::string, ExactPosition> pair_positions(const std::map<std::string, ExactPosition>& positions,
                                                     const Part& a, const Part& b) {
@@ -126,6 +152,7 @@ std::map<std::string, ExactPosition> pair_positions(const std::map<std::string, 
       if (!position) throw ModelError(part->pointer, "no position given for moving part '" + part->name + "'");
       ExactPosition copy = *position;
       copy.is_offset = part->motion.kind == Motion::Kind::translation;
+      require_within_limits(*part, copy);
       result[part->name] = copy;
     }
   return result;
@@ -134,9 +161,7 @@ std::map<std::string, ExactPosition> pair_positions(const std::map<std::string, 
 std::string where(const Certificate& c) {
   std::string text;
   for (const auto& [part, position] : c.configuration)
-    text += (text.empty() ? "" : ", ") + part + " at " +
-            (position.is_offset ? to_decimal_string(position.value) + " mm"
-                                : (position.angle ? to_decimal_string(*position.angle) : "2 atan(" + to_exact_string(position.value) + ")") + " rad");
+    text += (text.empty() ? "" : ", ") + part + " at " + position_text(position);
   return text.empty() ? "their fixed positions" : text;
 }
 

@@ -1,5 +1,6 @@
 // `hipair certify MODEL --claim interference|clearance|jam|free --out CERT`: produces a
 // certificate that hipair-verify re-checks independently (docs/certify.md).
+#include "cli/angles.hpp"
 #include "cli/commands.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_paths.hpp"
@@ -30,19 +31,29 @@ int direction_of(const std::string& text) {
   throw ModelError("", "--direction must be +1 or -1 (or + / -), not '" + text + "'");
 }
 
-// An exact literal; angles may end in "deg" (then converted to rad, rounded to 1e-18).
+// An exact literal; angles may end in "deg" (then converted to rad, rounded to 1e-18). A
+// position (--at) is read by exact_position_from_text instead: whole quarter turns exact.
 Rational value_of(const std::string& text, bool angle, const std::string& option) {
-  try {
-    if (angle && text.size() > 3 && text.compare(text.size() - 3, 3, "deg") == 0)
-      return degrees_to_radians(parse_rational(text.substr(0, text.size() - 3)));
-    return parse_rational(text);
-  } catch (const NumericError& error) {
-    throw ModelError("", option + " " + text + ": " + error.what() + " (exact literal; angles in rad or with 'deg')");
-  }
+  AngleLiteral literal = parse_angle_literal(text, angle, option);
+  return literal.degrees ? degrees_to_radians(literal.value) : literal.value;
 }
 
 bool rotates(const Part& part) { return part.motion.kind == Motion::Kind::rotation; }
 Rational coordinate(const Part& part) { return rotates(part) ? part.initial.angle : part.initial.offset; }
+
+// An --at angle (rad, or exact at whole quarter turns in deg); an angle in degrees that had to
+// be rounded adds how it was taken to `notes` (printed with the result).
+ExactPosition angle_at(const std::string& text, std::vector<std::string>& notes) {
+  ExactPosition position = exact_position_from_text(text, "--at");
+  if (std::string label = angle_label(text, position); !label.empty()) notes.push_back("--at: " + label);
+  return position;
+}
+
+// --at PART=VALUE: a rotating part's angle, a translating part's offset (mm).
+ExactPosition position_of(const Part& part, const std::string& text, std::vector<std::string>& notes) {
+  if (rotates(part)) return angle_at(text, notes);
+  return ExactPosition{value_of(text, false, "--at"), true, false, {}, {}};
+}
 
 std::pair<std::string, std::string> pair_of(const Model& model, const std::string& text) {
   if (text.empty()) {
@@ -87,12 +98,15 @@ int run(const CertifyArguments& arguments) {
   }
   std::optional<Certificate> certificate;
   std::string failure;
+  std::vector<std::string> notes;   // how angles in degrees were taken
   const Part* planar = a.motion.kind == Motion::Kind::planar ? &a : b.motion.kind == Motion::Kind::planar ? &b : nullptr;
   const Part* pin_slot = a.motion.kind == Motion::Kind::pin_slot ? &a : b.motion.kind == Motion::Kind::pin_slot ? &b : nullptr;
   if (planar && (arguments.claim == "interference" || arguments.claim == "clearance")) {
     // a part free in the plane: its pose (x, y, angle) from the model's initial configuration
-    // or --at PART=X,Y,ANGLE; the angle is rounded to an exact half-angle tangent
-    Rational x = planar->initial.x, y = planar->initial.y, angle = planar->initial.angle;
+    // or --at PART=X,Y,ANGLE; the angle is rounded to an exact half-angle tangent (exact at
+    // whole quarter turns in degrees)
+    Rational x = planar->initial.x, y = planar->initial.y;
+    ExactPosition rotation = exact_position_from_angle(planar->initial.angle);
     for (const std::string& assignment : arguments.at) {
       auto equals = assignment.find('=');
       if (equals == std::string::npos || assignment.substr(0, equals) != planar->name)
@@ -102,9 +116,8 @@ int run(const CertifyArguments& arguments) {
       if (c2 == std::string::npos) throw ModelError("", "--at expects " + planar->name + "=X,Y,ANGLE, got '" + assignment + "'");
       x = value_of(rest.substr(0, c1), false, "--at");
       y = value_of(rest.substr(c1 + 1, c2 - c1 - 1), false, "--at");
-      angle = value_of(rest.substr(c2 + 1), true, "--at");
+      rotation = angle_at(rest.substr(c2 + 1), notes);
     }
-    ExactPosition rotation = exact_position_from_angle(angle);
     PlanarPose pose{planar->name, x, y, rotation.value, rotation.half_turn, std::nullopt};
     const std::string& fixed = planar == &a ? b.name : a.name;
     if (arguments.claim == "interference") {
@@ -119,7 +132,11 @@ int run(const CertifyArguments& arguments) {
     // --at PART=SLIDE,ANGLE; the other part (fixed, rotating or translating) at its initial
     // position or --at OTHER=VALUE
     const Part& other = pin_slot == &a ? b : a;
-    Rational slide = pin_slot->initial.offset, angle = pin_slot->initial.angle, value = coordinate(other);
+    Rational slide = pin_slot->initial.offset;
+    ExactPosition rotation = exact_position_from_angle(pin_slot->initial.angle);
+    std::optional<ExactPosition> other_position;
+    if (other.motion.kind != Motion::Kind::fixed)
+      other_position = rotates(other) ? exact_position_from_angle(other.initial.angle) : ExactPosition{other.initial.offset, true, false, {}, {}};
     for (const std::string& assignment : arguments.at) {
       auto equals = assignment.find('=');
       std::string name = equals == std::string::npos ? "" : assignment.substr(0, equals), rest = assignment.substr(equals + 1);
@@ -128,21 +145,19 @@ int run(const CertifyArguments& arguments) {
         if (comma == std::string::npos)
           throw ModelError("", "--at expects " + pin_slot->name + "=SLIDE,ANGLE for the pin-slot part, got '" + assignment + "'");
         slide = value_of(rest.substr(0, comma), false, "--at");
-        angle = value_of(rest.substr(comma + 1), true, "--at");
+        rotation = angle_at(rest.substr(comma + 1), notes);
       } else if (name == other.name && other.motion.kind != Motion::Kind::fixed) {
-        value = value_of(rest, rotates(other), "--at");
+        other_position = position_of(other, rest, notes);
       } else {
         throw ModelError("", "--at expects " + pin_slot->name + "=SLIDE,ANGLE" +
                                  (other.motion.kind != Motion::Kind::fixed ? " or " + other.name + "=VALUE" : "") + ", got '" +
                                  assignment + "'");
       }
     }
-    ExactPosition rotation = exact_position_from_angle(angle);
     PlanarPose pose{pin_slot->name, 0, 0, rotation.value, rotation.half_turn, std::nullopt};
     pose.slide = slide;
     std::map<std::string, ExactPosition> configuration;
-    if (other.motion.kind != Motion::Kind::fixed)
-      configuration[other.name] = rotates(other) ? exact_position_from_angle(value) : ExactPosition{value, true, false, {}, {}};
+    if (other_position) configuration[other.name] = *other_position;
     if (arguments.claim == "interference") {
       certificate = certify_pin_slot_interference(model, other.name, pose, configuration, context);
       failure = "the parts do not overlap there";
@@ -151,19 +166,17 @@ int run(const CertifyArguments& arguments) {
       failure = "the parts touch or overlap there, or are closer than the distance";
     }
   } else if (arguments.claim == "interference" || arguments.claim == "clearance") {
-    std::map<std::string, Rational> values;
-    for (const Part* part : {&a, &b}) values[part->name] = coordinate(*part);
+    std::map<std::string, ExactPosition> positions;
+    for (const Part* part : {&a, &b})
+      if (part->motion.kind != Motion::Kind::fixed)
+        positions[part->name] = rotates(*part) ? exact_position_from_angle(part->initial.angle)
+                                               : ExactPosition{part->initial.offset, true, false, {}, {}};
     for (const std::string& assignment : arguments.at) {
       auto equals = assignment.find('=');
       if (equals == std::string::npos) throw ModelError("", "--at expects PART=VALUE, got '" + assignment + "'");
       const Part& part = part_named(model, assignment.substr(0, equals));
-      values[part.name] = value_of(assignment.substr(equals + 1), rotates(part), "--at");
+      positions[part.name] = position_of(part, assignment.substr(equals + 1), notes);
     }
-    std::map<std::string, ExactPosition> positions;
-    for (const Part* part : {&a, &b})
-      if (part->motion.kind != Motion::Kind::fixed)
-        positions[part->name] = rotates(*part) ? exact_position_from_angle(values[part->name])
-                                               : ExactPosition{values[part->name], true, false, {}, {}};
     if (arguments.claim == "interference") {
       certificate = certify_interference(model, first, second, positions, context);
       failure = "the parts do not overlap there";
@@ -184,6 +197,9 @@ int run(const CertifyArguments& arguments) {
       if (!arguments.to.empty()) path.range.hi = value_of(arguments.to, rotates(driver), "--to");
       else if (rotates(driver)) path.range.hi = path.range.lo + Rational(6283185307179586, 1000000000000000);
       else throw ModelError("", "give --to for a translating driver");
+      if (!(path.range.lo < path.range.hi))
+        throw ModelError("", "--from/--to: the driver range [" + to_decimal_string(path.range.lo) + ", " +
+                                 to_decimal_string(path.range.hi) + "] is empty or reversed (give --to above --from)");
       if (follows) {
         Rational at = arguments.follower_at.empty() ? coordinate(other) : value_of(arguments.follower_at, rotates(other), "--follower-at");
         Rational ratio = arguments.ratio.empty() ? Rational(0) : value_of(arguments.ratio, false, "--ratio");
@@ -210,6 +226,8 @@ int run(const CertifyArguments& arguments) {
                                                : value_of(arguments.step, rotates(driver), "--step");
         Rational travel = arguments.travel.empty() ? Rational(rotates(driver) ? Rational(6283, 1000) : Rational(100))
                                                    : value_of(arguments.travel, rotates(driver), "--travel");
+        if (sgn(step) <= 0) throw ModelError("", "--step " + arguments.step + ": the step must be positive");
+        if (sgn(travel) <= 0) throw ModelError("", "--travel " + arguments.travel + ": the travel must be positive");
         query = find_jam(model, first, second, driver.name, start, follower, direction, step, travel);
         if (!query) {
           std::cerr << "hipair: cannot certify: no jam found: the motion was not blocked within the travel\n";
@@ -222,6 +240,7 @@ int run(const CertifyArguments& arguments) {
   } else {
     throw ModelError("", "--claim must be interference, clearance, jam or free");
   }
+  for (const std::string& note : notes) std::cout << note << "\n";
   if (!certificate) {
     std::cerr << "hipair: cannot certify: " << failure << "\n";
     return 1;

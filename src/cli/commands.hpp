@@ -6,6 +6,7 @@
 
 #include <hipair/model.hpp>
 
+#include "cli/angles.hpp"
 #include "model/exact_trig.hpp"
 
 #include <functional>
@@ -41,11 +42,6 @@ void add_rounding_option(CLI::App* command, std::string& text);
 /// result lives; nullptr for an empty text. \throws ModelError for a malformed number (the
 /// range is checked by the reader).
 std::unique_ptr<model_detail::RoundingBoundScope> rounding_scope(const std::string& text);
-
-/// An angle given in degrees, in radians: the exact product with pi / 180 enclosed (MPFI) and
-/// rounded down to the grid of 10^-18 rad, at any magnitude (a double conversion overflowed
-/// beyond 1.8e308 deg and crashed on the infinite result).
-Rational degrees_to_radians(const Rational& degrees);
 
 /// CLI::Range for real numbers, with the ends written as numbers ("in [1e-12, 1]"): CLI11's own
 /// message prints them with std::to_string, and "Value 0 not in range 0.000000 to 1.000000"

@@ -64,6 +64,18 @@ std::string file_name_part(const std::string& text) {
   return out;
 }
 
+// A positive finite number (CLI::PositiveNumber let nan and inf through: nan <= 0 is false).
+CLI::Validator positive_finite() {
+  return CLI::Validator(
+      [](std::string& input) -> std::string {
+        double value = 0;
+        if (!CLI::detail::lexical_cast(input, value)) return "Value " + input + " is not a number";
+        if (!(value > 0) || !std::isfinite(value)) return "Value " + input + " is not a positive finite number";
+        return {};
+      },
+      "POSITIVE FINITE");
+}
+
 std::string number(double v) {
   char buffer[40];
   std::snprintf(buffer, sizeof buffer, "%.12g", v);
@@ -842,18 +854,28 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   return 0;
 }
 
+// --t-end and --max-step, before anything is read or built: T positive and finite, H (when
+// given; CLI11 has checked it is a positive finite number) no smaller than T over the
+// simulator's step budget (SimulationOptions::max_steps, 2 000 000): a run that needs more
+// steps than that stops with "more than max_steps steps" after all of them (until session 32
+// `--max-step 1e-300` ran for hours with no progress off a terminal).
+void check_times(const SimulateOptions& options) {
+  if (!(options.t_end > 0) || !std::isfinite(options.t_end))
+    throw ModelError("", "--t-end must be a positive finite number of time units");
+  const std::size_t budget = SimulationOptions{}.max_steps;
+  if (options.max_step > 0 && options.t_end / options.max_step > static_cast<double>(budget))
+    throw ModelError("", "--max-step " + number(options.max_step) + ": T / H = " + number(options.t_end / options.max_step) +
+                             " steps exceed the simulator's budget of " + std::to_string(budget) +
+                             " steps: give H >= " + number(options.t_end / static_cast<double>(budget)));
+}
+
 int run(const SimulateOptions& options) {
   auto rounding = rounding_scope(options.rounding);
-  if (!options.sweep.empty()) {
-    if (!(options.t_end > 0) || !std::isfinite(options.t_end))
-      throw ModelError("", "--t-end must be a positive number of time units");
-    return run_sweep(options);
-  }
+  check_times(options);
+  if (!options.sweep.empty()) return run_sweep(options);
   if (!options.works_period.empty() || !options.works_advance.empty() || options.works_max_decay >= 0)
     throw ModelError("", "--works-period, --works-advance and --works-max-decay judge a --sweep's runs: give --sweep");
   Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
-  if (!(options.t_end > 0) || !std::isfinite(options.t_end))
-    throw ModelError("", "--t-end must be a positive number of time units");
   // parts free in the plane: one (PlanarSimulation) or several (PlanarSystemSimulation)
   std::size_t planar_count = 0;
   for (const Part& part : model.parts) planar_count += part.motion.kind == Motion::Kind::planar;
@@ -1003,8 +1025,10 @@ void register_simulate(CLI::App& app, Action& action) {
   command->add_option("--accuracy", options->accuracy,
                       "Relative and absolute error tolerance per step (default: the model's, or 1e-9)")
       ->check(real_range(1e-15, 0.1));
-  command->add_option("--max-step", options->max_step, "Largest integration step (time unit; default: none)")
-      ->check(CLI::PositiveNumber);
+  command->add_option("--max-step", options->max_step,
+                      "Largest integration step (time unit; default: none): a positive finite number, at least "
+                      "T / 2000000 (the simulator's step budget)")
+      ->check(positive_finite());
   command->add_option("--out", options->out,
                       "Output directory: trajectory.csv, events.json/.txt, positions.svg, velocities.svg, animation.svg, cspace-*.svg");
   command->add_option("--region", options->region,

@@ -19,6 +19,7 @@
 
 #include <hipair/model.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <future>
@@ -95,6 +96,47 @@ Rational coordinate(const std::string& text, const std::string& option) {
   return value;
 }
 
+// --certify-scale S (without a T suffix): an exact positive number, at most 10^6 (the box is S
+// times the tolerance ranges; until session 32 `1e400` was accepted and the analysis ran on).
+// \throws ModelError naming the option.
+Rational certify_scale(const std::string& text, const std::string& given) {
+  Rational scale;
+  try {
+    scale = parse_rational(trim(text));
+  } catch (const Error&) {
+    throw ModelError("", "--certify-scale: '" + given + "' is not a number");
+  }
+  if (!(scale > 0)) throw ModelError("", "--certify-scale: the scale must be positive");
+  if (scale > 1000000) throw ModelError("", "--certify-scale " + given + ": the scale must be at most 1e6");
+  return scale;
+}
+
+// --range A:B of the analysis: A below B, both in rad (or deg) / mm. \throws ModelError.
+std::pair<Rational, Rational> driver_range(const std::string& text) {
+  auto [a, b] = split_pair(text, "--range");
+  Rational lo = coordinate(a, "--range"), hi = coordinate(b, "--range");
+  if (lo == hi)
+    throw ModelError("", "--range " + text + ": the range is empty" +
+                             (a != b ? std::string(" (both ends are the same position once converted to exact rad)") : ""));
+  if (hi < lo) throw ModelError("", "--range " + text + ": A must be below B (the driver runs from A up to B)");
+  return {lo, hi};
+}
+
+// --seed: decimal digits that fit a uint64 (CLI11's own conversion took "-1" as 2^64 - 1 and
+// "18446744073709551616" as 2^64 - 1).
+CLI::Validator seed_digits() {
+  return CLI::Validator(
+      [](std::string& input) -> std::string {
+        static const std::string largest = "18446744073709551615";
+        bool digits = !input.empty() && std::all_of(input.begin(), input.end(), [](char c) { return c >= '0' && c <= '9'; });
+        std::string value = digits ? input.substr(std::min(input.find_first_not_of('0'), input.size())) : input;
+        if (!digits || value.size() > largest.size() || (value.size() == largest.size() && value > largest))
+          return "Value " + input + " is not a whole number from 0 to " + largest;
+        return {};
+      },
+      "UINT64");
+}
+
 bool earlier_output(const std::string& name) {
   return name == "tolerance.json" || name == "variation.csv" || name == "sensitivity.csv" ||
          name == "variation.svg" || name == "contact-zone.svg" || name == "report.txt" ||
@@ -140,12 +182,7 @@ int run_interference(const ToleranceCliOptions& options) {
     throw ModelError("", "--certify-scale " + scale +
                              " is relative to the jamming threshold, which --certify-interference does not use: give a number");
   InterferenceCertifyOptions certify;
-  try {
-    certify.scale = parse_rational(scale);
-  } catch (const Error&) {
-    throw ModelError("", "--certify-scale: '" + options.certify_scale + "' is not a number");
-  }
-  if (!(certify.scale > 0)) throw ModelError("", "--certify-scale: the scale must be positive");
+  certify.scale = certify_scale(scale, options.certify_scale);
   certify.vary = options.vary;
   certify.max_leaves = options.certify_leaves;
 
@@ -302,11 +339,7 @@ int run(const ToleranceCliOptions& options) {
     analysis.follower = b;
   }
   if (!options.driver.empty()) analysis.driver = options.driver;
-  if (!options.range.empty()) {
-    auto [a, b] = split_pair(options.range, "--range");
-    analysis.range = std::make_pair(coordinate(a, "--range"), coordinate(b, "--range"));
-    if (analysis.range->first == analysis.range->second) throw ModelError("", "--range: the range is empty");
-  }
+  if (!options.range.empty()) analysis.range = driver_range(options.range);
   if (options.assume_nominal_contact && !options.chain) throw ModelError("", "--assume-nominal-contact is for --chain");
   analysis.chain_assume_nominal_holder = options.assume_nominal_contact;
   analysis.monte_carlo = options.monte_carlo;
@@ -327,12 +360,7 @@ int run(const ToleranceCliOptions& options) {
     analysis.certify_relative_to_threshold = true;
     scale.pop_back();
   }
-  try {
-    analysis.certify_scale = parse_rational(trim(scale));
-  } catch (const Error&) {
-    throw ModelError("", "--certify-scale: '" + options.certify_scale + "' is not a number");
-  }
-  if (!(analysis.certify_scale > 0)) throw ModelError("", "--certify-scale: the scale must be positive");
+  analysis.certify_scale = certify_scale(scale, options.certify_scale);
   analysis.certify_max_leaves = options.certify_leaves;
   analysis.certify_free_path = options.certify_free_path;
   bool terminal = isatty(2) && !options.quiet;
@@ -380,7 +408,8 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_option("--range", options->range, "driver range A:B (rad, or with a deg suffix; mm for a translation)");
   command->add_option("--monte-carlo", options->monte_carlo, "Monte Carlo samples (default 0: none)")
       ->check(CLI::Range(std::size_t{0}, std::size_t{10000000}));
-  command->add_option("--seed", options->seed, "Monte Carlo seed (default 1)");
+  command->add_option("--seed", options->seed, "Monte Carlo seed: a whole number from 0 to 18446744073709551615 (default 1)")
+      ->check(seed_digits());
   command->add_option("--positions", options->positions, "driver positions per turn for a rotating driver, along the range for a translating one (default 360)")
       ->check(CLI::Range(std::size_t{16}, std::size_t{100000}));
   command->add_flag("--threshold", options->threshold, "find the jamming threshold and confirm it with an exact C-space");
@@ -401,7 +430,9 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_option("--accuracy", options->accuracy,
                       "certified band: at most this much (relative) wider than the linearised one (default 0.1)")
       ->check(real_range(1e-6, 10.0));
-  command->add_option("--threads", options->threads, "threads for the Monte Carlo, the certified band and the zones (default: all cores)");
+  command->add_option("--threads", options->threads,
+                      "threads for the Monte Carlo, the certified band and the zones (default 0: all cores; at most 256)")
+      ->check(CLI::Range(0u, 256u));
   command->add_option("--out", options->out, "directory for tolerance.json, variation.csv, sensitivity.csv, variation.svg, contact-zone.svg");
   command->add_flag("--quiet", options->quiet, "no progress bar");
   command->add_option("--set", options->overrides,

@@ -147,15 +147,6 @@ void add_parameter_options(CLI::App* command, std::vector<std::string>& assignme
                     "accept --set values outside the parameter's tolerance range");
 }
 
-Rational degrees_to_radians(const Rational& degrees) {
-  using model_detail::Interval;
-  Interval radians = Interval(degrees) * Interval::pi() / Interval(Rational(180));
-  Rational grid(1, 1000000000000000000ul), steps = radians.middle() / grid;
-  mpz_class whole;
-  mpz_fdiv_q(whole.get_mpz_t(), steps.get_num_mpz_t(), steps.get_den_mpz_t());
-  return Rational(whole) * grid;
-}
-
 ReadOptions parameter_overrides(const std::vector<std::string>& assignments, bool allow_out_of_tolerance) {
   ReadOptions options;
   options.allow_out_of_tolerance = allow_out_of_tolerance;

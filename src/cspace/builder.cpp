@@ -928,7 +928,14 @@ void find_touching(ChartData& chart, const Classifier& classify, ContactSides* s
 // oracle; a point of one contact whose polynomial changes sign there is blocked (were the parts
 // only touching, that contact would be their only one and the side where it opens would be
 // free); any other irrational point stays blocked and is counted undecided.
+// States that cannot arise (faces not one more than the points, a point without its curves,
+// the parts overlapping at one point between free intervals: overlap is open in the
+// configuration) throw GeometryError naming the chart point, never reach undefined behaviour.
 void find_touching_points(ChartData& chart, const Classifier& classify, CSpaceStatistics& stats) {
+  if (chart.faces.size() != chart.points.size() + 1 || chart.point_curves.size() != chart.points.size())
+    throw GeometryError("internal: a 1-D chart has " + std::to_string(chart.points.size()) + " contact points, " +
+                        std::to_string(chart.point_curves.size()) + " curve lists and " + std::to_string(chart.faces.size()) +
+                        " intervals (intervals must be points + 1)");
   chart.touching_vertex.assign(chart.points.size(), 0);
   chart.seam_relation.assign(chart.points.size(), -1);
   chart.grazing_point.assign(chart.points.size(), 0);
@@ -950,8 +957,12 @@ void find_touching_points(ChartData& chart, const Classifier& classify, CSpaceSt
     // or no contact at all; a rational point is decided by the exact oracle (an irrational one
     // stays inside its free cell: not decided, docs/performance.md, session 30)
     if (chart.faces[i].kind == FaceKind::free && chart.faces[i + 1].kind == FaceKind::free) {
-      if (auto x = rational_value(chart.points[i]))
-        chart.grazing_point[i] = classify(ChartPoint{*x, Rational(0)}) == Overlap::touching;
+      if (auto x = rational_value(chart.points[i])) {
+        Overlap relation = classify(ChartPoint{*x, Rational(0)});
+        if (relation == Overlap::overlapping)
+          throw GeometryError("internal: the parts overlap at " + x->get_str() + " between free intervals");
+        chart.grazing_point[i] = relation == Overlap::touching;
+      }
       continue;
     }
     if (chart.faces[i].kind != FaceKind::blocked || chart.faces[i + 1].kind != FaceKind::blocked) continue;

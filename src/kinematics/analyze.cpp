@@ -630,14 +630,29 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
     travel = end - start.get_d();
     if (!result.driver_rotates) exact_end = limit;
   }
-  if (travel == 0) throw NumericError("the driver range is empty");
+  // A range whose ends differ: say why it is still empty (session 32: "the driver range is
+  // empty" for --range 1e-300:2e-300 told nothing).
+  auto range_text = [&] {
+    return "the driver range [" + to_decimal_string(options.range->first) + ", " + to_decimal_string(options.range->second) +
+           "]" + (result.driver_rotates ? " rad" : " mm");
+  };
+  const bool ends_differ = options.range && options.range->first != options.range->second;
+  if (travel == 0)
+    throw NumericError(ends_differ ? range_text() + " is too short to drive: its length rounds to 0 in double precision"
+                                   : std::string("the driver range is empty"));
   result.direction = direction;
   result.start = start.get_d();
   result.end = start.get_d() + travel;
 
   Sweep sweep(chain, options, result);
   sweep.segments = plan_segments(line, start, travel, exact_end ? &*exact_end : nullptr, result.warnings);
-  if (sweep.segments.empty()) throw NumericError("the driver range is empty");
+  if (sweep.segments.empty())
+    throw NumericError(!ends_differ ? std::string("the driver range is empty")
+                       : result.driver_rotates
+                           ? range_text() + " is one driver position: a rotating driver is placed at half-angle tangents "
+                                            "rounded to 2^-60 (about 1.7e-18 rad apart), and at its motion limit where the "
+                                            "range lies beyond it; give a wider range within the limits"
+                           : range_text() + " is one driver position: the range lies beyond the driver's motion limits");
   sweep.epsilon = Rational(1, mpz_class(1) << std::clamp(options.event_bits, 8, 200));
   sweep.open.resize(chain.parts.size());
   sweep.total_travel = std::abs(travel);

@@ -243,6 +243,61 @@ cmp -s "$work/film-pin-clear.json" "$work/film-pin-turned.json" && fail "the tan
 grep -q "angle of 'follower' .* is not certainly within its limits" "$work/film-pin-turned.out" \
   || fail "angle-limit rejection: $(cat "$work/film-pin-turned.out")"
 
+# ------------------------------------------------------------------ quarter turns in degrees (session 32)
+# `--at PART=ANGLEdeg` at a whole multiple of 90° is exact (cli::exact_position_from_degrees): a
+# peg touching a block at exactly 90°, 180° or 270° (also -90°, 450°, 3600090°) only touches —
+# neither interference nor clearance is certified (main certified interference: the angle was
+# rounded 10^-18 rad past the block). 1e-20 mm into the block it is interference, verified,
+# with the exact position in the statement; a planar peg likewise. A position beyond the
+# part's motion limits is an input error naming them (exit 2; it was exit 3, "does not pass its
+# own check").
+box() {   # NAME X0 Y0 X1 Y1: a fixed rectangle [X0, X1] x [Y0, Y1] (a JSON part)
+  printf '{ "name": "%s", "motion": "fixed", "loops": [ { "start": [%s, %s], "edges": [ { "line_to": [%s, %s] }, ' "$1" "$2" "$3" "$4" "$3"
+  printf '{ "line_to": [%s, %s] }, { "line_to": [%s, %s] }, { "line_to": [%s, %s] } ] } ] }' "$4" "$5" "$2" "$5" "$2" "$3"
+}
+quarter_model() {   # FILE UP_Y LEFT_X: a 10 x 2 peg about the origin; blocks above (from y = UP_Y), left (to x = LEFT_X), below
+  { echo '{ "hipair": 1, "name": "quarter-turns", "parts": [ { "name": "peg", "motion": { "rotation": { "pivot": [0, 0] } },'
+    echo '  "loops": [ { "start": [0, -1], "edges": [ { "line_to": [10, -1] }, { "line_to": [10, 1] }, { "line_to": [0, 1] }, { "line_to": [0, -1] } ] } ] },'
+    box up -5 "$2" 5 12 && echo ,
+    box left -12 -5 "$3" 5 && echo ,
+    box down -5 -12 5 -10 && echo ' ] }'; } >"$1"
+}
+quarter_model "$work/model-quarter.json" 10 -10
+quarter_model "$work/model-quarter-into.json" '"9.99999999999999999999"' -10
+quarter_model "$work/model-quarter-left.json" 10 '"-9.99999999999999999999"'
+for at in up=90deg up=450deg up=3600090deg up=-270deg left=180deg left=-180deg left=540deg down=270deg down=-90deg; do
+  block=${at%%=*} angle=${at#*=}
+  certify_refused "quarter-$block$angle-interference" 1 "do not overlap" "$work/model-quarter.json" --claim interference --pair peg:$block --at peg=$angle
+  certify_refused "quarter-$block$angle-clearance" 1 "touch or overlap" "$work/model-quarter.json" --claim clearance --pair peg:$block --at peg=$angle
+done
+certify_ok quarter-into "$work/model-quarter-into.json" --claim interference --pair peg:up --at peg=90deg
+grep -q "peg at 2 atan(1) rad" "$work/quarter-into.out" || fail "90deg is not named exactly: $(cat "$work/quarter-into.out")"
+grep -q '"peg": {"tangent": "1"}' "$work/quarter-into.json" || fail "90deg is not the tangent 1: $(head -c 600 "$work/quarter-into.json")"
+certify_ok quarter-left "$work/model-quarter-left.json" --claim interference --pair peg:left --at peg=180deg
+grep -q "peg at 2 atan(0) + pi rad" "$work/quarter-left.out" || fail "180deg is not named as the half turn: $(cat "$work/quarter-left.out")"
+# any other angle: as before, labelled with the rational angle used
+certify_ok quarter-near "$work/model-quarter.json" --claim clearance --pair peg:up --at peg=45deg
+grep -q "^--at: 45deg is taken as 0.785398163397448309 rad$" "$work/quarter-near.out" || fail "45deg is not labelled as the rational used: $(cat "$work/quarter-near.out")"
+# a planar peg (--at PART=X,Y,ANGLE): touching at exactly 90deg
+sed 's/"rotation": { "pivot": \[0, 0\] }/"planar": { "pivot": [0, 0] }/' "$work/model-quarter.json" >"$work/model-quarter-planar.json"
+if "$hipair" validate "$work/model-quarter-planar.json" >/dev/null 2>&1; then
+  certify_refused quarter-planar-interference 1 "do not overlap" "$work/model-quarter-planar.json" --claim interference --pair peg:up --at peg=0,0,90deg
+  certify_refused quarter-planar-clearance 1 "touch or overlap" "$work/model-quarter-planar.json" --claim clearance --pair peg:up --at peg=0,0,90deg
+  certify_ok quarter-planar-into "$work/model-quarter-planar.json" --claim interference --pair peg:up --at peg=0,"1e-20",90deg
+else
+  fail "the planar quarter-turn model does not validate: $("$hipair" validate "$work/model-quarter-planar.json" 2>&1 | tail -n 1)"
+fi
+# beyond the motion limits (lever-stop: -30deg .. 120deg): one error line naming the part and its limits
+certify_refused lever-beyond-limits 2 "the angle of 'lever' (2 atan(0) + pi rad) is not certainly within its motion limits [-0.523598775599, 2.09439510239] rad" \
+  "$lever" --claim interference --at lever=180deg
+# a jam search's step or travel that is not positive, a free path's range reversed: input errors
+# naming the option (exit 3 "the step must be positive" / "the driver range must have start < end")
+certify_refused lever-step-zero 2 "--step 0: the step must be positive" "$lever" --claim jam --step 0
+certify_refused lever-step-negative 2 "--step -1: the step must be positive" "$lever" --claim jam --step -1
+certify_refused lever-travel-negative 2 "--travel -1deg: the travel must be positive" "$lever" --claim jam --travel -1deg
+certify_refused lever-free-reversed 2 "--from/--to: the driver range [1, 0] is empty or reversed" "$lever" --claim free --from 1 --to 0
+certify_refused lever-beyond-limits-clearance 2 "is not certainly within its motion limits" "$lever" --claim clearance --at lever=-45deg
+
 if [ $failures -ne 0 ]; then
   echo "$failures certify CLI check(s) failed"
   exit 1

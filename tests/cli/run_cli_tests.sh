@@ -710,6 +710,55 @@ code=$?
 grep -q "'free':'slotted'\|'slotted':'free'" "$work/pin-planar.err" || fail "cspace pin_slot/planar: message does not name the pair: $(cat "$work/pin-planar.err")"
 [ -e "$work/pin-planar.svg" ] && fail "cspace pin_slot/planar wrote output"
 
+# --- hostile options (session 32): each is one clear error naming the option, an ordinary exit,
+# nothing written, at once (each ran on for minutes, or silently did something else, before).
+# refused NAME MESSAGE COMMAND ARGS...: exit 1..127 (not a signal), MESSAGE on stderr, no --out.
+refused() {
+  local name=$1 message=$2; shift 2
+  rm -rf "$work/refused-$name"
+  timeout 60 "$hipair" "$@" --out "$work/refused-$name" >/dev/null 2>"$work/refused-$name.err"
+  local code=$?
+  { [ $code -ne 0 ] && [ $code -lt 124 ]; } || fail "$name ($*): exit $code: $(cat "$work/refused-$name.err")"
+  grep -qF -- "$message" "$work/refused-$name.err" || fail "$name ($*): message not '$message': $(cat "$work/refused-$name.err")"
+  [ -e "$work/refused-$name" ] && fail "$name ($*) wrote its output"
+}
+bar="$source/examples/models/bouncing-bar.json"
+# simulate --max-step: a positive finite number (nan, inf, 0 and negatives passed CLI::PositiveNumber
+# or ran), and not so small that T / H exceeds the simulator's step budget (1e-300 ran for hours)
+for step in nan inf -inf 0 -1 -0.5; do
+  refused "max-step$step" "--max-step: Value $step is not a positive finite number" simulate "$bar" --t-end 0.3 --max-step "$step"
+done
+refused max-step-tiny "--max-step 1e-300: T / H = 3e+299 steps exceed the simulator's budget of 2000000 steps" \
+  simulate "$bar" --t-end 0.3 --max-step 1e-300
+refused max-step-tiny-sweep "--max-step 1e-12" simulate "$bar" --t-end 0.3 --max-step 1e-12 --sweep speed=1:2:2 --allow-out-of-tolerance
+for end in nan inf 0 -1; do
+  refused "t-end$end" "--t-end must be a positive finite number of time units" simulate "$bar" --t-end "$end"
+done
+# tolerance --range A:B: A below B (1:0 ran backwards silently), the range not one driver position
+# (1e-300:2e-300 said "the driver range is empty"), and the option values checked before the analysis
+refused tol-range-reversed "--range 1:0: A must be below B" tolerance "$geneva" --range 1:0 --quiet
+refused tol-range-reversed-deg "--range 90deg:0deg: A must be below B" tolerance "$geneva" --range 90deg:0deg --quiet
+refused tol-range-tiny "the driver range [1e-300, 2e-300] rad is one driver position: a rotating driver is placed at half-angle tangents rounded to 2^-60" \
+  tolerance "$geneva" --range 1e-300:2e-300 --positions 16 --quiet
+refused tol-range-underflow "is too short to drive: its length rounds to 0 in double precision" \
+  tolerance "$geneva" --range 0:1e-400 --positions 16 --quiet
+refused tol-range-deg-same "--range 1e-300deg:2e-300deg: the range is empty (both ends are the same position once converted to exact rad)" \
+  tolerance "$geneva" --range 1e-300deg:2e-300deg --quiet
+refused analyze-range-tiny "is one driver position" analyze "$geneva" --range 1e-300:2e-300 --quiet --no-pictures
+gear_train="$source/examples/models/gear-train.json"
+refused tol-scale-huge "--certify-scale 1e400: the scale must be at most 1e6" tolerance "$gear_train" --certify-scale 1e400 --quiet
+refused tol-scale-huge-t "--certify-scale 1e400T: the scale must be at most 1e6" tolerance "$gear_train" --threshold --certify-scale 1e400T --quiet
+refused tol-scale-zero "--certify-scale: the scale must be positive" tolerance "$gear_train" --certify-scale 0 --quiet
+refused tol-noint-scale-huge "--certify-scale 1e7: the scale must be at most 1e6" \
+  tolerance "$geneva" --certify-interference --range 1:2.4 --follower-range 0 --certify-scale 1e7 --quiet
+for seed in 1e23 -1 18446744073709551616 0x10 1.5 ""; do
+  refused "tol-seed$seed" "--seed" tolerance "$gear_train" --monte-carlo 10 --seed "$seed" --quiet
+done
+for threads in -1 257 100000 x; do
+  refused "tol-threads$threads" "--threads" tolerance "$gear_train" --threads "$threads" --quiet
+done
+"$hipair" tolerance --help | grep -q "default 0: all cores; at most 256" || fail "tolerance --help does not say what --threads 0 means"
+
 # No stray temporary files left by atomic writes.
 ls -a "$work" | grep -q '\.tmp' && fail "temporary files left behind"
 

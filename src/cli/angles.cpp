@@ -1,0 +1,76 @@
+#include "cli/angles.hpp"
+
+#include "model/interval.hpp"
+
+#include <hipair/error.hpp>
+
+namespace hipair::cli {
+
+Rational degrees_to_radians(const Rational& degrees) {
+  using model_detail::Interval;
+  Interval radians = Interval(degrees) * Interval::pi() / Interval(Rational(180));
+  Rational grid(1, 1000000000000000000ul), steps = radians.middle() / grid;
+  mpz_class whole;
+  mpz_fdiv_q(whole.get_mpz_t(), steps.get_num_mpz_t(), steps.get_den_mpz_t());
+  return Rational(whole) * grid;
+}
+
+ExactPosition exact_position_from_degrees(const Rational& degrees) {
+  // the angle modulo 360°, exactly: degrees - 360 floor(degrees / 360)
+  Rational turns = degrees / 360;
+  mpz_class whole;
+  mpz_fdiv_q(whole.get_mpz_t(), turns.get_num_mpz_t(), turns.get_den_mpz_t());
+  Rational reduced = degrees - Rational(whole) * 360;
+  ExactPosition position;
+  if (reduced == 0) return position;   // tangent 0
+  if (reduced == 90) {
+    position.value = 1;
+    return position;
+  }
+  if (reduced == 180) {
+    position.half_turn = true;   // pi + 2 atan(0)
+    return position;
+  }
+  if (reduced == 270) {
+    position.value = -1;
+    return position;
+  }
+  return exact_position_from_angle(degrees_to_radians(degrees));
+}
+
+AngleLiteral parse_angle_literal(const std::string& text, bool angle, const std::string& option) {
+  AngleLiteral literal;
+  literal.degrees = angle && text.size() > 3 && text.compare(text.size() - 3, 3, "deg") == 0;
+  try {
+    literal.value = parse_rational(literal.degrees ? text.substr(0, text.size() - 3) : text);
+  } catch (const NumericError& error) {
+    throw ModelError("", option + " " + text + ": " + error.what() + " (exact literal; angles in rad or with 'deg')");
+  }
+  return literal;
+}
+
+ExactPosition exact_position_from_text(const std::string& text, const std::string& option) {
+  AngleLiteral literal = parse_angle_literal(text, true, option);
+  return literal.degrees ? exact_position_from_degrees(literal.value) : exact_position_from_angle(literal.value);
+}
+
+std::string angle_label(const std::string& text, const ExactPosition& position) {
+  if (!position.angle || !(text.size() > 3 && text.compare(text.size() - 3, 3, "deg") == 0)) return "";
+  // the angle's exact decimal: a multiple of 10^-18 (degrees_to_radians), else the exact fraction
+  const Rational& angle = *position.angle;
+  mpz_class grid;
+  mpz_ui_pow_ui(grid.get_mpz_t(), 10, 18);
+  Rational scaled = angle * grid;
+  std::string exact = to_exact_string(angle);
+  if (scaled.get_den() == 1) {
+    mpz_class magnitude = abs(scaled.get_num());
+    std::string digits = magnitude.get_str();
+    if (digits.size() <= 18) digits = std::string(19 - digits.size(), '0') + digits;
+    std::string whole = digits.substr(0, digits.size() - 18), fraction = digits.substr(digits.size() - 18);
+    fraction.erase(fraction.find_last_not_of('0') + 1);
+    exact = (sgn(angle) < 0 ? "-" : "") + whole + (fraction.empty() ? "" : "." + fraction);
+  }
+  return text + " is taken as " + exact + " rad";
+}
+
+}  // namespace hipair::cli
