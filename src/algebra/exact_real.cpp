@@ -1,6 +1,8 @@
 #include "algebra/exact_real.hpp"
+#include "algebra/near_quotient.hpp"
 #include "algebra/rational_root.hpp"
 #include "algebra/real_filters.hpp"
+#include "algebra/simplest_small.hpp"
 
 #include <hipair/error.hpp>
 
@@ -250,6 +252,8 @@ int compare_with_double(const Rational& r, double d) {
 }  // namespace
 
 double lower_double(const Rational& r) {
+  double lower, upper;
+  if (enclose_rational(r, lower, upper)) return lower;   // both parts within 53 bits
   double d = r.get_d();
   if (std::isinf(d)) return d > 0 ? std::numeric_limits<double>::max() : d;
   if (compare_with_double(r, d) < 0) d = std::nextafter(d, -std::numeric_limits<double>::infinity());   // d > r
@@ -257,6 +261,8 @@ double lower_double(const Rational& r) {
 }
 
 double upper_double(const Rational& r) {
+  double lower, upper;
+  if (enclose_rational(r, lower, upper)) return upper;
   double d = r.get_d();
   if (std::isinf(d)) return d < 0 ? std::numeric_limits<double>::lowest() : d;
   if (compare_with_double(r, d) > 0) d = std::nextafter(d, std::numeric_limits<double>::infinity());   // d < r
@@ -903,6 +909,12 @@ Rational simplest_between(const Rational& lo, const Rational& hi) {
   if (!(lo < hi))
     throw NumericError("internal: no rational strictly between " + to_exact_string(lo) + " and " +
                        to_exact_string(hi));
+  Rational result;
+  if (simplest_between_small(lo, hi, result)) return result;   // ends below 2^62: machine integers
+  return simplest_between_gmp(lo, hi);
+}
+
+Rational simplest_between_gmp(const Rational& lo, const Rational& hi) {
   // Continued-fraction descent: smallest denominator in the open interval (lo, hi), on the
   // integers a / b = lo, c / d = hi (b, d > 0): at each level, with f = floor(a / b), the
   // answer is f + 1 when that is below c / d, else f + 1 / z with z the simplest rational in

@@ -94,6 +94,9 @@ bool equal(const Real& a, const Real& b);
 Rational rational_between(const Real& a, const Real& b);
 /// The simplest rational (smallest denominator) in the open interval (lo, hi). \pre lo < hi.
 Rational simplest_between(const Rational& lo, const Rational& hi);
+/// simplest_between's descent on GMP integers, whatever the ends' sizes (simplest_between takes
+/// it when an end's numerator or denominator reaches 2^62; tests compare the two). \pre lo < hi.
+Rational simplest_between_gmp(const Rational& lo, const Rational& hi);
 
 /// All distinct real roots of p in the closed interval [lo, hi], ascending, isolated.
 /// A zero polynomial has no isolated roots (the caller treats it).

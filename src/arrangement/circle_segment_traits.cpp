@@ -6,6 +6,7 @@
 #include <hipair/error.hpp>
 
 #include "algebra/exact_real.hpp"
+#include "algebra/near_quotient.hpp"
 
 #include <CGAL/Arr_circle_segment_traits_2.h>
 #include <CGAL/Arr_curve_data_traits_2.h>
@@ -16,7 +17,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cfenv>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -70,27 +70,10 @@ struct KnownIntervalConstant final : CGAL::Lazy_exact_nt_rep<ET> {
   void update_exact() const override {}
 };
 
-// kernel_interval's fast case: numerator and denominator of at most 53 bits (exact doubles n,
-// d), the current rounding to nearest. q = n / d rounded to nearest; the remainder n - q d is
-// then a double, computed exactly by one fma, whose sign says on which side of q the value lies.
-std::optional<std::pair<double, double>> small_kernel_interval(const Rational& value) {
-  const mpz_srcptr num = value.get_num_mpz_t(), den = value.get_den_mpz_t();
-  if (mpz_sgn(den) <= 0) return std::nullopt;
-  if (mpz_sgn(num) == 0) return std::pair<double, double>(0.0, 0.0);
-  if (mpz_sizeinbase(num, 2) > 53 || mpz_sizeinbase(den, 2) > 53) return std::nullopt;
-  if (std::fegetround() != FE_TONEAREST) return std::nullopt;
-  const double n = mpz_get_d(num), d = mpz_get_d(den);   // exact
-  const double q = n / d;
-  const double excess = std::fma(q, d, -n);   // q d - n, exact; its sign is that of q - n / d
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  if (excess == 0) return std::pair<double, double>(q, q);
-  if (excess > 0) return std::pair<double, double>(std::nextafter(q, -inf), q);
-  return std::pair<double, double>(q, std::nextafter(q, inf));
-}
-
 NT to_nt(const Rational& q) {
-  if (auto interval = small_kernel_interval(q))
-    return NT(new KnownIntervalConstant(CGAL::Interval_nt<false>(interval->first, interval->second), exact_of<ET>(q)));
+  double lower, upper;   // CGAL's interval of q: the doubles around it (algebra/near_quotient.hpp)
+  if (algebra::enclose_rational(q, lower, upper))
+    return NT(new KnownIntervalConstant(CGAL::Interval_nt<false>(lower, upper), exact_of<ET>(q)));
   return NT(exact_of<ET>(q));
 }
 Rational to_rational(const NT& value) { return rational_of<ET>(CGAL::exact(value)); }
@@ -233,14 +216,41 @@ Real to_real(const CoordNT& value) {
   return r;
 }
 
-// The minimal polynomial of an exact y, in y alone, and y's index among its real roots.
-void fill_y(Real y, Vertex& out) {
-  out.y = std::move(y);
+// exact_real(value) written into r (its rationals' and polynomial's storage reused)
+void assign_exact_real(Real& r, const Rational& value) {
+  const mpz_class& num = value.get_num();
+  const mpz_class& den = value.get_den();
+  bool canonical = sgn(den) > 0;
+  if (canonical && mpz_cmp_ui(den.get_mpz_t(), 1) != 0) {
+    thread_local mpz_class g;
+    mpz_gcd(g.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
+    canonical = mpz_cmp_ui(g.get_mpz_t(), 1) == 0;
+  }
+  if (!canonical) {
+    r = Real::from_rational(value);
+    return;
+  }
+  r.polynomial.resize(2);
+  mpz_neg(r.polynomial[0].get_mpz_t(), num.get_mpz_t());
+  r.polynomial[1] = den;
+  r.lower = value;
+  r.upper = value;
+  r.exact = true;
+}
+
+// The rest of a vertex's y from its number out.y: the minimal polynomial of y, in y alone, and
+// y's index among its real roots.
+void fill_y_from_number(Vertex& out) {
   out.y_exact = true;
   out.y_lower = out.y.lower;
   out.y_upper = out.y.upper;
-  out.y_curve.coefficients = {out.y.polynomial};   // x^0 y^j
+  out.y_curve.coefficients.assign(1, out.y.polynomial);   // x^0 y^j
   out.y_branch = 0;
+}
+
+void fill_y(Real y, Vertex& out) {
+  out.y = std::move(y);
+  fill_y_from_number(out);
 }
 
 void fill_y(const CoordNT& value, Vertex& out) {
@@ -497,12 +507,20 @@ class Builder {
     const int sy = sgn(ky);
     // the bounds so far as fractions num / den, den > 0
     bool has_lo = false, has_hi = false, empty = false;
-    mpz_class lo_num, lo_den, hi_num, hi_den, P, Q, t1, t2;
+    // per-thread integers that keep their storage from call to call (each is written before it
+    // is read in a call; the function does not re-enter itself)
+    struct Scratch {
+      mpz_class lo_num, lo_den, hi_num, hi_den, P, Q, t1, t2, minus_x_lo_num, minus_y_lo_num, minus_x_hi_den,
+          minus_y_hi_den;
+    };
+    thread_local Scratch scratch;
+    auto& [lo_num, lo_den, hi_num, hi_den, P, Q, t1, t2, minus_x_lo_num, minus_y_lo_num, minus_x_hi_den,
+           minus_y_hi_den] = scratch;
     auto bound = [&](const mpz_class& g0, const mpz_class& gx, const mpz_class& gy) {
-      P = g0 * ky;
-      P -= gy * k0;
-      Q = gx * ky;
-      Q -= gy * kx;
+      mpz_mul(P.get_mpz_t(), g0.get_mpz_t(), ky.get_mpz_t());
+      mpz_submul(P.get_mpz_t(), gy.get_mpz_t(), k0.get_mpz_t());   // g0 ky - gy k0
+      mpz_mul(Q.get_mpz_t(), gx.get_mpz_t(), ky.get_mpz_t());
+      mpz_submul(Q.get_mpz_t(), gy.get_mpz_t(), kx.get_mpz_t());   // gx ky - gy kx
       if (sy < 0) {
         mpz_neg(P.get_mpz_t(), P.get_mpz_t());
         mpz_neg(Q.get_mpz_t(), Q.get_mpz_t());
@@ -521,8 +539,8 @@ class Builder {
       }
       if (sq > 0) {   // x >= P / Q
         if (has_lo) {
-          t1 = P * lo_den;
-          t2 = lo_num * Q;
+          mpz_mul(t1.get_mpz_t(), P.get_mpz_t(), lo_den.get_mpz_t());
+          mpz_mul(t2.get_mpz_t(), lo_num.get_mpz_t(), Q.get_mpz_t());
           if (!(t2 < t1)) return;
         }
         has_lo = true;
@@ -530,8 +548,8 @@ class Builder {
         mpz_swap(lo_den.get_mpz_t(), Q.get_mpz_t());
       } else {        // x <= P / Q
         if (has_hi) {
-          t1 = P * hi_den;
-          t2 = hi_num * Q;
+          mpz_mul(t1.get_mpz_t(), P.get_mpz_t(), hi_den.get_mpz_t());
+          mpz_mul(t2.get_mpz_t(), hi_num.get_mpz_t(), Q.get_mpz_t());
           if (!(t1 < t2)) return;
         }
         has_hi = true;
@@ -540,8 +558,10 @@ class Builder {
       }
     };
     static const mpz_class zero(0);
-    const mpz_class minus_x_lo_num(-box_.x_lo.get_num()), minus_y_lo_num(-box_.y_lo.get_num());
-    const mpz_class minus_x_hi_den(-box_.x_hi.get_den()), minus_y_hi_den(-box_.y_hi.get_den());
+    mpz_neg(minus_x_lo_num.get_mpz_t(), box_.x_lo.get_num_mpz_t());
+    mpz_neg(minus_y_lo_num.get_mpz_t(), box_.y_lo.get_num_mpz_t());
+    mpz_neg(minus_x_hi_den.get_mpz_t(), box_.x_hi.get_den_mpz_t());
+    mpz_neg(minus_y_hi_den.get_mpz_t(), box_.y_hi.get_den_mpz_t());
     bound(minus_x_lo_num, box_.x_lo.get_den(), zero);   // x_lo.den x - x_lo.num >= 0
     bound(box_.x_hi.get_num(), minus_x_hi_den, zero);   // x_hi.num - x_hi.den x >= 0
     bound(minus_y_lo_num, zero, box_.y_lo.get_den());
@@ -554,17 +574,19 @@ class Builder {
       if (!empty && (!has_lo || !has_hi)) throw GeometryError("internal: a clipped contact segment is unbounded");
       return true;
     }
-    t1 = lo_num * hi_den;
-    t2 = hi_num * lo_den;
+    mpz_mul(t1.get_mpz_t(), lo_num.get_mpz_t(), hi_den.get_mpz_t());
+    mpz_mul(t2.get_mpz_t(), hi_num.get_mpz_t(), lo_den.get_mpz_t());
     if (!(t1 < t2)) return true;   // empty, or a single valid point: no segment (as clip_line)
     Rational lo(lo_num, lo_den), hi(hi_num, hi_den);
     lo.canonicalize();
     hi.canonicalize();
-    auto y_at = [&](const Rational& x) {
-      mpz_class num = kx * x.get_num();
-      num += k0 * x.get_den();
-      mpz_neg(num.get_mpz_t(), num.get_mpz_t());
-      Rational y(num, mpz_class(ky * x.get_den()));
+    auto y_at = [&](const Rational& x) {   // -(k0 + kx x) / ky, its integers written in place
+      Rational y;
+      const mpz_ptr num = mpq_numref(y.get_mpq_t()), den = mpq_denref(y.get_mpq_t());
+      mpz_mul(num, kx.get_mpz_t(), x.get_num_mpz_t());
+      mpz_addmul(num, k0.get_mpz_t(), x.get_den_mpz_t());
+      mpz_neg(num, num);
+      mpz_mul(den, ky.get_mpz_t(), x.get_den_mpz_t());
       y.canonicalize();
       return y;
     };
@@ -814,23 +836,25 @@ class Builder {
     result_.edges.reserve(arr.number_of_edges());
     for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
       v->set_data(result_.vertices.size());
-      Vertex out;
+      // built where it stays (reserved above): moving a Vertex would leave six fresh rationals
+      // behind, and its numbers are written into the ones it has
+      Vertex& out = result_.vertices.emplace_back();
       if constexpr (segments) {
         auto known = known_.find(v->point().id());
         if (known != known_.end()) {
           const KnownPoint& k = known_points_[known->second];
-          out.x = exact_real(k.x);
-          fill_y(exact_real(k.y), out);
+          assign_exact_real(out.x, k.x);
+          assign_exact_real(out.y, k.y);
         } else {
-          out.x = exact_real(rational_from(v->point().x()));
-          fill_y(exact_real(rational_from(v->point().y())), out);
+          assign_exact_real(out.x, rational_from(v->point().x()));
+          assign_exact_real(out.y, rational_from(v->point().y()));
         }
+        fill_y_from_number(out);
       } else {
         out.x = to_real(v->point().x());
         fill_y(v->point().y(), out);
       }
       out.isolated = v->is_isolated();
-      result_.vertices.push_back(std::move(out));
     }
     // each vertex's certified double bounds, once (the edges' boxes below)
     struct Bounds {
@@ -1105,12 +1129,14 @@ bool segments_apply(const Box& box, const std::vector<IntegerPolynomial2>& curve
 }  // namespace
 
 std::pair<double, double> kernel_interval(const Rational& value) {
-  if (auto interval = small_kernel_interval(value)) return *interval;
+  double lower, upper;
+  if (algebra::enclose_rational(value, lower, upper)) return {lower, upper};
   return CGAL::to_interval(exact_of<ET>(value));
 }
 
 std::pair<double, double> double_bounds(const Rational& value) {
-  if (auto interval = small_kernel_interval(value)) return *interval;
+  double lower, upper;
+  if (algebra::enclose_rational(value, lower, upper)) return {lower, upper};
   return {algebra::lower_double(value), algebra::upper_double(value)};
 }
 
@@ -1128,22 +1154,8 @@ bool within_segment_filter_range(const Rational& value, int exponent) {
 }
 
 algebra::Real exact_real(const Rational& value) {
-  const mpz_class& num = value.get_num();
-  const mpz_class& den = value.get_den();
-  if (sgn(den) <= 0) return Real::from_rational(value);
-  if (mpz_cmp_ui(den.get_mpz_t(), 1) != 0) {
-    thread_local mpz_class g;
-    mpz_gcd(g.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
-    if (mpz_cmp_ui(g.get_mpz_t(), 1) != 0) return Real::from_rational(value);
-  }
   Real r;
-  r.polynomial.reserve(2);
-  r.polynomial.emplace_back(num);
-  mpz_neg(r.polynomial.back().get_mpz_t(), num.get_mpz_t());
-  r.polynomial.push_back(den);
-  r.lower = value;
-  r.upper = value;
-  r.exact = true;
+  assign_exact_real(r, value);
   return r;
 }
 

@@ -451,10 +451,12 @@ void label_edges(ChartData& chart, bool by_support) {
       // exactly in rationals. (The general path, without carried supports, takes the branch
       // below: the tests compare the two.)
       data.sample_x = algebra::simplest_between(low.x.lower, high.x.lower);
-      mpz_class numerator = *a * data.sample_x.get_num();
-      numerator += *c * data.sample_x.get_den();
-      mpz_class denominator = *b * data.sample_x.get_den();
-      Rational y(mpz_class(-numerator), denominator);
+      Rational y;   // -(a x + c) / b, its integers written in place
+      const mpz_ptr y_num = mpq_numref(y.get_mpq_t()), y_den = mpq_denref(y.get_mpq_t());
+      mpz_mul(y_num, a->get_mpz_t(), data.sample_x.get_num_mpz_t());
+      mpz_addmul(y_num, c->get_mpz_t(), data.sample_x.get_den_mpz_t());
+      mpz_neg(y_num, y_num);
+      mpz_mul(y_den, b->get_mpz_t(), data.sample_x.get_den_mpz_t());
       y.canonicalize();
       for (std::size_t k : *candidates)
         if (valid_at_rational(chart.validity[k], data.sample_x, y)) data.curves.push_back(k);
@@ -1248,12 +1250,20 @@ int QuadraticOrdinate::compare(const Rational& v) const {
   return which == index ? 0 : (index > which ? 1 : -1);
 }
 
-AlgebraicNumber to_public(const algebra::Real& r) {
-  AlgebraicNumber n;
+namespace {
+// to_public into an existing number (the vertices' public coordinates are written in place:
+// no temporary number whose rationals are made and then destroyed with the ones it replaces)
+void assign_public(AlgebraicNumber& n, const algebra::Real& r) {
   n.polynomial = r.polynomial;
   n.lower = r.lower;
   n.upper = r.upper;
   n.exact = r.exact;
+}
+}  // namespace
+
+AlgebraicNumber to_public(const algebra::Real& r) {
+  AlgebraicNumber n;
+  assign_public(n, r);
   return n;
 }
 
@@ -1606,15 +1616,24 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     impl->cells[cb].neighbours.push_back(ca);
   }
 
-  // public vertices and edges
+  // public vertices and edges, the vertices built where they stay (a CSpaceVertex moved to a
+  // grown vector leaves fresh rationals behind: reserved for all charts at once)
+  {
+    std::size_t vertex_count = impl->vertices.size();
+    for (const ChartData& chart : impl->charts)
+      vertex_count += input.dimension == 1 ? chart.points.size() : chart.arrangement.vertices.size();
+    impl->vertices.reserve(vertex_count);
+  }
   for (std::size_t c = 0; c < impl->charts.size(); ++c) {
     ChartData& chart = impl->charts[c];
     if (input.dimension == 1) {
       for (std::size_t i = 0; i < chart.points.size(); ++i) {
-        CSpaceVertex vertex;
+        chart.vertex_global.push_back(impl->vertices.size());
+        impl->vertex_local.emplace_back(c, i);
+        CSpaceVertex& vertex = impl->vertices.emplace_back();
         vertex.chart = c;
-        vertex.x = to_public(chart.points[i]);
-        vertex.y = to_public(Real::from_rational(0));
+        assign_public(vertex.x, chart.points[i]);
+        assign_public(vertex.y, Real::from_rational(0));
         vertex.y_exact = true;
         for (std::size_t k : chart.point_curves[i]) vertex.curves.push_back(chart.curve_global[k]);
         std::sort(vertex.curves.begin(), vertex.curves.end());
@@ -1622,9 +1641,6 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
         vertex.contact_change = vertex.curves.size() >= 2;
         vertex.touching = i < chart.touching_vertex.size() && chart.touching_vertex[i] != 0;
         vertex.on_chart_boundary = chart.points[i].compare(chart.box.x_lo) == 0 || chart.points[i].compare(chart.box.x_hi) == 0;
-        chart.vertex_global.push_back(impl->vertices.size());
-        impl->vertex_local.emplace_back(c, i);
-        impl->vertices.push_back(std::move(vertex));
       }
       continue;
     }
@@ -1638,10 +1654,10 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     for (std::size_t v = 0; v < arrangement.vertices.size(); ++v) {
       CSpaceVertex& vertex = impl->vertices[vertex_base + v];
       vertex.chart = c;
-      vertex.x = to_public(arrangement.vertices[v].x);
       const raw::Vertex& source = arrangement.vertices[v];
+      assign_public(vertex.x, source.x);
       vertex.y_exact = source.y_exact;
-      if (source.y_exact) vertex.y = to_public(source.y);
+      if (source.y_exact) assign_public(vertex.y, source.y);
       vertex.y_lower = source.y_lower;
       vertex.y_upper = source.y_upper;
       vertex.y_curve = source.y_curve.coefficients;

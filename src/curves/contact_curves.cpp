@@ -3,6 +3,7 @@
 
 #include "oracle/blocked_tester.hpp"
 #include "oracle/overlap.hpp"
+#include "algebra/near_quotient.hpp"
 #include "algebra/polynomial.hpp"
 #include "curves/pose.hpp"
 #include "kernels/contact.hpp"
@@ -59,7 +60,7 @@ using kernels::Interval;
 
 // ============================================================================ certified ranges
 
-Interval root_of(const Rational& value) { return kernels::sqrt(Interval::enclose(value)); }
+Interval root_of(const Rational& value) { return kernels::sqrt(algebra::enclose_kernel(value)); }
 
 Rational squared_length(const Point& v) { return dot(v, v); }
 
@@ -112,13 +113,13 @@ Interval radial_range(const BodyFeature& feature, const Point& center) {
 // in the tests compares the two).
 Interval enclose_dot(const Point& unit, const Point& p) {
   if (sgn(unit.y) == 0) {
-    if (unit.x == 1) return Interval::enclose(p.x);
-    if (unit.x == -1) return -Interval::enclose(p.x);
+    if (unit.x == 1) return algebra::enclose_kernel(p.x);
+    if (unit.x == -1) return -algebra::enclose_kernel(p.x);
   } else if (sgn(unit.x) == 0) {
-    if (unit.y == 1) return Interval::enclose(p.y);
-    if (unit.y == -1) return -Interval::enclose(p.y);
+    if (unit.y == 1) return algebra::enclose_kernel(p.y);
+    if (unit.y == -1) return -algebra::enclose_kernel(p.y);
   }
-  return Interval::enclose(dot(unit, p));
+  return algebra::enclose_kernel(dot(unit, p));
 }
 
 Interval projection_range(const BodyFeature& feature, const Point& unit) {
@@ -127,7 +128,7 @@ Interval projection_range(const BodyFeature& feature, const Point& unit) {
   Interval range = kernels::hull(enclose_dot(unit, edge.source), enclose_dot(unit, edge.target));
   if (feature.ref.kind == FeatureRef::Kind::segment) return range;
   kernels::ArcSector<Rational> sector = arc_sector(edge);
-  Interval centre = Interval::enclose(dot(unit, edge.center));
+  Interval centre = algebra::enclose_kernel(dot(unit, edge.center));
   Interval radius = root_of(edge.radius_squared);
   if (sector_contains(sector, unit)) range.hi = std::max(range.hi, (centre + radius).hi);
   if (sector_contains(sector, Point{Rational(-unit.x), Rational(-unit.y)}))
@@ -139,10 +140,10 @@ AxisRanges axis_ranges(const BodyFeature& feature) {
   if (feature.ref.kind == FeatureRef::Kind::arc) throw GeometryError("internal: axis_ranges takes vertices and segments");
   const bool vertex = feature.ref.kind == FeatureRef::Kind::vertex;
   const Point& p = vertex ? feature.point : feature.edge->source;
-  AxisRanges ranges{Interval::enclose(p.x), Interval::enclose(p.y)};
+  AxisRanges ranges{algebra::enclose_kernel(p.x), algebra::enclose_kernel(p.y)};
   if (!vertex) {
-    ranges.x = kernels::hull(ranges.x, Interval::enclose(feature.edge->target.x));
-    ranges.y = kernels::hull(ranges.y, Interval::enclose(feature.edge->target.y));
+    ranges.x = kernels::hull(ranges.x, algebra::enclose_kernel(feature.edge->target.x));
+    ranges.y = kernels::hull(ranges.y, algebra::enclose_kernel(feature.edge->target.y));
   }
   return ranges;
 }
@@ -161,8 +162,8 @@ bool disjoint(const Interval& a, const Interval& b) { return a.hi < b.lo || b.hi
 
 // Lower bound of the distance from point o to the box [bx] x [by].
 double distance_to_box_lower(const Point& o, const Interval& bx, const Interval& by) {
-  Interval ox = Interval::enclose(o.x);
-  Interval oy = Interval::enclose(o.y);
+  Interval ox = algebra::enclose_kernel(o.x);
+  Interval oy = algebra::enclose_kernel(o.y);
   double gx = std::max({0.0, (Interval(bx.lo, bx.lo) - ox).lo, (ox - Interval(bx.hi, bx.hi)).lo});
   double gy = std::max({0.0, (Interval(by.lo, by.lo) - oy).lo, (oy - Interval(by.hi, by.hi)).lo});
   Interval g2 = Interval(gx, gx) * Interval(gx, gx) + Interval(gy, gy) * Interval(gy, gy);
@@ -171,8 +172,8 @@ double distance_to_box_lower(const Point& o, const Interval& bx, const Interval&
 
 // Upper bound of the largest distance from o to a point of the box.
 double distance_to_box_upper(const Point& o, const Interval& bx, const Interval& by) {
-  Interval ox = Interval::enclose(o.x);
-  Interval oy = Interval::enclose(o.y);
+  Interval ox = algebra::enclose_kernel(o.x);
+  Interval oy = algebra::enclose_kernel(o.y);
   double gx = std::max((ox - Interval(bx.lo, bx.lo)).hi, (Interval(bx.hi, bx.hi) - ox).hi);
   double gy = std::max((oy - Interval(by.lo, by.lo)).hi, (Interval(by.hi, by.hi) - oy).hi);
   Interval g2 = Interval(gx, gx) * Interval(gx, gx) + Interval(gy, gy) * Interval(gy, gy);
@@ -232,8 +233,8 @@ class Culler {
       Rational x2 = own.hi * own.direction.x;
       Rational y1 = own.lo * own.direction.y;
       Rational y2 = own.hi * own.direction.y;
-      travel_x_[side] = kernels::hull(Interval::enclose(x1), Interval::enclose(x2));
-      travel_y_[side] = kernels::hull(Interval::enclose(y1), Interval::enclose(y2));
+      travel_x_[side] = kernels::hull(algebra::enclose_kernel(x1), algebra::enclose_kernel(x2));
+      travel_y_[side] = kernels::hull(algebra::enclose_kernel(y1), algebra::enclose_kernel(y2));
     }
     auto on_axis = [](const Point& u) {
       return (sgn(u.y) == 0 && (u.x == 1 || u.x == -1)) || (sgn(u.x) == 0 && (u.y == 1 || u.y == -1));
@@ -320,7 +321,7 @@ class Culler {
                          int translating) const {
     const Point& pivot = motion_[rotating].pivot;
     double reach = r.radial[rotating].hi;
-    Interval centre = Interval::enclose(dot(motion_[translating].normal, pivot));
+    Interval centre = algebra::enclose_kernel(dot(motion_[translating].normal, pivot));
     Interval disk = centre + Interval(-reach, reach);
     if (disjoint(disk, t.normal[translating])) return true;
     if (distance_to_box_lower(pivot, t.box_x, t.box_y) > reach) return true;
@@ -379,20 +380,20 @@ ClearanceBound::ClearanceBound(const Part& part) {
     for (const Edge& edge : loop.edges) {
       EdgeBox e;
       e.edge = &edge;
-      e.sx = Interval::enclose(edge.source.x);
-      e.sy = Interval::enclose(edge.source.y);
-      e.tx = Interval::enclose(edge.target.x);
-      e.ty = Interval::enclose(edge.target.y);
+      e.sx = algebra::enclose_kernel(edge.source.x);
+      e.sy = algebra::enclose_kernel(edge.source.y);
+      e.tx = algebra::enclose_kernel(edge.target.x);
+      e.ty = algebra::enclose_kernel(edge.target.y);
       if (edge.is_arc()) {
         e.arc = true;
-        e.kx = Interval::enclose(edge.center.x);
-        e.ky = Interval::enclose(edge.center.y);
-        e.radius = kernels::sqrt(Interval::enclose(edge.radius_squared));
+        e.kx = algebra::enclose_kernel(edge.center.x);
+        e.ky = algebra::enclose_kernel(edge.center.y);
+        e.radius = kernels::sqrt(algebra::enclose_kernel(edge.radius_squared));
         kernels::ArcSector<Rational> sector = arc_sector(edge);
-        e.start_x = Interval::enclose(sector.start.x);
-        e.start_y = Interval::enclose(sector.start.y);
-        e.end_x = Interval::enclose(sector.end.x);
-        e.end_y = Interval::enclose(sector.end.y);
+        e.start_x = algebra::enclose_kernel(sector.start.x);
+        e.start_y = algebra::enclose_kernel(sector.start.y);
+        e.end_x = algebra::enclose_kernel(sector.end.x);
+        e.end_y = algebra::enclose_kernel(sector.end.y);
         e.large = sector.large;
         e.full = sector.full;
       } else {
@@ -429,7 +430,7 @@ double ClearanceBound::lower(const Interval& cx, const Interval& cy) const {
 
 double ClearanceBound::lower(const Rational& px, const Rational& py) const {
   auto length = [](const Interval& dx, const Interval& dy) { return kernels::sqrt(dx * dx + dy * dy); };
-  const Interval cx = Interval::enclose(px), cy = Interval::enclose(py);
+  const Interval cx = algebra::enclose_kernel(px), cy = algebra::enclose_kernel(py);
   const Point p{px, py};
   // sign of an interval, or of the exact value when the interval straddles zero
   auto sign = [](const Interval& value, auto exact) { return value.lo > 0 ? 1 : value.hi < 0 ? -1 : exact(); };
@@ -484,7 +485,7 @@ double ClearanceBound::lower(const Rational& px, const Rational& py) const {
 
 std::optional<CertifiedDisk> certify_disk(const Part& part, const ClearanceBound& bound, const Rational& px,
                                           const Rational& py) {
-  Interval cx = Interval::enclose(px), cy = Interval::enclose(py);
+  Interval cx = algebra::enclose_kernel(px), cy = algebra::enclose_kernel(py);
   double radius = bound.lower(px, py);
   if (!(radius > 0)) return std::nullopt;
   if (locate_point(part, RigidMap{}, Point{px, py}) != PointLocation::inside) return std::nullopt;
@@ -566,7 +567,7 @@ std::vector<Core> inscribed_disks(const Part& part) {
         double lx = mx + step * nx, ly = my + step * ny;
         if (!std::isfinite(lx) || !std::isfinite(ly)) continue;
         Rational px = global(lx, origin.x), py = global(ly, origin.y);
-        Interval cx = Interval::enclose(px), cy = Interval::enclose(py);
+        Interval cx = algebra::enclose_kernel(px), cy = algebra::enclose_kernel(py);
         double radius = clearance.lower(cx, cy);
         if (!(radius > 0)) continue;   // could never beat the empty disk
         candidates.push_back(Candidate{std::move(px), std::move(py), Core{cx, cy, radius}});
@@ -616,12 +617,12 @@ PoseBox pose_over(const PartMotion& motion, bool half_turn, const Interval& t) {
   PoseBox box;
   if (motion.kind == MotionKind::fixed) return box;
   if (motion.kind == MotionKind::translation) {
-    box.shift_x = t * Interval::enclose(motion.direction.x);
-    box.shift_y = t * Interval::enclose(motion.direction.y);
+    box.shift_x = t * algebra::enclose_kernel(motion.direction.x);
+    box.shift_y = t * algebra::enclose_kernel(motion.direction.y);
     return box;
   }
-  box.pivot_x = Interval::enclose(motion.pivot.x);
-  box.pivot_y = Interval::enclose(motion.pivot.y);
+  box.pivot_x = algebra::enclose_kernel(motion.pivot.x);
+  box.pivot_y = algebra::enclose_kernel(motion.pivot.y);
   std::tie(box.c, box.s) = rotation_enclosure(half_turn, t);
   return box;
 }
@@ -700,8 +701,8 @@ class BlockedSpaceCuller {
       visit(grid_cell_x(0, 0), grid_cell_y(0, 0), 0, 0, 0, indices, {});
       return;
     }
-    Interval cx(Interval::enclose(x_.lo).lo, Interval::enclose(x_.hi).hi);
-    Interval cy = dimension_ == 2 ? Interval(Interval::enclose(y_.lo).lo, Interval::enclose(y_.hi).hi)
+    Interval cx(algebra::enclose_kernel(x_.lo).lo, algebra::enclose_kernel(x_.hi).hi);
+    Interval cy = dimension_ == 2 ? Interval(algebra::enclose_kernel(y_.lo).lo, algebra::enclose_kernel(y_.hi).hi)
                                   : Interval(0);
     std::vector<std::pair<int, int>> core_pairs = near_core_pairs(cx, cy);
     visit(cx, cy, 0, 0, 0, indices, core_pairs);
@@ -938,10 +939,10 @@ FeatureDirections feature_directions(const Model& model, const BodyFeature& feat
     d.segment = true;
     d.out = difference(feature.edge->target, feature.edge->source);
   }
-  d.out_x = Interval::enclose(d.out.x);
-  d.out_y = Interval::enclose(d.out.y);
-  d.in_x = Interval::enclose(d.in.x);
-  d.in_y = Interval::enclose(d.in.y);
+  d.out_x = algebra::enclose_kernel(d.out.x);
+  d.out_y = algebra::enclose_kernel(d.out.y);
+  d.in_x = algebra::enclose_kernel(d.in.x);
+  d.in_y = algebra::enclose_kernel(d.in.y);
   return d;
 }
 
@@ -981,9 +982,9 @@ bool corner_enters_segment(const FeatureDirections& vertex, const FeatureDirecti
 struct Direction {
   Point p;
   Interval x, y;
-  static Direction of(const Point& p) { return Direction{p, Interval::enclose(p.x), Interval::enclose(p.y)}; }
+  static Direction of(const Point& p) { return Direction{p, algebra::enclose_kernel(p.x), algebra::enclose_kernel(p.y)}; }
   static Direction of(Point&& p) {
-    Interval x = Interval::enclose(p.x), y = Interval::enclose(p.y);
+    Interval x = algebra::enclose_kernel(p.x), y = algebra::enclose_kernel(p.y);
     return Direction{std::move(p), x, y};
   }
   Direction negated() const { return Direction{Point{Rational(-p.x), Rational(-p.y)}, -x, -y}; }
@@ -2029,15 +2030,15 @@ ChartAxis translation_chart(const Model& model, std::size_t mover, std::size_t o
     target = part_extent(model, other, d);
   } else if (partner.motion.kind == Motion::Kind::rotation) {
     double reach = part_reach(model, other, partner.motion.pivot);
-    target = Interval::enclose(dot(d, partner.motion.pivot)) + Interval(-reach, reach);
+    target = algebra::enclose_kernel(dot(d, partner.motion.pivot)) + Interval(-reach, reach);
   } else {
     const Point& e = partner.motion.direction;
     if (partner.motion.translation_limits) {
       Interval base = part_extent(model, other, d);
       Rational along = dot(e, d);
       Interval shift = kernels::hull(
-          Interval::enclose(Rational(partner.motion.translation_limits->lo * along)),
-          Interval::enclose(Rational(partner.motion.translation_limits->hi * along)));
+          algebra::enclose_kernel(Rational(partner.motion.translation_limits->lo * along)),
+          algebra::enclose_kernel(Rational(partner.motion.translation_limits->hi * along)));
       target = base + shift;
     } else {
       Point normal{Rational(-e.y), e.x};

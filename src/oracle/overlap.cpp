@@ -17,6 +17,7 @@
 //     the other part's interior: one exact point-in-region test per such loop decides.
 #include "oracle/overlap.hpp"
 
+#include "algebra/near_quotient.hpp"
 #include "kernels/interval.hpp"
 
 #include <mpfr.h>
@@ -87,6 +88,8 @@ Point left_perpendicular(const Point& v) { return Point{Rational(-v.y), v.x}; }
 // ends, `lo <= x <= hi` holds for the rounded value whenever it holds for the exact one), and
 // +-DBL_MAX beyond double range (GMP's own conversion is system dependent there).
 double toward_zero(const Rational& value) {
+  double lower, upper;   // numerator and denominator within 53 bits: the same double without MPFR
+  if (algebra::enclose_rational(value, lower, upper)) return lower > 0 ? lower : upper;
   mpfr_t rounded;
   mpfr_init2(rounded, 53);
   mpfr_set_q(rounded, value.get_mpq_t(), MPFR_RNDZ);
@@ -165,8 +168,8 @@ struct IntervalMap {
     v = s * x + c * y + oy;
   }
   static IntervalMap enclose(const RigidMap& map) {
-    return IntervalMap{Interval::enclose(map.c), Interval::enclose(map.s),
-                       Interval::enclose(map.offset.x), Interval::enclose(map.offset.y)};
+    return IntervalMap{algebra::enclose_kernel(map.c), algebra::enclose_kernel(map.s),
+                       algebra::enclose_kernel(map.offset.x), algebra::enclose_kernel(map.offset.y)};
   }
   bool tame() const { return hipair::cspace::tame(c) && hipair::cspace::tame(s) && hipair::cspace::tame(ox) && hipair::cspace::tame(oy); }
 };
@@ -208,16 +211,16 @@ struct PartEnclosure {
     for (const auto& [l, e] : refs) {
       const Edge& edge = source.loops[l].edges[e];
       Body b;
-      b.sx = Interval::enclose(edge.source.x);
-      b.sy = Interval::enclose(edge.source.y);
+      b.sx = algebra::enclose_kernel(edge.source.x);
+      b.sy = algebra::enclose_kernel(edge.source.y);
       if (!edge.is_full_circle()) {
-        b.tx = Interval::enclose(edge.target.x);
-        b.ty = Interval::enclose(edge.target.y);
+        b.tx = algebra::enclose_kernel(edge.target.x);
+        b.ty = algebra::enclose_kernel(edge.target.y);
       }
       if (edge.is_arc()) {
-        b.cx = Interval::enclose(edge.center.x);
-        b.cy = Interval::enclose(edge.center.y);
-        b.radius_squared = Interval::enclose(edge.radius_squared);
+        b.cx = algebra::enclose_kernel(edge.center.x);
+        b.cy = algebra::enclose_kernel(edge.center.y);
+        b.radius_squared = algebra::enclose_kernel(edge.radius_squared);
       }
       body.push_back(b);
     }
@@ -1096,7 +1099,7 @@ class OverlapAnalysis {
     const Box& total = part.total();
     if (!total.contains(px, py)) return PointLocation::outside;
     if (filter && part.filtered()) {
-      std::optional<bool> quick = inside_by_intervals(part, Interval::enclose(p.x), Interval::enclose(p.y));
+      std::optional<bool> quick = inside_by_intervals(part, algebra::enclose_kernel(p.x), algebra::enclose_kernel(p.y));
       if (quick) return *quick ? PointLocation::inside : PointLocation::outside;
     }
     for (std::size_t i = 0; i < part.size(); ++i)
@@ -1223,7 +1226,7 @@ IntervalMap interval_world_map(const Part& part, bool moves, const ChartAxis& ax
                                const Rational& value) {
   IntervalMap map;
   if (!moves) return map;
-  Interval v = Interval::enclose(value);
+  Interval v = algebra::enclose_kernel(value);
   if (part.motion.kind == Motion::Kind::rotation) {
     Interval t2 = v * v;
     Interval w = Interval(1) + t2;
@@ -1233,14 +1236,14 @@ IntervalMap interval_world_map(const Part& part, bool moves, const ChartAxis& ax
       map.c = -map.c;
       map.s = -map.s;
     }
-    Interval px = Interval::enclose(part.motion.pivot.x);
-    Interval py = Interval::enclose(part.motion.pivot.y);
+    Interval px = algebra::enclose_kernel(part.motion.pivot.x);
+    Interval py = algebra::enclose_kernel(part.motion.pivot.y);
     map.ox = px - (map.c * px - map.s * py);
     map.oy = py - (map.s * px + map.c * py);
     return map;
   }
-  map.ox = v * Interval::enclose(part.motion.direction.x);
-  map.oy = v * Interval::enclose(part.motion.direction.y);
+  map.ox = v * algebra::enclose_kernel(part.motion.direction.x);
+  map.oy = v * algebra::enclose_kernel(part.motion.direction.y);
   return map;
 }
 
@@ -1342,7 +1345,7 @@ PointLocation locate_point(const Part& part, const RigidMap& map, const Point& p
   Point body = back.apply(p);
   // (inside_by_intervals refuses enclosures that are not tame: a point beyond double range.)
   std::optional<bool> quick =
-      inside_by_intervals(placed, Interval::enclose(body.x), Interval::enclose(body.y));
+      inside_by_intervals(placed, algebra::enclose_kernel(body.x), algebra::enclose_kernel(body.y));
   // A certain interval answer implies the point is on no edge: an edge through it would give
   // an orientation or circle test whose interval contains 0.
   if (quick) return *quick ? PointLocation::inside : PointLocation::outside;

@@ -6,6 +6,7 @@
 // it) against the rounded comparison it replaces, on generated rationals.
 #include "algebra/exact_real.hpp"
 #include "arrangement/circle_segment_traits.hpp"
+#include "random_rationals.hpp"
 
 #include <hipair/rational.hpp>
 
@@ -21,19 +22,8 @@
 namespace hipair {
 namespace {
 
-// A random integer of exactly `bits` bits (bits >= 1), with a random sign when `signed_`.
-mpz_class random_integer(std::mt19937_64& random, int bits, bool signed_) {
-  mpz_class z = 1;
-  for (int b = 1; b < bits; ++b) z = 2 * z + static_cast<long>(random() & 1);
-  if (signed_ && (random() & 1)) z = -z;
-  return z;
-}
-
-Rational canonical(const mpz_class& num, const mpz_class& den) {
-  Rational q(num, den);
-  q.canonicalize();
-  return q;
-}
+using test_numbers::canonical;
+using test_numbers::random_integer;
 
 // Rationals around the 53-bit boundary of the fast case, exact doubles, thirds, powers of two
 // and their neighbours, huge and tiny values.
