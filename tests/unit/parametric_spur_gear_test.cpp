@@ -113,11 +113,11 @@ void expect_part_geometry_is_edge_by_edge(const ParametricModel& model, const st
 TEST(ParametricSpurGear, PartGeometrySharesTheFlankWithTheSameValues) {
   std::mt19937 rng(32);
   for (int round = 0; round < 12; ++round) {
-    std::string text = generated_gear(rng);
-    SCOPED_TRACE(text);
-    ParametricModel model = ParametricModel::read(text);
-    ASSERT_TRUE(model.generic());
+    const std::string gear = generated_gear(rng);
+    SCOPED_TRACE("gear " + std::to_string(round) + ": " + gear);
+    const ParametricModel model = ParametricModel::read(gear);
     std::vector<Rational> deviations = random_deviations(model, rng);
+    ASSERT_TRUE(model.generic()) << model.exact_only_feature();
     std::size_t n = deviations.size();
     std::vector<double> point(n);
     std::vector<kernels::Interval> box(n);
