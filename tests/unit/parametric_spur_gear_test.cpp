@@ -15,6 +15,8 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 namespace hipair {
 namespace {
@@ -65,6 +67,70 @@ TEST(ParametricSpurGear, GenericFormAgreesWithTheExactFormOnGeneratedGears) {
     ParametricModel model = ParametricModel::read(text);
     ASSERT_TRUE(model.generic()) << model.exact_only_feature();
     for (int trial = 0; trial < 3; ++trial) test_generic::expect_generic_form_agrees(model, random_deviations(model, rng));
+  }
+}
+
+// part_geometry computes a gear's canonical flank once for all its edges (session 32): every
+// edge is bit for bit the edge_value that computes the flank itself, in doubles, intervals and
+// Jets of intervals, on generated gears (reversed loops among them: the wheel's rotation sense)
+// at random deviation vectors.
+template <class T>
+void expect_same(const T& a, const T& b) {
+  if constexpr (std::is_same_v<T, double>) {
+    EXPECT_EQ(a, b);
+  } else if constexpr (std::is_same_v<T, kernels::Interval>) {
+    EXPECT_EQ(a.lo, b.lo);
+    EXPECT_EQ(a.hi, b.hi);
+  } else {
+    expect_same(a.value, b.value);
+    ASSERT_EQ(a.gradient.size(), b.gradient.size());
+    for (std::size_t i = 0; i < a.gradient.size(); ++i) expect_same(a.gradient[i], b.gradient[i]);
+  }
+}
+
+template <class T>
+void expect_part_geometry_is_edge_by_edge(const ParametricModel& model, const std::vector<T>& deviations) {
+  std::vector<T> parameters = model.parameter_values(deviations);
+  for (std::size_t k = 0; k < model.nominal().parts.size(); ++k) {
+    model_detail::PartGeometry<T> geometry = model.part_geometry(k, deviations);
+    ASSERT_EQ(geometry.loops.size(), model.nominal().parts[k].loops.size());
+    for (std::size_t l = 0; l < geometry.loops.size(); ++l)
+      for (std::size_t e = 0; e < geometry.loops[l].size(); ++e) {
+        model_detail::EdgeValue<T> one = model.edge_value(k, l, e, parameters);
+        const model_detail::EdgeValue<T>& shared = geometry.loops[l][e];
+        EXPECT_EQ(one.arc, shared.arc);
+        EXPECT_EQ(one.ccw, shared.ccw);
+        for (auto [x, y] : {std::pair{&one.source, &shared.source}, std::pair{&one.target, &shared.target},
+                            std::pair{&one.center, &shared.center}}) {
+          expect_same(x->x, y->x);
+          expect_same(x->y, y->y);
+        }
+        expect_same(one.radius_squared, shared.radius_squared);
+      }
+  }
+}
+
+TEST(ParametricSpurGear, PartGeometrySharesTheFlankWithTheSameValues) {
+  std::mt19937 rng(32);
+  for (int round = 0; round < 12; ++round) {
+    const std::string gear = generated_gear(rng);
+    SCOPED_TRACE("gear " + std::to_string(round) + ": " + gear);
+    const ParametricModel model = ParametricModel::read(gear);
+    std::vector<Rational> deviations = random_deviations(model, rng);
+    ASSERT_TRUE(model.generic()) << model.exact_only_feature();
+    std::size_t n = deviations.size();
+    std::vector<double> point(n);
+    std::vector<kernels::Interval> box(n);
+    std::vector<tolerance_detail::Jet<kernels::Interval>> jets(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      point[i] = deviations[i].get_d();
+      box[i] = kernels::Interval(point[i] - 1e-4, point[i] + 1e-4);
+      jets[i] = tolerance_detail::Jet<kernels::Interval>::variable(box[i], i, n);
+    }
+    expect_part_geometry_is_edge_by_edge(model, point);
+    expect_part_geometry_is_edge_by_edge(model, box);
+    expect_part_geometry_is_edge_by_edge(model, jets);
+    if (HasFailure()) return;
   }
 }
 

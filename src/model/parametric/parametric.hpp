@@ -32,6 +32,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -173,7 +174,9 @@ class ParametricModel {
   /// One edge of a part (Part::loops[loop].edges[edge], oriented as nominal) for number type T
   /// at the parameter values `parameters` (from parameter_values): only its own formulas.
   template <class T>
-  EdgeValue<T> edge_value(std::size_t part, std::size_t loop, std::size_t edge, const std::vector<T>& parameters) const;
+  EdgeValue<T> edge_value(std::size_t part, std::size_t loop, std::size_t edge, const std::vector<T>& parameters) const {
+    return edge_value(part, loop, edge, parameters, static_cast<const SpurFlank<T>*>(nullptr));
+  }
   /// A part's pivot and direction for number type T at the parameter values.
   template <class T>
   void motion_value(std::size_t part, const std::vector<T>& parameters, kernels::Vector<T>& pivot,
@@ -197,6 +200,12 @@ class ParametricModel {
   template <class T>
   void ratchet_edge(const FeatureRecipe& feature, std::size_t edge, const std::vector<T>& parameters,
                     EdgeValue<T>& value) const;
+  /// edge_value; on a spur_gear's loop with `flank` given, that canonical flank (spur_flank at
+  /// the same parameters, computed once for all the loop's edges by part_geometry) instead of
+  /// computing it for the edge: the same values.
+  template <class T>
+  EdgeValue<T> edge_value(std::size_t part, std::size_t loop, std::size_t edge, const std::vector<T>& parameters,
+                          const SpurFlank<T>* flank) const;
 
   /// The canonical right flank of a spur_gear with flank_radius (the smooth form of the exact
   /// expansion: its rounded unit vectors and the ends' rounding to exact points of the flank
@@ -209,7 +218,7 @@ class ParametricModel {
   /// k + 1, each placed by u(phase + 2 pi k / teeth) about the centre.
   template <class T>
   void spur_gear_edge(const FeatureRecipe& feature, std::size_t edge, const std::vector<T>& parameters,
-                      EdgeValue<T>& value) const;
+                      const SpurFlank<T>* flank, EdgeValue<T>& value) const;
 
   std::shared_ptr<const Model> nominal_;
   std::string text_;
@@ -279,9 +288,14 @@ PartGeometry<T> ParametricModel::part_geometry(std::size_t part, const std::vect
   std::size_t loops = recipe.loops.size() + recipe.features.size();
   for (std::size_t l = 0; l < loops; ++l) {
     std::size_t edges = l < recipe.loops.size() && !recipe.loops[l].circle ? recipe.loops[l].edges.size() : 1;
-    if (l >= recipe.loops.size()) edges = feature_edge_count(recipe.features[l - recipe.loops.size()]);
+    std::optional<SpurFlank<T>> flank;   // a spur gear's canonical flank: one for all its edges
+    if (l >= recipe.loops.size()) {
+      const FeatureRecipe& feature = recipe.features[l - recipe.loops.size()];
+      edges = feature_edge_count(feature);
+      if (feature.name == "spur_gear") flank = spur_flank(feature, p, feature.tip_side, feature.root_side);
+    }
     std::vector<EdgeValue<T>> values;
-    for (std::size_t e = 0; e < edges; ++e) values.push_back(edge_value(part, l, e, p));
+    for (std::size_t e = 0; e < edges; ++e) values.push_back(edge_value(part, l, e, p, flank ? &*flank : nullptr));
     geometry.loops.push_back(std::move(values));
   }
   motion_value(part, p, geometry.pivot, geometry.direction);
@@ -289,8 +303,8 @@ PartGeometry<T> ParametricModel::part_geometry(std::size_t part, const std::vect
 }
 
 template <class T>
-EdgeValue<T> ParametricModel::edge_value(std::size_t part, std::size_t loop, std::size_t edge,
-                                         const std::vector<T>& p) const {
+EdgeValue<T> ParametricModel::edge_value(std::size_t part, std::size_t loop, std::size_t edge, const std::vector<T>& p,
+                                         const SpurFlank<T>* flank) const {
   using namespace parametric_detail;
   const PartRecipe& recipe = parts_.at(part);
   bool reversed = loop < recipe.reversed.size() && recipe.reversed[loop];
@@ -326,7 +340,7 @@ EdgeValue<T> ParametricModel::edge_value(std::size_t part, std::size_t loop, std
     if (feature.name == "ratchet_wheel") {
       ratchet_edge(feature, reversed ? count - 1 - edge : edge, p, value);
     } else if (feature.name == "spur_gear") {
-      spur_gear_edge(feature, reversed ? count - 1 - edge : edge, p, value);
+      spur_gear_edge(feature, reversed ? count - 1 - edge : edge, p, flank, value);
     } else {
       if (feature.name != "circle" && feature.name != "pin")
         throw ModelError(feature.pointer, "feature template '" + feature.name +
@@ -406,14 +420,16 @@ SpurFlank<T> ParametricModel::spur_flank(const FeatureRecipe& feature, const std
 
 template <class T>
 void ParametricModel::spur_gear_edge(const FeatureRecipe& feature, std::size_t edge, const std::vector<T>& p,
-                                     EdgeValue<T>& value) const {
+                                     const SpurFlank<T>* given_flank, EdgeValue<T>& value) const {
   using namespace parametric_detail;
   using A = Arithmetic<T>;
   kernels::Vector<T> center = point_value(feature.arguments.at("center").point, p);
   auto phase_argument = feature.arguments.find("phase");
   T phase = phase_argument != feature.arguments.end() ? slot_value(phase_argument->second.number, p)
                                                       : A::constant(Rational(0));
-  SpurFlank<T> flank = spur_flank(feature, p, feature.tip_side, feature.root_side);
+  std::optional<SpurFlank<T>> own;
+  if (!given_flank) own = spur_flank(feature, p, feature.tip_side, feature.root_side);
+  const SpurFlank<T>& flank = given_flank ? *given_flank : *own;
   long n = feature.teeth;
   long k = static_cast<long>(edge / 4);
   auto place = [&](long tooth, const kernels::Vector<T>& local, bool mirrored) {
