@@ -4,6 +4,7 @@
 #include "oracle/blocked_tester.hpp"
 
 #include "core/model_scale.hpp"
+#include "oracle/overlap.hpp"
 
 #include <hipair/error.hpp>
 
@@ -251,14 +252,18 @@ PartDisks certify_part(const Part& part, long exponent) {
   for (const Loop& loop : part.loops) edges += loop.edges.size();
   std::vector<Disk> guess = inscribed_disks(part, std::max<std::size_t>(150, 2 * edges), exponent);
   const ClearanceBound clearance(exact);
+  // certify_disk's two tests (a certified clearance, then exact location of the centre), with
+  // the part's enclosure and exact edges made once for all its disks instead of once per disk
+  const PartLocator locator(exact);
   for (const Disk& d : guess) {
-    auto disk = certify_disk(exact, clearance, Rational(d.x), Rational(d.y));
-    if (!disk) continue;
+    const Point centre{Rational(d.x), Rational(d.y)};
+    const double radius = clearance.lower(centre.x, centre.y);
+    if (!(radius > 0) || locator.locate(centre) != PointLocation::inside) continue;
     BlockedTester::CertifiedCore core;
-    core.x = disk->x;
-    core.y = disk->y;
+    core.x = Interval::enclose(centre.x);
+    core.y = Interval::enclose(centre.y);
     // never larger than the guess: the tester claims no more than the guess would
-    core.r = std::min(disk->radius, d.r);
+    core.r = std::min(radius, d.r);
     if (!(core.r > 0)) continue;
     core.rx = core.x - pivot[0];
     core.ry = core.y - pivot[1];

@@ -1352,4 +1352,21 @@ PointLocation locate_point(const Part& part, const RigidMap& map, const Point& p
   return OverlapAnalysis::locate(placed, body);
 }
 
+struct PartLocator::Data {
+  IdentityPart part;
+  explicit Data(const Part& p) : part(p) {}
+};
+
+PartLocator::PartLocator(const Part& part) : data_(std::make_unique<const Data>(part)) {}
+
+PartLocator::~PartLocator() = default;
+
+PointLocation PartLocator::locate(const Point& p) const {
+  // locate_point at the identity (the body frame is the world frame), on the prepared part
+  PlacedPart placed(data_->part.enclosure, data_->part.placement, data_->part.exact);
+  std::optional<bool> quick = inside_by_intervals(placed, Interval::enclose(p.x), Interval::enclose(p.y));
+  if (quick) return *quick ? PointLocation::inside : PointLocation::outside;
+  return OverlapAnalysis::locate(placed, p);
+}
+
 }  // namespace hipair::cspace

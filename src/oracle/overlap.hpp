@@ -14,6 +14,7 @@
 #include <hipair/geometry.hpp>
 #include <hipair/model.hpp>
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -73,5 +74,22 @@ enum class PointLocation { outside, boundary, inside };
 
 /// Exact location of world point `p` for `part` placed by `map`.
 PointLocation locate_point(const Part& part, const RigidMap& map, const Point& p);
+
+/// locate_point(part, RigidMap{}, p) for many points of one part in its own frame: the part's
+/// enclosure and exact edges are made once, not per point (the same answer at every point).
+/// `part` must outlive it and stay unchanged. Thread safe: locate only reads the prepared data.
+class PartLocator {
+ public:
+  explicit PartLocator(const Part& part);
+  ~PartLocator();
+  PartLocator(const PartLocator&) = delete;
+  PartLocator& operator=(const PartLocator&) = delete;
+
+  PointLocation locate(const Point& p) const;
+
+ private:
+  struct Data;
+  std::unique_ptr<const Data> data_;
+};
 
 }  // namespace hipair::cspace
