@@ -944,15 +944,14 @@ void find_touching_points(ChartData& chart, const Classifier& classify, CSpaceSt
   for (std::size_t i = 0; i < chart.points.size(); ++i) {
     // a point on the chart's end (its outer face empty) with blocked or free space inside: the
     // relation of the parts there, for the seam decision in `build` (the other side is another
-    // chart's)
+    // chart's) and for point location there (a contact point is no contact where the parts
+    // overlap or are apart). The point is the chart's end itself, a rational.
     const bool low_empty = chart.faces[i].kind == FaceKind::outside, high_empty = chart.faces[i + 1].kind == FaceKind::outside;
     if (low_empty != high_empty) {
       const FaceKind inner = (low_empty ? chart.faces[i + 1] : chart.faces[i]).kind;
       if (inner != FaceKind::blocked && inner != FaceKind::free) continue;
-      if (auto x = rational_value(chart.points[i])) {
-        Overlap relation = classify(ChartPoint{*x, Rational(0)});
-        if (relation != Overlap::apart) chart.seam_relation[i] = relation == Overlap::touching ? 1 : 0;
-      }
+      const Overlap relation = classify(ChartPoint{low_empty ? chart.box.x_lo : chart.box.x_hi, Rational(0)});
+      chart.seam_relation[i] = relation == Overlap::touching ? 1 : relation == Overlap::overlapping ? 0 : 2;
       continue;
     }
     // a contact point with free space on both sides: a grazing contact where the parts touch,

@@ -107,9 +107,11 @@ struct ChartData {
   /// per vertex: an isolated touching configuration (blocked all around, the parts only
   /// touch there; exact oracle at the rational vertex)
   std::vector<char> touching_vertex;
-  /// 1-D, per point on the chart's end (x_lo or x_hi) with blocked space on its inner side (a
-  /// contact point on a seam): 1 the parts only touch there, 0 they overlap, -1 not decided (the
-  /// exact oracle at the rational seam point); the seams are decided in `build` (session 29)
+  /// 1-D, per point on the chart's end (x_lo or x_hi) with blocked or free space on its inner
+  /// side (a contact point on a seam or a motion limit): 1 the parts only touch there, 0 they
+  /// overlap, 2 they are apart, -1 not decided (the exact oracle at the rational chart end); the
+  /// seams are decided in `build` (session 29), point location at the chart's end answers it
+  /// (session 32, hunt32b)
   std::vector<signed char> seam_relation;
   /// 1-D, per point: a contact point with free space on both sides where the parts touch (a
   /// grazing contact; the exact oracle at the rational point, session 30): point location

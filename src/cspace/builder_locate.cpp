@@ -226,6 +226,15 @@ Location locate_1d(const CSpace::Impl& impl, const hipair::ChartPoint& q) {
       if (before.kind != FaceKind::outside && after.kind != FaceKind::outside && before.cell == after.cell &&
           !(i < chart.touching_vertex.size() && chart.touching_vertex[i]) && !(i < chart.grazing_point.size() && chart.grazing_point[i]))
         location.cell = before.cell;
+      // a point on the chart's end (a seam or a motion limit) is a contact only where the parts
+      // touch there (the exact oracle at build time, seam_relation): where they overlap it lies
+      // in its blocked cell, where they are apart in its free cell (session 32, hunt32b)
+      if ((before.kind == FaceKind::outside) != (after.kind == FaceKind::outside)) {
+        const FaceData& inner = before.kind == FaceKind::outside ? after : before;
+        const signed char relation = i < chart.seam_relation.size() ? chart.seam_relation[i] : static_cast<signed char>(-1);
+        if ((inner.kind == FaceKind::blocked && relation == 0) || (inner.kind == FaceKind::free && relation == 2))
+          location.cell = inner.cell;
+      }
       return location;
     }
     if (c > 0) break;
