@@ -32,16 +32,18 @@ PlanarPair planar_pair(const Model& model, const std::string& fixed, const Plana
       throw GeometryError("pin-slot certificate: part '" + b.name + "' has no pin_slot motion");
     if (a.motion.kind == Motion::Kind::planar || a.motion.kind == Motion::Kind::pin_slot)
       throw GeometryError("pin-slot certificate: part '" + a.name + "' must be fixed, rotate or translate");
+    // a pose beyond the motion limits is an input error naming the part and its limits, as a
+    // fixed-axis part's position (single.cpp, require_within_limits; session 32, hunt32b)
     const auto& slide_limits = b.motion.translation_limits;
     if (slide_limits && (*pose.slide < slide_limits->lo || *pose.slide > slide_limits->hi))
-      throw GeometryError("pin-slot certificate: the slide of '" + b.name + "' (" + to_decimal_string(*pose.slide) +
-                          " mm) is outside its limits [" + to_decimal_string(slide_limits->lo) + ", " +
-                          to_decimal_string(slide_limits->hi) + "] mm");
+      throw ModelError(b.pointer, "the slide of '" + b.name + "' (" + to_decimal_string(*pose.slide) +
+                                      " mm) is outside its motion limits [" + to_decimal_string(slide_limits->lo) + ", " +
+                                      to_decimal_string(slide_limits->hi) + "] mm");
     if (!verify::certainly_within(b.motion.angle_limits, verify::angle_of_tangent(pose.tangent, pose.half_turn), true))
-      throw GeometryError("pin-slot certificate: the angle of '" + b.name + "' (2 atan(" + to_exact_string(pose.tangent) + ")" +
-                          (pose.half_turn ? " + pi" : "") + " rad) is not certainly within its limits [" +
-                          to_decimal_string(b.motion.angle_limits->lo) + ", " + to_decimal_string(b.motion.angle_limits->hi) +
-                          "] rad");
+      throw ModelError(b.pointer, "the angle of '" + b.name + "' (2 atan(" + to_exact_string(pose.tangent) + ")" +
+                                      (pose.half_turn ? " + pi" : "") + " rad) is not certainly within its motion limits [" +
+                                      to_decimal_string(b.motion.angle_limits->lo) + ", " +
+                                      to_decimal_string(b.motion.angle_limits->hi) + "] rad");
     try {
       fixed_map = verify::exact_map(a, configuration);
     } catch (const verify::Rejection& r) {

@@ -193,7 +193,8 @@ grep -q "^hipair: error: --follower-range: the range 0.1:-0.1 is empty" "$work/n
 # ------------------------------------------------------------------ 3-DOF poses: a planar peg, a pin-in-slot follower
 # `--at PART=X,Y,ANGLE` (planar) and `--at PART=SLIDE,ANGLE` (pin_slot) with the other part at
 # `--at OTHER=VALUE`: certified where the parts overlap / are apart, verified; refused where not;
-# a pose beyond the pin-slot part's slide or angle limits is one clear error (exit 3, a GeometryError), no output;
+# a pose beyond the pin-slot part's slide or angle limits is one clear input error naming the part and
+# its limits (exit 2, as for a fixed-axis part; exit 3 before session 32), no output;
 # a certificate edited to a tangent beyond the angle limits is rejected by hipair-verify.
 peg=$source/examples/models/peg-in-hole.json film=$source/examples/models/film-advance.json
 certify_ok() {   # NAME MODEL ARGS...: certify, then verify
@@ -223,8 +224,10 @@ certify_ok film-cam-overlap "$film" --claim interference --pair cam:follower --a
 certify_ok film-film-clear-moved "$film" --claim clearance --pair film:follower --at film=-3 --at follower=-2,-7deg --distance 0.1
 grep -q '"film": {"offset": "-3"}' "$work/film-film-clear-moved.json" \
   || fail "the film's offset is not in the certificate: $(head -c 600 "$work/film-film-clear-moved.json")"
-certify_refused film-beyond-angle 3 "is not certainly within its limits" "$film" --claim clearance --pair pin:follower --at follower=0,9deg
-certify_refused film-beyond-slide 3 "is outside its limits" "$film" --claim clearance --pair pin:follower --at follower=7,0
+certify_refused film-beyond-angle 2 "the angle of 'follower' (2 atan(" "$film" --claim clearance --pair pin:follower --at follower=0,9deg
+grep -qF "is not certainly within its motion limits [" "$work/film-beyond-angle.out" \
+  || fail "the angle beyond the follower's limits does not name its limits: $(cat "$work/film-beyond-angle.out")"
+certify_refused film-beyond-slide 2 "the slide of 'follower' (7 mm) is outside its motion limits [" "$film" --claim clearance --pair pin:follower --at follower=7,0
 certify_refused film-at-fixed 2 "--at expects follower=SLIDE,ANGLE, got 'pin=3'" "$film" --claim clearance --pair pin:follower --at pin=3
 certify_refused film-at-incomplete 2 "--at expects follower=SLIDE,ANGLE for the pin-slot part" "$film" --claim clearance --pair pin:follower --at follower=3
 # a reversed trap and a clearance that is not positive: input errors naming the option (they
