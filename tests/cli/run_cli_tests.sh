@@ -256,6 +256,23 @@ grep -q "guided with zero clearance" "$work/exact-fit.txt" || fail "analyze does
 grep -q "touching edges" "$work/exact-fit-stats.txt" || fail "cspace --stats shows no touching edge for the exact fit"
 grep -q "zero clearance" "$work/exact-fit-cspace.svg" || fail "the C-space picture does not draw the zero-clearance channel"
 
+# A zero-clearance fit at an irrational angle (session 33): a lever touching both walls of a
+# slot at tan(θ/2) = (40 - √1593.99)/60.1 (two contacts, blocked on both sides) was left
+# undecided and reported blocked; now cspace marks it touching (1-D: two touching vertices, the
+# fit and its twin in the far chart; the frame sliding along the slot: two touching edges), and
+# analyze, driving the frame, finds the lever held there instead of blocked.
+lever_fit="$source/tests/data/zero-clearance/lever-irrational-fit.json"
+lever_slide="$source/tests/data/zero-clearance/lever-irrational-fit-sliding.json"
+"$hipair" cspace "$lever_fit" --stats >"$work/lever-fit.txt" 2>&1 || fail "cspace fails on the irrational fit: $(tail -n 3 "$work/lever-fit.txt")"
+grep -q "0 touching edges, 2 isolated touching vertices$" "$work/lever-fit.txt" \
+  || fail "cspace --stats: the irrational fit is not two touching vertices: $(grep zero-clearance "$work/lever-fit.txt")"
+"$hipair" cspace "$lever_slide" --stats >"$work/lever-slide.txt" 2>&1 || fail "cspace fails on the sliding irrational fit"
+grep -q "2 touching edges, 0 isolated touching vertices$" "$work/lever-slide.txt" \
+  || fail "cspace --stats: the sliding irrational fit is not two touching edges: $(grep zero-clearance "$work/lever-slide.txt")"
+"$hipair" analyze "$lever_slide" --driver frame --no-pictures >"$work/lever-analyze.txt" 2>&1 || fail "analyze fails on the sliding fit"
+grep -q "were not decided" "$work/lever-analyze.txt" && fail "analyze leaves the irrational fit undecided"
+grep -q "lever stays at 0.143°" "$work/lever-analyze.txt" || fail "analyze does not hold the lever at its fit: $(grep -i -E 'dwell|BLOCKED' "$work/lever-analyze.txt")"
+
 # Out of memory (also inside GMP, which aborted with "GNU MP: Cannot allocate memory", exit
 # 134): exit 4 and one line, no output file.
 (ulimit -v 200000; "$hipair" cspace "$source/examples/models/spur-gears.json" --json "$work/oom.json" \
