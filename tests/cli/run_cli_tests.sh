@@ -751,6 +751,23 @@ refused max-step-tiny-sweep "--max-step 1e-12" simulate "$bar" --t-end 0.3 --max
 for end in nan inf 0 -1; do
   refused "t-end$end" "--t-end must be a positive finite number of time units" simulate "$bar" --t-end "$end"
 done
+# a run that uses up the step budget (the scotch yoke, a pin in a slot, to --t-end 1e300 without
+# --max-step ran 2 000 000 steps, about ten minutes, then said "more than max_steps steps"):
+# --max-steps sets the budget, and the message says where the run stopped and what lets it finish
+yoke="$source/examples/models/scotch-yoke.json"
+refused max-steps-used-up "simulate: the run used up its step budget (--max-steps 2000) at t = 2.576" \
+  simulate "$yoke" --t-end 1e300 --max-steps 2000 --no-pictures
+grep -qF "and nothing was written: give a --t-end of at most about 2.576" "$work/refused-max-steps-used-up.err" \
+  || fail "max-steps-used-up: the message does not say what lets the run finish: $(cat "$work/refused-max-steps-used-up.err")"
+refused max-steps-planar "the run used up its step budget (--max-steps 5)" \
+  simulate "$source/examples/models/peg-drop.json" --t-end 1 --max-steps 5 --no-pictures
+refused max-steps-and-step "T / H = 100 steps exceed the simulator's budget of 10 steps (--max-steps)" \
+  simulate "$bar" --t-end 1 --max-step 0.01 --max-steps 10
+for budget in 0 -1 nan 1e10 1000000001 x; do
+  refused "max-steps$budget" "--max-steps" simulate "$bar" --t-end 0.3 --max-steps "$budget"
+done
+"$hipair" simulate "$bar" --t-end 0.05 --max-steps 100000 --no-pictures --out "$work/max-steps-ok" >/dev/null 2>&1 \
+  || fail "simulate with a sufficient --max-steps fails"
 # tolerance --range A:B: A below B (1:0 ran backwards silently), the range not one driver position
 # (1e-300:2e-300 said "the driver range is empty"), and the option values checked before the analysis
 refused tol-range-reversed "--range 1:0: A must be below B" tolerance "$geneva" --range 1:0 --quiet
