@@ -40,6 +40,7 @@ struct SimulateOptions {
   double t_end = 0;
   double accuracy = 0;
   double max_step = 0;
+  std::size_t max_steps = SimulationOptions{}.max_steps;   // --max-steps: the step budget
   std::string out;
   std::vector<std::string> overrides;
   bool allow_out_of_tolerance = false;
@@ -459,6 +460,7 @@ int run_sweep(const SimulateOptions& options) {
   SimulationOptions sim_options;
   sim_options.accuracy = options.accuracy;
   sim_options.max_step = options.max_step;
+  sim_options.max_steps = options.max_steps;
   sim_options.operating_region = options.region == "operating";
   std::vector<std::size_t> moving;
   for (std::size_t p = 0; p < models.front().parts.size(); ++p)
@@ -637,6 +639,24 @@ std::vector<double> frame_times(const SimulateOptions& options, const std::strin
 }
 
 // The progress line on a terminal, at most every 200 ms.
+// Runs `run` (the run's run_until calls). A run that uses up the step budget (the simulator
+// throws "more than N steps" after --max-steps steps) ends with one message saying where it
+// stopped, that nothing was written, and what lets it finish; until session 33 the message was
+// the simulator's alone, after minutes (`--t-end 1e300` of the scotch yoke: 2 000 000 steps).
+template <class Sim, class Run>
+void run_within_budget(const Sim& simulation, const SimulateOptions& options, const std::string& time_unit, Run&& run) {
+  try {
+    run();
+  } catch (const NumericError&) {
+    if (simulation.steps() < options.max_steps) throw;
+    const double t = simulation.state().time;
+    throw NumericError("simulate: the run used up its step budget (--max-steps " + std::to_string(options.max_steps) +
+                       ") at t = " + number(t) + " " + time_unit + " of --t-end " + number(options.t_end) + " " + time_unit +
+                       ", and nothing was written: give a --t-end of at most about " + number(t) + " " + time_unit +
+                       " or a larger --max-steps");
+  }
+}
+
 struct ProgressLine {
   bool terminal = isatty(2);
   std::chrono::steady_clock::time_point last = std::chrono::steady_clock::now();
@@ -735,6 +755,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   SimulationOptions sim_options;
   sim_options.accuracy = options.accuracy;
   sim_options.max_step = options.max_step;
+  sim_options.max_steps = options.max_steps;
   if (options.region != "full") throw ModelError("", "--region: a planar part's C-space has no operating region");
   PlanarRun simulation = PlanarRun::create(model, sim_options);
   const std::string& tu = simulation.time_unit();
@@ -768,11 +789,13 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   };
   std::vector<double> times = frame_times(options, tu, playback);
   if (!times.empty()) record_frame();
-  for (double t : times) {
-    simulation.run_until(t, progress);
-    record_frame();
-  }
-  simulation.run_until(options.t_end, progress);
+  run_within_budget(simulation, options, tu, [&] {
+    for (double t : times) {
+      simulation.run_until(t, progress);
+      record_frame();
+    }
+    simulation.run_until(options.t_end, progress);
+  });
   double seconds = thread_cpu_seconds() - cpu_start;
   if (line.terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
   const std::vector<PlanarState> end = planar_states(simulation);
@@ -862,11 +885,11 @@ int run_planar(const Model& model, const SimulateOptions& options) {
 void check_times(const SimulateOptions& options) {
   if (!(options.t_end > 0) || !std::isfinite(options.t_end))
     throw ModelError("", "--t-end must be a positive finite number of time units");
-  const std::size_t budget = SimulationOptions{}.max_steps;
+  const std::size_t budget = options.max_steps;
   if (options.max_step > 0 && options.t_end / options.max_step > static_cast<double>(budget))
     throw ModelError("", "--max-step " + number(options.max_step) + ": T / H = " + number(options.t_end / options.max_step) +
                              " steps exceed the simulator's budget of " + std::to_string(budget) +
-                             " steps: give H >= " + number(options.t_end / static_cast<double>(budget)));
+                             " steps (--max-steps): give H >= " + number(options.t_end / static_cast<double>(budget)));
 }
 
 int run(const SimulateOptions& options) {
@@ -885,6 +908,7 @@ int run(const SimulateOptions& options) {
   SimulationOptions sim_options;
   sim_options.accuracy = options.accuracy;
   sim_options.max_step = options.max_step;
+  sim_options.max_steps = options.max_steps;
   sim_options.operating_region = options.region == "operating";
   if (terminal) std::cerr << "simulate: building the pairs' C-spaces..." << std::flush;
   Simulation simulation = Simulation::create(model, sim_options);
@@ -920,11 +944,13 @@ int run(const SimulateOptions& options) {
       frames.push_back(std::move(frame));
     };
     if (!times.empty()) record_frame();
-    for (double t : times) {
-      simulation.run_until(t, progress);
-      record_frame();
-    }
-    simulation.run_until(options.t_end, progress);
+    run_within_budget(simulation, options, simulation.time_unit(), [&] {
+      for (double t : times) {
+        simulation.run_until(t, progress);
+        record_frame();
+      }
+      simulation.run_until(options.t_end, progress);
+    });
   }
   double seconds = thread_cpu_seconds() - cpu_start;
   if (terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
@@ -1027,8 +1053,12 @@ void register_simulate(CLI::App& app, Action& action) {
       ->check(real_range(1e-15, 0.1));
   command->add_option("--max-step", options->max_step,
                       "Largest integration step (time unit; default: none): a positive finite number, at least "
-                      "T / 2000000 (the simulator's step budget)")
+                      "T / the step budget (--max-steps, 2000000)")
       ->check(positive_finite());
+  command->add_option("--max-steps", options->max_steps,
+                      "Step budget: a run that needs more steps stops with an error naming the time it reached, "
+                      "and writes nothing (default 2000000; 1 to 1e9)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1000000000}));
   command->add_option("--out", options->out,
                       "Output directory: trajectory.csv, events.json/.txt, positions.svg, velocities.svg, animation.svg, cspace-*.svg");
   command->add_option("--region", options->region,

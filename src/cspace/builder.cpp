@@ -843,12 +843,20 @@ std::optional<ChartPoint> rational_point_on_edge(const ChartData& chart, std::si
   return std::nullopt;
 }
 
+// The algebraic oracle's relation at a zero-clearance candidate between blocked faces: touching
+// or overlapping (apart there would contradict the blocked faces around it).
+bool algebraic_touching(Overlap relation, const char* where) {
+  if (relation == Overlap::apart)
+    throw GeometryError(std::string("internal: the parts are apart at an irrational point ") + where);
+  return relation == Overlap::touching;
+}
+
 // Zero-clearance contacts: edges and isolated vertices of contact space with blocked space on
 // every side. A face sample never lies on them; the exact oracle decides at a rational point
 // of each whether the parts only touch there (a channel of zero width: EdgeRole::touching) or
 // overlap (a curve through blocked space: spurious).
-void find_touching(ChartData& chart, const Classifier& classify, ContactSides* sides, bool check,
-                   CSpaceStatistics& stats) {
+void find_touching(ChartData& chart, const Classifier& classify, const AlgebraicClassifier& classify_algebraic,
+                   ContactSides* sides, bool check, CSpaceStatistics& stats) {
   const auto& arrangement = chart.arrangement;
   chart.touching_vertex.assign(arrangement.vertices.size(), 0);
   auto blocked = [&](std::size_t face) {
@@ -886,8 +894,20 @@ void find_touching(ChartData& chart, const Classifier& classify, ContactSides* s
     auto point = rational_point_on_edge(chart, e, data.curves.size() >= 2);
     if (!point) {
       // A touching edge between blocked faces carries two or more contacts (one contact alone
-      // separates on one side); with one curve the edge certainly lies in blocked space.
-      if (data.curves.size() >= 2) ++stats.touching_undecided;
+      // separates on one side); with one curve the edge certainly lies in blocked space. With
+      // two or more, the exact oracle at the edge's sample, one coordinate irrational (the
+      // edge's ordinate at its rational sample abscissa; a vertical edge's abscissa).
+      if (data.curves.size() < 2) continue;
+      std::optional<Overlap> relation;
+      if (classify_algebraic)
+        relation = edge.vertical ? classify_algebraic(*data.vertical_x, data.sample_y)
+                                 : classify_algebraic(Real::from_rational(data.sample_x), data.sample_y);
+      if (!relation) {
+        ++stats.touching_undecided;
+        continue;
+      }
+      data.touching = algebraic_touching(*relation, "on a contact edge between blocked faces");
+      if (data.touching) ++stats.touching_edges;
       continue;
     }
     data.touching = decide(*point);
@@ -911,9 +931,21 @@ void find_touching(ChartData& chart, const Classifier& classify, ContactSides* s
     }
     if (!candidate || !on_curve) continue;
     auto x = rational_value(vertex.x, false);   // rational vertices come out exact (or linear)
-    if (!x || !vertex.y_exact) continue;
-    auto y = rational_value(vertex.y);
-    if (!y) continue;
+    if (!vertex.y_exact) continue;
+    // (an irrational abscissa: only an exact or linear ordinate is looked for, cheaply)
+    auto y = rational_value(vertex.y, x.has_value());
+    if (!x || !y) {
+      // one coordinate irrational: the exact oracle at the algebraic point (both irrational:
+      // not decided, as before)
+      if (!classify_algebraic || (!x && !y)) continue;
+      std::optional<Overlap> relation = classify_algebraic(x ? Real::from_rational(*x) : vertex.x,
+                                                           y ? Real::from_rational(*y) : vertex.y);
+      if (relation && algebraic_touching(*relation, "at a contact vertex between blocked faces")) {
+        chart.touching_vertex[v] = 1;
+        ++stats.touching_vertices;
+      }
+      continue;
+    }
     if (decide(ChartPoint{*x, *y})) {
       chart.touching_vertex[v] = 1;
       ++stats.touching_vertices;
@@ -933,7 +965,8 @@ void find_touching(ChartData& chart, const Classifier& classify, ContactSides* s
 // States that cannot arise (faces not one more than the points, a point without its curves,
 // the parts overlapping at one point between free intervals: overlap is open in the
 // configuration) throw GeometryError naming the chart point, never reach undefined behaviour.
-void find_touching_points(ChartData& chart, const Classifier& classify, CSpaceStatistics& stats) {
+void find_touching_points(ChartData& chart, const Classifier& classify, const AlgebraicClassifier& classify_algebraic,
+                          CSpaceStatistics& stats) {
   if (chart.faces.size() != chart.points.size() + 1 || chart.point_curves.size() != chart.points.size())
     throw GeometryError("internal: a 1-D chart has " + std::to_string(chart.points.size()) + " contact points, " +
                         std::to_string(chart.point_curves.size()) + " curve lists and " + std::to_string(chart.faces.size()) +
@@ -976,7 +1009,15 @@ void find_touching_points(ChartData& chart, const Classifier& classify, CSpaceSt
     }
     auto x = rational_value(point);
     if (!x) {
-      ++stats.touching_undecided;
+      // irrational: the exact oracle at the algebraic point (undecided where it cannot: arcs)
+      std::optional<Overlap> relation;
+      if (classify_algebraic) relation = classify_algebraic(point, Real::from_rational(Rational(0)));
+      if (!relation) {
+        ++stats.touching_undecided;
+      } else if (algebraic_touching(*relation, ("between blocked intervals at " + point.description()).c_str())) {
+        chart.touching_vertex[i] = 1;
+        ++stats.touching_vertices;
+      }
       continue;
     }
     Overlap relation = classify(ChartPoint{*x, Rational(0)});
@@ -1033,7 +1074,7 @@ void build_interval_chart(ChartData& chart, const ChartInput& input, CSpaceStati
     face.sampled = true;
     face.kind = kind_of(input.classify(ChartPoint{face.sample_x, Rational(0)}));
   }
-  find_touching_points(chart, input.classify, stats);
+  find_touching_points(chart, input.classify, input.classify_algebraic, stats);
 }
 
 // ---------------------------------------------------------------- cells
@@ -1325,6 +1366,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
   struct Deferred {
     std::vector<int> signs;
     Classifier classify;
+    AlgebraicClassifier classify_algebraic;
   };
   std::vector<Deferred> deferred(chart_count);
   for (std::size_t c = 0; c < chart_count; ++c) {
@@ -1415,6 +1457,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     if (input.model)
       for (std::size_t k : kept) deferred[c].signs.push_back(chart_input.curves[k].blocked_sign);
     deferred[c].classify = std::move(chart_input.classify);
+    deferred[c].classify_algebraic = std::move(chart_input.classify_algebraic);
     // the chart's input curves are done with (its arrangement, polynomials and labels are
     // kept): free them now rather than at the end, so a region's peak holds one copy
     std::vector<ContactCurve>().swap(chart_input.curves);
@@ -1433,7 +1476,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       const bool propagate = sides && input.curve_statistics.identically_zero == 0;
       classify_faces(chart, deferred[c].classify, sides ? &*sides : nullptr, options.check_face_classification,
                      propagate);
-      find_touching(chart, deferred[c].classify, sides ? &*sides : nullptr, options.check_face_classification, stats);
+      find_touching(chart, deferred[c].classify, deferred[c].classify_algebraic, sides ? &*sides : nullptr, options.check_face_classification, stats);
       deferred[c] = Deferred{};
     }
     stats.seconds_classification += seconds_since(start);

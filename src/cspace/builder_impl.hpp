@@ -21,6 +21,9 @@ namespace hipair::cspace {
 
 /// The exact overlap oracle of one chart.
 using Classifier = std::function<Overlap(const ChartPoint&)>;
+/// The exact overlap relation at a chart point with algebraic (possibly irrational)
+/// coordinates (curves/algebraic_overlap.hpp), or nullopt where it cannot decide (arcs).
+using AlgebraicClassifier = std::function<std::optional<Overlap>(const algebra::Real&, const algebra::Real&)>;
 
 /// Input of one chart: its axes, its contact curves and its oracle.
 struct ChartInput {
@@ -30,6 +33,8 @@ struct ChartInput {
   ChartAxis y;                       ///< ignored for a 1-D space
   std::vector<ContactCurve> curves;
   Classifier classify;
+  /// Optional: the oracle at irrational zero-clearance points (empty: those stay undecided).
+  AlgebraicClassifier classify_algebraic;
   /// Optional: the box's certainly-blocked cells (the merged cull's grid, whose cells the
   /// curve generator has already tested). Curve parts in blocked cells bound nothing and are
   /// not inserted (the curves' windows); its depth is the culling quadtree's.

@@ -8,6 +8,7 @@
 #include "cspace/builder_impl.hpp"
 #include "oracle/blocked_tester.hpp"
 #include "curves/contact_curves.hpp"
+#include "curves/algebraic_overlap.hpp"
 #include "core/model_equal.hpp"
 #include "core/model_scale.hpp"
 #include "kernels/interval.hpp"
@@ -379,6 +380,9 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
       if (!curve.polynomial.is_zero()) chart.curves.push_back(std::move(curve));
     ChartAxis x = chart.x, y = chart.y;
     chart.classify = [&model, axes, x, y](const cspace::ChartPoint& q) { return classify_overlap(model, axes, x, y, q); };
+    chart.classify_algebraic = [&model, axes, x, y](const algebra::Real& qx, const algebra::Real& qy) {
+      return algebraic_overlap(model, axes, x, y, qx, qy);
+    };
     if (building.dimension == 2 && cells && cells->usable()) chart.blocked_cells = std::move(cells);
     if (progress) std::cerr << "\rhipair: " << building.first_part << ":" << building.second_part << " "
                             << (building.complete ? "chart " : "tile ") << ++done << "/" << total << std::flush;

@@ -256,6 +256,23 @@ grep -q "guided with zero clearance" "$work/exact-fit.txt" || fail "analyze does
 grep -q "touching edges" "$work/exact-fit-stats.txt" || fail "cspace --stats shows no touching edge for the exact fit"
 grep -q "zero clearance" "$work/exact-fit-cspace.svg" || fail "the C-space picture does not draw the zero-clearance channel"
 
+# A zero-clearance fit at an irrational angle (session 33): a lever touching both walls of a
+# slot at tan(θ/2) = (40 - √1593.99)/60.1 (two contacts, blocked on both sides) was left
+# undecided and reported blocked; now cspace marks it touching (1-D: two touching vertices, the
+# fit and its twin in the far chart; the frame sliding along the slot: two touching edges), and
+# analyze, driving the frame, finds the lever held there instead of blocked.
+lever_fit="$source/tests/data/zero-clearance/lever-irrational-fit.json"
+lever_slide="$source/tests/data/zero-clearance/lever-irrational-fit-sliding.json"
+"$hipair" cspace "$lever_fit" --stats >"$work/lever-fit.txt" 2>&1 || fail "cspace fails on the irrational fit: $(tail -n 3 "$work/lever-fit.txt")"
+grep -q "0 touching edges, 2 isolated touching vertices$" "$work/lever-fit.txt" \
+  || fail "cspace --stats: the irrational fit is not two touching vertices: $(grep zero-clearance "$work/lever-fit.txt")"
+"$hipair" cspace "$lever_slide" --stats >"$work/lever-slide.txt" 2>&1 || fail "cspace fails on the sliding irrational fit"
+grep -q "2 touching edges, 0 isolated touching vertices$" "$work/lever-slide.txt" \
+  || fail "cspace --stats: the sliding irrational fit is not two touching edges: $(grep zero-clearance "$work/lever-slide.txt")"
+"$hipair" analyze "$lever_slide" --driver frame --no-pictures >"$work/lever-analyze.txt" 2>&1 || fail "analyze fails on the sliding fit"
+grep -q "were not decided" "$work/lever-analyze.txt" && fail "analyze leaves the irrational fit undecided"
+grep -q "lever stays at 0.143°" "$work/lever-analyze.txt" || fail "analyze does not hold the lever at its fit: $(grep -i -E 'dwell|BLOCKED' "$work/lever-analyze.txt")"
+
 # Out of memory (also inside GMP, which aborted with "GNU MP: Cannot allocate memory", exit
 # 134): exit 4 and one line, no output file.
 (ulimit -v 200000; "$hipair" cspace "$source/examples/models/spur-gears.json" --json "$work/oom.json" \
@@ -734,6 +751,23 @@ refused max-step-tiny-sweep "--max-step 1e-12" simulate "$bar" --t-end 0.3 --max
 for end in nan inf 0 -1; do
   refused "t-end$end" "--t-end must be a positive finite number of time units" simulate "$bar" --t-end "$end"
 done
+# a run that uses up the step budget (the scotch yoke, a pin in a slot, to --t-end 1e300 without
+# --max-step ran 2 000 000 steps, about ten minutes, then said "more than max_steps steps"):
+# --max-steps sets the budget, and the message says where the run stopped and what lets it finish
+yoke="$source/examples/models/scotch-yoke.json"
+refused max-steps-used-up "simulate: the run used up its step budget (--max-steps 2000) at t = 2.576" \
+  simulate "$yoke" --t-end 1e300 --max-steps 2000 --no-pictures
+grep -qF "and nothing was written: give a --t-end of at most about 2.576" "$work/refused-max-steps-used-up.err" \
+  || fail "max-steps-used-up: the message does not say what lets the run finish: $(cat "$work/refused-max-steps-used-up.err")"
+refused max-steps-planar "the run used up its step budget (--max-steps 5)" \
+  simulate "$source/examples/models/peg-drop.json" --t-end 1 --max-steps 5 --no-pictures
+refused max-steps-and-step "T / H = 100 steps exceed the simulator's budget of 10 steps (--max-steps)" \
+  simulate "$bar" --t-end 1 --max-step 0.01 --max-steps 10
+for budget in 0 -1 nan 1e10 1000000001 x; do
+  refused "max-steps$budget" "--max-steps" simulate "$bar" --t-end 0.3 --max-steps "$budget"
+done
+"$hipair" simulate "$bar" --t-end 0.05 --max-steps 100000 --no-pictures --out "$work/max-steps-ok" >/dev/null 2>&1 \
+  || fail "simulate with a sufficient --max-steps fails"
 # tolerance --range A:B: A below B (1:0 ran backwards silently), the range not one driver position
 # (1e-300:2e-300 said "the driver range is empty"), and the option values checked before the analysis
 refused tol-range-reversed "--range 1:0: A must be below B" tolerance "$geneva" --range 1:0 --quiet

@@ -40,19 +40,34 @@ bool certainly_free(const Simulation& s, std::size_t pair) {
   return space.first_crossing(still).status == CrossingStatus::none;
 }
 
-TEST(SimulationRatchetTouch, DepartingCornerTouchMovesOn) {
-  Model model = read_model_file(std::filesystem::path(HIPAIR_TEST_DATA) / "simulation" / "ratchet-corner-touch.json");
+// The simulation of the model file `path` at `accuracy` (nullopt: the default), capped at
+// `max_steps` steps.
+Simulation simulation_of(const std::filesystem::path& path, std::optional<double> accuracy, std::size_t max_steps) {
+  Model model = read_model_file(path);
   SimulationOptions options;
-  options.max_steps = 3000;
-  Simulation s = Simulation::create(model, options);
-  std::size_t in_place = 0, longest_in_place = 0;
-  while (s.state().time < 0.5) {
+  if (accuracy) options.accuracy = *accuracy;
+  options.max_steps = max_steps;
+  return Simulation::create(model, options);
+}
+
+// Steps `s` to time `end`: every step succeeds and, with `free_pair`, leaves that pair certainly
+// free; `longest` is the longest run of consecutive steps that left the time where it was.
+void run_until(Simulation& s, double end, std::optional<std::size_t> free_pair, std::size_t& longest) {
+  std::size_t in_place = 0;
+  longest = 0;
+  while (s.state().time < end) {
     const double before = s.state().time;
     ASSERT_NO_THROW(s.step()) << "at t = " << before;
     in_place = s.state().time > before ? 0 : in_place + 1;
-    longest_in_place = std::max(longest_in_place, in_place);
-    ASSERT_TRUE(certainly_free(s, 0)) << s.state().time;
+    longest = std::max(longest, in_place);
+    if (free_pair) ASSERT_TRUE(certainly_free(s, *free_pair)) << s.state().time;
   }
+}
+
+TEST(SimulationRatchetTouch, DepartingCornerTouchMovesOn) {
+  Simulation s = simulation_of(std::filesystem::path(HIPAIR_TEST_DATA) / "simulation" / "ratchet-corner-touch.json", std::nullopt, 3000);
+  std::size_t longest_in_place = 0;
+  ASSERT_NO_FATAL_FAILURE(run_until(s, 0.5, 0, longest_in_place));
   EXPECT_LE(longest_in_place, 2u);
   // the touch: one impact without impulse, the tooth's face on the nose's corner, at 0.32766538899 s
   std::size_t touches = 0;
@@ -73,19 +88,9 @@ TEST(SimulationRatchetTouch, DepartingCornerTouchMovesOn) {
 // (a tooth tip leaving the nose's corner) before; now it clicks on over the teeth to 1.2 s, and
 // every step moves the time on but for single steps at one time (a touch, a lift-off).
 TEST(SimulationRatchetTouch, BundledRatchetAtCoarseAccuracyClicksOn) {
-  Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "ratchet.json");
-  SimulationOptions options;
-  options.accuracy = 1e-3;
-  options.max_steps = 3000;
-  Simulation s = Simulation::create(model, options);
-  std::size_t in_place = 0, longest_in_place = 0;
-  while (s.state().time < 1.2) {
-    const double before = s.state().time;
-    ASSERT_NO_THROW(s.step()) << "at t = " << before;
-    in_place = s.state().time > before ? 0 : in_place + 1;
-    longest_in_place = std::max(longest_in_place, in_place);
-    ASSERT_TRUE(certainly_free(s, 0)) << s.state().time;
-  }
+  Simulation s = simulation_of(std::filesystem::path(HIPAIR_EXAMPLES) / "ratchet.json", 1e-3, 3000);
+  std::size_t longest_in_place = 0;
+  ASSERT_NO_FATAL_FAILURE(run_until(s, 1.2, 0, longest_in_place));
   EXPECT_LE(longest_in_place, 2u);
   std::size_t impacts = 0;
   for (const SimulationEvent& e : s.events()) impacts += e.kind == SimulationEvent::Kind::impact && e.impulse > 0;
@@ -101,18 +106,9 @@ TEST(SimulationRatchetTouch, BundledRatchetAtCoarseAccuracyClicksOn) {
 // yoke runs on, lifts off wall R and strikes wall L before 0.5 s. Under a cap of 30 000 steps main
 // stopped with "more than max_steps steps" at 0.39554 s.
 TEST(SimulationRatchetTouch, ScotchYokeSlipChangeAtTheStepStartMovesOn) {
-  Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "scotch-yoke.json");
-  SimulationOptions options;
-  options.accuracy = 1e-6;
-  options.max_steps = 30000;
-  Simulation s = Simulation::create(model, options);
-  std::size_t in_place = 0, longest_in_place = 0;
-  while (s.state().time < 0.5) {
-    const double before = s.state().time;
-    ASSERT_NO_THROW(s.step()) << "at t = " << before;
-    in_place = s.state().time > before ? 0 : in_place + 1;
-    longest_in_place = std::max(longest_in_place, in_place);
-  }
+  Simulation s = simulation_of(std::filesystem::path(HIPAIR_EXAMPLES) / "scotch-yoke.json", 1e-6, 30000);
+  std::size_t longest_in_place = 0;
+  ASSERT_NO_FATAL_FAILURE(run_until(s, 0.5, std::nullopt, longest_in_place));
   EXPECT_LE(longest_in_place, 2u);
   bool lift_off_r = false, impact_l = false;
   for (const SimulationEvent& e : s.events()) {

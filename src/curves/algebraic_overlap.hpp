@@ -1,0 +1,25 @@
+// The exact overlap relation of a pair at a chart point with an irrational coordinate (a real
+// algebraic number): the zero-clearance fits at irrational angles that the rational oracle
+// (classify_overlap) cannot be posed at. Declared here, in the chart vocabulary, and
+// implemented in src/oracle/algebraic_overlap.cpp, as classify_overlap is.
+#pragma once
+
+#include "algebra/exact_real.hpp"
+#include "curves/contact_curves.hpp"
+
+#include <hipair/model.hpp>
+
+#include <optional>
+
+namespace hipair::cspace {
+
+/// Exact relation of the pair's parts posed at chart point (x, y) of chart (x_axis, y_axis),
+/// where x and y are real algebraic numbers (rational or not; y is ignored for a 1-D space).
+/// Every decision is the exact sign of a polynomial in the chart coordinates at the point
+/// (algebra::sign_at: zero iff the polynomial vanishes there, by gcd; otherwise refined until
+/// certain). Parts bounded by segments only: nullopt when either part has an arc edge, or when
+/// both coordinates of a 2-D point are irrational.
+std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
+                                         const ChartAxis& y_axis, const algebra::Real& x, const algebra::Real& y);
+
+}  // namespace hipair::cspace
