@@ -2419,13 +2419,23 @@ class CrossingRun {
     Rational reach = b - a;
     Rational end_u = b;
     for (int attempt = 0; attempt < 24; ++attempt) {
-      MotionScanner::Evaluation end = scanner.evaluate(end_u, end_u);
-      if (!end.covered || end.boxes.empty()) break;
-      bool exact_point = std::all_of(end.boxes.begin(), end.boxes.end(), [](const PieceBox& box) {
-        return box.x_lo == box.x_hi && box.y_lo == box.y_hi;
-      });
-      if (exact_point || end.possible.empty()) {
-        Location there = scanner.locate_inside(end.boxes.front());
+      // the end through the double filter first (start_filter.hpp, end_filter): a location in a
+      // free or a blocked cell's face there is the 160-bit end's; otherwise the 160-bit end
+      std::optional<Location> location = filtered_end(end_u);
+      bool located = location.has_value();
+      if (!located) {
+        MotionScanner::Evaluation end = scanner.evaluate(end_u, end_u);
+        if (!end.covered || end.boxes.empty()) break;
+        bool exact_point = std::all_of(end.boxes.begin(), end.boxes.end(), [](const PieceBox& box) {
+          return box.x_lo == box.x_hi && box.y_lo == box.y_hi;
+        });
+        if (exact_point || end.possible.empty()) {
+          location = scanner.locate_inside(end.boxes.front());
+          located = true;
+        }
+      }
+      if (located) {
+        const Location& there = *location;
         if (there.kind != Location::Kind::free || there.cell != result.cell_left.index()) {
           left_start = true;
           result.u_upper = end_u;
@@ -2451,6 +2461,21 @@ class CrossingRun {
     }
     result.u_upper.canonicalize();
     done = true;
+  }
+
+  // The location of the path's point at u through the double filter (end_filter, as the
+  // filtered start): set only where it lies in a free or a blocked cell's face, a box of the
+  // filtered pieces covered by the charts and free of every contact curve around it.
+  std::optional<Location> filtered_end(const Rational& u) {
+    if (!cspace::end_filter() ||
+        !(path.x.kind == AxisPath::Kind::angle || (impl.dimension == 2 && path.y.kind == AxisPath::Kind::angle)))
+      return std::nullopt;
+    MotionScanner::Evaluation quick = scanner.evaluate(u, u, true);
+    if (quick.too_wide || !quick.covered || quick.boxes.empty() || !quick.possible.empty()) return std::nullopt;
+    Location there = scanner.locate_inside(quick.boxes.front());
+    if (there.kind != Location::Kind::free && there.kind != Location::Kind::blocked) return std::nullopt;
+    ++cspace::filtered_ends();
+    return there;
   }
 
   const Impl& impl;
