@@ -1446,13 +1446,15 @@ class MotionScanner {
     check(path.x, impl.public_charts.at(0).x_kind, "x");
     if (impl.dimension == 2) check(path.y, impl.public_charts.at(0).y_kind, "y");
     for (const AxisPath* axis : {&path.x, &path.y}) {
-      std::vector<Rational> d, dd;
-      for (std::size_t i = 1; i < axis->coefficients.size(); ++i) d.push_back(axis->coefficients[i] * static_cast<long>(i));
-      for (std::size_t i = 2; i < axis->coefficients.size(); ++i)
-        dd.push_back(axis->coefficients[i] * static_cast<long>(i * (i - 1)));
-      enclosed_.push_back(enclosed_coefficients(axis->coefficients));
-      enclosed_rate_.push_back(enclosed_coefficients(d));
-      enclosed_acceleration_.push_back(enclosed_coefficients(dd));
+      // the derivatives' coefficients i c_i and i (i - 1) c_i enclosed (cspace::enclose_multiple:
+      // KInterval::enclose of the exact product, from the double where c_i is one)
+      const std::vector<Rational>& c = axis->coefficients;
+      std::vector<KInterval> d, dd;
+      for (std::size_t i = 1; i < c.size(); ++i) d.push_back(cspace::enclose_multiple(c[i], static_cast<long>(i)));
+      for (std::size_t i = 2; i < c.size(); ++i) dd.push_back(cspace::enclose_multiple(c[i], static_cast<long>(i * (i - 1))));
+      enclosed_.push_back(enclosed_coefficients(c));
+      enclosed_rate_.push_back(std::move(d));
+      enclosed_acceleration_.push_back(std::move(dd));
     }
   }
 
