@@ -162,6 +162,20 @@ struct StartAnchorsTag;
 inline bool& start_anchors() { return thread_switch<StartAnchorsTag>(); }
 struct AnchoredStartsTag;
 inline std::size_t& anchored_starts() { return thread_counter<AnchoredStartsTag>(); }
+// And the anchor boxes: every stretch a query excludes whose evaluation is one box clear of the
+// cell-bounding curves lies in the query's start cell (the stretches before it were excluded, or
+// certified free by the Newton shrink's bound), so the query (finished or stopped) leaves those
+// boxes with its start cell (per thread, per space: the last query's that excluded one); a later
+// start whose located point lies in one, strictly inside its chart, is located in that cell
+// without the exact ray shooting once no curve of the chart (not only the bounding ones) vanishes
+// on the box (checked on first use, as the start anchor's box). The simulator's next step starts
+// where the last one ended, mostly inside a stretch the pair's last query excluded. On by
+// default; tests switch it off to compare (CSpaceCrossingAnchorBoxes.*), and count the starts
+// located by a box.
+struct AnchorBoxesTag;
+inline bool& anchor_boxes() { return thread_switch<AnchorBoxesTag>(); }
+struct BoxAnchoredStartsTag;
+inline std::size_t& box_anchored_starts() { return thread_counter<BoxAnchoredStartsTag>(); }
 
 // Point location's filter (builder_locate.cpp, locate_2d): an edge whose support is quadratic
 // in y at the point's rational abscissa is placed above or below the point by a certified double
