@@ -162,6 +162,20 @@ struct StartAnchorsTag;
 inline bool& start_anchors() { return thread_switch<StartAnchorsTag>(); }
 struct AnchoredStartsTag;
 inline std::size_t& anchored_starts() { return thread_counter<AnchoredStartsTag>(); }
+// And the anchor boxes: every stretch a query excludes whose evaluation is one box clear of the
+// cell-bounding curves lies in the query's start cell (the stretches before it were excluded, or
+// certified free by the Newton shrink's bound), so the query (finished or stopped) leaves those
+// boxes with its start cell (per thread, per space: the last query's that excluded one); a later
+// start whose located point lies in one, strictly inside its chart, is located in that cell
+// without the exact ray shooting once no curve of the chart (not only the bounding ones) vanishes
+// on the box (checked on first use, as the start anchor's box). The simulator's next step starts
+// where the last one ended, mostly inside a stretch the pair's last query excluded. On by
+// default; tests switch it off to compare (CSpaceCrossingAnchorBoxes.*), and count the starts
+// located by a box.
+struct AnchorBoxesTag;
+inline bool& anchor_boxes() { return thread_switch<AnchorBoxesTag>(); }
+struct BoxAnchoredStartsTag;
+inline std::size_t& box_anchored_starts() { return thread_counter<BoxAnchoredStartsTag>(); }
 
 // Point location's filter (builder_locate.cpp, locate_2d): an edge whose support is quadratic
 // in y at the point's rational abscissa is placed above or below the point by a certified double
@@ -272,6 +286,35 @@ inline std::optional<std::vector<AnglePiece>> filtered_angle_pieces(const kernel
   for (std::size_t i = 0; i < ranges->size; ++i)
     pieces.push_back(AnglePiece{ranges->half_turn[i], Rational(ranges->lo[i]), Rational(ranges->hi[i]), ranges->lo[i], ranges->hi[i]});
   return pieces;
+}
+
+
+// kernels::Interval::enclose(c * m) (the double that mpq_get_d truncates the exact product to, and
+// the next one away from 0), computed in doubles where c is exactly a double d of moderate
+// exponent: the product's residual fma(d, m, -p) is exact there and tells on which side of the
+// rounded p = d m the product lies. Elsewhere (c no double, or the product near the doubles'
+// range's ends) the enclosure of the rational product. The first_crossing scanner's derivative
+// coefficients (CSpaceCrossingScanner.MultiplesEncloseAsTheRationalProduct compares both).
+inline kernels::Interval enclose_multiple(const Rational& c, long m) {
+  const mpz_class& num = c.get_num();
+  const mpz_class& den = c.get_den();
+  if (sgn(num) != 0 && m > 0 && m < (1L << 20) && mpz_popcount(den.get_mpz_t()) == 1 &&
+      mpz_sizeinbase(num.get_mpz_t(), 2) <= 53 && mpz_sizeinbase(den.get_mpz_t(), 2) <= 900) {
+    const double d = c.get_d();   // exact: a numerator of at most 53 bits over 2^k, k < 900
+    const double factor = static_cast<double>(m);
+    const double p = d * factor;
+    const double magnitude = std::fabs(p);
+    if (magnitude >= 0x1p-900 && magnitude <= 0x1p+900) {
+      const double residual = std::fma(d, factor, -p);   // d m = p + residual exactly
+      // the truncation toward 0: p, unless p lies beyond the product (then the double before it)
+      double truncated = p;
+      if (residual != 0 && (residual > 0) != (p > 0)) truncated = std::nextafter(p, 0.0);
+      return p > 0 ? kernels::Interval(truncated, kernels::interval_detail::up(truncated))
+                   : kernels::Interval(kernels::interval_detail::down(truncated), truncated);
+    }
+  }
+  Rational product = c * m;
+  return kernels::Interval::enclose(product);
 }
 
 }  // namespace hipair::cspace

@@ -1304,6 +1304,43 @@ void remember_anchor(StartAnchor anchor, const std::shared_ptr<const CSpace::Imp
   list.push_back(std::move(anchor));
 }
 
+// The anchor boxes (angle_filter.hpp, anchor_boxes): the boxes certified in a query's start cell
+// (its located start's, its excluded stretches') with that cell, per thread, the last 16 per space
+// (its owner).
+struct AnchorBox : PieceBox {
+  std::size_t cell = 0;
+};
+struct AnchorBoxes {
+  std::weak_ptr<const CSpace::Impl> owner;
+  std::vector<AnchorBox> boxes;
+};
+
+std::vector<AnchorBoxes>& anchor_box_list() {
+  thread_local std::vector<AnchorBoxes> list;
+  return list;
+}
+
+AnchorBoxes* find_anchor_boxes(const std::shared_ptr<const CSpace::Impl>& owner) {
+  if (!cspace::anchor_boxes()) return nullptr;
+  for (AnchorBoxes& entry : anchor_box_list())
+    if (!entry.owner.expired() && same_owner(entry.owner, owner)) return &entry;
+  return nullptr;
+}
+
+void remember_anchor_boxes(const std::vector<AnchorBox>& boxes, const std::shared_ptr<const CSpace::Impl>& owner) {
+  AnchorBoxes* entry = find_anchor_boxes(owner);
+  if (!entry) {
+    std::vector<AnchorBoxes>& list = anchor_box_list();
+    std::erase_if(list, [](const AnchorBoxes& a) { return a.owner.expired(); });
+    if (list.size() >= 16) list.erase(list.begin());
+    list.push_back(AnchorBoxes{owner, {}});
+    entry = &list.back();
+  }
+  std::vector<AnchorBox>& kept = entry->boxes;
+  kept.insert(kept.end(), boxes.begin(), boxes.end());
+  if (kept.size() > 16) kept.erase(kept.begin(), kept.end() - 16);
+}
+
 // The scanner's data derived from the space alone, filled on first use: per chart (sized by
 // scan_memo_of), per local curve. Shared by the first_crossing calls of a space on one thread
 // (scan_memo, cspace/scan_memo.hpp), or made for one call when the switch is off.
@@ -1319,6 +1356,8 @@ struct ScanMemo {
     bool ready = false;
     std::vector<Carrier> edges;
     std::vector<std::size_t> everywhere;
+    // the other edges with a curve (spurious, inside one cell), for locate_inside's anchor boxes
+    std::vector<Carrier> inner;
   };
   struct Gradient {
     cspace::algebra::IntervalPolynomial2 fx, fy;
@@ -1369,12 +1408,11 @@ const ScanMemo::ChartCarriers& chart_carriers(const CSpace::Impl& impl, ScanMemo
   const ChartData& chart = impl.charts[c];
   for (std::size_t e = 0; e < chart.edges.size(); ++e) {
     const CSpaceEdge& edge = impl.edges[chart.edges[e].global];
-    if (!edge.real && edge.left_cell == edge.right_cell) continue;
     if (chart.edges[e].curves.empty()) continue;
     ScanMemo::Carrier carrier;
     std::copy(std::begin(chart.arrangement.edges[e].box), std::end(chart.arrangement.edges[e].box), carrier.box);
     carrier.curves = chart.edges[e].curves;
-    result.edges.push_back(std::move(carrier));
+    (!edge.real && edge.left_cell == edge.right_cell ? result.inner : result.edges).push_back(std::move(carrier));
   }
   for (std::size_t v = 0; v < chart.arrangement.vertices.size(); ++v) {
     if (!chart.arrangement.vertices[v].isolated) continue;
@@ -1446,13 +1484,15 @@ class MotionScanner {
     check(path.x, impl.public_charts.at(0).x_kind, "x");
     if (impl.dimension == 2) check(path.y, impl.public_charts.at(0).y_kind, "y");
     for (const AxisPath* axis : {&path.x, &path.y}) {
-      std::vector<Rational> d, dd;
-      for (std::size_t i = 1; i < axis->coefficients.size(); ++i) d.push_back(axis->coefficients[i] * static_cast<long>(i));
-      for (std::size_t i = 2; i < axis->coefficients.size(); ++i)
-        dd.push_back(axis->coefficients[i] * static_cast<long>(i * (i - 1)));
-      enclosed_.push_back(enclosed_coefficients(axis->coefficients));
-      enclosed_rate_.push_back(enclosed_coefficients(d));
-      enclosed_acceleration_.push_back(enclosed_coefficients(dd));
+      // the derivatives' coefficients i c_i and i (i - 1) c_i enclosed (cspace::enclose_multiple:
+      // KInterval::enclose of the exact product, from the double where c_i is one)
+      const std::vector<Rational>& c = axis->coefficients;
+      std::vector<KInterval> d, dd;
+      for (std::size_t i = 1; i < c.size(); ++i) d.push_back(cspace::enclose_multiple(c[i], static_cast<long>(i)));
+      for (std::size_t i = 2; i < c.size(); ++i) dd.push_back(cspace::enclose_multiple(c[i], static_cast<long>(i * (i - 1))));
+      enclosed_.push_back(enclosed_coefficients(c));
+      enclosed_rate_.push_back(std::move(d));
+      enclosed_acceleration_.push_back(std::move(dd));
     }
   }
 
@@ -1550,31 +1590,84 @@ class MotionScanner {
   }
 
   // Exact location of a rational point inside a box with no contact curve; inside `anchor`'s box
-  // (and strictly inside the chart's), the anchor's face (see StartAnchor).
-  Location locate_inside(const PieceBox& box, const StartAnchor* anchor = nullptr) const {
+  // (and strictly inside the chart's), the anchor's face (see StartAnchor). Or next to one of
+  // `boxes` (AnchorBox): where no cell-bounding curve vanishes on the hull of that box and this
+  // one (exclude, as a stretch is excluded) the point is in that box's cell, and where no curve
+  // at all vanishes on this box (the point on no edge, strictly inside the chart) it is inside a
+  // face of that (free) cell: the location is that cell's, without the ray shooting.
+  Location locate_inside(const PieceBox& box, const StartAnchor* anchor = nullptr, AnchorBoxes* boxes = nullptr) {
     Rational x = (box.x_lo.rational() + box.x_hi.rational()) / 2, y = (box.y_lo.rational() + box.y_hi.rational()) / 2;
     x.canonicalize();
     y.canonicalize();
+    const cspace::raw::Box& side = impl_.charts[box.chart].box;
+    const bool inside_chart = x > side.x_lo && x < side.x_hi && (impl_.dimension == 1 || (y > side.y_lo && y < side.y_hi));
+    auto free_in = [&](std::size_t cell) {
+      Location location;
+      location.kind = Location::Kind::free;
+      location.cell = cell;
+      location.chart = box.chart;
+      return location;
+    };
     if (anchor && anchor->chart == box.chart && x >= anchor->x_lo && x <= anchor->x_hi && y >= anchor->y_lo &&
-        y <= anchor->y_hi) {
-      const cspace::raw::Box& side = impl_.charts[box.chart].box;
-      if (x > side.x_lo && x < side.x_hi && (impl_.dimension == 1 || (y > side.y_lo && y < side.y_hi))) {
-        ++cspace::anchored_starts();
-        Location location;
-        location.kind = Location::Kind::free;
-        location.cell = anchor->cell;
-        location.chart = box.chart;
-        return location;
+        y <= anchor->y_hi && inside_chart) {
+      ++cspace::anchored_starts();
+      return free_in(anchor->cell);
+    }
+    if (boxes && inside_chart) {
+      int tried = 0;
+      int clear = 0;   // this box clear of every curve: 0 not checked, 1 yes, -1 no
+      for (auto it = boxes->boxes.rbegin(); it != boxes->boxes.rend() && tried < 3 && clear >= 0; ++it) {
+        const PieceBox& b = *it;
+        if (b.chart != box.chart) continue;
+        // near it (within its width, or within a millionth of its chart's width): the hull small
+        auto near = [](double lo, double hi, double b_lo, double b_hi, double chart_width) {
+          double reach = std::max(b_hi - b_lo, 1e-6 * chart_width);
+          return lo >= b_lo - reach && hi <= b_hi + reach;
+        };
+        const std::array<double, 4>& chart_box = memo_->chart_boxes[box.chart];
+        if (!near(box.dx_lo, box.dx_hi, b.dx_lo, b.dx_hi, chart_box[1] - chart_box[0]) ||
+            (impl_.dimension == 2 && !near(box.dy_lo, box.dy_hi, b.dy_lo, b.dy_hi, chart_box[3] - chart_box[2])))
+          continue;
+        ++tried;
+        PieceBox hull{box.chart,
+                      compare(b.x_lo, box.x_lo) < 0 ? b.x_lo : box.x_lo,
+                      compare(b.x_hi, box.x_hi) > 0 ? b.x_hi : box.x_hi,
+                      compare(b.y_lo, box.y_lo) < 0 ? b.y_lo : box.y_lo,
+                      compare(b.y_hi, box.y_hi) > 0 ? b.y_hi : box.y_hi,
+                      std::min(b.dx_lo, box.dx_lo), std::max(b.dx_hi, box.dx_hi),
+                      std::min(b.dy_lo, box.dy_lo), std::max(b.dy_hi, box.dy_hi)};
+        hull_possible_.clear();
+        exclude(0, hull, hull_possible_);
+        if (!hull_possible_.empty()) continue;
+        if (clear == 0) clear = on_no_edge(box) ? 1 : -1;
+        if (clear < 0) break;
+        ++cspace::box_anchored_starts();
+        return free_in(it->cell);
       }
     }
     return cspace::locate_point(impl_, ChartPoint{box.chart, x, y});
   }
 
-  // A StartAnchor from the last stretch of a motion that stayed in the free cell `cell`: its one
-  // box, when no curve of the chart (not only the cell-bounding ones) vanishes on it.
-  std::optional<StartAnchor> anchor_from(const Evaluation& last, std::size_t cell) const {
-    if (!last.box_clear || last.boxes.size() != 1) return std::nullopt;
-    const PieceBox& box = last.boxes.front();
+  // The box (on which no cell-bounding curve vanishes: see locate_inside) meets no edge of its
+  // chart: the curves of the other edges whose certified boxes it meets do not vanish on it (in
+  // a 1-D space: no curve of the chart does).
+  bool on_no_edge(const PieceBox& box) {
+    if (impl_.dimension == 1 || !cspace::carried_bounds()) return clear_of_curves(box);
+    const ChartData& chart = impl_.charts[box.chart];
+    const cspace::algebra::Interval x{box.dx_lo, box.dx_hi}, y{box.dy_lo, box.dy_hi};
+    for (const Carrier& carrier : carriers(box.chart).inner) {
+      if (x.hi < carrier.box[0] || x.lo > carrier.box[2] || y.hi < carrier.box[1] || y.lo > carrier.box[3]) continue;
+      for (std::size_t k : carrier.curves) {
+        cspace::algebra::Interval value = chart.interval_polynomials[k].evaluate(x, y);
+        if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) return false;
+      }
+    }
+    return true;
+  }
+
+  // No curve of the box's chart (not only the cell-bounding ones) vanishes on it: the box lies
+  // in one face.
+  bool clear_of_curves(const PieceBox& box) const {
     cspace::algebra::Interval x{box.dx_lo, box.dx_hi}, y{box.dy_lo, box.dy_hi};
     if (!cspace::carried_bounds()) {
       x = {cspace::algebra::lower_double(box.x_lo.rational()), cspace::algebra::upper_double(box.x_hi.rational())};
@@ -1582,8 +1675,17 @@ class MotionScanner {
     }
     for (const auto& f : impl_.charts[box.chart].interval_polynomials) {
       cspace::algebra::Interval value = f.evaluate(x, y);
-      if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) return std::nullopt;
+      if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) return false;
     }
+    return true;
+  }
+
+  // A StartAnchor from the last stretch of a motion that stayed in the free cell `cell`: its one
+  // box, when no curve of the chart (not only the cell-bounding ones) vanishes on it.
+  std::optional<StartAnchor> anchor_from(const Evaluation& last, std::size_t cell) const {
+    if (!last.box_clear || last.boxes.size() != 1) return std::nullopt;
+    const PieceBox& box = last.boxes.front();
+    if (!clear_of_curves(box)) return std::nullopt;
     StartAnchor anchor;
     anchor.chart = box.chart;
     anchor.cell = cell;
@@ -2055,6 +2157,7 @@ class MotionScanner {
   using Clauses = ScanMemo::Clauses;
   std::shared_ptr<ScanMemo> memo_;
   std::vector<char> candidate_;   // exclude()'s scratch
+  std::vector<Possible> hull_possible_;   // locate_inside's
 };
 
 }  // namespace
@@ -2078,6 +2181,17 @@ class CrossingRun {
         owner(CSpaceAccess::shared(space)),
         scanner(impl, path, scan_memo_of(owner)),
         options(options) {}
+
+  // its start's box and the stretches it excluded are left as anchor boxes (finished or stopped)
+  ~CrossingRun() {
+    if (excluded_boxes.empty()) return;
+    try {
+      remember_anchor_boxes(excluded_boxes, owner);
+    } catch (...) {   // (memory) the boxes are an optimisation: none is left
+    }
+  }
+  CrossingRun(const CrossingRun&) = delete;
+  CrossingRun& operator=(const CrossingRun&) = delete;
 
   bool finished() const { return done; }
 
@@ -2205,7 +2319,7 @@ class CrossingRun {
         (path.x.kind == AxisPath::Kind::angle || (impl.dimension == 2 && path.y.kind == AxisPath::Kind::angle))) {
       MotionScanner::Evaluation quick = scanner.evaluate(path.u_begin, path.u_begin, true);
       if (!quick.too_wide && quick.covered && !quick.boxes.empty() && quick.possible.empty()) {
-        Location there = scanner.locate_inside(quick.boxes.front(), find_anchor(owner));
+        Location there = scanner.locate_inside(quick.boxes.front(), find_anchor(owner), find_anchor_boxes(owner));
         if (there.kind == Location::Kind::free || there.kind == Location::Kind::blocked) {
           ++cspace::filtered_starts();
           if (there.kind == Location::Kind::blocked) {
@@ -2219,6 +2333,7 @@ class CrossingRun {
           }
           where = there;
           located = true;
+          remember_start_box(quick.boxes.front(), there.cell);
         }
       }
     }
@@ -2233,7 +2348,7 @@ class CrossingRun {
         return b.x_lo == b.x_hi && b.y_lo == b.y_hi;
       });
       if (start.possible.empty() || point_exact) {
-        where = scanner.locate_inside(start.boxes.front(), find_anchor(owner));
+        where = scanner.locate_inside(start.boxes.front(), find_anchor(owner), find_anchor_boxes(owner));
       } else {
         // an irrational start within the resolution of a contact curve: in contact, conservatively
         result.status = CrossingStatus::starts_in_contact;
@@ -2250,8 +2365,14 @@ class CrossingRun {
         done = true;
         return;
       }
+      if (start.possible.empty()) remember_start_box(start.boxes.front(), where.cell);
     }
     result.cell_left = CellId(where.cell);
+  }
+
+  // a located free start's box, on which no cell-bounding curve vanishes: in the start cell
+  void remember_start_box(const PieceBox& box, std::size_t cell) {
+    if (cspace::anchor_boxes()) excluded_boxes.push_back(AnchorBox{box, cell});
   }
 
   // empty stretches dropped; at an empty stack the motion stays in its start cell to u_end
@@ -2397,6 +2518,9 @@ class CrossingRun {
       return;
     }
     if (at.possible.empty()) {
+      // in the start cell (the stretches before it excluded or certified free): an anchor box
+      if (cspace::anchor_boxes() && at.box_clear && at.boxes.size() == 1 && excluded_boxes.size() < 64)
+        excluded_boxes.push_back(AnchorBox{at.boxes.front(), result.cell_left.index()});
       if (b == path.u_end) last = std::move(at);
       return;
     }
@@ -2419,13 +2543,23 @@ class CrossingRun {
     Rational reach = b - a;
     Rational end_u = b;
     for (int attempt = 0; attempt < 24; ++attempt) {
-      MotionScanner::Evaluation end = scanner.evaluate(end_u, end_u);
-      if (!end.covered || end.boxes.empty()) break;
-      bool exact_point = std::all_of(end.boxes.begin(), end.boxes.end(), [](const PieceBox& box) {
-        return box.x_lo == box.x_hi && box.y_lo == box.y_hi;
-      });
-      if (exact_point || end.possible.empty()) {
-        Location there = scanner.locate_inside(end.boxes.front());
+      // the end through the double filter first (start_filter.hpp, end_filter): a location in a
+      // free or a blocked cell's face there is the 160-bit end's; otherwise the 160-bit end
+      std::optional<Location> location = filtered_end(end_u);
+      bool located = location.has_value();
+      if (!located) {
+        MotionScanner::Evaluation end = scanner.evaluate(end_u, end_u);
+        if (!end.covered || end.boxes.empty()) break;
+        bool exact_point = std::all_of(end.boxes.begin(), end.boxes.end(), [](const PieceBox& box) {
+          return box.x_lo == box.x_hi && box.y_lo == box.y_hi;
+        });
+        if (exact_point || end.possible.empty()) {
+          location = scanner.locate_inside(end.boxes.front());
+          located = true;
+        }
+      }
+      if (located) {
+        const Location& there = *location;
         if (there.kind != Location::Kind::free || there.cell != result.cell_left.index()) {
           left_start = true;
           result.u_upper = end_u;
@@ -2453,6 +2587,21 @@ class CrossingRun {
     done = true;
   }
 
+  // The location of the path's point at u through the double filter (end_filter, as the
+  // filtered start): set only where it lies in a free or a blocked cell's face, a box of the
+  // filtered pieces covered by the charts and free of every contact curve around it.
+  std::optional<Location> filtered_end(const Rational& u) {
+    if (!cspace::end_filter() ||
+        !(path.x.kind == AxisPath::Kind::angle || (impl.dimension == 2 && path.y.kind == AxisPath::Kind::angle)))
+      return std::nullopt;
+    MotionScanner::Evaluation quick = scanner.evaluate(u, u, true);
+    if (quick.too_wide || !quick.covered || quick.boxes.empty() || !quick.possible.empty()) return std::nullopt;
+    Location there = scanner.locate_inside(quick.boxes.front());
+    if (there.kind != Location::Kind::free && there.kind != Location::Kind::blocked) return std::nullopt;
+    ++cspace::filtered_ends();
+    return there;
+  }
+
   const Impl& impl;
   MotionPath path;
   std::shared_ptr<const Impl> owner;
@@ -2466,6 +2615,7 @@ class CrossingRun {
   Rational stretch_a, stretch_b;   // the stretch being evaluated (step())
   Rational skip_bound;              // free_before's product (kept: its limbs reused)
   std::optional<MotionScanner::Evaluation> last;   // the excluded stretch ending at u_end
+  std::vector<AnchorBox> excluded_boxes;           // the anchor boxes it leaves (its start's, its excluded stretches')
 };
 
 }  // namespace

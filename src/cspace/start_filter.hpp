@@ -23,6 +23,23 @@ inline bool& start_filter() { return thread_switch<StartFilterTag>(); }
 struct FilteredStartsTag;
 inline std::size_t& filtered_starts() { return thread_counter<FilteredStartsTag>(); }
 
+// The crossing's filtered ends (cspace_queries.cpp, CrossingRun::stretch): once a stretch within
+// the resolution may touch contact space, the query moves an end forward until it is certainly
+// outside the start cell, locating each end from its 160-bit pieces. With the filter, an end on a
+// rotating axis is first enclosed as the filtered start is (the stretches' double pieces widened
+// by one double: they hold the 160-bit pieces' box); where those boxes are covered, meet no
+// contact curve and their front midpoint lies in a free or a blocked cell's face, that location
+// is the end's (the box holds the end and meets no cell boundary, so the cell and its kind are
+// the 160-bit box's, and the 160-bit evaluation would also find no curve: its boxes lie inside,
+// and the interval enclosures are inclusion-monotone). Anything else falls back to the 160-bit
+// end, unchanged. On by default; tests switch it off per thread to compare
+// (CSpaceCrossingEndFilter.*).
+struct EndFilterTag;
+inline bool& end_filter() { return thread_switch<EndFilterTag>(); }
+// How many ends the filter located on this thread (tests).
+struct FilteredEndsTag;
+inline std::size_t& filtered_ends() { return thread_counter<FilteredEndsTag>(); }
+
 // certainly_blocked's walks (hipair/blocked_walk.hpp, cspace_queries.cpp): the simulator's
 // nudge trials inside the blocked cell they start in, certified by a chain of boxes on which no
 // contact curve vanishes instead of a point query each. On by default; tests switch it off per
