@@ -1486,12 +1486,15 @@ struct CurveGenerator::Data {
   std::vector<std::size_t> front_index_a, front_index_b;
   std::vector<FrontVertex> front_vertices_a, front_vertices_b;
   std::vector<FrontSegment> front_segments_a, front_segments_b;
+  std::uint64_t id = 0;   // this generator's number, unique in the process (FormedCurve::maker)
 };
 
 CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
     : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}, true, {}, {},
-                     formed_store(model, axes, options.cull_blocked_space), false, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}) {
+                     formed_store(model, axes, options.cull_blocked_space), false, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, 0}) {
   Data& d = *data_;
+  static std::atomic<std::uint64_t> generators{0};
+  d.id = ++generators;
   // labels only for the kept curves (feature_label): most feature pairs are never kept
   d.features_a = part_features(model, axes.first, &d.reflex_vertices_skipped, false);
   d.features_b = part_features(model, axes.second, &d.reflex_vertices_skipped, false);
@@ -1823,10 +1826,10 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
       auto found = d.formed->curves.find(key);
       if (found != d.formed->curves.end()) formed = found->second;
     }
-    if (formed && formed->maker != &d) ++*d.formed->reused;
+    if (formed && formed->maker != d.id) ++*d.formed->reused;
     if (!formed) {
       auto made = std::make_shared<Data::Formed>();
-      made->maker = &d;
+      made->maker = d.id;
       const BodyFeature& fa = features_a[ui];
       const BodyFeature& fb = features_b[uj];
       std::optional<kernels::ContactFunction<Polynomial>> kernel =

@@ -18,7 +18,7 @@ namespace hipair::cspace {
 struct FormedCurve {
   bool kept = false;
   ContactCurve curve;
-  const void* maker = nullptr;   ///< the generator that formed it (counts reuse by another)
+  std::uint64_t maker = 0;   ///< the number of the generator that formed it (counts reuse by another)
 };
 
 /// Formed curves keyed by (feature pair index << 2) | half-turn bits; thread safe through
