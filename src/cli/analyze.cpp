@@ -14,6 +14,7 @@
 #include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
+#include <hipair/shared_curves.hpp>
 
 #include <unistd.h>
 
@@ -281,6 +282,9 @@ int run_analyze(const AnalyzeOptions& options) {
     analysis.progress = [](double fraction) {
       std::cerr << "\ranalyze: " << static_cast<int>(fraction * 100) << "% " << std::flush;
     };
+  // the analysis's kernel slicers form each pair's contact curves; the C-space pictures below
+  // build the same pairs and take those curves instead of forming them again (same pictures)
+  SharedContactCurves shared_curves;
   std::vector<CSpace> spaces;
   if (analysis.method == SliceMethod::cspace) {
     CSpaceBuildOptions build;

@@ -1,5 +1,6 @@
 // Pair axes, chart layout and contact-curve generation for fixed-axis pairs.
 #include "curves/contact_curves.hpp"
+#include "curves/formed_store.hpp"
 
 #include "oracle/blocked_tester.hpp"
 #include "oracle/overlap.hpp"
@@ -1470,12 +1471,10 @@ struct CurveGenerator::Data {
   // one chart, and the charts of one kind, share it. Each pair's curve (or its absence:
   // nullopt) is formed once, kept here for the next tiles, under the mutex (generate() may run
   // on several threads). The key: pair index, then the two half-turn bits.
-  struct Formed {
-    bool kept = false;   // false: no curve (no contact kernel, a non-zero constant, never valid)
-    ContactCurve curve;
-  };
-  mutable std::mutex formed_mutex;
-  mutable std::unordered_map<std::uint64_t, std::shared_ptr<const Formed>> formed;
+  // (curves/formed_store.hpp; shared with other generators of an equal model and pair while a
+  // SharedContactCurves lives on the thread that made this one)
+  using Formed = FormedCurve;
+  std::shared_ptr<FormedStore> formed;
   // generate() takes the polygon front end (a translating polygon pair without the blocked-space
   // cull): the general path's feature geometry is not formed for it
   bool front_end = false;
@@ -1487,11 +1486,15 @@ struct CurveGenerator::Data {
   std::vector<std::size_t> front_index_a, front_index_b;
   std::vector<FrontVertex> front_vertices_a, front_vertices_b;
   std::vector<FrontSegment> front_segments_a, front_segments_b;
+  std::uint64_t id = 0;   // this generator's number, unique in the process (FormedCurve::maker)
 };
 
 CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
-    : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}, true, {}, {}, {}, {}, false, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}) {
+    : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}, true, {}, {},
+                     formed_store(model, axes, options.cull_blocked_space), false, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, 0}) {
   Data& d = *data_;
+  static std::atomic<std::uint64_t> generators{0};
+  d.id = ++generators;
   // labels only for the kept curves (feature_label): most feature pairs are never kept
   d.features_a = part_features(model, axes.first, &d.reflex_vertices_skipped, false);
   d.features_b = part_features(model, axes.second, &d.reflex_vertices_skipped, false);
@@ -1819,12 +1822,14 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
                               (x.half_turn ? 2u : 0u) | (y.half_turn ? 1u : 0u);
     std::shared_ptr<const Data::Formed> formed;
     {
-      std::lock_guard<std::mutex> lock(d.formed_mutex);
-      auto found = d.formed.find(key);
-      if (found != d.formed.end()) formed = found->second;
+      std::lock_guard<std::mutex> lock(d.formed->mutex);
+      auto found = d.formed->curves.find(key);
+      if (found != d.formed->curves.end()) formed = found->second;
     }
+    if (formed && formed->maker != d.id) ++*d.formed->reused;
     if (!formed) {
       auto made = std::make_shared<Data::Formed>();
+      made->maker = d.id;
       const BodyFeature& fa = features_a[ui];
       const BodyFeature& fb = features_b[uj];
       std::optional<kernels::ContactFunction<Polynomial>> kernel =
@@ -1850,8 +1855,8 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
           made->curve = ContactCurve{};   // nothing kept but the answer
         }
       }
-      std::lock_guard<std::mutex> lock(d.formed_mutex);
-      formed = d.formed.try_emplace(key, std::move(made)).first->second;
+      std::lock_guard<std::mutex> lock(d.formed->mutex);
+      formed = d.formed->curves.try_emplace(key, std::move(made)).first->second;
     }
     if (!formed->kept) continue;
     if (formed->curve.polynomial.is_zero()) {

@@ -1,11 +1,13 @@
 #include "render/cspace_svg.hpp"
 
 #include "io/svg.hpp"
+#include "render/edge_ordinates.hpp"
 
 #include <hipair/error.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -225,8 +227,24 @@ class Painter {
       auto [wb_x, wb_y] = world(chart, xb, yb);
       double length = std::hypot(wb_x - wa_x, wb_y - wa_y);
       int n = std::clamp(static_cast<int>(length / 3), 1, 24);
-      for (int i = 1; i < n; ++i) {
-        double x = xa + (xb - xa) * i / n;
+      std::vector<double> xs;
+      for (int i = 1; i < n; ++i) xs.push_back(xa + (xb - xa) * i / n);
+      // the ordinates in certified doubles where they decide every printed digit and every
+      // window test as the exact ordinate would (edge_ordinates.hpp), else exactly
+      std::optional<EdgeOrdinates> fast;
+      if (dimension_ == 2 && !xs.empty() && options_.certified_samples) fast.emplace(space_, edge_index, xs);
+      for (std::size_t i = 0; i < xs.size(); ++i) {
+        const double x = xs[i];
+        if (fast && i == xs.size() / 2 && fast->reference()) {
+          points.emplace_back(x, fast->reference()->value);
+          continue;
+        }
+        if (fast)
+          if (std::optional<DoubleRange> y = fast->enclose(x))
+            if (std::optional<double> drawn = drawn_ordinate(chart, *y)) {
+              points.emplace_back(x, *drawn);
+              continue;
+            }
         try {
           points.emplace_back(x, space_.evaluate(edge_index, x).value);
         } catch (const Error&) {
@@ -235,6 +253,26 @@ class Painter {
     }
     points.emplace_back(xb, yb);
     return samples_.emplace(edge_index, std::move(points)).first->second;
+  }
+
+  // A double inside a certified enclosure `y` of an edge's exact ordinate (chart coordinates)
+  // to draw instead of the exact path's (CSpace::evaluate: within 2^-55 max(1, |y|) plus a unit
+  // in the last place of the exact value), when every double that path could return prints
+  // the same drawing coordinate and lies on the same side of the plotted window's bottom and
+  // top: the drawing's y is monotone in the ordinate, so the picture is the same; nullopt when
+  // that is not certain (a rounding boundary or the window's edge inside the enclosure).
+  std::optional<double> drawn_ordinate(const CSpaceChart& chart, const DoubleRange& y) const {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    const double m = std::max({1.0, std::fabs(y.lo), std::fabs(y.hi)});
+    const double lo = std::nextafter(y.lo - m * 0x1p-50, -inf), hi = std::nextafter(y.hi + m * 0x1p-50, inf);
+    const double wlo = Y(display_y(chart, lo)), whi = Y(display_y(chart, hi));
+    if (!std::isfinite(wlo) || !std::isfinite(whi) || !(wlo <= whi)) return std::nullopt;
+    if (io::format_number(-wlo) != io::format_number(-whi)) return std::nullopt;
+    for (double bound : {0.0, plot_height_})
+      if ((wlo < bound) != (whi < bound) || (wlo > bound) != (whi > bound)) return std::nullopt;
+    const double middle = y.lo + (y.hi - y.lo) / 2;
+    if (!(middle >= y.lo && middle <= y.hi)) return std::nullopt;
+    return middle;
   }
 
   // A vertex's drawing coordinates (x approximated, vertex_y), computed once per vertex: the

@@ -47,6 +47,9 @@ struct CSpaceSvgOptions {
   /// Legend: feature pairs listed per kind of contact (0: the kinds only), and its text size.
   std::size_t legend_pairs_per_kind = 3;
   double legend_text_size = 6;
+  /// Edge samples from certified double enclosures where they give the same drawing as the
+  /// exact ordinates (render/edge_ordinates.hpp); false: every sample exact (tests compare).
+  bool certified_samples = true;
 };
 
 /// The SVG document of the C-space.
