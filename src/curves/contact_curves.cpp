@@ -670,6 +670,13 @@ WorldBox world_box(const PoseBox& pose, const Interval& x, const Interval& y, do
 // disks of the parts (`cores`) certainly overlapping in all of the cell (midpoint cells to
 // depth 10).
 class BlockedSpaceCuller {
+  // Two cores (one of each part) that may overlap somewhere in a cell, with the square of
+  // their reach (the sum of their radii).
+  struct CorePair {
+    int i, j;
+    Interval reach2;
+  };
+
  public:
   // The two parts' motions (part_motion) built in place, the disks and cores read where they
   // are (they outlive the culler): nothing copied.
@@ -698,6 +705,8 @@ class BlockedSpaceCuller {
         if (slot < 0) slot = static_cast<int>(slots_[side]++);
       }
     }
+    // every depth's lists made before the walk: a child reads its parent's lists by reference
+    scratch_.resize(static_cast<std::size_t>(grid_ ? std::max(grid_->depth(), min_grid_depth) : max_depth) + 1);
     if (grid_) {
       visit(grid_cell_x(0, 0), grid_cell_y(0, 0), 0, 0, 0, indices, {});
       return;
@@ -705,7 +714,7 @@ class BlockedSpaceCuller {
     Interval cx(algebra::enclose_kernel(x_.lo).lo, algebra::enclose_kernel(x_.hi).hi);
     Interval cy = dimension_ == 2 ? Interval(algebra::enclose_kernel(y_.lo).lo, algebra::enclose_kernel(y_.hi).hi)
                                   : Interval(0);
-    std::vector<std::pair<int, int>> core_pairs = near_core_pairs(cx, cy);
+    std::vector<CorePair> core_pairs = near_core_pairs(cx, cy);
     visit(cx, cy, 0, 0, 0, indices, core_pairs);
   }
 
@@ -724,7 +733,7 @@ class BlockedSpaceCuller {
   // Core pairs whose posed disks can overlap somewhere in the root cell: sweep and prune on
   // the x extents of the posed cores grown by their radii (the pairs left out are apart over
   // the whole cell, so they can neither certify it blocked nor be near in a sub-cell).
-  std::vector<std::pair<int, int>> near_core_pairs(const Interval& cx, const Interval& cy) const {
+  std::vector<CorePair> near_core_pairs(const Interval& cx, const Interval& cy) const {
     auto [pa, pb] = poses(cx, cy);
     struct Extent {
       double x_lo, x_hi, y_lo, y_hi;
@@ -763,12 +772,21 @@ class BlockedSpaceCuller {
       active[side].push_back(&box);
     }
     std::sort(result.begin(), result.end());
-    return result;
+    // each pair's reach (the sum of the radii) squared, once: every cell compares with it
+    std::vector<CorePair> pairs;
+    pairs.reserve(result.size());
+    for (const auto& [ci, cj] : result) {
+      double ra = (*cores_[0])[static_cast<std::size_t>(ci)].radius, rb = (*cores_[1])[static_cast<std::size_t>(cj)].radius;
+      Interval reach = Interval(ra, ra) + Interval(rb, rb);
+      pairs.push_back(CorePair{ci, cj, reach * reach});
+    }
+    return pairs;
   }
 
   // World boxes of one part's features and core centres over one interval of its axis,
   // computed once per interval and shared by all cells using it.
   struct AxisCache {
+    PoseBox pose;   // the part's pose over the interval
     // (not value-initialised: a box is read only after box_done marks it computed)
     std::unique_ptr<WorldBox[]> boxes;
     std::vector<char> box_done;
@@ -776,10 +794,14 @@ class BlockedSpaceCuller {
     std::vector<char> core_done;
   };
 
+  // The cache of one part's axis interval (a fixed part: the constant key 0), its pose computed
+  // with it (a pose is a function of the part's motion, its axis' half-turn flag and the interval).
   AxisCache& cache_for(int side, const Interval& interval) {
     auto& caches = caches_[side];
     auto [it, inserted] = caches.try_emplace({interval.lo, interval.hi});
     if (inserted) {
+      const bool first_moves = motion_[0].kind != MotionKind::fixed;
+      it->second.pose = pose_over(motion_[side], side == 0 || !first_moves ? x_.half_turn : y_.half_turn, interval);
       it->second.boxes.reset(new WorldBox[slots_[side]]);
       it->second.box_done.assign(slots_[side], 0);
       it->second.core_x.resize(cores_[side]->size());
@@ -798,44 +820,59 @@ class BlockedSpaceCuller {
     return Interval(c.lo, c.hi);
   }
 
+  enum class CoreRelation { overlapping, near, apart };
+
+  // Two cores over the cell of the two axis caches: certainly overlapping everywhere in it,
+  // possibly overlapping somewhere (near), or apart everywhere. The posed centres are memoised
+  // in the caches.
+  CoreRelation core_relation(const CorePair& pair, AxisCache& cache_a, AxisCache& cache_b) const {
+    auto ui = static_cast<std::size_t>(pair.i), uj = static_cast<std::size_t>(pair.j);
+    if (!cache_a.core_done[ui]) {
+      cache_a.pose.apply((*cores_[0])[ui].x, (*cores_[0])[ui].y, cache_a.core_x[ui], cache_a.core_y[ui]);
+      cache_a.core_done[ui] = 1;
+    }
+    if (!cache_b.core_done[uj]) {
+      cache_b.pose.apply((*cores_[1])[uj].x, (*cores_[1])[uj].y, cache_b.core_x[uj], cache_b.core_y[uj]);
+      cache_b.core_done[uj] = 1;
+    }
+    Interval dx = cache_a.core_x[ui] - cache_b.core_x[uj];
+    Interval dy = cache_a.core_y[ui] - cache_b.core_y[uj];
+    Interval distance2 = dx * dx + dy * dy;
+    if (distance2.hi < pair.reach2.lo) return CoreRelation::overlapping;
+    return distance2.lo < pair.reach2.hi ? CoreRelation::near : CoreRelation::apart;
+  }
+
   void visit(const Interval& cx, const Interval& cy, int depth, long i, long j, const std::vector<int>& candidates,
-             const std::vector<std::pair<int, int>>& core_pairs) {
+             const std::vector<CorePair>& core_pairs) {
     ++cells_;
+    // this depth's lists (the children's are the next depth's: nothing is allocated per cell)
+    Scratch& scratch = scratch_.at(static_cast<std::size_t>(depth));
     // Pairs already kept need no further exploration.
-    std::vector<int> open;
+    std::vector<int>& open = scratch.open;
+    open.clear();
     for (int k : candidates)
       if (!(*needed_)[static_cast<std::size_t>(k)]) open.push_back(k);
     if (open.empty()) return;
-    auto [pa, pb] = poses(cx, cy);
     bool first_moves = motion_[0].kind != MotionKind::fixed;
     // the interval each part's pose depends on (a fixed part: a constant key)
     Interval key_a = first_moves ? cx : Interval(0);
     Interval key_b = motion_[1].kind == MotionKind::fixed ? Interval(0) : (first_moves ? cy : cx);
     AxisCache& cache_a = cache_for(0, key_a);
     AxisCache& cache_b = cache_for(1, key_b);
+    const PoseBox& pa = cache_a.pose;
+    const PoseBox& pb = cache_b.pose;
     // Blocked: some pair of inscribed disks certainly overlaps everywhere in the cell.
-    std::vector<std::pair<int, int>> near_cores;
-    for (const auto& [ci, cj] : core_pairs) {
-      auto ui = static_cast<std::size_t>(ci), uj = static_cast<std::size_t>(cj);
-      if (!cache_a.core_done[ui]) {
-        pa.apply((*cores_[0])[ui].x, (*cores_[0])[ui].y, cache_a.core_x[ui], cache_a.core_y[ui]);
-        cache_a.core_done[ui] = 1;
-      }
-      if (!cache_b.core_done[uj]) {
-        pb.apply((*cores_[1])[uj].x, (*cores_[1])[uj].y, cache_b.core_x[uj], cache_b.core_y[uj]);
-        cache_b.core_done[uj] = 1;
-      }
-      Interval dx = cache_a.core_x[ui] - cache_b.core_x[uj];
-      Interval dy = cache_a.core_y[ui] - cache_b.core_y[uj];
-      Interval distance2 = dx * dx + dy * dy;
-      double ra = (*cores_[0])[ui].radius, rb = (*cores_[1])[uj].radius;
-      Interval reach = Interval(ra, ra) + Interval(rb, rb);
-      Interval reach2 = reach * reach;
-      if (distance2.hi < reach2.lo) return;  // blocked everywhere in the cell
-      if (distance2.lo < reach2.hi) near_cores.emplace_back(ci, cj);
+    const bool leaf = depth >= (grid_ ? std::max(grid_->depth(), min_grid_depth) : max_depth);
+    std::vector<CorePair>& near_cores = scratch.near_cores;
+    near_cores.clear();
+    for (const CorePair& pair : core_pairs) {
+      const CoreRelation relation = core_relation(pair, cache_a, cache_b);
+      if (relation == CoreRelation::overlapping) return;   // blocked everywhere in the cell
+      if (relation == CoreRelation::near && !leaf) near_cores.push_back(pair);   // (a leaf has no children)
     }
     // Candidate pairs whose features can meet in the cell.
-    std::vector<int> meeting;
+    std::vector<int>& meeting = scratch.meeting;
+    meeting.clear();
     for (int k : open) {
       auto [i, j] = (*pairs_)[static_cast<std::size_t>(k)];
       auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
@@ -855,7 +892,7 @@ class BlockedSpaceCuller {
     if (meeting.empty()) return;
     // the grid's blocked test (memoised, shared with the builder) after the cheap box tests
     if (grid_ && depth >= 2 && grid_->blocked(depth, i, j)) return;
-    if (depth >= (grid_ ? std::max(grid_->depth(), min_grid_depth) : max_depth)) {
+    if (leaf) {
       for (int k : meeting) (*needed_)[static_cast<std::size_t>(k)] = 1;
       return;
     }
@@ -902,6 +939,13 @@ class BlockedSpaceCuller {
   std::size_t cells_ = 0;
   std::map<std::pair<double, double>, AxisCache> caches_[2];
   BlockedCells* grid_ = nullptr;
+  // per depth of the quadtree: the open and meeting candidate pairs and the near core pairs of
+  // the cell being visited there
+  struct Scratch {
+    std::vector<int> open, meeting;
+    std::vector<CorePair> near_cores;
+  };
+  std::vector<Scratch> scratch_;
 };
 
 // ============================================================================ exact kernels

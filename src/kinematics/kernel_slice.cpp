@@ -235,7 +235,12 @@ class KernelSlicer final : public PairSlicer {
   // generator runs per chart pair. Per strip, the generator's blocked-space cull works on the
   // strip's box; the follower cells each curve may vanish in are those of the whole chart's
   // cull (the same leaf tests).
-  void generate_strip(ChartPair& chart, std::size_t o, std::size_t f, int cell) const {
+  //
+  // A value on the border of two cells needs both (`last` = cell + 1): when the strip laid out
+  // for `cell` stops at that border and the next cell is not generated either, the strip takes
+  // it too — one generator run instead of two (the second strip would be that one cell), and
+  // the width doubles twice, so the strips laid out after it are those of two runs.
+  void generate_strip(ChartPair& chart, std::size_t o, std::size_t f, int cell, int last) const {
     auto result = std::make_unique<Strip>();
     if (!other_moves_ || !options_.strips) {
       result->first_cell = 0;
@@ -253,9 +258,13 @@ class KernelSlicer final : public PairSlicer {
           first = c;
           break;
         }
+      chart.next_width = std::min(cull_cells, 2 * chart.next_width);
+      if (last == end && last < cull_cells && chart.strip_of_cell[static_cast<std::size_t>(last)] < 0) {
+        end = last + 1;
+        chart.next_width = std::min(cull_cells, 2 * chart.next_width);
+      }
       result->first_cell = first;
       result->width = end - first;
-      chart.next_width = std::min(cull_cells, 2 * chart.next_width);
     }
     ChartAxis strip_axis = other_moves_ ? other_charts_[o] : chart.y_axis;
     if (other_moves_ && result->width < cull_cells) {
@@ -365,7 +374,7 @@ class KernelSlicer final : public PairSlicer {
       slot = std::move(chart);
     }
     for (std::size_t c = cell_lo; c <= cell_hi; ++c)
-      if (slot->strip_of_cell[c] < 0) generate_strip(*slot, o, f, static_cast<int>(c));
+      if (slot->strip_of_cell[c] < 0) generate_strip(*slot, o, f, static_cast<int>(c), static_cast<int>(cell_hi));
     return *slot;
   }
 

@@ -154,6 +154,73 @@ INSTANTIATE_TEST_SUITE_P(Examples, KernelSlicerStrips,
                            return name;
                          });
 
+// A value on the border of two cells, sliced first (a chart's first strip, or next to one): the
+// slicer generates one strip holding both cells instead of a strip per cell (session 33). Fresh
+// strip slicers at generated border values — then at values inside the two cells and beyond,
+// whose strips are laid out after the merged one — against the whole-chart slices.
+void border_first_slices(const Model& model, std::size_t pair, std::size_t follower, int borders, std::uint64_t seed,
+                         const std::string& name, std::size_t& compared_points) {
+  std::mt19937_64 random(seed);
+  std::unique_ptr<PairSlicer> whole;
+  try {
+    whole = make_kernel_slicer(model, pair, follower, KernelSlicerOptions{false});
+  } catch (const GeometryError&) {
+    return;   // a fixed follower, or not a fixed-axis pair
+  }
+  if (!whole->other_moves()) return;
+  for (std::size_t o = 0; o < whole->other_charts().size(); ++o)
+    for (std::size_t f = 0; f < whole->follower_charts().size(); ++f)
+      for (int k = 0; k < borders; ++k) {
+        const ChartAxis& axis = whole->other_charts()[o];
+        // a border inside the chart (1..63), the first and last among them
+        const int cell = k == 0 ? 1 : k == 1 ? 63 : 1 + static_cast<int>(random() % 63);
+        auto at = [&](const Rational& cells) { return Rational(axis.lo + (axis.hi - axis.lo) * cells / 64); };
+        auto strips = make_kernel_slicer(model, pair, follower, KernelSlicerOptions{true});
+        // the border first, then inside the cells on both sides, then a cell further on
+        // each side, a window on some
+        std::vector<Rational> values{at(Rational(cell)), at(Rational(2 * cell - 1, 2)), at(Rational(2 * cell + 1, 2)),
+                                     at(Rational(std::max(0, cell - 3))), at(Rational(std::min(64, cell + 3))),
+                                     at(Rational(cell + 1))};
+        for (std::size_t v = 0; v < values.size(); ++v) {
+          std::optional<ChartWindow> window;
+          if (v % 3 == 2) {
+            Rational a = chart_value(whole->follower_charts()[f], random, 7),
+                     b = chart_value(whole->follower_charts()[f], random, 7);
+            window = ChartWindow{std::min(a, b), std::max(a, b)};
+          }
+          ChartSlice a = whole->slice(o, values[v], f, window ? &*window : nullptr);
+          ChartSlice b = strips->slice(o, values[v], f, window ? &*window : nullptr);
+          expect_same(a, b, *whole, *strips,
+                      name + " pair " + std::to_string(pair) + " follower " + std::to_string(follower) + " charts " +
+                          std::to_string(o) + "," + std::to_string(f) + " border " + std::to_string(cell) + " at " +
+                          values[v].get_str());
+          compared_points += a.points.size();
+        }
+      }
+}
+
+TEST_P(KernelSlicerStrips, BorderValueSlicedFirstSameSlicesAsTheWholeChartPairs) {
+  Model model = read_model_file(GetParam().data ? std::filesystem::path(HIPAIR_TEST_DATA) / GetParam().file
+                                                : example(GetParam().file));
+  std::size_t compared_points = 0;
+  for (std::size_t pair = 0; pair < model.pairs.size(); ++pair)
+    for (std::size_t follower : {model.pairs[pair].first, model.pairs[pair].second})
+      border_first_slices(model, pair, follower, std::max(3, GetParam().values / 10), 20261201 + pair, GetParam().file,
+                          compared_points);
+  SUCCEED() << compared_points << " points compared";
+}
+
+TEST(KernelSlicerStrips, SmallGearPairBorderValueSlicedFirst) {
+  ReadOptions read;
+  read.parameter_values["teeth-1"] = Rational(8);
+  read.parameter_values["teeth-2"] = Rational(12);
+  read.allow_out_of_tolerance = true;
+  Model model = read_model_file(example("spur-gears.json"), read);
+  std::size_t compared_points = 0;
+  border_first_slices(model, 0, model.pairs[0].second, 4, 33, "gears 8x12", compared_points);
+  EXPECT_GT(compared_points, 0u);
+}
+
 // A small spur-gear pair (the example's profile with 8 x 12 teeth): every strip of the pinion's
 // charts is visited by a sweep of slices, the case the analysis of gears meets.
 TEST(KernelSlicerStrips, SmallGearPairSameSlicesAsTheWholeChartPairs) {
