@@ -17,6 +17,8 @@
 // 2-D space.
 #include "curves/algebraic_overlap.hpp"
 #include "curves/contact_curves.hpp"
+#include "polygon_loop_json.hpp"
+#include "random_rationals.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
@@ -34,28 +36,17 @@ namespace {
 using Random = std::mt19937_64;
 using algebra_Real = cspace::algebra::Real;
 
-Rational random_rational(Random& random, const Rational& lo, const Rational& hi, long den = 97) {
-  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
-  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
-  Rational u(p, q);
-  u.canonicalize();
-  Rational value = lo + u * (hi - lo);
-  value.canonicalize();
-  return value;
-}
-
-std::string text(const Rational& r) { return "\"" + r.get_str() + "\""; }
+using test_loops::text;
+using test_numbers::random_rational;
 
 struct XY {
   Rational x, y;
 };
 
 std::string loop(const std::vector<XY>& points, const Rational& scale) {
-  auto p = [&](const XY& q) { return "[" + text(q.x * scale) + ", " + text(q.y * scale) + "]"; };
-  std::string out = "{ \"start\": " + p(points[0]) + ", \"edges\": [ ";
-  for (std::size_t i = 1; i <= points.size(); ++i)
-    out += std::string(i > 1 ? ", " : "") + "{ \"line_to\": " + p(points[i % points.size()]) + " }";
-  return out + " ] }";
+  test_loops::Points scaled;
+  for (const XY& q : points) scaled.emplace_back(q.x * scale, q.y * scale);
+  return test_loops::loop_json(scaled);
 }
 
 // The lever in the slot (see the file comment); `frame_motion` is the frame's motion JSON.
