@@ -768,6 +768,14 @@ for budget in 0 -1 nan 1e10 1000000001 x; do
 done
 "$hipair" simulate "$bar" --t-end 0.05 --max-steps 100000 --no-pictures --out "$work/max-steps-ok" >/dev/null 2>&1 \
   || fail "simulate with a sufficient --max-steps fails"
+# a model "file" without end (/dev/zero) is refused after 256 MiB, one line (it was read until
+# memory ran out)
+if [ -r /dev/zero ]; then
+  timeout 120 "$hipair" validate /dev/zero >/dev/null 2>"$work/dev-zero.err"; code=$?
+  { [ $code -ne 0 ] && [ $code -lt 124 ]; } || fail "validate /dev/zero: exit $code"
+  [ "$(wc -l <"$work/dev-zero.err")" -eq 1 ] && grep -q "it is larger than 256 MiB" "$work/dev-zero.err" \
+    || fail "validate /dev/zero: $(head -c 300 "$work/dev-zero.err")"
+fi
 # certify --claim jam: a search of more than 10^7 driver steps is refused at once (--step 1e-300
 # searched 6e300 steps, without end), and a positive step in degrees that rounds to 0 rad says so
 lever_stop="$source/examples/models/lever-stop.json"
