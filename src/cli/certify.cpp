@@ -226,8 +226,31 @@ int run(const CertifyArguments& arguments) {
                                                : value_of(arguments.step, rotates(driver), "--step");
         Rational travel = arguments.travel.empty() ? Rational(rotates(driver) ? Rational(6283, 1000) : Rational(100))
                                                    : value_of(arguments.travel, rotates(driver), "--travel");
-        if (sgn(step) <= 0) throw ModelError("", "--step " + arguments.step + ": the step must be positive");
-        if (sgn(travel) <= 0) throw ModelError("", "--travel " + arguments.travel + ": the travel must be positive");
+        // (a positive angle in degrees can round to 0 on the 10^-18 rad grid degrees are taken to)
+        auto rounded = [&](const std::string& text) {
+          return rotates(driver) && sgn(parse_angle_literal(text, true, "").value) > 0
+                     ? std::string(" (it rounds to 0 rad on the 10^-18 rad grid of angles given in degrees)")
+                     : std::string();
+        };
+        if (sgn(step) <= 0) throw ModelError("", "--step " + arguments.step + ": the step must be positive" + rounded(arguments.step));
+        if (sgn(travel) <= 0)
+          throw ModelError("", "--travel " + arguments.travel + ": the travel must be positive" + rounded(arguments.travel));
+        // the search takes up to travel / step driver steps (about 50 us each): more than 10^7 is
+        // refused at once (session 33: `--step 1e-300` searched 6e300 steps, without end)
+        const Rational search_steps = travel / step;
+        if (search_steps > 10000000) {
+          auto shown = [](const Rational& r) {
+            const double d = r.get_d();
+            if (!std::isfinite(d)) return std::string("more than 1e308");
+            std::ostringstream out;
+            out << std::setprecision(6) << d;
+            return out.str();
+          };
+          throw ModelError("", "--step " + (arguments.step.empty() ? step.get_str() : arguments.step) +
+                                   ": the jam search takes up to travel / step = " + shown(search_steps) +
+                                   " driver steps, more than 10000000: give a --step of at least " +
+                                   shown(Rational(travel / 10000000)) + " or a shorter --travel");
+        }
         query = find_jam(model, first, second, driver.name, start, follower, direction, step, travel);
         if (!query) {
           std::cerr << "hipair: cannot certify: no jam found: the motion was not blocked within the travel\n";

@@ -7,6 +7,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <array>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -124,15 +125,22 @@ void write_file_atomically(const std::filesystem::path& path, const std::functio
   }
 }
 
-std::string read_file(const std::filesystem::path& path) {
+std::string read_file(const std::filesystem::path& path, std::size_t most_bytes) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw IoError("cannot read '" + path.string() + "': it is a directory");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError("cannot read '" + path.string() + "': " + std::strerror(errno));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
+  std::string text;
+  std::array<char, 65536> chunk{};
+  do {
+    in.read(chunk.data(), chunk.size());
+    text.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
+    if (text.size() > most_bytes)
+      throw IoError("cannot read '" + path.string() + "': it is larger than " + std::to_string(most_bytes) + " bytes");
+  } while (in);
+  if (in.bad()) throw IoError("cannot read '" + path.string() + "': " + std::strerror(errno));
+  return text;
 }
 
 }  // namespace hipair::io

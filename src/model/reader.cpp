@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace hipair {
 namespace model_detail {
@@ -248,10 +250,19 @@ Model read_model_file(const std::filesystem::path& path, const ReadOptions& opti
     throw IoError("cannot read model file '" + path.string() + "': it is a directory");
   std::ifstream file(path, std::ios::binary);
   if (!file) throw IoError("cannot open model file '" + path.string() + "'");
-  std::ostringstream content;
-  content << file.rdbuf();
+  // read in blocks, at most 256 MiB: a device or pipe without end (/dev/zero) is refused instead
+  // of read until memory runs out (session 33: `hipair cspace /dev/zero` hung)
+  constexpr std::size_t most_bytes = std::size_t{256} << 20;
+  std::string content;
+  std::vector<char> block(std::size_t{1} << 20);
+  while (file) {
+    file.read(block.data(), static_cast<std::streamsize>(block.size()));
+    content.append(block.data(), static_cast<std::size_t>(file.gcount()));
+    if (content.size() > most_bytes)
+      throw IoError("cannot read model file '" + path.string() + "': it is larger than 256 MiB");
+  }
   if (file.bad()) throw IoError("cannot read model file '" + path.string() + "'");
-  return read_model(content.str(), path.string(), options);
+  return read_model(content, path.string(), options);
 }
 
 }  // namespace hipair

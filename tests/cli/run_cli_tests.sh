@@ -768,6 +768,24 @@ for budget in 0 -1 nan 1e10 1000000001 x; do
 done
 "$hipair" simulate "$bar" --t-end 0.05 --max-steps 100000 --no-pictures --out "$work/max-steps-ok" >/dev/null 2>&1 \
   || fail "simulate with a sufficient --max-steps fails"
+# a model "file" without end (/dev/zero) is refused after 256 MiB, one line (it was read until
+# memory ran out)
+if [ -r /dev/zero ]; then
+  timeout 120 "$hipair" validate /dev/zero >/dev/null 2>"$work/dev-zero.err"; code=$?
+  { [ $code -ne 0 ] && [ $code -lt 124 ]; } || fail "validate /dev/zero: exit $code"
+  [ "$(wc -l <"$work/dev-zero.err")" -eq 1 ] && grep -q "it is larger than 256 MiB" "$work/dev-zero.err" \
+    || fail "validate /dev/zero: $(head -c 300 "$work/dev-zero.err")"
+fi
+# certify --claim jam: a search of more than 10^7 driver steps is refused at once (--step 1e-300
+# searched 6e300 steps, without end), and a positive step in degrees that rounds to 0 rad says so
+lever_stop="$source/examples/models/lever-stop.json"
+refused jam-step-tiny "--step 1e-300: the jam search takes up to travel / step = 6.283e+300 driver steps, more than 10000000: give a --step of at least 6.283e-07" \
+  certify "$lever_stop" --claim jam --step 1e-300
+refused jam-step-huge-count "more than 1e308 driver steps" certify "$lever_stop" --claim jam --step 1e-400
+refused jam-step-deg-zero "--step 1e-300deg: the step must be positive (it rounds to 0 rad on the 10^-18 rad grid" \
+  certify "$lever_stop" --claim jam --step 1e-300deg
+refused jam-travel-deg-zero "--travel 1e-300deg: the travel must be positive (it rounds to 0 rad" \
+  certify "$lever_stop" --claim jam --travel 1e-300deg
 # tolerance --range A:B: A below B (1:0 ran backwards silently), the range not one driver position
 # (1e-300:2e-300 said "the driver range is empty"), and the option values checked before the analysis
 refused tol-range-reversed "--range 1:0: A must be below B" tolerance "$geneva" --range 1:0 --quiet

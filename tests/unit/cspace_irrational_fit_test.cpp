@@ -17,6 +17,8 @@
 // 2-D space.
 #include "curves/algebraic_overlap.hpp"
 #include "curves/contact_curves.hpp"
+#include "polygon_loop_json.hpp"
+#include "random_rationals.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
@@ -34,28 +36,17 @@ namespace {
 using Random = std::mt19937_64;
 using algebra_Real = cspace::algebra::Real;
 
-Rational random_rational(Random& random, const Rational& lo, const Rational& hi, long den = 97) {
-  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
-  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
-  Rational u(p, q);
-  u.canonicalize();
-  Rational value = lo + u * (hi - lo);
-  value.canonicalize();
-  return value;
-}
-
-std::string text(const Rational& r) { return "\"" + r.get_str() + "\""; }
+using test_loops::text;
+using test_numbers::random_rational;
 
 struct XY {
   Rational x, y;
 };
 
 std::string loop(const std::vector<XY>& points, const Rational& scale) {
-  auto p = [&](const XY& q) { return "[" + text(q.x * scale) + ", " + text(q.y * scale) + "]"; };
-  std::string out = "{ \"start\": " + p(points[0]) + ", \"edges\": [ ";
-  for (std::size_t i = 1; i <= points.size(); ++i)
-    out += std::string(i > 1 ? ", " : "") + "{ \"line_to\": " + p(points[i % points.size()]) + " }";
-  return out + " ] }";
+  test_loops::Points scaled;
+  for (const XY& q : points) scaled.emplace_back(q.x * scale, q.y * scale);
+  return test_loops::loop_json(scaled);
 }
 
 // The lever in the slot (see the file comment); `frame_motion` is the frame's motion JSON.
@@ -269,6 +260,53 @@ TEST(IrrationalFit, LeverBetweenTwoWallsIsDecidedExactly) {
   EXPECT_GE(instances, 24);
   EXPECT_GE(decided_touching, 12);
   EXPECT_GE(decided_overlapping, 12);
+}
+
+// The sliding frame as the pair's first part: its offset is the chart's x, the lever's t its y,
+// so t = t* is a horizontal edge whose points have a rational abscissa and the irrational
+// ordinate t* (the algebraic oracle with y algebraic): touching without the notch, overlapping
+// (or culled) with it; nothing undecided.
+TEST(IrrationalFit, FrameFirstGivesHorizontalFitEdges) {
+  Random random(3333);
+  int edges_checked = 0;
+  for (int instance = 0; instance < 12; ++instance) {
+    Rational delta = random_rational(random, Rational(1, 100), Rational(1, 2), 997);
+    const std::vector<mpz_class> m = fit_polynomial(delta);
+    if (is_square(m[1] * m[1] - 4 * m[0] * m[2])) continue;
+    const Rational w = random_rational(random, Rational(1, 4), Rational(3, 2));
+    const Rational scale = scale_of(instance, random);
+    const bool notch = instance % 2 == 1;
+    SCOPED_TRACE("instance " + std::to_string(instance) + " delta " + delta.get_str() + (notch ? " notched" : ""));
+    Model model = read_model(lever_model(delta, w, scale, notch, sliding(scale)));
+    CSpace space = CSpace::build(model, "frame", "lever");
+    ASSERT_EQ(space.dimension(), 2);
+    PairFrame f = pair_frame(model, space);
+    EXPECT_EQ(space.statistics().touching_undecided, 0u);
+    std::vector<algebra_Real> ts = cspace::algebra::real_roots(m, Rational(0), Rational(1, 2));
+    ASSERT_EQ(ts.size(), 1u);
+    const double t_star = ts[0].approximate();
+    const std::size_t n = f.layout.y_charts.size();
+    std::size_t chart = 0;
+    while (chart < f.layout.x_charts.size() * n && f.layout.y_charts[chart % n].half_turn) ++chart;
+    auto near_t_star = [&](const CSpaceVertex& v) {
+      return !f.layout.y_charts[v.chart % n].half_turn && std::abs(Rational(v.y_lower + v.y_upper).get_d() / 2 - t_star) < 1e-9;
+    };
+    for (const CSpaceEdge& edge : space.edges()) {
+      if (edge.vertical || edge.role == EdgeRole::seam || !near_t_star(space.vertices()[edge.source]) ||
+          !near_t_star(space.vertices()[edge.target]))
+        continue;
+      ++edges_checked;
+      EXPECT_EQ(edge.role == EdgeRole::touching, !notch);
+    }
+    auto direct = algebraic_oracle(model, f, chart, algebra_Real::from_rational(Rational(0)), ts[0]);
+    ASSERT_TRUE(direct.has_value());
+    EXPECT_EQ(*direct, notch ? cspace::Overlap::overlapping : cspace::Overlap::touching);
+    algebra_Real t = ts[0];
+    t.refine_to(Rational(mpz_class(1), mpz_class(1) << 100));
+    for (const Rational& side : {t.lower, t.upper})
+      EXPECT_EQ(rational_oracle(model, f, chart, Rational(0), side), cspace::Overlap::overlapping);
+  }
+  EXPECT_GE(edges_checked, 4);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // Generated integers and rationals for the tests of the machine-number fast cases
-// (cspace_segment_stage_test.cpp, near_quotient_test.cpp).
+// (cspace_segment_stage_test.cpp, near_quotient_test.cpp) and random rationals in a range
+// (cspace_irrational_fit_test.cpp).
 #pragma once
 
 #include <hipair/rational.hpp>
@@ -21,6 +22,15 @@ inline Rational canonical(const mpz_class& num, const mpz_class& den) {
   Rational q(num, den);
   q.canonicalize();
   return q;
+}
+
+// A random rational in [lo, hi] with a denominator up to `den` (not a decimal in general).
+inline Rational random_rational(std::mt19937_64& random, const Rational& lo, const Rational& hi, long den = 97) {
+  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
+  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
+  Rational value = lo + canonical(p, q) * (hi - lo);
+  value.canonicalize();
+  return value;
 }
 
 }  // namespace hipair::test_numbers
