@@ -1327,7 +1327,7 @@ AnchorBoxes* find_anchor_boxes(const std::shared_ptr<const CSpace::Impl>& owner)
   return nullptr;
 }
 
-void remember_anchor_boxes(const std::vector<AnchorBox>& boxes, const std::shared_ptr<const CSpace::Impl>& owner) {
+void remember_anchor_boxes(std::vector<AnchorBox>& boxes, const std::shared_ptr<const CSpace::Impl>& owner) {
   AnchorBoxes* entry = find_anchor_boxes(owner);
   if (!entry) {
     std::vector<AnchorBoxes>& list = anchor_box_list();
@@ -1336,9 +1336,13 @@ void remember_anchor_boxes(const std::vector<AnchorBox>& boxes, const std::share
     list.push_back(AnchorBoxes{owner, {}});
     entry = &list.back();
   }
+  // the 16 most recent, moved in (the older ones dropped first)
   std::vector<AnchorBox>& kept = entry->boxes;
-  kept.insert(kept.end(), boxes.begin(), boxes.end());
-  if (kept.size() > 16) kept.erase(kept.begin(), kept.end() - 16);
+  const std::size_t take = std::min<std::size_t>(boxes.size(), 16);
+  const std::size_t keep = std::min(kept.size(), 16 - take);
+  kept.erase(kept.begin(), kept.end() - static_cast<std::ptrdiff_t>(keep));
+  kept.insert(kept.end(), std::make_move_iterator(boxes.end() - static_cast<std::ptrdiff_t>(take)),
+              std::make_move_iterator(boxes.end()));
 }
 
 // The scanner's data derived from the space alone, filled on first use: per chart (sized by
@@ -1629,13 +1633,16 @@ class MotionScanner {
             (impl_.dimension == 2 && !near(box.dy_lo, box.dy_hi, b.dy_lo, b.dy_hi, chart_box[3] - chart_box[2])))
           continue;
         ++tried;
-        PieceBox hull{box.chart,
-                      compare(b.x_lo, box.x_lo) < 0 ? b.x_lo : box.x_lo,
-                      compare(b.x_hi, box.x_hi) > 0 ? b.x_hi : box.x_hi,
-                      compare(b.y_lo, box.y_lo) < 0 ? b.y_lo : box.y_lo,
-                      compare(b.y_hi, box.y_hi) > 0 ? b.y_hi : box.y_hi,
+        // (exclude reads the hull's doubles only, unless the carried bounds are switched off)
+        PieceBox hull{box.chart, box.x_lo, box.x_hi, box.y_lo, box.y_hi,
                       std::min(b.dx_lo, box.dx_lo), std::max(b.dx_hi, box.dx_hi),
                       std::min(b.dy_lo, box.dy_lo), std::max(b.dy_hi, box.dy_hi)};
+        if (!cspace::carried_bounds()) {
+          if (compare(b.x_lo, box.x_lo) < 0) hull.x_lo = b.x_lo;
+          if (compare(b.x_hi, box.x_hi) > 0) hull.x_hi = b.x_hi;
+          if (compare(b.y_lo, box.y_lo) < 0) hull.y_lo = b.y_lo;
+          if (compare(b.y_hi, box.y_hi) > 0) hull.y_hi = b.y_hi;
+        }
         hull_possible_.clear();
         exclude(0, hull, hull_possible_);
         if (!hull_possible_.empty()) continue;
