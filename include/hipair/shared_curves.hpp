@@ -9,7 +9,8 @@
 // model equal to one seen before (every field, exactly) with the same blocked-space setting
 // takes the curves already formed for that pair instead of forming them again, and leaves its
 // own for the next. The results are the same curves, so every output is the same with or
-// without it; only the work differs. Generators on other threads are not affected.
+// without it; only the work differs. Generators on other threads are not affected. Scopes
+// nest (the innermost one serves) and may end in any order, each on the thread that made it.
 #pragma once
 
 #include <cstddef>

@@ -20,6 +20,7 @@ struct SharedContactCurves::Impl {
   std::vector<Group> groups;
   std::shared_ptr<std::atomic<std::size_t>> reused = std::make_shared<std::atomic<std::size_t>>(0);
   Impl* previous = nullptr;   // the scope that was innermost on this thread before this one
+  Impl** head = nullptr;      // the creating thread's innermost scope (its thread_local)
 };
 
 namespace {
@@ -28,12 +29,18 @@ thread_local SharedContactCurves::Impl* innermost = nullptr;
 
 SharedContactCurves::SharedContactCurves() : impl_(std::make_unique<Impl>()) {
   impl_->previous = innermost;
+  impl_->head = &innermost;
   innermost = impl_.get();
 }
 
-// Scopes live on the stack of the thread that made them: the innermost goes first.
+// Unlinked from its thread's chain of scopes wherever it is in it (a scope need not be the
+// innermost when it ends).
 SharedContactCurves::~SharedContactCurves() {
-  if (innermost == impl_.get()) innermost = impl_->previous;
+  for (Impl** link = impl_->head; *link; link = &(*link)->previous)
+    if (*link == impl_.get()) {
+      *link = impl_->previous;
+      break;
+    }
 }
 
 std::size_t SharedContactCurves::reused() const { return impl_->reused->load(); }

@@ -15,6 +15,7 @@
 
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <random>
 #include <string>
@@ -241,6 +242,20 @@ TEST(AnalyzePictureSharedCurves, SharedCurvesAreTheCurvesAGeneratorForms) {
   EXPECT_EQ(scope.groups(), 2u);
   EXPECT_EQ(scope.reused(), 0u);
   EXPECT_TRUE(same(curves, generate_contact_curves(changed, axes, layout.x_charts[0], layout.y_charts[0])));
+  // nested scopes: the innermost serves, and they may end in any order
+  auto outer = std::make_unique<SharedContactCurves>();
+  auto inner = std::make_unique<SharedContactCurves>();
+  CurveGenerator(geneva, axes).generate(layout.x_charts[0], layout.y_charts[0]);
+  EXPECT_EQ(inner->groups(), 1u);
+  EXPECT_EQ(outer->groups(), 0u);
+  outer.reset();   // not the innermost: unlinked from the chain
+  CurveGenerator(geneva, axes).generate(layout.x_charts[0], layout.y_charts[0]);
+  EXPECT_EQ(inner->groups(), 1u);
+  EXPECT_GT(inner->reused(), 0u);
+  inner.reset();   // back to `scope`, made first in this test
+  std::size_t before = scope.reused();
+  CurveGenerator(geneva, axes).generate(layout.x_charts[0], layout.y_charts[0]);
+  EXPECT_GT(scope.reused(), before);
 }
 
 }  // namespace
