@@ -210,12 +210,17 @@ TEST_P(KernelSlicerStrips, BorderValueSlicedFirstSameSlicesAsTheWholeChartPairs)
   SUCCEED() << compared_points << " points compared";
 }
 
-TEST(KernelSlicerStrips, SmallGearPairBorderValueSlicedFirst) {
+// The example's spur-gear profile with 8 x 12 teeth.
+Model small_gear_pair() {
   ReadOptions read;
   read.parameter_values["teeth-1"] = Rational(8);
   read.parameter_values["teeth-2"] = Rational(12);
   read.allow_out_of_tolerance = true;
-  Model model = read_model_file(example("spur-gears.json"), read);
+  return read_model_file(example("spur-gears.json"), read);
+}
+
+TEST(KernelSlicerStrips, SmallGearPairBorderValueSlicedFirst) {
+  Model model = small_gear_pair();
   std::size_t compared_points = 0;
   border_first_slices(model, 0, model.pairs[0].second, 4, 33, "gears 8x12", compared_points);
   EXPECT_GT(compared_points, 0u);
@@ -224,11 +229,7 @@ TEST(KernelSlicerStrips, SmallGearPairBorderValueSlicedFirst) {
 // A small spur-gear pair (the example's profile with 8 x 12 teeth): every strip of the pinion's
 // charts is visited by a sweep of slices, the case the analysis of gears meets.
 TEST(KernelSlicerStrips, SmallGearPairSameSlicesAsTheWholeChartPairs) {
-  ReadOptions read;
-  read.parameter_values["teeth-1"] = Rational(8);
-  read.parameter_values["teeth-2"] = Rational(12);
-  read.allow_out_of_tolerance = true;
-  Model model = read_model_file(example("spur-gears.json"), read);
+  Model model = small_gear_pair();
   std::mt19937_64 random(7);
   std::size_t follower = model.pairs[0].second;
   auto whole = make_kernel_slicer(model, 0, follower, KernelSlicerOptions{false});
