@@ -11,13 +11,14 @@
 //   of a bracket down to 2^-46, windows around the follower — by a
 //   slicer with the new proof (automatic cap, and an unlimited one) and by an oracle-only slicer:
 //   every slice identical (points, isolating intervals, polynomials, features, flags, classes).
-//   The walks must carry most classes and meet classes that changed since the previous slice.
+//   The walks must carry many classes and meet classes that changed since the previous slice.
 // - Analyses: generated gear pairs over short ranges (one ending exactly on an event of the
 //   analysis) with and without carried classes (transfer_classes_switch): report.json and
 //   kinematics.csv byte-identical.
 #include "algebra/real_filters.hpp"
 #include "kinematics/axis.hpp"
 #include "kinematics/slice.hpp"
+#include "kinematics/slice_cells.hpp"
 #include "test_paths.hpp"
 
 #include <hipair/error.hpp>
@@ -61,22 +62,37 @@ Model gear_pair(std::mt19937_64& random, long z1, long z2, std::string& name) {
   return read_model_file(example("spur-gears.json"), read);
 }
 
-void expect_identical(const ChartSlice& a, const ChartSlice& b, const std::string& where) {
-  ASSERT_EQ(a.covered_lo, b.covered_lo) << where;
-  ASSERT_EQ(a.covered_hi, b.covered_hi) << where;
-  ASSERT_EQ(a.kinds, b.kinds) << where;
-  ASSERT_EQ(a.points.size(), b.points.size()) << where;
-  for (std::size_t i = 0; i < a.points.size(); ++i) {
-    const SlicePoint& x = a.points[i];
-    const SlicePoint& y = b.points[i];
-    EXPECT_EQ(x.features, y.features) << where << ": point " << i;
-    EXPECT_EQ(x.touching, y.touching) << where << ": point " << i;
-    EXPECT_EQ(x.undecided, y.undecided) << where << ": point " << i;
-    EXPECT_EQ(x.value.exact, y.value.exact) << where << ": point " << i;
-    EXPECT_EQ(x.value.lower, y.value.lower) << where << ": point " << i;
-    EXPECT_EQ(x.value.upper, y.value.upper) << where << ": point " << i;
-    EXPECT_TRUE(x.value.polynomial == y.value.polynomial) << where << ": point " << i;
+// Two slice points are the same: the same number with the same isolating interval and
+// polynomial, the same features and flags.
+bool same_point(const SlicePoint& x, const SlicePoint& y) {
+  return x.features == y.features && x.touching == y.touching && x.undecided == y.undecided &&
+         x.value.exact == y.value.exact && x.value.lower == y.value.lower && x.value.upper == y.value.upper &&
+         x.value.polynomial == y.value.polynomial;
+}
+
+void expect_identical(const ChartSlice& expected, const ChartSlice& got, const std::string& where) {
+  ASSERT_TRUE(expected.covered_lo == got.covered_lo && expected.covered_hi == got.covered_hi) << where << ": covered range";
+  ASSERT_TRUE(expected.kinds == got.kinds) << where << ": classes";
+  ASSERT_EQ(expected.points.size(), got.points.size()) << where;
+  for (std::size_t i = 0; i < got.points.size(); ++i)
+    EXPECT_TRUE(same_point(expected.points[i], got.points[i])) << where << ": point " << i;
+}
+
+// The intervals of `now` whose class differs from the class `before` (the previous slice) had
+// at the same follower value (a sample strictly inside the interval, inside `before`'s range).
+std::size_t changed_classes(const ChartSlice& before, const ChartSlice& now) {
+  std::size_t changed = 0;
+  for (std::size_t i = 0; i < now.kinds.size(); ++i) {
+    if (now.kinds[i] == SliceKind::empty) continue;
+    const Real low = i > 0 ? now.points[i - 1].value : Real::from_rational(now.covered_lo);
+    const Real high = i < now.points.size() ? now.points[i].value : Real::from_rational(now.covered_hi);
+    const Rational sample = algebra::rational_between(low, high);
+    if (sample <= before.covered_lo || sample >= before.covered_hi) continue;
+    // the interval of `before` holding the sample (none when the sample is one of its points)
+    if (const std::optional<std::size_t> at = slice_cells::first_point_not_below(before.points, sample))
+      changed += before.kinds[*at] != now.kinds[i] ? 1 : 0;
   }
+  return changed;
 }
 
 struct Counts {
@@ -84,8 +100,8 @@ struct Counts {
 };
 
 // Engine-like walks of the pinion (the other part) with the gear as follower: grid steps of
-// 2 pi / 1440 in angle (chart steps of about 1/2000), a bracket halved towards 2^-46 now and
-// then, windows of about 0.06 rad around the follower's expected position, against an
+// 2 pi / 1440 in angle (chart steps of about 1/2000), longer jumps, a bracket halved towards
+// 2^-46 now and then, windows of about 0.06 rad around the follower's expected position, against an
 // oracle-only slicer.
 Counts walk(const Model& model, std::size_t proof_curves, int walks, int steps, std::uint64_t seed,
             const std::string& name) {
@@ -113,13 +129,18 @@ Counts walk(const Model& model, std::size_t proof_curves, int walks, int steps, 
     centre = Rational(axis.lo + (axis.hi - axis.lo) * centre);
     std::optional<ChartSlice> last;
     for (int k = 0; k < steps; ++k) {
-      Rational step(1, 2000);
+      // a grid step, a halving's step, or a longer jump (up to about three cull cells: classes
+      // change under it, the cases a proof that misses a curve gets wrong)
+      static const long denominators[] = {2000, 2000, 2000, 400, 100, 40};
+      Rational step(1, denominators[random() % 6]);
       if (random() % 5 == 0) step = Rational(1, mpz_class(1) << static_cast<unsigned>(12 + random() % 35));   // a halving
       if (random() % 2) step = -step;
       u = std::clamp(Rational(u + step), other_axis.lo, other_axis.hi);
       centre = std::clamp(Rational(centre - step * 2 / 3), axis.lo, axis.hi);   // the gear turns back at 2/3
-      // the engine's first window: about 0.06 rad of a half-angle chart near its middle
-      const Rational half(3, 100);
+      // the engine's first window (about 0.06 rad of a half-angle chart near its middle), or one
+      // four times wider (the engine's next): a gear's free ranges are a fraction of a degree
+      // wide, one per tooth pitch, and the wider window holds several
+      const Rational half = random() % 2 ? Rational(3, 100) : Rational(3, 25);
       const ChartWindow window{centre - half, centre + half};
       const ChartWindow* wp = &window;
       const std::string where = name + " charts " + std::to_string(o) + "," + std::to_string(f) + " at " + u.get_str();
@@ -128,18 +149,7 @@ Counts walk(const Model& model, std::size_t proof_curves, int walks, int steps, 
       expect_identical(expected, got, where);
       if (::testing::Test::HasFailure()) return counts;
       ++counts.slices;
-      if (last)
-        for (std::size_t i = 0; i <= expected.points.size(); ++i) {
-          if (expected.kinds[i] == SliceKind::empty) continue;
-          Real a = i == 0 ? Real::from_rational(expected.covered_lo) : expected.points[i - 1].value;
-          Real b = i == expected.points.size() ? Real::from_rational(expected.covered_hi) : expected.points[i].value;
-          Rational s = algebra::rational_between(a, b);
-          if (!(last->covered_lo < s && s < last->covered_hi)) continue;
-          std::size_t j = 0;
-          while (j < last->points.size() && last->points[j].value.compare(s) < 0) ++j;
-          if (j < last->points.size() && last->points[j].value.compare(s) == 0) continue;
-          if (last->kinds[j] != expected.kinds[i]) ++counts.changed;
-        }
+      if (last) counts.changed += changed_classes(*last, expected);
       last = std::move(expected);
     }
   }
@@ -158,14 +168,16 @@ TEST(KinematicGearTransfer, CarriedClassesAreTheOraclesOnGeneratedGearPairs) {
   for (auto [z1, z2] : teeth) {
     std::string name;
     Model model = gear_pair(random, z1, z2, name);
-    Counts counts = walk(model, 0, 1, 16, random(), name);
+    Counts counts = walk(model, 0, 1, 24, random(), name);
     if (HasFailure()) return;
     all.slices += counts.slices;
     all.transferred += counts.transferred;
     all.classified += counts.classified;
     all.changed += counts.changed;
   }
-  EXPECT_GT(all.transferred, all.classified) << "transferred " << all.transferred << ", oracle " << all.classified;
+  // a cap of 32 carried no class of the 18x27 analysis; the first slice of a walk and a wider
+  // window than the previous one's leave classes to the oracle
+  EXPECT_GT(all.transferred, all.classified / 4) << "transferred " << all.transferred << ", oracle " << all.classified;
   EXPECT_GT(all.changed, 0u) << "no interval changed its class between consecutive slices";
   std::cout << "gears: " << all.slices << " slices, " << all.transferred << " carried over, " << all.classified
             << " by the oracle, " << all.changed << " changed\n";
@@ -209,9 +221,12 @@ TEST(KinematicGearTransfer, AnalysesAreTheSameWithoutCarriedClasses) {
     // a range ending on the first event (at the double below its certified driver angle):
     // the last grid step brackets the event itself
     const KinematicsResult located = analyze_kinematics(model, options);
-    if (located.events.empty()) continue;
+    const auto event = std::find_if(located.events.begin(), located.events.end(), [&](const KinematicEvent& e) {
+      return e.at.coordinate.lower > start + 1e-6;   // not an event at the range's start
+    });
+    if (event == located.events.end()) continue;
     ++ending_on_events;
-    options.range = std::make_pair(Rational(start), Rational(located.events.front().at.coordinate.lower));
+    options.range = std::make_pair(Rational(start), Rational(event->at.coordinate.lower));
     auto ending = outputs(model, options, true);
     auto ending_without = outputs(model, options, false);
     EXPECT_TRUE(ending.first == ending_without.first) << name << ": report.json differs (range ending on an event)";
