@@ -163,7 +163,8 @@ Counts walk(const Model& model, std::size_t proof_curves, int walks, int steps, 
 TEST(KinematicGearTransfer, CarriedClassesAreTheOraclesOnGeneratedGearPairs) {
   std::mt19937_64 random(33001);
   Counts all;
-  // tooth counts from 6 to 40 (small and large pairs, equal and co-prime counts)
+  // tooth counts from 6 to 40: a small pinion on a large gear, the example pair, a pinion larger
+  // than its gear
   const std::vector<std::pair<long, long>> teeth = {{6, 40}, {18, 27}, {13, 7}};
   for (auto [z1, z2] : teeth) {
     std::string name;
