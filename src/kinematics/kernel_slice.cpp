@@ -43,9 +43,9 @@ namespace {
 
 constexpr int cull_cells = 64;       // sub-intervals of the other axis for curve culling
 constexpr int follower_cells = 32;   // sub-intervals of the follower axis
-// Most curve enclosures a carried class's proof evaluates before the oracle decides instead
-// (an enclosure costs ≈ 1/50 of an oracle query on the ratchet).
-constexpr int max_proof_curves = 32;
+// Fewest curve enclosures a carried class's proof may evaluate before the oracle decides
+// instead (an enclosure costs ≈ 1/50 of an oracle query on the ratchet; KernelSlicerOptions::proof_curves).
+constexpr std::size_t min_proof_curves = 32;
 
 using cspace::public_kind;
 
@@ -171,6 +171,7 @@ class KernelSlicer final : public PairSlicer {
   KernelSlicer(const Model& model, std::size_t pair, std::size_t follower, const KernelSlicerOptions& options)
       : model_(model), options_(options) {
     options_.monotone_runs = options_.monotone_runs && monotone_runs_switch();
+    options_.transfer_classes = options_.transfer_classes && transfer_classes_switch();
     if (pair >= model.pairs.size()) throw GeometryError("no pair " + std::to_string(pair));
     const PairSpec& spec = model.pairs[pair];
     if (follower != spec.first && follower != spec.second)
@@ -205,6 +206,9 @@ class KernelSlicer final : public PairSlicer {
       }
       feature_count_[side] = 2 * edges;
     }
+    // a carried class's proof may cost about what an oracle query does (see proof_curves)
+    proof_curves_ = options_.proof_curves != 0 ? options_.proof_curves
+                                               : std::max<std::size_t>(min_proof_curves, (feature_count_[0] + feature_count_[1]) / 2);
     std::size_t other_count = std::max<std::size_t>(1, other_charts_.size());
     pairs_.resize(other_count * follower_charts_.size());
     previous_.resize(pairs_.size());
@@ -668,6 +672,10 @@ class KernelSlicer final : public PairSlicer {
     std::shared_ptr<const PreviousSlice> previous;
     algebra::Interval drivers{0, 0};
     std::vector<std::pair<const CurveData*, std::uint32_t>> curves;
+    /// Per curve (same index), its enclosure collapsed over the driver interval to a polynomial
+    /// in the follower coordinate (ScaledIntervalPolynomial::at_x(drivers)), made on first use:
+    /// each sample's proof then costs one univariate interval Horner per curve.
+    std::vector<std::vector<algebra::Interval>> at_drivers;
   };
 
   // The transfer from the previous slice of chart pair (o, f) (memo index) to `value`, or
@@ -724,7 +732,7 @@ class KernelSlicer final : public PairSlicer {
   // a zero on the segment [u0, u1] x {s} (interval enclosure). Every contact configuration lies
   // on a curve of the strips (the cull drops curves only inside certified blocked space), so
   // the segment holds none: free and blocked are then open in it and its class is constant.
-  bool carried_kind(const Transfer& transfer, std::size_t follower_chart, const Rational& s, SliceKind& kind) const {
+  bool carried_kind(Transfer& transfer, std::size_t follower_chart, const Rational& s, SliceKind& kind) const {
     const ChartSlice& old = transfer.previous->slice;
     if (!(old.covered_lo < s && s < old.covered_hi)) return false;
     const std::optional<std::size_t> above = slice_cells::first_point_not_below(old.points, s);   // the first point above s
@@ -734,13 +742,20 @@ class KernelSlicer final : public PairSlicer {
     // the follower cells holding s (two on a cell border: the cull's boxes are closed)
     const std::uint32_t bits = slice_cells::cells_holding(follower_edges_[follower_chart], s);
     algebra::Interval at = algebra::enclose(s);
-    int evaluations = 0;
-    for (const auto& [curve, cells] : transfer.curves) {
+    if (transfer.at_drivers.size() != transfer.curves.size()) transfer.at_drivers.assign(transfer.curves.size(), {});
+    std::size_t evaluations = 0;
+    for (std::size_t c = 0; c < transfer.curves.size(); ++c) {
+      const auto& [curve, cells] = transfer.curves[c];
       if (!(cells & bits)) continue;
-      // past max_proof_curves enclosures the proof costs about what the oracle does (a pair
-      // of many teeth): the oracle decides
-      if (++evaluations > max_proof_curves) return false;
-      if (curve->interval.evaluate(transfer.drivers, at).contains_zero()) return false;
+      // past proof_curves_ enclosures the proof costs about what the oracle does: the oracle
+      // decides
+      if (++evaluations > proof_curves_) return false;
+      // the curve's enclosure over the driver interval as a polynomial in the follower
+      // coordinate, evaluated at s: an enclosure of the curve on the segment (Horner in the
+      // driver first, inclusion isotone; a zero-free enclosure proves no zero there)
+      std::vector<algebra::Interval>& collapsed = transfer.at_drivers[c];
+      if (collapsed.empty()) collapsed = curve->interval.at_x(transfer.drivers);
+      if (ScaledIntervalPolynomial::evaluate_y(collapsed, at).contains_zero()) return false;
     }
     kind = old.kinds[lo];
     return true;
@@ -932,6 +947,7 @@ class KernelSlicer final : public PairSlicer {
   std::unique_ptr<cspace::PairOverlap> overlap_;   // the exact oracle, both parts prepared once
   std::vector<std::size_t> edge_offsets_[2];   // per part of the pair: first edge of each loop
   std::size_t feature_count_[2] = {0, 0};      // per part: 2 x its edges (a vertex and a curve each)
+  std::size_t proof_curves_ = min_proof_curves;   // most curve enclosures a carried class's proof evaluates
   mutable std::mutex build_mutex_;
   mutable std::mutex cache_mutex_;
   mutable std::map<std::size_t, ChartSlice> fixed_cache_;

@@ -168,6 +168,12 @@ struct KernelSlicerOptions {
   /// cull cells). The segment then meets no contact configuration, so its class is constant.
   /// When the proof fails the oracle decides as before. false: the oracle always (tests compare).
   bool transfer_classes = true;
+  /// Most curve enclosures one carried class's proof evaluates before the oracle decides
+  /// instead; 0: from the pair (session 33), max(32, the edges of both parts) — the oracle
+  /// poses every edge of both parts, a proof's enclosure costs a few dozen double operations,
+  /// and a gear pair's sample meets a few hundred curves (a cap of 32 carried no gear class).
+  /// Each enclosure is taken of the curve collapsed once per slice over the driver interval.
+  std::size_t proof_curves = 0;
   /// Isolate the roots of a curve on a run of follower cells without Descartes when the
   /// enclosure of its follower derivative over (value, run) excludes zero: the curve is then
   /// strictly monotone there, so it has a root exactly when its signs at the run's ends differ
@@ -182,6 +188,10 @@ struct KernelSlicerOptions {
 /// thread (on by default; tests turn it off to compare whole analyses with and without it).
 struct MonotoneRunsTag;
 inline bool& monotone_runs_switch() { return thread_switch<MonotoneRunsTag>(); }
+/// Per-thread switch of KernelSlicerOptions::transfer_classes for the slicers constructed on
+/// this thread (on by default; tests turn it off to compare whole analyses with the oracle's).
+struct TransferClassesTag;
+inline bool& transfer_classes_switch() { return thread_switch<TransferClassesTag>(); }
 
 /// How a kernel slicer decided its interval classes so far: by the overlap oracle, or carried
 /// over from the previous slice (KernelSlicerOptions::transfer_classes). For tests.
