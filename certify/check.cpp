@@ -187,6 +187,18 @@ bool certainly_within(const std::optional<RationalInterval>& limits, const Inter
   return false;
 }
 
+bool wall_closed_by_limit(const Part& follower, const RationalInterval& band, bool upper) {
+  bool rotating = follower.motion.kind == Motion::Kind::rotation;
+  const auto& limits = rotating ? follower.motion.angle_limits : follower.motion.translation_limits;
+  if (!limits) return false;
+  if (upper ? band.hi < limits->hi : band.lo > limits->lo) return false;
+  if (!rotating) return true;
+  // the band a turn down (up) lies certainly below (above) the lower (upper) limit
+  Interval other = upper ? Interval(limits->lo) - (Interval(band.hi) - two_pi())
+                         : (Interval(band.lo) + two_pi()) - Interval(limits->hi);
+  return other.sign() > 0;
+}
+
 Interval angle_of_tangent(const Rational& tangent, bool half_turn) {
   Interval theta;
   mpfi_atan(theta.get(), Interval(tangent).get());
@@ -374,10 +386,9 @@ std::string check_jam(const Certificate& c, const Model& model) {
     check_cover(c.cut, band, "the cut");
     for (std::size_t i = 0; i < c.cut.size(); ++i)
       check_blocked(c, model, r, cut_at, c.cut[i].range, c.cut[i].crossing, "cut piece " + std::to_string(i));
-    const auto& limits = rotates(*r.other) ? r.other->motion.angle_limits : r.other->motion.translation_limits;
     for (int upper = 0; upper < 2; ++upper) {
       const Rational& at = upper ? band.hi : band.lo;
-      if (limits && (upper ? at >= limits->hi : at <= limits->lo)) continue;   // closed by the motion limit
+      if (wall_closed_by_limit(*r.other, band, upper)) continue;
       const auto& wall = upper ? c.upper_wall : c.lower_wall;
       std::string name = upper ? "the upper wall" : "the lower wall";
       check_cover(wall, span, name);

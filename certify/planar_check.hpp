@@ -27,6 +27,15 @@ ExactMap exact_map(const Part& part, const std::map<std::string, ExactPosition>&
 /// up to whole turns (-3 ... 3). Decided with MPFI: an interval straddling an end is not within.
 bool certainly_within(const std::optional<RationalInterval>& limits, const Interval& value, bool angle);
 
+/// May a jam certificate's wall at the lower (`upper` false) or upper end of the follower's trap
+/// range `band` go without pieces because the follower's motion limit closes it (docs/certify.md,
+/// "Jam")? Yes when the end is at or beyond that limit and, for a rotating follower, no other
+/// turn of the band reaches into the limits on the far side of the wall: the band shifted a turn
+/// down (for the upper wall; up for the lower one) must lie certainly beyond the other limit.
+/// Otherwise a band shifted by a whole turn (the same poses) would count as "beyond the limit"
+/// and the open side of the trap would go unchecked (session 34, hunt34).
+bool wall_closed_by_limit(const Part& follower, const RationalInterval& band, bool upper);
+
 /// An MPFI enclosure of the angle 2 atan(t) (+ pi when `half_turn`) of a half-angle tangent.
 Interval angle_of_tangent(const Rational& tangent, bool half_turn);
 

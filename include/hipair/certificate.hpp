@@ -333,8 +333,8 @@ struct JamQuery {
 
 /// Certifies the jam described by `query` by covering the cut and the walls with pieces, each
 /// blocked by a crossing feature pair (interval arithmetic). A wall at or beyond the follower's
-/// motion limit needs no pieces. \returns nullopt when some part of the cut or walls is not
-/// certainly blocked.
+/// motion limit, in the limits' own turn (verify::wall_closed_by_limit), needs no pieces.
+/// \returns nullopt when some part of the cut or walls is not certainly blocked.
 std::optional<Certificate> certify_jam(const Model& model, const std::string& first,
                                        const std::string& second, const JamQuery& query,
                                        const CertifyContext& context = {},

@@ -2,6 +2,7 @@
 // certified clearance) and jamming (a trap whose cut and walls are covered by blocked pieces),
 // and a simple search for the trap of a jam.
 #include "certificates/producer.hpp"
+#include "certify/planar_check.hpp"
 
 #include <hipair/overlap.hpp>
 
@@ -363,11 +364,9 @@ std::optional<Certificate> certify_jam(const Model& model, const std::string& fi
     if (!cover(band, c.cut, options.max_boxes,
                [&](const RationalInterval& piece) { return blocking_crossing(r, cut_at, piece); }))
       return std::nullopt;
-    const auto& limits = r.other->motion.kind == Motion::Kind::rotation ? r.other->motion.angle_limits
-                                                                         : r.other->motion.translation_limits;
     for (int upper = 0; upper < 2; ++upper) {
       Rational at = upper ? band.hi : band.lo;
-      if (limits && (upper ? at >= limits->hi : at <= limits->lo)) continue;
+      if (verify::wall_closed_by_limit(*r.other, band, upper)) continue;
       RationalInterval wall_at{at, at};
       if (!cover(c.trap.driver, upper ? c.upper_wall : c.lower_wall, options.max_boxes,
                  [&](const RationalInterval& piece) { return blocking_crossing(r, piece, wall_at); }))

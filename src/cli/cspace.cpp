@@ -237,7 +237,11 @@ void register_cspace(CLI::App& app, Action& action) {
                       "3-DOF pairs: slices (indices, in order of the angle) drawn again at full size below the stack "
                       "(default: the two either side of the critical angle nearest 0 where the free cells change; without one, up to two "
                       "with the most free cells)")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check([](const std::string& index) {   // "-1" wrapped to 18446744073709551615 in the message
+        bool digits = !index.empty() && index.find_first_not_of("0123456789") == std::string::npos;
+        return digits ? std::string() : "'" + index + "' is not a slice index (0, 1, 2, ...)";
+      });
   command->add_flag("--spurious", options->spurious, "Also draw spurious edges (curves through free or blocked space)");
   command->add_flag("--aggregated", options->aggregated, "Insert the quadratic stage's curves by one sweep (for measurements; the algebraic stage always sweeps)");
   command->add_flag("--algebraic-traits", options->algebraic_traits,

@@ -301,6 +301,57 @@ certify_refused lever-travel-negative 2 "--travel -1deg: the travel must be posi
 certify_refused lever-free-reversed 2 "--from/--to: the driver range [1, 0] is empty or reversed" "$lever" --claim free --from 1 --to 0
 certify_refused lever-beyond-limits-clearance 2 "is not certainly within its motion limits" "$lever" --claim clearance --at lever=-45deg
 
+# ------------------------------------------------------------------ a jam trap a whole turn from the limits (session 34)
+# A slider pushes up into a lever (limits +-0.1 rad) that swings out of its way upward: no jam.
+# The trap's lever range [-0.01, 0.01] + 2 pi (the same poses) had its upper end "beyond" the
+# upper limit, so the upper wall went unchecked: certify wrote the false jam, hipair-verify
+# accepted it. Now the wall is closed by a limit only in the limits' own turn.
+cat >"$work/slider-lever.json" <<'EOF'
+{ "hipair": 1, "name": "slider-lever", "units": { "length": "mm", "angle": "rad" },
+  "parts": [
+    { "name": "lever", "motion": { "rotation": { "pivot": [0, 0], "limits": [-0.1, 0.1] } },
+      "loops": [ { "start": [0, -1], "edges": [ { "line_to": [10, -1], "label": "underside" }, { "line_to": [10, 1] },
+                                               { "line_to": [0, 1] }, { "line_to": [0, -1] } ] } ] },
+    { "name": "slider", "motion": { "translation": { "direction": [0, 1], "limits": [-10, 10] } },
+      "loops": [ { "start": [5, -5], "edges": [ { "line_to": [6, -5] }, { "line_to": [6, -2], "label": "right" },
+                                               { "line_to": [5, -2] }, { "line_to": [5, -5] } ] } ] } ],
+  "pairs": [ { "parts": ["slider", "lever"] } ] }
+EOF
+# lever ranges [-0.01, 0.01] + 2 pi k (k = 1, 2, -1; 2 pi to 40 decimals)
+for band in 6.273185307179586476925286766559005768394:6.293185307179586476925286766559005768394 \
+            12.556370614359172953850573533118011536788:12.576370614359172953850573533118011536788 \
+            -6.293185307179586476925286766559005768394:-6.273185307179586476925286766559005768394; do
+  lo=${band%%:*} hi=${band#*:}
+  rm -f "$work/slider-lever-jam.json"
+  "$hipair" certify "$work/slider-lever.json" --claim jam --pair slider:lever --driver slider --direction 1 \
+    --trap "0.95:1.1,$lo:$hi" --out "$work/slider-lever-jam.json" >"$work/slider-lever.out" 2>&1
+  [ $? -eq 1 ] || fail "certify --trap 0.95:1.1,$lo:$hi certifies a jam the lever swings out of: $(cat "$work/slider-lever.out")"
+  [ -e "$work/slider-lever-jam.json" ] && fail "certify --trap 0.95:1.1,$lo:$hi wrote a certificate"
+  # the false certificate by hand: the cut and the lower wall blocked, no upper wall
+  cat >"$work/slider-lever-forged.json" <<EOF
+{ "hipair_certificate": 1, "claim": "jam",
+  "model": { "name": "slider-lever", "content_hash": "$(hash_of "$work/slider-lever.json")", "parameters": {}, "roundings": [] },
+  "pair": ["slider", "lever"],
+  "jam": { "driver": "slider", "follower": "lever", "direction": 1,
+           "trap": { "driver": ["0.95", "1.1"], "follower": ["$lo", "$hi"] },
+           "cut": [ { "range": ["$lo", "$hi"], "crossing": { "edge": { "part": "lever", "loop": 0, "edge": 0, "label": "underside" },
+                      "along": ["0.59", "0.61"], "across": { "part": "slider", "loop": 0, "edge": 1, "label": "right" } } } ],
+           "lower_wall": [ { "range": ["0.95", "1.1"], "crossing": { "edge": { "part": "lever", "loop": 0, "edge": 0, "label": "underside" },
+                      "along": ["0.59", "0.61"], "across": { "part": "slider", "loop": 0, "edge": 1, "label": "right" } } } ],
+           "upper_wall": [] } }
+EOF
+  "$verify" "$work/slider-lever-forged.json" "$work/slider-lever.json" >"$work/slider-lever.verify" 2>&1
+  code=$?
+  [ $code -eq 1 ] || fail "hipair-verify exit $code on a jam whose lever swings out (trap a turn away): $(cat "$work/slider-lever.verify")"
+done
+# the same trap in the limits' own turn, the upper limit at its upper end: a jam (the control)
+sed 's/"limits": \[-0.1, 0.1\]/"limits": [-0.1, 0.01]/' "$work/slider-lever.json" >"$work/slider-lever-stop.json"
+"$hipair" certify "$work/slider-lever-stop.json" --claim jam --pair slider:lever --driver slider --direction 1 \
+  --trap "0.95:1.1,-0.01:0.01" --out "$work/slider-lever-stop-jam.json" >"$work/slider-lever.out" 2>&1 \
+  || fail "certify refuses the jam against the lever's limit: $(cat "$work/slider-lever.out")"
+"$verify" "$work/slider-lever-stop-jam.json" "$work/slider-lever-stop.json" | grep -q "^valid: jam" \
+  || fail "the jam against the lever's limit does not verify"
+
 if [ $failures -ne 0 ]; then
   echo "$failures certify CLI check(s) failed"
   exit 1

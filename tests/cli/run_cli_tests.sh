@@ -677,6 +677,12 @@ code=$?
 { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "cspace 3-DOF --full-slices 12 (out of range): exit code $code"
 grep -q "slice 12 does not exist" "$work/pih-none.err" || fail "cspace 3-DOF --full-slices 12: message: $(cat "$work/pih-none.err")"
 [ -e "$work/pih-none.svg" ] && fail "cspace 3-DOF --full-slices out of range wrote output"
+# a negative index is a usage error naming it, at once (it wrapped to 18446744073709551615 after the build)
+"$hipair" cspace "$pih" --svg "$work/pih-negative.svg" --full-slices=0,-1 >/dev/null 2>"$work/pih-negative.err"
+code=$?
+[ $code -eq 105 ] || fail "cspace 3-DOF --full-slices=0,-1: exit code $code, want 105"
+grep -q "'-1' is not a slice index" "$work/pih-negative.err" || fail "cspace 3-DOF --full-slices=0,-1: message: $(cat "$work/pih-negative.err")"
+[ -e "$work/pih-negative.svg" ] && fail "cspace 3-DOF --full-slices=0,-1 wrote output"
 for key in critical_angles slices crossings components free_cells connections; do
   grep -q "\"$key\"" "$work/pih.json" 2>/dev/null || fail "cspace 3-DOF: JSON has no $key"
 done

@@ -5,8 +5,10 @@
 #include <hipair/certificate.hpp>
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
+#include <hipair/overlap.hpp>
 
 #include "certify/exact_geometry.hpp"
+#include "core/sha256.hpp"
 #include "oracle/overlap.hpp"
 #include "io/atomic_file.hpp"
 #include "test_paths.hpp"
@@ -393,3 +395,107 @@ TEST(CertifyExamples, FindingsOfTheKinematicAnalysisAreCertified) {
 }
 
 }  // namespace
+
+// Session 34 (hunt34): a jam's wall "closed by the follower's motion limit" when the trap's
+// follower range lies a whole turn away from the limits. A slider (direction +-y) pushes into a
+// lever that is free to swing out of its way on one side; the trap's follower range is the
+// lever's [-w, w] shifted by k whole turns (a rational within 1e-60 of 2 pi k: the same poses).
+// The cut is blocked (the slider into the lever's underside), so is the wall on the side the
+// lever cannot swing to, but the lever swings away on the other side: the slider passes, the
+// claim "jam" is false. Until session 34 a band shifted up (k > 0) had its upper end "beyond" the
+// upper limit (one shifted down its lower end below the lower limit), so that wall went
+// unchecked: `certify_jam` produced the false certificate and the verifier accepted it. The exact
+// overlap predicate shows the way out: free configurations from the trap's open side past the cut.
+// Every fourth case is a control: the band not shifted, its end at the limit (the wall closed).
+TEST(CertifyExamples, AJamWallIsClosedByAMotionLimitOnlyInTheLimitsOwnTurn) {
+  const Rational two_pi("6283185307179586476925286766559005768394338798750211641949889/1000000000000000000000000000000000000000000000000000000000000");
+  std::mt19937_64 random(20261201);
+  int false_claims = 0, controls = 0;
+  for (int trial = 0; trial < 16; ++trial) {
+    int exponent = std::vector<int>{-300, -120, 0, 0, 40, 300}[random() % 6];
+    mpz_class power;
+    mpz_ui_pow_ui(power.get_mpz_t(), 10, unsigned(std::abs(exponent)));
+    Rational scale = exponent >= 0 ? Rational(power) : Rational(mpz_class(1), power);
+    int turns = int(random() % 3) + 1;
+    bool up = random() % 2 == 0;              // the lever swings out upward (the slider from below)
+    Rational w(1, long(100 + 50 * (random() % 3)));  // the band [-w, w] before the shift
+    bool control = trial % 4 == 3;
+    Rational shift = control ? Rational(0) : Rational((up ? turns : -turns) * two_pi);
+    Rational lo = control && !up ? Rational(-w) : Rational(-1, 10), hi = control && up ? w : Rational(1, 10);
+    auto number = [&](const Rational& v) { return "\"" + to_exact_string(v) + "\""; };
+    auto p = [&](long x, long y) {   // mirrored in y when the lever swings out downward
+      return "[" + number(Rational(x * scale)) + ", " + number(Rational((up ? y : -y) * scale)) + "]";
+    };
+    std::string text = "{\"hipair\": 1, \"name\": \"slider-lever\", \"units\": {\"length\": \"mm\", \"angle\": \"rad\"},"
+        "\"parts\": [{\"name\": \"lever\", \"motion\": {\"rotation\": {\"pivot\": [0, 0], \"limits\": [" + number(lo) + ", " +
+        number(hi) + "]}}, \"loops\": [{\"start\": " + p(0, -1) + ", \"edges\": [{\"line_to\": " + p(10, -1) +
+        ", \"label\": \"underside\"}, {\"line_to\": " + p(10, 1) + "}, {\"line_to\": " + p(0, 1) + "}, {\"line_to\": " + p(0, -1) +
+        "}]}]}, {\"name\": \"slider\", \"motion\": {\"translation\": {\"direction\": [0, " + (up ? "1" : "-1") + "], \"limits\": [" +
+        number(Rational(-10 * scale)) + ", " + number(Rational(10 * scale)) + "]}}, \"loops\": [{\"start\": " + p(5, -5) +
+        ", \"edges\": [{\"line_to\": " + p(6, -5) + "}, {\"line_to\": " + p(6, -2) + ", \"label\": \"side\"}, {\"line_to\": " +
+        p(5, -2) + "}, {\"line_to\": " + p(5, -5) + "}]}]}], \"pairs\": [{\"parts\": [\"slider\", \"lever\"]}]}";
+    Model model = read_model(text, "slider-lever.json");
+    ASSERT_TRUE(model.roundings.empty());
+    JamQuery query{"slider", "lever", +1, {}};
+    query.trap.driver = RationalInterval{Rational(Rational(98, 100) * scale), Rational(Rational(120, 100) * scale)};
+    query.trap.follower = RationalInterval{Rational(-w + shift), Rational(w + shift)};
+    SCOPED_TRACE("scale 1e" + std::to_string(exponent) + ", turns " + std::to_string(up ? turns : -turns) + ", w " +
+                 to_exact_string(w) + (control ? " (control)" : ""));
+    auto certificate = certify_jam(model, "slider", "lever", query, {}, IntervalSearchOptions{200});
+    // the evidence by hand: the slider's side crosses the lever's underside at the cut and on
+    // the wall the lever cannot swing through; no pieces for the wall it swings out through
+    Certificate c;
+    c.claim = ClaimKind::jam;
+    c.model_name = "slider-lever";
+    c.content_hash = detail::sha256_hex(text);
+    c.first = "slider", c.second = "lever", c.driver = "slider", c.follower = "lever";
+    c.trap = query.trap;
+    auto edge_labelled = [&](std::size_t part, const std::string& label) {   // a mirrored loop is read reversed
+      for (std::size_t e = 0; e < model.parts[part].loops[0].edges.size(); ++e)
+        if (model.parts[part].loops[0].edges[e].label == label) return EdgeReference{model.parts[part].name, 0, e, label};
+      ADD_FAILURE() << "no edge " << label;
+      return EdgeReference{};
+    };
+    // the witness piece starts at an end that moves little over the piece's configurations
+    // (the verifier's enclosures of a point along an edge widen with the distance from its
+    // source): the lever's underside from the pivot (about x = 6, the slider's side) when the
+    // slider comes from below; mirrored (the loops read reversed), the slider's side from its end
+    // at the lever
+    EdgeReference underside = edge_labelled(0, "underside"), side = edge_labelled(1, "side");
+    CrossingWitness crossing = up ? CrossingWitness{underside, side, RationalInterval{Rational(59, 100), Rational(61, 100)}}
+                                  : CrossingWitness{side, underside, RationalInterval{Rational(0), Rational(1, 5)}};
+    ASSERT_EQ(model.parts[up ? 0 : 1].loops[0].edges[up ? underside.edge : side.edge].source.y, Rational((up ? -1 : 2) * scale));
+    c.cut.push_back(BlockedPiece{*query.trap.follower, crossing});
+    (up ? c.lower_wall : c.upper_wall).push_back(BlockedPiece{query.trap.driver, crossing});
+    VerificationResult result = check_certificate_text(c, text, "slider-lever.json");
+    if (control) {
+      ASSERT_TRUE(certificate);
+      EXPECT_TRUE(check_certificate_text(*certificate, text, "slider-lever.json").valid);
+      EXPECT_TRUE(result.valid) << result.reason;
+      EXPECT_TRUE((up ? certificate->upper_wall : certificate->lower_wall).empty());
+      ++controls;
+      continue;
+    }
+    EXPECT_FALSE(certificate) << "a false jam certified";
+    EXPECT_FALSE(result.valid) << "a false jam verified: " << result.summary;
+    // the oracle: the lever swung out to 2 atan(1/25) (about 0.08 rad, within its limits) lets
+    // the slider go from the trap's start to 1.5 trap lengths on; the lever gets there from
+    // inside the trap with the slider at the trap's start
+    auto relation = [&](const Rational& s, const Rational& tangent) {
+      Rational t2 = tangent * tangent;
+      Placement lever{Rational((1 - t2) / (1 + t2)), Rational(2 * tangent / (1 + t2)), Point{Rational(0), Rational(0)}};
+      Placement slider{Rational(1), Rational(0), Point{Rational(0), Rational(up ? s : -s)}};
+      return part_overlap(model.parts[1], slider, model.parts[0], lever).relation;
+    };
+    Rational out = up ? Rational(1, 25) : Rational(-1, 25), inside = up ? Rational(w / 2) : Rational(-w / 2);
+    for (int i = 0; i <= 8; ++i) {
+      Rational s = query.trap.driver.lo + (query.trap.driver.hi - query.trap.driver.lo) * Rational(3 * i, 16);
+      EXPECT_EQ(relation(s, out), PartRelation::apart) << "slider at " << s.get_d();
+      Rational tangent = inside + (out - inside) * Rational(i, 8);
+      EXPECT_EQ(relation(query.trap.driver.lo, tangent), PartRelation::apart) << "lever at tangent " << tangent.get_d();
+    }
+    ++false_claims;
+  }
+  EXPECT_GE(false_claims, 10);
+  EXPECT_GE(controls, 4);
+}
