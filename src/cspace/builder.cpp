@@ -86,18 +86,14 @@ class CurveCuller {
       atoms += clause.size();
     }
     entry_slot_ = atoms;
-    atoms_ = atoms + entry.size();
+    f_slot_ = atoms + entry.size();
+    const std::size_t slots = f_slot_ + 1;
     const int deepest = grid_.depth() + (entry.empty() ? 0 : entry_depth_);
     if (row_caches_.size() < static_cast<std::size_t>(deepest) + 1) row_caches_.resize(static_cast<std::size_t>(deepest) + 1);
-    for (RowCache& cache : row_caches_) {
-      for (int row = 0; row < 2; ++row) {
-        if (cache.rows[row].size() < atoms_) cache.rows[row].resize(atoms_);
-        cache.stamp[row].assign(atoms_, 0);
-      }
-    }
-    ++generation_;
-    row_caches_[0].generation = generation_;
-    visit(f, clauses, 0, 0, 0, boxes, f.evaluate(grid_.cell_x(0, 0), grid_.cell_y(0, 0)), 0, 0);
+    for (auto& cache : row_caches_)
+      if (cache.size() < slots * row_ways) cache.resize(slots * row_ways);
+    ++curve_;   // every entry of an earlier curve is stale
+    visit(f, clauses, 0, 0, 0, boxes, f.evaluate(grid_.cell_x(0, 0), grid_.cell_y(0, 0)), 0);
     std::sort(boxes.begin(), boxes.end());
     cells.clear();
     for (const auto& b : boxes) {
@@ -121,38 +117,46 @@ class CurveCuller {
   }
 
  private:
-  // The rows of the atoms (IntervalPolynomial2::rows_at) at the two y-intervals of one parent
-  // cell's children: the two children of a row share them, so an atom that both evaluate
-  // has its rows in y enclosed once (evaluate_rows(x, rows_at(y)) is evaluate(x, y) bound
-  // for bound: the same decisions). An entry is valid while its stamp is the cache's
-  // generation (a new parent, a new generation: nothing is cleared per cell).
-  struct RowCache {
-    std::vector<std::vector<algebra::Interval>> rows[2];
-    std::vector<std::uint64_t> stamp[2];
-    std::uint64_t generation = 0;
+  // The rows of the current curve's polynomials (IntervalPolynomial2::rows_at: each validity
+  // and corner-entry atom, and f) at the y-intervals of the grid's rows of cells, per depth:
+  // the cells of one row (j) have the same y, so a polynomial evaluated in several of them
+  // (the two children of a row of one parent, and the neighbouring parents' children) has its
+  // rows in y enclosed once. evaluate_rows(x, rows_at(y)) is evaluate(x, y) bound for bound:
+  // the same enclosures, the same decisions. Direct-mapped: `row_ways` rows per polynomial
+  // and depth, entry j % row_ways, holding the rows of row j of the curve numbered `curve`
+  // (0: none; a new curve makes every entry stale without a pass over them).
+  struct RowEntry {
+    std::uint64_t curve = 0;
+    long j = -1;
+    std::vector<algebra::Interval> rows;
   };
+  static constexpr std::size_t row_ways = 32;
 
-  // Atom `slot` (polynomial `atom`) over the cell [x] x [y], the cell being in row `row` of its
-  // parent's children at depth `depth`.
-  algebra::Interval atom_value(const algebra::IntervalPolynomial2& atom, std::size_t slot, int depth, int row,
-                               algebra::Interval x, algebra::Interval y) {
-    RowCache& cache = row_caches_[static_cast<std::size_t>(depth)];
-    std::vector<algebra::Interval>& rows = cache.rows[row][slot];
-    if (cache.stamp[row][slot] != cache.generation) {
-      atom.rows_at(y, rows);
-      cache.stamp[row][slot] = cache.generation;
+  // The rows of polynomial `p` (its slot) at row j of depth `depth`.
+  const std::vector<algebra::Interval>& rows_of(const algebra::IntervalPolynomial2& p, std::size_t slot, int depth,
+                                                long j) {
+    RowEntry& e = row_caches_[static_cast<std::size_t>(depth)][slot * row_ways + static_cast<std::size_t>(j) % row_ways];
+    if (e.j != j || e.curve != curve_) {
+      p.rows_at(grid_.cell_y(depth, j), e.rows);
+      e.j = j;
+      e.curve = curve_;
     }
-    return atom.evaluate_rows(x, rows);
+    return e.rows;
+  }
+
+  // Atom `slot` (polynomial `atom`) over cell (depth, i, j), x its x-interval.
+  algebra::Interval atom_value(const algebra::IntervalPolynomial2& atom, std::size_t slot, int depth, long j,
+                               algebra::Interval x) {
+    return atom.evaluate_rows(x, rows_of(atom, slot, depth, j));
   }
 
   // `value`: f over the cell (its parent evaluates the four children's, the two of a row of
   // cells from the same rows of f at the row's y: the enclosures of evaluate, bound for bound).
   // `settled`: bit k set when clause k (k < 64) holds strictly over an enclosing cell (an atom's
   // enclosure there is > 0), hence over this one: it is not evaluated again.
-  // `row`: which of its parent's two rows of children the cell is in (the atoms' row caches).
   void visit(const algebra::IntervalPolynomial2& f, const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses,
              int depth, long i, long j, std::vector<std::array<double, 4>>& found, algebra::Interval value,
-             std::uint64_t settled, int row) {
+             std::uint64_t settled) {
     if (!value.contains_zero()) return;
     algebra::Interval x = grid_.cell_x(depth, i), y = grid_.cell_y(depth, j);
     bool strict = !entry_->empty();   // every clause holds strictly over the cell (so far)
@@ -161,7 +165,7 @@ class CurveCuller {
       const auto& clause = clauses[k];
       bool can_hold = false, holds = false;
       for (std::size_t a = 0; a < clause.size(); ++a) {
-        const algebra::Interval value = atom_value(clause[a], clause_slot_[k] + a, depth, row, x, y);
+        const algebra::Interval value = atom_value(clause[a], clause_slot_[k] + a, depth, j, x);
         can_hold = can_hold || value.hi >= 0;
         holds = holds || value.lo > 0;
         if (holds || (can_hold && !strict)) break;
@@ -172,7 +176,7 @@ class CurveCuller {
     }
     if (strict) {
       for (std::size_t a = 0; a < entry_->size(); ++a)
-        if (atom_value((*entry_)[a], entry_slot_ + a, depth, row, x, y).hi < 0) return;
+        if (atom_value((*entry_)[a], entry_slot_ + a, depth, j, x).hi < 0) return;
     }
     if (depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && depth <= grid_.depth() && grid_.blocked(depth, i, j))
       return;
@@ -184,25 +188,21 @@ class CurveCuller {
     }
     algebra::Interval values[2][2];
     for (long dj = 0; dj < 2; ++dj) {
-      f.rows_at(grid_.cell_y(depth + 1, 2 * j + dj), rows_);
-      for (long di = 0; di < 2; ++di) values[di][dj] = f.evaluate_rows(grid_.cell_x(depth + 1, 2 * i + di), rows_);
+      const std::vector<algebra::Interval>& rows = rows_of(f, f_slot_, depth + 1, 2 * j + dj);
+      for (long di = 0; di < 2; ++di) values[di][dj] = f.evaluate_rows(grid_.cell_x(depth + 1, 2 * i + di), rows);
     }
-    // a new parent at the children's depth: their row caches start empty
-    row_caches_[static_cast<std::size_t>(depth) + 1].generation = ++generation_;
     for (long di = 0; di < 2; ++di)
-      for (long dj = 0; dj < 2; ++dj)
-        visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found, values[di][dj], settled, static_cast<int>(dj));
+      for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found, values[di][dj], settled);
   }
 
   int entry_depth_ = 0;
   BlockedCells& grid_;
   const std::vector<algebra::IntervalPolynomial2>* entry_ = nullptr;   // the current curve's (windows)
-  std::vector<algebra::Interval> rows_;   // scratch of visit (used before it recurses)
   std::vector<std::size_t> clause_slot_;  // the current curve's: slot of each clause's first atom
   std::size_t entry_slot_ = 0;            // slot of the first corner-entry atom
-  std::size_t atoms_ = 0;                 // slots in use
-  std::vector<RowCache> row_caches_;      // per depth
-  std::uint64_t generation_ = 0;
+  std::size_t f_slot_ = 0;                // slot of f (after the atoms)
+  std::uint64_t curve_ = 0;               // the current curve's number (from 1)
+  std::vector<std::vector<RowEntry>> row_caches_;   // per depth: slot * row_ways + j % row_ways
 };
 
 const mpz_class& coefficient_of(const IntegerPolynomial2& f, std::size_t i, std::size_t j) {
