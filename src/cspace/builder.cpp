@@ -93,6 +93,7 @@ class CurveCuller {
     for (auto& cache : row_caches_)
       if (cache.size() < slots * row_ways) cache.resize(slots * row_ways);
     ++curve_;   // every entry of an earlier curve is stale
+    row_cache_ = culling_row_cache().load(std::memory_order_relaxed);
     visit(f, clauses, 0, 0, 0, boxes, f.evaluate(grid_.cell_x(0, 0), grid_.cell_y(0, 0)), 0);
     std::sort(boxes.begin(), boxes.end());
     cells.clear();
@@ -144,9 +145,10 @@ class CurveCuller {
     return e.rows;
   }
 
-  // Atom `slot` (polynomial `atom`) over cell (depth, i, j), x its x-interval.
+  // Atom `slot` (polynomial `atom`) over cell (depth, i, j), x and y its intervals.
   algebra::Interval atom_value(const algebra::IntervalPolynomial2& atom, std::size_t slot, int depth, long j,
-                               algebra::Interval x) {
+                               algebra::Interval x, algebra::Interval y) {
+    if (!row_cache_) return atom.evaluate(x, y);
     return atom.evaluate_rows(x, rows_of(atom, slot, depth, j));
   }
 
@@ -165,7 +167,7 @@ class CurveCuller {
       const auto& clause = clauses[k];
       bool can_hold = false, holds = false;
       for (std::size_t a = 0; a < clause.size(); ++a) {
-        const algebra::Interval value = atom_value(clause[a], clause_slot_[k] + a, depth, j, x);
+        const algebra::Interval value = atom_value(clause[a], clause_slot_[k] + a, depth, j, x, y);
         can_hold = can_hold || value.hi >= 0;
         holds = holds || value.lo > 0;
         if (holds || (can_hold && !strict)) break;
@@ -176,7 +178,7 @@ class CurveCuller {
     }
     if (strict) {
       for (std::size_t a = 0; a < entry_->size(); ++a)
-        if (atom_value((*entry_)[a], entry_slot_ + a, depth, j, x).hi < 0) return;
+        if (atom_value((*entry_)[a], entry_slot_ + a, depth, j, x, y).hi < 0) return;
     }
     if (depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && depth <= grid_.depth() && grid_.blocked(depth, i, j))
       return;
@@ -188,7 +190,8 @@ class CurveCuller {
     }
     algebra::Interval values[2][2];
     for (long dj = 0; dj < 2; ++dj) {
-      const std::vector<algebra::Interval>& rows = rows_of(f, f_slot_, depth + 1, 2 * j + dj);
+      if (!row_cache_) f.rows_at(grid_.cell_y(depth + 1, 2 * j + dj), rows_);
+      const std::vector<algebra::Interval>& rows = row_cache_ ? rows_of(f, f_slot_, depth + 1, 2 * j + dj) : rows_;
       for (long di = 0; di < 2; ++di) values[di][dj] = f.evaluate_rows(grid_.cell_x(depth + 1, 2 * i + di), rows);
     }
     for (long di = 0; di < 2; ++di)
@@ -202,8 +205,19 @@ class CurveCuller {
   std::size_t entry_slot_ = 0;            // slot of the first corner-entry atom
   std::size_t f_slot_ = 0;                // slot of f (after the atoms)
   std::uint64_t curve_ = 0;               // the current curve's number (from 1)
+  bool row_cache_ = true;                 // culling_row_cache() when the curve's walk began
+  std::vector<algebra::Interval> rows_;   // f's rows without the cache (scratch)
   std::vector<std::vector<RowEntry>> row_caches_;   // per depth: slot * row_ways + j % row_ways
 };
+
+}  // namespace
+
+std::atomic<bool>& culling_row_cache() {
+  static std::atomic<bool> on{true};
+  return on;
+}
+
+namespace {
 
 const mpz_class& coefficient_of(const IntegerPolynomial2& f, std::size_t i, std::size_t j) {
   static const mpz_class zero = 0;
