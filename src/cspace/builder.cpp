@@ -77,6 +77,23 @@ class CurveCuller {
                                                  std::vector<std::array<double, 4>>& cells) {
     std::vector<std::array<double, 4>> boxes;
     entry_ = &entry;
+    // the atoms' slots in the per-depth row caches: the clauses' atoms in order, then the
+    // corner-entry atoms
+    clause_slot_.clear();
+    std::size_t atoms = 0;
+    for (const auto& clause : clauses) {
+      clause_slot_.push_back(atoms);
+      atoms += clause.size();
+    }
+    entry_slot_ = atoms;
+    f_slot_ = atoms + entry.size();
+    const std::size_t slots = f_slot_ + 1;
+    const int deepest = grid_.depth() + (entry.empty() ? 0 : entry_depth_);
+    if (row_caches_.size() < static_cast<std::size_t>(deepest) + 1) row_caches_.resize(static_cast<std::size_t>(deepest) + 1);
+    for (auto& cache : row_caches_)
+      if (cache.size() < slots * row_ways) cache.resize(slots * row_ways);
+    ++curve_;   // every entry of an earlier curve is stale
+    row_cache_ = culling_row_cache().load(std::memory_order_relaxed);
     visit(f, clauses, 0, 0, 0, boxes, f.evaluate(grid_.cell_x(0, 0), grid_.cell_y(0, 0)), 0);
     std::sort(boxes.begin(), boxes.end());
     cells.clear();
@@ -101,6 +118,40 @@ class CurveCuller {
   }
 
  private:
+  // The rows of the current curve's polynomials (IntervalPolynomial2::rows_at: each validity
+  // and corner-entry atom, and f) at the y-intervals of the grid's rows of cells, per depth:
+  // the cells of one row (j) have the same y, so a polynomial evaluated in several of them
+  // (the two children of a row of one parent, and the neighbouring parents' children) has its
+  // rows in y enclosed once. evaluate_rows(x, rows_at(y)) is evaluate(x, y) bound for bound:
+  // the same enclosures, the same decisions. Direct-mapped: `row_ways` rows per polynomial
+  // and depth, entry j % row_ways, holding the rows of row j of the curve numbered `curve`
+  // (0: none; a new curve makes every entry stale without a pass over them).
+  struct RowEntry {
+    std::uint64_t curve = 0;
+    long j = -1;
+    std::vector<algebra::Interval> rows;
+  };
+  static constexpr std::size_t row_ways = 32;
+
+  // The rows of polynomial `p` (its slot) at row j of depth `depth`.
+  const std::vector<algebra::Interval>& rows_of(const algebra::IntervalPolynomial2& p, std::size_t slot, int depth,
+                                                long j) {
+    RowEntry& e = row_caches_[static_cast<std::size_t>(depth)][slot * row_ways + static_cast<std::size_t>(j) % row_ways];
+    if (e.j != j || e.curve != curve_) {
+      p.rows_at(grid_.cell_y(depth, j), e.rows);
+      e.j = j;
+      e.curve = curve_;
+    }
+    return e.rows;
+  }
+
+  // Atom `slot` (polynomial `atom`) over cell (depth, i, j), x and y its intervals.
+  algebra::Interval atom_value(const algebra::IntervalPolynomial2& atom, std::size_t slot, int depth, long j,
+                               algebra::Interval x, algebra::Interval y) {
+    if (!row_cache_) return atom.evaluate(x, y);
+    return atom.evaluate_rows(x, rows_of(atom, slot, depth, j));
+  }
+
   // `value`: f over the cell (its parent evaluates the four children's, the two of a row of
   // cells from the same rows of f at the row's y: the enclosures of evaluate, bound for bound).
   // `settled`: bit k set when clause k (k < 64) holds strictly over an enclosing cell (an atom's
@@ -115,8 +166,8 @@ class CurveCuller {
       if (k < 64 && (settled >> k & 1u)) continue;
       const auto& clause = clauses[k];
       bool can_hold = false, holds = false;
-      for (const auto& atom : clause) {
-        const algebra::Interval value = atom.evaluate(x, y);
+      for (std::size_t a = 0; a < clause.size(); ++a) {
+        const algebra::Interval value = atom_value(clause[a], clause_slot_[k] + a, depth, j, x, y);
         can_hold = can_hold || value.hi >= 0;
         holds = holds || value.lo > 0;
         if (holds || (can_hold && !strict)) break;
@@ -125,9 +176,10 @@ class CurveCuller {
       strict = strict && holds;
       if (holds && k < 64) settled |= std::uint64_t{1} << k;
     }
-    if (strict && std::any_of(entry_->begin(), entry_->end(),
-                              [&](const algebra::IntervalPolynomial2& atom) { return atom.evaluate(x, y).hi < 0; }))
-      return;
+    if (strict) {
+      for (std::size_t a = 0; a < entry_->size(); ++a)
+        if (atom_value((*entry_)[a], entry_slot_ + a, depth, j, x, y).hi < 0) return;
+    }
     if (depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && depth <= grid_.depth() && grid_.blocked(depth, i, j))
       return;
     // a curve with corner-entry atoms is followed entry_depth_ levels below the grid's finest
@@ -138,8 +190,9 @@ class CurveCuller {
     }
     algebra::Interval values[2][2];
     for (long dj = 0; dj < 2; ++dj) {
-      f.rows_at(grid_.cell_y(depth + 1, 2 * j + dj), rows_);
-      for (long di = 0; di < 2; ++di) values[di][dj] = f.evaluate_rows(grid_.cell_x(depth + 1, 2 * i + di), rows_);
+      if (!row_cache_) f.rows_at(grid_.cell_y(depth + 1, 2 * j + dj), rows_);
+      const std::vector<algebra::Interval>& rows = row_cache_ ? rows_of(f, f_slot_, depth + 1, 2 * j + dj) : rows_;
+      for (long di = 0; di < 2; ++di) values[di][dj] = f.evaluate_rows(grid_.cell_x(depth + 1, 2 * i + di), rows);
     }
     for (long di = 0; di < 2; ++di)
       for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found, values[di][dj], settled);
@@ -148,8 +201,23 @@ class CurveCuller {
   int entry_depth_ = 0;
   BlockedCells& grid_;
   const std::vector<algebra::IntervalPolynomial2>* entry_ = nullptr;   // the current curve's (windows)
-  std::vector<algebra::Interval> rows_;   // scratch of visit (used before it recurses)
+  std::vector<std::size_t> clause_slot_;  // the current curve's: slot of each clause's first atom
+  std::size_t entry_slot_ = 0;            // slot of the first corner-entry atom
+  std::size_t f_slot_ = 0;                // slot of f (after the atoms)
+  std::uint64_t curve_ = 0;               // the current curve's number (from 1)
+  bool row_cache_ = true;                 // culling_row_cache() when the curve's walk began
+  std::vector<algebra::Interval> rows_;   // f's rows without the cache (scratch)
+  std::vector<std::vector<RowEntry>> row_caches_;   // per depth: slot * row_ways + j % row_ways
 };
+
+}  // namespace
+
+std::atomic<bool>& culling_row_cache() {
+  static std::atomic<bool> on{true};
+  return on;
+}
+
+namespace {
 
 const mpz_class& coefficient_of(const IntegerPolynomial2& f, std::size_t i, std::size_t j) {
   static const mpz_class zero = 0;

@@ -11,6 +11,7 @@
 #include "curves/contact_curves.hpp"
 
 #include <array>
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -193,6 +194,11 @@ std::optional<QuadraticOrdinate> quadratic_ordinate(const ChartData& chart, std:
 /// cannot separate them (or overflow).
 std::optional<algebra::Interval> quadratic_root_enclosure(const mpz_class& a, const mpz_class& b, const mpz_class& c,
                                                           int index);
+/// The culling quadtree (builder.cpp) keeps the rows in y of each curve's polynomials per row
+/// of grid cells and evaluates the cells of a row from them (bound for bound the enclosures of
+/// evaluating each cell alone: the same windows and cells). On by default; tests turn it off
+/// to compare with the plain evaluation per cell.
+std::atomic<bool>& culling_row_cache();
 /// Queries (builder_locate.cpp).
 Location locate_point(const CSpace::Impl& impl, const hipair::ChartPoint& q);
 CertifiedValue evaluate_edge(const CSpace::Impl& impl, std::size_t edge, double x);

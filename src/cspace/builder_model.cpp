@@ -372,9 +372,10 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
     if (curve_options.blocked_grid)
       cells = std::make_shared<BlockedCells>(tester, chart.x, chart.y, building.dimension, grid_depth);
     std::vector<ContactCurve> curves = generator.generate(chart.x, chart.y, &building.curve_statistics, cells.get());
-    // the tester's posed disks are posed again when the builder culls the box, rather than
-    // kept for every box at once (the known cells stay)
-    if (cells) cells->release_cache();
+    // the tester's posed disks (per axis interval) stay for the builder's cull of the same box
+    // (prepare_chart, right after this): the boxes are built one at a time and the builder
+    // releases the grid after culling, so one box's poses are alive at a time (the answers
+    // do not depend on the cache)
     building.seconds_curves += std::chrono::duration<double>(Clock::now() - start).count();
     for (auto& curve : curves)
       if (!curve.polynomial.is_zero()) chart.curves.push_back(std::move(curve));

@@ -607,7 +607,8 @@ struct PoseBox {
   Interval pivot_y{0};
   Interval shift_x{0};
   Interval shift_y{0};
-  void apply(const Interval& x, const Interval& y, Interval& u, Interval& v) const {
+  // (flattened: the interval operations inlined, the same operations in the same order)
+  [[gnu::flatten]] void apply(const Interval& x, const Interval& y, Interval& u, Interval& v) const {
     Interval dx = x - pivot_x, dy = y - pivot_y;
     u = pivot_x + shift_x + c * dx - s * dy;
     v = pivot_y + shift_y + s * dx + c * dy;
@@ -655,7 +656,7 @@ BodyDisk body_disk(const BodyFeature& feature) {
   return BodyDisk{Interval(cx, cx), Interval(cy, cy), r.hi};
 }
 
-WorldBox world_box(const PoseBox& pose, const Interval& x, const Interval& y, double radius) {
+[[gnu::flatten]] WorldBox world_box(const PoseBox& pose, const Interval& x, const Interval& y, double radius) {
   Interval u, v;
   pose.apply(x, y, u, v);
   return WorldBox{(u - Interval(radius, radius)).lo, (u + Interval(radius, radius)).hi,
@@ -825,7 +826,9 @@ class BlockedSpaceCuller {
   // Two cores over the cell of the two axis caches: certainly overlapping everywhere in it,
   // possibly overlapping somewhere (near), or apart everywhere. The posed centres are memoised
   // in the caches.
-  CoreRelation core_relation(const CorePair& pair, AxisCache& cache_a, AxisCache& cache_b) const {
+  // (flattened: the interval operations inlined, the same operations in the same order — the
+  // quadtree's innermost loop)
+  [[gnu::flatten]] CoreRelation core_relation(const CorePair& pair, AxisCache& cache_a, AxisCache& cache_b) const {
     auto ui = static_cast<std::size_t>(pair.i), uj = static_cast<std::size_t>(pair.j);
     if (!cache_a.core_done[ui]) {
       cache_a.pose.apply((*cores_[0])[ui].x, (*cores_[0])[ui].y, cache_a.core_x[ui], cache_a.core_y[ui]);

@@ -11,6 +11,7 @@
 //    contact curve that the cull dropped (its feature pair, or its part outside the windows)
 //    has blocked configurations just above and just below it (exact point location).
 #include "cspace/builder_impl.hpp"
+#include "cli/cspace_json.hpp"
 #include "curves/contact_curves.hpp"
 #include "cspace_test_support.hpp"
 #include "test_paths.hpp"
@@ -24,6 +25,9 @@
 #include <array>
 #include <filesystem>
 #include <map>
+#include <optional>
+#include <sstream>
+#include <tuple>
 #include <random>
 #include <string>
 
@@ -396,6 +400,96 @@ TEST(CSpaceCull, CornerEntryPointsAreOverlapsByTheOracle) {
     checked += expect_corner_entries_overlap(gear_pair(teeth[n].first, teeth[n].second), "pinion", "gear", 70 + n, 3, 2);
   }
   EXPECT_GT(checked, 1000);
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// The culling quadtree's row cache off for one scope (culling_row_cache(): the plain
+// evaluation per cell), restored when the scope ends, also on a failed assertion.
+struct PlainCulling {
+  PlainCulling() { cspace::culling_row_cache().store(false); }
+  ~PlainCulling() { cspace::culling_row_cache().store(true); }
+  PlainCulling(const PlainCulling&) = delete;
+  PlainCulling& operator=(const PlainCulling&) = delete;
+};
+
+std::string json_of(const CSpace& space) {
+  std::ostringstream out;
+  cli::write_space_json(out, space, false);
+  return out.str();
+}
+
+// The row cache against the plain evaluation per cell: every chart's kept curves, windows and
+// surviving cells equal (doubles compared exactly) and the same C-space, its JSON text byte
+// for byte; then the cached build against the exact overlap oracle at `points` random
+// rational configurations (a free location is apart, a blocked one overlapping).
+void expect_row_cache_builds_the_plain_space(const Model& model, const std::string& first, const std::string& second,
+                                             std::uint64_t seed, const CSpaceBuildOptions& options, int points,
+                                             std::size_t* windows) {
+  std::optional<CSpace> plain;
+  {
+    PlainCulling off;
+    plain.emplace(CSpace::build(model, first, second, options));
+  }
+  ASSERT_TRUE(cspace::culling_row_cache().load());
+  CSpace cached = CSpace::build(model, first, second, options);
+  const auto& a = cspace::impl_of(cached);
+  const auto& b = cspace::impl_of(*plain);
+  ASSERT_EQ(a.charts.size(), b.charts.size());
+  for (std::size_t c = 0; c < a.charts.size(); ++c) {
+    EXPECT_EQ(a.charts[c].curve_global, b.charts[c].curve_global) << "chart " << c;
+    EXPECT_EQ(a.charts[c].windows, b.charts[c].windows) << "chart " << c;
+    EXPECT_EQ(a.charts[c].cells, b.charts[c].cells) << "chart " << c;
+    for (const auto& w : a.charts[c].windows) *windows += w.size();
+  }
+  EXPECT_EQ(json_of(cached), json_of(*plain));
+  cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part(first), *model.find_part(second));
+  std::mt19937_64 random(seed);
+  for (int i = 0; i < points; ++i) {
+    const ChartPoint q = test::random_tile_point(cached, random);
+    const CSpaceChart& chart = cached.charts()[q.chart];
+    const Location location = cached.locate(q);
+    if (location.kind != Location::Kind::free && location.kind != Location::Kind::blocked) continue;
+    const cspace::Overlap overlap = cspace::classify_overlap(
+        model, axes, test::axis_of(chart.x_kind, chart.x_half_turn, chart.x_lo, chart.x_hi),
+        test::axis_of(chart.y_kind, chart.y_half_turn, chart.y_lo, chart.y_hi), cspace::ChartPoint{q.x, q.y});
+    EXPECT_EQ(overlap, location.kind == Location::Kind::free ? cspace::Overlap::apart : cspace::Overlap::overlapping)
+        << "chart " << q.chart << " at " << q.x << ", " << q.y;
+  }
+}
+
+// Generated pairs (random rational star polygons, levers with arcs and a notch of exactly the
+// tip's width, wider and narrower: zero clearance and tangencies; lengths times 1, 10^-30 and
+// 10^40 as exact rationals) and Geneva.
+TEST(CSpaceCull, RowCacheBuildsThePlainEvaluationsSpaceOnGeneratedPairs) {
+  std::mt19937_64 random(3401);
+  std::size_t windows = 0;
+  int spaces = 0;
+  for (int scale : {0, -30, 40}) {
+    SCOPED_TRACE("scale 1e" + std::to_string(scale));
+    expect_row_cache_builds_the_plain_space(star_pair(random, power_of_ten(scale)), "a", "b", 31, {}, 40, &windows);
+    ++spaces;
+    for (int n = 0; n < (scale == 0 ? 3 : 1); ++n) {
+      Rational w = random_rational(random, 0.6, 1.0, 16);
+      Rational a = random_rational(random, 2.0, 4.0, 16);
+      Rational width = n == 0 ? Rational(2 * w) : n == 1 ? Rational(2 * w + Rational(1, 4)) : Rational(2 * w - Rational(1, 8));
+      Rational c = random_rational(random, 0.5, 1.5, 8);
+      expect_row_cache_builds_the_plain_space(lever_pair(w, Rational(10), a, Rational(a + width), c, power_of_ten(scale)),
+                                              "crank", "rocker", 41 + n, {}, 40, &windows);
+      ++spaces;
+    }
+  }
+  std::filesystem::path geneva = std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json";
+  if (std::filesystem::exists(geneva)) {
+    expect_row_cache_builds_the_plain_space(read_model_file(geneva), "driver", "wheel", 51, {}, 60, &windows);
+    ++spaces;
+  }
+  EXPECT_GE(spaces, 8);
+  EXPECT_GT(windows, 100u);   // the windows compared are not all empty
 }
 
 }  // namespace
