@@ -747,9 +747,10 @@ class BlockedSpaceCuller {
     filter_ = filter;
     if (!filter || filter->meets(root_x_, root_y_)) visit(root_x_, root_y_, 0, 0, 0, indices_, root_core_pairs_);
     filter_ = nullptr;
-    // the world-box caches are per walk (a later walk recomputes the few cells it shares with
-    // this one): a culler kept between walks holds no more than its lists
+    // the world-box caches and the per-depth lists are per walk (a later walk recomputes the
+    // few cells it shares with this one): a culler kept between walks holds only its root's lists
     for (auto& caches : caches_) caches.clear();
+    scratch_ = std::vector<Scratch>(scratch_.size());
   }
 
   std::size_t cells_visited() const { return cells_; }

@@ -362,15 +362,12 @@ class KernelSlicer final : public PairSlicer {
     // their last: the quadtree's cells meeting a run include every cell holding a point of it
     const std::vector<Rational>& edges = follower_edges_[f];
     std::vector<std::pair<double, double>> ranges;
-    for (int first = 0; first < follower_cells;) {
-      if (!(cells & (std::uint32_t(1) << first))) {
-        ++first;
-        continue;
-      }
-      int last = first;
-      while (last + 1 < follower_cells && (cells & (std::uint32_t(1) << (last + 1)))) ++last;
-      ranges.emplace_back(algebra::lower_double(edges[first]), algebra::upper_double(edges[last + 1]));
-      first = last + 1;
+    for (int cell = 0, previous = -2; cell < follower_cells; ++cell) {
+      if (!((cells >> cell) & 1u)) continue;
+      const double upper = algebra::upper_double(edges[cell + 1]);
+      if (previous == cell - 1) ranges.back().second = upper;   // the run goes on
+      else ranges.emplace_back(algebra::lower_double(edges[cell]), upper);
+      previous = cell;
     }
     std::vector<cspace::CurveGenerator::FeaturePair> pairs = chart.selections[s]->extend(follower_is_x_ ? 0 : 1, ranges);
     strip_cells_culled_ += static_cast<std::size_t>(std::popcount(cells));
@@ -396,6 +393,8 @@ class KernelSlicer final : public PairSlicer {
                  std::back_inserter(result->curves),
                  [](const StripCurve& a, const StripCurve& b) { return a.feature < b.feature; });
     }
+    // culled over every follower cell: the strip is the whole strip's, its cull is done
+    if (result->culled == ~std::uint32_t(0)) chart.selections[s].reset();
     chart.strips[s] = std::move(result);
   }
 

@@ -13,6 +13,7 @@
 //   - the feature labels agree.
 #include "kinematics/slice.hpp"
 #include "test_paths.hpp"
+#include "spur_gear_pairs.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
@@ -84,6 +85,20 @@ void expect_same(const ChartSlice& a, const ChartSlice& b, const PairSlicer& who
   EXPECT_EQ(j, b.points.size()) << where;
 }
 
+// The polynomials the engine differentiates: the same curve in both slicers for every feature
+// of `slice`'s points.
+void expect_same_polynomials(const ChartSlice& slice, const PairSlicer& whole, const PairSlicer& strips, std::size_t o,
+                             std::size_t f, const std::string& where) {
+  for (const SlicePoint& point : slice.points)
+    for (std::size_t feature : point.features) {
+      const IntegerPolynomial2* p = whole.polynomial(o, f, feature);
+      const IntegerPolynomial2* q = strips.polynomial(o, f, feature);
+      ASSERT_NE(p, nullptr) << where;
+      ASSERT_NE(q, nullptr) << where;
+      EXPECT_EQ(p->coefficients, q->coefficients) << where;
+    }
+}
+
 struct StripCase {
   std::string file;
   int values;          // slices per chart pair and follower
@@ -126,15 +141,7 @@ TEST_P(KernelSlicerStrips, SameSlicesAsTheWholeChartPairs) {
             expect_same(a, b, *whole, *strips, where);
             ++slices;
             compared_points += a.points.size();
-            // the polynomials the engine differentiates: the same curve in both
-            for (const SlicePoint& point : b.points)
-              for (std::size_t feature : point.features) {
-                const IntegerPolynomial2* p = whole->polynomial(o, f, feature);
-                const IntegerPolynomial2* q = strips->polynomial(o, f, feature);
-                ASSERT_NE(p, nullptr);
-                ASSERT_NE(q, nullptr);
-                EXPECT_EQ(p->coefficients, q->coefficients) << where;
-              }
+            expect_same_polynomials(b, *whole, *strips, o, f, where);
           }
     }
   }
@@ -264,16 +271,16 @@ struct LazyCounts {
 void lazy_walks(const Model& model, std::size_t pair, std::size_t follower, int walks, int steps, std::uint64_t seed,
                 const std::string& name, LazyCounts& counts) {
   std::mt19937_64 random(seed);
-  KernelSlicerOptions whole_strips;
-  whole_strips.lazy_cull = false;
-  std::unique_ptr<PairSlicer> whole, lazy;
+  std::unique_ptr<PairSlicer> lazy;
   try {
-    whole = make_kernel_slicer(model, pair, follower, whole_strips);
     lazy = make_kernel_slicer(model, pair, follower, KernelSlicerOptions{});
   } catch (const GeometryError&) {
     return;   // a fixed follower, or not a fixed-axis pair
   }
-  if (!whole->other_moves()) return;
+  if (!lazy->other_moves()) return;   // (a fixed other part: one strip, culled whole)
+  KernelSlicerOptions whole_strips;
+  whole_strips.lazy_cull = false;
+  const std::unique_ptr<PairSlicer> whole = make_kernel_slicer(model, pair, follower, whole_strips);
   for (int w = 0; w < walks; ++w) {
     const std::size_t o = random() % whole->other_charts().size(), f = random() % whole->follower_charts().size();
     const ChartAxis& other_axis = whole->other_charts()[o];
@@ -303,14 +310,7 @@ void lazy_walks(const Model& model, std::size_t pair, std::size_t follower, int 
       if (::testing::Test::HasFailure()) return;
       ++counts.slices;
       counts.points += a.points.size();
-      for (const SlicePoint& point : b.points)
-        for (std::size_t feature : point.features) {
-          const IntegerPolynomial2* p = whole->polynomial(o, f, feature);
-          const IntegerPolynomial2* q = lazy->polynomial(o, f, feature);
-          ASSERT_NE(p, nullptr);
-          ASSERT_NE(q, nullptr);
-          EXPECT_EQ(p->coefficients, q->coefficients) << where;
-        }
+      expect_same_polynomials(b, *whole, *lazy, o, f, where);
     }
   }
   counts.lazy_cells += kernel_slice_class_counts(*lazy).strip_cells_culled;
@@ -336,20 +336,9 @@ TEST(KernelSlicerLazyCull, SameSlicesAsWholeStripsOnGeneratedGearPairs) {
   std::mt19937_64 random(34001);
   LazyCounts counts;
   for (int g = 0; g < 2; ++g) {
-    ReadOptions read;
     const long z1 = 6 + static_cast<long>(random() % 9), z2 = 6 + static_cast<long>(random() % 12);
-    read.parameter_values["teeth-1"] = Rational(z1);
-    read.parameter_values["teeth-2"] = Rational(z2);
-    Rational backlash(static_cast<long>(80 + random() % 41), 1000);
-    backlash.canonicalize();
-    Rational offset(static_cast<long>(random() % 41) - 20, 1000);
-    offset.canonicalize();
-    read.parameter_values["backlash"] = backlash;
-    read.parameter_values["center-distance"] = Rational(Rational(z1 + z2) + offset);
-    read.allow_out_of_tolerance = true;
-    Model model = read_model_file(example("spur-gears.json"), read);
-    const std::string name = "gears " + std::to_string(z1) + "x" + std::to_string(z2) + " backlash " +
-                             backlash.get_str() + " offset " + offset.get_str();
+    std::string name;
+    Model model = test_gears::spur_gear_pair(random, z1, z2, name);
     lazy_walks(model, 0, model.pairs[0].second, 2, 20, 34100 + static_cast<std::uint64_t>(g), name, counts);
     lazy_walks(model, 0, model.pairs[0].first, 1, 20, 34200 + static_cast<std::uint64_t>(g), name, counts);
   }
