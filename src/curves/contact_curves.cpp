@@ -663,6 +663,19 @@ BodyDisk body_disk(const BodyFeature& feature) {
                   (v - Interval(radius, radius)).lo, (v + Interval(radius, radius)).hi};
 }
 
+// The cells a walk of BlockedSpaceCuller visits: those whose interval on `axis` (0: x, 1: y)
+// meets one of `ranges` (closed double intervals).
+struct CullFilter {
+  int axis = 1;
+  std::vector<std::pair<double, double>> ranges;
+  bool meets(const Interval& cx, const Interval& cy) const {
+    const Interval& c = axis == 0 ? cx : cy;
+    for (const auto& [lo, hi] : ranges)
+      if (lo <= c.hi && c.lo <= hi) return true;
+    return false;
+  }
+};
+
 // Quadtree over the chart: a cell is dropped when no candidate pair can meet in it or when it
 // is certainly blocked (every configuration there is blocked); feature pairs still candidates
 // in the smallest cells are kept. The blocked test is either the chart box's grid of the
@@ -690,8 +703,23 @@ class BlockedSpaceCuller {
 
   // needed[k] set for the candidate pairs that survive.
   void run(const std::vector<std::pair<int, int>>& pairs, std::vector<char>& needed) {
-    std::vector<int> indices(pairs.size());
-    for (std::size_t k = 0; k < pairs.size(); ++k) indices[k] = static_cast<int>(k);
+    prepare(pairs, needed);
+    if (grid_) {
+      visit(grid_cell_x(0, 0), grid_cell_y(0, 0), 0, 0, 0, indices_, {});
+      return;
+    }
+    walk(nullptr);
+  }
+
+  // run() in steps (no grid): prepare once, then walk the quadtree over the cells whose
+  // interval on the filter's axis meets one of its ranges (closed), any number of times. A
+  // walk takes each cell it visits from the root by the same halvings and tests it exactly as
+  // run() does (the lists a cell reads depend only on its ancestors, and a pair already needed
+  // is only skipped), so the pairs needed after walks over filters whose ranges cover every
+  // leaf are run()'s, and after any walks, those with a surviving leaf among the leaves visited.
+  void prepare(const std::vector<std::pair<int, int>>& pairs, std::vector<char>& needed) {
+    indices_.resize(pairs.size());
+    for (std::size_t k = 0; k < pairs.size(); ++k) indices_[k] = static_cast<int>(k);
     pairs_ = &pairs;
     needed_ = &needed;
     // the features of some candidate pair get a slot in the per-interval world-box caches (a
@@ -708,15 +736,22 @@ class BlockedSpaceCuller {
     }
     // every depth's lists made before the walk: a child reads its parent's lists by reference
     scratch_.resize(static_cast<std::size_t>(grid_ ? std::max(grid_->depth(), min_grid_depth) : max_depth) + 1);
-    if (grid_) {
-      visit(grid_cell_x(0, 0), grid_cell_y(0, 0), 0, 0, 0, indices, {});
-      return;
-    }
-    Interval cx(algebra::enclose_kernel(x_.lo).lo, algebra::enclose_kernel(x_.hi).hi);
-    Interval cy = dimension_ == 2 ? Interval(algebra::enclose_kernel(y_.lo).lo, algebra::enclose_kernel(y_.hi).hi)
-                                  : Interval(0);
-    std::vector<CorePair> core_pairs = near_core_pairs(cx, cy);
-    visit(cx, cy, 0, 0, 0, indices, core_pairs);
+    if (grid_) return;
+    root_x_ = Interval(algebra::enclose_kernel(x_.lo).lo, algebra::enclose_kernel(x_.hi).hi);
+    root_y_ = dimension_ == 2 ? Interval(algebra::enclose_kernel(y_.lo).lo, algebra::enclose_kernel(y_.hi).hi)
+                              : Interval(0);
+    root_core_pairs_ = near_core_pairs(root_x_, root_y_);
+  }
+
+  // One walk after prepare() (no grid); nullptr: every cell.
+  void walk(const CullFilter* filter) {
+    filter_ = filter;
+    if (!filter || filter->meets(root_x_, root_y_)) visit(root_x_, root_y_, 0, 0, 0, indices_, root_core_pairs_);
+    filter_ = nullptr;
+    // the world-box caches and the per-depth lists are per walk (a later walk recomputes the
+    // few cells it shares with this one): a culler kept between walks holds only its root's lists
+    for (auto& caches : caches_) caches.clear();
+    scratch_ = std::vector<Scratch>(scratch_.size());
   }
 
   std::size_t cells_visited() const { return cells_; }
@@ -918,9 +953,11 @@ class BlockedSpaceCuller {
       double my = 0.5 * (cy.lo + cy.hi);
       std::array<Interval, 2> ys{Interval(cy.lo, my), Interval(my, cy.hi)};
       for (const Interval& sx : xs)
-        for (const Interval& sy : ys) visit(sx, sy, depth + 1, 0, 0, meeting, near_cores);
+        for (const Interval& sy : ys)
+          if (!filter_ || filter_->meets(sx, sy)) visit(sx, sy, depth + 1, 0, 0, meeting, near_cores);
     } else {
-      for (const Interval& sx : xs) visit(sx, cy, depth + 1, 0, 0, meeting, near_cores);
+      for (const Interval& sx : xs)
+        if (!filter_ || filter_->meets(sx, cy)) visit(sx, cy, depth + 1, 0, 0, meeting, near_cores);
     }
   }
 
@@ -942,6 +979,11 @@ class BlockedSpaceCuller {
   std::size_t cells_ = 0;
   std::map<std::pair<double, double>, AxisCache> caches_[2];
   BlockedCells* grid_ = nullptr;
+  // prepare(): the candidate indices and the root cell with its near core pairs; walk(): its filter
+  std::vector<int> indices_;
+  Interval root_x_{0}, root_y_{0};
+  std::vector<CorePair> root_core_pairs_;
+  const CullFilter* filter_ = nullptr;
   // per depth of the quadtree: the open and meeting candidate pairs and the near core pairs of
   // the cell being visited there
   struct Scratch {
@@ -1639,22 +1681,72 @@ CurveGenerator::~CurveGenerator() = default;
 
 std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const ChartAxis& y,
                                                    CurveStatistics* statistics, BlockedCells* grid) const {
-  return generate_impl(x, y, statistics, grid, nullptr, nullptr);
+  return generate_impl(x, y, statistics, grid, nullptr, nullptr, nullptr);
 }
 
 std::vector<CurveGenerator::FeaturePair> CurveGenerator::select(const ChartAxis& x, const ChartAxis& y) const {
   if (data_->front_end || data_->options.blocked_grid)
     throw GeometryError("internal: select() is for the general path of the curve generator without a grid");
   std::vector<FeaturePair> selected;
-  generate_impl(x, y, nullptr, nullptr, nullptr, &selected);
+  generate_impl(x, y, nullptr, nullptr, nullptr, &selected, nullptr);
   return selected;
+}
+
+struct CurveGenerator::Selection::Impl {
+  std::vector<FeaturePair> pairs;   // the candidates after the broad phase, ascending
+  std::vector<char> needed;
+  std::vector<char> returned;   // by extend() so far
+  std::optional<BlockedSpaceCuller> culler;
+};
+
+CurveGenerator::Selection::Selection() : impl_(new Impl) {}
+CurveGenerator::Selection::~Selection() = default;
+
+std::vector<CurveGenerator::FeaturePair> CurveGenerator::Selection::extend(
+    int axis, const std::vector<std::pair<double, double>>& ranges) {
+  Impl& impl = *impl_;
+  if (impl.culler) {
+    CullFilter filter{axis, ranges};
+    impl.culler->walk(&filter);
+  }
+  std::vector<FeaturePair> added;
+  for (std::size_t k = 0; k < impl.pairs.size(); ++k)
+    if (impl.needed[k] && !impl.returned[k]) {
+      impl.returned[k] = 1;
+      added.push_back(impl.pairs[k]);
+    }
+  return added;
+}
+
+std::unique_ptr<CurveGenerator::Selection> CurveGenerator::incremental_select(const ChartAxis& x, const ChartAxis& y) const {
+  if (data_->front_end || data_->options.blocked_grid)
+    throw GeometryError("internal: incremental_select() is for the general path of the curve generator without a grid");
+  const Data& d = *data_;
+  std::unique_ptr<Selection> selection(new Selection);
+  Selection::Impl& impl = *selection->impl_;
+  generate_impl(x, y, nullptr, nullptr, nullptr, nullptr, &impl.pairs);
+  // without the cull every candidate is kept at once (select())
+  impl.needed.assign(impl.pairs.size(), d.options.cull_blocked_space ? 0 : 1);
+  impl.returned.assign(impl.pairs.size(), 0);
+  if (d.options.cull_blocked_space) {
+    const Part& part_a = d.model.parts.at(d.axes.first);
+    const Part& part_b = d.model.parts.at(d.axes.second);
+    std::call_once(d.cores_once, [&] {
+      d.cores_a = inscribed_disks(part_a);
+      d.cores_b = inscribed_disks(part_b);
+    });
+    impl.culler.emplace(part_a, d.axes.first_moves, part_b, d.axes.second_moves, x, y, d.axes.dimension(), d.disks_a,
+                        d.disks_b, d.cores_a, d.cores_b);
+    impl.culler->prepare(impl.pairs, impl.needed);
+  }
+  return selection;
 }
 
 std::vector<ContactCurve> CurveGenerator::generate_selected(const ChartAxis& x, const ChartAxis& y,
                                                             const std::vector<FeaturePair>& selected) const {
   if (data_->front_end || data_->options.blocked_grid)
     throw GeometryError("internal: generate_selected() is for the general path of the curve generator without a grid");
-  return generate_impl(x, y, nullptr, nullptr, &selected, nullptr);
+  return generate_impl(x, y, nullptr, nullptr, &selected, nullptr, nullptr);
 }
 
 std::string CurveGenerator::congruence_key() const {
@@ -1705,7 +1797,8 @@ std::string CurveGenerator::congruence_key() const {
 std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, const ChartAxis& y,
                                                         CurveStatistics* statistics, BlockedCells* grid,
                                                         const std::vector<FeaturePair>* selected_in,
-                                                        std::vector<FeaturePair>* selected_out) const {
+                                                        std::vector<FeaturePair>* selected_out,
+                                                        std::vector<FeaturePair>* candidates_out) const {
   const Data& d = *data_;
   const Model& model = d.model;
   const PairAxes& axes = d.axes;
@@ -1837,6 +1930,10 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
   const bool on_grid = grid != nullptr && options.cull_blocked_space && options.blocked_grid;
   if (options.blocked_grid && options.cull_blocked_space && !on_grid)
     throw GeometryError("internal: the curve generator of a merged cull was given no blocked-space grid");
+  if (candidates_out) {
+    *candidates_out = std::move(pairs);   // incremental_select: its culler walks them
+    return {};
+  }
   if (selected_in) pairs = *selected_in;
   std::vector<char> needed(pairs.size(), options.cull_blocked_space && !selected_in ? 0 : 1);
   if (options.cull_blocked_space && !selected_in) {

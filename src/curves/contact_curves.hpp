@@ -206,6 +206,29 @@ class CurveGenerator {
   std::vector<ContactCurve> generate_selected(const ChartAxis& x, const ChartAxis& y,
                                               const std::vector<FeaturePair>& selected) const;
 
+  /// select(x, y) part by part of the chart box (the general path, no grid): the broad phase
+  /// once, then the blocked-space cull's quadtree walked over the cells whose interval on one
+  /// axis meets given ranges. Each cell is taken from the root by the same halvings and tested
+  /// as select() tests it, so the pairs kept so far are select()'s with a surviving finest cell
+  /// among the cells walked, and once the ranges walked cover the axis they are select()'s.
+  /// Not thread safe; the generator must outlive it.
+  class Selection {
+   public:
+    ~Selection();
+    Selection(const Selection&) = delete;
+    Selection& operator=(const Selection&) = delete;
+    /// Walks the cells whose interval on `axis` (0: x, 1: y) meets one of `ranges` (closed,
+    /// doubles); returns the pairs kept by this walk and not before, ascending.
+    std::vector<FeaturePair> extend(int axis, const std::vector<std::pair<double, double>>& ranges);
+
+   private:
+    friend class CurveGenerator;
+    Selection();
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+  };
+  std::unique_ptr<Selection> incremental_select(const ChartAxis& x, const ChartAxis& y) const;
+
   /// An exact description of what select() depends on: the options, the axes' motion flags and
   /// both parts' motions and boundaries (kinds, orientation, rational coordinates) translated
   /// so that the first part's first vertex is the origin; not names, labels or part indices.
@@ -220,7 +243,8 @@ class CurveGenerator {
  private:
   std::vector<ContactCurve> generate_impl(const ChartAxis& x, const ChartAxis& y, CurveStatistics* statistics,
                                           BlockedCells* grid, const std::vector<FeaturePair>* selected_in,
-                                          std::vector<FeaturePair>* selected_out) const;
+                                          std::vector<FeaturePair>* selected_out,
+                                          std::vector<FeaturePair>* candidates_out) const;
   struct Data;
   std::unique_ptr<Data> data_;
 };

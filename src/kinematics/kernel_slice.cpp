@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -152,6 +153,10 @@ struct KernelStrip {
   /// it, and its contacts are bounded by validity clauses, not by a curve): no class of the
   /// strip is carried over (KernelSlicerOptions::transfer_classes).
   bool zero_curve = false;
+  /// The follower cells whose blocked-space cull is done (KernelSlicerOptions::lazy_cull): every
+  /// curve of the whole strip's selection that survives in one of them is in `curves`. All
+  /// cells unless the slicer culls lazily.
+  std::uint32_t culled = ~std::uint32_t(0);
 };
 
 namespace {
@@ -164,6 +169,10 @@ struct ChartPair {
   std::vector<int> strip_of_cell = std::vector<int>(cull_cells, -1);   // index into strips
   int next_width = 1;   // cells of the next strip generated (doubles: 1, 2, 4, ... 64)
   std::map<std::size_t, std::shared_ptr<const CurveData>> by_feature;   // of the strips generated
+  // lazily culled strips (KernelSlicerOptions::lazy_cull), same index as `strips`: the cull
+  // walked so far and the strip's chart box (x, y in the pair's axis order)
+  std::vector<std::unique_ptr<cspace::CurveGenerator::Selection>> selections;
+  std::vector<std::pair<ChartAxis, ChartAxis>> boxes;
 };
 
 class KernelSlicer final : public PairSlicer {
@@ -220,6 +229,21 @@ class KernelSlicer final : public PairSlicer {
     }
     // the curves of a chart pair are generated strip by strip of the other axis when first
     // sliced: a short driver range visits one or two strips of one chart pair
+    lazy_ = other_moves_ && options_.strips && options_.lazy_cull;
+    if (options_.selections) {
+      // congruent pairs share whole strips instead (counted for every slicer of the analysis
+      // when it is made, before any slice)
+      generator_ = std::make_unique<cspace::CurveGenerator>(model_, axes_);
+      congruence_key_ = generator_->congruence_key();
+      if (!congruence_key_.empty()) options_.selections->count_congruence(congruence_key_ + (follower_is_x_ ? "|fx" : "|fy"));
+    }
+  }
+
+  // Lazily culled strips only for a pair without a congruent partner (decided on first use,
+  // when every slicer of the analysis has been counted).
+  bool lazy() const {
+    if (!lazy_ || !options_.selections || congruence_key_.empty()) return lazy_;
+    return options_.selections->congruent(congruence_key_ + (follower_is_x_ ? "|fx" : "|fy")) <= 1;
   }
 
   // The canonical number of a curve's feature pair (see the constructor).
@@ -279,9 +303,16 @@ class KernelSlicer final : public PairSlicer {
     const ChartAxis& x_axis = follower_is_x_ ? chart.x_axis : strip_axis;
     const ChartAxis& y_axis = follower_is_x_ ? strip_axis : chart.y_axis;
     // one generator per pair: the parts' features and disks are computed once, not per strip
-    if (!generator_) {
-      generator_ = std::make_unique<cspace::CurveGenerator>(model_, axes_);
-      if (options_.selections) congruence_key_ = generator_->congruence_key();
+    if (!generator_) generator_ = std::make_unique<cspace::CurveGenerator>(model_, axes_);
+    if (lazy()) {
+      // culled over no follower cell yet: extend_strip culls the cells the slice asks for
+      result->culled = 0;
+      chart.selections.resize(chart.strips.size());
+      chart.boxes.resize(chart.strips.size(), {x_axis, y_axis});
+      chart.selections.push_back(generator_->incremental_select(x_axis, y_axis));
+      chart.boxes.emplace_back(x_axis, y_axis);
+      push_strip(chart, std::move(result));
+      return;
     }
     // a congruent pair's whole strip for the same chart pair, cells and follower
     std::string strip_key;
@@ -311,6 +342,66 @@ class KernelSlicer final : public PairSlicer {
     } else {
       curves = generator_->generate(x_axis, y_axis);
     }
+    add_curves(chart, *result, curves);
+    cull(*result, other_moves_ ? other_charts_[o] : strip_axis, follower_charts_[f], other_moves_);
+    strip_cells_culled_ += follower_cells;
+    std::shared_ptr<const Strip> strip = std::move(result);
+    if (!strip_key.empty()) strip = options_.selections->add_strip(strip_key, std::move(strip));
+    push_strip(chart, std::move(strip));
+  }
+
+  // Culls lazily culled strip `s` of chart pair (o, f) over the follower cells of `mask` not
+  // culled yet (under build_mutex_): the pairs the cull keeps there and not before are formed,
+  // their follower cells marked, and merged into a new copy of the strip (a slice holds the old
+  // one as long as it reads it).
+  void extend_strip(ChartPair& chart, std::size_t s, std::size_t o, std::size_t f, std::uint32_t mask) const {
+    const Strip& old = *chart.strips[s];
+    const std::uint32_t cells = mask & ~old.culled;
+    if (!cells || s >= chart.selections.size() || !chart.selections[s]) return;
+    // the runs of new cells, from the lower double bound of their first edge to the upper of
+    // their last: the quadtree's cells meeting a run include every cell holding a point of it
+    const std::vector<Rational>& edges = follower_edges_[f];
+    std::vector<std::pair<double, double>> ranges;
+    for (int cell = 0, previous = -2; cell < follower_cells; ++cell) {
+      if (!((cells >> cell) & 1u)) continue;
+      const double upper = algebra::upper_double(edges[cell + 1]);
+      if (previous == cell - 1) ranges.back().second = upper;   // the run goes on
+      else ranges.emplace_back(algebra::lower_double(edges[cell]), upper);
+      previous = cell;
+    }
+    std::vector<cspace::CurveGenerator::FeaturePair> pairs = chart.selections[s]->extend(follower_is_x_ ? 0 : 1, ranges);
+    strip_cells_culled_ += static_cast<std::size_t>(std::popcount(cells));
+    auto result = std::make_unique<Strip>();
+    result->first_cell = old.first_cell;
+    result->width = old.width;
+    result->zero_curve = old.zero_curve;
+    result->culled = old.culled | cells;
+    if (pairs.empty()) {
+      result->curves = old.curves;
+    } else {
+      const auto& [x_axis, y_axis] = chart.boxes[s];
+      std::vector<ContactCurve> curves = generator_->generate_selected(x_axis, y_axis, pairs);
+      Strip added;
+      added.first_cell = old.first_cell;
+      added.width = old.width;
+      add_curves(chart, added, curves);
+      cull(added, other_charts_[o], follower_charts_[f], other_moves_);
+      result->zero_curve = result->zero_curve || added.zero_curve;
+      // both ascending by feature, no feature in both (a feature pair is selected once)
+      result->curves.reserve(old.curves.size() + added.curves.size());
+      std::merge(old.curves.begin(), old.curves.end(), added.curves.begin(), added.curves.end(),
+                 std::back_inserter(result->curves),
+                 [](const StripCurve& a, const StripCurve& b) { return a.feature < b.feature; });
+    }
+    // culled over every follower cell: the strip is the whole strip's, its cull is done
+    if (result->culled == ~std::uint32_t(0)) chart.selections[s].reset();
+    chart.strips[s] = std::move(result);
+  }
+
+  // The strip curves of `curves` (the generator's, in feature order) added to `strip`, each
+  // curve's data made once per chart pair; the follower cells are cull()'s.
+  void add_curves(ChartPair& chart, Strip& strip, std::vector<ContactCurve>& curves) const {
+    Strip* const result = &strip;
     for (ContactCurve& curve : curves) {
       if (curve.polynomial.is_zero()) {
         result->zero_curve = true;
@@ -342,10 +433,6 @@ class KernelSlicer final : public PairSlicer {
     // the generator emits a chart's curves in feature order; the slices rely on it
     std::stable_sort(result->curves.begin(), result->curves.end(),
                      [](const StripCurve& a, const StripCurve& b) { return a.feature < b.feature; });
-    cull(*result, other_moves_ ? other_charts_[o] : strip_axis, follower_charts_[f], other_moves_);
-    std::shared_ptr<const Strip> strip = std::move(result);
-    if (!strip_key.empty()) strip = options_.selections->add_strip(strip_key, std::move(strip));
-    push_strip(chart, std::move(strip));
   }
 
   static void push_strip(ChartPair& chart, std::shared_ptr<const Strip> strip) {
@@ -365,8 +452,11 @@ class KernelSlicer final : public PairSlicer {
                                         FeatureIdentity{second.part, second.loop, second.edge, second.kind}};
   }
 
-  // The chart pair (o, f) with its strips holding cells [cell_lo, cell_hi] generated.
-  const ChartPair& chart_pair(std::size_t o, std::size_t f, std::size_t cell_lo, std::size_t cell_hi) const {
+  // The chart pair (o, f) with its strips holding cells [cell_lo, cell_hi] generated and culled
+  // over the follower cells of `mask` at least; `held`: those two strips (they stay alive while
+  // the slice reads them).
+  const ChartPair& chart_pair(std::size_t o, std::size_t f, std::size_t cell_lo, std::size_t cell_hi, std::uint32_t mask,
+                              std::shared_ptr<const Strip> (&held)[2]) const {
     std::lock_guard<std::mutex> lock(build_mutex_);
     std::unique_ptr<ChartPair>& slot = pairs_.at(o * follower_charts_.size() + f);
     if (!slot) {
@@ -379,6 +469,9 @@ class KernelSlicer final : public PairSlicer {
     }
     for (std::size_t c = cell_lo; c <= cell_hi; ++c)
       if (slot->strip_of_cell[c] < 0) generate_strip(*slot, o, f, static_cast<int>(c), static_cast<int>(cell_hi));
+    for (std::size_t c : {cell_lo, cell_hi}) extend_strip(*slot, static_cast<std::size_t>(slot->strip_of_cell[c]), o, f, mask);
+    held[0] = slot->strips[static_cast<std::size_t>(slot->strip_of_cell[cell_lo])];
+    held[1] = slot->strips[static_cast<std::size_t>(slot->strip_of_cell[cell_hi])];
     return *slot;
   }
 
@@ -412,22 +505,30 @@ class KernelSlicer final : public PairSlicer {
     if (o >= std::max<std::size_t>(1, other_charts_.size()) || follower_chart >= follower_charts_.size())
       throw GeometryError("slice outside the charts of pair " + name_);
     auto [cell_lo, cell_hi] = cells_holding(o, value);   // other-axis cells holding the value
-    const ChartPair& chart = chart_pair(o, follower_chart, cell_lo, cell_hi);
+    const ChartAxis& axis = follower_charts_[follower_chart];
+    Rational range_lo = window ? std::max(window->lo, axis.lo) : axis.lo;
+    Rational range_hi = window ? std::min(window->hi, axis.hi) : axis.hi;
+    if (range_hi < range_lo) range_hi = range_lo;
+    const std::vector<Rational>& edges = follower_edges_[follower_chart];
+    // the follower cells the range meets (binary searches over the ascending edges)
+    const std::uint32_t window_mask = window ? slice_cells::cells_meeting(edges, range_lo, range_hi) : ~std::uint32_t(0);
+    std::shared_ptr<const Strip> held[2];
+    const ChartPair& chart = chart_pair(o, follower_chart, cell_lo, cell_hi, window_mask, held);
     // the curves of the strips holding the value, ascending by feature, with the follower cells
     // where each may vanish at the value
     std::vector<std::pair<const StripCurve*, std::uint32_t>> candidates;
-    const int strip_lo = chart.strip_of_cell[cell_lo], strip_hi = chart.strip_of_cell[cell_hi];
-    for (int s : {strip_lo, strip_hi}) {
-      const Strip& strip = *chart.strips[static_cast<std::size_t>(s)];
+    const bool two_strips = held[0] != held[1];
+    for (const auto& held_strip : held) {
+      const Strip& strip = *held_strip;
       const auto first = static_cast<std::size_t>(strip.first_cell), end = first + static_cast<std::size_t>(strip.width);
       for (const StripCurve& curve : strip.curves) {
         std::uint32_t mask = 0;
         for (std::size_t c = std::max(cell_lo, first); c <= std::min(cell_hi, end - 1); ++c) mask |= curve.cells[c - first];
         candidates.emplace_back(&curve, mask);
       }
-      if (strip_lo == strip_hi) break;
+      if (!two_strips) break;
     }
-    if (strip_lo != strip_hi) {
+    if (two_strips) {
       // a value on a strip border: one candidate per feature, its cells those of both strips
       std::stable_sort(candidates.begin(), candidates.end(),
                        [](const auto& a, const auto& b) { return a.first->feature < b.first->feature; });
@@ -440,13 +541,6 @@ class KernelSlicer final : public PairSlicer {
       }
       candidates = std::move(merged);
     }
-    const ChartAxis& axis = follower_charts_[follower_chart];
-    Rational range_lo = window ? std::max(window->lo, axis.lo) : axis.lo;
-    Rational range_hi = window ? std::min(window->hi, axis.hi) : axis.hi;
-    if (range_hi < range_lo) range_hi = range_lo;
-    const std::vector<Rational>& edges = follower_edges_[follower_chart];
-    // the follower cells the range meets (binary searches over the ascending edges)
-    const std::uint32_t window_mask = window ? slice_cells::cells_meeting(edges, range_lo, range_hi) : ~std::uint32_t(0);
     algebra::Interval value_box = algebra::enclose(value);
     std::vector<SlicePoint> points;
     for (const auto& [strip_curve, cells] : candidates) {
@@ -639,7 +733,8 @@ class KernelSlicer final : public PairSlicer {
   }
 
   SliceClassCounts class_counts() const {
-    return SliceClassCounts{classified_.load(), transferred_.load(), monotone_roots_.load(), touching_undecided_.load()};
+    return SliceClassCounts{classified_.load(), transferred_.load(), monotone_roots_.load(), touching_undecided_.load(),
+                            strip_cells_culled_.load()};
   }
 
   // unsigned wrap-around: a negative delta subtracts
@@ -676,6 +771,9 @@ class KernelSlicer final : public PairSlicer {
     /// in the follower coordinate (ScaledIntervalPolynomial::at_x(drivers)), made on first use:
     /// each sample's proof then costs one univariate interval Horner per curve.
     std::vector<std::vector<algebra::Interval>> at_drivers;
+    /// The follower cells culled in every strip of `curves` (KernelSlicerOptions::lazy_cull):
+    /// a sample in another cell may meet a contact on a curve no strip holds.
+    std::uint32_t culled = ~std::uint32_t(0);
   };
 
   // The transfer from the previous slice of chart pair (o, f) (memo index) to `value`, or
@@ -706,6 +804,7 @@ class KernelSlicer final : public PairSlicer {
     for (int s : strips) {
       const Strip& strip = *chart->strips[static_cast<std::size_t>(s)];
       if (strip.zero_curve) return std::nullopt;
+      transfer.culled &= strip.culled;
       const auto first = static_cast<std::size_t>(strip.first_cell), end = first + static_cast<std::size_t>(strip.width);
       for (const StripCurve& curve : strip.curves) {
         std::uint32_t mask = 0;
@@ -741,6 +840,7 @@ class KernelSlicer final : public PairSlicer {
     if (old.kinds[lo] == SliceKind::empty) return false;
     // the follower cells holding s (two on a cell border: the cull's boxes are closed)
     const std::uint32_t bits = slice_cells::cells_holding(follower_edges_[follower_chart], s);
+    if (bits & ~transfer.culled) return false;
     algebra::Interval at = algebra::enclose(s);
     if (transfer.at_drivers.size() != transfer.curves.size()) transfer.at_drivers.assign(transfer.curves.size(), {});
     std::size_t evaluations = 0;
@@ -941,6 +1041,7 @@ class KernelSlicer final : public PairSlicer {
   KernelSlicerOptions options_;
   cspace::PairAxes axes_;
   bool follower_is_x_ = true;
+  bool lazy_ = false;   // KernelSlicerOptions::lazy_cull for a pair whose other part moves (see lazy())
   mutable std::vector<std::unique_ptr<ChartPair>> pairs_;
   mutable std::unique_ptr<cspace::CurveGenerator> generator_;   // created with the first chart pair
   mutable std::string congruence_key_;   // the generator's, with options_.selections
@@ -956,6 +1057,7 @@ class KernelSlicer final : public PairSlicer {
   mutable std::atomic<std::size_t> classified_{0}, transferred_{0};
   mutable std::atomic<std::size_t> monotone_roots_{0};   // roots isolated by a monotone run
   mutable std::atomic<std::size_t> touching_undecided_{0};   // SliceClassCounts::touching_undecided
+  mutable std::atomic<std::size_t> strip_cells_culled_{0};   // SliceClassCounts::strip_cells_culled
   std::vector<std::vector<Rational>> follower_edges_;   // per follower chart: its cells' edges
 };
 
@@ -998,6 +1100,17 @@ std::shared_ptr<const KernelStrip> SelectionMemo::add_strip(const std::string& k
 std::size_t SelectionMemo::strip_hits() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return strip_hits_;
+}
+
+void SelectionMemo::count_congruence(const std::string& key) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++congruence_counts_[key];
+}
+
+std::size_t SelectionMemo::congruent(const std::string& key) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto found = congruence_counts_.find(key);
+  return found == congruence_counts_.end() ? 0 : found->second;
 }
 
 SliceClassCounts kernel_slice_class_counts(const PairSlicer& slicer) {

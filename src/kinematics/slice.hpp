@@ -135,9 +135,15 @@ class SelectionMemo {
   /// Stores `strip` under `key` (the first one stored stays) and returns the stored one.
   std::shared_ptr<const KernelStrip> add_strip(const std::string& key, std::shared_ptr<const KernelStrip> strip);
   std::size_t strip_hits() const;
+  /// Counts a slicer of a pair with congruence key `key` (each kernel slicer of the analysis
+  /// once, when it is made); congruent(key): how many were counted. A slicer whose pair has no
+  /// congruent partner culls its strips lazily (KernelSlicerOptions::lazy_cull) and shares none.
+  void count_congruence(const std::string& key);
+  std::size_t congruent(const std::string& key) const;
 
  private:
   mutable std::mutex mutex_;
+  std::map<std::string, std::size_t> congruence_counts_;
   std::map<std::string, std::shared_ptr<const Selection>> selections_;
   std::map<std::string, std::shared_ptr<const KernelStrip>> strips_;
   mutable std::size_t hits_ = 0, strip_hits_ = 0;
@@ -182,6 +188,17 @@ struct KernelSlicerOptions {
   /// them: rational_near and truncated_double are functions of the number). false: Descartes
   /// on every run (tests compare).
   bool monotone_runs = true;
+  /// Cull a strip's curves (the curve generator's blocked-space cull) only over the follower
+  /// cells the slices ask for (their windows: the cells meeting the sliced range), extending
+  /// the cull when a later slice asks for cells not culled yet (CurveGenerator::Selection: the
+  /// same quadtree cells, walked part by part). A strip then holds the curves of the whole
+  /// strip's selection that survive in a culled cell, so a slice holds the same points but
+  /// those of curves certified blocked throughout the culled cells (points with blocked space
+  /// on both sides, no zero-clearance fit), and a carried class is proven only at samples in
+  /// cells culled in every strip of its proof. Not for pairs with a congruent partner in
+  /// `selections` (those share whole strips). false: the whole follower chart on a strip's
+  /// first slice (tests compare the two).
+  bool lazy_cull = true;
 };
 
 /// Per-thread switch of KernelSlicerOptions::monotone_runs for the slicers constructed on this
@@ -202,6 +219,9 @@ struct SliceClassCounts {
   /// root of two or more contacts, or of one contact whose polynomial keeps its sign there (the
   /// point is reported blocked, SlicePoint::touching false; the analysis warns).
   std::size_t touching_undecided = 0;
+  /// Follower cells whose blocked-space cull the slicer's strips ran, summed over its strips
+  /// (a strip culled whole counts all of its chart's cells; KernelSlicerOptions::lazy_cull).
+  std::size_t strip_cells_culled = 0;
 };
 /// Zero counts for a slicer that is not a kernel slicer.
 SliceClassCounts kernel_slice_class_counts(const PairSlicer& slicer);

@@ -13,6 +13,7 @@
 //   - the feature labels agree.
 #include "kinematics/slice.hpp"
 #include "test_paths.hpp"
+#include "spur_gear_pairs.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
@@ -84,6 +85,20 @@ void expect_same(const ChartSlice& a, const ChartSlice& b, const PairSlicer& who
   EXPECT_EQ(j, b.points.size()) << where;
 }
 
+// The polynomials the engine differentiates: the same curve in both slicers for every feature
+// of `slice`'s points.
+void expect_same_polynomials(const ChartSlice& slice, const PairSlicer& whole, const PairSlicer& strips, std::size_t o,
+                             std::size_t f, const std::string& where) {
+  for (const SlicePoint& point : slice.points)
+    for (std::size_t feature : point.features) {
+      const IntegerPolynomial2* p = whole.polynomial(o, f, feature);
+      const IntegerPolynomial2* q = strips.polynomial(o, f, feature);
+      ASSERT_NE(p, nullptr) << where;
+      ASSERT_NE(q, nullptr) << where;
+      EXPECT_EQ(p->coefficients, q->coefficients) << where;
+    }
+}
+
 struct StripCase {
   std::string file;
   int values;          // slices per chart pair and follower
@@ -126,15 +141,7 @@ TEST_P(KernelSlicerStrips, SameSlicesAsTheWholeChartPairs) {
             expect_same(a, b, *whole, *strips, where);
             ++slices;
             compared_points += a.points.size();
-            // the polynomials the engine differentiates: the same curve in both
-            for (const SlicePoint& point : b.points)
-              for (std::size_t feature : point.features) {
-                const IntegerPolynomial2* p = whole->polynomial(o, f, feature);
-                const IntegerPolynomial2* q = strips->polynomial(o, f, feature);
-                ASSERT_NE(p, nullptr);
-                ASSERT_NE(q, nullptr);
-                EXPECT_EQ(p->coefficients, q->coefficients) << where;
-              }
+            expect_same_polynomials(b, *whole, *strips, o, f, where);
           }
     }
   }
@@ -246,6 +253,97 @@ TEST(KernelSlicerStrips, SmallGearPairSameSlicesAsTheWholeChartPairs) {
         compared_points += a.points.size();
       }
   EXPECT_GT(compared_points, 0u);
+}
+
+// Lazily culled strips (KernelSlicerOptions::lazy_cull, session 34): a strip's blocked-space cull
+// runs only over the follower cells the slices ask for, and is extended when a later slice asks
+// for more. Engine-like walks — driver steps from grid steps to jumps of a few strips, windows
+// of 1/64 to 1/4 of the follower chart moving against the driver, now and then a whole-chart
+// slice, a jump to another place — by a lazily culling slicer and one culling every strip
+// whole (today's), both carrying classes, compared slice for slice by the strip test's rules
+// (every lazy point is a point of the whole strips' slice with the same features and flag, a
+// point it lacks has blocked space on both sides and is no zero-clearance fit, the classes
+// agree, the polynomials agree).
+struct LazyCounts {
+  std::size_t slices = 0, points = 0, lazy_cells = 0, whole_cells = 0;
+};
+
+void lazy_walks(const Model& model, std::size_t pair, std::size_t follower, int walks, int steps, std::uint64_t seed,
+                const std::string& name, LazyCounts& counts) {
+  std::mt19937_64 random(seed);
+  std::unique_ptr<PairSlicer> lazy;
+  try {
+    lazy = make_kernel_slicer(model, pair, follower, KernelSlicerOptions{});
+  } catch (const GeometryError&) {
+    return;   // a fixed follower, or not a fixed-axis pair
+  }
+  if (!lazy->other_moves()) return;   // (a fixed other part: one strip, culled whole)
+  KernelSlicerOptions whole_strips;
+  whole_strips.lazy_cull = false;
+  const std::unique_ptr<PairSlicer> whole = make_kernel_slicer(model, pair, follower, whole_strips);
+  for (int w = 0; w < walks; ++w) {
+    const std::size_t o = random() % whole->other_charts().size(), f = random() % whole->follower_charts().size();
+    const ChartAxis& other_axis = whole->other_charts()[o];
+    const ChartAxis& axis = whole->follower_charts()[f];
+    Rational u = chart_value(other_axis, random, 2 + static_cast<int>(random() % 8));
+    Rational centre = chart_value(axis, random, 7);
+    // the follower's turn against the driver's in chart units
+    static const Rational ratios[] = {Rational(2, 3), Rational(3, 2), Rational(1), Rational(-1, 2)};
+    const Rational ratio = ratios[random() % 4];
+    for (int k = 0; k < steps; ++k) {
+      static const long steps_per_chart[] = {2000, 2000, 400, 100, 40, 16};
+      Rational step = Rational(other_axis.hi - other_axis.lo) / steps_per_chart[random() % 6];
+      if (random() % 2) step = -step;
+      u = std::clamp(Rational(u + step), other_axis.lo, other_axis.hi);
+      centre = std::clamp(Rational(centre - step * ratio), axis.lo, axis.hi);
+      static const long windows_per_chart[] = {128, 64, 32, 16, 8};
+      const Rational half = Rational(axis.hi - axis.lo) / windows_per_chart[random() % 5];
+      std::optional<ChartWindow> window;
+      if (random() % 12 != 0) window = ChartWindow{centre - half, centre + half};
+      const std::string where = name + " pair " + std::to_string(pair) + " follower " + std::to_string(follower) +
+                                " charts " + std::to_string(o) + "," + std::to_string(f) + " walk " + std::to_string(w) +
+                                " step " + std::to_string(k) + " at " + u.get_str() +
+                                (window ? " window " + window->lo.get_str() + ":" + window->hi.get_str() : " whole");
+      ChartSlice a = whole->slice(o, u, f, window ? &*window : nullptr);
+      ChartSlice b = lazy->slice(o, u, f, window ? &*window : nullptr);
+      expect_same(a, b, *whole, *lazy, where);
+      if (::testing::Test::HasFailure()) return;
+      ++counts.slices;
+      counts.points += a.points.size();
+      expect_same_polynomials(b, *whole, *lazy, o, f, where);
+    }
+  }
+  counts.lazy_cells += kernel_slice_class_counts(*lazy).strip_cells_culled;
+  counts.whole_cells += kernel_slice_class_counts(*whole).strip_cells_culled;
+}
+
+TEST(KernelSlicerLazyCull, SameSlicesAsWholeStripsOnExamples) {
+  LazyCounts counts;
+  for (const char* file : {"geneva.json", "ratchet.json", "escapement.json", "scotch-yoke.json"}) {
+    Model model = read_model_file(example(file));
+    for (std::size_t pair = 0; pair < model.pairs.size(); ++pair)
+      for (std::size_t follower : {model.pairs[pair].first, model.pairs[pair].second})
+        lazy_walks(model, pair, follower, 3, 25, 34000 + pair, file, counts);
+  }
+  EXPECT_GT(counts.points, 0u);
+  // the walks' windows leave cells unculled
+  EXPECT_LT(counts.lazy_cells, counts.whole_cells);
+}
+
+// Generated spur-gear pairs (the example's profile, random tooth counts, backlash and centre
+// distance inside their tolerances), both gears as followers.
+TEST(KernelSlicerLazyCull, SameSlicesAsWholeStripsOnGeneratedGearPairs) {
+  std::mt19937_64 random(34001);
+  LazyCounts counts;
+  for (int g = 0; g < 2; ++g) {
+    const long z1 = 6 + static_cast<long>(random() % 9), z2 = 6 + static_cast<long>(random() % 12);
+    std::string name;
+    Model model = test_gears::spur_gear_pair(random, z1, z2, name);
+    lazy_walks(model, 0, model.pairs[0].second, 2, 20, 34100 + static_cast<std::uint64_t>(g), name, counts);
+    lazy_walks(model, 0, model.pairs[0].first, 1, 20, 34200 + static_cast<std::uint64_t>(g), name, counts);
+  }
+  EXPECT_GT(counts.points, 0u);
+  EXPECT_LT(counts.lazy_cells, counts.whole_cells);
 }
 
 }  // namespace
