@@ -17,6 +17,7 @@
 // Each of these overlaps the moving part when n.c < κ: the fit is blocked on both sides and the
 // parts only touch there (the closed form). The tooth: a small square of the frame about a
 // rational point within 10^-6 of the pin's centre at the fit, inside the pin.
+#include "algebra/rational_root.hpp"
 #include "curves/algebraic_overlap.hpp"
 #include "curves/contact_curves.hpp"
 #include "polygon_loop_json.hpp"
@@ -196,8 +197,8 @@ TEST(AlgebraicOverlapArcs, AgreesWithTheRationalOracleAtRationalConfigurations) 
     for (int k = 0; k < 10; ++k) ts.push_back(random_rational(random, Rational(-1), Rational(1), 1000));
     std::vector<cspace::algebra::Real> roots = cspace::algebra::real_roots(fit_polynomial(fit), Rational(-1), Rational(1));
     for (cspace::algebra::Real root : roots) {
-      if (root.exact) {
-        ts.push_back(root.lower);
+      if (std::optional<Rational> exact = cspace::algebra::rational_root(root)) {
+        ts.push_back(*exact);
         continue;
       }
       root.refine_to(Rational(mpz_class(1), mpz_class(1) << 100));
