@@ -34,12 +34,13 @@
 #include <vector>
 
 namespace hipair {
-namespace {
-
-using Random = std::mt19937_64;
-using algebra_Real = cspace::algebra::Real;
 using test_loops::text;
 using test_numbers::random_rational;
+
+namespace {
+
+using algebra_Real = cspace::algebra::Real;
+using Random = std::mt19937_64;
 
 enum class Kind { slot, post, ring };
 
@@ -216,9 +217,8 @@ TEST(AlgebraicOverlapArcs, AgreesWithTheRationalOracleAtRationalConfigurations) 
         apart += truth == cspace::Overlap::apart;
       }
   }
-  EXPECT_GE(touching, 2);   // the rational slot fits
-  EXPECT_GE(overlapping, 100);
-  EXPECT_GE(apart, 20);
+  // the rational slot fits touch; most configurations overlap, some are apart
+  EXPECT_TRUE(touching >= 2 && overlapping >= 100 && apart >= 20) << touching << " " << overlapping << " " << apart;
 }
 
 // The generated irrational fits, scales 10^-300 ... 10^300, both pair orders: the algebraic
