@@ -44,9 +44,18 @@ using algebra::Real;
 using Poly = RationalPolynomial2;
 
 // A homogeneous world point (X / W, Y / W) with W > 0 at every configuration.
+using algebra::Interval;
+
+// A homogeneous world point with certified enclosures of its coordinates at the configuration
+// (x, y, w: filled in by SignAt::enclose before any test).
 struct HPoint {
   Poly X, Y, W;
+  Interval x{0, 0}, y{0, 0}, w{0, 0};
 };
+
+Interval operator-(Interval a, Interval b) { return a + Interval{-b.hi, -b.lo}; }
+// the sign of an enclosed value, or 2 when the enclosure holds 0 (or a NaN bound)
+int certain_sign(const Interval& v) { return v.lo > 0 ? 1 : v.hi < 0 ? -1 : 2; }
 
 struct Segment {
   HPoint from, to;   // material on the left
@@ -61,16 +70,42 @@ struct Segment {
 class SignAt {
  public:
   SignAt(const Real& x, const Real& y) : x_(narrowed(x)), y_(narrowed(y)), box_x_(box(x_)), box_y_(box(y_)) {}
-  int operator()(const Poly& p) const {
-    if (p.is_zero()) return 0;
-    algebra::Interval value{0, 0};
+  // the polynomial's numerators (a positive multiple of it) over the point's box
+  Interval numerators(const Poly& p) const {
+    Interval value{0, 0};
     for (int i = p.rows() - 1; i >= 0; --i) {
-      algebra::Interval r{0, 0};
+      Interval r{0, 0};
       for (int j = p.columns() - 1; j >= 0; --j) r = r * box_y_ + algebra::enclose(p.numerator(i, j));
       value = value * box_x_ + r;
     }
-    if (value.lo > 0) return 1;   // (NaN fails both tests)
-    if (value.hi < 0) return -1;
+    return value;
+  }
+  // the point's enclosures (the numerators' values over the denominator's enclosure)
+  void enclose(HPoint& h) const {
+    for (auto [poly, box] : {std::pair{&h.X, &h.x}, std::pair{&h.Y, &h.y}, std::pair{&h.W, &h.w}}) {
+      const Interval d = algebra::enclose(poly->denominator());
+      const Interval n = numerators(*poly);
+      // n / d with d > 0: the hull of the end quotients, rounded outwards
+      if (!(d.lo > 0)) {
+        *box = Interval{-__builtin_inf(), __builtin_inf()};
+        continue;
+      }
+      const double q[4] = {n.lo / d.lo, n.lo / d.hi, n.hi / d.lo, n.hi / d.hi};
+      double lo = q[0], hi = q[0];
+      bool nan = false;
+      for (double v : q) {
+        nan = nan || v != v;
+        lo = v < lo ? v : lo;
+        hi = v > hi ? v : hi;
+      }
+      *box = nan ? Interval{-__builtin_inf(), __builtin_inf()}
+                 : Interval{algebra::interval_detail::down(lo), algebra::interval_detail::up(hi)};
+    }
+  }
+  int operator()(const Poly& p) const {
+    if (p.is_zero()) return 0;
+    const int filtered = certain_sign(numerators(p));
+    if (filtered != 2) return filtered;
     IntegerPolynomial2 f = normalized_integer_polynomial(p);
     if (f.is_zero()) return 0;
     if (y_.exact) return x_.exact ? algebra::sign_at(f, x_.lower, y_.lower) : algebra::sign_at(f, x_, y_.lower);
@@ -110,19 +145,27 @@ class PolygonRelation {
   // sign of the orientation of (p, q, r): the 3 x 3 determinant of the homogeneous rows, whose
   // sign is the orientation's (every W > 0)
   int orientation(const HPoint& p, const HPoint& q, const HPoint& r) const {
+    const int filtered = certain_sign(p.x * (q.y * r.w - r.y * q.w) - p.y * (q.x * r.w - r.x * q.w) + p.w * (q.x * r.y - r.x * q.y));
+    if (filtered != 2) return filtered;
     Poly det = p.X * (q.Y * r.W - r.Y * q.W) - p.Y * (q.X * r.W - r.X * q.W) + p.W * (q.X * r.Y - r.X * q.Y);
     return sign_(det);
   }
   // sign of (p - q) . (s - r)
   int along(const HPoint& p, const HPoint& q, const HPoint& r, const HPoint& s) const {
+    const int filtered = certain_sign((p.x * q.w - q.x * p.w) * (s.x * r.w - r.x * s.w) + (p.y * q.w - q.y * p.w) * (s.y * r.w - r.y * s.w));
+    if (filtered != 2) return filtered;
     Poly dx = p.X * q.W - q.X * p.W, dy = p.Y * q.W - q.Y * p.W;
     Poly ex = s.X * r.W - r.X * s.W, ey = s.Y * r.W - r.Y * s.W;
     return sign_(dx * ex + dy * ey);
   }
   // sign of p.y - q.y
-  int compare_y(const HPoint& p, const HPoint& q) const { return sign_(p.Y * q.W - q.Y * p.W); }
+  int compare_y(const HPoint& p, const HPoint& q) const {
+    const int filtered = certain_sign(p.y * q.w - q.y * p.w);
+    return filtered != 2 ? filtered : sign_(p.Y * q.W - q.Y * p.W);
+  }
   static HPoint midpoint(const HPoint& p, const HPoint& q) {
-    return HPoint{p.X * q.W + q.X * p.W, p.Y * q.W + q.Y * p.W, Poly(2) * p.W * q.W};
+    return HPoint{p.X * q.W + q.X * p.W, p.Y * q.W + q.Y * p.W, Poly(2) * p.W * q.W,
+                  p.x * q.w + q.x * p.w, p.y * q.w + q.y * p.w, Interval{2, 2} * p.w * q.w};
   }
   // p on the closed segment
   bool on_segment(const HPoint& p, const Segment& e) const {
@@ -575,7 +618,13 @@ std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axe
     return CurvedRelation({posed_loops(first, poses.first, poses.second.w), posed_loops(second, poses.second, poses.first.w)},
                           sign)
         .run();
-  return PolygonRelation(posed_segments(first, poses.first), posed_segments(second, poses.second), sign).run();
+  std::vector<Segment> a = posed_segments(first, poses.first), b = posed_segments(second, poses.second);
+  for (auto* part : {&a, &b})
+    for (Segment& segment : *part) {
+      sign.enclose(segment.from);
+      sign.enclose(segment.to);
+    }
+  return PolygonRelation(std::move(a), std::move(b), sign).run();
 }
 
 }  // namespace hipair::cspace
