@@ -22,6 +22,7 @@
 #include "curves/contact_curves.hpp"
 #include "polygon_loop_json.hpp"
 #include "random_rationals.hpp"
+#include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
@@ -219,6 +220,33 @@ TEST(AlgebraicOverlapArcs, AgreesWithTheRationalOracleAtRationalConfigurations) 
   }
   // the rational slot fits touch; most configurations overlap, some are apart
   EXPECT_TRUE(touching >= 2 && overlapping >= 100 && apart >= 20) << touching << " " << overlapping << " " << apart;
+}
+
+// The example mechanisms with arcs (Geneva, cam and lever, scotch yoke, escapement, ratchet):
+// the algebraic oracle against the rational one at random rational configurations of every
+// pair, in every chart (overlapping, touching and apart configurations of real profiles).
+TEST(AlgebraicOverlapArcs, AgreesWithTheRationalOracleOnTheExamples) {
+  Random random(3401);
+  int checked = 0;
+  for (const char* file : {"geneva", "cam-follower-lever", "scotch-yoke", "escapement", "ratchet"}) {
+    const Model model = read_model_file(std::string(HIPAIR_SOURCE_DIR) + "/examples/models/" + file + ".json");
+    for (const PairSpec& pair : model.pairs) {
+      const cspace::PairAxes axes = cspace::pair_axes(model, pair.first, pair.second);
+      cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+      if (axes.dimension() < 2) layout.y_charts = {cspace::ChartAxis{cspace::ChartAxis::Kind::translation, false, Rational(0), Rational(0)}};
+      SCOPED_TRACE(std::string(file) + " " + model.parts[pair.first].name + " : " + model.parts[pair.second].name);
+      for (int k = 0; k < 6; ++k) {
+        const cspace::ChartAxis& x = layout.x_charts[random() % layout.x_charts.size()];
+        const cspace::ChartAxis& y = layout.y_charts[random() % layout.y_charts.size()];
+        const cspace::ChartPoint q{random_rational(random, x.lo, x.hi, 1000), random_rational(random, y.lo, y.hi, 1000)};
+        const auto got = cspace::algebraic_overlap(model, axes, x, y, algebra_Real::from_rational(q.x), algebra_Real::from_rational(q.y));
+        ASSERT_TRUE(got.has_value()) << q.x.get_str() << " " << q.y.get_str();
+        EXPECT_EQ(*got, cspace::classify_overlap(model, axes, x, y, q)) << q.x.get_str() << " " << q.y.get_str();
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GE(checked, 30);
 }
 
 // The generated irrational fits, scales 10^-300 ... 10^300, both pair orders: the algebraic
