@@ -522,43 +522,50 @@ class CurvedRelation {
   }
 
   // Does the loop (no common point with part `other`'s boundary) lie in that part's interior?
-  // Ray parity from one of its vertices to +x; nullopt when every vertex's ray meets a vertex
-  // of the other part at its height.
+  // Ray parity from one of its vertices to +x, or else to +y (the scene turned by -90 degrees,
+  // which keeps orientations); nullopt when every vertex has a vertex of the other part at its
+  // height and at its abscissa.
   std::optional<bool> loop_inside(const std::vector<CurvedEdge>& loop, int other) const {
-    for (const CurvedEdge& start : loop) {
-      const V2& p = start.from;
-      bool usable = true;
-      int crossings = 0;
-      for (const auto& edges : loops_[other]) {
-        for (const CurvedEdge& e : edges) {
-          const int from_side = sign(e.from.y - p.y), to_side = sign(e.to.y - p.y);
-          if (from_side == 0 || to_side == 0) {
-            usable = false;
-            break;
-          }
-          if (!e.arc) {
-            if (from_side == to_side) continue;
-            // p left of the crossing's abscissa iff orientation and rise agree
-            if ((sign(cross(e.to - e.from, p - e.from)) > 0) == (to_side > from_side)) ++crossings;
-            continue;
-          }
-          const Poly dy = p.y - e.center.y, h = e.radius_squared - dy * dy;
-          const int sh = sign(h);
-          if (sh < 0) continue;
-          if (sh == 0) {   // the ray's line tangent to the circle
-            usable = false;
-            break;
-          }
-          // the circle's points (cx +- sqrt(h), py): right of p, on the arc (not at its ends)
-          for (const Poly& pm : {Poly(1), Poly(-1)})
-            if (sign_with_root(e.center.x - p.x, pm, h) > 0 && in_sector(e, V2{Poly(0), dy}, V2{pm, Poly(0)}, h, true))
-              ++crossings;
+    for (const bool turned : {false, true}) {
+      auto turn = [turned](const V2& v) { return turned ? V2{v.y, -v.x} : v; };
+      std::vector<CurvedEdge> edges;
+      for (const auto& l : loops_[other])
+        for (const CurvedEdge& e : l) {
+          CurvedEdge t = e;
+          t.from = turn(e.from);
+          t.to = turn(e.to);
+          if (e.arc) t.center = turn(e.center);
+          edges.push_back(std::move(t));
         }
-        if (!usable) break;
-      }
-      if (usable) return crossings % 2 == 1;
+      for (const CurvedEdge& start : loop)
+        if (std::optional<int> crossings = ray_crossings(turn(start.from), edges)) return *crossings % 2 == 1;
     }
     return std::nullopt;
+  }
+
+  // The crossings of the ray from p to +x with the edges; nullopt when the ray's line passes
+  // through a vertex or touches a circle.
+  std::optional<int> ray_crossings(const V2& p, const std::vector<CurvedEdge>& edges) const {
+    int crossings = 0;
+    for (const CurvedEdge& e : edges) {
+      const int from_side = sign(e.from.y - p.y), to_side = sign(e.to.y - p.y);
+      if (from_side == 0 || to_side == 0) return std::nullopt;
+      if (!e.arc) {
+        if (from_side == to_side) continue;
+        // p left of the crossing's abscissa iff orientation and rise agree
+        if ((sign(cross(e.to - e.from, p - e.from)) > 0) == (to_side > from_side)) ++crossings;
+        continue;
+      }
+      const Poly dy = p.y - e.center.y, h = e.radius_squared - dy * dy;
+      const int sh = sign(h);
+      if (sh < 0) continue;
+      if (sh == 0) return std::nullopt;   // the ray's line tangent to the circle
+      // the circle's points (cx +- sqrt(h), py): right of p, on the arc (not at its ends)
+      for (const Poly& pm : {Poly(1), Poly(-1)})
+        if (sign_with_root(e.center.x - p.x, pm, h) > 0 && in_sector(e, V2{Poly(0), dy}, V2{pm, Poly(0)}, h, true))
+          ++crossings;
+    }
+    return crossings;
   }
 
   std::array<std::vector<std::vector<CurvedEdge>>, 2> loops_;

@@ -249,6 +249,43 @@ TEST(AlgebraicOverlapArcs, AgreesWithTheRationalOracleOnTheExamples) {
   EXPECT_GE(checked, 30);
 }
 
+// A loop with no common point whose every vertex has a vertex of the other part at its height
+// (a peg sliding level with the frame's notch corners, inside the frame's material): located by
+// the vertical ray; with the horizontal one alone it was undecided. Overlapping at √2 and at
+// rationals, as the rational oracle says; apart once the peg is out of the frame (at √2 + 20 the
+// frame is short of it).
+TEST(AlgebraicOverlapArcs, LoopsLevelWithTheOtherPartsVerticesAreLocated) {
+  const std::string json = R"({ "hipair": 1, "name": "level-peg", "parts": [
+      { "name": "peg", "motion": { "translation": { "direction": [1, 0], "limits": [-5, 30] } },
+        "loops": [ { "start": [0, 0], "edges": [ { "line_to": [1, 0] }, { "arc_to": [1, 1], "center": [1, "1/2"], "dir": "ccw" },
+          { "line_to": [0, 1] }, { "line_to": [0, 0] } ] } ] },
+      { "name": "frame", "motion": "fixed", "loops": [ { "start": [-10, -5], "edges": [ { "line_to": [10, -5] }, { "line_to": [10, 0] },
+        { "line_to": [12, 0] }, { "line_to": [12, 1] }, { "line_to": [10, 1] }, { "line_to": [10, 5] }, { "line_to": [-10, 5] },
+        { "line_to": [-10, -5] } ] } ] } ],
+    "pairs": [ { "parts": ["peg", "frame"] } ] })";
+  const Model model = read_model(json);
+  const cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+  cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+  const cspace::ChartAxis x = layout.x_charts[0];
+  const cspace::ChartAxis y{cspace::ChartAxis::Kind::translation, false, Rational(0), Rational(0)};
+  const algebra_Real zero = algebra_Real::from_rational(Rational(0));
+  for (const Rational& offset : {Rational(0), Rational(20)}) {
+    std::vector<cspace::algebra::Real> roots = cspace::algebra::real_roots(cspace::algebra::Polynomial{mpz_class(-2), mpz_class(0), mpz_class(1)}, Rational(1), Rational(2));
+    ASSERT_EQ(roots.size(), 1u);
+    algebra_Real at = roots[0];
+    if (offset != 0) {   // √2 + 20: the root of (s - 20)^2 - 2 = s^2 - 40 s + 398
+      at = cspace::algebra::real_roots(cspace::algebra::Polynomial{mpz_class(398), mpz_class(-40), mpz_class(1)}, Rational(21), Rational(22)).at(0);
+    }
+    const auto got = cspace::algebraic_overlap(model, axes, x, y, at, zero);
+    ASSERT_TRUE(got.has_value());
+    EXPECT_EQ(*got, offset == 0 ? cspace::Overlap::overlapping : cspace::Overlap::apart);
+    const Rational low = Rational(7, 5) + offset, high = Rational(3, 2) + offset;
+    for (const Rational& side : {low, high})
+      EXPECT_EQ(*cspace::algebraic_overlap(model, axes, x, y, algebra_Real::from_rational(side), zero),
+                cspace::classify_overlap(model, axes, x, y, cspace::ChartPoint{side, Rational(0)}));
+  }
+}
+
 // The generated irrational fits, scales 10^-300 ... 10^300, both pair orders: the algebraic
 // oracle decides the root in chart 0 as the closed form says (touching; overlapping with the
 // tooth), the rational oracle finds blocked space 2^-100 either side, and the C-space builder
