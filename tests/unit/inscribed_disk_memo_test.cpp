@@ -20,12 +20,13 @@
 namespace hipair {
 namespace {
 
-std::string text(const Rational& q) { return "\"" + q.get_str() + "\""; }
+std::string text(const Rational& q) { return '"' + q.get_str() + '"'; }
 
-Rational power_of_ten(int exponent) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(exponent)));
-  return exponent >= 0 ? Rational(p) : Rational(mpz_class(1), p);
+// 10^e as an exact rational (e of either sign)
+Rational ten_to(int e) {
+  Rational r(1);
+  for (int i = 0; i < (e < 0 ? -e : e); ++i) r = e < 0 ? Rational(r / 10) : Rational(r * 10);
+  return r;
 }
 
 // A star polygon's vertices around the origin on a 1/q grid (simple: increasing angles).
@@ -98,7 +99,7 @@ TEST(InscribedDiskMemo, SharedDisksGiveTheSelectionsOfDisksComputedAfresh) {
         // many vertices; n = 3: the shared shape moved by 1/64
         Shape a = n == 2 ? Shape{star(random, k, 16)} : shared;
         Shape b{star(random, k, 16)};
-        models.push_back(pair_model(a, b, d, power_of_ten(scale), n == 3 ? Rational(1, 64) : Rational(0)));
+        models.push_back(pair_model(a, b, d, ten_to(scale), n == 3 ? Rational(1, 64) : Rational(0)));
       }
     }
   }
