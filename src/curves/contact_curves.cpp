@@ -497,8 +497,11 @@ namespace {
 
 // Inscribed disks of a part: for each edge, points pushed inward from its middle by a few
 // scales, kept when strictly inside; radius = certified distance to the whole boundary.
-std::vector<Core> inscribed_disks(const Part& part) {
+// A function of the part's loops alone (their exact geometry: kinds, points, senses, radii).
+std::vector<Core> compute_inscribed_disks(const Part& part) {
   const ClearanceBound clearance(part);
+  // the candidates' exact location on the part prepared once (locate_point's answer)
+  const PartLocator locator(part);
   std::vector<const Edge*> edges;
   for (const Loop& loop : part.loops)
     for (const Edge& edge : loop.edges) edges.push_back(&edge);
@@ -576,7 +579,7 @@ std::vector<Core> inscribed_disks(const Part& part) {
       std::stable_sort(candidates.begin(), candidates.end(),
                        [](const Candidate& a, const Candidate& b) { return a.core.radius > b.core.radius; });
       for (const Candidate& candidate : candidates)
-        if (locate_point(part, RigidMap{}, Point{candidate.px, candidate.py}) == PointLocation::inside) {
+        if (locator.locate(Point{candidate.px, candidate.py}) == PointLocation::inside) {
           cores.push_back(candidate.core);
           break;
         }
@@ -597,6 +600,67 @@ std::vector<Core> inscribed_disks(const Part& part) {
     if (!contained) kept.push_back(core);
   }
   return kept;
+}
+
+// The loops' exact geometry equal (what compute_inscribed_disks reads; not labels or pointers).
+bool same_loops(const std::vector<Loop>& a, const std::vector<Loop>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t l = 0; l < a.size(); ++l) {
+    const std::vector<Edge>& ea = a[l].edges;
+    const std::vector<Edge>& eb = b[l].edges;
+    if (a[l].is_hole != b[l].is_hole || ea.size() != eb.size()) return false;
+    for (std::size_t i = 0; i < ea.size(); ++i) {
+      const Edge& x = ea[i];
+      const Edge& y = eb[i];
+      if (x.kind != y.kind || !(x.source == y.source) || !(x.target == y.target)) return false;
+      if (x.is_arc() && (x.ccw != y.ccw || !(x.center == y.center) || x.radius_squared != y.radius_squared)) return false;
+    }
+  }
+  return true;
+}
+
+// A part's inscribed disks, computed once per part: the curve generators of the pairs a part
+// belongs to (a gear train's gear meshes with both neighbours) share them. Keyed by the loops'
+// exact geometry (same_loops), so an equal part of another model shares them too; a pure
+// function of the key, so the disks are the same with or without the memo. Bounded (the oldest
+// entry dropped beyond `capacity`); thread safe (two threads may both compute a missing entry:
+// the same disks).
+struct InscribedDiskMemo {
+  struct Entry {
+    std::vector<Loop> loops;
+    std::shared_ptr<const std::vector<Core>> cores;
+  };
+  static constexpr std::size_t capacity = 64;
+  std::mutex mutex;
+  std::vector<Entry> entries;   // oldest first
+  std::size_t computed = 0;
+};
+InscribedDiskMemo& inscribed_disk_memo() {
+  static InscribedDiskMemo memo;
+  return memo;
+}
+
+std::shared_ptr<const std::vector<Core>> inscribed_disks(const Part& part) {
+  InscribedDiskMemo& memo = inscribed_disk_memo();
+  {
+    std::lock_guard<std::mutex> lock(memo.mutex);
+    for (const InscribedDiskMemo::Entry& entry : memo.entries)
+      if (same_loops(entry.loops, part.loops)) return entry.cores;
+  }
+  auto cores = std::make_shared<const std::vector<Core>>(compute_inscribed_disks(part));
+  std::vector<Loop> loops = part.loops;
+  for (Loop& loop : loops) {
+    loop.pointer.clear();
+    for (Edge& edge : loop.edges) {
+      edge.pointer.clear();
+      edge.label.clear();
+    }
+  }
+  std::lock_guard<std::mutex> lock(memo.mutex);
+  if (memo.entries.size() >= InscribedDiskMemo::capacity) memo.entries.erase(memo.entries.begin());
+  memo.entries.push_back(InscribedDiskMemo::Entry{std::move(loops), cores});
+  ++memo.computed;
+  return cores;
 }
 
 // Certified enclosure of a part's pose over an interval of its chart coordinate.
@@ -1541,6 +1605,18 @@ std::vector<ContactCurve> generate_contact_curves(const Model& model, const Pair
   return CurveGenerator(model, axes, options).generate(x, y, statistics);
 }
 
+std::size_t inscribed_disk_parts_computed() {
+  InscribedDiskMemo& memo = inscribed_disk_memo();
+  std::lock_guard<std::mutex> lock(memo.mutex);
+  return memo.computed;
+}
+
+void clear_inscribed_disk_memo() {
+  InscribedDiskMemo& memo = inscribed_disk_memo();
+  std::lock_guard<std::mutex> lock(memo.mutex);
+  memo.entries.clear();
+}
+
 struct CurveGenerator::Data {
   const Model& model;
   PairAxes axes;
@@ -1550,7 +1626,8 @@ struct CurveGenerator::Data {
   std::vector<BodyDisk> disks_a, disks_b;
   // the parts' inscribed disks (the cull without a grid), computed on the first cull: a slicer
   // that takes a congruent pair's selections never culls
-  mutable std::vector<Core> cores_a, cores_b;
+  // (shared with every generator of a part with the same loops: inscribed_disks)
+  mutable std::shared_ptr<const std::vector<Core>> cores_a, cores_b;
   std::vector<SweptFeature> static_a, static_b;   // Culler::describe_static, chart independent
   bool polygons = true;   // every feature of both parts is a vertex or a segment
   // The features' exact body-frame geometry, chart independent (formed once, not per tile).
@@ -1945,7 +2022,7 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
       });
     static const std::vector<Core> no_cores;
     BlockedSpaceCuller blocked(part_a, axes.first_moves, part_b, axes.second_moves, x, y, axes.dimension(), d.disks_a,
-                               d.disks_b, on_grid ? no_cores : d.cores_a, on_grid ? no_cores : d.cores_b,
+                               d.disks_b, on_grid ? no_cores : *d.cores_a, on_grid ? no_cores : *d.cores_b,
                                on_grid ? grid : nullptr);
     blocked.run(pairs, needed);
   }

@@ -249,6 +249,14 @@ class CurveGenerator {
   std::unique_ptr<Data> data_;
 };
 
+/// The blocked-space cull without a grid reads the parts' inscribed disks: they are computed
+/// once per part and shared by every generator of a part with the same loops (exact geometry:
+/// the gears of a train each mesh with two neighbours), in a bounded memo (session 34). For
+/// tests: how many parts' disks were computed so far (memo misses), and the memo emptied (the
+/// disks are a pure function of the loops: no result depends on it).
+std::size_t inscribed_disk_parts_computed();
+void clear_inscribed_disk_memo();
+
 /// Exact relation of the two parts posed at chart point `q` of chart (x, y): the oracle.
 Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x,
                          const ChartAxis& y, const ChartPoint& q);

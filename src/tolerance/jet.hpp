@@ -75,7 +75,7 @@ S plus(const S& x, const S& y) {
 }
 // a.gradient * fa + b.gradient * fb
 template <class S>
-std::vector<S> combine(const Jet<S>& a, const S& fa, const Jet<S>& b, const S& fb) {
+std::vector<S> combine_plain(const Jet<S>& a, const S& fa, const Jet<S>& b, const S& fb) {
   std::size_t n = std::max(a.gradient.size(), b.gradient.size());
   std::vector<S> g(n, S(0));
   bool fa_finite = finite(fa), fb_finite = finite(fb);
@@ -84,21 +84,83 @@ std::vector<S> combine(const Jet<S>& a, const S& fa, const Jet<S>& b, const S& f
   return g;
 }
 template <class S>
-std::vector<S> scaled(const Jet<S>& a, const S& f) {
+std::vector<S> scaled_plain(const Jet<S>& a, const S& f) {
   std::vector<S> g(a.gradient.size());
   bool f_finite = finite(f);
   for (std::size_t i = 0; i < g.size(); ++i) g[i] = times(a.gradient[i], f, f_finite);
   return g;
 }
+// a.gradient + b.gradient
+template <class S>
+std::vector<S> sum_plain(const Jet<S>& a, const Jet<S>& b) {
+  std::size_t n = std::max(a.gradient.size(), b.gradient.size());
+  std::vector<S> g(n, S(0));
+  for (std::size_t i = 0; i < a.gradient.size(); ++i) g[i] = a.gradient[i];
+  for (std::size_t i = 0; i < b.gradient.size(); ++i) g[i] = plus(g[i], b.gradient[i]);
+  return g;
+}
+
+// Taylor-model jets (the assembly chains' partial derivatives, the bulk of their certified
+// band): every partial derivative is multiplied by the same factor, so what a product reads of
+// that factor (taylor_detail::Factor) is computed once per jet operation, sums accumulate in
+// place and operands are not copied first. Bit for bit the *_plain forms above (the same
+// operations on the same operands in the same order; plus() returns the same operand or sum):
+// tests/unit/taylor_jet_test.cpp compares them.
+inline TaylorModel1 times(const TaylorModel1& x, const taylor_detail::Factor& f, bool f_finite) {
+  if (f_finite && x.exact_zero()) return TaylorModel1(0);
+  return taylor_detail::multiply(x, f);
+}
+// g = plus(g, t)
+inline void accumulate(TaylorModel1& g, TaylorModel1&& t) {
+  if (g.exact_zero()) g = std::move(t);
+  else if (!t.exact_zero()) taylor_detail::add_to(g, t);
+}
+template <class S>
+std::vector<S> combine(const Jet<S>& a, const S& fa, const Jet<S>& b, const S& fb) {
+  if constexpr (!std::is_same_v<S, TaylorModel1>) {
+    return combine_plain(a, fa, b, fb);
+  } else {
+    std::size_t n = std::max(a.gradient.size(), b.gradient.size());
+    std::vector<S> g(n, S(0));
+    bool fa_finite = finite(fa), fb_finite = finite(fb);
+    const taylor_detail::Factor pa = taylor_detail::factor(fa), pb = taylor_detail::factor(fb);
+    for (std::size_t i = 0; i < a.gradient.size(); ++i) g[i] = times(a.gradient[i], pa, fa_finite);
+    for (std::size_t i = 0; i < b.gradient.size(); ++i) accumulate(g[i], times(b.gradient[i], pb, fb_finite));
+    return g;
+  }
+}
+template <class S>
+std::vector<S> scaled(const Jet<S>& a, const S& f) {
+  if constexpr (!std::is_same_v<S, TaylorModel1>) {
+    return scaled_plain(a, f);
+  } else {
+    std::vector<S> g(a.gradient.size());
+    bool f_finite = finite(f);
+    const taylor_detail::Factor pf = taylor_detail::factor(f);
+    for (std::size_t i = 0; i < g.size(); ++i) g[i] = times(a.gradient[i], pf, f_finite);
+    return g;
+  }
+}
+template <class S>
+std::vector<S> sum(const Jet<S>& a, const Jet<S>& b) {
+  if constexpr (!std::is_same_v<S, TaylorModel1>) {
+    return sum_plain(a, b);
+  } else {
+    // plus(a_i, b_i) where both are present, else a_i, or plus(0, b_i) = b_i
+    std::size_t n = std::max(a.gradient.size(), b.gradient.size());
+    std::vector<S> g(n, S(0));
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i < a.gradient.size() && i < b.gradient.size()) g[i] = plus(a.gradient[i], b.gradient[i]);
+      else g[i] = i < a.gradient.size() ? a.gradient[i] : b.gradient[i];
+    }
+    return g;
+  }
+}
 }  // namespace jet_detail
 
 template <class S>
 Jet<S> operator+(const Jet<S>& a, const Jet<S>& b) {
-  std::size_t n = std::max(a.gradient.size(), b.gradient.size());
-  std::vector<S> g(n, S(0));
-  for (std::size_t i = 0; i < a.gradient.size(); ++i) g[i] = a.gradient[i];
-  for (std::size_t i = 0; i < b.gradient.size(); ++i) g[i] = jet_detail::plus(g[i], b.gradient[i]);
-  return Jet<S>(a.value + b.value, std::move(g));
+  return Jet<S>(a.value + b.value, jet_detail::sum(a, b));
 }
 template <class S>
 Jet<S> operator-(const Jet<S>& a) {

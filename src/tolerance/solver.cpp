@@ -205,12 +205,30 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   // The last jet over B x Y of `enclose`: its partials contain F_i(B, v) for every v in Y, so a
   // sign over the box at an end of a narrower Y' inside Y is tried with them first (a certain
   // sign there is certain); the jet at the point v only when that is undecided.
+  // With the Taylor models (use_taylor), that jet's partials are narrowed to theirs
+  // (taylor_partials) only when a sign needs them: a sign certain with the wider partials is the
+  // same sign with the narrower ones (the mean-value sum is inclusion isotone), so the Taylor
+  // models are evaluated once a sign is undecided without them or the bracket is certified
+  // (enclose), never for a bracket whose end signs fail anyway; the answers are those of
+  // narrowing first.
   std::optional<IntervalJet> over_y;
   Interval over_y_range;
+  bool over_y_narrowed = true;   // over_y's partials are what enclose uses (narrowed when use_taylor)
+  bool use_taylor = false;
+  auto narrow_over_y = [&] {
+    if (over_y_narrowed) return;
+    taylor_partials(curve, *memo, fixed, held_offset, over_y_range, *over_y);
+    over_y_narrowed = true;
+  };
   auto sign_over_box = [&](double v) {
     if (reuse_y_jets_ && over_y && over_y_range.lo <= v && v <= over_y_range.hi) {
       int s = mean_value_sign(v, *over_y);
       if (s == 1 || s == -1) return s;
+      if (!over_y_narrowed) {
+        narrow_over_y();
+        s = mean_value_sign(v, *over_y);
+        if (s == 1 || s == -1) return s;
+      }
     }
     return mean_value_sign(v, evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet(Interval::point(v))));
   };
@@ -221,21 +239,24 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   // The mean-value enclosure over B x Y when Y is certified to hold exactly one root for every
   // p in B (end signs opposite, F_v of one sign); false otherwise.
   bool use_second = false;
-  bool use_taylor = false;
   auto enclose = [&](const Interval& y, Interval& out) {
-    std::optional<IntervalJet> first;
     if (reuse_y_jets_) {
-      first = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
-      if (use_taylor) taylor_partials(curve, *memo, fixed, held_offset, y, *first);
-      over_y = first;   // its partials serve the end signs of Y itself first
+      // its partials serve the end signs of Y itself first
+      over_y = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
       over_y_range = y;
+      over_y_narrowed = !use_taylor;
     }
     int s_lo = sign_over_box(y.lo);
     int s_hi = sign_over_box(y.hi);
     if (s_lo == 2 || s_hi == 2 || s_lo == 0 || s_hi == 0 || s_lo == s_hi) return false;
-    IntervalJet f = first ? *first
-                          : evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
-    if (!first && use_taylor) taylor_partials(curve, *memo, fixed, held_offset, y, f);
+    IntervalJet f;
+    if (reuse_y_jets_) {
+      narrow_over_y();
+      f = *over_y;
+    } else {
+      f = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
+      if (use_taylor) taylor_partials(curve, *memo, fixed, held_offset, y, f);
+    }
     if (use_second) tighten_partials(curve, *memo, box, center, fixed, held_offset, y, f);
     Interval fv = f.partial(k);
     int s = fv.sign();

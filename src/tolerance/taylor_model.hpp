@@ -121,6 +121,15 @@ inline TaylorModel1 operator+(const TaylorModel1& a, const TaylorModel1& b) {
   r.remainder = plus(a.remainder, b.remainder);
   return r;
 }
+namespace taylor_detail {
+/// a = a + b in place, bit for bit (the coefficients a lacks are 0, as in operator+).
+inline void add_to(TaylorModel1& a, const TaylorModel1& b) {
+  a.constant = plus(a.constant, b.constant);
+  if (a.coefficients.size() < b.coefficients.size()) a.coefficients.resize(b.coefficients.size(), Interval(0));
+  for (std::size_t i = 0; i < b.coefficients.size(); ++i) a.coefficients[i] = plus(a.coefficients[i], b.coefficients[i]);
+  a.remainder = plus(a.remainder, b.remainder);
+}
+}  // namespace taylor_detail
 inline TaylorModel1 operator-(const TaylorModel1& a) {
   TaylorModel1 r(-a.constant);
   r.coefficients.resize(a.coefficients.size());
@@ -129,18 +138,41 @@ inline TaylorModel1 operator-(const TaylorModel1& a) {
   return r;
 }
 inline TaylorModel1 operator-(const TaylorModel1& a, const TaylorModel1& b) { return a + (-b); }
+namespace taylor_detail {
+/// A right-hand factor of products with what its products read of it computed once (the jets
+/// multiply every partial derivative by the same value: jet.hpp): whether it is a constant, and
+/// its linear part's range when it is not. multiply(a, factor(b)) == a * b, bit for bit.
+struct Factor {
+  const TaylorModel1* model = nullptr;
+  bool constant = false;
+  Interval linear{0};
+};
+inline Factor factor(const TaylorModel1& b) {
+  Factor f;
+  f.model = &b;
+  f.constant = b.is_constant();
+  if (!f.constant) f.linear = b.linear_range();
+  return f;
+}
+inline TaylorModel1 multiply(const TaylorModel1& a, const Factor& f);
+}  // namespace taylor_detail
+
 inline TaylorModel1 operator*(const TaylorModel1& a, const TaylorModel1& b) {
+  return taylor_detail::multiply(a, taylor_detail::factor(b));
+}
+inline TaylorModel1 taylor_detail::multiply(const TaylorModel1& a, const Factor& f) {
   using taylor_detail::plus;
   using taylor_detail::times;
+  const TaylorModel1& b = *f.model;
   if (a.is_constant()) return taylor_detail::scaled(b, a.constant, times(a.constant, b.constant));
-  if (b.is_constant()) return taylor_detail::scaled(a, b.constant, times(a.constant, b.constant));
+  if (f.constant) return taylor_detail::scaled(a, b.constant, times(a.constant, b.constant));
   // (ca + La + Ra)(cb + Lb + Rb) = ca cb + ca Lb + cb La + [La Lb + La Rb + Ra (Lb + Rb) + ca Rb + cb Ra]
   TaylorModel1 r(a.constant * b.constant);
   r.coefficients.assign(std::max(a.coefficients.size(), b.coefficients.size()), kernels::Interval(0));
   for (std::size_t i = 0; i < a.coefficients.size(); ++i) r.coefficients[i] = times(a.coefficients[i], b.constant);
   for (std::size_t i = 0; i < b.coefficients.size(); ++i)
     r.coefficients[i] = plus(r.coefficients[i], times(b.coefficients[i], a.constant));
-  kernels::Interval la = a.linear_range(), lb = b.linear_range();
+  kernels::Interval la = a.linear_range(), lb = f.linear;
   kernels::Interval rem = times(la, lb);
   rem = plus(rem, times(la, b.remainder));
   rem = plus(rem, times(a.remainder, lb + b.remainder));
