@@ -1813,7 +1813,7 @@ std::unique_ptr<CurveGenerator::Selection> CurveGenerator::incremental_select(co
       d.cores_b = inscribed_disks(part_b);
     });
     impl.culler.emplace(part_a, d.axes.first_moves, part_b, d.axes.second_moves, x, y, d.axes.dimension(), d.disks_a,
-                        d.disks_b, d.cores_a, d.cores_b);
+                        d.disks_b, *d.cores_a, *d.cores_b);
     impl.culler->prepare(impl.pairs, impl.needed);
   }
   return selection;
