@@ -614,7 +614,7 @@ std::size_t edge_count(const Part& part) {
 // polynomials (no broad phase yet): on parts with hundreds of edges each (gears) one point took
 // seconds. Beyond this many edge pairs such a point stays undecided, as it was before arcs were
 // decided at all (the builder counts it `touching_undecided`).
-constexpr std::size_t max_curved_edge_pairs = 1024;
+constexpr std::size_t max_curved_edge_pairs = 4096;
 
 bool has_arc(const Part& part) {
   for (const Loop& loop : part.loops)
