@@ -20,8 +20,7 @@ namespace hipair::cspace {
 /// certain). Parts bounded by segments and circular arcs (arcs since session 34); nullopt when
 /// both coordinates of a 2-D point are irrational, or (parts with arcs) in the one degenerate
 /// case left: a loop without common point whose every vertex has a vertex of the other part (or
-/// a circle's tangent) both at its height and at its abscissa, or when parts with arcs have more
-/// than 4096 edge pairs (no broad phase yet: such points stay undecided, counted by the builder).
+/// a circle's tangent) both at its height and at its abscissa.
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
                                          const ChartAxis& y_axis, const algebra::Real& x, const algebra::Real& y);
 

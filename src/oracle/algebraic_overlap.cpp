@@ -604,18 +604,6 @@ std::vector<std::vector<CurvedEdge>> posed_loops(const Part& part, const kernels
   return loops;
 }
 
-std::size_t edge_count(const Part& part) {
-  std::size_t n = 0;
-  for (const Loop& loop : part.loops) n += loop.edges.size();
-  return n;
-}
-
-// The curved relation tests every edge of one part against every edge of the other with exact
-// polynomials (no broad phase yet): on parts with hundreds of edges each (gears) one point took
-// seconds. Beyond this many edge pairs such a point stays undecided, as it was before arcs were
-// decided at all (the builder counts it `touching_undecided`).
-constexpr std::size_t max_curved_edge_pairs = 4096;
-
 bool has_arc(const Part& part) {
   for (const Loop& loop : part.loops)
     for (const Edge& edge : loop.edges)
@@ -633,12 +621,10 @@ std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axe
   const Part& second = model.parts.at(axes.second);
   PairPoses<Poly> poses = pair_poses(model, axes, x_axis, y_axis, Poly::variable(0), Poly::variable(1), constant);
   SignAt sign(x, y_used);
-  if (has_arc(first) || has_arc(second)) {
-    if (edge_count(first) * edge_count(second) > max_curved_edge_pairs) return std::nullopt;
+  if (has_arc(first) || has_arc(second))
     return CurvedRelation({posed_loops(first, poses.first, poses.second.w), posed_loops(second, poses.second, poses.first.w)},
                           sign)
         .run();
-  }
   std::vector<Segment> a = posed_segments(first, poses.first), b = posed_segments(second, poses.second);
   for (auto* part : {&a, &b})
     for (Segment& segment : *part) {
