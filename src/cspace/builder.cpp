@@ -241,8 +241,8 @@ bool valid_point_in_box(const ContactCurve& curve, const raw::Box& box) {
   // atoms: x >= x_lo iff sgn(X m - n det) sgn(det) >= 0 for x_lo = n / m (m > 0), and a linear
   // atom d' x + e' y + g' >= 0 iff sgn(d' X + e' Y + g' det) sgn(det) >= 0.
   // (products accumulated in place with mpz_addmul / mpz_submul: no temporary integer is
-  // allocated per atom)
-  mpz_class det, x_num, y_num, t;
+  // allocated per atom; per-thread scratch, assigned before every read)
+  thread_local mpz_class det, x_num, y_num, t;
   auto at_least = [&](const mpz_class& num, const Rational& bound, int s) {   // num / det >= bound
     mpz_mul(t.get_mpz_t(), num.get_mpz_t(), bound.get_den_mpz_t());
     mpz_submul(t.get_mpz_t(), bound.get_num_mpz_t(), det.get_mpz_t());
