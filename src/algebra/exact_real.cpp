@@ -330,7 +330,20 @@ int SturmSequence::total() const {
 
 Real Real::from_rational(const Rational& value) {
   Real r;
-  r.polynomial = primitive_part(Polynomial{-value.get_num(), value.get_den()});
+  // primitive_part of {-num, den}, written in place: divided by their gcd (content), whose sign
+  // makes the leading coefficient positive (den != 0, so nothing is trimmed)
+  r.polynomial.resize(2);
+  mpz_class& c0 = r.polynomial[0];
+  mpz_class& c1 = r.polynomial[1];
+  mpz_neg(c0.get_mpz_t(), value.get_num_mpz_t());
+  mpz_set(c1.get_mpz_t(), value.get_den_mpz_t());
+  thread_local mpz_class g;
+  mpz_gcd(g.get_mpz_t(), c0.get_mpz_t(), c1.get_mpz_t());
+  if (sgn(c1) < 0) mpz_neg(g.get_mpz_t(), g.get_mpz_t());
+  if (mpz_cmp_ui(g.get_mpz_t(), 1) != 0) {
+    mpz_divexact(c0.get_mpz_t(), c0.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(c1.get_mpz_t(), c1.get_mpz_t(), g.get_mpz_t());
+  }
   r.lower = value;
   r.upper = value;
   r.exact = true;
