@@ -11,6 +11,7 @@
 #include <cstring>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <unordered_map>
 
@@ -329,7 +330,20 @@ int SturmSequence::total() const {
 
 Real Real::from_rational(const Rational& value) {
   Real r;
-  r.polynomial = primitive_part(Polynomial{-value.get_num(), value.get_den()});
+  // primitive_part of {-num, den}, written in place: divided by their gcd (content), whose sign
+  // makes the leading coefficient positive (den != 0, so nothing is trimmed)
+  r.polynomial.resize(2);
+  mpz_class& c0 = r.polynomial[0];
+  mpz_class& c1 = r.polynomial[1];
+  mpz_neg(c0.get_mpz_t(), value.get_num_mpz_t());
+  mpz_set(c1.get_mpz_t(), value.get_den_mpz_t());
+  thread_local mpz_class g;
+  mpz_gcd(g.get_mpz_t(), c0.get_mpz_t(), c1.get_mpz_t());
+  if (sgn(c1) < 0) mpz_neg(g.get_mpz_t(), g.get_mpz_t());
+  if (mpz_cmp_ui(g.get_mpz_t(), 1) != 0) {
+    mpz_divexact(c0.get_mpz_t(), c0.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(c1.get_mpz_t(), c1.get_mpz_t(), g.get_mpz_t());
+  }
   r.lower = value;
   r.upper = value;
   r.exact = true;
@@ -1510,18 +1524,21 @@ Polynomial substitute_x(const IntegerPolynomial2& f, const Rational& x) {
   Polynomial result(dy);
   const mpz_class& n = x.get_num();
   const mpz_class& d = x.get_den();
-  // coefficient of y^j: sum_i c[i][j] n^i d^(dx - i)
-  std::vector<mpz_class> weights(static_cast<std::size_t>(std::max(dx + 1, 0)));
+  // coefficient of y^j: sum_i c[i][j] n^i d^(dx - i) (products accumulated in place: no
+  // temporary integer per term; per-thread scratch for the weights)
+  thread_local std::vector<mpz_class> weights;
+  thread_local mpz_class dp;
+  if (weights.size() < static_cast<std::size_t>(std::max(dx + 1, 0))) weights.resize(static_cast<std::size_t>(dx + 1));
   for (int i = 0; i <= dx; ++i) {
-    mpz_class w;
+    mpz_class& w = weights[static_cast<std::size_t>(i)];
     mpz_pow_ui(w.get_mpz_t(), n.get_mpz_t(), static_cast<unsigned long>(i));
-    mpz_class dp;
     mpz_pow_ui(dp.get_mpz_t(), d.get_mpz_t(), static_cast<unsigned long>(dx - i));
-    weights[static_cast<std::size_t>(i)] = w * dp;
+    mpz_mul(w.get_mpz_t(), w.get_mpz_t(), dp.get_mpz_t());
   }
   for (int i = 0; i <= dx; ++i)
     for (std::size_t j = 0; j < c[static_cast<std::size_t>(i)].size(); ++j)
-      result[j] += c[static_cast<std::size_t>(i)][j] * weights[static_cast<std::size_t>(i)];
+      mpz_addmul(result[j].get_mpz_t(), c[static_cast<std::size_t>(i)][j].get_mpz_t(),
+                 weights[static_cast<std::size_t>(i)].get_mpz_t());
   trim(result);
   return result;
 }
@@ -1604,15 +1621,18 @@ int sign_at(const Polynomial& p, const Real& u) {
     std::vector<Interval> coefficients;
     coefficients.reserve(p.size());
     for (const auto& c : p) coefficients.push_back(enclose(c));
-    Real v = u;
+    // the first round on u itself; a copy to refine only when it is inconclusive
+    std::optional<Real> refined;
+    const Real* v = &u;
     for (int round = 0; round < 3; ++round) {
-      if (v.exact) return sign_at(p, v.lower);
-      Interval x{lower_double(v.lower), upper_double(v.upper)};
+      if (v->exact) return sign_at(p, v->lower);
+      Interval x{lower_double(v->lower), upper_double(v->upper)};
       Interval value{0, 0};
       for (auto c = coefficients.rbegin(); c != coefficients.rend(); ++c) value = value * x + *c;
       if (value.lo > 0) return 1;   // (NaN from overflow fails both tests)
       if (value.hi < 0) return -1;
-      for (int k = 0; k < 4 && !v.exact; ++k) v.refine();
+      if (!refined) v = &refined.emplace(u);
+      for (int k = 0; k < 4 && !refined->exact; ++k) refined->refine();
     }
   }
   if (vanishes_at(p, u)) return 0;
@@ -1628,6 +1648,16 @@ int sign_at(const Polynomial& p, const Real& u) {
 }
 
 int sign_at(const IntegerPolynomial2& f, const Rational& x, const Real& y) {
+  // a constant (e.g. a line's derivative in y): its sign, as the substitution below gives it
+  // (c d^k with d > 0, whatever y is)
+  bool constant = true;
+  for (std::size_t i = 0; i < f.coefficients.size() && constant; ++i)
+    for (std::size_t j = i == 0 ? 1 : 0; j < f.coefficients[i].size(); ++j)
+      if (sgn(f.coefficients[i][j]) != 0) {
+        constant = false;
+        break;
+      }
+  if (constant) return f.coefficients.empty() || f.coefficients[0].empty() ? 0 : sgn(f.coefficients[0][0]);
   return sign_at(substitute_x(f, x), y);
 }
 

@@ -497,10 +497,17 @@ class Builder {
   // it holds where sgn(ky) (P + Q x) >= 0, a lower bound -P / Q of x when sgn(ky) Q > 0, an
   // upper one when < 0. The bounds are compared as unreduced fractions (cross products) and
   // only the two kept are canonicalised: the same ends, hence the same piece, as clip_line.
-  // False (nothing done) when the line is not of that kind.
+  // A vertical line (ky = 0, kx != 0) is the same with x and y exchanged: the parameter is y,
+  // x = -k0 / kx throughout (clip_line's vertical case: x0 outside [x_lo, x_hi] makes the x
+  // sides' constraints, constant along the line, fail; the y bounds are its parameter's).
+  // False (nothing done) when the line is not of that kind (or a vertical line has windows).
   bool clip_line_in_integers(const IntegerPolynomial2& f, const std::vector<ValidityClause>& clauses,
                              const std::vector<std::pair<Rational, Rational>>& windows) {
-    const mpz_class &k0 = coefficient(f, 0, 0), &kx = coefficient(f, 1, 0), &ky = coefficient(f, 0, 1);
+    const bool vertical = sgn(coefficient(f, 0, 1)) == 0;
+    // the line in the exchanged coordinates when vertical: kx the parameter's coefficient, ky
+    // the solved variable's
+    const mpz_class &k0 = coefficient(f, 0, 0), &kx = coefficient(f, vertical ? 0 : 1, vertical ? 1 : 0),
+                    &ky = coefficient(f, vertical ? 1 : 0, vertical ? 0 : 1);
     if (sgn(ky) == 0 || !windows.empty()) return false;
     for (const auto& clause : clauses)
       if (clause.atoms.size() != 1 || total_degree(clause.atoms[0]) > 1) return false;
@@ -516,7 +523,7 @@ class Builder {
     thread_local Scratch scratch;
     auto& [lo_num, lo_den, hi_num, hi_den, P, Q, t1, t2, minus_x_lo_num, minus_y_lo_num, minus_x_hi_den,
            minus_y_hi_den] = scratch;
-    auto bound = [&](const mpz_class& g0, const mpz_class& gx, const mpz_class& gy) {
+    auto bound_exchanged = [&](const mpz_class& g0, const mpz_class& gx, const mpz_class& gy) {
       mpz_mul(P.get_mpz_t(), g0.get_mpz_t(), ky.get_mpz_t());
       mpz_submul(P.get_mpz_t(), gy.get_mpz_t(), k0.get_mpz_t());   // g0 ky - gy k0
       mpz_mul(Q.get_mpz_t(), gx.get_mpz_t(), ky.get_mpz_t());
@@ -557,6 +564,13 @@ class Builder {
         mpz_swap(hi_den.get_mpz_t(), Q.get_mpz_t());
       }
     };
+    // g0 + gx x + gy y >= 0 in the chart's coordinates
+    auto bound = [&](const mpz_class& g0, const mpz_class& gx, const mpz_class& gy) {
+      if (vertical)
+        bound_exchanged(g0, gy, gx);
+      else
+        bound_exchanged(g0, gx, gy);
+    };
     static const mpz_class zero(0);
     mpz_neg(minus_x_lo_num.get_mpz_t(), box_.x_lo.get_num_mpz_t());
     mpz_neg(minus_y_lo_num.get_mpz_t(), box_.y_lo.get_num_mpz_t());
@@ -591,7 +605,10 @@ class Builder {
       return y;
     };
     Rational y_lo = y_at(lo), y_hi = y_at(hi);
-    pieces_.emplace_back(BaseCurve(point(lo, y_lo), point(hi, y_hi)), current_);
+    if (vertical)   // (x = y_lo = y_hi, the parameter's ends lo < hi in y)
+      pieces_.emplace_back(BaseCurve(point(y_lo, lo), point(y_hi, hi)), current_);
+    else
+      pieces_.emplace_back(BaseCurve(point(lo, y_lo), point(hi, y_hi)), current_);
     return true;
   }
 

@@ -241,8 +241,8 @@ bool valid_point_in_box(const ContactCurve& curve, const raw::Box& box) {
   // atoms: x >= x_lo iff sgn(X m - n det) sgn(det) >= 0 for x_lo = n / m (m > 0), and a linear
   // atom d' x + e' y + g' >= 0 iff sgn(d' X + e' Y + g' det) sgn(det) >= 0.
   // (products accumulated in place with mpz_addmul / mpz_submul: no temporary integer is
-  // allocated per atom)
-  mpz_class det, x_num, y_num, t;
+  // allocated per atom; per-thread scratch, assigned before every read)
+  thread_local mpz_class det, x_num, y_num, t;
   auto at_least = [&](const mpz_class& num, const Rational& bound, int s) {   // num / det >= bound
     mpz_mul(t.get_mpz_t(), num.get_mpz_t(), bound.get_den_mpz_t());
     mpz_submul(t.get_mpz_t(), bound.get_num_mpz_t(), det.get_mpz_t());
@@ -1247,12 +1247,17 @@ algebra::Real edge_y_at(const ChartData& chart, std::size_t local_edge, const Ra
   // a line a x + b y + c (b != 0): its one root -(a x + c) / b, the rational that the root
   // isolation below returns (as an exact Real), without the substitution and square-free part
   if (const mpz_class *a, *b, *c; line_of(edge.support, a, b, c) && sgn(*b) != 0) {
-    mpz_class numerator = *a * x.get_num();
-    numerator += *c * x.get_den();
-    mpz_neg(numerator.get_mpz_t(), numerator.get_mpz_t());
-    Rational root(numerator, mpz_class(*b * x.get_den()));
+    // (per-thread scratch, assigned before every read: no integer allocated per call)
+    thread_local Rational root, box_lo, box_hi;
+    const mpz_ptr num = mpq_numref(root.get_mpq_t()), den = mpq_denref(root.get_mpq_t());
+    mpz_mul(num, a->get_mpz_t(), x.get_num_mpz_t());
+    mpz_addmul(num, c->get_mpz_t(), x.get_den_mpz_t());
+    mpz_neg(num, num);
+    mpz_mul(den, b->get_mpz_t(), x.get_den_mpz_t());
     root.canonicalize();
-    if (!(Rational(edge.box[1]) < root && root < Rational(edge.box[3])))
+    mpq_set_d(box_lo.get_mpq_t(), edge.box[1]);
+    mpq_set_d(box_hi.get_mpq_t(), edge.box[3]);
+    if (!(box_lo < root && root < box_hi))
       throw NumericError("internal: contact curve root 0 is not in its certified box");
     return raw::exact_real(root);
   }

@@ -21,6 +21,7 @@
 #include <map>
 #include <mutex>
 #include <numbers>
+#include <optional>
 #include <unordered_map>
 
 namespace hipair::cspace {
@@ -226,17 +227,7 @@ class Culler {
       : motion_{part_motion(first_part, first_moves, first_axis), part_motion(second_part, second_moves, second_axis)} {
     const PartMotion& first = motion_[0];
     const PartMotion& second = motion_[1];
-    // a translating part's travel over the chart box, the same for each of its features
-    for (int side = 0; side < 2; ++side) {
-      const PartMotion& own = motion_[side];
-      if (own.kind != MotionKind::translation) continue;
-      Rational x1 = own.lo * own.direction.x;
-      Rational x2 = own.hi * own.direction.x;
-      Rational y1 = own.lo * own.direction.y;
-      Rational y2 = own.hi * own.direction.y;
-      travel_x_[side] = kernels::hull(algebra::enclose_kernel(x1), algebra::enclose_kernel(x2));
-      travel_y_[side] = kernels::hull(algebra::enclose_kernel(y1), algebra::enclose_kernel(y2));
-    }
+    travel_ = travel_over(first_axis, second_axis);
     auto on_axis = [](const Point& u) {
       return (sgn(u.y) == 0 && (u.x == 1 || u.x == -1)) || (sgn(u.x) == 0 && (u.y == 1 || u.y == -1));
     };
@@ -250,6 +241,29 @@ class Culler {
     }
     if (first.kind == MotionKind::translation && second.kind == MotionKind::translation)
       parallel_ = sgn(cross(first.direction, second.direction)) == 0;
+  }
+
+  /// A translating part's travel over a chart box, the same for each of its features: side 0
+  /// over `first_axis`, side 1 over `second_axis` (zero for a part that does not translate).
+  /// Only this depends on the chart box; the rest of a Culler depends on the parts' motions.
+  struct Travel {
+    Interval x[2], y[2];
+  };
+  Travel travel_over(const ChartAxis& first_axis, const ChartAxis& second_axis) const {
+    Travel travel;
+    thread_local Rational x1, x2, y1, y2;   // scratch (assigned before every read)
+    for (int side = 0; side < 2; ++side) {
+      const PartMotion& own = motion_[side];
+      if (own.kind != MotionKind::translation) continue;
+      const ChartAxis& axis = side == 0 ? first_axis : second_axis;
+      mpq_mul(x1.get_mpq_t(), axis.lo.get_mpq_t(), own.direction.x.get_mpq_t());
+      mpq_mul(x2.get_mpq_t(), axis.hi.get_mpq_t(), own.direction.x.get_mpq_t());
+      mpq_mul(y1.get_mpq_t(), axis.lo.get_mpq_t(), own.direction.y.get_mpq_t());
+      mpq_mul(y2.get_mpq_t(), axis.hi.get_mpq_t(), own.direction.y.get_mpq_t());
+      travel.x[side] = kernels::hull(algebra::enclose_kernel(x1), algebra::enclose_kernel(x2));
+      travel.y[side] = kernels::hull(algebra::enclose_kernel(y1), algebra::enclose_kernel(y2));
+    }
+    return travel;
   }
 
   SweptFeature describe(const BodyFeature& feature, int side) const {
@@ -282,10 +296,12 @@ class Culler {
   }
 
   /// Adds a translating part's travel over the chart box to a static description.
-  SweptFeature travel(SweptFeature swept, int side) const {
+  SweptFeature travel(SweptFeature swept, int side) const { return travel(std::move(swept), side, travel_); }
+  /// The same over the chart box of `over` (travel_over).
+  SweptFeature travel(SweptFeature swept, int side, const Travel& over) const {
     if (motion_[side].kind == MotionKind::translation) {
-      swept.box_x = swept.box_x + travel_x_[side];
-      swept.box_y = swept.box_y + travel_y_[side];
+      swept.box_x = swept.box_x + over.x[side];
+      swept.box_y = swept.box_y + over.y[side];
     }
     return swept;
   }
@@ -331,7 +347,7 @@ class Culler {
   }
 
   PartMotion motion_[2];
-  Interval travel_x_[2], travel_y_[2];   // a translating side's travel (travel())
+  Travel travel_;                         // the constructor's chart box (travel())
   bool axis_normals_ = false;             // no rotation, every translation normal +-(1, 0) or +-(0, 1)
   bool same_pivot_ = false;
   bool parallel_ = false;
@@ -1653,11 +1669,14 @@ struct CurveGenerator::Data {
   std::vector<FrontVertex> front_vertices_a, front_vertices_b;
   std::vector<FrontSegment> front_segments_a, front_segments_b;
   std::uint64_t id = 0;   // this generator's number, unique in the process (FormedCurve::maker)
+  // The parts' motions for the swept-region cull, chart independent: every generate() reads it
+  // with its own chart box's travel (Culler::travel_over) instead of building a Culler again.
+  std::optional<Culler> culler;
 };
 
 CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
     : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}, true, {}, {},
-                     formed_store(model, axes, options.cull_blocked_space), false, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, 0}) {
+                     formed_store(model, axes, options.cull_blocked_space), false, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, 0, {}}) {
   Data& d = *data_;
   static std::atomic<std::uint64_t> generators{0};
   d.id = ++generators;
@@ -1671,7 +1690,8 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
     // the pivots and directions of the motions do not depend on the chart
     ChartAxis any;
     any.kind = ChartAxis::Kind::translation;
-    Culler culler(model.parts.at(axes.first), axes.first_moves, any, model.parts.at(axes.second), axes.second_moves, any);
+    const Culler& culler =
+        d.culler.emplace(model.parts.at(axes.first), axes.first_moves, any, model.parts.at(axes.second), axes.second_moves, any);
     for (const BodyFeature& f : d.features_a) d.static_a.push_back(culler.describe_static(f));
     for (const BodyFeature& f : d.features_b) d.static_b.push_back(culler.describe_static(f));
   }
@@ -1889,15 +1909,16 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
   stats.reflex_vertices_skipped += d.reflex_vertices_skipped;
 
   const ChartAxis& second_axis = axes.first_moves ? y : x;
-  Culler culler(part_a, axes.first_moves, x, part_b, axes.second_moves, second_axis);
+  const Culler& culler = *d.culler;
+  const Culler::Travel travel = culler.travel_over(x, second_axis);
   std::vector<SweptFeature> swept_a;
   std::vector<SweptFeature> swept_b;
   swept_a.reserve(features_a.size());
   swept_b.reserve(features_b.size());
   // (a given selection needs no broad phase: the swept boxes stay empty)
   if (!selected_in) {
-    for (const SweptFeature& f : d.static_a) swept_a.push_back(culler.travel(f, 0));
-    for (const SweptFeature& f : d.static_b) swept_b.push_back(culler.travel(f, 1));
+    for (const SweptFeature& f : d.static_a) swept_a.push_back(culler.travel(f, 0, travel));
+    for (const SweptFeature& f : d.static_b) swept_b.push_back(culler.travel(f, 1, travel));
   }
 
   // Broad phase: world boxes of the features swept over the chart box (a rotation over the

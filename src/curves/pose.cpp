@@ -2,6 +2,9 @@
 
 #include "kernels/contact_table.hpp"
 
+#include <charconv>
+#include <cstring>
+
 namespace hipair::cspace {
 
 int motion_degrees_of_freedom(const Motion& motion) noexcept {
@@ -113,9 +116,46 @@ bool sector_contains(const kernels::ArcSector<Rational>& sector, const Point& v)
 
 namespace {
 
+// Appends the edge's name (its label, or "loop L edge E") to `out`: the label strings are built
+// in place, without a temporary per piece (curve_label runs once per kept curve of every build).
+void append_edge_name(std::string& out, const Edge& edge, std::size_t loop, std::size_t index) {
+  if (!edge.label.empty()) {
+    out += edge.label;
+    return;
+  }
+  char digits[24];
+  out += "loop ";
+  out.append(digits, std::to_chars(digits, digits + sizeof digits, loop).ptr);
+  out += " edge ";
+  out.append(digits, std::to_chars(digits, digits + sizeof digits, index).ptr);
+}
+
 std::string edge_name(const Edge& edge, std::size_t loop, std::size_t index) {
-  if (!edge.label.empty()) return edge.label;
-  return "loop " + std::to_string(loop) + " edge " + std::to_string(index);
+  std::string name;
+  append_edge_name(name, edge, loop, index);
+  return name;
+}
+
+// Appends feature_label(model, ref) to `out`.
+void append_feature_label(std::string& out, const Model& model, const FeatureRef& ref) {
+  const Loop& loop = model.parts.at(ref.part).loops.at(ref.loop);
+  const std::size_t n = loop.edges.size();
+  if (ref.kind != FeatureRef::Kind::vertex) {
+    append_edge_name(out, loop.edges.at(ref.edge), ref.loop, ref.edge);
+    return;
+  }
+  const std::size_t p = (ref.edge + n - 1) % n;
+  thread_local std::string name, previous_name;   // scratch: their capacity is kept
+  name.clear();
+  previous_name.clear();
+  append_edge_name(name, loop.edges.at(ref.edge), ref.loop, ref.edge);
+  append_edge_name(previous_name, loop.edges[p], ref.loop, p);
+  out += "corner of ";
+  if (previous_name != name) {
+    out += previous_name;
+    out += " and ";
+  }
+  out += name;
 }
 
 }  // namespace
@@ -126,13 +166,9 @@ kernels::FeatureGeometry<Rational> feature_geometry(const BodyFeature& feature) 
 }
 
 std::string feature_label(const Model& model, const FeatureRef& ref) {
-  const Loop& loop = model.parts.at(ref.part).loops.at(ref.loop);
-  const std::size_t n = loop.edges.size();
-  std::string name = edge_name(loop.edges.at(ref.edge), ref.loop, ref.edge);
-  if (ref.kind != FeatureRef::Kind::vertex) return name;
-  const std::size_t p = (ref.edge + n - 1) % n;
-  std::string previous_name = edge_name(loop.edges[p], ref.loop, p);
-  return previous_name == name ? "corner of " + name : "corner of " + previous_name + " and " + name;
+  std::string label;
+  append_feature_label(label, model, ref);
+  return label;
 }
 
 const char* contact_word(ContactType type) {
@@ -149,8 +185,22 @@ const char* contact_word(ContactType type) {
 }
 
 std::string curve_label(const Model& model, const FeatureRef& first, const FeatureRef& second, ContactType type) {
-  return model.parts.at(first.part).name + " " + feature_label(model, first) + " / " + model.parts.at(second.part).name +
-         " " + feature_label(model, second) + " (" + contact_word(type) + ")";
+  const std::string& first_name = model.parts.at(first.part).name;
+  const std::string& second_name = model.parts.at(second.part).name;
+  const char* word = contact_word(type);
+  std::string label;
+  label.reserve(first_name.size() + second_name.size() + std::strlen(word) + 64);
+  label += first_name;
+  label += ' ';
+  append_feature_label(label, model, first);
+  label += " / ";
+  label += second_name;
+  label += ' ';
+  append_feature_label(label, model, second);
+  label += " (";
+  label += word;
+  label += ')';
+  return label;
 }
 
 std::vector<BodyFeature> part_features(const Model& model, std::size_t part_index, std::size_t* reflex_skipped,
