@@ -9,6 +9,7 @@
 #include <hipair/error.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <deque>
 #include <mutex>
@@ -455,6 +456,15 @@ bool BlockedTester::each_part(const ChartAxis& x_axis, const ChartAxis& y_axis, 
     if (!f(k, use_x ? x_axis : y_axis, range, key)) return false;
   }
   return true;
+}
+
+std::size_t BlockedTester::Cache::KeyHash::operator()(const std::pair<double, double>& key) const noexcept {
+  // (-0.0 and 0.0 are equal keys: normalised by adding 0.0, which maps -0.0 to 0.0)
+  const auto lo = std::bit_cast<std::uint64_t>(key.first + 0.0), hi = std::bit_cast<std::uint64_t>(key.second + 0.0);
+  std::uint64_t h = lo * 0x9E3779B97F4A7C15ULL ^ (hi + 0x632BE59BD9B4E019ULL + (lo << 6) + (lo >> 2));
+  h ^= h >> 29;
+  h *= 0xBF58476D1CE4E5B9ULL;
+  return static_cast<std::size_t>(h ^ (h >> 32));
 }
 
 bool BlockedTester::posed_parts(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,

@@ -85,8 +85,13 @@ class BlockedTester {
       std::vector<std::int32_t> slot;
       std::vector<PosedDisk> disks;
     };
-    std::map<std::pair<double, double>, Posed> posed_[2];
-    std::map<std::pair<double, double>, Pose> bounds_[2];
+    // keyed by the axis interval's ends (a hash of their bits: equal doubles, equal keys;
+    // node-based, so entries stay in place while the tables grow)
+    struct KeyHash {
+      std::size_t operator()(const std::pair<double, double>& key) const noexcept;
+    };
+    std::unordered_map<std::pair<double, double>, Posed, KeyHash> posed_[2];
+    std::unordered_map<std::pair<double, double>, Pose, KeyHash> bounds_[2];
   };
 
   /// A pair of certified disks, indices into disks(0) and disks(1).
