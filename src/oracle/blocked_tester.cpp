@@ -9,6 +9,7 @@
 #include <hipair/error.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <deque>
 #include <mutex>
@@ -457,6 +458,15 @@ bool BlockedTester::each_part(const ChartAxis& x_axis, const ChartAxis& y_axis, 
   return true;
 }
 
+std::size_t BlockedTester::Cache::KeyHash::operator()(const std::pair<double, double>& key) const noexcept {
+  // (-0.0 and 0.0 are equal keys: normalised by adding 0.0, which maps -0.0 to 0.0)
+  const auto lo = std::bit_cast<std::uint64_t>(key.first + 0.0), hi = std::bit_cast<std::uint64_t>(key.second + 0.0);
+  std::uint64_t h = lo * 0x9E3779B97F4A7C15ULL ^ (hi + 0x632BE59BD9B4E019ULL + (lo << 6) + (lo >> 2));
+  h ^= h >> 29;
+  h *= 0xBF58476D1CE4E5B9ULL;
+  return static_cast<std::size_t>(h ^ (h >> 32));
+}
+
 bool BlockedTester::posed_parts(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
                                 const algebra::Interval& y, Cache& cache, const Posed* out[2]) const {
   return each_part(x_axis, y_axis, x, y, [&](int k, const ChartAxis& axis, const algebra::Interval& range, const auto& key) {
@@ -468,13 +478,42 @@ bool BlockedTester::posed_parts(const ChartAxis& x_axis, const ChartAxis& y_axis
 }
 
 bool BlockedTester::pose_bounds(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
-                                const algebra::Interval& y, Cache& cache, const PoseBound* out[2]) const {
+                                const algebra::Interval& y, Cache& cache, Cache::Pose* out[2]) const {
   return each_part(x_axis, y_axis, x, y, [&](int k, const ChartAxis& axis, const algebra::Interval& range, const auto& key) {
     auto [it, inserted] = cache.bounds_[k].try_emplace(key);
-    if (inserted) it->second = pose_bound(k, axis, range);
+    if (inserted) it->second.bound = pose_bound(k, axis, range);
     out[k] = &it->second;
-    return it->second.usable;
+    return it->second.bound.usable;
   });
+}
+
+// (the first call for an index; out of line: the lookup below is in the candidates' loop)
+[[gnu::noinline]] const BlockedTester::PosedDisk* BlockedTester::pose_new_disk(int k, Cache::Pose& pose,
+                                                                              std::uint32_t index) const {
+  if (pose.slot.empty()) {
+    pose.slot.assign(disks_[k].size(), -1);
+    pose.disks.reserve(std::min<std::size_t>(disks_[k].size(), 64));
+  }
+  std::int32_t& slot = pose.slot[index];
+  if (slot == -1) {
+    PosedDisk q;
+    if (pose_disk(k, pose.bound, index, q)) {
+      slot = static_cast<std::int32_t>(pose.disks.size());
+      pose.disks.push_back(q);
+    } else {
+      slot = -2;
+    }
+  }
+  return slot >= 0 ? &pose.disks[static_cast<std::size_t>(slot)] : nullptr;
+}
+
+inline const BlockedTester::PosedDisk* BlockedTester::posed_disk(int k, Cache::Pose& pose, std::uint32_t index) const {
+  if (index < pose.slot.size()) {
+    const std::int32_t slot = pose.slot[index];
+    if (slot >= 0) return &pose.disks[static_cast<std::size_t>(slot)];
+    if (slot == -2) return nullptr;
+  }
+  return pose_new_disk(k, pose, index);
 }
 
 namespace {
@@ -531,32 +570,35 @@ bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, co
     if (!narrowed) return overlapping(*posed[0], *posed[1]);
     return gather(*posed[0], *posed[1], *narrowed);
   }
-  const PoseBound* bounds[2] = {nullptr, nullptr};
-  if (!pose_bounds(x_axis, y_axis, x, y, cache, bounds)) return false;
-  PosedDisk a{}, b{};
+  Cache::Pose* poses[2] = {nullptr, nullptr};
+  if (!pose_bounds(x_axis, y_axis, x, y, cache, poses)) return false;
+  const PosedDisk* a = nullptr;
+  const PosedDisk* b = nullptr;
   // the narrowed list puts first the pairs whose nominal disks overlap (the likeliest to
   // certify a sub-cell: a blocked cell's test stops at its first certifying pair)
   thread_local std::vector<DiskPair> later;
   later.clear();
-  // (a disk is posed once per run of pairs that share it: the lists come from the sweep,
-  // grouped by disk; pose_disk depends only on the part, the pose and the index)
+  // (pose_disk depends only on the part, the pose and the index: a disk is posed once per
+  // pose, for every cell of the column or row that shares the pose (posed_disk), and looked
+  // up once per run of pairs that share it: the lists come from the sweep, grouped by disk)
   std::uint32_t posed_index[2] = {UINT32_MAX, UINT32_MAX};
-  bool posed_ok[2] = {false, false};
   for (const DiskPair& pair : *candidates) {
     if (pair.first != posed_index[0]) {
       posed_index[0] = pair.first;
-      posed_ok[0] = pose_disk(0, *bounds[0], pair.first, a);
+      a = posed_disk(0, *poses[0], pair.first);
     }
     if (pair.second != posed_index[1]) {
       posed_index[1] = pair.second;
-      posed_ok[1] = pose_disk(1, *bounds[1], pair.second, b);
+      b = posed_disk(1, *poses[1], pair.second);
     }
-    if (!posed_ok[0] || !posed_ok[1]) continue;
-    if (certifies(a, b)) {
+    // (a and b stay valid: only a disk of the same part posed later moves them, and then
+    // that pointer is replaced)
+    if (!a || !b) continue;
+    if (certifies(*a, *b)) {
       if (narrowed) narrowed->clear();
       return true;
     }
-    if (narrowed && may_certify_inside(a, b)) (overlap_nominally(a, b) ? *narrowed : later).push_back(pair);
+    if (narrowed && may_certify_inside(*a, *b)) (overlap_nominally(*a, *b) ? *narrowed : later).push_back(pair);
   }
   if (narrowed) narrowed->insert(narrowed->end(), later.begin(), later.end());
   return false;

@@ -77,8 +77,21 @@ class BlockedTester {
   /// once per box. The answers are the same as without it. One cache per chart and thread.
   class Cache {
     friend class BlockedTester;
-    std::map<std::pair<double, double>, Posed> posed_[2];
-    std::map<std::pair<double, double>, PoseBound> bounds_[2];
+    // One part's pose over one axis interval and its disks posed with it so far (the
+    // candidate lists' path: a disk of a column's or row's cells is posed once for them all).
+    // slot[i]: -1 not yet posed, -2 not finite, otherwise its place in `disks`.
+    struct Pose {
+      PoseBound bound;
+      std::vector<std::int32_t> slot;
+      std::vector<PosedDisk> disks;
+    };
+    // keyed by the axis interval's ends (a hash of their bits: equal doubles, equal keys;
+    // node-based, so entries stay in place while the tables grow)
+    struct KeyHash {
+      std::size_t operator()(const std::pair<double, double>& key) const noexcept;
+    };
+    std::unordered_map<std::pair<double, double>, Posed, KeyHash> posed_[2];
+    std::unordered_map<std::pair<double, double>, Pose, KeyHash> bounds_[2];
   };
 
   /// A pair of certified disks, indices into disks(0) and disks(1).
@@ -139,7 +152,11 @@ class BlockedTester {
   bool posed_parts(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
                    const algebra::Interval& y, Cache& cache, const Posed* out[2]) const;
   bool pose_bounds(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
-                   const algebra::Interval& y, Cache& cache, const PoseBound* out[2]) const;
+                   const algebra::Interval& y, Cache& cache, Cache::Pose* out[2]) const;
+  // disk `index` of part k posed with `pose` (pose_disk's answer, kept in the pose); null when
+  // not finite
+  const PosedDisk* posed_disk(int k, Cache::Pose& pose, std::uint32_t index) const;
+  const PosedDisk* pose_new_disk(int k, Cache::Pose& pose, std::uint32_t index) const;
   static bool overlapping(const Posed& first, const Posed& second);
   static bool overlapping(const PosedSet& first, const PosedSet& second);
   static bool gather(const Posed& first, const Posed& second, std::vector<DiskPair>& out);

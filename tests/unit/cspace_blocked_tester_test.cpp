@@ -29,6 +29,7 @@
 #include <filesystem>
 #include <functional>
 #include <initializer_list>
+#include <map>
 #include <memory>
 #include <random>
 #include <string>
@@ -556,6 +557,89 @@ TEST(BlockedTester, CandidateListsOfEnclosingCellsGiveTheSweepsAnswers) {
   });
   std::cout << blocked << " of " << cells << " cells blocked, " << pairs << " candidate pairs kept\n";
   EXPECT_GT(blocked, 100);
+}
+
+// The posed disks kept per pose (BlockedTester::Cache: a candidate disk posed once for every
+// cell of the column or row sharing its pose) answer as disks posed afresh: cells of every
+// depth to 8, visited in random order with one cache per chart, each tested with the candidate
+// list of an enclosing cell both with the shared cache and with a fresh cache of its own —
+// the same answer and the same narrowed list (pairs and order), the answer that of the full
+// sweep, and where blocked, the parts overlap (the exact oracle) at a random rational
+// configuration of the cell. On the examples' charts and on generated bar-and-wall pairs
+// (random rationals) at scales 1e-200 to 1e200.
+TEST(BlockedTester, PosedDisksKeptPerPoseAnswerAsFreshPoses) {
+  using Pair = cspace::BlockedTester::DiskPair;
+  Random random(20261201);
+  int cells = 0, blocked = 0, reused = 0;
+  Counts counts;
+  auto check = [&](const std::string& what, const Model& model, const cspace::PairAxes& axes,
+                   const cspace::ChartLayout& layout, int count) {
+    auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
+    for (const auto& x : layout.x_charts)
+      for (const auto& y : layout.y_charts) {
+        cspace::BlockedCells grid(tester, x, y, 2, 8);
+        cspace::BlockedTester::Cache shared;
+        // the candidate lists of the cells at depth 2 (full sweeps), then cells below them
+        // (a blocked cell has no list: the cells inside it are blocked without a test)
+        std::vector<std::vector<Pair>> lists(16);
+        std::vector<char> parent_blocked(16);
+        for (long i = 0; i < 4; ++i)
+          for (long j = 0; j < 4; ++j) {
+            cspace::BlockedTester::Cache fresh;
+            parent_blocked[static_cast<std::size_t>(4 * i + j)] = tester->blocked(
+                x, y, grid.cell_x(2, i), grid.cell_y(2, j), fresh, nullptr, &lists[static_cast<std::size_t>(4 * i + j)]);
+          }
+        std::map<std::pair<int, long>, int> columns;
+        for (int k = 0; k < count; ++k) {
+          const int depth = 3 + static_cast<int>(random() % 6);
+          const long n = 1L << depth;
+          // few columns and rows per depth: their poses are shared by many cells
+          const long i = static_cast<long>(random() % static_cast<unsigned long>(std::min(n, 12L))) * (n / std::min(n, 12L));
+          const long j = static_cast<long>(random() % static_cast<unsigned long>(n));
+          const auto enclosing = static_cast<std::size_t>(4 * (i >> (depth - 2)) + (j >> (depth - 2)));
+          if (parent_blocked[enclosing]) continue;
+          const auto& parent = lists[enclosing];
+          const Interval bx = grid.cell_x(depth, i), by = grid.cell_y(depth, j);
+          std::vector<Pair> kept, again;
+          const bool answer = tester->blocked(x, y, bx, by, shared, &parent, &kept);
+          cspace::BlockedTester::Cache fresh;
+          const bool fresh_answer = tester->blocked(x, y, bx, by, fresh, &parent, &again);
+          ++cells;
+          reused += columns[{depth, i}]++ > 0;
+          ASSERT_EQ(answer, fresh_answer) << what << " cell " << depth << ", " << i << ", " << j;
+          ASSERT_EQ(answer, tester->blocked(x, y, bx, by)) << what << " cell " << depth << ", " << i << ", " << j;
+          ASSERT_EQ(kept.size(), again.size()) << what << " cell " << depth << ", " << i << ", " << j;
+          for (std::size_t m = 0; m < kept.size(); ++m) {
+            ASSERT_EQ(kept[m].first, again[m].first) << what;
+            ASSERT_EQ(kept[m].second, again[m].second) << what;
+          }
+          if (!answer) continue;
+          ++blocked;
+          if (blocked % 8 == 0) check_blocked_box(model, axes, x, y, bx, by, true, 1, random, counts, what);
+        }
+      }
+  };
+  for_each_two_d_pair({{"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"},
+                       {"escapement.json", "escape-wheel", "anchor"}},
+                      [&](const std::string& file, const Model& model, const cspace::PairAxes& axes,
+                          const cspace::ChartLayout& layout) { check(file, model, axes, layout, 1500); });
+  for (int exponent : {-200, 0, 200}) {
+    mpz_class power;
+    mpz_ui_pow_ui(power.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(exponent)));
+    Rational scale = exponent >= 0 ? Rational(power) : Rational(mpz_class(1), power);
+    scale.canonicalize();
+    for (int trial = 0; trial < 2; ++trial) {
+      Rational L = scale * random_rational(random, 2, 10), w = scale * random_rational(random, Rational(1, 10), 1);
+      Rational D = scale * random_rational(random, Rational(1, 2), 3);
+      Model model = read_model(bar_and_wall(L, w, D, 2 * (L + w), 2 * (L + w + D)));
+      cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+      check("bar and wall 1e" + std::to_string(exponent), model, axes, cspace::chart_layout(model, axes), 300);
+    }
+  }
+  std::cout << blocked << " of " << cells << " cells blocked, " << reused << " in a column tested before, "
+            << counts.points << " configurations of blocked cells checked with the oracle\n";
+  EXPECT_GT(blocked, 1000);
+  EXPECT_GT(reused, cells / 2);
 }
 
 }  // namespace

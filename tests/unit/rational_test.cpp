@@ -6,6 +6,8 @@
 
 #include <random>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <sys/resource.h>
 
@@ -104,6 +106,77 @@ TEST(RationalDeathTest, GmpOutOfMemoryThrowsBadAlloc) {
     }
   };
   EXPECT_EXIT(child(), ::testing::ExitedWithCode(4), "");
+}
+
+// GMP's small blocks kept per thread for reuse (use_throwing_gmp_allocation): numbers of 1 to
+// 12 limbs (pooled sizes and beyond) made, grown, shrunk and freed on four threads, many of
+// them freed on another thread than the one that made them, give the values computed before
+// the functions were installed (GMP's own allocation); every identity checked holds.
+TEST(Rational, GmpBlocksReusedAcrossThreadsKeepEveryValue) {
+  std::mt19937_64 random(20261201);
+  auto number = [&](int limbs) {
+    mpz_class value = 0;
+    for (int k = 0; k < limbs; ++k) value = (value << 64) + mpz_class(std::to_string(random()));
+    return random() % 3 == 0 ? mpz_class(-value) : value;
+  };
+  struct Case {
+    mpz_class a, b;
+    std::string product, sum, quotient, gcd;
+  };
+  std::vector<Case> cases;
+  for (int k = 0; k < 3000; ++k) {
+    Case c{number(1 + static_cast<int>(random() % 12)), number(1 + static_cast<int>(random() % 6)), {}, {}, {}, {}};
+    if (c.b == 0) c.b = 7;
+    // expected values with GMP's own allocation
+    c.product = mpz_class(c.a * c.b).get_str();
+    c.sum = mpz_class(c.a + c.b).get_str();
+    c.quotient = mpz_class(c.a / c.b).get_str();
+    c.gcd = mpz_class(gcd(c.a, c.b)).get_str();
+    cases.push_back(c);
+  }
+  hipair::use_throwing_gmp_allocation();
+  // each thread computes a quarter of the cases and hands its numbers to the next thread to
+  // check and free
+  constexpr int threads = 4;
+  std::vector<std::vector<mpz_class>> handed(threads);
+  std::vector<int> failures(threads, 0);
+  auto compute = [&](int t) {
+    std::vector<mpz_class>& out = handed[static_cast<std::size_t>(t)];
+    for (std::size_t k = static_cast<std::size_t>(t); k < cases.size(); k += threads) {
+      const Case& c = cases[k];
+      mpz_class a = c.a, b = c.b;   // (copies made on this thread)
+      mpz_class product = a * b, sum = a + b, quotient = a / b, divisor = gcd(a, b);
+      mpz_class grown = product;
+      grown *= product;   // grown past the pooled sizes, then back
+      grown /= product;
+      if (product.get_str() != c.product || sum.get_str() != c.sum || quotient.get_str() != c.quotient ||
+          divisor.get_str() != c.gcd || grown != product || (product % a) != 0)
+        ++failures[static_cast<std::size_t>(t)];
+      out.push_back(product);
+      out.push_back(sum);
+      out.push_back(quotient);
+    }
+  };
+  std::vector<std::thread> workers;
+  for (int t = 0; t < threads; ++t) workers.emplace_back(compute, t);
+  for (auto& worker : workers) worker.join();
+  workers.clear();
+  for (int t = 0; t < threads; ++t)
+    workers.emplace_back([&, t] {
+      std::vector<mpz_class> numbers = std::move(handed[static_cast<std::size_t>((t + 1) % threads)]);
+      std::size_t m = 0;
+      for (std::size_t k = static_cast<std::size_t>((t + 1) % threads); k < cases.size(); k += threads, m += 3) {
+        const Case& c = cases[k];
+        if (numbers[m].get_str() != c.product || numbers[m + 1].get_str() != c.sum ||
+            numbers[m + 2].get_str() != c.quotient)
+          ++failures[static_cast<std::size_t>(t)];
+        // freed here, on another thread than the one that made them
+        numbers[m] = 0;
+        numbers[m + 1] = mpz_class(numbers[m + 2] * 3);
+      }
+    });
+  for (auto& worker : workers) worker.join();
+  for (int t = 0; t < threads; ++t) EXPECT_EQ(failures[static_cast<std::size_t>(t)], 0) << "thread " << t;
 }
 
 }  // namespace
