@@ -1,21 +1,21 @@
 // The certified nudge off a corner of contact space (src/simulation/nudge_check.hpp;
 // docs/simulation.md, "Session 35"). The Geneva drive's pin held at the corner of a slot
-// (geneva-drive.json, 1.3947 s into the second turn) leaves a state about 1e-10 rad inside both
-// walls at once; the nudge moves the wheel alone. From there the straight move runs through
-// blocked space across the continuation, inside the other wall, of the second wall's contact
-// curve: the carrier of a real edge whose certified box holds the whole corner, so no blocked
-// walk can step across it, and session 34's check refused the legitimate move (the two-turn
-// runs stopped with a jammed contact change). Now a stretch of at most the allowance that the
-// walk cannot cross is passed by a new walk placed beyond it.
+// (geneva-drive.json, 1.3947 s into the second turn) leaves a state about 1.7e-11 rad inside the
+// corner, where two contact curves meet; the nudge moves the wheel alone. Near the start the
+// blocked walk cannot be placed or step (the interval evaluation of the curves through the
+// corner still holds zero 2e-11 rad away), and session 34's allowance, 2^10 first trials
+// (9.1e-13 rad), left that stretch to the walk: its check refused the legitimate move and the
+// two-turn runs stopped with a jammed contact change. With the allowance 2^16 first trials
+// (5.8e-11 rad) the stretch the walk cannot certify lies within the start's allowance.
 //
 // Generated starts at the corner (10) and at its images under the drive's quarter-turn symmetry
 // (3 at each other slot: the driver's turn k, the wheel a quarter turn k on), driver angles swept
-// over 1e-9 rad about the corner and depths 2^-37 ... 2^-30 rad: each is
-// nudged as the simulator nudges (trials start - first (2^j - 1) on the wheel's angle, the first
-// the exact point query finds free). Oracle: the exact point query at 257 configurations over
-// the move (independent of the crossing query and of the walks): a free configuration and then
-// a blocked one is a tunnel. The check accepts exactly the moves the oracle finds no tunnel in,
-// and the corner cases need the new walks (session 34's check refused them).
+// over 1e-9 rad about the corner and depths 2^-37 ... 2^-30 rad: each is nudged as the simulator
+// nudges (trials start - first (2^j - 1) on the wheel's angle, the first the exact point query
+// finds free). Oracle: the exact point query at 257 configurations over the move (independent of
+// the crossing query and of the walk): a free configuration and then a blocked one is a tunnel.
+// The check accepts exactly the moves the oracle finds no tunnel in; with session 34's allowance
+// it refuses most of the corner's.
 //   - SimulationNudgeCorner.GenevaSlotCornerStartsAreMovedOff
 #include "simulation/nudge_check.hpp"
 #include "test_paths.hpp"
@@ -56,7 +56,7 @@ TEST(SimulationNudgeCorner, GenevaSlotCornerStartsAreMovedOff) {
   std::uniform_real_distribution<double> unit(0, 1);
   // the corner the second turn's run met: driver 8.76304187767 rad, wheel -pi/2
   const double driver0 = 8.7630418776698402 - 2 * std::numbers::pi;
-  int cases = 0, accepted = 0, corner = 0, walked_across = 0;
+  int cases = 0, accepted = 0, corner = 0, refused_before = 0;
   for (int slot = 0; slot < 4; ++slot)
     for (int n = 0; n < (slot == 1 ? 10 : 3); ++n) {
       const double driver = driver0 + 2 * std::numbers::pi * slot + 1e-9 * (unit(random) - 0.5);
@@ -78,20 +78,20 @@ TEST(SimulationNudgeCorner, GenevaSlotCornerStartsAreMovedOff) {
       MotionPath back = at(driver, wheel);
       back.u_end = 1;
       back.y.coefficients.push_back(Rational(wheel0) - Rational(wheel));
-      const std::size_t gaps = simulation::nudge_walk_gaps();
-      const bool ok = simulation::move_certified(space, back, std::abs(wheel - wheel0), simulation::nudge_allowance * first, 44);
+      const double length = std::abs(wheel - wheel0);
+      const bool ok = simulation::move_certified(space, back, length, simulation::nudge_allowance * first, 44);
       EXPECT_EQ(ok, !tunnel) << "slot " << slot << " case " << n << ": driver " << driver << " depth " << depth;
       accepted += ok;
       if (slot == 1) {
         ++corner;
-        walked_across += ok && simulation::nudge_walk_gaps() > gaps;
+        refused_before += !simulation::move_certified(space, back, length, 1024 * first, 44);
       }
     }
   EXPECT_GE(cases, 8);
   EXPECT_EQ(accepted, cases);
   // at slot 1 (the run's corner; the other slots' corners lie elsewhere by the rounding of the
-  // model's rational geometry) the moves cross the second curve's continuation: a new walk
-  EXPECT_GE(walked_across, corner * 3 / 4) << walked_across << " of " << corner << " corner starts walked across";
+  // model's rational geometry) session 34's allowance refused the moves
+  EXPECT_GE(refused_before, corner / 2) << refused_before << " of " << corner << " corner moves refused with 2^10";
 }
 
 }  // namespace
