@@ -580,6 +580,25 @@ SimulationEvent held_contact_event(SimulationEvent::Kind kind, double time, std:
   return e;
 }
 
+// The first trial of an integration that has no step guess yet: the span, but at most 2^20
+// times the time in which the state's fastest rate moves it by its own scale (at least 1). The
+// span alone (the whole time left: `--t-end 1e150` gives 1e150 s) overflowed the error control:
+// 200 halvings by at most 5 could not bring it down, or the trial's state was no longer finite
+// (docs/simulation.md, "Session 34"). Far above any step the integrator takes (a part falling
+// its own size under gravity, a spring's period): a run's steps are those of the span alone.
+template <class State, class Rhs>
+double first_trial(const State& y, Rhs rhs, double span) {
+  State dy = y;
+  rhs(y, dy);
+  double scale = 1, rate = 0;
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    scale = std::max(scale, std::abs(y[i]));
+    rate = std::max(rate, std::abs(dy[i]));
+  }
+  if (!(rate > 0) || !std::isfinite(rate)) return span;
+  return std::min(span, 0x1p20 * scale / rate);
+}
+
 // Steps until t_end (the model's time unit) for either planar simulator: `s` is its state (internal
 // time `t`, `time_scale`, `events`, `public_state`), `step` one step towards t_end.
 template <class State, class Step>
@@ -1416,7 +1435,8 @@ bool PlanarSimulation::Impl::held_advance(double span) {
   const Kinematic k0 = k;
   const SlicedConfiguration q0 = q;
   auto rhs = [this](const State6& x, State6& dx, double) { held_rhs(x, dx); };
-  double h = step_guess > 0 ? std::min(step_guess, span) : span;
+  double h = step_guess > 0 ? std::min(step_guess, span)
+                            : first_trial(to_array(k0), [this](const State6& x, State6& dx) { held_rhs(x, dx); }, span);
   const bool flip = std::abs(wrap(k0.theta)) > std::numbers::pi / 2;
   std::vector<std::pair<FeatureIdentity, FeatureIdentity>> ignored;
   for (const Held& c : held) ignored.emplace_back(c.feature.fixed, c.feature.free);
@@ -2609,7 +2629,8 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
   const std::vector<Kinematic> k0 = k;
   const std::vector<SlicedConfiguration> q0 = q;
   auto f = [this](const StateN& x, StateN& dx, double) { held_rhs(x, dx); };
-  double h = step_guess > 0 ? std::min(step_guess, span) : span;
+  double h = step_guess > 0 ? std::min(step_guess, span)
+                            : first_trial(pack(k0), [this](const StateN& x, StateN& dx) { held_rhs(x, dx); }, span);
   std::vector<SlicedConfiguration> rel0;
   std::vector<bool> flip;
   // the held feature pairs of each pair: their own surface is what the motion follows

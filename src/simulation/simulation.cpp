@@ -23,6 +23,7 @@
 #include "simulation/frame_cache.hpp"
 #include "simulation/friction.hpp"
 #include "simulation/lcp.hpp"
+#include "simulation/nudge_check.hpp"
 #include "simulation/ordinate_filter.hpp"
 #include "simulation/units.hpp"
 
@@ -982,26 +983,63 @@ struct Simulation::Impl {
       }
       if (!done) jammed(set.front().first);
       if (q == start) return;
+      auto moves = [&](std::size_t pair) {
+        int a = part_dof[model.pairs[pair].first], b = part_dof[model.pairs[pair].second];
+        return (a >= 0 && dir[a] != 0) || (b >= 0 && dir[b] != 0);
+      };
       // the other pairs the move touched must still be free
       std::optional<std::pair<std::size_t, Vec>> pushed;
       for (std::size_t pair = 0; pair < spaces.size() && !pushed; ++pair) {
         if (!spaces[pair] || std::any_of(set.begin(), set.end(), [&](const auto& s) { return s.first == pair; })) continue;
-        int a = part_dof[model.pairs[pair].first], b = part_dof[model.pairs[pair].second];
-        if (!((a >= 0 && dir[a] != 0) || (b >= 0 && dir[b] != 0)) || free_at(pair)) continue;
+        if (!moves(pair) || free_at(pair)) continue;
         q = start;   // its normal at the configuration the move started from
         Vec G;
         if (!nudge_normal(pair, G)) jammed(pair);
         pushed.emplace(pair, G);
       }
-      if (!pushed) return;
-      set.push_back(*pushed);
+      if (pushed) {
+        set.push_back(*pushed);
+        continue;
+      }
+      // the move itself, not only its end: every pair it moves stays in the free cell of the
+      // end along the whole segment, except within the allowance of the start (the contact it
+      // leaves); otherwise it crossed blocked space (a tooth, a sliver) on the way
+      for (std::size_t pair = 0; pair < spaces.size(); ++pair)
+        if (spaces[pair] && moves(pair) && !move_certified(pair, start, first)) jammed(pair, true);
+      return;
     }
   }
 
-  [[noreturn]] void jammed(std::size_t pair) const {
+  // Whether the straight move from `start` to q (the nudge's accepted trial, free for `pair`)
+  // stays in q's free cell of the pair except within the allowance of the start
+  // (simulation/nudge_check.hpp): the reversed segment q -> start, exact at both ends.
+  bool move_certified(std::size_t pair, const Vec& start, double first) const {
+    if (!simulation::nudge_check()) return true;
+    double length = 0;
+    for (std::size_t i = 0; i < q.size(); ++i) length = std::max(length, std::abs(q[i] - start[i]));
+    const CSpace& space = *spaces[pair];
+    MotionPath back;
+    auto axis = [&](const std::string& part) {
+      AxisPath a;
+      if (part.empty()) return a;
+      int d = part_dof[*model.find_part(part)];
+      a.kind = dofs[d].rotation ? AxisPath::Kind::angle : AxisPath::Kind::offset;
+      Rational from(q[d]), to(start[d]);
+      a.coefficients = {from, to - from};
+      if (sgn(a.coefficients[1]) == 0) a.coefficients.pop_back();
+      return a;
+    };
+    back.x = axis(space.x_part());
+    if (space.dimension() == 2) back.y = axis(space.y_part());
+    return simulation::move_certified(space, back, length, simulation::nudge_allowance * first, options.crossing_bits);
+  }
+
+  // `crossed`: the only free configurations found are beyond blocked space the move would cross
+  [[noreturn]] void jammed(std::size_t pair, bool crossed = false) const {
     std::ostringstream out;
     out << "simulation: at t = " << t / time_scale << " " << time_unit << " " << pair_name(pair)
         << " cannot be moved off its contact (a jammed contact change)";
+    if (crossed) out << ": the nearest free configuration found lies beyond blocked space of this pair";
     throw NumericError(out.str());
   }
 

@@ -767,6 +767,12 @@ grep -qF "and nothing was written: give a --t-end of at most about 2.576" "$work
   || fail "max-steps-used-up: the message does not say what lets the run finish: $(cat "$work/refused-max-steps-used-up.err")"
 refused max-steps-planar "the run used up its step budget (--max-steps 5)" \
   simulate "$source/examples/models/peg-drop.json" --t-end 1 --max-steps 5 --no-pictures
+# a planar part to --t-end 1e150 (session 34: the first integration step was the whole span,
+# "the simulated configuration of a planar part is not finite"; pusher-blocks died of SIGFPE)
+refused t-end-1e150-planar "the run used up its step budget (--max-steps 30)" \
+  simulate "$source/examples/models/spring-block.json" --t-end 1e150 --max-steps 30 --no-pictures
+refused t-end-1e300-planar-system "the run used up its step budget (--max-steps 30)" \
+  simulate "$source/examples/models/pusher-blocks.json" --t-end 1e300 --max-steps 30 --no-pictures
 refused max-steps-and-step "T / H = 100 steps exceed the simulator's budget of 10 steps (--max-steps)" \
   simulate "$bar" --t-end 1 --max-step 0.01 --max-steps 10
 for budget in 0 -1 nan 1e10 1000000001 x; do
