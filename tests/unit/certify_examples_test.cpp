@@ -499,3 +499,108 @@ TEST(CertifyExamples, AJamWallIsClosedByAMotionLimitOnlyInTheLimitsOwnTurn) {
   EXPECT_GE(false_claims, 10);
   EXPECT_GE(controls, 4);
 }
+
+// A free passage is a motion of the mechanism only when the follower's path stays within the
+// follower's motion limits, all of it in one turn (a continuous motion keeps its turn). Until
+// session 35 (hunt35) neither `certify_free_passage` nor the verifier looked at the path's
+// values (only box 0's centre, about the start, met the limits, and that up to whole turns): a
+// path far beyond the limits, or around a whole turn, was certified and verified. Generated: a
+// slider far from a small square follower (they never come near, so the geometry holds for any
+// follower position), scales 1e-300 ... 1e300, the follower rotating (limits [-a, b]) or
+// translating; the certificate is made for the same model without limits (every claim's
+// geometry holds) and checked against the model with them. Oracle, by construction: a vertex of
+// the path lies beyond the limits in the start's turn (exactly, or by more than 1 rad). Controls:
+// a path wholly within the limits shifted by 2 pi k turns, and one that ends exactly at a
+// limit (non-dyadic: decided exactly in the limits' own turn), certified and verified.
+TEST(CertifyExamples, AFreePassagePathMustStayWithinTheFollowersLimitsInOneTurn) {
+  const Rational two_pi("6283185307179586476925286766559005768394338798750211641949889/1000000000000000000000000000000000000000000000000000000000000");
+  std::mt19937_64 random(20261202);
+  int false_claims = 0, controls = 0;
+  for (int trial = 0; trial < 24; ++trial) {
+    int exponent = std::vector<int>{-300, -120, 0, 0, 40, 300}[random() % 6];
+    mpz_class power;
+    mpz_ui_pow_ui(power.get_mpz_t(), 10, unsigned(std::abs(exponent)));
+    Rational scale = exponent >= 0 ? Rational(power) : Rational(mpz_class(1), power);
+    bool rotating = trial % 3 != 2;
+    int kind = trial / 3 % 6;   // 0-3 false paths, 4-5 controls (each rotating twice, translating once)
+    int turns = (random() % 2 ? 1 : -1) * int(random() % 3 + 1);
+    Rational lo = rotating ? Rational(-long(random() % 7 + 1), 10) : Rational(-10 * scale);
+    Rational hi = rotating ? Rational(long(random() % 7 + 1), 10) : Rational(10 * scale);
+    mpz_class e20, e40;
+    mpz_ui_pow_ui(e20.get_mpz_t(), 10, 20);
+    mpz_ui_pow_ui(e40.get_mpz_t(), 10, 40);
+    Rational c = lo / 3, tiny = rotating ? Rational(mpz_class(1), e20) : Rational(scale / Rational(e40));
+    Rational shift = rotating ? Rational(turns * two_pi) : Rational(0);
+    std::vector<std::pair<Rational, Rational>> values;   // (fraction of the range, follower value)
+    Rational beyond;   // a path value beyond the limits in the start's turn (false paths)
+    bool control = kind >= 4;
+    if (kind == 0 && rotating) {   // once around: c to c + 2 pi k through c + pi sgn(k)
+      beyond = c + (turns > 0 ? 1 : -1) * two_pi / 2;
+      values = {{0, c}, {Rational(1, 2), beyond}, {1, Rational(c + shift)}};
+    } else if (kind <= 1) {        // just past the upper limit in its own turn
+      beyond = hi + tiny;
+      values = {{0, c}, {1, beyond}};
+    } else if (kind == 2) {        // just past the lower limit, the whole path a turn (or more) away
+      beyond = lo - tiny;
+      values = {{0, Rational(c + shift)}, {1, Rational(beyond + shift)}};
+    } else if (kind == 3) {        // far beyond, turned back within the range's end
+      beyond = hi + (rotating ? Rational(2) : Rational(50 * scale));
+      values = {{0, c}, {Rational(1, 3), beyond}, {1, c}};
+    } else if (kind == 4) {        // control: within the limits, shifted by whole turns
+      values = {{0, Rational(c + shift)}, {1, Rational(hi / 2 + shift)}};
+    } else {                       // control: ends exactly at the upper limit
+      values = {{0, c}, {1, hi}};
+    }
+    auto number = [&](const Rational& v) { return "\"" + to_exact_string(v) + "\""; };
+    auto p = [&](long x, long y) { return "[" + number(Rational(x * scale)) + ", " + number(Rational(y * scale)) + "]"; };
+    auto square = [&](long x0, long y0, long x1, long y1) {
+      return "[{\"start\": " + p(x0, y0) + ", \"edges\": [{\"line_to\": " + p(x1, y0) + "}, {\"line_to\": " + p(x1, y1) +
+             "}, {\"line_to\": " + p(x0, y1) + "}, {\"line_to\": " + p(x0, y0) + "}]}]";
+    };
+    auto text_of = [&](bool limited) {
+      std::string limits = limited ? ", \"limits\": [" + number(lo) + ", " + number(hi) + "]" : "";
+      std::string motion = rotating ? "{\"rotation\": {\"pivot\": [0, 0]" + limits + "}}"
+                                    : "{\"translation\": {\"direction\": [0, 1]" + limits + "}}";
+      return "{\"hipair\": 1, \"name\": \"slider-square\", \"units\": {\"length\": \"mm\", \"angle\": \"rad\"},"
+             "\"parts\": [{\"name\": \"slider\", \"motion\": {\"translation\": {\"direction\": [1, 0]}}, \"loops\": " +
+             square(100, -1, 102, 1) + "}, {\"name\": \"follower\", \"motion\": " + motion + ", \"loops\": " +
+             square(-1, -1, 1, 1) + "}], \"pairs\": [{\"parts\": [\"slider\", \"follower\"]}]}";
+    };
+    const std::string limited = text_of(true), free = text_of(false);
+    Model with_limits = read_model(limited, "slider-square.json"), without = read_model(free, "slider-square.json");
+    ASSERT_TRUE(with_limits.roundings.empty());
+    PassagePath path{"slider", "follower", RationalInterval{Rational(0), Rational(10 * scale)}, {}};
+    for (const auto& [at, value] : values) path.polyline.push_back({Rational(at * path.range.hi), value});
+    SCOPED_TRACE("trial " + std::to_string(trial) + ", scale 1e" + std::to_string(exponent) + (rotating ? ", rotating" : ", translating") +
+                 ", kind " + std::to_string(kind) + ", turns " + std::to_string(turns) + ", limits [" + to_exact_string(lo) +
+                 ", " + to_exact_string(hi) + "]");
+    // the geometry holds with the follower anywhere: certified on the model without limits
+    auto geometric = certify_free_passage(without, "slider", "follower", path, std::nullopt, {});
+    ASSERT_TRUE(geometric);
+    Certificate moved = *geometric;
+    moved.content_hash = detail::sha256_hex(limited);
+    VerificationResult result = check_certificate_text(moved, limited, "slider-square.json");
+    if (control) {
+      auto certificate = certify_free_passage(with_limits, "slider", "follower", path, std::nullopt, {});
+      ASSERT_TRUE(certificate);
+      EXPECT_TRUE(check_certificate_text(*certificate, limited, "slider-square.json").valid);
+      EXPECT_TRUE(result.valid) << result.reason;
+      ++controls;
+      continue;
+    }
+    // the oracle: `beyond` (the path's value shifted back to the start's turn) lies outside the
+    // limits: exactly for the tiny overshoots, by more than 1/2 rad in every turn for the others
+    EXPECT_TRUE(beyond > hi || beyond < lo);
+    if (rotating && (kind == 0 || kind == 3))
+      for (int j = -4; j <= 4; ++j) {
+        double v = Rational(beyond - j * two_pi).get_d();
+        EXPECT_TRUE(v > hi.get_d() + 0.5 || v < lo.get_d() - 0.5) << "turn " << j;
+      }
+    EXPECT_FALSE(result.valid) << "a path beyond the follower's limits verified: " << result.summary;
+    EXPECT_NE(result.reason.find("not within the follower's limits"), std::string::npos) << result.reason;
+    EXPECT_THROW(certify_free_passage(with_limits, "slider", "follower", path, std::nullopt, {}), ModelError);
+    ++false_claims;
+  }
+  EXPECT_GE(false_claims, 10);
+  EXPECT_GE(controls, 4);
+}
