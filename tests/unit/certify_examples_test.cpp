@@ -17,6 +17,7 @@
 
 #include <numbers>
 
+#include <chrono>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -603,4 +604,49 @@ TEST(CertifyExamples, AFreePassagePathMustStayWithinTheFollowersLimitsInOneTurn)
   }
   EXPECT_GE(false_claims, 10);
   EXPECT_GE(controls, 4);
+}
+
+// An angle of a forged certificate far beyond any model's (10^1100 ... 10^100000 rad) made MPFR
+// reduce it exactly before the sine and cosine, in time growing with its exponent: a jam trap
+// starting at -1e100000 rad, or a tolerance leaf's follower interval ending there, kept the
+// verifier busy for minutes (session 35, hunt35; main took > 30 s for each). Now the enclosure is
+// [-1, 1] beyond 2^1100 (sound: it only widens), and the verifier answers at once, invalid.
+// Generated: the exponent and the number's form drawn at random; controls: the certificates as
+// written stay valid.
+TEST(CertifyExamples, AnAngleFarBeyondAnyModelsIsRejectedAtOnce) {
+  namespace fs = std::filesystem;
+  const fs::path folder = fs::path(HIPAIR_SOURCE_DIR) / "tests" / "data" / "certificates";
+  struct Case {
+    const char* certificate;
+    const char* model;
+    const char* key;   // the number replaced: in the jam's trap, or leaf 0's follower interval
+    const char* value_before;
+  };
+  const Case cases[] = {{"ratchet-jam.json", "examples/models/ratchet.json", "\"driver\": [\"", "-3/250"},
+                        {"geneva-tolerance-no-interference.json", "examples/models/geneva.json", "\"follower\": [\"0\", \"", "0"}};
+  std::mt19937_64 random(35);
+  fs::path work = fs::temp_directory_path() / ("hipair-huge-angle-" + std::to_string(::getpid()));
+  fs::create_directories(work);
+  for (const Case& c : cases) {
+    const std::string text = io::read_file(folder / c.certificate);
+    EXPECT_TRUE(verify_certificate_file(folder / c.certificate, fs::path(HIPAIR_SOURCE_DIR) / c.model).valid) << c.certificate;
+    const std::string target = std::string(c.key) + c.value_before + "\"";
+    std::size_t at = text.find(target);
+    ASSERT_NE(at, std::string::npos) << c.certificate;
+    for (int trial = 0; trial < 3; ++trial) {
+      int exponent = std::vector<int>{1200, 5000, 20000, 100000}[random() % 4];
+      std::string huge = random() % 2 ? "1e" + std::to_string(exponent) : "1" + std::string(std::size_t(exponent), '0') + "/7";
+      if (std::string(c.certificate) == "ratchet-jam.json") huge = "-" + huge;
+      std::string forged = text;
+      forged.replace(at, target.size(), std::string(c.key) + huge + "\"");
+      fs::path file = work / ("forged-" + std::to_string(trial) + ".json");
+      io::write_file_atomically(file, forged);
+      auto start = std::chrono::steady_clock::now();
+      VerificationResult result = verify_certificate_file(file, fs::path(HIPAIR_SOURCE_DIR) / c.model);
+      double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      EXPECT_FALSE(result.valid) << c.certificate << " with " << huge.substr(0, 12) << "...";
+      EXPECT_LT(seconds, 5.0) << c.certificate << " with an angle of 10^" << exponent;
+    }
+  }
+  fs::remove_all(work);
 }
