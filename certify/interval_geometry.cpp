@@ -191,12 +191,9 @@ Interval disc_gap(const P& c1, const Interval& r1, const P& c2, const Interval& 
 namespace {
 bool beyond_reduction(const Interval& angle) {
   if (!angle.is_bounded()) return true;
-  mpfr_t magnitude;
-  mpfr_init2(magnitude, 64);
-  mpfi_mag(magnitude, angle.get());
-  bool huge = !mpfr_zero_p(magnitude) && mpfr_get_exp(magnitude) > 1100;
-  mpfr_clear(magnitude);
-  return huge;
+  for (mpfr_srcptr end : {&angle.get()->left, &angle.get()->right})
+    if (mpfr_regular_p(end) && mpfr_get_exp(end) > 1100) return true;
+  return false;
 }
 Interval unit_range() {
   Interval range(Rational(-1));

@@ -397,6 +397,18 @@ TEST(CertifyExamples, FindingsOfTheKinematicAnalysisAreCertified) {
 
 }  // namespace
 
+namespace {
+// 10^exponent, exactly; 2 pi to 60 decimals (whole-turn shifts of generated angles).
+Rational exact_power_of_ten(int exponent) {
+  mpz_class power;
+  mpz_ui_pow_ui(power.get_mpz_t(), 10, unsigned(std::abs(exponent)));
+  return exponent >= 0 ? Rational(power) : Rational(mpz_class(1), power);
+}
+Rational two_pi_to_60_digits() {
+  return Rational("6283185307179586476925286766559005768394338798750211641949889/1000000000000000000000000000000000000000000000000000000000000");
+}
+}  // namespace
+
 // Session 34 (hunt34): a jam's wall "closed by the follower's motion limit" when the trap's
 // follower range lies a whole turn away from the limits. A slider (direction +-y) pushes into a
 // lever that is free to swing out of its way on one side; the trap's follower range is the
@@ -409,14 +421,12 @@ TEST(CertifyExamples, FindingsOfTheKinematicAnalysisAreCertified) {
 // overlap predicate shows the way out: free configurations from the trap's open side past the cut.
 // Every fourth case is a control: the band not shifted, its end at the limit (the wall closed).
 TEST(CertifyExamples, AJamWallIsClosedByAMotionLimitOnlyInTheLimitsOwnTurn) {
-  const Rational two_pi("6283185307179586476925286766559005768394338798750211641949889/1000000000000000000000000000000000000000000000000000000000000");
+  const Rational two_pi = two_pi_to_60_digits();
   std::mt19937_64 random(20261201);
   int false_claims = 0, controls = 0;
   for (int trial = 0; trial < 16; ++trial) {
     int exponent = std::vector<int>{-300, -120, 0, 0, 40, 300}[random() % 6];
-    mpz_class power;
-    mpz_ui_pow_ui(power.get_mpz_t(), 10, unsigned(std::abs(exponent)));
-    Rational scale = exponent >= 0 ? Rational(power) : Rational(mpz_class(1), power);
+    Rational scale = exact_power_of_ten(exponent);
     int turns = int(random() % 3) + 1;
     bool up = random() % 2 == 0;              // the lever swings out upward (the slider from below)
     Rational w(1, long(100 + 50 * (random() % 3)));  // the band [-w, w] before the shift
@@ -514,23 +524,18 @@ TEST(CertifyExamples, AJamWallIsClosedByAMotionLimitOnlyInTheLimitsOwnTurn) {
 // a path wholly within the limits shifted by 2 pi k turns, and one that ends exactly at a
 // limit (non-dyadic: decided exactly in the limits' own turn), certified and verified.
 TEST(CertifyExamples, AFreePassagePathMustStayWithinTheFollowersLimitsInOneTurn) {
-  const Rational two_pi("6283185307179586476925286766559005768394338798750211641949889/1000000000000000000000000000000000000000000000000000000000000");
+  const Rational two_pi = two_pi_to_60_digits();
   std::mt19937_64 random(20261202);
   int false_claims = 0, controls = 0;
   for (int trial = 0; trial < 24; ++trial) {
     int exponent = std::vector<int>{-300, -120, 0, 0, 40, 300}[random() % 6];
-    mpz_class power;
-    mpz_ui_pow_ui(power.get_mpz_t(), 10, unsigned(std::abs(exponent)));
-    Rational scale = exponent >= 0 ? Rational(power) : Rational(mpz_class(1), power);
+    Rational scale = exact_power_of_ten(exponent);
     bool rotating = trial % 3 != 2;
     int kind = trial / 3 % 6;   // 0-3 false paths, 4-5 controls (each rotating twice, translating once)
     int turns = (random() % 2 ? 1 : -1) * int(random() % 3 + 1);
     Rational lo = rotating ? Rational(-long(random() % 7 + 1), 10) : Rational(-10 * scale);
     Rational hi = rotating ? Rational(long(random() % 7 + 1), 10) : Rational(10 * scale);
-    mpz_class e20, e40;
-    mpz_ui_pow_ui(e20.get_mpz_t(), 10, 20);
-    mpz_ui_pow_ui(e40.get_mpz_t(), 10, 40);
-    Rational c = lo / 3, tiny = rotating ? Rational(mpz_class(1), e20) : Rational(scale / Rational(e40));
+    Rational c = lo / 3, tiny = rotating ? exact_power_of_ten(-20) : Rational(scale * exact_power_of_ten(-40));
     Rational shift = rotating ? Rational(turns * two_pi) : Rational(0);
     std::vector<std::pair<Rational, Rational>> values;   // (fraction of the range, follower value)
     Rational beyond;   // a path value beyond the limits in the start's turn (false paths)
