@@ -156,6 +156,12 @@ bool within_limits(const Part& part, const Interval& value) {
   return certainly_within(rotates(part) ? part.motion.angle_limits : part.motion.translation_limits, value, rotates(part));
 }
 
+// " [lo, hi] rad" (or mm): a moving part's motion limits, for messages.
+std::string limits_text(const Part& part) {
+  const auto& limits = rotates(part) ? part.motion.angle_limits : part.motion.translation_limits;
+  return limits ? " " + show(*limits) + (rotates(part) ? " rad" : " mm") : std::string();
+}
+
 const Edge& edge_of(const Model& model, const EdgeReference& reference) {
   const Part& part = part_named(model, reference.part);
   if (reference.loop >= part.loops.size() || reference.edge >= part.loops[reference.loop].edges.size())
@@ -182,6 +188,22 @@ bool certainly_within(const std::optional<RationalInterval>& limits, const Inter
   for (int turns = angle ? -3 : 0; turns <= (angle ? 3 : 0); ++turns) {
     Interval shifted = value + two_pi() * Interval(Rational(turns));
     if (mpfi_is_nonneg((shifted - Interval(limits->lo)).get()) > 0 && mpfi_is_nonneg((Interval(limits->hi) - shifted).get()) > 0)
+      return true;
+  }
+  return false;
+}
+
+bool range_within_limits(const Part& part, const RationalInterval& range) {
+  bool rotating = part.motion.kind == Motion::Kind::rotation;
+  const auto& limits = rotating ? part.motion.angle_limits : part.motion.translation_limits;
+  if (!limits) return true;
+  if (limits->lo <= range.lo && range.hi <= limits->hi) return true;   // the limits' own turn: exact
+  if (!rotating) return false;
+  for (int turns = -3; turns <= 3; ++turns) {
+    if (turns == 0) continue;
+    Interval shift = two_pi() * Interval(Rational(turns));
+    if ((Interval(range.lo) + shift - Interval(limits->lo)).sign() > 0 &&
+        (Interval(limits->hi) - (Interval(range.hi) + shift)).sign() > 0)
       return true;
   }
   return false;
@@ -439,12 +461,22 @@ std::string check_free_passage(const Certificate& c, const Model& model) {
   Roles r = roles(c, model);
   if (sgn(c.distance) <= 0) reject("the claimed clearance must be positive");
   if (c.range.lo >= c.range.hi) reject("the driver range must have lo < hi");
-  if (!within_limits(*r.driver, hull(c.range.lo, c.range.hi))) reject("the driver range is outside the driver's limits");
+  if (!range_within_limits(*r.driver, c.range))
+    reject("the driver range " + show(c.range) + " is outside the driver's limits" + limits_text(*r.driver));
   if (r.has_follower) {
     if (c.path.size() < 2 || c.path.front().first != c.range.lo || c.path.back().first != c.range.hi)
       reject("the path must run from the start to the end of the driver range");
     for (std::size_t i = 1; i < c.path.size(); ++i)
       if (c.path[i].first <= c.path[i - 1].first) reject("the path's driver values must increase");
+    // the path is a polyline: its values lie between its vertices' least and greatest
+    RationalInterval image{c.path.front().second, c.path.front().second};
+    for (const auto& vertex : c.path) {
+      if (vertex.second < image.lo) image.lo = vertex.second;
+      if (vertex.second > image.hi) image.hi = vertex.second;
+    }
+    if (!range_within_limits(*r.other, image))
+      reject("the follower's path runs over " + show(image) + ", not within the follower's limits" + limits_text(*r.other) +
+             (rotates(*r.other) ? " in one turn" : "") + ": no motion of the mechanism");
   } else if (!c.path.empty()) {
     reject("a pair with a fixed part has no path");
   }

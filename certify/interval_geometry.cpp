@@ -5,6 +5,8 @@
 // compared exactly: nothing here is decided in double.
 #include "certify/interval_geometry.hpp"
 
+#include <mpfr.h>
+
 #include <algorithm>
 #include <optional>
 
@@ -186,14 +188,41 @@ Interval disc_gap(const P& c1, const Interval& r1, const P& c2, const Interval& 
 
 }  // namespace
 
+namespace {
+bool beyond_reduction(const Interval& angle) {
+  if (!angle.is_bounded()) return true;
+  for (mpfr_srcptr end : {&angle.get()->left, &angle.get()->right})
+    if (mpfr_regular_p(end) && mpfr_get_exp(end) > 1100) return true;
+  return false;
+}
+Interval unit_range() {
+  Interval range(Rational(-1));
+  mpfi_put_si(range.get(), 1);
+  return range;
+}
+}  // namespace
+
+Interval sin_of(const Interval& angle) {
+  if (beyond_reduction(angle)) return unit_range();
+  Interval result;
+  mpfi_sin(result.get(), angle.get());
+  return result;
+}
+Interval cos_of(const Interval& angle) {
+  if (beyond_reduction(angle)) return unit_range();
+  Interval result;
+  mpfi_cos(result.get(), angle.get());
+  return result;
+}
+
 IntervalMap to_interval_map(const ExactMap& map) { return IntervalMap{Interval(map.c), Interval(map.s), exact(map.shift)}; }
 
 IntervalMap rotation_over(const RationalInterval& angle) {
   Interval theta(angle.lo);
   mpfi_put_q(theta.get(), const_cast<mpq_ptr>(angle.hi.get_mpq_t()));
   IntervalMap map;
-  mpfi_cos(map.c.get(), theta.get());
-  mpfi_sin(map.s.get(), theta.get());
+  map.c = cos_of(theta);
+  map.s = sin_of(theta);
   return map;
 }
 
@@ -389,9 +418,7 @@ Rational reach(const IntervalPart& shape) {
 
 IntervalPoint point_on(const IntervalEdge& e, const Interval& u) {
   if (!e.arc) return e.source + scale(u, e.target - e.source);
-  Interval c, s;
-  mpfi_cos(c.get(), u.get());
-  mpfi_sin(s.get(), u.get());
+  Interval c = cos_of(u), s = sin_of(u);
   if (!e.ccw) s = -s;
   P w = e.source - e.center;
   return e.center + P{c * w.x - s * w.y, s * w.x + c * w.y};

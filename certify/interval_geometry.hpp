@@ -26,6 +26,13 @@ struct IntervalMap {
   IntervalPoint shift{Interval(Rational(0)), Interval(Rational(0))};
 };
 
+/// MPFI sine and cosine of an angle enclosure (rad), or [-1, 1] when it is unbounded or an end
+/// lies beyond 2^1100 in magnitude: a valid enclosure either way. MPFR reduces the argument
+/// exactly, in time growing with its exponent: a forged certificate's angle "1e100000" kept the
+/// verifier busy for minutes (session 35, hunt35); no model angle comes near 2^1100.
+Interval sin_of(const Interval& angle);
+Interval cos_of(const Interval& angle);
+
 IntervalMap to_interval_map(const ExactMap& map);
 /// All rotations (about the part's pivot) by angles in `angle` (rad).
 IntervalMap rotation_over(const RationalInterval& angle);

@@ -27,6 +27,16 @@ ExactMap exact_map(const Part& part, const std::map<std::string, ExactPosition>&
 /// up to whole turns (-3 ... 3). Decided with MPFI: an interval straddling an end is not within.
 bool certainly_within(const std::optional<RationalInterval>& limits, const Interval& value, bool angle);
 
+/// Does a part's coordinate stay within its motion limits (true when it has none) over the whole
+/// of `range`: a free passage's driver range, or the hull of its follower path (docs/certify.md,
+/// "Free passage")? A continuous motion keeps its turn: for a rotating part the range shifted by
+/// one whole number of turns 2 pi k (k = -3 ... 3) must lie within the limits, decided exactly
+/// (rational comparisons) for k = 0 and certainly (MPFI) for the others. A path each of whose
+/// points is within the limits in some turn, but not all in the same one (from 0 across 2 pi),
+/// is not within. Until session 35 (hunt35) the follower path was not tested at all: a path far
+/// beyond the limits (a follower 100 mm past its 12 mm stop) was certified and verified.
+bool range_within_limits(const Part& part, const RationalInterval& range);
+
 /// May a jam certificate's wall at the lower (`upper` false) or upper end of the follower's trap
 /// range `band` go without pieces because the follower's motion limit closes it (docs/certify.md,
 /// "Jam")? Yes when the end is at or beyond that limit and, for a rotating follower, no other

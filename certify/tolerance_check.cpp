@@ -3,6 +3,7 @@
 // certain signs and exact comparisons.
 #include "certify/tolerance_check.hpp"
 
+#include "certify/interval_geometry.hpp"
 #include "certify/tolerance_support.hpp"
 
 #include <hipair/error.hpp>
@@ -256,10 +257,10 @@ J1 Arithmetic<J1>::sqrt(const J1& x) {
   return J1(r, verify::scaled(x.gradient, Interval(Rational(1)) / (Interval(Rational(2)) * r)));
 }
 J1 Arithmetic<J1>::sin(const J1& x) {
-  return J1(verify::apply1(mpfi_sin, x.value), verify::scaled(x.gradient, verify::apply1(mpfi_cos, x.value)));
+  return J1(verify::sin_of(x.value), verify::scaled(x.gradient, verify::cos_of(x.value)));
 }
 J1 Arithmetic<J1>::cos(const J1& x) {
-  return J1(verify::apply1(mpfi_cos, x.value), verify::scaled(x.gradient, -verify::apply1(mpfi_sin, x.value)));
+  return J1(verify::cos_of(x.value), verify::scaled(x.gradient, -verify::sin_of(x.value)));
 }
 J1 Arithmetic<J1>::tan(const J1& x) { return sin(x) / cos(x); }
 J1 Arithmetic<J1>::atan2(const J1& y, const J1& x) {
@@ -300,12 +301,12 @@ J2 Arithmetic<J2>::sqrt(const J2& x) {
   return verify::chain2(x, r, f1, -(f1 / (I(Rational(2)) * x.value)));   // -1 / (4 r^3)
 }
 J2 Arithmetic<J2>::sin(const J2& x) {
-  Interval s = verify::apply1(mpfi_sin, x.value);
-  return verify::chain2(x, s, verify::apply1(mpfi_cos, x.value), -s);
+  Interval s = verify::sin_of(x.value);
+  return verify::chain2(x, s, verify::cos_of(x.value), -s);
 }
 J2 Arithmetic<J2>::cos(const J2& x) {
-  Interval c = verify::apply1(mpfi_cos, x.value);
-  return verify::chain2(x, c, -verify::apply1(mpfi_sin, x.value), -c);
+  Interval c = verify::cos_of(x.value);
+  return verify::chain2(x, c, -verify::sin_of(x.value), -c);
 }
 J2 Arithmetic<J2>::tan(const J2& x) { return sin(x) / cos(x); }
 J2 Arithmetic<J2>::atan2(const J2& y, const J2& x) {

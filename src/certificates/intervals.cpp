@@ -95,6 +95,19 @@ RationalInterval path_image(const std::vector<std::pair<Rational, Rational>>& pa
   return image;
 }
 
+// A free passage's driver range or follower path beyond the part's motion limits (the
+// verifier's verify::range_within_limits) is an input error naming the part and its limits.
+void require_range_within_limits(const Part& part, const RationalInterval& range, const std::string& what) {
+  if (verify::range_within_limits(part, range)) return;
+  bool rotating = part.motion.kind == Motion::Kind::rotation;
+  const RationalInterval& limits = rotating ? *part.motion.angle_limits : *part.motion.translation_limits;
+  std::string unit = rotating ? " rad" : " mm";
+  throw ModelError(part.pointer, "the " + what + " of '" + part.name + "' runs over [" + to_decimal_string(range.lo) + ", " +
+                                     to_decimal_string(range.hi) + "]" + unit + ", not within its motion limits [" +
+                                     to_decimal_string(limits.lo) + ", " + to_decimal_string(limits.hi) + "]" + unit +
+                                     (rotating ? " in one turn" : ""));
+}
+
 // ------------------------------------------------------------------------------ crossings
 struct Placed {
   IntervalPart over;     // posed over the whole box
@@ -284,6 +297,10 @@ std::optional<Certificate> certify_free_passage(const Model& model, const std::s
     if (c.path.size() < 2 || c.path.front().first != c.range.lo || c.path.back().first != c.range.hi)
       throw NumericError("the follower path must run from the start to the end of the driver range");
   }
+  // The driver's range and the follower's path must be motions the mechanism can make: within
+  // the parts' motion limits, in one turn (the verifier's rule; an input error naming the part)
+  require_range_within_limits(*r.driver, c.range, "driver range");
+  if (r.has_follower) require_range_within_limits(*r.other, path_image(c.path, c.range.lo, c.range.hi), "follower path");
   // At the start the parts must not overlap (a part inside the other has a positive boundary distance).
   if (overlapping_at(r, c.range.lo, path_value(c.path, c.range.lo))) return std::nullopt;
   Rational reach_driver = reach_of(*r.driver), reach_other = reach_of(*r.other);

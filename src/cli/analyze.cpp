@@ -216,6 +216,9 @@ int run_analyze(const AnalyzeOptions& options) {
     for (const char* name : {"report.json", "kinematics.csv", "kinematics.svg"})
       if (!options.no_pictures || std::string(name) != "kinematics.svg")
         io::refuse_overwriting_input(std::filesystem::path(options.out) / name, "--out", options.model);
+  OnceEach once_per_part("--load", "part");   // (part names as parse_load reads them: trimmed)
+  for (const std::string& text : options.loads)
+    if (auto equals = text.find('='); equals != std::string::npos) once_per_part.add(trim(text.substr(0, equals)), text);
   auto rounding = rounding_scope(options.rounding);
   Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
   // a pin-in-slot follower (the film advance): its work cycle (cli/analyze_pinslot.cpp)

@@ -80,6 +80,8 @@ RationalInterval range_of(const std::string& text, bool angle, const std::string
 }
 
 int run(const CertifyArguments& arguments) {
+  refuse_repeated_names(arguments.overrides, "--set", "parameter");
+  refuse_repeated_names(arguments.at, "--at", "part");
   ReadOptions options;
   for (const std::string& assignment : arguments.overrides) {
     auto equals = assignment.find('=');

@@ -10,8 +10,10 @@
 #include "model/exact_trig.hpp"
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace hipair::cli {
@@ -34,6 +36,26 @@ ReadOptions parameter_overrides(const std::vector<std::string>& assignments, boo
 /// one model, storing them in `assignments` and `allow_out_of_tolerance` (parameter_overrides
 /// turns them into reader options).
 void add_parameter_options(CLI::App* command, std::vector<std::string>& assignments, bool& allow_out_of_tolerance);
+
+/// Refuses a repeatable option that names one target twice (`--set p=1 --set p=2`, `--load
+/// wheel=cw --load wheel=ccw`, `--at lever=0.1 --at lever=0.2`, `--config driver=1,driver=2`): the
+/// last value would silently win (session 35, hunt35). Give every item's target in order.
+/// \throws CLI::ArgumentMismatch (exit 114, as CLI11 refuses a single-valued option given twice)
+/// naming the option, the target and both items.
+class OnceEach {
+ public:
+  /// `what` names a target in the message ("parameter", "part").
+  OnceEach(std::string option, std::string what) : option_(std::move(option)), what_(std::move(what)) {}
+  void add(const std::string& target, const std::string& item);
+
+ private:
+  std::string option_, what_;
+  std::map<std::string, std::string> seen_;   // target -> the item that named it first
+};
+
+/// OnceEach over items NAME=VALUE, the target being the NAME (items without '=' are left to the
+/// option's own parser). \throws CLI::ArgumentMismatch.
+void refuse_repeated_names(const std::vector<std::string>& items, const std::string& option, const std::string& what);
 
 /// Adds `--rounding B` (the model's rounding bound, docs/model-format.md) to a command; the
 /// text is stored in `text` (empty: the model's own bound).

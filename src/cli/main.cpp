@@ -30,6 +30,8 @@ int main(int argc, char** argv) {
   }
   try {
     return action ? action() : 0;
+  } catch (const CLI::ParseError& e) {   // a usage error found once the options are read (OnceEach)
+    return app.exit(e);
   } catch (const hipair::ModelError& e) {
     std::cerr << "hipair: error: " << e.what() << "\n";
     return 2;

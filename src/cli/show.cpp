@@ -67,6 +67,7 @@ Rational length_value(const std::string& text, const std::string& item) {
 // Applies "part=value" or "part.coordinate=value" items (comma separated lists allowed).
 void apply_configuration(const Model& model, const std::vector<std::string>& items,
                          std::vector<PartConfiguration>& configurations) {
+  OnceEach once("--config", "coordinate");   // part.coordinate, once (`driver=1,driver.angle=2` is a repeat)
   for (const std::string& list : items) {
     std::stringstream stream(list);
     std::string item;
@@ -100,6 +101,7 @@ void apply_configuration(const Model& model, const std::vector<std::string>& ite
             throw ModelError("", "--config: part '" + name + "' is fixed");
         }
       }
+      once.add(name + "." + coordinate, item);
       bool has_angle = motion.kind == Motion::Kind::rotation ||
                        motion.kind == Motion::Kind::planar ||
                        motion.kind == Motion::Kind::pin_slot;

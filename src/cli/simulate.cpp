@@ -448,6 +448,12 @@ int run_sweep(const SimulateOptions& options) {
   }
   if (n < 1 || n > 10000) throw ModelError("", "--sweep " + options.sweep + ": N must lie in [1, 10000]");
   if (n == 1 && a != b) throw ModelError("", "--sweep " + options.sweep + ": N = 1 needs A = B");
+  // the swept parameter given by --set as well: the sweep's values would silently win
+  refuse_repeated_names(options.overrides, "--set", "parameter");
+  OnceEach once("--sweep", "parameter");
+  for (const std::string& assignment : options.overrides)
+    once.add(assignment.substr(0, assignment.find('=')), "--set " + assignment);
+  once.add(name, "--sweep " + options.sweep);
   std::vector<Rational> values;
   for (long i = 0; i < n; ++i) values.push_back(n == 1 ? a : Rational(a + (b - a) * Rational(i, n - 1)));
   // every model is read (and checked) before any run starts: a bad value stops the sweep at once

@@ -147,7 +147,21 @@ void add_parameter_options(CLI::App* command, std::vector<std::string>& assignme
                     "accept --set values outside the parameter's tolerance range");
 }
 
+void OnceEach::add(const std::string& target, const std::string& item) {
+  auto [at, inserted] = seen_.emplace(target, item);
+  if (!inserted)
+    throw CLI::ArgumentMismatch(option_ + ": " + what_ + " '" + target + "' is given twice ('" + at->second + "', then '" +
+                                item + "'); give each " + what_ + " once");
+}
+
+void refuse_repeated_names(const std::vector<std::string>& items, const std::string& option, const std::string& what) {
+  OnceEach once(option, what);
+  for (const std::string& item : items)
+    if (auto equals = item.find('='); equals != std::string::npos) once.add(item.substr(0, equals), item);
+}
+
 ReadOptions parameter_overrides(const std::vector<std::string>& assignments, bool allow_out_of_tolerance) {
+  refuse_repeated_names(assignments, "--set", "parameter");
   ReadOptions options;
   options.allow_out_of_tolerance = allow_out_of_tolerance;
   for (const std::string& assignment : assignments) {

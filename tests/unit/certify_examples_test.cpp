@@ -17,6 +17,7 @@
 
 #include <numbers>
 
+#include <chrono>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -396,6 +397,18 @@ TEST(CertifyExamples, FindingsOfTheKinematicAnalysisAreCertified) {
 
 }  // namespace
 
+namespace {
+// 10^exponent, exactly; 2 pi to 60 decimals (whole-turn shifts of generated angles).
+Rational exact_power_of_ten(int exponent) {
+  mpz_class power;
+  mpz_ui_pow_ui(power.get_mpz_t(), 10, unsigned(std::abs(exponent)));
+  return exponent >= 0 ? Rational(power) : Rational(mpz_class(1), power);
+}
+Rational two_pi_to_60_digits() {
+  return Rational("6283185307179586476925286766559005768394338798750211641949889/1000000000000000000000000000000000000000000000000000000000000");
+}
+}  // namespace
+
 // Session 34 (hunt34): a jam's wall "closed by the follower's motion limit" when the trap's
 // follower range lies a whole turn away from the limits. A slider (direction +-y) pushes into a
 // lever that is free to swing out of its way on one side; the trap's follower range is the
@@ -408,14 +421,12 @@ TEST(CertifyExamples, FindingsOfTheKinematicAnalysisAreCertified) {
 // overlap predicate shows the way out: free configurations from the trap's open side past the cut.
 // Every fourth case is a control: the band not shifted, its end at the limit (the wall closed).
 TEST(CertifyExamples, AJamWallIsClosedByAMotionLimitOnlyInTheLimitsOwnTurn) {
-  const Rational two_pi("6283185307179586476925286766559005768394338798750211641949889/1000000000000000000000000000000000000000000000000000000000000");
+  const Rational two_pi = two_pi_to_60_digits();
   std::mt19937_64 random(20261201);
   int false_claims = 0, controls = 0;
   for (int trial = 0; trial < 16; ++trial) {
     int exponent = std::vector<int>{-300, -120, 0, 0, 40, 300}[random() % 6];
-    mpz_class power;
-    mpz_ui_pow_ui(power.get_mpz_t(), 10, unsigned(std::abs(exponent)));
-    Rational scale = exponent >= 0 ? Rational(power) : Rational(mpz_class(1), power);
+    Rational scale = exact_power_of_ten(exponent);
     int turns = int(random() % 3) + 1;
     bool up = random() % 2 == 0;              // the lever swings out upward (the slider from below)
     Rational w(1, long(100 + 50 * (random() % 3)));  // the band [-w, w] before the shift
@@ -498,4 +509,149 @@ TEST(CertifyExamples, AJamWallIsClosedByAMotionLimitOnlyInTheLimitsOwnTurn) {
   }
   EXPECT_GE(false_claims, 10);
   EXPECT_GE(controls, 4);
+}
+
+// A free passage is a motion of the mechanism only when the follower's path stays within the
+// follower's motion limits, all of it in one turn (a continuous motion keeps its turn). Until
+// session 35 (hunt35) neither `certify_free_passage` nor the verifier looked at the path's
+// values (only box 0's centre, about the start, met the limits, and that up to whole turns): a
+// path far beyond the limits, or around a whole turn, was certified and verified. Generated: a
+// slider far from a small square follower (they never come near, so the geometry holds for any
+// follower position), scales 1e-300 ... 1e300, the follower rotating (limits [-a, b]) or
+// translating; the certificate is made for the same model without limits (every claim's
+// geometry holds) and checked against the model with them. Oracle, by construction: a vertex of
+// the path lies beyond the limits in the start's turn (exactly, or by more than 1 rad). Controls:
+// a path wholly within the limits shifted by 2 pi k turns, and one that ends exactly at a
+// limit (non-dyadic: decided exactly in the limits' own turn), certified and verified.
+TEST(CertifyExamples, AFreePassagePathMustStayWithinTheFollowersLimitsInOneTurn) {
+  const Rational two_pi = two_pi_to_60_digits();
+  std::mt19937_64 random(20261202);
+  int false_claims = 0, controls = 0;
+  for (int trial = 0; trial < 24; ++trial) {
+    int exponent = std::vector<int>{-300, -120, 0, 0, 40, 300}[random() % 6];
+    Rational scale = exact_power_of_ten(exponent);
+    bool rotating = trial % 3 != 2;
+    int kind = trial / 3 % 6;   // 0-3 false paths, 4-5 controls (each rotating twice, translating once)
+    int turns = (random() % 2 ? 1 : -1) * int(random() % 3 + 1);
+    Rational lo = rotating ? Rational(-long(random() % 7 + 1), 10) : Rational(-10 * scale);
+    Rational hi = rotating ? Rational(long(random() % 7 + 1), 10) : Rational(10 * scale);
+    Rational c = lo / 3, tiny = rotating ? exact_power_of_ten(-20) : Rational(scale * exact_power_of_ten(-40));
+    Rational shift = rotating ? Rational(turns * two_pi) : Rational(0);
+    std::vector<std::pair<Rational, Rational>> values;   // (fraction of the range, follower value)
+    Rational beyond;   // a path value beyond the limits in the start's turn (false paths)
+    bool control = kind >= 4;
+    if (kind == 0 && rotating) {   // once around: c to c + 2 pi k through c + pi sgn(k)
+      beyond = c + (turns > 0 ? 1 : -1) * two_pi / 2;
+      values = {{0, c}, {Rational(1, 2), beyond}, {1, Rational(c + shift)}};
+    } else if (kind <= 1) {        // just past the upper limit in its own turn
+      beyond = hi + tiny;
+      values = {{0, c}, {1, beyond}};
+    } else if (kind == 2) {        // just past the lower limit, the whole path a turn (or more) away
+      beyond = lo - tiny;
+      values = {{0, Rational(c + shift)}, {1, Rational(beyond + shift)}};
+    } else if (kind == 3) {        // far beyond, turned back within the range's end
+      beyond = hi + (rotating ? Rational(2) : Rational(50 * scale));
+      values = {{0, c}, {Rational(1, 3), beyond}, {1, c}};
+    } else if (kind == 4) {        // control: within the limits, shifted by whole turns
+      values = {{0, Rational(c + shift)}, {1, Rational(hi / 2 + shift)}};
+    } else {                       // control: ends exactly at the upper limit
+      values = {{0, c}, {1, hi}};
+    }
+    auto number = [&](const Rational& v) { return "\"" + to_exact_string(v) + "\""; };
+    auto p = [&](long x, long y) { return "[" + number(Rational(x * scale)) + ", " + number(Rational(y * scale)) + "]"; };
+    auto square = [&](long x0, long y0, long x1, long y1) {
+      return "[{\"start\": " + p(x0, y0) + ", \"edges\": [{\"line_to\": " + p(x1, y0) + "}, {\"line_to\": " + p(x1, y1) +
+             "}, {\"line_to\": " + p(x0, y1) + "}, {\"line_to\": " + p(x0, y0) + "}]}]";
+    };
+    auto text_of = [&](bool limited) {
+      std::string limits = limited ? ", \"limits\": [" + number(lo) + ", " + number(hi) + "]" : "";
+      std::string motion = rotating ? "{\"rotation\": {\"pivot\": [0, 0]" + limits + "}}"
+                                    : "{\"translation\": {\"direction\": [0, 1]" + limits + "}}";
+      return "{\"hipair\": 1, \"name\": \"slider-square\", \"units\": {\"length\": \"mm\", \"angle\": \"rad\"},"
+             "\"parts\": [{\"name\": \"slider\", \"motion\": {\"translation\": {\"direction\": [1, 0]}}, \"loops\": " +
+             square(100, -1, 102, 1) + "}, {\"name\": \"follower\", \"motion\": " + motion + ", \"loops\": " +
+             square(-1, -1, 1, 1) + "}], \"pairs\": [{\"parts\": [\"slider\", \"follower\"]}]}";
+    };
+    const std::string limited = text_of(true), free = text_of(false);
+    Model with_limits = read_model(limited, "slider-square.json"), without = read_model(free, "slider-square.json");
+    ASSERT_TRUE(with_limits.roundings.empty());
+    PassagePath path{"slider", "follower", RationalInterval{Rational(0), Rational(10 * scale)}, {}};
+    for (const auto& [at, value] : values) path.polyline.push_back({Rational(at * path.range.hi), value});
+    SCOPED_TRACE("trial " + std::to_string(trial) + ", scale 1e" + std::to_string(exponent) + (rotating ? ", rotating" : ", translating") +
+                 ", kind " + std::to_string(kind) + ", turns " + std::to_string(turns) + ", limits [" + to_exact_string(lo) +
+                 ", " + to_exact_string(hi) + "]");
+    // the geometry holds with the follower anywhere: certified on the model without limits
+    auto geometric = certify_free_passage(without, "slider", "follower", path, std::nullopt, {});
+    ASSERT_TRUE(geometric);
+    Certificate moved = *geometric;
+    moved.content_hash = detail::sha256_hex(limited);
+    VerificationResult result = check_certificate_text(moved, limited, "slider-square.json");
+    if (control) {
+      auto certificate = certify_free_passage(with_limits, "slider", "follower", path, std::nullopt, {});
+      ASSERT_TRUE(certificate);
+      EXPECT_TRUE(check_certificate_text(*certificate, limited, "slider-square.json").valid);
+      EXPECT_TRUE(result.valid) << result.reason;
+      ++controls;
+      continue;
+    }
+    // the oracle: `beyond` (the path's value shifted back to the start's turn) lies outside the
+    // limits: exactly for the tiny overshoots, by more than 1/2 rad in every turn for the others
+    EXPECT_TRUE(beyond > hi || beyond < lo);
+    if (rotating && (kind == 0 || kind == 3))
+      for (int j = -4; j <= 4; ++j) {
+        double v = Rational(beyond - j * two_pi).get_d();
+        EXPECT_TRUE(v > hi.get_d() + 0.5 || v < lo.get_d() - 0.5) << "turn " << j;
+      }
+    EXPECT_FALSE(result.valid) << "a path beyond the follower's limits verified: " << result.summary;
+    EXPECT_NE(result.reason.find("not within the follower's limits"), std::string::npos) << result.reason;
+    EXPECT_THROW(certify_free_passage(with_limits, "slider", "follower", path, std::nullopt, {}), ModelError);
+    ++false_claims;
+  }
+  EXPECT_GE(false_claims, 10);
+  EXPECT_GE(controls, 4);
+}
+
+// An angle of a forged certificate far beyond any model's (10^1100 ... 10^100000 rad) made MPFR
+// reduce it exactly before the sine and cosine, in time growing with its exponent: a jam trap
+// starting at -1e100000 rad, or a tolerance leaf's follower interval ending there, kept the
+// verifier busy for minutes (session 35, hunt35; main took > 30 s for each). Now the enclosure is
+// [-1, 1] beyond 2^1100 (sound: it only widens), and the verifier answers at once, invalid.
+// Generated: the exponent and the number's form drawn at random; controls: the certificates as
+// written stay valid.
+TEST(CertifyExamples, AnAngleFarBeyondAnyModelsIsRejectedAtOnce) {
+  namespace fs = std::filesystem;
+  const fs::path folder = fs::path(HIPAIR_SOURCE_DIR) / "tests" / "data" / "certificates";
+  struct Case {
+    const char* certificate;
+    const char* model;
+    const char* key;   // the number replaced: in the jam's trap, or leaf 0's follower interval
+    const char* value_before;
+  };
+  const Case cases[] = {{"ratchet-jam.json", "examples/models/ratchet.json", "\"driver\": [\"", "-3/250"},
+                        {"geneva-tolerance-no-interference.json", "examples/models/geneva.json", "\"follower\": [\"0\", \"", "0"}};
+  std::mt19937_64 random(35);
+  fs::path work = fs::temp_directory_path() / ("hipair-huge-angle-" + std::to_string(::getpid()));
+  fs::create_directories(work);
+  for (const Case& c : cases) {
+    const std::string text = io::read_file(folder / c.certificate);
+    EXPECT_TRUE(verify_certificate_file(folder / c.certificate, fs::path(HIPAIR_SOURCE_DIR) / c.model).valid) << c.certificate;
+    const std::string target = std::string(c.key) + c.value_before + "\"";
+    std::size_t at = text.find(target);
+    ASSERT_NE(at, std::string::npos) << c.certificate;
+    for (int trial = 0; trial < 3; ++trial) {
+      int exponent = std::vector<int>{1200, 5000, 20000, 100000}[random() % 4];
+      std::string huge = random() % 2 ? "1e" + std::to_string(exponent) : "1" + std::string(std::size_t(exponent), '0') + "/7";
+      if (std::string(c.certificate) == "ratchet-jam.json") huge = "-" + huge;
+      std::string forged = text;
+      forged.replace(at, target.size(), std::string(c.key) + huge + "\"");
+      fs::path file = work / ("forged-" + std::to_string(trial) + ".json");
+      io::write_file_atomically(file, forged);
+      auto start = std::chrono::steady_clock::now();
+      VerificationResult result = verify_certificate_file(file, fs::path(HIPAIR_SOURCE_DIR) / c.model);
+      double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      EXPECT_FALSE(result.valid) << c.certificate << " with " << huge.substr(0, 12) << "...";
+      EXPECT_LT(seconds, 5.0) << c.certificate << " with an angle of 10^" << exponent;
+    }
+  }
+  fs::remove_all(work);
 }
