@@ -54,12 +54,14 @@ inline Interval squared_difference(const Interval& a, const Interval& b) {
 ///   S_lo, that of the lower ends: the outward-rounded differences contain the rounded ones,
 ///   an interval square's ends are monotone under inclusion, and every rounding is monotone.
 ///   So S_hi >= r2.lo and S_lo < r2.hi answer 0.
-/// - Where each difference is of one sign with its near end at least 2^-500 in magnitude (so
-///   its outward rounding, one unit in the last place, keeps the sign, and every square, sum
-///   and rounding is of normal numbers), D.lo >= S_lo (1 - 2^-47): the outward difference's
-///   end and its square, the sum and the three outward roundings each lose at most a relative
-///   2^-52, and S_lo's own rounding 2^-53. So S_hi >= r2.lo and S_lo (1 - 2^-46) >= r2.hi
-///   (that product rounded, at most S_lo (1 - 2^-47)) answer +1.
+/// - Where every end is at least 2^-500 in magnitude (its outward rounding, one unit in the
+///   last place, keeps its sign, so each square's ends are the same end products of the
+///   outward ends as S's of the rounded ones, and every product and end is a normal number),
+///   each outward square's lower end, rounded down, is within 2^-48 |x_low| of x_low (the
+///   rounded differences' square's lower end; likewise y), and the sum's two roundings add
+///   2^-53 and 2^-52 of it and at most 2^-1073 where it is subnormal: D.lo >= S_lo - 2^-46.9 M
+///   - 2^-1072, M = |x_low| + |y_low|. So S_hi >= r2.lo and S_lo - (2^-45 M + 2^-1000) >= r2.hi
+///   (that rounded, which the margin's excess covers) answer +1.
 /// Otherwise the full expression, a finite difference's square by its three end products
 /// (square_detail::squared_difference).
 inline int squared_distance_relation(const Interval& ax, const Interval& ay, const Interval& bx, const Interval& by,
@@ -74,7 +76,8 @@ inline int squared_distance_relation(const Interval& ax, const Interval& ay, con
     if (x_high + y_high >= r2.lo) {
       double sum_low = x_low + y_low;
       if (sum_low < r2.hi) return 0;
-      if ((xl >= normal || xh <= -normal) && (yl >= normal || yh <= -normal) && sum_low * (1 - 0x1p-46) >= r2.hi)
+      if (std::fabs(xl) >= normal && std::fabs(xh) >= normal && std::fabs(yl) >= normal && std::fabs(yh) >= normal &&
+          sum_low - ((std::fabs(x_low) + std::fabs(y_low)) * 0x1p-45 + 0x1p-1000) >= r2.hi)
         return 1;
     }
   }
