@@ -32,11 +32,11 @@ inline void square_ends(double lo, double hi, double& low, double& high) {
     high = std::max(lo * lo, hi * hi);
   }
 }
-// (a - b) * (a - b), bit for bit: the same ends, with a finite difference's square by its
-// three end products
+// (a - b) * (a - b), bit for bit: the same ends, with a finite proper difference's square by
+// its three end products
 inline Interval squared_difference(const Interval& a, const Interval& b) {
   Interval d = a - b;
-  if (!(std::isfinite(d.lo) && std::isfinite(d.hi))) return d * d;
+  if (!(std::isfinite(d.lo) && std::isfinite(d.hi) && d.lo <= d.hi)) return d * d;
   double low, high;
   square_ends(d.lo, d.hi, low, high);
   return Interval(down(low), up(high));
@@ -49,7 +49,8 @@ inline Interval squared_difference(const Interval& a, const Interval& b) {
 /// (possibly closer somewhere), +1 otherwise (never closer). The same answer as from D computed
 /// with operator-, operator* and operator+, with less work. First on the differences before
 /// their outward rounding (xl = ax.lo - bx.hi, ..., rounded to nearest), when every end is at
-/// most 2^500 in magnitude (no square or sum overflows, nor does any outward rounding):
+/// most 2^500 in magnitude (no square or sum overflows, nor does any outward rounding) and
+/// the boxes are proper (lo <= hi, as every posed centre is):
 /// - D.hi is at least S_hi, the rounded sum of their squares' upper ends, and D.lo at most
 ///   S_lo, that of the lower ends: the outward-rounded differences contain the rounded ones,
 ///   an interval square's ends are monotone under inclusion, and every rounding is monotone.
@@ -69,7 +70,8 @@ inline int squared_distance_relation(const Interval& ax, const Interval& ay, con
   constexpr double moderate = 0x1p500;   // squares and sums of these stay finite
   constexpr double normal = 0x1p-500;    // squares and sums of these stay normal
   double xl = ax.lo - bx.hi, xh = ax.hi - bx.lo, yl = ay.lo - by.hi, yh = ay.hi - by.lo;
-  if (std::fabs(xl) <= moderate && std::fabs(xh) <= moderate && std::fabs(yl) <= moderate && std::fabs(yh) <= moderate) {
+  if (std::fabs(xl) <= moderate && std::fabs(xh) <= moderate && std::fabs(yl) <= moderate && std::fabs(yh) <= moderate &&
+      xl <= xh && yl <= yh) {
     double x_low, x_high, y_low, y_high;
     square_detail::square_ends(xl, xh, x_low, x_high);
     square_detail::square_ends(yl, yh, y_low, y_high);
