@@ -7,6 +7,7 @@
 #include "algebra/near_quotient.hpp"
 #include "algebra/polynomial.hpp"
 #include "curves/pose.hpp"
+#include "curves/squared_distance.hpp"
 #include "kernels/contact.hpp"
 #include "kernels/contact_table.hpp"
 #include "kernels/interval.hpp"
@@ -953,11 +954,10 @@ class BlockedSpaceCuller {
       cache_b.pose.apply((*cores_[1])[uj].x, (*cores_[1])[uj].y, cache_b.core_x[uj], cache_b.core_y[uj]);
       cache_b.core_done[uj] = 1;
     }
-    Interval dx = cache_a.core_x[ui] - cache_b.core_x[uj];
-    Interval dy = cache_a.core_y[ui] - cache_b.core_y[uj];
-    Interval distance2 = dx * dx + dy * dy;
-    if (distance2.hi < pair.reach2.lo) return CoreRelation::overlapping;
-    return distance2.lo < pair.reach2.hi ? CoreRelation::near : CoreRelation::apart;
+    // (dx * dx + dy * dy against the reach, dx and dy the centres' differences)
+    int relation = cull_detail::squared_distance_relation(cache_a.core_x[ui], cache_a.core_y[ui], cache_b.core_x[uj],
+                                                      cache_b.core_y[uj], pair.reach2);
+    return relation < 0 ? CoreRelation::overlapping : relation == 0 ? CoreRelation::near : CoreRelation::apart;
   }
 
   void visit(const Interval& cx, const Interval& cy, int depth, long i, long j, const std::vector<int>& candidates,
