@@ -238,6 +238,19 @@ Chain build_chain(const Model& model, std::size_t driver, const std::vector<CSpa
 
 namespace {
 
+// The other part's chart and value for slicer s at `state` (false: the pair is skipped — the
+// other part's piece has no chart of the pair, or its value lies beyond any contact of the pair).
+bool other_of(const Chain& chain, const ChainState& state, std::size_t s, std::size_t& other_chart, Rational& value) {
+  const PairSlicer& slicer = *chain.slicers[s];
+  if (!slicer.other_moves()) return true;
+  const PartState& other = state.parts[chain.chain_index[slicer.other()]];
+  other_chart = chain.other_chart_of_piece[s][other.position.piece];
+  if (other_chart == none) return false;
+  value = rational_near(other.position.value);
+  const ChartAxis& chart = slicer.other_charts()[other_chart];
+  return !(value < chart.lo || value > chart.hi);
+}
+
 AxisSlice constraint_slice(const Chain& chain, const ChainState& state, std::size_t k,
                            const AxisWindow* window = nullptr, ChartSliceMemo* memo = nullptr) {
   const AxisLine& line = chain.parts[k].line;
@@ -247,14 +260,7 @@ AxisSlice constraint_slice(const Chain& chain, const ChainState& state, std::siz
     const PairSlicer& slicer = *chain.slicers[s];
     std::size_t other_chart = 0;
     Rational value;
-    if (slicer.other_moves()) {
-      const PartState& other = state.parts[chain.chain_index[slicer.other()]];
-      other_chart = chain.other_chart_of_piece[s][other.position.piece];
-      if (other_chart == none) continue;
-      value = rational_near(other.position.value);
-      const ChartAxis& chart = slicer.other_charts()[other_chart];
-      if (value < chart.lo || value > chart.hi) continue;   // beyond any contact of this pair
-    }
+    if (!other_of(chain, state, s, other_chart, value)) continue;
     // a pair with a fixed part is sliced whole (and kept by its slicer): no memo
     AxisSlice slice = slicer.other_moves() ? slice_on_axis(line, slicer, s, other_chart, value, window, memo)
                                            : slice_on_axis(line, slicer, s, other_chart, value);
@@ -740,14 +746,7 @@ ChainState initial_state(const Chain& chain, std::size_t piece, const Rational& 
         const PairSlicer& slicer = *chain.slicers[s];
         std::size_t other_chart = 0;
         Rational other_value;
-        if (slicer.other_moves()) {
-          const PartState& other = next.parts[chain.chain_index[slicer.other()]];
-          other_chart = chain.other_chart_of_piece[s][other.position.piece];
-          if (other_chart == none) continue;
-          other_value = rational_near(other.position.value);
-          const ChartAxis& chart = slicer.other_charts()[other_chart];
-          if (other_value < chart.lo || other_value > chart.hi) continue;
-        }
+        if (!other_of(chain, next, s, other_chart, other_value)) continue;
         AxisSlice slice = slice_on_axis(line, slicer, s, other_chart, other_value,
                                         windowed && slicer.other_moves() ? &window : nullptr);
         if (windowed && !blocked_ends_inside(line, slice, start.parts[k].position, width)) {
