@@ -238,6 +238,19 @@ Chain build_chain(const Model& model, std::size_t driver, const std::vector<CSpa
 
 namespace {
 
+// The other part's chart and value for slicer s at `state` (false: the pair is skipped — the
+// other part's piece has no chart of the pair, or its value lies beyond any contact of the pair).
+bool other_of(const Chain& chain, const ChainState& state, std::size_t s, std::size_t& other_chart, Rational& value) {
+  const PairSlicer& slicer = *chain.slicers[s];
+  if (!slicer.other_moves()) return true;
+  const PartState& other = state.parts[chain.chain_index[slicer.other()]];
+  other_chart = chain.other_chart_of_piece[s][other.position.piece];
+  if (other_chart == none) return false;
+  value = rational_near(other.position.value);
+  const ChartAxis& chart = slicer.other_charts()[other_chart];
+  return !(value < chart.lo || value > chart.hi);
+}
+
 AxisSlice constraint_slice(const Chain& chain, const ChainState& state, std::size_t k,
                            const AxisWindow* window = nullptr, ChartSliceMemo* memo = nullptr) {
   const AxisLine& line = chain.parts[k].line;
@@ -247,14 +260,7 @@ AxisSlice constraint_slice(const Chain& chain, const ChainState& state, std::siz
     const PairSlicer& slicer = *chain.slicers[s];
     std::size_t other_chart = 0;
     Rational value;
-    if (slicer.other_moves()) {
-      const PartState& other = state.parts[chain.chain_index[slicer.other()]];
-      other_chart = chain.other_chart_of_piece[s][other.position.piece];
-      if (other_chart == none) continue;
-      value = rational_near(other.position.value);
-      const ChartAxis& chart = slicer.other_charts()[other_chart];
-      if (value < chart.lo || value > chart.hi) continue;   // beyond any contact of this pair
-    }
+    if (!other_of(chain, state, s, other_chart, value)) continue;
     // a pair with a fixed part is sliced whole (and kept by its slicer): no memo
     AxisSlice slice = slicer.other_moves() ? slice_on_axis(line, slicer, s, other_chart, value, window, memo)
                                            : slice_on_axis(line, slicer, s, other_chart, value);
@@ -551,12 +557,40 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
   return Outcome::moved;
 }
 
+// The half widths of the windows a part's slices are asked in: the first, and `full`, from which
+// on a window covers the whole axis (the whole axis is sliced).
+struct WindowWidths {
+  double first = 0, full = 0;
+};
+WindowWidths window_widths(const AxisLine& line) {
+  const double full = line.rotation ? 4.0 : Rational(line.pieces.front().hi - line.pieces.front().lo).get_d();
+  return WindowWidths{line.rotation ? 0.06 : 0.1 * full, full};
+}
+
+// In a slice windowed around y (half width `width`), the blocked interval holding y is the whole
+// slice's only when both its ends are points well inside the window: a blocked interval reaching
+// a window edge merges with the unknown space beyond it (marked blocked, the edge's flagged
+// contact dropped with the class unchanged), so the end found there is a point on the window's
+// far side (cyclic axes), an axis end or none, not the whole slice's end. True as well when y is
+// on a point or in space that is not blocked (an end of free space at a window edge is flagged:
+// has_window_edge).
+bool blocked_ends_inside(const AxisLine& line, const AxisSlice& slice, const AxisPosition& y, double width) {
+  const Placement placement = place(line, slice, y);
+  if (placement.on_point || slice.kind(placement.interval) != SliceKind::blocked) return true;
+  const Bound low = lower_end(line, slice, placement.interval), high = upper_end(line, slice, placement.interval);
+  // the window's edges lie at `width` from y up to rounding: three quarters of it is inside, and
+  // a point beyond the far edge of a cyclic axis' window lies at least 2 pi - width away
+  const double inside = 0.75 * width;
+  return low.exists && high.exists && !has_window_edge(low.contacts) && !has_window_edge(high.contacts) &&
+         distance_down(line, y, low.at) <= inside && distance_up(line, y, high.at) <= inside;
+}
+
 // Slices part k around its old position, widening the window until the decision is local.
 Outcome update_windowed(const Chain& chain, std::size_t k, const PartState& old, ChainState& next, bool initial,
                         double max_push = std::numeric_limits<double>::infinity()) {
   const AxisLine& line = chain.parts[k].line;
-  double full = line.rotation ? 4.0 : Rational(line.pieces.front().hi - line.pieces.front().lo).get_d();
-  double width = initial ? full : line.rotation ? 0.06 : 0.1 * full;
+  const auto [first_width, full] = window_widths(line);
+  double width = initial ? full : first_width;
   // The windows asked are width, 4 width, 16 width, ... until a decision does not need the
   // slice beyond the window. A decision needs both ends of the free range it ends in (and the
   // followed contact), which lie near the old free range's ends. So the first of those windows
@@ -693,48 +727,70 @@ ChainState initial_state(const Chain& chain, std::size_t piece, const Rational& 
   next.parts[0].unwrapped = unwrapped;
   for (std::size_t k = 1; k < chain.parts.size(); ++k) {
     const AxisLine& line = chain.parts[k].line;
-    // The whole slices of part k's pairs: checked for interference here, and their
-    // intersection is the free space update_windowed(initial) would slice again (the same
-    // slices, skipped by the same rules as constraint_slice).
-    AxisSlice free_space;
-    bool first = true;
-    // interference of each pair at the initial configuration
-    for (std::size_t s : chain.parts[k].constraints) {
-      ChainState probe = next;
-      probe.parts[k] = start.parts[k];
-      const PairSlicer& slicer = *chain.slicers[s];
-      std::size_t other_chart = 0;
-      Rational other_value;
-      if (slicer.other_moves()) {
-        const PartState& other = next.parts[chain.chain_index[slicer.other()]];
-        other_chart = chain.other_chart_of_piece[s][other.position.piece];
-        if (other_chart == none) continue;
-        other_value = rational_near(other.position.value);
-        const ChartAxis& chart = slicer.other_charts()[other_chart];
-        if (other_value < chart.lo || other_value > chart.hi) continue;
-      }
-      AxisSlice slice = slice_on_axis(line, slicer, s, other_chart, other_value);
-      Placement placement = place(line, slice, start.parts[k].position);
-      if (!placement.on_point && slice.kind(placement.interval) == SliceKind::blocked) {
-        Bound low = lower_end(line, slice, placement.interval), high = upper_end(line, slice, placement.interval);
-        std::string description = "the parts overlap at the initial configuration";
-        std::vector<std::string> labels;
-        for (const Bound* bound : {&low, &high})
-          for (const SliceContact& contact : bound->contacts)
-            if (!contact.limit) labels.push_back(slicer.features()[contact.feature].label);
-        if (!labels.empty()) {
-          description += " (the overlap is bounded by: ";
-          for (std::size_t i = 0; i < labels.size(); ++i) description += (i ? "; " : "") + labels[i];
-          description += ")";
+    // The slices of part k's pairs around its initial position, in the windows update_windowed
+    // asks (width, 4 width, ... then the whole axis), widened until neither the interference
+    // found nor the decision needs the slice beyond the window: a window's slice is the whole
+    // slice's restriction (its edges bounded by contacts flagged `window`), so every class,
+    // bound and contact read inside it is the whole slice's. Their intersection is the free
+    // space update_windowed(initial) would slice again (the same slices, skipped by the same
+    // rules as constraint_slice: a pair with a fixed part is sliced whole).
+    const auto [first_width, full] = window_widths(line);
+    for (double width = initial_windows_switch() ? first_width : full;; width *= 4) {
+      const bool windowed = width < full;
+      const AxisWindow window{start.parts[k].position, width};
+      std::vector<Interference> found;
+      AxisSlice free_space;
+      bool first = true, widen = false;
+      // interference of each pair at the initial configuration
+      for (std::size_t s : chain.parts[k].constraints) {
+        const PairSlicer& slicer = *chain.slicers[s];
+        std::size_t other_chart = 0;
+        Rational other_value;
+        if (!other_of(chain, next, s, other_chart, other_value)) continue;
+        AxisSlice slice = slice_on_axis(line, slicer, s, other_chart, other_value,
+                                        windowed && slicer.other_moves() ? &window : nullptr);
+        if (windowed && !blocked_ends_inside(line, slice, start.parts[k].position, width)) {
+          widen = true;   // the overlap may reach beyond the window
+          break;
         }
-        interference.push_back(Interference{slicer.name(), description});
+        Placement placement = place(line, slice, start.parts[k].position);
+        if (!placement.on_point && slice.kind(placement.interval) == SliceKind::blocked) {
+          Bound low = lower_end(line, slice, placement.interval), high = upper_end(line, slice, placement.interval);
+          std::string description = "the parts overlap at the initial configuration";
+          std::vector<std::string> labels;
+          for (const Bound* bound : {&low, &high})
+            for (const SliceContact& contact : bound->contacts)
+              if (!contact.limit) labels.push_back(slicer.features()[contact.feature].label);
+          if (!labels.empty()) {
+            description += " (the overlap is bounded by: ";
+            for (std::size_t i = 0; i < labels.size(); ++i) description += (i ? "; " : "") + labels[i];
+            description += ")";
+          }
+          found.push_back(Interference{slicer.name(), description});
+        }
+        free_space = first ? std::move(slice) : intersect(line, free_space, slice);
+        first = false;
       }
-      free_space = first ? std::move(slice) : intersect(line, free_space, slice);
-      first = false;
+      // the decision reads the ends of the blocked interval holding the part, if any
+      if (!widen && windowed && !first) widen = !blocked_ends_inside(line, free_space, start.parts[k].position, width);
+      Outcome outcome = Outcome::widen;
+      if (!widen) {
+        const PartState before = next.parts[k];
+        outcome = update_part(chain, k, start.parts[k], free_space, next, true, std::numeric_limits<double>::infinity());
+        if (outcome == Outcome::widen && windowed) {
+          next.parts[k] = before;   // decided again in the wider window, as from the start
+          next.jammed = false;
+          widen = true;
+        }
+      }
+      if (widen) {
+        ++initial_widenings();
+        continue;
+      }
+      interference.insert(interference.end(), std::make_move_iterator(found.begin()), std::make_move_iterator(found.end()));
+      if (outcome == Outcome::widen || outcome == Outcome::jammed) return next;
+      break;
     }
-    // update_windowed(initial) slices the whole axis at once: the same decision on the slices above
-    Outcome outcome = update_part(chain, k, start.parts[k], free_space, next, true, std::numeric_limits<double>::infinity());
-    if (outcome == Outcome::widen || outcome == Outcome::jammed) return next;
   }
   return next;
 }

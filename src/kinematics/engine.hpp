@@ -98,8 +98,15 @@ ChainState non_strict_step(const Chain& chain, const ChainState& state, std::siz
 
 /// The initial state: every part at its initial configuration (rounded to rational chart
 /// values), pushed out of blocked space if needed. `interference` receives the overlaps found.
+/// Each part's slices are asked in windows around its initial position, widened until the
+/// overlaps and the decision lie inside (the same answers as the whole axis's slices).
 ChainState initial_state(const Chain& chain, std::size_t piece, const Rational& value, double unwrapped,
                          std::vector<Interference>& interference);
+/// Per-thread switch of initial_state's windows (on by default; tests turn it off to compare
+/// with the whole axis's slices), and the count of windows it widened on this thread (tests).
+struct InitialWindowsTag;
+inline bool& initial_windows_switch() { return thread_switch<InitialWindowsTag>(); }
+inline std::size_t& initial_widenings() { return thread_counter<InitialWindowsTag>(); }
 
 /// True when the contact situation of every part is the same.
 bool same_contacts(const ChainState& a, const ChainState& b);

@@ -4,6 +4,7 @@
 // engine's kept rates and coordinates against recomputing them.
 #include "algebra/exact_real.hpp"
 #include "kinematics/engine.hpp"
+#include "chain_states.hpp"
 #include "test_paths.hpp"
 
 #include <hipair/model.hpp>
@@ -23,6 +24,7 @@ namespace {
 using cspace::algebra::Polynomial;
 using cspace::algebra::Real;
 namespace algebra = cspace::algebra;
+using test_chain::expect_same_state;
 
 Polynomial multiply(const Polynomial& a, const Polynomial& b) {
   Polynomial product(a.size() + b.size() - 1);
@@ -272,60 +274,6 @@ TEST(AnalyzeFastPaths, FractionFreeSlopesAreTheRationalOnes) {
 // for field. Generated steps along the first chart of three examples' drivers: from states of a
 // walk, and from those states with the followers moved by up to 0.05 rad, to driver values from
 // 10^-6 to 0.6 rad ahead (strict steps that are and are not coarse).
-void expect_same_real(const Real& a, const Real& b, const std::string& where) {
-  EXPECT_EQ(a.exact, b.exact) << where;
-  EXPECT_EQ(a.lower, b.lower) << where;
-  EXPECT_EQ(a.upper, b.upper) << where;
-  EXPECT_TRUE(a.polynomial == b.polynomial) << where;
-}
-
-void expect_same_state(const kinematics_detail::ChainState& a, const kinematics_detail::ChainState& b,
-                       const std::string& where) {
-  using namespace kinematics_detail;
-  auto bits = [](double x) {
-    std::uint64_t u;
-    std::memcpy(&u, &x, sizeof u);
-    return u;
-  };
-  auto same_bound = [&](const Bound& x, const Bound& y, const std::string& what) {
-    EXPECT_EQ(x.exists, y.exists) << what;
-    EXPECT_EQ(x.limit, y.limit) << what;
-    EXPECT_EQ(x.at.piece, y.at.piece) << what;
-    expect_same_real(x.at.value, y.at.value, what);
-    EXPECT_EQ(x.contacts, y.contacts) << what;
-  };
-  EXPECT_EQ(a.driver_piece, b.driver_piece) << where;
-  EXPECT_EQ(a.driver_value, b.driver_value) << where;
-  EXPECT_EQ(bits(a.driver_unwrapped), bits(b.driver_unwrapped)) << where;
-  EXPECT_EQ(a.jammed, b.jammed) << where;
-  EXPECT_EQ(a.coarse, b.coarse) << where;
-  EXPECT_EQ(a.jam_part, b.jam_part) << where;
-  EXPECT_EQ(a.jam_reason, b.jam_reason) << where;
-  EXPECT_EQ(a.jam_contacts, b.jam_contacts) << where;
-  ASSERT_EQ(a.known_rates.size(), b.known_rates.size()) << where;
-  for (std::size_t k = 0; k < a.known_rates.size(); ++k) {
-    EXPECT_EQ(bits(a.known_rates[k].ratio), bits(b.known_rates[k].ratio)) << where;
-    EXPECT_EQ(bits(a.known_rates[k].acceleration), bits(b.known_rates[k].acceleration)) << where;
-  }
-  ASSERT_EQ(a.parts.size(), b.parts.size()) << where;
-  for (std::size_t k = 0; k < a.parts.size(); ++k) {
-    const PartState &x = a.parts[k], &y = b.parts[k];
-    std::string part = where + " part " + std::to_string(k);
-    EXPECT_EQ(x.position.piece, y.position.piece) << part;
-    expect_same_real(x.position.value, y.position.value, part);
-    EXPECT_EQ(bits(x.unwrapped), bits(y.unwrapped)) << part;
-    EXPECT_EQ(x.side, y.side) << part;
-    EXPECT_EQ(x.contacts, y.contacts) << part;
-    same_bound(x.lower, y.lower, part + " lower");
-    same_bound(x.upper, y.upper, part + " upper");
-    EXPECT_EQ(x.kind, y.kind) << part;
-    EXPECT_EQ(x.pushed, y.pushed) << part;
-    EXPECT_EQ(bits(x.push_distance), bits(y.push_distance)) << part;
-    EXPECT_EQ(x.blocked_by, y.blocked_by) << part;
-    EXPECT_EQ(x.channel, y.channel) << part;
-  }
-}
-
 TEST(AnalyzeFastPaths, NonStrictStepReusesOnlyAStrictStepThatWasNotCoarse) {
   using namespace kinematics_detail;
   std::mt19937_64 random(25);

@@ -103,7 +103,8 @@ TEST(AnalyzePictureSharedCurves, PicturesEqualFreshBuildsOnEveryExample) {
     if (std::string(name) == "geneva.json" || std::string(name) == "ratchet.json") {
       EXPECT_EQ(outcome.pictures, 1u) << name;
       // (the analysis's third of a turn forms ≈ 180 of Geneva's curves, ≈ 45 of the ratchet's)
-      EXPECT_GT(outcome.reused, std::string(name) == "geneva.json" ? 100u : 20u) << name << ": the picture formed its curves again";
+      // (Geneva: 70 since the initial state slices windows, session 35: fewer strip curves formed)
+      EXPECT_GT(outcome.reused, std::string(name) == "geneva.json" ? 50u : 20u) << name << ": the picture formed its curves again";
     }
   }
   EXPECT_GE(pictures, 10u);
@@ -139,7 +140,7 @@ TEST(AnalyzePictureSharedCurves, PicturesEqualFreshBuildsOnGeneratedParameterSet
       Model model = read_model_file(file, read);
       Outcome outcome = compare_pictures(model, what);
       EXPECT_EQ(outcome.pictures, 1u) << what;
-      EXPECT_GT(outcome.reused, std::string(varied.model) == "geneva.json" ? 100u : 20u) << what;
+      EXPECT_GT(outcome.reused, std::string(varied.model) == "geneva.json" ? 50u : 20u) << what;
     }
   }
 }

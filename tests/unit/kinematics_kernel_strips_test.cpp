@@ -11,9 +11,11 @@
 //     zero-clearance fit;
 //   - the class of every interval is the class of each whole-chart interval inside it;
 //   - the feature labels agree.
+#include "kinematics/engine.hpp"
 #include "kinematics/slice.hpp"
 #include "test_paths.hpp"
 #include "spur_gear_pairs.hpp"
+#include "chain_states.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
@@ -21,7 +23,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <optional>
 #include <random>
 #include <string>
@@ -344,6 +348,123 @@ TEST(KernelSlicerLazyCull, SameSlicesAsWholeStripsOnGeneratedGearPairs) {
   }
   EXPECT_GT(counts.points, 0u);
   EXPECT_LT(counts.lazy_cells, counts.whole_cells);
+}
+
+// The engine's initial state from windows (session 35): initial_state slices each part's pairs in
+// the windows update_windowed asks (0.06 rad, 4 x, 16 x, ... then the whole axis) around the
+// initial position, widened while an overlap found or the decision reaches a window edge, so
+// that the first strips' blocked-space cull runs over the cells near the start instead of the
+// whole follower axis. Against the whole axis's slices (initial_windows_switch off), on chains
+// of their own: generated spur-gear pairs (both gears as drivers) and example mechanisms, the
+// driver at random chart values and strip borders, the followers at random initial angles (most
+// overlapping the driver: interference found, bounded by contacts a window may cut off, and
+// the follower pushed out): the same state field for field, the same interference (pairs and
+// descriptions), and the same states over a few steps from it (the lazily culled strips then
+// extended by the steps' windows).
+struct InitialCounts {
+  std::size_t cases = 0, overlapping = 0, widened = 0, lazy_cells = 0, whole_cells = 0;
+};
+
+void compare_initial_states(Model& model, std::size_t driver, int cases, std::uint64_t seed, const std::string& name,
+                            InitialCounts& counts) {
+  std::mt19937_64 random(seed);
+  Chain windows = build_chain(model, driver, {}, SliceMethod::kernels, {});
+  Chain whole = build_chain(model, driver, {}, SliceMethod::kernels, {});
+  const AxisLine& line = windows.parts[0].line;
+  if (!line.rotation) return;
+  std::vector<Rational> model_angles;
+  for (const Part& part : model.parts) model_angles.push_back(part.initial.angle);
+  for (int c = 0; c < cases; ++c) {
+    // the followers' initial angles (read by initial_state from the model): the model's own with
+    // the driver at 0 in the first case, else random
+    for (std::size_t k = 1; k < windows.parts.size(); ++k) {
+      Part& part = model.parts[windows.parts[k].part];
+      if (part.motion.kind != Motion::Kind::rotation) continue;
+      Rational angle(static_cast<long>(random() % 6283) - 3141, 1000);
+      angle.canonicalize();
+      part.initial.angle = c == 0 ? model_angles[windows.parts[k].part] : angle;
+    }
+    const std::size_t piece = c == 0 ? 0 : random() % line.pieces.size();
+    const Rational value = c == 0 ? Rational(std::clamp(Rational(0), line.pieces[0].lo, line.pieces[0].hi))
+                                  : chart_value(line.pieces[piece], random, 2 + static_cast<int>(random() % 8));
+    const double unwrapped = line.coordinate(piece, value.get_d());
+    const std::string where = name + " case " + std::to_string(c) + " driver at " + value.get_str();
+    std::vector<Interference> found_windows, found_whole;
+    const std::size_t widenings = initial_widenings();
+    ChainState a = initial_state(windows, piece, value, unwrapped, found_windows);
+    counts.widened += initial_widenings() - widenings;
+    initial_windows_switch() = false;
+    ChainState b = initial_state(whole, piece, value, unwrapped, found_whole);
+    initial_windows_switch() = true;
+    test_chain::expect_same_state(a, b, where, false);
+    ASSERT_EQ(found_windows.size(), found_whole.size()) << where;
+    for (std::size_t i = 0; i < found_whole.size(); ++i) {
+      EXPECT_EQ(found_windows[i].pair, found_whole[i].pair) << where;
+      EXPECT_EQ(found_windows[i].description, found_whole[i].description) << where;
+    }
+    if (::testing::Test::HasFailure()) return;
+    ++counts.cases;
+    counts.overlapping += !found_whole.empty();
+    // a few steps on (grid steps and halvings of them)
+    Rational u = value;
+    double theta = unwrapped;
+    for (int s = 0; s < 3 && !a.jammed; ++s) {
+      const double ahead = (s == 1 ? 0.5 : 1.0) * 2 * std::acos(-1.0) / 360;
+      const double to = std::min(theta + ahead, line.coordinate(piece, line.pieces[piece].hi.get_d()));
+      if (!(to > theta)) break;
+      Rational t(std::tan((to - line.coordinate(piece, 0.0)) / 2));
+      if (t <= u || t > line.pieces[piece].hi) break;
+      a = step(windows, a, piece, t, to);
+      b = step(whole, b, piece, t, to);
+      test_chain::expect_same_state(a, b, where + " step " + std::to_string(s), false);
+      if (::testing::Test::HasFailure()) return;
+      u = t;
+      theta = to;
+    }
+  }
+  for (const auto& slicer : windows.slicers) counts.lazy_cells += kernel_slice_class_counts(*slicer).strip_cells_culled;
+  for (const auto& slicer : whole.slicers) counts.whole_cells += kernel_slice_class_counts(*slicer).strip_cells_culled;
+}
+
+TEST(KernelSlicerLazyCull, InitialStatesFromWindowsAreTheWholeAxissOnGeneratedGearPairs) {
+  std::mt19937_64 random(35001);
+  InitialCounts counts;
+  for (int g = 0; g < 2; ++g) {
+    const long z1 = 6 + static_cast<long>(random() % 9), z2 = 6 + static_cast<long>(random() % 11);
+    std::string name;
+    Model model = test_gears::spur_gear_pair(random, z1, z2, name);
+    const std::size_t driver = g == 0 ? model.pairs[0].first : model.pairs[0].second;
+    compare_initial_states(model, driver, 5, random(), name, counts);
+    if (HasFailure()) return;
+  }
+  std::cout << "gears: " << counts.cases << " initial states, " << counts.overlapping << " overlapping, " << counts.widened
+            << " windows widened, " << counts.lazy_cells << " strip cells culled (whole axis: " << counts.whole_cells << ")\n";
+  EXPECT_EQ(counts.cases, 10u);
+  EXPECT_GT(counts.overlapping, 2u);
+  EXPECT_LT(counts.overlapping, counts.cases);
+  EXPECT_GT(counts.widened, 0u);
+  EXPECT_LT(counts.lazy_cells, counts.whole_cells);
+}
+
+TEST(KernelSlicerLazyCull, InitialStatesFromWindowsAreTheWholeAxissOnExamples) {
+  InitialCounts counts;
+  std::uint64_t seed = 35100;
+  for (const char* file : {"geneva.json", "ratchet.json", "escapement.json"}) {
+    Model model = read_model_file(example(file));
+    std::size_t driver = model.pairs.front().first;
+    for (std::size_t candidate : {model.pairs.front().first, model.pairs.front().second})
+      if (model.parts[candidate].motion.kind == Motion::Kind::rotation) {
+        driver = candidate;
+        break;
+      }
+    compare_initial_states(model, driver, 6, ++seed, file, counts);
+    if (HasFailure()) return;
+  }
+  std::cout << "examples: " << counts.cases << " initial states, " << counts.overlapping << " overlapping, "
+            << counts.widened << " windows widened\n";
+  EXPECT_GT(counts.cases, 12u);
+  EXPECT_GT(counts.overlapping, 0u);
+  EXPECT_GT(counts.widened, 0u);
 }
 
 }  // namespace
