@@ -34,6 +34,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <vector>
 
 namespace hipair::cspace {
@@ -80,27 +81,29 @@ class SignAt {
     }
     return value;
   }
-  // the point's enclosures (the numerators' values over the denominator's enclosure)
-  void enclose(HPoint& h) const {
-    for (auto [poly, box] : {std::pair{&h.X, &h.x}, std::pair{&h.Y, &h.y}, std::pair{&h.W, &h.w}}) {
-      const Interval d = algebra::enclose(poly->denominator());
-      const Interval n = numerators(*poly);
-      // n / d with d > 0: the hull of the end quotients, rounded outwards
-      if (!(d.lo > 0)) {
-        *box = Interval{-__builtin_inf(), __builtin_inf()};
-        continue;
-      }
-      const double q[4] = {n.lo / d.lo, n.lo / d.hi, n.hi / d.lo, n.hi / d.hi};
-      double lo = q[0], hi = q[0];
-      bool nan = false;
-      for (double v : q) {
-        nan = nan || v != v;
-        lo = v < lo ? v : lo;
-        hi = v > hi ? v : hi;
-      }
-      *box = nan ? Interval{-__builtin_inf(), __builtin_inf()}
-                 : Interval{algebra::interval_detail::down(lo), algebra::interval_detail::up(hi)};
+  // the polynomial's value at the point, enclosed (the numerators' values over the
+  // denominator's enclosure; the whole line when that overflowed)
+  Interval value(const Poly& poly) const {
+    const Interval d = algebra::enclose(poly.denominator());
+    const Interval n = numerators(poly);
+    // n / d with d > 0: the hull of the end quotients, rounded outwards
+    if (!(d.lo > 0)) return Interval{-__builtin_inf(), __builtin_inf()};
+    const double q[4] = {n.lo / d.lo, n.lo / d.hi, n.hi / d.lo, n.hi / d.hi};
+    double lo = q[0], hi = q[0];
+    bool nan = false;
+    for (double v : q) {
+      nan = nan || v != v;
+      lo = v < lo ? v : lo;
+      hi = v > hi ? v : hi;
     }
+    return nan ? Interval{-__builtin_inf(), __builtin_inf()}
+               : Interval{algebra::interval_detail::down(lo), algebra::interval_detail::up(hi)};
+  }
+  // the point's enclosures
+  void enclose(HPoint& h) const {
+    h.x = value(h.X);
+    h.y = value(h.Y);
+    h.w = value(h.W);
   }
   int operator()(const Poly& p) const {
     if (p.is_zero()) return 0;
@@ -274,6 +277,38 @@ V2 left_perpendicular(const V2& a) { return V2{-a.y, a.x}; }
 Poly cross(const V2& a, const V2& b) { return a.x * b.y - a.y * b.x; }
 Poly dot(const V2& a, const V2& b) { return a.x * b.x + a.y * b.y; }
 
+// A certified axis-parallel box (the broad phase): two features whose boxes are apart cannot
+// meet. A NaN bound never separates (every comparison with it is false).
+struct Box {
+  Interval x{0, 0}, y{0, 0};
+};
+bool apart(const Box& a, const Box& b) {
+  return a.x.hi < b.x.lo || b.x.hi < a.x.lo || a.y.hi < b.y.lo || b.y.hi < a.y.lo;
+}
+// the smaller lower bound, the larger upper one (-inf, +inf when either is NaN)
+double lower(double a, double b) { return a != a || b != b ? -__builtin_inf() : a < b ? a : b; }
+double upper(double a, double b) { return a != a || b != b ? __builtin_inf() : a > b ? a : b; }
+Box hull(const Box& a, const Box& b) {
+  return Box{Interval{lower(a.x.lo, b.x.lo), upper(a.x.hi, b.x.hi)}, Interval{lower(a.y.lo, b.y.lo), upper(a.y.hi, b.y.hi)}};
+}
+// the box of the point (x, y) turned by -90 degrees, (y, -x)
+Box turned_box(const Box& b) { return Box{b.y, Interval{-b.x.hi, -b.x.lo}}; }
+// enclosed vectors: the interval shadows of V2's cross and dot products
+Box operator-(const Box& a, const Box& b) { return Box{a.x - b.x, a.y - b.y}; }
+Interval cross(const Box& a, const Box& b) { return a.x * b.y - a.y * b.x; }
+Interval dot(const Box& a, const Box& b) { return a.x * b.x + a.y * b.y; }
+Interval exactly(double v) { return Interval{v, v}; }
+Interval operator-(Interval a) { return Interval{-a.hi, -a.lo}; }
+// an enclosure of the square root of a value enclosed by v (its non-negative part)
+Interval root(const Interval& v) {
+  using algebra::interval_detail::down;
+  using algebra::interval_detail::up;
+  const double lo = v.lo > 0 ? down(std::sqrt(v.lo)) : 0;
+  return Interval{lo > 0 ? lo : 0, v.hi >= 0 ? up(std::sqrt(v.hi)) : 0};
+}
+// a sign certain from an enclosure: -1, 0 only for [0, 0], +1, or 2 (uncertain)
+int known_sign(const Interval& v) { return v.lo == 0 && v.hi == 0 ? 0 : certain_sign(v); }
+
 struct CurvedEdge {
   bool arc = false;
   bool ccw = true;
@@ -281,6 +316,13 @@ struct CurvedEdge {
   V2 from, to, center;
   Poly radius_squared;
   std::size_t loop = 0;
+  Box from_box, box;   // enclosures of the source vertex and of the whole edge
+  // an arc's enclosures: its centre, its squared radius, and the directions from the centre
+  // to the ends of its counter-clockwise sector, start and end, with the sign of their cross
+  // product (2: uncertain)
+  Box to_box, center_box, start, end;
+  Interval radius_squared_box{0, 0};
+  int turn = 2;
 };
 
 // A boundary germ at a common point: its tangent direction, signed curvature (sign, r^2),
@@ -297,10 +339,20 @@ class CurvedRelation {
  public:
   CurvedRelation(std::array<std::vector<std::vector<CurvedEdge>>, 2> loops, const SignAt& sign)
       : loops_(std::move(loops)), sign_(sign) {
-    for (int side = 0; side < 2; ++side) common_[side].assign(loops_[side].size(), false);
+    for (int side = 0; side < 2; ++side) {
+      common_[side].assign(loops_[side].size(), false);
+      for (auto& loop : loops_[side])
+        for (CurvedEdge& e : loop) bound(e);
+    }
   }
 
   std::optional<Overlap> run() {
+    // two interiors certainly crossing (the double filter alone): overlapping
+    for (const auto& la : loops_[0])
+      for (const CurvedEdge& a : la)
+        for (const auto& lb : loops_[1])
+          for (const CurvedEdge& b : lb)
+            if (interiors_meet(a, b) == 1) return Overlap::overlapping;
     for (int side = 0; side < 2; ++side)
       for (std::size_t l = 0; l < loops_[side].size(); ++l)
         for (std::size_t k = 0; k < loops_[side][l].size(); ++k)
@@ -309,7 +361,7 @@ class CurvedRelation {
       for (const CurvedEdge& a : la)
         for (const auto& lb : loops_[1])
           for (const CurvedEdge& b : lb)
-            if (interiors_overlap(a, b)) return Overlap::overlapping;
+            if (const int meet = interiors_meet(a, b); meet == 1 || (meet == 2 && interiors_overlap(a, b))) return Overlap::overlapping;
     for (int side = 0; side < 2; ++side)
       for (std::size_t l = 0; l < loops_[side].size(); ++l) {
         if (common_[side][l]) continue;
@@ -322,6 +374,109 @@ class CurvedRelation {
 
  private:
   int sign(const Poly& p) const { return sign_(p); }
+  Box point_box(const V2& p) const { return Box{sign_.value(p.x), sign_.value(p.y)}; }
+
+  // The edge's certified boxes: a segment's is its ends' hull; an arc's adds each extreme of
+  // its circle (centre +- radius along an axis) whose direction from the centre is not
+  // certainly outside the arc's sector.
+  void bound(CurvedEdge& e) const {
+    using algebra::interval_detail::down;
+    using algebra::interval_detail::up;
+    e.from_box = point_box(e.from);
+    e.to_box = point_box(e.to);
+    e.box = hull(e.from_box, e.to_box);
+    if (!e.arc) return;
+    const Box& c = e.center_box = point_box(e.center);
+    e.radius_squared_box = sign_.value(e.radius_squared);
+    const double r = root(e.radius_squared_box).hi;   // an upper bound of the radius
+    e.start = (e.ccw ? e.from_box : e.to_box) - c;
+    e.end = (e.ccw ? e.to_box : e.from_box) - c;
+    e.turn = e.full ? 2 : certain_sign(cross(e.start, e.end));
+    // each extreme of the circle unless its direction is certainly outside the closed sector
+    auto reaches = [&](double dx, double dy) { return in_sector(e, Box{exactly(dx), exactly(dy)}) != 0; };
+    if (reaches(1, 0)) e.box.x.hi = upper(e.box.x.hi, up(c.x.hi + r));
+    if (reaches(-1, 0)) e.box.x.lo = lower(e.box.x.lo, down(c.x.lo - r));
+    if (reaches(0, 1)) e.box.y.hi = upper(e.box.y.hi, up(c.y.hi + r));
+    if (reaches(0, -1)) e.box.y.lo = lower(e.box.y.lo, down(c.y.lo - r));
+  }
+
+  // The certified double filter of the predicates below (their interval shadows over the
+  // enclosures): 1 or 0 when certain, 2 when the exact predicate must decide.
+  //
+  // Is the enclosed direction v strictly inside the arc's sector (1), certainly outside its
+  // closed sector (0)? Sweep < 180 degrees: inside iff cross(start, v) > 0 and cross(v, end) >
+  // 0; sweep > 180: inside iff cross(start, v) > 0 or cross(v, end) > 0, outside the closed
+  // sector iff both are < 0 (v strictly inside the complementary sector); a full circle holds
+  // every direction but its start's; a sweep near 0, 180 or 360 degrees is uncertain.
+  static int in_sector(const CurvedEdge& e, const Box& v) {
+    const int a = certain_sign(cross(e.start, v)), b = certain_sign(cross(v, e.end));
+    if (e.full) return a == 1 || a == -1 ? 1 : 2;
+    if (e.turn == 1) return a == 1 && b == 1 ? 1 : a == -1 || b == -1 ? 0 : 2;
+    if (e.turn == -1) return a == 1 || b == 1 ? 1 : a == -1 && b == -1 ? 0 : 2;
+    return 2;
+  }
+  // is the enclosed point p certainly off edge e (0), or uncertain (2)?
+  static int maybe_on_edge(const Box& p, const CurvedEdge& e) {
+    if (apart(p, e.box)) return 0;
+    const Box v = e.arc ? p - e.center_box : Box{};
+    const int off = e.arc ? certain_sign(dot(v, v) - e.radius_squared_box) : certain_sign(cross(e.to_box - e.from_box, p - e.from_box));
+    return off == 1 || off == -1 ? 0 : 2;
+  }
+  // Do the interiors of a and b certainly cross (1), certainly have no common point (0)?
+  static int interiors_meet(const CurvedEdge& a, const CurvedEdge& b) {
+    if (apart(a.box, b.box)) return 0;
+    if (!a.arc && !b.arc) {
+      const Box da = a.to_box - a.from_box, db = b.to_box - b.from_box;
+      const int o1 = known_sign(cross(da, b.from_box - a.from_box)), o2 = known_sign(cross(da, b.to_box - a.from_box));
+      const int o3 = known_sign(cross(db, a.from_box - b.from_box)), o4 = known_sign(cross(db, a.to_box - b.from_box));
+      auto separated = [](int p, int q) { return (p == 1 && q == 1) || (p == -1 && q == -1); };
+      if (separated(o1, o2) || separated(o3, o4)) return 0;
+      return o1 * o2 == -1 && o3 * o4 == -1 ? 1 : 2;
+    }
+    if (!a.arc || !b.arc) {
+      const CurvedEdge& s = a.arc ? b : a;
+      const CurvedEdge& c = a.arc ? a : b;
+      // s.from + u d on the circle: a u^2 + 2 b u + q = 0, disc = b^2 - a q
+      const Box d = s.to_box - s.from_box, f = s.from_box - c.center_box;
+      const Interval qa = dot(d, d), qb = dot(d, f), qq = dot(f, f) - c.radius_squared_box;
+      const Interval disc = qb * qb - qa * qq;
+      const int sd = certain_sign(disc);
+      if (sd == -1) return 0;
+      // both ends strictly inside the disk: the segment is inside it
+      if (certain_sign(qq) == -1 && certain_sign(dot(s.to_box - c.center_box, s.to_box - c.center_box) - c.radius_squared_box) == -1)
+        return 0;
+      if (sd != 1 || !(qa.lo > 0)) return 2;
+      // u = (-b +- sqrt(disc)) / a, the point's direction from the centre f + u d
+      int result = 0;
+      for (const double pm : {1.0, -1.0}) {
+        const Interval uu = (-qb + exactly(pm) * root(disc)) *
+                            Interval{algebra::interval_detail::down(1 / qa.hi), algebra::interval_detail::up(1 / qa.lo)};
+        const int inside = uu.lo > 0 && uu.hi < 1 ? 1 : uu.hi < 0 || uu.lo > 1 ? 0 : 2;
+        const int on_arc = inside == 0 ? 0 : in_sector(c, Box{f.x + uu * d.x, f.y + uu * d.y});
+        if (inside == 1 && on_arc == 1) return 1;
+        if (inside != 0 && on_arc != 0) result = 2;
+      }
+      return result;
+    }
+    const Box e = b.center_box - a.center_box;
+    const Interval d2 = dot(e, e), ra = root(a.radius_squared_box), rb = root(b.radius_squared_box);
+    const Interval outer = d2 - (ra + rb) * (ra + rb), inner = d2 - (ra - rb) * (ra - rb);
+    if (certain_sign(outer) == 1 || certain_sign(inner) == -1) return 0;
+    if (certain_sign(outer) != -1 || certain_sign(inner) != 1) return 2;
+    // the circles cross at (l e +- sqrt(k) n) / d^2 from a's centre, ((l - d^2) e +- sqrt(k) n)
+    // / d^2 from b's, n = e turned left, l = (d^2 + ra^2 - rb^2) / 2, k = ra^2 d^2 - l^2
+    const Interval l = (d2 + a.radius_squared_box - b.radius_squared_box) * exactly(0.5);
+    const Interval rk = root(a.radius_squared_box * d2 - l * l), lb = l - d2;
+    int result = 0;
+    for (const double pm : {1.0, -1.0}) {
+      const Interval nx = exactly(-pm) * e.y * rk, ny = exactly(pm) * e.x * rk;
+      const int on_a = in_sector(a, Box{l * e.x + nx, l * e.y + ny});
+      const int on_b = on_a == 0 ? 0 : in_sector(b, Box{lb * e.x + nx, lb * e.y + ny});
+      if (on_a == 1 && on_b == 1) return 1;
+      if (on_a != 0 && on_b != 0) result = 2;
+    }
+    return result;
+  }
   // sign of u + v sqrt(w), w >= 0 at the point
   int sign_with_root(const Poly& u, const Poly& v, const Poly& w) const {
     const int su = sign(u), sv = sign(v);
@@ -441,7 +596,7 @@ class CurvedRelation {
     std::vector<Germ> germs;
     for (std::size_t m = 0; m < loops_[1 - side].size(); ++m)
       for (const CurvedEdge& e : loops_[1 - side][m])
-        if (on_edge(p, e, false)) {
+        if (maybe_on_edge(loop[k].from_box, e) != 0 && on_edge(p, e, false)) {
           edge_germs(1 - side, e, p, germs);
           common_[1 - side][m] = true;
         }
@@ -535,19 +690,24 @@ class CurvedRelation {
           t.from = turn(e.from);
           t.to = turn(e.to);
           if (e.arc) t.center = turn(e.center);
+          if (turned) t.box = turned_box(e.box);
           edges.push_back(std::move(t));
         }
       for (const CurvedEdge& start : loop)
-        if (std::optional<int> crossings = ray_crossings(turn(start.from), edges)) return *crossings % 2 == 1;
+        if (std::optional<int> crossings = ray_crossings(turn(start.from), turned ? turned_box(start.from_box) : start.from_box, edges))
+          return *crossings % 2 == 1;
     }
     return std::nullopt;
   }
 
   // The crossings of the ray from p to +x with the edges; nullopt when the ray's line passes
   // through a vertex or touches a circle.
-  std::optional<int> ray_crossings(const V2& p, const std::vector<CurvedEdge>& edges) const {
+  // Edges whose boxes lie certainly above, below or left of p's are skipped: the ray meets
+  // none of their points.
+  std::optional<int> ray_crossings(const V2& p, const Box& p_box, const std::vector<CurvedEdge>& edges) const {
     int crossings = 0;
     for (const CurvedEdge& e : edges) {
+      if (e.box.y.hi < p_box.y.lo || p_box.y.hi < e.box.y.lo || e.box.x.hi < p_box.x.lo) continue;
       const int from_side = sign(e.from.y - p.y), to_side = sign(e.to.y - p.y);
       if (from_side == 0 || to_side == 0) return std::nullopt;
       if (!e.arc) {
