@@ -323,6 +323,14 @@ struct CurvedEdge {
   Box to_box, center_box, start, end;
   Interval radius_squared_box{0, 0};
   int turn = 2;
+  const Edge* source = nullptr;   // the model's edge, posed as polynomials only when needed
+  bool posed = false;
+};
+
+// A part's symbolic pose scaled by the other part's weight (points are W (x, y), W = w1 w2).
+struct ScaledPose {
+  const kernels::Pose<Poly>* pose = nullptr;
+  const Poly* other_w = nullptr;
 };
 
 // A boundary germ at a common point: its tangent direction, signed curvature (sign, r^2),
@@ -337,13 +345,39 @@ struct Germ {
 
 class CurvedRelation {
  public:
-  CurvedRelation(std::array<std::vector<std::vector<CurvedEdge>>, 2> loops, const SignAt& sign)
-      : loops_(std::move(loops)), sign_(sign) {
+  CurvedRelation(std::array<std::vector<std::vector<CurvedEdge>>, 2> loops, std::array<ScaledPose, 2> poses, const SignAt& sign)
+      : loops_(std::move(loops)), poses_(poses), sign_(sign) {
     for (int side = 0; side < 2; ++side) {
       common_[side].assign(loops_[side].size(), false);
+      const kernels::Pose<Poly>& pose = *poses_[side].pose;
+      const Interval c = sign_.value(pose.c), s = sign_.value(pose.s), w = sign_.value(pose.w), ow = sign_.value(*poses_[side].other_w);
+      const Box pivot{sign_.value(pose.pivot.x), sign_.value(pose.pivot.y)}, shift{sign_.value(pose.shift.x), sign_.value(pose.shift.y)};
+      // the interval shadow of place() times the other weight
+      auto at = [&](const Point& p) {
+        const Interval dx = algebra::enclose(p.x) - pivot.x, dy = algebra::enclose(p.y) - pivot.y;
+        return Box{(w * (pivot.x + shift.x) + c * dx - s * dy) * ow, (w * (pivot.y + shift.y) + s * dx + c * dy) * ow};
+      };
+      const Interval weight = w * ow;
       for (auto& loop : loops_[side])
-        for (CurvedEdge& e : loop) bound(e);
+        for (CurvedEdge& e : loop) {
+          e.from_box = at(e.source->source);
+          e.to_box = at(e.source->target);
+          if (e.arc) {
+            e.center_box = at(e.source->center);
+            e.radius_squared_box = algebra::enclose(e.source->radius_squared) * weight * weight;
+          }
+          bound(e);
+        }
     }
+    // the polynomials of every edge whose box meets one of the other part's
+    for (auto& la : loops_[0])
+      for (CurvedEdge& a : la)
+        for (auto& lb : loops_[1])
+          for (CurvedEdge& b : lb)
+            if (!apart(a.box, b.box)) {
+              pose(0, a);
+              pose(1, b);
+            }
   }
 
   std::optional<Overlap> run() {
@@ -374,7 +408,24 @@ class CurvedRelation {
 
  private:
   int sign(const Poly& p) const { return sign_(p); }
-  Box point_box(const V2& p) const { return Box{sign_.value(p.x), sign_.value(p.y)}; }
+  // the edge's points as polynomials, once
+  void pose(int side, CurvedEdge& e) const {
+    if (e.posed) return;
+    e.posed = true;
+    const kernels::Pose<Poly>& pose = *poses_[side].pose;
+    const Poly& other_w = *poses_[side].other_w;
+    auto at = [&](const Point& p) {
+      HPoint h = place(pose, p);
+      return V2{h.X * other_w, h.Y * other_w};
+    };
+    e.from = at(e.source->source);
+    e.to = at(e.source->target);
+    if (e.arc) {
+      e.center = at(e.source->center);
+      const Poly w = pose.w * other_w;
+      e.radius_squared = constant(e.source->radius_squared) * w * w;
+    }
+  }
 
   // The edge's certified boxes: a segment's is its ends' hull; an arc's adds each extreme of
   // its circle (centre +- radius along an axis) whose direction from the centre is not
@@ -382,12 +433,9 @@ class CurvedRelation {
   void bound(CurvedEdge& e) const {
     using algebra::interval_detail::down;
     using algebra::interval_detail::up;
-    e.from_box = point_box(e.from);
-    e.to_box = point_box(e.to);
     e.box = hull(e.from_box, e.to_box);
     if (!e.arc) return;
-    const Box& c = e.center_box = point_box(e.center);
-    e.radius_squared_box = sign_.value(e.radius_squared);
+    const Box& c = e.center_box;
     const double r = root(e.radius_squared_box).hi;   // an upper bound of the radius
     e.start = (e.ccw ? e.from_box : e.to_box) - c;
     e.end = (e.ccw ? e.to_box : e.from_box) - c;
@@ -680,7 +728,10 @@ class CurvedRelation {
   // Ray parity from one of its vertices to +x, or else to +y (the scene turned by -90 degrees,
   // which keeps orientations); nullopt when every vertex has a vertex of the other part at its
   // height and at its abscissa.
-  std::optional<bool> loop_inside(const std::vector<CurvedEdge>& loop, int other) const {
+  std::optional<bool> loop_inside(std::vector<CurvedEdge>& loop, int other) {
+    for (CurvedEdge& e : loop) pose(1 - other, e);
+    for (auto& l : loops_[other])
+      for (CurvedEdge& e : l) pose(other, e);
     for (const bool turned : {false, true}) {
       auto turn = [turned](const V2& v) { return turned ? V2{v.y, -v.x} : v; };
       std::vector<CurvedEdge> edges;
@@ -729,33 +780,25 @@ class CurvedRelation {
   }
 
   std::array<std::vector<std::vector<CurvedEdge>>, 2> loops_;
+  std::array<ScaledPose, 2> poses_;
   const SignAt& sign_;
   std::array<std::vector<bool>, 2> common_;
   bool touching_ = false;
 };
 
-// The part's loops at the symbolic pose, every point multiplied by `scale` / W (W its pose's
-// weight): the common weight of the pair.
-std::vector<std::vector<CurvedEdge>> posed_loops(const Part& part, const kernels::Pose<Poly>& pose, const Poly& other_w) {
+// The part's loops, edges not yet posed (CurvedRelation poses them as needed).
+std::vector<std::vector<CurvedEdge>> part_loops(const Part& part) {
   std::vector<std::vector<CurvedEdge>> loops;
-  auto at = [&](const Point& p) {
-    HPoint h = place(pose, p);
-    return V2{h.X * other_w, h.Y * other_w};
-  };
-  const Poly w = pose.w * other_w;
   for (const Loop& loop : part.loops) {
     std::vector<CurvedEdge> edges;
     for (const Edge& edge : loop.edges) {
       CurvedEdge e;
       e.arc = edge.is_arc();
-      e.from = at(edge.source);
-      e.to = at(edge.target);
       e.loop = loops.size();
+      e.source = &edge;
       if (e.arc) {
         e.ccw = edge.ccw;
         e.full = edge.is_full_circle();
-        e.center = at(edge.center);
-        e.radius_squared = constant(edge.radius_squared) * w * w;
       }
       edges.push_back(std::move(e));
     }
@@ -782,8 +825,8 @@ std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axe
   PairPoses<Poly> poses = pair_poses(model, axes, x_axis, y_axis, Poly::variable(0), Poly::variable(1), constant);
   SignAt sign(x, y_used);
   if (has_arc(first) || has_arc(second))
-    return CurvedRelation({posed_loops(first, poses.first, poses.second.w), posed_loops(second, poses.second, poses.first.w)},
-                          sign)
+    return CurvedRelation({part_loops(first), part_loops(second)},
+                          {ScaledPose{&poses.first, &poses.second.w}, ScaledPose{&poses.second, &poses.first.w}}, sign)
         .run();
   std::vector<Segment> a = posed_segments(first, poses.first), b = posed_segments(second, poses.second);
   for (auto* part : {&a, &b})
