@@ -1077,7 +1077,7 @@ void find_touching_points(ChartData& chart, const Classifier& classify, const Al
     }
     auto x = rational_value(point);
     if (!x) {
-      // irrational: the exact oracle at the algebraic point (undecided where it cannot: arcs)
+      // irrational: the exact oracle at the algebraic point (undecided only where it cannot)
       std::optional<Overlap> relation;
       if (classify_algebraic) relation = classify_algebraic(point, Real::from_rational(Rational(0)));
       if (!relation) {

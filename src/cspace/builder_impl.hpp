@@ -23,7 +23,9 @@ namespace hipair::cspace {
 /// The exact overlap oracle of one chart.
 using Classifier = std::function<Overlap(const ChartPoint&)>;
 /// The exact overlap relation at a chart point with algebraic (possibly irrational)
-/// coordinates (curves/algebraic_overlap.hpp), or nullopt where it cannot decide (arcs).
+/// coordinates (curves/algebraic_overlap.hpp), or nullopt where it cannot decide (both
+/// coordinates irrational; with arcs, a loop whose every vertex has one of the other part at its
+/// height and at its abscissa).
 using AlgebraicClassifier = std::function<std::optional<Overlap>(const algebra::Real&, const algebra::Real&)>;
 
 /// Input of one chart: its axes, its contact curves and its oracle.

@@ -17,8 +17,10 @@ namespace hipair::cspace {
 /// where x and y are real algebraic numbers (rational or not; y is ignored for a 1-D space).
 /// Every decision is the exact sign of a polynomial in the chart coordinates at the point
 /// (algebra::sign_at: zero iff the polynomial vanishes there, by gcd; otherwise refined until
-/// certain). Parts bounded by segments only: nullopt when either part has an arc edge, or when
-/// both coordinates of a 2-D point are irrational.
+/// certain). Parts bounded by segments and circular arcs (arcs since session 34); nullopt when
+/// both coordinates of a 2-D point are irrational, or (parts with arcs) in the one degenerate
+/// case left: a loop without common point whose every vertex has a vertex of the other part (or
+/// a circle's tangent) both at its height and at its abscissa.
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
                                          const ChartAxis& y_axis, const algebra::Real& x, const algebra::Real& y);
 

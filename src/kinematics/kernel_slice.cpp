@@ -684,8 +684,8 @@ class KernelSlicer final : public PairSlicer {
     // curve through it; culled curves vanish only in certainly blocked space), and moving to the
     // side where it opens would separate them, a free side. Any other irrational point (two or
     // more contacts, or a root of even multiplicity) is decided by the exact oracle at the
-    // algebraic point (curves/algebraic_overlap.hpp, session 33) when both parts are bounded by
-    // segments; with arcs it stays blocked but undecided: counted
+    // algebraic point (curves/algebraic_overlap.hpp, session 33; parts with arcs too since
+    // session 34); where that cannot decide it stays blocked but undecided: counted
     // (SliceClassCounts::touching_undecided), and the analysis says so.
     for (std::size_t i = 0; i < result.points.size(); ++i) {
       if (result.kinds[i] != SliceKind::blocked || result.kinds[i + 1] != SliceKind::blocked) continue;
@@ -709,8 +709,7 @@ class KernelSlicer final : public PairSlicer {
         point.touching = overlap_->classify(chart.x_axis, chart.y_axis, q) == cspace::Overlap::touching;
         continue;
       }
-      // irrational: the exact oracle at the algebraic point (parts bounded by segments; arcs
-      // stay undecided)
+      // irrational: the exact oracle at the algebraic point (segments and arcs)
       const Real at = follower_is_x_ ? point.value : Real::from_rational(value);
       const Real other = follower_is_x_ ? Real::from_rational(other_moves_ ? value : Rational(0)) : point.value;
       if (std::optional<cspace::Overlap> relation = cspace::algebraic_overlap(model_, axes_, chart.x_axis, chart.y_axis, at, other)) {

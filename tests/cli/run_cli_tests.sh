@@ -273,6 +273,21 @@ grep -q "2 touching edges, 0 isolated touching vertices$" "$work/lever-slide.txt
 grep -q "were not decided" "$work/lever-analyze.txt" && fail "analyze leaves the irrational fit undecided"
 grep -q "lever stays at 0.143°" "$work/lever-analyze.txt" || fail "analyze does not hold the lever at its fit: $(grep -i -E 'dwell|BLOCKED' "$work/lever-analyze.txt")"
 
+# The same with arcs (session 34): a pin touching a wall (arc-segment tangency) and a post
+# (arc-arc tangency) at the roots of 8t^2 - 20t - 7, blocked on either side; main counted both
+# as undecided (blocked), now two touching vertices; with the frame sliding along a slot of the
+# pin's diameter two touching edges, and analyze (the kernel slicer) decides the fit too.
+pin_fit="$source/tests/data/zero-clearance/pin-irrational-fit.json"
+"$hipair" cspace "$pin_fit" --stats >"$work/pin-fit.txt" 2>&1 || fail "cspace fails on the irrational pin fit: $(tail -n 3 "$work/pin-fit.txt")"
+grep -q "0 touching edges, 2 isolated touching vertices$" "$work/pin-fit.txt" \
+  || fail "cspace --stats: the irrational pin fit is not two touching vertices: $(grep zero-clearance "$work/pin-fit.txt")"
+pin_slide="$source/tests/data/zero-clearance/pin-irrational-fit-sliding.json"
+"$hipair" cspace "$pin_slide" --stats >"$work/pin-slide.txt" 2>&1 || fail "cspace fails on the sliding pin fit"
+grep -q "2 touching edges, 0 isolated touching vertices$" "$work/pin-slide.txt" \
+  || fail "cspace --stats: the sliding pin fit is not two touching edges: $(grep zero-clearance "$work/pin-slide.txt")"
+"$hipair" analyze "$pin_slide" --driver frame --no-pictures >"$work/pin-analyze.txt" 2>&1 || fail "analyze fails on the sliding pin fit"
+grep -q "were not decided" "$work/pin-analyze.txt" && fail "analyze leaves the irrational pin fit undecided"
+
 # Out of memory (also inside GMP, which aborted with "GNU MP: Cannot allocate memory", exit
 # 134): exit 4 and one line, no output file.
 (ulimit -v 200000; "$hipair" cspace "$source/examples/models/spur-gears.json" --json "$work/oom.json" \

@@ -168,8 +168,8 @@ TEST(AlgebraicOverlap, AgreesWithTheRationalOracleAtRationalConfigurations) {
   EXPECT_GE(overlapping, 100);
 }
 
-// Parts with arcs are outside the algebraic oracle: nullopt, never a guess.
-TEST(AlgebraicOverlap, ArcsAreNotDecided) {
+// Parts with arcs are decided too (session 34; cspace_irrational_arc_fit_test.cpp): here apart.
+TEST(AlgebraicOverlap, ArcsAreDecided) {
   const std::string json = R"({ "hipair": 1, "name": "disk", "parts": [
       { "name": "disk", "motion": { "rotation": { "pivot": [0, 0] } }, "loops": [ { "circle": { "center": [5, 0], "radius": 1 } } ] },
       { "name": "frame", "motion": "fixed", "loops": [ { "start": [-10, 2], "edges": [ { "line_to": [10, 2] }, { "line_to": [10, 3] },
@@ -178,7 +178,9 @@ TEST(AlgebraicOverlap, ArcsAreNotDecided) {
   Model model = read_model(json);
   CSpace space = CSpace::build(model, "disk", "frame");
   PairFrame f = pair_frame(model, space);
-  EXPECT_FALSE(algebraic_oracle(model, f, 0, algebra_Real::from_rational(Rational(0)), algebra_Real::from_rational(Rational(0))));
+  auto got = algebraic_oracle(model, f, 0, algebra_Real::from_rational(Rational(0)), algebra_Real::from_rational(Rational(0)));
+  ASSERT_TRUE(got.has_value());
+  EXPECT_EQ(*got, cspace::Overlap::apart);
 }
 
 // The generated irrational fits, at scales 10^-300 ... 10^300: the builder decides both roots of
