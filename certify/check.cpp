@@ -7,6 +7,7 @@
 #include "certify/interval_geometry.hpp"
 #include "certify/planar_check.hpp"
 #include "certify/tolerance_check.hpp"
+#include "certify/tolerance_support.hpp"
 #include "core/sha256.hpp"
 #include "io/atomic_file.hpp"
 
@@ -64,8 +65,7 @@ std::string show(const Rational& value) {
     std::string text = decimal(value, digits);
     if (exact_text(text, value)) return text;
   }
-  std::string fraction = to_exact_string(value);
-  return fraction.size() <= 60 ? fraction : decimal(value, 25) + " (rounded)";
+  return fraction_or_rounded(value);
 }
 std::string show(const RationalInterval& range) { return "[" + show(range.lo) + ", " + show(range.hi) + "]"; }
 // Two different values, exactly when both have a short exact form, else rounded to as many
@@ -180,8 +180,14 @@ void check_crossing_parts(const Certificate& c, const CrossingWitness& w) {
   if (!ok) reject("a crossing must name one edge of each part of the pair ('" + c.first + "', '" + c.second + "')");
 }
 
-// ----------------------------------------------------------------------------- single configurations
 }  // namespace
+
+std::string fraction_or_rounded(const Rational& value) {
+  std::string fraction = to_exact_string(value);
+  return fraction.size() <= 60 ? fraction : decimal(value, 25) + " (rounded)";
+}
+
+// ----------------------------------------------------------------------------- single configurations
 
 bool certainly_within(const std::optional<RationalInterval>& limits, const Interval& value, bool angle) {
   if (!limits) return true;

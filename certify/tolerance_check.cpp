@@ -234,7 +234,7 @@ std::string show(const Interval& x) {
   return out;
 }
 
-std::string show(const RationalInterval& r) { return "[" + to_exact_string(r.lo) + ", " + to_exact_string(r.hi) + "]"; }
+std::string show(const RationalInterval& r) { return "[" + fraction_or_rounded(r.lo) + ", " + fraction_or_rounded(r.hi) + "]"; }
 
 // x intersected with y (both enclose the same number).
 Interval meet(const Interval& x, const Interval& y) {

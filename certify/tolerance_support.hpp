@@ -12,7 +12,12 @@ namespace hipair::verify {
 
 /// An enclosure printed with 8 significant digits per end (for messages only).
 std::string show(const Interval& x);
+/// Exact ends as fractions, each rounded to 25 significant digits (marked) when its fraction
+/// is longer than 60 characters (a forged 1e100000 would otherwise fill a 100 KB line).
 std::string show(const RationalInterval& r);
+/// `value` as its exact fraction when that has at most 60 characters, else 25 significant
+/// digits marked " (rounded)" (check.cpp; the fixed-axis messages' last resort too).
+std::string fraction_or_rounded(const Rational& value);
 /// x intersected with y (both enclose the same number).
 Interval meet(const Interval& x, const Interval& y);
 /// The hull of two enclosures.
