@@ -163,6 +163,10 @@ namespace {
 // thread's lists are then closed: later frees go to std::free). GMP passes every block's size
 // to free and realloc; other sizes (strings) are not pooled. (malloc and free took ≈ 35
 // instructions each per call here, a list ≈ 10.)
+//
+// The fast paths test one counter: `room[k]`, the blocks list k may still take, is 0 until the
+// thread's first pooled free has registered the release (`open_block_pool`, out of line) and
+// again once the pool is closed, so neither path reads the pool's state or a guard variable.
 constexpr std::size_t pool_sizes = 8;     // blocks of 8 * (k + 1) bytes, k < pool_sizes
 constexpr std::uint32_t pool_depth = 512;
 
@@ -172,61 +176,85 @@ struct FreeBlock {
 
 struct BlockPool {
   FreeBlock* head[pool_sizes] = {};
-  std::uint32_t count[pool_sizes] = {};
+  std::uint32_t room[pool_sizes] = {};   // pool_depth minus the blocks kept; 0 while not open
   int state = 0;   // 0: nothing kept yet, 1: keeping (released at the thread's end), 2: closed
 };
-thread_local BlockPool block_pool;   // (trivially destructible: no guard on the fast paths)
+// Trivially destructible: no guard on the fast paths. Initial-exec: the library is compiled as
+// position-independent code, whose default (general-dynamic) access is a call that made the
+// fast paths save registers around it even where the link relaxed it away (a few bytes of
+// static TLS, as allocators take, also when the library is loaded as a shared object).
+[[gnu::tls_model("initial-exec")]] thread_local BlockPool block_pool;
 
 struct BlockPoolRelease {
   ~BlockPoolRelease() {
     BlockPool& pool = block_pool;
     pool.state = 2;
     for (std::size_t k = 0; k < pool_sizes; ++k) {
+      pool.room[k] = 0;
       while (FreeBlock* block = pool.head[k]) {
         pool.head[k] = block->next;
         std::free(block);
       }
-      pool.count[k] = 0;
     }
   }
 };
 
-// the pool's size index of a block of `size` bytes, or pool_sizes when it is not pooled
-inline std::size_t pool_index(std::size_t size) {
-  return size - 1 < 8 * pool_sizes && size % 8 == 0 ? size / 8 - 1 : pool_sizes;
+// The pool's size index of a block of `size` bytes: below pool_sizes exactly when the block
+// is pooled (8, 16, ..., 64 bytes; sizes 0 to 7 wrap around to a huge index).
+inline std::size_t pool_index(std::size_t size) { return (size >> 3) - 1; }
+inline bool pooled(std::size_t size, std::size_t k) { return k < pool_sizes && (size & 7) == 0; }
+
+// A pooled free that found its list without room: the thread's first pooled free (the release
+// registered, every list opened), a full list, or a closed pool (then std::free).
+[[gnu::noinline]] void free_unpooled(void* p, std::size_t k) {
+  BlockPool& pool = block_pool;
+  if (pool.state == 0) {
+    thread_local BlockPoolRelease release;   // constructed here, once per thread
+    (void)&release;
+    pool.state = 1;
+    for (std::uint32_t& room : pool.room) room = pool_depth;
+  }
+  if (pool.room[k] != 0) {
+    auto* block = static_cast<FreeBlock*>(p);
+    block->next = pool.head[k];
+    pool.head[k] = block;
+    --pool.room[k];
+    return;
+  }
+  std::free(p);
 }
 
-void* gmp_allocate(std::size_t size) {
-  const std::size_t k = pool_index(size);
-  if (k < pool_sizes) {
-    BlockPool& pool = block_pool;
-    if (FreeBlock* block = pool.head[k]) {
-      pool.head[k] = block->next;
-      --pool.count[k];
-      return block;
-    }
-  }
+[[gnu::noinline]] void* allocate_unpooled(std::size_t size) {
   void* p = std::malloc(size == 0 ? 1 : size);
   if (!p) throw std::bad_alloc();
   return p;
 }
 
+void* gmp_allocate(std::size_t size) {
+  const std::size_t k = pool_index(size);
+  if (pooled(size, k)) {
+    BlockPool& pool = block_pool;
+    if (FreeBlock* block = pool.head[k]) {
+      pool.head[k] = block->next;
+      ++pool.room[k];
+      return block;
+    }
+  }
+  return allocate_unpooled(size);
+}
+
 void gmp_free(void* p, std::size_t size) {
   const std::size_t k = pool_index(size);
-  if (p && k < pool_sizes) {
+  if (pooled(size, k) && p) {
     BlockPool& pool = block_pool;
-    if (pool.state == 0) {
-      thread_local BlockPoolRelease release;   // constructed here, once per thread
-      (void)&release;
-      pool.state = 1;
-    }
-    if (pool.state == 1 && pool.count[k] < pool_depth) {
+    if (pool.room[k] != 0) {
       auto* block = static_cast<FreeBlock*>(p);
       block->next = pool.head[k];
       pool.head[k] = block;
-      ++pool.count[k];
+      --pool.room[k];
       return;
     }
+    return free_unpooled(p, k);
   }
   std::free(p);
 }
