@@ -1,6 +1,7 @@
 #include "algebra/exact_real.hpp"
 #include "algebra/near_quotient.hpp"
 #include "algebra/rational_root.hpp"
+#include "algebra/rational_order.hpp"
 #include "algebra/real_filters.hpp"
 #include "algebra/simplest_small.hpp"
 
@@ -651,8 +652,19 @@ void refine_dyadically(Real& r, const Rational& width) {
   if (lower_sign == 0) lower_sign = sign_at(r.polynomial, r.lower);
   // inward dyadic ends a / 2^k >= lower and b / 2^k <= upper, 2^-k <= (upper - lower) / 4
   Rational gap = (r.upper - r.lower) / 4;
+  // the least k >= 0 with 2^-k <= gap = p / q (canonical, p > 0), i.e. q <= p 2^k: with
+  // 2^(bits(q) - 1) <= q < 2^bits(q) and likewise p, it is c = bits(q) - bits(p) or c + 1
+  // (p 2^(c - 1) < 2^(bits(q) - 1) <= q, p 2^(c + 1) >= 2^bits(q) > q), 0 when c < 0
   unsigned long k = 0;
-  while (Rational(1, mpz_class(1) << k) > gap) ++k;
+  {
+    const long c = static_cast<long>(mpz_sizeinbase(gap.get_den_mpz_t(), 2)) -
+                   static_cast<long>(mpz_sizeinbase(gap.get_num_mpz_t(), 2));
+    if (c >= 0) {
+      mpz_class shifted;
+      mpz_mul_2exp(shifted.get_mpz_t(), gap.get_num_mpz_t(), static_cast<mp_bitcnt_t>(c));
+      k = static_cast<unsigned long>(c) + (cmp(gap.get_den(), shifted) <= 0 ? 0 : 1);
+    }
+  }
   mpz_class scale = mpz_class(1) << k;
   mpz_class a, b;
   mpz_class scaled_lower = r.lower.get_num() * scale, scaled_upper = r.upper.get_num() * scale;
@@ -763,9 +775,12 @@ double Real::approximate() const {
 }
 
 int Real::compare(const Rational& r) const {
-  if (exact) return cmp(lower, r) < 0 ? -1 : (cmp(lower, r) > 0 ? 1 : 0);
-  if (r <= lower) return 1;
-  if (r >= upper) return -1;
+  if (exact) {
+    const int c = compare_rationals(lower, r);
+    return c < 0 ? -1 : (c > 0 ? 1 : 0);
+  }
+  if (compare_rationals(r, lower) <= 0) return 1;
+  if (compare_rationals(r, upper) >= 0) return -1;
   int s = sign_at(polynomial, r);
   if (s == 0) return 0;
   return s == sign_at(polynomial, lower) ? 1 : -1;
@@ -835,8 +850,8 @@ bool common_root_in_overlap(const Real& a, const Real& b) {
 int compare(const Real& a, const Real& b) {
   if (a.exact) return -b.compare(a.lower);
   if (b.exact) return a.compare(b.lower);
-  if (a.upper <= b.lower) return -1;
-  if (b.upper <= a.lower) return 1;
+  if (compare_rationals(a.upper, b.lower) <= 0) return -1;
+  if (compare_rationals(b.upper, a.lower) <= 0) return 1;
   // one polynomial (the same root met in two slices, two roots of one slice): two signs decide,
   // before the double bisection of both numbers (which cannot separate equal ones)
   if (std::optional<int> order = one_polynomial_order(a, b)) return *order;
@@ -899,7 +914,7 @@ std::pair<double, double> double_bounds(const Real& x, int halvings) {
 }
 
 int compare_filtered(const Real& x, const Rational& r) {
-  if (x.exact || r <= x.lower || r >= x.upper) return x.compare(r);
+  if (x.exact || compare_rationals(r, x.lower) <= 0 || compare_rationals(r, x.upper) >= 0) return x.compare(r);
   SignFilter filter(x.polynomial);
   int at = filter.sign(enclose(r));
   if (at == 0) return x.compare(r);
@@ -911,7 +926,7 @@ int compare_filtered(const Real& x, const Rational& r) {
 bool equal(const Real& a, const Real& b) {
   if (a.exact) return b.compare(a.lower) == 0;
   if (b.exact) return a.compare(b.lower) == 0;
-  if (a.upper <= b.lower || b.upper <= a.lower) return false;
+  if (compare_rationals(a.upper, b.lower) <= 0 || compare_rationals(b.upper, a.lower) <= 0) return false;
   // compare()'s tests without its refinement before the gcd (which only sorts distinct numbers)
   if (std::optional<int> order = one_polynomial_order(a, b)) return *order == 0;
   if (separated_in_doubles(a, b) != 0) return false;

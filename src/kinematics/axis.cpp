@@ -2,6 +2,7 @@
 #include "kinematics/axis.hpp"
 #include "kinematics/slice_cells.hpp"
 
+#include "algebra/rational_order.hpp"
 #include "algebra/real_filters.hpp"
 
 #include <hipair/error.hpp>
@@ -163,8 +164,8 @@ double truncated_double(const Real& value) {
   // -1, 0, +1: value against the double d (exact)
   auto against = [&](double d) {
     Rational at(d);
-    if (at <= copy.lower) return 1;
-    if (at >= copy.upper) return -1;
+    if (algebra::compare_rationals(at, copy.lower) <= 0) return 1;
+    if (algebra::compare_rationals(at, copy.upper) >= 0) return -1;
     int sign = algebra::sign_at(copy.polynomial, at);
     if (sign == 0) return 0;
     // value in (lower, upper): narrow the copy to the side holding it (the same number)
