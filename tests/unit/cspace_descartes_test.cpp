@@ -491,6 +491,50 @@ TEST(CSpaceDescartes, FilteredDyadicRefinementTakesTheExactSteps) {
   EXPECT_GT(exact_hits, 50);   // 86 of 200 with this seed (a bisection of [a, b] meets the root when it is a midpoint)
 }
 
+// refine_dyadically's first grid 2^-k (the least k >= 0 with 2^-k <= (upper - lower) / 4, now
+// read off bit sizes) on the boundary cases the generated roots above rarely meet: quarter
+// widths exactly a power of two 2^-j (j from -5 to 80: k = j, or 0 for wide intervals), a
+// part of a unit more or less, and wide intervals (k = 0), with the roots of x^2 - c near
+// 1000 placed anywhere inside; every result the exact refinement's.
+TEST(CSpaceDescartes, DyadicRefinementFirstGridOnPowerOfTwoWidths) {
+  Generator generator(36);
+  int checked = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    const long j = generator.uniform(-5, 80);
+    Rational quarter = j >= 0 ? Rational(mpz_class(1), mpz_class(1) << j) : Rational(mpz_class(1) << -j);
+    switch (trial % 3) {
+      case 1: quarter += quarter / Rational(mpz_class(1) << generator.uniform(1, 70)); break;
+      case 2: quarter -= quarter / Rational(mpz_class(1) << generator.uniform(1, 70)); break;
+      default: break;
+    }
+    const long c = 1000000 + generator.uniform(1, 4000);   // sqrt(c) in (1000, 1002), no square
+    if (static_cast<long>(std::sqrt(static_cast<double>(c))) * static_cast<long>(std::sqrt(static_cast<double>(c))) == c) continue;
+    Real r;
+    r.polynomial = Polynomial{-c, 0, 1};
+    // sqrt(c) to 2^-200 (below every width here): then the interval placed around it
+    Real root;
+    root.polynomial = r.polynomial;
+    root.lower = 1000;
+    root.upper = 1003;
+    root.refine_to(Rational(mpz_class(1), mpz_class(1) << 200));
+    const Rational width = 4 * quarter;
+    const Rational t(mpz_class(1 + generator.uniform(0, 998)), mpz_class(1000));
+    r.lower = root.lower - width * t;
+    r.upper = r.lower + width;
+    if (!(r.lower < root.lower && r.upper > root.upper) || r.lower <= -1000) continue;
+    const Rational target = width / Rational(mpz_class(1) << generator.uniform(1, 60));
+    Real filtered = r;
+    refine_dyadically(filtered, target);
+    const Real expected = exact_dyadic_refinement(r, target);
+    SCOPED_TRACE("j " + std::to_string(j) + " " + r.description());
+    EXPECT_EQ(filtered.exact, expected.exact);
+    EXPECT_EQ(filtered.lower, expected.lower);
+    EXPECT_EQ(filtered.upper, expected.upper);
+    ++checked;
+  }
+  EXPECT_GT(checked, 500);
+}
+
 // equal(a, b), the equality test that skips compare()'s 2^-20 refinement, is compare(a, b) == 0
 // on generated numbers: the roots of p against the roots of p times more factors (the same
 // numbers with other polynomials and other isolating intervals; irrational ones from p's

@@ -6,6 +6,7 @@
 // values: random rationals of 1 to 1,200 bits, scales 2^-1000..2^1000, dyadic and subnormal
 // values, equal numbers from different polynomials, numbers differing in the last bit.
 #include "algebra/exact_real.hpp"
+#include "algebra/rational_order.hpp"
 #include "algebra/real_filters.hpp"
 
 #include <gtest/gtest.h>
@@ -342,6 +343,61 @@ TEST(ExactRealFilters, RefinementWithLargeCoefficientsIsTheExactBisection) {
       ASSERT_EQ(root.upper, reference.upper);
     }
   }
+}
+
+
+// compare_rationals (the one-limb fast path of the isolating ends' comparisons) against GMP's
+// mpq_cmp on generated pairs: numerators and denominators of 1 to 64 bits (the fast path) and
+// beyond (the fallback), at the limb's edges (2^63, 2^64 - 1, 2^64), zero and both signs,
+// equal values in other forms (unreduced fractions, which the fast path also takes), the
+// rationals of generated_rationals, and every pair's swap.
+TEST(ExactRealFilters, RationalOrderIsMpqCmp) {
+  std::mt19937_64 random(36);
+  std::vector<Rational> values = generated_rationals(random, 40);
+  auto limb_edge = [&]() -> mpz_class {
+    switch (random() % 6) {
+      case 0: return mpz_class(1) << 63;
+      case 1: return (mpz_class(1) << 64) - 1;
+      case 2: return mpz_class(1) << 64;
+      case 3: return (mpz_class(1) << 64) - 1 - static_cast<unsigned long>(random() % 3);
+      case 4: return mpz_class(1);
+      default: return mpz_class(static_cast<unsigned long>(random() >> (random() % 64)) | 1ul);
+    }
+  };
+  for (int i = 0; i < 3000; ++i) {
+    const unsigned num_bits = 1 + static_cast<unsigned>(random() % 66), den_bits = 1 + static_cast<unsigned>(random() % 66);
+    mpz_class num = random() % 4 ? random_integer(random, num_bits) : limb_edge();
+    mpz_class den = random() % 4 ? random_integer(random, den_bits) : limb_edge();
+    if (den == 0) den = 1;
+    if (random() % 2) num = -num;
+    Rational r(num, den);
+    if (random() % 3) r.canonicalize();   // else an unreduced form (a common factor kept)
+    values.push_back(r);
+    if (random() % 4 == 0) {
+      // the same value in another form: numerator and denominator times a small factor
+      const unsigned long f = 2 + random() % 1000;
+      values.push_back(Rational(mpz_class(r.get_num() * f), mpz_class(r.get_den() * f)));
+    }
+  }
+  values.push_back(Rational(0));
+  values.push_back(Rational(mpz_class(0), mpz_class(7)));   // zero over a denominator other than 1
+  auto sign = [](int c) { return (c > 0) - (c < 0); };
+  std::size_t fast = 0, equal = 0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    // every value against a few others (neighbours in generation order share sizes) and itself
+    for (std::size_t j : {i, (i + 1) % values.size(), (i + 7) % values.size(), static_cast<std::size_t>(random() % values.size())}) {
+      const Rational& a = values[i];
+      const Rational& b = values[j];
+      ASSERT_EQ(sign(compare_rationals(a, b)), sign(mpq_cmp(a.get_mpq_t(), b.get_mpq_t()))) << a.get_str() << " against " << b.get_str();
+      ASSERT_EQ(sign(compare_rationals(b, a)), -sign(mpq_cmp(a.get_mpq_t(), b.get_mpq_t())));
+      if (std::abs(a.get_num_mpz_t()->_mp_size) <= 1 && std::abs(b.get_num_mpz_t()->_mp_size) <= 1 &&
+          a.get_den_mpz_t()->_mp_size == 1 && b.get_den_mpz_t()->_mp_size == 1)
+        ++fast;
+      if (mpq_equal(a.get_mpq_t(), b.get_mpq_t()) || (i != j && mpq_cmp(a.get_mpq_t(), b.get_mpq_t()) == 0)) ++equal;
+    }
+  }
+  EXPECT_GT(fast, 4000u);
+  EXPECT_GT(equal, values.size());
 }
 
 }  // namespace
