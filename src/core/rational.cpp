@@ -204,6 +204,14 @@ struct BlockPoolRelease {
 inline std::size_t pool_index(std::size_t size) { return (size >> 3) - 1; }
 inline bool pooled(std::size_t size, std::size_t k) { return k < pool_sizes && (size & 7) == 0; }
 
+// block p onto list k, which has room
+inline void push_block(BlockPool& pool, std::size_t k, void* p) {
+  auto* block = static_cast<FreeBlock*>(p);
+  block->next = pool.head[k];
+  pool.head[k] = block;
+  --pool.room[k];
+}
+
 // A pooled free that found its list without room: the thread's first pooled free (the release
 // registered, every list opened), a full list, or a closed pool (then std::free).
 [[gnu::noinline]] void free_unpooled(void* p, std::size_t k) {
@@ -214,13 +222,7 @@ inline bool pooled(std::size_t size, std::size_t k) { return k < pool_sizes && (
     pool.state = 1;
     for (std::uint32_t& room : pool.room) room = pool_depth;
   }
-  if (pool.room[k] != 0) {
-    auto* block = static_cast<FreeBlock*>(p);
-    block->next = pool.head[k];
-    pool.head[k] = block;
-    --pool.room[k];
-    return;
-  }
+  if (pool.room[k] != 0) return push_block(pool, k, p);
   std::free(p);
 }
 
@@ -247,13 +249,7 @@ void gmp_free(void* p, std::size_t size) {
   const std::size_t k = pool_index(size);
   if (pooled(size, k) && p) {
     BlockPool& pool = block_pool;
-    if (pool.room[k] != 0) {
-      auto* block = static_cast<FreeBlock*>(p);
-      block->next = pool.head[k];
-      pool.head[k] = block;
-      --pool.room[k];
-      return;
-    }
+    if (pool.room[k] != 0) return push_block(pool, k, p);
     return free_unpooled(p, k);
   }
   std::free(p);

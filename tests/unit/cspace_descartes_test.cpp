@@ -443,6 +443,17 @@ Real exact_dyadic_refinement(Real r, const Rational& width) {
   return r;
 }
 
+// refine_dyadically(r, width) ends where the exact refinement does; the filtered result
+Real expect_exact_dyadic_steps(const Real& r, const Rational& width) {
+  Real filtered = r;
+  refine_dyadically(filtered, width);
+  const Real expected = exact_dyadic_refinement(r, width);
+  EXPECT_EQ(filtered.exact, expected.exact);
+  EXPECT_EQ(filtered.lower, expected.lower);
+  EXPECT_EQ(filtered.upper, expected.upper);
+  return filtered;
+}
+
 TEST(CSpaceDescartes, FilteredDyadicRefinementTakesTheExactSteps) {
   // generated polynomials (small and 3000-bit coefficients, clustered roots), every isolated
   // root refined to widths 2^-4 ... 2^-140; plus dyadic roots hit exactly by a bisection
@@ -455,13 +466,8 @@ TEST(CSpaceDescartes, FilteredDyadicRefinementTakesTheExactSteps) {
     for (const Real& root : roots) {
       if (root.exact) continue;
       const Rational width(1, mpz_class(1) << generator.uniform(4, 140));
-      Real filtered = root;
-      refine_dyadically(filtered, width);
-      const Real expected = exact_dyadic_refinement(root, width);
       SCOPED_TRACE("trial " + std::to_string(trial) + " " + root.description());
-      EXPECT_EQ(filtered.exact, expected.exact);
-      EXPECT_EQ(filtered.lower, expected.lower);
-      EXPECT_EQ(filtered.upper, expected.upper);
+      expect_exact_dyadic_steps(root, width);
       ++refined;
     }
   }
@@ -475,13 +481,8 @@ TEST(CSpaceDescartes, FilteredDyadicRefinementTakesTheExactSteps) {
     r.lower = root - Rational(1, 3 + generator.uniform(0, 1000)) / Rational(mpz_class(1) << 40);
     r.upper = root + Rational(1, 5 + generator.uniform(0, 1000)) / Rational(mpz_class(1) << 40);
     const Rational width(1, mpz_class(1) << generator.uniform(44, 100));
-    Real filtered = r;
-    refine_dyadically(filtered, width);
-    const Real expected = exact_dyadic_refinement(r, width);
     SCOPED_TRACE("dyadic root " + root.get_str());
-    EXPECT_EQ(filtered.exact, expected.exact);
-    EXPECT_EQ(filtered.lower, expected.lower);
-    EXPECT_EQ(filtered.upper, expected.upper);
+    const Real filtered = expect_exact_dyadic_steps(r, width);
     if (filtered.exact) {
       EXPECT_EQ(filtered.lower, root);
       ++exact_hits;
@@ -523,13 +524,8 @@ TEST(CSpaceDescartes, DyadicRefinementFirstGridOnPowerOfTwoWidths) {
     r.upper = r.lower + width;
     if (!(r.lower < root.lower && r.upper > root.upper) || r.lower <= -1000) continue;
     const Rational target = width / Rational(mpz_class(1) << generator.uniform(1, 60));
-    Real filtered = r;
-    refine_dyadically(filtered, target);
-    const Real expected = exact_dyadic_refinement(r, target);
     SCOPED_TRACE("j " + std::to_string(j) + " " + r.description());
-    EXPECT_EQ(filtered.exact, expected.exact);
-    EXPECT_EQ(filtered.lower, expected.lower);
-    EXPECT_EQ(filtered.upper, expected.upper);
+    expect_exact_dyadic_steps(r, target);
     ++checked;
   }
   EXPECT_GT(checked, 500);
