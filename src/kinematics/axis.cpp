@@ -271,6 +271,7 @@ AxisSlice compress(const AxisLine& line, std::vector<Item> items) {
   SliceKind start = first < items.size() ? items[first].after : SliceKind::free;
   slice.start_kind = start;
   SliceKind current = start;
+  slice.points.reserve(items.size());   // (see restrict_chart_slice: no copies on growth)
   // items[i], i >= 1, is read once here: its position and contacts move into the breakpoint
   for (std::size_t i = 1; i < items.size(); ++i) {
     Item& item = items[i];
@@ -347,6 +348,10 @@ std::optional<ChartSlice> restrict_chart_slice(const ChartSlice& wide, const Cha
   ChartSlice out;
   out.covered_lo = std::move(lo);
   out.covered_hi = std::move(hi);
+  // (reserved: a vector of points grown by push_back copies every point it moves, Rational's
+  // move not being noexcept)
+  out.points.reserve(*end - *first);
+  out.kinds.reserve(*end - *first + 1);
   out.kinds.push_back(wide.kinds[*first]);
   for (std::size_t i = *first; i < *end; ++i) {
     out.points.push_back(wide.points[i]);
