@@ -779,6 +779,7 @@ void check_sample_in_face(const ChartData& chart, std::size_t f) {
 // identically zero (then touching configurations fill whole faces).
 void classify_faces(ChartData& chart, const Classifier& classify, ContactSides* sides, bool check, bool propagate) {
   const auto& arrangement = chart.arrangement;
+  chart.rational_vertex_x.reserve(chart.rational_vertex_x.size() + arrangement.vertices.size());   // (no regrowth: its rationals are not copied)
   for (const auto& v : arrangement.vertices)
     if (v.x.exact) chart.rational_vertex_x.push_back(v.x.lower);
   std::sort(chart.rational_vertex_x.begin(), chart.rational_vertex_x.end());
