@@ -27,6 +27,8 @@
 #include <cmath>
 #include <optional>
 #include <random>
+#include <tuple>
+#include <utility>
 
 namespace hipair {
 namespace {
@@ -525,6 +527,39 @@ void expect_reference_labels(const CSpace& space) {
   }
 }
 
+// Generated pairs shared by the label tests (the random numbers drawn in the same order as the
+// cases they came from): a star with collinear edges and its copy shifted by a lattice vector
+// (collinear and touching edges everywhere); two staircases (collinear steps, shared
+// coordinates); a bar exactly as wide as a slot (zero clearance, random widths and depths).
+std::pair<Points, Points> shifted_copy_pair(std::mt19937_64& random) {
+  Points a = random_star(random, 4 + static_cast<int>(random() % 5), 0, 0, 2, 1, true);
+  Points b = a;
+  Rational dx(static_cast<long>(random() % 5) - 2), dy(static_cast<long>(random() % 5) - 2);
+  for (auto& [x, y] : b) {
+    x += dx;
+    y += dy;
+  }
+  return {a, b};
+}
+
+std::pair<Points, Points> staircase_pair(std::mt19937_64& random) {
+  Points a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 4));
+  Points b = random_staircase(random, static_cast<long>(random() % 5) - 2, static_cast<long>(random() % 5) - 2,
+                              1 + static_cast<int>(random() % 4));
+  return {a, b};
+}
+
+std::pair<Points, Points> zero_clearance_slot_pair(std::mt19937_64& random) {
+  long w = 1 + static_cast<long>(random() % 3), depth = 1 + static_cast<long>(random() % 4);
+  long wall = 1 + static_cast<long>(random() % 2);
+  Points a = {{Rational(0), Rational(0)}, {Rational(2 * wall + w), Rational(0)}, {Rational(2 * wall + w), Rational(depth + 1)},
+              {Rational(wall + w), Rational(depth + 1)}, {Rational(wall + w), Rational(1)}, {Rational(wall), Rational(1)},
+              {Rational(wall), Rational(depth + 1)}, {Rational(0), Rational(depth + 1)}};
+  Points b = {{Rational(wall), Rational(depth + 3)}, {Rational(wall + w), Rational(depth + 3)},
+              {Rational(wall + w), Rational(depth + 6)}, {Rational(wall), Rational(depth + 6)}};
+  return {a, b};
+}
+
 TEST(CSpacePolygonFrontEnd, LineEdgeLabelsAndSamplesEqualTheReferenceOnGeneratedPairs) {
   std::mt19937_64 random(16031);
   int checked = 0, collinear_labels = 0;
@@ -536,31 +571,15 @@ TEST(CSpacePolygonFrontEnd, LineEdgeLabelsAndSamplesEqualTheReferenceOnGenerated
         b = random_star(random, 3 + static_cast<int>(random() % 8), static_cast<double>(random() % 5) - 2,
                         static_cast<double>(random() % 5) - 2, 2, 2, false);
         break;
-      case 1: {   // a polygon and its shifted copy: collinear and touching edges everywhere
-        a = random_star(random, 4 + static_cast<int>(random() % 5), 0, 0, 2, 1, true);
-        b = a;
-        Rational dx(static_cast<long>(random() % 5) - 2), dy(static_cast<long>(random() % 5) - 2);
-        for (auto& [x, y] : b) {
-          x += dx;
-          y += dy;
-        }
+      case 1:   // a polygon and its shifted copy: collinear and touching edges everywhere
+        std::tie(a, b) = shifted_copy_pair(random);
         break;
-      }
       case 2:   // staircases: collinear steps, shared coordinates
-        a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 4));
-        b = random_staircase(random, static_cast<long>(random() % 5) - 2, static_cast<long>(random() % 5) - 2,
-                             1 + static_cast<int>(random() % 4));
+        std::tie(a, b) = staircase_pair(random);
         break;
-      case 3: {   // zero clearance: a bar exactly as wide as a slot (random widths and depths)
-        long w = 1 + static_cast<long>(random() % 3), depth = 1 + static_cast<long>(random() % 4);
-        long wall = 1 + static_cast<long>(random() % 2);
-        a = {{Rational(0), Rational(0)}, {Rational(2 * wall + w), Rational(0)}, {Rational(2 * wall + w), Rational(depth + 1)},
-             {Rational(wall + w), Rational(depth + 1)}, {Rational(wall + w), Rational(1)}, {Rational(wall), Rational(1)},
-             {Rational(wall), Rational(depth + 1)}, {Rational(0), Rational(depth + 1)}};
-        b = {{Rational(wall), Rational(depth + 3)}, {Rational(wall + w), Rational(depth + 3)},
-             {Rational(wall + w), Rational(depth + 6)}, {Rational(wall), Rational(depth + 6)}};
+      case 3:   // zero clearance: a bar exactly as wide as a slot (random widths and depths)
+        std::tie(a, b) = zero_clearance_slot_pair(random);
         break;
-      }
       default:   // a staircase against a star with collinear edges
         a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3));
         b = random_star(random, 3 + static_cast<int>(random() % 4), 1, 1, 2, 1, true);
@@ -897,31 +916,15 @@ TEST(CSpacePolygonFrontEnd, SupportGroupsAndInPlaceSamplesLabelAsTheRationalRefe
         b = random_star(random, 3 + static_cast<int>(random() % 6), static_cast<double>(random() % 5) - 2,
                         static_cast<double>(random() % 5) - 2, 2, 2, true);
         break;
-      case 1: {
-        a = random_star(random, 4 + static_cast<int>(random() % 5), 0, 0, 2, 1, true);
-        b = a;
-        Rational dx(static_cast<long>(random() % 5) - 2), dy(static_cast<long>(random() % 5) - 2);
-        for (auto& [x, y] : b) {
-          x += dx;
-          y += dy;
-        }
+      case 1:
+        std::tie(a, b) = shifted_copy_pair(random);
         break;
-      }
       case 2:
-        a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 4));
-        b = random_staircase(random, static_cast<long>(random() % 5) - 2, static_cast<long>(random() % 5) - 2,
-                             1 + static_cast<int>(random() % 4));
+        std::tie(a, b) = staircase_pair(random);
         break;
-      case 3: {   // a bar exactly as wide as a slot
-        long w = 1 + static_cast<long>(random() % 3), depth = 1 + static_cast<long>(random() % 4);
-        long wall = 1 + static_cast<long>(random() % 2);
-        a = {{Rational(0), Rational(0)}, {Rational(2 * wall + w), Rational(0)}, {Rational(2 * wall + w), Rational(depth + 1)},
-             {Rational(wall + w), Rational(depth + 1)}, {Rational(wall + w), Rational(1)}, {Rational(wall), Rational(1)},
-             {Rational(wall), Rational(depth + 1)}, {Rational(0), Rational(depth + 1)}};
-        b = {{Rational(wall), Rational(depth + 3)}, {Rational(wall + w), Rational(depth + 3)},
-             {Rational(wall + w), Rational(depth + 6)}, {Rational(wall), Rational(depth + 6)}};
+      case 3:
+        std::tie(a, b) = zero_clearance_slot_pair(random);
         break;
-      }
       default: {   // a staircase and a star with collinear edges, at 10^-300 or 10^300
         a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3));
         b = random_star(random, 3 + static_cast<int>(random() % 4), 1, 1, 2, 1, true);
