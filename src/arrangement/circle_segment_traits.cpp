@@ -216,8 +216,9 @@ Real to_real(const CoordNT& value) {
   return r;
 }
 
-// exact_real(value) written into r (its rationals' and polynomial's storage reused)
-void assign_exact_real(Real& r, const Rational& value) {
+// exact_real(value) written into r (its rationals' and polynomial's storage reused); false
+// (r untouched) when value is not canonical, which the caller then converts
+bool assign_canonical_real(Real& r, const Rational& value) {
   const mpz_class& num = value.get_num();
   const mpz_class& den = value.get_den();
   bool canonical = sgn(den) > 0;
@@ -226,16 +227,29 @@ void assign_exact_real(Real& r, const Rational& value) {
     mpz_gcd(g.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
     canonical = mpz_cmp_ui(g.get_mpz_t(), 1) == 0;
   }
-  if (!canonical) {
-    r = Real::from_rational(value);
-    return;
-  }
+  if (!canonical) return false;
   r.polynomial.resize(2);
   mpz_neg(r.polynomial[0].get_mpz_t(), num.get_mpz_t());
   r.polynomial[1] = den;
-  r.lower = value;
   r.upper = value;
   r.exact = true;
+  return true;
+}
+
+// exact_real(value) written into r (its rationals' and polynomial's storage reused)
+void assign_exact_real(Real& r, const Rational& value) {
+  if (assign_canonical_real(r, value))
+    r.lower = value;
+  else
+    r = Real::from_rational(value);
+}
+
+// The same, taking value's integers for r.lower (a rational read once: no copy of it)
+void assign_exact_real(Real& r, Rational&& value) {
+  if (assign_canonical_real(r, value))
+    r.lower = std::move(value);   // gmpxx's move assignment swaps
+  else
+    r = Real::from_rational(value);
 }
 
 // The rest of a vertex's y from its number out.y: the minimal polynomial of y, in y alone, and
@@ -859,9 +873,11 @@ class Builder {
       if constexpr (segments) {
         auto known = known_.find(v->point().id());
         if (known != known_.end()) {
-          const KnownPoint& k = known_points_[known->second];
-          assign_exact_real(out.x, k.x);
-          assign_exact_real(out.y, k.y);
+          // each known point is one vertex's (its own handle): its rationals are read here
+          // only, and given to the vertex
+          KnownPoint& k = known_points_[known->second];
+          assign_exact_real(out.x, std::move(k.x));
+          assign_exact_real(out.y, std::move(k.y));
         } else {
           assign_exact_real(out.x, rational_from(v->point().x()));
           assign_exact_real(out.y, rational_from(v->point().y()));

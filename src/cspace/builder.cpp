@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -22,6 +23,8 @@
 #include <numeric>
 #include <optional>
 #include <set>
+#include <span>
+#include <string_view>
 #include <string>
 #include <tuple>
 #include <unordered_map>
@@ -371,7 +374,8 @@ bool valid_at(const std::vector<ValidityClause>& clauses, const X& x, const Y& y
 // (per coefficient: i, j, the sign, the limb count and the limbs: an injective encoding, so
 // that equal keys are equal supports), without text conversion and without a division when
 // the gcd is 1.
-std::string support_key(const IntegerPolynomial2& f) {
+// (Appended to `key`: label_edges writes every curve's key into one buffer.)
+void append_support_key(std::string& key, const IntegerPolynomial2& f) {
   thread_local mpz_class g, q;
   g = 0;
   int sign = 0;
@@ -381,8 +385,7 @@ std::string support_key(const IntegerPolynomial2& f) {
       if (sign == 0) sign = sgn(c);
       mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), c.get_mpz_t());
     }
-  std::string key;
-  if (sign == 0) return key;
+  if (sign == 0) return;
   const bool unit = mpz_cmp_ui(g.get_mpz_t(), 1) == 0;
   auto append = [&](const void* data, std::size_t bytes) { key.append(static_cast<const char*>(data), bytes); };
   for (std::size_t i = 0; i < f.coefficients.size(); ++i)
@@ -401,7 +404,6 @@ std::string support_key(const IntegerPolynomial2& f) {
       append(&limbs, sizeof limbs);
       append(mpz_limbs_read(value->get_mpz_t()), limbs * sizeof(mp_limb_t));
     }
-  return key;
 }
 
 // The line a x + b y + c = 0 of a polynomial of total degree <= 1 (false: a curve of higher
@@ -462,31 +464,56 @@ const Rational& label_filter_width() {
 void label_edges(ChartData& chart, bool by_support) {
   const auto& arrangement = chart.arrangement;
   chart.edges.resize(arrangement.edges.size());
-  std::unordered_map<std::string, std::vector<std::size_t>> with_support;
-  std::vector<const std::vector<std::size_t>*> group_of;   // per curve: the curves with its support
+  // by_support: the curves grouped by support. Every curve's key is written into one buffer
+  // (`ends`: where each ends); `by_key` lists the curves sorted by key, stably, so that a
+  // group (a run of equal keys: the curves with one support) lists its curves in ascending
+  // order, as they are tested; group_of[k] is curve k's run.
+  const std::size_t curve_count = chart.polynomials.size();
+  std::string key_buffer;
+  std::vector<std::size_t> ends, by_key;
+  std::vector<std::span<const std::size_t>> group_of;   // per curve: the curves with its support
+  auto key_of = [&](std::size_t k) {
+    const std::size_t begin = k == 0 ? 0 : ends[k - 1];
+    return std::string_view(key_buffer).substr(begin, ends[k] - begin);
+  };
   if (by_support) {
-    std::vector<std::string> keys;
-    keys.reserve(chart.polynomials.size());
-    for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
-      keys.push_back(support_key(chart.polynomials[k]));
-      with_support[keys.back()].push_back(k);
+    ends.reserve(curve_count);
+    for (std::size_t k = 0; k < curve_count; ++k) {
+      append_support_key(key_buffer, chart.polynomials[k]);
+      ends.push_back(key_buffer.size());
     }
-    for (const std::string& key : keys) group_of.push_back(&with_support.at(key));
+    by_key.resize(curve_count);
+    std::iota(by_key.begin(), by_key.end(), std::size_t{0});
+    std::stable_sort(by_key.begin(), by_key.end(), [&](std::size_t a, std::size_t b) { return key_of(a) < key_of(b); });
+    group_of.resize(curve_count);
+    for (std::size_t i = 0; i < curve_count;) {
+      std::size_t j = i + 1;
+      while (j < curve_count && key_of(by_key[j]) == key_of(by_key[i])) ++j;
+      const std::span<const std::size_t> group(by_key.data() + i, j - i);
+      for (std::size_t r = i; r < j; ++r) group_of[by_key[r]] = group;
+      i = j;
+    }
   }
-  static const std::vector<std::size_t> no_curves;
   std::vector<std::size_t> all_curves;
   if (!by_support)
-    for (std::size_t k = 0; k < chart.polynomials.size(); ++k) all_curves.push_back(k);
+    for (std::size_t k = 0; k < curve_count; ++k) all_curves.push_back(k);
   for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
-    const std::vector<std::size_t>* candidates = &all_curves;
+    std::span<const std::size_t> candidates(all_curves);
     // an edge along an input line has that line's support: its group, without a key
     const std::size_t carried = by_support ? arrangement.edges[e].support_curve : raw::none;
     if (by_support) {
       if (carried < group_of.size()) {
         candidates = group_of[carried];
       } else {
-        auto it = with_support.find(support_key(arrangement.edges[e].support));
-        candidates = it == with_support.end() ? &no_curves : &it->second;
+        // the group whose key is the edge's support's (none: no curve)
+        thread_local std::string edge_key;
+        edge_key.clear();
+        append_support_key(edge_key, arrangement.edges[e].support);
+        auto it = std::lower_bound(by_key.begin(), by_key.end(), std::string_view(edge_key),
+                                   [&](std::size_t k, std::string_view key) { return key_of(k) < key; });
+        candidates = it == by_key.end() || key_of(*it) != std::string_view(edge_key)
+                         ? std::span<const std::size_t>()
+                         : group_of[*it];
       }
     }
     const raw::Edge& edge = arrangement.edges[e];
@@ -499,11 +526,13 @@ void label_edges(ChartData& chart, bool by_support) {
       Rational y = low.y_exact && high.y_exact ? algebra::rational_between(low.y, high.y)
                                               : algebra::simplest_between(low.y_upper, high.y_lower);
       data.sample_y = Real::from_rational(y);
-      Real x = low.x;
-      x.refine_to(label_filter_width());
+      // refined in a copy (an exact x is not refined: read in place)
+      std::optional<Real> refined;
+      const Real& x = low.x.exact ? low.x : refined.emplace(low.x);
+      if (refined) refined->refine_to(label_filter_width());
       x_box = {x.lower_bound(), x.upper_bound()};
       y_box = algebra::enclose(y);
-      for (std::size_t k : *candidates) {
+      for (std::size_t k : candidates) {
         if (!chart.interval_polynomials[k].evaluate(x_box, y_box).contains_zero()) continue;
         if (algebra::vanishes_at(chart.polynomials[k], x, y) && valid_at(chart.validity[k], x, y))
           data.curves.push_back(k);
@@ -526,17 +555,18 @@ void label_edges(ChartData& chart, bool by_support) {
       mpz_neg(y_num, y_num);
       mpz_mul(y_den, b->get_mpz_t(), data.sample_x.get_den_mpz_t());
       y.canonicalize();
-      for (std::size_t k : *candidates)
+      for (std::size_t k : candidates)
         if (valid_at_rational(chart.validity[k], data.sample_x, y)) data.curves.push_back(k);
       data.sample_y = raw::exact_real(y);
     } else {
       data.sample_x = algebra::rational_between(low.x, high.x);
       data.sample_y = edge_y_at(chart, e, data.sample_x);
-      Real y = data.sample_y;
-      y.refine_to(label_filter_width());
+      std::optional<Real> refined;   // as above: an exact y is read in place
+      const Real& y = data.sample_y.exact ? data.sample_y : refined.emplace(data.sample_y);
+      if (refined) refined->refine_to(label_filter_width());
       x_box = algebra::enclose(data.sample_x);
       y_box = {y.lower_bound(), y.upper_bound()};
-      for (std::size_t k : *candidates) {
+      for (std::size_t k : candidates) {
         if (!chart.interval_polynomials[k].evaluate(x_box, y_box).contains_zero()) continue;
         if (algebra::vanishes_at(chart.polynomials[k], data.sample_x, y) &&
             valid_at(chart.validity[k], data.sample_x, data.sample_y))
@@ -749,6 +779,7 @@ void check_sample_in_face(const ChartData& chart, std::size_t f) {
 // identically zero (then touching configurations fill whole faces).
 void classify_faces(ChartData& chart, const Classifier& classify, ContactSides* sides, bool check, bool propagate) {
   const auto& arrangement = chart.arrangement;
+  chart.rational_vertex_x.reserve(chart.rational_vertex_x.size() + arrangement.vertices.size());   // (no regrowth: its rationals are not copied)
   for (const auto& v : arrangement.vertices)
     if (v.x.exact) chart.rational_vertex_x.push_back(v.x.lower);
   std::sort(chart.rational_vertex_x.begin(), chart.rational_vertex_x.end());
@@ -1415,9 +1446,14 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
   if (!input.complete) stats.region_tiles = chart_count;
 
   // feature pairs: one per contact curve of any chart, deduplicated by (first, second, type)
+  // "vertex of loop L edge E" or "loop L edge E", written into one string (no temporaries)
   auto feature_name = [&](const FeatureRef& f) -> std::string {
-    std::string what = f.kind == FeatureRef::Kind::vertex ? "vertex of loop " : "loop ";
-    return what + std::to_string(f.loop) + " edge " + std::to_string(f.edge);
+    std::string name = f.kind == FeatureRef::Kind::vertex ? "vertex of loop " : "loop ";
+    char digits[24];
+    name.append(digits, std::to_chars(digits, digits + sizeof digits, f.loop).ptr);
+    name += " edge ";
+    name.append(digits, std::to_chars(digits, digits + sizeof digits, f.edge).ptr);
+    return name;
   };
   auto part_name = [&](std::size_t part) {
     return part < input.part_names.size() ? input.part_names[part] : "part " + std::to_string(part);
@@ -1461,7 +1497,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     stats.seconds_culling += seconds_since(culling_start);
     stats.curves += kept.size();
     for (std::size_t k : kept) {
-      const ContactCurve& curve = chart_input.curves[k];
+      ContactCurve& curve = chart_input.curves[k];
       auto [found, inserted] = keys.try_emplace(key_of(curve), impl->feature_pairs.size());
       const std::size_t index = found->second;
       if (inserted) {
@@ -1471,7 +1507,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
         pair.first_feature = feature_name(curve.first);
         pair.second_feature = feature_name(curve.second);
         pair.kind = public_kind(curve.type);
-        pair.label = curve.label;
+        pair.label = std::move(curve.label);   // (read here only: the input curves are freed below)
         auto identity = [](const FeatureRef& f) {
           return FeatureIdentity{f.part, f.loop, f.edge, f.kind};
         };
@@ -1491,7 +1527,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     public_chart.x_hi = chart.box.x_hi;
     public_chart.y_lo = input.dimension == 2 ? chart.box.y_lo : Rational(0);
     public_chart.y_hi = input.dimension == 2 ? chart.box.y_hi : Rational(0);
-    impl->public_charts.push_back(public_chart);
+    impl->public_charts.push_back(std::move(public_chart));
 
     if (input.dimension == 1) {
       auto start = Clock::now();
@@ -1760,6 +1796,11 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       continue;
     }
     const auto& arrangement = chart.arrangement;
+    // (the per-chart lists and each vertex's edges reserved to the size they get: no regrowth)
+    chart.vertex_global.reserve(chart.vertex_global.size() + arrangement.vertices.size());
+    impl->vertex_local.reserve(impl->vertex_local.size() + arrangement.vertices.size());
+    impl->edge_local.reserve(impl->edge_local.size() + arrangement.edges.size());
+    impl->edges.reserve(impl->edges.size() + arrangement.edges.size());
     for (std::size_t v = 0; v < arrangement.vertices.size(); ++v) {
       chart.vertex_global.push_back(impl->vertices.size() + v);
       impl->vertex_local.emplace_back(c, v);
@@ -1770,6 +1811,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       CSpaceVertex& vertex = impl->vertices[vertex_base + v];
       vertex.chart = c;
       const raw::Vertex& source = arrangement.vertices[v];
+      vertex.edges.reserve(source.around.size());
       assign_public(vertex.x, source.x);
       vertex.y_exact = source.y_exact;
       if (source.y_exact) assign_public(vertex.y, source.y);
@@ -1789,6 +1831,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       out.source = chart.vertex_global[edge.min_vertex];
       out.target = chart.vertex_global[edge.max_vertex];
       out.vertical = edge.vertical;
+      out.curves.reserve(data.curves.size());
       for (std::size_t k : data.curves) out.curves.push_back(chart.curve_global[k]);
       std::sort(out.curves.begin(), out.curves.end());
       out.curves.erase(std::unique(out.curves.begin(), out.curves.end()), out.curves.end());

@@ -27,6 +27,8 @@
 #include <cmath>
 #include <optional>
 #include <random>
+#include <tuple>
+#include <utility>
 
 namespace hipair {
 namespace {
@@ -525,6 +527,39 @@ void expect_reference_labels(const CSpace& space) {
   }
 }
 
+// Generated pairs shared by the label tests (the random numbers drawn in the same order as the
+// cases they came from): a star with collinear edges and its copy shifted by a lattice vector
+// (collinear and touching edges everywhere); two staircases (collinear steps, shared
+// coordinates); a bar exactly as wide as a slot (zero clearance, random widths and depths).
+std::pair<Points, Points> shifted_copy_pair(std::mt19937_64& random) {
+  Points a = random_star(random, 4 + static_cast<int>(random() % 5), 0, 0, 2, 1, true);
+  Points b = a;
+  Rational dx(static_cast<long>(random() % 5) - 2), dy(static_cast<long>(random() % 5) - 2);
+  for (auto& [x, y] : b) {
+    x += dx;
+    y += dy;
+  }
+  return {a, b};
+}
+
+std::pair<Points, Points> staircase_pair(std::mt19937_64& random) {
+  Points a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 4));
+  Points b = random_staircase(random, static_cast<long>(random() % 5) - 2, static_cast<long>(random() % 5) - 2,
+                              1 + static_cast<int>(random() % 4));
+  return {a, b};
+}
+
+std::pair<Points, Points> zero_clearance_slot_pair(std::mt19937_64& random) {
+  long w = 1 + static_cast<long>(random() % 3), depth = 1 + static_cast<long>(random() % 4);
+  long wall = 1 + static_cast<long>(random() % 2);
+  Points a = {{Rational(0), Rational(0)}, {Rational(2 * wall + w), Rational(0)}, {Rational(2 * wall + w), Rational(depth + 1)},
+              {Rational(wall + w), Rational(depth + 1)}, {Rational(wall + w), Rational(1)}, {Rational(wall), Rational(1)},
+              {Rational(wall), Rational(depth + 1)}, {Rational(0), Rational(depth + 1)}};
+  Points b = {{Rational(wall), Rational(depth + 3)}, {Rational(wall + w), Rational(depth + 3)},
+              {Rational(wall + w), Rational(depth + 6)}, {Rational(wall), Rational(depth + 6)}};
+  return {a, b};
+}
+
 TEST(CSpacePolygonFrontEnd, LineEdgeLabelsAndSamplesEqualTheReferenceOnGeneratedPairs) {
   std::mt19937_64 random(16031);
   int checked = 0, collinear_labels = 0;
@@ -536,31 +571,15 @@ TEST(CSpacePolygonFrontEnd, LineEdgeLabelsAndSamplesEqualTheReferenceOnGenerated
         b = random_star(random, 3 + static_cast<int>(random() % 8), static_cast<double>(random() % 5) - 2,
                         static_cast<double>(random() % 5) - 2, 2, 2, false);
         break;
-      case 1: {   // a polygon and its shifted copy: collinear and touching edges everywhere
-        a = random_star(random, 4 + static_cast<int>(random() % 5), 0, 0, 2, 1, true);
-        b = a;
-        Rational dx(static_cast<long>(random() % 5) - 2), dy(static_cast<long>(random() % 5) - 2);
-        for (auto& [x, y] : b) {
-          x += dx;
-          y += dy;
-        }
+      case 1:   // a polygon and its shifted copy: collinear and touching edges everywhere
+        std::tie(a, b) = shifted_copy_pair(random);
         break;
-      }
       case 2:   // staircases: collinear steps, shared coordinates
-        a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 4));
-        b = random_staircase(random, static_cast<long>(random() % 5) - 2, static_cast<long>(random() % 5) - 2,
-                             1 + static_cast<int>(random() % 4));
+        std::tie(a, b) = staircase_pair(random);
         break;
-      case 3: {   // zero clearance: a bar exactly as wide as a slot (random widths and depths)
-        long w = 1 + static_cast<long>(random() % 3), depth = 1 + static_cast<long>(random() % 4);
-        long wall = 1 + static_cast<long>(random() % 2);
-        a = {{Rational(0), Rational(0)}, {Rational(2 * wall + w), Rational(0)}, {Rational(2 * wall + w), Rational(depth + 1)},
-             {Rational(wall + w), Rational(depth + 1)}, {Rational(wall + w), Rational(1)}, {Rational(wall), Rational(1)},
-             {Rational(wall), Rational(depth + 1)}, {Rational(0), Rational(depth + 1)}};
-        b = {{Rational(wall), Rational(depth + 3)}, {Rational(wall + w), Rational(depth + 3)},
-             {Rational(wall + w), Rational(depth + 6)}, {Rational(wall), Rational(depth + 6)}};
+      case 3:   // zero clearance: a bar exactly as wide as a slot (random widths and depths)
+        std::tie(a, b) = zero_clearance_slot_pair(random);
         break;
-      }
       default:   // a staircase against a star with collinear edges
         a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3));
         b = random_star(random, 3 + static_cast<int>(random() % 4), 1, 1, 2, 1, true);
@@ -796,6 +815,140 @@ TEST(CSpacePolygonFrontEnd, ChartSideSupportsAndLazyLabelsEqualTheirReferencesOn
   EXPECT_GE(side_edges, 4 * compared);
   EXPECT_GT(corners_of_two, 0);
   EXPECT_GT(corners_of_one, 0);
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// Session 36 (trans36): label_edges groups the curves by support in one sorted key buffer
+// (no hash map of strings), reads an exact sample coordinate in place (no refined copy), and
+// the segment stage gives each known point's rationals to its vertex. Reference, independent
+// of all three: at every edge's sample point, vertical edges included, the labels are every
+// chart curve (all of them, not only the edge's support group) that vanishes there and whose
+// every validity clause has an atom >= 0 there, evaluated in rationals term by term; the
+// sample lies strictly inside the edge; every vertex's coordinates are exact, canonical and
+// their polynomial is den t - num. Both paths (front end: supports carried, groups by curve;
+// general: every edge's support looked up by key), on generated pairs: stars with collinear
+// edges, a polygon and its shifted copy (touching and collinear everywhere), staircases
+// (vertical contact edges), zero-clearance slots, and scales 10^-300 and 10^300 (beyond the
+// segment filter: the circle–segment stage's export).
+Rational evaluate_exactly(const cspace::IntegerPolynomial2& f, const Rational& x, const Rational& y) {
+  Rational sum(0), x_power(1);
+  for (const auto& row : f.coefficients) {
+    Rational term(0), y_power(1);
+    for (const auto& c : row) {
+      term += Rational(c) * y_power;
+      y_power *= y;
+    }
+    sum += term * x_power;
+    x_power *= x;
+  }
+  return sum;
+}
+
+struct LabelCounts {
+  int edges = 0, vertical_labelled = 0, shared = 0, looked_up = 0;
+};
+
+void expect_labels_by_rational_reference(const CSpace& space, LabelCounts& counts) {
+  for (const cspace::ChartData& chart : implementation(space).charts) {
+    const auto& arrangement = chart.arrangement;
+    ASSERT_EQ(chart.edges.size(), arrangement.edges.size());
+    for (const cspace::raw::Vertex& v : arrangement.vertices)
+      for (const cspace::algebra::Real* r : {&v.x, &v.y}) {
+        ASSERT_TRUE(r->exact);
+        ASSERT_EQ(r->lower, r->upper);
+        Rational canonical = r->lower;
+        canonical.canonicalize();
+        EXPECT_EQ(canonical.get_num(), r->lower.get_num());
+        EXPECT_EQ(canonical.get_den(), r->lower.get_den());
+        ASSERT_EQ(r->polynomial.size(), 2u);
+        EXPECT_EQ(r->polynomial[0], -r->lower.get_num());
+        EXPECT_EQ(r->polynomial[1], r->lower.get_den());
+      }
+    for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
+      SCOPED_TRACE("edge " + std::to_string(e));
+      const cspace::raw::Edge& edge = arrangement.edges[e];
+      const cspace::EdgeData& data = chart.edges[e];
+      const auto& low = arrangement.vertices[edge.min_vertex];
+      const auto& high = arrangement.vertices[edge.max_vertex];
+      ASSERT_TRUE(data.sample_y.exact);
+      const Rational x = edge.vertical ? low.x.lower : data.sample_x;
+      const Rational y = data.sample_y.lower;
+      if (edge.vertical) {
+        EXPECT_EQ(high.x.lower, x);
+        EXPECT_TRUE(low.y.lower < y && y < high.y.lower);
+      } else {
+        EXPECT_TRUE(low.x.lower < x && x < high.x.lower);
+      }
+      std::vector<std::size_t> labels;
+      for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
+        if (sgn(evaluate_exactly(chart.polynomials[k], x, y)) != 0) continue;
+        bool valid = true;
+        for (const auto& clause : chart.validity[k]) {
+          bool holds = false;
+          for (const auto& atom : clause.atoms) holds = holds || sgn(evaluate_exactly(atom, x, y)) >= 0;
+          valid = valid && holds;
+        }
+        if (valid) labels.push_back(k);
+      }
+      EXPECT_EQ(data.curves, labels);
+      ++counts.edges;
+      counts.vertical_labelled += edge.vertical && !labels.empty();
+      counts.shared += labels.size() >= 2;
+      counts.looked_up += edge.support_curve == cspace::raw::none && !labels.empty();
+    }
+  }
+}
+
+TEST(CSpacePolygonFrontEnd, SupportGroupsAndInPlaceSamplesLabelAsTheRationalReferenceOnGeneratedPairs) {
+  std::mt19937_64 random(36036);
+  LabelCounts counts;
+  int built = 0, scaled_cases = 0;
+  for (int instance = 0; instance < 36; ++instance) {
+    Points a, b;
+    switch (instance % 6) {
+      case 0:
+        a = random_star(random, 3 + static_cast<int>(random() % 8), 0, 0, 3, 2, true);
+        b = random_star(random, 3 + static_cast<int>(random() % 6), static_cast<double>(random() % 5) - 2,
+                        static_cast<double>(random() % 5) - 2, 2, 2, true);
+        break;
+      case 1:
+        std::tie(a, b) = shifted_copy_pair(random);
+        break;
+      case 2:
+        std::tie(a, b) = staircase_pair(random);
+        break;
+      case 3:
+        std::tie(a, b) = zero_clearance_slot_pair(random);
+        break;
+      default: {   // a staircase and a star with collinear edges, at 10^-300 or 10^300
+        a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3));
+        b = random_star(random, 3 + static_cast<int>(random() % 4), 1, 1, 2, 1, true);
+        const Rational factor = power_of_ten(instance % 12 == 4 ? -300 : 300);
+        a = scaled(a, factor);
+        b = scaled(b, factor);
+        ++scaled_cases;
+        break;
+      }
+    }
+    SCOPED_TRACE("instance " + std::to_string(instance));
+    std::optional<Model> model = sliders_or_none(a, b);
+    if (!model) continue;
+    Built both = build_both(*model);
+    expect_labels_by_rational_reference(both.fast, counts);
+    expect_labels_by_rational_reference(both.general, counts);
+    expect_same_space(both.fast, both.general);
+    ++built;
+  }
+  EXPECT_GE(built, 30);
+  EXPECT_GE(scaled_cases, 10);
+  EXPECT_GT(counts.vertical_labelled, 20) << "too few vertical contact edges";
+  EXPECT_GT(counts.shared, 10) << "too few edges with collinear contacts (a support group of two or more)";
+  EXPECT_GT(counts.looked_up, 50) << "too few labelled edges whose support is looked up by key";
 }
 
 }  // namespace
