@@ -282,13 +282,13 @@ TEST(CSpaceDescartes, RememberedSquareFreeTestsGiveTheSameIsolations) {
 TEST(CSpaceDescartes, RememberedSquareFreeTestIsTheSquareFreeTest) {
   // remembered_square_free_test (the kernel slicer's and descartes_real_roots' memo, per thread,
   // emptied at 4,096 polynomials) against square_free_part (the exact gcd: an independent
-  // oracle) and square_free_test computed afresh in a new thread: 2,500 generated polynomials
-  // in three passes (the memo emptied on the way), as given, times -1, times 3 * 2^200 (a
+  // oracle) and square_free_test computed afresh in a new thread: 800 generated polynomials
+  // in three passes (4,800 keys: the memo emptied on the way), as given, times -1, times 3 * 2^200 (a
   // content to divide out), and each with its constant coefficient moved by one (a key differing
   // in one coefficient, another answer), every call asked twice (the second a hit).
   Generator generator(3607);
   std::vector<Polynomial> polynomials;
-  for (int trial = 0; trial < 2500; ++trial) polynomials.push_back(generator.next().p);
+  for (int trial = 0; trial < 800; ++trial) polynomials.push_back(generator.next().p);
   std::vector<Polynomial> moved = polynomials;
   for (Polynomial& p : moved) {
     if (p.empty()) p.push_back(0);
@@ -322,7 +322,7 @@ TEST(CSpaceDescartes, RememberedSquareFreeTestIsTheSquareFreeTest) {
         hits_checked += again;
       }
     }
-  EXPECT_EQ(hits_checked, 3 * 2500);
+  EXPECT_EQ(hits_checked, 3 * 800);
 }
 
 // The continued-fraction descent on rationals (simplest_between before it ran on integers):
