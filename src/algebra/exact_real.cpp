@@ -4,6 +4,7 @@
 #include "algebra/rational_order.hpp"
 #include "algebra/real_filters.hpp"
 #include "algebra/simplest_small.hpp"
+#include "algebra/square_free_memo.hpp"
 
 #include <hipair/error.hpp>
 
@@ -1427,21 +1428,19 @@ Polynomial square_free_test(const Polynomial& input, bool* exact_needed) {
   return memoised_square_free_part(p);
 }
 
-namespace {
-
-// square_free_test's answers for descartes_real_roots' inputs, remembered per thread. The
-// quadratic traits isolates the same resultants, discriminants and leading coefficients in
-// every tile a curve crosses (a chart's curves do not depend on the tile's box), and the test's
-// primitive part (a gcd of every coefficient) and modular gcds cost more than the isolation of
-// a tile's few roots. The answer is a pure function of the input polynomial (compared
-// coefficient by coefficient), so a hit returns exactly what square_free_test would. Bounded:
-// emptied when it holds `capacity` polynomials.
+// square_free_test's answers, remembered per thread (descartes_real_roots' inputs and the
+// kernel slicer's substituted curves). The quadratic traits isolates the same resultants,
+// discriminants and leading coefficients in every tile a curve crosses (a chart's curves do not
+// depend on the tile's box), the kernel slicer substitutes the same driver value into the same
+// curve for several follower charts, windows and congruent pairs, and the test's primitive part
+// (a gcd of every coefficient) and modular gcds cost more than the isolation of a tile's few
+// roots. The answer is a pure function of the input polynomial (compared coefficient by
+// coefficient), so a hit returns exactly what square_free_test would. Bounded: emptied when it
+// holds `capacity` polynomials.
 Polynomial remembered_square_free_test(const Polynomial& input) {
   thread_local PolynomialMemo memo;
   return remembered(memo, input, [&] { return square_free_test(input); });
 }
-
-}  // namespace
 
 std::vector<Real> descartes_real_roots(const Polynomial& input, const Rational& lo, const Rational& hi) {
   std::vector<Real> roots;

@@ -1417,24 +1417,31 @@ bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurv
 }
 
 // Validity clauses as integer polynomials; returns false when some clause can never hold.
+// `zero_not_strict` (when true is returned): some clause holds everywhere only because an atom
+// is identically zero, none being a positive constant (not strict: corner_entry_atoms).
 bool convert_validity(const kernels::Validity<Polynomial>& validity,
-                      std::vector<ValidityClause>& clauses) {
+                      std::vector<ValidityClause>& clauses, bool& zero_not_strict) {
+  zero_not_strict = false;
   for (const auto& clause : validity.clauses) {
     ValidityClause converted;
     bool always = false;
     bool possible = false;
+    bool strict = false, zero = false;
     for (int i = 0; i < clause.count; ++i) {
       IntegerPolynomial2 atom =
           normalized_integer_polynomial(clause.atoms[static_cast<std::size_t>(i)]);
       if (atom.degree_x() <= 0 && atom.degree_y() <= 0) {
         // constant atom: zero or positive holds everywhere, negative never
-        bool holds = atom.is_zero() || sgn(atom.coefficients[0][0]) > 0;
-        if (holds) always = true;
+        const int s = atom.is_zero() ? 0 : sgn(atom.coefficients[0][0]);
+        strict = strict || s > 0;
+        zero = zero || s == 0;
+        if (s >= 0) always = true;
         continue;
       }
       possible = true;
       converted.atoms.push_back(std::move(atom));
     }
+    if (zero && !strict) zero_not_strict = true;
     if (always) continue;
     if (!possible) return false;
     clauses.push_back(std::move(converted));
@@ -1469,25 +1476,16 @@ std::vector<IntegerPolynomial2> corner_entry_atoms(const Model& model, const Bod
                                                    const kernels::FeatureGeometry<Rational>& ga,
                                                    const kernels::FeatureGeometry<Rational>& gb,
                                                    const kernels::Pose<Polynomial>& a, const kernels::Pose<Polynomial>& b,
-                                                   const kernels::Validity<Polynomial>& validity) {
+                                                   bool validity_zero_not_strict) {
   using Shape = kernels::FeatureShape;
   using PairVector = kernels::PairVector<Polynomial>;
   const bool vertex_first = ga.shape == Shape::vertex;
   if (vertex_first == (gb.shape == Shape::vertex)) return {};
   const kernels::FeatureGeometry<Rational>& other = vertex_first ? gb : ga;
   if (other.shape != Shape::segment && other.shape != Shape::arc) return {};
-  for (const auto& clause : validity.clauses) {
-    bool strict = false, zero = false;
-    for (int i = 0; i < clause.count; ++i) {
-      // (classified as convert_validity classifies it)
-      const IntegerPolynomial2 atom = normalized_integer_polynomial(clause.atoms[static_cast<std::size_t>(i)]);
-      if (atom.degree_x() > 0 || atom.degree_y() > 0) continue;
-      const int s = atom.is_zero() ? 0 : sgn(atom.coefficients[0][0]);
-      strict = strict || s > 0;
-      zero = zero || s == 0;
-    }
-    if (zero && !strict) return {};
-  }
+  // a clause dropped as holding everywhere only because an atom is identically zero (the
+  // atoms classified once, by convert_validity)
+  if (validity_zero_not_strict) return {};
   const FeatureDirections corner = feature_directions(model, vertex_first ? fa : fb);
   if (sgn(cross(corner.in, corner.out)) == 0 && sgn(dot(corner.in, corner.out)) < 0) return {};   // a spike
   auto constant = [](const Rational& x, const Rational& y) { return PolyVector{Polynomial(x), Polynomial(y)}; };
@@ -2085,14 +2083,15 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
         curve.blocked_sign = kernels::blocked_sign;
         const bool zero = curve.polynomial.is_zero();
         // a non-zero constant: these features never touch; an empty validity: never within both
+        bool zero_not_strict = false;
         made->kept = (zero || curve.polynomial.degree_x() != 0 || curve.polynomial.degree_y() != 0) &&
-                     convert_validity(kernel->validity, curve.validity);
+                     convert_validity(kernel->validity, curve.validity, zero_not_strict);
         if (made->kept) {
           curve.label = curve_label(model, fa.ref, fb.ref, curve.type);
           // (a blocked-space cull: not without it, so that tests compare against builds without)
           if (options.cull_blocked_space)
             curve.corner_entry =
-                corner_entry_atoms(model, fa, fb, geometry_a[ui], geometry_b[uj], poses.first, poses.second, kernel->validity);
+                corner_entry_atoms(model, fa, fb, geometry_a[ui], geometry_b[uj], poses.first, poses.second, zero_not_strict);
         } else {
           made->curve = ContactCurve{};   // nothing kept but the answer
         }

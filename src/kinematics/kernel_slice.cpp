@@ -12,6 +12,7 @@
 #include "curves/algebraic_overlap.hpp"
 #include "algebra/rational_root.hpp"
 #include "algebra/real_filters.hpp"
+#include "algebra/square_free_memo.hpp"
 
 #include <hipair/error.hpp>
 
@@ -592,7 +593,9 @@ class KernelSlicer final : public PairSlicer {
             root = Real::from_rational(sign_lo == 0 ? lo : hi);
           } else {
             substitute();
-            if (!square_free) square_free = algebra::square_free_test(p);
+            // (remembered: the same curve and value come back for other follower charts,
+            // windows and congruent pairs)
+            if (!square_free) square_free = algebra::remembered_square_free_test(p);
             if (algebra::degree(*square_free) == 1) {
               // a linear factor's root is rational: exact, as Descartes' isolation gives it (the
               // zero-clearance test and the slices' consumers read `exact`)
@@ -979,7 +982,12 @@ class KernelSlicer final : public PairSlicer {
       if (candidate.first->feature != feature) continue;
       algebra::Polynomial p = algebra::substitute_x(candidate.first->data->polynomial, value);
       algebra::trim(p);
-      if (algebra::degree(p) < 1 || algebra::square_free_test(p) != algebra::primitive_part(root.polynomial)) return false;
+      if (algebra::degree(p) < 1) return false;
+      // square_free_test's answer is primitive with a positive leading coefficient, so it equals
+      // primitive_part(root.polynomial) when it equals root.polynomial itself (the usual case:
+      // the root was isolated from it); only otherwise is root.polynomial's content computed
+      const algebra::Polynomial square_free = algebra::remembered_square_free_test(p);
+      if (square_free != root.polynomial && square_free != algebra::primitive_part(root.polynomial)) return false;
       return algebra::sign_at(p, root.lower) * algebra::sign_at(p, root.upper) < 0;
     }
     return false;

@@ -3,6 +3,7 @@
 // polynomials: multiple roots, clusters 2^-200 apart, coefficients up to about 3000 bits, roots
 // at dyadic bisection points and at the ends of the interval, complex and irrational roots.
 #include "algebra/exact_real.hpp"
+#include "algebra/square_free_memo.hpp"
 
 #include <gtest/gtest.h>
 
@@ -276,6 +277,52 @@ TEST(CSpaceDescartes, RememberedSquareFreeTestsGiveTheSameIsolations) {
       }
     }
   EXPECT_GT(roots, 6u * 1500u);
+}
+
+TEST(CSpaceDescartes, RememberedSquareFreeTestIsTheSquareFreeTest) {
+  // remembered_square_free_test (the kernel slicer's and descartes_real_roots' memo, per thread,
+  // emptied at 4,096 polynomials) against square_free_part (the exact gcd: an independent
+  // oracle) and square_free_test computed afresh in a new thread: 800 generated polynomials
+  // in three passes (4,800 keys: the memo emptied on the way), as given, times -1, times 3 * 2^200 (a
+  // content to divide out), and each with its constant coefficient moved by one (a key differing
+  // in one coefficient, another answer), every call asked twice (the second a hit).
+  Generator generator(3607);
+  std::vector<Polynomial> polynomials;
+  for (int trial = 0; trial < 800; ++trial) polynomials.push_back(generator.next().p);
+  std::vector<Polynomial> moved = polynomials;
+  for (Polynomial& p : moved) {
+    if (p.empty()) p.push_back(0);
+    p[0] += 1;
+    trim(p);
+  }
+  std::vector<Polynomial> expected, expected_moved, fresh;
+  for (std::size_t i = 0; i < polynomials.size(); ++i) {
+    expected.push_back(square_free_part(polynomials[i]));
+    expected_moved.push_back(square_free_part(moved[i]));
+  }
+  std::thread([&] {
+    for (const Polynomial& p : polynomials) fresh.push_back(square_free_test(p));
+  }).join();
+  const mpz_class scale = mpz_class(3) << 200;
+  int hits_checked = 0;
+  for (int pass = 0; pass < 3; ++pass)
+    for (std::size_t i = 0; i < polynomials.size(); ++i) {
+      SCOPED_TRACE("pass " + std::to_string(pass) + " polynomial " + std::to_string(i));
+      Polynomial p = polynomials[i];
+      if (pass > 0)
+        for (auto& c : p) c *= pass == 1 ? mpz_class(-1) : scale;
+      Polynomial q = moved[i];
+      if (pass > 0)
+        for (auto& c : q) c *= pass == 1 ? mpz_class(-1) : scale;
+      for (int again = 0; again < 2; ++again) {
+        const Polynomial found = remembered_square_free_test(p);
+        EXPECT_EQ(found, expected[i]);
+        EXPECT_EQ(found, fresh[i]);
+        EXPECT_EQ(remembered_square_free_test(q), expected_moved[i]);
+        hits_checked += again;
+      }
+    }
+  EXPECT_EQ(hits_checked, 3 * 800);
 }
 
 // The continued-fraction descent on rationals (simplest_between before it ran on integers):
