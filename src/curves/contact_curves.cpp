@@ -825,6 +825,7 @@ class BlockedSpaceCuller {
       posed.boxes.resize(slots_[side]);
       posed.box_stamp.assign(slots_[side], 0);
     }
+    memo_ = cell_pose_memo_switch();
     depths_ = static_cast<std::size_t>(grid_ ? std::max(grid_->depth(), min_grid_depth) : max_depth) + 1;
     if (grid_) return;
     root_x_ = Interval(algebra::enclose_kernel(x_.lo).lo, algebra::enclose_kernel(x_.hi).hi);
@@ -949,11 +950,11 @@ class BlockedSpaceCuller {
   // quadtree's innermost loop)
   [[gnu::flatten]] CoreRelation core_relation(const CorePair& pair, CellPoses& cache_a, CellPoses& cache_b) const {
     auto ui = static_cast<std::size_t>(pair.i), uj = static_cast<std::size_t>(pair.j);
-    if (cache_a.core_stamp[ui] != cache_a.stamp) {
+    if (!memo_ || cache_a.core_stamp[ui] != cache_a.stamp) {
       cache_a.pose.apply((*cores_[0])[ui].x, (*cores_[0])[ui].y, cache_a.core_x[ui], cache_a.core_y[ui]);
       cache_a.core_stamp[ui] = cache_a.stamp;
     }
-    if (cache_b.core_stamp[uj] != cache_b.stamp) {
+    if (!memo_ || cache_b.core_stamp[uj] != cache_b.stamp) {
       cache_b.pose.apply((*cores_[1])[uj].x, (*cores_[1])[uj].y, cache_b.core_x[uj], cache_b.core_y[uj]);
       cache_b.core_stamp[uj] = cache_b.stamp;
     }
@@ -999,12 +1000,12 @@ class BlockedSpaceCuller {
       auto [i, j] = (*pairs_)[static_cast<std::size_t>(k)];
       auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
       auto sa = static_cast<std::size_t>(slot_[0][ui]), sb = static_cast<std::size_t>(slot_[1][uj]);
-      if (cache_a.box_stamp[sa] != stamp) {
+      if (!memo_ || cache_a.box_stamp[sa] != stamp) {
         const BodyDisk& disk = (*disks_[0])[ui];
         cache_a.boxes[sa] = world_box(pa, disk.x, disk.y, disk.radius);
         cache_a.box_stamp[sa] = stamp;
       }
-      if (cache_b.box_stamp[sb] != stamp) {
+      if (!memo_ || cache_b.box_stamp[sb] != stamp) {
         const BodyDisk& disk = (*disks_[1])[uj];
         cache_b.boxes[sb] = world_box(pb, disk.x, disk.y, disk.radius);
         cache_b.box_stamp[sb] = stamp;
@@ -1063,6 +1064,7 @@ class BlockedSpaceCuller {
   std::size_t cells_ = 0;
   CellPoses posed_[2];
   std::uint64_t stamp_ = 0;   // the cells visited so far (a cell's stamp: never 0)
+  bool memo_ = true;          // cell_pose_memo_switch() when prepared
   BlockedCells* grid_ = nullptr;
   // prepare(): the candidate indices and the root cell with its near core pairs; walk(): its filter
   std::vector<int> indices_;
