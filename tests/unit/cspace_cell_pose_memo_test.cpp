@@ -46,18 +46,31 @@ cspace::ChartAxis sub_axis(const cspace::ChartAxis& axis, long first, long width
   return sub;
 }
 
+// A generated spur-gear pair (6…11 × 6…11 teeth) with its axes and charts.
+struct GearPair {
+  std::string name;
+  Model model;
+  cspace::PairAxes axes;
+  cspace::ChartLayout layout;
+};
+GearPair random_gear_pair(std::mt19937_64& random) {
+  GearPair pair;
+  const long z1 = 6 + static_cast<long>(random() % 6), z2 = 6 + static_cast<long>(random() % 6);
+  pair.model = test_gears::spur_gear_pair(random, z1, z2, pair.name);
+  pair.axes = cspace::pair_axes(pair.model, 0, 1);
+  pair.layout = cspace::chart_layout(pair.model, pair.axes);
+  return pair;
+}
+
 TEST(CullCellPoseMemo, SelectionsAndWalksAreThePlainCullsOnGeneratedGearPairs) {
   std::mt19937_64 random(3601);
   std::size_t kept = 0, walked = 0;
   for (int trial = 0; trial < 2; ++trial) {
-    std::string name;
-    Model model = test_gears::spur_gear_pair(random, 6 + static_cast<long>(random() % 9),
-                                             6 + static_cast<long>(random() % 10), name);
-    SCOPED_TRACE(name);
-    cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
-    cspace::ChartLayout layout = cspace::chart_layout(model, axes);
-    ASSERT_EQ(axes.dimension(), 2);
-    cspace::CurveGenerator generator(model, axes);
+    const GearPair pair = random_gear_pair(random);
+    SCOPED_TRACE(pair.name);
+    const cspace::ChartLayout& layout = pair.layout;
+    ASSERT_EQ(pair.axes.dimension(), 2);
+    cspace::CurveGenerator generator(pair.model, pair.axes);
     const cspace::ChartAxis& x = layout.x_charts[random() % layout.x_charts.size()];
     const cspace::ChartAxis& y = layout.y_charts[random() % layout.y_charts.size()];
     // a whole chart pair, and driver strips of 1 and 4 of 64 cells (either part the driver)
@@ -106,17 +119,14 @@ TEST(CullCellPoseMemo, TileGridCullsAreThePlainCullsOnGeneratedGearPairs) {
   std::mt19937_64 random(3602);
   std::size_t curves = 0;
   for (int trial = 0; trial < 2; ++trial) {
-    std::string name;
-    Model model = test_gears::spur_gear_pair(random, 6 + static_cast<long>(random() % 9),
-                                             6 + static_cast<long>(random() % 10), name);
-    SCOPED_TRACE(name);
-    cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
-    cspace::ChartLayout layout = cspace::chart_layout(model, axes);
-    auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
+    const GearPair pair = random_gear_pair(random);
+    SCOPED_TRACE(pair.name);
+    const cspace::ChartLayout& layout = pair.layout;
+    auto tester = std::make_shared<cspace::BlockedTester>(pair.model, pair.axes);
     ASSERT_TRUE(tester->usable());
     cspace::CurveOptions options;
     options.blocked_grid = true;
-    cspace::CurveGenerator generator(model, axes, options);
+    cspace::CurveGenerator generator(pair.model, pair.axes, options);
     // tiles of 1/16 of a chart pair near the line where the teeth meet (x = y = 0 in the charts
     // centred on the mesh) and elsewhere
     for (int tile = 0; tile < 3; ++tile) {
