@@ -786,6 +786,7 @@ class BlockedSpaceCuller {
   void run(const std::vector<std::pair<int, int>>& pairs, std::vector<char>& needed) {
     prepare(pairs, needed);
     if (grid_) {
+      size_lists();
       visit(grid_cell_x(0, 0), grid_cell_y(0, 0), 0, 0, 0, indices_, {});
       return;
     }
@@ -803,8 +804,8 @@ class BlockedSpaceCuller {
     for (std::size_t k = 0; k < pairs.size(); ++k) indices_[k] = static_cast<int>(k);
     pairs_ = &pairs;
     needed_ = &needed;
-    // the features of some candidate pair get a slot in the per-interval world-box caches (a
-    // chart box's pairs use few of the parts' features: the caches are that much smaller)
+    // the features of some candidate pair get a slot in the cell's world boxes (a chart box's
+    // pairs use few of the parts' features)
     for (int side = 0; side < 2; ++side) {
       slot_[side].assign(disks_[side]->size(), -1);
       slots_[side] = 0;
@@ -815,8 +816,17 @@ class BlockedSpaceCuller {
         if (slot < 0) slot = static_cast<int>(slots_[side]++);
       }
     }
-    // every depth's lists made before the walk: a child reads its parent's lists by reference
-    scratch_.resize(static_cast<std::size_t>(grid_ ? std::max(grid_->depth(), min_grid_depth) : max_depth) + 1);
+    // the cell's poses: a slot per core and per feature slot (see CellPoses)
+    for (int side = 0; side < 2; ++side) {
+      CellPoses& posed = posed_[side];
+      posed.core_x.resize(cores_[side]->size());
+      posed.core_y.resize(cores_[side]->size());
+      posed.core_stamp.assign(cores_[side]->size(), 0);
+      posed.boxes.resize(slots_[side]);
+      posed.box_stamp.assign(slots_[side], 0);
+    }
+    memo_ = cell_pose_memo_switch();
+    depths_ = static_cast<std::size_t>(grid_ ? std::max(grid_->depth(), min_grid_depth) : max_depth) + 1;
     if (grid_) return;
     root_x_ = Interval(algebra::enclose_kernel(x_.lo).lo, algebra::enclose_kernel(x_.hi).hi);
     root_y_ = dimension_ == 2 ? Interval(algebra::enclose_kernel(y_.lo).lo, algebra::enclose_kernel(y_.hi).hi)
@@ -827,12 +837,9 @@ class BlockedSpaceCuller {
   // One walk after prepare() (no grid); nullptr: every cell.
   void walk(const CullFilter* filter) {
     filter_ = filter;
+    size_lists();
     if (!filter || filter->meets(root_x_, root_y_)) visit(root_x_, root_y_, 0, 0, 0, indices_, root_core_pairs_);
     filter_ = nullptr;
-    // the world-box caches and the per-depth lists are per walk (a later walk recomputes the
-    // few cells it shares with this one): a culler kept between walks holds only its root's lists
-    for (auto& caches : caches_) caches.clear();
-    scratch_ = std::vector<Scratch>(scratch_.size());
   }
 
   std::size_t cells_visited() const { return cells_; }
@@ -900,32 +907,29 @@ class BlockedSpaceCuller {
     return pairs;
   }
 
-  // World boxes of one part's features and core centres over one interval of its axis,
-  // computed once per interval and shared by all cells using it.
-  struct AxisCache {
-    PoseBox pose;   // the part's pose over the interval
-    // (not value-initialised: a box is read only after box_done marks it computed)
-    std::unique_ptr<WorldBox[]> boxes;
-    std::vector<char> box_done;
+  // One part's pose over the cell being visited, with the world boxes of its features and the
+  // posed centres of its cores computed on first use in that cell (a slot is the cell's when its
+  // stamp is the cell's). A cell uses them only before it visits its children, so one set per
+  // part serves the whole walk: nothing is allocated per cell or per walk. Each value is a
+  // function of (the part's axis interval, the feature or core), computed by the same
+  // operations whichever cell asks for it.
+  struct CellPoses {
+    PoseBox pose;
+    std::uint64_t stamp = 0;
+    std::vector<WorldBox> boxes;
+    std::vector<std::uint64_t> box_stamp;
     std::vector<Interval> core_x, core_y;
-    std::vector<char> core_done;
+    std::vector<std::uint64_t> core_stamp;
   };
 
-  // The cache of one part's axis interval (a fixed part: the constant key 0), its pose computed
-  // with it (a pose is a function of the part's motion, its axis' half-turn flag and the interval).
-  AxisCache& cache_for(int side, const Interval& interval) {
-    auto& caches = caches_[side];
-    auto [it, inserted] = caches.try_emplace({interval.lo, interval.hi});
-    if (inserted) {
-      const bool first_moves = motion_[0].kind != MotionKind::fixed;
-      it->second.pose = pose_over(motion_[side], side == 0 || !first_moves ? x_.half_turn : y_.half_turn, interval);
-      it->second.boxes.reset(new WorldBox[slots_[side]]);
-      it->second.box_done.assign(slots_[side], 0);
-      it->second.core_x.resize(cores_[side]->size());
-      it->second.core_y.resize(cores_[side]->size());
-      it->second.core_done.assign(cores_[side]->size(), 0);
-    }
-    return it->second;
+  // The poses of one part over the cell `stamp`, its axis interval `interval` (a fixed part: the
+  // constant key 0): a function of the part's motion, its axis' half-turn flag and the interval.
+  CellPoses& pose_cell(int side, const Interval& interval, std::uint64_t stamp) {
+    CellPoses& posed = posed_[side];
+    const bool first_moves = motion_[0].kind != MotionKind::fixed;
+    posed.pose = pose_over(motion_[side], side == 0 || !first_moves ? x_.half_turn : y_.half_turn, interval);
+    posed.stamp = stamp;
+    return posed;
   }
 
   Interval grid_cell_x(int depth, long i) const {
@@ -944,15 +948,15 @@ class BlockedSpaceCuller {
   // in the caches.
   // (flattened: the interval operations inlined, the same operations in the same order — the
   // quadtree's innermost loop)
-  [[gnu::flatten]] CoreRelation core_relation(const CorePair& pair, AxisCache& cache_a, AxisCache& cache_b) const {
+  [[gnu::flatten]] CoreRelation core_relation(const CorePair& pair, CellPoses& cache_a, CellPoses& cache_b) const {
     auto ui = static_cast<std::size_t>(pair.i), uj = static_cast<std::size_t>(pair.j);
-    if (!cache_a.core_done[ui]) {
+    if (!memo_ || cache_a.core_stamp[ui] != cache_a.stamp) {
       cache_a.pose.apply((*cores_[0])[ui].x, (*cores_[0])[ui].y, cache_a.core_x[ui], cache_a.core_y[ui]);
-      cache_a.core_done[ui] = 1;
+      cache_a.core_stamp[ui] = cache_a.stamp;
     }
-    if (!cache_b.core_done[uj]) {
+    if (!memo_ || cache_b.core_stamp[uj] != cache_b.stamp) {
       cache_b.pose.apply((*cores_[1])[uj].x, (*cores_[1])[uj].y, cache_b.core_x[uj], cache_b.core_y[uj]);
-      cache_b.core_done[uj] = 1;
+      cache_b.core_stamp[uj] = cache_b.stamp;
     }
     // (dx * dx + dy * dy against the reach, dx and dy the centres' differences)
     int relation = cull_detail::squared_distance_relation(cache_a.core_x[ui], cache_a.core_y[ui], cache_b.core_x[uj],
@@ -964,7 +968,7 @@ class BlockedSpaceCuller {
              const std::vector<CorePair>& core_pairs) {
     ++cells_;
     // this depth's lists (the children's are the next depth's: nothing is allocated per cell)
-    Scratch& scratch = scratch_.at(static_cast<std::size_t>(depth));
+    Scratch& scratch = scratch_at(static_cast<std::size_t>(depth));
     // Pairs already kept need no further exploration.
     std::vector<int>& open = scratch.open;
     open.clear();
@@ -975,8 +979,9 @@ class BlockedSpaceCuller {
     // the interval each part's pose depends on (a fixed part: a constant key)
     Interval key_a = first_moves ? cx : Interval(0);
     Interval key_b = motion_[1].kind == MotionKind::fixed ? Interval(0) : (first_moves ? cy : cx);
-    AxisCache& cache_a = cache_for(0, key_a);
-    AxisCache& cache_b = cache_for(1, key_b);
+    const std::uint64_t stamp = ++stamp_;
+    CellPoses& cache_a = pose_cell(0, key_a, stamp);
+    CellPoses& cache_b = pose_cell(1, key_b, stamp);
     const PoseBox& pa = cache_a.pose;
     const PoseBox& pb = cache_b.pose;
     // Blocked: some pair of inscribed disks certainly overlaps everywhere in the cell.
@@ -995,15 +1000,15 @@ class BlockedSpaceCuller {
       auto [i, j] = (*pairs_)[static_cast<std::size_t>(k)];
       auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
       auto sa = static_cast<std::size_t>(slot_[0][ui]), sb = static_cast<std::size_t>(slot_[1][uj]);
-      if (!cache_a.box_done[sa]) {
+      if (!memo_ || cache_a.box_stamp[sa] != stamp) {
         const BodyDisk& disk = (*disks_[0])[ui];
         cache_a.boxes[sa] = world_box(pa, disk.x, disk.y, disk.radius);
-        cache_a.box_done[sa] = 1;
+        cache_a.box_stamp[sa] = stamp;
       }
-      if (!cache_b.box_done[sb]) {
+      if (!memo_ || cache_b.box_stamp[sb] != stamp) {
         const BodyDisk& disk = (*disks_[1])[uj];
         cache_b.boxes[sb] = world_box(pb, disk.x, disk.y, disk.radius);
-        cache_b.box_done[sb] = 1;
+        cache_b.box_stamp[sb] = stamp;
       }
       if (cache_a.boxes[sa].meets(cache_b.boxes[sb])) meeting.push_back(k);
     }
@@ -1051,13 +1056,15 @@ class BlockedSpaceCuller {
   ChartAxis y_;
   int dimension_;
   const std::vector<BodyDisk>* disks_[2];
-  std::vector<int> slot_[2];       // feature -> its slot in AxisCache::boxes (-1: in no pair)
+  std::vector<int> slot_[2];       // feature -> its slot in CellPoses::boxes (-1: in no pair)
   std::size_t slots_[2] = {0, 0};
   const std::vector<Core>* cores_[2];
   const std::vector<std::pair<int, int>>* pairs_ = nullptr;
   std::vector<char>* needed_ = nullptr;
   std::size_t cells_ = 0;
-  std::map<std::pair<double, double>, AxisCache> caches_[2];
+  CellPoses posed_[2];
+  std::uint64_t stamp_ = 0;   // the cells visited so far (a cell's stamp: never 0)
+  bool memo_ = true;          // cell_pose_memo_switch() when prepared
   BlockedCells* grid_ = nullptr;
   // prepare(): the candidate indices and the root cell with its near core pairs; walk(): its filter
   std::vector<int> indices_;
@@ -1065,12 +1072,25 @@ class BlockedSpaceCuller {
   std::vector<CorePair> root_core_pairs_;
   const CullFilter* filter_ = nullptr;
   // per depth of the quadtree: the open and meeting candidate pairs and the near core pairs of
-  // the cell being visited there
+  // the cell being visited there (a child reads its parent's lists by reference)
   struct Scratch {
     std::vector<int> open, meeting;
     std::vector<CorePair> near_cores;
   };
-  std::vector<Scratch> scratch_;
+  // The lists of depth `depth` (< depths_), shared by the cullers of a thread: a walk never
+  // runs inside another (nothing a cell calls walks a culler), and its lists are cleared before
+  // use, so they only keep their capacity between walks — a gear strip's shallow lists hold
+  // hundreds of thousands of core pairs, allocated and faulted in again by every walk before.
+  static std::vector<Scratch>& thread_lists() {
+    thread_local std::vector<Scratch> lists;
+    return lists;
+  }
+  // (sized before the root is visited: no list moves while a cell holds its parent's)
+  void size_lists() const {
+    if (thread_lists().size() < depths_) thread_lists().resize(depths_);
+  }
+  Scratch& scratch_at(std::size_t depth) const { return thread_lists()[depth]; }
+  std::size_t depths_ = max_depth + 1;
 };
 
 // ============================================================================ exact kernels

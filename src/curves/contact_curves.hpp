@@ -19,6 +19,7 @@
 #include <gmpxx.h>
 
 #include "algebra/polynomial.hpp"
+#include "core/thread_switch.hpp"
 #include "kernels/contact_table.hpp"
 #include "kernels/interval.hpp"
 
@@ -32,6 +33,13 @@
 namespace hipair::cspace {
 
 class BlockedCells;   // oracle/blocked_tester.hpp
+
+/// The blocked-space cull's memo of the cell being visited (a part's posed cores and feature
+/// boxes computed once per cell and shared by its tests, slots stamped with the cell): on by
+/// default; off on this thread, every test computes the poses it reads afresh (tests compare
+/// the selections; the values are the same functions of the cell's axis intervals).
+struct CellPoseMemoTag {};
+inline bool& cell_pose_memo_switch() { return thread_switch<CellPoseMemoTag>(); }
 
 /// One chart axis of a pair's C-space.
 struct ChartAxis {

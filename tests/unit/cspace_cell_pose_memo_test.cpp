@@ -1,0 +1,152 @@
+// The blocked-space cull's per-cell pose memo (src/curves/contact_curves.cpp BlockedSpaceCuller,
+// session 36): a part's posed cores and feature boxes computed once per visited cell, in one
+// stamped set per part, instead of a map of per-interval caches allocated by every walk. Side
+// by side with the plain cull (cell_pose_memo_switch() off: every test poses what it reads
+// afresh) on generated spur-gear pairs: the same selections of whole chart pairs and of driver
+// strips (CurveGenerator::select), the same pairs returned walk by walk by the lazily extended
+// selections the kernel slicer uses (incremental_select, windows of the follower axis in random
+// order), and the same curves from an operating-region tile's grid cull (the builder's path).
+#include "curves/contact_curves.hpp"
+#include "oracle/blocked_tester.hpp"
+#include "spur_gear_pairs.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace hipair {
+namespace {
+
+using Pairs = std::vector<cspace::CurveGenerator::FeaturePair>;
+
+// Runs f with the memo on, then off, and restores it.
+template <class F>
+auto both_ways(F&& f) {
+  bool& memo = cspace::cell_pose_memo_switch();
+  memo = true;
+  auto on = f();
+  memo = false;
+  auto off = f();
+  memo = true;
+  return std::make_pair(on, off);
+}
+
+// Cells [first, first + width) of `cells` of a chart axis.
+cspace::ChartAxis sub_axis(const cspace::ChartAxis& axis, long first, long width, long cells) {
+  cspace::ChartAxis sub = axis;
+  sub.lo = axis.lo + (axis.hi - axis.lo) * Rational(first, cells);
+  sub.hi = axis.lo + (axis.hi - axis.lo) * Rational(first + width, cells);
+  sub.lo.canonicalize();
+  sub.hi.canonicalize();
+  return sub;
+}
+
+// A generated spur-gear pair (6…11 × 6…11 teeth) with its axes and charts.
+struct GearPair {
+  std::string name;
+  Model model;
+  cspace::PairAxes axes;
+  cspace::ChartLayout layout;
+};
+GearPair random_gear_pair(std::mt19937_64& random) {
+  GearPair pair;
+  const long z1 = 6 + static_cast<long>(random() % 6), z2 = 6 + static_cast<long>(random() % 6);
+  pair.model = test_gears::spur_gear_pair(random, z1, z2, pair.name);
+  pair.axes = cspace::pair_axes(pair.model, 0, 1);
+  pair.layout = cspace::chart_layout(pair.model, pair.axes);
+  return pair;
+}
+
+TEST(CullCellPoseMemo, SelectionsAndWalksAreThePlainCullsOnGeneratedGearPairs) {
+  std::mt19937_64 random(3601);
+  std::size_t kept = 0, walked = 0;
+  for (int trial = 0; trial < 2; ++trial) {
+    const GearPair pair = random_gear_pair(random);
+    SCOPED_TRACE(pair.name);
+    const cspace::ChartLayout& layout = pair.layout;
+    ASSERT_EQ(pair.axes.dimension(), 2);
+    cspace::CurveGenerator generator(pair.model, pair.axes);
+    const cspace::ChartAxis& x = layout.x_charts[random() % layout.x_charts.size()];
+    const cspace::ChartAxis& y = layout.y_charts[random() % layout.y_charts.size()];
+    // a whole chart pair, and driver strips of 1 and 4 of 64 cells (either part the driver)
+    std::vector<std::pair<cspace::ChartAxis, cspace::ChartAxis>> boxes{{x, y}};
+    for (long width : {1L, 4L}) {
+      long first = static_cast<long>(random() % static_cast<unsigned long>(64 - width + 1));
+      boxes.emplace_back(sub_axis(x, first, width, 64), y);
+      boxes.emplace_back(x, sub_axis(y, first, width, 64));
+    }
+    for (std::size_t b = 0; b < boxes.size(); ++b) {
+      const auto& [bx, by] = boxes[b];
+      auto [on, off] = both_ways([&] { return generator.select(bx, by); });
+      EXPECT_EQ(on, off) << "box " << b;
+      kept += on.size();
+      if (b == 0) continue;
+      // the strip's selection extended over follower windows (the other axis), in random order
+      const int axis = b % 2 == 1 ? 1 : 0;
+      const cspace::ChartAxis& follower = axis == 1 ? by : bx;
+      std::vector<std::pair<double, double>> windows;
+      for (int w = 0; w < 5; ++w) {
+        long first = static_cast<long>(random() % 32), width = 1 + static_cast<long>(random() % 3);
+        cspace::ChartAxis window = sub_axis(follower, first, std::min(width, 32 - first), 32);
+        windows.emplace_back(cspace::algebra::lower_double(window.lo), cspace::algebra::upper_double(window.hi));
+      }
+      windows.emplace_back(cspace::algebra::lower_double(follower.lo), cspace::algebra::upper_double(follower.hi));
+      auto [walks_on, walks_off] = both_ways([&] {
+        std::unique_ptr<cspace::CurveGenerator::Selection> selection = generator.incremental_select(bx, by);
+        std::vector<Pairs> added;
+        for (const auto& window : windows) added.push_back(selection->extend(axis, {window}));
+        return added;
+      });
+      EXPECT_EQ(walks_on, walks_off) << "box " << b;
+      // after the whole axis, the walks kept select()'s pairs
+      Pairs all;
+      for (const Pairs& pairs : walks_on) all.insert(all.end(), pairs.begin(), pairs.end());
+      std::sort(all.begin(), all.end());
+      EXPECT_EQ(all, on) << "box " << b;
+      walked += all.size();
+    }
+  }
+  EXPECT_GT(kept, 0u);
+  EXPECT_GT(walked, 0u);
+}
+
+TEST(CullCellPoseMemo, TileGridCullsAreThePlainCullsOnGeneratedGearPairs) {
+  std::mt19937_64 random(3602);
+  std::size_t curves = 0;
+  for (int trial = 0; trial < 2; ++trial) {
+    const GearPair pair = random_gear_pair(random);
+    SCOPED_TRACE(pair.name);
+    const cspace::ChartLayout& layout = pair.layout;
+    auto tester = std::make_shared<cspace::BlockedTester>(pair.model, pair.axes);
+    ASSERT_TRUE(tester->usable());
+    cspace::CurveOptions options;
+    options.blocked_grid = true;
+    cspace::CurveGenerator generator(pair.model, pair.axes, options);
+    // tiles of 1/16 of a chart pair near the line where the teeth meet (x = y = 0 in the charts
+    // centred on the mesh) and elsewhere
+    for (int tile = 0; tile < 3; ++tile) {
+      const cspace::ChartAxis& x = layout.x_charts[random() % layout.x_charts.size()];
+      const cspace::ChartAxis& y = layout.y_charts[random() % layout.y_charts.size()];
+      long i = tile == 0 ? 8 : static_cast<long>(random() % 16), j = tile == 0 ? 8 : static_cast<long>(random() % 16);
+      cspace::ChartAxis tx = sub_axis(x, i, 1, 16), ty = sub_axis(y, j, 1, 16);
+      auto [on, off] = both_ways([&] {
+        cspace::BlockedCells cells(tester, tx, ty, 2, 5);
+        std::vector<std::pair<std::string, std::string>> labels;
+        for (const cspace::ContactCurve& curve : generator.generate(tx, ty, nullptr, &cells))
+          labels.emplace_back(curve.label, curve.polynomial.is_zero() ? "0" : "f");
+        return labels;
+      });
+      EXPECT_EQ(on, off) << "tile " << tile;
+      curves += on.size();
+    }
+  }
+  EXPECT_GT(curves, 0u);
+}
+
+}  // namespace
+}  // namespace hipair
