@@ -1570,11 +1570,15 @@ struct Simulation::Impl {
     std::size_t pair = active[k].pair;
     double e = model.pairs[pair].restitution ? to_d(*model.pairs[pair].restitution) : 0.0;
     const Active old = active[k];
-    // at the vertex: contact k's rows are those of its end (as when it is kept, below), within
-    // three times the edge slack of it (not growing at each visit of a chattering wedge)
-    active[k].slack = std::max(old.slack, 3 * edge_slack);
-    active[k].at_vertex = true;
-    place_at_vertex(active[k], candidates);
+    // a wedge of two free parts (session 36): contact k's rows are those of its end (as when it
+    // is kept, below) within three times the edge slack of it (not growing at each visit of a
+    // chattering wedge), and the configuration is put on the vertex
+    const bool free_pair = both_free(pair);
+    if (free_pair) {
+      active[k].slack = std::max(old.slack, 3 * edge_slack);
+      active[k].at_vertex = true;
+      place_at_vertex(active[k], candidates);
+    }
     std::vector<ContactRow> rows;
     std::vector<std::size_t> row_active;   // active index, or no_index for a candidate
     for (std::size_t j = 0; j < active.size(); ++j) {
@@ -1633,9 +1637,9 @@ struct Simulation::Impl {
     bool added = false;
     for (std::size_t j = 0; j < active.size(); ++j)
       for (const Active& c : candidates) added = added || (active[j].pair == pair && active[j].edge == c.edge);
-    bool keep = r_old < row_active.size() && after_of(r_old) <= vtol && (added || (struck && back_along_edge(old)));
+    bool keep = r_old < row_active.size() && after_of(r_old) <= vtol && (added || (free_pair && struck && back_along_edge(old)));
     if (!keep) {
-      Vec G = normal_or_last(old);
+      Vec G = normal_or_last(free_pair ? active[k] : old);
       edge_event(old, SimulationEvent::Kind::edge_end);
       active.erase(active.begin() + static_cast<std::ptrdiff_t>(k));
       project_active();
@@ -1643,11 +1647,17 @@ struct Simulation::Impl {
         // off the old contact and every new one struck here (the configuration is at their
         // vertex): the joint direction opens all of them
         std::vector<std::pair<std::size_t, Vec>> set{{pair, G}};
-        if (struck)
+        if (free_pair && struck)
           for (std::size_t r = first_candidate; r < rows.size(); ++r) set.emplace_back(pair, rows[r].g);
         nudge_free(set);
       }
     } else {
+      if (!free_pair) {
+        active[k].slack = 3 * old.slack;
+        active[k].at_vertex = true;
+        project_active();
+        return true;
+      }
       // a wedge: held by both (or more) contacts of the pair, or by k back from its vertex
       active[k].wedge = true;
       for (Active& a : active)
@@ -1658,6 +1668,16 @@ struct Simulation::Impl {
       for (const Active& a : active)
         if (a.pair == pair) held.push_back(&a);
       if (added && held.size() > 1) project_jointly(held, true);
+    }
+    return true;
+  }
+
+  // Whether both parts of `pair` move freely (neither fixed nor driven): a wedge of its C-space
+  // can then hold the pair at rest.
+  bool both_free(std::size_t pair) const {
+    for (std::size_t part : {model.pairs[pair].first, model.pairs[pair].second}) {
+      const int d = part_dof[part];
+      if (d < 0 || dofs[static_cast<std::size_t>(d)].driven) return false;
     }
     return true;
   }
