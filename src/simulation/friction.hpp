@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <vector>
 
 namespace hipair::simulation {
@@ -116,16 +117,42 @@ inline void complete(FrictionalSolution& s, const Reduced& r, const Eigen::Matri
   }
 }
 
+/// Whether the sticking rows leave the normal multipliers undetermined: the reduced normal matrix
+/// A = G B is singular on the scale of the frictionless A_f = G M^-1 G^T (its smallest singular
+/// value below 1e-9 of A_f's largest). Then every motion the normal rows would stop is already
+/// stopped by the sticking rows (two sticking contacts of a wedge holding both coordinates of a
+/// pair), the LCP's minimum-norm multipliers (0) say nothing, and the normal forces are taken
+/// from the frictionless problem where they solve the reduced one: the load carried by the
+/// normal forces, friction only for what they leave (session 36, docs/simulation.md).
+inline bool undetermined(const Eigen::MatrixXd& A, const Eigen::MatrixXd& Af) {
+  if (A.size() == 0) return false;
+  const Eigen::VectorXd sa = Eigen::JacobiSVD<Eigen::MatrixXd>(A).singularValues();
+  const Eigen::VectorXd sf = Eigen::JacobiSVD<Eigen::MatrixXd>(Af).singularValues();
+  return sf.size() > 0 && sf(0) > 0 && sa(sa.size() - 1) <= 1e-9 * sf(0);
+}
+
 /// All normal rows held (bilateral: w = 0), states given: the integration's right-hand side.
+/// `undetermined_plain`: where the sticking rows leave the multipliers open, take the
+/// frictionless ones if they hold (undetermined(), above).
 inline FrictionalSolution solve_bilateral(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
                                           const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
-                                          const std::vector<Friction>& friction, const std::vector<int>& state) {
+                                          const std::vector<Friction>& friction, const std::vector<int>& state,
+                                          bool undetermined_plain = false) {
   FrictionalSolution s;
   s.state = state;
   Reduced r = reduce(G, minv, a0, friction, state);
   Eigen::MatrixXd A = G * r.B;
   Eigen::VectorXd b = G * r.x0 + h;
   s.lambda = A.completeOrthogonalDecomposition().solve(-b);
+  // held forces left open by the sticking rows: the frictionless ones where they hold (below)
+  if (undetermined_plain && !r.sticking.empty()) {
+    const Eigen::MatrixXd Af = G * minv.asDiagonal() * G.transpose();
+    const Eigen::VectorXd bf = G * a0 + h;
+    if (undetermined(A, Af)) {
+      Eigen::VectorXd lf = Af.completeOrthogonalDecomposition().solve(-bf);
+      if (((A * lf + b).cwiseAbs().array() <= 10 * lcp_tolerance(Af, bf)).all()) s.lambda = lf;
+    }
+  }
   complete(s, r, G, h, friction);
   s.solved = true;
   return s;
@@ -158,10 +185,14 @@ inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Fri
 /// `adjust` (optional) may redistribute the tangential forces of a candidate solution before
 /// its Coulomb conditions are checked (the planar simulator splits the friction of collinear
 /// contacts, whose split the equations leave open, in proportion to their normal forces).
+/// `undetermined_plain`: an assignment whose sticking rows leave the multipliers open is also
+/// tried with the frictionless multipliers (undetermined(), above; the fixed-axis simulator's
+/// wedges, session 36).
 inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
                                            const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
                                            const std::vector<Friction>& friction,
-                                           const std::function<void(FrictionalSolution&)>& adjust = {}) {
+                                           const std::function<void(FrictionalSolution&)>& adjust = {},
+                                           bool undetermined_plain = false) {
   const std::size_t m = friction.size();
   std::vector<std::size_t> open;
   std::vector<int> state(m, frictionless);
@@ -172,6 +203,9 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
   }
   FrictionalSolution best;
   if (open.size() > 8) return best;
+  std::optional<LcpSolution> plain;   // the frictionless problem, once needed
+  Eigen::MatrixXd Af;
+  Eigen::VectorXd bf;
   std::size_t combinations = 1;
   for (std::size_t i = 0; i < open.size(); ++i) combinations *= 3;
   std::vector<std::size_t> order(combinations);
@@ -192,11 +226,31 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
     Eigen::MatrixXd A = G * r.B;
     Eigen::VectorXd b = G * r.x0 + h;
     LcpSolution lcp = solve_lcp(A, b);
-    if (!lcp.solved) continue;
     FrictionalSolution s;
     s.state = state;
-    s.lambda = lcp.lambda;
-    s.tolerance = lcp.tolerance;
+    if (lcp.solved) {
+      s.lambda = lcp.lambda;
+      s.tolerance = lcp.tolerance;
+      complete(s, r, G, h, friction);
+      if (adjust) adjust(s);
+      if (coulomb_satisfied(s, friction)) {
+        s.solved = true;
+        return s;
+      }
+    }
+    // multipliers left open by the sticking rows: the frictionless ones, where they solve this
+    // assignment's problem and satisfy its Coulomb conditions (undetermined(), above)
+    if (!undetermined_plain || r.sticking.empty()) continue;
+    if (!plain) {
+      Af = G * minv.asDiagonal() * G.transpose();
+      bf = G * a0 + h;
+      plain = solve_lcp(Af, bf);
+    }
+    if (!plain->solved || !undetermined(A, Af)) continue;
+    const double tolerance = 10 * std::max(plain->tolerance, lcp_tolerance(A, b));
+    if (!lcp_satisfied(A, b, plain->lambda, tolerance)) continue;
+    s.lambda = plain->lambda;
+    s.tolerance = tolerance;
     complete(s, r, G, h, friction);
     if (adjust) adjust(s);
     if (!coulomb_satisfied(s, friction)) continue;

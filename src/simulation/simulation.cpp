@@ -114,6 +114,7 @@ struct Active {
   double y_lo = 0, y_hi = 0;
   double slack = 1e-9;       // chart units beyond the edge's certified extent still accepted
   bool at_vertex = false;    // taken up (or kept) at a contact-change vertex: valid up to the vertex
+  bool wedge = false;        // held at (or kept back from) a wedge's vertex: valid within 1e-10 of it
   std::vector<FeatureId> features;   // a contact without an edge (1-D pair): its feature pairs
   // Coulomb state (pairs with friction): simulation::stick or slip_positive / slip_negative,
   // once decided at a step's start (docs/simulation.md#friction)
@@ -442,8 +443,23 @@ struct Simulation::Impl {
       return std::min(ty - (a.y_lo - beyond), (a.y_hi + beyond) - ty);
     }
     double tx = to_chart(chart.x_kind, chart.x_half_turn, qs[a.xdof]);
-    return std::min(tx - (a.x_lo - a.slack), (a.x_hi + a.slack) - tx);
+    const double slack = abscissa_slack(a);
+    return std::min(tx - (a.x_lo - slack), (a.x_hi + slack) - tx);
   }
+
+  // How far past its edge's (double) abscissa extent a non-vertical held contact's row holds:
+  // its slack; while the motion is checked, for a contact taken up (or kept) at a vertex, 1e-12
+  // chart units only, as derivatives_near() allows it. With the slack there, the rows (clamped
+  // into the edge) let the step's motion run up to 3e-9 past the vertex, into the other contact
+  // of a wedge, and the cut came that far inside: the ratchet's wedge chattered for ever on the
+  // energy that moving back out gave it each time (session 36, docs/simulation.md).
+  double abscissa_slack(const Active& a) const { return strict_rows && a.wedge ? std::min(a.slack, vertex_limit) : a.slack; }
+
+  // Whether some pair holds a wedge: two held contacts, or one kept back from a wedge's vertex.
+  bool wedged() const {
+    return std::any_of(active.begin(), active.end(), [](const Active& a) { return a.wedge; });
+  }
+  static constexpr double vertex_limit = 1e-10;   // chart units
 
   // the constraint's gradient over dofs, its bias h (g'' = G q'' + h) and its value g
   bool row(const Active& a, const Vec& qs, const Vec& vs, Vec& G, double& h, double& gval) const {
@@ -463,7 +479,8 @@ struct Simulation::Impl {
     }
     const CSpaceChart& chart = chart_of(a);
     double tx = to_chart(chart.x_kind, chart.x_half_turn, qs[a.xdof]);
-    if (tx < a.x_lo - a.slack || tx > a.x_hi + a.slack) return false;
+    const double slack = abscissa_slack(a);
+    if (tx < a.x_lo - slack || tx > a.x_hi + slack) return false;
     // within the slack of an end: the nearest abscissa strictly inside (the ends are algebraic)
     double inset = 1e-9 * (a.x_hi - a.x_lo);
     tx = std::clamp(tx, a.x_lo + inset, a.x_hi - inset);
@@ -562,7 +579,7 @@ struct Simulation::Impl {
       }
       simulation::FrictionalSolution s;
       if (lifting) {
-        s = simulation::solve_frictional(G, minv, a0, h, friction);
+        s = simulation::solve_frictional(G, minv, a0, h, friction, {}, wedged());
         if (!s.solved) {
           std::ostringstream text;
           text << "simulation: at t = " << time / time_scale << " " << time_unit << " the contact-force problem of "
@@ -572,7 +589,7 @@ struct Simulation::Impl {
         for (std::size_t k = 0; k < m; ++k)
           if (s.lambda(k) == 0 && s.w(k) > s.tolerance) lifting->push_back(k);
       } else {
-        s = simulation::solve_bilateral(G, minv, a0, h, friction, state);
+        s = simulation::solve_bilateral(G, minv, a0, h, friction, state, wedged());
       }
       for (std::size_t i = 0; i < n; ++i) acc[i] = s.x(i);
       lambda.assign(s.lambda.data(), s.lambda.data() + m);
@@ -1430,6 +1447,7 @@ struct Simulation::Impl {
       double tx = to_chart(chart.x_kind, chart.x_half_turn, q[a.xdof]);
       if (!(tx > edge.x_chart.lower - edge_slack && tx < edge.x_chart.upper + edge_slack)) continue;
       Active b = a;
+      b.wedge = false;   // on along the curve, away from a wedge's vertex
       b.edge = EdgeId(e);
       b.chart = edge.chart;
       b.x_lo = edge.x_chart.lower;
@@ -1535,13 +1553,32 @@ struct Simulation::Impl {
   // Sustained contact k reached the end of its edge at a vertex where other contact curves of
   // its pair begin: one impact problem over every active contact (plastic) and the new ones
   // (the pair's restitution), all at once; the new contacts left without separating speed are
-  // held, and contact k stays held while it has no separating speed (the corner of a wedge).
-  // False when the vertex has no new contact (the caller releases k).
+  // held, and contact k stays held while it has no separating speed and either a new contact is
+  // held (the corner of a wedge, held by both) or the motion leaves the vertex back along k's
+  // edge (the new contacts struck off: the wedge's chatter, on k's edge). False when the vertex
+  // has no new contact (the caller releases k).
+  //
+  // The configuration is first put on the vertex when the step's cut left it past the vertex,
+  // inside a new contact's blocked side (session 36, docs/simulation.md): a held contact's rows
+  // are valid up to its slack (1e-9 chart units) beyond its edge's end, so the cut comes there,
+  // up to slack x slope inside the other curve — at the ratchet's wedge 2.6e-8, far beyond what
+  // a nudge may move unchecked (nudge_check.hpp) and inside the blind zone of the blocked walk
+  // next to the vertex: "cannot be moved off its contact".
   bool vertex_contacts(std::size_t k) {
     std::vector<Active> candidates = vertex_candidates(active[k]);
     if (candidates.empty()) return false;
     std::size_t pair = active[k].pair;
     double e = model.pairs[pair].restitution ? to_d(*model.pairs[pair].restitution) : 0.0;
+    const Active old = active[k];
+    // a wedge of two free parts (session 36): contact k's rows are those of its end (as when it
+    // is kept, below) within three times the edge slack of it (not growing at each visit of a
+    // chattering wedge), and the configuration is put on the vertex
+    const bool free_pair = both_free(pair);
+    if (free_pair) {
+      active[k].slack = std::max(old.slack, 3 * edge_slack);
+      active[k].at_vertex = true;
+      place_at_vertex(active[k], candidates);
+    }
     std::vector<ContactRow> rows;
     std::vector<std::size_t> row_active;   // active index, or no_index for a candidate
     for (std::size_t j = 0; j < active.size(); ++j) {
@@ -1578,11 +1615,12 @@ struct Simulation::Impl {
     };
     // the impulse of a contact met at a vertex is along its C-space normal (generalised units:
     // force unit x time unit x mm per C-space unit): no physical contact point is computed there
-    Active old = active[k];
+    bool struck = false;
     for (std::size_t r = first_candidate; r < rows.size(); ++r) {
       const Active& c = candidates[r - first_candidate];
       double after = after_of(r);
       if (lambda[r] > 0 || before[r] < 0) {
+        struck = true;
         edge_event(c, SimulationEvent::Kind::impact, lambda[r] / (force_scale * time_scale), before[r] * time_scale,
                    after * time_scale);
         events.back().tangential_impulse = tangential[r] / (force_scale * time_scale);
@@ -1592,32 +1630,135 @@ struct Simulation::Impl {
         edge_event(c, SimulationEvent::Kind::contact);
       }
     }
-    // the old contact: held when it has no separating speed, else it ends here
-    // (with no new contact held, the motion leaves the vertex into free space: k ends too)
+    // the old contact: held when it has no separating speed and the motion stays on its edge,
+    // else it ends here (no new contact held and the motion going on past the vertex: it leaves
+    // the vertex into free space, k ends too)
     std::size_t r_old = std::find(row_active.begin(), row_active.end(), k) - row_active.begin();
     bool added = false;
     for (std::size_t j = 0; j < active.size(); ++j)
       for (const Active& c : candidates) added = added || (active[j].pair == pair && active[j].edge == c.edge);
-    bool keep = added && r_old < row_active.size() && after_of(r_old) <= vtol;
-    if (keep) {
-      active[k].slack = 3 * old.slack;
-      active[k].at_vertex = true;
-    }
+    bool keep = r_old < row_active.size() && after_of(r_old) <= vtol && (added || (free_pair && struck && back_along_edge(old)));
     if (!keep) {
-      Vec G;
-      double h, gval;
-      if (!row(old, q, v, G, h, gval)) {
-        G.assign(dofs.size(), 0.0);
-        G[old.xdof] = old.sigma;
-      }
+      Vec G = normal_or_last(free_pair ? active[k] : old);
       edge_event(old, SimulationEvent::Kind::edge_end);
       active.erase(active.begin() + static_cast<std::ptrdiff_t>(k));
       project_active();
-      if (!in_active(pair)) nudge_free(pair, G);
+      if (!in_active(pair)) {
+        // off the old contact and every new one struck here (the configuration is at their
+        // vertex): the joint direction opens all of them
+        std::vector<std::pair<std::size_t, Vec>> set{{pair, G}};
+        if (free_pair && struck)
+          for (std::size_t r = first_candidate; r < rows.size(); ++r) set.emplace_back(pair, rows[r].g);
+        nudge_free(set);
+      }
     } else {
+      if (!free_pair) {
+        active[k].slack = 3 * old.slack;
+        active[k].at_vertex = true;
+        project_active();
+        return true;
+      }
+      // a wedge: held by both (or more) contacts of the pair, or by k back from its vertex
+      active[k].wedge = true;
+      for (Active& a : active)
+        for (const Active& c : candidates) a.wedge = a.wedge || (a.pair == pair && a.edge == c.edge);
       project_active();
+      // held by two contacts (or more) of the pair: on all of them at once, at rest on them
+      std::vector<const Active*> held;
+      for (const Active& a : active)
+        if (a.pair == pair) held.push_back(&a);
+      if (added && held.size() > 1) project_jointly(held, true);
     }
     return true;
+  }
+
+  // Whether both parts of `pair` move freely (neither fixed nor driven): a wedge of its C-space
+  // can then hold the pair at rest.
+  bool both_free(std::size_t pair) const {
+    for (std::size_t part : {model.pairs[pair].first, model.pairs[pair].second}) {
+      const int d = part_dof[part];
+      if (d < 0 || dofs[static_cast<std::size_t>(d)].driven) return false;
+    }
+    return true;
+  }
+
+  // Whether the velocity moves the configuration from the end vertex of held contact `a`'s edge
+  // back into the edge (the abscissa, or a vertical edge's ordinate, away from that end).
+  bool back_along_edge(const Active& a) const {
+    const CSpaceChart& chart = chart_of(a);
+    const int dof = a.point ? a.ydof : a.xdof;
+    if (dof < 0) return false;
+    const double tx = a.point ? to_chart(chart.y_kind, chart.y_half_turn, q[dof]) : to_chart(chart.x_kind, chart.x_half_turn, q[dof]);
+    const bool at_upper = a.point ? tx > 0.5 * (a.y_lo + a.y_hi) : tx > 0.5 * (a.x_lo + a.x_hi);
+    return at_upper ? v[dof] < 0 : v[dof] > 0;
+  }
+
+  // The configuration moved onto held contact `a` and the new contacts `candidates` at once
+  // (their common vertex), where it lies inside a candidate's blocked side (project_jointly).
+  void place_at_vertex(const Active& a, const std::vector<Active>& candidates) {
+    std::vector<const Active*> set{&a};
+    bool inside = false;
+    for (const Active& c : candidates) {
+      Vec G;
+      double h, gval;
+      if (!row(c, q, v, G, h, gval)) return;
+      inside = inside || gval < 0;
+      set.push_back(&c);
+    }
+    if (inside) project_jointly(set, false);
+  }
+
+  // The configuration (and with `velocities` the velocity) moved onto every contact of `set` at
+  // once, mass-weighted: Gauss-Newton on g = 0, q -= M^-1 G^T (G M^-1 G^T)^-1 g, three times;
+  // v -= M^-1 G^T (G M^-1 G^T)^-1 G v. project_active's one contact at a time converges slowly
+  // where two rows of a wedge meet at an angle (the ratchet's: 0.1 % of the velocity left after
+  // its three rounds, enough to read as sliding). Only where the rows are independent over the
+  // free coordinates (two curves through a vertex, both parts free); otherwise nothing moves.
+  void project_jointly(const std::vector<const Active*>& set, bool velocities) {
+    const Eigen::VectorXd minv = inverse_masses();
+    const Eigen::Index m = static_cast<Eigen::Index>(set.size()), n = static_cast<Eigen::Index>(dofs.size());
+    auto rows = [&](Eigen::MatrixXd& G, Eigen::VectorXd& g) {
+      G.resize(m, n);
+      g.resize(m);
+      for (Eigen::Index k = 0; k < m; ++k) {
+        Vec row_k;
+        double h, gval;
+        if (!row(*set[static_cast<std::size_t>(k)], q, v, row_k, h, gval)) return false;
+        for (Eigen::Index i = 0; i < n; ++i) G(k, i) = row_k[static_cast<std::size_t>(i)];
+        g(k) = gval;
+      }
+      return true;
+    };
+    Eigen::MatrixXd G;
+    Eigen::VectorXd g;
+    for (int iteration = 0; iteration <= 3; ++iteration) {
+      if (!rows(G, g)) return;
+      const Eigen::MatrixXd WGt = minv.asDiagonal() * G.transpose();
+      Eigen::FullPivLU<Eigen::MatrixXd> lu(G * WGt);
+      if (lu.rank() < m) return;
+      if (iteration == 3) {
+        if (!velocities) return;
+        const Eigen::VectorXd gv = G * Eigen::Map<const Eigen::VectorXd>(v.data(), n);
+        const Eigen::VectorXd dv = WGt * lu.solve(gv);
+        for (Eigen::Index i = 0; i < n; ++i) v[static_cast<std::size_t>(i)] -= dv(i);
+        return;
+      }
+      const Eigen::VectorXd dq = WGt * lu.solve(g);
+      for (Eigen::Index i = 0; i < n; ++i) q[static_cast<std::size_t>(i)] -= dq(i);
+    }
+  }
+
+  // The C-space normal of held contact `a` at the configuration, or past its edge's end the
+  // last known direction (sigma on the abscissa for a point contact, else on the ordinate).
+  Vec normal_or_last(const Active& a) const {
+    Vec G;
+    double h, gval;
+    if (!row(a, q, v, G, h, gval)) {
+      G.assign(dofs.size(), 0.0);
+      G[a.xdof] = a.point ? a.sigma : 0;
+      if (!a.point) G[a.ydof] = a.sigma;
+    }
+    return G;
   }
 
   // Ends sustained contact k (event `kind`). An edge end first tries the edge that continues the
@@ -1634,14 +1775,8 @@ struct Simulation::Impl {
       if (vertex_contacts(k)) return;
     }
     Active a = active[k];
-    Vec G;
-    double h, gval;
-    if (!row(a, q, v, G, h, gval)) {
-      // beyond the edge: the last known direction, from the C-space normal at the edge's end
-      G.assign(dofs.size(), 0.0);
-      G[a.xdof] = a.point ? a.sigma : 0;
-      if (!a.point) G[a.ydof] = a.sigma;
-    }
+    // beyond the edge: the last known direction, from the C-space normal at the edge's end
+    Vec G = normal_or_last(a);
     edge_event(a, kind);
     active.erase(active.begin() + static_cast<std::ptrdiff_t>(k));
     if (normal) *normal = G;

@@ -302,5 +302,40 @@ TEST(SimulationContacts, RatchetHoldsAtTheWedgeOfItsPawl) {
   EXPECT_TRUE(nose_corner);
 }
 
+
+// Session 36: the ratchet driven clockwise holds in its pawl's wedge with both contacts held.
+// Before, at accuracies 1e-3 and 1e-6 (and -5 N mm at all three) it stopped at 0.026 s with
+// "cannot be moved off its contact (a jammed contact change)": the step's cut at the wedge's
+// C-space vertex came up to the contact's slack (1e-9 chart units) past the vertex, 2.6e-8 inside
+// the nose-face contact, and the old contact's row failed there.
+TEST(SimulationContacts, RatchetDrivenClockwiseHoldsInTheWedgeWithBothContacts) {
+  // not yet: -50 N mm reaches t_end with the nose-face contact alone held (session 36)
+  for (double torque : {-5.0, -12.5, -20.0})
+    for (double accuracy : {1e-3, 1e-6, 1e-9}) {
+      Model model = example("ratchet.json");
+      model.parts[0].dynamics->torque = Rational(torque);
+      SimulationOptions options;
+      options.accuracy = accuracy;
+      options.max_steps = 5000;
+      Simulation s = Simulation::create(model, options);
+      ASSERT_NO_THROW(s.run_until(0.1)) << torque << " " << accuracy;
+      EXPECT_GE(s.state().time, 0.1);
+      std::vector<SimulationContact> held = s.contacts();
+      ASSERT_EQ(held.size(), 2u) << torque << " " << accuracy;
+      bool face = false, corner = false;
+      for (const SimulationContact& c : held) {
+        EXPECT_GT(c.force, 0) << torque << " " << accuracy;
+        for (const auto& f : c.features) {
+          face = face || f.find("pawl nose face") != std::string::npos;
+          corner = corner || f.find("pawl corner of nose face and nose underside") != std::string::npos;
+        }
+      }
+      EXPECT_TRUE(face && corner) << torque << " " << accuracy;
+      // at the wedge's vertex (wheel angle -0.0088977622 rad), at rest
+      EXPECT_NEAR(s.state().position[0], -0.0088977622, 1e-8) << torque << " " << accuracy;
+      EXPECT_NEAR(s.state().velocity[0], 0, 1e-9) << torque << " " << accuracy;
+    }
+}
+
 }  // namespace
 }  // namespace hipair
