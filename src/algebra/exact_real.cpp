@@ -1,4 +1,5 @@
 #include "algebra/exact_real.hpp"
+#include "algebra/ordinate.hpp"
 #include "algebra/near_quotient.hpp"
 #include "algebra/rational_root.hpp"
 #include "algebra/rational_order.hpp"
@@ -1576,6 +1577,39 @@ Polynomial substitute_y(const IntegerPolynomial2& f, const Rational& y) {
   for (std::size_t i = 0; i < c.size(); ++i)
     for (std::size_t j = 0; j < c[i].size(); ++j) result[i] += c[i][j] * weights[j];
   trim(result);
+  return result;
+}
+
+Polynomial y_coefficient(const IntegerPolynomial2& f, int j) {
+  Polynomial result(f.coefficients.size());
+  for (std::size_t i = 0; i < f.coefficients.size(); ++i)
+    if (static_cast<std::size_t>(j) < f.coefficients[i].size()) result[i] = f.coefficients[i][static_cast<std::size_t>(j)];
+  trim(result);
+  return result;
+}
+
+Polynomial product(const Polynomial& a, const Polynomial& b) {
+  if (a.empty() || b.empty()) return {};
+  Polynomial result(a.size() + b.size() - 1);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) mpz_addmul(result[i + j].get_mpz_t(), a[i].get_mpz_t(), b[j].get_mpz_t());
+  trim(result);
+  return result;
+}
+
+Polynomial substitute_ordinate(const IntegerPolynomial2& f, const Polynomial& P, const Polynomial& Q) {
+  // Horner in y: H = f_d, then H = H P + f_j Q^(d - j) for j = d - 1 ... 0
+  const int d = f.degree_y();
+  if (d < 0) return {};
+  Polynomial result = y_coefficient(f, d), power{mpz_class(1)};
+  for (int j = d - 1; j >= 0; --j) {
+    power = product(power, Q);
+    Polynomial term = product(y_coefficient(f, j), power);
+    result = product(result, P);
+    if (result.size() < term.size()) result.resize(term.size());
+    for (std::size_t i = 0; i < term.size(); ++i) result[i] += term[i];
+    trim(result);
+  }
   return result;
 }
 

@@ -65,7 +65,7 @@ void print_statistics(const CSpace& space) {
     std::printf("  zero-clearance contacts: %zu touching edges, %zu isolated touching vertices%s\n", s.touching_edges,
                 s.touching_vertices,
                 s.touching_undecided ? (", " + std::to_string(s.touching_undecided) +
-                                        " coincident-curve edges in blocked space with no rational point (unchecked)")
+                                        " not decided in blocked space (coincident-curve edges and vertices the exact oracle cannot pose; unchecked)")
                                            .c_str()
                                      : "");
   if (!space.complete())

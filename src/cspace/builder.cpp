@@ -2,6 +2,7 @@
 // with feature pairs, every face gets an exact rational sample point classified by the
 // overlap oracle, and charts are glued along seams into cells.
 #include "cspace/builder_impl.hpp"
+#include "algebra/ordinate.hpp"
 #include "cspace/angle_filter.hpp"
 #include "cspace/valid_point.hpp"
 #include "arrangement/circle_segment_traits.hpp"
@@ -950,12 +951,78 @@ bool algebraic_touching(Overlap relation, const char* where) {
   return relation == Overlap::touching;
 }
 
+// The ordinate of an arrangement vertex as a rational function of its abscissa x0, for the
+// algebraic oracle at a vertex whose coordinates are not both rational (RationalOrdinate), or
+// nullopt. The curves through the vertex: its edges' supports, and, at an isolated point of a
+// curve (a singular point: the curve's partial derivatives vanish there too), that curve's
+// derivative in y. One of degree 1 in y, b(x) y + c(x) with b(x0) != 0, has the vertex's
+// ordinate as its only root: -c / b. Two of degree 2, f = a y^2 + b y + c and g = d y^2 + e y + h,
+// vanish at the vertex, so a g - d f = (a e - b d) y + (a h - c d) does: where a e - b d is not
+// 0 at x0, its root is the ordinate (the first subresultant). Curves of higher degree in y are
+// not tried. The ordinate found is checked exactly on the vertex's own curve and within its
+// y-enclosure (algebraic_overlap checks the enclosure).
+std::optional<RationalOrdinate> vertex_ordinate(const raw::Arrangement& arrangement, const raw::Vertex& vertex) {
+  std::vector<const IntegerPolynomial2*> curves;
+  for (const auto& incidence : vertex.around) curves.push_back(&arrangement.edges[incidence.edge].support);
+  IntegerPolynomial2 derivative;
+  if (vertex.isolated && vertex.y_curve.degree_y() >= 1) {
+    derivative.coefficients.resize(vertex.y_curve.coefficients.size());
+    for (std::size_t i = 0; i < vertex.y_curve.coefficients.size(); ++i) {
+      const auto& row = vertex.y_curve.coefficients[i];
+      for (std::size_t j = 1; j < row.size(); ++j) derivative.coefficients[i].push_back(row[j] * static_cast<unsigned long>(j));
+    }
+    curves.push_back(&vertex.y_curve);
+    curves.push_back(&derivative);
+  }
+  auto nonzero_at_x = [&](const algebra::Polynomial& p) {
+    return vertex.x.exact ? algebra::sign_at(p, vertex.x.lower) != 0 : algebra::sign_at(p, vertex.x) != 0;
+  };
+  auto minus = [](algebra::Polynomial a, const algebra::Polynomial& b) {
+    if (a.size() < b.size()) a.resize(b.size());
+    for (std::size_t i = 0; i < b.size(); ++i) a[i] -= b[i];
+    algebra::trim(a);
+    return a;
+  };
+  std::optional<RationalOrdinate> found;
+  for (std::size_t i = 0; i < curves.size() && !found; ++i) {
+    const IntegerPolynomial2& f = *curves[i];
+    if (f.degree_y() == 1) {
+      algebra::Polynomial b = algebra::y_coefficient(f, 1);
+      if (nonzero_at_x(b)) found = RationalOrdinate{minus({}, algebra::y_coefficient(f, 0)), std::move(b), {}, {}};
+      continue;
+    }
+    if (f.degree_y() != 2) continue;
+    for (std::size_t k = i + 1; k < curves.size() && !found; ++k) {
+      const IntegerPolynomial2& g = *curves[k];
+      if (g.degree_y() != 2) continue;
+      const algebra::Polynomial a = algebra::y_coefficient(f, 2), b = algebra::y_coefficient(f, 1), c = algebra::y_coefficient(f, 0);
+      const algebra::Polynomial d = algebra::y_coefficient(g, 2), e = algebra::y_coefficient(g, 1), h = algebra::y_coefficient(g, 0);
+      algebra::Polynomial m = minus(algebra::product(a, e), algebra::product(b, d));
+      if (!nonzero_at_x(m)) continue;
+      // y = -(a h - c d) / (a e - b d)
+      found = RationalOrdinate{minus(algebra::product(c, d), algebra::product(a, h)), std::move(m), {}, {}};
+    }
+  }
+  if (!found) return std::nullopt;
+  if (!vertex.y_curve.is_zero() &&
+      nonzero_at_x(algebra::substitute_ordinate(vertex.y_curve, found->numerator, found->denominator)))
+    return std::nullopt;
+  if (vertex.y_exact) {
+    found->lower = vertex.y.lower;
+    found->upper = vertex.y.upper;
+  } else {
+    found->lower = vertex.y_lower;
+    found->upper = vertex.y_upper;
+  }
+  return found;
+}
+
 // Zero-clearance contacts: edges and isolated vertices of contact space with blocked space on
 // every side. A face sample never lies on them; the exact oracle decides at a rational point
 // of each whether the parts only touch there (a channel of zero width: EdgeRole::touching) or
 // overlap (a curve through blocked space: spurious).
 void find_touching(ChartData& chart, const Classifier& classify, const AlgebraicClassifier& classify_algebraic,
-                   ContactSides* sides, bool check, CSpaceStatistics& stats) {
+                   const OrdinateClassifier& classify_ordinate, ContactSides* sides, bool check, CSpaceStatistics& stats) {
   const auto& arrangement = chart.arrangement;
   chart.touching_vertex.assign(arrangement.vertices.size(), 0);
   auto blocked = [&](std::size_t face) {
@@ -1030,16 +1097,34 @@ void find_touching(ChartData& chart, const Classifier& classify, const Algebraic
     }
     if (!candidate || !on_curve) continue;
     auto x = rational_value(vertex.x, false);   // rational vertices come out exact (or linear)
-    if (!vertex.y_exact) continue;
     // (an irrational abscissa: only an exact or linear ordinate is looked for, cheaply)
-    auto y = rational_value(vertex.y, x.has_value());
+    std::optional<Rational> y;
+    if (vertex.y_exact) y = rational_value(vertex.y, x.has_value());
     if (!x || !y) {
-      // one coordinate irrational: the exact oracle at the algebraic point (both irrational:
-      // not decided, as before)
-      if (!classify_algebraic || (!x && !y)) continue;
-      std::optional<Overlap> relation = classify_algebraic(x ? Real::from_rational(*x) : vertex.x,
-                                                           y ? Real::from_rational(*y) : vertex.y);
-      if (relation && algebraic_touching(*relation, "at a contact vertex between blocked faces")) {
+      // One contact curve at the vertex (every edge there carries the same single curve): the
+      // parts' relation at it is its edges' — along a curve it changes only where another
+      // contact begins or ends, which another curve through the point would mark (culled curves
+      // lie only in certainly blocked space) — and those edges, blocked on both sides with one
+      // curve, are decided and not touching (above): the vertex overlaps; no oracle call.
+      const std::vector<std::size_t>& first = chart.edges[vertex.around.empty() ? 0 : vertex.around.front().edge].curves;
+      bool one_curve = !vertex.isolated && !vertex.around.empty() && first.size() == 1;
+      for (const auto& incidence : vertex.around)
+        if (arrangement.edges[incidence.edge].box_side >= 0 || chart.edges[incidence.edge].curves != first) one_curve = false;
+      if (one_curve) continue;
+      // one coordinate irrational: the exact oracle at the algebraic point; both irrational (or
+      // an ordinate known by its curve only): at the ordinate as a rational function of the
+      // abscissa (vertex_ordinate); undecided (counted) where neither applies
+      std::optional<Overlap> relation;
+      if (vertex.y_exact && (x || y)) {
+        if (classify_algebraic)
+          relation = classify_algebraic(x ? Real::from_rational(*x) : vertex.x, y ? Real::from_rational(*y) : vertex.y);
+      } else if (classify_ordinate) {
+        if (std::optional<RationalOrdinate> ordinate = vertex_ordinate(arrangement, vertex))
+          relation = classify_ordinate(vertex.x, *ordinate);
+      }
+      if (!relation) {
+        ++stats.touching_undecided;
+      } else if (algebraic_touching(*relation, "at a contact vertex between blocked faces")) {
         chart.touching_vertex[v] = 1;
         ++stats.touching_vertices;
       }
@@ -1476,6 +1561,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     std::vector<int> signs;
     Classifier classify;
     AlgebraicClassifier classify_algebraic;
+    OrdinateClassifier classify_ordinate;
   };
   std::vector<Deferred> deferred(chart_count);
   for (std::size_t c = 0; c < chart_count; ++c) {
@@ -1567,6 +1653,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       for (std::size_t k : kept) deferred[c].signs.push_back(chart_input.curves[k].blocked_sign);
     deferred[c].classify = std::move(chart_input.classify);
     deferred[c].classify_algebraic = std::move(chart_input.classify_algebraic);
+    deferred[c].classify_ordinate = std::move(chart_input.classify_ordinate);
     // the chart's input curves are done with (its arrangement, polynomials and labels are
     // kept): free them now rather than at the end, so a region's peak holds one copy
     std::vector<ContactCurve>().swap(chart_input.curves);
@@ -1585,7 +1672,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       const bool propagate = sides && input.curve_statistics.identically_zero == 0;
       classify_faces(chart, deferred[c].classify, sides ? &*sides : nullptr, options.check_face_classification,
                      propagate);
-      find_touching(chart, deferred[c].classify, deferred[c].classify_algebraic, sides ? &*sides : nullptr, options.check_face_classification, stats);
+      find_touching(chart, deferred[c].classify, deferred[c].classify_algebraic, deferred[c].classify_ordinate, sides ? &*sides : nullptr, options.check_face_classification, stats);
       deferred[c] = Deferred{};
     }
     stats.seconds_classification += seconds_since(start);

@@ -8,6 +8,7 @@
 
 #include "algebra/exact_real.hpp"
 #include "arrangement/arrangement.hpp"
+#include "curves/algebraic_overlap.hpp"
 #include "curves/contact_curves.hpp"
 
 #include <array>
@@ -27,6 +28,9 @@ using Classifier = std::function<Overlap(const ChartPoint&)>;
 /// coordinates irrational; with arcs, a loop whose every vertex has one of the other part at its
 /// height and at its abscissa).
 using AlgebraicClassifier = std::function<std::optional<Overlap>(const algebra::Real&, const algebra::Real&)>;
+/// The same at a point whose ordinate is a rational function of its abscissa (both coordinates
+/// irrational: curves/algebraic_overlap.hpp, RationalOrdinate).
+using OrdinateClassifier = std::function<std::optional<Overlap>(const algebra::Real&, const RationalOrdinate&)>;
 
 /// Input of one chart: its axes, its contact curves and its oracle.
 struct ChartInput {
@@ -38,6 +42,9 @@ struct ChartInput {
   Classifier classify;
   /// Optional: the oracle at irrational zero-clearance points (empty: those stay undecided).
   AlgebraicClassifier classify_algebraic;
+  /// Optional: the oracle at zero-clearance vertices with both coordinates irrational (empty:
+  /// those stay undecided).
+  OrdinateClassifier classify_ordinate;
   /// Optional: the box's certainly-blocked cells (the merged cull's grid, whose cells the
   /// curve generator has already tested). Curve parts in blocked cells bound nothing and are
   /// not inserted (the curves' windows); its depth is the culling quadtree's.

@@ -24,4 +24,20 @@ namespace hipair::cspace {
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
                                          const ChartAxis& y_axis, const algebra::Real& x, const algebra::Real& y);
 
+/// A chart ordinate given as a rational function of the abscissa: y = numerator(x) /
+/// denominator(x) at the point's x, where denominator(x) != 0, and lower <= y <= upper (the
+/// caller's enclosure; checked exactly). A point with both coordinates irrational is posed this
+/// way: the common root in y of two curves through it (their first subresultant).
+struct RationalOrdinate {
+  algebra::Polynomial numerator, denominator;
+  Rational lower, upper;
+};
+
+/// algebraic_overlap at (x, numerator(x) / denominator(x)) of a 2-D chart: every sign is that of
+/// a polynomial in x at x (the ordinate substituted, the denominator's power's sign applied).
+/// nullopt where the degenerate ray case above leaves it undecided, or where the ordinate is not
+/// as described (denominator(x) = 0, or y outside [lower, upper]).
+std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
+                                         const ChartAxis& y_axis, const algebra::Real& x, const RationalOrdinate& y);
+
 }  // namespace hipair::cspace

@@ -340,7 +340,9 @@ Interval twice_area(const Loop& loop) {
     has_arc = true;
     polygonal += cross(edge.center - origin, target - source);
     Point a = edge.source - edge.center, b = edge.target - edge.center;
-    Interval sweep = edge.source == edge.target ? Interval::pi() * Interval(Rational(2))
+    // a full circle turns by 2 pi in its own direction: a clockwise one (a hole written as
+    // the reader wants it) encloses negative area
+    Interval sweep = edge.source == edge.target ? Interval::pi() * Interval(Rational(edge.ccw ? 2 : -2))
                      : edge.ccw                 ? ccw_angle(a, b)
                                                 : -ccw_angle(b, a);
     curved = curved + Interval(edge.radius_squared) * sweep;

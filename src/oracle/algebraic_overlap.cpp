@@ -26,6 +26,7 @@
 //     other's boundary (every common point of two segments that do not cross properly is an
 //     end of one of them on the other), else they are apart.
 #include "curves/algebraic_overlap.hpp"
+#include "algebra/ordinate.hpp"
 
 #include "algebra/polynomial.hpp"
 #include "curves/pose.hpp"
@@ -71,6 +72,10 @@ struct Segment {
 class SignAt {
  public:
   SignAt(const Real& x, const Real& y) : x_(narrowed(x)), y_(narrowed(y)), box_x_(box(x_)), box_y_(box(y_)) {}
+  // at (x, P(x) / Q(x)), Q(x) != 0 of sign q, the ordinate enclosed by [lower, upper]
+  SignAt(const Real& x, const RationalOrdinate& y, int q)
+      : x_(narrowed(x)), box_x_(box(x_)),
+        box_y_{algebra::lower_double(y.lower), algebra::upper_double(y.upper)}, ordinate_(&y), q_(q) {}
   // the polynomial's numerators (a positive multiple of it) over the point's box
   Interval numerators(const Poly& p) const {
     Interval value{0, 0};
@@ -111,6 +116,11 @@ class SignAt {
     if (filtered != 2) return filtered;
     IntegerPolynomial2 f = normalized_integer_polynomial(p);
     if (f.is_zero()) return 0;
+    if (ordinate_) {
+      // Q^d f(x, P / Q) at x, times sign(Q)^d
+      const int s = sign_of(algebra::substitute_ordinate(f, ordinate_->numerator, ordinate_->denominator));
+      return f.degree_y() % 2 == 0 ? s : s * q_;
+    }
     if (y_.exact) return x_.exact ? algebra::sign_at(f, x_.lower, y_.lower) : algebra::sign_at(f, x_, y_.lower);
     return algebra::sign_at(f, x_.lower, y_);
   }
@@ -125,8 +135,11 @@ class SignAt {
     if (r.exact) return algebra::enclose(r.lower);
     return algebra::Interval{algebra::lower_double(r.lower), algebra::upper_double(r.upper)};
   }
+  int sign_of(const algebra::Polynomial& p) const { return x_.exact ? algebra::sign_at(p, x_.lower) : algebra::sign_at(p, x_); }
   Real x_, y_;
   algebra::Interval box_x_, box_y_;
+  const RationalOrdinate* ordinate_ = nullptr;
+  int q_ = 1;
 };
 
 class PolygonRelation {
@@ -816,14 +829,14 @@ bool has_arc(const Part& part) {
 
 }  // namespace
 
-std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
-                                         const ChartAxis& y_axis, const Real& x, const Real& y) {
-  const Real y_used = axes.dimension() < 2 ? Real::from_rational(Rational(0)) : y;
-  if (!x.exact && !y_used.exact) return std::nullopt;
+namespace {
+
+// The relation of the pair posed in the chart at the point whose signs `sign` decides.
+std::optional<Overlap> relation_at(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
+                                   const ChartAxis& y_axis, const SignAt& sign) {
   const Part& first = model.parts.at(axes.first);
   const Part& second = model.parts.at(axes.second);
   PairPoses<Poly> poses = pair_poses(model, axes, x_axis, y_axis, Poly::variable(0), Poly::variable(1), constant);
-  SignAt sign(x, y_used);
   if (has_arc(first) || has_arc(second))
     return CurvedRelation({part_loops(first), part_loops(second)},
                           {ScaledPose{&poses.first, &poses.second.w}, ScaledPose{&poses.second, &poses.first.w}}, sign)
@@ -835,6 +848,34 @@ std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axe
       sign.enclose(segment.to);
     }
   return PolygonRelation(std::move(a), std::move(b), sign).run();
+}
+
+}  // namespace
+
+std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
+                                         const ChartAxis& y_axis, const Real& x, const Real& y) {
+  const Real y_used = axes.dimension() < 2 ? Real::from_rational(Rational(0)) : y;
+  if (!x.exact && !y_used.exact) return std::nullopt;
+  return relation_at(model, axes, x_axis, y_axis, SignAt(x, y_used));
+}
+
+std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
+                                         const ChartAxis& y_axis, const Real& x, const RationalOrdinate& y) {
+  if (axes.dimension() < 2 || y.lower > y.upper) return std::nullopt;
+  auto sign_at_x = [&](const algebra::Polynomial& p) { return x.exact ? algebra::sign_at(p, x.lower) : algebra::sign_at(p, x); };
+  const int q = sign_at_x(y.denominator);
+  if (q == 0) return std::nullopt;
+  // lower <= P / Q <= upper: (P - lower Q) Q >= 0 and (upper Q - P) Q >= 0, over the bounds'
+  // denominators (positive)
+  auto bound = [&](const Rational& r, int side) {   // side (r.num Q - r.den P)
+    algebra::Polynomial result(std::max(y.numerator.size(), y.denominator.size()));
+    for (std::size_t i = 0; i < y.denominator.size(); ++i) result[i] += r.get_num() * y.denominator[i];
+    for (std::size_t i = 0; i < y.numerator.size(); ++i) result[i] -= r.get_den() * y.numerator[i];
+    algebra::trim(result);
+    return side * sign_at_x(result) * q;
+  };
+  if (bound(y.lower, -1) < 0 || bound(y.upper, 1) < 0) return std::nullopt;
+  return relation_at(model, axes, x_axis, y_axis, SignAt(x, y, q));
 }
 
 }  // namespace hipair::cspace

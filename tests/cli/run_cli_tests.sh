@@ -288,6 +288,16 @@ grep -q "2 touching edges, 0 isolated touching vertices$" "$work/pin-slide.txt" 
 "$hipair" analyze "$pin_slide" --driver frame --no-pictures >"$work/pin-analyze.txt" 2>&1 || fail "analyze fails on the sliding pin fit"
 grep -q "were not decided" "$work/pin-analyze.txt" && fail "analyze leaves the irrational pin fit undecided"
 
+# A pin in a round hole of exactly its radius, the hole written clockwise, the frame sliding
+# (session 36): one isolated touching vertex with both coordinates irrational. Main read a
+# clockwise full circle as counter-clockwise (the hole a solid disk) and never checked a vertex
+# with both coordinates irrational: no touching vertex, nothing undecided.
+round_fit="$source/tests/data/zero-clearance/pin-in-round-hole-sliding.json"
+"$hipair" cspace "$round_fit" --stats >"$work/round-fit.txt" 2>&1 || fail "cspace fails on the round fit: $(tail -n 3 "$work/round-fit.txt")"
+grep -q "0 touching edges, 1 isolated touching vertices$" "$work/round-fit.txt" \
+  || fail "cspace --stats: the pin in its round hole is not one touching vertex: $(grep zero-clearance "$work/round-fit.txt")"
+grep -q "undecided" "$work/round-fit.txt" && fail "cspace --stats: the round fit is left undecided"
+
 # Out of memory (also inside GMP, which aborted with "GNU MP: Cannot allocate memory", exit
 # 134): exit 4 and one line, no output file.
 (ulimit -v 200000; "$hipair" cspace "$source/examples/models/spur-gears.json" --json "$work/oom.json" \
