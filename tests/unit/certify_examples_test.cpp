@@ -529,13 +529,13 @@ TEST(CertifyExamples, AJamWallIsClosedByAMotionLimitOnlyInTheLimitsOwnTurn) {
 // misses the limits by more than 0.1 rad. Controls (every fourth case): limits that meet the band
 // (at its end, from -w/2 on), certified and verified with the limits.
 TEST(CertifyExamples, AJamTrapWhollyOutsideTheFollowersLimitsIsRefused) {
-  const Rational two_pi = two_pi_to_60_digits();
   std::mt19937_64 random(20261236);
+  const Rational two_pi = two_pi_to_60_digits();
   int empty_claims = 0, controls = 0;
   for (int trial = 0; trial < 16; ++trial) {
-    int exponent = std::vector<int>{-300, -120, 0, 0, 40, 300}[random() % 6];
+    const int exponent = std::vector<int>{-300, -120, 0, 0, 40, 300}[random() % 6];
+    const int turns = int(random() % 5) - 2;
     Rational scale = exact_power_of_ten(exponent);
-    int turns = int(random() % 5) - 2;
     Rational w(1, long(100 + 50 * (random() % 3)));
     Rational a = std::vector<Rational>{Rational(3, 10), Rational(1, 2), Rational(1)}[random() % 3];
     Rational b = a + std::vector<Rational>{Rational(1, 10), Rational(1), Rational(2)}[random() % 3];
