@@ -109,6 +109,14 @@ Rational turns_of(const Interval& x) {
 // ----------------------------------------------------------------------------- model and pair
 void check_model(const Certificate& c, const Model& model) {
   if (c.model_name != model.name) reject("the model is named '" + model.name + "', the certificate names '" + c.model_name + "'");
+  // model.file is a label (the content hash identifies the model): a bare file name, as the
+  // producers write it (the model source's file name), never a path or a control character.
+  const std::string& file = c.model_file;
+  bool printable = true;
+  for (unsigned char ch : file) printable = printable && ch >= 0x20 && ch != 0x7f;
+  if (!printable || file.size() > 255 || file == "." || file == ".." || file.find('/') != std::string::npos)
+    reject("model.file must be a bare file name (no directory, no control character, at most 255 bytes), not " +
+           (printable ? "'" + (file.size() <= 80 ? file : file.substr(0, 80) + "...") + "'" : std::string("a name with a control character")));
   for (const ParameterValue& value : c.parameters)
     if (!model.find_parameter(value.name)) reject("the model has no parameter '" + value.name + "'");
   for (const Parameter& parameter : model.parameters) {
@@ -225,6 +233,22 @@ bool wall_closed_by_limit(const Part& follower, const RationalInterval& band, bo
   Interval other = upper ? Interval(limits->lo) - (Interval(band.hi) - two_pi())
                          : (Interval(band.lo) + two_pi()) - Interval(limits->hi);
   return other.sign() > 0;
+}
+
+bool band_meets_limits(const Part& follower, const RationalInterval& band) {
+  bool rotating = follower.motion.kind == Motion::Kind::rotation;
+  const auto& limits = rotating ? follower.motion.angle_limits : follower.motion.translation_limits;
+  if (!limits) return true;
+  if (band.lo <= limits->hi && limits->lo <= band.hi) return true;   // the limits' own turn: exact
+  if (!rotating) return false;
+  for (int turns = -3; turns <= 3; ++turns) {
+    if (turns == 0) continue;
+    Interval shift = two_pi() * Interval(Rational(turns));
+    if ((Interval(limits->hi) - (Interval(band.lo) + shift)).sign() > 0 &&
+        (Interval(band.hi) + shift - Interval(limits->lo)).sign() > 0)
+      return true;
+  }
+  return false;
 }
 
 Interval angle_of_tangent(const Rational& tangent, bool half_turn) {
@@ -411,6 +435,9 @@ std::string check_jam(const Certificate& c, const Model& model) {
     if (band.lo >= band.hi) reject("the trap's follower range must have lo < hi");
     if (rotates(*r.other) && (two_pi() - Interval(Rational(band.hi - band.lo))).sign() <= 0)
       reject("the trap's follower range is not certainly shorter than a whole turn");
+    if (!band_meets_limits(*r.other, band))
+      reject("the trap's follower range " + show(band) + " lies outside the follower's limits" + limits_text(*r.other) +
+             (rotates(*r.other) ? " in every turn" : "") + ": the trap holds no configuration of the mechanism");
     check_cover(c.cut, band, "the cut");
     for (std::size_t i = 0; i < c.cut.size(); ++i)
       check_blocked(c, model, r, cut_at, c.cut[i].range, c.cut[i].crossing, "cut piece " + std::to_string(i));
@@ -571,6 +598,7 @@ VerificationResult check_certificate(const Certificate& certificate, const Model
       case ClaimKind::tolerance:
         reject("a tolerance certificate is checked against the model file's text (check_certificate_text, hipair-verify)");
     }
+    check_statement(certificate, model);
     result.summary = to_string(certificate.claim) + ": " + result.summary;
     result.valid = true;
   } catch (const Rejection& rejection) {
@@ -607,6 +635,7 @@ VerificationResult check_certificate_text(const Certificate& certificate, std::s
     if (certificate.first == certificate.second) verify::reject("a pair needs two different parts");
     std::string not_proved;
     result.summary = to_string(certificate.claim) + ": " + verify::check_tolerance(certificate, model, text, not_proved);
+    verify::check_statement(certificate, model);
     if (!not_proved.empty()) {
       // Checks 1-6 passed (the named sides stay apart), but check 7 did not prove a free path
       // for the follower across the range, so the claim 'no jam' is not proved (docs/certify.md).

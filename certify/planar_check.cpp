@@ -3,6 +3,7 @@
 
 #include "certify/exact_geometry.hpp"
 #include "certify/interval_geometry.hpp"
+#include "certify/tolerance_support.hpp"
 
 namespace hipair::verify {
 namespace {
@@ -15,7 +16,9 @@ const Part& part_named(const Model& model, const std::string& name) {
   return model.parts[*index];
 }
 
-std::string text(const Rational& r) { return to_exact_string(r); }
+// exact up to 60 characters, else 25 digits marked rounded (a forged x = 1e100000 printed a
+// 100 KB line until session 36, as the tolerance messages did until session 35)
+std::string text(const Rational& r) { return fraction_or_rounded(r); }
 
 // p -> pivot + R (p - pivot) + (x, y) as a rotation about the origin: R p + (pivot - R pivot + (x, y))
 // (the interval posing rotates a planar part's shape about the origin, see pose_pivot); a

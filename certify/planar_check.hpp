@@ -46,6 +46,23 @@ bool range_within_limits(const Part& part, const RationalInterval& range);
 /// and the open side of the trap would go unchecked (session 34, hunt34).
 bool wall_closed_by_limit(const Part& follower, const RationalInterval& band, bool upper);
 
+/// "0.5 rad" (the recorded angle), "2 atan(1/3) + pi rad" (an exact tangent), "-3 mm": a
+/// position in statements and messages (statement.cpp).
+std::string position_text(const ExactPosition& position);
+
+/// Rejects a certificate whose `statement` is not certificate_statement() of its data (called
+/// once the claim's data are checked). \throws Rejection.
+void check_statement(const Certificate& certificate, const Model& model);
+
+/// Does a jam trap's follower range `band` meet the follower's motion limits (true when it has
+/// none), so that the trap holds configurations the mechanism can reach? The band need not lie
+/// within the limits (a wall may be closed by a limit, wall_closed_by_limit), but a band wholly
+/// outside them in every turn makes the claim empty. For a rotating follower the band shifted
+/// by one whole number of turns 2 pi k (k = -3 ... 3) must meet the limits: exactly (rational
+/// comparisons, touching counts) for k = 0, certainly (MPFI) for the others. Shared by
+/// certify_jam and the verifier (session 36, hunt36; hunt35's open finding).
+bool band_meets_limits(const Part& follower, const RationalInterval& band);
+
 /// An MPFI enclosure of the angle 2 atan(t) (+ pi when `half_turn`) of a half-angle tangent.
 Interval angle_of_tangent(const Rational& tangent, bool half_turn);
 

@@ -185,10 +185,13 @@ struct ParameterValue {
 /// A certificate: model identity, one claim about a pair of parts, its witnesses.
 struct Certificate {
   ClaimKind claim = ClaimKind::interference;
-  std::string statement;   ///< the claim in words (not checked)
+  std::string statement;   ///< the claim in words: certificate_statement() of the claim's data (checked)
 
   std::string model_name;
-  std::string model_file;  ///< file name as certified (not checked: the hash identifies it)
+  /// The model file's name as certified, a label: the content hash identifies the model, so the
+  /// verifier does not compare it with the name of the file it is given; it checks only that it
+  /// is a bare file name (no directory, no control character, at most 255 bytes), as written.
+  std::string model_file;
   std::string content_hash;
   std::vector<ParameterValue> parameters;   ///< every parameter of the model, in model order
   std::vector<Rounding> roundings;          ///< every rounding of the model reader
@@ -393,6 +396,12 @@ struct VerificationResult {
   std::string summary;   ///< valid or unproven: one line describing what was checked
   std::string reason;    ///< invalid: the exact reason
 };
+
+/// The claim in words: a function of the claim's data alone (names, numbers and the driver's
+/// unit). Every producer writes it; the verifier regenerates it from the checked data and
+/// rejects a certificate whose `statement` differs (session 36). The data must hold what the
+/// claim needs (a planar claim's pose, a tolerance claim's section, the driver a part of `model`).
+std::string certificate_statement(const Certificate& certificate, const Model& model);
 
 /// Checks `certificate` against `model` with the verifier's own code (the code `hipair-verify`
 /// runs): the model must have been read with the certificate's parameter values.

@@ -350,10 +350,7 @@ std::optional<Certificate> certify_free_passage(const Model& model, const std::s
     for (long i = parts; i-- > 0;)
       stack.push_back({piece.lo + (piece.hi - piece.lo) * i / parts, piece.lo + (piece.hi - piece.lo) * (i + 1) / parts});
   }
-  std::string unit = r.driver->motion.kind == Motion::Kind::rotation ? " rad" : " mm";
-  c.statement = "Moving '" + c.driver + "' from " + to_decimal_string(c.range.lo) + " to " + to_decimal_string(c.range.hi) + unit +
-                (r.has_follower ? " with '" + c.follower + "' on the given path" : "") + ", parts '" + first + "' and '" +
-                second + "' never overlap and stay at least " + to_decimal_string(c.distance) + " mm apart.";
+  c.statement = certificate_statement(c, model);
   self_check(c, model);
   return c;
 }
@@ -378,6 +375,16 @@ std::optional<Certificate> certify_jam(const Model& model, const std::string& fi
     c.cut.push_back({{0, 0}, *crossing});
   } else {
     const RationalInterval& band = *c.trap.follower;
+    if (!verify::band_meets_limits(*r.other, band)) {
+      bool rotating = r.other->motion.kind == Motion::Kind::rotation;
+      const RationalInterval& limits = rotating ? *r.other->motion.angle_limits : *r.other->motion.translation_limits;
+      std::string unit = rotating ? " rad" : " mm";
+      throw ModelError(r.other->pointer, "the trap's follower range [" + to_decimal_string(band.lo) + ", " +
+                                             to_decimal_string(band.hi) + "]" + unit + " of '" + r.other->name +
+                                             "' lies outside its motion limits [" + to_decimal_string(limits.lo) + ", " +
+                                             to_decimal_string(limits.hi) + "]" + unit + (rotating ? " in every turn" : "") +
+                                             ": the trap holds no configuration of the mechanism");
+    }
     if (!cover(band, c.cut, options.max_boxes,
                [&](const RationalInterval& piece) { return blocking_crossing(r, cut_at, piece); }))
       return std::nullopt;
@@ -390,11 +397,7 @@ std::optional<Certificate> certify_jam(const Model& model, const std::string& fi
         return std::nullopt;
     }
   }
-  std::string unit = r.driver->motion.kind == Motion::Kind::rotation ? " rad" : " mm";
-  c.statement = "Driving '" + c.driver + "' " + (c.direction > 0 ? "forward" : "backward") + " from within [" +
-                to_decimal_string(c.trap.driver.lo) + ", " + to_decimal_string(c.trap.driver.hi) + "]" + unit +
-                (r.has_follower ? ", '" + c.follower + "' stays trapped and" : ",") + " the motion cannot pass " +
-                to_decimal_string(far) + unit + ".";
+  c.statement = certificate_statement(c, model);
   self_check(c, model);
   return c;
 }

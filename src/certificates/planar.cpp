@@ -73,21 +73,6 @@ PlanarPair planar_pair(const Model& model, const std::string& fixed, const Plana
 
 Placement placement_of(const verify::ExactMap& map) { return placement_about(map.pivot, map.c, map.s, map.shift); }
 
-std::string pose_words(const PlanarPose& pose) {
-  std::string turned = "turned by 2 atan(" + to_exact_string(pose.tangent) + ")" + (pose.half_turn ? " + pi" : "") + " rad";
-  if (pose.slide) return "'" + pose.part + "' " + turned + " and slid by " + to_decimal_string(*pose.slide) + " mm";
-  return "'" + pose.part + "' shifted by (" + to_decimal_string(pose.x) + ", " + to_decimal_string(pose.y) + ") mm and " + turned;
-}
-
-// "Part 'cam' turned by 2 atan(t) rad" / "Part 'film' at offset s mm" / "Part 'pin'"
-std::string other_words(const std::string& other, const std::map<std::string, ExactPosition>& configuration) {
-  auto found = configuration.find(other);
-  if (found == configuration.end()) return "Part '" + other + "'";
-  const ExactPosition& p = found->second;
-  if (p.is_offset) return "Part '" + other + "' at offset " + to_decimal_string(p.value) + " mm";
-  return "Part '" + other + "' turned by 2 atan(" + to_exact_string(p.value) + ")" + (p.half_turn ? " + pi" : "") + " rad";
-}
-
 std::optional<Certificate> interference(const Model& model, const std::string& fixed, const PlanarPose& pose,
                                         const std::map<std::string, ExactPosition>& configuration, const CertifyContext& context) {
   PlanarPair pair = planar_pair(model, fixed, pose, configuration);
@@ -110,7 +95,7 @@ std::optional<Certificate> interference(const Model& model, const std::string& f
                                                    {b.name, k, l, b.loops[k].edges[l].label}, std::nullopt};
     if (!c.witness_crossing) return std::nullopt;
   }
-  c.statement = other_words(fixed, configuration) + " and " + pose_words(pose) + " overlap.";
+  c.statement = certificate_statement(c, model);
   self_check(c, model);
   return c;
 }
@@ -131,8 +116,7 @@ std::optional<Certificate> clearance(const Model& model, const std::string& fixe
   Rational bound = verify::boundary_distance_lower_bound(verify::shape_of(a), verify::to_interval_map(pair.fixed_map), verify::shape_of(b), verify::to_interval_map(pair.map), cap);
   if (sgn(bound) <= 0 || (distance && bound < *distance)) return std::nullopt;
   c.distance = distance ? *distance : round_down(bound, 6);
-  c.statement = other_words(fixed, configuration) + " and " + pose_words(pose) + " are at least " + to_decimal_string(c.distance) +
-                " mm apart.";
+  c.statement = certificate_statement(c, model);
   self_check(c, model);
   return c;
 }

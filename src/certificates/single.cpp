@@ -117,14 +117,6 @@ const ExactPosition* position_of(const std::map<std::string, ExactPosition>& pos
   return found == positions.end() ? nullptr : &found->second;
 }
 
-// "0.5 rad", "2 atan(1) + pi rad" (no angle recorded: an exact tangent), "-3 mm".
-std::string position_text(const ExactPosition& position) {
-  if (position.is_offset) return to_decimal_string(position.value) + " mm";
-  return (position.angle ? to_decimal_string(*position.angle)
-                         : "2 atan(" + to_exact_string(position.value) + ")" + (position.half_turn ? " + pi" : "")) +
-         " rad";
-}
-
 // A position beyond the part's motion limits is an input error naming the part and its limits,
 // decided by the verifier's own test (an angle must be certainly within them: a tangent at a
 // limit's irrational neighbourhood is refused too). Until session 32 it reached the self-check
@@ -137,7 +129,7 @@ void require_within_limits(const Part& part, const ExactPosition& position) {
                          : limits->lo <= position.value && position.value <= limits->hi;
   if (!within)
     throw ModelError(part.pointer, std::string("the ") + (rotating ? "angle" : "offset") + " of '" + part.name + "' (" +
-                                       position_text(position) + ") is " + (rotating ? "not certainly within" : "outside") +
+                                       verify::position_text(position) + ") is " + (rotating ? "not certainly within" : "outside") +
                                        " its motion limits [" + to_decimal_string(limits->lo) + ", " +
                                        to_decimal_string(limits->hi) + "]" + (rotating ? " rad" : " mm"));
 }
@@ -156,13 +148,6 @@ std::map<std::string, ExactPosition> pair_positions(const std::map<std::string, 
       result[part->name] = copy;
     }
   return result;
-}
-
-std::string where(const Certificate& c) {
-  std::string text;
-  for (const auto& [part, position] : c.configuration)
-    text += (text.empty() ? "" : ", ") + part + " at " + position_text(position);
-  return text.empty() ? "their fixed positions" : text;
 }
 
 }  // namespace
@@ -234,7 +219,7 @@ std::optional<Certificate> certify_interference(const Model& model, const std::s
                                                    {second, k, l, b.loops[k].edges[l].label}, std::nullopt};
     if (!c.witness_crossing) return std::nullopt;
   }
-  c.statement = "Parts '" + first + "' and '" + second + "' overlap with " + where(c) + ".";
+  c.statement = certificate_statement(c, model);
   self_check(c, model);
   return c;
 }
@@ -255,8 +240,7 @@ std::optional<Certificate> certify_clearance(const Model& model, const std::stri
   Rational bound = verify::boundary_distance_lower_bound(verify::shape_of(a), verify::to_interval_map(map_a), verify::shape_of(b), verify::to_interval_map(map_b), cap);
   if (sgn(bound) <= 0 || (distance && bound < *distance)) return std::nullopt;
   c.distance = distance ? *distance : round_down(bound, 6);
-  c.statement = "Parts '" + first + "' and '" + second + "' are at least " + to_decimal_string(c.distance) + " mm apart with " +
-                where(c) + ".";
+  c.statement = certificate_statement(c, model);
   self_check(c, model);
   return c;
 }

@@ -365,7 +365,10 @@ int run(const ToleranceCliOptions& options) {
   analysis.certify_free_path = options.certify_free_path;
   bool terminal = isatty(2) && !options.quiet;
   if (terminal)
-    analysis.progress = [](double fraction) {
+    // written when the percent grows (the nominal sweep's fractions are not monotonic: docs/performance.md, session 36)
+    analysis.progress = [shown = -1](double fraction) mutable {
+      if (static_cast<int>(fraction * 100) <= shown) return;
+      shown = static_cast<int>(fraction * 100);
       int width = 30, filled = static_cast<int>(fraction * width);
       std::cerr << "\rtolerance [" << std::string(static_cast<std::size_t>(filled), '#')
                 << std::string(static_cast<std::size_t>(width - filled), ' ') << "] "

@@ -90,9 +90,9 @@ void write_file_atomically(const std::filesystem::path& path, const std::functio
     return;
   }
   fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  if (!fs::is_directory(directory, ec))
-    throw IoError("cannot write '" + path.string() + "': directory '" + directory.string() +
-                  "' does not exist");
+  if (!fs::is_directory(directory, ec))   // "does not exist" also for a parent that is a file until session 36
+    throw IoError("cannot write '" + path.string() + "': directory '" + directory.string() + "' " +
+                  (fs::exists(fs::status(directory, ec)) ? "is not a directory" : "does not exist"));
   std::random_device seed;
   std::string temporary_name = ".";
   temporary_name += target.filename().string();

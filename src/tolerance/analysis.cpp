@@ -389,6 +389,8 @@ class Analysis {
     k.steps_per_cycle = static_cast<unsigned>(std::max<std::size_t>(8, options_.positions));
     k.reversal = false;
     k.method = SliceMethod::cspace;
+    // the sweep's progress within the bar's 2 ... 20 % (a long --range ran minutes at "2%")
+    if (options_.progress) k.progress = [this](double fraction) { progress(0.02 + 0.18 * fraction); };
     // Only the analysed pair: a model holding more parts is cut to the two.
     Model pair_model = m;
     pair_model.pairs.clear();

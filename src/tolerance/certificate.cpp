@@ -177,11 +177,8 @@ class Producer {
     c.roundings = m.roundings;
     c.first = claim_.driver;
     c.second = claim_.follower;
-    c.statement = "For every value of the " + std::to_string(claim_.varied.size()) + " varied parameters within " +
-                  to_exact_string(claim_.scale) + " x their tolerance ranges, driving '" + claim_.driver + "' over [" +
-                  to_exact_string(claim_.range.lo) + ", " + to_exact_string(claim_.range.hi) + "], the channel of '" +
-                  claim_.follower + "' between its two contact sides never closes: the pair does not jam.";
     c.tolerance = claim_;
+    c.statement = certificate_statement(c, m);
     auto verify_start = std::chrono::steady_clock::now();
     VerificationResult check = check_certificate_text(read_certificate(write_certificate(c)), request_.model_text,
                                                       request_.model_file);

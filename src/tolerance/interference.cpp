@@ -132,12 +132,8 @@ class InterferenceProducer {
     c.roundings = m.roundings;
     c.first = claim_.driver;
     c.second = claim_.follower;
-    c.statement = "For every value of the " + std::to_string(claim_.varied.size()) + " varied parameters within " +
-                  to_exact_string(claim_.scale) + " x their tolerance ranges, with '" + claim_.driver + "' over [" +
-                  to_exact_string(claim_.range.lo) + ", " + to_exact_string(claim_.range.hi) + "] and '" +
-                  claim_.follower + "' over [" + to_exact_string(claim_.follower_range->lo) + ", " +
-                  to_exact_string(claim_.follower_range->hi) + "], the two parts are apart: they never interfere.";
     c.tolerance = claim_;
+    c.statement = certificate_statement(c, m);
     auto verify_start = std::chrono::steady_clock::now();
     VerificationResult check = check_certificate_text(read_certificate(write_certificate(c)), text_, source_);
     result.seconds_verify = seconds_since(verify_start);

@@ -110,6 +110,14 @@ done
 "$hipair" show "$source/examples/models/geneva.json" --svg "$work/no/such/dir/x.svg" >/dev/null 2>"$work/nodir.err"
 [ $? -ne 0 ] || fail "show into a missing directory succeeded"
 grep -q "^hipair: error: " "$work/nodir.err" || fail "missing directory: unclear message: $(cat "$work/nodir.err")"
+# A parent that is a file is named as such (until session 36: "directory '...' does not exist").
+: > "$work/plain-file"
+for output in "show --svg" "cspace --json"; do
+  "$hipair" ${output%% *} "$source/examples/models/geneva.json" ${output#* } "$work/plain-file/x.out" >/dev/null 2>"$work/parent-file.err"
+  [ $? -ne 0 ] && grep -q "^hipair: error: cannot write '.*plain-file/x.out': directory '.*plain-file' is not a directory$" "$work/parent-file.err" \
+    || fail "$output into a file's path: unclear message: $(cat "$work/parent-file.err")"
+  [ ! -e "$work/plain-file/x.out" ] && [ ! -s "$work/plain-file" ] || fail "$output into a file's path wrote something"
+done
 
 # --rounding: the bound of every recorded rounding; out of range or malformed: one error line.
 # --quadratic-max-bits: every chart on CGAL's algebraic traits (1) or the default dispatch

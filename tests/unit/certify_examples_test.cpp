@@ -407,6 +407,23 @@ Rational exact_power_of_ten(int exponent) {
 Rational two_pi_to_60_digits() {
   return Rational("6283185307179586476925286766559005768394338798750211641949889/1000000000000000000000000000000000000000000000000000000000000");
 }
+// A lever (pivot at the origin, angle limits [lo, hi], its underside from (0, -1) to (10, -1))
+// above a slider (x from 5 to 6, y from -5 to -2, sliding along +y, or all mirrored in y when not
+// `up`) that pushes up into it, scaled by `scale`; the lever can swing out upward.
+std::string slider_lever_text(const Rational& scale, bool up, const Rational& lo, const Rational& hi) {
+  auto number = [&](const Rational& v) { return "\"" + to_exact_string(v) + "\""; };
+  auto p = [&](long x, long y) {   // mirrored in y when the lever swings out downward
+    return "[" + number(Rational(x * scale)) + ", " + number(Rational((up ? y : -y) * scale)) + "]";
+  };
+  return "{\"hipair\": 1, \"name\": \"slider-lever\", \"units\": {\"length\": \"mm\", \"angle\": \"rad\"},"
+      "\"parts\": [{\"name\": \"lever\", \"motion\": {\"rotation\": {\"pivot\": [0, 0], \"limits\": [" + number(lo) + ", " +
+      number(hi) + "]}}, \"loops\": [{\"start\": " + p(0, -1) + ", \"edges\": [{\"line_to\": " + p(10, -1) +
+      ", \"label\": \"underside\"}, {\"line_to\": " + p(10, 1) + "}, {\"line_to\": " + p(0, 1) + "}, {\"line_to\": " + p(0, -1) +
+      "}]}]}, {\"name\": \"slider\", \"motion\": {\"translation\": {\"direction\": [0, " + (up ? "1" : "-1") + "], \"limits\": [" +
+      number(Rational(-10 * scale)) + ", " + number(Rational(10 * scale)) + "]}}, \"loops\": [{\"start\": " + p(5, -5) +
+      ", \"edges\": [{\"line_to\": " + p(6, -5) + "}, {\"line_to\": " + p(6, -2) + ", \"label\": \"side\"}, {\"line_to\": " +
+      p(5, -2) + "}, {\"line_to\": " + p(5, -5) + "}]}]}], \"pairs\": [{\"parts\": [\"slider\", \"lever\"]}]}";
+}
 }  // namespace
 
 // Session 34 (hunt34): a jam's wall "closed by the follower's motion limit" when the trap's
@@ -433,18 +450,7 @@ TEST(CertifyExamples, AJamWallIsClosedByAMotionLimitOnlyInTheLimitsOwnTurn) {
     bool control = trial % 4 == 3;
     Rational shift = control ? Rational(0) : Rational((up ? turns : -turns) * two_pi);
     Rational lo = control && !up ? Rational(-w) : Rational(-1, 10), hi = control && up ? w : Rational(1, 10);
-    auto number = [&](const Rational& v) { return "\"" + to_exact_string(v) + "\""; };
-    auto p = [&](long x, long y) {   // mirrored in y when the lever swings out downward
-      return "[" + number(Rational(x * scale)) + ", " + number(Rational((up ? y : -y) * scale)) + "]";
-    };
-    std::string text = "{\"hipair\": 1, \"name\": \"slider-lever\", \"units\": {\"length\": \"mm\", \"angle\": \"rad\"},"
-        "\"parts\": [{\"name\": \"lever\", \"motion\": {\"rotation\": {\"pivot\": [0, 0], \"limits\": [" + number(lo) + ", " +
-        number(hi) + "]}}, \"loops\": [{\"start\": " + p(0, -1) + ", \"edges\": [{\"line_to\": " + p(10, -1) +
-        ", \"label\": \"underside\"}, {\"line_to\": " + p(10, 1) + "}, {\"line_to\": " + p(0, 1) + "}, {\"line_to\": " + p(0, -1) +
-        "}]}]}, {\"name\": \"slider\", \"motion\": {\"translation\": {\"direction\": [0, " + (up ? "1" : "-1") + "], \"limits\": [" +
-        number(Rational(-10 * scale)) + ", " + number(Rational(10 * scale)) + "]}}, \"loops\": [{\"start\": " + p(5, -5) +
-        ", \"edges\": [{\"line_to\": " + p(6, -5) + "}, {\"line_to\": " + p(6, -2) + ", \"label\": \"side\"}, {\"line_to\": " +
-        p(5, -2) + "}, {\"line_to\": " + p(5, -5) + "}]}]}], \"pairs\": [{\"parts\": [\"slider\", \"lever\"]}]}";
+    std::string text = slider_lever_text(scale, up, lo, hi);
     Model model = read_model(text, "slider-lever.json");
     ASSERT_TRUE(model.roundings.empty());
     JamQuery query{"slider", "lever", +1, {}};
@@ -478,6 +484,7 @@ TEST(CertifyExamples, AJamWallIsClosedByAMotionLimitOnlyInTheLimitsOwnTurn) {
     ASSERT_EQ(model.parts[up ? 0 : 1].loops[0].edges[up ? underside.edge : side.edge].source.y, Rational((up ? -1 : 2) * scale));
     c.cut.push_back(BlockedPiece{*query.trap.follower, crossing});
     (up ? c.lower_wall : c.upper_wall).push_back(BlockedPiece{query.trap.driver, crossing});
+    c.statement = certificate_statement(c, model);
     VerificationResult result = check_certificate_text(c, text, "slider-lever.json");
     if (control) {
       ASSERT_TRUE(certificate);
@@ -508,6 +515,74 @@ TEST(CertifyExamples, AJamWallIsClosedByAMotionLimitOnlyInTheLimitsOwnTurn) {
     ++false_claims;
   }
   EXPECT_GE(false_claims, 10);
+  EXPECT_GE(controls, 4);
+}
+
+// Session 36 (hunt36; hunt35's open finding): a jam trap whose follower range lies wholly
+// outside the follower's motion limits, in every turn, holds no configuration of the mechanism:
+// the claim is empty. `certify_jam` refuses it (an input error naming the part and its limits)
+// and the verifier rejects it (verify::band_meets_limits, shared). Generated: the slider-lever at
+// scales 1e-300 ... 1e300, the lever's limits [a, b] (or [-b, -a]) with 0.3 <= a < b <= 3, the
+// trap's follower range [-w, w] + 2 pi k (k = -2 ... 2), where the lever blocks the slider; the
+// certificate is made for the model without limits (the geometry holds: it verifies there) and
+// checked against the one with them. Oracle: in doubles, the band shifted by every turn -5 ... 5
+// misses the limits by more than 0.1 rad. Controls (every fourth case): limits that meet the band
+// (at its end, from -w/2 on), certified and verified with the limits.
+TEST(CertifyExamples, AJamTrapWhollyOutsideTheFollowersLimitsIsRefused) {
+  std::mt19937_64 random(20261236);
+  const Rational two_pi = two_pi_to_60_digits();
+  int empty_claims = 0, controls = 0;
+  for (int trial = 0; trial < 16; ++trial) {
+    const int exponent = std::vector<int>{-300, -120, 0, 0, 40, 300}[random() % 6];
+    const int turns = int(random() % 5) - 2;
+    Rational scale = exact_power_of_ten(exponent);
+    Rational w(1, long(100 + 50 * (random() % 3)));
+    Rational a = std::vector<Rational>{Rational(3, 10), Rational(1, 2), Rational(1)}[random() % 3];
+    Rational b = a + std::vector<Rational>{Rational(1, 10), Rational(1), Rational(2)}[random() % 3];
+    bool below = random() % 2 == 0, control = trial % 4 == 3;
+    Rational lo = control ? Rational(-w / 2) : below ? Rational(-b) : a, hi = control ? Rational(1) : below ? Rational(-a) : b;
+    Rational shift = Rational(turns * two_pi);
+    SCOPED_TRACE("scale 1e" + std::to_string(exponent) + ", limits [" + to_exact_string(lo) + ", " + to_exact_string(hi) +
+                 "], turns " + std::to_string(turns) + ", w " + to_exact_string(w) + (control ? " (control)" : ""));
+    std::string free_text = slider_lever_text(scale, true, Rational(-100), Rational(100));
+    std::string limited_text = slider_lever_text(scale, true, lo, hi);
+    Model free = read_model(free_text, "slider-lever.json"), limited = read_model(limited_text, "slider-lever.json");
+    // the limits of the free model lie far beyond every band: read without limits' effect
+    free.parts[0].motion.angle_limits.reset();
+    JamQuery query{"slider", "lever", +1, {}};
+    query.trap.driver = RationalInterval{Rational(Rational(11, 10) * scale), Rational(Rational(12, 10) * scale)};
+    query.trap.follower = RationalInterval{Rational(-w + shift), Rational(w + shift)};
+    bool misses = true;   // the oracle
+    for (int k = -5; k <= 5; ++k) {
+      double band_lo = query.trap.follower->lo.get_d() + k * 2 * std::numbers::pi, band_hi = query.trap.follower->hi.get_d() + k * 2 * std::numbers::pi;
+      misses = misses && (band_hi < lo.get_d() - 0.1 || band_lo > hi.get_d() + 0.1);
+    }
+    ASSERT_EQ(misses, !control);
+    auto certificate = certify_jam(free, "slider", "lever", query, {}, IntervalSearchOptions{200});
+    ASSERT_TRUE(certificate) << "the trap holds without limits";
+    ASSERT_TRUE(check_certificate(*certificate, free).valid);
+    VerificationResult result = check_certificate(*certificate, limited);
+    if (control) {
+      EXPECT_TRUE(result.valid) << result.reason;
+      auto limited_certificate = certify_jam(limited, "slider", "lever", query, {}, IntervalSearchOptions{200});
+      ASSERT_TRUE(limited_certificate);
+      EXPECT_TRUE(check_certificate_text(*limited_certificate, limited_text, "slider-lever.json").valid);
+      ++controls;
+      continue;
+    }
+    EXPECT_FALSE(result.valid) << "an empty jam verified: " << result.summary;
+    EXPECT_NE(result.reason.find("lies outside the follower's limits"), std::string::npos) << result.reason;
+    try {
+      certify_jam(limited, "slider", "lever", query, {}, IntervalSearchOptions{200});
+      ADD_FAILURE() << "an empty jam certified";
+    } catch (const ModelError& error) {
+      EXPECT_NE(std::string(error.what()).find("lies outside its motion limits"), std::string::npos) << error.what();
+    } catch (const std::exception& error) {
+      ADD_FAILURE() << "not an input error: " << error.what();
+    }
+    ++empty_claims;
+  }
+  EXPECT_GE(empty_claims, 10);
   EXPECT_GE(controls, 4);
 }
 

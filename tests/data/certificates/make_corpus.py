@@ -166,6 +166,16 @@ mutate("lever-clearance.json", "lever-stop.json", "m28-unknown-part.json", "the 
 mutate("lever-clearance.json", "lever-stop.json", "m29-not-a-rational.json", "not an exact rational",
        set_path(["clearance", "distance"], "two"))
 
+# Session 36 (hunt36): the statement must be the claim's; model.file a bare file name; a jam
+# trap's follower range must meet the follower's limits (the pawl's are [-20, 10] degrees).
+mutate("lever-clearance.json", "lever-stop.json", "m30-statement-changed.json",
+       "the statement does not say what the claim's data prove",
+       set_path(["statement"], "Parts 'lever' and 'stop' are at least 3 mm apart with lever at 0 rad."))
+mutate("lever-clearance.json", "lever-stop.json", "m31-model-file-a-path.json", "model.file must be a bare file name",
+       set_path(["model", "file"], "../examples/models/lever-stop.json"))
+mutate("ratchet-jam.json", "ratchet.json", "m32-jam-trap-follower-outside-limits.json",
+       "lies outside the follower's limits", set_path(["jam", "trap", "follower"], ["1", "11/10"]))
+
 # Planar claims (a part free in the plane at an exact pose).
 mutate("peg-planar-clearance.json", "peg-in-hole.json", "p01-planar-pose-moved.json", "less than the claimed",
        set_path(["planar_clearance", "pose", "x"], "3/2"))
