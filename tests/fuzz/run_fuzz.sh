@@ -28,7 +28,7 @@ case "$target" in
   certificate_verifier)
     sources=("$source"/src/core/*.cpp "$source"/src/model/*.cpp "$source"/src/model/parametric/*.cpp
              "$source"/src/io/atomic_file.cpp "$source"/certify/tolerance_check.cpp "$source"/certify/free_path_check.cpp
-             "$source"/certify/planar_check.cpp
+             "$source"/certify/planar_check.cpp "$source"/certify/statement.cpp
              "$source"/certify/certificate_reader.cpp "$source"/certify/exact_geometry.cpp
              "$source"/certify/interval_geometry.cpp "$source"/certify/check.cpp
              "$source"/tests/fuzz/certificate_verifier_fuzzer.cpp)
