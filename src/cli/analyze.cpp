@@ -4,6 +4,7 @@
 #include "cli/analyze_pinslot.hpp"
 #include "cli/commands.hpp"
 
+#include "io/atomic_file.hpp"
 #include "io/output_directory.hpp"
 #include "io/output_paths.hpp"
 #include "render/cspace_svg.hpp"
@@ -220,7 +221,8 @@ int run_analyze(const AnalyzeOptions& options) {
   for (const std::string& text : options.loads)
     if (auto equals = text.find('='); equals != std::string::npos) once_per_part.add(trim(text.substr(0, equals)), text);
   auto rounding = rounding_scope(options.rounding);
-  Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
+  ReadOptions overrides = parameter_overrides(options.overrides, options.allow_out_of_tolerance);
+  Model model = read_model_file(options.model, overrides);
   // a pin-in-slot follower (the film advance): its work cycle (cli/analyze_pinslot.cpp)
   if (has_pin_slot_part(model))
     return run_pin_slot_cycle(model, PinSlotCycleRequest{options.driver, options.direction,
@@ -335,12 +337,28 @@ int run_analyze(const AnalyzeOptions& options) {
       if (terminal) std::cerr << "\r" << std::string(60, ' ') << "\r" << std::flush;
     }
   }
-  // Certificates for the interference and jamming findings (docs/certify.md).
+  // Certificates for the interference and jamming findings (docs/certify.md), about the model
+  // read with the --set values (recorded as overridden, as `hipair certify --set` does).
+  // `hipair-verify` reads the file with its own rounding key: under --rounding the certificate is
+  // checked against the file as the verifier will read it, and written only if it verifies there.
+  std::vector<CertifiedFinding> findings = certify_kinematic_findings(model, result, CertifyContext{overrides.parameter_values});
+  bool rounding_given = rounding != nullptr;
+  rounding.reset();   // the verifier's reading: the file's own rounding
+  std::string model_text = rounding_given && !findings.empty() ? io::read_file(options.model) : std::string();
   std::size_t certificates = 0;
-  for (const CertifiedFinding& finding : certify_kinematic_findings(model, result)) {
+  for (const CertifiedFinding& finding : findings) {
     if (!finding.certificate) {
       std::cout << "not certified: " << finding.finding << " (" << finding.note << ")\n";
       continue;
+    }
+    if (rounding_given) {
+      VerificationResult check = check_certificate_text(*finding.certificate, model_text, options.model);
+      if (!check.valid) {
+        std::cout << "not certified: " << finding.finding << " (--rounding " << options.rounding
+                  << " reads the model otherwise than hipair-verify, which reads the file's own rounding: "
+                  << check.reason << ")\n";
+        continue;
+      }
     }
     files.push_back({"certificate-" + std::to_string(++certificates) + ".json", write_certificate(*finding.certificate)});
   }
