@@ -289,6 +289,7 @@ int run_analyze(const AnalyzeOptions& options) {
     analysis.progress = [shown = -1](double fraction) mutable {
       int percent = static_cast<int>(fraction * 100);
       if (percent == shown) return;
+      if (shown < 0) std::cerr << "\r" << std::string(60, ' ');   // the initial stage's line below
       shown = percent;
       std::cerr << "\ranalyze: " << percent << "% " << std::flush;
     };
@@ -301,6 +302,9 @@ int run_analyze(const AnalyzeOptions& options) {
     build.progress = terminal;
     spaces = CSpace::build_all(model, build);
   }
+  // the initial configuration's slices come before the sweep's first percent (a 100 x 103 gear
+  // pair: 15 s, silent until session 37)
+  if (terminal) std::cerr << "\ranalyze: slicing the initial configuration..." << std::flush;
   KinematicsResult result = analyze_kinematics(model, analysis, spaces);
   if (terminal) std::cerr << "\r              \r" << std::flush;
   if (!direction_note.empty()) std::cout << "(" << direction_note << ")\n";
