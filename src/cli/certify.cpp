@@ -82,12 +82,9 @@ RationalInterval range_of(const std::string& text, bool angle, const std::string
 int run(const CertifyArguments& arguments) {
   refuse_repeated_names(arguments.overrides, "--set", "parameter");
   refuse_repeated_names(arguments.at, "--at", "part");
-  ReadOptions options;
-  for (const std::string& assignment : arguments.overrides) {
-    auto equals = assignment.find('=');
-    if (equals == std::string::npos || equals == 0) throw ModelError("", "--set expects NAME=VALUE, got '" + assignment + "'");
-    options.parameter_values[assignment.substr(0, equals)] = value_of(assignment.substr(equals + 1), false, "--set");
-  }
+  // the --set rule of every command (a message naming the whole item: until session 37 certify
+  // named only its value, `--set 4.5=6` for `--set pin-radius=4.5=6`)
+  ReadOptions options = parameter_overrides(arguments.overrides, false);
   io::refuse_overwriting_input(arguments.out, "--out", arguments.path);
   Model model = read_model_file(arguments.path, options);
   CertifyContext context{options.parameter_values};

@@ -352,6 +352,24 @@ sed 's/"limits": \[-0.1, 0.1\]/"limits": [-0.1, 0.01]/' "$work/slider-lever.json
 "$verify" "$work/slider-lever-stop-jam.json" "$work/slider-lever-stop.json" | grep -q "^valid: jam" \
   || fail "the jam against the lever's limit does not verify"
 
+# ------------------------------------------------------------------ --set items named whole (session 37)
+# A malformed --set item is named whole, as every other command names it (until session 37
+# certify named only the part after the first '=': `--set 4.5=6` for `--set stop-gap=4.5=6`).
+RANDOM=37
+for round in 1 2 3 4 5 6; do
+  names=(stop-gap lever-width lever-length)
+  name=${names[$((RANDOM % 3))]}
+  junk=("=$RANDOM" "$RANDOM=$RANDOM" "${RANDOM}deg" "0x$RANDOM" "$RANDOM.$RANDOM.$RANDOM" "")
+  item="$name=${junk[$((RANDOM % 6))]}"
+  "$hipair" certify "$source/examples/models/lever-stop.json" --claim clearance --set "$item" --out "$work/set-$round.json" \
+    >"$work/set-$round.out" 2>&1
+  status=$?
+  [ $status -eq 2 ] || fail "certify --set '$item': exit $status, not 2"
+  grep -qF -- "hipair: error: --set $item: " "$work/set-$round.out" \
+    || fail "certify --set '$item' does not name the item: $(cat "$work/set-$round.out")"
+  [ ! -e "$work/set-$round.json" ] || fail "certify --set '$item' wrote its output"
+done
+
 if [ $failures -ne 0 ]; then
   echo "$failures certify CLI check(s) failed"
   exit 1
