@@ -1110,7 +1110,9 @@ struct Simulation::Impl {
     return dir;
   }
 
-  void project_active() {
+  // The held contacts' positions (g = 0) and, with `velocities`, their velocities (G v = 0),
+  // mass-weighted, one contact at a time, three rounds.
+  void project_active(bool velocities = true) {
     for (int iteration = 0; iteration < 3; ++iteration)
       for (const Active& a : active) {
         Vec G;
@@ -1125,7 +1127,7 @@ struct Simulation::Impl {
         for (std::size_t i = 0; i < dofs.size(); ++i)
           if (!dofs[i].driven) {
             q[i] -= G[i] / dofs[i].inertia * gval / A;
-            v[i] -= G[i] / dofs[i].inertia * gv / A;
+            if (velocities) v[i] -= G[i] / dofs[i].inertia * gv / A;
           }
       }
   }
@@ -1570,15 +1572,12 @@ struct Simulation::Impl {
     std::size_t pair = active[k].pair;
     double e = model.pairs[pair].restitution ? to_d(*model.pairs[pair].restitution) : 0.0;
     const Active old = active[k];
-    // a wedge of two free parts (session 36): contact k's rows are those of its end (as when it
-    // is kept, below) within three times the edge slack of it (not growing at each visit of a
-    // chattering wedge), and the configuration is put on the vertex
-    const bool free_pair = both_free(pair);
-    if (free_pair) {
-      active[k].slack = std::max(old.slack, 3 * edge_slack);
-      active[k].at_vertex = true;
-      place_at_vertex(active[k], candidates);
-    }
+    // contact k's rows are those of its end (as when it is kept, below) within three times the
+    // edge slack of it (not growing at each visit of a chattering wedge), and the configuration
+    // is put on the vertex (place_at_vertex: where the pair's free coordinates can reach it)
+    active[k].slack = std::max(old.slack, 3 * edge_slack);
+    active[k].at_vertex = true;
+    place_at_vertex(active[k], candidates);
     std::vector<ContactRow> rows;
     std::vector<std::size_t> row_active;   // active index, or no_index for a candidate
     for (std::size_t j = 0; j < active.size(); ++j) {
@@ -1637,47 +1636,40 @@ struct Simulation::Impl {
     bool added = false;
     for (std::size_t j = 0; j < active.size(); ++j)
       for (const Active& c : candidates) added = added || (active[j].pair == pair && active[j].edge == c.edge);
-    bool keep = r_old < row_active.size() && after_of(r_old) <= vtol && (added || (free_pair && struck && back_along_edge(old)));
+    // a new contact held with k: both stay only where their rows hold the pair together (a
+    // wedge, independent(): the ratchet's tooth between the pawl's nose face and corner); with
+    // dependent rows (one free coordinate, or a curve tangent to k's: the Geneva pin from its
+    // slot wall onto the mouth's corner) the new contact takes over and k ends at its vertex
+    std::vector<const Active*> held;
+    for (const Active& a : active)
+      if (a.pair == pair) held.push_back(&a);
+    bool keep = r_old < row_active.size() && after_of(r_old) <= vtol &&
+                ((added && independent(held)) || (struck && back_along_edge(old)));
     if (!keep) {
-      Vec G = normal_or_last(free_pair ? active[k] : old);
+      Vec G = normal_or_last(active[k]);
       edge_event(old, SimulationEvent::Kind::edge_end);
       active.erase(active.begin() + static_cast<std::ptrdiff_t>(k));
-      project_active();
+      // a new contact taking over keeps the velocity of the impact problem at the vertex (k's
+      // row plastic there): its own row is taken inside its edge, up to 1e-9 of the edge's
+      // length past the vertex, where a curve of high curvature (the pin rolling round the
+      // slot's corner) has another slope (1.2e-7 rad/s of the Geneva wheel's speed)
+      project_active(!added);
       if (!in_active(pair)) {
         // off the old contact and every new one struck here (the configuration is at their
         // vertex): the joint direction opens all of them
         std::vector<std::pair<std::size_t, Vec>> set{{pair, G}};
-        if (free_pair && struck)
+        if (struck)
           for (std::size_t r = first_candidate; r < rows.size(); ++r) set.emplace_back(pair, rows[r].g);
         nudge_free(set);
       }
     } else {
-      if (!free_pair) {
-        active[k].slack = 3 * old.slack;
-        active[k].at_vertex = true;
-        project_active();
-        return true;
-      }
       // a wedge: held by both (or more) contacts of the pair, or by k back from its vertex
       active[k].wedge = true;
       for (Active& a : active)
         for (const Active& c : candidates) a.wedge = a.wedge || (a.pair == pair && a.edge == c.edge);
       project_active();
       // held by two contacts (or more) of the pair: on all of them at once, at rest on them
-      std::vector<const Active*> held;
-      for (const Active& a : active)
-        if (a.pair == pair) held.push_back(&a);
       if (added && held.size() > 1) project_jointly(held, true);
-    }
-    return true;
-  }
-
-  // Whether both parts of `pair` move freely (neither fixed nor driven): a wedge of its C-space
-  // can then hold the pair at rest.
-  bool both_free(std::size_t pair) const {
-    for (std::size_t part : {model.pairs[pair].first, model.pairs[pair].second}) {
-      const int d = part_dof[part];
-      if (d < 0 || dofs[static_cast<std::size_t>(d)].driven) return false;
     }
     return true;
   }
@@ -1708,13 +1700,41 @@ struct Simulation::Impl {
     if (inside) project_jointly(set, false);
   }
 
+  // Whether the rows of the contacts of `set` at the configuration are independent over the
+  // free coordinates, mass-weighted (rows scaled to 1: the smallest singular value of W^1/2 G^T
+  // at least 1e-6 of the largest, W = M^-1 with 0 for a driven coordinate). Only then can the
+  // contacts hold the pair together, each with its own force, and can the configuration be put
+  // on all of them at once. A pair with one free coordinate (a fixed or driven part: the
+  // driver's coordinate is the time's) has dependent rows at every vertex, as have two curves
+  // tangent to each other there. False where a row is not valid.
+  bool independent(const std::vector<const Active*>& set) const {
+    const Eigen::VectorXd minv = inverse_masses();
+    const Eigen::Index m = static_cast<Eigen::Index>(set.size()), n = static_cast<Eigen::Index>(dofs.size());
+    Eigen::MatrixXd G(m, n);
+    for (Eigen::Index k = 0; k < m; ++k) {
+      Vec row_k;
+      double h, gval;
+      if (!row(*set[static_cast<std::size_t>(k)], q, v, row_k, h, gval)) return false;
+      double norm = 0;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        G(k, i) = row_k[static_cast<std::size_t>(i)] * std::sqrt(minv(i));
+        norm += G(k, i) * G(k, i);
+      }
+      if (!(norm > 0)) return false;
+      G.row(k) /= std::sqrt(norm);
+    }
+    const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(G).singularValues();
+    return sv.size() == m && sv(m - 1) >= 1e-6 * sv(0);
+  }
+
   // The configuration (and with `velocities` the velocity) moved onto every contact of `set` at
   // once, mass-weighted: Gauss-Newton on g = 0, q -= M^-1 G^T (G M^-1 G^T)^-1 g, three times;
   // v -= M^-1 G^T (G M^-1 G^T)^-1 G v. project_active's one contact at a time converges slowly
   // where two rows of a wedge meet at an angle (the ratchet's: 0.1 % of the velocity left after
   // its three rounds, enough to read as sliding). Only where the rows are independent over the
-  // free coordinates (two curves through a vertex, both parts free); otherwise nothing moves.
+  // free coordinates (independent()); otherwise nothing moves.
   void project_jointly(const std::vector<const Active*>& set, bool velocities) {
+    if (!independent(set)) return;
     const Eigen::VectorXd minv = inverse_masses();
     const Eigen::Index m = static_cast<Eigen::Index>(set.size()), n = static_cast<Eigen::Index>(dofs.size());
     auto rows = [&](Eigen::MatrixXd& G, Eigen::VectorXd& g) {

@@ -5,6 +5,7 @@
 // energy conservation over >= 100 elastic (simultaneous) impacts, every state certainly
 // outside blocked space (exact point location), and a pawl's wedge held by two contacts of
 // one pair.
+#include <hipair/cspace.hpp>
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 #include <hipair/simulation.hpp>
@@ -12,10 +13,14 @@
 #include "simulation/lcp.hpp"
 #include "test_paths.hpp"
 
+#include <Eigen/Dense>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iostream>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -308,16 +313,21 @@ TEST(SimulationContacts, RatchetHoldsAtTheWedgeOfItsPawl) {
 // "cannot be moved off its contact (a jammed contact change)": the step's cut at the wedge's
 // C-space vertex came up to the contact's slack (1e-9 chart units) past the vertex, 2.6e-8 inside
 // the nose-face contact, and the old contact's row failed there.
+// The bundled ratchet with the wheel driven by `torque` (N mm), at `accuracy`, within 5000 steps.
+Simulation ratchet_driven(double torque, double accuracy) {
+  Model model = example("ratchet.json");
+  model.parts[0].dynamics->torque = Rational(torque);
+  SimulationOptions options;
+  options.accuracy = accuracy;
+  options.max_steps = 5000;
+  return Simulation::create(model, options);
+}
+
 TEST(SimulationContacts, RatchetDrivenClockwiseHoldsInTheWedgeWithBothContacts) {
-  // not yet: -50 N mm reaches t_end with the nose-face contact alone held (session 36)
+  // -50 N mm rests on the nose face alone, rightly (session 37: RatchetDrivenClockwiseRestsInStaticBalance)
   for (double torque : {-5.0, -12.5, -20.0})
     for (double accuracy : {1e-3, 1e-6, 1e-9}) {
-      Model model = example("ratchet.json");
-      model.parts[0].dynamics->torque = Rational(torque);
-      SimulationOptions options;
-      options.accuracy = accuracy;
-      options.max_steps = 5000;
-      Simulation s = Simulation::create(model, options);
+      Simulation s = ratchet_driven(torque, accuracy);
       ASSERT_NO_THROW(s.run_until(0.1)) << torque << " " << accuracy;
       EXPECT_GE(s.state().time, 0.1);
       std::vector<SimulationContact> held = s.contacts();
@@ -334,6 +344,150 @@ TEST(SimulationContacts, RatchetDrivenClockwiseHoldsInTheWedgeWithBothContacts) 
       // at the wedge's vertex (wheel angle -0.0088977622 rad), at rest
       EXPECT_NEAR(s.state().position[0], -0.0088977622, 1e-8) << torque << " " << accuracy;
       EXPECT_NEAR(s.state().velocity[0], 0, 1e-9) << torque << " " << accuracy;
+    }
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// Session 37: the ratchet driven clockwise at rest, checked against an independent static
+// balance. From the kernels' contact frames at the final state (CSpace::contact_frame: world
+// point p and unit normal n of each held feature pair, n oriented as the simulator's frame:
+// the force on the second part, the pawl, is N n + f t, t = (-n_y, n_x)) the moments about
+// the two pivots must balance the wheel's torque and the pawl's spring:
+//   T_wheel - sum (p - c_wheel) x (N n + f t) = 0,  -k (phi - rest) + sum (p - c_pawl) x (N n + f t) = 0.
+// Two held contacts: the 2x2 system gives both normal forces N (the friction forces f
+// reported by the simulator entered as known terms); one contact: it gives N and f. The
+// solution must equal the simulator's forces, be compressive, and lie in the Coulomb cone.
+struct Balance {
+  std::vector<double> normal, friction;   // solved (one contact: both unknown)
+  Eigen::Matrix2d normals;                // two contacts: the normal forces' moments (wheel, pawl)
+  double spring = 0;                      // the pawl spring's moment
+  int corner = -1;                        // two contacts: the index of the nose's corner
+};
+
+double mid(const CertifiedRange& r) { return 0.5 * (r.lower + r.upper); }
+
+Balance static_balance(const Simulation& s) {
+  const Model& model = s.model();
+  const std::vector<SimulationContact> held = s.contacts();
+  const CSpace& space = *s.spaces().at(0);
+  const double theta = s.state().position[0], phi = s.state().position[1];
+  auto coordinate = [&](const std::string& part) {
+    PartCoordinate c;
+    c.value = Rational(std::tan((part == "wheel" ? theta : phi) / 2));
+    return c;
+  };
+  const Point& cw = model.parts[0].motion.pivot;
+  const Point& cp = model.parts[1].motion.pivot;
+  // per contact: the moments of a unit normal and a unit tangent force on the pawl about the
+  // wheel's pivot (with minus: the reaction on the wheel) and about the pawl's
+  std::vector<std::array<double, 4>> m;
+  Balance out;
+  for (const SimulationContact& c : held) {
+    for (const std::string& f : c.features)
+      if (f.find("pawl corner of nose face and nose underside") != std::string::npos) out.corner = static_cast<int>(&c - held.data());
+    const std::size_t curve = space.edge(c.edge).curves.at(0);
+    std::optional<Contact> frame = space.contact_frame(FeatureId(curve), coordinate(space.x_part()), coordinate(space.y_part()));
+    EXPECT_TRUE(frame.has_value());
+    if (!frame) return {};
+    const double px = mid(frame->point_range[0]), py = mid(frame->point_range[1]);
+    const double nx = mid(frame->normal[0]), ny = mid(frame->normal[1]), tx = -ny, ty = nx;
+    auto moment = [](double ox, double oy, double x, double y, double fx, double fy) { return (x - ox) * fy - (y - oy) * fx; };
+    const double wx = cw.x.get_d(), wy = cw.y.get_d(), qx = cp.x.get_d(), qy = cp.y.get_d();
+    m.push_back({-moment(wx, wy, px, py, nx, ny), -moment(wx, wy, px, py, tx, ty), moment(qx, qy, px, py, nx, ny),
+                 moment(qx, qy, px, py, tx, ty)});
+  }
+  const double torque = model.parts[0].dynamics->torque->get_d();
+  const Spring& spring = *model.parts[1].dynamics->torsional_spring;
+  const double load = -spring.stiffness.get_d() * (phi - spring.rest.get_d());
+  Eigen::Matrix2d A;
+  Eigen::Vector2d b(-torque, -load);
+  out.spring = load;
+  if (held.size() == 2) {
+    for (int k = 0; k < 2; ++k) {
+      A(0, k) = m[k][0];
+      A(1, k) = m[k][2];
+      b(0) -= m[k][1] * held[k].friction_force;
+      b(1) -= m[k][3] * held[k].friction_force;
+    }
+    out.normals = A;
+    Eigen::Vector2d x = A.fullPivLu().solve(b);
+    out.normal = {x(0), x(1)};
+    out.friction = {held[0].friction_force, held[1].friction_force};
+  } else if (held.size() == 1) {
+    A << m[0][0], m[0][1], m[0][2], m[0][3];
+    Eigen::Vector2d x = A.fullPivLu().solve(b);
+    out.normal = {x(0)};
+    out.friction = {x(1)};
+  }
+  return out;
+}
+
+// Generated clockwise torques -5...-80 N mm at accuracies 1e-3, 1e-6, 1e-9: the run reaches
+// t_end at rest, held by the wedge's two contacts (the nose face and the nose's corner) or,
+// where the tooth comes to rest sticking on the nose face short of the wedge (-50 N mm, ...),
+// by that contact alone; either way the forces are the independent static balance's.
+TEST(SimulationContacts, RatchetDrivenClockwiseRestsInStaticBalance) {
+  // the wedge's balance at its vertex (from the first run, -5 N mm, held there by both
+  // contacts): the normal forces are linear in the torque, N(T) = A^-1 (-T, -spring); the
+  // corner's falls to zero at T* (about -45.9 N mm), beyond which the wedge could hold only by
+  // pulling on the corner: the tooth then rests on the nose face alone, held by friction
+  std::optional<Balance> vertex;
+  std::mt19937 rng(37);
+  std::vector<double> torques{-5, -12.5, -20, -50, -80};
+  for (int i = 0; i < 3; ++i) torques.push_back(-std::round(std::uniform_real_distribution<double>(5, 80)(rng) * 8) / 8);
+  for (double torque : torques)
+    for (double accuracy : {1e-3, 1e-6, 1e-9}) {
+      Simulation s = ratchet_driven(torque, accuracy);
+      ASSERT_NO_THROW(s.run_until(0.1)) << torque << " " << accuracy;
+      // at rest (within 1e-4 of the accuracy: a sticking state at 1e-3 keeps 2.5e-8 rad/s)
+      EXPECT_NEAR(s.state().velocity[0], 0, 1e-9 + 1e-4 * accuracy) << torque << " " << accuracy;
+      EXPECT_NEAR(s.state().velocity[1], 0, 1e-9 + 1e-4 * accuracy) << torque << " " << accuracy;
+      const std::vector<SimulationContact> held = s.contacts();
+      ASSERT_GE(held.size(), 1u) << torque << " " << accuracy;
+      ASSERT_LE(held.size(), 2u) << torque << " " << accuracy;
+      const Balance balance = static_balance(s);
+      ASSERT_EQ(balance.normal.size(), held.size());
+      if (!vertex) {
+        ASSERT_EQ(held.size(), 2u);
+        ASSERT_GE(balance.corner, 0);
+        vertex = balance;
+      }
+      // which contacts hold: both where the vertex balance's corner force is positive, the
+      // nose face alone where it is negative (a margin of 1e-3 of the force scale)
+      const Eigen::Vector2d n = vertex->normals.fullPivLu().solve(Eigen::Vector2d(-torque, -vertex->spring));
+      const double corner = n(vertex->corner);
+      if (corner > 1e-4) EXPECT_EQ(held.size(), 2u) << torque << " " << accuracy << " corner force " << corner;
+      if (corner < -1e-4) EXPECT_EQ(held.size(), 1u) << torque << " " << accuracy << " corner force " << corner;
+      // the simulator's forces balance the loads at its own rows, which are held to the
+      // accuracy's projection; the frames here are the kernels': agreement to 1e-6 of the
+      // load scale plus the accuracy (relative)
+      const double scale = std::abs(torque) / 10;   // N: the torque over the ~10 mm lever
+      const double tolerance = (1e-6 + accuracy) * scale;
+      const double mu = s.model().pairs[0].friction->get_d();
+      for (std::size_t k = 0; k < held.size(); ++k) {
+        EXPECT_TRUE(held[k].sticking) << torque << " " << accuracy;
+        EXPECT_GT(balance.normal[k], 0) << torque << " " << accuracy;
+        EXPECT_NEAR(held[k].normal_force, balance.normal[k], tolerance) << torque << " " << accuracy << " " << k;
+        EXPECT_NEAR(held[k].friction_force, balance.friction[k], tolerance) << torque << " " << accuracy << " " << k;
+        EXPECT_LE(std::abs(balance.friction[k]), mu * balance.normal[k] + tolerance) << torque << " " << accuracy;
+      }
+      // the two-contact rest is the wedge's vertex; a single contact is the nose face
+      if (held.size() == 2) EXPECT_NEAR(s.state().position[0], -0.0088977622, 1e-8) << torque << " " << accuracy;
+      std::cout << "torque " << torque << " accuracy " << accuracy << ": " << held.size() << " contacts, wheel "
+                << s.state().position[0] << ", N";
+      for (std::size_t k = 0; k < held.size(); ++k)
+        std::cout << " " << held[k].normal_force << " (balance " << balance.normal[k] << "), f " << held[k].friction_force
+                  << " (" << balance.friction[k] << ")";
+      double worst = 0;   // the largest difference relative to the load scale
+      for (std::size_t k = 0; k < held.size(); ++k)
+        worst = std::max({worst, std::abs(held[k].normal_force - balance.normal[k]) / scale,
+                          std::abs(held[k].friction_force - balance.friction[k]) / scale});
+      std::cout << "; worst difference " << worst << " of the load scale\n";
     }
 }
 
