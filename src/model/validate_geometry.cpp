@@ -120,16 +120,25 @@ bool on_arc(const ArcView& arc, const SurdPoint& x, const Rational& D) {
 }
 
 // Whether the axis direction (dx, dy) in {(1,0), (0,1), (-1,0), (0,-1)} points from the centre
-// into the closed arc: the sign tests of direction_on_arc on the coordinates alone.
-bool axis_on_arc(const ArcView& arc, int dx, int dy) {
-  if (arc.full) return true;
+// into the closed arc: the sign tests of direction_on_arc on the coordinates alone. `signs` are
+// sgn(a.x), sgn(a.y), sgn(b.x), sgn(b.y) of a = start - centre, b = end - centre, and `turn` is
+// sgn(cross(a, b)) (computed once per arc, not per direction: the model's rationals are large).
+struct ArcSigns {
+  int ax, ay, bx, by, turn;
+};
+
+ArcSigns arc_signs(const ArcView& arc) {
   Point a = arc.start - arc.center, b = arc.end - arc.center;
-  int turn = sgn(cross(a, b));
+  return {sgn(a.x), sgn(a.y), sgn(b.x), sgn(b.y), sgn(cross(a, b))};
+}
+
+bool axis_on_arc(const ArcView& arc, const ArcSigns& signs, int dx, int dy) {
+  if (arc.full) return true;
   // cross(a, d) = a.x dy - a.y dx, cross(d, b) = dx b.y - dy b.x
-  int sa = dy != 0 ? dy * sgn(a.x) : -dx * sgn(a.y);
-  int sb = dx != 0 ? dx * sgn(b.y) : -dy * sgn(b.x);
-  if (turn > 0) return sa >= 0 && sb >= 0;
-  if (turn < 0) return sa >= 0 || sb >= 0;
+  int sa = dy != 0 ? dy * signs.ax : -dx * signs.ay;
+  int sb = dx != 0 ? dx * signs.by : -dy * signs.bx;
+  if (signs.turn > 0) return sa >= 0 && sb >= 0;
+  if (signs.turn < 0) return sa >= 0 || sb >= 0;
   return sa >= 0;
 }
 
@@ -294,9 +303,10 @@ Box box_of(const Edge& edge) {
     ArcView arc = view_of(edge);
     double cx = to_double(arc.center.x), cy = to_double(arc.center.y);
     double r = std::sqrt(to_double(arc.radius_squared)) * (1 + 1e-9);
+    const ArcSigns signs = arc.full ? ArcSigns{} : arc_signs(arc);
     const int directions[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
     for (const auto& direction : directions)
-      if (axis_on_arc(arc, direction[0], direction[1])) include(box, cx + r * direction[0], cy + r * direction[1]);
+      if (axis_on_arc(arc, signs, direction[0], direction[1])) include(box, cx + r * direction[0], cy + r * direction[1]);
   }
   if (std::isnan(box.x_lo) || std::isnan(box.x_hi) || std::isnan(box.y_lo) || std::isnan(box.y_hi))
     box = Box{-infinity, infinity, -infinity, infinity};
@@ -477,7 +487,17 @@ void check_pair(const Part& part, std::size_t l1, std::size_t i1, std::size_t l2
   }
 }
 
-void check_intersections(const Part& part) {
+// Each loop's edges' boxes, computed once for the intersection sweep and the nesting test.
+using EdgeBoxes = std::vector<std::vector<Box>>;
+
+EdgeBoxes edge_boxes(const Part& part) {
+  EdgeBoxes boxes(part.loops.size());
+  for (std::size_t l = 0; l < part.loops.size(); ++l)
+    for (const Edge& edge : part.loops[l].edges) boxes[l].push_back(box_of(edge));
+  return boxes;
+}
+
+void check_intersections(const Part& part, const EdgeBoxes& boxes) {
   // Consecutive edges first (a spike is reported as such), then every other pair whose
   // bounding boxes overlap, found by a sweep in x.
   for (std::size_t l = 0; l < part.loops.size(); ++l) {
@@ -489,7 +509,7 @@ void check_intersections(const Part& part) {
   std::vector<EdgeRef> edges;
   for (std::size_t l = 0; l < part.loops.size(); ++l)
     for (std::size_t i = 0; i < part.loops[l].edges.size(); ++i)
-      edges.push_back(EdgeRef{l, i, box_of(part.loops[l].edges[i])});
+      edges.push_back(EdgeRef{l, i, boxes[l][i]});
   std::sort(edges.begin(), edges.end(), [&](const EdgeRef& a, const EdgeRef& b) {
     if (a.box.x_lo != b.box.x_lo) return a.box.x_lo < b.box.x_lo;
     return std::tie(a.loop, a.index) < std::tie(b.loop, b.index);
@@ -514,16 +534,27 @@ void reverse(Loop& loop) {
   }
 }
 
-void orient(Part& part) {
+// The sign of the loop's twice_area: first from 64-bit enclosures (a sign they decide is the
+// exact sign: every enclosure holds the exact value), at the working precision only when they
+// leave it open. The 256-bit arc tangents of large rationals were most of the reader's time.
+int area_sign(const Loop& loop) {
+  {
+    PrecisionScope low(std::min<mpfr_prec_t>(64, working_interval_bits()));
+    if (int s = twice_area(loop).sign(); s != 0) return s;
+  }
+  return twice_area(loop).sign();
+}
+
+void orient(Part& part, const EdgeBoxes& edge_boxes) {
   std::vector<Box> boxes;
-  for (const Loop& loop : part.loops) {
-    Box box = box_of(loop.edges.front());
-    for (const Edge& edge : loop.edges) box.include(box_of(edge));
+  for (const std::vector<Box>& loop_boxes : edge_boxes) {
+    Box box = loop_boxes.front();
+    for (const Box& edge_box : loop_boxes) box.include(edge_box);
     boxes.push_back(box);
   }
   std::vector<int> orientation(part.loops.size());
   for (std::size_t l = 0; l < part.loops.size(); ++l) {
-    int s = twice_area(part.loops[l]).sign();
+    int s = area_sign(part.loops[l]);
     if (s == 0) throw ModelError(part.loops[l].pointer, "cannot decide the loop's orientation (it encloses no area)");
     orientation[l] = s;
   }
@@ -546,8 +577,9 @@ void orient(Part& part) {
 
 void validate_part_geometry(Part& part) {
   for (const Loop& loop : part.loops) check_loop_edges(loop);
-  check_intersections(part);
-  orient(part);
+  const EdgeBoxes boxes = edge_boxes(part);
+  check_intersections(part, boxes);
+  orient(part, boxes);
 }
 
 }  // namespace hipair::model_detail
