@@ -83,12 +83,33 @@ std::string describe(const Edge& edge) {
 }
 
 // ------------------------------------------------------------------ arcs as ccw arcs
+// The start and end directions from the centre, a = start - centre and b = end - centre, and
+// turn = sgn(cross(a, b)): every sign test of a point against the arc reads them (the model's
+// rationals are large: computed once per arc, when first asked for).
+struct ArcFrame {
+  Point a;
+  Point b;
+  int turn = 0;
+};
+
 struct ArcView {
   Point center;
   Rational radius_squared;
   Point start;  // counter-clockwise from start to end
   Point end;
   bool full = false;
+
+  const ArcFrame& frame() const {
+    if (!frame_) {
+      ArcFrame f{start - center, end - center, 0};
+      f.turn = sgn(cross(f.a, f.b));
+      frame_ = std::move(f);
+    }
+    return *frame_;
+  }
+
+ private:
+  mutable std::optional<ArcFrame> frame_;
 };
 
 ArcView view_of(const Edge& edge) {
@@ -105,8 +126,7 @@ ArcView view_of(const Edge& edge) {
 bool direction_on_arc(const ArcView& arc, const Surd& cross_start_v, const Surd& cross_v_end,
                       const Rational& D) {
   if (arc.full) return true;
-  Point a = arc.start - arc.center, b = arc.end - arc.center;
-  int turn = sgn(cross(a, b));
+  int turn = arc.frame().turn;
   int sa = sign(cross_start_v, D), sb = sign(cross_v_end, D);
   if (turn > 0) return sa >= 0 && sb >= 0;
   if (turn < 0) return sa >= 0 || sb >= 0;
@@ -114,31 +134,22 @@ bool direction_on_arc(const ArcView& arc, const Surd& cross_start_v, const Surd&
 }
 
 bool on_arc(const ArcView& arc, const SurdPoint& x, const Rational& D) {
+  if (arc.full) return true;
   SurdPoint v{x.x - arc.center.x, x.y - arc.center.y};
-  Point a = arc.start - arc.center, b = arc.end - arc.center;
-  return direction_on_arc(arc, cross(a, v), cross(v, b), D);
+  const ArcFrame& f = arc.frame();
+  return direction_on_arc(arc, cross(f.a, v), cross(v, f.b), D);
 }
 
 // Whether the axis direction (dx, dy) in {(1,0), (0,1), (-1,0), (0,-1)} points from the centre
-// into the closed arc: the sign tests of direction_on_arc on the coordinates alone. `signs` are
-// sgn(a.x), sgn(a.y), sgn(b.x), sgn(b.y) of a = start - centre, b = end - centre, and `turn` is
-// sgn(cross(a, b)) (computed once per arc, not per direction: the model's rationals are large).
-struct ArcSigns {
-  int ax, ay, bx, by, turn;
-};
-
-ArcSigns arc_signs(const ArcView& arc) {
-  Point a = arc.start - arc.center, b = arc.end - arc.center;
-  return {sgn(a.x), sgn(a.y), sgn(b.x), sgn(b.y), sgn(cross(a, b))};
-}
-
-bool axis_on_arc(const ArcView& arc, const ArcSigns& signs, int dx, int dy) {
+// into the closed arc: the sign tests of direction_on_arc on the coordinates alone.
+bool axis_on_arc(const ArcView& arc, int dx, int dy) {
   if (arc.full) return true;
+  const ArcFrame& f = arc.frame();
   // cross(a, d) = a.x dy - a.y dx, cross(d, b) = dx b.y - dy b.x
-  int sa = dy != 0 ? dy * signs.ax : -dx * signs.ay;
-  int sb = dx != 0 ? dx * signs.by : -dy * signs.bx;
-  if (signs.turn > 0) return sa >= 0 && sb >= 0;
-  if (signs.turn < 0) return sa >= 0 || sb >= 0;
+  int sa = dy != 0 ? dy * sgn(f.a.x) : -dx * sgn(f.a.y);
+  int sb = dx != 0 ? dx * sgn(f.b.y) : -dy * sgn(f.b.x);
+  if (f.turn > 0) return sa >= 0 && sb >= 0;
+  if (f.turn < 0) return sa >= 0 || sb >= 0;
   return sa >= 0;
 }
 
@@ -303,10 +314,9 @@ Box box_of(const Edge& edge) {
     ArcView arc = view_of(edge);
     double cx = to_double(arc.center.x), cy = to_double(arc.center.y);
     double r = std::sqrt(to_double(arc.radius_squared)) * (1 + 1e-9);
-    const ArcSigns signs = arc.full ? ArcSigns{} : arc_signs(arc);
     const int directions[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
     for (const auto& direction : directions)
-      if (axis_on_arc(arc, signs, direction[0], direction[1])) include(box, cx + r * direction[0], cy + r * direction[1]);
+      if (axis_on_arc(arc, direction[0], direction[1])) include(box, cx + r * direction[0], cy + r * direction[1]);
   }
   if (std::isnan(box.x_lo) || std::isnan(box.x_hi) || std::isnan(box.y_lo) || std::isnan(box.y_hi))
     box = Box{-infinity, infinity, -infinity, infinity};
