@@ -25,6 +25,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace hipair {
@@ -137,14 +138,12 @@ TEST(ToleranceProgress, APairsStagesEachReportInnerProgress) {
 TEST(ToleranceProgress, AChainsStagesEachReportInnerProgress) {
   std::mt19937 rng(5);
   test_chain::LiftChain chain = test_chain::lift_chain(2, 2, rng);
+  std::vector<double> shown;
   ToleranceOptions options;
+  options.progress = [&](double f) { shown.push_back(f); };
   options.driver = "cam";
   options.chain = true;
-  options.positions = 36;
-  options.monte_carlo = 10;
-  options.threads = 1;
-  std::vector<double> shown;
-  options.progress = [&](double f) { shown.push_back(f); };
+  std::tie(options.positions, options.monte_carlo, options.threads) = std::tuple(std::size_t{36}, std::size_t{10}, 1u);
   analyze_tolerances_text(chain.json, options);
   expect_growing_to_one(shown, "lift chain");
   EXPECT_GE(count_within(shown, 0.05, 0.2), 5u) << "the chain's kinematics";
