@@ -83,12 +83,33 @@ std::string describe(const Edge& edge) {
 }
 
 // ------------------------------------------------------------------ arcs as ccw arcs
+// The start and end directions from the centre, a = start - centre and b = end - centre, and
+// turn = sgn(cross(a, b)): every sign test of a point against the arc reads them (the model's
+// rationals are large: computed once per arc, when first asked for).
+struct ArcFrame {
+  Point a;
+  Point b;
+  int turn = 0;
+};
+
 struct ArcView {
   Point center;
   Rational radius_squared;
   Point start;  // counter-clockwise from start to end
   Point end;
   bool full = false;
+
+  const ArcFrame& frame() const {
+    if (!frame_) {
+      ArcFrame f{start - center, end - center, 0};
+      f.turn = sgn(cross(f.a, f.b));
+      frame_ = std::move(f);
+    }
+    return *frame_;
+  }
+
+ private:
+  mutable std::optional<ArcFrame> frame_;
 };
 
 ArcView view_of(const Edge& edge) {
@@ -105,8 +126,7 @@ ArcView view_of(const Edge& edge) {
 bool direction_on_arc(const ArcView& arc, const Surd& cross_start_v, const Surd& cross_v_end,
                       const Rational& D) {
   if (arc.full) return true;
-  Point a = arc.start - arc.center, b = arc.end - arc.center;
-  int turn = sgn(cross(a, b));
+  int turn = arc.frame().turn;
   int sa = sign(cross_start_v, D), sb = sign(cross_v_end, D);
   if (turn > 0) return sa >= 0 && sb >= 0;
   if (turn < 0) return sa >= 0 || sb >= 0;
@@ -114,22 +134,22 @@ bool direction_on_arc(const ArcView& arc, const Surd& cross_start_v, const Surd&
 }
 
 bool on_arc(const ArcView& arc, const SurdPoint& x, const Rational& D) {
+  if (arc.full) return true;
   SurdPoint v{x.x - arc.center.x, x.y - arc.center.y};
-  Point a = arc.start - arc.center, b = arc.end - arc.center;
-  return direction_on_arc(arc, cross(a, v), cross(v, b), D);
+  const ArcFrame& f = arc.frame();
+  return direction_on_arc(arc, cross(f.a, v), cross(v, f.b), D);
 }
 
 // Whether the axis direction (dx, dy) in {(1,0), (0,1), (-1,0), (0,-1)} points from the centre
 // into the closed arc: the sign tests of direction_on_arc on the coordinates alone.
 bool axis_on_arc(const ArcView& arc, int dx, int dy) {
   if (arc.full) return true;
-  Point a = arc.start - arc.center, b = arc.end - arc.center;
-  int turn = sgn(cross(a, b));
+  const ArcFrame& f = arc.frame();
   // cross(a, d) = a.x dy - a.y dx, cross(d, b) = dx b.y - dy b.x
-  int sa = dy != 0 ? dy * sgn(a.x) : -dx * sgn(a.y);
-  int sb = dx != 0 ? dx * sgn(b.y) : -dy * sgn(b.x);
-  if (turn > 0) return sa >= 0 && sb >= 0;
-  if (turn < 0) return sa >= 0 || sb >= 0;
+  int sa = dy != 0 ? dy * sgn(f.a.x) : -dx * sgn(f.a.y);
+  int sb = dx != 0 ? dx * sgn(f.b.y) : -dy * sgn(f.b.x);
+  if (f.turn > 0) return sa >= 0 && sb >= 0;
+  if (f.turn < 0) return sa >= 0 || sb >= 0;
   return sa >= 0;
 }
 
@@ -477,7 +497,17 @@ void check_pair(const Part& part, std::size_t l1, std::size_t i1, std::size_t l2
   }
 }
 
-void check_intersections(const Part& part) {
+// Each loop's edges' boxes, computed once for the intersection sweep and the nesting test.
+using EdgeBoxes = std::vector<std::vector<Box>>;
+
+EdgeBoxes edge_boxes(const Part& part) {
+  EdgeBoxes boxes(part.loops.size());
+  for (std::size_t l = 0; l < part.loops.size(); ++l)
+    for (const Edge& edge : part.loops[l].edges) boxes[l].push_back(box_of(edge));
+  return boxes;
+}
+
+void check_intersections(const Part& part, const EdgeBoxes& boxes) {
   // Consecutive edges first (a spike is reported as such), then every other pair whose
   // bounding boxes overlap, found by a sweep in x.
   for (std::size_t l = 0; l < part.loops.size(); ++l) {
@@ -489,7 +519,7 @@ void check_intersections(const Part& part) {
   std::vector<EdgeRef> edges;
   for (std::size_t l = 0; l < part.loops.size(); ++l)
     for (std::size_t i = 0; i < part.loops[l].edges.size(); ++i)
-      edges.push_back(EdgeRef{l, i, box_of(part.loops[l].edges[i])});
+      edges.push_back(EdgeRef{l, i, boxes[l][i]});
   std::sort(edges.begin(), edges.end(), [&](const EdgeRef& a, const EdgeRef& b) {
     if (a.box.x_lo != b.box.x_lo) return a.box.x_lo < b.box.x_lo;
     return std::tie(a.loop, a.index) < std::tie(b.loop, b.index);
@@ -514,16 +544,27 @@ void reverse(Loop& loop) {
   }
 }
 
-void orient(Part& part) {
+// The sign of the loop's twice_area: first from 64-bit enclosures (a sign they decide is the
+// exact sign: every enclosure holds the exact value), at the working precision only when they
+// leave it open. The 256-bit arc tangents of large rationals were most of the reader's time.
+int area_sign(const Loop& loop) {
+  {
+    PrecisionScope low(std::min<mpfr_prec_t>(64, working_interval_bits()));
+    if (int s = twice_area(loop).sign(); s != 0) return s;
+  }
+  return twice_area(loop).sign();
+}
+
+void orient(Part& part, const EdgeBoxes& edge_boxes) {
   std::vector<Box> boxes;
-  for (const Loop& loop : part.loops) {
-    Box box = box_of(loop.edges.front());
-    for (const Edge& edge : loop.edges) box.include(box_of(edge));
+  for (const std::vector<Box>& loop_boxes : edge_boxes) {
+    Box box = loop_boxes.front();
+    for (const Box& edge_box : loop_boxes) box.include(edge_box);
     boxes.push_back(box);
   }
   std::vector<int> orientation(part.loops.size());
   for (std::size_t l = 0; l < part.loops.size(); ++l) {
-    int s = twice_area(part.loops[l]).sign();
+    int s = area_sign(part.loops[l]);
     if (s == 0) throw ModelError(part.loops[l].pointer, "cannot decide the loop's orientation (it encloses no area)");
     orientation[l] = s;
   }
@@ -546,8 +587,9 @@ void orient(Part& part) {
 
 void validate_part_geometry(Part& part) {
   for (const Loop& loop : part.loops) check_loop_edges(loop);
-  check_intersections(part);
-  orient(part);
+  const EdgeBoxes boxes = edge_boxes(part);
+  check_intersections(part, boxes);
+  orient(part, boxes);
 }
 
 }  // namespace hipair::model_detail

@@ -8,6 +8,7 @@
 #include "model/parametric/parametric.hpp"
 #include "tolerance/certificate.hpp"
 #include "tolerance/exact_order.hpp"
+#include "tolerance/progress.hpp"
 #include "tolerance/root_search.hpp"
 #include "tolerance/sampling.hpp"
 #include "tolerance/solver.hpp"
@@ -148,16 +149,31 @@ void merge_monte_carlo(const std::vector<MonteCarloOutcome>& outcomes, MonteCarl
 }
 
 void parallel_for(unsigned threads, std::size_t count, const std::function<void(std::size_t)>& task) {
+  parallel_for(threads, count, task, {});
+}
+
+void parallel_for(unsigned threads, std::size_t count, const std::function<void(std::size_t)>& task,
+                  const std::function<void(std::size_t)>& done) {
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (std::size_t i = next++; i < count; i = next++) task(i);
+  std::atomic<std::size_t> next{0}, finished{0};
+  auto work = [&](bool caller) {
+    for (std::size_t i = next++; i < count; i = next++) {
+      task(i);
+      std::size_t n = ++finished;
+      if (caller && done) done(n);
+    }
   };
   std::vector<std::future<void>> workers;
-  for (unsigned t = 1; t < threads; ++t) workers.push_back(std::async(std::launch::async, work));
-  work();
-  for (auto& worker : workers) worker.get();
+  for (unsigned t = 1; t < threads; ++t) workers.push_back(std::async(std::launch::async, work, false));
+  work(true);
+  for (auto& worker : workers) {
+    // the calling thread's own tasks are done: it reports the workers' while they finish theirs
+    if (done)
+      while (worker.wait_for(std::chrono::milliseconds(100)) != std::future_status::ready) done(finished.load());
+    worker.get();
+  }
+  if (done) done(count);
 }
 
 }  // namespace tolerance_detail
@@ -307,42 +323,46 @@ class Analysis {
   }
 
   ToleranceResult run() {
-    progress(0.02);
+    bar_.begin(0);
     auto t0 = std::chrono::steady_clock::now();
     start();
+    bar_.begin(1);
     nominal_path();
-    progress(0.2);
+    bar_.begin(2);
     sensitivities();
     result_.seconds_sensitivity = seconds_since(t0);
-    progress(0.3);
+    bar_.begin(3);
     auto t1 = std::chrono::steady_clock::now();
     double c1 = cpu_seconds(true);
     certified();
     result_.seconds_certified = seconds_since(t1);
     result_.cpu_seconds_certified = cpu_seconds(true) - c1;
-    progress(0.45);
+    bar_.begin(4);
     auto t2 = std::chrono::steady_clock::now();
     double c2 = cpu_seconds(true);
     zones();
     result_.seconds_zones = seconds_since(t2);
     result_.cpu_seconds_zones = cpu_seconds(true) - c2;
-    progress(0.55);
+    bar_.begin(5);
     if (options_.monte_carlo > 0) monte_carlo();
-    progress(0.85);
+    bar_.begin(6);
     if (options_.threshold) {
       auto t3 = std::chrono::steady_clock::now();
       threshold();
       result_.seconds_threshold = seconds_since(t3);
     }
     if (options_.contact_changes) contact_changes();
+    bar_.begin(7);
     if (options_.certify) certify();
-    progress(1.0);
+    bar_.finish();
     return std::move(result_);
   }
 
  private:
-  void progress(double fraction) {
-    if (options_.progress) options_.progress(fraction);
+  // The current stage's `done` of `total` work units, for a parallel stage's progress.
+  std::function<void(std::size_t)> units_of(std::size_t total) {
+    if (!bar_.active()) return {};
+    return [this, total](std::size_t done) { bar_.units(done, total); };
   }
 
   void choose_parts() {
@@ -389,8 +409,8 @@ class Analysis {
     k.steps_per_cycle = static_cast<unsigned>(std::max<std::size_t>(8, options_.positions));
     k.reversal = false;
     k.method = SliceMethod::cspace;
-    // the sweep's progress within the bar's 2 ... 20 % (a long --range ran minutes at "2%")
-    if (options_.progress) k.progress = [this](double fraction) { progress(0.02 + 0.18 * fraction); };
+    // the sweep's progress within its stage of the bar (a long --range ran minutes at "2%")
+    k.progress = bar_.within();
     // Only the analysed pair: a model holding more parts is cut to the two.
     Model pair_model = m;
     pair_model.pairs.clear();
@@ -523,6 +543,7 @@ class Analysis {
     for (std::size_t k = 0; k < states_.size(); ++k) {
       VariationSample& sample = result_.samples[k];
       SampleState& state = states_[k];
+      bar_.units(k, states_.size());
       sample.linear_lower = sample.linear_upper = sample.rss_lower = sample.rss_upper = sample.nominal;
       sample.certified = CertifiedRange{sample.nominal, sample.nominal};
       if (!state.contact) continue;
@@ -538,8 +559,9 @@ class Analysis {
 
   // Runs task(0 .. count-1) on the analysis' threads (ToleranceOptions::threads); each task
   // writes only its own slot, so the results do not depend on the number of threads.
-  void parallel_for(std::size_t count, const std::function<void(std::size_t)>& task) const {
-    tolerance_detail::parallel_for(options_.threads, count, task);
+  void parallel_for(std::size_t count, const std::function<void(std::size_t)>& task,
+                    const std::function<void(std::size_t)>& done = {}) const {
+    tolerance_detail::parallel_for(options_.threads, count, task, done);
   }
 
   // One certified enclosure of a curve's root over the whole box (the band's or a zone's).
@@ -564,7 +586,7 @@ class Analysis {
     parallel_for(states_.size(), [&](std::size_t k) {
       const SampleState& state = states_[k];
       if (state.contact) enclosures[k] = enclose(state.curve, state.v, state.s_chart);
-    });
+    }, units_of(states_.size()));
     for (std::size_t k = 0; k < states_.size(); ++k) {
       SampleState& state = states_[k];
       if (!state.contact) continue;
@@ -607,7 +629,11 @@ class Analysis {
     };
     std::vector<ContactZone> zones;
     std::vector<ZoneSample> samples;
-    for (std::size_t e = 0; e < space_->edges().size(); ++e) {
+    // progress: the samples' sensitivities (by edge) the stage's first fifth, their certified
+    // enclosures (by sample) the rest
+    const std::size_t edge_count = space_->edges().size();
+    for (std::size_t e = 0; e < edge_count; ++e) {
+      bar_.fraction(0.2 * static_cast<double>(e) / static_cast<double>(edge_count));
       const CSpaceEdge& edge = space_->edges()[e];
       if (edge.role != EdgeRole::contact || edge.vertical || edge.curves.empty()) continue;
       const FeaturePair& pair = space_->feature_pair(FeatureId(edge.curves.front()));
@@ -647,6 +673,8 @@ class Analysis {
     parallel_for(samples.size(), [&](std::size_t k) {
       ZoneSample& sample = samples[k];
       sample.range = enclose(sample.curve, sample.v, sample.s);
+    }, [&](std::size_t done) {
+      bar_.fraction(0.2 + 0.8 * static_cast<double>(done) / static_cast<double>(std::max<std::size_t>(1, samples.size())));
     });
     for (const ZoneSample& sample : samples) {
       result_.certified_boxes += sample.range.boxes;
@@ -743,7 +771,7 @@ class Analysis {
       }));
     for (auto& worker : workers) {
       while (worker.wait_for(std::chrono::milliseconds(100)) != std::future_status::ready)
-        progress(0.55 + 0.3 * static_cast<double>(done.load()) / static_cast<double>(outcomes.size()));
+        bar_.units(done.load(), outcomes.size());
       worker.get();
     }
     tolerance_detail::merge_monte_carlo(outcomes, summary, result_);
@@ -1271,7 +1299,7 @@ class Analysis {
           c.certified = lower ? root.lo > side_root.hi : root.hi < side_root.lo;
         found.push_back(std::move(c));
       }
-      progress(0.85 + 0.1 * static_cast<double>(k + 1) / static_cast<double>(states_.size()));
+      bar_.units(k + 1, states_.size());
     }
     // One change per (curve, side it overtakes, side of the channel): its largest overshoot.
     struct Group {
@@ -1369,6 +1397,9 @@ class Analysis {
   }
 
   ToleranceOptions options_;
+  // The bar's stages: the pair's C-space, the nominal sweep, sensitivities, the certified band,
+  // the zones, the Monte Carlo, the threshold and contact changes, the certificate.
+  tolerance_detail::StagedProgress bar_{options_.progress, {0, 0.02, 0.2, 0.3, 0.45, 0.55, 0.85, 0.95, 1}};
   std::string text_, source_name_;
   std::shared_ptr<const model_detail::ParametricModel> model_;
   std::shared_ptr<CurveSolver> solver_;

@@ -24,6 +24,7 @@
 #include "model/parametric/parametric.hpp"
 #include "tolerance/handover.hpp"
 #include "tolerance/mean_value.hpp"
+#include "tolerance/progress.hpp"
 #include "tolerance/root_search.hpp"
 #include "tolerance/stage.hpp"
 
@@ -174,6 +175,7 @@ class ChainAnalysis {
   }
 
   ToleranceResult run() {
+    bar_.begin(0);
     auto t0 = std::chrono::steady_clock::now();
     // The model is read once: the kinematics, the C-spaces and the parametric form (every
     // pair's) take this one.
@@ -181,12 +183,13 @@ class ChainAnalysis {
         model_detail::ParametricModel::read_nominal(text_, "<string>", design_read_options(options_));
     const Model& model = *nominal.model;
     std::vector<std::size_t> parts = chain_parts(model, options_);
-    progress(0.05);
+    bar_.begin(1);
     KinematicsOptions k;
     k.driver = model.parts[parts.front()].name;
     k.range = options_.range;
     k.steps_per_cycle = static_cast<unsigned>(std::max<std::size_t>(8, options_.positions));
     k.reversal = false;
+    k.progress = bar_.within();
     // Kernel path (ChainPaths::kernel_kinematics; rotations without limits): the whole model's
     // kinematics sliced from the contact kernels, exact, with no C-space built; the engine names
     // the feature pairs touching at each position exactly. Otherwise, and for a pair whose
@@ -240,9 +243,10 @@ class ChainAnalysis {
         throw GeometryError("the part '" + model.parts[part].name + "' is not moved by the driver over the range");
       return static_cast<std::size_t>(it - kinematics.followers.begin());
     };
-    progress(0.2);
+    bar_.begin(2);
     // Each pair at the chain's positions.
     for (std::size_t s = 1; s < parts.size(); ++s) {
+      bar_.units(s - 1, parts.size() - 1);
       const std::string& a = model.parts[parts[s - 1]].name;
       const std::string& b = model.parts[parts[s]].name;
       std::size_t fi = follower_index(parts[s]);
@@ -315,23 +319,20 @@ class ChainAnalysis {
     result_.mean_shift = first.result.mean_shift;
     compose();
     result_.seconds_sensitivity = wall_since(t0);
-    progress(0.4);
+    bar_.begin(3);
     auto t1 = std::chrono::steady_clock::now();
     double c1 = cpu_now();
     certified();
     result_.seconds_certified = wall_since(t1);
     result_.cpu_seconds_certified = cpu_now() - c1;
-    progress(0.6);
+    bar_.begin(4);
     if (options_.monte_carlo > 0) monte_carlo();
     result_.notes.insert(result_.notes.end(), notes_.begin(), notes_.end());
-    progress(1.0);
+    bar_.finish();
     return std::move(result_);
   }
 
  private:
-  void progress(double fraction) const {
-    if (options_.progress) options_.progress(fraction);
-  }
 
   // A pair of the chain on the kernel path (rotations without limits; every touching feature
   // pair unique): what analyze_stage computes from the pair's C-space slices, from the exact
@@ -789,7 +790,7 @@ class ChainAnalysis {
       shared_boxes[i] = used;
       result_.samples[i].certified = CertifiedRange{band.lo, band.hi};
       ok[i] = 1;
-    });
+    }, [&](std::size_t done) { bar_.units(done, positions()); });
     std::size_t uncertified = 0, split_positions = 0, most = 0;
     for (std::size_t i = 0; i < positions(); ++i) {
       for (std::size_t s = 0; s < stages_.size(); ++s) {
@@ -1080,8 +1081,8 @@ class ChainAnalysis {
     const std::size_t chunk = std::max<std::size_t>(1, outcomes.size() / 20);
     for (std::size_t from = 0; from < outcomes.size(); from += chunk) {
       std::size_t count = std::min(chunk, outcomes.size() - from);
-      parallel_for(options_.threads, count, [&](std::size_t k) { evaluate(from + k); });
-      progress(0.6 + 0.4 * static_cast<double>(from + count) / static_cast<double>(outcomes.size()));
+      parallel_for(options_.threads, count, [&](std::size_t k) { evaluate(from + k); },
+                   [&](std::size_t done) { bar_.units(from + done, outcomes.size()); });
     }
     merge_monte_carlo(outcomes, summary, result_);
     summary.seconds = wall_since(start);
@@ -1149,6 +1150,9 @@ class ChainAnalysis {
 
   std::string text_;
   ToleranceOptions options_;
+  // The bar's stages: reading, the chain's kinematics, each pair at the positions, the certified
+  // band, the Monte Carlo.
+  StagedProgress bar_{options_.progress, {0, 0.05, 0.2, 0.4, 0.6, 1}};
   ChainPaths paths_;
   // The hand-over envelope (handover.cpp): on unless the caller assumes the nominal holders.
   bool envelope_on() const { return !options_.chain_assume_nominal_holder; }

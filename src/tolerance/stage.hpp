@@ -93,6 +93,10 @@ void merge_monte_carlo(const std::vector<MonteCarloOutcome>& outcomes, MonteCarl
 /// task(0 .. count-1) on `threads` threads (0: hardware concurrency); each task writes its own
 /// slot, so results do not depend on the number of threads.
 void parallel_for(unsigned threads, std::size_t count, const std::function<void(std::size_t)>& task);
+/// The same, with done(n) called on the calling thread as tasks finish (n tasks finished, never
+/// decreasing; the last call says count), for a progress bar.
+void parallel_for(unsigned threads, std::size_t count, const std::function<void(std::size_t)>& task,
+                  const std::function<void(std::size_t)>& done);
 
 /// How a chain finds each pair's nominal motion and touching feature pairs (chain.cpp).
 struct ChainPaths {
