@@ -949,6 +949,9 @@ class Builder {
       }
       result_.edges.push_back(std::move(out));
     }
+    // (one list of a vertex's halfedges for all vertices, and each vertex's incidences
+    // reserved to its degree: no regrowth of either per vertex)
+    std::vector<typename Arrangement_2::Halfedge_const_handle> around;
     for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
       Vertex& out = result_.vertices[v->data()];
       if (v->is_isolated()) {
@@ -956,12 +959,13 @@ class Builder {
         result_.faces[out.face_below].isolated_vertices.push_back(v->data());
         continue;
       }
-      std::vector<typename Arrangement_2::Halfedge_const_handle> around;
+      around.clear();
       auto circulator = v->incident_halfedges();
       auto first = circulator;
       do {
         around.push_back(circulator);
       } while (++circulator != first);
+      out.around.reserve(around.size());
       for (const auto& h : around) {
         Incidence incidence;
         incidence.edge = edge_id(h);
@@ -985,6 +989,18 @@ class Builder {
           out.boundary.emplace_back(edge_id(c), forward(c));
         } while (++c != first);
       };
+      // (the boundary reserved to its length first: no regrowth)
+      std::size_t length = 0, components = 0;
+      auto count = [&](typename Arrangement_2::Ccb_halfedge_const_circulator c) {
+        ++components;
+        auto first = c;
+        do ++length;
+        while (++c != first);
+      };
+      if (f->has_outer_ccb()) count(f->outer_ccb());
+      for (auto inner = f->inner_ccbs_begin(); inner != f->inner_ccbs_end(); ++inner) count(*inner);
+      out.boundary.reserve(length);
+      out.component_starts.reserve(components);
       if (f->has_outer_ccb()) add_ccb(f->outer_ccb());
       for (auto inner = f->inner_ccbs_begin(); inner != f->inner_ccbs_end(); ++inner) add_ccb(*inner);
     }
