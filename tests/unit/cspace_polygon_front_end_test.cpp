@@ -206,6 +206,14 @@ Built build_both(const Model& model, bool check = false) {
   return Built{CSpace::build(model, "a", "b", fast), CSpace::build(model, "a", "b", general)};
 }
 
+// The front end's space equals the general path's field by field, and its blocked region equals
+// minkowski_sum_2 of the parts.
+void expect_front_end_as_general_and_minkowski(const Model& model, const Points& a, const Points& b, bool check) {
+  Built built = build_both(model, check);
+  expect_same_space(built.fast, built.general);
+  expect_minkowski(built.fast, a, b);
+}
+
 // Two lists of contact curves equal curve by curve: features, type, polynomial, label, blocked
 // side, validity clauses and their atoms, in the same order.
 template <class Curves>
@@ -462,9 +470,7 @@ TEST(CSpacePolygonFrontEnd, ScalesBeyondTheSegmentFilterBuildTheSameSpace) {
     SCOPED_TRACE("instance " + std::to_string(instance) + ", scale 10^" + std::to_string(exponent));
     std::optional<Model> built_model = sliders_or_none(a, b);
     ASSERT_TRUE(built_model.has_value());
-    Built built = build_both(*built_model, instance % 3 == 0);
-    expect_same_space(built.fast, built.general);
-    expect_minkowski(built.fast, a, b);
+    expect_front_end_as_general_and_minkowski(*built_model, a, b, instance % 3 == 0);
     ++compared;
   }
   EXPECT_EQ(compared, 10);
@@ -998,9 +1004,7 @@ TEST(CSpacePolygonFrontEnd, DeferredExactPointsEqualTheCircleSegmentTraitsOnNonD
                  std::to_string(exponent));
     std::optional<Model> model = sliders_or_none(a, b);
     if (!model) continue;
-    Built built = build_both(*model, instance % 4 == 0);
-    expect_same_space(built.fast, built.general);
-    expect_minkowski(built.fast, a, b);
+    expect_front_end_as_general_and_minkowski(*model, a, b, instance % 4 == 0);
     ++compared;
   }
   EXPECT_GE(compared, 24);
