@@ -70,6 +70,79 @@ struct KnownIntervalConstant final : CGAL::Lazy_exact_nt_rep<ET> {
   void update_exact() const override {}
 };
 
+// Indices by key, in one array (open addressing, linear probing; entries may share a key):
+// the segment stage's known points by handle and by value, without a node per point.
+class IndexTable {
+ public:
+  void reserve(std::size_t entries) {
+    std::size_t slots = 16;
+    while (slots < 2 * entries) slots *= 2;
+    if (slots > slots_.size()) rehash(slots);
+  }
+  void insert(std::size_t key, std::size_t value) {
+    if (2 * (size_ + 1) > slots_.size()) rehash(std::max<std::size_t>(16, 2 * slots_.size()));
+    place(key, value);
+    ++size_;
+  }
+  // Calls visit(value) for the entries of `key` (in probe order) until it returns true; true
+  // when it did.
+  template <class Visit>
+  bool find(std::size_t key, Visit visit) const {
+    if (slots_.empty()) return false;
+    const std::size_t mask = slots_.size() - 1;
+    for (std::size_t i = mix(key) & mask; slots_[i].value != none; i = (i + 1) & mask)
+      if (slots_[i].key == key && visit(slots_[i].value)) return true;
+    return false;
+  }
+
+ private:
+  struct Slot {
+    std::size_t key = 0;
+    std::size_t value = none;   // none: empty
+  };
+  static std::size_t mix(std::size_t key) {
+    key ^= key >> 33;
+    key *= 0xff51afd7ed558ccdULL;
+    return key ^ (key >> 33);
+  }
+  void place(std::size_t key, std::size_t value) {
+    const std::size_t mask = slots_.size() - 1;
+    std::size_t i = mix(key) & mask;
+    while (slots_[i].value != none) i = (i + 1) & mask;
+    slots_[i] = Slot{key, value};
+  }
+  void rehash(std::size_t slots) {
+    std::vector<Slot> old = std::move(slots_);
+    slots_.assign(slots, Slot{});
+    for (const Slot& slot : old)
+      if (slot.value != none) place(slot.key, slot.value);
+  }
+  std::vector<Slot> slots_;
+  std::size_t size_ = 0;
+};
+
+// A kernel number whose interval is given (CGAL's own, as KnownIntervalConstant's) and whose
+// exact value is made from a known point's rational (`points`[index], its x or y) only when the
+// kernel asks for it (a filter failure, an intersection point's exact coordinates): most input
+// points of a sweep never need it. The rational is read through the list (which may grow) and
+// must stay there, unchanged, while the kernel can ask.
+template <class Points>
+struct DeferredKnownConstant final : CGAL::Lazy_exact_nt_rep<ET> {
+  DeferredKnownConstant(const CGAL::Interval_nt<false>& interval, const Points* points, std::size_t index, bool y)
+      : CGAL::Lazy_exact_nt_rep<ET>(interval), points_(points), index_(index), y_(y) {}
+  void update_exact() const override {
+    const auto& known = (*points_)[index_];
+    auto* exact = new typename CGAL::Lazy_exact_nt_rep<ET>::Indirect(exact_of<ET>(y_ ? known.y : known.x));
+    this->keep_at(exact);
+    this->set_ptr(exact);
+  }
+
+ private:
+  const Points* points_;
+  std::size_t index_;
+  bool y_;
+};
+
 NT to_nt(const Rational& q) {
   double lower, upper;   // CGAL's interval of q: the doubles around it (algebra/near_quotient.hpp)
   if (algebra::enclose_rational(q, lower, upper))
@@ -399,6 +472,8 @@ class Builder {
       // room for the corners and two ends per curve (one piece each, the usual case), so that
       // the known points are not copied as the vector grows (a KnownPoint's rationals copy)
       known_points_.reserve(4 + 2 * curves.size());
+      known_.reserve(4 + 2 * curves.size());
+      by_value_.reserve(4 + 2 * curves.size());
       pieces_.reserve(4 + curves.size());
     }
     // the chart box
@@ -456,20 +531,35 @@ class Builder {
   typename K::Point_2 point(const Rational& x, const Rational& y) {
     if constexpr (segments) {
       const std::size_t h = point_hash(x, y);
-      auto range = by_value_.equal_range(h);
-      for (auto it = range.first; it != range.second; ++it) {
-        const KnownPoint& k = known_points_[it->second];
-        if (k.x == x && k.y == y) return k.handle;
-      }
-      typename K::Point_2 p(ft_of<FT>(x), ft_of<FT>(y));
-      if (known_.emplace(p.id(), known_points_.size()).second) {
-        by_value_.emplace(h, known_points_.size());
-        known_points_.push_back({p, x, y});
-      }
+      std::size_t found = none;
+      if (by_value_.find(h, [&](std::size_t i) {
+            const KnownPoint& k = known_points_[i];
+            if (k.x != x || k.y != y) return false;
+            found = i;
+            return true;
+          }))
+        return known_points_[found].handle;
+      // (its coordinates' exact values are made from the rationals kept here, when asked)
+      const std::size_t index = known_points_.size();
+      typename K::Point_2 p(known_ft(x, index, false), known_ft(y, index, true));
+      known_points_.push_back({p, x, y});
+      known_.insert(p.id(), index);
+      by_value_.insert(h, index);
       return p;
     } else {
       return typename K::Point_2(ft_of<FT>(x), ft_of<FT>(y));
     }
+  }
+
+  // The kernel number of coordinate x or y (`y`) of the known point `index` (q): its exact value
+  // deferred (DeferredKnownConstant), or made now when q has no interval from
+  // enclose_rational (to_nt's fallback).
+  FT known_ft(const Rational& q, std::size_t index, bool y) const {
+    double lower, upper;
+    if (algebra::enclose_rational(q, lower, upper))
+      return FT(new DeferredKnownConstant<std::vector<KnownPoint>>(CGAL::Interval_nt<false>(lower, upper), &known_points_,
+                                                                   index, y));
+    return ft_of<FT>(q);
   }
 
   // A hash of two canonical rationals (their lowest limbs and signed sizes).
@@ -871,13 +961,16 @@ class Builder {
       // behind, and its numbers are written into the ones it has
       Vertex& out = result_.vertices.emplace_back();
       if constexpr (segments) {
-        auto known = known_.find(v->point().id());
-        if (known != known_.end()) {
-          // each known point is one vertex's (its own handle): its rationals are read here
-          // only, and given to the vertex
-          KnownPoint& k = known_points_[known->second];
-          assign_exact_real(out.x, std::move(k.x));
-          assign_exact_real(out.y, std::move(k.y));
+        std::size_t known = none;
+        if (known_.find(v->point().id(), [&](std::size_t i) {
+              known = i;
+              return true;
+            })) {
+          // (copied, not moved: the kernel may still make a point's exact value from them,
+          // DeferredKnownConstant — an intersection point's below, a wedge's predicate)
+          const KnownPoint& k = known_points_[known];
+          assign_exact_real(out.x, k.x);
+          assign_exact_real(out.y, k.y);
         } else {
           assign_exact_real(out.x, rational_from(v->point().x()));
           assign_exact_real(out.y, rational_from(v->point().y()));
@@ -949,6 +1042,9 @@ class Builder {
       }
       result_.edges.push_back(std::move(out));
     }
+    // (one list of a vertex's halfedges for all vertices, and each vertex's incidences
+    // reserved to its degree: no regrowth of either per vertex)
+    std::vector<typename Arrangement_2::Halfedge_const_handle> around;
     for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
       Vertex& out = result_.vertices[v->data()];
       if (v->is_isolated()) {
@@ -956,12 +1052,13 @@ class Builder {
         result_.faces[out.face_below].isolated_vertices.push_back(v->data());
         continue;
       }
-      std::vector<typename Arrangement_2::Halfedge_const_handle> around;
+      around.clear();
       auto circulator = v->incident_halfedges();
       auto first = circulator;
       do {
         around.push_back(circulator);
       } while (++circulator != first);
+      out.around.reserve(around.size());
       for (const auto& h : around) {
         Incidence incidence;
         incidence.edge = edge_id(h);
@@ -985,6 +1082,18 @@ class Builder {
           out.boundary.emplace_back(edge_id(c), forward(c));
         } while (++c != first);
       };
+      // (the boundary reserved to its length first: no regrowth)
+      std::size_t length = 0, components = 0;
+      auto count = [&](typename Arrangement_2::Ccb_halfedge_const_circulator c) {
+        ++components;
+        auto first = c;
+        do ++length;
+        while (++c != first);
+      };
+      if (f->has_outer_ccb()) count(f->outer_ccb());
+      for (auto inner = f->inner_ccbs_begin(); inner != f->inner_ccbs_end(); ++inner) count(*inner);
+      out.boundary.reserve(length);
+      out.component_starts.reserve(components);
       if (f->has_outer_ccb()) add_ccb(f->outer_ccb());
       for (auto inner = f->inner_ccbs_begin(); inner != f->inner_ccbs_end(); ++inner) add_ccb(*inner);
     }
@@ -1121,8 +1230,8 @@ class Builder {
     Point handle;
     Rational x, y;
   };
-  std::unordered_map<std::size_t, std::size_t> known_;   // handle id -> index in known_points_
-  std::unordered_multimap<std::size_t, std::size_t> by_value_;   // point_hash -> index in known_points_
+  IndexTable known_;      // handle id -> index in known_points_ (each handle once)
+  IndexTable by_value_;   // point_hash -> index in known_points_
   std::vector<KnownPoint> known_points_;
   Arrangement result_;
 };

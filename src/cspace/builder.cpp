@@ -1893,12 +1893,20 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       impl->vertex_local.emplace_back(c, v);
     }
     std::size_t vertex_base = impl->vertices.size();
+    // each vertex's feature pairs reserved to the most its edges give it (no regrowth)
+    thread_local std::vector<std::size_t> curve_room;
+    curve_room.assign(arrangement.vertices.size(), 0);
+    for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
+      curve_room[arrangement.edges[e].min_vertex] += chart.edges[e].curves.size();
+      curve_room[arrangement.edges[e].max_vertex] += chart.edges[e].curves.size();
+    }
     impl->vertices.resize(vertex_base + arrangement.vertices.size());
     for (std::size_t v = 0; v < arrangement.vertices.size(); ++v) {
       CSpaceVertex& vertex = impl->vertices[vertex_base + v];
       vertex.chart = c;
       const raw::Vertex& source = arrangement.vertices[v];
       vertex.edges.reserve(source.around.size());
+      vertex.curves.reserve(curve_room[v]);
       assign_public(vertex.x, source.x);
       vertex.y_exact = source.y_exact;
       if (source.y_exact) assign_public(vertex.y, source.y);

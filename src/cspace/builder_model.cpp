@@ -379,13 +379,22 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
     building.seconds_curves += std::chrono::duration<double>(Clock::now() - start).count();
     for (auto& curve : curves)
       if (!curve.polynomial.is_zero()) chart.curves.push_back(std::move(curve));
-    ChartAxis x = chart.x, y = chart.y;
-    chart.classify = [&model, axes, x, y](const cspace::ChartPoint& q) { return classify_overlap(model, axes, x, y, q); };
-    chart.classify_algebraic = [&model, axes, x, y](const algebra::Real& qx, const algebra::Real& qy) {
-      return algebraic_overlap(model, axes, x, y, qx, qy);
+    // the three classifiers share one copy of the chart's axes (each capturing its own copy
+    // made six copies and, as std::function moved them, six more rationals per axis)
+    struct Axes {
+      ChartAxis x, y;
     };
-    chart.classify_ordinate = [&model, axes, x, y](const algebra::Real& qx, const RationalOrdinate& qy) {
-      return algebraic_overlap(model, axes, x, y, qx, qy);
+    auto chart_axes = std::make_shared<Axes>();
+    chart_axes->x = chart.x;
+    chart_axes->y = chart.y;
+    chart.classify = [&model, axes, chart_axes](const cspace::ChartPoint& q) {
+      return classify_overlap(model, axes, chart_axes->x, chart_axes->y, q);
+    };
+    chart.classify_algebraic = [&model, axes, chart_axes](const algebra::Real& qx, const algebra::Real& qy) {
+      return algebraic_overlap(model, axes, chart_axes->x, chart_axes->y, qx, qy);
+    };
+    chart.classify_ordinate = [&model, axes, chart_axes](const algebra::Real& qx, const RationalOrdinate& qy) {
+      return algebraic_overlap(model, axes, chart_axes->x, chart_axes->y, qx, qy);
     };
     if (building.dimension == 2 && cells && cells->usable()) chart.blocked_cells = std::move(cells);
     if (progress) std::cerr << "\rhipair: " << building.first_part << ":" << building.second_part << " "

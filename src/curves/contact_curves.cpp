@@ -1311,37 +1311,30 @@ IntegerShift integer_shift(const Point& ux, const Point& uy) {
   return u;
 }
 
-// An edge of a polygon loop: its homogeneous ends and primitive direction D (a positive
-// multiple of target - source: every sign the front end takes of it is the same).
-struct FrontEdge {
-  HomogeneousPoint q1, q2;
-  mpz_class dx, dy;
-};
-
-FrontEdge front_edge(HomogeneousPoint q1, HomogeneousPoint q2) {
-  FrontEdge e{std::move(q1), std::move(q2), {}, {}};
+// D of the edge from q1 to q2 written into dx, dy (the edge's ends read in place: no copies)
+void front_direction(const HomogeneousPoint& q1, const HomogeneousPoint& q2, mpz_class& dx, mpz_class& dy) {
   // (products accumulated in place with mpz_addmul / mpz_submul: no temporary integers)
-  mpz_mul(e.dx.get_mpz_t(), e.q2.x.get_mpz_t(), e.q1.w.get_mpz_t());
-  mpz_submul(e.dx.get_mpz_t(), e.q1.x.get_mpz_t(), e.q2.w.get_mpz_t());
-  mpz_mul(e.dy.get_mpz_t(), e.q2.y.get_mpz_t(), e.q1.w.get_mpz_t());
-  mpz_submul(e.dy.get_mpz_t(), e.q1.y.get_mpz_t(), e.q2.w.get_mpz_t());
-  mpz_class g;
-  mpz_gcd(g.get_mpz_t(), e.dx.get_mpz_t(), e.dy.get_mpz_t());
+  mpz_mul(dx.get_mpz_t(), q2.x.get_mpz_t(), q1.w.get_mpz_t());
+  mpz_submul(dx.get_mpz_t(), q1.x.get_mpz_t(), q2.w.get_mpz_t());
+  mpz_mul(dy.get_mpz_t(), q2.y.get_mpz_t(), q1.w.get_mpz_t());
+  mpz_submul(dy.get_mpz_t(), q1.y.get_mpz_t(), q2.w.get_mpz_t());
+  thread_local mpz_class g;
+  mpz_gcd(g.get_mpz_t(), dx.get_mpz_t(), dy.get_mpz_t());
   if (g > 1) {
-    mpz_divexact(e.dx.get_mpz_t(), e.dx.get_mpz_t(), g.get_mpz_t());
-    mpz_divexact(e.dy.get_mpz_t(), e.dy.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(dx.get_mpz_t(), dx.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(dy.get_mpz_t(), dy.get_mpz_t(), g.get_mpz_t());
   }
-  return e;
 }
 
 // The shifts' products with D are integers over u.k (any positive common factor: the forms are
-// made primitive afterwards).
-FrontSegment front_segment(const FrontEdge& e, const IntegerShift& u) {
+// made primitive afterwards). The edge is given by its ends q1, q2 and its D (dx, dy).
+FrontSegment front_segment(const HomogeneousPoint& q1, const HomogeneousPoint& q2, const mpz_class& dx,
+                           const mpz_class& dy, const IntegerShift& u) {
   FrontSegment s;
-  s.w1 = e.q1.w;
-  s.w2 = e.q2.w;
-  s.dx = e.dx;
-  s.dy = e.dy;
+  s.w1 = q1.w;
+  s.w2 = q2.w;
+  s.dx = dx;
+  s.dy = dy;
   // a b + sign c d in place (no temporary integers)
   auto combine = [](mpz_class& out, const mpz_class& a, const mpz_class& b, int sign, const mpz_class& c,
                     const mpz_class& d) {
@@ -1349,13 +1342,13 @@ FrontSegment front_segment(const FrontEdge& e, const IntegerShift& u) {
     if (sign < 0) mpz_submul(out.get_mpz_t(), c.get_mpz_t(), d.get_mpz_t());
     else mpz_addmul(out.get_mpz_t(), c.get_mpz_t(), d.get_mpz_t());
   };
-  combine(s.cross1, e.q1.x, e.dy, -1, e.q1.y, e.dx);
-  combine(s.dot1, e.q1.x, e.dx, 1, e.q1.y, e.dy);
-  combine(s.dot2, e.q2.x, e.dx, 1, e.q2.y, e.dy);
-  combine(s.kx, u.x1, e.dy, -1, u.x2, e.dx);
-  combine(s.ky, u.y1, e.dy, -1, u.y2, e.dx);
-  combine(s.gx, u.x1, e.dx, 1, u.x2, e.dy);
-  combine(s.gy, u.y1, e.dx, 1, u.y2, e.dy);
+  combine(s.cross1, q1.x, dy, -1, q1.y, dx);
+  combine(s.dot1, q1.x, dx, 1, q1.y, dy);
+  combine(s.dot2, q2.x, dx, 1, q2.y, dy);
+  combine(s.kx, u.x1, dy, -1, u.x2, dx);
+  combine(s.ky, u.y1, dy, -1, u.y2, dx);
+  combine(s.gx, u.x1, dx, 1, u.x2, dy);
+  combine(s.gy, u.y1, dx, 1, u.y2, dy);
   s.k = u.k;
   return s;
 }
@@ -1737,27 +1730,39 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
                        std::vector<std::size_t>& index, std::vector<FrontVertex>& front_vertices,
                        std::vector<FrontSegment>& front_segments) {
       const IntegerShift u = integer_shift(difference(other.x, own.x), difference(other.y, own.y));
-      // every edge of the part once: its homogeneous ends (a closed loop's target is the next
-      // edge's source) and its direction
+      // every edge of the part once: its homogeneous ends, each made once (a closed loop's
+      // target is the next edge's source) and read in place, and its direction
       const Part& part = model.parts.at(part_index);
       std::vector<std::size_t> loop_start;
-      std::vector<FrontEdge> edges;
       std::size_t edge_count = 0;
       for (const Loop& loop : part.loops) edge_count += loop.edges.size();
-      edges.reserve(edge_count);
+      std::vector<HomogeneousPoint> ends;       // each edge's source, then the open edges' targets
+      std::vector<std::size_t> target_end;      // per edge: its target in `ends`
+      ends.reserve(edge_count);
+      target_end.reserve(edge_count);
       directions.reserve(edge_count);
       for (const Loop& loop : part.loops) {
-        loop_start.push_back(edges.size());
+        loop_start.push_back(ends.size());
+        for (const Edge& edge : loop.edges) ends.push_back(homogeneous(edge.source));
+      }
+      for (std::size_t l = 0; l < part.loops.size(); ++l) {
+        const Loop& loop = part.loops[l];
         const std::size_t n = loop.edges.size();
-        std::vector<HomogeneousPoint> sources;
-        sources.reserve(n);
-        for (const Edge& edge : loop.edges) sources.push_back(homogeneous(edge.source));
         for (std::size_t e = 0; e < n; ++e) {
           const Edge& edge = loop.edges[e];
           const bool closes = edge.target == loop.edges[(e + 1) % n].source;
-          edges.push_back(front_edge(sources[e], closes ? sources[(e + 1) % n] : homogeneous(edge.target)));
-          directions.push_back(Direction::of(Point{Rational(edges.back().dx), Rational(edges.back().dy)}));
+          if (closes) {
+            target_end.push_back(loop_start[l] + (e + 1) % n);
+          } else {
+            target_end.push_back(ends.size());
+            ends.push_back(homogeneous(edge.target));
+          }
         }
+      }
+      for (std::size_t e = 0; e < edge_count; ++e) {
+        thread_local mpz_class dx, dy;
+        front_direction(ends[e], ends[target_end[e]], dx, dy);
+        directions.push_back(Direction::of(Point{Rational(dx), Rational(dy)}));
       }
       index.resize(features.size());
       vertices.reserve(features.size());
@@ -1773,11 +1778,14 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
           const std::size_t previous = loop_start[ref.loop] + (ref.edge + n - 1) % n;
           vertices.push_back(DirectedFeature{static_cast<int>(i), &directions[e], &directions[previous]});
           index[i] = front_vertices.size();
-          front_vertices.push_back(FrontVertex{edges[e].q1});
+          front_vertices.push_back(FrontVertex{ends[e]});
         } else {
           segments.push_back(DirectedFeature{static_cast<int>(i), &directions[e], nullptr});
           index[i] = front_segments.size();
-          front_segments.push_back(front_segment(edges[e], u));
+          // (D is the direction's numerators: a canonical rational of an integer has
+          // denominator 1)
+          front_segments.push_back(
+              front_segment(ends[e], ends[target_end[e]], directions[e].p.x.get_num(), directions[e].p.y.get_num(), u));
         }
       }
     };
