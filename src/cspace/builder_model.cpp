@@ -355,6 +355,8 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   curve_options.blocked_grid = curve_options.cull_blocked_space;
   const int grid_depth = input.dimension == 2 ? (cull_depth > 0 ? cull_depth : 9) : 10;
   CurveGenerator generator(model, axes, curve_options);
+  // the exact algebraic oracle's certified filter (both parts' enclosures prepared once)
+  auto overlap = std::make_shared<const PairOverlap>(model, axes);
   input.seconds_curves += std::chrono::duration<double>(Clock::now() - generator_start).count();
   // each box's curves are generated when the builder reaches it (PairInput::make_chart):
   // the boxes are built one at a time, with one box's curves alive
@@ -381,11 +383,11 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
       if (!curve.polynomial.is_zero()) chart.curves.push_back(std::move(curve));
     ChartAxis x = chart.x, y = chart.y;
     chart.classify = [&model, axes, x, y](const cspace::ChartPoint& q) { return classify_overlap(model, axes, x, y, q); };
-    chart.classify_algebraic = [&model, axes, x, y](const algebra::Real& qx, const algebra::Real& qy) {
-      return algebraic_overlap(model, axes, x, y, qx, qy);
+    chart.classify_algebraic = [&model, axes, x, y, overlap](const algebra::Real& qx, const algebra::Real& qy) {
+      return algebraic_overlap(model, axes, x, y, qx, qy, overlap.get());
     };
-    chart.classify_ordinate = [&model, axes, x, y](const algebra::Real& qx, const RationalOrdinate& qy) {
-      return algebraic_overlap(model, axes, x, y, qx, qy);
+    chart.classify_ordinate = [&model, axes, x, y, overlap](const algebra::Real& qx, const RationalOrdinate& qy) {
+      return algebraic_overlap(model, axes, x, y, qx, qy, overlap.get());
     };
     if (building.dimension == 2 && cells && cells->usable()) chart.blocked_cells = std::move(cells);
     if (progress) std::cerr << "\rhipair: " << building.first_part << ":" << building.second_part << " "

@@ -13,6 +13,11 @@
 
 namespace hipair::cspace {
 
+/// The certified filter in front of the algebraic oracle (the `filter` arguments below), on
+/// this thread: off, the oracle decides every point itself (tests compare the two).
+struct AlgebraicFilterTag;
+inline bool& algebraic_filter_switch() { return thread_switch<AlgebraicFilterTag>(); }
+
 /// Exact relation of the pair's parts posed at chart point (x, y) of chart (x_axis, y_axis),
 /// where x and y are real algebraic numbers (rational or not; y is ignored for a 1-D space).
 /// Every decision is the exact sign of a polynomial in the chart coordinates at the point
@@ -21,8 +26,14 @@ namespace hipair::cspace {
 /// both coordinates of a 2-D point are irrational, or (parts with arcs) in the one degenerate
 /// case left: a loop without common point whose every vertex has a vertex of the other part (or
 /// a circle's tangent) both at its height and at its abscissa.
+/// `filter` (optional, the same model's and axes' prepared oracle): its certified filter
+/// (PairOverlap::certainly_overlapping) is asked first over the point's box — the isolating
+/// intervals — once the point is one this oracle decides; where it answers, the answer is
+/// "overlapping", which the exact decision below would give too (a certain transversal crossing
+/// of two edges' interiors is found by it before anything that can leave it undecided).
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
-                                         const ChartAxis& y_axis, const algebra::Real& x, const algebra::Real& y);
+                                         const ChartAxis& y_axis, const algebra::Real& x, const algebra::Real& y,
+                                         const PairOverlap* filter = nullptr);
 
 /// A chart ordinate given as a rational function of the abscissa: y = numerator(x) /
 /// denominator(x) at the point's x, where denominator(x) != 0, and lower <= y <= upper (the
@@ -37,7 +48,10 @@ struct RationalOrdinate {
 /// a polynomial in x at x (the ordinate substituted, the denominator's power's sign applied).
 /// nullopt where the degenerate ray case above leaves it undecided, or where the ordinate is not
 /// as described (denominator(x) = 0, or y outside [lower, upper]).
+/// `filter` as above, over the box of x's isolating interval and [lower, upper], once the
+/// ordinate is checked to be as described.
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
-                                         const ChartAxis& y_axis, const algebra::Real& x, const RationalOrdinate& y);
+                                         const ChartAxis& y_axis, const algebra::Real& x, const RationalOrdinate& y,
+                                         const PairOverlap* filter = nullptr);
 
 }  // namespace hipair::cspace
