@@ -356,7 +356,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   const int grid_depth = input.dimension == 2 ? (cull_depth > 0 ? cull_depth : 9) : 10;
   CurveGenerator generator(model, axes, curve_options);
   // the exact algebraic oracle's certified filter (both parts' enclosures prepared once)
-  auto overlap = std::make_shared<const PairOverlap>(model, axes);
+  auto overlap = std::make_shared<const OverlapFilter>(model, axes);
   input.seconds_curves += std::chrono::duration<double>(Clock::now() - generator_start).count();
   // each box's curves are generated when the builder reaches it (PairInput::make_chart):
   // the boxes are built one at a time, with one box's curves alive

@@ -23,9 +23,7 @@
 #include "kernels/contact_table.hpp"
 #include "kernels/interval.hpp"
 
-#include <array>
 #include <cstddef>
-#include <cstdint>
 #include <optional>
 #include <string>
 #include <memory>
@@ -285,25 +283,12 @@ class PairOverlap {
 
   Overlap classify(const ChartAxis& x, const ChartAxis& y, const ChartPoint& q) const;
 
-  /// A certified filter in front of exact oracles at points that are not rational (session 37):
-  /// true when the parts certainly overlap at every chart point of the box qx × qy (qy ignored
-  /// for a 1-D pair) — some edge of each crosses the other transversally at a point interior to
-  /// both, certified by the rational oracle's own interval tests over the box's poses
-  /// (outward-rounded enclosures of the world maps: the proved margin). False when it cannot
-  /// tell (it never claims "touching" or "apart"); then the exact oracle must decide.
-  bool certainly_overlapping(const ChartAxis& x, const ChartAxis& y, const kernels::Interval& qx,
-                             const kernels::Interval& qy) const;
-
  private:
   struct Data;
   const Model& model_;
   PairAxes axes_;
   std::unique_ptr<const Data> data_;
 };
-
-/// How often PairOverlap::certainly_overlapping was asked and how often it answered true, over
-/// the process (for tests and measurements).
-std::array<std::uint64_t, 2> overlap_filter_counts();
 
 /// Certified lower bounds of the distance from a point to the boundary of a part (every edge):
 /// the edges' coordinates are enclosed once. Shared by the contact-curve generator's inscribed

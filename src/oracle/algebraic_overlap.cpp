@@ -862,7 +862,7 @@ kernels::Interval kernel_box(const Real& r) {
 
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
                                          const ChartAxis& y_axis, const Real& x, const Real& y,
-                                         const PairOverlap* filter) {
+                                         const OverlapFilter* filter) {
   const Real y_used = axes.dimension() < 2 ? Real::from_rational(Rational(0)) : y;
   if (!x.exact && !y_used.exact) return std::nullopt;
   if (filter && algebraic_filter_switch() && filter->certainly_overlapping(x_axis, y_axis, kernel_box(x), kernel_box(y_used))) return Overlap::overlapping;
@@ -871,7 +871,7 @@ std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axe
 
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
                                          const ChartAxis& y_axis, const Real& x, const RationalOrdinate& y,
-                                         const PairOverlap* filter) {
+                                         const OverlapFilter* filter) {
   if (axes.dimension() < 2 || y.lower > y.upper) return std::nullopt;
   auto sign_at_x = [&](const algebra::Polynomial& p) { return x.exact ? algebra::sign_at(p, x.lower) : algebra::sign_at(p, x); };
   const int q = sign_at_x(y.denominator);

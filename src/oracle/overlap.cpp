@@ -16,6 +16,7 @@
 //  4. a loop with no common point with the other boundary lies entirely inside or outside
 //     the other part's interior: one exact point-in-region test per such loop decides.
 #include "oracle/overlap.hpp"
+#include "curves/algebraic_overlap.hpp"
 
 #include "algebra/near_quotient.hpp"
 #include "kernels/interval.hpp"
@@ -1312,10 +1313,18 @@ Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAx
   return analyse_overlap(model, axes, x, y, q).relation;
 }
 
-struct PairOverlap::Data {
+namespace {
+// A pair's pose-independent oracle data: the first part's enclosures, the second part placed
+// at the identity (the analysis works in its body frame).
+struct PreparedPair {
   std::shared_ptr<const PartEnclosure> first;
   IdentityPart second;
-  Data(const Part& a, const Part& b) : first(std::make_shared<const PartEnclosure>(a)), second(b) {}
+  PreparedPair(const Part& a, const Part& b) : first(std::make_shared<const PartEnclosure>(a)), second(b) {}
+};
+}  // namespace
+
+struct PairOverlap::Data : PreparedPair {
+  using PreparedPair::PreparedPair;
 };
 
 PairOverlap::PairOverlap(const Model& model, const PairAxes& axes)
@@ -1339,8 +1348,18 @@ namespace {
 std::atomic<std::uint64_t> filter_asked{0}, filter_decided{0};
 }
 
-bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, const Interval& qx,
-                                        const Interval& qy) const {
+struct OverlapFilter::Data : PreparedPair {
+  using PreparedPair::PreparedPair;
+};
+
+OverlapFilter::OverlapFilter(const Model& model, const PairAxes& axes)
+    : model_(model), axes_(axes),
+      data_(std::make_unique<const Data>(model.parts.at(axes.first), model.parts.at(axes.second))) {}
+
+OverlapFilter::~OverlapFilter() = default;
+
+bool OverlapFilter::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, const Interval& qx,
+                                          const Interval& qy) const {
   filter_asked.fetch_add(1, std::memory_order_relaxed);
   // the relative map over the whole box, as at_chart_point poses a rational point
   const ChartAxis& second_axis = axes_.first_moves ? y : x;
