@@ -355,6 +355,8 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   curve_options.blocked_grid = curve_options.cull_blocked_space;
   const int grid_depth = input.dimension == 2 ? (cull_depth > 0 ? cull_depth : 9) : 10;
   CurveGenerator generator(model, axes, curve_options);
+  // the exact algebraic oracle's certified filter (both parts' enclosures prepared once)
+  auto overlap = std::make_shared<const OverlapFilter>(model, axes);
   input.seconds_curves += std::chrono::duration<double>(Clock::now() - generator_start).count();
   // each box's curves are generated when the builder reaches it (PairInput::make_chart):
   // the boxes are built one at a time, with one box's curves alive
@@ -390,11 +392,11 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
     chart.classify = [&model, axes, chart_axes](const cspace::ChartPoint& q) {
       return classify_overlap(model, axes, chart_axes->x, chart_axes->y, q);
     };
-    chart.classify_algebraic = [&model, axes, chart_axes](const algebra::Real& qx, const algebra::Real& qy) {
-      return algebraic_overlap(model, axes, chart_axes->x, chart_axes->y, qx, qy);
+    chart.classify_algebraic = [&model, axes, chart_axes, overlap](const algebra::Real& qx, const algebra::Real& qy) {
+      return algebraic_overlap(model, axes, chart_axes->x, chart_axes->y, qx, qy, overlap.get());
     };
-    chart.classify_ordinate = [&model, axes, chart_axes](const algebra::Real& qx, const RationalOrdinate& qy) {
-      return algebraic_overlap(model, axes, chart_axes->x, chart_axes->y, qx, qy);
+    chart.classify_ordinate = [&model, axes, chart_axes, overlap](const algebra::Real& qx, const RationalOrdinate& qy) {
+      return algebraic_overlap(model, axes, chart_axes->x, chart_axes->y, qx, qy, overlap.get());
     };
     if (building.dimension == 2 && cells && cells->usable()) chart.blocked_cells = std::move(cells);
     if (progress) std::cerr << "\rhipair: " << building.first_part << ":" << building.second_part << " "

@@ -9,9 +9,46 @@
 
 #include <hipair/model.hpp>
 
+#include <array>
+#include <cstdint>
+#include <memory>
 #include <optional>
 
 namespace hipair::cspace {
+
+/// A certified filter in front of the exact oracles at points that are not rational (session
+/// 37), for one pair of a model (`model` must outlive it, unchanged; thread safe):
+/// certainly_overlapping is true when the parts certainly overlap at every chart point of the
+/// box qx × qy (qy ignored for a 1-D pair) — some edge of each crosses the other transversally
+/// at a point interior to both, by the rational oracle's own interval tests (src/oracle/
+/// overlap.cpp) over the box's poses: outward-rounded enclosures of the world maps over the
+/// whole box are the proved margin. False when it cannot tell (it never claims "touching" or
+/// "apart"); then the exact oracle must decide.
+class OverlapFilter {
+ public:
+  OverlapFilter(const Model& model, const PairAxes& axes);
+  ~OverlapFilter();
+  OverlapFilter(const OverlapFilter&) = delete;
+  OverlapFilter& operator=(const OverlapFilter&) = delete;
+
+  bool certainly_overlapping(const ChartAxis& x, const ChartAxis& y, const kernels::Interval& qx,
+                             const kernels::Interval& qy) const;
+
+ private:
+  struct Data;
+  const Model& model_;
+  PairAxes axes_;
+  std::unique_ptr<const Data> data_;
+};
+
+/// How often OverlapFilter::certainly_overlapping was asked and how often it answered true,
+/// over the process (for tests and measurements).
+std::array<std::uint64_t, 2> overlap_filter_counts();
+
+/// The certified filter in front of the algebraic oracle (the `filter` arguments below), on
+/// this thread: off, the oracle decides every point itself (tests compare the two).
+struct AlgebraicFilterTag;
+inline bool& algebraic_filter_switch() { return thread_switch<AlgebraicFilterTag>(); }
 
 /// Exact relation of the pair's parts posed at chart point (x, y) of chart (x_axis, y_axis),
 /// where x and y are real algebraic numbers (rational or not; y is ignored for a 1-D space).
@@ -21,8 +58,14 @@ namespace hipair::cspace {
 /// both coordinates of a 2-D point are irrational, or (parts with arcs) in the one degenerate
 /// case left: a loop without common point whose every vertex has a vertex of the other part (or
 /// a circle's tangent) both at its height and at its abscissa.
+/// `filter` (optional, the same model's and axes' prepared oracle): its certified filter
+/// (OverlapFilter::certainly_overlapping) is asked first over the point's box — the isolating
+/// intervals — once the point is one this oracle decides; where it answers, the answer is
+/// "overlapping", which the exact decision below would give too (a certain transversal crossing
+/// of two edges' interiors is found by it before anything that can leave it undecided).
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
-                                         const ChartAxis& y_axis, const algebra::Real& x, const algebra::Real& y);
+                                         const ChartAxis& y_axis, const algebra::Real& x, const algebra::Real& y,
+                                         const OverlapFilter* filter = nullptr);
 
 /// A chart ordinate given as a rational function of the abscissa: y = numerator(x) /
 /// denominator(x) at the point's x, where denominator(x) != 0, and lower <= y <= upper (the
@@ -37,7 +80,10 @@ struct RationalOrdinate {
 /// a polynomial in x at x (the ordinate substituted, the denominator's power's sign applied).
 /// nullopt where the degenerate ray case above leaves it undecided, or where the ordinate is not
 /// as described (denominator(x) = 0, or y outside [lower, upper]).
+/// `filter` as above, over the box of x's isolating interval and [lower, upper], once the
+/// ordinate is checked to be as described.
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
-                                         const ChartAxis& y_axis, const algebra::Real& x, const RationalOrdinate& y);
+                                         const ChartAxis& y_axis, const algebra::Real& x, const RationalOrdinate& y,
+                                         const OverlapFilter* filter = nullptr);
 
 }  // namespace hipair::cspace

@@ -462,29 +462,32 @@ double ClearanceBound::lower(const Rational& px, const Rational& py) const {
       // foot parameter along = (p - s).(t - s), against 0 and |t - s|^2
       Interval along = fx * dx + fy * dy;
       Interval beyond = along - (dx * dx + dy * dy);
-      Point d = difference(edge.target, edge.source);
-      Point f = difference(p, edge.source);
-      int before = sign(along, [&] { return sgn(dot(f, d)); });
+      // the exact differences only where an interval straddles 0 (most calls never need them)
+      auto f_dot_d = [&] { return dot(difference(p, edge.source), difference(edge.target, edge.source)); };
+      int before = sign(along, [&] { return sgn(f_dot_d()); });
       if (before <= 0) {
         bound = length(fx, fy).lo;   // nearest point: the source
-      } else if (sign(beyond, [&] { return sgn(Rational(dot(f, d) - dot(d, d))); }) >= 0) {
+      } else if (sign(beyond, [&] {
+                   const Point d = difference(edge.target, edge.source);
+                   return sgn(Rational(f_dot_d() - dot(d, d)));
+                 }) >= 0) {
         bound = length(cx - e.tx, cy - e.ty).lo;   // the target
       } else {
         bound = (kernels::sqrt((fx * dy - fy * dx) * (fx * dy - fy * dx)) / e.length).lo;   // the foot
       }
     } else {
       Interval vx = cx - e.kx, vy = cy - e.ky;
-      Point v = difference(p, edge.center);
+      auto v = [&] { return difference(p, edge.center); };   // exact, only where needed
       bool inside = e.full;
       if (!inside) {
         // cross(start, v) >= 0 and cross(v, end) >= 0 (either, for a large sector)
         int after_start = sign(e.start_x * vy - e.start_y * vx, [&] {
           kernels::ArcSector<Rational> sector = arc_sector(edge);
-          return sgn(cross(Point{sector.start.x, sector.start.y}, v));
+          return sgn(cross(Point{sector.start.x, sector.start.y}, v()));
         });
         int before_end = sign(vx * e.end_y - vy * e.end_x, [&] {
           kernels::ArcSector<Rational> sector = arc_sector(edge);
-          return sgn(cross(v, Point{sector.end.x, sector.end.y}));
+          return sgn(cross(v(), Point{sector.end.x, sector.end.y}));
         });
         inside = e.large ? (after_start >= 0 || before_end >= 0) : (after_start >= 0 && before_end >= 0);
       }

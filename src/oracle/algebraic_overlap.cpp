@@ -28,6 +28,7 @@
 #include "curves/algebraic_overlap.hpp"
 #include "algebra/ordinate.hpp"
 
+#include "algebra/near_quotient.hpp"
 #include "algebra/polynomial.hpp"
 #include "curves/pose.hpp"
 
@@ -850,17 +851,27 @@ std::optional<Overlap> relation_at(const Model& model, const PairAxes& axes, con
   return PolygonRelation(std::move(a), std::move(b), sign).run();
 }
 
+// The certified double box of a real algebraic number: its value's enclosure, or its isolating
+// interval's.
+kernels::Interval kernel_box(const Real& r) {
+  return r.exact ? algebra::enclose_kernel(r.lower)
+                 : kernels::Interval(algebra::lower_double(r.lower), algebra::upper_double(r.upper));
+}
+
 }  // namespace
 
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
-                                         const ChartAxis& y_axis, const Real& x, const Real& y) {
+                                         const ChartAxis& y_axis, const Real& x, const Real& y,
+                                         const OverlapFilter* filter) {
   const Real y_used = axes.dimension() < 2 ? Real::from_rational(Rational(0)) : y;
   if (!x.exact && !y_used.exact) return std::nullopt;
+  if (filter && algebraic_filter_switch() && filter->certainly_overlapping(x_axis, y_axis, kernel_box(x), kernel_box(y_used))) return Overlap::overlapping;
   return relation_at(model, axes, x_axis, y_axis, SignAt(x, y_used));
 }
 
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
-                                         const ChartAxis& y_axis, const Real& x, const RationalOrdinate& y) {
+                                         const ChartAxis& y_axis, const Real& x, const RationalOrdinate& y,
+                                         const OverlapFilter* filter) {
   if (axes.dimension() < 2 || y.lower > y.upper) return std::nullopt;
   auto sign_at_x = [&](const algebra::Polynomial& p) { return x.exact ? algebra::sign_at(p, x.lower) : algebra::sign_at(p, x); };
   const int q = sign_at_x(y.denominator);
@@ -875,6 +886,10 @@ std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axe
     return side * sign_at_x(result) * q;
   };
   if (bound(y.lower, -1) < 0 || bound(y.upper, 1) < 0) return std::nullopt;
+  if (filter && algebraic_filter_switch() && filter->certainly_overlapping(
+                    x_axis, y_axis, kernel_box(x),
+                    kernels::Interval(algebra::lower_double(y.lower), algebra::upper_double(y.upper))))
+    return Overlap::overlapping;
   return relation_at(model, axes, x_axis, y_axis, SignAt(x, y, q));
 }
 

@@ -16,6 +16,7 @@
 //  4. a loop with no common point with the other boundary lies entirely inside or outside
 //     the other part's interior: one exact point-in-region test per such loop decides.
 #include "oracle/overlap.hpp"
+#include "curves/algebraic_overlap.hpp"
 
 #include "algebra/near_quotient.hpp"
 #include "kernels/interval.hpp"
@@ -24,6 +25,8 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <cstdint>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -1221,12 +1224,9 @@ OverlapReport analyse(const Part& first, const Part& second, const IntervalMap& 
   return analyse_placed(a, b, second_world, options);
 }
 
-// Certified interval enclosure of a part's world map at a chart value.
-IntervalMap interval_world_map(const Part& part, bool moves, const ChartAxis& axis,
-                               const Rational& value) {
+// Certified interval enclosure of a part's world map at every chart value in v (a moving part).
+IntervalMap interval_world_map(const Part& part, const ChartAxis& axis, const Interval& v) {
   IntervalMap map;
-  if (!moves) return map;
-  Interval v = algebra::enclose_kernel(value);
   if (part.motion.kind == Motion::Kind::rotation) {
     Interval t2 = v * v;
     Interval w = Interval(1) + t2;
@@ -1245,6 +1245,12 @@ IntervalMap interval_world_map(const Part& part, bool moves, const ChartAxis& ax
   map.ox = v * algebra::enclose_kernel(part.motion.direction.x);
   map.oy = v * algebra::enclose_kernel(part.motion.direction.y);
   return map;
+}
+
+// Certified interval enclosure of a part's world map at a chart value.
+IntervalMap interval_world_map(const Part& part, bool moves, const ChartAxis& axis,
+                               const Rational& value) {
+  return moves ? interval_world_map(part, axis, algebra::enclose_kernel(value)) : IntervalMap{};
 }
 
 // second^-1 o first, in intervals.
@@ -1307,10 +1313,18 @@ Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAx
   return analyse_overlap(model, axes, x, y, q).relation;
 }
 
-struct PairOverlap::Data {
+namespace {
+// A pair's pose-independent oracle data: the first part's enclosures, the second part placed
+// at the identity (the analysis works in its body frame).
+struct PreparedPair {
   std::shared_ptr<const PartEnclosure> first;
   IdentityPart second;
-  Data(const Part& a, const Part& b) : first(std::make_shared<const PartEnclosure>(a)), second(b) {}
+  PreparedPair(const Part& a, const Part& b) : first(std::make_shared<const PartEnclosure>(a)), second(b) {}
+};
+}  // namespace
+
+struct PairOverlap::Data : PreparedPair {
+  using PreparedPair::PreparedPair;
 };
 
 PairOverlap::PairOverlap(const Model& model, const PairAxes& axes)
@@ -1328,6 +1342,50 @@ Overlap PairOverlap::classify(const ChartAxis& x, const ChartAxis& y, const Char
                           PlacedPart b(data_->second.enclosure, data_->second.placement, data_->second.exact);
                           return analyse_placed(a, b, second_world, OverlapOptions{}).relation;
                         });
+}
+
+namespace {
+std::atomic<std::uint64_t> filter_asked{0}, filter_decided{0};
+}
+
+struct OverlapFilter::Data : PreparedPair {
+  using PreparedPair::PreparedPair;
+};
+
+OverlapFilter::OverlapFilter(const Model& model, const PairAxes& axes)
+    : model_(model), axes_(axes),
+      data_(std::make_unique<const Data>(model.parts.at(axes.first), model.parts.at(axes.second))) {}
+
+OverlapFilter::~OverlapFilter() = default;
+
+bool OverlapFilter::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, const Interval& qx,
+                                          const Interval& qy) const {
+  filter_asked.fetch_add(1, std::memory_order_relaxed);
+  // the relative map over the whole box, as at_chart_point poses a rational point
+  const ChartAxis& second_axis = axes_.first_moves ? y : x;
+  const Interval& second_value = axes_.first_moves ? qy : qx;
+  const IntervalMap relative = interval_relative(
+      axes_.first_moves ? interval_world_map(model_.parts.at(axes_.first), x, qx) : IntervalMap{},
+      axes_.second_moves ? interval_world_map(model_.parts.at(axes_.second), second_axis, second_value) : IntervalMap{});
+  thread_local Placement a;
+  PlacedPart::place(*data_->first, relative, a);
+  const Placement& b = data_->second.placement;
+  if (!a.filtered || !b.filtered || !a.total.meets(b.total)) return false;
+  // an edge of each crossing transversally at a point interior to both, at every pose of the
+  // box: the interiors overlap there (the analysis's first certified shortcut)
+  for (std::size_t i = 0; i < a.boxes.size(); ++i) {
+    if (!a.boxes[i].meets(b.total)) continue;
+    for (std::size_t j = 0; j < b.boxes.size(); ++j)
+      if (a.boxes[i].meets(b.boxes[j]) && filter_pair(a.intervals[i], b.intervals[j]) == Filter::overlapping) {
+        filter_decided.fetch_add(1, std::memory_order_relaxed);
+        return true;
+      }
+  }
+  return false;
+}
+
+std::array<std::uint64_t, 2> overlap_filter_counts() {
+  return {filter_asked.load(std::memory_order_relaxed), filter_decided.load(std::memory_order_relaxed)};
 }
 
 std::optional<Point> interior_witness(const Model& model, const PairAxes& axes,
