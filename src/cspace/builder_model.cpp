@@ -384,7 +384,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
     chart.classify_algebraic = [&model, axes, x, y](const algebra::Real& qx, const algebra::Real& qy) {
       return algebraic_overlap(model, axes, x, y, qx, qy);
     };
-    chart.classify_ordinate = [&model, axes, x, y](const algebra::Real& qx, const RationalOrdinate& qy) {
+    chart.classify_ordinate = [&model, axes, x, y](const algebra::Real& qx, const RadicalOrdinate& qy) {
       return algebraic_overlap(model, axes, x, y, qx, qy);
     };
     if (building.dimension == 2 && cells && cells->usable()) chart.blocked_cells = std::move(cells);

@@ -14,7 +14,7 @@
 //  - a vertex with both coordinates irrational (or an ordinate known only by its curve) was
 //    never checked: blocked all around, it was reported blocked without a warning (not even
 //    counted in touching_undecided). Now the algebraic oracle poses it at its ordinate as a
-//    rational function of its abscissa (curves/algebraic_overlap.hpp, RationalOrdinate).
+//    rational function of its abscissa (curves/algebraic_overlap.hpp, RadicalOrdinate).
 // The independent oracles: the closed form above (the vertex's t exactly a root of the
 // quadratic, its s within 10^-9), and the rational oracle (classify_overlap) at rationals
 // within 2^-100 of the vertex on every side: overlapping; at a rational fit: touching there.
