@@ -26,6 +26,7 @@
 #include "algebra/exact_real.hpp"
 #include "algebra/ordinate.hpp"
 #include "curves/contact_curves.hpp"
+#include "overlapping_beside.hpp"
 #include "random_rationals.hpp"
 #include "test_paths.hpp"
 
@@ -50,30 +51,22 @@ namespace algebra = cspace::algebra;
 
 // ------------------------------------------------------------------ small bivariate arithmetic
 
-IntegerPolynomial2 times(const IntegerPolynomial2& f, const IntegerPolynomial2& g) {
-  IntegerPolynomial2 h;
-  if (f.is_zero() || g.is_zero()) return h;
-  h.coefficients.assign(f.coefficients.size() + g.coefficients.size() - 1, {});
+// f g + h k through the kernels' rational polynomials: normalized_integer_polynomial keeps the
+// zero set and the sign (it divides out the content and factors 1 + x^2, 1 + y^2 only)
+cspace::RationalPolynomial2 rational(const IntegerPolynomial2& f) {
+  cspace::RationalPolynomial2 r;
   for (std::size_t i = 0; i < f.coefficients.size(); ++i)
     for (std::size_t j = 0; j < f.coefficients[i].size(); ++j)
-      for (std::size_t k = 0; k < g.coefficients.size(); ++k)
-        for (std::size_t l = 0; l < g.coefficients[k].size(); ++l) {
-          auto& row = h.coefficients[i + k];
-          if (row.size() < j + l + 1) row.resize(j + l + 1);
-          row[j + l] += f.coefficients[i][j] * g.coefficients[k][l];
-        }
-  return h;
+      if (sgn(f.coefficients[i][j]) != 0) r.set_coefficient(static_cast<int>(i), static_cast<int>(j), Rational(f.coefficients[i][j]));
+  return r;
+}
+
+IntegerPolynomial2 times(const IntegerPolynomial2& f, const IntegerPolynomial2& g) {
+  return cspace::normalized_integer_polynomial(rational(f) * rational(g));
 }
 
 IntegerPolynomial2 plus(const IntegerPolynomial2& f, const IntegerPolynomial2& g) {
-  IntegerPolynomial2 h = f;
-  if (h.coefficients.size() < g.coefficients.size()) h.coefficients.resize(g.coefficients.size());
-  for (std::size_t i = 0; i < g.coefficients.size(); ++i) {
-    auto& row = h.coefficients[i];
-    if (row.size() < g.coefficients[i].size()) row.resize(g.coefficients[i].size());
-    for (std::size_t j = 0; j < g.coefficients[i].size(); ++j) row[j] += g.coefficients[i][j];
-  }
-  return h;
+  return cspace::normalized_integer_polynomial(rational(f) + rational(g));
 }
 
 IntegerPolynomial2 random_polynomial(Random& random, int dx, int dy) {
@@ -376,14 +369,8 @@ TEST(CSpaceRadicalOrdinate, APinInADShapedHoleOfExactlyItsSagittaTouchesAtTheClo
       const Rational x0 = (vertex.x.lower + vertex.x.upper) / 2, y0 = (vertex.y_lower + vertex.y_upper) / 2;
       const Rational epsilon(mpz_class(1), mpz_class(1) << 100);
       ++beside;
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int dy = -1; dy <= 1; ++dy) {
-          if (dx == 0 && dy == 0) continue;
-          Rational x = x0 + dx * epsilon, y = y0 + dy * epsilon;
-          x.canonicalize();
-          y.canonicalize();
-          EXPECT_EQ(oracle(model, space, vertex.chart, x, y), cspace::Overlap::overlapping) << "beside the fit " << dx << ", " << dy;
-        }
+      test::expect_overlapping_beside([&](const Rational& x, const Rational& y) { return oracle(model, space, vertex.chart, x, y); },
+                                      x0, y0, epsilon, epsilon);
     }
   }
   EXPECT_EQ(touching, 24);

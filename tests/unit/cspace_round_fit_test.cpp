@@ -22,6 +22,7 @@
 // the fit: no touching vertex, nothing undecided. Scales 10^-300, 1, 10^300; both pair orders.
 #include "algebra/exact_real.hpp"
 #include "curves/contact_curves.hpp"
+#include "overlapping_beside.hpp"
 #include "polygon_loop_json.hpp"
 #include "random_rationals.hpp"
 
@@ -184,14 +185,8 @@ TEST(CSpaceRoundFit, APinInAHoleOfExactlyItsRadiusIsAnIsolatedTouchingVertexAtTh
       const Rational y0 = exact ? vertex.y.lower : (vertex.y_lower + vertex.y_upper) / 2;
       const Rational ex = Rational(mpz_class(1), mpz_class(1) << 100), ey = ex * (t_is_x ? fit.scale : Rational(1));
       const Rational exs = ex * (t_is_x ? Rational(1) : fit.scale);
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int dy = -1; dy <= 1; ++dy) {
-          if (dx == 0 && dy == 0) continue;
-          Rational x = x0 + dx * exs, y = y0 + dy * ey;
-          x.canonicalize();
-          y.canonicalize();
-          EXPECT_EQ(oracle(model, p, vertex.chart, x, y), cspace::Overlap::overlapping) << "beside the fit " << dx << ", " << dy;
-        }
+      test::expect_overlapping_beside([&](const Rational& x, const Rational& y) { return oracle(model, p, vertex.chart, x, y); },
+                                      x0, y0, exs, ey);
     }
   }
   // both kinds were generated and decided
