@@ -117,8 +117,7 @@ Pair pair_of(const Model& model, const CSpace& space) {
 }
 
 cspace::Overlap oracle(const Model& model, const Pair& p, std::size_t chart, const Rational& x, const Rational& y) {
-  const std::size_t n = p.layout.y_charts.size();
-  return cspace::classify_overlap(model, p.axes, p.layout.x_charts[chart / n], p.layout.y_charts[chart % n], cspace::ChartPoint{x, y});
+  return test::chart_overlap(model, p.axes, p.layout, chart, x, y);
 }
 
 TEST(CSpaceRoundFit, APinInAHoleOfExactlyItsRadiusIsAnIsolatedTouchingVertexAtTheClosedForm) {
