@@ -951,17 +951,31 @@ bool algebraic_touching(Overlap relation, const char* where) {
   return relation == Overlap::touching;
 }
 
-// The ordinate of an arrangement vertex as a rational function of its abscissa x0, for the
-// algebraic oracle at a vertex whose coordinates are not both rational (RationalOrdinate), or
-// nullopt. The curves through the vertex: its edges' supports, and, at an isolated point of a
-// curve (a singular point: the curve's partial derivatives vanish there too), that curve's
-// derivative in y. One of degree 1 in y, b(x) y + c(x) with b(x0) != 0, has the vertex's
-// ordinate as its only root: -c / b. Two of degree 2, f = a y^2 + b y + c and g = d y^2 + e y + h,
-// vanish at the vertex, so a g - d f = (a e - b d) y + (a h - c d) does: where a e - b d is not
-// 0 at x0, its root is the ordinate (the first subresultant). Curves of higher degree in y are
-// not tried. The ordinate found is checked exactly on the vertex's own curve and within its
-// y-enclosure (algebraic_overlap checks the enclosure).
-std::optional<RationalOrdinate> vertex_ordinate(const raw::Arrangement& arrangement, const raw::Vertex& vertex) {
+// The ordinate of an arrangement vertex as an expression in its abscissa x0, for the algebraic
+// oracle at a vertex whose coordinates are not both rational (RadicalOrdinate), or nullopt. The
+// curves through the vertex: its edges' supports, and, at an isolated point of a curve (a
+// singular point: the curve's partial derivatives vanish there too), that curve's derivative in
+// y. Tried in turn:
+//  - one of degree 1 in y, b(x) y + c(x) with b(x0) != 0, has the vertex's ordinate as its only
+//    root: -c / b;
+//  - two of degree 2, f = a y^2 + b y + c and g = d y^2 + e y + h, vanish at the vertex, so
+//    a g - d f = (a e - b d) y + (a h - c d) does: where a e - b d is not 0 at x0, its root is
+//    the ordinate (the first subresultant);
+//  - one of degree 2 (the vertex's own curve first), f(x0, y) = a y^2 + b y + c: with a(x0) = 0
+//    and b(x0) != 0 its root -c / b; else with D = b^2 - 4ac, D(x0) = 0, its double root
+//    -b / 2a; D(x0) > 0, its root in the vertex's y-enclosure (lo, hi) when f(x0, lo) and
+//    f(x0, hi) have opposite signs (then exactly one is there): f_y = 2a y + b = s √D at the
+//    root (-b + s √D) / 2a, and f_y there has f(x0, hi)'s sign, so s = sign f(x0, hi). (On the
+//    vertex's own curve, whose roots at x0 the enclosure isolates, this leaves out only an
+//    ordinate at an end of its enclosure.) A curve crossing a vertical contact line, or two
+//    contact lines crossing, one vertical and one horizontal of degree 2 (the escapement's wheel
+//    tip on an arc about the anchor's pivot while a pallet corner is on an arc about the wheel's
+//    centre), has such a vertex.
+// Curves of higher degree in y are not tried. The ordinate found is checked exactly on the
+// vertex's own curve (its sign there 0) and within its y-enclosure (algebraic_overlap checks the
+// enclosure), which isolates the vertex's ordinate among the roots of that curve: any ordinate
+// passing both is the vertex's.
+std::optional<RadicalOrdinate> vertex_ordinate(const raw::Arrangement& arrangement, const raw::Vertex& vertex) {
   std::vector<const IntegerPolynomial2*> curves;
   for (const auto& incidence : vertex.around) curves.push_back(&arrangement.edges[incidence.edge].support);
   IntegerPolynomial2 derivative;
@@ -974,21 +988,20 @@ std::optional<RationalOrdinate> vertex_ordinate(const raw::Arrangement& arrangem
     curves.push_back(&vertex.y_curve);
     curves.push_back(&derivative);
   }
-  auto nonzero_at_x = [&](const algebra::Polynomial& p) {
-    return vertex.x.exact ? algebra::sign_at(p, vertex.x.lower) != 0 : algebra::sign_at(p, vertex.x) != 0;
-  };
+  auto sign_at_x = [&](const algebra::Polynomial& p) { return algebra::sign_at(p, vertex.x); };
+  auto nonzero_at_x = [&](const algebra::Polynomial& p) { return sign_at_x(p) != 0; };
   auto minus = [](algebra::Polynomial a, const algebra::Polynomial& b) {
     if (a.size() < b.size()) a.resize(b.size());
     for (std::size_t i = 0; i < b.size(); ++i) a[i] -= b[i];
     algebra::trim(a);
     return a;
   };
-  std::optional<RationalOrdinate> found;
+  std::optional<RadicalOrdinate> found;
   for (std::size_t i = 0; i < curves.size() && !found; ++i) {
     const IntegerPolynomial2& f = *curves[i];
     if (f.degree_y() == 1) {
       algebra::Polynomial b = algebra::y_coefficient(f, 1);
-      if (nonzero_at_x(b)) found = RationalOrdinate{minus({}, algebra::y_coefficient(f, 0)), std::move(b), {}, {}};
+      if (nonzero_at_x(b)) found = RadicalOrdinate{minus({}, algebra::y_coefficient(f, 0)), {}, std::move(b), {}, {}};
       continue;
     }
     if (f.degree_y() != 2) continue;
@@ -1000,19 +1013,44 @@ std::optional<RationalOrdinate> vertex_ordinate(const raw::Arrangement& arrangem
       algebra::Polynomial m = minus(algebra::product(a, e), algebra::product(b, d));
       if (!nonzero_at_x(m)) continue;
       // y = -(a h - c d) / (a e - b d)
-      found = RationalOrdinate{minus(algebra::product(c, d), algebra::product(a, h)), std::move(m), {}, {}};
+      found = RadicalOrdinate{minus(algebra::product(c, d), algebra::product(a, h)), {}, std::move(m), {}, {}};
+    }
+  }
+  const Rational& lower = vertex.y_exact ? vertex.y.lower : vertex.y_lower;
+  const Rational& upper = vertex.y_exact ? vertex.y.upper : vertex.y_upper;
+  if (!found) {
+    // a root of one curve of degree 2 in y: the vertex's own curve first
+    std::vector<const IntegerPolynomial2*> quadratics{&vertex.y_curve};
+    quadratics.insert(quadratics.end(), curves.begin(), curves.end());
+    for (const IntegerPolynomial2* f : quadratics) {
+      if (f->degree_y() != 2) continue;
+      algebra::Polynomial a = algebra::y_coefficient(*f, 2), b = algebra::y_coefficient(*f, 1), c = algebra::y_coefficient(*f, 0);
+      if (!nonzero_at_x(a)) {
+        if (nonzero_at_x(b)) found = RadicalOrdinate{minus({}, c), {}, std::move(b), {}, {}};
+      } else {
+        algebra::Polynomial D = minus(algebra::product(b, b), algebra::product(algebra::product(a, c), {mpz_class(4)}));
+        const int d = sign_at_x(D);
+        algebra::Polynomial two_a = algebra::product(a, {mpz_class(2)});
+        if (d == 0) {
+          found = RadicalOrdinate{minus({}, b), {}, std::move(two_a), {}, {}};
+        } else if (d > 0) {
+          const int at_lower = sign_at_x(algebra::substitute_y(*f, lower)), at_upper = sign_at_x(algebra::substitute_y(*f, upper));
+          if (at_lower * at_upper < 0)
+            found = at_upper > 0 ? RadicalOrdinate{minus({}, b), std::move(D), std::move(two_a), {}, {}}
+                                 : RadicalOrdinate{std::move(b), std::move(D), minus({}, two_a), {}, {}};
+        }
+      }
+      if (found) break;
     }
   }
   if (!found) return std::nullopt;
-  if (!vertex.y_curve.is_zero() &&
-      nonzero_at_x(algebra::substitute_ordinate(vertex.y_curve, found->numerator, found->denominator)))
-    return std::nullopt;
-  if (vertex.y_exact) {
-    found->lower = vertex.y.lower;
-    found->upper = vertex.y.upper;
-  } else {
-    found->lower = vertex.y_lower;
-    found->upper = vertex.y_upper;
+  found->lower = lower;
+  found->upper = upper;
+  if (!vertex.y_curve.is_zero()) {
+    const int q = sign_at_x(found->denominator);
+    if (q == 0 || (!found->radicand.empty() && sign_at_x(found->radicand) < 0) ||
+        algebra::sign_at(vertex.y_curve, vertex.x, *found, q) != 0)
+      return std::nullopt;
   }
   return found;
 }
@@ -1119,7 +1157,7 @@ void find_touching(ChartData& chart, const Classifier& classify, const Algebraic
         if (classify_algebraic)
           relation = classify_algebraic(x ? Real::from_rational(*x) : vertex.x, y ? Real::from_rational(*y) : vertex.y);
       } else if (classify_ordinate) {
-        if (std::optional<RationalOrdinate> ordinate = vertex_ordinate(arrangement, vertex))
+        if (std::optional<RadicalOrdinate> ordinate = vertex_ordinate(arrangement, vertex))
           relation = classify_ordinate(vertex.x, *ordinate);
       }
       if (!relation) {

@@ -29,8 +29,8 @@ using Classifier = std::function<Overlap(const ChartPoint&)>;
 /// height and at its abscissa).
 using AlgebraicClassifier = std::function<std::optional<Overlap>(const algebra::Real&, const algebra::Real&)>;
 /// The same at a point whose ordinate is a rational function of its abscissa (both coordinates
-/// irrational: curves/algebraic_overlap.hpp, RationalOrdinate).
-using OrdinateClassifier = std::function<std::optional<Overlap>(const algebra::Real&, const RationalOrdinate&)>;
+/// irrational: curves/algebraic_overlap.hpp, RadicalOrdinate).
+using OrdinateClassifier = std::function<std::optional<Overlap>(const algebra::Real&, const RadicalOrdinate&)>;
 
 /// Input of one chart: its axes, its contact curves and its oracle.
 struct ChartInput {

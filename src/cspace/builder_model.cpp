@@ -395,7 +395,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
     chart.classify_algebraic = [&model, axes, chart_axes, overlap](const algebra::Real& qx, const algebra::Real& qy) {
       return algebraic_overlap(model, axes, chart_axes->x, chart_axes->y, qx, qy, overlap.get());
     };
-    chart.classify_ordinate = [&model, axes, chart_axes, overlap](const algebra::Real& qx, const RationalOrdinate& qy) {
+    chart.classify_ordinate = [&model, axes, chart_axes, overlap](const algebra::Real& qx, const RadicalOrdinate& qy) {
       return algebraic_overlap(model, axes, chart_axes->x, chart_axes->y, qx, qy, overlap.get());
     };
     if (building.dimension == 2 && cells && cells->usable()) chart.blocked_cells = std::move(cells);

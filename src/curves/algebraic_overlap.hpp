@@ -5,6 +5,7 @@
 #pragma once
 
 #include "algebra/exact_real.hpp"
+#include "algebra/ordinate.hpp"
 #include "curves/contact_curves.hpp"
 
 #include <hipair/model.hpp>
@@ -67,23 +68,22 @@ std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axe
                                          const ChartAxis& y_axis, const algebra::Real& x, const algebra::Real& y,
                                          const OverlapFilter* filter = nullptr);
 
-/// A chart ordinate given as a rational function of the abscissa: y = numerator(x) /
-/// denominator(x) at the point's x, where denominator(x) != 0, and lower <= y <= upper (the
-/// caller's enclosure; checked exactly). A point with both coordinates irrational is posed this
-/// way: the common root in y of two curves through it (their first subresultant).
-struct RationalOrdinate {
-  algebra::Polynomial numerator, denominator;
-  Rational lower, upper;
-};
+/// A chart ordinate given as an expression in the abscissa (algebra/ordinate.hpp): y =
+/// (numerator(x) + √radicand(x)) / denominator(x) at the point's x (an empty radicand: a
+/// rational function), with lower <= y <= upper (the caller's enclosure; checked exactly). A
+/// point with both coordinates irrational is posed this way: the common root in y of two curves
+/// through it (their first subresultant), or a root of one of degree 2 in y.
+using algebra::RadicalOrdinate;
 
-/// algebraic_overlap at (x, numerator(x) / denominator(x)) of a 2-D chart: every sign is that of
-/// a polynomial in x at x (the ordinate substituted, the denominator's power's sign applied).
-/// nullopt where the degenerate ray case above leaves it undecided, or where the ordinate is not
-/// as described (denominator(x) = 0, or y outside [lower, upper]).
+/// algebraic_overlap at (x, y) of a 2-D chart: every sign is decided by signs of polynomials in
+/// x at x (the ordinate substituted, the denominator's power's sign applied; with a radicand, the
+/// terms with and without its root compared: algebra::sign_with_root). nullopt where the
+/// degenerate ray case above leaves it undecided, or where the ordinate is not as described
+/// (denominator(x) = 0, radicand(x) < 0, or y outside [lower, upper]).
 /// `filter` as above, over the box of x's isolating interval and [lower, upper], once the
 /// ordinate is checked to be as described.
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
-                                         const ChartAxis& y_axis, const algebra::Real& x, const RationalOrdinate& y,
+                                         const ChartAxis& y_axis, const algebra::Real& x, const RadicalOrdinate& y,
                                          const OverlapFilter* filter = nullptr);
 
 }  // namespace hipair::cspace

@@ -73,8 +73,9 @@ struct Segment {
 class SignAt {
  public:
   SignAt(const Real& x, const Real& y) : x_(narrowed(x)), y_(narrowed(y)), box_x_(box(x_)), box_y_(box(y_)) {}
-  // at (x, P(x) / Q(x)), Q(x) != 0 of sign q, the ordinate enclosed by [lower, upper]
-  SignAt(const Real& x, const RationalOrdinate& y, int q)
+  // at (x, (P(x) + √R(x)) / Q(x)), Q(x) != 0 of sign q, R(x) >= 0, the ordinate enclosed by
+  // [lower, upper]
+  SignAt(const Real& x, const RadicalOrdinate& y, int q)
       : x_(narrowed(x)), box_x_(box(x_)),
         box_y_{algebra::lower_double(y.lower), algebra::upper_double(y.upper)}, ordinate_(&y), q_(q) {}
   // the polynomial's numerators (a positive multiple of it) over the point's box
@@ -117,11 +118,7 @@ class SignAt {
     if (filtered != 2) return filtered;
     IntegerPolynomial2 f = normalized_integer_polynomial(p);
     if (f.is_zero()) return 0;
-    if (ordinate_) {
-      // Q^d f(x, P / Q) at x, times sign(Q)^d
-      const int s = sign_of(algebra::substitute_ordinate(f, ordinate_->numerator, ordinate_->denominator));
-      return f.degree_y() % 2 == 0 ? s : s * q_;
-    }
+    if (ordinate_) return algebra::sign_at(f, x_, *ordinate_, q_);   // Q^d f(x, (P + √R) / Q) at x, times sign(Q)^d
     if (y_.exact) return x_.exact ? algebra::sign_at(f, x_.lower, y_.lower) : algebra::sign_at(f, x_, y_.lower);
     return algebra::sign_at(f, x_.lower, y_);
   }
@@ -136,10 +133,9 @@ class SignAt {
     if (r.exact) return algebra::enclose(r.lower);
     return algebra::Interval{algebra::lower_double(r.lower), algebra::upper_double(r.upper)};
   }
-  int sign_of(const algebra::Polynomial& p) const { return x_.exact ? algebra::sign_at(p, x_.lower) : algebra::sign_at(p, x_); }
   Real x_, y_;
   algebra::Interval box_x_, box_y_;
-  const RationalOrdinate* ordinate_ = nullptr;
+  const RadicalOrdinate* ordinate_ = nullptr;
   int q_ = 1;
 };
 
@@ -870,22 +866,18 @@ std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axe
 }
 
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
-                                         const ChartAxis& y_axis, const Real& x, const RationalOrdinate& y,
+                                         const ChartAxis& y_axis, const Real& x, const RadicalOrdinate& y,
                                          const OverlapFilter* filter) {
   if (axes.dimension() < 2 || y.lower > y.upper) return std::nullopt;
-  auto sign_at_x = [&](const algebra::Polynomial& p) { return x.exact ? algebra::sign_at(p, x.lower) : algebra::sign_at(p, x); };
-  const int q = sign_at_x(y.denominator);
-  if (q == 0) return std::nullopt;
-  // lower <= P / Q <= upper: (P - lower Q) Q >= 0 and (upper Q - P) Q >= 0, over the bounds'
-  // denominators (positive)
-  auto bound = [&](const Rational& r, int side) {   // side (r.num Q - r.den P)
-    algebra::Polynomial result(std::max(y.numerator.size(), y.denominator.size()));
-    for (std::size_t i = 0; i < y.denominator.size(); ++i) result[i] += r.get_num() * y.denominator[i];
-    for (std::size_t i = 0; i < y.numerator.size(); ++i) result[i] -= r.get_den() * y.numerator[i];
-    algebra::trim(result);
-    return side * sign_at_x(result) * q;
+  const int q = algebra::sign_at(y.denominator, x);
+  if (q == 0 || (!y.radicand.empty() && algebra::sign_at(y.radicand, x) < 0)) return std::nullopt;
+  // lower <= y <= upper: the signs of den y - num at y for each bound num / den (den > 0)
+  auto side = [&](const Rational& r) {
+    IntegerPolynomial2 f;
+    f.coefficients = {{-r.get_num(), r.get_den()}};
+    return algebra::sign_at(f, x, y, q);
   };
-  if (bound(y.lower, -1) < 0 || bound(y.upper, 1) < 0) return std::nullopt;
+  if (side(y.lower) < 0 || side(y.upper) > 0) return std::nullopt;
   if (filter && algebraic_filter_switch() && filter->certainly_overlapping(
                     x_axis, y_axis, kernel_box(x),
                     kernels::Interval(algebra::lower_double(y.lower), algebra::upper_double(y.upper))))

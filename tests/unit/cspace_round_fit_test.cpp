@@ -14,7 +14,7 @@
 //  - a vertex with both coordinates irrational (or an ordinate known only by its curve) was
 //    never checked: blocked all around, it was reported blocked without a warning (not even
 //    counted in touching_undecided). Now the algebraic oracle poses it at its ordinate as a
-//    rational function of its abscissa (curves/algebraic_overlap.hpp, RationalOrdinate).
+//    rational function of its abscissa (curves/algebraic_overlap.hpp, RadicalOrdinate).
 // The independent oracles: the closed form above (the vertex's t exactly a root of the
 // quadratic, its s within 10^-9), and the rational oracle (classify_overlap) at rationals
 // within 2^-100 of the vertex on every side: overlapping; at a rational fit: touching there.
@@ -22,6 +22,7 @@
 // the fit: no touching vertex, nothing undecided. Scales 10^-300, 1, 10^300; both pair orders.
 #include "algebra/exact_real.hpp"
 #include "curves/contact_curves.hpp"
+#include "overlapping_beside.hpp"
 #include "polygon_loop_json.hpp"
 #include "random_rationals.hpp"
 
@@ -116,8 +117,7 @@ Pair pair_of(const Model& model, const CSpace& space) {
 }
 
 cspace::Overlap oracle(const Model& model, const Pair& p, std::size_t chart, const Rational& x, const Rational& y) {
-  const std::size_t n = p.layout.y_charts.size();
-  return cspace::classify_overlap(model, p.axes, p.layout.x_charts[chart / n], p.layout.y_charts[chart % n], cspace::ChartPoint{x, y});
+  return test::chart_overlap(model, p.axes, p.layout, chart, x, y);
 }
 
 TEST(CSpaceRoundFit, APinInAHoleOfExactlyItsRadiusIsAnIsolatedTouchingVertexAtTheClosedForm) {
@@ -184,14 +184,8 @@ TEST(CSpaceRoundFit, APinInAHoleOfExactlyItsRadiusIsAnIsolatedTouchingVertexAtTh
       const Rational y0 = exact ? vertex.y.lower : (vertex.y_lower + vertex.y_upper) / 2;
       const Rational ex = Rational(mpz_class(1), mpz_class(1) << 100), ey = ex * (t_is_x ? fit.scale : Rational(1));
       const Rational exs = ex * (t_is_x ? Rational(1) : fit.scale);
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int dy = -1; dy <= 1; ++dy) {
-          if (dx == 0 && dy == 0) continue;
-          Rational x = x0 + dx * exs, y = y0 + dy * ey;
-          x.canonicalize();
-          y.canonicalize();
-          EXPECT_EQ(oracle(model, p, vertex.chart, x, y), cspace::Overlap::overlapping) << "beside the fit " << dx << ", " << dy;
-        }
+      test::expect_overlapping_beside([&](const Rational& x, const Rational& y) { return oracle(model, p, vertex.chart, x, y); },
+                                      x0, y0, exs, ey);
     }
   }
   // both kinds were generated and decided
