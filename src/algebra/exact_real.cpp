@@ -142,6 +142,7 @@ Polynomial primitive_part(const Polynomial& p) {
   if (q.empty()) return q;
   mpz_class g = content(q);
   if (sgn(q.back()) < 0) g = -g;
+  if (g == 1) return q;   // already primitive, leading coefficient positive (a division by 1 changes nothing)
   for (auto& c : q) mpz_divexact(c.get_mpz_t(), c.get_mpz_t(), g.get_mpz_t());
   return q;
 }

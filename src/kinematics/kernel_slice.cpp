@@ -10,6 +10,7 @@
 #include "kinematics/slice_cells.hpp"
 #include "curves/pose.hpp"
 #include "curves/algebraic_overlap.hpp"
+#include "algebra/rational_order.hpp"
 #include "algebra/rational_root.hpp"
 #include "algebra/real_filters.hpp"
 #include "algebra/square_free_memo.hpp"
@@ -559,10 +560,13 @@ class KernelSlicer final : public PairSlicer {
         }
         int last = first;
         while (last + 1 < follower_cells && (mask & (std::uint32_t(1) << (last + 1)))) ++last;
-        Rational lo = std::max(range_lo, edges[first]);
-        Rational hi = std::min(range_hi, edges[last + 1]);
+        // [lo, hi] = [max(range_lo, edges[first]), min(range_hi, edges[last + 1])], read in place
+        // (exact order, one-limb values in machine integers: compare_rationals)
+        const Rational& lo = algebra::compare_rationals(range_lo, edges[first]) < 0 ? edges[first] : range_lo;
+        const Rational& hi = algebra::compare_rationals(edges[last + 1], range_hi) < 0 ? edges[last + 1] : range_hi;
         first = last + 1;
-        if (hi < lo) continue;
+        const int hi_vs_lo = algebra::compare_rationals(hi, lo);
+        if (hi_vs_lo < 0) continue;
         if (!curve.interval.evaluate(value_box, algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)})
                  .contains_zero())
           continue;
@@ -572,7 +576,7 @@ class KernelSlicer final : public PairSlicer {
           algebra::trim(p);
           substituted = true;
         };
-        if (options_.monotone_runs && lo < hi &&
+        if (options_.monotone_runs && hi_vs_lo > 0 &&
             !curve.follower_slope.evaluate(value_box, algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)})
                  .contains_zero()) {
           // P(value, y) is strictly monotone on [lo, hi] (its y-derivative's enclosure over the
