@@ -1,4 +1,5 @@
 #include "algebra/exact_real.hpp"
+#include "algebra/interval_times.hpp"
 #include "algebra/ordinate.hpp"
 #include "algebra/near_quotient.hpp"
 #include "algebra/rational_root.hpp"
@@ -445,7 +446,8 @@ class SignFilter {
   int sign(Interval x) const {
     if (coefficients_.empty()) return 0;
     Interval value = coefficients_.back();
-    for (std::size_t i = coefficients_.size() - 1; i-- > 0;) value = value * x + coefficients_[i];
+    // (operator*'s bounds: interval_detail::times)
+    for (std::size_t i = coefficients_.size() - 1; i-- > 0;) value = interval_detail::times(value, x) + coefficients_[i];
     if (!std::isfinite(value.lo) || !std::isfinite(value.hi)) return 0;
     if (value.lo > 0) return 1;
     if (value.hi < 0) return -1;

@@ -10,6 +10,7 @@
 #include "kinematics/slice_cells.hpp"
 #include "curves/pose.hpp"
 #include "curves/algebraic_overlap.hpp"
+#include "algebra/interval_times.hpp"
 #include "algebra/rational_order.hpp"
 #include "algebra/rational_root.hpp"
 #include "algebra/real_filters.hpp"
@@ -65,6 +66,9 @@ IntegerPolynomial2 follower_derivative(const IntegerPolynomial2& polynomial) {
 
 // Interval enclosure of an integer polynomial divided by a power of two, so that coefficients
 // of any size stay finite in double (the zero set and the signs are those of the polynomial).
+// (Horner's scheme by interval_detail::times: the bounds of operator*, so the same enclosures;
+// the slicer's boxes mostly keep one sign — a driver value's enclosure, a run of follower cells,
+// a double point.)
 class ScaledIntervalPolynomial {
  public:
   ScaledIntervalPolynomial() = default;
@@ -85,8 +89,8 @@ class ScaledIntervalPolynomial {
     algebra::Interval result{0, 0};
     for (auto row = rows_.rbegin(); row != rows_.rend(); ++row) {
       algebra::Interval inner{0, 0};
-      for (auto c = row->rbegin(); c != row->rend(); ++c) inner = inner * y + *c;
-      result = result * x + inner;
+      for (auto c = row->rbegin(); c != row->rend(); ++c) inner = algebra::interval_detail::times(inner, y) + *c;
+      result = algebra::interval_detail::times(result, x) + inner;
     }
     // an overflow or an undefined product must not hide a zero
     if (!(result.lo <= result.hi)) return algebra::Interval{-HUGE_VAL, HUGE_VAL};
@@ -98,14 +102,14 @@ class ScaledIntervalPolynomial {
     for (auto row = rows_.rbegin(); row != rows_.rend(); ++row) {
       if (result.size() < row->size()) result.resize(row->size(), algebra::Interval{0, 0});
       for (std::size_t j = 0; j < result.size(); ++j)
-        result[j] = result[j] * x + (j < row->size() ? (*row)[j] : algebra::Interval{0, 0});
+        result[j] = algebra::interval_detail::times(result[j], x) + (j < row->size() ? (*row)[j] : algebra::Interval{0, 0});
     }
     return result;
   }
   /// A polynomial of at_x at y: an enclosure of the polynomial at (x, y).
   static algebra::Interval evaluate_y(const std::vector<algebra::Interval>& coefficients, algebra::Interval y) {
     algebra::Interval result{0, 0};
-    for (auto c = coefficients.rbegin(); c != coefficients.rend(); ++c) result = result * y + *c;
+    for (auto c = coefficients.rbegin(); c != coefficients.rend(); ++c) result = algebra::interval_detail::times(result, y) + *c;
     if (!(result.lo <= result.hi)) return algebra::Interval{-HUGE_VAL, HUGE_VAL};
     return result;
   }
