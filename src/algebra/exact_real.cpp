@@ -1,4 +1,5 @@
 #include "algebra/exact_real.hpp"
+#include "algebra/interval_times.hpp"
 #include "algebra/ordinate.hpp"
 #include "algebra/near_quotient.hpp"
 #include "algebra/rational_root.hpp"
@@ -142,6 +143,7 @@ Polynomial primitive_part(const Polynomial& p) {
   if (q.empty()) return q;
   mpz_class g = content(q);
   if (sgn(q.back()) < 0) g = -g;
+  if (g == 1) return q;   // already primitive, leading coefficient positive (a division by 1 changes nothing)
   for (auto& c : q) mpz_divexact(c.get_mpz_t(), c.get_mpz_t(), g.get_mpz_t());
   return q;
 }
@@ -444,7 +446,8 @@ class SignFilter {
   int sign(Interval x) const {
     if (coefficients_.empty()) return 0;
     Interval value = coefficients_.back();
-    for (std::size_t i = coefficients_.size() - 1; i-- > 0;) value = value * x + coefficients_[i];
+    // (operator*'s bounds: interval_detail::times)
+    for (std::size_t i = coefficients_.size() - 1; i-- > 0;) value = interval_detail::times(value, x) + coefficients_[i];
     if (!std::isfinite(value.lo) || !std::isfinite(value.hi)) return 0;
     if (value.lo > 0) return 1;
     if (value.hi < 0) return -1;

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <mutex>
 #include <numbers>
@@ -819,15 +820,6 @@ class BlockedSpaceCuller {
         if (slot < 0) slot = static_cast<int>(slots_[side]++);
       }
     }
-    // the cell's poses: a slot per core and per feature slot (see CellPoses)
-    for (int side = 0; side < 2; ++side) {
-      CellPoses& posed = posed_[side];
-      posed.core_x.resize(cores_[side]->size());
-      posed.core_y.resize(cores_[side]->size());
-      posed.core_stamp.assign(cores_[side]->size(), 0);
-      posed.boxes.resize(slots_[side]);
-      posed.box_stamp.assign(slots_[side], 0);
-    }
     memo_ = cell_pose_memo_switch();
     depths_ = static_cast<std::size_t>(grid_ ? std::max(grid_->depth(), min_grid_depth) : max_depth) + 1;
     if (grid_) return;
@@ -910,28 +902,74 @@ class BlockedSpaceCuller {
     return pairs;
   }
 
-  // One part's pose over the cell being visited, with the world boxes of its features and the
-  // posed centres of its cores computed on first use in that cell (a slot is the cell's when its
-  // stamp is the cell's). A cell uses them only before it visits its children, so one set per
-  // part serves the whole walk: nothing is allocated per cell or per walk. Each value is a
-  // function of (the part's axis interval, the feature or core), computed by the same
-  // operations whichever cell asks for it.
+  // One part's pose over one axis interval, with the world boxes of its features and the posed
+  // centres of its cores computed on first use (a slot holds the interval's value when its stamp
+  // is the set's). Each value is a function of (the part's axis interval, the feature or core),
+  // computed by the same operations whichever cell asks for it.
   struct CellPoses {
     PoseBox pose;
-    std::uint64_t stamp = 0;
+    std::uint64_t key_lo = 0, key_hi = 0;   // the interval's bits (valid when stamp != 0)
+    std::uint64_t stamp = 0;                // 0: holds no interval
     std::vector<WorldBox> boxes;
     std::vector<std::uint64_t> box_stamp;
     std::vector<Interval> core_x, core_y;
     std::vector<std::uint64_t> core_stamp;
   };
+  // The sets of one part at one depth of the quadtree: the last four axis intervals met there. A
+  // cell's children split its intervals, so the cells of one depth met in a row share an interval
+  // of each part with a sibling or a cousin (the four children of a cell: two x intervals, two y
+  // intervals; the children of its next sibling along y: the same x intervals again) — what a
+  // cache keyed by every interval shared, without its memory. A cell reads its depth's sets only
+  // before visiting its children (which use the next depth's), so no set changes under it.
+  static constexpr int pose_ways = 4;
+  struct PoseMemo {
+    CellPoses way[pose_ways];
+    int next = 0;   // the way replaced on the next miss (round robin)
+  };
+  // Per thread, shared by the cullers as the lists are (a walk never runs inside another): every
+  // set is emptied when a walk starts (size_lists) and its slots only grow, so a walk allocates
+  // nothing once the thread has met the largest part. [depth][side]. Only while the sets are
+  // small (memo_budget: a chart box's few features, as in a grid's cull); larger parts (the
+  // gears' strips, hundreds of cores and features) use one set per part for every cell, as
+  // before the memo, so the thread's memory stays that of one set per part.
+  static constexpr std::size_t memo_budget = std::size_t(1) << 20;   // bytes per thread
+  static std::vector<std::array<PoseMemo, 2>>& thread_poses() {
+    thread_local std::vector<std::array<PoseMemo, 2>> poses;
+    return poses;
+  }
+  // Stamps are unique per thread (a set's stamp is new whenever it takes an interval), so a slot
+  // stamped for another interval or another culler never passes for this one.
+  static std::uint64_t& thread_stamp() {
+    thread_local std::uint64_t stamp = 0;
+    return stamp;
+  }
+  static std::uint64_t bits_of(double value) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    return bits;
+  }
 
-  // The poses of one part over the cell `stamp`, its axis interval `interval` (a fixed part: the
-  // constant key 0): a function of the part's motion, its axis' half-turn flag and the interval.
-  CellPoses& pose_cell(int side, const Interval& interval, std::uint64_t stamp) {
-    CellPoses& posed = posed_[side];
+  // The poses of one part over a cell of depth `depth` whose axis interval is `interval` (a fixed
+  // part: the constant key 0): a function of the part's motion, its axis' half-turn flag and the
+  // interval's bits; the depth's set holding that interval when there is one (memo on), else a set
+  // given the interval with a new stamp.
+  CellPoses& pose_cell(int side, const Interval& interval, std::size_t depth) {
+    PoseMemo& memo = thread_poses()[memo_levels_ == 1 ? 0 : depth][static_cast<std::size_t>(side)];
+    const std::uint64_t lo = bits_of(interval.lo), hi = bits_of(interval.hi);
+    if (memo_) {
+      for (int w = 0; w < ways_; ++w) {
+        CellPoses& held = memo.way[w];
+        if (held.stamp != 0 && held.key_lo == lo && held.key_hi == hi) return held;
+      }
+    }
+    const int w = memo_ ? memo.next : 0;
+    memo.next = (w + 1) % ways_;
+    CellPoses& posed = memo.way[w];
     const bool first_moves = motion_[0].kind != MotionKind::fixed;
     posed.pose = pose_over(motion_[side], side == 0 || !first_moves ? x_.half_turn : y_.half_turn, interval);
-    posed.stamp = stamp;
+    posed.key_lo = lo;
+    posed.key_hi = hi;
+    posed.stamp = ++thread_stamp();
     return posed;
   }
 
@@ -982,9 +1020,8 @@ class BlockedSpaceCuller {
     // the interval each part's pose depends on (a fixed part: a constant key)
     Interval key_a = first_moves ? cx : Interval(0);
     Interval key_b = motion_[1].kind == MotionKind::fixed ? Interval(0) : (first_moves ? cy : cx);
-    const std::uint64_t stamp = ++stamp_;
-    CellPoses& cache_a = pose_cell(0, key_a, stamp);
-    CellPoses& cache_b = pose_cell(1, key_b, stamp);
+    CellPoses& cache_a = pose_cell(0, key_a, static_cast<std::size_t>(depth));
+    CellPoses& cache_b = pose_cell(1, key_b, static_cast<std::size_t>(depth));
     const PoseBox& pa = cache_a.pose;
     const PoseBox& pb = cache_b.pose;
     // Blocked: some pair of inscribed disks certainly overlaps everywhere in the cell.
@@ -1003,15 +1040,15 @@ class BlockedSpaceCuller {
       auto [i, j] = (*pairs_)[static_cast<std::size_t>(k)];
       auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
       auto sa = static_cast<std::size_t>(slot_[0][ui]), sb = static_cast<std::size_t>(slot_[1][uj]);
-      if (!memo_ || cache_a.box_stamp[sa] != stamp) {
+      if (!memo_ || cache_a.box_stamp[sa] != cache_a.stamp) {
         const BodyDisk& disk = (*disks_[0])[ui];
         cache_a.boxes[sa] = world_box(pa, disk.x, disk.y, disk.radius);
-        cache_a.box_stamp[sa] = stamp;
+        cache_a.box_stamp[sa] = cache_a.stamp;
       }
-      if (!memo_ || cache_b.box_stamp[sb] != stamp) {
+      if (!memo_ || cache_b.box_stamp[sb] != cache_b.stamp) {
         const BodyDisk& disk = (*disks_[1])[uj];
         cache_b.boxes[sb] = world_box(pb, disk.x, disk.y, disk.radius);
-        cache_b.box_stamp[sb] = stamp;
+        cache_b.box_stamp[sb] = cache_b.stamp;
       }
       if (cache_a.boxes[sa].meets(cache_b.boxes[sb])) meeting.push_back(k);
     }
@@ -1065,8 +1102,6 @@ class BlockedSpaceCuller {
   const std::vector<std::pair<int, int>>* pairs_ = nullptr;
   std::vector<char>* needed_ = nullptr;
   std::size_t cells_ = 0;
-  CellPoses posed_[2];
-  std::uint64_t stamp_ = 0;   // the cells visited so far (a cell's stamp: never 0)
   bool memo_ = true;          // cell_pose_memo_switch() when prepared
   BlockedCells* grid_ = nullptr;
   // prepare(): the candidate indices and the root cell with its near core pairs; walk(): its filter
@@ -1089,11 +1124,42 @@ class BlockedSpaceCuller {
     return lists;
   }
   // (sized before the root is visited: no list moves while a cell holds its parent's)
-  void size_lists() const {
+  // (and the pose memo: every set emptied, its slots grown to this culler's cores and features)
+  void size_lists() {
     if (thread_lists().size() < depths_) thread_lists().resize(depths_);
+    // the memo's shape: a set per depth and way while all of them fit the budget, else one
+    std::size_t set_bytes = 0;
+    for (std::size_t side = 0; side < 2; ++side)
+      set_bytes += cores_[side]->size() * (2 * sizeof(Interval) + sizeof(std::uint64_t)) +
+                   slots_[side] * (sizeof(WorldBox) + sizeof(std::uint64_t));
+    const bool small = set_bytes * depths_ * pose_ways <= memo_budget;
+    memo_levels_ = small ? depths_ : 1;
+    ways_ = small ? pose_ways : 1;
+    auto& poses = thread_poses();
+    if (poses.size() < memo_levels_) poses.resize(memo_levels_);
+    for (std::size_t depth = 0; depth < memo_levels_; ++depth)
+      for (std::size_t side = 0; side < 2; ++side)
+        for (int w = 0; w < ways_; ++w) {
+          CellPoses& posed = poses[depth][side].way[w];
+          posed.stamp = 0;
+          poses[depth][side].next = 0;
+          const std::size_t cores = cores_[side]->size(), slots = slots_[side];
+          if (posed.core_stamp.size() < cores) {
+            posed.core_x.resize(cores);
+            posed.core_y.resize(cores);
+            posed.core_stamp.resize(cores, 0);
+          }
+          if (posed.box_stamp.size() < slots) {
+            posed.boxes.resize(slots);
+            posed.box_stamp.resize(slots, 0);
+          }
+        }
   }
   Scratch& scratch_at(std::size_t depth) const { return thread_lists()[depth]; }
   std::size_t depths_ = max_depth + 1;
+  // the pose memo's shape for this culler's walks (size_lists): its depths and ways
+  std::size_t memo_levels_ = 1;
+  int ways_ = 1;
 };
 
 // ============================================================================ exact kernels

@@ -10,6 +10,8 @@
 #include "kinematics/slice_cells.hpp"
 #include "curves/pose.hpp"
 #include "curves/algebraic_overlap.hpp"
+#include "algebra/interval_times.hpp"
+#include "algebra/rational_order.hpp"
 #include "algebra/rational_root.hpp"
 #include "algebra/real_filters.hpp"
 #include "algebra/square_free_memo.hpp"
@@ -64,6 +66,9 @@ IntegerPolynomial2 follower_derivative(const IntegerPolynomial2& polynomial) {
 
 // Interval enclosure of an integer polynomial divided by a power of two, so that coefficients
 // of any size stay finite in double (the zero set and the signs are those of the polynomial).
+// (Horner's scheme by interval_detail::times: the bounds of operator*, so the same enclosures;
+// the slicer's boxes mostly keep one sign — a driver value's enclosure, a run of follower cells,
+// a double point.)
 class ScaledIntervalPolynomial {
  public:
   ScaledIntervalPolynomial() = default;
@@ -84,8 +89,8 @@ class ScaledIntervalPolynomial {
     algebra::Interval result{0, 0};
     for (auto row = rows_.rbegin(); row != rows_.rend(); ++row) {
       algebra::Interval inner{0, 0};
-      for (auto c = row->rbegin(); c != row->rend(); ++c) inner = inner * y + *c;
-      result = result * x + inner;
+      for (auto c = row->rbegin(); c != row->rend(); ++c) inner = algebra::interval_detail::times(inner, y) + *c;
+      result = algebra::interval_detail::times(result, x) + inner;
     }
     // an overflow or an undefined product must not hide a zero
     if (!(result.lo <= result.hi)) return algebra::Interval{-HUGE_VAL, HUGE_VAL};
@@ -97,14 +102,14 @@ class ScaledIntervalPolynomial {
     for (auto row = rows_.rbegin(); row != rows_.rend(); ++row) {
       if (result.size() < row->size()) result.resize(row->size(), algebra::Interval{0, 0});
       for (std::size_t j = 0; j < result.size(); ++j)
-        result[j] = result[j] * x + (j < row->size() ? (*row)[j] : algebra::Interval{0, 0});
+        result[j] = algebra::interval_detail::times(result[j], x) + (j < row->size() ? (*row)[j] : algebra::Interval{0, 0});
     }
     return result;
   }
   /// A polynomial of at_x at y: an enclosure of the polynomial at (x, y).
   static algebra::Interval evaluate_y(const std::vector<algebra::Interval>& coefficients, algebra::Interval y) {
     algebra::Interval result{0, 0};
-    for (auto c = coefficients.rbegin(); c != coefficients.rend(); ++c) result = result * y + *c;
+    for (auto c = coefficients.rbegin(); c != coefficients.rend(); ++c) result = algebra::interval_detail::times(result, y) + *c;
     if (!(result.lo <= result.hi)) return algebra::Interval{-HUGE_VAL, HUGE_VAL};
     return result;
   }
@@ -559,10 +564,13 @@ class KernelSlicer final : public PairSlicer {
         }
         int last = first;
         while (last + 1 < follower_cells && (mask & (std::uint32_t(1) << (last + 1)))) ++last;
-        Rational lo = std::max(range_lo, edges[first]);
-        Rational hi = std::min(range_hi, edges[last + 1]);
+        // [lo, hi] = [max(range_lo, edges[first]), min(range_hi, edges[last + 1])], read in place
+        // (exact order, one-limb values in machine integers: compare_rationals)
+        const Rational& lo = algebra::compare_rationals(range_lo, edges[first]) < 0 ? edges[first] : range_lo;
+        const Rational& hi = algebra::compare_rationals(edges[last + 1], range_hi) < 0 ? edges[last + 1] : range_hi;
         first = last + 1;
-        if (hi < lo) continue;
+        const int hi_vs_lo = algebra::compare_rationals(hi, lo);
+        if (hi_vs_lo < 0) continue;
         if (!curve.interval.evaluate(value_box, algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)})
                  .contains_zero())
           continue;
@@ -572,7 +580,7 @@ class KernelSlicer final : public PairSlicer {
           algebra::trim(p);
           substituted = true;
         };
-        if (options_.monotone_runs && lo < hi &&
+        if (options_.monotone_runs && hi_vs_lo > 0 &&
             !curve.follower_slope.evaluate(value_box, algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)})
                  .contains_zero()) {
           // P(value, y) is strictly monotone on [lo, hi] (its y-derivative's enclosure over the

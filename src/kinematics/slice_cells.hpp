@@ -2,9 +2,11 @@
 // follower cells holding a value or meeting a range (cells [edges[c], edges[c + 1]], closed,
 // edges ascending), and the first point of a slice not below a rational. Each answers what a
 // linear scan with the same exact comparisons answers (tests/unit/kinematics_slice_cells_test.cpp),
-// in O(log n) comparisons instead of two per cell.
+// in O(log n) comparisons instead of two per cell (one-limb values compared in machine integers,
+// compare_rationals).
 #pragma once
 
+#include "algebra/rational_order.hpp"
 #include "algebra/real_filters.hpp"
 
 #include <hipair/rational.hpp>
@@ -21,7 +23,7 @@ inline std::size_t first_not_below(const std::vector<Rational>& edges, const Rat
   std::size_t lo = 0, hi = edges.size();
   while (lo < hi) {
     const std::size_t middle = lo + (hi - lo) / 2;
-    if (edges[middle] < value) lo = middle + 1;
+    if (cspace::algebra::compare_rationals(edges[middle], value) < 0) lo = middle + 1;
     else hi = middle;
   }
   return lo;
@@ -51,7 +53,7 @@ inline std::uint32_t cells_meeting(const std::vector<Rational>& edges, const Rat
   std::size_t a = 0, b = edges.size();
   while (a < b) {
     const std::size_t middle = a + (b - a) / 2;
-    if (hi < edges[middle]) b = middle;
+    if (cspace::algebra::compare_rationals(hi, edges[middle]) < 0) b = middle;
     else a = middle + 1;
   }
   const std::size_t end = a < cells ? a : cells;   // cells [first, end)

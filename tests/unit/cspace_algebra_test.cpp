@@ -2,6 +2,7 @@
 // comparison of algebraic numbers, simplest rationals, substitutions and signs at algebraic
 // points. Values are chosen where doubles fail (2^53 + 1, roots 10^-20 apart).
 #include "algebra/exact_real.hpp"
+#include "algebra/interval_times.hpp"
 #include "algebra/real_filters.hpp"
 
 #include <hipair/error.hpp>
@@ -443,6 +444,11 @@ TEST(CSpaceAlgebra, ProductsByAKnownSignAreTheGenericProducts) {
   for (int trial = 0; trial < 200000; ++trial) {
     const Interval a = random_interval(state);
     Interval b = random_interval(state);
+    // the dispatch by b's sign (the slicer's and the sign filter's Horner schemes), every case
+    const Interval dispatched = interval_detail::times(a, b), generic_product = a * b;
+    ASSERT_TRUE(same_bits(dispatched, generic_product))
+        << "times([" << a.lo << ", " << a.hi << "], [" << b.lo << ", " << b.hi << "]): " << dispatched.lo << " "
+        << dispatched.hi << " against " << generic_product.lo << " " << generic_product.hi;
     if (b.lo >= 0) {
       ++nonnegative;
       const Interval fast = interval_detail::times_nonnegative(a, b), generic = a * b;

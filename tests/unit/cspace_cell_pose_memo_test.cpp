@@ -6,13 +6,20 @@
 // strips (CurveGenerator::select), the same pairs returned walk by walk by the lazily extended
 // selections the kernel slicer uses (incremental_select, windows of the follower axis in random
 // order), and the same curves from an operating-region tile's grid cull (the builder's path).
+// Session 37: the memo keeps, per thread, the poses of the last four axis intervals per depth and
+// part (while they fit its budget), across cells and cullers: the grid culls of generated pairs
+// with the same axes (the same teeth, another backlash and centre distance) run one after the
+// other on the same tiles, and the Geneva pair's whole chart pairs, side by side with the plain
+// cull.
 #include "curves/contact_curves.hpp"
 #include "oracle/blocked_tester.hpp"
 #include "spur_gear_pairs.hpp"
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <memory>
 #include <random>
 #include <string>
@@ -146,6 +153,77 @@ TEST(CullCellPoseMemo, TileGridCullsAreThePlainCullsOnGeneratedGearPairs) {
     }
   }
   EXPECT_GT(curves, 0u);
+}
+
+// The labels of the curves a grid cull keeps in the tile (tx, ty) of a pair.
+std::vector<std::pair<std::string, std::string>> grid_culled_labels(const Model& model, const cspace::PairAxes& axes,
+                                                                    const cspace::ChartAxis& tx,
+                                                                    const cspace::ChartAxis& ty, int depth) {
+  auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
+  EXPECT_TRUE(tester->usable());
+  cspace::CurveOptions options;
+  options.blocked_grid = true;
+  cspace::CurveGenerator generator(model, axes, options);
+  cspace::BlockedCells cells(tester, tx, ty, 2, depth);
+  std::vector<std::pair<std::string, std::string>> labels;
+  for (const cspace::ContactCurve& curve : generator.generate(tx, ty, nullptr, &cells))
+    labels.emplace_back(curve.label, curve.polynomial.is_zero() ? "0" : "f");
+  return labels;
+}
+
+TEST(CullCellPoseMemo, PosesKeptAcrossCellsAndCullersAreThePlainCulls) {
+  std::mt19937_64 random(3701);
+  std::size_t curves = 0, tiles = 0;
+  for (int trial = 0; trial < 2; ++trial) {
+    // two pairs with the same teeth: the same charts, other shapes and centre distances
+    const long z1 = 6 + static_cast<long>(random() % 3), z2 = 6 + static_cast<long>(random() % 3);
+    GearPair pairs[2];
+    for (GearPair& pair : pairs) {
+      pair.model = test_gears::spur_gear_pair(random, z1, z2, pair.name);
+      pair.axes = cspace::pair_axes(pair.model, 0, 1);
+      pair.layout = cspace::chart_layout(pair.model, pair.axes);
+    }
+    SCOPED_TRACE(pairs[0].name + " then " + pairs[1].name);
+    ASSERT_EQ(pairs[0].layout.x_charts.size(), pairs[1].layout.x_charts.size());
+    ASSERT_EQ(pairs[0].layout.y_charts.size(), pairs[1].layout.y_charts.size());
+    // tiles of 1/16 and 1/4 of a chart pair, the same for both pairs, both pairs culled on each
+    // tile in turn (the second reads the memo after the first, on the same axis intervals)
+    for (int tile = 0; tile < 4; ++tile) {
+      const std::size_t cx = random() % pairs[0].layout.x_charts.size();
+      const std::size_t cy = random() % pairs[0].layout.y_charts.size();
+      ASSERT_EQ(pairs[0].layout.x_charts[cx].lo, pairs[1].layout.x_charts[cx].lo);
+      ASSERT_EQ(pairs[0].layout.y_charts[cy].hi, pairs[1].layout.y_charts[cy].hi);
+      const long cells = tile % 2 == 0 ? 16 : 4;
+      const long i = tile == 0 ? 8 : static_cast<long>(random() % cells);
+      const long j = tile == 0 ? 8 : static_cast<long>(random() % cells);
+      const int depth = 4 + tile % 3;
+      auto [on, off] = both_ways([&] {
+        std::vector<std::vector<std::pair<std::string, std::string>>> labels;
+        for (int repeat = 0; repeat < 2; ++repeat)
+          for (const GearPair& pair : pairs)
+            labels.push_back(grid_culled_labels(pair.model, pair.axes,
+                                                sub_axis(pair.layout.x_charts[cx], i, 1, cells),
+                                                sub_axis(pair.layout.y_charts[cy], j, 1, cells), depth));
+        return labels;
+      });
+      EXPECT_EQ(on, off) << "tile " << tile;
+      for (const auto& labels : on) curves += labels.size();
+      ++tiles;
+    }
+  }
+  // the Geneva pair's chart pairs, as its C-space build culls them (the case the memo is for)
+  const Model geneva = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json");
+  const cspace::PairAxes axes = cspace::pair_axes(geneva, 0, 1);
+  const cspace::ChartLayout layout = cspace::chart_layout(geneva, axes);
+  for (const cspace::ChartAxis& x : layout.x_charts)
+    for (const cspace::ChartAxis& y : layout.y_charts) {
+      auto [on, off] = both_ways([&] { return grid_culled_labels(geneva, axes, x, y, 6); });
+      EXPECT_EQ(on, off);
+      curves += on.size();
+      ++tiles;
+    }
+  EXPECT_GT(curves, 0u);
+  EXPECT_GT(tiles, 8u);
 }
 
 }  // namespace
