@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstring>
 #include <array>
+#include <new>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -135,7 +136,13 @@ std::string read_file(const std::filesystem::path& path, std::size_t most_bytes)
   std::array<char, 65536> chunk{};
   do {
     in.read(chunk.data(), chunk.size());
-    text.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
+    try {
+      text.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
+    } catch (const std::bad_alloc&) {   // an endless input (a device) under a memory limit
+      const std::size_t read = text.size();
+      std::string().swap(text);
+      throw IoError("cannot read '" + path.string() + "': out of memory after " + std::to_string(read) + " bytes");
+    }
     if (text.size() > most_bytes)
       throw IoError("cannot read '" + path.string() + "': it is larger than " + std::to_string(most_bytes) + " bytes");
   } while (in);

@@ -370,6 +370,17 @@ for round in 1 2 3 4 5 6; do
   [ ! -e "$work/set-$round.json" ] || fail "certify --set '$item' wrote its output"
 done
 
+# An endless certificate (a device) under a memory limit: one line naming the file, exit 1
+# (main 897e48d said "invalid: out of memory" without naming what).
+for limit in 300000 600000; do
+  out=$( (ulimit -v $limit; timeout 120 "$verify" /dev/zero "$source/examples/models/geneva.json") 2>&1 )
+  code=$?
+  [ $code -eq 1 ] || fail "hipair-verify /dev/zero under ulimit -v $limit: exit $code: $(echo "$out" | head -c 300)"
+  echo "$out" | grep -q "cannot read '/dev/zero'" \
+    || fail "hipair-verify /dev/zero under ulimit -v $limit does not name the file: $(echo "$out" | head -c 300)"
+  [ "$(echo "$out" | wc -l)" -eq 1 ] || fail "hipair-verify /dev/zero: more than one line: $(echo "$out" | head -c 300)"
+done
+
 if [ $failures -ne 0 ]; then
   echo "$failures certify CLI check(s) failed"
   exit 1
