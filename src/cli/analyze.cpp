@@ -74,8 +74,8 @@ Rational coordinate_value(const std::string& text, bool angle, const std::string
   Rational value;
   try {
     value = parse_rational(body);
-  } catch (const Error&) {
-    throw ModelError("", what + ": '" + text + "' is not a number");
+  } catch (const Error& error) {   // the parser's message quotes at most 40 characters of it
+    throw ModelError("", what + ": " + error.what());
   }
   if (angle && suffix == "deg") return degrees_to_radians(value);
   if (!angle && suffix != "mm") throw ModelError("", what + ": a translating driver takes mm");

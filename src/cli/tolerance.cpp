@@ -89,8 +89,8 @@ Rational coordinate(const std::string& text, const std::string& option) {
   Rational value;
   try {
     value = parse_rational(body);
-  } catch (const Error&) {
-    throw ModelError("", option + ": '" + text + "' is not a number");
+  } catch (const Error& error) {   // the parser's message quotes at most 40 characters of it
+    throw ModelError("", option + ": " + error.what());
   }
   if (degrees) return degrees_to_radians(value);
   return value;

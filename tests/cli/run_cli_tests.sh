@@ -859,6 +859,20 @@ done
 # No stray temporary files left by atomic writes.
 ls -a "$work" | grep -q '\.tmp' && fail "temporary files left behind"
 
+# A 100 000-digit --range value: one short line quoting at most 40 characters of it, exit 2, no
+# output directory (main 897e48d echoed all 100 KB; hunt37's finding).
+long_number="0.$(printf '0%.0s' $(seq 1 100000))1"
+for command in tolerance analyze; do
+  rm -rf "$work/long-range"
+  "$hipair" $command "$source/examples/models/geneva.json" --range "0:$long_number" --out "$work/long-range" \
+    >"$work/long-range.out" 2>&1
+  code=$?
+  [ $code -eq 2 ] || fail "$command --range with a 100 000-digit number: exit $code"
+  [ "$(wc -c <"$work/long-range.out")" -lt 300 ] || fail "$command --range echoes a 100 000-digit number: $(head -c 200 "$work/long-range.out")"
+  grep -q -- "--range: '0.000" "$work/long-range.out" || fail "$command --range: the message does not name the option: $(head -c 200 "$work/long-range.out")"
+  [ ! -e "$work/long-range" ] || fail "$command --range with a 100 000-digit number wrote its output directory"
+done
+
 if [ $failures -ne 0 ]; then
   echo "$failures CLI check(s) failed"
   exit 1
