@@ -264,4 +264,21 @@ class PlanarSystemSimulation {
   std::unique_ptr<Impl> impl_;
 };
 
+/// The model's own fastest motion (docs/simulation.md, "Stiff inputs"): the largest angular
+/// frequency ω (rad per the model's time unit) of the free parts' springs and pendulums, read from
+/// the dynamics data alone (nothing is built). Per free (not fixed, not driven) part: its own
+/// spring, k/I or k/m; each spring between two parts at each free end, k/m for a translating part,
+/// k·r²/I for a rotating one (r: the attachment point's distance from the pivot), both for a planar
+/// part (r from its centre of mass); gravity about a rotating part's pivot, m·|g|·r/I (r: the centre
+/// of mass's distance from it); a planar part hung from a spring, m·|g + F/m|·r/I per attachment.
+/// An explicit integrator resolving that motion takes at least about one step per period 2π/ω, so
+/// `simulate` refuses a run whose T·ω/2π exceeds its step budget before it starts. An estimate, not
+/// a bound: a spring left at rest is never excited. ω = 0 (and `pointer` empty) when no such motion.
+struct OwnFrequency {
+  double omega = 0;      ///< rad per time unit of the model
+  std::string pointer;   ///< JSON pointer of the data that sets it (a spring, the gravity)
+  std::string what;      ///< what sets it, e.g. "the torsional spring of part 'balance'"
+};
+OwnFrequency own_frequency(const Model& model);
+
 }  // namespace hipair

@@ -26,6 +26,7 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -420,6 +421,26 @@ std::string judge(const Verdict& verdict, const SweepRow& row, double t_end, con
   return out + ")";
 }
 
+// The model's own fastest motion against the step budget, before anything is built
+// (docs/simulation.md, "Stiff inputs"): a spring of stiffness 1e300 (or gravity of 1e300 on a
+// part hung from one) made steps of 1e-152 s, and the run went on for hours towards its budget.
+// An explicit integrator takes at least about one step per period 2π/ω of the fastest motion it
+// resolves, so a run whose T·ω/2π exceeds the budget is refused at once, naming the data.
+void check_own_frequency(const Model& model, const SimulateOptions& options) {
+  OwnFrequency f = own_frequency(model);
+  if (!(f.omega > 0)) return;
+  const double period = 2 * std::numbers::pi / f.omega, steps = options.t_end / period;
+  if (!(steps > static_cast<double>(options.max_steps))) return;
+  const std::string tu = model.simulation ? model.simulation->time_unit : SimulationSpec{}.time_unit;
+  throw ModelError(f.pointer, f.what + " sets the model's own period 2π/ω = " + number(period) + " " + tu +
+                                  ": --t-end " + number(options.t_end) + " " + tu + " needs at least about " +
+                                  (std::isfinite(steps) ? number(steps) : std::string("1e308")) +
+                                  " integration steps (one per period), beyond the step budget (--max-steps " +
+                                  std::to_string(options.max_steps) + "); nothing was run: give a --t-end of at most " +
+                                  number(period * static_cast<double>(options.max_steps)) + " " + tu +
+                                  ", a larger --max-steps, or a softer spring (a lighter load)");
+}
+
 int run_sweep(const SimulateOptions& options) {
   // NAME=A:B:N
   auto equals = options.sweep.find('=');
@@ -462,6 +483,7 @@ int run_sweep(const SimulateOptions& options) {
     std::vector<std::string> overrides = options.overrides;
     overrides.push_back(name + "=" + v.get_str());
     models.push_back(read_model_file(options.model, parameter_overrides(overrides, options.allow_out_of_tolerance)));
+    check_own_frequency(models.back(), options);
   }
   SimulationOptions sim_options;
   sim_options.accuracy = options.accuracy;
@@ -905,6 +927,7 @@ int run(const SimulateOptions& options) {
   if (!options.works_period.empty() || !options.works_advance.empty() || options.works_max_decay >= 0)
     throw ModelError("", "--works-period, --works-advance and --works-max-decay judge a --sweep's runs: give --sweep");
   Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
+  check_own_frequency(model, options);
   // parts free in the plane: one (PlanarSimulation) or several (PlanarSystemSimulation)
   std::size_t planar_count = 0;
   for (const Part& part : model.parts) planar_count += part.motion.kind == Motion::Kind::planar;

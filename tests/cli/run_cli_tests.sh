@@ -802,8 +802,29 @@ refused max-steps-planar "the run used up its step budget (--max-steps 5)" \
   simulate "$source/examples/models/peg-drop.json" --t-end 1 --max-steps 5 --no-pictures
 # a planar part to --t-end 1e150 (session 34: the first integration step was the whole span,
 # "the simulated configuration of a planar part is not finite"; pusher-blocks died of SIGFPE)
-refused t-end-1e150-planar "the run used up its step budget (--max-steps 30)" \
+# (session 38: the block's spring now refuses it before any step, its own period against the budget)
+refused t-end-1e150-planar "/simulation/springs/0: the spring between parts 'block' and 'frame' on part 'block' sets the model's own period" \
   simulate "$source/examples/models/spring-block.json" --t-end 1e150 --max-steps 30 --no-pictures
+# stiff inputs (session 38): a stiffness of 1e300, or gravity of 1e300 on a part hung from a spring,
+# made steps of 1e-152 s and ran for hours towards the budget; refused before anything is built,
+# naming the data, the period, the estimated steps and what lets the run go
+stiff="$work/stiff"
+mkdir -p "$stiff"
+sed 's/"stiffness": 1, "rest": 0/"stiffness": 1e300, "rest": 0/' "$bar" >"$stiff/bar.json"
+sed 's/"stiffness": 0.5, "rest": -20/"stiffness": 1e300, "rest": -20/' "$source/examples/models/cam-follower.json" >"$stiff/follower.json"
+sed 's/"stiffness": 0.05,/"stiffness": 1e300,/' "$source/examples/models/spring-block.json" >"$stiff/block.json"
+sed 's/"gravity": \[0, -9810\]/"gravity": [0, -1e300]/' "$source/examples/models/spring-block.json" >"$stiff/heavy.json"
+refused stiff-torsional "/parts/0/dynamics/torsional_spring: the torsional spring of part 'bar' sets the model's own period 2π/ω = 1.98691765316e-150 s: --t-end 0.3 s needs at least about 1.50987636313e+149 integration steps" \
+  simulate "$stiff/bar.json" --t-end 0.3
+refused stiff-linear "/parts/1/dynamics/linear_spring: the linear spring of part 'follower'" simulate "$stiff/follower.json" --t-end 0.3
+refused stiff-coupling "/simulation/springs/0: the spring between parts 'block' and 'frame'" simulate "$stiff/block.json" --t-end 0.2
+refused stiff-gravity "/simulation/gravity: the load on part 'block' hung from the spring" simulate "$stiff/heavy.json" --t-end 0.2
+refused stiff-sweep "the torsional spring of part 'bar'" simulate "$stiff/bar.json" --t-end 0.3 --sweep speed=1:2:2 --allow-out-of-tolerance
+grep -qF "beyond the step budget (--max-steps 2000000); nothing was run: give a --t-end of at most 3.97383530632e-144 s, a larger --max-steps, or a softer spring" \
+  "$work/refused-stiff-torsional.err" || fail "stiff-torsional: the message does not say what lets the run go: $(cat "$work/refused-stiff-torsional.err")"
+# the same stiff bar runs to a --t-end within its budget (a refusal only where the budget cannot suffice)
+"$hipair" simulate "$stiff/bar.json" --t-end 1e-150 --max-steps 100 --no-pictures --out "$work/stiff-short" >/dev/null 2>"$work/stiff-short.err"
+grep -qF "sets the model's own period" "$work/stiff-short.err" && fail "stiff bar refused at a --t-end its budget allows"
 refused t-end-1e300-planar-system "the run used up its step budget (--max-steps 30)" \
   simulate "$source/examples/models/pusher-blocks.json" --t-end 1e300 --max-steps 30 --no-pictures
 refused max-steps-and-step "T / H = 100 steps exceed the simulator's budget of 10 steps (--max-steps)" \
