@@ -203,6 +203,44 @@ std::string curve_label(const Model& model, const FeatureRef& first, const Featu
   return label;
 }
 
+namespace {
+
+// a · b, for a rational a = n / d and an integer b (out may be b)
+void times_denominator(mpz_class& out, const Rational& a, const mpz_class& b) {
+  mpz_mul(out.get_mpz_t(), a.get_den_mpz_t(), b.get_mpz_t());
+}
+
+}  // namespace
+
+void scaled_tangent(const Edge& edge, const Point& at, kernels::Vector<mpz_class>& out) {
+  // t = (tx, ty) = (nx / dx, ny / dy) (canonical: dx, dy > 0) scaled by dx · dy > 0:
+  // (nx · dy, ny · dx). A straight edge: t = target - source, with
+  // nx / dx = (a / b) - (c / e) = (a e - c b) / (b e), likewise in y.
+  if (!edge.is_arc()) {
+    thread_local mpz_class scratch;
+    const Rational& tx = edge.target.x;
+    const Rational& sx = edge.source.x;
+    const Rational& ty = edge.target.y;
+    const Rational& sy = edge.source.y;
+    // x numerator (a e - c b), times the y denominator (b' e')
+    mpz_mul(out.x.get_mpz_t(), tx.get_num_mpz_t(), sx.get_den_mpz_t());
+    mpz_mul(scratch.get_mpz_t(), sx.get_num_mpz_t(), tx.get_den_mpz_t());
+    mpz_sub(out.x.get_mpz_t(), out.x.get_mpz_t(), scratch.get_mpz_t());
+    mpz_mul(out.y.get_mpz_t(), ty.get_num_mpz_t(), sy.get_den_mpz_t());
+    mpz_mul(scratch.get_mpz_t(), sy.get_num_mpz_t(), ty.get_den_mpz_t());
+    mpz_sub(out.y.get_mpz_t(), out.y.get_mpz_t(), scratch.get_mpz_t());
+    // out.x · (y denominators), out.y · (x denominators): both positive
+    times_denominator(out.x, ty, out.x);
+    times_denominator(out.x, sy, out.x);
+    times_denominator(out.y, tx, out.y);
+    times_denominator(out.y, sx, out.y);
+    return;
+  }
+  const Point t = edge_tangent(edge, at);
+  mpz_mul(out.x.get_mpz_t(), t.x.get_num_mpz_t(), t.y.get_den_mpz_t());
+  mpz_mul(out.y.get_mpz_t(), t.y.get_num_mpz_t(), t.x.get_den_mpz_t());
+}
+
 std::vector<BodyFeature> part_features(const Model& model, std::size_t part_index, std::size_t* reflex_skipped,
                                        bool labels) {
   const Part& part = model.parts.at(part_index);
@@ -213,25 +251,25 @@ std::vector<BodyFeature> part_features(const Model& model, std::size_t part_inde
   for (std::size_t l = 0; l < part.loops.size(); ++l) {
     const Loop& loop = part.loops[l];
     std::size_t n = loop.edges.size();
-    // each edge's tangent at its source once: a straight edge's is also its tangent at the next
-    // vertex (the incoming one there); an arc's incoming tangent is taken at its target
-    std::vector<kernels::Vector<Rational>> outgoing(n);
-    for (std::size_t e = 0; e < n; ++e) {
-      Point t = edge_tangent(loop.edges[e], loop.edges[e].source);
-      outgoing[e] = kernels::Vector<Rational>{std::move(t.x), std::move(t.y)};
-    }
+    // each edge's tangent at its source once, as integers (scaled_tangent): a straight edge's is
+    // also its tangent at the next vertex (the incoming one there); an arc's incoming tangent is
+    // taken at its target. Kept per thread: after the first parts, no allocation.
+    thread_local std::vector<kernels::Vector<mpz_class>> outgoing;
+    thread_local kernels::Vector<mpz_class> incoming;
+    if (outgoing.size() < n) outgoing.resize(n);
+    for (std::size_t e = 0; e < n; ++e) scaled_tangent(loop.edges[e], loop.edges[e].source, outgoing[e]);
     for (std::size_t e = 0; e < n; ++e) {
       const Edge& edge = loop.edges[e];
       if (!edge.is_full_circle()) {
         const std::size_t p = (e + n - 1) % n;
         const Edge& previous = loop.edges[p];
+        auto sign = [](const mpz_class& r) { return sgn(r); };
         bool reflex;
         if (previous.is_arc()) {
-          Point t = edge_tangent(previous, edge.source);
-          reflex = kernels::strictly_reflex(kernels::Vector<Rational>{std::move(t.x), std::move(t.y)}, outgoing[e],
-                                            [](const Rational& r) { return sgn(r); });
+          scaled_tangent(previous, edge.source, incoming);
+          reflex = kernels::strictly_reflex(incoming, outgoing[e], sign);
         } else {
-          reflex = kernels::strictly_reflex(outgoing[p], outgoing[e], [](const Rational& r) { return sgn(r); });
+          reflex = kernels::strictly_reflex(outgoing[p], outgoing[e], sign);
         }
         if (reflex) {
           if (reflex_skipped) ++*reflex_skipped;

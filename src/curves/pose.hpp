@@ -159,6 +159,10 @@ std::optional<Rational> exact_square_root(const Rational& value);
 
 /// Tangent (direction of travel, not normalised) of an edge at a point on it.
 Point edge_tangent(const Edge& edge, const Point& at);
+/// edge_tangent(edge, at) scaled by a positive integer into integers (the same direction: every
+/// sign of a cross or dot product of such tangents is the rationals'), written into `out`'s
+/// storage; a straight edge's without rational temporaries.
+void scaled_tangent(const Edge& edge, const Point& at, kernels::Vector<mpz_class>& out);
 
 /// True when the direction `v` (from the arc's centre) lies in the closed sector.
 bool sector_contains(const kernels::ArcSector<Rational>& sector, const Point& v);

@@ -245,5 +245,92 @@ TEST(CSpaceFrontEndFixedCosts, PartFeaturesEqualAnIndependentWalkOnExampleAndGen
   EXPECT_GT(arcs, 40);
 }
 
+// Generated loops of random rational vertices (non-dyadic denominators, scaled by 10^-300 …
+// 10^300), with vertices put exactly on the line of their neighbours (straight corners: cross
+// zero, not strictly reflex) or where the loop turns back (antiparallel edges): part_features'
+// integer tangents (scaled_tangent) against the independent walk's rational cross products.
+TEST(CSpaceFrontEndFixedCosts, PartFeaturesOfRandomRationalLoopsAtExtremeScalesEqualAnIndependentWalk) {
+  std::mt19937_64 random(3838);
+  int reflex = 0, arcs = 0, straight = 0;
+  const int exponents[] = {0, -300, 300, -30, 30, 0};
+  for (int round = 0; round < 60; ++round) {
+    const Rational scale = power_of_ten(exponents[round % 6]);
+    const int n = 3 + static_cast<int>(random() % 9);
+    std::vector<Point> vertices;
+    for (int i = 0; i < n; ++i) {
+      const int kind = static_cast<int>(random() % 5);
+      if (i >= 2 && kind == 0) {   // on the line of the previous two, beyond or back
+        const Point& a = vertices[vertices.size() - 2];
+        const Point& b = vertices.back();
+        Rational t = random_rational(random, 7, 9, Rational(1));
+        if (t == 0) t = Rational(-2, 3);
+        vertices.push_back(Point{Rational(b.x + t * (b.x - a.x)), Rational(b.y + t * (b.y - a.y))});
+        ++straight;
+      } else {
+        vertices.push_back(Point{random_rational(random, 50, 11, scale), random_rational(random, 50, 13, scale)});
+      }
+    }
+    Model model;
+    Part part;
+    Loop loop;
+    for (int i = 0; i < n; ++i) {
+      Edge edge;
+      edge.source = vertices[static_cast<std::size_t>(i)];
+      edge.target = vertices[static_cast<std::size_t>((i + 1) % n)];
+      if (edge.source == edge.target) edge.target.x += scale;   // (no zero-length edge)
+      loop.edges.push_back(edge);
+    }
+    for (std::size_t i = 0; i < loop.edges.size(); ++i)   // closed: each source the previous target
+      loop.edges[(i + 1) % loop.edges.size()].source = loop.edges[i].target;
+    part.loops.push_back(loop);
+    part.name = "random";
+    model.parts.push_back(part);
+    expect_features_of(model, 0, "random " + std::to_string(round), reflex, arcs);
+  }
+  EXPECT_GT(reflex, 30);
+  EXPECT_GT(straight, 15);
+}
+
+// scaled_tangent against edge_tangent: the signs of cross and dot products of random tangents
+// of segments and arcs (both orientations), rational against integer, at 10^-300 … 10^300.
+TEST(CSpaceFrontEndFixedCosts, ScaledTangentsHaveTheRationalTangentsSigns) {
+  std::mt19937_64 random(3839);
+  const int exponents[] = {0, -300, 300, 7, -7};
+  int zero_cross = 0;
+  kernels::Vector<mpz_class> a, b;
+  for (int round = 0; round < 2000; ++round) {
+    const Rational scale = power_of_ten(exponents[round % 5]);
+    Edge edges[2];
+    Point at[2];
+    for (int k = 0; k < 2; ++k) {
+      Edge& e = edges[k];
+      e.source = Point{random_rational(random, 9, 7, scale), random_rational(random, 9, 5, scale)};
+      if (k == 1 && round % 3 == 0) {   // parallel or antiparallel to the first
+        Point d = cspace::edge_tangent(edges[0], at[0]);
+        Rational t = random_rational(random, 5, 4, Rational(1));
+        e.target = Point{Rational(e.source.x + t * d.x), Rational(e.source.y + t * d.y)};
+      } else {
+        e.target = Point{random_rational(random, 9, 3, scale), random_rational(random, 9, 11, scale)};
+      }
+      at[k] = e.source;
+      if (random() % 3 == 0) {
+        e.kind = Edge::Kind::arc;
+        e.center = Point{random_rational(random, 9, 7, scale), random_rational(random, 9, 3, scale)};
+        e.ccw = random() % 2 == 0;
+      }
+    }
+    const Point ra = cspace::edge_tangent(edges[0], at[0]), rb = cspace::edge_tangent(edges[1], at[1]);
+    cspace::scaled_tangent(edges[0], at[0], a);
+    cspace::scaled_tangent(edges[1], at[1], b);
+    const int cross = sgn(Rational(ra.x * rb.y - ra.y * rb.x)), dot = sgn(Rational(ra.x * rb.x + ra.y * rb.y));
+    zero_cross += cross == 0;
+    EXPECT_EQ(sgn(mpz_class(a.x * b.y - a.y * b.x)), cross) << round;
+    EXPECT_EQ(sgn(mpz_class(a.x * b.x + a.y * b.y)), dot) << round;
+    EXPECT_EQ(sgn(a.x), sgn(ra.x)) << round;
+    EXPECT_EQ(sgn(a.y), sgn(ra.y)) << round;
+  }
+  EXPECT_GT(zero_cross, 100);
+}
+
 }  // namespace
 }  // namespace hipair
