@@ -8,6 +8,7 @@
 #include "arrangement/circle_segment_traits.hpp"
 #include "arrangement/quadratic_traits.hpp"
 #include "oracle/blocked_tester.hpp"
+#include "core/progress_scope.hpp"
 
 #include <hipair/error.hpp>
 
@@ -1602,6 +1603,14 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     OrdinateClassifier classify_ordinate;
   };
   std::vector<Deferred> deferred(chart_count);
+  // progress (core/progress_scope.hpp: the caller's hook, when it installed one): the charts
+  // built, then (2-D) the charts classified, then the cells, as work units
+  const std::size_t progress_units = (input.dimension == 2 ? 2 : 1) * chart_count + 1;
+  std::size_t progress_done = 0;
+  auto progress_unit = [&] {
+    ++progress_done;
+    if (progress_wanted()) report_progress(static_cast<double>(progress_done) / static_cast<double>(progress_units));
+  };
   for (std::size_t c = 0; c < chart_count; ++c) {
     ChartInput streamed_input;
     if (streamed) {
@@ -1657,6 +1666,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       auto start = Clock::now();
       build_interval_chart(chart, chart_input, stats);
       stats.seconds_classification += seconds_since(start);
+      progress_unit();
       continue;
     }
     raw::Options raw_options;
@@ -1695,6 +1705,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     // the chart's input curves are done with (its arrangement, polynomials and labels are
     // kept): free them now rather than at the end, so a region's peak holds one copy
     std::vector<ContactCurve>().swap(chart_input.curves);
+    progress_unit();
   }
   stats.charts = impl->charts.size();
   stats.feature_pairs_considered = input.curve_statistics.feature_pairs_considered;
@@ -1712,6 +1723,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
                      propagate);
       find_touching(chart, deferred[c].classify, deferred[c].classify_algebraic, deferred[c].classify_ordinate, sides ? &*sides : nullptr, options.check_face_classification, stats);
       deferred[c] = Deferred{};
+      progress_unit();
     }
     stats.seconds_classification += seconds_since(start);
   }
@@ -2021,6 +2033,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
             {raw::double_bounds(v.x.lower).first, raw::double_bounds(v.x.upper).second, raw::double_bounds(v.y_upper).second});
     }
   stats.seconds_total = seconds_since(total_start) - seconds_streamed + stats.seconds_curves + stats.seconds_region;
+  progress_unit();
   return make_cspace(impl);
 }
 

@@ -9,6 +9,7 @@
 #include "tolerance/certificate.hpp"
 #include "tolerance/exact_order.hpp"
 #include "tolerance/progress.hpp"
+#include "core/progress_scope.hpp"
 #include "tolerance/root_search.hpp"
 #include "tolerance/sampling.hpp"
 #include "tolerance/solver.hpp"
@@ -318,7 +319,12 @@ class Analysis {
       result_.sigma.push_back(dist_[i].sigma);
       result_.mean_shift.push_back(dist_[i].mean);
     }
-    space_ = std::make_unique<CSpace>(given ? *given : CSpace::build(m, pair_first_, pair_second_));
+    if (given) {
+      space_ = std::make_unique<CSpace>(*given);
+    } else {
+      ProgressScope progress(bar_.within());   // the build's charts, as its stage's progress
+      space_ = std::make_unique<CSpace>(CSpace::build(m, pair_first_, pair_second_));
+    }
     driver_is_x_ = space_->x_part() == result_.driver;
   }
 
@@ -351,8 +357,9 @@ class Analysis {
       threshold();
       result_.seconds_threshold = seconds_since(t3);
     }
-    if (options_.contact_changes) contact_changes();
     bar_.begin(7);
+    if (options_.contact_changes) contact_changes();
+    bar_.begin(8);
     if (options_.certify) certify();
     bar_.finish();
     return std::move(result_);
@@ -851,6 +858,7 @@ class Analysis {
       request.scale = unit >= 1 ? Rational(q * Rational(unit)) : Rational(q / Rational(static_cast<long>(std::llround(1 / unit))));
     }
     if (!(request.scale > 0)) throw ModelError("", "the certificate's tolerance scale must be positive");
+    request.progress = bar_.within();   // the corner search, the leaves' share of the region
     result_.certification = tolerance_detail::certify_no_jam(request);
   }
 
@@ -931,6 +939,7 @@ class Analysis {
   void bracket_threshold(JammingThreshold& result) {
     const Model& m = model_->nominal();
     tolerance_detail::CertifyRequest request = certify_request();
+    request.progress = bar_.within(0.6, 0.8);   // the bisection's corner searches
     Rational below = Rational(0.9) * Rational(result.scale), above = Rational(1.1) * Rational(result.scale);
     tolerance_detail::ThresholdBracket b =
         tolerance_detail::bracket_threshold(request, below, above, options_.threshold_bracket);
@@ -971,7 +980,10 @@ class Analysis {
       result.bracket_evidence = std::string("not confirmed: the witness geometry is invalid: ") + error.what();
       return;
     }
-    CSpace space = CSpace::build(worst, pair_first_, pair_second_);
+    CSpace space = [&] {
+      ProgressScope progress(bar_.within(0.8, 1.0));   // the witness' exact C-space
+      return CSpace::build(worst, pair_first_, pair_second_);
+    }();
     std::optional<Slice> slice = slice_like(space, state);
     if (!slice) {
       result.bracket_evidence = "not confirmed: no slice of the witness' C-space at that driver position";
@@ -1046,9 +1058,14 @@ class Analysis {
     result.lower_contact = critical.lower_label;
     result.upper_contact = critical.upper_label;
     result.nominal_play = result_.samples[critical.sample].play;
+    // progress within the stage: the certified scales its first tenth, the exact C-spaces (each
+    // build's own progress) up to 0.6 when a bracket follows, else to the end
+    const double confirm_end = options_.threshold_bracket > 0 ? 0.6 : 1.0;
+    std::size_t tried = 0;
     // Certified: the largest of a few scales below the threshold at which both sides' certified
     // enclosures stay apart at the critical position.
     for (double factor : {0.95, 0.9, 0.8, 0.6, 0.4}) {
+      bar_.fraction(0.1 * static_cast<double>(tried++) / 5);
       // The box at the scale reported (the double best * factor, exactly), rounded outwards
       // from the exact rational tolerance box.
       Rational scale(best * factor);
@@ -1076,7 +1093,9 @@ class Analysis {
     // Exact confirmation: the worst-case vector at a scale a little above the linearised one,
     // an exact C-space built there, and its slice at the critical driver position.
     const SampleState& state = states_[critical.sample];
+    tried = 0;
     for (int step : {21, 22, 24, 28, 36}) {   // scale x step/20
+      const double from = 0.1 + (confirm_end - 0.1) * static_cast<double>(tried++) / 5;
       Rational factor = Rational(step, 20) * Rational(best);
       std::vector<Rational> deviations(n, Rational(0));
       for (std::size_t i = 0; i < n; ++i) {
@@ -1092,7 +1111,10 @@ class Analysis {
         result.evidence = std::string("the worst-case geometry is invalid: ") + error.what();
         continue;
       }
-      CSpace space = CSpace::build(worst, pair_first_, pair_second_);
+      CSpace space = [&] {
+        ProgressScope progress(bar_.within(from, from + (confirm_end - 0.1) / 5));
+        return CSpace::build(worst, pair_first_, pair_second_);
+      }();
       std::optional<Slice> slice = slice_like(space, state);
       if (!slice) continue;
       // Free intervals of the slice meeting the nominal channel (lower, upper).
@@ -1399,7 +1421,7 @@ class Analysis {
   ToleranceOptions options_;
   // The bar's stages: the pair's C-space, the nominal sweep, sensitivities, the certified band,
   // the zones, the Monte Carlo, the threshold and contact changes, the certificate.
-  tolerance_detail::StagedProgress bar_{options_.progress, {0, 0.02, 0.2, 0.3, 0.45, 0.55, 0.85, 0.95, 1}};
+  tolerance_detail::StagedProgress bar_{options_.progress, {0, 0.02, 0.2, 0.3, 0.45, 0.55, 0.85, 0.9, 0.95, 1}};
   std::string text_, source_name_;
   std::shared_ptr<const model_detail::ParametricModel> model_;
   std::shared_ptr<CurveSolver> solver_;

@@ -122,6 +122,7 @@ class Producer {
     // take a neighbouring piece's sides and the verifier would accept it (docs/tolerance.md
     // "The threshold, bracketed").
     refine_ = true;
+    report_ = static_cast<bool>(request_.progress);
     if (corner_jams(pieces, result)) {
       result.outcome = ToleranceCertification::Outcome::jams;
       result.reason = jam_reason_;
@@ -205,6 +206,19 @@ class Producer {
     const Piece* previous = nullptr;
     const Piece* next = nullptr;
   };
+
+  // Progress: a certified leaf's share of the whole region (box x range) added to the share
+  // covered (the leaves do not overlap: they are the tree's), shown as 0.1 ... 0.95.
+  void covered(const std::vector<RationalInterval>& region) {
+    double share = 1;
+    for (std::size_t i = 0; i < region.size(); ++i) {
+      const RationalInterval& whole = i < claim_.box.size() ? claim_.box[i] : claim_.range;
+      Rational full = whole.hi - whole.lo;
+      if (full > 0) share *= Rational((region[i].hi - region[i].lo) / full).get_d();
+    }
+    covered_ += share;
+    request_.progress(0.1 + 0.85 * std::min(1.0, covered_));
+  }
 
   static ToleranceTreeNode split(const std::string& name, const Rational& value) {
     ToleranceTreeNode n;
@@ -348,8 +362,11 @@ class Producer {
       half.push_back(Rational((claim_.box[i].hi - claim_.box[i].lo) / 2).get_d());
     }
     verify::ToleranceGeometry over = evaluator_->geometry(box, true);
+    std::size_t positions = 0, done = 0;
+    for (const Piece& piece : pieces) positions += piece.samples.size();
     for (const Piece& piece : pieces)
       for (const ChannelSample* s : piece.samples) {
+        if (report_) request_.progress(0.1 * static_cast<double>(done++) / static_cast<double>(positions));
         ++attempts_;
         Rational d(s->driver);
         if (d < claim_.range.lo || d > claim_.range.hi) continue;
@@ -721,6 +738,7 @@ class Producer {
       node.index = claim_.leaves.size();
       claim_.tree.push_back(node);
       claim_.leaves.push_back(std::move(candidate));
+      if (report_) covered(region);
       return true;
     };
     // `path`: a witness (value at the centre, slopes) chosen for the channel between all the
@@ -893,6 +911,8 @@ class Producer {
   std::optional<std::size_t> free_path_split_;   ///< check 7's split choice for the current region
   std::vector<double> witness_score_;
   double witness_ratio_ = 0;
+  bool report_ = false;      ///< progress asked for (run(), not the corner search alone)
+  double covered_ = 0;       ///< share of the region the certified leaves cover (progress)
   std::string jam_reason_, undecided_reason_;
   std::vector<std::pair<std::string, Rational>> jam_witness_;
   Rational jam_coordinate_;
@@ -909,6 +929,7 @@ ThresholdBracket bracket_threshold(const CertifyRequest& base, const Rational& b
                                    double relative, std::size_t max_steps) {
   ThresholdBracket out;
   CertifyRequest request = base;
+  request.progress = nullptr;   // (the scans report nothing: the bisection's width does)
   auto jams = [&](const Rational& scale, JamScan& scan) {
     request.scale = scale;
     scan = corner_jam_scan(request);
@@ -925,7 +946,14 @@ ThresholdBracket bracket_threshold(const CertifyRequest& base, const Rational& b
   }
   out.witness = high.witness;
   // Bisection on short rationals (12 significant digits of the midpoint, strictly inside).
+  // Progress: log(first width / width) against log(first width / the width asked for).
+  const double first = Rational((hi - lo) / hi).get_d();
+  auto report = [&] {
+    double now = Rational((hi - lo) / hi).get_d();
+    if (base.progress && first > relative && now > 0) base.progress(std::log(first / now) / std::log(first / relative));
+  };
   while (out.steps < max_steps && Rational((hi - lo) / hi).get_d() > relative) {
+    report();
     double mid = Rational((lo + hi) / 2).get_d();
     int digits = 12 - static_cast<int>(std::floor(std::log10(mid)));
     mpz_class ten;

@@ -9,6 +9,7 @@
 #include <hipair/cspace.hpp>
 #include <hipair/tolerance.hpp>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,6 +38,10 @@ struct CertifyRequest {
   /// free over the leaf's box (at most `free_path_budget` bisections per leaf); else split it.
   bool free_path_leaves = false;
   std::size_t free_path_budget = 8;
+  /// Progress of certify_no_jam (the corner search by driver position its first tenth, then the
+  /// share of the region box x range the certified leaves cover, to 0.95) and of
+  /// bracket_threshold (the bisection's width against the width asked for); empty: none.
+  std::function<void(double)> progress;
 };
 
 /// The corner search of the jamming threshold at `request.scale`: at every driver position of

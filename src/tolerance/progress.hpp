@@ -42,6 +42,16 @@ class StagedProgress {
     if (!active()) return {};
     return [this](double f) { fraction(f); };
   }
+  /// The part [lo, hi] of the current stage through the callback form: an inner step's own
+  /// fraction f shows as the stage's lo + f (hi - lo). Empty when no progress is asked for.
+  std::function<void(double)> within(double lo, double hi) {
+    if (!active()) return {};
+    return [this, lo, hi](double f) {
+      if (!(f > 0)) f = 0;
+      if (f > 1) f = 1;
+      fraction(lo + f * (hi - lo));
+    };
+  }
   /// The whole bar.
   void finish() { show(1.0); }
 

@@ -7,11 +7,13 @@
 // passing on a value not above the last shown -> StagedProgressOnlyGrowsAndEndsAtOne and both
 // analyses' tests fail. TheNominalSweepsFractionOnlyGrows checks the kinematic sweep's own
 // fractions (before the reporter's filter), forward and backward over several Geneva turns.
+#include "core/progress_scope.hpp"
 #include "tolerance/progress.hpp"
 #include "tolerance_chain_models.hpp"
 
 #include "test_paths.hpp"
 
+#include <hipair/certificate.hpp>
 #include <hipair/cspace.hpp>
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
@@ -25,6 +27,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -166,6 +169,129 @@ TEST(ToleranceProgress, TheNominalSweepsFractionOnlyGrows) {
     for (std::size_t i = 1; i < seen.size(); ++i) EXPECT_GE(seen[i], seen[i - 1]) << "#" << i;
     EXPECT_EQ(seen.back(), 1.0);
   }
+}
+
+// StagedProgress::within(lo, hi): an inner step's fraction f shows as the stage's lo + f (hi - lo),
+// clamped, and still only growing. Oracle: the plain model of the bar, as above.
+TEST(ToleranceProgress, APartOfAStageMapsItsInnerFractions) {
+  std::mt19937 rng(38);
+  for (int trial = 0; trial < 1000; ++trial) {
+    std::vector<double> bounds{0, std::uniform_real_distribution<>(0, 0.5)(rng), 1};
+    std::vector<double> shown, expected;
+    StagedProgress bar([&](double f) { shown.push_back(f); }, bounds);
+    double oracle = -1;
+    auto ask = [&](double value) {
+      if (value > oracle) expected.push_back(oracle = value);
+    };
+    std::size_t stage = rng() % 2;
+    bar.begin(stage);
+    ask(bounds[stage]);
+    for (int part = 0; part < 6; ++part) {
+      double lo = std::uniform_real_distribution<>(0, 1)(rng), hi = std::uniform_real_distribution<>(lo, 1)(rng);
+      std::function<void(double)> inner = bar.within(lo, hi);
+      for (int call = 0; call < 10; ++call) {
+        double f = std::uniform_real_distribution<>(-0.5, 1.5)(rng);
+        if (call == 3) f = std::numeric_limits<double>::quiet_NaN();
+        inner(f);
+        double clamped = f > 0 ? std::min(f, 1.0) : 0.0;
+        ask(bounds[stage] + (lo + clamped * (hi - lo)) * (bounds[stage + 1] - bounds[stage]));
+      }
+    }
+    bar.finish();
+    ask(1);
+    expect_growing_to_one(shown, "trial " + std::to_string(trial));
+    ASSERT_EQ(shown, expected) << "trial " << trial;
+  }
+  StagedProgress silent({}, {0, 1});
+  EXPECT_FALSE(static_cast<bool>(silent.within(0.2, 0.4)));
+}
+
+// core/progress_scope.hpp: the innermost scope's hook receives what the work reports; an empty
+// scope hides the outer one; a scope's end restores the one before; another thread sees none.
+// Oracle: a stack of hooks kept here. Then a real build: CSpace::build reports its charts built,
+// classified and its cells as strictly growing fractions ending at 1.
+TEST(ToleranceProgress, AProgressScopeReachesTheCSpaceBuild) {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<std::vector<double>> received(8);
+    std::vector<int> stack;   // the oracle: hooks installed, -1 for an empty one
+    std::vector<std::vector<double>> expected(8);
+    std::function<void(int)> nest = [&](int depth) {
+      int hook = rng() % 4 == 0 ? -1 : depth;
+      ProgressScope scope(hook < 0 ? std::function<void(double)>{}
+                                   : std::function<void(double)>([&, hook](double f) { received[static_cast<std::size_t>(hook)].push_back(f); }));
+      stack.push_back(hook);
+      for (int step = 0; step < 4; ++step) {
+        if (depth < 7 && rng() % 3 == 0) nest(depth + 1);
+        double f = std::uniform_real_distribution<>(0, 1)(rng);
+        EXPECT_EQ(progress_wanted(), stack.back() >= 0);
+        report_progress(f);
+        if (stack.back() >= 0) expected[static_cast<std::size_t>(stack.back())].push_back(f);
+        std::thread([f] {
+          EXPECT_FALSE(progress_wanted());
+          report_progress(f);   // no hook on this thread: nothing received
+        }).join();
+      }
+      stack.pop_back();
+    };
+    nest(0);
+    EXPECT_FALSE(progress_wanted());
+    ASSERT_EQ(received, expected) << "trial " << trial;
+  }
+  Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json");
+  std::vector<double> seen;
+  {
+    ProgressScope scope([&](double f) { seen.push_back(f); });
+    CSpace space = CSpace::build(model, "driver", "wheel");
+    // 2-D: each chart built, each chart classified, the cells
+    ASSERT_EQ(seen.size(), 2 * space.charts().size() + 1);
+  }
+  expect_growing_to_one(seen, "geneva's C-space build");
+  seen.clear();
+  CSpace::build(model, "driver", "wheel");   // the scope has ended: nothing
+  EXPECT_TRUE(seen.empty());
+}
+
+// The threshold search (certified scales, exact C-spaces, the bracket's bisection and its
+// witness' C-space) and the certificate's branch-and-bound report inside their stages; the
+// pair's C-space build inside the first. The certificate's share: the leaves' exact share of the
+// region (box x range, an independent sum over the certificate's leaves in rationals) is 1, and
+// the last inner fraction shown before the end is the producer's 0.95 of its stage.
+TEST(ToleranceProgress, TheCSpaceThresholdAndCertificateReportInnerProgress) {
+  ToleranceOptions options;
+  options.range = std::make_pair(Rational(11, 5), Rational(23, 10));   // Geneva: the pin's entry
+  options.positions = 720;
+  options.relative_accuracy = 0.5;
+  options.threshold = true;
+  options.threshold_bracket = 1e-2;   // (a few bisection steps: the test stays fast)
+  options.certify = true;             // at the declared tolerances (a few leaves)
+  options.threads = 1;
+  std::vector<double> shown;
+  options.progress = [&](double f) { shown.push_back(f); };
+  ToleranceResult result = analyze_tolerances(std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json", options);
+  expect_growing_to_one(shown, "geneva, threshold and certificate");
+  EXPECT_GE(count_within(shown, 0.0, 0.02), 3u) << "the pair's C-space build";
+  const double t = 0.85, w = 0.05;   // the threshold's stage
+  EXPECT_GE(count_within(shown, t + 0.1 * w, t + 0.6 * w), 3u) << "the exact C-spaces";
+  EXPECT_GE(count_within(shown, t + 0.6 * w, t + 0.8 * w), 3u) << "the bracket's bisection";
+  EXPECT_GE(count_within(shown, t + 0.8 * w, t + w), 2u) << "the witness' C-space";
+  ASSERT_TRUE(result.threshold && result.threshold->bracketed);
+  ASSERT_TRUE(result.certification);
+  ASSERT_EQ(result.certification->outcome, ToleranceCertification::Outcome::certified) << result.certification->reason;
+  const ToleranceClaim& claim = *result.certification->certificate->tolerance;
+  EXPECT_GE(count_within(shown, 0.95, 0.95 + 0.1 * w), 5u) << "the corner search";
+  EXPECT_GE(count_within(shown, 0.95 + 0.1 * w, 1.0), std::min<std::size_t>(20, claim.leaves.size()))
+      << "the branch-and-bound's leaves";
+  Rational share = 0;
+  for (const ToleranceLeaf& leaf : claim.leaves) {
+    Rational v = (leaf.driver.hi - leaf.driver.lo) / (claim.range.hi - claim.range.lo);
+    for (std::size_t i = 0; i < claim.box.size(); ++i)
+      v *= (leaf.parameters[i].hi - leaf.parameters[i].lo) / (claim.box[i].hi - claim.box[i].lo);
+    share += v;
+  }
+  EXPECT_EQ(share, Rational(1)) << "the leaves cover the region once";
+  ASSERT_GE(shown.size(), 2u);
+  EXPECT_NEAR(shown[shown.size() - 2], 0.95 + 0.95 * w, 1e-9) << "the leaves' share shown";
 }
 
 }  // namespace
