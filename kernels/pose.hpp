@@ -18,6 +18,8 @@
 
 #include "kernels/vector.hpp"
 
+#include <optional>
+
 namespace hipair::kernels {
 
 /// Homogeneous rigid pose of a fixed-axis part (see the file comment).
@@ -162,6 +164,17 @@ T homogeneous_product(const PairVector<T>& u, const PairVector<T>& v, const Pose
   if (v.has_fixed) vs[nv++] = {&v.fixed, 0};
   if (v.has_first) vs[nv++] = {&v.on_first, 1};
   if (v.has_second) vs[nv++] = {&v.on_second, 2};
+  // Each piece's rotated vector is made once, on its first use, however many pieces of the
+  // other side it meets (dot_homogeneous(v, v) of a point difference: 2 rotations, not 8), and
+  // w_a w_b once: the same operations on the same values as one per term, so the same results
+  // for every number type.
+  std::optional<Vector<T>> u_rotated[3];
+  std::optional<Vector<T>> v_rotated[3];
+  std::optional<T> weight;
+  auto rotated_piece = [&](std::optional<Vector<T>>& slot, const Piece<T>& piece) -> const Vector<T>& {
+    if (!slot) slot.emplace(rotate_homogeneous(piece.rotation == 1 ? a : b, *piece.vector));
+    return *slot;
+  };
   T total(0);
   for (int i = 0; i < nu; ++i) {
     for (int j = 0; j < nv; ++j) {
@@ -170,21 +183,18 @@ T homogeneous_product(const PairVector<T>& u, const PairVector<T>& v, const Pose
       T term(0);
       if (ru == rv) {
         // Same rotation (or none) on both sides: it cancels; the factor w_a w_b remains.
-        term = T(product(*us[i].vector, *vs[j].vector) * (a.w * b.w));
+        if (!weight) weight.emplace(a.w * b.w);
+        term = T(product(*us[i].vector, *vs[j].vector) * *weight);
       } else if (ru != 0 && rv != 0) {
         // R_a u x R_b v: one rotation each, weight w_a w_b already inside the rotations.
-        Vector<T> left = rotate_homogeneous(ru == 1 ? a : b, *us[i].vector);
-        Vector<T> right = rotate_homogeneous(rv == 1 ? a : b, *vs[j].vector);
-        term = product(left, right);
+        term = product(rotated_piece(u_rotated[i], us[i]), rotated_piece(v_rotated[j], vs[j]));
       } else if (ru == 0) {
         // fixed x R_r v: multiply by the other part's w.
-        const Pose<T>& rotating = rv == 1 ? a : b;
         const Pose<T>& other = rv == 1 ? b : a;
-        term = T(product(*us[i].vector, rotate_homogeneous(rotating, *vs[j].vector)) * other.w);
+        term = T(product(*us[i].vector, rotated_piece(v_rotated[j], vs[j])) * other.w);
       } else {
-        const Pose<T>& rotating = ru == 1 ? a : b;
         const Pose<T>& other = ru == 1 ? b : a;
-        term = T(product(rotate_homogeneous(rotating, *us[i].vector), *vs[j].vector) * other.w);
+        term = T(product(rotated_piece(u_rotated[i], us[i]), *vs[j].vector) * other.w);
       }
       total = T(total + term);
     }

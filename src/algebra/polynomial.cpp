@@ -160,8 +160,6 @@ void RationalPolynomial2::trim() {
   if (rows == 0) denominator_ = 1;
 }
 
-bool RationalPolynomial2::is_zero() const { return rows_ == 0; }
-
 Rational RationalPolynomial2::evaluate(const Rational& x, const Rational& y) const {
   Rational total = 0;
   for (int i = rows_; i-- > 0;) {
@@ -173,33 +171,55 @@ Rational RationalPolynomial2::evaluate(const Rational& x, const Rational& y) con
   return total;
 }
 
-RationalPolynomial2 operator+(const RationalPolynomial2& a, const RationalPolynomial2& b) {
-  if (a.is_zero()) return b;
-  if (b.is_zero()) return a;
+// a + sign b (sign +1 or -1): the numerators over the lcm of the denominators. Equal
+// denominators (the common case: the kernels' sums of products of the same poses) are summed
+// as they stand, without the products by a scale of 1; the values, hence the polynomial and
+// its representation, are those of a + b and a + (-b).
+RationalPolynomial2 RationalPolynomial2::combine(const RationalPolynomial2& a, const RationalPolynomial2& b, int sign) {
   RationalPolynomial2 r;
   r.resize(std::max(a.rows_, b.rows_), std::max(a.columns_, b.columns_));
-  mpz_class scale_a = 1, scale_b = 1;
+  auto at = [&r](int i, int j) -> mpz_ptr {
+    return r.numerators_[static_cast<std::size_t>(i * r.columns_ + j)].get_mpz_t();
+  };
   if (a.denominator_ == b.denominator_) {
     r.denominator_ = a.denominator_;
+    for (int i = 0; i < a.rows_; ++i)
+      for (int j = 0; j < a.columns_; ++j)
+        mpz_set(at(i, j), a.numerators_[static_cast<std::size_t>(i * a.columns_ + j)].get_mpz_t());
+    for (int i = 0; i < b.rows_; ++i)
+      for (int j = 0; j < b.columns_; ++j) {
+        mpz_srcptr term = b.numerators_[static_cast<std::size_t>(i * b.columns_ + j)].get_mpz_t();
+        if (sign > 0)
+          mpz_add(at(i, j), at(i, j), term);
+        else
+          mpz_sub(at(i, j), at(i, j), term);
+      }
   } else {
+    mpz_class scale_a, scale_b;
     mpz_lcm(r.denominator_.get_mpz_t(), a.denominator_.get_mpz_t(), b.denominator_.get_mpz_t());
     mpz_divexact(scale_a.get_mpz_t(), r.denominator_.get_mpz_t(), a.denominator_.get_mpz_t());
     mpz_divexact(scale_b.get_mpz_t(), r.denominator_.get_mpz_t(), b.denominator_.get_mpz_t());
+    for (int i = 0; i < a.rows_; ++i)
+      for (int j = 0; j < a.columns_; ++j)
+        mpz_mul(at(i, j), a.numerators_[static_cast<std::size_t>(i * a.columns_ + j)].get_mpz_t(),
+                scale_a.get_mpz_t());
+    for (int i = 0; i < b.rows_; ++i)
+      for (int j = 0; j < b.columns_; ++j) {
+        mpz_srcptr term = b.numerators_[static_cast<std::size_t>(i * b.columns_ + j)].get_mpz_t();
+        if (sign > 0)
+          mpz_addmul(at(i, j), term, scale_b.get_mpz_t());
+        else
+          mpz_submul(at(i, j), term, scale_b.get_mpz_t());
+      }
   }
-  for (int i = 0; i < a.rows_; ++i)
-    for (int j = 0; j < a.columns_; ++j) {
-      mpz_class& target = r.numerators_[static_cast<std::size_t>(i * r.columns_ + j)];
-      mpz_mul(target.get_mpz_t(), a.numerators_[static_cast<std::size_t>(i * a.columns_ + j)].get_mpz_t(),
-              scale_a.get_mpz_t());
-    }
-  for (int i = 0; i < b.rows_; ++i)
-    for (int j = 0; j < b.columns_; ++j) {
-      mpz_class& target = r.numerators_[static_cast<std::size_t>(i * r.columns_ + j)];
-      mpz_addmul(target.get_mpz_t(), b.numerators_[static_cast<std::size_t>(i * b.columns_ + j)].get_mpz_t(),
-                 scale_b.get_mpz_t());
-    }
   r.trim();
   return r;
+}
+
+RationalPolynomial2 operator+(const RationalPolynomial2& a, const RationalPolynomial2& b) {
+  if (a.is_zero()) return b;
+  if (b.is_zero()) return a;
+  return RationalPolynomial2::combine(a, b, 1);
 }
 
 RationalPolynomial2 operator-(const RationalPolynomial2& a) {
@@ -209,7 +229,9 @@ RationalPolynomial2 operator-(const RationalPolynomial2& a) {
 }
 
 RationalPolynomial2 operator-(const RationalPolynomial2& a, const RationalPolynomial2& b) {
-  return a + (-b);
+  if (b.is_zero()) return a;
+  if (a.is_zero()) return -b;
+  return RationalPolynomial2::combine(a, b, -1);
 }
 
 RationalPolynomial2 operator*(const RationalPolynomial2& a, const RationalPolynomial2& b) {
@@ -229,7 +251,9 @@ RationalPolynomial2 operator*(const RationalPolynomial2& a, const RationalPolyno
           mpz_addmul(target.get_mpz_t(), ac.get_mpz_t(), bc.get_mpz_t());
         }
     }
-  r.trim();
+  // (no trim: a and b are trimmed — every value of this type is — so their last rows A(y),
+  // B(y) are non-zero polynomials and the product's last row A(y) B(y) is non-zero; the same
+  // for the last columns)
   return r;
 }
 

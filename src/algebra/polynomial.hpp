@@ -41,7 +41,7 @@ class RationalPolynomial2 {
   const mpz_class& numerator(int i, int j) const;
   const mpz_class& denominator() const noexcept { return denominator_; }
 
-  bool is_zero() const;
+  bool is_zero() const noexcept { return rows_ == 0; }
   /// Exact value at (x, y).
   Rational evaluate(const Rational& x, const Rational& y) const;
 
@@ -52,6 +52,8 @@ class RationalPolynomial2 {
   friend bool operator==(const RationalPolynomial2& a, const RationalPolynomial2& b);
 
  private:
+  // a + sign b, sign +1 or -1 (operator+, binary operator-)
+  static RationalPolynomial2 combine(const RationalPolynomial2& a, const RationalPolynomial2& b, int sign);
   void resize(int rows, int columns);
   void trim();
   int rows_ = 0;
