@@ -355,8 +355,9 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   curve_options.blocked_grid = curve_options.cull_blocked_space;
   const int grid_depth = input.dimension == 2 ? (cull_depth > 0 ? cull_depth : 9) : 10;
   CurveGenerator generator(model, axes, curve_options);
-  // the exact algebraic oracle's certified filter (both parts' enclosures prepared once)
-  auto overlap = std::make_shared<const OverlapFilter>(model, axes);
+  // the pair's oracle (both parts' enclosures prepared once): the rational points' exact
+  // relation and the algebraic oracle's certified filter
+  auto overlap = std::make_shared<const PairOverlap>(model, axes);
   input.seconds_curves += std::chrono::duration<double>(Clock::now() - generator_start).count();
   // each box's curves are generated when the builder reaches it (PairInput::make_chart):
   // the boxes are built one at a time, with one box's curves alive
@@ -389,8 +390,8 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
     auto chart_axes = std::make_shared<Axes>();
     chart_axes->x = chart.x;
     chart_axes->y = chart.y;
-    chart.classify = [&model, axes, chart_axes](const cspace::ChartPoint& q) {
-      return classify_overlap(model, axes, chart_axes->x, chart_axes->y, q);
+    chart.classify = [chart_axes, overlap](const cspace::ChartPoint& q) {
+      return overlap->classify(chart_axes->x, chart_axes->y, q);
     };
     chart.classify_algebraic = [&model, axes, chart_axes, overlap](const algebra::Real& qx, const algebra::Real& qy) {
       return algebraic_overlap(model, axes, chart_axes->x, chart_axes->y, qx, qy, overlap.get());

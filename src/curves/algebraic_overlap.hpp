@@ -17,32 +17,7 @@
 
 namespace hipair::cspace {
 
-/// A certified filter in front of the exact oracles at points that are not rational (session
-/// 37), for one pair of a model (`model` must outlive it, unchanged; thread safe):
-/// certainly_overlapping is true when the parts certainly overlap at every chart point of the
-/// box qx × qy (qy ignored for a 1-D pair) — some edge of each crosses the other transversally
-/// at a point interior to both, by the rational oracle's own interval tests (src/oracle/
-/// overlap.cpp) over the box's poses: outward-rounded enclosures of the world maps over the
-/// whole box are the proved margin. False when it cannot tell (it never claims "touching" or
-/// "apart"); then the exact oracle must decide.
-class OverlapFilter {
- public:
-  OverlapFilter(const Model& model, const PairAxes& axes);
-  ~OverlapFilter();
-  OverlapFilter(const OverlapFilter&) = delete;
-  OverlapFilter& operator=(const OverlapFilter&) = delete;
-
-  bool certainly_overlapping(const ChartAxis& x, const ChartAxis& y, const kernels::Interval& qx,
-                             const kernels::Interval& qy) const;
-
- private:
-  struct Data;
-  const Model& model_;
-  PairAxes axes_;
-  std::unique_ptr<const Data> data_;
-};
-
-/// How often OverlapFilter::certainly_overlapping was asked and how often it answered true,
+/// How often PairOverlap::certainly_overlapping was asked and how often it answered true,
 /// over the process (for tests and measurements).
 std::array<std::uint64_t, 2> overlap_filter_counts();
 
@@ -60,13 +35,13 @@ inline bool& algebraic_filter_switch() { return thread_switch<AlgebraicFilterTag
 /// case left: a loop without common point whose every vertex has a vertex of the other part (or
 /// a circle's tangent) both at its height and at its abscissa.
 /// `filter` (optional, the same model's and axes' prepared oracle): its certified filter
-/// (OverlapFilter::certainly_overlapping) is asked first over the point's box — the isolating
+/// (PairOverlap::certainly_overlapping) is asked first over the point's box — the isolating
 /// intervals — once the point is one this oracle decides; where it answers, the answer is
 /// "overlapping", which the exact decision below would give too (a certain transversal crossing
 /// of two edges' interiors is found by it before anything that can leave it undecided).
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
                                          const ChartAxis& y_axis, const algebra::Real& x, const algebra::Real& y,
-                                         const OverlapFilter* filter = nullptr);
+                                         const PairOverlap* filter = nullptr);
 
 /// A chart ordinate given as an expression in the abscissa (algebra/ordinate.hpp): y =
 /// (numerator(x) + √radicand(x)) / denominator(x) at the point's x (an empty radicand: a
@@ -84,6 +59,6 @@ using algebra::RadicalOrdinate;
 /// ordinate is checked to be as described.
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
                                          const ChartAxis& y_axis, const algebra::Real& x, const RadicalOrdinate& y,
-                                         const OverlapFilter* filter = nullptr);
+                                         const PairOverlap* filter = nullptr);
 
 }  // namespace hipair::cspace

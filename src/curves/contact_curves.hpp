@@ -269,11 +269,10 @@ void clear_inscribed_disk_memo();
 Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x,
                          const ChartAxis& y, const ChartPoint& q);
 
-/// classify_overlap for one pair of a model (implemented with it, in src/oracle/overlap.cpp)
-/// with the pose-independent work done once: the enclosures of both parts' body coordinates, and the second part's whole placement (the
-/// analysis works in its body frame). The same answer as classify_overlap(model, axes, x, y, q)
-/// at every chart point (the same computation, on remembered inputs). `model` must outlive it
-/// and stay unchanged. Thread safe: classify only reads the prepared data.
+/// The overlap oracle of one pair of a model (implemented in src/oracle/overlap.cpp) with the
+/// pose-independent work done once: the enclosures of both parts' body coordinates, and the
+/// second part's whole placement (the analysis works in its body frame). `model` must outlive it
+/// and stay unchanged. Thread safe: its queries only read the prepared data.
 class PairOverlap {
  public:
   PairOverlap(const Model& model, const PairAxes& axes);
@@ -281,7 +280,19 @@ class PairOverlap {
   PairOverlap(const PairOverlap&) = delete;
   PairOverlap& operator=(const PairOverlap&) = delete;
 
+  /// classify_overlap(model, axes, x, y, q): the same answer at every chart point (the same
+  /// computation, on the prepared inputs).
   Overlap classify(const ChartAxis& x, const ChartAxis& y, const ChartPoint& q) const;
+
+  /// The certified filter in front of the exact oracles at points that are not rational
+  /// (session 37; curves/algebraic_overlap.hpp's `filter` arguments): true when the parts
+  /// certainly overlap at every chart point of the box qx × qy (qy ignored for a 1-D pair) —
+  /// some edge of each crosses the other transversally at a point interior to both, by the
+  /// oracle's own interval tests over the box's poses: outward-rounded enclosures of the world
+  /// maps over the whole box are the proved margin. False when it cannot tell (it never claims
+  /// "touching" or "apart"); then the exact oracle must decide.
+  bool certainly_overlapping(const ChartAxis& x, const ChartAxis& y, const kernels::Interval& qx,
+                             const kernels::Interval& qy) const;
 
  private:
   struct Data;

@@ -858,7 +858,7 @@ kernels::Interval kernel_box(const Real& r) {
 
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
                                          const ChartAxis& y_axis, const Real& x, const Real& y,
-                                         const OverlapFilter* filter) {
+                                         const PairOverlap* filter) {
   const Real y_used = axes.dimension() < 2 ? Real::from_rational(Rational(0)) : y;
   if (!x.exact && !y_used.exact) return std::nullopt;
   if (filter && algebraic_filter_switch() && filter->certainly_overlapping(x_axis, y_axis, kernel_box(x), kernel_box(y_used))) return Overlap::overlapping;
@@ -867,7 +867,7 @@ std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axe
 
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
                                          const ChartAxis& y_axis, const Real& x, const RadicalOrdinate& y,
-                                         const OverlapFilter* filter) {
+                                         const PairOverlap* filter) {
   if (axes.dimension() < 2 || y.lower > y.upper) return std::nullopt;
   const int q = algebra::sign_at(y.denominator, x);
   if (q == 0 || (!y.radicand.empty() && algebra::sign_at(y.radicand, x) < 0)) return std::nullopt;

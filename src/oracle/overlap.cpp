@@ -1313,18 +1313,12 @@ Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAx
   return analyse_overlap(model, axes, x, y, q).relation;
 }
 
-namespace {
 // A pair's pose-independent oracle data: the first part's enclosures, the second part placed
 // at the identity (the analysis works in its body frame).
-struct PreparedPair {
+struct PairOverlap::Data {
   std::shared_ptr<const PartEnclosure> first;
   IdentityPart second;
-  PreparedPair(const Part& a, const Part& b) : first(std::make_shared<const PartEnclosure>(a)), second(b) {}
-};
-}  // namespace
-
-struct PairOverlap::Data : PreparedPair {
-  using PreparedPair::PreparedPair;
+  Data(const Part& a, const Part& b) : first(std::make_shared<const PartEnclosure>(a)), second(b) {}
 };
 
 PairOverlap::PairOverlap(const Model& model, const PairAxes& axes)
@@ -1348,18 +1342,8 @@ namespace {
 std::atomic<std::uint64_t> filter_asked{0}, filter_decided{0};
 }
 
-struct OverlapFilter::Data : PreparedPair {
-  using PreparedPair::PreparedPair;
-};
-
-OverlapFilter::OverlapFilter(const Model& model, const PairAxes& axes)
-    : model_(model), axes_(axes),
-      data_(std::make_unique<const Data>(model.parts.at(axes.first), model.parts.at(axes.second))) {}
-
-OverlapFilter::~OverlapFilter() = default;
-
-bool OverlapFilter::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, const Interval& qx,
-                                          const Interval& qy) const {
+bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, const Interval& qx,
+                                        const Interval& qy) const {
   filter_asked.fetch_add(1, std::memory_order_relaxed);
   // the relative map over the whole box, as at_chart_point poses a rational point
   const ChartAxis& second_axis = axes_.first_moves ? y : x;
