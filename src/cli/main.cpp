@@ -23,15 +23,21 @@ int main(int argc, char** argv) {
   hipair::cli::register_cspace(app, action);
   hipair::cli::register_tolerance(app, action);
   hipair::cli::register_simulate(app, action);
+  // a parse error's message with its overlong words cut (a 100 000-digit value is not echoed)
+  auto exit_with = [&app](const CLI::ParseError& e) {
+    const std::string message = hipair::cli::shortened_parse_message(e.what());
+    if (e.get_exit_code() == 0 || e.get_name() == "RuntimeError" || message == e.what()) return app.exit(e);
+    return app.exit(CLI::ParseError(message, e.get_exit_code()));
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return exit_with(e);
   }
   try {
     return action ? action() : 0;
   } catch (const CLI::ParseError& e) {   // a usage error found once the options are read (OnceEach)
-    return app.exit(e);
+    return exit_with(e);
   } catch (const hipair::ModelError& e) {
     std::cerr << "hipair: error: " << e.what() << "\n";
     return 2;
