@@ -71,10 +71,11 @@ std::unique_ptr<model_detail::RoundingBoundScope> rounding_scope(const std::stri
 /// finding); files (SVG titles, JSON) keep the whole name.
 std::string shown_name(const std::string& name);
 
-/// The message of a CLI11 parse error with each word longer than 60 characters cut to its first
-/// 40 and its length (`--t-end` given a 100 000-digit value was echoed whole in CLI11's "Could not
-/// convert: --t-end = ..."; hunt37's finding). Shorter messages are returned unchanged.
-std::string shortened_parse_message(const std::string& message);
+/// An error message for the console with each word longer than 200 bytes cut to its first 60 (not
+/// inside a UTF-8 sequence) and its length: `--t-end` given a 100 000-digit value was echoed
+/// whole in CLI11's "Could not convert: --t-end = ...", and a model's 1 MB key in the JSON
+/// pointer of a reader's error (hunt37's and hunt38's findings). Other messages are unchanged.
+std::string shortened_message(const std::string& message);
 
 /// CLI::Range for real numbers, with the ends written as numbers ("in [1e-12, 1]"): CLI11's own
 /// message prints them with std::to_string, and "Value 0 not in range 0.000000 to 1.000000"

@@ -185,15 +185,15 @@ std::string shown_name(const std::string& name) {
   return name.substr(0, cut) + "... (" + std::to_string(name.size()) + " characters)";
 }
 
-std::string shortened_parse_message(const std::string& message) {
+std::string shortened_message(const std::string& message) {
   std::string out;
   std::size_t start = 0;
   while (start <= message.size()) {
     std::size_t end = message.find_first_of(" \n", start);
     if (end == std::string::npos) end = message.size();
     const std::string_view word = std::string_view(message).substr(start, end - start);
-    if (word.size() > 60) {
-      std::size_t cut = 40;
+    if (word.size() > 200) {
+      std::size_t cut = 60;
       while (cut > 0 && (static_cast<unsigned char>(word[cut]) & 0xC0) == 0x80) --cut;
       out += std::string(word.substr(0, cut)) + "... (" + std::to_string(word.size()) + " characters)";
     } else {
