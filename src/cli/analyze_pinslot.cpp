@@ -1,5 +1,6 @@
 #include "cli/analyze_pinslot.hpp"
 
+#include "cli/commands.hpp"
 #include "io/atomic_file.hpp"
 
 #include <hipair/error.hpp>
@@ -104,7 +105,7 @@ int run_pin_slot_cycle(const Model& model, const PinSlotCycleRequest& request) {
   bool all_free = true;
   for (const CycleSample& s : cycle.samples) all_free = all_free && s.follower_free;
   if (!request.quiet) {
-    std::printf("%s: work cycle of %s (pin-in-slot) driven by %s, pushing %s; %s%s, %zu samples\n", model.name.c_str(),
+    std::printf("%s: work cycle of %s (pin-in-slot) driven by %s, pushing %s; %s%s, %zu samples\n", shown_name(model.name).c_str(),
                 cycle.follower.c_str(), cycle.driver.c_str(), cycle.target.c_str(),
                 options.clockwise ? "clockwise" : "counter-clockwise", sense_note.c_str(), cycle.samples.size());
     std::printf("  follower pose certified free against %s at %s samples (exact point location)\n",

@@ -23,20 +23,26 @@ int main(int argc, char** argv) {
   hipair::cli::register_cspace(app, action);
   hipair::cli::register_tolerance(app, action);
   hipair::cli::register_simulate(app, action);
+  // a parse error's message with its overlong words cut (a 100 000-digit value is not echoed)
+  auto exit_with = [&app](const CLI::ParseError& e) {
+    const std::string message = hipair::cli::shortened_message(e.what());
+    if (e.get_exit_code() == 0 || e.get_name() == "RuntimeError" || message == e.what()) return app.exit(e);
+    return app.exit(CLI::ParseError(message, e.get_exit_code()));
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return exit_with(e);
   }
   try {
     return action ? action() : 0;
   } catch (const CLI::ParseError& e) {   // a usage error found once the options are read (OnceEach)
-    return app.exit(e);
+    return exit_with(e);
   } catch (const hipair::ModelError& e) {
-    std::cerr << "hipair: error: " << e.what() << "\n";
+    std::cerr << "hipair: error: " << hipair::cli::shortened_message(e.what()) << "\n";
     return 2;
   } catch (const hipair::Error& e) {
-    std::cerr << "hipair: error: " << e.what() << "\n";
+    std::cerr << "hipair: error: " << hipair::cli::shortened_message(e.what()) << "\n";
     return 3;
   } catch (const std::bad_alloc&) {
     std::cerr << "hipair: error: out of memory (the computation needs more memory than the process may use)\n";

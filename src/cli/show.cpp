@@ -137,7 +137,7 @@ int run_show(const ShowOptions& options) {
   std::string svg = render::mechanism_svg(model, configurations, drawing);
   io::write_file_atomically(options.svg, svg);
   std::cout << "wrote " << options.svg << " (" << model.parts.size() << " parts of '"
-            << model.name << "')\n";
+            << shown_name(model.name) << "')\n";
   return 0;
 }
 

@@ -828,7 +828,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   if (line.terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
   const std::vector<PlanarState> end = planar_states(simulation);
   const PlanarStatistics& stats = simulation.statistics();
-  std::cout << "simulated " << model.name << " to t = " << number(state_time(simulation)) << " " << tu << " in "
+  std::cout << "simulated " << shown_name(model.name) << " to t = " << number(state_time(simulation)) << " " << tu << " in "
             << simulation.steps() << " steps, " << simulation.events().size() << " events, " << number(seconds)
             << " s CPU\n";
   for (std::size_t k = 0; k < parts.size(); ++k)
@@ -986,7 +986,7 @@ int run(const SimulateOptions& options) {
 
   const std::string& tu = simulation.time_unit();
   const std::string& fu = simulation.force_unit();
-  std::cout << "simulated " << model.name << " to t = " << number(simulation.state().time) << " " << tu << " in "
+  std::cout << "simulated " << shown_name(model.name) << " to t = " << number(simulation.state().time) << " " << tu << " in "
             << simulation.steps() << " steps, " << simulation.events().size() << " events, " << number(seconds)
             << " s CPU\n";
   for (std::size_t p : moving)

@@ -60,7 +60,7 @@ std::string describe_motion(const Motion& motion) {
 }
 
 void print_summary(const Model& model, const ReadOptions& options, std::ostream& out) {
-  out << "model: " << model.name << "  (" << model.source << ")\n";
+  out << "model: " << shown_name(model.name) << "  (" << model.source << ")\n";
   out << "sha256: " << model.content_hash << "\n";
   for (const auto& [name, value] : options.parameter_values)
     out << "override: " << name << " = " << number(value) << "\n";
@@ -70,7 +70,7 @@ void print_summary(const Model& model, const ReadOptions& options, std::ostream&
     if (parameter.range.lo != parameter.range.hi) ++toleranced;
   out << "parameters: " << model.parameters.size() << " (" << toleranced << " toleranced)\n";
   for (const Parameter& parameter : model.parameters) {
-    out << "  " << parameter.name << " = " << number(parameter.nominal) << (parameter.is_angle ? " rad" : "");
+    out << "  " << shown_name(parameter.name) << " = " << number(parameter.nominal) << (parameter.is_angle ? " rad" : "");
     if (parameter.range.lo != parameter.range.hi) out << "  range " << interval(parameter.range);
     if (parameter.distribution == Parameter::Distribution::uniform) out << "  uniform";
     if (parameter.distribution == Parameter::Distribution::normal)
@@ -84,7 +84,7 @@ void print_summary(const Model& model, const ReadOptions& options, std::ostream&
       if (loop.is_hole) ++holes;
       for (const Edge& edge : loop.edges) (edge.is_arc() ? arcs : segments)++;
     }
-    out << "  " << part.name << ": " << describe_motion(part.motion) << "\n";
+    out << "  " << shown_name(part.name) << ": " << describe_motion(part.motion) << "\n";
     out << "    " << plural(part.loops.size(), "loop") << " (" << plural(holes, "hole") << "), "
         << plural(segments + arcs, "edge") << ": " << plural(segments, "segment") << ", " << plural(arcs, "arc");
     if (!part.features.empty()) {
@@ -96,7 +96,7 @@ void print_summary(const Model& model, const ReadOptions& options, std::ostream&
   out << "pairs: " << model.pairs.size() << (model.pairs_explicit ? " (listed)" : " (every pair of parts except fixed-fixed)")
       << "\n";
   for (const PairSpec& pair : model.pairs) {
-    out << "  " << model.parts[pair.first].name << " - " << model.parts[pair.second].name;
+    out << "  " << shown_name(model.parts[pair.first].name) << " - " << shown_name(model.parts[pair.second].name);
     if (pair.friction) out << "  friction " << number(*pair.friction);
     if (pair.restitution) out << "  restitution " << number(*pair.restitution);
     out << "\n";
@@ -175,6 +175,34 @@ ReadOptions parameter_overrides(const std::vector<std::string>& assignments, boo
     }
   }
   return options;
+}
+
+std::string shown_name(const std::string& name) {
+  constexpr std::size_t limit = 200;
+  if (name.size() <= limit) return name;
+  std::size_t cut = limit;
+  while (cut > 0 && (static_cast<unsigned char>(name[cut]) & 0xC0) == 0x80) --cut;   // not inside a UTF-8 sequence
+  return name.substr(0, cut) + "... (" + std::to_string(name.size()) + " characters)";
+}
+
+std::string shortened_message(const std::string& message) {
+  std::string out;
+  std::size_t start = 0;
+  while (start <= message.size()) {
+    std::size_t end = message.find_first_of(" \n", start);
+    if (end == std::string::npos) end = message.size();
+    const std::string_view word = std::string_view(message).substr(start, end - start);
+    if (word.size() > 200) {
+      std::size_t cut = 60;
+      while (cut > 0 && (static_cast<unsigned char>(word[cut]) & 0xC0) == 0x80) --cut;
+      out += std::string(word.substr(0, cut)) + "... (" + std::to_string(word.size()) + " characters)";
+    } else {
+      out += word;
+    }
+    if (end < message.size()) out += message[end];
+    start = end + 1;
+  }
+  return out;
 }
 
 CLI::Validator real_range(double lo, double hi) {

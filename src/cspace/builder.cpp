@@ -30,6 +30,9 @@
 #include <string>
 #include <tuple>
 #include <unordered_map>
+#include <functional>
+#include <iostream>
+#include <unistd.h>
 
 namespace hipair::cspace {
 namespace {
@@ -1061,8 +1064,11 @@ std::optional<RadicalOrdinate> vertex_ordinate(const raw::Arrangement& arrangeme
 // of each whether the parts only touch there (a channel of zero width: EdgeRole::touching) or
 // overlap (a curve through blocked space: spurious).
 void find_touching(ChartData& chart, const Classifier& classify, const AlgebraicClassifier& classify_algebraic,
-                   const OrdinateClassifier& classify_ordinate, ContactSides* sides, bool check, CSpaceStatistics& stats) {
+                   const OrdinateClassifier& classify_ordinate, ContactSides* sides, bool check, CSpaceStatistics& stats,
+                   const std::function<void(std::size_t, std::size_t)>& tick = {}) {
   const auto& arrangement = chart.arrangement;
+  // (progress: tick(done, total) over the edges, then the vertices)
+  const std::size_t work = arrangement.edges.size() + arrangement.vertices.size();
   chart.touching_vertex.assign(arrangement.vertices.size(), 0);
   auto blocked = [&](std::size_t face) {
     return face != raw::none && !arrangement.faces[face].unbounded && chart.faces[face].kind == FaceKind::blocked;
@@ -1076,6 +1082,7 @@ void find_touching(ChartData& chart, const Classifier& classify, const Algebraic
   };
   for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
     const raw::Edge& edge = arrangement.edges[e];
+    if (tick) tick(e, work);
     if (edge.box_side >= 0 || !blocked(edge.left_face) || !blocked(edge.right_face)) continue;
     EdgeData& data = chart.edges[e];
     if (data.curves.empty()) continue;
@@ -1121,6 +1128,7 @@ void find_touching(ChartData& chart, const Classifier& classify, const Algebraic
   // isolated points: rational vertices of curves only, blocked all around
   for (std::size_t v = 0; v < arrangement.vertices.size(); ++v) {
     const raw::Vertex& vertex = arrangement.vertices[v];
+    if (tick) tick(arrangement.edges.size() + v, work);
     if (!vertex.isolated && vertex.around.size() < 2) continue;
     // on curves (not a corner of the box), no end of a touching edge, blocked in every wedge
     // inside the box (a vertex on a seam is checked in each chart it appears in); an isolated
@@ -1713,18 +1721,46 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
   stats.seconds_curves = input.seconds_curves;
   if (input.dimension == 2) {
     auto start = Clock::now();
+    // Progress on a terminal (hunt38): the exact classification can take minutes where the
+    // pair mixes very different scales (a 1e-30 mm square against a 1e400 mm one: signs of
+    // polynomials with coefficients of thousands of bits at algebraic points), and nothing was
+    // shown after the last chart's curves. At most four lines a second; the widest coefficient
+    // is named when it is the reason (over 300 bits; the examples stay under 200).
+    const bool progress = options.progress && isatty(2);
+    auto last_shown = Clock::now() - std::chrono::seconds(1);
+    std::size_t shown = 0;   // the width of the last line shown
     for (std::size_t c = 0; c < chart_count; ++c) {
       ChartData& chart = impl->charts[c];
+      std::function<void(std::size_t, std::size_t)> tick;
+      if (progress) {
+        std::size_t bits = 0;
+        for (const IntegerPolynomial2& f : chart.polynomials)
+          for (const auto& row : f.coefficients)
+            for (const mpz_class& a : row) bits = std::max(bits, mpz_sizeinbase(a.get_mpz_t(), 2));
+        const std::string why = bits > 300 ? " (exact signs, coefficients of up to " + std::to_string(bits) +
+                                                  " bits: lengths of very different scales)"
+                                            : "";
+        tick = [&, c, why](std::size_t done, std::size_t total) {
+          if (Clock::now() - last_shown < std::chrono::milliseconds(250)) return;
+          last_shown = Clock::now();
+          const std::string line = "hipair: " + input.first_part + ":" + input.second_part + " classifying chart " +
+                                   std::to_string(c + 1) + "/" + std::to_string(chart_count) + ": " +
+                                   std::to_string(100 * done / std::max<std::size_t>(total, 1)) + "%" + why;
+          std::cerr << "\r" << line << std::string(shown > line.size() ? shown - line.size() : 0, ' ') << std::flush;
+          shown = std::max(shown, line.size());
+        };
+      }
       std::optional<ContactSides> sides;
       if (input.model) sides.emplace(chart, std::move(deferred[c].signs));
       // propagation needs the kernels' curves (every touching configuration on a valid curve)
       const bool propagate = sides && input.curve_statistics.identically_zero == 0;
       classify_faces(chart, deferred[c].classify, sides ? &*sides : nullptr, options.check_face_classification,
                      propagate);
-      find_touching(chart, deferred[c].classify, deferred[c].classify_algebraic, deferred[c].classify_ordinate, sides ? &*sides : nullptr, options.check_face_classification, stats);
+      find_touching(chart, deferred[c].classify, deferred[c].classify_algebraic, deferred[c].classify_ordinate, sides ? &*sides : nullptr, options.check_face_classification, stats, tick);
       deferred[c] = Deferred{};
       progress_unit();
     }
+    if (shown) std::cerr << "\r" << std::string(shown, ' ') << "\r" << std::flush;
     stats.seconds_classification += seconds_since(start);
   }
 
