@@ -2,6 +2,8 @@
 // the verifier's own exact and interval predicates (see docs/certify.md).
 #include <hipair/certificate.hpp>
 
+#include "core/console_text.hpp"
+
 #include <iostream>
 #include <new>
 #include <string>
@@ -18,18 +20,18 @@ int main(int argc, char** argv) {
   try {
     hipair::VerificationResult result = hipair::verify_certificate_file(argv[1], argv[2]);
     if (result.valid) {
-      std::cout << "valid: " << result.summary << "\n";
+      std::cout << "valid: " << hipair::console::shortened_message(result.summary) << "\n";
       return 0;
     }
     if (result.unproven) {
-      std::cout << "unproven: " << result.summary << "\n";
+      std::cout << "unproven: " << hipair::console::shortened_message(result.summary) << "\n";
       return 3;
     }
-    std::cout << "invalid: " << result.reason << "\n";
+    std::cout << "invalid: " << hipair::console::shortened_message(result.reason) << "\n";
   } catch (const std::bad_alloc&) {
     std::cout << "invalid: out of memory\n";
   } catch (const std::exception& error) {
-    std::cout << "invalid: " << error.what() << "\n";
+    std::cout << "invalid: " << hipair::console::shortened_message(error.what()) << "\n";
   }
   return 1;
 }

@@ -7,6 +7,7 @@
 #include <hipair/model.hpp>
 
 #include "cli/angles.hpp"
+#include "core/console_text.hpp"
 #include "model/exact_trig.hpp"
 
 #include <functional>
@@ -65,17 +66,10 @@ void add_rounding_option(CLI::App* command, std::string& text);
 /// range is checked by the reader).
 std::unique_ptr<model_detail::RoundingBoundScope> rounding_scope(const std::string& text);
 
-/// A name of the model (the model's, a part's, a parameter's) for a console line: the name itself
-/// when it has at most 200 bytes, else its first 200 (not cutting a UTF-8 sequence) followed by
-/// "... (N characters)". A 1 MB model name was printed whole by `show` and `validate` (hunt37's
-/// finding); files (SVG titles, JSON) keep the whole name.
-std::string shown_name(const std::string& name);
-
-/// An error message for the console with each word longer than 200 bytes cut to its first 60 (not
-/// inside a UTF-8 sequence) and its length: `--t-end` given a 100 000-digit value was echoed
-/// whole in CLI11's "Could not convert: --t-end = ...", and a model's 1 MB key in the JSON
-/// pointer of a reader's error (hunt37's and hunt38's findings). Other messages are unchanged.
-std::string shortened_message(const std::string& message);
+// shown_name and shortened_message (console text of long names and messages) live in
+// core/console_text.hpp, shared with hipair-verify.
+using console::shown_name;
+using console::shortened_message;
 
 /// CLI::Range for real numbers, with the ends written as numbers ("in [1e-12, 1]"): CLI11's own
 /// message prints them with std::to_string, and "Value 0 not in range 0.000000 to 1.000000"

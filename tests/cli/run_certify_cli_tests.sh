@@ -381,6 +381,27 @@ for limit in 300000 600000; do
   [ "$(echo "$out" | wc -l)" -eq 1 ] || fail "hipair-verify /dev/zero: more than one line: $(echo "$out" | head -c 300)"
 done
 
+# Long strings in a certificate are not echoed whole in the verdict (hunt38's finding: a 10^6-byte
+# `claim` gave a 1 000 057-byte "invalid: ..." line, a 300 000-byte unknown key 600 050 bytes).
+hash=$(hash_of "$work/squares.json")
+for length in 201 4097 300000 1000000; do
+  long=$(head -c "$length" /dev/zero | tr '\0' "$(printf '%s' abcdefxyz | cut -c$((RANDOM % 9 + 1)))")
+  printf '{ "hipair_certificate": 1, "claim": "%s",\n  "model": { "name": "squares", "content_hash": "%s", "parameters": {}, "roundings": [] },\n  "pair": ["slider", "block"],\n  "clearance": { "configuration": { "slider": { "offset": "0" } }, "distance": "1" } }\n' \
+    "$long" "$hash" >"$work/long-claim.json"
+  printf '{ "hipair_certificate": 1, "claim": "clearance", "%s": 1,\n  "model": { "name": "squares", "content_hash": "%s", "parameters": {}, "roundings": [] },\n  "pair": ["slider", "block"],\n  "clearance": { "configuration": { "slider": { "offset": "0" } }, "distance": "1" } }\n' \
+    "$long" "$hash" >"$work/long-key.json"
+  for kind in claim key; do
+    "$verify" "$work/long-$kind.json" "$work/squares.json" >"$work/long-$kind.out" 2>&1
+    code=$?
+    [ $code -eq 1 ] || fail "hipair-verify, a $length-byte $kind: exit $code, not 1: $(head -c 300 "$work/long-$kind.out")"
+    size=$(wc -c <"$work/long-$kind.out")
+    [ "$size" -le 1000 ] || fail "hipair-verify, a $length-byte $kind: a $size-byte message: $(head -c 300 "$work/long-$kind.out")"
+    [ "$(wc -l <"$work/long-$kind.out")" -eq 1 ] || fail "hipair-verify, a $length-byte $kind: not one line"
+    [ $length -le 200 ] || grep -q "characters)" "$work/long-$kind.out" \
+      || fail "hipair-verify, a $length-byte $kind: the length is not said: $(head -c 300 "$work/long-$kind.out")"
+  done
+done
+
 if [ $failures -ne 0 ]; then
   echo "$failures certify CLI check(s) failed"
   exit 1
