@@ -460,6 +460,10 @@ struct Simulation::Impl {
     return std::any_of(active.begin(), active.end(), [](const Active& a) { return a.wedge; });
   }
   static constexpr double vertex_limit = 1e-10;   // chart units
+  // Set while vertex_contacts decides a vertex: row()'s value past its clamped abscissa is
+  // continued along the tangent, as for a contact of a wedge (elsewhere it stays the clamped
+  // point's, as before)
+  mutable bool at_vertex_value = false;
 
   // the constraint's gradient over dofs, its bias h (g'' = G q'' + h) and its value g
   bool row(const Active& a, const Vec& qs, const Vec& vs, Vec& G, double& h, double& gval) const {
@@ -501,12 +505,13 @@ struct Simulation::Impl {
       ty = d.y.approximate();
       dy_chart = mid(d.dy);
     }
-    // the rows are those at the clamped abscissa, but the contact's value is its curve's at the
+    // while the configuration is put on a vertex (vertex_contacts, at_vertex_value), the rows are
+    // those at the clamped abscissa, but the contact's value is its curve's at the
     // configuration's own abscissa (continued along the tangent there): taken at the clamped
     // point, it was off by the slope x the clamp (up to 1e-9 of the edge's length and the slack
     // past the end), and the configuration put on two contacts at their vertex landed that far
     // from it, outside the other's edge (the translating wedge, docs/simulation.md, session 38)
-    if (tx != at) ty += dy_chart * (at - tx);
+    if (tx != at && (at_vertex_value || a.wedge)) ty += dy_chart * (at - tx);
     G[a.xdof] = -a.sigma * y1;
     G[a.ydof] += a.sigma;
     h = -a.sigma * y2 * vs[a.xdof] * vs[a.xdof];
@@ -1589,6 +1594,8 @@ struct Simulation::Impl {
     // the placement takes k's row at its end vertex wherever the cut left the configuration past
     // it (the event says the pair is at the vertex; its curve's value there, continued along the
     // tangent, puts the configuration on it), then k keeps the slack above
+    at_vertex_value = true;
+    struct Reset { bool& flag; ~Reset() { flag = false; } } reset{at_vertex_value};
     const double past = past_end(active[k]);
     const double slack = active[k].slack;
     if (past > slack) active[k].slack = 2 * past;
