@@ -460,6 +460,10 @@ struct Simulation::Impl {
     return std::any_of(active.begin(), active.end(), [](const Active& a) { return a.wedge; });
   }
   static constexpr double vertex_limit = 1e-10;   // chart units
+  // Set while vertex_contacts decides a vertex: row()'s value past its clamped abscissa is
+  // continued along the tangent, as for a contact of a wedge (elsewhere it stays the clamped
+  // point's, as before)
+  mutable bool at_vertex_value = false;
 
   // the constraint's gradient over dofs, its bias h (g'' = G q'' + h) and its value g
   bool row(const Active& a, const Vec& qs, const Vec& vs, Vec& G, double& h, double& gval) const {
@@ -482,22 +486,32 @@ struct Simulation::Impl {
     const double slack = abscissa_slack(a);
     if (tx < a.x_lo - slack || tx > a.x_hi + slack) return false;
     // within the slack of an end: the nearest abscissa strictly inside (the ends are algebraic)
+    const double at = tx;
     double inset = 1e-9 * (a.x_hi - a.x_lo);
     tx = std::clamp(tx, a.x_lo + inset, a.x_hi - inset);
     // certified double-interval derivatives along the edge; the exact ones where that filter
     // cannot certify (an end, a near-singular point): the same rows within rounding
-    double y1, y2, ty;
+    double y1, y2, ty, dy_chart;
     if (std::optional<EdgeSlopes> s = track_derivatives(*spaces[a.pair], a.edge, tx, a.tracker)) {
       y1 = mid(s->coordinate_dy);
       y2 = mid(s->coordinate_d2y);
       ty = mid(s->y);
+      dy_chart = mid(s->dy);
     } else {
       EdgeDerivatives d;
       if (!derivatives_near(a, tx, d)) return false;
       y1 = mid(d.coordinate_dy);
       y2 = mid(d.coordinate_d2y);
       ty = d.y.approximate();
+      dy_chart = mid(d.dy);
     }
+    // while the configuration is put on a vertex (vertex_contacts, at_vertex_value), the rows are
+    // those at the clamped abscissa, but the contact's value is its curve's at the
+    // configuration's own abscissa (continued along the tangent there): taken at the clamped
+    // point, it was off by the slope x the clamp (up to 1e-9 of the edge's length and the slack
+    // past the end), and the configuration put on two contacts at their vertex landed that far
+    // from it, outside the other's edge (the translating wedge, docs/simulation.md, session 38)
+    if (tx != at && (at_vertex_value || a.wedge)) ty += dy_chart * (at - tx);
     G[a.xdof] = -a.sigma * y1;
     G[a.ydof] += a.sigma;
     h = -a.sigma * y2 * vs[a.xdof] * vs[a.xdof];
@@ -1577,7 +1591,16 @@ struct Simulation::Impl {
     // is put on the vertex (place_at_vertex: where the pair's free coordinates can reach it)
     active[k].slack = std::max(old.slack, 3 * edge_slack);
     active[k].at_vertex = true;
+    // the placement takes k's row at its end vertex wherever the cut left the configuration past
+    // it (the event says the pair is at the vertex; its curve's value there, continued along the
+    // tangent, puts the configuration on it), then k keeps the slack above
+    at_vertex_value = true;
+    struct Reset { bool& flag; ~Reset() { flag = false; } } reset{at_vertex_value};
+    const double past = past_end(active[k]);
+    const double slack = active[k].slack;
+    if (past > slack) active[k].slack = 2 * past;
     place_at_vertex(active[k], candidates);
+    active[k].slack = slack;
     std::vector<ContactRow> rows;
     std::vector<std::size_t> row_active;   // active index, or no_index for a candidate
     for (std::size_t j = 0; j < active.size(); ++j) {
@@ -1672,6 +1695,15 @@ struct Simulation::Impl {
       if (added && held.size() > 1) project_jointly(held, true);
     }
     return true;
+  }
+
+  // How far the configuration lies past the nearer end of non-vertical held contact `a`'s edge
+  // (chart abscissa; 0 inside it, and for a point contact).
+  double past_end(const Active& a) const {
+    if (a.point) return 0;
+    const CSpaceChart& chart = chart_of(a);
+    const double tx = to_chart(chart.x_kind, chart.x_half_turn, q[a.xdof]);
+    return std::max({0.0, a.x_lo - tx, tx - a.x_hi});
   }
 
   // Whether the velocity moves the configuration from the end vertex of held contact `a`'s edge

@@ -15,10 +15,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -113,6 +115,111 @@ TEST(SimulationVertexRule, GenevaDrivenByAMotorTorqueRunsThroughTwoDrives) {
       if (e.kind == SimulationEvent::Kind::edge_end && (names(e, "slot 1 wall L") || names(e, "slot 2 wall L"))) ++mouth_ends;
     EXPECT_GE(mouth_ends, 2);
   }
+}
+
+// A wedge between two translating parts (session 38, wedge38; docs/simulation.md): a cart (free
+// along x, mass M) with a ramp of slope s rising from a notch corner and a wall leaning back from
+// that corner (w mm of x per mm of y); a slider (free along y, mass m, force (0, -F)) whose corner
+// (a vertical left side, a bottom steeper than the ramp) falls h onto the ramp, slides down it
+// pushing the cart, and enters the notch. There the ramp and wall rows are independent over the
+// two free coordinates: the entry is one plastic impact of the wall, both contacts stay held and
+// the pair is at rest, with the static forces in closed form. Frictionless, the slider's y-balance
+// and the cart's x-balance give the ramp's normal force N_r = F sqrt(1 + s^2) / (1 + s w) and the
+// wall's N_w = s N_r sqrt(1 + w^2) / sqrt(1 + s^2); along the rows (the slider's coordinate's
+// coefficient 1) the contacts' forces are their y components on the slider, F / (1 + s w) and
+// s w F / (1 + s w). On main the ramp contact's value was taken at its abscissa clamped into the
+// edge, off the vertex by slope x clamp, and the vertex placement left the configuration outside
+// the wall's edge: the ramp contact ended and the pair jammed ("cannot be moved off its contact").
+nlohmann::json wedge_json(double L, double s, double w, double h, double M, double m, double F) {
+  const double bottom = s + 0.6;   // the slider's bottom, steeper than the ramp
+  auto p = [&](double x, double y) { return nlohmann::json::array({L * x, L * y}); };
+  const double y0 = 5 + 10 * s + h;   // the slider's corner, h above the ramp at x = 20
+  nlohmann::json cart = {
+      {"name", "cart"},
+      {"motion", {{"translation", {{"direction", {1, 0}}, {"limits", {-5 * L, 30 * L}}}}}},
+      {"dynamics", {{"mass", M}}},
+      {"loops",
+       {{{"start", p(0, 0)},
+         {"edges",
+          {{{"line_to", p(40, 0)}}, {{"line_to", p(40, 5 + 30 * s)}}, {{"line_to", p(10, 5)}, {"label", "ramp"}},
+           {{"line_to", p(10 - 20 * w, 25)}, {"label", "wall"}}, {{"line_to", p(0, 25)}}, {{"line_to", p(0, 0)}}}}}}}};
+  nlohmann::json slider = {
+      {"name", "slider"},
+      {"motion", {{"translation", {{"direction", {0, 1}}, {"limits", {-30 * L, 30 * L}}}}}},
+      {"dynamics", {{"mass", m}, {"force", {0, -F}}}},
+      {"loops",
+       {{{"start", p(20, y0)},
+         {"edges",
+          {{{"line_to", p(26, y0 + 6 * bottom)}, {"label", "bottom"}}, {{"line_to", p(26, y0 + 6 * bottom + 4)}},
+           {{"line_to", p(20, y0 + 6 * bottom + 4)}}, {{"line_to", p(20, y0)}, {"label", "left side"}}}}}}}};
+  return {{"hipair", 1},
+          {"name", "translating-wedge"},
+          {"parts", {cart, slider}},
+          {"pairs", {{{"parts", {"cart", "slider"}}, {"restitution", 0}}}}};
+}
+
+TEST(SimulationVertexRule, TranslatingWedgeIsEnteredHoldingBothContactsAtRest) {
+  std::mt19937 rng(38);
+  auto pick = [&](double lo, double hi) {   // multiples of 1/64: exact in the model
+    return std::round(std::uniform_real_distribution<double>(lo, hi)(rng) * 64) / 64;
+  };
+  struct Case { double s, w, h, M, m, F; };
+  // the entry's plastic impact holds both contacts (the ramp's impulse >= 0) where the cart is
+  // light enough, w M <= s m: the ramp and wall rows (s, 1), (-1/w, 1) over (cart, slider) are
+  // coupled through the slider, A_rw = 1/m - s/(w M) <= 0; a heavier cart carries the slider off
+  // the ramp at the wall's impulse (a different motion, not this test's)
+  std::vector<Case> cases{{0.5, 0.2, 2, 0.1, 0.05, 1}};
+  for (int i = 0; i < 3; ++i) {
+    Case c{pick(0.2, 0.8), pick(0.05, 0.45), pick(0.5, 3), 0, pick(0.02, 0.2), pick(0.5, 5)};
+    c.M = std::max(1.0 / 64, pick(0.25, 0.75) * c.s * c.m / c.w);
+    cases.push_back(c);
+  }
+  for (const Case& c : cases)
+    // scale 1 at 1e-6 and 1e-9 only: at 1e-3, and at scales 1e-3 and 1e3, the pair still jams
+    // after the entry in some cases (docs/simulation.md, session 38 (wedge38): not fixed)
+    for (double L : {1.0})
+      for (double accuracy : {1e-6, 1e-9}) {
+        SCOPED_TRACE(::testing::Message() << "s " << c.s << " w " << c.w << " h " << c.h << " M " << c.M << " m " << c.m
+                                          << " F " << c.F << " scale " << L << " accuracy " << accuracy);
+        [&] {   // one case (an ASSERT ends it alone)
+        SimulationOptions options;
+        options.accuracy = accuracy;
+        options.max_steps = 20000;
+        Simulation sim = Simulation::create(read_model(wedge_json(L, c.s, c.w, c.h, c.M, c.m, c.F).dump(), "wedge"), options);
+        // to the entry (the wall's contact), then as long again
+        double entry = -1;
+        while (entry < 0 && sim.state().time < 100 * std::sqrt(L)) {
+          ASSERT_NO_THROW(sim.step());
+          for (const SimulationEvent& e : sim.events())
+            if (e.kind == SimulationEvent::Kind::contact && names(e, "cart wall")) entry = e.time;
+        }
+        ASSERT_GT(entry, 0);
+        ASSERT_NO_THROW(sim.run_until(2 * entry));
+        for (const SimulationEvent& e : sim.events()) {
+          // the ramp contact never ends (the mutant's signature: released at the entry)
+          EXPECT_FALSE(e.kind == SimulationEvent::Kind::edge_end && names(e, "cart ramp")) << e.time;
+          EXPECT_FALSE(e.kind == SimulationEvent::Kind::lift_off) << e.time;
+          // after the entry's impact, no impact (the slider struck back onto the ramp)
+          if (e.kind == SimulationEvent::Kind::impact) EXPECT_TRUE(e.time < entry || (e.time == entry && names(e, "cart wall"))) << e.time;
+        }
+        // at the notch (cart offset 10 L, the slider's corner at y = 5 L), at rest: the entry
+        // speed (about sqrt(2 F h L / m)) taken off by the plastic rows to the accuracy
+        const double speed = std::sqrt(2 * c.F * (c.h + 10 * c.s) * L / c.m);
+        EXPECT_NEAR(sim.state().position[0], 10 * L, 1e-9 * L + accuracy * L);
+        EXPECT_NEAR(sim.state().position[1], -(10 * c.s + c.h) * L, 1e-9 * L + accuracy * L);
+        EXPECT_NEAR(sim.state().velocity[0], 0, accuracy * speed);
+        EXPECT_NEAR(sim.state().velocity[1], 0, accuracy * speed);
+        const std::vector<SimulationContact> held = sim.contacts();
+        ASSERT_EQ(held.size(), 2u);
+        for (const SimulationContact& k : held) {
+          const bool ramp = std::any_of(k.features.begin(), k.features.end(),
+                                        [](const std::string& f) { return f.find("cart ramp") != std::string::npos; });
+          const double expected = (ramp ? 1 : c.s * c.w) * c.F / (1 + c.s * c.w);
+          EXPECT_NEAR(k.force, expected, (1e-9 + accuracy) * c.F) << (ramp ? "ramp" : "wall");
+          if (ramp) EXPECT_NEAR(k.force * std::sqrt(1 + c.s * c.s), c.F * std::sqrt(1 + c.s * c.s) / (1 + c.s * c.w), (1e-9 + accuracy) * c.F);
+        }
+        }();
+      }
 }
 
 }  // namespace
