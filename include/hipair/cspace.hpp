@@ -19,6 +19,7 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -430,12 +431,46 @@ struct CSpaceStatistics {
   double seconds_total = 0;
 };
 
+/// One report of a pair's C-space build (CSpaceBuildOptions::progress). A build reports, in
+/// order: each chart (or operating-region tile) when its build starts (Stage::chart), the exact
+/// classification of each 2-D chart's edges and vertices as it goes (Stage::classification,
+/// from done = 0), and its end once the cells are formed (Stage::done).
+struct CSpaceBuildProgress {
+  enum class Stage { chart, classification, done };
+  Stage stage = Stage::chart;
+  std::string_view first_part, second_part;   ///< the pair (valid during the call only)
+  std::size_t chart = 0;                      ///< chart or tile from 1 (chart, classification)
+  std::size_t charts = 0;                     ///< the pair's charts or tiles
+  bool tiles = false;                         ///< operating region: tiles, not whole charts
+  std::size_t done = 0, total = 0;            ///< classification: the chart's edges and vertices decided
+  std::size_t coefficient_bits = 0;           ///< classification: the chart's widest polynomial coefficient
+  /// The pair's build done, in [0, 1], never decreasing: work units (the charts built, then
+  /// each 2-D chart classified, then the cells), the current chart's classification counted by
+  /// its share done/total; exactly 1 at Stage::done.
+  double fraction = 0;
+  /// The line stderr_progress() shows for this report: "hipair: A:B chart k/n" ("tile k/n"),
+  /// "hipair: A:B classifying chart k/n: P%" (with the reason over 300 coefficient bits);
+  /// empty at Stage::done.
+  std::string text() const;
+};
+
+/// Receives a build's reports (CSpaceBuildProgress). build_all and build_pairs build pairs on
+/// worker threads but call it under one lock: never concurrently, each pair's reports in order.
+using CSpaceProgress = std::function<void(const CSpaceBuildProgress&)>;
+
+/// The reporter `hipair` passes on a terminal: each report's text() on one stderr line redrawn
+/// in place ("\r"), a line break after the last chart's line, classification lines at most
+/// four a second, the line wiped at Stage::done. (Callers decide whether stderr is a terminal.)
+CSpaceProgress stderr_progress();
+
 /// Options of a C-space build.
 struct CSpaceBuildOptions {
   bool keep_arrangements = false;      ///< keep the raw CGAL arrangements (see hipair/cgal/)
   bool aggregated_insertion = false;   ///< CGAL's aggregated (sweep) insertion instead of incremental
   unsigned threads = 0;                ///< build_all: worker threads (0: hardware concurrency)
-  bool progress = false;               ///< report progress on stderr
+  /// Called with the build's progress (CSpaceBuildProgress); empty: none. stderr_progress()
+  /// is the terminal's reporter.
+  CSpaceProgress progress;
   /// Build only the operating region instead of the whole space: the connected set of
   /// configurations not certified blocked that contains the seed (the free channel the
   /// mechanism works in, with a margin), covered by tiles of each chart. Everything inside the

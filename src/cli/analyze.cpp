@@ -299,7 +299,7 @@ int run_analyze(const AnalyzeOptions& options) {
   std::vector<CSpace> spaces;
   if (analysis.method == SliceMethod::cspace) {
     CSpaceBuildOptions build;
-    build.progress = terminal;
+    if (terminal) build.progress = stderr_progress();
     spaces = CSpace::build_all(model, build);
   }
   // the initial configuration's slices come before the sweep's first percent (a 100 x 103 gear

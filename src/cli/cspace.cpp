@@ -109,7 +109,7 @@ int run(const CSpaceCommandOptions& options) {
   auto rounding = rounding_scope(options.rounding);
   Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
   CSpaceBuildOptions build;
-  build.progress = isatty(2);
+  if (isatty(2)) build.progress = stderr_progress();
   build.aggregated_insertion = options.aggregated;
   build.quadratic_traits = !options.algebraic_traits;
   build.quadratic_max_coefficient_bits = options.quadratic_max_bits;

@@ -8,7 +8,6 @@
 #include "arrangement/circle_segment_traits.hpp"
 #include "arrangement/quadratic_traits.hpp"
 #include "oracle/blocked_tester.hpp"
-#include "core/progress_scope.hpp"
 
 #include <hipair/error.hpp>
 
@@ -31,8 +30,6 @@
 #include <tuple>
 #include <unordered_map>
 #include <functional>
-#include <iostream>
-#include <unistd.h>
 
 namespace hipair::cspace {
 namespace {
@@ -1611,15 +1608,27 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     OrdinateClassifier classify_ordinate;
   };
   std::vector<Deferred> deferred(chart_count);
-  // progress (core/progress_scope.hpp: the caller's hook, when it installed one): the charts
-  // built, then (2-D) the charts classified, then the cells, as work units
+  // progress (options.progress): the charts built, then (2-D) the charts classified, then the
+  // cells, as work units; a chart's classification by its share of edges and vertices decided
   const std::size_t progress_units = (input.dimension == 2 ? 2 : 1) * chart_count + 1;
   std::size_t progress_done = 0;
-  auto progress_unit = [&] {
-    ++progress_done;
-    if (progress_wanted()) report_progress(static_cast<double>(progress_done) / static_cast<double>(progress_units));
+  CSpaceBuildProgress report;
+  report.first_part = input.first_part;
+  report.second_part = input.second_part;
+  report.charts = chart_count;
+  report.tiles = !input.complete;
+  auto progress_report = [&](CSpaceBuildProgress::Stage stage, double share) {
+    report.stage = stage;
+    report.fraction = stage == CSpaceBuildProgress::Stage::done
+                          ? 1.0
+                          : std::min(1.0, (static_cast<double>(progress_done) + share) / static_cast<double>(progress_units));
+    options.progress(report);
   };
   for (std::size_t c = 0; c < chart_count; ++c) {
+    if (options.progress) {
+      report.chart = c + 1;
+      progress_report(CSpaceBuildProgress::Stage::chart, 0);
+    }
     ChartInput streamed_input;
     if (streamed) {
       auto start = Clock::now();
@@ -1674,7 +1683,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       auto start = Clock::now();
       build_interval_chart(chart, chart_input, stats);
       stats.seconds_classification += seconds_since(start);
-      progress_unit();
+      ++progress_done;
       continue;
     }
     raw::Options raw_options;
@@ -1713,7 +1722,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     // the chart's input curves are done with (its arrangement, polynomials and labels are
     // kept): free them now rather than at the end, so a region's peak holds one copy
     std::vector<ContactCurve>().swap(chart_input.curves);
-    progress_unit();
+    ++progress_done;
   }
   stats.charts = impl->charts.size();
   stats.feature_pairs_considered = input.curve_statistics.feature_pairs_considered;
@@ -1721,33 +1730,26 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
   stats.seconds_curves = input.seconds_curves;
   if (input.dimension == 2) {
     auto start = Clock::now();
-    // Progress on a terminal (hunt38): the exact classification can take minutes where the
+    // Progress while classifying (hunt38): the exact classification can take minutes where the
     // pair mixes very different scales (a 1e-30 mm square against a 1e400 mm one: signs of
     // polynomials with coefficients of thousands of bits at algebraic points), and nothing was
-    // shown after the last chart's curves. At most four lines a second; the widest coefficient
-    // is named when it is the reason (over 300 bits; the examples stay under 200).
-    const bool progress = options.progress && isatty(2);
-    auto last_shown = Clock::now() - std::chrono::seconds(1);
-    std::size_t shown = 0;   // the width of the last line shown
+    // shown after the last chart's curves. The widest coefficient goes with the reports (the
+    // terminal's line names it as the reason over 300 bits; the examples stay under 200).
     for (std::size_t c = 0; c < chart_count; ++c) {
       ChartData& chart = impl->charts[c];
       std::function<void(std::size_t, std::size_t)> tick;
-      if (progress) {
+      if (options.progress) {
         std::size_t bits = 0;
         for (const IntegerPolynomial2& f : chart.polynomials)
           for (const auto& row : f.coefficients)
             for (const mpz_class& a : row) bits = std::max(bits, mpz_sizeinbase(a.get_mpz_t(), 2));
-        const std::string why = bits > 300 ? " (exact signs, coefficients of up to " + std::to_string(bits) +
-                                                  " bits: lengths of very different scales)"
-                                            : "";
-        tick = [&, c, why](std::size_t done, std::size_t total) {
-          if (Clock::now() - last_shown < std::chrono::milliseconds(250)) return;
-          last_shown = Clock::now();
-          const std::string line = "hipair: " + input.first_part + ":" + input.second_part + " classifying chart " +
-                                   std::to_string(c + 1) + "/" + std::to_string(chart_count) + ": " +
-                                   std::to_string(100 * done / std::max<std::size_t>(total, 1)) + "%" + why;
-          std::cerr << "\r" << line << std::string(shown > line.size() ? shown - line.size() : 0, ' ') << std::flush;
-          shown = std::max(shown, line.size());
+        report.chart = c + 1;
+        report.coefficient_bits = bits;
+        tick = [&](std::size_t done, std::size_t total) {
+          report.done = done;
+          report.total = total;
+          progress_report(CSpaceBuildProgress::Stage::classification,
+                          static_cast<double>(done) / static_cast<double>(std::max<std::size_t>(total, 1)));
         };
       }
       std::optional<ContactSides> sides;
@@ -1758,9 +1760,8 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
                      propagate);
       find_touching(chart, deferred[c].classify, deferred[c].classify_algebraic, deferred[c].classify_ordinate, sides ? &*sides : nullptr, options.check_face_classification, stats, tick);
       deferred[c] = Deferred{};
-      progress_unit();
+      ++progress_done;
     }
-    if (shown) std::cerr << "\r" << std::string(shown, ' ') << "\r" << std::flush;
     stats.seconds_classification += seconds_since(start);
   }
 
@@ -2069,7 +2070,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
             {raw::double_bounds(v.x.lower).first, raw::double_bounds(v.x.upper).second, raw::double_bounds(v.y_upper).second});
     }
   stats.seconds_total = seconds_since(total_start) - seconds_streamed + stats.seconds_curves + stats.seconds_region;
-  progress_unit();
+  if (options.progress) progress_report(CSpaceBuildProgress::Stage::done, 0);
   return make_cspace(impl);
 }
 

@@ -21,12 +21,10 @@
 #include <optional>
 #include <chrono>
 #include <exception>
-#include <iostream>
 #include <mutex>
 #include <thread>
 #include <tuple>
 #include <unordered_map>
-#include <unistd.h>
 
 namespace hipair {
 namespace {
@@ -283,7 +281,6 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   input.axes = axes;
   std::vector<ChartAxis> y_charts = layout.y_charts;
   if (input.dimension == 1) y_charts = {ChartAxis{ChartAxis::Kind::translation, false, Rational(0), Rational(0)}};
-  bool progress = options.progress && isatty(2);
   // Translating polygon pairs: their contact curves are the segments of the parts' reduced
   // convolution once the curve generator's exact corner test has dropped every vertex–segment
   // pair whose curve lies in blocked space throughout; CGAL's circle–segment arrangement
@@ -343,7 +340,6 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
       for (std::size_t iy = 0; iy < y_charts.size(); ++iy)
         boxes.push_back({ix, iy, layout.x_charts[ix], y_charts[iy]});
   }
-  const std::size_t total = boxes.size();
   auto generator_start = Clock::now();
   CurveOptions curve_options;
   curve_options.cull_blocked_space = !polygon_translation && options.cull_blocked_space;
@@ -362,7 +358,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   // each box's curves are generated when the builder reaches it (PairInput::make_chart):
   // the boxes are built one at a time, with one box's curves alive
   input.chart_count = boxes.size();
-  input.make_chart = [&, done = std::size_t{0}](std::size_t c, PairInput& building) mutable {
+  input.make_chart = [&](std::size_t c, PairInput& building) {
     const BoxToBuild& box = boxes[c];
     ChartInput chart;
     chart.x_index = box.x_index;
@@ -400,9 +396,6 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
       return algebraic_overlap(model, axes, chart_axes->x, chart_axes->y, qx, qy, overlap.get());
     };
     if (building.dimension == 2 && cells && cells->usable()) chart.blocked_cells = std::move(cells);
-    if (progress) std::cerr << "\rhipair: " << building.first_part << ":" << building.second_part << " "
-                            << (building.complete ? "chart " : "tile ") << ++done << "/" << total << std::flush;
-    if (progress && done == total) std::cerr << "\n";
     return chart;
   };
   return build_cspace(std::move(input), options);
@@ -436,7 +429,15 @@ struct PairOutcome {
   std::exception_ptr error;
 };
 
-std::vector<PairOutcome> build_each(const Model& model, const CSpaceBuildOptions& options) {
+std::vector<PairOutcome> build_each(const Model& model, const CSpaceBuildOptions& given) {
+  // the pairs' reports reach the caller's callback one at a time (CSpaceProgress)
+  CSpaceBuildOptions options = given;
+  std::mutex reporting;
+  if (given.progress)
+    options.progress = [&reporting, &given](const CSpaceBuildProgress& report) {
+      std::lock_guard<std::mutex> lock(reporting);
+      given.progress(report);
+    };
   std::vector<PairOutcome> outcomes;
   for (const auto& pair : model.pairs) {
     int first = model.parts[pair.first].motion.degrees_of_freedom();

@@ -9,7 +9,6 @@
 #include "tolerance/certificate.hpp"
 #include "tolerance/exact_order.hpp"
 #include "tolerance/progress.hpp"
-#include "core/progress_scope.hpp"
 #include "tolerance/root_search.hpp"
 #include "tolerance/sampling.hpp"
 #include "tolerance/solver.hpp"
@@ -224,6 +223,14 @@ PartCoordinate part_coordinate(bool rotates, double coordinate) {
 using tolerance_detail::chart_slope;
 using tolerance_detail::to_part;
 
+// Build options passing a C-space build's fraction done to `sink` (a part of the bar:
+// StagedProgress::within); an empty sink (no progress asked for) asks for no reports.
+CSpaceBuildOptions reporting(std::function<void(double)> sink) {
+  CSpaceBuildOptions options;
+  if (sink) options.progress = [sink = std::move(sink)](const CSpaceBuildProgress& report) { sink(report.fraction); };
+  return options;
+}
+
 // A side of the follower's channel in a slice: where, and the feature pairs there.
 struct Side {
   bool present = false;
@@ -322,8 +329,8 @@ class Analysis {
     if (given) {
       space_ = std::make_unique<CSpace>(*given);
     } else {
-      ProgressScope progress(bar_.within());   // the build's charts, as its stage's progress
-      space_ = std::make_unique<CSpace>(CSpace::build(m, pair_first_, pair_second_));
+      // the build's progress, as its stage's
+      space_ = std::make_unique<CSpace>(CSpace::build(m, pair_first_, pair_second_, reporting(bar_.within())));
     }
     driver_is_x_ = space_->x_part() == result_.driver;
   }
@@ -980,10 +987,8 @@ class Analysis {
       result.bracket_evidence = std::string("not confirmed: the witness geometry is invalid: ") + error.what();
       return;
     }
-    CSpace space = [&] {
-      ProgressScope progress(bar_.within(0.8, 1.0));   // the witness' exact C-space
-      return CSpace::build(worst, pair_first_, pair_second_);
-    }();
+    // the witness' exact C-space
+    CSpace space = CSpace::build(worst, pair_first_, pair_second_, reporting(bar_.within(0.8, 1.0)));
     std::optional<Slice> slice = slice_like(space, state);
     if (!slice) {
       result.bracket_evidence = "not confirmed: no slice of the witness' C-space at that driver position";
@@ -1111,10 +1116,8 @@ class Analysis {
         result.evidence = std::string("the worst-case geometry is invalid: ") + error.what();
         continue;
       }
-      CSpace space = [&] {
-        ProgressScope progress(bar_.within(from, from + (confirm_end - 0.1) / 5));
-        return CSpace::build(worst, pair_first_, pair_second_);
-      }();
+      CSpace space =
+          CSpace::build(worst, pair_first_, pair_second_, reporting(bar_.within(from, from + (confirm_end - 0.1) / 5)));
       std::optional<Slice> slice = slice_like(space, state);
       if (!slice) continue;
       // Free intervals of the slice meeting the nominal channel (lower, upper).

@@ -7,8 +7,8 @@
 // passing on a value not above the last shown -> StagedProgressOnlyGrowsAndEndsAtOne and both
 // analyses' tests fail. TheNominalSweepsFractionOnlyGrows checks the kinematic sweep's own
 // fractions (before the reporter's filter), forward and backward over several Geneva turns.
-#include "core/progress_scope.hpp"
 #include "tolerance/progress.hpp"
+#include "polygon_loop_json.hpp"
 #include "tolerance_chain_models.hpp"
 
 #include "test_paths.hpp"
@@ -22,6 +22,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <iostream>
+#include <map>
+#include <sstream>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -206,50 +211,157 @@ TEST(ToleranceProgress, APartOfAStageMapsItsInnerFractions) {
   EXPECT_FALSE(static_cast<bool>(silent.within(0.2, 0.4)));
 }
 
-// core/progress_scope.hpp: the innermost scope's hook receives what the work reports; an empty
-// scope hides the outer one; a scope's end restores the one before; another thread sees none.
-// Oracle: a stack of hooks kept here. Then a real build: CSpace::build reports its charts built,
-// classified and its cells as strictly growing fractions ending at 1.
-TEST(ToleranceProgress, AProgressScopeReachesTheCSpaceBuild) {
-  std::mt19937 rng(7);
-  for (int trial = 0; trial < 200; ++trial) {
-    std::vector<std::vector<double>> received(8);
-    std::vector<int> stack;   // the oracle: hooks installed, -1 for an empty one
-    std::vector<std::vector<double>> expected(8);
-    std::function<void(int)> nest = [&](int depth) {
-      int hook = rng() % 4 == 0 ? -1 : depth;
-      ProgressScope scope(hook < 0 ? std::function<void(double)>{}
-                                   : std::function<void(double)>([&, hook](double f) { received[static_cast<std::size_t>(hook)].push_back(f); }));
-      stack.push_back(hook);
-      for (int step = 0; step < 4; ++step) {
-        if (depth < 7 && rng() % 3 == 0) nest(depth + 1);
-        double f = std::uniform_real_distribution<>(0, 1)(rng);
-        EXPECT_EQ(progress_wanted(), stack.back() >= 0);
-        report_progress(f);
-        if (stack.back() >= 0) expected[static_cast<std::size_t>(stack.back())].push_back(f);
-        std::thread([f] {
-          EXPECT_FALSE(progress_wanted());
-          report_progress(f);   // no hook on this thread: nothing received
-        }).join();
-      }
-      stack.pop_back();
+// A generated model: star polygons (polygon_loop_json.hpp) about (4i, 0), radii 2 to 3.5 (so
+// neighbours reach into each other), each rotating about its centre or fixed; a pair between
+// every two parts, of which the fixed-fixed ones are skipped by build_all.
+std::string star_model(std::mt19937_64& random, const std::vector<bool>& rotating) {
+  std::string parts, pairs;
+  for (std::size_t i = 0; i < rotating.size(); ++i) {
+    const int n = 4 + static_cast<int>(random() % 4);
+    const std::string loop = test_loops::loop_json(test_loops::star(random, n, 4.0 * static_cast<double>(i), 0, 1.5, false));
+    const std::string motion =
+        rotating[i] ? R"({ "rotation": { "pivot": [)" + std::to_string(4 * i) + R"(, 0] } })" : std::string(R"("fixed")");
+    parts += std::string(i ? ", " : "") + R"({ "name": "p)" + std::to_string(i) + R"(", "motion": )" + motion +
+             R"(, "loops": [ )" + loop + " ] }";
+    for (std::size_t j = 0; j < i; ++j)
+      pairs += std::string(pairs.empty() ? "" : ", ") + R"({ "parts": ["p)" + std::to_string(j) + R"(", "p)" +
+               std::to_string(i) + R"("] })";
+  }
+  return R"({ "hipair": 1, "name": "stars", "parts": [ )" + parts + R"( ], "pairs": [ )" + pairs + " ] }";
+}
+
+// A record of one report (CSpaceBuildProgress's views live during the call only).
+struct Seen {
+  CSpaceBuildProgress::Stage stage;
+  std::size_t chart, charts, done, total;
+  double fraction;
+  std::string text;
+};
+
+// One pair's reports against an independent model of them: its charts in order (fraction
+// (k - 1)/U, U = charts + (2-D: charts) + 1 work units, the text "hipair: A:B chart k/n"),
+// then on 2-D spaces each chart's classification in order (done growing to its total, the
+// fraction (n + k - 1 + done/total)/U), then one Stage::done with fraction exactly 1; every
+// fraction in [0, 1] and none below the one before.
+void expect_one_pairs_reports(const std::vector<Seen>& seen, const CSpace& space, const std::string& what) {
+  using Stage = CSpaceBuildProgress::Stage;
+  const std::size_t n = space.charts().size();
+  const bool plane = space.dimension() == 2;
+  const double units = static_cast<double>((plane ? 2 : 1) * n + 1);
+  ASSERT_GE(seen.size(), n + 1) << what;
+  for (std::size_t k = 0; k < n; ++k) {
+    EXPECT_EQ(seen[k].stage, Stage::chart) << what << " #" << k;
+    EXPECT_EQ(seen[k].chart, k + 1) << what << " #" << k;
+    EXPECT_EQ(seen[k].charts, n) << what << " #" << k;
+    EXPECT_EQ(seen[k].fraction, static_cast<double>(k) / units) << what << " #" << k;
+    EXPECT_EQ(seen[k].text, "hipair: " + space.first_part() + ":" + space.second_part() + " chart " +
+                                std::to_string(k + 1) + "/" + std::to_string(n))
+        << what;
+  }
+  std::size_t chart = 0, done = 0;
+  for (std::size_t i = n; i + 1 < seen.size(); ++i) {
+    const Seen& r = seen[i];
+    ASSERT_TRUE(plane) << what << ": a 1-D space classifies no chart";
+    ASSERT_EQ(r.stage, Stage::classification) << what << " #" << i;
+    EXPECT_EQ(r.charts, n) << what;
+    if (r.chart != chart) {
+      EXPECT_EQ(r.chart, chart + 1) << what << " #" << i;
+      chart = r.chart;
+      done = 0;
+    }
+    EXPECT_GE(r.done, done) << what << " #" << i;
+    EXPECT_LE(r.done, r.total) << what << " #" << i;
+    done = r.done;
+    const double expected =
+        (static_cast<double>(n + chart - 1) + static_cast<double>(r.done) / static_cast<double>(std::max<std::size_t>(r.total, 1))) / units;
+    EXPECT_NEAR(r.fraction, expected, 1e-12) << what << " #" << i;
+    EXPECT_EQ(r.text.rfind("hipair: " + space.first_part() + ":" + space.second_part() + " classifying chart " +
+                               std::to_string(chart) + "/" + std::to_string(n) + ": ",
+                           0),
+              0u)
+        << what << " #" << i;
+  }
+  EXPECT_EQ(seen.back().stage, Stage::done) << what;
+  EXPECT_EQ(seen.back().fraction, 1.0) << what;
+  for (std::size_t i = 0; i < seen.size(); ++i) {
+    EXPECT_GE(seen[i].fraction, 0.0) << what << " #" << i;
+    EXPECT_LE(seen[i].fraction, 1.0) << what << " #" << i;
+    if (i > 0) EXPECT_GE(seen[i].fraction, seen[i - 1].fraction) << what << " #" << i;
+  }
+}
+
+// CSpaceBuildOptions::progress (the one progress channel into the builder): on generated star
+// pairs (1-D and 2-D spaces) a single build's reports follow the model above; build_all on
+// generated three- and four-part models (several pairs on two worker threads) calls the
+// callback never concurrently (a counter of calls inside it, each call sleeping a little to
+// widen the window), and each pair's reports, taken apart by pair, follow the same model.
+// Mutations (run and reverted): the chart's work unit left uncounted -> the fractions differ;
+// the lock in build_each removed -> "called concurrently".
+TEST(ToleranceProgress, TheBuildOptionsCallbackReportsEachPairGrowingToOne) {
+  std::mt19937_64 random(39);
+  for (int trial = 0; trial < 6; ++trial) {
+    const std::vector<bool> rotating = trial % 3 == 0 ? std::vector<bool>{true, false} : std::vector<bool>{true, true};
+    Model model = read_model(star_model(random, rotating));
+    std::vector<Seen> seen;
+    CSpaceBuildOptions options;
+    options.progress = [&](const CSpaceBuildProgress& r) {
+      seen.push_back({r.stage, r.chart, r.charts, r.done, r.total, r.fraction, r.text()});
     };
-    nest(0);
-    EXPECT_FALSE(progress_wanted());
-    ASSERT_EQ(received, expected) << "trial " << trial;
+    CSpace space = CSpace::build(model, "p0", "p1", options);
+    expect_one_pairs_reports(seen, space, "trial " + std::to_string(trial));
   }
+  for (int trial = 0; trial < 3; ++trial) {
+    const std::vector<bool> rotating =
+        trial == 0 ? std::vector<bool>{true, true, true} : std::vector<bool>{true, false, true, trial == 2};
+    Model model = read_model(star_model(random, rotating));
+    std::map<std::pair<std::string, std::string>, std::vector<Seen>> seen;
+    std::atomic<int> inside{0};
+    std::atomic<int> overlaps{0};
+    CSpaceBuildOptions options;
+    options.threads = 2;
+    options.progress = [&](const CSpaceBuildProgress& r) {
+      if (inside.fetch_add(1) != 0) ++overlaps;
+      seen[{std::string(r.first_part), std::string(r.second_part)}].push_back(
+          {r.stage, r.chart, r.charts, r.done, r.total, r.fraction, r.text()});
+      if (r.stage != CSpaceBuildProgress::Stage::classification) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      inside.fetch_sub(1);
+    };
+    std::vector<CSpace> spaces = CSpace::build_all(model, options);
+    EXPECT_EQ(overlaps.load(), 0) << "trial " << trial << ": called concurrently";
+    ASSERT_GE(spaces.size(), 2u);
+    EXPECT_EQ(seen.size(), spaces.size());
+    for (const CSpace& space : spaces)
+      expect_one_pairs_reports(seen[{space.first_part(), space.second_part()}], space,
+                               "build_all trial " + std::to_string(trial) + " " + space.first_part() + ":" +
+                                   space.second_part());
+  }
+}
+
+// stderr_progress(), the reporter the CLI passes on a terminal: for Geneva's pair it writes
+// every chart's line redrawn in place, a line break after the last, the first classification
+// line (at once: the reporter shows one at most every 250 ms), and wipes its widest line at the
+// end: the bytes `hipair cspace` wrote on a terminal before session 39. Mutation (run and
+// reverted): the line break after the last chart dropped -> fails.
+TEST(ToleranceProgress, TheTerminalReporterWritesTheBuildsLines) {
   Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json");
-  std::vector<double> seen;
-  {
-    ProgressScope scope([&](double f) { seen.push_back(f); });
-    CSpace space = CSpace::build(model, "driver", "wheel");
-    // 2-D: each chart built, each chart classified, the cells
-    ASSERT_EQ(seen.size(), 2 * space.charts().size() + 1);
-  }
-  expect_growing_to_one(seen, "geneva's C-space build");
-  seen.clear();
-  CSpace::build(model, "driver", "wheel");   // the scope has ended: nothing
-  EXPECT_TRUE(seen.empty());
+  std::ostringstream captured;
+  std::streambuf* old = std::cerr.rdbuf(captured.rdbuf());
+  CSpaceBuildOptions options;
+  options.progress = stderr_progress();
+  CSpace space = CSpace::build(model, "driver", "wheel", options);
+  std::cerr.rdbuf(old);
+  const std::string out = captured.str();
+  const std::size_t n = space.charts().size();
+  std::string charts;
+  for (std::size_t k = 1; k <= n; ++k) charts += "\rhipair: driver:wheel chart " + std::to_string(k) + "/" + std::to_string(n);
+  charts += "\n\rhipair: driver:wheel classifying chart 1/" + std::to_string(n) + ": 0%";
+  ASSERT_EQ(out.substr(0, charts.size()), charts);
+  // the end: the widest line shown wiped
+  const std::size_t wipe = out.rfind('\r', out.size() - 2);
+  ASSERT_NE(wipe, std::string::npos);
+  const std::string tail = out.substr(wipe);
+  EXPECT_EQ(tail, "\r" + std::string(tail.size() - 2, ' ') + "\r");
+  EXPECT_GE(tail.size() - 2, std::string("hipair: driver:wheel classifying chart 1/4: 0%").size());
 }
 
 // The threshold search (certified scales, exact C-spaces, the bracket's bisection and its
