@@ -854,12 +854,26 @@ class BlockedSpaceCuller {
   // the whole cell, so they can neither certify it blocked nor be near in a sub-cell).
   std::vector<CorePair> near_core_pairs(const Interval& cx, const Interval& cy) const {
     auto [pa, pb] = poses(cx, cy);
+    std::vector<CorePair> pairs;
+    std::vector<std::pair<int, int>> result;
+    sweep_core_pairs(pa, pb, result, pairs);
+    return pairs;
+  }
+
+  // The sweep and prune of near_core_pairs() over the cores posed by `pa` and `pb` (a cell's
+  // poses), into `pairs` (ascending by (i, j); `result`: its work list). Every pair it leaves
+  // out is apart over the whole of the poses' cell: core_relation() can only call it apart
+  // there (it is certified: the extents are grown by a relative margin far above rounding), and
+  // it is apart in every sub-cell.
+  void sweep_core_pairs(const PoseBox& pa, const PoseBox& pb, std::vector<std::pair<int, int>>& result,
+                        std::vector<CorePair>& pairs) const {
     struct Extent {
       double x_lo, x_hi, y_lo, y_hi;
       int index;
     };
-    std::array<std::vector<Extent>, 2> extents;
+    thread_local std::array<std::vector<Extent>, 2> extents;
     for (int side = 0; side < 2; ++side) {
+      extents[side].clear();
       const PoseBox& pose = side == 0 ? pa : pb;
       for (std::size_t i = 0; i < cores_[side]->size(); ++i) {
         Interval u, v;
@@ -873,9 +887,11 @@ class BlockedSpaceCuller {
       std::sort(extents[side].begin(), extents[side].end(),
                 [](const Extent& a, const Extent& b) { return a.x_lo < b.x_lo; });
     }
-    std::vector<std::pair<int, int>> result;
+    result.clear();
     // sweep over starts in x: a starting box meets the active boxes of the other list
-    std::array<std::vector<const Extent*>, 2> active;
+    thread_local std::array<std::vector<const Extent*>, 2> active;
+    active[0].clear();
+    active[1].clear();
     std::size_t next[2] = {0, 0};
     while (next[0] < extents[0].size() || next[1] < extents[1].size()) {
       int side = next[1] >= extents[1].size() ||
@@ -892,14 +908,13 @@ class BlockedSpaceCuller {
     }
     std::sort(result.begin(), result.end());
     // each pair's reach (the sum of the radii) squared, once: every cell compares with it
-    std::vector<CorePair> pairs;
+    pairs.clear();
     pairs.reserve(result.size());
     for (const auto& [ci, cj] : result) {
       double ra = (*cores_[0])[static_cast<std::size_t>(ci)].radius, rb = (*cores_[1])[static_cast<std::size_t>(cj)].radius;
       Interval reach = Interval(ra, ra) + Interval(rb, rb);
       pairs.push_back(CorePair{ci, cj, reach * reach});
     }
-    return pairs;
   }
 
   // One part's pose over one axis interval, with the world boxes of its features and the posed
@@ -1028,7 +1043,20 @@ class BlockedSpaceCuller {
     const bool leaf = depth >= (grid_ ? std::max(grid_->depth(), min_grid_depth) : max_depth);
     std::vector<CorePair>& near_cores = scratch.near_cores;
     near_cores.clear();
-    for (const CorePair& pair : core_pairs) {
+    // A long inherited list (the shallow cells of a large pair: every core pair at the root,
+    // most of them apart in a child) is replaced by the sweep of this cell's own posed cores
+    // when that is cheaper. The decision is the same: the cell is blocked exactly when some core
+    // pair certainly overlaps everywhere in it, and such a pair is in both lists (it is not apart
+    // in the cell, nor in any cell holding it). Pairs only one list holds are apart in this cell
+    // or in an ancestor, so they certify no sub-cell either: the children decide as before.
+    const std::vector<CorePair>* tested = &core_pairs;
+    if (depth > 0 && core_pairs.size() > core_sweep_factor * (cores_[0]->size() + cores_[1]->size()) &&
+        core_sweep_switch()) {
+      sweep_core_pairs(pa, pb, scratch.swept, scratch.swept_cores);
+      tested = &scratch.swept_cores;
+      ++core_sweeps();
+    }
+    for (const CorePair& pair : *tested) {
       const CoreRelation relation = core_relation(pair, cache_a, cache_b);
       if (relation == CoreRelation::overlapping) return;   // blocked everywhere in the cell
       if (relation == CoreRelation::near && !leaf) near_cores.push_back(pair);   // (a leaf has no children)
@@ -1114,7 +1142,11 @@ class BlockedSpaceCuller {
   struct Scratch {
     std::vector<int> open, meeting;
     std::vector<CorePair> near_cores;
+    std::vector<std::pair<int, int>> swept;   // sweep_core_pairs()'s work list and pairs
+    std::vector<CorePair> swept_cores;
   };
+  // a cell sweeps its own cores when its inherited list is longer than this many per core
+  static constexpr std::size_t core_sweep_factor = 16;
   // The lists of depth `depth` (< depths_), shared by the cullers of a thread: a walk never
   // runs inside another (nothing a cell calls walks a culler), and its lists are cleared before
   // use, so they only keep their capacity between walks — a gear strip's shallow lists hold

@@ -41,6 +41,14 @@ class BlockedCells;   // oracle/blocked_tester.hpp
 struct CellPoseMemoTag {};
 inline bool& cell_pose_memo_switch() { return thread_switch<CellPoseMemoTag>(); }
 
+/// The blocked-space cull's sweep of a shallow cell's own posed cores (instead of testing every
+/// core pair its parent left near, when that list is long): on by default; off on this thread,
+/// every cell tests its inherited list (tests compare the selections: the same decisions).
+struct CoreSweepTag {};
+inline bool& core_sweep_switch() { return thread_switch<CoreSweepTag>(); }
+/// Cells that swept their own cores on this thread (tests).
+inline std::size_t& core_sweeps() { return thread_counter<CoreSweepTag>(); }
+
 /// One chart axis of a pair's C-space.
 struct ChartAxis {
   using Kind = AxisKind;    ///< the public axis kind (hipair/cspace.hpp)

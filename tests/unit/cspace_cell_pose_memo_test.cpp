@@ -11,6 +11,10 @@
 // with the same axes (the same teeth, another backlash and centre distance) run one after the
 // other on the same tiles, and the Geneva pair's whole chart pairs, side by side with the plain
 // cull.
+// Session 38: a shallow cell with a long inherited list of core pairs sweeps its own posed cores
+// instead (core_sweep_switch()): the same selections and walks as the inherited lists' on
+// generated pairs scaled exactly by 2^0, 2^-30 and 2^30.
+#include "core/model_scale.hpp"
 #include "curves/contact_curves.hpp"
 #include "oracle/blocked_tester.hpp"
 #include "spur_gear_pairs.hpp"
@@ -31,10 +35,9 @@ namespace {
 
 using Pairs = std::vector<cspace::CurveGenerator::FeaturePair>;
 
-// Runs f with the memo on, then off, and restores it.
+// Runs f with a fast path's switch on, then off, and restores it (default: the memo's).
 template <class F>
-auto both_ways(F&& f) {
-  bool& memo = cspace::cell_pose_memo_switch();
+auto both_ways(F&& f, bool& memo = cspace::cell_pose_memo_switch()) {
   memo = true;
   auto on = f();
   memo = false;
@@ -120,6 +123,55 @@ TEST(CullCellPoseMemo, SelectionsAndWalksAreThePlainCullsOnGeneratedGearPairs) {
   }
   EXPECT_GT(kept, 0u);
   EXPECT_GT(walked, 0u);
+}
+
+TEST(CullCoreSweep, SelectionsAndWalksAreTheInheritedListsCullsOnGeneratedScaledGearPairs) {
+  std::mt19937_64 random(3801);
+  std::size_t kept = 0, sweeps = 0, selections = 0;
+  for (long shift : {0L, 30L, -30L}) {
+    GearPair pair = random_gear_pair(random);
+    pair.model = scaled_model(pair.model, shift);
+    pair.axes = cspace::pair_axes(pair.model, 0, 1);
+    pair.layout = cspace::chart_layout(pair.model, pair.axes);
+    SCOPED_TRACE(pair.name + " / 2^" + std::to_string(shift));
+    ASSERT_EQ(pair.axes.dimension(), 2);
+    cspace::CurveGenerator generator(pair.model, pair.axes);
+    const cspace::ChartAxis& x = pair.layout.x_charts[random() % pair.layout.x_charts.size()];
+    const cspace::ChartAxis& y = pair.layout.y_charts[random() % pair.layout.y_charts.size()];
+    // a whole chart pair and a driver strip of 2 of 64 cells
+    const long first = static_cast<long>(random() % 63);
+    const int axis = static_cast<int>(random() % 2);   // the follower's axis of the strip
+    const cspace::ChartAxis sx = axis == 1 ? sub_axis(x, first, 2, 64) : x;
+    const cspace::ChartAxis sy = axis == 1 ? y : sub_axis(y, first, 2, 64);
+    const std::size_t before = cspace::core_sweeps();
+    auto [on, off] = both_ways([&] { return std::make_pair(generator.select(x, y), generator.select(sx, sy)); },
+                               cspace::core_sweep_switch());
+    EXPECT_EQ(on.first, off.first);
+    EXPECT_EQ(on.second, off.second);
+    kept += on.first.size() + on.second.size();
+    // the strip's selection extended over random follower windows, then the whole axis
+    const cspace::ChartAxis& follower = axis == 1 ? sy : sx;
+    std::vector<std::pair<double, double>> windows;
+    for (int w = 0; w < 3; ++w) {
+      cspace::ChartAxis window = sub_axis(follower, static_cast<long>(random() % 16), 1, 16);
+      windows.emplace_back(cspace::algebra::lower_double(window.lo), cspace::algebra::upper_double(window.hi));
+    }
+    windows.emplace_back(cspace::algebra::lower_double(follower.lo), cspace::algebra::upper_double(follower.hi));
+    auto [walks_on, walks_off] = both_ways(
+        [&] {
+          std::unique_ptr<cspace::CurveGenerator::Selection> selection = generator.incremental_select(sx, sy);
+          std::vector<Pairs> added;
+          for (const auto& window : windows) added.push_back(selection->extend(axis, {window}));
+          return added;
+        },
+        cspace::core_sweep_switch());
+    EXPECT_EQ(walks_on, walks_off);
+    sweeps += cspace::core_sweeps() - before;
+    ++selections;
+  }
+  EXPECT_GT(kept, 0u);
+  // the sweep ran in every generated case (else the comparison tests nothing)
+  EXPECT_GE(sweeps, selections);
 }
 
 TEST(CullCellPoseMemo, TileGridCullsAreThePlainCullsOnGeneratedGearPairs) {
