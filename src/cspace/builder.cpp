@@ -84,7 +84,25 @@ class CurveCuller {
                                                  const std::vector<algebra::IntervalPolynomial2>& entry,
                                                  std::vector<std::array<double, 4>>& cells) {
     std::vector<std::array<double, 4>> boxes;
-    walk(f, clauses, entry, boxes, false);
+    entry_ = &entry;
+    // the atoms' slots in the per-depth row caches: the clauses' atoms in order, then the
+    // corner-entry atoms
+    clause_slot_.clear();
+    std::size_t atoms = 0;
+    for (const auto& clause : clauses) {
+      clause_slot_.push_back(atoms);
+      atoms += clause.size();
+    }
+    entry_slot_ = atoms;
+    f_slot_ = atoms + entry.size();
+    const std::size_t slots = f_slot_ + 1;
+    const int deepest = grid_.depth() + (entry.empty() ? 0 : entry_depth_);
+    if (row_caches_.size() < static_cast<std::size_t>(deepest) + 1) row_caches_.resize(static_cast<std::size_t>(deepest) + 1);
+    for (auto& cache : row_caches_)
+      if (cache.size() < slots * row_ways) cache.resize(slots * row_ways);
+    ++curve_;   // every entry of an earlier curve is stale
+    row_cache_ = culling_row_cache().load(std::memory_order_relaxed);
+    visit(f, clauses, 0, 0, 0, boxes, f.evaluate(grid_.cell_x(0, 0), grid_.cell_y(0, 0)), 0);
     std::sort(boxes.begin(), boxes.end());
     cells.clear();
     for (const auto& b : boxes) {
@@ -107,45 +125,7 @@ class CurveCuller {
     return merged;
   }
 
-  // Whether windows(f, clauses, {}, cells) would be non-empty: the same walk (the same cells,
-  // enclosures and tests in the same order), left at the first finest cell found. The early
-  // cull (EarlyCull): a curve with no such cell has none with its corner-entry atoms either.
-  bool keeps_some_cell(const algebra::IntervalPolynomial2& f,
-                       const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses) {
-    static const std::vector<algebra::IntervalPolynomial2> no_entry;
-    std::vector<std::array<double, 4>> boxes;
-    walk(f, clauses, no_entry, boxes, true);
-    return !boxes.empty();
-  }
-
  private:
-  // The quadtree from the root: its surviving finest cells into `boxes` (`first`: the walk
-  // stops at the first one).
-  void walk(const algebra::IntervalPolynomial2& f, const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses,
-            const std::vector<algebra::IntervalPolynomial2>& entry, std::vector<std::array<double, 4>>& boxes,
-            bool first) {
-    entry_ = &entry;
-    first_ = first;
-    // the atoms' slots in the per-depth row caches: the clauses' atoms in order, then the
-    // corner-entry atoms
-    clause_slot_.clear();
-    std::size_t atoms = 0;
-    for (const auto& clause : clauses) {
-      clause_slot_.push_back(atoms);
-      atoms += clause.size();
-    }
-    entry_slot_ = atoms;
-    f_slot_ = atoms + entry.size();
-    const std::size_t slots = f_slot_ + 1;
-    const int deepest = grid_.depth() + (entry.empty() ? 0 : entry_depth_);
-    if (row_caches_.size() < static_cast<std::size_t>(deepest) + 1) row_caches_.resize(static_cast<std::size_t>(deepest) + 1);
-    for (auto& cache : row_caches_)
-      if (cache.size() < slots * row_ways) cache.resize(slots * row_ways);
-    ++curve_;   // every entry of an earlier curve is stale
-    row_cache_ = culling_row_cache().load(std::memory_order_relaxed);
-    visit(f, clauses, 0, 0, 0, boxes, f.evaluate(grid_.cell_x(0, 0), grid_.cell_y(0, 0)), 0);
-  }
-
   // The rows of the current curve's polynomials (IntervalPolynomial2::rows_at: each validity
   // and corner-entry atom, and f) at the y-intervals of the grid's rows of cells, per depth:
   // the cells of one row (j) have the same y, so a polynomial evaluated in several of them
@@ -187,7 +167,7 @@ class CurveCuller {
   void visit(const algebra::IntervalPolynomial2& f, const std::vector<std::vector<algebra::IntervalPolynomial2>>& clauses,
              int depth, long i, long j, std::vector<std::array<double, 4>>& found, algebra::Interval value,
              std::uint64_t settled) {
-    if (!value.contains_zero() || (first_ && !found.empty())) return;
+    if (!value.contains_zero()) return;
     algebra::Interval x = grid_.cell_x(depth, i), y = grid_.cell_y(depth, j);
     bool strict = !entry_->empty();   // every clause holds strictly over the cell (so far)
     for (std::size_t k = 0; k < clauses.size(); ++k) {
@@ -227,7 +207,6 @@ class CurveCuller {
   }
 
   int entry_depth_ = 0;
-  bool first_ = false;                    // the walk stops at the first cell found
   BlockedCells& grid_;
   const std::vector<algebra::IntervalPolynomial2>* entry_ = nullptr;   // the current curve's (windows)
   std::vector<std::size_t> clause_slot_;  // the current curve's: slot of each clause's first atom
@@ -244,45 +223,6 @@ class CurveCuller {
 std::atomic<bool>& culling_row_cache() {
   static std::atomic<bool> on{true};
   return on;
-}
-
-std::atomic<bool>& early_cull_switch() {
-  static std::atomic<bool> on{true};
-  return on;
-}
-
-namespace {
-
-// A curve's validity clauses as the culling quadtree reads them.
-std::vector<std::vector<algebra::IntervalPolynomial2>> interval_clauses(const ContactCurve& curve) {
-  std::vector<std::vector<algebra::IntervalPolynomial2>> clauses;
-  clauses.reserve(curve.validity.size());
-  for (const auto& clause : curve.validity) {
-    clauses.emplace_back();
-    for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
-  }
-  return clauses;
-}
-
-}  // namespace
-
-struct EarlyCull::Impl {
-  CurveCuller culler;
-};
-
-EarlyCull::EarlyCull(BlockedCells& grid) : impl_(new Impl{CurveCuller(grid, 0)}) {}
-EarlyCull::~EarlyCull() = default;
-
-std::atomic<std::size_t>& early_culled_curves() {
-  static std::atomic<std::size_t> count{0};
-  return count;
-}
-
-bool EarlyCull::may_bound(const ContactCurve& curve) {
-  if (!early_cull_switch().load(std::memory_order_relaxed)) return true;
-  if (impl_->culler.keeps_some_cell(algebra::IntervalPolynomial2(curve.polynomial), interval_clauses(curve))) return true;
-  early_culled_curves().fetch_add(1, std::memory_order_relaxed);
-  return false;
 }
 
 namespace {
@@ -393,7 +333,11 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int 
       // (a line with an exact valid point in the box is kept without the quadtree)
       std::vector<std::pair<double, double>> found;
       if (blocked_test || !shortcuts || !valid_point_in_box(curve, chart.box)) {
-        const std::vector<std::vector<algebra::IntervalPolynomial2>> clauses = interval_clauses(curve);
+        std::vector<std::vector<algebra::IntervalPolynomial2>> clauses;
+        for (const auto& clause : curve.validity) {
+          clauses.emplace_back();
+          for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
+        }
         std::vector<algebra::IntervalPolynomial2> entry(curve.corner_entry.begin(), curve.corner_entry.end());
         found = culler.windows(f, clauses, entry, cells);
         if (found.empty()) continue;

@@ -208,28 +208,6 @@ std::optional<algebra::Interval> quadratic_root_enclosure(const mpz_class& a, co
 /// evaluating each cell alone: the same windows and cells). On by default; tests turn it off
 /// to compare with the plain evaluation per cell.
 std::atomic<bool>& culling_row_cache();
-/// The early cull of a chart box's curves (CurveGenerator::generate's `may_bound`, before the
-/// corner-entry atoms are formed), for a box whose build culls on a usable grid of a 2-D space
-/// (ChartInput::blocked_cells): may_bound(curve) is false only when the builder's culling
-/// quadtree over `grid` keeps no cell of the curve with its validity clauses alone, hence none
-/// with its corner-entry atoms either (they only drop more cells, at any entry depth): the
-/// builder would drop that curve. The same walk, enclosures and tests (CurveCuller), left at the
-/// first cell kept. `early_cull_switch()` off: every curve may bound (tests compare both).
-class EarlyCull {
- public:
-  explicit EarlyCull(BlockedCells& grid);
-  ~EarlyCull();
-  EarlyCull(const EarlyCull&) = delete;
-  EarlyCull& operator=(const EarlyCull&) = delete;
-  bool may_bound(const ContactCurve& curve);
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
-};
-std::atomic<bool>& early_cull_switch();
-/// Curves EarlyCull::may_bound answered false for, in the process (for tests and counts).
-std::atomic<std::size_t>& early_culled_curves();
 /// Queries (builder_locate.cpp).
 Location locate_point(const CSpace::Impl& impl, const hipair::ChartPoint& q);
 CertifiedValue evaluate_edge(const CSpace::Impl& impl, std::size_t edge, double x);

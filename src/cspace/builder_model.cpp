@@ -374,15 +374,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
     std::shared_ptr<BlockedCells> cells;
     if (curve_options.blocked_grid)
       cells = std::make_shared<BlockedCells>(tester, chart.x, chart.y, building.dimension, grid_depth);
-    // the early cull: where the builder's culling quadtree runs on the grid (prepare_chart)
-    std::optional<EarlyCull> early;
-    CurveGenerator::MayBound may_bound;
-    if (building.dimension == 2 && cells && cells->usable()) {
-      early.emplace(*cells);
-      may_bound = [&early](const ContactCurve& curve) { return early->may_bound(curve); };
-    }
-    std::vector<ContactCurve> curves =
-        generator.generate(chart.x, chart.y, &building.curve_statistics, cells.get(), early ? &may_bound : nullptr);
+    std::vector<ContactCurve> curves = generator.generate(chart.x, chart.y, &building.curve_statistics, cells.get());
     // the tester's posed disks (per axis interval) stay for the builder's cull of the same box
     // (prepare_chart, right after this): the boxes are built one at a time and the builder
     // releases the grid after culling, so one box's poses are alive at a time (the answers

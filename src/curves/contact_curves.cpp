@@ -1531,16 +1531,6 @@ bool convert_validity(const kernels::Validity<Polynomial>& validity,
   return true;
 }
 
-// A vertex of one part against a segment or arc of the other: the pairs that may have
-// corner-entry atoms (corner_entry_atoms; every other pair has none).
-bool vertex_against_curve(const kernels::FeatureGeometry<Rational>& ga, const kernels::FeatureGeometry<Rational>& gb) {
-  using Shape = kernels::FeatureShape;
-  const bool vertex_first = ga.shape == Shape::vertex;
-  if (vertex_first == (gb.shape == Shape::vertex)) return false;
-  const Shape other = vertex_first ? gb.shape : ga.shape;
-  return other == Shape::segment || other == Shape::arc;
-}
-
 // Corner-entry atoms of a vertex contact (ContactCurve::corner_entry): vertex v of one part
 // (tangents `out` along the edge it starts, `in` along the edge it ends, forward, body frame)
 // against a segment or arc b of the other part, whose outward normal at the contact point is n.
@@ -1571,9 +1561,10 @@ std::vector<IntegerPolynomial2> corner_entry_atoms(const Model& model, const Bod
                                                    bool validity_zero_not_strict) {
   using Shape = kernels::FeatureShape;
   using PairVector = kernels::PairVector<Polynomial>;
-  if (!vertex_against_curve(ga, gb)) return {};
   const bool vertex_first = ga.shape == Shape::vertex;
+  if (vertex_first == (gb.shape == Shape::vertex)) return {};
   const kernels::FeatureGeometry<Rational>& other = vertex_first ? gb : ga;
+  if (other.shape != Shape::segment && other.shape != Shape::arc) return {};
   // a clause dropped as holding everywhere only because an atom is identically zero (the
   // atoms classified once, by convert_validity)
   if (validity_zero_not_strict) return {};
@@ -1881,9 +1872,8 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
 CurveGenerator::~CurveGenerator() = default;
 
 std::vector<ContactCurve> CurveGenerator::generate(const ChartAxis& x, const ChartAxis& y,
-                                                   CurveStatistics* statistics, BlockedCells* grid,
-                                                   const MayBound* may_bound) const {
-  return generate_impl(x, y, statistics, grid, nullptr, nullptr, nullptr, may_bound);
+                                                   CurveStatistics* statistics, BlockedCells* grid) const {
+  return generate_impl(x, y, statistics, grid, nullptr, nullptr, nullptr);
 }
 
 std::vector<CurveGenerator::FeaturePair> CurveGenerator::select(const ChartAxis& x, const ChartAxis& y) const {
@@ -2000,8 +1990,7 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
                                                         CurveStatistics* statistics, BlockedCells* grid,
                                                         const std::vector<FeaturePair>* selected_in,
                                                         std::vector<FeaturePair>* selected_out,
-                                                        std::vector<FeaturePair>* candidates_out,
-                                                        const MayBound* may_bound) const {
+                                                        std::vector<FeaturePair>* candidates_out) const {
   const Data& d = *data_;
   const Model& model = d.model;
   const PairAxes& axes = d.axes;
@@ -2196,7 +2185,10 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
                      convert_validity(kernel->validity, curve.validity, zero_not_strict);
         if (made->kept) {
           curve.label = curve_label(model, fa.ref, fb.ref, curve.type);
-          made->zero_not_strict = zero_not_strict;   // (the corner-entry atoms: on first emission)
+          // (a blocked-space cull: not without it, so that tests compare against builds without)
+          if (options.cull_blocked_space)
+            curve.corner_entry =
+                corner_entry_atoms(model, fa, fb, geometry_a[ui], geometry_b[uj], poses.first, poses.second, zero_not_strict);
         } else {
           made->curve = ContactCurve{};   // nothing kept but the answer
         }
@@ -2208,28 +2200,9 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
     if (formed->curve.polynomial.is_zero()) {
       ++stats.identically_zero;
     } else {
-      // The caller's early cull, before the corner-entry atoms are formed (a zero polynomial
-      // is not asked: it is counted above and never culled). Asked only of the pairs that may
-      // have such atoms: for the others the early walk would be the builder's, done twice
-      // where the curve is kept (Geneva: 0.998 x the instructions asking every curve).
-      if (may_bound && options.cull_blocked_space &&
-          vertex_against_curve(geometry_a[static_cast<std::size_t>(pairs[k].first)],
-                               geometry_b[static_cast<std::size_t>(pairs[k].second)]) &&
-          !(*may_bound)(formed->curve)) {
-        ++stats.curves_culled_early;
-        continue;
-      }
       ++stats.curves;
     }
-    // (a blocked-space cull: not without it, so that tests compare against builds without)
-    if (options.cull_blocked_space)
-      std::call_once(formed->entry_once, [&] {
-        const auto ui = static_cast<std::size_t>(pairs[k].first), uj = static_cast<std::size_t>(pairs[k].second);
-        formed->corner_entry = corner_entry_atoms(model, features_a[ui], features_b[uj], geometry_a[ui], geometry_b[uj],
-                                                  poses.first, poses.second, formed->zero_not_strict);
-      });
     curves.push_back(formed->curve);
-    curves.back().corner_entry = formed->corner_entry;
   }
   return curves;
 }

@@ -24,7 +24,6 @@
 #include "kernels/interval.hpp"
 
 #include <cstddef>
-#include <functional>
 #include <optional>
 #include <string>
 #include <memory>
@@ -139,8 +138,6 @@ struct CurveStatistics {
   /// blocked (two inscribed disks of the parts overlap there); their curves would lie inside
   /// blocked space and bound no free region
   std::size_t feature_pairs_in_blocked_space = 0;
-  /// added: curves formed but not emitted because generate()'s `may_bound` answered false
-  std::size_t curves_culled_early = 0;
 };
 
 /// The moving parts of a pair in axis order: `x_part` moves along x, `y_part` along y (or
@@ -204,15 +201,8 @@ class CurveGenerator {
   /// else ignored): a feature pair is kept only if its features' posed boxes meet in a cell of
   /// the grid's finest depth that is not certainly blocked; the cells it tests stay known to
   /// the grid for the builder's windows.
-  /// `may_bound` (optional, with the general path's blocked-space cull): asked of each curve
-  /// before its corner-entry atoms are formed (ContactCurve::corner_entry empty, everything
-  /// else formed); a curve it answers false for is not emitted (counted in
-  /// CurveStatistics::curves_culled_early). The C-space builder's early cull: true unless its
-  /// culling quadtree certainly keeps no cell of the curve (builder_impl.hpp, EarlyCull).
-  using MayBound = std::function<bool(const ContactCurve&)>;
   std::vector<ContactCurve> generate(const ChartAxis& x, const ChartAxis& y,
-                                     CurveStatistics* statistics = nullptr, BlockedCells* grid = nullptr,
-                                     const MayBound* may_bound = nullptr) const;
+                                     CurveStatistics* statistics = nullptr, BlockedCells* grid = nullptr) const;
 
   /// A feature pair: indices into the two parts' feature lists (boundary order).
   using FeaturePair = std::pair<int, int>;
@@ -262,8 +252,7 @@ class CurveGenerator {
   std::vector<ContactCurve> generate_impl(const ChartAxis& x, const ChartAxis& y, CurveStatistics* statistics,
                                           BlockedCells* grid, const std::vector<FeaturePair>* selected_in,
                                           std::vector<FeaturePair>* selected_out,
-                                          std::vector<FeaturePair>* candidates_out,
-                                          const MayBound* may_bound = nullptr) const;
+                                          std::vector<FeaturePair>* candidates_out) const;
   struct Data;
   std::unique_ptr<Data> data_;
 };

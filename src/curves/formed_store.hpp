@@ -17,13 +17,7 @@ namespace hipair::cspace {
 /// (no contact kernel, a non-zero constant, never valid).
 struct FormedCurve {
   bool kept = false;
-  /// The curve without its corner-entry atoms (curve.corner_entry stays empty): those are
-  /// formed once, on the curve's first emission (`corner_entry`, under `entry_once`), so that a
-  /// curve the caller's early cull drops (CurveGenerator::generate's `may_bound`) never has them.
   ContactCurve curve;
-  bool zero_not_strict = false;   ///< convert_validity's, for corner_entry_atoms
-  mutable std::once_flag entry_once;
-  mutable std::vector<IntegerPolynomial2> corner_entry;
   std::uint64_t maker = 0;   ///< the number of the generator that formed it (counts reuse by another)
 };
 
