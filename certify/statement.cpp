@@ -21,7 +21,8 @@ namespace {
 // fraction (session 39, hunt39).
 // Until then the decimal was rounded to 12 digits, so a clearance of 2 - 10^-40 mm was stated
 // as "at least 2 mm" and verified: the statement claimed more than the data prove.
-std::string claim_number(const Rational& value) {
+std::string claim_number(Rational value) {
+  value.canonicalize();   // a producer's value may be non-canonical: mpq equality needs canonical form
   for (int digits : {12, 25}) {
     std::string text = to_decimal_string(value, digits);
     try {
