@@ -14,8 +14,29 @@
 namespace hipair {
 namespace verify {
 
+namespace {
+
+// A number the claim depends on (a distance, a range's end, a trap's end, an offset, a slide, a
+// shift): its decimal of 12 (or 25) significant digits when that is exact, else the exact
+// fraction (session 39, hunt39).
+// Until then the decimal was rounded to 12 digits, so a clearance of 2 - 10^-40 mm was stated
+// as "at least 2 mm" and verified: the statement claimed more than the data prove.
+std::string claim_number(Rational value) {
+  value.canonicalize();   // a producer's value may be non-canonical: mpq equality needs canonical form
+  for (int digits : {12, 25}) {
+    std::string text = to_decimal_string(value, digits);
+    try {
+      if (parse_rational(text) == value) return text;
+    } catch (const Error&) {
+    }
+  }
+  return to_exact_string(value);
+}
+
+}  // namespace
+
 std::string position_text(const ExactPosition& position) {
-  if (position.is_offset) return to_decimal_string(position.value) + " mm";
+  if (position.is_offset) return claim_number(position.value) + " mm";
   return (position.angle ? to_decimal_string(*position.angle)
                          : "2 atan(" + to_exact_string(position.value) + ")" + (position.half_turn ? " + pi" : "")) +
          " rad";
@@ -37,8 +58,8 @@ std::string turned_by(const Rational& tangent, bool half_turn) {
 
 std::string pose_words(const PlanarPose& pose) {
   std::string turned = turned_by(pose.tangent, pose.half_turn);
-  if (pose.slide) return "'" + pose.part + "' " + turned + " and slid by " + to_decimal_string(*pose.slide) + " mm";
-  return "'" + pose.part + "' shifted by (" + to_decimal_string(pose.x) + ", " + to_decimal_string(pose.y) + ") mm and " + turned;
+  if (pose.slide) return "'" + pose.part + "' " + turned + " and slid by " + claim_number(*pose.slide) + " mm";
+  return "'" + pose.part + "' shifted by (" + claim_number(pose.x) + ", " + claim_number(pose.y) + ") mm and " + turned;
 }
 
 // "Part 'cam' turned by 2 atan(t) rad" / "Part 'film' at offset s mm" / "Part 'pin'"
@@ -46,7 +67,7 @@ std::string other_words(const std::string& other, const std::map<std::string, Ex
   auto found = configuration.find(other);
   if (found == configuration.end()) return "Part '" + other + "'";
   const ExactPosition& p = found->second;
-  if (p.is_offset) return "Part '" + other + "' at offset " + to_decimal_string(p.value) + " mm";
+  if (p.is_offset) return "Part '" + other + "' at offset " + claim_number(p.value) + " mm";
   return "Part '" + other + "' " + turned_by(p.value, p.half_turn);
 }
 
@@ -79,28 +100,28 @@ std::string certificate_statement(const Certificate& c, const Model& model) {
   switch (c.claim) {
     case ClaimKind::interference: return "Parts '" + c.first + "' and '" + c.second + "' overlap with " + where(c) + ".";
     case ClaimKind::clearance:
-      return "Parts '" + c.first + "' and '" + c.second + "' are at least " + to_decimal_string(c.distance) + " mm apart with " +
+      return "Parts '" + c.first + "' and '" + c.second + "' are at least " + claim_number(c.distance) + " mm apart with " +
              where(c) + ".";
     case ClaimKind::planar_interference:
     case ClaimKind::planar_clearance: {
       if (!c.pose) throw Rejection{"a planar claim needs its pose"};
       std::string parts = other_words(c.first, c.configuration) + " and " + pose_words(*c.pose);
       return c.claim == ClaimKind::planar_interference ? parts + " overlap."
-                                                        : parts + " are at least " + to_decimal_string(c.distance) + " mm apart.";
+                                                        : parts + " are at least " + claim_number(c.distance) + " mm apart.";
     }
     case ClaimKind::free_passage: {
       std::string unit = driver_unit(c, model);
-      return "Moving '" + c.driver + "' from " + to_decimal_string(c.range.lo) + " to " + to_decimal_string(c.range.hi) + unit +
+      return "Moving '" + c.driver + "' from " + claim_number(c.range.lo) + " to " + claim_number(c.range.hi) + unit +
              (c.follower.empty() ? "" : " with '" + c.follower + "' on the given path") + ", " + pair +
-             " never overlap and stay at least " + to_decimal_string(c.distance) + " mm apart.";
+             " never overlap and stay at least " + claim_number(c.distance) + " mm apart.";
     }
     case ClaimKind::jam: {
       std::string unit = driver_unit(c, model);
       const Rational& far = c.direction > 0 ? c.trap.driver.hi : c.trap.driver.lo;
       return "Driving '" + c.driver + "' " + (c.direction > 0 ? "forward" : "backward") + " from within [" +
-             to_decimal_string(c.trap.driver.lo) + ", " + to_decimal_string(c.trap.driver.hi) + "]" + unit +
+             claim_number(c.trap.driver.lo) + ", " + claim_number(c.trap.driver.hi) + "]" + unit +
              (c.follower.empty() ? "," : ", '" + c.follower + "' stays trapped and") + " the motion cannot pass " +
-             to_decimal_string(far) + unit + ".";
+             claim_number(far) + unit + ".";
     }
     case ClaimKind::tolerance: {
       if (!c.tolerance) throw Rejection{"a tolerance claim needs its 'tolerance' section"};

@@ -402,6 +402,78 @@ for length in 201 4097 300000 1000000; do
   done
 done
 
+# A claim's numbers stated rounded (hunt39): the statement printed distances, ranges, traps and
+# positions to 12 digits, so a certificate whose data prove a clearance of 2 - 10^-20 mm (or a
+# jam that cannot pass 0.05 + 10^-19 rad) verified with the statement "at least 2 mm" ("cannot
+# pass 0.05 rad"): more than the data prove. Generated: the corpus's clearance, free passage,
+# jam, planar and pin-in-slot certificates with one claim number moved below the 12th digit,
+# the statement kept: rejected (exit 1, one line) as not saying what the data prove. Oracle for
+# the moves that weaken the claim (a distance lowered, a free range or a jam's trap shortened at
+# its near end): implied by the true original claim, so with the statement of their own data
+# they must verify.
+seed=${HIPAIR_TEST_SEED:-$RANDOM}
+python3 - "$source/tests/data/certificates" "$work/rounded" "$seed" <<'PY' || fail "the rounded-statement mutants were not generated"
+import json, os, random, sys
+from fractions import Fraction
+corpus, out, seed = sys.argv[1], sys.argv[2], int(sys.argv[3])
+rng = random.Random(seed)
+os.makedirs(out, exist_ok=True)
+def text(f):
+    return str(f.numerator) if f.denominator == 1 else "%d/%d" % (f.numerator, f.denominator)
+def tiny(scale):   # |scale| * 10^-k * (random digits), k = 13 ... 24: below a 12-digit decimal
+    return abs(scale) * Fraction(rng.randint(1, 9), 10 ** rng.randint(13, 24))
+bases = {"lever-clearance": "lever-stop", "lever-free": "lever-stop", "lever-jam": "lever-stop",
+         "ratchet-jam": "ratchet", "follower-guide-free": "cam-follower", "peg-planar-clearance": "peg-in-hole",
+         "film-cam-clearance": "film-advance", "film-pin-clearance": "film-advance"}
+listing = open(os.path.join(out, "list.txt"), "w")
+n = 0
+for base, model in sorted(bases.items()):
+    original = json.load(open(os.path.join(corpus, base + ".json")))
+    for trial in range(2):
+        c = json.loads(json.dumps(original))
+        claim = c["claim"]
+        section = c[claim]
+        weaker = True
+        if claim in ("clearance", "planar_clearance") or (claim == "free_passage" and trial == 0):
+            d = Fraction(section["distance"]); section["distance"] = text(d - tiny(d))
+        elif claim == "free_passage":
+            lo, hi = map(Fraction, section["range"]); k = rng.randint(0, 1)
+            section["range"][k] = text(lo + tiny(hi - lo) if k == 0 else hi - tiny(hi - lo))
+        else:   # jam: the near end moved in (weaker), or the far end moved (either way: not decided here)
+            lo, hi = map(Fraction, section["trap"]["driver"]); forward = section["direction"] > 0
+            near = 0 if forward else 1
+            k = near if trial == 0 else 1 - near
+            value = (lo, hi)[k]; step = tiny(hi - lo)
+            if k == near: value += step if forward else -step
+            else: value += rng.choice([-1, 1]) * step; weaker = False
+            section["trap"]["driver"][k] = text(value)
+        if claim == "planar_clearance" and trial == 1 and "slide" in section["pose"]:
+            s = Fraction(section["pose"]["slide"]); section["pose"]["slide"] = text(s + tiny(1)); weaker = False
+        name = "%s-%d.json" % (base, trial)
+        json.dump(c, open(os.path.join(out, name), "w"), indent=1)
+        listing.write("%s %s %s\n" % (name, model, "weaker" if weaker else "moved")); n += 1
+print(n, "rounded-statement mutants, seed", seed)
+PY
+while read -r name model kind; do
+  out=$("$verify" "$work/rounded/$name" "$source/examples/models/$model.json" 2>&1)
+  code=$?
+  [ $code -eq 1 ] && [ "$(printf '%s\n' "$out" | wc -l)" -eq 1 ] \
+    || fail "seed $seed: $name (a claim number moved below the statement's rounding, the statement kept): exit $code, not 1 in one line: $(printf '%s' "$out" | head -c 300)"
+  case "$out" in *"the statement does not say"*) ;; *)
+    [ $kind = weaker ] && fail "seed $seed: $name (a weaker claim, the old statement): not rejected for its statement: $(printf '%s' "$out" | head -c 300)" ;;
+  esac
+  [ $kind = weaker ] || continue
+  # With the statement of its own data the weaker claim verifies.
+  python3 - "$work/rounded/$name" "$out" <<'PY' || { fail "seed $seed: $name: no statement to restate from: $(printf '%s' "$out" | head -c 300)"; continue; }
+import json, re, sys
+m = re.search(r"the claim's data give '(.*)'$", sys.argv[2].strip(), re.S)
+if not m or "... (" in m.group(1): sys.exit(1)
+c = json.load(open(sys.argv[1])); c["statement"] = m.group(1); json.dump(c, open(sys.argv[1], "w"), indent=1)
+PY
+  out=$("$verify" "$work/rounded/$name" "$source/examples/models/$model.json" 2>&1) \
+    || fail "seed $seed: $name (weaker than a valid claim, with its own statement) is rejected: $(printf '%s' "$out" | head -c 300)"
+done <"$work/rounded/list.txt"
+
 if [ $failures -ne 0 ]; then
   echo "$failures certify CLI check(s) failed"
   exit 1
