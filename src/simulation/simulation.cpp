@@ -460,10 +460,6 @@ struct Simulation::Impl {
     return std::any_of(active.begin(), active.end(), [](const Active& a) { return a.wedge; });
   }
   static constexpr double vertex_limit = 1e-10;   // chart units
-  // Set while vertex_contacts decides a vertex: row()'s value past its clamped abscissa is
-  // continued along the tangent, as for a contact of a wedge (elsewhere it stays the clamped
-  // point's, as before)
-  mutable bool at_vertex_value = false;
 
   // the constraint's gradient over dofs, its bias h (g'' = G q'' + h) and its value g
   bool row(const Active& a, const Vec& qs, const Vec& vs, Vec& G, double& h, double& gval) const {
@@ -511,7 +507,7 @@ struct Simulation::Impl {
     // point, it was off by the slope x the clamp (up to 1e-9 of the edge's length and the slack
     // past the end), and the configuration put on two contacts at their vertex landed that far
     // from it, outside the other's edge (the translating wedge, docs/simulation.md, session 38)
-    if (tx != at && (at_vertex_value || a.wedge)) ty += dy_chart * (at - tx);
+    if (tx != at) ty += dy_chart * (at - tx);
     G[a.xdof] = -a.sigma * y1;
     G[a.ydof] += a.sigma;
     h = -a.sigma * y2 * vs[a.xdof] * vs[a.xdof];
@@ -1594,8 +1590,6 @@ struct Simulation::Impl {
     // the placement takes k's row at its end vertex wherever the cut left the configuration past
     // it (the event says the pair is at the vertex; its curve's value there, continued along the
     // tangent, puts the configuration on it), then k keeps the slack above
-    at_vertex_value = true;
-    struct Reset { bool& flag; ~Reset() { flag = false; } } reset{at_vertex_value};
     const double past = past_end(active[k]);
     const double slack = active[k].slack;
     if (past > slack) active[k].slack = 2 * past;
@@ -1695,6 +1689,24 @@ struct Simulation::Impl {
       if (added && held.size() > 1) project_jointly(held, true);
     }
     return true;
+  }
+
+  // How far the configuration moved from `from` along non-vertical held contact `a`'s chart
+  // abscissa (0 for a point contact).
+  double abscissa_shift(const Active& a, const Vec& from) const {
+    if (a.point) return 0;
+    const CSpaceChart& chart = chart_of(a);
+    return std::abs(to_chart(chart.x_kind, chart.x_half_turn, q[a.xdof]) - to_chart(chart.x_kind, chart.x_half_turn, from[a.xdof]));
+  }
+
+  // The configuration moved onto held contact `a`'s curve by its ordinate alone, the abscissa
+  // kept (nothing where the ordinate is driven or the row is not valid here).
+  void onto_curve_at_abscissa(const Active& a) {
+    if (a.point || a.ydof < 0 || dofs[a.ydof].driven) return;
+    Vec G;
+    double h, gval;
+    if (!row(a, q, v, G, h, gval)) return;
+    q[a.ydof] -= gval / G[a.ydof];
   }
 
   // How far the configuration lies past the nearer end of non-vertical held contact `a`'s edge
@@ -2186,7 +2198,13 @@ struct Simulation::Impl {
     // and the state kept the step's drift off the curve (the Geneva drive at accuracy 1e-3:
     // 0.043 rad into slot 2's wall L at 1.62378 s, from where nudge_free found no free state).
     if (cut == Cut::edge_end) active[cut_active].at_vertex = true;
+    const Vec cut_q = q;
     project_active();
+    if (cut == Cut::edge_end && abscissa_shift(active[cut_active], cut_q) > active[cut_active].slack) {
+      q = cut_q;
+      onto_curve_at_abscissa(active[cut_active]);
+      project_active();
+    }
     project_sticking();
     // Cut::coulomb: the step ends where a contact's stick/slip state changes; the next step's
     // frictional LCP decides its new state (coulomb_states)
@@ -2210,7 +2228,8 @@ struct Simulation::Impl {
       if (k >= active.size()) continue;
       Vec G;
       double h, gval;
-      if (!row(active[k], q, v, G, h, gval)) release(k, SimulationEvent::Kind::edge_end);
+      if (!row(active[k], q, v, G, h, gval) || (!active[k].at_vertex && past_end(active[k]) > 0))
+        release(k, SimulationEvent::Kind::edge_end);
     }
     for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
       if (!spaces[pair] || !in_active(pair)) continue;

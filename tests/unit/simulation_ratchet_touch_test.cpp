@@ -69,17 +69,43 @@ TEST(SimulationRatchetTouch, DepartingCornerTouchMovesOn) {
   std::size_t longest_in_place = 0;
   ASSERT_NO_FATAL_FAILURE(run_until(s, 0.5, 0, longest_in_place));
   EXPECT_LE(longest_in_place, 2u);
-  // the touch: one impact without impulse, the tooth's face on the nose's corner, at 0.32766538899 s
-  std::size_t touches = 0;
+  // the departure: the tip corner of tooth 3 leaves the nose underside once, at 0.32767 s; a
+  // grazing touch of the tooth's face on the nose's corner there is one event at most. Main
+  // (session 38) reported the touch at 0.3276653889948 s, on a trajectory whose contact values
+  // near edge ends were taken at a clamped abscissa: at this accuracy (1e-3) it released the
+  // tooth 7 corner twice in mid-curve (an edge-end and an impact of the same edge 3.6e-9 s later,
+  // at 6e-5 mm/s), which no run at 1e-6 ... 1e-12 shows; with the value continued along the
+  // tangent (session 39, docs/simulation.md) the run has the fine runs' events, the corner leaves
+  // at 0.3276748 s and the query reports no touch (the time is the coarse run's, not an exact one)
+  std::size_t departures = 0, touches = 0;
+  double departure = 0;
   for (const SimulationEvent& e : s.events()) {
-    if (std::abs(e.time - 0.3276653889948297) > 1e-12) continue;
+    if (e.kind != SimulationEvent::Kind::edge_end || e.features.size() != 1) continue;
+    if (e.features[0] != "wheel corner of tooth 3 face and tooth 3 back / pawl nose underside (vertex on segment)") continue;
+    if (e.time < 0.3276 || e.time > 0.3278) continue;
+    ++departures;
+    departure = e.time;
+  }
+  EXPECT_EQ(departures, 1u);
+  for (const SimulationEvent& e : s.events()) {
+    if (std::abs(e.time - departure) > 1e-6) continue;
     if (e.kind != SimulationEvent::Kind::impact || e.impulse != 0) continue;
     ASSERT_EQ(e.features.size(), 1u);
     EXPECT_EQ(e.features[0], "wheel tooth 3 face / pawl corner of nose face and nose underside (segment on vertex)");
-    EXPECT_GT(e.normal_speed_before, 400);
     ++touches;
   }
-  EXPECT_EQ(touches, 1u);
+  EXPECT_LE(touches, 1u);
+  // no contact released in mid-curve and struck again at once (main's artefact at 0.0688 s and
+  // 0.1047 s): an edge-end is never followed within 1e-6 s by an impact on the same edge
+  for (std::size_t i = 0; i < s.events().size(); ++i) {
+    const SimulationEvent& end = s.events()[i];
+    if (end.kind != SimulationEvent::Kind::edge_end) continue;
+    for (std::size_t j = i + 1; j < s.events().size(); ++j) {
+      const SimulationEvent& e = s.events()[j];
+      if (e.time > end.time + 1e-6) break;
+      EXPECT_FALSE(e.kind == SimulationEvent::Kind::impact && e.edge == end.edge) << end.time;
+    }
+  }
   // the wheel turned on counter-clockwise past the pawl (a tooth further)
   EXPECT_GT(s.state().position[0], 5.3);
 }
