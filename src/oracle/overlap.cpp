@@ -918,11 +918,12 @@ class OverlapAnalysis {
     } else {
       tangent = minus(e.target, e.source);
     }
+    // (a segment's germ has no radius: read only for curved germs, compare)
     if (forward_present)
-      germs.push_back(Germ{tangent, curvature, e.radius_squared(), true, owner});
+      germs.push_back(Germ{tangent, curvature, e.arc ? e.radius_squared() : Rational(), true, owner});
     if (backward_present)
       germs.push_back(Germ{Point{Rational(-tangent.x), Rational(-tangent.y)}, -curvature,
-                           e.radius_squared(), false, owner});
+                           e.arc ? e.radius_squared() : Rational(), false, owner});
   }
 
   bool locally_overlapping(const Point& p) {
