@@ -119,20 +119,29 @@ struct Box {
   }
 };
 
+// An arc's exact geometry beyond its ends (a segment has none: a segment's PlacedEdge makes no
+// rational beyond its two ends).
+struct PlacedArc {
+  Point center;
+  Rational radius_squared;
+  kernels::ArcSector<Rational> sector;
+};
+
 struct PlacedEdge {
   bool arc = false;
   bool full = false;
   bool ccw = true;
   Point source;
   Point target;
-  Point center;
-  Rational radius_squared;
-  kernels::ArcSector<Rational> sector;
+  std::optional<PlacedArc> circle;   ///< set exactly when `arc`
   std::size_t loop = 0;
   std::size_t index = 0;
+  const Point& center() const { return circle->center; }
+  const Rational& radius_squared() const { return circle->radius_squared; }
+  const kernels::ArcSector<Rational>& sector() const { return circle->sector; }
 };
 
-bool in_sector(const PlacedEdge& edge, const Point& v) { return sector_contains(edge.sector, v); }
+bool in_sector(const PlacedEdge& edge, const Point& v) { return sector_contains(edge.sector(), v); }
 
 // Closed membership of a rational point.
 bool on_edge(const PlacedEdge& edge, const Point& p) {
@@ -143,8 +152,8 @@ bool on_edge(const PlacedEdge& edge, const Point& p) {
     Rational along = dot(f, d);
     return sgn(along) >= 0 && along <= dot(d, d);
   }
-  Point v = minus(p, edge.center);
-  if (dot(v, v) != edge.radius_squared) return false;
+  Point v = minus(p, edge.center());
+  if (dot(v, v) != edge.radius_squared()) return false;
   return in_sector(edge, v);
 }
 
@@ -318,31 +327,33 @@ class PlacedPart {
   }
 
   // Edge i's exact geometry placed by `map` (nullptr: the identity).
-  PlacedEdge place_exact(std::size_t i, const RigidMap* map) const {
-    const Edge& source = original(i);
-    PlacedEdge placed;
-    placed.arc = source.is_arc();
-    placed.full = source.is_full_circle();
-    placed.ccw = source.ccw;
-    placed.loop = enclosure_->refs[i].first;
-    placed.index = enclosure_->refs[i].second;
-    if (!map) {
-      placed.source = source.source;
-      placed.target = source.target;
-    } else {
-      placed.source = map->apply(source.source);
-      placed.target = map->apply(source.target);
-    }
+  PlacedEdge place_exact(std::size_t i, const RigidMap* map) const { return place_exact(*enclosure_, i, map); }
+
+  // Edge i of `enclosure`'s part placed by `map` (nullptr: the identity): the ends made where
+  // they stay (no default rationals assigned over), an arc's centre, radius and sector only for
+  // an arc.
+  static PlacedEdge place_exact(const PartEnclosure& enclosure, std::size_t i, const RigidMap* map) {
+    const auto& [loop, index] = enclosure.refs[i];
+    const Edge& source = enclosure.part->loops[loop].edges[index];
+    PlacedEdge placed{source.is_arc(),
+                      source.is_full_circle(),
+                      source.ccw,
+                      map ? map->apply(source.source) : source.source,
+                      map ? map->apply(source.target) : source.target,
+                      std::nullopt,
+                      loop,
+                      index};
     if (placed.arc) {
-      placed.center = !map ? source.center : map->apply(source.center);
-      placed.radius_squared = source.radius_squared;
+      PlacedArc& arc = placed.circle.emplace();
+      arc.center = !map ? source.center : map->apply(source.center);
+      arc.radius_squared = source.radius_squared;
       Edge moved;
       moved.kind = Edge::Kind::arc;
       moved.source = placed.source;
       moved.target = placed.target;
-      moved.center = placed.center;
+      moved.center = arc.center;
       moved.ccw = placed.ccw;
-      placed.sector = arc_sector(moved);
+      arc.sector = arc_sector(moved);
     }
     return placed;
   }
@@ -425,10 +436,10 @@ struct IdentityPart {
   std::vector<PlacedEdge> exact;
 
   explicit IdentityPart(const Part& part) : enclosure(std::make_shared<const PartEnclosure>(part)) {
-    PlacedPart placed(enclosure, IntervalMap{}, {}, true);
     PlacedPart::place(*enclosure, IntervalMap{}, placement);
-    exact.reserve(placed.size());
-    for (std::size_t i = 0; i < placed.size(); ++i) exact.push_back(placed.place_exact(i, nullptr));
+    const std::size_t n = enclosure->refs.size();
+    exact.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) exact.push_back(PlacedPart::place_exact(*enclosure, i, nullptr));
   }
 };
 
@@ -670,7 +681,7 @@ class OverlapAnalysis {
   // Inward normal (exact, not unit) of an edge's material near point p.
   static Point inward_normal(const PlacedEdge& e, const Point& p) {
     if (!e.arc) return left_perpendicular(minus(e.target, e.source));
-    Point to_centre = minus(e.center, p);
+    Point to_centre = minus(e.center(), p);
     return e.ccw ? to_centre : Point{Rational(-to_centre.x), Rational(-to_centre.y)};
   }
 
@@ -739,10 +750,10 @@ class OverlapAnalysis {
     const PlacedEdge& ea = segment_first ? segment : arc;
     const PlacedEdge& eb = segment_first ? arc : segment;
     Point d = minus(segment.target, segment.source);
-    Point f = minus(segment.source, arc.center);
+    Point f = minus(segment.source, arc.center());
     Rational a = dot(d, d);
     Rational b = dot(d, f);
-    Rational c = dot(f, f) - arc.radius_squared;
+    Rational c = dot(f, f) - arc.radius_squared();
     Rational disc = b * b - a * c;
     int sd = sgn(disc);
     if (sd >= 0) {
@@ -762,9 +773,9 @@ class OverlapAnalysis {
           // lambda = (-b + sign sqrt(disc)) / a ; 0 < lambda < 1
           if (sign_with_root(Rational(-b), sign, disc) <= 0) continue;
           if (sign_with_root(Rational(-b - a), sign, disc) >= 0) continue;
-          if (!arc.sector.full) {
-            Point start{arc.sector.start.x, arc.sector.start.y};
-            Point end{arc.sector.end.x, arc.sector.end.y};
+          if (!arc.sector().full) {
+            Point start{arc.sector().start.x, arc.sector().start.y};
+            Point end{arc.sector().end.x, arc.sector().end.y};
             // a * cross(start, f + lambda d) = [a cross(start,f) - b cross(start,d)] + sign cross(start,d) sqrt
             Rational sd_start = cross(start, d);
             int after = sign_with_root(Rational(a * cross(start, f) - b * sd_start),
@@ -772,7 +783,7 @@ class OverlapAnalysis {
             Rational sd_end = cross(d, end);
             int before = sign_with_root(Rational(a * cross(f, end) - b * sd_end),
                                         Rational(sign * sd_end), disc);
-            bool inside = arc.sector.large ? (after > 0 || before > 0) : (after > 0 && before > 0);
+            bool inside = arc.sector().large ? (after > 0 || before > 0) : (after > 0 && before > 0);
             if (!inside) continue;
           }
           Rational lambda = (-b + sign * approximate_sqrt(disc)) / a;
@@ -787,13 +798,13 @@ class OverlapAnalysis {
   }
 
   bool arc_arc(const PlacedEdge& ea, const PlacedEdge& eb) {
-    Point d = minus(eb.center, ea.center);
+    Point d = minus(eb.center(), ea.center());
     Rational distance2 = dot(d, d);
     if (sgn(distance2) == 0) {
-      if (ea.radius_squared == eb.radius_squared && arcs_share_piece(ea, eb)) {
+      if (ea.radius_squared() == eb.radius_squared() && arcs_share_piece(ea, eb)) {
         if (ea.ccw == eb.ccw) {
           // same side of a common arc: overlap near any common point
-          const Point& p = in_sector(eb, minus(ea.source, eb.center)) ? ea.source : eb.source;
+          const Point& p = in_sector(eb, minus(ea.source, eb.center())) ? ea.source : eb.source;
           hints_.push_back(inward_normal(ea, p));
           return overlap_at(p);
         }
@@ -804,8 +815,8 @@ class OverlapAnalysis {
       endpoints_on(ea, eb);
       return false;
     }
-    Rational m = distance2 + ea.radius_squared - eb.radius_squared;
-    Rational h = 4 * distance2 * ea.radius_squared - m * m;
+    Rational m = distance2 + ea.radius_squared() - eb.radius_squared();
+    Rational h = 4 * distance2 * ea.radius_squared() - m * m;
     int sh = sgn(h);
     if (sh >= 0) {
       Point perpendicular = left_perpendicular(d);
@@ -814,8 +825,8 @@ class OverlapAnalysis {
       if (root) {
         for (int k = 0; k < (sh == 0 ? 1 : 2); ++k) {
           Rational beta = k == 0 ? *root : Rational(-*root);
-          Point p{Rational(ea.center.x + (m * d.x + beta * perpendicular.x) / scale),
-                  Rational(ea.center.y + (m * d.y + beta * perpendicular.y) / scale)};
+          Point p{Rational(ea.center().x + (m * d.x + beta * perpendicular.x) / scale),
+                  Rational(ea.center().y + (m * d.y + beta * perpendicular.y) / scale)};
           if (common_point(p, ea, eb, sh > 0)) return true;
         }
       } else {
@@ -826,8 +837,8 @@ class OverlapAnalysis {
           if (!strictly_in_arc(eb, d, perpendicular, Rational(m - scale), sign, h)) continue;
           Rational beta = sign * approximate_sqrt(h) / scale;
           Rational alpha = m / scale;
-          return crossing_at(Point{Rational(ea.center.x + alpha * d.x + beta * perpendicular.x),
-                                   Rational(ea.center.y + alpha * d.y + beta * perpendicular.y)},
+          return crossing_at(Point{Rational(ea.center().x + alpha * d.x + beta * perpendicular.x),
+                                   Rational(ea.center().y + alpha * d.y + beta * perpendicular.y)},
                              ea, eb);
         }
       }
@@ -840,24 +851,24 @@ class OverlapAnalysis {
   // lies in the arc's sector (never on its boundary rays: those carry rational points).
   static bool strictly_in_arc(const PlacedEdge& arc, const Point& d, const Point& perpendicular,
                               const Rational& alpha, const Rational& sign, const Rational& h) {
-    if (arc.sector.full) return true;
-    Point start{arc.sector.start.x, arc.sector.start.y};
-    Point end{arc.sector.end.x, arc.sector.end.y};
+    if (arc.sector().full) return true;
+    Point start{arc.sector().start.x, arc.sector().start.y};
+    Point end{arc.sector().end.x, arc.sector().end.y};
     int after = sign_with_root(Rational(alpha * cross(start, d)),
                                Rational(sign * cross(start, perpendicular)), h);
     int before = sign_with_root(Rational(alpha * cross(d, end)),
                                 Rational(sign * cross(perpendicular, end)), h);
-    return arc.sector.large ? (after > 0 || before > 0) : (after > 0 && before > 0);
+    return arc.sector().large ? (after > 0 || before > 0) : (after > 0 && before > 0);
   }
 
   // Cocircular arcs: do they share a piece of positive length?
   static bool arcs_share_piece(const PlacedEdge& ea, const PlacedEdge& eb) {
-    if (ea.sector.full || eb.sector.full) return true;
+    if (ea.sector().full || eb.sector().full) return true;
     auto starts_inside = [](const PlacedEdge& x, const PlacedEdge& y) {
       // start of y in [start of x, end of x)
-      Point start{y.sector.start.x, y.sector.start.y};
-      Point end{x.sector.end.x, x.sector.end.y};
-      if (!sector_contains(x.sector, start)) return false;
+      Point start{y.sector().start.x, y.sector().start.y};
+      Point end{x.sector().end.x, x.sector().end.y};
+      if (!sector_contains(x.sector(), start)) return false;
       return !(sgn(cross(start, end)) == 0 && sgn(dot(start, end)) > 0);
     };
     return starts_inside(ea, eb) || starts_inside(eb, ea);
@@ -901,17 +912,18 @@ class OverlapAnalysis {
     Point tangent;
     int curvature = 0;
     if (e.arc) {
-      Point left = left_perpendicular(minus(p, e.center));
+      Point left = left_perpendicular(minus(p, e.center()));
       tangent = e.ccw ? left : Point{Rational(-left.x), Rational(-left.y)};
       curvature = e.ccw ? 1 : -1;
     } else {
       tangent = minus(e.target, e.source);
     }
+    // (a segment's germ has no radius: read only for curved germs, compare)
     if (forward_present)
-      germs.push_back(Germ{tangent, curvature, e.radius_squared, true, owner});
+      germs.push_back(Germ{tangent, curvature, e.arc ? e.radius_squared() : Rational(), true, owner});
     if (backward_present)
       germs.push_back(Germ{Point{Rational(-tangent.x), Rational(-tangent.y)}, -curvature,
-                           e.radius_squared, false, owner});
+                           e.arc ? e.radius_squared() : Rational(), false, owner});
   }
 
   bool locally_overlapping(const Point& p) {
@@ -1065,9 +1077,9 @@ class OverlapAnalysis {
       add(e.source.x, e.source.y);
       add(e.target.x, e.target.y);
       if (e.arc) {
-        Rational r = approximate_sqrt(e.radius_squared);
-        add(Rational(e.center.x - r), Rational(e.center.y - r));
-        add(Rational(e.center.x + r), Rational(e.center.y + r));
+        Rational r = approximate_sqrt(e.radius_squared());
+        add(Rational(e.center().x - r), Rational(e.center().y - r));
+        add(Rational(e.center().x + r), Rational(e.center().y + r));
       }
     }
     if (!xlo) return Rational(1);
@@ -1144,8 +1156,8 @@ class OverlapAnalysis {
   // p' strictly inside the region bounded by the arc and its chord (the whole disk for a
   // full circle).
   static bool in_lens(const PlacedEdge& e, const Point& p) {
-    Point v = minus(p, e.center);
-    int s = sgn(dot(v, v) - e.radius_squared);
+    Point v = minus(p, e.center());
+    int s = sgn(dot(v, v) - e.radius_squared());
     if (s == 0) s = sgn(v.y);
     if (s == 0) s = sgn(2 * v.x + 1);
     if (s == 0) s = 1;
