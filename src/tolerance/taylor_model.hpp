@@ -207,6 +207,15 @@ inline TaylorModel1 operator*(const TaylorModel1& a, const TaylorModel1& b) {
   return taylor_detail::multiply(a, taylor_detail::factor(b));
 }
 namespace taylor_detail {
+/// The remainder of a product of two models that are not constants, La and Lb their linear ranges:
+/// La Lb + La Rb + Ra (Lb + Rb) + ca Rb + cb Ra.
+inline Interval product_remainder(const TaylorModel1& a, const Interval& la, const TaylorModel1& b, const Interval& lb) {
+  Interval rem = times(la, lb);
+  rem = plus(rem, times(la, b.remainder));
+  rem = plus(rem, times(a.remainder, lb + b.remainder));
+  rem = plus(rem, times(a.constant, b.remainder));
+  return plus(rem, times(b.constant, a.remainder));
+}
 /// The product on every coefficient (the form before session 39; the sparse form's fallback and
 /// its tests' reference).
 inline TaylorModel1 multiply_dense(const TaylorModel1& a, const Factor& f) {
@@ -220,12 +229,7 @@ inline TaylorModel1 multiply_dense(const TaylorModel1& a, const Factor& f) {
   for (std::size_t i = 0; i < b.coefficients.size(); ++i)
     r.coefficients[i] = plus(r.coefficients[i], times(b.coefficients[i], a.constant));
   kernels::Interval la = a.linear_range(), lb = f.linear;
-  kernels::Interval rem = times(la, lb);
-  rem = plus(rem, times(la, b.remainder));
-  rem = plus(rem, times(a.remainder, lb + b.remainder));
-  rem = plus(rem, times(a.constant, b.remainder));
-  rem = plus(rem, times(b.constant, a.remainder));
-  r.remainder = rem;
+  r.remainder = product_remainder(a, la, b, lb);
   return r;
 }
 /// The product over the supports: a coefficient that is an exact zero in a (in b) contributes
@@ -247,12 +251,7 @@ inline TaylorModel1 multiply(const TaylorModel1& a, const Support& sa, const Fac
     c = plus(c, times(b.coefficients[sb.index[j]], a.constant));
   }
   kernels::Interval la = sa.linear, lb = f.linear;
-  kernels::Interval rem = times(la, lb);
-  rem = plus(rem, times(la, b.remainder));
-  rem = plus(rem, times(a.remainder, lb + b.remainder));
-  rem = plus(rem, times(a.constant, b.remainder));
-  rem = plus(rem, times(b.constant, a.remainder));
-  r.remainder = rem;
+  r.remainder = product_remainder(a, la, b, lb);
   return r;
 }
 inline TaylorModel1 multiply(const TaylorModel1& a, const Factor& f) {
