@@ -106,9 +106,12 @@ std::vector<S> sum_plain(const Jet<S>& a, const Jet<S>& b) {
 // place and operands are not copied first. Bit for bit the *_plain forms above (the same
 // operations on the same operands in the same order; plus() returns the same operand or sum):
 // tests/unit/taylor_jet_test.cpp compares them.
+// (x's support listed once: it answers exact_zero() and what the product reads of x)
 inline TaylorModel1 times(const TaylorModel1& x, const taylor_detail::Factor& f, bool f_finite) {
-  if (f_finite && x.exact_zero()) return TaylorModel1(0);
-  return taylor_detail::multiply(x, f);
+  taylor_detail::Support sx;
+  taylor_detail::scan(x, sx);
+  if (f_finite && sx.constant && taylor_detail::zero(x.constant)) return TaylorModel1(0);   // x.exact_zero()
+  return taylor_detail::multiply(x, sx, f);
 }
 // g = plus(g, t)
 inline void accumulate(TaylorModel1& g, TaylorModel1&& t) {

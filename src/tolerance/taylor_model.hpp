@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace hipair::tolerance_detail {
@@ -139,33 +140,88 @@ inline TaylorModel1 operator-(const TaylorModel1& a) {
 }
 inline TaylorModel1 operator-(const TaylorModel1& a, const TaylorModel1& b) { return a + (-b); }
 namespace taylor_detail {
+/// Where a model's coefficients are not exact zeros (session 39): a contact curve's Taylor
+/// models carry a coefficient for every variable of its jets, most of them exact zeros (a tooth's
+/// flank does not move with the other gear's parameters: on the 100-parameter gear train 29 % of
+/// the coefficients multiplied are not zero). One pass lists the others (up to `capacity`; past
+/// that the support is not listed and the products take the dense loops) together with what the
+/// products read of the model: whether it is a constant, its linear range (linear_range(), bit
+/// for bit: a zero coefficient adds nothing to it).
+struct Support {
+  static constexpr std::size_t capacity = 64;
+  std::uint32_t index[capacity];
+  std::size_t count = 0;     ///< coefficients that are not exact zeros
+  bool listed = true;        ///< every one of them is in `index`
+  bool constant = false;     ///< is_constant()
+  Interval linear{0};        ///< linear_range()
+};
+inline void scan(const TaylorModel1& x, Support& s) {
+  double m = 0;   // as linear_range()
+  for (std::size_t i = 0; i < x.coefficients.size(); ++i) {
+    const Interval& a = x.coefficients[i];
+    if (zero(a)) continue;   // (its |a| is 0: linear_range skips it too)
+    if (s.count < Support::capacity) s.index[s.count] = static_cast<std::uint32_t>(i);
+    else s.listed = false;
+    ++s.count;
+    double e = std::max(std::fabs(a.lo), std::fabs(a.hi));
+    if (e != 0.0) m = kernels::interval_detail::up(m + e);
+  }
+  s.constant = zero(x.remainder) && s.count == 0;
+  s.linear = m == 0.0 ? Interval(0) : Interval(-m, m);
+}
+inline bool finite(const Interval& x) { return std::isfinite(x.lo) && std::isfinite(x.hi); }
+/// scaled(x, s, constant) with x's support `sx`: only the listed coefficients multiplied when s
+/// is finite (times(0, s) is then exactly 0, the value the others keep), else scaled().
+inline TaylorModel1 scaled_on(const TaylorModel1& x, const Support& sx, const Interval& s, const Interval& constant) {
+  if (!sx.listed || !finite(s)) return scaled(x, s, constant);
+  TaylorModel1 r(constant);
+  r.coefficients.assign(x.coefficients.size(), Interval(0));
+  for (std::size_t j = 0; j < sx.count; ++j) r.coefficients[sx.index[j]] = times(x.coefficients[sx.index[j]], s);
+  r.remainder = times(x.remainder, s);
+  return r;
+}
+
 /// A right-hand factor of products with what its products read of it computed once (the jets
 /// multiply every partial derivative by the same value: jet.hpp): whether it is a constant, and
-/// its linear part's range when it is not. multiply(a, factor(b)) == a * b, bit for bit.
+/// its linear part's range when it is not, and its support. multiply(a, factor(b)) == a * b ==
+/// multiply_dense(a, factor(b)), bit for bit.
 struct Factor {
   const TaylorModel1* model = nullptr;
   bool constant = false;
   Interval linear{0};
+  Support support;
 };
 inline Factor factor(const TaylorModel1& b) {
   Factor f;
   f.model = &b;
-  f.constant = b.is_constant();
-  if (!f.constant) f.linear = b.linear_range();
+  scan(b, f.support);
+  f.constant = f.support.constant;
+  if (!f.constant) f.linear = f.support.linear;
   return f;
 }
 inline TaylorModel1 multiply(const TaylorModel1& a, const Factor& f);
+inline TaylorModel1 multiply(const TaylorModel1& a, const Support& sa, const Factor& f);
 }  // namespace taylor_detail
 
 inline TaylorModel1 operator*(const TaylorModel1& a, const TaylorModel1& b) {
   return taylor_detail::multiply(a, taylor_detail::factor(b));
 }
-inline TaylorModel1 taylor_detail::multiply(const TaylorModel1& a, const Factor& f) {
-  using taylor_detail::plus;
-  using taylor_detail::times;
+namespace taylor_detail {
+/// The remainder of a product of two models that are not constants, La and Lb their linear ranges:
+/// La Lb + La Rb + Ra (Lb + Rb) + ca Rb + cb Ra.
+inline Interval product_remainder(const TaylorModel1& a, const Interval& la, const TaylorModel1& b, const Interval& lb) {
+  Interval rem = times(la, lb);
+  rem = plus(rem, times(la, b.remainder));
+  rem = plus(rem, times(a.remainder, lb + b.remainder));
+  rem = plus(rem, times(a.constant, b.remainder));
+  return plus(rem, times(b.constant, a.remainder));
+}
+/// The product on every coefficient (the form before session 39; the sparse form's fallback and
+/// its tests' reference).
+inline TaylorModel1 multiply_dense(const TaylorModel1& a, const Factor& f) {
   const TaylorModel1& b = *f.model;
-  if (a.is_constant()) return taylor_detail::scaled(b, a.constant, times(a.constant, b.constant));
-  if (f.constant) return taylor_detail::scaled(a, b.constant, times(a.constant, b.constant));
+  if (a.is_constant()) return scaled(b, a.constant, times(a.constant, b.constant));
+  if (f.constant) return scaled(a, b.constant, times(a.constant, b.constant));
   // (ca + La + Ra)(cb + Lb + Rb) = ca cb + ca Lb + cb La + [La Lb + La Rb + Ra (Lb + Rb) + ca Rb + cb Ra]
   TaylorModel1 r(a.constant * b.constant);
   r.coefficients.assign(std::max(a.coefficients.size(), b.coefficients.size()), kernels::Interval(0));
@@ -173,14 +229,37 @@ inline TaylorModel1 taylor_detail::multiply(const TaylorModel1& a, const Factor&
   for (std::size_t i = 0; i < b.coefficients.size(); ++i)
     r.coefficients[i] = plus(r.coefficients[i], times(b.coefficients[i], a.constant));
   kernels::Interval la = a.linear_range(), lb = f.linear;
-  kernels::Interval rem = times(la, lb);
-  rem = plus(rem, times(la, b.remainder));
-  rem = plus(rem, times(a.remainder, lb + b.remainder));
-  rem = plus(rem, times(a.constant, b.remainder));
-  rem = plus(rem, times(b.constant, a.remainder));
-  r.remainder = rem;
+  r.remainder = product_remainder(a, la, b, lb);
   return r;
 }
+/// The product over the supports: a coefficient that is an exact zero in a (in b) contributes
+/// times(0, cb) = 0 (times(0, ca) = 0) when cb (ca) is finite, so only the listed ones are
+/// multiplied, in the same order, with the same operations; with an unbounded constant or a
+/// support too long to list, the dense form. Bit for bit multiply_dense (tests/unit/
+/// taylor_jet_prepared_test.cpp).
+inline TaylorModel1 multiply(const TaylorModel1& a, const Support& sa, const Factor& f) {
+  const TaylorModel1& b = *f.model;
+  const Support& sb = f.support;
+  if (sa.constant) return scaled_on(b, sb, a.constant, times(a.constant, b.constant));
+  if (f.constant) return scaled_on(a, sa, b.constant, times(a.constant, b.constant));
+  if (!sa.listed || !sb.listed || !finite(a.constant) || !finite(b.constant)) return multiply_dense(a, f);
+  TaylorModel1 r(a.constant * b.constant);
+  r.coefficients.assign(std::max(a.coefficients.size(), b.coefficients.size()), kernels::Interval(0));
+  for (std::size_t j = 0; j < sa.count; ++j) r.coefficients[sa.index[j]] = times(a.coefficients[sa.index[j]], b.constant);
+  for (std::size_t j = 0; j < sb.count; ++j) {
+    Interval& c = r.coefficients[sb.index[j]];
+    c = plus(c, times(b.coefficients[sb.index[j]], a.constant));
+  }
+  kernels::Interval la = sa.linear, lb = f.linear;
+  r.remainder = product_remainder(a, la, b, lb);
+  return r;
+}
+inline TaylorModel1 multiply(const TaylorModel1& a, const Factor& f) {
+  Support sa;
+  scan(a, sa);
+  return multiply(a, sa, f);
+}
+}  // namespace taylor_detail
 inline TaylorModel1 reciprocal(const TaylorModel1& x) {
   using kernels::Interval;
   if (x.is_constant()) return TaylorModel1(Interval(1) / x.constant);

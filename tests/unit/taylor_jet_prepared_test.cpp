@@ -3,7 +3,9 @@
 // once per operation, sums in place) give bit for bit what the plain forms give, on generated
 // operands: gradients of every length up to 7 with exact zeros, constants, empty and short
 // coefficient vectors, remainders, negative zeros, wide, tiny (1e-300) and huge (1e300) values
-// and unbounded factors.
+// and unbounded factors. Session 39: the products over the models' supports (taylor_model.hpp
+// taylor_detail::Support) give bit for bit what the dense products give, on generated sparse
+// models of up to 90 coefficients (past the listed capacity too) at scales 2^-300 ... 2^300.
 #include "tolerance/jet.hpp"
 #include "tolerance/taylor_model.hpp"
 
@@ -125,6 +127,113 @@ TEST(TaylorJetPrepared, CombineScaledAndSumEqualThePlainFormsBitForBit) {
   }
   EXPECT_EQ(combined, 6000);
   EXPECT_GT(unbounded, 100);   // the unbounded factors' branch was taken
+}
+
+// Sparse models: coefficient vectors of 0 ... 90 entries (the support listed up to
+// Support::capacity = 64 of them), each entry an exact zero with a random density (none, 5 %,
+// 30 %, all); values at scales 2^-300 ... 2^300, point intervals (zero widths), negative zeros,
+// subnormals; in some trials unbounded or NaN constants, coefficients and remainders.
+class SparseGenerator {
+ public:
+  explicit SparseGenerator(unsigned seed) : random_(seed) {}
+  TaylorModel1 model(bool unbounded) {
+    TaylorModel1 t;
+    int kind = pick(10);
+    t.constant = kind == 0 ? Interval(0) : value(unbounded);
+    static const std::size_t lengths[] = {0, 1, 3, 8, 17, 30, 63, 64, 65, 90};
+    std::size_t length = lengths[pick(10)];
+    static const double densities[] = {0.0, 0.05, 0.3, 1.0};
+    double density = densities[pick(4)];
+    t.coefficients.assign(length, Interval(0));
+    for (Interval& c : t.coefficients)
+      if (std::uniform_real_distribution<double>(0, 1)(random_) < density) c = value(unbounded);
+    t.remainder = pick(3) == 0 ? Interval(0) : value(unbounded);
+    if (kind == 1) t.remainder = Interval(0);   // a constant when no coefficient is listed
+    return t;
+  }
+  int pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(random_); }
+
+ private:
+  double number() {
+    int e = std::uniform_int_distribution<int>(-300, 300)(random_);
+    double m = std::uniform_real_distribution<double>(-2.0, 2.0)(random_);
+    switch (pick(20)) {
+      case 0: return -0.0;
+      case 1: return std::numeric_limits<double>::denorm_min() * static_cast<double>(pick(5) + 1);
+      default: return std::ldexp(m, e);
+    }
+  }
+  Interval value(bool unbounded) {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    if (unbounded) {
+      switch (pick(12)) {
+        case 0: return Interval(-inf, inf);
+        case 1: return Interval(number(), inf);
+        case 2: return Interval(std::numeric_limits<double>::quiet_NaN(), number());
+        default: break;
+      }
+    }
+    if (pick(4) == 0) return Interval::point(number());   // zero width
+    double a = number(), b = number();
+    return Interval(std::min(a, b), std::max(a, b));
+  }
+  std::mt19937_64 random_;
+};
+
+// The jets' x f before session 39: exact_zero() first, then the dense product
+TaylorModel1 dense_times(const TaylorModel1& x, const tolerance_detail::taylor_detail::Factor& f, bool f_finite) {
+  if (f_finite && x.exact_zero()) return TaylorModel1(0);
+  return tolerance_detail::taylor_detail::multiply_dense(x, f);
+}
+
+TEST(TaylorJetPrepared, ProductsOverTheSupportsEqualTheDenseProductsBitForBit) {
+  namespace td = tolerance_detail::taylor_detail;
+  SparseGenerator gen(39);
+  int sparse = 0, dense = 0, constant = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    bool unbounded = trial % 6 == 0;
+    TaylorModel1 a = gen.model(unbounded), b = gen.model(unbounded);
+    if (trial % 11 == 0) b = a;   // a square
+    const td::Factor fb = td::factor(b);
+    td::Support sa;
+    td::scan(a, sa);
+    // what the scan answers is what the dense reads give
+    ASSERT_EQ(sa.constant, a.is_constant()) << "trial " << trial;
+    ASSERT_EQ(bits(sa.linear.lo), bits(a.linear_range().lo)) << "trial " << trial;
+    ASSERT_EQ(bits(sa.linear.hi), bits(a.linear_range().hi)) << "trial " << trial;
+    ASSERT_TRUE(same({td::multiply(a, fb)}, {td::multiply_dense(a, fb)})) << "multiply, trial " << trial;
+    ASSERT_TRUE(same({a * b}, {td::multiply_dense(a, fb)})) << "operator*, trial " << trial;
+    bool finite_b = jd::finite(b);
+    ASSERT_TRUE(same({jd::times(a, fb, finite_b)}, {dense_times(a, fb, finite_b)})) << "jet times, trial " << trial;
+    if (sa.constant || fb.constant) ++constant;
+    else if (sa.listed && fb.support.listed && td::finite(a.constant) && td::finite(b.constant)) ++sparse;
+    else ++dense;
+  }
+  // every branch taken often
+  EXPECT_GT(sparse, 5000);
+  EXPECT_GT(dense, 1000);
+  EXPECT_GT(constant, 1000);
+  // jets of sparse models: the prepared products against the dense ones
+  for (int trial = 0; trial < 1500; ++trial) {
+    bool unbounded = trial % 6 == 0;
+    Jet<TaylorModel1> a(gen.model(unbounded)), b(gen.model(unbounded));
+    a.gradient.resize(gen.pick(24));
+    b.gradient.resize(gen.pick(24));
+    for (TaylorModel1& g : a.gradient) g = gen.pick(3) == 0 ? TaylorModel1(0) : gen.model(unbounded);
+    for (TaylorModel1& g : b.gradient) g = gen.pick(3) == 0 ? TaylorModel1(0) : gen.model(unbounded);
+    const td::Factor fa = td::factor(b.value), fb = td::factor(a.value);   // a.gradient x b.value + b.gradient x a.value
+    std::vector<TaylorModel1> reference(std::max(a.gradient.size(), b.gradient.size()), TaylorModel1(0));
+    bool fa_finite = jd::finite(b.value), fb_finite = jd::finite(a.value);
+    for (std::size_t i = 0; i < a.gradient.size(); ++i) reference[i] = dense_times(a.gradient[i], fa, fa_finite);
+    for (std::size_t i = 0; i < b.gradient.size(); ++i) {
+      TaylorModel1 t = dense_times(b.gradient[i], fb, fb_finite);
+      if (reference[i].exact_zero()) reference[i] = t;
+      else if (!t.exact_zero()) reference[i] = reference[i] + t;
+    }
+    Jet<TaylorModel1> product = a * b;
+    ASSERT_TRUE(same(product.gradient, reference)) << "jet product, trial " << trial;
+    ASSERT_TRUE(same({product.value}, {td::multiply_dense(a.value, td::factor(b.value))})) << "jet value, trial " << trial;
+  }
 }
 
 }  // namespace
