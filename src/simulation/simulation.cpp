@@ -501,12 +501,12 @@ struct Simulation::Impl {
       ty = d.y.approximate();
       dy_chart = mid(d.dy);
     }
-    // while the configuration is put on a vertex (vertex_contacts, at_vertex_value), the rows are
-    // those at the clamped abscissa, but the contact's value is its curve's at the
-    // configuration's own abscissa (continued along the tangent there): taken at the clamped
-    // point, it was off by the slope x the clamp (up to 1e-9 of the edge's length and the slack
-    // past the end), and the configuration put on two contacts at their vertex landed that far
-    // from it, outside the other's edge (the translating wedge, docs/simulation.md, session 38)
+    // the rows are those at the clamped abscissa, but the contact's value is its curve's at the
+    // configuration's own abscissa (continued along the tangent there), everywhere: taken at the
+    // clamped point, it was off by the slope x the clamp (up to 1e-9 of the edge's length and the
+    // slack past the end), and the configuration put on two contacts at their vertex landed that
+    // far from it, outside the other's edge (the translating wedge, docs/simulation.md, sessions
+    // 38 and 39)
     if (tx != at) ty += dy_chart * (at - tx);
     G[a.xdof] = -a.sigma * y1;
     G[a.ydof] += a.sigma;
