@@ -2,6 +2,8 @@
 // text of each report and the terminal's reporter `hipair` passes when stderr is a terminal.
 #include <hipair/cspace.hpp>
 
+#include "core/console_text.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <iostream>
@@ -11,7 +13,10 @@
 namespace hipair {
 
 std::string CSpaceBuildProgress::text() const {
-  const std::string pair = "hipair: " + std::string(first_part) + ":" + std::string(second_part) + " ";
+  // names over 200 bytes cut as on every console line (core/console_text.hpp): a 1 MB part name
+  // was redrawn whole on every report
+  const std::string pair = "hipair: " + console::shown_name(std::string(first_part)) + ":" +
+                           console::shown_name(std::string(second_part)) + " ";
   switch (stage) {
     case Stage::chart:
       return pair + (tiles ? "tile " : "chart ") + std::to_string(chart) + "/" + std::to_string(charts);

@@ -364,6 +364,42 @@ TEST(ToleranceProgress, TheTerminalReporterWritesTheBuildsLines) {
   EXPECT_GE(tail.size() - 2, std::string("hipair: driver:wheel classifying chart 1/4: 0%").size());
 }
 
+// A report's line names the pair as every console line does: names of up to 200 bytes whole,
+// longer ones cut to their first 200 bytes and their length (core/console_text.hpp), so a line
+// stays short whatever the model's names (generated names of 0 to 10^5 bytes, every stage).
+TEST(ToleranceProgress, AReportsLineCutsLongPartNames) {
+  std::mt19937_64 rng(40);
+  std::uniform_int_distribution<int> letter('a', 'z');
+  const std::size_t lengths[] = {0, 1, 199, 200, 201, 1000, 100000};
+  for (int trial = 0; trial < 40; ++trial) {
+    std::string first(lengths[rng() % 7], 'x'), second(lengths[rng() % 7], 'y');
+    for (char& c : first) c = static_cast<char>(letter(rng));
+    for (char& c : second) c = static_cast<char>(letter(rng));
+    for (auto stage : {CSpaceBuildProgress::Stage::chart, CSpaceBuildProgress::Stage::classification}) {
+      CSpaceBuildProgress report;
+      report.stage = stage;
+      report.first_part = first;
+      report.second_part = second;
+      report.chart = 1;
+      report.charts = 4;
+      report.total = 10;
+      report.coefficient_bits = 400;
+      const std::string line = report.text();
+      SCOPED_TRACE(std::to_string(first.size()) + " / " + std::to_string(second.size()));
+      // "hipair: " + two names of at most 200 bytes + "... (N characters)" each + the stage's words
+      EXPECT_LE(line.size(), 8 + 2 * (200 + 30) + 150u);
+      EXPECT_EQ(line.compare(0, 8, "hipair: "), 0);
+      EXPECT_EQ(line.compare(8, std::min<std::size_t>(first.size(), 200), first, 0, 200), 0);
+      const std::string second_shown = second.substr(0, 200);   // (whole when it has at most 200 bytes)
+      EXPECT_NE(line.find(":" + second_shown), std::string::npos);
+      if (first.size() <= 200 && second.size() <= 200)
+        EXPECT_EQ(line.find("characters)"), std::string::npos) << "short names are shown whole";
+      else
+        EXPECT_NE(line.find("characters)"), std::string::npos) << "a cut name says its length";
+    }
+  }
+}
+
 // The threshold search (certified scales, exact C-spaces, the bracket's bisection and its
 // witness' C-space) and the certificate's branch-and-bound report inside their stages; the
 // pair's C-space build inside the first. The certificate's share: the leaves' exact share of the
