@@ -112,7 +112,14 @@ struct Active {
   double x_lo = 0, x_hi = 0; // the edge's chart abscissa range
   bool bounded_y = false;    // a vertical edge: its chart ordinate range
   double y_lo = 0, y_hi = 0;
-  double slack = 1e-9;       // chart units beyond the edge's certified extent still accepted
+  // How far beyond the edge's certified extent the contact is still accepted, in `unit`s of the
+  // watched chart coordinate (session 40: a fraction, so the same at every length scale; in
+  // chart units slack * unit, Impl::slack_of)
+  double slack = 1e-9;
+  // The scale of the watched chart coordinate (the abscissa; a vertical edge's ordinate): 1 on a
+  // rotating axis (t = tan(theta / 2) is dimensionless), the chart box's extent in mm on a
+  // translating one (a length: a model scaled by L has its tolerances scaled by L)
+  double unit = 1;
   bool at_vertex = false;    // taken up (or kept) at a contact-change vertex: valid up to the vertex
   bool wedge = false;        // held at (or kept back from) a wedge's vertex: valid within 1e-10 of it
   std::vector<FeatureId> features;   // a contact without an edge (1-D pair): its feature pairs
@@ -300,7 +307,28 @@ struct Simulation::Impl {
     return std::tan(a / 2);
   }
 
-  static constexpr double edge_slack = 1e-9;   // chart units
+  // a fraction of the chart coordinate's unit (axis_unit): 1e-9 chart units on a rotating axis
+  static constexpr double edge_slack = 1e-9;
+
+  // The scale of a chart coordinate, what its tolerances are fractions of (session 40,
+  // docs/simulation.md "Session 40 (graze40)"): 1 on a rotating axis, where the chart coordinate
+  // t = tan(theta / 2) is dimensionless and |t| <= 1 on its chart; on a translating axis the
+  // chart box's extent (the motion limits, mm), so that a model scaled in length by L sees its
+  // slacks scaled by L, not the same absolute 1e-9 mm at 10^-6 mm and at 10^6 mm.
+  static double axis_unit(const CSpaceChart& chart, bool ordinate) {
+    if ((ordinate ? chart.y_kind : chart.x_kind) != AxisKind::translation) return 1;
+    const double extent = ordinate ? to_d(chart.y_hi - chart.y_lo) : to_d(chart.x_hi - chart.x_lo);
+    return extent > 0 && std::isfinite(extent) ? extent : 1;
+  }
+  // the unit of held contact `a`'s watched coordinate (a vertical edge's: its ordinate)
+  double unit_of(const Active& a) const {
+    if (a.point && !a.bounded_y) return 1;
+    return axis_unit(chart_of(a), a.point);
+  }
+  // held contact `a`'s slack in chart units
+  static double slack_of(const Active& a) { return a.slack * a.unit; }
+  // strict rows' reach past a vertex (rounding about a corner held by two contacts), chart units
+  static double strict_limit(const Active& a) { return 1e-12 * a.unit; }
 
   // Two rationals either side of an algebraic number, 2^-64 of its isolating interval apart
   // (exact bisection on the sign of its square-free polynomial).
@@ -341,7 +369,7 @@ struct Simulation::Impl {
     if (!a.at_vertex) return false;
     // while the motion is checked, only within 1e-12 chart units of the vertex (rounding about a
     // corner held by two contacts), not along the curve past the vertex
-    const double limit = strict_rows ? 1e-12 : a.slack;
+    const double limit = strict_rows ? strict_limit(a) : slack_of(a);
     const CSpaceEdge& edge = space.edge(a.edge);
     for (std::size_t vertex : {edge.source, edge.target}) {
       if (vertex == no_index) continue;
@@ -423,7 +451,7 @@ struct Simulation::Impl {
       if (!a.at_vertex) return false;
       if (!y) y.emplace(ty);
       // within `limit` of the vertex: y moved back by limit is not off the edge
-      const double limit = strict_rows ? 1e-12 : a.slack;
+      const double limit = strict_rows ? strict_limit(a) : slack_of(a);
       std::optional<int> back = side_of(vertex, *y - outside * Rational(limit));
       if (back && *back == outside) return false;
     }
@@ -439,7 +467,7 @@ struct Simulation::Impl {
     if (a.point) {
       // past the exact end vertex by more than on_vertical_edge's limit (none off a vertex)
       double ty = to_chart(chart.y_kind, chart.y_half_turn, qs[a.ydof]);
-      double beyond = a.at_vertex ? std::min(a.slack, strict_rows ? 1e-12 : a.slack) : 0.0;
+      double beyond = a.at_vertex ? std::min(slack_of(a), strict_rows ? strict_limit(a) : slack_of(a)) : 0.0;
       return std::min(ty - (a.y_lo - beyond), (a.y_hi + beyond) - ty);
     }
     double tx = to_chart(chart.x_kind, chart.x_half_turn, qs[a.xdof]);
@@ -453,13 +481,15 @@ struct Simulation::Impl {
   // into the edge) let the step's motion run up to 3e-9 past the vertex, into the other contact
   // of a wedge, and the cut came that far inside: the ratchet's wedge chattered for ever on the
   // energy that moving back out gave it each time (session 36, docs/simulation.md).
-  double abscissa_slack(const Active& a) const { return strict_rows && a.wedge ? std::min(a.slack, vertex_limit) : a.slack; }
+  double abscissa_slack(const Active& a) const {
+    return strict_rows && a.wedge ? std::min(slack_of(a), vertex_limit * a.unit) : slack_of(a);
+  }
 
   // Whether some pair holds a wedge: two held contacts, or one kept back from a wedge's vertex.
   bool wedged() const {
     return std::any_of(active.begin(), active.end(), [](const Active& a) { return a.wedge; });
   }
-  static constexpr double vertex_limit = 1e-10;   // chart units
+  static constexpr double vertex_limit = 1e-10;   // a fraction of the abscissa's unit
 
   // the constraint's gradient over dofs, its bias h (g'' = G q'' + h) and its value g
   bool row(const Active& a, const Vec& qs, const Vec& vs, Vec& G, double& h, double& gval) const {
@@ -470,7 +500,7 @@ struct Simulation::Impl {
         // a vertical edge ends where the other part leaves the edge's ordinate range
         const CSpaceChart& chart = chart_of(a);
         double ty = to_chart(chart.y_kind, chart.y_half_turn, qs[a.ydof]);
-        if (ty < a.y_lo - a.slack || ty > a.y_hi + a.slack) return false;
+        if (ty < a.y_lo - slack_of(a) || ty > a.y_hi + slack_of(a)) return false;
         if (!on_vertical_edge(a, ty)) return false;
       }
       G[a.xdof] = a.sigma;
@@ -483,6 +513,7 @@ struct Simulation::Impl {
     if (tx < a.x_lo - slack || tx > a.x_hi + slack) return false;
     // within the slack of an end: the nearest abscissa strictly inside (the ends are algebraic)
     const double at = tx;
+    // (a fraction of the edge's own extent: scale-free already)
     double inset = 1e-9 * (a.x_hi - a.x_lo);
     tx = std::clamp(tx, a.x_lo + inset, a.x_hi - inset);
     // certified double-interval derivatives along the edge; the exact ones where that filter
@@ -720,7 +751,7 @@ struct Simulation::Impl {
     const int dof = ordinate ? a.ydof : a.xdof;
     if (dof < 0) return 1;
     const CSpaceChart& chart = chart_of(a);
-    const double lo = (ordinate ? a.y_lo : a.x_lo) - a.slack, hi = (ordinate ? a.y_hi : a.x_hi) + a.slack;
+    const double lo = (ordinate ? a.y_lo : a.x_lo) - slack_of(a), hi = (ordinate ? a.y_hi : a.x_hi) + slack_of(a);
     const AxisKind kind = ordinate ? chart.y_kind : chart.x_kind;
     const bool half_turn = ordinate ? chart.y_half_turn : chart.x_half_turn;
     const std::array<double, 6>& c = path.c[static_cast<std::size_t>(dof)];
@@ -737,7 +768,9 @@ struct Simulation::Impl {
     for (int i = 1; i < 6; ++i) slope += i * std::abs(c[i]);
     if (!(slope > 0)) return 1;
     // outside by more than tol: past the end (the extent already holds the edge's slack)
-    const double tol = 1e-12 * (1 + std::abs(A) + std::abs(B));
+    // (the 1 is the coordinate's unit: rad on a rotating axis, the chart's extent in mm on a
+    // translating one, session 40)
+    const double tol = 1e-12 * (a.unit + std::abs(A) + std::abs(B));
     double u = 0;
     for (int iteration = 0; iteration < 100000; ++iteration) {
       double q = poly(c, u);
@@ -901,9 +934,11 @@ struct Simulation::Impl {
       a.y_hi = edge.y_chart.upper;
       a.c = q[a.xdof];
       a.sigma = G[a.xdof] >= 0 ? 1 : -1;
+      a.unit = unit_of(a);
       return a;
     }
     a.x_lo = edge.x_chart.lower;
+    a.unit = unit_of(a);
     a.x_hi = edge.x_chart.upper;
     const CSpaceChart* chart = &space.charts()[edge.chart];
     double tx = to_chart(chart->x_kind, chart->x_half_turn, q[a.xdof]);
@@ -1457,23 +1492,33 @@ struct Simulation::Impl {
       if (!shares && !any_curve) continue;
       const CSpaceChart& chart = space.charts()[edge.chart];
       double tx = to_chart(chart.x_kind, chart.x_half_turn, q[a.xdof]);
-      if (!(tx > edge.x_chart.lower - edge_slack && tx < edge.x_chart.upper + edge_slack)) continue;
+      const double near_edge = edge_slack * axis_unit(chart, false);
+      if (!(tx > edge.x_chart.lower - near_edge && tx < edge.x_chart.upper + near_edge)) continue;
       Active b = a;
       b.wedge = false;   // on along the curve, away from a wedge's vertex
       b.edge = EdgeId(e);
       b.chart = edge.chart;
       b.x_lo = edge.x_chart.lower;
       b.x_hi = edge.x_chart.upper;
+      b.unit = unit_of(b);
       Vec G;
       double h, gval;
       b.sigma = 1;
       if (!row(b, q, v, G, h, gval)) continue;
-      if (std::abs(gval) > 1e-6) continue;   // another branch of the curve
+      if (another_branch(b, gval)) continue;
       BlockedSide side = space.blocked_side(b.edge);
       b.sigma = side == BlockedSide::left ? -1 : 1;
       return b;
     }
     return std::nullopt;
+  }
+
+  // Whether a contact's value gval (in its constraint's coordinate: the ordinate, a vertical
+  // edge's abscissa; rad or mm) is too far from 0 for the configuration to be on that edge: more
+  // than 1e-6 of the coordinate's unit (axis_unit; session 40: 1e-6 mm absolute before, larger
+  // than a model at 10^-6 mm).
+  bool another_branch(const Active& b, double gval) const {
+    return std::abs(gval) > 1e-6 * axis_unit(chart_of(b), !b.point);
   }
 
   // The contact change at the end of sustained contact k's edge: the vertex reached, and the
@@ -1535,11 +1580,12 @@ struct Simulation::Impl {
         b.x_hi = edge.x_chart.upper;
         b.sigma = side == BlockedSide::left ? -1 : 1;   // left is above
       }
+      b.unit = unit_of(b);
       Vec G;
       double h, gval;
       bool ok = row(b, q, v, G, h, gval);
       if (!ok) continue;
-      if (std::abs(gval) > 1e-6) continue;   // another branch of the curve
+      if (another_branch(b, gval)) continue;
       if (std::none_of(out.begin(), out.end(), [&](const Active& c) { return space.edge(c.edge).curves == edge.curves; }))
         out.push_back(b);
     }
@@ -1592,7 +1638,7 @@ struct Simulation::Impl {
     // tangent, puts the configuration on it), then k keeps the slack above
     const double past = past_end(active[k]);
     const double slack = active[k].slack;
-    if (past > slack) active[k].slack = 2 * past;
+    if (past > slack_of(active[k])) active[k].slack = 2 * past / active[k].unit;
     place_at_vertex(active[k], candidates);
     active[k].slack = slack;
     std::vector<ContactRow> rows;
@@ -2200,7 +2246,7 @@ struct Simulation::Impl {
     if (cut == Cut::edge_end) active[cut_active].at_vertex = true;
     const Vec cut_q = q;
     project_active();
-    if (cut == Cut::edge_end && abscissa_shift(active[cut_active], cut_q) > active[cut_active].slack) {
+    if (cut == Cut::edge_end && abscissa_shift(active[cut_active], cut_q) > slack_of(active[cut_active])) {
       q = cut_q;
       onto_curve_at_abscissa(active[cut_active]);
       project_active();
