@@ -25,6 +25,7 @@
 #include "simulation/lcp.hpp"
 #include "simulation/nudge_check.hpp"
 #include "simulation/ordinate_filter.hpp"
+#include "simulation/touch_guard.hpp"
 #include "simulation/units.hpp"
 
 #include <Eigen/Dense>
@@ -2215,6 +2216,7 @@ struct Simulation::Impl {
       const bool again = touch_only && t == path.t0 && last_touch_end == path.t0;
       last_touch_end = touch_only ? t : std::numeric_limits<double>::quiet_NaN();
       if (!again) return;
+      ++simulation::touch_guard_moves();
       events.resize(events_before);
       path.at(u_hit_upper, q, v);
       t = path.t0 + u_hit_upper * path.h;

@@ -15,6 +15,8 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +25,7 @@
 #include <random>
 #include <string>
 
+#include "simulation/touch_guard.hpp"
 #include "test_paths.hpp"
 
 namespace hipair {
@@ -191,6 +194,69 @@ TEST(SimulationRatchetTouch, GeneratedRunsEndWithoutStepsInPlace) {
   }
   std::printf("ratchet: %d generated runs, %d to 0.5 s, the others stopped with a reported error\n", ran, finished);
   EXPECT_GE(ran, 8);
+}
+
+// Session 32's endless-touch guard reached on generated states (session 40, graze40): since
+// session 39 DepartingCornerTouchMovesOn no longer reaches it. Two translating 10 mm squares, no
+// forces: the slider's corner passes exactly through the cart's corner at t* (random multiples of
+// 1/64 for the velocities and t*; in C-space a line through the vertex where the two corner
+// curves meet, outside the blocked quadrant on both sides). Moving apart downwards-left (both
+// velocities negative) the query reports the touch on the edge the motion departs from: an
+// impact without impulse at t*, then the same query at the next step's start — the guard moves
+// the state on past the touch's bracket (touch_guard_moves counts it). Every step must move the
+// time on, the touch is one event, and the parts keep their velocities to the end. Without the
+// guard the run stays at t* (the mutant "again = false" fails: steps in place until max_steps).
+nlohmann::json passing_corners(double vx, double vy, double t_star, double restitution) {
+  auto square = [](double x, double y) {
+    return nlohmann::json{{{"start", {x, y}},
+                           {"edges", {{{"line_to", {x + 10, y}}}, {{"line_to", {x + 10, y + 10}}}, {{"line_to", {x, y + 10}}}, {{"line_to", {x, y}}}}}}};
+  };
+  auto part = [&](const char* name, int axis, double offset, double x, double y) {
+    return nlohmann::json{{"name", name},
+                          {"motion", {{"translation", {{"direction", {axis == 0 ? 1 : 0, axis}}, {"limits", {-50, 50}}}}}},
+                          {"initial", {{"offset", offset}}},
+                          {"dynamics", {{"mass", 1}}},
+                          {"loops", square(x, y)}};
+  };
+  return {{"hipair", 1},
+          {"name", "passing-corners"},
+          {"parts", {part("cart", 0, -vx * t_star, 0, 0), part("slider", 1, -vy * t_star, 10, 10)}},
+          {"pairs", {{{"parts", {"cart", "slider"}}, {"restitution", restitution}}}},
+          {"simulation", {{"velocities", {{"cart", vx}, {"slider", vy}}}}}};
+}
+
+TEST(SimulationRatchetTouch, GeneratedDepartingCornerGrazesReachTheGuardAndMoveOn) {
+  std::mt19937 random(40);
+  auto pick = [&](double lo, double hi) {   // multiples of 1/64: exact in the model
+    return std::round(std::uniform_real_distribution<double>(lo, hi)(random) * 64) / 64;
+  };
+  std::size_t guarded = 0;
+  for (int trial = 0; trial < 24; ++trial) {
+    const double vx = -pick(1, 20), vy = -pick(1, 20), t_star = pick(0.1, 0.5);
+    const double restitution = trial % 3 == 0 ? 1 : trial % 3 == 1 ? 0 : 0.5;
+    SimulationOptions options;
+    options.accuracy = trial % 3 == 0 ? 1e-3 : trial % 3 == 1 ? 1e-6 : 1e-9;
+    options.max_steps = 3000;
+    SCOPED_TRACE(::testing::Message() << "trial " << trial << " v " << vx << " " << vy << " t* " << t_star);
+    Simulation s = Simulation::create(read_model(passing_corners(vx, vy, t_star, restitution).dump(), "corners"), options);
+    const std::size_t before = simulation::touch_guard_moves();
+    while (s.state().time < 2 * t_star) {
+      const double t = s.state().time;
+      ASSERT_NO_THROW(s.step()) << "at t = " << t;
+      ASSERT_GT(s.state().time, t);   // every step moves the time on
+    }
+    const std::size_t moves = simulation::touch_guard_moves() - before;
+    EXPECT_EQ(moves, 1u);
+    guarded += moves;
+    // one touch, at t*, without impulse
+    ASSERT_EQ(s.events().size(), 1u);
+    EXPECT_EQ(s.events()[0].kind, SimulationEvent::Kind::impact);
+    EXPECT_EQ(s.events()[0].impulse, 0);
+    EXPECT_NEAR(s.events()[0].time, t_star, 1e-9);
+    EXPECT_NEAR(s.state().velocity[0], vx, 1e-12 * std::abs(vx));
+    EXPECT_NEAR(s.state().velocity[1], vy, 1e-12 * std::abs(vy));
+  }
+  EXPECT_EQ(guarded, 24u);
 }
 
 }  // namespace
