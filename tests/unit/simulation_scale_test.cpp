@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -21,28 +22,34 @@
 namespace hipair {
 namespace {
 
+// A part free along `axis` (0: x, 1: y) within L x [lo, hi], of mass `mass` under (0, -force), whose
+// one loop is the polygon `corners` (unscaled) with the given edge labels ("" for none).
+nlohmann::json sliding_part(const char* name, int axis, double L, double lo, double hi, double mass, double force,
+                            const std::vector<std::array<double, 2>>& corners, const std::vector<const char*>& labels) {
+  nlohmann::json edges = nlohmann::json::array();
+  for (std::size_t i = 1; i <= corners.size(); ++i) {
+    const std::array<double, 2>& c = corners[i % corners.size()];
+    nlohmann::json edge = {{"line_to", {L * c[0], L * c[1]}}};
+    if (*labels[i - 1]) edge["label"] = labels[i - 1];
+    edges.push_back(edge);
+  }
+  nlohmann::json dynamics = {{"mass", mass}};
+  if (force != 0) dynamics["force"] = {0, -force};
+  return {{"name", name},
+          {"motion", {{"translation", {{"direction", {axis == 0 ? 1 : 0, axis}}, {"limits", {lo * L, hi * L}}}}}},
+          {"dynamics", dynamics},
+          {"loops", {{{"start", {L * corners[0][0], L * corners[0][1]}}, {"edges", edges}}}}};
+}
+
+// The valley: ramp of slope s from (0, 5 + 20 s) down to (20, 5), the flat to (40, 5), a step
+// down to the floor at 0 (to x = 60); the slider's corner h above the ramp at x = 10, its bottom
+// steeper than the ramp; masses M (cart), m (slider); the slider's force F L.
 nlohmann::json valley_json(double L, double s, double h, double M, double m, double F) {
-  auto p = [&](double x, double y) { return nlohmann::json::array({L * x, L * y}); };
-  const double y0 = 5 + 10 * s + h;   // the slider's corner, h above the ramp at x = 10
-  nlohmann::json cart = {
-      {"name", "cart"},
-      {"motion", {{"translation", {{"direction", {1, 0}}, {"limits", {-60 * L, 20 * L}}}}}},
-      {"dynamics", {{"mass", M}}},
-      {"loops",
-       {{{"start", p(0, -5)},
-         {"edges",
-          {{{"line_to", p(60, -5)}}, {{"line_to", p(60, 0)}, {"label", "floor"}}, {{"line_to", p(40, 0)}, {"label", "floor"}},
-           {{"line_to", p(40, 5)}, {"label", "step"}}, {{"line_to", p(20, 5)}, {"label", "flat"}},
-           {{"line_to", p(0, 5 + 20 * s)}, {"label", "ramp"}}, {{"line_to", p(0, -5)}}}}}}}};
-  nlohmann::json slider = {
-      {"name", "slider"},
-      {"motion", {{"translation", {{"direction", {0, 1}}, {"limits", {-40 * L, 40 * L}}}}}},
-      {"dynamics", {{"mass", m}, {"force", {0, -F * L}}}},
-      {"loops",
-       {{{"start", p(10, y0)},
-         {"edges",
-          {{{"line_to", p(16, y0 + 6 * (s + 0.6))}, {"label", "bottom"}}, {{"line_to", p(16, y0 + 6 * (s + 0.6) + 4)}},
-           {{"line_to", p(10, y0 + 6 * (s + 0.6) + 4)}}, {{"line_to", p(10, y0)}, {"label", "left side"}}}}}}}};
+  const double y0 = 5 + 10 * s + h, top = y0 + 6 * (s + 0.6);
+  nlohmann::json cart = sliding_part("cart", 0, L, -60, 20, M, 0, {{0, -5}, {60, -5}, {60, 0}, {40, 0}, {40, 5}, {20, 5}, {0, 5 + 20 * s}},
+                                     {"", "floor", "floor", "step", "flat", "ramp", ""});
+  nlohmann::json slider = sliding_part("slider", 1, L, -40, 40, m, F * L, {{10, y0}, {16, top}, {16, top + 4}, {10, top + 4}},
+                                       {"bottom", "", "", "left side"});
   return {{"hipair", 1},
           {"name", "translating-valley"},
           {"parts", {cart, slider}},
