@@ -19,6 +19,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -52,8 +53,20 @@ inline std::optional<kernels::Interval> tan_enclosure(const kernels::Interval& y
 // decides.
 inline std::optional<kernels::Interval> tan_enclosure_signed(const kernels::Interval& y) {
   using kernels::Interval;
-  using kernels::interval_detail::down;
-  using kernels::interval_detail::up;
+  // interval_detail::down / up, whose steps here are on positive finite doubles (the check
+  // below keeps the others on the general rule): there the neighbour is the bit pattern's
+  // predecessor / successor (x > 0: down(x) = -up(-x) steps -x's magnitude back by one), the
+  // same double without the zero, sign and infinity cases of the general rule
+  auto down = [](double x) {
+    if (x > 0 && x < std::numeric_limits<double>::infinity())
+      return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) - 1);
+    return kernels::interval_detail::down(x);
+  };
+  auto up = [](double x) {
+    if (x > 0 && x < std::numeric_limits<double>::infinity())
+      return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) + 1);
+    return kernels::interval_detail::up(x);
+  };
   // odd: the generic operations on -y are those on y negated (rounding to nearest and the
   // one-ulp widening are symmetric), so [-a, -b] is done as [b, a]
   bool negative = y.hi < 0;
@@ -200,6 +213,16 @@ inline bool& tan_memo() { return thread_switch<TanMemoTag>(); }
 // How many half-angle tangents on this thread came from the memo (tests, profiling).
 struct TanMemoHitsTag;
 inline std::size_t& tan_memo_hits() { return thread_counter<TanMemoHitsTag>(); }
+
+// first_crossing's scanner remembers the filtered enclosures of its path's polynomials (the
+// path, its rate, its acceleration per axis) over the last few stretches' end doubles
+// (cspace_queries.cpp, MotionScanner::path_enclosure): the same bits without the Taylor shift.
+// On by default; tests switch it off per thread to compare (CSpaceCrossingPathMemo.*).
+struct PathMemoTag;
+inline bool& path_memo() { return thread_switch<PathMemoTag>(); }
+// How many path enclosures on this thread came from the memo (tests, profiling).
+struct PathMemoHitsTag;
+inline std::size_t& path_memo_hits() { return thread_counter<PathMemoHitsTag>(); }
 
 inline std::optional<kernels::Interval> half_angle_tan(double tau) {
   using kernels::Interval;

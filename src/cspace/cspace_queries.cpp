@@ -1734,7 +1734,37 @@ class MotionScanner {
       if (!value) return std::nullopt;
       return KInterval(cspace::algebra::lower_double(value->lo), cspace::algebra::upper_double(value->hi));
     }
-    return evaluate_path_filtered_d(p, enclosure(a), enclosure(b));
+    return path_enclosure(p, enclosure(a), enclosure(b));
+  }
+  // evaluate_path_filtered_d(p, A, B), remembered when p is one of this scanner's own
+  // polynomials (enclosed_, enclosed_rate_, enclosed_acceleration_: fixed once the scanner is
+  // built). The value is a function of p and the doubles A.lo and B.hi alone, and the same
+  // stretch asks it again and again (the second-order exclusion takes the path's rate and
+  // acceleration at the stretch's start once for every curve it tries; a stretch's rate after
+  // its pieces): the last four end pairs per polynomial, compared by bit pattern, return the
+  // same bits. Other polynomials are evaluated. Switch cspace::path_memo() (on by default;
+  // CSpaceCrossingPathMemo.* compares every answer with it off).
+  std::optional<KInterval> path_enclosure(const std::vector<KInterval>& p, const KInterval& A, const KInterval& B) const {
+    std::size_t slot = path_values_.size();
+    if (cspace::path_memo())
+      for (std::size_t axis = 0; axis < 2 && axis < enclosed_.size(); ++axis) {
+        if (&p == &enclosed_[axis]) slot = axis;
+        else if (&p == &enclosed_rate_[axis]) slot = 2 + axis;
+        else if (&p == &enclosed_acceleration_[axis]) slot = 4 + axis;
+      }
+    if (slot == path_values_.size()) return evaluate_path_filtered_d(p, A, B);
+    const std::uint64_t lo = std::bit_cast<std::uint64_t>(A.lo), hi = std::bit_cast<std::uint64_t>(B.hi);
+    PathValues& memo = path_values_[slot];
+    for (std::size_t i = 0; i < memo.filled; ++i)
+      if (memo.entries[i].lo == lo && memo.entries[i].hi == hi) {
+        ++cspace::path_memo_hits();
+        return memo.entries[i].value;
+      }
+    std::optional<KInterval> value = evaluate_path_filtered_d(p, A, B);
+    memo.entries[memo.next] = PathValue{lo, hi, value};
+    memo.next = (memo.next + 1) % memo.entries.size();
+    memo.filled = std::min(memo.filled + 1, memo.entries.size());
+    return value;
   }
   KInterval enclosure(const Rational& r) const {
     for (std::size_t i = 0; i < filled_ends_; ++i)
@@ -1874,7 +1904,7 @@ class MotionScanner {
     const std::size_t i = &axis == &path_.x ? 0 : 1;
     auto enclosed = [&](const std::vector<KInterval>& p) -> std::optional<DInterval> {
       if (p.empty()) return DInterval{0, 0};
-      std::optional<KInterval> v = evaluate_path_filtered_d(p, enclosure(a), enclosure(b));
+      std::optional<KInterval> v = path_enclosure(p, enclosure(a), enclosure(b));
       if (!v) return std::nullopt;
       return DInterval{v->lo, v->hi};
     };
@@ -2147,6 +2177,16 @@ class MotionScanner {
   const MotionPath& path_;
   mutable std::array<std::pair<Rational, KInterval>, 4> ends_{};   // enclosure()'s memo
   mutable std::size_t next_end_ = 0, filled_ends_ = 0;
+  struct PathValue {
+    std::uint64_t lo = 0, hi = 0;   // A.lo, B.hi's bit patterns
+    std::optional<KInterval> value;
+  };
+  struct PathValues {
+    std::array<PathValue, 4> entries{};
+    std::size_t next = 0, filled = 0;
+  };
+  // path_enclosure()'s memo: x, y; their rates; their accelerations
+  mutable std::array<PathValues, 6> path_values_{};
   struct StartPieces {
     Rational a;
     std::vector<AxisPiece> x, y;
