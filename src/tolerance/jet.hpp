@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace hipair::tolerance_detail {
@@ -124,10 +125,12 @@ std::vector<S> combine(const Jet<S>& a, const S& fa, const Jet<S>& b, const S& f
     return combine_plain(a, fa, b, fb);
   } else {
     std::size_t n = std::max(a.gradient.size(), b.gradient.size());
-    std::vector<S> g(n, S(0));
+    std::vector<S> g;
+    g.reserve(n);
     bool fa_finite = finite(fa), fb_finite = finite(fb);
     const taylor_detail::Factor pa = taylor_detail::factor(fa), pb = taylor_detail::factor(fb);
-    for (std::size_t i = 0; i < a.gradient.size(); ++i) g[i] = times(a.gradient[i], pa, fa_finite);
+    for (std::size_t i = 0; i < a.gradient.size(); ++i) g.push_back(times(a.gradient[i], pa, fa_finite));
+    g.resize(n, S(0));
     for (std::size_t i = 0; i < b.gradient.size(); ++i) accumulate(g[i], times(b.gradient[i], pb, fb_finite));
     return g;
   }
@@ -159,7 +162,79 @@ std::vector<S> sum(const Jet<S>& a, const Jet<S>& b) {
     return g;
   }
 }
+// Sums and differences of Taylor-model jets that are temporaries (session 40): the kernels'
+// expressions (a.x * b.y - a.y * b.x, ...) add and subtract jets just made, and the result is
+// built in a temporary's own storage instead of new vectors and models. Bit for bit the forms
+// on const operands (sum(), scaled(a, -1)): the same operations on the same operands in the
+// same order (tests/unit/taylor_jet_prepared_test.cpp).
+// a = plus(a, b) for one partial, b's entry moved or copied (B: const TaylorModel1& or TaylorModel1&&)
+template <class B>
+void add_partial(TaylorModel1& a, B&& b) {
+  if (a.exact_zero()) a = std::forward<B>(b);                 // plus(0, b) = b
+  else if (!b.exact_zero()) taylor_detail::add_to(a, b);      // a + b (plus(a, 0) = a)
+}
+// a = sum(a, b): the partials b has beyond a are b's, those a has beyond b stay
+template <class V>
+void add_gradient(std::vector<TaylorModel1>& a, V&& b) {
+  std::size_t common = std::min(a.size(), b.size());
+  for (std::size_t i = 0; i < common; ++i) {
+    if constexpr (std::is_rvalue_reference_v<V&&>) add_partial(a[i], std::move(b[i]));
+    else add_partial(a[i], b[i]);
+  }
+  for (std::size_t i = common; i < b.size(); ++i) {
+    if constexpr (std::is_rvalue_reference_v<V&&>) a.push_back(std::move(b[i]));
+    else a.push_back(b[i]);
+  }
+}
+// x = times(x, f, f_finite) in x's storage where the product is x scaled by f's constant
+// (scaled_on: the coefficients that are exact zeros become Interval(0), the others times(c, s),
+// for a listed support and for the dense loop alike when s is finite); otherwise the product
+// made anew
+inline void times_in_place(TaylorModel1& x, const taylor_detail::Factor& f, bool f_finite) {
+  using taylor_detail::zero;
+  taylor_detail::Support sx;
+  taylor_detail::scan(x, sx);
+  if (f_finite && sx.constant && zero(x.constant)) {   // x.exact_zero()
+    x = TaylorModel1(0);
+    return;
+  }
+  const kernels::Interval& s = f.model->constant;
+  if (sx.constant || !f.constant || !taylor_detail::finite(s)) {
+    x = taylor_detail::multiply(x, sx, f);
+    return;
+  }
+  x.constant = taylor_detail::times(x.constant, s);
+  for (kernels::Interval& c : x.coefficients) c = zero(c) ? kernels::Interval(0) : taylor_detail::times(c, s);
+  x.remainder = taylor_detail::times(x.remainder, s);
+}
+// x = -x, exact (TaylorModel1's unary minus)
+inline void negate(TaylorModel1& x) {
+  x.constant = -x.constant;
+  for (kernels::Interval& c : x.coefficients) c = -c;
+  x.remainder = -x.remainder;
+}
 }  // namespace jet_detail
+
+inline Jet<TaylorModel1> operator+(Jet<TaylorModel1>&& a, const Jet<TaylorModel1>& b) {
+  taylor_detail::add_to(a.value, b.value);
+  jet_detail::add_gradient(a.gradient, b.gradient);
+  return std::move(a);
+}
+inline Jet<TaylorModel1> operator+(Jet<TaylorModel1>&& a, Jet<TaylorModel1>&& b) {
+  taylor_detail::add_to(a.value, b.value);
+  jet_detail::add_gradient(a.gradient, std::move(b.gradient));
+  return std::move(a);
+}
+inline Jet<TaylorModel1> operator-(Jet<TaylorModel1>&& a) {
+  jet_detail::negate(a.value);
+  const TaylorModel1 minus_one(-1);
+  const taylor_detail::Factor f = taylor_detail::factor(minus_one);
+  for (TaylorModel1& g : a.gradient) jet_detail::times_in_place(g, f, true);   // scaled(a, S(-1)): -1 is finite
+  return std::move(a);
+}
+inline Jet<TaylorModel1> operator-(Jet<TaylorModel1>&& a, const Jet<TaylorModel1>& b);
+inline Jet<TaylorModel1> operator-(Jet<TaylorModel1>&& a, Jet<TaylorModel1>&& b);
+inline Jet<TaylorModel1> operator-(const Jet<TaylorModel1>& a, Jet<TaylorModel1>&& b);
 
 template <class S>
 Jet<S> operator+(const Jet<S>& a, const Jet<S>& b) {
@@ -173,6 +248,9 @@ template <class S>
 Jet<S> operator-(const Jet<S>& a, const Jet<S>& b) {
   return a + (-b);
 }
+inline Jet<TaylorModel1> operator-(Jet<TaylorModel1>&& a, const Jet<TaylorModel1>& b) { return std::move(a) + (-b); }
+inline Jet<TaylorModel1> operator-(Jet<TaylorModel1>&& a, Jet<TaylorModel1>&& b) { return std::move(a) + (-std::move(b)); }
+inline Jet<TaylorModel1> operator-(const Jet<TaylorModel1>& a, Jet<TaylorModel1>&& b) { return a + (-std::move(b)); }
 template <class S>
 Jet<S> operator*(const Jet<S>& a, const Jet<S>& b) {
   return Jet<S>(a.value * b.value, jet_detail::combine(a, b.value, b, a.value));

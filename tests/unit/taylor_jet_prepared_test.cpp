@@ -6,6 +6,8 @@
 // and unbounded factors. Session 39: the products over the models' supports (taylor_model.hpp
 // taylor_detail::Support) give bit for bit what the dense products give, on generated sparse
 // models of up to 90 coefficients (past the listed capacity too) at scales 2^-300 ... 2^300.
+// Session 40: sums and differences of jets that are temporaries, made in their own storage,
+// give bit for bit what the forms on const operands give (sum_plain, the dense product by -1).
 #include "tolerance/jet.hpp"
 #include "tolerance/taylor_model.hpp"
 
@@ -234,6 +236,88 @@ TEST(TaylorJetPrepared, ProductsOverTheSupportsEqualTheDenseProductsBitForBit) {
     ASSERT_TRUE(same(product.gradient, reference)) << "jet product, trial " << trial;
     ASSERT_TRUE(same({product.value}, {td::multiply_dense(a.value, td::factor(b.value))})) << "jet value, trial " << trial;
   }
+}
+
+// -x for one partial as the jets made it before session 40: scaled(x, -1) on the dense product
+TaylorModel1 dense_negated(const TaylorModel1& x) {
+  static const TaylorModel1 minus_one(-1);
+  return dense_times(x, tolerance_detail::taylor_detail::factor(minus_one), true);
+}
+// a + b as the jets made it before session 40: the value by TaylorModel1's +, the partials by
+// plus() (exact zeros give the other operand), the longer gradient's tail copied
+Jet<TaylorModel1> reference_sum(const Jet<TaylorModel1>& a, const Jet<TaylorModel1>& b) {
+  std::vector<TaylorModel1> g(std::max(a.gradient.size(), b.gradient.size()));
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    if (i >= a.gradient.size()) g[i] = b.gradient[i];
+    else if (i >= b.gradient.size()) g[i] = a.gradient[i];
+    else if (a.gradient[i].exact_zero()) g[i] = b.gradient[i];
+    else if (b.gradient[i].exact_zero()) g[i] = a.gradient[i];
+    else g[i] = a.gradient[i] + b.gradient[i];
+  }
+  return Jet<TaylorModel1>(a.value + b.value, std::move(g));
+}
+Jet<TaylorModel1> reference_negated(const Jet<TaylorModel1>& a) {
+  std::vector<TaylorModel1> g;
+  for (const TaylorModel1& x : a.gradient) g.push_back(dense_negated(x));
+  return Jet<TaylorModel1>(-a.value, std::move(g));
+}
+::testing::AssertionResult same_jet(const Jet<TaylorModel1>& a, const Jet<TaylorModel1>& b) {
+  ::testing::AssertionResult value = same({a.value}, {b.value});
+  if (!value) return value << " (value)";
+  return same(a.gradient, b.gradient);
+}
+
+TEST(TaylorJetPrepared, SumsAndDifferencesOfTemporariesEqualTheConstFormsBitForBit) {
+  Generator small(40);
+  SparseGenerator sparse(40);
+  int in_place = 0, constant_partials = 0, zero_partials = 0, longer_right = 0, unbounded = 0;
+  for (int trial = 0; trial < 6000; ++trial) {
+    bool allow_infinite = trial % 6 == 0;
+    Jet<TaylorModel1> a, b;
+    if (trial % 2 == 0) {   // short gradients of short models
+      a = small.jet(allow_infinite);
+      b = small.jet(allow_infinite);
+    } else {                // up to 24 partials of sparse models of up to 90 coefficients
+      a = Jet<TaylorModel1>(sparse.model(allow_infinite));
+      b = Jet<TaylorModel1>(sparse.model(allow_infinite));
+      a.gradient.resize(sparse.pick(24));
+      b.gradient.resize(sparse.pick(24));
+      for (TaylorModel1& g : a.gradient) g = sparse.pick(3) == 0 ? TaylorModel1(0) : sparse.model(allow_infinite);
+      for (TaylorModel1& g : b.gradient) g = sparse.pick(3) == 0 ? TaylorModel1(0) : sparse.model(allow_infinite);
+    }
+    if (trial % 13 == 0) b = a;
+    Jet<TaylorModel1> sum = reference_sum(a, b);
+    Jet<TaylorModel1> negated_b = reference_negated(b);
+    Jet<TaylorModel1> difference = reference_sum(a, negated_b);
+    // the const forms (the templates) are the reference forms
+    ASSERT_TRUE(same_jet(a + b, sum)) << "const +, trial " << trial;
+    ASSERT_TRUE(same_jet(-b, negated_b)) << "const unary -, trial " << trial;
+    ASSERT_TRUE(same_jet(a - b, difference)) << "const -, trial " << trial;
+    // the in-place forms on temporaries
+    auto copy = [](const Jet<TaylorModel1>& x) { return Jet<TaylorModel1>(x); };
+    ASSERT_TRUE(same_jet(copy(a) + b, sum)) << "rvalue + const, trial " << trial;
+    ASSERT_TRUE(same_jet(copy(a) + copy(b), sum)) << "rvalue + rvalue, trial " << trial;
+    ASSERT_TRUE(same_jet(-copy(b), negated_b)) << "unary - rvalue, trial " << trial;
+    ASSERT_TRUE(same_jet(copy(a) - b, difference)) << "rvalue - const, trial " << trial;
+    ASSERT_TRUE(same_jet(copy(a) - copy(b), difference)) << "rvalue - rvalue, trial " << trial;
+    ASSERT_TRUE(same_jet(a - copy(b), difference)) << "const - rvalue, trial " << trial;
+    // longer chains, as the kernels write them: a * b - b * a + a
+    Jet<TaylorModel1> chain = reference_sum(reference_sum(a * b, reference_negated(b * a)), a);
+    ASSERT_TRUE(same_jet(a * b - b * a + a, chain)) << "chain, trial " << trial;
+    for (const TaylorModel1& x : b.gradient) {
+      if (x.exact_zero()) ++zero_partials;
+      else if (x.is_constant()) ++constant_partials;
+      else ++in_place;
+    }
+    if (b.gradient.size() > a.gradient.size()) ++longer_right;
+    if (!jd::finite(a.value) || !jd::finite(b.value)) ++unbounded;
+  }
+  // every branch of the in-place forms taken often
+  EXPECT_GT(in_place, 10000);
+  EXPECT_GT(constant_partials, 1000);
+  EXPECT_GT(zero_partials, 5000);
+  EXPECT_GT(longer_right, 1000);
+  EXPECT_GT(unbounded, 200);
 }
 
 }  // namespace
