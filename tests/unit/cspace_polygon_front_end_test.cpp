@@ -87,6 +87,17 @@ Points scaled(Points points, const Rational& factor) {
   return points;
 }
 
+// A copy of `points` shifted by a random vector of the integer grid (-2..2 in each coordinate,
+// dx drawn first): its edges lie on lines of the original's when they are parallel.
+Points shifted_on_grid(std::mt19937_64& random, Points points) {
+  Rational dx(static_cast<long>(random() % 5) - 2), dy(static_cast<long>(random() % 5) - 2);
+  for (auto& [x, y] : points) {
+    x += dx;
+    y += dy;
+  }
+  return points;
+}
+
 Rational power_of_ten(int exponent) {
   mpz_class p;
   mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(exponent)));
@@ -374,12 +385,7 @@ TEST(CSpacePolygonFrontEnd, SegmentTraitsEqualTheCircleSegmentTraitsOnTouchingCo
         break;
       case 2: {
         a = random_star(random, 4 + static_cast<int>(random() % 5), 0, 0, 2, 2, true);
-        Rational dx(static_cast<long>(random() % 5) - 2), dy(static_cast<long>(random() % 5) - 2);
-        b = a;
-        for (auto& [x, y] : b) {
-          x += dx;
-          y += dy;
-        }
+        b = shifted_on_grid(random, a);
         break;
       }
       default:
@@ -1044,12 +1050,7 @@ TEST(CSpacePolygonFrontEnd, NonDyadicAxisParallelPairsAtScales2ToThe300EqualTheG
         break;
       case 1: {
         a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3));
-        Rational dx(static_cast<long>(random() % 5) - 2), dy(static_cast<long>(random() % 5) - 2);
-        b = a;
-        for (auto& [x, y] : b) {
-          x += dx;
-          y += dy;
-        }
+        b = shifted_on_grid(random, a);
         break;
       }
       default:
