@@ -1041,22 +1041,15 @@ TEST(CSpacePolygonFrontEnd, NonDyadicAxisParallelPairsAtScales2ToThe300EqualTheG
   const Rational scales[] = {Rational(mpz_class(1), two_300), Rational(1), Rational(two_300)};
   int compared = 0, vertical_edges = 0, non_vertical_edges = 0;
   for (int instance = 0; instance < 27; ++instance) {
-    Points a, b;
-    switch (instance % 3) {
-      case 0:
-        a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3));
-        b = random_staircase(random, static_cast<long>(random() % 5) - 2, static_cast<long>(random() % 5) - 2,
-                             1 + static_cast<int>(random() % 3));
-        break;
-      case 1: {
-        a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3));
-        b = shifted_on_grid(random, a);
-        break;
-      }
-      default:
-        a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3));
-        b = random_star(random, 3 + static_cast<int>(random() % 4), 1, 1, 2, 1, true);
-        break;
+    // a staircase against a staircase, its own shifted copy (zero clearance), or a star
+    Points a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3)), b;
+    if (instance % 3 == 1) {
+      b = shifted_on_grid(random, a);
+    } else if (instance % 3 == 0) {
+      const long x0 = static_cast<long>(random() % 5) - 2, y0 = static_cast<long>(random() % 5) - 2;
+      b = random_staircase(random, x0, y0, 1 + static_cast<int>(random() % 3));
+    } else {
+      b = random_star(random, 3 + static_cast<int>(random() % 4), 1, 1, 2, 1, true);
     }
     const Rational factor = grids[(instance / 3) % 3] * scales[instance / 9];
     a = scaled(a, factor);
