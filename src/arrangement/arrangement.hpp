@@ -126,6 +126,10 @@ struct Options {
 /// is already the primitive polynomial with a positive leading coefficient) instead of through
 /// primitive_part's copies; from_rational otherwise.
 algebra::Real exact_real(const Rational& value);
+/// exact_real(value) written into r, reusing the storage of r's rationals and polynomial and
+/// taking value's integers for r.lower (for a Real already made, e.g. a default one in a vector:
+/// no second Real made and moved over it).
+void exact_real_into(algebra::Real& r, Rational&& value);
 
 /// Builds the arrangement of the curves (each square-free, non-zero) clipped to the box and,
 /// when `validity` is not empty (one entry per curve, possibly empty), to the parts of each

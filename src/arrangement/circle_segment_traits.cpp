@@ -1006,9 +1006,9 @@ class Builder {
       const XCurve& arc = h->curve();
       out.min_vertex = h->source()->data();
       out.max_vertex = h->target()->data();
-      out.vertical = arc.is_vertical();
       const Vertex& a = result_.vertices[out.min_vertex];
       const Vertex& b = result_.vertices[out.max_vertex];
+      out.vertical = is_vertical(arc, a, b);
       const int side = chart_side_of(arc, a, b);
       out.support = side >= 0 ? chart_side_support(side) : support_for(arc);
       if (options_.carry_line_supports && is_linear(arc) && arc.data() < line_supports_.size())
@@ -1063,7 +1063,7 @@ class Builder {
         Incidence incidence;
         incidence.edge = edge_id(h);
         bool source_is_smaller = h->direction() == CGAL::ARR_LEFT_TO_RIGHT;
-        if (h->curve().is_vertical())
+        if (result_.edges[incidence.edge].vertical)   // (is_vertical above, without CGAL's line)
           incidence.direction = source_is_smaller ? Direction::down : Direction::up;
         else
           incidence.direction = source_is_smaller ? Direction::left : Direction::right;
@@ -1133,6 +1133,17 @@ class Builder {
       return true;
     else
       return arc.is_linear();
+  }
+
+  // Whether the edge `arc` from a to b is vertical: CGAL's is_vertical, but for a segment with
+  // rational ends their abscissae compared exactly (a segment is vertical exactly when its ends
+  // have one abscissa). CGAL's segment computes its supporting line for is_vertical when no
+  // predicate of the sweep has (a lazy construction per edge, whose interval filter throws and
+  // falls back to exact numbers when the ends' ordinates are not points, e.g. 1/7).
+  static bool is_vertical(const XCurve& arc, const Vertex& a, const Vertex& b) {
+    if constexpr (segments)
+      if (a.x.exact && b.x.exact) return mpq_equal(a.x.lower.get_mpq_t(), b.x.lower.get_mpq_t()) != 0;
+    return arc.is_vertical();
   }
 
   IntegerPolynomial2 support_for(const XCurve& arc) const {
@@ -1300,6 +1311,8 @@ algebra::Real exact_real(const Rational& value) {
   assign_exact_real(r, value);
   return r;
 }
+
+void exact_real_into(algebra::Real& r, Rational&& value) { assign_exact_real(r, std::move(value)); }
 
 bool circle_segment_applies(const std::vector<IntegerPolynomial2>& curves,
                             const std::vector<std::vector<ValidityClause>>& validity) {

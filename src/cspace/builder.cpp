@@ -525,9 +525,11 @@ void label_edges(ChartData& chart, bool by_support) {
     algebra::Interval x_box, y_box;
     if (edge.vertical) {
       data.vertical_x = low.x;
-      Rational y = low.y_exact && high.y_exact ? algebra::rational_between(low.y, high.y)
-                                              : algebra::simplest_between(low.y_upper, high.y_lower);
-      data.sample_y = Real::from_rational(y);
+      // written into the default sample_y in place (exact: lower = upper = y)
+      raw::exact_real_into(data.sample_y, low.y_exact && high.y_exact
+                                              ? algebra::rational_between(low.y, high.y)
+                                              : algebra::simplest_between(low.y_upper, high.y_lower));
+      const Rational& y = data.sample_y.lower;
       // refined in a copy (an exact x is not refined: read in place)
       std::optional<Real> refined;
       const Real& x = low.x.exact ? low.x : refined.emplace(low.x);
@@ -559,7 +561,7 @@ void label_edges(ChartData& chart, bool by_support) {
       y.canonicalize();
       for (std::size_t k : candidates)
         if (valid_at_rational(chart.validity[k], data.sample_x, y)) data.curves.push_back(k);
-      data.sample_y = raw::exact_real(y);
+      raw::exact_real_into(data.sample_y, std::move(y));   // in place, y's integers taken
     } else {
       data.sample_x = algebra::rational_between(low.x, high.x);
       data.sample_y = edge_y_at(chart, e, data.sample_x);

@@ -87,6 +87,17 @@ Points scaled(Points points, const Rational& factor) {
   return points;
 }
 
+// A copy of `points` shifted by a random vector of the integer grid (-2..2 in each coordinate,
+// dx drawn first): its edges lie on lines of the original's when they are parallel.
+Points shifted_on_grid(std::mt19937_64& random, Points points) {
+  Rational dx(static_cast<long>(random() % 5) - 2), dy(static_cast<long>(random() % 5) - 2);
+  for (auto& [x, y] : points) {
+    x += dx;
+    y += dy;
+  }
+  return points;
+}
+
 Rational power_of_ten(int exponent) {
   mpz_class p;
   mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(exponent)));
@@ -374,12 +385,7 @@ TEST(CSpacePolygonFrontEnd, SegmentTraitsEqualTheCircleSegmentTraitsOnTouchingCo
         break;
       case 2: {
         a = random_star(random, 4 + static_cast<int>(random() % 5), 0, 0, 2, 2, true);
-        Rational dx(static_cast<long>(random() % 5) - 2), dy(static_cast<long>(random() % 5) - 2);
-        b = a;
-        for (auto& [x, y] : b) {
-          x += dx;
-          y += dy;
-        }
+        b = shifted_on_grid(random, a);
         break;
       }
       default:
@@ -1008,6 +1014,87 @@ TEST(CSpacePolygonFrontEnd, DeferredExactPointsEqualTheCircleSegmentTraitsOnNonD
     ++compared;
   }
   EXPECT_GE(compared, 24);
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// Session 40 (trans40): the segment flavour's `vertical` read from the edge's ends' exact
+// abscissae (not from CGAL's lazily constructed supporting line, whose interval filter throws
+// when an end's ordinate is not a point), and label_edges' exact samples of vertical and front-end
+// edges written in place. Generated pairs with axis-parallel edges on non-dyadic grids (1/3, 1/7,
+// 5/7: no coordinate is a double, so CGAL's interval filter is uncertain on them) — staircases,
+// stars with collinear vertices, and a part copied and shifted by a grid vector so that its edges
+// lie on the other's (zero clearance) — at scales 2^-300, 1 and 2^300: field by field against the
+// general path (circle–segment traits, whose vertical flag is CGAL's is_vertical and whose
+// samples are made as before), the blocked region against CGAL's minkowski_sum_2, and every chart
+// edge against exact arithmetic: vertical exactly when its ends' abscissae are equal
+// (algebra::compare), a vertical edge's sample exact, on the edge's abscissa and strictly between
+// its ends' ordinates, a non-vertical edge's sample strictly between its ends' abscissae.
+TEST(CSpacePolygonFrontEnd, NonDyadicAxisParallelPairsAtScales2ToThe300EqualTheGeneralPathAndTheMinkowskiSum) {
+  std::mt19937_64 random(40);
+  const Rational grids[] = {Rational(1, 3), Rational(1, 7), Rational(5, 7)};
+  const mpz_class two_300 = mpz_class(1) << 300;
+  const Rational scales[] = {Rational(mpz_class(1), two_300), Rational(1), Rational(two_300)};
+  int compared = 0, vertical_edges = 0, non_vertical_edges = 0;
+  for (int instance = 0; instance < 27; ++instance) {
+    // a staircase against a staircase, its own shifted copy (zero clearance), or a star
+    Points a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3)), b;
+    if (instance % 3 == 1) {
+      b = shifted_on_grid(random, a);
+    } else if (instance % 3 == 0) {
+      const long x0 = static_cast<long>(random() % 5) - 2, y0 = static_cast<long>(random() % 5) - 2;
+      b = random_staircase(random, x0, y0, 1 + static_cast<int>(random() % 3));
+    } else {
+      b = random_star(random, 3 + static_cast<int>(random() % 4), 1, 1, 2, 1, true);
+    }
+    const Rational factor = grids[(instance / 3) % 3] * scales[instance / 9];
+    a = scaled(a, factor);
+    b = scaled(b, factor);
+    SCOPED_TRACE("instance " + std::to_string(instance) + ", factor " + factor.get_str());
+    std::optional<Model> built_model = sliders_or_none(a, b);
+    if (!built_model) continue;
+    Built built = build_both(*built_model, instance % 4 == 0);
+    expect_same_space(built.fast, built.general);
+    expect_minkowski(built.fast, a, b);
+    for (const cspace::ChartData& chart : implementation(built.fast).charts) {
+      ASSERT_EQ(chart.edges.size(), chart.arrangement.edges.size());
+      for (std::size_t e = 0; e < chart.edges.size(); ++e) {
+        SCOPED_TRACE("chart edge " + std::to_string(e));
+        const cspace::raw::Edge& edge = chart.arrangement.edges[e];
+        const cspace::raw::Vertex& low = chart.arrangement.vertices[edge.min_vertex];
+        const cspace::raw::Vertex& high = chart.arrangement.vertices[edge.max_vertex];
+        const cspace::EdgeData& data = chart.edges[e];
+        EXPECT_EQ(edge.vertical, cspace::algebra::compare(low.x, high.x) == 0);
+        if (edge.vertical) {
+          ++vertical_edges;
+          ASSERT_TRUE(data.vertical_x.has_value());
+          EXPECT_EQ(cspace::algebra::compare(*data.vertical_x, low.x), 0);
+          EXPECT_TRUE(data.sample_y.exact);
+          EXPECT_EQ(data.sample_y.lower, data.sample_y.upper);
+          EXPECT_EQ(data.sample_y.polynomial, cspace::algebra::Real::from_rational(data.sample_y.lower).polynomial);
+          ASSERT_TRUE(low.y_exact && high.y_exact);
+          EXPECT_LT(cspace::algebra::compare(low.y, data.sample_y), 0);
+          EXPECT_LT(cspace::algebra::compare(data.sample_y, high.y), 0);
+        } else {
+          ++non_vertical_edges;
+          EXPECT_LT(low.x.compare(data.sample_x), 0);
+          EXPECT_GT(high.x.compare(data.sample_x), 0);
+          if (data.sample_y.exact) {
+            EXPECT_EQ(data.sample_y.lower, data.sample_y.upper);
+            EXPECT_EQ(data.sample_y.polynomial, cspace::algebra::Real::from_rational(data.sample_y.lower).polynomial);
+          }
+        }
+      }
+    }
+    ++compared;
+  }
+  EXPECT_GE(compared, 24);
+  EXPECT_GE(vertical_edges, 100);
+  EXPECT_GE(non_vertical_edges, 100);
 }
 
 }  // namespace
