@@ -4,6 +4,7 @@
 #include <hipair/certificate.hpp>
 #include <hipair/error.hpp>
 
+#include "core/exact_literal.hpp"
 #include "model/json_document.hpp"
 
 
@@ -48,7 +49,7 @@ std::string text(const JsonValue& value) {
 Rational rational(const JsonValue& value) {
   if (!value.is_string()) fail(value, "expected an exact rational as a string (\"3/7\")");
   try {
-    return parse_rational(value.text);
+    return parse_exact_literal(value.text);
   } catch (const Error& error) {
     fail(value, std::string("not an exact rational: ") + error.what());
   }
@@ -242,7 +243,11 @@ Certificate read_certificate(std::string_view json_text) {
   const JsonValue& model = require(root, "model");
   check_keys(model, {"name", "file", "content_hash", "parameters", "roundings"});
   c.model_name = text(require(model, "name"));
-  if (const JsonValue* file = model.find("file")) c.model_file = text(*file);
+  if (const JsonValue* file = model.find("file")) {
+    c.model_file = text(*file);
+    // a label, but a file name: absent when there is none, never empty (docs/certify.md)
+    if (c.model_file.empty()) fail(*file, "an empty file name (leave model.file out when there is none)");
+  }
   c.content_hash = text(require(model, "content_hash"));
   const JsonValue& parameters = require(model, "parameters");
   if (!parameters.is_object()) fail(parameters, "expected an object: name -> {value, overridden}");

@@ -124,8 +124,10 @@ std::string write_certificate(const Certificate& c) {
   std::ostringstream out;
   out << "{\n  \"hipair_certificate\": 1,\n  \"claim\": " << quoted(to_string(c.claim)) << ",\n";
   out << "  \"statement\": " << quoted(c.statement) << ",\n";
-  out << "  \"model\": {\n    \"name\": " << quoted(c.model_name) << ",\n    \"file\": " << quoted(c.model_file)
-      << ",\n    \"content_hash\": " << quoted(c.content_hash) << ",\n    \"parameters\": {";
+  // no "file" for a model read from text (the reader refuses an empty file name)
+  out << "  \"model\": {\n    \"name\": " << quoted(c.model_name) << ",\n";
+  if (!c.model_file.empty()) out << "    \"file\": " << quoted(c.model_file) << ",\n";
+  out << "    \"content_hash\": " << quoted(c.content_hash) << ",\n    \"parameters\": {";
   for (std::size_t i = 0; i < c.parameters.size(); ++i)
     out << (i ? ",\n      " : "\n      ") << quoted(c.parameters[i].name) << ": {\"value\": "
         << number(c.parameters[i].value) << ", \"overridden\": " << (c.parameters[i].overridden ? "true" : "false")

@@ -33,6 +33,11 @@ void register_simulate(CLI::App& app, Action& action);
 /// `--allow-out-of-tolerance`. \throws ModelError naming the bad assignment.
 ReadOptions parameter_overrides(const std::vector<std::string>& assignments, bool allow_out_of_tolerance);
 
+/// `value` read as the model's exact literal (docs/model-format.md: no space, no '+', the
+/// decimal exponent within 1000, at most 4096 bits). \throws ModelError "<argument>: <why><note>",
+/// the argument (`--set p=V`) cut after 120 characters.
+Rational exact_option_literal(const std::string& value, const std::string& argument, const std::string& note = "");
+
 /// Adds `--set NAME=VALUE` (repeatable) and `--allow-out-of-tolerance` to a command that reads
 /// one model, storing them in `assignments` and `allow_out_of_tolerance` (parameter_overrides
 /// turns them into reader options).

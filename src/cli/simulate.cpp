@@ -457,13 +457,13 @@ int run_sweep(const SimulateOptions& options) {
   Rational a, b;
   long n = 0;
   try {
-    a = parse_rational(fields[0]);
-    b = parse_rational(fields[1]);
+    a = exact_option_literal(fields[0], "--sweep " + options.sweep);
+    b = exact_option_literal(fields[1], "--sweep " + options.sweep);
     std::size_t used = 0;
     n = std::stol(fields[2], &used);
     if (used != fields[2].size()) throw std::invalid_argument("N");
-  } catch (const NumericError& error) {
-    throw ModelError("", "--sweep " + options.sweep + ": " + error.what());
+  } catch (const ModelError&) {
+    throw;
   } catch (const std::exception&) {
     throw ModelError("", "--sweep " + options.sweep + ": N must be a whole number");
   }

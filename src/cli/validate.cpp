@@ -2,6 +2,7 @@
 // and, when valid, prints a summary including every value that had to be rounded.
 #include "cli/commands.hpp"
 #include "core/decimal_text.hpp"
+#include "model/expression.hpp"
 #include "model/interval.hpp"
 
 #include <hipair/error.hpp>
@@ -160,6 +161,17 @@ void refuse_repeated_names(const std::vector<std::string>& items, const std::str
     if (auto equals = item.find('='); equals != std::string::npos) once.add(item.substr(0, equals), item);
 }
 
+Rational exact_option_literal(const std::string& value, const std::string& argument, const std::string& note) {
+  try {
+    return model_detail::parse_literal(value, "");
+  } catch (const ModelError& error) {
+    std::string shown = argument.size() <= 120
+                            ? argument
+                            : argument.substr(0, 120) + "... (" + std::to_string(argument.size()) + " characters)";
+    throw ModelError("", shown + ": " + error.reason() + note);
+  }
+}
+
 ReadOptions parameter_overrides(const std::vector<std::string>& assignments, bool allow_out_of_tolerance) {
   refuse_repeated_names(assignments, "--set", "parameter");
   ReadOptions options;
@@ -168,11 +180,8 @@ ReadOptions parameter_overrides(const std::vector<std::string>& assignments, boo
     auto equals = assignment.find('=');
     if (equals == std::string::npos || equals == 0)
       throw ModelError("", "--set expects NAME=VALUE, got '" + assignment + "'");
-    try {
-      options.parameter_values[assignment.substr(0, equals)] = parse_rational(assignment.substr(equals + 1));
-    } catch (const NumericError& error) {
-      throw ModelError("", "--set " + assignment + ": " + error.what() + " (values are exact literals in mm or rad)");
-    }
+    options.parameter_values[assignment.substr(0, equals)] =
+        exact_option_literal(assignment.substr(equals + 1), "--set " + assignment, " (values are exact literals in mm or rad)");
   }
   return options;
 }

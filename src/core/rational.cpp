@@ -1,6 +1,7 @@
 #include <hipair/error.hpp>
 #include <hipair/rational.hpp>
 #include "core/decimal_text.hpp"
+#include "core/exact_literal.hpp"
 
 #include <mpfr.h>
 
@@ -96,6 +97,52 @@ Rational parse_rational(std::string_view text) {
     value = parse_unsigned_decimal(text, whole);
   }
   return negative ? Rational(-value) : value;
+}
+
+namespace {
+
+// Length of the unsigned decimal at the start of `text` (digits, '.', exponent), 0 if none.
+std::size_t unsigned_decimal_length(std::string_view text) {
+  auto digit = [&](std::size_t i) { return i < text.size() && text[i] >= '0' && text[i] <= '9'; };
+  std::size_t i = 0;
+  while (digit(i)) ++i;
+  std::size_t integer_digits = i;
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    while (digit(i)) ++i;
+  }
+  if (i - integer_digits <= 1 && integer_digits == 0) return 0;  // "", "." : no digit
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    std::size_t k = i + 1;
+    if (k < text.size() && (text[k] == '+' || text[k] == '-')) ++k;
+    if (!digit(k)) return 0;  // "1e", "1e+": an exponent without digits
+    while (digit(k)) ++k;
+    i = k;
+  }
+  return i;
+}
+
+}  // namespace
+
+Rational parse_exact_literal(std::string_view text) {
+  auto refuse = [&](const std::string& why) {
+    throw NumericError(excerpt(text) + " is not an exact literal: " + why);
+  };
+  if (text.empty()) throw NumericError("empty number");
+  if (std::isspace(static_cast<unsigned char>(text.front())) || std::isspace(static_cast<unsigned char>(text.back())))
+    refuse("a space before or after it");
+  if (text.front() == '+') refuse("a '+' sign (write the number without it)");
+  std::string_view rest = text;
+  if (rest.front() == '-') rest.remove_prefix(1);
+  std::size_t length = unsigned_decimal_length(rest);
+  bool well_formed = length > 0;
+  if (well_formed && length < rest.size()) {
+    std::string_view denominator = rest.substr(length);
+    well_formed = denominator.front() == '/' && unsigned_decimal_length(denominator.substr(1)) == denominator.size() - 1;
+  }
+  if (!well_formed)
+    refuse("digits with an optional '-', '.', exponent and '/' expected ('3/7', '-2', '0.125', '1e-9')");
+  return parse_rational(text);
 }
 
 std::string to_exact_string(const Rational& value) {

@@ -1,5 +1,6 @@
 #include "model/expression.hpp"
 
+#include "core/exact_literal.hpp"
 #include "model/exact_trig.hpp"
 #include "model/json_document.hpp"
 
@@ -692,7 +693,7 @@ Rational parse_literal(std::string_view text, const std::string& pointer) {
   }
   Rational value;
   try {
-    value = parse_rational(text);
+    value = parse_exact_literal(text);
   } catch (const NumericError& error) {
     throw ModelError(pointer, error.what());
   }

@@ -1,0 +1,201 @@
+// Mutants of the corpus's planar and pin-in-slot certificates (tests/data/certificates),
+// re-decided by the library's exact overlap predicate (part_overlap, include/hipair/overlap.hpp)
+// and, for the peg in its square hole, by the exact distance of an axis-parallel square in a
+// square hole (confirmed with part_overlap: the peg moved by that distance towards the nearest
+// wall touches it). Each mutant gets the statement of its own data and goes through the JSON
+// round trip; check_certificate is hipair-verify's code (certify/, compiled into the library).
+// Session 40 (hunt40). The verifier's verdict must be the truth:
+//  - peg: a pose (x, y) at small rationals and 10^-20 from touching, interference witnesses
+//    (6 + w, y0) moved on and off the touching edges by 10^-20: valid exactly when the point is
+//    strictly inside both parts; clearance claims at the exact distance and +-10^-9, +-10^-14
+//    from it: never valid above the distance, always valid 10^-14 and more below it (at the
+//    distance itself the verifier's interval lower bound may fall short: either verdict);
+//  - every certificate, its pose moved by k 10^-m (m = 1, 3, 9, 20), its witness by 10^-20, the
+//    other part's position changed: valid only when part_overlap agrees (overlapping for an
+//    interference, apart for a clearance).
+#include <hipair/certificate.hpp>
+#include <hipair/cspace.hpp>
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+#include <hipair/overlap.hpp>
+#include <hipair/pin_slot.hpp>
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include "test_paths.hpp"
+
+namespace hipair {
+namespace {
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+Certificate corpus(const std::string& name) {
+  return read_certificate(slurp(std::string(HIPAIR_TEST_DATA) + "/certificates/" + name));
+}
+Rational pow10(int m) {
+  mpz_class p;
+  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(m < 0 ? -m : m));
+  return m < 0 ? Rational(mpz_class(1), p) : Rational(p);
+}
+// The verifier's verdict on a mutant given the statement of its own data, after the round trip.
+bool verdict(Certificate c, const Model& model, std::string* reason = nullptr) {
+  c.statement = certificate_statement(c, model);
+  VerificationResult v = check_certificate(read_certificate(write_certificate(c)), model);
+  EXPECT_FALSE(v.unproven) << v.reason;
+  if (reason) *reason = v.reason;
+  return v.valid;
+}
+Rational abs_of(const Rational& v) { return v < 0 ? Rational(-v) : v; }
+
+// The exact relation of the certificate's pair at its pose (and configuration).
+PartRelation relation(const Certificate& c, const Model& model) {
+  const PlanarPose& pose = *c.pose;
+  const std::string other = c.first == pose.part ? c.second : c.first;
+  const Part& posed = model.parts[*model.find_part(pose.part)];
+  const Part& fixed = model.parts[*model.find_part(other)];
+  Placement placed;
+  if (pose.slide) {
+    placed = pin_slot_placement(posed, *pose.slide, pose.tangent);
+  } else {
+    Rational d = 1 + pose.tangent * pose.tangent, c2 = (1 - pose.tangent * pose.tangent) / d, s2 = 2 * pose.tangent / d;
+    if (pose.half_turn) c2 = -c2, s2 = -s2;
+    placed = placement_about(posed.motion.pivot, c2, s2, Point{pose.x, pose.y});
+  }
+  Placement other_placement;   // the other part: fixed, or at its position of the configuration
+  if (auto at = c.configuration.find(other); at != c.configuration.end()) {
+    if (at->second.is_offset) {
+      other_placement = part_placement(fixed, PartCoordinate{PartCoordinate::Kind::offset, at->second.value});
+    } else {   // theta = c + 2 atan(t), c = 0 or pi
+      const Rational& t = at->second.value;
+      Rational d = 1 + t * t, c2 = (1 - t * t) / d, s2 = 2 * t / d;
+      if (at->second.half_turn) c2 = -c2, s2 = -s2;
+      other_placement = placement_about(fixed.motion.pivot, c2, s2, Point{Rational(0), Rational(0)});
+    }
+  }
+  return part_overlap(fixed, other_placement, posed, placed).relation;
+}
+
+TEST(CertifyMutantOracle, PegAtTouchingPosesAndDistancesIsDecidedAsTheExactGeometry) {
+  const Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/peg-in-hole.json");
+  const Certificate interference = corpus("peg-planar-interference.json");
+  const Certificate clearance = corpus("peg-planar-clearance.json");
+  ASSERT_TRUE(verdict(interference, model));
+  ASSERT_TRUE(verdict(clearance, model));
+  const Rational tiny = pow10(-20);
+  int valid = 0, invalid = 0;
+  // the peg (10 x 10, centred on its pose) moved right to 1 + delta: its right side at 6 + delta,
+  // the hole's right wall at 6 (the plate from 6 to 9)
+  for (const Rational& delta : {Rational(-tiny), Rational(0), tiny, pow10(-9), Rational(1, 3)}) {
+    for (const Rational& w : {Rational(-tiny), Rational(0), Rational(delta / 2), delta, Rational(delta + tiny)}) {
+      for (const Rational& y0 : {Rational(0), Rational(3, 7), Rational(5), Rational(Rational(-5) + tiny)}) {
+        Certificate c = interference;
+        c.pose->x = 1 + delta;
+        c.pose->y = 0;
+        c.pose->tangent = 0;
+        c.witness_crossing.reset();
+        c.witness_point = Point{6 + w, y0};
+        SCOPED_TRACE("delta=" + delta.get_str() + " w=" + w.get_str() + " y0=" + y0.get_str());
+        bool inside = 0 < w && w < delta && abs_of(y0) < 5;   // strictly inside the plate and the peg
+        PartRelation truth = relation(c, model);
+        EXPECT_EQ(truth == PartRelation::touching, delta == 0);
+        EXPECT_EQ(truth == PartRelation::overlapping, delta > 0);
+        bool v = verdict(c, model);
+        EXPECT_EQ(v, inside);
+        (v ? valid : invalid)++;
+      }
+    }
+  }
+  // clearance at poses (x, y, tangent 0): the distance is 1 - max(|x|, |y|)
+  std::mt19937_64 random(40);
+  for (int i = 0; i < 24; ++i) {
+    Rational x(static_cast<long>(random() % 2001) - 1000, 1000), y(static_cast<long>(random() % 2001) - 1000, 1000);
+    if (i % 4 == 0) x = 1 - pow10(-(static_cast<int>(random() % 30) + 1));
+    x.canonicalize();
+    y.canonicalize();
+    Rational distance = 1 - std::max(abs_of(x), abs_of(y));
+    Certificate moved = clearance;
+    moved.pose->x = x;
+    moved.pose->y = y;
+    // the library's predicate confirms the distance: apart here, touching once moved by it
+    Certificate touching = moved;
+    (abs_of(x) >= abs_of(y) ? touching.pose->x : touching.pose->y) += (abs_of(x) >= abs_of(y) ? x : y) < 0 ? -distance : distance;
+    if (distance > 0) {
+      ASSERT_EQ(relation(moved, model), PartRelation::apart);
+      ASSERT_EQ(relation(touching, model), PartRelation::touching);
+    }
+    for (const Rational& claimed : {distance, Rational(distance + pow10(-9)), Rational(distance - pow10(-9)),
+                                    Rational(distance + pow10(-14)), Rational(distance - pow10(-14))}) {
+      if (claimed <= 0) continue;
+      Certificate c = moved;
+      c.distance = claimed;
+      SCOPED_TRACE("x=" + x.get_str() + " y=" + y.get_str() + " claimed=" + claimed.get_str());
+      std::string reason;
+      bool v = verdict(c, model, &reason);
+      // sound: never more than the distance; complete 10^-14 below it (the verifier's bound is an
+      // interval lower bound, so a claim of exactly the distance may be refused)
+      if (v) EXPECT_LE(claimed, distance);
+      if (claimed <= distance - pow10(-14)) EXPECT_TRUE(v) << reason;
+      (v ? valid : invalid)++;
+    }
+  }
+  EXPECT_GT(valid, 20);
+  EXPECT_GT(invalid, 20);
+}
+
+TEST(CertifyMutantOracle, MovedPosesWitnessesAndConfigurationsAreValidOnlyWhenTheOverlapPredicateAgrees) {
+  const Model peg = read_model_file(std::string(HIPAIR_EXAMPLES) + "/peg-in-hole.json");
+  const Model film = read_model_file(std::string(HIPAIR_EXAMPLES) + "/film-advance.json");
+  std::mt19937_64 random(41);
+  int valid = 0, invalid = 0;
+  for (const char* name : {"peg-planar-interference.json", "peg-planar-clearance.json", "film-claw-interference.json",
+                           "film-cam-clearance.json", "film-pin-clearance.json"}) {
+    const Certificate original = corpus(name);
+    const Model& model = std::string(name).rfind("peg", 0) == 0 ? peg : film;
+    const bool interference = original.claim == ClaimKind::planar_interference;
+    ASSERT_TRUE(verdict(original, model)) << name;
+    for (int i = 0; i < 40; ++i) {
+      Certificate c = original;
+      long k = static_cast<long>(random() % 9) - 4;
+      Rational step = Rational(k) * pow10(-std::vector<int>{1, 3, 9, 20}[random() % 4]);
+      switch (random() % 5) {
+        case 0: (c.pose->slide ? *c.pose->slide : c.pose->x) += step; break;
+        case 1: (c.pose->slide ? c.pose->tangent : c.pose->y) += step; break;
+        case 2: c.pose->tangent += step / 10; break;
+        case 3:
+          if (c.witness_point) {
+            (random() % 2 ? c.witness_point->x : c.witness_point->y) += Rational(k) * pow10(-20);
+          } else {
+            c.distance += Rational(k) * pow10(random() % 2 ? -9 : -14);
+          }
+          break;
+        case 4:   // the other part's position (the cam's tangent, the film's offset), if it moves
+          for (auto& [part, position] : c.configuration) position.value += step;
+          break;
+      }
+      c.pose->tangent.canonicalize();
+      SCOPED_TRACE(std::string(name) + " mutant " + std::to_string(i));
+      bool v = false;
+      try {
+        v = verdict(c, model);
+      } catch (const Error&) {   // a statement that cannot be written (a pose beyond the limits)
+        v = false;
+      }
+      if (v) EXPECT_EQ(relation(c, model), interference ? PartRelation::overlapping : PartRelation::apart);
+      (v ? valid : invalid)++;
+    }
+  }
+  EXPECT_GT(valid, 40);
+  EXPECT_GT(invalid, 10);
+}
+
+}  // namespace
+}  // namespace hipair
