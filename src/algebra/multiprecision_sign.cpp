@@ -81,7 +81,34 @@ long coefficient_bits(const Polynomial& p) {
   return static_cast<long>(bits);
 }
 
+Rational to_rational(mpfr_srcptr v) {
+  mpz_class mantissa;
+  const mpfr_exp_t e = mpfr_get_z_2exp(mantissa.get_mpz_t(), v);
+  Rational r(mantissa);
+  if (e > 0) mpz_mul_2exp(r.get_num_mpz_t(), r.get_num_mpz_t(), static_cast<mp_bitcnt_t>(e));
+  if (e < 0) mpz_mul_2exp(r.get_den_mpz_t(), r.get_den_mpz_t(), static_cast<mp_bitcnt_t>(-e));
+  r.canonicalize();
+  return r;
+}
+
 }  // namespace
+
+MultiprecisionEnclosure multiprecision_enclosure_over(const Polynomial& p, const Rational& a, const Rational& b, long bits) {
+  Scratch s(bits);
+  Mp lo(bits), hi(bits);
+  mpfr_set_q(lo.v, a.get_mpq_t(), MPFR_RNDD);
+  mpfr_set_q(hi.v, b.get_mpq_t(), MPFR_RNDU);
+  enclose_over(p, lo.v, hi.v, s);
+  return {a, to_rational(s.lo.v), to_rational(s.hi.v)};
+}
+
+MultiprecisionEnclosure multiprecision_enclosure_at_point(const Polynomial& p, const Rational& x, long bits) {
+  Scratch s(bits);
+  Mp point(bits);
+  mpfr_set_q(point.v, x.get_mpq_t(), MPFR_RNDN);
+  enclose_at_point(p, point.v, s);
+  return {to_rational(point.v), to_rational(s.lo.v), to_rational(s.hi.v)};
+}
 
 std::pair<long, long> multiprecision_sign_bits(const Polynomial& p, const Real& u) {
   const long bits = std::max(coefficient_bits(p), coefficient_bits(u.polynomial));

@@ -26,6 +26,15 @@ std::pair<long, long> multiprecision_sign_bits(const Polynomial& p, const Real& 
 /// coefficient (then p and q share no root); false when that cannot be certified.
 bool coprime_modularly(const Polynomial& p, const Polynomial& q);
 
+/// The filter's enclosures, for tests: `over` is p over [a, b] (a <= b, the ends enclosed
+/// outwards at `bits`) by interval Horner; `at_point` is p at x rounded to nearest at `bits`
+/// (that point returned as `point`). Each bound is the MPFR number exactly.
+struct MultiprecisionEnclosure {
+  Rational point, lo, hi;
+};
+MultiprecisionEnclosure multiprecision_enclosure_over(const Polynomial& p, const Rational& a, const Rational& b, long bits);
+MultiprecisionEnclosure multiprecision_enclosure_at_point(const Polynomial& p, const Rational& x, long bits);
+
 /// sign_at(p, u) by the exact path only (gcd, square-free part, Sturm sequence): tests' oracle.
 int exact_sign_at(const Polynomial& p, const Real& u);
 
