@@ -1720,12 +1720,16 @@ int sign_at(const Polynomial& p, const Real& u) {
       for (int k = 0; k < 4 && !refined->exact; ++k) refined->refine();
     }
   }
-  // p(u) = 0 only when p and u's polynomial share a factor: not when they are coprime modulo a
-  // prime (no gcd), else by the exact gcd. A non-zero value is then decided by MPFR intervals
-  // over the isolating interval, and only past their precisions by the Sturm sequence.
-  if (!coprime_modularly(p, u.polynomial) && vanishes_at(p, u)) return 0;
-  const auto [start_bits, max_bits] = multiprecision_sign_bits(p, u);
-  if (const auto sign = multiprecision_sign(p, u, start_bits, max_bits)) return *sign;
+  // p(u) = 0 only when p and u's polynomial share a factor: by the exact gcd, after a test
+  // modulo a prime when the coefficients are wide (there the gcd is dear, and the test spares it
+  // when they are coprime; with narrow ones the values that reach here are mostly zeros, where
+  // the test would only add work). A non-zero value is then decided, for coefficients of more
+  // than 128 bits, by MPFR intervals over the isolating interval (below, the Sturm sequence
+  // costs less than the filter), and only past their precisions by the Sturm sequence.
+  const MultiprecisionBits bits = multiprecision_sign_bits(p, u);
+  if (!(bits.width > 256 && coprime_modularly(p, u.polynomial)) && vanishes_at(p, u)) return 0;
+  if (bits.width > 128)
+    if (const auto sign = multiprecision_sign(p, u, bits.start, bits.cap)) return *sign;
   return nonzero_sign_at(p, u);
 }
 

@@ -110,11 +110,11 @@ MultiprecisionEnclosure multiprecision_enclosure_at_point(const Polynomial& p, c
   return {to_rational(point.v), to_rational(s.lo.v), to_rational(s.hi.v)};
 }
 
-std::pair<long, long> multiprecision_sign_bits(const Polynomial& p, const Real& u) {
+MultiprecisionBits multiprecision_sign_bits(const Polynomial& p, const Real& u) {
   const long bits = std::max(coefficient_bits(p), coefficient_bits(u.polynomial));
   // rounding errors are relative to the terms: a start of 192 bits decides values down to about
   // 10^-40 of their terms; the cap allows cancellation well beyond the coefficients' width
-  return {192, std::max(4 * bits + 512, 1024L)};
+  return {bits, 192, std::max(4 * bits + 512, 1024L)};
 }
 
 std::optional<int> multiprecision_sign(const Polynomial& p, const Real& u, long start_bits, long max_bits) {
@@ -129,16 +129,19 @@ std::optional<int> multiprecision_sign(const Polynomial& p, const Real& u, long 
   mpfr_set_q(a.v, u.lower.get_mpq_t(), MPFR_RNDD);
   mpfr_set_q(b.v, u.upper.get_mpq_t(), MPFR_RNDU);
   bool left_rational = true, right_rational = true;
-  // q's sign at u.lower (non-zero; the opposite of its sign at u.upper): the sign of q over the
-  // enclosure of u.lower when it excludes zero, exactly otherwise
-  mpfr_set_q(m.v, u.lower.get_mpq_t(), MPFR_RNDU);
-  enclose_over(q, a.v, m.v, s);
-  int low_sign = enclosure_sign(s);
-  if (low_sign == 0) low_sign = sign_at(q, u.lower);
+  int low_sign = 0;   // q's sign at u.lower, when the first halving needs it
   for (;;) {
     for (;;) {
       enclose_over(p, a.v, b.v, s);
       if (const int sign = enclosure_sign(s)) return sign;
+      if (low_sign == 0) {
+        // non-zero, the opposite of q's sign at u.upper: the sign of q over the enclosure of
+        // u.lower when it excludes zero, exactly otherwise
+        mpfr_set_q(m.v, u.lower.get_mpq_t(), MPFR_RNDU);
+        enclose_over(q, a.v, m.v, s);
+        low_sign = enclosure_sign(s);
+        if (low_sign == 0) low_sign = sign_at(q, u.lower);
+      }
       // halve the bracket 16 times (as far as this precision allows), then enclose p again
       int halvings = 0;
       for (; halvings < 16; ++halvings) {

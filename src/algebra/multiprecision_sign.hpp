@@ -19,8 +19,12 @@ namespace hipair::cspace::algebra {
 /// wrong. A zero of p at u is never decided (nothing).
 std::optional<int> multiprecision_sign(const Polynomial& p, const Real& u, long start_bits, long max_bits);
 
-/// The filter's precisions for p at u: the start and the cap (from the coefficients' width).
-std::pair<long, long> multiprecision_sign_bits(const Polynomial& p, const Real& u);
+/// The filter's precisions for p at u: the start and the cap, from `width`, the bits of the
+/// widest coefficient of p and u's polynomial.
+struct MultiprecisionBits {
+  long width, start, cap;
+};
+MultiprecisionBits multiprecision_sign_bits(const Polynomial& p, const Real& u);
 
 /// True when gcd(p, q) is certified constant modulo a word-size prime not dividing p's leading
 /// coefficient (then p and q share no root); false when that cannot be certified.

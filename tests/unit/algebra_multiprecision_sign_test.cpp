@@ -61,8 +61,8 @@ struct Tally {
 // The filter against the exact path on p at u; `label` names the case on failure.
 void check(const Polynomial& p, const Real& u, Tally& tally, const std::string& label) {
   const int exact = exact_sign_at(p, u);
-  const auto [start, cap] = multiprecision_sign_bits(p, u);
-  const auto filtered = multiprecision_sign(p, u, start, cap);
+  const MultiprecisionBits bits = multiprecision_sign_bits(p, u);
+  const auto filtered = multiprecision_sign(p, u, bits.start, bits.cap);
   ++tally.cases;
   if (filtered) {
     ++tally.decided;
