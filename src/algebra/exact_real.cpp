@@ -1720,16 +1720,16 @@ int sign_at(const Polynomial& p, const Real& u) {
       for (int k = 0; k < 4 && !refined->exact; ++k) refined->refine();
     }
   }
-  // p(u) = 0 only when p and u's polynomial share a factor: by the exact gcd, after a test
-  // modulo a prime when the coefficients are wide (there the gcd is dear, and the test spares it
-  // when they are coprime; with narrow ones the values that reach here are mostly zeros, where
-  // the test would only add work). A non-zero value is then decided, for coefficients of more
-  // than 128 bits, by MPFR intervals over the isolating interval (below, the Sturm sequence
-  // costs less than the filter), and only past their precisions by the Sturm sequence.
+  // Coefficients of more than 192 bits (mixed scales): p(u) = 0 only when p and u's polynomial
+  // share a factor, so not when they are coprime modulo a prime (no exact gcd), else by the exact
+  // gcd; a non-zero value is then decided by MPFR intervals over the isolating interval, and only
+  // past their precisions by the Sturm sequence. Narrower coefficients keep the exact path alone:
+  // there the values reaching here are mostly zeros, and the Sturm sequence of a non-zero one
+  // costs less than the filter (measured on the examples, docs/performance.md, session 40).
   const MultiprecisionBits bits = multiprecision_sign_bits(p, u);
-  if (!(bits.width > 256 && coprime_modularly(p, u.polynomial)) && vanishes_at(p, u)) return 0;
-  if (bits.width > 128)
-    if (const auto sign = multiprecision_sign(p, u, bits.start, bits.cap)) return *sign;
+  if (bits.width <= 192) return exact_sign_at(p, u);
+  if (!coprime_modularly(p, u.polynomial) && vanishes_at(p, u)) return 0;
+  if (const auto sign = multiprecision_sign(p, u, bits.start, bits.cap)) return *sign;
   return nonzero_sign_at(p, u);
 }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <utility>
 
 namespace hipair::cspace::algebra {
 
@@ -50,26 +51,25 @@ void enclose_at_point(const Polynomial& p, mpfr_srcptr x, Scratch& s) {
   }
 }
 
+// out = the least (rounding down) or the greatest (rounding up) of the four end products of
+// [lo, hi] [a, b], each rounded that way; t is scratch.
+void extreme_product(mpfr_ptr out, mpfr_ptr t, mpfr_srcptr lo, mpfr_srcptr hi, mpfr_srcptr a, mpfr_srcptr b,
+                     mpfr_rnd_t rounding) {
+  const bool least = rounding == MPFR_RNDD;
+  mpfr_mul(out, lo, a, rounding);
+  for (auto [x, y] : {std::pair{lo, b}, std::pair{hi, a}, std::pair{hi, b}}) {
+    mpfr_mul(t, x, y, rounding);
+    if (least ? mpfr_less_p(t, out) : mpfr_greater_p(t, out)) mpfr_swap(out, t);
+  }
+}
+
 // [s.lo, s.hi] encloses p over [a, b] (a <= b; interval Horner, each bound rounded outwards).
 void enclose_over(const Polynomial& p, mpfr_srcptr a, mpfr_srcptr b, Scratch& s) {
   mpfr_set_z(s.lo.v, p.back().get_mpz_t(), MPFR_RNDD);
   mpfr_set_z(s.hi.v, p.back().get_mpz_t(), MPFR_RNDU);
   for (std::size_t k = p.size() - 1; k-- > 0;) {
-    // [lo, hi] [a, b]: the least of the four end products rounded down, the greatest up
-    mpfr_mul(s.t1.v, s.lo.v, a, MPFR_RNDD);
-    mpfr_mul(s.t2.v, s.lo.v, b, MPFR_RNDD);
-    mpfr_min(s.t1.v, s.t1.v, s.t2.v, MPFR_RNDD);
-    mpfr_mul(s.t2.v, s.hi.v, a, MPFR_RNDD);
-    mpfr_min(s.t1.v, s.t1.v, s.t2.v, MPFR_RNDD);
-    mpfr_mul(s.t2.v, s.hi.v, b, MPFR_RNDD);
-    mpfr_min(s.t1.v, s.t1.v, s.t2.v, MPFR_RNDD);
-    mpfr_mul(s.t3.v, s.lo.v, a, MPFR_RNDU);
-    mpfr_mul(s.t4.v, s.lo.v, b, MPFR_RNDU);
-    mpfr_max(s.t3.v, s.t3.v, s.t4.v, MPFR_RNDU);
-    mpfr_mul(s.t4.v, s.hi.v, a, MPFR_RNDU);
-    mpfr_max(s.t3.v, s.t3.v, s.t4.v, MPFR_RNDU);
-    mpfr_mul(s.t4.v, s.hi.v, b, MPFR_RNDU);
-    mpfr_max(s.t3.v, s.t3.v, s.t4.v, MPFR_RNDU);
+    extreme_product(s.t1.v, s.t2.v, s.lo.v, s.hi.v, a, b, MPFR_RNDD);
+    extreme_product(s.t3.v, s.t4.v, s.lo.v, s.hi.v, a, b, MPFR_RNDU);
     mpfr_add_z(s.lo.v, s.t1.v, p[k].get_mpz_t(), MPFR_RNDD);
     mpfr_add_z(s.hi.v, s.t3.v, p[k].get_mpz_t(), MPFR_RNDU);
   }
