@@ -1720,15 +1720,15 @@ int sign_at(const Polynomial& p, const Real& u) {
       for (int k = 0; k < 4 && !refined->exact; ++k) refined->refine();
     }
   }
-  // Coefficients of more than 192 bits (mixed scales): p(u) = 0 only when p and u's polynomial
-  // share a factor, so not when they are coprime modulo a prime (no exact gcd), else by the exact
-  // gcd; a non-zero value is then decided by MPFR intervals over the isolating interval, and only
-  // past their precisions by the Sturm sequence. Narrower coefficients keep the exact path alone:
-  // there the values reaching here are mostly zeros, and the Sturm sequence of a non-zero one
-  // costs less than the filter (measured on the examples, docs/performance.md, session 40).
+  // Coefficients of more than 192 bits (mixed scales): a zero by the exact gcd as before, then a
+  // non-zero value by MPFR intervals over the isolating interval, and only past their precisions
+  // by the Sturm sequence. Narrower coefficients keep the exact path alone: there the Sturm
+  // sequence of a non-zero value costs less than the filter (measured on the examples,
+  // docs/performance.md, session 40). (A modular coprimality test before the gcd would spare it
+  // for coprime pairs, but costs more on the examples' zeros than it saves.)
   const MultiprecisionBits bits = multiprecision_sign_bits(p, u);
   if (bits.width <= 192) return exact_sign_at(p, u);
-  if (!coprime_modularly(p, u.polynomial) && vanishes_at(p, u)) return 0;
+  if (vanishes_at(p, u)) return 0;
   if (const auto sign = multiprecision_sign(p, u, bits.start, bits.cap)) return *sign;
   return nonzero_sign_at(p, u);
 }
