@@ -1,5 +1,6 @@
 #include "algebra/exact_real.hpp"
 #include "algebra/interval_times.hpp"
+#include "algebra/multiprecision_sign.hpp"
 #include "algebra/ordinate.hpp"
 #include "algebra/near_quotient.hpp"
 #include "algebra/rational_root.hpp"
@@ -1295,6 +1296,14 @@ int modular_gcd_degree(Residues a, Residues b, std::uint64_t prime) {
   return static_cast<int>(a.size()) - 1;
 }
 
+// The residues of p's coefficients modulo the prime.
+Residues residues(const Polynomial& p, std::uint64_t prime) {
+  Residues r;
+  r.reserve(p.size());
+  for (const mpz_class& c : p) r.push_back(mpz_fdiv_ui(c.get_mpz_t(), static_cast<unsigned long>(prime)));
+  return r;
+}
+
 // Sign variations of the coefficients, zeros skipped.
 int sign_variations(const Polynomial& q) {
   int variations = 0, last = 0;
@@ -1416,6 +1425,17 @@ Polynomial memoised_square_free_part(const Polynomial& p) {
 
 }  // namespace
 
+bool coprime_modularly(const Polynomial& p, const Polynomial& q) {
+  // the primitive gcd g of p and q divides p in Z[x], so its leading coefficient divides p's: a
+  // prime not dividing p's keeps g's degree, and g mod the prime divides both reductions
+  if (p.empty() || q.empty()) return false;
+  for (std::uint64_t prime : {2147483647ULL, 2147483629ULL, 2147483587ULL}) {
+    if (mpz_fdiv_ui(p.back().get_mpz_t(), static_cast<unsigned long>(prime)) == 0) continue;
+    if (modular_gcd_degree(residues(p, prime), residues(q, prime), prime) == 0) return true;
+  }
+  return false;
+}
+
 Polynomial square_free_test(const Polynomial& input, bool* exact_needed) {
   if (exact_needed) *exact_needed = false;
   Polynomial p = primitive_part(input);
@@ -1423,10 +1443,7 @@ Polynomial square_free_test(const Polynomial& input, bool* exact_needed) {
   const Polynomial d = derivative(p);
   for (std::uint64_t prime : {2147483647ULL, 2147483629ULL, 2147483587ULL}) {
     if (mpz_fdiv_ui(p.back().get_mpz_t(), static_cast<unsigned long>(prime)) == 0) continue;
-    Residues a, b;
-    for (const mpz_class& c : p) a.push_back(mpz_fdiv_ui(c.get_mpz_t(), static_cast<unsigned long>(prime)));
-    for (const mpz_class& c : d) b.push_back(mpz_fdiv_ui(c.get_mpz_t(), static_cast<unsigned long>(prime)));
-    if (modular_gcd_degree(std::move(a), std::move(b), prime) == 0) return p;
+    if (modular_gcd_degree(residues(p, prime), residues(d, prime), prime) == 0) return p;
   }
   if (exact_needed) *exact_needed = true;
   return memoised_square_free_part(p);
@@ -1663,6 +1680,23 @@ bool vanishes_at(const Polynomial& p, const Real& u) {
   return sign_at(g, u.lower) * sign_at(g, u.upper) < 0;
 }
 
+namespace {
+
+// The sign of p at u by the Sturm sequence of p's square-free part. \pre p(u) != 0.
+int nonzero_sign_at(const Polynomial& p, const Real& u) {
+  Polynomial q = square_free_part(p);
+  SturmSequence sturm(q);
+  Real v = u;
+  for (;;) {
+    if (v.exact) return sign_at(p, v.lower);
+    // no root of p in (lower, upper]: p keeps the sign it has at upper
+    if (sturm.count(v.lower, v.upper) == 0) return sign_at(p, v.upper);
+    v.refine();
+  }
+}
+
+}  // namespace
+
 int sign_at(const Polynomial& p, const Real& u) {
   if (p.empty()) return 0;
   if (u.exact) return sign_at(p, u.lower);
@@ -1686,16 +1720,24 @@ int sign_at(const Polynomial& p, const Real& u) {
       for (int k = 0; k < 4 && !refined->exact; ++k) refined->refine();
     }
   }
+  // Coefficients of more than 192 bits (mixed scales): a zero by the exact gcd as before, then a
+  // non-zero value by MPFR intervals over the isolating interval, and only past their precisions
+  // by the Sturm sequence. Narrower coefficients keep the exact path alone: there the Sturm
+  // sequence of a non-zero value costs less than the filter (measured on the examples,
+  // docs/performance.md, session 40). (A modular coprimality test before the gcd would spare it
+  // for coprime pairs, but costs more on the examples' zeros than it saves.)
+  const MultiprecisionBits bits = multiprecision_sign_bits(p, u);
+  if (bits.width <= 192) return exact_sign_at(p, u);
   if (vanishes_at(p, u)) return 0;
-  Polynomial q = square_free_part(p);
-  SturmSequence sturm(q);
-  Real v = u;
-  for (;;) {
-    if (v.exact) return sign_at(p, v.lower);
-    // no root of p in (lower, upper]: p keeps the sign it has at upper
-    if (sturm.count(v.lower, v.upper) == 0) return sign_at(p, v.upper);
-    v.refine();
-  }
+  if (const auto sign = multiprecision_sign(p, u, bits.start, bits.cap)) return *sign;
+  return nonzero_sign_at(p, u);
+}
+
+int exact_sign_at(const Polynomial& p, const Real& u) {
+  if (p.empty()) return 0;
+  if (u.exact) return sign_at(p, u.lower);
+  if (vanishes_at(p, u)) return 0;
+  return nonzero_sign_at(p, u);
 }
 
 int sign_at(const IntegerPolynomial2& f, const Rational& x, const Real& y) {

@@ -1,0 +1,45 @@
+// A multi-precision interval filter for the sign of an integer polynomial at a real algebraic
+// number (MPFR, every rounding outward), between sign_at(Polynomial, Real)'s double filter and
+// its exact path (gcd, square-free part, Sturm sequence). A narrow header: sign_at's callers do
+// not see it; tests compare it with the exact path.
+#pragma once
+
+#include "algebra/exact_real.hpp"
+
+#include <optional>
+
+namespace hipair::cspace::algebra {
+
+/// The sign of p at u (p not zero, u not exact) from MPFR interval arithmetic, or nothing when
+/// the filter cannot decide it within its precisions (from `start_bits`, doubled while at most
+/// `max_bits`). The isolating interval of u is enclosed outwards and narrowed by bisection in
+/// MPFR (each midpoint's sign of u.polynomial certified by a point enclosure, the midpoint kept
+/// only when it lies strictly inside the bracket), and p is enclosed over the bracket by
+/// interval Horner; a sign is returned only when the enclosure excludes zero, so it is never
+/// wrong. A zero of p at u is never decided (nothing).
+std::optional<int> multiprecision_sign(const Polynomial& p, const Real& u, long start_bits, long max_bits);
+
+/// The filter's precisions for p at u: the start and the cap, from `width`, the bits of the
+/// widest coefficient of p and u's polynomial.
+struct MultiprecisionBits {
+  long width, start, cap;
+};
+MultiprecisionBits multiprecision_sign_bits(const Polynomial& p, const Real& u);
+
+/// True when gcd(p, q) is certified constant modulo a word-size prime not dividing p's leading
+/// coefficient (then p and q share no root); false when that cannot be certified.
+bool coprime_modularly(const Polynomial& p, const Polynomial& q);
+
+/// The filter's enclosures, for tests: `over` is p over [a, b] (a <= b, the ends enclosed
+/// outwards at `bits`) by interval Horner; `at_point` is p at x rounded to nearest at `bits`
+/// (that point returned as `point`). Each bound is the MPFR number exactly.
+struct MultiprecisionEnclosure {
+  Rational point, lo, hi;
+};
+MultiprecisionEnclosure multiprecision_enclosure_over(const Polynomial& p, const Rational& a, const Rational& b, long bits);
+MultiprecisionEnclosure multiprecision_enclosure_at_point(const Polynomial& p, const Rational& x, long bits);
+
+/// sign_at(p, u) by the exact path only (gcd, square-free part, Sturm sequence): tests' oracle.
+int exact_sign_at(const Polynomial& p, const Real& u);
+
+}  // namespace hipair::cspace::algebra
