@@ -597,9 +597,29 @@ class KernelSlicer final : public PairSlicer {
           const int sign_lo = end_sign(lo), sign_hi = end_sign(hi);
           if (sign_lo == sign_hi) continue;   // both non-zero: monotone, no root
           Real root;
+          // the validity prefilter's verdict where the root is isolated without its polynomial
+          // (-1: undecided, or not asked when !prefiltered; valid() decides)
+          int verdict = -1;
+          bool prefiltered = false;
           if (sign_lo == 0 || sign_hi == 0) {
             root = Real::from_rational(sign_lo == 0 ? lo : hi);
           } else {
+            // The root's interval narrowed first (narrow_in_doubles reads the curve's enclosure,
+            // not the polynomial), and the validity clauses asked there before the square-free
+            // test: a root they certainly reject needs no polynomial. The verdict on this
+            // interval is valid()'s own (its prefilter reads the same interval), and it holds
+            // for the rational root of a linear square-free part too, whose double enclosure
+            // lies inside the interval (interval evaluation is inclusion isotone).
+            root.lower = lo;
+            root.upper = hi;
+            narrow_in_doubles(curve, value_box, root, sign_lo);
+            prefiltered = options_.validity_prefilter && !curve.validity.empty();
+            if (prefiltered)
+              verdict = clauses_verdict(curve, value_box, algebra::Interval{root.lower_bound(), root.upper_bound()});
+            if (verdict == 0) {
+              ++monotone_roots_;
+              continue;
+            }
             substitute();
             // (remembered: the same curve and value come back for other follower charts,
             // windows and congruent pairs)
@@ -612,13 +632,12 @@ class KernelSlicer final : public PairSlicer {
               root = Real::from_rational(Rational(-r));
             } else {
               root.polynomial = *square_free;
-              root.lower = lo;
-              root.upper = hi;
-              narrow_in_doubles(curve, value_box, root, sign_lo);
             }
           }
           ++monotone_roots_;
-          if (valid(curve, value_box, root, options_.validity_prefilter))
+          // verdict 1: valid() would say so (its prefilter, or its refinements of an exact
+          // root, read boxes inside this one); undecided: straight to its refinements
+          if (verdict == 1 || valid(curve, value_box, root, options_.validity_prefilter && !prefiltered))
             points.push_back(SlicePoint{std::move(root), {strip_curve->feature}});
           continue;
         }
