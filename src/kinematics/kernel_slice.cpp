@@ -571,9 +571,17 @@ class KernelSlicer final : public PairSlicer {
         first = last + 1;
         const int hi_vs_lo = algebra::compare_rationals(hi, lo);
         if (hi_vs_lo < 0) continue;
-        if (!curve.interval.evaluate(value_box, algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)})
-                 .contains_zero())
-          continue;
+        const algebra::Interval run_box{algebra::lower_double(lo), algebra::upper_double(hi)};
+        if (!curve.interval.evaluate(value_box, run_box).contains_zero()) continue;
+        // The validity clauses over the whole run, before any root is sought: every root found
+        // in [lo, hi] (its isolating interval, or an exact root's double enclosure, lies in
+        // run_box) gets the same verdict from valid() when this one is decided (interval
+        // evaluation is inclusion isotone): 0 drops them all, 1 keeps them all.
+        int run_verdict = -1;
+        if (options_.validity_prefilter && !curve.validity.empty()) {
+          run_verdict = clauses_verdict(curve, value_box, run_box);
+          if (run_verdict == 0) continue;
+        }
         auto substitute = [&]() {
           if (substituted) return;
           p = algebra::substitute_x(curve.polynomial, value);
@@ -614,7 +622,9 @@ class KernelSlicer final : public PairSlicer {
             root.upper = hi;
             narrow_in_doubles(curve, value_box, root, sign_lo);
             prefiltered = options_.validity_prefilter && !curve.validity.empty();
-            if (prefiltered)
+            if (run_verdict == 1)
+              verdict = 1;
+            else if (prefiltered)
               verdict = clauses_verdict(curve, value_box, algebra::Interval{root.lower_bound(), root.upper_bound()});
             if (verdict == 0) {
               ++monotone_roots_;
@@ -637,7 +647,7 @@ class KernelSlicer final : public PairSlicer {
           ++monotone_roots_;
           // verdict 1: valid() would say so (its prefilter, or its refinements of an exact
           // root, read boxes inside this one); undecided: straight to its refinements
-          if (verdict == 1 || valid(curve, value_box, root, options_.validity_prefilter && !prefiltered))
+          if (verdict == 1 || run_verdict == 1 || valid(curve, value_box, root, options_.validity_prefilter && !prefiltered))
             points.push_back(SlicePoint{std::move(root), {strip_curve->feature}});
           continue;
         }
@@ -645,7 +655,7 @@ class KernelSlicer final : public PairSlicer {
         if (algebra::degree(p) <= 0) break;   // no root, or the whole line (a degenerate slice)
         // real_roots takes the square-free part itself
         for (Real& root : algebra::descartes_real_roots(p, lo, hi)) {
-          if (!valid(curve, value_box, root, options_.validity_prefilter)) continue;
+          if (run_verdict != 1 && !valid(curve, value_box, root, options_.validity_prefilter)) continue;
           points.push_back(SlicePoint{std::move(root), {strip_curve->feature}});
         }
       }
@@ -1062,7 +1072,7 @@ class KernelSlicer final : public PairSlicer {
       for (const auto& atom : clause.atoms) {
         algebra::Interval sign = atom.evaluate(value_box, root_box);
         if (sign.lo >= 0) holds = true;
-        else if (sign.hi >= 0) unknown = true;
+        else if (!(sign.hi < 0)) unknown = true;   // (a NaN enclosure decides nothing)
       }
       if (holds) continue;
       if (!unknown) return 0;
