@@ -580,7 +580,11 @@ class KernelSlicer final : public PairSlicer {
         int run_verdict = -1;
         if (options_.validity_prefilter && !curve.validity.empty()) {
           run_verdict = clauses_verdict(curve, value_box, run_box);
-          if (run_verdict == 0) continue;
+          if (run_verdict == 1) ++runs_kept_;
+          if (run_verdict == 0) {
+            ++runs_rejected_;
+            continue;
+          }
         }
         auto substitute = [&]() {
           if (substituted) return;
@@ -773,7 +777,7 @@ class KernelSlicer final : public PairSlicer {
 
   SliceClassCounts class_counts() const {
     return SliceClassCounts{classified_.load(), transferred_.load(), monotone_roots_.load(), touching_undecided_.load(),
-                            strip_cells_culled_.load()};
+                            strip_cells_culled_.load(), runs_rejected_.load(), runs_kept_.load()};
   }
 
   // unsigned wrap-around: a negative delta subtracts
@@ -1102,6 +1106,7 @@ class KernelSlicer final : public PairSlicer {
   mutable std::atomic<std::size_t> monotone_roots_{0};   // roots isolated by a monotone run
   mutable std::atomic<std::size_t> touching_undecided_{0};   // SliceClassCounts::touching_undecided
   mutable std::atomic<std::size_t> strip_cells_culled_{0};   // SliceClassCounts::strip_cells_culled
+  mutable std::atomic<std::size_t> runs_rejected_{0}, runs_kept_{0};   // SliceClassCounts::runs_*
   std::vector<std::vector<Rational>> follower_edges_;   // per follower chart: its cells' edges
 };
 
