@@ -1314,14 +1314,29 @@ class QuadraticBuilder {
   }
 
   /// The signs of a support's a, disc and b at one bound of its event intervals, each exact
-  /// and computed on first use (2: not yet).
+  /// and computed on first use (2: not yet). A bound is an event: a root of a, disc or the
+  /// content, isolated with that polynomial's square-free part. When x's own polynomial is
+  /// proportional to p, p vanishes at x (exactly: p = c P with P(x) = 0), without the sign
+  /// computation's refinements and gcd.
   struct BoundSigns {
     int a = 2, disc = 2, b = 2;
     int of(int& slot, const Polynomial& p, const Real& x) {
-      if (slot == 2) slot = algebra::sign_at(p, x);
+      if (slot == 2) slot = !x.exact && proportional(p, x.polynomial) ? 0 : algebra::sign_at(p, x);
       return slot;
     }
   };
+
+  /// p = c q for a rational c != 0 (both of degree >= 1): p_i q_n = q_i p_n for every i.
+  static bool proportional(const Polynomial& p, const Polynomial& q) {
+    if (p.size() != q.size() || algebra::degree(p) < 1 || sgn(p.back()) == 0 || sgn(q.back()) == 0) return false;
+    thread_local mpz_class left, right;
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+      mpz_mul(left.get_mpz_t(), p[i].get_mpz_t(), q.back().get_mpz_t());
+      mpz_mul(right.get_mpz_t(), q[i].get_mpz_t(), p.back().get_mpz_t());
+      if (mpz_cmp(left.get_mpz_t(), right.get_mpz_t()) != 0) return false;
+    }
+    return true;
+  }
 
   enum class CutKind { soft = 0, hard = 1 };
 

@@ -571,9 +571,21 @@ class KernelSlicer final : public PairSlicer {
         first = last + 1;
         const int hi_vs_lo = algebra::compare_rationals(hi, lo);
         if (hi_vs_lo < 0) continue;
-        if (!curve.interval.evaluate(value_box, algebra::Interval{algebra::lower_double(lo), algebra::upper_double(hi)})
-                 .contains_zero())
-          continue;
+        const algebra::Interval run_box{algebra::lower_double(lo), algebra::upper_double(hi)};
+        if (!curve.interval.evaluate(value_box, run_box).contains_zero()) continue;
+        // The validity clauses over the whole run, before any root is sought: every root found
+        // in [lo, hi] (its isolating interval, or an exact root's double enclosure, lies in
+        // run_box) gets the same verdict from valid() when this one is decided (interval
+        // evaluation is inclusion isotone): 0 drops them all, 1 keeps them all.
+        int run_verdict = -1;
+        if (options_.validity_prefilter && !curve.validity.empty()) {
+          run_verdict = clauses_verdict(curve, value_box, run_box);
+          if (run_verdict == 1) ++runs_kept_;
+          if (run_verdict == 0) {
+            ++runs_rejected_;
+            continue;
+          }
+        }
         auto substitute = [&]() {
           if (substituted) return;
           p = algebra::substitute_x(curve.polynomial, value);
@@ -597,9 +609,31 @@ class KernelSlicer final : public PairSlicer {
           const int sign_lo = end_sign(lo), sign_hi = end_sign(hi);
           if (sign_lo == sign_hi) continue;   // both non-zero: monotone, no root
           Real root;
+          // the validity prefilter's verdict where the root is isolated without its polynomial
+          // (-1: undecided, or not asked when !prefiltered; valid() decides)
+          int verdict = -1;
+          bool prefiltered = false;
           if (sign_lo == 0 || sign_hi == 0) {
             root = Real::from_rational(sign_lo == 0 ? lo : hi);
           } else {
+            // The root's interval narrowed first (narrow_in_doubles reads the curve's enclosure,
+            // not the polynomial), and the validity clauses asked there before the square-free
+            // test: a root they certainly reject needs no polynomial. The verdict on this
+            // interval is valid()'s own (its prefilter reads the same interval), and it holds
+            // for the rational root of a linear square-free part too, whose double enclosure
+            // lies inside the interval (interval evaluation is inclusion isotone).
+            root.lower = lo;
+            root.upper = hi;
+            narrow_in_doubles(curve, value_box, root, sign_lo);
+            prefiltered = options_.validity_prefilter && !curve.validity.empty();
+            if (run_verdict == 1)
+              verdict = 1;
+            else if (prefiltered)
+              verdict = clauses_verdict(curve, value_box, algebra::Interval{root.lower_bound(), root.upper_bound()});
+            if (verdict == 0) {
+              ++monotone_roots_;
+              continue;
+            }
             substitute();
             // (remembered: the same curve and value come back for other follower charts,
             // windows and congruent pairs)
@@ -612,13 +646,12 @@ class KernelSlicer final : public PairSlicer {
               root = Real::from_rational(Rational(-r));
             } else {
               root.polynomial = *square_free;
-              root.lower = lo;
-              root.upper = hi;
-              narrow_in_doubles(curve, value_box, root, sign_lo);
             }
           }
           ++monotone_roots_;
-          if (valid(curve, value_box, root, options_.validity_prefilter))
+          // verdict 1: valid() would say so (its prefilter, or its refinements of an exact
+          // root, read boxes inside this one); undecided: straight to its refinements
+          if (verdict == 1 || run_verdict == 1 || valid(curve, value_box, root, options_.validity_prefilter && !prefiltered))
             points.push_back(SlicePoint{std::move(root), {strip_curve->feature}});
           continue;
         }
@@ -626,7 +659,7 @@ class KernelSlicer final : public PairSlicer {
         if (algebra::degree(p) <= 0) break;   // no root, or the whole line (a degenerate slice)
         // real_roots takes the square-free part itself
         for (Real& root : algebra::descartes_real_roots(p, lo, hi)) {
-          if (!valid(curve, value_box, root, options_.validity_prefilter)) continue;
+          if (run_verdict != 1 && !valid(curve, value_box, root, options_.validity_prefilter)) continue;
           points.push_back(SlicePoint{std::move(root), {strip_curve->feature}});
         }
       }
@@ -744,7 +777,7 @@ class KernelSlicer final : public PairSlicer {
 
   SliceClassCounts class_counts() const {
     return SliceClassCounts{classified_.load(), transferred_.load(), monotone_roots_.load(), touching_undecided_.load(),
-                            strip_cells_culled_.load()};
+                            strip_cells_culled_.load(), runs_rejected_.load(), runs_kept_.load()};
   }
 
   // unsigned wrap-around: a negative delta subtracts
@@ -1043,7 +1076,7 @@ class KernelSlicer final : public PairSlicer {
       for (const auto& atom : clause.atoms) {
         algebra::Interval sign = atom.evaluate(value_box, root_box);
         if (sign.lo >= 0) holds = true;
-        else if (sign.hi >= 0) unknown = true;
+        else if (!(sign.hi < 0)) unknown = true;   // (a NaN enclosure decides nothing)
       }
       if (holds) continue;
       if (!unknown) return 0;
@@ -1073,6 +1106,7 @@ class KernelSlicer final : public PairSlicer {
   mutable std::atomic<std::size_t> monotone_roots_{0};   // roots isolated by a monotone run
   mutable std::atomic<std::size_t> touching_undecided_{0};   // SliceClassCounts::touching_undecided
   mutable std::atomic<std::size_t> strip_cells_culled_{0};   // SliceClassCounts::strip_cells_culled
+  mutable std::atomic<std::size_t> runs_rejected_{0}, runs_kept_{0};   // SliceClassCounts::runs_*
   std::vector<std::vector<Rational>> follower_edges_;   // per follower chart: its cells' edges
 };
 

@@ -222,6 +222,9 @@ struct SliceClassCounts {
   /// Follower cells whose blocked-space cull the slicer's strips ran, summed over its strips
   /// (a strip culled whole counts all of its chart's cells; KernelSlicerOptions::lazy_cull).
   std::size_t strip_cells_culled = 0;
+  /// Runs of follower cells whose roots the validity clauses decided before any was sought
+  /// (KernelSlicerOptions::validity_prefilter, over the whole run): all rejected, all kept.
+  std::size_t runs_rejected = 0, runs_kept = 0;
 };
 /// Zero counts for a slicer that is not a kernel slicer.
 SliceClassCounts kernel_slice_class_counts(const PairSlicer& slicer);

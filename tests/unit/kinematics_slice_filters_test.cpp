@@ -14,6 +14,7 @@
 // A short driver range (shorter than one grid step) draws its C-space path through the states
 // on both sides of every event, not straight from the range's start to its end.
 #include "algebra/real_filters.hpp"
+#include "core/model_scale.hpp"
 #include "kinematics/axis.hpp"
 #include "kinematics/slice.hpp"
 #include "test_paths.hpp"
@@ -121,7 +122,8 @@ struct Query {
 // isolating intervals, else the same numbers (exact comparison) with valid isolating intervals.
 std::size_t compare_slicers(const Model& model, int values, std::uint64_t seed, const std::string& name,
                             const KernelSlicerOptions& plain_options = KernelSlicerOptions{true, false, false},
-                            bool same_intervals = true, std::size_t* monotone_roots = nullptr) {
+                            bool same_intervals = true, std::size_t* monotone_roots = nullptr,
+                            SliceClassCounts* fast_counts = nullptr) {
   std::mt19937_64 random(seed);
   std::size_t compared = 0;
   for (std::size_t pair = 0; pair < model.pairs.size(); ++pair)
@@ -165,6 +167,12 @@ std::size_t compare_slicers(const Model& model, int values, std::uint64_t seed, 
         if (::testing::Test::HasFailure()) return compared;
       }
       if (monotone_roots) *monotone_roots += kernel_slice_class_counts(*fast).monotone_roots;
+      if (fast_counts) {
+        const SliceClassCounts counts = kernel_slice_class_counts(*fast);
+        fast_counts->monotone_roots += counts.monotone_roots;
+        fast_counts->runs_rejected += counts.runs_rejected;
+        fast_counts->runs_kept += counts.runs_kept;
+      }
     }
   return compared;
 }
@@ -192,6 +200,57 @@ TEST(KinematicSliceFilters, GeneratedGearPairsGiveTheSlicesOfPlainSlicing) {
     if (HasFailure()) return;
   }
   EXPECT_GT(compared, 0u);
+}
+
+// Session 40: the validity clauses are asked over a whole run of follower cells before its roots
+// are sought (a run they certainly reject is dropped, one they certainly accept keeps its roots
+// without valid()), and a monotone run's root is narrowed and its clauses asked before its
+// square-free test. The slices must be the plain slicer's (no prefilter), interval for interval,
+// on generated cases: the ratchet at zero nose clearance with random rational radii, the scotch
+// yoke's pin in an exact slot of random rational width (zero clearance: tangent along the
+// slot), and the ratchet and the Geneva drive scaled by 2^300 and 2^-300. Both verdicts must
+// occur (runs dropped and runs kept), and monotone runs must isolate roots.
+TEST(KinematicSliceFilters, RunVerdictsGiveThePlainSlicesAtZeroClearanceAndExtremeScales) {
+  std::mt19937_64 random(4040);
+  std::size_t compared = 0;
+  SliceClassCounts counts;
+  auto random_rational = [&](long lo, long hi) {
+    Rational r(lo * 4096 + static_cast<long>(random() % static_cast<std::uint64_t>((hi - lo) * 4096 + 1)), 4096);
+    r.canonicalize();
+    return r;
+  };
+  for (int trial = 0; trial < 2; ++trial) {
+    ReadOptions read;
+    read.allow_out_of_tolerance = true;
+    read.parameter_values["nose-clearance"] = Rational(0);
+    read.parameter_values["tip-radius"] = random_rational(29, 31);
+    read.parameter_values["root-radius"] = random_rational(23, 25);
+    const Model ratchet = read_model_file(example("ratchet.json"), read);
+    compared += compare_slicers(ratchet, 40, random(), "ratchet at zero clearance", KernelSlicerOptions{true, false, false},
+                                true, nullptr, &counts);
+    if (HasFailure()) return;
+    ReadOptions yoke;
+    yoke.allow_out_of_tolerance = true;
+    const Rational pin = random_rational(3, 6);
+    yoke.parameter_values["pin-radius"] = pin;
+    yoke.parameter_values["slot-width"] = Rational(2 * pin);
+    compared += compare_slicers(read_model_file(example("scotch-yoke.json"), yoke), 40, random(), "scotch yoke, exact slot",
+                                KernelSlicerOptions{true, false, false}, true, nullptr, &counts);
+    if (HasFailure()) return;
+  }
+  for (const char* name : {"ratchet.json", "geneva.json"})
+    for (long shift : {300L, -300L}) {
+      const Model scaled = scaled_model(read_model_file(example(name)), shift);
+      compared += compare_slicers(scaled, 12, random(), std::string(name) + " scaled by 2^" + std::to_string(shift),
+                                  KernelSlicerOptions{true, false, false}, true, nullptr, &counts);
+      if (HasFailure()) return;
+    }
+  std::cout << "[ run verdicts ] " << compared << " points compared; runs dropped " << counts.runs_rejected << ", kept "
+            << counts.runs_kept << "; monotone roots " << counts.monotone_roots << "\n";
+  EXPECT_GT(compared, 0u);
+  EXPECT_GT(counts.runs_rejected, 0u);
+  EXPECT_GT(counts.runs_kept, 0u);
+  EXPECT_GT(counts.monotone_roots, 0u);
 }
 
 // Session 26: a slice's interval classes carried over from the previous slice of the same chart
