@@ -3,6 +3,7 @@
 #include "arrangement/quadratic_traits.hpp"
 
 #include "arrangement/clip_common.hpp"
+#include "algebra/proportional.hpp"
 
 #include <hipair/error.hpp>
 
@@ -1321,22 +1322,10 @@ class QuadraticBuilder {
   struct BoundSigns {
     int a = 2, disc = 2, b = 2;
     int of(int& slot, const Polynomial& p, const Real& x) {
-      if (slot == 2) slot = !x.exact && proportional(p, x.polynomial) ? 0 : algebra::sign_at(p, x);
+      if (slot == 2) slot = !x.exact && algebra::proportional(p, x.polynomial) ? 0 : algebra::sign_at(p, x);
       return slot;
     }
   };
-
-  /// p = c q for a rational c != 0 (both of degree >= 1): p_i q_n = q_i p_n for every i.
-  static bool proportional(const Polynomial& p, const Polynomial& q) {
-    if (p.size() != q.size() || algebra::degree(p) < 1 || sgn(p.back()) == 0 || sgn(q.back()) == 0) return false;
-    thread_local mpz_class left, right;
-    for (std::size_t i = 0; i + 1 < p.size(); ++i) {
-      mpz_mul(left.get_mpz_t(), p[i].get_mpz_t(), q.back().get_mpz_t());
-      mpz_mul(right.get_mpz_t(), q[i].get_mpz_t(), p.back().get_mpz_t());
-      if (mpz_cmp(left.get_mpz_t(), right.get_mpz_t()) != 0) return false;
-    }
-    return true;
-  }
 
   enum class CutKind { soft = 0, hard = 1 };
 

@@ -3,6 +3,7 @@
 // overlap oracle, and charts are glued along seams into cells.
 #include "cspace/builder_impl.hpp"
 #include "algebra/ordinate.hpp"
+#include "algebra/proportional.hpp"
 #include "cspace/angle_filter.hpp"
 #include "cspace/valid_point.hpp"
 #include "arrangement/circle_segment_traits.hpp"
@@ -420,34 +421,6 @@ bool line_of(const IntegerPolynomial2& f, const mpz_class*& a, const mpz_class*&
   return sgn(*a) != 0 || sgn(*b) != 0;
 }
 
-// f = c g for a rational c != 0 (a missing coefficient is zero): f_ij g_0 = g_ij f_0 at every
-// (i, j), where f_0, g_0 are the coefficients at f's first non-zero place.
-bool proportional(const IntegerPolynomial2& f, const IntegerPolynomial2& g) {
-  static const mpz_class zero;
-  auto at = [](const IntegerPolynomial2& p, std::size_t i, std::size_t j) -> const mpz_class& {
-    return i < p.coefficients.size() && j < p.coefficients[i].size() ? p.coefficients[i][j] : zero;
-  };
-  thread_local mpz_class left, right;
-  const mpz_class *f0 = nullptr, *g0 = nullptr;
-  const std::size_t rows = std::max(f.coefficients.size(), g.coefficients.size());
-  for (std::size_t i = 0; i < rows; ++i) {
-    const std::size_t columns = std::max(i < f.coefficients.size() ? f.coefficients[i].size() : 0,
-                                         i < g.coefficients.size() ? g.coefficients[i].size() : 0);
-    for (std::size_t j = 0; j < columns; ++j) {
-      const mpz_class &fij = at(f, i, j), &gij = at(g, i, j);
-      if (!f0) {
-        if ((sgn(fij) == 0) != (sgn(gij) == 0)) return false;
-        if (sgn(fij) != 0) f0 = &fij, g0 = &gij;
-        continue;
-      }
-      mpz_mul(left.get_mpz_t(), fij.get_mpz_t(), g0->get_mpz_t());
-      mpz_mul(right.get_mpz_t(), gij.get_mpz_t(), f0->get_mpz_t());
-      if (mpz_cmp(left.get_mpz_t(), right.get_mpz_t()) != 0) return false;
-    }
-  }
-  return f0 != nullptr;
-}
-
 // Sign of the line a x + b y + c at the rational point (x, y), exactly (integer arithmetic:
 // c dx dy + a nx dy + b ny dx, with x = nx / dx, y = ny / dy and dx, dy > 0).
 // (Accumulated in place in this thread's two scratch integers: no integer allocated per call
@@ -602,7 +575,7 @@ void label_edges(ChartData& chart, bool by_support) {
         if (!chart.interval_polynomials[k].evaluate(x_box, y_box).contains_zero()) continue;
         // the sample's y is a root of the edge's support at sample_x (edge_y_at): a curve
         // proportional to the support vanishes there without the exact test
-        if ((proportional(chart.polynomials[k], edge.support) || algebra::vanishes_at(chart.polynomials[k], data.sample_x, y)) &&
+        if ((algebra::proportional(chart.polynomials[k], edge.support) || algebra::vanishes_at(chart.polynomials[k], data.sample_x, y)) &&
             valid_at(chart.validity[k], data.sample_x, data.sample_y))
           data.curves.push_back(k);
       }
