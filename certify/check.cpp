@@ -68,17 +68,6 @@ std::string show(const Rational& value) {
   return fraction_or_rounded(value);
 }
 std::string show(const RationalInterval& range) { return "[" + show(range.lo) + ", " + show(range.hi) + "]"; }
-// Two different values, exactly when both have a short exact form, else rounded to as many
-// significant digits as it takes to show that they differ (the exact fractions beyond 800).
-std::pair<std::string, std::string> show_apart(const Rational& a, const Rational& b) {
-  std::string x = show(a), y = show(b);
-  if (x != y && exact_text(x, a) && exact_text(y, b)) return {x, y};
-  for (int digits = 12; digits <= 800; digits *= 2) {
-    x = decimal(a, digits), y = decimal(b, digits);
-    if (x != y) return {x, y};
-  }
-  return {to_exact_string(a), to_exact_string(b)};
-}
 Interval hull(const Rational& lo, const Rational& hi) {
   Interval result(lo);
   mpfi_put_q(result.get(), const_cast<mpq_ptr>(hi.get_mpq_t()));
@@ -189,6 +178,18 @@ void check_crossing_parts(const Certificate& c, const CrossingWitness& w) {
 }
 
 }  // namespace
+
+// Two different values, exactly when both have a short exact form, else rounded to as many
+// significant digits as it takes to show that they differ (the exact fractions beyond 800).
+std::pair<std::string, std::string> show_apart(const Rational& a, const Rational& b) {
+  std::string x = show(a), y = show(b);
+  if (x != y && exact_text(x, a) && exact_text(y, b)) return {x, y};
+  for (int digits = 12; digits <= 800; digits *= 2) {
+    x = decimal(a, digits), y = decimal(b, digits);
+    if (x != y) return {x, y};
+  }
+  return {to_exact_string(a), to_exact_string(b)};
+}
 
 std::string fraction_or_rounded(const Rational& value) {
   std::string fraction = to_exact_string(value);

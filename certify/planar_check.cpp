@@ -117,9 +117,11 @@ std::string check_planar(const Certificate& c, const Model& model) {
   std::string closest;
   Rational bound = boundary_distance_lower_bound(shape_of(fixed), to_interval_map(fixed_map), shape_of(free), to_interval_map(map),
                                                  c.distance, &closest);
-  if (bound < c.distance)
-    reject("with " + where + " the certified distance lower bound of " + closest + " is " + to_decimal_string(bound) +
-           ", less than the claimed " + text(c.distance));
+  if (bound < c.distance) {
+    auto [found, claimed] = show_apart(bound, c.distance);
+    reject("with " + where + " the certified distance lower bound of " + closest + " is " + found +
+           ", less than the claimed " + claimed);
+  }
   for (int side = 0; side < 2; ++side) {
     const PlacedPart& inner = side ? placed_free : placed_fixed;
     const PlacedPart& outer = side ? placed_fixed : placed_free;

@@ -7,6 +7,7 @@
 #include "certify/tolerance_check.hpp"
 
 #include <string>
+#include <utility>
 
 namespace hipair::verify {
 
@@ -18,6 +19,10 @@ std::string show(const RationalInterval& r);
 /// `value` as its exact fraction when that has at most 60 characters, else 25 significant
 /// digits marked " (rounded)" (check.cpp; the fixed-axis messages' last resort too).
 std::string fraction_or_rounded(const Rational& value);
+/// Two different values as two different texts: exactly when both have a short exact form, else
+/// rounded to as many significant digits as it takes to tell them apart (check.cpp; every
+/// "a, less than b" message uses it so that it never shows two different numbers as equal).
+std::pair<std::string, std::string> show_apart(const Rational& a, const Rational& b);
 /// x intersected with y (both enclose the same number).
 Interval meet(const Interval& x, const Interval& y);
 /// The hull of two enclosures.
