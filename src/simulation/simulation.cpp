@@ -27,6 +27,7 @@
 #include "simulation/ordinate_filter.hpp"
 #include "simulation/touch_guard.hpp"
 #include "simulation/units.hpp"
+#include "simulation/vertex_graze.hpp"
 
 #include <Eigen/Dense>
 #include <boost/numeric/odeint.hpp>
@@ -150,6 +151,9 @@ struct ContactRow {
   MotionCrossing hit;
   std::optional<Active> near;   // a contact of another pair within the accuracy of closing
   std::vector<FeatureId> features;   // its feature pairs (the Coulomb frame)
+  // a grazing crossing through a vertex from free space into free space (vertex_pass): a touch
+  // without impulse, left out of the impact problem (session 41)
+  bool graze = false;
 };
 
 }  // namespace
@@ -1388,6 +1392,30 @@ struct Simulation::Impl {
     return w >= 0 && alpha < 0 && w * w <= 2 * -alpha * accuracy;
   }
 
+  // The impact problem without the rows that only graze a vertex (ContactRow::graze): their
+  // impulses are 0, the others' are those of the problem without them. Without grazes, as before.
+  Vec solve_grazed(const std::vector<ContactRow>& rows, Vec& tangential) {
+    if (std::none_of(rows.begin(), rows.end(), [](const ContactRow& r) { return r.graze; }))
+      return solve_impacts(rows, &tangential);
+    std::vector<ContactRow> struck;
+    std::vector<std::size_t> index;
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      if (!rows[k].graze) {
+        struck.push_back(rows[k]);
+        index.push_back(k);
+      }
+    Vec lambda(rows.size(), 0.0);
+    tangential.assign(rows.size(), 0.0);
+    if (struck.empty()) return lambda;
+    Vec struck_tangential;
+    Vec struck_lambda = solve_impacts(struck, &struck_tangential);
+    for (std::size_t k = 0; k < index.size(); ++k) {
+      lambda[index[k]] = struck_lambda[k];
+      tangential[index[k]] = struck_tangential[k];
+    }
+    return lambda;
+  }
+
   void handle_contacts(std::vector<ContactRow> rows) {
     // Contacts of other pairs that are open but within the integrator's accuracy of closing (a
     // C-space gap g of their last impact's contact edge below the absolute tolerance, rad or
@@ -1431,7 +1459,7 @@ struct Simulation::Impl {
       for (std::size_t i = 0; i < dofs.size(); ++i) before[k] += rows[k].g[i] * v[i];
     }
     Vec tangential;
-    Vec lambda = solve_impacts(rows, &tangential);
+    Vec lambda = solve_grazed(rows, tangential);
     double vtol = velocity_tolerance();
     std::vector<std::size_t> separate;
     for (std::size_t k = 0; k < rows.size(); ++k) {
@@ -1460,7 +1488,7 @@ struct Simulation::Impl {
       e.normal_speed_after = after * time_scale;
       e.kind = SimulationEvent::Kind::impact;
       events.push_back(e);
-      std::optional<Active> sustained = r.near ? r.near : sustain(r.pair, r.hit, r.g);
+      std::optional<Active> sustained = r.graze ? std::optional<Active>{} : r.near ? r.near : sustain(r.pair, r.hit, r.g);
       if (sustained) last_contact[r.pair] = sustained;
       if (sustained && after > vtol && !settles(*sustained)) sustained.reset();
       if (sustained) {
@@ -2193,6 +2221,8 @@ struct Simulation::Impl {
         r.restitution = model.pairs[pair].restitution ? to_d(*model.pairs[pair].restitution) : 0.0;
         r.g = physical_row(pair, c, q);
         r.features = c.features;
+        r.graze = c.grazing && simulation::vertex_pass(*spaces[pair], c, pair_path(pair, path, 0, u_end)) ==
+                                   simulation::VertexPass::graze;
         rows.push_back(r);
       }
       project_active();
