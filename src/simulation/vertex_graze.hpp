@@ -6,7 +6,7 @@
 // the vertex's edges, and striking that edge is a velocity change physics does not make.
 #pragma once
 
-#include "hipair/cspace.hpp"
+#include <hipair/cspace.hpp>
 
 namespace hipair::simulation {
 
