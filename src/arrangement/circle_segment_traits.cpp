@@ -1216,19 +1216,22 @@ class Builder {
   IntegerPolynomial2 chart_side_support(int side) const {
     const Rational& q = side == 0 ? box_.y_lo : side == 1 ? box_.x_hi : side == 2 ? box_.y_hi : box_.x_lo;
     const int s = side == 0 || side == 3 ? 1 : -1;   // the sign of the variable's coefficient
-    mpz_class num = q.get_num(), den = q.get_den(), g;
+    // (the coefficients written where they stay: no initializer list copied into the rows)
+    IntegerPolynomial2 out;
+    out.coefficients.resize(2);
+    for (auto& row : out.coefficients) row.resize(2);
+    mpz_class& num = out.coefficients[0][0];
+    mpz_class& den = side == 0 || side == 2 ? out.coefficients[0][1] : out.coefficients[1][0];
+    num = q.get_num();
+    den = q.get_den();
+    thread_local mpz_class g;
     mpz_gcd(g.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
     if (g != 1) {
-      num /= g;
-      den /= g;
+      mpz_divexact(num.get_mpz_t(), num.get_mpz_t(), g.get_mpz_t());
+      mpz_divexact(den.get_mpz_t(), den.get_mpz_t(), g.get_mpz_t());
     }
-    if (s < 0) den = -den;
-    else num = -num;
-    IntegerPolynomial2 out;
-    if (side == 0 || side == 2)
-      out.coefficients = {{num, den}, {mpz_class(0), mpz_class(0)}};
-    else
-      out.coefficients = {{num, mpz_class(0)}, {den, mpz_class(0)}};
+    if (s < 0) mpz_neg(den.get_mpz_t(), den.get_mpz_t());
+    else mpz_neg(num.get_mpz_t(), num.get_mpz_t());
     return out;
   }
 
@@ -1239,12 +1242,19 @@ class Builder {
     const mpz_class& kx = coefficient(f, 1, 0);
     const mpz_class& ky = coefficient(f, 0, 1);
     const mpz_class& k0 = coefficient(f, 0, 0);
-    mpz_class g = 0;
+    thread_local mpz_class g;
+    g = 0;
     for (const mpz_class* z : {&k0, &kx, &ky}) mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), z->get_mpz_t());
     const bool flip = sgn(ky) != 0 ? sgn(ky) < 0 : sgn(kx) > 0;
-    auto scaled = [&](const mpz_class& z) { return mpz_class(flip ? mpz_class(-z / g) : mpz_class(z / g)); };
+    if (flip) mpz_neg(g.get_mpz_t(), g.get_mpz_t());
+    // {{k0, ky}, {kx, 0}} / g (g divides each: exact), written where they stay (no
+    // initializer list copied into the rows)
     IntegerPolynomial2 out;
-    out.coefficients = {{scaled(k0), scaled(ky)}, {scaled(kx), mpz_class(0)}};
+    out.coefficients.resize(2);
+    for (auto& row : out.coefficients) row.resize(2);
+    mpz_divexact(out.coefficients[0][0].get_mpz_t(), k0.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(out.coefficients[0][1].get_mpz_t(), ky.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(out.coefficients[1][0].get_mpz_t(), kx.get_mpz_t(), g.get_mpz_t());
     return out;
   }
 
