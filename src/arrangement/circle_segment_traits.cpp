@@ -542,7 +542,7 @@ class Builder {
       // (its coordinates' exact values are made from the rationals kept here, when asked)
       const std::size_t index = known_points_.size();
       typename K::Point_2 p(known_ft(x, index, false), known_ft(y, index, true));
-      known_points_.push_back({p, x, y});
+      known_points_.emplace_back(p, x, y);   // (the rationals copied in place: no moved-from temporary)
       known_.insert(p.id(), index);
       by_value_.insert(h, index);
       return p;
@@ -998,6 +998,14 @@ class Builder {
       if (out.unbounded && result_.unbounded_face == none) result_.unbounded_face = result_.faces.size();
       result_.faces.push_back(std::move(out));
     }
+    // segments: how many edges take each input line's carried support, so that the last of
+    // them takes it by move (support_for's copy for the others: the same polynomial)
+    std::vector<std::size_t> support_uses;
+    if constexpr (segments) {
+      support_uses.assign(line_supports_.size(), 0);
+      for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e)
+        if (carries_support(e->curve())) ++support_uses[e->curve().data()];
+    }
     for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
       auto h = e->direction() == CGAL::ARR_LEFT_TO_RIGHT ? e : e->twin();
       h->set_data(2 * result_.edges.size() + 1);
@@ -1010,9 +1018,15 @@ class Builder {
       const Vertex& b = result_.vertices[out.max_vertex];
       out.vertical = is_vertical(arc, a, b);
       const int side = chart_side_of(arc, a, b);
-      out.support = side >= 0 ? chart_side_support(side) : support_for(arc);
-      if (options_.carry_line_supports && is_linear(arc) && arc.data() < line_supports_.size())
-        out.support_curve = arc.data();
+      if constexpr (segments) {
+        if (side < 0 && carries_support(arc) && --support_uses[arc.data()] == 0)
+          out.support = std::move(line_supports_[arc.data()]);   // (its last edge: no copy)
+        else
+          out.support = side >= 0 ? chart_side_support(side) : support_for(arc);
+      } else {
+        out.support = side >= 0 ? chart_side_support(side) : support_for(arc);
+      }
+      if (carries_support(arc)) out.support_curve = arc.data();
       out.left_face = h->face()->data();
       out.right_face = h->twin()->face()->data();
       const Bounds& ba = bounds[out.min_vertex];
@@ -1146,9 +1160,13 @@ class Builder {
     return arc.is_vertical();
   }
 
+  // Whether support_for gives `arc` an input line's carried support (line_supports_).
+  bool carries_support(const XCurve& arc) const {
+    return options_.carry_line_supports && is_linear(arc) && arc.data() < line_supports_.size();
+  }
+
   IntegerPolynomial2 support_for(const XCurve& arc) const {
-    if (!options_.carry_line_supports || !is_linear(arc) || arc.data() >= line_supports_.size())
-      return support_of<segments>(arc);
+    if (!carries_support(arc)) return support_of<segments>(arc);
     // segments: every piece of a contact line runs from its smaller to its larger end, and no
     // contact line lies on a chart side that runs the other way (segments_apply), so CGAL's
     // line of such an edge is oriented as oriented_line
@@ -1198,19 +1216,22 @@ class Builder {
   IntegerPolynomial2 chart_side_support(int side) const {
     const Rational& q = side == 0 ? box_.y_lo : side == 1 ? box_.x_hi : side == 2 ? box_.y_hi : box_.x_lo;
     const int s = side == 0 || side == 3 ? 1 : -1;   // the sign of the variable's coefficient
-    mpz_class num = q.get_num(), den = q.get_den(), g;
+    // (the coefficients written where they stay: no initializer list copied into the rows)
+    IntegerPolynomial2 out;
+    out.coefficients.resize(2);
+    for (auto& row : out.coefficients) row.resize(2);
+    mpz_class& num = out.coefficients[0][0];
+    mpz_class& den = side == 0 || side == 2 ? out.coefficients[0][1] : out.coefficients[1][0];
+    num = q.get_num();
+    den = q.get_den();
+    thread_local mpz_class g;
     mpz_gcd(g.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
     if (g != 1) {
-      num /= g;
-      den /= g;
+      mpz_divexact(num.get_mpz_t(), num.get_mpz_t(), g.get_mpz_t());
+      mpz_divexact(den.get_mpz_t(), den.get_mpz_t(), g.get_mpz_t());
     }
-    if (s < 0) den = -den;
-    else num = -num;
-    IntegerPolynomial2 out;
-    if (side == 0 || side == 2)
-      out.coefficients = {{num, den}, {mpz_class(0), mpz_class(0)}};
-    else
-      out.coefficients = {{num, mpz_class(0)}, {den, mpz_class(0)}};
+    if (s < 0) mpz_neg(den.get_mpz_t(), den.get_mpz_t());
+    else mpz_neg(num.get_mpz_t(), num.get_mpz_t());
     return out;
   }
 
@@ -1221,12 +1242,19 @@ class Builder {
     const mpz_class& kx = coefficient(f, 1, 0);
     const mpz_class& ky = coefficient(f, 0, 1);
     const mpz_class& k0 = coefficient(f, 0, 0);
-    mpz_class g = 0;
+    thread_local mpz_class g;
+    g = 0;
     for (const mpz_class* z : {&k0, &kx, &ky}) mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), z->get_mpz_t());
     const bool flip = sgn(ky) != 0 ? sgn(ky) < 0 : sgn(kx) > 0;
-    auto scaled = [&](const mpz_class& z) { return mpz_class(flip ? mpz_class(-z / g) : mpz_class(z / g)); };
+    if (flip) mpz_neg(g.get_mpz_t(), g.get_mpz_t());
+    // {{k0, ky}, {kx, 0}} / g (g divides each: exact), written where they stay (no
+    // initializer list copied into the rows)
     IntegerPolynomial2 out;
-    out.coefficients = {{scaled(k0), scaled(ky)}, {scaled(kx), mpz_class(0)}};
+    out.coefficients.resize(2);
+    for (auto& row : out.coefficients) row.resize(2);
+    mpz_divexact(out.coefficients[0][0].get_mpz_t(), k0.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(out.coefficients[0][1].get_mpz_t(), ky.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(out.coefficients[1][0].get_mpz_t(), kx.get_mpz_t(), g.get_mpz_t());
     return out;
   }
 
@@ -1259,6 +1287,25 @@ class Builder {
 // the segment traits is taken only while the chart box and every line's coefficients are well
 // inside the range: |box| <= 2^200 and |coefficient| <= 2^400 (a line's constant term is a
 // product of two coordinates). Tiny scales need no guard (underflow only widens the filter).
+// within_segment_filter_range(Rational(z), exponent) for an integer z, deciding from its bit
+// size alone where that decides (the rational form only between 2^exponent and 2^(exponent+1))
+bool integer_within_segment_filter_range(const mpz_class& z, int exponent) {
+  if (sgn(z) == 0) return true;
+  const long nb = static_cast<long>(mpz_sizeinbase(z.get_mpz_t(), 2));
+  if (nb + 1 <= exponent) return true;
+  if (nb - 1 >= exponent + 1) return false;
+  return within_segment_filter_range(Rational(z), exponent);
+}
+
+// -k0 / k == q exactly, k != 0: -k0 den(q) == num(q) k (q canonical, den(q) > 0)
+bool quotient_equals(const mpz_class& k0, const mpz_class& k, const Rational& q) {
+  thread_local mpz_class left, right;
+  mpz_mul(left.get_mpz_t(), k0.get_mpz_t(), q.get_den_mpz_t());
+  mpz_neg(left.get_mpz_t(), left.get_mpz_t());
+  mpz_mul(right.get_mpz_t(), q.get_num_mpz_t(), k.get_mpz_t());
+  return mpz_cmp(left.get_mpz_t(), right.get_mpz_t()) == 0;
+}
+
 bool segments_apply(const Box& box, const std::vector<IntegerPolynomial2>& curves, const Options& options) {
   if (!options.carry_line_supports) return false;
   const int box_limit = 200, coefficient_limit = 400;
@@ -1268,13 +1315,18 @@ bool segments_apply(const Box& box, const std::vector<IntegerPolynomial2>& curve
     int degree = total_degree(f);
     if (degree >= 2) return false;
     if (degree < 1) continue;
-    Linear line = linear_of(f);
-    if (!within_segment_filter_range(line.k0, coefficient_limit) ||
-        !within_segment_filter_range(line.kx, coefficient_limit) ||
-        !within_segment_filter_range(line.ky, coefficient_limit))
+    // (on the line's integer coefficients: no rational copies of them, no quotient)
+    const mpz_class& k0 = coefficient(f, 0, 0);
+    const mpz_class& kx = coefficient(f, 1, 0);
+    const mpz_class& ky = coefficient(f, 0, 1);
+    if (!integer_within_segment_filter_range(k0, coefficient_limit) ||
+        !integer_within_segment_filter_range(kx, coefficient_limit) ||
+        !integer_within_segment_filter_range(ky, coefficient_limit))
       return false;
-    if (sgn(line.kx) == 0 && -line.k0 / line.ky == box.y_hi) return false;
-    if (sgn(line.ky) == 0 && -line.k0 / line.kx == box.x_lo) return false;
+    // -k0 / ky == y_hi (a horizontal line on the top side), -k0 / kx == x_lo (a vertical line
+    // on the left side), compared as -k0 den == num k (k != 0: the line has degree 1)
+    if (sgn(kx) == 0 && quotient_equals(k0, ky, box.y_hi)) return false;
+    if (sgn(ky) == 0 && quotient_equals(k0, kx, box.x_lo)) return false;
   }
   return true;
 }

@@ -3,8 +3,12 @@
 // for numerators and denominators of at most 53 bits) against CGAL's own to_interval of the
 // exact rational, double_bounds against lower_double and upper_double, and
 // within_segment_filter_range (decided from bit sizes where they decide
-// it) against the rounded comparison it replaces, on generated rationals.
+// it) against the rounded comparison it replaces, on generated rationals. Session 41: the
+// segment stage's carried line supports (oriented in place, the last edge of a line taking its
+// support by move) and its applicability test on the lines' integer coefficients, against the
+// circle–segment stage with CGAL's own supporting lines, on generated lines.
 #include "algebra/exact_real.hpp"
+#include "arrangement/arrangement.hpp"
 #include "arrangement/circle_segment_traits.hpp"
 #include "random_rationals.hpp"
 
@@ -123,6 +127,102 @@ TEST(CSpaceSegmentStage, RangeGuardIsTheRoundedComparisonOnGeneratedRationals) {
   EXPECT_GE(inside, 5000u);
   EXPECT_GE(outside, 5000u);
   EXPECT_GE(rounded_onto_the_limit, 7u);
+}
+
+// Session 41 (trans41): build_circle_segment_arrangement with carried line supports (the
+// segment flavour where segments_apply, now decided on the lines' integer coefficients: bit
+// sizes, and -k0 / k against the top and left sides by cross products; each line's oriented
+// support written in place and moved into the last of its edges) equals the same build without
+// them (the circle–segment flavour, every support from CGAL's supporting line), field by field:
+// vertices, edges, supports, box sides, faces. Generated lines through random points of a
+// random non-dyadic box, lines along all four sides (the top and left ones make the segment
+// flavour decline), repeated and overlapping lines (zero clearance: one line cut into many
+// edges), at scales 2^-300 … 2^198 (coefficients across the segment filter's 2^400 limit).
+TEST(CSpaceSegmentStage, CarriedSupportsEqualCgalLinesOnGeneratedLinesAndScales) {
+  std::mt19937_64 random(4141);
+  using cspace::IntegerPolynomial2;
+  auto grid = [&](long range) {   // a non-dyadic grid value in [-range, range]
+    static const long dens[] = {1, 3, 7, 2};
+    const long den = dens[random() % 4];
+    return canonical(static_cast<long>(random() % static_cast<unsigned long>(2 * range * den + 1)) - range * den, den);
+  };
+  // k0 + kx x + ky y = 0 through p and q, as a primitive-free integer polynomial times a
+  // random non-zero integer (any sign: the stage must orient it)
+  auto line_through = [&](const Rational& px, const Rational& py, const Rational& qx, const Rational& qy) {
+    Rational kx = py - qy, ky = qx - px;
+    Rational k0 = -(kx * px + ky * py);
+    mpz_class lcm = 1;
+    for (const Rational* r : {&k0, &kx, &ky}) mpz_lcm(lcm.get_mpz_t(), lcm.get_mpz_t(), r->get_den_mpz_t());
+    long factor = 1 + static_cast<long>(random() % 3);
+    if (random() % 2) factor = -factor;
+    auto z = [&](const Rational& r) { return mpz_class(r.get_num() * (lcm / r.get_den()) * factor); };
+    IntegerPolynomial2 f;
+    f.coefficients = {{z(k0), z(ky)}, {z(kx), mpz_class(0)}};
+    return f;
+  };
+  int built = 0, declined_sides = 0, shared_lines = 0;
+  for (int instance = 0; instance < 60; ++instance) {
+    SCOPED_TRACE("instance " + std::to_string(instance));
+    static const int exponents[] = {-300, -1, 0, 0, 1, 150, 198};
+    const int exponent = exponents[instance % 7];
+    const Rational scale = exponent >= 0 ? canonical(mpz_class(1) << exponent, 1) : canonical(1, mpz_class(1) << -exponent);
+    Rational x_lo = grid(4), y_lo = grid(4);
+    Rational x_hi = x_lo + 1 + grid(3) * grid(3), y_hi = y_lo + 1 + grid(3) * grid(3);
+    if (x_hi <= x_lo) x_hi = x_lo + 2;
+    if (y_hi <= y_lo) y_hi = y_lo + canonical(5, 3);
+    cspace::raw::Box box{Rational(x_lo * scale), Rational(x_hi * scale), Rational(y_lo * scale), Rational(y_hi * scale)};
+    std::vector<IntegerPolynomial2> curves;
+    auto point_x = [&] { return Rational((x_lo + (x_hi - x_lo) * grid(1)) * scale); };
+    auto point_y = [&] { return Rational((y_lo + (y_hi - y_lo) * grid(1)) * scale); };
+    const int lines = 2 + static_cast<int>(random() % 6);
+    for (int k = 0; k < lines; ++k) {
+      Rational px = point_x(), py = point_y(), qx = point_x(), qy = point_y();
+      if (px == qx && py == qy) qx += scale;
+      curves.push_back(line_through(px, py, qx, qy));
+      if (random() % 4 == 0) curves.push_back(curves.back());   // the same line twice
+    }
+    // lines along the sides: bottom and right keep the segment flavour, top and left decline it
+    const int side = static_cast<int>(random() % 6);
+    if (side < 4) {
+      const Rational& ax = side == 1 ? box.x_hi : box.x_lo;
+      const Rational& ay = side == 2 ? box.y_hi : box.y_lo;
+      const bool vertical = side == 1 || side == 3;
+      curves.push_back(line_through(ax, ay, vertical ? ax : Rational(ax + scale), vertical ? Rational(ay + scale) : ay));
+      declined_sides += side >= 2;
+    }
+    // a line crossing all the others (many edges on one carried support)
+    curves.push_back(line_through(box.x_lo, point_y(), box.x_hi, point_y()));
+    std::vector<std::vector<cspace::ValidityClause>> validity(curves.size());
+    std::vector<std::vector<std::pair<Rational, Rational>>> windows;
+    cspace::raw::Options carried, cgal_lines;
+    cgal_lines.carry_line_supports = false;
+    const cspace::raw::Arrangement p = cspace::raw::build_circle_segment_arrangement(box, curves, validity, windows, carried);
+    const cspace::raw::Arrangement q = cspace::raw::build_circle_segment_arrangement(box, curves, validity, windows, cgal_lines);
+    ASSERT_EQ(p.vertices.size(), q.vertices.size());
+    for (std::size_t v = 0; v < p.vertices.size(); ++v) {
+      ASSERT_EQ(cspace::algebra::compare(p.vertices[v].x, q.vertices[v].x), 0) << "vertex " << v;
+      ASSERT_EQ(cspace::algebra::compare(p.vertices[v].y, q.vertices[v].y), 0) << "vertex " << v;
+    }
+    ASSERT_EQ(p.edges.size(), q.edges.size());
+    std::vector<int> edges_of(curves.size(), 0);
+    for (std::size_t e = 0; e < p.edges.size(); ++e) {
+      const cspace::raw::Edge &a = p.edges[e], &b = q.edges[e];
+      EXPECT_EQ(a.min_vertex, b.min_vertex) << "edge " << e;
+      EXPECT_EQ(a.max_vertex, b.max_vertex) << "edge " << e;
+      EXPECT_EQ(a.vertical, b.vertical) << "edge " << e;
+      EXPECT_EQ(a.box_side, b.box_side) << "edge " << e;
+      EXPECT_EQ(a.left_face, b.left_face) << "edge " << e;
+      EXPECT_EQ(a.right_face, b.right_face) << "edge " << e;
+      ASSERT_FALSE(a.support.coefficients.empty()) << "edge " << e;
+      EXPECT_EQ(a.support.coefficients, b.support.coefficients) << "the support of edge " << e;
+      if (a.support_curve != cspace::raw::none) ++edges_of.at(a.support_curve);
+    }
+    for (int n : edges_of) shared_lines += n >= 2;
+    ++built;
+  }
+  EXPECT_EQ(built, 60);
+  EXPECT_GE(declined_sides, 8);
+  EXPECT_GE(shared_lines, 60);   // lines cut into two or more edges (moved into the last)
 }
 
 }  // namespace
