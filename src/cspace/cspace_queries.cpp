@@ -522,6 +522,14 @@ struct OrdinateBounds {
 OrdinateBounds ordinate_bounds(const CSpace& space, std::size_t index);
 // records compare_ordinate's answer `side` (the sign of y - y_v) for the ordinate y
 void remember_ordinate(const CSpace& space, std::size_t index, const Rational& y, int side);
+// The sign of the deciding polynomial D of `signs` (the fibre or its y-derivative) at (x_v, y),
+// from exact signs at two rationals: x_v's isolating interval (x_lo, x_hi), narrowed once per
+// vertex to 2^-100 and remembered in the scan memo, where D(., y)'s x-derivative is certified
+// non-zero (outward-rounded double intervals) so that D(x_v, y) lies strictly between
+// D(x_lo, y) and D(x_hi, y): their common sign, where they have one; nullopt otherwise (the
+// exact sign at the algebraic x_v then decides). Switch cspace::ordinate_enclosure().
+std::optional<int> enclosed_fibre_sign(const CSpace& space, std::size_t index, const FibreSigns& signs,
+                                       const Rational& y);
 
 }  // namespace
 
@@ -561,6 +569,12 @@ int CSpace::compare_ordinate(VertexId id, const Rational& y_input) const {
   }
   const FibreSigns signs = fibre_signs(*this, index);
   if (signs.decides != FibreSigns::Decides::nothing) {
+    // the certified double-interval sign first (a non-zero sign only; the exact one otherwise)
+    if (const std::optional<int> enclosed = enclosed_fibre_sign(*this, index, signs, y)) {
+      const int side = *enclosed == signs.lower ? -1 : 1;
+      remember_ordinate(*this, index, y, side);
+      return side;
+    }
     const cspace::IntegerPolynomial2 derivative =
         signs.decides == FibreSigns::Decides::derivative ? y_derivative(vertex.y_curve) : cspace::IntegerPolynomial2{};
     int at = cspace::algebra::sign_at(signs.decides == FibreSigns::Decides::curve ? vertex.y_curve : derivative, vertex.x, y);
@@ -1381,6 +1395,14 @@ struct ScanMemo {
   std::vector<std::optional<FibreSigns>> fibre_signs;
   // per global vertex: the bounds compare_ordinate has proved on its ordinate (OrdinateBounds)
   std::vector<OrdinateBounds> ordinates;
+  // per global vertex: compare_ordinate's filter data (enclosed_fibre_sign), once made
+  struct FibreEnclosure {
+    cspace::IntegerPolynomial2 decider;   // the fibre or its y-derivative
+    Rational x_lo, x_hi;                  // x_lo < x_v < x_hi (narrowed); unused where x_v is rational
+    cspace::algebra::Interval x;          // doubles around [x_lo, x_hi]
+    bool exact = false;                   // x_v is rational (the exact sign is cheap)
+  };
+  std::vector<std::optional<FibreEnclosure>> fibre_enclosures;
 };
 
 std::shared_ptr<ScanMemo> fresh_scan_memo(const CSpace::Impl& impl) {
@@ -1472,6 +1494,48 @@ FibreSigns fibre_signs(const CSpace& space, std::size_t index) {
   std::optional<FibreSigns>& signs = memo->fibre_signs[index];
   if (!signs) signs = fibre_signs_of(vertex);
   return *signs;
+}
+
+// enclosed_fibre_sign's data for vertex `index`, made on first use
+const ScanMemo::FibreEnclosure& fibre_enclosure(const CSpace::Impl& impl, ScanMemo& memo, std::size_t index,
+                                                const FibreSigns& signs) {
+  if (memo.fibre_enclosures.empty()) memo.fibre_enclosures.resize(impl.vertices.size());
+  std::optional<ScanMemo::FibreEnclosure>& enclosure = memo.fibre_enclosures[index];
+  if (!enclosure) {
+    auto [c, v] = impl.vertex_local[index];
+    const cspace::raw::Vertex& vertex = impl.charts[c].arrangement.vertices[v];
+    ScanMemo::FibreEnclosure made;
+    made.decider = signs.decides == FibreSigns::Decides::curve ? vertex.y_curve : y_derivative(vertex.y_curve);
+    Real x = vertex.x;
+    x.refine_to(Rational(mpz_class(1), mpz_class(1) << 100));
+    made.exact = x.exact;
+    made.x_lo = x.lower;
+    made.x_hi = x.upper;
+    made.x = {cspace::algebra::lower_double(x.lower), cspace::algebra::upper_double(x.upper)};
+    enclosure = std::move(made);
+  }
+  return *enclosure;
+}
+
+std::optional<int> enclosed_fibre_sign(const CSpace& space, std::size_t index, const FibreSigns& signs,
+                                       const Rational& y) {
+  if (!cspace::ordinate_enclosure()) return std::nullopt;
+  std::shared_ptr<ScanMemo> memo = scan_memo_of(CSpaceAccess::shared(space));
+  const ScanMemo::FibreEnclosure& enclosure = fibre_enclosure(implementation(space), *memo, index, signs);
+  if (enclosure.exact) return std::nullopt;
+  // d^k D(x, y) for y = n / d (d > 0): D(., y)'s sign everywhere
+  const cspace::algebra::Polynomial p = cspace::algebra::substitute_y(enclosure.decider, y);
+  if (p.size() < 2) return std::nullopt;
+  // p' over the doubles around [x_lo, x_hi], outward-rounded: p strictly monotone there where it
+  // excludes zero (NaN fails both tests)
+  cspace::algebra::Interval slope{0, 0};
+  for (std::size_t i = p.size() - 1; i >= 1; --i)
+    slope = slope * enclosure.x + cspace::algebra::enclose(mpz_class(p[i] * static_cast<unsigned long>(i)));
+  if (!(slope.lo > 0) && !(slope.hi < 0)) return std::nullopt;
+  const int lower = cspace::algebra::sign_at(p, enclosure.x_lo);
+  if (lower == 0 || cspace::algebra::sign_at(p, enclosure.x_hi) != lower) return std::nullopt;
+  ++cspace::ordinate_enclosure_decided();
+  return lower;
 }
 
 class MotionScanner {

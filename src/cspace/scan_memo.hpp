@@ -32,6 +32,17 @@ inline bool& ordinate_memo() { return thread_switch<OrdinateMemoTag>(); }
 // How many ordinates on this thread the memo's bounds decided (tests, profiling).
 struct OrdinateMemoHitsTag;
 inline std::size_t& ordinate_memo_hits() { return thread_counter<OrdinateMemoHitsTag>(); }
+// CSpace::compare_ordinate's certified filter (cspace_queries.cpp: enclosed_fibre_sign, its data
+// in the scan memo): the sign of the deciding polynomial (the fibre or its y-derivative) at
+// (x_v, y) from an outward-rounded double-interval evaluation over a few-ulp enclosure of the
+// vertex's algebraic abscissa x_v; only a sign whose enclosure excludes zero is taken, else the
+// exact sign at x_v decides as before. The answers are the same. On by default; tests switch it
+// off per thread to compare (CSpaceOrdinateEnclosure.*).
+struct OrdinateEnclosureTag;
+inline bool& ordinate_enclosure() { return thread_switch<OrdinateEnclosureTag>(); }
+// How many ordinates on this thread the filter decided (tests, profiling).
+struct OrdinateEnclosureDecidedTag;
+inline std::size_t& ordinate_enclosure_decided() { return thread_counter<OrdinateEnclosureDecidedTag>(); }
 
 // How many first_crossing calls on this thread took a memo already made for their space (tests).
 struct ScanMemoHitsTag;

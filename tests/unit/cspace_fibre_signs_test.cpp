@@ -6,6 +6,7 @@
 // rationals inside, the doubles next to the middle, and just outside: every answer (the sign,
 // or that it throws) equals the answer without the memo. And compare_ordinate's memo of the
 // bounds it proved (OrdinateBounds, switch cspace::ordinate_memo(); CSpaceOrdinateMemo below).
+#include "core/model_scale.hpp"
 #include "cspace/scan_memo.hpp"
 #include "cspace_test_support.hpp"
 
@@ -22,6 +23,8 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace hipair {
@@ -198,6 +201,93 @@ TEST(CSpaceOrdinateMemo, AnswersEqualTheAnswersWithoutIt) {
               tally.vertices, tally.compared, hits);
   EXPECT_GT(tally.vertices, 100u);
   EXPECT_GT(hits, tally.compared / 4);
+}
+
+
+// Session 41: compare_ordinate's filter (cspace_queries.cpp, enclosed_fibre_sign; switch
+// cspace::ordinate_enclosure()): exact signs of the deciding polynomial at the ends of x_v's
+// narrowed isolating interval where it is certified monotone in x. Oracle: the same comparison
+// with the filter off (the exact sign at the algebraic abscissa). The memo of proved bounds is off
+// throughout, so that every ordinate inside the isolating interval reaches the filter. Every
+// vertex with an inexact ordinate of the example and degenerate spaces, and of the scotch yoke
+// and the Geneva drive scaled by 2^300 and 2^-300, in random order; ordinates: a bracket of y_v
+// narrowed by 40 halvings, the doubles next to its middle (1..4 ulps either way, as a held
+// contact's ordinates at the vertex), its ends, its middle moved by 2^-k times the isolating
+// interval's width (k = 1 ... 300) either way, random rationals inside the isolating interval,
+// its ends and middle.
+void filtered_ordinates(const CSpace& space, std::uint64_t seed, const std::string& name, Tally& tally) {
+  std::mt19937_64 random(seed);
+  test::FlagSwitch<&cspace::ordinate_memo> no_memo(false);
+  std::vector<std::size_t> order = inexact_vertices(space, tally);
+  std::shuffle(order.begin(), order.end(), random);
+  auto exact = [&](std::size_t v, const Rational& y) {
+    test::FlagSwitch<&cspace::ordinate_enclosure> off(false);
+    return compared(space, v, y);
+  };
+  for (std::size_t v : order) {
+    const CSpaceVertex& vertex = space.vertices()[v];
+    const Rational width = vertex.y_upper - vertex.y_lower;
+    Rational lo = vertex.y_lower, hi = vertex.y_upper;
+    for (int k = 0; k < 40; ++k) {
+      Rational m = (lo + hi) / 2;
+      m.canonicalize();
+      const std::string side = compared(space, v, m);   // (the inputs only: each answer is checked below)
+      if (side == "-1") lo = m;
+      else if (side == "1") hi = m;
+      else break;
+    }
+    Rational middle = (lo + hi) / 2;
+    middle.canonicalize();
+    std::vector<Rational> ys{lo, hi, middle, vertex.y_lower, vertex.y_upper};
+    for (int way : {-1, 1}) {
+      double d = middle.get_d();
+      for (int k = 0; k < 4; ++k) {
+        d = std::nextafter(d, way * 1e300);
+        ys.push_back(Rational(d));
+      }
+      for (int k : {1, 3, 10, 20, 30, 40, 45, 52, 60, 80, 120, 300}) {
+        Rational y = middle + way * width / Rational(mpz_class(1) << k);
+        y.canonicalize();
+        ys.push_back(y);
+      }
+    }
+    for (int k = 0; k < 4; ++k) {
+      Rational u(mpz_class(static_cast<unsigned long>(random() % 1000003)), 1000003);
+      Rational y = vertex.y_lower + u * width;
+      y.canonicalize();
+      ys.push_back(y);
+    }
+    std::shuffle(ys.begin(), ys.end(), random);
+    for (const Rational& y : ys) {
+      const std::size_t before = cspace::ordinate_enclosure_decided();
+      const std::string on = compared(space, v, y);
+      if (cspace::ordinate_enclosure_decided() != before) ++tally.inside;
+      ASSERT_EQ(on, exact(v, y)) << name << " " << space.first_part() << ":" << space.second_part() << " vertex " << v
+                                 << " y " << y;
+      ++tally.compared;
+    }
+  }
+}
+
+TEST(CSpaceOrdinateEnclosure, AnswersEqualTheExactSignsAtTheAlgebraicAbscissa) {
+  Tally tally;
+  for_each_ordinate_space(4141, [&](const CSpace& space, std::uint64_t seed, const std::string& name) {
+    filtered_ordinates(space, seed, name, tally);
+  });
+  ASSERT_FALSE(HasFatalFailure());
+  std::uint64_t seed = 41410;
+  for (const auto& [file, first, second] : {std::tuple{"scotch-yoke.json", "crank", "yoke"},
+                                             std::tuple{"geneva-drive.json", "driver", "wheel"}})
+    for (long shift : {300L, -300L}) {
+      const Model model = scaled_model(read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / file), shift);
+      const CSpace space = CSpace::build(model, first, second);
+      filtered_ordinates(space, seed++, std::string(file) + " scaled by 2^" + std::to_string(-shift), tally);
+      ASSERT_FALSE(HasFatalFailure());
+    }
+  std::printf("ordinate filter: %zu vertices with an inexact ordinate, %zu comparisons, %zu decided by the filter\n",
+              tally.vertices, tally.compared, tally.inside);
+  EXPECT_GT(tally.vertices, 100u);
+  EXPECT_GT(tally.inside, tally.compared / 4);
 }
 
 }  // namespace
