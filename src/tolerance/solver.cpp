@@ -13,7 +13,7 @@ using model_detail::Arithmetic;
 using model_detail::AutoDiff;
 
 CurveSolver::CurveSolver(std::shared_ptr<const model_detail::ParametricModel> model)
-    : model_(std::move(model)), n_(model_->parameter_count()) {
+    : model_(std::move(model)), n_(model_->parameter_count()), edges_(std::make_shared<TaylorEdgeMemo>(model_)) {
   std::vector<Jet<double>> deviations(n_);
   for (std::size_t i = 0; i < n_; ++i) deviations[i] = Jet<double>::variable(0.0, i, n_ + 1);
   autodiff_ = model_->parameter_values(deviations);
@@ -458,20 +458,21 @@ void CurveSolver::tighten_partials_or_throw(const CurveSlice& curve, const BoxGe
 
 bool CurveSolver::taylor_geometry(const CurveSlice& curve, const BoxGeometry& memo, const Box& box) const {
   std::call_once(memo.taylor_once, [&] {
-    const std::vector<std::size_t>& active = memo.active;
-    std::size_t k = active.size();
-    std::vector<TaylorJet> jets(n_);
-    for (std::size_t i = 0; i < n_; ++i) {
-      // a parameter varying in the box that the curve does not depend on enters as its range
-      bool varies = box.hi[i] > box.lo[i];
-      jets[i] = TaylorJet(TaylorModel1(varies ? Interval(box.lo[i], box.hi[i]) : Interval::point(box.lo[i])));
-    }
-    for (std::size_t a = 0; a < k; ++a) {
-      std::size_t i = active[a];
-      jets[i] = TaylorJet::variable(TaylorModel1::over(box.lo[i], box.hi[i], a), a, k + 1);
-    }
+    // geometry(curve, model_->parameter_values(taylor_deviations(box, memo.active))), each edge
+    // and axis through the edge memo (edge_memo.hpp: the same values, bit for bit); the
+    // parameter values are made only when one of them is not in the memo
+    std::optional<std::vector<TaylorJet>> values;
+    auto parameters = [&]() -> const std::vector<TaylorJet>& {
+      if (!values) values = model_->parameter_values(taylor_deviations(box, memo.active));
+      return *values;
+    };
     try {
-      memo.taylor = geometry(curve, model_->parameter_values(jets));
+      PairGeometry<TaylorJet> g;
+      g.first = edges_->edge(curve.first, box, memo.active, parameters);
+      g.second = edges_->edge(curve.second, box, memo.active, parameters);
+      edges_->motion(curve.fixed_part, box, memo.active, parameters, g.fixed_pivot, g.fixed_direction);
+      edges_->motion(curve.free_part, box, memo.active, parameters, g.free_pivot, g.free_direction);
+      memo.taylor = std::move(g);
       memo.has_taylor = true;
     } catch (const NumericError&) {
       // a construction the Taylor models cannot follow over this box (a square root or atan2

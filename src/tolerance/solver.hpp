@@ -5,6 +5,7 @@
 #pragma once
 
 #include "tolerance/contact_function.hpp"
+#include "tolerance/edge_memo.hpp"
 #include "tolerance/hessian_jet.hpp"
 #include "tolerance/jet.hpp"
 
@@ -218,6 +219,8 @@ class CurveSolver {
   /// Eigen's AutoDiffScalar: the kernels mix constants (no gradient) into nested expressions,
   /// which AutoDiffScalar's dynamic-size gradients do not reconcile.
   std::vector<Jet<double>> autodiff_;
+  /// The Taylor-model edges and axes over boxes (taylor_geometry), shared by the threads.
+  std::shared_ptr<TaylorEdgeMemo> edges_;
   bool compact_jets_ = true;
   bool reuse_y_jets_ = true;
   bool second_order_ = true;
