@@ -78,14 +78,17 @@ void enclose_at_point(const MpPolynomial& p, mpfr_srcptr x, Scratch& s) {
   }
 }
 
-// out = the least (rounding down) or the greatest (rounding up) of the four end products of
-// [lo, hi] [a, b], each rounded that way; t is scratch.
+using Operation = int (*)(mpfr_ptr, mpfr_srcptr, mpfr_srcptr, mpfr_rnd_t);
+
+// out = the least (rounding down) or the greatest (rounding up) of the four end results of
+// [lo, hi] op [a, b] (op: product, or quotient when [a, b] excludes zero), each rounded that
+// way; t is scratch.
 void extreme_product(mpfr_ptr out, mpfr_ptr t, mpfr_srcptr lo, mpfr_srcptr hi, mpfr_srcptr a, mpfr_srcptr b,
-                     mpfr_rnd_t rounding) {
+                     mpfr_rnd_t rounding, Operation op = mpfr_mul) {
   const bool least = rounding == MPFR_RNDD;
-  mpfr_mul(out, lo, a, rounding);
+  op(out, lo, a, rounding);
   for (auto [x, y] : {std::pair{lo, b}, std::pair{hi, a}, std::pair{hi, b}}) {
-    mpfr_mul(t, x, y, rounding);
+    op(t, x, y, rounding);
     if (least ? mpfr_less_p(t, out) : mpfr_greater_p(t, out)) mpfr_swap(out, t);
   }
 }
@@ -159,7 +162,9 @@ namespace {
 // replaces the end whose sign it shares (q changes sign once in u's interval, at u).
 class Bracket {
  public:
-  Bracket(const Real& u, long bits) : u_(u), q_(u.polynomial), a_(bits), b_(bits), m_(bits) {
+  Bracket(const Real& u, long bits)
+      : u_(u), q_(u.polynomial), dq_(derivative(u.polynomial)), a_(bits), b_(bits), m_(bits), d_lo_(bits), d_hi_(bits),
+        n_(bits) {
     mpfr_set_q(a_.v, u.lower.get_mpq_t(), MPFR_RNDD);
     mpfr_set_q(b_.v, u.upper.get_mpq_t(), MPFR_RNDU);
   }
@@ -203,13 +208,40 @@ class Bracket {
     b_.widen(bits);
     if (left_rational_) mpfr_set_q(a_.v, u_.lower.get_mpq_t(), MPFR_RNDD);
     if (right_rational_) mpfr_set_q(b_.v, u_.upper.get_mpq_t(), MPFR_RNDU);
-    mpfr_set_prec(m_.v, static_cast<mpfr_prec_t>(bits));
+    for (Mp* m : {&m_, &d_lo_, &d_hi_, &n_}) mpfr_set_prec(m->v, static_cast<mpfr_prec_t>(bits));
+  }
+  /// One interval Newton step: u = m - q(m) / q'(xi) for the midpoint m and some xi in the
+  /// bracket (the mean value theorem), so u lies in m - Q(m) / Q'([lo, hi]) for enclosures Q, Q'
+  /// (every bound rounded outwards); an end of that interval strictly inside the bracket's
+  /// (left, right) replaces it (u may then be that end: the bracket is closed from here on).
+  /// Nothing when Q' contains zero. Quadratic convergence near a simple root, at this precision.
+  void newton(Scratch& s) {
+    enclose_over(dq_, a_.v, b_.v, s);
+    if (mpfr_sgn(s.lo.v) <= 0 && mpfr_sgn(s.hi.v) >= 0) return;
+    mpfr_swap(d_lo_.v, s.lo.v);   // (the same precision)
+    mpfr_swap(d_hi_.v, s.hi.v);
+    mpfr_add(m_.v, a_.v, b_.v, MPFR_RNDN);
+    mpfr_div_2ui(m_.v, m_.v, 1, MPFR_RNDN);
+    enclose_at_point(q_, m_.v, s);
+    // the new lower end: m - (the greatest quotient, rounded up), rounded down
+    extreme_product(s.t1.v, s.t2.v, s.lo.v, s.hi.v, d_lo_.v, d_hi_.v, MPFR_RNDU, mpfr_div);
+    mpfr_sub(n_.v, m_.v, s.t1.v, MPFR_RNDD);
+    if (left_rational_ ? mpfr_cmp_q(n_.v, u_.lower.get_mpq_t()) > 0 : mpfr_greater_p(n_.v, a_.v)) {
+      mpfr_swap(a_.v, n_.v);
+      left_rational_ = false;
+    }
+    extreme_product(s.t1.v, s.t2.v, s.lo.v, s.hi.v, d_lo_.v, d_hi_.v, MPFR_RNDD, mpfr_div);
+    mpfr_sub(n_.v, m_.v, s.t1.v, MPFR_RNDU);
+    if (right_rational_ ? mpfr_cmp_q(n_.v, u_.upper.get_mpq_t()) < 0 : mpfr_less_p(n_.v, b_.v)) {
+      mpfr_swap(b_.v, n_.v);
+      right_rational_ = false;
+    }
   }
 
  private:
   const Real& u_;
-  const MpPolynomial q_;
-  Mp a_, b_, m_;
+  const MpPolynomial q_, dq_;   // u's polynomial, its derivative
+  Mp a_, b_, m_, d_lo_, d_hi_, n_;
   bool left_rational_ = true, right_rational_ = true;
   int low_sign_ = 0;   // q's sign at u.lower, when the first halving needs it
 };
@@ -240,7 +272,13 @@ std::optional<int> multiprecision_sign(const Polynomial& p, const Real& u, long 
 }
 
 MultiprecisionBits multiprecision_order_bits(const Real& a, const Real& b) {
-  return bits_for_width(std::max(coefficient_bits(a.polynomial), coefficient_bits(b.polynomial)));
+  MultiprecisionBits bits = bits_for_width(std::max(coefficient_bits(a.polynomial), coefficient_bits(b.polynomial)));
+  // distinct numbers that the double filter could not separate differ far below a double's
+  // precision (mixed scales: the lengths' ratio squared and more); twice the coefficients' width
+  // separates most of them at once (the two rotating squares of 10^-30 / 10^30 mm: 29 % fewer
+  // instructions in compare than from 192 bits, where every pair went on to the gcd and more)
+  bits.start = std::max(bits.start, 2 * bits.width);
+  return bits;
 }
 
 std::optional<int> multiprecision_order(const Real& a, const Real& b, long start_bits, long max_bits,
@@ -253,9 +291,12 @@ std::optional<int> multiprecision_order(const Real& a, const Real& b, long start
     // a < right end of a's bracket <= x.hi, and likewise for the others
     if (mpfr_less_p(x.hi(), y.lo())) return -1;
     if (mpfr_less_p(y.hi(), x.lo())) return 1;
-    // both halved 16 times (as far as this precision allows); at a floor, the next precision
-    const int done_x = x.halve(16, s), done_y = y.halve(16, s);
-    if (done_x == 16 && done_y == 16) continue;
+    // both halved twice (as far as this precision allows) and narrowed by a Newton step; at a
+    // floor, the next precision
+    const int done_x = x.halve(2, s), done_y = y.halve(2, s);
+    x.newton(s);
+    y.newton(s);
+    if (done_x == 2 && done_y == 2) continue;
     if (mpfr_less_p(x.hi(), y.lo())) return -1;
     if (mpfr_less_p(y.hi(), x.lo())) return 1;
     if (bits == start_bits && equal && equal()) return 0;
