@@ -112,6 +112,7 @@ long coefficient_bits(const Polynomial& p) {
 }
 
 Rational to_rational(mpfr_srcptr v) {
+  if (mpfr_zero_p(v)) return Rational(0);   // (its exponent is not a number's)
   mpz_class mantissa;
   const mpfr_exp_t e = mpfr_get_z_2exp(mantissa.get_mpz_t(), v);
   Rational r(mantissa);
@@ -279,6 +280,19 @@ MultiprecisionBits multiprecision_order_bits(const Real& a, const Real& b) {
   // instructions in compare than from 192 bits, where every pair went on to the gcd and more)
   bits.start = std::max(bits.start, 2 * bits.width);
   return bits;
+}
+
+std::vector<std::pair<Rational, Rational>> multiprecision_brackets(const Real& u, long bits, int rounds) {
+  std::vector<std::pair<Rational, Rational>> brackets;
+  if (u.exact || u.polynomial.size() < 2) return brackets;
+  Scratch s(bits);
+  Bracket x(u, bits);
+  for (int round = 0; round < rounds; ++round) {
+    x.halve(2, s);
+    x.newton(s);
+    brackets.emplace_back(to_rational(x.lo()), to_rational(x.hi()));
+  }
+  return brackets;
 }
 
 std::optional<int> multiprecision_order(const Real& a, const Real& b, long start_bits, long max_bits,

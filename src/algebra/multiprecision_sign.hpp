@@ -8,6 +8,8 @@
 
 #include <functional>
 #include <optional>
+#include <utility>
+#include <vector>
 
 namespace hipair::cspace::algebra {
 
@@ -38,6 +40,10 @@ std::optional<int> multiprecision_order(const Real& a, const Real& b, long start
                                         const std::function<bool()>& equal = nullptr);
 /// multiprecision_order's precisions for a and b (as multiprecision_sign_bits').
 MultiprecisionBits multiprecision_order_bits(const Real& a, const Real& b);
+
+/// multiprecision_order's bracket of u at `bits` after each of `rounds` rounds (two halvings and
+/// an interval Newton step each), as exact rationals, for tests: each must hold u.
+std::vector<std::pair<Rational, Rational>> multiprecision_brackets(const Real& u, long bits, int rounds);
 
 /// compare(a, b) by the exact path only (rational bisection, the gcd's roots): tests' oracle.
 int exact_compare(const Real& a, const Real& b);

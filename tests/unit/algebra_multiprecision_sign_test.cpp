@@ -332,5 +332,52 @@ TEST(AlgebraMultiprecisionOrder, AtThePrecisionsFloorNoOrderIsWrong) {
               tally.ordered);
 }
 
+
+// The brackets the MPFR order narrows (halvings and interval Newton steps), round by round down
+// to the precision's floor, against u exactly (Real::compare with the ends: a sign of u's
+// polynomial at a rational): u a root of a linear polynomial with wide random coefficients (a
+// rational no MPFR number equals, met within an ulp or two by the Newton ends) or of a random
+// quadratic or cubic, 64-1 024 bits, near 2^+-1000. Every bracket must hold u: a bound rounded
+// the wrong way fails this.
+TEST(AlgebraMultiprecisionOrder, BracketsHoldTheNumberDownToThePrecisionsFloor) {
+  std::mt19937_64 random(20261241);
+  int brackets = 0, tight = 0;
+  for (int round = 0; round < 120; ++round) {
+    const long precision = 64L << (random() % 5);
+    Real u;
+    if (round % 2 == 0) {
+      // c1 x + c0 = 0 with an odd c1 (the root is not dyadic), in (floor, floor + 1) scaled
+      const int bits = static_cast<int>(precision) + static_cast<int>(random() % 200);
+      mpz_class c1 = abs(random_integer(random, bits, false)) | 1, c0 = random_integer(random, bits + static_cast<int>(random() % 64), true);
+      if (mpz_divisible_p(c0.get_mpz_t(), c1.get_mpz_t())) continue;
+      mpz_class f;
+      mpz_fdiv_q(f.get_mpz_t(), mpz_class(-c0).get_mpz_t(), c1.get_mpz_t());
+      u = Real{Polynomial{c0, c1}, Rational(f), Rational(f + 1), false};
+    } else {
+      const int shift = round % 3 == 0 ? 0 : (round % 3 == 1 ? 1000 : -1000);
+      auto drawn = random_irrational(random, 50 + static_cast<int>(random() % 400), shift / 3);
+      if (!drawn) continue;
+      u = *drawn;
+    }
+    const std::string at = "round " + std::to_string(round) + " (P = " + std::to_string(precision) + ")";
+    const auto narrowed = multiprecision_brackets(u, precision, 40 + static_cast<int>(precision / 8));
+    for (std::size_t k = 0; k < narrowed.size(); ++k) {
+      const auto& [lo, hi] = narrowed[k];
+      ++brackets;
+      EXPECT_GE(u.compare(lo), 0) << at << ", round " << k << ": the bracket's lower end is above the number";
+      EXPECT_LE(u.compare(hi), 0) << at << ", round " << k << ": the bracket's upper end is below the number";
+    }
+    if (!narrowed.empty()) {
+      const auto& [lo, hi] = narrowed.back();
+      // at the floor: a few ulps of the precision (|u| + 1 as the scale)
+      Rational ulps = (abs(lo) + 1) * 64 / Rational(mpz_class(1) << static_cast<mp_bitcnt_t>(precision));
+      if (hi - lo <= ulps) ++tight;
+    }
+  }
+  EXPECT_GT(brackets, 3000);
+  EXPECT_GT(tight, 60);
+  std::printf("%d brackets, %d narrowed to a few ulps\n", brackets, tight);
+}
+
 }  // namespace
 }  // namespace hipair::cspace::algebra
