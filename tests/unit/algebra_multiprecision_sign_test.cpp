@@ -227,6 +227,9 @@ Polynomial moved(const Polynomial& q, const Rational& delta) {
 
 struct OrderTally {
   int cases = 0, distinct = 0, equal = 0, ordered = 0;
+  void print() const {
+    std::printf("%d cases: %d distinct, %d equal, %d ordered by MPFR\n", cases, distinct, equal, ordered);
+  }
 };
 
 // compare, the exact path and the MPFR order (at its default precisions, or at `bits` alone when
@@ -297,8 +300,7 @@ TEST(AlgebraMultiprecisionOrder, CloseEqualAndWideScaleNumbersInTheirKnownOrder)
   }
   EXPECT_GT(tally.distinct, 16);
   EXPECT_GT(tally.equal, 8);
-  std::printf("%d cases: %d distinct, %d equal, %d ordered by MPFR\n", tally.cases, tally.distinct, tally.equal,
-              tally.ordered);
+  tally.print();
 }
 
 // At one precision P (no doubling), numbers 2^-(P - 8) ... 2^-(P + 8) of |u| apart and equal
@@ -328,8 +330,7 @@ TEST(AlgebraMultiprecisionOrder, AtThePrecisionsFloorNoOrderIsWrong) {
     check_order(u, w, 0, tally, at + ", equal", precision);
   }
   EXPECT_GT(tally.cases, 50);
-  std::printf("%d cases: %d distinct, %d equal, %d ordered by MPFR\n", tally.cases, tally.distinct, tally.equal,
-              tally.ordered);
+  tally.print();
 }
 
 
