@@ -853,16 +853,11 @@ bool common_root_in_overlap(const Real& a, const Real& b) {
 
 }  // namespace
 
-int compare(const Real& a, const Real& b) {
-  if (a.exact) return -b.compare(a.lower);
-  if (b.exact) return a.compare(b.lower);
-  if (compare_rationals(a.upper, b.lower) <= 0) return -1;
-  if (compare_rationals(b.upper, a.lower) <= 0) return 1;
-  // one polynomial (the same root met in two slices, two roots of one slice): two signs decide,
-  // before the double bisection of both numbers (which cannot separate equal ones)
-  if (std::optional<int> order = one_polynomial_order(a, b)) return *order;
-  if (int s = separated_in_doubles(a, b)) return s;
-  // Overlapping intervals: equal iff the gcd has a root in the common part.
+namespace {
+
+// compare()'s exact tail, for overlapping intervals that the filters did not separate: equal iff
+// the gcd has a root in the common part.
+int compare_overlapping(const Real& a, const Real& b) {
   {
     // distinct numbers usually separate after a few halvings: try that before the gcd
     Real x = a, y = b;
@@ -884,6 +879,37 @@ int compare(const Real& a, const Real& b) {
     if (x.upper <= y.lower) return -1;
     if (y.upper <= x.lower) return 1;
   }
+}
+
+}  // namespace
+
+int compare(const Real& a, const Real& b) {
+  if (a.exact) return -b.compare(a.lower);
+  if (b.exact) return a.compare(b.lower);
+  if (compare_rationals(a.upper, b.lower) <= 0) return -1;
+  if (compare_rationals(b.upper, a.lower) <= 0) return 1;
+  // one polynomial (the same root met in two slices, two roots of one slice): two signs decide,
+  // before the double bisection of both numbers (which cannot separate equal ones)
+  if (std::optional<int> order = one_polynomial_order(a, b)) return *order;
+  if (int s = separated_in_doubles(a, b)) return s;
+  // Coefficients of more than 192 bits (mixed scales, where the double filter cannot bisect):
+  // both brackets bisected in MPFR (every sign certified) at the start precision; where they
+  // still overlap, equality by the gcd, and distinct numbers by MPFR at rising precisions, the
+  // exact bisection only past those. Narrower coefficients keep the exact path, as for sign_at.
+  const MultiprecisionBits bits = multiprecision_order_bits(a, b);
+  if (bits.width > 192) {
+    const auto order = multiprecision_order(a, b, bits.start, bits.cap, [&] { return common_root_in_overlap(a, b); });
+    if (order) return *order;
+  }
+  return compare_overlapping(a, b);
+}
+
+int exact_compare(const Real& a, const Real& b) {
+  if (a.exact) return -b.compare(a.lower);
+  if (b.exact) return a.compare(b.lower);
+  if (compare_rationals(a.upper, b.lower) <= 0) return -1;
+  if (compare_rationals(b.upper, a.lower) <= 0) return 1;
+  return compare_overlapping(a, b);
 }
 
 std::optional<Rational> double_between(const Real& a, const Real& b) {

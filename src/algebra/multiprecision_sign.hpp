@@ -6,7 +6,10 @@
 
 #include "algebra/exact_real.hpp"
 
+#include <functional>
 #include <optional>
+#include <utility>
+#include <vector>
 
 namespace hipair::cspace::algebra {
 
@@ -25,6 +28,25 @@ struct MultiprecisionBits {
   long width, start, cap;
 };
 MultiprecisionBits multiprecision_sign_bits(const Polynomial& p, const Real& u);
+
+/// The order of two non-exact reals a and b (-1: a < b, 1: a > b) from their brackets bisected in
+/// MPFR as multiprecision_sign's (each midpoint kept only strictly inside, with a certified sign
+/// of the number's own polynomial), or nothing when the brackets still overlap at `max_bits`
+/// (precisions from `start_bits`, doubled). The order is given only when the enclosures of the
+/// brackets are disjoint, so it is never wrong; equal numbers are never ordered. `equal`, when
+/// given, is asked once, when the brackets still overlap at the start precision's floor: true
+/// returns 0 (the caller's exact equality test), false goes on to higher precisions.
+std::optional<int> multiprecision_order(const Real& a, const Real& b, long start_bits, long max_bits,
+                                        const std::function<bool()>& equal = nullptr);
+/// multiprecision_order's precisions for a and b (as multiprecision_sign_bits').
+MultiprecisionBits multiprecision_order_bits(const Real& a, const Real& b);
+
+/// multiprecision_order's bracket of u at `bits` after each of `rounds` rounds (two halvings and
+/// an interval Newton step each), as exact rationals, for tests: each must hold u.
+std::vector<std::pair<Rational, Rational>> multiprecision_brackets(const Real& u, long bits, int rounds);
+
+/// compare(a, b) by the exact path only (rational bisection, the gcd's roots): tests' oracle.
+int exact_compare(const Real& a, const Real& b);
 
 /// True when gcd(p, q) is certified constant modulo a word-size prime not dividing p's leading
 /// coefficient (then p and q share no root); false when that cannot be certified.

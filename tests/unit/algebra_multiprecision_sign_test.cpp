@@ -204,5 +204,181 @@ TEST(AlgebraMultiprecisionSign, EnclosuresHoldTheExactValues) {
   EXPECT_GT(intervals, 120);
 }
 
+
+// ---------------------------------------------------------------- session 41 (scale41): order
+
+// q(x - delta) as an integer polynomial (delta = n / d): the sum of q_i (d x - n)^i d^(deg - i),
+// primitive; its roots are q's moved by delta.
+Polynomial moved(const Polynomial& q, const Rational& delta) {
+  const Polynomial step{-delta.get_num(), delta.get_den()};
+  const int deg = degree(q);
+  Polynomial sum, power{1};
+  for (int i = 0; i <= deg; ++i) {
+    mpz_class factor;
+    mpz_pow_ui(factor.get_mpz_t(), delta.get_den_mpz_t(), static_cast<unsigned long>(deg - i));
+    Polynomial term = times(power, Polynomial{q[i] * factor});
+    if (sum.size() < term.size()) sum.resize(term.size(), mpz_class(0));
+    for (std::size_t j = 0; j < term.size(); ++j) sum[j] += term[j];
+    power = times(power, step);
+  }
+  trim(sum);
+  return primitive_part(sum);
+}
+
+struct OrderTally {
+  int cases = 0, distinct = 0, equal = 0, ordered = 0;
+  void print() const {
+    std::printf("%d cases: %d distinct, %d equal, %d ordered by MPFR\n", cases, distinct, equal, ordered);
+  }
+};
+
+// compare, the exact path and the MPFR order (at its default precisions, or at `bits` alone when
+// given) against the order known by construction.
+void check_order(const Real& a, const Real& b, int expected, OrderTally& tally, const std::string& label,
+                 long bits = 0) {
+  ++tally.cases;
+  (expected == 0 ? tally.equal : tally.distinct)++;
+  EXPECT_EQ(exact_compare(a, b), expected) << label << ": the exact path";
+  EXPECT_EQ(compare(a, b), expected) << label << ": compare";
+  EXPECT_EQ(compare(b, a), -expected) << label << ": compare, swapped";
+  const MultiprecisionBits defaults = multiprecision_order_bits(a, b);
+  const auto order = bits > 0 ? multiprecision_order(a, b, bits, bits) : multiprecision_order(a, b, defaults.start, defaults.cap);
+  if (order) {
+    ++tally.ordered;
+    EXPECT_EQ(*order, expected) << label << ": the MPFR order is wrong";
+  } else if (bits == 0 && expected != 0 && !a.exact && !b.exact) {   // (a rational is not its to order)
+    ADD_FAILURE() << label << ": distinct numbers the MPFR order did not separate";
+  }
+}
+
+// Two numbers 2^-t |u| apart (t for 10^-100 ... 10^-600; u a root of a random quadratic or cubic
+// of 50-1 500-bit coefficients, some near 2^+-1000): u against u moved by +-delta (q(x - delta),
+// the interval moved alike); equal numbers given by different polynomials and intervals (q times
+// a factor without real roots, the interval refined differently); a rational against u. compare,
+// the exact path and the MPFR order against the order known by construction; the MPFR order
+// never orders equal numbers and separates every distinct pair at its default precisions.
+TEST(AlgebraMultiprecisionOrder, CloseEqualAndWideScaleNumbersInTheirKnownOrder) {
+  std::mt19937_64 random(41);
+  OrderTally tally;
+  for (int round = 0; round < 16; ++round) {
+    const int bits = 50 + static_cast<int>(random() % 1450);
+    const int shift = round % 4 == 0 ? (round % 8 == 0 ? 1000 : -1000) : 0;
+    auto drawn = random_irrational(random, shift == 0 ? bits : 50 + bits / 8, shift);
+    if (!drawn) continue;
+    const Real& u = *drawn;
+    const std::string at = "round " + std::to_string(round) + " (" + std::to_string(bits) + " bits, shift " +
+                           std::to_string(shift) + ")";
+    // 1. u and u + delta, |delta| = 2^-t (|u.lower| + |u.upper|) rounded to a dyadic
+    {
+      const int t = 333 + static_cast<int>(random() % 1660);
+      Rational size = abs(u.lower) + abs(u.upper);
+      Rational delta(mpz_class(1) + static_cast<long>(random() % 1000));
+      mpz_mul_2exp(delta.get_den_mpz_t(), delta.get_den_mpz_t(), static_cast<mp_bitcnt_t>(t));
+      delta *= size;
+      if (random() & 1) delta = -delta;
+      const Real v{moved(u.polynomial, delta), u.lower + delta, u.upper + delta, false};
+      check_order(u, v, -sgn(delta), tally, at + ", moved by 2^-" + std::to_string(t));
+    }
+    // 2. u given by q times a factor without real roots (a x^2 + c, a, c > 0), a refined interval
+    {
+      Polynomial factor{abs(random_integer(random, 1 + static_cast<int>(random() % 300), false)), 0,
+                        abs(random_integer(random, 1 + static_cast<int>(random() % 300), false))};
+      Real v{times(u.polynomial, factor), u.lower, u.upper, false};
+      Rational width = (u.upper - u.lower) / Rational(mpz_class(1) << static_cast<mp_bitcnt_t>(1 + random() % 200));
+      refine_dyadically(v, width);
+      if (!v.exact) check_order(u, v, 0, tally, at + ", the same number by another polynomial");
+    }
+    // 3. a rational inside u's interval against u
+    {
+      Real v = u;
+      refine_dyadically(v, (u.upper - u.lower) / 1024);
+      if (!v.exact) {
+        const Rational r = v.lower;
+        check_order(Real::from_rational(r), u, -1, tally, at + ", a rational just below");
+      }
+    }
+  }
+  EXPECT_GT(tally.distinct, 16);
+  EXPECT_GT(tally.equal, 8);
+  tally.print();
+}
+
+// At one precision P (no doubling), numbers 2^-(P - 8) ... 2^-(P + 8) of |u| apart and equal
+// numbers by another polynomial: at this precision's floor a bracket end rounded the wrong way
+// or a midpoint or Newton end not strictly inside would order them wrongly; every order given
+// must be right, and equal numbers never ordered.
+TEST(AlgebraMultiprecisionOrder, AtThePrecisionsFloorNoOrderIsWrong) {
+  std::mt19937_64 random(4141);
+  OrderTally tally;
+  for (int round = 0; round < 40; ++round) {
+    const long precision = 192L << (random() % 3);
+    const int bits = 200 + static_cast<int>(random() % 400);
+    auto drawn = random_irrational(random, bits, round % 3 == 0 ? 0 : (round % 3 == 1 ? 300 : -300));
+    if (!drawn) continue;
+    const Real& u = *drawn;
+    const int t = static_cast<int>(precision) - 8 + static_cast<int>(random() % 17);
+    const std::string at = "round " + std::to_string(round) + " (" + std::to_string(bits) + " bits, P = " +
+                           std::to_string(precision) + ", t = " + std::to_string(t) + ")";
+    Rational delta(Rational(mpz_class(1) + static_cast<long>(random() % 100)) / Rational(mpz_class(1) << static_cast<mp_bitcnt_t>(t)));
+    delta *= abs(u.lower) + abs(u.upper);
+    if (random() & 1) delta = -delta;
+    const Real v{moved(u.polynomial, delta), u.lower + delta, u.upper + delta, false};
+    check_order(u, v, -sgn(delta), tally, at + ", moved", precision);
+    Polynomial factor{abs(random_integer(random, 1 + static_cast<int>(random() % 200), false)), 0,
+                      abs(random_integer(random, 1 + static_cast<int>(random() % 200), false))};
+    const Real w{times(u.polynomial, factor), u.lower, u.upper, false};
+    check_order(u, w, 0, tally, at + ", equal", precision);
+  }
+  EXPECT_GT(tally.cases, 50);
+  tally.print();
+}
+
+
+// The brackets the MPFR order narrows (halvings and interval Newton steps), round by round down
+// to the precision's floor, against u exactly (Real::compare with the ends: a sign of u's
+// polynomial at a rational): u a root of a linear polynomial with wide random coefficients (a
+// rational no MPFR number equals, met within an ulp or two by the Newton ends) or of a random
+// quadratic or cubic, 64-1 024 bits, near 2^+-1000. Every bracket must hold u: a bound rounded
+// the wrong way fails this.
+TEST(AlgebraMultiprecisionOrder, BracketsHoldTheNumberDownToThePrecisionsFloor) {
+  std::mt19937_64 random(20261241);
+  int brackets = 0, tight = 0;
+  for (int round = 0; round < 120; ++round) {
+    const long precision = 64L << (random() % 5);
+    Real u;
+    if (round % 2 == 0) {
+      // c1 x + c0 = 0 with an odd c1 (the root is not dyadic), in (floor, floor + 1) scaled
+      const int bits = static_cast<int>(precision) + static_cast<int>(random() % 200);
+      mpz_class c1 = abs(random_integer(random, bits, false)) | 1, c0 = random_integer(random, bits + static_cast<int>(random() % 64), true);
+      if (mpz_divisible_p(c0.get_mpz_t(), c1.get_mpz_t())) continue;
+      mpz_class f;
+      mpz_fdiv_q(f.get_mpz_t(), mpz_class(-c0).get_mpz_t(), c1.get_mpz_t());
+      u = Real{Polynomial{c0, c1}, Rational(f), Rational(f + 1), false};
+    } else {
+      const int shift = round % 3 == 0 ? 0 : (round % 3 == 1 ? 1000 : -1000);
+      auto drawn = random_irrational(random, 50 + static_cast<int>(random() % 400), shift / 3);
+      if (!drawn) continue;
+      u = *drawn;
+    }
+    const std::string at = "round " + std::to_string(round) + " (P = " + std::to_string(precision) + ")";
+    const auto narrowed = multiprecision_brackets(u, precision, 40 + static_cast<int>(precision / 8));
+    for (std::size_t k = 0; k < narrowed.size(); ++k) {
+      const auto& [lo, hi] = narrowed[k];
+      ++brackets;
+      EXPECT_GE(u.compare(lo), 0) << at << ", round " << k << ": the bracket's lower end is above the number";
+      EXPECT_LE(u.compare(hi), 0) << at << ", round " << k << ": the bracket's upper end is below the number";
+    }
+    if (!narrowed.empty()) {
+      const auto& [lo, hi] = narrowed.back();
+      // at the floor: a few ulps of the precision (|u| + 1 as the scale)
+      Rational ulps = (abs(lo) + 1) * 64 / Rational(mpz_class(1) << static_cast<mp_bitcnt_t>(precision));
+      if (hi - lo <= ulps) ++tight;
+    }
+  }
+  EXPECT_GT(brackets, 3000);
+  EXPECT_GT(tight, 60);
+  std::printf("%d brackets, %d narrowed to a few ulps\n", brackets, tight);
+}
+
 }  // namespace
 }  // namespace hipair::cspace::algebra
