@@ -6,6 +6,7 @@
 #include "algebra/proportional.hpp"
 #include "cspace/angle_filter.hpp"
 #include "cspace/label_filter.hpp"
+#include "cspace/quadratic_root.hpp"
 #include "cspace/valid_point.hpp"
 #include "arrangement/circle_segment_traits.hpp"
 #include "arrangement/quadratic_traits.hpp"
@@ -1461,7 +1462,11 @@ algebra::Real edge_y_at(const ChartData& chart, std::size_t local_edge, const Ra
   }
   algebra::Polynomial p = algebra::substitute_x(edge.support, x);
   Rational lo(edge.box[1]), hi(edge.box[3]);
-  return algebra::nth_real_root_in(p, edge_arc_at(chart, local_edge, x), lo, hi);
+  const int index = edge_arc_at(chart, local_edge, x);
+  // a quadratic with two roots: the same root without the exact square-free part and Sturm
+  // sequence (quadratic_root_in)
+  if (std::optional<Real> root = quadratic_root_in(p, index, lo, hi)) return std::move(*root);
+  return algebra::nth_real_root_in(p, index, lo, hi);
 }
 
 int edge_arc_at(const ChartData& chart, std::size_t local_edge, const Rational& x) {

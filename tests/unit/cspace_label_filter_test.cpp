@@ -8,6 +8,7 @@
 // passes only where the curve has no zero in the box: every pair with an exact zero at the
 // sample point is listed, and every listed pair passes the plain filter.
 #include "cspace/label_filter.hpp"
+#include "cspace/quadratic_root.hpp"
 #include "algebra/polynomial.hpp"
 
 #include <gtest/gtest.h>
@@ -16,7 +17,9 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <optional>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace hipair::cspace {
@@ -179,6 +182,96 @@ TEST(LabelFilter, TreeListsEveryExactZeroAndOnlyPairsThePlainFilterPasses) {
 TEST(LabelFilter, EmptyInputs) {
   EXPECT_TRUE(curves_at_samples({}, {}).empty());
   EXPECT_EQ(curves_at_samples({}, std::vector<SampleBox>(3)).size(), 3u);
+}
+
+// edge_y_at's quadratic path (quadratic_root_in, session 41 fast41) against
+// algebra::nth_real_root_in (the exact square-free part and Sturm sequence): the same Real (bounds,
+// polynomial, exactness) or the same error, on quadratics with two random rational roots (dyadic
+// ones, met exactly by the bisection's midpoints; close pairs; a double root: not taken), times a
+// random integer factor of either sign, in boxes around either root or both, scaled by 2^0,
+// 2^300 and 2^-300.
+TEST(QuadraticRoot, SameRootAsTheSturmBisection) {
+  std::mt19937_64 random(4141);
+  std::uniform_int_distribution<int> small(-60, 60), positive(1, 29), power(0, 6), kind(0, 3), factor(-5, 5);
+  std::size_t taken = 0, declined = 0, errors = 0, exact = 0;
+  for (int scale_exponent : {0, 300, -300})
+    for (int round = 0; round < 400; ++round) {
+      const Rational scale = scale_exponent >= 0 ? Rational(mpz_class(1) << scale_exponent)
+                                                 : Rational(mpz_class(1), mpz_class(1) << -scale_exponent);
+      auto root_value = [&] {
+        Rational v(small(random), kind(random) == 0 ? mpz_class(1) << power(random) : mpz_class(positive(random)));   // dyadic or not
+        v.canonicalize();
+        return Rational(v * scale);
+      };
+      Rational r0 = root_value(), r1 = kind(random) == 0 ? r0 : root_value();
+      if (kind(random) == 1) r1 = r0 + Rational(1, mpz_class(1) << 40) * scale;   // a close pair
+      if (r1 < r0) std::swap(r0, r1);
+      // c (y - r0)(y - r1), integer coefficients
+      const Rational s = r0 + r1, p = r0 * r1;
+      mpz_class common;
+      mpz_lcm(common.get_mpz_t(), s.get_den_mpz_t(), p.get_den_mpz_t());
+      int c = factor(random);
+      if (c == 0) c = 1;
+      algebra::Polynomial q{mpz_class(p.get_num() * (common / p.get_den()) * c),
+                            mpz_class(-s.get_num() * (common / s.get_den()) * c), mpz_class(common * c)};
+      // boxes: around r0, around r1, around both, and one beside them (an error)
+      Rational width(positive(random), kind(random) < 2 ? mpz_class(1) << power(random) : mpz_class(7));   // dyadic or not
+      width.canonicalize();
+      width *= scale;
+      const int which = kind(random);
+      Rational lo, hi;
+      int index = 0;
+      if (which == 0) lo = r0 - width, hi = r0 + (r1 - r0) / 2, index = 0;
+      if (which == 1) lo = r0 + (r1 - r0) / 2, hi = r1 + width, index = 1;
+      if (which == 2) {   // both roots; half the time with r1 at the first midpoint (an exact root)
+        lo = r0 - width;
+        hi = random() % 2 ? Rational(r1 + width) : Rational(2 * r1 - lo);
+        index = static_cast<int>(random() % 2);
+      }
+      if (which == 3) lo = r1 + width, hi = r1 + 2 * width, index = 1;
+      if (r0 == r1 && which == 1) lo = r0 - width;   // a double root: boxes around it
+      std::optional<algebra::Real> expected;
+      std::string expected_error;
+      try {
+        expected = algebra::nth_real_root_in(q, index, lo, hi);
+      } catch (const NumericError& e) {
+        expected_error = e.what();
+      }
+      std::optional<algebra::Real> got;
+      std::string got_error;
+      bool declined_here = false;
+      try {
+        got = quadratic_root_in(q, index, lo, hi);
+        declined_here = !got;
+      } catch (const NumericError& e) {
+        got_error = e.what();
+      }
+      if (declined_here) {
+        ++declined;
+        EXPECT_EQ(r0, r1) << "declined a quadratic with two roots";
+        continue;
+      }
+      ++taken;
+      const std::string where = "scale 2^" + std::to_string(scale_exponent) + ", roots " + r0.get_str() + ", " + r1.get_str() +
+                                ", box [" + lo.get_str() + ", " + hi.get_str() + "], index " + std::to_string(index);
+      ASSERT_EQ(expected_error, got_error) << where;
+      if (!expected_error.empty()) {
+        ++errors;
+        continue;
+      }
+      ASSERT_TRUE(expected && got) << where;
+      EXPECT_EQ(expected->exact, got->exact) << where;
+      EXPECT_EQ(expected->lower, got->lower) << where;
+      EXPECT_EQ(expected->upper, got->upper) << where;
+      EXPECT_EQ(expected->polynomial, got->polynomial) << where;
+      exact += got->exact;
+    }
+  // every kind of case is reached
+  EXPECT_GT(taken, 600u);
+  EXPECT_GT(declined, 20u);
+  EXPECT_GT(errors, 20u);
+  EXPECT_GT(exact, 50u);
+  std::printf("taken %zu (errors %zu, exact roots %zu), declined (double roots) %zu\n", taken, errors, exact, declined);
 }
 
 }  // namespace hipair::cspace
