@@ -27,18 +27,12 @@ namespace {
 
 using algebra::Interval;
 
-// The integer polynomial with the zero set of the rational coefficients c[i][j] (denominators
-// cleared).
+// An integer polynomial with the zero set and sign of the rational coefficients c[i][j] (x^i y^j).
 IntegerPolynomial2 integer_curve(const std::vector<std::vector<Rational>>& c) {
-  mpz_class common = 1;
-  for (const auto& row : c)
-    for (const auto& q : row) mpz_lcm(common.get_mpz_t(), common.get_mpz_t(), q.get_den_mpz_t());
-  IntegerPolynomial2 f;
-  for (const auto& row : c) {
-    f.coefficients.emplace_back();
-    for (const auto& q : row) f.coefficients.back().push_back(q.get_num() * (common / q.get_den()));
-  }
-  return f;
+  RationalPolynomial2 f;
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (std::size_t j = 0; j < c[i].size(); ++j) f.set_coefficient(static_cast<int>(i), static_cast<int>(j), c[i][j]);
+  return normalized_integer_polynomial(f);
 }
 
 // The value at (x, y) of the polynomial of rational coefficients c[i][j] (x^i y^j), exactly.
