@@ -5,6 +5,8 @@
 #include "algebra/ordinate.hpp"
 #include "algebra/proportional.hpp"
 #include "cspace/angle_filter.hpp"
+#include "cspace/label_filter.hpp"
+#include "cspace/quadratic_root.hpp"
 #include "cspace/valid_point.hpp"
 #include "arrangement/circle_segment_traits.hpp"
 #include "arrangement/quadratic_traits.hpp"
@@ -497,51 +499,30 @@ void label_edges(ChartData& chart, bool by_support) {
       i = j;
     }
   }
-  std::vector<std::size_t> all_curves;
-  if (!by_support)
-    for (std::size_t k = 0; k < curve_count; ++k) all_curves.push_back(k);
-  for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
-    std::span<const std::size_t> candidates(all_curves);
-    // an edge along an input line has that line's support: its group, without a key
-    const std::size_t carried = by_support ? arrangement.edges[e].support_curve : raw::none;
-    if (by_support) {
-      if (carried < group_of.size()) {
-        candidates = group_of[carried];
-      } else {
-        // the group whose key is the edge's support's (none: no curve)
-        thread_local std::string edge_key;
-        edge_key.clear();
-        append_support_key(edge_key, arrangement.edges[e].support);
-        auto it = std::lower_bound(by_key.begin(), by_key.end(), std::string_view(edge_key),
-                                   [&](std::size_t k, std::string_view key) { return key_of(k) < key; });
-        candidates = it == by_key.end() || key_of(*it) != std::string_view(edge_key)
-                         ? std::span<const std::size_t>()
-                         : group_of[*it];
-      }
-    }
+  // Per edge: its sample (written into chart.edges), the sample's box for the interval filter,
+  // and the refined copy of an algebraic coordinate that the box was read from (the exact tests
+  // read it, as they did before the boxes were made first).
+  struct Sample {
+    SampleBox box;
+    std::optional<Real> refined;
+    bool front_end = false;   // the polygon front end's edge: labelled in rationals, no box
+  };
+  auto sample = [&](std::size_t e, Sample& s) {
     const raw::Edge& edge = arrangement.edges[e];
     EdgeData& data = chart.edges[e];
     const raw::Vertex& low = arrangement.vertices[edge.min_vertex];
     const raw::Vertex& high = arrangement.vertices[edge.max_vertex];
-    algebra::Interval x_box, y_box;
+    const std::size_t carried = by_support ? edge.support_curve : raw::none;
     if (edge.vertical) {
       data.vertical_x = low.x;
       // written into the default sample_y in place (exact: lower = upper = y)
       raw::exact_real_into(data.sample_y, low.y_exact && high.y_exact
                                               ? algebra::rational_between(low.y, high.y)
                                               : algebra::simplest_between(low.y_upper, high.y_lower));
-      const Rational& y = data.sample_y.lower;
       // refined in a copy (an exact x is not refined: read in place)
-      std::optional<Real> refined;
-      const Real& x = low.x.exact ? low.x : refined.emplace(low.x);
-      if (refined) refined->refine_to(label_filter_width());
-      x_box = {x.lower_bound(), x.upper_bound()};
-      y_box = algebra::enclose(y);
-      for (std::size_t k : candidates) {
-        if (!chart.interval_polynomials[k].evaluate(x_box, y_box).contains_zero()) continue;
-        if (algebra::vanishes_at(chart.polynomials[k], x, y) && valid_at(chart.validity[k], x, y))
-          data.curves.push_back(k);
-      }
+      if (!low.x.exact) s.refined.emplace(low.x).refine_to(label_filter_width());
+      const Real& x = s.refined ? *s.refined : low.x;
+      s.box = {algebra::Interval{x.lower_bound(), x.upper_bound()}, algebra::enclose(data.sample_y.lower)};
     } else if (const mpz_class *a, *b, *c; carried < group_of.size() && low.x.exact && high.x.exact &&
                                              line_of(edge.support, a, b, c) && sgn(*b) != 0) {
       // The polygon front end (a line edge whose support was carried from its input curve,
@@ -552,6 +533,7 @@ void label_edges(ChartData& chart, bool by_support) {
       // (the filter and vanishes_at below hold), and only its validity at the sample decides,
       // exactly in rationals. (The general path, without carried supports, takes the branch
       // below: the tests compare the two.)
+      s.front_end = true;
       data.sample_x = algebra::simplest_between(low.x.lower, high.x.lower);
       Rational y;   // -(a x + c) / b, its integers written in place
       const mpz_ptr y_num = mpq_numref(y.get_mpq_t()), y_den = mpq_denref(y.get_mpq_t());
@@ -560,19 +542,36 @@ void label_edges(ChartData& chart, bool by_support) {
       mpz_neg(y_num, y_num);
       mpz_mul(y_den, b->get_mpz_t(), data.sample_x.get_den_mpz_t());
       y.canonicalize();
-      for (std::size_t k : candidates)
-        if (valid_at_rational(chart.validity[k], data.sample_x, y)) data.curves.push_back(k);
       raw::exact_real_into(data.sample_y, std::move(y));   // in place, y's integers taken
     } else {
       data.sample_x = algebra::rational_between(low.x, high.x);
       data.sample_y = edge_y_at(chart, e, data.sample_x);
-      std::optional<Real> refined;   // as above: an exact y is read in place
-      const Real& y = data.sample_y.exact ? data.sample_y : refined.emplace(data.sample_y);
-      if (refined) refined->refine_to(label_filter_width());
-      x_box = algebra::enclose(data.sample_x);
-      y_box = {y.lower_bound(), y.upper_bound()};
+      // as above: an exact y is read in place
+      if (!data.sample_y.exact) s.refined.emplace(data.sample_y).refine_to(label_filter_width());
+      const Real& y = s.refined ? *s.refined : data.sample_y;
+      s.box = {algebra::enclose(data.sample_x), algebra::Interval{y.lower_bound(), y.upper_bound()}};
+    }
+  };
+  // The exact tests of edge e's candidates (`filtered`: they passed the interval filter already).
+  auto label = [&](std::size_t e, const Sample& s, std::span<const std::size_t> candidates, bool filtered) {
+    const raw::Edge& edge = arrangement.edges[e];
+    EdgeData& data = chart.edges[e];
+    auto near = [&](std::size_t k) { return filtered || chart.interval_polynomials[k].evaluate(s.box[0], s.box[1]).contains_zero(); };
+    if (s.front_end) {
+      for (std::size_t k : candidates)
+        if (valid_at_rational(chart.validity[k], data.sample_x, data.sample_y.lower)) data.curves.push_back(k);
+    } else if (edge.vertical) {
+      const Real& x = s.refined ? *s.refined : arrangement.vertices[edge.min_vertex].x;
+      const Rational& y = data.sample_y.lower;
       for (std::size_t k : candidates) {
-        if (!chart.interval_polynomials[k].evaluate(x_box, y_box).contains_zero()) continue;
+        if (!near(k)) continue;
+        if (algebra::vanishes_at(chart.polynomials[k], x, y) && valid_at(chart.validity[k], x, y))
+          data.curves.push_back(k);
+      }
+    } else {
+      const Real& y = s.refined ? *s.refined : data.sample_y;
+      for (std::size_t k : candidates) {
+        if (!near(k)) continue;
         // the sample's y is a root of the edge's support at sample_x (edge_y_at): a curve
         // proportional to the support vanishes there without the exact test
         if ((algebra::proportional(chart.polynomials[k], edge.support) || algebra::vanishes_at(chart.polynomials[k], data.sample_x, y)) &&
@@ -580,6 +579,41 @@ void label_edges(ChartData& chart, bool by_support) {
           data.curves.push_back(k);
       }
     }
+  };
+  if (!by_support) {
+    // every curve is a candidate at every edge: the samples first, then the interval filter for
+    // all pairs through the samples' k-d tree (curves_at_samples: the pairs the plain filter
+    // passes, but those of curves certainly without a zero near a group of samples), then the
+    // exact tests
+    std::vector<Sample> samples(arrangement.edges.size());
+    std::vector<SampleBox> boxes(arrangement.edges.size());
+    for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
+      sample(e, samples[e]);
+      boxes[e] = samples[e].box;
+    }
+    const std::vector<std::vector<std::size_t>> passed = curves_at_samples(chart.interval_polynomials, boxes);
+    for (std::size_t e = 0; e < arrangement.edges.size(); ++e) label(e, samples[e], passed[e], true);
+    return;
+  }
+  for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {
+    std::span<const std::size_t> candidates;
+    // an edge along an input line has that line's support: its group, without a key
+    const std::size_t carried = arrangement.edges[e].support_curve;
+    if (carried < group_of.size()) {
+      candidates = group_of[carried];
+    } else {
+      // the group whose key is the edge's support's (none: no curve)
+      thread_local std::string edge_key;
+      edge_key.clear();
+      append_support_key(edge_key, arrangement.edges[e].support);
+      auto it = std::lower_bound(by_key.begin(), by_key.end(), std::string_view(edge_key),
+                                 [&](std::size_t k, std::string_view key) { return key_of(k) < key; });
+      candidates = it == by_key.end() || key_of(*it) != std::string_view(edge_key) ? std::span<const std::size_t>()
+                                                                                   : group_of[*it];
+    }
+    Sample s;
+    sample(e, s);
+    label(e, s, candidates, false);
   }
 }
 
@@ -1428,7 +1462,11 @@ algebra::Real edge_y_at(const ChartData& chart, std::size_t local_edge, const Ra
   }
   algebra::Polynomial p = algebra::substitute_x(edge.support, x);
   Rational lo(edge.box[1]), hi(edge.box[3]);
-  return algebra::nth_real_root_in(p, edge_arc_at(chart, local_edge, x), lo, hi);
+  const int index = edge_arc_at(chart, local_edge, x);
+  // a quadratic with two roots: the same root without the exact square-free part and Sturm
+  // sequence (quadratic_root_in)
+  if (std::optional<Real> root = quadratic_root_in(p, index, lo, hi)) return std::move(*root);
+  return algebra::nth_real_root_in(p, index, lo, hi);
 }
 
 int edge_arc_at(const ChartData& chart, std::size_t local_edge, const Rational& x) {
