@@ -187,7 +187,7 @@ class Translator {
       name = given->text;
       bool valid = !name.empty() && std::isalpha(static_cast<unsigned char>(name[0]));
       for (char c : name) valid = valid && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-');
-      if (!valid || name.back() == '-' || name.size() > 256)
+      if (!valid || name.back() == '-')
         throw ModelError(given->pointer, "invalid parameter name " + quoted_excerpt(name) +
                                              " (letters, digits, _ and -, starting with a letter)");
     }

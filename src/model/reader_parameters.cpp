@@ -40,10 +40,6 @@ void Reader::read_parameters(const JsonValue* parameters) {
     expect_object(*parameters);
     std::size_t index = 0;
     for (const JsonMember& member : parameters->members) {
-      if (member.key.size() > max_name_characters)
-        throw ModelError(member.value.pointer, "a parameter name of " + std::to_string(member.key.size()) +
-                                                   " characters is too long (at most " +
-                                                   std::to_string(max_name_characters) + "): " + quoted_excerpt(member.key));
       if (!valid_parameter_name(member.key))
         throw ModelError(member.value.pointer,
                          "invalid parameter name '" + escape_pointer_token(member.key) +

@@ -123,9 +123,6 @@ std::string Reader::read_name(const JsonValue& value) {
     i += length;
   }
   if (after_space) throw ModelError(value.pointer, std::string("a name may not end with a space: ") + name_rule);
-  if (characters > max_name_characters)
-    throw ModelError(value.pointer, "a name of " + std::to_string(characters) + " characters is too long (at most " +
-                                        std::to_string(max_name_characters) + "): " + quoted_excerpt(name));
   return name;
 }
 

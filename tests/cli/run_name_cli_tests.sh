@@ -1,12 +1,11 @@
 #!/usr/bin/env bash
 # Names a model may not have, session 41 (hunt41): docs/model-format.md "Names and text". A name
-# (the model's, a part's, a part named in a pair) is 1 to 256 characters without control
-# characters, with single spaces (U+0020) between words as its only white space; a parameter name
-# keeps its grammar and at most 256 characters. Generated cases (a seed per run, printed on
+# (the model's, a part's, a part named in a pair) is non-empty, without control characters, with
+# single spaces (U+0020) between words as its only white space, of any length (messages cut it,
+# session 38's hostile_cli_tests). Generated cases (a seed per run, printed on
 # failure; HIPAIR_TEST_SEED repeats one): lever-stop.json with one name spoiled (only spaces, a
 # tab, a space before or after, two spaces in a row, a control character, NUL, invalid UTF-8, a
-# no-break or ideographic space, a zero-width space or a byte-order mark, a name of 257 to 100,000
-# characters, a second part named like the first but for a space), through a random command that
+# no-break or ideographic space, a zero-width space or a byte-order mark, a second part named like the first but for a space), through a random command that
 # reads models: exit 2, one line naming the JSON pointer (the JSON reader's line and column for
 # invalid UTF-8), nothing on stdout, nothing written. The examples and tests/data still load.
 # usage: run_name_cli_tests.sh HIPAIR_BINARY SOURCE_DIR WORK_DIR
@@ -43,14 +42,13 @@ def spoil(kind):
         7: None,  # invalid UTF-8, written as bytes below
         8: w + rng.choice(["\u00a0", "\u3000", "\u2003", "\u202f"]) + word(),
         9: rng.choice(["\u200b", "\ufeff", "\u2060"]) + w,
-        10: "n" * rng.choice([257, 1000, 100000]),
     }[kind]
-kinds = 12
+kinds = 11
 for k in range(kinds * 2):
     kind = k % kinds
     model = json.loads(json.dumps(base))
     where = rng.choice(["model", "part", "pair"])
-    if kind == 11:  # a second part named like the first but for a trailing or leading space
+    if kind == 10:  # a second part named like the first but for a trailing or leading space
         twin = json.loads(json.dumps(model["parts"][1]))
         twin["name"] = rng.choice(["stop ", " stop"])
         model["parts"].append(twin)
@@ -81,15 +79,9 @@ for k in range(kinds * 2):
         text = json.dumps(model, ensure_ascii=rng.random() < 0.5)
     open(f"{work}/model-{k}.json", "w", encoding="utf-8").write(text)
     open(f"{work}/pointer-{k}.txt", "w").write(pointer)
-# a parameter name over 256 characters (valid in its grammar otherwise) and one of 256
+# valid: single inner spaces, accents, a long name
 model = json.loads(json.dumps(base))
-long_name = "p" * 257
-model["parameters"][long_name] = {"nominal": 1}
-open(f"{work}/model-param.json", "w").write(json.dumps(model))
-open(f"{work}/pointer-param.txt", "w").write("/parameters/" + long_name)
-model = json.loads(json.dumps(base))
-model["parameters"]["p" * 256] = {"nominal": 1}
-model["name"] = "a b c " + "d" * 250
+model["name"] = "a b c " + "d" * 100000
 model["parts"][0]["name"] = "lever arm \u00e9\u00e8"
 model["pairs"][0]["parts"][0] = "lever arm \u00e9\u00e8"
 open(f"{work}/model-ok.json", "w").write(json.dumps(model))
@@ -98,10 +90,10 @@ EOF
 RANDOM=$seed
 
 "$hipair" validate "$work/model-ok.json" >"$work/ok.out" 2>&1 ||
-  fail "a valid name (single inner spaces, 256 characters, a 256-character parameter) is refused: $(head -c 300 "$work/ok.out")"
+  fail "a valid name (single inner spaces, accents, 100,006 characters) is refused: $(head -c 300 "$work/ok.out")"
 
 cases=0
-for model in "$work"/model-[0-9]*.json "$work/model-param.json"; do
+for model in "$work"/model-[0-9]*.json; do
   k=${model##*/model-}; k=${k%.json}
   pointer=$(cat "$work/pointer-$k.txt")
   command=${commands[RANDOM % ${#commands[@]}]}
@@ -122,7 +114,7 @@ while IFS= read -r model; do
   grep -q '"parts"' "$model" || continue
   if "$hipair" validate "$model" >"$work/v.out" 2>&1; then
     loaded=$((loaded + 1))
-  elif grep -q "a name may not\|a name of\|a parameter name of" "$work/v.out"; then
+  elif grep -q "a name may not" "$work/v.out"; then
     fail "$model no longer loads: $(head -c 300 "$work/v.out")"
   fi
 done < <(find "$source/examples/models" "$source/tests/data" -name '*.json' | sort)
