@@ -250,6 +250,145 @@ bool edges_cross(const PlacedEdge& e, const PlacedEdge& g) {
   return false;
 }
 
+namespace {
+
+// sqrt(A) >= sqrt(B) + d (A, B >= 0, d > 0): A >= B + d^2 + 2 d sqrt(B).
+bool root_exceeds(const Rational& A, const Rational& B, const Rational& d) {
+  return sign_with_root(Rational(A - B - d * d), Rational(-2 * d), B) >= 0;
+}
+
+// |sqrt(A) - sqrt(B)| >= d
+bool roots_apart(const Rational& A, const Rational& B, const Rational& d) {
+  return root_exceeds(A, B, d) || root_exceeds(B, A, d);
+}
+
+// sqrt(A) + sqrt(B) >= d: true when B >= d^2, else A >= d^2 + B - 2 d sqrt(B).
+bool roots_reach(const Rational& A, const Rational& B, const Rational& d) {
+  return cmp(B, Rational(d * d)) >= 0 || sign_with_root(Rational(A - d * d - B), Rational(2 * d), B) >= 0;
+}
+
+// Sign of (p + q sqrt(A)) + sqrt(B) (r + s sqrt(A)), A, B >= 0: the two parts' signs, or, when
+// they differ, the sign of the difference of their squares (again of the form x + y sqrt(A)).
+int sign_of_pair(const Rational& p, const Rational& q, const Rational& r, const Rational& s, const Rational& A,
+                 const Rational& B) {
+  int su = sign_with_root(p, q, A), sw = sgn(B) == 0 ? 0 : sign_with_root(r, s, A);
+  if (sw == 0 || su == sw) return su;
+  if (su == 0) return sw;
+  int t = sign_with_root(Rational(p * p + q * q * A - B * r * r - B * s * s * A), Rational(2 * p * q - 2 * B * r * s), A);
+  return t > 0 ? su : (t < 0 ? sw : 0);
+}
+
+// Sign of a + b sqrt(A) + c sqrt(B) + e sqrt(C) (A, B, C >= 0): P = a + b sqrt(A) + c sqrt(B)
+// against e sqrt(C), their squares compared when the signs differ.
+int sign_of_roots(const Rational& a, const Rational& b, const Rational& A, const Rational& c, const Rational& B,
+                  const Rational& e, const Rational& C) {
+  int sp = sign_of_pair(a, b, c, 0, A, B), se = sgn(C) == 0 ? 0 : sgn(e);
+  if (se == 0 || sp == se) return sp;
+  if (sp == 0) return se;
+  // P^2 - e^2 C = (a^2 + b^2 A + c^2 B - e^2 C + 2ab sqrt(A)) + sqrt(B) (2ac + 2bc sqrt(A))
+  int t = sign_of_pair(Rational(a * a + b * b * A + c * c * B - e * e * C), Rational(2 * a * b), Rational(2 * a * c),
+                       Rational(2 * b * c), A, B);
+  return t > 0 ? sp : (t < 0 ? se : 0);
+}
+
+// Is the point's distance from the segment [a, b] at least d? (a zero-length segment is a point)
+bool point_segment_apart(const Point& p, const Point& a, const Point& b, const Rational& d2) {
+  Point v = minus(b, a), w = minus(p, a);
+  Rational vv = dot(v, v), along = dot(w, v);
+  if (sgn(vv) == 0 || sgn(along) <= 0) return cmp(dot(w, w), d2) >= 0;
+  if (cmp(along, vv) >= 0) {
+    Point u = minus(p, b);
+    return cmp(dot(u, u), d2) >= 0;
+  }
+  Rational across = cross(v, w);
+  return cmp(Rational(across * across), Rational(d2 * vv)) >= 0;
+}
+
+// Is the point's distance from the arc at least d? Its nearest point on the circle when its
+// direction from the centre lies in the closed sector, else the nearer end.
+bool point_arc_apart(const Point& p, const PlacedEdge& arc, const Rational& d) {
+  Point w = minus(p, arc.center);
+  Rational ww = dot(w, w), d2 = d * d;
+  if (sgn(ww) == 0) return cmp(arc.radius_squared, d2) >= 0;
+  if (in_sector(arc, sgn(cross(arc.from, w)), sgn(cross(w, arc.to)), false)) return roots_apart(ww, arc.radius_squared, d);
+  Point s = minus(p, arc.source), t = minus(p, arc.target);
+  return cmp(dot(s, s), d2) >= 0 && cmp(dot(t, t), d2) >= 0;
+}
+
+bool point_edge_apart(const Point& p, const PlacedEdge& e, const Rational& d) {
+  return e.arc ? point_arc_apart(p, e, d) : point_segment_apart(p, e.source, e.target, d * d);
+}
+
+bool direction_in(const PlacedEdge& arc, const Point& u) {
+  return in_sector(arc, sgn(cross(arc.from, u)), sgn(cross(u, arc.to)), false);
+}
+
+// The boxes' gap along x or y is at least d: the edges are at least d apart.
+bool boxes_apart(const PlacedEdge& e, const PlacedEdge& g, const Rational& d) {
+  return cmp(Rational(g.box[0] - e.box[1]), d) >= 0 || cmp(Rational(e.box[0] - g.box[1]), d) >= 0 ||
+         cmp(Rational(g.box[2] - e.box[3]), d) >= 0 || cmp(Rational(e.box[2] - g.box[3]), d) >= 0;
+}
+
+bool edges_apart(const PlacedEdge& e, const PlacedEdge& g, const Rational& d) {
+  if (boxes_apart(e, g, d)) return true;
+  if (edges_cross(e, g)) return false;
+  for (const Point* p : {&e.source, &e.target})
+    if (!point_edge_apart(*p, g, d)) return false;
+  for (const Point* p : {&g.source, &g.target})
+    if (!point_edge_apart(*p, e, d)) return false;
+  if (!e.arc && !g.arc) return true;   // two segments: the closest points include an end
+  if (!e.arc || !g.arc) {
+    // the segment's point nearest the arc's centre, against the arc's points on that perpendicular
+    const PlacedEdge& segment = e.arc ? g : e;
+    const PlacedEdge& arc = e.arc ? e : g;
+    Point v = minus(segment.target, segment.source);
+    Rational vv = dot(v, v);
+    if (sgn(vv) == 0) return true;
+    Rational lambda = dot(minus(arc.center, segment.source), v) / vv;
+    if (sgn(lambda) <= 0 || cmp(lambda, Rational(1)) >= 0) return true;
+    Point n = minus(plus(segment.source, times(lambda, v)), arc.center);
+    Rational nn = dot(n, n);
+    if (sgn(nn) == 0) {   // the segment passes through the centre: both normals are at distance r
+      Point normal{Rational(-v.y), v.x};
+      if (direction_in(arc, normal) || direction_in(arc, times(Rational(-1), normal)))
+        return cmp(arc.radius_squared, Rational(d * d)) >= 0;
+      return true;
+    }
+    if (direction_in(arc, n) && !roots_apart(nn, arc.radius_squared, d)) return false;
+    if (direction_in(arc, times(Rational(-1), n)) && !roots_reach(nn, arc.radius_squared, d)) return false;
+    return true;
+  }
+  Point axis = minus(g.center, e.center);
+  if (sgn(dot(axis, axis)) == 0) {
+    // concentric: |r1 - r2| along a direction of both sectors, else the ends (checked above)
+    if (direction_in(e, g.from) || direction_in(g, e.from) || direction_in(e, g.to) || direction_in(g, e.to))
+      return roots_apart(e.radius_squared, g.radius_squared, d);
+    return true;
+  }
+  // the points on the centre line c1 + s1 r1 u, c2 + s2 r2 u (u = axis / L, each in its arc):
+  // their gap L + s2 r2 - s1 r1 is at least d in absolute value (three square roots)
+  const Rational L2 = dot(axis, axis);
+  for (int s1 : {-1, 1})
+    for (int s2 : {-1, 1}) {
+      if (!direction_in(e, times(Rational(s1), axis)) || !direction_in(g, times(Rational(s2), axis))) continue;
+      bool above = sign_of_roots(Rational(-d), 1, L2, Rational(s2), g.radius_squared, Rational(-s1), e.radius_squared) >= 0;
+      bool below = sign_of_roots(Rational(-d), -1, L2, Rational(-s2), g.radius_squared, Rational(s1), e.radius_squared) >= 0;
+      if (!above && !below) return false;
+    }
+  return true;
+}
+
+}  // namespace
+
+bool boundary_distance_at_least(const PlacedPart& a, const PlacedPart& b, const Rational& d) {
+  for (const auto& loop : a.loops)
+    for (const PlacedEdge& e : loop)
+      for (const auto& other : b.loops)
+        for (const PlacedEdge& g : other)
+          if (!edges_apart(e, g, d)) return false;
+  return true;
+}
+
 std::string overlap_evidence(const PlacedPart& a, const PlacedPart& b) {
   for (std::size_t i = 0; i < a.loops.size(); ++i)
     for (std::size_t j = 0; j < a.loops[i].size(); ++j) {

@@ -70,6 +70,15 @@ int locate(const PlacedPart& part, const Point& p);
 /// shared vertices).
 bool edges_cross(const PlacedEdge& e, const PlacedEdge& g);
 
+/// Is the distance between the boundaries of the posed parts at least `d` (> 0)? Decided
+/// exactly: a pair of edges is at least d apart when the edges do not cross and each candidate
+/// for their closest points is: an end point against the other edge; the foot of an arc's centre
+/// on a segment against the arc's points on that perpendicular; concentric arcs along a shared
+/// direction; two arcs' points on their centre line (a sum of three square roots, signed by
+/// squaring). For clearance claims at the exact distance, where the MPFI bound falls a hair
+/// short (session 41, hunt41).
+bool boundary_distance_at_least(const PlacedPart& a, const PlacedPart& b, const Rational& d);
+
 /// Evidence that two posed parts overlap: a transversal crossing of two edges, or a loop's
 /// first vertex strictly inside the other part. Empty string when none was found.
 std::string overlap_evidence(const PlacedPart& a, const PlacedPart& b);

@@ -84,7 +84,7 @@ Model Reader::read_root(const JsonValue& root) {
   check_keys(root, {"hipair", "name", "description", "units", "rounding", "parameters", "parts", "pairs", "simulation"});
   read_version(require(root, "hipair"));
   RoundingBoundScope rounding_scope(read_rounding(root.find("rounding")), rounding_bound_overrides_model());
-  model_.name = read_string(require(root, "name"), false);
+  model_.name = read_name(require(root, "name"));
   if (const JsonValue* description = root.find("description"))
     model_.description = read_string(*description, true, true);
   read_units(root.find("units"));
@@ -177,7 +177,7 @@ void Reader::read_pairs(const JsonValue* pairs) {
     pair.pointer = value.pointer;
     std::size_t indices[2];
     for (int k = 0; k < 2; ++k) {
-      std::string name = read_string(names.items[k], false);
+      std::string name = read_name(names.items[k]);
       auto index = model_.find_part(name);
       if (!index) throw ModelError(names.items[k].pointer, "unknown part '" + name + "'");
       indices[k] = *index;

@@ -89,6 +89,12 @@ class Reader {
   const JsonValue& expect_array(const JsonValue& value, const std::string& what = "an array");
   /// A string value; control characters are refused (`layout`: tab and line breaks allowed).
   std::string read_string(const JsonValue& value, bool allow_empty, bool layout = false);
+  /// A name (the model's, a part's, a part's in a pair, driver or spring): a non-empty string
+  /// without control characters, white space only as single spaces between other characters
+  /// (docs/model-format.md#names-and-text). Any length: messages cut it (hunt38).
+  std::string read_name(const JsonValue& value);
+  static constexpr const char* name_rule =
+      "a name's only white space is a single space (U+0020) between two other characters";
   bool read_boolean(const JsonValue& value);
 
   // numbers, points, directions (reader_values.cpp)

@@ -15,7 +15,7 @@
 namespace hipair::model_detail {
 
 std::size_t Reader::moving_part(const JsonValue& value) {
-  std::string name = read_string(value, false);
+  std::string name = read_name(value);
   auto index = model_.find_part(name);
   if (!index) throw ModelError(value.pointer, "unknown part '" + name + "'");
   const Motion& motion = model_.parts[*index].motion;
@@ -105,7 +105,7 @@ void Reader::read_simulation(const JsonValue* value) {
         // a planar part: a constant velocity {"x": vx, "y": vy, "angle": omega}, three drivers
         // of that part in the order vx, vy, omega (as its initial velocity, SimulationSpec::Velocity)
         const JsonValue& named = require(d, "part");
-        auto index = named.is_string() ? model_.find_part(read_string(named, false)) : std::nullopt;
+        auto index = named.is_string() ? model_.find_part(read_name(named)) : std::nullopt;
         if (index && model_.parts[*index].motion.kind == Motion::Kind::planar) {
           // {"x": vx, "y": vy, "angle": omega} -> the three components
           auto velocity = [&](const JsonValue& speed) {
@@ -193,7 +193,7 @@ void Reader::read_simulation(const JsonValue* value) {
         throw ModelError(names.pointer, "a spring joins exactly 2 parts, found " + std::to_string(names.items.size()));
       std::size_t indices[2];
       for (int k = 0; k < 2; ++k) {
-        std::string name = read_string(names.items[k], false);
+        std::string name = read_name(names.items[k]);
         auto index = model_.find_part(name);
         if (!index) throw ModelError(names.items[k].pointer, "unknown part '" + name + "'");
         const Motion& motion = model_.parts[*index].motion;

@@ -33,7 +33,7 @@ Part Reader::read_part(const JsonValue& value) {
   if (const JsonValue* description = value.find("description")) read_string(*description, true, true);
   Part part;
   part.pointer = value.pointer;
-  part.name = read_string(require(value, "name"), false);
+  part.name = read_name(require(value, "name"));
   part.motion = read_motion(require(value, "motion"));
   if (const JsonValue* initial = value.find("initial")) part.initial = read_initial(*initial, part.motion);
   if (const JsonValue* loops = value.find("loops")) {

@@ -80,6 +80,52 @@ std::string Reader::read_string(const JsonValue& value, bool allow_empty, bool l
   return value.text;
 }
 
+namespace {
+
+// The code point of the UTF-8 sequence at text[i] (the JSON layer has checked the encoding) and
+// its length in bytes.
+std::pair<unsigned long, std::size_t> code_point_at(std::string_view text, std::size_t i) {
+  auto byte = static_cast<unsigned char>(text[i]);
+  std::size_t length = byte < 0x80 ? 1 : byte < 0xE0 ? 2 : byte < 0xF0 ? 3 : 4;
+  if (i + length > text.size()) length = text.size() - i;
+  unsigned long code = length == 1 ? byte : byte & (0x7F >> length);
+  for (std::size_t k = 1; k < length; ++k) code = (code << 6) | (static_cast<unsigned char>(text[i + k]) & 0x3F);
+  return {code, length};
+}
+
+// White space (Unicode's White_Space property, less the control characters refused before) and
+// the invisible characters that read as nothing or as a space: no name may hold them.
+bool blank_character(unsigned long code) {
+  return code == 0xA0 || code == 0x1680 || code == 0x180E || (code >= 0x2000 && code <= 0x200D) ||
+         code == 0x2028 || code == 0x2029 || code == 0x202F || code == 0x205F || code == 0x2060 ||
+         code == 0x3000 || code == 0xFEFF;
+}
+
+}  // namespace
+
+std::string Reader::read_name(const JsonValue& value) {
+  std::string name = read_string(value, false);
+  std::size_t characters = 0;
+  bool after_space = true;  // a space at the start is refused as at the end
+  for (std::size_t i = 0; i < name.size();) {
+    auto [code, length] = code_point_at(name, i);
+    ++characters;
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "%04lX", code);
+    if (blank_character(code))
+      throw ModelError(value.pointer, std::string("a name may not hold U+") + hex + " (character " +
+                                          std::to_string(characters) + "): " + name_rule);
+    if (code == ' ' && after_space)
+      throw ModelError(value.pointer, std::string(characters == 1 ? "a name may not begin with a space"
+                                                                  : "a name may not hold two spaces in a row") +
+                                          " (character " + std::to_string(characters) + "): " + name_rule);
+    after_space = code == ' ';
+    i += length;
+  }
+  if (after_space) throw ModelError(value.pointer, std::string("a name may not end with a space: ") + name_rule);
+  return name;
+}
+
 bool Reader::read_boolean(const JsonValue& value) {
   expect(value, JsonValue::Type::boolean, "true or false");
   return value.boolean;

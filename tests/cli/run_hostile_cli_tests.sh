@@ -141,6 +141,21 @@ else
   echo "script(1) cannot run here: the terminal progress case is skipped"
 fi
 
+# analyze keeps every turn's samples: a driver range of thousands of turns ran out of memory
+# before "driver range too long" (session 41, hunt41); at most 100 turns or cycles
+turns=$((101 + RANDOM % 100000))
+for option in "--range 0:$((turns * 400))" "--range=-$((turns * 400)):0" "--cycles $turns" "--cycles 1e$((3 + RANDOM % 300))"; do
+  rm -rf "$work/turns"
+  # shellcheck disable=SC2086
+  timeout 30 "$hipair" analyze "$source/examples/models/cam-follower.json" $option --out "$work/turns" \
+    >"$work/turns.out" 2>"$work/turns.err"
+  status=$?
+  [ $status -eq 2 ] || fail "analyze $option: exit $status, not 2: $(head -c 300 "$work/turns.err")"
+  grep -q "^hipair: error: ${option%%[ =]*} .*\(turns\|cycles\)" "$work/turns.err" ||
+    fail "analyze $option: $(head -c 300 "$work/turns.err")"
+  [ -e "$work/turns" ] && fail "analyze $option: wrote its --out directory"
+done
+
 if [ $failures -ne 0 ]; then
   echo "$failures hostile CLI check(s) failed (seed $seed)"
   exit 1
