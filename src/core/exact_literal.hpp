@@ -14,7 +14,12 @@ namespace hipair {
 /// digits: "3/7", "-2", "0.125", "1e-9", "6.02E23/7". Nothing else: no space, tab or other
 /// character around or inside it, no '+' sign before it, no digits other than ASCII 0-9.
 /// @throws NumericError naming the text and what is wrong with it (parse_rational's errors
-///         for a well-formed literal: division by zero, an exponent beyond its limit).
+///         for a well-formed literal: division by zero), or an exponent of either part beyond
+///         exact_literal_max_exponent.
 Rational parse_exact_literal(std::string_view text);
+
+/// The largest decimal exponent (in magnitude) of either part of an exact literal; the model's
+/// literals have the same limit (docs/model-format.md "Numbers"), certificates' rationals too.
+inline constexpr long exact_literal_max_exponent = 1000;
 
 }  // namespace hipair

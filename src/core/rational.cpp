@@ -142,6 +142,18 @@ Rational parse_exact_literal(std::string_view text) {
   }
   if (!well_formed)
     refuse("digits with an optional '-', '.', exponent and '/' expected ('3/7', '-2', '0.125', '1e-9')");
+  // Each part's decimal exponent within exact_literal_max_exponent, the numerator's and the
+  // denominator's alike ("1200/20e-4958" is a 16 473-bit number, not a typing slip to carry on).
+  for (std::size_t e = rest.find_first_of("eE"); e != std::string_view::npos; e = rest.find_first_of("eE", e + 1)) {
+    std::size_t k = e + 1;
+    if (rest[k] == '+' || rest[k] == '-') ++k;
+    while (k + 1 < rest.size() && rest[k] == '0' && rest[k + 1] >= '0' && rest[k + 1] <= '9') ++k;
+    long magnitude = 0;
+    for (; k < rest.size() && rest[k] >= '0' && rest[k] <= '9' && magnitude <= exact_literal_max_exponent; ++k)
+      magnitude = magnitude * 10 + (rest[k] - '0');
+    if (magnitude > exact_literal_max_exponent)
+      refuse("the decimal exponent is limited to " + std::to_string(exact_literal_max_exponent) + " in magnitude");
+  }
   return parse_rational(text);
 }
 

@@ -677,6 +677,8 @@ Quantity as_angle(const Quantity& value, bool degrees, const std::string& pointe
   return Quantity::approximate(value.to_interval() * Interval::pi() / Interval(Rational(180)), true);
 }
 
+static_assert(max_literal_exponent == exact_literal_max_exponent, "one exponent limit for every exact literal");
+
 Rational parse_literal(std::string_view text, const std::string& pointer) {
   std::string lower = lower_case(text);
   if (lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos)

@@ -1,6 +1,7 @@
 // Exact rational literals and their text forms (include/hipair/rational.hpp).
 #include <hipair/error.hpp>
 #include <hipair/rational.hpp>
+#include "core/exact_literal.hpp"
 
 #include <gtest/gtest.h>
 
@@ -180,3 +181,61 @@ TEST(Rational, GmpBlocksReusedAcrossThreadsKeepEveryValue) {
 }
 
 }  // namespace
+
+// Session 41 (integrator): the exponent limit of an exact literal holds in both parts. A
+// certificate's "1200/20e-4958" was read as a 16 473-bit number (the limit was checked only on
+// the model's first exponent), and literal_cli_tests failed on such seeds. Generated literals
+// m e±k, m/(d e±k) and (m e±j)/(d e±k) with k, j around the limit: accepted exactly when every
+// exponent is within it, and then equal to the value built from integers.
+TEST(Rational, ExactLiteralsExponentLimitInEitherPart) {
+  std::mt19937_64 random(4141);
+  const long limit = hipair::exact_literal_max_exponent;
+  auto power = [](long k) {
+    mpz_class p;
+    mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(k < 0 ? -k : k));
+    return k < 0 ? Rational(mpz_class(1), p) : Rational(p);
+  };
+  auto exponent = [&](void) -> long {
+    long spread[] = {0, 1, 999, 1000, 1001, 1002, 4958, 9999, 10000, 33768};
+    long k = spread[random() % 10] + static_cast<long>(random() % 3) - 1;
+    return random() % 2 ? -k : k;
+  };
+  auto text_of = [&](long k) {
+    std::string sign = k < 0 ? "-" : (random() % 2 ? "+" : "");
+    std::string zeros(random() % 3, '0');  // leading zeros of the exponent do not hide it
+    return std::string(random() % 2 ? "e" : "E") + sign + zeros + std::to_string(k < 0 ? -k : k);
+  };
+  int accepted = 0, refused = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    long m = 1 + static_cast<long>(random() % 99999), d = 1 + static_cast<long>(random() % 999);
+    long j = exponent(), k = exponent();
+    int shape = static_cast<int>(random() % 3);
+    std::string text = std::to_string(m);
+    Rational value(m);
+    bool within = true;
+    if (shape != 1) {
+      text += text_of(j);
+      value *= power(j);
+      within = within && std::labs(j) <= limit;
+    }
+    if (shape != 0) {
+      text += "/" + std::to_string(d) + text_of(k);
+      value /= Rational(d) * power(k);
+      within = within && std::labs(k) <= limit;
+    }
+    if (within) {
+      ++accepted;
+      EXPECT_EQ(hipair::parse_exact_literal(text), value) << text;
+    } else {
+      ++refused;
+      try {
+        hipair::parse_exact_literal(text);
+        ADD_FAILURE() << text << " accepted beyond the exponent limit";
+      } catch (const hipair::NumericError& error) {
+        EXPECT_NE(std::string(error.what()).find("exponent"), std::string::npos) << error.what();
+      }
+    }
+  }
+  EXPECT_GT(accepted, 500);
+  EXPECT_GT(refused, 500);
+}
