@@ -59,6 +59,7 @@ std::map<std::string, FollowerLoad> model_loads(const Model& model) {
 namespace {
 
 constexpr double pi = std::numbers::pi;
+constexpr long max_driver_turns = 100;   // at most this many turns of a rotating driver (every turn's samples are kept)
 
 // A stretch of the driver's travel inside one chart: t runs from `from` to `to`.
 struct Segment {
@@ -637,6 +638,13 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
            "]" + (result.driver_rotates ? " rad" : " mm");
   };
   const bool ends_differ = options.range && options.range->first != options.range->second;
+  // Every turn's samples are kept (about 3.5 MB and 0.3 s a turn on the cam follower): a range of
+  // 100 000 rad grew past 1 GB in 20 s before "driver range too long" (≈ 30 000 turns) stopped it
+  // (hunt41; tolerance's nominal path and library callers come here too, not only analyze's CLI).
+  if (result.driver_rotates && !(std::abs(travel) <= max_driver_turns * 2 * pi))
+    throw ModelError("", (options.range ? range_text() : "the driver's " + to_decimal_string(options.cycles) + " cycles") +
+                             " spans more than " + std::to_string(max_driver_turns) +
+                             " turns of the driver: analyse a shorter range");
   if (travel == 0)
     throw NumericError(ends_differ ? range_text() + " is too short to drive: its length rounds to 0 in double precision"
                                    : std::string("the driver range is empty"));
