@@ -23,6 +23,13 @@ int main(int argc, char** argv) {
   hipair::cli::register_cspace(app, action);
   hipair::cli::register_tolerance(app, action);
   hipair::cli::register_simulate(app, action);
+  // a usage error is one line, like every other error: "hipair: error: <CLI11's message> (see
+  // 'hipair SUBCOMMAND --help')" (CLI11's default adds a second line, "Run with --help ...")
+  app.failure_message([](const CLI::App* top, const CLI::Error& e) {
+    std::string command = "hipair";
+    for (const CLI::App* sub : top->get_subcommands()) command += " " + sub->get_name();
+    return "hipair: error: " + std::string(e.what()) + " (see '" + command + " --help')\n";
+  });
   // a parse error's message with its overlong words cut (a 100 000-digit value is not echoed)
   auto exit_with = [&app](const CLI::ParseError& e) {
     const std::string message = hipair::cli::shortened_message(e.what());

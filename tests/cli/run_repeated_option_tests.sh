@@ -35,7 +35,7 @@ refused() {
   "$hipair" "$@" >"$work/$name.out" 2>"$work/$name.err"
   local code=$?
   [ $code -eq 114 ] || fail "$name: exit $code, want 114 (a repeated $option target): $(head -c 300 "$work/$name.err")"
-  grep -q -- "^$option: .*'$target' is given twice" "$work/$name.err" ||
+  grep -q -- "^hipair: error: $option: .*'$target' is given twice" "$work/$name.err" ||
     fail "$name: the message does not name $option and '$target': $(head -c 300 "$work/$name.err")"
   [ -e "$work/$name.svg" ] || [ -e "$work/$name.json" ] || [ -e "$work/$name.dir" ] && fail "$name: wrote output"
 }
@@ -86,6 +86,38 @@ for ratio in 11 23/2; do
   "$hipair" certify "$cam" --claim free --pair cam:follower --from 0 --to 1 --ratio "$ratio" --out "$work/$name.json" >"$work/$name.out" 2>&1 ||
     fail "$name: not certified: $(tail -c 300 "$work/$name.out")"
   "$verify" "$work/$name.json" "$cam" >"$work/$name.verify" 2>&1 || fail "$name: not verified: $(cat "$work/$name.verify")"
+done
+
+# Session 42: every command-line usage error (CLI11's own and ours) is one line on stderr,
+# "hipair: error: ... (see 'hipair COMMAND --help')", with CLI11's exit code (103-114), nothing on
+# stdout, nothing written. Each case is drawn with a random subcommand and a random bad value.
+usage_case() {
+  local command=$1 out=$work/usage-$RANDOM
+  case $((RANDOM % 7)) in
+    0) echo "$command"; echo "" ;;                                   # the model missing
+    1) echo "$command $geneva --no-such-option-$RANDOM" ;;           # an unknown option
+    2) echo "$command $work/no-such-model-$RANDOM.json" ;;           # a model file that does not exist
+    3) echo "$command $geneva --set" ;;                               # an option without its value
+    4) echo "$command $geneva --rounding x$RANDOM" ;;                # a value that does not convert
+    5) echo "$command $geneva --out $out.a --out $out.b" ;;           # a single-valued option twice
+    6) echo "$command $geneva $geneva" ;;                             # a second model
+  esac
+}
+for round in $(seq 1 40); do
+  commands=(validate show analyze cspace tolerance simulate certify)
+  command=${commands[$((RANDOM % ${#commands[@]}))]}
+  read -r -a args <<<"$(usage_case "$command" | head -1)"
+  "$hipair" "${args[@]}" >"$work/usage.out" 2>"$work/usage.err"
+  code=$?
+  what="usage error '${args[*]}'"
+  if [ $code -eq 0 ] || [ $code -eq 5 ] || [ $code -gt 114 ]; then fail "$what: exit $code"; fi
+  [ -s "$work/usage.out" ] && fail "$what: writes to stdout: $(head -c 300 "$work/usage.out")"
+  [ "$(wc -l <"$work/usage.err")" -eq 1 ] || fail "$what: not one line on stderr: $(head -c 300 "$work/usage.err")"
+  grep -q "^hipair: error: " "$work/usage.err" || fail "$what: no 'hipair: error: ' prefix: $(head -c 300 "$work/usage.err")"
+  if [ $code -ge 103 ]; then
+    grep -qF "(see 'hipair $command --help')" "$work/usage.err" || fail "$what: names no help: $(head -c 300 "$work/usage.err")"
+  fi
+  ls "$work"/usage-* >/dev/null 2>&1 && fail "$what: wrote $(ls "$work"/usage-*)"
 done
 
 if [ $failures -ne 0 ]; then
