@@ -311,11 +311,16 @@ TEST(SimulationVertexGraze, BarTipThroughASquaresCornerGrazesCutsOrMisses) {
       // impact (restitution 0: a held contact on the bar's side) a step may end where it began
       // (a lift-off or contact change decided at its start), the run goes on
       int steps = 0;
-      while (s.state().time < 2 * t_star && steps < 3000) {
+      bool stuck = false;
+      while (s.state().time < 2 * t_star && steps < 3000 && !stuck) {
         const double t = s.state().time;
         ASSERT_NO_THROW(s.step()) << "at t = " << t;
         ++steps;
-        if (!enters) ASSERT_GT(s.state().time, t);
+        stuck = !enters && !(s.state().time > t);
+      }
+      if (stuck) {
+        ADD_FAILURE() << "a step did not move the time on at t = " << s.state().time;
+        continue;
       }
       ASSERT_GE(s.state().time, 2 * t_star);
       if (enters) {
