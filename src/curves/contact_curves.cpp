@@ -1270,28 +1270,53 @@ bool corner_enters_segment(const FeatureDirections& vertex, const FeatureDirecti
 // pairs) exact predicates instead of m n corner tests.
 
 // A direction with its enclosure (the filter of the exact signs below).
+// A segment's direction in the front end: the primitive integer vector along it (target -
+// source times a positive factor, front_direction), with double enclosures of its coordinates
+// for the filters below. Integers (not a Point of rationals): no denominators made, and the
+// exact fallbacks are integer products (session 42).
 struct Direction {
-  Point p;
-  Interval x, y;
-  static Direction of(const Point& p) { return Direction{p, algebra::enclose_kernel(p.x), algebra::enclose_kernel(p.y)}; }
-  static Direction of(Point&& p) {
-    Interval x = algebra::enclose_kernel(p.x), y = algebra::enclose_kernel(p.y);
-    return Direction{std::move(p), x, y};
+  mpz_class x, y;
+  Interval ix, iy;
+  // an integer's enclosure: the double itself when |z| < 2^53 (exact), else the kernels'
+  static Interval enclose(const mpz_class& z) {
+    if (mpz_sizeinbase(z.get_mpz_t(), 2) <= 53) {
+      const double d = z.get_d();   // exact
+      return Interval(d, d);
+    }
+    return algebra::enclose_kernel(mpq_class(z));
   }
-  Direction negated() const { return Direction{Point{Rational(-p.x), Rational(-p.y)}, -x, -y}; }
+  static Direction of(mpz_class x, mpz_class y) {
+    Interval ix = enclose(x), iy = enclose(y);
+    return Direction{std::move(x), std::move(y), ix, iy};
+  }
+  Direction negated() const { return Direction{mpz_class(-x), mpz_class(-y), -ix, -iy}; }
 };
+
+// Exact cross(a, b) or dot(a, b) sign of two integer vectors (per-thread scratch integers).
+int integer_cross_sign(const Direction& a, const Direction& b) {
+  thread_local mpz_class t;
+  mpz_mul(t.get_mpz_t(), a.x.get_mpz_t(), b.y.get_mpz_t());
+  mpz_submul(t.get_mpz_t(), a.y.get_mpz_t(), b.x.get_mpz_t());
+  return sgn(t);
+}
+int integer_dot_sign(const Direction& a, const Direction& b) {
+  thread_local mpz_class t;
+  mpz_mul(t.get_mpz_t(), a.x.get_mpz_t(), b.x.get_mpz_t());
+  mpz_addmul(t.get_mpz_t(), a.y.get_mpz_t(), b.y.get_mpz_t());
+  return sgn(t);
+}
 
 // Sign of cross(a, b): interval filter, exact when the enclosure holds zero.
 int cross_sign(const Direction& a, const Direction& b) {
-  int sign = (a.x * b.y - a.y * b.x).sign();
+  int sign = (a.ix * b.iy - a.iy * b.ix).sign();
   if (sign == 1 || sign == -1) return sign;
-  return sgn(cross(a.p, b.p));
+  return integer_cross_sign(a, b);
 }
 
 // Exact angular order of non-zero directions: angle in [0, 2 pi) from +x.
-int half_of(const Point& u) { return sgn(u.y) > 0 || (sgn(u.y) == 0 && sgn(u.x) > 0) ? 0 : 1; }
+int half_of(const Direction& u) { return sgn(u.y) > 0 || (sgn(u.y) == 0 && sgn(u.x) > 0) ? 0 : 1; }
 bool angle_before(const Direction& a, const Direction& b) {
-  int ha = half_of(a.p), hb = half_of(b.p);
+  int ha = half_of(a), hb = half_of(b);
   if (ha != hb) return ha < hb;
   return cross_sign(a, b) > 0;
 }
@@ -1332,7 +1357,7 @@ std::vector<std::pair<int, int>> cone_pairs(const std::vector<DirectedFeature>& 
     int turn = cross_sign(in, out);
     if (turn > 0) {
       walk(in.negated());   // the cone from -in counter-clockwise to -out
-    } else if (turn == 0 && sgn(dot(in.p, out.p)) > 0) {
+    } else if (turn == 0 && integer_dot_sign(in, out) > 0) {
       walk(in.negated());   // a straight vertex: the directions -out and +out
       walk(out);
     } else if (turn == 0) {
@@ -1861,9 +1886,9 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
         }
       }
       for (std::size_t e = 0; e < edge_count; ++e) {
-        thread_local mpz_class dx, dy;
+        mpz_class dx, dy;   // (moved into the direction: its integers, no rationals)
         front_direction(ends[e], ends[target_end[e]], dx, dy);
-        directions.push_back(Direction::of(Point{Rational(dx), Rational(dy)}));
+        directions.push_back(Direction::of(std::move(dx), std::move(dy)));
       }
       index.resize(features.size());
       vertices.reserve(features.size());
@@ -1886,7 +1911,7 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
           // (D is the direction's numerators: a canonical rational of an integer has
           // denominator 1)
           front_segments.push_back(
-              front_segment(ends[e], ends[target_end[e]], directions[e].p.x.get_num(), directions[e].p.y.get_num(), u));
+              front_segment(ends[e], ends[target_end[e]], directions[e].x, directions[e].y, u));
         }
       }
     };

@@ -1097,5 +1097,65 @@ TEST(CSpacePolygonFrontEnd, NonDyadicAxisParallelPairsAtScales2ToThe300EqualTheG
   EXPECT_GE(non_vertical_edges, 100);
 }
 
+// Session 42 (trans42): the front end's segment directions are primitive integer vectors whose
+// angular order (cone_pairs) is decided by a double filter with an exact integer fallback.
+// Directions of 60 to 90 bits, the second part's edges nearly parallel to the first's (their
+// cross product a few units against products of ~2^150: the filter cannot decide) or exactly
+// parallel: the front end's curves equal the general path's (exact rational tangents), the
+// space equals it field by field, and the blocked region equals minkowski_sum_2.
+TEST(CSpacePolygonFrontEnd, WideNearlyParallelDirectionsEqualTheGeneralPathAndTheMinkowskiSum) {
+  std::mt19937_64 random(4201);
+  auto big = [&](int bits) {   // a random integer of exactly `bits` bits
+    mpz_class z = 1;
+    for (int i = 1; i < bits; ++i) z = 2 * z + static_cast<long>(random() % 2);
+    return z;
+  };
+  int compared = 0;
+  for (int instance = 0; instance < 24; ++instance) {
+    const int bits = 60 + static_cast<int>(random() % 31);
+    const mpz_class n = mpz_class(1) << bits;
+    // u, v counter-clockwise (u along x-ish, v along y-ish), coordinates about 1
+    mpz_class ux = n + big(bits - 2), uy = big(bits - 3), vx = big(bits - 3), vy = n + big(bits - 2);
+    if (instance % 2 == 1) uy = -uy;
+    auto at = [&](const mpz_class& x, const mpz_class& y) {
+      Rational px(x, n), py(y, n);
+      px.canonicalize();
+      py.canonicalize();
+      return std::make_pair(px, py);
+    };
+    Points a;
+    a.push_back(at(0, 0));
+    a.push_back(at(ux, uy));
+    if (instance % 3 == 2) a.push_back(at(ux + vx, uy + vy));   // a parallelogram
+    a.push_back(at(vx, vy));
+    // b: a turned half a turn about a centre (its edges antiparallel to a's, so parallel to
+    // those of -b in the sum), each vertex moved by a few units of 1 / (n 2^k) on some instances
+    // (nearly parallel) and not on others (exactly parallel)
+    const mpz_class centre_x = 3 * n, centre_y = 2 * n;
+    const long unit = instance % 4 == 0 ? 0 : 1;
+    const mpz_class fine = mpz_class(1) << (2 + static_cast<int>(random() % 12));
+    Points b;
+    for (const auto& [x, y] : a) {
+      Rational bx = Rational(centre_x, n) - x, by = Rational(centre_y, n) - y;
+      bx.canonicalize();
+      by.canonicalize();
+      Rational dx(mpz_class(unit * (static_cast<long>(random() % 7) - 3)), n * fine);
+      Rational dy(mpz_class(unit * (static_cast<long>(random() % 7) - 3)), n * fine);
+      dx.canonicalize();
+      dy.canonicalize();
+      b.emplace_back(Rational(bx + dx), Rational(by + dy));
+    }
+    SCOPED_TRACE("instance " + std::to_string(instance) + ", " + std::to_string(bits) + " bits");
+    std::optional<Model> built_model = sliders_or_none(a, b);
+    if (!built_model) continue;
+    expect_same_curves(*built_model);
+    Built built = build_both(*built_model, instance % 3 == 0);
+    expect_same_space(built.fast, built.general);
+    expect_minkowski(built.fast, a, b);
+    ++compared;
+  }
+  EXPECT_GE(compared, 20);
+}
+
 }  // namespace
 }  // namespace hipair
