@@ -492,8 +492,13 @@ class ChainAnalysis {
   // and every root between them, so intersecting Y_k+1 with it keeps G valid over the narrower
   // Y_k+1. H_k(c) is enclosed as before (the holders' roots at c, each driven by the previous
   // one's), so the composition stays in mean-value form through the chain.
+  //
+  // `failed` (when given) receives the pair at which the composition failed (stages_.size() on
+  // success): certified() bisects the box along the parameters that spread that pair's
+  // follower most (session 42).
   bool compose_over(std::size_t i, const Box& box, std::vector<Interval>& charts, Interval& out, std::size_t* boxes,
-                    bool* mean_value_through = nullptr, HandoverNote* handover = nullptr) const {
+                    bool* mean_value_through = nullptr, HandoverNote* handover = nullptr,
+                    std::size_t* failed = nullptr) const {
     bool mean_value = options_.mean_value_chain;
     std::vector<double> center;
     std::vector<Interval> offsets, d;   // B - c; D of the last pair
@@ -506,6 +511,7 @@ class ChainAnalysis {
     Interval x;    // the previous pair's output over the box, part units
     Interval xc;   // the same at the box's centre
     for (std::size_t s = 0; s < stages_.size(); ++s) {
+      if (failed) *failed = s;
       const StageAnalysis& stage = stages_[s];
       const StageContact& c = stage.contacts[i];
       const PositionStage& ps = per_[i][s];
@@ -564,6 +570,7 @@ class ChainAnalysis {
       x = to_part(charts[s], stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
     }
     out = x;
+    if (failed) *failed = stages_.size();
     // (through a widened pair the remainder R shrinks with the sub-box, so bisection may still
     // pay: not counted as through)
     if (mean_value_through) *mean_value_through = mean_value && r.lo == 0.0 && r.hi == 0.0;
@@ -721,6 +728,7 @@ class ChainAnalysis {
   void certified() {
     std::vector<std::size_t> boxes(positions() * stages_.size(), 0);
     std::vector<std::size_t> shared_boxes(positions(), 0);
+    std::vector<std::size_t> failure_boxes(positions(), 0);   // sub-boxes where a composition failed and was bisected
     std::vector<char> ok(positions(), 0);
     std::vector<HandoverNote> handover(positions());
     std::size_t n = result_.parameters.size();
@@ -736,6 +744,20 @@ class ChainAnalysis {
       }
       std::vector<double> loss(n, 0.0);
       for (std::size_t p = 0; p < n && p < total.size(); ++p) loss[p] = spread[p] - std::fabs(total[p]);
+      // Per pair k and parameter p: the share of pair k's follower spread (part units) that p
+      // accounts for, sum over j <= k of |pair j's s_part_p times the driver factors of pairs
+      // j+1 .. k| (both the pair's own geometry and its driver's). Where a sub-box's composition
+      // fails at pair k (session 42), it is bisected along the parameter whose share times the
+      // sub-box's width is largest: pair k's driver range and its own blur shrink most there.
+      // (A nominal, linearised steer only: any partition of the box is sound.)
+      std::vector<std::vector<double>> share(stages_.size(), std::vector<double>(n, 0.0));
+      for (std::size_t k = 0; k < stages_.size(); ++k)
+        for (std::size_t j = 0; j <= k; ++j) {
+          double through = 1;
+          for (std::size_t m = j + 1; m <= k; ++m) through *= per_[i][m].driver_factor;
+          for (std::size_t p = 0; p < n; ++p) share[k][p] += std::fabs(through * per_[i][j].s_part[p]);
+        }
+      std::size_t failure_splits = 0, shared_splits = 0;
       std::vector<Interval> hull_charts(stages_.size());
       std::vector<Interval> charts(stages_.size());
       // breadth first: when the budget runs out, the sub-boxes left are the narrowest ones
@@ -750,7 +772,9 @@ class ChainAnalysis {
         ++used;
         Interval out;
         bool mean_value_through = false;
-        bool composed = compose_over(i, b, charts, out, &boxes[i * stages_.size()], &mean_value_through, &handover[i]);
+        std::size_t failed = stages_.size();
+        bool composed =
+            compose_over(i, b, charts, out, &boxes[i * stages_.size()], &mean_value_through, &handover[i], &failed);
         double linear = 0;
         for (std::size_t p = 0; p < n && p < total.size(); ++p) linear += std::fabs(total[p]) * (b.hi[p] - b.lo[p]);
         bool accurate = composed && out.width() <= linear * (1 + options_.relative_accuracy) + options_.absolute_accuracy;
@@ -778,16 +802,44 @@ class ChainAnalysis {
             auto [left, right] = halves(b, split);
             pending.push_back(std::move(left));
             pending.push_back(std::move(right));
+            ++shared_splits;
             continue;
           }
         }
-        if (!composed) return;   // a sub-box that cannot be certified: the band is unbounded
+        if (!composed) {
+          // A sub-box that cannot be certified (a pair's root not certified over its driver
+          // range, its free side not certain, or a competitor possibly holding its follower
+          // beyond the window: at the last meshes of a long gear train the driver's range,
+          // composed over the whole box, is too wide): bisected along the parameter that
+          // spreads the failing pair's follower most, within max_failure_boxes sub-boxes; the
+          // band is the hull of the halves' compositions. Otherwise unbounded.
+          if (failed < stages_.size() && used + pending.size() + 2 <= max_failure_boxes) {
+            std::size_t split = n;
+            double best = 0;
+            for (std::size_t p = 0; p < n; ++p) {
+              double score = share[failed][p] * (b.hi[p] - b.lo[p]);
+              if (b.hi[p] > b.lo[p] && score > best) {
+                best = score;
+                split = p;
+              }
+            }
+            if (split < n) {
+              auto [left, right] = halves(b, split);
+              pending.push_back(std::move(left));
+              pending.push_back(std::move(right));
+              ++failure_splits;
+              continue;
+            }
+          }
+          return;   // the band is unbounded
+        }
         band = have ? kernels::hull(band, out) : out;
         for (std::size_t s = 0; s < stages_.size(); ++s) hull_charts[s] = have ? kernels::hull(hull_charts[s], charts[s]) : charts[s];
         have = true;
       }
       for (std::size_t s = 0; s < stages_.size(); ++s) per_[i][s].certified_chart = hull_charts[s];
-      shared_boxes[i] = used;
+      shared_boxes[i] = shared_splits > 0 ? used : 1;
+      if (failure_splits > 0) failure_boxes[i] = used;
       result_.samples[i].certified = CertifiedRange{band.lo, band.hi};
       ok[i] = 1;
     }, [&](std::size_t done) { bar_.units(done, positions()); });
@@ -815,6 +867,16 @@ class ChainAnalysis {
       notes_.push_back("the certified band was bisected along parameters acting on several pairs at " +
                        std::to_string(split_positions) + " position(s) (at most " + std::to_string(most) +
                        " sub-boxes of the tolerance box at one position)");
+    std::size_t failure_positions = 0, most_failure = 0;
+    for (std::size_t i = 0; i < positions(); ++i)
+      if (failure_boxes[i] > 0) {
+        ++failure_positions;
+        most_failure = std::max(most_failure, failure_boxes[i]);
+      }
+    if (failure_positions > 0)
+      notes_.push_back("the certified band was bounded by bisecting the tolerance box where its composition could not be "
+                       "certified over the whole box at " + std::to_string(failure_positions) + " position(s) (at most " +
+                       std::to_string(most_failure) + " sub-boxes at one position)");
     if (uncertified > 0)
       notes_.push_back("the certified band could not be computed at " + std::to_string(uncertified) +
                        " driver position(s) (shown unbounded)");
@@ -1147,6 +1209,8 @@ class ChainAnalysis {
 
   static constexpr std::size_t max_shared_boxes = 128;   // sub-boxes of the tolerance box per position
   static constexpr std::size_t max_held_pieces = 16;     // pieces of a held driver range (held_pieces)
+  // sub-boxes of the tolerance box per position where a composition fails (session 42)
+  static constexpr std::size_t max_failure_boxes = 8;
 
   std::string text_;
   ToleranceOptions options_;
