@@ -189,7 +189,7 @@ class CurveCuller {
       for (std::size_t a = 0; a < entry_->size(); ++a)
         if (atom_value((*entry_)[a], entry_slot_ + a, depth, j, x, y).hi < 0) return;
     }
-    if (depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && depth <= grid_.depth() && grid_.blocked(depth, i, j))
+    if (depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && depth <= grid_.depth() && blocked(depth, i, j))
       return;
     // a curve with corner-entry atoms is followed entry_depth_ levels below the grid's finest
     // cells (its own test only: the disks certify nothing more there, next to the channel)
@@ -232,8 +232,23 @@ class CurveCuller {
     return y_sides_[static_cast<std::size_t>(depth)][static_cast<std::size_t>(j)];
   }
 
+  // The grid's answer for cell (depth, i, j), remembered in a dense table per depth (0: not
+  // asked yet, 1: free, 2: blocked). BlockedCells keeps every answer it gives (an answer is
+  // never changed once made), so a second call would return the same; the table only spares
+  // the next curves of the chart the grid's hashed look-up at each node they share.
+  bool blocked(int depth, long i, long j) {
+    const auto d = static_cast<std::size_t>(depth);
+    if (answers_.size() <= d) answers_.resize(d + 1);
+    std::vector<std::uint8_t>& table = answers_[d];
+    if (table.empty()) table.assign(std::size_t{1} << (2 * depth), 0);
+    std::uint8_t& answer = table[(static_cast<std::size_t>(i) << depth) | static_cast<std::size_t>(j)];
+    if (answer == 0) answer = grid_.blocked(depth, i, j) ? 2 : 1;
+    return answer == 2;
+  }
+
   int entry_depth_ = 0;
   BlockedCells& grid_;
+  std::vector<std::vector<std::uint8_t>> answers_;   // per depth: blocked(), i * 2^depth + j
   std::vector<std::vector<algebra::Interval>> x_sides_, y_sides_;   // per depth: the cells' sides
   const std::vector<algebra::IntervalPolynomial2>* entry_ = nullptr;   // the current curve's (windows)
   std::vector<std::size_t> clause_slot_;  // the current curve's: slot of each clause's first atom
