@@ -100,9 +100,10 @@ class CurveCuller {
     if (row_caches_.size() < static_cast<std::size_t>(deepest) + 1) row_caches_.resize(static_cast<std::size_t>(deepest) + 1);
     for (auto& cache : row_caches_)
       if (cache.size() < slots * row_ways) cache.resize(slots * row_ways);
+    sides_to(deepest);
     ++curve_;   // every entry of an earlier curve is stale
     row_cache_ = culling_row_cache().load(std::memory_order_relaxed);
-    visit(f, clauses, 0, 0, 0, boxes, f.evaluate(grid_.cell_x(0, 0), grid_.cell_y(0, 0)), 0);
+    visit(f, clauses, 0, 0, 0, boxes, f.evaluate(cell_x(0, 0), cell_y(0, 0)), 0);
     std::sort(boxes.begin(), boxes.end());
     cells.clear();
     for (const auto& b : boxes) {
@@ -146,7 +147,7 @@ class CurveCuller {
                                                 long j) {
     RowEntry& e = row_caches_[static_cast<std::size_t>(depth)][slot * row_ways + static_cast<std::size_t>(j) % row_ways];
     if (e.j != j || e.curve != curve_) {
-      p.rows_at(grid_.cell_y(depth, j), e.rows);
+      p.rows_at(cell_y(depth, j), e.rows);
       e.j = j;
       e.curve = curve_;
     }
@@ -168,7 +169,7 @@ class CurveCuller {
              int depth, long i, long j, std::vector<std::array<double, 4>>& found, algebra::Interval value,
              std::uint64_t settled) {
     if (!value.contains_zero()) return;
-    algebra::Interval x = grid_.cell_x(depth, i), y = grid_.cell_y(depth, j);
+    algebra::Interval x = cell_x(depth, i), y = cell_y(depth, j);
     bool strict = !entry_->empty();   // every clause holds strictly over the cell (so far)
     for (std::size_t k = 0; k < clauses.size(); ++k) {
       if (k < 64 && (settled >> k & 1u)) continue;
@@ -188,7 +189,7 @@ class CurveCuller {
       for (std::size_t a = 0; a < entry_->size(); ++a)
         if (atom_value((*entry_)[a], entry_slot_ + a, depth, j, x, y).hi < 0) return;
     }
-    if (depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && depth <= grid_.depth() && grid_.blocked(depth, i, j))
+    if (depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && depth <= grid_.depth() && blocked(depth, i, j))
       return;
     // a curve with corner-entry atoms is followed entry_depth_ levels below the grid's finest
     // cells (its own test only: the disks certify nothing more there, next to the channel)
@@ -198,16 +199,57 @@ class CurveCuller {
     }
     algebra::Interval values[2][2];
     for (long dj = 0; dj < 2; ++dj) {
-      if (!row_cache_) f.rows_at(grid_.cell_y(depth + 1, 2 * j + dj), rows_);
+      if (!row_cache_) f.rows_at(cell_y(depth + 1, 2 * j + dj), rows_);
       const std::vector<algebra::Interval>& rows = row_cache_ ? rows_of(f, f_slot_, depth + 1, 2 * j + dj) : rows_;
-      for (long di = 0; di < 2; ++di) values[di][dj] = f.evaluate_rows(grid_.cell_x(depth + 1, 2 * i + di), rows);
+      for (long di = 0; di < 2; ++di) values[di][dj] = f.evaluate_rows(cell_x(depth + 1, 2 * i + di), rows);
     }
     for (long di = 0; di < 2; ++di)
       for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found, values[di][dj], settled);
   }
 
+  // The grid's cell sides (BlockedCells::cell_x / cell_y, pure functions of depth and index),
+  // tabulated per depth once per chart (sides_to, before a curve's walk): every curve of the
+  // chart walks the same cells, and the walk asked the grid for the same sides again at each node
+  // (Geneva: 416 K calls for ~ 4 K distinct sides). The table holds the grid's own values, so the
+  // enclosures and every decision are the same.
+  void sides_to(int deepest) {
+    for (int depth = static_cast<int>(x_sides_.size()); depth <= deepest; ++depth) {
+      const long count = 1L << depth;
+      x_sides_.emplace_back();
+      y_sides_.emplace_back();
+      x_sides_.back().reserve(static_cast<std::size_t>(count));
+      y_sides_.back().reserve(static_cast<std::size_t>(count));
+      for (long m = 0; m < count; ++m) {
+        x_sides_.back().push_back(grid_.cell_x(depth, m));
+        y_sides_.back().push_back(grid_.cell_y(depth, m));
+      }
+    }
+  }
+  algebra::Interval cell_x(int depth, long i) const {
+    return x_sides_[static_cast<std::size_t>(depth)][static_cast<std::size_t>(i)];
+  }
+  algebra::Interval cell_y(int depth, long j) const {
+    return y_sides_[static_cast<std::size_t>(depth)][static_cast<std::size_t>(j)];
+  }
+
+  // The grid's answer for cell (depth, i, j), remembered in a dense table per depth (0: not
+  // asked yet, 1: free, 2: blocked). BlockedCells keeps every answer it gives (an answer is
+  // never changed once made), so a second call would return the same; the table only spares
+  // the next curves of the chart the grid's hashed look-up at each node they share.
+  bool blocked(int depth, long i, long j) {
+    const auto d = static_cast<std::size_t>(depth);
+    if (answers_.size() <= d) answers_.resize(d + 1);
+    std::vector<std::uint8_t>& table = answers_[d];
+    if (table.empty()) table.assign(std::size_t{1} << (2 * depth), 0);
+    std::uint8_t& answer = table[(static_cast<std::size_t>(i) << depth) | static_cast<std::size_t>(j)];
+    if (answer == 0) answer = grid_.blocked(depth, i, j) ? 2 : 1;
+    return answer == 2;
+  }
+
   int entry_depth_ = 0;
   BlockedCells& grid_;
+  std::vector<std::vector<std::uint8_t>> answers_;   // per depth: blocked(), i * 2^depth + j
+  std::vector<std::vector<algebra::Interval>> x_sides_, y_sides_;   // per depth: the cells' sides
   const std::vector<algebra::IntervalPolynomial2>* entry_ = nullptr;   // the current curve's (windows)
   std::vector<std::size_t> clause_slot_;  // the current curve's: slot of each clause's first atom
   std::size_t entry_slot_ = 0;            // slot of the first corner-entry atom
