@@ -11,20 +11,24 @@
 namespace hipair::simulation {
 
 enum class VertexPass {
-  unknown,   // not decided here (not at one rational vertex of straight edges): the old rule
+  unknown,   // not decided here: the old rule
   graze,     // the motion passes through the vertex from a free sector into a free sector
   enters     // the motion's direction at the vertex points into a blocked sector
 };
 
-// Decided exactly for a grazing crossing (`crossing.grazing`) of a 2-D space whose two axes
-// translate (chart coordinates are the offsets, mm), at the one vertex of the crossing's chart
-// near the crossing's path piece [u_lower, u_upper] (within the piece's own extent) that has
-// rational coordinates and only straight incident edges with rational other ends: the path's
-// direction at u_lower (exact, from its rational polynomials) against the sectors between the
+// Decided for a grazing crossing (`crossing.grazing`) of a 2-D space, at the one vertex of the
+// crossing's chart near the crossing, by the path's direction against the sectors between the
 // vertex's edges, each sector's cell from the edge bounding it (left_cell / right_cell); the
-// direction the motion comes from must lie in a free sector too. A direction along an edge (the
-// motion slides on it), a vertex of curved edges, a rotating axis, several or no vertices
-// near: unknown.
+// direction the motion comes from must lie in a free sector too.
+// - Session 41, exact rationals: two translating axes, a rational vertex with straight edges,
+//   near the path's piece [u_lower, u_upper] (within the piece's own extent).
+// - Session 42, where that answers unknown (any axes: a rotating axis, curved edges, an
+//   algebraic vertex): the vertex alone within twice the extent of the query's chart box
+//   (crossing.chart_point); the edges' tangents (F_y, -F_x) and the path's chart velocity over
+//   the bracket ordered by certified signs of rational interval enclosures of the vertex,
+//   refined by exact bisection (its polynomial; CSpace::compare_ordinate).
+// A direction along an edge (the motion slides on it), tangent edges, a vertical tangent, a
+// vertex on a chart boundary, several or no vertices near: unknown (the old rule).
 VertexPass vertex_pass(const CSpace& space, const MotionCrossing& crossing, const MotionPath& path);
 
 }  // namespace hipair::simulation
