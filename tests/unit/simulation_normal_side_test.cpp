@@ -34,7 +34,7 @@ int exact_sign(double s, double gx, double gy) {
 TEST(SimulationNormalSide, CertifiedSideIsTheExactSignOverTheEnclosure) {
   std::mt19937_64 random(20261202);
   std::uniform_real_distribution<double> unit(-1, 1);
-  std::size_t decided = 0, near = 0, undecided_near = 0;
+  std::size_t decided = 0, near = 0, undecided_near = 0, wrong = 0;
   for (int trial = 0; trial < 200000; ++trial) {
     const int scale = static_cast<int>(random() % 81) - 40;
     double gx = std::ldexp(unit(random), scale), gy = std::ldexp(unit(random), static_cast<int>(random() % 81) - 40);
@@ -54,6 +54,11 @@ TEST(SimulationNormalSide, CertifiedSideIsTheExactSignOverTheEnclosure) {
     }
     for (int k = 0, n = static_cast<int>(random() % 8); k < n; ++k) hi = std::nextafter(hi, 1e300);
     if (kind == 2) hi = lo + std::abs(lo) * 1e-3;
+    if (kind == 4) {
+      // a wide enclosure with the tie inside it, or just outside either end
+      hi = lo + std::abs(lo) * 1e-3;
+      gy = (lo + (hi - lo) * std::uniform_real_distribution<double>(-0.1, 1.1)(random)) * gx;
+    }
     if (kind == 3 && trial % 50 == 3) gx = 0;
     const int side = simulation::certified_side(lo, hi, gx, gy);
     if (side == 0) {
@@ -63,11 +68,12 @@ TEST(SimulationNormalSide, CertifiedSideIsTheExactSignOverTheEnclosure) {
     ++decided;
     const std::string where = "lo " + test::bits_of(lo) + " hi " + test::bits_of(hi) + " gx " + test::bits_of(gx) +
                               " gy " + test::bits_of(gy);
-    ASSERT_EQ(exact_sign(lo, gx, gy), side) << where;
-    ASSERT_EQ(exact_sign(hi, gx, gy), side) << where;
-    // and in between (affine: the ends decide; a midpoint checked as well)
-    ASSERT_EQ(sgn(Rational(gy) - (Rational(lo) + Rational(hi)) / 2 * Rational(gx)), side) << where;
+    // at both ends and in between (affine: the ends decide; a midpoint checked as well)
+    const bool right = exact_sign(lo, gx, gy) == side && exact_sign(hi, gx, gy) == side &&
+                       sgn(Rational(gy) - (Rational(lo) + Rational(hi)) / 2 * Rational(gx)) == side;
+    if (!right && ++wrong <= 3) ADD_FAILURE() << "side " << side << " is not the exact sign: " << where;
   }
+  EXPECT_EQ(wrong, 0u) << "wrong sides";
   // never decided: an empty, reversed or non-finite enclosure
   const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(simulation::certified_side(1, 0, 1, 5), 0);
@@ -78,7 +84,7 @@ TEST(SimulationNormalSide, CertifiedSideIsTheExactSignOverTheEnclosure) {
   EXPECT_EQ(simulation::certified_side(0, 1e300, 1e300, 1), 0);   // the product overflows
   std::printf("%zu of 200000 decided; %zu near-ties generated, %zu of them left to the exact slope\n", decided, near,
               undecided_near);
-  EXPECT_GT(decided, 100000u);
+  EXPECT_GT(decided, 80000u);
   EXPECT_GT(undecided_near, 1000u);
 }
 
