@@ -67,6 +67,19 @@ CertifiedRange range_of(const Rational& lo, const Rational& hi) {
 
 CertifiedRange range_of(const KInterval& i) { return CertifiedRange{i.lo, i.hi}; }
 
+// The exact ordinate of a contact edge at a rational abscissa strictly inside its extent
+// (cspace::edge_y_at: the edge's arc number's root of the fibre), and that number refined to
+// 2^-64 (Real::refine_to: the first interval derivatives_of and exact_ordinate take).
+struct EdgeOrdinate {
+  std::size_t edge = 0;   // global
+  Rational x;             // canonical
+  Real y, y64;
+};
+// From the scan memo's last few of the space (an impact's new contact asks edge_coordinate_slope
+// at the configuration's abscissa, and its first contact row places a tracker at the same one),
+// or made (and remembered); the same values either way (scan_memo.hpp, ordinate_at_memo()).
+std::shared_ptr<const EdgeOrdinate> edge_ordinate(const CSpace& space, std::size_t index, const Rational& x);
+
 // ------------------------------------------------------------------ exact rational intervals
 
 struct RInterval {
@@ -394,7 +407,8 @@ namespace {
 // CSpace::derivatives (second_order) or edge_coordinate_slope (not: only coordinate_dy, by the
 // same rational interval operations as the first components of kernels::implicit_slopes,
 // half_angle_slopes and part_slopes, so the same bits; the same checks, so the same throws).
-EdgeDerivatives derivatives_of(const CSpace::Impl& impl, EdgeId id, const Rational& x_input, bool second_order) {
+EdgeDerivatives derivatives_of(const CSpace& space, EdgeId id, const Rational& x_input, bool second_order) {
+  const CSpace::Impl& impl = checked(space);
   std::size_t index = index_in(id, impl.edges.size(), "edge");
   if (impl.dimension != 2) throw GeometryError("derivatives: a 1-D C-space has no contact edges");
   auto [c, e] = impl.edge_local[index];
@@ -407,7 +421,8 @@ EdgeDerivatives derivatives_of(const CSpace::Impl& impl, EdgeId id, const Ration
   const cspace::raw::Vertex& high = chart.arrangement.vertices[raw_edge.max_vertex];
   int cl = low.x.compare(x), ch = high.x.compare(x);
   if (cl > 0 || ch < 0) throw GeometryError("derivatives: abscissa outside the edge's extent");
-  Real y = cl == 0 ? low.y : ch == 0 ? high.y : cspace::edge_y_at(chart, e, x);
+  std::shared_ptr<const EdgeOrdinate> inside = cl == 0 || ch == 0 ? nullptr : edge_ordinate(space, index, x);
+  const Real& y = cl == 0 ? low.y : ch == 0 ? high.y : inside->y;
   const cspace::IntegerPolynomial2& f = raw_edge.support;
   std::vector<Rational> fx = partial_in_y(f, x, 1, 0), fy = partial_in_y(f, x, 0, 1);
   std::vector<Rational> fxx, fxy, fyy;
@@ -415,7 +430,7 @@ EdgeDerivatives derivatives_of(const CSpace::Impl& impl, EdgeId id, const Ration
   EdgeDerivatives result;
   if (second_order) result.y = cspace::to_public(y);
   for (int bits = 64;; bits *= 2) {
-    Real refined = y;
+    Real refined = inside && bits == 64 ? inside->y64 : y;
     if (!refined.exact) refined.refine_to(Rational(1, mpz_class(1) << bits));
     RInterval Y = refined.exact ? RInterval::point(refined.lower)
                                        : RInterval{refined.lower, refined.upper};
@@ -459,11 +474,11 @@ EdgeDerivatives derivatives_of(const CSpace::Impl& impl, EdgeId id, const Ration
 }  // namespace
 
 EdgeDerivatives CSpace::derivatives(EdgeId id, const Rational& x_input) const {
-  return derivatives_of(checked(*this), id, x_input, true);
+  return derivatives_of(*this, id, x_input, true);
 }
 
 CertifiedRange edge_coordinate_slope(const CSpace& space, EdgeId id, const Rational& x) {
-  return derivatives_of(checked(space), id, x, false).coordinate_dy;
+  return derivatives_of(space, id, x, false).coordinate_dy;
 }
 
 // ------------------------------------------------------------------ compare_ordinate
@@ -716,10 +731,48 @@ std::optional<EdgeSlopes> slopes_from(const TrackerData& data, double x, double 
   return memo->slopes;
 }
 
+// A tracker's data for a non-vertical edge (a pure function of the edge and the switch
+// cspace::partial_terms()).
+std::shared_ptr<const TrackerData> tracker_data_of(const ChartData& chart, const cspace::raw::Edge& raw_edge) {
+  auto data = std::make_shared<TrackerData>();
+  const cspace::raw::Vertex& low = chart.arrangement.vertices[raw_edge.min_vertex];
+  const cspace::raw::Vertex& high = chart.arrangement.vertices[raw_edge.max_vertex];
+  // the ends' abscissae to about a unit in the last place (their isolating intervals may be
+  // wide): abscissae strictly between are inside the edge's extent
+  Real x_low = low.x, x_high = high.x;
+  for (Real* end : {&x_low, &x_high})
+    if (!end->exact) end->refine_to(Rational(1, mpz_class(1) << 60));
+  data->x_min = x_low.upper_bound();
+  data->x_max = x_high.lower_bound();
+  const auto& f = raw_edge.support.coefficients;
+  data->nearest.resize(f.size());
+  data->enclosed.resize(f.size());
+  for (std::size_t i = 0; i < f.size(); ++i)
+    for (const mpz_class& coefficient : f[i]) {
+      data->nearest[i].push_back(coefficient.get_d());
+      data->enclosed[i].push_back(KInterval::enclose(mpq_class(coefficient)));
+    }
+  data->value = cspace::algebra::IntervalPolynomial2(raw_edge.support);
+  data->terms = cspace::partial_terms();
+  if (data->terms) {
+    auto identity = [](const auto& v) { return v; };
+    data->nearest_terms = cspace::PartialTerms<double>(data->nearest, identity);
+    data->enclosed_terms = cspace::PartialTerms<TrackInterval>(data->enclosed, identity);
+  }
+  data->x_rotation = chart.x_axis.kind != cspace::ChartAxis::Kind::translation;
+  data->y_rotation = chart.y_axis.kind != cspace::ChartAxis::Kind::translation;
+  return data;
+}
+
+// The scan memo's slot for edge `index`'s tracker data (a TrackerData, made on first placement;
+// defined with ScanMemo below), or nullptr when the memo is switched off (scan_memo.hpp,
+// tracker_memo()).
+std::shared_ptr<std::shared_ptr<const void>> tracker_data_slot(const CSpace& space, std::size_t index);
+
 // A certified enclosure of the edge's ordinate at x, exactly (the edge's arc number).
-CertifiedRange exact_ordinate(const ChartData& chart, std::size_t e, double x) {
-  Real y = cspace::edge_y_at(chart, e, Rational(x));
-  if (!y.exact) y.refine_to(Rational(1, mpz_class(1) << 64));
+CertifiedRange exact_ordinate(const CSpace& space, std::size_t index, double x) {
+  const std::shared_ptr<const EdgeOrdinate> at = edge_ordinate(space, index, Rational(x));
+  const Real& y = at->y64;
   return y.exact ? range_of(y.lower, y.lower) : range_of(y.lower, y.upper);
 }
 
@@ -734,40 +787,24 @@ std::optional<EdgeSlopes> track_derivatives(const CSpace& space, EdgeId id, doub
   if (raw_edge.vertical) return std::nullopt;
 
   if (tracker.space_ != &impl || tracker.edge_ != id || !tracker.data_) {
-    // place the tracker: the edge's polynomial in doubles, and one exact point of the edge
-    auto data = std::make_shared<TrackerData>();
-    const cspace::raw::Vertex& low = chart.arrangement.vertices[raw_edge.min_vertex];
-    const cspace::raw::Vertex& high = chart.arrangement.vertices[raw_edge.max_vertex];
-    // the ends' abscissae to about a unit in the last place (their isolating intervals may be
-    // wide): abscissae strictly between are inside the edge's extent
-    Real x_low = low.x, x_high = high.x;
-    for (Real* end : {&x_low, &x_high})
-      if (!end->exact) end->refine_to(Rational(1, mpz_class(1) << 60));
-    data->x_min = x_low.upper_bound();
-    data->x_max = x_high.lower_bound();
-    if (!(x > data->x_min && x < data->x_max)) return std::nullopt;
-    const auto& f = raw_edge.support.coefficients;
-    data->nearest.resize(f.size());
-    data->enclosed.resize(f.size());
-    for (std::size_t i = 0; i < f.size(); ++i)
-      for (const mpz_class& coefficient : f[i]) {
-        data->nearest[i].push_back(coefficient.get_d());
-        data->enclosed[i].push_back(KInterval::enclose(mpq_class(coefficient)));
-      }
-    data->value = cspace::algebra::IntervalPolynomial2(raw_edge.support);
-    data->terms = cspace::partial_terms();
-    if (data->terms) {
-      auto identity = [](const auto& v) { return v; };
-      data->nearest_terms = cspace::PartialTerms<double>(data->nearest, identity);
-      data->enclosed_terms = cspace::PartialTerms<TrackInterval>(data->enclosed, identity);
+    // place the tracker: the edge's polynomial in doubles, and one exact point of the edge.
+    // The polynomial's forms and the extent are the edge's alone: made once per edge on this
+    // thread (the scan memo), the same values as made here
+    std::shared_ptr<std::shared_ptr<const void>> slot = tracker_data_slot(space, id.index());
+    std::shared_ptr<const TrackerData> made =
+        slot && *slot ? std::static_pointer_cast<const TrackerData>(*slot) : nullptr;
+    if (made && made->terms == cspace::partial_terms()) {
+      ++cspace::tracker_memo_hits();
+    } else {
+      made = tracker_data_of(chart, raw_edge);
+      if (slot) *slot = made;
     }
-    data->x_rotation = chart.x_axis.kind != cspace::ChartAxis::Kind::translation;
-    data->y_rotation = chart.y_axis.kind != cspace::ChartAxis::Kind::translation;
+    if (!(x > made->x_min && x < made->x_max)) return std::nullopt;
     tracker.space_ = &impl;
     tracker.edge_ = id;
     tracker.x_ = x;
-    tracker.y_ = exact_ordinate(chart, e, x);
-    tracker.data_ = std::move(data);
+    tracker.y_ = exact_ordinate(space, id.index(), x);
+    tracker.data_ = std::move(made);
     tracker.memo_ = EdgeTracker::Memo{};   // its answers were of the edge placed before
   }
   const TrackerData& data = *static_cast<const TrackerData*>(tracker.data_.get());
@@ -777,7 +814,7 @@ std::optional<EdgeSlopes> track_derivatives(const CSpace& space, EdgeId id, doub
     // a jump the a-priori box cannot bridge: one exact point of the edge at x, and the filter
     // from there
     tracker.x_ = x;
-    tracker.y_ = exact_ordinate(chart, e, x);
+    tracker.y_ = exact_ordinate(space, id.index(), x);
     result = slopes_from(data, x, x, tracker.y_, &tracker.memo_);
   }
   if (result) {
@@ -1403,6 +1440,10 @@ struct ScanMemo {
     bool exact = false;                   // x_v is rational (the exact sign is cheap)
   };
   std::vector<std::optional<FibreEnclosure>> fibre_enclosures;
+  // per global edge: track_derivatives' placement data (a TrackerData), once made
+  std::vector<std::shared_ptr<const void>> tracker_data;
+  // the last few exact edge ordinates asked (edge_ordinate), newest last
+  std::vector<std::shared_ptr<const EdgeOrdinate>> ordinates_at;
 };
 
 std::shared_ptr<ScanMemo> fresh_scan_memo(const CSpace::Impl& impl) {
@@ -1466,6 +1507,39 @@ std::shared_ptr<ScanMemo> scan_memo_of(const std::shared_ptr<const CSpace::Impl>
   memo->owner = owner;
   memos.push_back(memo);
   return memo;
+}
+
+std::shared_ptr<std::shared_ptr<const void>> tracker_data_slot(const CSpace& space, std::size_t index) {
+  if (!cspace::scan_memo() || !cspace::tracker_memo()) return nullptr;
+  std::shared_ptr<ScanMemo> memo = scan_memo_of(CSpaceAccess::shared(space));
+  if (memo->tracker_data.empty()) memo->tracker_data.resize(implementation(space).edges.size());
+  // (the slot shares the memo's ownership: it stays valid however the thread's list changes)
+  return std::shared_ptr<std::shared_ptr<const void>>(memo, &memo->tracker_data[index]);
+}
+
+std::shared_ptr<const EdgeOrdinate> edge_ordinate(const CSpace& space, std::size_t index, const Rational& x) {
+  const CSpace::Impl& impl = implementation(space);
+  auto make = [&] {
+    auto [c, e] = impl.edge_local[index];
+    auto made = std::make_shared<EdgeOrdinate>();
+    made->edge = index;
+    made->x = x;
+    made->y = cspace::edge_y_at(impl.charts[c], e, x);
+    made->y64 = made->y;
+    if (!made->y64.exact) made->y64.refine_to(Rational(1, mpz_class(1) << 64));
+    return made;
+  };
+  if (!cspace::scan_memo() || !cspace::ordinate_at_memo()) return make();
+  std::shared_ptr<ScanMemo> memo = scan_memo_of(CSpaceAccess::shared(space));
+  for (const std::shared_ptr<const EdgeOrdinate>& known : memo->ordinates_at)
+    if (known->edge == index && known->x == x) {
+      ++cspace::ordinate_at_memo_hits();
+      return known;
+    }
+  std::shared_ptr<const EdgeOrdinate> made = make();
+  if (memo->ordinates_at.size() >= 4) memo->ordinates_at.erase(memo->ordinates_at.begin());
+  memo->ordinates_at.push_back(made);
+  return made;
 }
 
 OrdinateBounds ordinate_bounds(const CSpace& space, std::size_t index) {

@@ -44,6 +44,34 @@ inline bool& ordinate_enclosure() { return thread_switch<OrdinateEnclosureTag>()
 struct OrdinateEnclosureDecidedTag;
 inline std::size_t& ordinate_enclosure_decided() { return thread_counter<OrdinateEnclosureDecidedTag>(); }
 
+// track_derivatives' placement data per edge (cspace_queries.cpp: TrackerData, tracker_data_of,
+// in the scan memo, so per thread and per space): the edge's support polynomial in doubles, in
+// interval forms and with its premultiplied partial terms, and its extent (the end vertices'
+// abscissae refined to 2^-60). All are pure functions of the edge (and of the switch
+// partial_terms()); they were made anew at every placement of a tracker (every contact taken up
+// by the simulator: ≈ 2 exact refinements of algebraic abscissae each). The exact point of the
+// edge at the placement's abscissa is still computed per placement. The answers are the same. On
+// by default; tests switch it off per thread to compare (CSpaceTrackerMemo.*).
+struct TrackerMemoTag;
+inline bool& tracker_memo() { return thread_switch<TrackerMemoTag>(); }
+// How many placements on this thread took data already made (tests, profiling).
+struct TrackerMemoHitsTag;
+inline std::size_t& tracker_memo_hits() { return thread_counter<TrackerMemoHitsTag>(); }
+
+// The exact ordinate of a contact edge at a rational abscissa (cspace_queries.cpp: edge_ordinate,
+// EdgeOrdinate, in the scan memo: the last 4 per thread and space): the fibre's root of the
+// edge's arc number (edge_y_at) and it refined to 2^-64, as derivatives_of (CSpace::derivatives,
+// edge_coordinate_slope) and track_derivatives' exact points compute them. The simulator asks
+// them twice at one abscissa: an impact's new contact orients its normal by
+// edge_coordinate_slope at the configuration, and its first contact row places a tracker there.
+// Pure functions of the edge and x (Real::refine_to is deterministic): the answers are the same.
+// On by default; tests switch it off per thread to compare (CSpaceTrackerMemo.*).
+struct OrdinateAtMemoTag;
+inline bool& ordinate_at_memo() { return thread_switch<OrdinateAtMemoTag>(); }
+// How many exact edge ordinates on this thread came from the memo (tests, profiling).
+struct OrdinateAtMemoHitsTag;
+inline std::size_t& ordinate_at_memo_hits() { return thread_counter<OrdinateAtMemoHitsTag>(); }
+
 // How many first_crossing calls on this thread took a memo already made for their space (tests).
 struct ScanMemoHitsTag;
 inline std::size_t& scan_memo_hits() { return thread_counter<ScanMemoHitsTag>(); }

@@ -23,6 +23,7 @@
 #include "simulation/frame_cache.hpp"
 #include "simulation/friction.hpp"
 #include "simulation/lcp.hpp"
+#include "simulation/normal_side.hpp"
 #include "simulation/nudge_check.hpp"
 #include "simulation/ordinate_filter.hpp"
 #include "simulation/touch_guard.hpp"
@@ -956,6 +957,21 @@ struct Simulation::Impl {
       chart = &space.charts()[a.chart];
       tx = to_chart(chart->x_kind, chart->x_half_turn, q[a.xdof]);
       if (tx < a.x_lo || tx > a.x_hi) return std::nullopt;
+    }
+    // the side first from the slope's certified double enclosure on a fresh tracker
+    // (normal_side.hpp); the tracker answers only strictly inside the edge's exact extent and
+    // where F_y is bounded away from 0, where the exact slope below neither throws nor moves the
+    // contact to another edge
+    if (simulation::normal_filter()) {
+      EdgeTracker probe;
+      if (std::optional<EdgeSlopes> s = track_derivatives(space, a.edge, tx, probe)) {
+        const int side = simulation::certified_side(s->coordinate_dy.lower, s->coordinate_dy.upper, G[a.xdof], G[a.ydof]);
+        if (side != 0) {
+          ++simulation::normal_filter_decided();
+          a.sigma = side;
+          return a;
+        }
+      }
     }
     // the edge's slope in part coordinates (hipair/edge_slope.hpp: derivatives()'s coordinate_dy
     // without the second derivatives, the same range and the same throws)
