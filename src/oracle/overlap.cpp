@@ -55,6 +55,47 @@ int sign_with_root(const Rational& u, const Rational& v, const Rational& w) {
 
 Point minus(const Point& a, const Point& b) { return difference(a, b); }
 
+// (x - y) as numerator n over positive denominator d, without a gcd (one product of
+// denominators, none when they are equal: a part's posed vertices often share one).
+void fraction_free_difference(const Rational& x, const Rational& y, mpz_class& n, mpz_class& d) {
+  mpz_srcptr xn = mpq_numref(x.get_mpq_t()), xd = mpq_denref(x.get_mpq_t());
+  mpz_srcptr yn = mpq_numref(y.get_mpq_t()), yd = mpq_denref(y.get_mpq_t());
+  if (mpz_cmp(xd, yd) == 0) {
+    mpz_sub(n.get_mpz_t(), xn, yn);
+    mpz_set(d.get_mpz_t(), xd);
+    return;
+  }
+  mpz_mul(n.get_mpz_t(), xn, yd);
+  mpz_submul(n.get_mpz_t(), yn, xd);
+  mpz_mul(d.get_mpz_t(), xd, yd);
+}
+
+// Sign of cross(b - a, p - a), exactly, by integer products over the rationals' own
+// (positive) denominators: the rational expression's canonical forms (a gcd per operation,
+// which dominated the oracle when coordinates mix 10^-300 and millimetres) are never formed.
+// The same sign as sgn(cross(minus(b, a), minus(p, a))).
+int orientation_sign(const Point& a, const Point& b, const Point& p) {
+  thread_local mpz_class ux, uxd, uy, uyd, vx, vxd, vy, vyd, left, right;
+  fraction_free_difference(b.x, a.x, ux, uxd);
+  fraction_free_difference(b.y, a.y, uy, uyd);
+  fraction_free_difference(p.x, a.x, vx, vxd);
+  fraction_free_difference(p.y, a.y, vy, vyd);
+  // cross = ux vy / (uxd vyd) - uy vx / (uyd vxd); the denominators are positive
+  const int sl = sgn(ux) * sgn(vy), sr = sgn(uy) * sgn(vx);
+  // one product zero, or the two of opposite signs: the difference's sign is known without
+  // forming them
+  if (sl == 0) return -sr;
+  if (sr == 0 || sl != sr) return sl;
+  mpz_mul(left.get_mpz_t(), ux.get_mpz_t(), vy.get_mpz_t());
+  mpz_mul(left.get_mpz_t(), left.get_mpz_t(), uyd.get_mpz_t());
+  mpz_mul(left.get_mpz_t(), left.get_mpz_t(), vxd.get_mpz_t());
+  mpz_mul(right.get_mpz_t(), uy.get_mpz_t(), vx.get_mpz_t());
+  mpz_mul(right.get_mpz_t(), right.get_mpz_t(), uxd.get_mpz_t());
+  mpz_mul(right.get_mpz_t(), right.get_mpz_t(), vyd.get_mpz_t());
+  const int c = mpz_cmp(left.get_mpz_t(), right.get_mpz_t());
+  return (c > 0) - (c < 0);
+}
+
 // Witness construction works at this precision: sites and directions are rational
 // approximations with relative error about 2^-witness_bits.
 constexpr mpfr_prec_t witness_bits = 640;
@@ -146,9 +187,9 @@ bool in_sector(const PlacedEdge& edge, const Point& v) { return sector_contains(
 // Closed membership of a rational point.
 bool on_edge(const PlacedEdge& edge, const Point& p) {
   if (!edge.arc) {
+    if (orientation_sign(edge.source, edge.target, p) != 0) return false;
     Point d = minus(edge.target, edge.source);
     Point f = minus(p, edge.source);
-    if (sgn(cross(d, f)) != 0) return false;
     Rational along = dot(f, d);
     return sgn(along) >= 0 && along <= dot(d, d);
   }
@@ -1050,6 +1091,12 @@ class OverlapAnalysis {
         return std::optional<Point>(candidate);
       return std::optional<Point>();
     };
+    // A part whose smallest edge lies far below its size (a 10^-300 x 2 mm peg) overlaps in a
+    // region of that edge's scale: after the coarse levels (directions), the hints continue
+    // from a quarter of the smallest edge instead of halving down to it (1000 halvings from
+    // 2 mm to 10^-300 mm, beyond the levels: no witness, at a cost of thousands of exact
+    // locations). Parts whose edges are all above 2^-38 of the size never jump.
+    const Rational fine = std::min(smallest_edge(*parts_[0]), smallest_edge(*parts_[1])) / 4;
     for (int level = 2; level < static_cast<int>(witness_bits) - 40; ++level) {
       for (const Point& h : hints)
         if (auto found = inside_both(h)) return found;
@@ -1057,11 +1104,31 @@ class OverlapAnalysis {
         for (const Point& d : directions)
           if (auto found = inside_both(d)) return found;
       step /= 2;
+      if (level == 39 && step > fine && sgn(fine) > 0) step = fine;
     }
     return std::nullopt;
   }
 
  private:
+  // The smallest extent of an edge of a part (in its own frame: no exact posing; a rotation
+  // changes it by at most sqrt 2): the larger side of a segment's or a partial arc's chord box,
+  // a full circle's approximate radius (positive for a valid model; 0 if none).
+  static Rational smallest_edge(const PlacedPart& part) {
+    std::optional<Rational> least;
+    for (std::size_t i = 0; i < part.size(); ++i) {
+      const Edge& e = part.original(i);
+      Rational extent;
+      if (e.is_full_circle()) {
+        extent = approximate_sqrt(e.radius_squared);
+      } else {
+        Rational dx = abs(e.target.x - e.source.x), dy = abs(e.target.y - e.source.y);
+        extent = std::max(dx, dy);
+      }
+      if (sgn(extent) > 0 && (!least || extent < *least)) least = extent;
+    }
+    return least ? *least : Rational(0);
+  }
+
   // The larger side of the bounding box of a part's vertices and arc circles (approximate
   // radii), exactly in rationals: the witness search's first scale, at any magnitude.
   static Rational exact_size(PlacedPart& part) {
@@ -1138,7 +1205,7 @@ class OverlapAnalysis {
  private:
   // Sign of orient(a, b, p + (eps^2, eps)), lexicographic in eps.
   static int perturbed_orientation(const Point& a, const Point& b, const Point& p) {
-    int s = sgn(cross(minus(b, a), minus(p, a)));
+    int s = orientation_sign(a, b, p);
     if (s != 0) return s;
     s = sgn(b.x - a.x);
     if (s != 0) return s;

@@ -190,7 +190,18 @@ struct SlicedSpace::Impl {
       { "name": )" + second + R"(, "motion": { "translation": { "direction": [0, 1], "limits": )" +
                        limits + R"( } }, "loops": [ )" + loops_json(b, b.motion.pivot, c, s) + R"( ] } ],
       "pairs": [ { "parts": [)" + first + ", " + second + R"(] } ] })";
-    Model slice_model = read_model(text, "<slice>");
+    Model slice_model;
+    try {
+      slice_model = read_model(text, "<slice>");
+    } catch (const ModelError& e) {
+      // the slice's posed coordinates exceed what the model format holds (4096-bit rationals:
+      // a part of 10^-300 mm beside one of millimetres, turned by an angle of hundreds of
+      // bits): one message naming the pair and the reason, not a pointer into a model the
+      // user never wrote
+      throw GeometryError("pair '" + a.name + "' / '" + b.name + "': the translational slice at the angle " +
+                          std::to_string(angle.radians()) + " rad cannot be built exactly (" + e.what() +
+                          " in the slice's posed coordinates: lengths of very different scales in one pair)");
+    }
     auto space = std::make_shared<const CSpace>(CSpace::build(slice_model, a.name, b.name));
     std::lock_guard<std::mutex> lock(mutex);
     ++stats.slices_built;
