@@ -1213,7 +1213,7 @@ class ChainAnalysis {
   static constexpr std::size_t max_shared_boxes = 128;   // sub-boxes of the tolerance box per position
   static constexpr std::size_t max_held_pieces = 16;     // pieces of a held driver range (held_pieces)
   // sub-boxes of the tolerance box per position where a composition fails (session 42)
-  static constexpr std::size_t max_failure_boxes = 8;
+  static constexpr std::size_t max_failure_boxes = 4;
 
   std::string text_;
   ToleranceOptions options_;
