@@ -781,7 +781,10 @@ class ChainAnalysis {
         // A composition in mean-value form through the last pair loses no independence (the chain
         // rule carries each parameter through every pair): bisecting for it would spend the budget
         // for nothing (a 4-gear train: 248 -> 4 634 sub-boxes, 10 x the CPU).
-        if (composed && !accurate && !mean_value_through && used + pending.size() + 2 <= max_shared_boxes) {
+        // (not in a box split for a failed composition: its sub-boxes, up to max_failure_boxes,
+        // are hulled as they come, which keeps the failure splits' cost bounded)
+        if (composed && !accurate && !mean_value_through && failure_splits == 0 &&
+            used + pending.size() + 2 <= max_shared_boxes) {
           // Bisection removes at most the independence loss, sum_p loss_p x width_p: split only
           // when that explains at least half the excess over the linearised width (otherwise the
           // excess is the pairs' own, e.g. gear meshes over a wide box, and splitting would cost
@@ -1210,7 +1213,7 @@ class ChainAnalysis {
   static constexpr std::size_t max_shared_boxes = 128;   // sub-boxes of the tolerance box per position
   static constexpr std::size_t max_held_pieces = 16;     // pieces of a held driver range (held_pieces)
   // sub-boxes of the tolerance box per position where a composition fails (session 42)
-  static constexpr std::size_t max_failure_boxes = 8;
+  static constexpr std::size_t max_failure_boxes = 4;
 
   std::string text_;
   ToleranceOptions options_;
