@@ -643,7 +643,16 @@ std::string start_failure(const Part& driver, const Part& other, const Configura
     if (bound <= needed)
       reject("the parts are not certainly apart at the trap's start (driver " + show(x) + (follows ? ", follower " + show(y) : "") +
              "): the certified distance lower bound of " + closest + " is " + show(bound));
-    check_nesting(place(driver, exact_map(driver, nest)), place(other, exact_map(other, nest)), "at the trap's start");
+    // (a translation's offset was checked against the limits above, exactly: a follower resting
+    // on its limit is a configuration; exact_map's enclosure test refuses the equality)
+    auto nest_map = [&](const Part& part) {
+      if (part.motion.kind != Motion::Kind::translation) return exact_map(part, nest);
+      ExactMap map;
+      const Rational& s = nest.at(part.name).value;
+      map.shift = Point{Rational(s * part.motion.direction.x), Rational(s * part.motion.direction.y)};
+      return map;
+    };
+    check_nesting(place(driver, nest_map(driver)), place(other, nest_map(other)), "at the trap's start");
   } catch (const Rejection& rejection) {
     return rejection.reason;
   }

@@ -8,6 +8,7 @@
 #include <hipair/overlap.hpp>
 
 #include "certify/exact_geometry.hpp"
+#include "certify/planar_check.hpp"
 #include "core/sha256.hpp"
 #include "oracle/overlap.hpp"
 #include "io/atomic_file.hpp"
@@ -333,7 +334,8 @@ TEST(CertifyExamples, GeneratedCamsPushingFollowersOntoTheirLimitsJamCertifiably
     query = find_jam(model, "cam", "follower", "cam", start, follower, +1, step, 60 * step);
     ASSERT_TRUE(query);
     certificate = certify_found_jam(model, "cam", "follower", *query, step);
-    ASSERT_TRUE(certificate) << "touching cut at " << query->trap.driver.hi.get_d();
+    ASSERT_TRUE(certificate) << "touching cut at " << query->trap.driver.hi.get_d() << "; the search's start: "
+                             << verify::jam_start_failure(model.parts[0], model.parts[1], query->trap, query->start);
     EXPECT_LE(certificate->trap.driver.hi - query->trap.driver.hi, 8 * step);
     expect_verifies(*certificate, file, "generated cam onto its limit, touching cut");
     ++certified;
