@@ -322,7 +322,7 @@ Certificate read_certificate(std::string_view json_text) {
       c.distance = rational(require(body, "distance"));
       break;
     case ClaimKind::jam: {
-      check_keys(body, {"driver", "follower", "direction", "trap", "cut", "lower_wall", "upper_wall"});
+      check_keys(body, {"driver", "follower", "direction", "trap", "start", "cut", "lower_wall", "upper_wall"});
       c.driver = text(require(body, "driver"));
       c.follower = text(require(body, "follower"));
       const JsonValue& direction = require(body, "direction");
@@ -331,6 +331,13 @@ Certificate read_certificate(std::string_view json_text) {
       c.direction = direction.text == "1" ? 1 : -1;
       bool two = !c.follower.empty();
       c.trap = box_of(require(body, "trap"), two);
+      {   // a free configuration in the trap (session 42)
+        const JsonValue& start = require(body, "start");
+        check_keys(start, {"driver", "follower"});
+        c.start = JamStart{rational(require(start, "driver")), std::nullopt};
+        if (two) c.start->follower = rational(require(start, "follower"));
+        else if (start.find("follower")) fail(start, "no follower in a pair with a fixed part");
+      }
       c.cut = pieces_of(require(body, "cut"), two);
       if (two) {
         c.lower_wall = pieces_of(require(body, "lower_wall"), true);

@@ -189,7 +189,13 @@ std::string write_certificate(const Certificate& c) {
       out << "    \"driver\": " << quoted(c.driver) << ",\n    \"follower\": " << quoted(c.follower)
           << ",\n    \"direction\": " << c.direction << ",\n    \"trap\": {\"driver\": " << interval(c.trap.driver);
       if (c.trap.follower) out << ", \"follower\": " << interval(*c.trap.follower);
-      out << "},\n    \"cut\": " << pieces(c.cut, bool(c.trap.follower), "    ");
+      out << "},";
+      if (c.start) {
+        out << "\n    \"start\": {\"driver\": " << number(c.start->driver);
+        if (c.start->follower) out << ", \"follower\": " << number(*c.start->follower);
+        out << "},";
+      }
+      out << "\n    \"cut\": " << pieces(c.cut, bool(c.trap.follower), "    ");
       if (c.trap.follower)
         out << ",\n    \"lower_wall\": " << pieces(c.lower_wall, true, "    ") << ",\n    \"upper_wall\": "
             << pieces(c.upper_wall, true, "    ");

@@ -198,6 +198,21 @@ std::string fraction_or_rounded(const Rational& value) {
 
 // ----------------------------------------------------------------------------- single configurations
 
+Rational max_angle_error() { return Rational(1, 1000000000000ul); }
+
+void check_configuration_parts(const std::map<std::string, ExactPosition>& configuration,
+                               const std::vector<std::string>& allowed) {
+  for (const auto& entry : configuration) {
+    bool known = false;
+    for (const std::string& name : allowed) known = known || entry.first == name;
+    if (known) continue;
+    std::string list;
+    for (const std::string& name : allowed) list += (list.empty() ? "'" : " or '") + name + "'";
+    reject("the configuration gives a position for '" + entry.first + "': only " + (list.empty() ? "no part" : list) +
+           " may have one in this claim");
+  }
+}
+
 bool certainly_within(const std::optional<RationalInterval>& limits, const Interval& value, bool angle) {
   if (!limits) return true;
   for (int turns = angle ? -3 : 0; turns <= (angle ? 3 : 0); ++turns) {
@@ -281,6 +296,13 @@ ExactMap exact_map(const Part& part, const std::map<std::string, ExactPosition>&
   map.pivot = part.motion.pivot;
   Interval theta = angle_of_tangent(t, position.half_turn);
   if (position.angle) {
+    // The angle is the statement's label of the configuration ("lever at 0.523598775598 rad"):
+    // it must be as good as the statement's 12 digits. Until session 42 any error was accepted,
+    // so "angle": "0", "angle_error": "1" stated an overlap "at 0 rad" proved at 0.52 rad.
+    if (*position.angle_error > max_angle_error())
+      reject("the angle error of '" + part.name + "' (" + show(*position.angle_error) + " rad) is larger than " +
+             show(max_angle_error()) + " rad: the statement's angle " + show(*position.angle) +
+             " rad would not say where the part is");
     Interval difference = theta - Interval(*position.angle);
     Interval error = difference - two_pi() * Interval(turns_of(difference));
     Interval size;
@@ -316,6 +338,7 @@ std::string configuration_text(const Certificate& c) {
 
 std::string check_interference(const Certificate& c, const Model& model) {
   const Part &a = part_named(model, c.first), &b = part_named(model, c.second);
+  check_configuration_parts(c.configuration, {c.first, c.second});
   PlacedPart placed_a = place(a, exact_map(a, c.configuration)), placed_b = place(b, exact_map(b, c.configuration));
   if (c.witness_point) {
     for (const PlacedPart* part : {&placed_a, &placed_b}) {
@@ -343,6 +366,7 @@ std::string check_interference(const Certificate& c, const Model& model) {
 std::string check_clearance(const Certificate& c, const Model& model) {
   if (sgn(c.distance) <= 0) reject("the claimed clearance must be positive");
   const Part &a = part_named(model, c.first), &b = part_named(model, c.second);
+  check_configuration_parts(c.configuration, {c.first, c.second});
   ExactMap map_a = exact_map(a, c.configuration), map_b = exact_map(b, c.configuration);
   std::string closest;
   Rational bound = boundary_distance_lower_bound(shape_of(a), to_interval_map(map_a), shape_of(b), to_interval_map(map_b),
@@ -452,6 +476,9 @@ std::string check_jam(const Certificate& c, const Model& model) {
         check_blocked(c, model, r, wall[i].range, RationalInterval{at, at}, wall[i].crossing, name + " piece " + std::to_string(i));
     }
   }
+  // the trap holds a configuration of the mechanism: else "cannot pass" is an empty claim
+  std::string start = jam_start_failure(*r.driver, *r.other, c.trap, c.start);
+  if (!start.empty()) reject(start);
   std::string unit = rotates(*r.driver) ? " rad" : " mm";
   return "driving '" + r.driver->name + "' " + (c.direction > 0 ? "forward" : "backward") + " from within " + show(span) + unit +
          (r.has_follower ? " with '" + r.other->name + "' within " + show(*c.trap.follower) : "") + ", it cannot pass " +
@@ -578,7 +605,67 @@ std::string check_free_passage(const Certificate& c, const Model& model) {
          show(c.distance) + " mm apart (" + std::to_string(c.boxes.size()) + " boxes)";
 }
 
+std::string start_failure(const Part& driver, const Part& other, const ConfigurationBox& trap,
+                          const std::optional<JamStart>& start) {
+  try {
+    if (!start) reject("the jam has no start (a configuration in the trap where the parts are apart)");
+    const Rational& x = start->driver;
+    const RationalInterval& span = trap.driver;
+    if (x < span.lo || x > span.hi)
+      reject("the start's driver value " + show(x) + " is not in the trap's driver range " + show(span));
+    bool follows = moves(other);
+    if (follows != bool(start->follower)) reject(follows ? "the start gives no follower value" : "part '" + other.name + "' is fixed: the start has no follower value");
+    if (follows != bool(trap.follower)) reject("the trap has a follower range exactly when the follower moves");
+    Rational y = follows ? *start->follower : Rational(0);
+    if (follows) {
+      if (y < trap.follower->lo || y > trap.follower->hi)
+        reject("the start's follower value " + show(y) + " is not in the trap's follower range " + show(*trap.follower));
+      if (!range_within_limits(other, RationalInterval{y, y}))
+        reject("the start's follower value " + show(y) + " is outside the follower's limits" + limits_text(other));
+    }
+    // the parts at the start, posed with MPFI, certainly apart by more than the distance an
+    // exact configuration near it (for the nesting test) is from it
+    std::map<std::string, ExactPosition> nest;
+    auto [driver_position, driver_error] = near_position(driver, x);
+    nest[driver.name] = driver_position;
+    Rational other_error = 0;
+    if (follows) {
+      auto [other_position, error] = near_position(other, y);
+      nest[other.name] = other_position;
+      other_error = error;
+    }
+    IntervalPart shape_driver = shape_of(driver), shape_other = shape_of(other);
+    Rational needed = (rotates(driver) ? reach(shape_driver) : Rational(1)) * driver_error +
+                      (rotates(other) ? reach(shape_other) : Rational(1)) * other_error;
+    std::string closest;
+    Rational bound = boundary_distance_lower_bound(shape_driver, map_over(driver, {x, x}), shape_other,
+                                                   follows ? map_over(other, {y, y}) : IntervalMap{}, needed + 1, &closest);
+    if (bound <= needed)
+      reject("the parts are not certainly apart at the trap's start (driver " + show(x) + (follows ? ", follower " + show(y) : "") +
+             "): the certified distance lower bound of " + closest + " is " + show(bound));
+    // (a translation's offset was checked against the limits above, exactly: a follower resting
+    // on its limit is a configuration; exact_map's enclosure test refuses the equality)
+    auto nest_map = [&](const Part& part) {
+      if (part.motion.kind != Motion::Kind::translation) return exact_map(part, nest);
+      ExactMap map;
+      const Rational& s = nest.at(part.name).value;
+      map.shift = Point{Rational(s * part.motion.direction.x), Rational(s * part.motion.direction.y)};
+      return map;
+    };
+    check_nesting(place(driver, nest_map(driver)), place(other, nest_map(other)), "at the trap's start");
+  } catch (const Rejection& rejection) {
+    return rejection.reason;
+  }
+  return "";
+}
+
 }  // namespace
+
+std::string jam_start_failure(const Part& driver, const Part& other, const ConfigurationBox& trap,
+                              const std::optional<JamStart>& start) {
+  return start_failure(driver, other, trap, start);
+}
+
 }  // namespace hipair::verify
 
 namespace hipair {

@@ -77,6 +77,7 @@ std::string check_planar(const Certificate& c, const Model& model) {
              to_decimal_string(free.motion.angle_limits->hi) + "] rad");
     if (fixed.motion.kind == Motion::Kind::planar || fixed.motion.kind == Motion::Kind::pin_slot)
       reject("part '" + fixed.name + "' must be fixed, rotate or translate");
+    check_configuration_parts(c.configuration, {fixed.name});
     fixed_map = exact_map(fixed, c.configuration);
   } else {
     if (free.motion.kind != Motion::Kind::planar) reject("part '" + free.name + "' is not free in the plane (motion \"planar\")");

@@ -16,12 +16,24 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace hipair::verify {
 
 /// The exact map of a fixed, rotating or translating part at its position in `configuration`
 /// (identity when fixed); positions and limits checked (check.cpp). \throws Rejection.
 ExactMap exact_map(const Part& part, const std::map<std::string, ExactPosition>& configuration);
+
+/// The largest `angle_error` a position's angle label may carry: 10^-12 rad, the resolution of
+/// the statement's 12 significant digits (session 42, hunt42: the error was unbounded, so a
+/// certificate could state a configuration at any angle).
+Rational max_angle_error();
+
+/// Rejects a configuration that names a part other than `allowed` (the pair's parts, or for a
+/// pin-slot claim the part not posed): such a position was never checked, yet the statement
+/// printed it (session 42, hunt42). \throws Rejection.
+void check_configuration_parts(const std::map<std::string, ExactPosition>& configuration,
+                               const std::vector<std::string>& allowed);
 
 /// Is every value of `value` certainly within `limits` (true when absent)? For an angle (rad)
 /// up to whole turns (-3 ... 3). Decided with MPFI: an interval straddling an end is not within.
@@ -62,6 +74,15 @@ void check_statement(const Certificate& certificate, const Model& model);
 /// comparisons, touching counts) for k = 0, certainly (MPFI) for the others. Shared by
 /// certify_jam and the verifier (session 36, hunt36; hunt35's open finding).
 bool band_meets_limits(const Part& follower, const RationalInterval& band);
+
+/// Why `start` is not a free configuration of the jam's trap ("" when it is): it must lie in
+/// the trap (exact), the follower's value within its limits, and the parts posed there (MPFI)
+/// be certainly apart by more than the distance to an exact configuration next to it, at which
+/// no loop of one part lies inside the other (exact). Shared by certify_jam, which tries
+/// candidates with it, and the verifier (session 42, hunt42: a trap wholly inside the parts'
+/// overlap verified, the claim "cannot pass" of a motion that cannot start).
+std::string jam_start_failure(const Part& driver, const Part& other, const ConfigurationBox& trap,
+                              const std::optional<JamStart>& start);
 
 /// An MPFI enclosure of the angle 2 atan(t) (+ pi when `half_turn`) of a half-angle tangent.
 Interval angle_of_tangent(const Rational& tangent, bool half_turn);

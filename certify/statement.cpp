@@ -105,7 +105,10 @@ std::string certificate_statement(const Certificate& c, const Model& model) {
     case ClaimKind::planar_interference:
     case ClaimKind::planar_clearance: {
       if (!c.pose) throw Rejection{"a planar claim needs its pose"};
-      std::string parts = other_words(c.first, c.configuration) + " and " + pose_words(*c.pose);
+      // the part not posed (the producers' pairs put it first; a certificate with the pair the
+      // other way round stated "Part 'follower' and 'follower' ..." until session 42)
+      const std::string& other = c.pose->part == c.first ? c.second : c.first;
+      std::string parts = other_words(other, c.configuration) + " and " + pose_words(*c.pose);
       return c.claim == ClaimKind::planar_interference ? parts + " overlap."
                                                         : parts + " are at least " + claim_number(c.distance) + " mm apart.";
     }

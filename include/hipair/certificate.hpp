@@ -183,6 +183,12 @@ struct ParameterValue {
 };
 
 /// A certificate: model identity, one claim about a pair of parts, its witnesses.
+/// A jam's start: a configuration in its trap where the parts are apart (Certificate::start).
+struct JamStart {
+  Rational driver;
+  std::optional<Rational> follower;   ///< absent when the pair's other part is fixed
+};
+
 struct Certificate {
   ClaimKind claim = ClaimKind::interference;
   std::string statement;   ///< the claim in words: certificate_statement() of the claim's data (checked)
@@ -230,6 +236,11 @@ struct Certificate {
   std::vector<BlockedPiece> cut;          ///< range: follower (one piece, any range, for 1-D pairs)
   std::vector<BlockedPiece> lower_wall;   ///< range: driver; follower = trap.follower->lo
   std::vector<BlockedPiece> upper_wall;   ///< range: driver; follower = trap.follower->hi
+  /// jam: a configuration inside the trap at which the parts are certainly apart (the driver's
+  /// coordinate, and the follower's when it moves): the trap holds a configuration of the
+  /// mechanism, so the claim is not empty (session 42; until then a trap wholly inside the
+  /// parts' overlap verified: "cannot pass" of a motion that cannot start).
+  std::optional<JamStart> start;
 
   /// tolerance: the parameter box, the driver range and the branch-and-bound leaves.
   std::optional<ToleranceClaim> tolerance;
@@ -247,7 +258,9 @@ struct CertifyContext {
 using PartValues = std::map<std::string, Rational>;
 
 /// An exact position from an angle (rad): the half-angle tangent rounded to a rational (the
-/// chart centred at pi when |angle| > pi/2), with `angle` and its error bound recorded.
+/// chart centred at pi when |angle| > pi/2), with `angle` and its error bound recorded (a
+/// label the verifier accepts only with an error of at most 10^-12 rad: an angle so large that
+/// its reduction to a turn is coarser gets no label).
 ExactPosition exact_position_from_angle(const Rational& angle);
 
 /// Certifies that parts `first` and `second` overlap at `positions` (every moving part of the
@@ -332,12 +345,19 @@ struct JamQuery {
   std::string follower;    ///< "" when the pair's other part is fixed
   int direction = +1;
   ConfigurationBox trap;
+  /// A configuration in the trap known to be free (find_jam: where the search stood); certify_jam
+  /// tries it first for the certificate's start, then a grid over the trap.
+  std::optional<JamStart> start;
 };
 
 /// Certifies the jam described by `query` by covering the cut and the walls with pieces, each
 /// blocked by a crossing feature pair (interval arithmetic). A wall at or beyond the follower's
 /// motion limit, in the limits' own turn (verify::wall_closed_by_limit), needs no pieces.
-/// \returns nullopt when some part of the cut or walls is not certainly blocked.
+/// The certificate's start is a configuration of the trap at which the parts are certainly
+/// apart (verify::jam_start_failure): `query.start` when it is one, else the first of a grid over
+/// the trap (driver: the near end, the middle, the quarters; follower: 31 values across the band).
+/// \returns nullopt when some part of the cut or walls is not certainly blocked, or when no
+/// configuration tried in the trap is certainly free.
 std::optional<Certificate> certify_jam(const Model& model, const std::string& first,
                                        const std::string& second, const JamQuery& query,
                                        const CertifyContext& context = {},

@@ -397,6 +397,30 @@ std::optional<Certificate> certify_jam(const Model& model, const std::string& fi
         return std::nullopt;
     }
   }
+  // A free configuration in the trap (the claim is empty without one): the query's start, else
+  // a grid over the trap, the near driver end first and the band's middle outwards.
+  std::vector<JamStart> candidates;
+  if (query.start) candidates.push_back(*query.start);
+  const RationalInterval& span = c.trap.driver;
+  Rational near_end = c.direction > 0 ? span.lo : span.hi;
+  for (const Rational& fraction : {Rational(0), Rational(1, 2), Rational(1, 4), Rational(3, 4)}) {
+    Rational x = near_end + (c.direction > 0 ? Rational(1) : Rational(-1)) * fraction * (span.hi - span.lo);
+    if (!r.has_follower) {
+      candidates.push_back({x, std::nullopt});
+      continue;
+    }
+    const RationalInterval& band = *c.trap.follower;
+    for (int k = 0; k <= 30; ++k) {   // 16/32, 15/32, 17/32, 14/32, ...
+      int offset = (k + 1) / 2 * (k % 2 ? -1 : 1);
+      candidates.push_back({x, Rational(band.lo + (band.hi - band.lo) * Rational(16 + offset, 32))});
+    }
+  }
+  for (const JamStart& candidate : candidates)
+    if (verify::jam_start_failure(*r.driver, *r.other, c.trap, candidate).empty()) {
+      c.start = candidate;
+      break;
+    }
+  if (!c.start) return std::nullopt;
   c.statement = certificate_statement(c, model);
   self_check(c, model);
   return c;
@@ -424,7 +448,7 @@ std::optional<JamQuery> find_jam(const Model& model, const std::string& first, c
   if (direction != 1 && direction != -1)
     throw NumericError("the jam direction must be +1 or -1, not " + std::to_string(direction));
   if (sgn(step) <= 0) throw NumericError("the step must be positive");
-  JamQuery query{d.name, r.has_follower ? o.name : "", direction, {}};
+  JamQuery query{d.name, r.has_follower ? o.name : "", direction, {}, std::nullopt};
   Rational x = start, f = follower_start;
   // A follower resting on a contact may overlap by a rounding: nudge it off, either way.
   for (Rational nudge(1, 10000000000); overlapping_at(r, x, f) && nudge < Rational(1, 100); nudge *= 10) {
@@ -440,6 +464,7 @@ std::optional<JamQuery> find_jam(const Model& model, const std::string& first, c
     if (!r.has_follower) {
       if (overlapping_at(r, next, 0)) {
         query.trap.driver = direction > 0 ? RationalInterval{x, next} : RationalInterval{next, x};
+        query.start = JamStart{x, std::nullopt};
         return query;
       }
     } else if (overlapping_at(r, next, f)) {
@@ -493,6 +518,7 @@ std::optional<JamQuery> find_jam(const Model& model, const std::string& first, c
       if (!moved_on) {
         query.trap.driver = direction > 0 ? RationalInterval{x, next} : RationalInterval{next, x};
         query.trap.follower = RationalInterval{end[0], end[1]};
+        query.start = JamStart{x, f};
         return query;
       }
     }

@@ -194,6 +194,13 @@ ExactPosition exact_position_from_angle(const Rational& angle) {
   mpfi_abs(size.get(), error.get());
   if (!size.is_bounded()) throw too_large();
   position.angle_error = round_down(size.upper(), 2) * 2 + Rational(1, 1000000000000000000ul);
+  // An angle beyond about 10^60 rad reduces to a turn with an error above the verifier's limit
+  // for a label (verify::max_angle_error): then the position carries no label and the statement
+  // gives its exact angle 2 atan(t) (session 42).
+  if (*position.angle_error > verify::max_angle_error()) {
+    position.angle.reset();
+    position.angle_error.reset();
+  }
   return position;
 }
 

@@ -211,7 +211,7 @@ int run(const CertifyArguments& arguments) {
       if (!arguments.trap.empty()) {
         auto comma = arguments.trap.find(',');
         query = JamQuery{driver.name, follows ? other.name : "", direction,
-                         {range_of(arguments.trap.substr(0, comma), rotates(driver), "--trap"), std::nullopt}};
+                         {range_of(arguments.trap.substr(0, comma), rotates(driver), "--trap"), std::nullopt}, std::nullopt};
         if (follows) {
           if (comma == std::string::npos) throw ModelError("", "--trap needs DRIVER_LO:HI,FOLLOWER_LO:HI for a moving follower");
           query->trap.follower = range_of(arguments.trap.substr(comma + 1), rotates(other), "--trap");
@@ -257,7 +257,7 @@ int run(const CertifyArguments& arguments) {
         }
         certificate = certify_found_jam(model, first, second, *query, step, context);
       }
-      failure = "some configuration of the trap's cut or walls is not certainly blocked";
+      failure = "some configuration of the trap's cut or walls is not certainly blocked, or no configuration tried in the trap is certainly free";
     }
   } else {
     throw ModelError("", "--claim must be interference, clearance, jam or free");

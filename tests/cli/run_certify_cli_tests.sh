@@ -447,6 +447,8 @@ for base, model in sorted(bases.items()):
             if k == near: value += step if forward else -step
             else: value += rng.choice([-1, 1]) * step; weaker = False
             section["trap"]["driver"][k] = text(value)
+            # the trap's free start (session 42) stands at the near end: moved in with it
+            if k == near: section["start"]["driver"] = text(value)
         if claim == "planar_clearance" and trial == 1 and "slide" in section["pose"]:
             s = Fraction(section["pose"]["slide"]); section["pose"]["slide"] = text(s + tiny(1)); weaker = False
         name = "%s-%d.json" % (base, trial)

@@ -11,6 +11,7 @@ no_jam tolerance bases, which hipair-verify answers with exit 3).
 """
 import argparse
 import copy
+from fractions import Fraction
 import json
 import os
 
@@ -175,6 +176,28 @@ mutate("lever-clearance.json", "lever-stop.json", "m31-model-file-a-path.json", 
        set_path(["model", "file"], "../examples/models/lever-stop.json"))
 mutate("ratchet-jam.json", "ratchet.json", "m32-jam-trap-follower-outside-limits.json",
        "lies outside the follower's limits", set_path(["jam", "trap", "follower"], ["1", "11/10"]))
+
+# Session 42 (hunt42): what the statement prints must be what the data prove. A jam needs a free
+# start in its trap (else "cannot pass" is said of a motion that cannot start); an angle label is
+# a label only within 10^-12 rad (the statement prints it, not the tangent); a configuration may
+# give positions only to the claim's parts (the statement prints every one). Each statement is the
+# one of the mutated data, so only the new checks can reject them (main 9b844dd accepts m36-m38).
+mutate("ratchet-jam.json", "ratchet.json", "m33-jam-start-dropped.json", "/jam: missing key 'start'",
+       lambda c: c["jam"].pop("start"))
+mutate("ratchet-jam.json", "ratchet.json", "m34-jam-start-outside-trap.json", "is not in the trap's driver range",
+       lambda c: c["jam"]["start"].__setitem__("driver", str(Fraction(c["jam"]["trap"]["driver"][1]) + 1)))
+mutate("ratchet-jam.json", "ratchet.json", "m35-jam-start-on-a-wall.json", "not certainly apart at the trap's start",
+       lambda c: c["jam"]["start"].__setitem__("follower", c["jam"]["trap"]["follower"][0]))
+mutate("lever-interference.json", "lever-stop.json", "m36-angle-label-a-radian-off.json", "the angle error of 'lever'",
+       lambda c: (c["interference"]["configuration"]["lever"].update({"angle": "0", "angle_error": "1"}),
+                  c.__setitem__("statement", "Parts 'lever' and 'stop' overlap with lever at 0 rad.")))
+mutate("lever-clearance.json", "lever-stop.json", "m37-angle-label-half-a-radian-off.json", "the angle error of 'lever'",
+       lambda c: (c["clearance"]["configuration"]["lever"].update({"angle": "1/2", "angle_error": "1"}),
+                  c.__setitem__("statement", "Parts 'lever' and 'stop' are at least 2 mm apart with lever at 0.5 rad.")))
+mutate("lever-clearance.json", "lever-stop.json", "m38-configuration-ghost-part.json",
+       "the configuration gives a position for 'ghost'",
+       lambda c: (c["clearance"]["configuration"].__setitem__("ghost", {"offset": "5"}),
+                  c.__setitem__("statement", "Parts 'lever' and 'stop' are at least 2 mm apart with ghost at 5 mm, lever at 0 rad.")))
 
 # Planar claims (a part free in the plane at an exact pose).
 mutate("peg-planar-clearance.json", "peg-in-hole.json", "p01-planar-pose-moved.json", "less than the claimed",
