@@ -758,6 +758,19 @@ class ChainAnalysis {
           for (std::size_t p = 0; p < n; ++p) share[k][p] += std::fabs(through * per_[i][j].s_part[p]);
         }
       std::size_t failure_splits = 0, shared_splits = 0;
+      // The parameter of sub-box b whose weight times its width is largest and above `floor`
+      // (n if none): where a sub-box is bisected (both halves queued, breadth first).
+      auto widest = [n](const Box& b, const std::vector<double>& weight, double floor) {
+        std::size_t split = n;
+        for (std::size_t p = 0; p < n; ++p) {
+          double score = weight[p] * (b.hi[p] - b.lo[p]);
+          if (b.hi[p] > b.lo[p] && score > floor) {
+            floor = score;
+            split = p;
+          }
+        }
+        return split;
+      };
       std::vector<Interval> hull_charts(stages_.size());
       std::vector<Interval> charts(stages_.size());
       // breadth first: when the budget runs out, the sub-boxes left are the narrowest ones
@@ -792,15 +805,7 @@ class ChainAnalysis {
           // at least a tenth of the excess.
           double excess = out.width() - linear, explained = 0;
           for (std::size_t p = 0; p < n; ++p) explained += loss[p] * (b.hi[p] - b.lo[p]);
-          std::size_t split = n;
-          double best = 0.1 * excess;
-          for (std::size_t p = 0; p < n && explained >= 0.5 * excess; ++p) {
-            double score = loss[p] * (b.hi[p] - b.lo[p]);
-            if (b.hi[p] > b.lo[p] && score > best) {
-              best = score;
-              split = p;
-            }
-          }
+          std::size_t split = explained >= 0.5 * excess ? widest(b, loss, 0.1 * excess) : n;
           if (split < n) {
             auto [left, right] = halves(b, split);
             pending.push_back(std::move(left));
@@ -817,15 +822,7 @@ class ChainAnalysis {
           // spreads the failing pair's follower most, within max_failure_boxes sub-boxes; the
           // band is the hull of the halves' compositions. Otherwise unbounded.
           if (failed < stages_.size() && used + pending.size() + 2 <= max_failure_boxes) {
-            std::size_t split = n;
-            double best = 0;
-            for (std::size_t p = 0; p < n; ++p) {
-              double score = share[failed][p] * (b.hi[p] - b.lo[p]);
-              if (b.hi[p] > b.lo[p] && score > best) {
-                best = score;
-                split = p;
-              }
-            }
+            std::size_t split = widest(b, share[failed], 0);
             if (split < n) {
               auto [left, right] = halves(b, split);
               pending.push_back(std::move(left));
