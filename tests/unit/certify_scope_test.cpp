@@ -41,25 +41,15 @@
 #include <string>
 #include <vector>
 
+#include "certificate_test_support.hpp"
 #include "test_paths.hpp"
 
 namespace hipair {
 namespace {
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-Certificate corpus(const std::string& name) {
-  return read_certificate(slurp(std::string(HIPAIR_TEST_DATA) + "/certificates/" + name));
-}
-Rational pow10(int m) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(m < 0 ? -m : m));
-  return m < 0 ? Rational(mpz_class(1), p) : Rational(p);
-}
+using test::corpus;
+using test::pow10;
+using test::slurp;
 // The verifier's verdict on a certificate given the statement of its own data, after the JSON
 // round trip (check_certificate is hipair-verify's code, compiled into the library).
 VerificationResult verdict(Certificate c, const Model& model) {
