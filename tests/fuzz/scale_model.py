@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes a model with every length multiplied exactly by a factor S (docs/model-format.md).
 
-usage: scale_model.py MODEL FACTOR OUT
+usage: scale_model.py MODEL FACTOR OUT [MODEL FACTOR OUT ...]
   FACTOR  an exact literal or expression of the model format: 1e300, 1e-300, 2^-700, 3/2
 
 Every length is rewritten at its use site as the expression "(<as written>)*S", so it stays
@@ -216,18 +216,32 @@ def motion_kind(part):
     return None
 
 
+def scale_one(source, factor, out):
+    with open(source, encoding="utf-8") as f:
+        model = json.load(f, parse_float=Number, parse_int=Number)
+    scaled = Scaler(factor).model(model)
+    if "name" in scaled:
+        scaled["name"] = "%s-x%s" % (scaled["name"], factor)
+    text = dump(scaled) + "\n"  # the whole text before the file is opened: none half-written
+    with open(out, "w", encoding="utf-8") as f:
+        f.write(text)
+
+
 def main(argv):
-    if len(argv) != 4:
+    # MODEL FACTOR OUT, or several such triples in one process (tests/fuzz/scaled_cli.sh writes
+    # all its models at once: one interpreter start rather than one per model and scale). A
+    # triple that fails is reported on stderr and writes no file; the others are still written.
+    if len(argv) < 4 or (len(argv) - 1) % 3:
         sys.stderr.write(__doc__)
         return 2
-    with open(argv[1], encoding="utf-8") as f:
-        model = json.load(f, parse_float=Number, parse_int=Number)
-    scaled = Scaler(argv[2]).model(model)
-    if "name" in scaled:
-        scaled["name"] = "%s-x%s" % (scaled["name"], argv[2])
-    with open(argv[3], "w", encoding="utf-8") as f:
-        f.write(dump(scaled) + "\n")
-    return 0
+    failed = 0
+    for i in range(1, len(argv), 3):
+        try:
+            scale_one(argv[i], argv[i + 1], argv[i + 2])
+        except Exception as error:  # noqa: BLE001 -- reported per model, the next one still written
+            sys.stderr.write("scale_model: %s at %s: %s\n" % (argv[i], argv[i + 1], error))
+            failed += 1
+    return 1 if failed else 0
 
 
 if __name__ == "__main__":

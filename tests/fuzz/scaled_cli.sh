@@ -24,28 +24,51 @@ fi
 failures=0 runs=0
 report() { echo "$1"; [ "${2:-}" = bad ] && failures=$((failures + 1)); }
 
-check_outputs() {  # DIR: every file complete, no temporary left
-  local dir=$1 file problem=""
+# One Python process parses every JSON file the runs write (a coprocess that answers "ok" or
+# "bad" per path), and writes every scaled model at once: an interpreter start per file (a pyenv
+# shim costs ~0.7 s of CPU) was most of this script's time (session 43, build43).
+python=$(python3 -c 'import sys; print(sys.executable)') || { echo "scaled_cli: no python3" >&2; exit 2; }
+coproc JSON_CHECK { "$python" -u -c '
+import json, sys
+for line in sys.stdin:
+    try:
+        with open(line[:-1], encoding="utf-8") as f:
+            json.load(f)
+        print("ok")
+    except Exception:
+        print("bad")
+'; }
+
+check_outputs() {  # DIR: every file complete, no temporary left; the finding in $problem
+  local dir=$1 file answer
+  problem=""
   while IFS= read -r -d '' file; do
     case "$(basename "$file")" in
       .*.tmp*) problem="temporary left: $file" ;;
-      *.json) python3 -c 'import json,sys; json.load(open(sys.argv[1]))' "$file" 2>/dev/null ||
-                problem="unparsable JSON: $file" ;;
+      *.json) echo "$file" >&"${JSON_CHECK[1]}" && IFS= read -r answer <&"${JSON_CHECK[0]}" &&
+                [ "$answer" = ok ] || problem="unparsable JSON: $file" ;;
       *.svg) tail -c 64 "$file" | grep -q '</svg>' || problem="incomplete SVG: $file" ;;
     esac
   done < <(find "$dir" -type f -print0)
-  echo "$problem"
 }
 
 IFS=, read -ra command_list <<<"$commands"
 IFS=, read -ra model_list <<<"$models"
 IFS=, read -ra scale_list <<<"$scales"
+mkdir -p "$work/models"
+generator_args=()
+for name in "${model_list[@]}"; do
+  for scale in "${scale_list[@]}"; do
+    rm -f "$work/models/$name@$scale.json"
+    generator_args+=("$source_dir/examples/models/$name.json" "$scale" "$work/models/$name@$scale.json")
+  done
+done
+"$python" "$source_dir/tests/fuzz/scale_model.py" "${generator_args[@]}"  # a failed model: no file
+
 for name in "${model_list[@]}"; do
   for scale in "${scale_list[@]}"; do
     model="$work/models/$name@$scale.json"
-    mkdir -p "$work/models"
-    python3 "$source_dir/tests/fuzz/scale_model.py" "$source_dir/examples/models/$name.json" "$scale" "$model" ||
-      { report "GENERATOR $name@$scale" bad; continue; }
+    [ -f "$model" ] || { report "GENERATOR $name@$scale" bad; continue; }
     for command in "${command_list[@]}"; do
       out="$work/out/$name@$scale/$command"
       rm -rf "$out" && mkdir -p "$out"
@@ -60,17 +83,18 @@ for name in "${model_list[@]}"; do
         *) echo "unknown command $command" >&2; exit 2 ;;
       esac
       runs=$((runs + 1))
-      start=$(date +%s.%N)
+      start=${EPOCHREALTIME/[.,]/}
       (cd "$out" && timeout -k 5 "$limit" "$hipair" "${args[@]}" >"$out/.stdout" 2>"$out/.stderr")
       rc=$?
-      seconds=$(printf '%.1f' "$(echo "$(date +%s.%N) - $start" | bc)")
+      tenths=$(( (${EPOCHREALTIME/[.,]/} - start + 50000) / 100000 ))
+      seconds=$((tenths / 10)).$((tenths % 10))
       mv "$out/.stdout" "$work/out/$name@$scale/$command.stdout"
       mv "$out/.stderr" "$work/out/$name@$scale/$command.stderr"
       stderr="$work/out/$name@$scale/$command.stderr"
       message=$(grep -m1 '^hipair: error:' "$stderr" | cut -c1-160)
-      problem=$(check_outputs "$out")
+      check_outputs "$out"
       what="$command $name@$scale (${seconds}s)"
-      if [ "$rc" -eq 124 ] || [ "$rc" -eq 137 -a "$(echo "$seconds >= $limit" | bc)" = 1 ]; then
+      if [ "$rc" -eq 124 ] || { [ "$rc" -eq 137 ] && [ "$tenths" -ge $((limit * 10)) ]; }; then
         if [ "${ALLOW_TIMEOUT:-0}" = 1 ]; then report "TIMEOUT $what"; else report "TIMEOUT $what" bad; fi
       elif [ "$rc" -ge 128 ]; then
         report "CRASH rc=$rc $what: $(tail -c 300 "$stderr" | tr '\n' ' ')" bad
