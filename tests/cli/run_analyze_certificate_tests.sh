@@ -13,6 +13,9 @@
 # Under --rounding a certificate is written only if it verifies (else "not certified: ...").
 # usage: run_analyze_certificate_tests.sh HIPAIR HIPAIR_VERIFY WORK_DIR [SEED]
 set -uo pipefail
+# python3 resolved once to the interpreter itself: a pyenv shim starts a shell script per call
+# (~0.7 s of CPU each), and these scripts call python3 in loops (session 43, build43).
+hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "$hipair_python" "$@"; }
 hipair=$1 verify=$2 work=$3 seed=${4:-37}
 rm -rf "$work" && mkdir -p "$work"
 failures=0

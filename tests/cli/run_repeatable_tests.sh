@@ -5,6 +5,9 @@
 # and the outputs are compared with cmp.
 # usage: run_repeatable_tests.sh HIPAIR_BINARY SOURCE_DIR WORK_DIR
 set -uo pipefail
+# python3 resolved once to the interpreter itself: a pyenv shim starts a shell script per call
+# (~0.7 s of CPU each), and these scripts call python3 in loops (session 43, build43).
+hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "$hipair_python" "$@"; }
 hipair=$1 source=$2 work=$3
 models=$source/examples/models
 rm -rf "$work" && mkdir -p "$work"
