@@ -20,6 +20,7 @@
 #include "simulation/crossing_limit.hpp"
 #include "simulation/crossing_sweep.hpp"
 #include "simulation/cut_search.hpp"
+#include "simulation/edge_watch.hpp"
 #include "simulation/frame_cache.hpp"
 #include "simulation/friction.hpp"
 #include "simulation/lcp.hpp"
@@ -777,17 +778,8 @@ struct Simulation::Impl {
     // (the 1 is the coordinate's unit: rad on a rotating axis, the chart's extent in mm on a
     // translating one, session 40)
     const double tol = 1e-12 * (a.unit + std::abs(A) + std::abs(B));
-    double u = 0;
-    for (int iteration = 0; iteration < 100000; ++iteration) {
-      double q = poly(c, u);
-      double d = std::min(q - A, B - q);
-      // (a start already outside is left to violated(), as before)
-      if (d < -tol) return u > 0 ? u : 1;
-      // cannot be outside by tol before u + (d + tol) / slope: a step of at least tol / slope
-      u += (d + tol) / slope;
-      if (u >= 1) return 1;
-    }
-    return u;
+    // (the scan, and its exit at a fixed point: simulation/edge_watch.hpp)
+    return simulation::watch_scan(c, A, B, tol, slope);
   }
 
   // A state taken from a step's path at time t: the prescribed parts exactly where their law
