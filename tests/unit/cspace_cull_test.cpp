@@ -13,6 +13,7 @@
 #include "cspace/builder_impl.hpp"
 #include "cli/cspace_json.hpp"
 #include "curves/contact_curves.hpp"
+#include "oracle/blocked_tester.hpp"
 #include "cspace_test_support.hpp"
 #include "test_paths.hpp"
 
@@ -25,6 +26,7 @@
 #include <array>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <tuple>
@@ -490,6 +492,138 @@ TEST(CSpaceCull, RowCacheBuildsThePlainEvaluationsSpaceOnGeneratedPairs) {
   }
   EXPECT_GE(spaces, 8);
   EXPECT_GT(windows, 100u);   // the windows compared are not all empty
+}
+
+
+// ---------------------------------------------------------------- the grid's memo and the culler's cells
+// (session 43, fast43)
+
+// A key of cell (depth, i, j) for the references below.
+std::tuple<int, long, long> cell_key(int depth, long i, long j) { return {depth, i, j}; }
+
+// BlockedCells' answers against a reference with the same meaning built on BlockedTester's
+// plain sweep (no cache, no candidate lists): a cell already asked gives its first answer, a
+// cell inside an asked cell found blocked is blocked, any other cell is the tester's answer.
+// The cells are asked in a random order at random depths (0 to 11, past the lists' depth 9),
+// many of them near each other (a random leaf's ancestors), as the two culls ask them.
+void expect_grid_answers_the_testers(const Model& model, const std::string& first, const std::string& second,
+                                     std::uint64_t seed, int* blocked_seen, int* free_seen) {
+  CSpace space = CSpace::build(model, first, second, CSpaceBuildOptions{});
+  const auto& impl = cspace::impl_of(space);
+  cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part(first), *model.find_part(second));
+  auto tester = std::make_shared<const cspace::BlockedTester>(model, axes);
+  ASSERT_TRUE(tester->usable());
+  std::mt19937_64 random(seed);
+  for (std::size_t c = 0; c < impl.charts.size(); ++c) {
+    const cspace::ChartData& chart = impl.charts[c];
+    cspace::BlockedCells grid(tester, chart.x_axis, chart.y_axis, 2, 9);
+    std::map<std::tuple<int, long, long>, bool> reference;
+    auto expected = [&](int depth, long i, long j) {
+      auto it = reference.find(cell_key(depth, i, j));
+      if (it != reference.end()) return it->second;
+      bool result = false;
+      for (int up = 1; up <= depth && !result; ++up) {
+        auto parent = reference.find(cell_key(depth - up, i >> up, j >> up));
+        result = parent != reference.end() && parent->second;
+      }
+      if (!result) result = tester->blocked(chart.x_axis, chart.y_axis, grid.cell_x(depth, i), grid.cell_y(depth, j));
+      reference.emplace(cell_key(depth, i, j), result);
+      return result;
+    };
+    for (int n = 0; n < 1500; ++n) {
+      const long leaf_i = static_cast<long>(random() % (1u << 11)), leaf_j = static_cast<long>(random() % (1u << 11));
+      for (int asks = 0; asks < 3; ++asks) {
+        const int depth = static_cast<int>(random() % 12);
+        const long i = leaf_i >> (11 - depth), j = leaf_j >> (11 - depth);
+        const bool want = expected(depth, i, j);
+        ASSERT_EQ(grid.blocked(depth, i, j), want) << "chart " << c << ", cell (" << depth << ", " << i << ", " << j << ")";
+        ++*(want ? blocked_seen : free_seen);
+      }
+    }
+  }
+}
+
+TEST(CSpaceCull, GridMemoAnswersTheTestersSweepInAnyOrder) {
+  int blocked = 0, free = 0;
+  std::filesystem::path geneva = std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json";
+  if (std::filesystem::exists(geneva)) expect_grid_answers_the_testers(read_model_file(geneva), "driver", "wheel", 61, &blocked, &free);
+  std::mt19937_64 random(1405);
+  for (int scale : {0, -30, 40}) {
+    SCOPED_TRACE("stars, scale 1e" + std::to_string(scale));
+    expect_grid_answers_the_testers(star_pair(random, power_of_ten(scale)), "a", "b", 62 + static_cast<std::uint64_t>(scale + 40),
+                                    &blocked, &free);
+  }
+  expect_grid_answers_the_testers(lever_pair(Rational(3, 4), Rational(10), Rational(3), Rational(9, 2), Rational(1), Rational(1)),
+                                  "crank", "rocker", 63, &blocked, &free);
+  // both answers occur often
+  EXPECT_GT(blocked, 2000);
+  EXPECT_GT(free, 2000);
+}
+
+// The builder's culler keeps a curve in a finest cell (a whole chart's grid: depth 9) only where
+// the grid answered "free" for that cell and for the enclosing cells it asked on the way down
+// (depths 3, 5 and 7): every surviving cell and each of those ancestors is one that
+// BlockedTester's plain sweep does not certify blocked. A culler that took another cell's
+// answer (session 42's transposed table: 0 failures of the C-space comparisons above) keeps a
+// curve in cells the sweep certifies.
+void expect_surviving_cells_not_certified(const Model& model, const std::string& first, const std::string& second,
+                                          int* checked) {
+  CSpace space = CSpace::build(model, first, second, CSpaceBuildOptions{});
+  const auto& impl = cspace::impl_of(space);
+  ASSERT_TRUE(impl.complete);
+  cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part(first), *model.find_part(second));
+  auto tester = std::make_shared<const cspace::BlockedTester>(model, axes);
+  ASSERT_TRUE(tester->usable());
+  constexpr int depth = 9;
+  for (std::size_t c = 0; c < impl.charts.size(); ++c) {
+    const cspace::ChartData& chart = impl.charts[c];
+    cspace::BlockedCells sides(nullptr, chart.x_axis, chart.y_axis, 2, depth);   // the grid's cell sides
+    std::map<std::tuple<int, long, long>, bool> tested;
+    auto certified = [&](int d, long i, long j) {
+      auto [it, fresh] = tested.emplace(cell_key(d, i, j), false);
+      if (fresh) it->second = tester->blocked(chart.x_axis, chart.y_axis, sides.cell_x(d, i), sides.cell_y(d, j));
+      return it->second;
+    };
+    for (std::size_t k = 0; k < chart.cells.size(); ++k) {
+      for (const std::array<double, 4>& b : chart.cells[k]) {
+        // the merged box's column and rows of finest cells
+        long i = -1, j0 = -1;
+        for (long m = 0; m < (1L << depth); ++m) {
+          if (sides.cell_x(depth, m).lo == b[0] && sides.cell_x(depth, m).hi == b[1]) i = m;
+          if (sides.cell_y(depth, m).lo == b[2]) j0 = m;
+        }
+        ASSERT_GE(i, 0) << "a surviving cell is no column of the grid";
+        ASSERT_GE(j0, 0) << "a surviving cell starts at no row of the grid";
+        long j = j0;
+        for (; j < (1L << depth) && sides.cell_y(depth, j).hi <= b[3]; ++j) {
+          for (int d : {3, 5, 7, 9}) {
+            const int up = depth - d;
+            EXPECT_FALSE(certified(d, i >> up, j >> up))
+                << "chart " << c << ", curve " << k << ": kept in cell (" << depth << ", " << i << ", " << j
+                << ") whose enclosing cell of depth " << d << " is certainly blocked";
+            ++*checked;
+          }
+        }
+        EXPECT_EQ(sides.cell_y(depth, j - 1).hi, b[3]) << "a surviving cell ends at no row of the grid";
+      }
+    }
+  }
+}
+
+TEST(CSpaceCull, SurvivingCellsAreNoneTheTesterCertifies) {
+  int checked = 0;
+  std::filesystem::path geneva = std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json";
+  if (std::filesystem::exists(geneva)) expect_surviving_cells_not_certified(read_model_file(geneva), "driver", "wheel", &checked);
+  std::mt19937_64 random(1406);
+  for (int scale : {0, -30, 40}) {
+    for (int n = 0; n < 2; ++n) {
+      SCOPED_TRACE("stars, scale 1e" + std::to_string(scale) + ", pair " + std::to_string(n));
+      expect_surviving_cells_not_certified(star_pair(random, power_of_ten(scale)), "a", "b", &checked);
+    }
+  }
+  expect_surviving_cells_not_certified(lever_pair(Rational(3, 4), Rational(10), Rational(3), Rational(9, 2), Rational(1), Rational(1)),
+                                       "crank", "rocker", &checked);
+  EXPECT_GT(checked, 1000);
 }
 
 }  // namespace
