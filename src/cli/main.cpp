@@ -6,6 +6,8 @@
 #include <exception>
 #include <iostream>
 #include <new>
+#include <string>
+#include <vector>
 
 int main(int argc, char** argv) {
   // out of memory inside GMP (and MPFR, CGAL) becomes std::bad_alloc: exit 4, not an abort
@@ -38,6 +40,18 @@ int main(int argc, char** argv) {
   };
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RequiredError& e) {
+    // CLI11 checks "a subcommand is required" before the unparsed arguments: `hipair --bogus`
+    // and `hipair bogus` said "A subcommand is required" and named neither (session 43)
+    const std::vector<std::string> unknown = app.remaining();
+    if (!app.get_subcommands().empty() || unknown.empty()) return exit_with(e);
+    if (unknown.front().rfind("-", 0) == 0)
+      return exit_with(CLI::ExtrasError("The following argument was not expected: " + unknown.front(),
+                                        CLI::ExitCodes::ExtrasError));
+    std::string names;
+    for (const CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
+    return exit_with(CLI::ExtrasError("unknown subcommand '" + unknown.front() + "' (the subcommands: " + names + ")",
+                                      CLI::ExitCodes::ExtrasError));
   } catch (const CLI::ParseError& e) {
     return exit_with(e);
   }

@@ -190,6 +190,7 @@ void Reader::read_pairs(const JsonValue* pairs) {
     auto key = std::minmax(indices[0], indices[1]);
     if (auto [where, inserted] = seen.emplace(key, value.pointer); !inserted)
       throw ModelError(value.pointer, "duplicate pair (also " + where->second + ")");
+    SimulatorValues simulator_values(*this);   // friction and restitution are simulator data
     if (const JsonValue* f = value.find("friction")) {
       if (f->is_object()) {
         // {"static": mu_s, "kinetic": mu_k}: both required, 0 <= mu_k <= mu_s

@@ -103,6 +103,22 @@ class Reader {
   Quantity evaluate(const JsonValue& value);
   Rational number(const JsonValue& value);
   Rational angle(const JsonValue& value);
+  /// Dynamics data (a part's "dynamics", the "simulation" object, a pair's friction and
+  /// restitution) is held by the simulator in doubles: while a SimulatorValues guard lives,
+  /// number() and angle() refuse a value whose magnitude is beyond the doubles' normal range
+  /// (|v| > DBL_MAX, or 0 < |v| < DBL_MIN), at its pointer (session 43: 1e400 became infinity
+  /// and GMP's mpq_set_d(inf) killed the process with SIGFPE).
+  void check_simulator_range(const Rational& value, const JsonValue& where);
+  struct SimulatorValues {
+    explicit SimulatorValues(Reader& reader) : reader_(reader), before_(reader.simulator_values_) {
+      reader_.simulator_values_ = true;
+    }
+    ~SimulatorValues() { reader_.simulator_values_ = before_; }
+    SimulatorValues(const SimulatorValues&) = delete;
+    SimulatorValues& operator=(const SimulatorValues&) = delete;
+    Reader& reader_;
+    bool before_;
+  };
   Rational non_negative(const JsonValue& value, const std::string& what);
   Rational positive(const JsonValue& value, const std::string& what);
   Point point(const JsonValue& value);
@@ -140,6 +156,7 @@ class Reader {
   std::string_view text_;
   const ReadOptions& options_;
   Model model_;
+  bool simulator_values_ = false;                     ///< number()/angle() check the doubles' range
   bool degrees_ = false;                              ///< the file's angle unit is deg
   std::map<std::string, ParameterState> parameters_;
   std::vector<Parameter> resolved_;                   ///< in file order

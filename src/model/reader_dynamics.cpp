@@ -32,6 +32,7 @@ void Reader::read_simulation(const JsonValue* value) {
   if (!value) return;
   expect_object(*value, "a simulation object");
   check_keys(*value, {"units", "gravity", "velocities", "drivers", "springs", "centers_of_mass", "accuracy"});
+  SimulatorValues simulator_values(*this);
   SimulationSpec spec;
   spec.pointer = value->pointer;
   if (const JsonValue* units = value->find("units")) {
@@ -236,7 +237,11 @@ void Reader::read_simulation(const JsonValue* value) {
   }
   if (const JsonValue* accuracy = value->find("accuracy")) {
     spec.accuracy = positive(*accuracy, "accuracy");
-    if (*spec.accuracy >= 1) throw ModelError(accuracy->pointer, "accuracy is relative: it must lie in (0, 1)");
+    // the range `hipair simulate --accuracy` takes (below 1e-15 the integrator's steps underflow:
+    // 1e-300 ran to "the integrator's step size underflows" with no pointer; session 43)
+    if (*spec.accuracy > Rational(1, 10) || *spec.accuracy < Rational(1, 1000000000000000))
+      throw ModelError(accuracy->pointer, "accuracy is relative, in (0, 1), and the integrator takes it in "
+                                          "[1e-15, 0.1] (the range of --accuracy); got " + decimal(*spec.accuracy));
   }
   model_.simulation = std::move(spec);
 }

@@ -267,6 +267,7 @@ PartConfiguration Reader::read_initial(const JsonValue& value, const Motion& mot
 Dynamics Reader::read_dynamics(const JsonValue& value) {
   expect_object(value, "a dynamics object");
   check_keys(value, {"mass", "moment_of_inertia", "torsional_spring", "linear_spring", "torque", "force", "damping"});
+  SimulatorValues simulator_values(*this);
   Dynamics dynamics;
   if (const JsonValue* v = value.find("mass")) dynamics.mass = non_negative(*v, "mass");
   if (const JsonValue* v = value.find("moment_of_inertia"))

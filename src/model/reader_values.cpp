@@ -7,6 +7,7 @@
 #include <hipair/error.hpp>
 
 #include <cstdio>
+#include <limits>
 #include <utility>
 
 namespace hipair::model_detail {
@@ -152,12 +153,29 @@ Quantity Reader::evaluate(const JsonValue& value) {
 }
 
 Rational Reader::number(const JsonValue& value) {
-  return to_rational(evaluate(value), value.pointer, text_of(value), model_.roundings);
+  Rational result = to_rational(evaluate(value), value.pointer, text_of(value), model_.roundings);
+  if (simulator_values_) check_simulator_range(result, value);
+  return result;
 }
 
 Rational Reader::angle(const JsonValue& value) {
-  return to_rational(as_angle(evaluate(value), degrees_, value.pointer, text_of(value)), value.pointer, text_of(value),
-                     model_.roundings);
+  Rational result = to_rational(as_angle(evaluate(value), degrees_, value.pointer, text_of(value)), value.pointer,
+                                text_of(value), model_.roundings);
+  if (simulator_values_) check_simulator_range(result, value);
+  return result;
+}
+
+void Reader::check_simulator_range(const Rational& value, const JsonValue& where) {
+  if (sgn(value) == 0) return;
+  const Rational magnitude = abs(value);
+  // exact comparisons with the doubles' largest finite and smallest normal magnitudes
+  static const Rational largest(std::numeric_limits<double>::max());
+  static const Rational smallest(std::numeric_limits<double>::min());
+  if (magnitude <= largest && magnitude >= smallest) return;
+  throw ModelError(where.pointer, "'" + text_of(where) + "' is " +
+                                      (magnitude > largest ? "too large" : "too small") +
+                                      " for the simulator, which holds dynamics data in doubles: a nonzero "
+                                      "magnitude must lie in [2.2250738585072014e-308, 1.7976931348623157e+308]");
 }
 
 Rational Reader::non_negative(const JsonValue& value, const std::string& what) {

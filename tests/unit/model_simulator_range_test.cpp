@@ -1,0 +1,152 @@
+// Dynamics data beyond the doubles' range (session 43, hunt43). The simulator holds every value
+// of a part's "dynamics", of the "simulation" object and a pair's friction and restitution in
+// doubles; an exact literal such as 1e400 (the grammar takes exponents up to 1000) became
+// infinity there, and `hipair simulate` died of SIGFPE (GMP's mpq_set_d(inf)) on a friction,
+// a driver speed or an initial angle of 1e400, or integrated a non-finite state (mass,
+// velocity, spring rest of 1e400). The reader now refuses such a value at its own pointer.
+//
+// Generated: every number of every bundled model's dynamics data is replaced, one at a time,
+// by values beyond the range (huge, tiny, either sign); each must be refused with exactly its
+// JSON pointer and the range's reason. Controls: the range's own ends (and values just inside
+// them) are never refused for the range. On main 0bdc449 every beyond-range case was accepted.
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "test_paths.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const std::string range_reason = "for the simulator, which holds dynamics data in doubles";
+
+// JSON pointer of every number (or number string) under the dynamics data of a model
+void collect(const json& value, const std::string& pointer, std::vector<std::string>& out) {
+  if (value.is_object()) {
+    for (auto it = value.begin(); it != value.end(); ++it) {
+      if (it.key() == "units" || it.key() == "law" || it.key() == "part" || it.key() == "parts") continue;
+      collect(it.value(), pointer + "/" + it.key(), out);
+    }
+  } else if (value.is_array()) {
+    for (std::size_t i = 0; i < value.size(); ++i) collect(value[i], pointer + "/" + std::to_string(i), out);
+  } else if (value.is_number()) {
+    out.push_back(pointer);
+  }
+}
+
+struct Source {
+  std::string name;
+  json document;
+  std::vector<std::string> pointers;   // the dynamics numbers
+};
+
+std::vector<Source> sources() {
+  std::vector<Source> result;
+  for (const auto& entry : fs::directory_iterator(fs::path(HIPAIR_EXAMPLES))) {
+    if (entry.path().extension() != ".json") continue;
+    std::ifstream in(entry.path());
+    json doc = json::parse(in);
+    Source s{entry.path().filename().string(), doc, {}};
+    if (doc.contains("simulation")) collect(doc["simulation"], "/simulation", s.pointers);
+    for (std::size_t i = 0; doc.contains("parts") && i < doc["parts"].size(); ++i)
+      if (doc["parts"][i].contains("dynamics"))
+        collect(doc["parts"][i]["dynamics"], "/parts/" + std::to_string(i) + "/dynamics", s.pointers);
+    for (std::size_t i = 0; doc.contains("pairs") && i < doc["pairs"].size(); ++i)
+      for (const char* key : {"friction", "restitution"})
+        if (doc["pairs"][i].contains(key))
+          collect(doc["pairs"][i][key], "/pairs/" + std::to_string(i) + "/" + key, s.pointers);
+    if (!s.pointers.empty()) result.push_back(std::move(s));
+  }
+  return result;
+}
+
+// the model's text with the number at `pointer` replaced by the literal `literal` (a JSON number)
+std::string with(const json& document, const std::string& pointer, const std::string& literal) {
+  json copy = document;
+  copy[json::json_pointer(pointer)] = "@@MARK@@";   // a marker, replaced by the literal's own text
+  std::string text = copy.dump();
+  const std::string marker = "\"@@MARK@@\"";
+  return text.replace(text.find(marker), marker.size(), literal);
+}
+
+TEST(ModelSimulatorRange, ValuesBeyondTheDoublesRangeAreRefusedAtTheirPointer) {
+  const std::vector<std::string> beyond = {"1e400", "-1e400", "1.8e308", "-1.7976931348623159e308", "1e-400",
+                                           "-3e-310", "2.2e-308"};
+  std::size_t cases = 0, failures = 0;
+  for (const Source& s : sources()) {
+    for (const std::string& pointer : s.pointers) {
+      for (const std::string& literal : beyond) {
+        ++cases;
+        std::string text = with(s.document, pointer, literal);
+        try {
+          hipair::read_model(text, s.name);
+          ++failures;
+          ADD_FAILURE() << s.name << " " << pointer << " = " << literal << " was accepted";
+        } catch (const hipair::ModelError& e) {
+          const std::string message = e.what();
+          if (e.pointer() != pointer || message.find(range_reason) == std::string::npos) {
+            ++failures;
+            ADD_FAILURE() << s.name << " " << pointer << " = " << literal << ": " << message;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(cases, 300u);   // 16 bundled models with dynamics data, about 60 numbers
+  EXPECT_EQ(failures, 0u) << "of " << cases;
+}
+
+TEST(ModelSimulatorRange, TheRangesEndsAreNotRefusedForTheRange) {
+  // the largest finite double, the smallest normal one, and values just inside; other checks
+  // (restitution <= 1, accuracy in [1e-15, 0.1], a kinetic friction above the static one,
+  // signs) may still refuse them, but never for the doubles' range
+  const std::vector<std::string> inside = {"1.7976931348623157e308", "-1.7976931348623157e308",
+                                           "2.2250738585072014e-308", "-2.2250738585072014e-308",
+                                           "1e308", "3e-308", "0"};
+  std::size_t cases = 0;
+  for (const Source& s : sources()) {
+    for (const std::string& pointer : s.pointers) {
+      for (const std::string& literal : inside) {
+        ++cases;
+        std::string text = with(s.document, pointer, literal);
+        try {
+          hipair::read_model(text, s.name);
+        } catch (const hipair::ModelError& e) {
+          EXPECT_EQ(std::string(e.what()).find(range_reason), std::string::npos)
+              << s.name << " " << pointer << " = " << literal << ": " << e.what();
+        }
+      }
+    }
+  }
+  EXPECT_GT(cases, 300u);
+}
+
+TEST(ModelSimulatorRange, TheModelsAccuracyTakesTheRangeOfTheOption) {
+  // --accuracy takes [1e-15, 0.1]; the model's own key took (0, 1), and 1e-300 ran to "the
+  // integrator's step size underflows" with no pointer
+  std::ifstream in(fs::path(HIPAIR_EXAMPLES) / "bouncing-bar.json");
+  json doc = json::parse(in);
+  for (const std::string& literal : {"1e-300", "9.9e-16", "0.10000001", "0.5"}) {
+    try {
+      hipair::read_model(with(doc, "/simulation/accuracy", literal), "bouncing-bar.json");
+      ADD_FAILURE() << literal << " was accepted";
+    } catch (const hipair::ModelError& e) {
+      EXPECT_EQ(e.pointer(), "/simulation/accuracy") << e.what();
+      EXPECT_NE(std::string(e.what()).find("[1e-15, 0.1]"), std::string::npos) << e.what();
+    }
+  }
+  for (const std::string& literal : {"1e-15", "0.1", "1e-9"})
+    EXPECT_NO_THROW(hipair::read_model(with(doc, "/simulation/accuracy", literal), "bouncing-bar.json")) << literal;
+}
+
+}  // namespace
