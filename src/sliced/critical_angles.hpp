@@ -84,6 +84,22 @@ std::vector<Critical> pin_slot_critical_values(const Part& other, const Part& pi
 AlgebraicNumber algebraic_of(const cspace::algebra::Real& r);
 cspace::algebra::Real real_of(const AlgebraicNumber& a);
 
+/// The exact factor k > 0 at which the critical angles of `fixed` against `free` are computed
+/// (the parts times k about the origin have the same angles): 1 / the common measure of every
+/// coordinate of both parts and the free part's pivot (gcd of numerators / lcm of denominators:
+/// the scaled coordinates are integers), when the parts are all tiny or all huge (the largest
+/// coordinate outside [2^-20, 2^40] mm) and the integers are shorter than the coordinates;
+/// nullopt otherwise (ordinary models keep model units).
+std::optional<Rational> scale_free_factor(const Part& fixed, const Part& free);
+
+/// A length for nudges and steps that must follow the pair's scale: 1 (mm) for ordinary pairs
+/// (the largest coordinate in [2^-20, 2^40] mm), otherwise the power of two 2^(e - 4) with 2^e
+/// within a factor 2 of the largest coordinate (exact).
+Rational length_unit(const Part& fixed, const Part& free);
+
+/// The part with every length multiplied by k > 0 about the origin (points, pivot, radii by k).
+Part scaled_part(const Part& part, const Rational& k);
+
 /// cos and sin of the rotation with half-angle tangent t (or the half turn), exact.
 std::pair<Rational, Rational> rotation_of(const SlicedAngle& angle);
 

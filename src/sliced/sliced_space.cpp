@@ -18,6 +18,7 @@
 #include <map>
 #include <mutex>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -36,69 +37,83 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-std::string quoted(const Rational& r) {
-  std::string out = "\"";
-  out += to_exact_string(r);
-  out += '"';
-  return out;
-}
-std::string point_json(const Rational& x, const Rational& y) {
-  std::string out = "[";
-  out += quoted(x);
-  out += ", ";
-  out += quoted(y);
-  out += ']';
-  return out;
-}
-
-// The loops of `part` moved by p -> pivot + R (p - pivot), as model JSON.
-std::string loops_json(const Part& part, const Point& pivot, const Rational& c, const Rational& s) {
+// The slice's part: `part` moved by p -> pivot + R (p - pivot) (R = [c -s; s c], exact, c^2 + s^2
+// = 1), translating along `direction` within [-bound, bound], built directly as the model
+// reader would build it from the text {"name": ..., "motion": {"translation": ...}, "loops":
+// [...]} at index `index` of a model's parts (the same pointers; no labels, no features): a
+// rotation keeps every loop's orientation, hole status and validity, so nothing is re-read,
+// and no limit of the model format applies to the posed coordinates (a 10^-300 mm part turned
+// by an angle of hundreds of bits).
+Part slice_part(const Part& part, std::size_t index, const Point& pivot, const Rational& c, const Rational& s,
+                const Point& direction, const Rational& bound) {
   auto map = [&](const Point& p) {
     Rational dx = p.x - pivot.x, dy = p.y - pivot.y;
     return Point{Rational(pivot.x + c * dx - s * dy), Rational(pivot.y + s * dx + c * dy)};
   };
-  std::string out;
+  const std::string at = "/parts/" + std::to_string(index);
+  Part out;
+  out.name = part.name;
+  out.pointer = at;
+  out.motion.kind = Motion::Kind::translation;
+  out.motion.direction = direction;
+  out.motion.translation_limits = RationalInterval{-bound, bound};
+  out.motion.pointer = at + "/motion";
   for (std::size_t l = 0; l < part.loops.size(); ++l) {
     const Loop& loop = part.loops[l];
-    if (l > 0) out += ", ";
+    Loop moved;
+    moved.is_hole = loop.is_hole;
+    moved.pointer = at + "/loops/" + std::to_string(l);
     if (loop.edges.size() == 1 && loop.edges[0].is_full_circle()) {
-      auto r = rational_sqrt(loop.edges[0].radius_squared);
-      if (!r)
-        throw GeometryError("part '" + part.name + "': a full circle of irrational radius (" + loop.edges[0].pointer +
-                            ") cannot be sliced exactly");
-      Point centre = map(loop.edges[0].center);
-      out += R"({ "circle": { "center": )" + point_json(centre.x, centre.y) + R"(, "radius": )" + quoted(*r) + " } }";
+      // the reader's circle: its source on the centre's right (a rational radius), else the
+      // turned source (the same circle; never written as text)
+      const Edge& e = loop.edges[0];
+      Edge circle;
+      circle.kind = Edge::Kind::arc;
+      circle.center = map(e.center);
+      circle.radius_squared = e.radius_squared;
+      if (auto r = rational_sqrt(e.radius_squared))
+        circle.source = Point{Rational(circle.center.x + *r), circle.center.y};
+      else
+        circle.source = map(e.source);
+      circle.target = circle.source;
+      circle.ccw = e.ccw;   // the reader's circle is ccw, turned clockwise when the loop is a hole
+      circle.pointer = moved.pointer + "/circle";
+      moved.edges.push_back(std::move(circle));
+      out.loops.push_back(std::move(moved));
       continue;
     }
-    Point start = map(loop.edges[0].source);
-    out += R"({ "start": )" + point_json(start.x, start.y) + R"(, "edges": [)";
+    Point current = map(loop.edges[0].source);
     for (std::size_t k = 0; k < loop.edges.size(); ++k) {
       const Edge& e = loop.edges[k];
-      Point to = map(e.target);
-      out += k ? ", " : " ";
+      Edge edge;
+      edge.kind = e.kind;
+      edge.source = current;
+      edge.target = map(e.target);
+      edge.pointer = moved.pointer + "/edges/" + std::to_string(k);
       if (e.is_arc()) {
-        Point centre = map(e.center);
-        out += R"({ "arc_to": )" + point_json(to.x, to.y) + R"(, "center": )" + point_json(centre.x, centre.y) +
-               R"(, "dir": ")" + (e.ccw ? "ccw" : "cw") + "\" }";
-      } else {
-        out += R"({ "line_to": )" + point_json(to.x, to.y) + " }";
+        edge.center = map(e.center);
+        edge.ccw = e.ccw;
+        Rational dx = edge.source.x - edge.center.x, dy = edge.source.y - edge.center.y;
+        edge.radius_squared = dx * dx + dy * dy;
       }
+      current = edge.target;
+      moved.edges.push_back(std::move(edge));
     }
-    out += " ] }";
+    out.loops.push_back(std::move(moved));
   }
   return out;
 }
 
 // An upper bound of max |p - pivot|_inf over the part's points... (L1 norms of vertices,
-// centres plus radii; rational).
-Rational reach(const Part& part, const Point& pivot) {
+// centres plus radii, r <= max(unit, r^2 / unit); rational).
+Rational reach(const Part& part, const Point& pivot, const Rational& unit) {
   Rational best = 0;
   for (const auto& loop : part.loops)
     for (const auto& e : loop.edges) {
       Rational v = abs(e.source.x - pivot.x) + abs(e.source.y - pivot.y);
       if (v > best) best = v;
       if (e.is_arc()) {
-        Rational r_bound = e.radius_squared > 1 ? e.radius_squared : Rational(1);   // r <= max(1, r^2)
+        Rational r_bound = e.radius_squared > unit * unit ? Rational(e.radius_squared / unit) : unit;   // r <= max(unit, r^2 / unit)
         Rational w = abs(e.center.x - pivot.x) + abs(e.center.y - pivot.y) + r_bound;
         if (w > best) best = w;
       }
@@ -130,6 +145,116 @@ bool has_arc(const Part& part) {
 
 }  // namespace
 
+namespace sliced {
+
+// ------------------------------------------------------------ a scale-free frame for the critical angles
+// The critical angles are angles: the parts multiplied about the origin by a positive rational
+// k (every point, the pivot; radii by k) have the same ones, exactly (every event condition is
+// homogeneous in lengths). A model drawn at 10^-300 or 10^400 mm carries 10^300 in every
+// rational of the algebra; divided by the common measure of its coordinates it is drawn in small
+// integers. `common_measure` is that measure g = gcd(numerators) / lcm(denominators) of every
+// coordinate of both parts (vertices, arc centres, the pivot): every coordinate / g is an
+// integer. Used only when the parts are all tiny or all huge (their largest coordinate outside
+// [2^-20, 2^40] mm) and the division shortens the coordinates: ordinary models keep their
+// computation (and their output) as they were.
+struct CoordinateMeasure {
+  mpz_class numerator_gcd = 0, denominator_lcm = 1;
+  Rational largest = 0;
+  std::size_t bits = 0;   // sum of the coordinates' numerator and denominator bits
+  void add(const Rational& v) {
+    if (sgn(v) == 0) return;
+    mpz_gcd(numerator_gcd.get_mpz_t(), numerator_gcd.get_mpz_t(), v.get_num_mpz_t());
+    mpz_lcm(denominator_lcm.get_mpz_t(), denominator_lcm.get_mpz_t(), v.get_den_mpz_t());
+    Rational a = abs(v);
+    if (a > largest) largest = a;
+    bits += mpz_sizeinbase(v.get_num_mpz_t(), 2) + mpz_sizeinbase(v.get_den_mpz_t(), 2);
+  }
+  void add(const Point& p) {
+    add(p.x);
+    add(p.y);
+  }
+  void add(const Part& part) {
+    for (const auto& loop : part.loops)
+      for (const auto& e : loop.edges) {
+        add(e.source);
+        add(e.target);
+        if (e.is_arc()) add(e.center);
+      }
+  }
+};
+
+bool ordinary_scale(const Rational& largest);
+
+std::optional<Rational> scale_free_factor(const Part& fixed, const Part& free) {
+  CoordinateMeasure m;
+  m.add(fixed);
+  m.add(free);
+  m.add(free.motion.pivot);
+  if (m.numerator_gcd == 0) return std::nullopt;
+  if (ordinary_scale(m.largest)) return std::nullopt;
+  Rational k(m.denominator_lcm, m.numerator_gcd);   // 1 / g
+  k.canonicalize();
+  if (k == 1) return std::nullopt;
+  // the coordinates times k: integers; their bits
+  Rational scaled_largest = m.largest * k;
+  std::size_t after = mpz_sizeinbase(scaled_largest.get_num_mpz_t(), 2);
+  std::size_t count = 0;
+  for (const auto* part : {&fixed, &free})
+    for (const auto& loop : part->loops) count += 6 * loop.edges.size();
+  count += 2;
+  // worth it when the integers are shorter than the coordinates were, on average
+  if (after * count >= m.bits) return std::nullopt;
+  return k;
+}
+
+bool ordinary_scale(const Rational& largest) {
+  const Rational low(mpz_class(1), mpz_class(1) << 20), high(mpz_class(1) << 40);
+  return largest >= low && largest <= high;
+}
+
+Rational length_unit(const Part& fixed, const Part& free) {
+  CoordinateMeasure m;
+  m.add(fixed);
+  m.add(free);
+  m.add(free.motion.pivot);
+  if (sgn(m.largest) == 0 || ordinary_scale(m.largest)) return 1;
+  // 2^e within a factor 2 of the largest coordinate; the unit 2^(e - 4) (1 mm for a 16..32 mm model)
+  long e = static_cast<long>(mpz_sizeinbase(m.largest.get_num_mpz_t(), 2)) -
+           static_cast<long>(mpz_sizeinbase(m.largest.get_den_mpz_t(), 2)) - 4;
+  mpz_class p = 1;
+  p <<= static_cast<unsigned long>(e < 0 ? -e : e);
+  return e < 0 ? Rational(mpz_class(1), p) : Rational(p);
+}
+
+// The part with every length multiplied by k > 0 (about the origin; radii by k).
+Part scaled_part(const Part& part, const Rational& k) {
+  Part out = part;
+  auto scale = [&](Point& p) {
+    p.x *= k;
+    p.y *= k;
+  };
+  for (auto& loop : out.loops)
+    for (auto& e : loop.edges) {
+      scale(e.source);
+      scale(e.target);
+      if (e.is_arc()) {
+        scale(e.center);
+        e.radius_squared *= k * k;
+      }
+    }
+  scale(out.motion.pivot);
+  if (out.motion.translation_limits) {
+    out.motion.translation_limits->lo *= k;
+    out.motion.translation_limits->hi *= k;
+  }
+  out.initial.offset *= k;
+  out.initial.x *= k;
+  out.initial.y *= k;
+  return out;
+}
+
+}  // namespace sliced
+
 // Is the part invariant under every rotation about some point: every loop a full circle, all
 // with one centre (exact)?
 bool round_free_part(const Part& part) {
@@ -148,6 +273,7 @@ struct SlicedSpace::Impl {
   std::size_t fixed = 0, free = 0;
   std::string fixed_name, free_name;
   Rational bound;
+  Rational unit = 1;   // the length the crossings' sample nudges are measured in (sliced::length_unit)
   SlicedBuildOptions options;
   std::optional<sliced::PolygonalPair> pair;
   std::optional<sliced::MotionChecker> motion;
@@ -173,35 +299,14 @@ struct SlicedSpace::Impl {
     auto [c, s] = sliced::rotation_of(angle);
     const Part& a = model.parts[fixed];
     const Part& b = model.parts[free];
-    std::string limits = "[" + quoted(-bound) + ", " + quoted(bound) + "]";
-    // the slice's parts carry the pair's names (legends and labels read "plate ... / peg ...")
-    auto json_string = [](const std::string& name) {
-      std::string out = "\"";
-      for (char ch : name) {
-        if (ch == '"' || ch == '\\') out += '\\';
-        if (static_cast<unsigned char>(ch) >= 0x20) out += ch;
-      }
-      return out + "\"";
-    };
-    const std::string first = json_string(a.name), second = json_string(b.name);
-    std::string text = R"({ "hipair": 1, "name": "slice", "parts": [
-      { "name": )" + first + R"(, "motion": { "translation": { "direction": [-1, 0], "limits": )" +
-                       limits + R"( } }, "loops": [ )" + loops_json(a, b.motion.pivot, Rational(1), Rational(0)) + R"( ] },
-      { "name": )" + second + R"(, "motion": { "translation": { "direction": [0, 1], "limits": )" +
-                       limits + R"( } }, "loops": [ )" + loops_json(b, b.motion.pivot, c, s) + R"( ] } ],
-      "pairs": [ { "parts": [)" + first + ", " + second + R"(] } ] })";
     Model slice_model;
-    try {
-      slice_model = read_model(text, "<slice>");
-    } catch (const ModelError& e) {
-      // the slice's posed coordinates exceed what the model format holds (4096-bit rationals:
-      // a part of 10^-300 mm beside one of millimetres, turned by an angle of hundreds of
-      // bits): one message naming the pair and the reason, not a pointer into a model the
-      // user never wrote
-      throw GeometryError("pair '" + a.name + "' / '" + b.name + "': the translational slice at the angle " +
-                          std::to_string(angle.radians()) + " rad cannot be built exactly (" + e.what() +
-                          " in the slice's posed coordinates: lengths of very different scales in one pair)");
-    }
+    slice_model.name = "slice";
+    slice_model.angle_unit = "rad";
+    slice_model.source = "<slice>";
+    slice_model.parts.push_back(slice_part(a, 0, b.motion.pivot, Rational(1), Rational(0), Point{Rational(-1), Rational(0)}, bound));
+    slice_model.parts.push_back(slice_part(b, 1, b.motion.pivot, c, s, Point{Rational(0), Rational(1)}, bound));
+    slice_model.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, "/pairs/0", std::nullopt});
+    slice_model.pairs_explicit = true;
     auto space = std::make_shared<const CSpace>(CSpace::build(slice_model, a.name, b.name));
     std::lock_guard<std::mutex> lock(mutex);
     ++stats.slices_built;
@@ -284,10 +389,10 @@ struct SlicedSpace::Impl {
   }
 
   // The free cell of the slice holding (x, y) outside the box: the cell touching the box.
-  static std::size_t outer_cell(const CSpace& space) {
+  std::size_t outer_cell(const CSpace& space) const {
     const Rational& lo = space.charts()[0].x_lo;
-    // a point just inside the box corner is free (the box exceeds the blocked region)
-    Location l = space.locate(ChartPoint{0, lo + Rational(1, 2), space.charts()[0].y_lo + Rational(1, 2)});
+    // a point just inside the box corner is free (the box exceeds the blocked region by 2 units)
+    Location l = space.locate(ChartPoint{0, lo + unit / 2, space.charts()[0].y_lo + unit / 2});
     if (l.kind != Location::Kind::free) throw GeometryError("internal: the slice box corner is not free");
     return l.cell;
   }
@@ -376,13 +481,31 @@ struct SlicedSpace::Impl {
       // A disc (or concentric rings) turning about its pivot only moves its centre: the slice at
       // theta is the slice at 0 translated by (c - pivot) - R(theta)(c - pivot). Its contact
       // structure never changes: no critical angle, whatever the fixed part (arcs included).
-    } else if (has_arc(model.parts[fixed]) || has_arc(model.parts[free])) {
-      if (options.progress) options.progress("critical angles");
-      critical = sliced::critical_angles_with_arcs(model.parts[fixed], model.parts[free], cs);
     } else {
-      pair = sliced::polygonal_pair(model.parts[fixed], model.parts[free]);
-      if (options.progress) options.progress("critical angles");
-      critical = sliced::critical_angles(*pair, cs);
+      // the critical angles in the scale-free frame when the parts are all tiny or all huge
+      // (scale_free_factor: the same angles, exactly, in short integers)
+      const Part* a = &model.parts[fixed];
+      const Part* b = &model.parts[free];
+      std::optional<Part> scaled_a, scaled_b;
+      if (auto k = sliced::scale_free_factor(*a, *b)) {
+        scaled_a = sliced::scaled_part(*a, *k);
+        scaled_b = sliced::scaled_part(*b, *k);
+        a = &*scaled_a;
+        b = &*scaled_b;
+      }
+      if (has_arc(*a) || has_arc(*b)) {
+        if (options.progress) options.progress("critical angles");
+        critical = sliced::critical_angles_with_arcs(*a, *b, cs);
+      } else {
+        pair = sliced::polygonal_pair(model.parts[fixed], model.parts[free]);   // model units (steady_along)
+        if (options.progress) options.progress("critical angles");
+        if (scaled_a) {
+          sliced::PolygonalPair scaled = sliced::polygonal_pair(*a, *b);
+          critical = sliced::critical_angles(scaled, cs);
+        } else {
+          critical = sliced::critical_angles(*pair, cs);
+        }
+      }
     }
     stats.candidate_polynomials = cs.polynomials;
     stats.candidate_roots = cs.roots;
@@ -465,9 +588,21 @@ struct SlicedSpace::Impl {
         for (const auto* space : {ls.get(), rs.get()})
           for (const auto& cell : space->cells())
             if (cell.kind == CellKind::free)
-              for (const Rational& e : {Rational(0), Rational(1, 1009), Rational(-1, 10007)}) {
+              for (const Rational& e : {Rational(0), Rational(unit / 1009), Rational(-unit / 10007)}) {
                 samples.push_back(Point{Rational(cell.sample_x + e), Rational(cell.sample_y + e * Rational(13, 10))});
               }
+        // A pair drawn at an extreme scale (unit != 1): the slices' samples are the simplest
+        // rationals of their cells, which at 10^-30 mm hug a cell's side (on or beside the
+        // contact lines the steady test refuses), so each is also moved by larger steps of the
+        // pair's own unit in four directions (only certified ones are used: free on the left,
+        // steady across, free on the right). Ordinary pairs keep their samples.
+        if (unit != 1) {
+          const std::size_t base_count = samples.size();
+          for (std::size_t n = 0; n < base_count; n += 3)
+            for (const Rational& e : {Rational(unit / 256), Rational(unit / 64), Rational(unit / 16), Rational(unit / 4), Rational(unit)})
+              for (const auto& [dx, dy] : {std::pair<int, int>{1, 1}, {1, -1}, {-1, 1}, {-1, -1}})
+                samples.push_back(Point{Rational(samples[n].x + dx * e), Rational(samples[n].y + dy * e * Rational(13, 10))});
+        }
         std::size_t before = links.size();
         for (const auto& q : samples) {
           std::size_t lc = no_index, rc = no_index;
@@ -565,7 +700,10 @@ SlicedSpace SlicedSpace::build(const Model& model, std::string_view fixed_part, 
   impl->free_name = b.name;
   impl->options = options;
   // every contact translation d = a - pivot - R (b - pivot) has |d|_inf <= reach(a) + reach(b)
-  impl->bound = reach(a, b.motion.pivot) + reach(b, b.motion.pivot) + 2;
+  // (a margin of 2 units: 2 mm for ordinary pairs, the pair's own scale at extreme ones, so that
+  // the box's free margin, its outer cell's samples and the crossings' nudges follow the parts)
+  impl->unit = sliced::length_unit(a, b);
+  impl->bound = reach(a, b.motion.pivot, impl->unit) + reach(b, b.motion.pivot, impl->unit) + 2 * impl->unit;
   impl->motion.emplace(impl->model, *fixed, *free);
   if (options.cell_structure) impl->build_structure();
   impl->stats.seconds_total = seconds_since(start);
@@ -592,7 +730,7 @@ SlicedLocation SlicedSpace::locate(const SlicedConfiguration& q) const {
   if (out.kind != SlicedLocation::Kind::free || !impl_->options.cell_structure) return out;
   auto [index, critical_angle] = impl_->position(q.angle);
   if (critical_angle) return out;
-  if (cell == no_index) cell = Impl::outer_cell(*space);
+  if (cell == no_index) cell = impl_->outer_cell(*space);
   out.interval = index;
   out.cell = impl_->match(index, *space, cell);
   return out;
