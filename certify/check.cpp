@@ -736,6 +736,7 @@ VerificationResult check_certificate_text(const Certificate& certificate, std::s
                           "no jam";
       result.valid = true;
     }
+    result.summary += verify::held_at_nominal(certificate, model);
   } catch (const verify::Rejection& rejection) {
     result.reason = rejection.reason;
   } catch (const Error& error) {

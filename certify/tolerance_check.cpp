@@ -1245,4 +1245,24 @@ std::string check_tolerance(const Certificate& c, const Model& model, std::strin
          "' stay apart over every leaf of the box x range (" + std::to_string(claim.leaves.size()) + " leaves)";
 }
 
+// The claim holds the model's toleranced parameters that it does not vary at their nominal
+// values; the verdict names them (session 43: a certificate with a toleranced parameter dropped
+// from `varied`, its box and leaves verified "within 1 x the tolerances of 25 parameters ...
+// they never interfere" on a model of 26, and did not say which one was held fixed).
+std::string held_at_nominal(const Certificate& certificate, const Model& model) {
+  if (!certificate.tolerance) return {};
+  const std::vector<std::string>& varied = certificate.tolerance->varied;
+  std::string held;
+  std::size_t held_count = 0;
+  for (const Parameter& p : model.parameters) {
+    if (!(p.range.lo < p.range.hi)) continue;
+    if (std::find(varied.begin(), varied.end(), p.name) != varied.end()) continue;
+    if (++held_count <= 3) held += (held.empty() ? "'" : ", '") + p.name + "'";
+  }
+  if (held_count == 0) return {};
+  if (held_count > 3) held += " and " + std::to_string(held_count - 3) + " more";
+  return "; the model's other toleranced parameters (" + std::to_string(held_count) + ": " + held +
+         ") are held at their nominal values";
+}
+
 }  // namespace hipair::verify

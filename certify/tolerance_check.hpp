@@ -280,4 +280,9 @@ class ToleranceEvaluator {
 std::string check_tolerance(const Certificate& certificate, const Model& model, std::string_view model_text,
                             std::string& not_proved);
 
+/// For the verdict: the model's toleranced parameters that the claim does not vary (held at
+/// their nominal values), as "; the model's other toleranced parameters (N: 'a', 'b', 'c' and K
+/// more) are held at their nominal values", or empty when the claim varies every one.
+std::string held_at_nominal(const Certificate& certificate, const Model& model);
+
 }  // namespace hipair::verify

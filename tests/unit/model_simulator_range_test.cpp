@@ -15,6 +15,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -48,6 +50,19 @@ struct Source {
   std::string name;
   json document;
   std::vector<std::string> pointers;   // the dynamics numbers
+  // the range is that of the value the simulator holds, in rad: in a file whose angle unit is
+  // deg an angle (a torsional spring's rest, a rotating part's velocity or driver speed) is
+  // scaled by pi/180 first, so literals within a factor 100 of the range's ends are left out there
+  bool degrees() const {
+    return document.contains("units") && document["units"].value("angle", std::string("rad")) == "deg";
+  }
+  bool skip(const std::string& pointer, const std::string& literal) const {
+    const bool angle = pointer.find("torsional_spring/rest") != std::string::npos ||
+                       pointer.rfind("/simulation/velocities", 0) == 0 || pointer.rfind("/simulation/drivers", 0) == 0;
+    if (!degrees() || !angle) return false;
+    const long double v = std::abs(std::strtold(literal.c_str(), nullptr));   // x86 long double: to 1e4932
+    return (v > 1e306L && v < 1e311L) || (v > 1e-311L && v < 1e-305L);
+  }
 };
 
 std::vector<Source> sources() {
@@ -86,6 +101,7 @@ TEST(ModelSimulatorRange, ValuesBeyondTheDoublesRangeAreRefusedAtTheirPointer) {
   for (const Source& s : sources()) {
     for (const std::string& pointer : s.pointers) {
       for (const std::string& literal : beyond) {
+        if (s.skip(pointer, literal)) continue;
         ++cases;
         std::string text = with(s.document, pointer, literal);
         try {
@@ -117,6 +133,7 @@ TEST(ModelSimulatorRange, TheRangesEndsAreNotRefusedForTheRange) {
   for (const Source& s : sources()) {
     for (const std::string& pointer : s.pointers) {
       for (const std::string& literal : inside) {
+        if (s.skip(pointer, literal)) continue;
         ++cases;
         std::string text = with(s.document, pointer, literal);
         try {
