@@ -1619,6 +1619,35 @@ void assign_public(AlgebraicNumber& n, const algebra::Real& r) {
 }
 }  // namespace
 
+}  // namespace hipair::cspace
+
+namespace hipair {
+
+void CSpace::Impl::write_vertex_numbers() const {
+  if (dimension != 2) return;   // a 1-D space's vertices are written whole by the build
+  // (the public vertices are the Impl's own, never const objects: written once, under
+  // numbers_once, before any reader sees them)
+  auto& out = const_cast<std::vector<CSpaceVertex>&>(vertices);
+  for (const cspace::ChartData& chart : charts) {
+    const auto& raw = chart.arrangement.vertices;
+    for (std::size_t v = 0; v < raw.size() && v < chart.vertex_global.size(); ++v) {
+      CSpaceVertex& vertex = out[chart.vertex_global[v]];
+      const cspace::raw::Vertex& source = raw[v];
+      cspace::assign_public(vertex.x, source.x);
+      vertex.y_exact = source.y_exact;
+      if (source.y_exact) cspace::assign_public(vertex.y, source.y);
+      vertex.y_lower = source.y_lower;
+      vertex.y_upper = source.y_upper;
+      vertex.y_curve = source.y_curve.coefficients;
+      vertex.y_branch = source.y_branch;
+    }
+  }
+}
+
+}  // namespace hipair
+
+namespace hipair::cspace {
+
 AlgebraicNumber to_public(const algebra::Real& r) {
   AlgebraicNumber n;
   assign_public(n, r);
@@ -2079,13 +2108,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       const raw::Vertex& source = arrangement.vertices[v];
       vertex.edges.reserve(source.around.size());
       vertex.curves.reserve(curve_room[v]);
-      assign_public(vertex.x, source.x);
-      vertex.y_exact = source.y_exact;
-      if (source.y_exact) assign_public(vertex.y, source.y);
-      vertex.y_lower = source.y_lower;
-      vertex.y_upper = source.y_upper;
-      vertex.y_curve = source.y_curve.coefficients;
-      vertex.y_branch = source.y_branch;
+      // (its numbers: CSpace::Impl::write_vertex_numbers, when the public vertices are first read)
       vertex.touching = chart.touching_vertex[v] != 0;
     }
     for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {

@@ -15,6 +15,7 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -154,6 +155,11 @@ struct CSpace::Impl {
   std::vector<cspace::ChartData> charts;
   std::vector<CSpaceChart> public_charts;
   std::vector<FeaturePair> feature_pairs;
+  /// The public vertices. Their exact numbers (x, y, y_lower, y_upper, y_curve, y_branch,
+  /// y_exact) of 2-D charts are copied from the raw arrangement's vertices on the first call of
+  /// vertex_numbers() (CSpace::vertices() and CSpace::vertex() call it; nothing else reads
+  /// them): a build whose vertices are never read makes no copy. Their topology (chart, edges,
+  /// curves, flags) is written by the build.
   std::vector<CSpaceVertex> vertices;
   std::vector<CSpaceEdge> edges;
   std::vector<CSpaceCell> cells;
@@ -164,6 +170,18 @@ struct CSpace::Impl {
   /// the space was built from synthetic curves.
   std::shared_ptr<const Model> model;
   cspace::PairAxes axes;
+
+  /// `vertices`, their numbers written first if they are not yet (once; thread-safe).
+  const std::vector<CSpaceVertex>& vertex_numbers() const {
+    std::call_once(numbers_once.flag, [this] { write_vertex_numbers(); });
+    return vertices;
+  }
+  /// The numbers of every 2-D chart's public vertices from its raw vertices (builder.cpp).
+  void write_vertex_numbers() const;
+  struct Once {
+    std::once_flag flag;
+  };
+  mutable Once numbers_once;
 };
 
 }  // namespace hipair

@@ -70,7 +70,7 @@ const std::string& CSpace::x_part() const { return implementation(*this).x_part;
 const std::string& CSpace::y_part() const { return implementation(*this).y_part; }
 const std::vector<CSpaceChart>& CSpace::charts() const { return implementation(*this).public_charts; }
 const std::vector<FeaturePair>& CSpace::feature_pairs() const { return implementation(*this).feature_pairs; }
-const std::vector<CSpaceVertex>& CSpace::vertices() const { return implementation(*this).vertices; }
+const std::vector<CSpaceVertex>& CSpace::vertices() const { return implementation(*this).vertex_numbers(); }
 const std::vector<CSpaceEdge>& CSpace::edges() const { return implementation(*this).edges; }
 const std::vector<CSpaceCell>& CSpace::cells() const { return implementation(*this).cells; }
 const CSpaceStatistics& CSpace::statistics() const { return implementation(*this).statistics; }

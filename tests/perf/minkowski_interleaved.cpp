@@ -10,7 +10,9 @@
 //   ./minkowski_interleaved N ROUNDS BATCH [locate]    (N as BM_MinkowskiHipair/N; e.g. 64 11 5)
 // What "ours" times: CSpace::build (eager: every cell classified, the blocked region's boundary
 // edges, vertices, samples and labels all built; everything `hipair cspace --json` writes is
-// read from it without further computation) and the destruction of the previous space; with
+// read from it without further computation, except the public vertices' exact numbers, copied
+// from the arrangement's vertices on the first vertices() / vertex() call since session 43:
+// trans43 measured build + that first read separately) and the destruction of the previous space; with
 // `locate`, also one exact point location at the chart's centre after each build (a user's
 // first query). "cgal": minkowski_sum_2 of the two exact polygons, their construction included.
 // The allocator is the one linked (glibc's malloc unless -ljemalloc is added to the command
