@@ -109,6 +109,12 @@ struct SimulationContact {
   bool sticking = false;
 };
 
+/// Refuses (ModelError at `/parts/N/initial/KEY`) an initial coordinate of a moving part that the
+/// simulator's doubles cannot hold (magnitude above DBL_MAX). The model grammar takes exact
+/// literals up to 10^1000, which `validate`, `cspace` and `analyze` handle exactly; a simulation
+/// integrates in doubles. Every create() below calls it first.
+void check_simulator_range(const Model& model);
+
 /// Name of an event kind: "impact", "contact", "lift-off", "edge-end", "stick", "slip".
 std::string to_string(SimulationEvent::Kind kind);
 

@@ -8,6 +8,7 @@
 
 #include "io/output_directory.hpp"
 #include "io/output_paths.hpp"
+#include "model/simulation_reading.hpp"
 #include "render/cspace_svg.hpp"
 #include "render/mechanism_svg.hpp"
 #include "render/time_plot_svg.hpp"
@@ -442,23 +443,6 @@ void check_own_frequency(const Model& model, const SimulateOptions& options) {
                                   ", a larger --max-steps, or a softer spring (a lighter load)");
 }
 
-// The simulator holds the parts' initial coordinates in doubles: an exact initial coordinate
-// beyond the doubles' range (an unlimited crank at "angle": 1e400, valid for the exact commands)
-// became infinity, and GMP's mpq_set_d(inf) killed the process with SIGFPE (session 43). Refused
-// at its pointer before anything runs; the dynamics data itself is checked by the reader.
-void check_initial_range(const Model& model) {
-  static const Rational largest(std::numeric_limits<double>::max());
-  for (const Part& part : model.parts) {
-    if (part.motion.kind == Motion::Kind::fixed) continue;
-    const std::pair<const char*, const Rational*> coordinates[] = {
-        {"angle", &part.initial.angle}, {"offset", &part.initial.offset}, {"x", &part.initial.x}, {"y", &part.initial.y}};
-    for (const auto& [key, value] : coordinates)
-      if (abs(*value) > largest)
-        throw ModelError(part.pointer + "/initial/" + key,
-                         "the initial " + std::string(key) + " of part '" + part.name + "' is too large for the simulator, which holds coordinates in doubles (magnitude at most "
-                             "1.7976931348623157e+308)");
-  }
-}
 
 int run_sweep(const SimulateOptions& options) {
   // NAME=A:B:N
@@ -501,8 +485,9 @@ int run_sweep(const SimulateOptions& options) {
   for (const Rational& v : values) {
     std::vector<std::string> overrides = options.overrides;
     overrides.push_back(name + "=" + v.get_str());
-    models.push_back(read_model_file(options.model, parameter_overrides(overrides, options.allow_out_of_tolerance)));
-    check_initial_range(models.back());
+    models.push_back(
+        read_model_file_for_simulation(options.model, parameter_overrides(overrides, options.allow_out_of_tolerance)));
+    check_simulator_range(models.back());
     check_own_frequency(models.back(), options);
   }
   SimulationOptions sim_options;
@@ -946,8 +931,9 @@ int run(const SimulateOptions& options) {
   if (!options.sweep.empty()) return run_sweep(options);
   if (!options.works_period.empty() || !options.works_advance.empty() || options.works_max_decay >= 0)
     throw ModelError("", "--works-period, --works-advance and --works-max-decay judge a --sweep's runs: give --sweep");
-  Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
-  check_initial_range(model);
+  Model model =
+      read_model_file_for_simulation(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
+  check_simulator_range(model);   // before anything converts the model to doubles (also in create())
   check_own_frequency(model, options);
   // parts free in the plane: one (PlanarSimulation) or several (PlanarSystemSimulation)
   std::size_t planar_count = 0;

@@ -1,5 +1,6 @@
 // The model reader: JSON text -> exact, validated hipair::Model (docs/model-format.md).
 #include "model/reader.hpp"
+#include "model/simulation_reading.hpp"
 
 #include "model/exact_trig.hpp"
 #include "model/profile_tolerance.hpp"
@@ -239,7 +240,33 @@ Model read_model_escalating(std::string_view json_text, std::string_view source_
   }
 }
 
+namespace {
+// Set for the duration of one read_model_for_simulation call on this thread (nested Readers of
+// the same read see it: profile tolerances, extreme offsets, precision escalation).
+thread_local bool simulation_reading = false;
+
+struct SimulationReading {
+  bool before = simulation_reading;
+  SimulationReading() { simulation_reading = true; }
+  ~SimulationReading() { simulation_reading = before; }
+  SimulationReading(const SimulationReading&) = delete;
+  SimulationReading& operator=(const SimulationReading&) = delete;
+};
+}  // namespace
+
+bool reading_for_simulation() { return simulation_reading; }
+
 }  // namespace model_detail
+
+Model read_model_for_simulation(std::string_view json_text, std::string_view source_name, const ReadOptions& options) {
+  model_detail::SimulationReading scope;
+  return read_model(json_text, source_name, options);
+}
+
+Model read_model_file_for_simulation(const std::filesystem::path& path, const ReadOptions& options) {
+  model_detail::SimulationReading scope;
+  return read_model_file(path, options);
+}
 
 Model read_model(std::string_view json_text, std::string_view source_name, const ReadOptions& options) {
   return model_detail::read_model_escalating(json_text, source_name, options, nullptr);

@@ -48,6 +48,10 @@ inline Rational squared_distance(const Point& a, const Point& b) {
   return dx * dx + dy * dy;
 }
 
+/// Whether this thread is reading a model for a simulation (read_model_for_simulation): the
+/// Reader then refuses dynamics data beyond the doubles' range (docs/model-format.md).
+bool reading_for_simulation();
+
 /// read_model, and the precision (bits) at which it read: the default 256, or the doubled one
 /// that every value of this model needed (PrecisionExhausted).
 Model read_model_escalating(std::string_view json_text, std::string_view source_name, const ReadOptions& options,

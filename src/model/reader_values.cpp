@@ -154,14 +154,14 @@ Quantity Reader::evaluate(const JsonValue& value) {
 
 Rational Reader::number(const JsonValue& value) {
   Rational result = to_rational(evaluate(value), value.pointer, text_of(value), model_.roundings);
-  if (simulator_values_) check_simulator_range(result, value);
+  if (simulator_values_ && reading_for_simulation()) check_simulator_range(result, value);
   return result;
 }
 
 Rational Reader::angle(const JsonValue& value) {
   Rational result = to_rational(as_angle(evaluate(value), degrees_, value.pointer, text_of(value)), value.pointer,
                                 text_of(value), model_.roundings);
-  if (simulator_values_) check_simulator_range(result, value);
+  if (simulator_values_ && reading_for_simulation()) check_simulator_range(result, value);
   return result;
 }
 

@@ -1634,6 +1634,7 @@ Kinematic initial_kinematic(const Model& model, std::size_t part, const Simulati
 }  // namespace
 
 PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOptions& options) {
+  check_simulator_range(model);
   auto impl = std::make_unique<Impl>();
   Impl& s = *impl;
   s.model = model;
@@ -2804,6 +2805,7 @@ PlanarSystemSimulation& PlanarSystemSimulation::operator=(PlanarSystemSimulation
 PlanarSystemSimulation::~PlanarSystemSimulation() = default;
 
 PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const SimulationOptions& options) {
+  check_simulator_range(model);
   auto impl = std::make_unique<Impl>();
   Impl& s = *impl;
   s.model = model;

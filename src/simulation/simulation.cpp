@@ -2386,7 +2386,27 @@ Simulation::Simulation(Simulation&&) noexcept = default;
 Simulation& Simulation::operator=(Simulation&&) noexcept = default;
 Simulation::~Simulation() = default;
 
+// The simulator holds the parts' initial coordinates in doubles: an exact initial coordinate
+// beyond the doubles' range (an unlimited crank at "angle": 1e400, valid for the exact commands)
+// became infinity, and GMP's mpq_set_d(inf) killed the process with SIGFPE (session 43). Refused
+// at its pointer before anything runs; the dynamics data itself is checked by the reader.
+void check_simulator_range(const Model& model) {
+  static const Rational largest(std::numeric_limits<double>::max());
+  for (const Part& part : model.parts) {
+    if (part.motion.kind == Motion::Kind::fixed) continue;
+    const std::pair<const char*, const Rational*> coordinates[] = {
+        {"angle", &part.initial.angle}, {"offset", &part.initial.offset}, {"x", &part.initial.x}, {"y", &part.initial.y}};
+    for (const auto& [key, value] : coordinates)
+      if (abs(*value) > largest)
+        throw ModelError(part.pointer + "/initial/" + key,
+                         "the initial " + std::string(key) + " of part '" + part.name +
+                             "' is too large for the simulator, which holds coordinates in doubles (magnitude at most "
+                             "1.7976931348623157e+308)");
+  }
+}
+
 Simulation Simulation::create(const Model& model, const SimulationOptions& options) {
+  check_simulator_range(model);
   auto impl = std::make_unique<Impl>();
   Impl& s = *impl;
   s.model = model;
