@@ -65,10 +65,24 @@ std::pair<std::string, std::string> pair_of(const Model& model, const std::strin
   return {text.substr(0, colon), text.substr(colon + 1)};
 }
 
-const Part& part_named(const Model& model, const std::string& name) {
+// a part named by an option (--pair, --at, --driver): an unknown name is refused naming the
+// option and the parts there are (until session 44: "/parts: no part called 'x'", no option)
+const Part& part_named(const Model& model, const std::string& name, const std::string& option) {
   auto index = model.find_part(name);
-  if (!index) throw ModelError("/parts", "no part called '" + name + "'");
+  if (!index) {
+    std::string names;
+    for (const Part& part : model.parts) names += (names.empty() ? "'" : ", '") + part.name + "'";
+    throw ModelError("", option + ": no part called '" + name + "' (the parts: " + names + ")");
+  }
   return model.parts[*index];
+}
+
+// a part named by --at or --driver must be one of the pair's two parts (until session 44 a third
+// part's name was taken: --driver drove a part outside the pair, --at placed one)
+void refuse_outside_pair(const Part& part, const Part& a, const Part& b, const std::string& option) {
+  if (&part != &a && &part != &b)
+    throw ModelError("", option + ": '" + part.name + "' is not in the pair " + a.name + ":" + b.name +
+                             " (give --pair to choose the pair)");
 }
 
 RationalInterval range_of(const std::string& text, bool angle, const std::string& option) {
@@ -89,7 +103,8 @@ int run(const CertifyArguments& arguments) {
   Model model = read_model_file(arguments.path, options);
   CertifyContext context{options.parameter_values};
   auto [first, second] = pair_of(model, arguments.pair);
-  const Part &a = part_named(model, first), &b = part_named(model, second);
+  const Part &a = part_named(model, first, "--pair " + arguments.pair), &b = part_named(model, second, "--pair " + arguments.pair);
+  if (&a == &b) throw ModelError("", "--pair " + arguments.pair + ": a pair needs two different parts");
   std::optional<Rational> distance;
   if (!arguments.distance.empty()) {
     distance = value_of(arguments.distance, false, "--distance");
@@ -173,7 +188,8 @@ int run(const CertifyArguments& arguments) {
     for (const std::string& assignment : arguments.at) {
       auto equals = assignment.find('=');
       if (equals == std::string::npos) throw ModelError("", "--at expects PART=VALUE, got '" + assignment + "'");
-      const Part& part = part_named(model, assignment.substr(0, equals));
+      const Part& part = part_named(model, assignment.substr(0, equals), "--at " + assignment);
+      refuse_outside_pair(part, a, b, "--at " + assignment);
       positions[part.name] = position_of(part, assignment.substr(equals + 1), notes);
     }
     if (arguments.claim == "interference") {
@@ -187,7 +203,8 @@ int run(const CertifyArguments& arguments) {
     int direction = direction_of(arguments.direction);
     std::string driver_name = arguments.driver;
     if (driver_name.empty()) driver_name = a.motion.kind != Motion::Kind::fixed ? a.name : b.name;
-    const Part& driver = part_named(model, driver_name);
+    const Part& driver = part_named(model, driver_name, "--driver " + driver_name);
+    refuse_outside_pair(driver, a, b, "--driver " + driver_name);
     const Part& other = driver.name == a.name ? b : a;
     bool follows = other.motion.kind != Motion::Kind::fixed;
     if (arguments.claim == "free") {

@@ -123,6 +123,15 @@ int run(const CSpaceCommandOptions& options) {
     auto colon = options.pair.find(':');
     if (colon == std::string::npos) throw ModelError("", "--pair expects FIRST:SECOND, got '" + options.pair + "'");
     std::string first = options.pair.substr(0, colon), second = options.pair.substr(colon + 1);
+    // the option named, with the parts there are (until session 44 "/parts: no part called 'x'"
+    // and "/pairs: a pair needs two different parts" named no option)
+    for (const std::string& name : {first, second})
+      if (!model.find_part(name)) {
+        std::string names;
+        for (const Part& part : model.parts) names += (names.empty() ? "'" : ", '") + part.name + "'";
+        throw ModelError("", "--pair " + options.pair + ": no part called '" + name + "' (the parts: " + names + ")");
+      }
+    if (first == second) throw ModelError("", "--pair " + options.pair + ": a pair needs two different parts");
     if (auto sliced = sliced_pair(model, first, second))
       sliced_requests.push_back(*sliced);
     else if (auto pin = pin_slot_pair(model, first, second))

@@ -27,9 +27,13 @@ int main(int argc, char** argv) {
   hipair::cli::register_simulate(app, action);
   // a usage error is one line, like every other error: "hipair: error: <CLI11's message> (see
   // 'hipair SUBCOMMAND --help')" (CLI11's default adds a second line, "Run with --help ...")
-  app.failure_message([](const CLI::App* top, const CLI::Error& e) {
+  // an argument before the subcommand that nothing takes (`hipair --bogus validate M`) is the
+  // top level's: its help is 'hipair --help', not the subcommand's (session 44)
+  bool top_level_extra = false;
+  app.failure_message([&top_level_extra](const CLI::App* top, const CLI::Error& e) {
     std::string command = "hipair";
-    for (const CLI::App* sub : top->get_subcommands()) command += " " + sub->get_name();
+    if (!top_level_extra)
+      for (const CLI::App* sub : top->get_subcommands()) command += " " + sub->get_name();
     return "hipair: error: " + std::string(e.what()) + " (see '" + command + " --help')\n";
   });
   // a parse error's message with its overlong words cut (a 100 000-digit value is not echoed)
@@ -44,6 +48,16 @@ int main(int argc, char** argv) {
     // CLI11 checks "a subcommand is required" before the unparsed arguments: `hipair --bogus`
     // and `hipair bogus` said "A subcommand is required" and named neither (session 43)
     const std::vector<std::string> unknown = app.remaining();
+    if (!app.get_subcommands().empty() && !unknown.empty()) {
+      // `hipair --bogus show M` (no --svg): the argument before the subcommand first, with the
+      // top level's help, as without the subcommand's missing option (session 44)
+      top_level_extra = true;
+      std::string list;
+      for (const std::string& word : unknown) list += " " + word;
+      return exit_with(CLI::ExtrasError(std::string("The following argument") + (unknown.size() > 1 ? "s were" : " was") +
+                                            " not expected:" + list,
+                                        CLI::ExitCodes::ExtrasError));
+    }
     if (!app.get_subcommands().empty() || unknown.empty()) return exit_with(e);
     if (unknown.front().rfind("-", 0) == 0)
       return exit_with(CLI::ExtrasError("The following argument was not expected: " + unknown.front(),
@@ -52,6 +66,9 @@ int main(int argc, char** argv) {
     for (const CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
     return exit_with(CLI::ExtrasError("unknown subcommand '" + unknown.front() + "' (the subcommands: " + names + ")",
                                       CLI::ExitCodes::ExtrasError));
+  } catch (const CLI::ExtrasError& e) {
+    top_level_extra = !app.remaining(false).empty();   // CLI11 checks the top level's extras first
+    return exit_with(e);
   } catch (const CLI::ParseError& e) {
     return exit_with(e);
   }

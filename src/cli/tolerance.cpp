@@ -335,6 +335,9 @@ int run(const ToleranceCliOptions& options) {
     throw ModelError("", "give either --pair or --driver, not both");
   if (!options.pair.empty()) {
     auto [a, b] = split_pair(options.pair, "--pair");
+    // the same refusal as the --certify-interference path's (until session 44 "--pair A:A" here
+    // said "/pairs: no pair ... matches the driver and pair asked for", naming no option)
+    if (a == b) throw ModelError("", "--pair: '" + a + "' twice (give two different parts)");
     analysis.driver = a;
     analysis.follower = b;
   }
