@@ -6,6 +6,7 @@
 #include "core/exact_sqrt.hpp"
 #include "core/decimal_text.hpp"
 
+#include "model/expression.hpp"
 #include "model/interval.hpp"
 
 #include <hipair/error.hpp>
@@ -565,6 +566,17 @@ void orient(Part& part, const EdgeBoxes& edge_boxes) {
   std::vector<int> orientation(part.loops.size());
   for (std::size_t l = 0; l < part.loops.size(); ++l) {
     int s = area_sign(part.loops[l]);
+    // A loop of segments only has an exact (rational) area. With arcs, an enclosure that holds
+    // 0 says only that this precision cannot settle the sign: an arc of radius 10^80 on a part of
+    // a few mm cancels r^2 * sweep against the polygon's 10^160 in the last bits, and until
+    // session 44 such a loop (area 480 mm^2) was refused as enclosing "no area". The whole model
+    // is read again at doubled precision (read_model_escalating), up to most_interval_bits.
+    bool has_arc = std::any_of(part.loops[l].edges.begin(), part.loops[l].edges.end(),
+                               [](const Edge& edge) { return edge.is_arc(); });
+    if (s == 0 && has_arc)
+      throw PrecisionExhausted(part.loops[l].pointer,
+                               "cannot decide the loop's orientation at " + std::to_string(working_interval_bits()) +
+                                   "-bit precision (its area is too small against its arcs' radii, or zero)");
     if (s == 0) throw ModelError(part.loops[l].pointer, "cannot decide the loop's orientation (it encloses no area)");
     orientation[l] = s;
   }
