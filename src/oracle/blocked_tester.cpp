@@ -874,7 +874,8 @@ BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const Ch
                         : algebra::Interval{0, 0}} {
   if (depth_ < 0 || depth_ > 24) throw NumericError("blocked-space grid: depth out of range");
   // one (empty until used) table per depth with at most 2^dense_cells_log2 cells
-  dense_.resize(static_cast<std::size_t>(dense_cells_log2 / std::max(dimension_, 1)) + 1);
+  // (none for a dimension below 1: dense() is false there)
+  if (dimension_ >= 1) dense_.resize(static_cast<std::size_t>(dense_cells_log2 / dimension_) + 1);
 }
 
 namespace {

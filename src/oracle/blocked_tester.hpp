@@ -222,7 +222,7 @@ class BlockedCells {
   static constexpr int dense_cells_log2 = 18;
   bool dense(int depth, long i, long j) const {
     const long count = 1L << depth;
-    return depth * dimension_ <= dense_cells_log2 && i >= 0 && i < count &&
+    return dimension_ >= 1 && depth * dimension_ <= dense_cells_log2 && i >= 0 && i < count &&
            (dimension_ == 2 ? j >= 0 && j < count : j == 0);
   }
   std::int32_t known(int depth, long i, long j) const;             // the cell's entry
