@@ -529,7 +529,7 @@ using kernels::interval_detail::up;
 // keeps some more, which costs only work. The certified test (certifies()) implies it: rounding
 // is monotone and reach <= outer.
 template <class Disk>
-bool may_certify_inside(const Disk& a, const Disk& b) {
+[[gnu::always_inline]] inline bool may_certify_inside(const Disk& a, const Disk& b) {
   const double dx = a.x - b.x, dy = a.y - b.y, s = a.outer + b.outer;
   if (!(s > 0)) return false;
   return dx * dx + dy * dy <= s * s * (1 + 0x1p-20) + 0x1p-1000;
@@ -538,7 +538,7 @@ bool may_certify_inside(const Disk& a, const Disk& b) {
 // Do the disks overlap with their nominal radii (the middle of reach and outer)? Orders the
 // candidates only (decides nothing).
 template <class Disk>
-bool overlap_nominally(const Disk& a, const Disk& b) {
+[[gnu::always_inline]] inline bool overlap_nominally(const Disk& a, const Disk& b) {
   const double dx = a.x - b.x, dy = a.y - b.y, s = 0.5 * (a.outer + b.outer + a.reach + b.reach);
   return s > 0 && dx * dx + dy * dy < s * s;
 }
@@ -572,33 +572,53 @@ bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, co
   }
   Cache::Pose* poses[2] = {nullptr, nullptr};
   if (!pose_bounds(x_axis, y_axis, x, y, cache, poses)) return false;
-  const PosedDisk* a = nullptr;
-  const PosedDisk* b = nullptr;
   // the narrowed list puts first the pairs whose nominal disks overlap (the likeliest to
   // certify a sub-cell: a blocked cell's test stops at its first certifying pair)
-  thread_local std::vector<DiskPair> later;
+  thread_local std::vector<DiskPair> later_list;
+  std::vector<DiskPair>& later = later_list;
   later.clear();
   // (pose_disk depends only on the part, the pose and the index: a disk is posed once per
-  // pose, for every cell of the column or row that shares the pose (posed_disk), and looked
-  // up once per run of pairs that share it: the lists come from the sweep, grouped by disk)
-  std::uint32_t posed_index[2] = {UINT32_MAX, UINT32_MAX};
+  // pose, for every cell of the column or row that shares the pose, and kept in the pose's
+  // slots. The loop reads the second part's slots directly: the slot table is made whole
+  // before the loop, so a pair's second disk is one slot read; the first part's disk is looked
+  // up once per run of pairs that share it: the lists come from the sweep, grouped by disk.)
+  Cache::Pose& pose_a = *poses[0];
+  Cache::Pose& pose_b = *poses[1];
+  if (pose_b.slot.empty()) {
+    pose_b.slot.assign(disks_[1].size(), -1);
+    pose_b.disks.reserve(std::min<std::size_t>(disks_[1].size(), 64));
+  }
+  const std::int32_t* const slot_b = pose_b.slot.data();
+  const PosedDisk* posed_b = pose_b.disks.data();   // moves when a new disk is posed: re-read then
+  const PosedDisk* a = nullptr;
+  std::uint32_t a_index = UINT32_MAX;
   for (const DiskPair& pair : *candidates) {
-    if (pair.first != posed_index[0]) {
-      posed_index[0] = pair.first;
-      a = posed_disk(0, *poses[0], pair.first);
+    if (pair.first != a_index) {
+      a_index = pair.first;
+      a = posed_disk(0, pose_a, pair.first);
     }
-    if (pair.second != posed_index[1]) {
-      posed_index[1] = pair.second;
-      b = posed_disk(1, *poses[1], pair.second);
+    if (!a) continue;
+    const std::int32_t slot = slot_b[pair.second];
+    const PosedDisk* b;
+    if (slot >= 0) {
+      b = posed_b + slot;
+    } else {
+      if (slot == -2) continue;   // not finite
+      b = pose_new_disk(1, pose_b, pair.second);
+      posed_b = pose_b.disks.data();
+      if (!b) continue;
     }
-    // (a and b stay valid: only a disk of the same part posed later moves them, and then
-    // that pointer is replaced)
-    if (!a || !b) continue;
+    // (a stays valid: only a disk of the first part posed later moves it, and then it is
+    // replaced)
+    // A pair that fails may_certify_inside neither certifies (certifies() implies it) nor is
+    // kept: one test of the outer radii first decides most pairs; the answer and the list are
+    // those of testing certifies() then may_certify_inside() on every pair.
+    if (!may_certify_inside(*a, *b)) continue;
     if (certifies(*a, *b)) {
       if (narrowed) narrowed->clear();
       return true;
     }
-    if (narrowed && may_certify_inside(*a, *b)) (overlap_nominally(*a, *b) ? *narrowed : later).push_back(pair);
+    if (narrowed) (overlap_nominally(*a, *b) ? *narrowed : later).push_back(pair);
   }
   if (narrowed) narrowed->insert(narrowed->end(), later.begin(), later.end());
   return false;
@@ -853,6 +873,9 @@ BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const Ch
       y_{dimension == 2 ? algebra::Interval{algebra::lower_double(y.lo), algebra::upper_double(y.hi)}
                         : algebra::Interval{0, 0}} {
   if (depth_ < 0 || depth_ > 24) throw NumericError("blocked-space grid: depth out of range");
+  // one (empty until used) table per depth with at most 2^dense_cells_log2 cells
+  // (none for a dimension below 1: dense() is false there)
+  if (dimension_ >= 1) dense_.resize(static_cast<std::size_t>(dense_cells_log2 / dimension_) + 1);
 }
 
 namespace {
@@ -872,23 +895,60 @@ algebra::Interval BlockedCells::cell_y(int depth, long j) const {
   return dimension_ == 2 ? part_of(y_, depth, j) : y_;
 }
 
+namespace {
+long cell_key(int depth, long i, long j) { return (static_cast<long>(depth) << 56) | (i << 28) | j; }
+}  // namespace
+
+std::int32_t BlockedCells::known(int depth, long i, long j) const {
+  if (dense(depth, i, j)) {
+    const std::vector<std::int32_t>& table = dense_[static_cast<std::size_t>(depth)];
+    if (table.empty()) return untested;
+    return table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
+  }
+  const auto it = known_.find(cell_key(depth, i, j));
+  return it == known_.end() ? untested : it->second;
+}
+
+void BlockedCells::remember(int depth, long i, long j, std::int32_t entry) {
+  if (dense(depth, i, j)) {
+    std::vector<std::int32_t>& table = dense_[static_cast<std::size_t>(depth)];
+    if (table.empty()) table.assign(std::size_t{1} << (depth * dimension_), untested);
+    table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)] = entry;
+    return;
+  }
+  known_.emplace(cell_key(depth, i, j), entry);
+}
+
 bool BlockedCells::blocked(int depth, long i, long j) {
   if (!tester_) return false;
-  const long key = (static_cast<long>(depth) << 56) | (i << 28) | j;
-  auto it = known_.find(key);
-  if (it != known_.end()) return it->second.blocked;
   // a cell inside a cell already known to be blocked is blocked (no test); the parent is only
   // looked up, never tested on the way. The nearest tested ancestor with a candidate list
   // gives the pairs to test (every pair that can certify this cell is in it).
   bool result = false;
   const std::vector<BlockedTester::DiskPair>* candidates = nullptr;
-  for (int up = 1; up <= depth && !result; ++up) {
-    auto parent = known_.find((static_cast<long>(depth - up) << 56) | ((i >> up) << 28) | (dimension_ == 2 ? j >> up : j));
-    if (parent == known_.end()) continue;
-    if (parent->second.blocked) result = true;
-    else if (!candidates && parent->second.list >= 0) candidates = &lists_[static_cast<std::size_t>(parent->second.list)];
+  auto see = [&](std::int32_t parent) {
+    if (parent == untested) return;
+    if (parent == is_blocked) result = true;
+    else if (!candidates && parent >= first_list) candidates = &lists_[static_cast<std::size_t>(parent - first_list)];
+  };
+  std::int32_t* own = nullptr;   // the cell's entry in its depth's table (a dense cell)
+  if (dense(depth, i, j)) {
+    // the cell and its ancestors (their indices are in range too) read from the tables
+    std::vector<std::int32_t>& table = dense_[static_cast<std::size_t>(depth)];
+    if (table.empty()) table.assign(std::size_t{1} << (depth * dimension_), untested);
+    own = &table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
+    if (*own != untested) return *own == is_blocked;
+    for (int up = 1; up <= depth && !result; ++up) {
+      const std::vector<std::int32_t>& above = dense_[static_cast<std::size_t>(depth - up)];
+      if (above.empty()) continue;
+      see(above[static_cast<std::size_t>(dimension_ == 2 ? ((i >> up) << (depth - up)) | (j >> up) : i >> up)]);
+    }
+  } else {
+    const std::int32_t entry = known(depth, i, j);
+    if (entry != untested) return entry == is_blocked;
+    for (int up = 1; up <= depth && !result; ++up) see(known(depth - up, i >> up, dimension_ == 2 ? j >> up : j));
   }
-  Known known;
+  std::int32_t answer = is_blocked;
   if (!result) {
     ++tests_;
     if (candidates) pairs_tested_ += candidates->size();
@@ -898,14 +958,19 @@ bool BlockedCells::blocked(int depth, long i, long j) {
     std::vector<BlockedTester::DiskPair> narrowed;
     result = tester_->blocked(x_axis_, y_axis_, cell_x(depth, i), cell_y(depth, j), cache_, candidates,
                               keep_list ? &narrowed : nullptr);
-    if (!result && keep_list) {
-      known.list = static_cast<std::int32_t>(lists_.size());
+    if (result) {
+      answer = is_blocked;
+    } else if (keep_list) {
+      answer = first_list + static_cast<std::int32_t>(lists_.size());
       narrowed.shrink_to_fit();
       lists_.push_back(std::move(narrowed));
+    } else {
+      answer = not_blocked;
     }
   }
-  known.blocked = result;
-  known_.emplace(key, known);
+  // (`own` stays valid: the tables are made once per depth and never resized)
+  if (own) *own = answer;
+  else remember(depth, i, j, answer);
   return result;
 }
 

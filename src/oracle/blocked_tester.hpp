@@ -209,20 +209,32 @@ class BlockedCells {
   void release_cache() { cache_ = BlockedTester::Cache{}; }
 
  private:
-  // A tested cell: blocked, and (not blocked, above the finest depth anyone tests) the index
-  // of its list of the disk pairs that can certify a cell inside it (BlockedTester::blocked
-  // with `narrowed`): the cells below test only those pairs (the disk sweep bucketed by cell).
-  struct Known {
-    bool blocked = false;
-    std::int32_t list = -1;
-  };
+  // A tested cell's entry: 0 not tested, 1 blocked, 2 not blocked, 3 + k not blocked with
+  // list k (above the finest depth anyone tests): the disk pairs that can certify a cell
+  // inside it (BlockedTester::blocked with `narrowed`): the cells below test only those pairs
+  // (the disk sweep bucketed by cell).
+  static constexpr std::int32_t untested = 0, is_blocked = 1, not_blocked = 2, first_list = 3;
+  // Cells of the depths with at most 2^18 cells (2-D: to depth 9; 1-D: to depth 18) are kept
+  // in a table per depth, one entry per cell, made when a cell of that depth is first asked
+  // (a cell's and its ancestors' look-ups are plain reads; 2-D: at most 1.4 MB a grid);
+  // deeper cells (or indices outside the box) in a map keyed by (depth, i, j). The entries,
+  // hence the answers, are the same either way.
+  static constexpr int dense_cells_log2 = 18;
+  bool dense(int depth, long i, long j) const {
+    const long count = 1L << depth;
+    return dimension_ >= 1 && depth * dimension_ <= dense_cells_log2 && i >= 0 && i < count &&
+           (dimension_ == 2 ? j >= 0 && j < count : j == 0);
+  }
+  std::int32_t known(int depth, long i, long j) const;             // the cell's entry
+  void remember(int depth, long i, long j, std::int32_t entry);   // (a cell's first answer)
   std::shared_ptr<const BlockedTester> tester_;
   ChartAxis x_axis_, y_axis_;
   int dimension_;
   int depth_;
   algebra::Interval x_, y_;
   BlockedTester::Cache cache_;
-  std::unordered_map<long, Known> known_;
+  std::vector<std::vector<std::int32_t>> dense_;   // per depth (see dense())
+  std::unordered_map<long, std::int32_t> known_;   // the other cells
   std::vector<std::vector<BlockedTester::DiskPair>> lists_;
   std::size_t tests_ = 0;
   std::size_t pairs_tested_ = 0;

@@ -69,6 +69,45 @@ struct BlockedTesterProbe {
   static bool gather(const Set& a, const Set& b, std::vector<BlockedTester::DiskPair>& out) {
     return BlockedTester::gather(a, b, out);
   }
+  // The candidate loop of BlockedTester::blocked (a list of candidates, `narrowed` wanted) by
+  // its definition, on disks posed afresh for the box: each pair of the list in order, both
+  // disks posed with the parts' pose bounds over the box (a pair with a disk not finite is
+  // skipped); the answer is "blocked" when some pair passes the certified test; otherwise the
+  // kept pairs are those whose posed centres are within the outer sum (may_certify_inside's
+  // double test), the pairs whose nominal disks overlap first, each group in list order.
+  static bool candidate_loop(const BlockedTester& tester, const ChartAxis& x_axis, const ChartAxis& y_axis,
+                             const algebra::Interval& x, const algebra::Interval& y,
+                             const std::vector<BlockedTester::DiskPair>& candidates,
+                             std::vector<BlockedTester::DiskPair>& kept) {
+    using kernels::interval_detail::down;
+    using kernels::interval_detail::up;
+    kept.clear();
+    BlockedTester::PoseBound poses[2];
+    bool x_used = false;
+    for (int k = 0; k < 2; ++k) {
+      const bool use_x = !x_used;
+      if (tester.moves_[k]) x_used = true;
+      poses[k] = tester.pose_bound(k, use_x ? x_axis : y_axis, use_x ? x : y);
+      if (!poses[k].usable) return false;
+    }
+    std::vector<BlockedTester::DiskPair> later;
+    for (const auto& pair : candidates) {
+      BlockedTester::PosedDisk a, b;
+      if (!tester.pose_disk(0, poses[0], pair.first, a) || !tester.pose_disk(1, poses[1], pair.second, b)) continue;
+      const double dx = up(std::fabs(a.x - b.x)), dy = up(std::fabs(a.y - b.y));
+      const double reach = down(a.reach + b.reach);
+      if (reach > 0 && up(up(dx * dx) + up(dy * dy)) < down(reach * reach)) {
+        kept.clear();
+        return true;
+      }
+      const double ex = a.x - b.x, ey = a.y - b.y, outer = a.outer + b.outer;
+      if (!(outer > 0) || !(ex * ex + ey * ey <= outer * outer * (1 + 0x1p-20) + 0x1p-1000)) continue;
+      const double nominal = 0.5 * (a.outer + b.outer + a.reach + b.reach);
+      (nominal > 0 && ex * ex + ey * ey < nominal * nominal ? kept : later).push_back(pair);
+    }
+    kept.insert(kept.end(), later.begin(), later.end());
+    return false;
+  }
   // every pair, the certified test of the tester's definition
   static bool all_pairs(const Set& first, const Set& second) {
     using kernels::interval_detail::down;
@@ -640,6 +679,81 @@ TEST(BlockedTester, PosedDisksKeptPerPoseAnswerAsFreshPoses) {
             << counts.points << " configurations of blocked cells checked with the oracle\n";
   EXPECT_GT(blocked, 1000);
   EXPECT_GT(reused, cells / 2);
+}
+
+
+// BlockedTester::blocked's candidate loop (session 44: the second part's posed disks read from
+// the pose's slot table made whole before the loop, and the outer-sum test first, which decides
+// the pairs that can neither certify nor be kept) against its definition on disks posed afresh
+// (BlockedTesterProbe::candidate_loop): the same answer and, where not blocked, the same
+// narrowed list, pairs and order. Cells of depths 3 to 9 of the examples' charts in random
+// order, each with the list of an enclosing cell (the full sweep's of its depth-2 cell, or the
+// narrowed list of a depth-5 cell tested before), one cache per chart (disks posed by earlier
+// cells reused, new ones posed in the loop) and the lists of the builder's grid order.
+TEST(BlockedTester, CandidateLoopKeepsTheDefinitionsPairsInOrder) {
+  using Pair = cspace::BlockedTester::DiskPair;
+  using Probe = cspace::BlockedTesterProbe;
+  Random random(20261202);
+  int cells = 0, blocked = 0, kept_pairs = 0, nonempty = 0;
+  for_each_two_d_pair({{"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"},
+                       {"escapement.json", "escape-wheel", "anchor"}, {"scotch-yoke.json", "crank", "yoke"}},
+                      [&](const std::string& file, const Model& model, const cspace::PairAxes& axes,
+                          const cspace::ChartLayout& layout) {
+    auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
+    if (!tester->usable()) return;
+    for (const auto& x : layout.x_charts)
+      for (const auto& y : layout.y_charts) {
+        cspace::BlockedCells grid(tester, x, y, 2, 9);
+        cspace::BlockedTester::Cache cache;
+        std::vector<std::vector<Pair>> lists(16);
+        std::vector<char> list_blocked(16);
+        for (long i = 0; i < 4; ++i)
+          for (long j = 0; j < 4; ++j) {
+            cspace::BlockedTester::Cache fresh;
+            const auto k = static_cast<std::size_t>(4 * i + j);
+            list_blocked[k] = tester->blocked(x, y, grid.cell_x(2, i), grid.cell_y(2, j), fresh, nullptr, &lists[k]);
+          }
+        std::map<std::pair<long, long>, std::vector<Pair>> depth5;   // narrowed lists of depth-5 cells
+        for (int n = 0; n < 700; ++n) {
+          const int depth = 3 + static_cast<int>(random() % 7);
+          const long count = 1L << depth;
+          const long i = static_cast<long>(random() % static_cast<unsigned long>(count));
+          const long j = static_cast<long>(random() % static_cast<unsigned long>(count));
+          const auto enclosing = static_cast<std::size_t>(4 * (i >> (depth - 2)) + (j >> (depth - 2)));
+          if (list_blocked[enclosing]) continue;
+          const std::vector<Pair>* parent = &lists[enclosing];
+          if (depth > 5) {
+            auto it = depth5.find({i >> (depth - 5), j >> (depth - 5)});
+            if (it != depth5.end()) parent = &it->second;
+          }
+          const Interval bx = grid.cell_x(depth, i), by = grid.cell_y(depth, j);
+          std::vector<Pair> kept, expected;
+          const bool answer = tester->blocked(x, y, bx, by, cache, parent, &kept);
+          const bool expected_answer = Probe::candidate_loop(*tester, x, y, bx, by, *parent, expected);
+          ++cells;
+          ASSERT_EQ(answer, expected_answer) << file << " cell " << depth << ", " << i << ", " << j;
+          ASSERT_EQ(answer, tester->blocked(x, y, bx, by)) << file << " cell " << depth << ", " << i << ", " << j;
+          // without `narrowed`: the same answer
+          ASSERT_EQ(tester->blocked(x, y, bx, by, cache, parent, nullptr), answer) << file;
+          if (answer) {
+            ++blocked;
+            continue;
+          }
+          ASSERT_EQ(kept.size(), expected.size()) << file << " cell " << depth << ", " << i << ", " << j;
+          for (std::size_t m = 0; m < kept.size(); ++m) {
+            ASSERT_EQ(kept[m].first, expected[m].first) << file << " cell " << depth << ", " << i << ", " << j << " pair " << m;
+            ASSERT_EQ(kept[m].second, expected[m].second) << file << " cell " << depth << ", " << i << ", " << j << " pair " << m;
+          }
+          kept_pairs += static_cast<int>(kept.size());
+          nonempty += !kept.empty() && kept.size() < parent->size();
+          if (depth == 5) depth5.emplace(std::make_pair(i, j), kept);
+        }
+      }
+  });
+  std::cout << cells << " cells, " << blocked << " blocked, " << kept_pairs << " pairs kept, " << nonempty
+            << " lists narrowed\n";
+  EXPECT_GT(blocked, 200);
+  EXPECT_GT(nonempty, 200);   // lists that keep some pairs and drop others
 }
 
 }  // namespace

@@ -560,6 +560,65 @@ TEST(CSpaceCull, GridMemoAnswersTheTestersSweepInAnyOrder) {
   EXPECT_GT(free, 2000);
 }
 
+// The same for the grids of 1-D spaces (one moving part; the curve generator's grid, depth
+// 10): cells asked in random order at depths 0 to 20, through the grid's per-depth tables
+// (session 44: depths to 18) and past them (its map), against the reference on the tester's
+// plain sweep. The 1-D pairs of the examples (a lever and its stop, the escapement's anchor and
+// banking, a rotating wheel against a fixed frame part).
+void expect_one_d_grid_answers_the_testers(const Model& model, const std::string& first, const std::string& second,
+                                           std::uint64_t seed, int* blocked_seen, int* free_seen) {
+  cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part(first), *model.find_part(second));
+  ASSERT_EQ(axes.dimension(), 1);
+  const cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+  auto tester = std::make_shared<const cspace::BlockedTester>(model, axes);
+  ASSERT_TRUE(tester->usable());
+  const cspace::ChartAxis y{cspace::ChartAxis::Kind::translation, false, Rational(0), Rational(0)};
+  std::mt19937_64 random(seed);
+  constexpr int leaf_depth = 20;
+  for (std::size_t c = 0; c < layout.x_charts.size(); ++c) {
+    const cspace::ChartAxis& x = layout.x_charts[c];
+    cspace::BlockedCells grid(tester, x, y, 1, 10);
+    std::map<std::pair<int, long>, bool> reference;
+    auto expected = [&](int depth, long i) {
+      auto it = reference.find({depth, i});
+      if (it != reference.end()) return it->second;
+      bool result = false;
+      for (int up = 1; up <= depth && !result; ++up) {
+        auto parent = reference.find({depth - up, i >> up});
+        result = parent != reference.end() && parent->second;
+      }
+      if (!result) result = tester->blocked(x, y, grid.cell_x(depth, i), grid.cell_y(depth, 0));
+      reference.emplace(std::make_pair(depth, i), result);
+      return result;
+    };
+    for (int n = 0; n < 1500; ++n) {
+      const long leaf = static_cast<long>(random() % (1u << leaf_depth));
+      for (int asks = 0; asks < 3; ++asks) {
+        const int depth = static_cast<int>(random() % (leaf_depth + 1));
+        const long i = leaf >> (leaf_depth - depth);
+        const bool want = expected(depth, i);
+        ASSERT_EQ(grid.blocked(depth, i, 0), want) << first << "/" << second << " chart " << c << ", cell (" << depth << ", " << i << ")";
+        ++*(want ? blocked_seen : free_seen);
+      }
+    }
+  }
+}
+
+TEST(CSpaceCull, OneDimensionalGridMemoAnswersTheTestersSweepInAnyOrder) {
+  int blocked = 0, free = 0;
+  for (const auto& [file, first, second] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{{"lever-stop.json", "lever", "stop"},
+                                                                     {"escapement.json", "anchor", "banking"},
+                                                                     {"escapement.json", "escape-wheel", "banking"}}) {
+    std::filesystem::path path = std::filesystem::path(HIPAIR_EXAMPLES) / file;
+    if (!std::filesystem::exists(path)) continue;
+    SCOPED_TRACE(file);
+    expect_one_d_grid_answers_the_testers(read_model_file(path), first, second, 64 + blocked + free, &blocked, &free);
+  }
+  EXPECT_GT(blocked, 1000);
+  EXPECT_GT(free, 1000);
+}
+
 // The builder's culler keeps a curve in a finest cell (a whole chart's grid: depth 9) only where
 // the grid answered "free" for that cell and for the enclosing cells it asked on the way down
 // (depths 3, 5 and 7): every surviving cell and each of those ancestors is one that
