@@ -294,6 +294,9 @@ class ChainAnalysis {
         stages_.push_back(
             analyze_stage(text_, parametric_model(), stage_options, path, space_of(parts[s - 1], parts[s])));
       }
+      // One solver per pair, each memoising its sub-boxes' geometry at every position: bounded
+      // small (pure memos: the same results; docs/performance.md "Session 43 (tol43)").
+      stages_.back().solver->limit_memos(chain_memo_entries());
       ChainStage summary;
       summary.driver = a;
       summary.follower = b;
@@ -1230,6 +1233,13 @@ class ChainAnalysis {
 };
 
 }  // namespace
+
+std::size_t& chain_memo_entries() {
+  // session 43 (tol43): gear-train.json 0..1.53 rad at 60 per turn 1.28 GB -> 0.32 GB, the
+  // same output
+  static std::size_t entries = 1000;
+  return entries;
+}
 
 ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options, const ChainPaths& paths) {
   return ChainAnalysis(text, options, paths).run();

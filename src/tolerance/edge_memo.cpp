@@ -97,9 +97,15 @@ std::shared_ptr<const TaylorEdgeMemo::Entry> TaylorEdgeMemo::find(const Item& ke
   return found->second;
 }
 
+void TaylorEdgeMemo::set_limit(std::size_t entries) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  limit_ = entries;
+  if (entries_.size() >= limit_) entries_.clear();
+}
+
 void TaylorEdgeMemo::store(Item key, std::shared_ptr<const Entry> entry) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (entries_.size() >= max_entries) entries_.clear();
+  if (entries_.size() >= limit_) entries_.clear();
   entries_.emplace(std::move(key), std::move(entry));
 }
 

@@ -75,6 +75,9 @@ class TaylorEdgeMemo {
   std::vector<std::uint32_t> edge_reads(const FeatureIdentity& f);
   std::vector<std::uint32_t> motion_reads(std::size_t part);
 
+  /// Clear when holding `entries` (default max_entries).
+  void set_limit(std::size_t entries);
+
   std::size_t hits() const { return hits_; }
   std::size_t misses() const { return misses_; }
 
@@ -96,6 +99,7 @@ class TaylorEdgeMemo {
   std::map<Item, std::vector<std::uint32_t>> reads_;
   std::map<Item, std::shared_ptr<const Entry>> entries_;
   std::size_t hits_ = 0, misses_ = 0;
+  std::size_t limit_ = max_entries;
 };
 
 }  // namespace hipair::tolerance_detail

@@ -302,7 +302,7 @@ std::shared_ptr<const HandoverSearch::BoxParts> HandoverSearch::box_parts(const 
   parts->fixed_minor = minors(parts->fixed);
   parts->free_minor = minors(parts->free);
   std::lock_guard<std::mutex> lock(mutex_);
-  if (memo_.size() >= 256) memo_.clear();
+  if (memo_.size() >= max_box_parts) memo_.clear();
   return memo_.emplace(key, parts).first->second;
 }
 

@@ -174,6 +174,11 @@ class HandoverSearch {
   bool disabled_ = false;
   mutable std::mutex mutex_;
   mutable std::map<std::vector<double>, std::shared_ptr<const BoxParts>> memo_;
+  /// memo_'s bound (cleared when full): every edge of both parts as Taylor models over a box is
+  /// large, and the walk reuses a box's parts within one composition (its sub-boxes'), not across
+  /// positions; 256 before session 43 (docs/performance.md "Session 43 (tol43)": the chain's
+  /// memos held most of the full turn's 2.9 GB).
+  static constexpr std::size_t max_box_parts = 32;
 };
 
 }  // namespace hipair::tolerance_detail

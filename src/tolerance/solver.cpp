@@ -349,6 +349,15 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   return false;
 }
 
+void CurveSolver::limit_memos(std::size_t entries) const {
+  {
+    std::lock_guard<std::mutex> lock(memo_->mutex);
+    memo_->limit = entries;
+    if (memo_->entries.size() >= entries) memo_->entries.clear();
+  }
+  edges_->set_limit(entries);
+}
+
 std::shared_ptr<const CurveSolver::BoxGeometry> CurveSolver::box_geometry(const CurveSlice& curve, const Box& box,
                                                                          const std::vector<double>& center) const {
   std::vector<double> key{static_cast<double>(curve.first.part),  static_cast<double>(curve.first.loop),
@@ -409,7 +418,7 @@ std::shared_ptr<const CurveSolver::BoxGeometry> CurveSolver::box_geometry(const 
   g->jet = geometry(curve, model_->parameter_values(jets));
   g->at_center = geometry(curve, g->center_parameters);
   std::lock_guard<std::mutex> lock(memo_->mutex);
-  if (memo_->entries.size() >= BoxGeometryMemo::max_entries) memo_->entries.clear();
+  if (memo_->entries.size() >= memo_->limit) memo_->entries.clear();
   return memo_->entries.emplace(std::move(key), std::move(g)).first->second;
 }
 

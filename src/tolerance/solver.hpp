@@ -145,6 +145,14 @@ class CurveSolver {
   bool root_partials(const CurveSlice& curve, const Box& box, const Box& whole, const Interval& y,
                      std::vector<Interval>& dp, Interval& dt, bool taylor = true, int* sign = nullptr) const;
 
+  /// Bounds the box-geometry memo and the Taylor-model edge memo at `entries` each (cleared
+  /// when full; default BoxGeometryMemo::max_entries and TaylorEdgeMemo::max_entries). Their
+  /// values are pure functions of their keys, so results are the same whatever the bound; an
+  /// assembly chain (one solver per pair, each pair's sub-boxes at every position) sets a small
+  /// one: docs/performance.md "Session 43 (tol43)". (The memos are shared state behind
+  /// mutexes, hence const.)
+  void limit_memos(std::size_t entries) const;
+
  private:
   template <class T>
   PairGeometry<T> geometry(const CurveSlice& curve, const std::vector<T>& parameters) const;
@@ -188,6 +196,7 @@ class CurveSolver {
   /// it holds `max_entries`.
   struct BoxGeometryMemo {
     static constexpr std::size_t max_entries = 20000;
+    std::size_t limit = max_entries;   ///< cleared when it holds this many (limit_memos)
     std::mutex mutex;
     std::map<std::vector<double>, std::shared_ptr<const BoxGeometry>> entries;
   };

@@ -120,6 +120,12 @@ struct ChainPaths {
   std::function<void(std::size_t, std::size_t, const kernels::Interval&)> monte_carlo_value;
 };
 
+/// Entries of each chain pair's box-geometry and Taylor-model edge memos (CurveSolver::limit_memos;
+/// 1000 unless changed). The memos hold pure functions of their keys, so every value gives the
+/// same bands (tests/unit/tolerance_chain_memo_test.cpp sets it to compare); read when a chain
+/// analysis starts.
+std::size_t& chain_memo_entries();
+
 /// The analysis of an assembly chain (ToleranceOptions::chain; chain.cpp).
 ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options, const ChainPaths& paths = {});
 
