@@ -768,6 +768,7 @@ const std::string& SlicedSpace::fixed_part() const { return impl_->fixed_name; }
 const std::string& SlicedSpace::free_part() const { return impl_->free_name; }
 std::shared_ptr<const CSpace> SlicedSpace::slice(const SlicedAngle& angle) const { return impl_->slice(angle); }
 const Rational& SlicedSpace::bound() const { return impl_->bound; }
+const Rational& SlicedSpace::length_unit() const { return impl_->unit; }
 const std::vector<CriticalAngle>& SlicedSpace::critical_angles() const { return impl_->critical_public; }
 const std::vector<SlicedInterval>& SlicedSpace::intervals() const { return impl_->intervals; }
 const std::vector<SlicedCrossing>& SlicedSpace::crossings() const { return impl_->crossings; }

@@ -11,6 +11,7 @@
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 #include <hipair/overlap.hpp>
+#include <hipair/cspace.hpp>
 #include <hipair/sliced.hpp>
 
 #include "algebra/exact_real.hpp"
@@ -248,6 +249,56 @@ TEST(SlicedScale, UniformScalesHaveTheSameCriticalAnglesCellsAndLocations) {
     v.x *= s;
     v.y *= s;
     EXPECT_TRUE(space.connected(h, v));
+  }
+}
+
+// Path planning (SlicedSpace::path) at extreme scales: between configurations of the corridor
+// in one component (the two arms, and free cells' interior points of representative slices),
+// generated at scale 1 and multiplied by s, a path is found at 10^-300, 10^-30, 10^30 and 10^300
+// as at scale 1, and every straight motion of it is certified free again (first_crossing), its
+// ends the queries.
+TEST(SlicedScale, PathsAreFoundAndCertifiedAtEveryScale) {
+  const Model unit = corridor(6);
+  const SlicedSpace reference = SlicedSpace::build(unit, "fixed", "free");
+  std::vector<std::pair<SlicedConfiguration, SlicedConfiguration>> queries{
+      {SlicedConfiguration{-10, 2, SlicedAngle{0, false}}, SlicedConfiguration{2, 12, SlicedAngle{1, false}}}};
+  // interior points of free cells of two representative slices (a cell's sample), joined to
+  // the first query's start when in its component
+  Random random(4444);
+  std::vector<SlicedConfiguration> inner;
+  for (const auto& in : reference.intervals())
+    for (const auto& cell : reference.slice(in.representative)->cells())
+      if (cell.kind == CellKind::free) {
+        SlicedConfiguration q{cell.sample_x, cell.sample_y, in.representative};
+        if (reference.connected(q, queries[0].first)) inner.push_back(q);
+      }
+  ASSERT_GE(inner.size(), 4u);
+  for (int k = 0; k < 2; ++k) queries.push_back({inner[random() % inner.size()], inner[random() % inner.size()]});
+  for (int e : {0, -300, -30, 30, 300}) {
+    SCOPED_TRACE("scale 1e" + std::to_string(e));
+    const Rational s = power_of_ten(e);
+    const Model model = scaled(unit, s);
+    const SlicedSpace space = SlicedSpace::build(model, "fixed", "free");
+    for (std::size_t n = 0; n < queries.size(); ++n) {
+      SlicedConfiguration a = queries[n].first, b = queries[n].second;
+      a.x *= s;
+      a.y *= s;
+      b.x *= s;
+      b.y *= s;
+      SlicedPath path = space.path(a, b);
+      ASSERT_EQ(static_cast<int>(path.status), static_cast<int>(SlicedPath::Status::found)) << "query " << n;
+      ASSERT_GE(path.waypoints.size(), 1u);
+      ASSERT_EQ(path.through_half_turn.size() + 1, path.waypoints.size());
+      EXPECT_TRUE(path.waypoints.front().x == a.x && path.waypoints.front().y == a.y);
+      EXPECT_TRUE(path.waypoints.back().x == b.x && path.waypoints.back().y == b.y);
+      for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
+        SlicedMotion m;
+        m.from = path.waypoints[i];
+        m.to = path.waypoints[i + 1];
+        m.through_half_turn = path.through_half_turn[i];
+        EXPECT_TRUE(space.motion_free(m)) << "query " << n << " motion " << i;
+      }
+    }
   }
 }
 
