@@ -17,6 +17,7 @@
 #include "algebra/exact_real.hpp"
 #include "algebra/polynomial.hpp"
 #include "sliced/critical_angles.hpp"
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -299,6 +300,42 @@ TEST(SlicedScale, PathsAreFoundAndCertifiedAtEveryScale) {
         EXPECT_TRUE(space.motion_free(m)) << "query " << n << " motion " << i;
       }
     }
+  }
+}
+
+// A pair with arcs (examples/models/peg-in-slot.json: a stadium peg in a plate with a slot)
+// crosses its critical angles in the scale-free frame too, its steady test on the model's
+// configuration q / k (the motion checker, model units): at 10^-300 and 10^30 the same contact
+// keys, connections per crossing and components as at 1, and every connection's witnesses free
+// by the exact overlap oracle, in the connected cells, the rotation between them free.
+TEST(SlicedScale, PairWithArcsCrossesInTheFrameAsAtScaleOne) {
+  const Model unit = read_model_file(std::string(hipair::test::examples_dir()) + "/peg-in-slot.json");
+  ASSERT_EQ(unit.parts.size(), 2u);
+  const SlicedSpace reference = SlicedSpace::build(unit, unit.parts[0].name, unit.parts[1].name);
+  const Structure expected = structure_of(reference);
+  ASSERT_GT(expected.connections.size(), 4u);
+  for (int e : {-300, 30}) {
+    SCOPED_TRACE("scale 1e" + std::to_string(e));
+    const Model model = scaled(unit, power_of_ten(e));
+    ASSERT_TRUE(sliced::scale_free_factor(model.parts[0], model.parts[1]).has_value());
+    const SlicedSpace space = SlicedSpace::build(model, model.parts[0].name, model.parts[1].name);
+    const Structure got = structure_of(space);
+    EXPECT_EQ(got.interval_keys, expected.interval_keys);
+    EXPECT_EQ(got.connections, expected.connections);
+    EXPECT_EQ(got.components, expected.components);
+    for (const auto& crossing : space.crossings())
+      for (const auto& link : crossing.connections) {
+        EXPECT_EQ(static_cast<int>(oracle(model, link.left_witness)), static_cast<int>(SlicedLocation::Kind::free));
+        EXPECT_EQ(static_cast<int>(oracle(model, link.right_witness)), static_cast<int>(SlicedLocation::Kind::free));
+        SlicedLocation l = space.locate(link.left_witness), r = space.locate(link.right_witness);
+        EXPECT_EQ(l.cell, link.left_cell);
+        EXPECT_EQ(r.cell, link.right_cell);
+        SlicedMotion turn;
+        turn.from = link.left_witness;
+        turn.to = link.right_witness;
+        turn.through_half_turn = link.through_half_turn;
+        EXPECT_TRUE(space.motion_free(turn)) << "crossing " << crossing.critical;
+      }
   }
 }
 
