@@ -228,6 +228,10 @@ class SlicedSpace {
   std::shared_ptr<const CSpace> slice(const SlicedAngle& angle) const;
   /// The chart box of every slice: [-bound, bound]^2; outside it the parts are apart.
   const Rational& bound() const;
+  /// The length that steps and nudges follow (exact, a power of two): 1 mm for ordinary pairs
+  /// (every coordinate within [2^-20, 2^40] mm), the pair's own scale for a pair drawn tiny or
+  /// huge (2^(e - 4) with 2^e within a factor 2 of its largest coordinate).
+  const Rational& length_unit() const;
 
   /// Exact point location (any rational configuration; inside a free cell of the structure
   /// when the cell structure was built and the angle is not critical).

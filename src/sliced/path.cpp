@@ -26,10 +26,19 @@ namespace {
 namespace algebra = cspace::algebra;
 using sliced::real_of;
 
-// A rational near v (a multiple of 2^-bits): a waypoint proposal, decided on exactly later.
-Rational dyadic(double v, int bits = 10) {
-  const double scale = std::ldexp(1.0, bits);
-  Rational r(mpz_class(std::nearbyint(v * scale)), mpz_class(1) << bits);
+// The exponent e of a power of two 2^e (SlicedSpace::length_unit).
+long exponent_of(const Rational& power) {
+  return static_cast<long>(mpz_sizeinbase(power.get_num_mpz_t(), 2)) - static_cast<long>(mpz_sizeinbase(power.get_den_mpz_t(), 2));
+}
+
+// A rational near v, a multiple of 2^(unit_exponent - bits) (the pair's length unit 2^e over
+// 2^bits: 2^-bits mm for ordinary pairs): a waypoint proposal, decided on exactly later. The
+// double is scaled by ldexp (exact), so a pair at 10^-300 or 10^300 mm gets its own grid.
+Rational dyadic(double v, long unit_exponent, int bits = 10) {
+  const long shift = bits - unit_exponent;   // v 2^shift rounded, times 2^-shift
+  mpz_class n(std::nearbyint(std::ldexp(v, static_cast<int>(shift))));
+  mpz_class one = 1;
+  Rational r = shift >= 0 ? Rational(n, one << static_cast<unsigned long>(shift)) : Rational(n * (one << static_cast<unsigned long>(-shift)));
   r.canonicalize();
   return r;
 }
@@ -56,7 +65,8 @@ SlicedAngle angle_of(const Rational& w, bool flip) {
 
 class Planner {
  public:
-  Planner(const SlicedSpace& space, SlicedPath& out) : space_(space), out_(out) {}
+  Planner(const SlicedSpace& space, SlicedPath& out)
+      : space_(space), out_(out), unit_(space.length_unit()), unit_exponent_(exponent_of(unit_)) {}
 
   bool motion(const SlicedConfiguration& a, const SlicedConfiguration& b, bool flip) {
     ++out_.motions_checked;
@@ -116,14 +126,50 @@ class Planner {
     return true;
   }
 
-  // Samples of the free cell `cell` of `interval` in the slice at `angle`.
+  // Samples of the free cell `cell` of `interval` in the slice at `angle`: the slice cells'
+  // samples, and for a pair drawn at an extreme scale (length unit != 1 mm) also, over each such
+  // cell's extent (its boundary edges' certified ranges), the simplest rationals in the pair's
+  // unit and the inner points of a 4 x 4 grid (dyadics at the pair's unit), those located in
+  // the cell (exactly): the slice's samples are the simplest rationals of their cells in mm,
+  // which at 10^30 mm lie within 1 mm of a side and at 10^-30 mm within 10^-60 mm of one (a
+  // rotation there meets the side). Ordinary pairs keep the slice's samples only.
   std::vector<Point> cell_samples(const SlicedAngle& angle, std::size_t interval, std::size_t cell) {
     std::vector<Point> out;
     auto slice = space_.slice(angle);
     for (const auto& c : slice->cells()) {
       if (c.kind != CellKind::free) continue;
       SlicedLocation l = space_.locate(SlicedConfiguration{c.sample_x, c.sample_y, angle});
-      if (l.interval == interval && l.cell == cell) out.push_back(Point{c.sample_x, c.sample_y});
+      if (l.interval != interval || l.cell != cell) continue;
+      out.push_back(Point{c.sample_x, c.sample_y});
+      if (unit_ == 1) continue;
+      double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+      for (std::size_t e : c.boundary) {
+        const auto& edge = slice->edges()[e];
+        x0 = std::min(x0, edge.x_chart.lower);
+        x1 = std::max(x1, edge.x_chart.upper);
+        y0 = std::min(y0, edge.y_chart.lower);
+        y1 = std::max(y1, edge.y_chart.upper);
+      }
+      if (!(x0 < x1 && y0 < y1)) continue;
+      // the simplest rationals of the extent (and of its middle half) in the pair's unit: what
+      // the slice's samples are at scale 1, a point well inside a cell of ordinary size
+      auto simplest = [&](double lo, double hi) {
+        Rational l = dyadic(lo, unit_exponent_, 20) / unit_, h = dyadic(hi, unit_exponent_, 20) / unit_;
+        if (!(l < h)) return Rational(dyadic((lo + hi) / 2, unit_exponent_));
+        return Rational(algebra::simplest_between(l, h) * unit_);
+      };
+      for (int shrink : {0, 1}) {
+        const double dx = (x1 - x0) * shrink / 4, dy = (y1 - y0) * shrink / 4;
+        Point p{simplest(x0 + dx, x1 - dx), simplest(y0 + dy, y1 - dy)};
+        SlicedLocation m = space_.locate(SlicedConfiguration{p.x, p.y, angle});
+        if (m.kind == SlicedLocation::Kind::free && m.interval == interval && m.cell == cell) out.push_back(p);
+      }
+      for (int i = 1; i < 4; ++i)
+        for (int j = 1; j < 4; ++j) {
+          Point p{dyadic(x0 + (x1 - x0) * i / 4, unit_exponent_), dyadic(y0 + (y1 - y0) * j / 4, unit_exponent_)};
+          SlicedLocation m = space_.locate(SlicedConfiguration{p.x, p.y, angle});
+          if (m.kind == SlicedLocation::Kind::free && m.interval == interval && m.cell == cell) out.push_back(p);
+        }
     }
     return out;
   }
@@ -151,7 +197,7 @@ class Planner {
     const auto& chart = slice->charts()[0];
     double x0 = to_double(chart.x_lo), x1 = to_double(chart.x_hi), y0 = to_double(chart.y_lo), y1 = to_double(chart.y_hi);
     // the outer cell (holding the chart box's corner) spreads to the box
-    const std::size_t outer = cell_at(Point{Rational(chart.x_lo + Rational(1, 2)), Rational(chart.y_lo + Rational(1, 2))});
+    const std::size_t outer = cell_at(Point{Rational(chart.x_lo + unit_ / 2), Rational(chart.y_lo + unit_ / 2)});
     if (cell != no_index && cell != no_index - 1 && cell != outer) {
       double bx0 = 1e300, bx1 = -1e300, by0 = 1e300, by1 = -1e300;
       bool limit = false;
@@ -187,7 +233,7 @@ class Planner {
         for (std::size_t k = 0; k < near.size() && k < 4; ++k) {
           if (near[k].first <= 0) continue;
           const auto& c = corners[near[k].second];
-          Point p{dyadic((corners[i][0] + c[0]) / 2, 30), dyadic((corners[i][1] + c[1]) / 2, 30)};
+          Point p{dyadic((corners[i][0] + c[0]) / 2, unit_exponent_, 30), dyadic((corners[i][1] + c[1]) / 2, unit_exponent_, 30)};
           if (cell_at(p) == cell) mouths.push_back(p);
         }
       }
@@ -197,7 +243,7 @@ class Planner {
       for (const auto& p : mouths) nodes.push_back(p);
       for (int i = 1; i < grid; ++i)
         for (int j = 1; j < grid; ++j) {
-          Point p{dyadic(x0 + (x1 - x0) * i / grid), dyadic(y0 + (y1 - y0) * j / grid)};
+          Point p{dyadic(x0 + (x1 - x0) * i / grid, unit_exponent_), dyadic(y0 + (y1 - y0) * j / grid, unit_exponent_)};
           if (cell_at(p) == cell) nodes.push_back(p);
         }
       if (route(nodes, angle, flip)) return true;
@@ -361,6 +407,8 @@ class Planner {
  private:
   const SlicedSpace& space_;
   SlicedPath& out_;
+  Rational unit_;          // the pair's length unit (1 mm for ordinary pairs)
+  long unit_exponent_;     // unit_ = 2^unit_exponent_
 };
 
 }  // namespace

@@ -274,6 +274,16 @@ struct SlicedSpace::Impl {
   std::string fixed_name, free_name;
   Rational bound;
   Rational unit = 1;   // the length the crossings' sample nudges are measured in (sliced::length_unit)
+  // The scale-free frame of the crossings (a pair drawn at an extreme scale: sliced::
+  // scale_free_factor k): the parts times k, their polygonal pair, the slice box k * bound and
+  // the nudge unit of the scaled parts. The slice of the scaled parts at an angle is exactly k
+  // times the model's slice (translations scale with the parts), so a point q of a frame slice
+  // is the model's configuration q / k, in the corresponding cell (the same contact key), and
+  // every decision on it (free on both sides, steady across) is the same exact predicate.
+  std::optional<Rational> frame;
+  std::optional<Part> frame_fixed, frame_free;
+  std::optional<sliced::PolygonalPair> frame_pair;
+  Rational frame_bound, frame_unit = 1;
   SlicedBuildOptions options;
   std::optional<sliced::PolygonalPair> pair;
   std::optional<sliced::MotionChecker> motion;
@@ -289,7 +299,18 @@ struct SlicedSpace::Impl {
 
   // ------------------------------------------------------------ slices
   std::shared_ptr<const CSpace> slice(const SlicedAngle& angle) const {
-    std::string key = angle.half_turn ? "pi" : to_exact_string(angle.t);
+    return slice_of(model.parts[fixed], model.parts[free], bound, angle, "");
+  }
+
+  // The slice at `angle` in the crossings' frame (the model's slice when there is no frame).
+  std::shared_ptr<const CSpace> frame_slice(const SlicedAngle& angle) const {
+    if (!frame) return slice(angle);
+    return slice_of(*frame_fixed, *frame_free, frame_bound, angle, "frame ");
+  }
+
+  std::shared_ptr<const CSpace> slice_of(const Part& a, const Part& b, const Rational& box, const SlicedAngle& angle,
+                                         const std::string& prefix) const {
+    std::string key = prefix + (angle.half_turn ? "pi" : to_exact_string(angle.t));
     {
       std::lock_guard<std::mutex> lock(mutex);
       auto it = cache.find(key);
@@ -297,14 +318,12 @@ struct SlicedSpace::Impl {
     }
     auto start = Clock::now();
     auto [c, s] = sliced::rotation_of(angle);
-    const Part& a = model.parts[fixed];
-    const Part& b = model.parts[free];
     Model slice_model;
     slice_model.name = "slice";
     slice_model.angle_unit = "rad";
     slice_model.source = "<slice>";
-    slice_model.parts.push_back(slice_part(a, 0, b.motion.pivot, Rational(1), Rational(0), Point{Rational(-1), Rational(0)}, bound));
-    slice_model.parts.push_back(slice_part(b, 1, b.motion.pivot, c, s, Point{Rational(0), Rational(1)}, bound));
+    slice_model.parts.push_back(slice_part(a, 0, b.motion.pivot, Rational(1), Rational(0), Point{Rational(-1), Rational(0)}, box));
+    slice_model.parts.push_back(slice_part(b, 1, b.motion.pivot, c, s, Point{Rational(0), Rational(1)}, box));
     slice_model.pairs.push_back(PairSpec{0, 1, std::nullopt, std::nullopt, "/pairs/0", std::nullopt});
     slice_model.pairs_explicit = true;
     auto space = std::make_shared<const CSpace>(CSpace::build(slice_model, a.name, b.name));
@@ -324,6 +343,14 @@ struct SlicedSpace::Impl {
     for (Rational* r : {&m.x0, &m.y0, &m.w0, &m.x1, &m.y1, &m.w1}) r->canonicalize();
     sliced::MotionResult r = motion->first_contact(m);
     return r.starts_apart && !r.found;
+  }
+
+  // steady() for a point q of the crossings' frame (the model's q / k): the scaled pair's
+  // contact lines are the model's times k, so steady_along on it is the same exact test.
+  bool steady_in_frame(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip) const {
+    if (!frame) return steady(q, u_lo, u_hi, flip);
+    if (frame_pair) return sliced::steady_along(*frame_pair, q, u_lo, u_hi, flip);
+    return steady(Point{Rational(q.x / *frame), Rational(q.y / *frame)}, u_lo, u_hi, flip);
   }
 
   // ------------------------------------------------------------ cells of a slice
@@ -366,8 +393,14 @@ struct SlicedSpace::Impl {
 
   // ------------------------------------------------------------ location
   SlicedLocation::Kind classify(const CSpace& space, const Rational& x, const Rational& y, std::size_t* cell) const {
+    return classify_in(space, bound, x, y, cell);
+  }
+
+  // `box`: the slice's bound (bound, or frame_bound for a frame slice)
+  SlicedLocation::Kind classify_in(const CSpace& space, const Rational& box, const Rational& x, const Rational& y,
+                                   std::size_t* cell) const {
     *cell = no_index;
-    if (abs(x) >= bound || abs(y) >= bound) return SlicedLocation::Kind::free;   // outside the box: apart
+    if (abs(x) >= box || abs(y) >= box) return SlicedLocation::Kind::free;   // outside the box: apart
     Location l = space.locate(ChartPoint{0, x, y});
     switch (l.kind) {
       case Location::Kind::free:
@@ -389,10 +422,12 @@ struct SlicedSpace::Impl {
   }
 
   // The free cell of the slice holding (x, y) outside the box: the cell touching the box.
-  std::size_t outer_cell(const CSpace& space) const {
+  // `margin_unit`: unit (the model's slices) or k unit (a frame slice).
+  std::size_t outer_cell(const CSpace& space) const { return outer_cell_in(space, unit); }
+  std::size_t outer_cell_in(const CSpace& space, const Rational& margin_unit) const {
     const Rational& lo = space.charts()[0].x_lo;
     // a point just inside the box corner is free (the box exceeds the blocked region by 2 units)
-    Location l = space.locate(ChartPoint{0, lo + unit / 2, space.charts()[0].y_lo + unit / 2});
+    Location l = space.locate(ChartPoint{0, lo + margin_unit / 2, space.charts()[0].y_lo + margin_unit / 2});
     if (l.kind != Location::Kind::free) throw GeometryError("internal: the slice box corner is not free");
     return l.cell;
   }
@@ -492,6 +527,13 @@ struct SlicedSpace::Impl {
         scaled_b = sliced::scaled_part(*b, *k);
         a = &*scaled_a;
         b = &*scaled_b;
+        // the crossings' frame: the same parts (kept in Impl: frame_pair points at them)
+        frame = *k;
+        frame_fixed = *scaled_a;
+        frame_free = *scaled_b;
+        frame_bound = *k * bound;
+        frame_unit = sliced::length_unit(*frame_fixed, *frame_free);
+        if (!has_arc(*a) && !has_arc(*b)) frame_pair = sliced::polygonal_pair(*frame_fixed, *frame_free);
       }
       if (has_arc(*a) || has_arc(*b)) {
         if (options.progress) options.progress("critical angles");
@@ -582,40 +624,50 @@ struct SlicedSpace::Impl {
       const std::size_t right_count = intervals[crossing.right_interval].free_cells.size();
       for (int round = 0; round < 4 && (left_done.size() < left_count || right_done.size() < right_count); ++round) {
         Near nr = near(i, round);
-        auto ls = slice(nr.left), rs = slice(nr.right);
+        // A pair drawn at an extreme scale crosses in its scale-free frame (frame_slice: the
+        // slices of the parts times k, whose cells' samples are the simplest rationals of cells
+        // of ordinary size, well inside them, as at scale 1; the model's own slices at 10^-30
+        // mm put them against a cell's side, on or beside the contact lines the steady test
+        // refuses). Every point below is in the frame's coordinates; a link's witnesses are
+        // the model's configurations q / k. Ordinary pairs: the model's slices (no frame).
+        auto ls = frame_slice(nr.left), rs = frame_slice(nr.right);
+        const Rational& box = frame ? frame_bound : bound;
+        const Rational& nudge = frame ? frame_unit : unit;
         // each free cell's sample, and the same nudged off the contact lines through it
         std::vector<Point> samples;
         for (const auto* space : {ls.get(), rs.get()})
           for (const auto& cell : space->cells())
             if (cell.kind == CellKind::free)
-              for (const Rational& e : {Rational(0), Rational(unit / 1009), Rational(-unit / 10007)}) {
+              for (const Rational& e : {Rational(0), Rational(nudge / 1009), Rational(-nudge / 10007)}) {
                 samples.push_back(Point{Rational(cell.sample_x + e), Rational(cell.sample_y + e * Rational(13, 10))});
               }
-        // A pair drawn at an extreme scale (unit != 1): the slices' samples are the simplest
-        // rationals of their cells, which at 10^-30 mm hug a cell's side (on or beside the
-        // contact lines the steady test refuses), so each is also moved by larger steps of the
-        // pair's own unit in four directions (only certified ones are used: free on the left,
-        // steady across, free on the right). Ordinary pairs keep their samples.
-        if (unit != 1) {
+        // A pair at an extreme scale outside the frame (mixed scales: unit != 1 and no factor
+        // shortens the coordinates): each sample is also moved by larger steps of the pair's
+        // own unit in four directions (only certified ones are used: free on the left, steady
+        // across, free on the right). Ordinary pairs keep their samples.
+        if (nudge != 1) {
           const std::size_t base_count = samples.size();
           for (std::size_t n = 0; n < base_count; n += 3)
             for (const Rational& e : {Rational(unit / 256), Rational(unit / 64), Rational(unit / 16), Rational(unit / 4), Rational(unit)})
               for (const auto& [dx, dy] : {std::pair<int, int>{1, 1}, {1, -1}, {-1, 1}, {-1, -1}})
                 samples.push_back(Point{Rational(samples[n].x + dx * e), Rational(samples[n].y + dy * e * Rational(13, 10))});
         }
+        const Rational margin_unit = frame ? Rational(*frame * unit) : unit;
         std::size_t before = links.size();
         for (const auto& q : samples) {
           std::size_t lc = no_index, rc = no_index;
-          if (classify(*ls, q.x, q.y, &lc) != SlicedLocation::Kind::free) continue;
-          if (!steady(q, nr.u_lo, nr.u_hi, nr.flip)) continue;
-          if (classify(*rs, q.x, q.y, &rc) != SlicedLocation::Kind::free)
+          if (classify_in(*ls, box, q.x, q.y, &lc) != SlicedLocation::Kind::free) continue;
+          if (!steady_in_frame(q, nr.u_lo, nr.u_hi, nr.flip)) continue;
+          if (classify_in(*rs, box, q.x, q.y, &rc) != SlicedLocation::Kind::free)
             throw GeometryError("internal: a configuration steady across a critical angle is not free on both sides");
-          if (lc == no_index) lc = outer_cell(*ls);
-          if (rc == no_index) rc = outer_cell(*rs);
+          if (lc == no_index) lc = outer_cell_in(*ls, margin_unit);
+          if (rc == no_index) rc = outer_cell_in(*rs, margin_unit);
           std::size_t a = match(crossing.left_interval, *ls, lc), b = match(crossing.right_interval, *rs, rc);
           left_done.insert(a);
           right_done.insert(b);
-          SlicedConnection link{a, b, SlicedConfiguration{q.x, q.y, nr.left}, SlicedConfiguration{q.x, q.y, nr.right}, nr.flip};
+          Point w = q;   // the model's configuration
+          if (frame) w = Point{Rational(q.x / *frame), Rational(q.y / *frame)};
+          SlicedConnection link{a, b, SlicedConfiguration{w.x, w.y, nr.left}, SlicedConfiguration{w.x, w.y, nr.right}, nr.flip};
           link.left_witness.angle.t.canonicalize();   // (dyadic refinement leaves fractions unreduced)
           link.right_witness.angle.t.canonicalize();
           links.emplace(std::make_pair(a, b), link);
@@ -716,6 +768,7 @@ const std::string& SlicedSpace::fixed_part() const { return impl_->fixed_name; }
 const std::string& SlicedSpace::free_part() const { return impl_->free_name; }
 std::shared_ptr<const CSpace> SlicedSpace::slice(const SlicedAngle& angle) const { return impl_->slice(angle); }
 const Rational& SlicedSpace::bound() const { return impl_->bound; }
+const Rational& SlicedSpace::length_unit() const { return impl_->unit; }
 const std::vector<CriticalAngle>& SlicedSpace::critical_angles() const { return impl_->critical_public; }
 const std::vector<SlicedInterval>& SlicedSpace::intervals() const { return impl_->intervals; }
 const std::vector<SlicedCrossing>& SlicedSpace::crossings() const { return impl_->crossings; }

@@ -11,11 +11,13 @@
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 #include <hipair/overlap.hpp>
+#include <hipair/cspace.hpp>
 #include <hipair/sliced.hpp>
 
 #include "algebra/exact_real.hpp"
 #include "algebra/polynomial.hpp"
 #include "sliced/critical_angles.hpp"
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -209,13 +211,29 @@ TEST(SlicedScale, UniformScalesHaveTheSameCriticalAnglesCellsAndLocations) {
     EXPECT_EQ(arm_roots, 1);
     const Structure got = structure_of(space);
     EXPECT_EQ(got.interval_keys, expected.interval_keys);
-    // Connectivity across the critical angles: the same at 10^30; at 10^-30 and 10^-300 one
-    // connection of crossing 7 is still not found (4 components instead of 3: main gave 8), an
-    // open bug reported in docs/cspace.md ("Scale and degenerate curves"), so not asserted there.
-    if (e > 0) {
-      EXPECT_EQ(got.connections, expected.connections);
-      EXPECT_EQ(got.components, expected.components);
-    }
+    // Connectivity across the critical angles: the same connections per crossing and the same
+    // components at every scale (session 44: main 7373213 missed a connection of crossing 7 at
+    // 10^-30 and 10^-300, 4 components for 3)
+    EXPECT_EQ(got.connections, expected.connections);
+    EXPECT_EQ(got.components, expected.components);
+    // every connection's witnesses are the model's configurations (not the frame's): free by the
+    // exact overlap oracle on the scaled parts, in the connected cells of the two intervals,
+    // and the pure rotation between them is free (the motion's exact first contact)
+    for (const auto& crossing : space.crossings())
+      for (const auto& link : crossing.connections) {
+        EXPECT_EQ(static_cast<int>(oracle(model, link.left_witness)), static_cast<int>(SlicedLocation::Kind::free));
+        EXPECT_EQ(static_cast<int>(oracle(model, link.right_witness)), static_cast<int>(SlicedLocation::Kind::free));
+        SlicedLocation l = space.locate(link.left_witness), r = space.locate(link.right_witness);
+        EXPECT_EQ(l.interval, crossing.left_interval);
+        EXPECT_EQ(l.cell, link.left_cell);
+        EXPECT_EQ(r.interval, crossing.right_interval);
+        EXPECT_EQ(r.cell, link.right_cell);
+        SlicedMotion turn;
+        turn.from = link.left_witness;
+        turn.to = link.right_witness;
+        turn.through_half_turn = link.through_half_turn;
+        EXPECT_TRUE(space.motion_free(turn)) << "crossing " << crossing.critical;
+      }
     for (std::size_t n = 0; n < configurations.size(); ++n) {
       SlicedConfiguration q = configurations[n];
       q.x *= s;
@@ -231,7 +249,93 @@ TEST(SlicedScale, UniformScalesHaveTheSameCriticalAnglesCellsAndLocations) {
     h.y *= s;
     v.x *= s;
     v.y *= s;
-    if (e > 0) EXPECT_TRUE(space.connected(h, v));
+    EXPECT_TRUE(space.connected(h, v));
+  }
+}
+
+// Path planning (SlicedSpace::path) at extreme scales: between configurations of the corridor
+// in one component (the two arms, and free cells' interior points of representative slices),
+// generated at scale 1 and multiplied by s, a path is found at 10^-300, 10^-30, 10^30 and 10^300
+// as at scale 1, and every straight motion of it is certified free again (first_crossing), its
+// ends the queries.
+TEST(SlicedScale, PathsAreFoundAndCertifiedAtEveryScale) {
+  const Model unit = corridor(6);
+  const SlicedSpace reference = SlicedSpace::build(unit, "fixed", "free");
+  std::vector<std::pair<SlicedConfiguration, SlicedConfiguration>> queries{
+      {SlicedConfiguration{-10, 2, SlicedAngle{0, false}}, SlicedConfiguration{2, 12, SlicedAngle{1, false}}}};
+  // interior points of free cells of two representative slices (a cell's sample), joined to
+  // the first query's start when in its component
+  Random random(4444);
+  std::vector<SlicedConfiguration> inner;
+  for (const auto& in : reference.intervals())
+    for (const auto& cell : reference.slice(in.representative)->cells())
+      if (cell.kind == CellKind::free) {
+        SlicedConfiguration q{cell.sample_x, cell.sample_y, in.representative};
+        if (reference.connected(q, queries[0].first)) inner.push_back(q);
+      }
+  ASSERT_GE(inner.size(), 4u);
+  for (int k = 0; k < 2; ++k) queries.push_back({inner[random() % inner.size()], inner[random() % inner.size()]});
+  for (int e : {0, -300, -30, 30, 300}) {
+    SCOPED_TRACE("scale 1e" + std::to_string(e));
+    const Rational s = power_of_ten(e);
+    const Model model = scaled(unit, s);
+    const SlicedSpace space = SlicedSpace::build(model, "fixed", "free");
+    for (std::size_t n = 0; n < queries.size(); ++n) {
+      SlicedConfiguration a = queries[n].first, b = queries[n].second;
+      a.x *= s;
+      a.y *= s;
+      b.x *= s;
+      b.y *= s;
+      SlicedPath path = space.path(a, b);
+      ASSERT_EQ(static_cast<int>(path.status), static_cast<int>(SlicedPath::Status::found)) << "query " << n;
+      ASSERT_GE(path.waypoints.size(), 1u);
+      ASSERT_EQ(path.through_half_turn.size() + 1, path.waypoints.size());
+      EXPECT_TRUE(path.waypoints.front().x == a.x && path.waypoints.front().y == a.y);
+      EXPECT_TRUE(path.waypoints.back().x == b.x && path.waypoints.back().y == b.y);
+      for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
+        SlicedMotion m;
+        m.from = path.waypoints[i];
+        m.to = path.waypoints[i + 1];
+        m.through_half_turn = path.through_half_turn[i];
+        EXPECT_TRUE(space.motion_free(m)) << "query " << n << " motion " << i;
+      }
+    }
+  }
+}
+
+// A pair with arcs (examples/models/peg-in-slot.json: a stadium peg in a plate with a slot)
+// crosses its critical angles in the scale-free frame too, its steady test on the model's
+// configuration q / k (the motion checker, model units): at 10^-300 and 10^30 the same contact
+// keys, connections per crossing and components as at 1, and every connection's witnesses free
+// by the exact overlap oracle, in the connected cells, the rotation between them free.
+TEST(SlicedScale, PairWithArcsCrossesInTheFrameAsAtScaleOne) {
+  const Model unit = read_model_file(std::string(hipair::test::examples_dir()) + "/peg-in-slot.json");
+  ASSERT_EQ(unit.parts.size(), 2u);
+  const SlicedSpace reference = SlicedSpace::build(unit, unit.parts[0].name, unit.parts[1].name);
+  const Structure expected = structure_of(reference);
+  ASSERT_GT(expected.connections.size(), 4u);
+  for (int e : {-300, 30}) {
+    SCOPED_TRACE("scale 1e" + std::to_string(e));
+    const Model model = scaled(unit, power_of_ten(e));
+    ASSERT_TRUE(sliced::scale_free_factor(model.parts[0], model.parts[1]).has_value());
+    const SlicedSpace space = SlicedSpace::build(model, model.parts[0].name, model.parts[1].name);
+    const Structure got = structure_of(space);
+    EXPECT_EQ(got.interval_keys, expected.interval_keys);
+    EXPECT_EQ(got.connections, expected.connections);
+    EXPECT_EQ(got.components, expected.components);
+    for (const auto& crossing : space.crossings())
+      for (const auto& link : crossing.connections) {
+        EXPECT_EQ(static_cast<int>(oracle(model, link.left_witness)), static_cast<int>(SlicedLocation::Kind::free));
+        EXPECT_EQ(static_cast<int>(oracle(model, link.right_witness)), static_cast<int>(SlicedLocation::Kind::free));
+        SlicedLocation l = space.locate(link.left_witness), r = space.locate(link.right_witness);
+        EXPECT_EQ(l.cell, link.left_cell);
+        EXPECT_EQ(r.cell, link.right_cell);
+        SlicedMotion turn;
+        turn.from = link.left_witness;
+        turn.to = link.right_witness;
+        turn.through_half_turn = link.through_half_turn;
+        EXPECT_TRUE(space.motion_free(turn)) << "crossing " << crossing.critical;
+      }
   }
 }
 
