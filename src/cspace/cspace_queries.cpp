@@ -17,7 +17,6 @@
 #include "cspace/angle_filter.hpp"
 #include "cspace/angle_memo.hpp"
 #include "cspace/builder_impl.hpp"
-#include "cspace/carried_region.hpp"
 #include "cspace/crossing_shrink.hpp"
 #include "cspace/cspace_access.hpp"
 #include "cspace/exact_bound.hpp"
@@ -1445,16 +1444,6 @@ struct ScanMemo {
   std::vector<std::shared_ptr<const void>> tracker_data;
   // the last few exact edge ordinates asked (edge_ordinate), newest last
   std::vector<std::shared_ptr<const EdgeOrdinate>> ordinates_at;
-  // the carried region (cspace/carried_region.hpp; MotionScanner::in_region, carry_region): a
-  // box of public chart `chart`, strictly inside the chart's box, on which no curve of the chart
-  // vanishes (every interval value excludes 0), in the face of cell `cell` (kind free or blocked)
-  struct Region {
-    bool set = false;
-    std::size_t chart = 0, cell = 0;
-    Location::Kind kind = Location::Kind::free;
-    double x_lo = 0, x_hi = 0, y_lo = 0, y_hi = 0;
-  };
-  Region region;
 };
 
 std::shared_ptr<ScanMemo> fresh_scan_memo(const CSpace::Impl& impl) {
@@ -1708,8 +1697,7 @@ class MotionScanner {
             box.dy_hi = std::min(py.dhi, side[3]);
           }
           result.boxes.push_back(box);
-          if (in_region(box)) ++cspace::carried_region_hits();   // no curve of the chart vanishes on it
-          else exclude(result.boxes.size() - 1, box, result.possible);
+          exclude(result.boxes.size() - 1, box, result.possible);
         }
       }
     // Where the boxes' natural enclosures cannot exclude a curve, try the mean-value form along
@@ -1750,70 +1738,6 @@ class MotionScanner {
   // at all vanishes on this box (the point on no edge, strictly inside the chart) it is inside a
   // face of that (free) cell: the location is that cell's, without the ray shooting.
   Location locate_inside(const PieceBox& box, const StartAnchor* anchor = nullptr, AnchorBoxes* boxes = nullptr) {
-    if (in_region(box)) {
-      // in the carried region's face: its cell (see carried_region.hpp)
-      ++cspace::carried_region_hits();
-      const ScanMemo::Region& r = memo_->region;
-      Location location;
-      location.kind = r.kind;
-      location.cell = r.cell;
-      location.chart = r.chart;
-      return location;
-    }
-    return locate_uncarried(box, anchor, boxes);
-  }
-
-  // Whether `box`'s double enclosure (which holds its exact box) lies in the carried region of
-  // its chart: then no curve of the chart vanishes on it and it lies in the region's cell.
-  bool in_region(const PieceBox& box) const {
-    const ScanMemo::Region& r = memo_->region;
-    return r.set && box.chart == r.chart && cspace::carried_regions() && cspace::carried_bounds() &&
-           box.dx_lo >= r.x_lo && box.dx_hi <= r.x_hi && box.dy_lo >= r.y_lo && box.dy_hi <= r.y_hi;
-  }
-
-  // A new carried region around `seed` (a box in the face or on which no cell-bounding curve
-  // vanishes, holding a point of cell `cell`: a located point's box, or the box of an excluded
-  // stretch of a motion in that cell): the seed's double box widened on every side by 4, 1, then
-  // 1/4 of its width plus 2^-20, 2^-30 of the chart's width, clipped strictly inside the chart's
-  // box; the first whose every curve's interval value excludes 0 (clear_of_curves) replaces the
-  // region. It holds the seed's point of `cell` and meets no curve and no chart side, so it lies
-  // in that cell's face. Nothing is kept where none is clear.
-  void carry_region(const PieceBox& seed, std::size_t cell, Location::Kind kind) {
-    if (impl_.dimension != 2 || !cspace::carried_regions() || !cspace::carried_bounds() || cell == no_index) return;
-    if (in_region(seed)) return;
-    if (!(seed.dx_lo <= seed.dx_hi) || !(seed.dy_lo <= seed.dy_hi)) return;
-    const std::array<double, 8>& sides = memo_->chart_sides[seed.chart];
-    const double inf = std::numeric_limits<double>::infinity();
-    // strictly inside: above the upper double of x_lo, below the lower double of x_hi
-    const double x_min = std::nextafter(sides[1], inf), x_max = std::nextafter(sides[2], -inf);
-    const double y_min = std::nextafter(sides[5], inf), y_max = std::nextafter(sides[6], -inf);
-    const double chart_w = sides[3] - sides[0], chart_h = sides[7] - sides[4];
-    const double wx = seed.dx_hi - seed.dx_lo, wy = seed.dy_hi - seed.dy_lo;
-    if (!std::isfinite(chart_w) || !std::isfinite(chart_h) || !std::isfinite(wx) || !std::isfinite(wy)) return;
-    for (auto [f, g] : {std::pair{4.0, 0x1p-6}, std::pair{4.0, 0x1p-10}, std::pair{4.0, 0x1p-14}, std::pair{4.0, 0x1p-18}}) {
-      PieceBox r = seed;
-      r.dx_lo = std::max(seed.dx_lo - (f * wx + g * chart_w), x_min);
-      r.dx_hi = std::min(seed.dx_hi + (f * wx + g * chart_w), x_max);
-      r.dy_lo = std::max(seed.dy_lo - (f * wy + g * chart_h), y_min);
-      r.dy_hi = std::min(seed.dy_hi + (f * wy + g * chart_h), y_max);
-      // the seed inside (the clipping may not cut it)
-      if (!(r.dx_lo <= seed.dx_lo && r.dx_hi >= seed.dx_hi && r.dy_lo <= seed.dy_lo && r.dy_hi >= seed.dy_hi)) return;
-      if (!clear_of_curves(r)) continue;
-      ScanMemo::Region& region = memo_->region;
-      region.set = true;
-      region.chart = seed.chart;
-      region.cell = cell;
-      region.kind = kind;
-      region.x_lo = r.dx_lo;
-      region.x_hi = r.dx_hi;
-      region.y_lo = r.dy_lo;
-      region.y_hi = r.dy_hi;
-      ++cspace::carried_regions_made();
-      return;
-    }
-  }
-
-  Location locate_uncarried(const PieceBox& box, const StartAnchor* anchor, AnchorBoxes* boxes) {
     Rational x = (box.x_lo.rational() + box.x_hi.rational()) / 2, y = (box.y_lo.rational() + box.y_hi.rational()) / 2;
     x.canonicalize();
     y.canonicalize();
@@ -2584,7 +2508,6 @@ class CrossingRun {
         if (there.kind == Location::Kind::free || there.kind == Location::Kind::blocked) {
           ++cspace::filtered_starts();
           if (there.kind == Location::Kind::blocked) {
-            scanner.carry_region(quick.boxes.front(), there.cell, there.kind);
             // in a blocked cell: the 160-bit start's answer (its boxes meet no curve either, so
             // describe adds nothing to it)
             result.status = CrossingStatus::starts_in_contact;
@@ -2596,7 +2519,6 @@ class CrossingRun {
           where = there;
           located = true;
           remember_start_box(quick.boxes.front(), there.cell);
-          scanner.carry_region(quick.boxes.front(), there.cell, there.kind);
         }
       }
     }
@@ -2628,10 +2550,7 @@ class CrossingRun {
         done = true;
         return;
       }
-      if (start.possible.empty()) {
-        remember_start_box(start.boxes.front(), where.cell);
-        scanner.carry_region(start.boxes.front(), where.cell, where.kind);
-      }
+      if (start.possible.empty()) remember_start_box(start.boxes.front(), where.cell);
     }
     result.cell_left = CellId(where.cell);
   }
@@ -2784,9 +2703,6 @@ class CrossingRun {
       return;
     }
     if (at.possible.empty()) {
-      // the whole motion excluded at once: its box (in the start cell) seeds a carried region
-      if (a == path.u_begin && b == path.u_end && at.box_clear && at.boxes.size() == 1)
-        scanner.carry_region(at.boxes.front(), result.cell_left.index(), Location::Kind::free);
       // in the start cell (the stretches before it excluded or certified free): an anchor box
       if (cspace::anchor_boxes() && at.box_clear && at.boxes.size() == 1 && excluded_boxes.size() < 64)
         excluded_boxes.push_back(AnchorBox{at.boxes.front(), result.cell_left.index()});
