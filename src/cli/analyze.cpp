@@ -11,6 +11,7 @@
 #include "render/kinematics_svg.hpp"
 
 #include <hipair/certificate.hpp>
+#include <hipair/contact_labels.hpp>
 #include <hipair/cspace_region.hpp>
 #include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>
@@ -54,6 +55,7 @@ struct AnalyzeOptions {
   unsigned columns = 240;
   bool no_pictures = false;
   bool quiet = false;
+  std::set<std::string> given;   // the long options given on the command line
 };
 
 std::string trim(const std::string& text) {
@@ -225,8 +227,27 @@ int run_analyze(const AnalyzeOptions& options) {
     if (auto equals = text.find('='); equals != std::string::npos) once_per_part.add(trim(text.substr(0, equals)), text);
   auto rounding = rounding_scope(options.rounding);
   ReadOptions overrides = parameter_overrides(options.overrides, options.allow_out_of_tolerance);
+  refuse_unknown_parameters(options.model, options.overrides, "--set");
   Model model = read_model_file(options.model, overrides);
-  // a pin-in-slot follower (the film advance): its work cycle (cli/analyze_pinslot.cpp)
+  // a pin-in-slot follower (the film advance): its work cycle (cli/analyze_pinslot.cpp), which
+  // takes --driver, --direction, --steps, --out and --quiet; an option of the driven analysis is
+  // refused naming it (session 45: they were taken and ignored)
+  if (has_pin_slot_part(model))
+    for (const char* option : {"--range", "--cycles", "--load", "--no-model-loads", "--expect", "--accelerations",
+                               "--no-reversal", "--method", "--columns", "--no-pictures"})
+      if (options.given.count(option))
+        throw ModelError("", std::string(option) +
+                                 ": does not apply to a model with a pin-in-slot part, whose analysis is its work cycle "
+                                 "(one turn of the driver in --steps steps; it takes --driver, --direction, --steps, "
+                                 "--out and --quiet)");
+  // a pattern no contact label of the model's pairs contains matches nothing: every contact
+  // would be reported as unintended (session 45: `--expect nobody` was taken silently)
+  for (const std::string& pattern : options.expected)
+    if (!has_pin_slot_part(model) && !contact_label_can_contain(model, pattern))
+      throw ModelError("", shortened_message("--expect " + pattern) +
+                               ": no contact of the model's pairs has a label containing it (a label names both "
+                               "parts and features and how they touch, e.g. 'driver pin / wheel slot 1 wall R (arc "
+                               "tangent to segment)'; the report's contact sequence lists them)");
   if (has_pin_slot_part(model))
     return run_pin_slot_cycle(model, PinSlotCycleRequest{options.driver, options.direction,
                                                          options.steps == 720 ? 72u : options.steps, options.out,
@@ -249,6 +270,17 @@ int run_analyze(const AnalyzeOptions& options) {
   }
   // which part is driven decides the units of --range
   std::size_t driver_index = choose_driver(model, options.driver);
+  // a load acts on a driven part: one on the driver, or on a part that is not driven by the
+  // analysis (fixed, planar, pin-slot), was taken and ignored until session 45
+  for (const auto& [part, load] : analysis.loads) {
+    const Part& loaded = model.parts[*model.find_part(part)];
+    if (&loaded == &model.parts[driver_index])
+      throw ModelError("", load.source + ": '" + part + "' is the driver; a load acts on a driven part (the driver moves "
+                                         "as --range / --direction say)");
+    if (!can_drive(loaded))
+      throw ModelError("", load.source + ": '" + part + "' is " + motion_word(loaded.motion.kind) +
+                               "; a load acts on a rotating or translating part the driver pushes");
+  }
   analysis.driver = model.parts[driver_index].name;
   bool rotates = model.parts[driver_index].motion.kind == Motion::Kind::rotation;
   std::string direction_note;
@@ -417,7 +449,10 @@ void register_analyze(CLI::App& app, Action& action) {
       ->check(CLI::Range(16u, 4000u));
   command->add_flag("--no-pictures", options->no_pictures, "write no SVG pictures");
   command->add_flag("--quiet", options->quiet, "no progress on the terminal");
-  command->callback([&action, options] { action = [options] { return run_analyze(*options); }; });
+  command->callback([&action, options, command] {
+    options->given = given_options(*command);
+    action = [options] { return run_analyze(*options); };
+  });
 }
 
 }  // namespace hipair::cli

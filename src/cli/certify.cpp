@@ -13,6 +13,7 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <set>
 
 namespace hipair::cli {
 namespace {
@@ -22,7 +23,40 @@ struct CertifyArguments {
   std::vector<std::string> overrides, at;
   std::string distance, from, to, follower_at, ratio, start, follower_start, step, travel;
   std::string direction = "+1";
+  bool allow_out_of_tolerance = false;
+  std::set<std::string> given;   // the long options given on the command line
 };
+
+// Each claim's own options: one given for another claim is refused naming it (session 45: `--claim
+// jam --at lever=0`, `--claim interference --distance 1` and the jam search's `--step` with a
+// `--trap` were taken and ignored).
+void refuse_options_of_other_claims(const CertifyArguments& arguments) {
+  static const std::vector<std::pair<const char*, std::set<std::string>>> claims_of = {
+      {"--at", {"interference", "clearance"}},
+      {"--distance", {"clearance", "free"}},
+      {"--driver", {"jam", "free"}},
+      {"--from", {"free"}},
+      {"--to", {"free"}},
+      {"--follower-at", {"free"}},
+      {"--ratio", {"free"}},
+      {"--direction", {"jam"}},
+      {"--trap", {"jam"}},
+      {"--start", {"jam"}},
+      {"--follower-start", {"jam"}},
+      {"--step", {"jam"}},
+      {"--travel", {"jam"}}};
+  for (const auto& [option, claims] : claims_of) {
+    if (!arguments.given.count(option) || claims.count(arguments.claim)) continue;
+    std::string names;
+    for (const std::string& claim : claims) names += (names.empty() ? "" : " or ") + claim;
+    throw ModelError("", std::string(option) + ": applies to --claim " + names + ", not to --claim " + arguments.claim);
+  }
+  if (arguments.claim == "jam" && arguments.given.count("--trap"))
+    for (const char* option : {"--start", "--follower-start", "--step", "--travel"})
+      if (arguments.given.count(option))
+        throw ModelError("", std::string(option) + ": sets the jam search, and --trap names the trap (nothing is searched): "
+                                                   "give one or the other");
+}
 
 // --direction: exactly +1 (the driver's coordinate increases) or -1; "+" and "-" are synonyms.
 int direction_of(const std::string& text) {
@@ -94,12 +128,23 @@ RationalInterval range_of(const std::string& text, bool angle, const std::string
 }
 
 int run(const CertifyArguments& arguments) {
+  // a certificate holds for parameter values within their tolerances only: hipair-verify checks
+  // each value against its range (docs/certify.md); the option every other command reading --set
+  // takes is refused here with the reason (until session 45 CLI11's "not expected", exit 109)
+  if (arguments.allow_out_of_tolerance)
+    throw ModelError("", "--allow-out-of-tolerance: a certificate is proved for parameter values within their tolerance "
+                         "ranges only (hipair-verify rejects a value outside its range): write the value into the model "
+                         "(as its nominal, with its tolerance) and certify that model");
+  if (arguments.claim == "interference" || arguments.claim == "clearance" || arguments.claim == "jam" ||
+      arguments.claim == "free")
+    refuse_options_of_other_claims(arguments);
   refuse_repeated_names(arguments.overrides, "--set", "parameter");
   refuse_repeated_names(arguments.at, "--at", "part");
   // the --set rule of every command (a message naming the whole item: until session 37 certify
   // named only its value, `--set 4.5=6` for `--set pin-radius=4.5=6`)
   ReadOptions options = parameter_overrides(arguments.overrides, false);
   io::refuse_overwriting_input(arguments.out, "--out", arguments.path);
+  refuse_unknown_parameters(arguments.path, arguments.overrides, "--set");
   Model model = read_model_file(arguments.path, options);
   CertifyContext context{options.parameter_values};
   auto [first, second] = pair_of(model, arguments.pair);
@@ -316,7 +361,13 @@ void register_certify(CLI::App& app, Action& action) {
   command->add_option("--follower-start", arguments->follower_start, "jam search: follower start (default: initial)");
   command->add_option("--step", arguments->step, "jam search: driver step (default 0.002 rad / 0.01 mm)");
   command->add_option("--travel", arguments->travel, "jam search: how far to drive (default one turn / 100 mm)");
-  command->callback([&action, arguments] { action = [arguments] { return run(*arguments); }; });
+  command->add_flag("--allow-out-of-tolerance", arguments->allow_out_of_tolerance,
+                    "refused: a certificate holds for parameter values within their tolerances only (hipair-verify "
+                    "checks them); write an out-of-tolerance value into the model instead");
+  command->callback([&action, arguments, command] {
+    arguments->given = given_options(*command);
+    action = [arguments] { return run(*arguments); };
+  });
 }
 
 }  // namespace hipair::cli

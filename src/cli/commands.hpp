@@ -13,6 +13,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,6 +34,17 @@ void register_simulate(CLI::App& app, Action& action);
 /// `--allow-out-of-tolerance`. \throws ModelError naming the bad assignment.
 ReadOptions parameter_overrides(const std::vector<std::string>& assignments, bool allow_out_of_tolerance);
 
+/// Refuses an item NAME=VALUE of `option` (`--set`, `simulate --sweep`) whose NAME is no parameter
+/// of the model file at `path` (its "/parameters" keys, as the reader takes them), naming the
+/// option, the item and the parameters there are; until session 45 the reader's
+/// "/parameters: cannot override unknown parameter 'x'" named no option. A file that does not
+/// parse is left to the reader. \throws ModelError.
+void refuse_unknown_parameters(const std::string& path, const std::vector<std::string>& items, const std::string& option);
+/// The long options of `command` given on the command line ("--expect", "--full-slices"), for the
+/// checks that refuse an option that does not apply to the model or the other options (session
+/// 45: `analyze --expect nobody` and `cspace --full-slices` on a pair without slices were taken
+/// and ignored).
+std::set<std::string> given_options(const CLI::App& command);
 /// `value` read as the model's exact literal (docs/model-format.md: no space, no '+', the
 /// decimal exponent within 1000, at most 4096 bits). \throws ModelError "<argument>: <why><note>",
 /// the argument (`--set p=V`) cut after 120 characters.

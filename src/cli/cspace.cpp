@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <unistd.h>
 
 namespace hipair::cli {
@@ -46,7 +47,32 @@ struct CSpaceCommandOptions {
   std::size_t slices = 0;
   bool plane_witnesses = false;
   std::vector<std::size_t> full_slices;   // 3-DOF pairs: slices drawn at full size
+  std::set<std::string> given;             // the long options given on the command line
 };
+
+// Options that apply to one kind of pair only, or to one output, are refused when the pairs built
+// have none of that kind or the output is not asked for (session 45: `--full-slices` on a
+// fixed-axis pair, `--slices` on a pair without a pin-slot part, `--tiles` without `--region
+// operating` were taken and ignored). Checked before any C-space is built.
+void refuse_options_that_do_not_apply(const CSpaceCommandOptions& options, bool fixed_axis, bool sliced, bool pin_slot) {
+  auto refuse = [&](const char* option, const std::string& why) {
+    if (options.given.count(option)) throw ModelError("", std::string(option) + ": " + why);
+  };
+  std::string pairs = options.pair.empty() ? "the model has no " : "the pair " + options.pair + " is no ";
+  if (!sliced) refuse("--full-slices", "applies to 3-DOF pairs (a planar part against a fixed part); " + pairs + "such pair");
+  if (!pin_slot) {
+    refuse("--slices", "applies to pin-in-slot pairs; " + pairs + "such pair");
+    refuse("--plane-witnesses", "applies to pin-in-slot pairs; " + pairs + "such pair");
+  }
+  if (!fixed_axis)
+    for (const char* option : {"--region", "--tiles", "--spurious", "--aggregated", "--algebraic-traits", "--quadratic-max-bits"})
+      refuse(option, "applies to pairs of rotating or translating parts (fixed-axis pairs); " + pairs + "such pair");
+  if (options.region != "operating") refuse("--tiles", "the tiles of --region operating: give --region operating");
+  if (options.svg.empty()) {
+    refuse("--full-slices", "chooses the slices --svg draws at full size: give --svg");
+    refuse("--spurious", "draws spurious edges in --svg: give --svg");
+  }
+}
 
 void print_statistics(const CSpace& space) {
   const CSpaceStatistics& s = space.statistics();
@@ -107,7 +133,9 @@ int run(const CSpaceCommandOptions& options) {
   // names of several pairs are checked again below, before anything is written.
   io::refuse_overwriting_inputs({{options.svg, "--svg"}, {options.json, "--json"}}, {options.model});
   auto rounding = rounding_scope(options.rounding);
-  Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
+  ReadOptions overrides = parameter_overrides(options.overrides, options.allow_out_of_tolerance);
+  refuse_unknown_parameters(options.model, options.overrides, "--set");
+  Model model = read_model_file(options.model, overrides);
   CSpaceBuildOptions build;
   if (isatty(2)) build.progress = stderr_progress();
   build.aggregated_insertion = options.aggregated;
@@ -132,16 +160,28 @@ int run(const CSpaceCommandOptions& options) {
         throw ModelError("", "--pair " + options.pair + ": no part called '" + name + "' (the parts: " + names + ")");
       }
     if (first == second) throw ModelError("", "--pair " + options.pair + ": a pair needs two different parts");
-    if (auto sliced = sliced_pair(model, first, second))
+    if (auto sliced = sliced_pair(model, first, second)) {
+      refuse_options_that_do_not_apply(options, false, true, false);
       sliced_requests.push_back(*sliced);
-    else if (auto pin = pin_slot_pair(model, first, second))
+    } else if (auto pin = pin_slot_pair(model, first, second)) {
+      refuse_options_that_do_not_apply(options, false, false, true);
       pin_requests.push_back(*pin);
-    else
+    } else {
+      refuse_options_that_do_not_apply(options, true, false, false);
       spaces.push_back(CSpace::build(model, first, second, build));
+    }
   } else {
-    spaces = CSpace::build_all(model, build);
     sliced_requests = sliced_pairs(model);
     pin_requests = pin_slot_pairs(model);
+    // (a fixed-axis pair: at most one degree of freedom per part, one at least, as
+    // CSpace::build_all takes them)
+    bool fixed_axis = false;
+    for (const PairSpec& pair : model.pairs) {
+      int a = model.parts[pair.first].motion.degrees_of_freedom(), b = model.parts[pair.second].motion.degrees_of_freedom();
+      fixed_axis = fixed_axis || (a <= 1 && b <= 1 && a + b > 0);
+    }
+    refuse_options_that_do_not_apply(options, fixed_axis, !sliced_requests.empty(), !pin_requests.empty());
+    spaces = CSpace::build_all(model, build);
     if (spaces.empty() && sliced_requests.empty() && pin_requests.empty())
       throw GeometryError("the model has no fixed-axis pair with a moving part, no 3-DOF pair (a planar part "
                           "against a fixed part) and no pin-in-slot pair");
@@ -274,7 +314,10 @@ void register_cspace(CLI::App& app, Action& action) {
                     "(one 2-D C-space per slide tried; slower, connects more)");
   add_parameter_options(command, options->overrides, options->allow_out_of_tolerance);
   add_rounding_option(command, options->rounding);
-  command->callback([options, &action] { action = [options] { return run(*options); }; });
+  command->callback([options, &action, command] {
+    options->given = given_options(*command);
+    action = [options] { return run(*options); };
+  });
 }
 
 }  // namespace hipair::cli

@@ -127,7 +127,9 @@ void apply_configuration(const Model& model, const std::vector<std::string>& ite
 int run_show(const ShowOptions& options) {
   io::refuse_overwriting_input(options.svg, "--svg", options.model);
   auto rounding = rounding_scope(options.rounding);
-  Model model = read_model_file(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
+  ReadOptions overrides = parameter_overrides(options.overrides, options.allow_out_of_tolerance);
+  refuse_unknown_parameters(options.model, options.overrides, "--set");
+  Model model = read_model_file(options.model, overrides);
   std::vector<PartConfiguration> configurations;
   for (const Part& part : model.parts) configurations.push_back(part.initial);
   apply_configuration(model, options.configuration, configurations);

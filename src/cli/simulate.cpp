@@ -480,6 +480,10 @@ int run_sweep(const SimulateOptions& options) {
   once.add(name, "--sweep " + options.sweep);
   std::vector<Rational> values;
   for (long i = 0; i < n; ++i) values.push_back(n == 1 ? a : Rational(a + (b - a) * Rational(i, n - 1)));
+  // a name the model lacks, named as the option that gave it (until session 45 the reader's
+  // "/parameters: cannot override unknown parameter", also for the --sweep parameter)
+  refuse_unknown_parameters(options.model, options.overrides, "--set");
+  refuse_unknown_parameters(options.model, {options.sweep}, "--sweep");
   // every model is read (and checked) before any run starts: a bad value stops the sweep at once
   std::vector<Model> models;
   for (const Rational& v : values) {
@@ -931,8 +935,9 @@ int run(const SimulateOptions& options) {
   if (!options.sweep.empty()) return run_sweep(options);
   if (!options.works_period.empty() || !options.works_advance.empty() || options.works_max_decay >= 0)
     throw ModelError("", "--works-period, --works-advance and --works-max-decay judge a --sweep's runs: give --sweep");
-  Model model =
-      read_model_file_for_simulation(options.model, parameter_overrides(options.overrides, options.allow_out_of_tolerance));
+  ReadOptions overrides = parameter_overrides(options.overrides, options.allow_out_of_tolerance);
+  refuse_unknown_parameters(options.model, options.overrides, "--set");
+  Model model = read_model_file_for_simulation(options.model, overrides);
   check_simulator_range(model);   // before anything converts the model to doubles (also in create())
   check_own_frequency(model, options);
   // parts free in the plane: one (PlanarSimulation) or several (PlanarSystemSimulation)

@@ -320,6 +320,7 @@ int run(const ToleranceCliOptions& options) {
     throw ModelError("", "give either --pair or --driver, not both");
   if (options.certify_interference && options.chain) throw ModelError("", "--certify-interference is per pair: drop --chain");
   ReadOptions overrides = parameter_overrides(options.overrides, options.allow_out_of_tolerance);
+  refuse_unknown_parameters(options.model, options.overrides, "--set");
   if (options.certify_interference && !overrides.parameter_values.empty())
     throw ModelError("", "--certify-interference certifies the model file as written (hipair-verify checks the "
                          "certificate against it): drop --set, or write the changed nominal values into the model");

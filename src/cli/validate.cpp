@@ -2,6 +2,8 @@
 // and, when valid, prints a summary including every value that had to be rounded.
 #include "cli/commands.hpp"
 #include "core/decimal_text.hpp"
+#include "io/atomic_file.hpp"
+#include "model/json_document.hpp"
 #include "model/expression.hpp"
 #include "model/interval.hpp"
 
@@ -132,6 +134,7 @@ void register_validate(CLI::App& app, Action& action) {
   command->callback([&action, arguments] {
     action = [arguments] {
       ReadOptions options = read_options(*arguments);
+      refuse_unknown_parameters(arguments->path, arguments->overrides, "--set");
       auto rounding = rounding_scope(arguments->rounding);
       Model model = read_model_file(arguments->path, options);
       std::ostringstream summary;
@@ -169,6 +172,42 @@ Rational exact_option_literal(const std::string& value, const std::string& argum
                             ? argument
                             : argument.substr(0, 120) + "... (" + std::to_string(argument.size()) + " characters)";
     throw ModelError("", shown + ": " + error.reason() + note);
+  }
+}
+
+std::set<std::string> given_options(const CLI::App& command) {
+  std::set<std::string> given;
+  for (const CLI::Option* option : command.get_options())
+    if (option->count() > 0)
+      for (const std::string& name : option->get_lnames()) given.insert("--" + name);
+  return given;
+}
+
+void refuse_unknown_parameters(const std::string& path, const std::vector<std::string>& items, const std::string& option) {
+  if (items.empty()) return;
+  model_detail::JsonValue root;
+  try {
+    root = model_detail::parse_json(io::read_file(path));
+  } catch (const Error&) {   // the reader reports a file it cannot read, or bad JSON, itself
+    return;
+  }
+  if (root.type != model_detail::JsonValue::Type::object) return;
+  const model_detail::JsonValue* parameters = root.find("parameters");
+  if (parameters && parameters->type != model_detail::JsonValue::Type::object) return;
+  for (const std::string& item : items) {
+    auto equals = item.find('=');
+    if (equals == std::string::npos) continue;   // the option's own parser says what is wrong
+    std::string name = item.substr(0, equals);
+    if (parameters && parameters->find(name)) continue;
+    std::string names;   // the first ten, and how many there are
+    if (parameters)
+      for (std::size_t k = 0; k < parameters->members.size() && k < 10; ++k)
+        names += (names.empty() ? "'" : ", '") + shown_name(parameters->members[k].key) + "'";
+    if (parameters && parameters->members.size() > 10)
+      names += ", ... (" + std::to_string(parameters->members.size()) + " parameters)";
+    throw ModelError("", shortened_message(option + " " + item) + ": the model has no parameter called '" +
+                             shown_name(name) + "' (" + (names.empty() ? "it has no parameters" : "the parameters: " + names) +
+                             ")");
   }
 }
 
