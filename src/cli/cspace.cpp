@@ -128,6 +128,38 @@ std::filesystem::path suffixed(const std::string& path, const SlicedSpace& space
   return suffixed(path, space.fixed_part(), space.free_part(), several);
 }
 
+// An operating region is the channel of the initial configuration. Its build refuses a seed whose
+// quadtree cell is certainly blocked ("the parts certainly overlap at the seed configuration",
+// exit 3), but a start that overlaps by less than a quadtree cell was built as a region around a
+// blocked start (a 13 x 14 gear pair at zero backlash: one blocked cell; a lever 10^-3 mm into a
+// turning stop: a free and a blocked cell), exit 0 (session 45). The built region now decides
+// the start exactly, where its coordinates are exact rationals (a rotation at angle 0, any
+// translation offset): located in a blocked cell (or on a curve piece inside one), the same error.
+// An initial angle other than 0 has an irrational half-angle tangent: left to the build's test.
+void refuse_blocked_start(const Model& model, const CSpace& space) {
+  if (space.complete() || space.dimension() != 2) return;
+  auto coordinate = [&](const std::string& name) -> std::optional<PartCoordinate> {
+    auto index = model.find_part(name);
+    if (!index) return std::nullopt;
+    const Part& part = model.parts[*index];
+    if (part.motion.kind == Motion::Kind::translation)
+      return PartCoordinate{PartCoordinate::Kind::offset, part.initial.offset};
+    if (part.motion.kind == Motion::Kind::rotation && sgn(part.initial.angle) == 0)
+      return PartCoordinate{PartCoordinate::Kind::half_angle_tangent, Rational(0)};
+    return std::nullopt;
+  };
+  auto x = coordinate(space.x_part()), y = coordinate(space.y_part());
+  if (!x || !y) return;
+  Location location = space.locate(*x, *y);
+  bool blocked = location.kind == Location::Kind::blocked ||
+                 ((location.kind == Location::Kind::edge || location.kind == Location::Kind::vertex) &&
+                  location.cell != no_index && space.cells()[location.cell].kind == CellKind::blocked);
+  if (blocked)
+    throw GeometryError("operating region of '" + space.first_part() + "' and '" + space.second_part() +
+                        "': the parts certainly overlap at the seed configuration (the initial configuration lies in "
+                        "blocked space of the exact C-space built around it: there is no channel to build)");
+}
+
 int run(const CSpaceCommandOptions& options) {
   // Refused before the (possibly long) build when the paths are used as given; the suffixed
   // names of several pairs are checked again below, before anything is written.
@@ -169,6 +201,7 @@ int run(const CSpaceCommandOptions& options) {
     } else {
       refuse_options_that_do_not_apply(options, true, false, false);
       spaces.push_back(CSpace::build(model, first, second, build));
+      refuse_blocked_start(model, spaces.back());
     }
   } else {
     sliced_requests = sliced_pairs(model);
@@ -182,6 +215,7 @@ int run(const CSpaceCommandOptions& options) {
     }
     refuse_options_that_do_not_apply(options, fixed_axis, !sliced_requests.empty(), !pin_requests.empty());
     spaces = CSpace::build_all(model, build);
+    for (const CSpace& space : spaces) refuse_blocked_start(model, space);
     if (spaces.empty() && sliced_requests.empty() && pin_requests.empty())
       throw GeometryError("the model has no fixed-axis pair with a moving part, no 3-DOF pair (a planar part "
                           "against a fixed part) and no pin-in-slot pair");

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# An operating region around an overlapping start, session 45 (hunt45): docs/cli.md "cspace".
+# The lever of lever-stop.json against its stop made to turn (about (45, 30)), the stop's face
+# moved into the lever by a generated overlap (10^-k mm, k in 1..12, or a random fraction of a
+# mm): the start (both parts at angle 0) overlaps, which certify --claim interference proves and
+# hipair-verify accepts (the exact overlap predicate). `cspace --region operating` must refuse it,
+# exit 3, "the parts certainly overlap at the seed configuration", nothing written: until session
+# 45 an overlap shallower than the region's quadtree cell was built as a region around a blocked
+# start (exit 0, a free and a blocked cell), a deeper one refused. Controls: the stop's face
+# exactly on the lever (zero clearance: touching, no interference certificate) and the model's own
+# gap build, exit 0. Generated cases (a seed per run, printed on failure; HIPAIR_TEST_SEED repeats
+# one).
+# usage: run_blocked_start_tests.sh HIPAIR_BINARY HIPAIR_VERIFY SOURCE_DIR WORK_DIR
+set -uo pipefail
+hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "$hipair_python" "$@"; }
+hipair=$1 verify=$2 source=$3 work=$4
+rm -rf "$work" && mkdir -p "$work"
+failures=0
+seed=${HIPAIR_TEST_SEED:-$RANDOM}
+RANDOM=$seed
+fail() { echo "FAIL (seed $seed): $*"; failures=$((failures + 1)); }
+# the model with its stop-gap's nominal value G (no tolerance): a certificate holds for the file
+turning_stop() {   # G FILE
+  python3 - "$source/examples/models/lever-stop.json" "$1" "$2" <<'PY'
+import json, sys
+t = json.load(open(sys.argv[1]))
+t['parameters']['stop-gap'] = {'nominal': sys.argv[2]}
+t['parts'][1]['motion'] = {'rotation': {'pivot': [45, 30]}}
+t['parts'][1]['initial'] = {'angle': 0}
+json.dump(t, open(sys.argv[3], 'w'), indent=1)
+PY
+}
+gaps=("-1e-$((RANDOM % 12 + 1))" "-$((RANDOM % 999 + 1))/1000")
+for g in "${gaps[@]}"; do
+  what="stop-gap $g"
+  model=$work/turning-stop.json
+  turning_stop "$g" "$model"
+  # the start overlaps: proved by the exact predicate (certify + hipair-verify)
+  "$hipair" certify "$model" --claim interference --at lever=0 --at stop=0 --out "$work/i.json" \
+    >"$work/i.out" 2>&1 || { fail "$what: the start's interference is not certified: $(tail -c 300 "$work/i.out")"; continue; }
+  "$verify" "$work/i.json" "$model" >"$work/v.out" 2>&1 || fail "$what: hipair-verify: $(cat "$work/v.out")"
+  rm -f "$work/x.json"
+  timeout 120 "$hipair" cspace "$model" --region operating --json "$work/x.json" >"$work/c.out" 2>"$work/c.err"
+  code=$?
+  [ $code -eq 3 ] || fail "$what: cspace --region operating: exit $code, want 3: $(head -c 300 "$work/c.err")"
+  grep -qF "hipair: error: operating region of 'lever' and 'stop': the parts certainly overlap at the seed configuration" \
+    "$work/c.err" || fail "$what: message: $(head -c 300 "$work/c.err")"
+  [ "$(wc -l <"$work/c.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/c.err")"
+  [ -e "$work/x.json" ] && fail "$what: wrote --json"
+done
+# controls: touching at the start (no interference), and the model's own gap
+for g in 0 2; do
+  model=$work/turning-stop-$g.json
+  turning_stop "$g" "$model"
+  "$hipair" certify "$model" --claim interference --at lever=0 --at stop=0 --out "$work/i.json" >"$work/i.out" 2>&1
+  [ $? -eq 1 ] || fail "stop-gap $g: an interference at the start was certified: $(tail -c 300 "$work/i.out")"
+  timeout 120 "$hipair" cspace "$model" --region operating --json "$work/ok.json" >"$work/ok.out" 2>&1 ||
+    fail "stop-gap $g: cspace --region operating: exit $?: $(tail -c 300 "$work/ok.out")"
+done
+
+if [ $failures -gt 0 ]; then
+  echo "$failures failure(s) (seed $seed)"
+  exit 1
+fi
+echo "blocked-start tests passed (seed $seed)"
