@@ -16,6 +16,12 @@ mkdir -p "$out"
 "$hipair" certify "$models/film-advance.json" --claim clearance --pair cam:follower --out "$out/film-cam-clearance.json"
 "$hipair" certify "$models/film-advance.json" --claim clearance --pair pin:follower --at follower=-2,-3deg --out "$out/film-pin-clearance.json"
 "$hipair" certify "$models/film-advance.json" --claim interference --pair film:follower --at film=0 --at follower=4,5deg --out "$out/film-claw-interference.json"
+# Gear pairs (arcs-only involute flanks; session 45): the spur gears apart at their initial
+# configuration, overlapping with the pinion turned 0.05 rad, and free over 0.05 rad of the pinion
+# with the gear following at the tooth ratio -18/27.
+"$hipair" certify "$models/spur-gears.json" --claim clearance --at pinion=0 --at gear=0 --out "$out/spur-clearance.json"
+"$hipair" certify "$models/spur-gears.json" --claim interference --at pinion=0.05 --at gear=0 --out "$out/spur-interference.json"
+"$hipair" certify "$models/spur-gears.json" --claim free --driver pinion --from 0 --to 0.05 --ratio -2/3 --out "$out/spur-free.json"
 # Tolerance certificates (`hipair tolerance`, docs/certify.md "Tolerance"): no jam of the Geneva
 # over the pin's entry at 2 x the declared tolerances, and never interferes with the wheel held
 # at 0 while the pin enters slot 1's mouth.

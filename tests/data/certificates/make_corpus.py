@@ -53,6 +53,9 @@ bases = [
     ("geneva-tolerance-no-interference.json", "geneva.json"),
     ("geneva-tolerance-no-jam-0.9-threshold.json", "geneva.json"),
     ("geneva-tolerance-no-jam-4x-free-path.json", "geneva.json"),
+    ("spur-clearance.json", "spur-gears.json"),
+    ("spur-interference.json", "spur-gears.json"),
+    ("spur-free.json", "spur-gears.json"),
 ]
 # The no_jam bases whose free follower path check 7 proves (docs/certify.md "Tolerance"): the
 # 2 x certificate and the 4 x one produced with --certify-free-path. The 0.9 x one passes checks
@@ -398,6 +401,27 @@ mutate(SECOND, "geneva.json", "t24-nojam-second-order-tolerance-changed.json", "
 mutate(SECOND, "geneva.json", "t25-nojam-second-order-scale-only-changed.json", "wrong parameter box",
        set_path(["tolerance", "scale"], "8"))
 mutate(SECOND, "geneva.json", "t26-nojam-second-order-range-shifted.json", "coverage gap", range_shifted)
+
+# Gear pairs (session 45): the spur gears' involute flanks are arcs only, the parts' pivots lie
+# inside one part each ((0, 0) the pinion's, (45, 0) the gear's).
+mutate("spur-interference.json", "spur-gears.json", "g01-gear-point-at-pinion-pivot.json",
+       "is not strictly inside part 'gear' (it lies outside)", set_path(["interference", "point"], ["0", "0"]))
+mutate("spur-interference.json", "spur-gears.json", "g02-gear-point-at-gear-pivot.json",
+       "is not strictly inside part 'pinion' (it lies outside)", set_path(["interference", "point"], ["45", "0"]))
+mutate("spur-interference.json", "spur-gears.json", "g03-gear-tangent-off-angle.json", "is not within",
+       set_path(["interference", "configuration", "pinion", "tangent"], "0"))
+mutate("spur-clearance.json", "spur-gears.json", "g04-gear-clearance-too-large.json", "less than the claimed",
+       set_path(["clearance", "distance"], "258886/5000000"))
+mutate("spur-clearance.json", "spur-gears.json", "g05-gear-clearance-at-overlap.json", "less than the claimed",
+       lambda c: c["clearance"]["configuration"].__setitem__(
+           "pinion", copy.deepcopy(load("spur-interference.json")["interference"]["configuration"]["pinion"])))
+mutate("spur-free.json", "spur-gears.json", "g06-gear-free-box-removed.json", "gap in the boxes' cover",
+       lambda c: c["free_passage"]["boxes"].pop(len(c["free_passage"]["boxes"]) // 2))
+mutate("spur-free.json", "spur-gears.json", "g07-gear-free-range-extended.json", "at its end",
+       lambda c: (c["free_passage"].__setitem__("range", ["0", "1/10"]),
+                  c["free_passage"].__setitem__("path", [["0", "0"], ["1/10", "-1/15"]])))
+mutate("spur-free.json", "spur-gears.json", "g08-gear-free-distance-too-large.json",
+       "less than the claimed clearance plus the motion", set_path(["free_passage", "distance"], "1/10"))
 
 with open(os.path.join(HERE, "EXPECTED.txt"), "w") as f:
     f.write("# certificate | model (relative to the repository) | expected: valid, unproven (exit 3), or a substring of the reason | base\n")
