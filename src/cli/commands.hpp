@@ -38,7 +38,7 @@ ReadOptions parameter_overrides(const std::vector<std::string>& assignments, boo
 /// of the model file at `path` (its "/parameters" keys, as the reader takes them), naming the
 /// option, the item and the parameters there are; until session 45 the reader's
 /// "/parameters: cannot override unknown parameter 'x'" named no option. A file that does not
-/// parse is left to the reader. \throws ModelError.
+/// parse is left to the reader; an item "NAME=" is shown as NAME (`tolerance --vary NAME`). \throws ModelError.
 void refuse_unknown_parameters(const std::string& path, const std::vector<std::string>& items, const std::string& option);
 /// The long options of `command` given on the command line ("--expect", "--full-slices"), for the
 /// checks that refuse an option that does not apply to the model or the other options (session

@@ -26,6 +26,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <numbers>
 #include <sstream>
 
@@ -54,6 +55,7 @@ struct ToleranceCliOptions {
   std::string certify_scale = "1";
   std::size_t certify_leaves = 20000;
   bool certify_free_path = false;
+  std::set<std::string> given;   // the long options given on the command line
   bool certify_interference = false;
   std::string follower_range;
   std::vector<std::string> overrides;   // --set NAME=VALUE: the design's new nominal values
@@ -321,6 +323,11 @@ int run(const ToleranceCliOptions& options) {
   if (options.certify_interference && options.chain) throw ModelError("", "--certify-interference is per pair: drop --chain");
   ReadOptions overrides = parameter_overrides(options.overrides, options.allow_out_of_tolerance);
   refuse_unknown_parameters(options.model, options.overrides, "--set");
+  // --vary names parameters too (until session 45 "/parameters: unknown parameter 'x' for the
+  // threshold search", no option)
+  std::vector<std::string> varied;
+  for (const std::string& name : options.vary) varied.push_back(name + "=");
+  refuse_unknown_parameters(options.model, varied, "--vary");
   if (options.certify_interference && !overrides.parameter_values.empty())
     throw ModelError("", "--certify-interference certifies the model file as written (hipair-verify checks the "
                          "certificate against it): drop --set, or write the changed nominal values into the model");
@@ -367,6 +374,12 @@ int run(const ToleranceCliOptions& options) {
   analysis.certify_scale = certify_scale(scale, options.certify_scale);
   analysis.certify_max_leaves = options.certify_leaves;
   analysis.certify_free_path = options.certify_free_path;
+  // the certificate's scale and budget without a certificate were taken and ignored (session 45;
+  // checked after the scale's own checks)
+  if (!options.certify && !options.certify_free_path)
+    for (const char* option : {"--certify-scale", "--certify-leaves"})
+      if (options.given.count(option))
+        throw ModelError("", std::string(option) + " is for --certify, --certify-free-path or --certify-interference");
   bool terminal = isatty(2) && !options.quiet;
   if (terminal)
     // written when the percent grows (the nominal sweep's fractions are not monotonic: docs/performance.md, session 36)
@@ -466,7 +479,10 @@ void register_tolerance(CLI::App& app, Action& action) {
                     "(check it with hipair-verify)");
   command->add_option("--follower-range", options->follower_range,
                       "--certify-interference: the follower's range A:B, or one value for a follower held still");
-  command->callback([options, &action] { action = [options] { return run(*options); }; });
+  command->callback([options, &action, command] {
+    options->given = given_options(*command);
+    action = [options] { return run(*options); };
+  });
 }
 
 }  // namespace hipair::cli

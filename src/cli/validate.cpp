@@ -205,7 +205,9 @@ void refuse_unknown_parameters(const std::string& path, const std::vector<std::s
         names += (names.empty() ? "'" : ", '") + shown_name(parameters->members[k].key) + "'";
     if (parameters && parameters->members.size() > 10)
       names += ", ... (" + std::to_string(parameters->members.size()) + " parameters)";
-    throw ModelError("", shortened_message(option + " " + item) + ": the model has no parameter called '" +
+    // (an item "NAME=" stands for a bare name: tolerance --vary NAME)
+    const std::string& shown = equals + 1 == item.size() ? name : item;
+    throw ModelError("", shortened_message(option + " " + shown) + ": the model has no parameter called '" +
                              shown_name(name) + "' (" + (names.empty() ? "it has no parameters" : "the parameters: " + names) +
                              ")");
   }

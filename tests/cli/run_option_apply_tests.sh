@@ -13,6 +13,9 @@
 #   `--spurious`, `--aggregated`, `--algebraic-traits`, `--quadratic-max-bits`) on a model or
 #   --pair with no fixed-axis pair, `--tiles` without `--region operating`, `--spurious` without
 #   --svg;
+# - `tolerance --vary NAME` naming no parameter (it said "/parameters: unknown parameter"), and
+#   `--certify-scale` or `--certify-leaves` without --certify, --certify-free-path or
+#   --certify-interference;
 # - `certify` options of another claim (`--claim jam --at`, `--claim interference --distance`,
 #   ...), the jam search's options with `--trap`, and `--allow-out-of-tolerance` (a certificate
 #   holds within the tolerances only; until session 45 CLI11's "not expected", exit 109).
@@ -52,6 +55,13 @@ for round in $(seq 1 4); do
   refused "${command[0]} --set $w=1" "--set $w=1: the model has no parameter called '$w' (the parameters: '" "${command[@]}" --set "$w=1"
   refused "simulate --sweep $w=1:2:2" "--sweep $w=1:2:2: the model has no parameter called '$w'" \
     simulate "$geneva" --t-end 0.01 --no-pictures --sweep "$w=1:2:2"
+  # tolerance --vary naming no parameter; the certificate's scale or budget without a certificate
+  refused "tolerance --vary $w" "--vary $w: the model has no parameter called '$w'" \
+    tolerance "$geneva" --vary pin-radius --vary "$w" --threshold --quiet --out "$work/out"
+  option=$( ((RANDOM % 2)) && echo "--certify-scale $((RANDOM % 5 + 1))" || echo "--certify-leaves $((RANDOM % 900 + 100))")
+  # shellcheck disable=SC2086
+  refused "tolerance $option without --certify" "${option%% *} is for --certify, --certify-free-path or --certify-interference" \
+    tolerance "$geneva" $option --range 2.2:2.3 --quiet --out "$work/out"
   # analyze --expect: a pattern no label holds (a word, or a real piece with a character changed)
   refused "analyze --expect $w" "--expect $w: no contact of the model's pairs has a label containing it" \
     analyze "$(((RANDOM % 2)) && echo "$geneva" || echo "$ratchet")" --expect "$w" --quiet --out "$work/out"
