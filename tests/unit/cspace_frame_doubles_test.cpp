@@ -169,6 +169,7 @@ TEST(CSpaceFrameDoubles, SimulationRunsEqualTheRunsWithoutIt) {
   const Case cases[] = {{"escapement.json", 0.5, 1e-3}, {"escapement.json", 0.1, 1e-6}, {"ratchet.json", 0.2, 1e-6},
                         {"cam-follower.json", 0.3, 1e-6}, {"scotch-yoke.json", 0.3, 1e-6}};
   std::size_t steps = 0, events = 0;
+  const std::size_t misses_before = simulation::frame_cache_misses(), fallbacks_before = contact_frame_ranges_fallbacks();
   for (const Case& c : cases) {
     Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / c.model);
     SimulationOptions options;
@@ -180,7 +181,14 @@ TEST(CSpaceFrameDoubles, SimulationRunsEqualTheRunsWithoutIt) {
     steps += run.steps;
     events += run.events;
   }
-  std::printf("frame doubles: %zu steps, %zu events equal\n", steps, events);
+  // frames made (the runs with the route and without it alike: half each), and how many of the
+  // route's were answered by contact_frame
+  const std::size_t made = simulation::frame_cache_misses() - misses_before;
+  const std::size_t fallbacks = contact_frame_ranges_fallbacks() - fallbacks_before;
+  std::printf("frame doubles: %zu steps, %zu events equal; %zu frames made by the route, %zu of them by contact_frame\n",
+              steps, events, made / 2, fallbacks);
+  EXPECT_GT(made / 2, 1000u);
+  EXPECT_LT(fallbacks, made / 20);
   EXPECT_GT(events, 50u);
 }
 
