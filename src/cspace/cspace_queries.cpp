@@ -9,6 +9,7 @@
 #include <hipair/cspace.hpp>
 #include <hipair/cspace_slice.hpp>
 #include <hipair/blocked_walk.hpp>
+#include <hipair/contact_frame_doubles.hpp>
 #include <hipair/crossing_before.hpp>
 #include <hipair/edge_tracker.hpp>
 #include <hipair/edge_slope.hpp>
@@ -207,14 +208,16 @@ kernels::ContactFrame<T> frame_with(const CSpace::Impl& impl, std::size_t c, con
 
 // frame_memo (cspace/frame_memo.hpp): per thread, per space, the enclosed body geometries of
 // the feature pairs met so far.
+// Also the double enclosures (KInterval::enclose) of the public charts' bounds x_lo, x_hi, y_lo,
+// y_hi, for contact_frame_ranges' chart tests (made with the memo).
 struct FrameMemo {
   std::weak_ptr<const CSpace::Impl> owner;
   std::vector<std::optional<std::array<kernels::FeatureGeometry<KInterval>, 2>>> pairs;
+  std::vector<std::array<KInterval, 4>> bounds;
 };
 
-// The enclosed body geometries of feature pair `index` of `space` (from the memo, or made and
-// remembered).
-const std::array<kernels::FeatureGeometry<KInterval>, 2>& enclosed_geometries(const CSpace& space, std::size_t index) {
+// The memo of `space` on this thread (found, or made).
+FrameMemo& frame_memo_of(const CSpace& space) {
   thread_local std::vector<FrameMemo> memos;
   const std::shared_ptr<const CSpace::Impl>& owner = CSpaceAccess::shared(space);
   const CSpace::Impl& impl = *owner;
@@ -223,11 +226,23 @@ const std::array<kernels::FeatureGeometry<KInterval>, 2>& enclosed_geometries(co
   if (it == memos.end()) {
     std::erase_if(memos, [](const FrameMemo& m) { return m.owner.expired(); });
     if (memos.size() >= 16) memos.erase(memos.begin());
-    memos.push_back(FrameMemo{owner, {}});
+    FrameMemo made{owner, {}, {}};
+    for (const CSpaceChart& chart : impl.public_charts)
+      made.bounds.push_back({KInterval::enclose(chart.x_lo), KInterval::enclose(chart.x_hi), KInterval::enclose(chart.y_lo),
+                             KInterval::enclose(chart.y_hi)});
+    memos.push_back(std::move(made));
     it = std::prev(memos.end());
   }
-  if (it->pairs.size() < impl.feature_pairs.size()) it->pairs.resize(impl.feature_pairs.size());
-  std::optional<std::array<kernels::FeatureGeometry<KInterval>, 2>>& slot = it->pairs[index];
+  return *it;
+}
+
+// The enclosed body geometries of feature pair `index` of `space` (from the memo, or made and
+// remembered).
+const std::array<kernels::FeatureGeometry<KInterval>, 2>& enclosed_geometries(const CSpace& space, std::size_t index) {
+  FrameMemo& memo = frame_memo_of(space);
+  const CSpace::Impl& impl = implementation(space);
+  if (memo.pairs.size() < impl.feature_pairs.size()) memo.pairs.resize(impl.feature_pairs.size());
+  std::optional<std::array<kernels::FeatureGeometry<KInterval>, 2>>& slot = memo.pairs[index];
   if (slot) {
     ++cspace::frame_memo_hits();
     return *slot;
@@ -366,6 +381,144 @@ std::optional<Contact> CSpace::contact_frame(FeatureId feature, const PartCoordi
   contact.point_range = {range_of(frame.point.x), range_of(frame.point.y)};
   contact.normal = unit_normal(frame.normal);
   return contact;
+}
+
+// ------------------------------------------------------------------ contact_frame_ranges
+
+std::size_t& contact_frame_ranges_fallbacks() { return thread_counter<struct ContactFrameRangesFallbacksTag>(); }
+
+namespace {
+
+// A chart value known by doubles: lo <= value <= hi, lo == hi when the value is that double
+// (tight: otherwise lo and hi are adjacent doubles and the value lies strictly between them).
+struct TightValue {
+  double lo = 0, hi = 0;
+  // KInterval::enclose of the exact value: [0, 0] for 0, [v, up(v)] / [down(v), v] for a
+  // nonzero double v (enclose truncates toward zero and steps away even when exact), the
+  // adjacent pair itself otherwise
+  KInterval enclosure() const {
+    if (lo != hi) return KInterval(lo, hi);
+    if (lo == 0) return KInterval(0.0, 0.0);
+    return lo > 0 ? KInterval(lo, kernels::interval_detail::up(lo)) : KInterval(kernels::interval_detail::down(lo), lo);
+  }
+};
+
+enum class Decided { no, yes, unknown };
+
+// value < bound, for `bound` enclosed by b (b.lo <= bound <= b.hi)
+Decided below(const TightValue& v, const KInterval& b) {
+  if (v.hi < b.lo) return Decided::yes;
+  if (v.lo >= b.hi) return Decided::no;
+  return Decided::unknown;
+}
+// value > bound
+Decided above(const TightValue& v, const KInterval& b) {
+  if (v.lo > b.hi) return Decided::yes;
+  if (v.hi <= b.lo) return Decided::no;
+  return Decided::unknown;
+}
+
+// chart_points' `convert` on a double coordinate: the chart value, nullopt where the chart
+// cannot express it; `undecided` where the doubles do not answer as the rationals would (a kind
+// its axis refuses: convert throws; -1/value beyond 2^+-500)
+std::optional<TightValue> chart_value(const DoubleCoordinate& p, AxisKind kind, bool half_turn, bool& undecided) {
+  if (kind == AxisKind::translation) {
+    if (p.kind != PartCoordinate::Kind::offset) {
+      undecided = true;
+      return std::nullopt;
+    }
+    const double v = p.value == 0 ? 0.0 : p.value;   // -0 is the rational 0
+    return TightValue{v, v};
+  }
+  if (p.kind == PartCoordinate::Kind::offset) {
+    undecided = true;
+    return std::nullopt;
+  }
+  if (p.kind == PartCoordinate::Kind::half_turn) {
+    if (!half_turn) return std::nullopt;
+    return TightValue{0.0, 0.0};
+  }
+  const double v = p.value == 0 ? 0.0 : p.value;
+  if (!half_turn) return TightValue{v, v};
+  if (v == 0) return std::nullopt;
+  const double magnitude = std::abs(v);
+  if (!(magnitude >= 0x1p-500 && magnitude <= 0x1p500)) {
+    undecided = true;
+    return std::nullopt;
+  }
+  // t = -1/v (tan((theta - pi)/2) = -cot(theta/2)); q its rounded quotient. The residual
+  // q v + 1 = v (q - t) is a double (the error of a division without underflow), so fma gives it
+  // exactly and its sign times v's is the sign of q - t.
+  const double q = -1.0 / v;
+  const double r = std::fma(q, v, 1.0);
+  if (r == 0) return TightValue{q, q};
+  const bool q_above = (r > 0) == (v > 0);
+  if (q_above) return TightValue{kernels::interval_detail::down(q), q};
+  return TightValue{q, kernels::interval_detail::up(q)};
+}
+
+}  // namespace
+
+std::optional<FrameRanges> contact_frame_ranges(const CSpace& space, FeatureId feature, const DoubleCoordinate& x,
+                                                const DoubleCoordinate& y) {
+  const CSpace::Impl& impl = checked(space);
+  auto exact_answer = [&]() -> std::optional<FrameRanges> {
+    ++contact_frame_ranges_fallbacks();
+    auto part = [](const DoubleCoordinate& d) {
+      return PartCoordinate{d.kind, d.kind == PartCoordinate::Kind::half_turn ? Rational(0) : Rational(d.value)};
+    };
+    std::optional<Contact> c = space.contact_frame(feature, part(x), part(y));
+    if (!c) return std::nullopt;
+    return FrameRanges{c->point_range, c->normal};
+  };
+  if (!impl.model) return exact_answer();   // contact_frame's error
+  if (!feature.valid() || feature.index() >= impl.feature_pairs.size()) return exact_answer();
+  const std::size_t index = feature.index();
+  FrameMemo& memo = frame_memo_of(space);
+  // the first chart that holds the configuration (chart_points with first_only)
+  std::optional<std::size_t> chart_index;
+  TightValue cx, cy;
+  for (std::size_t c = 0; c < impl.public_charts.size(); ++c) {
+    const CSpaceChart& chart = impl.public_charts[c];
+    const std::array<KInterval, 4>& b = memo.bounds[c];
+    bool undecided = false;
+    std::optional<TightValue> vx = chart_value(x, chart.x_kind, chart.x_half_turn, undecided);
+    if (undecided) return exact_answer();
+    if (!vx) continue;
+    Decided out = below(*vx, b[0]);
+    if (out == Decided::no) out = above(*vx, b[1]);
+    if (out == Decided::unknown) return exact_answer();
+    if (out == Decided::yes) continue;
+    if (impl.dimension == 1) {
+      chart_index = c;
+      cx = *vx;
+      cy = TightValue{0.0, 0.0};
+      break;
+    }
+    std::optional<TightValue> vy = chart_value(y, chart.y_kind, chart.y_half_turn, undecided);
+    if (undecided) return exact_answer();
+    if (!vy) continue;
+    out = below(*vy, b[2]);
+    if (out == Decided::no) out = above(*vy, b[3]);
+    if (out == Decided::unknown) return exact_answer();
+    if (out == Decided::yes) continue;
+    chart_index = c;
+    cx = *vx;
+    cy = *vy;
+    break;
+  }
+  if (!chart_index) throw GeometryError("contact_frame: the configuration is outside every chart");
+  auto enclose = [](const Rational& r) { return KInterval::enclose(r); };
+  kernels::ContactFrame<KInterval> frame;
+  if (cspace::frame_memo()) {
+    const std::array<kernels::FeatureGeometry<KInterval>, 2>& g = enclosed_geometries(space, index);
+    frame = frame_with<KInterval>(impl, *chart_index, impl.feature_pairs[index], cx.enclosure(), cy.enclosure(), enclose,
+                                  g[0], g[1]);
+  } else {
+    frame = frame_at<KInterval>(impl, *chart_index, impl.feature_pairs[index], cx.enclosure(), cy.enclosure(), enclose);
+  }
+  if (!frame.defined) return std::nullopt;
+  return FrameRanges{{range_of(frame.point.x), range_of(frame.point.y)}, unit_normal(frame.normal)};
 }
 
 // ------------------------------------------------------------------ derivatives

@@ -29,6 +29,12 @@ namespace hipair::simulation {
 
 struct FrameCacheTag;
 inline bool& frame_cache() { return thread_switch<FrameCacheTag>(); }
+// Switch simulation::frame_doubles() (on by default): friction_of makes a missed frame by
+// contact_frame_ranges (hipair/contact_frame_doubles.hpp: the same ranges from the
+// configuration's doubles, no rationals) instead of CSpace::contact_frame; tests turn it off on
+// their thread to compare runs bit for bit (SimulationFrameDoubles.*).
+struct FrameDoublesTag;
+inline bool& frame_doubles() { return thread_switch<FrameDoublesTag>(); }
 struct FrameCacheHitsTag;
 inline std::size_t& frame_cache_hits() { return thread_counter<FrameCacheHitsTag>(); }
 struct FrameCacheMissesTag;

@@ -13,6 +13,7 @@
 #include <hipair/simulation.hpp>
 
 #include <hipair/blocked_walk.hpp>
+#include <hipair/contact_frame_doubles.hpp>
 #include <hipair/edge_slope.hpp>
 #include <hipair/edge_tracker.hpp>
 #include <hipair/error.hpp>
@@ -1217,6 +1218,25 @@ struct Simulation::Impl {
     return c;
   }
 
+  // coordinate(dof, qs) with the value as a double (its exact value: Rational(value) there)
+  DoubleCoordinate double_coordinate(int dof, const Vec& qs) const {
+    DoubleCoordinate c;
+    if (dofs[dof].rotation) {
+      double a = std::remainder(qs[dof], 2 * std::numbers::pi);
+      double tangent = std::tan(a / 2);
+      if (!std::isfinite(tangent) || std::abs(tangent) > 1e15) {
+        c.kind = PartCoordinate::Kind::half_turn;
+      } else {
+        c.kind = PartCoordinate::Kind::half_angle_tangent;
+        c.value = tangent;
+      }
+    } else {
+      c.kind = PartCoordinate::Kind::offset;
+      c.value = qs[dof];
+    }
+    return c;
+  }
+
   // The Coulomb data of a contact of `pair` with feature pairs `features` and constraint row G at
   // configuration qs: the contact point and normal from the adaptor's contact_frame (the
   // kernels' frame at the configuration), the physical normal row Gp = n.(J2 - J1), the tangent
@@ -1240,6 +1260,23 @@ struct Simulation::Impl {
       simulation::FrameSample frame =
           frames.get(pair, f.index(), qs[xdof], ydof < 0 ? 0.0 : qs[ydof], [&]() {
             simulation::FrameSample sample;
+            if (simulation::frame_doubles()) {
+              // the same frame without rationals (hipair/contact_frame_doubles.hpp)
+              std::optional<FrameRanges> r;
+              try {
+                r = contact_frame_ranges(space, f, double_coordinate(xdof, qs),
+                                         ydof >= 0 ? double_coordinate(ydof, qs) : DoubleCoordinate{});
+              } catch (const GeometryError&) {
+                return sample;
+              }
+              if (!r) return sample;
+              sample.defined = true;
+              sample.normal[0] = mid(r->normal[0]);
+              sample.normal[1] = mid(r->normal[1]);
+              sample.point[0] = mid(r->point_range[0]);
+              sample.point[1] = mid(r->point_range[1]);
+              return sample;
+            }
             if (!xy) {
               xy.emplace(coordinate(xdof, qs), PartCoordinate{});
               if (ydof >= 0) xy->second = coordinate(ydof, qs);
