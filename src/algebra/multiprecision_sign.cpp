@@ -260,8 +260,11 @@ std::optional<int> multiprecision_sign(const Polynomial& p, const Real& u, long 
     for (;;) {
       enclose_over(mp, bracket.lo(), bracket.hi(), s);
       if (const int sign = enclosure_sign(s)) return sign;
-      // halve the bracket 16 times (as far as this precision allows), then enclose p again
-      if (bracket.halve(16, s) < 16) break;   // this precision's floor: enclose once more, then widen
+      // halve the bracket twice and take an interval Newton step (as multiprecision_order
+      // does), then enclose p again; at this precision's floor: enclose once more, then widen
+      const int done = bracket.halve(2, s);
+      bracket.newton(s);
+      if (done < 2) break;
     }
     enclose_over(mp, bracket.lo(), bracket.hi(), s);
     if (const int sign = enclosure_sign(s)) return sign;
