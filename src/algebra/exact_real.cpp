@@ -1723,6 +1723,12 @@ int nonzero_sign_at(const Polynomial& p, const Real& u) {
 
 }  // namespace
 
+namespace {
+thread_local long wide_gcds = 0;   // wide_sign_gcds()
+}  // namespace
+
+long wide_sign_gcds() { return wide_gcds; }
+
 int sign_at(const Polynomial& p, const Real& u) {
   if (p.empty()) return 0;
   if (u.exact) return sign_at(p, u.lower);
@@ -1757,7 +1763,10 @@ int sign_at(const Polynomial& p, const Real& u) {
   // a zero only where p shares a factor with u's polynomial: a gcd certified constant modulo a
   // word-size prime excludes it without the gcd over the integers (the mixed-scale squares' wide
   // coefficients made that gcd a third of their signs' cost, session 45)
-  if (!coprime_modularly(u.polynomial, p) && vanishes_at(p, u)) return 0;
+  if (!coprime_modularly(u.polynomial, p)) {
+    ++wide_gcds;
+    if (vanishes_at(p, u)) return 0;
+  }
   if (const auto sign = multiprecision_sign(p, u, bits.start, bits.cap)) return *sign;
   return nonzero_sign_at(p, u);
 }
