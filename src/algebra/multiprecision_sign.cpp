@@ -64,8 +64,12 @@ class MpPolynomial {
   std::vector<__mpfr_struct> c_;
 };
 
+// The enclosures computed on this thread (multiprecision_enclosures(), for tests).
+thread_local long enclosures = 0;
+
 // [s.lo, s.hi] encloses p(x) at the MPFR number x (Horner, each bound rounded outwards).
 void enclose_at_point(const MpPolynomial& p, mpfr_srcptr x, Scratch& s) {
+  ++enclosures;
   mpfr_set(s.lo.v, p[p.size() - 1], MPFR_RNDD);
   mpfr_set(s.hi.v, p[p.size() - 1], MPFR_RNDU);
   const bool negative = mpfr_sgn(x) < 0;
@@ -95,6 +99,7 @@ void extreme_product(mpfr_ptr out, mpfr_ptr t, mpfr_srcptr lo, mpfr_srcptr hi, m
 
 // [s.lo, s.hi] encloses p over [a, b] (a <= b; interval Horner, each bound rounded outwards).
 void enclose_over(const MpPolynomial& p, mpfr_srcptr a, mpfr_srcptr b, Scratch& s) {
+  ++enclosures;
   mpfr_set(s.lo.v, p[p.size() - 1], MPFR_RNDD);
   mpfr_set(s.hi.v, p[p.size() - 1], MPFR_RNDU);
   for (std::size_t k = p.size() - 1; k-- > 0;) {
@@ -123,6 +128,8 @@ Rational to_rational(mpfr_srcptr v) {
 }
 
 }  // namespace
+
+long multiprecision_enclosures() { return enclosures; }
 
 MultiprecisionEnclosure multiprecision_enclosure_over(const Polynomial& p, const Rational& a, const Rational& b, long bits) {
   Scratch s(bits);
@@ -260,8 +267,11 @@ std::optional<int> multiprecision_sign(const Polynomial& p, const Real& u, long 
     for (;;) {
       enclose_over(mp, bracket.lo(), bracket.hi(), s);
       if (const int sign = enclosure_sign(s)) return sign;
-      // halve the bracket 16 times (as far as this precision allows), then enclose p again
-      if (bracket.halve(16, s) < 16) break;   // this precision's floor: enclose once more, then widen
+      // halve the bracket twice and take an interval Newton step (as multiprecision_order
+      // does), then enclose p again; at this precision's floor: enclose once more, then widen
+      const int done = bracket.halve(2, s);
+      bracket.newton(s);
+      if (done < 2) break;
     }
     enclose_over(mp, bracket.lo(), bracket.hi(), s);
     if (const int sign = enclosure_sign(s)) return sign;

@@ -61,6 +61,13 @@ struct MultiprecisionEnclosure {
 MultiprecisionEnclosure multiprecision_enclosure_over(const Polynomial& p, const Rational& a, const Rational& b, long bits);
 MultiprecisionEnclosure multiprecision_enclosure_at_point(const Polynomial& p, const Rational& x, long bits);
 
+/// The polynomial enclosures (at a point or over a bracket) the filters above have computed on
+/// this thread so far, for tests of their convergence.
+long multiprecision_enclosures();
+/// The integer gcds sign_at(Polynomial, Real) has computed on this thread so far for
+/// coefficients wider than 192 bits (its zero test), for tests.
+long wide_sign_gcds();
+
 /// sign_at(p, u) by the exact path only (gcd, square-free part, Sturm sequence): tests' oracle.
 int exact_sign_at(const Polynomial& p, const Real& u);
 
