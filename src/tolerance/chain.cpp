@@ -523,14 +523,59 @@ class ChainAnalysis {
     double end = 0;   // chart units
     mutable std::vector<Interval> drivers;   // receives each pair's driver range (chart units; s > 0)
   };
+  // The last pair before the last one whose envelope widened in a composition (its side when
+  // certain and the form carried through it, else 0; the envelope's far end on that side).
+  struct Widened {
+    std::size_t stage = std::numeric_limits<std::size_t>::max();
+    int side = 0;
+    double end = 0;   // chart units
+  };
   bool compose_over(std::size_t i, const Box& box, std::vector<Interval>& charts, Interval& out, std::size_t* boxes,
                     bool* mean_value_through = nullptr, HandoverNote* handover = nullptr,
-                    std::size_t* failed = nullptr, const CaseOverride* override = nullptr) const {
-    constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
-    std::size_t widened = none;   // the last pair but one whose envelope widened (with a certain side)
-    int widened_side = 0;
-    double widened_end = 0;
-    int last_side = 2;            // the last pair's widening's side (2: not widened; 0: side not certain)
+                    std::size_t* failed = nullptr) const {
+    Widened widened;
+    bool composed = compose_once(i, box, charts, out, boxes, mean_value_through, handover, failed, nullptr, &widened);
+    if (chain_case_split() == 0 || widened.stage >= stages_.size() || widened.side == 0) return composed;
+    const std::size_t l = stages_.size() - 1;
+    std::vector<Interval> lower(stages_.size()), upper(stages_.size()), between;
+    Interval unused;
+    HandoverEnvelope bridge;
+    CaseOverride holder{widened.stage, 1, 0.0, std::vector<Interval>(stages_.size())};
+    CaseOverride end{widened.stage, 2, widened.end, std::vector<Interval>(stages_.size())};
+    if (!compose_once(i, box, lower, unused, boxes, nullptr, nullptr, nullptr, &holder, nullptr) ||
+        !compose_once(i, box, upper, unused, boxes, nullptr, nullptr, nullptr, &end, nullptr) ||
+        !monotone_between(i, box, widened.stage, holder.drivers, end.drivers, boxes, between, bridge))
+      return composed;
+    // The last pair's holder lies between the cases' (chart units); where the last pair may
+    // widen over the bridge's region (on side bridge.side), the follower is beyond its holder,
+    // within the bridge's envelope.
+    Interval cases = kernels::hull(lower[l], upper[l]);
+    Interval met(std::max(bridge.chart.lo, bridge.extended && bridge.side < 0 ? bridge.chart.lo : cases.lo),
+                 std::min(bridge.chart.hi, bridge.extended && bridge.side > 0 ? bridge.chart.hi : cases.hi));
+    if (bridge.extended && bridge.side != 1 && bridge.side != -1) met = bridge.chart;
+    if (composed) {   // both enclose the output: meet them
+      met = Interval(std::max(met.lo, charts[l].lo), std::min(met.hi, charts[l].hi));
+      if (!(met.lo <= met.hi) || !(met.lo > charts[l].lo || met.hi < charts[l].hi)) return true;   // (not empty)
+    } else {
+      // the composition failed after the widened pair: the pairs after it hold their followers
+      // at their holders' roots, in the enclosures over the bridge's regions
+      if (!(met.lo <= met.hi)) return false;
+      for (std::size_t s = widened.stage + 1; s < l; ++s) charts[s] = between[s];
+      if (handover) handover->extended = true;
+      if (mean_value_through) *mean_value_through = false;
+      if (failed) *failed = stages_.size();
+    }
+    charts[l] = met;
+    const StageAnalysis& stage = stages_[l];
+    out = to_part(met, stage.result.follower_rotates, stage.contacts[i].follower_half, stage.result.samples[i].nominal);
+    return true;
+  }
+
+  // One composition (compose_over without the case split); `override`: one of the case
+  // split's cases; `widened` (when given) receives the last widened pair before the last one.
+  bool compose_once(std::size_t i, const Box& box, std::vector<Interval>& charts, Interval& out, std::size_t* boxes,
+                    bool* mean_value_through, HandoverNote* handover, std::size_t* failed,
+                    const CaseOverride* override, Widened* widened) const {
     bool mean_value = options_.mean_value_chain;
     std::vector<double> center;
     std::vector<Interval> offsets, d;   // B - c; D of the last pair
@@ -583,20 +628,23 @@ class ChainAnalysis {
       // holder's mean-value form above stays sound for the holder's root; where another feature
       // pair may hold the follower, the follower's distance beyond the holder's root joins the
       // remainder R (above).
-      HandoverEnvelope envelope = handovers_[s]->envelope(curve, box, charts[s], options_.relative_accuracy,
-                                                          options_.absolute_accuracy, boxes[s], side,
-                                                          driver ? &*driver : nullptr);
+      // (the case split's cases: no envelope after the widened pair, whose followers are their
+      // holders' roots over the regions monotone_between certifies)
+      HandoverEnvelope envelope;
+      if (override && s > override->stage) {
+        envelope.bounded = true;
+      } else {
+        envelope = handovers_[s]->envelope(curve, box, charts[s], options_.relative_accuracy,
+                                           options_.absolute_accuracy, boxes[s], side, driver ? &*driver : nullptr);
+      }
       if (!envelope.bounded) {
         if (handover) handover->why = "pair " + stage.result.driver + ":" + stage.result.follower + ": " + envelope.why;
         return false;
       }
       const bool last = s + 1 == stages_.size();
-      if (envelope.extended && override && last) {
-        // the case split's cases: the last pair's holder (its widening bounded by the
-        // composition that asked for the cases)
-      } else if (envelope.extended && override && override->stage == s) {
-        // the case split's cases (above): pair s's follower at its holder's root (nothing to
-        // change), or at the envelope's far end, a point
+      if (override && override->stage == s) {
+        // the case split's cases (above): pair s's follower at its holder's root (its widening
+        // ignored), or at the widened envelope's far end, a point
         if (override->mode == 2) {
           charts[s] = Interval(override->end, override->end);
           if (mean_value) {
@@ -612,12 +660,10 @@ class ChainAnalysis {
           else
             mean_value = false;
         }
-        if (last) {
-          last_side = mean_value ? envelope.side : 0;
-        } else {
-          widened = s;
-          widened_side = mean_value ? envelope.side : 0;
-          widened_end = widened_side > 0 ? envelope.chart.hi : envelope.chart.lo;
+        if (!last && widened) {
+          widened->stage = s;
+          widened->side = mean_value ? envelope.side : 0;
+          widened->end = widened->side > 0 ? envelope.chart.hi : envelope.chart.lo;
         }
         charts[s] = envelope.chart;
         if (handover) handover->extended = true;
@@ -629,28 +675,6 @@ class ChainAnalysis {
     // (through a widened pair the remainder R shrinks with the sub-box, so bisection may still
     // pay: not counted as through)
     if (mean_value_through) *mean_value_through = mean_value && r.lo == 0.0 && r.hi == 0.0;
-    if (!override && chain_case_split() != 0 && widened != none && widened_side != 0 && last_side != 0) {
-      std::vector<Interval> lower(stages_.size()), upper(stages_.size());
-      Interval unused, bridge;
-      CaseOverride holder{widened, 1, 0.0, std::vector<Interval>(stages_.size())};
-      CaseOverride end{widened, 2, widened_end, std::vector<Interval>(stages_.size())};
-      if (compose_over(i, box, lower, unused, boxes, nullptr, nullptr, nullptr, &holder) &&
-          compose_over(i, box, upper, unused, boxes, nullptr, nullptr, nullptr, &end) &&
-          monotone_between(i, box, widened, holder.drivers, end.drivers, boxes, bridge)) {
-        // the last pair's holder between the cases' (chart units); where the last pair widened
-        // (on side last_side), the follower beyond its holder within this composition's
-        // envelope and the bridging one
-        const std::size_t l = stages_.size() - 1;
-        Interval cases = kernels::hull(lower[l], upper[l]);
-        Interval met(std::max(bridge.lo, last_side < 0 ? charts[l].lo : std::max(charts[l].lo, cases.lo)),
-                     std::min(bridge.hi, last_side == 1 ? charts[l].hi : std::min(charts[l].hi, cases.hi)));
-        if (met.lo <= met.hi && (met.lo > charts[l].lo || met.hi < charts[l].hi)) {   // (not empty: both enclose it)
-          charts[l] = met;
-          const StageAnalysis& stage = stages_[l];
-          out = to_part(met, stage.result.follower_rotates, stage.contacts[i].follower_half, stage.result.samples[i].nominal);
-        }
-      }
-    }
     return true;
   }
 
@@ -663,10 +687,14 @@ class ChainAnalysis {
   // increasing), so in that hull; so pair s's holder is monotone in the widened pair's follower
   // over everything the split needs.
   //
-  // `bridge` receives the last pair's envelope (handover.cpp) over box x hull(lower, upper) (its
-  // driver an interval there): unbounded (-inf, inf) when the walk does not bound it.
+  // Each pair's envelope (handover.cpp) over the same region (its driver an interval there):
+  // for a pair before the last, certainly not widened (so its follower is its holder's root
+  // there, the induction's premise), else false; the last pair's into `bridge` (bounded, else
+  // false). `between` receives each pair's enclosure Y_s over its region (s > widened).
   bool monotone_between(std::size_t i, const Box& box, std::size_t widened, const std::vector<Interval>& lower,
-                        const std::vector<Interval>& upper, std::size_t* boxes, Interval& bridge) const {
+                        const std::vector<Interval>& upper, std::size_t* boxes, std::vector<Interval>& between,
+                        HandoverEnvelope& bridge) const {
+    between.assign(stages_.size(), Interval());
     for (std::size_t s = widened + 1; s < stages_.size(); ++s) {
       const StageAnalysis& stage = stages_[s];
       const StageContact& c = stage.contacts[i];
@@ -687,13 +715,15 @@ class ChainAnalysis {
       if (!stage.solver->root_partials(curve, box, stage.box, y, dp, dt, false, &side) &&
           !stage.solver->root_partials(curve, box, stage.box, y, dp, dt, true, &side))
         return false;
-      if (s + 1 == stages_.size()) {
-        HandoverEnvelope envelope = handovers_[s]->envelope(curve, box, y, options_.relative_accuracy,
-                                                            options_.absolute_accuracy, boxes[s], side);
-        constexpr double inf = std::numeric_limits<double>::infinity();
-        bridge = envelope.bounded ? envelope.chart : Interval(-inf, inf);
-      }
       if (!(dt.lo > 0 || dt.hi < 0)) return false;
+      between[s] = y;
+      HandoverEnvelope envelope = handovers_[s]->envelope(curve, box, y, options_.relative_accuracy,
+                                                          options_.absolute_accuracy, boxes[s], side);
+      if (!envelope.bounded) return false;
+      if (s + 1 == stages_.size())
+        bridge = envelope;
+      else if (envelope.extended)
+        return false;
     }
     return true;
   }
