@@ -499,9 +499,83 @@ class ChainAnalysis {
   // `failed` (when given) receives the pair at which the composition failed (stages_.size() on
   // success): certified() bisects the box along the parameters that spread that pair's
   // follower most (session 42).
+  //
+  // The case split at a widened middle pair (session 45; docs/tolerance.md "Assembly chains",
+  // "The case split at a widened mesh"). Let k < L (L the last pair) be the last pair before L
+  // whose envelope widened, on side sigma = +1 (-1 alike): for every p of the box its follower
+  // y_k(p) lies in [h_k(p), C_k.hi] (h_k(p) its holder's root, C_k the envelope), and pairs
+  // k+1 .. L-1 did not widen over this composition's regions (which hold every driver value
+  // reached from y_k in C_k): their followers are their holders' roots. The output's holder
+  // part is h_L(p, t_L(p)) = g(p, y_k(p)), g the holders of pairs k+1 .. L composed. Two more
+  // compositions: pair k's widening ignored (its holder's enclosure and form: `override` mode
+  // 1) and pair k's follower the point C_k.hi (D = 0, R = 0: mode 2), both with the last pair's
+  // widening ignored (its holder's enclosure). monotone_between proves each g's pair monotone in
+  // its driver over box x (the hull of the two cases' driver ranges) x its roots there, so, by
+  // induction along the chain, g(p, .) is monotone between the cases and h_L(p, t_L(p)) lies in
+  // the hull of the cases' last enclosures. If L did not widen, the output is that holder;
+  // if it widened on side sigma_L, the output lies beyond the holder on side sigma_L, within this
+  // composition's envelope and within the last pair's envelope over box x the hull of the cases'
+  // driver ranges (`bridge`: the actual driver lies there). The band is the meet of those with
+  // this composition's (all enclose the output).
+  struct CaseOverride {
+    std::size_t stage = std::numeric_limits<std::size_t>::max();
+    int mode = 0;     // 1: pair `stage`'s widening ignored; 2: its follower the point `end`
+    double end = 0;   // chart units
+    mutable std::vector<Interval> drivers;   // receives each pair's driver range (chart units; s > 0)
+  };
+  // The last pair before the last one whose envelope widened in a composition (its side when
+  // certain and the form carried through it, else 0; the envelope's far end on that side).
+  struct Widened {
+    std::size_t stage = std::numeric_limits<std::size_t>::max();
+    int side = 0;
+    double end = 0;   // chart units
+  };
   bool compose_over(std::size_t i, const Box& box, std::vector<Interval>& charts, Interval& out, std::size_t* boxes,
                     bool* mean_value_through = nullptr, HandoverNote* handover = nullptr,
                     std::size_t* failed = nullptr) const {
+    Widened widened;
+    bool composed = compose_once(i, box, charts, out, boxes, mean_value_through, handover, failed, nullptr, &widened);
+    if (chain_case_split() == 0 || widened.stage >= stages_.size() || widened.side == 0) return composed;
+    const std::size_t l = stages_.size() - 1;
+    std::vector<Interval> lower(stages_.size()), upper(stages_.size()), between;
+    Interval unused;
+    HandoverEnvelope bridge;
+    CaseOverride holder{widened.stage, 1, 0.0, std::vector<Interval>(stages_.size())};
+    CaseOverride end{widened.stage, 2, widened.end, std::vector<Interval>(stages_.size())};
+    if (!compose_once(i, box, lower, unused, boxes, nullptr, nullptr, nullptr, &holder, nullptr) ||
+        !compose_once(i, box, upper, unused, boxes, nullptr, nullptr, nullptr, &end, nullptr) ||
+        !monotone_between(i, box, widened.stage, holder.drivers, end.drivers, boxes, between, bridge))
+      return composed;
+    // The last pair's holder lies between the cases' (chart units); where the last pair may
+    // widen over the bridge's region (on side bridge.side), the follower is beyond its holder,
+    // within the bridge's envelope.
+    Interval cases = kernels::hull(lower[l], upper[l]);
+    Interval met(std::max(bridge.chart.lo, bridge.extended && bridge.side < 0 ? bridge.chart.lo : cases.lo),
+                 std::min(bridge.chart.hi, bridge.extended && bridge.side > 0 ? bridge.chart.hi : cases.hi));
+    if (bridge.extended && bridge.side != 1 && bridge.side != -1) met = bridge.chart;
+    if (composed) {   // both enclose the output: meet them
+      met = Interval(std::max(met.lo, charts[l].lo), std::min(met.hi, charts[l].hi));
+      if (!(met.lo <= met.hi) || !(met.lo > charts[l].lo || met.hi < charts[l].hi)) return true;   // (not empty)
+    } else {
+      // the composition failed after the widened pair: the pairs after it hold their followers
+      // at their holders' roots, in the enclosures over the bridge's regions
+      if (!(met.lo <= met.hi)) return false;
+      for (std::size_t s = widened.stage + 1; s < l; ++s) charts[s] = between[s];
+      if (handover) handover->extended = true;
+      if (mean_value_through) *mean_value_through = false;
+      if (failed) *failed = stages_.size();
+    }
+    charts[l] = met;
+    const StageAnalysis& stage = stages_[l];
+    out = to_part(met, stage.result.follower_rotates, stage.contacts[i].follower_half, stage.result.samples[i].nominal);
+    return true;
+  }
+
+  // One composition (compose_over without the case split); `override`: one of the case
+  // split's cases; `widened` (when given) receives the last widened pair before the last one.
+  bool compose_once(std::size_t i, const Box& box, std::vector<Interval>& charts, Interval& out, std::size_t* boxes,
+                    bool* mean_value_through, HandoverNote* handover, std::size_t* failed,
+                    const CaseOverride* override, Widened* widened) const {
     bool mean_value = options_.mean_value_chain;
     std::vector<double> center;
     std::vector<Interval> offsets, d;   // B - c; D of the last pair
@@ -525,6 +599,7 @@ class ChainAnalysis {
         if (!part_to_chart(x, stage.result.driver_rotates, curve.fixed_half_turn, previous_nominal, t)) return false;
         curve.fixed_range = t;
         curve.fixed_spread = std::fabs(ps.fixed_slope) * t.width();
+        if (override) override->drivers[s] = t;
       }
       try {
         charts[s] = stage.solver->certified_range(curve, box, c.v, c.s_chart, options_.relative_accuracy,
@@ -553,19 +628,42 @@ class ChainAnalysis {
       // holder's mean-value form above stays sound for the holder's root; where another feature
       // pair may hold the follower, the follower's distance beyond the holder's root joins the
       // remainder R (above).
-      HandoverEnvelope envelope = handovers_[s]->envelope(curve, box, charts[s], options_.relative_accuracy,
-                                                          options_.absolute_accuracy, boxes[s], side,
-                                                          driver ? &*driver : nullptr);
+      // (the case split's cases: no envelope after the widened pair, whose followers are their
+      // holders' roots over the regions monotone_between certifies)
+      HandoverEnvelope envelope;
+      if (override && s > override->stage) {
+        envelope.bounded = true;
+      } else {
+        envelope = handovers_[s]->envelope(curve, box, charts[s], options_.relative_accuracy,
+                                           options_.absolute_accuracy, boxes[s], side, driver ? &*driver : nullptr);
+      }
       if (!envelope.bounded) {
         if (handover) handover->why = "pair " + stage.result.driver + ":" + stage.result.follower + ": " + envelope.why;
         return false;
       }
-      if (envelope.extended) {
+      const bool last = s + 1 == stages_.size();
+      if (override && override->stage == s) {
+        // the case split's cases (above): pair s's follower at its holder's root (its widening
+        // ignored), or at the widened envelope's far end, a point
+        if (override->mode == 2) {
+          charts[s] = Interval(override->end, override->end);
+          if (mean_value) {
+            for (Interval& g : d) g = Interval(0);
+            r = Interval(0);
+            xc = to_part(charts[s], stage.result.follower_rotates, c.follower_half, stage.result.samples[i].nominal);
+          }
+        }
+      } else if (envelope.extended) {
         if (mean_value) {
           if (envelope.side == 1 || envelope.side == -1)
             r = widened_remainder(r, envelope.chart, charts[s], envelope.side);
           else
             mean_value = false;
+        }
+        if (!last && widened) {
+          widened->stage = s;
+          widened->side = mean_value ? envelope.side : 0;
+          widened->end = widened->side > 0 ? envelope.chart.hi : envelope.chart.lo;
         }
         charts[s] = envelope.chart;
         if (handover) handover->extended = true;
@@ -577,6 +675,56 @@ class ChainAnalysis {
     // (through a widened pair the remainder R shrinks with the sub-box, so bisection may still
     // pay: not counted as through)
     if (mean_value_through) *mean_value_through = mean_value && r.lo == 0.0 && r.hi == 0.0;
+    return true;
+  }
+
+  // The case split's monotonicity (compose_over, session 45): every pair s after `widened` has
+  // dy_s/dt_s of certain sign (CurveSolver::root_partials' dt excludes 0: F_v's and F_t's signs
+  // certain) over box x hull(lower[s], upper[s]) x Y_s, the hull of the two cases' driver
+  // ranges and Y_s the pair's certified enclosure over it. By induction along the chain: with
+  // pairs widened+1 .. s-1 monotone, pair s's driver for the widened pair's follower anywhere
+  // between the cases lies between its values in the cases (phi, the chart change, is
+  // increasing), so in that hull; so pair s's holder is monotone in the widened pair's follower
+  // over everything the split needs.
+  //
+  // Each pair's envelope (handover.cpp) over the same region (its driver an interval there):
+  // for a pair before the last, certainly not widened (so its follower is its holder's root
+  // there, the induction's premise), else false; the last pair's into `bridge` (bounded, else
+  // false). `between` receives each pair's enclosure Y_s over its region (s > widened).
+  bool monotone_between(std::size_t i, const Box& box, std::size_t widened, const std::vector<Interval>& lower,
+                        const std::vector<Interval>& upper, std::size_t* boxes, std::vector<Interval>& between,
+                        HandoverEnvelope& bridge) const {
+    between.assign(stages_.size(), Interval());
+    for (std::size_t s = widened + 1; s < stages_.size(); ++s) {
+      const StageAnalysis& stage = stages_[s];
+      const StageContact& c = stage.contacts[i];
+      CurveSlice curve = c.curve;
+      Interval t = kernels::hull(lower[s], upper[s]);
+      curve.fixed_range = t;
+      curve.fixed_spread = std::fabs(per_[i][s].fixed_slope) * t.width();
+      Interval y;
+      try {
+        y = stage.solver->certified_range(curve, box, c.v, c.s_chart, options_.relative_accuracy,
+                                          options_.absolute_accuracy, boxes[s]);
+      } catch (const NumericError&) {
+        return false;
+      }
+      std::vector<Interval> dp;
+      Interval dt;
+      int side = 0;
+      if (!stage.solver->root_partials(curve, box, stage.box, y, dp, dt, false, &side) &&
+          !stage.solver->root_partials(curve, box, stage.box, y, dp, dt, true, &side))
+        return false;
+      if (!(dt.lo > 0 || dt.hi < 0)) return false;
+      between[s] = y;
+      HandoverEnvelope envelope = handovers_[s]->envelope(curve, box, y, options_.relative_accuracy,
+                                                          options_.absolute_accuracy, boxes[s], side);
+      if (!envelope.bounded) return false;
+      if (s + 1 == stages_.size())
+        bridge = envelope;
+      else if (envelope.extended)
+        return false;
+    }
     return true;
   }
 
@@ -1233,6 +1381,11 @@ class ChainAnalysis {
 };
 
 }  // namespace
+
+int& chain_case_split() {
+  static int on = 1;
+  return on;
+}
 
 std::size_t& chain_memo_entries() {
   // session 43 (tol43): gear-train.json 0..1.53 rad at 60 per turn 1.28 GB -> 0.32 GB, the

@@ -126,6 +126,11 @@ struct ChainPaths {
 /// analysis starts.
 std::size_t& chain_memo_entries();
 
+/// The case split at a chain's last widened pair (chain.cpp compose_over, docs/tolerance.md
+/// "Assembly chains", "The case split at a widened mesh"; session 45): 1 (on) unless changed; 0
+/// gives the composition without it (tests compare the two).
+int& chain_case_split();
+
 /// The analysis of an assembly chain (ToleranceOptions::chain; chain.cpp).
 ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options, const ChainPaths& paths = {});
 
