@@ -687,3 +687,100 @@ TEST(CSpaceCull, SurvivingCellsAreNoneTheTesterCertifies) {
 
 }  // namespace
 }  // namespace hipair
+
+// ---------------------------------------------------------------- one walk for all the curves of a chart
+// (session 45, fast45)
+
+namespace hipair {
+namespace {
+
+// The culling quadtree's joint walk (culling_joint_walk(): every curve of a chart in one walk)
+// and, optionally, its row cache set for one scope, restored when the scope ends.
+struct CullingModes {
+  CullingModes(bool joint, bool row_cache) {
+    cspace::culling_joint_walk().store(joint);
+    cspace::culling_row_cache().store(row_cache);
+  }
+  ~CullingModes() {
+    cspace::culling_joint_walk().store(true);
+    cspace::culling_row_cache().store(true);
+  }
+  CullingModes(const CullingModes&) = delete;
+  CullingModes& operator=(const CullingModes&) = delete;
+};
+
+// The joint walk against one walk per curve (the reference: CurveCuller::windows, session 44's
+// culler), both with the row cache and the joint walk also without it: every chart's kept
+// curves, windows and surviving cells equal (doubles compared exactly), the same C-space (JSON
+// text byte for byte). `windows`, `cells`: counts of the compared windows and cells.
+void expect_joint_walk_builds_the_per_curve_space(const Model& model, const std::string& first, const std::string& second,
+                                                  const CSpaceBuildOptions& options, std::size_t* windows,
+                                                  std::size_t* cells) {
+  std::optional<CSpace> reference, joint_plain;
+  {
+    CullingModes per_curve(false, true);
+    reference.emplace(CSpace::build(model, first, second, options));
+  }
+  {
+    CullingModes plain(true, false);
+    joint_plain.emplace(CSpace::build(model, first, second, options));
+  }
+  ASSERT_TRUE(cspace::culling_joint_walk().load());
+  ASSERT_TRUE(cspace::culling_row_cache().load());
+  CSpace joint = CSpace::build(model, first, second, options);
+  const auto& r = cspace::impl_of(*reference);
+  for (const CSpace* space : {&joint, &*joint_plain}) {
+    SCOPED_TRACE(space == &joint ? "joint walk" : "joint walk without the row cache");
+    const auto& a = cspace::impl_of(*space);
+    ASSERT_EQ(a.charts.size(), r.charts.size());
+    for (std::size_t c = 0; c < a.charts.size(); ++c) {
+      EXPECT_EQ(a.charts[c].curve_global, r.charts[c].curve_global) << "chart " << c;
+      EXPECT_EQ(a.charts[c].windows, r.charts[c].windows) << "chart " << c;
+      EXPECT_EQ(a.charts[c].cells, r.charts[c].cells) << "chart " << c;
+      if (space == &joint) {
+        for (const auto& w : a.charts[c].windows) *windows += w.size();
+        for (const auto& b : a.charts[c].cells) *cells += b.size();
+      }
+    }
+    EXPECT_EQ(json_of(*space), json_of(*reference));
+  }
+}
+
+// Generated pairs (random rational star polygons at lengths times 1, 10^-30 and 10^40, levers
+// with arcs and a notch of exactly the tip's width, wider and narrower), Geneva, and an 8:9 gear
+// pair's operating region (tiles: curves followed three levels below the grid).
+TEST(CSpaceCull, JointWalkBuildsThePerCurveWalksSpace) {
+  std::mt19937_64 random(4501);
+  std::size_t windows = 0, cells = 0;
+  int spaces = 0;
+  for (int scale : {0, -30, 40}) {
+    SCOPED_TRACE("scale 1e" + std::to_string(scale));
+    for (int n = 0; n < (scale == 0 ? 2 : 1); ++n) {
+      expect_joint_walk_builds_the_per_curve_space(star_pair(random, power_of_ten(scale)), "a", "b", {}, &windows, &cells);
+      ++spaces;
+    }
+    for (int n = 0; n < (scale == 0 ? 3 : 1); ++n) {
+      Rational w = random_rational(random, 0.6, 1.0, 16);
+      Rational a = random_rational(random, 2.0, 4.0, 16);
+      Rational width = n == 0 ? Rational(2 * w) : n == 1 ? Rational(2 * w + Rational(1, 4)) : Rational(2 * w - Rational(1, 8));
+      Rational c = random_rational(random, 0.5, 1.5, 8);
+      expect_joint_walk_builds_the_per_curve_space(lever_pair(w, Rational(10), a, Rational(a + width), c, power_of_ten(scale)),
+                                                   "crank", "rocker", {}, &windows, &cells);
+      ++spaces;
+    }
+  }
+  std::filesystem::path geneva = std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json";
+  ASSERT_TRUE(std::filesystem::exists(geneva));
+  expect_joint_walk_builds_the_per_curve_space(read_model_file(geneva), "driver", "wheel", {}, &windows, &cells);
+  ++spaces;
+  CSpaceBuildOptions region;
+  region.operating_region = true;
+  expect_joint_walk_builds_the_per_curve_space(gear_pair(8, 9), "pinion", "gear", region, &windows, &cells);
+  ++spaces;
+  EXPECT_EQ(spaces, 11);
+  EXPECT_GT(windows, 200u);   // the windows and cells compared are not all empty
+  EXPECT_GT(cells, 1000u);
+}
+
+}  // namespace
+}  // namespace hipair
