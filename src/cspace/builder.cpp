@@ -97,83 +97,13 @@ class CurveCuller {
     f_slot_ = atoms + entry.size();
     const std::size_t slots = f_slot_ + 1;
     const int deepest = grid_.depth() + (entry.empty() ? 0 : entry_depth_);
-    ways_ = row_ways;
     if (row_caches_.size() < static_cast<std::size_t>(deepest) + 1) row_caches_.resize(static_cast<std::size_t>(deepest) + 1);
     for (auto& cache : row_caches_)
-      if (cache.size() < slots * ways_) cache.resize(slots * ways_);
+      if (cache.size() < slots * row_ways) cache.resize(slots * row_ways);
     sides_to(deepest);
-    curve_ = ++row_store().stamp;   // every entry of an earlier curve is stale
+    ++curve_;   // every entry of an earlier curve is stale
     row_cache_ = culling_row_cache().load(std::memory_order_relaxed);
     visit(f, clauses, 0, 0, 0, boxes, f.evaluate(cell_x(0, 0), cell_y(0, 0)), 0);
-    return finish(boxes, cells);
-  }
-
-  // One curve for windows_all (its polynomials outlive the walk).
-  struct CurveInput {
-    const algebra::IntervalPolynomial2* f = nullptr;
-    const std::vector<std::vector<algebra::IntervalPolynomial2>>* clauses = nullptr;
-    const std::vector<algebra::IntervalPolynomial2>* entry = nullptr;
-  };
-
-  // windows() of every curve in one walk of the quadtree: a node carries the curves still alive
-  // in it (f may vanish there, no validity clause certainly fails, no corner-entry atom
-  // certainly enters); a curve dropped by its own tests leaves the node's list, and the node's
-  // shared work (its sides, the grid's answer, the recursion) is done once for all curves. Each
-  // curve's tests at a node are windows()'s, on the same enclosures (the same rows of its
-  // polynomials, bound for bound), so a curve reaches exactly the nodes its own walk reaches.
-  // The grid is asked at a node when some curve reaches it, as the per-curve walks ask it
-  // (their union): the same cells, in another order. The answer of a cell depends only on the
-  // cell's and its ancestors' entries when it is first asked (BlockedCells::blocked); a cell
-  // the culler asks has had every ancestor the culler asks (depths 3, 5, 7) asked before it in
-  // either order, with the same answers (by induction on depth), and the other ancestors'
-  // entries are the curve generator's, made before the cull: every answer is the same, so
-  // every curve's cells and windows are windows()'s. `windows[k]`, `cells[k]`: windows()'s
-  // result and cells for curves[k].
-  void windows_all(const std::vector<CurveInput>& curves, std::vector<std::vector<std::pair<double, double>>>& windows,
-                   std::vector<std::vector<std::array<double, 4>>>& cells) {
-    windows.assign(curves.size(), {});
-    cells.assign(curves.size(), {});
-    if (curves.empty()) return;
-    // every curve's slots in the row caches: its clauses' atoms, its corner-entry atoms, its f
-    walks_.assign(curves.size(), {});
-    std::size_t slots = 0;
-    int deepest = 0;
-    for (std::size_t c = 0; c < curves.size(); ++c) {
-      CurveWalk& walk = walks_[c];
-      walk.in = curves[c];
-      walk.clause_slot.clear();
-      for (const auto& clause : *curves[c].clauses) {
-        walk.clause_slot.push_back(slots);
-        slots += clause.size();
-      }
-      walk.entry_slot = slots;
-      slots += curves[c].entry->size();
-      walk.f_slot = slots++;
-      walk.deepest = grid_.depth() + (curves[c].entry->empty() ? 0 : entry_depth_);
-      deepest = std::max(deepest, walk.deepest);
-    }
-    ways_ = joint_row_ways;
-    if (row_caches_.size() < static_cast<std::size_t>(deepest) + 1) row_caches_.resize(static_cast<std::size_t>(deepest) + 1);
-    for (auto& cache : row_caches_)
-      if (cache.size() < slots * ways_) cache.resize(slots * ways_);
-    sides_to(deepest);
-    curve_ = ++row_store().stamp;   // every entry of an earlier walk is stale (the slots are the walk's own)
-    row_cache_ = culling_row_cache().load(std::memory_order_relaxed);
-    if (alive_.size() < static_cast<std::size_t>(deepest) + 1) alive_.resize(static_cast<std::size_t>(deepest) + 1);
-    std::vector<Alive>& root = alive_[0];
-    root.clear();
-    for (std::size_t c = 0; c < curves.size(); ++c)
-      root.push_back({static_cast<std::uint32_t>(c), 0, curves[c].f->evaluate(cell_x(0, 0), cell_y(0, 0))});
-    visit_all(0, 0, 0, 0, root.size());
-    for (std::size_t c = 0; c < curves.size(); ++c) windows[c] = finish(walks_[c].boxes, cells[c]);
-    walks_.clear();
-  }
-
- private:
-  // The surviving finest cells `boxes` of a walk: merged along columns into `cells` (sorted by
-  // x); returns the windows (merged, ascending).
-  static std::vector<std::pair<double, double>> finish(std::vector<std::array<double, 4>>& boxes,
-                                                       std::vector<std::array<double, 4>>& cells) {
     std::sort(boxes.begin(), boxes.end());
     cells.clear();
     for (const auto& b : boxes) {
@@ -196,99 +126,7 @@ class CurveCuller {
     return merged;
   }
 
-  // A curve of windows_all: its input, its slots, its depth and its surviving finest cells.
-  struct CurveWalk {
-    CurveInput in;
-    std::vector<std::size_t> clause_slot;   // slot of each clause's first atom
-    std::size_t entry_slot = 0, f_slot = 0;
-    int deepest = 0;
-    std::vector<std::array<double, 4>> boxes;
-  };
-  // A curve alive in a node: its f over the node (computed by the parent, as visit's `value`)
-  // and its clauses settled over an enclosing node (visit's `settled`).
-  struct Alive {
-    std::uint32_t curve;
-    std::uint64_t settled;
-    algebra::Interval value;
-  };
-
-  // The tests of visit() for curve `walk` at cell (depth, i, j): false when the curve is
-  // dropped there (f cannot vanish, a clause certainly fails, a corner-entry atom certainly
-  // enters); `settled` gains the clauses that hold strictly over the cell.
-  [[gnu::always_inline]] inline bool survives(const CurveWalk& walk, int depth, long j, algebra::Interval x, algebra::Interval y,
-                std::uint64_t& settled) {
-    const auto& clauses = *walk.in.clauses;
-    const auto& entry = *walk.in.entry;
-    bool strict = !entry.empty();
-    for (std::size_t k = 0; k < clauses.size(); ++k) {
-      if (k < 64 && (settled >> k & 1u)) continue;
-      const auto& clause = clauses[k];
-      bool can_hold = false, holds = false;
-      for (std::size_t a = 0; a < clause.size(); ++a) {
-        const algebra::Interval value = atom_value(clause[a], walk.clause_slot[k] + a, depth, j, x, y);
-        can_hold = can_hold || value.hi >= 0;
-        holds = holds || value.lo > 0;
-        if (holds || (can_hold && !strict)) break;
-      }
-      if (!can_hold) return false;
-      strict = strict && holds;
-      if (holds && k < 64) settled |= std::uint64_t{1} << k;
-    }
-    if (strict) {
-      for (std::size_t a = 0; a < entry.size(); ++a)
-        if (atom_value(entry[a], walk.entry_slot + a, depth, j, x, y).hi < 0) return false;
-    }
-    return true;
-  }
-
-  // The joint walk's node (depth, i, j); its curves are alive_[depth][begin, end) (this node's
-  // segment of its parent's children lists: compacted in place to the survivors).
-  void visit_all(int depth, long i, long j, std::size_t begin, std::size_t end) {
-    const auto d = static_cast<std::size_t>(depth);
-    const algebra::Interval x = cell_x(depth, i), y = cell_y(depth, j);
-    // the grid is asked when the first curve survives its own tests here (as its own walk
-    // would ask it); a blocked cell drops every curve, and the others' tests are not made
-    const bool grid_depth = depth >= 3 && (depth % 2 == 1 || depth == grid_.depth()) && depth <= grid_.depth();
-    std::size_t kept = begin;
-    for (std::size_t n = begin; n < end; ++n) {
-      Alive a = alive_[d][n];
-      if (!a.value.contains_zero()) continue;
-      if (!survives(walks_[a.curve], depth, j, x, y, a.settled)) continue;
-      if (kept == begin && grid_depth && blocked(depth, i, j)) return;
-      alive_[d][kept++] = a;
-    }
-    if (kept == begin) return;
-    // the curves whose walk ends here keep the cell; the others go on to the four children
-    std::size_t going = begin;
-    for (std::size_t n = begin; n < kept; ++n) {
-      const Alive a = alive_[d][n];
-      CurveWalk& walk = walks_[a.curve];
-      if (depth == walk.deepest) walk.boxes.push_back({x.lo, x.hi, y.lo, y.hi});
-      else alive_[d][going++] = a;
-    }
-    if (going == begin) return;
-    const std::size_t count = going - begin;
-    std::vector<Alive>& below = alive_[d + 1];
-    below.resize(4 * count);
-    for (std::size_t n = 0; n < count; ++n) {
-      const Alive a = alive_[d][begin + n];
-      const CurveWalk& walk = walks_[a.curve];
-      const algebra::IntervalPolynomial2& f = *walk.in.f;
-      for (long dj = 0; dj < 2; ++dj) {
-        if (!row_cache_) f.rows_at(cell_y(depth + 1, 2 * j + dj), rows_);
-        const std::vector<algebra::Interval>& rows = row_cache_ ? rows_of(f, walk.f_slot, depth + 1, 2 * j + dj) : rows_;
-        for (long di = 0; di < 2; ++di)
-          below[static_cast<std::size_t>(2 * di + dj) * count + n] = {
-              a.curve, a.settled, f.evaluate_rows(cell_x(depth + 1, 2 * i + di), rows)};
-      }
-    }
-    for (long di = 0; di < 2; ++di)
-      for (long dj = 0; dj < 2; ++dj) {
-        const auto child = static_cast<std::size_t>(2 * di + dj);
-        visit_all(depth + 1, 2 * i + di, 2 * j + dj, child * count, (child + 1) * count);
-      }
-  }
-
+ private:
   // The rows of the current curve's polynomials (IntervalPolynomial2::rows_at: each validity
   // and corner-entry atom, and f) at the y-intervals of the grid's rows of cells, per depth:
   // the cells of one row (j) have the same y, so a polynomial evaluated in several of them
@@ -303,15 +141,11 @@ class CurveCuller {
     std::vector<algebra::Interval> rows;
   };
   static constexpr std::size_t row_ways = 32;
-  // windows_all's: every curve of the chart has its own slots, so fewer ways per slot (the
-  // rows of a row of cells are mostly read again by the cell's sibling and its children's
-  // siblings, soon after)
-  static constexpr std::size_t joint_row_ways = 8;
 
   // The rows of polynomial `p` (its slot) at row j of depth `depth`.
-  [[gnu::always_inline]] inline const std::vector<algebra::Interval>& rows_of(const algebra::IntervalPolynomial2& p, std::size_t slot, int depth,
+  const std::vector<algebra::Interval>& rows_of(const algebra::IntervalPolynomial2& p, std::size_t slot, int depth,
                                                 long j) {
-    RowEntry& e = row_caches_[static_cast<std::size_t>(depth)][slot * ways_ + (static_cast<std::size_t>(j) & (ways_ - 1))];
+    RowEntry& e = row_caches_[static_cast<std::size_t>(depth)][slot * row_ways + static_cast<std::size_t>(j) % row_ways];
     if (e.j != j || e.curve != curve_) {
       p.rows_at(cell_y(depth, j), e.rows);
       e.j = j;
@@ -321,7 +155,7 @@ class CurveCuller {
   }
 
   // Atom `slot` (polynomial `atom`) over cell (depth, i, j), x and y its intervals.
-  [[gnu::always_inline]] inline algebra::Interval atom_value(const algebra::IntervalPolynomial2& atom, std::size_t slot, int depth, long j,
+  algebra::Interval atom_value(const algebra::IntervalPolynomial2& atom, std::size_t slot, int depth, long j,
                                algebra::Interval x, algebra::Interval y) {
     if (!row_cache_) return atom.evaluate(x, y);
     return atom.evaluate_rows(x, rows_of(atom, slot, depth, j));
@@ -423,31 +257,12 @@ class CurveCuller {
   std::uint64_t curve_ = 0;               // the current curve's number (from 1)
   bool row_cache_ = true;                 // culling_row_cache() when the curve's walk began
   std::vector<algebra::Interval> rows_;   // f's rows without the cache (scratch)
-  // The row caches, one store per thread kept from chart to chart (their entries and the
-  // entries' rows allocated once, not per chart); `stamp` numbers the walks of the thread,
-  // so an entry of an earlier walk (of any chart) is stale.
-  struct RowStore {
-    std::vector<std::vector<RowEntry>> caches;   // per depth: slot * ways_ + (j & (ways_ - 1))
-    std::uint64_t stamp = 0;
-  };
-  static RowStore& row_store() {
-    thread_local RowStore store;
-    return store;
-  }
-  std::vector<std::vector<RowEntry>>& row_caches_ = row_store().caches;
-  std::size_t ways_ = row_ways;                     // the current walk's ways per slot (a power of 2)
-  std::vector<CurveWalk> walks_;                    // windows_all's curves
-  std::vector<std::vector<Alive>> alive_;           // windows_all: per depth, the nodes' curves
+  std::vector<std::vector<RowEntry>> row_caches_;   // per depth: slot * row_ways + j % row_ways
 };
 
 }  // namespace
 
 std::atomic<bool>& culling_row_cache() {
-  static std::atomic<bool> on{true};
-  return on;
-}
-
-std::atomic<bool>& culling_joint_walk() {
   static std::atomic<bool> on{true};
   return on;
 }
@@ -550,68 +365,40 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int 
   std::optional<BlockedCells> own;
   if (!input.blocked_cells) own.emplace(nullptr, input.x, input.y, dimension, input.cull_depth > 0 ? input.cull_depth : 6);
   CurveCuller culler(input.blocked_cells ? *input.blocked_cells : *own, entry_depth);
-  const std::size_t count = input.curves.size();
-  std::vector<algebra::IntervalPolynomial2> fs;
-  fs.reserve(count);
-  for (const ContactCurve& curve : input.curves) fs.emplace_back(curve.polynomial);
-  // the quadtree's windows and surviving cells of the curves it walks (2-D: a line with an
-  // exact valid point in the box is kept without the quadtree)
-  std::vector<char> walked(count, 0);
-  std::vector<std::vector<std::pair<double, double>>> found(count);
-  std::vector<std::vector<std::array<double, 4>>> cells(count);
-  if (dimension == 2) {
-    std::vector<std::vector<std::vector<algebra::IntervalPolynomial2>>> clauses(count);
-    std::vector<std::vector<algebra::IntervalPolynomial2>> entry(count);
-    for (std::size_t k = 0; k < count; ++k) {
-      const ContactCurve& curve = input.curves[k];
-      if (!blocked_test && shortcuts && valid_point_in_box(curve, chart.box)) continue;
-      walked[k] = 1;
-      for (const auto& clause : curve.validity) {
-        clauses[k].emplace_back();
-        for (const auto& atom : clause.atoms) clauses[k].back().emplace_back(atom);
-      }
-      entry[k] = std::vector<algebra::IntervalPolynomial2>(curve.corner_entry.begin(), curve.corner_entry.end());
-    }
-    if (culling_joint_walk().load(std::memory_order_relaxed)) {
-      // every walked curve in one walk (windows_all: each curve's windows() result)
-      std::vector<CurveCuller::CurveInput> curves;
-      std::vector<std::size_t> which;
-      for (std::size_t k = 0; k < count; ++k)
-        if (walked[k]) {
-          curves.push_back({&fs[k], &clauses[k], &entry[k]});
-          which.push_back(k);
-        }
-      std::vector<std::vector<std::pair<double, double>>> windows;
-      std::vector<std::vector<std::array<double, 4>>> boxes;
-      culler.windows_all(curves, windows, boxes);
-      for (std::size_t n = 0; n < which.size(); ++n) {
-        found[which[n]] = std::move(windows[n]);
-        cells[which[n]] = std::move(boxes[n]);
-      }
-    } else {
-      for (std::size_t k = 0; k < count; ++k)
-        if (walked[k]) found[k] = culler.windows(fs[k], clauses[k], entry[k], cells[k]);
-    }
-  }
   std::vector<std::size_t> kept;
-  for (std::size_t k = 0; k < count; ++k) {
+  for (std::size_t k = 0; k < input.curves.size(); ++k) {
     ContactCurve& curve = input.curves[k];
+    algebra::IntervalPolynomial2 f(curve.polynomial);
     std::vector<std::pair<Rational, Rational>> windows;
-    if (walked[k] && found[k].empty()) continue;
-    if (dimension == 2 && blocked_test)
-      for (const auto& [lo, hi] : found[k])
-        // (a chart end beyond the doubles' range encloses to an infinite cell side: no
-        // double may become a rational there, the chart end is the window's end)
-        windows.emplace_back(std::isfinite(lo) ? std::max(Rational(lo), input.x.lo) : input.x.lo,
-                             std::isfinite(hi) ? std::min(Rational(hi), input.x.hi) : input.x.hi);
+    std::vector<std::array<double, 4>> cells;
+    if (dimension == 2) {
+      // (a line with an exact valid point in the box is kept without the quadtree)
+      std::vector<std::pair<double, double>> found;
+      if (blocked_test || !shortcuts || !valid_point_in_box(curve, chart.box)) {
+        std::vector<std::vector<algebra::IntervalPolynomial2>> clauses;
+        for (const auto& clause : curve.validity) {
+          clauses.emplace_back();
+          for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
+        }
+        std::vector<algebra::IntervalPolynomial2> entry(curve.corner_entry.begin(), curve.corner_entry.end());
+        found = culler.windows(f, clauses, entry, cells);
+        if (found.empty()) continue;
+      }
+      if (blocked_test)
+        for (const auto& [lo, hi] : found)
+          // (a chart end beyond the doubles' range encloses to an infinite cell side: no
+          // double may become a rational there, the chart end is the window's end)
+          windows.emplace_back(std::isfinite(lo) ? std::max(Rational(lo), input.x.lo) : input.x.lo,
+                               std::isfinite(hi) ? std::min(Rational(hi), input.x.hi) : input.x.hi);
+    }
     kept.push_back(k);
     chart.polynomials.push_back(std::move(curve.polynomial));
     chart.validity.push_back(std::move(curve.validity));
     // the cells restrict like the windows: only where the blocked test ran (else none)
-    if (!blocked_test || windows.empty()) cells[k].clear();
+    if (!blocked_test || windows.empty()) cells.clear();
     chart.windows.push_back(std::move(windows));
-    chart.cells.push_back(std::move(cells[k]));
-    chart.interval_polynomials.push_back(std::move(fs[k]));
+    chart.cells.push_back(std::move(cells));
+    chart.interval_polynomials.push_back(std::move(f));
   }
   static const bool debug = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
   if (debug && input.blocked_cells)

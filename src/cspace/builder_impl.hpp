@@ -226,10 +226,6 @@ std::optional<algebra::Interval> quadratic_root_enclosure(const mpz_class& a, co
 /// evaluating each cell alone: the same windows and cells). On by default; tests turn it off
 /// to compare with the plain evaluation per cell.
 std::atomic<bool>& culling_row_cache();
-/// The culling quadtree walks every curve of a chart in one walk (a node carries the curves
-/// alive in it; the same cells and windows as one walk per curve, see CurveCuller::windows_all).
-/// On by default; tests turn it off to compare with the walk per curve.
-std::atomic<bool>& culling_joint_walk();
 /// Queries (builder_locate.cpp).
 Location locate_point(const CSpace::Impl& impl, const hipair::ChartPoint& q);
 CertifiedValue evaluate_edge(const CSpace::Impl& impl, std::size_t edge, double x);
