@@ -1256,6 +1256,16 @@ struct Simulation::Impl {
     double p[2] = {0, 0}, n[2] = {0, 0};
     int count = 0;
     std::size_t first = 0, second = 0;
+    // A frame sample from a contact frame's midpoints (a Contact or the same frame's FrameRanges).
+    const auto sample_of = [](const auto& frame_ranges) {
+      simulation::FrameSample sample;
+      sample.defined = true;
+      sample.normal[0] = mid(frame_ranges.normal[0]);
+      sample.normal[1] = mid(frame_ranges.normal[1]);
+      sample.point[0] = mid(frame_ranges.point_range[0]);
+      sample.point[1] = mid(frame_ranges.point_range[1]);
+      return sample;
+    };
     for (FeatureId f : features) {
       simulation::FrameSample frame =
           frames.get(pair, f.index(), qs[xdof], ydof < 0 ? 0.0 : qs[ydof], [&]() {
@@ -1269,13 +1279,7 @@ struct Simulation::Impl {
               } catch (const GeometryError&) {
                 return sample;
               }
-              if (!r) return sample;
-              sample.defined = true;
-              sample.normal[0] = mid(r->normal[0]);
-              sample.normal[1] = mid(r->normal[1]);
-              sample.point[0] = mid(r->point_range[0]);
-              sample.point[1] = mid(r->point_range[1]);
-              return sample;
+              return r ? sample_of(*r) : sample;
             }
             if (!xy) {
               xy.emplace(coordinate(xdof, qs), PartCoordinate{});
@@ -1287,13 +1291,7 @@ struct Simulation::Impl {
             } catch (const GeometryError&) {
               return sample;
             }
-            if (!c) return sample;
-            sample.defined = true;
-            sample.normal[0] = mid(c->normal[0]);
-            sample.normal[1] = mid(c->normal[1]);
-            sample.point[0] = mid(c->point_range[0]);
-            sample.point[1] = mid(c->point_range[1]);
-            return sample;
+            return c ? sample_of(*c) : sample;
           });
       if (!frame.defined) continue;
       if (count == 0) {
