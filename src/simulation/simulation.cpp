@@ -1200,21 +1200,12 @@ struct Simulation::Impl {
     return out;
   }
 
+  // The part coordinate of qs[dof]: double_coordinate's, its value made exact.
   PartCoordinate coordinate(int dof, const Vec& qs) const {
+    const DoubleCoordinate d = double_coordinate(dof, qs);
     PartCoordinate c;
-    if (dofs[dof].rotation) {
-      double a = std::remainder(qs[dof], 2 * std::numbers::pi);
-      double tangent = std::tan(a / 2);
-      if (!std::isfinite(tangent) || std::abs(tangent) > 1e15) {
-        c.kind = PartCoordinate::Kind::half_turn;
-      } else {
-        c.kind = PartCoordinate::Kind::half_angle_tangent;
-        c.value = Rational(tangent);
-      }
-    } else {
-      c.kind = PartCoordinate::Kind::offset;
-      c.value = Rational(qs[dof]);
-    }
+    c.kind = d.kind;
+    if (d.kind != PartCoordinate::Kind::half_turn) c.value = Rational(d.value);
     return c;
   }
 
