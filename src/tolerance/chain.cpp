@@ -537,22 +537,21 @@ class ChainAnalysis {
     bool composed = compose_once(i, box, charts, out, boxes, mean_value_through, handover, failed, nullptr, &widened);
     if (chain_case_split() == 0 || widened.stage >= stages_.size() || widened.side == 0) return composed;
     const std::size_t l = stages_.size() - 1;
-    std::vector<Interval> lower(stages_.size()), upper(stages_.size()), between;
+    std::vector<Interval> lower(stages_.size()), upper(stages_.size()), between, slopes;
     Interval unused;
     HandoverEnvelope bridge;
     CaseOverride holder{widened.stage, 1, 0.0, std::vector<Interval>(stages_.size())};
     CaseOverride end{widened.stage, 2, widened.end, std::vector<Interval>(stages_.size())};
     if (!compose_once(i, box, lower, unused, boxes, nullptr, nullptr, nullptr, &holder, nullptr) ||
         !compose_once(i, box, upper, unused, boxes, nullptr, nullptr, nullptr, &end, nullptr) ||
-        !monotone_between(i, box, widened.stage, holder.drivers, end.drivers, boxes, between, bridge))
+        !monotone_between(i, box, widened.stage, holder.drivers, end.drivers, boxes, between, slopes, bridge))
       return composed;
-    // The last pair's holder lies between the cases' (chart units); where the last pair may
-    // widen over the bridge's region (on side bridge.side), the follower is beyond its holder,
-    // within the bridge's envelope.
-    Interval cases = kernels::hull(lower[l], upper[l]);
-    Interval met(std::max(bridge.chart.lo, bridge.extended && bridge.side < 0 ? bridge.chart.lo : cases.lo),
-                 std::min(bridge.chart.hi, bridge.extended && bridge.side > 0 ? bridge.chart.hi : cases.hi));
-    if (bridge.extended && bridge.side != 1 && bridge.side != -1) met = bridge.chart;
+    // The last pair's holder lies between the cases' (chart units) when every later pair is
+    // certainly monotone in its driver (mean_value.hpp case_split_bound); where the last pair
+    // may widen over the bridge's region (on side bridge.side), the follower is beyond its
+    // holder, within the bridge's envelope.
+    Interval met;
+    if (!case_split_bound(slopes, lower[l], upper[l], bridge.chart, bridge.extended, bridge.side, met)) return composed;
     if (composed) {   // both enclose the output: meet them
       met = Interval(std::max(met.lo, charts[l].lo), std::min(met.hi, charts[l].hi));
       if (!(met.lo <= met.hi) || !(met.lo > charts[l].lo || met.hi < charts[l].hi)) return true;   // (not empty)
@@ -678,10 +677,11 @@ class ChainAnalysis {
     return true;
   }
 
-  // The case split's monotonicity (compose_over, session 45): every pair s after `widened` has
-  // dy_s/dt_s of certain sign (CurveSolver::root_partials' dt excludes 0: F_v's and F_t's signs
-  // certain) over box x hull(lower[s], upper[s]) x Y_s, the hull of the two cases' driver
-  // ranges and Y_s the pair's certified enclosure over it. By induction along the chain: with
+  // The case split's monotonicity (compose_over, session 45): `slopes` receives, for every pair
+  // s after `widened`, the enclosure of dy_s/dt_s (CurveSolver::root_partials' dt) over
+  // box x hull(lower[s], upper[s]) x Y_s, the hull of the two cases' driver ranges and Y_s the
+  // pair's certified enclosure over it; case_split_bound (mean_value.hpp) requires each to
+  // exclude 0 (F_v's and F_t's signs certain). By induction along the chain: with
   // pairs widened+1 .. s-1 monotone, pair s's driver for the widened pair's follower anywhere
   // between the cases lies between its values in the cases (phi, the chart change, is
   // increasing), so in that hull; so pair s's holder is monotone in the widened pair's follower
@@ -693,8 +693,9 @@ class ChainAnalysis {
   // false). `between` receives each pair's enclosure Y_s over its region (s > widened).
   bool monotone_between(std::size_t i, const Box& box, std::size_t widened, const std::vector<Interval>& lower,
                         const std::vector<Interval>& upper, std::size_t* boxes, std::vector<Interval>& between,
-                        HandoverEnvelope& bridge) const {
+                        std::vector<Interval>& slopes, HandoverEnvelope& bridge) const {
     between.assign(stages_.size(), Interval());
+    slopes.clear();
     for (std::size_t s = widened + 1; s < stages_.size(); ++s) {
       const StageAnalysis& stage = stages_[s];
       const StageContact& c = stage.contacts[i];
@@ -715,7 +716,7 @@ class ChainAnalysis {
       if (!stage.solver->root_partials(curve, box, stage.box, y, dp, dt, false, &side) &&
           !stage.solver->root_partials(curve, box, stage.box, y, dp, dt, true, &side))
         return false;
-      if (!(dt.lo > 0 || dt.hi < 0)) return false;
+      slopes.push_back(dt);
       between[s] = y;
       HandoverEnvelope envelope = handovers_[s]->envelope(curve, box, y, options_.relative_accuracy,
                                                           options_.absolute_accuracy, boxes[s], side);

@@ -14,6 +14,7 @@
 
 #include "tolerance/solver.hpp"
 
+#include <algorithm>
 #include <vector>
 
 namespace hipair::tolerance_detail {
@@ -61,6 +62,33 @@ inline Interval mean_value_form(const Interval& at_center, const std::vector<Int
 inline Interval widened_remainder(const Interval& r, const Interval& envelope, const Interval& holder, int side) {
   if (side > 0) return r + Interval(0.0, (Interval::point(envelope.hi) - Interval::point(holder.lo)).hi);
   return r + Interval((Interval::point(envelope.lo) - Interval::point(holder.hi)).lo, 0.0);
+}
+
+/// The case split's bound at a widened pair (session 45, chain.cpp compose_over; a function of
+/// its enclosures since session 46, so that tests can drive it with chains of their own). Pair
+/// k's follower y_k(p) lies between its holder's root h_k(p) and the envelope's far end E (on
+/// its pushed side); the pairs s = k+1 .. L after it hold their followers at their holders'
+/// roots, y_s = g_s(p, t_s), t_s = phi_s(y_s-1) with phi_s increasing. `slopes`: enclosures of
+/// dy_s/dt_s for s = k+1 .. L, each over box x the hull of the two cases' driver ranges x the
+/// roots there; `lower` / `upper`: the last pair's enclosures over the box in the case
+/// y_k = h_k(p) and in the case y_k = E. If every slope excludes 0, each g_s(p, .) is monotone
+/// over its hull region and, by induction along the chain (pair s's driver for any y_k between
+/// h_k(p) and E lies between its values in the two cases, so in the hull), the last pair's
+/// holder root lies between its values in the two cases: in hull(lower, upper). A slope that
+/// may vanish lets the root reach beyond both cases (an extremum between them): no bound
+/// (false). `bridge`: the last pair's envelope over its hull region; where it extends on side
+/// +1 (-1) the follower may lie beyond its holder on that side, within the bridge, so the hull
+/// bounds only the other side (either side, when the side is not certain: the bridge alone).
+/// `met` receives the bound (possibly empty: lo > hi).
+inline bool case_split_bound(const std::vector<Interval>& slopes, const Interval& lower, const Interval& upper,
+                             const Interval& bridge, bool bridge_extended, int bridge_side, Interval& met) {
+  for (const Interval& slope : slopes)
+    if (!(slope.lo > 0 || slope.hi < 0)) return false;
+  const Interval cases = kernels::hull(lower, upper);
+  met = Interval(std::max(bridge.lo, bridge_extended && bridge_side < 0 ? bridge.lo : cases.lo),
+                 std::min(bridge.hi, bridge_extended && bridge_side > 0 ? bridge.hi : cases.hi));
+  if (bridge_extended && bridge_side != 1 && bridge_side != -1) met = bridge;
+  return true;
 }
 
 }  // namespace hipair::tolerance_detail

@@ -51,41 +51,54 @@ ToleranceResult run(const std::string& text, const ToleranceOptions& options, in
 
 bool bounded(const VariationSample& s) { return s.contact && std::isfinite(s.certified.upper - s.certified.lower); }
 
-TEST(ChainCaseSplit, WidenedMeshBandNarrowsAndHoldsTheExactTrain) {
-  const std::string text = test_gears::gear_train(9);
-  const std::pair<Rational, Rational> range(Rational(3, 20), Rational(6, 25));
+// The analysis of `text` over `range` at `steps` per turn with the split off and on: every band
+// with it no wider than the one without (`nested`: inside it), the narrower ones counted (the
+// narrowest ratio returned). (Not nested in general: the split narrows a sub-box's enclosure, so
+// the shared-parameter bisection may accept a sub-box it would have split without the split, and
+// the hull of the coarser partition can reach further on one side — gear-train-3 at 0.169 rad:
+// lower end 0.131958 with the split against 0.131979 without, the band 0.0312 against 0.0322 wide.
+// Both are enclosures: any partition of the box is sound.) Then
+// probes per held position — the vertices maximising and minimising the linearised output, the
+// same with the least effective parameter flipped and with the most effective one nominal — and
+// `random_vectors` random vectors of the box (a grid of 1/1000 of each range): the exact train
+// (the model rebuilt exactly, the kernel-sliced exact engine over the same range and grid) inside
+// every band with the split, within 4 ulps. Returns the values checked.
+struct SplitCheck {
+  std::size_t held = 0, narrowed = 0, checked = 0, trains = 0;
+  double best = 1;
+};
+SplitCheck check_split(const std::string& text, const std::pair<Rational, Rational>& range, std::size_t steps,
+                       const std::string& output_part, int random_vectors, unsigned seed, bool nested) {
+  SplitCheck out;
   ToleranceOptions options = test_gears::chain_options(range.second, 0, 45);
   options.range = range;
+  options.positions = steps;
   ToleranceResult off = run(text, options, 0);
   ToleranceResult r = run(text, options, 1);
-  ASSERT_EQ(r.chain.size(), 8u);
-  ASSERT_EQ(r.samples.size(), off.samples.size());
+  EXPECT_EQ(r.samples.size(), off.samples.size());
+  if (r.samples.size() != off.samples.size()) return out;
 
-  // The split only meets the composition's band with the cases' hull: never wider, and here
-  // narrower where the middle mesh widened.
-  std::size_t held = 0, narrowed = 0;
-  double best = 1;   // the narrowest band with the split over the one without it
+  // The split only meets the composition's band with the cases' hull: never wider, and
+  // narrower where a middle mesh widened.
   for (std::size_t i = 0; i < r.samples.size(); ++i) {
     const VariationSample& a = r.samples[i];
     const VariationSample& b = off.samples[i];
-    ASSERT_EQ(a.contact, b.contact);
-    if (!a.contact) continue;
-    ++held;
-    ASSERT_TRUE(bounded(b)) << "driver " << b.driver;
-    ASSERT_TRUE(bounded(a)) << "driver " << a.driver;
-    EXPECT_GE(a.certified.lower, b.certified.lower) << "driver " << a.driver;
-    EXPECT_LE(a.certified.upper, b.certified.upper) << "driver " << a.driver;
+    EXPECT_EQ(a.contact, b.contact);
+    if (!a.contact || !b.contact) continue;
+    ++out.held;
+    EXPECT_TRUE(bounded(b)) << "driver " << b.driver;
+    EXPECT_TRUE(bounded(a)) << "driver " << a.driver;
+    if (!bounded(a) || !bounded(b)) continue;
+    if (nested) {
+      EXPECT_GE(a.certified.lower, b.certified.lower) << "driver " << a.driver;
+      EXPECT_LE(a.certified.upper, b.certified.upper) << "driver " << a.driver;
+    }
     double ratio = (a.certified.upper - a.certified.lower) / (b.certified.upper - b.certified.lower);
-    if (ratio < 1) ++narrowed;
-    best = std::min(best, ratio);
+    EXPECT_LE(ratio, 1.0) << "driver " << a.driver;
+    if (ratio < 1) ++out.narrowed;
+    out.best = std::min(out.best, ratio);
   }
-  EXPECT_EQ(held, 3u);
-  EXPECT_GE(narrowed, 1u);
-  EXPECT_LT(best, 0.25);   // (0.195 rad: 13.9 x the linearised width without the split)
 
-  // Probes per held position: the vertices maximising and minimising the linearised output, the
-  // same with the least effective parameter flipped and with the most effective one nominal;
-  // then random vectors of the box (a grid of 1/1000 of each range).
   std::vector<std::vector<Rational>> probes;
   for (const VariationSample& sample : r.samples) {
     if (!sample.contact) continue;
@@ -98,7 +111,8 @@ TEST(ChainCaseSplit, WidenedMeshBandNarrowsAndHoldsTheExactTrain) {
       if (effect > 0 && effect < least_effect) least_effect = effect, least = p;
       if (effect > most_effect) most_effect = effect, most = p;
     }
-    ASSERT_LT(most, r.parameters.size());
+    EXPECT_LT(most, r.parameters.size());
+    if (most >= r.parameters.size()) continue;
     for (int way : {1, -1}) {
       std::vector<Rational> d(r.parameters.size(), Rational(0));
       for (std::size_t p = 0; p < d.size() && p < sample.sensitivities.size(); ++p) {
@@ -119,12 +133,12 @@ TEST(ChainCaseSplit, WidenedMeshBandNarrowsAndHoldsTheExactTrain) {
       probes.push_back(centred);
     }
   }
-  std::mt19937 rng(45);
-  for (int k = 0; k < 16; ++k) probes.push_back(test_gears::random_deviations(r.parameters, rng));
+  std::mt19937 rng(seed);
+  for (int k = 0; k < random_vectors; ++k) probes.push_back(test_gears::random_deviations(r.parameters, rng));
   std::set<std::vector<Rational>> distinct(probes.begin(), probes.end());
+  out.trains = distinct.size();
 
   auto model = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text));
-  std::size_t checked = 0;
   // per held position: the least gap of an exact value to the band's upper and lower edges,
   // as fractions of the band's width
   std::vector<double> upper_gap(r.samples.size(), 1), lower_gap(r.samples.size(), 1);
@@ -132,40 +146,64 @@ TEST(ChainCaseSplit, WidenedMeshBandNarrowsAndHoldsTheExactTrain) {
     KinematicsOptions k;
     k.driver = "gear-A";
     k.range = range;
-    k.steps_per_cycle = 120;
+    k.steps_per_cycle = steps;
     k.reversal = false;
     k.method = SliceMethod::kernels;
     KinematicsResult e = analyze_kinematics(model->exact_model(d), k);
-    std::size_t output = static_cast<std::size_t>(std::find(e.followers.begin(), e.followers.end(), "gear-I") - e.followers.begin());
-    ASSERT_LT(output, e.followers.size());
+    std::size_t output = static_cast<std::size_t>(std::find(e.followers.begin(), e.followers.end(), output_part) - e.followers.begin());
+    EXPECT_LT(output, e.followers.size());
+    if (output >= e.followers.size()) continue;
     for (std::size_t i = 0; i < r.samples.size(); ++i) {
       const VariationSample& sample = r.samples[i];
       if (!bounded(sample)) continue;
       auto at = std::find_if(e.samples.begin(), e.samples.end(), [&](const KinematicSample& s) { return s.driver == sample.driver; });
-      ASSERT_NE(at, e.samples.end()) << "driver " << sample.driver;
-      double out = at->positions.at(output);
-      ASSERT_TRUE(std::isfinite(out));
-      ++checked;
+      EXPECT_NE(at, e.samples.end()) << "driver " << sample.driver;
+      if (at == e.samples.end()) continue;
+      double value = at->positions.at(output);
+      EXPECT_TRUE(std::isfinite(value));
+      ++out.checked;
       // (the exact engine's position is the exact root rounded to a double: within an ulp)
-      double ulp = 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::fabs(out));
-      EXPECT_GE(out, sample.certified.lower - ulp) << "driver " << sample.driver;
-      EXPECT_LE(out, sample.certified.upper + ulp) << "driver " << sample.driver;
+      double ulp = 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::fabs(value));
+      EXPECT_GE(value, sample.certified.lower - ulp) << "driver " << sample.driver;
+      EXPECT_LE(value, sample.certified.upper + ulp) << "driver " << sample.driver;
       double width = sample.certified.upper - sample.certified.lower;
-      upper_gap[i] = std::min(upper_gap[i], (sample.certified.upper - out) / width);
-      lower_gap[i] = std::min(lower_gap[i], (out - sample.certified.lower) / width);
+      upper_gap[i] = std::min(upper_gap[i], (sample.certified.upper - value) / width);
+      lower_gap[i] = std::min(lower_gap[i], (value - sample.certified.lower) / width);
     }
   }
-  EXPECT_EQ(checked, distinct.size() * held);
   for (std::size_t i = 0; i < r.samples.size(); ++i) {
     const VariationSample& a = r.samples[i];
     if (!a.contact) continue;
     const VariationSample& b = off.samples[i];
-    std::printf("driver %.4f: band [%.4f, %.4f] (without the split [%.4f, %.4f], linearised [%.4f, %.4f]); exact values "
+    std::printf("driver %.4f: band [%.5f, %.5f] (without the split [%.5f, %.5f], linearised [%.5f, %.5f]); exact values "
                 "within %.4f / %.4f of the band's width of its upper / lower edge\n",
                 a.driver, a.certified.lower, a.certified.upper, b.certified.lower, b.certified.upper, a.linear_lower,
                 a.linear_upper, upper_gap[i], lower_gap[i]);
   }
-  std::printf("%zu exact trains (%zu probes), %zu values checked\n", distinct.size(), probes.size(), checked);
+  std::printf("%zu exact trains (%zu probes), %zu values checked\n", distinct.size(), probes.size(), out.checked);
+  return out;
+}
+
+TEST(ChainCaseSplit, WidenedMeshBandNarrowsAndHoldsTheExactTrain) {
+  SplitCheck c = check_split(test_gears::gear_train(9), std::make_pair(Rational(3, 20), Rational(6, 25)), 120, "gear-I",
+                             16, 45, true);
+  EXPECT_EQ(c.held, 3u);
+  EXPECT_GE(c.narrowed, 1u);
+  EXPECT_LT(c.best, 0.25);   // (0.195 rad: 13.9 x the linearised width without the split)
+  EXPECT_EQ(c.checked, c.trains * c.held);
+}
+
+// Session 46 (tol46): the first mesh of gear-train-3 (test_gears::gear_train(3)) at its hand-over
+// near 0.169 rad (2000 positions per turn): A:B widens (the next tooth pair may take over inside
+// the box), and its envelope's far end carries the output beyond the holder case — there the
+// band's upper end is the far-end case's (chart units 0.0831 against the holder case's 0.0813 at
+// the whole box). The exact train at the probes must lie inside every band.
+TEST(ChainCaseSplit, FirstMeshHandOverFarEndHoldsTheExactTrain) {
+  SplitCheck c = check_split(test_gears::gear_train(3), std::make_pair(Rational(4, 25), Rational(7, 40)), 2000, "gear-C",
+                             24, 46, false);
+  EXPECT_EQ(c.held, 6u);
+  EXPECT_GE(c.narrowed, 1u);
+  EXPECT_EQ(c.checked, c.trains * c.held);
 }
 
 }  // namespace
