@@ -37,6 +37,7 @@ struct EdgeGeometry {
   double cx = 0, cy = 0, r = 0;    // arcs
   double start = 0, sweep = 0;     // arcs: start angle, signed sweep (ccw positive)
   bool ccw = true;
+  bool minor = false;              // arcs: less than a half turn (decided exactly)
 };
 
 double angle_in_span(double angle, double start, double sweep) {
@@ -95,6 +96,11 @@ std::vector<EdgeGeometry> edges_of(const Part& part, long exponent) {
         g.cy = scaled(edge.center.y, exponent);
         g.r = std::hypot(g.ax - g.cx, g.ay - g.cy);
         g.ccw = edge.ccw;
+        if (!edge.is_full_circle()) {
+          const Rational cross = (edge.source.x - edge.center.x) * (edge.target.y - edge.center.y) -
+                                 (edge.source.y - edge.center.y) * (edge.target.x - edge.center.x);
+          g.minor = edge.ccw ? sgn(cross) > 0 : sgn(cross) < 0;
+        }
         g.start = std::atan2(g.ay - g.cy, g.ax - g.cx);
         double end = std::atan2(g.by - g.cy, g.bx - g.cx);
         double sweep = end - g.start;
@@ -145,14 +151,13 @@ int crossings(const EdgeGeometry& e, double px, double py) {
 std::vector<Disk> inscribed_disks(const Part& part, std::size_t limit, long exponent) {
   std::vector<EdgeGeometry> edges = edges_of(part, exponent);
   if (edges.empty()) return {};
-  // An arc of a circle far larger than its chord (a centre 10^20 mm from a tip of 8 mm) is its
-  // chord here: the doubles of centre + r cos(angle) lose the whole part to rounding (every
+  // An arc of less than a half turn on a circle far larger than its chord (a centre 10^20 mm
+  // from a tip of 8 mm; the sweep's doubles cannot tell it from a whole turn) is its chord here: the doubles of centre + r cos(angle) lose the whole part to rounding (every
   // parity test and distance to it was noise, and such a part got no disk: session 46); the
   // chord is within chord^2 / (8 r) < 2^-23 chord of it, and the disks are only guesses that
   // certify_part proves exactly.
   for (auto& e : edges)
-    if (e.arc && std::isfinite(e.r) && std::fabs(e.sweep) < 1 &&
-        std::hypot(e.bx - e.ax, e.by - e.ay) < 0x1p-20 * e.r)
+    if (e.arc && e.minor && std::isfinite(e.r) && std::hypot(e.bx - e.ax, e.by - e.ay) < 0x1p-20 * e.r)
       e.arc = false;
   // every coordinate finite: lengths were divided by the largest coordinate's power of two
   for (const auto& e : edges)
