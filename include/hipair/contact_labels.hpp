@@ -3,7 +3,9 @@
 #pragma once
 #include <hipair/model.hpp>
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 namespace hipair {
 
@@ -17,5 +19,15 @@ namespace hipair {
 /// matches no contact of any run. An empty pattern is contained in every label. Motion limits
 /// ("motion limit of P") are no contacts here: an expected-contact pattern never applies to them.
 bool contact_label_can_contain(const Model& model, const std::string& pattern);
+
+/// The same over the model's pairs with these indices only (an empty list: no label at all,
+/// except for the empty pattern).
+bool contact_label_can_contain(const Model& model, const std::string& pattern, const std::vector<std::size_t>& pairs);
+
+/// The model's pairs (indices into Model::pairs) whose contacts the kinematic analysis driven by
+/// part `driver` (model part index) can report: the pairs of fixed-axis parts, not both fixed,
+/// with a moving part reached from the driver through such pairs (the analysis's chain). A pair
+/// outside it (two parts the driver never moves, a planar part) gives no contact in the report.
+std::vector<std::size_t> driven_pairs(const Model& model, std::size_t driver);
 
 }  // namespace hipair

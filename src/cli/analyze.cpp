@@ -240,14 +240,6 @@ int run_analyze(const AnalyzeOptions& options) {
                                  ": does not apply to a model with a pin-in-slot part, whose analysis is its work cycle "
                                  "(one turn of the driver in --steps steps; it takes --driver, --direction, --steps, "
                                  "--out and --quiet)");
-  // a pattern no contact label of the model's pairs contains matches nothing: every contact
-  // would be reported as unintended (session 45: `--expect nobody` was taken silently)
-  for (const std::string& pattern : options.expected)
-    if (!has_pin_slot_part(model) && !contact_label_can_contain(model, pattern))
-      throw ModelError("", shortened_message("--expect " + pattern) +
-                               ": no contact of the model's pairs has a label containing it (a label names both "
-                               "parts and features and how they touch, e.g. 'driver pin / wheel slot 1 wall R (arc "
-                               "tangent to segment)'; the report's contact sequence lists them)");
   if (has_pin_slot_part(model))
     return run_pin_slot_cycle(model, PinSlotCycleRequest{options.driver, options.direction,
                                                          options.steps == 720 ? 72u : options.steps, options.out,
@@ -270,6 +262,33 @@ int run_analyze(const AnalyzeOptions& options) {
   }
   // which part is driven decides the units of --range
   std::size_t driver_index = choose_driver(model, options.driver);
+  // a pattern no contact label of the driven pairs contains matches nothing: every contact
+  // would be reported as unintended (session 45: `--expect nobody` was taken silently; session
+  // 46: a pattern of a pair the driver does not move, such as a second mechanism's, likewise)
+  if (!options.expected.empty()) {
+    std::vector<std::size_t> driven = driven_pairs(model, driver_index);
+    for (const std::string& pattern : options.expected) {
+      if (contact_label_can_contain(model, pattern, driven)) continue;
+      if (!contact_label_can_contain(model, pattern))
+        throw ModelError("", shortened_message("--expect " + pattern) +
+                                 ": no contact of the model's pairs has a label containing it (a label names both "
+                                 "parts and features and how they touch, e.g. 'driver pin / wheel slot 1 wall R (arc "
+                                 "tangent to segment)'; the report's contact sequence lists them)");
+      auto pair_name = [&](std::size_t p) {
+        return shown_name(model.parts[model.pairs[p].first].name) + ":" + shown_name(model.parts[model.pairs[p].second].name);
+      };
+      std::string others, chain;
+      for (std::size_t p = 0; p < model.pairs.size(); ++p)
+        if (std::find(driven.begin(), driven.end(), p) == driven.end() &&
+            contact_label_can_contain(model, pattern, std::vector<std::size_t>{p}))
+          others += (others.empty() ? "" : ", ") + pair_name(p);
+      for (std::size_t p : driven) chain += (chain.empty() ? "" : ", ") + pair_name(p);
+      throw ModelError("", shortened_message("--expect " + pattern) + ": only a contact of " + others +
+                               " has a label containing it, a pair the analysis driven by '" +
+                               shown_name(model.parts[driver_index].name) + "' does not move (its pairs: " +
+                               (chain.empty() ? std::string("none") : chain) + "; --driver chooses the driver)");
+    }
+  }
   // a load acts on a driven part: one on the driver, or on a part that is not driven by the
   // analysis (fixed, planar, pin-slot), was taken and ignored until session 45
   for (const auto& [part, load] : analysis.loads) {
@@ -280,6 +299,15 @@ int run_analyze(const AnalyzeOptions& options) {
     if (!can_drive(loaded))
       throw ModelError("", load.source + ": '" + part + "' is " + motion_word(loaded.motion.kind) +
                                "; a load acts on a rotating or translating part the driver pushes");
+    // a part no pair of the driver's chain moves is not analysed: its load was taken and
+    // ignored until session 46 (a second mechanism's part, an unconnected one)
+    bool driven = false;
+    for (std::size_t p : driven_pairs(model, driver_index))
+      driven = driven || model.parts[model.pairs[p].first].name == part || model.parts[model.pairs[p].second].name == part;
+    if (!driven)
+      throw ModelError("", load.source + ": '" + part + "' is not moved by the analysis driven by '" +
+                               shown_name(model.parts[driver_index].name) +
+                               "' (no chain of pairs connects them; --driver chooses the driver)");
   }
   analysis.driver = model.parts[driver_index].name;
   bool rotates = model.parts[driver_index].motion.kind == Motion::Kind::rotation;

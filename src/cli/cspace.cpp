@@ -18,6 +18,10 @@
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 
+#include <mpfi.h>
+#include <mpfr.h>
+
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -133,28 +137,103 @@ std::filesystem::path suffixed(const std::string& path, const SlicedSpace& space
 // exit 3), but a start that overlaps by less than a quadtree cell was built as a region around a
 // blocked start (a 13 x 14 gear pair at zero backlash: one blocked cell; a lever 10^-3 mm into a
 // turning stop: a free and a blocked cell), exit 0 (session 45). The built region now decides
-// the start exactly, where its coordinates are exact rationals (a rotation at angle 0, any
-// translation offset): located in a blocked cell (or on a curve piece inside one), the same error.
-// An initial angle other than 0 has an irrational half-angle tangent: left to the build's test.
+// the start exactly: where its coordinates are exact rationals (a rotation at angle 0, any
+// translation offset), located in a blocked cell (or on a curve piece inside one), the same
+// error. Since session 46 also at any other initial angle (a rational angle has a transcendental
+// half-angle tangent, never a point of contact space) and in a 1-D region: the tangent is
+// enclosed in a rational interval of width about 2^-240 (MPFI); the start lies in the blocked
+// cell B when an end of the interval (a corner of the box of both enclosures) lies inside B,
+// the sides of the interval (the box) cross no real edge (CSpace::first_crossing, exact), and,
+// in 2-D, no vertex of a real edge of the chart can lie inside the box (then no curve of contact
+// space enters it: B holds the whole box). An enclosure that does not decide (a start within
+// 2^-240 of contact space, or across a chart side) is left to the build's own test, as before.
+struct StartCoordinate {
+  PartCoordinate lo, hi;   // equal when exact
+  bool exact = true;
+};
+
+std::optional<StartCoordinate> start_coordinate(const Part& part) {
+  if (part.motion.kind == Motion::Kind::translation)
+    return StartCoordinate{{PartCoordinate::Kind::offset, part.initial.offset}, {PartCoordinate::Kind::offset, part.initial.offset}};
+  if (part.motion.kind != Motion::Kind::rotation) return std::nullopt;
+  if (sgn(part.initial.angle) == 0)
+    return StartCoordinate{{PartCoordinate::Kind::half_angle_tangent, Rational(0)}, {PartCoordinate::Kind::half_angle_tangent, Rational(0)}};
+  // tan(theta / 2) enclosed (a tangent near its pole: no finite enclosure, undecided)
+  mpfi_t t;
+  mpfi_init2(t, 256);
+  mpfi_set_q(t, part.initial.angle.get_mpq_t());
+  mpfi_div_2ui(t, t, 1);
+  mpfi_tan(t, t);
+  std::optional<StartCoordinate> result;
+  if (!mpfi_nan_p(t) && !mpfi_inf_p(t) && mpfi_bounded_p(t)) {
+    mpfr_t end;
+    mpfr_init2(end, 256);
+    Rational lo, hi;
+    mpfi_get_left(end, t);
+    mpfr_get_q(lo.get_mpq_t(), end);
+    mpfi_get_right(end, t);
+    mpfr_get_q(hi.get_mpq_t(), end);
+    mpfr_clear(end);
+    if (lo < hi && Rational(hi - lo) < Rational(1, mpz_class(1) << 200) * (1 + abs(lo)))
+      result = StartCoordinate{{PartCoordinate::Kind::half_angle_tangent, lo}, {PartCoordinate::Kind::half_angle_tangent, hi}, false};
+  }
+  mpfi_clear(t);
+  return result;
+}
+
+bool in_blocked_cell(const CSpace& space, const Location& location) {
+  return location.kind == Location::Kind::blocked ||
+         ((location.kind == Location::Kind::edge || location.kind == Location::Kind::vertex) && location.cell != no_index &&
+          space.cells()[location.cell].kind == CellKind::blocked);
+}
+
+// Whether the start certainly lies in blocked space of `space` (false: free, touching, or not
+// decided by the enclosures).
+bool start_in_blocked_space(const CSpace& space, const StartCoordinate& x, const StartCoordinate& y) {
+  if (x.exact && y.exact) return in_blocked_cell(space, space.locate(x.lo, y.lo));
+  auto corner = [&](bool x_hi, bool y_hi) { return space.to_chart(x_hi ? x.hi : x.lo, y_hi ? y.hi : y.lo); };
+  std::optional<ChartPoint> a = corner(false, false), b = corner(true, false), c = corner(true, true), d = corner(false, true);
+  if (!a || !b || !c || !d || a->chart != b->chart || a->chart != c->chart || a->chart != d->chart) return false;
+  Location start = space.locate(*a);
+  if (start.kind != Location::Kind::blocked) return false;
+  try {
+    // the box's sides (a segment in 1-D, or when one coordinate is exact)
+    std::vector<ChartPoint> corners{*a, *b};
+    if (space.dimension() == 2 && !y.exact) corners = {*a, *b, *c, *d, *a};
+    for (std::size_t k = 0; k + 1 < corners.size(); ++k)
+      if (corners[k].x != corners[k + 1].x || corners[k].y != corners[k + 1].y)
+        if (space.first_crossing(corners[k], corners[k + 1].x, corners[k + 1].y).found) return false;
+  } catch (const GeometryError&) {   // a side outside the built tiles
+    return false;
+  }
+  if (space.dimension() == 2 && !x.exact && !y.exact) {
+    // no vertex of a real edge of this chart inside the box (by its isolating bounds)
+    const Rational &x_lo = std::min(a->x, c->x), &x_hi = std::max(a->x, c->x), &y_lo = std::min(a->y, c->y), &y_hi = std::max(a->y, c->y);
+    for (const CSpaceVertex& vertex : space.vertices()) {
+      bool real = false;
+      for (std::size_t e : vertex.edges) real = real || (space.edges()[e].real && space.edges()[e].chart == a->chart);
+      if (!real) continue;
+      const Rational &vx_lo = vertex.x.lower, &vx_hi = vertex.x.exact ? vertex.x.lower : vertex.x.upper;
+      Rational vy_lo = vertex.y_exact && vertex.y.exact ? vertex.y.lower : vertex.y_lower;
+      Rational vy_hi = vertex.y_exact && vertex.y.exact ? vertex.y.lower : vertex.y_upper;
+      bool outside = vx_hi < x_lo || vx_lo > x_hi || vy_hi < y_lo || vy_lo > y_hi;
+      if (!outside) return false;
+    }
+  }
+  return true;
+}
+
 void refuse_blocked_start(const Model& model, const CSpace& space) {
-  if (space.complete() || space.dimension() != 2) return;
-  auto coordinate = [&](const std::string& name) -> std::optional<PartCoordinate> {
+  auto coordinate = [&](const std::string& name) -> std::optional<StartCoordinate> {
     auto index = model.find_part(name);
     if (!index) return std::nullopt;
-    const Part& part = model.parts[*index];
-    if (part.motion.kind == Motion::Kind::translation)
-      return PartCoordinate{PartCoordinate::Kind::offset, part.initial.offset};
-    if (part.motion.kind == Motion::Kind::rotation && sgn(part.initial.angle) == 0)
-      return PartCoordinate{PartCoordinate::Kind::half_angle_tangent, Rational(0)};
-    return std::nullopt;
+    return start_coordinate(model.parts[*index]);
   };
-  auto x = coordinate(space.x_part()), y = coordinate(space.y_part());
+  std::optional<StartCoordinate> x = coordinate(space.x_part()), y;
+  if (space.dimension() == 2) y = coordinate(space.y_part());
+  else y = StartCoordinate{};
   if (!x || !y) return;
-  Location location = space.locate(*x, *y);
-  bool blocked = location.kind == Location::Kind::blocked ||
-                 ((location.kind == Location::Kind::edge || location.kind == Location::Kind::vertex) &&
-                  location.cell != no_index && space.cells()[location.cell].kind == CellKind::blocked);
-  if (blocked)
+  if (start_in_blocked_space(space, *x, *y))
     throw GeometryError("operating region of '" + space.first_part() + "' and '" + space.second_part() +
                         "': the parts certainly overlap at the seed configuration (the initial configuration lies in "
                         "blocked space of the exact C-space built around it: there is no channel to build)");
@@ -201,7 +280,7 @@ int run(const CSpaceCommandOptions& options) {
     } else {
       refuse_options_that_do_not_apply(options, true, false, false);
       spaces.push_back(CSpace::build(model, first, second, build));
-      refuse_blocked_start(model, spaces.back());
+      if (build.operating_region) refuse_blocked_start(model, spaces.back());
     }
   } else {
     sliced_requests = sliced_pairs(model);
@@ -215,7 +294,8 @@ int run(const CSpaceCommandOptions& options) {
     }
     refuse_options_that_do_not_apply(options, fixed_axis, !sliced_requests.empty(), !pin_requests.empty());
     spaces = CSpace::build_all(model, build);
-    for (const CSpace& space : spaces) refuse_blocked_start(model, space);
+    if (build.operating_region)
+      for (const CSpace& space : spaces) refuse_blocked_start(model, space);
     if (spaces.empty() && sliced_requests.empty() && pin_requests.empty())
       throw GeometryError("the model has no fixed-axis pair with a moving part, no 3-DOF pair (a planar part "
                           "against a fixed part) and no pin-in-slot pair");

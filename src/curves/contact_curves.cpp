@@ -495,6 +495,15 @@ double ClearanceBound::lower(const Rational& px, const Rational& py) const {
       if (inside) {
         Interval gap = length(vx, vy) - e.radius;
         bound = std::max({0.0, gap.lo, (-gap).lo});
+        if (!(bound > 0)) {
+          // |v| - r = (|v|^2 - r^2) / (|v| + r), the difference of squares exact: the
+          // enclosures' difference cancels for a circle of huge radius (an arc whose centre
+          // lies 10^20 mm from a part of a few mm: every point of the part is within their
+          // rounding of the circle, so no disk of it was certified; session 46)
+          const Point d = v();
+          Rational power = dot(d, d) - edge.radius_squared;
+          if (sgn(power) != 0) bound = std::max(0.0, (algebra::enclose_kernel(abs(power)) / (length(vx, vy) + e.radius)).lo);
+        }
       } else {
         bound = std::min(length(cx - e.sx, cy - e.sy).lo, length(cx - e.tx, cy - e.ty).lo);
       }

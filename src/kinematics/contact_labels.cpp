@@ -6,6 +6,7 @@
 #include <hipair/contact_labels.hpp>
 
 #include "curves/contact_curves.hpp"
+#include "kinematics/engine.hpp"
 #include "curves/pose.hpp"
 
 #include <array>
@@ -90,9 +91,10 @@ bool contains(const std::vector<std::string>& as, const std::vector<std::string>
 
 }  // namespace
 
-bool contact_label_can_contain(const Model& model, const std::string& pattern) {
+bool contact_label_can_contain(const Model& model, const std::string& pattern, const std::vector<std::size_t>& pairs) {
   if (pattern.empty()) return true;
-  for (const PairSpec& pair : model.pairs)
+  for (std::size_t p : pairs) {
+    const PairSpec& pair = model.pairs.at(p);
     for (auto [a, b] : {std::pair{pair.first, pair.second}, std::pair{pair.second, pair.first}}) {
       Pieces pieces = pieces_of(model, a, b);
       for (Kind first : kinds)
@@ -101,7 +103,18 @@ bool contact_label_can_contain(const Model& model, const std::string& pattern) {
             if (contains(pieces.first[index_of(first)], pieces.second[index_of(second)], std::string(word) + ")", pattern))
               return true;
     }
+  }
   return false;
+}
+
+bool contact_label_can_contain(const Model& model, const std::string& pattern) {
+  std::vector<std::size_t> every(model.pairs.size());
+  for (std::size_t p = 0; p < every.size(); ++p) every[p] = p;
+  return contact_label_can_contain(model, pattern, every);
+}
+
+std::vector<std::size_t> driven_pairs(const Model& model, std::size_t driver) {
+  return kinematics_detail::chain_pairs(model, driver);
 }
 
 }  // namespace hipair

@@ -115,6 +115,64 @@ AxisPosition position_of_coordinate(const AxisLine& line, const Rational& coordi
 
 // ------------------------------------------------------------------------------ chain
 
+namespace {
+
+// The chain's parts in breadth-first order from the driver through its usable pairs (both parts
+// fixed-axis, not both fixed), the parts' chain indices, and the pairs left out with the reason.
+void order_chain(const Model& model, std::size_t driver, std::vector<bool>& usable,
+                 std::vector<std::size_t>& chain_index, std::vector<std::size_t>& order, std::vector<std::string>* warnings) {
+  usable.assign(model.pairs.size(), true);
+  for (std::size_t p = 0; p < model.pairs.size(); ++p) {
+    const PairSpec& spec = model.pairs[p];
+    const Part& a = model.parts[spec.first];
+    const Part& b = model.parts[spec.second];
+    if (!fixed_axis(a.motion) || !fixed_axis(b.motion)) {
+      usable[p] = false;
+      if (warnings)
+        warnings->push_back("pair " + a.name + ":" + b.name +
+                            " is skipped: kinematic analysis handles parts that rotate or translate about fixed axes");
+    }
+    if (motion_dof(a.motion) == 0 && motion_dof(b.motion) == 0) usable[p] = false;
+  }
+  chain_index.assign(model.parts.size(), none);
+  order.assign(1, driver);
+  chain_index[driver] = 0;
+  for (std::size_t head = 0; head < order.size(); ++head) {
+    std::size_t current = order[head];
+    for (std::size_t p = 0; p < model.pairs.size(); ++p) {
+      if (!usable[p]) continue;
+      const PairSpec& spec = model.pairs[p];
+      std::size_t other = spec.first == current ? spec.second : spec.second == current ? spec.first : none;
+      if (other == none || motion_dof(model.parts[other].motion) == 0 || chain_index[other] != none) continue;
+      chain_index[other] = order.size();
+      order.push_back(other);
+    }
+  }
+}
+
+// The follower a usable pair's slicer constrains (a moving part of the chain), or none when the
+// pair is not the chain's (no part of it reached from the driver).
+std::size_t chain_follower(const Model& model, const PairSpec& spec, const std::vector<std::size_t>& chain_index) {
+  std::size_t ia = chain_index[spec.first], ib = chain_index[spec.second];
+  bool fixed_a = motion_dof(model.parts[spec.first].motion) == 0;
+  bool fixed_b = motion_dof(model.parts[spec.second].motion) == 0;
+  if (fixed_a) return ib == none ? none : spec.second;
+  if (fixed_b) return ia == none ? none : spec.first;
+  if (ia != none && ib != none) return ia > ib ? spec.first : spec.second;
+  return none;
+}
+
+}  // namespace
+
+std::vector<std::size_t> chain_pairs(const Model& model, std::size_t driver) {
+  std::vector<bool> usable;
+  std::vector<std::size_t> chain_index, order, pairs;
+  order_chain(model, driver, usable, chain_index, order, nullptr);
+  for (std::size_t p = 0; p < model.pairs.size(); ++p)
+    if (usable[p] && chain_follower(model, model.pairs[p], chain_index) != none) pairs.push_back(p);
+  return pairs;
+}
+
 Chain build_chain(const Model& model, std::size_t driver, const std::vector<CSpace>& spaces,
                   SliceMethod method, const std::map<std::string, FollowerLoad>& loads) {
   Chain chain;
@@ -122,33 +180,9 @@ Chain build_chain(const Model& model, std::size_t driver, const std::vector<CSpa
   const Part& driver_part = model.parts.at(driver);
   if (driver_part.motion.kind != Motion::Kind::rotation && driver_part.motion.kind != Motion::Kind::translation)
     throw GeometryError("the driver '" + driver_part.name + "' must rotate or translate about a fixed axis");
-  std::vector<bool> usable(model.pairs.size(), true);
-  for (std::size_t p = 0; p < model.pairs.size(); ++p) {
-    const PairSpec& spec = model.pairs[p];
-    const Part& a = model.parts[spec.first];
-    const Part& b = model.parts[spec.second];
-    if (!fixed_axis(a.motion) || !fixed_axis(b.motion)) {
-      usable[p] = false;
-      chain.warnings.push_back("pair " + a.name + ":" + b.name +
-                               " is skipped: kinematic analysis handles parts that rotate or translate about fixed axes");
-    }
-    if (motion_dof(a.motion) == 0 && motion_dof(b.motion) == 0) usable[p] = false;
-  }
-  // breadth-first order from the driver
-  chain.chain_index.assign(model.parts.size(), none);
-  std::vector<std::size_t> order{driver};
-  chain.chain_index[driver] = 0;
-  for (std::size_t head = 0; head < order.size(); ++head) {
-    std::size_t current = order[head];
-    for (std::size_t p = 0; p < model.pairs.size(); ++p) {
-      if (!usable[p]) continue;
-      const PairSpec& spec = model.pairs[p];
-      std::size_t other = spec.first == current ? spec.second : spec.second == current ? spec.first : none;
-      if (other == none || motion_dof(model.parts[other].motion) == 0 || chain.chain_index[other] != none) continue;
-      chain.chain_index[other] = order.size();
-      order.push_back(other);
-    }
-  }
+  std::vector<bool> usable;
+  std::vector<std::size_t> order;
+  order_chain(model, driver, usable, chain.chain_index, order, &chain.warnings);
   for (std::size_t i = 0; i < model.parts.size(); ++i)
     if (chain.chain_index[i] == none && motion_dof(model.parts[i].motion) > 0) chain.unconnected.push_back(model.parts[i].name);
   chain.parts.resize(order.size());
@@ -158,13 +192,7 @@ Chain build_chain(const Model& model, std::size_t driver, const std::vector<CSpa
   for (std::size_t p = 0; p < model.pairs.size(); ++p) {
     if (!usable[p]) continue;
     const PairSpec& spec = model.pairs[p];
-    std::size_t ia = chain.chain_index[spec.first], ib = chain.chain_index[spec.second];
-    bool fixed_a = motion_dof(model.parts[spec.first].motion) == 0;
-    bool fixed_b = motion_dof(model.parts[spec.second].motion) == 0;
-    std::size_t follower = none;
-    if (fixed_a) follower = ib == none ? none : spec.second;
-    else if (fixed_b) follower = ia == none ? none : spec.first;
-    else if (ia != none && ib != none) follower = ia > ib ? spec.first : spec.second;
+    std::size_t follower = chain_follower(model, spec, chain.chain_index);
     if (follower == none) continue;
     std::unique_ptr<PairSlicer> slicer;
     std::string used = "kernels";

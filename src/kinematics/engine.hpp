@@ -41,6 +41,10 @@ struct Chain {
   bool accelerations = true;
 };
 
+/// The model's pairs (indices) the chain of `driver` slices: usable pairs (both parts
+/// fixed-axis, not both fixed) with a moving part reached from the driver (build_chain's rule).
+std::vector<std::size_t> chain_pairs(const Model& model, std::size_t driver);
+
 /// Builds the chain of `driver` (model part index).
 Chain build_chain(const Model& model, std::size_t driver, const std::vector<CSpace>& spaces,
                   SliceMethod method, const std::map<std::string, FollowerLoad>& loads);

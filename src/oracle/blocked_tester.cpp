@@ -37,6 +37,7 @@ struct EdgeGeometry {
   double cx = 0, cy = 0, r = 0;    // arcs
   double start = 0, sweep = 0;     // arcs: start angle, signed sweep (ccw positive)
   bool ccw = true;
+  bool minor = false;              // arcs: less than a half turn (decided exactly)
 };
 
 double angle_in_span(double angle, double start, double sweep) {
@@ -95,6 +96,11 @@ std::vector<EdgeGeometry> edges_of(const Part& part, long exponent) {
         g.cy = scaled(edge.center.y, exponent);
         g.r = std::hypot(g.ax - g.cx, g.ay - g.cy);
         g.ccw = edge.ccw;
+        if (!edge.is_full_circle()) {
+          const Rational cross = (edge.source.x - edge.center.x) * (edge.target.y - edge.center.y) -
+                                 (edge.source.y - edge.center.y) * (edge.target.x - edge.center.x);
+          g.minor = edge.ccw ? sgn(cross) > 0 : sgn(cross) < 0;
+        }
         g.start = std::atan2(g.ay - g.cy, g.ax - g.cx);
         double end = std::atan2(g.by - g.cy, g.bx - g.cx);
         double sweep = end - g.start;
@@ -145,6 +151,14 @@ int crossings(const EdgeGeometry& e, double px, double py) {
 std::vector<Disk> inscribed_disks(const Part& part, std::size_t limit, long exponent) {
   std::vector<EdgeGeometry> edges = edges_of(part, exponent);
   if (edges.empty()) return {};
+  // An arc of less than a half turn on a circle far larger than its chord (a centre 10^20 mm
+  // from a tip of 8 mm; the sweep's doubles cannot tell it from a whole turn) is its chord here: the doubles of centre + r cos(angle) lose the whole part to rounding (every
+  // parity test and distance to it was noise, and such a part got no disk: session 46); the
+  // chord is within chord^2 / (8 r) < 2^-23 chord of it, and the disks are only guesses that
+  // certify_part proves exactly.
+  for (auto& e : edges)
+    if (e.arc && e.minor && std::isfinite(e.r) && std::hypot(e.bx - e.ax, e.by - e.ay) < 0x1p-20 * e.r)
+      e.arc = false;
   // every coordinate finite: lengths were divided by the largest coordinate's power of two
   for (const auto& e : edges)
     if (!std::isfinite(e.ax) || !std::isfinite(e.ay) || !std::isfinite(e.bx) || !std::isfinite(e.by) ||
@@ -192,6 +206,17 @@ std::vector<Disk> inscribed_disks(const Part& part, std::size_t limit, long expo
     }
     for (double depth : {0.15, 0.35, 0.7}) candidates.emplace_back(mx + nx * depth * length, my + ny * depth * length);
   }
+  // The part's own size in this unit: lengths are divided by the largest coordinate's power of
+  // two, points, pivots and arc centres alike, so a part with an arc whose centre lies 10^20 mm
+  // away has its corners at about 10^-19 here. The tests below are relative to 1 + |p| (the
+  // unit); at such a scale every candidate was within 1e-9 of the boundary and the part got no
+  // disk ("a part has no interior disks", session 46): the unit is the part's size times 2^10
+  // where that is below 1 (1 for every part whose corners reach 2^-10 of the largest
+  // coordinate: the same disks as before).
+  double size = 0;
+  for (const auto& e : edges)
+    size = std::max({size, std::fabs(e.ax), std::fabs(e.ay), std::fabs(e.bx), std::fabs(e.by)});
+  const double unit = size > 0 ? std::min(1.0, 1024 * size) : 1.0;
   std::vector<Disk> disks;
   for (auto [px, py] : candidates) {
     int count = 0;
@@ -201,9 +226,10 @@ std::vector<Disk> inscribed_disks(const Part& part, std::size_t limit, long expo
       distance = std::min(distance, distance_to(e, px, py));
     }
     if (!std::isfinite(px) || !std::isfinite(py) || !std::isfinite(distance)) continue;
-    if (count % 2 == 0 || distance <= 1e-9 * (1 + std::fabs(px) + std::fabs(py))) continue;
-    // double rounding in the distance is far below 1e-9 relative: shrink by that much
-    disks.push_back({px, py, distance * (1 - 1e-9) - 1e-9 * (1 + std::fabs(px) + std::fabs(py))});
+    if (count % 2 == 0 || distance <= 1e-9 * (unit + std::fabs(px) + std::fabs(py))) continue;
+    // double rounding in the distance is far below 1e-9 relative: shrink by that much (a guess:
+    // certify_part certifies the radius and the centre exactly)
+    disks.push_back({px, py, distance * (1 - 1e-9) - 1e-9 * (unit + std::fabs(px) + std::fabs(py))});
   }
   std::sort(disks.begin(), disks.end(), [](const Disk& a, const Disk& b) { return a.r > b.r; });
   std::vector<Disk> chosen;

@@ -58,6 +58,61 @@ for g in 0 2; do
     fail "stop-gap $g: cspace --region operating: exit $?: $(tail -c 300 "$work/ok.out")"
 done
 
+# Session 46 (hunt46): starts at other angles (a transcendental half-angle tangent) and 1-D
+# regions. The lever turned to its contact angle with the stop's corner (40, 6) plus a generated
+# delta (+-10^-k deg, k in 1..9, or a random fraction of a degree), the stop fixed (a 1-D pair) or
+# turning about (45, 30) by 0 or +-10^-k deg (its corner moved with it, the contact angle solved
+# for the moved corner in doubles, far below the deltas). The oracle: certify --claim
+# interference at the initial configuration (angles rounded within 1e-17 rad) and hipair-verify;
+# an overlap proved must be refused (exit 3, the message, nothing written; base46 wrote a region:
+# exit 0), parts that do not overlap must build (exit 0). Until session 46 the check ran only at
+# angle 0 and only in 2-D.
+at_angle() {   # DELTA_DEG STOP_DEG KIND(fixed|turn) FILE
+  python3 - "$source/examples/models/lever-stop.json" "$@" <<'PY2'
+import json, math, sys
+src, delta, stop_deg, kind, out = sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), sys.argv[4], sys.argv[5]
+t = json.load(open(src))
+s = math.radians(stop_deg) if kind == 'turn' else 0.0
+px, py = 45 + math.cos(s) * (40 - 45) - math.sin(s) * (6 - 30), 30 + math.sin(s) * (40 - 45) + math.cos(s) * (6 - 30)
+# the lever's upper side (y = 4 at angle 0) through the corner: -px sin a + py cos a = 4
+r, phi = math.hypot(px, py), math.atan2(px, py)
+contact = math.degrees(math.acos(4 / r) - phi)
+if kind == 'turn':
+    t['parts'][1]['motion'] = {'rotation': {'pivot': [45, 30]}}
+    t['parts'][1]['initial'] = {'angle': stop_deg}
+t['parts'][0]['initial'] = {'angle': contact + delta}
+json.dump(t, open(out, 'w'), indent=1)
+PY2
+}
+for round in 1 2 3 4 5 6; do
+  kinds=(fixed turn)
+  kind=${kinds[$((RANDOM % 2))]}
+  sign=$([ $((RANDOM % 3)) -eq 0 ] && echo - || echo)
+  delta=$sign$([ $((RANDOM % 4)) -eq 0 ] && echo "0.$((RANDOM % 900 + 100))" || echo "1e-$((RANDOM % 9 + 1))")
+  stop=0
+  [ "$kind" = turn ] && [ $((RANDOM % 2)) -eq 0 ] && stop=$([ $((RANDOM % 2)) -eq 0 ] && echo - || echo)1e-$((RANDOM % 6 + 2))
+  what="lever at contact ${delta} deg, stop $kind at $stop deg"
+  model=$work/angle-$round.json
+  at_angle "$delta" "$stop" "$kind" "$model"
+  "$hipair" certify "$model" --claim interference --out "$work/i.json" >"$work/i.out" 2>&1
+  certified=$?
+  rm -f "$work/x.json"
+  timeout 120 "$hipair" cspace "$model" --region operating --json "$work/x.json" >"$work/c.out" 2>"$work/c.err"
+  code=$?
+  if [ $certified -eq 0 ]; then
+    "$verify" "$work/i.json" "$model" >"$work/v.out" 2>&1 || { fail "$what: hipair-verify: $(cat "$work/v.out")"; continue; }
+    [ $code -eq 3 ] || fail "$what: overlap verified, cspace --region operating: exit $code, want 3: $(head -c 300 "$work/c.err")"
+    grep -qF "hipair: error: operating region of 'lever' and 'stop': the parts certainly overlap at the seed configuration" \
+      "$work/c.err" || fail "$what: message: $(head -c 300 "$work/c.err")"
+    [ "$(wc -l <"$work/c.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/c.err")"
+    [ -e "$work/x.json" ] && fail "$what: wrote --json"
+  elif [ $certified -eq 1 ]; then
+    [ $code -eq 0 ] || fail "$what: no overlap (certify: $(tail -c 100 "$work/i.out")), cspace --region operating: exit $code: $(head -c 300 "$work/c.err")"
+  else
+    fail "$what: certify --claim interference: exit $certified: $(tail -c 300 "$work/i.out")"
+  fi
+done
+
 if [ $failures -gt 0 ]; then
   echo "$failures failure(s) (seed $seed)"
   exit 1
