@@ -429,16 +429,21 @@ std::optional<int> multiprecision_order(const Real& a, const Real& b, long start
   long bits = start_bits;
   Scratch s(bits);
   Bracket x(a, bits), y(b, bits);
+  // a bracket at this precision's floor (fewer than two halvings) is left alone until the other
+  // reaches its floor too (session 46: a remembered bracket starts near its floor, and the
+  // other one must still be narrowed at this precision)
+  bool floor_x = false, floor_y = false;
   for (;;) {
     // a < right end of a's bracket <= x.hi, and likewise for the others
     if (mpfr_less_p(x.hi(), y.lo())) return -1;
     if (mpfr_less_p(y.hi(), x.lo())) return 1;
-    // both halved twice (as far as this precision allows) and narrowed by a Newton step; at a
-    // floor, the next precision
-    const int done_x = x.halve(2, s), done_y = y.halve(2, s);
+    // each halved twice (as far as this precision allows) and narrowed by a Newton step; when
+    // both are at their floors, the next precision
+    if (!floor_x) floor_x = x.halve(2, s) < 2;
+    if (!floor_y) floor_y = y.halve(2, s) < 2;
     x.newton(s);
     y.newton(s);
-    if (done_x == 2 && done_y == 2) continue;
+    if (!floor_x || !floor_y) continue;
     if (mpfr_less_p(x.hi(), y.lo())) return -1;
     if (mpfr_less_p(y.hi(), x.lo())) return 1;
     if (bits == start_bits && equal && equal()) return 0;
@@ -447,6 +452,7 @@ std::optional<int> multiprecision_order(const Real& a, const Real& b, long start
     x.widen(bits);
     y.widen(bits);
     s.widen(bits);
+    floor_x = floor_y = false;
   }
 }
 

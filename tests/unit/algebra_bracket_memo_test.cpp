@@ -235,5 +235,57 @@ TEST(AlgebraBracketMemo, ClustersSortAndSignAsTheExactPath) {
   std::printf("%d clusters, %d comparisons, %d signs\n", clusters, comparisons, signs);
 }
 
+// Two roots c -+ sqrt(e) of one quadratic, 2 sqrt(e) ~ 2^-(K - 1) apart (K = 280 ... 330, c a
+// non-dyadic rational near 1/2): u one of them, its isolating interval ending at c, the other root
+// less than one ulp of P = 192 bits beyond that end. u's bracket is narrowed at 1 536 bits (the
+// memo then holds MPFR ends strictly inside (c, u) or (u, c)); ordered at P (doubling to 1 536)
+// against u moved 2^-(K + 10) towards the other root, the remembered end rounded at P lies past
+// the other root: it must become u's rational end again, or the bisection at 2P takes a midpoint
+// beyond the other root for one on u's far side, Newton converges to the other root and the
+// order is wrong. Every order given must be right and the remembered bracket must hold u.
+TEST(AlgebraBracketMemo, AnEndRoundedPastTheIntervalIsTheRationalEndAgain) {
+  std::mt19937_64 random(46464);
+  int cases = 0, ordered = 0;
+  for (int round = 0; round < 16; ++round) {
+    const int k = 280 + static_cast<int>(random() % 51);
+    const long d = 3 + 2 * static_cast<long>(random() % 50);   // odd: c = n / d not dyadic
+    const Rational c(mpz_class(d / 2 + static_cast<long>(random() % 3) - 1), mpz_class(d));
+    const bool upper_root = round % 2 == 0;   // u = c + sqrt(e), its interval (c, c + 1/4)
+    // q = (x - c)^2 - e, e = 3 * 2^-2k: d^2 2^2k x^2 - 2 n d 2^2k x + n^2 2^2k - 3 d^2
+    const mpz_class n = c.get_num(), den = c.get_den(), two_k = mpz_class(1) << static_cast<mp_bitcnt_t>(2 * k);
+    const Polynomial q{n * n * two_k - 3 * den * den, -2 * n * den * two_k, den * den * two_k};
+    const Rational quarter(1, 4);
+    const Real u = upper_root ? Real{q, c, c + quarter, false} : Real{q, c - quarter, c, false};
+    ASSERT_EQ(sgn(value_at(q, u.lower)) * sgn(value_at(q, u.upper)), -1);
+    const std::string at = "round " + std::to_string(round) + " (K = " + std::to_string(k) + ", c = " + c.get_str() +
+                           (upper_root ? ", the upper root)" : ", the lower root)");
+    // 1. the memo narrowed at 1 536 bits against a neighbour 2^-1 100 away
+    {
+      const Rational delta = Rational(upper_root ? 1 : -1) / Rational(mpz_class(1) << 1100);
+      const Real w{moved(q, delta), u.lower + delta, u.upper + delta, false};
+      const auto order = multiprecision_order(u, w, 1536, 1536);
+      ASSERT_TRUE(order) << at << ": not separated at 1 536 bits";
+      EXPECT_EQ(*order, -sgn(delta)) << at << ": at 1 536 bits";
+    }
+    // 2. at 192 bits, doubling to 6 144, against u moved towards the other root
+    const Rational delta = Rational(upper_root ? -1 : 1) / Rational(mpz_class(1) << static_cast<mp_bitcnt_t>(k + 10));
+    const Real v{moved(q, delta), u.lower + delta, u.upper + delta, false};
+    const auto order = multiprecision_order(u, v, 192, 6144);
+    ++cases;
+    if (order) {
+      ++ordered;
+      EXPECT_EQ(*order, -sgn(delta)) << at << ": the order is wrong";
+    }
+    EXPECT_EQ(compare(u, v), -sgn(delta)) << at << ": compare";
+    if (const auto r = remembered_bracket(u)) {
+      EXPECT_GE(u.compare(r->first), 0) << at << ": the remembered lower end is above u";
+      EXPECT_LE(u.compare(r->second), 0) << at << ": the remembered upper end is below u";
+    }
+  }
+  EXPECT_EQ(cases, 16);
+  EXPECT_GT(ordered, 8);
+  std::printf("%d cases, %d ordered\n", cases, ordered);
+}
+
 }  // namespace
 }  // namespace hipair::cspace::algebra
