@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cstddef>
 #include <functional>
+#include <memory>
+#include <unordered_map>
 #include <vector>
 #include <utility>
 
@@ -162,20 +164,89 @@ MultiprecisionBits multiprecision_sign_bits(const Polynomial& p, const Real& u) 
 
 namespace {
 
+// u's polynomial q and its derivative as MPFR numbers (shared by the brackets of one number).
+struct BracketPolynomials {
+  MpPolynomial q, dq;
+  explicit BracketPolynomials(const Polynomial& p) : q(p), dq(derivative(p)) {}
+};
+
+// Session 46 (scale46): the narrowest bracket a number's Bracket reached, remembered per thread,
+// so that the next order or sign of the same number (the same polynomial and isolating interval)
+// starts from it instead of u's rational interval (a sweep compares one x-coordinate with many
+// others; each comparison narrowed both brackets afresh). Any bracket kept holds u with the
+// Bracket's invariants (an MPFR end lies strictly inside u's interval, on q's side of u it was
+// certified on), so where a bracket starts changes how much work a decision takes, never the
+// decision: every order and sign is still given only by disjoint or zero-free enclosures.
+struct RememberedBracket {
+  Polynomial polynomial;   // the number's key, with its interval
+  Rational lower, upper;
+  std::shared_ptr<const BracketPolynomials> polynomials;
+  Mp lo{MPFR_PREC_MIN}, hi{MPFR_PREC_MIN};   // at their own precision
+  bool narrowed = false, left_rational = true, right_rational = true;
+  int low_sign = 0;   // q's sign at u.lower once known (0: not yet)
+  explicit RememberedBracket(const Real& u)
+      : polynomial(u.polynomial), lower(u.lower), upper(u.upper), polynomials(std::make_shared<const BracketPolynomials>(u.polynomial)) {}
+};
+
+std::size_t mix(std::size_t h, std::size_t v) { return h ^ (v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2)); }
+std::size_t integer_hash(std::size_t h, mpz_srcptr z) {
+  h = mix(h, static_cast<std::size_t>(z->_mp_size));
+  return z->_mp_size == 0 ? h : mix(h, static_cast<std::size_t>(z->_mp_d[0]));
+}
+
+thread_local long memo_hits = 0;
+thread_local bool memo_enabled = true;
+
+class BracketMemo {
+ public:
+  std::shared_ptr<RememberedBracket> find(const Real& u) {
+    std::size_t h = 0;
+    for (const mpz_class& c : u.polynomial) h = integer_hash(h, c.get_mpz_t());
+    for (const Rational* r : {&u.lower, &u.upper}) h = integer_hash(integer_hash(h, r->get_num_mpz_t()), r->get_den_mpz_t());
+    auto it = entries_.find(h);
+    if (it != entries_.end() && it->second->polynomial == u.polynomial && it->second->lower == u.lower && it->second->upper == u.upper) {
+      ++memo_hits;
+      return it->second;
+    }
+    if (it == entries_.end() && entries_.size() >= kCapacity) entries_.clear();   // bounded memory
+    auto entry = std::make_shared<RememberedBracket>(u);
+    entries_[h] = entry;   // (a colliding number's entry replaced; a live bracket keeps its own)
+    return entry;
+  }
+
+ private:
+  static constexpr std::size_t kCapacity = 4096;
+  std::unordered_map<std::size_t, std::shared_ptr<RememberedBracket>> entries_;
+};
+
+BracketMemo& bracket_memo() {
+  thread_local BracketMemo memo;
+  return memo;
+}
+
 // The bracket of a non-exact u narrowed in MPFR: [lo, hi] encloses an open interval (left, right)
 // holding u, where an end is u's rational end (enclosed outwards) until a midpoint replaces it
 // (then the MPFR number itself). A midpoint m = (lo + hi) / 2 (rounded to nearest) is kept only
 // when it lies strictly inside (left, right) (compared exactly with the rational end or the MPFR
 // one) and the sign of u's polynomial q at m is certified non-zero by a point enclosure; m then
-// replaces the end whose sign it shares (q changes sign once in u's interval, at u).
+// replaces the end whose sign it shares (q changes sign once in u's interval, at u). With
+// `remember`, the bracket starts where the thread's last bracket of the same number ended (see
+// RememberedBracket) and leaves its own there when narrower.
 class Bracket {
  public:
-  Bracket(const Real& u, long bits)
-      : u_(u), q_(u.polynomial), dq_(derivative(u.polynomial)), a_(bits), b_(bits), m_(bits), d_lo_(bits), d_hi_(bits),
-        n_(bits) {
+  Bracket(const Real& u, long bits, bool remember = true)
+      : u_(u), memo_(remember && memo_enabled ? bracket_memo().find(u) : nullptr),
+        polynomials_(memo_ ? memo_->polynomials : std::make_shared<const BracketPolynomials>(u.polynomial)),
+        q_(polynomials_->q), dq_(polynomials_->dq), a_(bits), b_(bits), m_(bits), d_lo_(bits), d_hi_(bits), n_(bits) {
     mpfr_set_q(a_.v, u.lower.get_mpq_t(), MPFR_RNDD);
     mpfr_set_q(b_.v, u.upper.get_mpq_t(), MPFR_RNDU);
+    if (memo_) recall(*memo_);
   }
+  ~Bracket() {
+    if (memo_) remember(*memo_);
+  }
+  Bracket(const Bracket&) = delete;
+  Bracket& operator=(const Bracket&) = delete;
   mpfr_srcptr lo() const { return a_.v; }
   mpfr_srcptr hi() const { return b_.v; }
   /// Up to `count` halvings at the current precision; the number done (fewer: this precision's
@@ -184,8 +255,15 @@ class Bracket {
     if (low_sign_ == 0) {
       // non-zero, the opposite of q's sign at u.upper: the sign of q over the enclosure of
       // u.lower when it excludes zero, exactly otherwise
+      // (a remembered MPFR end is no longer u.lower's enclosure)
       mpfr_set_q(m_.v, u_.lower.get_mpq_t(), MPFR_RNDU);
-      enclose_over(q_, a_.v, m_.v, s);
+      if (left_rational_) {
+        enclose_over(q_, a_.v, m_.v, s);
+      } else {
+        Mp lower(mpfr_get_prec(a_.v));
+        mpfr_set_q(lower.v, u_.lower.get_mpq_t(), MPFR_RNDD);
+        enclose_over(q_, lower.v, m_.v, s);
+      }
       low_sign_ = enclosure_sign(s);
       if (low_sign_ == 0) low_sign_ = sign_at(u_.polynomial, u_.lower);
     }
@@ -247,8 +325,48 @@ class Bracket {
   }
 
  private:
+  // The remembered bracket loaded at this precision: an MPFR end rounded outwards when it has
+  // more bits; an inexactly rounded end at or beyond u's rational end is that end again (q may
+  // have other roots outside u's interval, so an MPFR end must lie strictly inside it).
+  void recall(const RememberedBracket& r) {
+    low_sign_ = r.low_sign;
+    if (!r.narrowed) return;
+    if (!r.left_rational) {
+      const int inexact = mpfr_set(a_.v, r.lo.v, MPFR_RNDD);
+      left_rational_ = inexact != 0 && mpfr_cmp_q(a_.v, u_.lower.get_mpq_t()) <= 0;
+      if (left_rational_) mpfr_set_q(a_.v, u_.lower.get_mpq_t(), MPFR_RNDD);
+    }
+    if (!r.right_rational) {
+      const int inexact = mpfr_set(b_.v, r.hi.v, MPFR_RNDU);
+      right_rational_ = inexact != 0 && mpfr_cmp_q(b_.v, u_.upper.get_mpq_t()) >= 0;
+      if (right_rational_) mpfr_set_q(b_.v, u_.upper.get_mpq_t(), MPFR_RNDU);
+    }
+  }
+  // This bracket kept when the remembered one is wider (widths rounded up: a heuristic choice,
+  // either bracket holds u).
+  void remember(RememberedBracket& r) const {
+    if (low_sign_ != 0) r.low_sign = low_sign_;
+    if (left_rational_ && right_rational_) return;
+    if (r.narrowed) {
+      const mpfr_prec_t bits = std::max(mpfr_get_prec(a_.v), mpfr_get_prec(r.lo.v));
+      Mp mine(bits), theirs(bits);
+      mpfr_sub(mine.v, b_.v, a_.v, MPFR_RNDU);
+      mpfr_sub(theirs.v, r.hi.v, r.lo.v, MPFR_RNDU);
+      if (!mpfr_less_p(mine.v, theirs.v)) return;
+    }
+    mpfr_set_prec(r.lo.v, mpfr_get_prec(a_.v));
+    mpfr_set_prec(r.hi.v, mpfr_get_prec(b_.v));
+    mpfr_set(r.lo.v, a_.v, MPFR_RNDN);   // exact: the same precision
+    mpfr_set(r.hi.v, b_.v, MPFR_RNDN);
+    r.left_rational = left_rational_;
+    r.right_rational = right_rational_;
+    r.narrowed = true;
+  }
+
   const Real& u_;
-  const MpPolynomial q_, dq_;   // u's polynomial, its derivative
+  std::shared_ptr<RememberedBracket> memo_;
+  std::shared_ptr<const BracketPolynomials> polynomials_;
+  const MpPolynomial &q_, &dq_;   // u's polynomial, its derivative
   Mp a_, b_, m_, d_lo_, d_hi_, n_;
   bool left_rational_ = true, right_rational_ = true;
   int low_sign_ = 0;   // q's sign at u.lower, when the first halving needs it
@@ -296,7 +414,7 @@ std::vector<std::pair<Rational, Rational>> multiprecision_brackets(const Real& u
   std::vector<std::pair<Rational, Rational>> brackets;
   if (u.exact || u.polynomial.size() < 2) return brackets;
   Scratch s(bits);
-  Bracket x(u, bits);
+  Bracket x(u, bits, false);
   for (int round = 0; round < rounds; ++round) {
     x.halve(2, s);
     x.newton(s);
@@ -311,16 +429,21 @@ std::optional<int> multiprecision_order(const Real& a, const Real& b, long start
   long bits = start_bits;
   Scratch s(bits);
   Bracket x(a, bits), y(b, bits);
+  // a bracket at this precision's floor (fewer than two halvings) is left alone until the other
+  // reaches its floor too (session 46: a remembered bracket starts near its floor, and the
+  // other one must still be narrowed at this precision)
+  bool floor_x = false, floor_y = false;
   for (;;) {
     // a < right end of a's bracket <= x.hi, and likewise for the others
     if (mpfr_less_p(x.hi(), y.lo())) return -1;
     if (mpfr_less_p(y.hi(), x.lo())) return 1;
-    // both halved twice (as far as this precision allows) and narrowed by a Newton step; at a
-    // floor, the next precision
-    const int done_x = x.halve(2, s), done_y = y.halve(2, s);
+    // each halved twice (as far as this precision allows) and narrowed by a Newton step; when
+    // both are at their floors, the next precision
+    if (!floor_x) floor_x = x.halve(2, s) < 2;
+    if (!floor_y) floor_y = y.halve(2, s) < 2;
     x.newton(s);
     y.newton(s);
-    if (done_x == 2 && done_y == 2) continue;
+    if (!floor_x || !floor_y) continue;
     if (mpfr_less_p(x.hi(), y.lo())) return -1;
     if (mpfr_less_p(y.hi(), x.lo())) return 1;
     if (bits == start_bits && equal && equal()) return 0;
@@ -329,7 +452,24 @@ std::optional<int> multiprecision_order(const Real& a, const Real& b, long start
     x.widen(bits);
     y.widen(bits);
     s.widen(bits);
+    floor_x = floor_y = false;
   }
+}
+
+long multiprecision_bracket_memo_hits() { return memo_hits; }
+
+bool set_multiprecision_bracket_memo(bool enabled) {
+  const bool was = memo_enabled;
+  memo_enabled = enabled;
+  return was;
+}
+
+std::optional<std::pair<Rational, Rational>> remembered_bracket(const Real& u) {
+  if (u.exact || u.polynomial.size() < 2 || !memo_enabled) return std::nullopt;
+  const std::shared_ptr<RememberedBracket> r = bracket_memo().find(u);
+  --memo_hits;   // (a look, not a use)
+  if (!r->narrowed) return std::nullopt;
+  return std::pair{r->left_rational ? u.lower : to_rational(r->lo.v), r->right_rational ? u.upper : to_rational(r->hi.v)};
 }
 
 }  // namespace hipair::cspace::algebra

@@ -68,6 +68,15 @@ long multiprecision_enclosures();
 /// coefficients wider than 192 bits (its zero test), for tests.
 long wide_sign_gcds();
 
+/// Session 46: multiprecision_order and multiprecision_sign start a number's bracket where the
+/// thread's last bracket of the same number (polynomial and isolating interval) ended, and leave
+/// theirs when narrower (a per-thread memo of at most 4 096 numbers). For tests: the memo's uses
+/// on this thread so far; switching it off (returns the previous setting); the bracket it holds
+/// for u (nothing when none narrower than u's interval), as exact rationals.
+long multiprecision_bracket_memo_hits();
+bool set_multiprecision_bracket_memo(bool enabled);
+std::optional<std::pair<Rational, Rational>> remembered_bracket(const Real& u);
+
 /// sign_at(p, u) by the exact path only (gcd, square-free part, Sturm sequence): tests' oracle.
 int exact_sign_at(const Polynomial& p, const Real& u);
 
