@@ -1623,25 +1623,71 @@ void assign_public(AlgebraicNumber& n, const algebra::Real& r) {
 
 namespace hipair {
 
+std::size_t& cspace::vertex_numbers_copied() {
+  thread_local std::size_t copied = 0;
+  return copied;
+}
+
+namespace {
+
+// The numbers of public vertex `vertex` from raw vertex `source`.
+void copy_vertex_numbers(CSpaceVertex& vertex, const cspace::raw::Vertex& source) {
+  ++cspace::vertex_numbers_copied();
+  cspace::assign_public(vertex.x, source.x);
+  vertex.y_exact = source.y_exact;
+  if (source.y_exact) cspace::assign_public(vertex.y, source.y);
+  vertex.y_lower = source.y_lower;
+  vertex.y_upper = source.y_upper;
+  vertex.y_curve = source.y_curve.coefficients;
+  vertex.y_branch = source.y_branch;
+}
+
+}  // namespace
+
+// (the public vertices are the Impl's own, never const objects: a vertex is written once, under
+// numbers.mutex, before any reader is told it is (numbers.written / numbers.all, release), and
+// never rewritten, so a reader holding a written vertex never sees it change)
 void CSpace::Impl::write_vertex_numbers() const {
-  if (dimension != 2) return;   // a 1-D space's vertices are written whole by the build
-  // (the public vertices are the Impl's own, never const objects: written once, under
-  // numbers_once, before any reader sees them)
-  auto& out = const_cast<std::vector<CSpaceVertex>&>(vertices);
-  for (const cspace::ChartData& chart : charts) {
-    const auto& raw = chart.arrangement.vertices;
-    for (std::size_t v = 0; v < raw.size() && v < chart.vertex_global.size(); ++v) {
-      CSpaceVertex& vertex = out[chart.vertex_global[v]];
-      const cspace::raw::Vertex& source = raw[v];
-      cspace::assign_public(vertex.x, source.x);
-      vertex.y_exact = source.y_exact;
-      if (source.y_exact) cspace::assign_public(vertex.y, source.y);
-      vertex.y_lower = source.y_lower;
-      vertex.y_upper = source.y_upper;
-      vertex.y_curve = source.y_curve.coefficients;
-      vertex.y_branch = source.y_branch;
+  std::lock_guard<std::mutex> lock(numbers.mutex);
+  if (numbers.all.load(std::memory_order_relaxed)) return;
+  if (dimension == 2) {   // a 1-D space's vertices are written whole by the build
+    auto& out = const_cast<std::vector<CSpaceVertex>&>(vertices);
+    const std::atomic<unsigned char>* written = numbers.written.load(std::memory_order_relaxed);
+    for (const cspace::ChartData& chart : charts) {
+      const auto& raw = chart.arrangement.vertices;
+      for (std::size_t v = 0; v < raw.size() && v < chart.vertex_global.size(); ++v) {
+        const std::size_t g = chart.vertex_global[v];
+        if (written && written[g].load(std::memory_order_relaxed)) continue;
+        copy_vertex_numbers(out[g], raw[v]);
+      }
     }
   }
+  numbers.all.store(true, std::memory_order_release);
+}
+
+void CSpace::Impl::write_vertex_number(std::size_t index) const {
+  std::lock_guard<std::mutex> lock(numbers.mutex);
+  if (numbers.all.load(std::memory_order_relaxed)) return;
+  if (dimension != 2) {   // written whole by the build
+    numbers.all.store(true, std::memory_order_release);
+    return;
+  }
+  std::atomic<unsigned char>* written = numbers.written.load(std::memory_order_relaxed);
+  if (!written) {
+    written = new std::atomic<unsigned char>[vertices.size()]();
+    numbers.written.store(written, std::memory_order_release);
+  }
+  if (written[index].load(std::memory_order_relaxed)) return;
+  // the raw vertex write_vertex_numbers copies to public vertex `index`, if any
+  if (index < vertex_local.size()) {
+    auto [c, v] = vertex_local[index];
+    if (c < charts.size()) {
+      const cspace::ChartData& chart = charts[c];
+      if (v < chart.arrangement.vertices.size() && v < chart.vertex_global.size() && chart.vertex_global[v] == index)
+        copy_vertex_numbers(const_cast<std::vector<CSpaceVertex>&>(vertices)[index], chart.arrangement.vertices[v]);
+    }
+  }
+  written[index].store(1, std::memory_order_release);
 }
 
 }  // namespace hipair
@@ -2108,7 +2154,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       const raw::Vertex& source = arrangement.vertices[v];
       vertex.edges.reserve(source.around.size());
       vertex.curves.reserve(curve_room[v]);
-      // (its numbers: CSpace::Impl::write_vertex_numbers, when the public vertices are first read)
+      // (its numbers: CSpace::Impl::write_vertex_numbers / write_vertex_number, when the public vertices are first read)
       vertex.touching = chart.touching_vertex[v] != 0;
     }
     for (std::size_t e = 0; e < arrangement.edges.size(); ++e) {

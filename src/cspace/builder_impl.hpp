@@ -156,10 +156,12 @@ struct CSpace::Impl {
   std::vector<CSpaceChart> public_charts;
   std::vector<FeaturePair> feature_pairs;
   /// The public vertices. Their exact numbers (x, y, y_lower, y_upper, y_curve, y_branch,
-  /// y_exact) of 2-D charts are copied from the raw arrangement's vertices on the first call of
-  /// vertex_numbers() (CSpace::vertices() and CSpace::vertex() call it; nothing else reads
-  /// them): a build whose vertices are never read makes no copy. Their topology (chart, edges,
-  /// curves, flags) is written by the build.
+  /// y_exact) of 2-D charts are copied from the raw arrangement's vertices when they are first
+  /// read: all of them on the first vertex_numbers() (CSpace::vertices()), one vertex on the
+  /// first vertex_number(index) (CSpace::vertex(id): the simulator reads a few vertices of a
+  /// space; session 46). Nothing else reads them: a build whose vertices are never read makes no
+  /// copy. A vertex's numbers are written once and never rewritten. Their topology (chart,
+  /// edges, curves, flags) is written by the build.
   std::vector<CSpaceVertex> vertices;
   std::vector<CSpaceEdge> edges;
   std::vector<CSpaceCell> cells;
@@ -171,17 +173,38 @@ struct CSpace::Impl {
   std::shared_ptr<const Model> model;
   cspace::PairAxes axes;
 
-  /// `vertices`, their numbers written first if they are not yet (once; thread-safe).
+  /// `vertices`, every vertex's numbers written first if they are not yet (thread-safe).
   const std::vector<CSpaceVertex>& vertex_numbers() const {
-    std::call_once(numbers_once.flag, [this] { write_vertex_numbers(); });
+    if (!numbers.all.load(std::memory_order_acquire)) write_vertex_numbers();
     return vertices;
   }
-  /// The numbers of every 2-D chart's public vertices from its raw vertices (builder.cpp).
+  /// `vertices[index]` (index < vertices.size()), its numbers written first if they are not yet
+  /// (only its own; thread-safe).
+  const CSpaceVertex& vertex_number(std::size_t index) const {
+    if (!numbers.all.load(std::memory_order_acquire)) {
+      const std::atomic<unsigned char>* written = numbers.written.load(std::memory_order_acquire);
+      if (!written || !written[index].load(std::memory_order_acquire)) write_vertex_number(index);
+    }
+    return vertices[index];
+  }
+  /// The numbers of every 2-D chart's public vertices not yet written, from their raw vertices
+  /// (builder.cpp).
   void write_vertex_numbers() const;
-  struct Once {
-    std::once_flag flag;
+  /// The numbers of public vertex `index` if not yet written (builder.cpp).
+  void write_vertex_number(std::size_t index) const;
+  /// The numbers' state: `all` once every vertex is written (release after the writes);
+  /// `written[i]` once vertex i is (the array made on the first one-vertex write). Writers hold
+  /// `mutex`.
+  struct Numbers {
+    std::mutex mutex;
+    std::atomic<bool> all{false};
+    std::atomic<std::atomic<unsigned char>*> written{nullptr};
+    Numbers() = default;
+    Numbers(const Numbers&) = delete;
+    Numbers& operator=(const Numbers&) = delete;
+    ~Numbers() { delete[] written.load(); }
   };
-  mutable Once numbers_once;
+  mutable Numbers numbers;
 };
 
 }  // namespace hipair
@@ -189,6 +212,11 @@ struct CSpace::Impl {
 namespace hipair::cspace {
 
 inline const CSpace::Impl& impl_of(const CSpace& space) { return implementation(space); }
+
+/// How many public vertices' numbers this thread copied from raw vertices
+/// (CSpace::Impl::write_vertex_numbers / write_vertex_number; tests: each vertex once, only the
+/// ones read).
+std::size_t& vertex_numbers_copied();
 
 /// Builds the C-space from model-free input. \throws GeometryError, NumericError.
 CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options);

@@ -299,7 +299,7 @@ const CSpaceEdge& CSpace::edge(EdgeId id) const {
 }
 const CSpaceVertex& CSpace::vertex(VertexId id) const {
   const Impl& impl = checked(*this);
-  return impl.vertex_numbers()[index_in(id, impl.vertices.size(), "vertex")];
+  return impl.vertex_number(index_in(id, impl.vertices.size(), "vertex"));
 }
 const FeaturePair& CSpace::feature_pair(FeatureId id) const {
   const Impl& impl = checked(*this);

@@ -410,11 +410,13 @@ struct Simulation::Impl {
   // (simulation/ordinate_filter.hpp).
   mutable std::vector<std::vector<std::array<double, 2>>> vertex_bounds;
 
-  const std::array<double, 2>& ordinate_bounds(std::size_t pair, std::size_t vertex) const {
+  std::array<double, 2> ordinate_bounds(std::size_t pair, std::size_t vertex) const {
     if (vertex_bounds.size() != spaces.size()) vertex_bounds.resize(spaces.size());
     std::vector<std::array<double, 2>>& bounds = vertex_bounds[pair];
-    if (bounds.empty()) bounds.assign(spaces[pair]->vertices().size(), {std::nan(""), std::nan("")});
-    std::array<double, 2>& b = bounds.at(vertex);
+    // (grown to the vertex read, not sized by CSpace::vertices(): that would write every
+    // vertex's exact numbers; CSpace::vertex writes only this one's)
+    if (vertex >= bounds.size()) bounds.resize(vertex + 1, {std::nan(""), std::nan("")});
+    std::array<double, 2>& b = bounds[vertex];
     if (std::isnan(b[0])) {
       const CSpaceVertex& p = spaces[pair]->vertex(VertexId(vertex));
       b = {simulation::double_below(p.y_lower), simulation::double_above(p.y_upper)};

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <mpfr.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -184,6 +185,71 @@ TEST(CSpaceAngleFilter, PiecesCoverEveryAngleOfTheRangeAndAreTight) {
   EXPECT_EQ(tight, ends);
 }
 
+// tan_enclosure_signed as it was before esc46b (session 18's form: interval_detail's general
+// down / up rule with its zero, sign and infinity tests, and the sign checks at every step),
+// the reference for the unchecked form of src/cspace/angle_filter.hpp.
+static std::optional<kernels::Interval> checked_signed(const kernels::Interval& y) {
+  using kernels::Interval;
+  // interval_detail::down / up, whose steps here are on positive finite doubles (the check
+  // below keeps the others on the general rule): there the neighbour is the bit pattern's
+  // predecessor / successor (x > 0: down(x) = -up(-x) steps -x's magnitude back by one), the
+  // same double without the zero, sign and infinity cases of the general rule
+  auto down = [](double x) {
+    if (x > 0 && x < std::numeric_limits<double>::infinity())
+      return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) - 1);
+    return kernels::interval_detail::down(x);
+  };
+  auto up = [](double x) {
+    if (x > 0 && x < std::numeric_limits<double>::infinity())
+      return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) + 1);
+    return kernels::interval_detail::up(x);
+  };
+  // odd: the generic operations on -y are those on y negated (rounding to nearest and the
+  // one-ulp widening are symmetric), so [-a, -b] is done as [b, a]
+  bool negative = y.hi < 0;
+  double a = negative ? -y.hi : y.lo, b = negative ? -y.lo : y.hi;   // 0 < a <= b
+  if (!(a >= 1e-150) || !(b <= 0.8) || !(a <= b)) return std::nullopt;
+  const double r = b;
+  // y2 = y * y: all ends positive, the minimum a a and the maximum b b
+  const double y2l = down(a * a), y2h = up(b * b);
+  // s = 1 - over(y2, n) * s with over(y2, n) = [down(y2l / n), up(y2h / n)] >= 0 and s > 0:
+  // the product [down(ol sl), up(oh sh)], the difference [down(1 - ph), up(1 - pl)]
+  double sl = 1, sh = 1, cl = 1, ch = 1;
+  for (int k = 9; k >= 1; --k) {
+    const int n = 2 * k * (2 * k + 1);
+    const double ol = down(y2l / n), oh = up(y2h / n);
+    const double pl = down(ol * sl), ph = up(oh * sh);
+    sl = down(1 - ph);
+    sh = up(1 - pl);
+    if (!(ol >= 0) || !(sl > 0)) return std::nullopt;
+  }
+  for (int k = 10; k >= 1; --k) {
+    const int n = (2 * k - 1) * (2 * k);
+    const double ol = down(y2l / n), oh = up(y2h / n);
+    const double pl = down(ol * cl), ph = up(oh * ch);
+    cl = down(1 - ph);
+    ch = up(1 - pl);
+    if (!(ol >= 0) || !(cl > 0)) return std::nullopt;
+  }
+  // s = y * s: both positive
+  sl = down(a * sl);
+  sh = up(b * sh);
+  double power = r;   // r^21, then r^22, rounded up (as in the generic form)
+  for (int i = 2; i <= 21; ++i) power = up(power * r);
+  const double rs = up(power / 5.1e19);
+  power = up(power * r);
+  const double rc = up(power / 1.12e21);
+  // s + [-rs, rs], c + [-rc, rc]
+  sl = down(sl + -rs);
+  sh = up(sh + rs);
+  cl = down(cl + -rc);
+  ch = up(ch + rc);
+  if (!(cl > 0) || !(sl > 0)) return std::nullopt;
+  // s / c, both positive: [down(sl / ch), up(sh / cl)]
+  const double ql = down(sl / ch), qh = up(sh / cl);
+  return negative ? Interval(-qh, -ql) : Interval(ql, qh);
+}
+
 // The half-angle tangents' memo (half_angle_tan, tan_memo()): on generated angle ranges whose ends
 // recur as a subdivision's do (a stretch, its halves, their halves) and ends one double apart
 // (which a memo comparing fewer bits would confuse), filtered_angle_ranges with the memo (warm:
@@ -254,4 +320,54 @@ TEST(CSpaceAngleFilter, TanMemoGivesTheUnmemoisedBits) {
 }
 
 }  // namespace
+// esc46b: tan_enclosure_signed without the general rounding rule's tests and the per-step sign
+// checks gives the checked form's bits (and its nullopt), and answers wherever y is a point or a
+// narrow interval (hi <= 2 lo) with 1e-150 <= |y| <= 0.8 on one side of 0: on point arguments as half_angle_tan makes them (tau * 0.5), log-uniform over
+// the whole domain (so r^21 underflows to subnormals and +0 on part of it), on narrow and wide
+// intervals inside it, and at its borders and around the subnormal range of r^21 moved by ulps.
+TEST(CSpaceAngleFilter, TanEnclosureSignedUncheckedEqualsTheCheckedForm) {
+  using kernels::Interval;
+  std::mt19937_64 rng(46);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto bits = [](double d) { return std::bit_cast<std::uint64_t>(d); };
+  std::size_t compared = 0;
+  auto check = [&](const Interval& y, bool in_domain) {
+    std::optional<Interval> value = cspace::tan_enclosure_signed(y);
+    std::optional<Interval> reference = checked_signed(y);
+    ++compared;
+    ASSERT_EQ(reference.has_value(), value.has_value()) << std::hexfloat << y.lo << " " << y.hi;
+    if (in_domain) ASSERT_TRUE(value.has_value()) << std::hexfloat << y.lo << " " << y.hi;
+    if (!value) return;
+    ASSERT_EQ(bits(reference->lo), bits(value->lo)) << std::hexfloat << y.lo << " " << y.hi;
+    ASSERT_EQ(bits(reference->hi), bits(value->hi)) << std::hexfloat << y.lo << " " << y.hi;
+  };
+  const double lmin = std::log(1e-150), lmax = std::log(0.8);
+  for (int i = 0; i < 300000; ++i) {
+    double a = std::exp(lmin + (lmax - lmin) * unit(rng));
+    a = std::clamp(a, 1e-150, 0.8);
+    const double sign = (i & 1) ? -1.0 : 1.0;
+    check(Interval::point(sign * 2 * a) * Interval::point(0.5), true);
+    double b = std::min(0.8, a + std::ldexp(unit(rng), -static_cast<int>(unit(rng) * 60)) * a);
+    check(sign > 0 ? Interval(a, b) : Interval(-b, -a), true);
+    double tau = (2 * unit(rng) - 1) * 1.8;   // beyond the domain too
+    check(Interval::point(tau) * Interval::point(0.5), false);
+  }
+  // r^21 / 5.1e19 and r^22 / 1.12e21 leave the normal range near r = 1e-14 and become +0 near
+  // r = 1e-16; the domain's borders 1e-150 and 0.8
+  for (double edge : {1e-150, 0.8, 1e-14, 2.5e-15, 1e-15, 1e-16, 3e-17}) {
+    double v = edge;
+    for (int k = 0; k < 8; ++k) v = std::nextafter(v, 0.0);
+    for (int k = 0; k < 16; ++k, v = std::nextafter(v, 1.0)) {
+      const bool in = v >= 1e-150 && v <= 0.8;
+      check(Interval(v, v), in);
+      check(Interval(-v, -v), in);
+      // wide: the sine's remainder (0.5^21 / 5.1e19) exceeds v * sin's factor, nullopt in both
+      check(Interval(v, 0.5), false);
+      check(Interval(-0.5, -v), false);
+      check(Interval(-v, v), false);
+    }
+  }
+  EXPECT_GT(compared, 900000u);
+}
+
 }  // namespace hipair
