@@ -1,0 +1,134 @@
+// Session 46 (gear46): two exact shortcuts of the curve generator's and the blocked-space
+// culler's bookkeeping, each compared with the route it replaces.
+// - sort_index_pairs (src/curves/pair_sort.hpp): the culler's core-pair sweeps sort their pairs
+//   by two counting passes instead of std::sort; on generated lists (short and long, sparse and
+//   dense, with repeats, in sweep-like and random orders) the order is std::sort's, element for
+//   element.
+// - the swept-box memo (CurveGenerator::Data::swept_memo, src/curves/swept_box_memo.hpp): a
+//   rotating part's broad-phase boxes remembered per axis interval; on generated spur-gear pairs
+//   the tiles of an operating region (the builder's grid cull) give the same curves and the same
+//   broad-phase counts with the memo as a generator with the memo off, over tiles that share a
+//   column, a row, an interval's lower end only, an interval on the other part's axis and an
+//   interval of the half-turn chart — the memo must have answered.
+#include "curves/contact_curves.hpp"
+#include "curves/pair_sort.hpp"
+#include "curves/swept_box_memo.hpp"
+#include "oracle/blocked_tester.hpp"
+#include "spur_gear_pairs.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <random>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace hipair {
+namespace {
+
+TEST(PairSort, CountingPassesGiveStdSortsOrderOnGeneratedLists) {
+  std::mt19937_64 random(4601);
+  std::size_t long_lists = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const std::size_t first_bound = 1 + random() % (trial % 4 == 0 ? 4 : 700);
+    const std::size_t second_bound = 1 + random() % (trial % 5 == 0 ? 3 : 900);
+    const std::size_t size = trial % 3 == 0 ? random() % 80 : random() % 20000;
+    std::vector<std::pair<int, int>> pairs;
+    if (trial % 2 == 0) {
+      // distinct pairs emitted in a sweep-like order: ascending blocks of firsts interleaved
+      for (std::size_t k = 0; k < size; ++k)
+        pairs.emplace_back(static_cast<int>((k * 7 + random() % 3) % first_bound),
+                           static_cast<int>((k / first_bound * 13 + random() % 5) % second_bound));
+    } else {
+      for (std::size_t k = 0; k < size; ++k)
+        pairs.emplace_back(static_cast<int>(random() % first_bound), static_cast<int>(random() % second_bound));
+    }
+    std::vector<std::pair<int, int>> expected = pairs;
+    std::sort(expected.begin(), expected.end());
+    cspace::sort_index_pairs(pairs, first_bound, second_bound);
+    ASSERT_EQ(pairs, expected) << "trial " << trial << ": " << size << " pairs of bounds " << first_bound << " x "
+                               << second_bound;
+    if (size >= 64 && size >= (first_bound + second_bound) / 2) ++long_lists;
+  }
+  EXPECT_GT(long_lists, 100u);   // the counting passes ran, not only std::sort
+}
+
+// The curves (labels, polynomial zero or not) and the broad phase's counts of one tile.
+using TileCurves = std::tuple<std::vector<std::pair<std::string, bool>>, std::size_t, std::size_t, std::size_t, std::size_t>;
+TileCurves tile_curves(const cspace::CurveGenerator& generator, const std::shared_ptr<cspace::BlockedTester>& tester,
+                       const cspace::ChartAxis& tx, const cspace::ChartAxis& ty) {
+  cspace::BlockedCells cells(tester, tx, ty, 2, 5);
+  cspace::CurveStatistics stats;
+  std::vector<std::pair<std::string, bool>> labels;
+  for (const cspace::ContactCurve& curve : generator.generate(tx, ty, &stats, &cells))
+    labels.emplace_back(curve.label, curve.polynomial.is_zero());
+  return {labels, stats.feature_pairs_considered, stats.feature_pairs_culled, stats.feature_pairs_in_blocked_space,
+          stats.curves};
+}
+
+// Cells [first, first + width) of `cells` of a chart axis.
+cspace::ChartAxis sub_axis(const cspace::ChartAxis& axis, long first, long width, long cells) {
+  cspace::ChartAxis sub = axis;
+  sub.lo = axis.lo + (axis.hi - axis.lo) * Rational(first, cells);
+  sub.hi = axis.lo + (axis.hi - axis.lo) * Rational(first + width, cells);
+  sub.lo.canonicalize();
+  sub.hi.canonicalize();
+  return sub;
+}
+
+TEST(SweptBoxMemo, RegionTilesAreTheUnrememberedTilesOnGeneratedGearPairs) {
+  std::mt19937_64 random(4602);
+  std::size_t curves = 0, tiles = 0;
+  const std::size_t hits_before = cspace::swept_box_memo_hits();
+  for (int trial = 0; trial < 3; ++trial) {
+    const long z1 = 6 + static_cast<long>(random() % 6), z2 = 6 + static_cast<long>(random() % 6);
+    std::string name;
+    const Model model = test_gears::spur_gear_pair(random, z1, z2, name);
+    SCOPED_TRACE(name);
+    const cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+    const cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+    ASSERT_EQ(axes.dimension(), 2);
+    auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
+    ASSERT_TRUE(tester->usable());
+    cspace::CurveOptions options;
+    options.blocked_grid = true;
+    // one generator remembers (its memo grows over the tiles), the other never does
+    const cspace::CurveGenerator remembering(model, axes, options), plain(model, axes, options);
+    // every chart pair's tiles: a column (same x interval, several y), a row, a double-width tile
+    // from a column's lower end, the diagonal tile (x and y the same interval: the other part's
+    // key), and the same tiles again in the next chart pair (the half-turn charts' intervals
+    // are the same numbers)
+    for (std::size_t cx = 0; cx < layout.x_charts.size(); ++cx)
+      for (std::size_t cy = 0; cy < layout.y_charts.size(); ++cy) {
+        const cspace::ChartAxis& x = layout.x_charts[cx];
+        const cspace::ChartAxis& y = layout.y_charts[cy];
+        const long column = static_cast<long>(random() % 16), row = static_cast<long>(random() % 16);
+        std::vector<std::pair<cspace::ChartAxis, cspace::ChartAxis>> boxes;
+        for (long j : {row, (row + 5) % 16, (row + 11) % 16}) boxes.emplace_back(sub_axis(x, column, 1, 16), sub_axis(y, j, 1, 16));
+        for (long i : {(column + 3) % 16, (column + 9) % 16}) boxes.emplace_back(sub_axis(x, i, 1, 16), sub_axis(y, row, 1, 16));
+        boxes.emplace_back(sub_axis(x, column / 2 * 2, 2, 16), sub_axis(y, row, 1, 16));
+        boxes.emplace_back(sub_axis(x, column, 1, 16), sub_axis(y, column, 1, 16));
+        boxes.emplace_back(sub_axis(x, 7, 2, 16), sub_axis(y, 7, 2, 16));   // where the teeth meet
+        for (std::size_t b = 0; b < boxes.size(); ++b) {
+          const auto& [tx, ty] = boxes[b];
+          cspace::swept_box_memo_switch() = true;
+          const TileCurves with = tile_curves(remembering, tester, tx, ty);
+          cspace::swept_box_memo_switch() = false;
+          const TileCurves without = tile_curves(plain, tester, tx, ty);
+          cspace::swept_box_memo_switch() = true;
+          EXPECT_EQ(with, without) << "charts " << cx << ", " << cy << " tile " << b;
+          curves += std::get<0>(with).size();
+          ++tiles;
+        }
+      }
+  }
+  EXPECT_GT(tiles, 30u);
+  EXPECT_GT(curves, 0u);
+  EXPECT_GT(cspace::swept_box_memo_hits() - hits_before, tiles / 2);   // the memo answered
+}
+
+}  // namespace
+}  // namespace hipair
