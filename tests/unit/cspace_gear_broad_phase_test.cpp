@@ -14,6 +14,7 @@
 #include "curves/pair_sort.hpp"
 #include "curves/swept_box_memo.hpp"
 #include "oracle/blocked_tester.hpp"
+#include "chart_sub_axis.hpp"
 #include "spur_gear_pairs.hpp"
 
 #include <gtest/gtest.h>
@@ -69,15 +70,7 @@ TileCurves tile_curves(const cspace::CurveGenerator& generator, const std::share
           stats.curves};
 }
 
-// Cells [first, first + width) of `cells` of a chart axis.
-cspace::ChartAxis sub_axis(const cspace::ChartAxis& axis, long first, long width, long cells) {
-  cspace::ChartAxis sub = axis;
-  sub.lo = axis.lo + (axis.hi - axis.lo) * Rational(first, cells);
-  sub.hi = axis.lo + (axis.hi - axis.lo) * Rational(first + width, cells);
-  sub.lo.canonicalize();
-  sub.hi.canonicalize();
-  return sub;
-}
+using test_charts::sub_axis;
 
 TEST(SweptBoxMemo, RegionTilesAreTheUnrememberedTilesOnGeneratedGearPairs) {
   std::mt19937_64 random(4602);
