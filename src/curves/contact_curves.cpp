@@ -426,7 +426,10 @@ ClearanceBound::ClearanceBound(const Part& part) {
 }
 
 // Certified lower bound of the distance from the box (cx, cy) to each edge, minimised.
-double ClearanceBound::lower(const Interval& cx, const Interval& cy) const {
+// (flattened: the interval operations inlined, the same operations in the same order — a part's
+// inscribed disks call it for every candidate against every edge, ≈ 1.4 G instructions of the
+// 18×27 gears' analysis, most of them in the out-of-line interval products; session 46)
+[[gnu::flatten]] double ClearanceBound::lower(const Interval& cx, const Interval& cy) const {
   auto length = [](const Interval& dx, const Interval& dy) { return kernels::sqrt(dx * dx + dy * dy); };
   double best = std::numeric_limits<double>::infinity();
   for (const EdgeBox& e : edges_) {

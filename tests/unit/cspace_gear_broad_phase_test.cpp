@@ -10,6 +10,10 @@
 //   broad-phase counts with the memo as a generator with the memo off, over tiles that share a
 //   column, a row, an interval's lower end only, an interval on the other part's axis and an
 //   interval of the half-turn chart — the memo must have answered.
+// - ClearanceBound::lower over a box, flattened (its interval operations inlined): bit for bit
+//   the formula written out here with the kernels' interval operations, on boxes around and
+//   inside generated spur gears' teeth.
+#include "algebra/near_quotient.hpp"
 #include "curves/contact_curves.hpp"
 #include "curves/pair_sort.hpp"
 #include "curves/swept_box_memo.hpp"
@@ -20,6 +24,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
@@ -121,6 +129,70 @@ TEST(SweptBoxMemo, RegionTilesAreTheUnrememberedTilesOnGeneratedGearPairs) {
   EXPECT_GT(tiles, 30u);
   EXPECT_GT(curves, 0u);
   EXPECT_GT(cspace::swept_box_memo_hits() - hits_before, tiles / 2);   // the memo answered
+}
+
+// ClearanceBound::lower(box) as its comment states it: per edge, the smaller of the distances to
+// its ends and to its line (segment) or circle (arc), minimised; 0 where a bound is not positive.
+double clearance_as_stated(const Part& part, const kernels::Interval& cx, const kernels::Interval& cy) {
+  using kernels::Interval;
+  auto enclose = [](const Rational& q) { return cspace::algebra::enclose_kernel(q); };
+  auto distance = [&](const Interval& px, const Interval& py) {
+    const Interval dx = cx - px, dy = cy - py;
+    return kernels::sqrt(dx * dx + dy * dy);
+  };
+  double best = std::numeric_limits<double>::infinity();
+  for (const Loop& loop : part.loops)
+    for (const Edge& edge : loop.edges) {
+      const Interval sx = enclose(edge.source.x), sy = enclose(edge.source.y);
+      const Interval tx = enclose(edge.target.x), ty = enclose(edge.target.y);
+      const double ends = std::min(distance(sx, sy).lo, distance(tx, ty).lo);
+      double bound;
+      if (edge.is_arc()) {
+        const Interval radius = kernels::sqrt(enclose(edge.radius_squared));
+        const Interval gap = distance(enclose(edge.center.x), enclose(edge.center.y)) - radius;
+        bound = std::min(ends, std::max({0.0, gap.lo, (-gap).lo}));
+      } else {
+        const Interval ux = tx - sx, uy = ty - sy;
+        const Interval cross = (cx - sx) * uy - (cy - sy) * ux;
+        const Interval line = kernels::sqrt(cross * cross) / kernels::sqrt(ux * ux + uy * uy);
+        bound = std::min(ends, line.lo);
+      }
+      if (!(bound > 0)) return 0;
+      best = std::min(best, bound);
+    }
+  return std::isfinite(best) ? best : 0;
+}
+
+TEST(ClearanceBoundFlattened, BoxBoundsAreTheStatedFormulaOnGeneratedGears) {
+  std::mt19937_64 random(4603);
+  std::size_t positive = 0, boxes = 0;
+  for (int trial = 0; trial < 3; ++trial) {
+    const long z1 = 6 + static_cast<long>(random() % 20), z2 = 6 + static_cast<long>(random() % 20);
+    std::string name;
+    const Model model = test_gears::spur_gear_pair(random, z1, z2, name);
+    SCOPED_TRACE(name);
+    for (const Part& part : model.parts) {
+      const cspace::ClearanceBound bound(part);
+      // boxes around points pushed from each edge's ends towards the part's pivot and beyond
+      for (const Loop& loop : part.loops)
+        for (const Edge& edge : loop.edges) {
+          const double px = edge.source.x.get_d(), py = edge.source.y.get_d();
+          const double ox = part.motion.pivot.x.get_d(), oy = part.motion.pivot.y.get_d();
+          for (double f : {0.001, 0.02, 0.1, 0.5, -0.05}) {
+            const double x = px + f * (ox - px), y = py + f * (oy - py);
+            const double w = (random() % 4) * 1e-3 * std::ldexp(1.0, -static_cast<int>(random() % 20));
+            const kernels::Interval cx(x - w, x + w), cy(y - w * 0.5, y + w);
+            const double flattened = bound.lower(cx, cy), stated = clearance_as_stated(part, cx, cy);
+            ASSERT_EQ(std::bit_cast<std::uint64_t>(flattened), std::bit_cast<std::uint64_t>(stated))
+                << part.name << " box [" << cx.lo << ", " << cx.hi << "] x [" << cy.lo << ", " << cy.hi << "]";
+            positive += flattened > 0;
+            ++boxes;
+          }
+        }
+    }
+  }
+  EXPECT_GT(boxes, 1000u);
+  EXPECT_GT(positive, boxes / 4);
 }
 
 }  // namespace
