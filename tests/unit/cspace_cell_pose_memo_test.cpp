@@ -17,6 +17,7 @@
 #include "core/model_scale.hpp"
 #include "curves/contact_curves.hpp"
 #include "oracle/blocked_tester.hpp"
+#include "chart_sub_axis.hpp"
 #include "spur_gear_pairs.hpp"
 #include "test_paths.hpp"
 
@@ -46,15 +47,7 @@ auto both_ways(F&& f, bool& memo = cspace::cell_pose_memo_switch()) {
   return std::make_pair(on, off);
 }
 
-// Cells [first, first + width) of `cells` of a chart axis.
-cspace::ChartAxis sub_axis(const cspace::ChartAxis& axis, long first, long width, long cells) {
-  cspace::ChartAxis sub = axis;
-  sub.lo = axis.lo + (axis.hi - axis.lo) * Rational(first, cells);
-  sub.hi = axis.lo + (axis.hi - axis.lo) * Rational(first + width, cells);
-  sub.lo.canonicalize();
-  sub.hi.canonicalize();
-  return sub;
-}
+using test_charts::sub_axis;
 
 // A generated spur-gear pair (6…11 × 6…11 teeth) with its axes and charts.
 struct GearPair {
