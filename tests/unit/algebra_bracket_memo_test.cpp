@@ -7,6 +7,7 @@
 // 2^-t of their size apart near each precision's floor, equal numbers by another polynomial;
 // every answer against the exact path (rational bisection, the gcd's roots).
 #include "algebra/multiprecision_sign.hpp"
+#include "random_algebraic.hpp"
 #include "random_rationals.hpp"
 
 #include <hipair/rational.hpp>
@@ -25,30 +26,8 @@ namespace {
 
 using test_numbers::random_integer;
 
-Polynomial times(const Polynomial& a, const Polynomial& b) {
-  Polynomial c(a.size() + b.size() - 1, mpz_class(0));
-  for (std::size_t i = 0; i < a.size(); ++i)
-    for (std::size_t j = 0; j < b.size(); ++j) c[i + j] += a[i] * b[j];
-  trim(c);
-  return c;
-}
-
-// An irrational root of a random quadratic or cubic with `bits`-bit coefficients, scaled by
-// 2^shift, or nothing when the draw has none.
-std::optional<Real> random_irrational(std::mt19937_64& random, int bits, int shift) {
-  const int degree = 2 + static_cast<int>(random() % 2);
-  Polynomial q;
-  for (int i = 0; i <= degree; ++i) q.push_back(random_integer(random, bits, true));
-  for (int i = 0; i <= degree; ++i) {
-    const int e = shift >= 0 ? shift * (degree - i) : -shift * i;
-    mpz_mul_2exp(q[i].get_mpz_t(), q[i].get_mpz_t(), static_cast<mp_bitcnt_t>(e));
-  }
-  auto roots = real_roots(q);
-  if (roots.empty()) return std::nullopt;
-  Real u = roots[random() % roots.size()];
-  if (u.exact) return std::nullopt;
-  return u;
-}
+using test_algebraic::times;
+using test_algebraic::random_irrational;
 
 // q(x - delta), primitive: its roots are q's moved by delta.
 Polynomial moved(const Polynomial& q, const Rational& delta) {

@@ -38,10 +38,7 @@ using test_loops::loop_json;
 using test_loops::Points;
 
 Model sliders(const Points& a, const Points& b, const std::string& da = "[1, 0]", const std::string& db = "[0, 1]") {
-  std::string model = R"({ "hipair": 1, "name": "sliders", "parts": [
-    { "name": "a", "motion": { "translation": { "direction": )" + da + R"( } }, "loops": [ )" + loop_json(a) + R"( ] },
-    { "name": "b", "motion": { "translation": { "direction": )" + db + R"( } }, "loops": [ )" + loop_json(b) + R"( ] } ] })";
-  return read_model(model);
+  return read_model(test_loops::sliders_json(a, b, da, db));
 }
 
 // The sliders model, or nullopt when rounding made a polygon degenerate (repeated vertex,
@@ -57,16 +54,7 @@ std::optional<Model> sliders_or_none(const Points& a, const Points& b) {
 // A star-shaped polygon of k vertices around (cx, cy) on a 1/q grid; with `collinear`, the
 // exact midpoint of some edges is inserted (a straight vertex).
 Points random_star(std::mt19937_64& random, int k, double cx, double cy, double radius, long q, bool collinear) {
-  Points points;
-  for (int i = 0; i < k; ++i) {
-    double angle = 2 * 3.141592653589793 * (i + 0.15 + 0.7 * static_cast<double>(random() % 1000) / 1000.0) / k;
-    double r = radius * (random() % 3 == 0 ? 1.0 : 0.35 + 0.65 * static_cast<double>(random() % 1000) / 1000.0);
-    Rational x(static_cast<long>(std::lround(q * (cx + r * std::cos(angle)))), q);
-    Rational y(static_cast<long>(std::lround(q * (cy + r * std::sin(angle)))), q);
-    x.canonicalize();
-    y.canonicalize();
-    points.emplace_back(x, y);
-  }
+  Points points = test_loops::grid_star(random, k, cx, cy, radius, q, Rational(1));
   if (!collinear) return points;
   Points with;
   for (std::size_t i = 0; i < points.size(); ++i) {

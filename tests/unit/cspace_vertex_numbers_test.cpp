@@ -12,6 +12,7 @@
 //   - copies of a space share one set of numbers (the same storage), written once;
 //   - several threads reading a fresh space's vertices at once all see the written numbers.
 #include "cspace/builder_impl.hpp"
+#include "polygon_loop_json.hpp"
 #include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
@@ -30,40 +31,12 @@
 namespace hipair {
 namespace {
 
-using Points = std::vector<std::pair<Rational, Rational>>;
+using test_loops::Points;
 
-std::string loop_json(const Points& points) {
-  auto quoted = [](const Rational& v) { return "\"" + v.get_str() + "\""; };
-  std::string text = "{ \"start\": [" + quoted(points[0].first) + ", " + quoted(points[0].second) + "], \"edges\": [";
-  for (std::size_t i = 1; i <= points.size(); ++i) {
-    const auto& p = points[i % points.size()];
-    text += std::string(i > 1 ? ", " : "") + "{ \"line_to\": [" + quoted(p.first) + ", " + quoted(p.second) + "] }";
-  }
-  return text + "] }";
-}
+Model sliders(const Points& a, const Points& b) { return read_model(test_loops::sliders_json(a, b)); }
 
-Model sliders(const Points& a, const Points& b) {
-  return read_model(R"({ "hipair": 1, "name": "sliders", "parts": [
-    { "name": "a", "motion": { "translation": { "direction": [1, 0] } }, "loops": [ )" +
-                    loop_json(a) + R"( ] },
-    { "name": "b", "motion": { "translation": { "direction": [0, 1] } }, "loops": [ )" +
-                    loop_json(b) + R"( ] } ] })");
-}
-
-// A star-shaped polygon with k vertices around (cx, cy) on a 1/q grid, times scale (a double only
-// places the test input; the reader checks that it is simple).
 Points random_star(std::mt19937_64& random, int k, double cx, double cy, double radius, long q, const Rational& scale) {
-  Points points;
-  for (int i = 0; i < k; ++i) {
-    double angle = 2 * 3.141592653589793 * (i + 0.15 + 0.7 * static_cast<double>(random() % 1000) / 1000.0) / k;
-    double r = radius * (random() % 3 == 0 ? 1.0 : 0.35 + 0.65 * static_cast<double>(random() % 1000) / 1000.0);
-    Rational x(static_cast<long>(std::lround(q * (cx + r * std::cos(angle)))), q);
-    Rational y(static_cast<long>(std::lround(q * (cy + r * std::sin(angle)))), q);
-    x.canonicalize();
-    y.canonicalize();
-    points.emplace_back(x * scale, y * scale);
-  }
-  return points;
+  return test_loops::grid_star(random, k, cx, cy, radius, q, scale);
 }
 
 Points scaled(Points points, const Rational& scale, const Rational& dx = 0, const Rational& dy = 0) {

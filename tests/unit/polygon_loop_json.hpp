@@ -47,4 +47,29 @@ inline Points star(std::mt19937_64& random, int n, double cx, double cy, double 
   return points;
 }
 
+// A star-shaped polygon with k vertices around (cx, cy) on a 1/q grid, times scale (a double only
+// places the test input; the reader checks that it is simple); one vertex in three at the full
+// radius, the others at 0.35-1 of it.
+inline Points grid_star(std::mt19937_64& random, int k, double cx, double cy, double radius, long q, const Rational& scale) {
+  Points points;
+  for (int i = 0; i < k; ++i) {
+    double angle = 2 * 3.141592653589793 * (i + 0.15 + 0.7 * static_cast<double>(random() % 1000) / 1000.0) / k;
+    double r = radius * (random() % 3 == 0 ? 1.0 : 0.35 + 0.65 * static_cast<double>(random() % 1000) / 1000.0);
+    Rational x(static_cast<long>(std::lround(q * (cx + r * std::cos(angle)))), q);
+    Rational y(static_cast<long>(std::lround(q * (cy + r * std::sin(angle)))), q);
+    x.canonicalize();
+    y.canonicalize();
+    points.emplace_back(x * scale, y * scale);
+  }
+  return points;
+}
+
+// The model text of two translating polygons: a moves along da, b along db.
+inline std::string sliders_json(const Points& a, const Points& b, const std::string& da = "[1, 0]",
+                                const std::string& db = "[0, 1]") {
+  return R"({ "hipair": 1, "name": "sliders", "parts": [
+    { "name": "a", "motion": { "translation": { "direction": )" + da + R"( } }, "loops": [ )" + loop_json(a) + R"( ] },
+    { "name": "b", "motion": { "translation": { "direction": )" + db + R"( } }, "loops": [ )" + loop_json(b) + R"( ] } ] })";
+}
+
 }  // namespace hipair::test_loops

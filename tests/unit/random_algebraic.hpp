@@ -1,0 +1,39 @@
+// Test helper: products of integer polynomials and random irrational algebraic numbers (roots
+// of random quadratics and cubics), shared by the multi-precision sign and bracket tests.
+#pragma once
+
+#include "algebra/multiprecision_sign.hpp"
+#include "random_rationals.hpp"
+
+#include <optional>
+#include <random>
+
+namespace hipair::cspace::algebra::test_algebraic {
+
+inline Polynomial times(const Polynomial& a, const Polynomial& b) {
+  Polynomial c(a.size() + b.size() - 1, mpz_class(0));
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) c[i + j] += a[i] * b[j];
+  trim(c);
+  return c;
+}
+
+// An irrational real root of a random quadratic or cubic with coefficients of `bits` bits,
+// scaled by 2^shift (x -> x / 2^shift), or nothing when the draw has no irrational root.
+inline std::optional<Real> random_irrational(std::mt19937_64& random, int bits, int shift) {
+  const int degree = 2 + static_cast<int>(random() % 2);
+  Polynomial q;
+  for (int i = 0; i <= degree; ++i) q.push_back(test_numbers::random_integer(random, bits, true));
+  // roots scaled by 2^shift: q(x / 2^shift) 2^(shift deg) for shift > 0, reversed otherwise
+  for (int i = 0; i <= degree; ++i) {
+    const int e = shift >= 0 ? shift * (degree - i) : -shift * i;
+    mpz_mul_2exp(q[i].get_mpz_t(), q[i].get_mpz_t(), static_cast<mp_bitcnt_t>(e));
+  }
+  auto roots = real_roots(q);
+  if (roots.empty()) return std::nullopt;
+  Real u = roots[random() % roots.size()];
+  if (u.exact) return std::nullopt;
+  return u;
+}
+
+}  // namespace hipair::cspace::algebra::test_algebraic
