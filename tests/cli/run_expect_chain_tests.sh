@@ -12,12 +12,8 @@
 # usage: run_expect_chain_tests.sh HIPAIR_BINARY SOURCE_DIR WORK_DIR
 set -uo pipefail
 hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "$hipair_python" "$@"; }
-hipair=$1 source=$2 work=$3
-rm -rf "$work" && mkdir -p "$work"
-failures=0
-seed=${HIPAIR_TEST_SEED:-$RANDOM}
-RANDOM=$seed
-fail() { echo "FAIL (seed $seed): $*"; failures=$((failures + 1)); }
+# shellcheck source=seeded_test.sh
+source "$(dirname "$0")/seeded_test.sh" "$@"
 # shellcheck source=expect_refused.sh
 source "$(dirname "$0")/expect_refused.sh"
 refused() {   # WHAT PATTERN ARGS... (PATTERN a fixed string)

@@ -13,12 +13,8 @@
 #     was silent after "chart 4/4" for minutes at 10^-30 / 10^400 mm).
 # usage: run_hostile_cli_tests.sh HIPAIR_BINARY SOURCE_DIR WORK_DIR
 set -uo pipefail
-hipair=$1 source=$2 work=$3
-rm -rf "$work" && mkdir -p "$work"
-failures=0
-seed=${HIPAIR_TEST_SEED:-$RANDOM}
-RANDOM=$seed
-fail() { echo "FAIL (seed $seed): $*"; failures=$((failures + 1)); }
+# shellcheck source=seeded_test.sh
+source "$(dirname "$0")/seeded_test.sh" "$@"
 # the longest line of a file, in bytes
 longest() { LC_ALL=C awk '{ if (length($0) > m) m = length($0) } END { print m + 0 }' "$1"; }
 repeat() { head -c "$2" /dev/zero | tr '\0' "$1"; }

@@ -23,12 +23,8 @@
 # the same options where they apply are taken.
 # usage: run_option_apply_tests.sh HIPAIR_BINARY SOURCE_DIR WORK_DIR
 set -uo pipefail
-hipair=$1 source=$2 work=$3
-rm -rf "$work" && mkdir -p "$work"
-failures=0
-seed=${HIPAIR_TEST_SEED:-$RANDOM}
-RANDOM=$seed
-fail() { echo "FAIL (seed $seed): $*"; failures=$((failures + 1)); }
+# shellcheck source=seeded_test.sh
+source "$(dirname "$0")/seeded_test.sh" "$@"
 # shellcheck source=expect_refused.sh
 source "$(dirname "$0")/expect_refused.sh"
 m=$source/examples/models

@@ -12,12 +12,8 @@
 # the pair's own parts are taken.
 # usage: run_option_part_tests.sh HIPAIR_BINARY SOURCE_DIR WORK_DIR
 set -uo pipefail
-hipair=$1 source=$2 work=$3
-rm -rf "$work" && mkdir -p "$work"
-failures=0
-seed=${HIPAIR_TEST_SEED:-$RANDOM}
-RANDOM=$seed
-fail() { echo "FAIL (seed $seed): $*"; failures=$((failures + 1)); }
+# shellcheck source=seeded_test.sh
+source "$(dirname "$0")/seeded_test.sh" "$@"
 # shellcheck source=expect_refused.sh
 source "$(dirname "$0")/expect_refused.sh"
 train=$source/examples/models/gear-train-3.json   # gear-A - gear-B - gear-C (pairs A:B, B:C)

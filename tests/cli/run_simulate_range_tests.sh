@@ -11,12 +11,8 @@
 #     "A subcommand is required" and named neither).
 # usage: run_simulate_range_tests.sh HIPAIR_BINARY SOURCE_DIR WORK_DIR
 set -uo pipefail
-hipair=$1 source=$2 work=$3
-rm -rf "$work" && mkdir -p "$work"
-failures=0
-seed=${HIPAIR_TEST_SEED:-$RANDOM}
-RANDOM=$seed
-fail() { echo "FAIL (seed $seed): $*"; failures=$((failures + 1)); }
+# shellcheck source=seeded_test.sh
+source "$(dirname "$0")/seeded_test.sh" "$@"
 
 # MODEL POINTER (JSON pointer of the value to set; the key is created if absent)
 cases=(
