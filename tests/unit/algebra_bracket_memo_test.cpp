@@ -29,22 +29,7 @@ using test_numbers::random_integer;
 using test_algebraic::times;
 using test_algebraic::random_irrational;
 
-// q(x - delta), primitive: its roots are q's moved by delta.
-Polynomial moved(const Polynomial& q, const Rational& delta) {
-  const Polynomial step{-delta.get_num(), delta.get_den()};
-  const int deg = degree(q);
-  Polynomial sum, power{1};
-  for (int i = 0; i <= deg; ++i) {
-    mpz_class factor;
-    mpz_pow_ui(factor.get_mpz_t(), delta.get_den_mpz_t(), static_cast<unsigned long>(deg - i));
-    Polynomial term = times(power, Polynomial{q[i] * factor});
-    if (sum.size() < term.size()) sum.resize(term.size(), mpz_class(0));
-    for (std::size_t j = 0; j < term.size(); ++j) sum[j] += term[j];
-    power = times(power, step);
-  }
-  trim(sum);
-  return primitive_part(sum);
-}
+using test_algebraic::moved;
 
 // u moved by +-(1 + k) 2^-t (|u.lower| + |u.upper|), k < 100.
 Real neighbour(std::mt19937_64& random, const Real& u, int t, Rational* delta_out = nullptr) {

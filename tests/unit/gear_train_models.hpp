@@ -11,8 +11,11 @@
 #include <hipair/model.hpp>
 #include <hipair/tolerance.hpp>
 
+#include <cmath>
+#include <limits>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace hipair::test_gears {
@@ -68,6 +71,61 @@ inline std::vector<Rational> random_deviations(const std::vector<Parameter>& par
     if (p.range.lo != p.range.hi) d[i] = p.range.lo - p.nominal + Rational(u(rng), 1000) * (p.range.hi - p.range.lo);
   }
   return d;
+}
+
+// The deviations of the box's corner that moves a sample's linearised output up (way 1) or down
+// (way -1): each toleranced parameter at the end its sensitivity's sign points to.
+inline std::vector<Rational> linearised_corner(const VariationSample& sample, const std::vector<Parameter>& parameters,
+                                               int way) {
+  std::vector<Rational> d(parameters.size(), Rational(0));
+  for (std::size_t p = 0; p < d.size() && p < sample.sensitivities.size(); ++p) {
+    const Parameter& q = parameters[p];
+    if (q.range.lo == q.range.hi) continue;
+    bool up = (sample.sensitivities[p] >= 0) == (way > 0);
+    d[p] = (up ? q.range.hi : q.range.lo) - q.nominal;
+  }
+  return d;
+}
+
+// The least (non-zero) and the most effective toleranced parameter at a sample, by |sensitivity|
+// times the tolerance's width; parameters.size() where there is none.
+struct Effects {
+  std::size_t least, most;
+};
+inline Effects effects(const VariationSample& sample, const std::vector<Parameter>& parameters) {
+  Effects e{parameters.size(), parameters.size()};
+  double least_effect = std::numeric_limits<double>::infinity(), most_effect = -1;
+  for (std::size_t p = 0; p < parameters.size() && p < sample.sensitivities.size(); ++p) {
+    const Parameter& q = parameters[p];
+    if (q.range.lo == q.range.hi) continue;
+    double effect = std::fabs(sample.sensitivities[p]) * Rational(q.range.hi - q.range.lo).get_d();
+    if (effect > 0 && effect < least_effect) least_effect = effect, e.least = p;
+    if (effect > most_effect) most_effect = effect, e.most = p;
+  }
+  return e;
+}
+
+// The probe vectors of a sample the exact-train tests evaluate, per way: the linearised corner,
+// the same with the least effective parameter at its other end, and with the most effective one
+// nominal (e.most must name a parameter).
+inline std::vector<std::pair<int, std::vector<Rational>>> corner_probes(const VariationSample& sample,
+                                                                        const std::vector<Parameter>& parameters,
+                                                                        const Effects& e) {
+  std::vector<std::pair<int, std::vector<Rational>>> probes;
+  for (int way : {1, -1}) {
+    std::vector<Rational> d = linearised_corner(sample, parameters, way);
+    probes.emplace_back(way, d);
+    if (e.least < d.size()) {
+      std::vector<Rational> flipped = d;
+      const Parameter& q = parameters[e.least];
+      flipped[e.least] = (d[e.least] == q.range.hi - q.nominal ? q.range.lo : q.range.hi) - q.nominal;
+      probes.emplace_back(way, flipped);
+    }
+    std::vector<Rational> centred = d;
+    centred[e.most] = Rational(0);
+    probes.emplace_back(way, centred);
+  }
+  return probes;
 }
 
 // The chain from gear-A over [0, end] at 120 positions per turn, on 2 threads, with

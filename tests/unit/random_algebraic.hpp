@@ -36,4 +36,22 @@ inline std::optional<Real> random_irrational(std::mt19937_64& random, int bits, 
   return u;
 }
 
+// q(x - delta) as an integer polynomial (delta = n / d): the sum of q_i (d x - n)^i d^(deg - i),
+// primitive; its roots are q's moved by delta.
+inline Polynomial moved(const Polynomial& q, const Rational& delta) {
+  const Polynomial step{-delta.get_num(), delta.get_den()};
+  const int deg = degree(q);
+  Polynomial sum, power{1};
+  for (int i = 0; i <= deg; ++i) {
+    mpz_class factor;
+    mpz_pow_ui(factor.get_mpz_t(), delta.get_den_mpz_t(), static_cast<unsigned long>(deg - i));
+    Polynomial term = times(power, Polynomial{q[i] * factor});
+    if (sum.size() < term.size()) sum.resize(term.size(), mpz_class(0));
+    for (std::size_t j = 0; j < term.size(); ++j) sum[j] += term[j];
+    power = times(power, step);
+  }
+  trim(sum);
+  return primitive_part(sum);
+}
+
 }  // namespace hipair::cspace::algebra::test_algebraic

@@ -95,35 +95,9 @@ TEST(ChainBandEdge, ShrunkGearTrainBandHoldsTheExactTrainAtTheVerticesNearestIts
   for (std::size_t i = 0; i < r.samples.size(); ++i) {
     const VariationSample& sample = r.samples[i];
     if (!sample.contact || !std::isfinite(sample.certified.upper - sample.certified.lower)) continue;
-    std::size_t least = r.parameters.size(), most = r.parameters.size();
-    double least_effect = std::numeric_limits<double>::infinity(), most_effect = -1;
-    for (std::size_t p = 0; p < r.parameters.size() && p < sample.sensitivities.size(); ++p) {
-      const Parameter& q = r.parameters[p];
-      if (q.range.lo == q.range.hi) continue;
-      double effect = std::fabs(sample.sensitivities[p]) * Rational(q.range.hi - q.range.lo).get_d();
-      if (effect > 0 && effect < least_effect) least_effect = effect, least = p;
-      if (effect > most_effect) most_effect = effect, most = p;
-    }
-    ASSERT_LT(most, r.parameters.size());
-    for (int way : {1, -1}) {
-      std::vector<Rational> d(r.parameters.size(), Rational(0));
-      for (std::size_t p = 0; p < d.size() && p < sample.sensitivities.size(); ++p) {
-        const Parameter& q = r.parameters[p];
-        if (q.range.lo == q.range.hi) continue;
-        bool up = (sample.sensitivities[p] >= 0) == (way > 0);
-        d[p] = (up ? q.range.hi : q.range.lo) - q.nominal;
-      }
-      probes.push_back({i, way, d});
-      if (least < d.size()) {
-        std::vector<Rational> flipped = d;
-        const Parameter& q = r.parameters[least];
-        flipped[least] = (d[least] == q.range.hi - q.nominal ? q.range.lo : q.range.hi) - q.nominal;
-        probes.push_back({i, way, flipped});
-      }
-      std::vector<Rational> centred = d;
-      centred[most] = Rational(0);
-      probes.push_back({i, way, centred});
-    }
+    const test_gears::Effects e = test_gears::effects(sample, r.parameters);
+    ASSERT_LT(e.most, r.parameters.size());
+    for (auto& [way, d] : test_gears::corner_probes(sample, r.parameters, e)) probes.push_back({i, way, std::move(d)});
   }
   for (const Probe& probe : probes) distinct.insert(probe.d);
 

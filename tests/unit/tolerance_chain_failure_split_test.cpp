@@ -75,16 +75,7 @@ TEST(ChainFailureSplit, GearTrainBandBoundedBySplittingTheBoxHoldsTheExactTrainA
   std::set<std::vector<Rational>> corners;
   for (const VariationSample& sample : r.samples) {
     if (!sample.contact || !std::isfinite(sample.certified.upper - sample.certified.lower)) continue;
-    for (int way : {1, -1}) {
-      std::vector<Rational> d(r.parameters.size(), Rational(0));
-      for (std::size_t p = 0; p < d.size() && p < sample.sensitivities.size(); ++p) {
-        const Parameter& q = r.parameters[p];
-        if (q.range.lo == q.range.hi) continue;
-        bool up = (sample.sensitivities[p] >= 0) == (way > 0);
-        d[p] = (up ? q.range.hi : q.range.lo) - q.nominal;
-      }
-      corners.insert(d);
-    }
+    for (int way : {1, -1}) corners.insert(test_gears::linearised_corner(sample, r.parameters, way));
   }
   std::vector<std::vector<Rational>> vectors(corners.begin(), corners.end());
   std::mt19937 rng(4242);
