@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <new>
+#include <string>
 
 namespace hipair {
 namespace {
@@ -81,7 +82,15 @@ std::vector<CertifiedFinding> certify_kinematic_findings(const Model& model, con
       } catch (const std::bad_alloc&) {
         throw;
       } catch (const std::exception& error) {
-        finding.note = error.what();
+        // the search's start is its own (the driver `margin` before the jam, the follower where
+        // the analysis's double samples put it), not the model's initial configuration: say so
+        // (until session 47 the note read "the parts overlap at the start" next to the report's
+        // "Initial configuration: no parts overlap")
+        finding.note = std::string("the jam search starting at driver ") + std::to_string(from) +
+                       (rotates(driver) ? " rad" : " mm") +
+                       (moves(other) ? ", " + other.name + " " + std::to_string(*position) + (rotates(other) ? " rad" : " mm")
+                                     : std::string()) +
+                       " (from the analysis's samples, not the initial configuration): " + error.what();
       }
       if (finding.certificate) break;
     }

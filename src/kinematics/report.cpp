@@ -90,9 +90,15 @@ std::string kinematics_text_report(const KinematicsResult& result) {
   out << "\n";
 
   if (result.initial_interference.empty()) out << "Initial configuration: no parts overlap.\n";
+  // A jam that names no contact and leaves no follower piece: no position of the driven part is
+  // free at the start (every one overlaps), so there is no touching position to start from
+  // (until session 47 the report said it started from one, then stopped with an empty list).
+  const bool no_free_start = result.jam && result.jam->before.empty() && result.pieces.empty();
   for (const Interference& interference : result.initial_interference)
     out << "INTERFERENCE at the initial configuration: " << interference.pair << ": " << interference.description
-        << ". The analysis starts from the nearest position where they only touch.\n";
+        << (no_free_start ? ". No position where they only touch exists at the initial driver position: the analysis "
+                            "stops there.\n"
+                          : ". The analysis starts from the nearest position where they only touch.\n");
 
   for (std::size_t f = 0; f < result.followers.size(); ++f) {
     const std::string& name = result.followers[f];
@@ -199,7 +205,11 @@ std::string kinematics_text_report(const KinematicsResult& result) {
   out << "\nBlocking: ";
   if (result.jam) {
     out << "the driver is BLOCKED at " << quantity(result.jam->at.value(), rot) << " (" << result.jam->description << ").\n";
-    out << "  Blocking contacts: " << join(result.jam->before) << "\n";
+    if (result.jam->before.empty())
+      out << "  Blocking contacts: none bounds it: no position of " << result.jam->part
+          << " is free at this driver position (every position overlaps)\n";
+    else
+      out << "  Blocking contacts: " << join(result.jam->before) << "\n";
   } else {
     out << "none: the driver completes its range.\n";
   }
