@@ -61,6 +61,15 @@ std::vector<CertifiedFinding> certify_kinematic_findings(const Model& model, con
   if (result.jam) {
     const KinematicEvent& jam = *result.jam;
     CertifiedFinding finding{"jam: " + jam.description, std::nullopt, ""};
+    // stopped at the start with no bounding contact: no position of the part is free there, so a
+    // trap (which needs a free start) cannot express it; the interference finding above holds
+    // the proof (until session 47 the note said the stop came from the quasi-static model)
+    if (jam.before.empty() && result.pieces.empty() && !result.initial_interference.empty()) {
+      finding.note = "no position of " + jam.part + " is free at the initial driver position, and a jam certificate "
+                     "needs a free start; the interference at the initial configuration is the finding";
+      findings.push_back(std::move(finding));
+      return findings;
+    }
     const Part& driver = model.parts.at(*model.find_part(result.driver));
     double margin = rotates(driver) ? 0.02 : 0.2;
     double at = result.direction > 0 ? jam.at.coordinate.lower : jam.at.coordinate.upper;
