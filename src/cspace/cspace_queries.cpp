@@ -168,7 +168,7 @@ std::optional<RInterval> evaluate_path_filtered(const std::vector<KInterval>& p,
 
 std::vector<KInterval> enclosed_coefficients(const std::vector<Rational>& p) {
   std::vector<KInterval> result;
-  for (const Rational& c : p) result.push_back(KInterval::enclose(c));
+  for (const Rational& c : p) result.push_back(cspace::enclose_exact(c));   // KInterval::enclose's doubles (dyadic.hpp)
   return result;
 }
 
@@ -2063,7 +2063,7 @@ class MotionScanner {
   KInterval enclosure(const Rational& r) const {
     for (std::size_t i = 0; i < filled_ends_; ++i)
       if (ends_[i].first == r) return ends_[i].second;
-    KInterval value = KInterval::enclose(r);
+    KInterval value = cspace::enclose_exact(r);   // KInterval::enclose's doubles (dyadic.hpp)
     ends_[next_end_] = {r, value};
     next_end_ = (next_end_ + 1) % ends_.size();
     filled_ends_ = std::min(filled_ends_ + 1, ends_.size());

@@ -24,6 +24,7 @@
 #include <gmp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 
 namespace hipair::cspace {
@@ -110,6 +111,36 @@ inline void midpoint_into(Rational& out, const Rational& a, const Rational& b) {
 }  // namespace hipair::cspace
 
 namespace hipair::cspace {
+// kernels::Interval::enclose(value) for a dyadic value without mpq_get_d's division: the
+// numerator truncated to 53 bits by mpz_get_d_2exp (toward zero, as mpq_get_d), scaled by the
+// denominator's power of two, which is exact while the result is a normal double (its exponent in
+// [-1021, 1024]); then enclose's own rule ([v, up(v)] above 0, [down(v), v] below, [0, 0]). The
+// same two doubles (CSpaceDyadicSums.* compares them); elsewhere enclose itself. Under the switch
+// dyadic_sums(); counter: the enclosures made this way.
+struct DyadicEnclosureCountTag;
+inline std::size_t& dyadic_enclosure_count() { return thread_counter<DyadicEnclosureCountTag>(); }
+
+inline kernels::Interval enclose_exact(const Rational& value) {
+  if (dyadic_sums()) {
+    const int sign = mpz_sgn(mpq_numref(value.get_mpq_t()));
+    const long e = sign == 0 ? -1 : dyadic_detail::exponent(mpq_denref(value.get_mpq_t()));
+    if (e >= 0) {
+      long exponent = 0;
+      const double d = mpz_get_d_2exp(&exponent, mpq_numref(value.get_mpq_t()));   // 0.5 <= |d| < 1
+      const long scale = exponent - e;
+      if (scale >= -1021 && scale <= 1024) {
+        const double truncated = std::ldexp(d, static_cast<int>(scale));
+        ++dyadic_enclosure_count();
+        return sign > 0 ? kernels::Interval(truncated, kernels::interval_detail::up(truncated))
+                        : kernels::Interval(kernels::interval_detail::down(truncated), truncated);
+      }
+    }
+  }
+  return kernels::Interval::enclose(value);
+}
+}  // namespace hipair::cspace
+
+namespace hipair::cspace {
 // The subdivision's skip tests (cspace_queries.cpp, CrossingRun::free_before / past_change)
 // compare the product offset * r of a rational offset and a double rate with a double bound s.
 // The product's certified double enclosure first (kernels::Interval::enclose(offset) times the
@@ -125,7 +156,7 @@ inline std::size_t& offset_filter_count() { return thread_counter<OffsetFilterCo
 /// \pre r and s finite
 inline int compare_product(const Rational& offset, double r, double s, Rational& scratch) {
   if (offset_filter()) {
-    const kernels::Interval product = kernels::Interval::enclose(offset) * kernels::Interval::point(r);
+    const kernels::Interval product = enclose_exact(offset) * kernels::Interval::point(r);
     if (product.hi < s) return ++offset_filter_count(), -1;
     if (product.lo > s) return ++offset_filter_count(), 1;
   }

@@ -25,6 +25,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -151,6 +152,39 @@ TEST(CSpaceDyadicSums, ProductSignIsTheExactSign) {
   EXPECT_GT(at_product, 500u);
   EXPECT_GT(filtered, checked / 2);
   EXPECT_LT(filtered, checked);
+}
+
+TEST(CSpaceDyadicSums, EnclosuresAreKernelsEnclosures) {
+  std::mt19937_64 random(4703);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const std::size_t before = cspace::dyadic_enclosure_count();
+  std::size_t checked = 0;
+  auto check = [&](const Rational& r) {
+    const kernels::Interval fast = cspace::enclose_exact(r), exact = kernels::Interval::enclose(r);
+    ASSERT_TRUE(std::memcmp(&fast.lo, &exact.lo, sizeof(double)) == 0 && std::memcmp(&fast.hi, &exact.hi, sizeof(double)) == 0)
+        << r << ": [" << fast.lo << ", " << fast.hi << "] against [" << exact.lo << ", " << exact.hi << "]";
+    ++checked;
+  };
+  for (int i = 0; i < 100000; ++i) {
+    check(random_rational(random));
+    // doubles (the simulator's coefficients, the filtered bounds), at every scale, and around the
+    // ends of the normal range (2^-1022, 2^1024) where the shortcut stops
+    const double d = std::ldexp(unit(random) + 0.5, static_cast<int>(random() % 2112) - 1090) * (random() % 2 ? 1 : -1);
+    check(Rational(d));
+    Rational near(mpz_class(1 + random() % 1000000) * (random() % 2 ? 1 : -1),
+                  mpz_class(1) << static_cast<unsigned long>(1000 + random() % 80));
+    near.canonicalize();
+    check(near);
+    Rational big(mpz_class(1) << static_cast<unsigned long>(1000 + random() % 40));
+    big *= Rational(mpz_class(static_cast<unsigned long>(random() | 1)), mpz_class(1) << 40);
+    big.canonicalize();
+    check(big);
+    if (HasFatalFailure()) return;
+  }
+  const std::size_t shortcut = cspace::dyadic_enclosure_count() - before;
+  std::printf("enclosures: %zu equal to kernels::Interval::enclose, %zu of them by the shortcut\n", checked, shortcut);
+  EXPECT_GT(shortcut, checked / 2);
+  EXPECT_LT(shortcut, checked);
 }
 
 std::string answer_of(const CSpace& space, const MotionPath& path) {
