@@ -2253,8 +2253,9 @@ class MotionScanner {
     DInterval y = carried ? DInterval{py.dlo, py.dhi} : enclose_range(py.lo.rational(), py.hi.rational());
     DInterval dx = chart_derivative(path_.x, a, b, px);
     DInterval dy = impl_.dimension == 2 ? chart_derivative(path_.y, a, b, py) : DInterval{0, 0};
-    cspace::sum_into(width_, b, a, -1);
-    DInterval h{0, cspace::algebra::upper_double(width_)};
+    thread_local Rational width;   // b - a (its limbs reused)
+    cspace::sum_into(width, b, a, -1);
+    DInterval h{0, cspace::algebra::upper_double(width)};
     std::vector<Possible> kept;
     bool newton = false;
     double newton_lo = 0, newton_hi = 0, newton_s_min = 0, newton_s_max = 0, newton_r_min = 0, newton_r_max = 0;
@@ -2499,7 +2500,6 @@ class MotionScanner {
   using Clauses = ScanMemo::Clauses;
   std::shared_ptr<ScanMemo> memo_;
   std::vector<char> candidate_;   // exclude()'s scratch
-  Rational width_;                // mean_value_exclusion's b - a (limbs reused)
   std::vector<Possible> hull_possible_;   // locate_inside's
 };
 
@@ -2594,7 +2594,12 @@ class CrossingRun {
   }
 
   // a real edge of `possible` curves near the crossing, its feature pairs, chart point and frame
+  // (not in a StatusOnlyCrossings scope: its caller reads none of them)
   void describe(const MotionScanner::Evaluation& at, std::size_t entered) {
+    if (status_only_crossings()) {
+      ++skipped_descriptions();
+      return;
+    }
     for (const Possible& p : at.possible) {
       FeatureId id(impl.charts[p.chart].curve_global[p.curve]);
       if (std::find(result.features.begin(), result.features.end(), id) == result.features.end())
@@ -2730,7 +2735,7 @@ class CrossingRun {
   }
 
   void split(const Rational& a, const Rational& b) {
-    Rational& m = scratch_m;
+    Rational& m = scratch().m;
     cspace::midpoint_into(m, a, b);
     stack.emplace_back(m, b);
     stack.emplace_back(a, m);
@@ -2747,7 +2752,7 @@ class CrossingRun {
   // crossing_shrink.hpp).
   void shrink(const Rational& a, const Rational& b, const MotionScanner::Evaluation& at) {
     if (cspace::newton_shrink() && at.newton) {
-      Rational& cells = scratch_c;
+      Rational& cells = scratch().c;
       cspace::sum_into(cells, b, a, -1);
       mpq_div(cells.get_mpq_t(), cells.get_mpq_t(), resolution.get_mpq_t());   // canonical
       if (cells.get_den() == 1 && cells.get_num() > 2 && cells.get_num().fits_slong_p()) {
@@ -2778,24 +2783,24 @@ class CrossingRun {
               ++cspace::newton_steps();
               // a + k resolution (dyadic.hpp: by shifts where both are dyadic)
               auto at_cell = [&](long k) -> const Rational& {
-                cspace::sum_multiple_into(scratch_u, a, resolution, k);
-                return scratch_u;
+                cspace::sum_multiple_into(scratch().u, a, resolution, k);
+                return scratch().u;
               };
               std::vector<std::pair<long, long>> left;
               long lo = 0, length = n;
               while (length > size) {
                 long half = length / 2;
                 if (first < lo + half) {
-                  scratch_v = at_cell(lo + half);
-                  stack.emplace_back(scratch_v, at_cell(lo + length));
+                  scratch().v = at_cell(lo + half);
+                  stack.emplace_back(scratch().v, at_cell(lo + length));
                 } else {
                   left.emplace_back(lo, lo + half);
                   lo += half;
                 }
                 length = half;
               }
-              scratch_v = at_cell(first);
-              stack.emplace_back(scratch_v, at_cell(first + size));
+              scratch().v = at_cell(first);
+              stack.emplace_back(scratch().v, at_cell(first + size));
               // the siblings left of the node, [a, a + first cells), certified free when the
               // curve's mean-value bound keeps it off 0 there (crossing_shrink.hpp, skip_left)
               if (!left.empty() && cspace::skip_left() && free_before(cells_of(first), at)) {
@@ -2803,8 +2808,8 @@ class CrossingRun {
                 return;
               }
               for (auto it = left.rbegin(); it != left.rend(); ++it) {
-                scratch_v = at_cell(it->first);
-                stack.emplace_back(scratch_v, at_cell(it->second));
+                scratch().v = at_cell(it->first);
+                stack.emplace_back(scratch().v, at_cell(it->second));
               }
               return;
             }
@@ -2814,10 +2819,10 @@ class CrossingRun {
     }
     // a halving whose first half the curve's certified bound keeps free: only the second half
     if (cspace::newton_shrink() && at.newton && cspace::skip_left()) {
-      Rational& m = scratch_m;
+      Rational& m = scratch().m;
       cspace::midpoint_into(m, a, b);
-      cspace::sum_into(scratch_w, m, a, -1);
-      if (free_before(scratch_w, at)) {
+      cspace::sum_into(scratch().w, m, a, -1);
+      if (free_before(scratch().w, at)) {
         ++cspace::skipped_left();
         stack.emplace_back(m, b);
         return;
@@ -2847,15 +2852,15 @@ class CrossingRun {
 
   // k resolutions (dyadic.hpp), in a kept rational
   const Rational& cells_of(long k) {
-    cspace::sum_multiple_into(scratch_k, zero_, resolution, k);
-    return scratch_k;
+    cspace::sum_multiple_into(scratch().k, scratch().zero, resolution, k);
+    return scratch().k;
   }
 
   // one stretch [a, b] of the subdivision: excluded, split, or the answer
   void stretch(const Rational& a, const Rational& b) {
     MotionScanner::Evaluation at = scanner.evaluate(a, b);
-    cspace::sum_into(scratch_w, b, a, -1);
-    bool wide = scratch_w > resolution;
+    cspace::sum_into(scratch().w, b, a, -1);
+    bool wide = scratch().w > resolution;
     if (at.too_wide) {
       split(a, b);
       return;
@@ -2968,13 +2973,30 @@ class CrossingRun {
   StretchStack stack;
   Rational stretch_a, stretch_b;   // the stretch being evaluated (step())
   Rational skip_bound;              // free_before's product (kept: its limbs reused)
-  Rational scratch_m, scratch_u, scratch_v, scratch_w, scratch_k, scratch_c;   // midpoints, cells, widths (limbs reused)
-  const Rational zero_{0};
+  // the rationals a step works in (midpoints, cells, widths), per thread: kept between steps and
+  // queries so that their limbs are reused, and never held across a step (the sweep's queries
+  // take their steps one at a time on a thread)
+  struct Scratch {
+    Rational m, u, v, w, k, c;
+    const Rational zero{0};
+  };
+  static Scratch& scratch() {
+    thread_local Scratch kept;
+    return kept;
+  }
   std::optional<MotionScanner::Evaluation> last;   // the excluded stretch ending at u_end
   std::vector<AnchorBox> excluded_boxes;           // the anchor boxes it leaves (its start's, its excluded stretches')
 };
 
 }  // namespace
+
+namespace {
+thread_local bool status_only_now = false;
+}
+StatusOnlyCrossings::StatusOnlyCrossings() : previous_(status_only_now) { status_only_now = true; }
+StatusOnlyCrossings::~StatusOnlyCrossings() { status_only_now = previous_; }
+bool status_only_crossings() { return status_only_now; }
+std::size_t& skipped_descriptions() { return thread_counter<struct SkippedDescriptionsTag>(); }
 
 struct CrossingQuery::State : CrossingRun {
   using CrossingRun::CrossingRun;
