@@ -43,7 +43,7 @@ std::string status_of(const MotionCrossing& c) {
 }
 
 struct Counts {
-  int queries = 0, in_contact = 0, grazing = 0, free = 0, skipped = 0;
+  int queries = 0, in_contact = 0, grazing = 0, free = 0, skipped = 0, described = 0;
 };
 
 void compare(const CSpace& space, int count, std::uint64_t seed, Counts& counts) {
@@ -138,6 +138,7 @@ void compare(const CSpace& space, int count, std::uint64_t seed, Counts& counts)
     if (full.status == CrossingStatus::starts_in_contact) ++counts.in_contact;
     if (full.grazing) ++counts.grazing;
     if (full.status == CrossingStatus::none) ++counts.free;
+    if (!full.features.empty()) ++counts.described;   // the full answers are described
   }
 }
 
@@ -154,13 +155,15 @@ TEST(CSpaceStatusOnly, AnswersHaveTheFullAnswersStatus) {
     compare(*pair.space, 100, ++seed, counts);
     ASSERT_FALSE(HasFatalFailure());
   }
-  std::printf("status-only: %d queries (%d in contact, %d grazing, %d free) equal; %d descriptions skipped\n",
-              counts.queries, counts.in_contact, counts.grazing, counts.free, counts.skipped);
+  std::printf("status-only: %d queries (%d in contact, %d grazing, %d free) equal; %d descriptions skipped, %d full "
+              "answers described\n",
+              counts.queries, counts.in_contact, counts.grazing, counts.free, counts.skipped, counts.described);
   EXPECT_GE(counts.queries, 800);
   EXPECT_GE(counts.in_contact, 100);
   EXPECT_GE(counts.grazing, 20);
   EXPECT_GE(counts.free, 100);
   EXPECT_GE(counts.skipped, 100);
+  EXPECT_GE(counts.described, 100);
 }
 
 TEST(SimulationStatusOnlyNudges, RunsEqualTheRunsWithoutThem) {
