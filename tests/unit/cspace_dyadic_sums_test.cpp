@@ -154,6 +154,85 @@ TEST(CSpaceDyadicSums, ProductSignIsTheExactSign) {
   EXPECT_LT(filtered, checked);
 }
 
+// Adversarial bounds for compare_product's filter: the offset's double truncation moves the
+// product by up to m_r ulps of the product (r's mantissa m_r in [1, 2), when the product stays in
+// the binade of a * r), more than the one-ulp outward widening of the rounded product. Offsets
+// a + ulp(a) f (f in (0, 1): non-dyadic 1 - 1/q, dyadic 1 - 2^-k, or p/q with q odd), so that
+// get_d() gives a, rates with mantissa in [1.6, 2), a's mantissa below 2 / m_r; bounds: the
+// doubles within 4 ulps of the rounded product get_d() * r. The gap — a bound beyond that rounded
+// product's one-ulp widening on the side of the exact product, with the exact product beyond the
+// bound — is where a filter that enclosed the offset by the point get_d() gives the wrong sign;
+// the test counts the gap bounds it met (independently of the code under test) and requires many.
+TEST(CSpaceDyadicSums, ProductSignAcrossTheTruncationGap) {
+  std::mt19937_64 random(4747);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const std::size_t before = cspace::offset_filter_count();
+  std::size_t checked = 0, in_gap = 0, non_dyadic = 0, wrong_with = 0, wrong_without = 0;
+  Rational scratch;
+  for (int i = 0; i < 20000; ++i) {
+    double mr = 1.6 + 0.4 * unit(random);
+    if (mr >= 2) mr = std::nextafter(2.0, 0.0);
+    const double ma = 1 + (2 / mr - 1) * unit(random);
+    const double a = std::ldexp(ma, static_cast<int>(random() % 200) - 100);
+    double r = std::ldexp(mr, static_cast<int>(random() % 200) - 100);
+    const Rational ulp_a = Rational(std::nextafter(a, INFINITY)) - Rational(a);
+    Rational fraction;
+    const int mode = static_cast<int>(random() % 3);
+    if (mode == 0) {
+      fraction = 1 - Rational(mpz_class(1), mpz_class(static_cast<unsigned long>(3 + 2 * (random() % 500000))));
+    } else if (mode == 1) {
+      fraction = 1 - Rational(mpz_class(1), mpz_class(1) << static_cast<unsigned long>(1 + random() % 40));
+    } else {
+      const unsigned long q = 3 + 2 * (random() % 500000);
+      fraction = Rational(mpz_class(1 + random() % (q - 1)), mpz_class(q));
+    }
+    fraction.canonicalize();
+    Rational offset = Rational(a) + ulp_a * fraction;
+    offset.canonicalize();
+    const bool negative_offset = random() % 2, negative_rate = random() % 2;
+    if (negative_offset) offset = -offset;
+    if (negative_rate) r = -r;
+    non_dyadic += mpz_popcount(offset.get_den_mpz_t()) != 1;
+    // the construction: get_d() truncates the offset to +-a
+    ASSERT_EQ(offset.get_d(), negative_offset ? -a : a) << offset;
+    const Rational product = offset * Rational(r);
+    const double rounded = offset.get_d() * r;   // the product of the truncated offset, rounded
+    const double low = std::nextafter(rounded, -INFINITY), high = std::nextafter(rounded, INFINITY);
+    double s = rounded;
+    for (int j = 0; j < 4; ++j) s = std::nextafter(s, -INFINITY);
+    for (int j = -4; j <= 4; ++j, s = std::nextafter(s, INFINITY)) {
+      const int exact = cmp(product, Rational(s));
+      const int expected = (exact > 0) - (exact < 0);
+      in_gap += (s > high && expected > 0) || (s < low && expected < 0);
+      int with = 0, without = 0;
+      {
+        test::FlagSwitch<cspace::offset_filter> on(true);
+        with = cspace::compare_product(offset, r, s, scratch);
+      }
+      {
+        test::FlagSwitch<cspace::offset_filter> off(false);
+        without = cspace::compare_product(offset, r, s, scratch);
+      }
+      // every wrong sign counted (the first few shown): a mutant's count is the test's measure
+      if (with != expected && wrong_with++ < 5)
+        ADD_FAILURE() << "filtered sign " << with << ", exact " << expected << ": " << offset << " * " << r << " against "
+                      << s << " (" << j << " ulps from " << rounded << ")";
+      if (without != expected && wrong_without++ < 5)
+        ADD_FAILURE() << "unfiltered sign " << without << ", exact " << expected << ": " << offset << " * " << r << " against " << s;
+      ++checked;
+    }
+  }
+  const std::size_t filtered = cspace::offset_filter_count() - before;
+  std::printf("truncation gap: %zu bounds checked against the exact sign, %zu of them in the gap, %zu non-dyadic offsets, %zu by the enclosure\n",
+              checked, in_gap, non_dyadic, filtered);
+  EXPECT_EQ(wrong_with, 0u) << "wrong filtered signs";
+  EXPECT_EQ(wrong_without, 0u) << "wrong unfiltered signs";
+  EXPECT_GT(in_gap, 1000u);
+  EXPECT_GT(non_dyadic, 10000u);
+  EXPECT_GT(filtered, checked / 4);
+  EXPECT_LT(filtered, checked);
+}
+
 TEST(CSpaceDyadicSums, EnclosuresAreKernelsEnclosures) {
   std::mt19937_64 random(4703);
   std::uniform_real_distribution<double> unit(0, 1);
