@@ -29,6 +29,7 @@
 
 #include <hipair/cspace.hpp>
 
+#include <cstddef>
 #include <memory>
 
 namespace hipair {
@@ -70,6 +71,27 @@ class CrossingQuery {
   struct State;
   std::unique_ptr<State> state_;
 };
+
+/// While one lives on a thread, the first-crossing answers made there (CSpace::first_crossing,
+/// CrossingQuery, first_crossing_before) are status-only: the same status, grazing, u_lower,
+/// u_upper, cell_left and cell_entered as without it (the query takes the same steps), but the
+/// description of a contact — features, chart, chart_point, point, normal, and the edge where
+/// only the description would name it — is not made. For a caller that asks only whether a
+/// configuration is free (the simulator's nudge). Scopes nest; each restores what it found.
+class StatusOnlyCrossings {
+ public:
+  StatusOnlyCrossings();
+  ~StatusOnlyCrossings();
+  StatusOnlyCrossings(const StatusOnlyCrossings&) = delete;
+  StatusOnlyCrossings& operator=(const StatusOnlyCrossings&) = delete;
+
+ private:
+  bool previous_;
+};
+/// Whether a StatusOnlyCrossings scope is open on this thread.
+bool status_only_crossings();
+/// How many descriptions status-only answers skipped on this thread (tests).
+std::size_t& skipped_descriptions();
 
 /// CSpace::first_crossing(path, options), stopped where its subdivision passes u_stop (see above).
 CrossingBefore first_crossing_before(const CSpace& space, const MotionPath& path, const CrossingOptions& options,

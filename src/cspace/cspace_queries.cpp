@@ -19,6 +19,7 @@
 #include "cspace/angle_memo.hpp"
 #include "cspace/builder_impl.hpp"
 #include "cspace/crossing_shrink.hpp"
+#include "cspace/dyadic.hpp"
 #include "cspace/cspace_access.hpp"
 #include "cspace/exact_bound.hpp"
 #include "cspace/frame_memo.hpp"
@@ -167,7 +168,7 @@ std::optional<RInterval> evaluate_path_filtered(const std::vector<KInterval>& p,
 
 std::vector<KInterval> enclosed_coefficients(const std::vector<Rational>& p) {
   std::vector<KInterval> result;
-  for (const Rational& c : p) result.push_back(KInterval::enclose(c));
+  for (const Rational& c : p) result.push_back(cspace::enclose_exact(c));   // KInterval::enclose's doubles (dyadic.hpp)
   return result;
 }
 
@@ -1891,9 +1892,11 @@ class MotionScanner {
   // at all vanishes on this box (the point on no edge, strictly inside the chart) it is inside a
   // face of that (free) cell: the location is that cell's, without the ray shooting.
   Location locate_inside(const PieceBox& box, const StartAnchor* anchor = nullptr, AnchorBoxes* boxes = nullptr) {
-    Rational x = (box.x_lo.rational() + box.x_hi.rational()) / 2, y = (box.y_lo.rational() + box.y_hi.rational()) / 2;
-    x.canonicalize();
-    y.canonicalize();
+    // the box's midpoint (dyadic.hpp: by shifts where both ends are dyadic, as the filtered and
+    // the MPFR pieces' bounds are)
+    Rational x, y;
+    cspace::midpoint_into(x, box.x_lo.rational(), box.x_hi.rational());
+    cspace::midpoint_into(y, box.y_lo.rational(), box.y_hi.rational());
     const cspace::raw::Box& side = impl_.charts[box.chart].box;
     const bool inside_chart = x > side.x_lo && x < side.x_hi && (impl_.dimension == 1 || (y > side.y_lo && y < side.y_hi));
     auto free_in = [&](std::size_t cell) {
@@ -2060,7 +2063,7 @@ class MotionScanner {
   KInterval enclosure(const Rational& r) const {
     for (std::size_t i = 0; i < filled_ends_; ++i)
       if (ends_[i].first == r) return ends_[i].second;
-    KInterval value = KInterval::enclose(r);
+    KInterval value = cspace::enclose_exact(r);   // KInterval::enclose's doubles (dyadic.hpp)
     ends_[next_end_] = {r, value};
     next_end_ = (next_end_ + 1) % ends_.size();
     filled_ends_ = std::min(filled_ends_ + 1, ends_.size());
@@ -2250,7 +2253,9 @@ class MotionScanner {
     DInterval y = carried ? DInterval{py.dlo, py.dhi} : enclose_range(py.lo.rational(), py.hi.rational());
     DInterval dx = chart_derivative(path_.x, a, b, px);
     DInterval dy = impl_.dimension == 2 ? chart_derivative(path_.y, a, b, py) : DInterval{0, 0};
-    DInterval h{0, cspace::algebra::upper_double(Rational(b - a))};
+    thread_local Rational width;   // b - a (its limbs reused)
+    cspace::sum_into(width, b, a, -1);
+    DInterval h{0, cspace::algebra::upper_double(width)};
     std::vector<Possible> kept;
     bool newton = false;
     double newton_lo = 0, newton_hi = 0, newton_s_min = 0, newton_s_max = 0, newton_r_min = 0, newton_r_max = 0;
@@ -2589,7 +2594,12 @@ class CrossingRun {
   }
 
   // a real edge of `possible` curves near the crossing, its feature pairs, chart point and frame
+  // (not in a StatusOnlyCrossings scope: its caller reads none of them)
   void describe(const MotionScanner::Evaluation& at, std::size_t entered) {
+    if (status_only_crossings()) {
+      ++skipped_descriptions();
+      return;
+    }
     for (const Possible& p : at.possible) {
       FeatureId id(impl.charts[p.chart].curve_global[p.curve]);
       if (std::find(result.features.begin(), result.features.end(), id) == result.features.end())
@@ -2725,8 +2735,8 @@ class CrossingRun {
   }
 
   void split(const Rational& a, const Rational& b) {
-    Rational m = (a + b) / 2;
-    m.canonicalize();
+    Rational& m = scratch().m;
+    cspace::midpoint_into(m, a, b);
     stack.emplace_back(m, b);
     stack.emplace_back(a, m);
   }
@@ -2742,8 +2752,9 @@ class CrossingRun {
   // crossing_shrink.hpp).
   void shrink(const Rational& a, const Rational& b, const MotionScanner::Evaluation& at) {
     if (cspace::newton_shrink() && at.newton) {
-      Rational cells = (b - a) / resolution;
-      cells.canonicalize();
+      Rational& cells = scratch().c;
+      cspace::sum_into(cells, b, a, -1);
+      mpq_div(cells.get_mpq_t(), cells.get_mpq_t(), resolution.get_mpq_t());   // canonical
       if (cells.get_den() == 1 && cells.get_num() > 2 && cells.get_num().fits_slong_p()) {
         const long n = cells.get_num().get_si();
         double lo = std::floor(at.newton_lo / resolution_d * (1 - 0x1p-48)) - 1;
@@ -2756,8 +2767,8 @@ class CrossingRun {
           // certainly nonzero up to cell k_lo + 1, certainly past its sign change from k_hi - 1
           // (so a sign change, which no stretch's exclusion can pass, lies between)
           if (cspace::skip_left() && k_lo + 2 < k_hi) {
-            if (free_before(resolution * (k_lo + 1), at)) ++k_lo;
-            if (past_change(resolution * (k_hi - 1), at)) --k_hi;
+            if (free_before(cells_of(k_lo + 1), at)) ++k_lo;
+            if (past_change(cells_of(k_hi - 1), at)) --k_hi;
           }
           if (k_lo < k_hi) {
             // the smallest node holding cells k_lo ... k_hi - 1: 2^j cells from k_lo's multiple
@@ -2770,31 +2781,36 @@ class CrossingRun {
               // stretches the halving evaluates (and excludes) before reaching it, those right
               // of it the ones it would evaluate after; pushed so that they pop in path order
               ++cspace::newton_steps();
-              auto at_cell = [&](long k) {
-                Rational u = a + resolution * k;
-                u.canonicalize();
-                return u;
+              // a + k resolution (dyadic.hpp: by shifts where both are dyadic)
+              auto at_cell = [&](long k) -> const Rational& {
+                cspace::sum_multiple_into(scratch().u, a, resolution, k);
+                return scratch().u;
               };
               std::vector<std::pair<long, long>> left;
               long lo = 0, length = n;
               while (length > size) {
                 long half = length / 2;
                 if (first < lo + half) {
-                  stack.emplace_back(at_cell(lo + half), at_cell(lo + length));
+                  scratch().v = at_cell(lo + half);
+                  stack.emplace_back(scratch().v, at_cell(lo + length));
                 } else {
                   left.emplace_back(lo, lo + half);
                   lo += half;
                 }
                 length = half;
               }
-              stack.emplace_back(at_cell(first), at_cell(first + size));
+              scratch().v = at_cell(first);
+              stack.emplace_back(scratch().v, at_cell(first + size));
               // the siblings left of the node, [a, a + first cells), certified free when the
               // curve's mean-value bound keeps it off 0 there (crossing_shrink.hpp, skip_left)
-              if (!left.empty() && cspace::skip_left() && free_before(resolution * first, at)) {
+              if (!left.empty() && cspace::skip_left() && free_before(cells_of(first), at)) {
                 cspace::skipped_left() += left.size();
                 return;
               }
-              for (auto it = left.rbegin(); it != left.rend(); ++it) stack.emplace_back(at_cell(it->first), at_cell(it->second));
+              for (auto it = left.rbegin(); it != left.rend(); ++it) {
+                scratch().v = at_cell(it->first);
+                stack.emplace_back(scratch().v, at_cell(it->second));
+              }
               return;
             }
           }
@@ -2803,9 +2819,10 @@ class CrossingRun {
     }
     // a halving whose first half the curve's certified bound keeps free: only the second half
     if (cspace::newton_shrink() && at.newton && cspace::skip_left()) {
-      Rational m = (a + b) / 2;
-      m.canonicalize();
-      if (free_before(m - a, at)) {
+      Rational& m = scratch().m;
+      cspace::midpoint_into(m, a, b);
+      cspace::sum_into(scratch().w, m, a, -1);
+      if (free_before(scratch().w, at)) {
         ++cspace::skipped_left();
         stack.emplace_back(m, b);
         return;
@@ -2821,9 +2838,8 @@ class CrossingRun {
   // > 0 there. Exact: offset * r_max < s_min in rationals (the doubles are the enclosures' ends).
   bool free_before(const Rational& offset, const MotionScanner::Evaluation& at) {
     if (!(at.newton_s_min > 0) || !std::isfinite(at.newton_r_max) || !(at.newton_r_max >= 0)) return false;
-    skip_bound = offset;
-    skip_bound *= Rational(at.newton_r_max);
-    return cmp(skip_bound, Rational(at.newton_s_min)) < 0;
+    // (dyadic.hpp: the product's certified double enclosure first, then the exact product)
+    return cspace::compare_product(offset, at.newton_r_max, at.newton_s_min, skip_bound) < 0;
   }
 
   // Whether that curve's value certainly has the sign opposite to f(a)'s at a + offset (offset
@@ -2831,15 +2847,20 @@ class CrossingRun {
   // magnitude, so past s_max >= |f(a)| it has changed sign. Exact: offset * r_min > s_max.
   bool past_change(const Rational& offset, const MotionScanner::Evaluation& at) {
     if (!(at.newton_r_min > 0) || !std::isfinite(at.newton_s_max) || !(at.newton_s_max > 0)) return false;
-    skip_bound = offset;
-    skip_bound *= Rational(at.newton_r_min);
-    return cmp(skip_bound, Rational(at.newton_s_max)) > 0;
+    return cspace::compare_product(offset, at.newton_r_min, at.newton_s_max, skip_bound) > 0;
+  }
+
+  // k resolutions (dyadic.hpp), in a kept rational
+  const Rational& cells_of(long k) {
+    cspace::sum_multiple_into(scratch().k, scratch().zero, resolution, k);
+    return scratch().k;
   }
 
   // one stretch [a, b] of the subdivision: excluded, split, or the answer
   void stretch(const Rational& a, const Rational& b) {
     MotionScanner::Evaluation at = scanner.evaluate(a, b);
-    bool wide = b - a > resolution;
+    cspace::sum_into(scratch().w, b, a, -1);
+    bool wide = scratch().w > resolution;
     if (at.too_wide) {
       split(a, b);
       return;
@@ -2952,11 +2973,30 @@ class CrossingRun {
   StretchStack stack;
   Rational stretch_a, stretch_b;   // the stretch being evaluated (step())
   Rational skip_bound;              // free_before's product (kept: its limbs reused)
+  // the rationals a step works in (midpoints, cells, widths), per thread: kept between steps and
+  // queries so that their limbs are reused, and never held across a step (the sweep's queries
+  // take their steps one at a time on a thread)
+  struct Scratch {
+    Rational m, u, v, w, k, c;
+    const Rational zero{0};
+  };
+  static Scratch& scratch() {
+    thread_local Scratch kept;
+    return kept;
+  }
   std::optional<MotionScanner::Evaluation> last;   // the excluded stretch ending at u_end
   std::vector<AnchorBox> excluded_boxes;           // the anchor boxes it leaves (its start's, its excluded stretches')
 };
 
 }  // namespace
+
+namespace {
+thread_local bool status_only_now = false;
+}
+StatusOnlyCrossings::StatusOnlyCrossings() : previous_(status_only_now) { status_only_now = true; }
+StatusOnlyCrossings::~StatusOnlyCrossings() { status_only_now = previous_; }
+bool status_only_crossings() { return status_only_now; }
+std::size_t& skipped_descriptions() { return thread_counter<struct SkippedDescriptionsTag>(); }
 
 struct CrossingQuery::State : CrossingRun {
   using CrossingRun::CrossingRun;

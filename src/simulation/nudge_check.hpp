@@ -34,6 +34,13 @@ namespace hipair::simulation {
 
 struct NudgeCheckTag;
 inline bool& nudge_check() { return thread_switch<NudgeCheckTag>(); }
+
+// The nudge's point queries (nudge_free's free_at) read only the answer's status and grazing
+// flag: they are asked in a StatusOnlyCrossings scope (hipair/crossing_before.hpp), which skips
+// the contact's description (features, chart point, frame). Switch status_only_nudges() (on by
+// default; SimulationStatusOnlyNudges.* compares the runs with it off).
+struct StatusOnlyNudgesTag;
+inline bool& status_only_nudges() { return thread_switch<StatusOnlyNudgesTag>(); }
 struct CertifiedNudgesTag;
 inline std::size_t& certified_nudges() { return thread_counter<CertifiedNudgesTag>(); }
 

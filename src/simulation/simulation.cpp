@@ -14,6 +14,7 @@
 
 #include <hipair/blocked_walk.hpp>
 #include <hipair/contact_frame_doubles.hpp>
+#include <hipair/crossing_before.hpp>
 #include <hipair/edge_slope.hpp>
 #include <hipair/edge_tracker.hpp>
 #include <hipair/error.hpp>
@@ -1024,6 +1025,9 @@ struct Simulation::Impl {
       // of a motion that does not move
       MotionPath at = point_path(pair, q);
       at.u_end = at.u_begin;
+      // (status and grazing are all it reads: no description made, simulation/nudge_check.hpp)
+      std::optional<StatusOnlyCrossings> status_only;
+      if (simulation::status_only_nudges()) status_only.emplace();
       MotionCrossing c = spaces[pair]->first_crossing(at);
       if (c.status == CrossingStatus::outside_region) outside(pair, t);
       if (blocked) *blocked = c.status == CrossingStatus::starts_in_contact && !c.grazing;
