@@ -204,6 +204,9 @@ bool is_endpoint(const PlacedEdge& edge, const Point& p) {
 
 using kernels::Interval;
 
+// Session 47's lazy placement and block skips (set_lazy_placement: off is the route before).
+bool lazy_placement_enabled = true;
+
 // The double intervals are used only while they are finite and at most 2^200 in magnitude:
 // then no operation of the filter (degree 4 in coordinates at most) overflows, and no
 // infinity or NaN can enter a bound. Beyond (or for NaN) the exact path alone decides.
@@ -788,7 +791,7 @@ class OverlapAnalysis {
     if (!parts_[0]->total().meets(parts_[1]->total())) return Overlap::apart;
     PlacedPart& a = *parts_[0];
     PlacedPart& b = *parts_[1];
-    const std::vector<Box>* b_blocks = b.block_boxes();
+    const std::vector<Box>* b_blocks = lazy_placement_enabled ? b.block_boxes() : nullptr;
     for (std::size_t i = 0; i < a.size(); ++i) {
       if (!a.coarse(i).meets(b.total())) continue;
       const Box& box = a.box(i);
@@ -1560,7 +1563,6 @@ PairOverlap::~PairOverlap() = default;
 
 namespace {
 std::atomic<std::uint64_t> lazy_asked{0}, lazy_edges{0}, lazy_placed{0};
-bool lazy_placement_enabled = true;
 }  // namespace
 
 Overlap PairOverlap::classify(const ChartAxis& x, const ChartAxis& y, const ChartPoint& q) const {

@@ -75,8 +75,9 @@ OverlapReport analyse_overlap(const Part& first, const RigidMap& first_map, cons
 /// lazily, their parts' edges, the edges whose interval geometry was made}.
 std::array<std::uint64_t, 3> lazy_placement_counts();
 
-/// Tests and measurements: PairOverlap::classify places the first part lazily (the default) or
-/// every edge eagerly (the route before session 47). Not thread safe: set it before any use.
+/// Tests and measurements: PairOverlap::classify places the first part lazily and the analysis
+/// skips the second part's edge boxes a block at a time (the default), or neither (the route
+/// before session 47). Not thread safe: set it before any use.
 void set_lazy_placement(bool on);
 
 /// Where a point lies with respect to a part's material (closed region bounded by its loops).
