@@ -204,6 +204,9 @@ bool is_endpoint(const PlacedEdge& edge, const Point& p) {
 
 using kernels::Interval;
 
+// Session 47's lazy placement and block skips (set_lazy_placement: off is the route before).
+bool lazy_placement_enabled = true;
+
 // The double intervals are used only while they are finite and at most 2^200 in magnitude:
 // then no operation of the filter (degree 4 in coordinates at most) overflows, and no
 // infinity or NaN can enter a bound. Beyond (or for NaN) the exact path alone decides.
@@ -249,10 +252,20 @@ struct PartEnclosure {
   struct Body {
     Interval sx, sy, tx, ty, cx, cy, radius_squared;
   };
+  // A body-frame disk (centre, radius: doubles) holding edges [k * kBlock, (k + 1) * kBlock)
+  // of the boundary order (session 47): posed by a rigid map, the disk's mapped centre widened
+  // by the radius is a certified box of those edges (a rotation keeps distances), from one
+  // interval product per block instead of every edge's placement. Empty: not prepared (or a
+  // part beyond the tame range), and every placement is eager.
+  struct Block {
+    double cx = 0, cy = 0, r = 0;
+  };
+  static constexpr std::size_t kBlock = 8;
   const Part* part = nullptr;
   std::vector<std::pair<std::size_t, std::size_t>> refs;
   std::vector<std::size_t> loop_begin;
   std::vector<Body> body;
+  std::vector<Block> blocks;
 
   explicit PartEnclosure(const Part& source) : part(&source) {
     for (std::size_t l = 0; l < source.loops.size(); ++l) {
@@ -286,6 +299,9 @@ struct Placement {
   std::vector<IntervalEdge> intervals;
   std::vector<Box> boxes;
   std::vector<Box> loop_boxes;
+  // the union of the boxes of edges [k * kBlock, (k + 1) * kBlock) (eager placements only): a
+  // box that misses it misses each of them
+  std::vector<Box> block_boxes;
   Box total;
   bool filtered = true;
 };
@@ -301,10 +317,12 @@ class PlacedPart {
              bool identity)
       : PlacedPart(std::make_shared<const PartEnclosure>(part), map, std::move(exact_map), identity) {}
 
+  // `lazy` (and the enclosure's blocks prepared, the map tame): the edges' interval geometry
+  // made on first use, the part's and loops' boxes from the blocks' posed disks (session 47).
   PlacedPart(std::shared_ptr<const PartEnclosure> enclosure, const IntervalMap& map,
-             std::function<RigidMap()> exact_map, bool identity)
+             std::function<RigidMap()> exact_map, bool identity, bool lazy = false)
       : enclosure_(std::move(enclosure)), exact_source_(std::move(exact_map)), identity_(identity) {
-    place(*enclosure_, map, own_);
+    if (!(lazy && !enclosure_->blocks.empty() && map.tame() && place_lazily(map))) place(*enclosure_, map, own_);
     placement_ = &own_;
     exact_.resize(enclosure_->refs.size());
   }
@@ -320,14 +338,35 @@ class PlacedPart {
 
   /// The interval enclosures (and the boxes from them) are usable: every one is tame. When
   /// false, every box is the whole plane and only exact tests decide.
-  bool filtered() const { return placement_->filtered; }
+  bool filtered() const { return placement_->filtered && !untamed_; }
 
   std::size_t size() const { return enclosure_->refs.size(); }
   std::size_t loops() const { return enclosure_->part->loops.size(); }
   std::size_t loop_begin(std::size_t loop) const { return enclosure_->loop_begin[loop]; }
   std::size_t loop_end(std::size_t loop) const { return enclosure_->loop_begin[loop + 1]; }
-  const Box& box(std::size_t i) const { return placement_->boxes[i]; }
-  const IntervalEdge& interval(std::size_t i) const { return placement_->intervals[i]; }
+  /// A certified box of edge i that may be wider than box(i) (its block's, when lazy): an edge
+  /// whose coarse box misses a region cannot meet it; only then is box(i) asked.
+  const Box& coarse(std::size_t i) const {
+    return lazy_ ? coarse_[i / PartEnclosure::kBlock] : placement_->boxes[i];
+  }
+  const Box& box(std::size_t i) const {
+    if (lazy_ && !placed_[i]) ensure(i);
+    return placement_->boxes[i];
+  }
+  const IntervalEdge& interval(std::size_t i) const {
+    if (lazy_ && !placed_[i]) ensure(i);
+    return placement_->intervals[i];
+  }
+  /// Eager placements: the blocks' boxes (Placement::block_boxes); nullptr when lazy.
+  const std::vector<Box>* block_boxes() const { return lazy_ ? nullptr : &placement_->block_boxes; }
+  /// Lazy placement met an edge whose enclosure is beyond the tame range: the analysis's answer
+  /// is not used, the caller repeats it eagerly (where every box is the whole plane).
+  bool untamed() const { return untamed_; }
+  bool lazy() const { return lazy_; }
+  /// The edges whose interval geometry was made (all when not lazy).
+  std::size_t placed_edges() const {
+    return lazy_ ? static_cast<std::size_t>(std::count(placed_.begin(), placed_.end(), 1)) : size();
+  }
   const Box& total() const { return placement_->total; }
   const Box& loop_box(std::size_t loop) const { return placement_->loop_boxes[loop]; }
   const Edge& original(std::size_t i) const {
@@ -365,6 +404,64 @@ class PlacedPart {
       out.loop_boxes[enclosure.refs[i].first].add(out.boxes[i].xlo, out.boxes[i].ylo);
       out.loop_boxes[enclosure.refs[i].first].add(out.boxes[i].xhi, out.boxes[i].yhi);
     }
+    out.block_boxes.assign((n + PartEnclosure::kBlock - 1) / PartEnclosure::kBlock, Box{1e300, -1e300, 1e300, -1e300});
+    for (std::size_t i = 0; i < n; ++i) {
+      Box& block = out.block_boxes[i / PartEnclosure::kBlock];
+      block.add(out.boxes[i].xlo, out.boxes[i].ylo);
+      block.add(out.boxes[i].xhi, out.boxes[i].yhi);
+    }
+  }
+
+  // The blocks' posed disks as boxes, the part's and loops' boxes from them; the edges' own
+  // geometry left for ensure(). False (nothing kept) when a box is beyond the tame range.
+  bool place_lazily(const IntervalMap& map) {
+    const PartEnclosure& enclosure = *enclosure_;
+    const std::size_t n = enclosure.refs.size();
+    coarse_.resize(enclosure.blocks.size());
+    for (std::size_t k = 0; k < enclosure.blocks.size(); ++k) {
+      const PartEnclosure::Block& block = enclosure.blocks[k];
+      Interval u, v;
+      map.apply(Interval::point(block.cx), Interval::point(block.cy), u, v);
+      const Interval r = Interval::point(block.r);
+      const Interval xlo = u - r, xhi = u + r, ylo = v - r, yhi = v + r;
+      if (!tame(xlo) || !tame(xhi) || !tame(ylo) || !tame(yhi)) return false;
+      coarse_[k] = Box{xlo.lo, xhi.hi, ylo.lo, yhi.hi};
+    }
+    own_.intervals.resize(n);
+    own_.boxes.resize(n);
+    own_.filtered = true;
+    own_.total = Box{1e300, -1e300, 1e300, -1e300};
+    own_.loop_boxes.assign(enclosure.part->loops.size(), Box{1e300, -1e300, 1e300, -1e300});
+    for (const Box& box : coarse_) {
+      own_.total.add(box.xlo, box.ylo);
+      own_.total.add(box.xhi, box.yhi);
+    }
+    for (std::size_t l = 0; l + 1 < enclosure.loop_begin.size(); ++l) {
+      const std::size_t begin = enclosure.loop_begin[l], end = enclosure.loop_begin[l + 1];
+      if (begin == end) continue;
+      for (std::size_t k = begin / PartEnclosure::kBlock; k <= (end - 1) / PartEnclosure::kBlock; ++k) {
+        own_.loop_boxes[l].add(coarse_[k].xlo, coarse_[k].ylo);
+        own_.loop_boxes[l].add(coarse_[k].xhi, coarse_[k].yhi);
+      }
+    }
+    placed_.assign(n, 0);
+    map_ = map;
+    lazy_ = true;
+    return true;
+  }
+
+  // Edge i's interval geometry and box, made on its first use when lazy (as place() makes it).
+  [[gnu::noinline]] void ensure(std::size_t i) const {
+    const auto& ref = enclosure_->refs[i];
+    IntervalEdge& e = own_.intervals[i];
+    e = interval_edge(enclosure_->part->loops[ref.first].edges[ref.second], enclosure_->body[i], map_);
+    if (e.tame()) {
+      own_.boxes[i] = box_of(e);
+    } else {
+      untamed_ = true;
+      own_.boxes[i] = Box::everything();
+    }
+    placed_[i] = 1;
   }
 
   // Edge i's exact geometry placed by `map` (nullptr: the identity).
@@ -463,8 +560,14 @@ class PlacedPart {
   std::function<RigidMap()> exact_source_;
   std::optional<RigidMap> exact_map_;
   bool identity_;
-  Placement own_;
+  // (mutable: a lazy placement's edges are made by the const accessors)
+  mutable Placement own_;
   const Placement* placement_ = nullptr;
+  bool lazy_ = false;
+  mutable bool untamed_ = false;
+  IntervalMap map_;
+  mutable std::vector<char> placed_;
+  std::vector<Box> coarse_;
   std::vector<std::optional<PlacedEdge>> exact_;
   const std::vector<PlacedEdge>* borrowed_exact_ = nullptr;
 };
@@ -483,6 +586,39 @@ struct IdentityPart {
     for (std::size_t i = 0; i < n; ++i) exact.push_back(PlacedPart::place_exact(*enclosure, i, nullptr));
   }
 };
+
+// The blocks of `enclosure` (PartEnclosure::Block): each block's edges' boxes at the identity
+// (certified), their union's middle as the disk's centre, the distance to the farthest corner
+// rounded up as its radius. Left empty for a part beyond the tame range.
+void prepare_blocks(PartEnclosure& enclosure) {
+  Placement body;
+  PlacedPart::place(enclosure, IntervalMap{}, body);
+  if (!body.filtered) return;
+  const std::size_t n = enclosure.refs.size();
+  std::vector<PartEnclosure::Block> blocks;
+  for (std::size_t first = 0; first < n; first += PartEnclosure::kBlock) {
+    Box box{1e300, -1e300, 1e300, -1e300};
+    for (std::size_t i = first; i < std::min(n, first + PartEnclosure::kBlock); ++i) {
+      box.add(body.boxes[i].xlo, body.boxes[i].ylo);
+      box.add(body.boxes[i].xhi, body.boxes[i].yhi);
+    }
+    PartEnclosure::Block block;
+    block.cx = 0.5 * box.xlo + 0.5 * box.xhi;
+    block.cy = 0.5 * box.ylo + 0.5 * box.yhi;
+    // |p - c| <= r for every p of the box: the half-extents from c to the farther side, upward
+    const double hx = std::max((Interval::point(block.cx) - Interval::point(box.xlo)).hi,
+                               (Interval::point(box.xhi) - Interval::point(block.cx)).hi);
+    const double hy = std::max((Interval::point(block.cy) - Interval::point(box.ylo)).hi,
+                               (Interval::point(box.yhi) - Interval::point(block.cy)).hi);
+    const Interval hx2 = Interval::point(hx) * Interval::point(hx), hy2 = Interval::point(hy) * Interval::point(hy);
+    block.r = kernels::sqrt(hx2 + hy2).hi;
+    if (!std::isfinite(block.r) || !tame(Interval::point(block.cx)) || !tame(Interval::point(block.cy)) ||
+        !tame(Interval::point(block.r)))
+      return;
+    blocks.push_back(block);
+  }
+  enclosure.blocks = std::move(blocks);
+}
 
 // ============================================================================ interval filter
 
@@ -598,6 +734,8 @@ std::optional<bool> inside_by_intervals(const PlacedPart& part, const Interval& 
   if (!part.filtered() || !tame(px) || !tame(py)) return std::nullopt;
   bool inside = false;
   for (std::size_t i = 0; i < part.size(); ++i) {
+    const Box& coarse = part.coarse(i);
+    if (coarse.xhi < px.lo || coarse.yhi < py.lo || coarse.ylo > py.hi) continue;  // misses the ray
     const Box& box = part.box(i);
     if (box.xhi < px.lo || box.yhi < py.lo || box.ylo > py.hi) continue;  // misses the ray
     const IntervalEdge& e = part.interval(i);
@@ -653,10 +791,18 @@ class OverlapAnalysis {
     if (!parts_[0]->total().meets(parts_[1]->total())) return Overlap::apart;
     PlacedPart& a = *parts_[0];
     PlacedPart& b = *parts_[1];
+    const std::vector<Box>* b_blocks = lazy_placement_enabled ? b.block_boxes() : nullptr;
     for (std::size_t i = 0; i < a.size(); ++i) {
-      if (!a.box(i).meets(b.total())) continue;
+      if (!a.coarse(i).meets(b.total())) continue;
+      const Box& box = a.box(i);
+      if (!box.meets(b.total())) continue;
       for (std::size_t j = 0; j < b.size(); ++j) {
-        if (!a.box(i).meets(b.box(j))) continue;
+        // a block of b's edges whose boxes' union misses edge i's box: none of them meets it
+        if (b_blocks && j % PartEnclosure::kBlock == 0 && !box.meets((*b_blocks)[j / PartEnclosure::kBlock])) {
+          j += PartEnclosure::kBlock - 1;
+          continue;
+        }
+        if (!box.meets(b.box(j))) continue;
         Filter filter = exact_only_ || !a.filtered() || !b.filtered() ? Filter::unknown
                                                                        : filter_pair(a.interval(i), b.interval(j));
         if (filter == Filter::disjoint) continue;
@@ -685,7 +831,7 @@ class OverlapAnalysis {
     double px = toward_zero(p.x);
     double py = toward_zero(p.y);
     for (std::size_t i = 0; i < part.size(); ++i) {
-      if (!part.box(i).contains(px, py)) continue;
+      if (!part.coarse(i).contains(px, py) || !part.box(i).contains(px, py)) continue;
       const PlacedEdge& e = part.edge(i);
       if (!on_edge(e, p)) continue;
       result.push_back(TouchEdge{e.loop, e.index, p == e.source, p == e.target});
@@ -974,7 +1120,7 @@ class OverlapAnalysis {
     for (int side = 0; side < 2; ++side) {
       PlacedPart& part = *parts_[side];
       for (std::size_t i = 0; i < part.size(); ++i) {
-        if (!part.box(i).contains(px, py)) continue;
+        if (!part.coarse(i).contains(px, py) || !part.box(i).contains(px, py)) continue;
         const PlacedEdge& e = part.edge(i);
         if (on_edge(e, p)) add_germs(side, e, p, germs);
       }
@@ -1185,10 +1331,13 @@ class OverlapAnalysis {
       if (quick) return *quick ? PointLocation::inside : PointLocation::outside;
     }
     for (std::size_t i = 0; i < part.size(); ++i)
-      if (part.box(i).contains(px, py) && on_edge(part.edge(i), p)) return PointLocation::boundary;
+      if (part.coarse(i).contains(px, py) && part.box(i).contains(px, py) && on_edge(part.edge(i), p))
+        return PointLocation::boundary;
     // Parity of crossings of the ray from p' = p + (eps^2, eps) towards +x.
     bool inside = false;
     for (std::size_t i = 0; i < part.size(); ++i) {
+      const Box& coarse = part.coarse(i);
+      if (coarse.xhi < px || coarse.yhi < py || coarse.ylo > py) continue;  // cannot meet the ray
       const Box& box = part.box(i);
       if (box.xhi < px || box.yhi < py || box.ylo > py) continue;  // cannot meet the ray
       const PlacedEdge& e = part.edge(i);
@@ -1397,7 +1546,13 @@ Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAx
 struct PairOverlap::Data {
   std::shared_ptr<const PartEnclosure> first;
   IdentityPart second;
-  Data(const Part& a, const Part& b) : first(std::make_shared<const PartEnclosure>(a)), second(b) {}
+  Data(const Part& a, const Part& b) : first(blocked_enclosure(a)), second(b) {}
+  // the first part's enclosure with its blocks (its placements are lazy)
+  static std::shared_ptr<const PartEnclosure> blocked_enclosure(const Part& part) {
+    auto enclosure = std::make_shared<PartEnclosure>(part);
+    prepare_blocks(*enclosure);
+    return enclosure;
+  }
 };
 
 PairOverlap::PairOverlap(const Model& model, const PairAxes& axes)
@@ -1406,16 +1561,43 @@ PairOverlap::PairOverlap(const Model& model, const PairAxes& axes)
 
 PairOverlap::~PairOverlap() = default;
 
+namespace {
+std::atomic<std::uint64_t> lazy_asked{0}, lazy_edges{0}, lazy_placed{0};
+}  // namespace
+
 Overlap PairOverlap::classify(const ChartAxis& x, const ChartAxis& y, const ChartPoint& q) const {
   // as analyse_overlap (the model's pair at chart point q), on the prepared parts
+  // The first part placed lazily (session 47): only the edges whose block's posed disk meets
+  // the region a test asks about get their interval geometry; the others cannot meet the
+  // second part (nor a probe's ray), and the answer is the oracle's exact relation either way.
   return at_chart_point(model_, axes_, x, y, q,
                         [&](const Part&, const Part&, const IntervalMap& relative, const auto& exact_relative,
                             const auto& second_world) {
+                          Overlap relation;
+                          {
+                            PlacedPart a(data_->first, relative, exact_relative, false, lazy_placement_enabled);
+                            PlacedPart b(data_->second.enclosure, data_->second.placement, data_->second.exact);
+                            relation = analyse_placed(a, b, second_world, OverlapOptions{}).relation;
+                            if (a.lazy()) {
+                              lazy_asked.fetch_add(1, std::memory_order_relaxed);
+                              lazy_edges.fetch_add(a.size(), std::memory_order_relaxed);
+                              lazy_placed.fetch_add(a.placed_edges(), std::memory_order_relaxed);
+                            }
+                            if (!a.untamed()) return relation;
+                          }
+                          // an edge beyond the tame range: as before, every box the whole plane
                           PlacedPart a(data_->first, relative, exact_relative, false);
                           PlacedPart b(data_->second.enclosure, data_->second.placement, data_->second.exact);
                           return analyse_placed(a, b, second_world, OverlapOptions{}).relation;
                         });
 }
+
+std::array<std::uint64_t, 3> lazy_placement_counts() {
+  return {lazy_asked.load(std::memory_order_relaxed), lazy_edges.load(std::memory_order_relaxed),
+          lazy_placed.load(std::memory_order_relaxed)};
+}
+
+void set_lazy_placement(bool on) { lazy_placement_enabled = on; }
 
 namespace {
 std::atomic<std::uint64_t> filter_asked{0}, filter_decided{0};

@@ -14,6 +14,8 @@
 #include <hipair/geometry.hpp>
 #include <hipair/model.hpp>
 
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -68,6 +70,15 @@ std::optional<Point> interior_witness(const Model& model, const PairAxes& axes,
 /// Exact relation of two parts each placed in the world by an exact rigid map.
 OverlapReport analyse_overlap(const Part& first, const RigidMap& first_map, const Part& second,
                               const RigidMap& second_map, const OverlapOptions& options = {});
+
+/// PairOverlap::classify's lazy placements of the first part (session 47): {placements made
+/// lazily, their parts' edges, the edges whose interval geometry was made}.
+std::array<std::uint64_t, 3> lazy_placement_counts();
+
+/// Tests and measurements: PairOverlap::classify places the first part lazily and the analysis
+/// skips the second part's edge boxes a block at a time (the default), or neither (the route
+/// before session 47). Not thread safe: set it before any use.
+void set_lazy_placement(bool on);
 
 /// Where a point lies with respect to a part's material (closed region bounded by its loops).
 enum class PointLocation { outside, boundary, inside };

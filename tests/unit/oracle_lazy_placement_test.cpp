@@ -1,0 +1,117 @@
+// Session 47 (gear47): PairOverlap::classify places its first part lazily — the part's edges in
+// blocks of eight consecutive edges, each block's body-frame disk posed by one interval product,
+// an edge's interval geometry made only when its block's box meets what a test asks about (the
+// second part's box, a probe's ray, a point); the second part's edge boxes skipped a block at a
+// time. On generated spur-gear pairs (random tooth counts, backlash and centre distance), at
+// random chart points of every chart pair and at points bisected towards the boundary between
+// apart and overlapping (where the edges the blocks skip are nearest to the other part), the
+// lazy route's answer must be the eager route's (every edge placed: set_lazy_placement(false))
+// and classify_overlap's (a fresh analysis without blocks); the lazy placements must have left
+// most edges unplaced.
+#include "curves/contact_curves.hpp"
+#include "oracle/overlap.hpp"
+#include "spur_gear_pairs.hpp"
+
+#include <hipair/model.hpp>
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+
+namespace hipair {
+namespace {
+
+Rational between(const cspace::ChartAxis& axis, std::mt19937_64& random, long cells) {
+  Rational r = axis.lo + (axis.hi - axis.lo) * Rational(static_cast<long>(random() % (cells + 1)), cells);
+  r.canonicalize();
+  return r;
+}
+
+const char* name_of(cspace::Overlap relation) {
+  return relation == cspace::Overlap::apart ? "apart" : relation == cspace::Overlap::overlapping ? "overlapping" : "touching";
+}
+
+TEST(OracleLazyPlacement, LazyClassifyIsTheEagerOracleOnGeneratedGearPairs) {
+  std::mt19937_64 random(4701);
+  std::size_t asked = 0, apart = 0, overlapping = 0, touching = 0, near_boundary = 0;
+  const auto before = cspace::lazy_placement_counts();
+  for (int trial = 0; trial < 4; ++trial) {
+    const long z1 = 6 + static_cast<long>(random() % 25), z2 = 6 + static_cast<long>(random() % 25);
+    std::string name;
+    const Model model = test_gears::spur_gear_pair(random, z1, z2, name);
+    SCOPED_TRACE(name);
+    const cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+    const cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+    ASSERT_EQ(axes.dimension(), 2);
+    const cspace::PairOverlap oracle(model, axes);
+    auto check = [&](const cspace::ChartAxis& x, const cspace::ChartAxis& y, const cspace::ChartPoint& q) {
+      cspace::set_lazy_placement(true);
+      const cspace::Overlap lazy = oracle.classify(x, y, q);
+      cspace::set_lazy_placement(false);
+      const cspace::Overlap eager = oracle.classify(x, y, q);
+      cspace::set_lazy_placement(true);
+      const cspace::Overlap fresh = cspace::classify_overlap(model, axes, x, y, q);
+      EXPECT_EQ(lazy, eager) << "at (" << q.x.get_str() << ", " << q.y.get_str() << "): lazy " << name_of(lazy)
+                             << ", eager " << name_of(eager);
+      EXPECT_EQ(lazy, fresh) << "at (" << q.x.get_str() << ", " << q.y.get_str() << ")";
+      ++asked;
+      (lazy == cspace::Overlap::apart ? apart : lazy == cspace::Overlap::overlapping ? overlapping : touching) += 1;
+      return lazy;
+    };
+    for (const cspace::ChartAxis& x : layout.x_charts)
+      for (const cspace::ChartAxis& y : layout.y_charts) {
+        for (int k = 0; k < 40; ++k) {
+          cspace::ChartPoint q;
+          q.x = between(x, random, 4096);
+          q.y = between(y, random, 4096);
+          check(x, y, q);
+        }
+        // along a random column: neighbours of a 64-step grid with different answers, bisected
+        // 24 times towards the boundary between them (every point asked on the way)
+        for (int column = 0; column < 3; ++column) {
+          cspace::ChartPoint q;
+          q.x = between(x, random, 4096);
+          Rational previous_y = y.lo;
+          q.y = previous_y;
+          cspace::Overlap previous = check(x, y, q);
+          int bisected = 0;
+          for (long j = 1; j <= 64 && bisected < 3; ++j) {
+            Rational yj = y.lo + (y.hi - y.lo) * Rational(j, 64);
+            yj.canonicalize();
+            q.y = yj;
+            const cspace::Overlap here = check(x, y, q);
+            if (here != previous && here != cspace::Overlap::touching && previous != cspace::Overlap::touching) {
+              Rational lo = previous_y, hi = yj;
+              for (int step = 0; step < 24; ++step) {
+                Rational mid = (lo + hi) / 2;
+                mid.canonicalize();
+                q.y = mid;
+                const cspace::Overlap m = check(x, y, q);
+                if (m == cspace::Overlap::touching) break;
+                (m == previous ? lo : hi) = mid;
+                ++near_boundary;
+              }
+              ++bisected;
+            }
+            previous = here;
+            previous_y = yj;
+          }
+        }
+      }
+  }
+  const auto after = cspace::lazy_placement_counts();
+  const auto lazy_calls = after[0] - before[0], edges = after[1] - before[1], placed = after[2] - before[2];
+  EXPECT_GT(apart, asked / 20) << "of " << asked;
+  EXPECT_GT(overlapping, asked / 10) << "of " << asked;
+  EXPECT_GT(near_boundary, 500u);
+  // every lazy classify counted, and most edges never placed
+  EXPECT_EQ(lazy_calls, asked);
+  EXPECT_LT(placed * 2, edges) << placed << " of " << edges << " edges placed";
+  std::printf("[lazy placement] %zu points (%zu apart, %zu overlapping, %zu touching, %zu bisected), %llu of %llu edges placed\n",
+              asked, apart, overlapping, touching, near_boundary, static_cast<unsigned long long>(placed),
+              static_cast<unsigned long long>(edges));
+}
+
+}  // namespace
+}  // namespace hipair
