@@ -1,0 +1,127 @@
+// Session 47 (tol47): the hand-over envelope's driver-monotone route against the exact train
+// (issue 12; docs/tolerance.md "Assembly chains", "The driver-monotone route").
+//
+// At the late meshes of gear-train.json the driver's range T (the previous mesh's enclosure) is
+// wide, and the envelope's walk over box x T cannot exclude the next tooth pair from the window
+// beyond the holder's enclosure. The route (handover.cpp, step 5) proves instead that the
+// follower moves in its driver as the holder does (every feature pair that may push it in
+// [Y, M) has F_t of the holder's sign), walks the box at the one end of T where the follower is
+// furthest (and the nominal parameters along T up to it), and walks the rest of T (where the
+// proof does not hold) from there. Here, on the 8-mesh train (test_gears::gear_train(9),
+// gear-train.json's model) over 1.309..1.745 rad at 120 per turn, the last position (1.745 rad)
+// is unbounded without the route (mesh H:I: gear-H tooth 7 flank R / gear-I tooth 10 flank R not
+// excluded) and bounded with it; the exact train (the model rebuilt exactly, the kernel-sliced
+// exact engine over the same range and grid) at the vertices of the box the linearisation moves
+// furthest up and down at that position (and near them) and at random vectors must lie inside
+// every bounded band. Mutants run: docs/performance.md "Session 47 (tol47)".
+#include "gear_train_models.hpp"
+
+#include "model/parametric/parametric.hpp"
+#include "tolerance/handover.hpp"
+#include "tolerance/stage.hpp"
+
+#include <hipair/kinematics.hpp>
+#include <hipair/rational.hpp>
+#include <hipair/tolerance.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace hipair {
+namespace {
+
+struct MonotoneRoute {
+  explicit MonotoneRoute(int on) : saved(tolerance_detail::handover_monotone_driver()) {
+    tolerance_detail::handover_monotone_driver() = on;
+  }
+  ~MonotoneRoute() { tolerance_detail::handover_monotone_driver() = saved; }
+  int saved;
+};
+
+bool bounded(const VariationSample& s) { return s.contact && std::isfinite(s.certified.upper - s.certified.lower); }
+
+TEST(ChainMonotoneDriver, LateMeshBandBoundedThroughTheDriverHoldsTheExactTrain) {
+  const std::string text = test_gears::gear_train(9);
+  const std::pair<Rational, Rational> range(Rational(1308996939, 1000000000), Rational(1745329252, 1000000000));
+  ToleranceOptions options = test_gears::chain_options(range.second, 0, 47);
+  options.range = range;
+  ToleranceResult r;
+  {
+    MonotoneRoute route(1);
+    r = analyze_tolerances_text(text, options);
+  }
+  ASSERT_EQ(r.samples.size(), 10u);
+  std::size_t held = 0, unbounded = 0;
+  for (const VariationSample& s : r.samples) {
+    if (!s.contact) continue;
+    ++held;
+    if (!bounded(s)) ++unbounded;
+  }
+  EXPECT_EQ(held, 9u);
+  const VariationSample& last = r.samples.back();
+  EXPECT_TRUE(bounded(last)) << "driver " << last.driver;   // unbounded without the route
+  EXPECT_EQ(unbounded, 0u);
+
+  // probes: the vertices maximising and minimising the linearised output at the last position,
+  // the same with the least effective parameter flipped and with the most effective one nominal,
+  // and random vectors of the box
+  std::vector<std::vector<Rational>> probes;
+  const test_gears::Effects e = test_gears::effects(last, r.parameters);
+  ASSERT_LT(e.most, r.parameters.size());
+  for (auto& probe : test_gears::corner_probes(last, r.parameters, e)) probes.push_back(std::move(probe.second));
+  std::mt19937 rng(47);
+  for (int k = 0; k < 6; ++k) probes.push_back(test_gears::random_deviations(r.parameters, rng));
+  std::set<std::vector<Rational>> distinct(probes.begin(), probes.end());
+
+  auto model = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text));
+  std::size_t checked = 0;
+  double upper_gap = 1, lower_gap = 1;   // at the last position, fractions of its band's width
+  for (const std::vector<Rational>& d : distinct) {
+    KinematicsOptions k;
+    k.driver = "gear-A";
+    k.range = range;
+    k.steps_per_cycle = options.positions;
+    k.reversal = false;
+    k.method = SliceMethod::kernels;
+    KinematicsResult exact = analyze_kinematics(model->exact_model(d), k);
+    std::size_t output = static_cast<std::size_t>(std::find(exact.followers.begin(), exact.followers.end(), "gear-I") -
+                                                  exact.followers.begin());
+    ASSERT_LT(output, exact.followers.size());
+    for (const VariationSample& sample : r.samples) {
+      if (!bounded(sample)) continue;
+      auto at = std::find_if(exact.samples.begin(), exact.samples.end(),
+                             [&](const KinematicSample& s) { return s.driver == sample.driver; });
+      EXPECT_NE(at, exact.samples.end()) << "driver " << sample.driver;
+      if (at == exact.samples.end()) continue;
+      double value = at->positions.at(output);
+      EXPECT_TRUE(std::isfinite(value));
+      ++checked;
+      // (the exact engine's position is the exact root rounded to a double: within an ulp)
+      double ulp = 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::fabs(value));
+      EXPECT_GE(value, sample.certified.lower - ulp) << "driver " << sample.driver;
+      EXPECT_LE(value, sample.certified.upper + ulp) << "driver " << sample.driver;
+      if (&sample == &last) {
+        double width = sample.certified.upper - sample.certified.lower;
+        upper_gap = std::min(upper_gap, (sample.certified.upper - value) / width);
+        lower_gap = std::min(lower_gap, (value - sample.certified.lower) / width);
+      }
+    }
+  }
+  EXPECT_EQ(checked, distinct.size() * held);
+  std::printf("driver %.4f: band [%.5f, %.5f] (linearised [%.5f, %.5f]); exact values within %.4f / %.4f of the band's "
+              "width of its upper / lower edge; %zu exact trains, %zu values checked\n",
+              last.driver, last.certified.lower, last.certified.upper, last.linear_lower, last.linear_upper, upper_gap,
+              lower_gap, distinct.size(), checked);
+}
+
+}  // namespace
+}  // namespace hipair
