@@ -123,5 +123,116 @@ TEST(ChainMonotoneDriver, LateMeshBandBoundedThroughTheDriverHoldsTheExactTrain)
               lower_gap, distinct.size(), checked);
 }
 
+
+// A chain where the later stage is NOT monotone in its driver, so that the route's certificate (a)
+// and the walk of the rest of T are what keep it sound (the gear trains cannot show it: a gear's
+// follower is monotone in its driver, so there a route without (a), or with E_1 taken over the whole
+// of T, still gives a band the exact train stays in). cam -> lifter1 (translating along x, its face
+// at 30 + f, f = 0 +- 5: lifter1's range T about 10 mm wide) -> lifter2 (translating along y under
+// its weight), pushed by lifter1's roller (radius 5, centre at x = u = 30 - f + e cos(theta)) on
+// its underside: a shallow slope (the holder; lifter2 falls by 0.02 per mm of u, so the follower is
+// furthest up at T's low end, T_e) and, beyond it, a ridge hanging down at x = 35.5 .. 39.5 that
+// lifts lifter2 to about 2.8 mm when u nears 35 (f = -5), far above the holder's [0.79, 1.01]. The
+// walk over box x T cannot exclude the ridge (its window reaches twice the holder's width), so the
+// route is tried: the ridge pushes against the holder's sense (F_t of the other sign), so (a) holds
+// only over T less its last quarter, and the rest of T must be walked — which meets the ridge. Every
+// bounded band must hold the exact train at the box's corners and random vectors (with the route
+// correct, the positions stay unbounded here: the rest's walk fails as the first walk did).
+std::string ridge_chain() {
+  return R"({"hipair": 1, "name": "ridge-chain", "units": {"length": "mm", "angle": "rad"},
+ "parameters": {"e": {"nominal": 5, "tolerance": 0.01}, "f": {"nominal": 0, "tolerance": 5}},
+ "parts": [
+  {"name": "cam", "motion": {"rotation": {"pivot": [0, 0]}}, "initial": {"angle": 0},
+   "loops": [{"circle": {"center": ["e", 0], "radius": 20}}]},
+  {"name": "lifter1", "motion": {"translation": {"direction": [1, 0], "limits": [-40, 40]}}, "initial": {"offset": -10},
+   "loops": [{"start": ["30 + f", -30], "edges": [{"line_to": [50, -30]}, {"line_to": [50, 30]}, {"line_to": ["30 + f", 30]}, {"line_to": ["30 + f", -30]}]},
+             {"circle": {"center": [40, 40], "radius": 5}}],
+   "dynamics": {"mass": 0.1, "force": [-10, 0]}},
+  {"name": "lifter2", "motion": {"translation": {"direction": [0, 1], "limits": [-40, 40]}}, "initial": {"offset": 0},
+   "loops": [{"start": [10, 80], "edges": [{"line_to": [10, 43.69]}, {"line_to": [35.5, 44.2]}, {"line_to": [37.5, 41.95]}, {"line_to": [39.5, 50]}, {"line_to": [60, 50]}, {"line_to": [60, 80]}, {"line_to": [10, 80]}]}],
+   "dynamics": {"mass": 0.1, "force": [0, -10]}}],
+ "pairs": [{"parts": ["cam", "lifter1"]}, {"parts": ["lifter1", "lifter2"]}]})";
+}
+
+TEST(ChainMonotoneDriver, NonMonotoneLaterStageBandsHoldTheExactChain) {
+  const std::string text = ridge_chain();
+  const std::pair<Rational, Rational> range(Rational(7, 5), Rational(8, 5));
+  ToleranceOptions options;
+  options.driver = "cam";
+  options.chain = true;
+  options.range = range;
+  options.positions = 120;
+  options.threads = 1;
+  ToleranceResult r;
+  {
+    MonotoneRoute route(1);
+    r = analyze_tolerances_text(text, options);
+  }
+  ASSERT_EQ(r.samples.size(), 6u);
+  std::size_t held = 0, with_band = 0;
+  for (const VariationSample& s : r.samples) {
+    held += s.contact ? 1 : 0;
+    with_band += bounded(s) ? 1 : 0;
+  }
+  EXPECT_EQ(held, 6u);
+  // probes: the box's 4 corners, f at its low end with e nominal (the ridge's deepest reach), and
+  // 4 random vectors
+  std::vector<std::vector<Rational>> probes;
+  ASSERT_EQ(r.parameters.size(), 2u);
+  for (int a : {0, 1})
+    for (int b : {0, 1}) {
+      std::vector<Rational> d(2);
+      for (std::size_t q = 0; q < 2; ++q) {
+        const Parameter& p = r.parameters[q];
+        d[q] = ((q == 0 ? a : b) ? p.range.hi : p.range.lo) - p.nominal;
+      }
+      probes.push_back(d);
+    }
+  {
+    std::size_t f = r.parameters[0].name == "f" ? 0 : 1;
+    std::vector<Rational> d(2, Rational(0));
+    d[f] = r.parameters[f].range.lo - r.parameters[f].nominal;
+    probes.push_back(d);
+  }
+  std::mt19937 rng(4747);
+  for (int k = 0; k < 4; ++k) probes.push_back(test_gears::random_deviations(r.parameters, rng));
+
+  auto model = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text));
+  std::size_t checked = 0;
+  double highest = -std::numeric_limits<double>::infinity();
+  for (const std::vector<Rational>& d : probes) {
+    KinematicsOptions k;
+    k.driver = "cam";
+    k.range = range;
+    k.steps_per_cycle = options.positions;
+    k.reversal = false;
+    k.method = SliceMethod::kernels;
+    KinematicsResult exact = analyze_kinematics(model->exact_model(d), k);
+    std::size_t output = static_cast<std::size_t>(std::find(exact.followers.begin(), exact.followers.end(), "lifter2") -
+                                                  exact.followers.begin());
+    ASSERT_LT(output, exact.followers.size());
+    for (const VariationSample& sample : r.samples) {
+      auto at = std::find_if(exact.samples.begin(), exact.samples.end(),
+                             [&](const KinematicSample& s) { return s.driver == sample.driver; });
+      EXPECT_NE(at, exact.samples.end()) << "driver " << sample.driver;
+      if (at == exact.samples.end()) continue;
+      double value = at->positions.at(output);
+      EXPECT_TRUE(std::isfinite(value));
+      highest = std::max(highest, value);
+      if (!bounded(sample)) continue;
+      ++checked;
+      double ulp = 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::fabs(value));
+      EXPECT_GE(value, sample.certified.lower - ulp) << "driver " << sample.driver;
+      EXPECT_LE(value, sample.certified.upper + ulp) << "driver " << sample.driver;
+    }
+  }
+  // the ridge is reached: the exact chain goes far beyond the holder's enclosure (what a route
+  // without (a) or without the rest's walk would give: [0.79, 1.01])
+  EXPECT_GT(highest, 2.0);
+  std::printf("ridge chain: %zu of %zu held positions bounded, %zu exact values checked against them; highest exact "
+              "value %.4f\n",
+              with_band, held, checked, highest);
+}
+
 }  // namespace
 }  // namespace hipair
