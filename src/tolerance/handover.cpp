@@ -306,9 +306,10 @@ std::shared_ptr<const HandoverSearch::BoxParts> HandoverSearch::box_parts(const 
   return memo_.emplace(key, parts).first->second;
 }
 
-HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& box, const Interval& holder,
-                                          double relative_accuracy, double absolute_accuracy, std::size_t& boxes,
-                                          int side, const DriverForm* driver) const {
+HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& box,
+                                          const Interval& holder, double relative_accuracy,
+                                          double absolute_accuracy, std::size_t& boxes, int side,
+                                          const DriverForm* driver, bool monotone) const {
   HandoverEnvelope out;
   out.chart = holder;
   if (disabled_) {
@@ -472,43 +473,51 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     return loops;
   };
   const std::size_t first_part = curve.first.part, second_part = curve.second.part;
-  auto first_edges = pose_part(first_part, first_part == fixed_part_ ? fixed : window);
-  auto second_edges = pose_part(second_part, second_part == fixed_part_ ? fixed : window);
-  using Key = std::tuple<std::size_t, std::size_t, int, std::size_t, std::size_t, int>;
-  std::set<Key> keys;
-  auto kind = [](const model_detail::EdgeValue<Interval>& e) { return e.arc ? FeatureKind::arc : FeatureKind::segment; };
-  for (std::size_t la = 0; la < first_edges.size(); ++la)
-    for (std::size_t ea = 0; ea < first_edges[la].size(); ++ea)
-      for (std::size_t lb = 0; lb < second_edges.size(); ++lb)
-        for (std::size_t eb = 0; eb < second_edges[lb].size(); ++eb) {
-          if (apart(first_edges[la][ea], second_edges[lb][eb])) continue;
-          std::size_t na = (ea + 1) % first_edges[la].size(), nb = (eb + 1) % second_edges[lb].size();
-          int ka = static_cast<int>(kind(geometry_of(first_part).loops[la][ea]));
-          int kb = static_cast<int>(kind(geometry_of(second_part).loops[lb][eb]));
-          constexpr int vertex = static_cast<int>(FeatureKind::vertex);
-          const Posed& a = first_edges[la][ea];
-          const Posed& b = second_edges[lb][eb];
-          keys.insert({la, ea, ka, lb, eb, kb});
-          if (!apart(point(a.edge.s), b)) keys.insert({la, ea, vertex, lb, eb, kb});
-          if (!apart(point(a.edge.t), b)) keys.insert({la, na, vertex, lb, eb, kb});
-          if (!apart(a, point(b.edge.s))) keys.insert({la, ea, ka, lb, eb, vertex});
-          if (!apart(a, point(b.edge.t))) keys.insert({la, ea, ka, lb, nb, vertex});
-        }
-  auto identity = [](std::size_t part, std::size_t loop, std::size_t edge, int kind) {
-    FeatureIdentity f;
-    f.part = part;
-    f.loop = loop;
-    f.edge = edge;
-    f.kind = static_cast<FeatureKind>(kind);
-    return f;
+  // The feature pairs whose edges are not certainly apart with the follower over `range`.
+  auto enumerate = [&](const Interval& range) {
+    auto first_edges = pose_part(first_part, first_part == fixed_part_ ? fixed : range);
+    auto second_edges = pose_part(second_part, second_part == fixed_part_ ? fixed : range);
+    using Key = std::tuple<std::size_t, std::size_t, int, std::size_t, std::size_t, int>;
+    std::set<Key> keys;
+    auto kind = [](const model_detail::EdgeValue<Interval>& e) {
+      return e.arc ? FeatureKind::arc : FeatureKind::segment;
+    };
+    for (std::size_t la = 0; la < first_edges.size(); ++la)
+      for (std::size_t ea = 0; ea < first_edges[la].size(); ++ea)
+        for (std::size_t lb = 0; lb < second_edges.size(); ++lb)
+          for (std::size_t eb = 0; eb < second_edges[lb].size(); ++eb) {
+            if (apart(first_edges[la][ea], second_edges[lb][eb])) continue;
+            std::size_t na = (ea + 1) % first_edges[la].size(),
+                        nb = (eb + 1) % second_edges[lb].size();
+            int ka = static_cast<int>(kind(geometry_of(first_part).loops[la][ea]));
+            int kb = static_cast<int>(kind(geometry_of(second_part).loops[lb][eb]));
+            constexpr int vertex = static_cast<int>(FeatureKind::vertex);
+            const Posed& a = first_edges[la][ea];
+            const Posed& b = second_edges[lb][eb];
+            keys.insert({la, ea, ka, lb, eb, kb});
+            if (!apart(point(a.edge.s), b)) keys.insert({la, ea, vertex, lb, eb, kb});
+            if (!apart(point(a.edge.t), b)) keys.insert({la, na, vertex, lb, eb, kb});
+            if (!apart(a, point(b.edge.s))) keys.insert({la, ea, ka, lb, eb, vertex});
+            if (!apart(a, point(b.edge.t))) keys.insert({la, ea, ka, lb, nb, vertex});
+          }
+    auto identity = [](std::size_t part, std::size_t loop, std::size_t edge, int kind) {
+      FeatureIdentity f;
+      f.part = part;
+      f.loop = loop;
+      f.edge = edge;
+      f.kind = static_cast<FeatureKind>(kind);
+      return f;
+    };
+    std::vector<CurveSlice> found;
+    for (const Key& key : keys) {
+      CurveSlice c = curve;
+      c.first = identity(first_part, std::get<0>(key), std::get<1>(key), std::get<2>(key));
+      c.second = identity(second_part, std::get<3>(key), std::get<4>(key), std::get<5>(key));
+      found.push_back(c);
+    }
+    return found;
   };
-  std::vector<CurveSlice> candidates;
-  for (const Key& key : keys) {
-    CurveSlice c = curve;
-    c.first = identity(first_part, std::get<0>(key), std::get<1>(key), std::get<2>(key));
-    c.second = identity(second_part, std::get<3>(key), std::get<4>(key), std::get<5>(key));
-    candidates.push_back(c);
-  }
+  const std::vector<CurveSlice> candidates = enumerate(window);
   out.candidates = candidates.size();
   // 2. Whether a candidate may push the follower somewhere in y.
   // The candidate's two features (an edge, or a vertex: its edge's source) posed with the
@@ -647,6 +656,188 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   const bool bounded = walk.bounded;
   const std::vector<char>& occupying = walk.occupying;
   out.occupying = static_cast<std::size_t>(std::count(occupying.begin(), occupying.end(), 1));
+  // 5. The driver-monotone route (session 47), where the walk over box x T is not bounded and
+  // the box holds the nominal vector (p = 0). Let s_t be the sign of the holder's F_t over
+  // box x T x Y (certain, else no route) and T_e the end of T where the follower is furthest
+  // sigma-wards if it moves as the holder does (T.hi when s_t < 0, else T.lo). M: the window's
+  // far end.
+  //   (a) Every feature pair whose edges may meet with the follower in [Y, M) (sigma-wards from
+  //       Y's -sigma end) is, over box x T x each leaf there, either unable to push (features
+  //       apart, F_v certainly -sigma, F certainly non-zero, a validity clause certainly false,
+  //       F monotone without a zero) or of F_t certainly of sign s_t. Under the chain's
+  //       assumption (the follower at the sigma-most root of the pushing feature pairs,
+  //       continuous in t), each pushing root then moves with t in the holder's sense
+  //       (dv/dt = -F_t/F_v, F_v of sign sigma), so does their sigma-most one: for each p, y(p, .)
+  //       is monotone, sigma-wards towards T_e, on every t-interval where y stays in [Y, M).
+  //   (b) The walk over {0} x hull(t_nominal, T_e) (a connected set holding the nominal vector,
+  //       where the follower is at its holder, in Y) bounds y there by E_2.
+  //   (c) The walk over box x {T_e}, started at E_2 (the point (0, T_e), in both sets, has its
+  //       follower within E_2), bounds y(p, T_e) by E_1 for every p of the box; E_1 < M.
+  //   Then for every p and t of T: y(p, t) is within E_1 (if y(p, t) were beyond it, take the
+  //   last t' between t and T_e where y reaches M, or t itself: on (t', T_e] y stays in [Y, M),
+  //   so it moves monotonically towards T_e, and by continuity y(p, t') <= y(p, T_e) <= E_1,
+  //   against the choice of t'). So E_1 bounds the envelope over the whole box x T. The walks
+  //   (b) and (c) see a point driver or a point box: far thinner than box x T.
+  if (!bounded && monotone && curve.fixed_range && fixed.lo < fixed.hi &&
+      handover_monotone_driver() != 0 && !disabled_) {
+    bool nominal_inside = true;
+    for (std::size_t q = 0; q < box.lo.size(); ++q)
+      nominal_inside = nominal_inside && box.lo[q] <= 0.0 && 0.0 <= box.hi[q];
+    // F over box x t x y as an interval jet in v (partial 0) and t (partial 1)
+    auto driver_jet = [&](const CurveSlice& c, const Interval& t, const Interval& y) {
+      auto pose2 = [&](std::size_t part) {
+        const model_detail::PartGeometry<Interval>& g = geometry_of(part);
+        kernels::Vector<IntervalJet> pivot{IntervalJet(g.pivot.x), IntervalJet(g.pivot.y)};
+        kernels::Vector<IntervalJet> direction{IntervalJet(g.direction.x),
+                                               IntervalJet(g.direction.y)};
+        IntervalJet chart =
+            part == fixed_part_ ? IntervalJet::variable(t, 1, 2) : IntervalJet::variable(y, 0, 2);
+        return pose_of(m.parts[part].motion, pivot, direction, chart, half(part));
+      };
+      return contact_function(
+          lift(edge_of(geometry_of(c.first.part), c.first)), c.first, pose2(c.first.part),
+          lift(edge_of(geometry_of(c.second.part), c.second)), c.second, pose2(c.second.part));
+    };
+    int s_t = 0;
+    if (nominal_inside) {
+      try {
+        s_t = sign_of(driver_jet(curve, fixed, holder).partial(1));
+      } catch (const Error&) {
+      }
+    }
+    Interval region = sigma > 0 ? Interval(holder.lo, window.hi) : Interval(window.lo, holder.hi);
+    double edge = start;
+    bool route = s_t != 0;
+    if (route) {
+      // (b) and (c)
+      const double t_end = s_t < 0 ? fixed.hi : fixed.lo;
+      CurveSlice along = curve;
+      along.fixed_range =
+          kernels::hull(Interval::enclose(curve.fixed_value), Interval::point(t_end));
+      Box nominal_box{std::vector<double>(box.lo.size(), 0.0),
+                      std::vector<double>(box.lo.size(), 0.0)};
+      HandoverEnvelope e2 = envelope(along, nominal_box, holder, relative_accuracy,
+                                     absolute_accuracy, boxes, sigma, nullptr, false);
+      route = e2.bounded;
+      if (route) {
+        double anchor = end_of(e2.chart, sigma);
+        CurveSlice at_end = curve;
+        at_end.fixed_range = Interval::point(t_end);
+        Interval from = sigma > 0 ? Interval(holder.lo, std::max(holder.hi, anchor))
+                                  : Interval(std::min(holder.lo, anchor), holder.hi);
+        HandoverEnvelope e1 = envelope(at_end, box, from, relative_accuracy, absolute_accuracy,
+                                       boxes, sigma, nullptr, false);
+        route = e1.bounded;
+        edge = end_of(e1.chart, sigma);
+        route = route && (sigma > 0 ? edge < region.hi : edge > region.lo);
+        // M: any value beyond E_1 will do; the nearer, the fewer feature pairs (a) must settle
+        // (a tooth space further on, the teeth's geometry is another)
+        if (route) {
+          double margin = reach / 128;
+          region = sigma > 0 ? Interval(holder.lo, std::min(region.hi, edge + margin))
+                             : Interval(std::max(region.lo, edge - margin), holder.hi);
+          route = sigma > 0 ? edge < region.hi : edge > region.lo;
+        }
+      }
+    }
+    if (route) {
+      // (a), over box x T x [Y, M): a leaf not settled is halved along t or y, whichever moves F
+      // more over it (|F_t| |t| against |F_v| |y|), up to `depth` times
+      struct Settled {
+        bool done = false;
+        double t_share = 0, y_share = 0;
+      };
+      auto settled = [&](const CurveSlice& c, const Interval& t, const Interval& y) {
+        Settled out;
+        const Driver d = plain_driver(t);
+        Value f = contact(c, d, y);
+        int slope = sign_of(f.f_v);
+        out.done = slope == -sigma || sign_of(f.f) != 0 ||
+                   (slope == sigma &&
+                    monotone_without_zero(
+                        sigma, y,
+                        [&](double v) { return sign_of(contact(c, d, Interval::point(v)).f); })) ||
+                   off_features(c, d, y);
+        if (out.done) return out;
+        IntervalJet jet = driver_jet(c, t, y);
+        Interval f_t = jet.partial(1);
+        out.done = sign_of(f_t) == s_t;
+        auto magnitude = [](const Interval& x) {
+          return std::max(std::fabs(x.lo), std::fabs(x.hi));
+        };
+        out.t_share = magnitude(f_t) * t.width();
+        out.y_share = magnitude(f.f_v) * y.width();
+        return out;
+      };
+      auto certify = [&](const CurveSlice& c, const Interval& t, const Interval& y, int depth,
+                         auto& self) -> bool {
+        Settled here;
+        try {
+          if (features_apart(c, y)) return true;
+          here = settled(c, t, y);
+          if (here.done) return true;
+        } catch (const GeometryError&) {
+          return true;  // no contact of its own (its touchings are its vertex candidates')
+        } catch (const Error&) {
+        }
+        if (depth == 0) return false;
+        double ym = y.middle(), tm = t.middle();
+        bool can_y = ym > y.lo && ym<y.hi, can_t = tm> t.lo && tm < t.hi;
+        if (can_t && (!can_y || here.t_share >= here.y_share))
+          return self(c, Interval(t.lo, tm), y, depth - 1, self) &&
+                 self(c, Interval(tm, t.hi), y, depth - 1, self);
+        if (can_y)
+          return self(c, t, Interval(y.lo, ym), depth - 1, self) &&
+                 self(c, t, Interval(ym, y.hi), depth - 1, self);
+        return false;
+      };
+      // T' from T_e's end: the whole of T, else T less its last 1/16, 1/8, 1/4 or 1/2 (the part
+      // furthest from T_e), where the rest T'' is walked over box x T'' from E_1 (its follower
+      // at t = T'' 's end in T' is within E_1 for every p: a point of the connected box x T''
+      // whose follower is within the walk's start)
+      const std::vector<CurveSlice> settling = enumerate(region);
+      auto certified_over = [&](const Interval& t) {
+        for (const CurveSlice& c : settling)
+          if (!certify(c, t, region, 12, certify)) {
+            return false;
+          }
+        return true;
+      };
+      route = false;
+      const bool at_lo = s_t > 0;  // T_e = T.lo
+      for (int j : {0, 4, 3, 2, 1}) {
+        double cut = j == 0 ? (at_lo ? fixed.hi : fixed.lo)
+                            : (at_lo ? fixed.hi - std::ldexp(fixed.width(), -j)
+                                     : fixed.lo + std::ldexp(fixed.width(), -j));
+        if (!(cut > fixed.lo && cut < fixed.hi) && j != 0) continue;
+        Interval near = at_lo ? Interval(fixed.lo, cut) : Interval(cut, fixed.hi);
+        if (!certified_over(near)) continue;
+        if (j == 0) {
+          route = true;
+          break;
+        }
+        CurveSlice rest = curve;
+        rest.fixed_range = at_lo ? Interval(cut, fixed.hi) : Interval(fixed.lo, cut);
+        Interval from = sigma > 0 ? Interval(holder.lo, std::max(holder.hi, edge))
+                                  : Interval(std::min(holder.lo, edge), holder.hi);
+        HandoverEnvelope e3 = envelope(rest, box, from, relative_accuracy, absolute_accuracy, boxes,
+                                       sigma, nullptr, false);
+        if (e3.bounded) {
+          edge = end_of(e3.chart, sigma);
+          route = true;
+        }
+        break;
+      }
+    }
+    if (route) {
+      out.extended = edge != start;
+      out.side = sigma;
+      out.chart = sigma > 0 ? Interval(holder.lo, std::max(holder.hi, edge))
+                            : Interval(std::min(holder.lo, edge), holder.hi);
+      out.bounded = true;
+      return out;
+    }
+  }
   if (!bounded) {
     auto name = [&](const FeatureIdentity& f) {
       const Part& part = m.parts[f.part];
@@ -665,6 +856,11 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
                         : Interval(std::min(holder.lo, edge_reached), holder.hi);
   out.bounded = true;
   return out;
+}
+
+int& handover_monotone_driver() {
+  static int on = 1;
+  return on;
 }
 
 }  // namespace hipair::tolerance_detail

@@ -137,6 +137,11 @@ inline DriverSplit split_driver(const DriverForm& form, const Box& box, const st
   return out;
 }
 
+/// Tests only (session 47): 1 (unless changed) lets the envelope take the driver-monotone route
+/// (handover.cpp, step 5) where its walk over the driver's whole range is not bounded; 0 leaves
+/// it out (the envelopes of session 46).
+int& handover_monotone_driver();
+
 /// The candidates' search for one pair of the chain (one per pair: its parts are fixed).
 class HandoverSearch {
  public:
@@ -158,9 +163,13 @@ class HandoverSearch {
   /// its fixed_range, independent of the parameters); the walk's exclusions then hold over
   /// the box with the driver given by the form, its range still met with fixed_range.
   HandoverEnvelope envelope(const CurveSlice& curve, const Box& box, const Interval& holder,
-                            double relative_accuracy, double absolute_accuracy, std::size_t& boxes, int side = 0,
-                            const DriverForm* driver = nullptr) const;
+                            double relative_accuracy, double absolute_accuracy, std::size_t& boxes,
+                            int side = 0, const DriverForm* driver = nullptr,
+                            bool monotone = true) const;
 
+  /// `monotone` (session 47): where the walk over box x T is not bounded, the envelope may be
+  /// found through the follower's monotonicity in its driver (handover.cpp, step 5; false in
+  /// the route's own walks).
   /// Off under `--assume-nominal-contact` (ToleranceOptions::chain_assume_nominal_holder,
   /// chain.cpp): the holder's enclosure returned as the envelope, as before session 25.
   void set_disabled(bool disabled) { disabled_ = disabled; }
