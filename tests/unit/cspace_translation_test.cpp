@@ -126,7 +126,7 @@ Case random_case(std::mt19937_64& random, Kind kind) {
       break;
     case Kind::rotating_fixed:
       c.a = random_star(random, 4 + static_cast<int>(random() % 3), -6, 0, 9);
-      c.b = random_star(random, 4 + static_cast<int>(random() % 3), 6, 0, 4);
+      c.b = random_star(random, 4 + static_cast<int>(random() % 3), 4, 0, 4);
       break;
     case Kind::two_translating:
       c.a = random_star(random, 4 + static_cast<int>(random() % 4), -3, 0, 5);
@@ -207,6 +207,7 @@ TEST(CSpaceTranslation, FixedAxisPairsFarFromTheOriginHaveTheSameCSpace) {
       Case c = random_case(random, kind);
       Model origin = read_model(model_json(c, Offset{}));
       CSpace base = CSpace::build(origin, "a", "b");
+      EXPECT_GT(base.feature_pairs().size(), 0u) << "the generated parts never touch";
       for (int k : exponents) {
         Offset by{power10(k) + random_rational(random, 50, 3), -power10(k) + random_rational(random, 50, 7)};
         by.x.canonicalize();
@@ -254,7 +255,7 @@ TEST(CSpaceTranslation, FixedAxisPairsFarFromTheOriginHaveTheSameCSpace) {
   }
   EXPECT_EQ(cases, 24u);
   EXPECT_GT(located, 200u);
-  RecordProperty("contacts", static_cast<int>(contacts));
+  EXPECT_GT(contacts, 20u);
 }
 
 TEST(CSpaceTranslation, PlanarPairsFarFromTheOriginHaveTheSameSlicedSpace) {
