@@ -15,14 +15,20 @@ usage:
       the gears), each mode and each K (comma-separated), write the model, run
       `HIPAIR cspace MODEL --json WORK/...` (and `analyze --quiet` when COMMANDS has analyze),
       each under TIMEOUT seconds, and print one line per run: model, mode, K, command, exit code,
-      user seconds, and "same" / "DIFF (...)" / "-" comparing the output with K = 0's
-      transformed (see compare).
+      user seconds, and "same" / "cells (...)" / "DIFF (...)" / "-" comparing the output with
+      K = 0's transformed (see compare): "same" every field; "cells" the same C-space (summary():
+      cells, their kinds, wraps and neighbour counts, the feature pairs on real edges; 3-DOF:
+      critical angles, free cells per slice, crossings, components; pin-slot: free cells per
+      slice, changes, groups) cut into other edges or with other witnesses; "DIFF" otherwise.
+  scale_sweep.py recompare WORK LOG
+      The verdicts of a run's log again, from the outputs it kept in WORK.
   scale_sweep.py compare MODE K OUT0 OUTK
       Compares two `cspace --json` outputs of one pair: every key, list length, label, kind,
       index and boolean equal; every rational number either equal or (scale) equal times 10^K
       (chart coordinates of a rotation are angles, of a translation lengths); the text of exact
-      polynomials and algebraic numbers (their coefficients change with the unit) is compared
-      by its shape only (the same monomials). The sweep reports differences of /statistics
+      polynomials is compared by its monomials only (their coefficients change with the unit),
+      algebraic numbers given by a polynomial and an interval not at all (the same number has
+      other defining texts). The sweep reports differences of /statistics
       (work counters: pairs culled, curves kept) apart, in brackets: they are not the C-space.
       Exit 0 when the same, 1 otherwise (first differences on stdout).
 """
@@ -111,8 +117,35 @@ VOLATILE = re.compile(r"(^|_)(ms|time|times|seconds|wall)($|_)")
 
 
 def shape(text):
-    """An exact polynomial's or algebraic number's text without its numbers."""
-    return re.sub(r"\d+", "#", text)
+    """An exact polynomial's or algebraic number's text without its numbers: its monomials."""
+    terms = re.split(r" [-+] |^-", text)
+    monomials = []
+    for t in terms:
+        t = re.sub(r"^[\d/]+\*", "", t.strip())
+        if t:
+            monomials.append("1" if re.fullmatch(r"[\d/]+", t) else t)
+    return sorted(monomials)
+
+
+def summary(d):
+    """What the C-space is, without how it is cut: a fixed-axis pair's cells (kind, wraps,
+    number of neighbours) and the feature pairs on its real edges; a 3-DOF pair's critical
+    angles, free cells per slice, crossings and components; a pin-slot pair's slices' free
+    cells, changes and groups (its connections are witnessed, not complete: not compared)."""
+    if d.get("kind") == "pin_slot":
+        count = lambda v: v if isinstance(v, int) else len(v)  # noqa: E731
+        return ("pin_slot", tuple(count(s["free_cells"]) for s in d["slices"]), count(d["changes"]),
+                count(d["groups"]))
+    if "critical_angles" in d:
+        return ("sliced", len(d["critical_angles"]), d["components"],
+                tuple(len(s["free_cells"]) for s in d["slices"]), len(d["crossings"]))
+    labels = sorted({d["feature_pairs"][i]["label"] for e in d.get("edges", []) if e.get("real")
+                     for i in e.get("feature_pairs", [])})
+    if "edges" not in d:  # 1-D: the cells' ends
+        labels = sorted({d["feature_pairs"][i]["label"] for v in d.get("vertices", [])
+                         for i in v.get("curves", []) if isinstance(i, int)})
+    cells = sorted((c["kind"], c["wraps_x"], c["wraps_y"], len(c["neighbours"])) for c in d["cells"])
+    return ("pair", cells, labels)
 
 
 def compare_values(a, b, path, mode, k, lengths, out):
@@ -148,6 +181,8 @@ def compare_values(a, b, path, mode, k, lengths, out):
     if isinstance(a, str) and isinstance(b, str):
         if a == b or shape(a) == shape(b):
             return
+        if all(" in (" in t or t.startswith("real root number") for t in (a, b)):
+            return  # an algebraic number by its polynomial and interval: other polynomials, other texts
         out.append("%s: %r vs %r" % (path, a[:60], b[:60]))
         return
     if isinstance(a, float) and isinstance(b, float):
@@ -156,14 +191,52 @@ def compare_values(a, b, path, mode, k, lengths, out):
         out.append("%s: %r vs %r" % (path, a, b))
 
 
-def compare_files(mode, k, file0, filek):
+def compare_files(mode, k, file0, filek, summaries=None):
     with open(file0) as f:
         a = json.load(f)
     with open(filek) as f:
         b = json.load(f)
     out = []
     compare_values(a, b, "", mode, k, None, out)
+    if summaries is not None:
+        summaries.append(summary(a) == summary(b))
     return out
+
+
+def verdict_of(work, name, mode, k):
+    """The comparison of one run's outputs with K = 0's (see the usage)."""
+    base = os.path.join(work, "%s.0.cspace" % name)
+    stem = os.path.join(work, "%s.%s.%d.cspace" % (name, mode, k))
+    files0 = sorted(glob.glob(base + "*.json"))
+    filesk = sorted(glob.glob(stem + "*.json"))
+    if [f[len(base):] for f in files0] != [f[len(stem):] for f in filesk]:
+        return "DIFF (files)"
+    diffs, summaries = [], []
+    for f0, fk in zip(files0, filesk):
+        diffs += compare_files(mode, k, f0, fk, summaries)
+    stats = [d for d in diffs if d.startswith("/statistics/")]
+    diffs = [d for d in diffs if not d.startswith("/statistics/")]
+    if not diffs:
+        verdict = "same"
+    elif all(summaries):  # the same cells, cut into other edges
+        verdict = "cells (%d: %s)" % (len(diffs), diffs[0][:150])
+    else:
+        verdict = "DIFF (%d: %s)" % (len(diffs), diffs[0][:150])
+    if stats:  # work counters (pairs culled, curves kept): not the C-space
+        verdict += " [stats: %s]" % stats[0][len("/statistics/"):][:60]
+    return verdict
+
+
+def recompare(work, log):
+    """The sweep's log again, each verdict recomputed from the outputs kept in WORK."""
+    with open(log) as f:
+        for line in f:
+            fields = line.split()
+            if len(fields) >= 6 and fields[3] == "cspace" and fields[4] == "rc=0" and fields[2] != "0":
+                head = line[:line.index("user=") + len("user=") + 8]
+                print(head + verdict_of(work, fields[0], fields[1], int(fields[2])))
+            else:
+                print(line, end="")
 
 
 # ---- the sweep --------------------------------------------------------------------------------
@@ -204,22 +277,7 @@ def sweep(hipair, work, timeout, models, ks, commands):
                 for f in glob.glob(stem + "*.json"):
                     os.remove(f)
                 code, user, err = run_one([hipair, "cspace", model, "--json", stem + ".json"], timeout)
-                verdict = "-"
-                if k and code == 0:
-                    base = os.path.join(work, "%s.0.cspace" % name)
-                    files0 = sorted(glob.glob(base + "*.json"))
-                    filesk = sorted(glob.glob(stem + "*.json"))
-                    if [f[len(base):] for f in files0] != [f[len(stem):] for f in filesk]:
-                        verdict = "DIFF (files)"
-                    else:
-                        diffs = []
-                        for f0, fk in zip(files0, filesk):
-                            diffs += compare_files(mode, k, f0, fk)
-                        stats = [d for d in diffs if d.startswith("/statistics/")]
-                        diffs = [d for d in diffs if not d.startswith("/statistics/")]
-                        verdict = "same" if not diffs else "DIFF (%d: %s)" % (len(diffs), diffs[0][:150])
-                        if stats:  # work counters (pairs culled, curves kept): not the C-space
-                            verdict += " [stats: %s]" % stats[0][len("/statistics/"):][:60]
+                verdict = verdict_of(work, name, mode, k) if k and code == 0 else "-"
                 if verdict.startswith("DIFF") or code not in (0,):
                     failures += 1
                 print("%-20s %-9s %5d cspace  rc=%-7s user=%7.2f %s%s" % (
@@ -240,6 +298,9 @@ def main(argv):
     if len(argv) >= 7 and argv[1] == "run":
         return sweep(argv[2], argv[3], float(argv[4]), argv[5], argv[6],
                      argv[7] if len(argv) > 7 else "cspace")
+    if len(argv) == 4 and argv[1] == "recompare":
+        recompare(argv[2], argv[3])
+        return 0
     if len(argv) == 6 and argv[1] == "compare":
         diffs = compare_files(argv[2], int(argv[3]), argv[4], argv[5])
         for d in diffs[:20]:
