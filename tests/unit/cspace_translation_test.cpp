@@ -13,7 +13,7 @@
 // On 147b396 the rotating pairs were rescaled as a whole (a 10 mm part at 10^100 mm became a
 // 10^-98 mm part at 64 mm: the double filters see nothing, more curves are kept, the edges
 // split differently; the escapement took over 120 s), the translating and 3-DOF pairs at
-// 10^400 were refused ("beyond 2^1016 mm"): 80 failures here. core/model_scale.hpp
+// 10^400 were refused ("beyond 2^1016 mm"): 84 failures here. core/model_scale.hpp
 // normalising_translation now moves such a pair to the origin before building.
 #include "algebra/exact_real.hpp"
 
