@@ -268,9 +268,10 @@ CSpace build_pair(const Model& model, std::size_t first, std::size_t second, con
   if (shift == 0) require_length_coordinates_in_range(model, {first, second});
   if (shift == 0) return build_pair_as_is(model, first, second, options, path);
   // the scaled copy lives through the build (the charts' overlap oracles read it); the built
-  // space keeps no reference to it
+  // space keeps the model as given (as a moved pair does, above), so contact points and frames
+  // are in its mm, not in the copy's units 2^shift mm
   Model scaled = scaled_model(model, shift);
-  return build_pair_as_is(scaled, first, second, options, path);
+  return build_pair_as_is(scaled, first, second, options, path, &model);
 }
 
 CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options,
