@@ -4,6 +4,7 @@
 
 #include <gmp.h>
 
+#include <algorithm>
 #include <string>
 
 namespace hipair {
@@ -129,6 +130,72 @@ void require_length_coordinates_in_range(const Model& model, const std::vector<s
           check(p->y, part);
         }
   }
+}
+
+std::optional<Point> normalising_translation(const Model& model, const std::vector<std::size_t>& parts) {
+  std::optional<Rational> x_lo, x_hi, y_lo, y_hi;
+  auto see = [&](const Point& p) {
+    if (!x_lo || p.x < *x_lo) x_lo = p.x;
+    if (!x_hi || p.x > *x_hi) x_hi = p.x;
+    if (!y_lo || p.y < *y_lo) y_lo = p.y;
+    if (!y_hi || p.y > *y_hi) y_hi = p.y;
+  };
+  for (std::size_t index : parts) {
+    const Part& part = model.parts.at(index);
+    if (part.motion.kind != Motion::Kind::fixed && part.motion.kind != Motion::Kind::translation)
+      see(part.motion.pivot);   // a centre of turning belongs to the pair's extent
+    for (const auto& loop : part.loops)
+      for (const auto& edge : loop.edges) {
+        see(edge.source);
+        see(edge.target);
+        if (edge.kind == Edge::Kind::arc) see(edge.center);
+      }
+  }
+  if (!x_lo) return std::nullopt;
+  Rational size = std::max(Rational(*x_hi - *x_lo), Rational(*y_hi - *y_lo));
+  if (sgn(size) == 0) return std::nullopt;
+  Rational cx = (*x_lo + *x_hi) / 2, cy = (*y_lo + *y_hi) / 2;
+  Rational far = std::max(Rational(abs(cx)), Rational(abs(cy)));
+  // |centre| <= 2^20 * size: as is (every example; the doubles keep about 30 bits of the parts)
+  if (far <= size * Rational(mpz_class(1) << 20)) return std::nullopt;
+  const long e = binary_exponent(size);
+  auto round_down = [e](const Rational& v) {   // floor(v / 2^e) * 2^e, exactly
+    Rational q = v;
+    if (e >= 0)
+      mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(e));
+    else
+      mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(-e));
+    mpz_class floor;
+    mpz_fdiv_q(floor.get_mpz_t(), q.get_num_mpz_t(), q.get_den_mpz_t());
+    Rational r(floor);
+    if (e >= 0)
+      mpq_mul_2exp(r.get_mpq_t(), r.get_mpq_t(), static_cast<mp_bitcnt_t>(e));
+    else
+      mpq_div_2exp(r.get_mpq_t(), r.get_mpq_t(), static_cast<mp_bitcnt_t>(-e));
+    return r;
+  };
+  return Point{round_down(cx), round_down(cy)};
+}
+
+Model translated_model(const Model& model, const Point& by) {
+  auto move = [&](Point& p) {
+    p.x -= by.x;
+    p.y -= by.y;
+  };
+  Model moved = model;
+  for (Part& part : moved.parts) {
+    for (Loop& loop : part.loops)
+      for (Edge& edge : loop.edges) {
+        move(edge.source);
+        move(edge.target);
+        if (edge.kind == Edge::Kind::arc) move(edge.center);   // a segment's is unused (0)
+      }
+    // a pivot means something only for a part that turns (a fixed or translating part's
+    // pivot is unused, and stays as read)
+    if (part.motion.kind != Motion::Kind::fixed && part.motion.kind != Motion::Kind::translation)
+      move(part.motion.pivot);
+  }
+  return moved;
 }
 
 Model scaled_model(const Model& model, long shift) {

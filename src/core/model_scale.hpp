@@ -12,6 +12,7 @@
 #include <hipair/model.hpp>
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace hipair {
@@ -41,5 +42,19 @@ void require_kinematic_length_scale(const Model& model, const std::vector<std::s
 /// The model with every length (points, centres, pivots, offsets, limits) divided by 2^shift,
 /// exactly; radii squared by 4^shift.
 Model scaled_model(const Model& model, long shift);
+
+/// A pair whose parts lie far from the origin compared with their own size (the bounding box
+/// of `parts`' points and pivots centred more than 2^20 box sizes away: a mechanism drawn at
+/// 10^400 mm from the origin) has the same C-space, in every chart, when every point and pivot
+/// of the model is moved by one vector: rotations turn about pivots that move with their parts,
+/// translation offsets and limits, planar x and y and initial values are differences. The
+/// vector to subtract: the box's centre rounded down to a multiple of 2^e, e the binary exponent
+/// of the box's size (so the moved coordinates are of the box's size and short rationals);
+/// nullopt when the pair is not that far (every ordinary model: built as it is).
+std::optional<Point> normalising_translation(const Model& model, const std::vector<std::size_t>& parts);
+
+/// The model with every point (loops' vertices and arc centres) and the pivot of every part
+/// that turns (rotation, planar, pin-slot) minus `by`, exactly; nothing else changes.
+Model translated_model(const Model& model, const Point& by);
 
 }  // namespace hipair

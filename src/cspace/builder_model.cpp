@@ -232,7 +232,7 @@ cspace::ChartAxis tile_axis(const cspace::ChartAxis& axis, std::size_t k, std::s
 }
 
 CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options,
-                        const RegionPath* path);
+                        const RegionPath* path, const Model* kept = nullptr);
 
 // The copy of the model that a built space keeps (its contact geometry queries read it). A
 // space only reads its model, so an equal copy still held by a live space built on this thread
@@ -251,18 +251,31 @@ CSpace build_pair(const Model& model, std::size_t first, std::size_t second, con
                   const RegionPath* path = nullptr) {
   // see core/model_scale.hpp: a rotation pair far outside the doubles' comfortable range is
   // built on an exactly rescaled copy (the same C-space)
+  //
+  // a pair far from the origin for its size (a mechanism at 10^400 mm) is first moved to the
+  // origin by one exact vector (core/model_scale.hpp: the same C-space in every chart); the
+  // space keeps the model as given, so contact points and normals stay in its coordinates
+  if (std::optional<Point> by = normalising_translation(model, {first, second})) {
+    Model moved = translated_model(model, *by);
+    long shift = normalising_shift(moved, {first, second});
+    if (shift == 0) require_length_coordinates_in_range(moved, {first, second});
+    if (shift == 0) return build_pair_as_is(moved, first, second, options, path, &model);
+    Model scaled = scaled_model(moved, shift);
+    return build_pair_as_is(scaled, first, second, options, path, &model);
+  }
   long shift = normalising_shift(model, {first, second});
   // lengths as coordinates beyond the doubles' range: refused (a clear error, not a crash)
   if (shift == 0) require_length_coordinates_in_range(model, {first, second});
   if (shift == 0) return build_pair_as_is(model, first, second, options, path);
   // the scaled copy lives through the build (the charts' overlap oracles read it); the built
-  // space keeps no reference to it
+  // space keeps the model as given (as a moved pair does, above), so contact points and frames
+  // are in its mm, not in the copy's units 2^shift mm
   Model scaled = scaled_model(model, shift);
-  return build_pair_as_is(scaled, first, second, options, path);
+  return build_pair_as_is(scaled, first, second, options, path, &model);
 }
 
 CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options,
-                        const RegionPath* path) {
+                        const RegionPath* path, const Model* kept) {
   using namespace cspace;
   PairAxes axes = pair_axes(model, first, second);
   if (axes.dimension() == 0)
@@ -277,7 +290,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   input.y_part = axes.dimension() == 2 ? model.parts[axes.second].name : std::string();
   for (const auto& part : model.parts) input.part_names.push_back(part.name);
   input.dimension = axes.dimension();
-  input.model = model_copy(model);
+  input.model = model_copy(kept ? *kept : model);
   input.axes = axes;
   std::vector<ChartAxis> y_charts = layout.y_charts;
   if (input.dimension == 1) y_charts = {ChartAxis{ChartAxis::Kind::translation, false, Rational(0), Rational(0)}};

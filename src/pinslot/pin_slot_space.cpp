@@ -156,6 +156,7 @@ struct PinSlotSpace::Impl {
     derived.parts.push_back(other());
     Part turned = moved(pin(), placement_about(pin().motion.pivot, r.c, r.s, Point{}));
     turned.motion.kind = Motion::Kind::translation;
+    turned.motion.pivot = Point{};   // unused by a translation (a far pin-slot pivot would be refused as a length)
     turned.motion.direction = rotate(pin().motion.direction, r);
     turned.motion.angle_limits.reset();
     turned.initial = PartConfiguration{};

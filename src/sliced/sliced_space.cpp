@@ -11,6 +11,7 @@
 #include "sliced/motion.hpp"
 #include "sliced/nearby.hpp"
 #include "core/exact_sqrt.hpp"
+#include "core/model_scale.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -738,8 +739,14 @@ SlicedSpace SlicedSpace::build(const Model& model, std::string_view fixed_part, 
   auto free = model.find_part(free_part);
   if (!fixed) throw ModelError("", "no part named '" + std::string(fixed_part) + "'");
   if (!free) throw ModelError("", "no part named '" + std::string(free_part) + "'");
-  const Part& a = model.parts[*fixed];
-  const Part& b = model.parts[*free];
+  // a pair far from the origin for its size (drawn at 10^400 mm) is sliced moved to the origin
+  // by one exact vector (core/model_scale.hpp): a configuration (x, y, theta about the pivot) is
+  // a displacement, so every slice, critical angle, cell, crossing and witness is the same; the
+  // length unit, the box and the slices then follow the pair's size, not its distance
+  if (std::optional<Point> by = normalising_translation(model, {*fixed, *free}))
+    impl->model = translated_model(model, *by);
+  const Part& a = impl->model.parts[*fixed];
+  const Part& b = impl->model.parts[*free];
   if (a.motion.kind != Motion::Kind::fixed)
     throw GeometryError("3-DOF pair: part '" + a.name + "' (" + a.pointer + ") must be fixed");
   if (b.motion.kind != Motion::Kind::planar)
