@@ -467,13 +467,14 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   // of an asymmetric box, need not hold it: its follower may be held by another feature pair
   // over the whole sub-box, entirely beyond a free leaf (tests/unit/
   // tolerance_chain_sub_box_anchor_test.cpp). There the bridge A x T_A is walked: A the box
-  // from the nominal vector to the sub-box's point p_c nearest to it, T_A from the nominal
-  // driver to t* (the point of T nearest to it); it holds the nominal configuration (its own
-  // anchor) and the point q = (p_c, t*) of box x T, so its envelope's end E_S bounds y(q).
-  // Then (after the walk) E_S <= E anchors the walk; else the slab (E, E_S] must be free of
-  // every candidate over box x T (y(q) is not in it, so y(q) <= E); else the walk goes on
-  // from E_S. No bridge (no nominal root given, or its walk not bounded on the same side): no
-  // envelope.
+  // from the nominal vector to the sub-box's point p_c nearest to it, T_A the hull of the
+  // nominal driver and T; it holds the nominal configuration (its own anchor) and the point
+  // q = (p_c, t(p_c)) (t(p_c) in T the actual driver at p_c: a point of box x T, and of the
+  // graph of the actual driver over the box, which is what the walk sees where it uses the
+  // driver's form), so the bridge's envelope end E_S bounds y(q). Then (after the walk)
+  // E_S <= E anchors the walk; else the slab (E, E_S] must be free of every candidate over
+  // box x T (y(q) is not in it, so y(q) <= E); else the walk goes on from E_S. No bridge (no
+  // nominal root given, or its walk not bounded on the same side): no envelope.
   bool away = false;
   for (std::size_t q = 0; q < box.lo.size(); ++q) away = away || !(box.lo[q] <= 0.0 && 0.0 <= box.hi[q]);
   std::optional<double> bridge;
@@ -494,14 +495,15 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
         double guess = v;
         if (curve.fixed_range) {
           const double t_nom = curve.fixed_value.get_d();
-          const double t_star = std::min(std::max(t_nom, fixed.lo), fixed.hi);
-          along.fixed_range = kernels::hull(Interval::enclose(curve.fixed_value), Interval::point(t_star));
+          along.fixed_range = kernels::hull(Interval::enclose(curve.fixed_value), fixed);
           along.fixed_spread = std::fabs(slope) * along.fixed_range->width();
           guess = v + slope * (centre(*along.fixed_range) - t_nom);
         }
-        Interval y_a = solver_->certified_range(along, a, guess, s, relative_accuracy, absolute_accuracy, boxes);
-        HandoverEnvelope e = envelope(along, a, y_a, relative_accuracy, absolute_accuracy, boxes, 0, nullptr, monotone,
-                                      nominal_free);
+        // (the bridge's sub-boxes not counted in `boxes`: the report's count stays the band's)
+        std::size_t bridge_boxes = 0;
+        Interval y_a = solver_->certified_range(along, a, guess, s, relative_accuracy, absolute_accuracy, bridge_boxes);
+        HandoverEnvelope e = envelope(along, a, y_a, relative_accuracy, absolute_accuracy, bridge_boxes, 0, nullptr,
+                                      monotone, nominal_free);
         if (e.bounded && e.side == sigma) bridge = end_of(e.chart, sigma);
       } catch (const Error&) {
       }
