@@ -634,7 +634,8 @@ class ChainAnalysis {
         envelope.bounded = true;
       } else {
         envelope = handovers_[s]->envelope(curve, box, charts[s], options_.relative_accuracy,
-                                           options_.absolute_accuracy, boxes[s], side, driver ? &*driver : nullptr);
+                                           options_.absolute_accuracy, boxes[s], side, driver ? &*driver : nullptr,
+                                           true, c.v);
       }
       if (!envelope.bounded) {
         if (handover) handover->why = "pair " + stage.result.driver + ":" + stage.result.follower + ": " + envelope.why;
@@ -719,7 +720,8 @@ class ChainAnalysis {
       slopes.push_back(dt);
       between[s] = y;
       HandoverEnvelope envelope = handovers_[s]->envelope(curve, box, y, options_.relative_accuracy,
-                                                          options_.absolute_accuracy, boxes[s], side);
+                                                          options_.absolute_accuracy, boxes[s], side, nullptr,
+                                                          true, c.v);
       if (!envelope.bounded) return false;
       if (s + 1 == stages_.size())
         bridge = envelope;

@@ -309,7 +309,7 @@ std::shared_ptr<const HandoverSearch::BoxParts> HandoverSearch::box_parts(const 
 HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& box,
                                           const Interval& holder, double relative_accuracy,
                                           double absolute_accuracy, std::size_t& boxes, int side,
-                                          const DriverForm* driver, bool monotone) const {
+                                          const DriverForm* driver, bool monotone, double nominal_free) const {
   HandoverEnvelope out;
   out.chart = holder;
   if (disabled_) {
@@ -459,7 +459,66 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   }
   const double reach = 2 * holder.width() + absolute_accuracy + 1e-12 * (1 + std::fabs(holder.middle()));
   const double start = end_of(holder, sigma);
-  const Interval window = sigma > 0 ? Interval(start, start + reach) : Interval(start - reach, start);
+  // 0b. The anchor of a box away from the nominal vector (session 47, tol47c). The walk (3.)
+  // needs one point of box x T where the follower is within the walk's start: a free leaf
+  // (E, E + h] only says that y stays on one side of it over the connected box x T. With the
+  // nominal vector in the box, the nominal configuration is that point (its follower at the
+  // holder's root, in Y). A sub-box of the shared-parameter bisection, or a failure-split half
+  // of an asymmetric box, need not hold it: its follower may be held by another feature pair
+  // over the whole sub-box, entirely beyond a free leaf (tests/unit/
+  // tolerance_chain_sub_box_anchor_test.cpp). There the bridge A x T_A is walked: A the box
+  // from the nominal vector to the sub-box's point p_c nearest to it, T_A the hull of the
+  // nominal driver and T; it holds the nominal configuration (its own anchor) and the point
+  // q = (p_c, t(p_c)) (t(p_c) in T the actual driver at p_c: a point of box x T, and of the
+  // graph of the actual driver over the box, which is what the walk sees where it uses the
+  // driver's form), so the bridge's envelope end E_S bounds y(q). Then (after the walk)
+  // E_S <= E anchors the walk; else the slab (E, E_S] must be free of every candidate over
+  // box x T (y(q) is not in it, so y(q) <= E); else the walk goes on from E_S. No bridge (no
+  // nominal root given, or its walk not bounded on the same side): no envelope.
+  bool away = false;
+  for (std::size_t q = 0; q < box.lo.size(); ++q) away = away || !(box.lo[q] <= 0.0 && 0.0 <= box.hi[q]);
+  std::optional<double> bridge;
+  if (away && handover_sub_box_anchor() != 0) {
+    if (std::isfinite(nominal_free)) {
+      try {
+        CurveSlice at_nominal = curve;
+        at_nominal.fixed_range.reset();
+        double v = nominal_free, slope = 0;
+        std::vector<double> s = solver_->sensitivities(at_nominal, v, &slope);
+        Box a{box.lo, box.hi};
+        for (std::size_t q = 0; q < box.lo.size(); ++q) {
+          double c = std::min(std::max(0.0, box.lo[q]), box.hi[q]);
+          a.lo[q] = std::min(0.0, c);
+          a.hi[q] = std::max(0.0, c);
+        }
+        CurveSlice along = curve;
+        double guess = v;
+        if (curve.fixed_range) {
+          const double t_nom = curve.fixed_value.get_d();
+          along.fixed_range = kernels::hull(Interval::enclose(curve.fixed_value), fixed);
+          along.fixed_spread = std::fabs(slope) * along.fixed_range->width();
+          guess = v + slope * (centre(*along.fixed_range) - t_nom);
+        }
+        // (the bridge's sub-boxes not counted in `boxes`: the report's count stays the band's)
+        std::size_t bridge_boxes = 0;
+        Interval y_a = solver_->certified_range(along, a, guess, s, relative_accuracy, absolute_accuracy, bridge_boxes);
+        HandoverEnvelope e = envelope(along, a, y_a, relative_accuracy, absolute_accuracy, bridge_boxes, 0, nullptr,
+                                      monotone, nominal_free);
+        if (e.bounded && e.side == sigma) bridge = end_of(e.chart, sigma);
+      } catch (const Error&) {
+      }
+    }
+    if (!bridge) {
+      out.why = "the follower's position over a sub-box away from the nominal vector is not anchored (the walk from "
+                "the nominal vector to it is not bounded)";
+      return out;
+    }
+  }
+  // the window reaches beyond the bridge's end (the walk may have to go on from there)
+  const double far = bridge && (sigma > 0 ? *bridge + reach > start + reach : *bridge - reach < start - reach)
+                         ? (sigma > 0 ? *bridge + reach : *bridge - reach)
+                         : (sigma > 0 ? start + reach : start - reach);
+  const Interval window = sigma > 0 ? Interval(start, far) : Interval(far, start);
   // 1. The edges over box x range x window.
   auto pose_part = [&](std::size_t part, const Interval& chart) {
     const model_detail::PartGeometry<Interval>& g = geometry_of(part);
@@ -651,6 +710,28 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   // far end.
   constexpr int levels = 4;   // a leaf is W / 8 halved at most this many times
   WindowWalk walk = walk_window(start, window, sigma, reach / 8, levels, candidates.size(), may_push);
+  // 0b. (above) A box away from the nominal vector: the walk's free leaf anchored by the
+  // bridge's end E_S, by the slab (E, E_S] free over box x T, or the walk goes on from E_S.
+  if (bridge && walk.bounded && (sigma > 0 ? walk.edge < *bridge : walk.edge > *bridge)) {
+    auto free_over = [&](const Interval& y, int depth, auto& self) -> bool {
+      bool none = true;
+      for (std::size_t i = 0; i < candidates.size() && none; ++i) none = !may_push(i, y);
+      if (none) return true;
+      double mid = y.middle();
+      if (depth == 0 || !(mid > y.lo && mid < y.hi)) return false;
+      return self(Interval(y.lo, mid), depth - 1, self) && self(Interval(mid, y.hi), depth - 1, self);
+    };
+    // in pieces of the walk's coarse leaf (reach / 8), each halved up to `levels` times
+    bool slab = true;
+    const double coarse = reach / 8;
+    for (double from = walk.edge; slab && (sigma > 0 ? from < *bridge : from > *bridge);) {
+      double to = sigma > 0 ? std::min(from + coarse, *bridge) : std::max(from - coarse, *bridge);
+      if (to == from) break;
+      slab = free_over(sigma > 0 ? Interval(from, to) : Interval(to, from), levels, free_over);
+      from = to;
+    }
+    if (!slab) walk = walk_window(*bridge, window, sigma, coarse, levels, candidates.size(), may_push);
+  }
   const double edge_reached = walk.edge;
   const std::size_t last = walk.last;
   const bool bounded = walk.bounded;
@@ -859,6 +940,11 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
 }
 
 int& handover_monotone_driver() {
+  static int on = 1;
+  return on;
+}
+
+int& handover_sub_box_anchor() {
   static int on = 1;
   return on;
 }

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -142,6 +143,10 @@ inline DriverSplit split_driver(const DriverForm& form, const Box& box, const st
 /// it out (the envelopes of session 46).
 int& handover_monotone_driver();
 
+/// Tests only (session 47, tol47c): 1 (unless changed) anchors the walk of a box away from the
+/// nominal vector (handover.cpp, 0b); 0 walks it as before (unsound: a mutant for tests).
+int& handover_sub_box_anchor();
+
 /// The candidates' search for one pair of the chain (one per pair: its parts are fixed).
 class HandoverSearch {
  public:
@@ -165,11 +170,15 @@ class HandoverSearch {
   HandoverEnvelope envelope(const CurveSlice& curve, const Box& box, const Interval& holder,
                             double relative_accuracy, double absolute_accuracy, std::size_t& boxes,
                             int side = 0, const DriverForm* driver = nullptr,
-                            bool monotone = true) const;
+                            bool monotone = true,
+                            double nominal_free = std::numeric_limits<double>::quiet_NaN()) const;
 
   /// `monotone` (session 47): where the walk over box x T is not bounded, the envelope may be
   /// found through the follower's monotonicity in its driver (handover.cpp, step 5; false in
   /// the route's own walks).
+  /// `nominal_free` (session 47, tol47c): the holder's root at the nominal vector and driver
+  /// (chart units). A box away from the nominal vector needs it: its walk is anchored by a walk
+  /// from the nominal configuration to the box (handover.cpp, 0b); without it, no envelope there.
   /// Off under `--assume-nominal-contact` (ToleranceOptions::chain_assume_nominal_holder,
   /// chain.cpp): the holder's enclosure returned as the envelope, as before session 25.
   void set_disabled(bool disabled) { disabled_ = disabled; }

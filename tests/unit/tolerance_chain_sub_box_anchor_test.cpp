@@ -1,0 +1,192 @@
+// Session 47 (tol47c): the hand-over envelope's walk over a sub-box away from the nominal vector
+// (issue 12; docs/tolerance.md "Assembly chains", "Hand-overs", "A sub-box away from the nominal
+// vector").
+//
+// The walk's argument needs one point of box x T where the follower lies within the walk's start
+// (a free leaf (E, E + h] only says that y stays on one side of it over the connected box x T);
+// with the nominal vector in the box, the nominal configuration is that point. A failure-split
+// half of an asymmetric box does not hold the nominal vector. Here cam -> lifter1 -> lifter2,
+// lifter2's flat underside resting under its weight on one of two rollers of lifter1: the holder
+// (radius 5 + a g) and a competitor 0.05-0.45 mm lower at nominal (radius 5 - d + b g, b > a), which
+// takes over at g* = d / (b - a) inside the box g in [lo, hi] (asymmetric, 0 inside). The whole box's
+// walk cannot exclude the competitor (its zeros sweep the window), so the box is split at g's middle;
+// in the half away from nominal the competitor holds lifter2 over the whole half, beyond the
+// half's window, so the walk, started at the holder's enclosure, finds its first leaf free and
+// bounded the band at the holder's (before tol47c: at g = hi the exact chain lies up to 1.3 mm
+// above the band). Where the bridge from the nominal vector to that half is bounded but the
+// competitor reaches into the slab beyond the half's walk (g in [-1, 5]), the slab check is what
+// refuses the band. The exact chain (the kernel-sliced engine on the model rebuilt exactly) at the
+// box's corners, g at its end away from nominal, at the split's middle and random vectors must lie
+// in every bounded band. Variants where the anchor holds (the competitor inside the window; the
+// half away from nominal on the side where the competitor stays below the holder) keep bands, so
+// the check is not vacuous. Mutants: tolerance_detail::handover_sub_box_anchor() = 0 (the walk of
+// sessions 26-47): 180 values outside; the slab check skipped: 30.
+#include "gear_train_models.hpp"
+
+#include "model/parametric/parametric.hpp"
+#include "tolerance/handover.hpp"
+
+#include <hipair/kinematics.hpp>
+#include <hipair/rational.hpp>
+#include <hipair/tolerance.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace hipair {
+namespace {
+
+struct SubBoxAnchor {
+  explicit SubBoxAnchor(int on) : saved(tolerance_detail::handover_sub_box_anchor()) {
+    tolerance_detail::handover_sub_box_anchor() = on;
+  }
+  ~SubBoxAnchor() { tolerance_detail::handover_sub_box_anchor() = saved; }
+  int saved;
+};
+
+bool bounded(const VariationSample& s) { return s.contact && std::isfinite(s.certified.upper - s.certified.lower); }
+
+// a, d, b, lo, hi: exact literals of the model file
+struct Variant {
+  const char *a, *d, *b, *lo, *hi;
+};
+
+std::string two_roller_chain(const Variant& v) {
+  return std::string(R"({"hipair": 1, "name": "anchor-chain", "units": {"length": "mm", "angle": "rad"},
+ "parameters": {"e": {"nominal": 5, "tolerance": 0.01}, "g": {"nominal": 0, "tolerance": [)") +
+         v.lo + ", " + v.hi + R"(]}},
+ "parts": [
+  {"name": "cam", "motion": {"rotation": {"pivot": [0, 0]}}, "initial": {"angle": 0},
+   "loops": [{"circle": {"center": ["e", 0], "radius": 20}}]},
+  {"name": "lifter1", "motion": {"translation": {"direction": [1, 0], "limits": [-40, 40]}}, "initial": {"offset": -10},
+   "loops": [{"start": [30, -30], "edges": [{"line_to": [50, -30]}, {"line_to": [50, 30]}, {"line_to": [30, 30]}, {"line_to": [30, -30]}]},
+             {"circle": {"center": [40, 40], "radius": "5 + )" +
+         v.a + R"(*g"}},
+             {"circle": {"center": [25, 40], "radius": "5 - )" +
+         v.d + " + " + v.b + R"(*g"}}],
+   "dynamics": {"mass": 0.1, "force": [-10, 0]}},
+  {"name": "lifter2", "motion": {"translation": {"direction": [0, 1], "limits": [-40, 40]}}, "initial": {"offset": 0},
+   "loops": [{"start": [10, 50], "edges": [{"line_to": [60, 50]}, {"line_to": [60, 80]}, {"line_to": [10, 80]}, {"line_to": [10, 50]}]}],
+   "dynamics": {"mass": 0.1, "force": [0, -10]}}],
+ "pairs": [{"parts": ["cam", "lifter1"]}, {"parts": ["lifter1", "lifter2"]}]})";
+}
+
+struct Count {
+  std::size_t bounded = 0, values = 0, outside = 0;
+  double worst = 0;   // the largest distance of an exact value outside its band (mm)
+};
+
+// Every exact value at the probes against every bounded band of the chain's analysis.
+Count check(const Variant& v, int anchor) {
+  const std::string text = two_roller_chain(v);
+  const std::pair<Rational, Rational> range(Rational(7, 5), Rational(8, 5));
+  ToleranceOptions options;
+  options.driver = "cam";
+  options.chain = true;
+  options.range = range;
+  options.positions = 120;
+  options.threads = 1;
+  ToleranceResult r;
+  {
+    SubBoxAnchor on(anchor);
+    r = analyze_tolerances_text(text, options);
+  }
+  Count count;
+  EXPECT_EQ(r.samples.size(), 6u);
+  for (const VariationSample& s : r.samples) {
+    EXPECT_TRUE(s.contact) << "driver " << s.driver;
+    count.bounded += bounded(s) ? 1 : 0;
+  }
+  EXPECT_EQ(r.parameters.size(), 2u);
+  if (r.parameters.size() != 2u) return count;
+  const std::size_t g = r.parameters[0].name == "g" ? 0 : 1, e = 1 - g;
+  const Parameter& pg = r.parameters[g];
+  const Parameter& pe = r.parameters[e];
+  // probes: the 4 corners; g at each end and at the split's middle with e nominal; 4 random
+  std::vector<std::vector<Rational>> probes;
+  for (const Rational& x : {pg.range.lo, pg.range.hi})
+    for (const Rational& y : {pe.range.lo, pe.range.hi}) {
+      std::vector<Rational> d(2);
+      d[g] = x - pg.nominal;
+      d[e] = y - pe.nominal;
+      probes.push_back(d);
+    }
+  const Rational middle = Rational((pg.range.lo + pg.range.hi) / Rational(2));
+  for (const Rational& x : {pg.range.lo, pg.range.hi, middle}) {
+    std::vector<Rational> d(2, Rational(0));
+    d[g] = x - pg.nominal;
+    probes.push_back(d);
+  }
+  std::mt19937 rng(4748);
+  for (int k = 0; k < 4; ++k) probes.push_back(test_gears::random_deviations(r.parameters, rng));
+  auto model = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text));
+  for (const std::vector<Rational>& d : probes) {
+    KinematicsOptions k;
+    k.driver = "cam";
+    k.range = range;
+    k.steps_per_cycle = options.positions;
+    k.reversal = false;
+    k.method = SliceMethod::kernels;
+    KinematicsResult exact = analyze_kinematics(model->exact_model(d), k);
+    std::size_t output = static_cast<std::size_t>(std::find(exact.followers.begin(), exact.followers.end(), "lifter2") -
+                                                  exact.followers.begin());
+    EXPECT_LT(output, exact.followers.size());
+    if (output >= exact.followers.size()) continue;
+    for (const VariationSample& sample : r.samples) {
+      if (!bounded(sample)) continue;
+      auto at = std::find_if(exact.samples.begin(), exact.samples.end(),
+                             [&](const KinematicSample& s) { return s.driver == sample.driver; });
+      EXPECT_NE(at, exact.samples.end()) << "driver " << sample.driver;
+      if (at == exact.samples.end()) continue;
+      double value = at->positions.at(output);
+      EXPECT_TRUE(std::isfinite(value));
+      ++count.values;
+      // (the exact engine's position is the exact root rounded to a double: within an ulp)
+      double ulp = 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::fabs(value));
+      double out = std::max(sample.certified.lower - value, value - sample.certified.upper);
+      if (out > ulp) {
+        ++count.outside;
+        count.worst = std::max(count.worst, out);
+      }
+    }
+  }
+  return count;
+}
+
+TEST(ChainSubBoxAnchor, FailureSplitHalfAwayFromNominalBandsHoldTheExactChain) {
+  // the first six hand over inside the half of g in [lo, hi] nearest nominal and hold lifter2 on
+  // the competitor over the whole half away from it (before tol47c: a band at the holder's there);
+  // the last two keep bands through sub-boxes away from nominal (the competitor inside the
+  // whole box's window; the half away from nominal on the side where the competitor stays low)
+  const std::vector<Variant> variants = {
+      {"1/10", "1/10", "1/2", "-1", "3"}, {"1/10", "1/20", "1/2", "-1", "3"}, {"1/10", "3/20", "1/2", "-1", "3"},
+      {"1/10", "1/10", "3/5", "-1", "3"}, {"1/10", "1/10", "1/2", "-1", "4"}, {"1/10", "9/20", "1/2", "-1", "5"},
+      {"1/10", "1/10", "2/5", "-1", "3"},
+      {"1/10", "1/10", "1/2", "-3", "1"}};
+  std::size_t outside = 0, values = 0, with_band = 0;
+  for (const Variant& v : variants) {
+    SCOPED_TRACE(std::string("a ") + v.a + ", d " + v.d + ", b " + v.b + ", g in [" + v.lo + ", " + v.hi + "]");
+    Count c = check(v, 1);
+    EXPECT_EQ(c.outside, 0u) << "worst " << c.worst << " mm outside";
+    outside += c.outside;
+    values += c.values;
+    with_band += c.bounded;
+    std::printf("a %s d %s b %s g in [%s, %s]: %zu of 6 positions bounded, %zu exact values checked, %zu outside "
+                "(worst %.4f mm)\n",
+                v.a, v.d, v.b, v.lo, v.hi, c.bounded, c.values, c.outside, c.worst);
+  }
+  // not vacuous: the last two variants' bands are checked
+  EXPECT_GE(with_band, 12u);
+  std::printf("%zu exact values checked against bounded bands, %zu outside\n", values, outside);
+}
+
+}  // namespace
+}  // namespace hipair
