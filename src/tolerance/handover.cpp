@@ -733,6 +733,16 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     if (!slab) walk = walk_window(*bridge, window, sigma, coarse, levels, candidates.size(), may_push);
   }
   const double edge_reached = walk.edge;
+  // The envelope that ends at `edge` on the holder's sigma side (the walk's end or the driver-monotone
+  // route's).
+  auto bounded_to = [&](double edge) {
+    out.extended = edge != start;
+    out.side = sigma;
+    out.chart = sigma > 0 ? Interval(holder.lo, std::max(holder.hi, edge))
+                          : Interval(std::min(holder.lo, edge), holder.hi);
+    out.bounded = true;
+    return out;
+  };
   const std::size_t last = walk.last;
   const bool bounded = walk.bounded;
   const std::vector<char>& occupying = walk.occupying;
@@ -910,14 +920,7 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
         break;
       }
     }
-    if (route) {
-      out.extended = edge != start;
-      out.side = sigma;
-      out.chart = sigma > 0 ? Interval(holder.lo, std::max(holder.hi, edge))
-                            : Interval(std::min(holder.lo, edge), holder.hi);
-      out.bounded = true;
-      return out;
-    }
+    if (route) return bounded_to(edge);
   }
   if (!bounded) {
     auto name = [&](const FeatureIdentity& f) {
@@ -931,12 +934,7 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
               name(c.first) + " / " + name(c.second) + ")";
     return out;
   }
-  out.extended = edge_reached != start;
-  out.side = sigma;
-  out.chart = sigma > 0 ? Interval(holder.lo, std::max(holder.hi, edge_reached))
-                        : Interval(std::min(holder.lo, edge_reached), holder.hi);
-  out.bounded = true;
-  return out;
+  return bounded_to(edge_reached);
 }
 
 int& handover_monotone_driver() {

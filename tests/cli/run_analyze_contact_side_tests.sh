@@ -6,9 +6,8 @@
 # usage: run_analyze_contact_side_tests.sh HIPAIR HIPAIR_VERIFY SOURCE_DIR WORK_DIR
 set -uo pipefail
 hipair_python=$(python3 -c 'import sys; print(sys.executable)')
-hipair=$1 verify=$2 source=$3 work=$4
-rm -rf "$work" && mkdir -p "$work"
-seed=${HIPAIR_TEST_SEED:-$RANDOM}
+verify=$2
+source "$(dirname "$0")/seeded_test.sh" "$1" "$3" "$4"
 "$hipair_python" "$source/tests/fuzz/analyze_contact_sides.py" "$hipair" "$verify" "$source" "$work" "$seed" 8 ||
   { echo "analyze contact-side tests failed (seed $seed)"; exit 1; }
 echo "analyze contact-side tests passed (seed $seed)"
