@@ -8,6 +8,7 @@
 // field (in a random order of the two runs); the memo answers often (the second-order
 // exclusion's repeated start rates), and never with the switch off.
 #include "cspace/angle_filter.hpp"
+#include "cspace_motion_support.hpp"
 #include "cspace_test_support.hpp"
 #include "test_paths.hpp"
 
@@ -21,6 +22,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -35,71 +37,21 @@ struct Counts {
   std::size_t hits = 0;
 };
 
-std::string answer_of(const CSpace& space, const MotionPath& path) {
-  try {
-    return test::describe_crossing(space, space.first_crossing(path));
-  } catch (const Error& e) {
-    return std::string("error: ") + e.what();
-  }
-}
-
 // `count` generated motions on `space` (see the file comment), each asked with the memo on and off.
 void compare_motions(const CSpace& space, int count, std::uint64_t seed, Counts& counts) {
   std::mt19937_64 random(seed);
-  std::uniform_real_distribution<double> unit(0, 1), sym(-1, 1);
   const std::vector<std::size_t> edges = test::real_edges(space);
-  const bool two = space.dimension() == 2;
   for (int i = 0; i < count; ++i) {
-    const double speed = std::pow(10.0, -12 + 13 * unit(random));
-    std::size_t chart_index = 0;
-    double x0 = 0, y0 = 0, sx = sym(random), sy = sym(random);
-    if (!edges.empty() && random() % 4 != 0) {
-      const CSpaceEdge& edge = space.edges()[edges[random() % edges.size()]];
-      chart_index = edge.chart;
-      x0 = edge.x_chart.lower + (edge.x_chart.upper - edge.x_chart.lower) * (0.02 + 0.96 * unit(random));
-      if (two) {
-        try {
-          const std::size_t e = static_cast<std::size_t>(&edge - space.edges().data());
-          y0 = space.evaluate(e, x0).value;
-          EdgeDerivatives d = space.derivatives(EdgeId(e), Rational(x0));
-          sx = 1;
-          sy = 0.5 * (d.dy.lower + d.dy.upper);
-        } catch (const GeometryError&) {
-          continue;
-        }
-        if (!std::isfinite(sy)) continue;
-        if (random() % 2 == 0) {
-          int k = static_cast<int>(random() % 13) - 6;
-          for (int j = 0; j < std::abs(k); ++j) y0 = std::nextafter(y0, k > 0 ? 1e300 : -1e300);
-        } else {
-          y0 += sym(random) * std::pow(10.0, -15 + 6 * unit(random));
-        }
-      }
-      if (random() % 2 == 0) {
-        sx = -sx;
-        sy = -sy;
-      }
-    } else {
-      ChartPoint p = test::random_tile_point(space, random);
-      chart_index = p.chart;
-      x0 = p.x.get_d();
-      y0 = p.y.get_d();
-    }
-    const CSpaceChart& chart = space.charts()[chart_index];
-    // a quintic in the part coordinates: the start, the velocity, and random higher terms
-    auto axis = [&](AxisKind kind, bool half_turn, double start, double direction) {
-      std::vector<double> c{test::part_value(kind, half_turn, start), direction * speed};
-      for (int k = 2; k <= 5; ++k) c.push_back(random() % 3 == 0 ? 0.0 : sym(random) * speed * speed);
-      return test::axis_path(kind, c);
-    };
-    MotionPath path;
-    path.x = axis(chart.x_kind, chart.x_half_turn, x0, sx);
-    if (two) path.y = axis(chart.y_kind, chart.y_half_turn, y0, sy);
+    std::optional<test::GeneratedMotion> motion = test::generated_motion(space, edges, random);
+    if (!motion) continue;
+    MotionPath& path = motion->path;
+    const double speed = motion->speed, x0 = motion->x0, y0 = motion->y0;
+    const std::size_t chart_index = motion->chart;
     const std::size_t before = cspace::path_memo_hits();
     std::size_t on_hits = 0;
     auto [with, without] = test::on_and_off<&cspace::path_memo>(random, [&](bool on) {
       const std::size_t start = cspace::path_memo_hits();
-      std::string answer = answer_of(space, path);
+      std::string answer = test::crossing_answer(space, path);
       if (on) on_hits = cspace::path_memo_hits() - start;
       else EXPECT_EQ(cspace::path_memo_hits(), start) << "the switch must turn the memo off";
       return answer;

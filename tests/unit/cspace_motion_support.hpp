@@ -1,6 +1,7 @@
 // Shared pieces of the first_crossing tests that compare a switch's answers (start filter, scan
-// memo, angle memo, the stopped query): the exact description of an answer, and the starts they generate near
-// contact edges and on chart sides.
+// memo, angle memo, the stopped query, the path memo, the dyadic sums): the exact description of
+// an answer, the starts they generate near contact edges and on chart sides, and generated
+// quintic motions.
 #pragma once
 
 #include "cspace_test_support.hpp"
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -145,5 +147,68 @@ inline bool random_query(const std::vector<std::unique_ptr<CSpace>>& spaces, std
   }
   return true;
 }
+
+// A generated motion of the crossing-query tests (cspace_crossing_path_memo_test.cpp,
+// cspace_dyadic_sums_test.cpp): a quintic in the part coordinates — the simulator's step paths —
+// starting on a contact edge (`edges`: real_edges(space)), a few ulps or 1e-15 ... 1e-9 off it,
+// along its tangent with a random bend, or at a random chart point, at a speed 1e-12 ... 10 chart
+// units. Nothing where the sampled edge has no derivative there. Draws from `random` in one fixed
+// order, so a seed names the same motions in every test.
+struct GeneratedMotion {
+  MotionPath path;
+  double speed = 0, x0 = 0, y0 = 0;
+  std::size_t chart = 0;
+};
+
+inline std::optional<GeneratedMotion> generated_motion(const CSpace& space, const std::vector<std::size_t>& edges,
+                                                       std::mt19937_64& random) {
+  std::uniform_real_distribution<double> unit(0, 1), sym(-1, 1);
+  const bool two = space.dimension() == 2;
+  GeneratedMotion m;
+  m.speed = std::pow(10.0, -12 + 13 * unit(random));
+  double sx = sym(random), sy = sym(random);
+  if (!edges.empty() && random() % 4 != 0) {
+    const CSpaceEdge& edge = space.edges()[edges[random() % edges.size()]];
+    m.chart = edge.chart;
+    m.x0 = edge.x_chart.lower + (edge.x_chart.upper - edge.x_chart.lower) * (0.02 + 0.96 * unit(random));
+    if (two) {
+      try {
+        const std::size_t e = static_cast<std::size_t>(&edge - space.edges().data());
+        m.y0 = space.evaluate(e, m.x0).value;
+        EdgeDerivatives d = space.derivatives(EdgeId(e), Rational(m.x0));
+        sx = 1;
+        sy = 0.5 * (d.dy.lower + d.dy.upper);
+      } catch (const GeometryError&) {
+        return std::nullopt;
+      }
+      if (!std::isfinite(sy)) return std::nullopt;
+      if (random() % 2 == 0) {
+        int k = static_cast<int>(random() % 13) - 6;
+        for (int j = 0; j < std::abs(k); ++j) m.y0 = std::nextafter(m.y0, k > 0 ? 1e300 : -1e300);
+      } else {
+        m.y0 += sym(random) * std::pow(10.0, -15 + 6 * unit(random));
+      }
+    }
+    if (random() % 2 == 0) {
+      sx = -sx;
+      sy = -sy;
+    }
+  } else {
+    ChartPoint p = random_tile_point(space, random);
+    m.chart = p.chart;
+    m.x0 = p.x.get_d();
+    m.y0 = p.y.get_d();
+  }
+  const CSpaceChart& chart = space.charts()[m.chart];
+  auto axis = [&](AxisKind kind, bool half_turn, double start, double direction) {
+    std::vector<double> c{part_value(kind, half_turn, start), direction * m.speed};
+    for (int k = 2; k <= 5; ++k) c.push_back(random() % 3 == 0 ? 0.0 : sym(random) * m.speed * m.speed);
+    return axis_path(kind, c);
+  };
+  m.path.x = axis(chart.x_kind, chart.x_half_turn, m.x0, sx);
+  if (two) m.path.y = axis(chart.y_kind, chart.y_half_turn, m.y0, sy);
+  return m;
+}
+
 
 }  // namespace hipair::test

@@ -1,7 +1,9 @@
-// Shared check of a tolerance analysis' certified band (tolerance_chain_test.cpp,
-// parametric_ratchet_test.cpp): at every position in contact the band is bounded, holds the
-// nominal value (the nominal vector is in the box) and every Monte Carlo value; none of the
-// Monte Carlo evaluations left it. Returns the number of positions in contact.
+// Shared pieces of the tolerance tests: the check of a tolerance analysis' certified band
+// (tolerance_chain_test.cpp, parametric_ratchet_test.cpp): at every position in contact the band
+// is bounded, holds the nominal value (the nominal vector is in the box) and every Monte Carlo
+// value; none of the Monte Carlo evaluations left it (returns the number of positions in
+// contact); `bounded` (a position with a finite certified band); `ScopedSwitch` (one of
+// tolerance_detail's test switches set for a scope, restored after).
 #pragma once
 
 #include <hipair/tolerance.hpp>
@@ -9,8 +11,27 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <type_traits>
 
 namespace hipair::test_band {
+
+inline bool bounded(const VariationSample& s) {
+  return s.contact && std::isfinite(s.certified.upper - s.certified.lower);
+}
+
+// `ScopedSwitch on(tolerance_detail::chain_case_split(), 0);` sets the switch until `on` ends.
+template <class T>
+class ScopedSwitch {
+ public:
+  ScopedSwitch(T& slot, std::type_identity_t<T> value) : slot_(slot), saved_(slot) { slot_ = value; }
+  ~ScopedSwitch() { slot_ = saved_; }
+  ScopedSwitch(const ScopedSwitch&) = delete;
+  ScopedSwitch& operator=(const ScopedSwitch&) = delete;
+
+ private:
+  T& slot_;
+  T saved_;
+};
 
 inline std::size_t expect_certified_band_holds(const ToleranceResult& result) {
   std::size_t contact = 0;

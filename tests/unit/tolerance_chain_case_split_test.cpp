@@ -14,6 +14,7 @@
 // near them) and at random vectors of the box must lie inside every band with the split.
 // Mutants run (docs/performance.md "Session 45 (tol45)"): listed there with their failure counts.
 #include "gear_train_models.hpp"
+#include "tolerance_band_check.hpp"
 #include "test_paths.hpp"
 
 #include "model/parametric/parametric.hpp"
@@ -38,18 +39,12 @@
 namespace hipair {
 namespace {
 
-struct CaseSplit {
-  explicit CaseSplit(int on) : saved(tolerance_detail::chain_case_split()) { tolerance_detail::chain_case_split() = on; }
-  ~CaseSplit() { tolerance_detail::chain_case_split() = saved; }
-  int saved;
-};
+using test_band::bounded;
 
 ToleranceResult run(const std::string& text, const ToleranceOptions& options, int on) {
-  CaseSplit split(on);
+  test_band::ScopedSwitch split(tolerance_detail::chain_case_split(), on);
   return analyze_tolerances_text(text, options);
 }
-
-bool bounded(const VariationSample& s) { return s.contact && std::isfinite(s.certified.upper - s.certified.lower); }
 
 // The analysis of `text` over `range` at `steps` per turn with the split off and on: every band
 // with it no wider than the one without (`nested`: inside it), the narrower ones counted (the

@@ -11,6 +11,7 @@
 // recomputed), at 1000 (the chain's bound) and unbounded in effect (10^9), and every certified
 // band, linearised band, sensitivity, per-pair box count and note is compared bit for bit.
 #include "gear_train_models.hpp"
+#include "tolerance_band_check.hpp"
 
 #include "tolerance/stage.hpp"
 
@@ -30,16 +31,8 @@ namespace {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-struct MemoLimit {
-  explicit MemoLimit(std::size_t entries) : saved(tolerance_detail::chain_memo_entries()) {
-    tolerance_detail::chain_memo_entries() = entries;
-  }
-  ~MemoLimit() { tolerance_detail::chain_memo_entries() = saved; }
-  std::size_t saved;
-};
-
 ToleranceResult run(const std::string& text, const ToleranceOptions& options, std::size_t entries) {
-  MemoLimit limit(entries);
+  test_band::ScopedSwitch limit(tolerance_detail::chain_memo_entries(), entries);
   return analyze_tolerances_text(text, options);
 }
 

@@ -15,6 +15,7 @@
 // furthest up and down at that position (and near them) and at random vectors must lie inside
 // every bounded band. Mutants run: docs/performance.md "Session 47 (tol47)".
 #include "gear_train_models.hpp"
+#include "tolerance_band_check.hpp"
 
 #include "model/parametric/parametric.hpp"
 #include "tolerance/handover.hpp"
@@ -39,15 +40,7 @@
 namespace hipair {
 namespace {
 
-struct MonotoneRoute {
-  explicit MonotoneRoute(int on) : saved(tolerance_detail::handover_monotone_driver()) {
-    tolerance_detail::handover_monotone_driver() = on;
-  }
-  ~MonotoneRoute() { tolerance_detail::handover_monotone_driver() = saved; }
-  int saved;
-};
-
-bool bounded(const VariationSample& s) { return s.contact && std::isfinite(s.certified.upper - s.certified.lower); }
+using test_band::bounded;
 
 TEST(ChainMonotoneDriver, LateMeshBandBoundedThroughTheDriverHoldsTheExactTrain) {
   const std::string text = test_gears::gear_train(9);
@@ -56,7 +49,7 @@ TEST(ChainMonotoneDriver, LateMeshBandBoundedThroughTheDriverHoldsTheExactTrain)
   options.range = range;
   ToleranceResult r;
   {
-    MonotoneRoute route(1);
+    test_band::ScopedSwitch route(tolerance_detail::handover_monotone_driver(), 1);
     r = analyze_tolerances_text(text, options);
   }
   ASSERT_EQ(r.samples.size(), 10u);
@@ -174,7 +167,7 @@ TEST(ChainMonotoneDriver, NonMonotoneLaterStageBandsHoldTheExactChain) {
   options.threads = 1;
   ToleranceResult r;
   {
-    MonotoneRoute route(1);
+    test_band::ScopedSwitch route(tolerance_detail::handover_monotone_driver(), 1);
     r = analyze_tolerances_text(text, options);
   }
   ASSERT_EQ(r.samples.size(), 6u);

@@ -22,6 +22,7 @@
 // the check is not vacuous. Mutants: tolerance_detail::handover_sub_box_anchor() = 0 (the walk of
 // sessions 26-47): 180 values outside; the slab check skipped: 30.
 #include "gear_train_models.hpp"
+#include "tolerance_band_check.hpp"
 
 #include "model/parametric/parametric.hpp"
 #include "tolerance/handover.hpp"
@@ -44,15 +45,7 @@
 namespace hipair {
 namespace {
 
-struct SubBoxAnchor {
-  explicit SubBoxAnchor(int on) : saved(tolerance_detail::handover_sub_box_anchor()) {
-    tolerance_detail::handover_sub_box_anchor() = on;
-  }
-  ~SubBoxAnchor() { tolerance_detail::handover_sub_box_anchor() = saved; }
-  int saved;
-};
-
-bool bounded(const VariationSample& s) { return s.contact && std::isfinite(s.certified.upper - s.certified.lower); }
+using test_band::bounded;
 
 // a, d, b, lo, hi: exact literals of the model file
 struct Variant {
@@ -96,7 +89,7 @@ Count check(const Variant& v, int anchor) {
   options.threads = 1;
   ToleranceResult r;
   {
-    SubBoxAnchor on(anchor);
+    test_band::ScopedSwitch on(tolerance_detail::handover_sub_box_anchor(), anchor);
     r = analyze_tolerances_text(text, options);
   }
   Count count;
