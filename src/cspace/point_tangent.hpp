@@ -1,0 +1,42 @@
+#pragma once
+
+#include "core/thread_switch.hpp"
+
+#include <gmp.h>
+#include <mpfr.h>
+
+namespace hipair::cspace {
+
+// The exact angle pieces' shortcuts (cspace_queries.cpp, angle_pieces: the MPFR pieces at 64 or
+// 160 bits of the starts, ends and nudge points that the double filter cannot locate). Both give
+// the same numbers as the general route, bit for bit:
+//  - a point angle (tau's ends equal, as the 160-bit pieces of a rational point in the chart
+//    centred at 0 are): tan(tau / 2) rounded down and rounded up from one mpfr_tan. MPFR rounds
+//    correctly, so the value rounded up is the value rounded down when the ternary value says it
+//    is exact, and the next number of the same precision above it otherwise (tan_half_both);
+//  - an angle within [-3, 3] (an exact rational test on theta's ends) needs no reduction by whole
+//    turns: its midpoint m has floor((m + pi) / 2 pi) = 0 at any precision of 10 bits or more
+//    ((m + pi) / 2 pi lies in [0.022, 0.978] before rounding), and subtracting 0 turns is exact
+//    (zero_turns).
+// On by default; tests switch it off per thread to compare (CSpacePointTangent.*).
+struct PointTangentsTag;
+inline bool& point_tangents() { return thread_switch<PointTangentsTag>(); }
+
+// tan(angle / 2) rounded down into `down` and rounded up into `up` (\pre both of angle's
+// precision; |angle| < pi): one tangent, the upward one the next number above when inexact.
+inline void tan_half_both(mpfr_t down, mpfr_t up, const mpfr_t angle) {
+  mpfr_t half;
+  mpfr_init2(half, mpfr_get_prec(angle));
+  mpfr_div_2ui(half, angle, 1, MPFR_RNDN);   // exact
+  const int ternary = mpfr_tan(down, half, MPFR_RNDD);
+  mpfr_set(up, down, MPFR_RNDN);   // exact (the same precision)
+  if (ternary != 0) mpfr_nextabove(up);
+  mpfr_clear(half);
+}
+
+// An angle enclosure [lo, hi] that certainly needs no reduction by whole turns (see above).
+inline bool zero_turns(const mpq_t lo, const mpq_t hi) {
+  return mpq_cmp_si(lo, -3, 1) >= 0 && mpq_cmp_si(hi, 3, 1) <= 0;
+}
+
+}  // namespace hipair::cspace
