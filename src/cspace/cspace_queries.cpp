@@ -1356,7 +1356,9 @@ std::vector<AxisPiece> angle_pieces(const RInterval& theta, mpfr_prec_t bits) {
   mpfi_interv_q(angle.v, theta.lo.get_mpq_t(), theta.hi.get_mpq_t());
   // reduce by a whole number of turns: k = floor((mid + pi) / 2 pi) (none within [-3, 3]:
   // point_tangent.hpp)
-  if (!(cspace::point_tangents() && cspace::zero_turns(theta.lo.get_mpq_t(), theta.hi.get_mpq_t()))) {
+  if (cspace::point_tangents() && cspace::zero_turns(theta.lo.get_mpq_t(), theta.hi.get_mpq_t())) {
+    ++cspace::point_tangent_shortcuts();
+  } else {
     Mpfr mid(bits), turn(bits), k(bits);
     Rational m = (theta.lo + theta.hi) / 2;
     mpfr_set_q(mid.v, m.get_mpq_t(), MPFR_RNDN);
@@ -1387,10 +1389,10 @@ std::vector<AxisPiece> angle_pieces(const RInterval& theta, mpfr_prec_t bits) {
     p.half_turn = half_turn;
     const Mpfr& neg_lo = constants.neg_lo;
     const bool clipped_lo = mpfr_cmp(lo.v, neg_lo.v) <= 0, clipped_hi = mpfr_cmp(hi.v, hp_lo.v) >= 0;
-    if (!clipped_lo && !clipped_hi && cspace::point_tangents() && mpfr_equal_p(lo.v, hi.v)) {
-      // a point: one tangent rounded both ways (point_tangent.hpp)
+    if (!clipped_lo && !clipped_hi) {
+      // both ends' tangents (a point's from one: point_tangent.hpp)
       Mpfr down(bits), up(bits);
-      cspace::tan_half_both(down.v, up.v, lo.v);
+      cspace::tan_half_bounds(down.v, up.v, lo.v, hi.v);
       p.lo = to_rational(down.v);
       p.hi = to_rational(up.v);
     } else {

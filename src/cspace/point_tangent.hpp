@@ -2,6 +2,8 @@
 
 #include "core/thread_switch.hpp"
 
+#include <cstddef>
+
 #include <gmp.h>
 #include <mpfr.h>
 
@@ -13,7 +15,7 @@ namespace hipair::cspace {
 //  - a point angle (tau's ends equal, as the 160-bit pieces of a rational point in the chart
 //    centred at 0 are): tan(tau / 2) rounded down and rounded up from one mpfr_tan. MPFR rounds
 //    correctly, so the value rounded up is the value rounded down when the ternary value says it
-//    is exact, and the next number of the same precision above it otherwise (tan_half_both);
+//    is exact, and the next number of the same precision above it otherwise (tan_half_bounds);
 //  - an angle within [-3, 3] (an exact rational test on theta's ends) needs no reduction by whole
 //    turns: its midpoint m has floor((m + pi) / 2 pi) = 0 at any precision of 10 bits or more
 //    ((m + pi) / 2 pi lies in [0.022, 0.978] before rounding), and subtracting 0 turns is exact
@@ -21,16 +23,26 @@ namespace hipair::cspace {
 // On by default; tests switch it off per thread to compare (CSpacePointTangent.*).
 struct PointTangentsTag;
 inline bool& point_tangents() { return thread_switch<PointTangentsTag>(); }
+// How many shortcuts (a tangent pair from one tangent, a reduction skipped) this thread took (tests).
+struct PointTangentShortcutsTag;
+inline std::size_t& point_tangent_shortcuts() { return thread_counter<PointTangentShortcutsTag>(); }
 
-// tan(angle / 2) rounded down into `down` and rounded up into `up` (\pre both of angle's
-// precision; |angle| < pi): one tangent, the upward one the next number above when inexact.
-inline void tan_half_both(mpfr_t down, mpfr_t up, const mpfr_t angle) {
+// tan(lo / 2) rounded down into `down` and tan(hi / 2) rounded up into `up` (\pre all four of
+// one precision; -pi < lo <= hi < pi). A point (lo == hi, switch on): one tangent, the upward one
+// the next number above when the ternary value says it is inexact.
+inline void tan_half_bounds(mpfr_t down, mpfr_t up, const mpfr_t lo, const mpfr_t hi) {
   mpfr_t half;
-  mpfr_init2(half, mpfr_get_prec(angle));
-  mpfr_div_2ui(half, angle, 1, MPFR_RNDN);   // exact
+  mpfr_init2(half, mpfr_get_prec(lo));
+  mpfr_div_2ui(half, lo, 1, MPFR_RNDN);   // exact
   const int ternary = mpfr_tan(down, half, MPFR_RNDD);
-  mpfr_set(up, down, MPFR_RNDN);   // exact (the same precision)
-  if (ternary != 0) mpfr_nextabove(up);
+  if (point_tangents() && mpfr_equal_p(lo, hi)) {
+    ++point_tangent_shortcuts();
+    mpfr_set(up, down, MPFR_RNDN);   // exact (the same precision)
+    if (ternary != 0) mpfr_nextabove(up);
+  } else {
+    mpfr_div_2ui(half, hi, 1, MPFR_RNDN);
+    mpfr_tan(up, half, MPFR_RNDU);
+  }
   mpfr_clear(half);
 }
 
