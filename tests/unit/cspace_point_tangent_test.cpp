@@ -141,22 +141,6 @@ TEST(CSpacePointTangent, ZeroTurnsOnlyWhereTheReductionFindsNone) {
   EXPECT_GT(reduced, 10000u);
 }
 
-// A start on a real edge a few ulps (or 1e-15 ... 1e-3) off it, or anywhere: the starts whose
-// filtered pieces cannot locate them take the 160-bit pieces.
-void pick_start(const CSpace& space, std::mt19937_64& random, std::size_t& c, double& x0, double& y0) {
-  std::uniform_real_distribution<double> unit(0, 1);
-  const std::vector<CSpaceChart>& charts = space.charts();
-  const bool two = space.dimension() == 2;
-  c = random() % charts.size();
-  x0 = charts[c].x_lo.get_d() + (charts[c].x_hi.get_d() - charts[c].x_lo.get_d()) * unit(random);
-  y0 = two ? charts[c].y_lo.get_d() + (charts[c].y_hi.get_d() - charts[c].y_lo.get_d()) * unit(random) : 0;
-  if (two && random() % 4 != 0) {
-    std::size_t e = random() % space.edges().size();
-    if (!space.edges()[e].real || !test::onto_edge(space, e, random, c, x0, y0)) return;
-    test::move_off(random() % 2 == 0 ? y0 : x0, random);
-  }
-}
-
 TEST(CSpacePointTangent, CrossingAnswersEqualTheAnswersWithoutThem) {
   std::vector<std::unique_ptr<CSpace>> spaces = test::example_spaces();
   test::FlagSwitch<&cspace::angle_memo> memo(false);   // every query computes its own pieces
@@ -164,26 +148,20 @@ TEST(CSpacePointTangent, CrossingAnswersEqualTheAnswersWithoutThem) {
   std::uniform_real_distribution<double> unit(0, 1), sym(-1, 1);
   std::size_t compared = 0, shortcuts = 0;
   for (int i = 0; i < 900; ++i) {
-    const CSpace& space = *spaces[random() % spaces.size()];
-    std::size_t c = 0;
-    double x0 = 0, y0 = 0;
-    pick_start(space, random, c, x0, y0);
-    const CSpaceChart& chart = space.charts()[c];
-    const bool two = space.dimension() == 2;
-    double qx0 = test::part_value(chart.x_kind, chart.x_half_turn, x0);
-    double qy0 = two ? test::part_value(chart.y_kind, chart.y_half_turn, y0) : 0;
+    test::PartStart s = test::part_start(spaces, random, test::pick_start);
+    const CSpaceChart& chart = s.space->charts()[s.chart];
     if (random() % 6 == 0 && chart.x_kind == AxisKind::rotation)   // beyond +-3 and +-pi: reduced
-      qx0 += (random() % 2 ? 1 : -1) * (random() % 2 ? 2 * std::numbers::pi : 0.2 * unit(random));
+      s.qx0 += (random() % 2 ? 1 : -1) * (random() % 2 ? 2 * std::numbers::pi : 0.2 * unit(random));
     const bool point = random() % 2 == 0;
     const double scale = std::pow(10.0, -4 + 4 * unit(random));
     const double vx = point ? 0 : sym(random) * scale, vy = point ? 0 : sym(random) * scale;
-    MotionPath path = test::bent_motion(chart, two, qx0, qy0, vx, vy, 0.0, point);
+    MotionPath path = test::bent_motion(chart, s.two, s.qx0, s.qy0, vx, vy, 0.0, point);
     std::ostringstream what;
     what.precision(17);
-    what << space.first_part() << ":" << space.second_part() << " motion " << i << " from " << qx0 << ", " << qy0
-         << " by " << vx << ", " << vy << (point ? " (point)" : "");
+    what << s.space->first_part() << ":" << s.space->second_part() << " motion " << i << " from " << s.qx0 << ", "
+         << s.qy0 << " by " << vx << ", " << vy << (point ? " (point)" : "");
     const std::size_t before = cspace::point_tangent_shortcuts();
-    auto [on, off] = test::on_and_off<&cspace::point_tangents>(random, [&](bool) { return test::crossing_answer(space, path); });
+    auto [on, off] = test::on_and_off<&cspace::point_tangents>(random, [&](bool) { return test::crossing_answer(*s.space, path); });
     ASSERT_EQ(on, off) << what.str();
     shortcuts += cspace::point_tangent_shortcuts() - before;
     ++compared;
