@@ -1322,10 +1322,6 @@ Rational tan_half(const mpfr_t angle, mpfr_rnd_t rounding, mpfr_prec_t bits) {
   return to_rational(t.v);
 }
 
-// The chart-coordinate pieces of an angle enclosure `theta` (width < 2): t = tan((theta - c)/2)
-// in the charts centred at c = 0 and c = pi, clipped at the seams theta = +-pi/2 (where t = +-1
-// exactly), so that the pieces cover every angle in `theta`. Computed with `bits` of precision
-// and directed rounding: certified at any precision, tighter at more.
 // pi and pi / 2 enclosed at `bits`, and the bounds of pi / 2 that angle_pieces compares with,
 // made once per thread and precision (the same numbers on every call)
 struct PiBounds {
@@ -1349,6 +1345,10 @@ const PiBounds& pi_bounds(mpfr_prec_t bits) {
   return *made.back();
 }
 
+// The chart-coordinate pieces of an angle enclosure `theta` (width < 2): t = tan((theta - c)/2)
+// in the charts centred at c = 0 and c = pi, clipped at the seams theta = +-pi/2 (where t = +-1
+// exactly), so that the pieces cover every angle in `theta`. Computed with `bits` of precision
+// and directed rounding: certified at any precision, tighter at more.
 std::vector<AxisPiece> angle_pieces(const RInterval& theta, mpfr_prec_t bits) {
   const PiBounds& constants = pi_bounds(bits);
   const mpfi_t& pi = constants.pi.v;
