@@ -24,6 +24,7 @@
 #include "cspace/exact_bound.hpp"
 #include "cspace/frame_memo.hpp"
 #include "cspace/partial_terms.hpp"
+#include "cspace/point_tangent.hpp"
 #include "cspace/scan_memo.hpp"
 #include "cspace/slopes_memo.hpp"
 #include "cspace/start_filter.hpp"
@@ -1321,17 +1322,43 @@ Rational tan_half(const mpfr_t angle, mpfr_rnd_t rounding, mpfr_prec_t bits) {
   return to_rational(t.v);
 }
 
+// pi and pi / 2 enclosed at `bits`, and the bounds of pi / 2 that angle_pieces compares with,
+// made once per thread and precision (the same numbers on every call)
+struct PiBounds {
+  explicit PiBounds(mpfr_prec_t bits) : bits(bits), pi(bits), half_pi(bits), hp_lo(bits), hp_hi(bits), below(bits), neg_lo(bits) {
+    mpfi_const_pi(pi.v);
+    mpfi_div_2ui(half_pi.v, pi.v, 1);
+    mpfi_get_left(hp_lo.v, half_pi.v);
+    mpfi_get_right(hp_hi.v, half_pi.v);
+    mpfr_neg(below.v, hp_hi.v, MPFR_RNDN);   // -pi/2 >= -hp_hi
+    mpfr_neg(neg_lo.v, hp_lo.v, MPFR_RNDN);
+  }
+  mpfr_prec_t bits;
+  Mpfi pi, half_pi;
+  Mpfr hp_lo, hp_hi, below, neg_lo;
+};
+const PiBounds& pi_bounds(mpfr_prec_t bits) {
+  thread_local std::vector<std::unique_ptr<PiBounds>> made;
+  for (const auto& b : made)
+    if (b->bits == bits) return *b;
+  made.push_back(std::make_unique<PiBounds>(bits));
+  return *made.back();
+}
+
 // The chart-coordinate pieces of an angle enclosure `theta` (width < 2): t = tan((theta - c)/2)
 // in the charts centred at c = 0 and c = pi, clipped at the seams theta = +-pi/2 (where t = +-1
 // exactly), so that the pieces cover every angle in `theta`. Computed with `bits` of precision
 // and directed rounding: certified at any precision, tighter at more.
 std::vector<AxisPiece> angle_pieces(const RInterval& theta, mpfr_prec_t bits) {
-  Mpfi pi(bits), half_pi(bits), angle(bits), shifted(bits);
-  mpfi_const_pi(pi.v);
-  mpfi_div_2ui(half_pi.v, pi.v, 1);
+  const PiBounds& constants = pi_bounds(bits);
+  const mpfi_t& pi = constants.pi.v;
+  Mpfi angle(bits);
   mpfi_interv_q(angle.v, theta.lo.get_mpq_t(), theta.hi.get_mpq_t());
-  // reduce by a whole number of turns: k = floor((mid + pi) / 2 pi)
-  {
+  // reduce by a whole number of turns: k = floor((mid + pi) / 2 pi) (none within [-3, 3]:
+  // point_tangent.hpp)
+  if (cspace::point_tangents() && cspace::zero_turns(theta.lo.get_mpq_t(), theta.hi.get_mpq_t())) {
+    ++cspace::point_tangent_shortcuts();
+  } else {
     Mpfr mid(bits), turn(bits), k(bits);
     Rational m = (theta.lo + theta.hi) / 2;
     mpfr_set_q(mid.v, m.get_mpq_t(), MPFR_RNDN);
@@ -1343,38 +1370,43 @@ std::vector<AxisPiece> angle_pieces(const RInterval& theta, mpfr_prec_t bits) {
     mpz_class turns;
     mpfr_get_z(turns.get_mpz_t(), k.v, MPFR_RNDN);
     Mpfi full(bits);
-    mpfi_mul_2ui(full.v, pi.v, 1);
+    mpfi_mul_2ui(full.v, pi, 1);
     mpfi_mul_z(full.v, full.v, turns.get_mpz_t());
     mpfi_sub(angle.v, angle.v, full.v);
   }
-  Mpfr hp_lo(bits), hp_hi(bits);
-  mpfi_get_left(hp_lo.v, half_pi.v);
-  mpfi_get_right(hp_hi.v, half_pi.v);
+  const Mpfr& hp_lo = constants.hp_lo;
+  const Mpfr& hp_hi = constants.hp_hi;
   std::vector<AxisPiece> pieces;
   // tau = angle - centre, clipped to [-pi/2, pi/2]
+  Mpfr lo(bits), hi(bits);   // tau's ends (each piece's)
   auto piece = [&](const mpfi_t tau, bool half_turn) {
-    Mpfr lo(bits), hi(bits);
     mpfi_get_left(lo.v, tau);
     mpfi_get_right(hi.v, tau);
     // certainly below -pi/2 or certainly above pi/2: not in this chart
-    Mpfr below(bits);
-    mpfr_neg(below.v, hp_hi.v, MPFR_RNDN);   // -pi/2 >= -hp_hi
-    if (mpfr_cmp(hi.v, below.v) < 0 || mpfr_cmp(lo.v, hp_hi.v) > 0) return;
+    if (mpfr_cmp(hi.v, constants.below.v) < 0 || mpfr_cmp(lo.v, hp_hi.v) > 0) return;
     AxisPiece p;
     p.rotation = true;
     p.half_turn = half_turn;
-    Mpfr neg_lo(bits);
-    mpfr_neg(neg_lo.v, hp_lo.v, MPFR_RNDN);
-    p.lo = mpfr_cmp(lo.v, neg_lo.v) <= 0 ? Rational(-1) : tan_half(lo.v, MPFR_RNDD, bits);
-    p.hi = mpfr_cmp(hi.v, hp_lo.v) >= 0 ? Rational(1) : tan_half(hi.v, MPFR_RNDU, bits);
+    const Mpfr& neg_lo = constants.neg_lo;
+    const bool clipped_lo = mpfr_cmp(lo.v, neg_lo.v) <= 0, clipped_hi = mpfr_cmp(hi.v, hp_lo.v) >= 0;
+    if (!clipped_lo && !clipped_hi) {
+      // both ends' tangents (a point's from one: point_tangent.hpp)
+      Mpfr down(bits), up(bits);
+      cspace::tan_half_bounds(down.v, up.v, lo.v, hi.v);
+      p.lo = to_rational(down.v);
+      p.hi = to_rational(up.v);
+    } else {
+      p.lo = clipped_lo ? Rational(-1) : tan_half(lo.v, MPFR_RNDD, bits);
+      p.hi = clipped_hi ? Rational(1) : tan_half(hi.v, MPFR_RNDU, bits);
+    }
     if (p.lo > p.hi) return;
     pieces.push_back(p);
   };
   piece(angle.v, false);
   Mpfi tau(bits);
-  mpfi_sub(tau.v, angle.v, pi.v);
+  mpfi_sub(tau.v, angle.v, pi);
   piece(tau.v, true);
-  mpfi_add(tau.v, angle.v, pi.v);
+  mpfi_add(tau.v, angle.v, pi);
   piece(tau.v, true);
   return pieces;
 }

@@ -29,25 +29,6 @@
 namespace hipair {
 namespace {
 
-// A start (chart values) on `space`: anywhere, a few ulps or 1e-15 ... 1e-3 off a real edge, or
-// on a chart's side.
-void pick_start(const CSpace& space, std::mt19937_64& random, std::size_t& c, double& x0, double& y0) {
-  std::uniform_real_distribution<double> unit(0, 1);
-  const std::vector<CSpaceChart>& charts = space.charts();
-  const bool two = space.dimension() == 2;
-  c = random() % charts.size();
-  x0 = charts[c].x_lo.get_d() + (charts[c].x_hi.get_d() - charts[c].x_lo.get_d()) * unit(random);
-  y0 = two ? charts[c].y_lo.get_d() + (charts[c].y_hi.get_d() - charts[c].y_lo.get_d()) * unit(random) : 0;
-  const int kind = static_cast<int>(random() % 3);
-  if (kind == 1 && two) {
-    std::size_t e = random() % space.edges().size();
-    if (!space.edges()[e].real || !test::onto_edge(space, e, random, c, x0, y0)) return;
-    test::move_off(random() % 2 == 0 ? y0 : x0, random);
-  } else if (kind == 2) {
-    test::to_chart_side(charts[c], two, x0, y0, random);
-  }
-}
-
 struct Tally {
   std::size_t compared = 0, hits = 0, shared_axis = 0;
 };
@@ -66,14 +47,13 @@ TEST(CSpaceAngleMemo, AnswersEqualTheAnswersWithoutTheMemo) {
   std::uniform_real_distribution<double> unit(0, 1), sym(-1, 1);
   Tally tally;
   for (int i = 0; i < 1500; ++i) {
-    const CSpace& space = *spaces[random() % spaces.size()];
-    std::size_t c = 0;
-    double x0 = 0, y0 = 0;
-    pick_start(space, random, c, x0, y0);
+    const test::PartStart start = test::part_start(spaces, random, test::pick_start);
+    const CSpace& space = *start.space;
+    const std::size_t c = start.chart;
     const CSpaceChart& chart = space.charts()[c];
-    const bool two = space.dimension() == 2;
-    double qx0 = test::part_value(chart.x_kind, chart.x_half_turn, x0);
-    double qy0 = two ? test::part_value(chart.y_kind, chart.y_half_turn, y0) : 0;
+    const bool two = start.two;
+    double qx0 = start.qx0;
+    const double qy0 = start.qy0;
     if (random() % 8 == 0 && chart.x_kind == AxisKind::rotation)   // near +-pi: the angle's reduction
       qx0 = (random() % 2 ? 1 : -1) * std::nextafter(std::numbers::pi, static_cast<double>(random() % 2) * 8);
     const bool point = random() % 3 == 0;

@@ -127,6 +127,46 @@ inline MotionPath random_motion(const CSpace& space, std::mt19937_64& random, in
   return path;
 }
 
+// A start (chart values) on `space`: anywhere, a few ulps or 1e-15 ... 1e-3 off a real edge, or
+// on a chart's side.
+inline void pick_start(const CSpace& space, std::mt19937_64& random, std::size_t& c, double& x0, double& y0) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  const std::vector<CSpaceChart>& charts = space.charts();
+  const bool two = space.dimension() == 2;
+  c = random() % charts.size();
+  x0 = charts[c].x_lo.get_d() + (charts[c].x_hi.get_d() - charts[c].x_lo.get_d()) * unit(random);
+  y0 = two ? charts[c].y_lo.get_d() + (charts[c].y_hi.get_d() - charts[c].y_lo.get_d()) * unit(random) : 0;
+  const int kind = static_cast<int>(random() % 3);
+  if (kind == 1 && two) {
+    std::size_t e = random() % space.edges().size();
+    if (!space.edges()[e].real || !onto_edge(space, e, random, c, x0, y0)) return;
+    move_off(random() % 2 == 0 ? y0 : x0, random);
+  } else if (kind == 2) {
+    to_chart_side(charts[c], two, x0, y0, random);
+  }
+}
+
+// A generated start on a random one of `spaces`: chart c's values (x0, y0) from
+// pick(space, random, c, x0, y0), and the parts' values there.
+struct PartStart {
+  const CSpace* space = nullptr;
+  std::size_t chart = 0;
+  bool two = false;
+  double qx0 = 0, qy0 = 0;
+};
+template <class Pick>
+PartStart part_start(const std::vector<std::unique_ptr<CSpace>>& spaces, std::mt19937_64& random, Pick&& pick) {
+  PartStart s;
+  s.space = spaces[random() % spaces.size()].get();
+  double x0 = 0, y0 = 0;
+  pick(*s.space, random, s.chart, x0, y0);
+  const CSpaceChart& chart = s.space->charts()[s.chart];
+  s.two = s.space->dimension() == 2;
+  s.qx0 = part_value(chart.x_kind, chart.x_half_turn, x0);
+  s.qy0 = s.two ? part_value(chart.y_kind, chart.y_half_turn, y0) : 0;
+  return s;
+}
+
 // A generated motion (random_motion) on a random one of `spaces` (index s), and first_crossing's
 // answer to it (the oracle of the tests that stop or limit the query).
 struct GeneratedQuery {
