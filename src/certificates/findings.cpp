@@ -3,6 +3,8 @@
 #include <hipair/certificate.hpp>
 #include <hipair/kinematics.hpp>
 
+#include "core/model_scale.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -36,6 +38,31 @@ std::optional<double> follower_position(const KinematicsResult& result, const st
 
 std::vector<CertifiedFinding> certify_kinematic_findings(const Model& model, const KinematicsResult& result,
                                                          const CertifyContext& context) {
+  // A mechanism far from the origin for its size, or rotation-only at an extreme scale, is
+  // analysed on its normalised copy (analyze_kinematics), and its findings are certified there
+  // too: the claims are angles, offsets and edge references, the same on the copy, which keeps
+  // the model's name, content hash and roundings; an interference's witness point, the one
+  // world point a finding's certificate holds, is mapped back to the model's exactly (the copy
+  // is the model moved and scaled by a power of two: a point strictly inside both copied parts
+  // maps to one strictly inside both parts). Before, the search ran on the model as given (the
+  // escapement + 10^400: 26 s in the exact oracle on 10^400-mm coordinates).
+  // Each certificate is then checked by the verifier's code on the model as given (what
+  // hipair-verify will do): its interval filters may not decide a far jam's pieces (a 10 mm
+  // part at 10^100 mm), and a certificate it rejects is not given, with the reason as the note.
+  if (std::optional<NormalisedMechanism> copy = normalised_mechanism(model)) {
+    std::vector<CertifiedFinding> findings = certify_kinematic_findings(copy->model, result, context);
+    for (CertifiedFinding& finding : findings) {
+      if (!finding.certificate) continue;
+      if (finding.certificate->witness_point)
+        finding.certificate->witness_point = copy->to_model(*finding.certificate->witness_point);
+      VerificationResult check = check_certificate(*finding.certificate, model);
+      if (check.valid) continue;
+      finding.certificate.reset();
+      finding.note = "certified on the mechanism moved to the origin (or rescaled), but the verifier cannot check it on "
+                     "the model as given: " + check.reason;
+    }
+    return findings;
+  }
   std::vector<CertifiedFinding> findings;
   for (const Interference& interference : result.initial_interference) {
     CertifiedFinding finding{"interference of " + interference.pair + " at the initial configuration", std::nullopt, ""};

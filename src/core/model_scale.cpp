@@ -198,6 +198,34 @@ Model translated_model(const Model& model, const Point& by) {
   return moved;
 }
 
+std::optional<NormalisedMechanism> normalised_mechanism(const Model& model) {
+  std::vector<std::size_t> parts(model.parts.size());
+  for (std::size_t k = 0; k < parts.size(); ++k) parts[k] = k;
+  std::optional<Point> by = normalising_translation(model, parts);
+  std::optional<Model> moved;
+  if (by) moved = translated_model(model, *by);
+  const long shift = normalising_shift(moved ? *moved : model, parts);
+  if (!by && shift == 0) return std::nullopt;
+  NormalisedMechanism out;
+  out.model = shift != 0 ? scaled_model(moved ? *moved : model, shift) : std::move(*moved);
+  if (by) out.by = *by;
+  out.shift = shift;
+  return out;
+}
+
+Point NormalisedMechanism::to_model(const Point& p) const {
+  Point out = p;
+  for (Rational* v : {&out.x, &out.y}) {
+    if (shift >= 0)
+      mpq_mul_2exp(v->get_mpq_t(), v->get_mpq_t(), static_cast<mp_bitcnt_t>(shift));
+    else
+      mpq_div_2exp(v->get_mpq_t(), v->get_mpq_t(), static_cast<mp_bitcnt_t>(-shift));
+  }
+  out.x += by.x;
+  out.y += by.y;
+  return out;
+}
+
 Model scaled_model(const Model& model, long shift) {
   auto scale = [shift](Rational& value, long power) {
     long bits = shift * power;

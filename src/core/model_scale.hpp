@@ -57,4 +57,22 @@ std::optional<Point> normalising_translation(const Model& model, const std::vect
 /// that turns (rotation, planar, pin-slot) minus `by`, exactly; nothing else changes.
 Model translated_model(const Model& model, const Point& by);
 
+/// The copy of a whole mechanism (every part) that its angle- and offset-valued results are
+/// computed on: moved to the origin (normalising_translation), then, when it only rotates and
+/// lies outside the doubles' comfortable range, rescaled (normalising_shift). Its
+/// configurations (angles, offsets) are the model's, and so are its name, content hash,
+/// roundings and edge indices: the kinematic analysis and the certificates of its findings
+/// are made on it; a world point of the copy is the model's point to_model(p).
+struct NormalisedMechanism {
+  Model model;
+  Point by{Rational(0), Rational(0)};   ///< the model was moved by -by (translated_model(model, by))
+  long shift = 0;                       ///< then divided by 2^shift (scaled_model)
+  /// The model's world point of the copy's point p: p * 2^shift + by, exactly.
+  Point to_model(const Point& p) const;
+};
+
+/// The normalised copy of `model`, or nullopt when neither move applies (every ordinary model:
+/// analysed as it is).
+std::optional<NormalisedMechanism> normalised_mechanism(const Model& model);
+
 }  // namespace hipair

@@ -543,18 +543,14 @@ struct Sweep {
 
 KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions& options, const std::vector<CSpace>& spaces) {
   {
-    // a rotation-only mechanism far outside the doubles' range is analysed exactly rescaled
-    // (core/model_scale.hpp): the same angles, and its C-spaces are the same charts
+    // a mechanism far from the origin for its size is analysed moved to it by one exact
+    // vector (the same angles and offsets: they are displacements), a rotation-only mechanism
+    // far outside the doubles' range exactly rescaled (the same angles, and its C-spaces are
+    // the same charts): core/model_scale.hpp
+    if (std::optional<NormalisedMechanism> copy = normalised_mechanism(model))
+      return analyze_kinematics(copy->model, options, spaces);
     std::vector<std::size_t> parts(model.parts.size());
     for (std::size_t k = 0; k < parts.size(); ++k) parts[k] = k;
-    // a mechanism far from the origin for its size is analysed moved to it by one exact
-    // vector (the same angles and offsets: they are displacements; core/model_scale.hpp)
-    if (std::optional<Point> by = normalising_translation(model, parts))
-      return analyze_kinematics(translated_model(model, *by), options, spaces);
-    if (long shift = normalising_shift(model, parts); shift != 0) {
-      Model scaled = scaled_model(model, shift);
-      return analyze_kinematics(scaled, options, spaces);
-    }
     require_kinematic_length_scale(model, parts);   // lengths as coordinates: absolute resolutions
   }
   auto clock_start = std::chrono::steady_clock::now();

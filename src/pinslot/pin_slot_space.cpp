@@ -18,6 +18,7 @@
 #include <map>
 #include <mutex>
 #include <numbers>
+#include <optional>
 #include <set>
 
 namespace hipair {
@@ -132,6 +133,9 @@ struct PinSlotSpace::Impl {
   mutable std::map<Rational, std::shared_ptr<const CSpace>> cache;
   mutable std::map<Rational, std::shared_ptr<const CSpace>> plane_cache;   // plane witnesses by slide
   bool witness_filter = true;   // PinSlotBuildOptions::witness_filter
+  // the pair's length unit (sliced::length_unit): 1 mm for ordinary pairs, a power of two near
+  // 1/16 of the largest coordinate for a pair drawn tiny or huge
+  Rational unit = 1;
 
   const Part& other() const { return model.parts[0]; }
   const Part& pin() const { return model.parts[1]; }
@@ -392,6 +396,68 @@ struct PinSlotSpace::Impl {
     return out;
   }
 
+  // The middle of each free cell of a slice, as witness candidates: the simplest slide, in the
+  // pair's length unit, in the middle half of the cell's slide interval through the cell's
+  // sample (2-D: on the line of the sample's other coordinate; 1-D: the cell itself), and, when
+  // the other part translates, the simplest offset in the middle half of the cell's offset
+  // interval at that slide. The intervals' ends are bounded by their exact isolating intervals;
+  // a candidate is only proposed (connect locates it exactly in both slices).
+  std::vector<std::pair<PartCoordinate, Rational>> middle_candidates(const PinSlotSlice& s, const CSpace& space) const {
+    std::vector<std::pair<PartCoordinate, Rational>> out;
+    auto above = [](const AlgebraicNumber& a) { return a.exact ? a.lower : a.upper; };
+    auto propose = [&](const Rational& lo, const Rational& hi) -> std::optional<Rational> {
+      if (!(lo < hi)) return std::nullopt;   // isolating intervals wider than the cell
+      Rational quarter = (hi - lo) / 4;
+      Rational from = (lo + quarter) / unit, to = (hi - quarter) / unit;
+      from.canonicalize();
+      to.canonicalize();
+      Rational middle = cspace::algebra::simplest_between(from, to) * unit;
+      middle.canonicalize();
+      return middle;
+    };
+    for (const PinSlotCell& c : s.free_cells) {
+      const CSpaceCell& cell = space.cells()[c.slice_cell];
+      if (space.dimension() == 1) {
+        for (const CSpaceFace& face : space.faces(0)) {
+          if (!face.cell.valid() || face.cell.index() != c.slice_cell) continue;
+          const CSpaceChart& chart = space.charts()[face.chart];
+          Rational lo = face.lower.valid() ? above(space.vertices()[face.lower.index()].x) : chart.x_lo;
+          Rational hi = face.upper.valid() ? space.vertices()[face.upper.index()].x.lower : chart.x_hi;
+          if (auto slide = propose(lo, hi)) out.emplace_back(PartCoordinate{}, *slide);
+        }
+        continue;
+      }
+      // the middles of the cell's intervals on the line at `value` of `axis` (in its sample's chart)
+      auto middles = [&](SliceAxis axis, const Rational& value) {
+        std::vector<Rational> found;
+        for (const Slice& line : space.slice(axis, value)) {
+          if (line.chart != cell.sample_chart) continue;
+          for (std::size_t k = 0; k < line.intervals.size(); ++k) {
+            const Slice::Interval& in = line.intervals[k];
+            if (!in.cell.valid() || in.cell.index() != c.slice_cell || in.kind != CellKind::free) continue;
+            Rational lo = k == 0 ? line.lower : above(line.points[k - 1].at);
+            Rational hi = k + 1 == line.intervals.size() ? line.upper : line.points[k].at.lower;
+            if (auto middle = propose(lo, hi)) found.push_back(*middle);
+          }
+        }
+        return found;
+      };
+      const bool other_translates = space.charts()[cell.sample_chart].x_kind == AxisKind::translation;
+      for (const Rational& slide : middles(SliceAxis::x, cell.sample_x)) {
+        out.emplace_back(coordinates(space, cell.sample_chart, cell.sample_x, slide).first, slide);
+        // a translating other part's sample offset is a length too: its middle at that slide,
+        // then the slide's middle at that offset
+        if (other_translates)
+          for (const Rational& offset : middles(SliceAxis::y, slide)) {
+            out.emplace_back(coordinates(space, cell.sample_chart, offset, slide).first, slide);
+            for (const Rational& again : middles(SliceAxis::x, offset))
+              out.emplace_back(coordinates(space, cell.sample_chart, offset, again).first, again);
+          }
+      }
+    }
+    return out;
+  }
+
   // Connections between slices i and j (j = i + 1, or the wrap from the last to the first).
   void connect(std::size_t i, std::size_t j, bool wrap, bool planes) {
     const PinSlotSlice& lo = slices[i];
@@ -413,6 +479,13 @@ struct PinSlotSpace::Impl {
     };
     std::vector<std::pair<PartCoordinate, Rational>> points = candidates(lo);
     for (auto& p : candidates(hi)) points.push_back(p);
+    // A pair drawn tiny or huge: a cell's sample (the simplest rational of the cell in mm) lies
+    // within about 1 mm of a side (10^-100 of a cell at 10^100 mm), where the segment to the
+    // next slice leaves the cell: the film advance x 10^+-100 ... 10^+-300 had 3-4 connections
+    // for 14. Its cells' middles are tried after the samples (ordinary pairs: samples only).
+    if (unit != 1)
+      for (const auto& [slice, space] : {std::pair{&lo, lo_space}, std::pair{&hi, hi_space}})
+        for (auto& p : middle_candidates(*slice, *space)) points.push_back(std::move(p));
     for (const auto& [other_at, slide] : points) {
       ++stats.witness_candidates;
       std::size_t a = cell_index(lo, locate_in(*lo_space, other_at, slide));
@@ -493,6 +566,7 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
   impl->other_kind = other.motion.kind;
   impl->model.name = model.name;
   impl->model.parts = {other, pin};
+  impl->unit = sliced::length_unit(other, pin);
   // slice angles: interior points of n equal angle steps across the limits (or the turn)
   std::size_t n = options.slices ? options.slices : 16;
   double lo = -std::numbers::pi, hi = std::numbers::pi;

@@ -1,0 +1,106 @@
+// Pin-in-slot stacks of a pair drawn tiny or huge (issue 13): the film advance's cam:follower
+// (a rotating driver) and film:follower (a translating part) pairs with every length times
+// 10^k (k = -300 ... 300, two per pair) times a random rational in [1/2, 2) have the same slices (free cells per
+// slice, changes) as at 1 mm and witness at least as many connections, joining at most as many
+// groups; every witness is re-checked: free by the exact overlap oracle at 17 angles along its
+// segment, and located in the cells it names at both ends.
+//
+// Before session 48 (scale48) the witnesses were the cells' samples only (the simplest rational
+// of a cell in mm, within about 1 mm of a side when the cell is 10^100 mm wide): the cam:follower
+// stack had 3-4 connections for 14 at 10^+-100 ... 10^+-300. Now a pair whose length unit is not
+// 1 mm also tries each cell's middle (src/pinslot/pin_slot_space.cpp, middle_candidates).
+#include <hipair/model.hpp>
+#include <hipair/overlap.hpp>
+#include <hipair/pin_slot.hpp>
+
+#include "sliced/critical_angles.hpp"
+#include "test_paths.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <random>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace hipair {
+namespace {
+
+Rational pin_slot_scale_power10(int exponent) {
+  mpz_class p;
+  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(exponent < 0 ? -exponent : exponent));
+  return exponent >= 0 ? Rational(p) : Rational(mpz_class(1), p);
+}
+
+struct PinSlotScaleSummary {
+  std::vector<std::size_t> free_cells;   // per slice
+  std::size_t changes = 0, connections = 0, groups = 0;
+};
+
+PinSlotScaleSummary pin_slot_scale_summary(const PinSlotSpace& space) {
+  PinSlotScaleSummary out;
+  for (const PinSlotSlice& slice : space.slices()) out.free_cells.push_back(slice.free_cells.size());
+  out.changes = space.changes().size();
+  out.connections = space.connections().size();
+  out.groups = space.groups();
+  return out;
+}
+
+// Every witness segment free (the exact oracle at 17 angles, ends included) and in its cells.
+void pin_slot_scale_check_witnesses(const Model& model, const PinSlotSpace& space, const std::string& what) {
+  const Part& other = model.parts[*model.find_part(space.other_part())];
+  const Part& pin = model.parts[*model.find_part(space.pin_slot_part())];
+  for (const PinSlotConnection& c : space.connections()) {
+    ASSERT_EQ(c.kind, PinSlotConnection::Kind::vertical) << what;
+    const Rational lo = space.slices()[c.lower].tau, hi = space.slices()[c.lower + 1].tau;
+    for (int k = 0; k <= 16; ++k) {
+      Rational tau = lo + (hi - lo) * Rational(k, 16);
+      tau.canonicalize();
+      PartOverlap o = part_overlap(other, part_placement(other, c.witness_other), pin,
+                                   pin_slot_placement(pin, c.witness_slide, tau));
+      EXPECT_EQ(o.relation, PartRelation::apart) << what << ": witness of slices " << c.lower << ".." << c.lower + 1
+                                                 << " at tau " << tau;
+    }
+    PinSlotLocation below = space.locate(PinSlotConfiguration{c.witness_other, c.witness_slide, lo});
+    PinSlotLocation above = space.locate(PinSlotConfiguration{c.witness_other, c.witness_slide, hi});
+    EXPECT_EQ(below.cell, c.lower_cell) << what;
+    EXPECT_EQ(above.cell, c.upper_cell) << what;
+  }
+}
+
+TEST(PinSlotScale, StacksOfTinyAndHugePairsWitnessTheirConnections) {
+  const Model film = read_model_file(std::string(HIPAIR_EXAMPLES) + "/film-advance.json");
+  std::mt19937_64 random(4800);
+  std::size_t checked = 0;
+  // (pair, slices, two exponents): the cam's connections need 16 slices
+  for (const auto& [other, pin, slices, exponents] : {std::tuple{"cam", "follower", 16, std::array{-300, 100}},
+                                                     std::tuple{"film", "follower", 6, std::array{-100, 300}}}) {
+    PinSlotBuildOptions options;
+    options.slices = static_cast<std::size_t>(slices);
+    options.refine_steps = 1;
+    const PinSlotScaleSummary expected = pin_slot_scale_summary(PinSlotSpace::build(film, other, pin, options));
+    ASSERT_GT(expected.connections, 0u) << other;
+    for (int exponent : exponents) {
+      // 10^k times a random rational in [1/2, 2) (a factor, not a power of two, of both parts)
+      Rational factor = pin_slot_scale_power10(exponent) * Rational(static_cast<long>(500 + random() % 1500), 1000);
+      factor.canonicalize();
+      Model model = film;
+      for (Part& part : model.parts) part = sliced::scaled_part(part, factor);
+      const std::string what = std::string(other) + ":" + pin + " x 10^" + std::to_string(exponent);
+      PinSlotSpace space = PinSlotSpace::build(model, other, pin, options);
+      PinSlotScaleSummary got = pin_slot_scale_summary(space);
+      EXPECT_EQ(got.free_cells, expected.free_cells) << what;
+      EXPECT_EQ(got.changes, expected.changes) << what;
+      EXPECT_GE(got.connections, expected.connections) << what;
+      EXPECT_LE(got.groups, expected.groups) << what;
+      pin_slot_scale_check_witnesses(model, space, what);
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 4u);
+}
+
+}  // namespace
+}  // namespace hipair
