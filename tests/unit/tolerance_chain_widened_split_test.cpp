@@ -11,11 +11,11 @@
 // position (and near them) and at random vectors must lie inside every band. Mutants run:
 // docs/performance.md "Session 48 (tol48)".
 #include "gear_train_models.hpp"
+#include "tolerance_chain_oracle.hpp"
 
 #include "model/parametric/parametric.hpp"
 #include "tolerance/stage.hpp"
 
-#include <hipair/kinematics.hpp>
 #include <hipair/rational.hpp>
 #include <hipair/tolerance.hpp>
 
@@ -93,29 +93,19 @@ TEST(ChainWidenedSplit, WidenedWholeBoxBandsMetWithTheHalvesHoldTheExactTrain) {
   auto model = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text));
   std::size_t checked = 0;
   for (const std::vector<Rational>& d : distinct) {
-    KinematicsOptions k;
-    k.driver = "gear-A";
-    k.range = range;
-    k.steps_per_cycle = options.positions;
-    k.reversal = false;
-    k.method = SliceMethod::kernels;
-    KinematicsResult exact = analyze_kinematics(model->exact_model(d), k);
-    std::size_t output = static_cast<std::size_t>(std::find(exact.followers.begin(), exact.followers.end(), "gear-I") -
-                                                  exact.followers.begin());
-    ASSERT_LT(output, exact.followers.size());
+    const std::vector<test_chain::TrainSample> exact =
+        test_chain::chain_path(model->exact_model(d), "gear-A", range, "gear-I", options.positions);
     for (const VariationSample& sample : split.samples) {
       if (!bounded(sample)) continue;
-      auto at = std::find_if(exact.samples.begin(), exact.samples.end(),
-                             [&](const KinematicSample& s) { return s.driver == sample.driver; });
-      EXPECT_NE(at, exact.samples.end()) << "driver " << sample.driver;
-      if (at == exact.samples.end()) continue;
-      double value = at->positions.at(output);
-      EXPECT_TRUE(std::isfinite(value));
+      auto at = std::find_if(exact.begin(), exact.end(), [&](const test_chain::TrainSample& s) { return s.driver == sample.driver; });
+      EXPECT_NE(at, exact.end()) << "driver " << sample.driver;
+      if (at == exact.end()) continue;
+      EXPECT_TRUE(std::isfinite(at->output));
       ++checked;
       // (the exact engine's position is the exact root rounded to a double: within an ulp)
-      double ulp = 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::fabs(value));
-      EXPECT_GE(value, sample.certified.lower - ulp) << "driver " << sample.driver;
-      EXPECT_LE(value, sample.certified.upper + ulp) << "driver " << sample.driver;
+      double ulp = 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::fabs(at->output));
+      EXPECT_GE(at->output, sample.certified.lower - ulp) << "driver " << sample.driver;
+      EXPECT_LE(at->output, sample.certified.upper + ulp) << "driver " << sample.driver;
     }
   }
   EXPECT_EQ(checked, distinct.size() * held);
