@@ -56,8 +56,14 @@ TEST(ChainMonotoneDriver, LateMeshBandBoundedThroughTheDriverHoldsTheExactTrain)
   options.range = range;
   ToleranceResult r;
   {
+    // the widened whole box split (session 48) off: the band at the last position is then the
+    // route's own (with it, the meet with its halves', tested in ChainWidenedSplit), and the
+    // test costs what it did before (two split positions, 46 -> 24 s user)
     MonotoneRoute route(1);
+    const int split = tolerance_detail::chain_widened_split();
+    tolerance_detail::chain_widened_split() = 0;
     r = analyze_tolerances_text(text, options);
+    tolerance_detail::chain_widened_split() = split;
   }
   ASSERT_EQ(r.samples.size(), 10u);
   std::size_t held = 0, unbounded = 0;
