@@ -933,6 +933,12 @@ class ChainAnalysis {
       bool have = false;
       Interval band;
       std::size_t used = 0;
+      // A whole box composed only through a widened envelope (a hand-over candidate's spread, far
+      // beyond the linearised width): its band, kept while its halves are composed as for a failed
+      // composition (session 48); both enclose the output over the box, so the band is their meet,
+      // or the whole box's alone where a half fails.
+      std::optional<Interval> whole;
+      std::vector<Interval> whole_charts;
       while (!pending.empty()) {
         Box b = std::move(pending.front());
         pending.pop_front();
@@ -968,6 +974,18 @@ class ChainAnalysis {
             continue;
           }
         }
+        if (composed && !accurate && used == 1 && handover[i].extended && chain_widened_split() != 0) {
+          std::size_t split = widest(b, share[stages_.size() - 1], 0);
+          if (split < n && used + pending.size() + 2 <= max_failure_boxes) {
+            whole = out;
+            whole_charts = charts;
+            auto [left, right] = halves(b, split);
+            pending.push_back(std::move(left));
+            pending.push_back(std::move(right));
+            ++failure_splits;
+            continue;
+          }
+        }
         if (!composed) {
           // A sub-box that cannot be certified (a pair's root not certified over its driver
           // range, its free side not certain, or a competitor possibly holding its follower
@@ -985,11 +1003,21 @@ class ChainAnalysis {
               continue;
             }
           }
-          return;   // the band is unbounded
+          if (!whole) return;   // the band is unbounded
+          have = false;   // the whole box's band stands
+          break;
         }
         band = have ? kernels::hull(band, out) : out;
         for (std::size_t s = 0; s < stages_.size(); ++s) hull_charts[s] = have ? kernels::hull(hull_charts[s], charts[s]) : charts[s];
         have = true;
+      }
+      if (whole) {
+        auto meet = [have](const Interval& kept, const Interval& halves) {
+          Interval both(std::max(kept.lo, halves.lo), std::min(kept.hi, halves.hi));
+          return have && both.lo <= both.hi ? both : kept;
+        };
+        band = meet(*whole, band);
+        for (std::size_t s = 0; s < stages_.size(); ++s) hull_charts[s] = meet(whole_charts[s], hull_charts[s]);
       }
       for (std::size_t s = 0; s < stages_.size(); ++s) per_[i][s].certified_chart = hull_charts[s];
       shared_boxes[i] = shared_splits > 0 ? used : 1;
@@ -1386,6 +1414,11 @@ class ChainAnalysis {
 }  // namespace
 
 int& chain_case_split() {
+  static int on = 1;
+  return on;
+}
+
+int& chain_widened_split() {
   static int on = 1;
   return on;
 }

@@ -144,16 +144,29 @@ bool apart(const Posed& a, const Posed& b) {
   return verify::separated(a.edge, b.edge, [](const Interval& x) { return sign_of(x); });
 }
 
-model_detail::EdgeValue<IntervalJet> lift(const model_detail::EdgeValue<Interval>& e) {
-  auto v = [](const V& p) { return kernels::Vector<IntervalJet>{IntervalJet(p.x), IntervalJet(p.y)}; };
-  model_detail::EdgeValue<IntervalJet> out;
+// A point as a constant jet (every partial derivative 0).
+template <class S>
+kernels::Vector<Jet<S>> lift(const kernels::Vector<S>& p) {
+  return {Jet<S>(p.x), Jet<S>(p.y)};
+}
+
+template <class S>
+model_detail::EdgeValue<Jet<S>> lift(const model_detail::EdgeValue<S>& e) {
+  model_detail::EdgeValue<Jet<S>> out;
   out.arc = e.arc;
   out.ccw = e.ccw;
-  out.source = v(e.source);
-  out.target = v(e.target);
-  out.center = v(e.center);
-  out.radius_squared = IntervalJet(e.radius_squared);
+  out.source = lift(e.source);
+  out.target = lift(e.target);
+  out.center = lift(e.center);
+  out.radius_squared = Jet<S>(e.radius_squared);
   return out;
+}
+
+// x met with y where they meet (both enclose the same quantity; x where they do not, which
+// outward rounding alone cannot cause)
+Interval met(const Interval& x, const Interval& y) {
+  Interval both(std::max(x.lo, y.lo), std::min(x.hi, y.hi));
+  return both.lo <= both.hi ? both : x;
 }
 
 // An arc's angular range for the kernels' validity (curves/pose.cpp arc_sector); an arc not
@@ -335,12 +348,13 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   // coordinate an interval jet (F_v), and as Taylor models in the box's variables, t (variable
   // k) and v (variable k + 1).
   const std::size_t k = parts->variables;
-  auto jet_pose = [&](std::size_t part, const Interval& t, const Interval& y) {
+  // (partials: 1, F's partial in v alone; 2, in v (0) and the driver's chart t (1))
+  auto jet_pose = [&](std::size_t part, const Interval& t, const Interval& y, std::size_t partials) {
     const model_detail::PartGeometry<Interval>& g = geometry_of(part);
-    kernels::Vector<IntervalJet> pivot{IntervalJet(g.pivot.x), IntervalJet(g.pivot.y)};
-    kernels::Vector<IntervalJet> direction{IntervalJet(g.direction.x), IntervalJet(g.direction.y)};
-    IntervalJet chart = part == fixed_part_ ? IntervalJet(t) : IntervalJet::variable(y, 0, 1);
-    return pose_of(m.parts[part].motion, pivot, direction, chart, half(part));
+    IntervalJet chart = part != fixed_part_ ? IntervalJet::variable(y, 0, partials)
+                        : partials == 2     ? IntervalJet::variable(t, 1, 2)
+                                            : IntervalJet(t);
+    return pose_of(m.parts[part].motion, lift(g.pivot), lift(g.direction), chart, half(part));
   };
   auto taylor_geometry = [&](std::size_t part) -> const model_detail::PartGeometry<TaylorModel1>& {
     return part == fixed_part_ ? parts->fixed_taylor : parts->free_taylor;
@@ -377,22 +391,52 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     TaylorModel1 chart = part == fixed_part_ ? t.model : TaylorModel1::over(y.lo, y.hi, k + 1);
     return pose_of(m.parts[part].motion, g.pivot, g.direction, chart, half(part));
   };
+  // F of a feature pair over box x t x y (interval jets) and its partial derivatives there, in v
+  // and (partials 2) in the driver's chart t. Where a partial's sign is not certain, it is met
+  // with the same partial as a Taylor-model jet (session 48: the parts' first-order Taylor
+  // models, t as in taylor_pose, v variable k + 1): over a 100-parameter box the interval jet
+  // loses the parameters' correlation (a gear's module moves every flank of it together), and
+  // the holder's free side, a candidate's F_v or F_t are then not certain where the Taylor
+  // model's are.
+  struct Partials {
+    Interval f, f_v, f_t;
+  };
+  auto partials_of = [&](const CurveSlice& c, const Driver& t, const Interval& y, std::size_t partials) {
+    IntervalJet plain = contact_function(lift(edge_of(geometry_of(c.first.part), c.first)), c.first,
+                                         jet_pose(c.first.part, t.t, y, partials), lift(edge_of(geometry_of(c.second.part), c.second)),
+                                         c.second, jet_pose(c.second.part, t.t, y, partials));
+    Partials out{plain.value, plain.partial(0), plain.partial(1)};
+    const bool undecided = sign_of(out.f_v) == 0 || (partials == 2 && sign_of(out.f_t) == 0);
+    if (!undecided || !parts->taylor || handover_taylor_partials() == 0) return out;
+    auto pose = [&](std::size_t part) {
+      const model_detail::PartGeometry<TaylorModel1>& g = taylor_geometry(part);
+      TaylorJet chart = part != fixed_part_ ? TaylorJet::variable(TaylorModel1::over(y.lo, y.hi, k + 1), 0, partials)
+                        : partials == 2     ? TaylorJet::variable(t.model, 1, 2)
+                                            : TaylorJet(t.model);
+      return pose_of(m.parts[part].motion, lift(g.pivot), lift(g.direction), chart, half(part));
+    };
+    try {
+      TaylorJet f = contact_function(lift(edge_of(taylor_geometry(c.first.part), c.first)), c.first, pose(c.first.part),
+                                     lift(edge_of(taylor_geometry(c.second.part), c.second)), c.second, pose(c.second.part));
+      out.f_v = met(out.f_v, f.partial(0).range());
+      if (partials == 2) out.f_t = met(out.f_t, f.partial(1).range());
+    } catch (const NumericError&) {
+    }
+    return out;
+  };
   // F of a feature pair over box x t x y (its Taylor model's range met with the interval
   // enclosure) and F_v there.
   struct Value {
     Interval f, f_v;
   };
   auto contact = [&](const CurveSlice& c, const Driver& t, const Interval& y) {
-    IntervalJet plain = contact_function(lift(edge_of(geometry_of(c.first.part), c.first)), c.first, jet_pose(c.first.part, t.t, y),
-                                         lift(edge_of(geometry_of(c.second.part), c.second)), c.second, jet_pose(c.second.part, t.t, y));
-    Value out{plain.value, plain.partial(0)};
+    Partials plain = partials_of(c, t, y, 1);
+    Value out{plain.f, plain.f_v};
     if (!parts->taylor) return out;
     try {
-      Interval r = contact_function(taylor_geometry(c.first.part), c.first, taylor_pose(c.first.part, t, y),
-                                    taylor_geometry(c.second.part), c.second, taylor_pose(c.second.part, t, y))
-                       .range();
-      Interval both(std::max(r.lo, out.f.lo), std::min(r.hi, out.f.hi));
-      if (both.lo <= both.hi) out.f = both;
+      out.f = met(out.f, contact_function(taylor_geometry(c.first.part), c.first, taylor_pose(c.first.part, t, y),
+                                          taylor_geometry(c.second.part), c.second, taylor_pose(c.second.part, t, y))
+                             .range());
     } catch (const NumericError&) {
     }
     return out;
@@ -430,7 +474,7 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   // 0. The holder's free side: F_v's sign over box x T x Y, certain over each piece of T x Y
   // (each halved up to three times where undecided) and the same on all.
   auto slope_sign = [&](const Interval& t, const Interval& y, int depth, auto& self) -> int {
-    int s = sign_of(contact(curve, plain_driver(t), y).f_v);
+    int s = sign_of(partials_of(curve, plain_driver(t), y, 1).f_v);
     if (s != 0 || depth == 0) return s;
     double tm = centre(t), ym = centre(y);
     std::vector<Interval> ts{t}, ys{y};
@@ -774,25 +818,10 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     bool nominal_inside = true;
     for (std::size_t q = 0; q < box.lo.size(); ++q)
       nominal_inside = nominal_inside && box.lo[q] <= 0.0 && 0.0 <= box.hi[q];
-    // F over box x t x y as an interval jet in v (partial 0) and t (partial 1)
-    auto driver_jet = [&](const CurveSlice& c, const Interval& t, const Interval& y) {
-      auto pose2 = [&](std::size_t part) {
-        const model_detail::PartGeometry<Interval>& g = geometry_of(part);
-        kernels::Vector<IntervalJet> pivot{IntervalJet(g.pivot.x), IntervalJet(g.pivot.y)};
-        kernels::Vector<IntervalJet> direction{IntervalJet(g.direction.x),
-                                               IntervalJet(g.direction.y)};
-        IntervalJet chart =
-            part == fixed_part_ ? IntervalJet::variable(t, 1, 2) : IntervalJet::variable(y, 0, 2);
-        return pose_of(m.parts[part].motion, pivot, direction, chart, half(part));
-      };
-      return contact_function(
-          lift(edge_of(geometry_of(c.first.part), c.first)), c.first, pose2(c.first.part),
-          lift(edge_of(geometry_of(c.second.part), c.second)), c.second, pose2(c.second.part));
-    };
     int s_t = 0;
     if (nominal_inside) {
       try {
-        s_t = sign_of(driver_jet(curve, fixed, holder).partial(1));
+        s_t = sign_of(partials_of(curve, plain_driver(fixed), holder, 2).f_t);
       } catch (const Error&) {
       }
     }
@@ -850,8 +879,7 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
                         [&](double v) { return sign_of(contact(c, d, Interval::point(v)).f); })) ||
                    off_features(c, d, y);
         if (out.done) return out;
-        IntervalJet jet = driver_jet(c, t, y);
-        Interval f_t = jet.partial(1);
+        Interval f_t = partials_of(c, d, y, 2).f_t;
         out.done = sign_of(f_t) == s_t;
         auto magnitude = [](const Interval& x) {
           return std::max(std::fabs(x.lo), std::fabs(x.hi));
@@ -943,6 +971,11 @@ int& handover_monotone_driver() {
 }
 
 int& handover_sub_box_anchor() {
+  static int on = 1;
+  return on;
+}
+
+int& handover_taylor_partials() {
   static int on = 1;
   return on;
 }

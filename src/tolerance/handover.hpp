@@ -147,6 +147,11 @@ int& handover_monotone_driver();
 /// nominal vector (handover.cpp, 0b); 0 walks it as before (unsound: a mutant for tests).
 int& handover_sub_box_anchor();
 
+/// Tests and measurements only (session 48): 1 (unless changed) meets an undecided partial
+/// derivative of a contact function (F_v, F_t) with its Taylor-model jet's (handover.cpp,
+/// partials_of); 0 uses the interval jets' alone, as before (sound, wider).
+int& handover_taylor_partials();
+
 /// The candidates' search for one pair of the chain (one per pair: its parts are fixed).
 class HandoverSearch {
  public:

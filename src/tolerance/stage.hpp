@@ -131,6 +131,11 @@ std::size_t& chain_memo_entries();
 /// gives the composition without it (tests compare the two).
 int& chain_case_split();
 
+/// Where the whole box composes only through a widened hand-over envelope, beyond the
+/// linearised width: its halves composed too and the band the meet of both (chain.cpp; session
+/// 48): 1 (on) unless changed; 0 accepts the whole box's band as before (tests compare the two).
+int& chain_widened_split();
+
 /// The analysis of an assembly chain (ToleranceOptions::chain; chain.cpp).
 ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options, const ChainPaths& paths = {});
 

@@ -6,6 +6,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 namespace hipair::test_gears {
 
@@ -29,6 +30,23 @@ inline std::string scaled(const std::string& text, double scale) {
   nlohmann::json j = nlohmann::json::parse(text);
   for (auto& [name, body] : j["parameters"].items())
     if (body.contains("tolerance")) body["tolerance"] = body["tolerance"].get<double>() * scale;
+  return j.dump();
+}
+
+/// `text` with each parameter named in `names` negated: its nominal value is the old one's
+/// negative and every feature value naming it names its negative instead (the same mechanism; a
+/// symmetric tolerance box, its halves along those parameters swapped).
+inline std::string mirrored(const std::string& text, const std::vector<std::string>& names) {
+  nlohmann::json j = nlohmann::json::parse(text);
+  for (const std::string& name : names) {
+    nlohmann::json& nominal = j["parameters"][name]["nominal"];
+    nominal = nominal.is_number() ? nlohmann::json(-nominal.get<double>()) : nlohmann::json("-" + nominal.get<std::string>());
+    for (auto& part : j["parts"])
+      for (auto& feature : part["features"])
+        for (auto& [kind, body] : feature.items())
+          for (auto& [key, value] : body.items())
+            if (value.is_string() && value.get<std::string>() == name) value = "-" + name;
+  }
   return j.dump();
 }
 

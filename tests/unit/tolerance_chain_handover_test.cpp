@@ -137,6 +137,25 @@ TEST(ToleranceChainHandover, ExactTrainAtATeethHandOverStaysInTheCertifiedBand) 
   RecordProperty("bounded_checks", static_cast<int>(c.bounded));
 }
 
+// The same hand-over with gear A's three toleranced parameters negated (test_gears::mirrored: the
+// same mechanism and box, each parameter's halves swapped). Where the whole box composes only
+// through the widened envelope it is split and its band met with its halves' (session 48,
+// chain.cpp): here the extreme that the hand-over reaches lies in the other half than in the
+// test above, so that together they catch a meet that drops either half (docs/performance.md
+// "Session 48 (tol48)", tol48b).
+TEST(ToleranceChainHandover, ExactTrainAtTheMirroredHandOverStaysInTheCertifiedBand) {
+  std::string text = test_gears::mirrored(handover_model(), {"A-pitch-radius", "A-flank-radius", "A-pressure-angle"});
+  ToleranceResult result = analyze_tolerances_text(text, pair_options(Rational(16, 100), Rational(19, 100), 2000));
+  ASSERT_EQ(result.chain.size(), 1u);
+  EXPECT_NEAR(result.samples.front().nominal,
+              analyze_tolerances_text(handover_model(), pair_options(Rational(16, 100), Rational(19, 100), 2000)).samples.front().nominal,
+              1e-12);
+  Check c = check_band(text, result, Path{Rational(16, 100), 2000}, 1, 7);
+  std::cout << "[ handover ] mirrored: " << c.bounded << " exact checks in bounded bands\n";
+  EXPECT_GE(c.bounded, 20u);
+  EXPECT_EQ(c.outside, 0u);
+}
+
 // The gap the envelope closes, shown by the same oracle: the holder's band alone (the user's
 // --assume-nominal-contact, and the named mutation of the envelope) is left by the exact train at
 // the hand-over, and the result says what that band assumes.
