@@ -17,26 +17,14 @@ A false certificate accepted (exit 0) is a finding; so is a true one rejected wh
 still holds (for a clearance: any true one; for an interference: a true one, the point being the
 witness).  Any exit other than 0/1/3 or more than one line of output is a finding.
 usage: certificate_alterations.py HIPAIR HIPAIR_VERIFY REPO OUTDIR SEED N_CONFIGURATIONS"""
-import copy, json, os, random, subprocess, sys
+import copy, decimal, json, os, random, subprocess, sys
 from fractions import Fraction as F
 
-import decimal
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from exact_oracle import two_atan, decimal_text, claim_number, bisect, altered_numbers
 
 hipair, verify, repo, outdir, seed, n = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), int(sys.argv[6])
 rng = random.Random(seed)
-decimal.getcontext().prec = 80
-
-
-def two_atan(t):
-    """2 atan(t) for a rational |t| < 1 as a Decimal of 80 digits (its series, |error| < 10^-75)"""
-    x = decimal.Decimal(t.numerator) / decimal.Decimal(t.denominator)
-    assert abs(x) < 1
-    total, power, k = decimal.Decimal(0), x, 0
-    while abs(power) > decimal.Decimal(10) ** -78:
-        total += power / (2 * k + 1) * (-1 if k % 2 else 1)
-        power *= x * x
-        k += 1
-    return 2 * total
 
 os.makedirs(outdir, exist_ok=True)
 
@@ -224,25 +212,6 @@ def angle_holds(conf):
     return diff <= 0
 
 
-def decimal_text(v, digits):
-    """v to `digits` significant digits, without trailing zeros or an exponent"""
-    ctx = decimal.Context(prec=digits, rounding=decimal.ROUND_HALF_EVEN)
-    d = ctx.divide(decimal.Decimal(v.numerator), decimal.Decimal(v.denominator))
-    text = format(d, 'f')
-    if '.' in text:
-        text = text.rstrip('0').rstrip('.')
-    return '0' if text in ('-0', '') else text
-
-
-def claim_number(v):
-    for digits in (12, 25):
-        text = decimal_text(v, digits)
-        if F(text) == v:
-            return text
-    return str(v)
-
-
-
 # ---- the pairs: how a certificate's numbers pose the parts ----------------------------------
 # lever-stop.json: rotating claims `interference` / `clearance`, the lever's half-angle tangent
 # peg-in-hole.json: 3-DOF claims `planar_interference` / `planar_clearance`, the peg's pose
@@ -340,14 +309,6 @@ def with_value(pair, cert, path, value, restate_angle=False):
     return t
 
 
-def bisect(holds, good, bad, steps=60):
-    """the last value for which holds() is true and the first for which it is not, 2^-steps apart"""
-    for _ in range(steps):
-        mid = (good + bad) / 2
-        good, bad = (mid, bad) if holds(mid) else (good, mid)
-    return good, bad
-
-
 def alterations(pair, cert):
     """(what, altered certificate) for each number of the claim, the statement restated"""
     claim = cert['claim']
@@ -358,16 +319,8 @@ def alterations(pair, cert):
     leaves += [('point', 0), ('point', 1)] if 'point' in body else [('distance',)]
     out = []
     for path in leaves:
-        v = node_of(body, path)[path[-1]]
-        f = F(v)
-        cands = [('sign', -f), ('+1/den', f + F(1, f.denominator)), ('-1/den', f - F(1, f.denominator))]
-        if v[-1].isdigit():
-            cands.append(('last digit', F(v[:-1] + str((int(v[-1]) + rng.choice([1, 9])) % 10))))
-        k = rng.randrange(3, 20)
-        cands.append(('x(1+1e-%d)' % k, f * (1 + F(1, 10 ** k))))
-        for what, nv in cands:
-            if nv != f:
-                out.append(('%s %s' % ('/'.join(map(str, path)), what), with_value(pair, cert, path, nv)))
+        for what, nv in altered_numbers(rng, node_of(body, path)[path[-1]]):
+            out.append(('%s %s' % ('/'.join(map(str, path)), what), with_value(pair, cert, path, nv)))
     # numbers moved across a tangency: the last true value and the first false one
     if 'distance' in body:
         lo, hi = bisect(lambda d: truth(pair, with_value(pair, cert, ('distance',), d)) is True,
