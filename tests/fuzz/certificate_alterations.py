@@ -21,7 +21,7 @@ import copy, decimal, json, os, random, subprocess, sys
 from fractions import Fraction as F
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from exact_oracle import two_atan, decimal_text, claim_number, bisect, altered_numbers
+from exact_oracle import two_atan, decimal_text, claim_number, bisect, altered_numbers, judged
 
 hipair, verify, repo, outdir, seed, n = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), int(sys.argv[6])
 rng = random.Random(seed)
@@ -387,28 +387,13 @@ for case in range(n):
         print('case %d: the oracle restates %r as %r' % (case, cert['statement'], pair.statement(cert)))
         findings += 1
     for what, altered in alterations(pair, cert):
-        path = os.path.join(outdir, 'c%d.json' % case)
-        json.dump(altered, open(path, 'w'))
-        r = subprocess.run([verify, path, model], capture_output=True, text=True, timeout=120)
-        text = (r.stdout + r.stderr).strip()
         true = truth(pair, altered)
-        problems = []
-        if r.returncode not in (0, 1, 3) or len(text.splitlines()) != 1:
-            problems.append('exit %d, %d lines' % (r.returncode, len(text.splitlines())))
-        if true is None:
-            counts['undecided'] += 1
-        elif r.returncode == 0 and not true:
-            problems.append('a FALSE certificate accepted')
-        elif r.returncode != 0 and true:
-            counts['true rejected'] += 1
+        problems, code, text = judged(verify, os.path.join(outdir, 'c%d.json' % case), model, altered, true, counts)
+        if code != 0 and true:
             # a true claim the verifier cannot prove (its witness within its margins): reported
             print('note: case %d (%s %s) %s: true, rejected: %s' % (case, pair.model, kind, what, text[:200]), flush=True)
-        elif true:
-            counts['true accepted'] += 1
-        else:
-            counts['false rejected'] += 1
         if os.environ.get('ALTERATIONS_VERBOSE'):
-            print('  %s %s: %s -> exit %d' % (kind, what, true, r.returncode))
+            print('  %s %s: %s -> exit %d' % (kind, what, true, code))
         if problems:
             findings += 1
             print('case %d (%s %s, %s) %s: %s: %s' % (case, pair.model, kind, ' '.join(at), what, problems, text[:200]), flush=True)

@@ -2,7 +2,7 @@
 motion_certificate_alterations.py; sessions 47-48): Python fractions and 80-digit decimals, no
 code of the library or the verifier.  A decimal result is within 10^-75 of the true value; a
 comparison closer than 10^-70 is left undecided (None) by its callers."""
-import decimal
+import decimal, json, subprocess
 from fractions import Fraction as F
 
 decimal.getcontext().prec = 80
@@ -97,3 +97,26 @@ def altered_numbers(rng, text):
     k = rng.randrange(3, 20)
     cands.append(('x(1+1e-%d)' % k, f * (1 + F(1, 10 ** k))))
     return [(what, v) for what, v in cands if v != f]
+
+
+def judged(verify, path, model, certificate, true, counts):
+    """writes the certificate to `path`, runs hipair-verify on it and counts its verdict against the
+    truth (True, False or None: undecided) in `counts`; returns (problems, exit code, output): a
+    false certificate accepted, or an exit other than 0/1/3 or more than one line, is a problem"""
+    json.dump(certificate, open(path, 'w'))
+    r = subprocess.run([verify, path, model], capture_output=True, text=True, timeout=120)
+    text = (r.stdout + r.stderr).strip()
+    problems = []
+    if r.returncode not in (0, 1, 3) or len(text.splitlines()) != 1:
+        problems.append('exit %d, %d lines' % (r.returncode, len(text.splitlines())))
+    if true is None:
+        counts['undecided'] += 1
+    elif r.returncode == 0 and not true:
+        problems.append('a FALSE certificate accepted')
+    elif r.returncode != 0 and true:
+        counts['true rejected'] += 1
+    elif true:
+        counts['true accepted'] += 1
+    else:
+        counts['false rejected'] += 1
+    return problems, r.returncode, text

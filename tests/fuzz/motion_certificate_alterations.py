@@ -36,7 +36,7 @@ import copy, json, os, random, subprocess, sys
 from fractions import Fraction as F
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from exact_oracle import D, atan, PI, sin_cos, compare, dec, claim_number, bisect, rational_near, altered_numbers
+from exact_oracle import D, atan, PI, sin_cos, compare, dec, claim_number, bisect, rational_near, altered_numbers, judged
 
 hipair, verify, repo, outdir, seed, n = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), int(sys.argv[6])
 rng = random.Random(seed)
@@ -218,26 +218,10 @@ for case in range(n):
         print('case %d: the oracle restates %r as %r' % (case, cert['statement'], statement(cert)))
         findings += 1
     for what, altered in alterations(cert):
-        path = os.path.join(outdir, 'c%d.json' % case)
-        json.dump(altered, open(path, 'w'))
-        r = subprocess.run([verify, path, model], capture_output=True, text=True, timeout=120)
-        text = (r.stdout + r.stderr).strip()
         true = truth(altered)
-        problems = []
-        if r.returncode not in (0, 1, 3) or len(text.splitlines()) != 1:
-            problems.append('exit %d, %d lines' % (r.returncode, len(text.splitlines())))
-        if true is None:
-            counts['undecided'] += 1
-        elif r.returncode == 0 and not true:
-            problems.append('a FALSE certificate accepted')
-        elif r.returncode != 0 and true:
-            counts['true rejected'] += 1
-        elif true:
-            counts['true accepted'] += 1
-        else:
-            counts['false rejected'] += 1
+        problems, code, text = judged(verify, os.path.join(outdir, 'c%d.json' % case), model, altered, true, counts)
         if os.environ.get('ALTERATIONS_VERBOSE'):
-            print('  %s %s: %s -> exit %d %s' % (kind, what, true, r.returncode, text[:150]))
+            print('  %s %s: %s -> exit %d %s' % (kind, what, true, code, text[:150]))
         if problems:
             findings += 1
             print('case %d (%s %s) %s: %s: %s' % (case, kind, ' '.join(args), what, problems, text[:200]), flush=True)
