@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Session 47 (hunt47): certificates with altered numbers against hipair-verify, with an oracle of
-its own.  lever-stop.json (a lever of two segments and two arcs turning about (0, 0) against a
+its own (session 48, hunt48: also film-advance.json's pin-slot claims, the film against the
+follower posed by slide and tangent, and the part and geometry helpers in exact_planar.py /
+exact_oracle.py).  lever-stop.json (a lever of two segments and two arcs turning about (0, 0) against a
 fixed rectangular stop) is certified at generated lever angles on both sides of its contact with
 the stop (`hipair certify --claim interference` and `--claim clearance`); then each number of the
 claim is altered in turn (the last digit, the sign, moved by 1/den, and for a clearance the
@@ -21,7 +23,8 @@ import copy, decimal, json, os, random, subprocess, sys
 from fractions import Fraction as F
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from exact_oracle import two_atan, decimal_text, claim_number, bisect, altered_numbers, judged
+from exact_planar import sgn, sign_q, posed, cross, sub, dot, in_span, locate, segments_meet, parts_apart_by, shifted
+from exact_oracle import PI, two_atan, decimal_text, claim_number, bisect, altered_numbers, judged
 
 hipair, verify, repo, outdir, seed, n = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), int(sys.argv[6])
 rng = random.Random(seed)
@@ -36,169 +39,6 @@ LEVER = [('s', (F(0), -W / 2), (L, -W / 2)), ('a', (L, -W / 2), (L, W / 2), (L, 
 y0 = W / 2 + G
 STOP = [('s', (F(20), y0), (F(40), y0)), ('s', (F(40), y0), (F(40), y0 + 10)),
         ('s', (F(40), y0 + 10), (F(20), y0 + 10)), ('s', (F(20), y0 + 10), (F(20), y0))]
-
-
-def sgn(x):
-    return (x > 0) - (x < 0)
-
-
-def sign_q(a, b, d):
-    """sign of a + b sqrt(d), d >= 0, exactly"""
-    if d == 0 or b == 0:
-        return sgn(a)
-    sa, sb = sgn(a), sgn(b)
-    if sa == 0 or sa == sb:
-        return sb if sa == 0 else sa
-    return sa * sgn(a * a - b * b * d)
-
-
-def posed(edges, t):
-    c, s = (1 - t * t) / (1 + t * t), 2 * t / (1 + t * t)
-    rot = lambda p: (c * p[0] - s * p[1], s * p[0] + c * p[1])
-    return [tuple([e[0]] + [rot(p) for p in e[1:]]) for e in edges]
-
-
-def cross(a, b):
-    return a[0] * b[1] - a[1] * b[0]
-
-
-def sub(a, b):
-    return (a[0] - b[0], a[1] - b[1])
-
-
-def dot(a, b):
-    return a[0] * b[0] + a[1] * b[1]
-
-
-def in_span(e, qa, qb, d):
-    """is the circle point c + (qa[0] + qa[1] sqrt d, qb[0] + qb[1] sqrt d) on the ccw arc e (ends included)?"""
-    _, p, q, c = e
-    s, t = sub(p, c), sub(q, c)
-    # cross(s, v) and cross(v, t) for v = (vx, vy) with components a + b sqrt(d)
-    cs = sign_q(s[0] * qb[0] - s[1] * qa[0], s[0] * qb[1] - s[1] * qa[1], d)
-    ct = sign_q(qa[0] * t[1] - qb[0] * t[0], qa[1] * t[1] - qb[1] * t[0], d)
-    if cross(s, t) > 0 or (cross(s, t) == 0 and dot(s, t) < 0 and False):
-        return cs >= 0 and ct >= 0
-    return cs >= 0 or ct >= 0
-
-
-def locate(edges, p):
-    """'inside', 'outside', 'boundary' or None (the ray meets a vertex: undecided) for one loop"""
-    px, py = p
-    crossings = 0
-    for e in edges:
-        a, b = e[1], e[2]
-        if e[0] == 's':
-            if cross(sub(b, a), sub(p, a)) == 0 and min(a[0], b[0]) <= px <= max(a[0], b[0]) and \
-                    min(a[1], b[1]) <= py <= max(a[1], b[1]):
-                return 'boundary'
-        else:
-            c = e[3]
-            r2 = dot(sub(a, c), sub(a, c))
-            if dot(sub(p, c), sub(p, c)) == r2 and in_span(e, (p[0] - c[0], F(0)), (p[1] - c[1], F(0)), F(0)):
-                return 'boundary'
-        if a[1] == py or b[1] == py:
-            return None
-        if e[0] == 's':
-            if (a[1] < py) != (b[1] < py):
-                x = a[0] + (py - a[1]) * (b[0] - a[0]) / (b[1] - a[1])
-                crossings += x > px
-        else:
-            c = e[3]
-            r2 = dot(sub(a, c), sub(a, c))
-            d = r2 - (py - c[1]) ** 2
-            if d < 0:
-                continue
-            if d == 0:
-                return None
-            for s in (1, -1):   # x = c.x + s sqrt(d)
-                if sign_q(c[0] - px, F(s), d) > 0 and in_span(e, (F(0), F(s)), (py - c[1], F(0)), d):
-                    crossings += 1
-    return 'inside' if crossings % 2 else 'outside'
-
-
-def point_segment_at_least(p, a, b, dist2):
-    ab, ap = sub(b, a), sub(p, a)
-    u = dot(ap, ab)
-    n2 = dot(ab, ab)
-    if u <= 0:
-        return dot(ap, ap) >= dist2
-    if u >= n2:
-        bp = sub(p, b)
-        return dot(bp, bp) >= dist2
-    return cross(ab, ap) ** 2 >= dist2 * n2
-
-
-def segments_meet(a, b, c, d):
-    o = lambda p, q, r: sgn(cross(sub(q, p), sub(r, p)))
-    o1, o2, o3, o4 = o(a, b, c), o(a, b, d), o(c, d, a), o(c, d, b)
-    if o1 != o2 and o3 != o4 and o1 * o2 <= 0 and o3 * o4 <= 0:
-        return True
-    on = lambda p, q, r: min(p[0], q[0]) <= r[0] <= max(p[0], q[0]) and min(p[1], q[1]) <= r[1] <= max(p[1], q[1])
-    return (o1 == 0 and on(a, b, c)) or (o2 == 0 and on(a, b, d)) or (o3 == 0 and on(c, d, a)) or (o4 == 0 and on(c, d, b))
-
-
-def point_arc_at_least(p, e, d):
-    _, a, b, c = e
-    r2 = dot(sub(a, c), sub(a, c))
-    v = sub(p, c)
-    if in_span(e, (v[0], F(0)), (v[1], F(0)), F(0)):
-        # | |v| - r | >= d  <=>  |v| >= r + d  or  |v| <= r - d   (r = sqrt(r2))
-        v2 = dot(v, v)
-        # |v| >= r + d  <=>  v2 - r2 - d^2 >= 2 d sqrt(r2)
-        if sign_q(v2 - r2 - d * d, -2 * d, r2) >= 0:
-            return True
-        # |v| <= r - d  <=>  r >= d and r2 + d^2 - v2 >= 2 d r... (r - d)^2 >= v2 with r >= d
-        return sign_q(F(0) - d, F(1), r2) >= 0 and sign_q(r2 + d * d - v2, -2 * d, r2) >= 0
-    return all(dot(sub(p, q), sub(p, q)) >= d * d for q in (a, b))
-
-
-def segment_arc_at_least(s, e, d):
-    p, q = s[1], s[2]
-    if not (point_arc_at_least(p, e, d) and point_arc_at_least(q, e, d)):
-        return False
-    if not all(point_segment_at_least(x, p, q, d * d) for x in (e[1], e[2])):
-        return False
-    _, a, b, c = e
-    r2 = dot(sub(a, c), sub(a, c))
-    pq, pc = sub(q, p), sub(c, p)
-    n2 = dot(pq, pq)
-    u = F(dot(pc, pq), n2)
-    if 0 < u < 1:
-        f = (p[0] + u * pq[0], p[1] + u * pq[1])
-        v = sub(f, c)
-        if in_span(e, (v[0], F(0)), (v[1], F(0)), F(0)) and dot(v, v) >= r2:
-            if sign_q(dot(v, v) - r2 - d * d, -2 * d, r2) < 0:
-                return False
-    # the segment meets the arc: |p + s pq - c|^2 = r2, s in [0, 1], the point on the arc
-    A, B, C = n2, -2 * dot(pc, pq), dot(pc, pc) - r2
-    disc = B * B - 4 * A * C
-    if disc >= 0:
-        for k in (1, -1):   # s = (-B + k sqrt(disc)) / 2A
-            if sign_q(-B, F(k), disc) >= 0 and sign_q(-B - 2 * A, F(k), disc) <= 0:
-                qa = (p[0] - c[0] + pq[0] * (-B) / (2 * A), pq[0] * k / (2 * A))
-                qb = (p[1] - c[1] + pq[1] * (-B) / (2 * A), pq[1] * k / (2 * A))
-                if in_span(e, qa, qb, disc):
-                    return False
-    return True
-
-
-def parts_apart_by(first, second, d):
-    """every boundary point of `first` at least d from every boundary point of `second`, and
-    neither part inside the other (d > 0); arcs only in `first`"""
-    if d <= 0:
-        return False
-    for e in first:
-        for s in second:
-            if e[0] == 's':
-                if segments_meet(e[1], e[2], s[1], s[2]):
-                    return False
-                if not all(point_segment_at_least(x, s[1], s[2], d * d) for x in (e[1], e[2])) or \
-                        not all(point_segment_at_least(x, e[1], e[2], d * d) for x in (s[1], s[2])):
-                    return False
-            elif not segment_arc_at_least(s, e, d):
-                return False
-    return locate(second, first[0][1]) == 'outside' and locate(first, second[0][1]) == 'outside'
 
 
 def angle_holds(conf):
@@ -222,10 +62,6 @@ def square(h, x0=F(0), y0=F(0)):
     return [('s', c[i], c[(i + 1) % 4]) for i in range(4)]
 PLATE = square(F(9)) + square(HOLE / 2)
 PEG = square(PEG_SIDE / 2)
-
-
-def shifted(edges, x, y):
-    return [tuple([e[0]] + [(p[0] + x, p[1] + y) for p in e[1:]]) for e in edges]
 
 
 class Lever:
@@ -279,6 +115,77 @@ class Peg:
         return words + (' overlap.' if claim == 'planar_interference' else ' are at least %s mm apart.' % claim_number(F(c['distance'])))
 
 
+# film-advance.json: pin-slot claims `planar_interference` / `planar_clearance` of the film
+# (translating along y by its offset) against the follower posed by its slide s and half-angle
+# tangent t: body point q goes to pivot + R(q - pivot) + s R (0, 1), pivot (0, 40); the slide within
+# [-6, 6] mm, the angle within [-8, 8] deg, the film's offset within [-20, 5] mm (the model's limits)
+def model_loops(path, part):
+    """the part's loops as lists of segments, its parameters' nominal values put in exactly"""
+    import re
+    m = json.load(open(path))
+    names = sorted(m['parameters'], key=len, reverse=True)
+    values = {k: F(str(v['nominal'])) for k, v in m['parameters'].items()}
+    def num(x):
+        if not isinstance(x, str):
+            return F(str(x))
+        text = x
+        for i, k in enumerate(names):
+            text = text.replace(k, '_p%d' % i)
+        text = re.sub(r'(?<![_\w])(\d+(\.\d+)?)', r"F('\1')", text)
+        return eval(text, {'F': F}, {'_p%d' % i: values[k] for i, k in enumerate(names)})
+    loops = []
+    for loop in next(q for q in m['parts'] if q['name'] == part)['loops']:
+        points = [tuple(map(num, loop['start']))] + [tuple(map(num, e['line_to'])) for e in loop['edges']]
+        loops.append([('s', points[i], points[i + 1]) for i in range(len(points) - 1)])
+    return loops
+
+
+class Film:
+    model = 'examples/models/film-advance.json'
+    kinds = ('interference', 'clearance')
+    def __init__(self):
+        path = os.path.join(repo, self.model)
+        self.film, self.follower = model_loops(path, 'film'), model_loops(path, 'follower')
+    def random_at(self, kind):
+        # the claw (body x 14..20, y -13..-11) turned about (0, 40) reaches the film's perforations
+        # (x 20.5..21.5) at a few degrees: both claims occur
+        return ['--pair', 'film:follower', '--at', 'follower=%r,%rdeg' % (rng.uniform(-5.5, 5.5), rng.uniform(-7.5, 7.5)),
+                '--at', 'film=%r' % rng.uniform(-19, 4)]
+    def coordinates(self, cert):
+        return {'slide': ('pose', 'slide'), 'tangent': ('pose', 'tangent'), 'offset': ('configuration', 'film', 'offset')}
+    def posed_parts(self, cert):
+        c = cert[cert['claim']]
+        s, t, o = F(c['pose']['slide']), F(c['pose']['tangent']), F(c['configuration']['film']['offset'])
+        cos, sin = (1 - t * t) / (1 + t * t), 2 * t / (1 + t * t)
+        # pivot + R (q - pivot) + s R (0, 1) = R (q + (0, s - 40)) + (0, 40)
+        place = lambda q: (cos * q[0] - sin * (q[1] + s - 40), sin * q[0] + cos * (q[1] + s - 40) + 40)
+        follower = [[('s', place(e[1]), place(e[2])) for e in loop] for loop in self.follower]
+        film = [[('s', (e[1][0], e[1][1] + o), (e[2][0], e[2][1] + o)) for e in loop] for loop in self.film]
+        return film, follower
+    def parts(self, cert):
+        film, follower = self.posed_parts(cert)
+        return [e for loop in film for e in loop], [e for loop in follower for e in loop]
+    def loop_starts(self, cert):
+        film, follower = self.posed_parts(cert)
+        return [loop[0][1] for loop in film], [loop[0][1] for loop in follower]
+    def angle_ok(self, cert):
+        c = cert[cert['claim']]
+        s, t, o = F(c['pose']['slide']), F(c['pose']['tangent']), F(c['configuration']['film']['offset'])
+        if not (-6 <= s <= 6 and -20 <= o <= 5) or abs(t) >= 1:
+            return False
+        limit = decimal.Decimal(8) * PI / 180
+        diff = limit - abs(two_atan(t))
+        return None if abs(diff) < decimal.Decimal(10) ** -70 else diff > 0
+    def restated(self, cert):
+        pass
+    def statement(self, cert):
+        claim = cert['claim']
+        c = cert[claim]
+        words = "Part 'film' at offset %s mm and 'follower' turned by 2 atan(%s) rad and slid by %s mm" % (
+            claim_number(F(c['configuration']['film']['offset'])), F(c['pose']['tangent']), claim_number(F(c['pose']['slide'])))
+        return words + (' overlap.' if claim == 'planar_interference' else ' are at least %s mm apart.' % claim_number(F(c['distance'])))
+
+
 def truth(pair, cert):
     ok = pair.angle_ok(cert)
     if ok is None:
@@ -291,7 +198,7 @@ def truth(pair, cert):
         if None in where:
             return None
         return ok and where == ('inside', 'inside')
-    return ok and parts_apart_by(first, second, F(c['distance']))
+    return ok and parts_apart_by(first, second, F(c['distance']), pair.loop_starts(cert) if hasattr(pair, 'loop_starts') else None)
 
 
 def node_of(tree, path):
@@ -314,7 +221,7 @@ def alterations(pair, cert):
     claim = cert['claim']
     body = cert[claim]
     leaves = list(pair.coordinates(cert).values())
-    if 'configuration' in body:
+    if 'lever' in body.get('configuration', {}):
         leaves += [('configuration', 'lever', 'angle'), ('configuration', 'lever', 'angle_error')]
     leaves += [('point', 0), ('point', 1)] if 'point' in body else [('distance',)]
     out = []
@@ -362,10 +269,10 @@ def alterations(pair, cert):
 
 
 findings, counts = 0, {'true accepted': 0, 'true rejected': 0, 'false rejected': 0, 'undecided': 0, 'base': 0}
-pairs = [Lever(), Peg()]
+pairs = [Lever(), Peg(), Film()]
 for case in range(n):
-    pair = pairs[case % 2]
-    kind = pair.kinds[(case // 2) % 2]
+    pair = pairs[case % 3]
+    kind = pair.kinds[(case // 3) % 2]
     at = pair.random_at(kind)
     model = os.path.join(repo, pair.model)
     base = os.path.join(outdir, 'base-%d.json' % case)
