@@ -271,8 +271,9 @@ def alterations(pair, cert):
 findings, counts = 0, {'true accepted': 0, 'true rejected': 0, 'false rejected': 0, 'undecided': 0, 'base': 0}
 pairs = [Lever(), Peg(), Film()]
 for case in range(n):
-    pair = pairs[case % 3]
-    kind = pair.kinds[(case // 3) % 2]
+    # the film pair's exact geometry costs about 4 lever or peg cases: one case in six
+    pair = pairs[2] if case % 6 == 5 else pairs[case % 2]
+    kind = pair.kinds[(case // 6 if case % 6 == 5 else case // 2) % 2]
     at = pair.random_at(kind)
     model = os.path.join(repo, pair.model)
     base = os.path.join(outdir, 'base-%d.json' % case)
