@@ -822,7 +822,9 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
       }
       first = false;
     }
-    result.play.push_back(play);
+    // a follower with no sample on the path (no position of it is free at the start) has no play
+    // to report: a summary of zeros read "Play ... 0.000° all along" (session 48, hunt48)
+    if (!first || play.unbounded) result.play.push_back(play);
   }
   // zero-clearance fits the kernel slicers could not decide (SliceClassCounts::touching_undecided)
   for (const auto& slicer : chain.slicers) {

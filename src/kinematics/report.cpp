@@ -157,6 +157,10 @@ std::string kinematics_text_report(const KinematicsResult& result) {
       out << "  Largest velocity ratio (" << name << " speed / driver speed): " << format(largest, 4) << unit << " at driver "
           << quantity(at, rot) << ".\n";
     }
+    bool play_measured = false;
+    for (const PlaySummary& play : result.play) play_measured = play_measured || play.part == name;
+    if (!play_measured)
+      out << "  Play: not measured: the analysis has no position of " << name << " on the path.\n";
     for (const PlaySummary& play : result.play)
       if (play.part == name) {
         if (play.minimum == 0 && play.maximum == 0 && play.unbounded)

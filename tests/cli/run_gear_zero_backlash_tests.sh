@@ -15,7 +15,9 @@
 #  - where no position is free, the uncertified jam's note does not blame the quasi-static model;
 #  - a jam it could not certify does not say "the parts overlap at the start" next to
 #    "Initial configuration: no parts overlap" (base47: the jam search's own start, from the
-#    analysis's double samples, overlapped; the note did not say which start).
+#    analysis's double samples, overlapped; the note did not say which start);
+#  - with no position of the gear on the path, no play is reported (session 48: base48 printed
+#    "Play ... 0.000° all along").
 # usage: run_gear_zero_backlash_tests.sh HIPAIR HIPAIR_VERIFY SOURCE_DIR WORK_DIR
 set -uo pipefail
 hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "$hipair_python" "$@"; }
@@ -88,6 +90,12 @@ for p in "${pairs[@]}"; do
   if grep -q "starts from the nearest position where they only touch" "$out.txt" &&
      grep -q "In all: 0 drive periods .* and 0 dwell periods" "$out.txt"; then
     fail "$what: 'starts from the nearest position where they only touch', then no motion at all: $(grep -m1 BLOCKED "$out.txt")"
+  fi
+  # no sample of the gear on the path: no play to report (base48 printed "Play ... 0.000° all
+  # along" from a summary of zeros; session 48, hunt48)
+  if ! grep -q "In all: 0 drive periods .* and 0 dwell periods" "$out.txt"; then :
+  elif grep -q "^  Play (backlash" "$out.txt" || ! grep -q "^  Play: not measured: the analysis has no position of gear" "$out.txt"; then
+    fail "$what: no position of the gear on the path, and the report says: $(grep -m1 '^  Play' "$out.txt")"
   fi
   if grep -q "^Initial configuration: no parts overlap" "$out.txt" && grep -q "(the parts overlap at the start)" "$out.txt"; then
     fail "$what: 'no parts overlap' at the start and a note 'the parts overlap at the start': $(grep -m1 'not certified' "$out.txt")"

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Session 47 (hunt47): certificates with altered numbers against hipair-verify, with an oracle of
-its own.  lever-stop.json (a lever of two segments and two arcs turning about (0, 0) against a
+its own (session 48, hunt48: also film-advance.json's pin-slot claims, the film against the
+follower posed by slide and tangent, and the part and geometry helpers in exact_planar.py /
+exact_oracle.py).  lever-stop.json (a lever of two segments and two arcs turning about (0, 0) against a
 fixed rectangular stop) is certified at generated lever angles on both sides of its contact with
 the stop (`hipair certify --claim interference` and `--claim clearance`); then each number of the
 claim is altered in turn (the last digit, the sign, moved by 1/den, and for a clearance the
@@ -17,26 +19,15 @@ A false certificate accepted (exit 0) is a finding; so is a true one rejected wh
 still holds (for a clearance: any true one; for an interference: a true one, the point being the
 witness).  Any exit other than 0/1/3 or more than one line of output is a finding.
 usage: certificate_alterations.py HIPAIR HIPAIR_VERIFY REPO OUTDIR SEED N_CONFIGURATIONS"""
-import copy, json, os, random, subprocess, sys
+import copy, decimal, json, os, random, subprocess, sys
 from fractions import Fraction as F
 
-import decimal
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from exact_planar import sgn, sign_q, posed, cross, sub, dot, in_span, locate, segments_meet, parts_apart_by, shifted
+from exact_oracle import PI, two_atan, decimal_text, claim_number, bisect, altered_numbers, judged
 
 hipair, verify, repo, outdir, seed, n = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), int(sys.argv[6])
 rng = random.Random(seed)
-decimal.getcontext().prec = 80
-
-
-def two_atan(t):
-    """2 atan(t) for a rational |t| < 1 as a Decimal of 80 digits (its series, |error| < 10^-75)"""
-    x = decimal.Decimal(t.numerator) / decimal.Decimal(t.denominator)
-    assert abs(x) < 1
-    total, power, k = decimal.Decimal(0), x, 0
-    while abs(power) > decimal.Decimal(10) ** -78:
-        total += power / (2 * k + 1) * (-1 if k % 2 else 1)
-        power *= x * x
-        k += 1
-    return 2 * total
 
 os.makedirs(outdir, exist_ok=True)
 
@@ -50,169 +41,6 @@ STOP = [('s', (F(20), y0), (F(40), y0)), ('s', (F(40), y0), (F(40), y0 + 10)),
         ('s', (F(40), y0 + 10), (F(20), y0 + 10)), ('s', (F(20), y0 + 10), (F(20), y0))]
 
 
-def sgn(x):
-    return (x > 0) - (x < 0)
-
-
-def sign_q(a, b, d):
-    """sign of a + b sqrt(d), d >= 0, exactly"""
-    if d == 0 or b == 0:
-        return sgn(a)
-    sa, sb = sgn(a), sgn(b)
-    if sa == 0 or sa == sb:
-        return sb if sa == 0 else sa
-    return sa * sgn(a * a - b * b * d)
-
-
-def posed(edges, t):
-    c, s = (1 - t * t) / (1 + t * t), 2 * t / (1 + t * t)
-    rot = lambda p: (c * p[0] - s * p[1], s * p[0] + c * p[1])
-    return [tuple([e[0]] + [rot(p) for p in e[1:]]) for e in edges]
-
-
-def cross(a, b):
-    return a[0] * b[1] - a[1] * b[0]
-
-
-def sub(a, b):
-    return (a[0] - b[0], a[1] - b[1])
-
-
-def dot(a, b):
-    return a[0] * b[0] + a[1] * b[1]
-
-
-def in_span(e, qa, qb, d):
-    """is the circle point c + (qa[0] + qa[1] sqrt d, qb[0] + qb[1] sqrt d) on the ccw arc e (ends included)?"""
-    _, p, q, c = e
-    s, t = sub(p, c), sub(q, c)
-    # cross(s, v) and cross(v, t) for v = (vx, vy) with components a + b sqrt(d)
-    cs = sign_q(s[0] * qb[0] - s[1] * qa[0], s[0] * qb[1] - s[1] * qa[1], d)
-    ct = sign_q(qa[0] * t[1] - qb[0] * t[0], qa[1] * t[1] - qb[1] * t[0], d)
-    if cross(s, t) > 0 or (cross(s, t) == 0 and dot(s, t) < 0 and False):
-        return cs >= 0 and ct >= 0
-    return cs >= 0 or ct >= 0
-
-
-def locate(edges, p):
-    """'inside', 'outside', 'boundary' or None (the ray meets a vertex: undecided) for one loop"""
-    px, py = p
-    crossings = 0
-    for e in edges:
-        a, b = e[1], e[2]
-        if e[0] == 's':
-            if cross(sub(b, a), sub(p, a)) == 0 and min(a[0], b[0]) <= px <= max(a[0], b[0]) and \
-                    min(a[1], b[1]) <= py <= max(a[1], b[1]):
-                return 'boundary'
-        else:
-            c = e[3]
-            r2 = dot(sub(a, c), sub(a, c))
-            if dot(sub(p, c), sub(p, c)) == r2 and in_span(e, (p[0] - c[0], F(0)), (p[1] - c[1], F(0)), F(0)):
-                return 'boundary'
-        if a[1] == py or b[1] == py:
-            return None
-        if e[0] == 's':
-            if (a[1] < py) != (b[1] < py):
-                x = a[0] + (py - a[1]) * (b[0] - a[0]) / (b[1] - a[1])
-                crossings += x > px
-        else:
-            c = e[3]
-            r2 = dot(sub(a, c), sub(a, c))
-            d = r2 - (py - c[1]) ** 2
-            if d < 0:
-                continue
-            if d == 0:
-                return None
-            for s in (1, -1):   # x = c.x + s sqrt(d)
-                if sign_q(c[0] - px, F(s), d) > 0 and in_span(e, (F(0), F(s)), (py - c[1], F(0)), d):
-                    crossings += 1
-    return 'inside' if crossings % 2 else 'outside'
-
-
-def point_segment_at_least(p, a, b, dist2):
-    ab, ap = sub(b, a), sub(p, a)
-    u = dot(ap, ab)
-    n2 = dot(ab, ab)
-    if u <= 0:
-        return dot(ap, ap) >= dist2
-    if u >= n2:
-        bp = sub(p, b)
-        return dot(bp, bp) >= dist2
-    return cross(ab, ap) ** 2 >= dist2 * n2
-
-
-def segments_meet(a, b, c, d):
-    o = lambda p, q, r: sgn(cross(sub(q, p), sub(r, p)))
-    o1, o2, o3, o4 = o(a, b, c), o(a, b, d), o(c, d, a), o(c, d, b)
-    if o1 != o2 and o3 != o4 and o1 * o2 <= 0 and o3 * o4 <= 0:
-        return True
-    on = lambda p, q, r: min(p[0], q[0]) <= r[0] <= max(p[0], q[0]) and min(p[1], q[1]) <= r[1] <= max(p[1], q[1])
-    return (o1 == 0 and on(a, b, c)) or (o2 == 0 and on(a, b, d)) or (o3 == 0 and on(c, d, a)) or (o4 == 0 and on(c, d, b))
-
-
-def point_arc_at_least(p, e, d):
-    _, a, b, c = e
-    r2 = dot(sub(a, c), sub(a, c))
-    v = sub(p, c)
-    if in_span(e, (v[0], F(0)), (v[1], F(0)), F(0)):
-        # | |v| - r | >= d  <=>  |v| >= r + d  or  |v| <= r - d   (r = sqrt(r2))
-        v2 = dot(v, v)
-        # |v| >= r + d  <=>  v2 - r2 - d^2 >= 2 d sqrt(r2)
-        if sign_q(v2 - r2 - d * d, -2 * d, r2) >= 0:
-            return True
-        # |v| <= r - d  <=>  r >= d and r2 + d^2 - v2 >= 2 d r... (r - d)^2 >= v2 with r >= d
-        return sign_q(F(0) - d, F(1), r2) >= 0 and sign_q(r2 + d * d - v2, -2 * d, r2) >= 0
-    return all(dot(sub(p, q), sub(p, q)) >= d * d for q in (a, b))
-
-
-def segment_arc_at_least(s, e, d):
-    p, q = s[1], s[2]
-    if not (point_arc_at_least(p, e, d) and point_arc_at_least(q, e, d)):
-        return False
-    if not all(point_segment_at_least(x, p, q, d * d) for x in (e[1], e[2])):
-        return False
-    _, a, b, c = e
-    r2 = dot(sub(a, c), sub(a, c))
-    pq, pc = sub(q, p), sub(c, p)
-    n2 = dot(pq, pq)
-    u = F(dot(pc, pq), n2)
-    if 0 < u < 1:
-        f = (p[0] + u * pq[0], p[1] + u * pq[1])
-        v = sub(f, c)
-        if in_span(e, (v[0], F(0)), (v[1], F(0)), F(0)) and dot(v, v) >= r2:
-            if sign_q(dot(v, v) - r2 - d * d, -2 * d, r2) < 0:
-                return False
-    # the segment meets the arc: |p + s pq - c|^2 = r2, s in [0, 1], the point on the arc
-    A, B, C = n2, -2 * dot(pc, pq), dot(pc, pc) - r2
-    disc = B * B - 4 * A * C
-    if disc >= 0:
-        for k in (1, -1):   # s = (-B + k sqrt(disc)) / 2A
-            if sign_q(-B, F(k), disc) >= 0 and sign_q(-B - 2 * A, F(k), disc) <= 0:
-                qa = (p[0] - c[0] + pq[0] * (-B) / (2 * A), pq[0] * k / (2 * A))
-                qb = (p[1] - c[1] + pq[1] * (-B) / (2 * A), pq[1] * k / (2 * A))
-                if in_span(e, qa, qb, disc):
-                    return False
-    return True
-
-
-def parts_apart_by(first, second, d):
-    """every boundary point of `first` at least d from every boundary point of `second`, and
-    neither part inside the other (d > 0); arcs only in `first`"""
-    if d <= 0:
-        return False
-    for e in first:
-        for s in second:
-            if e[0] == 's':
-                if segments_meet(e[1], e[2], s[1], s[2]):
-                    return False
-                if not all(point_segment_at_least(x, s[1], s[2], d * d) for x in (e[1], e[2])) or \
-                        not all(point_segment_at_least(x, e[1], e[2], d * d) for x in (s[1], s[2])):
-                    return False
-            elif not segment_arc_at_least(s, e, d):
-                return False
-    return locate(second, first[0][1]) == 'outside' and locate(first, second[0][1]) == 'outside'
-
-
 def angle_holds(conf):
     t, a, e = F(conf['tangent']), F(conf['angle']), F(conf['angle_error'])
     if e < 0 or e > F(1, 10 ** 12) or abs(t) >= 1:
@@ -222,25 +50,6 @@ def angle_holds(conf):
     if abs(diff) < decimal.Decimal(10) ** -70:
         return None   # too close to decide at 80 digits
     return diff <= 0
-
-
-def decimal_text(v, digits):
-    """v to `digits` significant digits, without trailing zeros or an exponent"""
-    ctx = decimal.Context(prec=digits, rounding=decimal.ROUND_HALF_EVEN)
-    d = ctx.divide(decimal.Decimal(v.numerator), decimal.Decimal(v.denominator))
-    text = format(d, 'f')
-    if '.' in text:
-        text = text.rstrip('0').rstrip('.')
-    return '0' if text in ('-0', '') else text
-
-
-def claim_number(v):
-    for digits in (12, 25):
-        text = decimal_text(v, digits)
-        if F(text) == v:
-            return text
-    return str(v)
-
 
 
 # ---- the pairs: how a certificate's numbers pose the parts ----------------------------------
@@ -253,10 +62,6 @@ def square(h, x0=F(0), y0=F(0)):
     return [('s', c[i], c[(i + 1) % 4]) for i in range(4)]
 PLATE = square(F(9)) + square(HOLE / 2)
 PEG = square(PEG_SIDE / 2)
-
-
-def shifted(edges, x, y):
-    return [tuple([e[0]] + [(p[0] + x, p[1] + y) for p in e[1:]]) for e in edges]
 
 
 class Lever:
@@ -310,6 +115,77 @@ class Peg:
         return words + (' overlap.' if claim == 'planar_interference' else ' are at least %s mm apart.' % claim_number(F(c['distance'])))
 
 
+# film-advance.json: pin-slot claims `planar_interference` / `planar_clearance` of the film
+# (translating along y by its offset) against the follower posed by its slide s and half-angle
+# tangent t: body point q goes to pivot + R(q - pivot) + s R (0, 1), pivot (0, 40); the slide within
+# [-6, 6] mm, the angle within [-8, 8] deg, the film's offset within [-20, 5] mm (the model's limits)
+def model_loops(path, part):
+    """the part's loops as lists of segments, its parameters' nominal values put in exactly"""
+    import re
+    m = json.load(open(path))
+    names = sorted(m['parameters'], key=len, reverse=True)
+    values = {k: F(str(v['nominal'])) for k, v in m['parameters'].items()}
+    def num(x):
+        if not isinstance(x, str):
+            return F(str(x))
+        text = x
+        for i, k in enumerate(names):
+            text = text.replace(k, '_p%d' % i)
+        text = re.sub(r'(?<![_\w])(\d+(\.\d+)?)', r"F('\1')", text)
+        return eval(text, {'F': F}, {'_p%d' % i: values[k] for i, k in enumerate(names)})
+    loops = []
+    for loop in next(q for q in m['parts'] if q['name'] == part)['loops']:
+        points = [tuple(map(num, loop['start']))] + [tuple(map(num, e['line_to'])) for e in loop['edges']]
+        loops.append([('s', points[i], points[i + 1]) for i in range(len(points) - 1)])
+    return loops
+
+
+class Film:
+    model = 'examples/models/film-advance.json'
+    kinds = ('interference', 'clearance')
+    def __init__(self):
+        path = os.path.join(repo, self.model)
+        self.film, self.follower = model_loops(path, 'film'), model_loops(path, 'follower')
+    def random_at(self, kind):
+        # the claw (body x 14..20, y -13..-11) turned about (0, 40) reaches the film's perforations
+        # (x 20.5..21.5) at a few degrees: both claims occur
+        return ['--pair', 'film:follower', '--at', 'follower=%r,%rdeg' % (rng.uniform(-5.5, 5.5), rng.uniform(-7.5, 7.5)),
+                '--at', 'film=%r' % rng.uniform(-19, 4)]
+    def coordinates(self, cert):
+        return {'slide': ('pose', 'slide'), 'tangent': ('pose', 'tangent'), 'offset': ('configuration', 'film', 'offset')}
+    def posed_parts(self, cert):
+        c = cert[cert['claim']]
+        s, t, o = F(c['pose']['slide']), F(c['pose']['tangent']), F(c['configuration']['film']['offset'])
+        cos, sin = (1 - t * t) / (1 + t * t), 2 * t / (1 + t * t)
+        # pivot + R (q - pivot) + s R (0, 1) = R (q + (0, s - 40)) + (0, 40)
+        place = lambda q: (cos * q[0] - sin * (q[1] + s - 40), sin * q[0] + cos * (q[1] + s - 40) + 40)
+        follower = [[('s', place(e[1]), place(e[2])) for e in loop] for loop in self.follower]
+        film = [[('s', (e[1][0], e[1][1] + o), (e[2][0], e[2][1] + o)) for e in loop] for loop in self.film]
+        return film, follower
+    def parts(self, cert):
+        film, follower = self.posed_parts(cert)
+        return [e for loop in film for e in loop], [e for loop in follower for e in loop]
+    def loop_starts(self, cert):
+        film, follower = self.posed_parts(cert)
+        return [loop[0][1] for loop in film], [loop[0][1] for loop in follower]
+    def angle_ok(self, cert):
+        c = cert[cert['claim']]
+        s, t, o = F(c['pose']['slide']), F(c['pose']['tangent']), F(c['configuration']['film']['offset'])
+        if not (-6 <= s <= 6 and -20 <= o <= 5) or abs(t) >= 1:
+            return False
+        limit = decimal.Decimal(8) * PI / 180
+        diff = limit - abs(two_atan(t))
+        return None if abs(diff) < decimal.Decimal(10) ** -70 else diff > 0
+    def restated(self, cert):
+        pass
+    def statement(self, cert):
+        claim = cert['claim']
+        c = cert[claim]
+        words = "Part 'film' at offset %s mm and 'follower' turned by 2 atan(%s) rad and slid by %s mm" % (
+            claim_number(F(c['configuration']['film']['offset'])), F(c['pose']['tangent']), claim_number(F(c['pose']['slide'])))
+        return words + (' overlap.' if claim == 'planar_interference' else ' are at least %s mm apart.' % claim_number(F(c['distance'])))
+
+
 def truth(pair, cert):
     ok = pair.angle_ok(cert)
     if ok is None:
@@ -322,7 +198,7 @@ def truth(pair, cert):
         if None in where:
             return None
         return ok and where == ('inside', 'inside')
-    return ok and parts_apart_by(first, second, F(c['distance']))
+    return ok and parts_apart_by(first, second, F(c['distance']), pair.loop_starts(cert) if hasattr(pair, 'loop_starts') else None)
 
 
 def node_of(tree, path):
@@ -340,34 +216,18 @@ def with_value(pair, cert, path, value, restate_angle=False):
     return t
 
 
-def bisect(holds, good, bad, steps=60):
-    """the last value for which holds() is true and the first for which it is not, 2^-steps apart"""
-    for _ in range(steps):
-        mid = (good + bad) / 2
-        good, bad = (mid, bad) if holds(mid) else (good, mid)
-    return good, bad
-
-
 def alterations(pair, cert):
     """(what, altered certificate) for each number of the claim, the statement restated"""
     claim = cert['claim']
     body = cert[claim]
     leaves = list(pair.coordinates(cert).values())
-    if 'configuration' in body:
+    if 'lever' in body.get('configuration', {}):
         leaves += [('configuration', 'lever', 'angle'), ('configuration', 'lever', 'angle_error')]
     leaves += [('point', 0), ('point', 1)] if 'point' in body else [('distance',)]
     out = []
     for path in leaves:
-        v = node_of(body, path)[path[-1]]
-        f = F(v)
-        cands = [('sign', -f), ('+1/den', f + F(1, f.denominator)), ('-1/den', f - F(1, f.denominator))]
-        if v[-1].isdigit():
-            cands.append(('last digit', F(v[:-1] + str((int(v[-1]) + rng.choice([1, 9])) % 10))))
-        k = rng.randrange(3, 20)
-        cands.append(('x(1+1e-%d)' % k, f * (1 + F(1, 10 ** k))))
-        for what, nv in cands:
-            if nv != f:
-                out.append(('%s %s' % ('/'.join(map(str, path)), what), with_value(pair, cert, path, nv)))
+        for what, nv in altered_numbers(rng, node_of(body, path)[path[-1]]):
+            out.append(('%s %s' % ('/'.join(map(str, path)), what), with_value(pair, cert, path, nv)))
     # numbers moved across a tangency: the last true value and the first false one
     if 'distance' in body:
         lo, hi = bisect(lambda d: truth(pair, with_value(pair, cert, ('distance',), d)) is True,
@@ -409,10 +269,11 @@ def alterations(pair, cert):
 
 
 findings, counts = 0, {'true accepted': 0, 'true rejected': 0, 'false rejected': 0, 'undecided': 0, 'base': 0}
-pairs = [Lever(), Peg()]
+pairs = [Lever(), Peg(), Film()]
 for case in range(n):
-    pair = pairs[case % 2]
-    kind = pair.kinds[(case // 2) % 2]
+    # the film pair's exact geometry costs about 4 lever or peg cases: one case in six
+    pair = pairs[2] if case % 6 == 5 else pairs[case % 2]
+    kind = pair.kinds[(case // 6 if case % 6 == 5 else case // 2) % 2]
     at = pair.random_at(kind)
     model = os.path.join(repo, pair.model)
     base = os.path.join(outdir, 'base-%d.json' % case)
@@ -434,28 +295,13 @@ for case in range(n):
         print('case %d: the oracle restates %r as %r' % (case, cert['statement'], pair.statement(cert)))
         findings += 1
     for what, altered in alterations(pair, cert):
-        path = os.path.join(outdir, 'c%d.json' % case)
-        json.dump(altered, open(path, 'w'))
-        r = subprocess.run([verify, path, model], capture_output=True, text=True, timeout=120)
-        text = (r.stdout + r.stderr).strip()
         true = truth(pair, altered)
-        problems = []
-        if r.returncode not in (0, 1, 3) or len(text.splitlines()) != 1:
-            problems.append('exit %d, %d lines' % (r.returncode, len(text.splitlines())))
-        if true is None:
-            counts['undecided'] += 1
-        elif r.returncode == 0 and not true:
-            problems.append('a FALSE certificate accepted')
-        elif r.returncode != 0 and true:
-            counts['true rejected'] += 1
+        problems, code, text = judged(verify, os.path.join(outdir, 'c%d.json' % case), model, altered, true, counts)
+        if code != 0 and true:
             # a true claim the verifier cannot prove (its witness within its margins): reported
             print('note: case %d (%s %s) %s: true, rejected: %s' % (case, pair.model, kind, what, text[:200]), flush=True)
-        elif true:
-            counts['true accepted'] += 1
-        else:
-            counts['false rejected'] += 1
         if os.environ.get('ALTERATIONS_VERBOSE'):
-            print('  %s %s: %s -> exit %d' % (kind, what, true, r.returncode))
+            print('  %s %s: %s -> exit %d' % (kind, what, true, code))
         if problems:
             findings += 1
             print('case %d (%s %s, %s) %s: %s: %s' % (case, pair.model, kind, ' '.join(at), what, problems, text[:200]), flush=True)
