@@ -11,6 +11,8 @@
 
 #include <hipair/error.hpp>
 
+#include <mpfr.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -678,6 +680,19 @@ void from_wide(Wide w, mpz_class& z) {
   if (w < 0) mpz_neg(z.get_mpz_t(), z.get_mpz_t());
 }
 
+// The least n >= 0 with needed <= reached 2^n (both positive): the number of steps of
+// refine_dyadically's loop, whose width test doubles `reached` per step.
+unsigned long halvings(const mpz_class& needed, const mpz_class& reached) {
+  const std::size_t left_bits = mpz_sizeinbase(needed.get_mpz_t(), 2), right_bits = mpz_sizeinbase(reached.get_mpz_t(), 2);
+  unsigned long steps = left_bits > right_bits + 1 ? static_cast<unsigned long>(left_bits - right_bits - 1) : 0;
+  mpz_class shifted = reached << steps;   // reached 2^steps < 2^(left_bits - 1) <= needed
+  while (needed > shifted) {
+    mpz_mul_2exp(shifted.get_mpz_t(), shifted.get_mpz_t(), 1);
+    ++steps;
+  }
+  return steps;
+}
+
 // refine_dyadically's bisection steps with its numerators as machine integers: the loop
 //   while (needed > reached) { a = 2 a; middle = a + difference; scale, reached doubled;
 //                              a = middle when p(middle / scale) has lower_sign }
@@ -694,14 +709,7 @@ bool dyadic_steps_in_machine_integers(const Polynomial& polynomial, const SignFi
                                       const mpz_class& needed, const mpz_class& difference, mpz_class& a,
                                       mpz_class& scale, unsigned long& scale_bits, mpz_class& reached,
                                       mpz_class& middle) {
-  const std::size_t left_bits = mpz_sizeinbase(needed.get_mpz_t(), 2), right_bits = mpz_sizeinbase(reached.get_mpz_t(), 2);
-  unsigned long steps = left_bits > right_bits + 1 ? static_cast<unsigned long>(left_bits - right_bits - 1) : 0;
-  if (steps > 120) return false;
-  mpz_class shifted = reached << steps;   // reached 2^steps < 2^(left_bits - 1) <= needed
-  while (needed > shifted) {
-    mpz_mul_2exp(shifted.get_mpz_t(), shifted.get_mpz_t(), 1);
-    ++steps;
-  }
+  const unsigned long steps = halvings(needed, reached);
   const std::size_t bits = std::max(mpz_sizeinbase(a.get_mpz_t(), 2), mpz_sizeinbase(difference.get_mpz_t(), 2));
   if (bits + steps > 124 || scale_bits + steps > 900) return false;
   const Wide step = to_wide(difference);
@@ -735,6 +743,98 @@ bool dyadic_steps_in_machine_integers(const Polynomial& polynomial, const SignFi
   mpz_mul_2exp(scale.get_mpz_t(), scale.get_mpz_t(), steps);
   mpz_mul_2exp(reached.get_mpz_t(), reached.get_mpz_t(), steps);
   scale_bits += steps;
+  return false;
+}
+
+// refine_dyadically's remaining `steps` halvings of (a, a + difference) / 2^scale_bits at once,
+// when they are many (the quadratic traits' multiple-precision levels, 2^-128 ... 2^-2000):
+// the root is the only one in the interval and simple (Real), so a cell
+// (A, A + difference) / 2^(scale_bits + steps) of the halvings' grid whose ends have non-zero
+// signs, lower_sign at A and the other at A + difference, holds it strictly inside; no grid
+// point of that level or a coarser one is the root, so no halving meets it exactly, and every
+// halving keeps the half that holds it: the loop ends at that cell. The cell's index comes
+// from an approximation of the root (Newton steps in MPFR from the interval's middle, stopped
+// when an iterate leaves the interval), and only the two exact signs at its ends decide; the
+// neighbouring cell on the side those signs point to is tried once; otherwise false and the
+// caller's loop halves as before. True: a, scale, scale_bits and reached as the loop leaves them.
+bool dyadic_cell_from_approximation(const Polynomial& polynomial, int lower_sign, unsigned long steps,
+                                    const mpz_class& difference, mpz_class& a, mpz_class& scale,
+                                    unsigned long& scale_bits, mpz_class& reached) {
+  std::size_t coefficient_bits = 0;
+  for (const mpz_class& c : polynomial) coefficient_bits = std::max(coefficient_bits, mpz_sizeinbase(c.get_mpz_t(), 2));
+  const mpfr_prec_t precision = static_cast<mpfr_prec_t>(mpz_sizeinbase(a.get_mpz_t(), 2) + steps + coefficient_bits + 64);
+  const Polynomial slope = derivative(polynomial);
+  mpfr_t x, lo, hi, value, derivative_value, t;
+  for (mpfr_ptr v : {x, lo, hi, value, derivative_value, t}) mpfr_init2(v, precision);
+  struct Clear {
+    mpfr_ptr values[6];
+    ~Clear() {
+      for (mpfr_ptr v : values) mpfr_clear(v);
+    }
+  } clear{{x, lo, hi, value, derivative_value, t}};
+  auto horner = [&](const Polynomial& p, mpfr_ptr out) {
+    mpfr_set_ui(out, 0, MPFR_RNDN);
+    for (auto c = p.rbegin(); c != p.rend(); ++c) {
+      mpfr_mul(out, out, x, MPFR_RNDN);
+      mpfr_add_z(out, out, c->get_mpz_t(), MPFR_RNDN);
+    }
+  };
+  // the interval and its middle, in units of 2^-scale_bits
+  mpfr_set_z(lo, a.get_mpz_t(), MPFR_RNDN);
+  mpfr_add_z(hi, lo, difference.get_mpz_t(), MPFR_RNDN);
+  mpfr_add(x, lo, hi, MPFR_RNDN);
+  mpfr_div_2ui(x, x, 1, MPFR_RNDN);
+  for (mpfr_ptr v : {x, lo, hi}) mpfr_div_2ui(v, v, scale_bits, MPFR_RNDN);
+  // Newton steps at a working precision doubled per step from 64 bits (the iterate's correct
+  // bits double too), then three at the full precision
+  mpfr_prec_t working = std::min<mpfr_prec_t>(64, precision);
+  for (int at_full = 0; at_full < 3;) {
+    mpfr_prec_round(x, working, MPFR_RNDN);
+    for (mpfr_ptr v : {value, derivative_value, t}) mpfr_set_prec(v, working);
+    horner(polynomial, value);
+    horner(slope, derivative_value);
+    if (mpfr_zero_p(derivative_value) || !mpfr_number_p(value) || !mpfr_number_p(derivative_value)) return false;
+    mpfr_div(t, value, derivative_value, MPFR_RNDN);
+    mpfr_sub(x, x, t, MPFR_RNDN);
+    if (mpfr_less_p(x, lo) || mpfr_greater_p(x, hi)) return false;
+    if (working == precision) ++at_full;
+    working = std::min(2 * working, precision);
+  }
+  mpfr_set_prec(t, precision);
+  // the cell's index: floor((x 2^scale_bits - a) 2^steps / difference), within [0, 2^steps - 1]
+  mpfr_mul_2ui(t, x, scale_bits, MPFR_RNDN);
+  mpfr_sub_z(t, t, a.get_mpz_t(), MPFR_RNDN);
+  mpfr_mul_2ui(t, t, steps, MPFR_RNDN);
+  mpfr_div_z(t, t, difference.get_mpz_t(), MPFR_RNDN);
+  mpz_class index;
+  mpfr_get_z(index.get_mpz_t(), t, MPFR_RNDD);
+  const mpz_class last = (mpz_class(1) << steps) - 1;
+  if (index < 0) index = 0;
+  if (index > last) index = last;
+  mpz_class fine_scale = scale << steps, start = a << steps, end;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    mpz_class cell = start + index * difference;
+    end = cell + difference;
+    const int at_start = homogeneous_sign(polynomial, cell, fine_scale);
+    if (at_start == 0) return false;
+    if (at_start != lower_sign) {   // the root is below the cell
+      if (index == 0) return false;
+      index -= 1;
+      continue;
+    }
+    const int at_end = homogeneous_sign(polynomial, end, fine_scale);
+    if (at_end == 0) return false;
+    if (at_end == lower_sign) {   // the root is above the cell
+      if (index == last) return false;
+      index += 1;
+      continue;
+    }
+    a = std::move(cell);
+    scale = std::move(fine_scale);
+    scale_bits += steps;
+    mpz_mul_2exp(reached.get_mpz_t(), reached.get_mpz_t(), steps);
+    return true;
+  }
   return false;
 }
 
@@ -825,6 +925,10 @@ void refine_dyadically(Real& r, const Rational& width) {
   if (needed > reached && dyadic_steps_in_machine_integers(r.polynomial, filter, lower_sign, needed, difference, a,
                                                            scale, scale_bits, reached, middle))
     return settle_exact(middle, scale);
+  if (needed > reached) {
+    const unsigned long steps = halvings(needed, reached);
+    if (steps >= 24) dyadic_cell_from_approximation(r.polynomial, lower_sign, steps, difference, a, scale, scale_bits, reached);
+  }
   while (needed > reached) {
     mpz_mul_2exp(a.get_mpz_t(), a.get_mpz_t(), 1);
     mpz_add(middle.get_mpz_t(), a.get_mpz_t(), difference.get_mpz_t());   // old a + old b

@@ -385,7 +385,9 @@ Real reference_dyadic(Real r, const Rational& width) {
 }
 
 // refine_dyadically (its bisection steps in machine integers while the numerators stay below
-// 2^126, in mpz beyond) against the exact definition above: roots of (x^2 - q)(d x - n) with
+// 2^126; beyond, the last cell found at once from a Newton approximation of the root and
+// checked by the exact signs at its ends, else the mpz halving) against the exact definition
+// above: roots of (x^2 - q)(d x - n) with
 // coefficients of 1 to 120 bits (q at scales 2^-60 .. 2^60), the linear factor's root dyadic
 // (a midpoint of some step: the exact end) or not, widths 2^-1 .. 2^-130 of the interval, and
 // each root refined again from a dyadic result (a second call starts from other ends).
