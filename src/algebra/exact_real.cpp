@@ -11,6 +11,8 @@
 
 #include <hipair/error.hpp>
 
+#include <mpfr.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -446,9 +448,8 @@ class SignFilter {
   }
   int sign(Interval x) const {
     if (coefficients_.empty()) return 0;
-    Interval value = coefficients_.back();
-    // (operator*'s bounds: interval_detail::times)
-    for (std::size_t i = coefficients_.size() - 1; i-- > 0;) value = interval_detail::times(value, x) + coefficients_[i];
+    // (operator*'s bounds: interval_detail::times, its dispatch on x's sign made once)
+    const Interval value = x.lo >= 0 ? horner<1>(x) : x.hi <= 0 ? horner<-1>(x) : horner<0>(x);
     if (!std::isfinite(value.lo) || !std::isfinite(value.hi)) return 0;
     if (value.lo > 0) return 1;
     if (value.hi < 0) return -1;
@@ -456,6 +457,20 @@ class SignFilter {
   }
 
  private:
+  template <int S>
+  [[gnu::flatten]] Interval horner(Interval x) const {
+    Interval value = coefficients_.back();
+    for (std::size_t i = coefficients_.size() - 1; i-- > 0;) {
+      if constexpr (S > 0)
+        value = interval_detail::times_nonnegative(value, x) + coefficients_[i];
+      else if constexpr (S < 0)
+        value = interval_detail::times_nonpositive(value, x) + coefficients_[i];
+      else
+        value = value * x + coefficients_[i];
+    }
+    return value;
+  }
+
   std::vector<Interval> coefficients_;
 };
 
@@ -646,6 +661,185 @@ void Real::refine_to(const Rational& width) {
   }
 }
 
+namespace {
+
+// mpz <-> __int128 for numbers of at most 126 bits (sign and magnitude, two 64-bit limbs).
+using Wide = __int128;
+static_assert(sizeof(mp_limb_t) == 8, "two limbs hold 128 bits");
+Wide to_wide(const mpz_class& z) {
+  const mp_size_t n = std::abs(z.get_mpz_t()->_mp_size);
+  const mp_limb_t* d = z.get_mpz_t()->_mp_d;
+  const unsigned __int128 magnitude =
+      (n > 1 ? static_cast<unsigned __int128>(d[1]) << 64 : 0) | (n > 0 ? d[0] : 0);
+  return sgn(z) < 0 ? -static_cast<Wide>(magnitude) : static_cast<Wide>(magnitude);
+}
+void from_wide(Wide w, mpz_class& z) {
+  const unsigned __int128 magnitude = w < 0 ? -static_cast<unsigned __int128>(w) : static_cast<unsigned __int128>(w);
+  const mp_limb_t limbs[2] = {static_cast<mp_limb_t>(magnitude), static_cast<mp_limb_t>(magnitude >> 64)};
+  mpz_import(z.get_mpz_t(), 2, -1, sizeof(mp_limb_t), 0, 0, limbs);
+  if (w < 0) mpz_neg(z.get_mpz_t(), z.get_mpz_t());
+}
+
+// The least n >= 0 with needed <= reached 2^n (both positive): the number of steps of
+// refine_dyadically's loop, whose width test doubles `reached` per step.
+unsigned long halvings(const mpz_class& needed, const mpz_class& reached) {
+  const std::size_t left_bits = mpz_sizeinbase(needed.get_mpz_t(), 2), right_bits = mpz_sizeinbase(reached.get_mpz_t(), 2);
+  unsigned long steps = left_bits > right_bits + 1 ? static_cast<unsigned long>(left_bits - right_bits - 1) : 0;
+  mpz_class shifted = reached << steps;   // reached 2^steps < 2^(left_bits - 1) <= needed
+  while (needed > shifted) {
+    mpz_mul_2exp(shifted.get_mpz_t(), shifted.get_mpz_t(), 1);
+    ++steps;
+  }
+  return steps;
+}
+
+// refine_dyadically's bisection steps with its numerators as machine integers: the loop
+//   while (needed > reached) { a = 2 a; middle = a + difference; scale, reached doubled;
+//                              a = middle when p(middle / scale) has lower_sign }
+// runs a fixed number of steps n (the least with needed <= reached 2^n), and every middle is
+// below 2^126 in magnitude when a and difference have at most 124 - n bits: then each step
+// is two additions of __int128; the sign at a middle is the certified double filter's on the
+// middle's enclosure (the __int128 rounded to the nearest double and the double next to it on
+// the far side, scaled by 2^-k exactly while normal), else homogeneous_sign exactly on the
+// same numerator and denominator — the same signs, hence the same steps, as the mpz loop.
+// Returns false when it took no step (the caller's loop runs) or after the n steps (a, scale,
+// scale_bits and reached updated as the loop leaves them: needed <= reached); true when a
+// middle is a root (`middle` and `scale` its numerator and denominator).
+bool dyadic_steps_in_machine_integers(const Polynomial& polynomial, const SignFilter& filter, int lower_sign,
+                                      const mpz_class& needed, const mpz_class& difference, mpz_class& a,
+                                      mpz_class& scale, unsigned long& scale_bits, mpz_class& reached,
+                                      mpz_class& middle) {
+  const unsigned long steps = halvings(needed, reached);
+  const std::size_t bits = std::max(mpz_sizeinbase(a.get_mpz_t(), 2), mpz_sizeinbase(difference.get_mpz_t(), 2));
+  if (bits + steps > 124 || scale_bits + steps > 900) return false;
+  const Wide step = to_wide(difference);
+  Wide low = to_wide(a);
+  for (unsigned long i = 1; i <= steps; ++i) {
+    low *= 2;
+    const Wide m = low + step;
+    int s = 0;
+    {
+      const double d = static_cast<double>(m);   // nearest; the far side's neighbour bounds m
+      const Wide back = static_cast<Wide>(d);    // exact: |d| <= 2^126
+      double lo = d, hi = d;
+      if (back < m) hi = std::nextafter(d, HUGE_VAL);
+      if (back > m) lo = std::nextafter(d, -HUGE_VAL);
+      const double unit = negative_power_of_two(scale_bits + i);   // 2^-k, k <= 900: exact products
+      lo *= unit;
+      hi *= unit;
+      const bool normal = (lo == 0 || std::fabs(lo) >= 0x1p-1000) && (hi == 0 || std::fabs(hi) >= 0x1p-1000);
+      if (normal) s = filter.sign(Interval{lo, hi});
+    }
+    if (s == 0) {
+      from_wide(m, middle);
+      mpz_mul_2exp(scale.get_mpz_t(), scale.get_mpz_t(), i);   // 2^(scale_bits + i)
+      s = homogeneous_sign(polynomial, middle, scale);
+      if (s == 0) return true;
+      mpz_fdiv_q_2exp(scale.get_mpz_t(), scale.get_mpz_t(), i);
+    }
+    if (s == lower_sign) low = m;
+  }
+  from_wide(low, a);
+  mpz_mul_2exp(scale.get_mpz_t(), scale.get_mpz_t(), steps);
+  mpz_mul_2exp(reached.get_mpz_t(), reached.get_mpz_t(), steps);
+  scale_bits += steps;
+  return false;
+}
+
+// refine_dyadically's remaining `steps` halvings of (a, a + difference) / 2^scale_bits at once,
+// when they are many (the quadratic traits' multiple-precision levels, 2^-128 ... 2^-2000):
+// the root is the only one in the interval and simple (Real), so a cell
+// (A, A + difference) / 2^(scale_bits + steps) of the halvings' grid whose ends have non-zero
+// signs, lower_sign at A and the other at A + difference, holds it strictly inside; no grid
+// point of that level or a coarser one is the root, so no halving meets it exactly, and every
+// halving keeps the half that holds it: the loop ends at that cell. The cell's index comes
+// from an approximation of the root (Newton steps in MPFR from the interval's middle, stopped
+// when an iterate leaves the interval), and only the two exact signs at its ends decide; the
+// neighbouring cell on the side those signs point to is tried once; otherwise false and the
+// caller's loop halves as before. True: a, scale, scale_bits and reached as the loop leaves them.
+bool dyadic_cell_from_approximation(const Polynomial& polynomial, int lower_sign, unsigned long steps,
+                                    const mpz_class& difference, mpz_class& a, mpz_class& scale,
+                                    unsigned long& scale_bits, mpz_class& reached) {
+  std::size_t coefficient_bits = 0;
+  for (const mpz_class& c : polynomial) coefficient_bits = std::max(coefficient_bits, mpz_sizeinbase(c.get_mpz_t(), 2));
+  const mpfr_prec_t precision = static_cast<mpfr_prec_t>(mpz_sizeinbase(a.get_mpz_t(), 2) + steps + coefficient_bits + 64);
+  const Polynomial slope = derivative(polynomial);
+  mpfr_t x, lo, hi, value, derivative_value, t;
+  for (mpfr_ptr v : {x, lo, hi, value, derivative_value, t}) mpfr_init2(v, precision);
+  struct Clear {
+    mpfr_ptr values[6];
+    ~Clear() {
+      for (mpfr_ptr v : values) mpfr_clear(v);
+    }
+  } clear{{x, lo, hi, value, derivative_value, t}};
+  auto horner = [&](const Polynomial& p, mpfr_ptr out) {
+    mpfr_set_ui(out, 0, MPFR_RNDN);
+    for (auto c = p.rbegin(); c != p.rend(); ++c) {
+      mpfr_mul(out, out, x, MPFR_RNDN);
+      mpfr_add_z(out, out, c->get_mpz_t(), MPFR_RNDN);
+    }
+  };
+  // the interval and its middle, in units of 2^-scale_bits
+  mpfr_set_z(lo, a.get_mpz_t(), MPFR_RNDN);
+  mpfr_add_z(hi, lo, difference.get_mpz_t(), MPFR_RNDN);
+  mpfr_add(x, lo, hi, MPFR_RNDN);
+  mpfr_div_2ui(x, x, 1, MPFR_RNDN);
+  for (mpfr_ptr v : {x, lo, hi}) mpfr_div_2ui(v, v, scale_bits, MPFR_RNDN);
+  // Newton steps at a working precision doubled per step from 64 bits (the iterate's correct
+  // bits double too), then three at the full precision
+  mpfr_prec_t working = std::min<mpfr_prec_t>(64, precision);
+  for (int at_full = 0; at_full < 3;) {
+    mpfr_prec_round(x, working, MPFR_RNDN);
+    for (mpfr_ptr v : {value, derivative_value, t}) mpfr_set_prec(v, working);
+    horner(polynomial, value);
+    horner(slope, derivative_value);
+    if (mpfr_zero_p(derivative_value) || !mpfr_number_p(value) || !mpfr_number_p(derivative_value)) return false;
+    mpfr_div(t, value, derivative_value, MPFR_RNDN);
+    mpfr_sub(x, x, t, MPFR_RNDN);
+    if (mpfr_less_p(x, lo) || mpfr_greater_p(x, hi)) return false;
+    if (working == precision) ++at_full;
+    working = std::min(2 * working, precision);
+  }
+  mpfr_set_prec(t, precision);
+  // the cell's index: floor((x 2^scale_bits - a) 2^steps / difference), within [0, 2^steps - 1]
+  mpfr_mul_2ui(t, x, scale_bits, MPFR_RNDN);
+  mpfr_sub_z(t, t, a.get_mpz_t(), MPFR_RNDN);
+  mpfr_mul_2ui(t, t, steps, MPFR_RNDN);
+  mpfr_div_z(t, t, difference.get_mpz_t(), MPFR_RNDN);
+  mpz_class index;
+  mpfr_get_z(index.get_mpz_t(), t, MPFR_RNDD);
+  const mpz_class last = (mpz_class(1) << steps) - 1;
+  if (index < 0) index = 0;
+  if (index > last) index = last;
+  mpz_class fine_scale = scale << steps, start = a << steps, end;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    mpz_class cell = start + index * difference;
+    end = cell + difference;
+    const int at_start = homogeneous_sign(polynomial, cell, fine_scale);
+    if (at_start == 0) return false;
+    if (at_start != lower_sign) {   // the root is below the cell
+      if (index == 0) return false;
+      index -= 1;
+      continue;
+    }
+    const int at_end = homogeneous_sign(polynomial, end, fine_scale);
+    if (at_end == 0) return false;
+    if (at_end == lower_sign) {   // the root is above the cell
+      if (index == last) return false;
+      index += 1;
+      continue;
+    }
+    a = std::move(cell);
+    scale = std::move(fine_scale);
+    scale_bits += steps;
+    mpz_mul_2exp(reached.get_mpz_t(), reached.get_mpz_t(), steps);
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 void refine_dyadically(Real& r, const Rational& width) {
   if (r.exact || r.upper - r.lower <= width) return;
   // Every sign below is decided first by the certified double filter (the polynomial's
@@ -691,8 +885,11 @@ void refine_dyadically(Real& r, const Rational& width) {
         else
           lo = std::nextafter(d, -HUGE_VAL);
       }
-      lo = std::ldexp(lo, -static_cast<int>(scale_bits));
-      hi = std::ldexp(hi, -static_cast<int>(scale_bits));
+      // times 2^-scale_bits (a normal double: scale_bits <= 900), exact while the result is
+      // normal, which is checked (std::ldexp's values, without the library call)
+      const double unit = negative_power_of_two(scale_bits);
+      lo *= unit;
+      hi *= unit;
       const bool normal = (lo == 0 || std::fabs(lo) >= 0x1p-1000) && (hi == 0 || std::fabs(hi) >= 0x1p-1000);
       if (normal && std::isfinite(lo) && std::isfinite(hi)) {
         int s = filter.sign(Interval{lo, hi});
@@ -725,6 +922,13 @@ void refine_dyadically(Real& r, const Rational& width) {
   const mpz_class needed = difference * width_den;
   mpz_class reached = width_num * scale;
   mpz_class middle;
+  if (needed > reached && dyadic_steps_in_machine_integers(r.polynomial, filter, lower_sign, needed, difference, a,
+                                                           scale, scale_bits, reached, middle))
+    return settle_exact(middle, scale);
+  if (needed > reached) {
+    const unsigned long steps = halvings(needed, reached);
+    if (steps >= 24) dyadic_cell_from_approximation(r.polynomial, lower_sign, steps, difference, a, scale, scale_bits, reached);
+  }
   while (needed > reached) {
     mpz_mul_2exp(a.get_mpz_t(), a.get_mpz_t(), 1);
     mpz_add(middle.get_mpz_t(), a.get_mpz_t(), difference.get_mpz_t());   // old a + old b

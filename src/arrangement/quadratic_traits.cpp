@@ -224,10 +224,28 @@ std::vector<Interval> enclose(const Polynomial& p) {
   return out;
 }
 
-Interval evaluate(const std::vector<Interval>& c, Interval x) {
+// Horner's scheme; the products by x have operator*'s bounds, in two end products when x keeps
+// one sign (interval_detail::times_nonnegative / times_nonpositive: the same bounds, argued
+// there), so every enclosure, hence every decision, is that of v * x + c throughout. (The arcs'
+// y enclosures in apart(), the no-root tests: mostly over x-ranges of one sign.)
+template <int S>
+[[gnu::flatten]] Interval horner(const std::vector<Interval>& c, Interval x) {
   Interval v{0, 0};
-  for (auto it = c.rbegin(); it != c.rend(); ++it) v = v * x + *it;
+  for (auto it = c.rbegin(); it != c.rend(); ++it) {
+    if constexpr (S > 0)
+      v = algebra::interval_detail::times_nonnegative(v, x) + *it;
+    else if constexpr (S < 0)
+      v = algebra::interval_detail::times_nonpositive(v, x) + *it;
+    else
+      v = v * x + *it;
+  }
   return v;
+}
+
+Interval evaluate(const std::vector<Interval>& c, Interval x) {
+  if (x.lo >= 0) return horner<1>(c, x);
+  if (x.hi <= 0) return horner<-1>(c, x);
+  return horner<0>(c, x);
 }
 
 Interval enclose(const Real& x) { return {x.lower_bound(), x.upper_bound()}; }

@@ -346,6 +346,81 @@ TEST(ExactRealFilters, RefinementWithLargeCoefficientsIsTheExactBisection) {
 }
 
 
+// refine_dyadically's definition with exact rationals only: inward dyadic ends a / 2^k, b / 2^k
+// with 2^-k <= (upper - lower) / 4, then halving [a, b] with exact signs until it is at most
+// `width` wide (a midpoint that is a root ends it; refine_to when the root is outside [a, b]).
+Real reference_dyadic(Real r, const Rational& width) {
+  if (r.exact || r.upper - r.lower <= width) return r;
+  const int lower_sign = sign_at(r.polynomial, r.lower);
+  const Rational gap = (r.upper - r.lower) / 4;
+  unsigned long k = 0;
+  while (Rational(mpz_class(1), mpz_class(1) << k) > gap) ++k;
+  mpz_class scale = mpz_class(1) << k, a, b;
+  mpz_class scaled_lower = r.lower.get_num() * scale, scaled_upper = r.upper.get_num() * scale;
+  mpz_cdiv_q(a.get_mpz_t(), scaled_lower.get_mpz_t(), r.lower.get_den_mpz_t());
+  mpz_fdiv_q(b.get_mpz_t(), scaled_upper.get_mpz_t(), r.upper.get_den_mpz_t());
+  auto at = [&](const mpz_class& n) {
+    Rational q(n, scale);
+    q.canonicalize();
+    return q;
+  };
+  const int sign_a = sign_at(r.polynomial, at(a)), sign_b = sign_at(r.polynomial, at(b));
+  if (sign_a == 0 || sign_b == 0) return Real::from_rational(at(sign_a == 0 ? a : b));
+  if (sign_a != lower_sign || sign_b == lower_sign) {
+    r.refine_to(width);
+    return r;
+  }
+  while (Rational(b - a, scale) > width) {
+    const mpz_class middle = a + b;
+    a *= 2;
+    b *= 2;
+    scale *= 2;
+    const int s = sign_at(r.polynomial, at(middle));
+    if (s == 0) return Real::from_rational(at(middle));
+    (s == lower_sign ? a : b) = middle;
+  }
+  r.lower = at(a);
+  r.upper = at(b);
+  return r;
+}
+
+// refine_dyadically (its bisection steps in machine integers while the numerators stay below
+// 2^126; beyond, the last cell found at once from a Newton approximation of the root and
+// checked by the exact signs at its ends, else the mpz halving) against the exact definition
+// above: roots of (x^2 - q)(d x - n) with
+// coefficients of 1 to 120 bits (q at scales 2^-60 .. 2^60), the linear factor's root dyadic
+// (a midpoint of some step: the exact end) or not, widths 2^-1 .. 2^-130 of the interval, and
+// each root refined again from a dyadic result (a second call starts from other ends).
+TEST(ExactRealFilters, DyadicRefinementIsTheExactDyadicBisection) {
+  std::mt19937_64 random(48);
+  std::size_t compared = 0, exact_ends = 0;
+  for (int n = 0; n < 300; ++n) {
+    const int exponent = static_cast<int>(random() % 121) - 60;
+    const Rational q = non_square(random, exponent / 2);
+    mpz_class num = random_integer(random, 1 + static_cast<unsigned>(random() % 120));
+    if (random() % 2) num = -num;
+    mpz_class den = n % 3 == 0 ? mpz_class(1) << (random() % 90) : random_integer(random, 1 + static_cast<unsigned>(random() % 120));
+    if (den == 0) den = 1;
+    const Polynomial p = times({-q.get_num(), mpz_class(0), q.get_den()}, {-num, den});
+    for (Real root : real_roots(p)) {
+      if (root.exact) continue;
+      for (int round = 0; round < 2 && !root.exact; ++round) {
+        const Rational width = (root.upper - root.lower) / Rational(mpz_class(1) << (1 + random() % 130));
+        const Real reference = reference_dyadic(root, width);
+        refine_dyadically(root, width);
+        ASSERT_EQ(root.exact, reference.exact) << n;
+        ASSERT_EQ(root.lower, reference.lower) << n;
+        ASSERT_EQ(root.upper, reference.upper) << n;
+        ++compared;
+        if (root.exact) ++exact_ends;
+      }
+    }
+  }
+  std::cout << compared << " refinements, " << exact_ends << " ended at an exact dyadic root\n";
+  EXPECT_GT(compared, 1000u);
+  EXPECT_GT(exact_ends, 20u);
+}
+
 // compare_rationals (the one-limb fast path of the isolating ends' comparisons) against GMP's
 // mpq_cmp on generated pairs: numerators and denominators of 1 to 64 bits (the fast path) and
 // beyond (the fallback), at the limb's edges (2^63, 2^64 - 1, 2^64), zero and both signs,
