@@ -14,6 +14,7 @@
 #include "algebra/exact_real.hpp"
 #include "cspace/builder_impl.hpp"
 #include "cspace_minkowski_support.hpp"
+#include "polygon_loop_json.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/error.hpp>
@@ -52,28 +53,11 @@ std::string text(const Rational& r) { return "\"" + r.get_str() + "\""; }
 
 std::string point_json(const Rational& x, const Rational& y) { return "[" + text(x) + ", " + text(y) + "]"; }
 
-std::string polygon_loop(const Points& points, const Rational& s) {
-  std::string loop = "{ \"start\": " + point_json(points[0].first * s, points[0].second * s) + ", \"edges\": [";
-  for (std::size_t i = 1; i <= points.size(); ++i) {
-    const auto& p = points[i % points.size()];
-    loop += std::string(i > 1 ? ", " : "") + "{ \"line_to\": " + point_json(p.first * s, p.second * s) + " }";
-  }
-  return loop + "] }";
-}
+std::string polygon_loop(const Points& points, const Rational& s) { return test_loops::loop_json(test_loops::scaled(points, s)); }
 
 // A star-shaped polygon of k vertices around (cx, cy) on a 1/8 grid.
 Points random_star(std::mt19937_64& random, int k, double cx, double cy, double radius) {
-  Points points;
-  for (int i = 0; i < k; ++i) {
-    double angle = 2 * 3.141592653589793 * (i + 0.15 + 0.7 * static_cast<double>(random() % 1000) / 1000.0) / k;
-    double r = radius * (random() % 3 == 0 ? 1.0 : 0.35 + 0.65 * static_cast<double>(random() % 1000) / 1000.0);
-    Rational x(static_cast<long>(std::lround(8 * (cx + r * std::cos(angle)))), 8);
-    Rational y(static_cast<long>(std::lround(8 * (cy + r * std::sin(angle)))), 8);
-    x.canonicalize();
-    y.canonicalize();
-    points.emplace_back(x, y);
-  }
-  return points;
+  return test_loops::grid_star(random, k, cx, cy, radius, 8, 1);
 }
 
 // Part a (loops `a`) along x, part b along y, both within [-20, 20] x s; `b_loops` JSON loops

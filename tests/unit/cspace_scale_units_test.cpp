@@ -11,6 +11,8 @@
 // units of 2^shift mm) 6912 failures: 1380 at each of k = -300, -100, -40, 40, 100 (every
 // contact frame point), the rest exact points. The space now keeps the model as given
 // (src/cspace/builder_model.cpp build_pair).
+#include "polygon_loop_json.hpp"
+
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
 
@@ -42,27 +44,10 @@ std::string point_json(const Rational& x, const Rational& y, const Rational& f) 
   return "[" + text(x * f) + ", " + text(y * f) + "]";
 }
 
-std::string polygon_loop(const Points& points, const Rational& f) {
-  std::string loop = "{ \"start\": " + point_json(points[0].first, points[0].second, f) + ", \"edges\": [";
-  for (std::size_t i = 1; i <= points.size(); ++i) {
-    const auto& p = points[i % points.size()];
-    loop += std::string(i > 1 ? ", " : "") + "{ \"line_to\": " + point_json(p.first, p.second, f) + " }";
-  }
-  return loop + "] }";
-}
+std::string polygon_loop(const Points& points, const Rational& f) { return test_loops::loop_json(test_loops::scaled(points, f)); }
 
 Points random_star(std::mt19937_64& random, int k, double cx, double cy, double radius) {
-  Points points;
-  for (int i = 0; i < k; ++i) {
-    double angle = 2 * 3.141592653589793 * (i + 0.15 + 0.7 * static_cast<double>(random() % 1000) / 1000.0) / k;
-    double r = radius * (random() % 3 == 0 ? 1.0 : 0.4 + 0.6 * static_cast<double>(random() % 1000) / 1000.0);
-    Rational x(static_cast<long>(std::lround(8 * (cx + r * std::cos(angle)))), 8);
-    Rational y(static_cast<long>(std::lround(8 * (cy + r * std::sin(angle)))), 8);
-    x.canonicalize();
-    y.canonicalize();
-    points.emplace_back(x, y);
-  }
-  return points;
+  return test_loops::grid_star(random, k, cx, cy, radius, 8, 1, 0.4, 0.6);
 }
 
 struct Case {

@@ -16,6 +16,7 @@
 // 10^400 were refused ("beyond 2^1016 mm"): 84 failures here. core/model_scale.hpp
 // normalising_translation now moves such a pair to the origin before building.
 #include "algebra/exact_real.hpp"
+#include "polygon_loop_json.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/error.hpp>
@@ -55,27 +56,12 @@ std::string point_json(const Rational& x, const Rational& y, const Offset& by) {
 }
 
 std::string polygon_loop(const Points& points, const Offset& by) {
-  std::string loop = "{ \"start\": " + point_json(points[0].first, points[0].second, by) + ", \"edges\": [";
-  for (std::size_t i = 1; i <= points.size(); ++i) {
-    const auto& p = points[i % points.size()];
-    loop += std::string(i > 1 ? ", " : "") + "{ \"line_to\": " + point_json(p.first, p.second, by) + " }";
-  }
-  return loop + "] }";
+  return test_loops::loop_json(test_loops::moved(points, by.x, by.y));
 }
 
 // A star-shaped polygon of k vertices around (cx, cy) on a 1/8 grid (counter-clockwise).
 Points random_star(std::mt19937_64& random, int k, double cx, double cy, double radius) {
-  Points points;
-  for (int i = 0; i < k; ++i) {
-    double angle = 2 * 3.141592653589793 * (i + 0.15 + 0.7 * static_cast<double>(random() % 1000) / 1000.0) / k;
-    double r = radius * (random() % 3 == 0 ? 1.0 : 0.4 + 0.6 * static_cast<double>(random() % 1000) / 1000.0);
-    Rational x(static_cast<long>(std::lround(8 * (cx + r * std::cos(angle)))), 8);
-    Rational y(static_cast<long>(std::lround(8 * (cy + r * std::sin(angle)))), 8);
-    x.canonicalize();
-    y.canonicalize();
-    points.emplace_back(x, y);
-  }
-  return points;
+  return test_loops::grid_star(random, k, cx, cy, radius, 8, 1, 0.4, 0.6);
 }
 
 // A square frame [-h, h]^2 with a square hole [-g, g]^2 (the hole clockwise).

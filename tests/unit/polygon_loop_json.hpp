@@ -49,12 +49,13 @@ inline Points star(std::mt19937_64& random, int n, double cx, double cy, double 
 
 // A star-shaped polygon with k vertices around (cx, cy) on a 1/q grid, times scale (a double only
 // places the test input; the reader checks that it is simple); one vertex in three at the full
-// radius, the others at 0.35-1 of it.
-inline Points grid_star(std::mt19937_64& random, int k, double cx, double cy, double radius, long q, const Rational& scale) {
+// radius, the others at `inner` ... `inner` + `span` of it (0.35-1 by default).
+inline Points grid_star(std::mt19937_64& random, int k, double cx, double cy, double radius, long q, const Rational& scale,
+                        double inner = 0.35, double span = 0.65) {
   Points points;
   for (int i = 0; i < k; ++i) {
     double angle = 2 * 3.141592653589793 * (i + 0.15 + 0.7 * static_cast<double>(random() % 1000) / 1000.0) / k;
-    double r = radius * (random() % 3 == 0 ? 1.0 : 0.35 + 0.65 * static_cast<double>(random() % 1000) / 1000.0);
+    double r = radius * (random() % 3 == 0 ? 1.0 : inner + span * static_cast<double>(random() % 1000) / 1000.0);
     Rational x(static_cast<long>(std::lround(q * (cx + r * std::cos(angle)))), q);
     Rational y(static_cast<long>(std::lround(q * (cy + r * std::sin(angle)))), q);
     x.canonicalize();
@@ -62,6 +63,19 @@ inline Points grid_star(std::mt19937_64& random, int k, double cx, double cy, do
     points.emplace_back(x * scale, y * scale);
   }
   return points;
+}
+
+// The polygon's vertices times s, or moved by (dx, dy) (exact, canonical).
+inline Points scaled(const Points& points, const Rational& s) {
+  Points out;
+  for (const auto& [x, y] : points) out.emplace_back(x * s, y * s);
+  return out;
+}
+
+inline Points moved(const Points& points, const Rational& dx, const Rational& dy) {
+  Points out;
+  for (const auto& [x, y] : points) out.emplace_back(x + dx, y + dy);
+  return out;
 }
 
 // The model text of two translating polygons: a moves along da, b along db.
