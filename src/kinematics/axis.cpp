@@ -7,6 +7,8 @@
 
 #include <hipair/error.hpp>
 
+#include <mpfr.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -607,6 +609,103 @@ double distance_up(const AxisLine& line, const AxisPosition& from, const AxisPos
     if (d < 0) d += 2 * pi;
   }
   return d;
+}
+
+namespace {
+
+// A certified enclosure [lo, hi] of a real number in MPFR.
+struct Enclosure {
+  mpfr_t lo, hi;
+  explicit Enclosure(mpfr_prec_t precision) { mpfr_inits2(precision, lo, hi, static_cast<mpfr_ptr>(nullptr)); }
+  ~Enclosure() { mpfr_clears(lo, hi, static_cast<mpfr_ptr>(nullptr)); }
+  Enclosure(const Enclosure&) = delete;
+  Enclosure& operator=(const Enclosure&) = delete;
+};
+
+// The position's unwrapped coordinate is half_turns pi + 2 atan(t) (rotation).
+long half_turns(const AxisLine& line, const AxisPosition& position, double unwrapped) {
+  long m = std::lround(line.offsets[position.piece] / pi);
+  if (line.cyclic) m += 2 * std::lround((unwrapped - coordinate(line, position)) / (2 * pi));
+  return m;
+}
+
+// Encloses the unwrapped coordinate of `position` with its chart value refined to 2^-bits, in
+// MPFR of `bits` + 32 bits, directed roundings (atan and the integer multiple of pi monotone).
+void enclose_unwrapped(const AxisLine& line, const AxisPosition& position, double unwrapped, int bits, Enclosure& out) {
+  Real t = position.value;
+  if (!t.exact) t.refine_to(Rational(mpz_class(1), mpz_class(1) << bits));
+  // an exact value has lower == upper == the value
+  mpfr_set_q(out.lo, t.lower.get_mpq_t(), MPFR_RNDD);
+  mpfr_set_q(out.hi, t.upper.get_mpq_t(), MPFR_RNDU);
+  if (!line.rotation) return;
+  mpfr_atan(out.lo, out.lo, MPFR_RNDD);
+  mpfr_atan(out.hi, out.hi, MPFR_RNDU);
+  mpfr_mul_2ui(out.lo, out.lo, 1, MPFR_RNDD);
+  mpfr_mul_2ui(out.hi, out.hi, 1, MPFR_RNDU);
+  long m = half_turns(line, position, unwrapped);
+  if (m == 0) return;
+  mpfr_t turn;
+  mpfr_init2(turn, mpfr_get_prec(out.lo));
+  // m pi >= m pi_lo for m > 0, >= m pi_hi for m < 0; the product rounded down (up for hi)
+  mpfr_const_pi(turn, m > 0 ? MPFR_RNDD : MPFR_RNDU);
+  mpfr_mul_si(turn, turn, m, MPFR_RNDD);
+  mpfr_add(out.lo, out.lo, turn, MPFR_RNDD);
+  mpfr_const_pi(turn, m > 0 ? MPFR_RNDU : MPFR_RNDD);
+  mpfr_mul_si(turn, turn, m, MPFR_RNDU);
+  mpfr_add(out.hi, out.hi, turn, MPFR_RNDU);
+  mpfr_clear(turn);
+}
+
+}  // namespace
+
+int compare_unwrapped(const AxisLine& line, const AxisPosition& position, double unwrapped, const Rational& value) {
+  if (!line.rotation) return position.value.compare(value);
+  if (sgn(value) == 0 && half_turns(line, position, unwrapped) == 0) return position.value.compare(value);
+  // value != m pi + 2 atan(t): enclosures separate it at some precision
+  for (int bits = 64; bits <= (1 << 16); bits *= 2) {
+    Enclosure box(bits + 32);
+    enclose_unwrapped(line, position, unwrapped, bits, box);
+    if (mpfr_cmp_q(box.lo, value.get_mpq_t()) > 0) return 1;
+    if (mpfr_cmp_q(box.hi, value.get_mpq_t()) < 0) return -1;
+  }
+  throw NumericError("a follower's angle and its spring's rest angle " + value.get_str() +
+                     " rad could not be separated at 65536 bits");
+}
+
+int compare_unwrapped(const AxisLine& line, const AxisPosition& a, double a_unwrapped, const AxisPosition& b,
+                      double b_unwrapped) {
+  if (line.cyclic) {
+    long turns_a = std::lround((a_unwrapped - coordinate(line, a)) / (2 * pi));
+    long turns_b = std::lround((b_unwrapped - coordinate(line, b)) / (2 * pi));
+    if (turns_a != turns_b) return turns_a < turns_b ? -1 : 1;
+  }
+  return compare(a, b);
+}
+
+int compare_push_distances(const AxisLine& line, const AxisPosition& a, double a_unwrapped, const AxisPosition& b,
+                           double b_unwrapped, const AxisPosition& c, double c_unwrapped, bool& decided) {
+  decided = true;
+  if (!line.rotation && a.value.exact && b.value.exact && c.value.exact) {
+    return sgn(Rational(2 * b.value.lower - a.value.lower - c.value.lower));
+  }
+  // (b - a) - (c - b) = 2 b - a - c
+  for (int bits = 64; bits <= (1 << 10); bits *= 2) {
+    Enclosure ea(bits + 32), eb(bits + 32), ec(bits + 32);
+    enclose_unwrapped(line, a, a_unwrapped, bits, ea);
+    enclose_unwrapped(line, b, b_unwrapped, bits, eb);
+    enclose_unwrapped(line, c, c_unwrapped, bits, ec);
+    Enclosure d(bits + 40);
+    mpfr_mul_2ui(d.lo, eb.lo, 1, MPFR_RNDD);
+    mpfr_sub(d.lo, d.lo, ea.hi, MPFR_RNDD);
+    mpfr_sub(d.lo, d.lo, ec.hi, MPFR_RNDD);
+    mpfr_mul_2ui(d.hi, eb.hi, 1, MPFR_RNDU);
+    mpfr_sub(d.hi, d.hi, ea.lo, MPFR_RNDU);
+    mpfr_sub(d.hi, d.hi, ec.lo, MPFR_RNDU);
+    if (mpfr_sgn(d.lo) > 0) return 1;
+    if (mpfr_sgn(d.hi) < 0) return -1;
+  }
+  decided = false;
+  return 0;
 }
 
 }  // namespace hipair::kinematics_detail
