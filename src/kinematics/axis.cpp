@@ -629,6 +629,19 @@ long half_turns(const AxisLine& line, const AxisPosition& position, double unwra
   return m;
 }
 
+// The unwrapped coordinate in doubles for the filters of compare_unwrapped and
+// compare_push_distances: a rotation's m pi + 2 atan(t_d), t_d the truncated double of t (|t| <= 1:
+// within 2^-52 of it), is within (|m| + 8) 2^-50 of the exact value (atan 1-Lipschitz, libm's
+// atan within an ulp, three roundings); NaN when |m| >= 2^20 (no filter). A translation's t_d is
+// within 2^-52 |t| of t.
+double filtered_unwrapped(const AxisLine& line, const AxisPosition& position, double unwrapped) {
+  if (std::isnan(position.approximate)) position.approximate = truncated_double(position.value);
+  if (!line.rotation) return position.approximate;
+  const long m = half_turns(line, position, unwrapped);
+  if (std::abs(m) >= (1L << 20)) return std::numeric_limits<double>::quiet_NaN();
+  return static_cast<double>(m) * pi + 2 * std::atan(position.approximate);
+}
+
 // Encloses the unwrapped coordinate of `position` with its chart value refined to 2^-bits, in
 // MPFR of `bits` + 32 bits, directed roundings (atan and the integer multiple of pi monotone).
 void enclose_unwrapped(const AxisLine& line, const AxisPosition& position, double unwrapped, int bits, Enclosure& out) {
@@ -661,6 +674,16 @@ void enclose_unwrapped(const AxisLine& line, const AxisPosition& position, doubl
 int compare_unwrapped(const AxisLine& line, const AxisPosition& position, double unwrapped, const Rational& value) {
   if (!line.rotation) return position.value.compare(value);
   if (sgn(value) == 0 && half_turns(line, position, unwrapped) == 0) return position.value.compare(value);
+  // Filter: the angle in doubles, m pi + 2 atan(t_d) with t_d the truncated double of t (|t| <= 1:
+  // within 2^-52 of it), is within (|m| + 8) 2^-50 of the exact one (atan 1-Lipschitz, libm's atan
+  // within an ulp, three roundings); with |m| < 2^20 and |value| < 2^20 a difference beyond 1e-9
+  // (over 2^20 times that bound) is a certain sign.
+  const double value_d = value.get_d();
+  if (std::abs(value_d) < 1048576.0) {
+    const double angle = filtered_unwrapped(line, position, unwrapped);
+    if (angle - value_d > 1e-9) return 1;
+    if (value_d - angle > 1e-9) return -1;
+  }
   // value != m pi + 2 atan(t): enclosures separate it at some precision
   for (int bits = 64; bits <= (1 << 16); bits *= 2) {
     Enclosure box(bits + 32);
@@ -688,7 +711,14 @@ int compare_push_distances(const AxisLine& line, const AxisPosition& a, double a
   if (!line.rotation && a.value.exact && b.value.exact && c.value.exact) {
     return sgn(Rational(2 * b.value.lower - a.value.lower - c.value.lower));
   }
-  // (b - a) - (c - b) = 2 b - a - c
+  // (b - a) - (c - b) = 2 b - a - c; the filter: each double within 2^-30 (1 + |its value|) of
+  // the exact one (filtered_unwrapped's bounds, |m| < 2^20), so beyond 1e-8 (1 + the sum) the
+  // doubles' sign is certain
+  const double da = filtered_unwrapped(line, a, a_unwrapped), db = filtered_unwrapped(line, b, b_unwrapped),
+               dc = filtered_unwrapped(line, c, c_unwrapped);
+  const double difference = 2 * db - da - dc, margin = 1e-8 * (1 + std::abs(da) + 2 * std::abs(db) + std::abs(dc));
+  if (difference > margin) return 1;
+  if (difference < -margin) return -1;
   for (int bits = 64; bits <= (1 << 10); bits *= 2) {
     Enclosure ea(bits + 32), eb(bits + 32), ec(bits + 32);
     enclose_unwrapped(line, a, a_unwrapped, bits, ea);
