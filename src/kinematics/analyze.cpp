@@ -237,7 +237,7 @@ std::vector<ContactLabel> wall_contacts(const Chain& chain, const ChainState& be
 // A jump (a snap under the load, or a push through blocked space that stops the driver) is told
 // from a contact change by a threshold, not exactly: the reports say so (session 49).
 const std::string approximate_jump =
-    " (a jump by threshold, approximate: its position changes by more than 1e-7 across the located driver interval)";
+    "a jump by threshold, approximate: its position changes by more than 1e-7 across the located driver interval";
 
 struct Sweep {
   const Chain& chain;
@@ -368,7 +368,7 @@ struct Sweep {
       event.position = after.unwrapped;
       if (jump) {
         event.kind = KinematicEvent::Kind::drop;
-        event.description = event.part + " snaps through free space under its load" + approximate_jump;
+        event.description = event.part + " snaps through free space under its load (" + approximate_jump + ")";
       } else if (before.contacts.empty()) {
         event.kind = KinematicEvent::Kind::contact_start;
         event.description = "contact starts";
@@ -464,8 +464,8 @@ struct Sweep {
       if (b.jammed || jumping != none) {
         bool jump = jumping != none;
         std::size_t part = jump ? jumping : b.jam_part;
-        std::string reason = jump ? "would have to jump: the contact pushes it at right angles to its motion (dead point or locking face)" +
-                                        approximate_jump
+        std::string reason = jump ? "would have to jump: the contact pushes it at right angles to its motion (dead point or locking face; " +
+                                        approximate_jump + ")"
                                   : b.jam_reason;
         std::vector<SliceContact> contacts = jump ? a.parts[jumping].contacts : b.jam_contacts;
         if (jump) {
