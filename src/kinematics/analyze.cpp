@@ -301,6 +301,19 @@ struct Sweep {
     return false;
   }
 
+  // Chain part k at the same exact unwrapped position in both states; a state at its spring's
+  // rest is exactly at the rest (its AxisPosition may be a rounding of it).
+  bool same_position(std::size_t k, const PartState& a, const PartState& b) const {
+    const AxisLine& line = chain.parts[k].line;
+    const Rational& rest = chain.parts[k].load.rest;
+    if (a.at_rest && b.at_rest) return true;
+    if (a.at_rest || b.at_rest) {
+      const PartState& other = a.at_rest ? b : a;
+      return compare_unwrapped(line, other.position, other.unwrapped, rest) == 0;
+    }
+    return compare_unwrapped(line, a.position, a.unwrapped, b.position, b.unwrapped) == 0;
+  }
+
   std::vector<ContactLabel> labels(const PartState& state, std::size_t k) const {
     std::vector<ContactLabel> out;
     for (const SliceContact& contact : state.contacts) out.push_back(label_of(chain, contact, chain.parts[k].part));
@@ -327,9 +340,7 @@ struct Sweep {
     double lowest = std::min({piece.lowest, last.unwrapped, out.start_position});
     double highest = std::max({piece.highest, last.unwrapped, out.start_position});
     // drive or dwell, exactly: a position of the piece (grid samples and ends) differs from its start
-    const AxisLine& line = chain.parts[k].line;
-    out.moving = piece.moved || compare_unwrapped(line, last.position, last.unwrapped, piece.state.position,
-                                                  piece.state.unwrapped) != 0;
+    out.moving = piece.moved || !same_position(k, last, piece.state);
     out.lowest_position = lowest;
     out.highest_position = highest;
     for (const SliceContact& contact : piece.state.contacts) {
@@ -515,9 +526,7 @@ struct Sweep {
       if (open[k].open) {
         open[k].lowest = std::min(open[k].lowest, part.unwrapped);
         open[k].highest = std::max(open[k].highest, part.unwrapped);
-        if (!open[k].moved)
-          open[k].moved = compare_unwrapped(line, part.position, part.unwrapped, open[k].state.position,
-                                            open[k].state.unwrapped) != 0;
+        if (!open[k].moved) open[k].moved = !same_position(k, part, open[k].state);
       }
       s.velocity_ratios.push_back(r[k].ratio);
       if (options.accelerations) s.accelerations.push_back(r[k].acceleration);

@@ -332,6 +332,7 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
   const AxisPosition& y = old.position;
   PartState& out = next.parts[k];
   out.blocked_by.clear();
+  out.at_rest = false;
   Placement placement = place(line, slice, y);
   std::size_t n = slice.points.size();
   std::size_t interval = 0;
@@ -571,7 +572,10 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
       // rest itself: the contact holds it), else to the rest; at the rest it stays.
       double here = old.unwrapped + moved;
       int towards = -compare_unwrapped(line, start, here, load.rest);
-      if (towards == 0) break;
+      if (towards == 0) {
+        out.at_rest = true;
+        break;
+      }
       const Bound& end = towards < 0 ? low : high;
       double reach = !end.exists ? infinity : towards < 0 ? distance_down(line, start, end.at) : distance_up(line, start, end.at);
       double end_unwrapped = here + towards * reach;
@@ -582,6 +586,7 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
         target = rest_position(line, load.rest, low, here - (low.exists ? distance_down(line, start, low.at) : 0),
                                high, here + (high.exists ? distance_up(line, start, high.at) : 0));
         moved += load.rest.get_d() - here;
+        out.at_rest = true;
       }
       break;
     }

@@ -63,6 +63,10 @@ struct PartState {
   /// On a zero-clearance channel (Breakpoint::channel): a free range of zero width; lower and
   /// upper are the channel point, `contacts` its contacts, `kind` touching, `side` 0.
   bool channel = false;
+  /// At its spring's rest, exactly: `position` is then the rest itself (translation) or its
+  /// half-angle tangent rounded (rotation: rest_position), so two states at rest are at the
+  /// same position whatever their roundings.
+  bool at_rest = false;
 };
 
 /// Velocity ratio and acceleration of chain part `k` with respect to the driver (double).
