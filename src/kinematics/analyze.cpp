@@ -862,8 +862,9 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
   }
   // pushes out of blocked space whose nearer end certified enclosures did not decide (engine.cpp)
   if (const std::size_t ties = undecided_push_ties() - push_ties_before; ties > 0)
-    result.warnings.push_back(std::to_string(ties) + " push(es) of a follower out of blocked space had both ends of the"
-                              " blocked interval at distances equal to 2^-1024 (not decided exactly): taken downwards");
+    result.warnings.push_back(std::to_string(ties) + " decision(s) of the direction a follower is pushed out of blocked"
+                              " space found both ends of the blocked interval at distances equal to 2^-1024 (not decided"
+                              " exactly): taken downwards");
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return result;
 }
