@@ -705,6 +705,50 @@ int compare_unwrapped(const AxisLine& line, const AxisPosition& a, double a_unwr
   return compare(a, b);
 }
 
+namespace {
+
+// The number 2 y - x for a rational y (twice_y = 2 y): the root of p(2 y - X) in
+// (2 y - upper, 2 y - lower), p x's square-free polynomial (an affine change keeps it square-free).
+Real reflected(const Real& x, const Rational& twice_y) {
+  if (x.exact) return Real::from_rational(Rational(twice_y - x.lower));
+  std::vector<Rational> q(x.polynomial.size(), Rational(0)), power{Rational(1)};   // power: (2 y - X)^i
+  for (const mpz_class& coefficient : x.polynomial) {
+    for (std::size_t j = 0; j < power.size(); ++j) q[j] += Rational(coefficient) * power[j];
+    std::vector<Rational> next(power.size() + 1, Rational(0));
+    for (std::size_t j = 0; j < power.size(); ++j) {
+      next[j] += twice_y * power[j];
+      next[j + 1] -= power[j];
+    }
+    power = std::move(next);
+  }
+  Real r;
+  r.polynomial = algebra::primitive_part(algebra::from_rationals(q));
+  if (sgn(r.polynomial.back()) < 0)
+    for (mpz_class& coefficient : r.polynomial) coefficient = -coefficient;
+  r.lower = twice_y - x.upper;
+  r.upper = twice_y - x.lower;
+  return r;
+}
+
+// The sign of 2 b - a - c from enclosures at 2^-bits, or 0 when they do not separate it.
+int separated_push(const AxisLine& line, const AxisPosition& a, double a_unwrapped, const AxisPosition& b,
+                   double b_unwrapped, const AxisPosition& c, double c_unwrapped, int bits) {
+  Enclosure ea(bits + 32), eb(bits + 32), ec(bits + 32);
+  enclose_unwrapped(line, a, a_unwrapped, bits, ea);
+  enclose_unwrapped(line, b, b_unwrapped, bits, eb);
+  enclose_unwrapped(line, c, c_unwrapped, bits, ec);
+  Enclosure d(bits + 40);
+  mpfr_mul_2ui(d.lo, eb.lo, 1, MPFR_RNDD);
+  mpfr_sub(d.lo, d.lo, ea.hi, MPFR_RNDD);
+  mpfr_sub(d.lo, d.lo, ec.hi, MPFR_RNDD);
+  mpfr_mul_2ui(d.hi, eb.hi, 1, MPFR_RNDU);
+  mpfr_sub(d.hi, d.hi, ea.lo, MPFR_RNDU);
+  mpfr_sub(d.hi, d.hi, ec.lo, MPFR_RNDU);
+  return mpfr_sgn(d.lo) > 0 ? 1 : mpfr_sgn(d.hi) < 0 ? -1 : 0;
+}
+
+}  // namespace
+
 int compare_push_distances(const AxisLine& line, const AxisPosition& a, double a_unwrapped, const AxisPosition& b,
                            double b_unwrapped, const AxisPosition& c, double c_unwrapped, bool& decided) {
   decided = true;
@@ -719,20 +763,14 @@ int compare_push_distances(const AxisLine& line, const AxisPosition& a, double a
   const double difference = 2 * db - da - dc, margin = 1e-8 * (1 + std::abs(da) + 2 * std::abs(db) + std::abs(dc));
   if (difference > margin) return 1;
   if (difference < -margin) return -1;
-  for (int bits = 64; bits <= (1 << 10); bits *= 2) {
-    Enclosure ea(bits + 32), eb(bits + 32), ec(bits + 32);
-    enclose_unwrapped(line, a, a_unwrapped, bits, ea);
-    enclose_unwrapped(line, b, b_unwrapped, bits, eb);
-    enclose_unwrapped(line, c, c_unwrapped, bits, ec);
-    Enclosure d(bits + 40);
-    mpfr_mul_2ui(d.lo, eb.lo, 1, MPFR_RNDD);
-    mpfr_sub(d.lo, d.lo, ea.hi, MPFR_RNDD);
-    mpfr_sub(d.lo, d.lo, ec.hi, MPFR_RNDD);
-    mpfr_mul_2ui(d.hi, eb.hi, 1, MPFR_RNDU);
-    mpfr_sub(d.hi, d.hi, ea.lo, MPFR_RNDU);
-    mpfr_sub(d.hi, d.hi, ec.lo, MPFR_RNDU);
-    if (mpfr_sgn(d.lo) > 0) return 1;
-    if (mpfr_sgn(d.hi) < 0) return -1;
+  for (int bits = 64; bits <= (1 << 10); bits *= 2)
+    if (int sign = separated_push(line, a, a_unwrapped, b, b_unwrapped, c, c_unwrapped, bits)) return sign;
+  // a translation with b rational: a tie is c = 2 b - a, decided exactly; distinct numbers are
+  // separated at some precision
+  if (!line.rotation && b.value.exact) {
+    if (algebra::equal(reflected(a.value, 2 * b.value.lower), c.value)) return 0;
+    for (int bits = 1 << 11; bits <= (1 << 16); bits *= 2)
+      if (int sign = separated_push(line, a, a_unwrapped, b, b_unwrapped, c, c_unwrapped, bits)) return sign;
   }
   decided = false;
   return 0;

@@ -200,8 +200,10 @@ int compare_unwrapped(const AxisLine& line, const AxisPosition& a, double a_unwr
 /// Exact sign of (b - a) - (c - b) for unwrapped positions a <= b <= c (the push out of blocked
 /// space: the distance down from b to a against the distance up to c): certified enclosures
 /// refined until they separate, and an exact rational comparison when all three are rational
-/// (translation). `decided` is false when 2^10 bits do not separate them (a tie that is not
-/// rational, or a distance closer than that): 0 is returned then.
+/// (translation). Where 2^10 bits do not separate them on a translation whose b is rational,
+/// the tie c = 2 b - a is tested exactly (the root of a's polynomial reflected about b) and
+/// distinct numbers are separated at up to 2^16 bits. `decided` is false otherwise (a rotation's
+/// tie, or a translation's with b irrational): 0 is returned then.
 int compare_push_distances(const AxisLine& line, const AxisPosition& a, double a_unwrapped, const AxisPosition& b,
                            double b_unwrapped, const AxisPosition& c, double c_unwrapped, bool& decided);
 

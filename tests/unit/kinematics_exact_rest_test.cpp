@@ -8,7 +8,9 @@
 // generated gaps (2^-55 ... 2^-300): a rest R = floor(A 2^k) / 2^k lies below A and
 // ceil(A 2^k) / 2^k above it (A is irrational unless t = 0, m = 0). The pushes: three positions on
 // a translation at rational ties (decided exactly as ties) and near-ties 2^-k off with an
-// algebraic end, and on a rotation near-ties, each sign from the oracle.
+// algebraic end, exact ties of irrational ends about a rational middle (sqrt c, 3, 6 - sqrt c) and
+// near-ties 2^-1030 ... off them (past the enclosures' 2^-1024), and on a rotation near-ties, each
+// sign from the oracle or the closed form.
 #include "kinematics/axis.hpp"
 
 #include <gtest/gtest.h>
@@ -203,6 +205,30 @@ TEST(KinematicsExactRest, PushTowardsTheNearerEnd) {
                                      c_near.get_d(), decided),
               1)
         << "k " << k;
+    EXPECT_TRUE(decided);
+  }
+  // an exact tie of irrational ends about a rational middle: a = sqrt c, b = 3, c_end = 6 - sqrt c
+  // (the lower root of (x - 6)^2 - c), decided as a tie; and 6 - sqrt c' for c' = c + 2^-k: not one
+  for (int i = 0; i < 10; ++i) {
+    Rational root_c(static_cast<long>(random() % 997) + 1, 1009);
+    Real alg = square_root(root_c);
+    auto lower_root_about_six = [](const Rational& c) {
+      Rational c0 = 36 - c;   // (x - 6)^2 - c = x^2 - 12 x + 36 - c, times the denominator
+      Polynomial p{c0.get_num(), mpz_class(-12) * c0.get_den(), c0.get_den()};
+      return algebra::real_roots(p, Rational(0), Rational(6)).at(0);
+    };
+    Real mirror = lower_root_about_six(root_c);
+    bool decided = false;
+    EXPECT_EQ(compare_push_distances(straight, AxisPosition{0, alg}, alg.approximate(), AxisPosition{0, Real::from_rational(Rational(3))},
+                                     3.0, AxisPosition{0, mirror}, mirror.approximate(), decided),
+              0);
+    EXPECT_TRUE(decided);
+    int k = 1030 + static_cast<int>(random() % 200);   // beyond the 2^-1024 enclosures
+    Real off = lower_root_about_six(root_c + Rational(mpz_class(1), mpz_class(1) << k));   // 6 - sqrt(c + 2^-k) < 6 - sqrt c
+    // the way up 6 - sqrt(c') - 3 is shorter than the way down 3 - sqrt c: 2 b - a - c_end > 0
+    EXPECT_EQ(compare_push_distances(straight, AxisPosition{0, alg}, alg.approximate(), AxisPosition{0, Real::from_rational(Rational(3))},
+                                     3.0, AxisPosition{0, off}, off.approximate(), decided),
+              1);
     EXPECT_TRUE(decided);
   }
   // a rotation: b at 0, c at 2 atan(sqrt c), a at -2 atan(t_a) with the rational t_a 2^-k from
