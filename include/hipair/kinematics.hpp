@@ -42,7 +42,10 @@ struct FollowerLoad {
     spring     ///< pulled towards `rest` (rad or mm)
   };
   Kind kind = Kind::none;
-  double rest = 0;
+  /// The spring's rest (rad or mm), exact as given (model or --load): the analysis compares the
+  /// follower's exact position with it (a rotating follower's rest angle by certified
+  /// enclosures of its position's angle, which no nonzero rational equals).
+  Rational rest = 0;
   std::string source;   ///< where it comes from: "torsional spring (model)", "--load", ...
 };
 

@@ -100,7 +100,7 @@ FollowerLoad parse_load(const std::string& text, std::string& part) {
   else if (value.rfind("spring:", 0) == 0) {
     load.kind = FollowerLoad::Kind::spring;
     try {
-      load.rest = parse_rational(trim(value.substr(7))).get_d();
+      load.rest = parse_rational(trim(value.substr(7)));
     } catch (const Error&) {
       throw ModelError("", "--load " + text + ": the rest position is not a number");
     }

@@ -29,9 +29,9 @@ std::map<std::string, FollowerLoad> model_loads(const Model& model) {
     if (part.motion.kind == Motion::Kind::rotation) {
       if (dynamics.torsional_spring) {
         load.kind = FollowerLoad::Kind::spring;
-        load.rest = dynamics.torsional_spring->rest.get_d();
+        load.rest = dynamics.torsional_spring->rest;
         char text[64];
-        std::snprintf(text, sizeof text, "%.4g", load.rest * 180 / std::numbers::pi);
+        std::snprintf(text, sizeof text, "%.4g", load.rest.get_d() * 180 / std::numbers::pi);
         load.source = std::string("torsional spring of the model (rest angle ") + text + " deg)";
       } else if (dynamics.torque && sgn(*dynamics.torque) != 0) {
         load.kind = sgn(*dynamics.torque) > 0 ? FollowerLoad::Kind::positive : FollowerLoad::Kind::negative;
@@ -41,7 +41,7 @@ std::map<std::string, FollowerLoad> model_loads(const Model& model) {
     } else if (part.motion.kind == Motion::Kind::translation) {
       if (dynamics.linear_spring) {
         load.kind = FollowerLoad::Kind::spring;
-        load.rest = dynamics.linear_spring->rest.get_d();
+        load.rest = dynamics.linear_spring->rest;
         load.source = "linear spring of the model (rest offset " + to_decimal_string(dynamics.linear_spring->rest, 6) + " mm)";
       } else if (dynamics.force) {
         Rational along = dynamics.force->x * part.motion.direction.x + dynamics.force->y * part.motion.direction.y;
@@ -179,6 +179,9 @@ struct OpenPiece {
   double start_position = 0;
   double lowest = 0, highest = 0;   // range of positions seen during the piece
   PartState state;
+  /// A grid sample of the piece lies at another exact position than its start (its turns
+  /// included): the piece is a drive (session 49; until then a span of the doubles > 1e-12).
+  bool moved = false;
 };
 
 std::string chart_variable_note(const AxisLine& line) {
@@ -230,6 +233,11 @@ std::vector<ContactLabel> wall_contacts(const Chain& chain, const ChainState& be
   }
   return labels;
 }
+
+// A jump (a snap under the load, or a push through blocked space that stops the driver) is told
+// from a contact change by a threshold, not exactly: the reports say so (session 49).
+const std::string approximate_jump =
+    "a jump by threshold, approximate: its position changes by more than 1e-7 across the located driver interval";
 
 struct Sweep {
   const Chain& chain;
@@ -293,6 +301,19 @@ struct Sweep {
     return false;
   }
 
+  // Chain part k at the same exact unwrapped position in both states; a state at its spring's
+  // rest is exactly at the rest (its AxisPosition may be a rounding of it).
+  bool same_position(std::size_t k, const PartState& a, const PartState& b) const {
+    const AxisLine& line = chain.parts[k].line;
+    const Rational& rest = chain.parts[k].load.rest;
+    if (a.at_rest && b.at_rest) return true;
+    if (a.at_rest || b.at_rest) {
+      const PartState& other = a.at_rest ? b : a;
+      return compare_unwrapped(line, other.position, other.unwrapped, rest) == 0;
+    }
+    return compare_unwrapped(line, a.position, a.unwrapped, b.position, b.unwrapped) == 0;
+  }
+
   std::vector<ContactLabel> labels(const PartState& state, std::size_t k) const {
     std::vector<ContactLabel> out;
     for (const SliceContact& contact : state.contacts) out.push_back(label_of(chain, contact, chain.parts[k].part));
@@ -318,7 +339,8 @@ struct Sweep {
     out.end_position = last.unwrapped;
     double lowest = std::min({piece.lowest, last.unwrapped, out.start_position});
     double highest = std::max({piece.highest, last.unwrapped, out.start_position});
-    out.moving = highest - lowest > 1e-12;
+    // drive or dwell, exactly: a position of the piece (grid samples and ends) differs from its start
+    out.moving = piece.moved || !same_position(k, last, piece.state);
     out.lowest_position = lowest;
     out.highest_position = highest;
     for (const SliceContact& contact : piece.state.contacts) {
@@ -357,7 +379,7 @@ struct Sweep {
       event.position = after.unwrapped;
       if (jump) {
         event.kind = KinematicEvent::Kind::drop;
-        event.description = event.part + " snaps through free space under its load";
+        event.description = event.part + " snaps through free space under its load (" + approximate_jump + ")";
       } else if (before.contacts.empty()) {
         event.kind = KinematicEvent::Kind::contact_start;
         event.description = "contact starts";
@@ -453,7 +475,8 @@ struct Sweep {
       if (b.jammed || jumping != none) {
         bool jump = jumping != none;
         std::size_t part = jump ? jumping : b.jam_part;
-        std::string reason = jump ? "would have to jump: the contact pushes it at right angles to its motion (dead point or locking face)"
+        std::string reason = jump ? "would have to jump: the contact pushes it at right angles to its motion (dead point or locking face; " +
+                                        approximate_jump + ")"
                                   : b.jam_reason;
         std::vector<SliceContact> contacts = jump ? a.parts[jumping].contacts : b.jam_contacts;
         if (jump) {
@@ -503,6 +526,7 @@ struct Sweep {
       if (open[k].open) {
         open[k].lowest = std::min(open[k].lowest, part.unwrapped);
         open[k].highest = std::max(open[k].highest, part.unwrapped);
+        if (!open[k].moved) open[k].moved = !same_position(k, part, open[k].state);
       }
       s.velocity_ratios.push_back(r[k].ratio);
       if (options.accelerations) s.accelerations.push_back(r[k].acceleration);
@@ -554,6 +578,7 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
     require_kinematic_length_scale(model, parts);   // lengths as coordinates: absolute resolutions
   }
   auto clock_start = std::chrono::steady_clock::now();
+  const std::size_t push_ties_before = undecided_push_ties();
   KinematicsResult result;
   result.model_name = model.name;
   // the driver
@@ -835,6 +860,11 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
                                 " contacts (or of one contact of even multiplicity) were not decided: reported as"
                                 " blocked, though they may be zero-clearance fits (touching)");
   }
+  // pushes out of blocked space whose nearer end certified enclosures did not decide (engine.cpp)
+  if (const std::size_t ties = undecided_push_ties() - push_ties_before; ties > 0)
+    result.warnings.push_back(std::to_string(ties) + " decision(s) of the direction a follower is pushed out of blocked"
+                              " space found both ends of the blocked interval at distances equal to 2^-1024 (not decided"
+                              " exactly): taken downwards");
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return result;
 }

@@ -7,6 +7,8 @@
 
 #include <hipair/error.hpp>
 
+#include <mpfr.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -607,6 +609,171 @@ double distance_up(const AxisLine& line, const AxisPosition& from, const AxisPos
     if (d < 0) d += 2 * pi;
   }
   return d;
+}
+
+namespace {
+
+// A certified enclosure [lo, hi] of a real number in MPFR.
+struct Enclosure {
+  mpfr_t lo, hi;
+  explicit Enclosure(mpfr_prec_t precision) { mpfr_inits2(precision, lo, hi, static_cast<mpfr_ptr>(nullptr)); }
+  ~Enclosure() { mpfr_clears(lo, hi, static_cast<mpfr_ptr>(nullptr)); }
+  Enclosure(const Enclosure&) = delete;
+  Enclosure& operator=(const Enclosure&) = delete;
+};
+
+// The position's unwrapped coordinate is half_turns pi + 2 atan(t) (rotation).
+long half_turns(const AxisLine& line, const AxisPosition& position, double unwrapped) {
+  long m = std::lround(line.offsets[position.piece] / pi);
+  if (line.cyclic) m += 2 * std::lround((unwrapped - coordinate(line, position)) / (2 * pi));
+  return m;
+}
+
+// The unwrapped coordinate in doubles for the filters of compare_unwrapped and
+// compare_push_distances: a rotation's m pi + 2 atan(t_d), t_d the truncated double of t (|t| <= 1:
+// within 2^-52 of it), is within (|m| + 8) 2^-50 of the exact value (atan 1-Lipschitz, libm's
+// atan within an ulp, three roundings); NaN when |m| >= 2^20 (no filter). A translation's t_d is
+// within 2^-52 |t| of t.
+double filtered_unwrapped(const AxisLine& line, const AxisPosition& position, double unwrapped) {
+  if (std::isnan(position.approximate)) position.approximate = truncated_double(position.value);
+  if (!line.rotation) return position.approximate;
+  const long m = half_turns(line, position, unwrapped);
+  if (std::abs(m) >= (1L << 20)) return std::numeric_limits<double>::quiet_NaN();
+  return static_cast<double>(m) * pi + 2 * std::atan(position.approximate);
+}
+
+// Encloses the unwrapped coordinate of `position` with its chart value refined to 2^-bits, in
+// MPFR of `bits` + 32 bits, directed roundings (atan and the integer multiple of pi monotone).
+void enclose_unwrapped(const AxisLine& line, const AxisPosition& position, double unwrapped, int bits, Enclosure& out) {
+  Real t = position.value;
+  if (!t.exact) t.refine_to(Rational(mpz_class(1), mpz_class(1) << bits));
+  // an exact value has lower == upper == the value
+  mpfr_set_q(out.lo, t.lower.get_mpq_t(), MPFR_RNDD);
+  mpfr_set_q(out.hi, t.upper.get_mpq_t(), MPFR_RNDU);
+  if (!line.rotation) return;
+  mpfr_atan(out.lo, out.lo, MPFR_RNDD);
+  mpfr_atan(out.hi, out.hi, MPFR_RNDU);
+  mpfr_mul_2ui(out.lo, out.lo, 1, MPFR_RNDD);
+  mpfr_mul_2ui(out.hi, out.hi, 1, MPFR_RNDU);
+  long m = half_turns(line, position, unwrapped);
+  if (m == 0) return;
+  mpfr_t turn;
+  mpfr_init2(turn, mpfr_get_prec(out.lo));
+  // m pi >= m pi_lo for m > 0, >= m pi_hi for m < 0; the product rounded down (up for hi)
+  mpfr_const_pi(turn, m > 0 ? MPFR_RNDD : MPFR_RNDU);
+  mpfr_mul_si(turn, turn, m, MPFR_RNDD);
+  mpfr_add(out.lo, out.lo, turn, MPFR_RNDD);
+  mpfr_const_pi(turn, m > 0 ? MPFR_RNDU : MPFR_RNDD);
+  mpfr_mul_si(turn, turn, m, MPFR_RNDU);
+  mpfr_add(out.hi, out.hi, turn, MPFR_RNDU);
+  mpfr_clear(turn);
+}
+
+}  // namespace
+
+int compare_unwrapped(const AxisLine& line, const AxisPosition& position, double unwrapped, const Rational& value) {
+  if (!line.rotation) return position.value.compare(value);
+  if (sgn(value) == 0 && half_turns(line, position, unwrapped) == 0) return position.value.compare(value);
+  // Filter: the angle in doubles, m pi + 2 atan(t_d) with t_d the truncated double of t (|t| <= 1:
+  // within 2^-52 of it), is within (|m| + 8) 2^-50 of the exact one (atan 1-Lipschitz, libm's atan
+  // within an ulp, three roundings); with |m| < 2^20 and |value| < 2^20 a difference beyond 1e-9
+  // (over 2^20 times that bound) is a certain sign.
+  const double value_d = value.get_d();
+  if (std::abs(value_d) < 1048576.0) {
+    const double angle = filtered_unwrapped(line, position, unwrapped);
+    if (angle - value_d > 1e-9) return 1;
+    if (value_d - angle > 1e-9) return -1;
+  }
+  // value != m pi + 2 atan(t): enclosures separate it at some precision
+  for (int bits = 64; bits <= (1 << 16); bits *= 2) {
+    Enclosure box(bits + 32);
+    enclose_unwrapped(line, position, unwrapped, bits, box);
+    if (mpfr_cmp_q(box.lo, value.get_mpq_t()) > 0) return 1;
+    if (mpfr_cmp_q(box.hi, value.get_mpq_t()) < 0) return -1;
+  }
+  throw NumericError("a follower's angle and its spring's rest angle " + value.get_str() +
+                     " rad could not be separated at 65536 bits");
+}
+
+int compare_unwrapped(const AxisLine& line, const AxisPosition& a, double a_unwrapped, const AxisPosition& b,
+                      double b_unwrapped) {
+  if (line.cyclic) {
+    long turns_a = std::lround((a_unwrapped - coordinate(line, a)) / (2 * pi));
+    long turns_b = std::lround((b_unwrapped - coordinate(line, b)) / (2 * pi));
+    if (turns_a != turns_b) return turns_a < turns_b ? -1 : 1;
+  }
+  return compare(a, b);
+}
+
+namespace {
+
+// The number 2 y - x for a rational y (twice_y = 2 y): the root of p(2 y - X) in
+// (2 y - upper, 2 y - lower), p x's square-free polynomial (an affine change keeps it square-free).
+Real reflected(const Real& x, const Rational& twice_y) {
+  if (x.exact) return Real::from_rational(Rational(twice_y - x.lower));
+  std::vector<Rational> q(x.polynomial.size(), Rational(0)), power{Rational(1)};   // power: (2 y - X)^i
+  for (const mpz_class& coefficient : x.polynomial) {
+    for (std::size_t j = 0; j < power.size(); ++j) q[j] += Rational(coefficient) * power[j];
+    std::vector<Rational> next(power.size() + 1, Rational(0));
+    for (std::size_t j = 0; j < power.size(); ++j) {
+      next[j] += twice_y * power[j];
+      next[j + 1] -= power[j];
+    }
+    power = std::move(next);
+  }
+  Real r;
+  r.polynomial = algebra::primitive_part(algebra::from_rationals(q));
+  if (sgn(r.polynomial.back()) < 0)
+    for (mpz_class& coefficient : r.polynomial) coefficient = -coefficient;
+  r.lower = twice_y - x.upper;
+  r.upper = twice_y - x.lower;
+  return r;
+}
+
+// The sign of 2 b - a - c from enclosures at 2^-bits, or 0 when they do not separate it.
+int separated_push(const AxisLine& line, const AxisPosition& a, double a_unwrapped, const AxisPosition& b,
+                   double b_unwrapped, const AxisPosition& c, double c_unwrapped, int bits) {
+  Enclosure ea(bits + 32), eb(bits + 32), ec(bits + 32);
+  enclose_unwrapped(line, a, a_unwrapped, bits, ea);
+  enclose_unwrapped(line, b, b_unwrapped, bits, eb);
+  enclose_unwrapped(line, c, c_unwrapped, bits, ec);
+  Enclosure d(bits + 40);
+  mpfr_mul_2ui(d.lo, eb.lo, 1, MPFR_RNDD);
+  mpfr_sub(d.lo, d.lo, ea.hi, MPFR_RNDD);
+  mpfr_sub(d.lo, d.lo, ec.hi, MPFR_RNDD);
+  mpfr_mul_2ui(d.hi, eb.hi, 1, MPFR_RNDU);
+  mpfr_sub(d.hi, d.hi, ea.lo, MPFR_RNDU);
+  mpfr_sub(d.hi, d.hi, ec.lo, MPFR_RNDU);
+  return mpfr_sgn(d.lo) > 0 ? 1 : mpfr_sgn(d.hi) < 0 ? -1 : 0;
+}
+
+}  // namespace
+
+int compare_push_distances(const AxisLine& line, const AxisPosition& a, double a_unwrapped, const AxisPosition& b,
+                           double b_unwrapped, const AxisPosition& c, double c_unwrapped, bool& decided) {
+  decided = true;
+  if (!line.rotation && a.value.exact && b.value.exact && c.value.exact) {
+    return sgn(Rational(2 * b.value.lower - a.value.lower - c.value.lower));
+  }
+  // (b - a) - (c - b) = 2 b - a - c; the filter: each double within 2^-30 (1 + |its value|) of
+  // the exact one (filtered_unwrapped's bounds, |m| < 2^20), so beyond 1e-8 (1 + the sum) the
+  // doubles' sign is certain
+  const double da = filtered_unwrapped(line, a, a_unwrapped), db = filtered_unwrapped(line, b, b_unwrapped),
+               dc = filtered_unwrapped(line, c, c_unwrapped);
+  const double difference = 2 * db - da - dc, margin = 1e-8 * (1 + std::abs(da) + 2 * std::abs(db) + std::abs(dc));
+  if (difference > margin) return 1;
+  if (difference < -margin) return -1;
+  for (int bits = 64; bits <= (1 << 10); bits *= 2)
+    if (int sign = separated_push(line, a, a_unwrapped, b, b_unwrapped, c, c_unwrapped, bits)) return sign;
+  // a translation with b rational: a tie is c = 2 b - a, decided exactly; distinct numbers are
+  // separated at some precision
+  if (!line.rotation && b.value.exact) {
+    if (algebra::equal(reflected(a.value, 2 * b.value.lower), c.value)) return 0;
+    for (int bits = 1 << 11; bits <= (1 << 16); bits *= 2)
+      if (int sign = separated_push(line, a, a_unwrapped, b, b_unwrapped, c, c_unwrapped, bits)) return sign;
+  }
+  decided = false;
+  return 0;
 }
 
 }  // namespace hipair::kinematics_detail

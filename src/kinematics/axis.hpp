@@ -183,4 +183,28 @@ std::size_t interval_before(const AxisLine& line, const AxisSlice& slice, std::s
 double distance_down(const AxisLine& line, const AxisPosition& from, const AxisPosition& to);
 double distance_up(const AxisLine& line, const AxisPosition& from, const AxisPosition& to);
 
+/// Exact decisions on unwrapped coordinates (session 49). A position's unwrapped coordinate (a
+/// part state's `unwrapped`: whole turns included) is known exactly from its AxisPosition and
+/// the number of whole turns, which `unwrapped` (its double, within a quarter turn of it) gives:
+/// it is turns_pi(line, position, unwrapped) pi + 2 atan(t) for a rotation, t for a translation.
+
+/// Exact sign of (the unwrapped coordinate of `position`, `unwrapped` its double) - `value`.
+/// Translation: the exact comparison of t with the rational. Rotation: the only rational of
+/// the form m pi + 2 atan(t) with t algebraic is 0 (m = 0, t = 0: compared exactly); any other
+/// is transcendental (Lindemann), so certified MPFR enclosures of m pi + 2 atan(t), refined
+/// until they separate from `value`, decide it. \throws NumericError if 2^16 bits do not.
+int compare_unwrapped(const AxisLine& line, const AxisPosition& position, double unwrapped, const Rational& value);
+/// Exact order of two unwrapped positions (each with its double, for its whole turns).
+int compare_unwrapped(const AxisLine& line, const AxisPosition& a, double a_unwrapped, const AxisPosition& b,
+                      double b_unwrapped);
+/// Exact sign of (b - a) - (c - b) for unwrapped positions a <= b <= c (the push out of blocked
+/// space: the distance down from b to a against the distance up to c): certified enclosures
+/// refined until they separate, and an exact rational comparison when all three are rational
+/// (translation). Where 2^10 bits do not separate them on a translation whose b is rational,
+/// the tie c = 2 b - a is tested exactly (the root of a's polynomial reflected about b) and
+/// distinct numbers are separated at up to 2^16 bits. `decided` is false otherwise (a rotation's
+/// tie, or a translation's with b irrational): 0 is returned then.
+int compare_push_distances(const AxisLine& line, const AxisPosition& a, double a_unwrapped, const AxisPosition& b,
+                           double b_unwrapped, const AxisPosition& c, double c_unwrapped, bool& decided);
+
 }  // namespace hipair::kinematics_detail

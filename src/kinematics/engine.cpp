@@ -52,11 +52,11 @@ Rational round_to_bits(const Rational& value, int bits) {
   return result;
 }
 
-// tan((theta - multiple_of_pi * pi) / 2), rounded to the grid 2^-60.
-Rational half_tangent(const Rational& theta, long multiple_of_pi) {
+// tan((theta - multiple_of_pi * pi) / 2), rounded to the grid 2^-bits.
+Rational half_tangent(const Rational& theta, long multiple_of_pi, int bits) {
   if (multiple_of_pi == 0 && theta == 0) return Rational(0);
   mpfr_t x, p, q;
-  mpfr_inits2(200, x, p, q, static_cast<mpfr_ptr>(nullptr));
+  mpfr_inits2(std::max(200, bits + 140), x, p, q, static_cast<mpfr_ptr>(nullptr));
   mpfr_set_q(x, theta.get_mpq_t(), MPFR_RNDN);
   mpfr_const_pi(p, MPFR_RNDN);
   mpfr_mul_si(p, p, multiple_of_pi, MPFR_RNDN);
@@ -69,7 +69,7 @@ Rational half_tangent(const Rational& theta, long multiple_of_pi) {
   Rational value(exact);
   mpq_clear(exact);
   mpfr_clears(x, p, q, static_cast<mpfr_ptr>(nullptr));
-  return round_to_bits(value, 60);
+  return round_to_bits(value, bits);
 }
 
 void sort_contacts(std::vector<SliceContact>& contacts) {
@@ -81,7 +81,7 @@ void sort_contacts(std::vector<SliceContact>& contacts) {
 
 }  // namespace
 
-AxisPosition position_of_coordinate(const AxisLine& line, const Rational& coordinate_value) {
+AxisPosition position_of_coordinate(const AxisLine& line, const Rational& coordinate_value, int bits) {
   if (!line.rotation) {
     Rational value = coordinate_value;
     value = std::clamp(value, line.pieces.front().lo, line.pieces.front().hi);
@@ -93,7 +93,7 @@ AxisPosition position_of_coordinate(const AxisLine& line, const Rational& coordi
     double local = theta - 2 * pi * turns;
     std::size_t piece = local < pi / 2 ? 0 : 1;
     long multiple = 2 * turns + (piece == 1 ? 1 : 0);
-    Rational t = half_tangent(coordinate_value, multiple);
+    Rational t = half_tangent(coordinate_value, multiple, bits);
     t = std::clamp(t, Rational(-1), Rational(1));
     return canonical(line, AxisPosition{piece, Real::from_rational(t)});
   }
@@ -108,9 +108,22 @@ AxisPosition position_of_coordinate(const AxisLine& line, const Rational& coordi
     }
   }
   long multiple = std::lround(line.offsets[best] / pi);
-  Rational t = half_tangent(coordinate_value, multiple);
+  Rational t = half_tangent(coordinate_value, multiple, bits);
   t = std::clamp(t, line.pieces[best].lo, line.pieces[best].hi);
   return canonical(line, AxisPosition{best, Real::from_rational(t)});
+}
+
+AxisPosition rest_position(const AxisLine& line, const Rational& rest, const Bound& low, double low_unwrapped,
+                           const Bound& high, double high_unwrapped) {
+  const double rest_unwrapped = rest.get_d();
+  for (int bits = 60; bits <= 4096; bits *= 2) {
+    AxisPosition at = position_of_coordinate(line, rest, bits);
+    if (!line.rotation) return at;   // the rest itself (clamped to the axis, whose ends bound it)
+    bool above_low = !low.exists || compare_unwrapped(line, low.at, low_unwrapped, at, rest_unwrapped) < 0;
+    bool below_high = !high.exists || compare_unwrapped(line, at, rest_unwrapped, high.at, high_unwrapped) < 0;
+    if (above_low && below_high) return at;
+  }
+  throw NumericError("a spring's rest angle " + rest.get_str() + " rad lies within 2^-4096 of a contact");
 }
 
 // ------------------------------------------------------------------------------ chain
@@ -319,6 +332,7 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
   const AxisPosition& y = old.position;
   PartState& out = next.parts[k];
   out.blocked_by.clear();
+  out.at_rest = false;
   Placement placement = place(line, slice, y);
   std::size_t n = slice.points.size();
   std::size_t interval = 0;
@@ -423,8 +437,11 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
         return std::find(old_far.contacts.begin(), old_far.contacts.end(), c) != old_far.contacts.end();
       });
       if (!same_far && old_far.exists) {
+        // the contact point reached the old far end or passed it: decided exactly
         double reach = old.side < 0 ? distance_up(line, y, old_far.at) : distance_down(line, y, old_far.at);
-        if (std::abs(followed_offset) >= reach) {
+        int past = compare_unwrapped(line, slice.points[followed].at, old.unwrapped + followed_offset, old_far.at,
+                                     old.unwrapped - old.side * reach);
+        if (old.side > 0 ? past <= 0 : past >= 0) {
           if (std::isfinite(max_push)) return Outcome::coarse;
           std::vector<SliceContact> contacts = old.contacts;
           contacts.insert(contacts.end(), old_far.contacts.begin(), old_far.contacts.end());
@@ -485,8 +502,13 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
     double down = can_below ? distance_down(line, y, blocked_low.at) : infinity;
     double up = can_above ? distance_up(line, y, blocked_high.at) : infinity;
     // the free range moved continuously: the new one overlaps the old one
-    if (can_below && !(down < old_down())) can_below = false;
-    if (can_above && !(up < old_up())) can_above = false;
+    // (exactly: the blocked interval's end lies strictly inside the old free range)
+    if (can_below && old.lower.exists && !initial &&
+        compare_unwrapped(line, blocked_low.at, old.unwrapped - down, old.lower.at, old.unwrapped - old_down()) <= 0)
+      can_below = false;
+    if (can_above && old.upper.exists && !initial &&
+        compare_unwrapped(line, blocked_high.at, old.unwrapped + up, old.upper.at, old.unwrapped + old_up()) >= 0)
+      can_above = false;
     if (!can_below && !can_above) {
       std::vector<SliceContact> contacts = old.contacts;
       contacts.insert(contacts.end(), blocked_low.contacts.begin(), blocked_low.contacts.end());
@@ -494,7 +516,15 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
       jam(next, k, "its free range closed: it cannot move out of the way", std::move(contacts));
       return Outcome::jammed;
     }
-    bool go_down = can_below && (!can_above || down <= up);
+    // nearer end, down on a tie: decided exactly (certified enclosures of the distances; a tie
+    // they cannot separate is counted, analyze warns)
+    bool go_down = can_below;
+    if (can_below && can_above) {
+      bool decided = true;
+      double here = old.unwrapped;
+      go_down = compare_push_distances(line, blocked_low.at, here - down, y, here, blocked_high.at, here + up, decided) <= 0;
+      if (!decided) ++undecided_push_ties();
+    }
     if ((go_down ? down : up) > max_push) return Outcome::coarse;
     if (go_down ? channel_below : channel_above) {
       Outcome settled = settle(go_down ? low_point : high_point, go_down ? -down : up);
@@ -537,29 +567,26 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
       }
       break;
     case FollowerLoad::Kind::spring: {
+      // Exact (session 49): the follower at `start` (unwrapped `here`) moves towards the
+      // spring's rest until the end of its free range if that end is reached first (or at the
+      // rest itself: the contact holds it), else to the rest; at the rest it stays.
       double here = old.unwrapped + moved;
-      double delta = load.rest - here;
-      const double tiny = 1e-12;
-      if (delta < -tiny) {
-        double reach = low.exists ? distance_down(line, start, low.at) : infinity;
-        if (reach <= -delta) {
-          moved -= reach;
-          target = low.at;
-        } else {
-          AxisPosition rest = position_of_coordinate(line, Rational(load.rest));
-          moved += delta;
-          target = rest;
-        }
-      } else if (delta > tiny) {
-        double reach = high.exists ? distance_up(line, start, high.at) : infinity;
-        if (reach <= delta) {
-          moved += reach;
-          target = high.at;
-        } else {
-          AxisPosition rest = position_of_coordinate(line, Rational(load.rest));
-          moved += delta;
-          target = rest;
-        }
+      int towards = -compare_unwrapped(line, start, here, load.rest);
+      if (towards == 0) {
+        out.at_rest = true;
+        break;
+      }
+      const Bound& end = towards < 0 ? low : high;
+      double reach = !end.exists ? infinity : towards < 0 ? distance_down(line, start, end.at) : distance_up(line, start, end.at);
+      double end_unwrapped = here + towards * reach;
+      if (end.exists && towards * compare_unwrapped(line, end.at, end_unwrapped, load.rest) <= 0) {
+        moved += towards * reach;
+        target = end.at;
+      } else {
+        target = rest_position(line, load.rest, low, here - (low.exists ? distance_down(line, start, low.at) : 0),
+                               high, here + (high.exists ? distance_up(line, start, high.at) : 0));
+        moved += load.rest.get_d() - here;
+        out.at_rest = true;
       }
       break;
     }

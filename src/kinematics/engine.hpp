@@ -63,6 +63,10 @@ struct PartState {
   /// On a zero-clearance channel (Breakpoint::channel): a free range of zero width; lower and
   /// upper are the channel point, `contacts` its contacts, `kind` touching, `side` 0.
   bool channel = false;
+  /// At its spring's rest, exactly: `position` is then the rest itself (translation) or its
+  /// half-angle tangent rounded (rotation: rest_position), so two states at rest are at the
+  /// same position whatever their roundings.
+  bool at_rest = false;
 };
 
 /// Velocity ratio and acceleration of chain part `k` with respect to the driver (double).
@@ -141,7 +145,18 @@ CurveSlopes contact_slopes_rational(const IntegerPolynomial2& polynomial, const 
 /// Labels of contacts for reports.
 ContactLabel label_of(const Chain& chain, const SliceContact& contact, std::size_t part);
 
-/// Chain part `k`'s position as an AxisPosition from a coordinate (rad or mm), rounded.
-AxisPosition position_of_coordinate(const AxisLine& line, const Rational& coordinate);
+/// Chain part `k`'s position as an AxisPosition from a coordinate (rad or mm), rounded (a
+/// rotation's half-angle tangent to the grid 2^-bits).
+AxisPosition position_of_coordinate(const AxisLine& line, const Rational& coordinate, int bits = 60);
+/// A spring's rest as a position strictly inside the free range (low, high) that holds it
+/// (`rest` strictly between them, decided before): the rest itself for a translation; for a
+/// rotation its half-angle tangent rounded to 2^-60, 2^-120, ... until the rounded position lies
+/// strictly between the range's ends (their doubles give their whole turns).
+AxisPosition rest_position(const AxisLine& line, const Rational& rest, const Bound& low, double low_unwrapped,
+                           const Bound& high, double high_unwrapped);
+/// Pushes out of blocked space whose direction (the nearer end) certified enclosures did not
+/// decide at 2^10 bits (taken downwards) on this thread: analyze warns when it is not 0.
+struct UndecidedPushTag;
+inline std::size_t& undecided_push_ties() { return thread_counter<UndecidedPushTag>(); }
 
 }  // namespace hipair::kinematics_detail
