@@ -77,8 +77,9 @@ struct Count {
   double worst = 0;   // the largest distance of an exact value outside its band (mm)
 };
 
-// Every exact value at the probes against every bounded band of the chain's analysis.
-Count check(const Variant& v, int anchor) {
+// Every exact value at the probes against every bounded band of the chain's analysis (the
+// anchor and the far walk, handover.cpp 0b and 6, as given).
+Count check(const Variant& v, int anchor, int far = tolerance_detail::handover_far_windows()) {
   const std::string text = two_roller_chain(v);
   const std::pair<Rational, Rational> range(Rational(7, 5), Rational(8, 5));
   ToleranceOptions options;
@@ -90,6 +91,7 @@ Count check(const Variant& v, int anchor) {
   ToleranceResult r;
   {
     test_band::ScopedSwitch on(tolerance_detail::handover_sub_box_anchor(), anchor);
+    test_band::ScopedSwitch windows(tolerance_detail::handover_far_windows(), far);
     r = analyze_tolerances_text(text, options);
   }
   Count count;
@@ -179,6 +181,38 @@ TEST(ChainSubBoxAnchor, FailureSplitHalfAwayFromNominalBandsHoldTheExactChain) {
   // not vacuous: the last two variants' bands are checked
   EXPECT_GE(with_band, 12u);
   std::printf("%zu exact values checked against bounded bands, %zu outside\n", values, outside);
+}
+
+// Session 49 (tol49): the walk carried on beyond its window (handover.cpp step 6). In the first
+// six variants the competitor takes over inside the box and lifts lifter2 above the holder by more
+// than the window reaches (2 |Y|): the whole box's walk, and the failure split's halves, stopped
+// at the window's end, so every position was unbounded (sound). Carried on over more windows, the
+// walk passes the competitor's zeros and ends at a free leaf beyond them: a band covering both
+// holders, which the exact chain at the vectors where the competitor holds (g at its end away
+// from nominal) must lie in. Mutant: the walk's end at the window's far end taken as bounded
+// without walking on (the band cut at the window).
+TEST(ChainFarWalk, CompetitorBeyondTheWindowBandsCoverBothHoldersAndHoldTheExactChain) {
+  const std::vector<Variant> variants = {
+      {"1/10", "1/10", "1/2", "-1", "3"}, {"1/10", "1/20", "1/2", "-1", "3"}, {"1/10", "3/20", "1/2", "-1", "3"},
+      {"1/10", "1/10", "3/5", "-1", "3"}, {"1/10", "1/10", "1/2", "-1", "4"}, {"1/10", "9/20", "1/2", "-1", "5"}};
+  ASSERT_GT(tolerance_detail::handover_far_windows(), 1);
+  std::size_t with_band = 0, without = 0, values = 0;
+  for (const Variant& v : variants) {
+    SCOPED_TRACE(std::string("a ") + v.a + ", d " + v.d + ", b " + v.b + ", g in [" + v.lo + ", " + v.hi + "]");
+    Count c = check(v, 1);
+    EXPECT_EQ(c.outside, 0u) << "worst " << c.worst << " mm outside";
+    with_band += c.bounded;
+    values += c.values;
+    without += check(v, 1, 1).bounded;
+    std::printf("a %s d %s b %s g in [%s, %s]: %zu of 6 positions bounded (%zu exact values, %zu outside, worst "
+                "%.4f mm)\n",
+                v.a, v.d, v.b, v.lo, v.hi, c.bounded, c.values, c.outside, c.worst);
+  }
+  // session 48's walk bounds none of them; carried on, the walk bounds every position
+  EXPECT_EQ(without, 0u);
+  EXPECT_EQ(with_band, 6u * variants.size());
+  std::printf("%zu of %zu positions bounded (session 48's walk: %zu), %zu exact values checked\n", with_band,
+              6u * variants.size(), without, values);
 }
 
 }  // namespace
