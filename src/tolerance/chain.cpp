@@ -912,10 +912,12 @@ class ChainAnalysis {
           for (std::size_t p = 0; p < n; ++p) share[k][p] += std::fabs(through * per_[i][j].s_part[p]);
         }
       // The position's compositions (the whole box, then its splits); false where the band is
-      // unbounded. Run again with the hand-over walks carried on beyond their windows
-      // (handover.cpp step 6, session 49) where it is: every band bounded without them stays as
-      // it was.
-      auto position_band = [&]() -> bool {
+      // unbounded. Run again where it is (`far`), each sub-box whose composition fails composed
+      // once more with the hand-over walks carried on beyond their windows (handover.cpp step 6,
+      // session 49): every band bounded without them stays as it was, and a sub-box that composes
+      // without them keeps that composition (carried on, a walk that failed before may end far
+      // out and change which pair the case split takes as the widened one).
+      auto position_band = [&](bool far) -> bool {
         std::size_t failure_splits = 0, shared_splits = 0;
         // The parameter of sub-box b whose weight times its width is largest and above `floor`
         // (n if none): where a sub-box is bisected (both halves queued, breadth first).
@@ -953,6 +955,11 @@ class ChainAnalysis {
           std::size_t failed = stages_.size();
           bool composed =
               compose_over(i, b, charts, out, &boxes[i * stages_.size()], &mean_value_through, &handover[i], &failed);
+          if (!composed && far) {   // (a sub-box composed without the far walks keeps that composition)
+            FarWalk on;
+            composed =
+                compose_over(i, b, charts, out, &boxes[i * stages_.size()], &mean_value_through, &handover[i], &failed);
+          }
           double linear = 0;
           for (std::size_t p = 0; p < n && p < total.size(); ++p) linear += std::fabs(total[p]) * (b.hi[p] - b.lo[p]);
           bool accurate = composed && out.width() <= linear * (1 + options_.relative_accuracy) + options_.absolute_accuracy;
@@ -1031,10 +1038,7 @@ class ChainAnalysis {
         ok[i] = 1;
         return true;
       };
-      if (!position_band() && handover_far_windows() > 1) {
-        FarWalk far;
-        position_band();
-      }
+      if (!position_band(false) && handover_far_windows() > 1) position_band(true);
     }, [&](std::size_t done) { bar_.units(done, positions()); });
     std::size_t uncertified = 0, split_positions = 0, most = 0;
     for (std::size_t i = 0; i < positions(); ++i) {
