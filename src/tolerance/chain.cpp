@@ -911,91 +911,86 @@ class ChainAnalysis {
           for (std::size_t m = j + 1; m <= k; ++m) through *= per_[i][m].driver_factor;
           for (std::size_t p = 0; p < n; ++p) share[k][p] += std::fabs(through * per_[i][j].s_part[p]);
         }
-      std::size_t failure_splits = 0, shared_splits = 0;
-      // The parameter of sub-box b whose weight times its width is largest and above `floor`
-      // (n if none): where a sub-box is bisected (both halves queued, breadth first).
-      auto widest = [n](const Box& b, const std::vector<double>& weight, double floor) {
-        std::size_t split = n;
-        for (std::size_t p = 0; p < n; ++p) {
-          double score = weight[p] * (b.hi[p] - b.lo[p]);
-          if (b.hi[p] > b.lo[p] && score > floor) {
-            floor = score;
-            split = p;
+      // The position's compositions (the whole box, then its splits); false where the band is
+      // unbounded. Run again where it is (`far`), each sub-box whose composition fails composed
+      // once more with the hand-over walks carried on beyond their windows (handover.cpp step 6,
+      // session 49): every band bounded without them stays as it was, and a sub-box that composes
+      // without them keeps that composition (carried on, a walk that failed before may end far
+      // out and change which pair the case split takes as the widened one).
+      auto position_band = [&](bool far) -> bool {
+        std::size_t failure_splits = 0, shared_splits = 0;
+        // The parameter of sub-box b whose weight times its width is largest and above `floor`
+        // (n if none): where a sub-box is bisected (both halves queued, breadth first).
+        auto widest = [n](const Box& b, const std::vector<double>& weight, double floor) {
+          std::size_t split = n;
+          for (std::size_t p = 0; p < n; ++p) {
+            double score = weight[p] * (b.hi[p] - b.lo[p]);
+            if (b.hi[p] > b.lo[p] && score > floor) {
+              floor = score;
+              split = p;
+            }
           }
-        }
-        return split;
-      };
-      std::vector<Interval> hull_charts(stages_.size());
-      std::vector<Interval> charts(stages_.size());
-      // breadth first: when the budget runs out, the sub-boxes left are the narrowest ones
-      // (depth first would leave the first halves whole)
-      std::deque<Box> pending{stages_.front().box};
-      bool have = false;
-      Interval band;
-      std::size_t used = 0;
-      // A whole box composed only through a widened envelope (a hand-over candidate's spread, far
-      // beyond the linearised width): its band, kept while its halves are composed as for a failed
-      // composition (session 48); both enclose the output over the box, so the band is their meet,
-      // or the whole box's alone where a half fails.
-      std::optional<Interval> whole;
-      std::vector<Interval> whole_charts;
-      while (!pending.empty()) {
-        Box b = std::move(pending.front());
-        pending.pop_front();
-        ++used;
-        Interval out;
-        bool mean_value_through = false;
-        std::size_t failed = stages_.size();
-        bool composed =
-            compose_over(i, b, charts, out, &boxes[i * stages_.size()], &mean_value_through, &handover[i], &failed);
-        double linear = 0;
-        for (std::size_t p = 0; p < n && p < total.size(); ++p) linear += std::fabs(total[p]) * (b.hi[p] - b.lo[p]);
-        bool accurate = composed && out.width() <= linear * (1 + options_.relative_accuracy) + options_.absolute_accuracy;
-        // A composition in mean-value form through the last pair loses no independence (the chain
-        // rule carries each parameter through every pair): bisecting for it would spend the budget
-        // for nothing (a 4-gear train: 248 -> 4 634 sub-boxes, 10 x the CPU).
-        // (not in a box split for a failed composition: its sub-boxes, up to max_failure_boxes,
-        // are hulled as they come, which keeps the failure splits' cost bounded)
-        if (composed && !accurate && !mean_value_through && failure_splits == 0 &&
-            used + pending.size() + 2 <= max_shared_boxes) {
-          // Bisection removes at most the independence loss, sum_p loss_p x width_p: split only
-          // when that explains at least half the excess over the linearised width (otherwise the
-          // excess is the pairs' own, e.g. gear meshes over a wide box, and splitting would cost
-          // up to max_shared_boxes compositions for nothing), along the largest term when it is
-          // at least a tenth of the excess.
-          double excess = out.width() - linear, explained = 0;
-          for (std::size_t p = 0; p < n; ++p) explained += loss[p] * (b.hi[p] - b.lo[p]);
-          std::size_t split = explained >= 0.5 * excess ? widest(b, loss, 0.1 * excess) : n;
-          if (split < n) {
-            auto [left, right] = halves(b, split);
-            pending.push_back(std::move(left));
-            pending.push_back(std::move(right));
-            ++shared_splits;
-            continue;
+          return split;
+        };
+        std::vector<Interval> hull_charts(stages_.size());
+        std::vector<Interval> charts(stages_.size());
+        // breadth first: when the budget runs out, the sub-boxes left are the narrowest ones
+        // (depth first would leave the first halves whole)
+        std::deque<Box> pending{stages_.front().box};
+        bool have = false;
+        Interval band;
+        std::size_t used = 0;
+        // A whole box composed only through a widened envelope (a hand-over candidate's spread, far
+        // beyond the linearised width): its band, kept while its halves are composed as for a failed
+        // composition (session 48); both enclose the output over the box, so the band is their meet,
+        // or the whole box's alone where a half fails.
+        std::optional<Interval> whole;
+        std::vector<Interval> whole_charts;
+        while (!pending.empty()) {
+          Box b = std::move(pending.front());
+          pending.pop_front();
+          ++used;
+          Interval out;
+          bool mean_value_through = false;
+          std::size_t failed = stages_.size();
+          bool composed =
+              compose_over(i, b, charts, out, &boxes[i * stages_.size()], &mean_value_through, &handover[i], &failed);
+          if (!composed && far) {   // (a sub-box composed without the far walks keeps that composition)
+            FarWalk on;
+            composed =
+                compose_over(i, b, charts, out, &boxes[i * stages_.size()], &mean_value_through, &handover[i], &failed);
           }
-        }
-        if (composed && !accurate && used == 1 && handover[i].extended && chain_widened_split() != 0) {
-          std::size_t split = widest(b, share[stages_.size() - 1], 0);
-          if (split < n && used + pending.size() + 2 <= max_failure_boxes) {
-            whole = out;
-            whole_charts = charts;
-            auto [left, right] = halves(b, split);
-            pending.push_back(std::move(left));
-            pending.push_back(std::move(right));
-            ++failure_splits;
-            continue;
-          }
-        }
-        if (!composed) {
-          // A sub-box that cannot be certified (a pair's root not certified over its driver
-          // range, its free side not certain, or a competitor possibly holding its follower
-          // beyond the window: at the last meshes of a long gear train the driver's range,
-          // composed over the whole box, is too wide): bisected along the parameter that
-          // spreads the failing pair's follower most, within max_failure_boxes sub-boxes; the
-          // band is the hull of the halves' compositions. Otherwise unbounded.
-          if (failed < stages_.size() && used + pending.size() + 2 <= max_failure_boxes) {
-            std::size_t split = widest(b, share[failed], 0);
+          double linear = 0;
+          for (std::size_t p = 0; p < n && p < total.size(); ++p) linear += std::fabs(total[p]) * (b.hi[p] - b.lo[p]);
+          bool accurate = composed && out.width() <= linear * (1 + options_.relative_accuracy) + options_.absolute_accuracy;
+          // A composition in mean-value form through the last pair loses no independence (the chain
+          // rule carries each parameter through every pair): bisecting for it would spend the budget
+          // for nothing (a 4-gear train: 248 -> 4 634 sub-boxes, 10 x the CPU).
+          // (not in a box split for a failed composition: its sub-boxes, up to max_failure_boxes,
+          // are hulled as they come, which keeps the failure splits' cost bounded)
+          if (composed && !accurate && !mean_value_through && failure_splits == 0 &&
+              used + pending.size() + 2 <= max_shared_boxes) {
+            // Bisection removes at most the independence loss, sum_p loss_p x width_p: split only
+            // when that explains at least half the excess over the linearised width (otherwise the
+            // excess is the pairs' own, e.g. gear meshes over a wide box, and splitting would cost
+            // up to max_shared_boxes compositions for nothing), along the largest term when it is
+            // at least a tenth of the excess.
+            double excess = out.width() - linear, explained = 0;
+            for (std::size_t p = 0; p < n; ++p) explained += loss[p] * (b.hi[p] - b.lo[p]);
+            std::size_t split = explained >= 0.5 * excess ? widest(b, loss, 0.1 * excess) : n;
             if (split < n) {
+              auto [left, right] = halves(b, split);
+              pending.push_back(std::move(left));
+              pending.push_back(std::move(right));
+              ++shared_splits;
+              continue;
+            }
+          }
+          if (composed && !accurate && used == 1 && handover[i].extended && chain_widened_split() != 0) {
+            std::size_t split = widest(b, share[stages_.size() - 1], 0);
+            if (split < n && used + pending.size() + 2 <= max_failure_boxes) {
+              whole = out;
+              whole_charts = charts;
               auto [left, right] = halves(b, split);
               pending.push_back(std::move(left));
               pending.push_back(std::move(right));
@@ -1003,27 +998,47 @@ class ChainAnalysis {
               continue;
             }
           }
-          if (!whole) return;   // the band is unbounded
-          have = false;   // the whole box's band stands
-          break;
+          if (!composed) {
+            // A sub-box that cannot be certified (a pair's root not certified over its driver
+            // range, its free side not certain, or a competitor possibly holding its follower
+            // beyond the window: at the last meshes of a long gear train the driver's range,
+            // composed over the whole box, is too wide): bisected along the parameter that
+            // spreads the failing pair's follower most, within max_failure_boxes sub-boxes; the
+            // band is the hull of the halves' compositions. Otherwise unbounded.
+            if (failed < stages_.size() && used + pending.size() + 2 <= max_failure_boxes) {
+              std::size_t split = widest(b, share[failed], 0);
+              if (split < n) {
+                auto [left, right] = halves(b, split);
+                pending.push_back(std::move(left));
+                pending.push_back(std::move(right));
+                ++failure_splits;
+                continue;
+              }
+            }
+            if (!whole) return false;   // the band is unbounded
+            have = false;   // the whole box's band stands
+            break;
+          }
+          band = have ? kernels::hull(band, out) : out;
+          for (std::size_t s = 0; s < stages_.size(); ++s) hull_charts[s] = have ? kernels::hull(hull_charts[s], charts[s]) : charts[s];
+          have = true;
         }
-        band = have ? kernels::hull(band, out) : out;
-        for (std::size_t s = 0; s < stages_.size(); ++s) hull_charts[s] = have ? kernels::hull(hull_charts[s], charts[s]) : charts[s];
-        have = true;
-      }
-      if (whole) {
-        auto meet = [have](const Interval& kept, const Interval& halves) {
-          Interval both(std::max(kept.lo, halves.lo), std::min(kept.hi, halves.hi));
-          return have && both.lo <= both.hi ? both : kept;
-        };
-        band = meet(*whole, band);
-        for (std::size_t s = 0; s < stages_.size(); ++s) hull_charts[s] = meet(whole_charts[s], hull_charts[s]);
-      }
-      for (std::size_t s = 0; s < stages_.size(); ++s) per_[i][s].certified_chart = hull_charts[s];
-      shared_boxes[i] = shared_splits > 0 ? used : 1;
-      if (failure_splits > 0) failure_boxes[i] = used;
-      result_.samples[i].certified = CertifiedRange{band.lo, band.hi};
-      ok[i] = 1;
+        if (whole) {
+          auto meet = [have](const Interval& kept, const Interval& halves) {
+            Interval both(std::max(kept.lo, halves.lo), std::min(kept.hi, halves.hi));
+            return have && both.lo <= both.hi ? both : kept;
+          };
+          band = meet(*whole, band);
+          for (std::size_t s = 0; s < stages_.size(); ++s) hull_charts[s] = meet(whole_charts[s], hull_charts[s]);
+        }
+        for (std::size_t s = 0; s < stages_.size(); ++s) per_[i][s].certified_chart = hull_charts[s];
+        shared_boxes[i] = shared_splits > 0 ? used : 1;
+        if (failure_splits > 0) failure_boxes[i] = used;
+        result_.samples[i].certified = CertifiedRange{band.lo, band.hi};
+        ok[i] = 1;
+        return true;
+      };
+      if (!position_band(false) && handover_far_windows() > 1) position_band(true);
     }, [&](std::size_t done) { bar_.units(done, positions()); });
     std::size_t uncertified = 0, split_positions = 0, most = 0;
     for (std::size_t i = 0; i < positions(); ++i) {

@@ -620,7 +620,7 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     }
     return found;
   };
-  const std::vector<CurveSlice> candidates = enumerate(window);
+  std::vector<CurveSlice> candidates = enumerate(window);
   out.candidates = candidates.size();
   // 2. Whether a candidate may push the follower somewhere in y.
   // The candidate's two features (an edge, or a vertex: its edge's source) posed with the
@@ -950,6 +950,27 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     }
     if (route) return bounded_to(edge);
   }
+  // 6. The walk carried on beyond the window (session 49), where neither the walk over the
+  // window nor the driver-monotone route bounded the envelope (the walk stopped a leaf short of
+  // the window's far end, every leaf it passed possibly pushed in): a candidate that really takes
+  // over inside the box (a tooth pair handing over) may hold the follower further than the window
+  // reaches, and the honest envelope then covers both holders. The walk goes on from where it
+  // stopped over `handover_far_windows()` - 1 more windows' widths, the candidates enumerated
+  // over the whole of it (their edges posed over the wider range), its leaves from the coarse
+  // size again: a free leaf there bounds y as in 3. (the walk is one walk from Y's sigma end,
+  // its leaves consecutive). Only while a FarWalk lives (chain.cpp: a position whose band is
+  // unbounded without it, composed again), so that every band bounded without it stays as it was.
+  std::size_t stuck = last;
+  if (!bounded && handover_far_windows() > 1 && FarWalk::on()) {
+    const double further = static_cast<double>(handover_far_windows() - 1) * reach;
+    const Interval wide = sigma > 0 ? Interval(window.lo, window.hi + further) : Interval(window.lo - further, window.hi);
+    candidates = enumerate(wide);
+    nominals.assign(candidates.size(), Nominal{});
+    roots.clear();
+    WindowWalk more = walk_window(walk.edge, wide, sigma, reach / 8, levels, candidates.size(), may_push);
+    if (more.bounded) return bounded_to(more.edge);
+    stuck = more.last;
+  }
   if (!bounded) {
     auto name = [&](const FeatureIdentity& f) {
       const Part& part = m.parts[f.part];
@@ -957,7 +978,7 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
       if (edge.empty()) edge = "loop " + std::to_string(f.loop) + " edge " + std::to_string(f.edge);
       return part.name + " " + (f.kind == FeatureKind::vertex ? "vertex of " : "") + edge;
     };
-    const CurveSlice& c = candidates[last];
+    const CurveSlice& c = candidates[std::min(stuck, candidates.size() - 1)];
     out.why = "a feature pair other than the holding one may hold the follower further than the search reaches (" +
               name(c.first) + " / " + name(c.second) + ")";
     return out;
@@ -973,6 +994,19 @@ int& handover_monotone_driver() {
 int& handover_sub_box_anchor() {
   static int on = 1;
   return on;
+}
+
+namespace {
+thread_local int far_walks = 0;
+}
+
+FarWalk::FarWalk() { ++far_walks; }
+FarWalk::~FarWalk() { --far_walks; }
+bool FarWalk::on() { return far_walks > 0; }
+
+int& handover_far_windows() {
+  static int windows = 2;
+  return windows;
 }
 
 int& handover_taylor_partials() {

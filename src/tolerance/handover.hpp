@@ -152,6 +152,23 @@ int& handover_sub_box_anchor();
 /// partials_of); 0 uses the interval jets' alone, as before (sound, wider).
 int& handover_taylor_partials();
 
+/// Session 49: the envelope's walk goes on beyond its window over this many windows' widths in
+/// all (handover.cpp, step 6) where neither the walk nor the driver-monotone route bounded it;
+/// 1: not at all (the envelopes of session 48).
+int& handover_far_windows();
+
+/// While one lives on this thread, the envelope's walk may go on beyond its window
+/// (handover.cpp, step 6): chain.cpp composes a position whose band is unbounded without it again
+/// under one.
+class FarWalk {
+ public:
+  FarWalk();
+  ~FarWalk();
+  FarWalk(const FarWalk&) = delete;
+  FarWalk& operator=(const FarWalk&) = delete;
+  static bool on();
+};
+
 /// The candidates' search for one pair of the chain (one per pair: its parts are fixed).
 class HandoverSearch {
  public:

@@ -77,8 +77,9 @@ struct Count {
   double worst = 0;   // the largest distance of an exact value outside its band (mm)
 };
 
-// Every exact value at the probes against every bounded band of the chain's analysis.
-Count check(const Variant& v, int anchor) {
+// Every exact value at the probes against every bounded band of the chain's analysis (the
+// anchor and the far walk, handover.cpp 0b and 6, as given).
+Count check(const Variant& v, int anchor, int far = tolerance_detail::handover_far_windows()) {
   const std::string text = two_roller_chain(v);
   const std::pair<Rational, Rational> range(Rational(7, 5), Rational(8, 5));
   ToleranceOptions options;
@@ -90,6 +91,7 @@ Count check(const Variant& v, int anchor) {
   ToleranceResult r;
   {
     test_band::ScopedSwitch on(tolerance_detail::handover_sub_box_anchor(), anchor);
+    test_band::ScopedSwitch windows(tolerance_detail::handover_far_windows(), far);
     r = analyze_tolerances_text(text, options);
   }
   Count count;
@@ -154,31 +156,67 @@ Count check(const Variant& v, int anchor) {
   return count;
 }
 
+// The first six variants: the competitor takes over inside the half of g in [lo, hi] nearest
+// nominal and lifts lifter2 above the holder over the whole half away from it, by more than the
+// whole box's window reaches.
+const std::vector<Variant> beyond_window = {
+    {"1/10", "1/10", "1/2", "-1", "3"}, {"1/10", "1/20", "1/2", "-1", "3"}, {"1/10", "3/20", "1/2", "-1", "3"},
+    {"1/10", "1/10", "3/5", "-1", "3"}, {"1/10", "1/10", "1/2", "-1", "4"}, {"1/10", "9/20", "1/2", "-1", "5"}};
+
+// check() with the anchor on, under a trace naming the variant: no exact value outside a band; the
+// counts printed.
+Count checked(const Variant& v, int far = tolerance_detail::handover_far_windows()) {
+  SCOPED_TRACE(std::string("a ") + v.a + ", d " + v.d + ", b " + v.b + ", g in [" + v.lo + ", " + v.hi + "]");
+  Count c = check(v, 1, far);
+  EXPECT_EQ(c.outside, 0u) << "worst " << c.worst << " mm outside";
+  std::printf("a %s d %s b %s g in [%s, %s] (far walk over %d window(s)): %zu of 6 positions bounded, %zu exact values "
+              "checked, %zu outside (worst %.4f mm)\n",
+              v.a, v.d, v.b, v.lo, v.hi, far, c.bounded, c.values, c.outside, c.worst);
+  return c;
+}
+
 TEST(ChainSubBoxAnchor, FailureSplitHalfAwayFromNominalBandsHoldTheExactChain) {
-  // the first six hand over inside the half of g in [lo, hi] nearest nominal and hold lifter2 on
-  // the competitor over the whole half away from it (before tol47c: a band at the holder's there);
-  // the last two keep bands through sub-boxes away from nominal (the competitor inside the
-  // whole box's window; the half away from nominal on the side where the competitor stays low)
-  const std::vector<Variant> variants = {
-      {"1/10", "1/10", "1/2", "-1", "3"}, {"1/10", "1/20", "1/2", "-1", "3"}, {"1/10", "3/20", "1/2", "-1", "3"},
-      {"1/10", "1/10", "3/5", "-1", "3"}, {"1/10", "1/10", "1/2", "-1", "4"}, {"1/10", "9/20", "1/2", "-1", "5"},
-      {"1/10", "1/10", "2/5", "-1", "3"},
-      {"1/10", "1/10", "1/2", "-3", "1"}};
+  // the first six (beyond_window) hold lifter2 on the competitor over the whole half away from
+  // nominal (before tol47c: a band at the holder's there); the last two keep bands through
+  // sub-boxes away from nominal (the competitor inside the whole box's window; the half away from
+  // nominal on the side where the competitor stays low)
+  std::vector<Variant> variants = beyond_window;
+  variants.push_back({"1/10", "1/10", "2/5", "-1", "3"});
+  variants.push_back({"1/10", "1/10", "1/2", "-3", "1"});
   std::size_t outside = 0, values = 0, with_band = 0;
   for (const Variant& v : variants) {
-    SCOPED_TRACE(std::string("a ") + v.a + ", d " + v.d + ", b " + v.b + ", g in [" + v.lo + ", " + v.hi + "]");
-    Count c = check(v, 1);
-    EXPECT_EQ(c.outside, 0u) << "worst " << c.worst << " mm outside";
+    Count c = checked(v);
     outside += c.outside;
     values += c.values;
     with_band += c.bounded;
-    std::printf("a %s d %s b %s g in [%s, %s]: %zu of 6 positions bounded, %zu exact values checked, %zu outside "
-                "(worst %.4f mm)\n",
-                v.a, v.d, v.b, v.lo, v.hi, c.bounded, c.values, c.outside, c.worst);
   }
   // not vacuous: the last two variants' bands are checked
   EXPECT_GE(with_band, 12u);
   std::printf("%zu exact values checked against bounded bands, %zu outside\n", values, outside);
+}
+
+// Session 49 (tol49): the walk carried on beyond its window (handover.cpp step 6). In the
+// beyond_window variants the competitor lifts lifter2 above the holder by more than the window
+// reaches (2 |Y|): the whole box's walk, and the failure split's halves, stopped at the window's
+// end, so every position was unbounded (sound). Carried on, the walk passes the competitor's zeros
+// and ends at a free leaf beyond them: a band covering both holders, which the exact chain at the
+// vectors where the competitor holds (g at its end away from nominal) must lie in. Mutant: the
+// walk's stop taken as bounded at the window's end without walking on (the band cut at the
+// window): 30 values outside in each chain.
+TEST(ChainFarWalk, CompetitorBeyondTheWindowBandsCoverBothHoldersAndHoldTheExactChain) {
+  ASSERT_GT(tolerance_detail::handover_far_windows(), 1);
+  std::size_t with_band = 0, without = 0, values = 0;
+  for (const Variant& v : beyond_window) {
+    Count c = checked(v);
+    with_band += c.bounded;
+    values += c.values;
+    without += checked(v, 1).bounded;
+  }
+  // session 48's walk bounds none of them; carried on, the walk bounds every position
+  EXPECT_EQ(without, 0u);
+  EXPECT_EQ(with_band, 6u * beyond_window.size());
+  std::printf("%zu of %zu positions bounded (session 48's walk: %zu), %zu exact values checked\n", with_band,
+              6u * beyond_window.size(), without, values);
 }
 
 }  // namespace
