@@ -169,6 +169,15 @@ inline bool& second_order() { return thread_switch<SecondOrderTag>(); }
 // How many curves over a stretch the second-order form has excluded on this thread (tests).
 struct SecondOrderExclusionsTag;
 inline std::size_t& second_order_exclusions() { return thread_counter<SecondOrderExclusionsTag>(); }
+// The second-order exclusion's parts that are the same for every curve it tries over one
+// stretch — the start's rates X'(a), Y'(a) (kept with the start's pieces, for the next stretch
+// from the same a too) and the stretch's X'', Y'' — computed once instead of once per curve (pure
+// functions: the same bits). On by default; tests switch it off per thread to compare
+// (CSpaceSecondOrderShared.*). Counter: the computations taken again.
+struct SecondOrderSharedTag;
+inline bool& second_order_shared() { return thread_switch<SecondOrderSharedTag>(); }
+struct SecondOrderSharedHitsTag;
+inline std::size_t& second_order_shared_hits() { return thread_counter<SecondOrderSharedHitsTag>(); }
 
 // first_crossing's start anchors (cspace_queries.cpp): a query answering `none` whose last
 // stretch's box holds no curve of its chart remembers that box and its free cell (per thread,

@@ -2289,6 +2289,9 @@ class MotionScanner {
     cspace::sum_into(width, b, a, -1);
     DInterval h{0, cspace::algebra::upper_double(width)};
     std::vector<Possible> kept;
+    // what second_order_excludes takes for every curve alike: the start's rates (per start
+    // piece, kept with the start) and the stretch's accelerations (this call's)
+    SecondOrderShared shared{static_cast<std::size_t>(sx - xa.begin()), static_cast<std::size_t>(sy - ya.begin())};
     bool newton = false;
     double newton_lo = 0, newton_hi = 0, newton_s_min = 0, newton_s_max = 0, newton_r_min = 0, newton_r_max = 0;
     for (const Possible& p : possible) {
@@ -2303,11 +2306,12 @@ class MotionScanner {
         kept.push_back(p);
         continue;
       }
-      DInterval rate = g.fx.evaluate(x, y) * dx + g.fy.evaluate(x, y) * dy;
+      const DInterval fx = g.fx.evaluate(x, y), fy = g.fy.evaluate(x, y);
+      DInterval rate = fx * dx + fy * dy;
       DInterval value = start + h * rate;
       // (a non-finite bound, from overflow, proves nothing)
       if (std::isfinite(value.lo) && std::isfinite(value.hi) && !value.contains_zero()) continue;
-      if (second_order_excludes(p, a, b, start, x_at, y_at, *sx, *sy, x, y, dx, dy, px, py, h)) continue;
+      if (second_order_excludes(p, a, b, start, x_at, y_at, sx, sy, x, y, dx, dy, fx, fy, px, py, h, shared)) continue;
       kept.push_back(p);
       // f moves toward 0 at a rate within `rate` (one sign): f(a + t) = 0 needs
       // t >= |f(a)|min / |rate|max, and happens by t = |f(a)|max / |rate|min if in [a, b]
@@ -2346,23 +2350,50 @@ class MotionScanner {
   // [a, b], so f([a, b]) lies in f(a) + [0, h] f'(a) + [0, h^2 / 2] f''([a, b]), f'(a) at the point
   // (the start pieces), f'' = F_xx X'^2 + 2 F_xy X' Y' + F_yy Y'^2 + F_x X'' + F_y Y'' over the
   // stretch's box (one chart system on [a, b], as the mean-value form). Certified like it.
+  //
+  // `fx`, `fy`: F_x, F_y over the stretch's box (the mean-value form's). `shared`: the start's
+  // rates X'(a), Y'(a) on its pieces `sx`, `sy` and the stretch's X'', Y'' over [a, b] are the
+  // same for every curve tried: computed on the first curve and taken again for the others (the
+  // rates kept with the start pieces, for the next stretch from the same a) — pure functions of
+  // a, b, the pieces and the path, the same bits (switch cspace::second_order_shared(); off:
+  // computed for each curve as before).
+  struct SecondOrderShared {
+    std::size_t sx = 0, sy = 0;   // the start pieces' indices in start_->x, start_->y
+    std::optional<DInterval> ddx, ddy;
+  };
   bool second_order_excludes(const Possible& p, const Rational& a, const Rational& b, const DInterval& start,
-                             const DInterval& x_at, const DInterval& y_at, const AxisPiece& sx, const AxisPiece& sy,
-                             const DInterval& x, const DInterval& y, const DInterval& dx, const DInterval& dy,
-                             const AxisPiece& px, const AxisPiece& py, const DInterval& h) {
+                             const DInterval& x_at, const DInterval& y_at, std::vector<AxisPiece>::const_iterator sx,
+                             std::vector<AxisPiece>::const_iterator sy, const DInterval& x, const DInterval& y,
+                             const DInterval& dx, const DInterval& dy, const DInterval& fx, const DInterval& fy,
+                             const AxisPiece& px, const AxisPiece& py, const DInterval& h, SecondOrderShared& shared) {
     if (!cspace::second_order()) return false;
     const Gradient& g = gradient(p.chart, p.curve);
     const Hessian& hs = hessian(p.chart, p.curve);
     const bool planar = impl_.dimension == 2;
-    DInterval dx_at = chart_derivative(path_.x, a, a, sx);
-    DInterval dy_at = planar ? chart_derivative(path_.y, a, a, sy) : DInterval{0, 0};
+    const bool keep = cspace::second_order_shared();
+    // X'(a) on start piece i of an axis, kept with the start (index by the piece's place)
+    auto start_rate = [&](const AxisPath& axis, std::vector<std::optional<DInterval>>& rates, std::size_t i,
+                          const AxisPiece& piece) {
+      if (!keep) return chart_derivative(axis, a, a, piece);
+      if (rates.size() <= i) rates.resize(i + 1);
+      if (!rates[i]) rates[i] = chart_derivative(axis, a, a, piece);
+      else ++cspace::second_order_shared_hits();
+      return *rates[i];
+    };
+    DInterval dx_at = start_rate(path_.x, start_->rate_x, shared.sx, *sx);
+    DInterval dy_at = planar ? start_rate(path_.y, start_->rate_y, shared.sy, *sy) : DInterval{0, 0};
     DInterval rate_at = g.fx.evaluate(x_at, y_at) * dx_at + g.fy.evaluate(x_at, y_at) * dy_at;
-    DInterval ddx = chart_acceleration(path_.x, a, b, px, x, dx);
-    DInterval ddy = planar ? chart_acceleration(path_.y, a, b, py, y, dy) : DInterval{0, 0};
-    DInterval curvature = hs.fxx.evaluate(x, y) * (dx * dx) + g.fx.evaluate(x, y) * ddx;
+    if (!keep || !shared.ddx) {
+      shared.ddx = chart_acceleration(path_.x, a, b, px, x, dx);
+      shared.ddy = planar ? chart_acceleration(path_.y, a, b, py, y, dy) : DInterval{0, 0};
+    } else {
+      ++cspace::second_order_shared_hits();
+    }
+    const DInterval ddx = *shared.ddx, ddy = *shared.ddy;
+    DInterval curvature = hs.fxx.evaluate(x, y) * (dx * dx) + fx * ddx;
     if (planar)
       curvature = curvature + DInterval{2, 2} * hs.fxy.evaluate(x, y) * (dx * dy) + hs.fyy.evaluate(x, y) * (dy * dy) +
-                  g.fy.evaluate(x, y) * ddy;
+                  fy * ddy;
     DInterval half_square = DInterval{0, 0.5} * (h * h);
     DInterval value = start + h * rate_at + half_square * curvature;
     if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) return false;
@@ -2520,6 +2551,7 @@ class MotionScanner {
     std::vector<AxisPiece> x, y;
     bool wide = false;
     std::map<std::pair<std::size_t, std::size_t>, cspace::algebra::Interval> exact;   // exact_start_value
+    std::vector<std::optional<cspace::algebra::Interval>> rate_x, rate_y;   // second_order_excludes' X'(a), Y'(a) per piece
     // the exact (160-bit) pieces at a, computed on first use by exact_start_value
     bool fine_ready = false, fine_wide = false;
     std::vector<AxisPiece> fine_x, fine_y;
