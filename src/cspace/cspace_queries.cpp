@@ -2096,7 +2096,9 @@ class MotionScanner {
     for (std::size_t i = 0; i < filled_ends_; ++i)
       if (ends_[i].first == r) return ends_[i].second;
     KInterval value = cspace::enclose_exact(r);   // KInterval::enclose's doubles (dyadic.hpp)
-    ends_[next_end_] = {r, value};
+    // the slot's rational set in place (its limbs reused; no temporary pair copied and cleared)
+    ends_[next_end_].first = r;
+    ends_[next_end_].second = value;
     next_end_ = (next_end_ + 1) % ends_.size();
     filled_ends_ = std::min(filled_ends_ + 1, ends_.size());
     return value;
@@ -3062,9 +3064,51 @@ StatusOnlyCrossings::~StatusOnlyCrossings() { status_only_now = previous_; }
 bool status_only_crossings() { return status_only_now; }
 std::size_t& skipped_descriptions() { return thread_counter<struct SkippedDescriptionsTag>(); }
 
+// A query's state is one block of a few kilobytes (the scanner's memos inline), made and freed
+// for each query: above the C library's per-thread cache of small blocks, so each one went through
+// its general allocator (≈ 5 000 instructions a query in glibc, with a consolidation of its fast
+// bins). The last few freed blocks are kept per thread and handed to the next queries instead.
+// The blocks are the global operator new's; one freed on another thread joins that thread's
+// blocks; a thread's blocks are released at its exit (a block freed after that goes to the
+// global operator delete).
 struct CrossingQuery::State : CrossingRun {
   using CrossingRun::CrossingRun;
+
+  static void* operator new(std::size_t size) {
+    Blocks& kept = blocks;
+    if (size == sizeof(State) && kept.count > 0) return kept.block[--kept.count];
+    return ::operator new(size);
+  }
+  static void operator delete(void* p, std::size_t size) noexcept {
+    Blocks& kept = blocks;
+    if (size == sizeof(State) && !kept.closed && kept.count < kept.block.size()) {
+      (void)&release;   // (its first use on this thread registers its release at the thread's exit)
+      kept.block[kept.count++] = p;
+      return;
+    }
+    ::operator delete(p);
+  }
+
+ private:
+  // (trivially destructible: usable until the thread's very end; `release` empties it first)
+  struct Blocks {
+    std::array<void*, 4> block;
+    std::size_t count;
+    bool closed;
+  };
+  static thread_local Blocks blocks;
+  struct Release {
+    ~Release() {
+      Blocks& kept = blocks;
+      kept.closed = true;
+      while (kept.count > 0) ::operator delete(kept.block[--kept.count]);
+    }
+  };
+  static thread_local Release release;
+  friend class CrossingQuery;
 };
+thread_local CrossingQuery::State::Blocks CrossingQuery::State::blocks{};
+thread_local CrossingQuery::State::Release CrossingQuery::State::release;
 
 CrossingQuery::CrossingQuery(const CSpace& space, const MotionPath& path, const CrossingOptions& options)
     : state_(std::make_unique<State>(space, path, options)) {}
