@@ -30,40 +30,12 @@
 namespace hipair {
 namespace {
 
-struct SharedCounts {
-  int motions = 0, crossing = 0, none = 0;
-  std::size_t hits = 0;
-};
-
-void compare_shared(const CSpace& space, int count, std::uint64_t seed, SharedCounts& counts) {
-  std::mt19937_64 random(seed);
-  const std::vector<std::size_t> edges = test::real_edges(space);
-  for (int i = 0; i < count; ++i) {
-    std::optional<test::GeneratedMotion> motion = test::generated_motion(space, edges, random);
-    if (!motion) continue;
-    std::size_t on_hits = 0;
-    auto [with, without] = test::on_and_off<&cspace::second_order_shared>(random, [&](bool on) {
-      const std::size_t start = cspace::second_order_shared_hits();
-      std::string answer = test::crossing_answer(space, motion->path);
-      if (on) on_hits = cspace::second_order_shared_hits() - start;
-      else EXPECT_EQ(cspace::second_order_shared_hits(), start) << "the switch must turn the sharing off";
-      return answer;
-    });
-    ASSERT_EQ(with, without) << space.first_part() << ":" << space.second_part() << " motion " << i << " speed "
-                             << motion->speed << " from (" << motion->x0 << ", " << motion->y0 << ") in chart "
-                             << motion->chart;
-    ++counts.motions;
-    counts.hits += on_hits;
-    if (with.rfind("status 1 ", 0) == 0) ++counts.crossing;
-    else if (with.rfind("status 0 ", 0) == 0) ++counts.none;
-  }
-}
-
 TEST(CSpaceSecondOrderShared, AnswersAreThoseComputedPerCurve) {
-  SharedCounts counts;
+  test::SwitchCounts counts;
   std::uint64_t seed = 4900;
   for (const std::unique_ptr<CSpace>& space : test::example_spaces()) {
-    compare_shared(*space, 120, ++seed, counts);
+    test::switch_answers_equal<&cspace::second_order_shared, &cspace::second_order_shared_hits>(*space, 120, ++seed,
+                                                                                                counts);
     ASSERT_FALSE(HasFatalFailure());
   }
   std::printf("motions %d: crossing %d, none %d; shared parts taken again %zu times\n", counts.motions,
@@ -74,27 +46,13 @@ TEST(CSpaceSecondOrderShared, AnswersAreThoseComputedPerCurve) {
 }
 
 TEST(CSpaceSecondOrderShared, SimulationRunsEqualTheRunsWithoutIt) {
-  struct Case {
-    const char* model;
-    double t_end, accuracy;
-  };
-  const Case cases[] = {{"escapement.json", 0.3, 1e-3}, {"ratchet.json", 0.1, 1e-6}};
-  std::size_t steps = 0, events = 0;
   const std::size_t before = cspace::second_order_shared_hits();
-  for (const Case& c : cases) {
-    Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / c.model);
-    SimulationOptions options;
-    options.accuracy = c.accuracy;
-    const std::string where = std::string(c.model) + " at " + std::to_string(c.accuracy);
-    test::SideBySide runs = test::run_side_by_side<cspace::second_order_shared>(model, options, c.t_end, where, 100000);
-    ASSERT_EQ(runs.mismatch, "");
-    ASSERT_EQ(runs.error, "") << where;
-    steps += runs.steps;
-    events += runs.events;
-  }
-  std::printf("second-order sharing: %zu steps, %zu events equal with the switch off; %zu taken again\n", steps,
-              events, cspace::second_order_shared_hits() - before);
-  EXPECT_GT(events, 20u);
+  test::SideBySide runs = test::examples_side_by_side<cspace::second_order_shared>(
+      {{"escapement.json", 0.3, 1e-3}, {"ratchet.json", 0.1, 1e-6}});
+  ASSERT_FALSE(HasFailure());
+  std::printf("second-order sharing: %zu steps, %zu events equal with the switch off; %zu taken again\n", runs.steps,
+              runs.events, cspace::second_order_shared_hits() - before);
+  EXPECT_GT(runs.events, 20u);
   EXPECT_GT(cspace::second_order_shared_hits() - before, 0u);
 }
 
