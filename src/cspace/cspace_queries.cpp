@@ -3105,7 +3105,6 @@ struct CrossingQuery::State : CrossingRun {
     }
   };
   static thread_local Release release;
-  friend class CrossingQuery;
 };
 thread_local CrossingQuery::State::Blocks CrossingQuery::State::blocks{};
 thread_local CrossingQuery::State::Release CrossingQuery::State::release;
