@@ -16,6 +16,7 @@
 #include <hipair/error.hpp>
 
 #include "cspace/angle_filter.hpp"
+#include "cspace/path_filter.hpp"
 #include "cspace/angle_memo.hpp"
 #include "cspace/builder_impl.hpp"
 #include "cspace/crossing_shrink.hpp"
@@ -135,31 +136,9 @@ RInterval evaluate_path(const std::vector<Rational>& p, const Rational& a, const
 }
 
 // The same enclosure in outward-rounded doubles, the filter in front of the exact one (a
-// certified enclosure a few units in the last place wider): Horner in h = u - m around a double m
-// near the midpoint, with p(m + h)'s coefficients enclosed. nullopt on overflow.
-std::optional<KInterval> evaluate_path_filtered_d(const std::vector<KInterval>& p, const KInterval& A, const KInterval& B) {
-  double m = 0.5 * A.lo + 0.5 * B.hi;
-  KInterval M = KInterval::point(m);
-  // the shifted coefficients on the stack for the simulator's low degrees (no allocation per
-  // call; the same operations in the same order)
-  const std::size_t n = p.size();
-  std::array<KInterval, 8> local;
-  std::vector<KInterval> heap;
-  KInterval* shifted = local.data();
-  if (n > local.size()) {
-    heap = p;
-    shifted = heap.data();
-  } else {
-    std::copy(p.begin(), p.end(), local.begin());
-  }
-  for (std::size_t i = 0; i + 1 < n; ++i)
-    for (std::size_t j = n - 1; j > i; --j) shifted[j - 1] = shifted[j - 1] + M * shifted[j];
-  KInterval H(kernels::interval_detail::down(A.lo - m), kernels::interval_detail::up(B.hi - m));
-  KInterval value(0);
-  for (std::size_t i = n; i-- > 0;) value = value * H + shifted[i];
-  if (!std::isfinite(value.lo) || !std::isfinite(value.hi)) return std::nullopt;
-  return value;
-}
+// certified enclosure a few units in the last place wider): cspace::evaluate_path_filtered_d
+// (path_filter.hpp).
+using cspace::evaluate_path_filtered_d;
 
 std::optional<RInterval> evaluate_path_filtered(const std::vector<KInterval>& p, const Rational& a, const Rational& b) {
   std::optional<KInterval> value = evaluate_path_filtered_d(p, KInterval::enclose(a), KInterval::enclose(b));
@@ -2081,15 +2060,26 @@ class MotionScanner {
     if (slot == path_values_.size()) return evaluate_path_filtered_d(p, A, B);
     const std::uint64_t lo = std::bit_cast<std::uint64_t>(A.lo), hi = std::bit_cast<std::uint64_t>(B.hi);
     PathValues& memo = path_values_[slot];
-    for (std::size_t i = 0; i < memo.filled; ++i)
-      if (memo.entries[i].lo == lo && memo.entries[i].hi == hi) {
-        ++cspace::path_memo_hits();
-        return memo.entries[i].value;
-      }
-    std::optional<KInterval> value = evaluate_path_filtered_d(p, A, B);
-    memo.entries[memo.next] = PathValue{lo, hi, value};
-    memo.next = (memo.next + 1) % memo.entries.size();
-    memo.filled = std::min(memo.filled + 1, memo.entries.size());
+    if (const PathValue* known = memo.find(lo, hi)) {
+      ++cspace::path_memo_hits();
+      return known->value;
+    }
+    // the other axis' polynomial of the same kind (x with y: the stretch asks both) evaluated
+    // with it, in the two lanes of one pass (path_filter.hpp: the same bits), and remembered
+    std::optional<KInterval> value;
+    const std::size_t partner = slot ^ 1;
+    const std::vector<KInterval>* other = partner < 2 ? &enclosed_[partner]
+                                          : partner < 4 ? &enclosed_rate_[partner - 2]
+                                                        : &enclosed_acceleration_[partner - 4];
+    std::optional<KInterval> other_value;
+    if (cspace::paired_paths() && impl_.dimension == 2 && enclosed_.size() == 2 && !p.empty() &&
+        !path_values_[partner].find(lo, hi) && cspace::evaluate_path_filtered_pair(p, *other, A, B, value, other_value)) {
+      ++cspace::paired_path_count();
+      path_values_[partner].put(lo, hi, other_value);
+    } else {
+      value = evaluate_path_filtered_d(p, A, B);
+    }
+    memo.put(lo, hi, value);
     return value;
   }
   KInterval enclosure(const Rational& r) const {
@@ -2545,6 +2535,16 @@ class MotionScanner {
   struct PathValues {
     std::array<PathValue, 4> entries{};
     std::size_t next = 0, filled = 0;
+    const PathValue* find(std::uint64_t lo, std::uint64_t hi) const {
+      for (std::size_t i = 0; i < filled; ++i)
+        if (entries[i].lo == lo && entries[i].hi == hi) return &entries[i];
+      return nullptr;
+    }
+    void put(std::uint64_t lo, std::uint64_t hi, const std::optional<KInterval>& value) {
+      entries[next] = PathValue{lo, hi, value};
+      next = (next + 1) % entries.size();
+      filled = std::min(filled + 1, entries.size());
+    }
   };
   // path_enclosure()'s memo: x, y; their rates; their accelerations
   mutable std::array<PathValues, 6> path_values_{};
