@@ -12,6 +12,7 @@
 #include "core/thread_switch.hpp"
 #include <hipair/rational.hpp>
 
+#include "cspace/path_filter.hpp"
 #include "kernels/interval.hpp"
 
 #include <algorithm>
@@ -59,7 +60,6 @@ inline std::optional<kernels::Interval> tan_enclosure_signed(const kernels::Inte
   // (up(+0) is the smallest subnormal, the pattern 1): the same doubles as the general rule
   // without its zero, sign and infinity tests (esc46b: this function is ~5.8 % of the
   // escapement's simulation loop, called ~4 700 times)
-  auto down = [](double x) { return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) - 1); };
   auto up = [](double x) { return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) + 1); };
   // odd: the generic operations on -y are those on y negated (rounding to nearest and the
   // one-ulp widening are symmetric), so [-a, -b] is done as [b, a]
@@ -69,7 +69,7 @@ inline std::optional<kernels::Interval> tan_enclosure_signed(const kernels::Inte
   const double r = b;
   // y2 = y * y: all ends positive, the minimum a a and the maximum b b (a a >= 1e-300 rounds
   // to a positive normal double; b b <= 0.64)
-  const double y2l = down(a * a), y2h = up(b * b);
+  // (y2 below: [down(a a), up(b b)])
   // s = 1 - over(y2, n) * s with over(y2, n) = [down(y2l / n), up(y2h / n)] >= 0 and s > 0:
   // the product [down(ol sl), up(oh sh)], the difference [down(1 - ph), up(1 - pl)].
   // Signs, by induction over the steps: ol >= 1e-300 / 380 > 2.6e-303 (normal), oh <= 0.65 / n;
@@ -77,42 +77,54 @@ inline std::optional<kernels::Interval> tan_enclosure_signed(const kernels::Inte
   // for s (n >= 6) and < 0.33 for c (n >= 2): sl > 0.88, cl > 0.66, hence pl >= ol * 0.66,
   // positive normal, and 1 - ph, 1 - pl in (0.66, 1]. The generic form's sign assumptions
   // (ol >= 0, sl > 0, cl > 0) therefore hold at every step and are not re-tested here.
-  double sl = 1, sh = 1, cl = 1, ch = 1;
+  // (esc49b) The lower and upper ends below go in the two lanes of one vector, lane 0 the
+  // scalar form's lower end (stepped down: the pattern - 1), lane 1 its upper end (stepped up:
+  // + 1), every operation the scalar form's on that end in its order: the same doubles, the
+  // same steps on them. Where the scalar form pairs a lower end with an upper one (1 - ph, the
+  // quotient sl / ch) the operand's lanes are swapped.
+  using v2d = path_filter_detail::v2d;
+  using v2u = path_filter_detail::v2u;
+  auto step = [](v2d v) { return reinterpret_cast<v2d>(reinterpret_cast<v2u>(v) + v2u{~std::uint64_t{0}, 1}); };
+  auto swapped = [](v2d v) { return v2d{v[1], v[0]}; };
+  const v2d y2 = step(v2d{a, b} * v2d{a, b});
+  const v2d one{1, 1};
+  v2d s = one, c = one;
   for (int k = 9; k >= 1; --k) {
-    const int n = 2 * k * (2 * k + 1);
-    const double ol = down(y2l / n), oh = up(y2h / n);
-    const double pl = down(ol * sl), ph = up(oh * sh);
-    sl = down(1 - ph);
-    sh = up(1 - pl);
+    const double n = 2 * k * (2 * k + 1);
+    const v2d o = step(y2 / v2d{n, n});
+    const v2d p = step(o * s);
+    s = step(one - swapped(p));
   }
   for (int k = 10; k >= 1; --k) {
-    const int n = (2 * k - 1) * (2 * k);
-    const double ol = down(y2l / n), oh = up(y2h / n);
-    const double pl = down(ol * cl), ph = up(oh * ch);
-    cl = down(1 - ph);
-    ch = up(1 - pl);
+    const double n = (2 * k - 1) * (2 * k);
+    const v2d o = step(y2 / v2d{n, n});
+    const v2d p = step(o * c);
+    c = step(one - swapped(p));
   }
   // s = y * s: both positive
-  sl = down(a * sl);
-  sh = up(b * sh);
+  s = step(v2d{a, b} * s);
   // power >= +0 finite at every step (it may underflow to +0 or a subnormal for small r: up
   // steps those by the pattern too, as the general rule does)
-  double power = r;   // r^21, then r^22, rounded up (as in the generic form)
-  for (int i = 2; i <= 21; ++i) power = up(power * r);
-  const double rs = up(power / 5.1e19);
-  power = up(power * r);
-  const double rc = up(power / 1.12e21);
+  // (the chain in both lanes of a vector, stepped up by the pattern: up's doubles, kept in the
+  // vector registers)
+  const v2d rr{r, r};
+  auto upward = [](v2d v) { return reinterpret_cast<v2d>(reinterpret_cast<v2u>(v) + v2u{1, 1}); };
+  v2d power = rr;   // r^21, then r^22, rounded up (as in the generic form)
+#pragma GCC unroll 20
+  for (int i = 2; i <= 21; ++i) power = upward(power * rr);
+  const double rs = up(power[0] / 5.1e19);
+  power = upward(power * rr);
+  const double rc = up(power[0] / 1.12e21);
   // s + [-rs, rs], c + [-rc, rc] (rs, rc < 0.8^21 / 5.1e19 < 1e-21: cl stays > 0.6, and so
   // does sl / a for a point or narrow y; a wide y with a small lower end a < rs can make
   // sl + -rs <= 0: the pattern's step then gives a double <= 0 or NaN (from -0 or +0) where the
   // general rule gives one <= 0, and the check below answers nullopt from either, as before)
-  sl = down(sl + -rs);
-  sh = up(sh + rs);
-  cl = down(cl + -rc);
-  ch = up(ch + rc);
-  if (!(cl > 0) || !(sl > 0)) return std::nullopt;
+  s = step(s + v2d{-rs, rs});
+  c = step(c + v2d{-rc, rc});
+  if (!(c[0] > 0) || !(s[0] > 0)) return std::nullopt;
   // s / c, both positive: [down(sl / ch), up(sh / cl)]
-  const double ql = down(sl / ch), qh = up(sh / cl);
+  const v2d q = step(s / swapped(c));
+  const double ql = q[0], qh = q[1];
   return negative ? Interval(-qh, -ql) : Interval(ql, qh);
 }
 
@@ -169,6 +181,15 @@ inline bool& second_order() { return thread_switch<SecondOrderTag>(); }
 // How many curves over a stretch the second-order form has excluded on this thread (tests).
 struct SecondOrderExclusionsTag;
 inline std::size_t& second_order_exclusions() { return thread_counter<SecondOrderExclusionsTag>(); }
+// The second-order exclusion's parts that are the same for every curve it tries over one
+// stretch — the start's rates X'(a), Y'(a) (kept with the start's pieces, for the next stretch
+// from the same a too) and the stretch's X'', Y'' — computed once instead of once per curve (pure
+// functions: the same bits). On by default; tests switch it off per thread to compare
+// (CSpaceSecondOrderShared.*). Counter: the computations taken again.
+struct SecondOrderSharedTag;
+inline bool& second_order_shared() { return thread_switch<SecondOrderSharedTag>(); }
+struct SecondOrderSharedHitsTag;
+inline std::size_t& second_order_shared_hits() { return thread_counter<SecondOrderSharedHitsTag>(); }
 
 // first_crossing's start anchors (cspace_queries.cpp): a query answering `none` whose last
 // stretch's box holds no curve of its chart remembers that box and its free cell (per thread,

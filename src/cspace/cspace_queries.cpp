@@ -16,6 +16,7 @@
 #include <hipair/error.hpp>
 
 #include "cspace/angle_filter.hpp"
+#include "cspace/path_filter.hpp"
 #include "cspace/angle_memo.hpp"
 #include "cspace/builder_impl.hpp"
 #include "cspace/crossing_shrink.hpp"
@@ -135,31 +136,9 @@ RInterval evaluate_path(const std::vector<Rational>& p, const Rational& a, const
 }
 
 // The same enclosure in outward-rounded doubles, the filter in front of the exact one (a
-// certified enclosure a few units in the last place wider): Horner in h = u - m around a double m
-// near the midpoint, with p(m + h)'s coefficients enclosed. nullopt on overflow.
-std::optional<KInterval> evaluate_path_filtered_d(const std::vector<KInterval>& p, const KInterval& A, const KInterval& B) {
-  double m = 0.5 * A.lo + 0.5 * B.hi;
-  KInterval M = KInterval::point(m);
-  // the shifted coefficients on the stack for the simulator's low degrees (no allocation per
-  // call; the same operations in the same order)
-  const std::size_t n = p.size();
-  std::array<KInterval, 8> local;
-  std::vector<KInterval> heap;
-  KInterval* shifted = local.data();
-  if (n > local.size()) {
-    heap = p;
-    shifted = heap.data();
-  } else {
-    std::copy(p.begin(), p.end(), local.begin());
-  }
-  for (std::size_t i = 0; i + 1 < n; ++i)
-    for (std::size_t j = n - 1; j > i; --j) shifted[j - 1] = shifted[j - 1] + M * shifted[j];
-  KInterval H(kernels::interval_detail::down(A.lo - m), kernels::interval_detail::up(B.hi - m));
-  KInterval value(0);
-  for (std::size_t i = n; i-- > 0;) value = value * H + shifted[i];
-  if (!std::isfinite(value.lo) || !std::isfinite(value.hi)) return std::nullopt;
-  return value;
-}
+// certified enclosure a few units in the last place wider): cspace::evaluate_path_filtered_d
+// (path_filter.hpp).
+using cspace::evaluate_path_filtered_d;
 
 std::optional<RInterval> evaluate_path_filtered(const std::vector<KInterval>& p, const Rational& a, const Rational& b) {
   std::optional<KInterval> value = evaluate_path_filtered_d(p, KInterval::enclose(a), KInterval::enclose(b));
@@ -2081,22 +2060,35 @@ class MotionScanner {
     if (slot == path_values_.size()) return evaluate_path_filtered_d(p, A, B);
     const std::uint64_t lo = std::bit_cast<std::uint64_t>(A.lo), hi = std::bit_cast<std::uint64_t>(B.hi);
     PathValues& memo = path_values_[slot];
-    for (std::size_t i = 0; i < memo.filled; ++i)
-      if (memo.entries[i].lo == lo && memo.entries[i].hi == hi) {
-        ++cspace::path_memo_hits();
-        return memo.entries[i].value;
-      }
-    std::optional<KInterval> value = evaluate_path_filtered_d(p, A, B);
-    memo.entries[memo.next] = PathValue{lo, hi, value};
-    memo.next = (memo.next + 1) % memo.entries.size();
-    memo.filled = std::min(memo.filled + 1, memo.entries.size());
+    if (const PathValue* known = memo.find(lo, hi)) {
+      ++cspace::path_memo_hits();
+      return known->value;
+    }
+    // the other axis' polynomial of the same kind (x with y: the stretch asks both) evaluated
+    // with it, in the two lanes of one pass (path_filter.hpp: the same bits), and remembered
+    std::optional<KInterval> value;
+    const std::size_t partner = slot ^ 1;
+    const std::vector<KInterval>* other = partner < 2 ? &enclosed_[partner]
+                                          : partner < 4 ? &enclosed_rate_[partner - 2]
+                                                        : &enclosed_acceleration_[partner - 4];
+    std::optional<KInterval> other_value;
+    if (cspace::paired_paths() && impl_.dimension == 2 && enclosed_.size() == 2 && !p.empty() &&
+        !path_values_[partner].find(lo, hi) && cspace::evaluate_path_filtered_pair(p, *other, A, B, value, other_value)) {
+      ++cspace::paired_path_count();
+      path_values_[partner].put(lo, hi, other_value);
+    } else {
+      value = evaluate_path_filtered_d(p, A, B);
+    }
+    memo.put(lo, hi, value);
     return value;
   }
   KInterval enclosure(const Rational& r) const {
     for (std::size_t i = 0; i < filled_ends_; ++i)
       if (ends_[i].first == r) return ends_[i].second;
     KInterval value = cspace::enclose_exact(r);   // KInterval::enclose's doubles (dyadic.hpp)
-    ends_[next_end_] = {r, value};
+    // the slot's rational set in place (its limbs reused; no temporary pair copied and cleared)
+    ends_[next_end_].first = r;
+    ends_[next_end_].second = value;
     next_end_ = (next_end_ + 1) % ends_.size();
     filled_ends_ = std::min(filled_ends_ + 1, ends_.size());
     return value;
@@ -2289,6 +2281,9 @@ class MotionScanner {
     cspace::sum_into(width, b, a, -1);
     DInterval h{0, cspace::algebra::upper_double(width)};
     std::vector<Possible> kept;
+    // what second_order_excludes takes for every curve alike: the start's rates (per start
+    // piece, kept with the start) and the stretch's accelerations (this call's)
+    SecondOrderShared shared{static_cast<std::size_t>(sx - xa.begin()), static_cast<std::size_t>(sy - ya.begin())};
     bool newton = false;
     double newton_lo = 0, newton_hi = 0, newton_s_min = 0, newton_s_max = 0, newton_r_min = 0, newton_r_max = 0;
     for (const Possible& p : possible) {
@@ -2303,11 +2298,12 @@ class MotionScanner {
         kept.push_back(p);
         continue;
       }
-      DInterval rate = g.fx.evaluate(x, y) * dx + g.fy.evaluate(x, y) * dy;
+      const DInterval fx = g.fx.evaluate(x, y), fy = g.fy.evaluate(x, y);
+      DInterval rate = fx * dx + fy * dy;
       DInterval value = start + h * rate;
       // (a non-finite bound, from overflow, proves nothing)
       if (std::isfinite(value.lo) && std::isfinite(value.hi) && !value.contains_zero()) continue;
-      if (second_order_excludes(p, a, b, start, x_at, y_at, *sx, *sy, x, y, dx, dy, px, py, h)) continue;
+      if (second_order_excludes(p, a, b, start, x_at, y_at, sx, sy, x, y, dx, dy, fx, fy, px, py, h, shared)) continue;
       kept.push_back(p);
       // f moves toward 0 at a rate within `rate` (one sign): f(a + t) = 0 needs
       // t >= |f(a)|min / |rate|max, and happens by t = |f(a)|max / |rate|min if in [a, b]
@@ -2346,23 +2342,50 @@ class MotionScanner {
   // [a, b], so f([a, b]) lies in f(a) + [0, h] f'(a) + [0, h^2 / 2] f''([a, b]), f'(a) at the point
   // (the start pieces), f'' = F_xx X'^2 + 2 F_xy X' Y' + F_yy Y'^2 + F_x X'' + F_y Y'' over the
   // stretch's box (one chart system on [a, b], as the mean-value form). Certified like it.
+  //
+  // `fx`, `fy`: F_x, F_y over the stretch's box (the mean-value form's). `shared`: the start's
+  // rates X'(a), Y'(a) on its pieces `sx`, `sy` and the stretch's X'', Y'' over [a, b] are the
+  // same for every curve tried: computed on the first curve and taken again for the others (the
+  // rates kept with the start pieces, for the next stretch from the same a) — pure functions of
+  // a, b, the pieces and the path, the same bits (switch cspace::second_order_shared(); off:
+  // computed for each curve as before).
+  struct SecondOrderShared {
+    std::size_t sx = 0, sy = 0;   // the start pieces' indices in start_->x, start_->y
+    std::optional<DInterval> ddx, ddy;
+  };
   bool second_order_excludes(const Possible& p, const Rational& a, const Rational& b, const DInterval& start,
-                             const DInterval& x_at, const DInterval& y_at, const AxisPiece& sx, const AxisPiece& sy,
-                             const DInterval& x, const DInterval& y, const DInterval& dx, const DInterval& dy,
-                             const AxisPiece& px, const AxisPiece& py, const DInterval& h) {
+                             const DInterval& x_at, const DInterval& y_at, std::vector<AxisPiece>::const_iterator sx,
+                             std::vector<AxisPiece>::const_iterator sy, const DInterval& x, const DInterval& y,
+                             const DInterval& dx, const DInterval& dy, const DInterval& fx, const DInterval& fy,
+                             const AxisPiece& px, const AxisPiece& py, const DInterval& h, SecondOrderShared& shared) {
     if (!cspace::second_order()) return false;
     const Gradient& g = gradient(p.chart, p.curve);
     const Hessian& hs = hessian(p.chart, p.curve);
     const bool planar = impl_.dimension == 2;
-    DInterval dx_at = chart_derivative(path_.x, a, a, sx);
-    DInterval dy_at = planar ? chart_derivative(path_.y, a, a, sy) : DInterval{0, 0};
+    const bool keep = cspace::second_order_shared();
+    // X'(a) on start piece i of an axis, kept with the start (index by the piece's place)
+    auto start_rate = [&](const AxisPath& axis, std::vector<std::optional<DInterval>>& rates, std::size_t i,
+                          const AxisPiece& piece) {
+      if (!keep) return chart_derivative(axis, a, a, piece);
+      if (rates.size() <= i) rates.resize(i + 1);
+      if (!rates[i]) rates[i] = chart_derivative(axis, a, a, piece);
+      else ++cspace::second_order_shared_hits();
+      return *rates[i];
+    };
+    DInterval dx_at = start_rate(path_.x, start_->rate_x, shared.sx, *sx);
+    DInterval dy_at = planar ? start_rate(path_.y, start_->rate_y, shared.sy, *sy) : DInterval{0, 0};
     DInterval rate_at = g.fx.evaluate(x_at, y_at) * dx_at + g.fy.evaluate(x_at, y_at) * dy_at;
-    DInterval ddx = chart_acceleration(path_.x, a, b, px, x, dx);
-    DInterval ddy = planar ? chart_acceleration(path_.y, a, b, py, y, dy) : DInterval{0, 0};
-    DInterval curvature = hs.fxx.evaluate(x, y) * (dx * dx) + g.fx.evaluate(x, y) * ddx;
+    if (!keep || !shared.ddx) {
+      shared.ddx = chart_acceleration(path_.x, a, b, px, x, dx);
+      shared.ddy = planar ? chart_acceleration(path_.y, a, b, py, y, dy) : DInterval{0, 0};
+    } else {
+      ++cspace::second_order_shared_hits();
+    }
+    const DInterval ddx = *shared.ddx, ddy = *shared.ddy;
+    DInterval curvature = hs.fxx.evaluate(x, y) * (dx * dx) + fx * ddx;
     if (planar)
       curvature = curvature + DInterval{2, 2} * hs.fxy.evaluate(x, y) * (dx * dy) + hs.fyy.evaluate(x, y) * (dy * dy) +
-                  g.fy.evaluate(x, y) * ddy;
+                  fy * ddy;
     DInterval half_square = DInterval{0, 0.5} * (h * h);
     DInterval value = start + h * rate_at + half_square * curvature;
     if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) return false;
@@ -2512,6 +2535,16 @@ class MotionScanner {
   struct PathValues {
     std::array<PathValue, 4> entries{};
     std::size_t next = 0, filled = 0;
+    const PathValue* find(std::uint64_t lo, std::uint64_t hi) const {
+      for (std::size_t i = 0; i < filled; ++i)
+        if (entries[i].lo == lo && entries[i].hi == hi) return &entries[i];
+      return nullptr;
+    }
+    void put(std::uint64_t lo, std::uint64_t hi, const std::optional<KInterval>& value) {
+      entries[next] = PathValue{lo, hi, value};
+      next = (next + 1) % entries.size();
+      filled = std::min(filled + 1, entries.size());
+    }
   };
   // path_enclosure()'s memo: x, y; their rates; their accelerations
   mutable std::array<PathValues, 6> path_values_{};
@@ -2520,6 +2553,7 @@ class MotionScanner {
     std::vector<AxisPiece> x, y;
     bool wide = false;
     std::map<std::pair<std::size_t, std::size_t>, cspace::algebra::Interval> exact;   // exact_start_value
+    std::vector<std::optional<cspace::algebra::Interval>> rate_x, rate_y;   // second_order_excludes' X'(a), Y'(a) per piece
     // the exact (160-bit) pieces at a, computed on first use by exact_start_value
     bool fine_ready = false, fine_wide = false;
     std::vector<AxisPiece> fine_x, fine_y;
@@ -3030,9 +3064,50 @@ StatusOnlyCrossings::~StatusOnlyCrossings() { status_only_now = previous_; }
 bool status_only_crossings() { return status_only_now; }
 std::size_t& skipped_descriptions() { return thread_counter<struct SkippedDescriptionsTag>(); }
 
+// A query's state is one block of a few kilobytes (the scanner's memos inline), made and freed
+// for each query: above the C library's per-thread cache of small blocks, so each one went through
+// its general allocator (≈ 5 000 instructions a query in glibc, with a consolidation of its fast
+// bins). The last few freed blocks are kept per thread and handed to the next queries instead.
+// The blocks are the global operator new's; one freed on another thread joins that thread's
+// blocks; a thread's blocks are released at its exit (a block freed after that goes to the
+// global operator delete).
 struct CrossingQuery::State : CrossingRun {
   using CrossingRun::CrossingRun;
+
+  static void* operator new(std::size_t size) {
+    Blocks& kept = blocks;
+    if (size == sizeof(State) && kept.count > 0) return kept.block[--kept.count];
+    return ::operator new(size);
+  }
+  static void operator delete(void* p, std::size_t size) noexcept {
+    Blocks& kept = blocks;
+    if (size == sizeof(State) && !kept.closed && kept.count < kept.block.size()) {
+      (void)&release;   // (its first use on this thread registers its release at the thread's exit)
+      kept.block[kept.count++] = p;
+      return;
+    }
+    ::operator delete(p);
+  }
+
+ private:
+  // (trivially destructible: usable until the thread's very end; `release` empties it first)
+  struct Blocks {
+    std::array<void*, 4> block;
+    std::size_t count;
+    bool closed;
+  };
+  static thread_local Blocks blocks;
+  struct Release {
+    ~Release() {
+      Blocks& kept = blocks;
+      kept.closed = true;
+      while (kept.count > 0) ::operator delete(kept.block[--kept.count]);
+    }
+  };
+  static thread_local Release release;
 };
+thread_local CrossingQuery::State::Blocks CrossingQuery::State::blocks{};
+thread_local CrossingQuery::State::Release CrossingQuery::State::release;
 
 CrossingQuery::CrossingQuery(const CSpace& space, const MotionPath& path, const CrossingOptions& options)
     : state_(std::make_unique<State>(space, path, options)) {}

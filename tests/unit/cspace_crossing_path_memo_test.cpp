@@ -6,7 +6,8 @@
 // 1e-15 ... 1e-9 off it, along its tangent with a random bend, or at a random chart point, at
 // speeds 1e-12 ... 10 chart units — every answer with the memo is the one without it, field for
 // field (in a random order of the two runs); the memo answers often (the second-order
-// exclusion's repeated start rates), and never with the switch off.
+// exclusion's repeated start rates, asked per curve here: cspace::second_order_shared() off),
+// and never with the switch off.
 #include "cspace/angle_filter.hpp"
 #include "cspace_motion_support.hpp"
 #include "cspace_test_support.hpp"
@@ -32,52 +33,21 @@ namespace {
 
 std::filesystem::path model_file(const char* dir, const std::string& name) { return std::filesystem::path(dir) / name; }
 
-struct Counts {
-  int motions = 0, crossing = 0, none = 0, other = 0;
-  std::size_t hits = 0;
-};
-
-// `count` generated motions on `space` (see the file comment), each asked with the memo on and off.
-void compare_motions(const CSpace& space, int count, std::uint64_t seed, Counts& counts) {
-  std::mt19937_64 random(seed);
-  const std::vector<std::size_t> edges = test::real_edges(space);
-  for (int i = 0; i < count; ++i) {
-    std::optional<test::GeneratedMotion> motion = test::generated_motion(space, edges, random);
-    if (!motion) continue;
-    MotionPath& path = motion->path;
-    const double speed = motion->speed, x0 = motion->x0, y0 = motion->y0;
-    const std::size_t chart_index = motion->chart;
-    const std::size_t before = cspace::path_memo_hits();
-    std::size_t on_hits = 0;
-    auto [with, without] = test::on_and_off<&cspace::path_memo>(random, [&](bool on) {
-      const std::size_t start = cspace::path_memo_hits();
-      std::string answer = test::crossing_answer(space, path);
-      if (on) on_hits = cspace::path_memo_hits() - start;
-      else EXPECT_EQ(cspace::path_memo_hits(), start) << "the switch must turn the memo off";
-      return answer;
-    });
-    ASSERT_EQ(with, without) << space.first_part() << ":" << space.second_part() << " motion " << i << " speed "
-                             << speed << " from (" << x0 << ", " << y0 << ") in chart " << chart_index;
-    ASSERT_EQ(cspace::path_memo_hits() - before, on_hits);
-    ++counts.motions;
-    counts.hits += on_hits;
-    if (with.rfind("status 1 ", 0) == 0) ++counts.crossing;
-    else if (with.rfind("status 0 ", 0) == 0) ++counts.none;
-    else ++counts.other;
-  }
-}
-
 TEST(CSpaceCrossingPathMemo, AnswersAreThoseWithoutTheMemo) {
-  Counts counts;
+  // (the second-order exclusion's start rates asked of the path memo for every curve, as when
+  // this test was written: with cspace::second_order_shared() they are kept with the start's
+  // pieces and asked once — CSpaceSecondOrderShared.* compares that sharing on and off)
+  test::FlagSwitch<&cspace::second_order_shared> per_curve(false);
+  test::SwitchCounts counts;
   std::uint64_t seed = 40;
   for (const std::unique_ptr<CSpace>& space : test::example_spaces()) {
-    compare_motions(*space, 160, ++seed, counts);
+    test::switch_answers_equal<&cspace::path_memo, &cspace::path_memo_hits>(*space, 160, ++seed, counts);
     ASSERT_FALSE(HasFatalFailure());
   }
   Model model = read_model_file(model_file(HIPAIR_TEST_DATA, "degenerate/zero-clearance.json"));
   for (const PairBuild& pair : CSpace::build_pairs(model)) {
     if (pair.status != PairBuild::Status::built) continue;
-    compare_motions(*pair.space, 100, ++seed, counts);
+    test::switch_answers_equal<&cspace::path_memo, &cspace::path_memo_hits>(*pair.space, 100, ++seed, counts);
     ASSERT_FALSE(HasFatalFailure());
   }
   std::printf("motions %d: crossing %d, none %d, other %d; memo hits %zu\n", counts.motions, counts.crossing,

@@ -9,6 +9,8 @@
 #include <hipair/cspace.hpp>
 #include <hipair/error.hpp>
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <memory>
@@ -250,5 +252,41 @@ inline std::optional<GeneratedMotion> generated_motion(const CSpace& space, cons
   return m;
 }
 
+// What switch_answers_equal saw: motions asked, their answers' kinds, the counter's increase.
+struct SwitchCounts {
+  int motions = 0, crossing = 0, none = 0, other = 0;
+  std::size_t hits = 0;
+};
+
+// `count` generated motions on `space` (seed `seed`), each asked with the switch Flag on and off
+// in a random order: the two answers equal field for field, Counter unchanged with the switch off
+// (and its whole increase made with it on).
+template <bool& (*Flag)(), std::size_t& (*Counter)()>
+void switch_answers_equal(const CSpace& space, int count, std::uint64_t seed, SwitchCounts& counts) {
+  std::mt19937_64 random(seed);
+  const std::vector<std::size_t> edges = real_edges(space);
+  for (int i = 0; i < count; ++i) {
+    std::optional<GeneratedMotion> motion = generated_motion(space, edges, random);
+    if (!motion) continue;
+    const std::size_t before = Counter();
+    std::size_t on_hits = 0;
+    auto [with, without] = on_and_off<Flag>(random, [&](bool on) {
+      const std::size_t start = Counter();
+      std::string answer = crossing_answer(space, motion->path);
+      if (on) on_hits = Counter() - start;
+      else EXPECT_EQ(Counter(), start) << "the switch must turn it off";
+      return answer;
+    });
+    ASSERT_EQ(with, without) << space.first_part() << ":" << space.second_part() << " motion " << i << " speed "
+                             << motion->speed << " from (" << motion->x0 << ", " << motion->y0 << ") in chart "
+                             << motion->chart;
+    ASSERT_EQ(Counter() - before, on_hits);
+    ++counts.motions;
+    counts.hits += on_hits;
+    if (with.rfind("status 1 ", 0) == 0) ++counts.crossing;
+    else if (with.rfind("status 0 ", 0) == 0) ++counts.none;
+    else ++counts.other;
+  }
+}
 
 }  // namespace hipair::test

@@ -171,26 +171,13 @@ TEST(CSpacePointTangent, CrossingAnswersEqualTheAnswersWithoutThem) {
 }
 
 TEST(CSpacePointTangent, SimulationRunsEqualTheRunsWithoutThem) {
-  struct Case {
-    const char* model;
-    double t_end, accuracy;
-  };
-  const Case cases[] = {{"escapement.json", 0.3, 1e-3}, {"ratchet.json", 0.1, 1e-6}};
   test::FlagSwitch<&cspace::angle_memo> memo(false);
-  std::size_t steps = 0, events = 0;
   const std::size_t before = cspace::point_tangent_shortcuts();
-  for (const Case& c : cases) {
-    Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / c.model);
-    SimulationOptions options;
-    options.accuracy = c.accuracy;
-    const std::string where = std::string(c.model) + " at " + std::to_string(c.accuracy);
-    test::SideBySide runs = test::run_side_by_side<cspace::point_tangents>(model, options, c.t_end, where, 100000);
-    ASSERT_EQ(runs.mismatch, "");
-    ASSERT_EQ(runs.error, "") << where;
-    steps += runs.steps;
-    events += runs.events;
-  }
-  std::printf("point tangents: %zu steps, %zu events equal with the switch off; %zu shortcuts\n", steps, events,
+  test::SideBySide runs = test::examples_side_by_side<cspace::point_tangents>(
+      {{"escapement.json", 0.3, 1e-3}, {"ratchet.json", 0.1, 1e-6}});
+  ASSERT_FALSE(HasFailure());
+  const std::size_t events = runs.events;
+  std::printf("point tangents: %zu steps, %zu events equal with the switch off; %zu shortcuts\n", runs.steps, events,
               cspace::point_tangent_shortcuts() - before);
   EXPECT_GT(events, 20u);
   EXPECT_GT(cspace::point_tangent_shortcuts() - before, 0u);

@@ -9,9 +9,15 @@
 #include <hipair/model.hpp>
 #include <hipair/simulation.hpp>
 
+#include "test_paths.hpp"
+
+#include <gtest/gtest.h>
+
 #include <bit>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
+#include <initializer_list>
 #include <limits>
 #include <optional>
 #include <string>
@@ -110,6 +116,32 @@ SideBySide run_side_by_side(const Model& model, const SimulationOptions& options
   }
   out.events = seen;
   return out;
+}
+
+// An example model (under HIPAIR_EXAMPLES) simulated to t_end at `accuracy`, side by side.
+struct ExampleRun {
+  const char* model;
+  double t_end, accuracy;
+};
+
+// Each of `runs` side by side with Flag on and off (run_side_by_side, at most `max_steps` steps
+// each), failing the test at the first mismatch or an error; their steps and events added up.
+template <bool& (*Flag)()>
+SideBySide examples_side_by_side(std::initializer_list<ExampleRun> runs, std::size_t max_steps = 100000) {
+  SideBySide total;
+  for (const ExampleRun& run : runs) {
+    Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / run.model);
+    SimulationOptions options;
+    options.accuracy = run.accuracy;
+    const std::string where = std::string(run.model) + " at " + std::to_string(run.accuracy);
+    SideBySide one = run_side_by_side<Flag>(model, options, run.t_end, where, max_steps);
+    EXPECT_EQ(one.mismatch, "");
+    EXPECT_EQ(one.error, "") << where;
+    total.steps += one.steps;
+    total.events += one.events;
+    if (!one.mismatch.empty() || !one.error.empty()) break;
+  }
+  return total;
 }
 
 }  // namespace hipair::test
