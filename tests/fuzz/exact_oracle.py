@@ -2,7 +2,7 @@
 motion_certificate_alterations.py; sessions 47-48): Python fractions and 80-digit decimals, no
 code of the library or the verifier.  A decimal result is within 10^-75 of the true value; a
 comparison closer than 10^-70 is left undecided (None) by its callers."""
-import decimal, json, subprocess
+import decimal, json, os, subprocess
 from fractions import Fraction as F
 
 decimal.getcontext().prec = 80
@@ -120,3 +120,26 @@ def judged(verify, path, model, certificate, true, counts):
     else:
         counts['false rejected'] += 1
     return problems, r.returncode, text
+
+
+def judged_certificate(verify, path, model, cert, label, truth, statement, alterations, counts):
+    """counts one produced certificate (true by the oracle, its statement restated alike) and every
+    alteration of it judged by judged(); prints each finding (prefixed with label) and, with
+    ALTERATIONS_VERBOSE set, every verdict; returns the number of findings"""
+    findings = 0
+    counts['base'] += 1
+    if truth(cert) is not True:
+        print('%s: the produced certificate is not true by the oracle (%s)' % (label, truth(cert)))
+        findings += 1
+    if statement(cert) != cert['statement']:
+        print('%s: the oracle restates %r as %r' % (label, cert['statement'], statement(cert)))
+        findings += 1
+    for what, altered in alterations(cert):
+        true = truth(altered)
+        problems, code, text = judged(verify, path, model, altered, true, counts)
+        if os.environ.get('ALTERATIONS_VERBOSE'):
+            print('  %s: %s -> exit %d %s' % (what, true, code, text[:150]))
+        if problems:
+            findings += 1
+            print('%s %s: %s: %s' % (label, what, problems, text[:200]), flush=True)
+    return findings

@@ -1,0 +1,223 @@
+#!/usr/bin/env python3
+"""Session 49 (hunt49): "never interferes" tolerance certificates (`hipair tolerance
+--certify-interference`, claim tolerance, property no_interference) with altered numbers against
+hipair-verify, judged by an oracle of the test's own (the sibling of certificate_alterations.py
+and motion_certificate_alterations.py).  The pair is lever-stop.json with the stop made a slider
+along x (limits -5 .. 15 mm, so that it has a follower coordinate u): a lever of length L and width w
+turning about (0, 0) by theta, and the rectangle [20 + u, 40 + u] x [h, h + 10], h = w/2 + g
+(g: stop-gap).  Closed form, derived here and not taken from the library:
+  * the lever is the segment from (0, 0) to L (cos theta, sin theta) grown by r = w/2 (the two
+    sides, the tip's and the hub's half-discs);
+  * for theta in [-0.6, 0.35], u in [-3, 14] and the parameters near nominal (L in [59, 61], w in
+    [7, 9], g in [0, 4]) every vertex (a, y) of the stop projects into (0, L) on the lever's axis
+    (a cos + y sin in (9, 58): a in [17, 54], y in [3.5, 18.5]) and the upper left vertex lies
+    above the axis' line (tan theta <= 0.365 < 13.5 / 34 <= (h + 10) / (20 + u)), so the parts'
+    distance is the least signed distance of the stop's vertices to that line minus r when that
+    is positive, and the lever's axis crosses the stop when it is not: the closed parts are
+    disjoint iff
+        F = min(h cos theta - (20 + u) sin theta, h cos theta - (40 + u) sin theta) - w/2 > 0
+    (the upper vertices are 10 cos theta further).  F = g cos - (w/2)(1 - cos) - a sin is
+    increasing in g, decreasing in w, independent of L, least at a = 40 + u_max (sin > 0) or
+    20 + u_min (sin < 0), and decreasing in theta over [-0.6, 0.35] (its derivative is
+    -(h sin + a cos) < 0 there: a >= 17, h < 8.5).  (Checked once against a brute-force
+    segment-to-rectangle distance at 400 000 random points of the domain: no disagreement; at
+    theta = 0.5 the stop can lie wholly below the line and the form is wrong, hence 0.35.)  So the claim over parameters x driver range
+    [t0, t1] x follower range [u0, u1] holds iff F > 0 at g = g_min, w = w_max, theta = t1 and u
+    = u1 (t1 > 0) or u0 (t1 < 0); where it fails that corner is an exact counterexample.
+Truth, at 80 digits (a comparison closer than 10^-70: undecided): the parameter ranges are the
+hull of the certificate's box and scale x the tolerances (the statement names the scale, the
+leaves cover the box: a claim true over both is true whatever the verifier says of their
+disagreement), a parameter not in `varied` nominal; ranges outside the domain above: undecided.
+Each number of the claim is altered (sign, +-1/den, the last digit, x(1 + 10^-k): the range, the
+follower range, the scale, the box, every leaf bound and split value), and moved across the
+truth's boundary: the driver range's end, the follower range's far end and the scale (box with
+it) 2^-60 before / past the point where the parts touch, with and without the leaves covering the
+extension; a leaf dropped; a varied parameter dropped.  The statement is restated for the altered
+data.  A false certificate accepted (exit 0) is a finding; so is an exit other than 0/1/3 or more
+than one line of output.  True certificates rejected are counted (the verifier is sound, not
+complete).
+usage: tolerance_certificate_alterations.py HIPAIR HIPAIR_VERIFY REPO OUTDIR SEED N_CERTIFICATES"""
+import copy, json, os, random, subprocess, sys
+from fractions import Fraction as F
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from exact_oracle import D, sin_cos, compare, dec, bisect, altered_numbers, judged_certificate
+
+hipair, verify, repo, outdir, seed, n = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), int(sys.argv[6])
+rng = random.Random(seed)
+os.makedirs(outdir, exist_ok=True)
+
+model_json = json.load(open(os.path.join(repo, 'examples/models/lever-stop.json')))
+model_json['name'] = 'lever-and-sliding-stop'
+model_json['parts'][1]['motion'] = {'translation': {'direction': [1, 0], 'limits': [-5, 15]}}
+model = os.path.join(outdir, 'lever-sliding-stop.json')
+json.dump(model_json, open(model, 'w'), indent=1)
+NOMINAL = {'lever-length': F(60), 'lever-width': F(8), 'stop-gap': F(2)}
+TOLERANCE = {'lever-length': (F(-1, 20), F(1, 20)), 'lever-width': (F(-1, 50), F(1, 50)), 'stop-gap': (F(-1, 10), F(1, 10))}
+DOMAIN = {'lever-length': (F(59), F(61)), 'lever-width': (F(7), F(9)), 'stop-gap': (F(0), F(4))}
+
+
+def parameter_ranges(t):
+    """{name: (lo, hi)} of the claim's parameters (the hull of box and scale x tolerance); None
+    when a name or the sizes are not the model's"""
+    scale = F(t['scale'])
+    ranges = dict((k, (v, v)) for k, v in NOMINAL.items())
+    if len(t['box']) != len(t['varied']) or len(set(t['varied'])) != len(t['varied']):
+        return None
+    for name, (lo, hi) in zip(t['varied'], t['box']):
+        if name not in NOMINAL:
+            return None
+        lo, hi = F(lo), F(hi)
+        e_lo, e_hi = scale * TOLERANCE[name][0], scale * TOLERANCE[name][1]
+        ranges[name] = (NOMINAL[name] + min(lo, e_lo, hi, e_hi), NOMINAL[name] + max(lo, e_lo, hi, e_hi))
+    return ranges
+
+
+def clearance(t1, u0, u1, w, g):
+    """F (above) at the worst corner, 80 digits"""
+    s, c = sin_cos(dec(t1))
+    a = 40 + u1 if t1 > 0 else 20 + u0
+    return (dec(w / 2 + g)) * c - dec(a) * s - dec(w / 2)
+
+
+def truth(cert):
+    t = cert['tolerance']
+    if t['property'] != 'no_interference' or t['driver'] != 'lever' or t['follower'] != 'stop':
+        return False
+    t0, t1 = (F(v) for v in t['range'])
+    u0, u1 = (F(v) for v in t['follower_range'])
+    ranges = parameter_ranges(t)
+    if ranges is None or not t0 <= t1 or not u0 <= u1:
+        return False
+    if not (F(-6, 10) <= t0 and t1 <= F(7, 20) and -3 <= u0 and u1 <= 14 and
+            all(DOMAIN[k][0] <= lo and hi <= DOMAIN[k][1] for k, (lo, hi) in ranges.items())):
+        return None
+    c = compare(clearance(t1, u0, u1, ranges['lever-width'][1], ranges['stop-gap'][0]), D(0))
+    if c is None:
+        return None
+    return c > 0
+
+
+def statement(cert):
+    t = cert['tolerance']
+    return ("For every value of the %d varied parameters within %s x their tolerance ranges, with 'lever' over "
+            "[%s, %s] and 'stop' over [%s, %s], the two parts are apart: they never interfere." %
+            (len(t['varied']), F(t['scale']), F(t['range'][0]), F(t['range'][1]), F(t['follower_range'][0]),
+             F(t['follower_range'][1])))
+
+
+def restated(t):
+    t['statement'] = statement(t)
+    return t
+
+
+def number_leaves(body, path=()):
+    """the paths of every exact number under the claim (not the tree's leaf indices)"""
+    if isinstance(body, dict):
+        return [p for k, v in body.items() for p in number_leaves(v, path + (k,))]
+    if isinstance(body, list):
+        return [p for i, v in enumerate(body) for p in number_leaves(v, path + (i,))]
+    return [path] if isinstance(body, str) and body and body[0] in '-0123456789' else []
+
+
+def node_of(tree, path):
+    for k in path[:-1]:
+        tree = tree[k]
+    return tree
+
+
+def moved(cert, where, value, drag):
+    """the certificate with the claim's bound `where` (('range', 1), ('follower_range', 1) or
+    ('scale',)) set to value; with drag, every leaf bound equal to the old one moved with it, so
+    that the leaves still cover the claim; the scale's box moved with it unless drag is 'box kept'"""
+    c = copy.deepcopy(cert)
+    t = c['tolerance']
+    if where == ('scale',):
+        old = F(t['scale'])
+        t['scale'] = str(value)
+        if drag == 'box kept':
+            return restated(c)
+        t['box'] = [[str(value * TOLERANCE[p][0]), str(value * TOLERANCE[p][1])] for p in t['varied']]
+        if drag:
+            for leaf in t['leaves']:
+                for i, p in enumerate(t['varied']):
+                    for e in (0, 1):
+                        if F(leaf['parameters'][i][e]) == old * TOLERANCE[p][e]:
+                            leaf['parameters'][i][e] = str(value * TOLERANCE[p][e])
+        return restated(c)
+    key, end = where
+    old = F(t[key][end])
+    t[key][end] = str(value)
+    if drag:
+        for leaf in t['leaves']:
+            field = 'driver' if key == 'range' else 'follower'
+            if F(leaf[field][end]) == old:
+                leaf[field][end] = str(value)
+    return restated(c)
+
+
+def alterations(cert):
+    t = cert['tolerance']
+    out = []
+    for path in number_leaves(t):
+        for what, v in altered_numbers(rng, node_of(t, path)[path[-1]]):
+            a = copy.deepcopy(cert)
+            node_of(a['tolerance'], path)[path[-1]] = str(v)
+            out.append(('%s %s' % ('/'.join(map(str, path)), what), restated(a)))
+    for i in range(len(t['leaves'])):
+        a = copy.deepcopy(cert)
+        del a['tolerance']['leaves'][i]
+        out.append(('leaf %d dropped' % i, a))
+    for i in range(len(t['varied'])):
+        a = copy.deepcopy(cert)
+        del a['tolerance']['varied'][i], a['tolerance']['box'][i]
+        for leaf in a['tolerance']['leaves']:
+            del leaf['parameters'][i]
+        out.append(('varied %s dropped' % t['varied'][i], restated(a)))
+    t1, u1, scale = F(t['range'][1]), F(t['follower_range'][1]), F(t['scale'])
+    for where, good, far in ((('range', 1), t1, F(7, 20)), (('follower_range', 1), u1, F(14)), (('scale',), scale, F(19))):
+        holds = lambda v: truth(moved(cert, where, v, True)) is True
+        if not holds(good) or truth(moved(cert, where, far, True)) is not False:
+            continue
+        lo, hi = bisect(holds, good, far)
+        for what, v in (('just before', lo), ('just past', hi)):
+            for drag in (False, True) + (('box kept',) if where == ('scale',) else ()):
+                out.append(('%s %s the truth changes%s' % ('/'.join(map(str, where)), what,
+                                                          {False: '', True: ', the leaves with it',
+                                                           'box kept': ', box and leaves kept'}[drag]),
+                            moved(cert, where, v, drag)))
+    return out
+
+
+def generated():
+    """the arguments of one certify run: a scale, a driver range (mostly ending just past 0, where
+    the follower's and the scale's crossings exist) and a follower range whose worst corner keeps
+    the parts at least 0.15 mm apart"""
+    while True:
+        scale = F(rng.choice([1, 1, 2, 5]))
+        t0 = F(rng.randrange(-55, 0), 100)
+        t1 = t0 + F(rng.randrange(5, 50), 100) if rng.random() < 0.25 else F(rng.randrange(25, 46), 1000)
+        u0 = F(rng.randrange(-25, 20), 10)
+        u1 = u0 + F(rng.choice([0, rng.randrange(1, 30)]), 10)
+        if t1 > F(7, 20):
+            continue
+        w, g = NOMINAL['lever-width'] + scale * TOLERANCE['lever-width'][1], NOMINAL['stop-gap'] + scale * TOLERANCE['stop-gap'][0]
+        if clearance(t1, u0, u1, w, g) > D('0.15'):
+            return ['--certify-scale', str(scale), '--range', '%s:%s' % (t0, t1), '--follower-range', '%s:%s' % (u0, u1)]
+
+
+findings, counts = 0, {'true accepted': 0, 'true rejected': 0, 'false rejected': 0, 'undecided': 0, 'base': 0}
+for case in range(n):
+    args = generated()
+    out = os.path.join(outdir, 'base-%d' % case)
+    r = subprocess.run([hipair, 'tolerance', model, '--certify-interference', '--pair', 'lever:stop', '--out', out] + args,
+                       capture_output=True, text=True, timeout=120)
+    if r.returncode != 0:
+        print('case %d: %s not certified: %s' % (case, ' '.join(args), (r.stdout + r.stderr).strip()[-300:]))
+        findings += 1
+        continue
+    cert = json.load(open(os.path.join(out, 'interference-certificate.json')))
+    findings += judged_certificate(verify, os.path.join(outdir, 'c%d.json' % case), model, cert, 'case %d (%s)' % (case, ' '.join(args)),
+                                   truth, statement, alterations, counts)
+print('%s, %d findings' % (counts, findings))
+sys.exit(1 if findings else 0)
