@@ -2109,20 +2109,96 @@ Interval times(Interval a, Interval b) {
     return a * b;
 }
 
+// An interval in the two lanes of one two-double vector, {lo, hi}: the scalar interval
+// operations above lane by lane, the same operations in the same order on each bound, so the
+// same bits (baseline x86-64: no fused multiply-adds to contract into).
+namespace lanes {
+using v2d = double __attribute__((vector_size(16)));
+using v2l = long long __attribute__((vector_size(16)));
+
+inline v2d load(const Interval& v) { return v2d{v.lo, v.hi}; }
+inline v2d swapped(v2d v) { return __builtin_shuffle(v, v2l{1, 0}); }
+// end_product in each lane: 0 * inf = 0
+inline v2d end_products(v2d p) { return p == p ? p : v2d{0, 0}; }
+// {down(v[0]), up(v[1])}: v -+ (|v| 2^-52 + 2 denorm_min), the subtraction as the addition of the
+// negated term (IEEE 754: x - y is x + (-y)); unbounded or NaN bounds by the scalar rule.
+inline v2d magnitude(v2d v) {
+  return reinterpret_cast<v2d>(reinterpret_cast<v2l>(v) & v2l{0x7fffffffffffffffLL, 0x7fffffffffffffffLL});
+}
+// both lanes finite (not NaN): the scalar rule's ordinary case
+inline bool finite(v2d magnitude) {
+  return __builtin_expect(__builtin_ia32_movmskpd(magnitude < v2d{__builtin_inf(), __builtin_inf()}) == 3, 1);
+}
+inline v2d widened(v2d v, v2d magnitude) {
+  const v2d step = magnitude * v2d{2.220446049250313e-16, 2.220446049250313e-16} +
+                   v2d{2 * 4.9406564584124654e-324, 2 * 4.9406564584124654e-324};
+  return v + reinterpret_cast<v2d>(reinterpret_cast<v2l>(step) ^ v2l{static_cast<long long>(0x8000000000000000ULL), 0});
+}
+// anything not finite (-inf below included) by the scalar rule
+inline v2d outward(v2d v) {
+  const v2d m = magnitude(v);
+  return finite(m) ? widened(v, m) : v2d{interval_detail::down(v[0]), interval_detail::up(v[1])};
+}
+// outward(end_products(p)): a NaN lane (0 * inf) is not finite, so only the exceptional path maps it to 0
+inline v2d outward_product(v2d p) {
+  const v2d m = magnitude(p);
+  if (finite(m)) return widened(p, m);
+  p = end_products(p);
+  return v2d{interval_detail::down(p[0]), interval_detail::up(p[1])};
+}
+
+// The product by a factor b of sign S: times<S>'s end products, picked by a's sign as there.
+// b >= 0: a >= 0 {a.lo b.lo, a.hi b.hi}, a <= 0 {a.lo b.hi, a.hi b.lo}, mixed {a.lo b.hi, a.hi b.hi};
+// b <= 0: a >= 0 {a.hi b.lo, a.lo b.hi}, a <= 0 {a.hi b.hi, a.lo b.lo}, mixed {a.hi b.lo, a.lo b.lo}
+// (a's lanes swapped); b mixed: operator*'s four products and its order of comparisons.
+template <SignKind S>
+struct Factor {
+  v2d b, ends, swapped_ends, mixed;
+  explicit Factor(Interval f)
+      : b{f.lo, f.hi}, ends{f.lo, f.hi}, swapped_ends{f.hi, f.lo},
+        mixed{S == SignKind::nonnegative ? v2d{f.hi, f.hi} : v2d{f.lo, f.lo}} {}
+  v2d times(v2d a) const {
+    if constexpr (S == SignKind::mixed) {
+      const v2d p12 = end_products(v2d{a[0], a[0]} * b), p34 = end_products(v2d{a[1], a[1]} * b);
+      // lo = p1 < p2 ? p1 : p2, hi = p1 < p2 ? p2 : p1
+      v2d v = p12[0] < p12[1] ? p12 : swapped(p12);
+      // lo = lo < p ? lo : p, hi = hi < p ? p : hi (no NaN here: the lane-1 test negated)
+      const v2d p3{p34[0], p34[0]}, p4{p34[1], p34[1]};
+      v = ((v < p3) ^ v2l{0, -1}) ? v : p3;
+      v = ((v < p4) ^ v2l{0, -1}) ? v : p4;
+      return outward(v);
+    } else {
+      const v2d& f = a[0] >= 0 ? ends : a[1] <= 0 ? swapped_ends : mixed;
+      if constexpr (S == SignKind::nonnegative)
+        return outward_product(a * f);
+      else
+        return outward_product(swapped(a) * f);
+    }
+  }
+};
+}  // namespace lanes
+
 // Nested Horner (rows in x, each row in y), the same operations in the same order for every
-// sign of x and y: the products by x and y are those of operator*, bound for bound.
-// (Flattened: the interval products and sums inlined, the same operations — no contraction
-// into fused multiply-adds on the project's target, which has none — in the culling
-// quadtree's innermost loops.)
+// sign of x and y: the products by x and y are those of operator*, bound for bound — the
+// intervals in two vector lanes (lanes above), each lane the scalar form's bound (the scalar
+// form is rows_of and outer_horner below: the test compares the two bit for bit).
 template <SignKind SX, SignKind SY>
 [[gnu::flatten]] Interval horner(const std::vector<std::vector<Interval>>& rows, Interval x, Interval y) {
-  Interval result{0, 0};
+  using lanes::v2d;
+  const lanes::Factor<SX> fx(x);
+  const lanes::Factor<SY> fy(y);
+  // the first product of each Horner chain, 0 times the factor: the same for every chain
+  const v2d zero{0, 0}, zero_x = fx.times(zero), zero_y = fy.times(zero);
+  v2d result = zero;
   for (auto row = rows.rbegin(); row != rows.rend(); ++row) {
-    Interval inner{0, 0};
-    for (auto c = row->rbegin(); c != row->rend(); ++c) inner = times<SY>(inner, y) + *c;
-    result = times<SX>(result, x) + inner;
+    v2d inner = zero;
+    if (auto c = row->rbegin(); c != row->rend()) {
+      inner = lanes::outward(zero_y + lanes::load(*c));
+      for (++c; c != row->rend(); ++c) inner = lanes::outward(fy.times(inner) + lanes::load(*c));
+    }
+    result = lanes::outward((row == rows.rbegin() ? zero_x : fx.times(result)) + inner);
   }
-  return result;
+  return {result[0], result[1]};
 }
 
 template <SignKind SX>

@@ -528,6 +528,65 @@ TEST(CSpaceAlgebra, IntervalPolynomialEvaluationIsTheGenericHorner) {
   }
 }
 
+// IntervalPolynomial2::evaluate computes its intervals in the two lanes of a vector (lo, hi), the
+// scalar form's operations lane by lane: bit for bit the generic nested Horner and the scalar
+// rows_at / evaluate_rows, over boxes with any ends — zeros of both signs, subnormals, 10^-300 …
+// 10^308, DBL_MAX, infinities, points, boxes across zero — and polynomials with zero, huge and
+// unbounded (beyond 2^1024) coefficients, rows of differing lengths.
+TEST(CSpaceAlgebra, IntervalPolynomialLanesAreTheScalarHornerOnAnyBox) {
+  using namespace interval_products;
+  std::uint64_t state = 0xd1b54a32d192ed03ull;
+  auto end = [&] {
+    const std::uint64_t r = next_state(state);
+    if (r % 4 != 0) return random_end(state);
+    const double mantissa = static_cast<double>(next_state(state) % (1ull << 52)) / 0x1p52 + 1;
+    const double v = r % 8 == 1 ? std::ldexp(mantissa, -1074 + static_cast<int>(next_state(state) % 60))   // subnormal
+                                : std::ldexp(mantissa, static_cast<int>(next_state(state) % 2046) - 1022);  // anywhere
+    return r & 64 ? -v : v;
+  };
+  auto box_side = [&] {
+    double a = end(), b = next_state(state) % 6 == 0 ? a : end();
+    if (b < a) std::swap(a, b);
+    if (a == b && std::isinf(a)) return Interval{-__builtin_inf(), __builtin_inf()};
+    return Interval{a, b};
+  };
+  int boxes = 0, unbounded = 0, mixed = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    IntegerPolynomial2 f;
+    const std::size_t rows = 1 + next_state(state) % 5;
+    f.coefficients.resize(rows);
+    for (auto& row : f.coefficients) {
+      row.resize(1 + next_state(state) % 5);
+      for (auto& c : row) {
+        const std::uint64_t r = next_state(state);
+        if (r % 5 == 0) continue;
+        c = mpz_class(static_cast<unsigned long>(next_state(state) % 100000));
+        if (r % 41 == 1) c <<= 1100;
+        else if (r % 3 == 1) c <<= static_cast<unsigned long>(next_state(state) % 1000);
+        if (r & 64) c = -c;
+      }
+    }
+    const IntervalPolynomial2 g(f);
+    for (int box = 0; box < 25; ++box, ++boxes) {
+      const Interval x = box_side(), y = box_side();
+      const Interval lanes = g.evaluate(x, y), reference = reference_evaluate(f, x, y);
+      std::vector<Interval> rows_at_y;
+      g.rows_at(y, rows_at_y);
+      const Interval scalar = g.evaluate_rows(x, rows_at_y);
+      ASSERT_TRUE(same_bits(lanes, reference) && same_bits(lanes, scalar))
+          << "trial " << trial << " box [" << x.lo << ", " << x.hi << "] x [" << y.lo << ", " << y.hi << "]: ["
+          << lanes.lo << ", " << lanes.hi << "] against [" << reference.lo << ", " << reference.hi << "] and ["
+          << scalar.lo << ", " << scalar.hi << "]";
+      unbounded += !std::isfinite(lanes.lo) || !std::isfinite(lanes.hi);
+      mixed += (x.lo < 0 && x.hi > 0) || (y.lo < 0 && y.hi > 0);
+    }
+  }
+  // the exceptional bounds and the boxes across an axis were met many times
+  EXPECT_GT(unbounded, 5000);
+  EXPECT_GT(mixed, 20000);
+  EXPECT_EQ(boxes, 100000);
+}
+
 // enclose(mpz_class) bounds an integer straight from it (mpz_get_d, mpz_cmp_d); it must give the
 // bounds of the rational path enclose(Rational(z)) bit for bit, and both must be the tightest
 // doubles around z, checked exactly: lo is the greatest double (or -inf) not above z, hi the least
