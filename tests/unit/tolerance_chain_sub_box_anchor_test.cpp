@@ -24,7 +24,9 @@
 // the six beyond_window variants' bands pass through the walk going on from the bridge's end E_S
 // (the slab not free; that walk stopped at the window's end and carried on): the walk restarted
 // from E instead, from the slab's middle, or the band ended at E_S without the walk: 180 values
-// outside each (session 49, tol49b).
+// outside each (session 49, tol49b). The widened split's meet with one half's composition dropped
+// (the first, or the second): 30 values outside in the g in [-3, 1] variant (up to 0.20 / 0.50 mm),
+// which ChainWidenedSplit does not see.
 #include "gear_train_models.hpp"
 #include "tolerance_band_check.hpp"
 
