@@ -1,6 +1,7 @@
 // Pair axes, chart layout and contact-curve generation for fixed-axis pairs.
 #include "curves/contact_curves.hpp"
 #include "curves/formed_store.hpp"
+#include "curves/half_turn_memo.hpp"
 
 #include "oracle/blocked_tester.hpp"
 #include "oracle/overlap.hpp"
@@ -1575,9 +1576,13 @@ bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurv
 // `zero_not_strict` (when true is returned): some clause holds everywhere only because an atom
 // is identically zero, none being a positive constant (not strict: corner_entry_atoms).
 bool convert_validity(const kernels::Validity<Polynomial>& validity,
-                      std::vector<ValidityClause>& clauses, bool& zero_not_strict) {
+                      std::vector<ValidityClause>& clauses, bool& zero_not_strict,
+                      std::vector<std::pair<int, int>>* sources = nullptr) {
   zero_not_strict = false;
-  for (const auto& clause : validity.clauses) {
+  std::size_t first_source = sources ? sources->size() : 0;
+  for (std::size_t k = 0; k < validity.clauses.size(); ++k) {
+    const auto& clause = validity.clauses[k];
+    if (sources) sources->resize(first_source);   // this clause's atoms, if it is kept
     ValidityClause converted;
     bool always = false;
     bool possible = false;
@@ -1595,12 +1600,15 @@ bool convert_validity(const kernels::Validity<Polynomial>& validity,
       }
       possible = true;
       converted.atoms.push_back(std::move(atom));
+      if (sources) sources->emplace_back(static_cast<int>(k), i);
     }
     if (zero && !strict) zero_not_strict = true;
     if (always) continue;
     if (!possible) return false;
     clauses.push_back(std::move(converted));
+    if (sources) first_source = sources->size();
   }
+  if (sources) sources->resize(first_source);
   return true;
 }
 
@@ -1627,30 +1635,29 @@ bool convert_validity(const kernels::Validity<Polynomial>& validity,
 // interior of blocked space, and a piece of the curve made of such configurations bounds
 // nothing. Empty (no claim) for other contact types, for a spike, and when a validity clause
 // was dropped as holding everywhere only because an atom is identically zero (not strict).
-std::vector<IntegerPolynomial2> corner_entry_atoms(const Model& model, const BodyFeature& fa, const BodyFeature& fb,
-                                                   const kernels::FeatureGeometry<Rational>& ga,
-                                                   const kernels::FeatureGeometry<Rational>& gb,
-                                                   const kernels::Pose<Polynomial>& a, const kernels::Pose<Polynomial>& b,
-                                                   bool validity_zero_not_strict) {
+// The atoms' values before normalisation, w (out . n) and then -w (in . n), in any kernel
+// number type T (`constant`: a body datum as T); empty when there is no claim for the pair's
+// features (the cases above but the validity's, which is the caller's: corner_entry_atoms).
+template <class T, class Constant>
+std::vector<T> corner_entry_values(const Model& model, const BodyFeature& fa, const BodyFeature& fb,
+                                   const kernels::FeatureGeometry<Rational>& ga, const kernels::FeatureGeometry<Rational>& gb,
+                                   const kernels::Pose<T>& a, const kernels::Pose<T>& b, Constant&& constant_of) {
   using Shape = kernels::FeatureShape;
-  using PairVector = kernels::PairVector<Polynomial>;
+  using Vector = kernels::Vector<T>;
   const bool vertex_first = ga.shape == Shape::vertex;
   if (vertex_first == (gb.shape == Shape::vertex)) return {};
   const kernels::FeatureGeometry<Rational>& other = vertex_first ? gb : ga;
   if (other.shape != Shape::segment && other.shape != Shape::arc) return {};
-  // a clause dropped as holding everywhere only because an atom is identically zero (the
-  // atoms classified once, by convert_validity)
-  if (validity_zero_not_strict) return {};
   const FeatureDirections corner = feature_directions(model, vertex_first ? fa : fb);
   if (sgn(cross(corner.in, corner.out)) == 0 && sgn(dot(corner.in, corner.out)) < 0) return {};   // a spike
-  auto constant = [](const Rational& x, const Rational& y) { return PolyVector{Polynomial(x), Polynomial(y)}; };
+  auto constant = [&](const Rational& x, const Rational& y) { return Vector{constant_of(x), constant_of(y)}; };
   auto on_vertex_part = [&](const Point& u) {
     return vertex_first ? kernels::first_direction(constant(u.x, u.y)) : kernels::second_direction(constant(u.x, u.y));
   };
-  PairVector normal;
+  kernels::PairVector<T> normal;
   if (other.shape == Shape::segment) {
     const kernels::Vector<Rational> d = other.target - other.point;
-    const PolyVector n = constant(d.y, Rational(-d.x));   // right normal: out of the material
+    const Vector n = constant(d.y, Rational(-d.x));   // right normal: out of the material
     normal = vertex_first ? kernels::second_direction(n) : kernels::first_direction(n);
   } else {
     // the contact point minus the arc's centre (out of a convex arc's material)
@@ -1659,13 +1666,28 @@ std::vector<IntegerPolynomial2> corner_entry_atoms(const Model& model, const Bod
                                                                                constant(gb.point.x, gb.point.y)));
     if (!other.convex) normal = kernels::detail::negated(normal);
   }
-  std::vector<IntegerPolynomial2> atoms;
+  std::vector<T> values;
   for (int k = 0; k < 2; ++k) {
-    Polynomial value = kernels::dot_homogeneous(on_vertex_part(k == 0 ? corner.out : corner.in), normal, a, b);
-    IntegerPolynomial2 atom = normalized_integer_polynomial(k == 0 ? value : Polynomial(-value));
+    T value = kernels::dot_homogeneous(on_vertex_part(k == 0 ? corner.out : corner.in), normal, a, b);
+    values.push_back(k == 0 ? value : T(-value));
+  }
+  return values;
+}
+
+// The atoms from corner_entry_values (Polynomial): normalised, constants >= 0 dropped; none when
+// a validity clause was dropped as holding everywhere only because an atom is identically zero
+// (the atoms classified once, by convert_validity).
+// `sources`: the index in `values` of each atom kept.
+std::vector<IntegerPolynomial2> corner_entry_atoms(const std::vector<Polynomial>& values, bool validity_zero_not_strict,
+                                                   std::vector<int>* sources) {
+  if (validity_zero_not_strict) return {};
+  std::vector<IntegerPolynomial2> atoms;
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    IntegerPolynomial2 atom = normalized_integer_polynomial(values[k]);
     // a constant >= 0 never certifies
     if (atom.degree_x() <= 0 && atom.degree_y() <= 0 && (atom.is_zero() || sgn(atom.coefficients[0][0]) >= 0)) continue;
     atoms.push_back(std::move(atom));
+    sources->push_back(static_cast<int>(k));
   }
   return atoms;
 }
@@ -1786,6 +1808,23 @@ void clear_inscribed_disk_memo() {
   memo.entries.clear();
 }
 
+namespace {
+
+// A feature pair's curve as formed in the first chart kind that needed it, with the degrees
+// that carry each of its normalised polynomials to the other half-turn kinds by reflection
+// (curves/half_turn_memo.hpp): per variable, the degree k of the kernel quantity in that
+// variable's rotation triple less the (1 + t^2) factors normalisation divided out; -1 where
+// the quantity is not homogeneous in that triple (then the curve is formed in each kind).
+struct PairQuantities {
+  bool x_half = false, y_half = false;   // the chart kind of `formed`
+  std::shared_ptr<const FormedCurve> formed;
+  std::array<int, 2> value_k{-1, -1};
+  std::vector<std::array<int, 2>> atom_k;    // per atom of curve.validity, clause by clause
+  std::vector<std::array<int, 2>> entry_k;   // per corner-entry atom
+};
+
+}  // namespace
+
 struct CurveGenerator::Data {
   const Model& model;
   PairAxes axes;
@@ -1846,7 +1885,81 @@ struct CurveGenerator::Data {
   static constexpr std::size_t swept_capacity = 1024;
   mutable std::mutex swept_mutex;
   mutable std::map<SweptKey, std::shared_ptr<const std::vector<SweptBox>>> swept_memo;
+  // A feature pair's kernel quantities as formed in the first chart kind that needed them
+  // (PairQuantities): another half-turn kind takes them by reflection. Key: the pair's index;
+  // under the mutex.
+  mutable std::mutex quantities_mutex;
+  mutable std::unordered_map<std::uint64_t, std::shared_ptr<const PairQuantities>> quantities;
 };
+
+namespace {
+
+// The pose in TripleDegree: a rotating part's c, s, w of degree one in the triple of its
+// chart variable (x when its polynomials are in x), every other datum of degree zero (or zero).
+kernels::Pose<TripleDegree> triple_degree_pose(const kernels::Pose<Polynomial>& p) {
+  auto of = [](const Polynomial& q) { return TripleDegree(q.is_zero() ? 0 : 1); };
+  kernels::Pose<TripleDegree> d;
+  d.rotates = p.rotates;
+  d.translates = p.translates;
+  if (p.rotates) {
+    d.c = d.s = d.w = TripleDegree::unit(p.w.rows() > 1 ? 0 : 1);
+  } else {
+    d.c = of(p.c);
+    d.s = of(p.s);
+    d.w = of(p.w);
+  }
+  d.pivot = {of(p.pivot.x), of(p.pivot.y)};
+  d.shift = {of(p.shift.x), of(p.shift.y)};
+  return d;
+}
+
+// The degree bounds with which `normalised` (normalized_integer_polynomial of `raw`, whose
+// terms have triple degrees `degree`) reflects, per variable (PairQuantities): raw = content
+// (1 + x^2)^m N, so m = (deg raw - deg N) / 2 and N reflects with k - m.
+std::array<int, 2> normalised_degrees(const Polynomial& raw, const TripleDegree& degree, const IntegerPolynomial2& normalised) {
+  int raw_degree[2] = {-1, -1};
+  for (int i = 0; i < raw.rows(); ++i)
+    for (int j = 0; j < raw.columns(); ++j)
+      if (sgn(raw.numerator(i, j)) != 0) {
+        raw_degree[0] = std::max(raw_degree[0], i);
+        raw_degree[1] = std::max(raw_degree[1], j);
+      }
+  if (raw_degree[0] < 0) return {0, 0};   // zero reflects to zero
+  const int degree_n[2] = {normalised.degree_x(), normalised.degree_y()};
+  std::array<int, 2> k{-1, -1};
+  for (int v = 0; v < 2; ++v) {
+    const int kv = degree.homogeneous(v), removed = raw_degree[v] - degree_n[v];
+    if (kv >= 0 && raw_degree[v] <= 2 * kv && removed >= 0 && removed % 2 == 0) k[static_cast<std::size_t>(v)] = kv - removed / 2;
+  }
+  return k;
+}
+
+// `q`'s curve carried to the chart kind (x_half, y_half) by reflection; nullptr when some
+// polynomial does not reflect in a variable it must be reflected in.
+std::shared_ptr<FormedCurve> reflected(const PairQuantities& q, bool x_half, bool y_half) {
+  const bool in_x = x_half != q.x_half, in_y = y_half != q.y_half;
+  auto made = std::make_shared<FormedCurve>();
+  made->kept = q.formed->kept;
+  made->curve = q.formed->curve;
+  if (!made->kept) return made;
+  auto reflect = [&](IntegerPolynomial2& p, const std::array<int, 2>& k) {
+    if ((in_x && k[0] < 0) || (in_y && k[1] < 0)) return false;
+    std::optional<IntegerPolynomial2> r = half_turn_reflected(p, in_x ? k[0] : -1, in_y ? k[1] : -1);
+    if (!r) return false;
+    p = std::move(*r);
+    return true;
+  };
+  if (!reflect(made->curve.polynomial, q.value_k)) return nullptr;
+  std::size_t atom = 0;
+  for (ValidityClause& clause : made->curve.validity)
+    for (IntegerPolynomial2& p : clause.atoms)
+      if (!reflect(p, q.atom_k[atom++])) return nullptr;
+  for (std::size_t e = 0; e < made->curve.corner_entry.size(); ++e)
+    if (!reflect(made->curve.corner_entry[e], q.entry_k[e])) return nullptr;
+  return made;
+}
+
+}  // namespace
 
 CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
     : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}, true, {}, {},
@@ -2283,34 +2396,90 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
     }
     if (formed && formed->maker != d.id) ++*d.formed->reused;
     if (!formed) {
-      auto made = std::make_shared<Data::Formed>();
-      made->maker = d.id;
       const BodyFeature& fa = features_a[ui];
       const BodyFeature& fb = features_b[uj];
-      std::optional<kernels::ContactFunction<Polynomial>> kernel =
-          contact_of(geometry_a[ui], geometry_b[uj], poses.first, poses.second);
-      if (kernel) {
-        ContactCurve& curve = made->curve;
-        curve.first = fa.ref;
-        curve.second = fb.ref;
-        curve.type = kernel->type;
-        curve.polynomial = normalized_integer_polynomial(kernel->value);
-        curve.blocked_sign = kernels::blocked_sign;
-        const bool zero = curve.polynomial.is_zero();
-        // a non-zero constant: these features never touch; an empty validity: never within both
-        bool zero_not_strict = false;
-        made->kept = (zero || curve.polynomial.degree_x() != 0 || curve.polynomial.degree_y() != 0) &&
-                     convert_validity(kernel->validity, curve.validity, zero_not_strict);
-        if (made->kept) {
-          curve.label = curve_label(model, fa.ref, fb.ref, curve.type);
-          // (a blocked-space cull: not without it, so that tests compare against builds without)
-          if (options.cull_blocked_space)
-            curve.corner_entry =
-                corner_entry_atoms(model, fa, fb, geometry_a[ui], geometry_b[uj], poses.first, poses.second, zero_not_strict);
-        } else {
-          made->curve = ContactCurve{};   // nothing kept but the answer
+      // the curve of another half-turn kind carried here by reflection when that kind formed it
+      // (and every polynomial reflects), else formed here (and remembered for the other kinds)
+      const std::uint64_t pair = static_cast<std::uint64_t>(ui) * features_b.size() + uj;
+      const bool memo = half_turn_memo_switch();
+      std::shared_ptr<const PairQuantities> known;
+      if (memo) {
+        std::lock_guard<std::mutex> lock(d.quantities_mutex);
+        auto found = d.quantities.find(pair);
+        if (found != d.quantities.end()) known = found->second;
+      }
+      std::shared_ptr<Data::Formed> made;
+      if (known && (known->x_half != x.half_turn || known->y_half != y.half_turn)) {
+        made = reflected(*known, x.half_turn, y.half_turn);
+        if (made) ++half_turn_memo_hits();
+      }
+      if (!made) {
+        made = std::make_shared<Data::Formed>();
+        std::optional<kernels::ContactFunction<Polynomial>> kernel =
+            contact_of(geometry_a[ui], geometry_b[uj], poses.first, poses.second);
+        auto quantities = std::make_shared<PairQuantities>();   // (remembered when memo && !known)
+        std::vector<std::pair<int, int>> atom_sources;
+        std::vector<int> entry_sources;
+        std::vector<Polynomial> entry;
+        if (kernel) {
+          ContactCurve& curve = made->curve;
+          curve.first = fa.ref;
+          curve.second = fb.ref;
+          curve.type = kernel->type;
+          curve.polynomial = normalized_integer_polynomial(kernel->value);
+          curve.blocked_sign = kernels::blocked_sign;
+          const bool zero = curve.polynomial.is_zero();
+          // a non-zero constant: these features never touch; an empty validity: never within both
+          bool zero_not_strict = false;
+          made->kept = (zero || curve.polynomial.degree_x() != 0 || curve.polynomial.degree_y() != 0) &&
+                       convert_validity(kernel->validity, curve.validity, zero_not_strict, &atom_sources);
+          if (made->kept) {
+            curve.label = curve_label(model, fa.ref, fb.ref, curve.type);
+            // (a blocked-space cull: not without it, so that tests compare against builds without)
+            if (options.cull_blocked_space && !zero_not_strict) {
+              entry = corner_entry_values(model, fa, fb, geometry_a[ui], geometry_b[uj], poses.first, poses.second,
+                                          [](const Rational& r) { return Polynomial(r); });
+              curve.corner_entry = corner_entry_atoms(entry, zero_not_strict, &entry_sources);
+            }
+          } else {
+            made->curve = ContactCurve{};   // nothing kept but the answer
+          }
+        }
+        if (memo && !known) {
+          // the degrees: the same kernels on TripleDegree (curves/half_turn_memo.hpp)
+          quantities->x_half = x.half_turn;
+          quantities->y_half = y.half_turn;
+          quantities->formed = made;
+          if (made->kept) {
+            const kernels::Pose<TripleDegree> da = triple_degree_pose(poses.first), db = triple_degree_pose(poses.second);
+            auto degree_of = [](const Rational& r) { return TripleDegree(sgn(r) != 0 ? 1 : 0); };
+            const std::optional<kernels::ContactFunction<TripleDegree>> degrees = kernels::contact_function(
+                da, geometry_a[ui], db, geometry_b[uj], degree_of,
+                kernels::ExactRootOrSquared{[](const Rational& square) { return exact_square_root(square); }});
+            const ContactCurve& curve = made->curve;
+            quantities->value_k = normalised_degrees(kernel->value, degrees->value, curve.polynomial);
+            std::size_t atom = 0;
+            for (const ValidityClause& clause : curve.validity)
+              for (const IntegerPolynomial2& p : clause.atoms) {
+                const auto [c, a] = atom_sources[atom++];
+                const auto uc = static_cast<std::size_t>(c), ua = static_cast<std::size_t>(a);
+                quantities->atom_k.push_back(
+                    normalised_degrees(kernel->validity.clauses[uc].atoms[ua], degrees->validity.clauses[uc].atoms[ua], p));
+              }
+            if (!curve.corner_entry.empty()) {
+              const std::vector<TripleDegree> entry_degrees =
+                  corner_entry_values(model, fa, fb, geometry_a[ui], geometry_b[uj], da, db, degree_of);
+              for (std::size_t e = 0; e < curve.corner_entry.size(); ++e) {
+                const auto source = static_cast<std::size_t>(entry_sources[e]);
+                quantities->entry_k.push_back(normalised_degrees(entry[source], entry_degrees[source], curve.corner_entry[e]));
+              }
+            }
+          }
+          std::lock_guard<std::mutex> lock(d.quantities_mutex);
+          d.quantities.try_emplace(pair, std::move(quantities));
         }
       }
+      made->maker = d.id;
       std::lock_guard<std::mutex> lock(d.formed->mutex);
       formed = d.formed->curves.try_emplace(key, std::move(made)).first->second;
     }
