@@ -86,31 +86,6 @@ void normalize(IntegerPolynomial2& polynomial) {
   trim(c);
 }
 
-std::optional<IntegerPolynomial2> half_turn_reflected(const IntegerPolynomial2& polynomial, int kx, int ky) {
-  const int dx = polynomial.degree_x(), dy = polynomial.degree_y();
-  if ((kx >= 0 && dx > 2 * kx) || (ky >= 0 && dy > 2 * ky)) return std::nullopt;
-  IntegerPolynomial2 r;
-  if (dx < 0) return r;
-  const int rows = kx >= 0 ? 2 * kx + 1 : dx + 1, columns = ky >= 0 ? 2 * ky + 1 : dy + 1;
-  r.coefficients.assign(static_cast<std::size_t>(rows), std::vector<mpz_class>(static_cast<std::size_t>(columns)));
-  for (std::size_t i = 0; i < polynomial.coefficients.size(); ++i)
-    for (std::size_t j = 0; j < polynomial.coefficients[i].size(); ++j) {
-      const mpz_class& c = polynomial.coefficients[i][j];
-      if (sgn(c) == 0) continue;
-      // x^(2 kx) (-1/x)^i = (-1)^i x^(2 kx - i), the same in y
-      const std::size_t ri = kx >= 0 ? static_cast<std::size_t>(2 * kx) - i : i;
-      const std::size_t rj = ky >= 0 ? static_cast<std::size_t>(2 * ky) - j : j;
-      const bool negate = (kx >= 0 && i % 2 == 1) != (ky >= 0 && j % 2 == 1);
-      mpz_class& target = r.coefficients[ri][rj];
-      if (negate)
-        mpz_neg(target.get_mpz_t(), c.get_mpz_t());
-      else
-        target = c;
-    }
-  trim(r.coefficients);
-  return r;
-}
-
 // ---------------------------------------------------------------- RationalPolynomial2
 
 RationalPolynomial2::RationalPolynomial2(int constant) : RationalPolynomial2(Rational(constant)) {}

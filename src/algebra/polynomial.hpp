@@ -6,7 +6,6 @@
 
 #include <gmpxx.h>
 
-#include <optional>
 #include <vector>
 
 namespace hipair::cspace {
@@ -74,15 +73,6 @@ IntegerPolynomial2 normalized_integer_polynomial(const RationalPolynomial2& poly
 
 /// Normalises an integer polynomial in place as normalized_integer_polynomial does.
 void normalize(IntegerPolynomial2& polynomial);
-
-/// The polynomial x^(2 kx) y^(2 ky) p(-1/x, -1/y), reflected only in the variables whose degree
-/// bound is >= 0 (kx < 0: x kept; ky < 0: y kept), trimmed as normalize trims; nullopt when the
-/// degree in a reflected variable exceeds 2 kx (2 ky). A kernel quantity homogeneous of degree
-/// kx in the rotation triple (c, s, w) of the half-angle tangent x, in the chart centred at 0,
-/// becomes the same quantity in the chart centred at pi (and back): (c, s, w)(-1/x) x^2 =
-/// (-c, -s, w)(x) (curves/half_turn_memo.hpp). Content and (1 + x^2), (1 + y^2) factors are
-/// kept, so a normalised polynomial stays normalised.
-std::optional<IntegerPolynomial2> half_turn_reflected(const IntegerPolynomial2& polynomial, int kx, int ky);
 
 /// True when the polynomial does not involve y (resp. x).
 bool depends_only_on_x(const IntegerPolynomial2& polynomial);

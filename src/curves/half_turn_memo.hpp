@@ -10,7 +10,7 @@
 // and the same in y: the same polynomial, exactly. Normalisation (normalized_integer_polynomial)
 // divides the content and m factors (1 + x^2), which reflect to themselves, so the normalised N
 // of one kind reflects with k - m (m = (deg H - deg N) / 2) to the normalised polynomial of the
-// other (half_turn_reflected in algebra/polynomial.hpp): the curve's polynomial, validity atoms
+// other (half_turn_reflected below): the curve's polynomial, validity atoms
 // and corner-entry atoms are carried as formed, constants and dropped atoms alike. k is found by
 // running the same kernel on TripleDegree, which follows the range of the terms' degrees through
 // +, - and *; a zero value (a zero body datum) has no terms, so the range is that of the terms
@@ -18,9 +18,11 @@
 // Otherwise (or a degree above 2k) the curve is formed in each chart kind as before.
 #pragma once
 
+#include "algebra/polynomial.hpp"
 #include "core/thread_switch.hpp"
 
 #include <algorithm>
+#include <optional>
 
 namespace hipair::cspace {
 
@@ -65,6 +67,38 @@ struct TripleDegree {
     return r;
   }
 };
+
+/// The polynomial x^(2 kx) y^(2 ky) p(-1/x, -1/y), reflected only in the variables whose degree
+/// bound is >= 0 (kx < 0: x kept; ky < 0: y kept), trimmed as normalize trims (no trailing zero
+/// in a row, no trailing empty row); nullopt when the degree in a reflected variable exceeds 2 kx
+/// (2 ky). Content and factors (1 + x^2), (1 + y^2) are kept: a normalised polynomial stays
+/// normalised.
+inline std::optional<IntegerPolynomial2> half_turn_reflected(const IntegerPolynomial2& polynomial, int kx, int ky) {
+  const int dx = polynomial.degree_x(), dy = polynomial.degree_y();
+  if ((kx >= 0 && dx > 2 * kx) || (ky >= 0 && dy > 2 * ky)) return std::nullopt;
+  IntegerPolynomial2 r;
+  if (dx < 0) return r;
+  const int rows = kx >= 0 ? 2 * kx + 1 : dx + 1, columns = ky >= 0 ? 2 * ky + 1 : dy + 1;
+  auto& c = r.coefficients;
+  c.assign(static_cast<std::size_t>(rows), std::vector<mpz_class>(static_cast<std::size_t>(columns)));
+  for (std::size_t i = 0; i < polynomial.coefficients.size(); ++i)
+    for (std::size_t j = 0; j < polynomial.coefficients[i].size(); ++j) {
+      const mpz_class& value = polynomial.coefficients[i][j];
+      if (sgn(value) == 0) continue;
+      // x^(2 kx) (-1/x)^i = (-1)^i x^(2 kx - i), the same in y
+      const std::size_t ri = kx >= 0 ? static_cast<std::size_t>(2 * kx) - i : i;
+      const std::size_t rj = ky >= 0 ? static_cast<std::size_t>(2 * ky) - j : j;
+      const bool negate = (kx >= 0 && i % 2 == 1) != (ky >= 0 && j % 2 == 1);
+      if (negate)
+        mpz_neg(c[ri][rj].get_mpz_t(), value.get_mpz_t());
+      else
+        c[ri][rj] = value;
+    }
+  for (auto& row : c)
+    while (!row.empty() && sgn(row.back()) == 0) row.pop_back();
+  while (!c.empty() && c.back().empty()) c.pop_back();
+  return r;
+}
 
 /// The curve generator carries a pair's kernel quantities between half-turn charts by
 /// reflection (CurveGenerator::Data::kernel_memo): on by default; off on this thread, every
