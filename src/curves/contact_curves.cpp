@@ -1575,9 +1575,11 @@ bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurv
 // Validity clauses as integer polynomials; returns false when some clause can never hold.
 // `zero_not_strict` (when true is returned): some clause holds everywhere only because an atom
 // is identically zero, none being a positive constant (not strict: corner_entry_atoms).
+// `sources` (when true is returned): (clause, atom) of each atom kept, in order; `constants`: per
+// atom of `validity`, in order, whether it normalised to a non-zero constant.
 bool convert_validity(const kernels::Validity<Polynomial>& validity,
                       std::vector<ValidityClause>& clauses, bool& zero_not_strict,
-                      std::vector<std::pair<int, int>>* sources = nullptr) {
+                      std::vector<std::pair<int, int>>* sources = nullptr, std::vector<char>* constants = nullptr) {
   zero_not_strict = false;
   std::size_t first_source = sources ? sources->size() : 0;
   for (std::size_t k = 0; k < validity.clauses.size(); ++k) {
@@ -1590,7 +1592,9 @@ bool convert_validity(const kernels::Validity<Polynomial>& validity,
     for (int i = 0; i < clause.count; ++i) {
       IntegerPolynomial2 atom =
           normalized_integer_polynomial(clause.atoms[static_cast<std::size_t>(i)]);
-      if (atom.degree_x() <= 0 && atom.degree_y() <= 0) {
+      const bool constant = atom.degree_x() <= 0 && atom.degree_y() <= 0;
+      if (constants) constants->push_back(constant && !atom.is_zero() ? 1 : 0);
+      if (constant) {
         // constant atom: zero or positive holds everywhere, negative never
         const int s = atom.is_zero() ? 0 : sgn(atom.coefficients[0][0]);
         strict = strict || s > 0;
@@ -1677,13 +1681,15 @@ std::vector<T> corner_entry_values(const Model& model, const BodyFeature& fa, co
 // The atoms from corner_entry_values (Polynomial): normalised, constants >= 0 dropped; none when
 // a validity clause was dropped as holding everywhere only because an atom is identically zero
 // (the atoms classified once, by convert_validity).
-// `sources`: the index in `values` of each atom kept.
+// `sources`: the index in `values` of each atom kept; `constants`: per value, whether it normalised
+// to a non-zero constant.
 std::vector<IntegerPolynomial2> corner_entry_atoms(const std::vector<Polynomial>& values, bool validity_zero_not_strict,
-                                                   std::vector<int>* sources) {
+                                                   std::vector<int>* sources, std::vector<char>* constants) {
   if (validity_zero_not_strict) return {};
   std::vector<IntegerPolynomial2> atoms;
   for (std::size_t k = 0; k < values.size(); ++k) {
     IntegerPolynomial2 atom = normalized_integer_polynomial(values[k]);
+    constants->push_back(atom.degree_x() <= 0 && atom.degree_y() <= 0 && !atom.is_zero() ? 1 : 0);
     // a constant >= 0 never certifies
     if (atom.degree_x() <= 0 && atom.degree_y() <= 0 && (atom.is_zero() || sgn(atom.coefficients[0][0]) >= 0)) continue;
     atoms.push_back(std::move(atom));
@@ -1810,17 +1816,28 @@ void clear_inscribed_disk_memo() {
 
 namespace {
 
-// A feature pair's curve as formed in the first chart kind that needed it, with the degrees
-// that carry each of its normalised polynomials to the other half-turn kinds by reflection
-// (curves/half_turn_memo.hpp): per variable, the degree k of the kernel quantity in that
-// variable's rotation triple less the (1 + t^2) factors normalisation divided out; -1 where
-// the quantity is not homogeneous in that triple (then the curve is formed in each kind).
+// A feature pair's curve as formed in the first chart kind that needed it, with what carries
+// each of its normalised polynomials to the other half-turn kinds by reflection
+// (curves/half_turn_memo.hpp): every raw kernel quantity's degrees in x and y and whether it
+// normalised to a non-zero constant. The quantities' degrees in the rotation triples are found
+// when a reflection is asked for (TripleDegree: most pairs are never asked). A constant C of one
+// kind is C x^(2k') in the other (a factor vanishing at the half turn), and a monomial c x^(2k')
+// reflects to a constant: the formation's decisions on constants (a constant curve is not kept,
+// constant atoms are dropped or decide their clause, constant corner-entry atoms are dropped or
+// kept) are the same in both kinds only when every constant stays one (k' = 0) and every other
+// polynomial the curve keeps stays non-constant; otherwise the curve is formed again.
 struct PairQuantities {
-  bool x_half = false, y_half = false;   // the chart kind of `formed`
+  struct Source {
+    int clause = 0, index = 0;   // validity atom: clause and atom; corner-entry value: index
+    int degree[2] = {-1, -1};    // the raw quantity's degrees in x and y (-1: zero)
+    bool constant = false;       // normalised to a non-zero constant
+  };
+  bool x_half = false, y_half = false;   // the chart kind of `formed` (kept only)
   std::shared_ptr<const FormedCurve> formed;
-  std::array<int, 2> value_k{-1, -1};
-  std::vector<std::array<int, 2>> atom_k;    // per atom of curve.validity, clause by clause
-  std::vector<std::array<int, 2>> entry_k;   // per corner-entry atom
+  Source value;
+  std::vector<Source> raw_atoms, raw_entry;   // every validity atom (clause by clause), every corner-entry value
+  std::vector<std::size_t> atoms;   // per atom of curve.validity, clause by clause: its index in raw_atoms
+  std::vector<std::size_t> entry;   // per corner-entry atom: its index in raw_entry
 };
 
 }  // namespace
@@ -1913,49 +1930,86 @@ kernels::Pose<TripleDegree> triple_degree_pose(const kernels::Pose<Polynomial>& 
   return d;
 }
 
-// The degree bounds with which `normalised` (normalized_integer_polynomial of `raw`, whose
-// terms have triple degrees `degree`) reflects, per variable (PairQuantities): raw = content
-// (1 + x^2)^m N, so m = (deg raw - deg N) / 2 and N reflects with k - m.
-std::array<int, 2> normalised_degrees(const Polynomial& raw, const TripleDegree& degree, const IntegerPolynomial2& normalised) {
-  int raw_degree[2] = {-1, -1};
+// A raw kernel quantity's record: its degrees in x and y, and whether it normalises to a
+// non-zero constant.
+PairQuantities::Source source_of(const Polynomial& raw, bool constant, int clause = 0, int index = 0) {
+  PairQuantities::Source source;
+  source.clause = clause;
+  source.index = index;
+  source.constant = constant;
   for (int i = 0; i < raw.rows(); ++i)
     for (int j = 0; j < raw.columns(); ++j)
       if (sgn(raw.numerator(i, j)) != 0) {
-        raw_degree[0] = std::max(raw_degree[0], i);
-        raw_degree[1] = std::max(raw_degree[1], j);
+        source.degree[0] = std::max(source.degree[0], i);
+        source.degree[1] = std::max(source.degree[1], j);
       }
-  if (raw_degree[0] < 0) return {0, 0};   // zero reflects to zero
-  const int degree_n[2] = {normalised.degree_x(), normalised.degree_y()};
-  std::array<int, 2> k{-1, -1};
-  for (int v = 0; v < 2; ++v) {
-    const int kv = degree.homogeneous(v), removed = raw_degree[v] - degree_n[v];
-    if (kv >= 0 && raw_degree[v] <= 2 * kv && removed >= 0 && removed % 2 == 0) k[static_cast<std::size_t>(v)] = kv - removed / 2;
-  }
-  return k;
+  return source;
+}
+
+// The degree bound with which the normalised form (degree `normalised` in `variable`) of the raw
+// quantity `source`, whose terms have triple degrees `degree`, reflects in `variable`, or -1:
+// raw = content (1 + t^2)^m N, so m = (deg raw - deg N) / 2 and N reflects with k - m.
+int normalised_degree(const PairQuantities::Source& source, const TripleDegree& degree, int normalised, int variable) {
+  const int raw = source.degree[variable];
+  if (raw < 0) return 0;   // zero reflects to zero
+  const int k = degree.homogeneous(variable);
+  const int removed = raw - normalised;
+  if (k < 0 || raw > 2 * k || removed < 0 || removed % 2 != 0) return -1;
+  return k - removed / 2;
 }
 
 // `q`'s curve carried to the chart kind (x_half, y_half) by reflection; nullptr when some
-// polynomial does not reflect in a variable it must be reflected in.
-std::shared_ptr<FormedCurve> reflected(const PairQuantities& q, bool x_half, bool y_half) {
+// polynomial does not reflect in a variable it must be reflected in, or a constant would not
+// stay one (PairQuantities). `degrees`: the pair's kernel on TripleDegree; `entry_degrees`:
+// corner_entry_values on TripleDegree (made on demand).
+template <class EntryDegrees>
+std::shared_ptr<FormedCurve> reflected(const PairQuantities& q, bool x_half, bool y_half,
+                                       const kernels::ContactFunction<TripleDegree>& degrees, EntryDegrees&& entry_degrees) {
   const bool in_x = x_half != q.x_half, in_y = y_half != q.y_half;
+  auto bounds = [&](const PairQuantities::Source& source, const TripleDegree& degree, int nx, int ny) {
+    return std::array<int, 2>{in_x ? normalised_degree(source, degree, nx, 0) : -1, in_y ? normalised_degree(source, degree, ny, 1) : -1};
+  };
+  auto usable = [&](const std::array<int, 2>& k) { return !(in_x && k[0] < 0) && !(in_y && k[1] < 0); };
+  // constants stay constants: k' = 0 in every reflected variable
+  auto stays_constant = [&](const PairQuantities::Source& source, const TripleDegree& degree) {
+    const std::array<int, 2> k = bounds(source, degree, 0, 0);
+    return usable(k) && (!in_x || k[0] == 0) && (!in_y || k[1] == 0);
+  };
+  auto atom_degree = [&](const PairQuantities::Source& source) -> const TripleDegree& {
+    return degrees.validity.clauses[static_cast<std::size_t>(source.clause)].atoms[static_cast<std::size_t>(source.index)];
+  };
+  for (const PairQuantities::Source& source : q.raw_atoms)
+    if (source.constant && !stays_constant(source, atom_degree(source))) return nullptr;
+  std::vector<TripleDegree> entry;
+  if (!q.raw_entry.empty()) {
+    entry = entry_degrees();
+    for (const PairQuantities::Source& source : q.raw_entry)
+      if (source.constant && !stays_constant(source, entry[static_cast<std::size_t>(source.index)])) return nullptr;
+  }
   auto made = std::make_shared<FormedCurve>();
-  made->kept = q.formed->kept;
+  made->kept = true;
   made->curve = q.formed->curve;
-  if (!made->kept) return made;
-  auto reflect = [&](IntegerPolynomial2& p, const std::array<int, 2>& k) {
-    if ((in_x && k[0] < 0) || (in_y && k[1] < 0)) return false;
-    std::optional<IntegerPolynomial2> r = half_turn_reflected(p, in_x ? k[0] : -1, in_y ? k[1] : -1);
-    if (!r) return false;
+  // a kept polynomial: reflected, and non-constant if it was
+  auto reflect = [&](IntegerPolynomial2& p, const PairQuantities::Source& source, const TripleDegree& degree) {
+    const bool varying = p.degree_x() > 0 || p.degree_y() > 0;
+    const std::array<int, 2> k = bounds(source, degree, p.degree_x(), p.degree_y());
+    if (!usable(k)) return false;
+    std::optional<IntegerPolynomial2> r = half_turn_reflected(p, k[0], k[1]);
+    if (!r || (varying && r->degree_x() <= 0 && r->degree_y() <= 0)) return false;
     p = std::move(*r);
     return true;
   };
-  if (!reflect(made->curve.polynomial, q.value_k)) return nullptr;
+  if (!reflect(made->curve.polynomial, q.value, degrees.value)) return nullptr;
   std::size_t atom = 0;
   for (ValidityClause& clause : made->curve.validity)
-    for (IntegerPolynomial2& p : clause.atoms)
-      if (!reflect(p, q.atom_k[atom++])) return nullptr;
-  for (std::size_t e = 0; e < made->curve.corner_entry.size(); ++e)
-    if (!reflect(made->curve.corner_entry[e], q.entry_k[e])) return nullptr;
+    for (IntegerPolynomial2& p : clause.atoms) {
+      const PairQuantities::Source& source = q.raw_atoms[q.atoms[atom++]];
+      if (!reflect(p, source, atom_degree(source))) return nullptr;
+    }
+  for (std::size_t e = 0; e < made->curve.corner_entry.size(); ++e) {
+    const PairQuantities::Source& source = q.raw_entry[q.entry[e]];
+    if (!reflect(made->curve.corner_entry[e], source, entry[static_cast<std::size_t>(source.index)])) return nullptr;
+  }
   return made;
 }
 
@@ -2410,7 +2464,16 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
       }
       std::shared_ptr<Data::Formed> made;
       if (known && (known->x_half != x.half_turn || known->y_half != y.half_turn)) {
-        made = reflected(*known, x.half_turn, y.half_turn);
+        // the degrees: the same kernels on TripleDegree (curves/half_turn_memo.hpp)
+        const kernels::Pose<TripleDegree> da = triple_degree_pose(poses.first), db = triple_degree_pose(poses.second);
+        auto degree_of = [](const Rational& r) { return TripleDegree(sgn(r) != 0 ? 1 : 0); };
+        const std::optional<kernels::ContactFunction<TripleDegree>> degrees = kernels::contact_function(
+            da, geometry_a[ui], db, geometry_b[uj], degree_of,
+            kernels::ExactRootOrSquared{[](const Rational& square) { return exact_square_root(square); }});
+        if (degrees)
+          made = reflected(*known, x.half_turn, y.half_turn, *degrees, [&] {
+            return corner_entry_values(model, fa, fb, geometry_a[ui], geometry_b[uj], da, db, degree_of);
+          });
         if (made) ++half_turn_memo_hits();
       }
       if (!made) {
@@ -2420,6 +2483,7 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
         auto quantities = std::make_shared<PairQuantities>();   // (remembered when memo && !known)
         std::vector<std::pair<int, int>> atom_sources;
         std::vector<int> entry_sources;
+        std::vector<char> constant_atoms, constant_entry;   // per raw atom / value: a non-zero constant
         std::vector<Polynomial> entry;
         if (kernel) {
           ContactCurve& curve = made->curve;
@@ -2432,49 +2496,37 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
           // a non-zero constant: these features never touch; an empty validity: never within both
           bool zero_not_strict = false;
           made->kept = (zero || curve.polynomial.degree_x() != 0 || curve.polynomial.degree_y() != 0) &&
-                       convert_validity(kernel->validity, curve.validity, zero_not_strict, &atom_sources);
+                       convert_validity(kernel->validity, curve.validity, zero_not_strict, &atom_sources, &constant_atoms);
           if (made->kept) {
             curve.label = curve_label(model, fa.ref, fb.ref, curve.type);
             // (a blocked-space cull: not without it, so that tests compare against builds without)
             if (options.cull_blocked_space && !zero_not_strict) {
               entry = corner_entry_values(model, fa, fb, geometry_a[ui], geometry_b[uj], poses.first, poses.second,
                                           [](const Rational& r) { return Polynomial(r); });
-              curve.corner_entry = corner_entry_atoms(entry, zero_not_strict, &entry_sources);
+              curve.corner_entry = corner_entry_atoms(entry, zero_not_strict, &entry_sources, &constant_entry);
             }
           } else {
             made->curve = ContactCurve{};   // nothing kept but the answer
           }
         }
-        if (memo && !known) {
-          // the degrees: the same kernels on TripleDegree (curves/half_turn_memo.hpp)
+        if (memo && !known && made->kept) {   // (a curve not kept is formed in each kind)
           quantities->x_half = x.half_turn;
           quantities->y_half = y.half_turn;
           quantities->formed = made;
-          if (made->kept) {
-            const kernels::Pose<TripleDegree> da = triple_degree_pose(poses.first), db = triple_degree_pose(poses.second);
-            auto degree_of = [](const Rational& r) { return TripleDegree(sgn(r) != 0 ? 1 : 0); };
-            const std::optional<kernels::ContactFunction<TripleDegree>> degrees = kernels::contact_function(
-                da, geometry_a[ui], db, geometry_b[uj], degree_of,
-                kernels::ExactRootOrSquared{[](const Rational& square) { return exact_square_root(square); }});
-            const ContactCurve& curve = made->curve;
-            quantities->value_k = normalised_degrees(kernel->value, degrees->value, curve.polynomial);
-            std::size_t atom = 0;
-            for (const ValidityClause& clause : curve.validity)
-              for (const IntegerPolynomial2& p : clause.atoms) {
-                const auto [c, a] = atom_sources[atom++];
-                const auto uc = static_cast<std::size_t>(c), ua = static_cast<std::size_t>(a);
-                quantities->atom_k.push_back(
-                    normalised_degrees(kernel->validity.clauses[uc].atoms[ua], degrees->validity.clauses[uc].atoms[ua], p));
-              }
-            if (!curve.corner_entry.empty()) {
-              const std::vector<TripleDegree> entry_degrees =
-                  corner_entry_values(model, fa, fb, geometry_a[ui], geometry_b[uj], da, db, degree_of);
-              for (std::size_t e = 0; e < curve.corner_entry.size(); ++e) {
-                const auto source = static_cast<std::size_t>(entry_sources[e]);
-                quantities->entry_k.push_back(normalised_degrees(entry[source], entry_degrees[source], curve.corner_entry[e]));
-              }
-            }
+          quantities->value = source_of(kernel->value, false);
+          std::size_t raw = 0;
+          for (std::size_t c = 0; c < kernel->validity.clauses.size(); ++c)
+            for (int a = 0; a < kernel->validity.clauses[c].count; ++a)
+              quantities->raw_atoms.push_back(source_of(kernel->validity.clauses[c].atoms[static_cast<std::size_t>(a)],
+                                                        constant_atoms[raw++] != 0, static_cast<int>(c), a));
+          for (const auto& [c, a] : atom_sources) {
+            std::size_t index = 0;
+            while (quantities->raw_atoms[index].clause != c || quantities->raw_atoms[index].index != a) ++index;
+            quantities->atoms.push_back(index);
           }
+          for (std::size_t e = 0; e < entry.size(); ++e)
+            quantities->raw_entry.push_back(source_of(entry[e], constant_entry[e] != 0, 0, static_cast<int>(e)));
+          for (int e : entry_sources) quantities->entry.push_back(static_cast<std::size_t>(e));
           std::lock_guard<std::mutex> lock(d.quantities_mutex);
           d.quantities.try_emplace(pair, std::move(quantities));
         }

@@ -6,7 +6,8 @@
 // corner-entry atom, on the examples with rotating parts (1-D and 2-D spaces, rotation against
 // translation, arcs of rational and irrational radius products) and on generated spur-gear pairs,
 // the charts taken in layout order and in reverse (the memo reflects in x, in y and in both, from
-// either kind). The memo must have answered.
+// either kind). The memo must have answered. And a model whose validity atoms are constants in
+// one kind and multiples of x^2 in the other (formed anew, not reflected).
 #include "curves/contact_curves.hpp"
 #include "curves/half_turn_memo.hpp"
 #include "spur_gear_pairs.hpp"
@@ -56,7 +57,7 @@ std::string curve_text(const cspace::ContactCurve& curve) {
 // Every pair (i < j) of the model with a C-space: the curves of each chart, with the memo on
 // (one generator, charts in `order`) and off (another generator), compared.
 void expect_reflected_curves_formed(const Model& model, const std::string& name, bool reverse, std::size_t& curves,
-                                    std::size_t& charts) {
+                                    std::size_t& charts, const cspace::CurveOptions& options = {}) {
   for (std::size_t i = 0; i < model.parts.size(); ++i)
     for (std::size_t j = i + 1; j < model.parts.size(); ++j) {
       cspace::PairAxes axes;
@@ -72,7 +73,7 @@ void expect_reflected_curves_formed(const Model& model, const std::string& name,
       for (const cspace::ChartAxis& x : layout.x_charts)
         for (const cspace::ChartAxis& y : layout.y_charts.empty() ? no_y : layout.y_charts) boxes.emplace_back(x, y);
       if (reverse) std::reverse(boxes.begin(), boxes.end());
-      const cspace::CurveGenerator remembering(model, axes), plain(model, axes);
+      const cspace::CurveGenerator remembering(model, axes, options), plain(model, axes, options);
       for (const auto& [x, y] : boxes) {
         cspace::half_turn_memo_switch() = true;
         const std::vector<cspace::ContactCurve> with = remembering.generate(x, y);
@@ -87,6 +88,36 @@ void expect_reflected_curves_formed(const Model& model, const std::string& name,
         ++charts;
       }
     }
+}
+
+// An arm turning about the origin with a vertex at (10, 0), against a fixed block whose lower edge
+// runs from (-10, 5) to (10, 5), reached in both half-turn charts: the vertex-on-edge validity
+// atoms are 200 (w + c) and 200 (w - c) in the rotation triple, the constant 400 (a clause that
+// always holds, dropped) and 400 x^2 in the chart at 0, the other way round in the chart at pi.
+// A reflection of one kind's curve would keep the atom x^2 as the constant 1 and miss the other:
+// the memo must form the curve anew.
+const char* const half_turn_constant_model = R"({
+  "hipair": 1, "name": "half-turn-constant", "units": { "length": "mm", "angle": "deg" },
+  "parts": [
+    { "name": "arm", "motion": { "rotation": { "pivot": [0, 0] } },
+      "loops": [ { "start": [10, 0], "edges": [ { "line_to": [0, 2] }, { "line_to": [0, -2] }, { "line_to": [10, 0] } ] } ] },
+    { "name": "block", "motion": "fixed",
+      "loops": [ { "start": [-10, 5], "edges": [ { "line_to": [10, 5] }, { "line_to": [10, 10] }, { "line_to": [-10, 10] },
+                                               { "line_to": [-10, 5] } ] } ] }
+  ]
+})";
+
+TEST(HalfTurnMemo, ConstantsOfOneChartKindAreNotReflected) {
+  const Model model = read_model(half_turn_constant_model);
+  std::size_t curves = 0, charts = 0;
+  cspace::CurveOptions without_cull;
+  without_cull.cull_blocked_space = false;
+  for (bool reverse : {false, true}) {
+    expect_reflected_curves_formed(model, "half-turn constant", reverse, curves, charts);
+    expect_reflected_curves_formed(model, "half-turn constant, no cull", reverse, curves, charts, without_cull);
+  }
+  EXPECT_EQ(charts, 8u);
+  EXPECT_GT(curves, 0u);
 }
 
 TEST(HalfTurnMemo, ReflectedCurvesAreTheFormedCurves) {
