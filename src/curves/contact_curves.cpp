@@ -1967,7 +1967,8 @@ std::shared_ptr<FormedCurve> reflected(const PairQuantities& q, bool x_half, boo
                                        const kernels::ContactFunction<TripleDegree>& degrees, EntryDegrees&& entry_degrees) {
   const bool in_x = x_half != q.x_half, in_y = y_half != q.y_half;
   auto bounds = [&](const PairQuantities::Source& source, const TripleDegree& degree, int nx, int ny) {
-    return std::array<int, 2>{in_x ? normalised_degree(source, degree, nx, 0) : -1, in_y ? normalised_degree(source, degree, ny, 1) : -1};
+    return std::array<int, 2>{in_x ? normalised_degree(source, degree, nx, 0) : -1,
+                              in_y ? normalised_degree(source, degree, ny, 1) : -1};
   };
   auto usable = [&](const std::array<int, 2>& k) { return !(in_x && k[0] < 0) && !(in_y && k[1] < 0); };
   // constants stay constants: k' = 0 in every reflected variable
@@ -1976,7 +1977,8 @@ std::shared_ptr<FormedCurve> reflected(const PairQuantities& q, bool x_half, boo
     return usable(k) && (!in_x || k[0] == 0) && (!in_y || k[1] == 0);
   };
   auto atom_degree = [&](const PairQuantities::Source& source) -> const TripleDegree& {
-    return degrees.validity.clauses[static_cast<std::size_t>(source.clause)].atoms[static_cast<std::size_t>(source.index)];
+    const auto& clause = degrees.validity.clauses[static_cast<std::size_t>(source.clause)];
+    return clause.atoms[static_cast<std::size_t>(source.index)];
   };
   for (const PairQuantities::Source& source : q.raw_atoms)
     if (source.constant && !stays_constant(source, atom_degree(source))) return nullptr;
