@@ -1355,6 +1355,34 @@ class QuadraticBuilder {
     mutable std::shared_ptr<const XEntry> entry;
   };
 
+  /// The exact order of two of one clip's cut abscissae (refined), each pair whose enclosures
+  /// overlap decided once: the sort and the merge of equal cuts after it ask again. Such a
+  /// pair is mostly one root of two polynomials (a resultant's factor shared with another's),
+  /// which the gcd proves equal (algebra::equal) where compare() first bisects both in
+  /// multiple precision, which cannot separate equal numbers; compare() orders the others.
+  class CutOrder {
+   public:
+    explicit CutOrder(const std::vector<Real>& xs) : xs_(xs) {}
+    int operator()(std::size_t i, std::size_t j) {
+      if (i == j) return 0;
+      const Real &a = xs_[i], &b = xs_[j];
+      const Interval ia = enclose(a), ib = enclose(b);
+      if (ia.hi < ib.lo) return -1;
+      if (ib.hi < ia.lo) return 1;
+      for (const auto& [p, q, c] : asked_) {
+        if (p == i && q == j) return c;
+        if (p == j && q == i) return -c;
+      }
+      const int c = algebra::equal(a, b) ? 0 : algebra::compare(a, b);
+      asked_.emplace_back(i, j, c);
+      return c;
+    }
+
+   private:
+    const std::vector<Real>& xs_;
+    std::vector<std::tuple<std::size_t, std::size_t, int>> asked_;
+  };
+
   void clip(const IntegerPolynomial2& f, const ClauseAlternatives& alternatives, const Windows* windows,
             std::vector<XCurve>& pieces, std::vector<Point>& isolated) {
     const int id = traits_.add_support(f);
@@ -1404,13 +1432,15 @@ class QuadraticBuilder {
       std::vector<std::pair<std::size_t, Real*>> order;
       for (auto& x : all) QuadraticTraits::refine(x);
       for (std::size_t i = 0; i < all.size(); ++i) order.emplace_back(i, &all[i]);
+      CutOrder cut_order(all);
       std::sort(order.begin(), order.end(), [&](const auto& p, const auto& q) {
-        int c = QuadraticTraits::compare_x(*p.second, *q.second);
+        int c = cut_order(p.first, q.first);
         return c != 0 ? c < 0 : p.first < q.first;   // hard ones (lower index) first among equals
       });
-      for (auto& [index, x] : order) {
-        if (!cuts.empty() && QuadraticTraits::compare_x(cuts.back().x, *x) == 0) continue;
-        cuts.push_back(Cut{*x, index < hard_count ? CutKind::hard : CutKind::soft, nullptr});
+      // (a cut equal to its predecessor in this order is equal to the first of their run)
+      for (std::size_t k = 0; k < order.size(); ++k) {
+        if (k > 0 && cut_order(order[k - 1].first, order[k].first) == 0) continue;
+        cuts.push_back(Cut{*order[k].second, order[k].first < hard_count ? CutKind::hard : CutKind::soft, nullptr});
       }
     }
     // event intervals: [x_lo, e_1], ..., [e_k, x_hi]

@@ -1,6 +1,7 @@
 // Pair axes, chart layout and contact-curve generation for fixed-axis pairs.
 #include "curves/contact_curves.hpp"
 #include "curves/formed_store.hpp"
+#include "curves/half_turn_memo.hpp"
 
 #include "oracle/blocked_tester.hpp"
 #include "oracle/overlap.hpp"
@@ -1574,10 +1575,16 @@ bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurv
 // Validity clauses as integer polynomials; returns false when some clause can never hold.
 // `zero_not_strict` (when true is returned): some clause holds everywhere only because an atom
 // is identically zero, none being a positive constant (not strict: corner_entry_atoms).
+// `sources` (when true is returned): (clause, atom) of each atom kept, in order; `constants`: per
+// atom of `validity`, in order, whether it normalised to a non-zero constant.
 bool convert_validity(const kernels::Validity<Polynomial>& validity,
-                      std::vector<ValidityClause>& clauses, bool& zero_not_strict) {
+                      std::vector<ValidityClause>& clauses, bool& zero_not_strict,
+                      std::vector<std::pair<int, int>>* sources = nullptr, std::vector<char>* constants = nullptr) {
   zero_not_strict = false;
-  for (const auto& clause : validity.clauses) {
+  std::size_t first_source = sources ? sources->size() : 0;
+  for (std::size_t k = 0; k < validity.clauses.size(); ++k) {
+    const auto& clause = validity.clauses[k];
+    if (sources) sources->resize(first_source);   // this clause's atoms, if it is kept
     ValidityClause converted;
     bool always = false;
     bool possible = false;
@@ -1585,7 +1592,9 @@ bool convert_validity(const kernels::Validity<Polynomial>& validity,
     for (int i = 0; i < clause.count; ++i) {
       IntegerPolynomial2 atom =
           normalized_integer_polynomial(clause.atoms[static_cast<std::size_t>(i)]);
-      if (atom.degree_x() <= 0 && atom.degree_y() <= 0) {
+      const bool constant = atom.degree_x() <= 0 && atom.degree_y() <= 0;
+      if (constants) constants->push_back(constant && !atom.is_zero() ? 1 : 0);
+      if (constant) {
         // constant atom: zero or positive holds everywhere, negative never
         const int s = atom.is_zero() ? 0 : sgn(atom.coefficients[0][0]);
         strict = strict || s > 0;
@@ -1595,12 +1604,15 @@ bool convert_validity(const kernels::Validity<Polynomial>& validity,
       }
       possible = true;
       converted.atoms.push_back(std::move(atom));
+      if (sources) sources->emplace_back(static_cast<int>(k), i);
     }
     if (zero && !strict) zero_not_strict = true;
     if (always) continue;
     if (!possible) return false;
     clauses.push_back(std::move(converted));
+    if (sources) first_source = sources->size();
   }
+  if (sources) sources->resize(first_source);
   return true;
 }
 
@@ -1627,30 +1639,29 @@ bool convert_validity(const kernels::Validity<Polynomial>& validity,
 // interior of blocked space, and a piece of the curve made of such configurations bounds
 // nothing. Empty (no claim) for other contact types, for a spike, and when a validity clause
 // was dropped as holding everywhere only because an atom is identically zero (not strict).
-std::vector<IntegerPolynomial2> corner_entry_atoms(const Model& model, const BodyFeature& fa, const BodyFeature& fb,
-                                                   const kernels::FeatureGeometry<Rational>& ga,
-                                                   const kernels::FeatureGeometry<Rational>& gb,
-                                                   const kernels::Pose<Polynomial>& a, const kernels::Pose<Polynomial>& b,
-                                                   bool validity_zero_not_strict) {
+// The atoms' values before normalisation, w (out . n) and then -w (in . n), in any kernel
+// number type T (`constant`: a body datum as T); empty when there is no claim for the pair's
+// features (the cases above but the validity's, which is the caller's: corner_entry_atoms).
+template <class T, class Constant>
+std::vector<T> corner_entry_values(const Model& model, const BodyFeature& fa, const BodyFeature& fb,
+                                   const kernels::FeatureGeometry<Rational>& ga, const kernels::FeatureGeometry<Rational>& gb,
+                                   const kernels::Pose<T>& a, const kernels::Pose<T>& b, Constant&& constant_of) {
   using Shape = kernels::FeatureShape;
-  using PairVector = kernels::PairVector<Polynomial>;
+  using Vector = kernels::Vector<T>;
   const bool vertex_first = ga.shape == Shape::vertex;
   if (vertex_first == (gb.shape == Shape::vertex)) return {};
   const kernels::FeatureGeometry<Rational>& other = vertex_first ? gb : ga;
   if (other.shape != Shape::segment && other.shape != Shape::arc) return {};
-  // a clause dropped as holding everywhere only because an atom is identically zero (the
-  // atoms classified once, by convert_validity)
-  if (validity_zero_not_strict) return {};
   const FeatureDirections corner = feature_directions(model, vertex_first ? fa : fb);
   if (sgn(cross(corner.in, corner.out)) == 0 && sgn(dot(corner.in, corner.out)) < 0) return {};   // a spike
-  auto constant = [](const Rational& x, const Rational& y) { return PolyVector{Polynomial(x), Polynomial(y)}; };
+  auto constant = [&](const Rational& x, const Rational& y) { return Vector{constant_of(x), constant_of(y)}; };
   auto on_vertex_part = [&](const Point& u) {
     return vertex_first ? kernels::first_direction(constant(u.x, u.y)) : kernels::second_direction(constant(u.x, u.y));
   };
-  PairVector normal;
+  kernels::PairVector<T> normal;
   if (other.shape == Shape::segment) {
     const kernels::Vector<Rational> d = other.target - other.point;
-    const PolyVector n = constant(d.y, Rational(-d.x));   // right normal: out of the material
+    const Vector n = constant(d.y, Rational(-d.x));   // right normal: out of the material
     normal = vertex_first ? kernels::second_direction(n) : kernels::first_direction(n);
   } else {
     // the contact point minus the arc's centre (out of a convex arc's material)
@@ -1659,13 +1670,30 @@ std::vector<IntegerPolynomial2> corner_entry_atoms(const Model& model, const Bod
                                                                                constant(gb.point.x, gb.point.y)));
     if (!other.convex) normal = kernels::detail::negated(normal);
   }
-  std::vector<IntegerPolynomial2> atoms;
+  std::vector<T> values;
   for (int k = 0; k < 2; ++k) {
-    Polynomial value = kernels::dot_homogeneous(on_vertex_part(k == 0 ? corner.out : corner.in), normal, a, b);
-    IntegerPolynomial2 atom = normalized_integer_polynomial(k == 0 ? value : Polynomial(-value));
+    T value = kernels::dot_homogeneous(on_vertex_part(k == 0 ? corner.out : corner.in), normal, a, b);
+    values.push_back(k == 0 ? value : T(-value));
+  }
+  return values;
+}
+
+// The atoms from corner_entry_values (Polynomial): normalised, constants >= 0 dropped; none when
+// a validity clause was dropped as holding everywhere only because an atom is identically zero
+// (the atoms classified once, by convert_validity).
+// `sources`: the index in `values` of each atom kept; `constants`: per value, whether it normalised
+// to a non-zero constant.
+std::vector<IntegerPolynomial2> corner_entry_atoms(const std::vector<Polynomial>& values, bool validity_zero_not_strict,
+                                                   std::vector<int>* sources, std::vector<char>* constants) {
+  if (validity_zero_not_strict) return {};
+  std::vector<IntegerPolynomial2> atoms;
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    IntegerPolynomial2 atom = normalized_integer_polynomial(values[k]);
+    constants->push_back(atom.degree_x() <= 0 && atom.degree_y() <= 0 && !atom.is_zero() ? 1 : 0);
     // a constant >= 0 never certifies
     if (atom.degree_x() <= 0 && atom.degree_y() <= 0 && (atom.is_zero() || sgn(atom.coefficients[0][0]) >= 0)) continue;
     atoms.push_back(std::move(atom));
+    sources->push_back(static_cast<int>(k));
   }
   return atoms;
 }
@@ -1786,6 +1814,34 @@ void clear_inscribed_disk_memo() {
   memo.entries.clear();
 }
 
+namespace {
+
+// A feature pair's curve as formed in the first chart kind that needed it, with what carries
+// each of its normalised polynomials to the other half-turn kinds by reflection
+// (curves/half_turn_memo.hpp): every raw kernel quantity's degrees in x and y and whether it
+// normalised to a non-zero constant. The quantities' degrees in the rotation triples are found
+// when a reflection is asked for (TripleDegree: most pairs are never asked). A constant C of one
+// kind is C x^(2k') in the other (a factor vanishing at the half turn), and a monomial c x^(2k')
+// reflects to a constant: the formation's decisions on constants (a constant curve is not kept,
+// constant atoms are dropped or decide their clause, constant corner-entry atoms are dropped or
+// kept) are the same in both kinds only when every constant stays one (k' = 0) and every other
+// polynomial the curve keeps stays non-constant; otherwise the curve is formed again.
+struct PairQuantities {
+  struct Source {
+    int clause = 0, index = 0;   // validity atom: clause and atom; corner-entry value: index
+    int degree[2] = {-1, -1};    // the raw quantity's degrees in x and y (-1: zero)
+    bool constant = false;       // normalised to a non-zero constant
+  };
+  bool x_half = false, y_half = false;   // the chart kind of `formed` (kept only)
+  std::shared_ptr<const FormedCurve> formed;
+  Source value;
+  std::vector<Source> raw_atoms, raw_entry;   // every validity atom (clause by clause), every corner-entry value
+  std::vector<std::size_t> atoms;   // per atom of curve.validity, clause by clause: its index in raw_atoms
+  std::vector<std::size_t> entry;   // per corner-entry atom: its index in raw_entry
+};
+
+}  // namespace
+
 struct CurveGenerator::Data {
   const Model& model;
   PairAxes axes;
@@ -1846,7 +1902,120 @@ struct CurveGenerator::Data {
   static constexpr std::size_t swept_capacity = 1024;
   mutable std::mutex swept_mutex;
   mutable std::map<SweptKey, std::shared_ptr<const std::vector<SweptBox>>> swept_memo;
+  // A feature pair's kernel quantities as formed in the first chart kind that needed them
+  // (PairQuantities): another half-turn kind takes them by reflection. Key: the pair's index;
+  // under the mutex.
+  mutable std::mutex quantities_mutex;
+  mutable std::unordered_map<std::uint64_t, std::shared_ptr<const PairQuantities>> quantities;
 };
+
+namespace {
+
+// The pose in TripleDegree: a rotating part's c, s, w of degree one in the triple of its
+// chart variable (x when its polynomials are in x), every other datum of degree zero (or zero).
+kernels::Pose<TripleDegree> triple_degree_pose(const kernels::Pose<Polynomial>& p) {
+  auto of = [](const Polynomial& q) { return TripleDegree(q.is_zero() ? 0 : 1); };
+  kernels::Pose<TripleDegree> d;
+  d.rotates = p.rotates;
+  d.translates = p.translates;
+  if (p.rotates) {
+    d.c = d.s = d.w = TripleDegree::unit(p.w.rows() > 1 ? 0 : 1);
+  } else {
+    d.c = of(p.c);
+    d.s = of(p.s);
+    d.w = of(p.w);
+  }
+  d.pivot = {of(p.pivot.x), of(p.pivot.y)};
+  d.shift = {of(p.shift.x), of(p.shift.y)};
+  return d;
+}
+
+// A raw kernel quantity's record: its degrees in x and y, and whether it normalises to a
+// non-zero constant.
+PairQuantities::Source source_of(const Polynomial& raw, bool constant, int clause = 0, int index = 0) {
+  PairQuantities::Source source;
+  source.clause = clause;
+  source.index = index;
+  source.constant = constant;
+  for (int i = 0; i < raw.rows(); ++i)
+    for (int j = 0; j < raw.columns(); ++j)
+      if (sgn(raw.numerator(i, j)) != 0) {
+        source.degree[0] = std::max(source.degree[0], i);
+        source.degree[1] = std::max(source.degree[1], j);
+      }
+  return source;
+}
+
+// The degree bound with which the normalised form (degree `normalised` in `variable`) of the raw
+// quantity `source`, whose terms have triple degrees `degree`, reflects in `variable`, or -1:
+// raw = content (1 + t^2)^m N, so m = (deg raw - deg N) / 2 and N reflects with k - m.
+int normalised_degree(const PairQuantities::Source& source, const TripleDegree& degree, int normalised, int variable) {
+  const int raw = source.degree[variable];
+  if (raw < 0) return 0;   // zero reflects to zero
+  const int k = degree.homogeneous(variable);
+  const int removed = raw - normalised;
+  if (k < 0 || raw > 2 * k || removed < 0 || removed % 2 != 0) return -1;
+  return k - removed / 2;
+}
+
+// `q`'s curve carried to the chart kind (x_half, y_half) by reflection; nullptr when some
+// polynomial does not reflect in a variable it must be reflected in, or a constant would not
+// stay one (PairQuantities). `degrees`: the pair's kernel on TripleDegree; `entry_degrees`:
+// corner_entry_values on TripleDegree (made on demand).
+template <class EntryDegrees>
+std::shared_ptr<FormedCurve> reflected(const PairQuantities& q, bool x_half, bool y_half,
+                                       const kernels::ContactFunction<TripleDegree>& degrees, EntryDegrees&& entry_degrees) {
+  const bool in_x = x_half != q.x_half, in_y = y_half != q.y_half;
+  auto bounds = [&](const PairQuantities::Source& source, const TripleDegree& degree, int nx, int ny) {
+    return std::array<int, 2>{in_x ? normalised_degree(source, degree, nx, 0) : -1,
+                              in_y ? normalised_degree(source, degree, ny, 1) : -1};
+  };
+  auto usable = [&](const std::array<int, 2>& k) { return !(in_x && k[0] < 0) && !(in_y && k[1] < 0); };
+  // constants stay constants: k' = 0 in every reflected variable
+  auto stays_constant = [&](const PairQuantities::Source& source, const TripleDegree& degree) {
+    const std::array<int, 2> k = bounds(source, degree, 0, 0);
+    return usable(k) && (!in_x || k[0] == 0) && (!in_y || k[1] == 0);
+  };
+  auto atom_degree = [&](const PairQuantities::Source& source) -> const TripleDegree& {
+    const auto& clause = degrees.validity.clauses[static_cast<std::size_t>(source.clause)];
+    return clause.atoms[static_cast<std::size_t>(source.index)];
+  };
+  for (const PairQuantities::Source& source : q.raw_atoms)
+    if (source.constant && !stays_constant(source, atom_degree(source))) return nullptr;
+  std::vector<TripleDegree> entry;
+  if (!q.raw_entry.empty()) {
+    entry = entry_degrees();
+    for (const PairQuantities::Source& source : q.raw_entry)
+      if (source.constant && !stays_constant(source, entry[static_cast<std::size_t>(source.index)])) return nullptr;
+  }
+  auto made = std::make_shared<FormedCurve>();
+  made->kept = true;
+  made->curve = q.formed->curve;
+  // a kept polynomial: reflected, and non-constant if it was
+  auto reflect = [&](IntegerPolynomial2& p, const PairQuantities::Source& source, const TripleDegree& degree) {
+    const bool varying = p.degree_x() > 0 || p.degree_y() > 0;
+    const std::array<int, 2> k = bounds(source, degree, p.degree_x(), p.degree_y());
+    if (!usable(k)) return false;
+    std::optional<IntegerPolynomial2> r = half_turn_reflected(p, k[0], k[1]);
+    if (!r || (varying && r->degree_x() <= 0 && r->degree_y() <= 0)) return false;
+    p = std::move(*r);
+    return true;
+  };
+  if (!reflect(made->curve.polynomial, q.value, degrees.value)) return nullptr;
+  std::size_t atom = 0;
+  for (ValidityClause& clause : made->curve.validity)
+    for (IntegerPolynomial2& p : clause.atoms) {
+      const PairQuantities::Source& source = q.raw_atoms[q.atoms[atom++]];
+      if (!reflect(p, source, atom_degree(source))) return nullptr;
+    }
+  for (std::size_t e = 0; e < made->curve.corner_entry.size(); ++e) {
+    const PairQuantities::Source& source = q.raw_entry[q.entry[e]];
+    if (!reflect(made->curve.corner_entry[e], source, entry[static_cast<std::size_t>(source.index)])) return nullptr;
+  }
+  return made;
+}
+
+}  // namespace
 
 CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
     : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}, true, {}, {},
@@ -2283,34 +2452,88 @@ std::vector<ContactCurve> CurveGenerator::generate_impl(const ChartAxis& x, cons
     }
     if (formed && formed->maker != d.id) ++*d.formed->reused;
     if (!formed) {
-      auto made = std::make_shared<Data::Formed>();
-      made->maker = d.id;
       const BodyFeature& fa = features_a[ui];
       const BodyFeature& fb = features_b[uj];
-      std::optional<kernels::ContactFunction<Polynomial>> kernel =
-          contact_of(geometry_a[ui], geometry_b[uj], poses.first, poses.second);
-      if (kernel) {
-        ContactCurve& curve = made->curve;
-        curve.first = fa.ref;
-        curve.second = fb.ref;
-        curve.type = kernel->type;
-        curve.polynomial = normalized_integer_polynomial(kernel->value);
-        curve.blocked_sign = kernels::blocked_sign;
-        const bool zero = curve.polynomial.is_zero();
-        // a non-zero constant: these features never touch; an empty validity: never within both
-        bool zero_not_strict = false;
-        made->kept = (zero || curve.polynomial.degree_x() != 0 || curve.polynomial.degree_y() != 0) &&
-                     convert_validity(kernel->validity, curve.validity, zero_not_strict);
-        if (made->kept) {
-          curve.label = curve_label(model, fa.ref, fb.ref, curve.type);
-          // (a blocked-space cull: not without it, so that tests compare against builds without)
-          if (options.cull_blocked_space)
-            curve.corner_entry =
-                corner_entry_atoms(model, fa, fb, geometry_a[ui], geometry_b[uj], poses.first, poses.second, zero_not_strict);
-        } else {
-          made->curve = ContactCurve{};   // nothing kept but the answer
+      // the curve of another half-turn kind carried here by reflection when that kind formed it
+      // (and every polynomial reflects), else formed here (and remembered for the other kinds)
+      const std::uint64_t pair = static_cast<std::uint64_t>(ui) * features_b.size() + uj;
+      const bool memo = half_turn_memo_switch();
+      std::shared_ptr<const PairQuantities> known;
+      if (memo) {
+        std::lock_guard<std::mutex> lock(d.quantities_mutex);
+        auto found = d.quantities.find(pair);
+        if (found != d.quantities.end()) known = found->second;
+      }
+      std::shared_ptr<Data::Formed> made;
+      if (known && (known->x_half != x.half_turn || known->y_half != y.half_turn)) {
+        // the degrees: the same kernels on TripleDegree (curves/half_turn_memo.hpp)
+        const kernels::Pose<TripleDegree> da = triple_degree_pose(poses.first), db = triple_degree_pose(poses.second);
+        auto degree_of = [](const Rational& r) { return TripleDegree(sgn(r) != 0 ? 1 : 0); };
+        const std::optional<kernels::ContactFunction<TripleDegree>> degrees = kernels::contact_function(
+            da, geometry_a[ui], db, geometry_b[uj], degree_of,
+            kernels::ExactRootOrSquared{[](const Rational& square) { return exact_square_root(square); }});
+        if (degrees)
+          made = reflected(*known, x.half_turn, y.half_turn, *degrees, [&] {
+            return corner_entry_values(model, fa, fb, geometry_a[ui], geometry_b[uj], da, db, degree_of);
+          });
+        if (made) ++half_turn_memo_hits();
+      }
+      if (!made) {
+        made = std::make_shared<Data::Formed>();
+        std::optional<kernels::ContactFunction<Polynomial>> kernel =
+            contact_of(geometry_a[ui], geometry_b[uj], poses.first, poses.second);
+        auto quantities = std::make_shared<PairQuantities>();   // (remembered when memo && !known)
+        std::vector<std::pair<int, int>> atom_sources;
+        std::vector<int> entry_sources;
+        std::vector<char> constant_atoms, constant_entry;   // per raw atom / value: a non-zero constant
+        std::vector<Polynomial> entry;
+        if (kernel) {
+          ContactCurve& curve = made->curve;
+          curve.first = fa.ref;
+          curve.second = fb.ref;
+          curve.type = kernel->type;
+          curve.polynomial = normalized_integer_polynomial(kernel->value);
+          curve.blocked_sign = kernels::blocked_sign;
+          const bool zero = curve.polynomial.is_zero();
+          // a non-zero constant: these features never touch; an empty validity: never within both
+          bool zero_not_strict = false;
+          made->kept = (zero || curve.polynomial.degree_x() != 0 || curve.polynomial.degree_y() != 0) &&
+                       convert_validity(kernel->validity, curve.validity, zero_not_strict, &atom_sources, &constant_atoms);
+          if (made->kept) {
+            curve.label = curve_label(model, fa.ref, fb.ref, curve.type);
+            // (a blocked-space cull: not without it, so that tests compare against builds without)
+            if (options.cull_blocked_space && !zero_not_strict) {
+              entry = corner_entry_values(model, fa, fb, geometry_a[ui], geometry_b[uj], poses.first, poses.second,
+                                          [](const Rational& r) { return Polynomial(r); });
+              curve.corner_entry = corner_entry_atoms(entry, zero_not_strict, &entry_sources, &constant_entry);
+            }
+          } else {
+            made->curve = ContactCurve{};   // nothing kept but the answer
+          }
+        }
+        if (memo && !known && made->kept) {   // (a curve not kept is formed in each kind)
+          quantities->x_half = x.half_turn;
+          quantities->y_half = y.half_turn;
+          quantities->formed = made;
+          quantities->value = source_of(kernel->value, false);
+          std::size_t raw = 0;
+          for (std::size_t c = 0; c < kernel->validity.clauses.size(); ++c)
+            for (int a = 0; a < kernel->validity.clauses[c].count; ++a)
+              quantities->raw_atoms.push_back(source_of(kernel->validity.clauses[c].atoms[static_cast<std::size_t>(a)],
+                                                        constant_atoms[raw++] != 0, static_cast<int>(c), a));
+          for (const auto& [c, a] : atom_sources) {
+            std::size_t index = 0;
+            while (quantities->raw_atoms[index].clause != c || quantities->raw_atoms[index].index != a) ++index;
+            quantities->atoms.push_back(index);
+          }
+          for (std::size_t e = 0; e < entry.size(); ++e)
+            quantities->raw_entry.push_back(source_of(entry[e], constant_entry[e] != 0, 0, static_cast<int>(e)));
+          for (int e : entry_sources) quantities->entry.push_back(static_cast<std::size_t>(e));
+          std::lock_guard<std::mutex> lock(d.quantities_mutex);
+          d.quantities.try_emplace(pair, std::move(quantities));
         }
       }
+      made->maker = d.id;
       std::lock_guard<std::mutex> lock(d.formed->mutex);
       formed = d.formed->curves.try_emplace(key, std::move(made)).first->second;
     }

@@ -429,6 +429,58 @@ TEST(QuadraticTraitsGenerated, RandomValidityClauses) {
   }
 }
 
+// A clip's cut abscissae are the roots of several polynomials (box sides, each validity atom's
+// resultant with the curve, the horizontal tangents); one irrational root of two of them is one
+// cut (clip's CutOrder: such pairs decided equal by the gcd, each pair's order kept for the
+// merge of equal cuts). Atoms that hold everywhere in the box (squares, times x^2 + 1 or
+// y^2 + 1) but whose resultants share the roots +-sqrt(2), +-sqrt(3), +-1/sqrt(5) with each
+// other: the pieces are those of the curves without validity, so both stages must build the
+// same arrangement (compare_stages) with and without the clauses.
+TEST(QuadraticTraitsGenerated, CutsSharedByValidityAtomsAreOneCut) {
+  auto product = [](const std::vector<std::vector<long>>& x_factors, const std::vector<long>& y_factor) {
+    algebra::Polynomial px{mpz_class(1)};
+    for (const auto& factor : x_factors) {
+      algebra::Polynomial q;
+      for (long c : factor) q.emplace_back(c);
+      px = pmul(px, q);
+    }
+    IntegerPolynomial2 f;
+    for (const auto& cx : px) {
+      std::vector<mpz_class> row;
+      for (long cy : y_factor) row.emplace_back(cx * cy);
+      f.coefficients.push_back(std::move(row));
+    }
+    return f;
+  };
+  const std::vector<long> s2{-2, 0, 1}, s3{-3, 0, 1}, s5{-1, 0, 5}, half{-1, 2}, plus1{1, 0, 1}, plus4{4, 0, 1};
+  const std::vector<IntegerPolynomial2> atoms = {
+      product({s2, s2}, {1}),           product({s2, s2, plus1}, {1}),     product({s2, half, s2, half}, {1}),
+      product({s2, s3, s2, s3}, {1}),   product({s3, s3}, {1, 0, 1}),      product({s3, s5, s3, s5}, {1}),
+      product({s5, s5, plus4}, {1}),    product({s2, s2}, {1, 0, 1}),      product({s5, s2, s5, s2}, {1, 0, 1})};
+  std::size_t applied = 0;
+  for (unsigned seed = 1; seed <= 24; ++seed) {
+    std::vector<IntegerPolynomial2> curves = random_curves(seed);
+    std::mt19937 random(900 + seed);
+    std::vector<std::vector<cspace::ValidityClause>> validity(curves.size());
+    for (auto& clauses : validity)
+      for (int c = 0; c < 3; ++c) clauses.push_back(cspace::ValidityClause{{atoms[random() % atoms.size()]}});
+    const std::string what = "shared cuts seed " + std::to_string(seed);
+    if (compare_stages(unit_box, curves, what, validity, true)) {
+      ++applied;
+      std::optional<raw::Arrangement> with = raw::build_quadratic_arrangement(unit_box, curves, validity, {}, {});
+      std::optional<raw::Arrangement> without = raw::build_quadratic_arrangement(unit_box, curves, {}, {}, {});
+      ASSERT_TRUE(with && without) << what;
+      Counts p = counts(*with), q = counts(*without);
+      EXPECT_EQ(p.vertices, q.vertices) << what;
+      EXPECT_EQ(p.edges, q.edges) << what;
+      EXPECT_EQ(p.faces, q.faces) << what;
+      EXPECT_EQ(p.degrees, q.degrees) << what;
+      expect_same_vertices(*with, *without, what);
+    }
+  }
+  EXPECT_GE(applied, 20u);
+}
+
 void expect_identical_reals(const algebra::Real& a, const algebra::Real& b, const std::string& what) {
   EXPECT_EQ(a.polynomial, b.polynomial) << what;
   EXPECT_EQ(a.lower, b.lower) << what;
