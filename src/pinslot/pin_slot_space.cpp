@@ -483,6 +483,20 @@ struct PinSlotSpace::Impl {
     };
     std::vector<std::pair<PartCoordinate, Rational>> points = candidates(lo);
     for (auto& p : candidates(hi)) points.push_back(p);
+    // cells a of lo and b of hi joined by a witness (p in lo at slide s, q in hi)
+    auto join = [&](PinSlotConnection::Kind kind, std::size_t a, std::size_t b, const PartCoordinate& p,
+                    const PartCoordinate& q, const Rational& s) {
+      joined.insert({a, b});
+      PinSlotConnection c;
+      c.kind = kind;
+      c.lower = i;   // across the half turn: i is the last slice, j == 0
+      c.lower_cell = a;
+      c.upper_cell = b;
+      c.witness_other = p;
+      c.witness_other_upper = q;
+      c.witness_slide = s;
+      connections.push_back(c);
+    };
     auto try_points = [&](const std::vector<std::pair<PartCoordinate, Rational>>& tried) {
       for (const auto& [other_at, slide] : tried) {
         ++stats.witness_candidates;
@@ -490,15 +504,7 @@ struct PinSlotSpace::Impl {
         std::size_t b = cell_index(hi, locate_in(*hi_space, other_at, slide));
         if (a == no_index || b == no_index || joined.count({a, b})) continue;
         if (!segment_free(other_at, slide, lo.tau, hi.tau, wrap)) continue;
-        joined.insert({a, b});
-        PinSlotConnection c;
-        c.lower = i;   // across the half turn: i is the last slice, j == 0
-        c.lower_cell = a;
-        c.upper_cell = b;
-        c.witness_other = other_at;
-        c.witness_other_upper = other_at;
-        c.witness_slide = slide;
-        connections.push_back(c);
+        join(PinSlotConnection::Kind::vertical, a, b, other_at, other_at, slide);
       }
     };
     try_points(points);
@@ -537,16 +543,7 @@ struct PinSlotSpace::Impl {
             for (const auto& q : to) {
               ++stats.witness_candidates;
               if (!plane_free(p, q, s, lo.tau, hi.tau)) continue;
-              joined.insert({a, b});
-              PinSlotConnection c;
-              c.kind = PinSlotConnection::Kind::plane;
-              c.lower = i;
-              c.lower_cell = a;
-              c.upper_cell = b;
-              c.witness_other = p;
-              c.witness_other_upper = q;
-              c.witness_slide = s;
-              connections.push_back(c);
+              join(PinSlotConnection::Kind::plane, a, b, p, q, s);
               done = true;
               break;
             }
