@@ -660,22 +660,6 @@ std::string start_failure(const Part& driver, const Part& other, const Configura
   return "";
 }
 
-// A clearance (planar too), jam or free-passage claim holds no world point (angles, offsets,
-// planar x and y, a distance, edge references and pieces of edges): it says the same of the model with every point and
-// turning pivot moved by one exact vector. A pair far from the origin for its size
-// (normalising_translation: its bounding box centred more than 2^20 box sizes away, a 10 mm
-// ratchet at 10^100 mm) is checked moved to the origin (translated_model, exact): posed at
-// 10^100 mm, the 256-bit enclosures of its points are about 10^23 mm wide, and no crossing of a
-// jam's piece nor a distance could be decided. Every ordinary pair is checked as it is.
-std::optional<Model> pair_moved_to_origin(const Certificate& c, const Model& model) {
-  std::vector<std::size_t> pair;
-  for (std::size_t k = 0; k < model.parts.size(); ++k)
-    if (model.parts[k].name == c.first || model.parts[k].name == c.second) pair.push_back(k);
-  std::optional<Point> by = normalising_translation(model, pair);
-  if (!by) return std::nullopt;
-  return translated_model(model, *by);
-}
-
 }  // namespace
 
 std::string jam_start_failure(const Part& driver, const Part& other, const ConfigurationBox& trap,
@@ -693,10 +677,15 @@ VerificationResult check_certificate(const Certificate& certificate, const Model
   try {
     check_model(certificate, model);
     if (certificate.first == certificate.second) reject("a pair needs two different parts");
+    // A pair far from the origin for its size (a 10 mm ratchet at 10^100 mm) is checked moved to
+    // it when its claim holds no world point (src/core/model_scale.hpp, pair_moved_to_origin):
+    // posed where it lies, the 256-bit enclosures of its points are about 10^23 mm wide, and
+    // no jam piece's crossing nor a distance could be decided. Every ordinary pair is checked
+    // as it is; interference claims (a world witness point, checked exactly) too.
     std::optional<Model> moved;
     if (certificate.claim == ClaimKind::clearance || certificate.claim == ClaimKind::jam ||
         certificate.claim == ClaimKind::free_passage || certificate.claim == ClaimKind::planar_clearance)
-      moved = pair_moved_to_origin(certificate, model);
+      moved = pair_moved_to_origin(model, certificate.first, certificate.second);
     const Model& posed = moved ? *moved : model;
     switch (certificate.claim) {
       case ClaimKind::interference: result.summary = check_interference(certificate, model); break;

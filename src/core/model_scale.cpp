@@ -198,6 +198,15 @@ Model translated_model(const Model& model, const Point& by) {
   return moved;
 }
 
+std::optional<Model> pair_moved_to_origin(const Model& model, std::string_view first, std::string_view second) {
+  std::vector<std::size_t> pair;
+  for (std::size_t k = 0; k < model.parts.size(); ++k)
+    if (model.parts[k].name == first || model.parts[k].name == second) pair.push_back(k);
+  std::optional<Point> by = normalising_translation(model, pair);
+  if (!by) return std::nullopt;
+  return translated_model(model, *by);
+}
+
 std::optional<NormalisedMechanism> normalised_mechanism(const Model& model) {
   std::vector<std::size_t> parts(model.parts.size());
   for (std::size_t k = 0; k < parts.size(); ++k) parts[k] = k;

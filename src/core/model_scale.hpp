@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 namespace hipair {
@@ -56,6 +57,15 @@ std::optional<Point> normalising_translation(const Model& model, const std::vect
 /// The model with every point (loops' vertices and arc centres) and the pivot of every part
 /// that turns (rotation, planar, pin-slot) minus `by`, exactly; nothing else changes.
 Model translated_model(const Model& model, const Point& by);
+
+/// The model moved by normalising_translation of the pair of parts named `first` and `second`
+/// (translated_model), or nullopt when that pair is not far from the origin for its size (every
+/// ordinary model). A claim that holds no world point — a clearance (planar too), a jam, a free
+/// passage: angles, offsets, planar x and y, a distance, edge references — says the same of the
+/// moved model; the verifier (certify/check.cpp) and the producer (src/certificates) decide such
+/// a claim of a far pair on it (256-bit enclosures of points posed at 10^100 mm are about
+/// 10^23 mm wide).
+std::optional<Model> pair_moved_to_origin(const Model& model, std::string_view first, std::string_view second);
 
 /// The copy of a whole mechanism (every part) that its angle- and offset-valued results are
 /// computed on: moved to the origin (normalising_translation), then, when it only rotates and

@@ -24,8 +24,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <map>
+#include <optional>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace hipair {
@@ -115,6 +119,70 @@ TEST(CertifyFarPair, VerdictsOnClearanceJamAndFreePassageAreTheSameFarFromTheOri
   EXPECT_GE(valid, 9u * 3u);
   EXPECT_GE(rejected, 35u * 3u);
   std::cout << "[ far pair ] " << checked << " far checks: " << valid << " valid, " << rejected << " rejected\n";
+}
+
+// The certificate's text without the model's identity (name, file, content hash).
+std::string far_pair_claim_text(Certificate certificate) {
+  certificate.content_hash.clear();
+  certificate.model_file.clear();
+  certificate.model_name.clear();
+  return write_certificate(certificate);
+}
+
+// The producer certifies a far pair's clearance, free passage and jam as at the origin: the lever
+// against its stop (clearance at the initial configuration, free passage over [0, 0.04] rad, the
+// jam driving forward) and the ratchet's jam driving backward, each moved by (±10^k + a, ±10^k + b),
+// k = 30, 100, 400: the same certificate but for the model's identity, valid on the far model.
+// Before session 49 (scale49) the producer searched on the far model's enclosures: `hipair
+// certify` refused the lever's clearance and jam + 10^100 ("cannot certify").
+TEST(CertifyFarPair, CertificatesOfAFarPairAreTheOnesAtTheOriginAndVerifyThere) {
+  namespace fs = std::filesystem;
+  std::mt19937_64 random(4901);
+  const Model lever = read_model_file(fs::path(HIPAIR_EXAMPLES) / "lever-stop.json");
+  const Model ratchet = read_model_file(fs::path(HIPAIR_EXAMPLES) / "ratchet.json");
+  using Produce = std::function<std::optional<Certificate>(const Model&)>;
+  const std::vector<std::tuple<std::string, const Model*, Produce>> claims{
+      {"lever clearance", &lever,
+       [](const Model& m) {
+         std::map<std::string, ExactPosition> at{{"lever", ExactPosition{Rational(0)}}};
+         return certify_clearance(m, "lever", "stop", at, std::nullopt);
+       }},
+      {"lever free passage", &lever,
+       [](const Model& m) {
+         return certify_free_passage(m, "lever", "stop", PassagePath{"lever", "", {Rational(0), Rational(1, 25)}, {}},
+                                     std::nullopt);
+       }},
+      {"lever jam", &lever,
+       [](const Model& m) -> std::optional<Certificate> {
+         auto query = find_jam(m, "lever", "stop", "lever", 0, 0, +1, Rational(1, 500), Rational(2));
+         return query ? certify_jam(m, "lever", "stop", *query) : std::nullopt;
+       }},
+      {"ratchet jam", &ratchet, [](const Model& m) -> std::optional<Certificate> {
+         auto query = find_jam(m, "wheel", "pawl", "wheel", 0, 0, -1, Rational(1, 500), Rational(1));
+         return query ? certify_jam(m, "wheel", "pawl", *query) : std::nullopt;
+       }}};
+  std::size_t compared = 0;
+  for (const auto& [what, model, produce] : claims) {
+    std::optional<Certificate> expected = produce(*model);
+    ASSERT_TRUE(expected) << what;
+    for (unsigned k : {30u, 100u, 400u}) {
+      Rational sx = random() % 2 ? Rational(1) : Rational(-1), sy = random() % 2 ? Rational(1) : Rational(-1);
+      Point by{sx * far_pair_power10(k) + Rational(static_cast<long>(random() % 2001) - 1000, 8),
+               sy * far_pair_power10(k) + Rational(static_cast<long>(random() % 2001) - 1000, 16)};
+      Model far = translated_model(*model, by);
+      std::string where = what + " moved by ~10^" + std::to_string(k);
+      std::optional<Certificate> got = produce(far);
+      if (!got) {
+        ADD_FAILURE() << where << ": not certified";
+        continue;
+      }
+      EXPECT_EQ(far_pair_claim_text(*got), far_pair_claim_text(*expected)) << where;
+      VerificationResult check = check_certificate(*got, far);
+      EXPECT_TRUE(check.valid) << where << ": " << check.reason;
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 12u);
 }
 
 }  // namespace
