@@ -32,6 +32,12 @@ long normalising_shift(const Model& model, const std::vector<std::size_t>& parts
 /// is refused too (its double enclosures would be subnormal); tiny polygon pairs are built exactly.
 void require_length_coordinates_in_range(const Model& model, const std::vector<std::size_t>& parts);
 
+/// 0 when require_length_coordinates_in_range accepts `parts`; else (a pair with a length
+/// coordinate beyond 2^1016 mm, or with arcs and every length below 2^-1000 mm) the exponent
+/// L that brings its largest length near 2^6 mm on scaled_model(model, L): a fixed-axis pair
+/// is built there when asked (CSpaceBuildOptions::normalise_lengths), its lengths in units of 2^L mm.
+long length_coordinate_shift(const Model& model, const std::vector<std::size_t>& parts);
+
 /// Throws GeometryError when one of `parts` translates (or slides in a slot, or moves in the
 /// plane) and the largest length of `parts` lies outside [2^-30, 2^30] mm (about 1e-9 mm to
 /// 1e9 mm): the kinematic sweep's positions are then lengths, and its resolutions are absolute
