@@ -269,6 +269,34 @@ Seen seen(const CSpace& space, const Rational& x, const Rational& y) {
   return Seen::outside;
 }
 
+// The points (i/2, j/2), i and j from -10 to 10 by step/2 ... (a grid over the charts).
+std::vector<std::pair<Rational, Rational>> half_grid(int step) {
+  std::vector<std::pair<Rational, Rational>> points;
+  for (int i = 0; i <= 40; i += step)
+    for (int j = 0; j <= 40; j += step) {
+      Rational x(i - 20, 2), y(j - 20, 2);
+      x.canonicalize();
+      y.canonicalize();
+      points.emplace_back(x, y);
+    }
+  return points;
+}
+
+// The exact overlap predicate on the sliders a and b at offsets x and y.
+PartRelation relation_at(const Model& model, const Rational& x, const Rational& y) {
+  Placement pa, pb;
+  pa.offset = Point{x, Rational(0)};
+  pb.offset = Point{Rational(0), y};
+  return part_overlap(model.parts[0], pa, model.parts[1], pb).relation;
+}
+
+// Point location `got` says what the overlap predicate says.
+bool agrees_with(PartRelation relation, Seen got) {
+  return relation == PartRelation::apart         ? got == Seen::free
+         : relation == PartRelation::overlapping ? got == Seen::blocked
+                                                 : got == Seen::contact || got == Seen::touching;
+}
+
 // Pairs with arcs go through the quadratic traits, whose subdivision (cuts, spurious pieces)
 // and the blocked-space cull are steered by doubles (2^700: 56 vertices and 10 faces where
 // scale 1 has 50 and 4): the same sets, not the same lists. So the check is exact point
@@ -293,14 +321,7 @@ TEST(CSpaceScale, TranslatingPairsWithArcsLocateTheSameAtEveryScale) {
     std::vector<Model> models;
     std::vector<CSpace> spaces;
     std::vector<Rational> factors;
-    std::vector<std::pair<Rational, Rational>> points;
-    for (int i = 0; i <= 40; i += 2)
-      for (int j = 0; j <= 40; j += 2) {
-        Rational x(i - 20, 2), y(j - 20, 2);
-        x.canonicalize();
-        y.canonicalize();
-        points.emplace_back(x, y);
-      }
+    std::vector<std::pair<Rational, Rational>> points = half_grid(2);
     std::vector<Scale> all_scales = {{Rational(1), "1"}};
     all_scales.insert(all_scales.end(), scaled.begin(), scaled.end());
     for (const Scale& scale : all_scales) {
@@ -327,13 +348,8 @@ TEST(CSpaceScale, TranslatingPairsWithArcsLocateTheSameAtEveryScale) {
           EXPECT_EQ(static_cast<int>(got), static_cast<int>(expected))
               << "at (" << x.get_str() << ", " << y.get_str() << ") x scale";
           if (got == Seen::outside) continue;
-          Placement pa, pb;
-          pa.offset = Point{x * s, Rational(0)};
-          pb.offset = Point{Rational(0), y * s};
-          const PartRelation relation = part_overlap(models[k].parts[0], pa, models[k].parts[1], pb).relation;
-          const bool agrees = relation == PartRelation::apart         ? got == Seen::free
-                              : relation == PartRelation::overlapping ? got == Seen::blocked
-                                                                      : got == Seen::contact || got == Seen::touching;
+          const PartRelation relation = relation_at(models[k], x * s, y * s);
+          const bool agrees = agrees_with(relation, got);
           if (!agrees && ++wrong <= 3)
             ADD_FAILURE() << "at (" << x.get_str() << ", " << y.get_str() << ") x scale: located " << static_cast<int>(got)
                           << ", the overlap predicate says " << static_cast<int>(relation);
@@ -473,14 +489,7 @@ TEST(CSpaceScale, TranslatingPairsBeyondTheDoublesAreBuiltInUnitsOfAPowerOfTwo) 
     const Model base = model_at(Rational(1));
     const CSpace space1 = CSpace::build(base, "a", "b");
     const nlohmann::json json1 = space_json(space1);
-    std::vector<std::pair<Rational, Rational>> points;
-    for (int i = 0; i <= 40; i += 4)
-      for (int j = 0; j <= 40; j += 4) {
-        Rational x(i - 20, 2), y(j - 20, 2);
-        x.canonicalize();
-        y.canonicalize();
-        points.emplace_back(x, y);
-      }
+    std::vector<std::pair<Rational, Rational>> points = half_grid(4);
     for (const CSpaceVertex& v : space1.vertices())
       if (v.x.exact && v.y_exact && v.y.exact) points.emplace_back(v.x.lower, v.y.lower);
     std::vector<Scale> scales = {{power(10, 400), "10^400"}, {power(10, -300), "10^-300"}};
@@ -506,13 +515,8 @@ TEST(CSpaceScale, TranslatingPairsBeyondTheDoublesAreBuiltInUnitsOfAPowerOfTwo) 
         EXPECT_EQ(static_cast<int>(got), static_cast<int>(expected)) << "at (" << x.get_str() << ", " << y.get_str() << ") x scale";
         contacts += got == Seen::contact;
         if (got == Seen::outside) continue;
-        Placement pa, pb;
-        pa.offset = Point{x * s, Rational(0)};
-        pb.offset = Point{Rational(0), y * s};
-        const PartRelation relation = part_overlap(model.parts[0], pa, model.parts[1], pb).relation;
-        const bool agrees = relation == PartRelation::apart         ? got == Seen::free
-                            : relation == PartRelation::overlapping ? got == Seen::blocked
-                                                                    : got == Seen::contact || got == Seen::touching;
+        const PartRelation relation = relation_at(model, x * s, y * s);
+        const bool agrees = agrees_with(relation, got);
         if (!agrees && ++wrong <= 3)
           ADD_FAILURE() << "at (" << x.get_str() << ", " << y.get_str() << ") x scale: located " << static_cast<int>(got)
                         << ", the overlap predicate says " << static_cast<int>(relation);
