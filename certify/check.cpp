@@ -8,6 +8,7 @@
 #include "certify/planar_check.hpp"
 #include "certify/tolerance_check.hpp"
 #include "certify/tolerance_support.hpp"
+#include "core/model_scale.hpp"
 #include "core/sha256.hpp"
 #include "io/atomic_file.hpp"
 
@@ -676,13 +677,23 @@ VerificationResult check_certificate(const Certificate& certificate, const Model
   try {
     check_model(certificate, model);
     if (certificate.first == certificate.second) reject("a pair needs two different parts");
+    // A pair far from the origin for its size (a 10 mm ratchet at 10^100 mm) is checked moved to
+    // it when its claim holds no world point (src/core/model_scale.hpp, pair_moved_to_origin):
+    // posed where it lies, the 256-bit enclosures of its points are about 10^23 mm wide, and
+    // no jam piece's crossing nor a distance could be decided. Every ordinary pair is checked
+    // as it is; interference claims (a world witness point, checked exactly) too.
+    std::optional<Model> moved;
+    if (certificate.claim == ClaimKind::clearance || certificate.claim == ClaimKind::jam ||
+        certificate.claim == ClaimKind::free_passage || certificate.claim == ClaimKind::planar_clearance)
+      moved = pair_moved_to_origin(model, certificate.first, certificate.second);
+    const Model& posed = moved ? *moved : model;
     switch (certificate.claim) {
       case ClaimKind::interference: result.summary = check_interference(certificate, model); break;
-      case ClaimKind::clearance: result.summary = check_clearance(certificate, model); break;
-      case ClaimKind::jam: result.summary = check_jam(certificate, model); break;
-      case ClaimKind::free_passage: result.summary = check_free_passage(certificate, model); break;
-      case ClaimKind::planar_interference:
-      case ClaimKind::planar_clearance: result.summary = check_planar(certificate, model); break;
+      case ClaimKind::clearance: result.summary = check_clearance(certificate, posed); break;
+      case ClaimKind::jam: result.summary = check_jam(certificate, posed); break;
+      case ClaimKind::free_passage: result.summary = check_free_passage(certificate, posed); break;
+      case ClaimKind::planar_interference: result.summary = check_planar(certificate, model); break;
+      case ClaimKind::planar_clearance: result.summary = check_planar(certificate, posed); break;
       case ClaimKind::tolerance:
         reject("a tolerance certificate is checked against the model file's text (check_certificate_text, hipair-verify)");
     }

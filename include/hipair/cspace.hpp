@@ -492,6 +492,19 @@ struct CSpaceBuildOptions {
   /// ray with the face's own boundary cycles, exact), independently of how it was found
   /// (for tests; slower).
   bool check_face_classification = false;
+  /// A fixed-axis pair with a length coordinate (a translating part) whose lengths lie beyond
+  /// about 7e305 mm (or, with arcs, all below about 9e-302 mm) has coordinates outside the
+  /// doubles' range and is refused (a GeometryError) unless this is true: it is then built on
+  /// the model scaled by an exact power of two 2^-L that brings its largest length near 2^6 mm
+  /// (the same C-space, lengths in other units: contact is homogeneous in lengths), and
+  /// CSpace::length_unit_exponent() is L: every length-valued member of the space (translation
+  /// charts' boxes and coordinates, vertices, edges, samples, evaluate, edge_polyline, contact
+  /// points, ChartPoint and PartCoordinate offsets given to its queries) is then in units of
+  /// 2^L mm, exact values exactly (x mm = x' * 2^L), doubles finite. `hipair cspace` sets it
+  /// and maps every exact number of its JSON back to mm (docs/cspace.md). Not with
+  /// operating_region, nor for a pair far from the origin for its size (still refused);
+  /// pin-slot and 3-DOF pairs are still refused.
+  bool normalise_lengths = false;
   /// Translating polygon pairs take a dedicated front end (the reduced convolution's segments
   /// written from the vertices, each edge's line carried through CGAL from its input segment,
   /// no interval culling quadtree). false: the general path of every other pair. The C-space is
@@ -552,6 +565,9 @@ class CSpace {
   /// False when only the operating region was built (CSpaceBuildOptions::operating_region):
   /// cells touching the region's border may continue outside it.
   bool complete() const;
+  /// 0, or L when the space was built on the model scaled by 2^-L
+  /// (CSpaceBuildOptions::normalise_lengths): its length-valued members are in units of 2^L mm.
+  long length_unit_exponent() const;
 
   /// The chart point of a configuration given per moving part (exact), choosing the chart
   /// whose box contains it; nullopt when outside every chart (beyond a motion limit).

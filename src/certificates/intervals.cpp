@@ -2,6 +2,7 @@
 // certified clearance) and jamming (a trap whose cut and walls are covered by blocked pieces),
 // and a simple search for the trap of a jam.
 #include "certificates/producer.hpp"
+#include "core/model_scale.hpp"
 #include "certify/planar_check.hpp"
 
 #include <hipair/overlap.hpp>
@@ -286,6 +287,9 @@ bool overlapping_at(const PairRoles& r, const Rational& x, const Rational& y) {
 std::optional<Certificate> certify_free_passage(const Model& model, const std::string& first, const std::string& second,
                                                 const PassagePath& path, std::optional<Rational> distance,
                                                 const CertifyContext& context, const IntervalSearchOptions& options) {
+  // a pair far from the origin for its size is certified moved to it (its enclosures there)
+  if (std::optional<Model> moved = pair_moved_to_origin(model, first, second))
+    return checked_as_given(certify_free_passage(*moved, first, second, path, distance, context, options), model);
   Certificate c = start_certificate(model, context, ClaimKind::free_passage, first, second);
   PairRoles r = pair_roles(model, first, second, path.driver, path.follower);
   if (path.range.lo >= path.range.hi) throw NumericError("the driver range must have start < end");
@@ -358,6 +362,8 @@ std::optional<Certificate> certify_free_passage(const Model& model, const std::s
 std::optional<Certificate> certify_jam(const Model& model, const std::string& first, const std::string& second,
                                        const JamQuery& query, const CertifyContext& context,
                                        const IntervalSearchOptions& options) {
+  if (std::optional<Model> moved = pair_moved_to_origin(model, first, second))
+    return checked_as_given(certify_jam(*moved, first, second, query, context, options), model);
   Certificate c = start_certificate(model, context, ClaimKind::jam, first, second);
   PairRoles r = pair_roles(model, first, second, query.driver, query.follower);
   if (r.has_follower != bool(query.trap.follower)) throw NumericError("the trap needs a follower range exactly when the follower moves");
@@ -442,6 +448,9 @@ std::optional<Certificate> certify_found_jam(const Model& model, const std::stri
 std::optional<JamQuery> find_jam(const Model& model, const std::string& first, const std::string& second,
                                  const std::string& driver, const Rational& start, const Rational& follower_start,
                                  int direction, const Rational& step, const Rational& travel) {
+  // the query holds driver and follower values only: searched on a far pair moved to the origin
+  if (std::optional<Model> moved = pair_moved_to_origin(model, first, second))
+    return find_jam(*moved, first, second, driver, start, follower_start, direction, step, travel);
   const Part& d = part_of(model, driver);
   const Part& o = part_of(model, driver == first ? second : first);
   PairRoles r = pair_roles(model, first, second, driver, o.motion.kind == Motion::Kind::fixed ? "" : o.name);

@@ -7,6 +7,7 @@
 #include "certify/exact_geometry.hpp"
 #include "certify/interval_geometry.hpp"
 
+#include <optional>
 #include <string>
 
 namespace hipair::certify_detail {
@@ -21,6 +22,13 @@ Certificate start_certificate(const Model& model, const CertifyContext& context,
 /// Runs the verifier's own check on a certificate just produced.
 /// \throws NumericError naming the reason if it does not verify (a producer bug).
 void self_check(const Certificate& certificate, const Model& model);
+
+/// A certificate produced on the model moved to the origin (pair_moved_to_origin: a pair far
+/// from it for its size; the claim holds no world point), self-checked on the model as given.
+inline std::optional<Certificate> checked_as_given(std::optional<Certificate> certificate, const Model& model) {
+  if (certificate) self_check(*certificate, model);
+  return certificate;
+}
 
 /// The exact world map of `part` at `position` (identity for a fixed part).
 /// \throws GeometryError for parts that are neither fixed, rotating nor translating.

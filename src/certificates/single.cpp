@@ -1,6 +1,7 @@
 // Certificates for single configurations: interference and clearance, and the helpers shared by
 // every producer (model identity, exact maps, self-check).
 #include "certificates/producer.hpp"
+#include "core/model_scale.hpp"
 #include "certify/planar_check.hpp"
 
 #include <hipair/overlap.hpp>
@@ -234,6 +235,9 @@ std::optional<Certificate> certify_interference(const Model& model, const std::s
 std::optional<Certificate> certify_clearance(const Model& model, const std::string& first, const std::string& second,
                                              const std::map<std::string, ExactPosition>& positions,
                                              std::optional<Rational> distance, const CertifyContext& context) {
+  // a pair far from the origin for its size is certified moved to it (its enclosures there)
+  if (std::optional<Model> moved = pair_moved_to_origin(model, first, second))
+    return checked_as_given(certify_clearance(*moved, first, second, positions, distance, context), model);
   Certificate c = start_certificate(model, context, ClaimKind::clearance, first, second);
   const Part &a = part_of(model, first), &b = part_of(model, second);
   c.configuration = pair_positions(positions, a, b);

@@ -254,6 +254,9 @@ int run(const CSpaceCommandOptions& options) {
   build.quadratic_max_coefficient_bits = options.quadratic_max_bits;
   build.operating_region = options.region == "operating";
   build.region_tiles = options.tiles;
+  // a translating pair beyond the doubles' range (1e400 mm): built in units of 2^L mm, its
+  // JSON written in mm (cspace_json.cpp), its SVG drawn in those units (the title says so)
+  build.normalise_lengths = true;
   std::vector<CSpace> spaces;
   // 3-DOF pairs (a planar part against a fixed part): sliced C-spaces (docs/cspace.md)
   std::vector<std::pair<std::string, std::string>> sliced_requests;
@@ -360,19 +363,23 @@ int run(const CSpaceCommandOptions& options) {
       render::CSpaceSvgOptions svg;
       svg.show_spurious = options.spurious;
       svg.title = model.name + ": C-space of " + space.first_part() + " / " + space.second_part();
+      const long unit = space.length_unit_exponent();
+      if (unit != 0) svg.title += " (offsets in units of 2^" + std::to_string(unit) + " mm)";
+      // the part's initial coordinate in the space's units (an offset / 2^unit, exactly)
+      auto initial = [unit](const Part& part) {
+        if (part.motion.kind != Motion::Kind::translation) return part.initial.angle.get_d();
+        Rational offset = part.initial.offset;
+        if (unit > 0) mpq_div_2exp(offset.get_mpq_t(), offset.get_mpq_t(), static_cast<mp_bitcnt_t>(unit));
+        if (unit < 0) mpq_mul_2exp(offset.get_mpq_t(), offset.get_mpq_t(), static_cast<mp_bitcnt_t>(-unit));
+        return offset.get_d();
+      };
       auto x_index = model.find_part(space.x_part());
       render::CSpaceMark mark;
       mark.label = "initial";
-      if (x_index) {
-        const Part& part = model.parts[*x_index];
-        mark.x = part.motion.kind == Motion::Kind::translation ? part.initial.offset.get_d() : part.initial.angle.get_d();
-      }
+      if (x_index) mark.x = initial(model.parts[*x_index]);
       if (space.dimension() == 2) {
         auto y_index = model.find_part(space.y_part());
-        if (y_index) {
-          const Part& part = model.parts[*y_index];
-          mark.y = part.motion.kind == Motion::Kind::translation ? part.initial.offset.get_d() : part.initial.angle.get_d();
-        }
+        if (y_index) mark.y = initial(model.parts[*y_index]);
       }
       svg.marks.push_back(mark);
       io::write_file_atomically(suffixed(options.svg, space, several), render::cspace_svg(space, svg));

@@ -8,8 +8,12 @@
 // that needs escapes, its serializer: the text is nlohmann's by construction, not by imitation.
 #include <nlohmann/json.hpp>
 
+#include <mpfr.h>
+
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <string>
 
 namespace hipair::cli {
 
@@ -226,18 +230,100 @@ const char* axis_kind_name(AxisKind kind) { return kind == AxisKind::rotation ? 
 
 // The members of every object below are written in ascending order of their keys.
 
-void write_axis(JsonText& json, AxisKind kind, bool half_turn, const Rational& lo, const Rational& hi) {
+// A space built with lengths in units of 2^L mm (CSpace::length_unit_exponent): the exponent
+// of each chart axis's unit (L on a translation axis, 0 on a rotation axis, and 0 everywhere
+// for every other space). Its numbers are written in mm: exact ones mapped exactly, a double
+// d as a string holding the decimal of d * 2^exponent (17 significant digits, exponent from the
+// exact product: 1e400 has no double, and JSON readers overflow on the number 1e400).
+long axis_unit(const CSpace& space, AxisKind kind) {
+  return kind == AxisKind::translation ? space.length_unit_exponent() : 0;
+}
+
+Rational in_mm(Rational value, long exponent) {
+  if (exponent > 0) mpq_mul_2exp(value.get_mpq_t(), value.get_mpq_t(), static_cast<mp_bitcnt_t>(exponent));
+  if (exponent < 0) mpq_div_2exp(value.get_mpq_t(), value.get_mpq_t(), static_cast<mp_bitcnt_t>(-exponent));
+  return value;
+}
+
+// p(x / 2^ex, y / 2^ey) times the least power of two that keeps the coefficients integers:
+// the curve of p in the units 2^ex, 2^ey mm, in mm (c[i][j] of x^i y^j).
+std::vector<std::vector<mpz_class>> polynomial_in_mm(std::vector<std::vector<mpz_class>> c, long ex, long ey) {
+  if (ex == 0 && ey == 0) return c;
+  long top = 0;
+  bool any = false;
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (std::size_t j = 0; j < c[i].size(); ++j)
+      if (sgn(c[i][j]) != 0) {
+        const long weight = static_cast<long>(i) * ex + static_cast<long>(j) * ey;
+        top = any ? std::max(top, weight) : weight;
+        any = true;
+      }
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (std::size_t j = 0; j < c[i].size(); ++j)
+      mpz_mul_2exp(c[i][j].get_mpz_t(), c[i][j].get_mpz_t(),
+                   static_cast<mp_bitcnt_t>(top - static_cast<long>(i) * ex - static_cast<long>(j) * ey));
+  return c;
+}
+
+AlgebraicNumber in_mm(const AlgebraicNumber& n, long exponent) {
+  if (exponent == 0) return n;
+  std::vector<std::vector<mpz_class>> c;
+  for (const mpz_class& a : n.polynomial) c.push_back({a});
+  AlgebraicNumber m = n;
+  m.polynomial.clear();
+  for (const auto& a : polynomial_in_mm(std::move(c), exponent, 0)) m.polynomial.push_back(a.front());
+  m.lower = in_mm(n.lower, exponent);
+  m.upper = in_mm(n.upper, exponent);
+  return m;
+}
+
+// The decimal text of d * 2^exponent, rounded as `round` to 17 significant digits.
+std::string decimal_in_mm(double value, long exponent, mpfr_rnd_t round) {
+  mpfr_t x;
+  mpfr_init2(x, 64);
+  mpfr_set_d(x, value, MPFR_RNDN);           // exact (64 >= 53 bits)
+  mpfr_mul_2si(x, x, exponent, MPFR_RNDN);   // exact (MPFR's exponent range is about 2^62)
+  std::string text;
+  if (mpfr_zero_p(x)) {
+    text = "0.0";
+  } else {
+    mpfr_exp_t decimal_exponent = 0;
+    char* digits = mpfr_get_str(nullptr, &decimal_exponent, 10, 17, x, round);
+    std::string d(digits);
+    mpfr_free_str(digits);
+    if (d.front() == '-') {
+      text = "-";
+      d.erase(0, 1);
+    }
+    while (d.size() > 1 && d.back() == '0') d.pop_back();
+    text += d.substr(0, 1) + "." + (d.size() > 1 ? d.substr(1) : std::string("0")) + "e" +
+            std::to_string(static_cast<long>(decimal_exponent) - 1);
+  }
+  mpfr_clear(x);
+  return text;
+}
+
+void write_axis(JsonText& json, AxisKind kind, bool half_turn, const Rational& lo, const Rational& hi, long unit) {
   json.begin_object();
   json.key("chart_center").string(kind == AxisKind::rotation ? (half_turn ? "pi" : "0") : "-");
-  json.key("hi").string(to_exact_string(hi));
+  json.key("hi").string(to_exact_string(in_mm(hi, unit)));
   json.key("kind").string(axis_kind_name(kind));
-  json.key("lo").string(to_exact_string(lo));
+  json.key("lo").string(to_exact_string(in_mm(lo, unit)));
   json.end_object();
 }
 
-void write_exact_number(JsonText& json, const AlgebraicNumber& n, const char* variable) {
+void write_decimal(JsonText& json, double value, long unit, mpfr_rnd_t round = MPFR_RNDN) {
+  if (unit == 0)
+    json.number(value);
+  else
+    json.string(decimal_in_mm(value, unit, round));   // a string: 1e400 overflows JSON readers' doubles
+}
+
+void write_exact_number(JsonText& json, const AlgebraicNumber& given, const char* variable, long unit) {
+  const AlgebraicNumber n = in_mm(given, unit);
   json.begin_object();
-  json.key("decimal").number(n.approximate());
+  json.key("decimal");
+  write_decimal(json, given.approximate(), unit);
   json.key("exact").string(n.to_string(variable));
   if (!n.exact) {
     json.key("interval").begin_array();
@@ -248,10 +334,10 @@ void write_exact_number(JsonText& json, const AlgebraicNumber& n, const char* va
   json.end_object();
 }
 
-void write_range(JsonText& json, const CertifiedRange& range) {
+void write_range(JsonText& json, const CertifiedRange& range, long unit) {
   json.begin_array();
-  json.number(range.lower);
-  json.number(range.upper);
+  write_decimal(json, range.lower, unit, MPFR_RNDD);   // outward: still an enclosure
+  write_decimal(json, range.upper, unit, MPFR_RNDU);
   json.end_array();
 }
 
@@ -291,7 +377,8 @@ void write_statistics(JsonText& json, const CSpaceStatistics& s, bool with_secon
   json.end_object();
 }
 
-void write_cell(JsonText& json, const CSpaceCell& cell) {
+void write_cell(JsonText& json, const CSpace& space, const CSpaceCell& cell) {
+  const CSpaceChart& chart = space.charts()[cell.sample_chart];
   json.begin_object();
   json.key("boundary_edges").numbers(cell.boundary);
   json.key("faces").number(cell.faces);
@@ -299,8 +386,8 @@ void write_cell(JsonText& json, const CSpaceCell& cell) {
   json.key("neighbours").numbers(cell.neighbours);
   json.key("sample").begin_object();
   json.key("chart").number(cell.sample_chart);
-  json.key("x").string(to_exact_string(cell.sample_x));
-  json.key("y").string(to_exact_string(cell.sample_y));
+  json.key("x").string(to_exact_string(in_mm(cell.sample_x, axis_unit(space, chart.x_kind))));
+  json.key("y").string(to_exact_string(in_mm(cell.sample_y, axis_unit(space, chart.y_kind))));
   json.end_object();
   json.key("wraps_x").boolean(cell.wraps_x);
   json.key("wraps_y").boolean(cell.wraps_y);
@@ -315,26 +402,29 @@ void write_vertex(JsonText& json, const CSpace& space, const CSpaceVertex& verte
   json.key("feature_pairs").numbers(vertex.curves);
   json.key("on_chart_boundary").boolean(vertex.on_chart_boundary);
   json.key("touching").boolean(vertex.touching);
+  const CSpaceChart& chart = space.charts()[vertex.chart];
+  const long x_unit = axis_unit(space, chart.x_kind), y_unit = axis_unit(space, chart.y_kind);
   json.key("x");
-  write_exact_number(json, vertex.x, "x");
+  write_exact_number(json, vertex.x, "x", x_unit);
   if (space.dimension() == 2) {
     json.key("y");
     if (vertex.y_exact) {
-      write_exact_number(json, vertex.y, "y");
+      write_exact_number(json, vertex.y, "y", y_unit);
     } else {
       json.begin_object();
       const Rational middle = (vertex.y_lower + vertex.y_upper) / 2;
-      json.key("decimal").number(middle.get_d());
+      json.key("decimal");
+      write_decimal(json, middle.get_d(), y_unit);
       scratch.assign("real root number ");
       char digits[16];
       scratch.append(digits, std::to_chars(digits, digits + sizeof digits, vertex.y_branch).ptr);
       scratch += " (ascending, from 0) in y of ";
-      append_polynomial_text(scratch, vertex.y_curve);
+      append_polynomial_text(scratch, polynomial_in_mm(vertex.y_curve, x_unit, y_unit));
       scratch += " at this x";
       json.key("exact").string(scratch);
       json.key("interval").begin_array();
-      json.string(to_exact_string(vertex.y_lower));
-      json.string(to_exact_string(vertex.y_upper));
+      json.string(to_exact_string(in_mm(vertex.y_lower, y_unit)));
+      json.string(to_exact_string(in_mm(vertex.y_upper, y_unit)));
       json.end_array();
       json.end_object();
     }
@@ -351,25 +441,30 @@ void write_cell_index(JsonText& json, std::size_t cell) {
 
 void write_edge(JsonText& json, const CSpace& space, std::size_t e, std::string& scratch) {
   const CSpaceEdge& edge = space.edges()[e];
+  const CSpaceChart& chart = space.charts()[edge.chart];
+  const long x_unit = axis_unit(space, chart.x_kind), y_unit = axis_unit(space, chart.y_kind);
   json.begin_object();
   json.key("chart").number(edge.chart);
   json.key("extent_chart").begin_object();
   json.key("x");
-  write_range(json, edge.x_chart);
+  write_range(json, edge.x_chart, x_unit);
   json.key("y");
-  write_range(json, edge.y_chart);
+  write_range(json, edge.y_chart, y_unit);
   json.end_object();
   json.key("extent_coordinates").begin_object();
   json.key("x");
-  write_range(json, edge.x_coordinate);
+  write_range(json, edge.x_coordinate, x_unit);
   json.key("y");
-  write_range(json, edge.y_coordinate);
+  write_range(json, edge.y_coordinate, y_unit);
   json.end_object();
   json.key("feature_pairs").numbers(edge.curves);
   json.key("left_cell");
   write_cell_index(json, edge.left_cell);
   scratch.clear();
-  append_polynomial_text(scratch, space.edge_polynomial_coefficients(e));
+  if (x_unit == 0 && y_unit == 0)
+    append_polynomial_text(scratch, space.edge_polynomial_coefficients(e));
+  else
+    append_polynomial_text(scratch, polynomial_in_mm(space.edge_polynomial_coefficients(e), x_unit, y_unit));
   json.key("polynomial").string(scratch);
   json.key("real").boolean(edge.real);
   json.key("right_cell");
@@ -389,16 +484,16 @@ void write_space_json(std::ostream& out, const CSpace& space, bool with_seconds)
   const bool two = space.dimension() == 2;
   json.begin_object();
   json.key("cells").begin_array();
-  for (const CSpaceCell& cell : space.cells()) write_cell(json, cell);
+  for (const CSpaceCell& cell : space.cells()) write_cell(json, space, cell);
   json.end_array();
   json.key("charts").begin_array();
   for (const CSpaceChart& chart : space.charts()) {
     json.begin_object();
     json.key("x");
-    write_axis(json, chart.x_kind, chart.x_half_turn, chart.x_lo, chart.x_hi);
+    write_axis(json, chart.x_kind, chart.x_half_turn, chart.x_lo, chart.x_hi, axis_unit(space, chart.x_kind));
     if (two) {
       json.key("y");
-      write_axis(json, chart.y_kind, chart.y_half_turn, chart.y_lo, chart.y_hi);
+      write_axis(json, chart.y_kind, chart.y_half_turn, chart.y_lo, chart.y_hi, axis_unit(space, chart.y_kind));
     }
     json.end_object();
   }

@@ -132,6 +132,39 @@ void require_length_coordinates_in_range(const Model& model, const std::vector<s
   }
 }
 
+long length_coordinate_shift(const Model& model, const std::vector<std::size_t>& parts) {
+  bool lengths = false, arcs = false;
+  Rational largest = 0;
+  auto see = [&](const Rational& value) {
+    if (abs(value) > largest) largest = abs(value);
+  };
+  for (std::size_t index : parts) {
+    const Part& part = model.parts.at(index);
+    lengths = lengths || (part.motion.kind != Motion::Kind::rotation && part.motion.kind != Motion::Kind::fixed);
+    see(part.motion.pivot.x);
+    see(part.motion.pivot.y);
+    if (part.motion.translation_limits) {
+      see(part.motion.translation_limits->lo);
+      see(part.motion.translation_limits->hi);
+    }
+    for (const Rational* v : {&part.initial.offset, &part.initial.x, &part.initial.y}) see(*v);
+    for (const auto& loop : part.loops)
+      for (const auto& edge : loop.edges) {
+        arcs = arcs || edge.kind == Edge::Kind::arc;
+        for (const Point* p : {&edge.source, &edge.target, &edge.center}) {
+          see(p->x);
+          see(p->y);
+        }
+      }
+  }
+  if (!lengths || sgn(largest) == 0) return 0;
+  // the bounds of require_length_coordinates_in_range (|value| < 2^1016; arcs with every length < 2^-1000)
+  const bool huge = !(largest < Rational(mpz_class(1) << 1016));
+  const bool tiny = arcs && largest < Rational(mpz_class(1), mpz_class(1) << 1000);
+  if (!huge && !tiny) return 0;
+  return binary_exponent(largest) - 6;
+}
+
 std::optional<Point> normalising_translation(const Model& model, const std::vector<std::size_t>& parts) {
   std::optional<Rational> x_lo, x_hi, y_lo, y_hi;
   auto see = [&](const Point& p) {
@@ -196,6 +229,15 @@ Model translated_model(const Model& model, const Point& by) {
       move(part.motion.pivot);
   }
   return moved;
+}
+
+std::optional<Model> pair_moved_to_origin(const Model& model, std::string_view first, std::string_view second) {
+  std::vector<std::size_t> pair;
+  for (std::size_t k = 0; k < model.parts.size(); ++k)
+    if (model.parts[k].name == first || model.parts[k].name == second) pair.push_back(k);
+  std::optional<Point> by = normalising_translation(model, pair);
+  if (!by) return std::nullopt;
+  return translated_model(model, *by);
 }
 
 std::optional<NormalisedMechanism> normalised_mechanism(const Model& model) {

@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 namespace hipair {
@@ -30,6 +31,12 @@ long normalising_shift(const Model& model, const std::vector<std::size_t>& parts
 /// refused (they are rescaled, above). A pair with arcs whose every length lies below 2^-1000 mm
 /// is refused too (its double enclosures would be subnormal); tiny polygon pairs are built exactly.
 void require_length_coordinates_in_range(const Model& model, const std::vector<std::size_t>& parts);
+
+/// 0 when require_length_coordinates_in_range accepts `parts`; else (a pair with a length
+/// coordinate beyond 2^1016 mm, or with arcs and every length below 2^-1000 mm) the exponent
+/// L that brings its largest length near 2^6 mm on scaled_model(model, L): a fixed-axis pair
+/// is built there when asked (CSpaceBuildOptions::normalise_lengths), its lengths in units of 2^L mm.
+long length_coordinate_shift(const Model& model, const std::vector<std::size_t>& parts);
 
 /// Throws GeometryError when one of `parts` translates (or slides in a slot, or moves in the
 /// plane) and the largest length of `parts` lies outside [2^-30, 2^30] mm (about 1e-9 mm to
@@ -56,6 +63,15 @@ std::optional<Point> normalising_translation(const Model& model, const std::vect
 /// The model with every point (loops' vertices and arc centres) and the pivot of every part
 /// that turns (rotation, planar, pin-slot) minus `by`, exactly; nothing else changes.
 Model translated_model(const Model& model, const Point& by);
+
+/// The model moved by normalising_translation of the pair of parts named `first` and `second`
+/// (translated_model), or nullopt when that pair is not far from the origin for its size (every
+/// ordinary model). A claim that holds no world point — a clearance (planar too), a jam, a free
+/// passage: angles, offsets, planar x and y, a distance, edge references — says the same of the
+/// moved model; the verifier (certify/check.cpp) and the producer (src/certificates) decide such
+/// a claim of a far pair on it (256-bit enclosures of points posed at 10^100 mm are about
+/// 10^23 mm wide).
+std::optional<Model> pair_moved_to_origin(const Model& model, std::string_view first, std::string_view second);
 
 /// The copy of a whole mechanism (every part) that its angle- and offset-valued results are
 /// computed on: moved to the origin (normalising_translation), then, when it only rotates and

@@ -1723,6 +1723,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
   impl->dimension = input.dimension;
   CSpaceStatistics& stats = impl->statistics;
   impl->complete = input.complete;
+  impl->length_unit_exponent = input.length_unit_exponent;
   impl->model = input.model;
   impl->axes = input.axes;
   stats.region_cells = input.region_cells;

@@ -70,6 +70,7 @@ struct PairInput {
   CurveStatistics curve_statistics;
   double seconds_curves = 0;
   bool complete = true;          ///< false: the charts are tiles of an operating region
+  long length_unit_exponent = 0;   ///< lengths in units of 2^this mm (CSpace::length_unit_exponent)
   /// The model and the pair's axes (contact geometry queries); null for synthetic input.
   std::shared_ptr<const Model> model;
   PairAxes axes;
@@ -152,6 +153,7 @@ struct CSpace::Impl {
   std::string first_part, second_part, x_part, y_part;
   int dimension = 2;
   bool complete = true;   ///< false: only the operating region was built
+  long length_unit_exponent = 0;   ///< CSpace::length_unit_exponent
   std::vector<cspace::ChartData> charts;
   std::vector<CSpaceChart> public_charts;
   std::vector<FeaturePair> feature_pairs;

@@ -232,7 +232,7 @@ cspace::ChartAxis tile_axis(const cspace::ChartAxis& axis, std::size_t k, std::s
 }
 
 CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options,
-                        const RegionPath* path, const Model* kept = nullptr);
+                        const RegionPath* path, const Model* kept = nullptr, long length_unit_exponent = 0);
 
 // The copy of the model that a built space keeps (its contact geometry queries read it). A
 // space only reads its model, so an equal copy still held by a live space built on this thread
@@ -264,7 +264,14 @@ CSpace build_pair(const Model& model, std::size_t first, std::size_t second, con
     return build_pair_as_is(scaled, first, second, options, path, &model);
   }
   long shift = normalising_shift(model, {first, second});
-  // lengths as coordinates beyond the doubles' range: refused (a clear error, not a crash)
+  // lengths as coordinates beyond the doubles' range: built, when asked, on the copy scaled
+  // by 2^-L, and that copy is the space's model (its lengths, also contact points, in units
+  // of 2^L mm: CSpace::length_unit_exponent); refused otherwise (a clear error, not a crash)
+  if (shift == 0 && options.normalise_lengths && !options.operating_region)
+    if (long unit = length_coordinate_shift(model, {first, second}); unit != 0) {
+      Model scaled = scaled_model(model, unit);
+      return build_pair_as_is(scaled, first, second, options, path, nullptr, unit);
+    }
   if (shift == 0) require_length_coordinates_in_range(model, {first, second});
   if (shift == 0) return build_pair_as_is(model, first, second, options, path);
   // the scaled copy lives through the build (the charts' overlap oracles read it); the built
@@ -275,7 +282,7 @@ CSpace build_pair(const Model& model, std::size_t first, std::size_t second, con
 }
 
 CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options,
-                        const RegionPath* path, const Model* kept) {
+                        const RegionPath* path, const Model* kept, long length_unit_exponent) {
   using namespace cspace;
   PairAxes axes = pair_axes(model, first, second);
   if (axes.dimension() == 0)
@@ -290,6 +297,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   input.y_part = axes.dimension() == 2 ? model.parts[axes.second].name : std::string();
   for (const auto& part : model.parts) input.part_names.push_back(part.name);
   input.dimension = axes.dimension();
+  input.length_unit_exponent = length_unit_exponent;
   input.model = model_copy(kept ? *kept : model);
   input.axes = axes;
   std::vector<ChartAxis> y_charts = layout.y_charts;

@@ -75,6 +75,7 @@ const std::vector<CSpaceEdge>& CSpace::edges() const { return implementation(*th
 const std::vector<CSpaceCell>& CSpace::cells() const { return implementation(*this).cells; }
 const CSpaceStatistics& CSpace::statistics() const { return implementation(*this).statistics; }
 bool CSpace::complete() const { return implementation(*this).complete; }
+long CSpace::length_unit_exponent() const { return implementation(*this).length_unit_exponent; }
 
 namespace {
 

@@ -401,8 +401,10 @@ struct PinSlotSpace::Impl {
   // sample (2-D: on the line of the sample's other coordinate; 1-D: the cell itself), and, when
   // the other part translates, the simplest offset in the middle half of the cell's offset
   // interval at that slide. The intervals' ends are bounded by their exact isolating intervals;
-  // a candidate is only proposed (connect locates it exactly in both slices).
-  std::vector<std::pair<PartCoordinate, Rational>> middle_candidates(const PinSlotSlice& s, const CSpace& space) const {
+  // a candidate is only proposed (connect locates it exactly in both slices). Only the free
+  // cells k with wanted[k] are visited.
+  std::vector<std::pair<PartCoordinate, Rational>> middle_candidates(const PinSlotSlice& s, const CSpace& space,
+                                                                     const std::vector<bool>& wanted) const {
     std::vector<std::pair<PartCoordinate, Rational>> out;
     auto above = [](const AlgebraicNumber& a) { return a.exact ? a.lower : a.upper; };
     auto propose = [&](const Rational& lo, const Rational& hi) -> std::optional<Rational> {
@@ -415,7 +417,9 @@ struct PinSlotSpace::Impl {
       middle.canonicalize();
       return middle;
     };
-    for (const PinSlotCell& c : s.free_cells) {
+    for (std::size_t index = 0; index < s.free_cells.size(); ++index) {
+      if (!wanted[index]) continue;
+      const PinSlotCell& c = s.free_cells[index];
       const CSpaceCell& cell = space.cells()[c.slice_cell];
       if (space.dimension() == 1) {
         for (const CSpaceFace& face : space.faces(0)) {
@@ -479,29 +483,48 @@ struct PinSlotSpace::Impl {
     };
     std::vector<std::pair<PartCoordinate, Rational>> points = candidates(lo);
     for (auto& p : candidates(hi)) points.push_back(p);
-    // A pair drawn tiny or huge: a cell's sample (the simplest rational of the cell in mm) lies
-    // within about 1 mm of a side (10^-100 of a cell at 10^100 mm), where the segment to the
-    // next slice leaves the cell: the film advance x 10^+-100 ... 10^+-300 had 3-4 connections
-    // for 14. Its cells' middles are tried after the samples (ordinary pairs: samples only).
-    if (unit != 1)
-      for (const auto& [slice, space] : {std::pair{&lo, lo_space}, std::pair{&hi, hi_space}})
-        for (auto& p : middle_candidates(*slice, *space)) points.push_back(std::move(p));
-    for (const auto& [other_at, slide] : points) {
-      ++stats.witness_candidates;
-      std::size_t a = cell_index(lo, locate_in(*lo_space, other_at, slide));
-      std::size_t b = cell_index(hi, locate_in(*hi_space, other_at, slide));
-      if (a == no_index || b == no_index || joined.count({a, b})) continue;
-      if (!segment_free(other_at, slide, lo.tau, hi.tau, wrap)) continue;
+    // cells a of lo and b of hi joined by a witness (p in lo at slide s, q in hi)
+    auto join = [&](PinSlotConnection::Kind kind, std::size_t a, std::size_t b, const PartCoordinate& p,
+                    const PartCoordinate& q, const Rational& s) {
       joined.insert({a, b});
       PinSlotConnection c;
+      c.kind = kind;
       c.lower = i;   // across the half turn: i is the last slice, j == 0
       c.lower_cell = a;
       c.upper_cell = b;
-      c.witness_other = other_at;
-      c.witness_other_upper = other_at;
-      c.witness_slide = slide;
+      c.witness_other = p;
+      c.witness_other_upper = q;
+      c.witness_slide = s;
       connections.push_back(c);
+    };
+    auto try_points = [&](const std::vector<std::pair<PartCoordinate, Rational>>& tried) {
+      for (const auto& [other_at, slide] : tried) {
+        ++stats.witness_candidates;
+        std::size_t a = cell_index(lo, locate_in(*lo_space, other_at, slide));
+        std::size_t b = cell_index(hi, locate_in(*hi_space, other_at, slide));
+        if (a == no_index || b == no_index || joined.count({a, b})) continue;
+        if (!segment_free(other_at, slide, lo.tau, hi.tau, wrap)) continue;
+        join(PinSlotConnection::Kind::vertical, a, b, other_at, other_at, slide);
+      }
+    };
+    try_points(points);
+    // Then the cells' middles. A pair drawn tiny or huge: a cell's sample (the simplest rational
+    // of the cell in mm) lies within about 1 mm of a side (10^-100 of a cell at 10^100 mm), where
+    // the segment to the next slice leaves the cell: the film advance x 10^+-100 ... 10^+-300 had
+    // 3-4 connections for 14; every cell's middle is tried. An ordinary pair's sample can lie
+    // near a side too: the film advance at 1 mm left two cells unjoined to the next slice (4
+    // groups) that their middles join (2 groups, as at 10^100; session 49): there the middles
+    // of the cells that no sample joined across these two slices are tried.
+    std::vector<bool> lo_wanted(lo.free_cells.size(), unit != 1), hi_wanted(hi.free_cells.size(), unit != 1);
+    if (unit == 1) {
+      std::vector<bool> lo_joined(lo.free_cells.size()), hi_joined(hi.free_cells.size());
+      for (const auto& [a, b] : joined) lo_joined[a] = hi_joined[b] = true;
+      for (std::size_t k = 0; k < lo_wanted.size(); ++k) lo_wanted[k] = !lo_joined[k];
+      for (std::size_t k = 0; k < hi_wanted.size(); ++k) hi_wanted[k] = !hi_joined[k];
     }
+    std::vector<std::pair<PartCoordinate, Rational>> middles = middle_candidates(lo, *lo_space, lo_wanted);
+    for (auto& p : middle_candidates(hi, *hi_space, hi_wanted)) middles.push_back(std::move(p));
+    try_points(middles);
     if (!planes || wrap || other_kind == Motion::Kind::fixed) return;
     // plane witnesses between pairs of cells still apart: slides at both samples and between
     for (std::size_t a = 0; a < lo.free_cells.size(); ++a)
@@ -520,16 +543,7 @@ struct PinSlotSpace::Impl {
             for (const auto& q : to) {
               ++stats.witness_candidates;
               if (!plane_free(p, q, s, lo.tau, hi.tau)) continue;
-              joined.insert({a, b});
-              PinSlotConnection c;
-              c.kind = PinSlotConnection::Kind::plane;
-              c.lower = i;
-              c.lower_cell = a;
-              c.upper_cell = b;
-              c.witness_other = p;
-              c.witness_other_upper = q;
-              c.witness_slide = s;
-              connections.push_back(c);
+              join(PinSlotConnection::Kind::plane, a, b, p, q, s);
               done = true;
               break;
             }

@@ -12,6 +12,7 @@
 // of the edge labels read NaN from an overflowed coefficient bound and dropped every contact
 // curve); beyond 2^1016 mm such pairs are refused with a clear error (SIGFPE before).
 #include "algebra/exact_real.hpp"
+#include "cli/cspace_json.hpp"
 #include "cspace/builder_impl.hpp"
 #include "cspace_minkowski_support.hpp"
 #include "polygon_loop_json.hpp"
@@ -22,12 +23,15 @@
 #include <hipair/overlap.hpp>
 
 #include <CGAL/minkowski_sum_2.h>
+#include <mpfr.h>
+#include <nlohmann/json.hpp>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <optional>
 #include <random>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -265,6 +269,34 @@ Seen seen(const CSpace& space, const Rational& x, const Rational& y) {
   return Seen::outside;
 }
 
+// The points (i/2, j/2), i and j from -10 to 10 by step/2 ... (a grid over the charts).
+std::vector<std::pair<Rational, Rational>> half_grid(int step) {
+  std::vector<std::pair<Rational, Rational>> points;
+  for (int i = 0; i <= 40; i += step)
+    for (int j = 0; j <= 40; j += step) {
+      Rational x(i - 20, 2), y(j - 20, 2);
+      x.canonicalize();
+      y.canonicalize();
+      points.emplace_back(x, y);
+    }
+  return points;
+}
+
+// The exact overlap predicate on the sliders a and b at offsets x and y.
+PartRelation relation_at(const Model& model, const Rational& x, const Rational& y) {
+  Placement pa, pb;
+  pa.offset = Point{x, Rational(0)};
+  pb.offset = Point{Rational(0), y};
+  return part_overlap(model.parts[0], pa, model.parts[1], pb).relation;
+}
+
+// Point location `got` says what the overlap predicate says.
+bool agrees_with(PartRelation relation, Seen got) {
+  return relation == PartRelation::apart         ? got == Seen::free
+         : relation == PartRelation::overlapping ? got == Seen::blocked
+                                                 : got == Seen::contact || got == Seen::touching;
+}
+
 // Pairs with arcs go through the quadratic traits, whose subdivision (cuts, spurious pieces)
 // and the blocked-space cull are steered by doubles (2^700: 56 vertices and 10 faces where
 // scale 1 has 50 and 4): the same sets, not the same lists. So the check is exact point
@@ -289,14 +321,7 @@ TEST(CSpaceScale, TranslatingPairsWithArcsLocateTheSameAtEveryScale) {
     std::vector<Model> models;
     std::vector<CSpace> spaces;
     std::vector<Rational> factors;
-    std::vector<std::pair<Rational, Rational>> points;
-    for (int i = 0; i <= 40; i += 2)
-      for (int j = 0; j <= 40; j += 2) {
-        Rational x(i - 20, 2), y(j - 20, 2);
-        x.canonicalize();
-        y.canonicalize();
-        points.emplace_back(x, y);
-      }
+    std::vector<std::pair<Rational, Rational>> points = half_grid(2);
     std::vector<Scale> all_scales = {{Rational(1), "1"}};
     all_scales.insert(all_scales.end(), scaled.begin(), scaled.end());
     for (const Scale& scale : all_scales) {
@@ -323,13 +348,8 @@ TEST(CSpaceScale, TranslatingPairsWithArcsLocateTheSameAtEveryScale) {
           EXPECT_EQ(static_cast<int>(got), static_cast<int>(expected))
               << "at (" << x.get_str() << ", " << y.get_str() << ") x scale";
           if (got == Seen::outside) continue;
-          Placement pa, pb;
-          pa.offset = Point{x * s, Rational(0)};
-          pb.offset = Point{Rational(0), y * s};
-          const PartRelation relation = part_overlap(models[k].parts[0], pa, models[k].parts[1], pb).relation;
-          const bool agrees = relation == PartRelation::apart         ? got == Seen::free
-                              : relation == PartRelation::overlapping ? got == Seen::blocked
-                                                                      : got == Seen::contact || got == Seen::touching;
+          const PartRelation relation = relation_at(models[k], x * s, y * s);
+          const bool agrees = agrees_with(relation, got);
           if (!agrees && ++wrong <= 3)
             ADD_FAILURE() << "at (" << x.get_str() << ", " << y.get_str() << ") x scale: located " << static_cast<int>(got)
                           << ", the overlap predicate says " << static_cast<int>(relation);
@@ -403,6 +423,158 @@ TEST(CSpaceScale, LengthCoordinatesBeyondTheDoublesAreRefusedClearly) {
   } catch (const GeometryError& e) {
     EXPECT_NE(std::string(e.what()).find("beyond 2^1016 mm"), std::string::npos) << e.what();
   }
+}
+
+// v / 2^unit, exactly: a length in mm in the units of a space built in 2^unit mm.
+Rational in_units(Rational v, long unit) {
+  if (unit > 0) mpq_div_2exp(v.get_mpq_t(), v.get_mpq_t(), static_cast<mp_bitcnt_t>(unit));
+  if (unit < 0) mpq_mul_2exp(v.get_mpq_t(), v.get_mpq_t(), static_cast<mp_bitcnt_t>(-unit));
+  return v;
+}
+
+Rational exact_of(const nlohmann::json& text) {
+  Rational r(text.get<std::string>());
+  r.canonicalize();
+  return r;
+}
+
+nlohmann::json space_json(const CSpace& space) {
+  std::ostringstream out;
+  cli::write_space_json(out, space, false);
+  return nlohmann::json::parse(out.str());
+}
+
+// A "decimal" field (a number, or a string beyond the doubles' range) within 2^-50 of `exact`
+// relatively.
+bool decimal_near(const nlohmann::json& decimal, const Rational& exact) {
+  mpfr_t d, e;
+  mpfr_inits2(128, d, e, static_cast<mpfr_ptr>(nullptr));
+  if (decimal.is_string())
+    mpfr_set_str(d, decimal.get<std::string>().c_str(), 10, MPFR_RNDN);
+  else
+    mpfr_set_d(d, decimal.get<double>(), MPFR_RNDN);
+  mpfr_set_q(e, exact.get_mpq_t(), MPFR_RNDN);
+  mpfr_sub(d, d, e, MPFR_RNDN);
+  mpfr_abs(d, d, MPFR_RNDN);
+  mpfr_abs(e, e, MPFR_RNDN);
+  mpfr_mul_2si(e, e, -50, MPFR_RNDN);
+  const bool near = mpfr_lessequal_p(d, e) != 0;
+  mpfr_clears(d, e, static_cast<mpfr_ptr>(nullptr));
+  return near;
+}
+
+// Uniform x 10^400 (every length beyond 2^1016 mm) and, with arcs, x 10^-305 (every length
+// below 2^-1000 mm) of a translating pair: refused until session 49 (scale49b); now built,
+// when asked (CSpaceBuildOptions::normalise_lengths, as `hipair cspace` does), on the copy
+// scaled by 2^-L, its lengths in units of 2^L mm. Against the pair at scale 1: every grid
+// point and exact vertex S x p (in the space's units) locates as p does at 1 and as the exact
+// overlap predicate says on the model at S; the JSON (mm) has the charts' ends and, for
+// polygon pairs, the vertices' exact coordinates of scale 1 times S exactly, each decimal
+// within 2^-50 of its exact value (a string where the double overflows), and the edges'
+// coordinate extents hold their end vertices. x 10^-300 (built as is before and now) too.
+TEST(CSpaceScale, TranslatingPairsBeyondTheDoublesAreBuiltInUnitsOfAPowerOfTwo) {
+  std::mt19937_64 random(4049);
+  CSpaceBuildOptions normalise;
+  normalise.normalise_lengths = true;
+  int compared = 0, unit_spaces = 0;
+  for (int instance = 0; instance < 6; ++instance) {
+    SCOPED_TRACE("instance " + std::to_string(instance));
+    const bool arcs = instance % 3 == 2;
+    Points a = random_star(random, 3 + static_cast<int>(random() % 5), 0, 0, 3);
+    Points b = random_star(random, 3 + static_cast<int>(random() % 5), 1, -1, 3);
+    Rational cx(static_cast<long>(random() % 5) - 2), cy(static_cast<long>(random() % 5) - 2);
+    auto model_at = [&](const Rational& s) {
+      return read_model(sliders_json(polygon_loop(a, s), arcs ? arc_loops(instance % 2, cx, cy, s) : polygon_loop(b, s), s));
+    };
+    const Model base = model_at(Rational(1));
+    const CSpace space1 = CSpace::build(base, "a", "b");
+    const nlohmann::json json1 = space_json(space1);
+    std::vector<std::pair<Rational, Rational>> points = half_grid(4);
+    for (const CSpaceVertex& v : space1.vertices())
+      if (v.x.exact && v.y_exact && v.y.exact) points.emplace_back(v.x.lower, v.y.lower);
+    std::vector<Scale> scales = {{power(10, 400), "10^400"}, {power(10, -300), "10^-300"}};
+    if (arcs) scales.push_back({power(10, -305), "10^-305"});
+    for (const Scale& scale : scales) {
+      SCOPED_TRACE("scale " + scale.name);
+      const Rational& s = scale.factor;
+      const Model model = model_at(s);
+      std::optional<CSpace> built;
+      try {
+        built = CSpace::build(model, "a", "b", normalise);
+      } catch (const Error& e) {
+        ADD_FAILURE() << e.what();
+        continue;
+      }
+      const CSpace& space = *built;
+      const long unit = space.length_unit_exponent();
+      unit_spaces += unit != 0;
+      int wrong = 0, contacts = 0;
+      for (const auto& [x, y] : points) {
+        const Seen expected = seen(space1, x, y);
+        const Seen got = seen(space, in_units(x * s, unit), in_units(y * s, unit));
+        EXPECT_EQ(static_cast<int>(got), static_cast<int>(expected)) << "at (" << x.get_str() << ", " << y.get_str() << ") x scale";
+        contacts += got == Seen::contact;
+        if (got == Seen::outside) continue;
+        const PartRelation relation = relation_at(model, x * s, y * s);
+        const bool agrees = agrees_with(relation, got);
+        if (!agrees && ++wrong <= 3)
+          ADD_FAILURE() << "at (" << x.get_str() << ", " << y.get_str() << ") x scale: located " << static_cast<int>(got)
+                        << ", the overlap predicate says " << static_cast<int>(relation);
+      }
+      EXPECT_EQ(wrong, 0);
+      EXPECT_GT(contacts, 0);
+      const nlohmann::json json = space_json(space);
+      ASSERT_EQ(json["charts"].size(), json1["charts"].size());
+      for (std::size_t c = 0; c < json["charts"].size(); ++c)
+        for (const char* axis : {"x", "y"})
+          for (const char* end : {"lo", "hi"})
+            EXPECT_EQ(exact_of(json["charts"][c][axis][end]), exact_of(json1["charts"][c][axis][end]) * s);
+      // every vertex: its decimals near its exact values; its edges' extents hold it
+      std::vector<std::pair<Rational, Rational>> vertices, vertices1;
+      for (const auto& v : json["vertices"]) {
+        if (!v["x"].contains("interval") && !v["y"].contains("interval")) {
+          const Rational x = exact_of(v["x"]["exact"]), y = exact_of(v["y"]["exact"]);
+          vertices.emplace_back(x, y);
+          EXPECT_TRUE(decimal_near(v["x"]["decimal"], x)) << v["x"].dump();
+          EXPECT_TRUE(decimal_near(v["y"]["decimal"], y)) << v["y"].dump();
+        }
+      }
+      for (const auto& v : json1["vertices"])
+        if (!v["x"].contains("interval") && !v["y"].contains("interval"))
+          vertices1.emplace_back(exact_of(v["x"]["exact"]) * s, exact_of(v["y"]["exact"]) * s);
+      for (const auto& edge : json["edges"])
+        for (const char* end : {"source", "target"}) {
+          const auto& v = json["vertices"][edge[end].get<std::size_t>()];
+          if (v["x"].contains("interval")) continue;
+          const Rational x = exact_of(v["x"]["exact"]);
+          auto bound = [](const nlohmann::json& d, mpfr_rnd_t round) {   // outward: still an enclosure
+            mpfr_t m;
+            mpfr_init2(m, 128);
+            if (d.is_string())
+              mpfr_set_str(m, d.get<std::string>().c_str(), 10, round);
+            else
+              mpfr_set_d(m, d.get<double>(), MPFR_RNDN);
+            mpq_class q;
+            mpfr_get_q(q.get_mpq_t(), m);
+            mpfr_clear(m);
+            return Rational(q);
+          };
+          const auto& range = edge["extent_coordinates"]["x"];
+          EXPECT_TRUE(bound(range[0], MPFR_RNDD) <= x && x <= bound(range[1], MPFR_RNDU)) << range.dump() << " misses " << x.get_str();
+        }
+      if (!arcs) {   // polygon pairs: the same exact vertices, times S (their lists may differ in order)
+        std::sort(vertices.begin(), vertices.end());
+        std::sort(vertices1.begin(), vertices1.end());
+        EXPECT_EQ(vertices.size(), vertices1.size());
+        EXPECT_TRUE(vertices == vertices1) << "the vertices at scale are not scale x those at 1";
+        EXPECT_EQ(json["cells"].size(), json1["cells"].size());
+        EXPECT_EQ(json["edges"].size(), json1["edges"].size());
+      }
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 14);
+  EXPECT_EQ(unit_spaces, 8);   // 10^400 six times, 10^-305 twice
 }
 
 }  // namespace
