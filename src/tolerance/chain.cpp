@@ -946,6 +946,12 @@ class ChainAnalysis {
         // or the whole box's alone where a half fails.
         std::optional<Interval> whole;
         std::vector<Interval> whole_charts;
+        // both halves of a sub-box, along parameter `split`, queued for composition
+        auto bisect = [&pending](const Box& box, std::size_t split) {
+          auto [left, right] = halves(box, split);
+          pending.push_back(std::move(left));
+          pending.push_back(std::move(right));
+        };
         while (!pending.empty()) {
           Box b = std::move(pending.front());
           pending.pop_front();
@@ -979,9 +985,7 @@ class ChainAnalysis {
             for (std::size_t p = 0; p < n; ++p) explained += loss[p] * (b.hi[p] - b.lo[p]);
             std::size_t split = explained >= 0.5 * excess ? widest(b, loss, 0.1 * excess) : n;
             if (split < n) {
-              auto [left, right] = halves(b, split);
-              pending.push_back(std::move(left));
-              pending.push_back(std::move(right));
+              bisect(b, split);
               ++shared_splits;
               continue;
             }
@@ -991,9 +995,7 @@ class ChainAnalysis {
             if (split < n && used + pending.size() + 2 <= max_failure_boxes) {
               whole = out;
               whole_charts = charts;
-              auto [left, right] = halves(b, split);
-              pending.push_back(std::move(left));
-              pending.push_back(std::move(right));
+              bisect(b, split);
               ++failure_splits;
               continue;
             }
@@ -1008,9 +1010,7 @@ class ChainAnalysis {
             if (failed < stages_.size() && used + pending.size() + 2 <= max_failure_boxes) {
               std::size_t split = widest(b, share[failed], 0);
               if (split < n) {
-                auto [left, right] = halves(b, split);
-                pending.push_back(std::move(left));
-                pending.push_back(std::move(right));
+                bisect(b, split);
                 ++failure_splits;
                 continue;
               }
