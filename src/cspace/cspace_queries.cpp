@@ -29,6 +29,7 @@
 #include "cspace/scan_memo.hpp"
 #include "cspace/slopes_memo.hpp"
 #include "cspace/start_filter.hpp"
+#include "core/kept_per_thread.hpp"
 #include "curves/pose.hpp"
 #include "kernels/contact_geometry.hpp"
 #include "kernels/implicit_curve.hpp"
@@ -2586,7 +2587,8 @@ class CrossingRun {
 
   CrossingRun(const CSpace& space, const MotionPath& input, const CrossingOptions& options)
       : impl(checked(space)),
-        path(canonical(input)),
+        kept(Kept::take()),
+        path(canonical(kept->path, input)),
         owner(CSpaceAccess::shared(space)),
         scanner(impl, path, scan_memo_of(owner)),
         options(options) {}
@@ -2649,8 +2651,9 @@ class CrossingRun {
   }
 
  private:
-  static MotionPath canonical(const MotionPath& input) {
-    MotionPath path = input;
+  // `input` canonical in `path` (a kept path: copied into its rationals, their limbs reused)
+  static MotionPath& canonical(MotionPath& path, const MotionPath& input) {
+    path = input;
     for (auto* axis : {&path.x, &path.y})
       for (auto& c : axis->coefficients) c.canonicalize();
     path.u_begin.canonicalize();
@@ -2658,6 +2661,31 @@ class CrossingRun {
     if (path.u_end < path.u_begin) throw GeometryError("first_crossing: u_end < u_begin");
     return path;
   }
+
+  // The query's working storage that outlives it on its thread (exact_bound.hpp, kept_runs):
+  // its canonical path, its stack's slots and the rationals its steps write before they read
+  // them; a taken one's stack is emptied, its path and rationals are overwritten before use.
+  struct Kept {
+    MotionPath path;
+    StretchStack stack;
+    Rational resolution;
+    Rational stretch_a, stretch_b;   // the stretch being evaluated (step())
+    Rational skip_bound;              // free_before's product
+    static void dispose(Kept* p) { delete p; }
+    using Pool = KeptPerThread<Kept, 8>;
+    struct Back {
+      void operator()(Kept* p) const noexcept {
+        if (!cspace::kept_runs() || !Pool::keep(p)) dispose(p);
+      }
+    };
+    static std::unique_ptr<Kept, Back> take() {
+      Kept* p = cspace::kept_runs() ? Pool::take() : nullptr;
+      if (!p) return std::unique_ptr<Kept, Back>(new Kept);
+      ++cspace::kept_run_reuses();
+      p->stack.clear();
+      return std::unique_ptr<Kept, Back>(p);
+    }
+  };
 
   // a real edge of `possible` curves near the crossing, its feature pairs, chart point and frame
   // (not in a StatusOnlyCrossings scope: its caller reads none of them)
@@ -3028,17 +3056,19 @@ class CrossingRun {
   }
 
   const Impl& impl;
-  MotionPath path;
+  std::unique_ptr<Kept, Kept::Back> kept;
+  MotionPath& path;
   std::shared_ptr<const Impl> owner;
   MotionScanner scanner;
   CrossingOptions options;
   MotionCrossing result;
   bool started = false, done = false;
-  Rational resolution;
+  Rational& resolution = kept->resolution;
   double resolution_d = 0;
-  StretchStack stack;
-  Rational stretch_a, stretch_b;   // the stretch being evaluated (step())
-  Rational skip_bound;              // free_before's product (kept: its limbs reused)
+  StretchStack& stack = kept->stack;
+  Rational& stretch_a = kept->stretch_a;
+  Rational& stretch_b = kept->stretch_b;
+  Rational& skip_bound = kept->skip_bound;
   // the rationals a step works in (midpoints, cells, widths), per thread: kept between steps and
   // queries so that their limbs are reused, and never held across a step (the sweep's queries
   // take their steps one at a time on a thread)
@@ -3075,39 +3105,25 @@ struct CrossingQuery::State : CrossingRun {
   using CrossingRun::CrossingRun;
 
   static void* operator new(std::size_t size) {
-    Blocks& kept = blocks;
-    if (size == sizeof(State) && kept.count > 0) return kept.block[--kept.count];
+    if (size == sizeof(State) && cspace::kept_runs())
+      if (Block* kept = Blocks::take()) {
+        ++cspace::kept_block_reuses();
+        return kept;
+      }
     return ::operator new(size);
   }
   static void operator delete(void* p, std::size_t size) noexcept {
-    Blocks& kept = blocks;
-    if (size == sizeof(State) && !kept.closed && kept.count < kept.block.size()) {
-      (void)&release;   // (its first use on this thread registers its release at the thread's exit)
-      kept.block[kept.count++] = p;
-      return;
-    }
+    if (size == sizeof(State) && cspace::kept_runs() && Blocks::keep(static_cast<Block*>(p))) return;
     ::operator delete(p);
   }
 
  private:
-  // (trivially destructible: usable until the thread's very end; `release` empties it first)
-  struct Blocks {
-    std::array<void*, 4> block;
-    std::size_t count;
-    bool closed;
+  // a freed block's memory (no object lives in it while kept)
+  struct Block {
+    static void dispose(Block* p) { ::operator delete(p); }
   };
-  static thread_local Blocks blocks;
-  struct Release {
-    ~Release() {
-      Blocks& kept = blocks;
-      kept.closed = true;
-      while (kept.count > 0) ::operator delete(kept.block[--kept.count]);
-    }
-  };
-  static thread_local Release release;
+  using Blocks = KeptPerThread<Block, 4>;
 };
-thread_local CrossingQuery::State::Blocks CrossingQuery::State::blocks{};
-thread_local CrossingQuery::State::Release CrossingQuery::State::release;
 
 CrossingQuery::CrossingQuery(const CSpace& space, const MotionPath& path, const CrossingOptions& options)
     : state_(std::make_unique<State>(space, path, options)) {}
