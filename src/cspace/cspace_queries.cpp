@@ -147,12 +147,6 @@ std::optional<RInterval> evaluate_path_filtered(const std::vector<KInterval>& p,
   return RInterval{Rational(value->lo), Rational(value->hi)};
 }
 
-std::vector<KInterval> enclosed_coefficients(const std::vector<Rational>& p) {
-  std::vector<KInterval> result;
-  for (const Rational& c : p) result.push_back(cspace::enclose_exact(c));   // KInterval::enclose's doubles (dyadic.hpp)
-  return result;
-}
-
 // ------------------------------------------------------------------ feature geometry
 
 template <class T, class Convert>
@@ -1780,8 +1774,26 @@ std::optional<int> enclosed_fibre_sign(const CSpace& space, std::size_t index, c
 
 class MotionScanner {
  public:
-  MotionScanner(const CSpace::Impl& impl, const MotionPath& path, std::shared_ptr<ScanMemo> memo)
-      : impl_(impl), path_(path), memo_(std::move(memo)) {
+  // The scanner's scratch and per-path vectors, kept with its query's storage between queries
+  // (CrossingRun::Kept): each is rewritten before it is read (the ends' memo counts its entries
+  // from none, the path's enclosures are filled again, exclude and locate_inside reset theirs).
+  struct Storage {
+    std::array<std::pair<Rational, KInterval>, 4> ends{};
+    std::vector<std::vector<KInterval>> enclosed, enclosed_rate, enclosed_acceleration;
+    std::vector<char> candidate;
+    std::vector<Possible> hull_possible;
+  };
+
+  MotionScanner(const CSpace::Impl& impl, const MotionPath& path, std::shared_ptr<ScanMemo> memo, Storage& storage)
+      : impl_(impl),
+        path_(path),
+        ends_(storage.ends),
+        enclosed_(storage.enclosed),
+        enclosed_rate_(storage.enclosed_rate),
+        enclosed_acceleration_(storage.enclosed_acceleration),
+        memo_(std::move(memo)),
+        candidate_(storage.candidate),
+        hull_possible_(storage.hull_possible) {
     auto check = [&](const AxisPath& axis, AxisKind kind, const char* which) {
       bool rotation = axis.kind != AxisPath::Kind::offset;
       if (rotation != (kind == AxisKind::rotation))
@@ -1791,16 +1803,23 @@ class MotionScanner {
     };
     check(path.x, impl.public_charts.at(0).x_kind, "x");
     if (impl.dimension == 2) check(path.y, impl.public_charts.at(0).y_kind, "y");
-    for (const AxisPath* axis : {&path.x, &path.y}) {
-      // the derivatives' coefficients i c_i and i (i - 1) c_i enclosed (cspace::enclose_multiple:
-      // KInterval::enclose of the exact product, from the double where c_i is one)
-      const std::vector<Rational>& c = axis->coefficients;
-      std::vector<KInterval> d, dd;
+    enclosed_.resize(2);
+    enclosed_rate_.resize(2);
+    enclosed_acceleration_.resize(2);
+    for (std::size_t k = 0; k < 2; ++k) {
+      // the path's coefficients c_i (KInterval::enclose's doubles, dyadic.hpp) and its
+      // derivatives' i c_i and i (i - 1) c_i enclosed (cspace::enclose_multiple: KInterval::enclose
+      // of the exact product, from the double where c_i is one)
+      const std::vector<Rational>& c = (k == 0 ? path.x : path.y).coefficients;
+      std::vector<KInterval>& e = enclosed_[k];
+      std::vector<KInterval>& d = enclosed_rate_[k];
+      std::vector<KInterval>& dd = enclosed_acceleration_[k];
+      e.clear();
+      d.clear();
+      dd.clear();
+      for (const Rational& ci : c) e.push_back(cspace::enclose_exact(ci));
       for (std::size_t i = 1; i < c.size(); ++i) d.push_back(cspace::enclose_multiple(c[i], static_cast<long>(i)));
       for (std::size_t i = 2; i < c.size(); ++i) dd.push_back(cspace::enclose_multiple(c[i], static_cast<long>(i * (i - 1))));
-      enclosed_.push_back(enclosed_coefficients(c));
-      enclosed_rate_.push_back(std::move(d));
-      enclosed_acceleration_.push_back(std::move(dd));
     }
   }
 
@@ -2527,7 +2546,7 @@ class MotionScanner {
 
   const CSpace::Impl& impl_;
   const MotionPath& path_;
-  mutable std::array<std::pair<Rational, KInterval>, 4> ends_{};   // enclosure()'s memo
+  std::array<std::pair<Rational, KInterval>, 4>& ends_;   // enclosure()'s memo
   mutable std::size_t next_end_ = 0, filled_ends_ = 0;
   struct PathValue {
     std::uint64_t lo = 0, hi = 0;   // A.lo, B.hi's bit patterns
@@ -2562,12 +2581,12 @@ class MotionScanner {
   std::optional<StartPieces> start_;
   // per axis (x, y): the path's coefficients and those of its first and second derivatives,
   // enclosed in doubles
-  std::vector<std::vector<KInterval>> enclosed_, enclosed_rate_, enclosed_acceleration_;
+  std::vector<std::vector<KInterval>>&enclosed_, &enclosed_rate_, &enclosed_acceleration_;
   // per chart, per local curve: memos filled on first use, shared by the space's queries
   using Clauses = ScanMemo::Clauses;
   std::shared_ptr<ScanMemo> memo_;
-  std::vector<char> candidate_;   // exclude()'s scratch
-  std::vector<Possible> hull_possible_;   // locate_inside's
+  std::vector<char>& candidate_;   // exclude()'s scratch
+  std::vector<Possible>& hull_possible_;   // locate_inside's
 };
 
 }  // namespace
@@ -2590,7 +2609,7 @@ class CrossingRun {
         kept(Kept::take()),
         path(canonical(kept->path, input)),
         owner(CSpaceAccess::shared(space)),
-        scanner(impl, path, scan_memo_of(owner)),
+        scanner(impl, path, scan_memo_of(owner), kept->scanner),
         options(options) {}
 
   // its start's box and the stretches it excluded are left as anchor boxes (finished or stopped)
@@ -2671,6 +2690,7 @@ class CrossingRun {
     Rational resolution;
     Rational stretch_a, stretch_b;   // the stretch being evaluated (step())
     Rational skip_bound;              // free_before's product
+    MotionScanner::Storage scanner;
     static void dispose(Kept* p) { delete p; }
     using Pool = KeptPerThread<Kept, 8>;
     struct Back {
