@@ -29,11 +29,8 @@ namespace {
 // the example spaces asked with the switch on and off in a random order
 TEST(CSpaceKeptRuns, AnswersAreThoseWithFreshStorage) {
   test::SwitchCounts counts;
-  std::uint64_t seed = 500;
-  for (const std::unique_ptr<CSpace>& space : test::example_spaces()) {
-    test::switch_answers_equal<&cspace::kept_runs, &cspace::kept_run_reuses>(*space, 120, ++seed, counts);
-    ASSERT_FALSE(HasFatalFailure());
-  }
+  test::switch_answers_equal_on_examples<&cspace::kept_runs, &cspace::kept_run_reuses>(120, 500, counts);
+  ASSERT_FALSE(HasFatalFailure());
   std::printf("motions %d: crossing %d, none %d, other %d; kept storage taken %zu\n", counts.motions, counts.crossing,
               counts.none, counts.other, counts.hits);
   EXPECT_GE(counts.motions, 500);
