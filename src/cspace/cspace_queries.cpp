@@ -29,6 +29,7 @@
 #include "cspace/scan_memo.hpp"
 #include "cspace/slopes_memo.hpp"
 #include "cspace/start_filter.hpp"
+#include "core/kept_per_thread.hpp"
 #include "curves/pose.hpp"
 #include "kernels/contact_geometry.hpp"
 #include "kernels/implicit_curve.hpp"
@@ -144,12 +145,6 @@ std::optional<RInterval> evaluate_path_filtered(const std::vector<KInterval>& p,
   std::optional<KInterval> value = evaluate_path_filtered_d(p, KInterval::enclose(a), KInterval::enclose(b));
   if (!value) return std::nullopt;
   return RInterval{Rational(value->lo), Rational(value->hi)};
-}
-
-std::vector<KInterval> enclosed_coefficients(const std::vector<Rational>& p) {
-  std::vector<KInterval> result;
-  for (const Rational& c : p) result.push_back(cspace::enclose_exact(c));   // KInterval::enclose's doubles (dyadic.hpp)
-  return result;
 }
 
 // ------------------------------------------------------------------ feature geometry
@@ -1779,8 +1774,26 @@ std::optional<int> enclosed_fibre_sign(const CSpace& space, std::size_t index, c
 
 class MotionScanner {
  public:
-  MotionScanner(const CSpace::Impl& impl, const MotionPath& path, std::shared_ptr<ScanMemo> memo)
-      : impl_(impl), path_(path), memo_(std::move(memo)) {
+  // The scanner's scratch and per-path vectors, kept with its query's storage between queries
+  // (CrossingRun::Kept): each is rewritten before it is read (the ends' memo counts its entries
+  // from none, the path's enclosures are filled again, exclude and locate_inside reset theirs).
+  struct Storage {
+    std::array<std::pair<Rational, KInterval>, 4> ends{};
+    std::vector<std::vector<KInterval>> enclosed, enclosed_rate, enclosed_acceleration;
+    std::vector<char> candidate;
+    std::vector<Possible> hull_possible;
+  };
+
+  MotionScanner(const CSpace::Impl& impl, const MotionPath& path, std::shared_ptr<ScanMemo> memo, Storage& storage)
+      : impl_(impl),
+        path_(path),
+        ends_(storage.ends),
+        enclosed_(storage.enclosed),
+        enclosed_rate_(storage.enclosed_rate),
+        enclosed_acceleration_(storage.enclosed_acceleration),
+        memo_(std::move(memo)),
+        candidate_(storage.candidate),
+        hull_possible_(storage.hull_possible) {
     auto check = [&](const AxisPath& axis, AxisKind kind, const char* which) {
       bool rotation = axis.kind != AxisPath::Kind::offset;
       if (rotation != (kind == AxisKind::rotation))
@@ -1790,16 +1803,23 @@ class MotionScanner {
     };
     check(path.x, impl.public_charts.at(0).x_kind, "x");
     if (impl.dimension == 2) check(path.y, impl.public_charts.at(0).y_kind, "y");
-    for (const AxisPath* axis : {&path.x, &path.y}) {
-      // the derivatives' coefficients i c_i and i (i - 1) c_i enclosed (cspace::enclose_multiple:
-      // KInterval::enclose of the exact product, from the double where c_i is one)
-      const std::vector<Rational>& c = axis->coefficients;
-      std::vector<KInterval> d, dd;
+    enclosed_.resize(2);
+    enclosed_rate_.resize(2);
+    enclosed_acceleration_.resize(2);
+    for (std::size_t k = 0; k < 2; ++k) {
+      // the path's coefficients c_i (KInterval::enclose's doubles, dyadic.hpp) and its
+      // derivatives' i c_i and i (i - 1) c_i enclosed (cspace::enclose_multiple: KInterval::enclose
+      // of the exact product, from the double where c_i is one)
+      const std::vector<Rational>& c = (k == 0 ? path.x : path.y).coefficients;
+      std::vector<KInterval>& e = enclosed_[k];
+      std::vector<KInterval>& d = enclosed_rate_[k];
+      std::vector<KInterval>& dd = enclosed_acceleration_[k];
+      e.clear();
+      d.clear();
+      dd.clear();
+      for (const Rational& ci : c) e.push_back(cspace::enclose_exact(ci));
       for (std::size_t i = 1; i < c.size(); ++i) d.push_back(cspace::enclose_multiple(c[i], static_cast<long>(i)));
       for (std::size_t i = 2; i < c.size(); ++i) dd.push_back(cspace::enclose_multiple(c[i], static_cast<long>(i * (i - 1))));
-      enclosed_.push_back(enclosed_coefficients(c));
-      enclosed_rate_.push_back(std::move(d));
-      enclosed_acceleration_.push_back(std::move(dd));
     }
   }
 
@@ -2526,7 +2546,7 @@ class MotionScanner {
 
   const CSpace::Impl& impl_;
   const MotionPath& path_;
-  mutable std::array<std::pair<Rational, KInterval>, 4> ends_{};   // enclosure()'s memo
+  std::array<std::pair<Rational, KInterval>, 4>& ends_;   // enclosure()'s memo
   mutable std::size_t next_end_ = 0, filled_ends_ = 0;
   struct PathValue {
     std::uint64_t lo = 0, hi = 0;   // A.lo, B.hi's bit patterns
@@ -2561,12 +2581,12 @@ class MotionScanner {
   std::optional<StartPieces> start_;
   // per axis (x, y): the path's coefficients and those of its first and second derivatives,
   // enclosed in doubles
-  std::vector<std::vector<KInterval>> enclosed_, enclosed_rate_, enclosed_acceleration_;
+  std::vector<std::vector<KInterval>>&enclosed_, &enclosed_rate_, &enclosed_acceleration_;
   // per chart, per local curve: memos filled on first use, shared by the space's queries
   using Clauses = ScanMemo::Clauses;
   std::shared_ptr<ScanMemo> memo_;
-  std::vector<char> candidate_;   // exclude()'s scratch
-  std::vector<Possible> hull_possible_;   // locate_inside's
+  std::vector<char>& candidate_;   // exclude()'s scratch
+  std::vector<Possible>& hull_possible_;   // locate_inside's
 };
 
 }  // namespace
@@ -2586,9 +2606,10 @@ class CrossingRun {
 
   CrossingRun(const CSpace& space, const MotionPath& input, const CrossingOptions& options)
       : impl(checked(space)),
-        path(canonical(input)),
+        kept(Kept::take()),
+        path(canonical(kept->path, input)),
         owner(CSpaceAccess::shared(space)),
-        scanner(impl, path, scan_memo_of(owner)),
+        scanner(impl, path, scan_memo_of(owner), kept->scanner),
         options(options) {}
 
   // its start's box and the stretches it excluded are left as anchor boxes (finished or stopped)
@@ -2649,8 +2670,9 @@ class CrossingRun {
   }
 
  private:
-  static MotionPath canonical(const MotionPath& input) {
-    MotionPath path = input;
+  // `input` canonical in `path` (a kept path: copied into its rationals, their limbs reused)
+  static MotionPath& canonical(MotionPath& path, const MotionPath& input) {
+    path = input;
     for (auto* axis : {&path.x, &path.y})
       for (auto& c : axis->coefficients) c.canonicalize();
     path.u_begin.canonicalize();
@@ -2658,6 +2680,32 @@ class CrossingRun {
     if (path.u_end < path.u_begin) throw GeometryError("first_crossing: u_end < u_begin");
     return path;
   }
+
+  // The query's working storage that outlives it on its thread (exact_bound.hpp, kept_runs):
+  // its canonical path, its stack's slots and the rationals its steps write before they read
+  // them; a taken one's stack is emptied, its path and rationals are overwritten before use.
+  struct Kept {
+    MotionPath path;
+    StretchStack stack;
+    Rational resolution;
+    Rational stretch_a, stretch_b;   // the stretch being evaluated (step())
+    Rational skip_bound;              // free_before's product
+    MotionScanner::Storage scanner;
+    static void dispose(Kept* p) { delete p; }
+    using Pool = KeptPerThread<Kept, 8>;
+    struct Back {
+      void operator()(Kept* p) const noexcept {
+        if (!cspace::kept_runs() || !Pool::keep(p)) dispose(p);
+      }
+    };
+    static std::unique_ptr<Kept, Back> take() {
+      Kept* p = cspace::kept_runs() ? Pool::take() : nullptr;
+      if (!p) return std::unique_ptr<Kept, Back>(new Kept);
+      ++cspace::kept_run_reuses();
+      p->stack.clear();
+      return std::unique_ptr<Kept, Back>(p);
+    }
+  };
 
   // a real edge of `possible` curves near the crossing, its feature pairs, chart point and frame
   // (not in a StatusOnlyCrossings scope: its caller reads none of them)
@@ -3028,17 +3076,19 @@ class CrossingRun {
   }
 
   const Impl& impl;
-  MotionPath path;
+  std::unique_ptr<Kept, Kept::Back> kept;
+  MotionPath& path;
   std::shared_ptr<const Impl> owner;
   MotionScanner scanner;
   CrossingOptions options;
   MotionCrossing result;
   bool started = false, done = false;
-  Rational resolution;
+  Rational& resolution = kept->resolution;
   double resolution_d = 0;
-  StretchStack stack;
-  Rational stretch_a, stretch_b;   // the stretch being evaluated (step())
-  Rational skip_bound;              // free_before's product (kept: its limbs reused)
+  StretchStack& stack = kept->stack;
+  Rational& stretch_a = kept->stretch_a;
+  Rational& stretch_b = kept->stretch_b;
+  Rational& skip_bound = kept->skip_bound;
   // the rationals a step works in (midpoints, cells, widths), per thread: kept between steps and
   // queries so that their limbs are reused, and never held across a step (the sweep's queries
   // take their steps one at a time on a thread)
@@ -3075,39 +3125,25 @@ struct CrossingQuery::State : CrossingRun {
   using CrossingRun::CrossingRun;
 
   static void* operator new(std::size_t size) {
-    Blocks& kept = blocks;
-    if (size == sizeof(State) && kept.count > 0) return kept.block[--kept.count];
+    if (size == sizeof(State) && cspace::kept_runs())
+      if (Block* kept = Blocks::take()) {
+        ++cspace::kept_block_reuses();
+        return kept;
+      }
     return ::operator new(size);
   }
   static void operator delete(void* p, std::size_t size) noexcept {
-    Blocks& kept = blocks;
-    if (size == sizeof(State) && !kept.closed && kept.count < kept.block.size()) {
-      (void)&release;   // (its first use on this thread registers its release at the thread's exit)
-      kept.block[kept.count++] = p;
-      return;
-    }
+    if (size == sizeof(State) && cspace::kept_runs() && Blocks::keep(static_cast<Block*>(p))) return;
     ::operator delete(p);
   }
 
  private:
-  // (trivially destructible: usable until the thread's very end; `release` empties it first)
-  struct Blocks {
-    std::array<void*, 4> block;
-    std::size_t count;
-    bool closed;
+  // a freed block's memory (no object lives in it while kept)
+  struct Block {
+    static void dispose(Block* p) { ::operator delete(p); }
   };
-  static thread_local Blocks blocks;
-  struct Release {
-    ~Release() {
-      Blocks& kept = blocks;
-      kept.closed = true;
-      while (kept.count > 0) ::operator delete(kept.block[--kept.count]);
-    }
-  };
-  static thread_local Release release;
+  using Blocks = KeptPerThread<Block, 4>;
 };
-thread_local CrossingQuery::State::Blocks CrossingQuery::State::blocks{};
-thread_local CrossingQuery::State::Release CrossingQuery::State::release;
 
 CrossingQuery::CrossingQuery(const CSpace& space, const MotionPath& path, const CrossingOptions& options)
     : state_(std::make_unique<State>(space, path, options)) {}

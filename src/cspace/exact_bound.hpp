@@ -25,6 +25,19 @@ namespace hipair::cspace {
 struct LazyBoundsTag;
 inline bool& lazy_bounds() { return thread_switch<LazyBoundsTag>(); }
 
+// A crossing query's working storage kept per thread between queries (cspace_queries.cpp,
+// CrossingRun::Kept: the canonical path, the stretch stack's slots, the step's rationals; and
+// CrossingQuery's state block): the next query on the thread takes them instead of allocating
+// them again. On by default; off on a thread, every query makes and frees its own, as before
+// session 50 (tests compare the answers: CSpaceKeptRuns.*). The counters count the queries on
+// this thread that took kept storage and kept state blocks.
+struct KeptRunsTag;
+inline bool& kept_runs() { return thread_switch<KeptRunsTag>(); }
+struct KeptRunReusesTag;
+inline std::size_t& kept_run_reuses() { return thread_counter<KeptRunReusesTag>(); }
+struct KeptBlockReusesTag;
+inline std::size_t& kept_block_reuses() { return thread_counter<KeptBlockReusesTag>(); }
+
 // An exact bound of a stretch's piece or box, held without a GMP rational where it can be:
 // a finite double (the number is exactly that double: the filtered pieces' bounds), a rational
 // owned, or a rational borrowed from the space (a chart's side, which outlives the scanner and
@@ -110,6 +123,11 @@ class StretchStack {
   void pop_back() {
     --size_;
     if (!lazy_bounds()) slots_.resize(size_);   // switched off: no slot kept, every push a new one
+  }
+  // empty again (a kept stack taken by the next query: its slots kept, none of them on the stack)
+  void clear() {
+    size_ = 0;
+    if (!lazy_bounds()) slots_.clear();
   }
   void emplace_back(const Rational& a, const Rational& b) {
     if (size_ == slots_.size()) slots_.emplace_back();

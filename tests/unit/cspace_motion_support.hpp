@@ -289,4 +289,13 @@ void switch_answers_equal(const CSpace& space, int count, std::uint64_t seed, Sw
   }
 }
 
+// switch_answers_equal on each of the example spaces (example_spaces()), seeds seed + 1, + 2, ...
+template <bool& (*Flag)(), std::size_t& (*Counter)()>
+void switch_answers_equal_on_examples(int count, std::uint64_t seed, SwitchCounts& counts) {
+  for (const std::unique_ptr<CSpace>& space : example_spaces()) {
+    switch_answers_equal<Flag, Counter>(*space, count, ++seed, counts);
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+}
+
 }  // namespace hipair::test

@@ -32,12 +32,9 @@ namespace {
 
 TEST(CSpaceSecondOrderShared, AnswersAreThoseComputedPerCurve) {
   test::SwitchCounts counts;
-  std::uint64_t seed = 4900;
-  for (const std::unique_ptr<CSpace>& space : test::example_spaces()) {
-    test::switch_answers_equal<&cspace::second_order_shared, &cspace::second_order_shared_hits>(*space, 120, ++seed,
-                                                                                                counts);
-    ASSERT_FALSE(HasFatalFailure());
-  }
+  test::switch_answers_equal_on_examples<&cspace::second_order_shared, &cspace::second_order_shared_hits>(120, 4900,
+                                                                                                          counts);
+  ASSERT_FALSE(HasFatalFailure());
   std::printf("motions %d: crossing %d, none %d; shared parts taken again %zu times\n", counts.motions,
               counts.crossing, counts.none, counts.hits);
   EXPECT_GE(counts.motions, 500);
