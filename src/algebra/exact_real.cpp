@@ -41,6 +41,68 @@ Polynomial derivative(const Polynomial& p) {
 
 namespace {
 
+// Memos of pure functions of polynomials, per thread (below: gcd, square_free_part,
+// square_free_test), keyed by the coefficients.
+struct PolynomialHash {
+  std::size_t operator()(const Polynomial& p) const noexcept {
+    std::size_t h = p.size();
+    for (const mpz_class& c : p) {
+      const mpz_srcptr z = c.get_mpz_t();
+      h = h * 1000003u ^ static_cast<std::size_t>(z->_mp_size);
+      const std::size_t limbs = mpz_size(z);
+      for (std::size_t i = 0; i < limbs; ++i) h = h * 1000003u ^ static_cast<std::size_t>(mpz_getlimbn(z, static_cast<mp_size_t>(i)));
+    }
+    return h;
+  }
+};
+
+// Two polynomials in order (gcd's arguments), compared coefficient by coefficient.
+struct PolynomialPairHash {
+  std::size_t operator()(const std::pair<Polynomial, Polynomial>& key) const noexcept {
+    const PolynomialHash hash;
+    return hash(key.first) * 0x9E3779B97F4A7C15ULL ^ hash(key.second);
+  }
+};
+
+// The words a polynomial holds (its coefficients' limbs, and one for each coefficient).
+std::size_t words_of(const Polynomial& p) {
+  std::size_t words = p.size();
+  for (const mpz_class& c : p) words += mpz_size(c.get_mpz_t());
+  return words;
+}
+std::size_t words_of(const std::pair<Polynomial, Polynomial>& p) { return words_of(p.first) + words_of(p.second); }
+
+// A per-thread memo: keys and values, and the words they hold.
+template <class Key, class Hash>
+struct BoundedMemo {
+  using key_type = Key;
+  std::unordered_map<Key, Polynomial, Hash> map;
+  std::size_t words = 0;
+};
+using PolynomialMemo = BoundedMemo<Polynomial, PolynomialHash>;
+using PolynomialPairMemo = BoundedMemo<std::pair<Polynomial, Polynomial>, PolynomialPairHash>;
+
+// compute()'s value for `key`, looked up in `memo` first and remembered there (emptied when it
+// holds 4,096 entries or 2^21 words, 16 MB: a few polynomials of huge coefficients do not fill
+// a thread's memory). compute must be a pure function of key.
+template <class Memo, class Compute>
+Polynomial remembered(Memo& memo, const typename Memo::key_type& key, Compute compute) {
+  constexpr std::size_t capacity = 4096, word_budget = std::size_t{1} << 21;
+  auto found = memo.map.find(key);
+  if (found != memo.map.end()) return found->second;
+  Polynomial value = compute();
+  const std::size_t words = words_of(key) + words_of(value);
+  if (memo.map.size() >= capacity || memo.words + words > word_budget) {
+    memo.map.clear();
+    memo.words = 0;
+  }
+  if (words <= word_budget) {
+    memo.map.emplace(key, value);
+    memo.words += words;
+  }
+  return value;
+}
+
 // The sign of Sum a_i n^i d^(deg-i), the value times d^deg (d > 0): the sign of p(n/d).
 // Horner on integers held in per-thread scratch integers that keep their storage from call to
 // call (GMP grows them as needed; no allocation once they are large enough), products written
@@ -151,7 +213,10 @@ Polynomial primitive_part(const Polynomial& p) {
   return q;
 }
 
-Polynomial gcd(const Polynomial& a, const Polynomial& b) {
+namespace {
+
+// The primitive gcd by the primitive polynomial remainder sequence.
+Polynomial exact_gcd(const Polynomial& a, const Polynomial& b) {
   Polynomial x = primitive_part(a), y = primitive_part(b);
   if (x.empty()) return y;
   if (y.empty()) return x;
@@ -162,6 +227,18 @@ Polynomial gcd(const Polynomial& a, const Polynomial& b) {
     y = std::move(r);
   }
   return primitive_part(x);
+}
+
+}  // namespace
+
+// The same gcds come back again and again: the overlapping cut abscissae of the quadratic
+// traits (common_root_in_overlap) and the square-free parts of the same resultants in every
+// tile of a chart (on a 6 x 9 gears' operating region 3,916 gcds of 1,851 distinct pairs). The
+// value is a pure function of the pair (compared coefficient by coefficient), so a hit returns
+// exactly what exact_gcd would. Bounded (remembered's capacity).
+Polynomial gcd(const Polynomial& a, const Polynomial& b) {
+  thread_local PolynomialPairMemo memo;
+  return remembered(memo, std::pair<Polynomial, Polynomial>(a, b), [&] { return exact_gcd(a, b); });
 }
 
 Polynomial square_free_part(const Polynomial& p) {
@@ -1620,34 +1697,6 @@ namespace {
 // operating region, 8,000 exact square-free parts of 532 distinct polynomials). The value is a
 // pure function of the key (compared coefficient by coefficient), so a hit returns exactly
 // what square_free_part would. Bounded: emptied when it holds `capacity` polynomials.
-struct PolynomialHash {
-  std::size_t operator()(const Polynomial& p) const noexcept {
-    std::size_t h = p.size();
-    for (const mpz_class& c : p) {
-      const mpz_srcptr z = c.get_mpz_t();
-      h = h * 1000003u ^ static_cast<std::size_t>(z->_mp_size);
-      const std::size_t limbs = mpz_size(z);
-      for (std::size_t i = 0; i < limbs; ++i) h = h * 1000003u ^ static_cast<std::size_t>(mpz_getlimbn(z, static_cast<mp_size_t>(i)));
-    }
-    return h;
-  }
-};
-
-using PolynomialMemo = std::unordered_map<Polynomial, Polynomial, PolynomialHash>;
-
-// compute()'s value for `key`, looked up in `memo` first and remembered there (emptied when it
-// holds 4,096 polynomials). compute must be a pure function of key.
-template <class Compute>
-Polynomial remembered(PolynomialMemo& memo, const Polynomial& key, Compute compute) {
-  constexpr std::size_t capacity = 4096;
-  auto found = memo.find(key);
-  if (found != memo.end()) return found->second;
-  Polynomial value = compute();
-  if (memo.size() >= capacity) memo.clear();
-  memo.emplace(key, value);
-  return value;
-}
-
 Polynomial memoised_square_free_part(const Polynomial& p) {
   thread_local PolynomialMemo memo;
   return remembered(memo, p, [&] { return square_free_part(p); });
@@ -2099,16 +2148,6 @@ SignKind sign_kind(Interval v) {
   return v.lo >= 0 ? SignKind::nonnegative : v.hi <= 0 ? SignKind::nonpositive : SignKind::mixed;
 }
 
-template <SignKind S>
-Interval times(Interval a, Interval b) {
-  if constexpr (S == SignKind::nonnegative)
-    return interval_detail::times_nonnegative(a, b);
-  else if constexpr (S == SignKind::nonpositive)
-    return interval_detail::times_nonpositive(a, b);
-  else
-    return a * b;
-}
-
 // An interval in the two lanes of one two-double vector, {lo, hi}: the scalar interval
 // operations above lane by lane, the same operations in the same order on each bound, so the
 // same bits (baseline x86-64: no fused multiply-adds to contract into).
@@ -2147,7 +2186,8 @@ inline v2d outward_product(v2d p) {
   return v2d{interval_detail::down(p[0]), interval_detail::up(p[1])};
 }
 
-// The product by a factor b of sign S: times<S>'s end products, picked by a's sign as there.
+// The product by a factor b of sign S: the end products of interval_detail::times_nonnegative
+// (S nonnegative), times_nonpositive (S nonpositive) or operator* (mixed), picked by a's sign as there.
 // b >= 0: a >= 0 {a.lo b.lo, a.hi b.hi}, a <= 0 {a.lo b.hi, a.hi b.lo}, mixed {a.lo b.hi, a.hi b.hi};
 // b <= 0: a >= 0 {a.hi b.lo, a.lo b.hi}, a <= 0 {a.hi b.hi, a.lo b.lo}, mixed {a.hi b.lo, a.lo b.lo}
 // (a's lanes swapped); b mixed: operator*'s four products and its order of comparisons.
@@ -2178,10 +2218,32 @@ struct Factor {
 };
 }  // namespace lanes
 
+// One row of the nested Horner at y (the sum over j of c_j y^j, enclosed) in the two lanes:
+// the scalar form's steps inner = inner * y + c from inner = 0, bound for bound (the first
+// product, 0 times y, is `zero_y`, the same for every row).
+template <SignKind SY>
+[[gnu::always_inline]] inline lanes::v2d row_at(const std::vector<Interval>& row, const lanes::Factor<SY>& fy,
+                                                lanes::v2d zero_y) {
+  lanes::v2d inner{0, 0};
+  if (auto c = row.rbegin(); c != row.rend()) {
+    inner = lanes::outward(zero_y + lanes::load(*c));
+    for (++c; c != row.rend(); ++c) inner = lanes::outward(fy.times(inner) + lanes::load(*c));
+  }
+  return inner;
+}
+
+// The outer Horner step in x: result = result * x + inner, from result = 0 (whose product by x
+// is `zero_x`) at the first row.
+template <SignKind SX>
+[[gnu::always_inline]] inline lanes::v2d outer_step(lanes::v2d result, bool first, const lanes::Factor<SX>& fx,
+                                                    lanes::v2d zero_x, lanes::v2d inner) {
+  return lanes::outward((first ? zero_x : fx.times(result)) + inner);
+}
+
 // Nested Horner (rows in x, each row in y), the same operations in the same order for every
 // sign of x and y: the products by x and y are those of operator*, bound for bound — the
-// intervals in two vector lanes (lanes above), each lane the scalar form's bound (the scalar
-// form is rows_of and outer_horner below: the test compares the two bit for bit).
+// intervals in two vector lanes (lanes above), each lane the scalar form's bound (the test
+// compares them bit for bit with a scalar nested Horner on generic products).
 template <SignKind SX, SignKind SY>
 [[gnu::flatten]] Interval horner(const std::vector<std::vector<Interval>>& rows, Interval x, Interval y) {
   using lanes::v2d;
@@ -2190,14 +2252,8 @@ template <SignKind SX, SignKind SY>
   // the first product of each Horner chain, 0 times the factor: the same for every chain
   const v2d zero{0, 0}, zero_x = fx.times(zero), zero_y = fy.times(zero);
   v2d result = zero;
-  for (auto row = rows.rbegin(); row != rows.rend(); ++row) {
-    v2d inner = zero;
-    if (auto c = row->rbegin(); c != row->rend()) {
-      inner = lanes::outward(zero_y + lanes::load(*c));
-      for (++c; c != row->rend(); ++c) inner = lanes::outward(fy.times(inner) + lanes::load(*c));
-    }
-    result = lanes::outward((row == rows.rbegin() ? zero_x : fx.times(result)) + inner);
-  }
+  for (auto row = rows.rbegin(); row != rows.rend(); ++row)
+    result = outer_step(result, row == rows.rbegin(), fx, zero_x, row_at(*row, fy, zero_y));
   return {result[0], result[1]};
 }
 
@@ -2211,22 +2267,27 @@ Interval horner_x(const std::vector<std::vector<Interval>>& rows, Interval x, In
   return horner<SX, SignKind::mixed>(rows, x, y);
 }
 
-// The two halves of horner: the rows at y, then the outer Horner in x over them.
+// The two halves of horner, in the same lanes: the rows at y, then the outer Horner in x over
+// them (bit for bit horner's, which keeps the rows in registers instead).
 template <SignKind SY>
 [[gnu::flatten]] void rows_of(const std::vector<std::vector<Interval>>& rows, Interval y, std::vector<Interval>& out) {
+  const lanes::Factor<SY> fy(y);
+  const lanes::v2d zero_y = fy.times(lanes::v2d{0, 0});
   out.resize(rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    Interval inner{0, 0};
-    for (auto c = rows[i].rbegin(); c != rows[i].rend(); ++c) inner = times<SY>(inner, y) + *c;
-    out[i] = inner;
+    const lanes::v2d inner = row_at(rows[i], fy, zero_y);
+    out[i] = {inner[0], inner[1]};
   }
 }
 
 template <SignKind SX>
 [[gnu::flatten]] Interval outer_horner(const std::vector<Interval>& inner, Interval x) {
-  Interval result{0, 0};
-  for (auto row = inner.rbegin(); row != inner.rend(); ++row) result = times<SX>(result, x) + *row;
-  return result;
+  const lanes::Factor<SX> fx(x);
+  const lanes::v2d zero_x = fx.times(lanes::v2d{0, 0});
+  lanes::v2d result{0, 0};
+  for (auto row = inner.rbegin(); row != inner.rend(); ++row)
+    result = outer_step(result, row == inner.rbegin(), fx, zero_x, lanes::load(*row));
+  return {result[0], result[1]};
 }
 
 }  // namespace
