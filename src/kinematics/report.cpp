@@ -34,14 +34,18 @@ double display(double value, bool rotation) { return rotation ? value * degrees_
 
 // A certified driver range (rad or mm) for report.json's "certified", still certified in degrees:
 // 180 / pi lies between the doubles next to degrees_per_radian (its rounding), and each product,
-// rounded to nearest (within half an ulp), is moved one double outwards. Until session 50 the
-// ends were rounded to nearest: an end could lie an ulp inside the exact range.
+// rounded to nearest (within half an ulp), is moved one double outwards (0 stays 0: exact). Until
+// session 50 the ends were rounded to nearest: an end could lie an ulp inside the exact range.
 std::pair<double, double> certified_display(const CertifiedRange& range, bool rotation) {
   if (!rotation) return {range.lower, range.upper};
   constexpr double infinite = std::numeric_limits<double>::infinity();
   const double low_factor = std::nextafter(degrees_per_radian, 0.0), high_factor = std::nextafter(degrees_per_radian, infinite);
-  return {std::nextafter(std::min(range.lower * low_factor, range.lower * high_factor), -infinite),
-          std::nextafter(std::max(range.upper * low_factor, range.upper * high_factor), infinite)};
+  auto outwards = [&](double end, double towards) {
+    if (end == 0) return 0.0;
+    double product = towards < 0 ? std::min(end * low_factor, end * high_factor) : std::max(end * low_factor, end * high_factor);
+    return std::nextafter(product, towards);
+  };
+  return {outwards(range.lower, -infinite), outwards(range.upper, infinite)};
 }
 
 std::string join(const std::vector<ContactLabel>& contacts) {
