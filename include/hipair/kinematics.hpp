@@ -151,6 +151,8 @@ struct ReversalCheck {
 /// Smallest and largest play of a follower along the path.
 struct PlaySummary {
   std::string part;
+  /// Smallest and largest width over the samples where the follower is held on both sides (0 on
+  /// a zero-clearance fit); NaN (JSON null) when it is held on both sides at no sample.
   double minimum = 0, at_minimum = 0;
   double maximum = 0, at_maximum = 0;
   bool unbounded = false;      ///< somewhere the follower has no contact on one side

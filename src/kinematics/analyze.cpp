@@ -269,7 +269,9 @@ struct Sweep {
     location.chart_lower = std::min(a, b);
     location.chart_upper = std::max(a, b);
     location.coordinate = certified_coordinate(driver_line(), segments[segment], a, b);
-    result.event_resolution = std::max(result.event_resolution, location.coordinate.upper - location.coordinate.lower);
+    // the width rounded up: a bound the report states ("located to within")
+    result.event_resolution = std::max(result.event_resolution, std::nextafter(location.coordinate.upper - location.coordinate.lower,
+                                                                               std::numeric_limits<double>::infinity()));
     return location;
   }
 
@@ -849,7 +851,13 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
     }
     // a follower with no sample on the path (no position of it is free at the start) has no play
     // to report: a summary of zeros read "Play ... 0.000° all along" (session 48, hunt48)
-    if (!first || play.unbounded) result.play.push_back(play);
+    if (!first || play.unbounded) {
+      // held on both sides at no sample: no width (until session 50 the zeros of an empty summary
+      // were read as "never held", also when every width measured was 0, a zero-clearance fit)
+      if (first)
+        play.minimum = play.maximum = play.at_minimum = play.at_maximum = std::numeric_limits<double>::quiet_NaN();
+      result.play.push_back(play);
+    }
   }
   // zero-clearance fits the kernel slicers could not decide (SliceClassCounts::touching_undecided)
   for (const auto& slicer : chain.slicers) {

@@ -2,6 +2,7 @@
 #include "kinematics/axis.hpp"
 #include "kinematics/slice_cells.hpp"
 
+#include "algebra/liouville.hpp"
 #include "algebra/rational_order.hpp"
 #include "algebra/real_filters.hpp"
 
@@ -707,37 +708,14 @@ int compare_unwrapped(const AxisLine& line, const AxisPosition& a, double a_unwr
 
 namespace {
 
-// The number 2 y - x for a rational y (twice_y = 2 y): the root of p(2 y - X) in
-// (2 y - upper, 2 y - lower), p x's square-free polynomial (an affine change keeps it square-free).
-Real reflected(const Real& x, const Rational& twice_y) {
-  if (x.exact) return Real::from_rational(Rational(twice_y - x.lower));
-  std::vector<Rational> q(x.polynomial.size(), Rational(0)), power{Rational(1)};   // power: (2 y - X)^i
-  for (const mpz_class& coefficient : x.polynomial) {
-    for (std::size_t j = 0; j < power.size(); ++j) q[j] += Rational(coefficient) * power[j];
-    std::vector<Rational> next(power.size() + 1, Rational(0));
-    for (std::size_t j = 0; j < power.size(); ++j) {
-      next[j] += twice_y * power[j];
-      next[j + 1] -= power[j];
-    }
-    power = std::move(next);
-  }
-  Real r;
-  r.polynomial = algebra::primitive_part(algebra::from_rationals(q));
-  if (sgn(r.polynomial.back()) < 0)
-    for (mpz_class& coefficient : r.polynomial) coefficient = -coefficient;
-  r.lower = twice_y - x.upper;
-  r.upper = twice_y - x.lower;
-  return r;
-}
-
-// The sign of 2 b - a - c from enclosures at 2^-bits, or 0 when they do not separate it.
+// Encloses 2 b - a - c from enclosures of the three at 2^-bits into d (precision bits + 40);
+// its sign when the enclosure excludes 0, else 0.
 int separated_push(const AxisLine& line, const AxisPosition& a, double a_unwrapped, const AxisPosition& b,
-                   double b_unwrapped, const AxisPosition& c, double c_unwrapped, int bits) {
+                   double b_unwrapped, const AxisPosition& c, double c_unwrapped, int bits, Enclosure& d) {
   Enclosure ea(bits + 32), eb(bits + 32), ec(bits + 32);
   enclose_unwrapped(line, a, a_unwrapped, bits, ea);
   enclose_unwrapped(line, b, b_unwrapped, bits, eb);
   enclose_unwrapped(line, c, c_unwrapped, bits, ec);
-  Enclosure d(bits + 40);
   mpfr_mul_2ui(d.lo, eb.lo, 1, MPFR_RNDD);
   mpfr_sub(d.lo, d.lo, ea.hi, MPFR_RNDD);
   mpfr_sub(d.lo, d.lo, ec.hi, MPFR_RNDD);
@@ -745,6 +723,15 @@ int separated_push(const AxisLine& line, const AxisPosition& a, double a_unwrapp
   mpfr_sub(d.hi, d.hi, ea.lo, MPFR_RNDU);
   mpfr_sub(d.hi, d.hi, ec.lo, MPFR_RNDU);
   return mpfr_sgn(d.lo) > 0 ? 1 : mpfr_sgn(d.hi) < 0 ? -1 : 0;
+}
+
+// An upper bound on log2 (1 + t^2) for every t in x's isolating interval.
+long log2_one_plus_square(const Real& x) {
+  Rational top = abs(x.lower) > abs(x.upper) ? Rational(abs(x.lower)) : Rational(abs(x.upper));
+  mpz_class ceiling;
+  mpz_cdiv_q(ceiling.get_mpz_t(), top.get_num_mpz_t(), top.get_den_mpz_t());
+  ceiling += 1;   // 1 + t^2 <= (ceil |t| + 1)^2
+  return 2 * static_cast<long>(mpz_sizeinbase(ceiling.get_mpz_t(), 2));
 }
 
 }  // namespace
@@ -763,17 +750,42 @@ int compare_push_distances(const AxisLine& line, const AxisPosition& a, double a
   const double difference = 2 * db - da - dc, margin = 1e-8 * (1 + std::abs(da) + 2 * std::abs(db) + std::abs(dc));
   if (difference > margin) return 1;
   if (difference < -margin) return -1;
-  for (int bits = 64; bits <= (1 << 10); bits *= 2)
-    if (int sign = separated_push(line, a, a_unwrapped, b, b_unwrapped, c, c_unwrapped, bits)) return sign;
-  // a translation with b rational: a tie is c = 2 b - a, decided exactly; distinct numbers are
-  // separated at some precision
-  if (!line.rotation && b.value.exact) {
-    if (algebra::equal(reflected(a.value, 2 * b.value.lower), c.value)) return 0;
-    for (int bits = 1 << 11; bits <= (1 << 16); bits *= 2)
-      if (int sign = separated_push(line, a, a_unwrapped, b, b_unwrapped, c, c_unwrapped, bits)) return sign;
+  for (int bits = 64; bits <= (1 << 10); bits *= 2) {
+    Enclosure d(bits + 40);
+    if (int sign = separated_push(line, a, a_unwrapped, b, b_unwrapped, c, c_unwrapped, bits, d)) return sign;
   }
-  decided = false;
-  return 0;
+  // A tie, or a near one: D = 2 b - a - c is 0 exactly iff an integer polynomial F of the chart
+  // values t_a, t_b, t_c vanishes, with |F| <= K |D|; a nonzero F is at least 2^-B (Liouville's
+  // inequality, algebra::liouville_bits), so D != 0 is at least 2^-(B + log2 K), and an enclosure
+  // of D inside (-2^-(B + log2 K), 2^-(B + log2 K)) is a tie.
+  // - a translation: F = D = 2 t_b - t_a - t_c (length 4, degrees 1, 1, 1; K = 1);
+  // - a rotation: unwrapped positions m pi + 2 atan(t), so D = N pi + 2 phi (N = 2 m_b - m_a - m_c)
+  //   with phi = 2 atan t_b - atan t_a - atan t_c the argument of Z = (1 + i t_b)^2 (1 - i t_a)
+  //   (1 - i t_c); near D = 0, phi is near -N pi / 2 and F = Im Z (N even) or Re Z (N odd) has
+  //   |F| = |Z| |sin(D / 2)| <= |Z| |D| / 2 (so F = 0 and |D| < 2 pi give D = 0). Both
+  //   Im Z = 2 t_b (1 - t_a t_c) - (1 - t_b^2)(t_a + t_c) and Re Z = (1 - t_b^2)(1 - t_a t_c) +
+  //   2 t_b (t_a + t_c) have length 8 and degrees 1, 2, 1; |Z| / 2 <= (1 + t_a^2)(1 + t_b^2)
+  //   (1 + t_c^2) / 2.
+  const std::vector<const Real*> values{&a.value, &b.value, &c.value};
+  long threshold = line.rotation ? algebra::liouville_bits(values, {1, 2, 1}, 3) + log2_one_plus_square(a.value) +
+                                       log2_one_plus_square(b.value) + log2_one_plus_square(c.value)
+                                 : algebra::liouville_bits(values, {1, 1, 1}, 2);
+  // a bound past 2^20 bits would take the bisections of the chart values hours: undecided
+  if (threshold > (1L << 20)) {
+    decided = false;
+    return 0;
+  }
+  mpfr_t bound;
+  mpfr_init2(bound, 8);
+  mpfr_set_ui_2exp(bound, 1, -threshold, MPFR_RNDN);   // exact: a power of two
+  int sign = 0;
+  for (int bits = 1 << 11;; bits *= 2) {
+    Enclosure d(bits + 40);
+    sign = separated_push(line, a, a_unwrapped, b, b_unwrapped, c, c_unwrapped, bits, d);
+    if (sign != 0 || (mpfr_cmpabs(d.lo, bound) < 0 && mpfr_cmpabs(d.hi, bound) < 0)) break;
+  }
+  mpfr_clear(bound);
+  return sign;
 }
 
 }  // namespace hipair::kinematics_detail

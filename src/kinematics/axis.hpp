@@ -198,12 +198,13 @@ int compare_unwrapped(const AxisLine& line, const AxisPosition& position, double
 int compare_unwrapped(const AxisLine& line, const AxisPosition& a, double a_unwrapped, const AxisPosition& b,
                       double b_unwrapped);
 /// Exact sign of (b - a) - (c - b) for unwrapped positions a <= b <= c (the push out of blocked
-/// space: the distance down from b to a against the distance up to c): certified enclosures
-/// refined until they separate, and an exact rational comparison when all three are rational
-/// (translation). Where 2^10 bits do not separate them on a translation whose b is rational,
-/// the tie c = 2 b - a is tested exactly (the root of a's polynomial reflected about b) and
-/// distinct numbers are separated at up to 2^16 bits. `decided` is false otherwise (a rotation's
-/// tie, or a translation's with b irrational): 0 is returned then.
+/// space: the distance down from b to a against the distance up to c): an exact rational
+/// comparison when all three are rational (translation), else certified enclosures refined until
+/// they separate the sign from 0 or, past 2^10 bits, until they lie inside Liouville's bound for
+/// a nonzero value (a tie, 0: 2 t_b - t_a - t_c on a translation, the imaginary or real part of
+/// (1 + i t_b)^2 (1 - i t_a)(1 - i t_c) on a rotation, vanish). `decided` is false (and 0 is
+/// returned) only when that bound lies past 2^-(2^20) (charts' polynomials of huge degree or
+/// coefficients: the bisections would take hours).
 int compare_push_distances(const AxisLine& line, const AxisPosition& a, double a_unwrapped, const AxisPosition& b,
                            double b_unwrapped, const AxisPosition& c, double c_unwrapped, bool& decided);
 

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <sstream>
+#include <utility>
 
 namespace hipair {
 namespace {
@@ -29,6 +31,22 @@ std::string quantity(double value, bool rotation, int decimals = 3) {
 }
 
 double display(double value, bool rotation) { return rotation ? value * degrees_per_radian : value; }
+
+// A certified driver range (rad or mm) for report.json's "certified", still certified in degrees:
+// 180 / pi lies between the doubles next to degrees_per_radian (its rounding), and each product,
+// rounded to nearest (within half an ulp), is moved one double outwards (0 stays 0: exact). Until
+// session 50 the ends were rounded to nearest: an end could lie an ulp inside the exact range.
+std::pair<double, double> certified_display(const CertifiedRange& range, bool rotation) {
+  if (!rotation) return {range.lower, range.upper};
+  constexpr double infinite = std::numeric_limits<double>::infinity();
+  const double low_factor = std::nextafter(degrees_per_radian, 0.0), high_factor = std::nextafter(degrees_per_radian, infinite);
+  auto outwards = [&](double end, double towards) {
+    if (end == 0) return 0.0;
+    double product = towards < 0 ? std::min(end * low_factor, end * high_factor) : std::max(end * low_factor, end * high_factor);
+    return std::nextafter(product, towards);
+  };
+  return {outwards(range.lower, -infinite), outwards(range.upper, infinite)};
+}
 
 std::string join(const std::vector<ContactLabel>& contacts) {
   std::string out;
@@ -163,7 +181,7 @@ std::string kinematics_text_report(const KinematicsResult& result) {
       out << "  Play: not measured: the analysis has no position of " << name << " on the path.\n";
     for (const PlaySummary& play : result.play)
       if (play.part == name) {
-        if (play.minimum == 0 && play.maximum == 0 && play.unbounded)
+        if (std::isnan(play.minimum))
           out << "  Play: " << name << " is never held on both sides.\n";
         else if (!play.unbounded && play.maximum - play.minimum < 1e-9)
           out << "  Play (backlash, the free motion " << name << " has with the driver held): " << quantity(play.minimum, frot)
@@ -217,7 +235,7 @@ std::string kinematics_text_report(const KinematicsResult& result) {
   } else {
     out << "none: the driver completes its range.\n";
   }
-  out << "\nContact changes are located to within " << format(display(result.event_resolution, rot), 12)
+  out << "\nContact changes are located to within " << format(certified_display(CertifiedRange{0, result.event_resolution}, rot).second, 12)
       << (rot ? "°" : " mm") << " of driver travel (certified); positions are exact at those driver positions.\n";
   return out.str();
 }
@@ -227,7 +245,7 @@ std::string kinematics_json_report(const KinematicsResult& result) {
   bool rot = result.driver_rotates;
   auto location = [&](const DriverLocation& at) {
     return json{{"value", display(at.value(), rot)},
-                {"certified", {display(at.coordinate.lower, rot), display(at.coordinate.upper, rot)}},
+                {"certified", certified_display(at.coordinate, rot)},
                 {"chart", at.chart},
                 {"chart_interval", {to_exact_string(at.chart_lower), to_exact_string(at.chart_upper)}}};
   };
@@ -332,7 +350,7 @@ std::string kinematics_json_report(const KinematicsResult& result) {
                              {"follower_moved", check.follower_moved}});
   report["reversals"] = reversals;
   report["warnings"] = result.warnings;
-  report["event_resolution"] = display(result.event_resolution, rot);
+  report["event_resolution"] = certified_display(CertifiedRange{0, result.event_resolution}, rot).second;
   report["samples"] = result.samples.size();
   report["seconds"] = result.seconds;
   return report.dump(2) + "\n";

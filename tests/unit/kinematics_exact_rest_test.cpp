@@ -252,5 +252,80 @@ TEST(KinematicsExactRest, PushTowardsTheNearerEnd) {
   }
 }
 
+// Session 50 (exact50): ties of irrational middles, decided by Liouville's bound past the 2^-1024
+// enclosures (base50 counted them undecided and returned 0). A translation: a = r rational,
+// b = sqrt q, c = 2 sqrt q - r (the root of (x + r)^2 - 4 q) a tie, c -+ 2^-k (k 1030 ... 1229)
+// not one. A rotation: t_a = r, t_b = sqrt q, t_c = x + y sqrt q with atan t_c = 2 atan t_b -
+// atan t_a (tan's addition formula), so 2 theta_b = theta_a + theta_c, the three on piece 0 of
+// the cyclic axis and the same whole turns; t_a = r +- 2^-k near ties (the way down shorter when
+// t_a is above r).
+// The root of den^2 ((x - s)^2 - w) (s, w rational) nearest `near`.
+Real shifted_root(const Rational& s, const Rational& w, double near) {
+  Rational c0 = s * s - w, c1 = -2 * s;
+  mpz_class den = lcm(c0.get_den(), c1.get_den());
+  Polynomial p{c0.get_num() * (den / c0.get_den()), c1.get_num() * (den / c1.get_den()), den};
+  for (const Real& root : algebra::real_roots(p))
+    if (std::abs(root.approximate() - near) < 1e-6) return root;
+  ADD_FAILURE() << "no root near " << near;
+  return Real::from_rational(Rational(0));
+}
+
+TEST(KinematicsExactRest, PushTiesOfIrrationalMiddles) {
+  std::mt19937_64 random(505050);
+  AxisLine straight = translation_line();
+  auto rational_at = [](const Rational& v) { return AxisPosition{0, Real::from_rational(v)}; };
+  for (int i = 0; i < 10; ++i) {
+    Rational q(static_cast<long>(random() % 997) + 1, 1009), r(static_cast<long>(random() % 2001) - 1000, 1013);
+    Real b = square_root(q);
+    const double sqrt_q = std::sqrt(q.get_d());
+    Real tie = shifted_root(-r, 4 * q, 2 * sqrt_q - r.get_d());
+    bool decided = false;
+    EXPECT_EQ(compare_push_distances(straight, rational_at(r), r.get_d(), AxisPosition{0, b}, sqrt_q, AxisPosition{0, tie},
+                                     tie.approximate(), decided),
+              0);
+    EXPECT_TRUE(decided);
+    int k = 1030 + static_cast<int>(random() % 200);
+    Rational tiny(mpz_class(1), mpz_class(1) << k);
+    for (int side : {1, -1}) {
+      // c = 2 sqrt q - r + side 2^-k: the way up longer (side > 0), 2 b - a - c = -side 2^-k
+      Real off = shifted_root(-r + side * tiny, 4 * q, 2 * sqrt_q - r.get_d());
+      EXPECT_EQ(compare_push_distances(straight, rational_at(r), r.get_d(), AxisPosition{0, b}, sqrt_q,
+                                       AxisPosition{0, off}, off.approximate(), decided),
+                -side)
+          << "k " << k;
+      EXPECT_TRUE(decided);
+    }
+  }
+  AxisLine line = cyclic_line();
+  for (int i = 0; i < 10; ++i) {
+    Rational q(static_cast<long>(random() % 97) + 3, 1009);   // sqrt q < 0.32, not a square
+    const double sqrt_q = std::sqrt(q.get_d());
+    Rational r(static_cast<long>(std::floor(sqrt_q * 900 * static_cast<double>(random() % 1000) / 1000)), 1000);   // 0 <= r < sqrt q
+    // t_c = (2 sqrt q - r (1 - q)) / ((1 - q) + 2 r sqrt q) = x + y sqrt q
+    Rational norm = (1 - q) * (1 - q) - 4 * r * r * q;
+    Rational x = (-r * (1 - q) * (1 - q) - 4 * r * q) / norm, y = 2 * (1 - q) * (1 + r * r) / norm;
+    const double tc_d = x.get_d() + y.get_d() * sqrt_q;
+    Real tc = shifted_root(x, y * y * q, tc_d);
+    long turns = static_cast<long>(random() % 5) - 2;
+    auto unwrapped = [&](double t) { return 2 * pi_d * static_cast<double>(turns) + 2 * std::atan(t); };
+    AxisPosition b{0, square_root(q)}, c{0, tc};
+    bool decided = false;
+    EXPECT_EQ(compare_push_distances(line, rational_at(r), unwrapped(r.get_d()), b, unwrapped(sqrt_q), c, unwrapped(tc_d),
+                                     decided),
+              0)
+        << "q " << q << " r " << r;
+    EXPECT_TRUE(decided);
+    int k = 1030 + static_cast<int>(random() % 200);
+    for (int side : {1, -1}) {
+      Rational ta = r + side * Rational(mpz_class(1), mpz_class(1) << k);
+      EXPECT_EQ(compare_push_distances(line, rational_at(ta), unwrapped(r.get_d()), b, unwrapped(sqrt_q), c,
+                                       unwrapped(tc_d), decided),
+                -side)
+          << "k " << k;
+      EXPECT_TRUE(decided);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hipair::kinematics_detail
