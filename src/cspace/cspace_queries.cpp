@@ -1782,6 +1782,8 @@ class MotionScanner {
     std::vector<std::vector<KInterval>> enclosed, enclosed_rate, enclosed_acceleration;
     std::vector<char> candidate;
     std::vector<Possible> hull_possible;
+    ChartPoint located;                  // locate_inside's point (the box's midpoint)
+    Rational bound_lo, bound_hi;         // and the box's double bounds as rationals
   };
 
   MotionScanner(const CSpace::Impl& impl, const MotionPath& path, std::shared_ptr<ScanMemo> memo, Storage& storage)
@@ -1793,7 +1795,10 @@ class MotionScanner {
         enclosed_acceleration_(storage.enclosed_acceleration),
         memo_(std::move(memo)),
         candidate_(storage.candidate),
-        hull_possible_(storage.hull_possible) {
+        hull_possible_(storage.hull_possible),
+        located_(storage.located),
+        bound_lo_(storage.bound_lo),
+        bound_hi_(storage.bound_hi) {
     auto check = [&](const AxisPath& axis, AxisKind kind, const char* which) {
       bool rotation = axis.kind != AxisPath::Kind::offset;
       if (rotation != (kind == AxisKind::rotation))
@@ -1925,9 +1930,12 @@ class MotionScanner {
   Location locate_inside(const PieceBox& box, const StartAnchor* anchor = nullptr, AnchorBoxes* boxes = nullptr) {
     // the box's midpoint (dyadic.hpp: by shifts where both ends are dyadic, as the filtered and
     // the MPFR pieces' bounds are)
-    Rational x, y;
-    cspace::midpoint_into(x, box.x_lo.rational(), box.x_hi.rational());
-    cspace::midpoint_into(y, box.y_lo.rational(), box.y_hi.rational());
+    // (into the kept point, each coordinate written whole: nothing of an earlier point read)
+    located_.chart = box.chart;
+    Rational& x = located_.x;
+    Rational& y = located_.y;
+    cspace::midpoint_into(x, box.x_lo.rational(bound_lo_), box.x_hi.rational(bound_hi_));
+    cspace::midpoint_into(y, box.y_lo.rational(bound_lo_), box.y_hi.rational(bound_hi_));
     const cspace::raw::Box& side = impl_.charts[box.chart].box;
     const bool inside_chart = x > side.x_lo && x < side.x_hi && (impl_.dimension == 1 || (y > side.y_lo && y < side.y_hi));
     auto free_in = [&](std::size_t cell) {
@@ -1977,7 +1985,7 @@ class MotionScanner {
         return free_in(it->cell);
       }
     }
-    return cspace::locate_point(impl_, ChartPoint{box.chart, x, y});
+    return cspace::locate_point(impl_, located_);
   }
 
   // The box (on which no cell-bounding curve vanishes: see locate_inside) meets no edge of its
@@ -2587,6 +2595,8 @@ class MotionScanner {
   std::shared_ptr<ScanMemo> memo_;
   std::vector<char>& candidate_;   // exclude()'s scratch
   std::vector<Possible>& hull_possible_;   // locate_inside's
+  ChartPoint& located_;                     // locate_inside's
+  Rational &bound_lo_, &bound_hi_;          // locate_inside's
 };
 
 }  // namespace

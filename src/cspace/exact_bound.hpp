@@ -67,6 +67,13 @@ class ExactBound {
     if (const Rational* r = exact()) return *r;
     return Rational(double_);
   }
+  // the same number without a copy: the rational held, or the double written into `scratch`
+  // (a caller's kept rational: its limbs reused)
+  const Rational& rational(Rational& scratch) const {
+    if (const Rational* r = exact()) return *r;
+    scratch = double_;
+    return scratch;
+  }
 
  private:
   double double_ = 0;

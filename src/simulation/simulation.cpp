@@ -29,6 +29,7 @@
 #include "simulation/normal_side.hpp"
 #include "simulation/nudge_check.hpp"
 #include "simulation/ordinate_filter.hpp"
+#include "simulation/step_paths.hpp"
 #include "simulation/touch_guard.hpp"
 #include "simulation/units.hpp"
 #include "simulation/vertex_graze.hpp"
@@ -820,30 +821,32 @@ struct Simulation::Impl {
     return p;
   }
 
-  AxisPath axis_path(const std::array<double, 6>& c, bool rotation) const {
-    AxisPath a;
-    a.kind = rotation ? AxisPath::Kind::angle : AxisPath::Kind::offset;
-    int last = 5;
-    while (last > 0 && c[last] == 0) --last;
-    for (int i = 0; i <= last; ++i) a.coefficients.emplace_back(c[i]);
-    return a;
-  }
-
-  // the pair's motion along the step for u in [u0, u1]
-  MotionPath pair_path(std::size_t pair, const StepPath& p, double u0, double u1) const {
+  // the pair's motion along the step for u in [u0, u1], written into `m` (a path kept between
+  // steps reuses its rationals' limbs: simulation/step_paths.hpp)
+  void pair_path_into(MotionPath& m, std::size_t pair, const StepPath& p, double u0, double u1) const {
     const CSpace& space = *spaces[pair];
-    MotionPath m;
-    auto axis = [&](const std::string& part) {
-      if (part.empty()) return AxisPath{};
-      std::size_t index = *model.find_part(part);
-      int d = part_dof[index];
-      return axis_path(p.c[d], dofs[d].rotation);
+    auto axis = [&](AxisPath& out, const std::string& part) {
+      if (part.empty()) return simulation::clear_axis_path(out);
+      int d = part_dof[*model.find_part(part)];
+      simulation::assign_axis_path(out, p.c[d], dofs[d].rotation);
     };
-    m.x = axis(space.x_part());
-    if (space.dimension() == 2) m.y = axis(space.y_part());
-    m.u_begin = Rational(u0);
-    m.u_end = Rational(u1);
+    axis(m.x, space.x_part());
+    if (space.dimension() == 2) axis(m.y, space.y_part());
+    else simulation::clear_axis_path(m.y);
+    m.u_begin = u0;
+    m.u_end = u1;
+  }
+  MotionPath pair_path(std::size_t pair, const StepPath& p, double u0, double u1) const {
+    MotionPath m;
+    pair_path_into(m, pair, p, u0, u1);
     return m;
+  }
+  // one kept path per pair for the step's crossing queries (step_motions_[pair])
+  mutable std::vector<MotionPath> step_motions_;
+  const MotionPath& step_motion(std::size_t pair, const StepPath& p, double u_end) const {
+    if (step_motions_.size() < spaces.size()) step_motions_.resize(spaces.size());
+    pair_path_into(step_motions_[pair], pair, p, 0, u_end);
+    return step_motions_[pair];
   }
 
   MotionPath point_path(std::size_t pair, const Vec& qs) const {
@@ -2197,16 +2200,16 @@ struct Simulation::Impl {
     if (!simulation::crossing_limits()) {
       for (std::size_t pair = 0; pair < spaces.size(); ++pair)
         if (spaces[pair] && !in_active(pair))
-          answers[pair] = spaces[pair]->first_crossing(pair_path(pair, path, 0, u_end), crossing_options);
+          answers[pair] = spaces[pair]->first_crossing(step_motion(pair, path, u_end), crossing_options);
     } else {
       std::vector<const CSpace*> asked(spaces.size(), nullptr);
-      std::vector<MotionPath> motions(spaces.size());
       for (std::size_t pair = 0; pair < spaces.size(); ++pair)
         if (spaces[pair] && !in_active(pair)) {
           asked[pair] = spaces[pair].get();
-          motions[pair] = pair_path(pair, path, 0, u_end);
+          step_motion(pair, path, u_end);
         }
-      simulation::SweptCrossings swept = simulation::sweep_crossings(asked, motions, crossing_options, u_end);
+      // (the pairs not asked keep older paths there: sweep_crossings reads only the asked ones')
+      simulation::SweptCrossings swept = simulation::sweep_crossings(asked, step_motions_, crossing_options, u_end);
       simulation::limited_queries() += swept.limited;
       simulation::requeried_limits() += swept.resumed;
       answers = std::move(swept.answers);
@@ -2261,7 +2264,7 @@ struct Simulation::Impl {
         r.restitution = model.pairs[pair].restitution ? to_d(*model.pairs[pair].restitution) : 0.0;
         r.g = physical_row(pair, c, q);
         r.features = c.features;
-        r.graze = c.grazing && simulation::vertex_pass(*spaces[pair], c, pair_path(pair, path, 0, u_end)) ==
+        r.graze = c.grazing && simulation::vertex_pass(*spaces[pair], c, step_motions_[pair]) ==
                                    simulation::VertexPass::graze;
         rows.push_back(r);
       }
