@@ -419,6 +419,25 @@ Interval random_interval(std::uint64_t& state) {
   return {a, b};
 }
 
+// An end anywhere: random_end's three times in four, else any normal double (exponent -1022 …
+// 1023) or a subnormal, of either sign.
+double wide_end(std::uint64_t& state) {
+  const std::uint64_t r = next_state(state);
+  if (r % 4 != 0) return random_end(state);
+  const double mantissa = static_cast<double>(next_state(state) % (1ull << 52)) / 0x1p52 + 1;
+  const double v = r % 8 == 1 ? std::ldexp(mantissa, -1074 + static_cast<int>(next_state(state) % 60))   // subnormal
+                              : std::ldexp(mantissa, static_cast<int>(next_state(state) % 2046) - 1022);  // anywhere
+  return r & 64 ? -v : v;
+}
+
+// An interval of wide ends, a point one time in six (infinity alone: the whole line).
+Interval wide_interval(std::uint64_t& state) {
+  double a = wide_end(state), b = next_state(state) % 6 == 0 ? a : wide_end(state);
+  if (b < a) std::swap(a, b);
+  if (a == b && std::isinf(a)) return Interval{-__builtin_inf(), __builtin_inf()};
+  return Interval{a, b};
+}
+
 bool same_bits(Interval a, Interval b) {
   return std::memcmp(&a.lo, &b.lo, sizeof(double)) == 0 && std::memcmp(&a.hi, &b.hi, sizeof(double)) == 0;
 }
@@ -536,20 +555,6 @@ TEST(CSpaceAlgebra, IntervalPolynomialEvaluationIsTheGenericHorner) {
 TEST(CSpaceAlgebra, IntervalPolynomialLanesAreTheScalarHornerOnAnyBox) {
   using namespace interval_products;
   std::uint64_t state = 0xd1b54a32d192ed03ull;
-  auto end = [&] {
-    const std::uint64_t r = next_state(state);
-    if (r % 4 != 0) return random_end(state);
-    const double mantissa = static_cast<double>(next_state(state) % (1ull << 52)) / 0x1p52 + 1;
-    const double v = r % 8 == 1 ? std::ldexp(mantissa, -1074 + static_cast<int>(next_state(state) % 60))   // subnormal
-                                : std::ldexp(mantissa, static_cast<int>(next_state(state) % 2046) - 1022);  // anywhere
-    return r & 64 ? -v : v;
-  };
-  auto box_side = [&] {
-    double a = end(), b = next_state(state) % 6 == 0 ? a : end();
-    if (b < a) std::swap(a, b);
-    if (a == b && std::isinf(a)) return Interval{-__builtin_inf(), __builtin_inf()};
-    return Interval{a, b};
-  };
   int boxes = 0, unbounded = 0, mixed = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     IntegerPolynomial2 f;
@@ -568,7 +573,7 @@ TEST(CSpaceAlgebra, IntervalPolynomialLanesAreTheScalarHornerOnAnyBox) {
     }
     const IntervalPolynomial2 g(f);
     for (int box = 0; box < 25; ++box, ++boxes) {
-      const Interval x = box_side(), y = box_side();
+      const Interval x = wide_interval(state), y = wide_interval(state);
       const Interval lanes = g.evaluate(x, y), reference = reference_evaluate(f, x, y);
       std::vector<Interval> rows_at_y;
       g.rows_at(y, rows_at_y);
@@ -595,25 +600,11 @@ TEST(CSpaceAlgebra, IntervalPolynomialLanesAreTheScalarHornerOnAnyBox) {
 TEST(CSpaceAlgebra, OneVariableHornerIsTheGenericScalarHorner) {
   using namespace interval_products;
   std::uint64_t state = 0x2545f4914f6cdd1dull;
-  auto end = [&] {
-    const std::uint64_t r = next_state(state);
-    if (r % 4 != 0) return random_end(state);
-    const double mantissa = static_cast<double>(next_state(state) % (1ull << 52)) / 0x1p52 + 1;
-    const double v = r % 8 == 1 ? std::ldexp(mantissa, -1074 + static_cast<int>(next_state(state) % 60))
-                                : std::ldexp(mantissa, static_cast<int>(next_state(state) % 2046) - 1022);
-    return r & 64 ? -v : v;
-  };
-  auto side = [&] {
-    double a = end(), b = next_state(state) % 6 == 0 ? a : end();
-    if (b < a) std::swap(a, b);
-    if (a == b && std::isinf(a)) return Interval{-__builtin_inf(), __builtin_inf()};
-    return Interval{a, b};
-  };
   int mixed = 0, differing_starts = 0;
   for (int trial = 0; trial < 40000; ++trial) {
     std::vector<Interval> c(next_state(state) % 7);
-    for (Interval& v : c) v = next_state(state) % 5 == 0 ? Interval{0, 0} : side();
-    const Interval x = side();
+    for (Interval& v : c) v = next_state(state) % 5 == 0 ? Interval{0, 0} : wide_interval(state);
+    const Interval x = wide_interval(state);
     Interval from_zero{0, 0};
     for (auto it = c.rbegin(); it != c.rend(); ++it) from_zero = from_zero * x + *it;
     const Interval fast = horner(c, x);
