@@ -525,8 +525,7 @@ class SignFilter {
   }
   int sign(Interval x) const {
     if (coefficients_.empty()) return 0;
-    // (operator*'s bounds: interval_detail::times, its dispatch on x's sign made once)
-    const Interval value = x.lo >= 0 ? horner<1>(x) : x.hi <= 0 ? horner<-1>(x) : horner<0>(x);
+    const Interval value = horner_from_leading(coefficients_, x);
     if (!std::isfinite(value.lo) || !std::isfinite(value.hi)) return 0;
     if (value.lo > 0) return 1;
     if (value.hi < 0) return -1;
@@ -534,20 +533,6 @@ class SignFilter {
   }
 
  private:
-  template <int S>
-  [[gnu::flatten]] Interval horner(Interval x) const {
-    Interval value = coefficients_.back();
-    for (std::size_t i = coefficients_.size() - 1; i-- > 0;) {
-      if constexpr (S > 0)
-        value = interval_detail::times_nonnegative(value, x) + coefficients_[i];
-      else if constexpr (S < 0)
-        value = interval_detail::times_nonpositive(value, x) + coefficients_[i];
-      else
-        value = value * x + coefficients_[i];
-    }
-    return value;
-  }
-
   std::vector<Interval> coefficients_;
 };
 
@@ -2280,17 +2265,33 @@ template <SignKind SY>
   }
 }
 
+// (also the one-variable Horner of horner() and horner_from_leading(): the inner values are
+// the coefficients)
 template <SignKind SX>
-[[gnu::flatten]] Interval outer_horner(const std::vector<Interval>& inner, Interval x) {
+[[gnu::flatten]] Interval outer_horner(const std::vector<Interval>& inner, Interval x, bool from_leading = false) {
+  auto row = inner.rbegin();
+  if (row == inner.rend()) return {0, 0};
   const lanes::Factor<SX> fx(x);
-  const lanes::v2d zero_x = fx.times(lanes::v2d{0, 0});
-  lanes::v2d result{0, 0};
-  for (auto row = inner.rbegin(); row != inner.rend(); ++row)
-    result = outer_step(result, row == inner.rbegin(), fx, zero_x, lanes::load(*row));
+  const lanes::v2d zero{0, 0};
+  lanes::v2d result = from_leading ? lanes::load(*row) : outer_step(zero, true, fx, fx.times(zero), lanes::load(*row));
+  for (++row; row != inner.rend(); ++row) result = outer_step(result, false, fx, zero, lanes::load(*row));
   return {result[0], result[1]};
 }
 
+Interval outer_horner_any(const std::vector<Interval>& inner, Interval x, bool from_leading) {
+  switch (sign_kind(x)) {
+    case SignKind::nonnegative: return outer_horner<SignKind::nonnegative>(inner, x, from_leading);
+    case SignKind::nonpositive: return outer_horner<SignKind::nonpositive>(inner, x, from_leading);
+    case SignKind::mixed: break;
+  }
+  return outer_horner<SignKind::mixed>(inner, x, from_leading);
+}
+
 }  // namespace
+
+Interval horner(const std::vector<Interval>& c, Interval x) { return outer_horner_any(c, x, false); }
+
+Interval horner_from_leading(const std::vector<Interval>& c, Interval x) { return outer_horner_any(c, x, true); }
 
 void IntervalPolynomial2::rows_at(Interval y, std::vector<Interval>& rows) const {
   switch (sign_kind(y)) {
@@ -2302,12 +2303,7 @@ void IntervalPolynomial2::rows_at(Interval y, std::vector<Interval>& rows) const
 }
 
 Interval IntervalPolynomial2::evaluate_rows(Interval x, const std::vector<Interval>& rows) const {
-  switch (sign_kind(x)) {
-    case SignKind::nonnegative: return outer_horner<SignKind::nonnegative>(rows, x);
-    case SignKind::nonpositive: return outer_horner<SignKind::nonpositive>(rows, x);
-    case SignKind::mixed: break;
-  }
-  return outer_horner<SignKind::mixed>(rows, x);
+  return outer_horner_any(rows, x, false);
 }
 
 Interval IntervalPolynomial2::evaluate(Interval x, Interval y) const {

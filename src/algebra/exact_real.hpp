@@ -242,6 +242,14 @@ inline Interval times_nonpositive(Interval a, Interval b) {
 Interval enclose(const Rational& r);
 Interval enclose(const mpz_class& z);
 
+/// The polynomial sum c_i x^i (c: lowest degree first) over x, certified enclosure by interval
+/// Horner: v = v * x + c_i from v = 0, each product operator*'s bounds (two end products when x
+/// keeps one sign), each sum operator+'s. Empty c: {0, 0}.
+Interval horner(const std::vector<Interval>& c, Interval x);
+/// The same from v = the leading coefficient (one step fewer: the first product, 0 times x, is
+/// not taken, so the bounds can be a rounding narrower than horner()'s). c not empty.
+Interval horner_from_leading(const std::vector<Interval>& c, Interval x);
+
 /// f over the box x in X, y in Y, certified enclosure.
 class IntervalPolynomial2 {
  public:

@@ -224,30 +224,6 @@ std::vector<Interval> enclose(const Polynomial& p) {
   return out;
 }
 
-// Horner's scheme; the products by x have operator*'s bounds, in two end products when x keeps
-// one sign (interval_detail::times_nonnegative / times_nonpositive: the same bounds, argued
-// there), so every enclosure, hence every decision, is that of v * x + c throughout. (The arcs'
-// y enclosures in apart(), the no-root tests: mostly over x-ranges of one sign.)
-template <int S>
-[[gnu::flatten]] Interval horner(const std::vector<Interval>& c, Interval x) {
-  Interval v{0, 0};
-  for (auto it = c.rbegin(); it != c.rend(); ++it) {
-    if constexpr (S > 0)
-      v = algebra::interval_detail::times_nonnegative(v, x) + *it;
-    else if constexpr (S < 0)
-      v = algebra::interval_detail::times_nonpositive(v, x) + *it;
-    else
-      v = v * x + *it;
-  }
-  return v;
-}
-
-Interval evaluate(const std::vector<Interval>& c, Interval x) {
-  if (x.lo >= 0) return horner<1>(c, x);
-  if (x.hi <= 0) return horner<-1>(c, x);
-  return horner<0>(c, x);
-}
-
 Interval enclose(const Real& x) { return {x.lower_bound(), x.upper_bound()}; }
 
 bool disjoint(Interval a, Interval b) { return a.hi < b.lo || b.hi < a.lo; }
@@ -280,7 +256,7 @@ std::vector<Interval> enclose_scaled(const Polynomial& p) {
 }
 
 bool no_root_on(const std::vector<Interval>& c, double lo, double hi, int depth) {
-  const Interval v = evaluate(c, Interval{lo, hi});
+  const Interval v = algebra::horner(c, Interval{lo, hi});
   if (v.lo > 0 || v.hi < 0) return true;   // (NaN fails both)
   if (depth == 0) return false;
   const double m = lo + (hi - lo) / 2;
@@ -549,13 +525,13 @@ class QuadraticTraits {
 
   Interval y_interval(const YExpr& e, Interval x) const {
     const Support& s = support(e.support);
-    if (e.kind == 2) return idiv(evaluate(s.i_neg_c, x), evaluate(s.i_b, x));
-    Interval p = evaluate(s.i_neg_b, x);
+    if (e.kind == 2) return idiv(algebra::horner(s.i_neg_c, x), algebra::horner(s.i_b, x));
+    Interval p = algebra::horner(s.i_neg_b, x);
     if (e.kind == 0) {
-      Interval r = isqrt(evaluate(s.i_disc, x));
+      Interval r = isqrt(algebra::horner(s.i_disc, x));
       p = p + (e.s > 0 ? r : ineg(r));
     }
-    return idiv(p, evaluate(s.i_two_a, x));
+    return idiv(p, algebra::horner(s.i_two_a, x));
   }
 
   static int sign(const Polynomial& p, const Real& x) { return p.empty() ? 0 : algebra::sign_at(p, x); }

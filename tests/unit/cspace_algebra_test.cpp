@@ -419,6 +419,25 @@ Interval random_interval(std::uint64_t& state) {
   return {a, b};
 }
 
+// An end anywhere: random_end's three times in four, else any normal double (exponent -1022 …
+// 1023) or a subnormal, of either sign.
+double wide_end(std::uint64_t& state) {
+  const std::uint64_t r = next_state(state);
+  if (r % 4 != 0) return random_end(state);
+  const double mantissa = static_cast<double>(next_state(state) % (1ull << 52)) / 0x1p52 + 1;
+  const double v = r % 8 == 1 ? std::ldexp(mantissa, -1074 + static_cast<int>(next_state(state) % 60))   // subnormal
+                              : std::ldexp(mantissa, static_cast<int>(next_state(state) % 2046) - 1022);  // anywhere
+  return r & 64 ? -v : v;
+}
+
+// An interval of wide ends, a point one time in six (infinity alone: the whole line).
+Interval wide_interval(std::uint64_t& state) {
+  double a = wide_end(state), b = next_state(state) % 6 == 0 ? a : wide_end(state);
+  if (b < a) std::swap(a, b);
+  if (a == b && std::isinf(a)) return Interval{-__builtin_inf(), __builtin_inf()};
+  return Interval{a, b};
+}
+
 bool same_bits(Interval a, Interval b) {
   return std::memcmp(&a.lo, &b.lo, sizeof(double)) == 0 && std::memcmp(&a.hi, &b.hi, sizeof(double)) == 0;
 }
@@ -536,20 +555,6 @@ TEST(CSpaceAlgebra, IntervalPolynomialEvaluationIsTheGenericHorner) {
 TEST(CSpaceAlgebra, IntervalPolynomialLanesAreTheScalarHornerOnAnyBox) {
   using namespace interval_products;
   std::uint64_t state = 0xd1b54a32d192ed03ull;
-  auto end = [&] {
-    const std::uint64_t r = next_state(state);
-    if (r % 4 != 0) return random_end(state);
-    const double mantissa = static_cast<double>(next_state(state) % (1ull << 52)) / 0x1p52 + 1;
-    const double v = r % 8 == 1 ? std::ldexp(mantissa, -1074 + static_cast<int>(next_state(state) % 60))   // subnormal
-                                : std::ldexp(mantissa, static_cast<int>(next_state(state) % 2046) - 1022);  // anywhere
-    return r & 64 ? -v : v;
-  };
-  auto box_side = [&] {
-    double a = end(), b = next_state(state) % 6 == 0 ? a : end();
-    if (b < a) std::swap(a, b);
-    if (a == b && std::isinf(a)) return Interval{-__builtin_inf(), __builtin_inf()};
-    return Interval{a, b};
-  };
   int boxes = 0, unbounded = 0, mixed = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     IntegerPolynomial2 f;
@@ -568,7 +573,7 @@ TEST(CSpaceAlgebra, IntervalPolynomialLanesAreTheScalarHornerOnAnyBox) {
     }
     const IntervalPolynomial2 g(f);
     for (int box = 0; box < 25; ++box, ++boxes) {
-      const Interval x = box_side(), y = box_side();
+      const Interval x = wide_interval(state), y = wide_interval(state);
       const Interval lanes = g.evaluate(x, y), reference = reference_evaluate(f, x, y);
       std::vector<Interval> rows_at_y;
       g.rows_at(y, rows_at_y);
@@ -585,6 +590,39 @@ TEST(CSpaceAlgebra, IntervalPolynomialLanesAreTheScalarHornerOnAnyBox) {
   EXPECT_GT(unbounded, 5000);
   EXPECT_GT(mixed, 20000);
   EXPECT_EQ(boxes, 100000);
+}
+
+// algebra::horner (from 0) and horner_from_leading (from the leading coefficient), the one-variable
+// interval Horner of the quadratic traits' arcs and no-root tests, the sign filter and
+// evaluate_rows, computed in the lanes: bit for bit the generic scalar Horner v = v * x + c
+// (operator*, operator+) from the same start, over coefficient intervals and x with any ends
+// (zeros, subnormals, huge, infinite, points, across zero), 0 to 6 coefficients.
+TEST(CSpaceAlgebra, OneVariableHornerIsTheGenericScalarHorner) {
+  using namespace interval_products;
+  std::uint64_t state = 0x2545f4914f6cdd1dull;
+  int mixed = 0, differing_starts = 0;
+  for (int trial = 0; trial < 40000; ++trial) {
+    std::vector<Interval> c(next_state(state) % 7);
+    for (Interval& v : c) v = next_state(state) % 5 == 0 ? Interval{0, 0} : wide_interval(state);
+    const Interval x = wide_interval(state);
+    Interval from_zero{0, 0};
+    for (auto it = c.rbegin(); it != c.rend(); ++it) from_zero = from_zero * x + *it;
+    const Interval fast = horner(c, x);
+    ASSERT_TRUE(same_bits(fast, from_zero)) << "trial " << trial << ": [" << fast.lo << ", " << fast.hi
+                                            << "] against [" << from_zero.lo << ", " << from_zero.hi << "]";
+    mixed += x.lo < 0 && x.hi > 0;
+    if (c.empty()) continue;
+    Interval from_leading = c.back();
+    for (auto it = std::next(c.rbegin()); it != c.rend(); ++it) from_leading = from_leading * x + *it;
+    const Interval leading = horner_from_leading(c, x);
+    ASSERT_TRUE(same_bits(leading, from_leading)) << "trial " << trial << ": from the leading coefficient ["
+                                                  << leading.lo << ", " << leading.hi << "] against ["
+                                                  << from_leading.lo << ", " << from_leading.hi << "]";
+    differing_starts += !same_bits(from_zero, from_leading);
+  }
+  // boxes across zero, and the two starts giving different bounds, met many times
+  EXPECT_GT(mixed, 5000);
+  EXPECT_GT(differing_starts, 5000);
 }
 
 // enclose(mpz_class) bounds an integer straight from it (mpz_get_d, mpz_cmp_d); it must give the
