@@ -69,11 +69,6 @@ std::string show(const Rational& value) {
   return fraction_or_rounded(value);
 }
 std::string show(const RationalInterval& range) { return "[" + show(range.lo) + ", " + show(range.hi) + "]"; }
-Interval hull(const Rational& lo, const Rational& hi) {
-  Interval result(lo);
-  mpfi_put_q(result.get(), const_cast<mpq_ptr>(hi.get_mpq_t()));
-  return result;
-}
 // The model reader may hand over non-canonical rationals (mpq equality needs canonical form).
 bool same(Rational a, Rational b) {
   a.canonicalize();
@@ -287,7 +282,10 @@ ExactMap exact_map(const Part& part, const std::map<std::string, ExactPosition>&
     reject("part '" + part.name + "' " + (rotates(part) ? "rotates: give its half-angle 'tangent'" : "translates: give its 'offset'"));
   if (!rotates(part)) {
     map.shift = Point{Rational(position.value * part.motion.direction.x), Rational(position.value * part.motion.direction.y)};
-    if (!within_limits(part, Interval(position.value))) reject("the offset of '" + part.name + "' is outside its limits");
+    // exact: an offset resting on a limit is a configuration (through an enclosure, a limit
+    // such as 1/3 mm refused the offset 1/3 mm that the producer had accepted exactly)
+    if (!range_within_limits(part, RationalInterval{position.value, position.value}))
+      reject("the offset of '" + part.name + "' is outside its limits");
     return map;
   }
   const Rational& t = position.value;
@@ -450,7 +448,9 @@ std::string check_jam(const Certificate& c, const Model& model) {
   Roles r = roles(c, model);
   const RationalInterval& span = c.trap.driver;
   if (span.lo >= span.hi) reject("the trap's driver range must have lo < hi");
-  if (!within_limits(*r.driver, hull(span.lo, span.hi))) reject("the trap's driver range is outside the driver's limits");
+  // exact in the limits' own turn (range_within_limits): a span ending on a limit such as 1/3
+  // is within it (an enclosure of both refused it)
+  if (!range_within_limits(*r.driver, span)) reject("the trap's driver range is outside the driver's limits");
   Rational far = c.direction > 0 ? span.hi : span.lo;
   RationalInterval cut_at{far, far};
   if (!r.has_follower) {
@@ -644,16 +644,7 @@ std::string start_failure(const Part& driver, const Part& other, const Configura
     if (bound <= needed)
       reject("the parts are not certainly apart at the trap's start (driver " + show(x) + (follows ? ", follower " + show(y) : "") +
              "): the certified distance lower bound of " + closest + " is " + show(bound));
-    // (a translation's offset was checked against the limits above, exactly: a follower resting
-    // on its limit is a configuration; exact_map's enclosure test refuses the equality)
-    auto nest_map = [&](const Part& part) {
-      if (part.motion.kind != Motion::Kind::translation) return exact_map(part, nest);
-      ExactMap map;
-      const Rational& s = nest.at(part.name).value;
-      map.shift = Point{Rational(s * part.motion.direction.x), Rational(s * part.motion.direction.y)};
-      return map;
-    };
-    check_nesting(place(driver, nest_map(driver)), place(other, nest_map(other)), "at the trap's start");
+    check_nesting(place(driver, exact_map(driver, nest)), place(other, exact_map(other, nest)), "at the trap's start");
   } catch (const Rejection& rejection) {
     return rejection.reason;
   }

@@ -266,6 +266,18 @@ J1 Arithmetic<J1>::tan(const J1& x) { return sin(x) / cos(x); }
 J1 Arithmetic<J1>::atan2(const J1& y, const J1& x) {
   Interval r;
   mpfi_atan2(r.get(), y.value.get(), x.value.get());
+  // The branch cut (y = 0, x <= 0) inside the range: atan2 jumps by 2 pi there and no gradient
+  // bounds its difference quotients, so every partial is the whole line (the mean-value and
+  // monotonicity tests then fall back to the value). Until session 50 (exact50b) the gradient
+  // x / r^2, -y / r^2 was used across the jump: atan2(p, -1) over p in [-0.1, 0.1] was
+  // enclosed in [pi - 0.1, pi] by the mean-value form, its values near -pi left out.
+  if (y.value.sign() == 0 && x.value.sign() <= 0) {
+    Interval whole;
+    mpfr_set_inf(&whole.get()->left, -1);
+    mpfr_set_inf(&whole.get()->right, 1);
+    std::vector<Interval> g(std::max(x.gradient.size(), y.gradient.size()), whole);
+    return J1(r, std::move(g));
+  }
   Interval r2 = x.value * x.value + y.value * y.value;
   return J1(r, verify::combine(y, x.value / r2, x, -(y.value / r2)));
 }
