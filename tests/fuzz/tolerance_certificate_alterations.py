@@ -36,6 +36,19 @@ extension; a leaf dropped; a varied parameter dropped.  The statement is restate
 data.  A false certificate accepted (exit 0) is a finding; so is an exit other than 0/1/3 or more
 than one line of output.  True certificates rejected are counted (the verifier is sound, not
 complete).
+Session 50 (hunt50): one case in three is a second pair, the lever against a 2 x 2 mm block
+[u, u + 2] x [-1, 1] sliding along the lever's axis (limits -20 .. 100 mm), where the follower's
+motion moves the parts' distance one for one and the block fits inside the lever.  Its truth is
+exact in rationals: the lever is the segment (0, 0) .. L (cos theta, sin theta) grown by r = w/2
+(r > 1), so (a) for u0 > L + r the block lies outside the disc of radius L + r about the pivot that
+holds the lever: apart for every theta; (b) for u1 + 2 < -r and |theta| <= 3/2 (cos > 0) every
+point of the lever has x >= -r: apart; (c) at theta = 0 the lever is the stadium [0, L] x [-r, r]
+with round ends, and the block meets it iff -r - 2 <= u <= L + r (|y| <= 1 < r), so a claim whose
+driver range holds 0 and whose follower range meets [-r - 2, L + r] at the largest L and r is
+false; anything else is undecided.  Its crossings are the follower range's near end (the block
+nearing the tip) and the scale; its own alteration shifts the follower range and every leaf's
+follower interval into the lever ([6, 36] mm, the block wholly inside for |theta| <= 0.06: no
+boundary meets, only the ray-parity test at the leaf's centre finds the interference).
 usage: tolerance_certificate_alterations.py HIPAIR HIPAIR_VERIFY REPO OUTDIR SEED N_CERTIFICATES"""
 import copy, json, os, random, subprocess, sys
 from fractions import Fraction as F
@@ -52,6 +65,12 @@ model_json['name'] = 'lever-and-sliding-stop'
 model_json['parts'][1]['motion'] = {'translation': {'direction': [1, 0], 'limits': [-5, 15]}}
 model = os.path.join(outdir, 'lever-sliding-stop.json')
 json.dump(model_json, open(model, 'w'), indent=1)
+model_json['name'] = 'lever-and-sliding-block'
+model_json['parts'][1] = {'name': 'block', 'motion': {'translation': {'direction': [1, 0], 'limits': [-20, 100]}},
+                          'loops': [{'start': [0, -1], 'edges': [{'line_to': [2, -1]}, {'line_to': [2, 1]},
+                                                                 {'line_to': [0, 1]}, {'line_to': [0, -1]}]}]}
+block_model = os.path.join(outdir, 'lever-sliding-block.json')
+json.dump(model_json, open(block_model, 'w'), indent=1)
 NOMINAL = {'lever-length': F(60), 'lever-width': F(8), 'stop-gap': F(2)}
 TOLERANCE = {'lever-length': (F(-1, 20), F(1, 20)), 'lever-width': (F(-1, 50), F(1, 50)), 'stop-gap': (F(-1, 10), F(1, 10))}
 DOMAIN = {'lever-length': (F(59), F(61)), 'lever-width': (F(7), F(9)), 'stop-gap': (F(0), F(4))}
@@ -80,15 +99,40 @@ def clearance(t1, u0, u1, w, g):
     return (dec(w / 2 + g)) * c - dec(a) * s - dec(w / 2)
 
 
-def truth(cert):
+def claim_data(cert, follower):
+    """(t0, t1, u0, u1, parameter ranges) of a well-formed claim on lever:follower, else None"""
     t = cert['tolerance']
-    if t['property'] != 'no_interference' or t['driver'] != 'lever' or t['follower'] != 'stop':
-        return False
+    if t['property'] != 'no_interference' or t['driver'] != 'lever' or t['follower'] != follower:
+        return None
     t0, t1 = (F(v) for v in t['range'])
     u0, u1 = (F(v) for v in t['follower_range'])
     ranges = parameter_ranges(t)
     if ranges is None or not t0 <= t1 or not u0 <= u1:
+        return None
+    return t0, t1, u0, u1, ranges
+
+
+def block_truth(cert):
+    """the lever against the sliding block, exact (the docstring's (a), (b), (c))"""
+    data = claim_data(cert, 'block')
+    if data is None:
         return False
+    t0, t1, u0, u1, ranges = data
+    length, r = ranges['lever-length'][1], ranges['lever-width'][1] / 2
+    if ranges['lever-width'][0] <= 2 or ranges['lever-length'][0] <= 0:
+        return None
+    if u0 > length + r or (u1 + 2 < -r and F(-3, 2) <= t0 and t1 <= F(3, 2)):
+        return True
+    if t0 <= 0 <= t1 and u0 <= length + r and u1 >= -r - 2:
+        return False
+    return None
+
+
+def truth(cert):
+    data = claim_data(cert, 'stop')
+    if data is None:
+        return False
+    t0, t1, u0, u1, ranges = data
     if not (F(-6, 10) <= t0 and t1 <= F(7, 20) and -3 <= u0 and u1 <= 14 and
             all(DOMAIN[k][0] <= lo and hi <= DOMAIN[k][1] for k, (lo, hi) in ranges.items())):
         return None
@@ -101,9 +145,9 @@ def truth(cert):
 def statement(cert):
     t = cert['tolerance']
     return ("For every value of the %d varied parameters within %s x their tolerance ranges, with 'lever' over "
-            "[%s, %s] and 'stop' over [%s, %s], the two parts are apart: they never interfere." %
-            (len(t['varied']), F(t['scale']), F(t['range'][0]), F(t['range'][1]), F(t['follower_range'][0]),
-             F(t['follower_range'][1])))
+            "[%s, %s] and '%s' over [%s, %s], the two parts are apart: they never interfere." %
+            (len(t['varied']), F(t['scale']), F(t['range'][0]), F(t['range'][1]), t['follower'],
+             F(t['follower_range'][0]), F(t['follower_range'][1])))
 
 
 def restated(t):
@@ -156,7 +200,10 @@ def moved(cert, where, value, drag):
     return restated(c)
 
 
-def alterations(cert):
+def alterations(cert, truth, crossings):
+    """every alteration of cert: its numbers, a leaf or a varied parameter dropped, and each of
+    crossings ((where, far): a claim bound moved from its value towards far) bisected to 2^-60 of
+    the point where the truth changes"""
     t = cert['tolerance']
     out = []
     for path in number_leaves(t):
@@ -174,8 +221,8 @@ def alterations(cert):
         for leaf in a['tolerance']['leaves']:
             del leaf['parameters'][i]
         out.append(('varied %s dropped' % t['varied'][i], restated(a)))
-    t1, u1, scale = F(t['range'][1]), F(t['follower_range'][1]), F(t['scale'])
-    for where, good, far in ((('range', 1), t1, F(7, 20)), (('follower_range', 1), u1, F(14)), (('scale',), scale, F(19))):
+    for where, far in crossings:
+        good = F(node_of(t, where)[where[-1]])
         holds = lambda v: truth(moved(cert, where, v, True)) is True
         if not holds(good) or truth(moved(cert, where, far, True)) is not False:
             continue
@@ -187,6 +234,41 @@ def alterations(cert):
                                                            'box kept': ', box and leaves kept'}[drag]),
                             moved(cert, where, v, drag)))
     return out
+
+
+def block_alterations(cert):
+    """alterations() with the block's crossings, and the claim shifted into the lever"""
+    out = alterations(cert, block_truth, ((('follower_range', 0), F(60)), (('scale',), F(19))))
+    t = cert['tolerance']
+    shift = F(rng.randrange(60, 360), 10) - F(t['follower_range'][0])
+    c = copy.deepcopy(cert)
+    c['tolerance']['follower_range'] = [str(F(v) + shift) for v in t['follower_range']]
+    for leaf in c['tolerance']['leaves']:
+        leaf['follower'] = [str(F(v) + shift) for v in leaf['follower']]
+    out.append(('follower range and leaves shifted by %s (the block inside the lever)' % shift, restated(c)))
+    return out
+
+
+def stop_alterations(cert):
+    return alterations(cert, truth, ((('range', 1), F(7, 20)), (('follower_range', 1), F(14)), (('scale',), F(19))))
+
+
+def generated_block():
+    """the arguments of one certify run on the block: a scale, a driver range about 0 within
+    |theta| <= 0.06 and a follower range beginning 0.05 .. 1 mm past the lever's reach; every
+    other one narrow (|theta| <= 0.002, 0.2 .. 0.6 mm from 0.05 .. 0.3 mm past the reach), where a
+    leaf's mean-value form separates the parts and the follower's term in it decides the crossing"""
+    scale = F(rng.choice([1, 1, 2, 5]))
+    reach = NOMINAL['lever-length'] + scale * TOLERANCE['lever-length'][1] + (NOMINAL['lever-width'] + scale * TOLERANCE['lever-width'][1]) / 2
+    if rng.random() < 0.5:
+        t0, t1 = -F(rng.randrange(1, 20), 10000), F(rng.randrange(1, 20), 10000)
+        u0 = reach + F(rng.randrange(5, 30), 100)
+        u1 = u0 + F(rng.randrange(2, 7), 10)
+    else:
+        t0, t1 = -F(rng.randrange(1, 60), 1000), F(rng.randrange(1, 60), 1000)
+        u0 = reach + F(rng.randrange(5, 100), 100)
+        u1 = u0 + F(rng.choice([0, rng.randrange(1, 40)]), 10)
+    return ['--certify-scale', str(scale), '--range', '%s:%s' % (t0, t1), '--follower-range', '%s:%s' % (u0, u1)]
 
 
 def generated():
@@ -208,16 +290,20 @@ def generated():
 
 findings, counts = 0, {'true accepted': 0, 'true rejected': 0, 'false rejected': 0, 'undecided': 0, 'base': 0}
 for case in range(n):
-    args = generated()
+    block = case % 3 == 2
+    args = generated_block() if block else generated()
     out = os.path.join(outdir, 'base-%d' % case)
-    r = subprocess.run([hipair, 'tolerance', model, '--certify-interference', '--pair', 'lever:stop', '--out', out] + args,
-                       capture_output=True, text=True, timeout=120)
+    pair_model = block_model if block else model
+    r = subprocess.run([hipair, 'tolerance', pair_model, '--certify-interference', '--pair', 'lever:block' if block else 'lever:stop',
+                        '--out', out] + args, capture_output=True, text=True, timeout=120)
     if r.returncode != 0:
         print('case %d: %s not certified: %s' % (case, ' '.join(args), (r.stdout + r.stderr).strip()[-300:]))
         findings += 1
         continue
     cert = json.load(open(os.path.join(out, 'interference-certificate.json')))
-    findings += judged_certificate(verify, os.path.join(outdir, 'c%d.json' % case), model, cert, 'case %d (%s)' % (case, ' '.join(args)),
-                                   truth, statement, alterations, counts)
+    findings += judged_certificate(verify, os.path.join(outdir, 'c%d.json' % case), pair_model, cert,
+                                   'case %d (%s%s)' % (case, 'block, ' if block else '', ' '.join(args)),
+                                   block_truth if block else truth, statement,
+                                   block_alterations if block else stop_alterations, counts)
 print('%s, %d findings' % (counts, findings))
 sys.exit(1 if findings else 0)
