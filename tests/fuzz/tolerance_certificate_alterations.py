@@ -49,6 +49,13 @@ false; anything else is undecided.  Its crossings are the follower range's near 
 nearing the tip) and the scale; its own alteration shifts the follower range and every leaf's
 follower interval into the lever ([6, 36] mm, the block wholly inside for |theta| <= 0.06: no
 boundary meets, only the ray-parity test at the leaf's centre finds the interference).
+Also session 50: one case in four is a "no jam" tolerance certificate (`hipair tolerance --certify`,
+property no_jam) on scotch-yoke.json's crank:yoke pair: the crank pin (radius r at crank radius R)
+in the yoke's slot (width s, centred on x = R + offset, half-length 37), so the follower's free
+offsets at crank angle theta are R cos theta - R + [-(s/2 - r), s/2 - r] whatever theta: the
+channel between the slot's walls never closes iff s - 2r > 0 at the box's least s and largest r
+(exact in rationals; with the pin inside the slot's length, R + r < 37, else undecided).  Its
+crossing is the scale (at nominal 0.4 - 0.04 x scale: 10).
 usage: tolerance_certificate_alterations.py HIPAIR HIPAIR_VERIFY REPO OUTDIR SEED N_CERTIFICATES"""
 import copy, json, os, random, subprocess, sys
 from fractions import Fraction as F
@@ -74,6 +81,9 @@ json.dump(model_json, open(block_model, 'w'), indent=1)
 NOMINAL = {'lever-length': F(60), 'lever-width': F(8), 'stop-gap': F(2)}
 TOLERANCE = {'lever-length': (F(-1, 20), F(1, 20)), 'lever-width': (F(-1, 50), F(1, 50)), 'stop-gap': (F(-1, 10), F(1, 10))}
 DOMAIN = {'lever-length': (F(59), F(61)), 'lever-width': (F(7), F(9)), 'stop-gap': (F(0), F(4))}
+yoke_model = os.path.join(repo, 'examples/models/scotch-yoke.json')
+NOMINAL.update({'crank-radius': F(30), 'pin-radius': F(5), 'slot-width': F(104, 10)})
+TOLERANCE.update({'crank-radius': (F(-1, 50), F(1, 50)), 'pin-radius': (F(-1, 100), F(1, 100)), 'slot-width': (F(-1, 50), F(1, 50))})
 
 
 def parameter_ranges(t):
@@ -99,17 +109,29 @@ def clearance(t1, u0, u1, w, g):
     return (dec(w / 2 + g)) * c - dec(a) * s - dec(w / 2)
 
 
-def claim_data(cert, follower):
-    """(t0, t1, u0, u1, parameter ranges) of a well-formed claim on lever:follower, else None"""
+def claim_data(cert, follower, driver='lever', prop='no_interference'):
+    """(t0, t1, u0, u1, parameter ranges) of a well-formed claim on driver:follower (u0 = u1 = 0
+    for no_jam), else None"""
     t = cert['tolerance']
-    if t['property'] != 'no_interference' or t['driver'] != 'lever' or t['follower'] != follower:
+    if t['property'] != prop or t['driver'] != driver or t['follower'] != follower:
         return None
     t0, t1 = (F(v) for v in t['range'])
-    u0, u1 = (F(v) for v in t['follower_range'])
+    u0, u1 = (F(v) for v in t['follower_range']) if prop == 'no_interference' else (F(0), F(0))
     ranges = parameter_ranges(t)
     if ranges is None or not t0 <= t1 or not u0 <= u1:
         return None
     return t0, t1, u0, u1, ranges
+
+
+def yoke_truth(cert):
+    """the crank pin in the yoke's slot: no jam iff s - 2 r > 0 over the box (the docstring)"""
+    data = claim_data(cert, 'yoke', 'crank', 'no_jam')
+    if data is None:
+        return False
+    ranges = data[4]
+    if ranges['crank-radius'][1] + ranges['pin-radius'][1] >= 37 or ranges['pin-radius'][0] <= 0:
+        return None
+    return ranges['slot-width'][0] - 2 * ranges['pin-radius'][1] > 0
 
 
 def block_truth(cert):
@@ -134,7 +156,7 @@ def truth(cert):
         return False
     t0, t1, u0, u1, ranges = data
     if not (F(-6, 10) <= t0 and t1 <= F(7, 20) and -3 <= u0 and u1 <= 14 and
-            all(DOMAIN[k][0] <= lo and hi <= DOMAIN[k][1] for k, (lo, hi) in ranges.items())):
+            all(DOMAIN[k][0] <= ranges[k][0] and ranges[k][1] <= DOMAIN[k][1] for k in DOMAIN)):
         return None
     c = compare(clearance(t1, u0, u1, ranges['lever-width'][1], ranges['stop-gap'][0]), D(0))
     if c is None:
@@ -144,6 +166,10 @@ def truth(cert):
 
 def statement(cert):
     t = cert['tolerance']
+    if t['property'] == 'no_jam':
+        return ("For every value of the %d varied parameters within %s x their tolerance ranges, driving '%s' over [%s, %s], "
+                "the channel of '%s' between its two contact sides never closes: the pair does not jam." %
+                (len(t['varied']), F(t['scale']), t['driver'], F(t['range'][0]), F(t['range'][1]), t['follower']))
     return ("For every value of the %d varied parameters within %s x their tolerance ranges, with 'lever' over "
             "[%s, %s] and '%s' over [%s, %s], the two parts are apart: they never interfere." %
             (len(t['varied']), F(t['scale']), F(t['range'][0]), F(t['range'][1]), t['follower'],
@@ -253,6 +279,21 @@ def stop_alterations(cert):
     return alterations(cert, truth, ((('range', 1), F(7, 20)), (('follower_range', 1), F(14)), (('scale',), F(19))))
 
 
+def yoke_alterations(cert):
+    return alterations(cert, yoke_truth, ((('scale',), F(12)),))
+
+
+def generated_yoke():
+    """the arguments of one certify run on the scotch yoke: a scale 1 .. 8 and a driver range of
+    0.02 .. 0.3 rad starting within 0.3 rad of 0 (the analysis starts the yoke at its initial
+    offset at the range's start: from 2.5 rad on the pin is then outside the slot, "not bounded on
+    both sides")"""
+    scale = F(rng.choice([1, 2, 4, 8]))
+    t0 = F(rng.randrange(-30, 30), 100)
+    t1 = t0 + F(rng.randrange(2, 30), 100)
+    return ['--certify-scale', str(scale), '--range', '%s:%s' % (t0, t1)]
+
+
 def generated_block():
     """the arguments of one certify run on the block: a scale, a driver range about 0 within
     |theta| <= 0.06 and a follower range beginning 0.05 .. 1 mm past the lever's reach; every
@@ -289,21 +330,24 @@ def generated():
 
 
 findings, counts = 0, {'true accepted': 0, 'true rejected': 0, 'false rejected': 0, 'undecided': 0, 'base': 0}
+# kind: (model, pair, certify option, certificate file, generator, truth, alterations)
+KINDS = {'stop': (model, 'lever:stop', '--certify-interference', 'interference-certificate.json', generated, truth, stop_alterations),
+         'block': (block_model, 'lever:block', '--certify-interference', 'interference-certificate.json', generated_block,
+                   block_truth, block_alterations),
+         'yoke': (yoke_model, 'crank:yoke', '--certify', 'tolerance-certificate.json', generated_yoke, yoke_truth, yoke_alterations)}
 for case in range(n):
-    block = case % 3 == 2
-    args = generated_block() if block else generated()
+    kind = ('stop', 'stop', 'block', 'yoke')[case % 4]
+    pair_model, pair, option, name, generator, pair_truth, pair_alterations = KINDS[kind]
+    args = generator()
     out = os.path.join(outdir, 'base-%d' % case)
-    pair_model = block_model if block else model
-    r = subprocess.run([hipair, 'tolerance', pair_model, '--certify-interference', '--pair', 'lever:block' if block else 'lever:stop',
-                        '--out', out] + args, capture_output=True, text=True, timeout=120)
+    r = subprocess.run([hipair, 'tolerance', pair_model, option, '--pair', pair, '--out', out, '--quiet'] + args,
+                       capture_output=True, text=True, timeout=120)
     if r.returncode != 0:
         print('case %d: %s not certified: %s' % (case, ' '.join(args), (r.stdout + r.stderr).strip()[-300:]))
         findings += 1
         continue
-    cert = json.load(open(os.path.join(out, 'interference-certificate.json')))
+    cert = json.load(open(os.path.join(out, name)))
     findings += judged_certificate(verify, os.path.join(outdir, 'c%d.json' % case), pair_model, cert,
-                                   'case %d (%s%s)' % (case, 'block, ' if block else '', ' '.join(args)),
-                                   block_truth if block else truth, statement,
-                                   block_alterations if block else stop_alterations, counts)
+                                   'case %d (%s, %s)' % (case, kind, ' '.join(args)), pair_truth, statement, pair_alterations, counts)
 print('%s, %d findings' % (counts, findings))
 sys.exit(1 if findings else 0)
