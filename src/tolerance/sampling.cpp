@@ -1,14 +1,22 @@
 // HIPAIR — parameter distributions and Monte Carlo draws (sampling.hpp).
 #include "tolerance/sampling.hpp"
 
+#include <hipair/error.hpp>
 #include <hipair/rational.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace hipair::tolerance_detail {
 
 double round_to_double(const Rational& x, bool up) {
+  constexpr double most = std::numeric_limits<double>::max();
+  if (abs(x) > Rational(most)) {   // beyond the doubles: get_d's infinity would make Rational(d) raise SIGFPE
+    bool positive = sgn(x) > 0;
+    if (up == positive) return positive ? INFINITY : -INFINITY;
+    return positive ? most : -most;
+  }
   double d = x.get_d();
   if (up && Rational(d) < x) d = std::nextafter(d, INFINITY);
   if (!up && Rational(d) > x) d = std::nextafter(d, -INFINITY);
@@ -68,6 +76,12 @@ std::vector<Distribution> distributions(const Model& model) {
     Rational lo = p.range.lo - p.nominal, hi = p.range.hi - p.nominal;
     d.lo = lo.get_d();
     d.hi = hi.get_d();
+    // Sampling, sensitivities and bands work in doubles about the nominal: a range whose ends or
+    // width overflow them (a tolerance of 1e400) would come out as infinities and NaNs.
+    if (!std::isfinite(d.hi - d.lo) || (p.sigma && !std::isfinite(p.sigma->get_d())))
+      throw ModelError("/parameters/" + p.name, std::string("its tolerance range") + (p.sigma ? " or sigma" : "") +
+                                                    " is beyond the doubles the tolerance analysis samples in (a width or "
+                                                    "deviation above about 1.8e308)");
     d.sample_lo = round_to_double(lo, true);
     d.sample_hi = round_to_double(hi, false);
     d.box_lo = round_to_double(lo, false);

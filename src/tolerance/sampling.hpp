@@ -19,12 +19,14 @@ struct Distribution {
   double sample_lo = 0, sample_hi = 0;   ///< the range rounded inwards: every draw lies in it
 };
 
-/// The double nearest to x on the side given: not below x (up) or not above it.
+/// The double nearest to x on the side given: not below x (up) or not above it; beyond the
+/// doubles, the infinity on x's side or the largest finite double towards zero.
 double round_to_double(const Rational& x, bool up);
 
 /// Per parameter (Model::parameters order). Toleranced without a distribution: normal about the
 /// range's centre, sigma = width / 6; uniform: on the range, width / sqrt(12); normal with sigma s:
-/// about the nominal (deviation 0), sigma s. Normal ones are truncated to the range.
+/// about the nominal (deviation 0), sigma s. Normal ones are truncated to the range. A range whose
+/// width (or a sigma) overflows the doubles is refused: ModelError at /parameters/NAME.
 std::vector<Distribution> distributions(const Model& model);
 
 /// The deviations of Monte Carlo sample `index` (its own splitmix64 stream of `seed`): uniform

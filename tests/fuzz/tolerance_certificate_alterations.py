@@ -36,6 +36,27 @@ extension; a leaf dropped; a varied parameter dropped.  The statement is restate
 data.  A false certificate accepted (exit 0) is a finding; so is an exit other than 0/1/3 or more
 than one line of output.  True certificates rejected are counted (the verifier is sound, not
 complete).
+Session 50 (hunt50): one case in three is a second pair, the lever against a 2 x 2 mm block
+[u, u + 2] x [-1, 1] sliding along the lever's axis (limits -20 .. 100 mm), where the follower's
+motion moves the parts' distance one for one and the block fits inside the lever.  Its truth is
+exact in rationals: the lever is the segment (0, 0) .. L (cos theta, sin theta) grown by r = w/2
+(r > 1), so (a) for u0 > L + r the block lies outside the disc of radius L + r about the pivot that
+holds the lever: apart for every theta; (b) for u1 + 2 < -r and |theta| <= 3/2 (cos > 0) every
+point of the lever has x >= -r: apart; (c) at theta = 0 the lever is the stadium [0, L] x [-r, r]
+with round ends, and the block meets it iff -r - 2 <= u <= L + r (|y| <= 1 < r), so a claim whose
+driver range holds 0 and whose follower range meets [-r - 2, L + r] at the largest L and r is
+false; anything else is undecided.  Its crossings are the follower range's near end (the block
+nearing the tip) and the scale; its own alteration shifts the follower range and every leaf's
+follower interval into the lever ([6, 36] mm, the block wholly inside for |theta| <= 0.06: no
+boundary meets, only the ray-parity test at the leaf's centre finds the interference).
+Also session 50: one case in four is a "no jam" tolerance certificate (`hipair tolerance --certify`,
+property no_jam) on scotch-yoke.json's crank:yoke pair with the slot made tight (width 10.04 mm
+for 10.4, so that the channel closes at scale 1 and certificates near the crossing stay small): the crank pin (radius r at crank radius R)
+in the yoke's slot (width s, centred on x = R + offset, half-length 37), so the follower's free
+offsets at crank angle theta are R cos theta - R + [-(s/2 - r), s/2 - r] whatever theta: the
+channel between the slot's walls never closes iff s - 2r > 0 at the box's least s and largest r
+(exact in rationals; with the pin inside the slot's length, R + r < 37, else undecided).  Its
+crossing is the scale (0.04 - 0.04 x scale: 1), from certificates at 0.5 .. 0.97.
 usage: tolerance_certificate_alterations.py HIPAIR HIPAIR_VERIFY REPO OUTDIR SEED N_CERTIFICATES"""
 import copy, json, os, random, subprocess, sys
 from fractions import Fraction as F
@@ -52,9 +73,22 @@ model_json['name'] = 'lever-and-sliding-stop'
 model_json['parts'][1]['motion'] = {'translation': {'direction': [1, 0], 'limits': [-5, 15]}}
 model = os.path.join(outdir, 'lever-sliding-stop.json')
 json.dump(model_json, open(model, 'w'), indent=1)
+model_json['name'] = 'lever-and-sliding-block'
+model_json['parts'][1] = {'name': 'block', 'motion': {'translation': {'direction': [1, 0], 'limits': [-20, 100]}},
+                          'loops': [{'start': [0, -1], 'edges': [{'line_to': [2, -1]}, {'line_to': [2, 1]},
+                                                                 {'line_to': [0, 1]}, {'line_to': [0, -1]}]}]}
+block_model = os.path.join(outdir, 'lever-sliding-block.json')
+json.dump(model_json, open(block_model, 'w'), indent=1)
 NOMINAL = {'lever-length': F(60), 'lever-width': F(8), 'stop-gap': F(2)}
 TOLERANCE = {'lever-length': (F(-1, 20), F(1, 20)), 'lever-width': (F(-1, 50), F(1, 50)), 'stop-gap': (F(-1, 10), F(1, 10))}
 DOMAIN = {'lever-length': (F(59), F(61)), 'lever-width': (F(7), F(9)), 'stop-gap': (F(0), F(4))}
+model_json = json.load(open(os.path.join(repo, 'examples/models/scotch-yoke.json')))
+model_json['name'] = 'scotch-yoke-tight'
+model_json['parameters']['slot-width']['nominal'] = 10.04
+yoke_model = os.path.join(outdir, 'scotch-yoke-tight.json')
+json.dump(model_json, open(yoke_model, 'w'), indent=1)
+NOMINAL.update({'crank-radius': F(30), 'pin-radius': F(5), 'slot-width': F(1004, 100)})
+TOLERANCE.update({'crank-radius': (F(-1, 50), F(1, 50)), 'pin-radius': (F(-1, 100), F(1, 100)), 'slot-width': (F(-1, 50), F(1, 50))})
 
 
 def parameter_ranges(t):
@@ -80,17 +114,54 @@ def clearance(t1, u0, u1, w, g):
     return (dec(w / 2 + g)) * c - dec(a) * s - dec(w / 2)
 
 
-def truth(cert):
+def claim_data(cert, follower, driver='lever', prop='no_interference'):
+    """(t0, t1, u0, u1, parameter ranges) of a well-formed claim on driver:follower (u0 = u1 = 0
+    for no_jam), else None"""
     t = cert['tolerance']
-    if t['property'] != 'no_interference' or t['driver'] != 'lever' or t['follower'] != 'stop':
-        return False
+    if t['property'] != prop or t['driver'] != driver or t['follower'] != follower:
+        return None
     t0, t1 = (F(v) for v in t['range'])
-    u0, u1 = (F(v) for v in t['follower_range'])
+    u0, u1 = (F(v) for v in t['follower_range']) if prop == 'no_interference' else (F(0), F(0))
     ranges = parameter_ranges(t)
     if ranges is None or not t0 <= t1 or not u0 <= u1:
+        return None
+    return t0, t1, u0, u1, ranges
+
+
+def yoke_truth(cert):
+    """the crank pin in the yoke's slot: no jam iff s - 2 r > 0 over the box (the docstring)"""
+    data = claim_data(cert, 'yoke', 'crank', 'no_jam')
+    if data is None:
         return False
+    ranges = data[4]
+    if ranges['crank-radius'][1] + ranges['pin-radius'][1] >= 37 or ranges['pin-radius'][0] <= 0:
+        return None
+    return ranges['slot-width'][0] - 2 * ranges['pin-radius'][1] > 0
+
+
+def block_truth(cert):
+    """the lever against the sliding block, exact (the docstring's (a), (b), (c))"""
+    data = claim_data(cert, 'block')
+    if data is None:
+        return False
+    t0, t1, u0, u1, ranges = data
+    length, r = ranges['lever-length'][1], ranges['lever-width'][1] / 2
+    if ranges['lever-width'][0] <= 2 or ranges['lever-length'][0] <= 0:
+        return None
+    if u0 > length + r or (u1 + 2 < -r and F(-3, 2) <= t0 and t1 <= F(3, 2)):
+        return True
+    if t0 <= 0 <= t1 and u0 <= length + r and u1 >= -r - 2:
+        return False
+    return None
+
+
+def truth(cert):
+    data = claim_data(cert, 'stop')
+    if data is None:
+        return False
+    t0, t1, u0, u1, ranges = data
     if not (F(-6, 10) <= t0 and t1 <= F(7, 20) and -3 <= u0 and u1 <= 14 and
-            all(DOMAIN[k][0] <= lo and hi <= DOMAIN[k][1] for k, (lo, hi) in ranges.items())):
+            all(DOMAIN[k][0] <= ranges[k][0] and ranges[k][1] <= DOMAIN[k][1] for k in DOMAIN)):
         return None
     c = compare(clearance(t1, u0, u1, ranges['lever-width'][1], ranges['stop-gap'][0]), D(0))
     if c is None:
@@ -100,10 +171,14 @@ def truth(cert):
 
 def statement(cert):
     t = cert['tolerance']
+    if t['property'] == 'no_jam':
+        return ("For every value of the %d varied parameters within %s x their tolerance ranges, driving '%s' over [%s, %s], "
+                "the channel of '%s' between its two contact sides never closes: the pair does not jam." %
+                (len(t['varied']), F(t['scale']), t['driver'], F(t['range'][0]), F(t['range'][1]), t['follower']))
     return ("For every value of the %d varied parameters within %s x their tolerance ranges, with 'lever' over "
-            "[%s, %s] and 'stop' over [%s, %s], the two parts are apart: they never interfere." %
-            (len(t['varied']), F(t['scale']), F(t['range'][0]), F(t['range'][1]), F(t['follower_range'][0]),
-             F(t['follower_range'][1])))
+            "[%s, %s] and '%s' over [%s, %s], the two parts are apart: they never interfere." %
+            (len(t['varied']), F(t['scale']), F(t['range'][0]), F(t['range'][1]), t['follower'],
+             F(t['follower_range'][0]), F(t['follower_range'][1])))
 
 
 def restated(t):
@@ -156,7 +231,10 @@ def moved(cert, where, value, drag):
     return restated(c)
 
 
-def alterations(cert):
+def alterations(cert, truth, crossings):
+    """every alteration of cert: its numbers, a leaf or a varied parameter dropped, and each of
+    crossings ((where, far): a claim bound moved from its value towards far) bisected to 2^-60 of
+    the point where the truth changes"""
     t = cert['tolerance']
     out = []
     for path in number_leaves(t):
@@ -174,8 +252,8 @@ def alterations(cert):
         for leaf in a['tolerance']['leaves']:
             del leaf['parameters'][i]
         out.append(('varied %s dropped' % t['varied'][i], restated(a)))
-    t1, u1, scale = F(t['range'][1]), F(t['follower_range'][1]), F(t['scale'])
-    for where, good, far in ((('range', 1), t1, F(7, 20)), (('follower_range', 1), u1, F(14)), (('scale',), scale, F(19))):
+    for where, far in crossings:
+        good = F(node_of(t, where)[where[-1]])
         holds = lambda v: truth(moved(cert, where, v, True)) is True
         if not holds(good) or truth(moved(cert, where, far, True)) is not False:
             continue
@@ -187,6 +265,57 @@ def alterations(cert):
                                                            'box kept': ', box and leaves kept'}[drag]),
                             moved(cert, where, v, drag)))
     return out
+
+
+def block_alterations(cert):
+    """alterations() with the block's crossings, and the claim shifted into the lever"""
+    out = alterations(cert, block_truth, ((('follower_range', 0), F(60)), (('scale',), F(19))))
+    t = cert['tolerance']
+    shift = F(rng.randrange(60, 360), 10) - F(t['follower_range'][0])
+    c = copy.deepcopy(cert)
+    c['tolerance']['follower_range'] = [str(F(v) + shift) for v in t['follower_range']]
+    for leaf in c['tolerance']['leaves']:
+        leaf['follower'] = [str(F(v) + shift) for v in leaf['follower']]
+    out.append(('follower range and leaves shifted by %s (the block inside the lever)' % shift, restated(c)))
+    return out
+
+
+def stop_alterations(cert):
+    return alterations(cert, truth, ((('range', 1), F(7, 20)), (('follower_range', 1), F(14)), (('scale',), F(19))))
+
+
+def yoke_alterations(cert):
+    return alterations(cert, yoke_truth, ((('scale',), F(6, 5)),))
+
+
+def generated_yoke():
+    """the arguments of one certify run on the tight scotch yoke: a scale 0.5 .. 0.97 and a driver
+    range of 0.02 .. 0.1 rad starting within 0.3 rad of 0 (the analysis starts the yoke at its initial
+    offset at the range's start: from 2.5 rad on the pin is then outside the slot, "not bounded on
+    both sides")"""
+    scale = rng.choice([F(1, 2), F(9, 10), F(19, 20), F(97, 100)])
+    t0 = F(rng.randrange(-30, 30), 100)
+    t1 = t0 + F(rng.randrange(2, 10), 100)
+    return ['--certify-scale', str(scale), '--range', '%s:%s' % (t0, t1)]
+
+
+def generated_block(narrow):
+    """the arguments of one certify run on the block: a scale, a driver range about 0 within
+    |theta| <= 0.06 and a follower range beginning 0.05 .. 1 mm past the lever's reach; every
+    other one (narrow) within |theta| <= 0.002, 0.2 .. 0.6 mm from 0.05 .. 0.3 mm past the reach,
+    where a leaf's mean-value form separates the parts and the follower's term in it decides the
+    crossing"""
+    scale = F(rng.choice([1, 1, 2, 5]))
+    reach = NOMINAL['lever-length'] + scale * TOLERANCE['lever-length'][1] + (NOMINAL['lever-width'] + scale * TOLERANCE['lever-width'][1]) / 2
+    if narrow:
+        t0, t1 = -F(rng.randrange(1, 20), 10000), F(rng.randrange(1, 20), 10000)
+        u0 = reach + F(rng.randrange(5, 30), 100)
+        u1 = u0 + F(rng.randrange(2, 7), 10)
+    else:
+        t0, t1 = -F(rng.randrange(1, 60), 1000), F(rng.randrange(1, 60), 1000)
+        u0 = reach + F(rng.randrange(5, 100), 100)
+        u1 = u0 + F(rng.choice([0, rng.randrange(1, 40)]), 10)
+    return ['--certify-scale', str(scale), '--range', '%s:%s' % (t0, t1), '--follower-range', '%s:%s' % (u0, u1)]
 
 
 def generated():
@@ -207,17 +336,24 @@ def generated():
 
 
 findings, counts = 0, {'true accepted': 0, 'true rejected': 0, 'false rejected': 0, 'undecided': 0, 'base': 0}
+# kind: (model, pair, certify option, certificate file, generator, truth, alterations)
+KINDS = {'stop': (model, 'lever:stop', '--certify-interference', 'interference-certificate.json', generated, truth, stop_alterations),
+         'block': (block_model, 'lever:block', '--certify-interference', 'interference-certificate.json', generated_block,
+                   block_truth, block_alterations),
+         'yoke': (yoke_model, 'crank:yoke', '--certify', 'tolerance-certificate.json', generated_yoke, yoke_truth, yoke_alterations)}
 for case in range(n):
-    args = generated()
+    kind = ('stop', 'stop', 'block', 'yoke')[case % 4]
+    pair_model, pair, option, name, generator, pair_truth, pair_alterations = KINDS[kind]
+    args = generated_block(case % 8 == 2) if kind == 'block' else generator()
     out = os.path.join(outdir, 'base-%d' % case)
-    r = subprocess.run([hipair, 'tolerance', model, '--certify-interference', '--pair', 'lever:stop', '--out', out] + args,
+    r = subprocess.run([hipair, 'tolerance', pair_model, option, '--pair', pair, '--out', out, '--quiet'] + args,
                        capture_output=True, text=True, timeout=120)
     if r.returncode != 0:
         print('case %d: %s not certified: %s' % (case, ' '.join(args), (r.stdout + r.stderr).strip()[-300:]))
         findings += 1
         continue
-    cert = json.load(open(os.path.join(out, 'interference-certificate.json')))
-    findings += judged_certificate(verify, os.path.join(outdir, 'c%d.json' % case), model, cert, 'case %d (%s)' % (case, ' '.join(args)),
-                                   truth, statement, alterations, counts)
+    cert = json.load(open(os.path.join(out, name)))
+    findings += judged_certificate(verify, os.path.join(outdir, 'c%d.json' % case), pair_model, cert,
+                                   'case %d (%s, %s)' % (case, kind, ' '.join(args)), pair_truth, statement, pair_alterations, counts)
 print('%s, %d findings' % (counts, findings))
 sys.exit(1 if findings else 0)
