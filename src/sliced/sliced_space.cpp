@@ -186,13 +186,13 @@ struct CoordinateMeasure {
 
 bool ordinary_scale(const Rational& largest);
 
-std::optional<Rational> scale_free_factor(const Part& fixed, const Part& free) {
+std::optional<Rational> scale_free_factor(const Part& fixed, const Part& free, bool any_scale) {
   CoordinateMeasure m;
   m.add(fixed);
   m.add(free);
   m.add(free.motion.pivot);
   if (m.numerator_gcd == 0) return std::nullopt;
-  if (ordinary_scale(m.largest)) return std::nullopt;
+  if (!any_scale && ordinary_scale(m.largest)) return std::nullopt;
   Rational k(m.denominator_lcm, m.numerator_gcd);   // 1 / g
   k.canonicalize();
   if (k == 1) return std::nullopt;
@@ -519,12 +519,13 @@ struct SlicedSpace::Impl {
       // theta is the slice at 0 translated by (c - pivot) - R(theta)(c - pivot). Its contact
       // structure never changes: no critical angle, whatever the fixed part (arcs included).
     } else {
-      // the critical angles in the scale-free frame when the parts are all tiny or all huge
-      // (scale_free_factor: the same angles, exactly, in short integers)
+      // the critical angles in the scale-free frame when the parts are all tiny or all huge, or
+      // normalised from beyond the doubles (scale_free_factor: the same angles, exactly, in
+      // short integers; the normalised copy's rationals carry the 5^400 of a decimal 10^400)
       const Part* a = &model.parts[fixed];
       const Part* b = &model.parts[free];
       std::optional<Part> scaled_a, scaled_b;
-      if (auto k = sliced::scale_free_factor(*a, *b)) {
+      if (auto k = sliced::scale_free_factor(*a, *b, length_unit_exponent != 0)) {
         scaled_a = sliced::scaled_part(*a, *k);
         scaled_b = sliced::scaled_part(*b, *k);
         a = &*scaled_a;

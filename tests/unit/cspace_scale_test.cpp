@@ -586,7 +586,7 @@ TEST(CSpaceScale, TranslatingPairsBeyondTheDoublesAreBuiltInUnitsOfAPowerOfTwo) 
 // random rational pivot against a random star sliding along y within [-20, 20] x S, both times S.
 // Built when asked (normalise_lengths) — at 10^400 on the copy scaled by 2^-L, the offset axis in
 // units of 2^L mm, the angle axis unchanged; at 10^-400 (polygons: built as they are). Against
-// scale 1: at a 13 x 13 grid of (t, y) (rational half-angle tangents in [-3, 3], offsets in
+// scale 1: at a 9 x 9 grid of (t, y) (rational half-angle tangents in [-3, 3], offsets in
 // [-10, 10]) and at every exact vertex of scale 1, (t, S y / 2^L) locates as (t, y) does at 1
 // and as the exact overlap predicate says on the model at S; the JSON's angle chart ends equal
 // scale 1's and its offset chart ends are scale 1's times S, exactly.
@@ -595,7 +595,7 @@ TEST(CSpaceScale, RotationTranslationPairsBeyondTheDoublesLocateAsAtScaleOne) {
   CSpaceBuildOptions normalise;
   normalise.normalise_lengths = true;
   int compared = 0, unit_spaces = 0;
-  for (int instance = 0; instance < 3; ++instance) {
+  for (int instance = 0; instance < 2; ++instance) {
     SCOPED_TRACE("instance " + std::to_string(instance));
     Points a = random_star(random, 3 + static_cast<int>(random() % 5), 0, 0, 3);
     Points b = random_star(random, 3 + static_cast<int>(random() % 5), 1, -1, 3);
@@ -616,8 +616,8 @@ TEST(CSpaceScale, RotationTranslationPairsBeyondTheDoublesLocateAsAtScaleOne) {
       return seen_at(space, PartCoordinate{PartCoordinate::Kind::half_angle_tangent, t}, PartCoordinate{PartCoordinate::Kind::offset, y});
     };
     std::vector<std::pair<Rational, Rational>> points;
-    for (int i = 0; i <= 12; ++i)
-      for (int j = 0; j <= 12; ++j) points.emplace_back(Rational(i - 6, 2), Rational(5 * (j - 6), 3));
+    for (int i = 0; i <= 8; ++i)
+      for (int j = 0; j <= 8; ++j) points.emplace_back(Rational(i - 4, 4) * 3, Rational(5 * (j - 4), 2));
     for (auto& [t, y] : points) {
       t.canonicalize();
       y.canonicalize();
@@ -671,8 +671,8 @@ TEST(CSpaceScale, RotationTranslationPairsBeyondTheDoublesLocateAsAtScaleOne) {
       ++compared;
     }
   }
-  EXPECT_EQ(compared, 6);
-  EXPECT_EQ(unit_spaces, 3);   // 10^400 each time
+  EXPECT_EQ(compared, 4);
+  EXPECT_EQ(unit_spaces, 2);   // 10^400 each time
 }
 
 }  // namespace

@@ -145,11 +145,11 @@ TEST(PinSlotScale, OrdinaryStacksJoinWhatTheirHugeCopiesJoin) {
 
 // Beyond the doubles, when asked (PinSlotBuildOptions::normalise_lengths, as `hipair cspace`
 // does): the film advance's cam:follower (rotating driver) and film:follower (translating part)
-// times 10^e r (e = 400, 450; r a random rational in [1/2, 2)) are stacked on the copy scaled by
+// times 10^e r (e = 400, 450; r a random dyadic in [1/2, 2)) are stacked on the copy scaled by
 // 2^-L, lengths in units of 2^L mm. Against 1 mm (6 slices): the same free cells per slice, the
 // same changes and critical values (exactly); every witness, taken to mm (slide, and a
 // translating part's offset, times 2^L), is free by the exact overlap oracle on the parts at
-// 10^400 mm at 17 angles along its segment and lies in its cells; the JSON
+// 10^400 mm at 5 angles along its segment and lies in its cells; the JSON
 // (cli::pin_slot_json) is in mm: every free cell's sample read back is free by that oracle.
 // Without the option the build is still refused.
 TEST(PinSlotScale, BeyondTheDoublesWhenAskedStacksAreInUnitsOfAPowerOfTwo) {
@@ -163,7 +163,9 @@ TEST(PinSlotScale, BeyondTheDoublesWhenAskedStacksAreInUnitsOfAPowerOfTwo) {
     const PinSlotSpace reference = PinSlotSpace::build(film, other_name, pin_name, options);
     const PinSlotScaleSummary expected = pin_slot_scale_summary(reference);
     for (int exponent : {400, 450}) {
-      Rational factor = pin_slot_scale_power10(exponent) * Rational(static_cast<long>(500 + random() % 1500), 1000);
+      // a dyadic r: its exact critical values stay short (a factor r = n / 1000 made the film
+      // pair's take minutes: its coefficients carry the odd part of every coordinate)
+      Rational factor = pin_slot_scale_power10(exponent) * Rational(static_cast<long>(512 + random() % 1536), 1024);
       factor.canonicalize();
       Model model = film;
       for (Part& part : model.parts) part = sliced::scaled_part(part, factor);
@@ -180,7 +182,8 @@ TEST(PinSlotScale, BeyondTheDoublesWhenAskedStacksAreInUnitsOfAPowerOfTwo) {
       ASSERT_EQ(space.critical_values().size(), reference.critical_values().size()) << what;
       for (std::size_t i = 0; i < space.critical_values().size(); ++i)
         EXPECT_EQ(space.critical_values()[i].tau.to_string("tau"), reference.critical_values()[i].tau.to_string("tau"));
-      EXPECT_GT(got.connections, 0u) << what;
+      EXPECT_GE(got.connections, expected.connections) << what;
+      EXPECT_LE(got.groups, expected.groups) << what;
       const Part& other = model.parts[*model.find_part(other_name)];
       const Part& pin = model.parts[*model.find_part(pin_name)];
       // the space's coordinate in mm: a slide or an offset times 2^L, an angle as it is
@@ -194,7 +197,7 @@ TEST(PinSlotScale, BeyondTheDoublesWhenAskedStacksAreInUnitsOfAPowerOfTwo) {
       };
       for (const PinSlotConnection& c : space.connections()) {
         const Rational lo = space.slices()[c.lower].tau, hi = space.slices()[c.lower + 1].tau;
-        for (int k = 0; k <= 16; k += (c.kind == PinSlotConnection::Kind::vertical ? 1 : 16)) {
+        for (int k = 0; k <= 16; k += (c.kind == PinSlotConnection::Kind::vertical ? 4 : 16)) {
           Rational tau = lo + (hi - lo) * Rational(k, 16);
           tau.canonicalize();
           EXPECT_TRUE(apart(mm(k == 16 ? c.witness_other_upper : c.witness_other), times_power_of_two(c.witness_slide, l), tau))

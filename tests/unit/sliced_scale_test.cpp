@@ -28,6 +28,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace hipair {
@@ -356,8 +357,8 @@ TEST(SlicedScale, BeyondTheDoublesTheBuildIsRefusedClearly) {
 }
 
 // Beyond the doubles, when asked (SlicedBuildOptions::normalise_lengths, as `hipair cspace`
-// does): the corridor (peg lengths 6 and 11/2) times S = 10^e r (e = 400, 450; r a random
-// rational in [1/2, 2)) is sliced on its copy scaled by 2^-L, its lengths in units of 2^L mm.
+// does): the corridor (peg lengths 6 and 11/2) times S = 10^e r (e = 400 and 450 respectively;
+// r a random rational in [1/2, 2)) is sliced on its copy scaled by 2^-L, its lengths in units of 2^L mm.
 // Against scale 1: the same critical angles (exactly) and events, free cells' contact keys,
 // connections and components; 1,200 generated configurations (x, y, t) at 1, taken to
 // (S x / 2^L, S y / 2^L, t), locate in the same interval and cell, and every tenth the exact
@@ -367,7 +368,7 @@ TEST(SlicedScale, BeyondTheDoublesTheBuildIsRefusedClearly) {
 // lies in its cell (the witnesses: in the connected cells).
 TEST(SlicedScale, BeyondTheDoublesWhenAskedTheBuildIsInUnitsOfAPowerOfTwo) {
   Random random(5050);
-  for (const Rational& length : {Rational(6), Rational(11, 2)}) {
+  for (const auto& [length, e] : {std::pair{Rational(6), 400}, std::pair{Rational(11, 2), 450}}) {
     const Model unit = corridor(length);
     const SlicedSpace reference = SlicedSpace::build(unit, "fixed", "free");
     const Structure expected = structure_of(reference);
@@ -398,7 +399,7 @@ TEST(SlicedScale, BeyondTheDoublesWhenAskedTheBuildIsInUnitsOfAPowerOfTwo) {
     }
     std::vector<SlicedLocation> unit_locations;
     for (const auto& q : configurations) unit_locations.push_back(reference.locate(q));
-    for (int e : {400, 450}) {
+    {
       const Rational s = power_of_ten(e) * random_rational(random, Rational(1, 2), Rational(2), 1000);
       SCOPED_TRACE("length " + to_exact_string(length) + ", scale 1e" + std::to_string(e) + " * " +
                    to_exact_string(Rational(s / power_of_ten(e))));
