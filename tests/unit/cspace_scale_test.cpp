@@ -468,6 +468,22 @@ bool decimal_near(const nlohmann::json& decimal, const Rational& exact) {
   return near;
 }
 
+// The pair a:b of `model` built with `options`, or a test failure naming the error (nullopt).
+std::optional<CSpace> built_or_failure(const Model& model, const CSpaceBuildOptions& options) {
+  try {
+    return CSpace::build(model, "a", "b", options);
+  } catch (const Error& e) {
+    ADD_FAILURE() << e.what();
+    return std::nullopt;
+  }
+}
+
+// Every vertex of `space` with both coordinates exact rationals, appended to `points`.
+void add_exact_vertices(const CSpace& space, std::vector<std::pair<Rational, Rational>>& points) {
+  for (const CSpaceVertex& v : space.vertices())
+    if (v.x.exact && v.y_exact && v.y.exact) points.emplace_back(v.x.lower, v.y.lower);
+}
+
 // Uniform x 10^400 (every length beyond 2^1016 mm) and, with arcs, x 10^-305 (every length
 // below 2^-1000 mm) of a translating pair: refused until session 49 (scale49b); now built,
 // when asked (CSpaceBuildOptions::normalise_lengths, as `hipair cspace` does), on the copy
@@ -495,21 +511,15 @@ TEST(CSpaceScale, TranslatingPairsBeyondTheDoublesAreBuiltInUnitsOfAPowerOfTwo) 
     const CSpace space1 = CSpace::build(base, "a", "b");
     const nlohmann::json json1 = space_json(space1);
     std::vector<std::pair<Rational, Rational>> points = half_grid(4);
-    for (const CSpaceVertex& v : space1.vertices())
-      if (v.x.exact && v.y_exact && v.y.exact) points.emplace_back(v.x.lower, v.y.lower);
+    add_exact_vertices(space1, points);
     std::vector<Scale> scales = {{power(10, 400), "10^400"}, {power(10, -300), "10^-300"}};
     if (arcs) scales.push_back({power(10, -305), "10^-305"});
     for (const Scale& scale : scales) {
       SCOPED_TRACE("scale " + scale.name);
       const Rational& s = scale.factor;
       const Model model = model_at(s);
-      std::optional<CSpace> built;
-      try {
-        built = CSpace::build(model, "a", "b", normalise);
-      } catch (const Error& e) {
-        ADD_FAILURE() << e.what();
-        continue;
-      }
+      const std::optional<CSpace> built = built_or_failure(model, normalise);
+      if (!built) continue;
       const CSpace& space = *built;
       const long unit = space.length_unit_exponent();
       unit_spaces += unit != 0;
@@ -622,19 +632,13 @@ TEST(CSpaceScale, RotationTranslationPairsBeyondTheDoublesLocateAsAtScaleOne) {
       t.canonicalize();
       y.canonicalize();
     }
-    for (const CSpaceVertex& v : space1.vertices())
-      if (v.x.exact && v.y_exact && v.y.exact) points.emplace_back(v.x.lower, v.y.lower);
+    add_exact_vertices(space1, points);
     for (const Scale& scale : std::vector<Scale>{{power(10, 400), "10^400"}, {power(10, -400), "10^-400"}}) {
       SCOPED_TRACE("scale " + scale.name);
       const Rational& s = scale.factor;
       const Model model = model_at(s);
-      std::optional<CSpace> built;
-      try {
-        built = CSpace::build(model, "a", "b", normalise);
-      } catch (const Error& e) {
-        ADD_FAILURE() << e.what();
-        continue;
-      }
+      const std::optional<CSpace> built = built_or_failure(model, normalise);
+      if (!built) continue;
       const CSpace& space = *built;
       const long unit = space.length_unit_exponent();
       unit_spaces += unit != 0;
