@@ -130,6 +130,13 @@ struct PinSlotBuildOptions {
   bool witness_filter = true;
   /// Called with the stage under way ("slice 3 of 16", "connections 5 of 15").
   std::function<void(const std::string&)> progress;
+  /// A pair whose lengths pass 2^1016 mm (a model drawn at 10^400 mm) is refused (its slices'
+  /// coordinates would leave the doubles) unless this is set: it is then stacked on the model
+  /// scaled by 2^-L (L brings its largest length near 64 mm; the same slices, changes and
+  /// critical values), and every length-valued member and argument (slides, a translating other
+  /// part's offsets, samples, witnesses, slice()) is in units of 2^L mm (length_unit_exponent()).
+  /// `hipair cspace` sets it and writes mm.
+  bool normalise_lengths = false;
 };
 
 struct PinSlotStatistics {
@@ -168,6 +175,9 @@ class PinSlotSpace {
   /// inward) or, without limits, the whole turn but the half turn.
   const Rational& tau_lower() const;
   const Rational& tau_upper() const;
+  /// L when the pair was stacked with its lengths in units of 2^L mm (PinSlotBuildOptions::
+  /// normalise_lengths; a pair at 10^400 mm); 0 for every other pair (lengths in mm).
+  long length_unit_exponent() const;
 
   /// The exact slice at tau: x = the other part's coordinate, y = s (1-D: x = s).
   std::shared_ptr<const CSpace> slice(const Rational& tau) const;

@@ -194,6 +194,13 @@ struct SlicedBuildOptions {
   /// Called with a short description of the stage under way ("critical angles", "slice 3 of
   /// 12", "crossing 5 of 12"), for a progress line; may be empty.
   std::function<void(const std::string&)> progress;
+  /// A pair whose lengths pass 2^1016 mm (a model drawn at 10^400 mm; the slices' coordinates
+  /// would leave the doubles) is refused (GeometryError) unless this is set: it is then sliced
+  /// on the model scaled by 2^-L (L brings its largest length near 64 mm; the same critical
+  /// angles, cells, crossings and components), and every length-valued member and argument of
+  /// the space is in units of 2^L mm (length_unit_exponent(): configurations' x and y, witnesses,
+  /// bound(), length_unit(), slice(), distances, paths). `hipair cspace` sets it and writes mm.
+  bool normalise_lengths = false;
 };
 
 /// Counts and times of a sliced build.
@@ -232,6 +239,9 @@ class SlicedSpace {
   /// (every coordinate within [2^-20, 2^40] mm), the pair's own scale for a pair drawn tiny or
   /// huge (2^(e - 4) with 2^e within a factor 2 of its largest coordinate).
   const Rational& length_unit() const;
+  /// L when the pair was sliced with its lengths in units of 2^L mm (SlicedBuildOptions::
+  /// normalise_lengths; a pair at 10^400 mm); 0 for every other pair (lengths in mm).
+  long length_unit_exponent() const;
 
   /// Exact point location (any rational configuration; inside a free cell of the structure
   /// when the cell structure was built and the angle is not critical).

@@ -7,6 +7,7 @@
 #include "cli/cspace_json.hpp"
 #include "cli/cspace_pinslot.hpp"
 #include "cli/cspace_sliced.hpp"
+#include "core/model_scale.hpp"
 
 #include "io/atomic_file.hpp"
 #include "io/output_paths.hpp"
@@ -337,6 +338,8 @@ int run(const CSpaceCommandOptions& options) {
                   std::to_string(space.critical_angles().size()) + " critical angles, " +
                   std::to_string(space.intervals().size()) + " slices, " + std::to_string(space.components()) +
                   " free components)";
+      if (long unit = space.length_unit_exponent(); unit != 0)
+        svg.title += " (offsets in units of 2^" + std::to_string(unit) + " mm)";
       sliced_documents.emplace_back(suffixed(options.svg, space, several), render::sliced_stack_svg(space, svg));
     }
     if (!options.json.empty()) sliced_documents.emplace_back(suffixed(options.json, space, several), sliced_json(space, options.stats));
@@ -350,6 +353,8 @@ int run(const CSpaceCommandOptions& options) {
                   std::to_string(space.changes().size()) + (space.changes().size() == 1 ? " change" : " changes") +
                   " isolated, " + std::to_string(space.groups()) +
                   (space.groups() == 1 ? " certainly-connected group)" : " certainly-connected groups)");
+      if (long unit = space.length_unit_exponent(); unit != 0)
+        svg.title += " (slides in units of 2^" + std::to_string(unit) + " mm)";
       sliced_documents.emplace_back(suffixed(options.svg, space.other_part(), space.pin_slot_part(), several),
                                     render::pin_slot_stack_svg(space, svg));
     }
@@ -368,10 +373,7 @@ int run(const CSpaceCommandOptions& options) {
       // the part's initial coordinate in the space's units (an offset / 2^unit, exactly)
       auto initial = [unit](const Part& part) {
         if (part.motion.kind != Motion::Kind::translation) return part.initial.angle.get_d();
-        Rational offset = part.initial.offset;
-        if (unit > 0) mpq_div_2exp(offset.get_mpq_t(), offset.get_mpq_t(), static_cast<mp_bitcnt_t>(unit));
-        if (unit < 0) mpq_mul_2exp(offset.get_mpq_t(), offset.get_mpq_t(), static_cast<mp_bitcnt_t>(-unit));
-        return offset.get_d();
+        return times_power_of_two(part.initial.offset, -unit).get_d();
       };
       auto x_index = model.find_part(space.x_part());
       render::CSpaceMark mark;

@@ -1,6 +1,8 @@
 // `hipair cspace --json` for 1-D and 2-D C-spaces, written as text (cspace_json.hpp).
 #include "cli/cspace_json.hpp"
 
+#include "core/model_scale.hpp"
+
 #include <hipair/error.hpp>
 #include <hipair/rational.hpp>
 
@@ -239,11 +241,7 @@ long axis_unit(const CSpace& space, AxisKind kind) {
   return kind == AxisKind::translation ? space.length_unit_exponent() : 0;
 }
 
-Rational in_mm(Rational value, long exponent) {
-  if (exponent > 0) mpq_mul_2exp(value.get_mpq_t(), value.get_mpq_t(), static_cast<mp_bitcnt_t>(exponent));
-  if (exponent < 0) mpq_div_2exp(value.get_mpq_t(), value.get_mpq_t(), static_cast<mp_bitcnt_t>(-exponent));
-  return value;
-}
+Rational in_mm(const Rational& value, long exponent) { return times_power_of_two(value, exponent); }
 
 // p(x / 2^ex, y / 2^ey) times the least power of two that keeps the coefficients integers:
 // the curve of p in the units 2^ex, 2^ey mm, in mm (c[i][j] of x^i y^j).

@@ -1,5 +1,7 @@
 #include "cli/cspace_pinslot.hpp"
 
+#include "core/model_scale.hpp"
+
 #include <hipair/error.hpp>
 
 #include <nlohmann/json.hpp>
@@ -12,9 +14,13 @@ namespace {
 
 using nlohmann::json;
 
-json coordinate_json(const PartCoordinate& c, Motion::Kind kind) {
+// A length of the space (in units of 2^unit mm: PinSlotSpace::length_unit_exponent) in mm,
+// exactly, as text.
+std::string mm_text(const Rational& length, long unit) { return to_exact_string(times_power_of_two(length, unit)); }
+
+json coordinate_json(const PartCoordinate& c, Motion::Kind kind, long unit) {
   if (kind == Motion::Kind::fixed) return nullptr;
-  if (c.kind == PartCoordinate::Kind::offset) return {{"offset", to_exact_string(c.value)}};
+  if (c.kind == PartCoordinate::Kind::offset) return {{"offset", mm_text(c.value, unit)}};
   if (c.kind == PartCoordinate::Kind::half_turn) return {{"half_turn", true}};
   return {{"t", to_exact_string(c.value)}};
 }
@@ -52,6 +58,7 @@ PinSlotSpace build_pin_slot(const Model& model, const std::string& other, const 
   PinSlotBuildOptions options;
   options.slices = slices;
   options.plane_witnesses = plane_witnesses;
+  options.normalise_lengths = true;   // a pair at 10^400 mm: stacked in units of 2^L mm, written in mm
   if (progress)
     options.progress = [label = other + ":" + pin_slot](const std::string& stage) {
       std::cerr << "\rhipair: " << label << " pin-slot C-space: " << stage << "          " << std::flush;
@@ -63,6 +70,8 @@ PinSlotSpace build_pin_slot(const Model& model, const std::string& other, const 
 }
 
 std::string pin_slot_json(const PinSlotSpace& space, bool with_times) {
+  // every length below (samples' and witnesses' slides and offsets) in mm, exactly
+  const long unit = space.length_unit_exponent();
   json out;
   out["pair"] = {space.other_part(), space.pin_slot_part()};
   out["dimension"] = space.dimension();
@@ -89,7 +98,7 @@ std::string pin_slot_json(const PinSlotSpace& space, bool with_times) {
                        {"slice_cell", c.slice_cell},
                        {"contacts", c.contacts},
                        {"group", c.group},
-                       {"sample", {{"other", coordinate_json(c.sample_other, kind)}, {"slide", to_exact_string(c.sample_slide)}}}});
+                       {"sample", {{"other", coordinate_json(c.sample_other, kind, unit)}, {"slide", mm_text(c.sample_slide, unit)}}}});
     }
     j["free_cells"] = cells;
     slices.push_back(j);
@@ -102,9 +111,9 @@ std::string pin_slot_json(const PinSlotSpace& space, bool with_times) {
                            {"upper_slice", c.lower + 1 == space.slices().size() ? 0 : c.lower + 1},
                            {"lower_cell", c.lower_cell},
                            {"upper_cell", c.upper_cell},
-                           {"witness", {{"other", coordinate_json(c.witness_other, kind)},
-                                        {"other_upper", coordinate_json(c.witness_other_upper, kind)},
-                                        {"slide", to_exact_string(c.witness_slide)}}}});
+                           {"witness", {{"other", coordinate_json(c.witness_other, kind, unit)},
+                                        {"other_upper", coordinate_json(c.witness_other_upper, kind, unit)},
+                                        {"slide", mm_text(c.witness_slide, unit)}}}});
   out["connections"] = connections;
   json changes = json::array();
   for (const PinSlotChange& c : space.changes())

@@ -1,5 +1,6 @@
 #include "cli/cspace_sliced.hpp"
 
+#include "core/model_scale.hpp"
 #include "render/sliced_svg.hpp"
 
 #include <nlohmann/json.hpp>
@@ -30,11 +31,15 @@ json angle_json(const SlicedAngle& angle) {
   return out;
 }
 
+// A length of the space (in units of 2^unit mm: SlicedSpace::length_unit_exponent) in mm,
+// exactly, as text.
+std::string mm_text(const Rational& length, long unit) { return to_exact_string(times_power_of_two(length, unit)); }
+
 // A configuration with exact x, y (mm) and angle (t = tan(theta/2) or the half turn).
-json configuration_json(const SlicedConfiguration& q) {
+json configuration_json(const SlicedConfiguration& q, long unit) {
   json out = angle_json(q.angle);
-  out["x"] = to_exact_string(q.x);
-  out["y"] = to_exact_string(q.y);
+  out["x"] = mm_text(q.x, unit);
+  out["y"] = mm_text(q.y, unit);
   return out;
 }
 
@@ -61,6 +66,7 @@ std::vector<std::pair<std::string, std::string>> sliced_pairs(const Model& model
 
 SlicedSpace build_sliced(const Model& model, const std::string& fixed, const std::string& free, bool progress) {
   SlicedBuildOptions options;
+  options.normalise_lengths = true;   // a pair at 10^400 mm: sliced in units of 2^L mm, written in mm
   if (progress)
     options.progress = [label = fixed + ":" + free](const std::string& stage) {
       std::cerr << "\rhipair: " << label << " sliced C-space: " << stage << "          " << std::flush;
@@ -72,6 +78,8 @@ SlicedSpace build_sliced(const Model& model, const std::string& fixed, const std
 }
 
 std::string sliced_json(const SlicedSpace& space, bool with_times) {
+  // every length below (the bound, cell samples, witnesses) in mm, exactly
+  const long unit = space.length_unit_exponent();
   json out;
   out["pair"] = {space.fixed_part(), space.free_part()};
   out["dimension"] = 3;
@@ -79,7 +87,7 @@ std::string sliced_json(const SlicedSpace& space, bool with_times) {
   out["coordinates"] =
       "(x, y, theta) of the planar part relative to the fixed one: its body point q at pivot + R(theta)(q - pivot) "
       "+ (x, y); theta carried by t = tan(theta/2), or the half turn; slices are translating C-spaces in (x, y) mm";
-  out["bound"] = to_exact_string(space.bound());
+  out["bound"] = mm_text(space.bound(), unit);
   json critical = json::array();
   for (std::size_t i = 0; i < space.critical_angles().size(); ++i) {
     const CriticalAngle& c = space.critical_angles()[i];
@@ -119,7 +127,7 @@ std::string sliced_json(const SlicedSpace& space, bool with_times) {
       c["component"] = cell.component == no_index ? json(nullptr) : json(cell.component);
       if (cell.slice_cell < slice->cells().size()) {
         const auto& sc = slice->cells()[cell.slice_cell];
-        c["sample"] = {{"x", to_exact_string(sc.sample_x)}, {"y", to_exact_string(sc.sample_y)}};
+        c["sample"] = {{"x", mm_text(sc.sample_x, unit)}, {"y", mm_text(sc.sample_y, unit)}};
       }
       cells.push_back(c);
     }
@@ -138,8 +146,8 @@ std::string sliced_json(const SlicedSpace& space, bool with_times) {
     json witnesses = json::array();   // parallel to connections
     for (const auto& c : crossing.connections) {
       connections.push_back({c.left_cell, c.right_cell});
-      witnesses.push_back({{"left", configuration_json(c.left_witness)},
-                           {"right", configuration_json(c.right_witness)},
+      witnesses.push_back({{"left", configuration_json(c.left_witness, unit)},
+                           {"right", configuration_json(c.right_witness, unit)},
                            {"through_half_turn", c.through_half_turn}});
     }
     j["connections"] = connections;

@@ -256,26 +256,20 @@ std::optional<NormalisedMechanism> normalised_mechanism(const Model& model) {
 }
 
 Point NormalisedMechanism::to_model(const Point& p) const {
-  Point out = p;
-  for (Rational* v : {&out.x, &out.y}) {
-    if (shift >= 0)
-      mpq_mul_2exp(v->get_mpq_t(), v->get_mpq_t(), static_cast<mp_bitcnt_t>(shift));
-    else
-      mpq_div_2exp(v->get_mpq_t(), v->get_mpq_t(), static_cast<mp_bitcnt_t>(-shift));
-  }
+  Point out{times_power_of_two(p.x, shift), times_power_of_two(p.y, shift)};
   out.x += by.x;
   out.y += by.y;
   return out;
 }
 
+Rational times_power_of_two(Rational value, long exponent) {
+  if (exponent > 0) mpq_mul_2exp(value.get_mpq_t(), value.get_mpq_t(), static_cast<mp_bitcnt_t>(exponent));
+  if (exponent < 0) mpq_div_2exp(value.get_mpq_t(), value.get_mpq_t(), static_cast<mp_bitcnt_t>(-exponent));
+  return value;
+}
+
 Model scaled_model(const Model& model, long shift) {
-  auto scale = [shift](Rational& value, long power) {
-    long bits = shift * power;
-    if (bits >= 0)
-      mpq_div_2exp(value.get_mpq_t(), value.get_mpq_t(), static_cast<mp_bitcnt_t>(bits));
-    else
-      mpq_mul_2exp(value.get_mpq_t(), value.get_mpq_t(), static_cast<mp_bitcnt_t>(-bits));
-  };
+  auto scale = [shift](Rational& value, long power) { value = times_power_of_two(std::move(value), -shift * power); };
   auto scale_point = [&](Point& p) {
     scale(p.x, 1);
     scale(p.y, 1);

@@ -46,6 +46,9 @@ long length_coordinate_shift(const Model& model, const std::vector<std::size_t>&
 /// instead (normalising_shift) and never refused.
 void require_kinematic_length_scale(const Model& model, const std::vector<std::size_t>& parts);
 
+/// value * 2^exponent, exactly (a length in units of 2^exponent mm, in mm).
+Rational times_power_of_two(Rational value, long exponent);
+
 /// The model with every length (points, centres, pivots, offsets, limits) divided by 2^shift,
 /// exactly; radii squared by 4^shift.
 Model scaled_model(const Model& model, long shift);

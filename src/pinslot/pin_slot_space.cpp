@@ -8,6 +8,7 @@
 
 #include "algebra/exact_real.hpp"
 #include "sliced/witness_filter.hpp"
+#include "core/model_scale.hpp"
 #include "sliced/critical_angles.hpp"
 
 #include <algorithm>
@@ -136,6 +137,7 @@ struct PinSlotSpace::Impl {
   // the pair's length unit (sliced::length_unit): 1 mm for ordinary pairs, a power of two near
   // 1/16 of the largest coordinate for a pair drawn tiny or huge
   Rational unit = 1;
+  long length_unit_exponent = 0;   // lengths in units of 2^this mm (PinSlotBuildOptions::normalise_lengths)
 
   const Part& other() const { return model.parts[0]; }
   const Part& pin() const { return model.parts[1]; }
@@ -580,14 +582,23 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
   impl->other_kind = other.motion.kind;
   impl->model.name = model.name;
   impl->model.parts = {other, pin};
-  impl->unit = sliced::length_unit(other, pin);
+  // a pair drawn with lengths beyond 2^1016 mm (10^400 mm), when asked, is stacked on the copy
+  // scaled by 2^-L (core/model_scale.hpp; the same slices divided by 2^L: slides, offsets and
+  // witnesses in units of 2^L mm, angles unchanged); without the option its slices refuse such
+  // lengths (require_length_coordinates_in_range)
+  if (options.normalise_lengths)
+    if (long unit = length_coordinate_shift(impl->model, {0, 1}); unit != 0) {
+      impl->model = scaled_model(impl->model, unit);
+      impl->length_unit_exponent = unit;
+    }
+  impl->unit = sliced::length_unit(impl->other(), impl->pin());
   // slice angles: interior points of n equal angle steps across the limits (or the turn)
   std::size_t n = options.slices ? options.slices : 16;
   double lo = -std::numbers::pi, hi = std::numbers::pi;
-  impl->whole_turn = !pin.motion.angle_limits;
-  if (pin.motion.angle_limits) {
-    lo = to_double(pin.motion.angle_limits->lo);
-    hi = to_double(pin.motion.angle_limits->hi);
+  impl->whole_turn = !impl->pin().motion.angle_limits;
+  if (impl->pin().motion.angle_limits) {
+    lo = to_double(impl->pin().motion.angle_limits->lo);
+    hi = to_double(impl->pin().motion.angle_limits->hi);
     if (hi - lo >= 2 * std::numbers::pi) impl->whole_turn = true, lo = -std::numbers::pi, hi = std::numbers::pi;
   }
   // Each slice angle is n-th of the range away from the limits; the rational tangent is within
@@ -618,21 +629,21 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
   impl->tau_hi = taus.back();
   if (!options.stack) taus.clear();
   // exact critical values: a fixed or translating other part, slides within limits
-  const bool exact_class = (other.motion.kind == Motion::Kind::fixed ||
-                            (other.motion.kind == Motion::Kind::translation && other.motion.translation_limits)) &&
-                           pin.motion.translation_limits.has_value();
+  const bool exact_class = (impl->other().motion.kind == Motion::Kind::fixed ||
+                            (impl->other().motion.kind == Motion::Kind::translation && impl->other().motion.translation_limits)) &&
+                           impl->pin().motion.translation_limits.has_value();
   if (options.critical_values && options.stack && exact_class) {
     auto critical_start = Clock::now();
     if (options.progress) options.progress("critical values");
     std::optional<std::pair<Rational, Rational>> q_range;
-    if (other.motion.kind == Motion::Kind::translation)
-      q_range.emplace(other.motion.translation_limits->lo, other.motion.translation_limits->hi);
+    if (impl->other().motion.kind == Motion::Kind::translation)
+      q_range.emplace(impl->other().motion.translation_limits->lo, impl->other().motion.translation_limits->hi);
     sliced::CriticalStatistics cs;
     std::vector<sliced::Critical> found;
     bool in_class = true;
     try {
-      found = sliced::pin_slot_critical_values(other, pin, pin.motion.translation_limits->lo,
-                                               pin.motion.translation_limits->hi, q_range,
+      found = sliced::pin_slot_critical_values(impl->other(), impl->pin(), impl->pin().motion.translation_limits->lo,
+                                               impl->pin().motion.translation_limits->hi, q_range,
                                                std::make_pair(impl->tau_lo, impl->tau_hi), cs);
     } catch (const GeometryError&) {
       // outside the finder's class (an arc of irrational radius, a segment of irrational
@@ -734,6 +745,7 @@ Motion::Kind PinSlotSpace::other_kind() const { return impl_->other_kind; }
 int PinSlotSpace::dimension() const { return impl_->other_kind == Motion::Kind::fixed ? 2 : 3; }
 const Rational& PinSlotSpace::tau_lower() const { return impl_->tau_lo; }
 const Rational& PinSlotSpace::tau_upper() const { return impl_->tau_hi; }
+long PinSlotSpace::length_unit_exponent() const { return impl_->length_unit_exponent; }
 std::shared_ptr<const CSpace> PinSlotSpace::slice(const Rational& tau) const {
   Rational t = tau;
   t.canonicalize();

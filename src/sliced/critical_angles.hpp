@@ -89,8 +89,10 @@ cspace::algebra::Real real_of(const AlgebraicNumber& a);
 /// coordinate of both parts and the free part's pivot (gcd of numerators / lcm of denominators:
 /// the scaled coordinates are integers), when the parts are all tiny or all huge (the largest
 /// coordinate outside [2^-20, 2^40] mm) and the integers are shorter than the coordinates;
-/// nullopt otherwise (ordinary models keep model units).
-std::optional<Rational> scale_free_factor(const Part& fixed, const Part& free);
+/// nullopt otherwise (ordinary models keep model units). `any_scale`: at any largest coordinate
+/// (a pair normalised by a power of two from 10^400 mm lies near 64 mm, but its rationals carry
+/// 5^400: SlicedBuildOptions::normalise_lengths).
+std::optional<Rational> scale_free_factor(const Part& fixed, const Part& free, bool any_scale = false);
 
 /// A length for nudges and steps that must follow the pair's scale: 1 (mm) for ordinary pairs
 /// (the largest coordinate in [2^-20, 2^40] mm), otherwise the power of two 2^(e - 4) with 2^e

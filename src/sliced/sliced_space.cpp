@@ -186,13 +186,13 @@ struct CoordinateMeasure {
 
 bool ordinary_scale(const Rational& largest);
 
-std::optional<Rational> scale_free_factor(const Part& fixed, const Part& free) {
+std::optional<Rational> scale_free_factor(const Part& fixed, const Part& free, bool any_scale) {
   CoordinateMeasure m;
   m.add(fixed);
   m.add(free);
   m.add(free.motion.pivot);
   if (m.numerator_gcd == 0) return std::nullopt;
-  if (ordinary_scale(m.largest)) return std::nullopt;
+  if (!any_scale && ordinary_scale(m.largest)) return std::nullopt;
   Rational k(m.denominator_lcm, m.numerator_gcd);   // 1 / g
   k.canonicalize();
   if (k == 1) return std::nullopt;
@@ -275,6 +275,7 @@ struct SlicedSpace::Impl {
   std::string fixed_name, free_name;
   Rational bound;
   Rational unit = 1;   // the length the crossings' sample nudges are measured in (sliced::length_unit)
+  long length_unit_exponent = 0;   // lengths in units of 2^this mm (SlicedBuildOptions::normalise_lengths)
   // The scale-free frame of the crossings (a pair drawn at an extreme scale: sliced::
   // scale_free_factor k): the parts times k, their polygonal pair, the slice box k * bound and
   // the nudge unit of the scaled parts. The slice of the scaled parts at an angle is exactly k
@@ -518,12 +519,13 @@ struct SlicedSpace::Impl {
       // theta is the slice at 0 translated by (c - pivot) - R(theta)(c - pivot). Its contact
       // structure never changes: no critical angle, whatever the fixed part (arcs included).
     } else {
-      // the critical angles in the scale-free frame when the parts are all tiny or all huge
-      // (scale_free_factor: the same angles, exactly, in short integers)
+      // the critical angles in the scale-free frame when the parts are all tiny or all huge, or
+      // normalised from beyond the doubles (scale_free_factor: the same angles, exactly, in
+      // short integers; the normalised copy's rationals carry the 5^400 of a decimal 10^400)
       const Part* a = &model.parts[fixed];
       const Part* b = &model.parts[free];
       std::optional<Part> scaled_a, scaled_b;
-      if (auto k = sliced::scale_free_factor(*a, *b)) {
+      if (auto k = sliced::scale_free_factor(*a, *b, length_unit_exponent != 0)) {
         scaled_a = sliced::scaled_part(*a, *k);
         scaled_b = sliced::scaled_part(*b, *k);
         a = &*scaled_a;
@@ -745,6 +747,17 @@ SlicedSpace SlicedSpace::build(const Model& model, std::string_view fixed_part, 
   // length unit, the box and the slices then follow the pair's size, not its distance
   if (std::optional<Point> by = normalising_translation(model, {*fixed, *free}))
     impl->model = translated_model(model, *by);
+  // a pair drawn with lengths beyond 2^1016 mm (10^400 mm), when asked, is sliced on the copy
+  // scaled by 2^-L (core/model_scale.hpp): a configuration (x, y, theta) of the copy is the
+  // model's (x 2^L, y 2^L, theta) — translations scale with the parts — so the critical angles
+  // are the same numbers, every slice is the model's divided by 2^L, and every decision (exact
+  // overlap, steady crossings) is the same predicate; its lengths are in units of 2^L mm.
+  // Without the option the slices refuse such lengths (require_length_coordinates_in_range).
+  if (options.normalise_lengths)
+    if (long unit = length_coordinate_shift(impl->model, {*fixed, *free}); unit != 0) {
+      impl->model = scaled_model(impl->model, unit);
+      impl->length_unit_exponent = unit;
+    }
   const Part& a = impl->model.parts[*fixed];
   const Part& b = impl->model.parts[*free];
   if (a.motion.kind != Motion::Kind::fixed)
@@ -776,6 +789,7 @@ const std::string& SlicedSpace::free_part() const { return impl_->free_name; }
 std::shared_ptr<const CSpace> SlicedSpace::slice(const SlicedAngle& angle) const { return impl_->slice(angle); }
 const Rational& SlicedSpace::bound() const { return impl_->bound; }
 const Rational& SlicedSpace::length_unit() const { return impl_->unit; }
+long SlicedSpace::length_unit_exponent() const { return impl_->length_unit_exponent; }
 const std::vector<CriticalAngle>& SlicedSpace::critical_angles() const { return impl_->critical_public; }
 const std::vector<SlicedInterval>& SlicedSpace::intervals() const { return impl_->intervals; }
 const std::vector<SlicedCrossing>& SlicedSpace::crossings() const { return impl_->crossings; }

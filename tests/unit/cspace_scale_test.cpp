@@ -21,6 +21,7 @@
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 #include <hipair/overlap.hpp>
+#include <hipair/pin_slot.hpp>
 
 #include <CGAL/minkowski_sum_2.h>
 #include <mpfr.h>
@@ -248,8 +249,8 @@ TEST(CSpaceScale, TranslatingPolygonPairsScaleExactlyAndEqualTheMinkowskiSum) {
 // (on a real edge or vertex); a point on a spurious piece takes its cell's kind.
 enum class Seen { free, blocked, touching, contact, outside };
 
-Seen seen(const CSpace& space, const Rational& x, const Rational& y) {
-  Location at = space.locate(PartCoordinate{PartCoordinate::Kind::offset, x}, PartCoordinate{PartCoordinate::Kind::offset, y});
+Seen seen_at(const CSpace& space, const PartCoordinate& x, const PartCoordinate& y) {
+  Location at = space.locate(x, y);
   auto cell_kind = [&](std::size_t cell) {
     switch (space.cells()[cell].kind) {
       case CellKind::free: return Seen::free;
@@ -267,6 +268,10 @@ Seen seen(const CSpace& space, const Rational& x, const Rational& y) {
     case Location::Kind::vertex: return at.cell == no_index ? Seen::contact : cell_kind(at.cell);
   }
   return Seen::outside;
+}
+
+Seen seen(const CSpace& space, const Rational& x, const Rational& y) {
+  return seen_at(space, PartCoordinate{PartCoordinate::Kind::offset, x}, PartCoordinate{PartCoordinate::Kind::offset, y});
 }
 
 // The points (i/2, j/2), i and j from -10 to 10 by step/2 ... (a grid over the charts).
@@ -463,6 +468,22 @@ bool decimal_near(const nlohmann::json& decimal, const Rational& exact) {
   return near;
 }
 
+// The pair a:b of `model` built with `options`, or a test failure naming the error (nullopt).
+std::optional<CSpace> built_or_failure(const Model& model, const CSpaceBuildOptions& options) {
+  try {
+    return CSpace::build(model, "a", "b", options);
+  } catch (const Error& e) {
+    ADD_FAILURE() << e.what();
+    return std::nullopt;
+  }
+}
+
+// Every vertex of `space` with both coordinates exact rationals, appended to `points`.
+void add_exact_vertices(const CSpace& space, std::vector<std::pair<Rational, Rational>>& points) {
+  for (const CSpaceVertex& v : space.vertices())
+    if (v.x.exact && v.y_exact && v.y.exact) points.emplace_back(v.x.lower, v.y.lower);
+}
+
 // Uniform x 10^400 (every length beyond 2^1016 mm) and, with arcs, x 10^-305 (every length
 // below 2^-1000 mm) of a translating pair: refused until session 49 (scale49b); now built,
 // when asked (CSpaceBuildOptions::normalise_lengths, as `hipair cspace` does), on the copy
@@ -490,21 +511,15 @@ TEST(CSpaceScale, TranslatingPairsBeyondTheDoublesAreBuiltInUnitsOfAPowerOfTwo) 
     const CSpace space1 = CSpace::build(base, "a", "b");
     const nlohmann::json json1 = space_json(space1);
     std::vector<std::pair<Rational, Rational>> points = half_grid(4);
-    for (const CSpaceVertex& v : space1.vertices())
-      if (v.x.exact && v.y_exact && v.y.exact) points.emplace_back(v.x.lower, v.y.lower);
+    add_exact_vertices(space1, points);
     std::vector<Scale> scales = {{power(10, 400), "10^400"}, {power(10, -300), "10^-300"}};
     if (arcs) scales.push_back({power(10, -305), "10^-305"});
     for (const Scale& scale : scales) {
       SCOPED_TRACE("scale " + scale.name);
       const Rational& s = scale.factor;
       const Model model = model_at(s);
-      std::optional<CSpace> built;
-      try {
-        built = CSpace::build(model, "a", "b", normalise);
-      } catch (const Error& e) {
-        ADD_FAILURE() << e.what();
-        continue;
-      }
+      const std::optional<CSpace> built = built_or_failure(model, normalise);
+      if (!built) continue;
       const CSpace& space = *built;
       const long unit = space.length_unit_exponent();
       unit_spaces += unit != 0;
@@ -575,6 +590,93 @@ TEST(CSpaceScale, TranslatingPairsBeyondTheDoublesAreBuiltInUnitsOfAPowerOfTwo) 
   }
   EXPECT_EQ(compared, 14);
   EXPECT_EQ(unit_spaces, 8);   // 10^400 six times, 10^-305 twice
+}
+
+// Rotation–translation pairs x 10^400 and x 10^-400 (session 50): a random star turning about a
+// random rational pivot against a random star sliding along y within [-20, 20] x S, both times S.
+// Built when asked (normalise_lengths) — at 10^400 on the copy scaled by 2^-L, the offset axis in
+// units of 2^L mm, the angle axis unchanged; at 10^-400 (polygons: built as they are). Against
+// scale 1: at a 9 x 9 grid of (t, y) (rational half-angle tangents in [-3, 3], offsets in
+// [-10, 10]) and at every exact vertex of scale 1, (t, S y / 2^L) locates as (t, y) does at 1
+// and as the exact overlap predicate says on the model at S; the JSON's angle chart ends equal
+// scale 1's and its offset chart ends are scale 1's times S, exactly.
+TEST(CSpaceScale, RotationTranslationPairsBeyondTheDoublesLocateAsAtScaleOne) {
+  std::mt19937_64 random(5049);
+  CSpaceBuildOptions normalise;
+  normalise.normalise_lengths = true;
+  int compared = 0, unit_spaces = 0;
+  for (int instance = 0; instance < 2; ++instance) {
+    SCOPED_TRACE("instance " + std::to_string(instance));
+    Points a = random_star(random, 3 + static_cast<int>(random() % 5), 0, 0, 3);
+    Points b = random_star(random, 3 + static_cast<int>(random() % 5), 1, -1, 3);
+    const Rational px(static_cast<long>(random() % 9) - 4, 3), py(static_cast<long>(random() % 9) - 4, 5);
+    auto model_at = [&](const Rational& s) {
+      const std::string limits = "[" + text(Rational(-20 * s)) + ", " + text(Rational(20 * s)) + "]";
+      return read_model(R"({ "hipair": 1, "name": "turn and slide", "parts": [
+        { "name": "a", "motion": { "rotation": { "pivot": )" + point_json(px * s, py * s) + R"( } }, "loops": [ )" +
+                        polygon_loop(a, s) + R"( ] },
+        { "name": "b", "motion": { "translation": { "direction": [0, 1], "limits": )" + limits + R"( } }, "loops": [ )" +
+                        polygon_loop(b, s) + " ] } ] }");
+    };
+    const Model base = model_at(Rational(1));
+    const CSpace space1 = CSpace::build(base, "a", "b");
+    ASSERT_EQ(space1.x_part(), "a");
+    const nlohmann::json json1 = space_json(space1);
+    auto location = [](const CSpace& space, const Rational& t, const Rational& y) {
+      return seen_at(space, PartCoordinate{PartCoordinate::Kind::half_angle_tangent, t}, PartCoordinate{PartCoordinate::Kind::offset, y});
+    };
+    std::vector<std::pair<Rational, Rational>> points;
+    for (int i = 0; i <= 8; ++i)
+      for (int j = 0; j <= 8; ++j) points.emplace_back(Rational(i - 4, 4) * 3, Rational(5 * (j - 4), 2));
+    for (auto& [t, y] : points) {
+      t.canonicalize();
+      y.canonicalize();
+    }
+    add_exact_vertices(space1, points);
+    for (const Scale& scale : std::vector<Scale>{{power(10, 400), "10^400"}, {power(10, -400), "10^-400"}}) {
+      SCOPED_TRACE("scale " + scale.name);
+      const Rational& s = scale.factor;
+      const Model model = model_at(s);
+      const std::optional<CSpace> built = built_or_failure(model, normalise);
+      if (!built) continue;
+      const CSpace& space = *built;
+      const long unit = space.length_unit_exponent();
+      unit_spaces += unit != 0;
+      int wrong = 0, differ = 0, free = 0, blocked = 0;
+      for (const auto& [t, y] : points) {
+        const Seen expected = location(space1, t, y);
+        const Seen got = location(space, t, in_units(y * s, unit));
+        if (got != expected && ++differ <= 3)
+          ADD_FAILURE() << "at (" << t.get_str() << ", " << y.get_str() << ") x scale: " << static_cast<int>(got)
+                        << ", at scale 1 " << static_cast<int>(expected);
+        if (got == Seen::outside) continue;
+        free += got == Seen::free;
+        blocked += got == Seen::blocked;
+        const PartRelation relation =
+            part_overlap(model.parts[0], part_placement(model.parts[0], PartCoordinate{PartCoordinate::Kind::half_angle_tangent, t}),
+                         model.parts[1], part_placement(model.parts[1], PartCoordinate{PartCoordinate::Kind::offset, y * s}))
+                .relation;
+        const bool agrees = agrees_with(relation, got);
+        if (!agrees && ++wrong <= 3)
+          ADD_FAILURE() << "at (" << t.get_str() << ", " << y.get_str() << ") x scale: located " << static_cast<int>(got)
+                        << ", the overlap predicate says " << static_cast<int>(relation);
+      }
+      EXPECT_EQ(differ, 0);
+      EXPECT_EQ(wrong, 0);
+      EXPECT_GT(free, 10);
+      EXPECT_GT(blocked, 10);
+      const nlohmann::json json = space_json(space);
+      ASSERT_EQ(json["charts"].size(), json1["charts"].size());
+      for (std::size_t c = 0; c < json["charts"].size(); ++c)
+        for (const char* end : {"lo", "hi"}) {
+          EXPECT_EQ(exact_of(json["charts"][c]["x"][end]), exact_of(json1["charts"][c]["x"][end]));
+          EXPECT_EQ(exact_of(json["charts"][c]["y"][end]), exact_of(json1["charts"][c]["y"][end]) * s);
+        }
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 4);
+  EXPECT_EQ(unit_spaces, 2);   // 10^400 each time
 }
 
 }  // namespace

@@ -5,7 +5,8 @@
 // components, and at 1,200 generated configurations (s x, s y, t) the location of (x, y, t) at
 // scale 1, which equals the exact overlap oracle's relation of the posed scaled parts. At
 // 10^400 mm the slices' coordinates leave the doubles: the build is refused with one clear
-// message (GeometryError naming the part). The scale-free frame of the critical angles
+// message (GeometryError naming the part) unless asked to normalise the lengths, and then sliced
+// in units of 2^L mm, the same as at 1 (session 50). The scale-free frame of the critical angles
 // (sliced::scale_free_factor) is checked on generated parts: the scaled coordinates are
 // coprime integers, and ordinary or mixed-scale parts keep model units.
 #include <hipair/error.hpp>
@@ -16,14 +17,18 @@
 
 #include "algebra/exact_real.hpp"
 #include "algebra/polynomial.hpp"
+#include "cli/cspace_sliced.hpp"
+#include "core/model_scale.hpp"
 #include "sliced/critical_angles.hpp"
 #include "test_paths.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <map>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace hipair {
@@ -339,6 +344,8 @@ TEST(SlicedScale, PairWithArcsCrossesInTheFrameAsAtScaleOne) {
   }
 }
 
+// Without SlicedBuildOptions::normalise_lengths (every consumer that reads lengths in mm:
+// simulation, analysis) such a pair is still refused.
 TEST(SlicedScale, BeyondTheDoublesTheBuildIsRefusedClearly) {
   const Model model = scaled(corridor(6), power_of_ten(400));
   try {
@@ -346,6 +353,139 @@ TEST(SlicedScale, BeyondTheDoublesTheBuildIsRefusedClearly) {
     FAIL() << "built";
   } catch (const GeometryError& e) {
     EXPECT_NE(std::string(e.what()).find("beyond 2^1016"), std::string::npos) << e.what();
+  }
+}
+
+// Beyond the doubles, when asked (SlicedBuildOptions::normalise_lengths, as `hipair cspace`
+// does): the corridor (peg lengths 6 and 11/2) times S = 10^e r (e = 400 and 450 respectively;
+// r a random rational in [1/2, 2)) is sliced on its copy scaled by 2^-L, its lengths in units of 2^L mm.
+// Against scale 1: the same critical angles (exactly) and events, free cells' contact keys,
+// connections and components; 1,200 generated configurations (x, y, t) at 1, taken to
+// (S x / 2^L, S y / 2^L, t), locate in the same interval and cell, and every tenth the exact
+// overlap oracle on the parts at S (10^400-mm coordinates) at (S x, S y, t) says the same; every
+// witness times 2^L is free by that oracle. The JSON (cli::sliced_json) is in mm: every free
+// cell's sample and every witness read back is free by the oracle at S, and divided by 2^L
+// lies in its cell (the witnesses: in the connected cells).
+TEST(SlicedScale, BeyondTheDoublesWhenAskedTheBuildIsInUnitsOfAPowerOfTwo) {
+  Random random(5050);
+  for (const auto& [length, e] : {std::pair{Rational(6), 400}, std::pair{Rational(11, 2), 450}}) {
+    const Model unit = corridor(length);
+    const SlicedSpace reference = SlicedSpace::build(unit, "fixed", "free");
+    const Structure expected = structure_of(reference);
+    // configurations at 1: random offsets, the representative slices' free samples, at the
+    // representatives and random rational angles
+    std::vector<SlicedConfiguration> configurations;
+    std::vector<SlicedAngle> angles;
+    for (const auto& in : reference.intervals()) angles.push_back(in.representative);
+    while (angles.size() < 24) angles.push_back(SlicedAngle{random_rational(random, -3, 3, 29), false});
+    for (std::size_t n = 0; n < angles.size(); ++n) {
+      std::vector<Point> free_samples;
+      if (n < reference.intervals().size())
+        for (const auto& cell : reference.slice(angles[n])->cells())
+          if (cell.kind == CellKind::free) free_samples.push_back(Point{cell.sample_x, cell.sample_y});
+      for (int k = 0; k < 50; ++k) {
+        SlicedConfiguration q;
+        q.angle = angles[n];
+        if (k % 3 == 0 && !free_samples.empty()) {
+          const Point& p = free_samples[random() % free_samples.size()];
+          q.x = p.x;
+          q.y = p.y;
+        } else {
+          q.x = random_rational(random, Rational(-25), Rational(25));
+          q.y = random_rational(random, Rational(-25), Rational(25));
+        }
+        configurations.push_back(q);
+      }
+    }
+    std::vector<SlicedLocation> unit_locations;
+    for (const auto& q : configurations) unit_locations.push_back(reference.locate(q));
+    {
+      const Rational s = power_of_ten(e) * random_rational(random, Rational(1, 2), Rational(2), 1000);
+      SCOPED_TRACE("length " + to_exact_string(length) + ", scale 1e" + std::to_string(e) + " * " +
+                   to_exact_string(Rational(s / power_of_ten(e))));
+      const Model model = scaled(unit, s);
+      SlicedBuildOptions options;
+      options.normalise_lengths = true;
+      const SlicedSpace space = SlicedSpace::build(model, "fixed", "free", options);
+      const long l = space.length_unit_exponent();
+      ASSERT_GT(l, 1000);
+      // S / 2^L: a configuration at 1 times it is the space's (units of 2^L mm)
+      const Rational to_units = times_power_of_two(s, -l);
+      ASSERT_TRUE(to_units > Rational(1, 64) && to_units < 64) << to_units.get_d();
+      ASSERT_EQ(space.critical_angles().size(), reference.critical_angles().size());
+      for (std::size_t i = 0; i < space.critical_angles().size(); ++i) {
+        const auto& c = space.critical_angles()[i];
+        const auto& r = reference.critical_angles()[i];
+        ASSERT_EQ(c.half_turn, r.half_turn);
+        EXPECT_EQ(c.events, r.events);
+        if (!c.half_turn) EXPECT_EQ(algebra::compare(real(c.t), real(r.t)), 0) << "critical angle " << i;
+      }
+      const Structure got = structure_of(space);
+      EXPECT_EQ(got.interval_keys, expected.interval_keys);
+      EXPECT_EQ(got.connections, expected.connections);
+      EXPECT_EQ(got.components, expected.components);
+      for (std::size_t n = 0; n < configurations.size(); ++n) {
+        SlicedConfiguration q = configurations[n];
+        q.x *= to_units;
+        q.y *= to_units;
+        SlicedLocation got_location = space.locate(q);
+        ASSERT_EQ(static_cast<int>(got_location.kind), static_cast<int>(unit_locations[n].kind)) << "configuration " << n;
+        EXPECT_EQ(got_location.interval, unit_locations[n].interval);
+        EXPECT_EQ(got_location.cell, unit_locations[n].cell);
+        if (n % 10 == 0) {
+          SlicedConfiguration in_mm = configurations[n];
+          in_mm.x *= s;
+          in_mm.y *= s;
+          EXPECT_EQ(static_cast<int>(oracle(model, in_mm)), static_cast<int>(got_location.kind)) << "configuration " << n;
+        }
+      }
+      // the witnesses, in mm, on the parts at S
+      auto mm = [&](SlicedConfiguration q) {
+        q.x = times_power_of_two(q.x, l);
+        q.y = times_power_of_two(q.y, l);
+        return q;
+      };
+      for (const auto& crossing : space.crossings())
+        for (const auto& link : crossing.connections) {
+          EXPECT_EQ(static_cast<int>(oracle(model, mm(link.left_witness))), static_cast<int>(SlicedLocation::Kind::free));
+          EXPECT_EQ(static_cast<int>(oracle(model, mm(link.right_witness))), static_cast<int>(SlicedLocation::Kind::free));
+        }
+      // the JSON, read back in mm
+      const nlohmann::json doc = nlohmann::json::parse(cli::sliced_json(space, false));
+      EXPECT_EQ(parse_rational(doc.at("bound").get<std::string>()), times_power_of_two(space.bound(), l));
+      std::size_t samples = 0, witnesses = 0;
+      for (std::size_t i = 0; i < space.intervals().size(); ++i) {
+        const SlicedAngle angle = space.intervals()[i].representative;
+        for (const auto& cell : doc.at("slices").at(i).at("free_cells")) {
+          SlicedConfiguration q{parse_rational(cell.at("sample").at("x").get<std::string>()),
+                                parse_rational(cell.at("sample").at("y").get<std::string>()), angle};
+          EXPECT_EQ(static_cast<int>(oracle(model, q)), static_cast<int>(SlicedLocation::Kind::free)) << "slice " << i;
+          q.x = times_power_of_two(q.x, -l);
+          q.y = times_power_of_two(q.y, -l);
+          SlicedLocation at = space.locate(q);
+          EXPECT_EQ(at.interval, i);
+          EXPECT_EQ(at.cell, cell.at("index").get<std::size_t>());
+          ++samples;
+        }
+      }
+      for (const auto& crossing : doc.at("crossings"))
+        for (std::size_t k = 0; k < crossing.at("witnesses").size(); ++k)
+          for (const char* side : {"left", "right"}) {
+            const auto& w = crossing.at("witnesses")[k].at(side);
+            SlicedConfiguration q{parse_rational(w.at("x").get<std::string>()), parse_rational(w.at("y").get<std::string>()),
+                                  SlicedAngle{w.at("half_turn").get<bool>() ? Rational(0) : parse_rational(w.at("t").get<std::string>()),
+                                              w.at("half_turn").get<bool>()}};
+            EXPECT_EQ(static_cast<int>(oracle(model, q)), static_cast<int>(SlicedLocation::Kind::free));
+            q.x = times_power_of_two(q.x, -l);
+            q.y = times_power_of_two(q.y, -l);
+            SlicedLocation at = space.locate(q);
+            EXPECT_EQ(at.interval, crossing.at(std::string(side) + "_slice").get<std::size_t>());
+            EXPECT_EQ(at.cell, crossing.at("connections")[k][std::string(side) == "left" ? 0 : 1].get<std::size_t>());
+            ++witnesses;
+          }
+      EXPECT_GT(samples, 10u);
+      EXPECT_GT(witnesses, 10u);
+    }
   }
 }
 
