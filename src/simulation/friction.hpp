@@ -28,6 +28,7 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace hipair::simulation {
@@ -49,6 +50,17 @@ struct Friction {
   double bias = 0;
 };
 
+/// A Friction's fields as a default one holds them, but its tangent row's storage (kept: read
+/// only where `on`, and written wherever `on` is set).
+inline void reset(Friction& c) {
+  c.on = false;
+  c.s = 1;
+  c.mu_static = c.mu_kinetic = 0;
+  c.state = 0;
+  c.decided = false;
+  c.bias = 0;
+}
+
 struct FrictionalSolution {
   bool solved = false;
   Eigen::VectorXd lambda;        ///< normal multipliers (>= 0 for an LCP solution)
@@ -67,38 +79,58 @@ struct Reduced {
   std::vector<Eigen::Index> sticking;   ///< contact index of each row of f_S
 };
 
-inline Reduced reduce(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
-                      const std::vector<Friction>& friction, const std::vector<int>& state) {
-  const Eigen::Index m = G.rows(), n = G.cols();
-  Eigen::MatrixXd W = G;   // force columns (as rows)
+/// Storage kept between calls of the bilateral solve (the `work` forms of reduce and
+/// solve_bilateral; Simulation::Impl keeps one for its accelerations): every matrix is resized
+/// and written on each call before it is read, by the same Eigen operations as the fresh
+/// matrices of the value forms — the same doubles, without the allocations (docs/simulation.md,
+/// "Session 51").
+struct BilateralWork {
+  Eigen::MatrixXd W, MinvWt, TS, MinvTt, K, A;
+  Eigen::VectorXd bias, b;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> sticking_solve, normal_solve;
   Reduced r;
+};
+
+/// reduce() written into r, with w's matrices as its working storage.
+inline void reduce(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
+                   const std::vector<Friction>& friction, const std::vector<int>& state, Reduced& r,
+                   BilateralWork& w) {
+  const Eigen::Index m = G.rows(), n = G.cols();
+  w.W = G;   // force columns (as rows)
+  r.sticking.clear();
   for (Eigen::Index k = 0; k < m; ++k) {
     const Friction& c = friction[static_cast<std::size_t>(k)];
     int st = state[static_cast<std::size_t>(k)];
     if (!c.on || st == frictionless) continue;
     if (st == stick) r.sticking.push_back(k);
-    else W.row(k) -= st * (c.mu_kinetic / c.s) * c.T.transpose();
+    else w.W.row(k) -= st * (c.mu_kinetic / c.s) * c.T.transpose();
   }
   const auto p = static_cast<Eigen::Index>(r.sticking.size());
-  Eigen::MatrixXd MinvWt = minv.asDiagonal() * W.transpose();   // n x m
+  w.MinvWt.noalias() = minv.asDiagonal() * w.W.transpose();   // n x m
   r.x0 = a0;
-  r.B = MinvWt;
-  r.f0 = Eigen::VectorXd::Zero(p);
-  r.F = Eigen::MatrixXd::Zero(p, m);
-  if (p == 0) return r;
-  Eigen::MatrixXd TS(p, n);
-  for (Eigen::Index j = 0; j < p; ++j) TS.row(j) = friction[static_cast<std::size_t>(r.sticking[j])].T.transpose();
-  Eigen::MatrixXd MinvTt = minv.asDiagonal() * TS.transpose();   // n x p
-  Eigen::MatrixXd K = TS * MinvTt;                                // p x p
-  auto solver = K.completeOrthogonalDecomposition();
+  r.B = w.MinvWt;
+  r.f0.setZero(p);
+  r.F.setZero(p, m);
+  if (p == 0) return;
+  w.TS.resize(p, n);
+  for (Eigen::Index j = 0; j < p; ++j) w.TS.row(j) = friction[static_cast<std::size_t>(r.sticking[j])].T.transpose();
+  w.MinvTt.noalias() = minv.asDiagonal() * w.TS.transpose();   // n x p
+  w.K.noalias() = w.TS * w.MinvTt;                              // p x p
+  w.sticking_solve.compute(w.K);
   // T_S (x0 + B lambda + MinvTt f) + bias = 0  =>  f = -K^+ (T_S x0 + bias + T_S B lambda)
-  Eigen::VectorXd bias(p);
-  for (Eigen::Index j = 0; j < p; ++j) bias(j) = friction[static_cast<std::size_t>(r.sticking[j])].bias;
-  r.f0 = -solver.solve(TS * a0 + bias);
-  r.F = -solver.solve(TS * MinvWt);
-  r.x0 = a0 + MinvTt * r.f0;
-  r.B = MinvWt + MinvTt * r.F;
-  return r;
+  w.bias.resize(p);
+  for (Eigen::Index j = 0; j < p; ++j) w.bias(j) = friction[static_cast<std::size_t>(r.sticking[j])].bias;
+  r.f0 = -w.sticking_solve.solve(w.TS * a0 + w.bias);
+  r.F = -w.sticking_solve.solve(w.TS * w.MinvWt);
+  r.x0 = a0 + w.MinvTt * r.f0;
+  r.B = w.MinvWt + w.MinvTt * r.F;
+}
+
+inline Reduced reduce(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
+                      const std::vector<Friction>& friction, const std::vector<int>& state) {
+  BilateralWork w;
+  reduce(G, minv, a0, friction, state, w.r, w);
+  return std::move(w.r);
 }
 
 /// Fills the solution's x, w, f for multipliers lambda and states.
@@ -134,27 +166,40 @@ inline bool undetermined(const Eigen::MatrixXd& A, const Eigen::MatrixXd& Af) {
 /// All normal rows held (bilateral: w = 0), states given: the integration's right-hand side.
 /// `undetermined_plain`: where the sticking rows leave the multipliers open, take the
 /// frictionless ones if they hold (undetermined(), above).
-inline FrictionalSolution solve_bilateral(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
-                                          const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
-                                          const std::vector<Friction>& friction, const std::vector<int>& state,
-                                          bool undetermined_plain = false) {
-  FrictionalSolution s;
+/// solve_bilateral() written into s, with w as its working storage (BilateralWork).
+inline void solve_bilateral(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
+                            const Eigen::VectorXd& h, const std::vector<Friction>& friction,
+                            const std::vector<int>& state, bool undetermined_plain, BilateralWork& w,
+                            FrictionalSolution& s) {
+  s.solved = false;
+  s.tolerance = 0;
   s.state = state;
-  Reduced r = reduce(G, minv, a0, friction, state);
-  Eigen::MatrixXd A = G * r.B;
-  Eigen::VectorXd b = G * r.x0 + h;
-  s.lambda = A.completeOrthogonalDecomposition().solve(-b);
+  Reduced& r = w.r;
+  reduce(G, minv, a0, friction, state, r, w);
+  w.A.noalias() = G * r.B;
+  w.b = G * r.x0 + h;
+  w.normal_solve.compute(w.A);
+  s.lambda = w.normal_solve.solve(-w.b);
   // held forces left open by the sticking rows: the frictionless ones where they hold (below)
   if (undetermined_plain && !r.sticking.empty()) {
     const Eigen::MatrixXd Af = G * minv.asDiagonal() * G.transpose();
     const Eigen::VectorXd bf = G * a0 + h;
-    if (undetermined(A, Af)) {
+    if (undetermined(w.A, Af)) {
       Eigen::VectorXd lf = Af.completeOrthogonalDecomposition().solve(-bf);
-      if (((A * lf + b).cwiseAbs().array() <= 10 * lcp_tolerance(Af, bf)).all()) s.lambda = lf;
+      if (((w.A * lf + w.b).cwiseAbs().array() <= 10 * lcp_tolerance(Af, bf)).all()) s.lambda = lf;
     }
   }
   complete(s, r, G, h, friction);
   s.solved = true;
+}
+
+inline FrictionalSolution solve_bilateral(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
+                                          const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
+                                          const std::vector<Friction>& friction, const std::vector<int>& state,
+                                          bool undetermined_plain = false) {
+  BilateralWork w;
+  FrictionalSolution s;
+  solve_bilateral(G, minv, a0, h, friction, state, undetermined_plain, w, s);
   return s;
 }
 

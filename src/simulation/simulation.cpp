@@ -25,6 +25,7 @@
 #include "simulation/edge_watch.hpp"
 #include "simulation/frame_cache.hpp"
 #include "simulation/friction.hpp"
+#include "simulation/kept_scratch.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/normal_side.hpp"
 #include "simulation/nudge_check.hpp"
@@ -249,8 +250,14 @@ struct Simulation::Impl {
   }
 
   Vec forces(double time, const Vec& qs, const Vec& vs) const {
+    Vec Q;
+    forces(time, qs, vs, Q);
+    return Q;
+  }
+  // forces() written into Q
+  void forces(double time, const Vec& qs, const Vec& vs, Vec& Q) const {
     (void)time;
-    Vec Q(dofs.size(), 0.0);
+    Q.assign(dofs.size(), 0.0);
     for (std::size_t i = 0; i < dofs.size(); ++i) {
       const Dof& d = dofs[i];
       Q[i] = d.load - d.stiffness * (qs[i] - d.rest) - d.damping * vs[i];
@@ -277,7 +284,6 @@ struct Simulation::Impl {
       if (i2 >= 0) Q[i2] -= f * (J2[0] * ux + J2[1] * uy);
       if (i1 >= 0) Q[i1] += f * (J1[0] * ux + J1[1] * uy);
     }
-    return Q;
   }
 
   double energy() const {
@@ -573,9 +579,31 @@ struct Simulation::Impl {
   // src/simulation/lcp.hpp); the contacts whose force is zero and whose normal acceleration is
   // positive (they would separate) are listed in `lifting`, and the accelerations are those of
   // the LCP's solution.
+  // accelerations()'s and friction_of()'s working storage (simulation/kept_scratch.hpp): kept
+  // between calls while the switch is on, fresh per call while it is off. Every member is
+  // written on each call before it is read (resized to the call's sizes); a Coulomb row of a
+  // contact without friction is reset to a default one's fields (its tangent row is read only
+  // where `on`).
+  struct Scratch {
+    Vec Q, row, Gp, T;
+    Vec rhs_q, rhs_v, rhs_acc, rhs_lambda;   // rhs()'s, handed to accelerations()
+    std::vector<FeatureId> features;
+    Eigen::MatrixXd G, MinvGt, A;
+    Eigen::VectorXd h, minv, a0, vel, b, l, da;
+    std::vector<simulation::Friction> friction;
+    std::vector<int> state;
+    simulation::FrictionalSolution solution;
+    simulation::BilateralWork work;
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> solve;
+  };
+  mutable Scratch scratch_;
+
   bool accelerations(double time, const Vec& qs, const Vec& vs, Vec& acc, Vec& lambda,
                      std::vector<std::size_t>* lifting = nullptr, ContactForces* out = nullptr) const {
-    Vec Q = forces(time, qs, vs);
+    Scratch fresh;
+    Scratch& w = simulation::kept_scratch() ? scratch_ : fresh;
+    Vec& Q = w.Q;
+    forces(time, qs, vs, Q);
     std::size_t n = dofs.size();
     acc.assign(n, 0.0);
     for (std::size_t i = 0; i < n; ++i)
@@ -588,10 +616,12 @@ struct Simulation::Impl {
     if (lifting) lifting->clear();
     if (active.empty()) return true;
     std::size_t m = active.size();
-    Eigen::MatrixXd G(m, n);
-    Eigen::VectorXd h(m);
+    Eigen::MatrixXd& G = w.G;
+    Eigen::VectorXd& h = w.h;
+    G.resize(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(n));
+    h.resize(static_cast<Eigen::Index>(m));
+    Vec& row_k = w.row;
     for (std::size_t k = 0; k < m; ++k) {
-      Vec row_k;
       double hk, gk;
       if (!row(active[k], qs, vs, row_k, hk, gk)) return false;
       for (std::size_t i = 0; i < n; ++i) G(k, i) = row_k[i];
@@ -599,20 +629,29 @@ struct Simulation::Impl {
     }
     // Coulomb friction of the held contacts (docs/simulation.md#friction); without it the
     // frictionless code below runs unchanged (bit for bit)
-    std::vector<simulation::Friction> friction(m);
+    std::vector<simulation::Friction>& friction = w.friction;
+    friction.resize(m);
     bool any = false;
     for (std::size_t k = 0; k < m; ++k) {
-      if (mu_static[active[k].pair] <= 0) continue;
-      Vec row_k(n);
+      if (mu_static[active[k].pair] <= 0) {
+        simulation::reset(friction[k]);
+        continue;
+      }
+      row_k.assign(n, 0.0);
       for (std::size_t i = 0; i < n; ++i) row_k[i] = G(k, i);
-      friction[k] = friction_of(active[k].pair, features_of(active[k]), row_k, qs);
+      features_of(active[k], w.features);
+      friction_of(active[k].pair, w.features, row_k, qs, friction[k]);
       any = any || friction[k].on;
     }
     if (any) {
-      Eigen::VectorXd minv = inverse_masses();
-      Eigen::VectorXd a0 = Eigen::Map<const Eigen::VectorXd>(acc.data(), n);
-      Eigen::VectorXd vel = Eigen::Map<const Eigen::VectorXd>(vs.data(), n);
-      std::vector<int> state(m, simulation::frictionless);
+      Eigen::VectorXd& minv = w.minv;
+      inverse_masses(minv);
+      Eigen::VectorXd& a0 = w.a0;
+      Eigen::VectorXd& vel = w.vel;
+      a0 = Eigen::Map<const Eigen::VectorXd>(acc.data(), n);
+      vel = Eigen::Map<const Eigen::VectorXd>(vs.data(), n);
+      std::vector<int>& state = w.state;
+      state.assign(m, simulation::frictionless);
       for (std::size_t k = 0; k < m; ++k) {
         simulation::Friction& c = friction[k];
         if (!c.on) continue;
@@ -630,7 +669,7 @@ struct Simulation::Impl {
         }
         state[k] = c.state;
       }
-      simulation::FrictionalSolution s;
+      simulation::FrictionalSolution& s = w.solution;
       if (lifting) {
         s = simulation::solve_frictional(G, minv, a0, h, friction, {}, wedged());
         if (!s.solved) {
@@ -642,7 +681,7 @@ struct Simulation::Impl {
         for (std::size_t k = 0; k < m; ++k)
           if (s.lambda(k) == 0 && s.w(k) > s.tolerance) lifting->push_back(k);
       } else {
-        s = simulation::solve_bilateral(G, minv, a0, h, friction, state, wedged());
+        simulation::solve_bilateral(G, minv, a0, h, friction, state, wedged(), w.work, s);
       }
       for (std::size_t i = 0; i < n; ++i) acc[i] = s.x(i);
       lambda.assign(s.lambda.data(), s.lambda.data() + m);
@@ -663,14 +702,18 @@ struct Simulation::Impl {
       }
       return true;
     }
-    Eigen::MatrixXd MinvGt(n, m);
+    Eigen::MatrixXd& MinvGt = w.MinvGt;
+    MinvGt.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t k = 0; k < m; ++k) MinvGt(i, k) = dofs[i].driven ? 0.0 : G(k, i) / dofs[i].inertia;
-    Eigen::VectorXd a0 = Eigen::Map<const Eigen::VectorXd>(acc.data(), n);
-    Eigen::MatrixXd A = G * MinvGt;
-    Eigen::VectorXd l;
+    Eigen::VectorXd& a0 = w.a0;
+    a0 = Eigen::Map<const Eigen::VectorXd>(acc.data(), n);
+    Eigen::MatrixXd& A = w.A;
+    A.noalias() = G * MinvGt;
+    Eigen::VectorXd& l = w.l;
     if (lifting) {
-      Eigen::VectorXd b = G * a0 + h;
+      Eigen::VectorXd& b = w.b;
+      b = G * a0 + h;
       simulation::LcpSolution s = simulation::solve_lcp(A, b);
       if (!s.solved) {
         std::ostringstream out;
@@ -682,10 +725,13 @@ struct Simulation::Impl {
       for (std::size_t k = 0; k < m; ++k)
         if (l(k) == 0 && s.w(k) > s.tolerance) lifting->push_back(k);
     } else {
-      Eigen::VectorXd rhs = -(G * a0 + h);
-      l = A.completeOrthogonalDecomposition().solve(rhs);
+      Eigen::VectorXd& rhs = w.b;
+      rhs = -(G * a0 + h);
+      w.solve.compute(A);
+      l = w.solve.solve(rhs);
     }
-    Eigen::VectorXd da = MinvGt * l;
+    Eigen::VectorXd& da = w.da;
+    da.noalias() = MinvGt * l;
     for (std::size_t i = 0; i < n; ++i) acc[i] += da(i);
     lambda.assign(l.data(), l.data() + m);
     return true;
@@ -721,7 +767,9 @@ struct Simulation::Impl {
     return x;
   }
   void rhs(const Vec& x, Vec& dxdt, double time) const {
-    Vec qs, vs, acc, lambda;
+    Scratch fresh;
+    Scratch& w = simulation::kept_scratch() ? scratch_ : fresh;
+    Vec &qs = w.rhs_q, &vs = w.rhs_v, &acc = w.rhs_acc, &lambda = w.rhs_lambda;
     unpack(time, x, qs, vs);
     // outside its edge a constraint is dropped here (free accelerations); the step is then cut
     // at the edge's end by end_of_step()
@@ -1203,10 +1251,18 @@ struct Simulation::Impl {
   // ---------------------------------------------------------------- Coulomb friction
   // The feature pairs of a held contact: its edge's curves, or (1-D pair) those it was met with.
   std::vector<FeatureId> features_of(const Active& a) const {
-    if (!a.edge.valid()) return a.features;
     std::vector<FeatureId> out;
-    for (std::size_t f : spaces[a.pair]->edge(a.edge).curves) out.emplace_back(f);
+    features_of(a, out);
     return out;
+  }
+  // features_of() written into out
+  void features_of(const Active& a, std::vector<FeatureId>& out) const {
+    if (!a.edge.valid()) {
+      out = a.features;
+      return;
+    }
+    out.clear();
+    for (std::size_t f : spaces[a.pair]->edge(a.edge).curves) out.emplace_back(f);
   }
 
   // The part coordinate of qs[dof]: double_coordinate's, its value made exact.
@@ -1247,7 +1303,14 @@ struct Simulation::Impl {
   simulation::Friction friction_of(std::size_t pair, const std::vector<FeatureId>& features, const Vec& G,
                                    const Vec& qs) const {
     simulation::Friction c;
-    if (mu_static[pair] <= 0 || features.empty()) return c;
+    friction_of(pair, features, G, qs, c);
+    return c;
+  }
+  // friction_of() written into c (reset first: simulation::reset)
+  void friction_of(std::size_t pair, const std::vector<FeatureId>& features, const Vec& G, const Vec& qs,
+                   simulation::Friction& c) const {
+    simulation::reset(c);
+    if (mu_static[pair] <= 0 || features.empty()) return;
     const CSpace& space = *spaces[pair];
     const int xdof = part_dof[*model.find_part(space.x_part())];
     const int ydof = space.dimension() == 2 ? part_dof[*model.find_part(space.y_part())] : -1;
@@ -1305,10 +1368,15 @@ struct Simulation::Impl {
       p[1] += frame.point[1];
       ++count;
     }
-    if (count == 0) return c;
+    if (count == 0) return;
     p[0] /= count;
     p[1] /= count;
-    Vec Gp(dofs.size(), 0.0), T(dofs.size(), 0.0);
+    Scratch fresh;
+    Scratch& w = simulation::kept_scratch() ? scratch_ : fresh;
+    Vec& Gp = w.Gp;
+    Vec& T = w.T;
+    Gp.assign(dofs.size(), 0.0);
+    T.assign(dofs.size(), 0.0);
     auto add = [&](std::size_t part, double sign) {
       int d = part_dof[part];
       if (d < 0) return;
@@ -1326,25 +1394,28 @@ struct Simulation::Impl {
       tt += T[i] * T[i];
       tg += T[i] * G[i];
     }
-    if (!(gg > 0) || !(gpg > 0) || !(tt > 0)) return c;
+    if (!(gg > 0) || !(gpg > 0) || !(tt > 0)) return;
     // the tangent's part orthogonal to the normal row
     double orthogonal = tt - tg * tg / gg;
-    if (!(orthogonal > 1e-18 * tt)) return c;
+    if (!(orthogonal > 1e-18 * tt)) return;
     c.on = true;
     c.s = gpg / gg;
     c.T = Eigen::Map<const Eigen::VectorXd>(T.data(), static_cast<Eigen::Index>(T.size()));
     c.mu_static = mu_static[pair];
     c.mu_kinetic = mu_kinetic[pair];
-    return c;
   }
 
   // tolerance of "no relative tangential velocity" for tangent row T (mm per second)
   double tangential_tolerance(const Eigen::VectorXd& T) const { return velocity_tolerance() * (1 + T.cwiseAbs().sum()); }
 
   Eigen::VectorXd inverse_masses() const {
-    Eigen::VectorXd minv(dofs.size());
-    for (std::size_t i = 0; i < dofs.size(); ++i) minv(i) = dofs[i].driven ? 0.0 : 1.0 / dofs[i].inertia;
+    Eigen::VectorXd minv;
+    inverse_masses(minv);
     return minv;
+  }
+  void inverse_masses(Eigen::VectorXd& minv) const {
+    minv.resize(static_cast<Eigen::Index>(dofs.size()));
+    for (std::size_t i = 0; i < dofs.size(); ++i) minv(i) = dofs[i].driven ? 0.0 : 1.0 / dofs[i].inertia;
   }
 
   // ---------------------------------------------------------------- impacts
