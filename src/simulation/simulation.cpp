@@ -600,8 +600,8 @@ struct Simulation::Impl {
 
   bool accelerations(double time, const Vec& qs, const Vec& vs, Vec& acc, Vec& lambda,
                      std::vector<std::size_t>* lifting = nullptr, ContactForces* out = nullptr) const {
-    Scratch fresh;
-    Scratch& w = simulation::kept_scratch() ? scratch_ : fresh;
+    std::optional<Scratch> fresh;   // (made only with the switch off: its destructor is not free)
+    Scratch& w = simulation::kept_scratch() ? scratch_ : fresh.emplace();
     Vec& Q = w.Q;
     forces(time, qs, vs, Q);
     std::size_t n = dofs.size();
@@ -767,8 +767,8 @@ struct Simulation::Impl {
     return x;
   }
   void rhs(const Vec& x, Vec& dxdt, double time) const {
-    Scratch fresh;
-    Scratch& w = simulation::kept_scratch() ? scratch_ : fresh;
+    std::optional<Scratch> fresh;   // (made only with the switch off: its destructor is not free)
+    Scratch& w = simulation::kept_scratch() ? scratch_ : fresh.emplace();
     Vec &qs = w.rhs_q, &vs = w.rhs_v, &acc = w.rhs_acc, &lambda = w.rhs_lambda;
     unpack(time, x, qs, vs);
     // outside its edge a constraint is dropped here (free accelerations); the step is then cut
@@ -1371,8 +1371,8 @@ struct Simulation::Impl {
     if (count == 0) return;
     p[0] /= count;
     p[1] /= count;
-    Scratch fresh;
-    Scratch& w = simulation::kept_scratch() ? scratch_ : fresh;
+    std::optional<Scratch> fresh;   // (made only with the switch off: its destructor is not free)
+    Scratch& w = simulation::kept_scratch() ? scratch_ : fresh.emplace();
     Vec& Gp = w.Gp;
     Vec& T = w.T;
     Gp.assign(dofs.size(), 0.0);
