@@ -96,44 +96,25 @@ TEST(SimulationKeptScratch, BilateralWorkEqualsFreshSolves) {
   EXPECT_GT(shrunk, 500);
 }
 
-Model kept_scratch_example(const std::string& name) {
-  return read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / name);
-}
-
 TEST(SimulationKeptScratch, RunsEqualTheRunsWithFreshStorage) {
-  struct Case {
-    const char* model;
-    double t_end, accuracy, torque;   // torque: the first part's, NaN: the model's
-    std::size_t max_steps;
-  };
-  const double keep = std::nan("");
-  const Case cases[] = {{"escapement.json", 0.5, 1e-3, keep, 100000}, {"escapement.json", 0.1, 1e-6, keep, 100000},
-                        {"ratchet.json", 0.05, 0, -20, 3000},         {"ratchet.json", 0.2, 1e-6, keep, 3000},
-                        {"cam-follower.json", 0.3, 1e-6, keep, 3000}, {"scotch-yoke.json", 0.3, 1e-6, keep, 3000}};
-  std::size_t steps = 0, events = 0;
-  for (const Case& c : cases) {
-    Model model = kept_scratch_example(c.model);
-    if (!std::isnan(c.torque)) model.parts[0].dynamics->torque = Rational(c.torque);
-    SimulationOptions options;
-    options.accuracy = c.accuracy;
-    const std::string where = std::string(c.model) + " at " + std::to_string(c.accuracy);
-    test::SideBySide run = test::run_side_by_side<simulation::kept_scratch>(model, options, c.t_end, where, c.max_steps);
-    ASSERT_EQ(run.mismatch, "");
-    ASSERT_EQ(run.error, "") << where;
-    steps += run.steps;
-    events += run.events;
-  }
-  std::printf("kept scratch: %zu steps, %zu events equal\n", steps, events);
-  EXPECT_GT(events, 100u);
+  const test::SideBySide escapement = test::examples_side_by_side<simulation::kept_scratch>(
+      {{"escapement.json", 0.5, 1e-3}, {"escapement.json", 0.1, 1e-6}});
+  const test::SideBySide others = test::examples_side_by_side<simulation::kept_scratch>(
+      {{"ratchet.json", 0.05, 0, -20}, {"ratchet.json", 0.2, 1e-6}, {"cam-follower.json", 0.3, 1e-6},
+       {"scotch-yoke.json", 0.3, 1e-6}},
+      3000);
+  std::printf("kept scratch: %zu steps, %zu events equal\n", escapement.steps + others.steps,
+              escapement.events + others.events);
+  EXPECT_GT(escapement.events + others.events, 100u);
 }
 
 // The escapement with its three pairs' friction switched on and off in every mixed way (0.1 or
 // none): contacts with and without friction take each other's places in the held set, so a
 // contact's kept Coulomb data left from another's would show.
 TEST(SimulationKeptScratch, MixedFrictionRunsEqualTheRunsWithFreshStorage) {
-  std::size_t steps = 0, events = 0;
+  test::SideBySide total;
   for (unsigned mask = 1; mask < 7; ++mask) {
-    Model model = kept_scratch_example("escapement.json");
+    Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "escapement.json");
     ASSERT_EQ(model.pairs.size(), 3u);
     for (std::size_t p = 0; p < 3; ++p) {
       if (mask >> p & 1u) model.pairs[p].friction = Rational(1, 10);
@@ -143,14 +124,10 @@ TEST(SimulationKeptScratch, MixedFrictionRunsEqualTheRunsWithFreshStorage) {
     SimulationOptions options;
     options.accuracy = 1e-3;
     const std::string where = "escapement, friction mask " + std::to_string(mask);
-    test::SideBySide run = test::run_side_by_side<simulation::kept_scratch>(model, options, 0.3, where, 100000);
-    ASSERT_EQ(run.mismatch, "");
-    ASSERT_EQ(run.error, "") << where;
-    steps += run.steps;
-    events += run.events;
+    if (!test::add_side_by_side<simulation::kept_scratch>(model, options, 0.3, where, 100000, total)) break;
   }
-  std::printf("kept scratch, mixed friction: %zu steps, %zu events equal\n", steps, events);
-  EXPECT_GT(events, 100u);
+  std::printf("kept scratch, mixed friction: %zu steps, %zu events equal\n", total.steps, total.events);
+  EXPECT_GT(total.events, 100u);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -118,28 +119,39 @@ SideBySide run_side_by_side(const Model& model, const SimulationOptions& options
   return out;
 }
 
-// An example model (under HIPAIR_EXAMPLES) simulated to t_end at `accuracy`, side by side.
+// `model` side by side with Flag on and off (run_side_by_side), failing the test at a mismatch or
+// an error; its steps and events added to `total`. False where it failed.
+template <bool& (*Flag)()>
+bool add_side_by_side(const Model& model, const SimulationOptions& options, double t_end, const std::string& where,
+                      std::size_t max_steps, SideBySide& total) {
+  SideBySide one = run_side_by_side<Flag>(model, options, t_end, where, max_steps);
+  EXPECT_EQ(one.mismatch, "");
+  EXPECT_EQ(one.error, "") << where;
+  total.steps += one.steps;
+  total.events += one.events;
+  return one.mismatch.empty() && one.error.empty();
+}
+
+// An example model (under HIPAIR_EXAMPLES) simulated to t_end at `accuracy`, side by side; with
+// `torque` (N mm) its first part's driving torque replaced.
 struct ExampleRun {
   const char* model;
   double t_end, accuracy;
+  double torque = std::numeric_limits<double>::quiet_NaN();
 };
 
-// Each of `runs` side by side with Flag on and off (run_side_by_side, at most `max_steps` steps
+// Each of `runs` side by side with Flag on and off (add_side_by_side, at most `max_steps` steps
 // each), failing the test at the first mismatch or an error; their steps and events added up.
 template <bool& (*Flag)()>
 SideBySide examples_side_by_side(std::initializer_list<ExampleRun> runs, std::size_t max_steps = 100000) {
   SideBySide total;
   for (const ExampleRun& run : runs) {
     Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / run.model);
+    if (!std::isnan(run.torque)) model.parts[0].dynamics->torque = Rational(run.torque);
     SimulationOptions options;
     options.accuracy = run.accuracy;
     const std::string where = std::string(run.model) + " at " + std::to_string(run.accuracy);
-    SideBySide one = run_side_by_side<Flag>(model, options, run.t_end, where, max_steps);
-    EXPECT_EQ(one.mismatch, "");
-    EXPECT_EQ(one.error, "") << where;
-    total.steps += one.steps;
-    total.events += one.events;
-    if (!one.mismatch.empty() || !one.error.empty()) break;
+    if (!add_side_by_side<Flag>(model, options, run.t_end, where, max_steps, total)) break;
   }
   return total;
 }
