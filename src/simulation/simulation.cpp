@@ -571,14 +571,6 @@ struct Simulation::Impl {
     return true;
   }
 
-  // accelerations (all dofs) and multipliers of the active constraints; false when a
-  // constraint is outside its edge. `lifting` null: every active contact is held (a bilateral
-  // constraint: the multipliers may come out negative, which the step's bisection detects).
-  // `lifting` given: the contact forces of all active contacts at once from the complementarity
-  // problem lambda >= 0, g'' = A lambda + b >= 0, lambda g'' = 0 (A = G M^-1 G^T, b = G a_free + h;
-  // src/simulation/lcp.hpp); the contacts whose force is zero and whose normal acceleration is
-  // positive (they would separate) are listed in `lifting`, and the accelerations are those of
-  // the LCP's solution.
   // accelerations()'s and friction_of()'s working storage (simulation/kept_scratch.hpp): kept
   // between calls while the switch is on, fresh per call while it is off. Every member is
   // written on each call before it is read (resized to the call's sizes); a Coulomb row of a
@@ -598,6 +590,14 @@ struct Simulation::Impl {
   };
   mutable Scratch scratch_;
 
+  // accelerations (all dofs) and multipliers of the active constraints; false when a
+  // constraint is outside its edge. `lifting` null: every active contact is held (a bilateral
+  // constraint: the multipliers may come out negative, which the step's bisection detects).
+  // `lifting` given: the contact forces of all active contacts at once from the complementarity
+  // problem lambda >= 0, g'' = A lambda + b >= 0, lambda g'' = 0 (A = G M^-1 G^T, b = G a_free + h;
+  // src/simulation/lcp.hpp); the contacts whose force is zero and whose normal acceleration is
+  // positive (they would separate) are listed in `lifting`, and the accelerations are those of
+  // the LCP's solution.
   bool accelerations(double time, const Vec& qs, const Vec& vs, Vec& acc, Vec& lambda,
                      std::vector<std::size_t>* lifting = nullptr, ContactForces* out = nullptr) const {
     std::optional<Scratch> fresh;   // (made only with the switch off: its destructor is not free)
