@@ -16,7 +16,6 @@
 #include <numbers>
 #include <limits>
 #include <tuple>
-#include <type_traits>
 
 namespace hipair::cspace {
 namespace {
@@ -606,12 +605,8 @@ template <class Disk>
 
 bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
                             const algebra::Interval& y, Cache& cache, const std::vector<DiskPair>* candidates,
-                            std::vector<DiskPair>* narrowed, const GridCell* cell, const Enclosing* enclosing) const {
+                            std::vector<DiskPair>* narrowed, const GridCell* cell) const {
   if (narrowed) narrowed->clear();
-  if (enclosing) {
-    enclosing->list->clear();
-    *enclosing->made = false;
-  }
   if (!candidates) {
     const Posed* posed[2] = {nullptr, nullptr};
     if (!posed_parts(x_axis, y_axis, x, y, cache, posed)) return false;
@@ -620,10 +615,6 @@ bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, co
   }
   Cache::Pose* poses[2] = {nullptr, nullptr};
   if (!pose_bounds(x_axis, y_axis, x, y, cache, poses, cell)) return false;
-  // the enclosing box's poses (its list is not made when they admit no claim)
-  Cache::Pose* outer_poses[2] = {nullptr, nullptr};
-  if (enclosing && !pose_bounds(x_axis, y_axis, enclosing->x, enclosing->y, cache, outer_poses, &enclosing->cell))
-    enclosing = nullptr;
   // the narrowed list puts first the pairs whose nominal disks overlap (the likeliest to
   // certify a sub-cell: a blocked cell's test stops at its first certifying pair)
   thread_local std::vector<DiskPair> later_list;
@@ -642,54 +633,37 @@ bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, co
   }
   const std::int32_t* const slot_b = pose_b.slot.data();
   const PosedDisk* posed_b = pose_b.disks.data();   // moves when a new disk is posed: re-read then
-  auto loop = [&](auto with_enclosing) -> bool {
-    const PosedDisk* a = nullptr;
-    const PosedDisk* outer_a = nullptr;
-    std::uint32_t a_index = UINT32_MAX;
-    for (const DiskPair& pair : *candidates) {
-      if (pair.first != a_index) {
-        a_index = pair.first;
-        if constexpr (with_enclosing) outer_a = posed_disk(0, *outer_poses[0], pair.first);
-        a = posed_disk(0, pose_a, pair.first);
-      }
-      if constexpr (with_enclosing) {
-        // The enclosing box's narrowed list (as its own test would make it), built first: a
-        // pair it drops cannot certify any box inside it, this one included, so this box tests
-        // only the pairs it keeps. (A disk not finite there keeps the pair: no claim is made.)
-        const PosedDisk* outer_b = posed_disk(1, *outer_poses[1], pair.second);
-        posed_b = pose_b.disks.data();   // (the same pose when the second part is fixed)
-        if (outer_a && outer_b && !may_certify_inside(*outer_a, *outer_b)) continue;
-        enclosing->list->push_back(pair);
-      }
-      if (!a) continue;
-      const std::int32_t slot = slot_b[pair.second];
-      const PosedDisk* b;
-      if (slot >= 0) {
-        b = posed_b + slot;
-      } else {
-        if (slot == -2) continue;   // not finite
-        b = pose_new_disk(1, pose_b, pair.second);
-        posed_b = pose_b.disks.data();
-        if (!b) continue;
-      }
-      // (a stays valid: only a disk of the first part posed later moves it, and then it is
-      // replaced; outer_a likewise, and outer_b is read before b's pose can move it)
-      // A pair that fails may_certify_inside neither certifies (certifies() implies it) nor is
-      // kept: one test of the outer radii first decides most pairs; the answer and the list are
-      // those of testing certifies() then may_certify_inside() on every pair.
-      if (!may_certify_inside(*a, *b)) continue;
-      if (certifies(*a, *b)) {
-        if (narrowed) narrowed->clear();
-        if constexpr (with_enclosing) enclosing->list->clear();
-        return true;
-      }
-      if (narrowed) (overlap_nominally(*a, *b) ? *narrowed : later).push_back(pair);
+  const PosedDisk* a = nullptr;
+  std::uint32_t a_index = UINT32_MAX;
+  for (const DiskPair& pair : *candidates) {
+    if (pair.first != a_index) {
+      a_index = pair.first;
+      a = posed_disk(0, pose_a, pair.first);
     }
-    return false;
-  };
-  if (enclosing ? loop(std::true_type{}) : loop(std::false_type{})) return true;
+    if (!a) continue;
+    const std::int32_t slot = slot_b[pair.second];
+    const PosedDisk* b;
+    if (slot >= 0) {
+      b = posed_b + slot;
+    } else {
+      if (slot == -2) continue;   // not finite
+      b = pose_new_disk(1, pose_b, pair.second);
+      posed_b = pose_b.disks.data();
+      if (!b) continue;
+    }
+    // (a stays valid: only a disk of the first part posed later moves it, and then it is
+    // replaced)
+    // A pair that fails may_certify_inside neither certifies (certifies() implies it) nor is
+    // kept: one test of the outer radii first decides most pairs; the answer and the list are
+    // those of testing certifies() then may_certify_inside() on every pair.
+    if (!may_certify_inside(*a, *b)) continue;
+    if (certifies(*a, *b)) {
+      if (narrowed) narrowed->clear();
+      return true;
+    }
+    if (narrowed) (overlap_nominally(*a, *b) ? *narrowed : later).push_back(pair);
+  }
   if (narrowed) narrowed->insert(narrowed->end(), later.begin(), later.end());
-  if (enclosing) *enclosing->made = true;
   return false;
 }
 
@@ -989,26 +963,20 @@ void BlockedCells::remember(int depth, long i, long j, std::int32_t entry) {
     table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)] = entry;
     return;
   }
-  known_.insert_or_assign(cell_key(depth, i, j), entry);   // (a list-only entry is replaced by an answer)
+  known_.emplace(cell_key(depth, i, j), entry);
 }
 
 bool BlockedCells::blocked(int depth, long i, long j) {
   if (!tester_) return false;
   // a cell inside a cell already known to be blocked is blocked (no test); the parent is only
-  // looked up, never tested on the way. The nearest ancestor with a candidate list (tested, or
-  // a list only: see below) gives the pairs to test (every pair that can certify this cell is
-  // in it).
+  // looked up, never tested on the way. The nearest tested ancestor with a candidate list
+  // gives the pairs to test (every pair that can certify this cell is in it).
   bool result = false;
   const std::vector<BlockedTester::DiskPair>* candidates = nullptr;
-  int up_to_list = 0;   // levels from the cell up to the candidates' cell
-  auto see = [&](std::int32_t parent, int up) {
+  auto see = [&](std::int32_t parent) {
     if (parent == untested) return;
-    if (parent == is_blocked) {
-      result = true;
-    } else if (!candidates && (parent >= first_list || parent < 0)) {
-      candidates = &lists_[static_cast<std::size_t>(parent >= first_list ? parent - first_list : -parent - 1)];
-      up_to_list = up;
-    }
+    if (parent == is_blocked) result = true;
+    else if (!candidates && parent >= first_list) candidates = &lists_[static_cast<std::size_t>(parent - first_list)];
   };
   std::int32_t* own = nullptr;   // the cell's entry in its depth's table (a dense cell)
   if (dense(depth, i, j)) {
@@ -1016,16 +984,16 @@ bool BlockedCells::blocked(int depth, long i, long j) {
     std::vector<std::int32_t>& table = dense_[static_cast<std::size_t>(depth)];
     if (table.empty()) table.assign(std::size_t{1} << (depth * dimension_), untested);
     own = &table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
-    if (*own > untested) return *own == is_blocked;
+    if (*own != untested) return *own == is_blocked;
     for (int up = 1; up <= depth && !result; ++up) {
       const std::vector<std::int32_t>& above = dense_[static_cast<std::size_t>(depth - up)];
       if (above.empty()) continue;
-      see(above[static_cast<std::size_t>(dimension_ == 2 ? ((i >> up) << (depth - up)) | (j >> up) : i >> up)], up);
+      see(above[static_cast<std::size_t>(dimension_ == 2 ? ((i >> up) << (depth - up)) | (j >> up) : i >> up)]);
     }
   } else {
     const std::int32_t entry = known(depth, i, j);
-    if (entry > untested) return entry == is_blocked;
-    for (int up = 1; up <= depth && !result; ++up) see(known(depth - up, i >> up, dimension_ == 2 ? j >> up : j), up);
+    if (entry != untested) return entry == is_blocked;
+    for (int up = 1; up <= depth && !result; ++up) see(known(depth - up, i >> up, dimension_ == 2 ? j >> up : j));
   }
   std::int32_t answer = is_blocked;
   if (!result) {
@@ -1036,26 +1004,8 @@ bool BlockedCells::blocked(int depth, long i, long j) {
     const bool keep_list = depth < std::max(depth_, 9);
     std::vector<BlockedTester::DiskPair> narrowed;
     const BlockedTester::GridCell cell{depth, i, dimension_ == 2 ? j : 0};
-    // A list two or more levels up: the parent's narrowed list is made on the way (the cell
-    // tests only its pairs) and kept as a list only — the parent is not tested, no answer of
-    // it is claimed — for the parent's other children, which read it instead of the longer
-    // one (the builder's cells of depths 5, 7 and 9 read lists of depths 3, 5 and 7).
-    std::vector<BlockedTester::DiskPair> parent_list;
-    bool parent_made = false;
-    const BlockedTester::GridCell parent_cell{depth - 1, i >> 1, dimension_ == 2 ? j >> 1 : 0};
-    const BlockedTester::Enclosing parent{cell_x(depth - 1, i >> 1), cell_y(depth - 1, dimension_ == 2 ? j >> 1 : j),
-                                          parent_cell, &parent_list, &parent_made};
-    const bool parent_list_wanted = candidates && up_to_list >= 2 && enclosing_lists().load(std::memory_order_relaxed);
     result = tester_->blocked(x_axis_, y_axis_, cell_x(depth, i), cell_y(depth, j), cache_, candidates,
-                              keep_list ? &narrowed : nullptr, &cell, parent_list_wanted ? &parent : nullptr);
-    // (lists_ grows only after the test: `candidates` points into it)
-    if (parent_made) {
-      const std::int32_t entry = -1 - static_cast<std::int32_t>(lists_.size());
-      parent_list.shrink_to_fit();
-      lists_.push_back(std::move(parent_list));
-      remember(depth - 1, i >> 1, dimension_ == 2 ? j >> 1 : j, entry);
-      ++parent_lists_;
-    }
+                              keep_list ? &narrowed : nullptr, &cell);
     if (result) {
       answer = is_blocked;
     } else if (keep_list) {
@@ -1070,11 +1020,6 @@ bool BlockedCells::blocked(int depth, long i, long j) {
   if (own) *own = answer;
   else remember(depth, i, j, answer);
   return result;
-}
-
-std::atomic<bool>& enclosing_lists() {
-  static std::atomic<bool> on{true};
-  return on;
 }
 
 }  // namespace hipair::cspace

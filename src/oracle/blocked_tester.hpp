@@ -134,24 +134,9 @@ class BlockedTester {
   /// true one). The answer does not depend on the candidates given (any pair certifying the
   /// box is among them, and the same certified test decides each pair), so it is the answer
   /// of the sweep; only the work differs.
-  /// A box enclosing the tested one (a grid cell between it and the cell whose list is
-  /// `candidates`), whose narrowed list the test makes on the way (see blocked()).
-  struct Enclosing {
-    algebra::Interval x, y;
-    GridCell cell;
-    std::vector<DiskPair>* list;
-    bool* made;   // set when `list` was made (the box is not blocked)
-  };
-  /// With `enclosing`: when the box is not blocked, `enclosing->list` receives the narrowed list
-  /// the enclosing box's own test would make from `candidates` (the pairs that can certify some
-  /// box inside it, posed over it), and this box tests only those (a pair the enclosing box
-  /// drops certifies no box inside it): the same answer. Blocked: the list is left empty (it is
-  /// incomplete; nothing is claimed of the enclosing box). The enclosing box's poses admitting
-  /// no claim: no list.
   bool blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
                const algebra::Interval& y, Cache& cache, const std::vector<DiskPair>* candidates,
-               std::vector<DiskPair>* narrowed, const GridCell* cell = nullptr,
-               const Enclosing* enclosing = nullptr) const;
+               std::vector<DiskPair>* narrowed, const GridCell* cell = nullptr) const;
 
   /// A disk of a part's material in the tester's unit, certified once at construction (exact
   /// centre strictly inside the part, radius a certified lower bound of its clearance).
@@ -215,11 +200,6 @@ class BlockedTester {
 /// (memoised, with the posed disks of the tester's cache), and a cell inside a blocked cell
 /// is blocked without a test. Certified as BlockedTester::blocked. One instance per box and
 /// thread.
-/// BlockedCells: a cell whose candidate list lies two or more levels up makes its parent's
-/// narrowed list on the way (a list only: the parent is not tested) for the parent's other
-/// children. On by default; tests turn it off to compare. The answers are the same either way.
-std::atomic<bool>& enclosing_lists();
-
 class BlockedCells {
  public:
   /// `tester` may be null or unusable: then no cell is blocked. `depth`: the finest depth.
@@ -237,8 +217,6 @@ class BlockedCells {
   std::size_t tests() const { return tests_; }
   /// Candidate pairs tested over all calls (the work of the tests).
   std::size_t pairs_tested() const { return pairs_tested_; }
-  /// Parents' lists made on the way (enclosing_lists()).
-  std::size_t parent_lists() const { return parent_lists_; }
   /// Frees the tester's posed disks (kept for the next cells); the known cells and their
   /// candidate lists stay.
   void release_cache() { cache_ = BlockedTester::Cache{}; }
@@ -247,8 +225,7 @@ class BlockedCells {
   // A tested cell's entry: 0 not tested, 1 blocked, 2 not blocked, 3 + k not blocked with
   // list k (above the finest depth anyone tests): the disk pairs that can certify a cell
   // inside it (BlockedTester::blocked with `narrowed`): the cells below test only those pairs
-  // (the disk sweep bucketed by cell). -1 - k: not tested, list k (a parent's list made by a
-  // child's test, BlockedTester::Enclosing).
+  // (the disk sweep bucketed by cell).
   static constexpr std::int32_t untested = 0, is_blocked = 1, not_blocked = 2, first_list = 3;
   // Cells of the depths with at most 2^18 cells (2-D: to depth 9; 1-D: to depth 18) are kept
   // in a table per depth, one entry per cell, made when a cell of that depth is first asked
@@ -274,7 +251,6 @@ class BlockedCells {
   std::vector<std::vector<BlockedTester::DiskPair>> lists_;
   std::size_t tests_ = 0;
   std::size_t pairs_tested_ = 0;
-  std::size_t parent_lists_ = 0;
 };
 
 }  // namespace hipair::cspace
