@@ -506,6 +506,23 @@ bool BlockedTester::posed_parts(const ChartAxis& x_axis, const ChartAxis& y_axis
 bool BlockedTester::pose_bounds(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
                                 const algebra::Interval& y, Cache& cache, Cache::Pose* out[2],
                                 const GridCell* cell) const {
+  // both parts' poses of a grid cell already indexed: two array reads (the indices each_part
+  // gives below: part 0 on the chart's x axis, part 1 on x when part 0 is fixed, else on y;
+  // a fixed part at index 0 of depth 0)
+  if (cell && cell->depth >= 0 && cell->depth < Cache::cell_index_depths) {
+    Cache::Pose* found[2] = {nullptr, nullptr};
+    for (int k = 0; k < 2; ++k) {
+      const int depth = moves_[k] ? cell->depth : 0;
+      const long index = !moves_[k] ? 0 : (k == 0 || !moves_[0]) ? cell->i : cell->j;
+      const std::vector<Cache::Pose*>& table = cache.by_cell_[k][depth];
+      if (index >= 0 && static_cast<std::size_t>(index) < table.size()) found[k] = table[static_cast<std::size_t>(index)];
+    }
+    if (found[0] && found[1]) {
+      out[0] = found[0];
+      out[1] = found[1];
+      return found[0]->bound.usable && found[1]->bound.usable;
+    }
+  }
   return each_part(x_axis, y_axis, x, y, [&](int k, const ChartAxis& axis, const algebra::Interval& range, const auto& key) {
     // a grid cell's pose by its column (x) or row (y) index; a fixed part's at index 0 of depth 0
     Cache::Pose** indexed = nullptr;
@@ -959,7 +976,10 @@ std::int32_t BlockedCells::known(int depth, long i, long j) const {
 void BlockedCells::remember(int depth, long i, long j, std::int32_t entry) {
   if (dense(depth, i, j)) {
     std::vector<std::int32_t>& table = dense_[static_cast<std::size_t>(depth)];
-    if (table.empty()) table.assign(std::size_t{1} << (depth * dimension_), untested);
+    if (table.empty()) {
+      table.assign(std::size_t{1} << (depth * dimension_), untested);
+      dense_data_[depth] = table.data();
+    }
     table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)] = entry;
     return;
   }
@@ -982,13 +1002,20 @@ bool BlockedCells::blocked(int depth, long i, long j) {
   if (dense(depth, i, j)) {
     // the cell and its ancestors (their indices are in range too) read from the tables
     std::vector<std::int32_t>& table = dense_[static_cast<std::size_t>(depth)];
-    if (table.empty()) table.assign(std::size_t{1} << (depth * dimension_), untested);
+    if (table.empty()) {
+      table.assign(std::size_t{1} << (depth * dimension_), untested);
+      dense_data_[depth] = table.data();
+    }
     own = &table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
     if (*own != untested) return *own == is_blocked;
-    for (int up = 1; up <= depth && !result; ++up) {
-      const std::vector<std::int32_t>& above = dense_[static_cast<std::size_t>(depth - up)];
-      if (above.empty()) continue;
-      see(above[static_cast<std::size_t>(dimension_ == 2 ? ((i >> up) << (depth - up)) | (j >> up) : i >> up)]);
+    // (the tables' data by depth, null while a depth has none: one load per ancestor)
+    if (dimension_ == 2) {
+      for (int up = 1; up <= depth && !result; ++up)
+        if (const std::int32_t* above = dense_data_[depth - up])
+          see(above[static_cast<std::size_t>(((i >> up) << (depth - up)) | (j >> up))]);
+    } else {
+      for (int up = 1; up <= depth && !result; ++up)
+        if (const std::int32_t* above = dense_data_[depth - up]) see(above[static_cast<std::size_t>(i >> up)]);
     }
   } else {
     const std::int32_t entry = known(depth, i, j);

@@ -247,6 +247,7 @@ class BlockedCells {
   algebra::Interval x_, y_;
   BlockedTester::Cache cache_;
   std::vector<std::vector<std::int32_t>> dense_;   // per depth (see dense())
+  std::int32_t* dense_data_[dense_cells_log2 + 1] = {};   // dense_[depth].data(), null while empty
   std::unordered_map<long, std::int32_t> known_;   // the other cells
   std::vector<std::vector<BlockedTester::DiskPair>> lists_;
   std::size_t tests_ = 0;
