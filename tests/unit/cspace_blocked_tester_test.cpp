@@ -527,6 +527,30 @@ void for_each_two_d_pair(std::initializer_list<std::tuple<const char*, const cha
   }
 }
 
+// `check(what, model, axes, layout, count)` on the examples' two-dimensional pairs (Geneva,
+// ratchet, escapement: `example_count` each) and on two generated bar-and-wall pairs (random
+// rationals) at each of the scales 1e-200, 1 and 1e200 (`bar_count` each).
+template <class F>
+void on_examples_and_bar_walls(Random& random, int example_count, int bar_count, F&& check) {
+  for_each_two_d_pair({{"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"},
+                       {"escapement.json", "escape-wheel", "anchor"}},
+                      [&](const std::string& file, const Model& model, const cspace::PairAxes& axes,
+                          const cspace::ChartLayout& layout) { check(file, model, axes, layout, example_count); });
+  for (int exponent : {-200, 0, 200}) {
+    mpz_class power;
+    mpz_ui_pow_ui(power.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(exponent)));
+    Rational scale = exponent >= 0 ? Rational(power) : Rational(mpz_class(1), power);
+    scale.canonicalize();
+    for (int trial = 0; trial < 2; ++trial) {
+      Rational L = scale * random_rational(random, 2, 10), w = scale * random_rational(random, Rational(1, 10), 1);
+      Rational D = scale * random_rational(random, Rational(1, 2), 3);
+      Model model = read_model(bar_and_wall(L, w, D, 2 * (L + w), 2 * (L + w + D)));
+      cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+      check("bar and wall 1e" + std::to_string(exponent), model, axes, cspace::chart_layout(model, axes), bar_count);
+    }
+  }
+}
+
 TEST(BlockedTester, CachedAnswersEqualUncachedOnes) {
   int blocked = 0, boxes = 0;
   for_each_two_d_pair({{"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"},
@@ -668,23 +692,7 @@ TEST(BlockedTester, PosedDisksKeptPerPoseAnswerAsFreshPoses) {
         }
       }
   };
-  for_each_two_d_pair({{"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"},
-                       {"escapement.json", "escape-wheel", "anchor"}},
-                      [&](const std::string& file, const Model& model, const cspace::PairAxes& axes,
-                          const cspace::ChartLayout& layout) { check(file, model, axes, layout, 1500); });
-  for (int exponent : {-200, 0, 200}) {
-    mpz_class power;
-    mpz_ui_pow_ui(power.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(exponent)));
-    Rational scale = exponent >= 0 ? Rational(power) : Rational(mpz_class(1), power);
-    scale.canonicalize();
-    for (int trial = 0; trial < 2; ++trial) {
-      Rational L = scale * random_rational(random, 2, 10), w = scale * random_rational(random, Rational(1, 10), 1);
-      Rational D = scale * random_rational(random, Rational(1, 2), 3);
-      Model model = read_model(bar_and_wall(L, w, D, 2 * (L + w), 2 * (L + w + D)));
-      cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
-      check("bar and wall 1e" + std::to_string(exponent), model, axes, cspace::chart_layout(model, axes), 300);
-    }
-  }
+  on_examples_and_bar_walls(random, 1500, 300, check);
   std::cout << blocked << " of " << cells << " cells blocked, " << reused << " in a column tested before, "
             << counts.points << " configurations of blocked cells checked with the oracle\n";
   EXPECT_GT(blocked, 1000);
@@ -832,23 +840,7 @@ TEST(BlockedTester, GridAnswersInAnyOrderAreTheSweepsAndOverlapExactly) {
         }
       }
   };
-  for_each_two_d_pair({{"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"},
-                       {"escapement.json", "escape-wheel", "anchor"}},
-                      [&](const std::string& file, const Model& model, const cspace::PairAxes& axes,
-                          const cspace::ChartLayout& layout) { check(file, model, axes, layout, 1200); });
-  for (int exponent : {-200, 0, 200}) {
-    mpz_class power;
-    mpz_ui_pow_ui(power.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(exponent)));
-    Rational scale = exponent >= 0 ? Rational(power) : Rational(mpz_class(1), power);
-    scale.canonicalize();
-    for (int trial = 0; trial < 2; ++trial) {
-      Rational L = scale * random_rational(random, 2, 10), w = scale * random_rational(random, Rational(1, 10), 1);
-      Rational D = scale * random_rational(random, Rational(1, 2), 3);
-      Model model = read_model(bar_and_wall(L, w, D, 2 * (L + w), 2 * (L + w + D)));
-      cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
-      check("bar and wall 1e" + std::to_string(exponent), model, axes, cspace::chart_layout(model, axes), 400);
-    }
-  }
+  on_examples_and_bar_walls(random, 1200, 400, check);
   std::cout << cells << " cells, " << blocked << " blocked (" << inherited << " inside a blocked cell), " << wrong
             << " wrong, " << counts.points << " configurations of blocked cells checked with the oracle\n";
   EXPECT_EQ(wrong, 0);
