@@ -15,6 +15,7 @@
 #include <mutex>
 #include <numbers>
 #include <limits>
+#include <new>
 #include <tuple>
 
 namespace hipair::cspace {
@@ -937,9 +938,6 @@ BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const Ch
       y_{dimension == 2 ? algebra::Interval{algebra::lower_double(y.lo), algebra::upper_double(y.hi)}
                         : algebra::Interval{0, 0}} {
   if (depth_ < 0 || depth_ > 24) throw NumericError("blocked-space grid: depth out of range");
-  // one (empty until used) table per depth with at most 2^dense_cells_log2 cells
-  // (none for a dimension below 1: dense() is false there)
-  if (dimension_ >= 1) dense_.resize(static_cast<std::size_t>(dense_cells_log2 / dimension_) + 1);
 }
 
 namespace {
@@ -965,22 +963,28 @@ long cell_key(int depth, long i, long j) { return (static_cast<long>(depth) << 5
 
 std::int32_t BlockedCells::known(int depth, long i, long j) const {
   if (dense(depth, i, j)) {
-    const std::vector<std::int32_t>& table = dense_[static_cast<std::size_t>(depth)];
-    if (table.empty()) return untested;
+    const std::int32_t* table = dense_[depth].get();
+    if (!table) return untested;
     return table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
   }
   const auto it = known_.find(cell_key(depth, i, j));
   return it == known_.end() ? untested : it->second;
 }
 
+std::int32_t* BlockedCells::dense_table(int depth) {
+  static_assert(untested == 0, "a zeroed table holds untested cells");
+  if (!dense_[depth]) {
+    const std::size_t cells = std::size_t{1} << (depth * dimension_);
+    auto* table = static_cast<std::int32_t*>(std::calloc(cells, sizeof(std::int32_t)));
+    if (!table) throw std::bad_alloc();
+    dense_[depth].reset(table);
+  }
+  return dense_[depth].get();
+}
+
 void BlockedCells::remember(int depth, long i, long j, std::int32_t entry) {
   if (dense(depth, i, j)) {
-    std::vector<std::int32_t>& table = dense_[static_cast<std::size_t>(depth)];
-    if (table.empty()) {
-      table.assign(std::size_t{1} << (depth * dimension_), untested);
-      dense_data_[depth] = table.data();
-    }
-    table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)] = entry;
+    dense_table(depth)[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)] = entry;
     return;
   }
   known_.emplace(cell_key(depth, i, j), entry);
@@ -1001,21 +1005,16 @@ bool BlockedCells::blocked(int depth, long i, long j) {
   std::int32_t* own = nullptr;   // the cell's entry in its depth's table (a dense cell)
   if (dense(depth, i, j)) {
     // the cell and its ancestors (their indices are in range too) read from the tables
-    std::vector<std::int32_t>& table = dense_[static_cast<std::size_t>(depth)];
-    if (table.empty()) {
-      table.assign(std::size_t{1} << (depth * dimension_), untested);
-      dense_data_[depth] = table.data();
-    }
-    own = &table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
+    own = &dense_table(depth)[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
     if (*own != untested) return *own == is_blocked;
-    // (the tables' data by depth, null while a depth has none: one load per ancestor)
+    // (the tables by depth, null while a depth has none: one load per ancestor)
     if (dimension_ == 2) {
       for (int up = 1; up <= depth && !result; ++up)
-        if (const std::int32_t* above = dense_data_[depth - up])
+        if (const std::int32_t* above = dense_[depth - up].get())
           see(above[static_cast<std::size_t>(((i >> up) << (depth - up)) | (j >> up))]);
     } else {
       for (int up = 1; up <= depth && !result; ++up)
-        if (const std::int32_t* above = dense_data_[depth - up]) see(above[static_cast<std::size_t>(i >> up)]);
+        if (const std::int32_t* above = dense_[depth - up].get()) see(above[static_cast<std::size_t>(i >> up)]);
     }
   } else {
     const std::int32_t entry = known(depth, i, j);
