@@ -15,6 +15,7 @@
 #include <mutex>
 #include <numbers>
 #include <limits>
+#include <new>
 #include <tuple>
 
 namespace hipair::cspace {
@@ -504,11 +505,45 @@ bool BlockedTester::posed_parts(const ChartAxis& x_axis, const ChartAxis& y_axis
 }
 
 bool BlockedTester::pose_bounds(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
-                                const algebra::Interval& y, Cache& cache, Cache::Pose* out[2]) const {
+                                const algebra::Interval& y, Cache& cache, Cache::Pose* out[2],
+                                const GridCell* cell) const {
+  // both parts' poses of a grid cell already indexed: two array reads (the indices each_part
+  // gives below: part 0 on the chart's x axis, part 1 on x when part 0 is fixed, else on y;
+  // a fixed part at index 0 of depth 0)
+  if (cell && cell->depth >= 0 && cell->depth < Cache::cell_index_depths) {
+    Cache::Pose* found[2] = {nullptr, nullptr};
+    for (int k = 0; k < 2; ++k) {
+      const int depth = moves_[k] ? cell->depth : 0;
+      const long index = !moves_[k] ? 0 : (k == 0 || !moves_[0]) ? cell->i : cell->j;
+      const std::vector<Cache::Pose*>& table = cache.by_cell_[k][depth];
+      if (index >= 0 && static_cast<std::size_t>(index) < table.size()) found[k] = table[static_cast<std::size_t>(index)];
+    }
+    if (found[0] && found[1]) {
+      out[0] = found[0];
+      out[1] = found[1];
+      return found[0]->bound.usable && found[1]->bound.usable;
+    }
+  }
   return each_part(x_axis, y_axis, x, y, [&](int k, const ChartAxis& axis, const algebra::Interval& range, const auto& key) {
+    // a grid cell's pose by its column (x) or row (y) index; a fixed part's at index 0 of depth 0
+    Cache::Pose** indexed = nullptr;
+    if (cell && cell->depth >= 0 && cell->depth < Cache::cell_index_depths) {
+      const int depth = moves_[k] ? cell->depth : 0;
+      const long index = moves_[k] ? (&range == &x ? cell->i : cell->j) : 0;
+      std::vector<Cache::Pose*>& table = cache.by_cell_[k][depth];
+      if (table.empty()) table.assign(std::size_t{1} << depth, nullptr);
+      if (index >= 0 && static_cast<std::size_t>(index) < table.size()) {
+        indexed = &table[static_cast<std::size_t>(index)];
+        if (*indexed) {
+          out[k] = *indexed;
+          return (*indexed)->bound.usable;
+        }
+      }
+    }
     auto [it, inserted] = cache.bounds_[k].try_emplace(key);
     if (inserted) it->second.bound = pose_bound(k, axis, range);
     out[k] = &it->second;
+    if (indexed) *indexed = &it->second;
     return it->second.bound.usable;
   });
 }
@@ -588,7 +623,7 @@ template <class Disk>
 
 bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
                             const algebra::Interval& y, Cache& cache, const std::vector<DiskPair>* candidates,
-                            std::vector<DiskPair>* narrowed) const {
+                            std::vector<DiskPair>* narrowed, const GridCell* cell) const {
   if (narrowed) narrowed->clear();
   if (!candidates) {
     const Posed* posed[2] = {nullptr, nullptr};
@@ -597,7 +632,7 @@ bool BlockedTester::blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, co
     return gather(*posed[0], *posed[1], *narrowed);
   }
   Cache::Pose* poses[2] = {nullptr, nullptr};
-  if (!pose_bounds(x_axis, y_axis, x, y, cache, poses)) return false;
+  if (!pose_bounds(x_axis, y_axis, x, y, cache, poses, cell)) return false;
   // the narrowed list puts first the pairs whose nominal disks overlap (the likeliest to
   // certify a sub-cell: a blocked cell's test stops at its first certifying pair)
   thread_local std::vector<DiskPair> later_list;
@@ -830,12 +865,15 @@ bool BlockedTester::gather(const PosedSet& first, const PosedSet& second, std::v
   // with outer_a < outer_b in the window 2 outer_b (windows widened by more than the margins
   // and the window ends' rounding). (A window of outer_a + the widest outer of B, as before,
   // let one large disk — a gear's hub — widen every window to the whole part.) The pairs kept
-  // are the same set; they are sorted by (first, second), so a list runs over the disks of A in
-  // groups (BlockedTester::blocked poses a disk once per run of pairs that share it).
+  // are the same set; a list runs over the disks of A in groups (BlockedTester::blocked poses a
+  // disk once per run of pairs that share it): the two sweeps' pairs are sorted by (first,
+  // second) for that.
   // Where no disk is much wider than the rest (Geneva, escapement: the two sweeps would scan
   // about every pair twice), one sweep of A's disks in the window outer_a + the widest outer of
-  // B meets the same pairs with less work; which sweep runs is chosen by the windows' summed
-  // widths times the disks they scan, and decides only the work: the set, then sorted, is the same.
+  // B meets the same pairs with less work, already in groups (each disk of A sweeps once), so
+  // they are not sorted (Geneva: the sort was 6.7 M instructions of 623 M). Which sweep runs is
+  // chosen by the windows' summed widths times the disks they scan; it decides only the work
+  // and the list's order, never the set nor an answer (blocked() is "some pair certifies").
   if (first.disks.empty() || second.disks.empty()) return false;
   const std::size_t start = out.size();
   double widest_b = 0, sum_a = 0, sum_b = 0;
@@ -861,7 +899,8 @@ bool BlockedTester::gather(const PosedSet& first, const PosedSet& second, std::v
         if (may_certify_inside(a, b)) out.push_back(DiskPair{a.index, b.index});
       }
     }
-    std::sort(out.begin() + static_cast<std::ptrdiff_t>(start), out.end(), by_pair);
+    // (grouped by A's disk already: each disk of A sweeps once, its pairs appended together;
+    // no sort — the order of a list decides only the work, never an answer)
     return false;
   }
   auto sweep = [&](const PosedSet& from, const PosedSet& to, bool from_first) {
@@ -899,9 +938,6 @@ BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const Ch
       y_{dimension == 2 ? algebra::Interval{algebra::lower_double(y.lo), algebra::upper_double(y.hi)}
                         : algebra::Interval{0, 0}} {
   if (depth_ < 0 || depth_ > 24) throw NumericError("blocked-space grid: depth out of range");
-  // one (empty until used) table per depth with at most 2^dense_cells_log2 cells
-  // (none for a dimension below 1: dense() is false there)
-  if (dimension_ >= 1) dense_.resize(static_cast<std::size_t>(dense_cells_log2 / dimension_) + 1);
 }
 
 namespace {
@@ -927,19 +963,28 @@ long cell_key(int depth, long i, long j) { return (static_cast<long>(depth) << 5
 
 std::int32_t BlockedCells::known(int depth, long i, long j) const {
   if (dense(depth, i, j)) {
-    const std::vector<std::int32_t>& table = dense_[static_cast<std::size_t>(depth)];
-    if (table.empty()) return untested;
+    const std::int32_t* table = dense_[depth].get();
+    if (!table) return untested;
     return table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
   }
   const auto it = known_.find(cell_key(depth, i, j));
   return it == known_.end() ? untested : it->second;
 }
 
+std::int32_t* BlockedCells::dense_table(int depth) {
+  static_assert(untested == 0, "a zeroed table holds untested cells");
+  if (!dense_[depth]) {
+    const std::size_t cells = std::size_t{1} << (depth * dimension_);
+    auto* table = static_cast<std::int32_t*>(std::calloc(cells, sizeof(std::int32_t)));
+    if (!table) throw std::bad_alloc();
+    dense_[depth].reset(table);
+  }
+  return dense_[depth].get();
+}
+
 void BlockedCells::remember(int depth, long i, long j, std::int32_t entry) {
   if (dense(depth, i, j)) {
-    std::vector<std::int32_t>& table = dense_[static_cast<std::size_t>(depth)];
-    if (table.empty()) table.assign(std::size_t{1} << (depth * dimension_), untested);
-    table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)] = entry;
+    dense_table(depth)[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)] = entry;
     return;
   }
   known_.emplace(cell_key(depth, i, j), entry);
@@ -960,14 +1005,16 @@ bool BlockedCells::blocked(int depth, long i, long j) {
   std::int32_t* own = nullptr;   // the cell's entry in its depth's table (a dense cell)
   if (dense(depth, i, j)) {
     // the cell and its ancestors (their indices are in range too) read from the tables
-    std::vector<std::int32_t>& table = dense_[static_cast<std::size_t>(depth)];
-    if (table.empty()) table.assign(std::size_t{1} << (depth * dimension_), untested);
-    own = &table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
+    own = &dense_table(depth)[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
     if (*own != untested) return *own == is_blocked;
-    for (int up = 1; up <= depth && !result; ++up) {
-      const std::vector<std::int32_t>& above = dense_[static_cast<std::size_t>(depth - up)];
-      if (above.empty()) continue;
-      see(above[static_cast<std::size_t>(dimension_ == 2 ? ((i >> up) << (depth - up)) | (j >> up) : i >> up)]);
+    // (the tables by depth, null while a depth has none: one load per ancestor)
+    if (dimension_ == 2) {
+      for (int up = 1; up <= depth && !result; ++up)
+        if (const std::int32_t* above = dense_[depth - up].get())
+          see(above[static_cast<std::size_t>(((i >> up) << (depth - up)) | (j >> up))]);
+    } else {
+      for (int up = 1; up <= depth && !result; ++up)
+        if (const std::int32_t* above = dense_[depth - up].get()) see(above[static_cast<std::size_t>(i >> up)]);
     }
   } else {
     const std::int32_t entry = known(depth, i, j);
@@ -982,8 +1029,9 @@ bool BlockedCells::blocked(int depth, long i, long j) {
     // generator's pairs to depth 9 at least) need no list
     const bool keep_list = depth < std::max(depth_, 9);
     std::vector<BlockedTester::DiskPair> narrowed;
+    const BlockedTester::GridCell cell{depth, i, dimension_ == 2 ? j : 0};
     result = tester_->blocked(x_axis_, y_axis_, cell_x(depth, i), cell_y(depth, j), cache_, candidates,
-                              keep_list ? &narrowed : nullptr);
+                              keep_list ? &narrowed : nullptr, &cell);
     if (result) {
       answer = is_blocked;
     } else if (keep_list) {

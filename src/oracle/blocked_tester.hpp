@@ -20,6 +20,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <unordered_map>
@@ -92,6 +93,19 @@ class BlockedTester {
     };
     std::unordered_map<std::pair<double, double>, Posed, KeyHash> posed_[2];
     std::unordered_map<std::pair<double, double>, Pose, KeyHash> bounds_[2];
+    // The entries of bounds_ found for the cells of one grid (BlockedCells), per part, depth and
+    // column or row index (a cell's sides are pure functions of its depth and index, so an index
+    // names one key): a grid's look-up of a pose it has seen is an array read, not a hash.
+    // Depths to cell_index_depths - 1 only; null: not yet found.
+    static constexpr int cell_index_depths = 13;
+    std::vector<Pose*> by_cell_[2][cell_index_depths];
+  };
+
+  /// A cell of a BlockedCells grid (its depth and indices), given with the cell's box so that
+  /// the cache finds the parts' poses by index (the same entries as by the box's ends).
+  struct GridCell {
+    int depth;
+    long i, j;
   };
 
   /// A pair of certified disks, indices into disks(0) and disks(1).
@@ -123,7 +137,7 @@ class BlockedTester {
   /// of the sweep; only the work differs.
   bool blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
                const algebra::Interval& y, Cache& cache, const std::vector<DiskPair>* candidates,
-               std::vector<DiskPair>* narrowed) const;
+               std::vector<DiskPair>* narrowed, const GridCell* cell = nullptr) const;
 
   /// A disk of a part's material in the tester's unit, certified once at construction (exact
   /// centre strictly inside the part, radius a certified lower bound of its clearance).
@@ -152,7 +166,7 @@ class BlockedTester {
   bool posed_parts(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
                    const algebra::Interval& y, Cache& cache, const Posed* out[2]) const;
   bool pose_bounds(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
-                   const algebra::Interval& y, Cache& cache, Cache::Pose* out[2]) const;
+                   const algebra::Interval& y, Cache& cache, Cache::Pose* out[2], const GridCell* cell) const;
   // disk `index` of part k posed with `pose` (pose_disk's answer, kept in the pose); null when
   // not finite
   const PosedDisk* posed_disk(int k, Cache::Pose& pose, std::uint32_t index) const;
@@ -233,7 +247,14 @@ class BlockedCells {
   int depth_;
   algebra::Interval x_, y_;
   BlockedTester::Cache cache_;
-  std::vector<std::vector<std::int32_t>> dense_;   // per depth (see dense())
+  // per depth (see dense()), null until a cell of that depth is asked: zeroed memory
+  // (std::calloc: every entry `untested`, which is 0; fresh pages need no filling — a grid per
+  // operating-region tile made its tables with a fill loop: 1 % of a 6 x 9 region's instructions)
+  struct FreeTable {
+    void operator()(std::int32_t* table) const noexcept { std::free(table); }
+  };
+  std::unique_ptr<std::int32_t[], FreeTable> dense_[dense_cells_log2 + 1];
+  std::int32_t* dense_table(int depth);   // depth's table, made on first use
   std::unordered_map<long, std::int32_t> known_;   // the other cells
   std::vector<std::vector<BlockedTester::DiskPair>> lists_;
   std::size_t tests_ = 0;

@@ -32,6 +32,7 @@
 #include <map>
 #include <memory>
 #include <random>
+#include <set>
 #include <string>
 #include <tuple>
 
@@ -231,6 +232,15 @@ TEST(BlockedTester, GatheredCandidatesAreEveryPairThatMayCertifyInside) {
       continue;
     }
     ASSERT_EQ(got.size(), expected.size()) << "trial " << trial;
+    // the list runs over A's disks in groups (each first disk's pairs together: the candidate
+    // loop poses a first disk once per run); its order decides only the work, so it is compared
+    // as a set
+    for (std::size_t k = 1; k < got.size(); ++k)
+      if (got[k].first != got[k - 1].first)
+        for (std::size_t m = 0; m + 1 < k; ++m)
+          ASSERT_NE(got[m].first, got[k].first) << "trial " << trial << ": disk " << got[k].first << " in two runs";
+    std::sort(got.begin(), got.end(),
+              [](const Pair& p, const Pair& q) { return p.first != q.first ? p.first < q.first : p.second < q.second; });
     for (std::size_t k = 0; k < got.size(); ++k) {
       ASSERT_EQ(got[k].first, expected[k].first) << "trial " << trial << " pair " << k;
       ASSERT_EQ(got[k].second, expected[k].second) << "trial " << trial << " pair " << k;
@@ -517,6 +527,30 @@ void for_each_two_d_pair(std::initializer_list<std::tuple<const char*, const cha
   }
 }
 
+// `check(what, model, axes, layout, count)` on the examples' two-dimensional pairs (Geneva,
+// ratchet, escapement: `example_count` each) and on two generated bar-and-wall pairs (random
+// rationals) at each of the scales 1e-200, 1 and 1e200 (`bar_count` each).
+template <class F>
+void on_examples_and_bar_walls(Random& random, int example_count, int bar_count, F&& check) {
+  for_each_two_d_pair({{"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"},
+                       {"escapement.json", "escape-wheel", "anchor"}},
+                      [&](const std::string& file, const Model& model, const cspace::PairAxes& axes,
+                          const cspace::ChartLayout& layout) { check(file, model, axes, layout, example_count); });
+  for (int exponent : {-200, 0, 200}) {
+    mpz_class power;
+    mpz_ui_pow_ui(power.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(exponent)));
+    Rational scale = exponent >= 0 ? Rational(power) : Rational(mpz_class(1), power);
+    scale.canonicalize();
+    for (int trial = 0; trial < 2; ++trial) {
+      Rational L = scale * random_rational(random, 2, 10), w = scale * random_rational(random, Rational(1, 10), 1);
+      Rational D = scale * random_rational(random, Rational(1, 2), 3);
+      Model model = read_model(bar_and_wall(L, w, D, 2 * (L + w), 2 * (L + w + D)));
+      cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+      check("bar and wall 1e" + std::to_string(exponent), model, axes, cspace::chart_layout(model, axes), bar_count);
+    }
+  }
+}
+
 TEST(BlockedTester, CachedAnswersEqualUncachedOnes) {
   int blocked = 0, boxes = 0;
   for_each_two_d_pair({{"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"},
@@ -658,23 +692,7 @@ TEST(BlockedTester, PosedDisksKeptPerPoseAnswerAsFreshPoses) {
         }
       }
   };
-  for_each_two_d_pair({{"geneva.json", "driver", "wheel"}, {"ratchet.json", "wheel", "pawl"},
-                       {"escapement.json", "escape-wheel", "anchor"}},
-                      [&](const std::string& file, const Model& model, const cspace::PairAxes& axes,
-                          const cspace::ChartLayout& layout) { check(file, model, axes, layout, 1500); });
-  for (int exponent : {-200, 0, 200}) {
-    mpz_class power;
-    mpz_ui_pow_ui(power.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(exponent)));
-    Rational scale = exponent >= 0 ? Rational(power) : Rational(mpz_class(1), power);
-    scale.canonicalize();
-    for (int trial = 0; trial < 2; ++trial) {
-      Rational L = scale * random_rational(random, 2, 10), w = scale * random_rational(random, Rational(1, 10), 1);
-      Rational D = scale * random_rational(random, Rational(1, 2), 3);
-      Model model = read_model(bar_and_wall(L, w, D, 2 * (L + w), 2 * (L + w + D)));
-      cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
-      check("bar and wall 1e" + std::to_string(exponent), model, axes, cspace::chart_layout(model, axes), 300);
-    }
-  }
+  on_examples_and_bar_walls(random, 1500, 300, check);
   std::cout << blocked << " of " << cells << " cells blocked, " << reused << " in a column tested before, "
             << counts.points << " configurations of blocked cells checked with the oracle\n";
   EXPECT_GT(blocked, 1000);
@@ -754,6 +772,79 @@ TEST(BlockedTester, CandidateLoopKeepsTheDefinitionsPairsInOrder) {
             << " lists narrowed\n";
   EXPECT_GT(blocked, 200);
   EXPECT_GT(nonempty, 200);   // lists that keep some pairs and drop others
+}
+
+// The grid (BlockedCells) asked in any order — runs of neighbouring cells, children and
+// grandchildren of the last cell and cells at random, of depths 2 to 14, as the curve
+// generator's and the builder's walks mix them: a cell the grid calls free is free to the
+// plain tester (a fresh sweep of the cell alone), a cell it calls blocked is blocked to the
+// plain tester or lies inside a cell the grid called blocked before, and at a random rational
+// configuration of every fourth blocked cell the parts overlap (the exact oracle). Exercises the
+// poses the grid finds by cell index (BlockedTester::Cache::by_cell_) and by the cell's ends past
+// the indexed depths, and the candidate lists of every ancestor depth. On the examples' charts
+// and on generated bar-and-wall pairs at scales 1e-200 to 1e200.
+TEST(BlockedTester, GridAnswersInAnyOrderAreTheSweepsAndOverlapExactly) {
+  Random random(20261203);
+  int cells = 0, blocked = 0, inherited = 0, wrong = 0;
+  Counts counts;
+  auto check = [&](const std::string& what, const Model& model, const cspace::PairAxes& axes,
+                   const cspace::ChartLayout& layout, int count) {
+    auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
+    if (!tester->usable()) return;
+    for (const auto& x : layout.x_charts)
+      for (const auto& y : layout.y_charts) {
+        cspace::BlockedCells grid(tester, x, y, 2, 9);
+        std::set<std::tuple<int, long, long>> said_blocked;
+        auto inside_blocked = [&](int depth, long i, long j) {
+          for (int up = 1; up <= depth; ++up)
+            if (said_blocked.count({depth - up, i >> up, j >> up})) return true;
+          return false;
+        };
+        int depth = 2;
+        long i = 0, j = 0;
+        for (int n = 0; n < count; ++n) {
+          const long side = 1L << depth;
+          if (n % 4 == 0) {   // a new place
+            depth = 2 + static_cast<int>(random() % 13);
+            i = static_cast<long>(random() % (1UL << depth));
+            j = static_cast<long>(random() % (1UL << depth));
+          } else if (random() % 3 == 0) {
+            i = std::min(side - 1, i + 1);   // the next column
+          } else if (random() % 2 == 0) {
+            j = std::min(side - 1, j + 1);   // the next row
+          } else if (depth < 14) {           // a child
+            ++depth;
+            i = 2 * i + static_cast<long>(random() % 2);
+            j = 2 * j + static_cast<long>(random() % 2);
+          }
+          const Interval bx = grid.cell_x(depth, i), by = grid.cell_y(depth, j);
+          const bool answer = grid.blocked(depth, i, j);
+          const bool plain = tester->blocked(x, y, bx, by);
+          ++cells;
+          const std::string where = what + " cell " + std::to_string(depth) + ", " + std::to_string(i) + ", " +
+                                    std::to_string(j);
+          if (!answer) {
+            EXPECT_FALSE(plain) << where << ": the grid calls free a blocked cell";
+            wrong += plain;
+            continue;
+          }
+          ++blocked;
+          said_blocked.insert({depth, i, j});
+          if (!plain) {
+            const bool in = inside_blocked(depth, i, j);
+            EXPECT_TRUE(in) << where << ": the grid calls blocked a cell the sweep does not";
+            inherited += in;
+            wrong += !in;
+          }
+          if (blocked % 4 == 0) check_blocked_box(model, axes, x, y, bx, by, true, 1, random, counts, where);
+        }
+      }
+  };
+  on_examples_and_bar_walls(random, 1200, 400, check);
+  std::cout << cells << " cells, " << blocked << " blocked (" << inherited << " inside a blocked cell), " << wrong
+            << " wrong, " << counts.points << " configurations of blocked cells checked with the oracle\n";
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(blocked, 1000);
 }
 
 }  // namespace
