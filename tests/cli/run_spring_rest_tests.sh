@@ -19,24 +19,33 @@ set -uo pipefail
 hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "$hipair_python" "$@"; }
 # shellcheck source=seeded_test.sh
 source "$(dirname "$0")/seeded_test.sh" "$@"
-cases=${HIPAIR_SPRING_REST_CASES:-6}
-for ((i = 0; i < cases; ++i)); do
-  e_quarters=$((24 + RANDOM % 17))            # e = 6 .. 10 mm in quarters
-  k=$((53 + RANDOM % 36))   # the push lasts ~2 sqrt(2^(1-k) / e) rad of driver: above the 2^-46 events' resolution
-  d=$(((i % 3) - 1))                          # below, at, above the top lift
-  model="$work/cam-$i.json"
-  rest=$(python3 - "$source/examples/models/cam-follower.json" "$model" "$e_quarters" "$k" "$d" <<'EOF'
+# cam-follower.json with eccentricity e = QUARTERS/4 written to MODEL; prints the rest
+# R = e + D 2^-K as a fraction and the closed form's contact start and end, asin(R / e) and
+# 180° - asin(R / e) in degrees (mpmath, 1400 bits; 90° 90° when R >= e)
+cam_variant() {
+  python3 - "$source/examples/models/cam-follower.json" "$@" <<'EOF'
 import json, sys
 from fractions import Fraction
+import mpmath
 source, target, quarters, k, d = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), int(sys.argv[5])
 model = json.load(open(source))
 e = Fraction(quarters, 4)
 model["parameters"]["eccentricity"]["nominal"] = float(e)
 json.dump(model, open(target, "w"), indent=1)
 rest = e + d * Fraction(1, 2 ** k)
-print(f"{rest.numerator}/{rest.denominator}")
+mpmath.mp.prec = 1400
+ratio = mpmath.mpf(rest.numerator) / rest.denominator / (mpmath.mpf(quarters) / 4)
+start = mpmath.degrees(mpmath.asin(min(ratio, 1)))
+print(f"{rest.numerator}/{rest.denominator}", mpmath.nstr(start, 40), mpmath.nstr(180 - start, 40))
 EOF
-)
+}
+cases=${HIPAIR_SPRING_REST_CASES:-6}
+for ((i = 0; i < cases; ++i)); do
+  e_quarters=$((24 + RANDOM % 17))            # e = 6 .. 10 mm in quarters
+  k=$((53 + RANDOM % 36))   # the push lasts ~2 sqrt(2^(1-k) / e) rad of driver: above the 2^-46 events' resolution
+  d=$(((i % 3) - 1))                          # below, at, above the top lift
+  model="$work/cam-$i.json"
+  read -r rest _ _ < <(cam_variant "$model" "$e_quarters" "$k" "$d")
   what="e = $e_quarters/4 mm, rest e ${d}·2^-$k = $rest"
   out="$work/out-$i"
   timeout 300 "$hipair" analyze "$model" --load "follower=spring:$rest" --no-pictures --out "$out" >"$work/report-$i.txt" 2>"$work/err-$i.txt" ||
@@ -68,22 +77,7 @@ for ((i = 0; i < 3; ++i)); do
   k=$((92 + RANDOM % 69))
   d=$((i < 2 ? -1 : 1))
   model="$work/short-$i.json"
-  read -r rest start_deg end_deg < <(python3 - "$source/examples/models/cam-follower.json" "$model" "$e_quarters" "$k" "$d" <<'EOF'
-import json, sys
-from fractions import Fraction
-import mpmath
-source, target, quarters, k, d = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), int(sys.argv[5])
-model = json.load(open(source))
-e = Fraction(quarters, 4)
-model["parameters"]["eccentricity"]["nominal"] = float(e)
-json.dump(model, open(target, "w"), indent=1)
-rest = e + d * Fraction(1, 2 ** k)
-mpmath.mp.prec = 1400
-ratio = mpmath.mpf(rest.numerator) / rest.denominator / (mpmath.mpf(quarters) / 4)
-start = mpmath.degrees(mpmath.asin(min(ratio, 1)))
-print(f"{rest.numerator}/{rest.denominator}", mpmath.nstr(start, 40), mpmath.nstr(180 - start, 40))
-EOF
-)
+  read -r rest start_deg end_deg < <(cam_variant "$model" "$e_quarters" "$k" "$d")
   what="e = $e_quarters/4 mm, rest e ${d}·2^-$k = $rest (a push shorter than the events' resolution)"
   out="$work/short-out-$i"
   timeout 300 "$hipair" analyze "$model" --load "follower=spring:$rest" --no-pictures --out "$out" >"$work/short-$i.txt" 2>"$work/short-err-$i.txt" ||
