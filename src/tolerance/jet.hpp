@@ -297,6 +297,12 @@ struct Arithmetic<tolerance_detail::Jet<S>> {
         S whole(-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity());
         return J(A::atan2(y.value, x.value), tolerance_detail::jet_detail::combine(y, whole, x, whole));
       }
+    } else if constexpr (!std::is_same_v<S, double>) {
+      // second-order (nested) jets and Taylor-model jets: no derivative across the cut, as the
+      // Hessian jets (hessian_jet.hpp) and the Taylor models refuse it
+      if (tolerance_detail::jet_detail::meets_cut(tolerance_detail::jet_detail::enclosure(y.value),
+                                                  tolerance_detail::jet_detail::enclosure(x.value)))
+        throw NumericError("atan2 is not differentiable over the box (its branch cut crosses it)");
     }
     S r2 = x.value * x.value + y.value * y.value;
     return J(A::atan2(y.value, x.value),
