@@ -116,6 +116,10 @@ struct KinematicPiece {
   double start_position = 0, end_position = 0;   ///< follower coordinate (unwrapped, rad or mm)
   double lowest_position = 0, highest_position = 0;   ///< range swept during the piece (grid samples and ends)
   bool moving = false;                   ///< drive (true) or dwell (false)
+  /// Shorter than the events' resolution: its start and end are located to overlapping certified
+  /// driver intervals (their exact chart intervals bound it); its positive length was decided
+  /// exactly (session 51: a sample at another exact position than the spring's rest it leaves).
+  bool unresolved_length = false;
   std::string equation;                  ///< exact closed form P(driver_t, follower_t) = 0 of the contact
 };
 

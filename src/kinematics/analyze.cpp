@@ -15,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 namespace hipair {
 
@@ -182,6 +183,8 @@ struct OpenPiece {
   /// A grid sample of the piece lies at another exact position than its start (its turns
   /// included): the piece is a drive (session 49; until then a span of the doubles > 1e-12).
   bool moved = false;
+  /// The state left of the event that opened the piece (none at the start of the range).
+  std::optional<PartState> before;
 };
 
 std::string chart_variable_note(const AxisLine& line) {
@@ -322,12 +325,38 @@ struct Sweep {
     return out;
   }
 
-  void close_piece(std::size_t k, const DriverLocation& end, const PartState& last) {
+  // Chain part k free at its spring's rest, held by nothing: every position of the state's
+  // contact piece is the rest (a spring moves a free follower to its rest; held against an end
+  // of its free range it would touch, a contact change).
+  static bool free_at_rest(const PartState& state) { return state.at_rest && state.contacts.empty(); }
+
+  // A piece whose start and end events' certified driver intervals overlap (shorter than the
+  // events' resolution, 2^-46 of the driver's chart) has positive length when that is decided
+  // exactly (session 51; until then every such piece was dropped as empty, and a real drive of
+  // ~2^-49 rad, the spring test's R = e - 2^-k for k >= 92, was reported as nothing):
+  // - the events' exact chart intervals are disjoint in one chart: its two samples differ;
+  // - it is entered from, or left to, a spring's free rest (`free_at_rest`) and its sample lies
+  //   at another exact position than the rest: the follower's position is continuous at the
+  //   contact change (a jump is a `drop` event), so the change lies strictly before (after) the
+  //   sample and the piece is a drive (it leaves the rest).
+  // Returns whether its positive length is decided; `leaves_rest`: decided by the second rule.
+  bool decided_short_piece(std::size_t k, const OpenPiece& piece, const DriverLocation& end, const PartState& last,
+                           const PartState* after, bool& leaves_rest) const {
+    leaves_rest = (piece.before && free_at_rest(*piece.before) && !same_position(k, *piece.before, piece.state)) ||
+                  (after && free_at_rest(*after) && !same_position(k, last, *after));
+    if (leaves_rest) return true;
+    return piece.start.chart == end.chart &&
+           (piece.start.chart_upper < end.chart_lower || end.chart_upper < piece.start.chart_lower);
+  }
+
+  void close_piece(std::size_t k, const DriverLocation& end, const PartState& last, const PartState* after = nullptr) {
     OpenPiece& piece = open[k];
     if (!piece.open) return;
     piece.open = false;
-    if (end.coordinate.lower <= piece.start.coordinate.upper && piece.start.coordinate.lower <= end.coordinate.upper)
-      return;   // empty: a contact change exactly at the start or the end of the range
+    bool unresolved = end.coordinate.lower <= piece.start.coordinate.upper && piece.start.coordinate.lower <= end.coordinate.upper;
+    bool leaves_rest = false;
+    if (unresolved && !decided_short_piece(k, piece, end, last, after, leaves_rest))
+      return;   // empty: a contact change exactly at the start or the end of the range, or not decided
     KinematicPiece out;
     out.part = chain.model->parts[chain.parts[k].part].name;
     out.start = piece.start;
@@ -342,7 +371,15 @@ struct Sweep {
     double lowest = std::min({piece.lowest, last.unwrapped, out.start_position});
     double highest = std::max({piece.highest, last.unwrapped, out.start_position});
     // drive or dwell, exactly: a position of the piece (grid samples and ends) differs from its start
-    out.moving = piece.moved || !same_position(k, last, piece.state);
+    out.moving = piece.moved || leaves_rest || !same_position(k, last, piece.state);
+    out.unresolved_length = unresolved;
+    if (leaves_rest) {
+      // its ends' positions are the rest's, by continuity, where a neighbour is free at rest
+      if (piece.before && free_at_rest(*piece.before)) out.start_position = piece.before->unwrapped;
+      if (after && free_at_rest(*after)) out.end_position = after->unwrapped;
+      lowest = std::min({lowest, out.start_position, out.end_position});
+      highest = std::max({highest, out.start_position, out.end_position});
+    }
     out.lowest_position = lowest;
     out.highest_position = highest;
     for (const SliceContact& contact : piece.state.contacts) {
@@ -357,8 +394,9 @@ struct Sweep {
     result.pieces.push_back(std::move(out));
   }
 
-  void open_piece(std::size_t k, const DriverLocation& start, const PartState& state) {
+  void open_piece(std::size_t k, const DriverLocation& start, const PartState& state, const PartState* before = nullptr) {
     open[k] = OpenPiece{true, start, state.unwrapped, state.unwrapped, state.unwrapped, state};
+    if (before) open[k].before = *before;
   }
 
   void record_event(std::size_t segment, const Rational& ta, const Rational& tb, const ChainState& a, const ChainState& b) {
@@ -394,8 +432,8 @@ struct Sweep {
       }
       result.events.push_back(event);
       if (k > 0) {
-        close_piece(k, at, before);
-        open_piece(k, at, after);
+        close_piece(k, at, before, &after);
+        open_piece(k, at, after, &before);
       }
     }
   }

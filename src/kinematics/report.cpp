@@ -146,7 +146,11 @@ std::string kinematics_text_report(const KinematicsResult& result) {
         out << (piece.mode == KinematicPiece::Mode::touching ? ", guided with zero clearance by "
                 : result.loads[f].kind == FollowerLoad::Kind::none ? ", pushed by "
                                                                     : ", held by its load against ")
-            << join(piece.contacts) << "\n";
+            << join(piece.contacts);
+        if (piece.unresolved_length)
+          out << " (shorter than the events' resolution: its ends are located to overlapping driver intervals; its "
+                 "length is positive, decided exactly)";
+        out << "\n";
         if (first || !last_moving) ++drives;
         drive_travel += std::abs(piece.end.value() - piece.start.value());
       } else {
@@ -296,6 +300,7 @@ std::string kinematics_json_report(const KinematicsResult& result) {
                           {"highest_position", display(piece.highest_position, frot)},
                           {"contacts", contacts(piece.contacts)},
                           {"closed_form", piece.equation}});
+    if (piece.unresolved_length) pieces.back()["unresolved_length"] = true;
   }
   report["pieces"] = pieces;
   json events = json::array();

@@ -238,6 +238,10 @@ struct Arithmetic<tolerance_detail::HessianJet> {
     // d/dy = x / r2, d/dx = -y / r2 as first-order jets (r2 = x^2 + y^2), as the nested jets
     // form them: the quotients keep the cancellations the expanded second derivatives
     // -2xy / r2^2, (y^2 - x^2) / r2^2 lose
+    // across the branch cut (y = 0, x <= 0) atan2 jumps: no second derivative (the caller
+    // falls back to first order, whose partials are then the whole line)
+    if (tolerance_detail::jet_detail::meets_cut(y.value, x.value))
+      throw NumericError("atan2 is not differentiable over the box (its branch cut crosses it)");
     using F = tolerance_detail::Jet<I>;
     F yf(y.value, y.gradient), xf(x.value, x.gradient);
     F r2 = xf * xf + yf * yf;

@@ -10,6 +10,7 @@
 #include <hipair/error.hpp>
 
 #include <cmath>
+#include <limits>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -35,6 +36,11 @@ struct Jet {
 };
 
 namespace jet_detail {
+// True when the box of (x, y) may meet atan2's branch cut, the half-line y = 0, x <= 0 (the
+// origin included), where atan2 jumps by 2 pi and has no derivative.
+inline bool meets_cut(const kernels::Interval& y, const kernels::Interval& x) {
+  return y.lo <= 0.0 && y.hi >= 0.0 && !(x.lo > 0.0);
+}
 // The enclosure of a (possibly nested) jet's value.
 inline kernels::Interval enclosure(const kernels::Interval& x) { return x; }
 inline kernels::Interval enclosure(const TaylorModel1& x) { return x.range(); }
@@ -280,6 +286,24 @@ struct Arithmetic<tolerance_detail::Jet<S>> {
   static J cos(const J& x) { return J(A::cos(x.value), tolerance_detail::jet_detail::scaled(x, S(-A::sin(x.value)))); }
   static J tan(const J& x) { return sin(x) / cos(x); }
   static J atan2(const J& y, const J& x) {
+    if constexpr (std::is_same_v<S, kernels::Interval>) {
+      // The branch cut (y = 0, x <= 0) inside the range: atan2 jumps by 2 pi there and no
+      // gradient bounds its difference quotients, so every partial through y or x is the whole
+      // line (the mean-value form then falls back to the value, MPFI's hull). Until session 51
+      // (exact51) the gradient x / r^2, -y / r^2 was used across the jump: atan2(p, -1) over
+      // p in [-0.1, 0.1] was enclosed in [pi - 0.1, pi + 0.1] by the mean-value form, its
+      // values near -pi left out. (The verifier's jets: certify/tolerance_check.cpp, exact50b.)
+      if (tolerance_detail::jet_detail::meets_cut(y.value, x.value)) {
+        S whole(-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity());
+        return J(A::atan2(y.value, x.value), tolerance_detail::jet_detail::combine(y, whole, x, whole));
+      }
+    } else if constexpr (!std::is_same_v<S, double>) {
+      // second-order (nested) jets and Taylor-model jets: no derivative across the cut, as the
+      // Hessian jets (hessian_jet.hpp) and the Taylor models refuse it
+      if (tolerance_detail::jet_detail::meets_cut(tolerance_detail::jet_detail::enclosure(y.value),
+                                                  tolerance_detail::jet_detail::enclosure(x.value)))
+        throw NumericError("atan2 is not differentiable over the box (its branch cut crosses it)");
+    }
     S r2 = x.value * x.value + y.value * y.value;
     return J(A::atan2(y.value, x.value),
              tolerance_detail::jet_detail::combine(y, S(x.value / r2), x, S(-(y.value / r2))));

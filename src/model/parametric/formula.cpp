@@ -41,16 +41,23 @@ struct Token {
   std::string text;
 };
 
+// A formula and whether its value carries an angle unit (the exact evaluator's Quantity::is_angle,
+// by the same rules: expression.cpp).
+struct Typed {
+  FormulaPtr f;
+  bool angle = false;
+};
+
 class Parser {
  public:
   Parser(std::string_view text, const std::string& pointer,
-         const std::function<std::size_t(const std::string&)>& parameter_index)
-      : text_(text), pointer_(pointer), parameter_index_(parameter_index) {
+         const std::function<std::size_t(const std::string&)>& parameter_index, const FormulaUnits* units)
+      : text_(text), pointer_(pointer), parameter_index_(parameter_index), units_(units) {
     tokenize();
   }
 
   FormulaPtr run() {
-    FormulaPtr f = expression();
+    FormulaPtr f = expression().f;
     if (current().kind != Token::Kind::end) fail("unexpected '" + current().text + "'");
     return f;
   }
@@ -124,28 +131,49 @@ class Parser {
     ++next_;
   }
 
-  FormulaPtr expression() {
-    FormulaPtr value = term();
+  static FormulaPtr degrees_to_radians(const FormulaPtr& value) {
+    return formula_node(Formula::Op::multiply,
+                        {value, formula_node(Formula::Op::divide, {formula_node(Formula::Op::pi, {}), formula_constant(180)})});
+  }
+  // as_angle: a plain value used as an angle is in the file's angle unit (since session 51, as
+  // the exact evaluator does inside an expression too: `5 + atan2(p, -1)`, `sin(p)` or a plain
+  // term next to an angle in a degree file; until then only a whole slot was converted, so the
+  // tolerance analysis certified bands of another model than the one read)
+  Typed as_angle(Typed value) const {
+    if (!value.angle && units_ && units_->degrees) value.f = degrees_to_radians(value.f);
+    value.angle = true;
+    return value;
+  }
+  // unify: both operands angles when one is
+  void unify(Typed& a, Typed& b) const {
+    if (a.angle && !b.angle) b = as_angle(b);
+    if (b.angle && !a.angle) a = as_angle(a);
+  }
+
+  Typed expression() {
+    Typed value = term();
     while (at_symbol('+') || at_symbol('-')) {
       bool subtract = at_symbol('-');
       ++next_;
-      value = formula_node(subtract ? Formula::Op::subtract : Formula::Op::add, {value, term()});
+      Typed right = term();
+      unify(value, right);
+      value.f = formula_node(subtract ? Formula::Op::subtract : Formula::Op::add, {value.f, right.f});
     }
     return value;
   }
 
-  FormulaPtr term() {
-    FormulaPtr value = unary();
+  Typed term() {
+    Typed value = unary();
     while (true) {
       if (at_symbol('*') || at_symbol('/')) {
         bool divide = at_symbol('/');
         ++next_;
-        value = formula_node(divide ? Formula::Op::divide : Formula::Op::multiply, {value, unary()});
+        Typed right = unary();
+        value.f = formula_node(divide ? Formula::Op::divide : Formula::Op::multiply, {value.f, right.f});
+        value.angle = divide ? value.angle && !right.angle : value.angle != right.angle;
       } else if (current().kind == Token::Kind::name && (current().text == "deg" || current().text == "rad")) {
-        if (current().text == "deg")
-          value = formula_node(Formula::Op::multiply,
-                               {value, formula_node(Formula::Op::divide,
-                                                    {formula_node(Formula::Op::pi, {}), formula_constant(180)})});
+        if (current().text == "deg") value.f = degrees_to_radians(value.f);
+        value.angle = true;
         ++next_;
       } else {
         return value;
@@ -153,10 +181,12 @@ class Parser {
     }
   }
 
-  FormulaPtr unary() {
+  Typed unary() {
     if (at_symbol('-')) {
       ++next_;
-      return formula_node(Formula::Op::negate, {unary()});
+      Typed value = unary();
+      value.f = formula_node(Formula::Op::negate, {value.f});
+      return value;
     }
     if (at_symbol('+')) {
       ++next_;
@@ -165,17 +195,17 @@ class Parser {
     return power();
   }
 
-  FormulaPtr power() {
-    FormulaPtr base = primary();
+  Typed power() {
+    Typed base = primary();
     if (!at_symbol('^')) return base;
     ++next_;
     std::size_t first = next_;
-    FormulaPtr exponent = unary();
+    FormulaPtr exponent = unary().f;
     auto f = std::make_shared<Formula>();
     f->op = Formula::Op::power;
     f->exponent = integer_value(exponent, first, next_);
-    f->arguments = {base};
-    return f;
+    f->arguments = {base.f};
+    return Typed{f, base.angle && f->exponent == 1};   // the exact evaluator's x^1 is x
   }
 
   // The exponent's exact value: its tokens evaluated again by the exact evaluator
@@ -196,25 +226,25 @@ class Parser {
     return value.rational.get_num().get_si();
   }
 
-  FormulaPtr primary() {
+  Typed primary() {
     Token token = current();
     switch (token.kind) {
       case Token::Kind::number:
         ++next_;
-        return formula_constant(parse_literal(token.text, pointer_));
+        return Typed{formula_constant(parse_literal(token.text, pointer_))};
       case Token::Kind::name: {
         ++next_;
         if (at_symbol('(')) return call(token.text);
-        if (token.text == "pi") return formula_node(Formula::Op::pi, {});
+        if (token.text == "pi") return Typed{formula_node(Formula::Op::pi, {})};
         auto f = std::make_shared<Formula>();
         f->op = Formula::Op::parameter;
         f->parameter = parameter_index_(token.text);
-        return f;
+        return Typed{f, units_ && units_->parameter_is_angle && units_->parameter_is_angle(f->parameter)};
       }
       case Token::Kind::symbol:
         if (token.text == "(") {
           ++next_;
-          FormulaPtr value = expression();
+          Typed value = expression();
           expect_symbol(')');
           return value;
         }
@@ -225,32 +255,41 @@ class Parser {
     fail("unexpected token");
   }
 
-  FormulaPtr call(const std::string& name) {
+  Typed call(const std::string& name) {
     ++next_;  // '('
-    std::vector<FormulaPtr> arguments;
+    std::vector<Typed> typed;
     if (!at_symbol(')')) {
-      arguments.push_back(expression());
+      typed.push_back(expression());
       while (at_symbol(',')) {
         ++next_;
-        arguments.push_back(expression());
+        typed.push_back(expression());
       }
     }
     expect_symbol(')');
     using Op = Formula::Op;
-    if (name == "sqrt" && arguments.size() == 1) return formula_node(Op::sqrt, arguments);
-    if (name == "sin" && arguments.size() == 1) return formula_node(Op::sin, arguments);
-    if (name == "cos" && arguments.size() == 1) return formula_node(Op::cos, arguments);
-    if (name == "tan" && arguments.size() == 1) return formula_node(Op::tan, arguments);
-    if (name == "atan2" && arguments.size() == 2) return formula_node(Op::atan2, arguments);
-    if (name == "abs" && arguments.size() == 1) return formula_node(Op::abs, arguments);
-    if (name == "min" && arguments.size() >= 2) return formula_node(Op::min, arguments);
-    if (name == "max" && arguments.size() >= 2) return formula_node(Op::max, arguments);
+    bool trigonometric = name == "sin" || name == "cos" || name == "tan";
+    if (trigonometric && typed.size() == 1) typed[0] = as_angle(typed[0]);
+    bool any_angle = false;   // min/max: every argument an angle when one is
+    for (const Typed& t : typed) any_angle = any_angle || t.angle;
+    if ((name == "min" || name == "max") && any_angle)
+      for (Typed& t : typed) t = as_angle(t);
+    std::vector<FormulaPtr> arguments;
+    for (const Typed& t : typed) arguments.push_back(t.f);
+    if (name == "sqrt" && arguments.size() == 1) return Typed{formula_node(Op::sqrt, arguments)};
+    if (name == "sin" && arguments.size() == 1) return Typed{formula_node(Op::sin, arguments)};
+    if (name == "cos" && arguments.size() == 1) return Typed{formula_node(Op::cos, arguments)};
+    if (name == "tan" && arguments.size() == 1) return Typed{formula_node(Op::tan, arguments)};
+    if (name == "atan2" && arguments.size() == 2) return Typed{formula_node(Op::atan2, arguments), true};
+    if (name == "abs" && arguments.size() == 1) return Typed{formula_node(Op::abs, arguments), typed[0].angle};
+    if (name == "min" && arguments.size() >= 2) return Typed{formula_node(Op::min, arguments), any_angle};
+    if (name == "max" && arguments.size() >= 2) return Typed{formula_node(Op::max, arguments), any_angle};
     fail("unknown function '" + name + "'");
   }
 
   std::string_view text_;
   const std::string& pointer_;
   const std::function<std::size_t(const std::string&)>& parameter_index_;
+  const FormulaUnits* units_;
   std::vector<Token> tokens_;
   std::size_t next_ = 0;
 };
@@ -258,8 +297,8 @@ class Parser {
 }  // namespace
 
 FormulaPtr parse_formula(std::string_view text, const std::string& pointer,
-                         const std::function<std::size_t(const std::string&)>& parameter_index) {
-  return Parser(text, pointer, parameter_index).run();
+                         const std::function<std::size_t(const std::string&)>& parameter_index, const FormulaUnits* units) {
+  return Parser(text, pointer, parameter_index, units).run();
 }
 
 }  // namespace hipair::model_detail

@@ -32,11 +32,21 @@ using FormulaPtr = std::shared_ptr<const Formula>;
 FormulaPtr formula_constant(const Rational& value);
 FormulaPtr formula_node(Formula::Op op, std::vector<FormulaPtr> arguments);
 
+/// The file's angle unit and which parameters are angles (docs/model-format.md "Angles").
+struct FormulaUnits {
+  bool degrees = false;
+  std::function<bool(std::size_t)> parameter_is_angle;
+};
+
 /// Parses an expression text (the grammar of docs/model-format.md) into a formula; `deg`
-/// becomes a factor pi/180. `parameter_index` maps a parameter name to its index (throws for
-/// unknown names). \throws ModelError(pointer, ...) for syntax errors.
+/// becomes a factor pi/180, and with `units` in a degree file so does a plain value used as an
+/// angle inside the expression (a trigonometric function's argument, a term added to an angle,
+/// min/max next to an angle), as the exact evaluator reads it. `parameter_index` maps a
+/// parameter name to its index (throws for unknown names). \throws ModelError(pointer, ...)
+/// for syntax errors.
 FormulaPtr parse_formula(std::string_view text, const std::string& pointer,
-                         const std::function<std::size_t(const std::string&)>& parameter_index);
+                         const std::function<std::size_t(const std::string&)>& parameter_index,
+                         const FormulaUnits* units = nullptr);
 
 /// Whether the formula refers to any parameter.
 bool mentions_parameters(const FormulaPtr& formula);

@@ -233,12 +233,16 @@ class RecipeBuilder {
     slot.pointer = value.pointer;
     slot.literal = value.is_number();
     const Model& nominal = *model_.nominal_;
+    FormulaUnits units{model_.degrees_, [&nominal](std::size_t i) { return nominal.parameters[i].is_angle; }};
     slot.formula = slot.literal ? formula_constant(parse_literal(value.text, value.pointer))
-                                : parse_formula(value.text, value.pointer, [&](const std::string& name) {
-                                    const Parameter* found = nominal.find_parameter(name);
-                                    if (!found) throw ModelError(value.pointer, "unknown parameter '" + name + "'");
-                                    return static_cast<std::size_t>(found - nominal.parameters.data());
-                                  });
+                                : parse_formula(
+                                      value.text, value.pointer,
+                                      [&](const std::string& name) {
+                                        const Parameter* found = nominal.find_parameter(name);
+                                        if (!found) throw ModelError(value.pointer, "unknown parameter '" + name + "'");
+                                        return static_cast<std::size_t>(found - nominal.parameters.data());
+                                      },
+                                      &units);
     return slot;
   }
   // A plain number used as an angle in a degree file is in degrees.
