@@ -35,7 +35,8 @@ it) 2^-60 before / past the point where the parts touch, with and without the le
 extension; a leaf dropped; a varied parameter dropped.  The statement is restated for the altered
 data.  A false certificate accepted (exit 0) is a finding; so is an exit other than 0/1/3 or more
 than one line of output.  True certificates rejected are counted (the verifier is sound, not
-complete).
+complete).  (Session 51: for a no_jam certificate an 'unproven' verdict, exit 3, on a false claim
+is a finding too: it still asserts checks 1-6, the named sides apart over every leaf.)
 Session 50 (hunt50): one case in three is a second pair, the lever against a 2 x 2 mm block
 [u, u + 2] x [-1, 1] sliding along the lever's axis (limits -20 .. 100 mm), where the follower's
 motion moves the parts' distance one for one and the block fits inside the lever.  Its truth is
@@ -362,7 +363,14 @@ def stop_alterations(cert):
 
 
 def yoke_alterations(cert):
-    return alterations(cert, yoke_truth, ((('scale',), F(6, 5)),))
+    """alterations() with the scale's crossing, and the scale put exactly at 1, where the slot's
+    least width is exactly twice the pin's largest radius (10.02 = 2 x 5.01: the pin touches both
+    walls at the box's corner, the channel is closed), the leaves dragged and re-fitted"""
+    out = alterations(cert, yoke_truth, ((('scale',), F(6, 5)),))
+    for margins in (False, True):
+        out.append(('scale exactly 1 (the pin touches both walls), the leaves with it, brackets widened%s' %
+                    (', margins claimed' if margins else ''), refitted(moved(cert, ('scale',), F(1), True), margins)))
+    return out
 
 
 def vslot_alterations(cert):
@@ -454,6 +462,7 @@ for case in range(n):
         continue
     cert = json.load(open(os.path.join(out, name)))
     findings += judged_certificate(verify, os.path.join(outdir, 'c%d.json' % case), pair_model, cert,
-                                   'case %d (%s, %s)' % (case, kind, ' '.join(args)), pair_truth, statement, pair_alterations, counts)
+                                   'case %d (%s, %s)' % (case, kind, ' '.join(args)), pair_truth, statement, pair_alterations, counts,
+                                   option == '--certify')
 print('%s, %d findings' % (counts, findings))
 sys.exit(1 if findings else 0)
