@@ -27,6 +27,7 @@
 #include <functional>
 #include <future>
 #include <limits>
+#include <iomanip>
 #include <sstream>
 #include <numbers>
 #include <thread>
@@ -922,8 +923,22 @@ class Analysis {
         };
         c.lower = coordinate(lv);
         c.upper = coordinate(uv);
+      } else {
+        // Why, for the certificate's "not bounded" message (session 51: a range starting where the
+        // follower's initial position is outside its channel said only "not bounded").
+        std::ostringstream why;
+        why << std::setprecision(6) << "'" << m.parts[follower_].name << "' at " << sample.nominal
+            << (result_.follower_rotates ? " rad" : " mm");
+        if (!state.valid)
+          why << ": no configuration of the pair located there";
+        else if (!state.lower.present || !state.upper.present)
+          why << " has no contact " << (state.lower.present ? "above it (increasing " : state.upper.present ? "below it (decreasing "
+                                                                                                           : "on either side (")
+              << (result_.follower_rotates ? "angle)" : "offset)");
+        else
+          why << ": the feature pairs of its sides were not followed";
+        c.unbounded_why = why.str();
       }
-      (void)m;
       request.samples.push_back(c);
     }
     return request;

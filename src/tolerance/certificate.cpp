@@ -11,8 +11,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <map>
+#include <sstream>
 
 namespace hipair::tolerance_detail {
 namespace {
@@ -65,8 +67,20 @@ class Producer {
     std::vector<Piece>& pieces = pieces_;
     for (const ChannelSample& s : request_.samples) {
       if (!s.bounded) {
-        result.reason = "the follower's channel is not bounded on both sides at driver " + std::to_string(s.driver) +
-                        " (nominal geometry): a no-jam certificate needs both sides";
+        // The driver's coordinate in rad (mm when it translates), as `--range` takes it, and for a
+        // rotating driver in degrees too, as the report's tables give it (session 51).
+        std::ostringstream at;
+        at << std::setprecision(6) << s.driver;
+        if (m.parts[request_.driver].motion.kind == Motion::Kind::rotation)
+          at << " rad (" << s.driver * 180 / 3.14159265358979323846 << " deg)";
+        else
+          at << " mm";
+        result.reason = "the follower's channel is not bounded on both sides at driver " + at.str() + " (nominal geometry" +
+                        (s.unbounded_why.empty() ? std::string() : ": " + s.unbounded_why) +
+                        "): a no-jam certificate needs a contact on both sides. The analysis starts '" + claim_.follower +
+                        "' at its initial position at the range's start (at the nearest touching position if the parts "
+                        "overlap there) and follows it; start the range where the pair is engaged, or give '" +
+                        claim_.follower + "' an initial position inside its channel there";
         return false;
       }
       std::size_t lower = side_index(m, s.lower_first, s.lower_second);

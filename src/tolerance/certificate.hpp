@@ -22,6 +22,9 @@ struct ChannelSample {
   bool bounded = false;     ///< both sides known
   FeatureIdentity lower_first, lower_second, upper_first, upper_second;   ///< the sides' feature pairs
   double lower = 0, upper = 0;   ///< the sides' follower coordinates (rad or mm, approximate)
+  /// Not bounded: why, for the message (e.g. "'yoke' at 3.207 mm has no contact on its lower
+  /// side"; the analysis's own words, approximate positions).
+  std::string unbounded_why;
 };
 
 struct CertifyRequest {

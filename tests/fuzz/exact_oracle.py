@@ -99,10 +99,12 @@ def altered_numbers(rng, text):
     return [(what, v) for what, v in cands if v != f]
 
 
-def judged(verify, path, model, certificate, true, counts):
+def judged(verify, path, model, certificate, true, counts, unproven_claims=False):
     """writes the certificate to `path`, runs hipair-verify on it and counts its verdict against the
     truth (True, False or None: undecided) in `counts`; returns (problems, exit code, output): a
-    false certificate accepted, or an exit other than 0/1/3 or more than one line, is a problem"""
+    false certificate accepted, or an exit other than 0/1/3 or more than one line, is a problem;
+    with unproven_claims (a no_jam certificate, whose 'unproven', exit 3, still asserts checks 1-6:
+    the named sides apart over every leaf, false when the oracle's channel closes) exit 3 too"""
     json.dump(certificate, open(path, 'w'))
     r = subprocess.run([verify, path, model], capture_output=True, text=True, timeout=120)
     text = (r.stdout + r.stderr).strip()
@@ -113,6 +115,8 @@ def judged(verify, path, model, certificate, true, counts):
         counts['undecided'] += 1
     elif r.returncode == 0 and not true:
         problems.append('a FALSE certificate accepted')
+    elif r.returncode == 3 and not true and unproven_claims:
+        problems.append("a FALSE certificate's checks 1-6 passed (unproven)")
     elif r.returncode != 0 and true:
         counts['true rejected'] += 1
     elif true:
@@ -122,7 +126,7 @@ def judged(verify, path, model, certificate, true, counts):
     return problems, r.returncode, text
 
 
-def judged_certificate(verify, path, model, cert, label, truth, statement, alterations, counts):
+def judged_certificate(verify, path, model, cert, label, truth, statement, alterations, counts, unproven_claims=False):
     """counts one produced certificate (true by the oracle, its statement restated alike) and every
     alteration of it judged by judged(); prints each finding (prefixed with label) and, with
     ALTERATIONS_VERBOSE set, every verdict; returns the number of findings"""
@@ -136,7 +140,7 @@ def judged_certificate(verify, path, model, cert, label, truth, statement, alter
         findings += 1
     for what, altered in alterations(cert):
         true = truth(altered)
-        problems, code, text = judged(verify, path, model, altered, true, counts)
+        problems, code, text = judged(verify, path, model, altered, true, counts, unproven_claims)
         if os.environ.get('ALTERATIONS_VERBOSE'):
             print('  %s: %s -> exit %d %s' % (what, true, code, text[:150]))
         if problems:

@@ -35,7 +35,8 @@ it) 2^-60 before / past the point where the parts touch, with and without the le
 extension; a leaf dropped; a varied parameter dropped.  The statement is restated for the altered
 data.  A false certificate accepted (exit 0) is a finding; so is an exit other than 0/1/3 or more
 than one line of output.  True certificates rejected are counted (the verifier is sound, not
-complete).
+complete).  (Session 51: for a no_jam certificate an 'unproven' verdict, exit 3, on a false claim
+is a finding too: it still asserts checks 1-6, the named sides apart over every leaf.)
 Session 50 (hunt50): one case in three is a second pair, the lever against a 2 x 2 mm block
 [u, u + 2] x [-1, 1] sliding along the lever's axis (limits -20 .. 100 mm), where the follower's
 motion moves the parts' distance one for one and the block fits inside the lever.  Its truth is
@@ -57,6 +58,24 @@ offsets at crank angle theta are R cos theta - R + [-(s/2 - r), s/2 - r] whateve
 channel between the slot's walls never closes iff s - 2r > 0 at the box's least s and largest r
 (exact in rationals; with the pin inside the slot's length, R + r < 37, else undecided).  Its
 crossing is the scale (0.04 - 0.04 x scale: 1), from certificates at 0.5 .. 0.97.
+Session 51 (hunt51): every crossing of a "no jam" certificate is also judged with every leaf's
+brackets widened by 2 mm on both sides (re-fitted: each side's contact function is least where the
+wall's line passes through the pin's centre, r = 5 mm (yoke) or 5 r / 4 (V slot) beyond its root
+on the far side, and grows on the channel's side, so the wider bracket still holds one sign
+change, certain over the leaf, and the function stays monotone between the witness and its end;
+the centre intervals widened by 1 mm alike, since moving the driver range's end moves a leaf's
+centre) and
+once more with second-order margins of 10^-30 claimed on every witness: past the crossing the old
+brackets fail their sign test before the witness checks are reached (session 50: four mutated
+witness checks went unseen), the re-fitted ones do not.  And one case in eight (in place of a
+yoke case) is a yoke with a V-shaped slot: walls through (R -+ s/2, h) at slope 3/4 outwards
+(x = R -+ (s/2 + 3/4 (y - h))), apex at y = h - 2 s/3, so the pin (centre R (cos, sin)) fits
+where the walls are 2 r sqrt(1 + 9/16) = 5 r / 2 apart along x: the follower's free offsets
+have width W = s + 3/2 (R sin theta - h) - 5 r / 2, which grows with theta (0.25 <= theta0 <
+theta1 <= 1.3: the tangent points, 3 below the pin's centre, lie between the apex and the top y = 37),
+with s and with R: no jam iff W > 0 at theta0, s_min, R_min, r_max, a corner of box x range; its
+crossings are the driver range's start and the scale, certificates 0.002 .. 0.03 rad above the
+crossing at scale 1 (each case its own model file, the yoke's initial offset R cos theta0 - R).
 usage: tolerance_certificate_alterations.py HIPAIR HIPAIR_VERIFY REPO OUTDIR SEED N_CERTIFICATES"""
 import copy, json, os, random, subprocess, sys
 from fractions import Fraction as F
@@ -82,6 +101,30 @@ json.dump(model_json, open(block_model, 'w'), indent=1)
 NOMINAL = {'lever-length': F(60), 'lever-width': F(8), 'stop-gap': F(2)}
 TOLERANCE = {'lever-length': (F(-1, 20), F(1, 20)), 'lever-width': (F(-1, 50), F(1, 50)), 'stop-gap': (F(-1, 10), F(1, 10))}
 DOMAIN = {'lever-length': (F(59), F(61)), 'lever-width': (F(7), F(9)), 'stop-gap': (F(0), F(4))}
+VSLOT_NOMINAL = {'crank-radius': F(30), 'pin-radius': F(5), 'slot-width': F(1255, 100)}
+VSLOT_HEIGHT = F(10)
+
+
+def vslot_model(path, initial):
+    """the V-slot yoke (docstring) with the yoke's initial offset `initial` (text)"""
+    m = {'hipair': 1, 'name': 'v-slot-yoke', 'units': {'length': 'mm', 'angle': 'rad'},
+         'parameters': {'crank-radius': {'nominal': 30, 'tolerance': 0.02}, 'pin-radius': {'nominal': 5, 'tolerance': 0.01},
+                        'slot-width': {'nominal': 12.55, 'tolerance': 0.02}, 'slot-height': {'nominal': 10}},
+         'parts': [{'name': 'crank', 'motion': {'rotation': {'pivot': [0, 0]}}, 'initial': {'angle': 0},
+                    'features': [{'pin': {'center': ['crank-radius', 0], 'radius': 'pin-radius'}}]},
+                   {'name': 'yoke', 'motion': {'translation': {'direction': [1, 0], 'limits': [-65, 5]}},
+                    'initial': {'offset': initial},
+                    'loops': [{'label': 'frame', 'start': ['crank-radius - 40', -45], 'edges': [
+                                  {'line_to': ['crank-radius + 40', -45]}, {'line_to': ['crank-radius + 40', 45]},
+                                  {'line_to': ['crank-radius - 40', 45]}, {'line_to': ['crank-radius - 40', -45]}]},
+                              {'label': 'v slot', 'start': ['crank-radius', 'slot-height - slot-width*2/3'], 'edges': [
+                                  {'line_to': ['crank-radius + slot-width/2 + 0.75*(37 - slot-height)', 37], 'label': 'wall R'},
+                                  {'line_to': ['crank-radius - slot-width/2 - 0.75*(37 - slot-height)', 37], 'label': 'top'},
+                                  {'line_to': ['crank-radius', 'slot-height - slot-width*2/3'], 'label': 'wall L'}]}]}],
+         'pairs': [{'parts': ['crank', 'yoke']}]}
+    json.dump(m, open(path, 'w'), indent=1)
+
+
 model_json = json.load(open(os.path.join(repo, 'examples/models/scotch-yoke.json')))
 model_json['name'] = 'scotch-yoke-tight'
 model_json['parameters']['slot-width']['nominal'] = 10.04
@@ -91,19 +134,19 @@ NOMINAL.update({'crank-radius': F(30), 'pin-radius': F(5), 'slot-width': F(1004,
 TOLERANCE.update({'crank-radius': (F(-1, 50), F(1, 50)), 'pin-radius': (F(-1, 100), F(1, 100)), 'slot-width': (F(-1, 50), F(1, 50))})
 
 
-def parameter_ranges(t):
+def parameter_ranges(t, nominal=NOMINAL):
     """{name: (lo, hi)} of the claim's parameters (the hull of box and scale x tolerance); None
     when a name or the sizes are not the model's"""
     scale = F(t['scale'])
-    ranges = dict((k, (v, v)) for k, v in NOMINAL.items())
+    ranges = dict((k, (v, v)) for k, v in nominal.items())
     if len(t['box']) != len(t['varied']) or len(set(t['varied'])) != len(t['varied']):
         return None
     for name, (lo, hi) in zip(t['varied'], t['box']):
-        if name not in NOMINAL:
+        if name not in nominal:
             return None
         lo, hi = F(lo), F(hi)
         e_lo, e_hi = scale * TOLERANCE[name][0], scale * TOLERANCE[name][1]
-        ranges[name] = (NOMINAL[name] + min(lo, e_lo, hi, e_hi), NOMINAL[name] + max(lo, e_lo, hi, e_hi))
+        ranges[name] = (nominal[name] + min(lo, e_lo, hi, e_hi), nominal[name] + max(lo, e_lo, hi, e_hi))
     return ranges
 
 
@@ -114,7 +157,7 @@ def clearance(t1, u0, u1, w, g):
     return (dec(w / 2 + g)) * c - dec(a) * s - dec(w / 2)
 
 
-def claim_data(cert, follower, driver='lever', prop='no_interference'):
+def claim_data(cert, follower, driver='lever', prop='no_interference', nominal=NOMINAL):
     """(t0, t1, u0, u1, parameter ranges) of a well-formed claim on driver:follower (u0 = u1 = 0
     for no_jam), else None"""
     t = cert['tolerance']
@@ -122,7 +165,7 @@ def claim_data(cert, follower, driver='lever', prop='no_interference'):
         return None
     t0, t1 = (F(v) for v in t['range'])
     u0, u1 = (F(v) for v in t['follower_range']) if prop == 'no_interference' else (F(0), F(0))
-    ranges = parameter_ranges(t)
+    ranges = parameter_ranges(t, nominal)
     if ranges is None or not t0 <= t1 or not u0 <= u1:
         return None
     return t0, t1, u0, u1, ranges
@@ -137,6 +180,22 @@ def yoke_truth(cert):
     if ranges['crank-radius'][1] + ranges['pin-radius'][1] >= 37 or ranges['pin-radius'][0] <= 0:
         return None
     return ranges['slot-width'][0] - 2 * ranges['pin-radius'][1] > 0
+
+
+def vslot_truth(cert):
+    """the pin in the V slot: no jam iff W > 0 at the corner (theta0, s_min, R_min, r_max), the
+    docstring; 80 digits"""
+    data = claim_data(cert, 'yoke', 'crank', 'no_jam', VSLOT_NOMINAL)
+    if data is None:
+        return False
+    t0, t1, _, _, ranges = data
+    if not (F(1, 4) <= t0 and t1 <= F(13, 10)) or ranges['pin-radius'][0] <= 0 or ranges['crank-radius'][0] <= 0:
+        return None
+    s, c = sin_cos(dec(t0))
+    width = dec(ranges['slot-width'][0]) + D(3) / 2 * (dec(ranges['crank-radius'][0]) * s - dec(VSLOT_HEIGHT)) \
+        - D(5) / 2 * dec(ranges['pin-radius'][1])
+    c = compare(width, D(0))
+    return None if c is None else c > 0
 
 
 def block_truth(cert):
@@ -264,7 +323,26 @@ def alterations(cert, truth, crossings):
                                                           {False: '', True: ', the leaves with it',
                                                            'box kept': ', box and leaves kept'}[drag]),
                             moved(cert, where, v, drag)))
+            if t['property'] == 'no_jam':
+                for margins in (False, True):
+                    out.append(('%s %s the truth changes, the leaves with it, brackets widened%s' %
+                                ('/'.join(map(str, where)), what, ', margins claimed' if margins else ''),
+                                refitted(moved(cert, where, v, True), margins)))
     return out
+
+
+def refitted(cert, margins):
+    """cert with every leaf's brackets widened by 2 mm on both sides and its centre intervals by 1 mm (the docstring: still one
+    certain sign change each), with margins also 10^-30 claimed for each side on every witness"""
+    for leaf in cert['tolerance']['leaves']:
+        for side in ('lower', 'upper'):
+            b = leaf[side]['bracket']
+            leaf[side]['bracket'] = [str(F(b[0]) - 2), str(F(b[1]) + 2)]
+            c = leaf[side]['centre']
+            leaf[side]['centre'] = [str(F(c[0]) - 1), str(F(c[1]) + 1)]
+        if margins and 'witness' in leaf:
+            leaf['witness']['second_order_margins'] = [str(F(1, 10 ** 30))] * 2
+    return cert
 
 
 def block_alterations(cert):
@@ -285,7 +363,29 @@ def stop_alterations(cert):
 
 
 def yoke_alterations(cert):
-    return alterations(cert, yoke_truth, ((('scale',), F(6, 5)),))
+    """alterations() with the scale's crossing, and the scale put exactly at 1, where the slot's
+    least width is exactly twice the pin's largest radius (10.02 = 2 x 5.01: the pin touches both
+    walls at the box's corner, the channel is closed), the leaves dragged and re-fitted"""
+    out = alterations(cert, yoke_truth, ((('scale',), F(6, 5)),))
+    for margins in (False, True):
+        out.append(('scale exactly 1 (the pin touches both walls), the leaves with it, brackets widened%s' %
+                    (', margins claimed' if margins else ''), refitted(moved(cert, ('scale',), F(1), True), margins)))
+    return out
+
+
+def vslot_alterations(cert):
+    return alterations(cert, vslot_truth, ((('range', 0), F(1, 4)), (('scale',), F(19))))
+
+
+def generated_vslot(path):
+    """the arguments of one certify run on the V-slot yoke, its model written to path: scale 1, a
+    driver range of 0.01 .. 0.05 rad starting 0.002 .. 0.03 rad above where the channel closes at
+    the box's corner (theta_c = 0.33995...), the yoke starting on the channel's middle"""
+    t0 = F(34, 100) + F(rng.randrange(2, 30), 1000)
+    t1 = t0 + F(rng.randrange(1, 5), 100)
+    s, c = sin_cos(dec(t0))
+    vslot_model(path, '%.9f' % (30 * c - 30))
+    return ['--certify-scale', '1', '--range', '%s:%s' % (t0, t1)]
 
 
 def generated_yoke():
@@ -340,11 +440,19 @@ findings, counts = 0, {'true accepted': 0, 'true rejected': 0, 'false rejected':
 KINDS = {'stop': (model, 'lever:stop', '--certify-interference', 'interference-certificate.json', generated, truth, stop_alterations),
          'block': (block_model, 'lever:block', '--certify-interference', 'interference-certificate.json', generated_block,
                    block_truth, block_alterations),
-         'yoke': (yoke_model, 'crank:yoke', '--certify', 'tolerance-certificate.json', generated_yoke, yoke_truth, yoke_alterations)}
+         'yoke': (yoke_model, 'crank:yoke', '--certify', 'tolerance-certificate.json', generated_yoke, yoke_truth, yoke_alterations),
+         'vslot': (None, 'crank:yoke', '--certify', 'tolerance-certificate.json', generated_vslot, vslot_truth, vslot_alterations)}
+only = os.environ.get('ALTERATIONS_KINDS')   # e.g. "yoke,vslot": only those cases (mutant runs by hand)
 for case in range(n):
-    kind = ('stop', 'stop', 'block', 'yoke')[case % 4]
+    kind = ('stop', 'stop', 'block', 'yoke', 'stop', 'stop', 'block', 'vslot')[case % 8]
+    if only and kind not in only.split(','):
+        continue
     pair_model, pair, option, name, generator, pair_truth, pair_alterations = KINDS[kind]
-    args = generated_block(case % 8 == 2) if kind == 'block' else generator()
+    if kind == 'vslot':
+        pair_model = os.path.join(outdir, 'v-slot-%d.json' % case)
+        args = generator(pair_model)
+    else:
+        args = generated_block(case % 8 == 2) if kind == 'block' else generator()
     out = os.path.join(outdir, 'base-%d' % case)
     r = subprocess.run([hipair, 'tolerance', pair_model, option, '--pair', pair, '--out', out, '--quiet'] + args,
                        capture_output=True, text=True, timeout=120)
@@ -354,6 +462,7 @@ for case in range(n):
         continue
     cert = json.load(open(os.path.join(out, name)))
     findings += judged_certificate(verify, os.path.join(outdir, 'c%d.json' % case), pair_model, cert,
-                                   'case %d (%s, %s)' % (case, kind, ' '.join(args)), pair_truth, statement, pair_alterations, counts)
+                                   'case %d (%s, %s)' % (case, kind, ' '.join(args)), pair_truth, statement, pair_alterations, counts,
+                                   option == '--certify')
 print('%s, %d findings' % (counts, findings))
 sys.exit(1 if findings else 0)
