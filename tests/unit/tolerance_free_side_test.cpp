@@ -42,7 +42,6 @@ TEST(ToleranceFreeSide, ProvenSideIsTheSignOfFvAtTheRootOverTheBoxAndTheHeldRang
   CurveSolver solver(model);
   solver.set_second_order(false);
   solver.set_taylor_partials(true);   // as the chains set it
-  const std::size_t n = nominal.parameters.size();
   std::mt19937_64 random(51);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::size_t decided = 0, undecided = 0, points = 0, wide = 0;
@@ -76,11 +75,7 @@ TEST(ToleranceFreeSide, ProvenSideIsTheSignOfFvAtTheRootOverTheBoxAndTheHeldRang
     ++decided;
     wide += half >= 1.0 / 64;
     for (int k = 0; k < 10; ++k) {
-      std::vector<double> point(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        double at = k < 2 ? double(k) : k < 4 ? double((c.sensitivity[i] > 0) == (k == 3)) : unit(random);
-        point[i] = c.box.lo[i] + (c.box.hi[i] - c.box.lo[i]) * at;
-      }
+      const std::vector<double> point = test::box_probe(c, k, random);
       const Interval& t = *held.fixed_range;
       double u = k < 2 ? double(k) : unit(random);
       CurveSlice at_t = c.curve;
