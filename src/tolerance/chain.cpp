@@ -325,11 +325,11 @@ class ChainAnalysis {
     bar_.begin(3);
     auto t1 = std::chrono::steady_clock::now();
     double c1 = cpu_now();
-    certified();
+    if (paths_.certified_band) certified();
     result_.seconds_certified = wall_since(t1);
     result_.cpu_seconds_certified = cpu_now() - c1;
     bar_.begin(4);
-    if (options_.monte_carlo > 0) monte_carlo();
+    if (options_.monte_carlo > 0 && paths_.certified_band) monte_carlo();
     result_.notes.insert(result_.notes.end(), notes_.begin(), notes_.end());
     bar_.finish();
     return std::move(result_);
@@ -600,12 +600,13 @@ class ChainAnalysis {
         curve.fixed_spread = std::fabs(ps.fixed_slope) * t.width();
         if (override) override->drivers[s] = t;
       }
+      int proven_side = 0;   // the holder's free side as the enclosure's certification proves it
       try {
         charts[s] = stage.solver->certified_range(curve, box, c.v, c.s_chart, options_.relative_accuracy,
-                                                  options_.absolute_accuracy, boxes[s]);
+                                                  options_.absolute_accuracy, boxes[s], &proven_side);
       } catch (const NumericError&) {
         // the driver's range too wide for one enclosure: split it (held_pieces)
-        if (s == 0 || !held_pieces(i, s, box, curve, charts[s], boxes[s])) return false;
+        if (s == 0 || !held_pieces(i, s, box, curve, charts[s], boxes[s], &proven_side)) return false;
       }
       // The driver as the previous pair's form (before the step below replaces D, R and H(c)):
       // the envelope's walk keeps its correlation with the parameters (handover.hpp DriverForm).
@@ -623,6 +624,12 @@ class ChainAnalysis {
       int side = 0;   // the holder's free side, where the mean-value step proves it
       if (mean_value)
         mean_value = mean_value_step(i, s, box, curve, center_parameters, offsets, previous_nominal, charts, xc, d, r, side);
+      // Else where the enclosure's certification proved it (session 51): F_v of one sign at the
+      // holder's root for every (p, t) of box x T, each sub-box's (and driver piece's) bracket
+      // holding that root, which is what the envelope's argument needs of the holder; F_v over
+      // the whole box x T x Y (the envelope's own test, step 0) is often not of one sign where
+      // the driver's range T is wide, only because Y x T is a rectangle about the root's graph.
+      if (side == 0) side = proven_side;
       // Another feature pair may take over inside the box (handover.cpp): the envelope. The
       // holder's mean-value form above stays sound for the holder's root; where another feature
       // pair may hold the follower, the follower's distance beyond the holder's root joins the
@@ -740,7 +747,7 @@ class ChainAnalysis {
   // some piece: the hull holds pair s's follower for every parameter vector of the box. False
   // when some piece of the finest split is not certified either.
   bool held_pieces(std::size_t i, std::size_t s, const Box& box, const CurveSlice& curve, Interval& chart,
-                   std::size_t& boxes) const {
+                   std::size_t& boxes, int* free_side) const {
     const StageAnalysis& stage = stages_[s];
     const StageContact& c = stage.contacts[i];
     const Interval whole = *curve.fixed_range;
@@ -749,6 +756,7 @@ class ChainAnalysis {
     for (std::size_t pieces = 2; pieces <= max_held_pieces; pieces *= 2) {
       bool all = true;
       Interval hull;
+      int common_side = 2;   // the pieces' free sides (certified_range's; 0: not all the same)
       double lo = whole.lo;
       for (std::size_t j = 0; j < pieces && all; ++j) {
         double hi = j + 1 == pieces ? whole.hi : whole.lo + (whole.hi - whole.lo) * static_cast<double>(j + 1) / static_cast<double>(pieces);
@@ -758,9 +766,11 @@ class ChainAnalysis {
         piece.fixed_spread = std::fabs(slope) * (hi - lo);
         double guess = c.v + slope * (0.5 * (lo + hi) - nominal_t);
         try {
+          int side = 0;
           Interval y = stage.solver->certified_range(piece, box, guess, c.s_chart, options_.relative_accuracy,
-                                                     options_.absolute_accuracy, boxes);
+                                                     options_.absolute_accuracy, boxes, &side);
           hull = j == 0 ? y : kernels::hull(hull, y);
+          common_side = common_side == 2 || common_side == side ? side : 0;
         } catch (const NumericError&) {
           all = false;
         }
@@ -768,6 +778,7 @@ class ChainAnalysis {
       }
       if (all) {
         chart = hull;
+        if (free_side) *free_side = common_side == 2 ? 0 : common_side;
         return true;
       }
     }

@@ -148,7 +148,7 @@ std::vector<bool> CurveSolver::dependencies(const CurveSlice& curve) const {
 
 bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free_value,
                             const std::vector<double>& sensitivity, double target, Interval& result,
-                            std::vector<double>& split_score, bool& taylor_used) const {
+                            std::vector<double>& split_score, bool& taylor_used, int& free_side) const {
   std::vector<double> center(n_);
   double spread = 0, shift = 0;
   for (std::size_t i = 0; i < n_; ++i) {
@@ -261,6 +261,8 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
     Interval fv = f.partial(k);
     int s = fv.sign();
     if (s != 1 && s != -1) return false;
+    // (every certified bracket of this box holds its roots: all give the same sign)
+    free_side = s;
     Interval enclosure = root;
     split_score.assign(n_, 0.0);
     for (std::size_t a = 0; a < k; ++a) {
@@ -643,7 +645,7 @@ bool CurveSolver::root_partials(const CurveSlice& curve, const Box& box, const B
 
 Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, double free_value,
                                       const std::vector<double>& sensitivity, double relative_accuracy,
-                                      double absolute_accuracy, std::size_t& boxes) const {
+                                      double absolute_accuracy, std::size_t& boxes, int* free_side) const {
   // Once a box has needed the Taylor-model partials, subdivision gains little (gear-train-3: the
   // widest band +-1.235 deg with 16 sub-boxes per enclosure as with 256, the total width 2 %
   // more) and each sub-box costs more: then 16 (docs/performance.md, session 21). Enclosures that
@@ -654,6 +656,7 @@ Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, d
   bool have = false;
   Interval hull_of_all;
   std::size_t used = 0;
+  int common_side = 2;   // the sub-boxes' F_v signs so far (2: none yet, 0: not all the same)
   while (!pending.empty()) {
     Box b = std::move(pending.back());
     pending.pop_back();
@@ -664,7 +667,8 @@ Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, d
     for (std::size_t i = 0; i < n_; ++i) linear += std::fabs(sensitivity[i]) * (b.hi[i] - b.lo[i]);
     linear += curve.fixed_spread;
     double target = linear * (1 + relative_accuracy) + absolute_accuracy;
-    bool ok = box_range(curve, b, free_value, sensitivity, target, range, score, taylor_used);
+    int side = 0;
+    bool ok = box_range(curve, b, free_value, sensitivity, target, range, score, taylor_used, side);
     bool accurate = ok && range.width() <= target;
     const std::size_t max_boxes = taylor_used ? 16 : 256;
     if (!accurate && used + pending.size() + 2 <= max_boxes) {
@@ -687,8 +691,10 @@ Interval CurveSolver::certified_range(const CurveSlice& curve, const Box& box, d
     if (!ok) throw NumericError("cannot certify the contact curve over the tolerance box (the curve may be singular or the contact may change inside it)");
     hull_of_all = have ? kernels::hull(hull_of_all, range) : range;
     have = true;
+    common_side = common_side == 2 || common_side == side ? side : 0;
   }
   boxes += used;
+  if (free_side) *free_side = common_side == 2 ? 0 : common_side;
   return hull_of_all;
 }
 

@@ -124,9 +124,13 @@ class CurveSolver {
   /// in a neighbourhood certified along the way), subdividing the box until the enclosure is
   /// within `accuracy` of the linearised width `linear_width` (absolute, chart units).
   /// Counts sub-boxes in `boxes`. \throws NumericError when it cannot certify.
+  /// `free_side` (when given) receives the holder's free side where the certification proves it:
+  /// each sub-box B_j's enclosure is certified with F_v of one sign s_j over B_j x the held range
+  /// x its bracket y_j, which holds the root for every (p, t) there; +1 or -1 when every s_j is
+  /// that sign (F_v has it at the root for every (p, t) of the box x the held range), else 0.
   Interval certified_range(const CurveSlice& curve, const Box& box, double free_value,
                            const std::vector<double>& sensitivity, double relative_accuracy,
-                           double absolute_accuracy, std::size_t& boxes) const;
+                           double absolute_accuracy, std::size_t& boxes, int* free_side = nullptr) const;
 
   /// The root's partial derivatives over a region, for the mean-value composition of an
   /// assembly chain (chain.cpp; docs/tolerance.md "Assembly chains"): with F_v's sign certain
@@ -162,7 +166,8 @@ class CurveSolver {
   /// partial derivative with respect to it at the nominal vector.
   std::vector<bool> dependencies(const CurveSlice& curve) const;
   bool box_range(const CurveSlice& curve, const Box& box, double free_value, const std::vector<double>& sensitivity,
-                 double target, Interval& result, std::vector<double>& split_score, bool& taylor_used) const;
+                 double target, Interval& result, std::vector<double>& split_score, bool& taylor_used,
+                 int& free_side) const;
 
   /// What box_range needs of the geometry over one box: it depends on the two features, the
   /// two parts and the box only, not on the held coordinate, so the positions of a zone or of

@@ -118,6 +118,10 @@ struct ChainPaths {
   /// Tests only: each Monte Carlo value (vector index, driver position, the output's certified
   /// enclosure in part units).
   std::function<void(std::size_t, std::size_t, const kernels::Interval&)> monte_carlo_value;
+  /// Tests only: false skips the certified band and the Monte Carlo (the samples' certified
+  /// fields not computed), for a test that compares only the nominal motion, the contacts, the
+  /// sensitivities, the linearised bands and the regions, which are computed before them.
+  bool certified_band = true;
 };
 
 /// Entries of each chain pair's box-geometry and Taylor-model edge memos (CurveSolver::limit_memos;

@@ -61,4 +61,17 @@ inline bool generate_geneva_box_case(const tolerance_detail::CurveSolver& solver
   return true;
 }
 
+/// Probe `k` of a case's box: its lower (0) and upper (1) corners, the corners where the
+/// linearised root is least (2) and greatest (3: each parameter at the end its sensitivity points
+/// to), a random vector of the box beyond.
+inline std::vector<double> box_probe(const GenevaBoxCase& c, int k, std::mt19937_64& random) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> point(c.box.lo.size());
+  for (std::size_t i = 0; i < point.size(); ++i) {
+    double at = k < 2 ? double(k) : k < 4 ? double((c.sensitivity[i] > 0) == (k == 3)) : unit(random);
+    point[i] = c.box.lo[i] + (c.box.hi[i] - c.box.lo[i]) * at;
+  }
+  return point;
+}
+
 }  // namespace hipair::test

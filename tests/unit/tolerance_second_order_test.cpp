@@ -41,7 +41,6 @@ TEST(ToleranceSecondOrder, EnclosuresHoldTheRootsAndAreNarrowerThanFirstOrder) {
   const Model& nominal = model->nominal();
   CurveSolver second(model), first(model);
   first.set_second_order(false);
-  std::size_t n = nominal.parameters.size();
   std::mt19937_64 random(20);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::size_t cases = 0, narrower = 0, points = 0;
@@ -71,11 +70,7 @@ TEST(ToleranceSecondOrder, EnclosuresHoldTheRootsAndAreNarrowerThanFirstOrder) {
     // at the end its sensitivity points to: a linearisation misses the curvature there), at the
     // box's lower and upper corners and at random vectors, isolated independently
     for (int k = 0; k < 8; ++k) {
-      std::vector<double> point(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        double at = k < 2 ? double(k) : k < 4 ? double((c.sensitivity[i] > 0) == (k == 3)) : unit(random);
-        point[i] = c.box.lo[i] + (c.box.hi[i] - c.box.lo[i]) * at;
-      }
+      const std::vector<double> point = test::box_probe(c, k, random);
       Interval r;
       Interval bracket = kernels::hull(a, b);
       if (!second.certified_point_root(c.curve, point, Interval(bracket.lo - bracket.width(), bracket.hi + bracket.width()), r))
