@@ -683,12 +683,12 @@ struct SlicedSpace::Impl {
         };
         try_samples(0);
         // A frame's samples are the simplest rationals of its cells: integers when its
-        // coordinates are large, the least of them hugging the cell's side (the corridor with a
-        // peg of 155/29 x 10^-30 ... 10^-300: frame coordinates up to 36 540, a cell (1392, 3828)
-        // sampled at 1393, while the peg's corners sweep about 6 units in the first round's turn;
-        // no sample was steady across the critical angles at 0, +-90 and 180 degrees: 10
-        // components for 3). Where a cell of either side is still unreached, the steps are tried
-        // too (session 51); a crossing whose samples reach every cell is as before.
+        // coordinates are large, the least of them near the cell's side (the corridor with a peg
+        // of 155/29 x 10^-30 ... 10^-300: frame coordinates up to about 36 540, while the peg's
+        // corners sweep several units in a round's turn; no sample was steady across the
+        // critical angles at 0, +-90 and 180 degrees: 10 components for 3). Where a cell of
+        // either side is still unreached, the steps are tried too (session 51); a crossing whose
+        // samples reach every cell is as before.
         if (frame && (left_done.size() < left_count || right_done.size() < right_count)) {
           const std::size_t base_count = samples.size();
           add_steps(samples);

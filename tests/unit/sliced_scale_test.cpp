@@ -29,6 +29,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -497,24 +498,30 @@ TEST(SlicedScale, BeyondTheDoublesWhenAskedTheBuildIsInUnitsOfAPowerOfTwo) {
 // normalise_lengths), and a configuration given in mm is the space's with x and y times 2^-L
 // (length_unit_exponent(); at e = -300, L = 0: mm). Generated at scale 1 — free configurations at
 // the representatives and random rational angles, and random straight motions from them — each
-// taken to mm (x S, y S) and then to the space's units, against the pair at 1: locate (kind,
+// taken to mm (x S, y S) and then to the space's units, against the pair at 1 (the same number of
+// components first): locate (kind,
 // interval, cell) and connected; first_crossing's status, its first contact u
 // (the same algebraic number: u does not depend on the unit), the feature pairs touching there,
 // and its `before` mapped back to 1 a configuration of the motion before u, free by the exact
 // overlap oracle at S in mm; features_near with the distance mapped (d S 2^-L): the same feature
 // pairs, decided exactly at both, their certified distance bounds mapped back overlapping 1's;
 // path between connected configurations: found, its ends the queries, every motion free and every
-// waypoint taken to mm free by the oracle at S. This seed's 10^-300 pair (peg 155/29, r = 733/656)
-// crossed its frame with 10 components for 3 before session 51 (its frame's samples hugged the
-// cells' sides at the critical angles 0, +-90 and 180 degrees: sliced_space.cpp's steps).
+// waypoint taken to mm free by the oracle at S. Besides two drawn pairs, the 10^-300 pair this test
+// first drew (peg 155/29, r = 733/656): it crossed its frame with 10 components for 3 before
+// session 51 (its frame's samples hugged the cells' sides at the critical angles 0, +-90 and 180
+// degrees: sliced_space.cpp's steps).
 TEST(SlicedScale, QueriesInMillimetresAnswerAsAtScaleOne) {
   Random random(5151);
   std::size_t crossings = 0, near_pairs = 0, paths = 0, waypoints = 0;
-  for (int e : {400, -300}) {
-    const Rational length = random_rational(random, Rational(5), Rational(6), 31);
+  // (e, peg length, r): drawn where 0; the second is the pair this test first drew at 10^-300 in
+  // session 51 (10 components for 3 before the frame's steps), kept whatever the draws give
+  for (const auto& [e, fixed_length, fixed_r] : {std::tuple{400, Rational(0), Rational(0)},
+                                                 std::tuple{-300, Rational(155, 29), Rational(733, 656)},
+                                                 std::tuple{-300, Rational(0), Rational(0)}}) {
+    const Rational length = sgn(fixed_length) > 0 ? fixed_length : random_rational(random, Rational(5), Rational(6), 31);
     const Model unit = corridor(length);
     const SlicedSpace reference = SlicedSpace::build(unit, "fixed", "free");
-    const Rational r = random_rational(random, Rational(1, 2), Rational(2), 1000), s = power_of_ten(e) * r;
+    const Rational r = sgn(fixed_r) > 0 ? fixed_r : random_rational(random, Rational(1, 2), Rational(2), 1000), s = power_of_ten(e) * r;
     SCOPED_TRACE("peg length " + to_exact_string(length) + ", scale 1e" + std::to_string(e) + " * " + to_exact_string(r));
     const Model model = scaled(unit, s);
     SlicedBuildOptions options;
@@ -522,6 +529,7 @@ TEST(SlicedScale, QueriesInMillimetresAnswerAsAtScaleOne) {
     const SlicedSpace space = SlicedSpace::build(model, "fixed", "free", options);
     const long l = space.length_unit_exponent();
     EXPECT_EQ(l != 0, e > 0);
+    EXPECT_EQ(space.components(), reference.components());
     // the caller's mapping: mm of the model at S to the space's units, and back
     auto in_units = [&](SlicedConfiguration q) {
       q.x = times_power_of_two(q.x, -l);
@@ -562,7 +570,7 @@ TEST(SlicedScale, QueriesInMillimetresAnswerAsAtScaleOne) {
     for (std::size_t n = 0; n < free.size(); ++n) {
       const SlicedConfiguration& q = free[n];
       const SlicedConfiguration scaled_q = in_units(at_s(q));
-      // location and component
+      // location and connectivity
       const SlicedLocation want = reference.locate(q), got = space.locate(scaled_q);
       EXPECT_EQ(static_cast<int>(got.kind), static_cast<int>(want.kind)) << "configuration " << n;
       if (got.kind != want.kind) continue;
@@ -581,8 +589,8 @@ TEST(SlicedScale, QueriesInMillimetresAnswerAsAtScaleOne) {
                           q.angle.half_turn};
       SlicedMotion scaled_motion{in_units(at_s(motion.from)), in_units(at_s(motion.to)), motion.through_half_turn};
       const SlicedMotionCrossing c1 = reference.first_crossing(motion), cs = space.first_crossing(scaled_motion);
-      ASSERT_EQ(static_cast<int>(cs.status), static_cast<int>(c1.status)) << "motion " << n;
-      if (cs.status == CrossingStatus::crossing) {
+      EXPECT_EQ(static_cast<int>(cs.status), static_cast<int>(c1.status)) << "motion " << n;
+      if (cs.status == CrossingStatus::crossing && c1.status == CrossingStatus::crossing) {
         ++crossings;
         EXPECT_EQ(algebra::compare(real(cs.u), real(c1.u)), 0) << "motion " << n;
         std::vector<std::string> labels1, labelss;
@@ -607,7 +615,7 @@ TEST(SlicedScale, QueriesInMillimetresAnswerAsAtScaleOne) {
       // features near it within a random distance
       const Rational d = random_rational(random, Rational(0), Rational(8), 17);
       const auto near1 = reference.features_near(q, d), nears = space.features_near(scaled_q, Rational(d * to_units));
-      ASSERT_EQ(nears.size(), near1.size()) << "configuration " << n << " distance " << to_exact_string(d);
+      EXPECT_EQ(nears.size(), near1.size()) << "configuration " << n << " distance " << to_exact_string(d);
       std::map<std::string, std::pair<Rational, Rational>> bounds1;
       for (const auto& f : near1) {
         EXPECT_TRUE(f.exact);
@@ -616,7 +624,10 @@ TEST(SlicedScale, QueriesInMillimetresAnswerAsAtScaleOne) {
       for (const auto& f : nears) {
         EXPECT_TRUE(f.exact);
         auto found = bounds1.find(f.pair.label);
-        ASSERT_NE(found, bounds1.end()) << f.pair.label;
+        if (found == bounds1.end()) {
+          ADD_FAILURE() << f.pair.label << " near at S, not at 1";
+          continue;
+        }
         EXPECT_LE(f.distance_lower, found->second.second * to_units) << f.pair.label;
         EXPECT_LE(found->second.first * to_units, f.distance_upper) << f.pair.label;
         ++near_pairs;
@@ -629,7 +640,8 @@ TEST(SlicedScale, QueriesInMillimetresAnswerAsAtScaleOne) {
         continue;
       }
       const SlicedPath ps = space.path(scaled_q, in_units(at_s(other)));
-      ASSERT_EQ(static_cast<int>(ps.status), static_cast<int>(SlicedPath::Status::found)) << "configuration " << n;
+      EXPECT_EQ(static_cast<int>(ps.status), static_cast<int>(SlicedPath::Status::found)) << "configuration " << n;
+      if (ps.status != SlicedPath::Status::found) continue;
       ++paths;
       ASSERT_EQ(ps.through_half_turn.size() + 1, ps.waypoints.size());
       EXPECT_TRUE(in_mm(ps.waypoints.front()).x == at_s(q).x && in_mm(ps.waypoints.front()).y == at_s(q).y);
