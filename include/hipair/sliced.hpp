@@ -40,7 +40,7 @@ struct SlicedAngle {
 
 /// A configuration of the free part relative to the fixed part.
 struct SlicedConfiguration {
-  Rational x, y;            ///< mm
+  Rational x, y;            ///< mm; units of 2^L mm in a normalised space (SlicedSpace::length_unit_exponent)
   SlicedAngle angle;
 };
 
@@ -272,7 +272,7 @@ class SlicedSpace {
   bool motion_free(const SlicedMotion& motion) const;
 
   /// The feature pairs (vertex–edge, vertex–arc, segment–arc, arc–arc: the contact surfaces of
-  /// the 3-DOF C-space) whose features may lie within `distance` (mm) of each other at the
+  /// the 3-DOF C-space) whose features may lie within `distance` (space units) of each other at the
   /// configuration: every pair whose certified distance lower bound is <= `distance`, nearest
   /// first. \pre distance >= 0.
   std::vector<SlicedNearFeature> features_near(const SlicedConfiguration& configuration,

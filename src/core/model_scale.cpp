@@ -20,24 +20,34 @@ long binary_exponent(const Rational& value) {
 }  // namespace
 
 void require_kinematic_length_scale(const Model& model, const std::vector<std::size_t>& parts) {
-  Rational largest = 0;        // of the parts' points
-  bool length_coordinate = false;   // a part neither rotates nor stays fixed
+  Rational largest = 0;                   // of the parts' points
+  const Part* widest = nullptr;           // the part that reaches it
+  const Part* length_coordinate = nullptr;   // the first part that neither rotates nor stays fixed
   for (std::size_t index : parts) {
     const Part& part = model.parts.at(index);
-    if (part.motion.kind != Motion::Kind::rotation && part.motion.kind != Motion::Kind::fixed)
-      length_coordinate = true;
+    if (!length_coordinate && part.motion.kind != Motion::Kind::rotation && part.motion.kind != Motion::Kind::fixed)
+      length_coordinate = &part;
     for (const auto& loop : part.loops)
       for (const auto& edge : loop.edges)
         for (const Point* p : {&edge.source, &edge.target, &edge.center})
           for (const Rational* v : {&p->x, &p->y})
-            if (abs(*v) > largest) largest = abs(*v);
+            if (abs(*v) > largest) {
+              largest = abs(*v);
+              widest = &part;
+            }
   }
   if (!length_coordinate || sgn(largest) == 0) return;
   const long exponent = binary_exponent(largest);
   if (exponent >= -30 && exponent <= 30) return;
-  throw GeometryError("the kinematic analysis of a mechanism with a translating part needs its lengths between about "
-                      "1e-9 mm and 1e9 mm (its positions are lengths and its resolutions absolute); this model's "
-                      "parts reach about 2^" + std::to_string(exponent) + " mm: scale the model");
+  const Motion::Kind kind = length_coordinate->motion.kind;
+  const char* how = kind == Motion::Kind::translation ? "translates"
+                    : kind == Motion::Kind::planar    ? "moves in the plane"
+                                                      : "slides in a slot";
+  throw GeometryError("part '" + length_coordinate->name + "' (" + length_coordinate->pointer + ") " + how +
+                      ": the kinematic analysis of a mechanism with a length coordinate needs its lengths between "
+                      "about 1e-9 mm and 1e9 mm (its positions are lengths and its resolutions absolute), and part '" +
+                      widest->name + "' (" + widest->pointer + ") reaches about 2^" + std::to_string(exponent) +
+                      " mm: scale the model (`hipair cspace` builds such a pair in units of 2^L mm)");
 }
 
 long normalising_shift(const Model& model, const std::vector<std::size_t>& parts) {

@@ -582,6 +582,15 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
   impl->other_kind = other.motion.kind;
   impl->model.name = model.name;
   impl->model.parts = {other, pin};
+  // a pair far from the origin for its size (drawn at 10^400 mm from it) is stacked moved to it
+  // by one exact vector (core/model_scale.hpp), as SlicedSpace::build slices one: its
+  // configurations (the other part's angle or offset, the slide, tau) are displacements, so every
+  // slice, change and witness is the same, and its length unit and slice boxes are those of the
+  // pair at the origin (before session 51 the far pair kept a unit of 2^1325 mm: other witnesses,
+  // film:follower + 10^400 joined 80 cell pairs for 82; with normalise_lengths it was scaled by
+  // 2^-L itself, its 10 mm parts shrunk to 10^-400 of their size, and refused)
+  if (std::optional<Point> by = normalising_translation(impl->model, {0, 1}))
+    impl->model = translated_model(impl->model, *by);
   // a pair drawn with lengths beyond 2^1016 mm (10^400 mm), when asked, is stacked on the copy
   // scaled by 2^-L (core/model_scale.hpp; the same slices divided by 2^L: slides, offsets and
   // witnesses in units of 2^L mm, angles unchanged); without the option its slices refuse such

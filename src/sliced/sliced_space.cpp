@@ -644,36 +644,55 @@ struct SlicedSpace::Impl {
               for (const Rational& e : {Rational(0), Rational(nudge / 1009), Rational(-nudge / 10007)}) {
                 samples.push_back(Point{Rational(cell.sample_x + e), Rational(cell.sample_y + e * Rational(13, 10))});
               }
-        // A pair at an extreme scale outside the frame (mixed scales: unit != 1 and no factor
-        // shortens the coordinates): each sample is also moved by larger steps of the pair's
-        // own unit in four directions (only certified ones are used: free on the left, steady
-        // across, free on the right). Ordinary pairs keep their samples.
-        if (nudge != 1) {
-          const std::size_t base_count = samples.size();
-          for (std::size_t n = 0; n < base_count; n += 3)
-            for (const Rational& e : {Rational(unit / 256), Rational(unit / 64), Rational(unit / 16), Rational(unit / 4), Rational(unit)})
-              for (const auto& [dx, dy] : {std::pair<int, int>{1, 1}, {1, -1}, {-1, 1}, {-1, -1}})
-                samples.push_back(Point{Rational(samples[n].x + dx * e), Rational(samples[n].y + dy * e * Rational(13, 10))});
-        }
+        // The samples moved by larger steps of the pair's own unit (k unit in a frame: the same
+        // fraction of the parts) in four directions (only certified ones are used: free on the
+        // left, steady across, free on the right).
         const Rational margin_unit = frame ? Rational(*frame * unit) : unit;
+        auto add_steps = [&](std::vector<Point>& points) {
+          const std::size_t base_count = points.size();
+          for (std::size_t n = 0; n < base_count; n += 3)
+            for (const Rational& e : {Rational(margin_unit / 256), Rational(margin_unit / 64), Rational(margin_unit / 16),
+                                      Rational(margin_unit / 4), margin_unit})
+              for (const auto& [dx, dy] : {std::pair<int, int>{1, 1}, {1, -1}, {-1, 1}, {-1, -1}})
+                points.push_back(Point{Rational(points[n].x + dx * e), Rational(points[n].y + dy * e * Rational(13, 10))});
+        };
+        // A pair at an extreme scale outside the frame (mixed scales: unit != 1 and no factor
+        // shortens the coordinates) tries them always. Ordinary pairs keep their samples.
+        if (!frame && unit != 1) add_steps(samples);
         std::size_t before = links.size();
-        for (const auto& q : samples) {
-          std::size_t lc = no_index, rc = no_index;
-          if (classify_in(*ls, box, q.x, q.y, &lc) != SlicedLocation::Kind::free) continue;
-          if (!steady_in_frame(q, nr.u_lo, nr.u_hi, nr.flip)) continue;
-          if (classify_in(*rs, box, q.x, q.y, &rc) != SlicedLocation::Kind::free)
-            throw GeometryError("internal: a configuration steady across a critical angle is not free on both sides");
-          if (lc == no_index) lc = outer_cell_in(*ls, margin_unit);
-          if (rc == no_index) rc = outer_cell_in(*rs, margin_unit);
-          std::size_t a = match(crossing.left_interval, *ls, lc), b = match(crossing.right_interval, *rs, rc);
-          left_done.insert(a);
-          right_done.insert(b);
-          Point w = q;   // the model's configuration
-          if (frame) w = Point{Rational(q.x / *frame), Rational(q.y / *frame)};
-          SlicedConnection link{a, b, SlicedConfiguration{w.x, w.y, nr.left}, SlicedConfiguration{w.x, w.y, nr.right}, nr.flip};
-          link.left_witness.angle.t.canonicalize();   // (dyadic refinement leaves fractions unreduced)
-          link.right_witness.angle.t.canonicalize();
-          links.emplace(std::make_pair(a, b), link);
+        auto try_samples = [&](std::size_t from) {
+          for (std::size_t j = from; j < samples.size(); ++j) {
+            const Point& q = samples[j];
+            std::size_t lc = no_index, rc = no_index;
+            if (classify_in(*ls, box, q.x, q.y, &lc) != SlicedLocation::Kind::free) continue;
+            if (!steady_in_frame(q, nr.u_lo, nr.u_hi, nr.flip)) continue;
+            if (classify_in(*rs, box, q.x, q.y, &rc) != SlicedLocation::Kind::free)
+              throw GeometryError("internal: a configuration steady across a critical angle is not free on both sides");
+            if (lc == no_index) lc = outer_cell_in(*ls, margin_unit);
+            if (rc == no_index) rc = outer_cell_in(*rs, margin_unit);
+            std::size_t a = match(crossing.left_interval, *ls, lc), b = match(crossing.right_interval, *rs, rc);
+            left_done.insert(a);
+            right_done.insert(b);
+            Point w = q;   // the model's configuration
+            if (frame) w = Point{Rational(q.x / *frame), Rational(q.y / *frame)};
+            SlicedConnection link{a, b, SlicedConfiguration{w.x, w.y, nr.left}, SlicedConfiguration{w.x, w.y, nr.right}, nr.flip};
+            link.left_witness.angle.t.canonicalize();   // (dyadic refinement leaves fractions unreduced)
+            link.right_witness.angle.t.canonicalize();
+            links.emplace(std::make_pair(a, b), link);
+          }
+        };
+        try_samples(0);
+        // A frame's samples are the simplest rationals of its cells: integers when its
+        // coordinates are large, the least of them near the cell's side (the corridor with a peg
+        // of 155/29 x 10^-30 ... 10^-300: frame coordinates up to about 36 540, while the peg's
+        // corners sweep several units in a round's turn; no sample was steady across the
+        // critical angles at 0, +-90 and 180 degrees: 10 components for 3). Where a cell of
+        // either side is still unreached, the steps are tried too (session 51); a crossing whose
+        // samples reach every cell is as before.
+        if (frame && (left_done.size() < left_count || right_done.size() < right_count)) {
+          const std::size_t base_count = samples.size();
+          add_steps(samples);
+          try_samples(base_count);
         }
         if (round >= 1 && links.size() == before) break;   // the rest end or start here
       }

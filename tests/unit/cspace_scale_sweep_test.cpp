@@ -11,9 +11,12 @@
 // inscribed-disk guesses (SIGFPE in mpq_set_d on a NaN).
 #include "core/model_scale.hpp"
 #include "curves/contact_curves.hpp"
+#include "sliced/critical_angles.hpp"
+#include "test_paths.hpp"
 #include "cspace_test_support.hpp"
 
 #include <hipair/cspace.hpp>
+#include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
 
@@ -218,6 +221,36 @@ TEST(ScaleSweep, SubResolutionNotch) {
       EXPECT_GT(contact, 0u);
       EXPECT_NO_THROW(analyze_kinematics(model));
     }
+}
+
+// The kinematic analysis of a mechanism with a length coordinate (the scotch yoke: a crank
+// turning a translating yoke in a fixed guide) times 10^k r, k = -300, 400 (r a random rational in
+// [1/2, 2)), is refused (its positions are lengths, its resolutions absolute: session 47), with one
+// message naming the part that translates and the part whose lengths are out of range (issue 13,
+// session 51; base51's message named neither).
+TEST(ScaleSweep, AnalysisOfAHugeOrTinyTranslatingMechanismIsRefusedNamingItsParts) {
+  const Model yoke = read_model_file(std::string(HIPAIR_EXAMPLES) + "/scotch-yoke.json");
+  std::mt19937_64 random(5152);
+  EXPECT_NO_THROW(analyze_kinematics(yoke));
+  for (int k : {-300, 400}) {
+    mpz_class ten;
+    mpz_ui_pow_ui(ten.get_mpz_t(), 10, static_cast<unsigned long>(k < 0 ? -k : k));
+    Rational factor = (k < 0 ? Rational(mpz_class(1), ten) : Rational(ten)) * Rational(static_cast<long>(500 + random() % 1500), 1000);
+    factor.canonicalize();
+    Model model = yoke;
+    for (Part& part : model.parts) part = sliced::scaled_part(part, factor);
+    SCOPED_TRACE("scale 1e" + std::to_string(k));
+    try {
+      analyze_kinematics(model);
+      ADD_FAILURE() << "analysed";
+    } catch (const GeometryError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("part 'yoke' (/parts/1) translates"), std::string::npos) << message;
+      EXPECT_NE(message.find("and part '"), std::string::npos) << message;
+      EXPECT_NE(message.find(") reaches about 2^"), std::string::npos) << message;
+      EXPECT_NE(message.find("reaches about 2^" + std::string(k < 0 ? "-" : "1")), std::string::npos) << message;
+    }
+  }
 }
 
 }  // namespace

@@ -228,5 +228,99 @@ TEST(PinSlotScale, BeyondTheDoublesWhenAskedStacksAreInUnitsOfAPowerOfTwo) {
   EXPECT_GT(samples, 20u);
 }
 
+// Point location in mm (issue 13, session 51): 120 generated configurations of the film
+// advance's cam:follower (rotating driver) and film:follower (translating part) at 1 mm — the
+// driver's tangent or the film's offset within its limits, a slide within the slot's limits,
+// tau within the stack's range, a third of them at the slices' tau — located in the pair moved
+// by (10^400 + a, -10^400 + b) (a, b random dyadics; the configurations are displacements,
+// unchanged) and in the pair times 10^400 r (r a random dyadic in [1/2, 2); a caller's offset
+// and slide in mm, times 10^400 r, are the space's times 2^-L), both stacked with
+// PinSlotBuildOptions::normalise_lengths (as `hipair cspace`): the same kind, slice and free
+// cell (by its contact features) as at 1 mm. The moved pair is stacked in mm (L = 0), with the
+// free cells per slice, changes, connections and groups of 1 mm; base51's build normalised the
+// far pair itself (its 10 mm parts became 10^-400 of their size at 64 mm) and refused it
+// ("below 2^-1000 mm").
+TEST(PinSlotScale, FarAndHugePairsLocateMillimetreConfigurationsAsAtOneMillimetre) {
+  const Model film = read_model_file(std::string(HIPAIR_EXAMPLES) + "/film-advance.json");
+  std::mt19937_64 random(5151);
+  auto draw = [&](const Rational& lo, const Rational& hi) {   // a random rational in [lo, hi], denominators up to 97
+    const long q = 1 + static_cast<long>(random() % 97);
+    Rational u(static_cast<long>(random() % static_cast<unsigned long>(q + 1)), q);
+    u.canonicalize();
+    Rational out = lo + u * (hi - lo);
+    out.canonicalize();
+    return out;
+  };
+  auto dyadic = [&](long lo, long hi) {   // a random multiple of 1/1024 in [lo, hi)
+    Rational out(static_cast<long>(random() % static_cast<unsigned long>((hi - lo) * 1024)) + lo * 1024, 1024);
+    out.canonicalize();
+    return out;
+  };
+  std::size_t located[4] = {0, 0, 0, 0};
+  for (const auto& [other_name, pin_name] : {std::pair{"cam", "follower"}, std::pair{"film", "follower"}}) {
+    PinSlotBuildOptions options;
+    options.slices = 6;
+    options.refine_steps = 1;
+    options.critical_values = false;
+    options.normalise_lengths = true;
+    const PinSlotSpace reference = PinSlotSpace::build(film, other_name, pin_name, options);
+    const Part& other = film.parts[*film.find_part(other_name)];
+    const Part& pin = film.parts[*film.find_part(pin_name)];
+    std::vector<PinSlotConfiguration> configurations;
+    for (int k = 0; k < 120; ++k) {
+      PinSlotConfiguration q;
+      if (other.motion.kind == Motion::Kind::translation)
+        q.other = PartCoordinate{PartCoordinate::Kind::offset, draw(other.motion.translation_limits->lo, other.motion.translation_limits->hi)};
+      else
+        q.other = PartCoordinate{PartCoordinate::Kind::half_angle_tangent, draw(Rational(-3), Rational(3))};
+      q.slide = draw(pin.motion.translation_limits->lo, pin.motion.translation_limits->hi);
+      q.tau = k % 3 == 0 ? reference.slices()[static_cast<std::size_t>(k / 3) % reference.slices().size()].tau
+                         : draw(reference.tau_lower(), reference.tau_upper());
+      configurations.push_back(q);
+    }
+    // a location as comparable across copies: kind, slice, and the free cell's contact features
+    auto key = [](const PinSlotSpace& space, const PinSlotConfiguration& q) {
+      const PinSlotLocation at = space.locate(q);
+      std::string out = std::to_string(static_cast<int>(at.kind)) + " slice " +
+                        (at.slice == no_index ? std::string("-") : std::to_string(at.slice));
+      if (at.slice != no_index && at.cell != no_index) out += " cell " + space.slices()[at.slice].free_cells[at.cell].contacts;
+      return out;
+    };
+    std::vector<std::string> expected;
+    for (const auto& q : configurations) {
+      expected.push_back(key(reference, q));
+      ++located[static_cast<int>(reference.locate(q).kind)];
+    }
+    // moved far from the origin
+    Model far = translated_model(film, Point{Rational(-pin_slot_scale_power10(400) - dyadic(-64, 64)),
+                                             Rational(pin_slot_scale_power10(400) - dyadic(-64, 64))});
+    const std::string what = std::string(other_name) + ":" + pin_name;
+    const PinSlotSpace moved = PinSlotSpace::build(far, other_name, pin_name, options);
+    EXPECT_EQ(moved.length_unit_exponent(), 0) << what;
+    EXPECT_EQ(pin_slot_scale_summary(moved).free_cells, pin_slot_scale_summary(reference).free_cells) << what;
+    EXPECT_EQ(pin_slot_scale_summary(moved).changes, pin_slot_scale_summary(reference).changes) << what;
+    EXPECT_EQ(pin_slot_scale_summary(moved).connections, pin_slot_scale_summary(reference).connections) << what;
+    EXPECT_EQ(pin_slot_scale_summary(moved).groups, pin_slot_scale_summary(reference).groups) << what;
+    for (std::size_t n = 0; n < configurations.size(); ++n)
+      EXPECT_EQ(key(moved, configurations[n]), expected[n]) << what << " + 10^400: configuration " << n;
+    // times 10^400 r, the caller's millimetres in the space's units
+    const Rational factor = pin_slot_scale_power10(400) * Rational(static_cast<long>(512 + random() % 1536), 1024);
+    Model huge = film;
+    for (Part& part : huge.parts) part = sliced::scaled_part(part, factor);
+    const PinSlotSpace space = PinSlotSpace::build(huge, other_name, pin_name, options);
+    const long l = space.length_unit_exponent();
+    ASSERT_GT(l, 1000) << what;
+    for (std::size_t n = 0; n < configurations.size(); ++n) {
+      PinSlotConfiguration q = configurations[n];
+      q.slide = times_power_of_two(Rational(q.slide * factor), -l);   // mm at 10^400 r, then units of 2^L mm
+      if (q.other.kind == PartCoordinate::Kind::offset) q.other.value = times_power_of_two(Rational(q.other.value * factor), -l);
+      EXPECT_EQ(key(space, q), expected[n]) << what << " x 10^400: configuration " << n;
+    }
+  }
+  // every kind of location is exercised
+  EXPECT_GT(located[static_cast<int>(PinSlotLocation::Kind::free)], 20u);
+  EXPECT_GT(located[static_cast<int>(PinSlotLocation::Kind::blocked)], 20u);
+}
+
 }  // namespace
 }  // namespace hipair

@@ -25,9 +25,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <map>
 #include <random>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -487,6 +489,175 @@ TEST(SlicedScale, BeyondTheDoublesWhenAskedTheBuildIsInUnitsOfAPowerOfTwo) {
       EXPECT_GT(witnesses, 10u);
     }
   }
+}
+
+// The 3-D queries of a pair at extreme scales (issue 13, session 51): a caller holding the
+// configurations of the model in mm gets the answers of the pair at scale 1. The corridor with a
+// random peg length in [5, 6], times S = 10^e r (r a random rational in
+// [1/2, 2)): at e = 400 the space is built in units of 2^L mm (SlicedBuildOptions::
+// normalise_lengths), and a configuration given in mm is the space's with x and y times 2^-L
+// (length_unit_exponent(); at e = -300, L = 0: mm). Generated at scale 1 — free configurations at
+// the representatives and random rational angles, and random straight motions from them — each
+// taken to mm (x S, y S) and then to the space's units, against the pair at 1 (the same number of
+// components first): locate (kind,
+// interval, cell) and connected; first_crossing's status, its first contact u
+// (the same algebraic number: u does not depend on the unit), the feature pairs touching there,
+// and its `before` mapped back to 1 a configuration of the motion before u, free by the exact
+// overlap oracle at S in mm; features_near with the distance mapped (d S 2^-L): the same feature
+// pairs, decided exactly at both, their certified distance bounds mapped back overlapping 1's;
+// path between connected configurations: found, its ends the queries, every motion free and every
+// waypoint taken to mm free by the oracle at S. Besides two drawn pairs, the 10^-300 pair this test
+// first drew (peg 155/29, r = 733/656): it crossed its frame with 10 components for 3 before
+// session 51 (its frame's samples hugged the cells' sides at the critical angles 0, +-90 and 180
+// degrees: sliced_space.cpp's steps).
+TEST(SlicedScale, QueriesInMillimetresAnswerAsAtScaleOne) {
+  Random random(5151);
+  std::size_t crossings = 0, near_pairs = 0, paths = 0, waypoints = 0;
+  // (e, peg length, r): drawn where 0; the second is the pair this test first drew at 10^-300 in
+  // session 51 (10 components for 3 before the frame's steps), kept whatever the draws give
+  for (const auto& [e, fixed_length, fixed_r] : {std::tuple{400, Rational(0), Rational(0)},
+                                                 std::tuple{-300, Rational(155, 29), Rational(733, 656)},
+                                                 std::tuple{-300, Rational(0), Rational(0)}}) {
+    const Rational length = sgn(fixed_length) > 0 ? fixed_length : random_rational(random, Rational(5), Rational(6), 31);
+    const Model unit = corridor(length);
+    const SlicedSpace reference = SlicedSpace::build(unit, "fixed", "free");
+    const Rational r = sgn(fixed_r) > 0 ? fixed_r : random_rational(random, Rational(1, 2), Rational(2), 1000), s = power_of_ten(e) * r;
+    SCOPED_TRACE("peg length " + to_exact_string(length) + ", scale 1e" + std::to_string(e) + " * " + to_exact_string(r));
+    const Model model = scaled(unit, s);
+    SlicedBuildOptions options;
+    options.normalise_lengths = true;
+    const SlicedSpace space = SlicedSpace::build(model, "fixed", "free", options);
+    const long l = space.length_unit_exponent();
+    EXPECT_EQ(l != 0, e > 0);
+    EXPECT_EQ(space.components(), reference.components());
+    // the caller's mapping: mm of the model at S to the space's units, and back
+    auto in_units = [&](SlicedConfiguration q) {
+      q.x = times_power_of_two(q.x, -l);
+      q.y = times_power_of_two(q.y, -l);
+      return q;
+    };
+    auto in_mm = [&](SlicedConfiguration q) {
+      q.x = times_power_of_two(q.x, l);
+      q.y = times_power_of_two(q.y, l);
+      return q;
+    };
+    auto at_s = [&](SlicedConfiguration q) {   // a configuration of the pair at 1 in mm at S
+      q.x *= s;
+      q.y *= s;
+      return q;
+    };
+    const Rational to_units = times_power_of_two(s, -l);   // a length at 1 in the space's units
+    // free configurations at 1: the representatives' free samples and random offsets located
+    // free, at the representatives and at random rational angles
+    std::vector<SlicedAngle> angles;
+    for (const auto& in : reference.intervals()) angles.push_back(in.representative);
+    while (angles.size() < reference.intervals().size() + 8)
+      angles.push_back(SlicedAngle{random_rational(random, angles.size() % 2 ? Rational(-3) : Rational(-1, 4),
+                                                   angles.size() % 2 ? Rational(3) : Rational(1, 4), 29),
+                                   false});
+    std::vector<SlicedConfiguration> free;
+    for (std::size_t n = 0; n < angles.size(); ++n) {
+      if (n < reference.intervals().size())
+        for (const auto& cell : reference.slice(angles[n])->cells())
+          if (cell.kind == CellKind::free) free.push_back(SlicedConfiguration{cell.sample_x, cell.sample_y, angles[n]});
+      for (int k = 0; k < 60; ++k) {   // offsets over the corridor's two arms
+        SlicedConfiguration q{random_rational(random, Rational(-20), Rational(4)), random_rational(random, Rational(0), Rational(20)),
+                              angles[n]};
+        if (reference.locate(q).kind == SlicedLocation::Kind::free) free.push_back(q);
+      }
+    }
+    ASSERT_GT(free.size(), 30u);
+    for (std::size_t n = 0; n < free.size(); ++n) {
+      const SlicedConfiguration& q = free[n];
+      const SlicedConfiguration scaled_q = in_units(at_s(q));
+      // location and connectivity
+      const SlicedLocation want = reference.locate(q), got = space.locate(scaled_q);
+      EXPECT_EQ(static_cast<int>(got.kind), static_cast<int>(want.kind)) << "configuration " << n;
+      if (got.kind != want.kind) continue;
+      EXPECT_EQ(got.interval, want.interval) << "configuration " << n;
+      EXPECT_EQ(got.cell, want.cell) << "configuration " << n;
+      const SlicedConfiguration& other = free[random() % free.size()];
+      EXPECT_EQ(space.connected(scaled_q, in_units(at_s(other))), reference.connected(q, other)) << "configuration " << n;
+      // a random straight motion from it (to a random offset and angle; mostly into contact)
+      // (from the half turn: through it, in the chart centred there, to a t beyond 4 in size)
+      const Rational turn = random_rational(random, Rational(-1), Rational(1), 13);
+      SlicedMotion motion{q, SlicedConfiguration{Rational(q.x + random_rational(random, Rational(-12), Rational(12))),
+                                                 Rational(q.y + random_rational(random, Rational(-12), Rational(12))),
+                                                 SlicedAngle{q.angle.half_turn ? (sgn(turn) < 0 ? Rational(turn - 4) : Rational(turn + 4))
+                                                                               : Rational(q.angle.t + turn),
+                                                             false}},
+                          q.angle.half_turn};
+      SlicedMotion scaled_motion{in_units(at_s(motion.from)), in_units(at_s(motion.to)), motion.through_half_turn};
+      const SlicedMotionCrossing c1 = reference.first_crossing(motion), cs = space.first_crossing(scaled_motion);
+      EXPECT_EQ(static_cast<int>(cs.status), static_cast<int>(c1.status)) << "motion " << n;
+      if (cs.status == CrossingStatus::crossing && c1.status == CrossingStatus::crossing) {
+        ++crossings;
+        EXPECT_EQ(algebra::compare(real(cs.u), real(c1.u)), 0) << "motion " << n;
+        std::vector<std::string> labels1, labelss;
+        for (const auto& f : c1.features) labels1.push_back(f.label);
+        for (const auto& f : cs.features) labelss.push_back(f.label);
+        std::sort(labels1.begin(), labels1.end());
+        std::sort(labelss.begin(), labelss.end());
+        EXPECT_EQ(labelss, labels1) << "motion " << n;
+        // `before`, back at 1: on the motion, before u (x is linear in u), free at S in mm
+        const SlicedConfiguration before_mm = in_mm(cs.before);
+        EXPECT_EQ(static_cast<int>(oracle(model, before_mm)), static_cast<int>(SlicedLocation::Kind::free)) << "motion " << n;
+        const SlicedConfiguration before_1{Rational(before_mm.x / s), Rational(before_mm.y / s), cs.before.angle};
+        EXPECT_EQ(static_cast<int>(reference.locate(before_1).kind), static_cast<int>(SlicedLocation::Kind::free)) << "motion " << n;
+        const Rational dx = motion.to.x - motion.from.x;
+        if (sgn(dx) != 0) {
+          const Rational u_before = (before_1.x - motion.from.x) / dx;
+          EXPECT_GE(sgn(u_before), 0) << "motion " << n;
+          EXPECT_GE(real(c1.u).compare(u_before), 0) << "motion " << n;   // u_before <= u
+          EXPECT_TRUE(before_1.y == motion.from.y + u_before * (motion.to.y - motion.from.y)) << "motion " << n;
+        }
+      }
+      // features near it within a random distance
+      const Rational d = random_rational(random, Rational(0), Rational(8), 17);
+      const auto near1 = reference.features_near(q, d), nears = space.features_near(scaled_q, Rational(d * to_units));
+      EXPECT_EQ(nears.size(), near1.size()) << "configuration " << n << " distance " << to_exact_string(d);
+      std::map<std::string, std::pair<Rational, Rational>> bounds1;
+      for (const auto& f : near1) {
+        EXPECT_TRUE(f.exact);
+        bounds1[f.pair.label] = {f.distance_lower, f.distance_upper};
+      }
+      for (const auto& f : nears) {
+        EXPECT_TRUE(f.exact);
+        auto found = bounds1.find(f.pair.label);
+        if (found == bounds1.end()) {
+          ADD_FAILURE() << f.pair.label << " near at S, not at 1";
+          continue;
+        }
+        EXPECT_LE(f.distance_lower, found->second.second * to_units) << f.pair.label;
+        EXPECT_LE(found->second.first * to_units, f.distance_upper) << f.pair.label;
+        ++near_pairs;
+      }
+      // a path to another free configuration (every second: paths are the slow query)
+      if (n % 2 != 0) continue;
+      const SlicedPath p1 = reference.path(q, other);
+      if (p1.status != SlicedPath::Status::found) {
+        EXPECT_NE(static_cast<int>(space.path(scaled_q, in_units(at_s(other))).status), static_cast<int>(SlicedPath::Status::found));
+        continue;
+      }
+      const SlicedPath ps = space.path(scaled_q, in_units(at_s(other)));
+      EXPECT_EQ(static_cast<int>(ps.status), static_cast<int>(SlicedPath::Status::found)) << "configuration " << n;
+      if (ps.status != SlicedPath::Status::found) continue;
+      ++paths;
+      ASSERT_EQ(ps.through_half_turn.size() + 1, ps.waypoints.size());
+      EXPECT_TRUE(in_mm(ps.waypoints.front()).x == at_s(q).x && in_mm(ps.waypoints.front()).y == at_s(q).y);
+      EXPECT_TRUE(in_mm(ps.waypoints.back()).x == at_s(other).x && in_mm(ps.waypoints.back()).y == at_s(other).y);
+      for (std::size_t i = 0; i < ps.waypoints.size(); ++i) {
+        EXPECT_EQ(static_cast<int>(oracle(model, in_mm(ps.waypoints[i]))), static_cast<int>(SlicedLocation::Kind::free)) << "waypoint " << i;
+        ++waypoints;
+        if (i + 1 < ps.waypoints.size())
+          EXPECT_TRUE(space.motion_free(SlicedMotion{ps.waypoints[i], ps.waypoints[i + 1], ps.through_half_turn[i]})) << "motion " << i;
+      }
+    }
+  }
+  EXPECT_GT(crossings, 40u);
+  EXPECT_GT(near_pairs, 40u);
+  EXPECT_GT(paths, 5u);
+  EXPECT_GT(waypoints, 20u);
 }
 
 // Generated parts (random integer polygons, a random pivot) times s = 2^a 5^b 3^c / 7^d: the
