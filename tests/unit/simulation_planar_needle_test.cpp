@@ -20,6 +20,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 
 namespace hipair {
 namespace {
@@ -52,9 +53,10 @@ struct NeedleCase {
 TEST(SimulationPlanarNeedle, TurningOnANeedleSizedBumpKeepsOneContactAndProgresses) {
   const double t_end = 0.034;
   int cases = 0;
-  for (double d : {1e-4, 1e-6, 2e-8, 1.5e-8})
-    for (double vx : {600.0, 650.0}) {
-      if (d == 1.5e-8 && vx == 600) continue;   // turns on one vertex only before t_end: the others cover it
+  // bump widths and speeds: base52 chattered at the last three (2e-8 mm at 600 and 650 mm/s,
+  // 1.5e-8 mm at 650 mm/s) and turned on one vertex throughout at the first two
+  const std::pair<double, double> runs[] = {{1e-4, 600}, {1e-6, 650}, {2e-8, 600}, {2e-8, 650}, {1.5e-8, 650}};
+  for (const auto& [d, vx] : runs) {
       NeedleCase c;
       c.d = d;
       c.vx = vx;
@@ -93,7 +95,7 @@ TEST(SimulationPlanarNeedle, TurningOnANeedleSizedBumpKeepsOneContactAndProgress
         }
       ++cases;
     }
-  EXPECT_EQ(cases, 7);
+  EXPECT_EQ(cases, 5);
 }
 
 }  // namespace
