@@ -126,6 +126,27 @@ Structure structure_of(const SlicedSpace& space) {
   return out;
 }
 
+// Every connection's witnesses are the model's configurations (not a frame's): free by the
+// exact overlap oracle on the model's parts, located in the connected cells of the two
+// intervals, and the pure rotation between them is free (the motion's exact first contact).
+void expect_witnesses_certified(const Model& model, const SlicedSpace& space) {
+  for (const auto& crossing : space.crossings())
+    for (const auto& link : crossing.connections) {
+      EXPECT_EQ(static_cast<int>(oracle(model, link.left_witness)), static_cast<int>(SlicedLocation::Kind::free));
+      EXPECT_EQ(static_cast<int>(oracle(model, link.right_witness)), static_cast<int>(SlicedLocation::Kind::free));
+      SlicedLocation l = space.locate(link.left_witness), r = space.locate(link.right_witness);
+      EXPECT_EQ(l.interval, crossing.left_interval);
+      EXPECT_EQ(l.cell, link.left_cell);
+      EXPECT_EQ(r.interval, crossing.right_interval);
+      EXPECT_EQ(r.cell, link.right_cell);
+      SlicedMotion turn;
+      turn.from = link.left_witness;
+      turn.to = link.right_witness;
+      turn.through_half_turn = link.through_half_turn;
+      EXPECT_TRUE(space.motion_free(turn)) << "crossing " << crossing.critical;
+    }
+}
+
 TEST(SlicedScale, UniformScalesHaveTheSameCriticalAnglesCellsAndLocations) {
   const Model unit = corridor(6);
   const SlicedSpace reference = SlicedSpace::build(unit, "fixed", "free");
@@ -223,24 +244,8 @@ TEST(SlicedScale, UniformScalesHaveTheSameCriticalAnglesCellsAndLocations) {
     // 10^-30 and 10^-300, 4 components for 3)
     EXPECT_EQ(got.connections, expected.connections);
     EXPECT_EQ(got.components, expected.components);
-    // every connection's witnesses are the model's configurations (not the frame's): free by the
-    // exact overlap oracle on the scaled parts, in the connected cells of the two intervals,
-    // and the pure rotation between them is free (the motion's exact first contact)
-    for (const auto& crossing : space.crossings())
-      for (const auto& link : crossing.connections) {
-        EXPECT_EQ(static_cast<int>(oracle(model, link.left_witness)), static_cast<int>(SlicedLocation::Kind::free));
-        EXPECT_EQ(static_cast<int>(oracle(model, link.right_witness)), static_cast<int>(SlicedLocation::Kind::free));
-        SlicedLocation l = space.locate(link.left_witness), r = space.locate(link.right_witness);
-        EXPECT_EQ(l.interval, crossing.left_interval);
-        EXPECT_EQ(l.cell, link.left_cell);
-        EXPECT_EQ(r.interval, crossing.right_interval);
-        EXPECT_EQ(r.cell, link.right_cell);
-        SlicedMotion turn;
-        turn.from = link.left_witness;
-        turn.to = link.right_witness;
-        turn.through_half_turn = link.through_half_turn;
-        EXPECT_TRUE(space.motion_free(turn)) << "crossing " << crossing.critical;
-      }
+    // every connection's witnesses certified on the scaled parts
+    expect_witnesses_certified(model, space);
     for (std::size_t n = 0; n < configurations.size(); ++n) {
       SlicedConfiguration q = configurations[n];
       q.x *= s;
@@ -330,19 +335,7 @@ TEST(SlicedScale, PairWithArcsCrossesInTheFrameAsAtScaleOne) {
     EXPECT_EQ(got.interval_keys, expected.interval_keys);
     EXPECT_EQ(got.connections, expected.connections);
     EXPECT_EQ(got.components, expected.components);
-    for (const auto& crossing : space.crossings())
-      for (const auto& link : crossing.connections) {
-        EXPECT_EQ(static_cast<int>(oracle(model, link.left_witness)), static_cast<int>(SlicedLocation::Kind::free));
-        EXPECT_EQ(static_cast<int>(oracle(model, link.right_witness)), static_cast<int>(SlicedLocation::Kind::free));
-        SlicedLocation l = space.locate(link.left_witness), r = space.locate(link.right_witness);
-        EXPECT_EQ(l.cell, link.left_cell);
-        EXPECT_EQ(r.cell, link.right_cell);
-        SlicedMotion turn;
-        turn.from = link.left_witness;
-        turn.to = link.right_witness;
-        turn.through_half_turn = link.through_half_turn;
-        EXPECT_TRUE(space.motion_free(turn)) << "crossing " << crossing.critical;
-      }
+    expect_witnesses_certified(model, space);
   }
 }
 
@@ -380,18 +373,7 @@ TEST(SlicedScale, ExtremeScalesCrossInAFrameOfOrdinarySizeAsAtScaleOne) {
     EXPECT_EQ(got.interval_keys, expected.interval_keys);
     EXPECT_EQ(got.connections, expected.connections);
     EXPECT_EQ(got.components, expected.components);
-    for (const auto& crossing : space.crossings())
-      for (const auto& link : crossing.connections) {
-        EXPECT_EQ(static_cast<int>(oracle(model, link.left_witness)), static_cast<int>(SlicedLocation::Kind::free));
-        EXPECT_EQ(static_cast<int>(oracle(model, link.right_witness)), static_cast<int>(SlicedLocation::Kind::free));
-        EXPECT_EQ(space.locate(link.left_witness).cell, link.left_cell);
-        EXPECT_EQ(space.locate(link.right_witness).cell, link.right_cell);
-        SlicedMotion turn;
-        turn.from = link.left_witness;
-        turn.to = link.right_witness;
-        turn.through_half_turn = link.through_half_turn;
-        EXPECT_TRUE(space.motion_free(turn)) << "crossing " << crossing.critical;
-      }
+    expect_witnesses_certified(model, space);
   }
 }
 
