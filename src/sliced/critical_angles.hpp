@@ -99,6 +99,10 @@ std::optional<Rational> scale_free_factor(const Part& fixed, const Part& free, b
 /// within a factor 2 of the largest coordinate (exact).
 Rational length_unit(const Part& fixed, const Part& free);
 
+/// The power of two 2^(e - 4) with 2^e within a factor 2 of the largest coordinate, at any
+/// scale (length_unit without the ordinary range; 1 for a pair with no coordinate but 0).
+Rational size_unit(const Part& fixed, const Part& free);
+
 /// The part with every length multiplied by k > 0 about the origin (points, pivot, radii by k).
 Part scaled_part(const Part& part, const Rational& k);
 

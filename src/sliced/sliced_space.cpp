@@ -186,11 +186,26 @@ struct CoordinateMeasure {
 
 bool ordinary_scale(const Rational& largest);
 
-std::optional<Rational> scale_free_factor(const Part& fixed, const Part& free, bool any_scale) {
+// The measure of every coordinate of both parts and the free part's pivot.
+CoordinateMeasure pair_measure(const Part& fixed, const Part& free) {
   CoordinateMeasure m;
   m.add(fixed);
   m.add(free);
   m.add(free.motion.pivot);
+  return m;
+}
+
+// 2^(e - 4) for 2^e within a factor 2 of `largest` > 0 (1 for a 16..32 mm model; exact).
+Rational unit_of_size(const Rational& largest) {
+  long e = static_cast<long>(mpz_sizeinbase(largest.get_num_mpz_t(), 2)) -
+           static_cast<long>(mpz_sizeinbase(largest.get_den_mpz_t(), 2)) - 4;
+  mpz_class p = 1;
+  p <<= static_cast<unsigned long>(e < 0 ? -e : e);
+  return e < 0 ? Rational(mpz_class(1), p) : Rational(p);
+}
+
+std::optional<Rational> scale_free_factor(const Part& fixed, const Part& free, bool any_scale) {
+  const CoordinateMeasure m = pair_measure(fixed, free);
   if (m.numerator_gcd == 0) return std::nullopt;
   if (!any_scale && ordinary_scale(m.largest)) return std::nullopt;
   Rational k(m.denominator_lcm, m.numerator_gcd);   // 1 / g
@@ -214,17 +229,15 @@ bool ordinary_scale(const Rational& largest) {
 }
 
 Rational length_unit(const Part& fixed, const Part& free) {
-  CoordinateMeasure m;
-  m.add(fixed);
-  m.add(free);
-  m.add(free.motion.pivot);
+  const CoordinateMeasure m = pair_measure(fixed, free);
   if (sgn(m.largest) == 0 || ordinary_scale(m.largest)) return 1;
-  // 2^e within a factor 2 of the largest coordinate; the unit 2^(e - 4) (1 mm for a 16..32 mm model)
-  long e = static_cast<long>(mpz_sizeinbase(m.largest.get_num_mpz_t(), 2)) -
-           static_cast<long>(mpz_sizeinbase(m.largest.get_den_mpz_t(), 2)) - 4;
-  mpz_class p = 1;
-  p <<= static_cast<unsigned long>(e < 0 ? -e : e);
-  return e < 0 ? Rational(mpz_class(1), p) : Rational(p);
+  return unit_of_size(m.largest);
+}
+
+Rational size_unit(const Part& fixed, const Part& free) {
+  const CoordinateMeasure m = pair_measure(fixed, free);
+  if (sgn(m.largest) == 0) return 1;
+  return unit_of_size(m.largest);
 }
 
 // The part with every length multiplied by k > 0 (about the origin; radii by k).
@@ -277,11 +290,17 @@ struct SlicedSpace::Impl {
   Rational unit = 1;   // the length the crossings' sample nudges are measured in (sliced::length_unit)
   long length_unit_exponent = 0;   // lengths in units of 2^this mm (SlicedBuildOptions::normalise_lengths)
   // The scale-free frame of the crossings (a pair drawn at an extreme scale: sliced::
-  // scale_free_factor k): the parts times k, their polygonal pair, the slice box k * bound and
-  // the nudge unit of the scaled parts. The slice of the scaled parts at an angle is exactly k
-  // times the model's slice (translations scale with the parts), so a point q of a frame slice
-  // is the model's configuration q / k, in the corresponding cell (the same contact key), and
-  // every decision on it (free on both sides, steady across) is the same exact predicate.
+  // scale_free_factor k, the coordinates integers, then divided by the power of two that brings
+  // them to an ordinary size, sliced::size_unit: `frame` = k / that unit): the parts times
+  // `frame`, their polygonal pair, and the slice box and the nudge unit of the scaled parts, made
+  // as for an ordinary pair at 1 mm (session 52: the box k * bound and the steps k * unit
+  // carried the model's 10^300 x 2^-1000 in every rational, and integer coordinates put every
+  // cell's sample, its simplest rational, against the cell's side). The slice of the scaled
+  // parts at an angle is exactly `frame` times the model's slice (translations scale with the
+  // parts) inside both boxes (each holds every contact translation with a free margin), so a
+  // point q of a frame slice is the model's configuration q / frame, in the corresponding cell
+  // (the same contact key), and every decision on it (free on both sides, steady across) is the
+  // same exact predicate.
   std::optional<Rational> frame;
   std::optional<Part> frame_fixed, frame_free;
   std::optional<sliced::PolygonalPair> frame_pair;
@@ -424,7 +443,7 @@ struct SlicedSpace::Impl {
   }
 
   // The free cell of the slice holding (x, y) outside the box: the cell touching the box.
-  // `margin_unit`: unit (the model's slices) or k unit (a frame slice).
+  // `margin_unit`: unit (the model's slices) or frame_unit (a frame slice).
   std::size_t outer_cell(const CSpace& space) const { return outer_cell_in(space, unit); }
   std::size_t outer_cell_in(const CSpace& space, const Rational& margin_unit) const {
     const Rational& lo = space.charts()[0].x_lo;
@@ -530,12 +549,15 @@ struct SlicedSpace::Impl {
         scaled_b = sliced::scaled_part(*b, *k);
         a = &*scaled_a;
         b = &*scaled_b;
-        // the crossings' frame: the same parts (kept in Impl: frame_pair points at them)
-        frame = *k;
-        frame_fixed = *scaled_a;
-        frame_free = *scaled_b;
-        frame_bound = *k * bound;
+        // the crossings' frame: the same parts at an ordinary size (kept in Impl: frame_pair
+        // points at them), their box and unit as an ordinary pair's
+        const Rational to_ordinary = 1 / sliced::size_unit(*a, *b);
+        frame = *k * to_ordinary;
+        frame_fixed = sliced::scaled_part(*a, to_ordinary);
+        frame_free = sliced::scaled_part(*b, to_ordinary);
         frame_unit = sliced::length_unit(*frame_fixed, *frame_free);
+        const Point& frame_pivot = frame_free->motion.pivot;
+        frame_bound = reach(*frame_fixed, frame_pivot, frame_unit) + reach(*frame_free, frame_pivot, frame_unit) + 2 * frame_unit;
         if (!has_arc(*a) && !has_arc(*b)) frame_pair = sliced::polygonal_pair(*frame_fixed, *frame_free);
       }
       if (has_arc(*a) || has_arc(*b)) {
@@ -628,11 +650,13 @@ struct SlicedSpace::Impl {
       for (int round = 0; round < 4 && (left_done.size() < left_count || right_done.size() < right_count); ++round) {
         Near nr = near(i, round);
         // A pair drawn at an extreme scale crosses in its scale-free frame (frame_slice: the
-        // slices of the parts times k, whose cells' samples are the simplest rationals of cells
-        // of ordinary size, well inside them, as at scale 1; the model's own slices at 10^-30
-        // mm put them against a cell's side, on or beside the contact lines the steady test
-        // refuses). Every point below is in the frame's coordinates; a link's witnesses are
-        // the model's configurations q / k. Ordinary pairs: the model's slices (no frame).
+        // slices of the parts times `frame`, whose cells' samples are the simplest rationals of
+        // cells of ordinary size, well inside them, as at scale 1; the model's own slices at
+        // 10^-30 mm put them against a cell's side, on or beside the contact lines the steady
+        // test refuses, and so did a frame of integers up to 36 540 (session 51's frame: 10
+        // components for 3 without steps)). Every point below is in the frame's coordinates; a
+        // link's witnesses are the model's configurations q / frame. Ordinary pairs: the
+        // model's slices (no frame).
         auto ls = frame_slice(nr.left), rs = frame_slice(nr.right);
         const Rational& box = frame ? frame_bound : bound;
         const Rational& nudge = frame ? frame_unit : unit;
@@ -644,55 +668,36 @@ struct SlicedSpace::Impl {
               for (const Rational& e : {Rational(0), Rational(nudge / 1009), Rational(-nudge / 10007)}) {
                 samples.push_back(Point{Rational(cell.sample_x + e), Rational(cell.sample_y + e * Rational(13, 10))});
               }
-        // The samples moved by larger steps of the pair's own unit (k unit in a frame: the same
-        // fraction of the parts) in four directions (only certified ones are used: free on the
-        // left, steady across, free on the right).
-        const Rational margin_unit = frame ? Rational(*frame * unit) : unit;
-        auto add_steps = [&](std::vector<Point>& points) {
-          const std::size_t base_count = points.size();
-          for (std::size_t n = 0; n < base_count; n += 3)
-            for (const Rational& e : {Rational(margin_unit / 256), Rational(margin_unit / 64), Rational(margin_unit / 16),
-                                      Rational(margin_unit / 4), margin_unit})
-              for (const auto& [dx, dy] : {std::pair<int, int>{1, 1}, {1, -1}, {-1, 1}, {-1, -1}})
-                points.push_back(Point{Rational(points[n].x + dx * e), Rational(points[n].y + dy * e * Rational(13, 10))});
-        };
         // A pair at an extreme scale outside the frame (mixed scales: unit != 1 and no factor
-        // shortens the coordinates) tries them always. Ordinary pairs keep their samples.
-        if (!frame && unit != 1) add_steps(samples);
-        std::size_t before = links.size();
-        auto try_samples = [&](std::size_t from) {
-          for (std::size_t j = from; j < samples.size(); ++j) {
-            const Point& q = samples[j];
-            std::size_t lc = no_index, rc = no_index;
-            if (classify_in(*ls, box, q.x, q.y, &lc) != SlicedLocation::Kind::free) continue;
-            if (!steady_in_frame(q, nr.u_lo, nr.u_hi, nr.flip)) continue;
-            if (classify_in(*rs, box, q.x, q.y, &rc) != SlicedLocation::Kind::free)
-              throw GeometryError("internal: a configuration steady across a critical angle is not free on both sides");
-            if (lc == no_index) lc = outer_cell_in(*ls, margin_unit);
-            if (rc == no_index) rc = outer_cell_in(*rs, margin_unit);
-            std::size_t a = match(crossing.left_interval, *ls, lc), b = match(crossing.right_interval, *rs, rc);
-            left_done.insert(a);
-            right_done.insert(b);
-            Point w = q;   // the model's configuration
-            if (frame) w = Point{Rational(q.x / *frame), Rational(q.y / *frame)};
-            SlicedConnection link{a, b, SlicedConfiguration{w.x, w.y, nr.left}, SlicedConfiguration{w.x, w.y, nr.right}, nr.flip};
-            link.left_witness.angle.t.canonicalize();   // (dyadic refinement leaves fractions unreduced)
-            link.right_witness.angle.t.canonicalize();
-            links.emplace(std::make_pair(a, b), link);
-          }
-        };
-        try_samples(0);
-        // A frame's samples are the simplest rationals of its cells: integers when its
-        // coordinates are large, the least of them near the cell's side (the corridor with a peg
-        // of 155/29 x 10^-30 ... 10^-300: frame coordinates up to about 36 540, while the peg's
-        // corners sweep several units in a round's turn; no sample was steady across the
-        // critical angles at 0, +-90 and 180 degrees: 10 components for 3). Where a cell of
-        // either side is still unreached, the steps are tried too (session 51); a crossing whose
-        // samples reach every cell is as before.
-        if (frame && (left_done.size() < left_count || right_done.size() < right_count)) {
+        // shortens the coordinates) also tries the samples moved by larger steps of the pair's
+        // own unit in four directions (only certified ones are used: free on the left, steady
+        // across, free on the right). Ordinary pairs and frames (an ordinary pair: session 52)
+        // keep their samples.
+        if (!frame && unit != 1) {
           const std::size_t base_count = samples.size();
-          add_steps(samples);
-          try_samples(base_count);
+          for (std::size_t n = 0; n < base_count; n += 3)
+            for (const Rational& e : {Rational(unit / 256), Rational(unit / 64), Rational(unit / 16), Rational(unit / 4), unit})
+              for (const auto& [dx, dy] : {std::pair<int, int>{1, 1}, {1, -1}, {-1, 1}, {-1, -1}})
+                samples.push_back(Point{Rational(samples[n].x + dx * e), Rational(samples[n].y + dy * e * Rational(13, 10))});
+        }
+        std::size_t before = links.size();
+        for (const Point& q : samples) {
+          std::size_t lc = no_index, rc = no_index;
+          if (classify_in(*ls, box, q.x, q.y, &lc) != SlicedLocation::Kind::free) continue;
+          if (!steady_in_frame(q, nr.u_lo, nr.u_hi, nr.flip)) continue;
+          if (classify_in(*rs, box, q.x, q.y, &rc) != SlicedLocation::Kind::free)
+            throw GeometryError("internal: a configuration steady across a critical angle is not free on both sides");
+          if (lc == no_index) lc = outer_cell_in(*ls, nudge);
+          if (rc == no_index) rc = outer_cell_in(*rs, nudge);
+          std::size_t a = match(crossing.left_interval, *ls, lc), b = match(crossing.right_interval, *rs, rc);
+          left_done.insert(a);
+          right_done.insert(b);
+          Point w = q;   // the model's configuration
+          if (frame) w = Point{Rational(q.x / *frame), Rational(q.y / *frame)};
+          SlicedConnection link{a, b, SlicedConfiguration{w.x, w.y, nr.left}, SlicedConfiguration{w.x, w.y, nr.right}, nr.flip};
+          link.left_witness.angle.t.canonicalize();   // (dyadic refinement leaves fractions unreduced)
+          link.right_witness.angle.t.canonicalize();
+          links.emplace(std::make_pair(a, b), link);
         }
         if (round >= 1 && links.size() == before) break;   // the rest end or start here
       }

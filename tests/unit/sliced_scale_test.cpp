@@ -126,6 +126,27 @@ Structure structure_of(const SlicedSpace& space) {
   return out;
 }
 
+// Every connection's witnesses are the model's configurations (not a frame's): free by the
+// exact overlap oracle on the model's parts, located in the connected cells of the two
+// intervals, and the pure rotation between them is free (the motion's exact first contact).
+void expect_witnesses_certified(const Model& model, const SlicedSpace& space) {
+  for (const auto& crossing : space.crossings())
+    for (const auto& link : crossing.connections) {
+      EXPECT_EQ(static_cast<int>(oracle(model, link.left_witness)), static_cast<int>(SlicedLocation::Kind::free));
+      EXPECT_EQ(static_cast<int>(oracle(model, link.right_witness)), static_cast<int>(SlicedLocation::Kind::free));
+      SlicedLocation l = space.locate(link.left_witness), r = space.locate(link.right_witness);
+      EXPECT_EQ(l.interval, crossing.left_interval);
+      EXPECT_EQ(l.cell, link.left_cell);
+      EXPECT_EQ(r.interval, crossing.right_interval);
+      EXPECT_EQ(r.cell, link.right_cell);
+      SlicedMotion turn;
+      turn.from = link.left_witness;
+      turn.to = link.right_witness;
+      turn.through_half_turn = link.through_half_turn;
+      EXPECT_TRUE(space.motion_free(turn)) << "crossing " << crossing.critical;
+    }
+}
+
 TEST(SlicedScale, UniformScalesHaveTheSameCriticalAnglesCellsAndLocations) {
   const Model unit = corridor(6);
   const SlicedSpace reference = SlicedSpace::build(unit, "fixed", "free");
@@ -223,24 +244,8 @@ TEST(SlicedScale, UniformScalesHaveTheSameCriticalAnglesCellsAndLocations) {
     // 10^-30 and 10^-300, 4 components for 3)
     EXPECT_EQ(got.connections, expected.connections);
     EXPECT_EQ(got.components, expected.components);
-    // every connection's witnesses are the model's configurations (not the frame's): free by the
-    // exact overlap oracle on the scaled parts, in the connected cells of the two intervals,
-    // and the pure rotation between them is free (the motion's exact first contact)
-    for (const auto& crossing : space.crossings())
-      for (const auto& link : crossing.connections) {
-        EXPECT_EQ(static_cast<int>(oracle(model, link.left_witness)), static_cast<int>(SlicedLocation::Kind::free));
-        EXPECT_EQ(static_cast<int>(oracle(model, link.right_witness)), static_cast<int>(SlicedLocation::Kind::free));
-        SlicedLocation l = space.locate(link.left_witness), r = space.locate(link.right_witness);
-        EXPECT_EQ(l.interval, crossing.left_interval);
-        EXPECT_EQ(l.cell, link.left_cell);
-        EXPECT_EQ(r.interval, crossing.right_interval);
-        EXPECT_EQ(r.cell, link.right_cell);
-        SlicedMotion turn;
-        turn.from = link.left_witness;
-        turn.to = link.right_witness;
-        turn.through_half_turn = link.through_half_turn;
-        EXPECT_TRUE(space.motion_free(turn)) << "crossing " << crossing.critical;
-      }
+    // every connection's witnesses certified on the scaled parts
+    expect_witnesses_certified(model, space);
     for (std::size_t n = 0; n < configurations.size(); ++n) {
       SlicedConfiguration q = configurations[n];
       q.x *= s;
@@ -330,19 +335,45 @@ TEST(SlicedScale, PairWithArcsCrossesInTheFrameAsAtScaleOne) {
     EXPECT_EQ(got.interval_keys, expected.interval_keys);
     EXPECT_EQ(got.connections, expected.connections);
     EXPECT_EQ(got.components, expected.components);
-    for (const auto& crossing : space.crossings())
-      for (const auto& link : crossing.connections) {
-        EXPECT_EQ(static_cast<int>(oracle(model, link.left_witness)), static_cast<int>(SlicedLocation::Kind::free));
-        EXPECT_EQ(static_cast<int>(oracle(model, link.right_witness)), static_cast<int>(SlicedLocation::Kind::free));
-        SlicedLocation l = space.locate(link.left_witness), r = space.locate(link.right_witness);
-        EXPECT_EQ(l.cell, link.left_cell);
-        EXPECT_EQ(r.cell, link.right_cell);
-        SlicedMotion turn;
-        turn.from = link.left_witness;
-        turn.to = link.right_witness;
-        turn.through_half_turn = link.through_half_turn;
-        EXPECT_TRUE(space.motion_free(turn)) << "crossing " << crossing.critical;
-      }
+    expect_witnesses_certified(model, space);
+  }
+}
+
+// A pair drawn at an extreme scale crosses its critical angles in a frame of ordinary size (the
+// integers of scale_free_factor divided by sliced::size_unit) as a pair at 1 mm does, with its
+// cells' samples alone (session 52; session 51's frame of integers up to 36 540 put the samples
+// against the cells' sides and needed steps of k x unit, whose rationals carried the model's
+// 10^300: 2x the build's time at 10^-300). Generated corridors (peg 27/5 and three random
+// lengths in [5, 6]) times S = 10^e r (e = -300, -30, 30, 300 in turn; r random in [1/2, 2)):
+// the same critical angles (exactly), free cells' contact keys, connections per crossing and
+// components as at 1; every witness free by the exact overlap oracle at S and located in its
+// connected cell, and the turn between a link's witnesses free.
+TEST(SlicedScale, ExtremeScalesCrossInAFrameOfOrdinarySizeAsAtScaleOne) {
+  Random random(5252);
+  const int exponents[] = {-300, -30, 30, 300};
+  for (int n = 0; n < 4; ++n) {
+    const Rational length = n == 0 ? Rational(27, 5) : random_rational(random, Rational(5), Rational(6));
+    const Model unit = corridor(length);
+    const SlicedSpace reference = SlicedSpace::build(unit, "fixed", "free");
+    const Structure expected = structure_of(reference);
+    const int e = exponents[n];
+    const Rational r = random_rational(random, Rational(1, 2), Rational(2), 1000);
+    SCOPED_TRACE("peg " + to_exact_string(length) + ", scale 1e" + std::to_string(e) + " * " + to_exact_string(r));
+    const Model model = scaled(unit, power_of_ten(e) * r);
+    ASSERT_TRUE(sliced::scale_free_factor(model.parts[0], model.parts[1]).has_value());
+    const SlicedSpace space = SlicedSpace::build(model, "fixed", "free");
+    ASSERT_EQ(space.critical_angles().size(), reference.critical_angles().size());
+    for (std::size_t i = 0; i < space.critical_angles().size(); ++i) {
+      const auto& c = space.critical_angles()[i];
+      const auto& u = reference.critical_angles()[i];
+      EXPECT_EQ(c.half_turn, u.half_turn);
+      if (!c.half_turn && !u.half_turn) EXPECT_EQ(algebra::compare(real(c.t), real(u.t)), 0) << "critical angle " << i;
+    }
+    const Structure got = structure_of(space);
+    EXPECT_EQ(got.interval_keys, expected.interval_keys);
+    EXPECT_EQ(got.connections, expected.connections);
+    EXPECT_EQ(got.components, expected.components);
+    expect_witnesses_certified(model, space);
   }
 }
 
