@@ -166,7 +166,8 @@ RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const
   };
   const std::size_t blocks = (grid + block_side - 1) / block_side;
   std::vector<std::unordered_map<std::size_t, Block>> block_lists(nx * ny);
-  const bool tile_level = sub > block_side;
+  const bool lists = cspace::region_tile_lists().load(std::memory_order_relaxed);
+  const bool tile_level = lists && sub > block_side;
   std::vector<std::unordered_map<std::size_t, Block>> tile_lists(nx * ny);
   // tile (ti, tj) of chart c: tested and listed on first use
   auto tile_block = [&](std::size_t c, std::size_t ti, std::size_t tj) -> Block& {
@@ -239,7 +240,7 @@ RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const
   // (a block holding several tiles: they share it)
   using Pairs = std::vector<cspace::BlockedTester::DiskPair>;
   region.lists.assign(nx * ny, std::vector<TileList>(static_cast<std::size_t>(tiles) * tiles));
-  for (std::size_t c = 0; c < nx * ny; ++c) {
+  for (std::size_t c = 0; c < nx * ny && lists; ++c) {
     std::unordered_map<std::size_t, std::shared_ptr<const Pairs>> shared;   // per block
     for (std::size_t ti = 0; ti < tiles; ++ti)
       for (std::size_t tj = 0; tj < tiles; ++tj) {
@@ -294,6 +295,15 @@ RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const
   }
   return region;
 }
+
+}  // namespace
+
+std::atomic<bool>& cspace::region_tile_lists() {
+  static std::atomic<bool> on{true};
+  return on;
+}
+
+namespace {
 
 // The sub-axis of tile k of `tiles` of a chart axis.
 cspace::ChartAxis tile_axis(const cspace::ChartAxis& axis, std::size_t k, std::size_t tiles) {

@@ -15,6 +15,7 @@
 #include "oracle/overlap.hpp"
 #include "kernels/interval.hpp"
 #include "test_paths.hpp"
+#include "chart_sub_axis.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
@@ -845,6 +846,101 @@ TEST(BlockedTester, GridAnswersInAnyOrderAreTheSweepsAndOverlapExactly) {
             << " wrong, " << counts.points << " configurations of blocked cells checked with the oracle\n";
   EXPECT_EQ(wrong, 0);
   EXPECT_GT(blocked, 1000);
+}
+
+
+// An operating-region tile's grid given the candidate list of a box holding the tile
+// (BlockedCells::enclose: the list the flood made for the tile or its block) answers as the
+// sweep: on tiles (1/4 to 1/16 of a chart per axis) of the examples' charts and of generated
+// bar-and-wall pairs at 1e-200 to 1e200, the list of a random box holding the tile (the
+// tile's own enclosure or wider, up to the chart), cells asked in any order at depths 2-12:
+// a cell the grid calls free is free to a fresh plain sweep, a blocked one is blocked to it or
+// inside a cell the grid called blocked before, and at a random rational configuration of every
+// fourth blocked cell the parts overlap (the exact oracle). A list of a box that does not hold
+// the tile (its upper half cut off) is refused, and the grid offered it answers as the sweep.
+TEST(BlockedTester, TileGridsOnAnEnclosingBoxsListAreTheSweeps) {
+  Random random(20261204);
+  int cells = 0, blocked = 0, wrong = 0, tiles = 0, accepted = 0, refused = 0;
+  Counts counts;
+  auto check = [&](const std::string& what, const Model& model, const cspace::PairAxes& axes,
+                   const cspace::ChartLayout& layout, int count) {
+    auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
+    if (!tester->usable()) return;
+    for (const auto& x : layout.x_charts)
+      for (const auto& y : layout.y_charts)
+        for (int t = 0; t < 3; ++t) {
+          const long side = 4L << (random() % 3);
+          const long tx = static_cast<long>(random() % static_cast<unsigned long>(side));
+          const long ty = static_cast<long>(random() % static_cast<unsigned long>(side));
+          const cspace::ChartAxis tile_x = test_charts::sub_axis(x, tx, 1, side);
+          const cspace::ChartAxis tile_y = test_charts::sub_axis(y, ty, 1, side);
+          // a box holding the tile: its enclosure widened by 0 to a tile on each side, within the chart
+          const Interval chart_x{cspace::algebra::lower_double(x.lo), cspace::algebra::upper_double(x.hi)};
+          const Interval chart_y{cspace::algebra::lower_double(y.lo), cspace::algebra::upper_double(y.hi)};
+          auto widened = [&](const cspace::ChartAxis& tile, const Interval& chart) {
+            const double lo = cspace::algebra::lower_double(tile.lo), hi = cspace::algebra::upper_double(tile.hi);
+            const double step = (hi - lo) / 4;
+            return Interval{std::max(chart.lo, lo - step * static_cast<double>(random() % 5)),
+                            std::min(chart.hi, hi + step * static_cast<double>(random() % 5))};
+          };
+          const Interval ex = widened(tile_x, chart_x), ey = widened(tile_y, chart_y);
+          cspace::BlockedTester::Cache cache;
+          auto pairs = std::make_shared<std::vector<cspace::BlockedTester::DiskPair>>();
+          if (tester->blocked(x, y, ex, ey, cache, nullptr, pairs.get())) continue;   // no list
+          ++tiles;
+          for (bool holds : {true, false}) {
+            cspace::BlockedCells grid(tester, tile_x, tile_y, 2, 9);
+            const Interval cut{ex.lo, 0.5 * (cspace::algebra::lower_double(tile_x.lo) +
+                                             cspace::algebra::upper_double(tile_x.hi))};
+            const bool kept = grid.enclose(holds ? ex : cut, ey, pairs);
+            EXPECT_EQ(kept, holds) << what << (holds ? ": a list of a box holding the tile refused"
+                                                     : ": a list of a box not holding the tile kept");
+            (kept ? accepted : refused) += 1;
+            std::set<std::tuple<int, long, long>> said_blocked;
+            int depth = 2;
+            long i = 0, j = 0;
+            for (int n = 0; n < count; ++n) {
+              const long cells_per_side = 1L << depth;
+              if (n % 4 == 0) {   // a new place
+                depth = 2 + static_cast<int>(random() % 11);
+                i = static_cast<long>(random() % (1UL << depth));
+                j = static_cast<long>(random() % (1UL << depth));
+              } else if (random() % 2 == 0) {
+                long& next = random() % 2 ? i : j;   // the next column or row
+                next = std::min(cells_per_side - 1, next + 1);
+              } else if (depth < 12) {   // a child
+                ++depth;
+                i = 2 * i + static_cast<long>(random() % 2);
+                j = 2 * j + static_cast<long>(random() % 2);
+              }
+              const Interval bx = grid.cell_x(depth, i), by = grid.cell_y(depth, j);
+              const bool answer = grid.blocked(depth, i, j);
+              const bool plain = tester->blocked(tile_x, tile_y, bx, by);
+              ++cells;
+              const std::string where = what + " tile " + std::to_string(tx) + ", " + std::to_string(ty) + " of " +
+                                        std::to_string(side) + " cell " + std::to_string(depth) + ", " +
+                                        std::to_string(i) + ", " + std::to_string(j);
+              bool inside = false;
+              for (int up = 1; up <= depth && !inside; ++up) inside = said_blocked.count({depth - up, i >> up, j >> up}) > 0;
+              if (answer != plain && !(answer && inside)) {
+                ADD_FAILURE() << where << ": the grid says " << (answer ? "blocked" : "free") << ", the sweep not";
+                ++wrong;
+              }
+              if (!answer) continue;
+              ++blocked;
+              said_blocked.insert({depth, i, j});
+              if (blocked % 4 == 0) check_blocked_box(model, axes, tile_x, tile_y, bx, by, true, 1, random, counts, where);
+            }
+          }
+        }
+  };
+  on_examples_and_bar_walls(random, 60, 60, check);
+  std::cout << tiles << " tiles (" << accepted << " lists kept, " << refused << " refused), " << cells << " cells, "
+            << blocked << " blocked, " << wrong << " wrong, " << counts.points
+            << " configurations of blocked cells checked with the oracle\n";
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(blocked, 500);
+  EXPECT_GT(tiles, 40);
 }
 
 }  // namespace
