@@ -857,7 +857,7 @@ TEST(BlockedTester, GridAnswersInAnyOrderAreTheSweepsAndOverlapExactly) {
 // a cell the grid calls free is free to a fresh plain sweep, a blocked one is blocked to it or
 // inside a cell the grid called blocked before, and at a random rational configuration of every
 // fourth blocked cell the parts overlap (the exact oracle). A list of a box that does not hold
-// the tile (its upper half cut off) is refused, and the grid offered it answers as the sweep.
+// the tile (a box beside it) is refused, and the grid offered it answers as the sweep.
 TEST(BlockedTester, TileGridsOnAnEnclosingBoxsListAreTheSweeps) {
   Random random(20261204);
   int cells = 0, blocked = 0, wrong = 0, tiles = 0, accepted = 0, refused = 0;
@@ -888,11 +888,16 @@ TEST(BlockedTester, TileGridsOnAnEnclosingBoxsListAreTheSweeps) {
           auto pairs = std::make_shared<std::vector<cspace::BlockedTester::DiskPair>>();
           if (tester->blocked(x, y, ex, ey, cache, nullptr, pairs.get())) continue;   // no list
           ++tiles;
+          // the list of a box beside the tile (the tile moved by half the chart in x; its pairs
+          // are other disks')
+          const double half = 0.5 * (chart_x.hi - chart_x.lo);
+          const double shift = 0.5 * (ex.lo + ex.hi) < chart_x.lo + half ? half : -half;
+          const Interval cut{ex.lo + shift, ex.hi + shift};
+          auto cut_pairs = std::make_shared<std::vector<cspace::BlockedTester::DiskPair>>();
+          tester->blocked(x, y, cut, ey, cache, nullptr, cut_pairs.get());
           for (bool holds : {true, false}) {
             cspace::BlockedCells grid(tester, tile_x, tile_y, 2, 9);
-            const Interval cut{ex.lo, 0.5 * (cspace::algebra::lower_double(tile_x.lo) +
-                                             cspace::algebra::upper_double(tile_x.hi))};
-            const bool kept = grid.enclose(holds ? ex : cut, ey, pairs);
+            const bool kept = grid.enclose(holds ? ex : cut, ey, holds ? pairs : cut_pairs);
             EXPECT_EQ(kept, holds) << what << (holds ? ": a list of a box holding the tile refused"
                                                      : ": a list of a box not holding the tile kept");
             (kept ? accepted : refused) += 1;
