@@ -775,6 +775,64 @@ TEST(BlockedTester, CandidateLoopKeepsTheDefinitionsPairsInOrder) {
   EXPECT_GT(nonempty, 200);   // lists that keep some pairs and drop others
 }
 
+// Asks `grid` (of chart box x, y or a tile of it) `count` cells in turn, as the curve
+// generator's and the builder's walks mix them: every fourth a new place (depth 2 to 14), else
+// the next column, the next row or a child of the last cell. A cell the grid calls free must be
+// free to the plain tester (a fresh sweep of the cell alone), a cell it calls blocked blocked to
+// it or inside a cell the grid called blocked before (`inherited`); at a random rational
+// configuration of every fourth blocked cell the parts overlap (the exact oracle). Returns the
+// wrong answers.
+int walk_grid(cspace::BlockedCells& grid, const cspace::BlockedTester& tester, const Model& model,
+              const cspace::PairAxes& axes, const cspace::ChartAxis& x, const cspace::ChartAxis& y, int count,
+              Random& random, Counts& counts, int& cells, int& blocked, int& inherited, const std::string& what) {
+  int wrong = 0;
+  std::set<std::tuple<int, long, long>> said_blocked;
+  auto inside_blocked = [&](int depth, long i, long j) {
+    for (int up = 1; up <= depth; ++up)
+      if (said_blocked.count({depth - up, i >> up, j >> up})) return true;
+    return false;
+  };
+  int depth = 2;
+  long i = 0, j = 0;
+  for (int n = 0; n < count; ++n) {
+    const long side = 1L << depth;
+    if (n % 4 == 0) {   // a new place
+      depth = 2 + static_cast<int>(random() % 13);
+      i = static_cast<long>(random() % (1UL << depth));
+      j = static_cast<long>(random() % (1UL << depth));
+    } else if (random() % 3 == 0) {
+      i = std::min(side - 1, i + 1);   // the next column
+    } else if (random() % 2 == 0) {
+      j = std::min(side - 1, j + 1);   // the next row
+    } else if (depth < 14) {           // a child
+      ++depth;
+      i = 2 * i + static_cast<long>(random() % 2);
+      j = 2 * j + static_cast<long>(random() % 2);
+    }
+    const Interval bx = grid.cell_x(depth, i), by = grid.cell_y(depth, j);
+    const bool answer = grid.blocked(depth, i, j);
+    const bool plain = tester.blocked(x, y, bx, by);
+    ++cells;
+    const std::string where = what + " cell " + std::to_string(depth) + ", " + std::to_string(i) + ", " +
+                              std::to_string(j);
+    if (!answer) {
+      EXPECT_FALSE(plain) << where << ": the grid calls free a blocked cell";
+      wrong += plain;
+      continue;
+    }
+    ++blocked;
+    said_blocked.insert({depth, i, j});
+    if (!plain) {
+      const bool in = inside_blocked(depth, i, j);
+      EXPECT_TRUE(in) << where << ": the grid calls blocked a cell the sweep does not";
+      inherited += in;
+      wrong += !in;
+    }
+    if (blocked % 4 == 0) check_blocked_box(model, axes, x, y, bx, by, true, 1, random, counts, where);
+  }
+  return wrong;
+}
+
 // The grid (BlockedCells) asked in any order — runs of neighbouring cells, children and
 // grandchildren of the last cell and cells at random, of depths 2 to 14, as the curve
 // generator's and the builder's walks mix them: a cell the grid calls free is free to the
@@ -795,50 +853,7 @@ TEST(BlockedTester, GridAnswersInAnyOrderAreTheSweepsAndOverlapExactly) {
     for (const auto& x : layout.x_charts)
       for (const auto& y : layout.y_charts) {
         cspace::BlockedCells grid(tester, x, y, 2, 9);
-        std::set<std::tuple<int, long, long>> said_blocked;
-        auto inside_blocked = [&](int depth, long i, long j) {
-          for (int up = 1; up <= depth; ++up)
-            if (said_blocked.count({depth - up, i >> up, j >> up})) return true;
-          return false;
-        };
-        int depth = 2;
-        long i = 0, j = 0;
-        for (int n = 0; n < count; ++n) {
-          const long side = 1L << depth;
-          if (n % 4 == 0) {   // a new place
-            depth = 2 + static_cast<int>(random() % 13);
-            i = static_cast<long>(random() % (1UL << depth));
-            j = static_cast<long>(random() % (1UL << depth));
-          } else if (random() % 3 == 0) {
-            i = std::min(side - 1, i + 1);   // the next column
-          } else if (random() % 2 == 0) {
-            j = std::min(side - 1, j + 1);   // the next row
-          } else if (depth < 14) {           // a child
-            ++depth;
-            i = 2 * i + static_cast<long>(random() % 2);
-            j = 2 * j + static_cast<long>(random() % 2);
-          }
-          const Interval bx = grid.cell_x(depth, i), by = grid.cell_y(depth, j);
-          const bool answer = grid.blocked(depth, i, j);
-          const bool plain = tester->blocked(x, y, bx, by);
-          ++cells;
-          const std::string where = what + " cell " + std::to_string(depth) + ", " + std::to_string(i) + ", " +
-                                    std::to_string(j);
-          if (!answer) {
-            EXPECT_FALSE(plain) << where << ": the grid calls free a blocked cell";
-            wrong += plain;
-            continue;
-          }
-          ++blocked;
-          said_blocked.insert({depth, i, j});
-          if (!plain) {
-            const bool in = inside_blocked(depth, i, j);
-            EXPECT_TRUE(in) << where << ": the grid calls blocked a cell the sweep does not";
-            inherited += in;
-            wrong += !in;
-          }
-          if (blocked % 4 == 0) check_blocked_box(model, axes, x, y, bx, by, true, 1, random, counts, where);
-        }
+        wrong += walk_grid(grid, *tester, model, axes, x, y, count, random, counts, cells, blocked, inherited, what);
       }
   };
   on_examples_and_bar_walls(random, 1200, 400, check);
@@ -853,14 +868,14 @@ TEST(BlockedTester, GridAnswersInAnyOrderAreTheSweepsAndOverlapExactly) {
 // (BlockedCells::enclose: the list the flood made for the tile or its block) answers as the
 // sweep: on tiles (1/4 to 1/16 of a chart per axis) of the examples' charts and of generated
 // bar-and-wall pairs at 1e-200 to 1e200, the list of a random box holding the tile (the
-// tile's own enclosure or wider, up to the chart), cells asked in any order at depths 2-12:
+// tile's own enclosure or wider, up to the chart), cells asked in any order at depths 2-14:
 // a cell the grid calls free is free to a fresh plain sweep, a blocked one is blocked to it or
 // inside a cell the grid called blocked before, and at a random rational configuration of every
 // fourth blocked cell the parts overlap (the exact oracle). A list of a box that does not hold
 // the tile (a box beside it) is refused, and the grid offered it answers as the sweep.
 TEST(BlockedTester, TileGridsOnAnEnclosingBoxsListAreTheSweeps) {
   Random random(20261204);
-  int cells = 0, blocked = 0, wrong = 0, tiles = 0, accepted = 0, refused = 0;
+  int cells = 0, blocked = 0, inherited = 0, wrong = 0, tiles = 0, accepted = 0, refused = 0;
   Counts counts;
   auto check = [&](const std::string& what, const Model& model, const cspace::PairAxes& axes,
                    const cspace::ChartLayout& layout, int count) {
@@ -901,47 +916,16 @@ TEST(BlockedTester, TileGridsOnAnEnclosingBoxsListAreTheSweeps) {
             EXPECT_EQ(kept, holds) << what << (holds ? ": a list of a box holding the tile refused"
                                                      : ": a list of a box not holding the tile kept");
             (kept ? accepted : refused) += 1;
-            std::set<std::tuple<int, long, long>> said_blocked;
-            int depth = 2;
-            long i = 0, j = 0;
-            for (int n = 0; n < count; ++n) {
-              const long cells_per_side = 1L << depth;
-              if (n % 4 == 0) {   // a new place
-                depth = 2 + static_cast<int>(random() % 11);
-                i = static_cast<long>(random() % (1UL << depth));
-                j = static_cast<long>(random() % (1UL << depth));
-              } else if (random() % 2 == 0) {
-                long& next = random() % 2 ? i : j;   // the next column or row
-                next = std::min(cells_per_side - 1, next + 1);
-              } else if (depth < 12) {   // a child
-                ++depth;
-                i = 2 * i + static_cast<long>(random() % 2);
-                j = 2 * j + static_cast<long>(random() % 2);
-              }
-              const Interval bx = grid.cell_x(depth, i), by = grid.cell_y(depth, j);
-              const bool answer = grid.blocked(depth, i, j);
-              const bool plain = tester->blocked(tile_x, tile_y, bx, by);
-              ++cells;
-              const std::string where = what + " tile " + std::to_string(tx) + ", " + std::to_string(ty) + " of " +
-                                        std::to_string(side) + " cell " + std::to_string(depth) + ", " +
-                                        std::to_string(i) + ", " + std::to_string(j);
-              bool inside = false;
-              for (int up = 1; up <= depth && !inside; ++up) inside = said_blocked.count({depth - up, i >> up, j >> up}) > 0;
-              if (answer != plain && !(answer && inside)) {
-                ADD_FAILURE() << where << ": the grid says " << (answer ? "blocked" : "free") << ", the sweep not";
-                ++wrong;
-              }
-              if (!answer) continue;
-              ++blocked;
-              said_blocked.insert({depth, i, j});
-              if (blocked % 4 == 0) check_blocked_box(model, axes, tile_x, tile_y, bx, by, true, 1, random, counts, where);
-            }
+            wrong += walk_grid(grid, *tester, model, axes, tile_x, tile_y, count, random, counts, cells, blocked,
+                               inherited,
+                               what + " tile " + std::to_string(tx) + ", " + std::to_string(ty) + " of " +
+                                   std::to_string(side) + (holds ? "" : " (offered a list of a box beside it)"));
           }
         }
   };
   on_examples_and_bar_walls(random, 60, 60, check);
   std::cout << tiles << " tiles (" << accepted << " lists kept, " << refused << " refused), " << cells << " cells, "
-            << blocked << " blocked, " << wrong << " wrong, " << counts.points
+            << blocked << " blocked (" << inherited << " inside a blocked cell), " << wrong << " wrong, " << counts.points
             << " configurations of blocked cells checked with the oracle\n";
   EXPECT_EQ(wrong, 0);
   EXPECT_GT(blocked, 500);
