@@ -923,7 +923,7 @@ TEST(BlockedTester, TileGridsOnAnEnclosingBoxsListAreTheSweeps) {
           }
         }
   };
-  on_examples_and_bar_walls(random, 60, 60, check);
+  on_examples_and_bar_walls(random, 120, 120, check);
   std::cout << tiles << " tiles (" << accepted << " lists kept, " << refused << " refused), " << cells << " cells, "
             << blocked << " blocked (" << inherited << " inside a blocked cell), " << wrong << " wrong, " << counts.points
             << " configurations of blocked cells checked with the oracle\n";
