@@ -833,6 +833,20 @@ int walk_grid(cspace::BlockedCells& grid, const cspace::BlockedTester& tester, c
   return wrong;
 }
 
+// `check(what, model, axes, tester, x, y, count)` on every chart of the pairs of
+// on_examples_and_bar_walls with a usable tester.
+template <class F>
+void on_every_chart(Random& random, int example_count, int bar_count, F&& check) {
+  on_examples_and_bar_walls(random, example_count, bar_count,
+                            [&](const std::string& what, const Model& model, const cspace::PairAxes& axes,
+                                const cspace::ChartLayout& layout, int count) {
+                              auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
+                              if (!tester->usable()) return;
+                              for (const auto& x : layout.x_charts)
+                                for (const auto& y : layout.y_charts) check(what, model, axes, tester, x, y, count);
+                            });
+}
+
 // The grid (BlockedCells) asked in any order — runs of neighbouring cells, children and
 // grandchildren of the last cell and cells at random, of depths 2 to 14, as the curve
 // generator's and the builder's walks mix them: a cell the grid calls free is free to the
@@ -846,17 +860,12 @@ TEST(BlockedTester, GridAnswersInAnyOrderAreTheSweepsAndOverlapExactly) {
   Random random(20261203);
   int cells = 0, blocked = 0, inherited = 0, wrong = 0;
   Counts counts;
-  auto check = [&](const std::string& what, const Model& model, const cspace::PairAxes& axes,
-                   const cspace::ChartLayout& layout, int count) {
-    auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
-    if (!tester->usable()) return;
-    for (const auto& x : layout.x_charts)
-      for (const auto& y : layout.y_charts) {
-        cspace::BlockedCells grid(tester, x, y, 2, 9);
-        wrong += walk_grid(grid, *tester, model, axes, x, y, count, random, counts, cells, blocked, inherited, what);
-      }
-  };
-  on_examples_and_bar_walls(random, 1200, 400, check);
+  on_every_chart(random, 1200, 400, [&](const std::string& what, const Model& model, const cspace::PairAxes& axes,
+                                        const std::shared_ptr<cspace::BlockedTester>& tester, const cspace::ChartAxis& x,
+                                        const cspace::ChartAxis& y, int count) {
+    cspace::BlockedCells grid(tester, x, y, 2, 9);
+    wrong += walk_grid(grid, *tester, model, axes, x, y, count, random, counts, cells, blocked, inherited, what);
+  });
   std::cout << cells << " cells, " << blocked << " blocked (" << inherited << " inside a blocked cell), " << wrong
             << " wrong, " << counts.points << " configurations of blocked cells checked with the oracle\n";
   EXPECT_EQ(wrong, 0);
@@ -877,53 +886,49 @@ TEST(BlockedTester, TileGridsOnAnEnclosingBoxsListAreTheSweeps) {
   Random random(20261204);
   int cells = 0, blocked = 0, inherited = 0, wrong = 0, tiles = 0, accepted = 0, refused = 0;
   Counts counts;
-  auto check = [&](const std::string& what, const Model& model, const cspace::PairAxes& axes,
-                   const cspace::ChartLayout& layout, int count) {
-    auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
-    if (!tester->usable()) return;
-    for (const auto& x : layout.x_charts)
-      for (const auto& y : layout.y_charts)
-        for (int t = 0; t < 3; ++t) {
-          const long side = 4L << (random() % 3);
-          const long tx = static_cast<long>(random() % static_cast<unsigned long>(side));
-          const long ty = static_cast<long>(random() % static_cast<unsigned long>(side));
-          const cspace::ChartAxis tile_x = test_charts::sub_axis(x, tx, 1, side);
-          const cspace::ChartAxis tile_y = test_charts::sub_axis(y, ty, 1, side);
-          // a box holding the tile: its enclosure widened by 0 to a tile on each side, within the chart
-          const Interval chart_x{cspace::algebra::lower_double(x.lo), cspace::algebra::upper_double(x.hi)};
-          const Interval chart_y{cspace::algebra::lower_double(y.lo), cspace::algebra::upper_double(y.hi)};
-          auto widened = [&](const cspace::ChartAxis& tile, const Interval& chart) {
-            const double lo = cspace::algebra::lower_double(tile.lo), hi = cspace::algebra::upper_double(tile.hi);
-            const double step = (hi - lo) / 4;
-            return Interval{std::max(chart.lo, lo - step * static_cast<double>(random() % 5)),
-                            std::min(chart.hi, hi + step * static_cast<double>(random() % 5))};
-          };
-          const Interval ex = widened(tile_x, chart_x), ey = widened(tile_y, chart_y);
-          cspace::BlockedTester::Cache cache;
-          auto pairs = std::make_shared<std::vector<cspace::BlockedTester::DiskPair>>();
-          if (tester->blocked(x, y, ex, ey, cache, nullptr, pairs.get())) continue;   // no list
-          ++tiles;
-          // the list of a box beside the tile (the tile moved by half the chart in x; its pairs
-          // are other disks')
-          const double half = 0.5 * (chart_x.hi - chart_x.lo);
-          const double shift = 0.5 * (ex.lo + ex.hi) < chart_x.lo + half ? half : -half;
-          const Interval cut{ex.lo + shift, ex.hi + shift};
-          auto cut_pairs = std::make_shared<std::vector<cspace::BlockedTester::DiskPair>>();
-          tester->blocked(x, y, cut, ey, cache, nullptr, cut_pairs.get());
-          for (bool holds : {true, false}) {
-            cspace::BlockedCells grid(tester, tile_x, tile_y, 2, 9);
-            const bool kept = grid.enclose(holds ? ex : cut, ey, holds ? pairs : cut_pairs);
-            EXPECT_EQ(kept, holds) << what << (holds ? ": a list of a box holding the tile refused"
-                                                     : ": a list of a box not holding the tile kept");
-            (kept ? accepted : refused) += 1;
-            wrong += walk_grid(grid, *tester, model, axes, tile_x, tile_y, count, random, counts, cells, blocked,
-                               inherited,
-                               what + " tile " + std::to_string(tx) + ", " + std::to_string(ty) + " of " +
-                                   std::to_string(side) + (holds ? "" : " (offered a list of a box beside it)"));
-          }
-        }
-  };
-  on_examples_and_bar_walls(random, 120, 120, check);
+  on_every_chart(random, 120, 120, [&](const std::string& what, const Model& model, const cspace::PairAxes& axes,
+                                      const std::shared_ptr<cspace::BlockedTester>& tester, const cspace::ChartAxis& x,
+                                      const cspace::ChartAxis& y, int count) {
+    for (int t = 0; t < 3; ++t) {
+      const long side = 4L << (random() % 3);
+      const long tx = static_cast<long>(random() % static_cast<unsigned long>(side));
+      const long ty = static_cast<long>(random() % static_cast<unsigned long>(side));
+      const cspace::ChartAxis tile_x = test_charts::sub_axis(x, tx, 1, side);
+      const cspace::ChartAxis tile_y = test_charts::sub_axis(y, ty, 1, side);
+      // a box holding the tile: its enclosure widened by 0 to a tile on each side, within the chart
+      const Interval chart_x{cspace::algebra::lower_double(x.lo), cspace::algebra::upper_double(x.hi)};
+      const Interval chart_y{cspace::algebra::lower_double(y.lo), cspace::algebra::upper_double(y.hi)};
+      auto widened = [&](const cspace::ChartAxis& tile, const Interval& chart) {
+        const double lo = cspace::algebra::lower_double(tile.lo), hi = cspace::algebra::upper_double(tile.hi);
+        const double step = (hi - lo) / 4;
+        return Interval{std::max(chart.lo, lo - step * static_cast<double>(random() % 5)),
+                        std::min(chart.hi, hi + step * static_cast<double>(random() % 5))};
+      };
+      const Interval ex = widened(tile_x, chart_x), ey = widened(tile_y, chart_y);
+      cspace::BlockedTester::Cache cache;
+      auto pairs = std::make_shared<std::vector<cspace::BlockedTester::DiskPair>>();
+      if (tester->blocked(x, y, ex, ey, cache, nullptr, pairs.get())) continue;   // no list
+      ++tiles;
+      // the list of a box beside the tile (the tile moved by half the chart in x; its pairs
+      // are other disks')
+      const double half = 0.5 * (chart_x.hi - chart_x.lo);
+      const double shift = 0.5 * (ex.lo + ex.hi) < chart_x.lo + half ? half : -half;
+      const Interval cut{ex.lo + shift, ex.hi + shift};
+      auto cut_pairs = std::make_shared<std::vector<cspace::BlockedTester::DiskPair>>();
+      tester->blocked(x, y, cut, ey, cache, nullptr, cut_pairs.get());
+      for (bool holds : {true, false}) {
+        cspace::BlockedCells grid(tester, tile_x, tile_y, 2, 9);
+        const bool kept = grid.enclose(holds ? ex : cut, ey, holds ? pairs : cut_pairs);
+        EXPECT_EQ(kept, holds) << what << (holds ? ": a list of a box holding the tile refused"
+                                                 : ": a list of a box not holding the tile kept");
+        (kept ? accepted : refused) += 1;
+        wrong += walk_grid(grid, *tester, model, axes, tile_x, tile_y, count, random, counts, cells, blocked,
+                           inherited,
+                           what + " tile " + std::to_string(tx) + ", " + std::to_string(ty) + " of " +
+                               std::to_string(side) + (holds ? "" : " (offered a list of a box beside it)"));
+      }
+    }
+  });
   std::cout << tiles << " tiles (" << accepted << " lists kept, " << refused << " refused), " << cells << " cells, "
             << blocked << " blocked (" << inherited << " inside a blocked cell), " << wrong << " wrong, " << counts.points
             << " configurations of blocked cells checked with the oracle\n";
