@@ -256,6 +256,11 @@ std::optional<algebra::Interval> quadratic_root_enclosure(const mpz_class& a, co
 /// evaluating each cell alone: the same windows and cells). On by default; tests turn it off
 /// to compare with the plain evaluation per cell.
 std::atomic<bool>& culling_row_cache();
+/// The operating region's flood gathers each tile's disk pairs before its blocks' and gives a
+/// kept tile's grid the list of the tile (or of the block holding it): the grid's cells without
+/// a tested ancestor test those pairs instead of sweeping every disk (BlockedCells::enclose;
+/// the same answers). On by default; tests turn it off to compare with the sweeps.
+std::atomic<bool>& region_tile_lists();
 /// Queries (builder_locate.cpp).
 Location locate_point(const CSpace::Impl& impl, const hipair::ChartPoint& q);
 CertifiedValue evaluate_edge(const CSpace::Impl& impl, std::size_t edge, double x);

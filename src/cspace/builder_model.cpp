@@ -14,6 +14,7 @@
 #include "kernels/interval.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <numbers>
@@ -47,9 +48,18 @@ std::size_t part_index(const Model& model, std::string_view name) {
 
 using RegionPath = std::vector<std::array<double, 2>>;
 
+// The disk pairs that can certify a box inside [x] x [y] (BlockedTester::blocked's `narrowed`
+// list of that box), which encloses a tile: the tile's grid tests its cells on them
+// (BlockedCells::enclose) instead of sweeping every disk.
+struct TileList {
+  cspace::algebra::Interval x, y;
+  std::shared_ptr<const std::vector<cspace::BlockedTester::DiskPair>> pairs;
+};
+
 struct RegionTiles {
   std::size_t tiles = 0;                 // per chart axis
   std::vector<std::vector<char>> kept;   // per chart (x index * y charts + y index): tiles x * tiles + y
+  std::vector<std::vector<TileList>> lists;   // the same layout; no pairs: none made
   std::size_t cells = 0;                 // flooded cells
 };
 
@@ -136,13 +146,41 @@ RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const
   // pair that can certify a box inside the block; BlockedTester::blocked). A block certified
   // blocked as a whole leaves no list: its cells are tested by the sweep, as before (a cell's
   // own test is what decides it, so the flood is the same cell for cell).
+  // Where a tile is larger than a block (sub > block_side), the tile's box is gathered first,
+  // once, and its blocks are tested on the tile's list (the list holds every pair that can
+  // certify a box inside the tile, so the blocks' lists are the sweep's; the same reasoning
+  // one level up). The kept tiles' lists (the tile's, or where a block holds the tile, the
+  // block's) go to the tiles' grids (RegionTiles::lists).
   constexpr std::size_t block_side = 8;
   struct Block {
     bool listed = false;
     std::vector<cspace::BlockedTester::DiskPair> pairs;
   };
+  // the union of the cells [i_first, i_last] x [j_first, j_last] of chart c
+  auto box_of = [&](std::size_t c, std::size_t i_first, std::size_t i_last, std::size_t j_first, std::size_t j_last) {
+    const ChartAxis& x = layout.x_charts[c / ny];
+    const ChartAxis& y = layout.y_charts[c % ny];
+    return std::array<cspace::algebra::Interval, 2>{
+        cspace::algebra::Interval{cell_interval(x, i_first).lo, cell_interval(x, i_last).hi},
+        cspace::algebra::Interval{cell_interval(y, j_first).lo, cell_interval(y, j_last).hi}};
+  };
   const std::size_t blocks = (grid + block_side - 1) / block_side;
   std::vector<std::unordered_map<std::size_t, Block>> block_lists(nx * ny);
+  const bool lists = cspace::region_tile_lists().load(std::memory_order_relaxed);
+  const bool tile_level = lists && sub > block_side;
+  std::vector<std::unordered_map<std::size_t, Block>> tile_lists(nx * ny);
+  // tile (ti, tj) of chart c: tested and listed on first use
+  auto tile_block = [&](std::size_t c, std::size_t ti, std::size_t tj) -> Block& {
+    auto [it, inserted] = tile_lists[c].try_emplace(ti * tiles + tj);
+    Block& tile = it->second;
+    if (inserted) {
+      const auto [bx, by] = box_of(c, ti * sub, (ti + 1) * sub - 1, tj * sub, (tj + 1) * sub - 1);
+      tile.listed = !tester.blocked(layout.x_charts[c / ny], layout.y_charts[c % ny], bx, by, caches[c], nullptr,
+                                    &tile.pairs);
+      if (!tile.listed) tile.pairs.clear();
+    }
+    return tile;
+  };
   auto blocked = [&](std::size_t c, std::size_t i, std::size_t j) {
     const ChartAxis& x = layout.x_charts[c / ny];
     const ChartAxis& y = layout.y_charts[c % ny];
@@ -150,11 +188,15 @@ RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const
     auto [it, inserted] = block_lists[c].try_emplace(bi * blocks + bj);
     Block& block = it->second;
     if (inserted) {
+      const std::size_t i_first = bi * block_side, j_first = bj * block_side;
       const std::size_t i_last = std::min(grid, (bi + 1) * block_side) - 1;
       const std::size_t j_last = std::min(grid, (bj + 1) * block_side) - 1;
-      const cspace::algebra::Interval bx{cell_interval(x, bi * block_side).lo, cell_interval(x, i_last).hi};
-      const cspace::algebra::Interval by{cell_interval(y, bj * block_side).lo, cell_interval(y, j_last).hi};
-      block.listed = !tester.blocked(x, y, bx, by, caches[c], nullptr, &block.pairs);
+      const auto [bx, by] = box_of(c, i_first, i_last, j_first, j_last);
+      // the block's tile's list, when the block lies in one tile that is not blocked whole
+      const std::vector<cspace::BlockedTester::DiskPair>* above = nullptr;
+      if (tile_level && i_first / sub == i_last / sub && j_first / sub == j_last / sub)
+        if (Block& tile = tile_block(c, i_first / sub, j_first / sub); tile.listed) above = &tile.pairs;
+      block.listed = !tester.blocked(x, y, bx, by, caches[c], above, &block.pairs);
       if (!block.listed) block.pairs.clear();
     }
     if (!block.listed) return tester.blocked(x, y, cell_interval(x, i), cell_interval(y, j), caches[c]);
@@ -194,6 +236,41 @@ RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const
     }
   }
   region.cells = queue.size();
+  // the kept tiles' lists: the tile's own, or the list of the block holding the whole tile
+  // (a block holding several tiles: they share it)
+  using Pairs = std::vector<cspace::BlockedTester::DiskPair>;
+  region.lists.assign(nx * ny, std::vector<TileList>(static_cast<std::size_t>(tiles) * tiles));
+  for (std::size_t c = 0; c < nx * ny && lists; ++c) {
+    std::unordered_map<std::size_t, std::shared_ptr<const Pairs>> shared;   // per block
+    for (std::size_t ti = 0; ti < tiles; ++ti)
+      for (std::size_t tj = 0; tj < tiles; ++tj) {
+        const std::size_t t = ti * tiles + tj;
+        if (!region.kept[c][t]) continue;
+        const std::size_t i_first = ti * sub, i_last = (ti + 1) * sub - 1;
+        const std::size_t j_first = tj * sub, j_last = (tj + 1) * sub - 1;
+        TileList& list = region.lists[c][t];
+        if (tile_level) {
+          const auto found = tile_lists[c].find(t);
+          if (found == tile_lists[c].end() || !found->second.listed) continue;
+          const auto box = box_of(c, i_first, i_last, j_first, j_last);
+          list.x = box[0];
+          list.y = box[1];
+          list.pairs = std::make_shared<const Pairs>(std::move(found->second.pairs));
+          continue;
+        }
+        const std::size_t bi = i_first / block_side, bj = j_first / block_side;
+        if (i_last / block_side != bi || j_last / block_side != bj) continue;
+        const auto found = block_lists[c].find(bi * blocks + bj);
+        if (found == block_lists[c].end() || !found->second.listed) continue;
+        const auto box = box_of(c, bi * block_side, std::min(grid, (bi + 1) * block_side) - 1, bj * block_side,
+                                std::min(grid, (bj + 1) * block_side) - 1);
+        list.x = box[0];
+        list.y = box[1];
+        std::shared_ptr<const Pairs>& pairs = shared[bi * blocks + bj];
+        if (!pairs) pairs = std::make_shared<const Pairs>(found->second.pairs);
+        list.pairs = pairs;
+      }
+  }
   if (path && !path->empty()) {
     // only the flooded tiles the path runs through, with a margin of one tile in its chart
     std::vector<std::vector<char>> near(nx * ny, std::vector<char>(static_cast<std::size_t>(tiles) * tiles, 0));
@@ -218,6 +295,15 @@ RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const
   }
   return region;
 }
+
+}  // namespace
+
+std::atomic<bool>& cspace::region_tile_lists() {
+  static std::atomic<bool> on{true};
+  return on;
+}
+
+namespace {
 
 // The sub-axis of tile k of `tiles` of a chart axis.
 cspace::ChartAxis tile_axis(const cspace::ChartAxis& axis, std::size_t k, std::size_t tiles) {
@@ -324,6 +410,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   struct BoxToBuild {
     std::size_t x_index, y_index;
     ChartAxis x, y;
+    TileList list;   // an operating-region tile's: the flood's list of a box holding it
   };
   std::vector<BoxToBuild> boxes;
   int cull_depth = 0;
@@ -343,7 +430,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
           for (std::size_t ty = 0; ty < tiles; ++ty)
             if (region.kept[ix * y_charts.size() + iy][tx * tiles + ty])
               boxes.push_back({ix * tiles + tx, iy * tiles + ty, tile_axis(layout.x_charts[ix], tx, tiles),
-                               tile_axis(y_charts[iy], ty, tiles)});
+                               tile_axis(y_charts[iy], ty, tiles), region.lists[ix * y_charts.size() + iy][tx * tiles + ty]});
     // the culling quadtree keeps the resolution of a whole chart's
     cull_depth = 3;
     while ((std::size_t{1} << cull_depth) * tiles < 512 && cull_depth < 9) ++cull_depth;
@@ -359,7 +446,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   if (boxes.empty()) {
     for (std::size_t ix = 0; ix < layout.x_charts.size(); ++ix)
       for (std::size_t iy = 0; iy < y_charts.size(); ++iy)
-        boxes.push_back({ix, iy, layout.x_charts[ix], y_charts[iy]});
+        boxes.push_back({ix, iy, layout.x_charts[ix], y_charts[iy], {}});
   }
   auto generator_start = Clock::now();
   CurveOptions curve_options;
@@ -391,6 +478,8 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
     std::shared_ptr<BlockedCells> cells;
     if (curve_options.blocked_grid)
       cells = std::make_shared<BlockedCells>(tester, chart.x, chart.y, building.dimension, grid_depth);
+    // (a tile: its cells test the flood's list of a box holding it, when the box holds the grid's)
+    if (cells && box.list.pairs) cells->enclose(box.list.x, box.list.y, box.list.pairs);
     std::vector<ContactCurve> curves = generator.generate(chart.x, chart.y, &building.curve_statistics, cells.get());
     // the tester's posed disks (per axis interval) stay for the builder's cull of the same box
     // (prepare_chart, right after this): the boxes are built one at a time and the builder

@@ -961,6 +961,15 @@ namespace {
 long cell_key(int depth, long i, long j) { return (static_cast<long>(depth) << 56) | (i << 28) | j; }
 }  // namespace
 
+bool BlockedCells::enclose(const algebra::Interval& x, const algebra::Interval& y,
+                           std::shared_ptr<const std::vector<BlockedTester::DiskPair>> pairs) {
+  if (!tester_ || !pairs || dimension_ != 2) return false;
+  // the grid's box (every cell lies inside it) inside the list's box, compared exactly
+  if (!(x.lo <= x_.lo && x_.hi <= x.hi && y.lo <= y_.lo && y_.hi <= y.hi)) return false;
+  enclosing_ = std::move(pairs);
+  return true;
+}
+
 std::int32_t BlockedCells::known(int depth, long i, long j) const {
   if (dense(depth, i, j)) {
     const std::int32_t* table = dense_[depth].get();
@@ -1021,6 +1030,8 @@ bool BlockedCells::blocked(int depth, long i, long j) {
     if (entry != untested) return entry == is_blocked;
     for (int up = 1; up <= depth && !result; ++up) see(known(depth - up, i >> up, dimension_ == 2 ? j >> up : j));
   }
+  // (no listed ancestor: the enclosing box's list, when the grid has one)
+  if (!result && !candidates && enclosing_) candidates = enclosing_.get();
   std::int32_t answer = is_blocked;
   if (!result) {
     ++tests_;

@@ -221,6 +221,15 @@ class BlockedCells {
   /// Frees the tester's posed disks (kept for the next cells); the known cells and their
   /// candidate lists stay.
   void release_cache() { cache_ = BlockedTester::Cache{}; }
+  /// Gives the grid the candidate list of an enclosing box [x] x [y] (the `narrowed` list of
+  /// BlockedTester::blocked over that box: every pair of disks that can certify a box inside
+  /// it): a cell with no tested ancestor then tests only those pairs instead of sweeping every
+  /// disk (an operating-region tile gets the list the flood made for its tile or block). The
+  /// answers are the sweep's (BlockedTester::blocked's answer does not depend on the
+  /// candidates given). Kept only when the grid's box lies inside [x] x [y] (2-D grids);
+  /// returns whether it was kept.
+  bool enclose(const algebra::Interval& x, const algebra::Interval& y,
+               std::shared_ptr<const std::vector<BlockedTester::DiskPair>> pairs);
 
  private:
   // A tested cell's entry: 0 not tested, 1 blocked, 2 not blocked, 3 + k not blocked with
@@ -257,6 +266,8 @@ class BlockedCells {
   std::int32_t* dense_table(int depth);   // depth's table, made on first use
   std::unordered_map<long, std::int32_t> known_;   // the other cells
   std::vector<std::vector<BlockedTester::DiskPair>> lists_;
+  // the enclosing box's list (enclose()): the candidates of a cell with no listed ancestor
+  std::shared_ptr<const std::vector<BlockedTester::DiskPair>> enclosing_;
   std::size_t tests_ = 0;
   std::size_t pairs_tested_ = 0;
 };

@@ -15,6 +15,7 @@
 #include "oracle/overlap.hpp"
 #include "kernels/interval.hpp"
 #include "test_paths.hpp"
+#include "chart_sub_axis.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
@@ -774,6 +775,78 @@ TEST(BlockedTester, CandidateLoopKeepsTheDefinitionsPairsInOrder) {
   EXPECT_GT(nonempty, 200);   // lists that keep some pairs and drop others
 }
 
+// Asks `grid` (of chart box x, y or a tile of it) `count` cells in turn, as the curve
+// generator's and the builder's walks mix them: every fourth a new place (depth 2 to 14), else
+// the next column, the next row or a child of the last cell. A cell the grid calls free must be
+// free to the plain tester (a fresh sweep of the cell alone), a cell it calls blocked blocked to
+// it or inside a cell the grid called blocked before (`inherited`); at a random rational
+// configuration of every fourth blocked cell the parts overlap (the exact oracle). Returns the
+// wrong answers.
+int walk_grid(cspace::BlockedCells& grid, const cspace::BlockedTester& tester, const Model& model,
+              const cspace::PairAxes& axes, const cspace::ChartAxis& x, const cspace::ChartAxis& y, int count,
+              Random& random, Counts& counts, int& cells, int& blocked, int& inherited, const std::string& what) {
+  int wrong = 0;
+  std::set<std::tuple<int, long, long>> said_blocked;
+  auto inside_blocked = [&](int depth, long i, long j) {
+    for (int up = 1; up <= depth; ++up)
+      if (said_blocked.count({depth - up, i >> up, j >> up})) return true;
+    return false;
+  };
+  int depth = 2;
+  long i = 0, j = 0;
+  for (int n = 0; n < count; ++n) {
+    const long side = 1L << depth;
+    if (n % 4 == 0) {   // a new place
+      depth = 2 + static_cast<int>(random() % 13);
+      i = static_cast<long>(random() % (1UL << depth));
+      j = static_cast<long>(random() % (1UL << depth));
+    } else if (random() % 3 == 0) {
+      i = std::min(side - 1, i + 1);   // the next column
+    } else if (random() % 2 == 0) {
+      j = std::min(side - 1, j + 1);   // the next row
+    } else if (depth < 14) {           // a child
+      ++depth;
+      i = 2 * i + static_cast<long>(random() % 2);
+      j = 2 * j + static_cast<long>(random() % 2);
+    }
+    const Interval bx = grid.cell_x(depth, i), by = grid.cell_y(depth, j);
+    const bool answer = grid.blocked(depth, i, j);
+    const bool plain = tester.blocked(x, y, bx, by);
+    ++cells;
+    const std::string where = what + " cell " + std::to_string(depth) + ", " + std::to_string(i) + ", " +
+                              std::to_string(j);
+    if (!answer) {
+      EXPECT_FALSE(plain) << where << ": the grid calls free a blocked cell";
+      wrong += plain;
+      continue;
+    }
+    ++blocked;
+    said_blocked.insert({depth, i, j});
+    if (!plain) {
+      const bool in = inside_blocked(depth, i, j);
+      EXPECT_TRUE(in) << where << ": the grid calls blocked a cell the sweep does not";
+      inherited += in;
+      wrong += !in;
+    }
+    if (blocked % 4 == 0) check_blocked_box(model, axes, x, y, bx, by, true, 1, random, counts, where);
+  }
+  return wrong;
+}
+
+// `check(what, model, axes, tester, x, y, count)` on every chart of the pairs of
+// on_examples_and_bar_walls with a usable tester.
+template <class F>
+void on_every_chart(Random& random, int example_count, int bar_count, F&& check) {
+  on_examples_and_bar_walls(random, example_count, bar_count,
+                            [&](const std::string& what, const Model& model, const cspace::PairAxes& axes,
+                                const cspace::ChartLayout& layout, int count) {
+                              auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
+                              if (!tester->usable()) return;
+                              for (const auto& x : layout.x_charts)
+                                for (const auto& y : layout.y_charts) check(what, model, axes, tester, x, y, count);
+                            });
+}
+
 // The grid (BlockedCells) asked in any order — runs of neighbouring cells, children and
 // grandchildren of the last cell and cells at random, of depths 2 to 14, as the curve
 // generator's and the builder's walks mix them: a cell the grid calls free is free to the
@@ -787,64 +860,81 @@ TEST(BlockedTester, GridAnswersInAnyOrderAreTheSweepsAndOverlapExactly) {
   Random random(20261203);
   int cells = 0, blocked = 0, inherited = 0, wrong = 0;
   Counts counts;
-  auto check = [&](const std::string& what, const Model& model, const cspace::PairAxes& axes,
-                   const cspace::ChartLayout& layout, int count) {
-    auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
-    if (!tester->usable()) return;
-    for (const auto& x : layout.x_charts)
-      for (const auto& y : layout.y_charts) {
-        cspace::BlockedCells grid(tester, x, y, 2, 9);
-        std::set<std::tuple<int, long, long>> said_blocked;
-        auto inside_blocked = [&](int depth, long i, long j) {
-          for (int up = 1; up <= depth; ++up)
-            if (said_blocked.count({depth - up, i >> up, j >> up})) return true;
-          return false;
-        };
-        int depth = 2;
-        long i = 0, j = 0;
-        for (int n = 0; n < count; ++n) {
-          const long side = 1L << depth;
-          if (n % 4 == 0) {   // a new place
-            depth = 2 + static_cast<int>(random() % 13);
-            i = static_cast<long>(random() % (1UL << depth));
-            j = static_cast<long>(random() % (1UL << depth));
-          } else if (random() % 3 == 0) {
-            i = std::min(side - 1, i + 1);   // the next column
-          } else if (random() % 2 == 0) {
-            j = std::min(side - 1, j + 1);   // the next row
-          } else if (depth < 14) {           // a child
-            ++depth;
-            i = 2 * i + static_cast<long>(random() % 2);
-            j = 2 * j + static_cast<long>(random() % 2);
-          }
-          const Interval bx = grid.cell_x(depth, i), by = grid.cell_y(depth, j);
-          const bool answer = grid.blocked(depth, i, j);
-          const bool plain = tester->blocked(x, y, bx, by);
-          ++cells;
-          const std::string where = what + " cell " + std::to_string(depth) + ", " + std::to_string(i) + ", " +
-                                    std::to_string(j);
-          if (!answer) {
-            EXPECT_FALSE(plain) << where << ": the grid calls free a blocked cell";
-            wrong += plain;
-            continue;
-          }
-          ++blocked;
-          said_blocked.insert({depth, i, j});
-          if (!plain) {
-            const bool in = inside_blocked(depth, i, j);
-            EXPECT_TRUE(in) << where << ": the grid calls blocked a cell the sweep does not";
-            inherited += in;
-            wrong += !in;
-          }
-          if (blocked % 4 == 0) check_blocked_box(model, axes, x, y, bx, by, true, 1, random, counts, where);
-        }
-      }
-  };
-  on_examples_and_bar_walls(random, 1200, 400, check);
+  on_every_chart(random, 1200, 400, [&](const std::string& what, const Model& model, const cspace::PairAxes& axes,
+                                        const std::shared_ptr<cspace::BlockedTester>& tester, const cspace::ChartAxis& x,
+                                        const cspace::ChartAxis& y, int count) {
+    cspace::BlockedCells grid(tester, x, y, 2, 9);
+    wrong += walk_grid(grid, *tester, model, axes, x, y, count, random, counts, cells, blocked, inherited, what);
+  });
   std::cout << cells << " cells, " << blocked << " blocked (" << inherited << " inside a blocked cell), " << wrong
             << " wrong, " << counts.points << " configurations of blocked cells checked with the oracle\n";
   EXPECT_EQ(wrong, 0);
   EXPECT_GT(blocked, 1000);
+}
+
+
+// An operating-region tile's grid given the candidate list of a box holding the tile
+// (BlockedCells::enclose: the list the flood made for the tile or its block) answers as the
+// sweep: on tiles (1/4 to 1/16 of a chart per axis) of the examples' charts and of generated
+// bar-and-wall pairs at 1e-200 to 1e200, the list of a random box holding the tile (the
+// tile's own enclosure or wider, up to the chart), cells asked in any order at depths 2-14:
+// a cell the grid calls free is free to a fresh plain sweep, a blocked one is blocked to it or
+// inside a cell the grid called blocked before, and at a random rational configuration of every
+// fourth blocked cell the parts overlap (the exact oracle). A list of a box that does not hold
+// the tile (a box beside it) is refused, and the grid offered it answers as the sweep.
+TEST(BlockedTester, TileGridsOnAnEnclosingBoxsListAreTheSweeps) {
+  Random random(20261204);
+  int cells = 0, blocked = 0, inherited = 0, wrong = 0, tiles = 0, accepted = 0, refused = 0;
+  Counts counts;
+  on_every_chart(random, 120, 120, [&](const std::string& what, const Model& model, const cspace::PairAxes& axes,
+                                      const std::shared_ptr<cspace::BlockedTester>& tester, const cspace::ChartAxis& x,
+                                      const cspace::ChartAxis& y, int count) {
+    for (int t = 0; t < 3; ++t) {
+      const long side = 4L << (random() % 3);
+      const long tx = static_cast<long>(random() % static_cast<unsigned long>(side));
+      const long ty = static_cast<long>(random() % static_cast<unsigned long>(side));
+      const cspace::ChartAxis tile_x = test_charts::sub_axis(x, tx, 1, side);
+      const cspace::ChartAxis tile_y = test_charts::sub_axis(y, ty, 1, side);
+      // a box holding the tile: its enclosure widened by 0 to a tile on each side, within the chart
+      const Interval chart_x{cspace::algebra::lower_double(x.lo), cspace::algebra::upper_double(x.hi)};
+      const Interval chart_y{cspace::algebra::lower_double(y.lo), cspace::algebra::upper_double(y.hi)};
+      auto widened = [&](const cspace::ChartAxis& tile, const Interval& chart) {
+        const double lo = cspace::algebra::lower_double(tile.lo), hi = cspace::algebra::upper_double(tile.hi);
+        const double step = (hi - lo) / 4;
+        return Interval{std::max(chart.lo, lo - step * static_cast<double>(random() % 5)),
+                        std::min(chart.hi, hi + step * static_cast<double>(random() % 5))};
+      };
+      const Interval ex = widened(tile_x, chart_x), ey = widened(tile_y, chart_y);
+      cspace::BlockedTester::Cache cache;
+      auto pairs = std::make_shared<std::vector<cspace::BlockedTester::DiskPair>>();
+      if (tester->blocked(x, y, ex, ey, cache, nullptr, pairs.get())) continue;   // no list
+      ++tiles;
+      // the list of a box beside the tile (the tile moved by half the chart in x; its pairs
+      // are other disks')
+      const double half = 0.5 * (chart_x.hi - chart_x.lo);
+      const double shift = 0.5 * (ex.lo + ex.hi) < chart_x.lo + half ? half : -half;
+      const Interval cut{ex.lo + shift, ex.hi + shift};
+      auto cut_pairs = std::make_shared<std::vector<cspace::BlockedTester::DiskPair>>();
+      tester->blocked(x, y, cut, ey, cache, nullptr, cut_pairs.get());
+      for (bool holds : {true, false}) {
+        cspace::BlockedCells grid(tester, tile_x, tile_y, 2, 9);
+        const bool kept = grid.enclose(holds ? ex : cut, ey, holds ? pairs : cut_pairs);
+        EXPECT_EQ(kept, holds) << what << (holds ? ": a list of a box holding the tile refused"
+                                                 : ": a list of a box not holding the tile kept");
+        (kept ? accepted : refused) += 1;
+        wrong += walk_grid(grid, *tester, model, axes, tile_x, tile_y, count, random, counts, cells, blocked,
+                           inherited,
+                           what + " tile " + std::to_string(tx) + ", " + std::to_string(ty) + " of " +
+                               std::to_string(side) + (holds ? "" : " (offered a list of a box beside it)"));
+      }
+    }
+  });
+  std::cout << tiles << " tiles (" << accepted << " lists kept, " << refused << " refused), " << cells << " cells, "
+            << blocked << " blocked (" << inherited << " inside a blocked cell), " << wrong << " wrong, " << counts.points
+            << " configurations of blocked cells checked with the oracle\n";
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(blocked, 500);
+  EXPECT_GT(tiles, 40);
 }
 
 }  // namespace

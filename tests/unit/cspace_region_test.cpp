@@ -5,6 +5,7 @@
 //  - the channel of the initial configuration is the same as in the whole build: a free cell
 //    bounded by the same feature pairs, wrapping the same way;
 //  - tiles not built are reported as outside, and the space says it is not complete.
+#include "cspace/builder_impl.hpp"
 #include "curves/contact_curves.hpp"
 #include "oracle/blocked_tester.hpp"
 #include "cspace_test_support.hpp"
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <numbers>
 #include <tuple>
 #include <random>
@@ -407,6 +409,56 @@ TEST(CSpaceRegion, AlongAPathBuildsTheRegionsTilesItRunsThrough) {
   // exact point location inside the built tiles against the oracle
   cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part("pinion"), *model.find_part("gear"));
   expect_tiles_agree_with_oracle(model, axes, along, 29, 300);
+}
+
+
+// The flood's lists given to the tiles' grids (cspace::region_tile_lists(): a tile's or its
+// block's disk pairs, BlockedCells::enclose) build the space the grids' own sweeps build: on
+// gear pairs with 8 and 16 tiles per axis (a tile of 64 or 32 fine cells: the tile's list, made
+// before its blocks'), 64 (a tile is a block) and 128 (a block holds 2 x 2 tiles), the tiles a
+// short path of the centre line runs through, built with the lists and without: the same
+// flooded cells, tiles, kept curves, windows and surviving cells, and point location in the
+// tiles agreeing with the exact oracle.
+TEST(CSpaceRegion, TileGridsOnTheFloodsListsBuildTheSweepsSpace) {
+  std::size_t windows = 0;
+  for (auto [z1, z2, tiles] : std::vector<std::tuple<long, long, unsigned>>{{6, 7, 8}, {8, 9, 16}, {7, 10, 64}, {5, 6, 128}}) {
+    SCOPED_TRACE(std::to_string(z1) + " x " + std::to_string(z2) + ", " + std::to_string(tiles) + " tiles");
+    Model model = gears(z1, z2);
+    CSpaceBuildOptions options = region_options();
+    options.region_tiles = tiles;
+    const double start = model.parts[*model.find_part("pinion")].initial.angle.get_d();
+    const double ratio = static_cast<double>(z1) / static_cast<double>(z2);
+    std::vector<std::array<double, 2>> path;
+    for (int k = 0; k <= 6; ++k) path.push_back({start + 0.05 * k, -ratio * (start + 0.05 * k)});
+    std::optional<CSpace> swept;
+    cspace::region_tile_lists().store(false);
+    try {
+      swept.emplace(build_operating_region_along(model, "pinion", "gear", path, options));
+    } catch (...) {
+      cspace::region_tile_lists().store(true);
+      throw;
+    }
+    cspace::region_tile_lists().store(true);
+    const CSpace listed = build_operating_region_along(model, "pinion", "gear", path, options);
+    EXPECT_EQ(listed.statistics().region_cells, swept->statistics().region_cells);
+    const auto& a = cspace::impl_of(listed);
+    const auto& b = cspace::impl_of(*swept);
+    ASSERT_EQ(a.charts.size(), b.charts.size());
+    EXPECT_GT(a.charts.size(), 1u);
+    for (std::size_t c = 0; c < a.charts.size(); ++c) {
+      EXPECT_EQ(a.charts[c].box.x_lo, b.charts[c].box.x_lo) << "tile " << c;
+      EXPECT_EQ(a.charts[c].box.y_lo, b.charts[c].box.y_lo) << "tile " << c;
+      EXPECT_EQ(a.charts[c].curve_global, b.charts[c].curve_global) << "tile " << c;
+      EXPECT_EQ(a.charts[c].windows, b.charts[c].windows) << "tile " << c;
+      EXPECT_EQ(a.charts[c].cells, b.charts[c].cells) << "tile " << c;
+      for (const auto& w : a.charts[c].windows) windows += w.size();
+    }
+    EXPECT_EQ(listed.vertices().size(), swept->vertices().size());
+    EXPECT_EQ(listed.edges().size(), swept->edges().size());
+    cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part("pinion"), *model.find_part("gear"));
+    expect_tiles_agree_with_oracle(model, axes, listed, static_cast<unsigned>(z1 * 100 + z2), 300);
+  }
+  EXPECT_GT(windows, 100u);
 }
 
 }  // namespace
