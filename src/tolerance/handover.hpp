@@ -157,6 +157,11 @@ int& handover_taylor_partials();
 /// 1: not at all (the envelopes of session 48).
 int& handover_far_windows();
 
+/// Session 52: where the envelope is still not bounded after the far walk (handover.cpp, step 7),
+/// the driver's range is split into 4, 8, ... up to this many pieces walked outward from the one
+/// holding the nominal driver; 1: not at all (the envelopes of session 51).
+int& handover_driver_pieces();
+
 /// While one lives on this thread, the envelope's walk may go on beyond its window
 /// (handover.cpp, step 6): chain.cpp composes a position whose band is unbounded without it again
 /// under one.
@@ -166,6 +171,18 @@ class FarWalk {
   ~FarWalk();
   FarWalk(const FarWalk&) = delete;
   FarWalk& operator=(const FarWalk&) = delete;
+  static bool on();
+};
+
+/// While one lives on this thread (with a FarWalk), the envelope may walk its driver's range in
+/// pieces (handover.cpp, step 7): chain.cpp composes a position whose band is unbounded even with
+/// the far walk once more under one.
+class DriverPieces {
+ public:
+  DriverPieces();
+  ~DriverPieces();
+  DriverPieces(const DriverPieces&) = delete;
+  DriverPieces& operator=(const DriverPieces&) = delete;
   static bool on();
 };
 
