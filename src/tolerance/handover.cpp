@@ -1094,19 +1094,6 @@ int& handover_sub_box_anchor() {
   return on;
 }
 
-namespace {
-thread_local int far_walks = 0;
-thread_local int driver_pieces = 0;
-}  // namespace
-
-DriverPieces::DriverPieces() { ++driver_pieces; }
-DriverPieces::~DriverPieces() { --driver_pieces; }
-bool DriverPieces::on() { return driver_pieces > 0; }
-
-FarWalk::FarWalk() { ++far_walks; }
-FarWalk::~FarWalk() { --far_walks; }
-bool FarWalk::on() { return far_walks > 0; }
-
 int& handover_far_windows() {
   static int windows = 2;
   return windows;
