@@ -1002,8 +1002,8 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   // the follower is never on the -sigma side of the holder's root). Each piece's competitor zeros
   // sweep a fraction of the window. n = 4, 8, ... up to handover_driver_pieces(); a piece not
   // bounded ends that n. Only while a FarWalk and a DriverPieces live (chain.cpp: a position
-  // unbounded even with the far walk, composed once more), and only in the composition's own envelope (not in the pieces', the bridge's or the route's
-  // walks: `depth`).
+  // unbounded even with the far walk, composed once more), and only in the composition's own
+  // envelope (not in the pieces', the bridge's or the route's walks: `depth`).
   if (!bounded && FarWalk::on() && DriverPieces::on() && depth.level == 1 && handover_driver_pieces() > 1 && curve.fixed_range &&
       fixed.lo < fixed.hi && !away && std::isfinite(nominal_free)) {
     const double t_n = curve.fixed_value.get_d();
@@ -1033,11 +1033,15 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
         CurveSlice piece = curve;
         piece.fixed_range = Interval(ends[j], ends[j + 1]);
         piece.fixed_spread = std::fabs(slope) * piece.fixed_range->width();
-        Interval y = holder;   // Y holds the holder's root over box x T, so over box x T_j
+        // Y_j: certified about the nominal root moved along the driver, as Y is, and met with Y
+        // (which holds the holder's root over box x T, so over box x T_j); Y itself where the two
+        // do not meet, or where T_c's would not hold the nominal follower (the anchor of T_c)
+        Interval y = holder;
         try {
-          y = met(solver_->certified_range(piece, box, nominal_free + slope * (centre(*piece.fixed_range) - t_n), s,
-                                           relative_accuracy, absolute_accuracy, boxes),
-                  holder);
+          Interval own = solver_->certified_range(piece, box, nominal_free + slope * (centre(*piece.fixed_range) - t_n), s,
+                                                  relative_accuracy, absolute_accuracy, boxes);
+          Interval both(std::max(own.lo, holder.lo), std::min(own.hi, holder.hi));
+          if (both.lo <= both.hi && (previous || (both.lo < nominal_free && nominal_free < both.hi))) y = both;
         } catch (const Error&) {
         }
         if (previous) y = kernels::hull(y, Interval::point(*previous));
